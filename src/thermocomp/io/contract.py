@@ -1,0 +1,175 @@
+"""The dataset contract of ``shared/spec/DATA_FORMAT.md`` as Python objects.
+
+A :class:`Dataset` is a manifest (one row per campaign) plus one DataFrame per
+campaign.  Every campaign frame has a float ``time`` column (seconds since the
+campaign start) followed by ``T_``/``E_``/``S_`` columns, all float64.
+
+This module owns the vocabulary (prefixes, roles, the error type) and the
+writer; :mod:`thermocomp.io.read` owns parsing and validation.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import os
+import shutil
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pandas as pd
+
+TIME = "time"
+PREFIXES = ("T_", "E_", "S_")
+SPLITS = ("train", "val", "test")
+MANIFEST = "campaigns.csv"
+MANIFEST_REQUIRED = ("campaign", "file", "split")
+
+
+class ContractError(ValueError):
+    """Input that breaks the data contract; the CLI turns it into exit status 2.
+
+    The message is one line naming the file, the column and the row (1-based
+    data row, header excluded) wherever they are known.
+    """
+
+    def __init__(self, message: str, file: str | os.PathLike | None = None,
+                 column: str | None = None, row: int | None = None):
+        self.reason, self.file, self.column, self.row = message, file, column, row
+        where = [f"file {file}" if file is not None else None,
+                 f"column {column!r}" if column is not None else None,
+                 f"row {row}" if row is not None else None]
+        where = ", ".join(w for w in where if w)
+        super().__init__(f"{where}: {message}" if where else message)
+
+
+def role(column: str) -> str | None:
+    """``'time'``, ``'T'``, ``'E'``, ``'S'`` or ``None`` for a column name."""
+    if column == TIME:
+        return "time"
+    for p in PREFIXES:
+        if column.startswith(p) and len(column) > len(p):
+            return p[0]
+    return None
+
+
+def match_columns(columns, patterns) -> list[str]:
+    """Columns matching any glob pattern, in the order of ``columns``."""
+    if isinstance(patterns, str):
+        patterns = [patterns]
+    return [c for c in columns if any(fnmatch.fnmatchcase(c, p) for p in patterns)]
+
+
+@dataclass
+class Dataset:
+    """A set of campaigns in the contract's frame.
+
+    Parameters
+    ----------
+    manifest : DataFrame
+        Indexed by campaign id; columns ``file``, ``split`` and any metadata
+        (``start``, ``notes``, ``ambient_c`` ...).
+    campaigns : dict of DataFrame
+        Campaign id -> samples (``time`` in s, then ``T_``/``E_``/``S_`` columns).
+    name : str
+        Short name (the dataset folder's name).
+    """
+
+    manifest: pd.DataFrame
+    campaigns: dict[str, pd.DataFrame]
+    name: str = ""
+    meta: dict = field(default_factory=dict)
+
+    def ids(self, split: str | None = None) -> list[str]:
+        if split is None:
+            return list(self.manifest.index)
+        return list(self.manifest.index[self.manifest["split"] == split])
+
+    @property
+    def columns(self) -> list[str]:
+        """Union of the campaign columns (without ``time``), first-seen order."""
+        seen: dict[str, None] = {}
+        for df in self.campaigns.values():
+            for c in df.columns:
+                if c != TIME:
+                    seen.setdefault(c, None)
+        return list(seen)
+
+    def columns_of(self, prefix: str) -> list[str]:
+        return [c for c in self.columns if c.startswith(prefix)]
+
+    def subset(self, ids) -> "Dataset":
+        ids = list(ids)
+        return Dataset(self.manifest.loc[ids], {i: self.campaigns[i] for i in ids},
+                       self.name, dict(self.meta))
+
+
+def atomic_dir(dest: str | os.PathLike):
+    """Context manager yielding a temp folder that replaces ``dest`` on success.
+
+    Nothing half-written is ever visible at ``dest``: on error the temp folder
+    is removed and ``dest`` keeps its previous content.
+    """
+    return _AtomicDir(Path(dest))
+
+
+class _AtomicDir:
+    def __init__(self, dest: Path):
+        self.dest = dest
+
+    def __enter__(self) -> Path:
+        self.dest.parent.mkdir(parents=True, exist_ok=True)
+        self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.dest.name}.", dir=self.dest.parent))
+        return self.tmp
+
+    def __exit__(self, exc_type, exc, tb):
+        if exc_type is not None:
+            shutil.rmtree(self.tmp, ignore_errors=True)
+            return False
+        old = None
+        if self.dest.exists():
+            old = self.dest.with_name(f".{self.dest.name}.old")
+            shutil.rmtree(old, ignore_errors=True)
+            os.replace(self.dest, old)
+        os.replace(self.tmp, self.dest)
+        if old is not None:
+            shutil.rmtree(old, ignore_errors=True)
+        return False
+
+
+def atomic_write_text(path: str | os.PathLike, text: str) -> None:
+    """Write a text file through a temp file and a rename."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
+    try:
+        with os.fdopen(fd, "w") as f:
+            f.write(text)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+
+
+def write_dataset(ds: Dataset, path: str | os.PathLike, fmt: str = "csv") -> Path:
+    """Write ``ds`` as a dataset folder in the contract (atomically).
+
+    ``fmt`` is ``'csv'`` or ``'parquet'`` for the campaign files; the manifest
+    is always ``campaigns.csv``.
+    """
+    if fmt not in ("csv", "parquet"):
+        raise ValueError(f"unknown campaign file format {fmt!r}")
+    path = Path(path)
+    manifest = ds.manifest.copy()
+    manifest.index.name = "campaign"
+    manifest["file"] = [f"{cid}.{fmt}" for cid in manifest.index]
+    with atomic_dir(path) as tmp:
+        for cid in manifest.index:
+            df = ds.campaigns[cid]
+            if fmt == "csv":
+                df.to_csv(tmp / f"{cid}.csv", index=False, float_format="%.6g")
+            else:
+                df.to_parquet(tmp / f"{cid}.parquet", index=False)
+        cols = ["file", "split"] + [c for c in manifest.columns if c not in ("file", "split")]
+        manifest[cols].reset_index().to_csv(tmp / MANIFEST, index=False)
+    return path

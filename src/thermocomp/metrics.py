@@ -1,0 +1,190 @@
+r"""Accuracy metrics of a thermal error compensation.
+
+All take the measured error ``y`` and/or the residual ``r = y - \hat y`` of
+one campaign in the target's unit (µm), in the reference frame of the data.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+
+
+def rmse(residual) -> float:
+    r"""Root-mean-square error :math:`\sqrt{\tfrac1n\sum_j r_j^2}`."""
+    r = np.asarray(residual, float)
+    return float(np.sqrt(np.mean(r**2)))
+
+
+rms = rmse  # RMS of a signal is the same formula; named apart for "before" (measured error)
+
+
+def rsd(residual) -> float:
+    r"""Residual standard deviation of paper 003, Eq. (10).
+
+    .. math:: R_{sd} = \sqrt{\frac{\sum_{j=1}^{n} (\hat y_j - y_j)^2}{n - 1}}
+
+    (not mean-centred: an offset counts as error, as on the machine).
+    """
+    r = np.asarray(residual, float)
+    if r.size < 2:
+        return float("nan")
+    return float(np.sqrt(np.sum(r**2) / (r.size - 1)))
+
+
+def p2p(signal) -> float:
+    """Peak-to-peak value ``max - min``."""
+    s = np.asarray(signal, float)
+    return float(np.max(s) - np.min(s))
+
+
+def sm_sd(values: Sequence[float]) -> tuple[float | None, float | None]:
+    r"""SM and SD of paper 003: mean and sample standard deviation of per-campaign Rsd.
+
+    ``(None, None)`` for SD when there is a single campaign (JSON never holds NaN).
+    """
+    v = np.asarray(list(values), float)
+    if v.size == 0:
+        return None, None
+    mean = float(np.mean(v))
+    sd = float(np.std(v, ddof=1)) if v.size > 1 else None
+    return mean, sd
+
+
+def _sparse_table(x: np.ndarray, op) -> list[np.ndarray]:
+    """Level k holds op over windows of 2**k samples starting at each index."""
+    table = [x]
+    k = 1
+    while 2**k <= x.size:
+        prev = table[-1]
+        half = 2 ** (k - 1)
+        table.append(op(prev[:-half], prev[half:]))
+        k += 1
+    return table
+
+
+def _cumsums(x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Running sums of x and x² (of x minus its mean, against cancellation)."""
+    xc = x - x.mean() if x.size else x
+    return np.concatenate([[0.0], np.cumsum(xc)]), np.concatenate([[0.0], np.cumsum(xc**2)])
+
+
+def window_statistic(x, length: int, statistic: str = "range",
+                     tables=None, cumsums=None) -> np.ndarray:
+    r"""Statistic of every sliding window of ``length`` samples of ``x``.
+
+    ``range``: :math:`\max - \min` over the window; ``std``: population σ.
+    Range uses sparse tables (two table look-ups per window, O(n) per length)
+    so all window lengths cost O(n² / 1) vectorised work instead of a Python loop.
+    """
+    x = np.asarray(x, float)
+    n = x.size
+    if length < 1 or length > n:
+        return np.empty(0)
+    if statistic == "range":
+        tmax, tmin = tables if tables is not None else (_sparse_table(x, np.maximum),
+                                                         _sparse_table(x, np.minimum))
+        k = int(np.floor(np.log2(length)))
+        span = length - 2**k
+        count = n - length + 1
+        hi = np.maximum(tmax[k][:count], tmax[k][span:span + count])
+        lo = np.minimum(tmin[k][:count], tmin[k][span:span + count])
+        return hi - lo
+    if statistic == "std":
+        c1, c2 = cumsums if cumsums is not None else _cumsums(x)
+        s1 = c1[length:] - c1[:-length]
+        s2 = c2[length:] - c2[:-length]
+        var = s2 / length - (s1 / length) ** 2
+        # Running sums lose ~eps·scale² to cancellation: below that, σ is 0.
+        var[var < 1e-12 * max(c2[-1] / n, 1e-300)] = 0.0
+        return np.sqrt(var)
+    raise ValueError(f"statistic must be 'range' or 'std', got {statistic!r}")
+
+
+def e_p95(series: Sequence, lengths: Sequence[int], statistic: str = "range",
+          q: float = 95.0) -> np.ndarray:
+    r"""E_P95 curve (paper 000, Sect. 2.3): for each window length, the ``q``-th
+    percentile of the window statistic over all sliding windows, pooled over series.
+
+    .. math:: E_{P95}(\Delta t) = P_{95}\{\,S(e[t, t+\Delta t)) : t\,\}
+
+    Parameters
+    ----------
+    series : list of 1-D arrays (one per campaign, uniformly sampled)
+    lengths : window lengths in samples (>= 1)
+    statistic : 'range' or 'std'
+
+    Returns
+    -------
+    ndarray of shape (len(lengths),); NaN where no series is that long.
+    """
+    prepared = []
+    for s in series:
+        x = np.asarray(s, float)
+        x = x[np.isfinite(x)]
+        if statistic == "range":
+            prepared.append((x, (_sparse_table(x, np.maximum), _sparse_table(x, np.minimum)), None))
+        else:
+            prepared.append((x, None, _cumsums(x)))
+    out = np.full(len(lengths), np.nan)
+    for i, length in enumerate(lengths):
+        parts = [window_statistic(x, int(length), statistic, t, c) for x, t, c in prepared]
+        parts = [p for p in parts if p.size]
+        if parts:
+            out[i] = np.percentile(np.concatenate(parts), q)
+    return out
+
+
+def window_lengths(max_len: int, max_points: int | None = None) -> np.ndarray:
+    """Window lengths in samples, 2..max_len (a window of n samples spans (n-1)·Δt).
+
+    Every length, or ``max_points`` log-spaced unique ones when there are more.
+    """
+    if max_len < 2:
+        return np.empty(0, int)
+    if max_points is None or max_len - 1 <= max_points:
+        return np.arange(2, max_len + 1)
+    return np.unique(np.round(np.geomspace(2, max_len, max_points)).astype(int))
+
+
+def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.ndarray],
+                 sample_period_s: float, e_p95_statistic: str = "range",
+                 e_p95_points: int | None = 200, with_before_after: bool = True) -> dict:
+    """All ``metrics.json`` figures of one target on one split.
+
+    ``rmse``, ``rms_*`` and ``p2p_*`` are pooled over all samples of the split's
+    campaigns (in the reference frame); ``rsd_mean``/``rsd_sd`` are SM/SD of the
+    per-campaign Rsd.  Window lengths of ``e_p95`` run from one sample step to
+    the longest campaign (``window_s`` in seconds).
+    """
+    ids = list(measured)
+    y_all = np.concatenate([np.asarray(measured[c], float) for c in ids])
+    r_all = np.concatenate([np.asarray(residual[c], float) for c in ids])
+    sm, sd = sm_sd([rsd(residual[c]) for c in ids])
+    out = {"rmse": rmse(r_all), "rsd_mean": sm, "rsd_sd": sd}
+    if not with_before_after:
+        return out
+    out.update(rms_before=rms(y_all), rms_after=rms(r_all),
+               p2p_before=p2p(y_all), p2p_after=p2p(r_all))
+    out["per_campaign"] = {
+        c: {"rmse": rmse(residual[c]), "rsd": _finite(rsd(residual[c])),
+            "rms_before": rms(measured[c]), "rms_after": rms(residual[c]),
+            "p2p_before": p2p(measured[c]), "p2p_after": p2p(residual[c])}
+        for c in ids}
+    lengths = window_lengths(max(len(measured[c]) for c in ids), e_p95_points)
+    out["e_p95"] = {
+        "statistic": e_p95_statistic,
+        "window_s": [float((n - 1) * sample_period_s) for n in lengths],
+        "before": _finite_list(e_p95([measured[c] for c in ids], lengths, e_p95_statistic)),
+        "after": _finite_list(e_p95([residual[c] for c in ids], lengths, e_p95_statistic)),
+    }
+    return out
+
+
+def _finite(v):
+    return None if v is None or not np.isfinite(v) else float(v)
+
+
+def _finite_list(values):
+    return [_finite(v) for v in values]

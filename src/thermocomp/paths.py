@@ -1,0 +1,32 @@
+"""The project root, from which every relative path in the config is resolved.
+
+Hydra runs with ``version_base="1.3"`` and no working-directory change, but a
+user may still call ``thermocomp`` from anywhere: paths are built from the
+project root (``THERMOCOMP_ROOT``, else the checkout this package lives in,
+else the current directory), never from the current directory by accident.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+
+def project_root() -> Path:
+    env = os.environ.get("THERMOCOMP_ROOT")
+    if env:
+        return Path(env).resolve()
+    checkout = Path(__file__).resolve().parents[2]
+    if (checkout / "conf" / "config.yaml").is_file():
+        return checkout
+    return Path.cwd()
+
+
+def resolve(path: str | os.PathLike) -> Path:
+    """``path`` if absolute, else relative to the project root."""
+    p = Path(os.path.expanduser(str(path)))
+    return p if p.is_absolute() else project_root() / p
+
+
+def conf_dir() -> Path:
+    return project_root() / "conf"

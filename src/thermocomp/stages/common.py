@@ -1,0 +1,90 @@
+"""Helpers shared by the stages: config checks, model files, JSON, progress, the result table."""
+
+from __future__ import annotations
+
+import json
+import pickle
+import sys
+from pathlib import Path
+
+from hydra.utils import instantiate
+from omegaconf import DictConfig, OmegaConf
+
+from .. import io
+from ..compensator import MODES, Compensator
+from ..errors import ConfigError
+from ..frame import REFERENCES
+from ..io.contract import atomic_write_text
+from ..paths import resolve
+
+
+def say(msg: str) -> None:
+    """Progress on stderr, so stdout stays the result table."""
+    print(f"[thermocomp] {msg}", file=sys.stderr, flush=True)
+
+
+def check_config(cfg: DictConfig) -> None:
+    """Refuse bad choices before anything is read or written."""
+    choices = {"eval.mode": (cfg.eval.mode, MODES), "data.reference": (cfg.data.reference, REFERENCES),
+               "eval.e_p95.statistic": (cfg.eval.e_p95.statistic, ("range", "std"))}
+    for key, (value, allowed) in choices.items():
+        if value not in allowed:
+            raise ConfigError(f"{key}={value!r} is not one of {list(allowed)}")
+
+
+def data_options(cfg: DictConfig) -> dict:
+    return OmegaConf.to_container(cfg.data, resolve=True)
+
+
+def build_compensator(cfg: DictConfig) -> Compensator:
+    return Compensator(
+        estimator=instantiate(cfg.model.estimator),
+        selector=instantiate(cfg.select.selector),
+        inputs=list(cfg.data.inputs),
+        targets=None if cfg.data.targets is None else list(cfg.data.targets),
+        reference=cfg.data.reference,
+    )
+
+
+def write_json(path, obj) -> Path:
+    path = resolve(path)
+    atomic_write_text(path, json.dumps(obj, indent=2, allow_nan=False) + "\n")
+    return path
+
+
+def save_model(comp: Compensator, path) -> Path:
+    path = resolve(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.tmp")
+    with open(tmp, "wb") as f:
+        pickle.dump(comp, f)
+    tmp.replace(path)
+    return path
+
+
+def load_model(path) -> Compensator:
+    path = resolve(path)
+    if not path.is_file():
+        raise io.ContractError("no trained model; run `thermocomp train` first", file=path)
+    with open(path, "rb") as f:
+        return pickle.load(f)
+
+
+def result_table(metrics: dict) -> str:
+    """The table `make run` prints: test Rsd SM/SD and RMS before -> after per target."""
+    def f(v):
+        return "  n/a" if v is None else f"{v:5.2f}"
+
+    head = (f"model={metrics['model']}  select={metrics.get('select', 'all')}  "
+            f"mode={metrics['mode']}  dataset={metrics.get('dataset', '')}")
+    lines = [head,
+             f"{'target':<8} {'test Rsd SM':>11} {'SD':>6}   {'RMS before':>10} -> {'after':>6}"
+             f"  {'reduction':>9}   (µm)",
+             "-" * 66]
+    for t, m in metrics["targets"].items():
+        te = m["test"]
+        red = 100 * (1 - te["rms_after"] / te["rms_before"]) if te["rms_before"] else float("nan")
+        lines.append(f"{t:<8} {f(te['rsd_mean']):>11} {f(te['rsd_sd']):>6}   "
+                     f"{te['rms_before']:>10.2f} -> {te['rms_after']:>6.2f}  {red:>8.1f}%")
+    return "\n".join(lines)
+

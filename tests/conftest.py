@@ -1,0 +1,32 @@
+"""Shared fixtures: small simulated datasets, written once per session."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[1]
+BIN = Path(sys.executable).parent
+
+
+def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.CompletedProcess:
+    """Run the installed console command (the real entry point, real exit status)."""
+    full_env = {**os.environ, **(env or {})}
+    proc = subprocess.run([str(BIN / "thermocomp"), *args], cwd=cwd or ROOT, env=full_env,
+                          capture_output=True, text=True, timeout=600)
+    if check and proc.returncode != 0:
+        raise AssertionError(f"thermocomp {' '.join(args)} -> {proc.returncode}\n"
+                             f"stdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
+    return proc
+
+
+@pytest.fixture(scope="session")
+def default_dataset(tmp_path_factory) -> Path:
+    """The default year-round scenario at its default size."""
+    path = tmp_path_factory.mktemp("sim") / "yearround_spindle"
+    thermocomp("simulate", f"data.path={path}", "track=false")
+    return path

@@ -1,0 +1,91 @@
+"""End to end through the real console command: simulate -> run -> metrics.json."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import thermocomp
+from thermocomp.cli import main
+
+pytestmark = pytest.mark.slow
+
+
+def _check_metrics_layout(m: dict, targets):
+    assert m["model"] == "mlr" and m["mode"] == "simulation"
+    assert sorted(m["targets"]) == sorted(targets)
+    for t in targets:
+        tr, te = m["targets"][t]["train"], m["targets"][t]["test"]
+        assert set(tr) >= {"rmse", "rsd_mean", "rsd_sd"}
+        assert set(te) >= {"rmse", "rsd_mean", "rsd_sd", "rms_before", "rms_after",
+                           "p2p_before", "p2p_after", "per_campaign", "e_p95"}
+        e = te["e_p95"]
+        assert e["statistic"] == "range"
+        assert len(e["window_s"]) == len(e["before"]) == len(e["after"]) > 0
+        for pc in te["per_campaign"].values():
+            assert set(pc) >= {"rmse", "rsd", "p2p_before", "p2p_after"}
+
+
+def test_simulate_then_run_writes_valid_metrics(default_dataset, tmp_path):
+    truth = json.loads(default_dataset.with_name(default_dataset.name + ".truth.json").read_text())
+    assert truth["seed"] == 0
+    assert not any(p.suffix == ".json" for p in default_dataset.iterdir())  # truth stays outside
+    out = tmp_path / "out"
+    db = tmp_path / "mlruns" / "mlflow.db"
+    proc = thermocomp("run", f"data.path={default_dataset}", f"out={out}",
+                      f"tracking_uri=sqlite:///{db}")
+    assert "RMS before" in proc.stdout
+    m = json.loads((out / "metrics.json").read_text())  # strict JSON: no NaN
+    _check_metrics_layout(m, ["E_X", "E_Y", "E_Z"])
+    test_ids = [c for c, s in pd.read_csv(default_dataset / "campaigns.csv")[["campaign", "split"]]
+                .itertuples(index=False) if s == "test"]
+    assert sorted(m["targets"]["E_Z"]["test"]["per_campaign"]) == sorted(test_ids)
+    # issue 2 acceptance: MLR on the default data removes > 60 % of the test RMS
+    for t, tm in m["targets"].items():
+        assert tm["test"]["rms_after"] < 0.4 * tm["test"]["rms_before"], t
+    assert (out / "plots" / f"residual_{test_ids[0]}_E_Z.png").stat().st_size > 10_000
+
+    import mlflow
+    mlflow.set_tracking_uri(f"sqlite:///{db}")
+    runs = mlflow.search_runs(experiment_names=["thermocomp"])
+    assert len(runs) == 1
+    assert runs["metrics.targets.E_Z.test.rmse"].iloc[0] == pytest.approx(
+        m["targets"]["E_Z"]["test"]["rmse"])
+    assert (db.parent / "thermocomp").is_dir()  # artifacts under mlruns/
+
+
+def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
+    rng = np.random.default_rng(5)
+    ds = tmp_path / "lab"
+    ds.mkdir()
+    rows = []
+    for i, split in enumerate(["train", "train", "test", "test"]):
+        n = 80
+        T0 = 20 + np.cumsum(rng.normal(0.05, 0.02, n))
+        T1 = 21 + np.cumsum(rng.normal(0.02, 0.02, n))
+        dL = 2.0 * (T0 - T0[0]) - 1.0 * (T1 - T1[0]) + rng.normal(0, 0.1, n)
+        pd.DataFrame({"T0": T0, "T1": T1, "delta L": dL}).to_csv(ds / f"run{i}.csv", index=False)
+        rows.append({"campaign": f"R{i}", "file": f"run{i}.csv", "split": split})
+    pd.DataFrame(rows).to_csv(ds / "campaigns.csv", index=False)
+    out = tmp_path / "out"
+    thermocomp("run", f"data.path={ds}", f"out={out}", "track=false",
+               "data.columns={T0: T_0, T1: T_1, 'delta L': E_L}", "data.sample_period_s=60")
+    m = json.loads((out / "metrics.json").read_text())
+    _check_metrics_layout(m, ["E_L"])
+    assert m["targets"]["E_L"]["test"]["e_p95"]["window_s"][0] == 60.0
+    assert m["targets"]["E_L"]["test"]["rms_after"] < 0.2 * m["targets"]["E_L"]["test"]["rms_before"]
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["run", "model=nope"], "nope"),
+    (["run", "data.path=/nonexistent/dataset"], "campaigns.csv"),
+    (["run", "eval.mode=sideways"], "eval.mode"),
+    (["frobnicate"], "frobnicate"),
+])
+def test_bad_config_exits_2_with_one_line(args, needle, capsys, tmp_path):
+    code = main([*args, "track=false", f"out={tmp_path / 'o'}"] if args[0] == "run" else args)
+    err = capsys.readouterr().err.strip()
+    assert code == 2
+    assert needle in err and len(err.splitlines()) == 1
+    assert not (tmp_path / "o").exists()

@@ -1,0 +1,63 @@
+"""`dvc repro` of the default study in a scratch copy of the project."""
+
+import os
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+
+pytestmark = pytest.mark.slow
+STAGES = ("simulate", "ingest", "train", "evaluate")
+
+
+def _dvc(*args, cwd, env):
+    proc = subprocess.run([str(Path(sys.executable).parent / "dvc"), *args], cwd=cwd, env=env,
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return proc.stdout + proc.stderr
+
+
+def _ran(log: str) -> set[str]:
+    return {s for s in STAGES if f"Running stage '{s}'" in log}
+
+
+@pytest.fixture()
+def project(tmp_path):
+    dest = tmp_path / "proj"
+    dest.mkdir()
+    for item in ("conf", "src", "dvc.yaml", ".dvc"):
+        src = ROOT / item
+        if src.is_dir():
+            shutil.copytree(src, dest / item, ignore=shutil.ignore_patterns("__pycache__", "tmp"))
+        else:
+            shutil.copy2(src, dest / item)
+    git = dict(GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@t", GIT_COMMITTER_NAME="t",
+               GIT_COMMITTER_EMAIL="t@t")
+    env = {**os.environ, **git, "THERMOCOMP_ROOT": str(dest),
+           "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    subprocess.run(["git", "init", "-q"], cwd=dest, check=True)
+    return dest, env
+
+
+def test_repro_twice_runs_nothing_then_model_param_reruns_train_and_evaluate(project):
+    dest, env = project
+    first = _dvc("repro", cwd=dest, env=env)
+    assert _ran(first) == set(STAGES), first
+    assert (dest / "reports/default/metrics.json").is_file()
+    assert (dest / "mlruns/mlflow.db").is_file()
+
+    second = _dvc("repro", cwd=dest, env=env)
+    assert _ran(second) == set(), second
+
+    model_conf = dest / "conf/model/mlr.yaml"
+    model_conf.write_text(model_conf.read_text().replace("fit_intercept: true",
+                                                         "fit_intercept: false"))
+    third = _dvc("repro", cwd=dest, env=env)
+    assert _ran(third) == {"train", "evaluate"}, third
+
+    shown = _dvc("metrics", "show", cwd=dest, env=env)
+    assert "targets.E_Z.test.rmse" in shown or "E_Z" in shown
