@@ -23,14 +23,22 @@ def _accepts(method, name: str) -> bool:
     return name in inspect.signature(method).parameters
 
 
+def _side_inputs(method, m) -> dict:
+    """``groups``/``context`` for the estimator methods that take them."""
+    side = {"groups": m.groups, "context": m.context}
+    return {k: v for k, v in side.items() if _accepts(method, k)}
+
+
 class Compensator:
     """Per-target thermal error model on a campaign dataset.
 
     Parameters
     ----------
     estimator : regressor
-        Cloned once per target; gets ``groups`` (campaign of each row) when its
-        ``fit``/``predict`` accept it, so dynamic models never cross campaigns.
+        Cloned once per target.  Its ``fit``/``predict`` get, when their
+        signature accepts them, ``groups`` (campaign of each row, so dynamic
+        models never cross campaigns) and ``context`` (a per-row DataFrame with
+        ``campaign``, ``time``, ``ambient_c0``; see :class:`thermocomp.frame.Matrices`).
     selector : selector, optional
         Chooses inputs among the declared ones, per target (default: all).
     inputs : list of glob patterns
@@ -67,10 +75,7 @@ class Compensator:
             sel = clone(selector).fit(m.X, y, groups=m.groups)
             est = clone(self.estimator)
             X = m.X[sel.selected_].to_numpy()
-            if _accepts(est.fit, "groups"):
-                est.fit(X, y, groups=m.groups)
-            else:
-                est.fit(X, y)
+            est.fit(X, y, **_side_inputs(est.fit, m))
             self.selected_[target], self.estimators_[target] = list(sel.selected_), est
         return self
 
@@ -87,9 +92,7 @@ class Compensator:
         out = pd.DataFrame(index=m.X.index, columns=self.targets_, dtype=float)
         for target, est in self.estimators_.items():
             X = m.X[self.selected_[target]].to_numpy()
-            kwargs = {}
-            if _accepts(est.predict, "groups"):
-                kwargs["groups"] = m.groups
+            kwargs = _side_inputs(est.predict, m)
             if mode == "one_step" and _accepts(est.predict, "y_measured"):
                 kwargs["y_measured"] = m.Y[target].to_numpy()
             out[target] = np.asarray(est.predict(X, **kwargs), dtype=float)

@@ -33,12 +33,19 @@ def referenced(df: pd.DataFrame, reference: str = "first_sample") -> pd.DataFram
 
 @dataclass
 class Matrices:
-    """Stacked campaigns: inputs ``X``, targets ``Y``, campaign of each row, time."""
+    """Stacked campaigns: inputs ``X``, targets ``Y``, campaign of each row, time.
+
+    ``context`` has one row per sample with what a model may know besides its
+    inputs: ``campaign``, ``time`` (s) and ``ambient_c0`` (the campaign's first
+    valid absolute ambient temperature, °C, NaN without a ``T_amb*`` column) --
+    the key of ambient-interval (ATI) models.
+    """
 
     X: pd.DataFrame
     Y: pd.DataFrame
     groups: np.ndarray
     time: np.ndarray
+    context: pd.DataFrame | None = None
 
     def rows_of(self, cid: str) -> np.ndarray:
         return self.groups == cid
@@ -72,10 +79,19 @@ def resolve_columns(columns, inputs, targets) -> tuple[list[str], list[str]]:
     return x_cols, y_cols
 
 
+def initial_ambient(df: pd.DataFrame) -> float:
+    """First valid absolute ambient temperature (°C) of a campaign, NaN if none."""
+    amb = [c for c in df.columns if c == "T_amb" or c.startswith("T_amb_")]
+    if not amb:
+        return float("nan")
+    first = df[amb].bfill().iloc[0]
+    return float(first.mean())
+
+
 def stack(campaigns: Mapping[str, pd.DataFrame], x_cols, y_cols,
           reference: str = "first_sample") -> Matrices:
     """Stack campaigns (in the reference frame) into model matrices."""
-    xs, ys, groups, times = [], [], [], []
+    xs, ys, groups, times, amb0 = [], [], [], [], []
     for cid, df in campaigns.items():
         missing = [c for c in list(x_cols) + list(y_cols) if c not in df.columns]
         if missing:
@@ -86,5 +102,8 @@ def stack(campaigns: Mapping[str, pd.DataFrame], x_cols, y_cols,
         ys.append(ref[list(y_cols)])
         groups.append(np.full(len(df), cid, dtype=object))
         times.append(df[TIME].to_numpy(float))
+        amb0.append(np.full(len(df), initial_ambient(df)))
+    groups, times = np.concatenate(groups), np.concatenate(times)
+    context = pd.DataFrame({"campaign": groups, "time": times, "ambient_c0": np.concatenate(amb0)})
     return Matrices(pd.concat(xs, ignore_index=True), pd.concat(ys, ignore_index=True),
-                    np.concatenate(groups), np.concatenate(times))
+                    groups, times, context)
