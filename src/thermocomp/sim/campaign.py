@@ -1,0 +1,207 @@
+"""One thermal test campaign on a machine: cool-down, spindle programme, sampling.
+
+The machine rests (no heat) for ``cooldown_s`` in the workshop air, starting
+from equilibrium with it, so a campaign starts near equilibrium but with the
+small lags of the heavy castings behind the daily swing, as on a real shop
+floor.  Then the programme runs and the sensors and the error probes are
+sampled every ``sample_period_s``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from thermocomp.sim.ambient import AmbientModel
+from thermocomp.sim.network import ThermalNetwork
+from thermocomp.sim.sensors import SensorArray, TemperatureSensor, quantise
+from thermocomp.sim.sources import SPINDLE, HeatInjector, HeatSource, StateConvection
+from thermocomp.sim.thermoelastic import ThermoelasticMap
+
+
+@dataclass(frozen=True)
+class Programme:
+    """Spindle speed as a step function: ``steps`` = ((start s, rpm), ...) from t = 0."""
+
+    steps: tuple
+
+    def __post_init__(self):
+        starts = [s for s, _ in self.steps]
+        if not starts or starts[0] != 0 or any(b <= a for a, b in zip(starts, starts[1:])):
+            raise ValueError(f"programme steps must start at 0 and increase: {self.steps}")
+
+    def rpm_at(self, t_s) -> np.ndarray:
+        """Commanded speed (rpm) at campaign times ``t_s`` (s)."""
+        starts = np.array([s for s, _ in self.steps], dtype=float)
+        speeds = np.array([r for _, r in self.steps], dtype=float)
+        return speeds[np.searchsorted(starts, np.asarray(t_s, dtype=float), side="right") - 1]
+
+    def describe(self) -> str:
+        return ", ".join(f"{rpm:g} rpm from {int(start // 3600)}:{int(start % 3600 // 60):02d}"
+                         for start, rpm in self.steps)
+
+
+@dataclass
+class Machine:
+    """A digital twin: thermal network, heat sources, sensors and thermoelastic map."""
+
+    network: ThermalNetwork
+    sources: list[HeatSource]
+    sensors: list[TemperatureSensor]
+    thermoelastic: ThermoelasticMap
+    convection_rules: list[StateConvection] = field(default_factory=list)
+    injector: HeatInjector = field(init=False, repr=False)
+    sensor_array: SensorArray = field(init=False, repr=False)
+
+    def __post_init__(self):
+        self.injector = HeatInjector(self.network, self.sources)
+        self.sensor_array = SensorArray(self.sensors, self.network.names)
+        unknown = {n for coefs in self.thermoelastic.linear.values() for n in coefs} - set(self.network.index)
+        if unknown:
+            raise ValueError(f"thermoelastic map uses unknown nodes {sorted(unknown)}")
+
+    def to_dict(self) -> dict:
+        return {
+            "network": self.network.to_dict(),
+            "heat_sources": [s.to_dict() for s in self.sources],
+            "convection_rules": [r.to_dict() for r in self.convection_rules],
+            "sensors": self.sensor_array.to_dict(),
+            "thermoelastic": self.thermoelastic.to_dict(),
+        }
+
+
+@dataclass(frozen=True)
+class Measurement:
+    """Noise and resolution of the measurement chain."""
+
+    temp_noise_c: float = 0.03
+    temp_quantum_c: float = 0.01
+    error_noise_um: float = 0.4
+    error_quantum_um: float = 0.1
+
+
+def integrate(machine: Machine, temperature0: np.ndarray, times_s: np.ndarray,
+              ambient: np.ndarray, states: dict[str, np.ndarray],
+              air_movement: float = 1.0) -> np.ndarray:
+    """Node temperatures (len(times) x nodes) on a uniform grid.
+
+    ``ambient`` and every state signal in ``states`` (``{"S_spindle_rpm":
+    array}``, later doors, axis positions) are given at ``times_s``; over step
+    k the air is the mean of its ends and the state is its value at k
+    (zero-order hold).  ``air_movement`` scales the nominal convection
+    (draughts, fans, open gates).  The record is walked in runs of constant
+    state: within a run the propagator and the state-only heat are fixed, and
+    only the temperature-dependent sources are re-evaluated, at the start of
+    each step.
+    """
+    step = float(times_s[1] - times_s[0])
+    network, injector = machine.network, machine.injector
+    index = network.index
+    temps = np.empty((len(times_s), network.n_nodes))
+    temps[0] = temperature0
+    air = 0.5 * (ambient[:-1] + ambient[1:])
+    n_steps = len(times_s) - 1
+    signals = np.column_stack([np.asarray(v, dtype=float) for v in states.values()])[:n_steps]
+    changes = np.flatnonzero(np.any(np.diff(signals, axis=0) != 0, axis=1)) + 1
+    bounds = [0, *changes.tolist(), n_steps]
+    for first, stop in zip(bounds[:-1], bounds[1:]):
+        state = {name: float(value) for name, value in zip(states, signals[first])}
+        hA = injector.convection(state, machine.convection_rules, air_movement)
+        propagator = network.propagator(step, hA)
+        phi, to_air, to_heat = propagator.phi, propagator.gamma_ambient, propagator.gamma_heat
+        static, thermal = injector.parts(state)
+        drive = to_heat @ static
+        feedback = [(source, to_heat @ column) for source, column in thermal]
+        current = temps[first]
+
+        def temperature_of(node: str) -> float:
+            return current[index[node]]
+
+        for k in range(first, stop):
+            nxt = phi @ current + to_air * air[k] + drive
+            for source, response in feedback:
+                nxt += source.power(state, temperature_of) * response
+            temps[k + 1] = current = nxt
+    return temps
+
+
+def run_campaign(machine: Machine, ambient_model: AmbientModel, programme: Programme,
+                 start_s: float, duration_s: float, rng: np.random.Generator, *,
+                 sample_period_s: float = 300.0, max_step_s: float = 30.0,
+                 cooldown_s: float = 2 * 86400.0, cooldown_step_s: float = 600.0,
+                 measurement: Measurement = Measurement(),
+                 air_movement: float = 1.0) -> tuple[pd.DataFrame, dict]:
+    """Simulate one campaign.
+
+    Parameters
+    ----------
+    machine : Machine
+    ambient_model : AmbientModel
+    programme : Programme
+        Spindle speed over the campaign.
+    start_s : float
+        Start time in s since 1 January 00:00 (sets season and time of day).
+    duration_s : float
+        Length of the record; samples at 0, ``sample_period_s``, ... <= duration.
+    rng : numpy.random.Generator
+        The only source of randomness (ambient drift, sensor and probe noise).
+    sample_period_s, max_step_s : float
+        Logger period; the integration step is the period cut into equal steps
+        of at most ``max_step_s``.
+    cooldown_s, cooldown_step_s : float
+        Rest before the campaign (no heat), integrated with a coarser step.
+    measurement : Measurement
+    air_movement : float
+        Factor on the nominal convection of every node for this campaign.
+
+    Returns
+    -------
+    frame : DataFrame
+        ``time``, ``T_`` (°C), ``E_`` (µm, relative to the start), ``S_spindle_rpm``.
+    info : dict
+        JSON-serialisable truths: air and node temperatures at the start, the
+        largest node rises and the noise-free final errors.
+    """
+    substeps = math.ceil(sample_period_s / max_step_s)
+    step_s = sample_period_s / substeps
+    n_samples = int(math.floor(duration_s / sample_period_s + 1e-9)) + 1
+    n_cool = int(round(cooldown_s / cooldown_step_s))
+    cool_times = start_s - cooldown_s + cooldown_step_s * np.arange(n_cool + 1)
+    run_times = start_s + step_s * np.arange((n_samples - 1) * substeps + 1)
+    # One ambient path through cool-down and run keeps the drift continuous.
+    ambient = ambient_model.sample(np.concatenate([cool_times, run_times[1:]]), rng)
+    ambient_cool, ambient_run = ambient[:n_cool + 1], ambient[n_cool:]
+
+    network = machine.network
+    at_rest = {SPINDLE: np.zeros(n_cool + 1)}
+    cooled = integrate(machine, np.full(network.n_nodes, ambient_cool[0]), cool_times,
+                       ambient_cool, at_rest, air_movement)[-1]
+    running = {SPINDLE: programme.rpm_at(run_times - start_s)}
+    temps = integrate(machine, cooled, run_times, ambient_run, running, air_movement)
+
+    sampled = slice(None, None, substeps)
+    node_temps, air = temps[sampled], ambient_run[sampled]
+    time = sample_period_s * np.arange(n_samples)
+    # Sensor lags act on the fine grid, then the logger samples.
+    true_readings = machine.sensor_array.true_readings(temps, ambient_run, step_s)[sampled]
+    readings = machine.sensor_array.measure(true_readings, rng, measurement.temp_noise_c,
+                                            measurement.temp_quantum_c)
+    true_errors = machine.thermoelastic.errors(node_temps, network.index)
+    errors = quantise(true_errors + measurement.error_noise_um * rng.standard_normal(true_errors.shape),
+                      measurement.error_quantum_um)
+
+    columns = {"time": time}
+    columns.update(zip(machine.sensor_array.columns, readings.T))
+    columns.update(zip(machine.thermoelastic.targets, errors.T))
+    columns[SPINDLE] = programme.rpm_at(time)
+    frame = pd.DataFrame(columns)
+    info = {
+        "ambient_start_c": float(air[0]),
+        "node_start_c": dict(zip(network.names, map(float, node_temps[0]))),
+        "node_max_rise_c": dict(zip(network.names, map(float, (node_temps - node_temps[0]).max(0)))),
+        "true_error_final_um": dict(zip(machine.thermoelastic.targets, map(float, true_errors[-1]))),
+    }
+    return frame.astype("float64"), info
