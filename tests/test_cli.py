@@ -68,9 +68,15 @@ def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
         pd.DataFrame({"T0": T0, "T1": T1, "delta L": dL}).to_csv(ds / f"run{i}.csv", index=False)
         rows.append({"campaign": f"R{i}", "file": f"run{i}.csv", "split": split})
     pd.DataFrame(rows).to_csv(ds / "campaigns.csv", index=False)
+    # The user's mapping lives in their own data config, found through Hydra's search path.
+    conf = tmp_path / "myconf" / "data"
+    conf.mkdir(parents=True)
+    (conf / "lab.yaml").write_text(
+        "defaults:\n  - default\n"
+        "columns: {T0: T_0, T1: T_1, \"delta L\": E_L}\nsample_period_s: 60\n")
     out = tmp_path / "out"
-    thermocomp("run", f"data.path={ds}", f"out={out}", "track=false",
-               "data.columns={T0: T_0, T1: T_1, 'delta L': E_L}", "data.sample_period_s=60")
+    thermocomp("run", f"hydra.searchpath=[file://{tmp_path / 'myconf'}]", "data=lab",
+               f"data.path={ds}", f"out={out}", "track=false")
     m = json.loads((out / "metrics.json").read_text())
     _check_metrics_layout(m, ["E_L"])
     assert m["targets"]["E_L"]["test"]["e_p95"]["window_s"][0] == 60.0

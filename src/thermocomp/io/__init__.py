@@ -1,0 +1,18 @@
+"""Dataset contract, reading, validation and ingest (``shared/spec/DATA_FORMAT.md``)."""
+
+from .contract import (
+                       ContractError,
+                       Dataset,
+                       atomic_dir,
+                       atomic_write_text,
+                       match_columns,
+                       role,
+                       write_dataset,
+)
+from .read import INGEST_REPORT, ReadOptions, ingest, load_interim, read_campaign, read_dataset, read_manifest
+
+__all__ = [
+    "INGEST_REPORT", "ContractError", "Dataset", "ReadOptions", "atomic_dir",
+    "atomic_write_text", "ingest", "load_interim", "match_columns", "read_campaign",
+    "read_dataset", "read_manifest", "role", "write_dataset",
+]

@@ -1,0 +1,1014 @@
+"""Read, validate and ingest datasets in the contract of ``DATA_FORMAT.md``.
+
+A dataset folder holds a manifest ``campaigns.csv`` and one ``.csv`` or
+``.parquet`` file per campaign.  Every campaign goes through the same steps,
+column by column on an Arrow table so that memory stays bounded by about one
+copy of the campaign:
+
+1. load (``pyarrow.csv.read_csv`` with every data column typed ``float64``, or
+   ``pyarrow.parquet.read_table``) and rename columns through ``data.columns``;
+2. check names: only ``time``, ``T_*``, ``E_*``, ``S_*``; at least one ``E_``;
+3. build ``time`` in seconds (float seconds as given, ISO 8601 timestamps as
+   seconds since the first sample, or ``row * sample_period_s``) and require
+   it strictly increasing;
+4. check values (finite, not all missing, temperatures in °C) and deal with
+   missing values (see below);
+5. optionally resample onto a uniform grid; order the columns ``time``, then
+   ``T_``, ``E_``, ``S_`` in file order.
+
+Missing values
+--------------
+Missing values are empty cells (and the usual null spellings ``NA``, ``NaN``,
+``null``, ...).  A repaired campaign never contains NaN: downstream code can
+rely on complete rows.  Nothing is invented without a config key saying so:
+
+* *interior gaps* (a run of missing values between two valid samples of a
+  column, including an isolated missing ``E_`` value) of at most
+  ``max_gap_samples`` samples are linearly interpolated in time and counted
+  per column in the report; a longer gap is a :class:`ContractError` naming
+  the column and the gap's first row.  With the default ``0`` every gap is
+  refused.
+* *edges*: rows at the start or the end of a campaign where some column is
+  missing are never filled, because the contract references ``T_`` and ``E_``
+  to the first valid sample and a back-filled value would fake that reference.
+  Up to ``max_edge_samples`` such rows (default ``0``) are dropped at each end
+  (counted in the report under ``trimmed``); more is a :class:`ContractError`.
+
+Row numbers in error messages are 1-based data rows of the source file,
+header excluded.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import json
+import math
+import re
+from collections.abc import Iterator, Mapping
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.compute as pc
+import pyarrow.csv as pacsv
+import pyarrow.parquet as pq
+
+from .contract import MANIFEST, MANIFEST_REQUIRED, SPLITS, TIME, ContractError, Dataset, atomic_dir, role
+
+INGEST_REPORT = "ingest_report.json"
+CAMPAIGN_SUFFIXES = (".csv", ".parquet")
+TIME_FORMATS = ("auto", "seconds", "iso8601")
+ABSOLUTE_ZERO_C = -273.15
+ROLE_ORDER = ("T", "E", "S")
+
+# Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
+_CSV_BLOCK_BYTES = 16 << 20
+_PANDAS_INDEX = re.compile(r"__index_level_\d+__")
+_ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
+_UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
+_CONVERSION_ERROR = re.compile(r"In CSV column #(\d+)")
+_ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
+
+
+# ---------------------------------------------------------------------------
+# Options
+
+
+@dataclass(frozen=True)
+class ReadOptions:
+    """The ``data`` config keys that steer reading; see :func:`read_dataset`.
+
+    Build it with :meth:`from_cfg`; every field has the default a missing key
+    gets.
+    """
+
+    columns: dict = field(default_factory=dict)
+    sample_period_s: float | None = None
+    time: str = "auto"
+    split_overrides: dict = field(default_factory=dict)
+    max_gap_samples: int = 0
+    max_edge_samples: int = 0
+    resample_s: float | None = None
+    kelvin_threshold_c: float = 200.0
+    delimiter: str = ","
+    decimal: str = "."
+
+    @classmethod
+    def from_cfg(cls, cfg: Mapping | None) -> "ReadOptions":
+        """Options from a mapping (dict or OmegaConf ``DictConfig``).
+
+        Raises
+        ------
+        ContractError
+            If a value has the wrong type or range.
+        """
+        cfg = {} if cfg is None else cfg
+        opts = cls(
+            columns=_str_mapping(cfg, "columns"),
+            sample_period_s=_positive_float(cfg, "sample_period_s"),
+            time=str(cfg.get("time", "auto") or "auto"),
+            split_overrides=_str_mapping(cfg, "split_overrides"),
+            max_gap_samples=_count(cfg, "max_gap_samples"),
+            max_edge_samples=_count(cfg, "max_edge_samples"),
+            resample_s=_positive_float(cfg, "resample_s"),
+            kelvin_threshold_c=_float(cfg, "kelvin_threshold_c", 200.0),
+            delimiter=str(cfg.get("delimiter", ",") or ","),
+            decimal=str(cfg.get("decimal", ".") or "."),
+        )
+        opts._check()
+        return opts
+
+    def _check(self) -> None:
+        if self.time not in TIME_FORMATS:
+            raise ContractError(f"data.time must be one of {', '.join(TIME_FORMATS)}, "
+                                f"got {self.time!r}")
+        bad_split = {k: v for k, v in self.split_overrides.items() if v not in SPLITS}
+        if bad_split:
+            cid, split = next(iter(bad_split.items()))
+            raise ContractError(f"data.split_overrides.{cid}: split {split!r} is not one of "
+                                f"{', '.join(SPLITS)}")
+        for key in ("delimiter", "decimal"):
+            if len(getattr(self, key)) != 1:
+                raise ContractError(f"data.{key} must be one character, "
+                                    f"got {getattr(self, key)!r}")
+
+
+def _str_mapping(cfg: Mapping, key: str) -> dict:
+    value = cfg.get(key, None) or {}
+    if not hasattr(value, "items"):
+        raise ContractError(f"data.{key} must be a mapping, got {value!r}")
+    return {str(k): str(v) for k, v in value.items()}
+
+
+def _float(cfg: Mapping, key: str, default: float | None) -> float | None:
+    value = cfg.get(key, None)
+    if value is None:
+        return default
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ContractError(f"data.{key} must be a number, got {value!r}") from None
+    if isinstance(value, bool) or not math.isfinite(number):
+        raise ContractError(f"data.{key} must be a finite number, got {value!r}")
+    return number
+
+
+def _positive_float(cfg: Mapping, key: str) -> float | None:
+    number = _float(cfg, key, None)
+    if number is not None and number <= 0:
+        raise ContractError(f"data.{key} must be > 0, got {number:g}")
+    return number
+
+
+def _count(cfg: Mapping, key: str) -> int:
+    value = cfg.get(key, 0)
+    value = 0 if value is None else value
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+        raise ContractError(f"data.{key} must be an integer >= 0, got {value!r}")
+    return int(value)
+
+
+# ---------------------------------------------------------------------------
+# Manifest
+
+
+def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataFrame:
+    """Read and validate ``<root>/campaigns.csv``.
+
+    Parameters
+    ----------
+    root : str or Path
+        Dataset folder.
+    opts : ReadOptions, optional
+        Only ``split_overrides`` is used.
+
+    Returns
+    -------
+    DataFrame
+        Indexed by campaign id (``str``), columns ``file`` and ``split`` (with
+        overrides applied), ``start`` as datetimes if present, then every other
+        manifest column (numeric where every cell is a number).
+
+    Raises
+    ------
+    ContractError
+        Missing or empty manifest, missing required column, empty or
+        duplicate id, invalid split, missing campaign file, unsupported file
+        type, unparseable ``start``, override of an unknown id.
+    """
+    opts = opts or ReadOptions()
+    root = Path(root)
+    path = root / MANIFEST
+    raw = _load_manifest(path)
+    _check_manifest_rows(raw, path, root)
+    manifest = raw.set_index("campaign")
+    _apply_split_overrides(manifest, opts.split_overrides, path)
+    for column in manifest.columns.drop(["file", "split"]):
+        manifest[column] = _metadata_column(manifest[column], path, column)
+    return manifest
+
+
+def _load_manifest(path: Path) -> pd.DataFrame:
+    if not path.is_file():
+        raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})", file=path)
+    try:
+        raw = pd.read_csv(path, dtype=str, keep_default_na=False)
+    except pd.errors.EmptyDataError:
+        raise ContractError("manifest is empty", file=path) from None
+    except pd.errors.ParserError as exc:
+        raise ContractError(f"manifest is not valid CSV ({_first_line(exc)})", file=path) from None
+    raw.columns = [c.strip() for c in raw.columns]
+    for column in MANIFEST_REQUIRED:
+        if column not in raw.columns:
+            raise ContractError("required manifest column missing", file=path, column=column)
+    if raw.empty:
+        raise ContractError("manifest lists no campaign", file=path)
+    return raw.fillna("").apply(lambda s: s.str.strip())
+
+
+def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
+    seen: dict[str, int] = {}
+    for row, (cid, fname, split) in enumerate(zip(raw["campaign"], raw["file"], raw["split"]), 1):
+        problem = None
+        if not cid or _UNSAFE_ID.search(cid):
+            problem = ("campaign", f"campaign id {cid!r} is empty, contains a path separator "
+                                   "or starts with '.'")
+        elif cid in seen:
+            problem = "campaign", f"duplicate campaign id {cid!r} (first at row {seen[cid]})"
+        elif split not in SPLITS:
+            problem = "split", f"split {split!r} is not one of {', '.join(SPLITS)}"
+        elif Path(fname).suffix.lower() not in CAMPAIGN_SUFFIXES:
+            problem = "file", f"campaign file {fname!r} is neither .csv nor .parquet"
+        elif not (root / fname).is_file():
+            problem = "file", f"campaign file {fname!r} not found in {root}"
+        if problem:
+            column, message = problem
+            raise ContractError(message, file=path, column=column, row=row)
+        seen[cid] = row
+
+
+def _apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path) -> None:
+    unknown = [cid for cid in overrides if cid not in manifest.index]
+    if unknown:
+        raise ContractError(f"data.split_overrides names campaign {unknown[0]!r}, "
+                            f"which the manifest does not list", file=path, column="campaign")
+    for cid, split in overrides.items():
+        manifest.loc[cid, "split"] = split
+
+
+def _metadata_column(values: pd.Series, path: Path, column: str) -> pd.Series:
+    if column == "start":
+        return _parse_start(values, path)
+    if column == "notes":
+        return values
+    present = values[values != ""]
+    numbers = pd.to_numeric(present, errors="coerce")
+    if len(present) and numbers.notna().all():
+        return pd.to_numeric(values.replace("", np.nan))
+    return values
+
+
+def _parse_start(values: pd.Series, path: Path) -> pd.Series:
+    for row, value in enumerate(values, 1):
+        if value:
+            try:
+                pd.to_datetime(value, format="ISO8601")
+            except (ValueError, TypeError):
+                raise ContractError(f"start {value!r} is not an ISO 8601 time",
+                                    file=path, column="start", row=row) from None
+    present = values.replace("", None)
+    try:
+        return pd.to_datetime(present, format="ISO8601")
+    except ValueError:  # several zone offsets: keep instants, in UTC
+        return pd.to_datetime(present, format="ISO8601", utc=True)
+
+
+# ---------------------------------------------------------------------------
+# Column names
+
+
+def _contract_names(raw_names: list[str], mapping: dict, file: Path, *,
+                    has_period: bool) -> list[str]:
+    """Mapped column names, checked against the contract's vocabulary."""
+    names = []
+    for raw in raw_names:
+        name = mapping.get(raw, raw)
+        if role(name) is None:
+            alias = f" (raw name {raw!r})" if name != raw else ""
+            raise ContractError(f"column name{alias} has no contract role: expected 'time' or "
+                                "a T_/E_/S_ prefix (map it with data.columns)",
+                                file=file, column=name)
+        if name in names:
+            raise ContractError("duplicate column (after data.columns mapping)",
+                                file=file, column=name)
+        names.append(name)
+    if not any(role(n) == "E" for n in names):
+        raise ContractError("no E_ column: a campaign needs at least one measured error",
+                            file=file)
+    if TIME not in names and not has_period:
+        raise ContractError("no 'time' column and no data.sample_period_s to build one",
+                            file=file)
+    return names
+
+
+def _ordered(names: list[str]) -> list[str]:
+    """``time`` first, then ``T_``, ``E_``, ``S_`` columns, each in file order."""
+    data = [n for n in names if n != TIME]
+    return [TIME] + sorted(data, key=lambda n: ROLE_ORDER.index(role(n)))
+
+
+# ---------------------------------------------------------------------------
+# Loading CSV
+
+
+def _load_csv(path: Path, opts: ReadOptions) -> dict:
+    header, first_row = _peek_csv(path, opts.delimiter)
+    names = _contract_names(header, opts.columns, path, has_period=opts.sample_period_s is not None)
+    if len(first_row) != len(names):
+        raise ContractError(f"expected {len(names)} fields, got {len(first_row)}", file=path, row=1)
+    types = {n: pa.float64() for n in names if n != TIME}
+    if TIME in names:
+        types[TIME] = _csv_time_type(path, first_row, names.index(TIME), opts)
+    return _columns(_read_csv_typed(path, names, types, opts))
+
+
+def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
+    """Header (stripped names) and first data row, without reading the file."""
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as f:
+            rows = csv.reader(f, delimiter=delimiter)
+            header = next(rows, None)
+            first = next((r for r in rows if r), None)
+    except UnicodeDecodeError:
+        raise ContractError("file is not UTF-8 text", file=path) from None
+    if not header:
+        raise ContractError("empty file", file=path)
+    if first is None:
+        raise ContractError("file has a header but no data rows", file=path)
+    return [name.strip() for name in header], first
+
+
+def _csv_time_type(path: Path, first_row: list[str], index: int,
+                   opts: ReadOptions) -> pa.DataType:
+    value = first_row[index].strip()
+    if not value:
+        raise ContractError("missing time value", file=path, column=TIME, row=1)
+    kind = opts.time
+    if kind == "auto":
+        kind = "seconds" if _is_number(value, opts.decimal) else "iso8601"
+    if kind == "seconds":
+        return pa.float64()
+    return pa.timestamp("ns", tz="UTC" if _ZONE_OFFSET.search(value) else None)
+
+
+def _is_number(text: str, decimal: str) -> bool:
+    try:
+        float(text.replace(decimal, "."))
+    except ValueError:
+        return False
+    return True
+
+
+def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=None,
+                 use_threads=True, invalid_row_handler=None):
+    read = pacsv.ReadOptions(column_names=names, skip_rows=1, use_threads=use_threads,
+                             block_size=_CSV_BLOCK_BYTES)
+    parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
+    convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
+                                   decimal_point=opts.decimal, strings_can_be_null=True)
+    return dict(read_options=read, parse_options=parse, convert_options=convert)
+
+
+def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions) -> pa.Table:
+    try:
+        return pacsv.read_csv(path, **_csv_options(names, opts, types=types))
+    except pa.ArrowInvalid as exc:
+        raise _locate_csv_error(path, names, types, opts, exc) from None
+
+
+def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
+    """Turn Arrow's row-less CSV error into one naming the column and row."""
+    message = _first_line(exc)
+    match = _CONVERSION_ERROR.search(message)
+    if match:
+        column = names[int(match.group(1))]
+        return _bad_cell_error(path, names, column, types[column], opts)
+    if "CSV parse error" in message:
+        return _malformed_row_error(path, names, opts, message)
+    return ContractError(f"unreadable CSV ({message})", file=path)
+
+
+def _bad_cell_error(path, names, column, target, opts) -> ContractError:
+    text = pacsv.read_csv(path, **_csv_options(names, opts, include=[column],
+                                                types={column: pa.string()})).column(column)
+    if opts.decimal != "." and pa.types.is_floating(target):
+        text = pc.replace_substring(text, opts.decimal, ".")
+    found = _first_cast_failure(text, target)
+    if found is None:
+        return ContractError(f"cannot convert to {target}", file=path, column=column)
+    row, value = found
+    return ContractError(f"value {value!r} is not {_describe(target)}",
+                         file=path, column=column, row=row + 1)
+
+
+def _malformed_row_error(path, names, opts, message) -> ContractError:
+    bad = []
+
+    def remember(row):
+        bad.append(row)
+        return "error"
+
+    with contextlib.suppress(pa.ArrowInvalid):
+        pacsv.read_csv(path, **_csv_options(names, opts, include=[names[0]],
+                                            types={names[0]: pa.string()}, use_threads=False,
+                                            invalid_row_handler=remember))
+    if not bad:
+        return ContractError(f"unreadable CSV ({message})", file=path)
+    row = bad[0]
+    return ContractError(f"expected {row.expected_columns} fields, got {row.actual_columns}",
+                         file=path, row=None if row.number is None else row.number - 1)
+
+
+def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType) -> tuple[int, object] | None:
+    """Position and value of the first element that does not cast to ``target``.
+
+    Bisects inside the first failing chunk, so the cost is a few casts of
+    one chunk rather than a Python loop over the column.
+    """
+    offset = 0
+    for chunk in values.chunks:
+        if not _casts(chunk, target):
+            ok, fails = 0, len(chunk)  # chunk[:ok] casts, chunk[:fails] does not
+            while fails - ok > 1:
+                mid = (ok + fails) // 2
+                ok, fails = (mid, fails) if _casts(chunk[:mid], target) else (ok, mid)
+            return offset + fails - 1, chunk[fails - 1].as_py()
+        offset += len(chunk)
+    return None
+
+
+def _casts(values, target: pa.DataType) -> bool:
+    try:
+        pc.cast(values, target)
+    except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+        return False
+    return True
+
+
+def _describe(target: pa.DataType) -> str:
+    if pa.types.is_timestamp(target):
+        zone = "with" if target.tz else "without"
+        return f"an ISO 8601 timestamp {zone} zone offset (like the first row)"
+    return "a number"
+
+
+# ---------------------------------------------------------------------------
+# Loading Parquet
+
+
+def _load_parquet(path: Path, opts: ReadOptions) -> dict:
+    try:
+        table = pq.read_table(path)
+    except (pa.ArrowInvalid, OSError) as exc:
+        reason = _ARROW_SOURCE.sub("", _first_line(exc))
+        raise ContractError(f"unreadable Parquet file ({reason})", file=path) from None
+    table = table.drop_columns([c for c in table.column_names if _PANDAS_INDEX.fullmatch(c)])
+    names = _contract_names(table.column_names, opts.columns, path,
+                            has_period=opts.sample_period_s is not None)
+    table = table.rename_columns(names)
+    for i, name in enumerate(names):
+        column = table.column(i)
+        if name == TIME:
+            column = _parquet_time(column, path, opts)
+        else:
+            column = _parquet_numbers(column, name, path)
+        table = table.set_column(i, name, column)
+    return _columns(table)
+
+
+def _parquet_numbers(column: pa.ChunkedArray, name: str, path: Path) -> pa.ChunkedArray:
+    kind = column.type
+    numeric = (pa.types.is_floating(kind) or pa.types.is_integer(kind)
+               or pa.types.is_decimal(kind) or (pa.types.is_boolean(kind) and role(name) == "S"))
+    if numeric:
+        return pc.cast(column, pa.float64())
+    found = _first_cast_failure(column, pa.float64()) or _first_valid(column)
+    row = None if found is None else found[0] + 1
+    raise ContractError(f"Parquet dtype {kind} where numbers are expected",
+                        file=path, column=name, row=row)
+
+
+def _parquet_time(column: pa.ChunkedArray, path: Path, opts: ReadOptions) -> pa.ChunkedArray:
+    kind = column.type
+    if pa.types.is_string(kind) or pa.types.is_large_string(kind):
+        first = _first_valid(column)
+        target = _csv_time_type(path, [first[1] if first else ""], 0, opts)
+        found = _first_cast_failure(column, target)
+        if found is not None:
+            raise ContractError(f"value {found[1]!r} is not {_describe(target)}",
+                                file=path, column=TIME, row=found[0] + 1)
+        return pc.cast(column, target)
+    if (pa.types.is_floating(kind) or pa.types.is_integer(kind) or pa.types.is_timestamp(kind)
+            or pa.types.is_duration(kind)):
+        return column
+    raise ContractError(f"Parquet dtype {kind} where seconds or timestamps are expected",
+                        file=path, column=TIME)
+
+
+def _first_valid(column: pa.ChunkedArray) -> tuple[int, object] | None:
+    valid = np.flatnonzero(column.is_valid().to_numpy(zero_copy_only=False))
+    return (int(valid[0]), column[int(valid[0])].as_py()) if valid.size else None
+
+
+# ---------------------------------------------------------------------------
+# Columns
+#
+# From here on a campaign is a dict {name: Arrow column}.  Steps replace
+# entries in place, so a replaced column is freed at once and memory stays at
+# about one copy of the campaign.
+
+
+def _columns(table: pa.Table) -> dict:
+    return dict(zip(table.column_names, table.columns))
+
+
+def _values(column) -> np.ndarray:
+    """A float column as a numpy copy, NaN where missing."""
+    if column.null_count:
+        column = pc.fill_null(column, np.nan)
+    if isinstance(column, pa.ChunkedArray):
+        return column.to_numpy()
+    return column.to_numpy(zero_copy_only=False)
+
+
+def _chunks(column) -> list:
+    return column.chunks if isinstance(column, pa.ChunkedArray) else [column]
+
+
+# ---------------------------------------------------------------------------
+# Time
+
+
+def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions) -> dict:
+    """Replace (or add) ``time`` by float seconds; describe its source."""
+    if TIME not in columns:
+        columns[TIME] = pa.array(np.arange(rows) * opts.sample_period_s)
+        return {"time": "sample_period_s"}
+    column = columns[TIME]
+    if column.null_count:
+        row = int(np.argmax(column.is_null().to_numpy(zero_copy_only=False))) + 1
+        raise ContractError("missing time value", file=path, column=TIME, row=row)
+    seconds, info = _seconds(column)
+    _check_increasing(seconds, path)
+    columns[TIME] = pa.array(seconds)
+    return info
+
+
+def _seconds(column: pa.ChunkedArray) -> tuple[np.ndarray, dict]:
+    kind = column.type
+    if pa.types.is_timestamp(kind):
+        ns = pc.cast(pc.cast(column, pa.timestamp("ns", kind.tz)), pa.int64()).to_numpy()
+        origin = pd.Timestamp(ns[0], tz=kind.tz).isoformat()
+        return (ns - ns[0]) / 1e9, {"time": "iso8601", "time_origin": origin}
+    if pa.types.is_duration(kind):
+        ns = pc.cast(pc.cast(column, pa.duration("ns")), pa.int64()).to_numpy()
+        return ns / 1e9, {"time": "seconds"}
+    return pc.cast(column, pa.float64()).to_numpy(), {"time": "seconds"}
+
+
+def _check_increasing(seconds: np.ndarray, path: Path) -> None:
+    finite = np.isfinite(seconds)
+    if not finite.all():
+        row = int(np.argmin(finite)) + 1
+        raise ContractError(f"time {seconds[row - 1]} is not finite", file=path, column=TIME,
+                            row=row)
+    steps = np.diff(seconds)
+    if (steps > 0).all():
+        return
+    i = int(np.argmax(steps <= 0))
+    before, after = seconds[i], seconds[i + 1]
+    what = (f"duplicate time {after:g} s (same as row {i + 1})" if after == before else
+            f"time decreases from {before:g} s (row {i + 1}) to {after:g} s")
+    raise ContractError(what, file=path, column=TIME, row=i + 2)
+
+
+# ---------------------------------------------------------------------------
+# Values and missing samples
+
+
+def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) -> np.ndarray:
+    """Refuse impossible values; return the positions of missing ones."""
+    finite = np.isfinite(values)
+    missing = np.empty(0, dtype=np.intp)
+    if not finite.all():
+        missing = np.flatnonzero(~finite)
+        infinite = missing[np.isinf(values[missing])]
+        if infinite.size:
+            row = int(infinite[0]) + 1
+            raise ContractError(f"infinite value {values[row - 1]}", file=path, column=name,
+                                row=row)
+        if missing.size == values.size:
+            raise ContractError("column has no valid value (every cell is empty)",
+                                file=path, column=name)
+    if role(name) == "T":
+        _check_celsius(values, name, path, opts.kelvin_threshold_c, complete=not missing.size)
+    return missing
+
+
+def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
+                   complete: bool) -> None:
+    lowest, highest = ((values.min(), values.max()) if complete
+                       else (np.nanmin(values), np.nanmax(values)))
+    if highest > threshold:
+        row = int(np.argmax(values > threshold)) + 1
+        raise ContractError(f"{values[row - 1]:g} °C is above data.kelvin_threshold_c="
+                            f"{threshold:g}: temperatures look like kelvin, convert to °C",
+                            file=path, column=name, row=row)
+    if lowest < ABSOLUTE_ZERO_C:
+        row = int(np.argmax(values < ABSOLUTE_ZERO_C)) + 1
+        raise ContractError(f"{values[row - 1]:g} °C is below absolute zero",
+                            file=path, column=name, row=row)
+
+
+def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> dict:
+    """Validate every data column; trim incomplete edge rows, interpolate gaps.
+
+    Returns ``{"repairs": {column: n}, "trimmed": {"start": n, "end": n}}``.
+    """
+    gaps = {}  # column -> sorted positions of its missing values
+    for name in columns:
+        if name != TIME:
+            missing = _check_values(_values(columns[name]), name, path, opts)
+            if missing.size:
+                gaps[name] = missing
+    if not gaps:
+        return {"repairs": {}, "trimmed": {"start": 0, "end": 0}}
+    start, stop = _complete_span(rows, gaps, path, opts.max_edge_samples)
+    for name in columns:
+        columns[name] = columns[name].slice(start, stop - start)
+    time = _values(columns[TIME])
+    repairs = {}
+    for name, positions in gaps.items():
+        inside = positions[(positions >= start) & (positions < stop)] - start
+        if inside.size:
+            _check_gap_lengths(inside, name, start, path, opts.max_gap_samples)
+            columns[name] = _patched(columns[name], inside, _gap_values(columns[name], time, inside))
+            repairs[name] = int(inside.size)
+    return {"repairs": repairs, "trimmed": {"start": start, "end": rows - stop}}
+
+
+def _complete_span(rows: int, gaps: dict, path: Path, max_edge: int) -> tuple[int, int]:
+    """First and past-last row where every column is valid, within the trim limit."""
+    incomplete = np.zeros(rows, dtype=bool)
+    for positions in gaps.values():
+        incomplete[positions] = True
+    if incomplete.all():
+        raise ContractError("no row has every sensor valid", file=path, column=next(iter(gaps)))
+    start, stop = int(np.argmin(incomplete)), rows - int(np.argmin(incomplete[::-1]))
+    if start > max_edge:
+        name, first = _run_through(gaps, start - 1)
+        raise ContractError(f"{start} incomplete rows at the campaign start (first complete row "
+                            f"{start + 1}); data.max_edge_samples={max_edge} allows trimming "
+                            f"{max_edge}, values are never back-filled",
+                            file=path, column=name, row=first + 1)
+    if rows - stop > max_edge:
+        name, first = _run_through(gaps, stop)
+        raise ContractError(f"{rows - stop} incomplete rows at the campaign end (last complete "
+                            f"row {stop}); data.max_edge_samples={max_edge} allows trimming "
+                            f"{max_edge}, values are never forward-filled",
+                            file=path, column=name, row=first + 1)
+    return start, stop
+
+
+def _run_through(gaps: dict, position: int) -> tuple[str, int]:
+    """First column missing at ``position``, and where its run of missing values starts."""
+    for name, positions in gaps.items():
+        starts, lengths = _runs(positions)
+        k = int(np.searchsorted(starts, position, side="right")) - 1
+        if k >= 0 and position < starts[k] + lengths[k]:
+            return name, int(starts[k])
+    raise AssertionError(f"no column is missing at {position}")
+
+
+def _check_gap_lengths(positions: np.ndarray, name: str, offset: int, path: Path,
+                       max_gap: int) -> None:
+    starts, lengths = _runs(positions)
+    too_long = np.flatnonzero(lengths > max_gap)
+    if too_long.size:
+        row = offset + int(starts[too_long[0]]) + 1
+        length = int(lengths[too_long[0]])
+        where = f"row {row}" if length == 1 else f"rows {row}-{row + length - 1}"
+        raise ContractError(f"gap of {length} missing value{'s' * (length > 1)} ({where}) is "
+                            f"longer than data.max_gap_samples={max_gap}",
+                            file=path, column=name, row=row)
+
+
+def _runs(positions: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Start and length of every run of consecutive integers in sorted ``positions``."""
+    breaks = np.flatnonzero(np.diff(positions) != 1) + 1
+    first = np.concatenate(([0], breaks))
+    last = np.concatenate((breaks - 1, [len(positions) - 1]))
+    return positions[first], positions[last] - positions[first] + 1
+
+
+def _gap_values(column, time: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """Values at ``positions`` on the line between each gap's two valid neighbours."""
+    starts, lengths = _runs(positions)
+    run = np.repeat(np.arange(len(starts)), lengths)
+    before, after = (starts - 1)[run], (starts + lengths)[run]
+    v0 = pc.take(column, pa.array(before)).to_numpy()
+    v1 = pc.take(column, pa.array(after)).to_numpy()
+    weight = (time[positions] - time[before]) / (time[after] - time[before])
+    return v0 + weight * (v1 - v0)
+
+
+def _patched(column, positions: np.ndarray, values: np.ndarray) -> pa.ChunkedArray:
+    """``column`` with ``values`` written at the sorted ``positions``."""
+    chunks, offset = [], 0
+    for chunk in _chunks(column):
+        lo, hi = np.searchsorted(positions, [offset, offset + len(chunk)])
+        if lo < hi:
+            mask = np.zeros(len(chunk), dtype=bool)
+            mask[positions[lo:hi] - offset] = True
+            # Built by Arrow, so it reuses the pool memory of the chunks it replaces.
+            chunk = pc.replace_with_mask(chunk, pa.array(mask), pa.array(values[lo:hi]))
+        chunks.append(chunk)
+        offset += len(chunk)
+    return pa.chunked_array(chunks, type=pa.float64())
+
+
+# ---------------------------------------------------------------------------
+# Resampling and assembly
+
+
+def _resample(columns: dict, step: float) -> None:
+    """Linear interpolation of every column onto ``t0, t0 + step, ...``."""
+    time = _values(columns[TIME])
+    count = int(math.floor((time[-1] - time[0]) / step + 1e-9)) + 1
+    grid = time[0] + step * np.arange(count)
+    for name in columns:
+        if name != TIME:
+            columns[name] = pa.array(np.interp(grid, time, _values(columns[name])))
+    columns[TIME] = pa.array(grid)
+
+
+def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
+                  ) -> tuple[pa.Table, dict]:
+    """Read and validate one campaign file into an Arrow table.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.csv`` or ``.parquet`` campaign file.
+    cfg : mapping or ReadOptions, optional
+        The ``data`` config (see :func:`read_dataset`).
+
+    Returns
+    -------
+    table : pyarrow.Table
+        ``time`` (float seconds), then ``T_``, ``E_``, ``S_`` columns, all
+        float64, no missing value.
+    report : dict
+        ``rows``, ``source_rows``, ``time`` (``'seconds'``, ``'iso8601'`` or
+        ``'sample_period_s'``; ``time_origin`` for timestamps), ``repairs``
+        ({column: interpolated samples}), ``trimmed`` ({"start", "end"} rows)
+        and ``resampled_s`` when resampled.
+
+    Raises
+    ------
+    ContractError
+        If the file breaks the contract; see :func:`read_dataset`.
+    """
+    opts = cfg if isinstance(cfg, ReadOptions) else ReadOptions.from_cfg(cfg)
+    path = Path(path)
+    if not path.is_file():
+        raise ContractError("campaign file not found", file=path)
+    if path.stat().st_size == 0:
+        raise ContractError("empty file", file=path)
+    load = _load_parquet if path.suffix.lower() == ".parquet" else _load_csv
+    columns = load(path, opts)
+    rows = len(next(iter(columns.values())))
+    if rows == 0:
+        raise ContractError("file has no data rows", file=path)
+    report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts),
+              **_repair_missing(columns, rows, path, opts)}
+    if opts.resample_s is not None:
+        _resample(columns, opts.resample_s)
+        report["resampled_s"] = opts.resample_s
+    table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
+    return table, {"rows": table.num_rows, **report}
+
+
+def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
+                    ) -> Iterator[tuple[str, pa.Table, dict]]:
+    for cid, row in manifest.iterrows():
+        table, report = read_campaign(root / row["file"], opts)
+        yield cid, table, {"file": row["file"], "split": row["split"], **report}
+        del table  # before reading the next campaign
+
+
+def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) -> dict:
+    totals: dict[str, int] = {}
+    for entry in entries.values():
+        for column, count in entry["repairs"].items():
+            totals[column] = totals.get(column, 0) + count
+    return {"dataset": name, "rows": sum(e["rows"] for e in entries.values()),
+            "campaigns": entries, "repairs": totals,
+            "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
+            "settings": asdict(opts)}
+
+
+def _collect_roles(columns: dict, names: list[str]) -> None:
+    for name in names:
+        if name != TIME:
+            columns.setdefault(role(name), {}).setdefault(name, None)
+
+
+def _to_frame(table: pa.Table) -> pd.DataFrame:
+    return table.to_pandas(split_blocks=True)
+
+
+# ---------------------------------------------------------------------------
+# Public entry points
+
+
+def read_dataset(path: str | Path, cfg: Mapping | None = None) -> tuple[Dataset, dict]:
+    """Read, validate and repair a dataset folder.
+
+    Parameters
+    ----------
+    path : str or Path
+        Dataset folder with ``campaigns.csv`` and the campaign files.
+    cfg : mapping, optional
+        The ``data`` config group (dict or ``DictConfig``); every key is
+        optional:
+
+        columns : mapping
+            Raw column name -> contract name, applied to every campaign file
+            before validation (e.g. ``{"delta L": "E_L", "Zeit": "time"}``).
+        sample_period_s : float
+            Files without a ``time`` column get ``time = row * sample_period_s``.
+            A file with a ``time`` column keeps its own.
+        time : {'auto', 'seconds', 'iso8601'}
+            How to read ``time``; ``'auto'`` decides from the first row.
+            Seconds are kept as given; timestamps become seconds since the
+            file's first sample (rows with zone offsets are compared as
+            instants, naive ones as written).
+        split_overrides : mapping
+            Campaign id -> split, replacing the manifest's.
+        max_gap_samples : int, default 0
+            Longest interior run of missing values that is interpolated.
+        max_edge_samples : int, default 0
+            Most incomplete rows that are dropped at each end of a campaign.
+        resample_s : float
+            If set, every campaign is linearly interpolated onto a uniform
+            grid with this step, starting at its first sample.
+        kelvin_threshold_c : float, default 200
+            A ``T_`` value above it is taken for kelvin and refused.
+        delimiter, decimal : str, default ',' and '.'
+            CSV field separator and decimal mark of the campaign files.
+
+    Returns
+    -------
+    dataset : Dataset
+        Manifest indexed by campaign id; one float64 frame per campaign with
+        ``time`` (s), then ``T_``, ``E_``, ``S_`` columns in file order, and
+        no missing value.
+    report : dict
+        ``{"dataset": name, "rows": total, "campaigns": {id: {"file", "split",
+        "rows", "source_rows", "time", "repairs": {column: n}, "trimmed":
+        {"start", "end"}, ...}}, "repairs": {column: total}, "columns": {"T":
+        [...], "E": [...], "S": [...]}, "settings": {...}}``.  ``repairs``
+        lists only columns with at least one interpolated sample.
+
+    Raises
+    ------
+    ContractError
+        On input that breaks the contract, with a one-line message naming the
+        file, the column and the 1-based data row where they apply: missing
+        manifest or campaign file, invalid manifest, empty file, unknown
+        column prefix, no ``E_`` column, no time, unreadable time, duplicate
+        or decreasing times, non-numeric cells (or non-numeric Parquet
+        dtypes), infinite values, temperatures that look like kelvin, an
+        all-missing column, gaps or incomplete edges beyond the configured
+        limits, and invalid config values.
+
+    Notes
+    -----
+    Missing values are handled as described in the module docstring: gaps
+    are interpolated and edges trimmed only up to the configured limits, and
+    every repair is counted.
+    """
+    opts = ReadOptions.from_cfg(cfg)
+    root = Path(path)
+    manifest = read_manifest(root, opts)
+    campaigns, entries, columns = {}, {}, {}
+    for cid, table, entry in _iter_campaigns(root, manifest, opts):
+        _collect_roles(columns, table.column_names)
+        campaigns[cid], entries[cid] = _to_frame(table), entry
+        del table
+    report = _dataset_report(root.name, entries, columns, opts)
+    return Dataset(manifest, campaigns, root.name, {"path": str(root)}), report
+
+
+def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None) -> dict:
+    """Validate a raw dataset and write it as Parquet to ``dest``.
+
+    Campaigns are read, validated and written one at a time as Arrow tables,
+    so peak memory is about one campaign.  ``dest`` is replaced atomically:
+    after an error nothing new appears there and a previous ``dest`` is left
+    as it was.  Files under ``src`` are only read.
+
+    Parameters
+    ----------
+    src : str or Path
+        Raw dataset folder.
+    dest : str or Path
+        Output folder; receives ``<campaign>.parquet`` files, ``campaigns.csv``
+        (splits after overrides) and ``ingest_report.json``.  It must not be
+        ``src`` or lie inside it (or contain it).
+    cfg : mapping, optional
+        The ``data`` config, as for :func:`read_dataset`.
+
+    Returns
+    -------
+    dict
+        The ingest report, as written to ``ingest_report.json`` (format of
+        :func:`read_dataset`).
+
+    Raises
+    ------
+    ContractError
+        As :func:`read_dataset`, or if ``dest`` overlaps ``src``.
+    """
+    opts = ReadOptions.from_cfg(cfg)
+    src, dest = Path(src), Path(dest)
+    _check_separate(src, dest)
+    manifest = read_manifest(src, opts)
+    entries, columns = {}, {}
+    with atomic_dir(dest) as tmp:
+        for cid, table, entry in _iter_campaigns(src, manifest, opts):
+            _collect_roles(columns, table.column_names)
+            pq.write_table(table, tmp / f"{cid}.parquet")
+            entries[cid] = entry
+            del table
+            pa.default_memory_pool().release_unused()
+        out = manifest.assign(file=[f"{cid}.parquet" for cid in manifest.index])
+        (tmp / MANIFEST).write_text(_manifest_csv(out))
+        report = _dataset_report(src.name, entries, columns, opts)
+        (tmp / INGEST_REPORT).write_text(json.dumps(report, indent=2, ensure_ascii=False) + "\n")
+    return report
+
+
+def load_interim(path: str | Path) -> Dataset:
+    """Read back a folder written by :func:`ingest`, without re-validating it.
+
+    Parameters
+    ----------
+    path : str or Path
+        Output folder of :func:`ingest`.
+
+    Returns
+    -------
+    Dataset
+        As :func:`read_dataset` returns it; ``meta["ingest_report"]`` holds
+        the ingest report.
+
+    Raises
+    ------
+    ContractError
+        If the folder has no ``ingest_report.json`` (it was not written by
+        :func:`ingest`) or its manifest is invalid.
+    """
+    root = Path(path)
+    report_path = root / INGEST_REPORT
+    if not report_path.is_file():
+        raise ContractError(f"no {INGEST_REPORT}: not an ingested dataset (run ingest first)",
+                            file=root)
+    manifest = read_manifest(root)
+    campaigns = {cid: _to_frame(pq.read_table(root / f)) for cid, f in manifest["file"].items()}
+    meta = {"path": str(root), "ingest_report": json.loads(report_path.read_text())}
+    return Dataset(manifest, campaigns, root.name, meta)
+
+
+def _check_separate(src: Path, dest: Path) -> None:
+    a, b = src.resolve(), dest.resolve()
+    if a == b or a in b.parents or b in a.parents:
+        raise ContractError(f"ingest destination {dest} overlaps the raw dataset {src}; "
+                            "raw files are never modified")
+
+
+def _manifest_csv(manifest: pd.DataFrame) -> str:
+    out = manifest.copy()
+    if "start" in out.columns:
+        out["start"] = [t.isoformat() if pd.notna(t) else "" for t in out["start"]]
+    ordered = ["file", "split"] + [c for c in out.columns if c not in ("file", "split")]
+    return out[ordered].rename_axis("campaign").reset_index().to_csv(index=False)
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__
