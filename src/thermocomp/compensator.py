@@ -13,6 +13,7 @@ import numpy as np
 import pandas as pd
 from sklearn.base import clone
 
+from .denoise import denoise_campaigns, fit_denoiser
 from .frame import resolve_columns, stack
 from .select import AllInputs
 
@@ -38,7 +39,8 @@ class Compensator:
         Cloned once per target.  Its ``fit``/``predict`` get, when their
         signature accepts them, ``groups`` (campaign of each row, so dynamic
         models never cross campaigns) and ``context`` (a per-row DataFrame with
-        ``campaign``, ``time``, ``ambient_c0``; see :class:`thermocomp.frame.Matrices`).
+        ``campaign``, ``time``, ``ambient_c0``; see :class:`thermocomp.frame.Matrices`);
+        ``fit`` also gets ``target`` (the ``E_`` column) when it accepts it.
     selector : selector, optional
         Chooses inputs among the declared ones, per target (default: all).
     inputs : list of glob patterns
@@ -47,36 +49,53 @@ class Compensator:
         ``E_`` columns to model (default: all in the training data).
     reference : {'first_sample', 'none'}
         Frame of ``T_``/``E_`` columns (see ``DATA_FORMAT.md``).
+    denoiser : transformer, optional
+        Applied per campaign to the declared input columns before stacking
+        (so before referencing): offline on the training data, and in
+        ``predict`` causally when its ``online`` is true (see
+        :class:`thermocomp.denoise.EMDDenoiser`).
 
     Attributes
     ----------
     inputs_ : list of str        declared input columns found in the data
+    denoiser_ : fitted denoiser or None
     targets_ : list of str
     selected_ : dict target -> list of str
     estimators_ : dict target -> fitted estimator
     """
 
     def __init__(self, estimator, selector=None, inputs=("T_*",), targets=None,
-                 reference: str = "first_sample"):
+                 reference: str = "first_sample", denoiser=None):
         self.estimator = estimator
         self.selector = selector
         self.inputs = inputs
         self.targets = targets
         self.reference = reference
+        self.denoiser = denoiser
 
-    def fit(self, campaigns: Mapping[str, pd.DataFrame]) -> "Compensator":
+    def fit(self, campaigns: Mapping[str, pd.DataFrame], denoised: bool = False,
+            selected: Mapping[str, list] | None = None) -> "Compensator":
+        """Fit per target.  ``denoised=True``: ``campaigns`` already went through
+        ``denoiser``, which is then used as fitted (the ``denoise`` stage's output);
+        ``selected``: inputs per target chosen beforehand (the ``select`` stage),
+        used instead of refitting the selector."""
         columns = list(dict.fromkeys(c for df in campaigns.values() for c in df.columns))
         self.inputs_, self.targets_ = resolve_columns(columns, self.inputs, self.targets)
+        self.denoiser_, campaigns = fit_denoiser(self.denoiser, campaigns, self.inputs_, denoised)
         m = stack(campaigns, self.inputs_, self.targets_, self.reference)
         selector = self.selector if self.selector is not None else AllInputs()
         self.selected_, self.estimators_ = {}, {}
         for target in self.targets_:
             y = m.Y[target].to_numpy()
-            sel = clone(selector).fit(m.X, y, groups=m.groups)
+            names = list(selected[target]) if selected is not None else \
+                list(clone(selector).fit(m.X, y, groups=m.groups).selected_)
             est = clone(self.estimator)
-            X = m.X[sel.selected_].to_numpy()
-            est.fit(X, y, **_side_inputs(est.fit, m))
-            self.selected_[target], self.estimators_[target] = list(sel.selected_), est
+            X = m.X[names].to_numpy()
+            side = _side_inputs(est.fit, m)
+            if _accepts(est.fit, "target"):  # per-target settings (diagnosed effects)
+                side["target"] = target
+            est.fit(X, y, **side)
+            self.selected_[target], self.estimators_[target] = names, est
         return self
 
     def predict(self, campaigns: Mapping[str, pd.DataFrame], mode: str = "simulation"
@@ -88,6 +107,7 @@ class Compensator:
         """
         if mode not in MODES:
             raise ValueError(f"eval.mode must be one of {MODES}, got {mode!r}")
+        campaigns = denoise_campaigns(getattr(self, "denoiser_", None), campaigns)
         m = stack(campaigns, self.inputs_, self.targets_, self.reference)
         out = pd.DataFrame(index=m.X.index, columns=self.targets_, dtype=float)
         for target, est in self.estimators_.items():

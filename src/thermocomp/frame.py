@@ -38,7 +38,10 @@ class Matrices:
     ``context`` has one row per sample with what a model may know besides its
     inputs: ``campaign``, ``time`` (s) and ``ambient_c0`` (the campaign's first
     valid absolute ambient temperature, °C, NaN without a ``T_amb*`` column) --
-    the key of ambient-interval (ATI) models.
+    the key of ambient-interval (ATI) models -- and every ``S_`` and ``T_`` column
+    of the campaigns, raw values (NaN where a campaign lacks it), for models that
+    use a machine state or a sensor outside the declared inputs (the door signal
+    of ARX+RF, the effects of :class:`thermocomp.diagnose.AugmentedRegressor`).
     """
 
     X: pd.DataFrame
@@ -91,7 +94,7 @@ def initial_ambient(df: pd.DataFrame) -> float:
 def stack(campaigns: Mapping[str, pd.DataFrame], x_cols, y_cols,
           reference: str = "first_sample") -> Matrices:
     """Stack campaigns (in the reference frame) into model matrices."""
-    xs, ys, groups, times, amb0 = [], [], [], [], []
+    xs, ys, groups, times, amb0, states = [], [], [], [], [], []
     for cid, df in campaigns.items():
         missing = [c for c in list(x_cols) + list(y_cols) if c not in df.columns]
         if missing:
@@ -103,7 +106,11 @@ def stack(campaigns: Mapping[str, pd.DataFrame], x_cols, y_cols,
         groups.append(np.full(len(df), cid, dtype=object))
         times.append(df[TIME].to_numpy(float))
         amb0.append(np.full(len(df), initial_ambient(df)))
+        # machine states (S_*) and every sensor (T_*, declared or not), raw values, ride along
+        # for models that use them (ARX+RF door, the diagnosis' AugmentedRegressor)
+        states.append(df[[c for c in df.columns if c.startswith(("S_", "T_"))]].reset_index(drop=True))
     groups, times = np.concatenate(groups), np.concatenate(times)
     context = pd.DataFrame({"campaign": groups, "time": times, "ambient_c0": np.concatenate(amb0)})
+    context = pd.concat([context, pd.concat(states, ignore_index=True)], axis=1)
     return Matrices(pd.concat(xs, ignore_index=True), pd.concat(ys, ignore_index=True),
                     groups, times, context)

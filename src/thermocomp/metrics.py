@@ -76,7 +76,7 @@ def window_statistic(x, length: int, statistic: str = "range",
 
     ``range``: :math:`\max - \min` over the window; ``std``: population σ.
     Range uses sparse tables (two table look-ups per window, O(n) per length)
-    so all window lengths cost O(n² / 1) vectorised work instead of a Python loop.
+    so all window lengths cost O(n²) vectorised work instead of a Python loop.
     """
     x = np.asarray(x, float)
     n = x.size
@@ -89,17 +89,97 @@ def window_statistic(x, length: int, statistic: str = "range",
         span = length - 2**k
         count = n - length + 1
         hi = np.maximum(tmax[k][:count], tmax[k][span:span + count])
-        lo = np.minimum(tmin[k][:count], tmin[k][span:span + count])
-        return hi - lo
+        hi -= np.minimum(tmin[k][:count], tmin[k][span:span + count])
+        return hi
     if statistic == "std":
         c1, c2 = cumsums if cumsums is not None else _cumsums(x)
         s1 = c1[length:] - c1[:-length]
-        s2 = c2[length:] - c2[:-length]
-        var = s2 / length - (s1 / length) ** 2
+        var = c2[length:] - c2[:-length]
+        s1 *= s1
+        s1 /= length
+        var -= s1
+        var /= length
         # Running sums lose ~eps·scale² to cancellation: below that, σ is 0.
         var[var < 1e-12 * max(c2[-1] / n, 1e-300)] = 0.0
-        return np.sqrt(var)
+        return np.sqrt(var, out=var)
     raise ValueError(f"statistic must be 'range' or 'std', got {statistic!r}")
+
+
+def _prepare(x: np.ndarray, statistic: str):
+    if statistic == "range":
+        return (_sparse_table(x, np.maximum), _sparse_table(x, np.minimum)), None
+    if statistic == "std":
+        return None, _cumsums(x)
+    raise ValueError(f"statistic must be 'range' or 'std', got {statistic!r}")
+
+
+def _percentile(values: np.ndarray, q: float, guess: float | None) -> tuple[float, float]:
+    """``np.percentile(values, q)`` (linear method) and the lower order statistic used.
+
+    Written by hand because numpy has no incremental percentile: ``values`` is
+    first cut to the elements >= ``guess`` (the previous window length's
+    answer; E_P95 curves are smooth in Δt) and only that tail is partitioned.
+    The cut is checked by counting, so the answer is exact whatever the guess.
+    ``values`` is reordered in place.
+    """
+    m = values.size
+    k = q / 100.0 * (m - 1)
+    lo = int(np.floor(k))
+    ranks = [lo, min(lo + 1, m - 1)]
+    part = values
+    if guess is not None and m > 2048:
+        tail = values[values >= guess]
+        below = m - tail.size
+        if below <= lo:
+            part, ranks = tail, [r - below for r in ranks]
+    part.partition(ranks)
+    a, b = part[ranks[0]], part[ranks[1]]
+    return float(a + (k - lo) * (b - a)), float(a)
+
+
+def window_curves(series: Sequence, lengths: Sequence[int], statistic: str = "range",
+                  q: float = 95.0) -> dict[str, np.ndarray]:
+    r"""E_P95, E_max and E_mean curves (paper 000, Sect. 2.3) in one pass.
+
+    For each window length :math:`\Delta t` (in samples), every sliding window
+    :math:`[t, t+\Delta t)` of every series gives one statistic :math:`S`
+    (``range`` = max - min, or ``std`` = population σ); pooled over series,
+
+    .. math::
+
+        E_{P95}(\Delta t) = P_{q}\{S\},\quad E_{max}(\Delta t) = \max\{S\},\quad
+        E_{mean}(\Delta t) = \operatorname{mean}\{S\}
+
+    Parameters
+    ----------
+    series : list of 1-D arrays (one per campaign, uniformly sampled; NaN dropped)
+    lengths : window lengths in samples (>= 1)
+    statistic : 'range' or 'std'
+    q : percentile of the ``"percentile"`` curve (95 for E_P95)
+
+    Returns
+    -------
+    dict with ``"percentile"``, ``"max"``, ``"mean"``: arrays of shape
+    (len(lengths),), NaN where no series is that long.
+    """
+    prepared = []
+    for s in series:
+        x = np.asarray(s, float)
+        x = x[np.isfinite(x)]
+        prepared.append((x, *_prepare(x, statistic)))
+    out = {key: np.full(len(lengths), np.nan) for key in ("percentile", "max", "mean")}
+    guess = None
+    for i, length in enumerate(lengths):
+        parts = [window_statistic(x, int(length), statistic, t, c) for x, t, c in prepared]
+        parts = [p for p in parts if p.size]
+        if not parts:
+            continue
+        values = parts[0] if len(parts) == 1 else np.concatenate(parts)
+        out["max"][i] = values.max()
+        out["mean"][i] = values.mean()
+        out["percentile"][i], low = _percentile(values, q, guess)
+        guess = 0.98 * low
+    return out
 
 
 def e_p95(series: Sequence, lengths: Sequence[int], statistic: str = "range",
@@ -119,21 +199,19 @@ def e_p95(series: Sequence, lengths: Sequence[int], statistic: str = "range",
     -------
     ndarray of shape (len(lengths),); NaN where no series is that long.
     """
-    prepared = []
-    for s in series:
-        x = np.asarray(s, float)
-        x = x[np.isfinite(x)]
-        if statistic == "range":
-            prepared.append((x, (_sparse_table(x, np.maximum), _sparse_table(x, np.minimum)), None))
-        else:
-            prepared.append((x, None, _cumsums(x)))
-    out = np.full(len(lengths), np.nan)
-    for i, length in enumerate(lengths):
-        parts = [window_statistic(x, int(length), statistic, t, c) for x, t, c in prepared]
-        parts = [p for p in parts if p.size]
-        if parts:
-            out[i] = np.percentile(np.concatenate(parts), q)
-    return out
+    return window_curves(series, lengths, statistic, q)["percentile"]
+
+
+def e_max(series: Sequence, lengths: Sequence[int], statistic: str = "range") -> np.ndarray:
+    r"""E_max curve: the largest window statistic, :math:`\max_t S(e[t, t+\Delta t))`
+    (the worst case of paper 000, Sect. 2.3); same arguments as :func:`e_p95`."""
+    return window_curves(series, lengths, statistic)["max"]
+
+
+def e_mean(series: Sequence, lengths: Sequence[int], statistic: str = "range") -> np.ndarray:
+    r"""E_mean curve: the mean window statistic, :math:`E_\mu = \operatorname{mean}_t
+    S(e[t, t+\Delta t))`; same arguments as :func:`e_p95`."""
+    return window_curves(series, lengths, statistic)["mean"]
 
 
 def window_lengths(max_len: int, max_points: int | None = None) -> np.ndarray:
@@ -148,6 +226,16 @@ def window_lengths(max_len: int, max_points: int | None = None) -> np.ndarray:
     return np.unique(np.round(np.geomspace(2, max_len, max_points)).astype(int))
 
 
+def reduction_pct(before: float, after: float) -> float | None:
+    r"""Reduction by the compensation in %: :math:`100\,(1 - \text{after}/\text{before})`.
+
+    ``None`` when ``before`` is 0 (nothing to reduce).
+    """
+    if before is None or after is None or not before:
+        return None
+    return _finite(100.0 * (1.0 - after / before))
+
+
 def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.ndarray],
                  sample_period_s: float, e_p95_statistic: str = "range",
                  e_p95_points: int | None = 200, with_before_after: bool = True) -> dict:
@@ -155,8 +243,10 @@ def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.n
 
     ``rmse``, ``rms_*`` and ``p2p_*`` are pooled over all samples of the split's
     campaigns (in the reference frame); ``rsd_mean``/``rsd_sd`` are SM/SD of the
-    per-campaign Rsd.  Window lengths of ``e_p95`` run from one sample step to
-    the longest campaign (``window_s`` in seconds).
+    per-campaign Rsd; ``*_reduction_pct`` is :func:`reduction_pct` of before/after.
+    Window lengths of ``e_p95`` run from one sample step to the longest campaign
+    (``window_s`` in seconds); ``e_max`` and ``e_mean`` have the same layout and
+    hold the largest and the mean window statistic instead of the 95th percentile.
     """
     ids = list(measured)
     y_all = np.concatenate([np.asarray(measured[c], float) for c in ids])
@@ -167,19 +257,26 @@ def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.n
         return out
     out.update(rms_before=rms(y_all), rms_after=rms(r_all),
                p2p_before=p2p(y_all), p2p_after=p2p(r_all))
-    out["per_campaign"] = {
-        c: {"rmse": rmse(residual[c]), "rsd": _finite(rsd(residual[c])),
-            "rms_before": rms(measured[c]), "rms_after": rms(residual[c]),
-            "p2p_before": p2p(measured[c]), "p2p_after": p2p(residual[c])}
-        for c in ids}
+    out.update(rms_reduction_pct=reduction_pct(out["rms_before"], out["rms_after"]),
+               p2p_reduction_pct=reduction_pct(out["p2p_before"], out["p2p_after"]))
+    out["per_campaign"] = {c: _campaign_scores(measured[c], residual[c]) for c in ids}
     lengths = window_lengths(max(len(measured[c]) for c in ids), e_p95_points)
-    out["e_p95"] = {
-        "statistic": e_p95_statistic,
-        "window_s": [float((n - 1) * sample_period_s) for n in lengths],
-        "before": _finite_list(e_p95([measured[c] for c in ids], lengths, e_p95_statistic)),
-        "after": _finite_list(e_p95([residual[c] for c in ids], lengths, e_p95_statistic)),
-    }
+    window_s = [float((n - 1) * sample_period_s) for n in lengths]
+    before = window_curves([measured[c] for c in ids], lengths, e_p95_statistic)
+    after = window_curves([residual[c] for c in ids], lengths, e_p95_statistic)
+    for key, curve in (("e_p95", "percentile"), ("e_max", "max"), ("e_mean", "mean")):
+        out[key] = {"statistic": e_p95_statistic, "window_s": window_s,
+                    "before": _finite_list(before[curve]), "after": _finite_list(after[curve])}
     return out
+
+
+def _campaign_scores(measured, residual) -> dict:
+    s = {"rmse": rmse(residual), "rsd": _finite(rsd(residual)),
+         "rms_before": rms(measured), "rms_after": rms(residual),
+         "p2p_before": p2p(measured), "p2p_after": p2p(residual)}
+    s["rms_reduction_pct"] = reduction_pct(s["rms_before"], s["rms_after"])
+    s["p2p_reduction_pct"] = reduction_pct(s["p2p_before"], s["p2p_after"])
+    return s
 
 
 def _finite(v):

@@ -7,6 +7,16 @@ autoregressive part to one-step-ahead prediction (``eval.mode=one_step``).
 Without it they run in simulation (free-run) mode, as on a machine.
 """
 
+from .arx import ARX
+from .arx_rf import ARXRF
 from .linear import MLR
+from .pcr import PCR
 
-__all__ = ["MLR"]
+__all__ = ["MLR", "PCR", "ARX", "ARXRF", "LSTM"]
+
+
+def __getattr__(name):  # LSTM lazily: importing torch costs seconds the other models don't need
+    if name == "LSTM":
+        from .lstm import LSTM
+        return LSTM
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

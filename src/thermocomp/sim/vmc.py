@@ -105,3 +105,29 @@ def vertical_machining_centre() -> Machine:
     """Assemble the v1 twin."""
     return Machine(ThermalNetwork(NODES, LINKS), heat_sources(), sensors(), thermoelastic_map(),
                    convection_rules())
+
+
+# Where each undeclared effect (thermocomp.sim.effects) attaches on this machine, and its
+# default size: each leaves an MLR on the ten sensors a test residual dominated by it
+# (measured in benchmarks/bench_sim.py).
+VMC_EFFECTS = {
+    # The open door lets the colder shop-floor air sweep the front of the column and the
+    # headstock inside the enclosure (forced convection, h ~ 15-25 W/(m² K) on ~2 m²).
+    "door": {"nodes": {"column_front": 60.0},
+             "air_offset_c": -8.0, "rate_per_h": 1.0, "duration_min": [5.0, 20.0],
+             "targets": ["E_Y"]},
+    # A hydraulic power pack bolted to the back of the column: it heats the column back,
+    # which bends the column (E_Y) -- the column carries no sensor.
+    "hidden_source": {"anchor": "column_back", "targets": ["E_Y"]},
+    # A thick motor bracket: ~3 h behind the motor, it yaws the head (E_X).
+    "lag_node": {"parent": "headstock", "capacity_J_per_K": 3.0e5, "conductance_W_per_K": 20.0,
+                 "convection_W_per_K": 0.5, "sensitivity_um_per_K": {"E_X": 7.0}, "targets": ["E_X"]},
+    # The head dwells at heights over the Z travel; the column's front/back gradient tilts it,
+    # and the tilt reaches the TCP through the head's height.
+    "axis_position": {"axis": "Z", "travel_mm": [0.0, 600.0], "home_mm": 300.0,
+                      "tilt_nodes": {"column_back": 1.0, "column_front": -1.0},
+                      "gain_um_per_K_per_m": 40.0, "targets": ["E_Y"]},
+    "sensor_drift": {"column": "T_bearing_f1", "mode": "drift", "rate_K_per_h": 0.3, "from_fraction": 0.9,
+                     "targets": ["E_Y", "E_Z"]},
+    "ambient_law": {"level_node": "bed", "threshold_c": 18.5, "gain": 0.8, "targets": ["E_X", "E_Y"]},
+}

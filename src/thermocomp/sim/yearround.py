@@ -9,43 +9,20 @@ test set samples every season.
 
 from __future__ import annotations
 
-import contextlib
 import math
-from collections.abc import Mapping
-from datetime import datetime, timedelta
 
 import numpy as np
-import pandas as pd
 
-from thermocomp.io.contract import Dataset
 from thermocomp.sim.ambient import DAY_S, AmbientModel
-from thermocomp.sim.campaign import Measurement, Programme, run_campaign
-from thermocomp.sim.vmc import vertical_machining_centre
+from thermocomp.sim.campaign import Programme
+from thermocomp.sim.scenario import CampaignPlan, Scenario, plain, single_threaded_blas  # noqa: F401
+from thermocomp.sim.vmc import VMC_EFFECTS, vertical_machining_centre
 
 SCENARIO = "yearround_spindle"
+_plain = plain
 
 
-def single_threaded_blas():
-    """Context limiting BLAS to one thread (a no-op without ``threadpoolctl``)."""
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:  # pragma: no cover - threadpoolctl ships with scikit-learn
-        return contextlib.nullcontext()
-    return threadpool_limits(limits=1, user_api="blas")
-
-
-def _plain(value):
-    """Hydra ListConfig/tuples -> JSON-friendly lists, numpy scalars -> Python."""
-    if isinstance(value, str) or value is None:
-        return value
-    if isinstance(value, Mapping):
-        return {k: _plain(v) for k, v in value.items()}
-    if hasattr(value, "__iter__"):
-        return [_plain(v) for v in value]
-    return value.item() if hasattr(value, "item") else value
-
-
-class YearRoundSpindle:
+class YearRoundSpindle(Scenario):
     """Generator of the year-round spindle dataset (sklearn style: ``__init__`` only stores).
 
     Parameters
@@ -78,15 +55,23 @@ class YearRoundSpindle:
         ``(1 + summer_air_gain * warmth) * exp(air_movement_sd * z)``: open gates
         and fans in summer, draughts from day to day (``warmth`` 0 in the coldest,
         1 in the warmest season).
+    effects : list of str
+        Undeclared effects to plant (:mod:`thermocomp.sim.effects`).
+    effect_params : dict
+        Effect name -> parameter overrides (defaults: :data:`~thermocomp.sim.vmc.VMC_EFFECTS`).
+    clean : bool
+        Errors exactly linear in the measured sensor rises + white noise.
     seed : int
         Seed of :func:`numpy.random.default_rng`; the same seed gives the same data.
     """
+
+    name = SCENARIO
 
     def __init__(self, n_campaigns=24, sample_period_s=300.0, duration_h=(4.0, 8.0),
                  speeds_rpm=(2000, 4000, 6000), step_fraction=0.4, temp_noise_c=0.03,
                  temp_quantum_c=0.01, error_noise_um=0.4, error_quantum_um=0.1, test_every=3,
                  year=2023, start_hours=(7.0, 10.0), ambient=None, summer_air_gain=0.4,
-                 air_movement_sd=0.15, seed=0):
+                 air_movement_sd=0.15, effects=(), effect_params=None, clean=False, seed=0):
         self.n_campaigns = n_campaigns
         self.sample_period_s = sample_period_s
         self.duration_h = duration_h
@@ -102,11 +87,16 @@ class YearRoundSpindle:
         self.ambient = ambient
         self.summer_air_gain = summer_air_gain
         self.air_movement_sd = air_movement_sd
+        self.effects = effects
+        self.effect_params = effect_params
+        self.clean = clean
         self.seed = seed
 
-    def get_params(self) -> dict:
-        names = list(self.__init__.__code__.co_varnames[1:self.__init__.__code__.co_argcount])
-        return {name: _plain(getattr(self, name)) for name in names}
+    def effect_defaults(self) -> dict:
+        return VMC_EFFECTS
+
+    def truth_extra(self) -> dict:
+        return {"ambient": self.ambient_model().to_dict()}
 
     def machine(self):
         """The twin under test (a fresh :class:`~thermocomp.sim.campaign.Machine`)."""
@@ -149,30 +139,9 @@ class YearRoundSpindle:
         starts = np.floor(days) * DAY_S + np.round(hours * 12) / 12 * 3600.0
         return sorted(float(s) for s in starts)
 
-    def generate(self) -> tuple[Dataset, dict]:
-        """Simulate all campaigns (see :meth:`_generate`).
-
-        BLAS is held to one thread: the matrices are 9-19 wide, where threads
-        only add overhead (3x slower on a busy machine).
-        """
-        with single_threaded_blas():
-            return self._generate()
-
-    def _generate(self) -> tuple[Dataset, dict]:
-        """Simulate all campaigns.
-
-        Returns
-        -------
-        dataset : Dataset
-            Manifest (``file``, ``split``, ``start``, ``notes``, ``ambient_c``,
-            ``spindle_rpm``, ``programme``, ``duration_h``) and campaign frames.
-        truth : dict
-            JSON-serialisable ground truth (see the keys built below).
-        """
-        rng = np.random.default_rng(self.seed)
-        machine, ambient = self.machine(), self.ambient_model()
-        measurement = Measurement(self.temp_noise_c, self.temp_quantum_c,
-                                  self.error_noise_um, self.error_quantum_um)
+    def plans(self, rng) -> list[CampaignPlan]:
+        """One plan per campaign: calendar, speeds, programmes and air movement."""
+        ambient = self.ambient_model()
         starts = self._calendar(rng)
         n = len(starts)
         width = max(2, len(str(n)))
@@ -182,46 +151,17 @@ class YearRoundSpindle:
         block_speeds = np.concatenate([rng.permutation(speeds) for _ in range(math.ceil(n / len(speeds)))])
         stepped = set(rng.choice(n, size=int(round(self.step_fraction * n)), replace=False).tolist())
         lo, hi = (float(h) * 3600.0 for h in self.duration_h)
-        children = rng.spawn(n)
-        rows, frames, truth_campaigns = [], {}, {}
-        for k, (start_s, child) in enumerate(zip(starts, children)):
-            cid = f"K{k + 1:0{width}d}"
+        plans = []
+        for k, (start_s, child) in enumerate(zip(starts, rng.spawn(n))):
             duration_s = self._on_grid(child.uniform(lo, hi))
             programme, kind = self._programme(child, duration_s, float(block_speeds[k]), k in stepped)
             air = self._air_movement(child, start_s, ambient)
-            frame, info = run_campaign(machine, ambient, programme, start_s, duration_s, child,
-                                       sample_period_s=float(self.sample_period_s),
-                                       measurement=measurement, air_movement=air)
-            start = datetime(int(self.year), 1, 1) + timedelta(seconds=start_s)
-            split = "test" if (k + 1) % int(self.test_every) == 0 else "train"
-            frames[cid] = frame
-            rows.append({
-                "campaign": cid, "file": f"{cid}.csv", "split": split,
-                "start": start.isoformat(timespec="minutes"),
-                "notes": f"{kind}: {programme.describe()}",
-                "ambient_c": round(float(frame["T_amb"].iloc[0]), 2),
-                "spindle_rpm": max(r for _, r in programme.steps),
-                "programme": kind,
-                "duration_h": duration_s / 3600.0,
-            })
-            truth_campaigns[cid] = {"start": rows[-1]["start"], "split": split, "air_movement": air,
-                                    "programme": [list(map(float, s)) for s in programme.steps],
-                                    "duration_s": duration_s, **info}
-        manifest = pd.DataFrame(rows).set_index("campaign")
-        dataset = Dataset(manifest, frames, name=SCENARIO, meta={"scenario": SCENARIO, "seed": self.seed})
-        truth = {
-            "scenario": SCENARIO,
-            "seed": _plain(self.seed),
-            "params": self.get_params(),
-            "noise": {"temperature_c": self.temp_noise_c, "temperature_quantum_c": self.temp_quantum_c,
-                      "error_um": self.error_noise_um, "error_quantum_um": self.error_quantum_um},
-            **machine.to_dict(),
-            "sensor_nodes": {s.column: s.main_node for s in machine.sensors},
-            "unmeasured_nodes": [n for n in machine.network.names
-                                 if n not in {s.main_node for s in machine.sensors}],
-            "ambient": ambient.to_dict(),
-            "initial_ambient_c": {cid: c["ambient_start_c"] for cid, c in truth_campaigns.items()},
-            "campaigns": truth_campaigns,
-            "undeclared_effects": [],
-        }
-        return dataset, _plain(truth)
+            plans.append(CampaignPlan(
+                cid=f"K{k + 1:0{width}d}", split="test" if (k + 1) % int(self.test_every) == 0 else "train",
+                start_s=start_s, duration_s=duration_s, rng=child, ambient=ambient, programme=programme,
+                air_movement=air, sample_period_s=float(self.sample_period_s),
+                notes=f"{kind}: {programme.describe()}",
+                manifest={"spindle_rpm": max(r for _, r in programme.steps), "programme": kind,
+                          "duration_h": duration_s / 3600.0},
+                truth={"air_movement": air, "programme": [list(map(float, s)) for s in programme.steps]}))
+        return plans

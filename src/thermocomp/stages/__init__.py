@@ -5,8 +5,14 @@ atomically and logs to MLflow through :mod:`thermocomp.tracking`.  A stage
 never reaches into another stage's internals: they meet at files.
 """
 
+from .compare import compare
+from .denoise import denoise
 from .ingest import ingest
 from .modelling import evaluate, run, train
+from .promote import promote
+from .select import select
 from .simulate import simulate
 
-STAGES = {"simulate": simulate, "ingest": ingest, "train": train, "evaluate": evaluate, "run": run}
+STAGES = {"simulate": simulate, "ingest": ingest, "denoise": denoise, "select": select,
+          "train": train, "evaluate": evaluate, "run": run,
+          "compare": compare, "promote": promote}

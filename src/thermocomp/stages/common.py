@@ -27,6 +27,9 @@ def check_config(cfg: DictConfig) -> None:
     """Refuse bad choices before anything is read or written."""
     choices = {"eval.mode": (cfg.eval.mode, MODES), "data.reference": (cfg.data.reference, REFERENCES),
                "eval.e_p95.statistic": (cfg.eval.e_p95.statistic, ("range", "std"))}
+    ati = cfg.get("ati") or {}
+    if ati.get("estimator") is not None and "clustering" in ati.estimator:
+        choices["ati.estimator.clustering"] = (ati.estimator.clustering, ("fuzzy", "hard"))
     for key, (value, allowed) in choices.items():
         if value not in allowed:
             raise ConfigError(f"{key}={value!r} is not one of {list(allowed)}")
@@ -36,14 +39,25 @@ def data_options(cfg: DictConfig) -> dict:
     return OmegaConf.to_container(cfg.data, resolve=True)
 
 
-def build_compensator(cfg: DictConfig) -> Compensator:
+def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
+    """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``)."""
+    estimator = instantiate(cfg.model.estimator)
+    if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
+        estimator = instantiate(cfg.ati.estimator)(base_estimator=estimator)
     return Compensator(
-        estimator=instantiate(cfg.model.estimator),
+        estimator=estimator,
         selector=instantiate(cfg.select.selector),
         inputs=list(cfg.data.inputs),
         targets=None if cfg.data.targets is None else list(cfg.data.targets),
         reference=cfg.data.reference,
+        denoiser=build_denoiser(cfg),
     )
+
+
+def build_denoiser(cfg: DictConfig):
+    """The configured input denoiser (``denoise=emd``), or None (``denoise=none``)."""
+    den = cfg.get("denoise")
+    return None if den is None or den.get("denoiser") is None else instantiate(den.denoiser)
 
 
 def write_json(path, obj) -> Path:

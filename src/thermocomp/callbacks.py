@@ -1,0 +1,91 @@
+"""Hydra callbacks: one MLflow parent run per sweep (``thermocomp <stage> -m ...``).
+
+Registered in ``conf/config.yaml`` under ``hydra.callbacks``.  On
+``on_multirun_start`` a parent run is created and its id exported as
+``THERMOCOMP_PARENT_RUN_ID`` before the launcher starts any job, so every job's
+stage run (:func:`thermocomp.tracking.stage_run`) becomes its child, whether the
+job runs in this process (basic launcher), in a joblib worker process (the
+workers inherit the environment) or on a SLURM node (submitit exports the
+environment).  The id is also written to ``<sweep dir>/sweep.json`` so
+``thermocomp compare compare.sweep=<sweep dir>`` finds the sweep again.
+``on_multirun_end`` closes the parent run and prints the comparison table.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from pathlib import Path
+from typing import Any
+
+from hydra.experimental.callback import Callback
+from omegaconf import DictConfig
+
+SWEEP_FILE = "sweep.json"
+
+
+def _say(msg: str) -> None:
+    import sys
+
+    print(f"[thermocomp] {msg}", file=sys.stderr, flush=True)
+
+
+class MlflowSweepCallback(Callback):
+    """Parent MLflow run around a Hydra multirun; compares its children at the end.
+
+    Parameters
+    ----------
+    compare : bool
+        Print and save the comparison table (``thermocomp compare``) when the sweep ends.
+    """
+
+    def __init__(self, compare: bool = True):
+        self.compare = compare
+        self.run_id: str | None = None
+        self._previous: str | None = None
+
+    def on_multirun_start(self, config: DictConfig, **kwargs: Any) -> None:
+        if not config.get("track", True):
+            return
+        from .tracking import PARENT_ENV, start_parent_run
+
+        overrides = list(config.hydra.overrides.task)
+        sweep_dir = Path(str(config.hydra.sweep.dir))
+        tags = {"sweep.overrides": " ".join(overrides)[:5000], "sweep.dir": str(sweep_dir),
+                "launcher": str(config.hydra.launcher.get("_target_", "")).rsplit(".", 1)[-1]}
+        self.run_id = start_parent_run(config, f"sweep/{config.get('name')}", tags)
+        self._previous = os.environ.get(PARENT_ENV)
+        os.environ[PARENT_ENV] = self.run_id
+        from .paths import resolve
+        from .io.contract import atomic_write_text
+
+        path = resolve(sweep_dir) / SWEEP_FILE
+        atomic_write_text(path, json.dumps({"parent_run_id": self.run_id,
+                                            "overrides": overrides}, indent=2) + "\n")
+        _say(f"sweep parent run {self.run_id}")
+
+    def on_multirun_end(self, config: DictConfig, **kwargs: Any) -> None:
+        if self.run_id is None:
+            return
+        from mlflow import MlflowClient
+
+        from .tracking import PARENT_ENV, child_runs, connect, end_parent_run
+
+        children = child_runs(MlflowClient(connect(config)), self.run_id)
+        failed = sum(r.info.status != "FINISHED" for r in children)
+        end_parent_run(config, self.run_id, "FAILED" if failed else "FINISHED",
+                       {"sweep.jobs": len(children), "sweep.failed_jobs": failed})
+        if self._previous is None:
+            os.environ.pop(PARENT_ENV, None)
+        else:
+            os.environ[PARENT_ENV] = self._previous
+        _say(f"sweep parent run {self.run_id}: {len(children)} child runs, {failed} failed")
+        if self.compare and children:
+            try:
+                from .stages.compare import compare_sweep
+
+                from .paths import resolve
+
+                compare_sweep(config, self.run_id, out=resolve(str(config.hydra.sweep.dir)))
+            except Exception as exc:  # the sweep itself succeeded; say why there is no table
+                _say(f"no comparison table: {' '.join(str(exc).split())}")

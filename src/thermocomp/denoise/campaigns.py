@@ -1,0 +1,56 @@
+"""Apply a denoiser to campaign frames (what the Compensator and the ``denoise`` stage share)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+from sklearn.base import clone
+from sklearn.utils.validation import check_is_fitted
+
+
+def _replaced(campaigns: Mapping[str, pd.DataFrame], columns, values: dict) -> dict:
+    out = {}
+    for cid, df in campaigns.items():
+        df = df.copy()
+        df[list(columns)] = np.asarray(values[cid], dtype=float)
+        out[cid] = df
+    return out
+
+
+def fit_denoiser(denoiser, campaigns: Mapping[str, pd.DataFrame], columns, prefit: bool = False):
+    """Fit ``denoiser`` on ``columns`` of the campaigns; return it and the denoised campaigns.
+
+    Every campaign is one time series (groups).  With ``prefit=True`` the
+    campaigns were already denoised by this fitted denoiser (the output of
+    ``thermocomp denoise``): it is checked and returned with them unchanged,
+    so nothing is denoised twice.  ``denoiser=None`` passes through.
+    """
+    columns = list(columns)
+    if denoiser is None:
+        return None, dict(campaigns)
+    if prefit:
+        check_is_fitted(denoiser)
+        fitted = list(getattr(denoiser, "feature_names_in_", []))
+        if fitted != columns:
+            raise ValueError(f"the prefitted denoiser was fitted on {fitted}, the model's inputs "
+                             f"are {columns}")
+        return denoiser, dict(campaigns)
+    den = clone(denoiser)
+    X = pd.concat([df[columns] for df in campaigns.values()], ignore_index=True)
+    groups = np.concatenate([np.full(len(df), cid, dtype=object) for cid, df in campaigns.items()])
+    out = den.fit_transform(X, groups=groups).to_numpy()
+    return den, _replaced(campaigns, columns, {c: out[groups == c] for c in campaigns})
+
+
+def denoise_campaigns(denoiser, campaigns: Mapping[str, pd.DataFrame], causal: bool | None = None
+                      ) -> dict:
+    """Denoise the fitted columns of each campaign; ``causal=None`` follows ``denoiser.online``."""
+    if denoiser is None:
+        return dict(campaigns)
+    causal = bool(getattr(denoiser, "online", True)) if causal is None else causal
+    columns = list(denoiser.feature_names_in_)
+    method = denoiser.transform_causal if causal else denoiser.transform
+    return _replaced(campaigns, columns, {cid: method(df[columns]).to_numpy()
+                                          for cid, df in campaigns.items()})

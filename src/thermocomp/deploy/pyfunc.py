@@ -1,0 +1,136 @@
+"""The deployable compensator as an ``mlflow.pyfunc`` model.
+
+Input: a table of sensor readings (declared ``T_``/``S_`` inputs, all float;
+an optional ``time`` column in s), one row per sample, in time order.
+Output: the correction per axis in µm, ``C_<axis> = -Ê_<axis>`` (what to add
+to the axis command to cancel the predicted thermal error ``E_<axis>``), and
+``n_clamped``, the number of inputs of that row clamped to the training envelope.
+
+State is kept between calls (one stream per loaded model).  A call with
+``params={"reset": true}`` starts a new campaign: its first row becomes the
+reference sample (``T_`` inputs are taken relative to it) and every memory
+(AR terms, causal denoiser) is cleared.  A freshly loaded model starts reset.
+
+Depends on the core and MLflow only: no Hydra, no stages.  The model carries
+the ``thermocomp`` package source (``code_paths``), so a serving environment
+needs only its third-party requirements.
+"""
+
+from __future__ import annotations
+
+import pickle
+import tempfile
+import threading
+from pathlib import Path
+
+import mlflow
+import numpy as np
+import pandas as pd
+from mlflow.exceptions import MlflowException
+from mlflow.models import ModelSignature
+from mlflow.protos.databricks_pb2 import INVALID_PARAMETER_VALUE
+from mlflow.types import ColSpec, ParamSchema, ParamSpec, Schema
+
+from .streaming import StreamingCompensator
+
+MODEL_NAME = "compensator"          # artifact name of the pyfunc model inside a run
+COMPENSATOR_ARTIFACT = "compensator"  # the pickled StreamingCompensator inside the model
+CORRECTION_PREFIX = "C_"
+
+
+def correction_column(target: str) -> str:
+    """``E_X`` -> ``C_X``: the correction for the error ``E_X``."""
+    return CORRECTION_PREFIX + (target[2:] if target.startswith("E_") else target)
+
+
+class CompensatorModel(mlflow.pyfunc.PythonModel):
+    """``mlflow.pyfunc`` wrapper of a :class:`StreamingCompensator` (see module doc).
+
+    Logged as *model from code* (``model_code.py``); the streaming compensator
+    itself is the pickled artifact ``compensator``, loaded in :meth:`load_context`.
+    """
+
+    def __init__(self, streaming: StreamingCompensator | None = None):
+        self.streaming = streaming
+        self._lock = threading.Lock()
+
+    def load_context(self, context) -> None:
+        if context is not None and COMPENSATOR_ARTIFACT in (context.artifacts or {}):
+            with open(context.artifacts[COMPENSATOR_ARTIFACT], "rb") as f:
+                self.streaming = pickle.load(f)
+        self.streaming.reset()
+
+    def predict(self, context, model_input: pd.DataFrame, params: dict | None = None) -> pd.DataFrame:
+        params = params or {}
+        # Serving may call from several threads: one stream, one sample order.
+        with self._lock:
+            if params.get("reset"):
+                self.streaming.reset()
+            try:
+                pred = self.streaming.predict(pd.DataFrame(model_input))
+            except ValueError as exc:  # OutOfEnvelopeError, ContractError: the caller's input
+                raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
+        out = pd.DataFrame({correction_column(t): -pred[t].to_numpy(float)
+                            for t in self.streaming.targets_})
+        out["n_clamped"] = pred["n_clamped"].to_numpy(np.int64)
+        return out
+
+
+def signature(streaming: StreamingCompensator) -> ModelSignature:
+    """Input/output schema (and the ``reset`` parameter) of the deployed compensator."""
+    inputs = Schema([ColSpec("double", c) for c in streaming.columns_]
+                    + [ColSpec("double", "time", required=streaming.time_required_)])
+    outputs = Schema([ColSpec("double", correction_column(t)) for t in streaming.targets_]
+                     + [ColSpec("long", "n_clamped")])
+    return ModelSignature(inputs=inputs, outputs=outputs,
+                          params=ParamSchema([ParamSpec("reset", "boolean", False)]))
+
+
+# Third-party distributions the core imports when a compensator is unpickled (the package
+# source itself travels in ``code_paths``); torch only for models that hold torch objects.
+_CORE_REQUIREMENTS = ("mlflow", "numpy", "pandas", "pyarrow", "scipy", "scikit-learn",
+                      "EMD-signal", "scikit-fuzzy")
+
+
+def _requirements(pickled: bytes = b"") -> list[str]:
+    from importlib.metadata import version
+
+    names = list(_CORE_REQUIREMENTS) + (["torch"] if b"torch" in pickled else [])
+    return [f"{p}=={version(p)}" for p in names]
+
+
+def _model_kwargs(streaming: StreamingCompensator, pickle_path: Path) -> dict:
+    here = Path(__file__).resolve().parent
+    return dict(python_model=str(here / "model_code.py"),
+                artifacts={COMPENSATOR_ARTIFACT: str(pickle_path)}, signature=signature(streaming),
+                code_paths=[str(here.parent)],
+                pip_requirements=_requirements(Path(pickle_path).read_bytes()))
+
+
+def _pickled(streaming: StreamingCompensator, folder: str) -> Path:
+    streaming.reset()
+    path = Path(folder) / "compensator.pkl"
+    with open(path, "wb") as f:
+        pickle.dump(streaming, f)
+    return path
+
+
+def save_compensator(streaming: StreamingCompensator, path, input_example=None) -> Path:
+    """Write the pyfunc model to a local folder (no tracking server): ``mlflow.pyfunc.load_model(path)``."""
+    with tempfile.TemporaryDirectory() as tmp:
+        mlflow.pyfunc.save_model(str(path), input_example=input_example,
+                                 **_model_kwargs(streaming, _pickled(streaming, tmp)))
+    return Path(path)
+
+
+def log_compensator(streaming: StreamingCompensator, input_example: pd.DataFrame | None = None,
+                    registered_model_name: str | None = None, name: str = MODEL_NAME,
+                    **kwargs):
+    """Log the compensator as a pyfunc model in the active run; returns the ``ModelInfo``.
+
+    ``registered_model_name`` also registers it (a new version) in the Model Registry.
+    """
+    with tempfile.TemporaryDirectory() as tmp:
+        return mlflow.pyfunc.log_model(
+            name=name, input_example=input_example, registered_model_name=registered_model_name,
+            **_model_kwargs(streaming, _pickled(streaming, tmp)), **kwargs)

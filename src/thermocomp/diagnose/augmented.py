@@ -1,0 +1,172 @@
+r"""The diagnosed model: any estimator plus the features of the accepted effects."""
+
+from __future__ import annotations
+
+import inspect
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+from sklearn.base import BaseEstimator, RegressorMixin, clone
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from ..errors import ConfigError
+from ..models.linear import MLR
+from .features import AMBIENT_CENTRE_C, Effect, as_effect, design
+
+
+def _accepts(method, name: str) -> bool:
+    return name in inspect.signature(method).parameters
+
+
+def _side(method, **side) -> dict:
+    return {k: v for k, v in side.items() if v is not None and _accepts(method, k)}
+
+
+def _has_stream(obj) -> bool:
+    return callable(getattr(obj, "stream_init", None)) and callable(getattr(obj, "stream_step", None))
+
+
+class AugmentedRegressor(RegressorMixin, BaseEstimator):
+    r"""A model family with extra regressors from diagnosed effects.
+
+    .. math:: \hat y(t) = f\big(x(t),\ \phi_1(t), \dots, \phi_m(t)\big)
+
+    where :math:`f` is ``estimator`` (any family: MLR, PCR, ARX, ARX+RF, an ATI
+    model ...) and :math:`\phi_j` are the features of the accepted effects
+    (:func:`thermocomp.diagnose.features.effect_features`: lags of an undeclared
+    signal, low-pass copies of the inputs, ambient interactions, products,
+    squares), built per row from the inputs and the Compensator's ``context``.
+    The estimator sees them as extra inputs, so it fits them its own way (OLS,
+    principal components, greedy ARX selection ...).  ``sensor_fault`` effects
+    build nothing: the faulty sensor is left out of ``data.inputs`` instead.
+
+    Parameters
+    ----------
+    estimator : regressor, default MLR()
+        The base model, cloned in ``fit``.
+    effects : list of effect dicts, or dict target -> list
+        :class:`~thermocomp.diagnose.features.Effect` fields (``kind``,
+        ``transform``, ``column``, ``other``, ``tau_s``, ``threshold_c``).  A
+        dict gives each target its own effects: the Compensator passes
+        ``target`` to ``fit``; a target missing from it gets none.
+    reference : {'first_sample', 'none'}
+        Frame of the context columns (``data.reference``).
+
+    Attributes
+    ----------
+    estimator_ : fitted base estimator
+    effects_ : list of Effect used for this target
+    target_ : str or None
+    required_context_ : list of str
+        Raw context columns (``S_``/``T_``) the effects need at prediction time.
+    n_features_in_ : int
+    """
+
+    def __init__(self, estimator=None, effects=(), reference: str = "first_sample"):
+        self.estimator = estimator
+        self.effects = effects
+        self.reference = reference
+
+    def _effects_for(self, target) -> list[Effect]:
+        effects = self.effects if self.effects is not None else ()
+        if isinstance(effects, Mapping):
+            effects = effects.get(target, ()) if target is not None else ()
+        out = [as_effect(e) for e in effects]
+        return [e for e in out if e.transform != "remove"]
+
+    def _design(self, X, groups, context) -> np.ndarray:
+        if context is not None and len(context) != X.shape[0]:
+            raise ValueError(f"context has {len(context)} rows, X has {X.shape[0]}")
+        return design(X, self.effects_, context, groups, self.reference)
+
+    def fit(self, X, y, groups=None, context=None, target=None):
+        if self.reference not in ("first_sample", "none"):
+            raise ConfigError(f"AugmentedRegressor reference={self.reference!r} is not "
+                              "first_sample or none")
+        X, y = validate_data(self, X, y, y_numeric=True)
+        self.target_ = target
+        self.effects_ = self._effects_for(target)
+        self.required_context_ = list(dict.fromkeys(c for e in self.effects_ for c in e.context_columns))
+        Z = self._design(X, groups, context)
+        base = clone(self.estimator if self.estimator is not None else MLR())
+        self.estimator_ = base.fit(Z, y, **_side(base.fit, groups=groups, context=context))
+        return self
+
+    def predict(self, X, groups=None, context=None, y_measured=None):
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False)
+        Z = self._design(X, groups, context)
+        est = self.estimator_
+        return est.predict(Z, **_side(est.predict, groups=groups, context=context,
+                                      y_measured=y_measured))
+
+    # -- streaming (deployment) -------------------------------------------------------------
+    def stream_init(self, context: Mapping | None = None) -> dict:
+        """State before a campaign's first sample; ``context`` may hold ``ambient_c0``."""
+        check_is_fitted(self)
+        base = self.estimator_
+        state = {"first": {}, "last": {}, "lag": {}, "t": None,
+                 "ambient_c0": float((context or {}).get("ambient_c0", np.nan))}
+        if _has_stream(base):
+            kw = {"context": dict(context or {})} if _accepts(base.stream_init, "context") else {}
+            state["base"] = base.stream_init(**kw)
+        return state
+
+    def _raw(self, column, context, state) -> float:
+        if context is None or column not in context:
+            raise ConfigError(f"stream_step needs {column!r} in context (raw value of this sample)")
+        value = float(context[column])
+        if np.isnan(value):   # hold the last valid value, as the batch frame does
+            value = state["last"].get(column, np.nan)
+        if not np.isnan(value):
+            state["last"][column] = value
+            state["first"].setdefault(column, value)
+        if np.isnan(value):
+            return 0.0
+        return value - state["first"][column] if self.reference == "first_sample" else value
+
+    def _lag(self, key, u: np.ndarray, tau: float, dt: float | None, state) -> np.ndarray:
+        prev = state["lag"].get(key)
+        z = u if prev is None or dt is None else np.exp(-dt / tau) * prev + (1 - np.exp(-dt / tau)) * u
+        state["lag"][key] = z
+        return z
+
+    def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
+        """One sample of simulation-mode ``predict``.
+
+        ``context`` maps ``time`` (s), ``ambient_c0`` (°C, if the effects use it)
+        and every column of ``required_context_`` to this sample's raw value.
+        """
+        x = np.asarray(x_row, dtype=float).ravel()
+        t = float((context or {}).get("time", np.nan))
+        dt = None if state["t"] is None or np.isnan(t) else t - state["t"]
+        state["t"] = t if not np.isnan(t) else state["t"]
+        a0 = float((context or {}).get("ambient_c0", state["ambient_c0"]))
+        parts = [x]
+        for i, e in enumerate(self.effects_):
+            tr = e.transform
+            if tr in ("raw", "first_order_lag", "square"):
+                c = np.array([self._raw(e.column, context, state)])
+                if tr == "first_order_lag":
+                    c = self._lag(i, c, e.tau_s, dt, state)
+                parts.append(c**2 if tr == "square" else c)
+            elif tr == "product":
+                parts.append(np.array([self._raw(e.column, context, state)
+                                       * self._raw(e.other, context, state)]))
+            elif tr == "lowpass_inputs":
+                parts.append(self._lag(i, x, e.tau_s, dt, state))
+            elif tr == "ambient_linear":
+                parts.append(x * (a0 - AMBIENT_CENTRE_C))
+            elif tr == "ambient_step":
+                parts.append(x * float(a0 > e.threshold_c))
+        z = np.concatenate(parts)
+        base = self.estimator_
+        if "base" in state:
+            kw = {"context": context} if _accepts(base.stream_step, "context") else {}
+            y, state["base"] = base.stream_step(z, state["base"], **kw)
+            return float(y), state
+        ctx = pd.DataFrame({"campaign": ["stream"], "time": [t], "ambient_c0": [a0]})
+        y = base.predict(z[None, :], **_side(base.predict, groups=np.array(["stream"], dtype=object),
+                                             context=ctx))
+        return float(np.asarray(y).ravel()[0]), state

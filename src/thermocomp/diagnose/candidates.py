@@ -1,0 +1,114 @@
+"""The candidate effects of one search round, and the random control signal.
+
+Families (issue 6): ``signal`` -- every column the model does not use
+(undeclared ``T_``/``S_`` columns, declared sensors the selector dropped), raw
+and through first-order lags; ``dynamics`` -- low-pass copies of the model
+inputs (unmeasured masses, delays, the AR pole); ``ambient_interval`` -- the
+inputs times the initial ambient (linear, or a step at a threshold between
+the train campaigns' ambients); ``interaction`` -- products of a state signal
+and a temperature; ``nonlinear`` -- squares of the strongest inputs;
+``sensor_fault`` -- removing a declared sensor whose self-prediction jumps.
+
+The control is a random walk, independent per campaign, with no physical
+effect on anything: it goes through the same transforms as a real signal and
+must never clear the bar.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from .features import Effect, in_frame
+
+CONTROL = "control:random_walk"
+
+
+@dataclass
+class CandidateOptions:
+    """What the candidate families contain."""
+
+    taus_s: tuple = (900.0, 1800.0, 3600.0, 7200.0, 14400.0)
+    n_squares: int = 3
+    fault_ratio: float = 3.0
+    families: tuple = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear",
+                       "sensor_fault")
+    min_units_per_side: int = 2
+    extra_columns: list = field(default_factory=list)   # more context columns to try as signals
+
+
+def random_walk(campaigns: np.ndarray, seed: int = 0) -> np.ndarray:
+    """A standard random walk per campaign (starts at 0), seeded: the control signal."""
+    rng = np.random.default_rng(seed)
+    steps = rng.standard_normal(len(campaigns))
+    out = np.empty(len(campaigns))
+    campaigns = np.asarray(campaigns, dtype=object)
+    for cid in dict.fromkeys(campaigns):
+        rows = np.flatnonzero(campaigns == cid)
+        walk = np.cumsum(steps[rows])
+        out[rows] = walk - walk[0]
+    return out
+
+
+def _varies(values: np.ndarray) -> bool:
+    return bool(np.nanstd(values) > 1e-12)
+
+
+def ambient_thresholds(ambient_by_unit: pd.Series, min_per_side: int) -> list[float]:
+    """Midpoints between consecutive campaign ambients with enough campaigns on each side."""
+    a = np.sort(ambient_by_unit.dropna().to_numpy(float))
+    out = []
+    for i in range(min_per_side - 1, len(a) - min_per_side):
+        if a[i + 1] - a[i] > 1e-6:
+            out.append(round(float((a[i] + a[i + 1]) / 2), 2))
+    return sorted(set(out))
+
+
+def candidates(problem, model_inputs: list[str], declared: list[str], excluded: set,
+               accepted: list[Effect], faults: pd.DataFrame | None,
+               options: CandidateOptions) -> list[Effect]:
+    """Every candidate of one round (the control included; faults from self-prediction)."""
+    ctx, fam = problem.context, set(options.families)
+    groups, ref = problem.campaigns, problem.reference
+    taus = [float(t) for t in options.taus_s]
+    out: list[Effect] = []
+    t_cols = [c for c in ctx.columns if c.startswith("T_") and c not in excluded]
+    s_cols = [c for c in ctx.columns if c.startswith("S_") and c not in excluded]
+    s_cols += [c for c in options.extra_columns if c in ctx.columns and c not in s_cols]
+    s_cols = [c for c in s_cols if _varies(in_frame(ctx[c].to_numpy(float), groups, ref))]
+    unused_t = [c for c in t_cols if c not in model_inputs
+                and _varies(in_frame(ctx[c].to_numpy(float), groups, ref))]
+
+    def signal_family(col: str) -> list[Effect]:
+        return [Effect("signal", "raw", col)] + [Effect("signal", "first_order_lag", col, tau_s=t)
+                                                  for t in taus]
+    if "signal" in fam:
+        for col in unused_t + s_cols:
+            out += signal_family(col)
+    if "dynamics" in fam:
+        out += [Effect("dynamics", "lowpass_inputs", tau_s=t) for t in taus]
+    if "ambient_interval" in fam and "ambient_c0" in ctx and np.isfinite(ctx["ambient_c0"]).all():
+        by_unit = ctx["ambient_c0"].groupby(problem.units, sort=False).first()
+        if by_unit.nunique() >= 2 * options.min_units_per_side:
+            out.append(Effect("ambient_interval", "ambient_linear"))
+            out += [Effect("ambient_interval", "ambient_step", threshold_c=thr)
+                    for thr in ambient_thresholds(by_unit, options.min_units_per_side)]
+    if "interaction" in fam:
+        temps = [c for c in model_inputs if c.startswith("T_")] + unused_t
+        out += [Effect("interaction", "product", s, other=t) for s in s_cols for t in temps]
+    if "nonlinear" in fam and options.n_squares > 0:
+        X = problem.X[model_inputs].to_numpy(float)
+        corr = np.abs([np.corrcoef(X[:, j], problem.y)[0, 1] if _varies(X[:, j]) else 0.0
+                       for j in range(X.shape[1])])
+        strongest = [model_inputs[j] for j in np.argsort(-np.nan_to_num(corr))[:options.n_squares]]
+        out += [Effect("nonlinear", "square", c) for c in strongest if c.startswith("T_")]
+    if "sensor_fault" in fam and faults is not None and len(faults):
+        remaining = [c for c in declared if c not in excluded]
+        if len(remaining) > 1:
+            out += [Effect("sensor_fault", "remove", s) for s, row in faults.iterrows()
+                    if row["jump_ratio"] >= options.fault_ratio and s in remaining]
+    out += signal_family(CONTROL)
+    done = set(accepted)
+    return [e for e in dict.fromkeys(out) if e not in done]

@@ -1,0 +1,227 @@
+"""``diagnose``: the whole closed loop on a dataset, and its result in the layout of ``diagnosis.json``."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+from ..compensator import Compensator
+from ..denoise import denoise_campaigns
+from ..evaluation import require_split, score
+from ..frame import stack
+from ..io.contract import ContractError, Dataset
+from .augmented import AugmentedRegressor
+from .candidates import CONTROL, random_walk
+from .cv import Problem, unit_labels
+from .features import Effect
+from .search import Search, SearchOptions, SearchResult
+
+
+def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
+            inputs=None) -> Compensator:
+    """An unfitted copy of ``template`` whose estimator adds ``effects`` (per target).
+
+    ``excluded`` sensors (accepted ``sensor_fault``) leave the declared inputs:
+    ``inputs`` (the resolved input columns, default ``template.inputs_``)
+    without them become the explicit input list.
+    """
+    base_inputs = list(inputs) if inputs is not None else list(getattr(template, "inputs_", []))
+    kept = [c for c in base_inputs if c not in set(excluded)] if excluded else template.inputs
+    est = AugmentedRegressor(template.estimator,
+                             {t: [Effect.to_dict(e) if isinstance(e, Effect) else dict(e) for e in es]
+                              for t, es in effects.items()},
+                             template.reference)
+    return Compensator(est, selector=template.selector, inputs=kept, targets=template.targets,
+                       reference=template.reference, denoiser=getattr(template, "denoiser", None))
+
+
+def fresh(template: Compensator) -> Compensator:
+    """An unfitted copy of a Compensator (same settings)."""
+    return Compensator(template.estimator, selector=template.selector, inputs=template.inputs,
+                       targets=template.targets, reference=template.reference,
+                       denoiser=getattr(template, "denoiser", None))
+
+
+@dataclass
+class TargetDiagnosis:
+    """Everything found for one target."""
+
+    target: str
+    search: SearchResult
+    original_cv_rmse: float
+    final_cv_rmse: float
+    before: dict             # test-split scores of the original model (metrics.json layout)
+    after: dict              # ... of the diagnosed model
+    inherited: list = field(default_factory=list)   # sensor faults found on earlier targets
+
+    @property
+    def accepted(self):
+        return self.search.accepted
+
+
+@dataclass
+class Diagnosis:
+    """Result of :func:`diagnose`: per target, plus the fitted models before and after."""
+
+    model: str
+    dataset: str
+    mode: str
+    targets: dict                      # target -> TargetDiagnosis
+    excluded: list
+    before_model: Compensator
+    after_model: Compensator
+    predictions: dict                  # "before"/"after" -> {campaign: (measured, predicted)}
+    options: SearchOptions
+    cv: dict
+    seconds: float = 0.0
+
+    @property
+    def primary(self) -> str:
+        """The target with the largest CV RMSE before (the one the machine suffers most from)."""
+        return max(self.targets, key=lambda t: self.targets[t].original_cv_rmse)
+
+    def effects(self) -> dict[str, list[Effect]]:
+        return {t: d.search.effects for t, d in self.targets.items()}
+
+    def to_json(self, target: str | None = None) -> dict:
+        """``diagnosis.json`` of one target (CLI.md keys first, then the extras)."""
+        t = target or self.primary
+        d = self.targets[t]
+        s = d.search
+        last = s.rounds[-1] if s.rounds else None
+        rejected = [ev for ev in (last.evaluated if last else []) if not ev.accepted]
+        effects = [ev.entry() | {"step": i + 1} for i, ev in enumerate(s.accepted)]
+        effects += [ev.entry() for ev in rejected]
+        for name in d.inherited:
+            effects.insert(0, {"kind": "sensor_fault", "column": name,
+                               "transform": "remove from the inputs",
+                               "evidence": None, "accepted": True,
+                               "inherited": "found while diagnosing another target"})
+        control = last.control.entry() if last and last.control else None
+        te_b, te_a = d.before["test"], d.after["test"]
+        return {
+            "target": t,
+            "model": self.model,
+            "before": _summary(te_b, d.original_cv_rmse),
+            "effects": effects,
+            "after": _summary(te_a, d.final_cv_rmse),
+            "dataset": self.dataset,
+            "mode": self.mode,
+            "test_rmse_after_pct_of_before": (100.0 * te_a["rmse"] / te_b["rmse"]
+                                              if te_b["rmse"] > 0 else None),
+            "steps": [{"step": 0, "effect": None, "cv_rmse": d.original_cv_rmse}]
+                     + [dict(step=i + 1, **st) for i, st in enumerate(s.steps)],
+            "excluded_inputs": list(self.excluded),
+            "control": control,
+            "control_ever_clears_bar": any(r.control is not None and r.control.clears_bar
+                                           for r in s.rounds),
+            "bar": {"min_gain_pct": self.options.min_gain_pct, "alpha": self.options.alpha,
+                    "test": "one-sided sign flip of per-unit CV MSE gains",
+                    "max_effects": self.options.max_effects},
+            "cv": self.cv,
+            "test_e_p95": {"statistic": te_b["e_p95"]["statistic"],
+                           "window_s": te_b["e_p95"]["window_s"],
+                           "measured": te_b["e_p95"]["before"],
+                           "before": te_b["e_p95"]["after"],
+                           "after": te_a["e_p95"]["after"]},
+            "self_prediction": [
+                {"sensor": name, "cv_rmse_c": float(r["cv_rmse"]), "worst_unit": r["worst_unit"],
+                 "worst_unit_rmse_c": float(r["worst_unit_rmse"]),
+                 "jump_ratio": float(r["jump_ratio"])}
+                for name, r in s.self_prediction.iterrows()],
+            "rounds": [r.to_dict() for r in s.rounds],
+            "other_targets": {o: {"before_test_rmse": x.before["test"]["rmse"],
+                                  "after_test_rmse": x.after["test"]["rmse"],
+                                  "accepted": [f"{ev.effect.kind}:{ev.effect.column}"
+                                               for ev in x.accepted]}
+                              for o, x in self.targets.items() if o != t},
+            "seconds": self.seconds,
+        }
+
+
+def _summary(test: dict, cv_rmse: float) -> dict:
+    return {"test_rmse": test["rmse"], "cv_rmse": cv_rmse,
+            "test_rsd_mean": test["rsd_mean"], "test_rsd_sd": test["rsd_sd"],
+            "test_rms_measured": test["rms_before"], "test_p2p_residual": test["p2p_after"]}
+
+
+def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "simulation",
+             options: SearchOptions | None = None,
+             make_compensator: Callable[[dict, list], Compensator] | None = None,
+             e_p95_statistic: str = "range", e_p95_points: int | None = 200,
+             model_name: str = "") -> Diagnosis:
+    """Find what ``compensator`` misses on the train split, fix it, report before/after on test.
+
+    Parameters
+    ----------
+    ds : Dataset
+        Needs ``train`` and ``test`` campaigns; ``val`` campaigns are ignored.
+    compensator : Compensator
+        The configured model (unfitted template; it is not modified).
+    targets : list of str, optional
+        ``E_`` columns to diagnose (default: every target of the model), in
+        order; a sensor found faulty for one stays out for the next ones.
+    mode : {'simulation', 'one_step'}
+    options : SearchOptions
+    make_compensator : callable, optional
+        ``(effects: dict target -> list[Effect], excluded: list[str]) ->
+        Compensator``, the diagnosed model (default :func:`augment` of the
+        template; the ``diagnose`` stage builds it from the config it writes,
+        so ``thermocomp run`` with that config gives the same "after").
+
+    Returns
+    -------
+    Diagnosis
+    """
+    t0 = time.perf_counter()
+    options = options or SearchOptions()
+    train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
+    sub = ds.subset(train_ids + test_ids)
+    before = fresh(compensator).fit({c: ds.campaigns[c] for c in train_ids})
+    before_scores, before_pred = score(before, sub, mode, e_p95_statistic, e_p95_points, iso_a3=False)
+    targets = list(before.targets_) if targets is None else (
+        [targets] if isinstance(targets, str) else list(targets))
+    unknown = [t for t in targets if t not in before.targets_]
+    if unknown:
+        raise ContractError(f"diagnose.targets names no modelled target (have {before.targets_})",
+                            column=",".join(unknown))
+    train = {c: ds.campaigns[c] for c in train_ids}
+    if getattr(before, "denoiser_", None) is not None:
+        train = denoise_campaigns(before.denoiser_, train, causal=False)
+    m = stack(train, before.inputs_, before.targets_, before.reference)
+    context = m.context.copy()
+    context[CONTROL] = random_walk(m.groups, options.seed)
+    units = unit_labels(m.groups, options.n_blocks)
+    excluded: list[str] = []
+    found, problems = {}, {}
+    for t in targets:
+        problem = Problem(m.X, m.Y[t].to_numpy(float), context, m.groups, units, t, mode,
+                          before.reference, options.n_folds)
+        search = Search(problem, compensator.estimator, compensator.selector, before.inputs_,
+                        options, excluded)
+        inherited = list(excluded)
+        result = search.run()
+        original = search.cv.run(tuple(before.inputs_), []).rmse if inherited else result.start.rmse
+        excluded = list(result.excluded)
+        found[t], problems[t] = (result, original, inherited), search
+    effects = {t: r.effects for t, (r, _, _) in found.items()}
+    build = make_compensator or (lambda eff, exc: augment(compensator, eff, exc, before.inputs_))
+    after = build(effects, excluded).fit({c: ds.campaigns[c] for c in train_ids})
+    after_scores, after_pred = score(after, sub, mode, e_p95_statistic, e_p95_points, iso_a3=False)
+    out = {}
+    for t, (result, original, inherited) in found.items():
+        final = result.final.rmse
+        if set(result.excluded) != set(excluded):   # a later target excluded another sensor
+            search = problems[t]
+            final = search.cv.run(tuple(c for c in before.inputs_ if c not in excluded),
+                                  result.effects).rmse
+        out[t] = TargetDiagnosis(t, result, original, final, before_scores[t], after_scores[t],
+                                 [c for c in inherited])
+    n_units = len(dict.fromkeys(units))
+    cv = {"units": n_units, "unit": "campaign" if len(train_ids) > 1 else "time block",
+          "folds": max(2, min(options.n_folds, n_units)), "train_campaigns": train_ids,
+          "test_campaigns": test_ids}
+    return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
+                     excluded, before, after, {"before": before_pred, "after": after_pred},
+                     options, cv, time.perf_counter() - t0)

@@ -1,0 +1,261 @@
+r"""Candidate effects as feature families, built from the model inputs and the per-row context.
+
+An :class:`Effect` names one missing piece of physics in a form a model can
+take: a transform of a column (or of the model's inputs) that becomes extra
+regressors.  :func:`effect_features` builds them for stacked campaign rows
+from
+
+* ``X``: the model's inputs (declared, selected, in the reference frame), and
+* ``context``: the per-row frame the :class:`~thermocomp.compensator.Compensator`
+  passes (``campaign``, ``time``, ``ambient_c0`` and every ``S_``/``T_``
+  column, raw values; see :func:`thermocomp.frame.stack`).
+
+Columns taken from the context are put in the target's frame first: with
+``reference='first_sample'`` a ``T_`` or ``S_`` column becomes its change since
+the campaign's first valid sample (DATA_FORMAT.md: the error is zeroed there,
+so a state acts through its change).  Every transform is causal (the value at
+``t`` uses samples up to ``t`` of the same campaign), so it runs on a machine.
+
+==================  ====================  =================================================
+kind                transform             features
+==================  ====================  =================================================
+signal              ``raw``               :math:`\Delta c(t)`
+signal              ``first_order_lag``   :math:`L_\tau[\Delta c](t)`
+dynamics            ``lowpass_inputs``    :math:`L_\tau[x_i](t)` for every model input
+ambient_interval    ``ambient_linear``    :math:`x_i(t)\,(A_0 - 20\,°C)` for every input
+ambient_interval    ``ambient_step``      :math:`x_i(t)\,[A_0 > A_{thr}]` for every input
+interaction         ``product``           :math:`\Delta c(t)\,\Delta o(t)`
+nonlinear           ``square``            :math:`\Delta c(t)^2`
+sensor_fault        ``remove``            none: the declared sensor ``c`` leaves the inputs
+==================  ====================  =================================================
+
+:math:`L_\tau` is the first-order lag :math:`\tau\dot z + z = u` (a thermal mass
+or a smoothed door), discretised exactly for any sampling,
+:math:`z_k = a_k z_{k-1} + (1 - a_k) u_k`, :math:`a_k = e^{-\Delta t_k/\tau}`,
+starting in steady state (:math:`z_0 = u_0`).  A first-order lag of all inputs
+with a common :math:`\tau` is also what the autoregressive term
+:math:`y_k = a\,y_{k-1} + b^\top x_k` of a simulation-mode ARX adds to a static
+model (a common pole), so ``lowpass_inputs`` is the AR family too.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass
+
+import numpy as np
+import pandas as pd
+from scipy.signal import lfilter
+
+from ..errors import ConfigError
+from ..io.contract import ContractError
+from ..models._dynamics import segment_bounds
+
+KINDS = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear", "sensor_fault")
+TRANSFORMS = {  # transform -> kind it belongs to
+    "raw": "signal", "first_order_lag": "signal", "lowpass_inputs": "dynamics",
+    "ambient_linear": "ambient_interval", "ambient_step": "ambient_interval",
+    "product": "interaction", "square": "nonlinear", "remove": "sensor_fault",
+}
+AMBIENT_CENTRE_C = 20.0   # ISO 1 reference temperature: only re-centres ambient_linear
+
+
+@dataclass(frozen=True)
+class Effect:
+    """One candidate (or accepted) effect: a kind, a transform and its parameters.
+
+    Parameters
+    ----------
+    kind : str
+        One of :data:`KINDS` (``diagnosis.json`` vocabulary of CLI.md).
+    transform : str
+        One of :data:`TRANSFORMS`.
+    column : str or None
+        The column the effect is traced to (``None`` for effects of all inputs).
+    other : str or None
+        Second factor of a ``product``.
+    tau_s : float or None
+        Time constant of a lag (s).
+    threshold_c : float or None
+        Initial-ambient threshold of ``ambient_step`` (°C).
+    """
+
+    kind: str
+    transform: str
+    column: str | None = None
+    other: str | None = None
+    tau_s: float | None = None
+    threshold_c: float | None = None
+
+    def __post_init__(self):
+        if self.kind not in KINDS:
+            raise ConfigError(f"effect kind {self.kind!r} is not one of {list(KINDS)}")
+        if self.transform not in TRANSFORMS:
+            raise ConfigError(f"effect transform {self.transform!r} is not one of {list(TRANSFORMS)}")
+        needs = {"first_order_lag": ("column", "tau_s"), "raw": ("column",), "square": ("column",),
+                 "product": ("column", "other"), "lowpass_inputs": ("tau_s",),
+                 "ambient_step": ("threshold_c",), "remove": ("column",)}
+        missing = [k for k in needs.get(self.transform, ()) if getattr(self, k) is None]
+        if missing:
+            raise ConfigError(f"effect {self.transform!r} needs {missing}")
+        if self.tau_s is not None and not self.tau_s > 0:
+            raise ConfigError(f"effect tau_s must be > 0 s, got {self.tau_s}")
+
+    @property
+    def label(self) -> str:
+        """The ``transform`` string of ``diagnosis.json``, e.g. ``first_order_lag(tau=240s)``."""
+        tau = f"tau={self.tau_s:g}s" if self.tau_s is not None else ""
+        return {
+            "raw": "raw",
+            "first_order_lag": f"first_order_lag({tau})",
+            "lowpass_inputs": f"first_order_lag({tau}) of the model inputs",
+            "ambient_linear": f"model inputs x (ambient_c0 - {AMBIENT_CENTRE_C:g}°C)",
+            "ambient_step": f"model inputs x [ambient_c0 > {self.threshold_c:.2f}°C]"
+            if self.threshold_c is not None else "",
+            "product": f"product({self.other})",
+            "square": "square",
+            "remove": "remove from the inputs",
+        }[self.transform]
+
+    @property
+    def uses_inputs(self) -> bool:
+        """True when the features are built from the model inputs ``X``."""
+        return self.transform in ("lowpass_inputs", "ambient_linear", "ambient_step")
+
+    @property
+    def context_columns(self) -> list[str]:
+        """Context columns the features need (besides ``time``/``campaign``/``ambient_c0``)."""
+        return [c for c in (self.column, self.other)
+                if c is not None and self.transform != "remove" and not self.uses_inputs]
+
+    def to_dict(self) -> dict:
+        """Plain dict without ``None`` values (the form written to the model config)."""
+        return {k: v for k, v in asdict(self).items() if v is not None}
+
+    @classmethod
+    def from_dict(cls, d: Mapping) -> "Effect":
+        known = {"kind", "transform", "column", "other", "tau_s", "threshold_c"}
+        unknown = set(d) - known
+        if unknown:
+            raise ConfigError(f"effect has unknown key(s) {sorted(unknown)} (known: {sorted(known)})")
+        d = dict(d)
+        for key in ("tau_s", "threshold_c"):
+            if d.get(key) is not None:
+                d[key] = float(d[key])
+        return cls(**d)
+
+
+def as_effect(e) -> Effect:
+    return e if isinstance(e, Effect) else Effect.from_dict(e)
+
+
+def first_order_lag(u, time, groups, tau_s: float) -> np.ndarray:
+    """First-order lag of each column of ``u`` per segment of ``groups`` (steady start).
+
+    Uniform sampling runs through :func:`scipy.signal.lfilter`; irregular
+    sampling through the exact recursion with a per-step pole.
+    """
+    u = np.asarray(u, dtype=float)
+    squeeze = u.ndim == 1
+    u = u.reshape(len(u), -1)
+    time = np.asarray(time, dtype=float)
+    out = np.empty_like(u)
+    for start, stop in segment_bounds(groups, len(u)):
+        seg, t = u[start:stop], time[start:stop]
+        dt = np.diff(t)
+        if dt.size == 0:
+            out[start:stop] = seg
+        elif np.allclose(dt, dt[0]):
+            a = float(np.exp(-dt[0] / tau_s))
+            out[start:stop] = lfilter([1.0 - a], [1.0, -a], seg, axis=0, zi=a * seg[:1])[0]
+        else:
+            a = np.exp(-dt / tau_s)
+            z = np.empty_like(seg)
+            z[0] = seg[0]
+            for k in range(1, len(seg)):
+                z[k] = a[k - 1] * z[k - 1] + (1.0 - a[k - 1]) * seg[k]
+            out[start:stop] = z
+    return out[:, 0] if squeeze else out
+
+
+def in_frame(values, groups, reference: str = "first_sample") -> np.ndarray:
+    """A raw context column in the target's frame, gaps held, per segment.
+
+    NaN is held from the previous sample (the first valid value before it);
+    a campaign without the column gives zeros.  With ``first_sample`` the
+    result is the change since the first valid sample.
+    """
+    v = np.asarray(values, dtype=float)
+    out = np.zeros_like(v)
+    for start, stop in segment_bounds(groups, len(v)):
+        seg = pd.Series(v[start:stop]).ffill().bfill().to_numpy()
+        if np.isnan(seg).all():
+            continue
+        out[start:stop] = seg - seg[0] if reference == "first_sample" else seg
+    return out
+
+
+def _context_column(context: pd.DataFrame | None, column: str) -> np.ndarray:
+    if context is None or column not in context:
+        raise ContractError(f"the diagnosed model needs column {column!r} (passed as context: "
+                            "an S_ or T_ column of the campaigns); the data have none", column=column)
+    return context[column].to_numpy(dtype=float)
+
+
+def _groups(groups, context, n: int):
+    if groups is not None:
+        return groups
+    if context is not None and "campaign" in context:
+        return np.asarray(context["campaign"])
+    return None
+
+
+def _time(context, n: int) -> np.ndarray:
+    if context is not None and "time" in context:
+        return context["time"].to_numpy(dtype=float)
+    return np.arange(n, dtype=float)
+
+
+def _ambient(context, n: int) -> np.ndarray:
+    if context is None or "ambient_c0" not in context:
+        raise ContractError("an ambient-interval effect needs the campaigns' initial ambient "
+                            "(ambient_c0, from a T_amb column)", column="T_amb")
+    a0 = context["ambient_c0"].to_numpy(dtype=float)
+    if not np.isfinite(a0).all():
+        raise ContractError("an ambient-interval effect needs a T_amb column in every campaign",
+                            column="T_amb")
+    return a0
+
+
+def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, groups=None,
+                    reference: str = "first_sample") -> np.ndarray:
+    """Extra regressors of one effect, shape ``(n, q)`` (``q = 0`` for ``remove``)."""
+    X = np.asarray(X, dtype=float)
+    n = X.shape[0]
+    g = _groups(groups, context, n)
+    tr = effect.transform
+    if tr == "remove":
+        return np.empty((n, 0))
+    if tr in ("raw", "first_order_lag", "square"):
+        c = in_frame(_context_column(context, effect.column), g, reference)
+        if tr == "first_order_lag":
+            c = first_order_lag(c, _time(context, n), g, effect.tau_s)
+        return (c**2 if tr == "square" else c)[:, None]
+    if tr == "product":
+        a = in_frame(_context_column(context, effect.column), g, reference)
+        b = in_frame(_context_column(context, effect.other), g, reference)
+        return (a * b)[:, None]
+    if tr == "lowpass_inputs":
+        return first_order_lag(X, _time(context, n), g, effect.tau_s)
+    a0 = _ambient(context, n)
+    if tr == "ambient_linear":
+        return X * (a0 - AMBIENT_CENTRE_C)[:, None]
+    return X * (a0 > effect.threshold_c)[:, None].astype(float)   # ambient_step
+
+
+def design(X, effects, context: pd.DataFrame | None = None, groups=None,
+           reference: str = "first_sample") -> np.ndarray:
+    """Model inputs ``X`` followed by the features of every effect."""
+    X = np.asarray(X, dtype=float)
+    blocks = [X] + [effect_features(as_effect(e), X, context, groups, reference) for e in effects]
+    return np.hstack(blocks)

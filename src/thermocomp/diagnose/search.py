@@ -1,0 +1,245 @@
+r"""The closed loop: honest residual -> candidate effects -> screening -> CV refits -> accept.
+
+One target at a time, on the train split only (the test split is touched
+once, at the end, to report before and after):
+
+1. **Residual** of the current model by leave-campaigns-out CV (:mod:`.cv`).
+2. **Candidates** of every family (:mod:`.candidates`), the random-walk control
+   among them; ``sensor_fault`` candidates come from self-prediction (:mod:`.sensors`).
+3. **Screening**: the share of the CV residual that each candidate's features
+   explain beyond the current model's own regressors (partial :math:`R^2`,
+   one least-squares projection each) -- cheap, so every candidate gets it.
+4. **Shortlist** (best ``shortlist`` by screening, at most two per family and
+   column, the best of every family, the best control transform, every
+   nominated sensor fault) gets a full CV refit: evidence is the CV RMSE gain
+   :math:`g = \mathrm{RMSE}_{cv} - \mathrm{RMSE}_{cv}^{+}` and the one-sided
+   sign-flip p-value of the per-campaign gains in mean squared error.
+5. **Accept** the largest gain that clears the bar (:math:`g \ge`
+   ``min_gain_pct`` % of the current CV RMSE *and* :math:`p \le` ``alpha``)
+   and beats the control; refit and repeat, at most ``max_effects`` times.
+
+The in-sample F-test is not used for the bar: thermal residuals are strongly
+autocorrelated, so a random walk passes it (spurious regression).  Campaigns
+are the exchangeable units, so the test flips signs of whole campaigns.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from .candidates import CONTROL, CandidateOptions, candidates
+from .cv import CrossValidator, CVResult, Problem, sign_flip_pvalue
+from .features import Effect
+from .sensors import self_prediction
+
+
+@dataclass
+class SearchOptions:
+    """The bar and the effort of the search (``conf/diagnose/default.yaml``)."""
+
+    max_effects: int = 3
+    min_gain_pct: float = 5.0
+    alpha: float = 0.01
+    shortlist: int = 8
+    n_folds: int = 10
+    n_blocks: int = 8
+    seed: int = 0
+    candidates: CandidateOptions = field(default_factory=CandidateOptions)
+
+
+@dataclass
+class Evaluation:
+    """Full-CV evidence of one candidate in one round."""
+
+    effect: Effect
+    cv_rmse: float
+    gain: float
+    gain_pct: float
+    p_value: float
+    screen_r2: float
+    clears_bar: bool
+    control: bool = False
+    accepted: bool = False
+    jump_ratio: float | None = None
+    result: CVResult | None = field(default=None, repr=False)
+
+    def entry(self) -> dict:
+        """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
+        e = self.effect
+        out = {"kind": e.kind, "column": None if self.control else e.column,
+               "transform": e.label,
+               "evidence": {"cv_rmse_gain": self.gain, "p_value": self.p_value,
+                            "cv_rmse_gain_pct": self.gain_pct, "cv_rmse": self.cv_rmse,
+                            "screen_r2": self.screen_r2, "clears_bar": self.clears_bar},
+               "accepted": self.accepted}
+        if self.control:
+            out["control"] = True
+            out["transform"] = f"{e.label} of a random walk (control, no physical effect)"
+        if e.other is not None:
+            out["columns"] = [e.column, e.other]
+        if self.jump_ratio is not None:
+            out["evidence"]["self_prediction_jump_ratio"] = self.jump_ratio
+        out["effect"] = e.to_dict()
+        return out
+
+
+@dataclass
+class Round:
+    """One search step: the model it started from and every candidate it weighed."""
+
+    step: int
+    cv_rmse: float
+    evaluated: list
+    screened: list
+    accepted: Evaluation | None = None
+    figure_data: dict | None = None    # residual and effect signal of the accepted one
+
+    @property
+    def control(self) -> Evaluation | None:
+        return next((e for e in self.evaluated if e.control), None)
+
+    def to_dict(self) -> dict:
+        return {"step": self.step, "cv_rmse": self.cv_rmse,
+                "accepted": self.accepted.entry() if self.accepted else None,
+                "evaluated": [e.entry() for e in self.evaluated],
+                "screened": self.screened}
+
+
+@dataclass
+class SearchResult:
+    """What the search found for one target."""
+
+    target: str
+    start: CVResult
+    final: CVResult
+    accepted: list           # list of Evaluation, in acceptance order
+    excluded: list           # sensors removed (sensor_fault), in order
+    rounds: list             # list of Round
+    self_prediction: pd.DataFrame
+    steps: list              # cv_rmse after each accepted effect
+
+    @property
+    def effects(self) -> list[Effect]:
+        return [ev.effect for ev in self.accepted if ev.effect.transform != "remove"]
+
+
+def _orthonormal(Z: np.ndarray) -> np.ndarray:
+    """Orthonormal basis of the column space of ``Z`` (rank-revealing, via SVD)."""
+    U, s, _ = np.linalg.svd(Z, full_matrices=False)
+    keep = s > s[0] * 1e-10 if s.size else np.zeros(0, bool)
+    return U[:, keep]
+
+
+def screen_r2(Q: np.ndarray, r_perp: np.ndarray, F: np.ndarray) -> tuple[float, np.ndarray]:
+    """Partial R² of ``F`` for the residual beyond the basis ``Q``, and the fitted signal."""
+    if F.shape[1] == 0:
+        return 0.0, np.zeros_like(r_perp)
+    F = F - Q @ (Q.T @ F)
+    B = _orthonormal(F)
+    if B.shape[1] == 0:
+        return 0.0, np.zeros_like(r_perp)
+    signal = B @ (B.T @ r_perp)
+    denom = float(r_perp @ r_perp)
+    return (float(signal @ signal) / denom if denom > 0 else 0.0), signal
+
+
+class Search:
+    """The loop of one target (see the module docstring)."""
+
+    def __init__(self, problem: Problem, estimator, selector, declared: list[str],
+                 options: SearchOptions, excluded=()):
+        self.problem, self.options = problem, options
+        self.declared = list(declared)
+        self.cv = CrossValidator(problem, estimator, selector)
+        self.excluded = list(excluded)
+        self.effects: list[Effect] = []
+
+    def inputs(self, excluded=None) -> tuple:
+        excluded = self.excluded if excluded is None else excluded
+        return tuple(c for c in self.declared if c not in excluded)
+
+    def _evaluate(self, effect: Effect, current: CVResult, r2: float, faults) -> Evaluation:
+        if effect.transform == "remove":
+            res = self.cv.run(self.inputs(self.excluded + [effect.column]), self.effects)
+        else:
+            res = self.cv.run(self.inputs(), self.effects + [effect])
+        gain = current.rmse - res.rmse
+        pct = 100.0 * gain / current.rmse if current.rmse > 0 else 0.0
+        p = sign_flip_pvalue(current.unit_mse - res.unit_mse, seed=self.options.seed)
+        clears = bool(pct >= self.options.min_gain_pct and p <= self.options.alpha)
+        jump = (float(faults.loc[effect.column, "jump_ratio"])
+                if effect.transform == "remove" and effect.column in faults.index else None)
+        return Evaluation(effect, res.rmse, gain, pct, p, r2, clears, effect.column == CONTROL,
+                          jump_ratio=jump, result=res)
+
+    def _shortlist(self, scored: list[tuple[Effect, float]]) -> list[tuple[Effect, float]]:
+        opts = self.options
+        ranked = sorted((s for s in scored if s[0].column != CONTROL
+                         and s[0].transform != "remove"), key=lambda s: -s[1])
+        chosen, per_group = [], {}
+        for e, r2 in ranked:
+            g = (e.kind, e.column)
+            if len(chosen) < opts.shortlist and per_group.get(g, 0) < 2:
+                chosen.append((e, r2))
+                per_group[g] = per_group.get(g, 0) + 1
+        for kind in dict.fromkeys(e.kind for e, _ in ranked):
+            best = next(s for s in ranked if s[0].kind == kind)
+            if best not in chosen:
+                chosen.append(best)
+        controls = sorted((s for s in scored if s[0].column == CONTROL), key=lambda s: -s[1])
+        chosen += controls[:1]
+        chosen += [s for s in scored if s[0].transform == "remove"]
+        return chosen
+
+    def run(self) -> SearchResult:
+        opts, p = self.options, self.problem
+        start = current = self.cv.run(self.inputs(), [])
+        rounds, accepted, steps = [], [], []
+        faults = self_prediction(p, self.inputs())
+        for step in range(int(opts.max_effects)):
+            names = self.cv.selection(self.inputs(), None)
+            cands = candidates(p, names, self.declared, set(self.excluded), self.effects, faults,
+                               opts.candidates)
+            Z = np.column_stack([np.ones(len(p.y)), self.cv.design(names, self.effects)])
+            Q = _orthonormal(Z)
+            r_perp = current.residual - Q @ (Q.T @ current.residual)
+            scored, signals = [], {}
+            for e in cands:
+                if e.transform == "remove":
+                    scored.append((e, float("nan")))
+                    continue
+                r2, signals[e] = screen_r2(Q, r_perp, self.cv.features(e, names))
+                scored.append((e, r2))
+            shortlist = self._shortlist(scored)
+            evals = [self._evaluate(e, current, r2, faults) for e, r2 in shortlist]
+            evals.sort(key=lambda ev: -ev.gain)
+            control = next((ev for ev in evals if ev.control), None)
+            bar = control.gain if control is not None else -np.inf
+            eligible = [ev for ev in evals if ev.clears_bar and not ev.control and ev.gain > bar]
+            screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
+                         "screen_r2": r2} for e, r2 in sorted(
+                             (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]
+            rnd = Round(step + 1, current.rmse, evals, screened)
+            rounds.append(rnd)
+            if not eligible:
+                break
+            best = eligible[0]
+            best.accepted = True
+            rnd.accepted = best
+            rnd.figure_data = {"residual": current.residual.copy(),
+                               "signal": signals.get(best.effect), "units": p.units}
+            accepted.append(best)
+            if best.effect.transform == "remove":
+                self.excluded.append(best.effect.column)
+                faults = self_prediction(p, self.inputs())
+            else:
+                self.effects.append(best.effect)
+            current = best.result
+            steps.append({"effect": f"{best.effect.kind}: {best.effect.column or ''} "
+                                    f"{best.effect.label}".replace("  ", " "),
+                          "cv_rmse": current.rmse})
+        return SearchResult(p.target, start, current, accepted, list(self.excluded), rounds,
+                            faults, steps)

@@ -1,0 +1,102 @@
+"""Ranking fitted models by their test figures (pure core: dicts in, table out).
+
+A *row* summarises one run's ``metrics.json`` ``targets`` block for one target
+(or the mean over targets): test Rsd SM/SD, RMSE, RMS reduction, E_P95 of the
+residual at 1 h and 8 h.  ``thermocomp compare`` ranks the runs of a sweep with
+it and ``thermocomp promote`` uses the same criterion to decide whether a model
+beats the champion.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import pandas as pd
+
+FIGURES = ("rsd_mean", "rsd_sd", "rmse", "rms_reduction_pct", "e_p95_1h", "e_p95_8h")
+HIGHER_IS_BETTER = {"rms_reduction_pct"}
+HOUR_S = 3600.0
+
+
+def e_p95_at(e_p95: Mapping | None, seconds: float, curve: str = "after") -> float | None:
+    """E_P95 of ``curve`` at a window of ``seconds``, linearly interpolated.
+
+    ``None`` when the campaigns are shorter than the window (the curve stops
+    before it) or there is no curve.
+    """
+    if not e_p95 or not e_p95.get("window_s"):
+        return None
+    w = np.asarray(e_p95["window_s"], float)
+    v = np.asarray([np.nan if x is None else x for x in e_p95[curve]], float)
+    ok = np.isfinite(v)
+    if not ok.any() or seconds > w[ok].max() or seconds < w[ok].min():
+        return None
+    return float(np.interp(seconds, w[ok], v[ok]))
+
+
+def _target_figures(test: Mapping) -> dict:
+    before, after = test.get("rms_before"), test.get("rms_after")
+    reduction = 100.0 * (1.0 - after / before) if before else None
+    return {"rsd_mean": test.get("rsd_mean"), "rsd_sd": test.get("rsd_sd"),
+            "rmse": test.get("rmse"), "rms_reduction_pct": reduction,
+            "e_p95_1h": e_p95_at(test.get("e_p95"), HOUR_S),
+            "e_p95_8h": e_p95_at(test.get("e_p95"), 8 * HOUR_S)}
+
+
+def summary(targets: Mapping, target: str = "mean") -> dict:
+    """Test figures of one target, or their mean over targets (``target='mean'``).
+
+    ``targets`` is the ``targets`` block of ``metrics.json``.  A figure missing
+    for some target is averaged over the others; ``None`` if missing for all.
+    """
+    if target != "mean":
+        if target not in targets:
+            raise KeyError(f"target {target!r} not in metrics (have {sorted(targets)})")
+        return _target_figures(targets[target]["test"])
+    per = [_target_figures(m["test"]) for m in targets.values()]
+    out = {}
+    for f in FIGURES:
+        vals = [p[f] for p in per if p[f] is not None and math.isfinite(p[f])]
+        out[f] = float(np.mean(vals)) if vals else None
+    return out
+
+
+def descending_for(criterion: str) -> bool:
+    return criterion in HIGHER_IS_BETTER
+
+
+def rank(rows: Sequence[Mapping], sort_by: str = "rsd_mean",
+         descending: bool | None = None) -> pd.DataFrame:
+    """Rows as a table, best first by ``sort_by`` (missing values last)."""
+    table = pd.DataFrame(list(rows))
+    if table.empty:
+        return table
+    if sort_by not in table.columns:
+        raise KeyError(f"cannot sort by {sort_by!r}; columns are {list(table.columns)}")
+    desc = descending_for(sort_by) if descending is None else bool(descending)
+    return table.sort_values(sort_by, ascending=not desc, na_position="last",
+                             kind="stable").reset_index(drop=True)
+
+
+def beats(candidate: float | None, incumbent: float | None, criterion: str,
+          min_improvement: float = 0.0) -> bool:
+    """Whether ``candidate`` is strictly better than ``incumbent`` by more than
+    ``min_improvement`` (absolute, in the criterion's unit)."""
+    if candidate is None or not math.isfinite(candidate):
+        return False
+    if incumbent is None or not math.isfinite(incumbent):
+        return True
+    if descending_for(criterion):
+        return candidate > incumbent + min_improvement
+    return candidate < incumbent - min_improvement
+
+
+def to_markdown(table: pd.DataFrame, digits: int = 2) -> str:
+    """GitHub Markdown table (``n/a`` for missing figures)."""
+    shown = table.copy()
+    for c in shown.columns:
+        if pd.api.types.is_float_dtype(shown[c]):
+            shown[c] = [("n/a" if pd.isna(v) else f"{v:.{digits}f}") for v in shown[c]]
+    return shown.fillna("n/a").to_markdown(index=False)

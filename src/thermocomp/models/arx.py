@@ -1,0 +1,361 @@
+"""ARX with greedy input selection and information-criterion model choice (paper 000, Sect. 2.2)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+from sklearn.base import BaseEstimator, RegressorMixin
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from ..errors import ConfigError
+from ._dynamics import free_run, lag_index, previous, segment_starts
+
+CRITERIA = ("aic", "aicc", "bic", "bicc")
+SEARCHES = ("residual", "forward")
+SELECTION_ERRORS = ("equation", "simulation")
+_COLLINEAR = 1e-10   # a candidate whose partialled variance falls below this share is collinear
+
+
+def information_criteria(rss: float, n_obs: int, n_params: int) -> dict[str, float]:
+    r"""AIC, AICc, BIC and BICc of a Gaussian least-squares fit.
+
+    With :math:`L = N \ln(\mathrm{RSS}/N)`:
+    ``aic`` :math:`= L + 2k`, ``aicc`` :math:`= \mathrm{AIC} + 2k(k+1)/(N-k-1)`,
+    ``bic`` :math:`= L + k \ln N` and ``bicc`` :math:`= L + N k \ln N/(N-k-2)`, the
+    small-sample corrected Schwarz criterion of McQuarrie (1999).  Constants
+    common to all models are dropped.  Undefined values (too few samples) are +inf.
+    """
+    n, k = float(n_obs), float(n_params)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        fit = n * np.log(rss / n) if n > 0 else np.inf
+        out = {"aic": fit + 2 * k,
+               "aicc": fit + 2 * k + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else np.inf),
+               "bic": fit + k * np.log(n) if n > 0 else np.inf,
+               "bicc": fit + (n * k * np.log(n) / (n - k - 2) if n - k - 2 > 0 else np.inf)}
+    return {name: float(v) if np.isfinite(v) or v == -np.inf else np.inf for name, v in out.items()}
+
+
+def _sweep(M: np.ndarray, k: int) -> None:
+    """Partial column ``k`` out of the cross-product matrix ``M`` in place (the sweep operator)."""
+    col = M[:, k].copy()
+    M -= np.outer(col, col) / col[k]
+    M[k, :] = 0.0
+    M[:, k] = 0.0
+
+
+def greedy_path(M: np.ndarray, y: int, candidates, sensor_of, forced=(), max_inputs: int = 10,
+                search: str = "residual") -> tuple[list[int], list[float]]:
+    """Greedy input order and the joint least-squares RSS after each step, from a Gram matrix.
+
+    Parameters
+    ----------
+    M : ndarray (q, q)
+        Cross-product matrix of the (centred) regressors and the target.
+    y : int
+        Index of the target in ``M``.
+    candidates : sequence of int
+        Indices of candidate inputs.
+    sensor_of : sequence of int
+        Sensor of each index (delayed copies of one sensor share it; once a
+        sensor is in, its other delays are out).
+    forced : sequence of int
+        Regressors always in the model (the autoregressive term), partialled out first.
+    search : {'residual', 'forward'}
+        ``residual``: the split greedy of paper 000 -- each step fits a one-input
+        model of the current residual for every remaining candidate, keeps the
+        best and subtracts its fit.  ``forward``: classical forward selection --
+        each step keeps the candidate that most lowers the RSS of the joint fit.
+
+    Returns
+    -------
+    order : list of int
+        Selected indices, in order.
+    rss : list of float
+        RSS of the joint fit of forced terms + the first ``j`` selected inputs.
+
+    Everything works on ``M``: one Gram matrix per target instead of one
+    regression per candidate (that is what makes the search fast).
+    """
+    M = np.array(M, dtype=float, copy=True)
+    base = np.diag(M).copy()
+    for f in forced:
+        if not M[f, f] > _COLLINEAR * base[f]:
+            raise np.linalg.LinAlgError("forced regressor is constant or collinear")
+        _sweep(M, f)
+    partial = M.copy()              # Gram with only the forced terms partialled out
+    resid = partial[:, y].copy()    # covariances of the candidates with the running residual
+    cand = np.asarray(candidates, dtype=int)
+    sensors = np.asarray(sensor_of)[cand] if len(cand) else np.zeros(0, int)
+    free = np.ones(len(cand), dtype=bool)
+    order, rss = [], []
+    for _ in range(max_inputs):
+        joint_var = np.diag(M)[cand]
+        ok = free & (joint_var > _COLLINEAR * base[cand])
+        if not ok.any():
+            break
+        if search == "forward":
+            score = M[cand, y] ** 2 / np.where(ok, joint_var, 1.0)
+        else:
+            score = resid[cand] ** 2 / np.where(ok, np.diag(partial)[cand], 1.0)
+        score[~ok] = -np.inf
+        pos = int(np.argmax(score))
+        j = int(cand[pos])
+        if search == "residual":
+            resid -= resid[j] / partial[j, j] * partial[:, j]
+        _sweep(M, j)
+        free &= sensors != sensors[pos]
+        order.append(j)
+        rss.append(max(float(M[y, y]), 0.0))
+    return order, rss
+
+
+class ARX(RegressorMixin, BaseEstimator):
+    r"""First-order ARX per error parameter with greedy input and model selection.
+
+    .. math:: \hat y(t) = a\, y(t-1) + \sum_{n \in S} b_n\, x_n(t - k_n) + c
+
+    For every model size ``1..max_inputs`` and with and without the
+    autoregressive term ``a``, the inputs ``S`` (with their delays ``k_n``) are
+    chosen greedily among the columns of ``X`` (the split greedy search of
+    paper 000, Sect. 2.2, or forward selection), and the model with the lowest
+    information criterion wins (BICc by default, as in the paper).
+    Coefficients are least squares on the equation error: in training the AR
+    regressor is the *measured* previous error.
+
+    Prediction runs in two modes.  Simulation (default, ``y_measured=None``):
+    the AR term is fed the model's own previous prediction (free run, starting
+    from 0 at each campaign start, the reference frame's initial error), as on
+    a machine with no measured error.  One-step (``y_measured`` given): the AR
+    term uses the measured previous error.  Lags never cross campaigns
+    (``groups``): before a campaign's first sample inputs are held at their
+    first value and the previous error is 0.
+
+    scikit-learn's ``check_estimator`` passes with the default ``delays=(0,)``
+    whenever the AR term loses; a model with an AR term or delays depends on
+    row order by design, so ``check_methods_sample_order_invariance`` and
+    ``check_methods_subset_invariance`` do not apply to it.
+
+    Parameters
+    ----------
+    criterion : {'bicc', 'bic', 'aicc', 'aic'}, default 'bicc'
+        Information criterion of the model choice (see :func:`information_criteria`).
+    max_inputs : int, default 10
+        Largest number of inputs tried.
+    ar : {'auto', True, False}, default 'auto'
+        ``'auto'`` lets the criterion decide; ``True``/``False`` force the AR term in or out.
+    delays : sequence of int, default (0,)
+        Input delays (samples) tried for every input; one delay per input is kept.
+    search : {'residual', 'forward'}, default 'residual'
+        Greedy search (see :func:`greedy_path`); ``residual`` is the paper's.
+    selection_error : {'equation', 'simulation'}, default 'equation'
+        RSS the criterion scores.  ``equation``: the one-step equation error, as
+        MATLAB's System Identification Toolbox in the paper.  ``simulation``:
+        AR models are scored on their free-run error (an unstable ``|a| >= 1``
+        model scores +inf), which is how the model will be used on a machine.
+    fit_intercept : bool, default True
+
+    Attributes
+    ----------
+    terms_ : list of (int, int)
+        ``(column of X, delay)`` of the chosen inputs, in selection order.
+    inputs_ : list of str
+        Their names (``feature_names_in_`` or ``x<j>``, ``[t-k]`` for delays).
+    coef_ : ndarray (n_terms,)
+        ``b_n`` of the chosen inputs.
+    ar_coef_ : float
+        ``a`` (0.0 when the AR term lost).
+    intercept_ : float
+    selection_ : DataFrame
+        One row per model tried: ``ar``, ``n_inputs``, ``inputs``, ``n_params``,
+        ``n_obs``, ``rss``, ``aic``, ``aicc``, ``bic``, ``bicc``, ``chosen``.
+    chosen_ : dict
+        The winner (``ar``, ``n_inputs``, ``inputs``, ``criterion``, ``value``)
+        and ``reason``: why it won against the best model of the other AR option.
+    """
+
+    def __init__(self, criterion: str = "bicc", max_inputs: int = 10, ar="auto", delays=(0,),
+                 search: str = "residual", selection_error: str = "equation",
+                 fit_intercept: bool = True):
+        self.criterion = criterion
+        self.max_inputs = max_inputs
+        self.ar = ar
+        self.delays = delays
+        self.search = search
+        self.selection_error = selection_error
+        self.fit_intercept = fit_intercept
+
+    # -- parameters ---------------------------------------------------------------------
+    def _check_params(self) -> tuple[int, ...]:
+        options = {"criterion": (self.criterion, CRITERIA), "search": (self.search, SEARCHES),
+                   "selection_error": (self.selection_error, SELECTION_ERRORS),
+                   "ar": (self.ar, ("auto", True, False))}
+        for name, (value, allowed) in options.items():
+            if not any(value is a or (isinstance(a, str) and value == a) for a in allowed):
+                raise ConfigError(f"ARX {name}={value!r} is not one of {list(allowed)}")
+        if int(self.max_inputs) < 1:
+            raise ConfigError(f"ARX max_inputs={self.max_inputs!r} must be >= 1")
+        delays = tuple(sorted({int(d) for d in np.atleast_1d(self.delays)}))
+        if not delays or delays[0] < 0:
+            raise ConfigError(f"ARX delays={self.delays!r} must be non-negative sample counts")
+        return delays
+
+    # -- design -------------------------------------------------------------------------
+    def _candidates(self, X, groups, delays) -> tuple[np.ndarray, list[tuple[int, int]]]:
+        """Every (column, delay) as one column of a candidate matrix."""
+        n, p = X.shape
+        terms = [(j, d) for d in delays for j in range(p)]
+        blocks = [X[lag_index(groups, n, d)] for d in delays]
+        return np.hstack(blocks), terms
+
+    def _term_name(self, term) -> str:
+        j, d = term
+        names = getattr(self, "feature_names_in_", None)
+        name = str(names[j]) if names is not None else f"x{j}"
+        return name if d == 0 else f"{name}[t-{d}]"
+
+    def fit(self, X, y, groups=None):
+        delays = self._check_params()
+        X, y = validate_data(self, X, y, y_numeric=True)
+        y = np.asarray(y, dtype=float)
+        n, p = X.shape
+        if n < 2:
+            raise ValueError(f"ARX needs at least 2 samples, got n_samples={n}")
+        C, terms = self._candidates(X, groups, delays)
+        y_prev = previous(y, groups)
+        starts = segment_starts(groups, n)
+        options = [False, True] if self.ar == "auto" else [bool(self.ar)]
+        rows = np.ones(n, dtype=bool)
+        if True in options:
+            rows[starts] = False           # y(t-1) is unknown at a campaign's first sample
+            if not rows.any():
+                if self.ar is True:
+                    raise ValueError("ARX with ar=True needs campaigns of at least 2 samples")
+                options, rows = [False], np.ones(n, dtype=bool)
+
+        A = np.column_stack([C[rows], y_prev[rows], y[rows]])
+        if self.fit_intercept:
+            A = A - A.mean(axis=0)
+        M = A.T @ A
+        scale = np.sqrt(np.diag(M))
+        scale[scale == 0] = 1.0                      # constant columns stay 0: never selected
+        M = M / np.outer(scale, scale)               # unit diagonal: a well-conditioned sweep
+        i_ar, i_y = C.shape[1], C.shape[1] + 1
+        sensor_of = [j for j, _ in terms] + [-1, -2]
+        n_obs = int(rows.sum())
+        max_k = min(int(self.max_inputs), p)
+
+        records, paths = [], {}
+        for with_ar in options:
+            try:
+                order, rss = greedy_path(M, i_y, range(C.shape[1]), sensor_of,
+                                         forced=(i_ar,) if with_ar else (), max_inputs=max_k,
+                                         search=self.search)
+            except np.linalg.LinAlgError:        # constant previous error: no AR model
+                continue
+            paths[with_ar] = order
+            floor = 1e-15 * max(float(M[i_y, i_y]), 1e-300)
+            for k in range(1, len(order) + 1):
+                value = max(rss[k - 1], floor) * scale[i_y] ** 2
+                if with_ar and self.selection_error == "simulation":
+                    value = self._free_run_rss(C, y, groups, rows, order[:k])
+                n_params = k + int(with_ar) + int(self.fit_intercept)
+                records.append({"ar": with_ar, "n_inputs": k,
+                                "inputs": ", ".join(self._term_name(terms[j]) for j in order[:k]),
+                                "n_params": n_params, "n_obs": n_obs, "rss": value,
+                                **information_criteria(value, n_obs, n_params)})
+        if not records:
+            raise ValueError("ARX found no usable input: every column is constant")
+        table = pd.DataFrame(records)
+        # Ties go to the smaller model: stable sort by size, then the first minimum.
+        ranked = table.sort_values(["n_params", "ar"], kind="stable")
+        best = int(ranked[self.criterion].idxmin()) if np.isfinite(ranked[self.criterion]).any() \
+            else int(ranked.index[0])
+        table["chosen"] = table.index == best
+        self.selection_ = table
+        win = table.loc[best]
+        with_ar, k = bool(win["ar"]), int(win["n_inputs"])
+        chosen = paths[with_ar][:k]
+
+        self.terms_ = [terms[j] for j in chosen]
+        self.inputs_ = [self._term_name(t) for t in self.terms_]
+        coef, a, c = self._least_squares(C[rows][:, chosen], y_prev[rows] if with_ar else None, y[rows])
+        self.coef_, self.ar_coef_, self.intercept_ = coef, a, c
+        self.chosen_ = {"ar": with_ar, "n_inputs": k, "inputs": list(self.inputs_),
+                        "criterion": self.criterion, "value": float(win[self.criterion]),
+                        "reason": self._reason(table, best)}
+        return self
+
+    def _least_squares(self, Xs, y_prev, y) -> tuple[np.ndarray, float, float]:
+        cols = [Xs] + ([y_prev[:, None]] if y_prev is not None else []) \
+            + ([np.ones((len(y), 1))] if self.fit_intercept else [])
+        theta = np.linalg.lstsq(np.hstack(cols), y, rcond=None)[0]
+        k = Xs.shape[1]
+        a = float(theta[k]) if y_prev is not None else 0.0
+        c = float(theta[-1]) if self.fit_intercept else 0.0
+        return theta[:k].copy(), a, c
+
+    def _free_run_rss(self, C, y, groups, rows, chosen) -> float:
+        """RSS of an equation-error-fitted AR model run free (``inf`` if unstable)."""
+        coef, a, c = self._least_squares(C[rows][:, chosen], previous(y, groups)[rows], y[rows])
+        if not abs(a) < 1:
+            return float("inf")
+        y_hat = free_run(a, C[:, chosen] @ coef + c, groups)
+        return float(np.sum((y - y_hat)[rows] ** 2))
+
+    def _reason(self, table: pd.DataFrame, best: int) -> str:
+        crit, win = self.criterion, table.loc[best]
+        text = (f"lowest {crit.upper()} = {win[crit]:.2f} of {len(table)} models tried "
+                f"({int(win['n_inputs'])} inputs, {'with' if win['ar'] else 'without'} AR term)")
+        other = table[table["ar"] != win["ar"]]
+        if len(other):
+            alt = other.loc[other[crit].idxmin()]
+            text += (f"; best {'without' if win['ar'] else 'with'} AR term: {alt[crit]:.2f} "
+                     f"({int(alt['n_inputs'])} inputs), {alt[crit] - win[crit]:.2f} worse")
+        return text
+
+    # -- prediction ---------------------------------------------------------------------
+    def _exogenous(self, X, groups) -> np.ndarray:
+        n = X.shape[0]
+        u = np.full(n, self.intercept_, dtype=float)
+        for (j, d), b in zip(self.terms_, self.coef_):
+            u += b * X[lag_index(groups, n, d), j]
+        return u
+
+    def predict(self, X, groups=None, y_measured=None):
+        """Predicted error: free run (simulation) or one-step with ``y_measured``."""
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False)
+        u = self._exogenous(X, groups)
+        if self.ar_coef_ == 0.0:
+            return u
+        if y_measured is None:
+            return free_run(self.ar_coef_, u, groups)
+        y_prev = previous(np.asarray(y_measured, dtype=float), groups)
+        missing = np.isnan(y_prev)
+        if missing.any():   # a gap in the measurement: carry the model's own estimate
+            starts = set(segment_starts(groups, len(u)).tolist())
+            out = np.empty_like(u)
+            for t in range(len(u)):
+                prev = 0.0 if t in starts else (out[t - 1] if missing[t] else y_prev[t])
+                out[t] = self.ar_coef_ * prev + u[t]
+            return out
+        return self.ar_coef_ * y_prev + u
+
+    # -- streaming (deployment) ---------------------------------------------------------
+    def stream_init(self) -> dict:
+        """State at a campaign start: previous output 0, no input history yet."""
+        check_is_fitted(self)
+        return {"y_prev": 0.0, "history": None}
+
+    def stream_step(self, x_row, state: dict) -> tuple[float, dict]:
+        """One sample of simulation-mode ``predict``: ``(y_hat, new_state)``."""
+        x_row = np.asarray(x_row, dtype=float).reshape(-1)
+        depth = max((d for _, d in self.terms_), default=0) + 1
+        history = state["history"]
+        history = np.tile(x_row, (depth, 1)) if history is None \
+            else np.vstack([history[1:], x_row[None, :]])
+        u = self.intercept_
+        for (j, d), b in zip(self.terms_, self.coef_):
+            u += b * history[depth - 1 - d, j]
+        y_hat = float(self.ar_coef_ * state["y_prev"] + u)
+        return y_hat, {"y_prev": y_hat, "history": history}

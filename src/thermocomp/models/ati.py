@@ -1,0 +1,318 @@
+r"""Ambient temperature interval (ATI) models: one model per season (paper 003, Sect. 4).
+
+A machine's thermal error law drifts with the ambient level (paper 003: the
+same spindle test gives a different error in winter and in summer).  The ATI
+model splits the ambient range into contiguous intervals, fits one model per
+interval and, on the machine, picks the model of the interval that holds the
+campaign's initial ambient temperature.
+"""
+
+from __future__ import annotations
+
+import inspect
+from functools import lru_cache
+
+import numpy as np
+import pandas as pd
+from sklearn.base import BaseEstimator, RegressorMixin, clone
+from sklearn.cluster import KMeans
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from ..io.contract import ContractError
+from ..metrics import rsd, sm_sd
+from .linear import MLR
+
+CLUSTERINGS = ("fuzzy", "hard")
+
+
+def _side(method, **side) -> dict:
+    """The side inputs (``groups``, ``context``, ``y_measured``) ``method`` accepts."""
+    params = inspect.signature(method).parameters
+    return {k: v for k, v in side.items() if k in params and v is not None}
+
+
+def _subset(side, rows):
+    if side is None:
+        return None
+    if isinstance(side, pd.DataFrame):
+        return side.loc[rows].reset_index(drop=True)
+    return np.asarray(side)[rows]
+
+
+def cluster_ambient(ambient, n_clusters: int, clustering: str = "fuzzy", fuzziness: float = 2.0,
+                    random_state: int = 0) -> np.ndarray:
+    r"""Cluster label of each campaign's initial ambient temperature (1-D C-means).
+
+    ``fuzzy``: fuzzy C-means (scikit-fuzzy; memberships :math:`u_{ck}`, fuzziness
+    :math:`m`), each campaign in its cluster of largest membership;
+    ``hard``: k-means (scikit-learn), the hard C-means of paper 003, Sect. 4.2.1.
+    Both start from centres at the quantiles :math:`(c + 1/2)/M` of the data
+    (deterministic, and a good start in one dimension).  Labels are renumbered
+    so that cluster 0 is the coldest.
+    """
+    if clustering not in CLUSTERINGS:
+        raise ValueError(f"clustering must be one of {CLUSTERINGS}, got {clustering!r}")
+    key = (tuple(np.asarray(ambient, float).round(9)), int(n_clusters), clustering,
+           float(fuzziness), int(random_state))
+    return np.array(_cluster_cached(*key))
+
+
+@lru_cache(maxsize=4096)
+def _cluster_cached(ambient: tuple, n_clusters: int, clustering: str, fuzziness: float,
+                    random_state: int) -> tuple:
+    # Cached: the elbow's folds and every target re-cluster the same campaigns.
+    a = np.array(ambient)
+    centres = np.quantile(a, (np.arange(n_clusters) + 0.5) / n_clusters)
+    if clustering == "hard":
+        labels = KMeans(n_clusters=n_clusters, init=centres[:, None], n_init=1,
+                        random_state=random_state).fit(a[:, None]).labels_
+    else:
+        import skfuzzy
+
+        dist = np.abs(a[None, :] - centres[:, None]) + 1e-9
+        u0 = dist ** (-2.0 / (fuzziness - 1.0))
+        u0 /= u0.sum(axis=0)
+        _, u, *_ = skfuzzy.cluster.cmeans(a[None, :], n_clusters, fuzziness, error=1e-7,
+                                          maxiter=1000, init=u0, seed=random_state)
+        labels = u.argmax(axis=0)
+    order = sorted(set(labels.tolist()), key=lambda c: a[labels == c].mean())
+    return tuple(order.index(c) for c in labels.tolist())
+
+
+def interval_boundaries(ambient, labels) -> np.ndarray:
+    r"""Boundaries between contiguous ambient intervals from cluster labels (sorted).
+
+    As in paper 003 (Table 5): the boundary between two neighbouring clusters is
+    the midpoint of the warmest ambient of the colder one and the coldest of
+    the warmer one, :math:`b = (\max A_c + \min A_{c+1}) / 2`; if the clusters
+    overlap (possible with fuzzy memberships) the midpoint of their means.
+    """
+    a, labels = np.asarray(ambient, float), np.asarray(labels)
+    clusters = sorted(set(labels), key=lambda c: a[labels == c].mean())
+    bounds = []
+    for lo, hi in zip(clusters[:-1], clusters[1:]):
+        top, bottom = a[labels == lo].max(), a[labels == hi].min()
+        b = (top + bottom) / 2 if top < bottom else (a[labels == lo].mean() + a[labels == hi].mean()) / 2
+        bounds.append(b)
+    return np.array(bounds, float)
+
+
+def interval_of(ambient, boundaries) -> np.ndarray:
+    """Interval index of each ambient; a value on a boundary belongs to the colder interval."""
+    return np.searchsorted(np.asarray(boundaries, float), np.asarray(ambient, float), side="left")
+
+
+class ATIRegressor(RegressorMixin, BaseEstimator):
+    r"""One model per ambient temperature interval (ATI), chosen by initial ambient (paper 003).
+
+    Campaign :math:`k` with initial ambient :math:`A_k` is predicted by the
+    model of its interval,
+
+    .. math::
+
+        \hat y(t) = f_{m(k)}(x(t)),\quad m(k) = \#\{\,i : b_i < A_k\,\},
+
+    where :math:`b_1 < \dots < b_{M-1}` are the boundaries between C-means
+    clusters of the training campaigns' :math:`A_k` (see
+    :func:`interval_boundaries`) and :math:`f_m` is ``base_estimator`` fitted on
+    the campaigns of interval :math:`m`.  With ``n_intervals='elbow'`` the number
+    of intervals :math:`M` is chosen among ``candidates`` by the elbow of the
+    leave-one-campaign-out :math:`SM` and :math:`SD` (mean and standard
+    deviation of the held-out campaigns' :math:`R_{sd}`, paper 003 Eqs. 20-21):
+    the smallest :math:`M` beyond which more intervals improve :math:`SM + SD`
+    by less than ``elbow_tolerance`` (relative), i.e. where the curve flattens.
+    In each fold the intervals are rebuilt from the remaining campaigns, so the
+    held-out campaign never shapes its own interval.  Paper 003 uses one
+    campaign per interval (the coldest of it); here every campaign of the
+    interval trains its model.
+
+    ``fit``/``predict`` take ``context`` (per-row ``campaign`` and
+    ``ambient_c0``, as :class:`~thermocomp.compensator.Compensator` passes it).
+    Without ``context`` the campaigns' ambient is unknown and the model is one
+    ``base_estimator`` (one interval).
+
+    Parameters
+    ----------
+    base_estimator : regressor, default MLR()
+        Any model family; cloned per interval.  Gets ``groups``, ``context``
+        and ``y_measured`` when its signature accepts them.
+    n_intervals : int or 'elbow', default 'elbow'
+    candidates : sequence of int, default (2, 3, 4, 5, 6)
+        Numbers of intervals tried by the elbow (paper 003's range; add 1 to
+        let the elbow keep a single model).
+    clustering : {'fuzzy', 'hard'}, default 'fuzzy'
+        Fuzzy C-means (scikit-fuzzy) or hard C-means (k-means).
+    fuzziness : float, default 2.0
+        Exponent :math:`m` of fuzzy C-means.
+    elbow_tolerance : float, default 0.10
+        Relative tolerance of the elbow.
+    random_state : int, default 0
+
+    Attributes
+    ----------
+    n_intervals_ : int
+    boundaries_ : ndarray of shape (n_intervals_ - 1,), °C
+    intervals_ : list of dict
+        Per interval: ``low``/``high`` (°C, None for the open ends),
+        ``ambient_min``/``ambient_max`` of its training campaigns, ``campaigns``.
+    estimators_ : list of fitted base estimators, coldest interval first
+    elbow_ : dict or None
+        ``n_intervals``, ``sm``, ``sd`` (µm) per candidate, ``chosen``,
+        ``single_model`` (the one-model CV SM/SD) and ``reason`` when no
+        candidate could be cross-validated.
+    campaign_ambient_ : dict campaign -> initial ambient (°C) of the training data
+    """
+
+    def __init__(self, base_estimator=None, n_intervals="elbow", candidates=(2, 3, 4, 5, 6),
+                 clustering: str = "fuzzy", fuzziness: float = 2.0, elbow_tolerance: float = 0.10,
+                 random_state: int = 0):
+        self.base_estimator = base_estimator
+        self.n_intervals = n_intervals
+        self.candidates = candidates
+        self.clustering = clustering
+        self.fuzziness = fuzziness
+        self.elbow_tolerance = elbow_tolerance
+        self.random_state = random_state
+
+    # -- fitting ----------------------------------------------------------------------------
+    def _base(self):
+        return clone(self.base_estimator if self.base_estimator is not None else MLR())
+
+    def _fit_base(self, X, y, rows, groups, context):
+        est = self._base()
+        est.fit(X[rows], y[rows], **_side(est.fit, groups=_subset(groups, rows),
+                                          context=_subset(context, rows)))
+        return est
+
+    def _predict_base(self, est, X, rows, groups, context, y_measured=None):
+        return est.predict(X[rows], **_side(est.predict, groups=_subset(groups, rows),
+                                            context=_subset(context, rows),
+                                            y_measured=_subset(y_measured, rows)))
+
+    def _intervals(self, ambient: np.ndarray, n: int) -> np.ndarray:
+        labels = cluster_ambient(ambient, n, self.clustering, self.fuzziness, self.random_state)
+        return interval_boundaries(ambient, labels)
+
+    def fit(self, X, y, groups=None, context=None):
+        if self.clustering not in CLUSTERINGS:
+            raise ValueError(f"clustering must be one of {CLUSTERINGS}, got {self.clustering!r}")
+        X, y = validate_data(self, X, y, y_numeric=True)
+        self.elbow_ = None
+        if context is None:
+            self.campaign_ambient_ = {}
+            return self._fit_intervals(X, y, np.empty(0), np.zeros(len(y), int), groups, None)
+        campaign = np.asarray(context["campaign"] if "campaign" in context else groups, dtype=object)
+        a0_rows = self._ambient(context)
+        a0 = pd.Series(a0_rows).groupby(campaign, sort=False).first()
+        self.campaign_ambient_ = {str(k): float(v) for k, v in a0.items()}
+        distinct = np.unique(a0.to_numpy()).size
+        if self.n_intervals == "elbow":
+            n = self._elbow(X, y, campaign, a0, groups, context)
+        else:
+            n = int(self.n_intervals)
+            if n < 1:
+                raise ValueError(f"n_intervals must be >= 1 or 'elbow', got {self.n_intervals!r}")
+        n = min(n, distinct)
+        bounds = self._intervals(a0.to_numpy(), n) if n > 1 else np.empty(0)
+        return self._fit_intervals(X, y, bounds, interval_of(a0_rows, bounds), groups, context,
+                                   campaign)
+
+    def _fit_intervals(self, X, y, bounds, row_interval, groups, context, campaign=None):
+        self.boundaries_ = bounds
+        self.n_intervals_ = bounds.size + 1
+        self.estimators_, self.intervals_ = [], []
+        edges = [None, *bounds.tolist(), None]
+        for m in range(self.n_intervals_):
+            rows = row_interval == m
+            self.estimators_.append(self._fit_base(X, y, rows, groups, context))
+            members = sorted(set(campaign[rows])) if campaign is not None else []
+            amb = [self.campaign_ambient_[str(c)] for c in members]
+            self.intervals_.append({"low": edges[m], "high": edges[m + 1],
+                                    "ambient_min": min(amb) if amb else None,
+                                    "ambient_max": max(amb) if amb else None,
+                                    "campaigns": [str(c) for c in members]})
+        return self
+
+    @staticmethod
+    def _ambient(context) -> np.ndarray:
+        a0 = np.asarray(context["ambient_c0"], float)
+        if not np.all(np.isfinite(a0)):
+            raise ContractError("ATI models need each campaign's initial ambient temperature, "
+                                "but a campaign has no valid T_amb / T_amb_* value", column="T_amb")
+        return a0
+
+    def _cv_rsd(self, X, y, campaign, a0: pd.Series, n: int, groups, context) -> np.ndarray:
+        """Held-out Rsd of each campaign with ``n`` intervals rebuilt from the others."""
+        out = []
+        for k in a0.index:
+            others = a0.drop(k)
+            bounds = self._intervals(others.to_numpy(), n) if n > 1 else np.empty(0)
+            mine = interval_of([a0[k]], bounds)[0]
+            train_campaigns = others.index[interval_of(others.to_numpy(), bounds) == mine]
+            rows_train = np.isin(campaign, train_campaigns)
+            rows_test = campaign == k
+            est = self._fit_base(X, y, rows_train, groups, context)
+            out.append(rsd(y[rows_test] - self._predict_base(est, X, rows_test, groups, context)))
+        return np.array(out)
+
+    def _elbow(self, X, y, campaign, a0: pd.Series, groups, context) -> int:
+        """Choose the number of intervals; fills ``elbow_``."""
+        k = len(a0)
+        feasible = [int(n) for n in self.candidates
+                    if 1 <= int(n) <= min(k - 1, np.unique(a0.to_numpy()).size - 1)]
+        if k < 3 or not feasible:
+            self.elbow_ = {"n_intervals": [], "sm": [], "sd": [], "chosen": 1, "single_model": None,
+                           "reason": f"{k} training campaign(s) with "
+                                     f"{np.unique(a0.to_numpy()).size} distinct ambient(s): too few to "
+                                     f"cross-validate {list(self.candidates)} intervals; one model"}
+            return 1
+        sm, sd = [], []
+        for n in feasible:
+            m, s = sm_sd(self._cv_rsd(X, y, campaign, a0, n, groups, context))
+            sm.append(m)
+            sd.append(s)
+        single = sm_sd(self._cv_rsd(X, y, campaign, a0, 1, groups, context))
+        score = np.array(sm) + np.array(sd)
+        chosen = feasible[int(np.flatnonzero(score <= (1 + self.elbow_tolerance) * score.min())[0])]
+        self.elbow_ = {"n_intervals": feasible, "sm": sm, "sd": sd, "chosen": chosen,
+                       "single_model": {"sm": single[0], "sd": single[1]}, "reason": None}
+        return chosen
+
+    # -- prediction -------------------------------------------------------------------------
+    def _row_intervals(self, n_rows: int, context) -> np.ndarray:
+        if self.n_intervals_ == 1:
+            return np.zeros(n_rows, int)
+        if context is None:
+            raise ValueError("this ATI model has several intervals: predict needs `context` "
+                             "with each row's `ambient_c0`")
+        return interval_of(self._ambient(context), self.boundaries_)
+
+    def predict(self, X, groups=None, context=None, y_measured=None):
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False)
+        which = self._row_intervals(X.shape[0], context)
+        out = np.empty(X.shape[0])
+        for m in np.unique(which):
+            rows = which == m
+            out[rows] = self._predict_base(self.estimators_[m], X, rows, groups, context, y_measured)
+        return out
+
+    # -- streaming (deployment) -------------------------------------------------------------
+    def stream_init(self, ambient_c0: float | None = None):
+        """State for :meth:`stream_step`: the interval of ``ambient_c0`` and its model's state."""
+        check_is_fitted(self)
+        if self.n_intervals_ > 1 and (ambient_c0 is None or not np.isfinite(ambient_c0)):
+            raise ValueError("stream_init needs the campaign's initial ambient temperature (°C)")
+        m = 0 if self.n_intervals_ == 1 else int(interval_of([ambient_c0], self.boundaries_)[0])
+        est = self.estimators_[m]
+        return m, (est.stream_init() if hasattr(est, "stream_init") else None)
+
+    def stream_step(self, x_row, state):
+        """One sample: ``(y_hat, state)``, as :meth:`predict` in simulation mode."""
+        m, inner = state
+        est = self.estimators_[m]
+        if hasattr(est, "stream_step"):
+            y_hat, inner = est.stream_step(x_row, inner)
+        else:
+            y_hat = est.predict(np.asarray(x_row, float)[None, :])[0]
+        return float(y_hat), (m, inner)

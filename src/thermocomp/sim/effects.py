@@ -1,0 +1,527 @@
+r"""Undeclared effects: physics a compensation model was never told about.
+
+Each effect is planted on any scenario with one override,
+``thermocomp simulate sim=<scenario> "sim.generator.effects=[door,lag_node]"``,
+parameters in ``sim.generator.effect_params.<name>.<key>``, and recorded in the
+ground truth's ``undeclared_effects`` as ``{"name", "kind", "column",
+"targets", "description", "params"}``; ``kind`` and ``column`` are what a
+correct residual diagnosis (``diagnosis.json`` of CLI.md) must report.
+
+Every effect acts through the thermal network or the structure, never as noise
+added to an error column, and draws its randomness (schedules, trajectories)
+from its own generator seeded by ``(seed, effect, campaign)``: the dataset with
+an effect is paired sample by sample with the one without it.
+
+========================  ==============  =====================================================
+effect                    kind            mechanism
+========================  ==============  =====================================================
+``door``                  signal          door openings (``S_door``, 0/1): extra convection
+                                          :math:`\Delta hA` on the work-area nodes while open
+``hidden_source``         signal          a unit (hydraulic power pack) bolted to a structure
+                                          node, switched on and off by its own duty cycle;
+                                          only the controller's oil temperature
+                                          (``S_hydraulic_temp_C``) sees it
+``lag_node``              dynamics        an unmeasured mass between a heated node and the
+                                          structure, :math:`C\dot T_l = G(T_p - T_l) +
+                                          hA(T_a - T_l)`, with its own sensitivity
+``axis_position``         interaction     an axis dwells at positions :math:`p(t)`
+                                          (``S_pos_<axis>``, mm); a thermal tilt
+                                          :math:`\varphi = \sum_j w_j\Delta_j` acts through the
+                                          lever :math:`p - p(0)`:
+                                          :math:`\Delta E = g\,\varphi\,(p - p(0))`
+``sensor_drift``          sensor_fault    one declared sensor drifts by :math:`r\,(t - t_0)^+`
+                                          (or freezes) partway through the campaigns
+``ambient_law``           ambient_interval the sensitivities of the targets grow by a factor
+                                          :math:`1 + \gamma\,\sigma((T_{lev} - T_{thr})/w)`
+                                          once the structure's level passes a threshold
+========================  ==============  =====================================================
+
+``axis_position``: with ``p(0)`` the home position of every campaign, the term
+is a product of the referenced position and a temperature rise, so a correct
+diagnosis reports ``kind = "interaction"`` with ``column = "S_pos_<axis>"``.
+``hidden_source``: the oil temperature is a controller signal, written as an
+``S_`` column so that no ``T_*`` glob declares it; set
+``effect_params.hidden_source.column=T_<name>`` to write it as a declared
+sensor instead (then only a selection that drops it leaves the effect unseen).
+"""
+
+from __future__ import annotations
+
+import copy
+import zlib
+from typing import ClassVar
+
+import numpy as np
+
+from thermocomp.errors import ConfigError
+from thermocomp.sim.campaign import CampaignContext, Machine
+from thermocomp.sim.network import Link, Node, ThermalNetwork
+from thermocomp.sim.sensors import quantise
+from thermocomp.sim.sources import ConstantWhileRunning, StateConvection
+from thermocomp.sim.thermoelastic import ThermoelasticMap
+
+KINDS = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear", "sensor_fault")
+
+
+def extend_machine(machine: Machine, *, nodes=(), links=(), sources=(), rules=(),
+                   linear: dict | None = None) -> Machine:
+    """A new machine with extra nodes, links, sources, convection rules and sensitivities."""
+    network = ThermalNetwork(list(machine.network.nodes) + list(nodes),
+                             list(machine.network.links) + list(links))
+    te = machine.thermoelastic
+    coefficients = copy.deepcopy(te.linear)
+    for target, extra in (linear or {}).items():
+        if target not in coefficients:
+            raise ConfigError(f"effect sensitivity names unknown target {target!r} "
+                              f"(have {list(coefficients)})")
+        for node, value in extra.items():
+            coefficients[target][node] = coefficients[target].get(node, 0.0) + float(value)
+    thermoelastic = ThermoelasticMap(coefficients, copy.deepcopy(te.quadratic),
+                                     dict(te.ambient_beta), te.reference_c)
+    return Machine(network, list(machine.sources) + list(sources), list(machine.sensors),
+                   thermoelastic, list(machine.convection_rules) + list(rules))
+
+
+def intervals_signal(intervals) -> callable:
+    """0/1 signal of campaign time: 1 inside any ``[start, end)`` interval."""
+    starts = np.array([a for a, _ in intervals], dtype=float)
+    ends = np.array([b for _, b in intervals], dtype=float)
+
+    def signal(t):
+        t = np.asarray(t, dtype=float)[..., None]
+        return np.any((t >= starts - 1e-6) & (t < ends - 1e-6), axis=-1).astype(float)
+    return signal
+
+
+def _on_grid(t_s: float, grid_s: float) -> float:
+    return grid_s * max(1, round(t_s / grid_s))
+
+
+class UndeclaredEffect:
+    """Base class: hooks called by :func:`~thermocomp.sim.campaign.run_campaign`.
+
+    Parameters
+    ----------
+    seed : int
+        Scenario seed; the effect's generator per campaign is
+        ``default_rng([seed, crc32(name), campaign index])``.
+    **params
+        Overrides of :attr:`defaults` (unknown keys are a ConfigError).
+    """
+
+    name: ClassVar[str] = ""
+    kind: ClassVar[str] = ""
+    defaults: ClassVar[dict] = {}
+
+    def __init__(self, seed: int = 0, **params):
+        unknown = set(params) - set(self.defaults)
+        if unknown:
+            raise ConfigError(f"sim.generator.effect_params.{self.name}: unknown key(s) "
+                              f"{sorted(unknown)} (known: {sorted(self.defaults)})")
+        self.seed = int(seed)
+        self.params = {**copy.deepcopy(self.defaults), **params}
+
+    # --- hooks (no-ops by default) -------------------------------------------------------
+    def modify_machine(self, machine: Machine) -> Machine:
+        return machine
+
+    def campaign_states(self, ctx: CampaignContext, t_rel: np.ndarray, fine: dict) -> dict:
+        return {}
+
+    def written_states(self, ctx: CampaignContext) -> list[str]:
+        return []
+
+    def modify_readings(self, ctx: CampaignContext, readings: np.ndarray) -> np.ndarray:
+        return readings
+
+    def modify_errors(self, ctx: CampaignContext, errors: np.ndarray) -> np.ndarray:
+        return errors
+
+    def extra_columns(self, ctx: CampaignContext) -> dict:
+        return {}
+
+    # --- bookkeeping ----------------------------------------------------------------------
+    @property
+    def column(self) -> str | None:
+        return None
+
+    @property
+    def targets(self) -> list[str]:
+        return list(self.params.get("targets", []))
+
+    def description(self) -> str:
+        return (self.__doc__ or "").strip().splitlines()[0]
+
+    def rng(self, ctx: CampaignContext) -> np.random.Generator:
+        return np.random.default_rng([self.seed, zlib.crc32(self.name.encode()), ctx.index])
+
+    def record(self) -> dict:
+        return {"name": self.name, "kind": self.kind, "column": self.column,
+                "targets": self.targets, "description": self.description(),
+                "params": copy.deepcopy(self.params)}
+
+    def _target_rows(self, machine: Machine) -> list[int]:
+        known = machine.thermoelastic.targets
+        missing = [t for t in self.targets if t not in known]
+        if missing:
+            raise ConfigError(f"sim.generator.effect_params.{self.name}.targets: unknown "
+                              f"{missing} (have {known})")
+        return [known.index(t) for t in self.targets]
+
+    def _check_nodes(self, machine: Machine, nodes, key: str) -> None:
+        unknown = [n for n in nodes if n not in machine.network.index]
+        if unknown:
+            raise ConfigError(f"sim.generator.effect_params.{self.name}.{key}: unknown node(s) "
+                              f"{unknown} (have {list(machine.network.names)})")
+
+
+class Door(UndeclaredEffect):
+    """Door openings: shop air sweeps the work area while the door is open (S_door = 1)."""
+
+    name, kind = "door", "signal"
+    defaults = {
+        "column": "S_door",
+        "nodes": {},                 # node -> extra convection hA (W/K) while open
+        "air_offset_c": 0.0,         # the draught's temperature minus the ambient sensor's
+        "rate_per_h": 0.5,           # mean number of openings per hour of campaign
+        "duration_min": [5.0, 20.0],  # uniform range of one opening (rounded to the samples)
+        "targets": [],
+    }
+
+    @property
+    def column(self):
+        return self.params["column"]
+
+    def description(self):
+        nodes = ", ".join(f"{n} +{g:g} W/K" for n, g in self.params["nodes"].items())
+        return (f"door openings ({self.column} 0/1, ~{self.params['rate_per_h']:g}/h, "
+                f"{self.params['duration_min'][0]:g}-{self.params['duration_min'][1]:g} min): "
+                f"shop air {self.params['air_offset_c']:+g} K from the ambient sensor sweeps the "
+                f"work area, extra convection on {nodes}")
+
+    def modify_machine(self, machine):
+        nodes = dict(self.params["nodes"])
+        if not nodes:
+            raise ConfigError("sim.generator.effect_params.door.nodes is empty: say which nodes the "
+                              "open door exposes")
+        self._check_nodes(machine, nodes, "nodes")
+        rules = [StateConvection(node, float(g), signal=self.column, scale=1.0, exponent=0.0)
+                 for node, g in nodes.items()]
+        # Convection g to air at T_a + offset = convection g to T_a plus a heat g * offset.
+        offset = float(self.params["air_offset_c"])
+        draughts = [ConstantWhileRunning(f"door_draught_{node}", {node: 1.0}, power_W=float(g) * offset,
+                                         when=self.column) for node, g in nodes.items() if offset]
+        return extend_machine(machine, rules=rules, sources=draughts)
+
+    def openings(self, rng, duration_s: float, grid_s: float) -> list[tuple[float, float]]:
+        """Poisson openings (mean gap 1/rate), each ``duration_min`` long, on the sample grid."""
+        rate = float(self.params["rate_per_h"]) / 3600.0
+        lo, hi = (60.0 * float(m) for m in self.params["duration_min"])
+        out, t = [], 0.0
+        if rate <= 0:
+            return out
+        while True:
+            t = _on_grid(t + rng.exponential(1.0 / rate), grid_s)
+            length = _on_grid(rng.uniform(lo, hi), grid_s)
+            if t + length >= duration_s:
+                return out
+            out.append((t, t + length))
+            t += length
+
+    def campaign_states(self, ctx, t_rel, fine):
+        if self.column in fine:   # the scenario's own door programme (the lathe)
+            return {}
+        intervals = self.openings(self.rng(ctx), ctx.duration_s, ctx.sample_period_s)
+        ctx.truth.setdefault(self.name, {})["openings_s"] = [list(map(float, i)) for i in intervals]
+        return {self.column: intervals_signal(intervals)(t_rel)}
+
+    def written_states(self, ctx):
+        return [self.column]
+
+
+class HiddenSource(UndeclaredEffect):
+    """A hydraulic power unit bolted to the structure, switched by its own duty cycle."""
+
+    name, kind = "hidden_source", "signal"
+    defaults = {
+        "column": "S_hydraulic_temp_C",  # the controller's oil temperature, the only witness
+        "anchor": "",                    # structure node the unit is bolted to
+        "power_W": 250.0,                # pump and valve losses while running
+        "capacity_J_per_K": 4.0e4,       # ~20 l of oil and a steel tank
+        "convection_W_per_K": 4.0,
+        "conductance_W_per_K": 12.0,     # bolted flange to the structure
+        "on_min": [40.0, 120.0],         # duty cycle: on and off spells (uniform ranges)
+        "off_min": [40.0, 120.0],
+        "noise_c": 0.05,                 # NC temperature channel
+        "quantum_c": 0.1,
+        "targets": [],
+    }
+    NODE = "hydraulic_unit"
+    STATE = "_hydraulic_on"   # internal: not written (the '_' prefix is no contract column)
+
+    @property
+    def column(self):
+        return self.params["column"]
+
+    def description(self):
+        p = self.params
+        return (f"hydraulic unit ({p['power_W']:g} W while on, on {p['on_min'][0]:g}-{p['on_min'][1]:g}"
+                f" min / off {p['off_min'][0]:g}-{p['off_min'][1]:g} min) bolted to {p['anchor']}; "
+                f"only {self.column} (its oil temperature) sees it")
+
+    def modify_machine(self, machine):
+        p = self.params
+        if not self.column.startswith(("S_", "T_")):
+            raise ConfigError(f"sim.generator.effect_params.hidden_source.column must start with "
+                              f"S_ or T_, got {self.column!r}")
+        self._check_nodes(machine, [p["anchor"]], "anchor")
+        return extend_machine(
+            machine,
+            nodes=[Node(self.NODE, float(p["capacity_J_per_K"]), float(p["convection_W_per_K"]))],
+            links=[Link(self.NODE, p["anchor"], float(p["conductance_W_per_K"]))],
+            sources=[ConstantWhileRunning("hidden_hydraulic_unit", {self.NODE: 1.0},
+                                          power_W=float(p["power_W"]), when=self.STATE)])
+
+    def campaign_states(self, ctx, t_rel, fine):
+        rng = self.rng(ctx)
+        grid = ctx.sample_period_s
+        on = [60.0 * float(m) for m in self.params["on_min"]]
+        off = [60.0 * float(m) for m in self.params["off_min"]]
+        running, t, intervals = bool(rng.random() < 0.5), 0.0, []
+        while t < ctx.duration_s:
+            length = _on_grid(rng.uniform(*(on if running else off)), grid)
+            if running:
+                intervals.append((t, min(t + length, ctx.duration_s + grid)))
+            t += length
+            running = not running
+        ctx.truth.setdefault(self.name, {})["on_s"] = [list(map(float, i)) for i in intervals]
+        return {self.STATE: intervals_signal(intervals)(t_rel)}
+
+    def extra_columns(self, ctx):
+        rng = np.random.default_rng([self.seed, zlib.crc32(b"hidden_source/noise"), ctx.index])
+        node = ctx.node_temps[:, ctx.machine.network.index[self.NODE]]
+        value = quantise(node + float(self.params["noise_c"]) * rng.standard_normal(len(node)),
+                         float(self.params["quantum_c"]))
+        return {self.column: value}
+
+
+class LagNode(UndeclaredEffect):
+    """An unmeasured internal mass that follows a heated node with a long lag and moves the TCP."""
+
+    name, kind = "lag_node", "dynamics"
+    defaults = {
+        "parent": "",                    # the heated node it hangs on
+        "capacity_J_per_K": 2.0e5,
+        "conductance_W_per_K": 30.0,
+        "convection_W_per_K": 1.0,
+        "sensitivity_um_per_K": {},      # target -> µm/K of the lag mass
+        "targets": [],
+    }
+    NODE = "lag_mass"
+
+    def time_constant_s(self) -> float:
+        p = self.params
+        return float(p["capacity_J_per_K"]) / (float(p["conductance_W_per_K"]) + float(p["convection_W_per_K"]))
+
+    def description(self):
+        return (f"unmeasured internal mass on {self.params['parent']} (time constant "
+                f"{self.time_constant_s() / 3600:.1f} h) moving "
+                + ", ".join(f"{t} {s:g} µm/K" for t, s in self.params["sensitivity_um_per_K"].items()))
+
+    def record(self):
+        out = super().record()
+        out["params"]["time_constant_s"] = self.time_constant_s()
+        return out
+
+    def modify_machine(self, machine):
+        p = self.params
+        self._check_nodes(machine, [p["parent"]], "parent")
+        return extend_machine(
+            machine,
+            nodes=[Node(self.NODE, float(p["capacity_J_per_K"]), float(p["convection_W_per_K"]))],
+            links=[Link(self.NODE, p["parent"], float(p["conductance_W_per_K"]))],
+            linear={t: {self.NODE: float(s)} for t, s in p["sensitivity_um_per_K"].items()})
+
+
+class AxisPosition(UndeclaredEffect):
+    """An axis dwells at varying positions; a thermal tilt acts on the TCP through its lever."""
+
+    name, kind = "axis_position", "interaction"
+    defaults = {
+        "axis": "Z",
+        "travel_mm": [0.0, 500.0],
+        "home_mm": 250.0,                # every campaign starts here (the lever's zero)
+        "dwell_min": [15.0, 60.0],       # time at one position (uniform range)
+        "tilt_nodes": {},                # node -> weight; tilt = sum w_j * rise_j (K)
+        "gain_um_per_K_per_m": 20.0,     # alpha / depth of the tilting structure
+        "targets": [],
+    }
+
+    @property
+    def column(self):
+        return f"S_pos_{self.params['axis']}"
+
+    def description(self):
+        tilt = " ".join(f"{w:+g}*{n}" for n, w in self.params["tilt_nodes"].items())
+        return (f"{self.column} (mm) dwells over {self.params['travel_mm']}; the thermal tilt "
+                f"({tilt}) acts through the lever p - p(0): {self.params['gain_um_per_K_per_m']:g} "
+                f"µm/(K m) on {', '.join(self.targets)}; a product of the position and a rise")
+
+    def modify_machine(self, machine):
+        self._check_nodes(machine, self.params["tilt_nodes"], "tilt_nodes")
+        self._target_rows(machine)
+        return machine
+
+    def trajectory(self, rng, duration_s: float, grid_s: float) -> list[tuple[float, float]]:
+        """(start s, position mm) steps from the home position."""
+        lo, hi = (float(v) for v in self.params["travel_mm"])
+        dwell = [60.0 * float(m) for m in self.params["dwell_min"]]
+        steps, t = [(0.0, float(self.params["home_mm"]))], 0.0
+        while True:
+            t = t + _on_grid(rng.uniform(*dwell), grid_s)
+            if t >= duration_s:
+                return steps
+            steps.append((t, float(np.round(rng.uniform(lo, hi), 1))))
+
+    def campaign_states(self, ctx, t_rel, fine):
+        if self.column in fine:   # the scenario moves this axis itself
+            return {}
+        steps = self.trajectory(self.rng(ctx), ctx.duration_s, ctx.sample_period_s)
+        starts = np.array([s for s, _ in steps])
+        values = np.array([v for _, v in steps])
+        return {self.column: values[np.searchsorted(starts, t_rel + 1e-6, side="right") - 1]}
+
+    def written_states(self, ctx):
+        return [self.column]
+
+    def tilt(self, ctx) -> np.ndarray:
+        index = ctx.machine.network.index
+        rise = ctx.node_temps - ctx.node_temps[0]
+        return sum(float(w) * rise[:, index[n]] for n, w in self.params["tilt_nodes"].items())
+
+    def modify_errors(self, ctx, errors):
+        position = ctx.states[self.column]
+        lever_m = (position - position[0]) / 1000.0
+        extra = float(self.params["gain_um_per_K_per_m"]) * self.tilt(ctx) * lever_m
+        errors = errors.copy()
+        for row in self._target_rows(ctx.machine):
+            errors[:, row] += extra
+        return errors
+
+
+class SensorDrift(UndeclaredEffect):
+    """One declared temperature sensor drifts (or freezes) partway through the campaigns."""
+
+    name, kind = "sensor_drift", "sensor_fault"
+    defaults = {
+        "column": "",
+        "mode": "drift",                 # drift: + rate*(t - t0); stuck: frozen from t0
+        "rate_K_per_h": 0.5,
+        "onset_fraction": 0.3,           # t0 as a fraction of each affected campaign
+        "from_fraction": 0.0,            # campaigns from this fraction of the calendar on
+        "splits": ["train", "test"],     # splits whose campaigns (from then on) are affected
+        "targets": [],
+    }
+
+    @property
+    def column(self):
+        return self.params["column"]
+
+    def description(self):
+        p = self.params
+        what = (f"drifts by {p['rate_K_per_h']:g} K/h" if p["mode"] == "drift" else "freezes")
+        return (f"sensor {self.column} {what} from {p['onset_fraction']:.0%} of each campaign on "
+                f"({'/'.join(p['splits'])} campaigns from {p['from_fraction']:.0%} of the calendar on): "
+                f"a degrading contact")
+
+    def modify_machine(self, machine):
+        if self.column not in machine.sensor_array.columns:
+            raise ConfigError(f"sim.generator.effect_params.sensor_drift.column: {self.column!r} is "
+                              f"no sensor (have {machine.sensor_array.columns})")
+        if self.params["mode"] not in ("drift", "stuck"):
+            raise ConfigError("sim.generator.effect_params.sensor_drift.mode must be drift or stuck")
+        return machine
+
+    def affected(self, ctx) -> bool:
+        return (ctx.split in self.params["splits"]
+                and ctx.index >= float(self.params["from_fraction"]) * ctx.n_campaigns)
+
+    def fault(self, ctx, true_reading: np.ndarray) -> np.ndarray:
+        """Faulty reading (°C) from the healthy one at the samples."""
+        if not self.affected(ctx):
+            return true_reading
+        t0 = float(self.params["onset_fraction"]) * ctx.duration_s
+        after = ctx.times_s >= t0
+        out = true_reading.copy()
+        if self.params["mode"] == "drift":
+            out += float(self.params["rate_K_per_h"]) * np.clip(ctx.times_s - t0, 0, None) / 3600.0
+        elif after.any():
+            out[after] = true_reading[np.argmax(after)]
+        ctx.truth.setdefault(self.name, {})["onset_s"] = t0
+        return out
+
+    def modify_readings(self, ctx, readings):
+        j = ctx.machine.sensor_array.columns.index(self.column)
+        readings = readings.copy()
+        readings[:, j] = self.fault(ctx, readings[:, j])
+        return readings
+
+
+class AmbientLaw(UndeclaredEffect):
+    """The thermoelastic law changes with the ambient level (an unmodelled ambient interval)."""
+
+    name, kind = "ambient_law", "ambient_interval"
+    defaults = {
+        "level_node": "",                # a slow node whose absolute temperature sets the interval
+        "threshold_c": 20.0,
+        "width_c": 0.3,                  # logistic transition width
+        "gain": 0.5,                     # relative growth of the targets' sensitivities above
+        "targets": [],
+    }
+
+    def description(self):
+        p = self.params
+        return (f"above {p['threshold_c']:g} °C of {p['level_node']} the sensitivities of "
+                f"{', '.join(self.targets)} grow by {p['gain']:.0%} (a joint that clamps "
+                f"differently once the structure is warm)")
+
+    def modify_machine(self, machine):
+        self._check_nodes(machine, [self.params["level_node"]], "level_node")
+        self._target_rows(machine)
+        return machine
+
+    def factor(self, level_c: np.ndarray) -> np.ndarray:
+        p = self.params
+        z = (np.asarray(level_c, dtype=float) - float(p["threshold_c"])) / float(p["width_c"])
+        return float(p["gain"]) / (1.0 + np.exp(-np.clip(z, -50, 50)))
+
+    def modify_errors(self, ctx, errors):
+        machine = ctx.machine
+        index = machine.network.index
+        rise = ctx.node_temps - ctx.node_temps[0]
+        level = ctx.node_temps[:, index[self.params["level_node"]]]
+        gain = self.factor(level)
+        ctx.truth.setdefault(self.name, {})["above_threshold"] = bool(gain[0] > 0.5 * float(self.params["gain"]))
+        errors = errors.copy()
+        for row in self._target_rows(machine):
+            target = machine.thermoelastic.targets[row]
+            s = machine.thermoelastic.linear[target]
+            linear = sum(float(v) * rise[:, index[n]] for n, v in s.items())
+            errors[:, row] += gain * linear
+        return errors
+
+
+EFFECTS = {cls.name: cls for cls in (Door, HiddenSource, LagNode, AxisPosition, SensorDrift, AmbientLaw)}
+
+
+def build_effects(names, params: dict | None, defaults: dict, seed: int) -> list[UndeclaredEffect]:
+    """Effects ``names`` with parameters ``defaults[name]`` updated by ``params[name]``."""
+    params = params or {}
+    out = []
+    for name in names:
+        if name not in EFFECTS:
+            raise ConfigError(f"sim.generator.effects: unknown effect {name!r} "
+                              f"(known: {', '.join(EFFECTS)})")
+        merged = {**copy.deepcopy(defaults.get(name, {})), **dict(params.get(name) or {})}
+        out.append(EFFECTS[name](seed, **merged))
+    return out

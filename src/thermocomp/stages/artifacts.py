@@ -1,0 +1,115 @@
+"""Files that the ``denoise`` and ``select`` stages hand to ``train``.
+
+``denoise`` writes ``data.processed``: the ingested dataset with the declared
+inputs denoised offline (a contract folder of Parquet files that
+``io.load_interim`` reads), the fitted denoiser (``denoiser.pkl``) and
+``denoise.json``.  ``select`` writes ``selection.json`` next to the model.
+Each file records a fingerprint of the settings and data it was made from;
+``train`` uses a file only when the fingerprint matches its own config, and
+otherwise lets the Compensator denoise / select itself -- the same
+computation, so ``thermocomp run`` and ``dvc repro`` give the same model and
+nothing is done twice on the DVC path.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import pickle
+from pathlib import Path
+
+from omegaconf import DictConfig, OmegaConf
+
+from .. import io
+from ..compensator import Compensator
+from ..evaluation import require_split
+from ..paths import resolve
+from .common import build_compensator, say
+
+DENOISE_JSON = "denoise.json"
+DENOISER_PKL = "denoiser.pkl"
+SELECTION_JSON = "selection.json"
+
+
+def _plain(node) -> object:
+    """Config node -> JSON-comparable plain data."""
+    data = OmegaConf.to_container(node, resolve=True) if isinstance(node, DictConfig) else node
+    return json.loads(json.dumps(data))
+
+
+def data_digest(folder: Path) -> str:
+    """SHA-256 over the files of an ingested dataset folder (names and bytes)."""
+    h = hashlib.sha256()
+    for f in sorted(p for p in Path(folder).iterdir() if p.is_file()):
+        h.update(f.name.encode())
+        with open(f, "rb") as fh:
+            h.update(hashlib.file_digest(fh, "sha256").digest())
+    return h.hexdigest()
+
+
+def denoise_fingerprint(cfg: DictConfig) -> dict:
+    return {"denoise": _plain(cfg.denoise), "inputs": _plain(list(cfg.data.inputs)),
+            "interim": data_digest(resolve(cfg.data.interim))}
+
+
+def selection_fingerprint(cfg: DictConfig) -> dict:
+    targets = None if cfg.data.targets is None else _plain(list(cfg.data.targets))
+    return {"select": _plain(cfg.select), "targets": targets, "reference": cfg.data.reference,
+            **denoise_fingerprint(cfg)}
+
+
+def selection_path(cfg: DictConfig) -> Path:
+    """``selection.json`` sits next to the model file (``models/<name>/``)."""
+    return resolve(cfg.model_path).parent / SELECTION_JSON
+
+
+def processed_data(cfg: DictConfig):
+    """``(dataset, fitted denoiser or None)`` from ``data.processed`` if it matches the config."""
+    root = resolve(cfg.data.processed)
+    report = root / DENOISE_JSON
+    if not report.is_file():
+        return None
+    if json.loads(report.read_text()).get("fingerprint") != denoise_fingerprint(cfg):
+        say(f"{root} was made with other settings or data; ignoring it")
+        return None
+    den = None
+    if (root / DENOISER_PKL).is_file():
+        with open(root / DENOISER_PKL, "rb") as f:
+            den = pickle.load(f)
+    return io.load_interim(root), den
+
+
+def stored_selection(cfg: DictConfig) -> dict | None:
+    """Selected inputs per target from ``selection.json`` if it matches the config."""
+    path = selection_path(cfg)
+    if not path.is_file():
+        return None
+    stored = json.loads(path.read_text())
+    if stored.get("fingerprint") != selection_fingerprint(cfg):
+        say(f"{path} was made with other settings or data; selecting again")
+        return None
+    return {t: entry["selected"] for t, entry in stored["targets"].items()}
+
+
+def fit_from_artifacts(cfg: DictConfig, ds) -> Compensator:
+    """Fit the configured compensator on the train split, reusing ``denoise``/``select`` outputs.
+
+    ``ds`` is the ingested dataset (``data.interim``).  With a matching
+    ``data.processed`` the already denoised train campaigns and the fitted
+    denoiser are used; with a matching ``selection.json`` the stored inputs.
+    """
+    comp = build_compensator(cfg)
+    ids = require_split(ds, "train")
+    campaigns, denoised = {c: ds.campaigns[c] for c in ids}, False
+    processed = processed_data(cfg)
+    if processed is not None:
+        pds, den = processed
+        campaigns = {c: pds.campaigns[c] for c in ids}
+        comp.denoiser, denoised = den, den is not None
+    selected = stored_selection(cfg)
+    if selected is not None and comp.targets is not None and sorted(selected) != sorted(comp.targets):
+        selected = None
+    say(f"fitting {cfg.model.name} on {len(ids)} train campaigns "
+        f"(inputs: {'denoised by the denoise stage' if denoised else 'as ingested'}; "
+        f"selection: {'selection.json' if selected is not None else cfg.select.name})")
+    return comp.fit(campaigns, denoised=denoised, selected=selected)

@@ -1,0 +1,208 @@
+"""`thermocomp promote`: register a run's compensator, move ``champion`` only if it is better.
+
+1. The candidate is ``promote.run_id``, or the best child of the sweep
+   ``compare.sweep`` (default: the latest) by ``promote.criterion``.
+2. Its ``model.pkl`` becomes a deployable :class:`~thermocomp.deploy.StreamingCompensator`
+   (training envelope from the train split of ``data.path``), checked to stream
+   exactly as it predicts in batch (causality), and is registered as an
+   ``mlflow.pyfunc`` model with a signature: a new version of ``promote.model_name``,
+   tagged with the dataset hash, git commit and its test figures.
+3. Candidate and current champion are both scored, as deployed (streamed from a
+   reset per campaign), on the same test campaigns of ``data.path``.  The alias
+   moves only if the candidate beats the champion by more than
+   ``promote.min_improvement``; otherwise the stage says so and leaves it.
+   No registry stages (deprecated): aliases and tags only.
+
+Writes ``<out>/promote.json``.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import pickle
+import subprocess
+import tempfile
+from pathlib import Path
+
+from omegaconf import DictConfig
+
+from .. import io
+from ..deploy import StreamingCompensator, stream_scores, streaming_deviation
+from ..errors import ConfigError
+from ..evaluation import require_split, sample_period
+from ..leaderboard import beats, rank, summary
+from ..paths import project_root, resolve
+from ..tracking import client as mlflow_client
+from ..tracking import connect, retry_locked
+from .common import check_config, data_options, say, write_json
+from .compare import parent_run_id, sweep_rows
+
+
+def dataset_hash(path: Path) -> str:
+    """SHA-256 over the relative paths and bytes of every file of a dataset folder."""
+    h = hashlib.sha256()
+    for f in sorted(p for p in Path(path).rglob("*") if p.is_file()):
+        h.update(str(f.relative_to(path)).encode() + b"\0")
+        with open(f, "rb") as fh:
+            h.update(hashlib.file_digest(fh, "sha256").digest())
+    return h.hexdigest()
+
+
+def git_commit() -> tuple[str, bool]:
+    """(commit of the project checkout or 'unknown', whether the tree has local changes)."""
+    def git(*args):
+        return subprocess.run(["git", "-C", str(project_root()), *args], capture_output=True,
+                              text=True, timeout=30)
+    try:
+        head = git("rev-parse", "HEAD")
+        if head.returncode != 0:
+            return "unknown", False
+        dirty = bool(git("status", "--porcelain", "--untracked-files=no").stdout.strip())
+        return head.stdout.strip(), dirty
+    except (OSError, subprocess.SubprocessError):
+        return "unknown", False
+
+
+def _best_run(cfg: DictConfig, client, uri: str) -> str:
+    parent = parent_run_id(cfg, client)
+    rows = [r for r in sweep_rows(client, uri, parent, str(cfg.promote.target))
+            if r["status"] == "FINISHED"]
+    if not rows:
+        raise ConfigError(f"sweep {parent} has no finished child run to promote")
+    try:
+        table = rank(rows, str(cfg.promote.criterion))
+    except KeyError as exc:
+        raise ConfigError(f"promote.criterion: {exc.args[0]}") from None
+    return str(table["run_id"].iloc[0])
+
+
+def _load_run_model(run_id: str, uri: str):
+    import mlflow
+
+    with tempfile.TemporaryDirectory() as tmp:
+        try:
+            path = mlflow.artifacts.download_artifacts(run_id=run_id, artifact_path="model.pkl",
+                                                       dst_path=tmp, tracking_uri=uri)
+        except Exception as exc:
+            raise ConfigError(f"run {run_id} has no model.pkl artifact (promote a `run` or "
+                              f"`train` run): {' '.join(str(exc).split())[:200]}") from None
+        with open(path, "rb") as f:
+            return pickle.load(f)
+
+
+def _criterion(targets: dict, cfg: DictConfig) -> tuple[float | None, dict]:
+    try:
+        figures = summary(targets, str(cfg.promote.target))
+        return figures[str(cfg.promote.criterion)], figures
+    except KeyError as exc:
+        raise ConfigError(f"promote.criterion/target: {exc.args[0]}") from None
+
+
+def _current_champion(client, name: str, alias: str):
+    try:
+        return retry_locked(client.get_model_version_by_alias, name, alias)
+    except Exception:  # no registered model yet, or no version holds the alias
+        return None
+
+
+def promote(cfg: DictConfig) -> dict:
+    """Register the candidate's compensator; move the alias if it beats the champion."""
+    check_config(cfg)
+    import mlflow
+
+    from ..deploy.pyfunc import correction_column, log_compensator
+
+    opts = cfg.promote
+    client = mlflow_client(cfg)
+    uri = connect(cfg)
+    run_id = str(opts.run_id) if opts.get("run_id") else _best_run(cfg, client, uri)
+    say(f"candidate run {run_id}")
+    comp = _load_run_model(run_id, uri)
+    run_params = retry_locked(client.get_run, run_id).data.params
+
+    data_path = resolve(cfg.data.path)
+    ds, _ = io.read_dataset(data_path, data_options(cfg))
+    train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
+    try:
+        streaming = StreamingCompensator.from_training(
+            comp, {c: ds.campaigns[c] for c in train_ids}, float(opts.envelope.margin),
+            str(opts.envelope.policy))
+    except ValueError as exc:
+        raise ConfigError(f"cannot deploy run {run_id}: {exc}") from None
+    deviation = max(streaming_deviation(streaming, ds.campaigns[c]) for c in train_ids[:2])
+    if deviation > float(opts.max_stream_deviation_um):
+        raise ConfigError(
+            f"run {run_id}: streamed predictions differ from batch ones by {deviation:.3g} µm "
+            f"(> promote.max_stream_deviation_um); a model with memory must implement "
+            f"stream_init/stream_step to be deployed")
+
+    test = {c: ds.campaigns[c] for c in test_ids}
+    dt = sample_period(ds, test_ids)
+    statistic, points = cfg.eval.e_p95.statistic, cfg.eval.e_p95.max_points
+
+    def score(s: StreamingCompensator):
+        return _criterion(stream_scores(s, test, dt, statistic, points), cfg)
+
+    cand_score, cand_figures = score(streaming)
+
+    name, alias = str(opts.model_name), str(opts.alias)
+    champion = _current_champion(client, name, alias)
+    champ_score, champ_note = None, None
+    if champion is not None:
+        try:
+            model = mlflow.pyfunc.load_model(f"models:/{name}@{alias}")
+            champ_score, _ = score(model.unwrap_python_model().streaming)
+        except ConfigError:
+            raise
+        except Exception as exc:
+            champ_note = " ".join(str(exc).split())[:300]
+
+    example = test[test_ids[0]][streaming.columns_ + ["time"]].head(5)
+    retry_locked(mlflow.start_run, run_id=run_id)
+    try:
+        info = log_compensator(streaming, input_example=example, registered_model_name=name)
+    finally:
+        retry_locked(mlflow.end_run)
+    version = str(info.registered_model_version)
+
+    criterion = str(opts.criterion)
+    if champion is None:
+        moved, why = True, "no champion yet"
+    elif champ_score is None:
+        moved = bool(opts.get("force", False))
+        why = (f"the champion (version {champion.version}) cannot be scored on these test "
+               f"campaigns ({champ_note or 'no figure'})" + ("; forced" if moved else
+                                                             "; set promote.force=true to replace it"))
+    else:
+        moved = beats(cand_score, champ_score, criterion, float(opts.min_improvement))
+        verb = "beats" if moved else "does not beat"
+        why = (f"{criterion} {cand_score:.4g} {verb} the champion's {champ_score:.4g} "
+               f"(version {champion.version}) on the same {len(test_ids)} test campaigns")
+    commit, dirty = git_commit()
+    tags = {"dataset_hash": dataset_hash(data_path), "dataset": ds.name, "git_commit": commit,
+            "git_dirty": dirty, "source_run_id": run_id,
+            "model": run_params.get("model.name"), "select": run_params.get("select.name"),
+            "criterion": criterion, "criterion_target": str(opts.target),
+            "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
+            "envelope_policy": str(opts.envelope.policy),
+            "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
+                correction_column(t) for t in streaming.targets_),
+            "promoted": moved, "decision": why}
+    tags.update({f"metric.{k}": "null" if v is None else f"{v:.6g}" for k, v in cand_figures.items()})
+    for k, v in tags.items():
+        retry_locked(client.set_model_version_tag, name, version, k, str(v))
+    if moved:
+        retry_locked(client.set_registered_model_alias, name, alias, version)
+        say(f"{name} version {version} is now @{alias}: {why}")
+    else:
+        say(f"{name} version {version} registered; @{alias} stays on version "
+            f"{champion.version}: {why}")
+    report = {"model_name": name, "alias": alias, "version": version, "run_id": run_id,
+              "moved": moved, "reason": why, "criterion": criterion,
+              "candidate": {"score": cand_score, "figures": cand_figures},
+              "champion": None if champion is None else {"version": str(champion.version),
+                                                         "score": champ_score},
+              "stream_deviation_um": deviation, "model_uri": f"models:/{name}/{version}"}
+    write_json(resolve(cfg.out) / "promote.json", report)
+    print(f"{name} v{version}: {'promoted to @' + alias if moved else 'not promoted'} ({why})")
+    return report

@@ -1,0 +1,81 @@
+"""`thermocomp select`: choose the inputs (TSPs) per target -> models/<name>/selection.json.
+
+Reads the training data as ``train`` will see it (``data.processed`` when it
+matches the config, i.e. already denoised; else the ingested data, denoised
+here if ``denoise`` asks for it), stacks the train split in the reference
+frame and fits the configured selector per target.  ``selection.json`` holds,
+per target, the selected sensors (in order), every candidate's score and the
+information criterion per size, plus a fingerprint of the settings;
+``train`` uses it when the fingerprint matches, so both stages agree and
+selection runs once.  Figure: ``<out>/select/selection.png``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from hydra.utils import instantiate
+from omegaconf import DictConfig
+
+from .. import io
+from ..denoise import fit_denoiser
+from ..evaluation import require_split
+from ..frame import resolve_columns, stack
+from ..io import atomic_dir
+from ..paths import resolve
+from ..select.pearson import abs_correlation
+from ..tracking import stage_run
+from .artifacts import processed_data, selection_fingerprint, selection_path
+from .common import build_denoiser, check_config, say, write_json
+
+
+def _series(s) -> dict:
+    return {str(k): (None if not math.isfinite(float(v)) else float(v)) for k, v in s.items()}
+
+
+def select(cfg: DictConfig) -> dict:
+    """Fit the selector per target on the train split and write ``selection.json``."""
+    check_config(cfg)
+    ds = io.load_interim(resolve(cfg.data.interim))
+    ids = require_split(ds, "train")
+    inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
+                                      None if cfg.data.targets is None else list(cfg.data.targets))
+    processed = processed_data(cfg)
+    if processed is not None:
+        campaigns = {c: processed[0].campaigns[c] for c in ids}
+    else:
+        _, campaigns = fit_denoiser(build_denoiser(cfg), {c: ds.campaigns[c] for c in ids}, inputs)
+    m = stack(campaigns, inputs, targets, cfg.data.reference)
+    result, scores, names = {}, {}, {}
+    for t in targets:
+        y = m.Y[t].to_numpy()
+        sel = instantiate(cfg.select.selector).fit(m.X, y, groups=m.groups)
+        entry = {"selected": list(sel.selected_)}
+        if hasattr(sel, "scores_"):
+            entry["scores"] = _series(sel.scores_)
+            names[t] = f"{cfg.select.name} score"
+        if getattr(sel, "ic_", None) is not None:
+            entry["criterion"] = {"name": sel.ic_.name, "by_k": _series(sel.ic_)}
+        if hasattr(sel, "clusters_"):
+            entry["clusters"] = sel.clusters_
+        result[t] = entry
+        scores[t] = entry.get("scores") or dict(zip(inputs, abs_correlation(m.X.to_numpy(), y)))
+        names.setdefault(t, "|r| with the error")
+        say(f"{t}: {cfg.select.name} -> {', '.join(entry['selected'])}")
+    doc = {"select": cfg.select.name, "fingerprint": selection_fingerprint(cfg),
+           "train_campaigns": ids, "targets": result}
+    path = write_json(selection_path(cfg), doc)
+    figures = resolve(cfg.out) / "select"
+    with atomic_dir(figures) as tmp:
+        from .figures import selection_plot
+
+        selection_plot({t: {k: (np.nan if v is None else v) for k, v in s.items()}
+                        for t, s in scores.items()},
+                       {t: e["selected"] for t, e in result.items()}, names, tmp / "selection.png")
+    with stage_run(cfg, "select") as tr:
+        tr.log_metrics({"n_selected": {t: len(e["selected"]) for t, e in result.items()}})
+        tr.log_artifact(path)
+        tr.log_artifacts(figures, "select")
+    say(f"selection: {path}")
+    return doc

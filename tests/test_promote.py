@@ -1,0 +1,182 @@
+"""`thermocomp promote` and the served champion.
+
+A weak model (one sensor, MLR), a strong one (all sensors, a test-local ARX with
+the streaming protocol): promoting them in the order weak, strong, weak moves
+``champion`` twice and then leaves it; ``mlflow models serve -m
+models:/<name>@champion`` answers over HTTP exactly as the model in process.
+"""
+
+from __future__ import annotations
+
+import os
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from test_deploy import mlflow_store, write_small_dataset
+from thermocomp.cli import main
+
+pytestmark = pytest.mark.slow
+NAME = "thermocomp-compensator"
+TESTS = Path(__file__).resolve().parent
+
+
+@pytest.fixture(scope="module")
+def project(tmp_path_factory):
+    root = tmp_path_factory.mktemp("promote")
+    data = write_small_dataset(root / "small")
+    uri = mlflow_store(root)
+    common = [f"data.path={data}", f"tracking_uri={uri}", "eval.plots=false"]
+    import mlflow
+
+    def run(name, *overrides) -> str:
+        assert main(["run", *common, f"name={name}", f"out={root / name}", *overrides]) == 0
+        mlflow.set_tracking_uri(uri)
+        runs = mlflow.search_runs(experiment_names=["thermocomp"],
+                                  filter_string=f"tags.run_name = '{name}'")
+        return runs["run_id"].iloc[0]
+
+    weak = run("weak", "data.inputs=[T_1]")
+    strong = run("strong", "model.name=ar_stub", "~model.estimator.fit_intercept",
+                 "model.estimator._target_=test_deploy.ARStub")
+    return root, common, uri, weak, strong
+
+
+def _promote(project, run_id, tag, capsys):
+    root, common, *_ = project
+    code = main(["promote", *common, f"promote.run_id={run_id}", f"out={root / tag}"])
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    import json
+
+    return json.loads((root / tag / "promote.json").read_text()), out.out
+
+
+def test_promote_moves_champion_only_for_a_better_model(project, capsys):
+    root, common, uri, weak, strong = project
+    from mlflow import MlflowClient
+
+    client = MlflowClient(uri)
+    first, _ = _promote(project, weak, "p1", capsys)
+    assert first["moved"] and first["reason"] == "no champion yet"
+    second, said = _promote(project, strong, "p2", capsys)
+    assert second["moved"] and "beats" in second["reason"] and "promoted to @champion" in said
+    assert second["candidate"]["score"] < second["champion"]["score"]
+    third, said = _promote(project, weak, "p3", capsys)
+    assert not third["moved"] and "does not beat" in third["reason"] and "not promoted" in said
+    assert third["champion"]["score"] == pytest.approx(second["candidate"]["score"], rel=1e-12)
+
+    champion = client.get_model_version_by_alias(NAME, "champion")
+    assert str(champion.version) == second["version"] == "2"
+    assert sorted(str(v.version) for v in client.search_model_versions(f"name='{NAME}'")) == ["1", "2", "3"]
+    tags = champion.tags
+    assert tags["source_run_id"] == strong and tags["model"] == "ar_stub"
+    assert tags["test_campaigns"] == "K04,K05" and tags["promoted"] == "True"
+    assert len(tags["dataset_hash"]) == 64
+    assert tags["dataset_hash"] == client.get_model_version(NAME, "3").tags["dataset_hash"]
+    assert tags["git_commit"] == "unknown" or len(tags["git_commit"]) == 40
+    assert float(tags["metric.rsd_mean"]) == pytest.approx(second["candidate"]["score"], rel=1e-5)
+    assert client.get_model_version(NAME, "3").tags["promoted"] == "False"
+    assert champion.current_stage in (None, "None")             # aliases only, no stages
+    model = client.get_registered_model(NAME)
+    assert {k: str(v) for k, v in model.aliases.items()} == {"champion": "2"}
+
+
+def test_promote_without_run_or_sweep_is_a_config_error(project, capsys):
+    _, common, *_ = project
+    assert main(["promote", *common]) == 2
+    assert "no sweep" in capsys.readouterr().err
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _post(port, frame: pd.DataFrame, reset: bool):
+    import requests
+
+    body = {"dataframe_split": frame.to_dict(orient="split"), "params": {"reset": reset}}
+    body["dataframe_split"].pop("index")
+    return requests.post(f"http://127.0.0.1:{port}/invocations", json=body, timeout=60)
+
+
+def test_served_champion_answers_http_exactly_as_in_process(project, capsys):
+    root, common, uri, weak, strong = project
+    import mlflow
+
+    if not _champion_exists(uri):
+        _promote(project, strong, "p_serve", capsys)
+    port = _free_port()
+    bin_dir = str(Path(sys.executable).parent)            # uvicorn lives next to mlflow
+    env = {**os.environ, "MLFLOW_TRACKING_URI": uri,
+           "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")]),
+           "PYTHONPATH": os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")])}
+    cmd = [str(Path(bin_dir) / "mlflow"), "models", "serve", "-m",
+           f"models:/{NAME}@champion", "--env-manager", "local", "-h", "127.0.0.1", "-p", str(port)]
+    log = open(root / "serve.log", "w")
+    server = subprocess.Popen(cmd, env=env, stdout=log, stderr=subprocess.STDOUT,
+                              start_new_session=True)
+    try:
+        _wait_until_up(port, server, root / "serve.log", timeout_s=120)
+        test = pd.read_csv(Path(common[0].split("=", 1)[1]) / "K05.csv")
+        frame = test[["time", "T_1", "T_2", "T_amb"]].astype(float)
+        local = mlflow.pyfunc.load_model(f"models:/{NAME}@champion")
+        expected = [local.predict(frame.iloc[:70], params={"reset": True}),
+                    local.predict(frame.iloc[70:])]            # the stream goes on
+        got = [_post(port, frame.iloc[:70], True), _post(port, frame.iloc[70:], False)]
+        for exp, resp in zip(expected, got):
+            assert resp.status_code == 200, resp.text
+            served = pd.DataFrame(resp.json()["predictions"])
+            assert list(served.columns) == ["C_X", "C_Z", "n_clamped"]
+            np.testing.assert_allclose(served[["C_X", "C_Z"]].to_numpy(),
+                                       exp[["C_X", "C_Z"]].to_numpy(), rtol=0, atol=1e-9)
+        # The memory matters: restarting the stream at row 70 would answer differently.
+        restarted = local.predict(frame.iloc[70:], params={"reset": True})
+        assert np.abs(restarted["C_Z"].to_numpy() - expected[1]["C_Z"].to_numpy()).max() > 0.1
+
+        bad = frame.iloc[:5].drop(columns="T_amb")
+        resp = _post(port, bad, True)
+        assert resp.status_code == 400 and "T_amb" in resp.text
+    finally:
+        os.killpg(server.pid, signal.SIGTERM)
+        try:
+            server.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(server.pid, signal.SIGKILL)
+            server.wait(timeout=20)
+        log.close()
+
+
+def _champion_exists(uri) -> bool:
+    from mlflow import MlflowClient
+
+    try:
+        MlflowClient(uri).get_model_version_by_alias(NAME, "champion")
+        return True
+    except Exception:
+        return False
+
+
+def _wait_until_up(port, server, log_path, timeout_s):
+    import requests
+
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if server.poll() is not None:
+            pytest.fail(f"mlflow models serve exited {server.returncode}:\n{log_path.read_text()}")
+        try:
+            if requests.get(f"http://127.0.0.1:{port}/ping", timeout=2).status_code == 200:
+                return
+        except requests.RequestException:
+            pass
+        time.sleep(0.5)
+    pytest.fail(f"mlflow models serve not up after {timeout_s} s:\n{log_path.read_text()}")

@@ -1,0 +1,113 @@
+"""Sweeps: `thermocomp run -m` with the joblib launcher -> one MLflow parent run, one child per job,
+a comparison table; parallel jobs on one SQLite store lose no run."""
+
+from __future__ import annotations
+
+import json
+import sqlite3
+
+import pandas as pd
+import pytest
+
+from conftest import thermocomp
+from test_deploy import mlflow_store, write_small_dataset
+from thermocomp.cli import main
+from thermocomp.tracking import SWEEP_TAG, _is_locked, retry_locked
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def dataset(tmp_path_factory):
+    return write_small_dataset(tmp_path_factory.mktemp("sweep") / "small")
+
+
+def _sweep(tmp_path, dataset, n_jobs: int, *overrides: str):
+    uri = mlflow_store(tmp_path)
+    sweep_dir = tmp_path / "sweep"
+    proc = thermocomp("run", "-m", f"data.path={dataset}", f"tracking_uri={uri}", "eval.plots=false",
+                      "hydra/launcher=joblib", f"hydra.launcher.n_jobs={n_jobs}",
+                      f"hydra.sweep.dir={sweep_dir}", *overrides)
+    import mlflow
+
+    mlflow.set_tracking_uri(uri)
+    runs = mlflow.search_runs(experiment_names=["thermocomp"])
+    parents = runs[runs[f"tags.{SWEEP_TAG}"] == "parent"]
+    children = runs[runs["tags.mlflow.parentRunId"].notna()]
+    return uri, sweep_dir, proc, parents, children
+
+
+def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_path, dataset):
+    uri, sweep_dir, proc, parents, children = _sweep(
+        tmp_path, dataset, 2, "model.estimator.fit_intercept=true,false", "data.inputs=[T_*],[T_1]")
+    assert len(parents) == 1 and len(children) == 4
+    parent_id = parents["run_id"].iloc[0]
+    assert (children["tags.mlflow.parentRunId"] == parent_id).all()
+    assert (children["status"] == "FINISHED").all() and parents["status"].iloc[0] == "FINISHED"
+    assert children["metrics.targets.E_Z.test.rmse"].notna().all()
+    assert children["metrics.fit_time_s"].notna().all()
+    combos = set(zip(children["params.model.estimator.fit_intercept"], children["params.data.inputs"]))
+    assert len(combos) == 4                                     # every combination ran once
+    assert parents["metrics.sweep.jobs"].iloc[0] == 4
+    assert json.loads((sweep_dir / "sweep.json").read_text())["parent_run_id"] == parent_id
+
+    # The table printed and saved when the sweep ends: best (lowest test Rsd SM) first.
+    assert "rsd_mean" in proc.stdout and "e_p95_1h" in proc.stdout
+    table = pd.read_csv(sweep_dir / "compare.csv")
+    assert sorted(table["run_id"]) == sorted(children["run_id"])
+    assert table["rsd_mean"].is_monotonic_increasing
+    assert table["e_p95_1h"].notna().all() and table["e_p95_8h"].isna().all()  # 2 h campaigns
+    assert "['T_1']" in table["settings"].iloc[-1]      # one sensor cannot explain E_X: worst
+    best = json.loads((sweep_dir / "compare.json").read_text())["best"]
+    assert best["run_id"] == table["run_id"].iloc[0]
+    from mlflow import MlflowClient
+
+    logged = {a.path for a in MlflowClient(uri).list_artifacts(parent_id, "compare")}
+    assert logged == {"compare/compare.csv", "compare/compare.md", "compare/compare.json"}
+
+    # `thermocomp compare` on the same sweep, another criterion, its own folder.
+    out = tmp_path / "cmp"
+    assert main(["compare", f"tracking_uri={uri}", f"compare.sweep={sweep_dir}",
+                 "compare.sort_by=rms_reduction_pct", "compare.target=E_X", f"compare.out={out}"]) == 0
+    again = pd.read_csv(out / "compare.csv")
+    assert again["rms_reduction_pct"].is_monotonic_decreasing and len(again) == 4
+    assert (out / "compare.md").read_text().startswith("| status")
+    assert main(["compare", f"tracking_uri={uri}", "compare.sort_by=nope"]) == 2
+
+
+def test_eight_parallel_jobs_on_one_sqlite_store_lose_no_run(tmp_path, dataset):
+    uri, sweep_dir, _, parents, children = _sweep(tmp_path, dataset, 8, "seed=range(0,8)")
+    assert len(parents) == 1 and len(children) == 8
+    assert (children["status"] == "FINISHED").all()
+    assert sorted(children["params.seed"].astype(int)) == list(range(8))
+    assert children["metrics.targets.E_X.test.rsd_mean"].notna().all()
+    for job in range(8):
+        assert (sweep_dir / str(job) / "metrics.json").is_file()
+    db = uri[len("sqlite:///"):]
+    with sqlite3.connect(db) as con:                       # the store itself is sound
+        assert con.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
+
+
+def test_retry_on_database_is_locked_then_give_up_on_other_errors():
+    calls = []
+
+    def flaky():
+        calls.append(1)
+        if len(calls) < 3:
+            try:
+                raise sqlite3.OperationalError("database is locked")
+            except sqlite3.OperationalError as exc:
+                raise RuntimeError("(sqlite3.OperationalError) wrapped by MLflow") from exc
+        return "ok"
+
+    assert retry_locked(flaky, base_delay=0.001) == "ok" and len(calls) == 3
+    assert _is_locked(RuntimeError("x")) is False
+
+    def broken():
+        calls.append(1)
+        raise ValueError("no such table")
+
+    calls.clear()
+    with pytest.raises(ValueError):
+        retry_locked(broken, base_delay=0.001)
+    assert len(calls) == 1
