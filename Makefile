@@ -4,7 +4,7 @@ VENV    := .venv
 BIN     := $(VENV)/bin
 STAMP   := $(VENV)/.installed
 
-.PHONY: run test install benchmark clean
+.PHONY: run test install benchmark clean team-test
 
 $(STAMP): pyproject.toml requirements.lock
 	test -x $(BIN)/python || $(PY) -m venv $(VENV)
@@ -25,6 +25,10 @@ test: $(STAMP)
 
 benchmark: $(STAMP)
 	for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
+
+# Team scale: PostgreSQL + MLflow server on loopback, the server-backed tests, both stopped again.
+team-test: $(STAMP)
+	trap '.ci/team-server stop' EXIT; eval "$$(.ci/team-server start)"; $(BIN)/python -m pytest -q tests/test_team.py
 
 clean:
 	rm -rf $(VENV) outputs reports models data/interim data/raw

@@ -56,7 +56,8 @@ def main(argv: list[str]) -> None:
     pred, meas = comp.predict(test), comp.measured(test)
     for t, est in comp.estimators_.items():
         r = np.concatenate([(meas[c][t] - pred[c][t]).to_numpy() for c in test])
-        print(f"  {t}: {est.n_epochs_} epochs (best {est.best_epoch_}), test RMSE {np.sqrt(np.mean(r**2)):.2f} µm")
+        print(f"  {t}: {est.n_epochs_} epochs (best {est.best_epoch_}), "
+              f"test RMSE {np.sqrt(np.mean(r**2)):.2f} µm")
     rows = sum(len(df) for df in train.values())
     print(f"fit {len(comp.targets_)} targets on {len(train)} campaigns / {rows} rows: {fit_s:.1f} s "
           f"(target <= 60 s); load after: {os.getloadavg()[0]:.2f}")

@@ -18,8 +18,14 @@ import pytest
 from sklearn.base import BaseEstimator, RegressorMixin
 
 from thermocomp.compensator import Compensator
-from thermocomp.deploy import (Envelope, OutOfEnvelopeError, StreamingCompensator, replay,
-                               stream_scores, streaming_deviation)
+from thermocomp.deploy import (
+    Envelope,
+    OutOfEnvelopeError,
+    StreamingCompensator,
+    replay,
+    stream_scores,
+    streaming_deviation,
+)
 from thermocomp.io.contract import Dataset, write_dataset
 from thermocomp.models import MLR
 
@@ -111,6 +117,9 @@ def write_small_dataset(path, seed=0, k=6, n_test=2, **kw):
     return write_dataset(Dataset(manifest, camps, name="small"), path)
 
 
+# The figures the sweep/promote tests need, without the report extras (keeps the jobs short).
+LIGHT_EVAL = ("eval.plots=false", "eval.mutual_prediction=false", "eval.ati_baselines=false",
+              "eval.iso10791_a3=false")
 _TEMPLATE: dict[str, Path] = {}
 
 

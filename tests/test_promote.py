@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from test_deploy import mlflow_store, write_small_dataset
+from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import main
 
 pytestmark = pytest.mark.slow
@@ -33,7 +33,7 @@ def project(tmp_path_factory):
     root = tmp_path_factory.mktemp("promote")
     data = write_small_dataset(root / "small")
     uri = mlflow_store(root)
-    common = [f"data.path={data}", f"tracking_uri={uri}", "eval.plots=false"]
+    common = [f"data.path={data}", f"tracking_uri={uri}", *LIGHT_EVAL]
     import mlflow
 
     def run(name, *overrides) -> str:

@@ -10,11 +10,9 @@ import pandas as pd
 import pytest
 
 from conftest import thermocomp
-from test_deploy import mlflow_store, write_small_dataset
+from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import main
 from thermocomp.tracking import SWEEP_TAG, _is_locked, retry_locked
-
-pytestmark = pytest.mark.slow
 
 
 @pytest.fixture(scope="module")
@@ -25,7 +23,7 @@ def dataset(tmp_path_factory):
 def _sweep(tmp_path, dataset, n_jobs: int, *overrides: str):
     uri = mlflow_store(tmp_path)
     sweep_dir = tmp_path / "sweep"
-    proc = thermocomp("run", "-m", f"data.path={dataset}", f"tracking_uri={uri}", "eval.plots=false",
+    proc = thermocomp("run", "-m", f"data.path={dataset}", f"tracking_uri={uri}", *LIGHT_EVAL,
                       "hydra/launcher=joblib", f"hydra.launcher.n_jobs={n_jobs}",
                       f"hydra.sweep.dir={sweep_dir}", *overrides)
     import mlflow
@@ -37,6 +35,7 @@ def _sweep(tmp_path, dataset, n_jobs: int, *overrides: str):
     return uri, sweep_dir, proc, parents, children
 
 
+@pytest.mark.slow
 def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_path, dataset):
     uri, sweep_dir, proc, parents, children = _sweep(
         tmp_path, dataset, 2, "model.estimator.fit_intercept=true,false", "data.inputs=[T_*],[T_1]")
@@ -75,6 +74,7 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
     assert main(["compare", f"tracking_uri={uri}", "compare.sort_by=nope"]) == 2
 
 
+@pytest.mark.slow
 def test_eight_parallel_jobs_on_one_sqlite_store_lose_no_run(tmp_path, dataset):
     uri, sweep_dir, _, parents, children = _sweep(tmp_path, dataset, 8, "seed=range(0,8)")
     assert len(parents) == 1 and len(children) == 8
@@ -86,6 +86,21 @@ def test_eight_parallel_jobs_on_one_sqlite_store_lose_no_run(tmp_path, dataset):
     db = uri[len("sqlite:///"):]
     with sqlite3.connect(db) as con:                       # the store itself is sound
         assert con.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
+
+
+@pytest.mark.slow
+def test_a_failing_job_still_closes_the_parent_run(tmp_path, dataset):
+    uri = mlflow_store(tmp_path)
+    proc = thermocomp("run", "-m", f"data.path={dataset}", f"tracking_uri={uri}", *LIGHT_EVAL,
+                      "data.inputs=[X_*],[T_*]", f"hydra.sweep.dir={tmp_path / 'sweep'}", check=False)
+    assert proc.returncode == 2 and "X_*" in proc.stderr
+    import mlflow
+
+    mlflow.set_tracking_uri(uri)
+    runs = mlflow.search_runs(experiment_names=["thermocomp"])
+    parent = runs[runs[f"tags.{SWEEP_TAG}"] == "parent"]
+    assert list(parent["status"]) == ["FAILED"]               # not left RUNNING
+    assert list(runs[runs["tags.mlflow.parentRunId"].notna()]["status"]) == ["FAILED"]
 
 
 def test_retry_on_database_is_locked_then_give_up_on_other_errors():
@@ -111,3 +126,18 @@ def test_retry_on_database_is_locked_then_give_up_on_other_errors():
     with pytest.raises(ValueError):
         retry_locked(broken, base_delay=0.001)
     assert len(calls) == 1
+
+
+def test_launcher_configs_compose_slurm_documented_not_run():
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.paths import conf_dir
+
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        slurm = compose("config", ["hydra/launcher=slurm"], return_hydra_config=True)
+        joblib = compose("config", ["hydra/launcher=joblib"], return_hydra_config=True)
+    assert slurm.hydra.launcher._target_.endswith("SlurmLauncher")
+    assert slurm.hydra.launcher.cpus_per_task == 2
+    assert joblib.hydra.launcher._target_.endswith("JoblibLauncher")
+    callback = slurm.hydra.callbacks.mlflow_sweep
+    assert callback._target_ == "thermocomp.callbacks.MlflowSweepCallback"

@@ -20,7 +20,7 @@ from pathlib import Path
 import pytest
 
 from conftest import ROOT, thermocomp
-from test_deploy import write_small_dataset
+from test_deploy import LIGHT_EVAL, write_small_dataset
 from thermocomp.cli import main
 
 pytestmark = pytest.mark.slow
@@ -36,7 +36,7 @@ def test_sweep_compare_promote_against_a_postgresql_backed_server(tmp_path):
     tag = uuid.uuid4().hex[:8]                       # the server outlives this test: own names
     experiment, model_name = f"team-{tag}", f"team-compensator-{tag}"
     common = [f"data.path={data}", f"tracking_uri={SERVER}", f"experiment_name={experiment}",
-              "eval.plots=false"]
+              *LIGHT_EVAL]
     sweep_dir = tmp_path / "sweep"
     thermocomp("run", "-m", *common, "model.estimator.fit_intercept=true,false",
                "hydra/launcher=joblib", "hydra.launcher.n_jobs=2", f"hydra.sweep.dir={sweep_dir}")

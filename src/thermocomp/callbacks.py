@@ -13,6 +13,7 @@ environment).  The id is also written to ``<sweep dir>/sweep.json`` so
 
 from __future__ import annotations
 
+import atexit
 import json
 import os
 from pathlib import Path
@@ -56,13 +57,27 @@ class MlflowSweepCallback(Callback):
         self.run_id = start_parent_run(config, f"sweep/{config.get('name')}", tags)
         self._previous = os.environ.get(PARENT_ENV)
         os.environ[PARENT_ENV] = self.run_id
-        from .paths import resolve
         from .io.contract import atomic_write_text
+        from .paths import resolve
 
         path = resolve(sweep_dir) / SWEEP_FILE
         atomic_write_text(path, json.dumps({"parent_run_id": self.run_id,
                                             "overrides": overrides}, indent=2) + "\n")
         _say(f"sweep parent run {self.run_id}")
+        # A failing job ends the multirun without on_multirun_end: close the parent run anyway.
+        atexit.register(self._abandon, config)
+
+    def _abandon(self, config: DictConfig) -> None:
+        if self.run_id is None:
+            return
+        from .tracking import end_parent_run
+
+        try:
+            end_parent_run(config, self.run_id, "FAILED")
+            _say(f"sweep parent run {self.run_id} closed as FAILED (the sweep stopped early)")
+        except Exception as exc:  # interpreter exit: report, never raise
+            _say(f"could not close sweep parent run {self.run_id}: {exc}")
+        self.run_id = None
 
     def on_multirun_end(self, config: DictConfig, **kwargs: Any) -> None:
         if self.run_id is None:
@@ -71,21 +86,23 @@ class MlflowSweepCallback(Callback):
 
         from .tracking import PARENT_ENV, child_runs, connect, end_parent_run
 
-        children = child_runs(MlflowClient(connect(config)), self.run_id)
+        run_id = self.run_id
+        children = child_runs(MlflowClient(connect(config)), run_id)
         failed = sum(r.info.status != "FINISHED" for r in children)
-        end_parent_run(config, self.run_id, "FAILED" if failed else "FINISHED",
+        end_parent_run(config, run_id, "FAILED" if failed else "FINISHED",
                        {"sweep.jobs": len(children), "sweep.failed_jobs": failed})
+        atexit.unregister(self._abandon)
+        self.run_id = None
         if self._previous is None:
             os.environ.pop(PARENT_ENV, None)
         else:
             os.environ[PARENT_ENV] = self._previous
-        _say(f"sweep parent run {self.run_id}: {len(children)} child runs, {failed} failed")
+        _say(f"sweep parent run {run_id}: {len(children)} child runs, {failed} failed")
         if self.compare and children:
             try:
+                from .paths import resolve
                 from .stages.compare import compare_sweep
 
-                from .paths import resolve
-
-                compare_sweep(config, self.run_id, out=resolve(str(config.hydra.sweep.dir)))
+                compare_sweep(config, run_id, out=resolve(str(config.hydra.sweep.dir)))
             except Exception as exc:  # the sweep itself succeeded; say why there is no table
                 _say(f"no comparison table: {' '.join(str(exc).split())}")

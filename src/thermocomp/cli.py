@@ -18,11 +18,15 @@ USAGE = """usage: thermocomp <stage> [key=value ...] [-m]
 stages:
   simulate   write a dataset from the built-in digital twin (sim=<scenario>)
   ingest     validate data.path, write Parquet + report to data.interim
+  denoise    denoise the declared inputs (denoise=none|emd) -> data.processed + figures
+  select     choose the inputs per target (select=...) -> models/<name>/selection.json
   train      fit the configured model on the train split
   evaluate   score it on train/test, write <out>/metrics.json and figures
-  run        ingest .. evaluate in one process; -m for a sweep
+  run        ingest .. evaluate in one process; -m for a sweep (one MLflow parent run)
+  compare    table of a sweep's child runs, best first (compare.sweep=, compare.sort_by=)
+  promote    register the best run's compensator; move @champion only if it is better
 
-overrides: data.path=<dir> data.inputs=[T_*] data.targets=[E_Z] model=mlr select=all
+overrides: data.path=<dir> data.inputs=[T_*] data.targets=[E_Z] model=mlr select=all denoise=none
            eval.mode=simulation|one_step out=<dir> tracking_uri=<uri> seed=<int>
 Relative paths are resolved against the project root."""
 

@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.lib.stride_tricks import sliding_window_view
-from scipy.signal import lfilter
 
 
 def lagged(x: np.ndarray, taps: int) -> np.ndarray:
@@ -53,6 +52,8 @@ def fit_fir(raw_segments, target_segments, taps: int) -> np.ndarray:
 
 def apply_fir(x: np.ndarray, h: np.ndarray) -> np.ndarray:
     """Causal filtering of one segment, started as if ``x(0)`` had always been there."""
+    from scipy.signal import lfilter  # lazily: scipy.signal is slow to import
+
     x = np.asarray(x, float)
     if len(h) == 1:
         return h[0] * x

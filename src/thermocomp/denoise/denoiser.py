@@ -107,7 +107,8 @@ class EMDDenoiser(TransformerMixin, BaseEstimator):
         self.online = online
 
     # -- offline -----------------------------------------------------------------------
-    def _check_params(self) -> None:
+    def check_params(self) -> None:
+        """Raise ValueError for a parameter outside its allowed values (before any data is read)."""
         if int(self.n_imfs) < 1:
             raise ValueError(f"n_imfs must be >= 1, got {self.n_imfs}")
         if self.end_effect not in END_EFFECTS:
@@ -148,7 +149,7 @@ class EMDDenoiser(TransformerMixin, BaseEstimator):
 
     def fit_transform(self, X, y=None, groups=None):
         """Fit and return the offline-denoised ``X`` (EMD runs once)."""
-        self._check_params()
+        self.check_params()
         A = validate_data(self, X, dtype=np.float64)
         names = getattr(self, "feature_names_in_", None)
         if names is None:

@@ -8,8 +8,12 @@ siftings about 0.06 s, and IMF-1 is all that denoising removes.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-from PyEMD import EMD
+
+if TYPE_CHECKING:
+    from PyEMD import EMD
 
 STOPPING = ("fixed", "s_number", "sd")
 END_EFFECTS = ("mirror_pad", "mirror_extrema")
@@ -42,6 +46,8 @@ def emd_engine(stopping: str = "fixed", max_siftings: int = 10, s_number: int = 
         kwargs["FIXE_H"] = int(s_number)
     else:
         kwargs["std_thr"] = float(sd_threshold)
+    from PyEMD import EMD  # lazily: importing PyEMD (and its matplotlib) costs ~1-2 s per CLI call
+
     return EMD(spline_kind=spline, **kwargs)
 
 

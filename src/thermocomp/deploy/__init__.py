@@ -5,8 +5,16 @@
 Depends on the core only, never on Hydra or the stages.
 """
 
-from .streaming import (POLICIES, Envelope, OutOfEnvelopeError, StreamingCompensator,
-                        has_stream_protocol, replay, stream_scores, streaming_deviation)
+from .streaming import (
+                        POLICIES,
+                        Envelope,
+                        OutOfEnvelopeError,
+                        StreamingCompensator,
+                        has_stream_protocol,
+                        replay,
+                        stream_scores,
+                        streaming_deviation,
+)
 
 __all__ = ["POLICIES", "Envelope", "OutOfEnvelopeError", "StreamingCompensator",
            "has_stream_protocol", "replay", "stream_scores", "streaming_deviation"]

@@ -321,7 +321,9 @@ class StreamingCompensator:
         env = self.envelope
         if env is not None and self.policy != "off" and (
                 (dx < env.lo).any() or (dx > env.hi).any()):
-            dx = self._apply_envelope(dx[None, :])[0][0]
+            if self.policy == "refuse":
+                self._apply_envelope(dx[None, :])       # raises with the column and bounds
+            dx = np.minimum(np.maximum(dx, env.lo), env.hi)
         y = np.empty(len(self._plan))
         states = self._states
         for k, (est, idx, streams, ctx) in enumerate(self._plan):

@@ -132,6 +132,20 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
         state["lag"][key] = z
         return z
 
+    def _initial_state(self, e: Effect, context, a0: float, t: float, state) -> np.ndarray:
+        key = ("initial", e.initial_state)
+        if key not in state["first"]:   # absolute values at the first sample that has them
+            raw = np.array([float((context or {}).get(c, np.nan)) for c in e.initial_state])
+            if np.isnan(raw).all():
+                k = len(e.initial_weights) if e.initial_weights is not None else len(raw)
+                return np.zeros(k)
+            ref = a0 if np.isfinite(a0) else float(np.nanmean(raw))
+            offsets = np.nan_to_num(raw - ref)
+            if e.initial_weights is not None:
+                offsets = np.asarray(e.initial_weights, dtype=float) @ offsets
+            state["first"][key] = offsets
+        return state["first"][key] * (1.0 - np.exp(-(t - state["t0"]) / e.tau_s))
+
     def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
         """One sample of simulation-mode ``predict``.
 
@@ -140,6 +154,7 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
         """
         x = np.asarray(x_row, dtype=float).ravel()
         t = float((context or {}).get("time", np.nan))
+        state.setdefault("t0", t)
         dt = None if state["t"] is None or np.isnan(t) else t - state["t"]
         state["t"] = t if not np.isnan(t) else state["t"]
         a0 = float((context or {}).get("ambient_c0", state["ambient_c0"]))
@@ -151,11 +166,15 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
                 if tr == "first_order_lag":
                     c = self._lag(i, c, e.tau_s, dt, state)
                 parts.append(c**2 if tr == "square" else c)
+                if tr == "first_order_lag" and e.initial_state:
+                    parts.append(self._initial_state(e, context, a0, t, state))
             elif tr == "product":
                 parts.append(np.array([self._raw(e.column, context, state)
                                        * self._raw(e.other, context, state)]))
             elif tr == "lowpass_inputs":
                 parts.append(self._lag(i, x, e.tau_s, dt, state))
+                if e.initial_state:
+                    parts.append(self._initial_state(e, context, a0, t, state))
             elif tr == "ambient_linear":
                 parts.append(x * (a0 - AMBIENT_CENTRE_C))
             elif tr == "ambient_step":

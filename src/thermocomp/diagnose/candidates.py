@@ -3,7 +3,8 @@
 Families (issue 6): ``signal`` -- every column the model does not use
 (undeclared ``T_``/``S_`` columns, declared sensors the selector dropped), raw
 and through first-order lags; ``dynamics`` -- low-pass copies of the model
-inputs (unmeasured masses, delays, the AR pole); ``ambient_interval`` -- the
+inputs (unmeasured masses, delays, the AR pole), all together (optionally with
+the transient of the campaign's initial disequilibrium) or one at a time; ``ambient_interval`` -- the
 inputs times the initial ambient (linear, or a step at a threshold between
 the train campaigns' ambients); ``interaction`` -- products of a state signal
 and a temperature; ``nonlinear`` -- squares of the strongest inputs;
@@ -21,7 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from .features import Effect, in_frame
+from .features import Effect
 
 CONTROL = "control:random_walk"
 
@@ -71,15 +72,13 @@ def candidates(problem, model_inputs: list[str], declared: list[str], excluded: 
                options: CandidateOptions) -> list[Effect]:
     """Every candidate of one round (the control included; faults from self-prediction)."""
     ctx, fam = problem.context, set(options.families)
-    groups, ref = problem.campaigns, problem.reference
     taus = [float(t) for t in options.taus_s]
     out: list[Effect] = []
     t_cols = [c for c in ctx.columns if c.startswith("T_") and c not in excluded]
     s_cols = [c for c in ctx.columns if c.startswith("S_") and c not in excluded]
     s_cols += [c for c in options.extra_columns if c in ctx.columns and c not in s_cols]
-    s_cols = [c for c in s_cols if _varies(in_frame(ctx[c].to_numpy(float), groups, ref))]
-    unused_t = [c for c in t_cols if c not in model_inputs
-                and _varies(in_frame(ctx[c].to_numpy(float), groups, ref))]
+    s_cols = [c for c in s_cols if problem.varies(c)]
+    unused_t = [c for c in t_cols if c not in model_inputs and problem.varies(c)]
 
     def signal_family(col: str) -> list[Effect]:
         return [Effect("signal", "raw", col)] + [Effect("signal", "first_order_lag", col, tau_s=t)
@@ -88,7 +87,12 @@ def candidates(problem, model_inputs: list[str], declared: list[str], excluded: 
         for col in unused_t + s_cols:
             out += signal_family(col)
     if "dynamics" in fam:
-        out += [Effect("dynamics", "lowpass_inputs", tau_s=t) for t in taus]
+        temps_in = tuple(c for c in model_inputs if c.startswith("T_"))
+        for t in taus:
+            out.append(Effect("dynamics", "lowpass_inputs", tau_s=t))
+            if temps_in:
+                out.append(Effect("dynamics", "lowpass_inputs", tau_s=t, initial_state=temps_in))
+        out += [Effect("dynamics", "first_order_lag", c, tau_s=t) for c in temps_in for t in taus]
     if "ambient_interval" in fam and "ambient_c0" in ctx and np.isfinite(ctx["ambient_c0"]).all():
         by_unit = ctx["ambient_c0"].groupby(problem.units, sort=False).first()
         if by_unit.nunique() >= 2 * options.min_units_per_side:

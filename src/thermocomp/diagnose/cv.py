@@ -24,7 +24,7 @@ import pandas as pd
 from sklearn.base import clone
 
 from ..select import AllInputs
-from .features import Effect, effect_features
+from .features import Effect, effect_features, in_frame
 
 
 def _accepts(method, name: str) -> bool:
@@ -70,6 +70,14 @@ class Problem:
         self.unit_index = np.array([pos[u] for u in self.units])
         k = max(2, min(int(self.n_folds), len(self.unit_names)))
         self.folds = self.unit_index % k
+
+    def varies(self, column: str) -> bool:
+        """True when context ``column`` changes within the train data (in the target's frame)."""
+        cache = self.__dict__.setdefault("_varies", {})
+        if column not in cache:
+            framed = in_frame(self.context[column].to_numpy(float), self.campaigns, self.reference)
+            cache[column] = bool(np.nanstd(framed) > 1e-12)
+        return cache[column]
 
     @property
     def n_units(self) -> int:
@@ -126,18 +134,23 @@ class CrossValidator:
             self._selection[key] = names
         return self._selection[key]
 
+    def inputs_matrix(self, names) -> np.ndarray:
+        key = ("X", tuple(names))
+        if key not in self._features:
+            self._features[key] = self.problem.X[list(names)].to_numpy(float)
+        return self._features[key]
+
     def features(self, effect: Effect, names: list[str]) -> np.ndarray:
         """Features of ``effect`` on all train rows (cached; input effects per input set)."""
         key = (effect, tuple(names) if effect.uses_inputs else None)
         if key not in self._features:
             p = self.problem
-            X = p.X[list(names)].to_numpy(float) if effect.uses_inputs else np.empty((len(p.y), 0))
+            X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))
             self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference)
         return self._features[key]
 
     def design(self, names: list[str], effects) -> np.ndarray:
-        X = self.problem.X[list(names)].to_numpy(float)
-        return np.hstack([X] + [self.features(e, names) for e in effects])
+        return np.hstack([self.inputs_matrix(names)] + [self.features(e, names) for e in effects])
 
     def _context(self, fold: int, train: bool) -> pd.DataFrame:
         key = (fold, train)

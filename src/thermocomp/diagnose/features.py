@@ -20,8 +20,10 @@ so a state acts through its change).  Every transform is causal (the value at
 kind                transform             features
 ==================  ====================  =================================================
 signal              ``raw``               :math:`\Delta c(t)`
-signal              ``first_order_lag``   :math:`L_\tau[\Delta c](t)`
+signal              ``first_order_lag``   :math:`L_\tau[\Delta c](t)` (an unused column)
+dynamics            ``first_order_lag``   :math:`L_\tau[\Delta c](t)` (a model input)
 dynamics            ``lowpass_inputs``    :math:`L_\tau[x_i](t)` for every model input
+(both lags)         ``initial_state``     also :math:`w_k^\top(c(0) - A_0)\,(1 - e^{-t/\tau})`
 ambient_interval    ``ambient_linear``    :math:`x_i(t)\,(A_0 - 20\,°C)` for every input
 ambient_interval    ``ambient_step``      :math:`x_i(t)\,[A_0 > A_{thr}]` for every input
 interaction         ``product``           :math:`\Delta c(t)\,\Delta o(t)`
@@ -36,12 +38,23 @@ starting in steady state (:math:`z_0 = u_0`).  A first-order lag of all inputs
 with a common :math:`\tau` is also what the autoregressive term
 :math:`y_k = a\,y_{k-1} + b^\top x_k` of a simulation-mode ARX adds to a static
 model (a common pole), so ``lowpass_inputs`` is the AR family too.
+
+A campaign seldom starts in thermal equilibrium: an unmeasured mass with
+memory starts off its steady state by an amount the referenced data cannot
+see, and in the reference frame that offset decays as
+:math:`(1 - e^{-t/\tau})` times an unknown per-campaign constant.  The
+``initial_state`` block estimates it from what *is* measured at the first
+sample -- how far each sensor :math:`c_j` sits from the initial ambient
+:math:`A_0` (absolute °C) -- projected on a few directions :math:`w_k` (the
+leading principal directions of those distances over the train campaigns;
+sensors on one body move together): regressors
+:math:`w_k^\top(c(0) - A_0)\,(1 - e^{-t/\tau})`.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 import pandas as pd
@@ -52,12 +65,14 @@ from ..io.contract import ContractError
 from ..models._dynamics import segment_bounds
 
 KINDS = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear", "sensor_fault")
-TRANSFORMS = {  # transform -> kind it belongs to
-    "raw": "signal", "first_order_lag": "signal", "lowpass_inputs": "dynamics",
-    "ambient_linear": "ambient_interval", "ambient_step": "ambient_interval",
-    "product": "interaction", "square": "nonlinear", "remove": "sensor_fault",
-}
+TRANSFORMS = ("raw", "first_order_lag", "lowpass_inputs", "ambient_linear", "ambient_step",
+              "product", "square", "remove")
 AMBIENT_CENTRE_C = 20.0   # ISO 1 reference temperature: only re-centres ambient_linear
+
+
+def _tuple(v):
+    """Lists (from a config) -> nested tuples, so an Effect stays hashable."""
+    return tuple(_tuple(x) for x in v) if isinstance(v, (list, tuple)) else v
 
 
 @dataclass(frozen=True)
@@ -78,6 +93,14 @@ class Effect:
         Time constant of a lag (s).
     threshold_c : float or None
         Initial-ambient threshold of ``ambient_step`` (°C).
+    initial_state : tuple of str or None
+        Lags only: sensors whose initial distance to the ambient starts the
+        lag's transient (see the module docstring).
+    initial_weights : tuple of tuples or None
+        ``(k, len(initial_state))`` directions the initial distances are
+        projected on (the leading principal directions over the train
+        campaigns: sensors on one body carry one number, not one each);
+        ``None`` keeps one regressor per sensor.
     """
 
     kind: str
@@ -86,8 +109,12 @@ class Effect:
     other: str | None = None
     tau_s: float | None = None
     threshold_c: float | None = None
+    initial_state: tuple | None = None
+    initial_weights: tuple | None = None
 
     def __post_init__(self):
+        for name in ("initial_state", "initial_weights"):
+            object.__setattr__(self, name, _tuple(getattr(self, name)))
         if self.kind not in KINDS:
             raise ConfigError(f"effect kind {self.kind!r} is not one of {list(KINDS)}")
         if self.transform not in TRANSFORMS:
@@ -100,15 +127,24 @@ class Effect:
             raise ConfigError(f"effect {self.transform!r} needs {missing}")
         if self.tau_s is not None and not self.tau_s > 0:
             raise ConfigError(f"effect tau_s must be > 0 s, got {self.tau_s}")
+        if self.initial_state and self.transform not in ("first_order_lag", "lowpass_inputs"):
+            raise ConfigError("effect initial_state only goes with a lag")
+        if self.initial_weights is not None and any(
+                len(w) != len(self.initial_state or ()) for w in self.initial_weights):
+            raise ConfigError("effect initial_weights needs one weight per initial_state sensor")
 
     @property
     def label(self) -> str:
         """The ``transform`` string of ``diagnosis.json``, e.g. ``first_order_lag(tau=240s)``."""
         tau = f"tau={self.tau_s:g}s" if self.tau_s is not None else ""
+        start = ""
+        if self.initial_state:
+            k = len(self.initial_weights) if self.initial_weights is not None else len(self.initial_state)
+            start = f", from the initial thermal state ({k} direction{'s' if k > 1 else ''})"
         return {
             "raw": "raw",
-            "first_order_lag": f"first_order_lag({tau})",
-            "lowpass_inputs": f"first_order_lag({tau}) of the model inputs",
+            "first_order_lag": f"first_order_lag({tau}){start}",
+            "lowpass_inputs": f"first_order_lag({tau}) of the model inputs{start}",
             "ambient_linear": f"model inputs x (ambient_c0 - {AMBIENT_CENTRE_C:g}°C)",
             "ambient_step": f"model inputs x [ambient_c0 > {self.threshold_c:.2f}°C]"
             if self.threshold_c is not None else "",
@@ -125,16 +161,20 @@ class Effect:
     @property
     def context_columns(self) -> list[str]:
         """Context columns the features need (besides ``time``/``campaign``/``ambient_c0``)."""
-        return [c for c in (self.column, self.other)
-                if c is not None and self.transform != "remove" and not self.uses_inputs]
+        if self.transform == "remove":
+            return []
+        own = [] if self.uses_inputs else [c for c in (self.column, self.other) if c is not None]
+        return list(dict.fromkeys(own + list(self.initial_state or ())))
 
     def to_dict(self) -> dict:
         """Plain dict without ``None`` values (the form written to the model config)."""
-        return {k: v for k, v in asdict(self).items() if v is not None}
+        def plain(v):
+            return [plain(x) for x in v] if isinstance(v, tuple) else v
+        return {k: plain(v) for k, v in asdict(self).items() if v is not None}
 
     @classmethod
     def from_dict(cls, d: Mapping) -> "Effect":
-        known = {"kind", "transform", "column", "other", "tau_s", "threshold_c"}
+        known = {f.name for f in fields(cls)}
         unknown = set(d) - known
         if unknown:
             raise ConfigError(f"effect has unknown key(s) {sorted(unknown)} (known: {sorted(known)})")
@@ -188,7 +228,9 @@ def in_frame(values, groups, reference: str = "first_sample") -> np.ndarray:
     v = np.asarray(values, dtype=float)
     out = np.zeros_like(v)
     for start, stop in segment_bounds(groups, len(v)):
-        seg = pd.Series(v[start:stop]).ffill().bfill().to_numpy()
+        seg = v[start:stop]
+        if np.isnan(seg).any():
+            seg = pd.Series(seg).ffill().bfill().to_numpy()
         if np.isnan(seg).all():
             continue
         out[start:stop] = seg - seg[0] if reference == "first_sample" else seg
@@ -227,6 +269,47 @@ def _ambient(context, n: int) -> np.ndarray:
     return a0
 
 
+def initial_offsets(context: pd.DataFrame | None, columns, groups) -> np.ndarray:
+    """``c_j(0) - A_0`` per row: each sensor's first valid absolute value minus the initial ambient.
+
+    ``A_0`` is the campaign's ``ambient_c0`` (the mean of the ``c_j(0)`` when
+    the data have no ambient sensor); a sensor without any value gives 0.
+    """
+    raw = np.column_stack([_context_column(context, c) for c in columns])
+    n = raw.shape[0]
+    a0 = context["ambient_c0"].to_numpy(float) if "ambient_c0" in context else np.full(n, np.nan)
+    out = np.zeros_like(raw)
+    for start, stop in segment_bounds(groups, n):
+        first = pd.DataFrame(raw[start:stop]).bfill().iloc[0].to_numpy()
+        ref = a0[start] if np.isfinite(a0[start]) else np.nanmean(first)
+        out[start:stop] = np.nan_to_num(first - ref)[None, :]
+    return out
+
+
+def initial_state(context: pd.DataFrame | None, columns, groups, tau_s: float,
+                  weights=None) -> np.ndarray:
+    """The initial disequilibrium's transient ``(c_j(0) - A_0)(1 - exp(-(t - t_0)/tau))``.
+
+    One column per sensor, or per row of ``weights`` (projected distances).
+    """
+    offsets = initial_offsets(context, columns, groups)
+    if weights is not None:
+        offsets = offsets @ np.asarray(weights, dtype=float).T
+    n = offsets.shape[0]
+    t = _time(context, n)
+    decay = np.empty(n)
+    for start, stop in segment_bounds(groups, n):
+        decay[start:stop] = 1.0 - np.exp(-(t[start:stop] - t[start]) / tau_s)
+    return offsets * decay[:, None]
+
+
+def _with_start(lag: np.ndarray, effect: Effect, context, groups) -> np.ndarray:
+    if not effect.initial_state:
+        return lag
+    return np.hstack([lag, initial_state(context, effect.initial_state, groups, effect.tau_s,
+                                         effect.initial_weights)])
+
+
 def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, groups=None,
                     reference: str = "first_sample") -> np.ndarray:
     """Extra regressors of one effect, shape ``(n, q)`` (``q = 0`` for ``remove``)."""
@@ -239,14 +322,15 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
     if tr in ("raw", "first_order_lag", "square"):
         c = in_frame(_context_column(context, effect.column), g, reference)
         if tr == "first_order_lag":
-            c = first_order_lag(c, _time(context, n), g, effect.tau_s)
+            return _with_start(first_order_lag(c, _time(context, n), g, effect.tau_s)[:, None],
+                               effect, context, g)
         return (c**2 if tr == "square" else c)[:, None]
     if tr == "product":
         a = in_frame(_context_column(context, effect.column), g, reference)
         b = in_frame(_context_column(context, effect.other), g, reference)
         return (a * b)[:, None]
     if tr == "lowpass_inputs":
-        return first_order_lag(X, _time(context, n), g, effect.tau_s)
+        return _with_start(first_order_lag(X, _time(context, n), g, effect.tau_s), effect, context, g)
     a0 = _ambient(context, n)
     if tr == "ambient_linear":
         return X * (a0 - AMBIENT_CENTRE_C)[:, None]

@@ -14,9 +14,12 @@ once, at the end, to report before and after):
    nominated sensor fault) gets a full CV refit: evidence is the CV RMSE gain
    :math:`g = \mathrm{RMSE}_{cv} - \mathrm{RMSE}_{cv}^{+}` and the one-sided
    sign-flip p-value of the per-campaign gains in mean squared error.
-5. **Accept** the largest gain that clears the bar (:math:`g \ge`
+5. **Accept**, among the candidates that clear the bar (:math:`g \ge`
    ``min_gain_pct`` % of the current CV RMSE *and* :math:`p \le` ``alpha``)
-   and beats the control; refit and repeat, at most ``max_effects`` times.
+   and beat the control, the one with the largest 95 % lower confidence bound
+   of the gain over campaigns (:func:`gain_lower_bound`): a gain every
+   campaign shares beats an equal gain a few campaigns carry.  Refit and
+   repeat, at most ``max_effects`` times.
 
 The in-sample F-test is not used for the bar: thermal residuals are strongly
 autocorrelated, so a random walk passes it (spurious regression).  Campaigns
@@ -29,6 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
+from scipy.stats import t as student_t
 
 from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_pvalue
@@ -64,6 +68,7 @@ class Evaluation:
     control: bool = False
     accepted: bool = False
     jump_ratio: float | None = None
+    gain_lcb: float = float("nan")
     result: CVResult | None = field(default=None, repr=False)
 
     def entry(self) -> dict:
@@ -73,6 +78,7 @@ class Evaluation:
                "transform": e.label,
                "evidence": {"cv_rmse_gain": self.gain, "p_value": self.p_value,
                             "cv_rmse_gain_pct": self.gain_pct, "cv_rmse": self.cv_rmse,
+                            "cv_rmse_gain_lcb": self.gain_lcb,
                             "screen_r2": self.screen_r2, "clears_bar": self.clears_bar},
                "accepted": self.accepted}
         if self.control:
@@ -126,6 +132,23 @@ class SearchResult:
         return [ev.effect for ev in self.accepted if ev.effect.transform != "remove"]
 
 
+def gain_lower_bound(mse_before, mse_after, level: float = 0.95) -> float:
+    """One-sided ``level`` lower confidence bound of the CV RMSE gain (µm).
+
+    The per-unit MSE gains give a Student-t bound on the mean MSE gain over
+    units; it is mapped to RMSE through the current mean MSE.  Ranking the
+    candidates that clear the bar by it prefers a gain every campaign shares
+    over an equal gain a few campaigns carry.
+    """
+    d = np.asarray(mse_before, float) - np.asarray(mse_after, float)
+    n = d.size
+    if n < 2:
+        return float("nan")
+    bound = d.mean() - student_t.ppf(level, n - 1) * d.std(ddof=1) / np.sqrt(n)
+    before = float(np.mean(mse_before))
+    return float(np.sqrt(before) - np.sqrt(max(before - bound, 0.0)))
+
+
 def _orthonormal(Z: np.ndarray) -> np.ndarray:
     """Orthonormal basis of the column space of ``Z`` (rank-revealing, via SVD)."""
     U, s, _ = np.linalg.svd(Z, full_matrices=False)
@@ -168,12 +191,14 @@ class Search:
             res = self.cv.run(self.inputs(), self.effects + [effect])
         gain = current.rmse - res.rmse
         pct = 100.0 * gain / current.rmse if current.rmse > 0 else 0.0
-        p = sign_flip_pvalue(current.unit_mse - res.unit_mse, seed=self.options.seed)
+        d = current.unit_mse - res.unit_mse
+        p = sign_flip_pvalue(d, seed=self.options.seed)
+        lcb = gain_lower_bound(current.unit_mse, res.unit_mse)
         clears = bool(pct >= self.options.min_gain_pct and p <= self.options.alpha)
         jump = (float(faults.loc[effect.column, "jump_ratio"])
                 if effect.transform == "remove" and effect.column in faults.index else None)
         return Evaluation(effect, res.rmse, gain, pct, p, r2, clears, effect.column == CONTROL,
-                          jump_ratio=jump, result=res)
+                          jump_ratio=jump, gain_lcb=lcb, result=res)
 
     def _shortlist(self, scored: list[tuple[Effect, float]]) -> list[tuple[Effect, float]]:
         opts = self.options
@@ -219,6 +244,7 @@ class Search:
             control = next((ev for ev in evals if ev.control), None)
             bar = control.gain if control is not None else -np.inf
             eligible = [ev for ev in evals if ev.clears_bar and not ev.control and ev.gain > bar]
+            eligible.sort(key=lambda ev: -ev.gain_lcb)
             screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
                          "screen_r2": r2} for e, r2 in sorted(
                              (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]

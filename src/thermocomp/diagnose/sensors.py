@@ -17,7 +17,9 @@ statistic is the *jump ratio*
 
 (worst held-out unit of sensor :math:`j` against the median sensor), and a
 sensor with :math:`J_j` at or above the tolerance is a ``sensor_fault``
-candidate: the search then tests the model *without* it.
+candidate: the search then tests the model *without* it.  Ambient sensors
+(``T_amb*``) predict but are not judged: the ambient is the field's boundary
+condition, not part of it, and no structure sensor predicts its daily swing.
 """
 
 from __future__ import annotations
@@ -28,6 +30,10 @@ import pandas as pd
 from .cv import Problem
 
 
+def _ambient(column: str) -> bool:
+    return column == "T_amb" or column.startswith("T_amb_")
+
+
 def self_prediction(problem: Problem, inputs) -> pd.DataFrame:
     """Cross-validated self-prediction error of each sensor among ``inputs`` (°C).
 
@@ -35,7 +41,8 @@ def self_prediction(problem: Problem, inputs) -> pd.DataFrame:
     ``worst_unit_rmse`` and ``jump_ratio``.  Needs at least three sensors.
     """
     inputs = [c for c in inputs if c.startswith("T_")]
-    if len(inputs) < 3:
+    field_sensors = [c for c in inputs if not _ambient(c)]
+    if len(inputs) < 3 or not field_sensors:
         return pd.DataFrame(columns=["cv_rmse", "worst_unit", "worst_unit_rmse", "jump_ratio"])
     T = problem.X[inputs].to_numpy(float)
     E = np.empty_like(T)
@@ -43,9 +50,14 @@ def self_prediction(problem: Problem, inputs) -> pd.DataFrame:
     for k in problem.fold_ids:
         tr, te = problem.folds != k, problem.folds == k
         for j in range(T.shape[1]):
+            if _ambient(inputs[j]):
+                continue
             cols = [0] + [i + 1 for i in range(T.shape[1]) if i != j]
             coef, *_ = np.linalg.lstsq(A[tr][:, cols], T[tr, j], rcond=None)
             E[te, j] = T[te, j] - A[te][:, cols] @ coef
+    keep = [j for j, c in enumerate(inputs) if not _ambient(c)]
+    E, inputs = E[:, keep], [inputs[j] for j in keep]
+    T = T[:, keep]
     per_unit = np.vstack([np.sqrt(np.bincount(problem.unit_index, weights=E[:, j] ** 2,
                                               minlength=problem.n_units)
                                   / np.maximum(np.bincount(problem.unit_index,

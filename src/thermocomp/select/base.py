@@ -47,7 +47,8 @@ class TSPSelector(SelectorMixin, BaseEstimator):
         return np.asarray(names if names is not None else [f"x{i}" for i in range(n_features)],
                           dtype=object)
 
-    def _check_k(self) -> None:
+    def check_params(self) -> None:
+        """Raise ValueError for a parameter outside its allowed values."""
         if self.k is not None and int(self.k) < 1:
             raise ValueError(f"k must be a positive integer or None, got {self.k}")
         if int(self.k_max) < 1:
@@ -58,7 +59,7 @@ class TSPSelector(SelectorMixin, BaseEstimator):
     def fit(self, X, y, groups=None):
         """Select sensors for target ``y``; ``groups`` (campaign per row) is accepted for API
         uniformity -- the fits here are static, so campaign boundaries do not matter."""
-        self._check_k()
+        self.check_params()
         A, y = validate_data(self, X, y, y_numeric=True, dtype=np.float64)
         names = self._names(A.shape[1])
         sets, scores = self._candidate_sets(A, y, groups)

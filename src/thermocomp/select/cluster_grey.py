@@ -89,6 +89,8 @@ class ClusterGreySelector(TSPSelector):
     ic_ : pandas.Series or None
     """
 
+    score_label = "grey relational degree"
+
     def __init__(self, k: int | None = None, criterion: str = "bicc", k_max: int = 10,
                  m: float = 2.0, rho: float = 0.5, random_state: int = 0):
         self.k = k
@@ -98,9 +100,14 @@ class ClusterGreySelector(TSPSelector):
         self.rho = rho
         self.random_state = random_state
 
-    def _candidate_sets(self, A, y, groups):
+    def check_params(self) -> None:
+        super().check_params()
         if not self.m > 1:
             raise ValueError(f"m must be > 1, got {self.m}")
+        if not self.rho > 0:
+            raise ValueError(f"rho must be > 0, got {self.rho}")
+
+    def _candidate_sets(self, A, y, groups):
         grey = grey_relational_degree(A, y, self.rho)
         # a constant sensor carries nothing: rank it last whatever its grey degree
         grey_rank = np.where(abs_correlation(A, y) > 0, grey, -np.inf)

@@ -72,6 +72,8 @@ class GreedyResidualSelector(TSPSelector):
     ic_ : pandas.Series or None
     """
 
+    score_label = "MSE removed (target unit²)"
+
     def __init__(self, k: int | None = None, criterion: str = "bicc", k_max: int = 10):
         self.k = k
         self.criterion = criterion

@@ -39,6 +39,8 @@ class PearsonSelector(TSPSelector):
     ic_ : pandas.Series or None
     """
 
+    score_label = "|r| with the error"
+
     def __init__(self, k: int | None = 2, criterion: str = "bicc", k_max: int = 10):
         self.k = k
         self.criterion = criterion

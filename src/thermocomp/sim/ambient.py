@@ -80,3 +80,87 @@ class AmbientModel:
 
     def to_dict(self) -> dict:
         return asdict(self)
+
+
+@dataclass(frozen=True)
+class HallClimate:
+    """A climate-controlled hall: setpoint programme, HVAC hours, cycling, drift (°C).
+
+    The room air follows its target through a first-order lag ``room_tau_h``
+    (exact for a target held between grid points):
+
+    .. math::
+
+        \\tau_r \\dot T_a = T_{tgt}(t) - T_a, \\qquad
+        T_{tgt} = \\begin{cases} s(t) + c(t) & \\text{HVAC on} \\\\
+                                  T_{free} + A_d\\cos(2\\pi(h - h_{peak})/24) & \\text{off}\\end{cases}
+
+    plus an Ornstein-Uhlenbeck drift :math:`\\delta(t)`.  :math:`s(t)` is the
+    piecewise-constant setpoint ``setpoints`` ((absolute start s, °C), ...),
+    forced heating or cooling included; :math:`c(t)` the on/off cycling of the
+    controller (a square wave of ``cycling_amplitude_c``, period
+    ``cycling_period_min``) that paper 004 removes with EMD.
+
+    Parameters
+    ----------
+    setpoints : tuple of (float, float)
+    hvac_hours : (float, float)
+        Hours of the day with the HVAC on; ``(0, 24)`` = always.
+    free_c : float
+        Level the hall drifts to with the HVAC off (warm summer nights: 27 °C).
+    """
+
+    setpoints: tuple = ((0.0, 22.0),)
+    room_tau_h: float = 1.5
+    hvac_hours: tuple = (0.0, 24.0)
+    free_c: float = 22.0
+    daily_amplitude_c: float = 1.0
+    daily_peak_hour: float = 16.0
+    cycling_amplitude_c: float = 0.0
+    cycling_period_min: float = 20.0
+    drift_sd_c: float = 0.2
+    drift_tau_h: float = 6.0
+
+    def target(self, t_s) -> np.ndarray:
+        t_s = np.asarray(t_s, dtype=float)
+        starts = np.array([s for s, _ in self.setpoints], dtype=float)
+        values = np.array([v for _, v in self.setpoints], dtype=float)
+        setpoint = values[np.clip(np.searchsorted(starts, t_s, side="right") - 1, 0, None)]
+        hour = (t_s / DAY_S % 1.0) * 24.0
+        on = (hour >= self.hvac_hours[0]) & (hour < self.hvac_hours[1])
+        if self.cycling_amplitude_c:
+            phase = (t_s / (60.0 * self.cycling_period_min)) % 1.0
+            setpoint = setpoint + np.where(phase < 0.5, self.cycling_amplitude_c, -self.cycling_amplitude_c)
+        free = self.free_c + self.daily_amplitude_c * np.cos(2 * np.pi * (hour - self.daily_peak_hour) / 24.0)
+        return np.where(on, setpoint, free)
+
+    def sample(self, t_s, rng: np.random.Generator) -> np.ndarray:
+        t_s = np.asarray(t_s, dtype=float)
+        target = self.target(t_s)
+        decay = np.exp(-np.diff(t_s) / (3600.0 * self.room_tau_h))
+        level = np.empty(len(t_s))
+        level[0] = target[0]
+        for k, a in enumerate(decay, start=1):
+            level[k] = a * level[k - 1] + (1.0 - a) * target[k - 1]
+        drift = AmbientModel(drift_sd_c=self.drift_sd_c, drift_tau_h=self.drift_tau_h).drift(t_s, rng)
+        return level + drift
+
+    def to_dict(self) -> dict:
+        return {**asdict(self), "setpoints": [list(map(float, s)) for s in self.setpoints]}
+
+
+@dataclass(frozen=True)
+class SinusoidalAmbient:
+    """:math:`T_a = \\bar T + A\\sin(2\\pi (t - t_0)/P + \\phi)` (the FE case study of paper 002)."""
+
+    mean_c: float = 20.0
+    amplitude_c: float = 2.0
+    period_h: float = 24.0
+    phase_rad: float = 0.0
+
+    def sample(self, t_s, rng=None) -> np.ndarray:
+        t_s = np.asarray(t_s, dtype=float)
+        return self.mean_c + self.amplitude_c * np.sin(2 * np.pi * t_s / (3600.0 * self.period_h) + self.phase_rad)
+
+    def to_dict(self) -> dict:
+        return asdict(self)

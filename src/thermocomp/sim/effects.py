@@ -56,7 +56,7 @@ import numpy as np
 from thermocomp.errors import ConfigError
 from thermocomp.sim.campaign import CampaignContext, Machine
 from thermocomp.sim.network import Link, Node, ThermalNetwork
-from thermocomp.sim.sensors import quantise
+from thermocomp.sim.sensors import first_order_lag, quantise
 from thermocomp.sim.sources import ConstantWhileRunning, StateConvection
 from thermocomp.sim.thermoelastic import ThermoelasticMap
 
@@ -472,7 +472,8 @@ class AmbientLaw(UndeclaredEffect):
 
     name, kind = "ambient_law", "ambient_interval"
     defaults = {
-        "level_node": "",                # a slow node whose absolute temperature sets the interval
+        "level_node": "",                # node (or "ambient": the air) whose level sets the interval
+        "level_lag_h": 0.0,              # the level is that temperature through a first-order lag
         "threshold_c": 20.0,
         "width_c": 0.3,                  # logistic transition width
         "gain": 0.5,                     # relative growth of the targets' sensitivities above
@@ -481,32 +482,42 @@ class AmbientLaw(UndeclaredEffect):
 
     def description(self):
         p = self.params
-        return (f"above {p['threshold_c']:g} °C of {p['level_node']} the sensitivities of "
+        lag = f" (lagged {p['level_lag_h']:g} h)" if p["level_lag_h"] else ""
+        return (f"above {p['threshold_c']:g} °C of {p['level_node']}{lag} the sensitivities of "
                 f"{', '.join(self.targets)} grow by {p['gain']:.0%} (a joint that clamps "
                 f"differently once the structure is warm)")
 
     def modify_machine(self, machine):
-        self._check_nodes(machine, [self.params["level_node"]], "level_node")
+        if self.params["level_node"] != "ambient":
+            self._check_nodes(machine, [self.params["level_node"]], "level_node")
         self._target_rows(machine)
         return machine
 
     def factor(self, level_c: np.ndarray) -> np.ndarray:
+        """Relative change :math:`\\gamma\\,\\sigma((T_{lev} - T_{thr})/w)` of the sensitivities."""
         p = self.params
         z = (np.asarray(level_c, dtype=float) - float(p["threshold_c"])) / float(p["width_c"])
         return float(p["gain"]) / (1.0 + np.exp(-np.clip(z, -50, 50)))
+
+    def level(self, node_temps: np.ndarray, ambient: np.ndarray, times_s: np.ndarray, index: dict) -> np.ndarray:
+        """Level temperature (°C) at the samples."""
+        name = self.params["level_node"]
+        raw = np.asarray(ambient if name == "ambient" else node_temps[:, index[name]], dtype=float)
+        tau = 3600.0 * float(self.params["level_lag_h"])
+        if tau > 0 and len(raw) > 1:
+            return first_order_lag(raw[:, None], [tau], float(times_s[1] - times_s[0]))[:, 0]
+        return raw
 
     def modify_errors(self, ctx, errors):
         machine = ctx.machine
         index = machine.network.index
         rise = ctx.node_temps - ctx.node_temps[0]
-        level = ctx.node_temps[:, index[self.params["level_node"]]]
-        gain = self.factor(level)
-        ctx.truth.setdefault(self.name, {})["above_threshold"] = bool(gain[0] > 0.5 * float(self.params["gain"]))
+        gain = self.factor(self.level(ctx.node_temps, ctx.ambient, ctx.times_s, index))
+        ctx.truth.setdefault(self.name, {})["share_above"] = float(np.mean(gain > 0.5 * float(self.params["gain"])))
         errors = errors.copy()
         for row in self._target_rows(machine):
             target = machine.thermoelastic.targets[row]
-            s = machine.thermoelastic.linear[target]
-            linear = sum(float(v) * rise[:, index[n]] for n, v in s.items())
+            linear = sum(float(v) * rise[:, index[n]] for n, v in machine.thermoelastic.linear[target].items())
             errors[:, row] += gain * linear
         return errors
 

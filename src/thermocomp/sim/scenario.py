@@ -126,6 +126,11 @@ class Scenario:
     def generate(self) -> tuple[Dataset, dict]:
         """Simulate every campaign; returns ``(dataset, truth)``.
 
+        Also sets ``node_temperatures_``: campaign id -> DataFrame of the true
+        node temperatures (°C), the air (``ambient``) and every state signal at
+        the samples (hidden ones too) -- the truth behind each column, for
+        tests and benchmarks (too large for the JSON truth).
+
         BLAS is held to one thread: the matrices are 9-60 wide, where threads
         only add overhead (3x slower on a busy machine).
         """
@@ -141,6 +146,7 @@ class Scenario:
         plans = self.plans(rng)
         measurement = self.measurement()
         rows, frames, truth_campaigns, measured = [], {}, {}, {}
+        self.node_temperatures_ = {}
         for k, plan in enumerate(plans):
             ctx = CampaignContext(plan.cid, k, len(plans), plan.split, plan.start_s, plan.duration_s,
                                   plan.sample_period_s, machine)
@@ -151,6 +157,9 @@ class Scenario:
                 error_period_s=plan.error_period_s, error_gaps=self.error_gaps, effects=effects,
                 context=ctx, cooldown_s=plan.cooldown_s)
             frames[plan.cid] = frame
+            self.node_temperatures_[plan.cid] = pd.DataFrame(
+                ctx.node_temps, columns=list(machine.network.names)).assign(
+                ambient=ctx.ambient, **{k: v for k, v in ctx.states.items()})
             measured[plan.cid] = (measured_rows(frame["time"].to_numpy(), plan.error_period_s)
                                   if plan.error_period_s else np.ones(len(frame), dtype=bool))
             start = datetime(int(self.year), 1, 1) + timedelta(seconds=plan.start_s)

@@ -214,3 +214,48 @@ class HeatInjector:
                     column = self._fixed.get(id(source))
                     q += watts * (column if column is not None else self._column(source.distribution(state)))
         return q
+
+
+@dataclass
+class SpeedLosses(HeatSource):
+    """:math:`Q = q_0 + a\\,n_k + b\\,n_k^2` of a motor on state ``signal`` (rpm) while it runs.
+
+    :class:`SpindleMotorLosses` for any motor, e.g. the driven tools of a lathe.
+    """
+
+    signal: str = SPINDLE
+    idle_W: float = 15.0
+    linear_W_per_krpm: float = 8.0
+    quadratic_W_per_krpm2: float = 1.0
+
+    def power(self, state, temperature_of):
+        n_k = abs(state.get(self.signal, 0.0)) / 1000.0
+        if n_k == 0.0:
+            return 0.0
+        return self.idle_W + self.linear_W_per_krpm * n_k + self.quadratic_W_per_krpm2 * n_k**2
+
+
+@dataclass
+class MovingSource(HeatSource):
+    """``power_W`` while ``when`` is on, deposited where an axis stands (paper 002's Q2).
+
+    The path is a chain of nodes at positions ``positions_mm``; at position
+    :math:`p` (state ``signal``) the power is shared linearly between the two
+    nodes around it, so the heat moves smoothly along the guideway.
+    """
+
+    path: tuple = ()
+    positions_mm: tuple = ()
+    signal: str = "S_pos_Z"
+    when: str = ""
+    power_W: float = 250.0
+
+    def power(self, state, temperature_of):
+        return self.power_W if (not self.when or state.get(self.when, 0.0) != 0.0) else 0.0
+
+    def distribution(self, state):
+        p = float(np.clip(state.get(self.signal, self.positions_mm[0]), self.positions_mm[0],
+                          self.positions_mm[-1]))
+        k = int(np.clip(np.searchsorted(self.positions_mm, p, side="right") - 1, 0, len(self.path) - 2))
+        w = (p - self.positions_mm[k]) / (self.positions_mm[k + 1] - self.positions_mm[k])
+        return {self.path[k]: 1.0 - w, self.path[k + 1]: w}

@@ -118,7 +118,7 @@ VMC_EFFECTS = {
              "targets": ["E_Y"]},
     # A hydraulic power pack bolted to the back of the column: it heats the column back,
     # which bends the column (E_Y) -- the column carries no sensor.
-    "hidden_source": {"anchor": "column_back", "targets": ["E_Y"]},
+    "hidden_source": {"anchor": "column_back", "power_W": 300.0, "targets": ["E_Y"]},
     # A thick motor bracket: ~3 h behind the motor, it yaws the head (E_X).
     "lag_node": {"parent": "headstock", "capacity_J_per_K": 3.0e5, "conductance_W_per_K": 20.0,
                  "convection_W_per_K": 0.5, "sensitivity_um_per_K": {"E_X": 7.0}, "targets": ["E_X"]},
@@ -126,8 +126,11 @@ VMC_EFFECTS = {
     # and the tilt reaches the TCP through the head's height.
     "axis_position": {"axis": "Z", "travel_mm": [0.0, 600.0], "home_mm": 300.0,
                       "tilt_nodes": {"column_back": 1.0, "column_front": -1.0},
-                      "gain_um_per_K_per_m": 40.0, "targets": ["E_Y"]},
-    "sensor_drift": {"column": "T_bearing_f1", "mode": "drift", "rate_K_per_h": 0.3, "from_fraction": 0.9,
-                     "targets": ["E_Y", "E_Z"]},
+                      "gain_um_per_K_per_m": 50.0, "targets": ["E_Y"]},
+    # The box sensor's contact degrades in the second half of the year: the held-out campaigns
+    # there drift, the training campaigns stay healthy (a fault seen in training is absorbed by
+    # the collinear sensors and leaves no residual).
+    "sensor_drift": {"column": "T_box1", "mode": "drift", "rate_K_per_h": 0.8, "from_fraction": 0.5,
+                     "splits": ["test"], "targets": ["E_X", "E_Z"]},
     "ambient_law": {"level_node": "bed", "threshold_c": 18.5, "gain": 0.8, "targets": ["E_X", "E_Y"]},
 }

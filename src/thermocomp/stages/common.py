@@ -57,7 +57,14 @@ def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
 def build_denoiser(cfg: DictConfig):
     """The configured input denoiser (``denoise=emd``), or None (``denoise=none``)."""
     den = cfg.get("denoise")
-    return None if den is None or den.get("denoiser") is None else instantiate(den.denoiser)
+    if den is None or den.get("denoiser") is None:
+        return None
+    denoiser = instantiate(den.denoiser)
+    try:
+        denoiser.check_params()
+    except ValueError as exc:
+        raise ConfigError(f"denoise.denoiser: {exc}") from exc
+    return denoiser
 
 
 def write_json(path, obj) -> Path:

@@ -21,7 +21,8 @@ from ..errors import ConfigError
 from ..io.contract import atomic_write_text
 from ..leaderboard import FIGURES, rank, summary, to_markdown
 from ..paths import resolve
-from ..tracking import child_runs, client as mlflow_client, connect, latest_sweep, retry_locked
+from ..tracking import child_runs, connect, latest_sweep, retry_locked
+from ..tracking import client as mlflow_client
 from .common import say, write_json
 
 # Parameters shown as their own column, or never worth showing as a varied setting.

@@ -121,6 +121,10 @@ def promote(cfg: DictConfig) -> dict:
     run_params = retry_locked(client.get_run, run_id).data.params
 
     data_path = resolve(cfg.data.path)
+    trained_on = run_params.get("data.path")
+    if trained_on and resolve(trained_on) != data_path:
+        say(f"warning: run {run_id} was trained on data.path={trained_on}; scoring and the "
+            f"envelope use data.path={data_path}")
     ds, _ = io.read_dataset(data_path, data_options(cfg))
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     try:

@@ -17,9 +17,11 @@ import math
 import numpy as np
 from hydra.utils import instantiate
 from omegaconf import DictConfig
+from sklearn.base import clone
 
 from .. import io
 from ..denoise import fit_denoiser
+from ..errors import ConfigError
 from ..evaluation import require_split
 from ..frame import resolve_columns, stack
 from ..io import atomic_dir
@@ -37,6 +39,12 @@ def _series(s) -> dict:
 def select(cfg: DictConfig) -> dict:
     """Fit the selector per target on the train split and write ``selection.json``."""
     check_config(cfg)
+    selector = instantiate(cfg.select.selector)
+    try:
+        if hasattr(selector, "check_params"):
+            selector.check_params()
+    except ValueError as exc:
+        raise ConfigError(f"select.selector: {exc}") from exc
     ds = io.load_interim(resolve(cfg.data.interim))
     ids = require_split(ds, "train")
     inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
@@ -50,11 +58,11 @@ def select(cfg: DictConfig) -> dict:
     result, scores, names = {}, {}, {}
     for t in targets:
         y = m.Y[t].to_numpy()
-        sel = instantiate(cfg.select.selector).fit(m.X, y, groups=m.groups)
+        sel = clone(selector).fit(m.X, y, groups=m.groups)
         entry = {"selected": list(sel.selected_)}
         if hasattr(sel, "scores_"):
             entry["scores"] = _series(sel.scores_)
-            names[t] = f"{cfg.select.name} score"
+            names[t] = getattr(sel, "score_label", f"{cfg.select.name} score")
         if getattr(sel, "ic_", None) is not None:
             entry["criterion"] = {"name": sel.ic_.name, "by_k": _series(sel.ic_)}
         if hasattr(sel, "clusters_"):

@@ -1,0 +1,232 @@
+r"""Scenario ``column_moving_source``: a machine column with a moving heat source.
+
+After the FE case study of paper 002 (thermal mode shapes, POD monitoring):
+a milling-machine column (k = 50 W/(m K), c = 500 J/(kg K)) with a fixed local
+source Q1 (200 W steps, a motor or auxiliary unit), a source Q2 (250 W) that
+moves with the vertical axis along the guideways (heat conducted from the
+ram), a ±2 °C sinusoidal ambient of 24 h period, and -- in the test half only
+-- a third source Q3 that training never saw (for the monitoring of issue 8's
+self-prediction error).  Temperatures and errors every 100 s.
+
+Lumped column: 5 levels (0.5 m each, 2.5 m high) x 3 faces (front with the
+guideways, left, right), ~200 kg per node: C = 1e5 J/K, hA = 0.4 m² · 8 W/(m² K)
+= 3.2 W/K; sensors read nodes through a 1-min lag (the paper reads FE nodal
+temperatures); vertical links k A / L = 50 · 0.1 / 0.5 = 10 W/K, across a level
+50 · 0.06 / 0.4 ≈ 7.5 W/K; a base (bed joint) of 5e5 J/K.
+:class:`~thermocomp.sim.sources.MovingSource` shares Q2 between the two front
+nodes around the axis position ``S_pos_Z`` (mm, written).
+
+Errors at the column top (µm/K of node rises): a face warmer than the others
+bends the column; a level at height :math:`h` tilts the top by
+:math:`\alpha\,\Delta z\,(H - h)/d` = 11.5 · 0.5 · (2.5 - h) / 0.4 µm/K.
+E_Y: front against the mean of the sides; E_X: left against right;
+E_Z: growth, 11.5 · 0.5 / 3 ≈ 1.9 µm/K per node.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from thermocomp.sim.ambient import DAY_S, SinusoidalAmbient
+from thermocomp.sim.campaign import Machine
+from thermocomp.sim.effects import intervals_signal
+from thermocomp.sim.network import Link, Node, ThermalNetwork
+from thermocomp.sim.scenario import CampaignPlan, Scenario
+from thermocomp.sim.sensors import AMBIENT, TemperatureSensor
+from thermocomp.sim.sources import ConstantWhileRunning, MovingSource
+from thermocomp.sim.thermoelastic import ThermoelasticMap
+
+SCENARIO = "column_moving_source"
+FACES = ("front", "left", "right")
+LEVELS = 5
+LEVEL_M = 0.5
+POSITION = "S_pos_Z"
+Q1, Q2, Q3 = "_q1_on", "_q2_on", "_q3_on"
+
+
+def node(face, level):
+    return f"{face}_{level}"
+
+
+def column_network() -> ThermalNetwork:
+    nodes = [Node(node(f, k), 1.0e5, 3.2) for k in range(1, LEVELS + 1) for f in FACES]
+    nodes.append(Node("base", 5.0e5, 10.0))
+    links = []
+    for k in range(1, LEVELS + 1):
+        links += [Link(node("front", k), node("left", k), 7.5), Link(node("front", k), node("right", k), 7.5),
+                  Link(node("left", k), node("right", k), 5.0)]
+        if k < LEVELS:
+            links += [Link(node(f, k), node(f, k + 1), 10.0) for f in FACES]
+    links += [Link(node(f, 1), "base", 15.0) for f in FACES]
+    return ThermalNetwork(nodes, links)
+
+
+def thermoelastic_map() -> ThermoelasticMap:
+    alpha, depth, height = 11.5, 0.4, LEVELS * LEVEL_M
+    ex, ey, ez = {}, {}, {"base": 6.0}   # the 0.5 m base slab lifts everything
+    for k in range(1, LEVELS + 1):
+        h = (k - 0.5) * LEVEL_M
+        c = alpha * LEVEL_M * (height - h) / depth
+        ey[node("front", k)] = c
+        ey[node("left", k)] = ey[node("right", k)] = -c / 2
+        ex[node("left", k)], ex[node("right", k)] = c / 2, -c / 2
+        for f in FACES:
+            ez[node(f, k)] = alpha * LEVEL_M / 3
+    return ThermoelasticMap({"E_X": ex, "E_Y": ey, "E_Z": ez}, quadratic={"E_Y": {node("front", 1): 0.05}})
+
+
+def heat_sources(q3_face="right", q3_level=4):
+    path = tuple(node("front", k) for k in range(1, LEVELS + 1))
+    return [
+        ConstantWhileRunning("Q1_fixed", {node("left", 2): 1.0}, power_W=200.0, when=Q1),
+        MovingSource("Q2_moving", {}, path=path,
+                     positions_mm=tuple(1000.0 * (k - 0.5) * LEVEL_M for k in range(1, LEVELS + 1)),
+                     signal=POSITION, when=Q2, power_W=250.0),
+        ConstantWhileRunning("Q3_new", {node(q3_face, q3_level): 1.0}, power_W=200.0, when=Q3),
+    ]
+
+
+def sensors():
+    """One sensor per face and level, four between faces, one for the air (20)."""
+    rng = np.random.default_rng(2002)
+    out = [TemperatureSensor(f"T_{f}{k}", {node(f, k): 1.0}, float(np.round(rng.uniform(-0.1, 0.1), 2)),
+                             lag_s=60.0) for f in FACES for k in range(1, LEVELS + 1)]
+    for k in (1, 2, 4, 5):
+        out.append(TemperatureSensor(f"T_edge{k}", {node("front", k): 0.5, node("right" if k % 2 else "left", k): 0.5},
+                                     float(np.round(rng.uniform(-0.1, 0.1), 2)), lag_s=60.0))
+    out.append(TemperatureSensor("T_amb", {AMBIENT: 0.97, "base": 0.03}, 0.02, lag_s=120.0))
+    return out
+
+
+def machine_column() -> Machine:
+    return Machine(column_network(), heat_sources(), sensors(), thermoelastic_map())
+
+
+COLUMN_EFFECTS = {
+    # Every face node carries a sensor: a draught is only unseen on the (unmeasured) base.
+    "door": {"nodes": {"base": 40.0}, "air_offset_c": -8.0,
+             "rate_per_h": 0.5, "duration_min": [10.0, 30.0], "targets": ["E_Z"]},
+    "hidden_source": {"anchor": "base", "power_W": 400.0, "conductance_W_per_K": 10.0, "targets": ["E_Z"]},
+    "lag_node": {"parent": node("front", 3), "capacity_J_per_K": 6.0e5, "conductance_W_per_K": 15.0,
+                 "convection_W_per_K": 0.5, "sensitivity_um_per_K": {"E_Y": 10.0}, "targets": ["E_Y"]},
+    "axis_position": {"axis": "Z", "travel_mm": [250.0, 2250.0], "home_mm": 1250.0,
+                      "tilt_nodes": {node("left", 2): 0.5, node("left", 3): 0.5, node("right", 2): -0.5,
+                                     node("right", 3): -0.5},
+                      "gain_um_per_K_per_m": 30.0, "targets": ["E_X"]},
+    "sensor_drift": {"column": "T_front3", "rate_K_per_h": 0.1, "onset_fraction": 0.3, "splits": ["test"],
+                     "targets": ["E_Y"]},
+    "ambient_law": {"level_node": "ambient", "level_lag_h": 1.0, "threshold_c": 20.0, "gain": 0.5,
+                    "targets": ["E_Y", "E_Z"]},
+}
+
+
+class ColumnMovingSource(Scenario):
+    """Generator of the ``column_moving_source`` dataset: a training and a test load cycle.
+
+    Parameters
+    ----------
+    train_hours, test_hours : float
+    sample_period_s : float
+        100 s, as the snapshots of paper 002.
+    ambient_mean_c, ambient_amplitude_c : float
+        Sinusoidal ambient (24 h); the test cycle shifts its phase and grows its amplitude by 25 %.
+    q3 : bool
+        Switch on the never-trained source Q3 in the second half of the test cycle.
+    temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um : float
+    effects, effect_params, clean, seed
+        See :class:`~thermocomp.sim.scenario.Scenario`.
+    """
+
+    name = SCENARIO
+
+    def __init__(self, train_hours=40.0, test_hours=40.0, sample_period_s=100.0, ambient_mean_c=20.0,
+                 ambient_amplitude_c=2.0, q3=True, temp_noise_c=0.02, temp_quantum_c=0.01,
+                 error_noise_um=0.3, error_quantum_um=0.1, effects=(), effect_params=None, clean=False, seed=0):
+        self.train_hours = train_hours
+        self.test_hours = test_hours
+        self.sample_period_s = sample_period_s
+        self.ambient_mean_c = ambient_mean_c
+        self.ambient_amplitude_c = ambient_amplitude_c
+        self.q3 = q3
+        self.temp_noise_c = temp_noise_c
+        self.temp_quantum_c = temp_quantum_c
+        self.error_noise_um = error_noise_um
+        self.error_quantum_um = error_quantum_um
+        self.effects = effects
+        self.effect_params = effect_params
+        self.clean = clean
+        self.seed = seed
+
+    def machine(self):
+        return machine_column()
+
+    def effect_defaults(self):
+        return COLUMN_EFFECTS
+
+    def _grid(self, t):
+        return self.sample_period_s * round(t / self.sample_period_s)
+
+    def _switching(self, rng, duration_s, on_h, off_h):
+        out, t, on = [], self._grid(3600.0 * rng.uniform(0.5, 2.0)), True
+        while t < duration_s:
+            length = self._grid(3600.0 * rng.uniform(*(on_h if on else off_h)))
+            if on:
+                out.append((t, min(t + length, duration_s)))
+            t, on = t + length, not on
+        return out
+
+    def _trajectory(self, rng, duration_s, speeds_mm_per_min):
+        """Sweeps of the vertical axis between 250 and 2250 mm, speed changing per phase, dwells between."""
+        t_grid = np.arange(0.0, duration_s + self.sample_period_s, self.sample_period_s)
+        z = np.empty_like(t_grid)
+        position, k, phase_end, speed, direction = 1250.0, 0, 0.0, speeds_mm_per_min[0], 1.0
+        dwell = 0
+        for i, t in enumerate(t_grid):
+            if t >= phase_end:
+                speed = float(speeds_mm_per_min[k % len(speeds_mm_per_min)])
+                k += 1
+                phase_end = t + 3600.0 * rng.uniform(2.0, 5.0)
+            z[i] = position
+            if dwell > 0:
+                dwell -= 1
+                continue
+            position += direction * speed * self.sample_period_s / 60.0
+            if not 250.0 <= position <= 2250.0:
+                position = float(np.clip(position, 250.0, 2250.0))
+                direction = -direction
+                dwell = int(rng.integers(3, 20))
+        return t_grid, np.round(z, 1)
+
+    def plans(self, rng):
+        plans = []
+        for cid, split, child, hours, speeds, ambient in (
+                ("train_cycle", "train", None, self.train_hours, (20.0, 60.0),
+                 SinusoidalAmbient(self.ambient_mean_c, self.ambient_amplitude_c)),
+                ("test_cycle", "test", None, self.test_hours, (10.0, 40.0, 90.0),
+                 SinusoidalAmbient(self.ambient_mean_c + 0.5, 1.25 * self.ambient_amplitude_c, phase_rad=1.0))):
+            child = rng.spawn(1)[0]
+            duration = self._grid(3600.0 * float(hours))
+            q1 = self._switching(child, duration, (2.0, 6.0), (2.0, 5.0))
+            q2 = self._switching(child, duration, (3.0, 8.0), (1.0, 3.0))
+            t_grid, z = self._trajectory(child, duration, speeds)
+            q3 = [(self._grid(0.5 * duration), self._grid(0.75 * duration))] if (split == "test" and self.q3) else []
+
+            def position(t, t_grid=t_grid, z=z):
+                return z[np.clip(np.searchsorted(t_grid, np.asarray(t) + 1e-6, side="right") - 1, 0, len(z) - 1)]
+
+            plans.append(CampaignPlan(
+                cid=cid, split=split, start_s=DAY_S * 120 + 6 * 3600.0, duration_s=duration, rng=child,
+                ambient=ambient, states={Q1: intervals_signal(q1), Q2: intervals_signal(q2),
+                                         Q3: intervals_signal(q3), POSITION: position},
+                written=(POSITION,), sample_period_s=float(self.sample_period_s), cooldown_s=3 * DAY_S,
+                notes=f"{split} load cycle, {hours:g} h" + (", new source Q3 in the 2nd half" if q3 else ""),
+                manifest={"duration_h": float(hours)},
+                truth={"q1_on_s": [list(map(float, i)) for i in q1], "q2_on_s": [list(map(float, i)) for i in q2],
+                       "q3_on_s": [list(map(float, i)) for i in q3], "ambient_model": ambient.to_dict()}))
+        return plans
+
+    def truth_extra(self):
+        return {"novel_sources": [{"name": "Q3_new", "split": "test", "node": node("right", 4), "power_W": 200.0,
+                                   "description": "local source present only in the second half of the test "
+                                                  "cycle (never in training): a monitoring target, not an "
+                                                  "undeclared effect a diagnosis can learn"}] if self.q3 else []}

@@ -1,0 +1,187 @@
+"""ARX: selection by information criteria, free-run vs one-step prediction, streaming."""
+
+import pickle
+
+import numpy as np
+import pandas as pd
+import pytest
+import statsmodels.api as sm
+from sklearn.utils.estimator_checks import check_estimator
+
+from thermocomp.compensator import Compensator
+from thermocomp.errors import ConfigError
+from thermocomp.models import ARX
+from thermocomp.models.arx import greedy_path, information_criteria
+
+DYNAMIC_CHECKS = {
+    "check_methods_sample_order_invariance": "an AR term / delays make predictions depend on row order",
+    "check_methods_subset_invariance": "an AR term / delays make predictions depend on earlier rows",
+}
+
+
+def arx_data(a, n_campaigns=6, n=200, p=8, delay=0, noise=0.05, seed=0):
+    """Random-walk temperatures; truth y(t) = a*y(t-1) + (1-a)*(2*T1(t-delay) - T4(t)) + e(t)."""
+    rng = np.random.default_rng(seed)
+    X, y, groups = [], [], []
+    for c in range(n_campaigns):
+        T = np.cumsum(rng.normal(0, 0.1, (n, p)), axis=0)
+        T -= T[0]
+        T1_lag = T[np.maximum(np.arange(n) - delay, 0), 1]
+        u = (1 - a) * (2.0 * T1_lag - 1.0 * T[:, 4])
+        out, prev = np.empty(n), 0.0
+        for t in range(n):
+            out[t] = prev = a * prev + u[t] + rng.normal(0, noise)
+        X.append(T), y.append(out), groups.extend([f"K{c}"] * n)
+    return np.vstack(X), np.concatenate(y), np.array(groups)
+
+
+def test_arx_passes_sklearn_checks():
+    check_estimator(ARX())
+
+
+def test_arx_with_ar_and_delays_passes_all_but_documented_order_checks():
+    check_estimator(ARX(ar=True, delays=(0, 2)), expected_failed_checks=DYNAMIC_CHECKS)
+
+
+@pytest.mark.parametrize("selection_error", ["simulation", "equation"])
+def test_arx_selects_the_ar_term_only_when_the_truth_has_one(selection_error):
+    X, y, g = arx_data(a=0.9)
+    dyn = ARX(selection_error=selection_error).fit(X, y, groups=g)
+    assert dyn.chosen_["ar"] is True
+    assert dyn.ar_coef_ == pytest.approx(0.9, abs=0.03)
+    assert sorted(dyn.inputs_[:2]) == ["x1", "x4"]
+
+    X, y, g = arx_data(a=0.0, seed=1)
+    static = ARX(selection_error=selection_error).fit(X, y, groups=g)
+    assert static.chosen_["ar"] is False and static.ar_coef_ == 0.0
+    assert {"x1", "x4"} <= set(static.inputs_)
+    np.testing.assert_allclose(static.coef_[[static.inputs_.index("x1"), static.inputs_.index("x4")]],
+                               [2.0, -1.0], atol=0.05)
+    # the table says why: every (n_inputs, ar) model with its criterion, one winner
+    table = static.selection_
+    assert table["chosen"].sum() == 1
+    assert set(table["ar"]) == {True, False}
+    assert table.loc[table["chosen"], "bicc"].item() == table["bicc"].min()
+    assert "without AR term" in static.chosen_["reason"]
+
+
+def test_greedy_path_rss_equals_least_squares_refit():
+    X, y, _ = arx_data(a=0.0, n_campaigns=2, seed=3)
+    A = np.column_stack([X, y])
+    A = A - A.mean(axis=0)
+    M = A.T @ A
+    for search in ("residual", "forward"):
+        order, rss = greedy_path(M, X.shape[1], range(X.shape[1]), range(X.shape[1]),
+                                 max_inputs=5, search=search)
+        assert len(order) == 5 and len(set(order)) == 5
+        for k in range(1, 6):
+            design = sm.add_constant(X[:, order[:k]])
+            assert rss[k - 1] == pytest.approx(sm.OLS(y, design).fit().ssr, rel=1e-8)
+
+
+def test_residual_search_is_the_papers_split_greedy():
+    """Each step: one-input fit of the current residual per remaining sensor, keep the best, subtract."""
+    X, y, _ = arx_data(a=0.0, n_campaigns=2, seed=4)
+    X = X + 0.7 * X[:, [1]]                       # correlated sensors: residual != forward search
+    A = np.column_stack([X, y])
+    M = (A - A.mean(axis=0)).T @ (A - A.mean(axis=0))
+    order, _ = greedy_path(M, 8, range(8), range(8), max_inputs=4, search="residual")
+    resid, expected = y.copy(), []
+    for _ in range(4):
+        fits = {j: np.polyfit(X[:, j], resid, 1) for j in range(8) if j not in expected}
+        mse = {j: np.mean((resid - np.polyval(c, X[:, j])) ** 2) for j, c in fits.items()}
+        best = min(mse, key=mse.get)
+        resid = resid - np.polyval(fits[best], X[:, best])
+        expected.append(best)
+    assert order == expected
+
+
+def test_criterion_differences_match_statsmodels_likelihood():
+    X, y, _ = arx_data(a=0.0, n_campaigns=2, seed=5)
+    small, big = sm.OLS(y, sm.add_constant(X[:, :2])).fit(), sm.OLS(y, sm.add_constant(X[:, :5])).fit()
+    ic_small = information_criteria(small.ssr, len(y), 3)
+    ic_big = information_criteria(big.ssr, len(y), 6)
+    assert ic_big["aic"] - ic_small["aic"] == pytest.approx(big.aic - small.aic, rel=1e-9)
+    assert ic_big["bic"] - ic_small["bic"] == pytest.approx(big.bic - small.bic, rel=1e-9)
+    # the corrections only add penalty, and vanish as n grows
+    assert ic_small["bicc"] > ic_small["bic"] and ic_small["aicc"] > ic_small["aic"]
+    far = information_criteria(1.0, 10**9, 3)
+    assert far["bicc"] - far["bic"] == pytest.approx(0.0, abs=1e-3)
+
+
+def test_arx_finds_the_input_delay():
+    X, y, g = arx_data(a=0.0, delay=3, seed=6)
+    est = ARX(delays=(0, 1, 2, 3, 4, 5)).fit(X, y, groups=g)
+    assert "x1[t-3]" in est.inputs_
+    assert not any(name.startswith("x1") and name != "x1[t-3]" for name in est.inputs_)
+
+
+def test_simulation_free_runs_and_one_step_uses_the_measured_error():
+    X, y, g = arx_data(a=0.9, seed=7)
+    est = ARX(ar=True).fit(X, y, groups=g)
+    a, u = est.ar_coef_, est._exogenous(X, g)
+    sim = est.predict(X, groups=g)
+    one = est.predict(X, groups=g, y_measured=y)
+    starts = np.flatnonzero(np.r_[True, g[1:] != g[:-1]])
+    # campaign starts: previous error is 0 in both modes (nothing crosses campaigns)
+    np.testing.assert_allclose(sim[starts], u[starts])
+    np.testing.assert_allclose(one[starts], u[starts])
+    inner = np.setdiff1d(np.arange(len(y)), starts)
+    np.testing.assert_allclose(sim[inner], a * sim[inner - 1] + u[inner])
+    np.testing.assert_allclose(one[inner], a * y[inner - 1] + u[inner])
+    assert np.sqrt(np.mean((y - one) ** 2)) < np.sqrt(np.mean((y - sim) ** 2))
+    # a gap in the measurement falls back on the model's own previous estimate
+    y_gap = y.copy()
+    y_gap[50] = np.nan
+    gap = est.predict(X, groups=g, y_measured=y_gap)
+    assert gap[51] == pytest.approx(a * gap[50] + u[51])
+    np.testing.assert_allclose(np.delete(gap, 51), np.delete(one, 51))
+
+
+def test_streaming_reproduces_simulation_predict():
+    X, y, g = arx_data(a=0.9, n_campaigns=3, seed=8)
+    est = ARX(ar=True, delays=(0, 2)).fit(X, y, groups=g)
+    batch = est.predict(X, groups=g)
+    stream = []
+    for t in range(len(y)):
+        if t == 0 or g[t] != g[t - 1]:
+            state = est.stream_init()
+        y_hat, state = est.stream_step(X[t], state)
+        stream.append(y_hat)
+    np.testing.assert_allclose(stream, batch, rtol=0, atol=1e-9)
+
+
+def test_pickle_round_trip_identical_predictions():
+    X, y, g = arx_data(a=0.9, n_campaigns=3, seed=9)
+    est = ARX().fit(X, y, groups=g)
+    again = pickle.loads(pickle.dumps(est))
+    np.testing.assert_array_equal(est.predict(X, groups=g), again.predict(X, groups=g))
+    np.testing.assert_array_equal(est.predict(X, groups=g, y_measured=y),
+                                  again.predict(X, groups=g, y_measured=y))
+
+
+def test_compensator_one_step_mode_reaches_arx():
+    X, y, g = arx_data(a=0.9, n_campaigns=4, p=5, seed=10)
+    names = ["T_a", "T_b", "T_c", "T_d", "T_e"]
+    camps = {}
+    for cid in np.unique(g):
+        rows = g == cid
+        camps[cid] = pd.DataFrame({"time": np.arange(rows.sum()) * 60.0,
+                                   **{name: X[rows, j] for j, name in enumerate(names)}, "E_Z": y[rows]})
+    comp = Compensator(ARX()).fit(camps)
+    est = comp.estimators_["E_Z"]
+    assert est.chosen_["ar"] is True and comp.selected_["E_Z"] == names
+    sim, one = comp.predict(camps), comp.predict(camps, mode="one_step")
+    meas = comp.measured(camps)
+    for cid in camps:
+        Xc = camps[cid][names].to_numpy()
+        np.testing.assert_allclose(one[cid]["E_Z"], est.predict(Xc, y_measured=meas[cid]["E_Z"].to_numpy()))
+        np.testing.assert_allclose(sim[cid]["E_Z"], est.predict(Xc))
+
+
+@pytest.mark.parametrize("bad", [{"criterion": "hqic"}, {"ar": "maybe"}, {"search": "random"},
+                                 {"max_inputs": 0}, {"delays": [-1]}])
+def test_bad_hyperparameters_are_config_errors(bad):
+    X, y, g = arx_data(a=0.0, n_campaigns=1, n=30)
+    with pytest.raises(ConfigError):
+        ARX(**bad).fit(X, y, groups=g)
