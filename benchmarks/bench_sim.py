@@ -90,7 +90,9 @@ def true_signals(name, rec, gen, ds, base_ds):
             flows = np.column_stack([n[p["column"]] * g * (n["ambient"] + p["air_offset_c"] - n[node])
                                      for node, g in p["nodes"].items()])
             return _lags(flows, step(f), (120, 300, 900, 1800, 3600, 7200))
-        return door, (lambda cid, f: _lags(f[[p["column"]]].to_numpy(), step(f), (120, 300, 900, 1800, 3600, 7200))), ()
+        def door_signal(cid, f):
+            return _lags(f[[p["column"]]].to_numpy(), step(f), (120, 300, 900, 1800, 3600, 7200))
+        return door, door_signal, ()
     if name == "hidden_source":
         def oil(cid, f):
             x = (f[[rec["column"]]] - f[rec["column"]].iloc[0]).to_numpy()
@@ -200,7 +202,8 @@ def main(argv=None):
             r = measure(scenario, effect, base=base, **kw)
             ratio = r["after"] / r["before"]
             obs = r.get("obs")
-            print(f"  {effect:15s} {','.join(r['targets']):10s} {_fmt(r['baseline']):>13s} {_fmt(r['before']):>13s} "
+            print(f"  {effect:15s} {','.join(r['targets']):10s} {_fmt(r['baseline']):>13s} "
+                  f"{_fmt(r['before']):>13s} "
                   f"{_fmt(r['after']):>13s} {_fmt(ratio):>11s} "
                   f"{_fmt(obs) if obs is not None else '-':>13s} "
                   f"{_fmt(obs / r['before']) if obs is not None else '-':>11s}")

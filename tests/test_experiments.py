@@ -7,8 +7,10 @@ from hydra import compose, initialize_config_dir
 from hydra.utils import instantiate
 
 from conftest import thermocomp
+from thermocomp.evaluation import score
 from thermocomp.models import ARX, ARXRF
 from thermocomp.paths import conf_dir
+from thermocomp.stages.common import build_compensator
 
 EXPERIMENTS = {
     # name: (scenario, model, select, denoise)
@@ -19,11 +21,11 @@ EXPERIMENTS = {
 }
 
 
-def compose_experiment(name: str):
+def compose_experiment(name: str, *extra: str):
     """Compose ``experiment=<name>``; while its simulator scenario is not written yet, compose it
     on the default scenario instead (a command-line ``sim=`` beats the experiment's override)."""
     scenario = EXPERIMENTS[name][0]
-    overrides = [f"experiment={name}"]
+    overrides = [f"experiment={name}", *extra]
     if not (conf_dir() / "sim" / f"{scenario}.yaml").is_file():
         overrides.append("sim=yearround_spindle")
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
@@ -67,7 +69,8 @@ def test_paper_settings_reach_the_estimators():
 def test_arx_runs_in_both_modes_through_the_cli(default_dataset, tmp_path, mode):
     out = tmp_path / mode
     thermocomp("run", "model=arx", f"eval.mode={mode}", f"data.path={default_dataset}", f"out={out}",
-               "track=false", "eval.plots=false", "eval.mutual_prediction=false")
+               "track=false", "eval.plots=false", "eval.mutual_prediction=false",
+               "eval.ati_baselines=false")
     m = json.loads((out / "metrics.json").read_text())
     assert m["model"] == "arx" and m["mode"] == mode
     for t in ("E_X", "E_Y", "E_Z"):
@@ -90,3 +93,20 @@ def test_lstm_experiment_and_arx_rf_without_door_run_on_the_default_data(default
                f"data.path={default_dataset}", f"out={tmp_path / 'rf'}", "track=false",
                "eval.plots=false", "eval.mutual_prediction=false")
     assert json.loads((tmp_path / "rf" / "metrics.json").read_text())["model"] == "arx_rf"
+
+
+@pytest.mark.slow
+def test_paper_004_reproduction_arx_rf_beats_arx_on_the_swiss_lathe():
+    """The swiss_lathe_door scenario (door openings no sensor sees), 80 h calibration, 24 h test."""
+    if not (conf_dir() / "sim" / "swiss_lathe_door.yaml").is_file():
+        pytest.skip("scenario swiss_lathe_door not available")
+    cfg = compose_experiment("arx_rf_swiss_door")
+    ds, _ = instantiate(cfg.sim.generator).generate()
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    rms = {}
+    for model in ("arx_rf", "arx"):
+        comp = build_compensator(compose_experiment("arx_rf_swiss_door", f"model={model}")).fit(train)
+        targets, _ = score(comp, ds, "simulation", e_p95_points=5, iso_a3=False)
+        rms[model] = {t: m["test"]["rms_after"] for t, m in targets.items()}
+    for t in ("E_X", "E_Y"):
+        assert rms["arx_rf"][t] < 0.85 * rms["arx"][t], rms

@@ -22,6 +22,7 @@ stages:
   select     choose the inputs per target (select=...) -> models/<name>/selection.json
   train      fit the configured model on the train split
   evaluate   score it on train/test, write <out>/metrics.json and figures
+  diagnose   closed loop: CV residual -> missing effect -> refit -> before/after (<out>/diagnosis.json)
   run        ingest .. evaluate in one process; -m for a sweep (one MLflow parent run)
   compare    table of a sweep's child runs, best first (compare.sweep=, compare.sort_by=)
   promote    register the best run's compensator; move @champion only if it is better

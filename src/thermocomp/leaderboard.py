@@ -99,4 +99,4 @@ def to_markdown(table: pd.DataFrame, digits: int = 2) -> str:
     for c in shown.columns:
         if pd.api.types.is_float_dtype(shown[c]):
             shown[c] = [("n/a" if pd.isna(v) else f"{v:.{digits}f}") for v in shown[c]]
-    return shown.fillna("n/a").to_markdown(index=False)
+    return shown.fillna("n/a").to_markdown(index=False, disable_numparse=True)

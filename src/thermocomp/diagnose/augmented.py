@@ -12,7 +12,7 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..errors import ConfigError
 from ..models.linear import MLR
-from .features import AMBIENT_CENTRE_C, Effect, as_effect, design
+from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, initial_weights
 
 
 def _accepts(method, name: str) -> bool:
@@ -60,6 +60,9 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
     target_ : str or None
     required_context_ : list of str
         Raw context columns (``S_``/``T_``) the effects need at prediction time.
+    initial_weights_ : list of (ndarray or None)
+        Per effect, the initial-state directions learned from the training
+        campaigns (effects with ``initial_directions``).
     n_features_in_ : int
     """
 
@@ -78,7 +81,7 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
     def _design(self, X, groups, context) -> np.ndarray:
         if context is not None and len(context) != X.shape[0]:
             raise ValueError(f"context has {len(context)} rows, X has {X.shape[0]}")
-        return design(X, self.effects_, context, groups, self.reference)
+        return design(X, self.effects_, context, groups, self.reference, self.initial_weights_)
 
     def fit(self, X, y, groups=None, context=None, target=None):
         if self.reference not in ("first_sample", "none"):
@@ -88,6 +91,11 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
         self.target_ = target
         self.effects_ = self._effects_for(target)
         self.required_context_ = list(dict.fromkeys(c for e in self.effects_ for c in e.context_columns))
+        g = groups if groups is not None else (
+            np.asarray(context["campaign"]) if context is not None and "campaign" in context else None)
+        self.initial_weights_ = [
+            initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
+            for e in self.effects_]
         Z = self._design(X, groups, context)
         base = clone(self.estimator if self.estimator is not None else MLR())
         self.estimator_ = base.fit(Z, y, **_side(base.fit, groups=groups, context=context))
@@ -132,17 +140,17 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
         state["lag"][key] = z
         return z
 
-    def _initial_state(self, e: Effect, context, a0: float, t: float, state) -> np.ndarray:
-        key = ("initial", e.initial_state)
+    def _initial_state(self, i: int, e: Effect, context, a0: float, t: float, state) -> np.ndarray:
+        key = ("initial", i)
         if key not in state["first"]:   # absolute values at the first sample that has them
             raw = np.array([float((context or {}).get(c, np.nan)) for c in e.initial_state])
             if np.isnan(raw).all():
-                k = len(e.initial_weights) if e.initial_weights is not None else len(raw)
-                return np.zeros(k)
+                w = self.initial_weights_[i]
+                return np.zeros(len(w) if w is not None else len(raw))
             ref = a0 if np.isfinite(a0) else float(np.nanmean(raw))
             offsets = np.nan_to_num(raw - ref)
-            if e.initial_weights is not None:
-                offsets = np.asarray(e.initial_weights, dtype=float) @ offsets
+            if self.initial_weights_[i] is not None:
+                offsets = self.initial_weights_[i] @ offsets
             state["first"][key] = offsets
         return state["first"][key] * (1.0 - np.exp(-(t - state["t0"]) / e.tau_s))
 
@@ -167,14 +175,14 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
                     c = self._lag(i, c, e.tau_s, dt, state)
                 parts.append(c**2 if tr == "square" else c)
                 if tr == "first_order_lag" and e.initial_state:
-                    parts.append(self._initial_state(e, context, a0, t, state))
+                    parts.append(self._initial_state(i, e, context, a0, t, state))
             elif tr == "product":
                 parts.append(np.array([self._raw(e.column, context, state)
                                        * self._raw(e.other, context, state)]))
             elif tr == "lowpass_inputs":
                 parts.append(self._lag(i, x, e.tau_s, dt, state))
                 if e.initial_state:
-                    parts.append(self._initial_state(e, context, a0, t, state))
+                    parts.append(self._initial_state(i, e, context, a0, t, state))
             elif tr == "ambient_linear":
                 parts.append(x * (a0 - AMBIENT_CENTRE_C))
             elif tr == "ambient_step":

@@ -37,6 +37,7 @@ class CandidateOptions:
     families: tuple = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear",
                        "sensor_fault")
     min_units_per_side: int = 2
+    initial_directions: tuple = (2, 3)   # lags also tried from the initial state, k directions
     extra_columns: list = field(default_factory=list)   # more context columns to try as signals
 
 
@@ -88,11 +89,15 @@ def candidates(problem, model_inputs: list[str], declared: list[str], excluded: 
             out += signal_family(col)
     if "dynamics" in fam:
         temps_in = tuple(c for c in model_inputs if c.startswith("T_"))
+        field_temps = tuple(c for c in temps_in if not (c == "T_amb" or c.startswith("T_amb_")))
+        n_campaigns = len(dict.fromkeys(problem.campaigns))
+        starts = [{}] + [{"initial_state": field_temps, "initial_directions": int(k)}
+                         for k in options.initial_directions
+                         if 1 <= k <= len(field_temps) and n_campaigns >= k + 3]
         for t in taus:
-            out.append(Effect("dynamics", "lowpass_inputs", tau_s=t))
-            if temps_in:
-                out.append(Effect("dynamics", "lowpass_inputs", tau_s=t, initial_state=temps_in))
-        out += [Effect("dynamics", "first_order_lag", c, tau_s=t) for c in temps_in for t in taus]
+            out += [Effect("dynamics", "lowpass_inputs", tau_s=t, **st) for st in starts]
+            out += [Effect("dynamics", "first_order_lag", c, tau_s=t, **st)
+                    for c in temps_in for st in starts]
     if "ambient_interval" in fam and "ambient_c0" in ctx and np.isfinite(ctx["ambient_c0"]).all():
         by_unit = ctx["ambient_c0"].groupby(problem.units, sort=False).first()
         if by_unit.nunique() >= 2 * options.min_units_per_side:

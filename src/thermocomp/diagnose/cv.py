@@ -24,7 +24,7 @@ import pandas as pd
 from sklearn.base import clone
 
 from ..select import AllInputs
-from .features import Effect, effect_features, in_frame
+from .features import Effect, effect_features, in_frame, initial_weights
 
 
 def _accepts(method, name: str) -> bool:
@@ -140,17 +140,28 @@ class CrossValidator:
             self._features[key] = self.problem.X[list(names)].to_numpy(float)
         return self._features[key]
 
-    def features(self, effect: Effect, names: list[str]) -> np.ndarray:
-        """Features of ``effect`` on all train rows (cached; input effects per input set)."""
-        key = (effect, tuple(names) if effect.uses_inputs else None)
+    def features(self, effect: Effect, names: list[str], fold: int | None = None) -> np.ndarray:
+        """Features of ``effect`` on all train rows (cached; input effects per input set).
+
+        An effect that ``learns`` (initial directions) learns from the rows
+        outside ``fold`` (all rows for None), as the fitted model would.
+        """
+        fold = fold if effect.learns else None
+        key = (effect, tuple(names) if effect.uses_inputs else None, fold)
         if key not in self._features:
             p = self.problem
             X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))
-            self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference)
+            weights = None
+            if effect.learns:
+                rows = np.ones(len(p.y), bool) if fold is None else p.folds != fold
+                weights = initial_weights(p.context.loc[rows], effect.initial_state,
+                                          p.campaigns[rows], effect.initial_directions)
+            self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference,
+                                                  weights)
         return self._features[key]
 
-    def design(self, names: list[str], effects) -> np.ndarray:
-        return np.hstack([self.inputs_matrix(names)] + [self.features(e, names) for e in effects])
+    def design(self, names: list[str], effects, fold: int | None = None) -> np.ndarray:
+        return np.hstack([self.inputs_matrix(names)] + [self.features(e, names, fold) for e in effects])
 
     def _context(self, fold: int, train: bool) -> pd.DataFrame:
         key = (fold, train)
@@ -168,7 +179,7 @@ class CrossValidator:
         pred = np.empty(len(p.y))
         for k in p.fold_ids:
             tr, te = p.folds != k, p.folds == k
-            Z = self.design(self.selection(tuple(inputs), k), effects)
+            Z = self.design(self.selection(tuple(inputs), k), effects, k)
             est = clone(self.estimator)
             side = {"groups": p.units[tr], "context": self._context(k, True), "target": p.target}
             est.fit(Z[tr], p.y[tr], **{n: v for n, v in side.items() if _accepts(est.fit, n)})

@@ -130,6 +130,7 @@ class Diagnosis:
                            "after": te_a["e_p95"]["after"]},
             "self_prediction": [
                 {"sensor": name, "cv_rmse_c": float(r["cv_rmse"]), "worst_unit": r["worst_unit"],
+                 "worst_unit_split": "test" if r["worst_unit"] in self.cv["test_campaigns"] else "train",
                  "worst_unit_rmse_c": float(r["worst_unit_rmse"]),
                  "jump_ratio": float(r["jump_ratio"])}
                 for name, r in s.self_prediction.iterrows()],
@@ -166,7 +167,7 @@ def _summary(test: dict, cv_rmse: float) -> dict:
 
 def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "simulation",
              options: SearchOptions | None = None,
-             make_compensator: Callable[[dict, list], Compensator] | None = None,
+             make_compensator: Callable[[dict, list, list], Compensator] | None = None,
              e_p95_statistic: str = "range", e_p95_points: int | None = 200,
              model_name: str = "") -> Diagnosis:
     """Find what ``compensator`` misses on the train split, fix it, report before/after on test.
@@ -183,10 +184,11 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
     mode : {'simulation', 'one_step'}
     options : SearchOptions
     make_compensator : callable, optional
-        ``(effects: dict target -> list[Effect], excluded: list[str]) ->
-        Compensator``, the diagnosed model (default :func:`augment` of the
-        template; the ``diagnose`` stage builds it from the config it writes,
-        so ``thermocomp run`` with that config gives the same "after").
+        ``(effects: dict target -> list[Effect], excluded: list[str],
+        inputs: list[str]) -> Compensator``, the diagnosed model, given the
+        resolved declared inputs (default :func:`augment` of the template;
+        the ``diagnose`` stage builds it from the config it writes, so
+        ``thermocomp run`` with that config gives the same "after").
 
     Returns
     -------
@@ -216,6 +218,11 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     if getattr(before, "denoiser_", None) is not None:
         train = denoise_campaigns(before.denoiser_, train, causal=False)
     m = stack(train, before.inputs_, before.targets_, before.reference)
+    # the test split's temperatures (never its errors): sensor health on what the model will face
+    test = {c: ds.campaigns[c] for c in test_ids}
+    if getattr(before, "denoiser_", None) is not None:
+        test = denoise_campaigns(before.denoiser_, test)
+    later = stack(test, before.inputs_, [], before.reference)
     context = m.context.copy()
     context[CONTROL] = random_walk(m.groups, options.seed)
     units = unit_labels(m.groups, options.n_blocks)
@@ -225,15 +232,15 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
         problem = Problem(m.X, m.Y[t].to_numpy(float), context, m.groups, units, t, mode,
                           before.reference, options.n_folds)
         search = Search(problem, compensator.estimator, compensator.selector, before.inputs_,
-                        options, excluded)
+                        options, excluded, later.X, later.groups)
         inherited = list(excluded)
         result = search.run()
         original = search.cv.run(tuple(before.inputs_), []).rmse if inherited else result.start.rmse
         excluded = list(result.excluded)
         found[t], problems[t] = (result, original, inherited), search
     effects = {t: r.effects for t, (r, _, _) in found.items()}
-    build = make_compensator or (lambda eff, exc: augment(compensator, eff, exc, before.inputs_))
-    after = build(effects, excluded).fit({c: ds.campaigns[c] for c in train_ids})
+    build = make_compensator or (lambda eff, exc, inputs: augment(compensator, eff, exc, inputs))
+    after = build(effects, excluded, list(before.inputs_)).fit({c: ds.campaigns[c] for c in train_ids})
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
     out = {}
     for t, (result, original, inherited) in found.items():

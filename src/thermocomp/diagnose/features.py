@@ -96,11 +96,11 @@ class Effect:
     initial_state : tuple of str or None
         Lags only: sensors whose initial distance to the ambient starts the
         lag's transient (see the module docstring).
-    initial_weights : tuple of tuples or None
-        ``(k, len(initial_state))`` directions the initial distances are
-        projected on (the leading principal directions over the train
-        campaigns: sensors on one body carry one number, not one each);
-        ``None`` keeps one regressor per sensor.
+    initial_directions : int or None
+        Project the initial distances on their ``k`` leading principal
+        directions over the training campaigns (sensors on one body carry one
+        number, not one each); learned when the model is fitted
+        (:func:`initial_weights`).  ``None`` keeps one regressor per sensor.
     """
 
     kind: str
@@ -110,11 +110,10 @@ class Effect:
     tau_s: float | None = None
     threshold_c: float | None = None
     initial_state: tuple | None = None
-    initial_weights: tuple | None = None
+    initial_directions: int | None = None
 
     def __post_init__(self):
-        for name in ("initial_state", "initial_weights"):
-            object.__setattr__(self, name, _tuple(getattr(self, name)))
+        object.__setattr__(self, "initial_state", _tuple(self.initial_state))
         if self.kind not in KINDS:
             raise ConfigError(f"effect kind {self.kind!r} is not one of {list(KINDS)}")
         if self.transform not in TRANSFORMS:
@@ -129,9 +128,9 @@ class Effect:
             raise ConfigError(f"effect tau_s must be > 0 s, got {self.tau_s}")
         if self.initial_state and self.transform not in ("first_order_lag", "lowpass_inputs"):
             raise ConfigError("effect initial_state only goes with a lag")
-        if self.initial_weights is not None and any(
-                len(w) != len(self.initial_state or ()) for w in self.initial_weights):
-            raise ConfigError("effect initial_weights needs one weight per initial_state sensor")
+        if self.initial_directions is not None and not (
+                self.initial_state and 1 <= int(self.initial_directions) <= len(self.initial_state)):
+            raise ConfigError("effect initial_directions must be 1 .. the number of initial_state sensors")
 
     @property
     def label(self) -> str:
@@ -139,7 +138,7 @@ class Effect:
         tau = f"tau={self.tau_s:g}s" if self.tau_s is not None else ""
         start = ""
         if self.initial_state:
-            k = len(self.initial_weights) if self.initial_weights is not None else len(self.initial_state)
+            k = self.initial_directions or len(self.initial_state)
             start = f", from the initial thermal state ({k} direction{'s' if k > 1 else ''})"
         return {
             "raw": "raw",
@@ -152,6 +151,11 @@ class Effect:
             "square": "square",
             "remove": "remove from the inputs",
         }[self.transform]
+
+    @property
+    def learns(self) -> bool:
+        """True when the features hold a part learned from the training rows (initial directions)."""
+        return bool(self.initial_state) and self.initial_directions is not None
 
     @property
     def uses_inputs(self) -> bool:
@@ -182,6 +186,8 @@ class Effect:
         for key in ("tau_s", "threshold_c"):
             if d.get(key) is not None:
                 d[key] = float(d[key])
+        if d.get("initial_directions") is not None:
+            d["initial_directions"] = int(d["initial_directions"])
         return cls(**d)
 
 
@@ -280,10 +286,25 @@ def initial_offsets(context: pd.DataFrame | None, columns, groups) -> np.ndarray
     a0 = context["ambient_c0"].to_numpy(float) if "ambient_c0" in context else np.full(n, np.nan)
     out = np.zeros_like(raw)
     for start, stop in segment_bounds(groups, n):
-        first = pd.DataFrame(raw[start:stop]).bfill().iloc[0].to_numpy()
+        first = raw[start]
+        if np.isnan(first).any():
+            first = pd.DataFrame(raw[start:stop]).bfill().iloc[0].to_numpy()
         ref = a0[start] if np.isfinite(a0[start]) else np.nanmean(first)
         out[start:stop] = np.nan_to_num(first - ref)[None, :]
     return out
+
+
+def initial_weights(context: pd.DataFrame | None, columns, groups, k: int) -> np.ndarray:
+    """The ``k`` leading principal directions ``(k, len(columns))`` of the initial distances
+    ``c_j(0) - A_0`` over the campaigns of these rows (centred SVD, sign fixed so the
+    largest weight is positive)."""
+    offsets = initial_offsets(context, columns, groups)
+    starts = np.flatnonzero(np.r_[True, np.asarray(groups)[1:] != np.asarray(groups)[:-1]])
+    O = offsets[starts] - offsets[starts].mean(axis=0)
+    _, _, Vt = np.linalg.svd(O, full_matrices=True)
+    W = Vt[:k]
+    signs = np.sign(W[np.arange(len(W)), np.abs(W).argmax(axis=1)])
+    return W * np.where(signs == 0, 1.0, signs)[:, None]
 
 
 def initial_state(context: pd.DataFrame | None, columns, groups, tau_s: float,
@@ -303,16 +324,21 @@ def initial_state(context: pd.DataFrame | None, columns, groups, tau_s: float,
     return offsets * decay[:, None]
 
 
-def _with_start(lag: np.ndarray, effect: Effect, context, groups) -> np.ndarray:
+def _with_start(lag: np.ndarray, effect: Effect, context, groups, weights) -> np.ndarray:
     if not effect.initial_state:
         return lag
-    return np.hstack([lag, initial_state(context, effect.initial_state, groups, effect.tau_s,
-                                         effect.initial_weights)])
+    if effect.learns and weights is None:
+        weights = initial_weights(context, effect.initial_state, groups, effect.initial_directions)
+    return np.hstack([lag, initial_state(context, effect.initial_state, groups, effect.tau_s, weights)])
 
 
 def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, groups=None,
-                    reference: str = "first_sample") -> np.ndarray:
-    """Extra regressors of one effect, shape ``(n, q)`` (``q = 0`` for ``remove``)."""
+                    reference: str = "first_sample", weights=None) -> np.ndarray:
+    """Extra regressors of one effect, shape ``(n, q)`` (``q = 0`` for ``remove``).
+
+    ``weights``: the learned initial directions (:func:`initial_weights`) of an
+    effect that ``learns``; ``None`` learns them from these rows.
+    """
     X = np.asarray(X, dtype=float)
     n = X.shape[0]
     g = _groups(groups, context, n)
@@ -323,14 +349,15 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
         c = in_frame(_context_column(context, effect.column), g, reference)
         if tr == "first_order_lag":
             return _with_start(first_order_lag(c, _time(context, n), g, effect.tau_s)[:, None],
-                               effect, context, g)
+                               effect, context, g, weights)
         return (c**2 if tr == "square" else c)[:, None]
     if tr == "product":
         a = in_frame(_context_column(context, effect.column), g, reference)
         b = in_frame(_context_column(context, effect.other), g, reference)
         return (a * b)[:, None]
     if tr == "lowpass_inputs":
-        return _with_start(first_order_lag(X, _time(context, n), g, effect.tau_s), effect, context, g)
+        return _with_start(first_order_lag(X, _time(context, n), g, effect.tau_s), effect, context, g,
+                           weights)
     a0 = _ambient(context, n)
     if tr == "ambient_linear":
         return X * (a0 - AMBIENT_CENTRE_C)[:, None]
@@ -338,8 +365,10 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
 
 
 def design(X, effects, context: pd.DataFrame | None = None, groups=None,
-           reference: str = "first_sample") -> np.ndarray:
-    """Model inputs ``X`` followed by the features of every effect."""
+           reference: str = "first_sample", weights=None) -> np.ndarray:
+    """Model inputs ``X`` followed by the features of every effect (``weights[i]`` of effect i)."""
     X = np.asarray(X, dtype=float)
-    blocks = [X] + [effect_features(as_effect(e), X, context, groups, reference) for e in effects]
+    weights = weights or [None] * len(effects)
+    blocks = [X] + [effect_features(as_effect(e), X, context, groups, reference, w)
+                    for e, w in zip(effects, weights)]
     return np.hstack(blocks)

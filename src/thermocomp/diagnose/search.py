@@ -5,7 +5,10 @@ once, at the end, to report before and after):
 
 1. **Residual** of the current model by leave-campaigns-out CV (:mod:`.cv`).
 2. **Candidates** of every family (:mod:`.candidates`), the random-walk control
-   among them; ``sensor_fault`` candidates come from self-prediction (:mod:`.sensors`).
+   among them; ``sensor_fault`` candidates come from self-prediction
+   (:mod:`.sensors`), which also watches the *temperatures* of the campaigns
+   the model will face (the test split's inputs, as a deployed compensator
+   sees them; its errors stay unseen).
 3. **Screening**: the share of the CV residual that each candidate's features
    explain beyond the current model's own regressors (partial :math:`R^2`,
    one least-squares projection each) -- cheap, so every candidate gets it.
@@ -16,10 +19,17 @@ once, at the end, to report before and after):
    sign-flip p-value of the per-campaign gains in mean squared error.
 5. **Accept**, among the candidates that clear the bar (:math:`g \ge`
    ``min_gain_pct`` % of the current CV RMSE *and* :math:`p \le` ``alpha``)
-   and beat the control, the one with the largest 95 % lower confidence bound
-   of the gain over campaigns (:func:`gain_lower_bound`): a gain every
-   campaign shares beats an equal gain a few campaigns carry.  Refit and
-   repeat, at most ``max_effects`` times.
+   and beat the control, the simplest one within one standard error of the
+   largest gain (fewest extra regressors; ties: the largest 95 % lower
+   confidence bound of the gain over campaigns, :func:`gain_lower_bound`) --
+   see :func:`choose`.  Refit and repeat, at most ``max_effects`` times.
+
+A ``sensor_fault`` (removing a declared sensor) has its own bar: its evidence
+is the self-prediction jump (:mod:`.sensors`), since a sensor usually breaks
+in a few campaigns only and a campaign-level test of the error gain cannot
+reach ``alpha`` from one or two campaigns.  It clears when the jump ratio is
+at least ``fault_ratio`` and the model without the sensor is not worse by
+``min_gain_pct`` % or more; a sensor fault that clears is taken first.
 
 The in-sample F-test is not used for the bar: thermal residuals are strongly
 autocorrelated, so a random walk passes it (spurious regression).  Campaigns
@@ -69,6 +79,7 @@ class Evaluation:
     accepted: bool = False
     jump_ratio: float | None = None
     gain_lcb: float = float("nan")
+    n_features: int = 0
     result: CVResult | None = field(default=None, repr=False)
 
     def entry(self) -> dict:
@@ -78,7 +89,7 @@ class Evaluation:
                "transform": e.label,
                "evidence": {"cv_rmse_gain": self.gain, "p_value": self.p_value,
                             "cv_rmse_gain_pct": self.gain_pct, "cv_rmse": self.cv_rmse,
-                            "cv_rmse_gain_lcb": self.gain_lcb,
+                            "cv_rmse_gain_lcb": self.gain_lcb, "n_features": self.n_features,
                             "screen_r2": self.screen_r2, "clears_bar": self.clears_bar},
                "accepted": self.accepted}
         if self.control:
@@ -149,6 +160,30 @@ def gain_lower_bound(mse_before, mse_after, level: float = 0.95) -> float:
     return float(np.sqrt(before) - np.sqrt(max(before - bound, 0.0)))
 
 
+def choose(eligible: list) -> list:
+    """Order the candidates that cleared the bar, the one to accept first.
+
+    A broken sensor goes first (nothing should be fitted on it).  Otherwise
+    the one-standard-error rule: among the candidates not worse than the
+    largest gain by more than one standard error of the per-campaign
+    difference, the one with the fewest extra regressors (the simplest
+    explanation generalises best), then the largest 95 % lower bound.
+    """
+    faults = [ev for ev in eligible if ev.effect.transform == "remove"]
+    rest = [ev for ev in eligible if ev.effect.transform != "remove"]
+    if not rest:
+        return faults
+    best = max(rest, key=lambda ev: ev.gain)
+
+    def as_good(ev) -> bool:
+        diff = ev.result.unit_mse - best.result.unit_mse
+        se = diff.std(ddof=1) / np.sqrt(diff.size) if diff.size > 1 else 0.0
+        return ev is best or diff.mean() <= se
+    good = sorted((ev for ev in rest if as_good(ev)), key=lambda ev: (ev.n_features, -ev.gain_lcb))
+    others = sorted((ev for ev in rest if ev not in good), key=lambda ev: -ev.gain_lcb)
+    return faults + good + others
+
+
 def _orthonormal(Z: np.ndarray) -> np.ndarray:
     """Orthonormal basis of the column space of ``Z`` (rank-revealing, via SVD)."""
     U, s, _ = np.linalg.svd(Z, full_matrices=False)
@@ -173,12 +208,17 @@ class Search:
     """The loop of one target (see the module docstring)."""
 
     def __init__(self, problem: Problem, estimator, selector, declared: list[str],
-                 options: SearchOptions, excluded=()):
+                 options: SearchOptions, excluded=(), later=None, later_units=None):
         self.problem, self.options = problem, options
+        self.later, self.later_units = later, later_units   # test temperatures, for self-prediction
         self.declared = list(declared)
         self.cv = CrossValidator(problem, estimator, selector)
         self.excluded = list(excluded)
         self.effects: list[Effect] = []
+
+    def _faults(self):
+        return self_prediction(self.problem, self.inputs(), self.later, self.later_units,
+                               self.options.candidates.fault_ratio)
 
     def inputs(self, excluded=None) -> tuple:
         excluded = self.excluded if excluded is None else excluded
@@ -194,11 +234,16 @@ class Search:
         d = current.unit_mse - res.unit_mse
         p = sign_flip_pvalue(d, seed=self.options.seed)
         lcb = gain_lower_bound(current.unit_mse, res.unit_mse)
-        clears = bool(pct >= self.options.min_gain_pct and p <= self.options.alpha)
         jump = (float(faults.loc[effect.column, "jump_ratio"])
                 if effect.transform == "remove" and effect.column in faults.index else None)
+        if effect.transform == "remove":   # evidence of the fault is the self-prediction jump
+            clears = bool(jump is not None and jump >= self.options.candidates.fault_ratio
+                          and pct > -self.options.min_gain_pct)
+        else:
+            clears = bool(pct >= self.options.min_gain_pct and p <= self.options.alpha)
+        q = self.cv.features(effect, self.cv.selection(self.inputs(), None)).shape[1]
         return Evaluation(effect, res.rmse, gain, pct, p, r2, clears, effect.column == CONTROL,
-                          jump_ratio=jump, gain_lcb=lcb, result=res)
+                          jump_ratio=jump, gain_lcb=lcb, n_features=q, result=res)
 
     def _shortlist(self, scored: list[tuple[Effect, float]]) -> list[tuple[Effect, float]]:
         opts = self.options
@@ -223,7 +268,7 @@ class Search:
         opts, p = self.options, self.problem
         start = current = self.cv.run(self.inputs(), [])
         rounds, accepted, steps = [], [], []
-        faults = self_prediction(p, self.inputs())
+        faults = self._faults()
         for step in range(int(opts.max_effects)):
             names = self.cv.selection(self.inputs(), None)
             cands = candidates(p, names, self.declared, set(self.excluded), self.effects, faults,
@@ -243,8 +288,8 @@ class Search:
             evals.sort(key=lambda ev: -ev.gain)
             control = next((ev for ev in evals if ev.control), None)
             bar = control.gain if control is not None else -np.inf
-            eligible = [ev for ev in evals if ev.clears_bar and not ev.control and ev.gain > bar]
-            eligible.sort(key=lambda ev: -ev.gain_lcb)
+            eligible = choose([ev for ev in evals if ev.clears_bar and not ev.control
+                               and (ev.gain > bar or ev.effect.transform == "remove")])
             screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
                          "screen_r2": r2} for e, r2 in sorted(
                              (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]
@@ -260,7 +305,7 @@ class Search:
             accepted.append(best)
             if best.effect.transform == "remove":
                 self.excluded.append(best.effect.column)
-                faults = self_prediction(p, self.inputs())
+                faults = self._faults()
             else:
                 self.effects.append(best.effect)
             current = best.result

@@ -2,24 +2,31 @@ r"""Sensor faults by self-prediction: a sensor whose relation to its neighbours 
 
 Paper 002 (Sect. 2.2-2.3) predicts every measured temperature from the others
 through the machine's thermal modes and watches the self-prediction error
-:math:`E_s = T_s - \hat T_s`: a sensor whose :math:`E_s` leaves its tolerance
-band behaves unlike the field it sits in (a heat source the training never saw,
-a loose contact, a drifting element) and is dropped from the model.
+:math:`E_s = T_s - \hat T_s` while the machine runs: a sensor whose
+:math:`E_s` leaves its tolerance band behaves unlike the field it sits in (a
+heat source the training never saw, a loose contact, a drifting element) and
+is dropped from the model.
 
 Here each declared sensor :math:`j` is predicted from the other declared
-sensors by least squares, fitted without the held-out campaigns (the same
-folds as the residual): :math:`e_j = T_j - \hat T_j`.  A healthy thermal
-field is smooth, so every sensor is well predicted by its neighbours and the
-errors of all sensors are of one size; a faulty one jumps above it.  The
-statistic is the *jump ratio*
+sensors by least squares fitted on train campaigns: on each train campaign by
+a fit without it (the folds of the residual), and on every later campaign the
+compensator will face (the test split's *temperatures* -- never its errors)
+by the fit on all train campaigns.  A healthy thermal field is smooth, so
+every sensor is well predicted by its neighbours and the errors of all
+sensors are of one size; a faulty one jumps above it.  The statistic is the
+*jump ratio*
 
 .. math:: J_j = \frac{\max_u \mathrm{RMS}(e_{j,u})}{\operatorname{median}_k \max_u \mathrm{RMS}(e_{k,u})}
 
-(worst held-out unit of sensor :math:`j` against the median sensor), and a
-sensor with :math:`J_j` at or above the tolerance is a ``sensor_fault``
-candidate: the search then tests the model *without* it.  Ambient sensors
-(``T_amb*``) predict but are not judged: the ambient is the field's boundary
-condition, not part of it, and no structure sensor predicts its daily swing.
+(worst campaign of sensor :math:`j` against the median sensor), and a sensor
+with :math:`J_j` at or above the tolerance is a ``sensor_fault`` candidate:
+the search then tests the model *without* it.  A faulty sensor also spoils
+the prediction of its close neighbours (it is one of their predictors), so
+with a tolerance the ratios are computed twice, the second time predicting
+each sensor without the *other* suspects (paper 002 likewise drops the
+outlier before judging the rest).  Ambient sensors (``T_amb*``) predict but
+are not judged: the ambient is the field's boundary condition, not part of
+it, and no structure sensor predicts its daily swing.
 """
 
 from __future__ import annotations
@@ -29,46 +36,89 @@ import pandas as pd
 
 from .cv import Problem
 
+COLUMNS = ["cv_rmse", "worst_unit", "worst_unit_rmse", "jump_ratio"]
 
-def _ambient(column: str) -> bool:
+
+def is_ambient(column: str) -> bool:
     return column == "T_amb" or column.startswith("T_amb_")
 
 
-def self_prediction(problem: Problem, inputs) -> pd.DataFrame:
-    """Cross-validated self-prediction error of each sensor among ``inputs`` (°C).
+def _unit_rms(errors: np.ndarray, index: np.ndarray, n_units: int) -> np.ndarray:
+    """RMS of each column of ``errors`` per unit: shape (columns, units)."""
+    counts = np.maximum(np.bincount(index, minlength=n_units), 1)
+    return np.vstack([np.sqrt(np.bincount(index, weights=e**2, minlength=n_units) / counts)
+                      for e in errors.T])
 
-    Returns a frame indexed by sensor with ``cv_rmse`` (pooled), ``worst_unit``,
-    ``worst_unit_rmse`` and ``jump_ratio``.  Needs at least three sensors.
-    """
-    inputs = [c for c in inputs if c.startswith("T_")]
-    field_sensors = [c for c in inputs if not _ambient(c)]
-    if len(inputs) < 3 or not field_sensors:
-        return pd.DataFrame(columns=["cv_rmse", "worst_unit", "worst_unit_rmse", "jump_ratio"])
-    T = problem.X[inputs].to_numpy(float)
-    E = np.empty_like(T)
+
+def _errors(problem: Problem, T, judged, predictors, L=None):
+    """Held-out self-prediction errors on the train rows (and on ``L``, fitted on all rows)."""
     A = np.column_stack([np.ones(len(T)), T])
+    E = np.empty((len(T), len(judged)))
     for k in problem.fold_ids:
         tr, te = problem.folds != k, problem.folds == k
-        for j in range(T.shape[1]):
-            if _ambient(inputs[j]):
-                continue
-            cols = [0] + [i + 1 for i in range(T.shape[1]) if i != j]
+        for col, j in enumerate(judged):
+            cols = [0] + [i + 1 for i in predictors[j]]
             coef, *_ = np.linalg.lstsq(A[tr][:, cols], T[tr, j], rcond=None)
-            E[te, j] = T[te, j] - A[te][:, cols] @ coef
-    keep = [j for j, c in enumerate(inputs) if not _ambient(c)]
-    E, inputs = E[:, keep], [inputs[j] for j in keep]
-    T = T[:, keep]
-    per_unit = np.vstack([np.sqrt(np.bincount(problem.unit_index, weights=E[:, j] ** 2,
-                                              minlength=problem.n_units)
-                                  / np.maximum(np.bincount(problem.unit_index,
-                                                           minlength=problem.n_units), 1))
-                          for j in range(T.shape[1])])          # (sensors, units)
-    worst = per_unit.max(axis=1)
-    scale = float(np.median(worst))
+            E[te, col] = T[te, j] - A[te][:, cols] @ coef
+    if L is None:
+        return E, None
+    AL = np.column_stack([np.ones(len(L)), L])
+    EL = np.empty((len(L), len(judged)))
+    for col, j in enumerate(judged):
+        cols = [0] + [i + 1 for i in predictors[j]]
+        coef, *_ = np.linalg.lstsq(A[:, cols], T[:, j], rcond=None)
+        EL[:, col] = L[:, j] - AL[:, cols] @ coef
+    return E, EL
+
+
+def self_prediction(problem: Problem, inputs, later: pd.DataFrame | None = None,
+                    later_units=None, tolerance: float | None = None) -> pd.DataFrame:
+    """Self-prediction error of each non-ambient sensor among ``inputs`` (°C).
+
+    ``later``/``later_units``: temperatures (reference frame) and campaign of
+    the rows the compensator will face after training (the test split).
+    ``tolerance``: the jump ratio of a suspect; when given, suspects are left
+    out of each other's predictors in a second pass.  Returns a frame indexed
+    by sensor, worst first, with ``cv_rmse`` (pooled over the held-out train
+    campaigns), ``worst_unit``, ``worst_unit_rmse`` and ``jump_ratio``.
+    Empty with fewer than three sensors.
+    """
+    sensors = [c for c in inputs if c.startswith("T_")]
+    judged = [j for j, c in enumerate(sensors) if not is_ambient(c)]
+    if len(sensors) < 3 or not judged:
+        return pd.DataFrame(columns=COLUMNS)
+    T = problem.X[sensors].to_numpy(float)
+    L = later[sensors].to_numpy(float) if later is not None and len(later) else None
+    names = list(problem.unit_names)
+    index = None
+    if L is not None:
+        ids = list(dict.fromkeys(np.asarray(later_units, dtype=object)))
+        pos = {u: i for i, u in enumerate(ids)}
+        index = np.array([pos[u] for u in np.asarray(later_units, dtype=object)])
+        names += ids
+
+    def jumps(predictors):
+        E, EL = _errors(problem, T, judged, predictors, L)
+        per_unit = _unit_rms(E, problem.unit_index, problem.n_units)
+        if EL is not None:
+            per_unit = np.hstack([per_unit, _unit_rms(EL, index, len(names) - problem.n_units)])
+        worst = per_unit.max(axis=1)
+        scale = float(np.median(worst))
+        ratio = worst / scale if scale > 0 else np.full(len(judged), np.inf)
+        return E, per_unit, worst, ratio
+
+    everyone = {j: [i for i in range(len(sensors)) if i != j] for j in judged}
+    E, per_unit, worst, ratio = jumps(everyone)
+    if tolerance is not None:
+        suspects = {judged[col] for col in np.flatnonzero(ratio >= tolerance)}
+        if suspects:
+            apart = {j: [i for i in everyone[j] if i not in suspects - {j}] for j in judged}
+            if all(apart[j] for j in judged):
+                E, per_unit, worst, ratio = jumps(apart)
     out = pd.DataFrame({
         "cv_rmse": np.sqrt(np.mean(E**2, axis=0)),
-        "worst_unit": [problem.unit_names[i] for i in per_unit.argmax(axis=1)],
+        "worst_unit": [names[i] for i in per_unit.argmax(axis=1)],
         "worst_unit_rmse": worst,
-        "jump_ratio": worst / scale if scale > 0 else np.full(len(inputs), np.inf),
-    }, index=pd.Index(inputs, name="sensor"))
+        "jump_ratio": ratio,
+    }, index=pd.Index([sensors[j] for j in judged], name="sensor"))
     return out.sort_values("jump_ratio", ascending=False)

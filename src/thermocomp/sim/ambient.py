@@ -160,7 +160,8 @@ class SinusoidalAmbient:
 
     def sample(self, t_s, rng=None) -> np.ndarray:
         t_s = np.asarray(t_s, dtype=float)
-        return self.mean_c + self.amplitude_c * np.sin(2 * np.pi * t_s / (3600.0 * self.period_h) + self.phase_rad)
+        phase = 2 * np.pi * t_s / (3600.0 * self.period_h) + self.phase_rad
+        return self.mean_c + self.amplitude_c * np.sin(phase)
 
     def to_dict(self) -> dict:
         return asdict(self)

@@ -15,7 +15,6 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from thermocomp.sim.ambient import AmbientModel
 from thermocomp.sim.network import ThermalNetwork
 from thermocomp.sim.sensors import SensorArray, TemperatureSensor, quantise
 from thermocomp.sim.sources import SPINDLE, HeatInjector, HeatSource, StateConvection

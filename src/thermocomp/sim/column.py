@@ -92,7 +92,8 @@ def sensors():
     out = [TemperatureSensor(f"T_{f}{k}", {node(f, k): 1.0}, float(np.round(rng.uniform(-0.1, 0.1), 2)),
                              lag_s=60.0) for f in FACES for k in range(1, LEVELS + 1)]
     for k in (1, 2, 4, 5):
-        out.append(TemperatureSensor(f"T_edge{k}", {node("front", k): 0.5, node("right" if k % 2 else "left", k): 0.5},
+        side = "right" if k % 2 else "left"
+        out.append(TemperatureSensor(f"T_edge{k}", {node("front", k): 0.5, node(side, k): 0.5},
                                      float(np.round(rng.uniform(-0.1, 0.1), 2)), lag_s=60.0))
     out.append(TemperatureSensor("T_amb", {AMBIENT: 0.97, "base": 0.03}, 0.02, lag_s=120.0))
     return out
@@ -112,7 +113,7 @@ COLUMN_EFFECTS = {
     "axis_position": {"axis": "Z", "travel_mm": [250.0, 2250.0], "home_mm": 1250.0,
                       "tilt_nodes": {node("left", 2): 0.5, node("left", 3): 0.5, node("right", 2): -0.5,
                                      node("right", 3): -0.5},
-                      "gain_um_per_K_per_m": 30.0, "targets": ["E_X"]},
+                      "gain_um_per_K_per_m": 8.0, "targets": ["E_X"]},
     "sensor_drift": {"column": "T_front3", "rate_K_per_h": 0.1, "onset_fraction": 0.3, "splits": ["test"],
                      "targets": ["E_Y"]},
     "ambient_law": {"level_node": "ambient", "level_lag_h": 1.0, "threshold_c": 20.0, "gain": 0.5,
@@ -141,7 +142,8 @@ class ColumnMovingSource(Scenario):
 
     def __init__(self, train_hours=40.0, test_hours=40.0, sample_period_s=100.0, ambient_mean_c=20.0,
                  ambient_amplitude_c=2.0, q3=True, temp_noise_c=0.02, temp_quantum_c=0.01,
-                 error_noise_um=0.3, error_quantum_um=0.1, effects=(), effect_params=None, clean=False, seed=0):
+                 error_noise_um=0.3, error_quantum_um=0.1, effects=(), effect_params=None, clean=False,
+                 seed=0):
         self.train_hours = train_hours
         self.test_hours = test_hours
         self.sample_period_s = sample_period_s
@@ -203,16 +205,19 @@ class ColumnMovingSource(Scenario):
                 ("train_cycle", "train", None, self.train_hours, (20.0, 60.0),
                  SinusoidalAmbient(self.ambient_mean_c, self.ambient_amplitude_c)),
                 ("test_cycle", "test", None, self.test_hours, (10.0, 40.0, 90.0),
-                 SinusoidalAmbient(self.ambient_mean_c + 0.5, 1.25 * self.ambient_amplitude_c, phase_rad=1.0))):
+                 SinusoidalAmbient(self.ambient_mean_c + 0.5, 1.25 * self.ambient_amplitude_c,
+                                   phase_rad=1.0))):
             child = rng.spawn(1)[0]
             duration = self._grid(3600.0 * float(hours))
             q1 = self._switching(child, duration, (2.0, 6.0), (2.0, 5.0))
             q2 = self._switching(child, duration, (3.0, 8.0), (1.0, 3.0))
             t_grid, z = self._trajectory(child, duration, speeds)
-            q3 = [(self._grid(0.5 * duration), self._grid(0.75 * duration))] if (split == "test" and self.q3) else []
+            q3 = ([(self._grid(0.5 * duration), self._grid(0.75 * duration))]
+                  if (split == "test" and self.q3) else [])
 
             def position(t, t_grid=t_grid, z=z):
-                return z[np.clip(np.searchsorted(t_grid, np.asarray(t) + 1e-6, side="right") - 1, 0, len(z) - 1)]
+                k = np.searchsorted(t_grid, np.asarray(t) + 1e-6, side="right") - 1
+                return z[np.clip(k, 0, len(z) - 1)]
 
             plans.append(CampaignPlan(
                 cid=cid, split=split, start_s=DAY_S * 120 + 6 * 3600.0, duration_s=duration, rng=child,
@@ -221,12 +226,15 @@ class ColumnMovingSource(Scenario):
                 written=(POSITION,), sample_period_s=float(self.sample_period_s), cooldown_s=3 * DAY_S,
                 notes=f"{split} load cycle, {hours:g} h" + (", new source Q3 in the 2nd half" if q3 else ""),
                 manifest={"duration_h": float(hours)},
-                truth={"q1_on_s": [list(map(float, i)) for i in q1], "q2_on_s": [list(map(float, i)) for i in q2],
+                truth={"q1_on_s": [list(map(float, i)) for i in q1],
+                       "q2_on_s": [list(map(float, i)) for i in q2],
                        "q3_on_s": [list(map(float, i)) for i in q3], "ambient_model": ambient.to_dict()}))
         return plans
 
     def truth_extra(self):
-        return {"novel_sources": [{"name": "Q3_new", "split": "test", "node": node("right", 4), "power_W": 200.0,
-                                   "description": "local source present only in the second half of the test "
-                                                  "cycle (never in training): a monitoring target, not an "
-                                                  "undeclared effect a diagnosis can learn"}] if self.q3 else []}
+        if not self.q3:
+            return {"novel_sources": []}
+        return {"novel_sources": [{
+            "name": "Q3_new", "split": "test", "node": node("right", 4), "power_W": 200.0,
+            "description": "local source present only in the second half of the test cycle (never in "
+                           "training): a monitoring target, not an undeclared effect a diagnosis can learn"}]}

@@ -321,7 +321,8 @@ class LagNode(UndeclaredEffect):
 
     def time_constant_s(self) -> float:
         p = self.params
-        return float(p["capacity_J_per_K"]) / (float(p["conductance_W_per_K"]) + float(p["convection_W_per_K"]))
+        drain = float(p["conductance_W_per_K"]) + float(p["convection_W_per_K"])
+        return float(p["capacity_J_per_K"]) / drain
 
     def description(self):
         return (f"unmeasured internal mass on {self.params['parent']} (time constant "
@@ -499,7 +500,8 @@ class AmbientLaw(UndeclaredEffect):
         z = (np.asarray(level_c, dtype=float) - float(p["threshold_c"])) / float(p["width_c"])
         return float(p["gain"]) / (1.0 + np.exp(-np.clip(z, -50, 50)))
 
-    def level(self, node_temps: np.ndarray, ambient: np.ndarray, times_s: np.ndarray, index: dict) -> np.ndarray:
+    def level(self, node_temps: np.ndarray, ambient: np.ndarray, times_s: np.ndarray,
+              index: dict) -> np.ndarray:
         """Level temperature (°C) at the samples."""
         name = self.params["level_node"]
         raw = np.asarray(ambient if name == "ambient" else node_temps[:, index[name]], dtype=float)
@@ -513,11 +515,13 @@ class AmbientLaw(UndeclaredEffect):
         index = machine.network.index
         rise = ctx.node_temps - ctx.node_temps[0]
         gain = self.factor(self.level(ctx.node_temps, ctx.ambient, ctx.times_s, index))
-        ctx.truth.setdefault(self.name, {})["share_above"] = float(np.mean(gain > 0.5 * float(self.params["gain"])))
+        share = float(np.mean(gain > 0.5 * float(self.params["gain"])))
+        ctx.truth.setdefault(self.name, {})["share_above"] = share
         errors = errors.copy()
         for row in self._target_rows(machine):
             target = machine.thermoelastic.targets[row]
-            linear = sum(float(v) * rise[:, index[n]] for n, v in machine.thermoelastic.linear[target].items())
+            coefficients = machine.thermoelastic.linear[target]
+            linear = sum(float(v) * rise[:, index[n]] for n, v in coefficients.items())
             errors[:, row] += gain * linear
         return errors
 

@@ -73,8 +73,10 @@ LINKS = (
 
 def heat_sources():
     return [
-        ConstantWhileRunning("heater_H1_side", {"column_side_low": 0.85, "bed_mid": 0.15}, 450.0, HEATER_SIDE),
-        ConstantWhileRunning("heater_H2_back", {"column_back_low": 0.85, "bed_mid": 0.15}, 450.0, HEATER_BACK),
+        ConstantWhileRunning("heater_H1_side", {"column_side_low": 0.85, "bed_mid": 0.15}, 450.0,
+                             HEATER_SIDE),
+        ConstantWhileRunning("heater_H2_back", {"column_back_low": 0.85, "bed_mid": 0.15}, 450.0,
+                             HEATER_BACK),
         ConstantWhileRunning("x_drive", {"bed_mid": 0.5, "column_front_low": 0.5}, 80.0, AXES),
         ConstantWhileRunning("y_drive", {"ram_rear": 0.7, "column_upper_front": 0.3}, 60.0, AXES),
         ConstantWhileRunning("z_drive", {"column_upper_front": 1.0}, 40.0, AXES),
@@ -147,7 +149,8 @@ LARGE_MILL_EFFECTS = {
     "lag_node": {"parent": "column_back_low", "capacity_J_per_K": 1.5e6, "conductance_W_per_K": 50.0,
                  "convection_W_per_K": 1.0, "sensitivity_um_per_K": {"E_Y": 20.0}, "targets": ["E_Y"]},
     "axis_position": {"axis": "Z", "travel_mm": [0.0, 1500.0], "home_mm": 750.0, "dwell_min": [20.0, 90.0],
-                      "tilt_nodes": {"column_side_low": 1.0, "column_front_low": -0.5, "column_back_low": -0.5},
+                      "tilt_nodes": {"column_side_low": 1.0, "column_front_low": -0.5,
+                                     "column_back_low": -0.5},
                       "gain_um_per_K_per_m": 20.0, "targets": ["E_X"]},
     "sensor_drift": {"column": "T_col_03", "rate_K_per_h": 0.05, "onset_fraction": 0.3,
                      "splits": ["test"], "targets": ["E_X", "E_Y", "E_Z"]},
@@ -234,7 +237,8 @@ class LargeMillWeek(Scenario):
         # Training, 24 March: 30 % quiet, heaters H1, H2, both, then forced cool/heat of the hall.
         tr_heat, tr_climate = self._programme(
             _h(24 * 82 + 8), self.train_hours,
-            [(0.30, 0.40, [HEATER_SIDE]), (0.47, 0.57, [HEATER_BACK]), (0.64, 0.73, [HEATER_SIDE, HEATER_BACK])],
+            [(0.30, 0.40, [HEATER_SIDE]), (0.47, 0.57, [HEATER_BACK]),
+             (0.64, 0.73, [HEATER_SIDE, HEATER_BACK])],
             [(0.80, 18.0), (0.86, 18.0), (0.89, 26.0), (0.96, 22.0)], (0.0, 24.0), 22.0, 22.0)
         # Validation, 8 June: HVAC 06-18 h at 24 °C, nights free up to ~27 °C, heaters recombined.
         te_heat, te_climate = self._programme(

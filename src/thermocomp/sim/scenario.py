@@ -28,8 +28,14 @@ import pandas as pd
 
 from thermocomp.errors import ConfigError
 from thermocomp.io.contract import Dataset
-from thermocomp.sim.campaign import (CampaignContext, Measurement, Programme, hold_between_measurements,
-                                     measured_rows, run_campaign)
+from thermocomp.sim.campaign import (
+    CampaignContext,
+    Measurement,
+    Programme,
+    hold_between_measurements,
+    measured_rows,
+    run_campaign,
+)
 from thermocomp.sim.effects import build_effects
 from thermocomp.sim.sensors import quantise
 
@@ -199,7 +205,8 @@ class Scenario:
         targets = machine.thermoelastic.targets
         rises = {cid: (f[sensors] - f[sensors].iloc[0]).to_numpy() for cid, f in frames.items()}
         x = np.vstack([rises[cid][measured[cid]] for cid in frames])
-        y = np.vstack([(f[targets] - f[targets].iloc[0]).to_numpy()[measured[cid]] for cid, f in frames.items()])
+        y = np.vstack([(f[targets] - f[targets].iloc[0]).to_numpy()[measured[cid]]
+                       for cid, f in frames.items()])
         coef, *_ = np.linalg.lstsq(x, y, rcond=None)
         rng = np.random.default_rng([int(self.seed), zlib.crc32(b"clean")])
         for cid, frame in frames.items():

@@ -34,7 +34,8 @@ workspace_air   1.5e4    enclosure air and sheet-metal guards; 15 W/K through th
 ==============  =======  =========================================================
 
 Inner nodes exchange with ``workspace_air`` (links of 1-5 W/K), not with the
-shop: the enclosure runs a few kelvin above the hall (60 W of pumps, conveyor and lights plus part of the motor losses).
+shop: the enclosure runs a few kelvin above the hall (60 W of pumps, conveyor and
+lights plus part of the motor losses).
 An open door adds
 40 W/K between the enclosure air and the shop (the door's air exchange) and
 forced convection on the tool post and guide bush (built-in ``door`` effect),
@@ -50,7 +51,6 @@ import numpy as np
 
 from thermocomp.sim.ambient import DAY_S, HallClimate
 from thermocomp.sim.campaign import Machine, Programme
-from thermocomp.sim.effects import intervals_signal
 from thermocomp.sim.network import Link, Node, ThermalNetwork
 from thermocomp.sim.scenario import CampaignPlan, Scenario
 from thermocomp.sim.sensors import AMBIENT, TemperatureSensor
@@ -132,11 +132,11 @@ SWISS_LATHE_EFFECTS = {
     "door": {"nodes": {"workspace_air": 60.0, "tool_holder": 6.0, "guide_bush": 1.5}, "air_offset_c": 0.0,
              "rate_per_h": 0.5, "duration_min": [3.0, 15.0], "targets": ["E_X", "E_Y"]},
     # A rotary union / clamping cylinder behind the spindle with its own hydraulic circuit.
-    "hidden_source": {"anchor": "spindle", "power_W": 300.0, "capacity_J_per_K": 2.0e4,
+    "hidden_source": {"anchor": "spindle", "power_W": 400.0, "capacity_J_per_K": 2.0e4,
                       "conductance_W_per_K": 6.0, "on_min": [30.0, 120.0], "off_min": [30.0, 120.0],
                       "targets": ["E_X"]},
     "lag_node": {"parent": "spindle_motor", "capacity_J_per_K": 8.0e4, "conductance_W_per_K": 8.0,
-                 "convection_W_per_K": 0.5, "sensitivity_um_per_K": {"E_X": 3.0}, "targets": ["E_X"]},
+                 "convection_W_per_K": 0.5, "sensitivity_um_per_K": {"E_X": 4.0}, "targets": ["E_X"]},
     "axis_position": {"axis": "Z", "travel_mm": [0.0, 200.0], "home_mm": 0.0, "dwell_min": [5.0, 30.0],
                       "tilt_nodes": {"headstock": 1.0, "frame": -1.0}, "gain_um_per_K_per_m": 60.0,
                       "targets": ["E_Y"]},
@@ -241,7 +241,8 @@ class SwissLatheDoor(Scenario):
             duration = self._grid(3600.0 * float(hours))
             spindle, tool = (self._calibration if split == "train" else self._production)(child, duration)
             plans.append(CampaignPlan(
-                cid=cid, split=split, start_s=start, duration_s=duration, rng=child, ambient=self._climate(start),
+                cid=cid, split=split, start_s=start, duration_s=duration, rng=child,
+                ambient=self._climate(start),
                 programme=spindle, states={TOOL: tool.rpm_at, AXES: np.ones_like},
                 written=(SPINDLE, TOOL), sample_period_s=float(self.sample_period_s),
                 error_period_s=float(self.error_period_s), cooldown_s=2 * DAY_S,

@@ -15,11 +15,10 @@ import numpy as np
 
 from thermocomp.sim.ambient import DAY_S, AmbientModel
 from thermocomp.sim.campaign import Programme
-from thermocomp.sim.scenario import CampaignPlan, Scenario, plain, single_threaded_blas  # noqa: F401
+from thermocomp.sim.scenario import CampaignPlan, Scenario, single_threaded_blas  # noqa: F401
 from thermocomp.sim.vmc import VMC_EFFECTS, vertical_machining_centre
 
 SCENARIO = "yearround_spindle"
-_plain = plain
 
 
 class YearRoundSpindle(Scenario):

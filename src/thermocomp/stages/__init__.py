@@ -7,6 +7,7 @@ never reaches into another stage's internals: they meet at files.
 
 from .compare import compare
 from .denoise import denoise
+from .diagnose import diagnose
 from .ingest import ingest
 from .modelling import evaluate, run, train
 from .promote import promote
@@ -14,5 +15,5 @@ from .select import select
 from .simulate import simulate
 
 STAGES = {"simulate": simulate, "ingest": ingest, "denoise": denoise, "select": select,
-          "train": train, "evaluate": evaluate, "run": run,
+          "train": train, "evaluate": evaluate, "diagnose": diagnose, "run": run,
           "compare": compare, "promote": promote}

@@ -66,9 +66,17 @@ def run_metrics(run_id: str, uri: str) -> dict | None:
 
 
 def _varied(params: list[dict]) -> list[str]:
+    """Parameters that differ across the runs, beyond the named config-group choices.
+
+    A key missing from some runs only reflects their group choice (``model=pcr``
+    has no ``max_inputs``), and the keys of a group whose choice varies are
+    summed up by its name column: neither is shown.
+    """
+    groups = {key.split(".")[0] for key in _NAMED if len({p.get(key) for p in params}) > 1}
     keys = sorted({k for p in params for k in p})
     return [k for k in keys if k not in _NAMED and k not in _HIDDEN and not k.endswith("._target_")
-            and not k.startswith("hydra") and len({p.get(k) for p in params}) > 1]
+            and not k.startswith("hydra") and k.split(".")[0] not in groups
+            and all(k in p for p in params) and len({p[k] for p in params}) > 1]
 
 
 def sweep_rows(client, uri: str, parent_id: str, target: str = "mean") -> list[dict]:

@@ -98,6 +98,10 @@ def _criterion(targets: dict, cfg: DictConfig) -> tuple[float | None, dict]:
         raise ConfigError(f"promote.criterion/target: {exc.args[0]}") from None
 
 
+def _fmt(value: float | None) -> str:
+    return "n/a" if value is None else f"{value:.4g}"
+
+
 def _current_champion(client, name: str, alias: str):
     try:
         return retry_locked(client.get_model_version_by_alias, name, alias)
@@ -180,7 +184,7 @@ def promote(cfg: DictConfig) -> dict:
     else:
         moved = beats(cand_score, champ_score, criterion, float(opts.min_improvement))
         verb = "beats" if moved else "does not beat"
-        why = (f"{criterion} {cand_score:.4g} {verb} the champion's {champ_score:.4g} "
+        why = (f"{criterion} {_fmt(cand_score)} {verb} the champion's {_fmt(champ_score)} "
                f"(version {champion.version}) on the same {len(test_ids)} test campaigns")
     commit, dirty = git_commit()
     tags = {"dataset_hash": dataset_hash(data_path), "dataset": ds.name, "git_commit": commit,

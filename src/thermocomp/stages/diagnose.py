@@ -1,0 +1,224 @@
+"""`thermocomp diagnose`: closed loop -- residual -> missing effect -> refit -> before/after.
+
+Reads ``data.path``, runs :func:`thermocomp.diagnose.diagnose` on the
+configured model and writes, under ``out``:
+
+* ``diagnosis.json`` -- CLI.md layout, for the primary target (the one with
+  the largest CV RMSE before); ``diagnosis_<target>.json`` for every target;
+* ``diagnosis/report.md`` and ``report.html`` (+ ``report_<target>.*``), ``plots/``;
+* ``diagnosis/conf/model/diagnosed.yaml`` -- the model plus the accepted
+  effects -- and ``diagnosis/conf/experiment/diagnosed.yaml`` pinning what the
+  diagnosis ran with, so ``thermocomp run hydra.searchpath=[file://<out>/diagnosis/conf]
+  experiment=diagnosed data.path=...`` reproduces the "after" figures.
+
+The diagnosed model is built from that very config (as ``run`` builds it), so
+the figures in the report are the ones the rerun gives.
+"""
+
+from __future__ import annotations
+
+import copy
+import shlex
+from pathlib import Path
+
+import yaml
+from omegaconf import DictConfig, OmegaConf
+
+from .. import io
+from ..diagnose import CandidateOptions, SearchOptions, diagnose as run_diagnosis
+from ..diagnose.features import KINDS
+from ..diagnose.figures import diagnosis_figures
+from ..diagnose.report import markdown, to_html
+from ..errors import ConfigError
+from ..io import atomic_dir
+from ..io.contract import atomic_write_text
+from ..paths import resolve
+from ..tracking import stage_run
+from .common import build_compensator, check_config, data_options, say, write_json
+
+MODEL_NAME = "diagnosed"
+
+
+def search_options(dcfg) -> SearchOptions:
+    """``diagnose.*`` -> SearchOptions; a value out of range is a ConfigError (exit 2)."""
+    def positive(key, cast=float, minimum=0.0, strict=True):
+        v = cast(dcfg[key])
+        if v < minimum or (strict and v == minimum):
+            raise ConfigError(f"diagnose.{key}={dcfg[key]!r} must be {'>' if strict else '>='} {minimum}")
+        return v
+    families = tuple(dcfg.families)
+    unknown = [f for f in families if f not in KINDS]
+    if unknown:
+        raise ConfigError(f"diagnose.families has unknown {unknown} (known: {list(KINDS)})")
+    alpha = float(dcfg.alpha)
+    if not 0 < alpha < 1:
+        raise ConfigError(f"diagnose.alpha={alpha} must be in (0, 1)")
+    taus = tuple(float(t) for t in dcfg.taus_s)
+    if any(t <= 0 for t in taus):
+        raise ConfigError(f"diagnose.taus_s={list(taus)} must all be > 0 s")
+    return SearchOptions(
+        max_effects=positive("max_effects", int, 0, strict=False),
+        min_gain_pct=positive("min_gain_pct", float, 0, strict=False),
+        alpha=alpha, shortlist=positive("shortlist", int, 1, strict=False),
+        n_folds=positive("n_folds", int, 2, strict=False), n_blocks=positive("n_blocks", int, 2, strict=False),
+        seed=int(dcfg.seed),
+        candidates=CandidateOptions(taus_s=taus, n_squares=positive("n_squares", int, 0, strict=False),
+                                    fault_ratio=positive("fault_ratio"), families=families,
+                                    initial_directions=tuple(int(k) for k in dcfg.initial_directions)))
+
+
+def _container(node):
+    return OmegaConf.to_container(node, resolve=True) if node is not None else None
+
+
+def diagnosed_model(cfg: DictConfig, effects: dict, name: str) -> dict:
+    """The ``model`` config of the diagnosed model (an ATI wrapper moves inside it)."""
+    base = _container(cfg.model.estimator)
+    ati = cfg.get("ati")
+    if ati is not None and ati.get("estimator") is not None:
+        inner = _container(ati.estimator)
+        inner.pop("_partial_", None)
+        inner["base_estimator"] = base
+        base = inner
+    return {"name": name, "estimator": {
+        "_target_": "thermocomp.diagnose.AugmentedRegressor", "_convert_": "all",
+        "reference": str(cfg.data.reference),
+        "effects": {t: [e.to_dict() for e in es] for t, es in effects.items()},
+        "estimator": base}}
+
+
+def _kept_inputs(inputs: list[str], excluded) -> list[str]:
+    return [c for c in inputs if c not in set(excluded)]
+
+
+def after_config(cfg: DictConfig, model: dict, kept_inputs: list[str] | None) -> DictConfig:
+    """``cfg`` with the diagnosed model, as the written experiment composes it."""
+    out = copy.deepcopy(cfg)
+    OmegaConf.set_struct(out, False)
+    OmegaConf.update(out, "model", model, merge=False)
+    if out.get("ati") is not None and out.ati.get("estimator") is not None:
+        OmegaConf.update(out, "ati", {"name": "none", "estimator": None}, merge=False)
+    if kept_inputs is not None:
+        OmegaConf.update(out, "data.inputs", kept_inputs, merge=False)
+    return out
+
+
+def experiment(cfg: DictConfig, kept_inputs: list[str] | None) -> dict:
+    """``conf/experiment/diagnosed.yaml``: the diagnosed model with what the diagnosis ran with."""
+    defaults = [{"override /model": MODEL_NAME}]
+    if cfg.get("ati") is not None and cfg.ati.get("estimator") is not None:
+        defaults.append({"override /ati": "none"})
+    for group in ("select", "denoise"):
+        node = cfg.get(group)
+        if node is not None and node.get("name") is not None:
+            defaults.append({f"override /{group}": str(node.name)})
+    out: dict = {"defaults": defaults, "name": f"{cfg.name}-{MODEL_NAME}"}
+    for group in ("select", "denoise"):
+        if cfg.get(group) is not None:
+            out[group] = _container(cfg[group])
+    data = {"reference": str(cfg.data.reference)}
+    if kept_inputs is not None:
+        data["inputs"] = list(kept_inputs)
+    out["data"] = data
+    out["eval"] = {"mode": str(cfg.eval.mode)}
+    return out
+
+
+def _yaml(header: str, body: dict) -> str:
+    return header + yaml.safe_dump(body, sort_keys=False, allow_unicode=True, width=100)
+
+
+def diagnose(cfg: DictConfig) -> dict:
+    """Diagnose the configured model on ``data.path``; write the report under ``out``."""
+    check_config(cfg)
+    if cfg.get("diagnose") is None:
+        raise ConfigError("no `diagnose` config group (conf/diagnose/default.yaml)")
+    dcfg = cfg.diagnose
+    options = search_options(dcfg)
+    targets = None if dcfg.targets is None else (
+        [str(dcfg.targets)] if isinstance(dcfg.targets, str) else [str(t) for t in dcfg.targets])
+    template = build_compensator(cfg)
+    say(f"reading {resolve(cfg.data.path)}")
+    ds, _ = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
+    name = f"{cfg.model.name}+{MODEL_NAME}"
+    written: dict = {}
+
+    def make_after(effects, excluded, inputs):
+        kept = _kept_inputs(inputs, excluded) if excluded else None
+        written["model"] = diagnosed_model(cfg, effects, name)
+        written["kept"] = kept
+        return build_compensator(after_config(cfg, written["model"], kept))
+
+    say(f"diagnosing {cfg.model.name} ({cfg.select.name} inputs) on {ds.name}: "
+        f"{len(ds.ids('train'))} train / {len(ds.ids('test'))} test campaigns")
+    with stage_run(cfg, "diagnose") as tracker:
+        result = run_diagnosis(ds, template, targets, str(cfg.eval.mode), options, make_after,
+                               str(cfg.eval.e_p95.statistic), cfg.eval.e_p95.get("max_points", 200),
+                               model_name=str(cfg.model.name))
+        out = resolve(cfg.out)
+        out.mkdir(parents=True, exist_ok=True)
+        folder = out / "diagnosis"
+        conf_dir = folder / "conf"
+        rerun = ("thermocomp run " + shlex.quote(f"hydra.searchpath=[file://{conf_dir}]")
+                 + f" experiment={MODEL_NAME} " + shlex.quote(f"data.path={resolve(cfg.data.path)}")
+                 + " " + shlex.quote(f"out={out / MODEL_NAME}"))
+        primary = result.primary
+        reports = {t: ("report.md" if t == primary else f"report_{t}.md") for t in result.targets}
+        with atomic_dir(folder) as tmp:
+            tmp.chmod(0o755)
+            figures = diagnosis_figures(result, tmp / "plots") if dcfg.plots else {}
+            header = (f"# Written by `thermocomp diagnose` on {ds.name}: {cfg.model.name} + the effects "
+                      f"it accepted.\n# Rerun: {rerun}\n")
+            (tmp / "conf" / "model").mkdir(parents=True)
+            (tmp / "conf" / "experiment").mkdir(parents=True)
+            (tmp / "conf" / "model" / f"{MODEL_NAME}.yaml").write_text(_yaml(header, written["model"]))
+            (tmp / "conf" / "experiment" / f"{MODEL_NAME}.yaml").write_text(
+                _yaml("# @package _global_\n" + header, experiment(cfg, written["kept"])))
+            for t in result.targets:
+                j = result.to_json(t)
+                rel = [str(Path("plots") / p.name) for p in figures.get(t, [])]
+                others = {o: reports[o] for o in result.targets if o != t}
+                md = markdown(j, rel, rerun, others)
+                stem = Path(reports[t]).stem
+                (tmp / f"{stem}.md").write_text(md)
+                (tmp / f"{stem}.html").write_text(to_html(md, f"diagnosis {t}"))
+        files = {}
+        for t in result.targets:
+            j = result.to_json(t)
+            j["config"] = str(conf_dir / "model" / f"{MODEL_NAME}.yaml")
+            j["experiment"] = str(conf_dir / "experiment" / f"{MODEL_NAME}.yaml")
+            j["rerun"] = rerun
+            j["report"] = str(folder / reports[t])
+            files[t] = write_json(out / f"diagnosis_{t}.json", j)
+            if t == primary:
+                main = write_json(out / "diagnosis.json", j)
+        tracker.log_metrics({"diagnose": {t: {
+            "before_test_rmse": d.before["test"]["rmse"], "after_test_rmse": d.after["test"]["rmse"],
+            "before_cv_rmse": d.original_cv_rmse, "after_cv_rmse": d.final_cv_rmse,
+            "n_accepted": len(d.accepted)} for t, d in result.targets.items()},
+            "diagnose_seconds": result.seconds})
+        tracker.set_tags({"diagnose.primary": primary,
+                          "diagnose.accepted": "; ".join(
+                              f"{t}: {ev.effect.kind} {ev.effect.column or ''} {ev.effect.label}"
+                              for t, d in result.targets.items() for ev in d.accepted) or "none"})
+        tracker.log_artifact(main)
+        for path in files.values():
+            tracker.log_artifact(path)
+        tracker.log_artifacts(folder, "diagnosis")
+    print(summary_table(result))
+    say(f"diagnosis: {main}; report: {folder / 'report.html'}")
+    say(f"rerun the diagnosed model: {rerun}")
+    return result.to_json(primary)
+
+
+def summary_table(result) -> str:
+    """What the stage prints: per target, test RMSE before -> after and the accepted effects."""
+    lines = [f"model={result.model}  dataset={result.dataset}  mode={result.mode}",
+             f"{'target':<8} {'test RMSE before':>16} -> {'after':>6}   {'CV before':>9} -> {'after':>6}"
+             "   accepted effects", "-" * 96]
+    for t, d in result.targets.items():
+        acc = ", ".join(f"{ev.effect.kind}:{ev.effect.column or '-'} {ev.effect.label}"
+                        for ev in d.accepted) or "none"
+        lines.append(f"{t:<8} {d.before['test']['rmse']:>16.2f} -> {d.after['test']['rmse']:>6.2f}   "
+                     f"{d.original_cv_rmse:>9.2f} -> {d.final_cv_rmse:>6.2f}   {acc}")
+    return "\n".join(lines)
