@@ -16,7 +16,7 @@ over dozens of candidates affordable).
 from __future__ import annotations
 
 import inspect
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
 import numpy as np
@@ -24,7 +24,8 @@ import pandas as pd
 from sklearn.base import clone
 
 from ..select import AllInputs
-from .features import Effect, effect_features, in_frame, initial_weights
+from .features import (Effect, effect_features, in_frame, initial_offsets, principal_directions,
+                       transient)
 
 
 def _accepts(method, name: str) -> bool:
@@ -150,14 +151,27 @@ class CrossValidator:
         key = (effect, tuple(names) if effect.uses_inputs else None, fold)
         if key not in self._features:
             p = self.problem
-            X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))
-            weights = None
-            if effect.learns:
-                rows = np.ones(len(p.y), bool) if fold is None else p.folds != fold
-                weights = initial_weights(p.context.loc[rows], effect.initial_state,
-                                          p.campaigns[rows], effect.initial_directions)
-            self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference,
-                                                  weights)
+            if effect.initial_state:     # the lag (cached once) + the initial-state transient
+                lag = self.features(replace(effect, initial_state=None, initial_directions=None), names)
+                offsets = self._offsets(effect.initial_state)
+                weights = None
+                if effect.learns:
+                    rows = np.ones(len(p.y), bool) if fold is None else p.folds != fold
+                    weights = principal_directions(offsets[rows], p.campaigns[rows],
+                                                   effect.initial_directions)
+                start = transient(offsets, weights, p.context["time"].to_numpy(float), p.campaigns,
+                                  effect.tau_s)
+                self._features[key] = np.hstack([lag, start])
+            else:
+                X = self.inputs_matrix(names) if effect.uses_inputs else np.empty((len(p.y), 0))
+                self._features[key] = effect_features(effect, X, p.context, p.campaigns, p.reference)
+        return self._features[key]
+
+    def _offsets(self, columns: tuple) -> np.ndarray:
+        key = ("offsets", columns)
+        if key not in self._features:
+            p = self.problem
+            self._features[key] = initial_offsets(p.context, columns, p.campaigns)
         return self._features[key]
 
     def design(self, names: list[str], effects, fold: int | None = None) -> np.ndarray:

@@ -222,7 +222,7 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     test = {c: ds.campaigns[c] for c in test_ids}
     if getattr(before, "denoiser_", None) is not None:
         test = denoise_campaigns(before.denoiser_, test)
-    later = stack(test, before.inputs_, [], before.reference)
+    later = stack(test, before.inputs_, [], before.reference)   # (the test targets stay out)
     context = m.context.copy()
     context[CONTROL] = random_walk(m.groups, options.seed)
     units = unit_labels(m.groups, options.n_blocks)

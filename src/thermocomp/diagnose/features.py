@@ -294,17 +294,33 @@ def initial_offsets(context: pd.DataFrame | None, columns, groups) -> np.ndarray
     return out
 
 
-def initial_weights(context: pd.DataFrame | None, columns, groups, k: int) -> np.ndarray:
-    """The ``k`` leading principal directions ``(k, len(columns))`` of the initial distances
-    ``c_j(0) - A_0`` over the campaigns of these rows (centred SVD, sign fixed so the
-    largest weight is positive)."""
-    offsets = initial_offsets(context, columns, groups)
-    starts = np.flatnonzero(np.r_[True, np.asarray(groups)[1:] != np.asarray(groups)[:-1]])
+def principal_directions(offsets: np.ndarray, groups, k: int) -> np.ndarray:
+    """The ``k`` leading principal directions ``(k, m)`` of per-row ``offsets`` over the
+    campaigns (one row each; centred SVD, sign fixed so the largest weight is positive)."""
+    g = np.asarray(groups)
+    starts = np.flatnonzero(np.r_[True, g[1:] != g[:-1]])
     O = offsets[starts] - offsets[starts].mean(axis=0)
     _, _, Vt = np.linalg.svd(O, full_matrices=True)
     W = Vt[:k]
     signs = np.sign(W[np.arange(len(W)), np.abs(W).argmax(axis=1)])
     return W * np.where(signs == 0, 1.0, signs)[:, None]
+
+
+def initial_weights(context: pd.DataFrame | None, columns, groups, k: int) -> np.ndarray:
+    """The ``k`` leading principal directions of the initial distances ``c_j(0) - A_0`` over
+    the campaigns of these rows (what a model with ``initial_directions`` learns)."""
+    return principal_directions(initial_offsets(context, columns, groups), groups, k)
+
+
+def transient(offsets: np.ndarray, weights, time, groups, tau_s: float) -> np.ndarray:
+    """``offsets (@ weights.T) * (1 - exp(-(t - t_0)/tau))`` per campaign."""
+    if weights is not None:
+        offsets = offsets @ np.asarray(weights, dtype=float).T
+    time = np.asarray(time, dtype=float)
+    decay = np.empty(len(offsets))
+    for start, stop in segment_bounds(groups, len(offsets)):
+        decay[start:stop] = 1.0 - np.exp(-(time[start:stop] - time[start]) / tau_s)
+    return offsets * decay[:, None]
 
 
 def initial_state(context: pd.DataFrame | None, columns, groups, tau_s: float,
@@ -314,14 +330,7 @@ def initial_state(context: pd.DataFrame | None, columns, groups, tau_s: float,
     One column per sensor, or per row of ``weights`` (projected distances).
     """
     offsets = initial_offsets(context, columns, groups)
-    if weights is not None:
-        offsets = offsets @ np.asarray(weights, dtype=float).T
-    n = offsets.shape[0]
-    t = _time(context, n)
-    decay = np.empty(n)
-    for start, stop in segment_bounds(groups, n):
-        decay[start:stop] = 1.0 - np.exp(-(t[start:stop] - t[start]) / tau_s)
-    return offsets * decay[:, None]
+    return transient(offsets, weights, _time(context, len(offsets)), groups, tau_s)
 
 
 def _with_start(lag: np.ndarray, effect: Effect, context, groups, weights) -> np.ndarray:

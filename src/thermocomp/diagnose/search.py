@@ -135,7 +135,7 @@ class SearchResult:
     accepted: list           # list of Evaluation, in acceptance order
     excluded: list           # sensors removed (sensor_fault), in order
     rounds: list             # list of Round
-    self_prediction: pd.DataFrame
+    self_prediction: pd.DataFrame   # before any sensor was excluded (the evidence)
     steps: list              # cv_rmse after each accepted effect
 
     @property
@@ -164,21 +164,22 @@ def choose(eligible: list) -> list:
     """Order the candidates that cleared the bar, the one to accept first.
 
     A broken sensor goes first (nothing should be fitted on it).  Otherwise
-    the one-standard-error rule: among the candidates not worse than the
-    largest gain by more than one standard error of the per-campaign
-    difference, the one with the fewest extra regressors (the simplest
-    explanation generalises best), then the largest 95 % lower bound.
+    the one-standard-error rule (Hastie, Tibshirani & Friedman, ESL 7.10):
+    among the candidates whose CV error (mean over campaigns of the
+    per-campaign MSE) is within one standard error of the best one's, the one
+    with the fewest extra regressors -- the simplest explanation generalises
+    best -- then the largest 95 % lower bound of the gain.
     """
     faults = [ev for ev in eligible if ev.effect.transform == "remove"]
     rest = [ev for ev in eligible if ev.effect.transform != "remove"]
     if not rest:
         return faults
     best = max(rest, key=lambda ev: ev.gain)
+    mse = best.result.unit_mse
+    limit = mse.mean() + (mse.std(ddof=1) / np.sqrt(mse.size) if mse.size > 1 else 0.0)
 
     def as_good(ev) -> bool:
-        diff = ev.result.unit_mse - best.result.unit_mse
-        se = diff.std(ddof=1) / np.sqrt(diff.size) if diff.size > 1 else 0.0
-        return ev is best or diff.mean() <= se
+        return ev is best or ev.result.unit_mse.mean() <= limit
     good = sorted((ev for ev in rest if as_good(ev)), key=lambda ev: (ev.n_features, -ev.gain_lcb))
     others = sorted((ev for ev in rest if ev not in good), key=lambda ev: -ev.gain_lcb)
     return faults + good + others
@@ -268,7 +269,7 @@ class Search:
         opts, p = self.options, self.problem
         start = current = self.cv.run(self.inputs(), [])
         rounds, accepted, steps = [], [], []
-        faults = self._faults()
+        faults = first_faults = self._faults()
         for step in range(int(opts.max_effects)):
             names = self.cv.selection(self.inputs(), None)
             cands = candidates(p, names, self.declared, set(self.excluded), self.effects, faults,
@@ -313,4 +314,4 @@ class Search:
                                     f"{best.effect.label}".replace("  ", " "),
                           "cv_rmse": current.rmse})
         return SearchResult(p.target, start, current, accepted, list(self.excluded), rounds,
-                            faults, steps)
+                            first_faults, steps)

@@ -1,0 +1,270 @@
+"""The diagnosis core on synthetic campaigns built here: features, CV test, estimator, loop."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+from sklearn.utils.estimator_checks import check_estimator
+
+from thermocomp.compensator import Compensator
+from thermocomp.diagnose import CONTROL, AugmentedRegressor, Effect, SearchOptions, diagnose
+from thermocomp.diagnose.cv import Problem, sign_flip_pvalue, unit_labels
+from thermocomp.diagnose.features import first_order_lag, in_frame
+from thermocomp.diagnose.sensors import self_prediction
+from thermocomp.errors import ConfigError
+from thermocomp.frame import stack
+from thermocomp.io.contract import Dataset
+from thermocomp.models import MLR
+
+DT = 300.0
+
+
+def _heating(rng, n, tau_h, rise):
+    t = np.arange(n) * DT
+    return rise * (1 - np.exp(-t / (tau_h * 3600)))
+
+
+def _campaign(rng, k, n=60, door_gain=0.0, drift=0.0, random_column=False, time=None):
+    """Three sensors heating with different time constants, an ambient, a door and an error."""
+    time = np.arange(n) * DT if time is None else time
+    amb0 = 10 + 1.5 * k
+    amb = amb0 + 0.3 * np.sin(time / 20000 + k)
+    heat = rng.uniform(1.0, 4.0)
+    a = amb0 + _heating(rng, n, 0.8, 3 * heat) + 0.1 * np.sin(time / 5000 + k)
+    b = amb0 + _heating(rng, n, 2.0, 2 * heat) + 0.2 * np.cos(time / 9000 + 2 * k)
+    c = amb0 + 0.5 * (a - amb0) + 0.5 * (b - amb0) + 0.05 * np.sin(time / 3000 + k)
+    door = (rng.random(n) < 0.15).astype(float)
+    door = np.maximum(door, np.r_[0, door[:-1]])           # openings of a few samples
+    door[0] = 0.0
+    noise = lambda s: s * rng.standard_normal(n)            # noqa: E731
+    df = pd.DataFrame({"time": time, "T_a": a + noise(0.02), "T_b": b + noise(0.02),
+                       "T_c": c + noise(0.02), "T_amb": amb + noise(0.02), "S_door": door})
+    cooled = first_order_lag(door, time, None, 1800.0)
+    df["E_Z"] = 2.0 * (a - a[0]) - 1.0 * (b - b[0]) - door_gain * cooled + noise(0.1)
+    if drift:
+        df.loc[n // 3:, "T_c"] += drift * (time[n // 3:] - time[n // 3]) / 3600.0
+    if random_column:
+        df["S_random"] = np.cumsum(rng.standard_normal(n))
+    return df
+
+
+def _dataset(n_campaigns=14, test_every=4, seed=0, **kw) -> Dataset:
+    rng = np.random.default_rng(seed)
+    frames, rows = {}, []
+    for k in range(n_campaigns):
+        cid = f"C{k + 1:02d}"
+        frames[cid] = _campaign(rng, k, **kw)
+        rows.append({"campaign": cid, "file": f"{cid}.csv",
+                     "split": "test" if (k + 1) % test_every == 0 else "train"})
+    return Dataset(pd.DataFrame(rows).set_index("campaign"), frames, name="synthetic")
+
+
+# -- features -------------------------------------------------------------------------------
+def test_first_order_lag_is_the_exact_recursion_on_irregular_time_and_restarts_per_campaign():
+    rng = np.random.default_rng(1)
+    t = np.cumsum(rng.uniform(100, 500, 40))
+    u = rng.standard_normal(40)
+    groups = np.repeat(["a", "b"], 20)
+    z = first_order_lag(u, t, groups, 600.0)
+    for seg in (slice(0, 20), slice(20, 40)):
+        uu, tt, zz = u[seg], t[seg], z[seg]
+        ref = [uu[0]]
+        for k in range(1, len(uu)):
+            a = np.exp(-(tt[k] - tt[k - 1]) / 600.0)
+            ref.append(a * ref[-1] + (1 - a) * uu[k])
+        np.testing.assert_allclose(zz, ref, rtol=1e-12)
+    uniform = first_order_lag(u, np.arange(40) * 300.0, None, 900.0)   # the lfilter path
+    a = np.exp(-300.0 / 900.0)
+    expect = [u[0]]
+    for k in range(1, 40):
+        expect.append(a * expect[-1] + (1 - a) * u[k])
+    np.testing.assert_allclose(uniform, expect, rtol=1e-10)
+
+
+def test_state_columns_live_in_the_frame_of_the_target_with_gaps_held():
+    v = np.array([5.0, np.nan, 7.0, 1.0, 1.0, np.nan, 4.0])
+    g = np.array(["a", "a", "a", "b", "b", "b", "b"])
+    np.testing.assert_allclose(in_frame(v, g), [0, 0, 2, 0, 0, 0, 3])
+    np.testing.assert_allclose(in_frame(v, g, "none"), [5, 5, 7, 1, 1, 1, 4])
+
+
+def test_effect_round_trips_through_its_config_dict_and_refuses_bad_specs():
+    e = Effect("dynamics", "lowpass_inputs", tau_s=3600, initial_state=["T_a", "T_b"],
+               initial_directions=2)
+    assert Effect.from_dict(e.to_dict()) == e and hash(Effect.from_dict(e.to_dict())) == hash(e)
+    assert e.to_dict()["initial_state"] == ["T_a", "T_b"]
+    assert Effect("signal", "first_order_lag", "S_door", tau_s=240).label == "first_order_lag(tau=240s)"
+    with pytest.raises(ConfigError):
+        Effect("magic", "raw", "S_door")
+    with pytest.raises(ConfigError):
+        Effect("signal", "first_order_lag", "S_door")          # no tau
+    with pytest.raises(ConfigError):
+        Effect.from_dict({"kind": "signal", "transform": "raw", "column": "S_x", "colour": 1})
+
+
+# -- the campaign-level test ----------------------------------------------------------------
+def test_sign_flip_pvalue_is_exact_for_few_campaigns_and_calibrated_under_the_null():
+    assert sign_flip_pvalue(np.ones(5)) == pytest.approx(1 / 32)
+    assert sign_flip_pvalue(-np.ones(5)) == pytest.approx(1.0)
+    rng = np.random.default_rng(0)
+    null = [sign_flip_pvalue(rng.standard_normal(10)) for _ in range(300)]
+    assert 0.02 < np.mean(np.array(null) <= 0.05) < 0.09       # ~5 % of nulls reject at 5 %
+    assert sign_flip_pvalue(rng.standard_normal(30) + 1.0) < 1e-3   # Monte Carlo branch
+
+
+# -- the diagnosed estimator ----------------------------------------------------------------
+def test_augmented_regressor_passes_sklearn_checks():
+    check_estimator(AugmentedRegressor())
+
+
+def test_compensator_gives_each_target_its_own_effects():
+    ds = _dataset(door_gain=3.0)
+    for df in ds.campaigns.values():
+        df["E_X"] = df["E_Z"] * 0.5
+    effect = Effect("signal", "first_order_lag", "S_door", tau_s=1800)
+    est = AugmentedRegressor(MLR(), {"E_Z": [effect.to_dict()]})
+    comp = Compensator(est, inputs=["T_a", "T_b", "T_c", "T_amb"]).fit(ds.campaigns)
+    assert comp.estimators_["E_Z"].effects_ == [effect]
+    assert comp.estimators_["E_X"].effects_ == []
+    assert comp.estimators_["E_Z"].required_context_ == ["S_door"]
+
+
+def test_streaming_reproduces_predict_sample_by_sample():
+    rng = np.random.default_rng(3)
+    ds = _dataset(door_gain=2.0, n_campaigns=8, test_every=100)
+    irregular = np.cumsum(np.r_[0.0, rng.uniform(200, 400, 59)])
+    ds.campaigns["C01"] = _campaign(rng, 0, door_gain=2.0, time=irregular)
+    effects = [Effect("signal", "first_order_lag", "S_door", tau_s=1800),
+               Effect("interaction", "product", "S_door", other="T_c"),
+               Effect("dynamics", "lowpass_inputs", tau_s=3600, initial_state=["T_a", "T_b", "T_c"],
+                      initial_directions=2),
+               Effect("ambient_interval", "ambient_step", threshold_c=15.0),
+               Effect("nonlinear", "square", "T_a")]
+    comp = Compensator(AugmentedRegressor(MLR(), [e.to_dict() for e in effects]),
+                       inputs=["T_a", "T_b", "T_amb"]).fit(ds.campaigns)
+    est = comp.estimators_["E_Z"]
+    df = ds.campaigns["C01"]
+    batch = comp.predict({"C01": df})["C01"]["E_Z"].to_numpy()
+    ref = df.iloc[0]
+    a0 = float(ref["T_amb"])
+    state = est.stream_init(context={"ambient_c0": a0})
+    streamed = []
+    for _, row in df.iterrows():
+        x = np.array([row["T_a"] - ref["T_a"], row["T_b"] - ref["T_b"], row["T_amb"] - ref["T_amb"]])
+        y, state = est.stream_step(x, state, context={**row.to_dict(), "ambient_c0": a0})
+        streamed.append(y)
+    np.testing.assert_allclose(streamed, batch, atol=1e-8)
+
+
+# -- sensor self-prediction ------------------------------------------------------------------
+def _field(rng, k, n=60, drift=0.0) -> pd.DataFrame:
+    """Six sensors on a field of two thermal modes (as sensors on one machine are)."""
+    t = np.arange(n) * DT
+    modes = np.column_stack([_heating(rng, n, 0.8, rng.uniform(2, 6)),
+                             _heating(rng, n, 2.5, rng.uniform(1, 3)) + 0.3 * np.sin(t / 7000 + k)])
+    weights = np.array([[1.0, 0.1], [0.9, 0.3], [0.6, 0.6], [0.4, 0.8], [0.2, 1.0], [0.5, 0.5]])
+    T = 10 + k + modes @ weights.T + 0.02 * rng.standard_normal((n, 6))
+    df = pd.DataFrame(T, columns=[f"T_{i}" for i in range(1, 7)])
+    df.insert(0, "time", t)
+    df["T_amb"] = 10 + k + 0.02 * rng.standard_normal(n)
+    df["E_Z"] = 3 * modes[:, 0] - modes[:, 1]
+    if drift:
+        df.loc[n // 3:, "T_3"] += drift * (t[n // 3:] - t[n // 3]) / 3600.0
+    return df
+
+
+def test_self_prediction_flags_the_drifting_sensor_not_its_neighbours():
+    rng = np.random.default_rng(5)
+    campaigns = {f"C{k:02d}": _field(rng, k, drift=0.8 if k >= 9 else 0.0) for k in range(12)}
+    sensors = [f"T_{i}" for i in range(1, 7)] + ["T_amb"]
+    m = stack(campaigns, sensors, ["E_Z"])
+    problem = Problem(m.X, m.Y["E_Z"].to_numpy(), m.context, m.groups, m.groups, "E_Z")
+    sp = self_prediction(problem, sensors, tolerance=3.0)
+    assert sp.index[0] == "T_3" and sp.loc["T_3", "jump_ratio"] >= 3.0
+    assert sp.loc["T_3", "worst_unit"] in ("C09", "C10", "C11")
+    assert (sp.drop(index="T_3")["jump_ratio"] < 3.0).all()
+    assert "T_amb" not in sp.index                          # the boundary condition is not judged
+    healthy = {c: _field(rng, k) for c, k in zip(campaigns, range(12))}
+    m = stack(healthy, sensors, ["E_Z"])
+    problem = Problem(m.X, m.Y["E_Z"].to_numpy(), m.context, m.groups, m.groups, "E_Z")
+    assert (self_prediction(problem, sensors, tolerance=3.0)["jump_ratio"] < 3.0).all()
+
+
+# -- the loop ---------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def door_diagnosis():
+    ds = _dataset(door_gain=4.0, random_column=True)
+    return ds, diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2))
+
+
+def test_planted_door_lag_is_found_and_fixed_and_the_random_signals_are_not(door_diagnosis):
+    ds, d = door_diagnosis
+    j = d.to_json("E_Z")
+    top = next(e for e in j["effects"] if e["accepted"])
+    assert (top["kind"], top["column"]) == ("signal", "S_door")
+    assert top["effect"]["transform"] == "first_order_lag"
+    assert j["after"]["test_rmse"] <= 0.6 * j["before"]["test_rmse"]
+    assert j["after"]["cv_rmse"] < j["before"]["cv_rmse"]
+    accepted_columns = {c for e in j["effects"] if e["accepted"] for c in e.get("columns", [e["column"]])}
+    assert "S_random" not in accepted_columns
+    assert not j["control_ever_clears_bar"]
+    for r in j["rounds"]:                                   # the control is weighed every round
+        assert any(e.get("control") for e in r["evaluated"])
+
+
+def test_diagnosis_json_follows_the_cli_contract(door_diagnosis):
+    _, d = door_diagnosis
+    j = d.to_json()
+    assert list(j)[:5] == ["target", "model", "before", "effects", "after"]
+    for part in ("before", "after"):
+        assert {"test_rmse", "cv_rmse"} <= set(j[part])
+    for e in j["effects"]:
+        assert e["kind"] in ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear",
+                             "sensor_fault")
+        assert {"kind", "column", "transform", "evidence", "accepted"} <= set(e)
+        assert {"cv_rmse_gain", "p_value"} <= set(e["evidence"])
+    gains = [e["evidence"]["cv_rmse_gain"] for e in j["effects"] if not e["accepted"]]
+    assert gains == sorted(gains, reverse=True)             # ranked, best first
+    assert [e["accepted"] for e in j["effects"]] == sorted((e["accepted"] for e in j["effects"]),
+                                                           reverse=True)
+
+
+def test_diagnosed_model_refit_reproduces_the_after_figures(door_diagnosis):
+    ds, d = door_diagnosis
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    test = {c: ds.campaigns[c] for c in ds.ids("test")}
+    again = Compensator(AugmentedRegressor(MLR(), {t: [e.to_dict() for e in es]
+                                                   for t, es in d.effects().items()}),
+                        inputs=d.after_model.inputs).fit(train)
+    pred, meas = again.predict(test), again.measured(test)
+    r = np.concatenate([meas[c]["E_Z"] - pred[c]["E_Z"] for c in test])
+    assert np.sqrt(np.mean(r**2)) == pytest.approx(d.targets["E_Z"].after["test"]["rmse"], rel=1e-9)
+
+
+def test_nothing_is_accepted_when_the_model_misses_nothing():
+    ds = _dataset(door_gain=0.0, random_column=True, seed=2)
+    d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2))
+    j = d.to_json("E_Z")
+    assert not [e for e in j["effects"] if e["accepted"]]
+    assert j["after"]["test_rmse"] == j["before"]["test_rmse"]
+    assert not j["control_ever_clears_bar"]
+
+
+def test_a_single_train_campaign_is_cross_validated_in_time_blocks():
+    rng = np.random.default_rng(7)
+    long = _campaign(rng, 0, n=400, door_gain=4.0)
+    short = _campaign(rng, 1, n=120, door_gain=4.0)
+    ds = Dataset(pd.DataFrame({"file": ["L.csv", "S.csv"], "split": ["train", "test"]},
+                               index=pd.Index(["L", "S"], name="campaign")),
+                 {"L": long, "S": short}, name="one-record")
+    d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, n_blocks=8))
+    j = d.to_json("E_Z")
+    assert j["cv"]["unit"] == "time block" and j["cv"]["units"] == 8
+    assert all(u.startswith("L#") for u in unit_labels(np.array(["L"] * 400), 8))
+    top = next(e for e in j["effects"] if e["accepted"])
+    assert top["column"] == "S_door"
+
+
+def test_the_control_signal_is_a_random_walk_no_physical_column_can_collide_with():
+    assert not CONTROL.startswith(("T_", "S_", "E_"))
