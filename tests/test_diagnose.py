@@ -268,3 +268,19 @@ def test_a_single_train_campaign_is_cross_validated_in_time_blocks():
 
 def test_the_control_signal_is_a_random_walk_no_physical_column_can_collide_with():
     assert not CONTROL.startswith(("T_", "S_", "E_"))
+
+
+@pytest.mark.parametrize("key, value", [("alpha", 2.0), ("families", ["magic"]), ("taus_s", [0]),
+                                        ("n_folds", 1), ("min_gain_pct", -1)])
+def test_bad_diagnose_settings_are_config_errors(key, value):
+    from omegaconf import OmegaConf
+
+    from thermocomp.paths import conf_dir
+    from thermocomp.stages.diagnose import search_options
+
+    dcfg = OmegaConf.load(conf_dir() / "diagnose" / "default.yaml")
+    dcfg.seed = 0
+    assert search_options(dcfg).alpha == dcfg.alpha           # the shipped defaults are valid
+    dcfg[key] = value
+    with pytest.raises(ConfigError, match=f"diagnose.{key}"):
+        search_options(dcfg)

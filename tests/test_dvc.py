@@ -11,7 +11,7 @@ import pytest
 from conftest import ROOT
 
 pytestmark = pytest.mark.slow
-STAGES = ("simulate", "ingest", "denoise", "select", "train", "evaluate")
+STAGES = ("simulate", "ingest", "denoise", "select", "train", "evaluate", "diagnose")
 
 
 def _dvc(*args, cwd, env):
@@ -62,7 +62,7 @@ def test_repro_twice_runs_nothing_then_model_param_reruns_train_and_evaluate(pro
     model_conf.write_text(model_conf.read_text().replace("fit_intercept: true",
                                                          "fit_intercept: false"))
     third = _dvc("repro", cwd=dest, env=env)
-    assert _ran(third) == {"train", "evaluate"}, third
+    assert _ran(third) == {"train", "evaluate", "diagnose"}, third
 
     shown = _dvc("metrics", "show", cwd=dest, env=env)
     assert "targets.E_Z.test.rmse" in shown or "E_Z" in shown

@@ -24,8 +24,7 @@ import pandas as pd
 from sklearn.base import clone
 
 from ..select import AllInputs
-from .features import (Effect, effect_features, in_frame, initial_offsets, principal_directions,
-                       transient)
+from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
 
 
 def _accepts(method, name: str) -> bool:

@@ -6,6 +6,7 @@ import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
+import numpy as np
 from threadpoolctl import threadpool_limits
 
 from ..compensator import Compensator
@@ -103,7 +104,7 @@ class Diagnosis:
                                "inherited": "found while diagnosing another target"})
         control = last.control.entry() if last and last.control else None
         te_b, te_a = d.before["test"], d.after["test"]
-        return {
+        return _json_safe({
             "target": t,
             "model": self.model,
             "before": _summary(te_b, d.original_cv_rmse),
@@ -132,6 +133,7 @@ class Diagnosis:
                 {"sensor": name, "cv_rmse_c": float(r["cv_rmse"]), "worst_unit": r["worst_unit"],
                  "worst_unit_split": "test" if r["worst_unit"] in self.cv["test_campaigns"] else "train",
                  "worst_unit_rmse_c": float(r["worst_unit_rmse"]),
+                 "cross_ratio": float(r["cross_ratio"]), "own_ratio": float(r["own_ratio"]),
                  "jump_ratio": float(r["jump_ratio"])}
                 for name, r in s.self_prediction.iterrows()],
             "rounds": [r.to_dict() for r in s.rounds],
@@ -141,7 +143,22 @@ class Diagnosis:
                                                for ev in x.accepted]}
                               for o, x in self.targets.items() if o != t},
             "seconds": self.seconds,
-        }
+        })
+
+
+def _json_safe(obj):
+    """NaN/inf -> None and numpy scalars -> Python, recursively (JSON never holds NaN)."""
+    if isinstance(obj, dict):
+        return {k: _json_safe(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_json_safe(v) for v in obj]
+    if isinstance(obj, (float, np.floating)):
+        return float(obj) if np.isfinite(obj) else None
+    if isinstance(obj, np.integer):
+        return int(obj)
+    if isinstance(obj, np.bool_):
+        return bool(obj)
+    return obj
 
 
 def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, points

@@ -299,8 +299,8 @@ def principal_directions(offsets: np.ndarray, groups, k: int) -> np.ndarray:
     campaigns (one row each; centred SVD, sign fixed so the largest weight is positive)."""
     g = np.asarray(groups)
     starts = np.flatnonzero(np.r_[True, g[1:] != g[:-1]])
-    O = offsets[starts] - offsets[starts].mean(axis=0)
-    _, _, Vt = np.linalg.svd(O, full_matrices=True)
+    centred = offsets[starts] - offsets[starts].mean(axis=0)
+    _, _, Vt = np.linalg.svd(centred, full_matrices=True)
     W = Vt[:k]
     signs = np.sign(W[np.arange(len(W)), np.abs(W).argmax(axis=1)])
     return W * np.where(signs == 0, 1.0, signs)[:, None]

@@ -101,10 +101,11 @@ def markdown(j: dict, figures: list[str] | None = None, rerun: str | None = None
     control = j.get("control")
     if control:
         ev = control["evidence"]
+        verdict = ("it cleared the bar in some round: the bar is too low"
+                   if j["control_ever_clears_bar"] else "it never cleared the bar")
         lines += ["", f"Random-walk control (no physical effect), last round: CV RMSE gain "
                       f"{_f(ev['cv_rmse_gain'])} µm ({_f(ev['cv_rmse_gain_pct'], 1, True)}), "
-                      f"p = {_p(ev['p_value'])}; "
-                      f"{'it cleared the bar in some round: the bar is too low' if j['control_ever_clears_bar'] else 'it never cleared the bar'}."]
+                      f"p = {_p(ev['p_value'])}; {verdict}."]
     lines += ["", "## Evidence, round by round", ""]
     for r in j["rounds"]:
         lines += [f"### Round {r['step']}: CV RMSE {_f(r['cv_rmse'])} µm", "", EFFECT_HEAD]
@@ -118,12 +119,14 @@ def markdown(j: dict, figures: list[str] | None = None, rerun: str | None = None
         lines += ["## Sensor self-prediction (paper 002)", "",
                   "Each declared sensor predicted from the others: on each train campaign by a fit "
                   "without it, on each test campaign (its temperatures only -- what a deployed "
-                  "compensator sees) by the fit on all train campaigns; jump ratio = its worst "
-                  "campaign against the median sensor's.", "",
-                  "| sensor | CV RMSE (°C) | worst campaign | its RMSE (°C) | jump ratio |",
-                  "|---|---:|---|---:|---:|"]
+                  "compensator sees) by the fit on all train campaigns.  Jump ratio = the smaller of "
+                  "its worst campaign against the median sensor's (cross) and against its own "
+                  "lower-quartile campaign (own).", "",
+                  "| sensor | CV RMSE (°C) | worst campaign | its RMSE (°C) | cross | own | jump ratio |",
+                  "|---|---:|---|---:|---:|---:|---:|"]
         lines += [f"| {s['sensor']} | {s['cv_rmse_c']:.3f} | {s['worst_unit']} ({s['worst_unit_split']}) | "
-                  f"{s['worst_unit_rmse_c']:.3f} | {s['jump_ratio']:.1f} |" for s in j["self_prediction"]]
+                  f"{s['worst_unit_rmse_c']:.3f} | {s['cross_ratio']:.1f} | {s['own_ratio']:.1f} | "
+                  f"{s['jump_ratio']:.1f} |" for s in j["self_prediction"]]
         lines.append("")
     if figures:
         lines += ["## Figures", ""] + [f"![{f}]({f})" for f in figures] + [""]

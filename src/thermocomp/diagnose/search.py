@@ -113,13 +113,14 @@ class Round:
     screened: list
     accepted: Evaluation | None = None
     figure_data: dict | None = None    # residual and effect signal of the accepted one
+    n_candidates: int = 0              # screened (every candidate of the round)
 
     @property
     def control(self) -> Evaluation | None:
         return next((e for e in self.evaluated if e.control), None)
 
     def to_dict(self) -> dict:
-        return {"step": self.step, "cv_rmse": self.cv_rmse,
+        return {"step": self.step, "cv_rmse": self.cv_rmse, "n_screened": self.n_candidates,
                 "accepted": self.accepted.entry() if self.accepted else None,
                 "evaluated": [e.entry() for e in self.evaluated],
                 "screened": self.screened}
@@ -294,7 +295,7 @@ class Search:
             screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
                          "screen_r2": r2} for e, r2 in sorted(
                              (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]
-            rnd = Round(step + 1, current.rmse, evals, screened)
+            rnd = Round(step + 1, current.rmse, evals, screened, n_candidates=len(cands))
             rounds.append(rnd)
             if not eligible:
                 break

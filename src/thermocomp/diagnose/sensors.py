@@ -16,11 +16,15 @@ every sensor is well predicted by its neighbours and the errors of all
 sensors are of one size; a faulty one jumps above it.  The statistic is the
 *jump ratio*
 
-.. math:: J_j = \frac{\max_u \mathrm{RMS}(e_{j,u})}{\operatorname{median}_k \max_u \mathrm{RMS}(e_{k,u})}
+.. math:: J_j = \min\left(\frac{\max_u r_{j,u}}{\operatorname{median}_k \max_u r_{k,u}},\;
+                           \frac{\max_u r_{j,u}}{Q_{25\%,u}\, r_{j,u}}\right),
+          \qquad r_{j,u} = \mathrm{RMS}_u(e_j)
 
-(worst campaign of sensor :math:`j` against the median sensor), and a sensor
-with :math:`J_j` at or above the tolerance is a ``sensor_fault`` candidate:
-the search then tests the model *without* it.  A faulty sensor also spoils
+-- its worst campaign against the median sensor's *and* against its own
+typical campaign: a sensor the field never explains well (a motor or a
+cabinet sensor driven by the load) is not broken, one that was fine and then
+jumps is.  A sensor with :math:`J_j` at or above the tolerance is a
+``sensor_fault`` candidate: the search then tests the model *without* it.  A faulty sensor also spoils
 the prediction of its close neighbours (it is one of their predictors), so
 with a tolerance the ratios are computed twice, the second time predicting
 each sensor without the *other* suspects (paper 002 likewise drops the
@@ -36,7 +40,7 @@ import pandas as pd
 
 from .cv import Problem
 
-COLUMNS = ["cv_rmse", "worst_unit", "worst_unit_rmse", "jump_ratio"]
+COLUMNS = ["cv_rmse", "worst_unit", "worst_unit_rmse", "cross_ratio", "own_ratio", "jump_ratio"]
 
 
 def is_ambient(column: str) -> bool:
@@ -80,7 +84,9 @@ def self_prediction(problem: Problem, inputs, later: pd.DataFrame | None = None,
     ``tolerance``: the jump ratio of a suspect; when given, suspects are left
     out of each other's predictors in a second pass.  Returns a frame indexed
     by sensor, worst first, with ``cv_rmse`` (pooled over the held-out train
-    campaigns), ``worst_unit``, ``worst_unit_rmse`` and ``jump_ratio``.
+    campaigns), ``worst_unit``, ``worst_unit_rmse``, ``cross_ratio`` (against
+    the median sensor), ``own_ratio`` (against the sensor's own lower-quartile
+    campaign) and ``jump_ratio`` (the smaller of the two).
     Empty with fewer than three sensors.
     """
     sensors = [c for c in inputs if c.startswith("T_")]
@@ -103,22 +109,25 @@ def self_prediction(problem: Problem, inputs, later: pd.DataFrame | None = None,
         if EL is not None:
             per_unit = np.hstack([per_unit, _unit_rms(EL, index, len(names) - problem.n_units)])
         worst = per_unit.max(axis=1)
-        scale = float(np.median(worst))
-        ratio = worst / scale if scale > 0 else np.full(len(judged), np.inf)
-        return E, per_unit, worst, ratio
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cross = worst / float(np.median(worst))
+            own = worst / np.quantile(per_unit, 0.25, axis=1)
+        return E, per_unit, worst, np.nan_to_num(cross, nan=0.0), np.nan_to_num(own, nan=0.0)
 
     everyone = {j: [i for i in range(len(sensors)) if i != j] for j in judged}
-    E, per_unit, worst, ratio = jumps(everyone)
+    E, per_unit, worst, cross, own = jumps(everyone)
     if tolerance is not None:
-        suspects = {judged[col] for col in np.flatnonzero(ratio >= tolerance)}
+        suspects = {judged[col] for col in np.flatnonzero(np.minimum(cross, own) >= tolerance)}
         if suspects:
             apart = {j: [i for i in everyone[j] if i not in suspects - {j}] for j in judged}
             if all(apart[j] for j in judged):
-                E, per_unit, worst, ratio = jumps(apart)
+                E, per_unit, worst, cross, own = jumps(apart)
     out = pd.DataFrame({
         "cv_rmse": np.sqrt(np.mean(E**2, axis=0)),
         "worst_unit": [names[i] for i in per_unit.argmax(axis=1)],
         "worst_unit_rmse": worst,
-        "jump_ratio": ratio,
+        "cross_ratio": cross,
+        "own_ratio": own,
+        "jump_ratio": np.minimum(cross, own),
     }, index=pd.Index([sensors[j] for j in judged], name="sensor"))
     return out.sort_values("jump_ratio", ascending=False)

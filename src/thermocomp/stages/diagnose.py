@@ -4,8 +4,9 @@ Reads ``data.path``, runs :func:`thermocomp.diagnose.diagnose` on the
 configured model and writes, under ``out``:
 
 * ``diagnosis.json`` -- CLI.md layout, for the primary target (the one with
-  the largest CV RMSE before); ``diagnosis_<target>.json`` for every target;
-* ``diagnosis/report.md`` and ``report.html`` (+ ``report_<target>.*``), ``plots/``;
+  the largest CV RMSE before);
+* ``diagnosis/``: ``diagnosis_<target>.json`` for every target, ``report.md``
+  and ``report.html`` (+ ``report_<target>.*``), ``plots/``;
 * ``diagnosis/conf/model/diagnosed.yaml`` -- the model plus the accepted
   effects -- and ``diagnosis/conf/experiment/diagnosed.yaml`` pinning what the
   diagnosis ran with, so ``thermocomp run hydra.searchpath=[file://<out>/diagnosis/conf]
@@ -25,13 +26,13 @@ import yaml
 from omegaconf import DictConfig, OmegaConf
 
 from .. import io
-from ..diagnose import CandidateOptions, SearchOptions, diagnose as run_diagnosis
+from ..diagnose import CandidateOptions, SearchOptions
+from ..diagnose import diagnose as run_diagnosis
 from ..diagnose.features import KINDS
 from ..diagnose.figures import diagnosis_figures
 from ..diagnose.report import markdown, to_html
 from ..errors import ConfigError
 from ..io import atomic_dir
-from ..io.contract import atomic_write_text
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import build_compensator, check_config, data_options, say, write_json
@@ -60,7 +61,8 @@ def search_options(dcfg) -> SearchOptions:
         max_effects=positive("max_effects", int, 0, strict=False),
         min_gain_pct=positive("min_gain_pct", float, 0, strict=False),
         alpha=alpha, shortlist=positive("shortlist", int, 1, strict=False),
-        n_folds=positive("n_folds", int, 2, strict=False), n_blocks=positive("n_blocks", int, 2, strict=False),
+        n_folds=positive("n_folds", int, 2, strict=False),
+        n_blocks=positive("n_blocks", int, 2, strict=False),
         seed=int(dcfg.seed),
         candidates=CandidateOptions(taus_s=taus, n_squares=positive("n_squares", int, 0, strict=False),
                                     fault_ratio=positive("fault_ratio"), families=families,
@@ -164,6 +166,13 @@ def diagnose(cfg: DictConfig) -> dict:
                  + " " + shlex.quote(f"out={out / MODEL_NAME}"))
         primary = result.primary
         reports = {t: ("report.md" if t == primary else f"report_{t}.md") for t in result.targets}
+        jsons = {}
+        for t in result.targets:
+            j = result.to_json(t)
+            j.update(config=str(conf_dir / "model" / f"{MODEL_NAME}.yaml"),
+                     experiment=str(conf_dir / "experiment" / f"{MODEL_NAME}.yaml"),
+                     rerun=rerun, report=str(folder / reports[t]))
+            jsons[t] = j
         with atomic_dir(folder) as tmp:
             tmp.chmod(0o755)
             figures = diagnosis_figures(result, tmp / "plots") if dcfg.plots else {}
@@ -174,24 +183,15 @@ def diagnose(cfg: DictConfig) -> dict:
             (tmp / "conf" / "model" / f"{MODEL_NAME}.yaml").write_text(_yaml(header, written["model"]))
             (tmp / "conf" / "experiment" / f"{MODEL_NAME}.yaml").write_text(
                 _yaml("# @package _global_\n" + header, experiment(cfg, written["kept"])))
-            for t in result.targets:
-                j = result.to_json(t)
+            for t, j in jsons.items():
+                write_json(tmp / f"diagnosis_{t}.json", j)
                 rel = [str(Path("plots") / p.name) for p in figures.get(t, [])]
                 others = {o: reports[o] for o in result.targets if o != t}
                 md = markdown(j, rel, rerun, others)
                 stem = Path(reports[t]).stem
                 (tmp / f"{stem}.md").write_text(md)
                 (tmp / f"{stem}.html").write_text(to_html(md, f"diagnosis {t}"))
-        files = {}
-        for t in result.targets:
-            j = result.to_json(t)
-            j["config"] = str(conf_dir / "model" / f"{MODEL_NAME}.yaml")
-            j["experiment"] = str(conf_dir / "experiment" / f"{MODEL_NAME}.yaml")
-            j["rerun"] = rerun
-            j["report"] = str(folder / reports[t])
-            files[t] = write_json(out / f"diagnosis_{t}.json", j)
-            if t == primary:
-                main = write_json(out / "diagnosis.json", j)
+        main = write_json(out / "diagnosis.json", jsons[primary])
         tracker.log_metrics({"diagnose": {t: {
             "before_test_rmse": d.before["test"]["rmse"], "after_test_rmse": d.after["test"]["rmse"],
             "before_cv_rmse": d.original_cv_rmse, "after_cv_rmse": d.final_cv_rmse,
@@ -202,8 +202,6 @@ def diagnose(cfg: DictConfig) -> dict:
                               f"{t}: {ev.effect.kind} {ev.effect.column or ''} {ev.effect.label}"
                               for t, d in result.targets.items() for ev in d.accepted) or "none"})
         tracker.log_artifact(main)
-        for path in files.values():
-            tracker.log_artifact(path)
         tracker.log_artifacts(folder, "diagnosis")
     print(summary_table(result))
     say(f"diagnosis: {main}; report: {folder / 'report.html'}")
