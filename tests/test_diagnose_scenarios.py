@@ -59,6 +59,8 @@ def _no_random_signal_accepted(j):
     assert "S_random" not in used
     assert not j["control_ever_clears_bar"]
     for r in j["rounds"]:
+        if r["step"] == 0:                       # the sensor-health round has no control
+            continue
         control = next(e for e in r["evaluated"] if e.get("control"))
         assert not control["evidence"]["clears_bar"] and not control["accepted"]
 

@@ -7,8 +7,9 @@ inputs (unmeasured masses, delays, the AR pole), all together (optionally with
 the transient of the campaign's initial disequilibrium) or one at a time; ``ambient_interval`` -- the
 inputs times the initial ambient (linear, or a step at a threshold between
 the train campaigns' ambients); ``interaction`` -- products of a state signal
-and a temperature; ``nonlinear`` -- squares of the strongest inputs;
-``sensor_fault`` -- removing a declared sensor whose self-prediction jumps.
+and a temperature; ``nonlinear`` -- squares of the strongest inputs.  (``sensor_fault``,
+removing a declared sensor whose self-prediction jumps, is weighed before the
+search for all targets at once: :func:`thermocomp.diagnose.search.sensor_health`.)
 
 The control is a random walk, independent per campaign, with no physical
 effect on anything: it goes through the same transforms as a real signal and
@@ -68,10 +69,10 @@ def ambient_thresholds(ambient_by_unit: pd.Series, min_per_side: int) -> list[fl
     return sorted(set(out))
 
 
-def candidates(problem, model_inputs: list[str], declared: list[str], excluded: set,
-               accepted: list[Effect], faults: pd.DataFrame | None,
+def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[Effect],
                options: CandidateOptions) -> list[Effect]:
-    """Every candidate of one round (the control included; faults from self-prediction)."""
+    """Every candidate effect of one round, the control included (sensor faults are found
+    before the search, :func:`thermocomp.diagnose.search.sensor_health`)."""
     ctx, fam = problem.context, set(options.families)
     taus = [float(t) for t in options.taus_s]
     out: list[Effect] = []
@@ -113,11 +114,6 @@ def candidates(problem, model_inputs: list[str], declared: list[str], excluded: 
                        for j in range(X.shape[1])])
         strongest = [model_inputs[j] for j in np.argsort(-np.nan_to_num(corr))[:options.n_squares]]
         out += [Effect("nonlinear", "square", c) for c in strongest if c.startswith("T_")]
-    if "sensor_fault" in fam and faults is not None and len(faults):
-        remaining = [c for c in declared if c not in excluded]
-        if len(remaining) > 1:
-            out += [Effect("sensor_fault", "remove", s) for s, row in faults.iterrows()
-                    if row["jump_ratio"] >= options.fault_ratio and s in remaining]
     out += signal_family(CONTROL)
     done = set(accepted)
     return [e for e in dict.fromkeys(out) if e not in done]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from threadpoolctl import threadpool_limits
@@ -19,7 +19,7 @@ from .augmented import AugmentedRegressor
 from .candidates import CONTROL, random_walk
 from .cv import Problem, unit_labels
 from .features import Effect
-from .search import Search, SearchOptions, SearchResult
+from .search import Search, SearchOptions, SearchResult, sensor_health
 
 
 def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
@@ -57,7 +57,6 @@ class TargetDiagnosis:
     final_cv_rmse: float
     before: dict             # test-split scores of the original model (metrics.json layout)
     after: dict              # ... of the diagnosed model
-    inherited: list = field(default_factory=list)   # sensor faults found on earlier targets
 
     @property
     def accepted(self):
@@ -97,11 +96,6 @@ class Diagnosis:
         rejected = [ev for ev in (last.evaluated if last else []) if not ev.accepted]
         effects = [ev.entry() | {"step": i + 1} for i, ev in enumerate(s.accepted)]
         effects += [ev.entry() for ev in rejected]
-        for name in d.inherited:
-            effects.insert(0, {"kind": "sensor_fault", "column": name,
-                               "transform": "remove from the inputs",
-                               "evidence": None, "accepted": True,
-                               "inherited": "found while diagnosing another target"})
         control = last.control.entry() if last and last.control else None
         te_b, te_a = d.before["test"], d.after["test"]
         return _json_safe({
@@ -243,31 +237,18 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     context = m.context.copy()
     context[CONTROL] = random_walk(m.groups, options.seed)
     units = unit_labels(m.groups, options.n_blocks)
-    excluded: list[str] = []
-    found, problems = {}, {}
-    for t in targets:
-        problem = Problem(m.X, m.Y[t].to_numpy(float), context, m.groups, units, t, mode,
-                          before.reference, options.n_folds)
-        search = Search(problem, compensator.estimator, compensator.selector, before.inputs_,
-                        options, excluded, later.X, later.groups)
-        inherited = list(excluded)
-        result = search.run()
-        original = search.cv.run(tuple(before.inputs_), []).rmse if inherited else result.start.rmse
-        excluded = list(result.excluded)
-        found[t], problems[t] = (result, original, inherited), search
-    effects = {t: r.effects for t, (r, _, _) in found.items()}
+    searches = {t: Search(Problem(m.X, m.Y[t].to_numpy(float), context, m.groups, units, t, mode,
+                                  before.reference, options.n_folds),
+                          compensator.estimator, compensator.selector, before.inputs_, options)
+                for t in targets}
+    excluded, faults, health, original, table = sensor_health(searches, later.X, later.groups, options)
+    found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
+    effects = {t: r.effects for t, r in found.items()}
     build = make_compensator or (lambda eff, exc, inputs: augment(compensator, eff, exc, inputs))
     after = build(effects, excluded, list(before.inputs_)).fit({c: ds.campaigns[c] for c in train_ids})
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
-    out = {}
-    for t, (result, original, inherited) in found.items():
-        final = result.final.rmse
-        if set(result.excluded) != set(excluded):   # a later target excluded another sensor
-            search = problems[t]
-            final = search.cv.run(tuple(c for c in before.inputs_ if c not in excluded),
-                                  result.effects).rmse
-        out[t] = TargetDiagnosis(t, result, original, final, before_scores[t], after_scores[t],
-                                 [c for c in inherited])
+    out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
+           for t, r in found.items()}
     n_units = len(dict.fromkeys(units))
     cv = {"units": n_units, "unit": "campaign" if len(train_ids) > 1 else "time block",
           "folds": max(2, min(options.n_folds, n_units)), "train_campaigns": train_ids,

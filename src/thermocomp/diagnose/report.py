@@ -62,9 +62,10 @@ def markdown(j: dict, figures: list[str] | None = None, rerun: str | None = None
     lines = [f"# Residual diagnosis: {j['model']} on {j['dataset']}, target {j['target']}", ""]
     accepted = [x for x in j["effects"] if x["accepted"]]
     cv = j["cv"]
-    lines += [f"The model was cross-validated on the {len(cv['train_campaigns'])} train campaigns "
-              f"({cv['folds']} folds of {cv['units']} {cv['unit']}s held out in turn, mode "
-              f"`{j['mode']}`); the search never saw the {len(cv['test_campaigns'])} test campaigns, "
+    lines += [f"The model was cross-validated on the {len(cv['train_campaigns'])} train campaign(s) "
+              f"({cv['units']} {cv['unit']}s, held out in {cv['folds']} folds, mode "
+              f"`{j['mode']}`); the search never saw the errors of the {len(cv['test_campaigns'])} "
+              f"test campaign(s), "
               f"on which before and after are measured.  A candidate is accepted when its CV RMSE gain "
               f"is at least {bar['min_gain_pct']:g} % and the one-sided sign-flip test of the "
               f"per-campaign gains gives p ≤ {bar['alpha']:g} (a removed sensor: self-prediction jump "
@@ -108,7 +109,9 @@ def markdown(j: dict, figures: list[str] | None = None, rerun: str | None = None
                       f"p = {_p(ev['p_value'])}; {verdict}."]
     lines += ["", "## Evidence, round by round", ""]
     for r in j["rounds"]:
-        lines += [f"### Round {r['step']}: CV RMSE {_f(r['cv_rmse'])} µm", "", EFFECT_HEAD]
+        title = (f"Sensor health (before the search): CV RMSE {_f(r['cv_rmse'])} µm" if r["step"] == 0
+                 else f"Round {r['step']}: CV RMSE {_f(r['cv_rmse'])} µm")
+        lines += [f"### {title}", "", EFFECT_HEAD]
         lines += [_effect_row(x) for x in r["evaluated"]]
         if r["screened"]:
             top = ", ".join(f"{s['kind']} {s['column'] or ''} {s['transform']} ({s['screen_r2']:.2f})"

@@ -210,23 +210,18 @@ class Search:
     """The loop of one target (see the module docstring)."""
 
     def __init__(self, problem: Problem, estimator, selector, declared: list[str],
-                 options: SearchOptions, excluded=(), later=None, later_units=None):
+                 options: SearchOptions, excluded=()):
         self.problem, self.options = problem, options
-        self.later, self.later_units = later, later_units   # test temperatures, for self-prediction
         self.declared = list(declared)
         self.cv = CrossValidator(problem, estimator, selector)
         self.excluded = list(excluded)
         self.effects: list[Effect] = []
 
-    def _faults(self):
-        return self_prediction(self.problem, self.inputs(), self.later, self.later_units,
-                               self.options.candidates.fault_ratio)
-
     def inputs(self, excluded=None) -> tuple:
         excluded = self.excluded if excluded is None else excluded
         return tuple(c for c in self.declared if c not in excluded)
 
-    def _evaluate(self, effect: Effect, current: CVResult, r2: float, faults) -> Evaluation:
+    def _evaluate(self, effect: Effect, current: CVResult, r2: float, faults=None) -> Evaluation:
         if effect.transform == "remove":
             res = self.cv.run(self.inputs(self.excluded + [effect.column]), self.effects)
         else:
@@ -237,7 +232,8 @@ class Search:
         p = sign_flip_pvalue(d, seed=self.options.seed)
         lcb = gain_lower_bound(current.unit_mse, res.unit_mse)
         jump = (float(faults.loc[effect.column, "jump_ratio"])
-                if effect.transform == "remove" and effect.column in faults.index else None)
+                if effect.transform == "remove" and faults is not None and effect.column in faults.index
+                else None)
         if effect.transform == "remove":   # evidence of the fault is the self-prediction jump
             clears = bool(jump is not None and jump >= self.options.candidates.fault_ratio
                           and pct > -self.options.min_gain_pct)
@@ -262,36 +258,34 @@ class Search:
             if best not in chosen:
                 chosen.append(best)
         controls = sorted((s for s in scored if s[0].column == CONTROL), key=lambda s: -s[1])
-        chosen += controls[:1]
-        chosen += [s for s in scored if s[0].transform == "remove"]
-        return chosen
+        return chosen + controls[:1]
 
-    def run(self) -> SearchResult:
+    def run(self, start: CVResult | None = None, faults: list | None = None,
+            health: Round | None = None, self_prediction_table=None) -> SearchResult:
+        """Search from the model without the sensors already excluded (``faults``: their
+        evaluations for this target, accepted first; ``health``: that round)."""
         opts, p = self.options, self.problem
-        start = current = self.cv.run(self.inputs(), [])
-        rounds, accepted, steps = [], [], []
-        faults = first_faults = self._faults()
+        original = start if start is not None else self.cv.run(self.inputs([]), [])
+        current = self.cv.run(self.inputs(), []) if self.excluded else original
+        accepted = list(faults or [])
+        rounds = [health] if health is not None else []
+        steps = [{"effect": f"sensor_fault: {ev.effect.column} {ev.effect.label}",
+                  "cv_rmse": ev.cv_rmse} for ev in accepted]
         for step in range(int(opts.max_effects)):
             names = self.cv.selection(self.inputs(), None)
-            cands = candidates(p, names, self.declared, set(self.excluded), self.effects, faults,
-                               opts.candidates)
+            cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates)
             Z = np.column_stack([np.ones(len(p.y)), self.cv.design(names, self.effects)])
             Q = _orthonormal(Z)
             r_perp = current.residual - Q @ (Q.T @ current.residual)
             scored, signals = [], {}
             for e in cands:
-                if e.transform == "remove":
-                    scored.append((e, float("nan")))
-                    continue
                 r2, signals[e] = screen_r2(Q, r_perp, self.cv.features(e, names))
                 scored.append((e, r2))
-            shortlist = self._shortlist(scored)
-            evals = [self._evaluate(e, current, r2, faults) for e, r2 in shortlist]
+            evals = [self._evaluate(e, current, r2) for e, r2 in self._shortlist(scored)]
             evals.sort(key=lambda ev: -ev.gain)
             control = next((ev for ev in evals if ev.control), None)
             bar = control.gain if control is not None else -np.inf
-            eligible = choose([ev for ev in evals if ev.clears_bar and not ev.control
-                               and (ev.gain > bar or ev.effect.transform == "remove")])
+            eligible = choose([ev for ev in evals if ev.clears_bar and not ev.control and ev.gain > bar])
             screened = [{"kind": e.kind, "column": e.column, "transform": e.label,
                          "screen_r2": r2} for e, r2 in sorted(
                              (s for s in scored if np.isfinite(s[1])), key=lambda s: -s[1])[:20]]
@@ -305,14 +299,63 @@ class Search:
             rnd.figure_data = {"residual": current.residual.copy(),
                                "signal": signals.get(best.effect), "units": p.units}
             accepted.append(best)
-            if best.effect.transform == "remove":
-                self.excluded.append(best.effect.column)
-                faults = self._faults()
-            else:
-                self.effects.append(best.effect)
+            self.effects.append(best.effect)
             current = best.result
             steps.append({"effect": f"{best.effect.kind}: {best.effect.column or ''} "
                                     f"{best.effect.label}".replace("  ", " "),
                           "cv_rmse": current.rmse})
-        return SearchResult(p.target, start, current, accepted, list(self.excluded), rounds,
-                            first_faults, steps)
+        return SearchResult(p.target, original, current, accepted, list(self.excluded), rounds,
+                            self_prediction_table, steps)
+
+
+def sensor_health(searches: dict, later=None, later_units=None, options: SearchOptions | None = None):
+    """Find the broken declared sensors once, for every target (a sensor is broken for all).
+
+    Self-prediction (:mod:`.sensors`) nominates the sensor with the largest
+    jump ratio at or above ``fault_ratio``; it is excluded when no target's
+    model gets worse without it by ``min_gain_pct`` % or more (CV RMSE), and
+    the table is recomputed without it; a nominee that fails is kept and the
+    next one is tried.  Returns the excluded sensors in order, per target the
+    evaluations (accepted ones first) and the health :class:`Round`, the CV
+    result of each target's model with them excluded, and the first
+    self-prediction table (the evidence).
+    """
+    options = options or SearchOptions()
+    tol = options.candidates.fault_ratio
+    first = next(iter(searches.values()))
+    current = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
+    original = dict(current)
+    excluded, rejected = [], set()
+    evaluated = {t: [] for t in searches}
+    table = first_table = None
+    while "sensor_fault" in options.candidates.families:
+        table = self_prediction(first.problem, first.inputs(excluded), later, later_units, tol)
+        first_table = table if first_table is None else first_table
+        nominees = [c for c, row in table.iterrows() if row["jump_ratio"] >= tol and c not in rejected]
+        if not nominees or len(first.inputs(excluded)) <= 2:
+            break
+        sensor = nominees[0]
+        effect = Effect("sensor_fault", "remove", sensor)
+        evs = {}
+        for t, s in searches.items():
+            s.excluded = list(excluded)
+            evs[t] = s._evaluate(effect, current[t], float("nan"), table)
+        ok = all(ev.clears_bar for ev in evs.values())
+        for t, ev in evs.items():
+            ev.accepted = ok
+            evaluated[t].append(ev)
+            if ok:
+                current[t] = ev.result
+        if ok:
+            excluded.append(sensor)
+        else:
+            rejected.add(sensor)
+    for s in searches.values():
+        s.excluded = list(excluded)
+    rounds = {t: Round(0, original[t].rmse, evs, [], accepted=next((e for e in evs if e.accepted), None),
+                       n_candidates=len(evs)) if evs else None
+              for t, evs in evaluated.items()}
+    accepted = {t: [ev for ev in evs if ev.accepted] for t, evs in evaluated.items()}
+    if first_table is None:
+        first_table = self_prediction(first.problem, first.inputs([]), later, later_units, tol)
+    return excluded, accepted, rounds, original, first_table

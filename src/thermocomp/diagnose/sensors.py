@@ -56,23 +56,23 @@ def _unit_rms(errors: np.ndarray, index: np.ndarray, n_units: int) -> np.ndarray
 
 def _errors(problem: Problem, T, judged, predictors, L=None):
     """Held-out self-prediction errors on the train rows (and on ``L``, fitted on all rows)."""
-    A = np.column_stack([np.ones(len(T)), T])
     E = np.empty((len(T), len(judged)))
-    for k in problem.fold_ids:
-        tr, te = problem.folds != k, problem.folds == k
+    folds = [(problem.folds != k, problem.folds == k) for k in problem.fold_ids]
+    if L is not None:
+        folds.append((np.ones(len(T), bool), None))
+        EL = np.empty((len(L), len(judged)))
+    for tr, te in folds:
+        Tr = T[tr]
+        mean = Tr.mean(axis=0)
+        C = (Tr - mean).T @ (Tr - mean)
         for col, j in enumerate(judged):
-            cols = [0] + [i + 1 for i in predictors[j]]
-            coef, *_ = np.linalg.lstsq(A[tr][:, cols], T[tr, j], rcond=None)
-            E[te, col] = T[te, j] - A[te][:, cols] @ coef
-    if L is None:
-        return E, None
-    AL = np.column_stack([np.ones(len(L)), L])
-    EL = np.empty((len(L), len(judged)))
-    for col, j in enumerate(judged):
-        cols = [0] + [i + 1 for i in predictors[j]]
-        coef, *_ = np.linalg.lstsq(A[:, cols], T[:, j], rcond=None)
-        EL[:, col] = L[:, j] - AL[:, cols] @ coef
-    return E, EL
+            cols = predictors[j]
+            coef, *_ = np.linalg.lstsq(C[np.ix_(cols, cols)], C[cols, j], rcond=None)
+            if te is None:
+                EL[:, col] = L[:, j] - mean[j] - (L[:, cols] - mean[cols]) @ coef
+            else:
+                E[te, col] = T[te, j] - mean[j] - (T[te][:, cols] - mean[cols]) @ coef
+    return E, (EL if L is not None else None)
 
 
 def self_prediction(problem: Problem, inputs, later: pd.DataFrame | None = None,
