@@ -65,9 +65,11 @@ def _needs_ambient(est) -> bool:
 
 
 def _state_columns(est) -> list[str]:
-    """Machine-state columns a model reads from ``context`` (ARX+RF: ``state_column``)."""
+    """Raw columns a model reads from ``context``: ARX+RF's ``state_column``, and the
+    ``required_context_`` of a diagnosed model (:class:`thermocomp.diagnose.AugmentedRegressor`)."""
     col = getattr(est, "state_column", None)
-    return [col] if isinstance(col, str) else []
+    cols = [col] if isinstance(col, str) else []
+    return cols + [c for c in getattr(est, "required_context_", []) if c not in cols]
 
 
 @dataclass(frozen=True)
@@ -150,6 +152,8 @@ class StreamingCompensator:
         self.state_columns = [c for c in dict.fromkeys(state_cols) if c not in inputs]
         extra = [c for c in self.ambient_columns if c not in inputs]
         self.columns_ = inputs + extra + self.state_columns
+        # Raw columns handed to models through ``context`` (may include declared inputs).
+        self.context_columns = list(dict.fromkeys(state_cols))
         self.time_required_ = any(self._ctx.values())
         self._n_inputs, self._n_checked = len(inputs), len(inputs) + len(extra)
         self._amb_idx = [self.columns_.index(c) for c in self.ambient_columns]
@@ -160,7 +164,7 @@ class StreamingCompensator:
         self._plan = [(ests[t], None if self._idx[t] == list(range(len(inputs)))
                        else np.asarray(self._idx[t]), self._stream[t], self._ctx[t])
                       for t in self.targets_]
-        self._state_idx = [self.columns_.index(c) for c in self.state_columns]
+        self._context_idx = [self.columns_.index(c) for c in self.context_columns]
         self.denoiser = getattr(compensator, "denoiser_", None)
         if self.denoiser is not None:
             if not has_stream_protocol(self.denoiser):
@@ -332,7 +336,7 @@ class StreamingCompensator:
             if streams:
                 if ctx:
                     context = {"time": time, **{c: x[j] for c, j in
-                                                zip(self.state_columns, self._state_idx)}}
+                                                zip(self.context_columns, self._context_idx)}}
                     y[k], states[t] = est.stream_step(xt, states[t], context=context)
                 else:
                     y[k], states[t] = est.stream_step(xt, states[t])
@@ -343,7 +347,7 @@ class StreamingCompensator:
         return y
 
     def _row_context(self, time: np.ndarray, X: np.ndarray) -> list[dict]:
-        cols = {c: X[:, self.columns_.index(c)] for c in self.state_columns}
+        cols = {c: X[:, j] for c, j in zip(self.context_columns, self._context_idx)}
         for c in self.columns_[:self._n_inputs]:
             if c.startswith("S_"):
                 cols.setdefault(c, X[:, self.columns_.index(c)])

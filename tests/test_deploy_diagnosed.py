@@ -1,0 +1,27 @@
+"""A diagnosed model (accepted effects read raw columns through context) streams like any model."""
+
+import pickle
+
+import pytest
+
+from conftest import thermocomp
+from thermocomp import io
+from thermocomp.deploy.streaming import StreamingCompensator, streaming_deviation
+
+pytestmark = pytest.mark.slow
+
+
+def test_diagnosed_model_streams_exactly_as_it_predicts(tmp_path):
+    data, out = tmp_path / "door", tmp_path / "out"
+    thermocomp("simulate", "sim.generator.effects=[door]", f"data.path={data}", "track=false")
+    thermocomp("diagnose", f"data.path={data}", f"out={out}", "track=false")
+    thermocomp("run", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]", "experiment=diagnosed",
+               f"data.path={data}", f"out={out / 'rerun'}", "track=false",
+               "eval.mutual_prediction=false", "eval.ati_baselines=false")
+    comp = pickle.loads((out / "rerun" / "model.pkl").read_bytes())
+    assert any(getattr(e, "required_context_", None) for e in comp.estimators_.values())
+    ds, _ = io.read_dataset(data)
+    streaming = StreamingCompensator.from_training(comp, {c: ds.campaigns[c] for c in ds.ids("train")})
+    assert "S_door" in streaming.columns_ and streaming.time_required_
+    for cid in ds.ids("test")[:2]:
+        assert streaming_deviation(streaming, ds.campaigns[cid]) < 1e-9
