@@ -24,6 +24,17 @@ def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.Complet
     return proc
 
 
+def stream_predictions(est, X, groups) -> list[float]:
+    """Feed ``X`` sample by sample through the streaming protocol, restarting at each campaign."""
+    out = []
+    for t in range(len(X)):
+        if t == 0 or groups[t] != groups[t - 1]:
+            state = est.stream_init()
+        y_hat, state = est.stream_step(X[t], state)
+        out.append(y_hat)
+    return out
+
+
 @pytest.fixture(scope="session")
 def default_dataset(tmp_path_factory) -> Path:
     """The default year-round scenario at its default size."""

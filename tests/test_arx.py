@@ -8,6 +8,7 @@ import pytest
 import statsmodels.api as sm
 from sklearn.utils.estimator_checks import check_estimator
 
+from conftest import stream_predictions
 from thermocomp.compensator import Compensator
 from thermocomp.errors import ConfigError
 from thermocomp.models import ARX
@@ -142,12 +143,7 @@ def test_streaming_reproduces_simulation_predict():
     X, y, g = arx_data(a=0.9, n_campaigns=3, seed=8)
     est = ARX(ar=True, delays=(0, 2)).fit(X, y, groups=g)
     batch = est.predict(X, groups=g)
-    stream = []
-    for t in range(len(y)):
-        if t == 0 or g[t] != g[t - 1]:
-            state = est.stream_init()
-        y_hat, state = est.stream_step(X[t], state)
-        stream.append(y_hat)
+    stream = stream_predictions(est, X, g)
     np.testing.assert_allclose(stream, batch, rtol=0, atol=1e-9)
 
 

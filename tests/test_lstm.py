@@ -7,6 +7,7 @@ import pytest
 import torch
 from sklearn.utils.estimator_checks import check_estimator
 
+from conftest import stream_predictions
 from thermocomp.errors import ConfigError
 from thermocomp.models import LSTM
 from thermocomp.models._dynamics import free_run
@@ -71,12 +72,7 @@ def test_streaming_reproduces_predict_and_pickle_round_trip():
     X, y, g = lagged_data(n_campaigns=4)
     est = quick(max_epochs=5).fit(X, y, groups=g)
     batch = est.predict(X, groups=g)
-    stream = []
-    for t in range(len(y)):
-        if t == 0 or g[t] != g[t - 1]:
-            state = est.stream_init()
-        y_hat, state = est.stream_step(X[t], state)
-        stream.append(y_hat)
+    stream = stream_predictions(est, X, g)
     np.testing.assert_allclose(stream, batch, rtol=0, atol=1e-9)
     again = pickle.loads(pickle.dumps(est))
     np.testing.assert_array_equal(again.predict(X, groups=g), batch)
