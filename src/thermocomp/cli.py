@@ -36,10 +36,9 @@ def _config_errors() -> tuple[type, ...]:
     from hydra.errors import HydraException
     from omegaconf.errors import OmegaConfBaseException
 
-    from .errors import ConfigError
-    from .io.contract import ContractError
+    from .errors import ThermocompError
 
-    return (ContractError, ConfigError, HydraException, OmegaConfBaseException)
+    return (ThermocompError, HydraException, OmegaConfBaseException)
 
 
 def _guarded(fn, *args):

@@ -1,5 +1,41 @@
-"""Errors that mean "the user's config is wrong" (exit status 2, like bad data)."""
+"""The project's error types: every one a ``ValueError``; the CLI maps them to exit status 2.
+
+Core packages (models, select, denoise, metrics, diagnose, deploy) raise
+:class:`ParameterError` for an estimator parameter outside its allowed values
+(scikit-learn's convention: a ``ValueError``) and :class:`ContractError` for data
+that breaks the contract.  The shell raises :class:`ConfigError` for a config key
+it cannot use.  Anything else that escapes a command is a bug (exit status 1).
+"""
+
+from __future__ import annotations
+
+import os
 
 
-class ConfigError(ValueError):
+class ThermocompError(ValueError):
+    """Bad input or bad configuration: exit status 2 with the one-line message."""
+
+
+class ParameterError(ThermocompError):
+    """An estimator/denoiser/selector parameter outside its allowed values (names the parameter)."""
+
+
+class ConfigError(ThermocompError):
     """A config value outside what the pipeline accepts; the message names the key."""
+
+
+class ContractError(ThermocompError):
+    """Input that breaks the data contract.
+
+    The message is one line naming the file, the column and the row (1-based
+    data row, header excluded) wherever they are known.
+    """
+
+    def __init__(self, message: str, file: str | os.PathLike | None = None,
+                 column: str | None = None, row: int | None = None):
+        self.reason, self.file, self.column, self.row = message, file, column, row
+        where = [f"file {file}" if file is not None else None,
+                 f"column {column!r}" if column is not None else None,
+                 f"row {row}" if row is not None else None]
+        where = ", ".join(w for w in where if w)
+        super().__init__(f"{where}: {message}" if where else message)

@@ -19,28 +19,13 @@ from pathlib import Path
 
 import pandas as pd
 
+from ..errors import ContractError  # noqa: F401  (re-exported: the contract's error type)
+
 TIME = "time"
 PREFIXES = ("T_", "E_", "S_")
 SPLITS = ("train", "val", "test")
 MANIFEST = "campaigns.csv"
 MANIFEST_REQUIRED = ("campaign", "file", "split")
-
-
-class ContractError(ValueError):
-    """Input that breaks the data contract; the CLI turns it into exit status 2.
-
-    The message is one line naming the file, the column and the row (1-based
-    data row, header excluded) wherever they are known.
-    """
-
-    def __init__(self, message: str, file: str | os.PathLike | None = None,
-                 column: str | None = None, row: int | None = None):
-        self.reason, self.file, self.column, self.row = message, file, column, row
-        where = [f"file {file}" if file is not None else None,
-                 f"column {column!r}" if column is not None else None,
-                 f"row {row}" if row is not None else None]
-        where = ", ".join(w for w in where if w)
-        super().__init__(f"{where}: {message}" if where else message)
 
 
 def role(column: str) -> str | None:
