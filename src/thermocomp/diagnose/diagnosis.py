@@ -7,6 +7,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 import numpy as np
+from sklearn.base import clone
 from threadpoolctl import threadpool_limits
 
 from ..compensator import Compensator
@@ -36,15 +37,7 @@ def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
                              {t: [Effect.to_dict(e) if isinstance(e, Effect) else dict(e) for e in es]
                               for t, es in effects.items()},
                              template.reference)
-    return Compensator(est, selector=template.selector, inputs=kept, targets=template.targets,
-                       reference=template.reference, denoiser=getattr(template, "denoiser", None))
-
-
-def fresh(template: Compensator) -> Compensator:
-    """An unfitted copy of a Compensator (same settings)."""
-    return Compensator(template.estimator, selector=template.selector, inputs=template.inputs,
-                       targets=template.targets, reference=template.reference,
-                       denoiser=getattr(template, "denoiser", None))
+    return clone(template).set_params(estimator=est, inputs=kept)
 
 
 @dataclass
@@ -216,7 +209,7 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
               e_p95_points, model_name) -> Diagnosis:
     t0 = time.perf_counter()
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
-    before = fresh(compensator).fit({c: ds.campaigns[c] for c in train_ids})
+    before = clone(compensator).fit({c: ds.campaigns[c] for c in train_ids})
     before_scores, before_pred = test_scores(before, ds, test_ids, mode, e_p95_statistic,
                                              e_p95_points)
     targets = list(before.targets_) if targets is None else (

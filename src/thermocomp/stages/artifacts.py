@@ -19,6 +19,7 @@ import pickle
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
+from sklearn.frozen import FrozenEstimator
 
 from .. import io
 from ..compensator import Compensator
@@ -95,21 +96,20 @@ def fit_from_artifacts(cfg: DictConfig, ds) -> Compensator:
     """Fit the configured compensator on the train split, reusing ``denoise``/``select`` outputs.
 
     ``ds`` is the ingested dataset (``data.interim``).  With a matching
-    ``data.processed`` the already denoised train campaigns and the fitted
-    denoiser are used; with a matching ``selection.json`` the stored inputs.
+    ``data.processed`` the fitted denoiser is used as fitted (frozen); with a
+    matching ``selection.json`` the stored inputs.
     """
     comp = build_compensator(cfg)
     ids = require_split(ds, "train")
-    campaigns, denoised = {c: ds.campaigns[c] for c in ids}, False
     processed = processed_data(cfg)
-    if processed is not None:
-        pds, den = processed
-        campaigns = {c: pds.campaigns[c] for c in ids}
-        comp.denoiser, denoised = den, den is not None
+    den = processed[1] if processed is not None else None
+    if den is not None:
+        comp.set_params(denoiser=FrozenEstimator(den))
     selected = stored_selection(cfg)
     if selected is not None and comp.targets is not None and sorted(selected) != sorted(comp.targets):
         selected = None
+    comp.set_params(selection=selected)
     say(f"fitting {cfg.model.name} on {len(ids)} train campaigns "
-        f"(inputs: {'denoised by the denoise stage' if denoised else 'as ingested'}; "
+        f"(denoiser: {'fitted by the denoise stage' if den is not None else 'as configured'}; "
         f"selection: {'selection.json' if selected is not None else cfg.select.name})")
-    return comp.fit(campaigns, denoised=denoised, selected=selected)
+    return comp.fit({c: ds.campaigns[c] for c in ids})

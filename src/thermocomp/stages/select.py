@@ -58,7 +58,7 @@ def select(cfg: DictConfig) -> dict:
     result, scores, names = {}, {}, {}
     for t in targets:
         y = m.Y[t].to_numpy()
-        sel = clone(selector).fit(m.X, y, groups=m.groups)
+        sel = clone(selector).fit(m.X, y)
         entry = {"selected": list(sel.selected_)}
         if hasattr(sel, "scores_"):
             entry["scores"] = _series(sel.scores_)
