@@ -6,7 +6,6 @@ import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-import numpy as np
 from sklearn.base import clone
 from threadpoolctl import threadpool_limits
 
@@ -15,6 +14,7 @@ from ..denoise import denoise_campaigns
 from ..evaluation import require_split, sample_period
 from ..frame import stack
 from ..io.contract import ContractError, Dataset
+from ..jsonsafe import json_safe
 from ..metrics import split_scores
 from .augmented import AugmentedRegressor
 from .candidates import CONTROL, random_walk
@@ -91,7 +91,7 @@ class Diagnosis:
         effects += [ev.entry() for ev in rejected]
         control = last.control.entry() if last and last.control else None
         te_b, te_a = d.before["test"], d.after["test"]
-        return _json_safe({
+        return json_safe({
             "target": t,
             "model": self.model,
             "before": _summary(te_b, d.original_cv_rmse),
@@ -131,21 +131,6 @@ class Diagnosis:
                               for o, x in self.targets.items() if o != t},
             "seconds": self.seconds,
         })
-
-
-def _json_safe(obj):
-    """NaN/inf -> None and numpy scalars -> Python, recursively (JSON never holds NaN)."""
-    if isinstance(obj, dict):
-        return {k: _json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_json_safe(v) for v in obj]
-    if isinstance(obj, (float, np.floating)):
-        return float(obj) if np.isfinite(obj) else None
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    return obj
 
 
 def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, points

@@ -13,7 +13,6 @@ nothing is done twice on the DVC path.
 
 from __future__ import annotations
 
-import hashlib
 import json
 import pickle
 from pathlib import Path
@@ -24,6 +23,7 @@ from sklearn.frozen import FrozenEstimator
 from .. import io
 from ..compensator import Compensator
 from ..evaluation import require_split
+from ..files import folder_digest
 from ..paths import resolve
 from .common import build_compensator, say
 
@@ -38,19 +38,9 @@ def _plain(node) -> object:
     return json.loads(json.dumps(data))
 
 
-def data_digest(folder: Path) -> str:
-    """SHA-256 over the files of an ingested dataset folder (names and bytes)."""
-    h = hashlib.sha256()
-    for f in sorted(p for p in Path(folder).iterdir() if p.is_file()):
-        h.update(f.name.encode())
-        with open(f, "rb") as fh:
-            h.update(hashlib.file_digest(fh, "sha256").digest())
-    return h.hexdigest()
-
-
 def denoise_fingerprint(cfg: DictConfig) -> dict:
     return {"denoise": _plain(cfg.denoise), "inputs": _plain(list(cfg.data.inputs)),
-            "interim": data_digest(resolve(cfg.data.interim))}
+            "interim": folder_digest(resolve(cfg.data.interim))}
 
 
 def selection_fingerprint(cfg: DictConfig) -> dict:

@@ -21,7 +21,8 @@ from ..errors import ConfigError
 from ..evaluation import require_split
 from ..paths import resolve
 from ..tracking import connect, stage_run
-from .common import build_compensator, check_config, data_options, load_model, say, write_json
+from ..files import write_json
+from .common import build_compensator, check_config, data_options, load_model, say
 
 
 def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[StreamingCompensator, str, str]:
