@@ -142,19 +142,22 @@ def stack(campaigns: Mapping[str, pd.DataFrame], x_cols, y_cols,
                                   if c.startswith(RAW_PREFIXES)))
     xs, ys, groups, times, amb0, raws = [], [], [], [], [], []
     for cid, df in campaigns.items():
-        missing = [c for c in x_cols + y_cols if c not in df.columns]
+        pos = {c: j for j, c in enumerate(df.columns)}
+        missing = [c for c in x_cols + y_cols if c not in pos]
         if missing:
             raise ContractError("campaign lacks a column the model needs", file=cid,
                                 column=",".join(missing))
+        A = df.to_numpy(dtype=float)      # one conversion; columns picked by position below
         n = len(df)
-        xs.append(_framed(df[x_cols].to_numpy(float), x_cols, reference))
-        ys.append(_framed(df[y_cols].to_numpy(float), y_cols, reference))
+        xs.append(_framed(A[:, [pos[c] for c in x_cols]], x_cols, reference))
+        ys.append(_framed(A[:, [pos[c] for c in y_cols]], y_cols, reference))
         groups.append(np.full(n, cid, dtype=object))
-        times.append(df[TIME].to_numpy(float))
-        amb0.append(np.full(n, initial_ambient(df)))
+        times.append(A[:, pos[TIME]])
+        amb = [pos[c] for c in df.columns if is_ambient(c)]
+        amb0.append(np.full(n, ambient_c0(first_valid(A[:, amb])) if amb else np.nan))
         raw = np.full((n, len(raw_cols)), np.nan)
-        have = [j for j, c in enumerate(raw_cols) if c in df.columns]
-        raw[:, have] = df[[raw_cols[j] for j in have]].to_numpy(float)
+        have = [j for j, c in enumerate(raw_cols) if c in pos]
+        raw[:, have] = A[:, [pos[raw_cols[j]] for j in have]]
         raws.append(raw)
     groups, times = np.concatenate(groups), np.concatenate(times)
     raw = np.concatenate(raws) if raws else np.empty((0, len(raw_cols)))
