@@ -1,13 +1,28 @@
-"""model_selection: information criteria, the greedy Gram search."""
+"""model_selection: information criteria, the greedy Gram search, campaign splitters."""
 
 import numpy as np
 import pandas as pd
 import pytest
+import sklearn
 import statsmodels.api as sm
+from sklearn.linear_model import LinearRegression
+from sklearn.model_selection import cross_val_score
 
+from thermocomp.errors import ParameterError
 from thermocomp.frame import stack
-from thermocomp.model_selection import greedy_path, information_criteria, information_criterion, scaled_gram
-from thermocomp.models import ARX
+from thermocomp.model_selection import (
+    CampaignHoldOut,
+    ForwardChaining,
+    LeaveCampaignsOut,
+    LeaveOneCampaignOut,
+    TrainOnEachCampaign,
+    greedy_path,
+    information_criteria,
+    information_criterion,
+    scaled_gram,
+    unit_labels,
+)
+from thermocomp.models import ARX, LSTM
 from thermocomp.select import GreedyResidualSelector
 from thermocomp.sim import YearRoundSpindle
 
@@ -185,3 +200,162 @@ def test_scaled_gram_has_a_unit_diagonal_and_keeps_constant_columns_zero():
     np.testing.assert_allclose(np.diag(M), [1.0, 0.0, 1.0])
     assert scale[1] == 1.0
     np.testing.assert_allclose(M * np.outer(scale, scale), (A - A.mean(0)).T @ (A - A.mean(0)))
+
+
+# -- splitters --------------------------------------------------------------------------------------
+
+def campaigns_problem(sizes=(30, 20, 25, 40, 15), seed=0):
+    rng = np.random.default_rng(seed)
+    n = sum(sizes)
+    X = rng.normal(size=(n, 3))
+    y = X @ [1.0, -2.0, 0.5] + rng.normal(0, 0.1, n)
+    groups = np.concatenate([[f"C{i}"] * s for i, s in enumerate(sizes)])
+    return X, y, groups
+
+
+def _manual_scores(est, X, y, splits):
+    return [est.fit(X[tr], y[tr]).score(X[te], y[te]) for tr, te in splits]
+
+
+@pytest.mark.parametrize("cv", [LeaveCampaignsOut(n_folds=3), LeaveCampaignsOut(), LeaveOneCampaignOut(),
+                                TrainOnEachCampaign(), CampaignHoldOut(0.4), ForwardChaining(3, gap=5)])
+def test_splitters_work_with_cross_val_score(cv):
+    X, y, g = campaigns_problem()
+    g = None if isinstance(cv, ForwardChaining) else g      # one time-ordered record
+    scores = cross_val_score(LinearRegression(), X, y, groups=g, cv=cv)
+    splits = list(cv.split(X, y, groups=g))
+    assert len(scores) == len(splits) == cv.get_n_splits(X, y, groups=g)
+    np.testing.assert_allclose(scores, _manual_scores(LinearRegression(), X, y, splits))
+    assert np.all(scores > 0.9)
+
+
+def test_campaign_splitters_request_groups_under_metadata_routing():
+    X, y, g = campaigns_problem()
+    with sklearn.config_context(enable_metadata_routing=True):
+        for cv in (LeaveCampaignsOut(3), LeaveOneCampaignOut(), TrainOnEachCampaign(), CampaignHoldOut()):
+            scores = cross_val_score(LinearRegression(), X, y, params={"groups": g}, cv=cv)
+            assert len(scores) == cv.get_n_splits(groups=g)
+
+
+@pytest.mark.parametrize("cv", [LeaveCampaignsOut(n_folds=3), LeaveCampaignsOut(n_folds=2),
+                                LeaveOneCampaignOut()])
+@pytest.mark.parametrize("single", [False, True])
+def test_every_unit_is_tested_exactly_once_on_disjoint_parts(cv, single):
+    X, y, g = campaigns_problem()
+    if single:
+        g = np.full(len(y), "L")
+    units = unit_labels(g, 8)
+    seen = []
+    for tr, te in cv.split(X, y, groups=g):
+        assert not set(tr) & set(te) and len(tr) + len(te) == len(y)
+        held = set(units[te])
+        assert not held & set(units[tr])                    # whole units only
+        seen += sorted(held)
+    assert sorted(seen) == sorted(set(units))               # each unit once
+
+
+@pytest.mark.parametrize("n_blocks", [2, 5, 8])
+def test_a_single_campaign_is_cut_into_contiguous_near_equal_blocks(n_blocks):
+    units = unit_labels(np.full(103, "L"), n_blocks)
+    names = list(dict.fromkeys(units))
+    assert names == [f"L#{k}" for k in range(1, n_blocks + 1)]
+    changes = np.flatnonzero(units[1:] != units[:-1])
+    assert len(changes) == n_blocks - 1                     # each block is one contiguous run
+    sizes = pd.Series(units).value_counts()
+    assert sizes.max() - sizes.min() <= 1
+    # groups=None is one campaign too; every test fold of LeaveOneCampaignOut is one block
+    folds = list(LeaveOneCampaignOut(n_blocks=n_blocks).split(np.zeros((103, 1))))
+    assert len(folds) == n_blocks and all(np.all(np.diff(te) == 1) for _, te in folds)
+    assert unit_labels(np.array(["a", "a", "b"]), n_blocks).tolist() == ["a", "a", "b"]
+
+
+@pytest.mark.parametrize("sizes", [(5, 5, 5), (3,) * 12, (4, 7, 2, 9, 1, 3, 6)])
+@pytest.mark.parametrize("n_folds", [1, 2, 3, 10])
+def test_fold_assignment_is_the_diagnosis_rule(sizes, n_folds):
+    """Unit i (in order of appearance) -> fold i mod max(2, min(n_folds, n_units)), as
+    diagnose/cv.py assigned its folds before the splitters."""
+    _, _, g = campaigns_problem(sizes)
+    g = g[::-1].copy()                                      # order of appearance, not sorted order
+    order = list(dict.fromkeys(g))
+    k = max(2, min(n_folds, len(order)))
+    expected = np.array([order.index(c) % k for c in g])
+    np.testing.assert_array_equal(LeaveCampaignsOut(n_folds).fold_index(g), expected)
+    assert LeaveOneCampaignOut().get_n_splits(groups=g) == len(order)
+
+
+def test_leave_one_campaign_out_holds_campaigns_out_in_order_of_appearance():
+    """The ATI elbow's folds: one per campaign, in the order the campaigns come."""
+    _, _, g = campaigns_problem()
+    g = g[::-1].copy()
+    held = [g[te][0] for _, te in LeaveOneCampaignOut().split(g, groups=g)]
+    assert held == list(dict.fromkeys(g))
+
+
+def test_train_on_each_campaign_trains_on_one_and_tests_on_all():
+    X, y, g = campaigns_problem()
+    splits = list(TrainOnEachCampaign().split(X, y, groups=g))
+    assert [g[tr][0] for tr, _ in splits] == list(dict.fromkeys(g))
+    assert all(set(g[tr]) == {g[tr][0]} and (g == g[tr][0]).sum() == len(tr) for tr, _ in splits)
+    assert all(np.array_equal(te, np.arange(len(y))) for _, te in splits)
+    assert len(list(TrainOnEachCampaign().split(np.zeros((9, 1))))) == 1   # one campaign: its self-fit
+
+
+def _segment_holdout(groups, n, frac, random_state):
+    """LSTM's validation rows as models/lstm.py drew them before the splitters."""
+    val = np.zeros(n, dtype=bool)
+    if frac == 0 or n < 2:
+        return val
+    starts = [0] if groups is None else list(np.flatnonzero(np.r_[True, groups[1:] != groups[:-1]]))
+    bounds = list(zip(starts, starts[1:] + [n]))
+    if len(bounds) >= 2:
+        n_val = min(len(bounds) - 1, max(1, round(frac * len(bounds))))
+        for i in np.random.default_rng(random_state).choice(len(bounds), size=n_val, replace=False):
+            val[slice(*bounds[i])] = True
+    elif 1 <= round(frac * n) <= n - 1:
+        val[n - round(frac * n):] = True
+    return val
+
+
+@pytest.mark.parametrize("frac", [0.0, 0.1, 0.2, 0.5, 0.9])
+@pytest.mark.parametrize("random_state", [0, 1, 7])
+def test_hold_out_is_lstm_early_stopping_split(frac, random_state):
+    for g in (campaigns_problem((30, 20, 25, 40, 15))[2], np.repeat([0, 1, 2, 3], 10), None):
+        n = 40 if g is None else len(g)
+        cv = CampaignHoldOut(frac, random_state=random_state)
+        expected = _segment_holdout(g, n, frac, random_state)
+        mask = cv.test_mask(g, np.zeros((n, 1)))
+        np.testing.assert_array_equal(mask, expected)
+        np.testing.assert_array_equal(LSTM(validation_fraction=frac, random_state=random_state)
+                                      ._validation_rows(g, n), expected)
+        (tr, te), = cv.split(np.zeros((n, 1)), groups=g)
+        assert np.array_equal(np.sort(np.r_[tr, te]), np.arange(n)) and set(te) == set(np.flatnonzero(mask))
+        if g is not None and frac > 0:                      # whole campaigns, never all of them
+            assert not set(np.asarray(g)[te]) & set(np.asarray(g)[tr]) and len(tr)
+
+
+@pytest.mark.parametrize("gap", [0, 3, 10])
+def test_forward_chaining_respects_time_order_and_the_gap(gap):
+    n = 120
+    splits = list(ForwardChaining(n_splits=4, gap=gap).split(np.zeros((n, 1))))
+    assert len(splits) == 4
+    previous = 0
+    for tr, te in splits:
+        assert np.array_equal(tr, np.arange(len(tr))) and np.all(np.diff(te) == 1)   # contiguous
+        assert te[0] - tr[-1] - 1 == gap                    # exactly `gap` samples between them
+        assert len(tr) > previous                           # an expanding window
+        previous = len(tr)
+    assert splits[-1][1][-1] == n - 1
+
+
+def test_splitter_parameters_and_degenerate_inputs_raise():
+    X, y, g = campaigns_problem()
+    with pytest.raises(ParameterError):
+        list(LeaveCampaignsOut(n_blocks=1).split(X, y, groups=g))
+    with pytest.raises(ParameterError):
+        list(LeaveCampaignsOut(n_folds=0).split(X, y, groups=g))
+    with pytest.raises(ParameterError):
+        CampaignHoldOut(1.0).test_mask(g)
+    with pytest.raises(ParameterError):
+        list(ForwardChaining(gap=-1).split(X))
+    with pytest.raises(ValueError, match="at least 2 units"):
+        list(LeaveCampaignsOut().split(X[:1], y[:1], groups=g[:1]))
