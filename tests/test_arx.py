@@ -7,9 +7,9 @@ import pandas as pd
 import pytest
 from sklearn.utils.estimator_checks import check_estimator
 
-from conftest import stream_predictions
+from conftest import ctx, stream_predictions
 from thermocomp.compensator import Compensator
-from thermocomp.errors import ConfigError
+from thermocomp.errors import ParameterError
 from thermocomp.models import ARX
 
 DYNAMIC_CHECKS = {
@@ -45,13 +45,13 @@ def test_arx_with_ar_and_delays_passes_all_but_documented_order_checks():
 @pytest.mark.parametrize("selection_error", ["simulation", "equation"])
 def test_arx_selects_the_ar_term_only_when_the_truth_has_one(selection_error):
     X, y, g = arx_data(a=0.9)
-    dyn = ARX(selection_error=selection_error).fit(X, y, groups=g)
+    dyn = ARX(selection_error=selection_error).fit(X, y, context=ctx(g))
     assert dyn.chosen_["ar"] is True
     assert dyn.ar_coef_ == pytest.approx(0.9, abs=0.03)
     assert sorted(dyn.inputs_[:2]) == ["x1", "x4"]
 
     X, y, g = arx_data(a=0.0, seed=1)
-    static = ARX(selection_error=selection_error).fit(X, y, groups=g)
+    static = ARX(selection_error=selection_error).fit(X, y, context=ctx(g))
     assert static.chosen_["ar"] is False and static.ar_coef_ == 0.0
     assert {"x1", "x4"} <= set(static.inputs_)
     np.testing.assert_allclose(static.coef_[[static.inputs_.index("x1"), static.inputs_.index("x4")]],
@@ -66,17 +66,17 @@ def test_arx_selects_the_ar_term_only_when_the_truth_has_one(selection_error):
 
 def test_arx_finds_the_input_delay():
     X, y, g = arx_data(a=0.0, delay=3, seed=6)
-    est = ARX(delays=(0, 1, 2, 3, 4, 5)).fit(X, y, groups=g)
+    est = ARX(delays=(0, 1, 2, 3, 4, 5)).fit(X, y, context=ctx(g))
     assert "x1[t-3]" in est.inputs_
     assert not any(name.startswith("x1") and name != "x1[t-3]" for name in est.inputs_)
 
 
 def test_simulation_free_runs_and_one_step_uses_the_measured_error():
     X, y, g = arx_data(a=0.9, seed=7)
-    est = ARX(ar=True).fit(X, y, groups=g)
+    est = ARX(ar=True).fit(X, y, context=ctx(g))
     a, u = est.ar_coef_, est._exogenous(X, g)
-    sim = est.predict(X, groups=g)
-    one = est.predict(X, groups=g, y_measured=y)
+    sim = est.predict(X, context=ctx(g))
+    one = est.predict(X, context=ctx(g, y_measured=y))
     starts = np.flatnonzero(np.r_[True, g[1:] != g[:-1]])
     # campaign starts: previous error is 0 in both modes (nothing crosses campaigns)
     np.testing.assert_allclose(sim[starts], u[starts])
@@ -88,26 +88,26 @@ def test_simulation_free_runs_and_one_step_uses_the_measured_error():
     # a gap in the measurement falls back on the model's own previous estimate
     y_gap = y.copy()
     y_gap[50] = np.nan
-    gap = est.predict(X, groups=g, y_measured=y_gap)
+    gap = est.predict(X, context=ctx(g, y_measured=y_gap))
     assert gap[51] == pytest.approx(a * gap[50] + u[51])
     np.testing.assert_allclose(np.delete(gap, 51), np.delete(one, 51))
 
 
 def test_streaming_reproduces_simulation_predict():
     X, y, g = arx_data(a=0.9, n_campaigns=3, seed=8)
-    est = ARX(ar=True, delays=(0, 2)).fit(X, y, groups=g)
-    batch = est.predict(X, groups=g)
+    est = ARX(ar=True, delays=(0, 2)).fit(X, y, context=ctx(g))
+    batch = est.predict(X, context=ctx(g))
     stream = stream_predictions(est, X, g)
     np.testing.assert_allclose(stream, batch, rtol=0, atol=1e-9)
 
 
 def test_pickle_round_trip_identical_predictions():
     X, y, g = arx_data(a=0.9, n_campaigns=3, seed=9)
-    est = ARX().fit(X, y, groups=g)
+    est = ARX().fit(X, y, context=ctx(g))
     again = pickle.loads(pickle.dumps(est))
-    np.testing.assert_array_equal(est.predict(X, groups=g), again.predict(X, groups=g))
-    np.testing.assert_array_equal(est.predict(X, groups=g, y_measured=y),
-                                  again.predict(X, groups=g, y_measured=y))
+    np.testing.assert_array_equal(est.predict(X, context=ctx(g)), again.predict(X, context=ctx(g)))
+    np.testing.assert_array_equal(est.predict(X, context=ctx(g, y_measured=y)),
+                                  again.predict(X, context=ctx(g, y_measured=y)))
 
 
 def test_compensator_one_step_mode_reaches_arx():
@@ -125,7 +125,7 @@ def test_compensator_one_step_mode_reaches_arx():
     meas = comp.measured(camps)
     for cid in camps:
         Xc = camps[cid][names].to_numpy()
-        np.testing.assert_allclose(one[cid]["E_Z"], est.predict(Xc, y_measured=meas[cid]["E_Z"].to_numpy()))
+        np.testing.assert_allclose(one[cid]["E_Z"], est.predict(Xc, context=ctx(y_measured=meas[cid]["E_Z"].to_numpy())))
         np.testing.assert_allclose(sim[cid]["E_Z"], est.predict(Xc))
 
 
@@ -133,5 +133,5 @@ def test_compensator_one_step_mode_reaches_arx():
                                  {"max_inputs": 0}, {"delays": [-1]}])
 def test_bad_hyperparameters_are_config_errors(bad):
     X, y, g = arx_data(a=0.0, n_campaigns=1, n=30)
-    with pytest.raises(ConfigError):
-        ARX(**bad).fit(X, y, groups=g)
+    with pytest.raises(ParameterError):
+        ARX(**bad).fit(X, y, context=ctx(g))

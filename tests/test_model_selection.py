@@ -8,6 +8,7 @@ import statsmodels.api as sm
 from sklearn.linear_model import LinearRegression
 from sklearn.model_selection import cross_val_score
 
+from conftest import ctx
 from thermocomp.errors import ParameterError
 from thermocomp.frame import stack
 from thermocomp.model_selection import (
@@ -91,7 +92,7 @@ def test_the_smallest_exact_model_wins_a_noise_free_target_in_arx_and_the_select
     """y = 2 x1 - x4 exactly: every larger model fits to rounding noise; the floor makes them
     tie, so both callers of the criteria keep exactly the two true inputs."""
     X, y, g = linear_data(n_campaigns=3, seed=7, noise=0.0)
-    arx = ARX().fit(X, y, groups=g)
+    arx = ARX().fit(X, y, context=ctx(g))
     assert sorted(arx.inputs_) == ["x1", "x4"] and not arx.chosen_["ar"]
     sel = GreedyResidualSelector().fit(pd.DataFrame(X).add_prefix("x"), y)
     assert sorted(sel.selected_) == ["x1", "x4"] and sel.ic_.idxmin() == 2

@@ -8,7 +8,8 @@ from scipy.linalg import lstsq, solve
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..errors import ConfigError
+from ..context import Y_MEASURED, SideInputs, groups_of, values
+from ..errors import ParameterError
 from ..model_selection.criteria import CRITERIA, LABELS, information_criteria
 from ..model_selection.greedy import SEARCHES, greedy_path, scaled_gram
 from ._dynamics import free_run, lag_index, previous, segment_starts
@@ -27,7 +28,7 @@ def _exogenous(X, groups, terms, coef, intercept) -> np.ndarray:
     return u
 
 
-class ARX(RegressorMixin, BaseEstimator):
+class ARX(SideInputs, RegressorMixin, BaseEstimator):
     r"""First-order ARX per error parameter with greedy input and model selection.
 
     .. math:: \hat y(t) = a\, y(t-1) + \sum_{n \in S} b_n\, x_n(t - k_n) + c
@@ -40,13 +41,13 @@ class ARX(RegressorMixin, BaseEstimator):
     Coefficients are least squares on the equation error: in training the AR
     regressor is the *measured* previous error.
 
-    Prediction runs in two modes.  Simulation (default, ``y_measured=None``):
-    the AR term is fed the model's own previous prediction (free run, starting
-    from 0 at each campaign start, the reference frame's initial error), as on
-    a machine with no measured error.  One-step (``y_measured`` given): the AR
-    term uses the measured previous error.  Lags never cross campaigns
-    (``groups``): before a campaign's first sample inputs are held at their
-    first value and the previous error is 0.
+    Prediction runs in two modes.  Simulation (default): the AR term is fed
+    the model's own previous prediction (free run, starting from 0 at each
+    campaign start, the reference frame's initial error), as on a machine with
+    no measured error.  One-step (``y_measured`` in the context): the AR term
+    uses the measured previous error.  Lags never cross campaigns (the
+    context's ``campaign``): before a campaign's first sample inputs are held
+    at their first value and the previous error is 0.
 
     scikit-learn's ``check_estimator`` passes with the default ``delays=(0,)``
     whenever the AR term loses; a model with an AR term or delays depends on
@@ -114,12 +115,12 @@ class ARX(RegressorMixin, BaseEstimator):
                    "ar": (self.ar, ("auto", True, False))}
         for name, (value, allowed) in options.items():
             if not any(value is a or (isinstance(a, str) and value == a) for a in allowed):
-                raise ConfigError(f"ARX {name}={value!r} is not one of {list(allowed)}")
+                raise ParameterError(f"ARX {name}={value!r} is not one of {list(allowed)}")
         if int(self.max_inputs) < 1:
-            raise ConfigError(f"ARX max_inputs={self.max_inputs!r} must be >= 1")
+            raise ParameterError(f"ARX max_inputs={self.max_inputs!r} must be >= 1")
         delays = tuple(sorted({int(d) for d in np.atleast_1d(self.delays)}))
         if not delays or delays[0] < 0:
-            raise ConfigError(f"ARX delays={self.delays!r} must be non-negative sample counts")
+            raise ParameterError(f"ARX delays={self.delays!r} must be non-negative sample counts")
         return delays
 
     # -- design -------------------------------------------------------------------------
@@ -144,8 +145,9 @@ class ARX(RegressorMixin, BaseEstimator):
         name = str(names[j]) if names is not None else f"x{j}"
         return name if d == 0 else f"{name}[t-{d}]"
 
-    def fit(self, X, y, groups=None):
+    def fit(self, X, y, context=None):
         delays = self._check_params()
+        groups = groups_of(context)
         X, y = validate_data(self, X, y, y_numeric=True)
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         n, p = X.shape
@@ -208,6 +210,7 @@ class ARX(RegressorMixin, BaseEstimator):
         self.chosen_ = {"ar": with_ar, "n_inputs": k, "inputs": list(self.inputs_),
                         "criterion": self.criterion, "value": float(win[self.criterion]),
                         "reason": self._reason(table, best)}
+        self.context_columns_ = []
         return self
 
     @staticmethod
@@ -262,10 +265,11 @@ class ARX(RegressorMixin, BaseEstimator):
     def _exogenous(self, X, groups) -> np.ndarray:
         return _exogenous(X, groups, self.terms_, self.coef_, self.intercept_)
 
-    def predict(self, X, groups=None, y_measured=None):
-        """Predicted error: free run (simulation) or one-step with ``y_measured``."""
+    def predict(self, X, context=None):
+        """Predicted error: free run (simulation), or one-step with ``y_measured`` in ``context``."""
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
+        groups, y_measured = groups_of(context), values(context, Y_MEASURED, X.shape[0])
         u = self._exogenous(X, groups)
         if self.ar_coef_ == 0.0:
             return u
@@ -283,12 +287,12 @@ class ARX(RegressorMixin, BaseEstimator):
         return self.ar_coef_ * y_prev + u
 
     # -- streaming (deployment) ---------------------------------------------------------
-    def stream_init(self) -> dict:
+    def stream_init(self, context=None) -> dict:
         """State at a campaign start: previous output 0, no input history yet."""
         check_is_fitted(self)
         return {"y_prev": 0.0, "history": None}
 
-    def stream_step(self, x_row, state: dict) -> tuple[float, dict]:
+    def stream_step(self, x_row, state: dict, context=None) -> tuple[float, dict]:
         """One sample of simulation-mode ``predict``: ``(y_hat, new_state)``."""
         x_row = np.asarray(x_row, dtype=float).reshape(-1)
         depth = max((d for _, d in self.terms_), default=0) + 1

@@ -11,9 +11,10 @@ from .diagnose import diagnose
 from .ingest import ingest
 from .modelling import evaluate, run, train
 from .promote import promote
+from .replay import replay
 from .select import select
 from .simulate import simulate
 
 STAGES = {"simulate": simulate, "ingest": ingest, "denoise": denoise, "select": select,
           "train": train, "evaluate": evaluate, "diagnose": diagnose, "run": run,
-          "compare": compare, "promote": promote}
+          "compare": compare, "promote": promote, "replay": replay}

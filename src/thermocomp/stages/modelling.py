@@ -10,15 +10,14 @@ from .. import io
 from ..compensator import Compensator
 from ..evaluation import (ambient_by_campaign, anova, ati_report, mutual_prediction_report,
                           require_split, score)
-from ..io import atomic_dir
+from ..files import atomic_dir, write_json
 from ..iso10791 import a3_campaign
 from ..paths import resolve
 from ..plots import (ati_intervals_plot, e_p95_plot, elbow_plot, iso_a3_plot,
                      mutual_prediction_plot, residual_plot, rsd_plot)
 from ..tracking import stage_run
 from .artifacts import fit_from_artifacts
-from .common import (build_compensator, check_config, data_options, load_model, result_table,
-                     save_model, say, write_json)
+from .common import build_compensator, check_config, data_options, load_model, result_table, save_model, say
 
 
 def _fit(cfg: DictConfig, ds) -> Compensator:
