@@ -5,14 +5,12 @@ import pickle
 import numpy as np
 import pandas as pd
 import pytest
-import statsmodels.api as sm
 from sklearn.utils.estimator_checks import check_estimator
 
 from conftest import ctx, stream_predictions
 from thermocomp.compensator import Compensator
 from thermocomp.errors import ParameterError
 from thermocomp.models import ARX
-from thermocomp.models.arx import greedy_path, information_criteria
 
 DYNAMIC_CHECKS = {
     "check_methods_sample_order_invariance": "an AR term / delays make predictions depend on row order",
@@ -64,50 +62,6 @@ def test_arx_selects_the_ar_term_only_when_the_truth_has_one(selection_error):
     assert set(table["ar"]) == {True, False}
     assert table.loc[table["chosen"], "bicc"].item() == table["bicc"].min()
     assert "without AR term" in static.chosen_["reason"]
-
-
-def test_greedy_path_rss_equals_least_squares_refit():
-    X, y, _ = arx_data(a=0.0, n_campaigns=2, seed=3)
-    A = np.column_stack([X, y])
-    A = A - A.mean(axis=0)
-    M = A.T @ A
-    for search in ("residual", "forward"):
-        order, rss = greedy_path(M, X.shape[1], range(X.shape[1]), range(X.shape[1]),
-                                 max_inputs=5, search=search)
-        assert len(order) == 5 and len(set(order)) == 5
-        for k in range(1, 6):
-            design = sm.add_constant(X[:, order[:k]])
-            assert rss[k - 1] == pytest.approx(sm.OLS(y, design).fit().ssr, rel=1e-8)
-
-
-def test_residual_search_is_the_papers_split_greedy():
-    """Each step: one-input fit of the current residual per remaining sensor, keep the best, subtract."""
-    X, y, _ = arx_data(a=0.0, n_campaigns=2, seed=4)
-    X = X + 0.7 * X[:, [1]]                       # correlated sensors: residual != forward search
-    A = np.column_stack([X, y])
-    M = (A - A.mean(axis=0)).T @ (A - A.mean(axis=0))
-    order, _ = greedy_path(M, 8, range(8), range(8), max_inputs=4, search="residual")
-    resid, expected = y.copy(), []
-    for _ in range(4):
-        fits = {j: np.polyfit(X[:, j], resid, 1) for j in range(8) if j not in expected}
-        mse = {j: np.mean((resid - np.polyval(c, X[:, j])) ** 2) for j, c in fits.items()}
-        best = min(mse, key=mse.get)
-        resid = resid - np.polyval(fits[best], X[:, best])
-        expected.append(best)
-    assert order == expected
-
-
-def test_criterion_differences_match_statsmodels_likelihood():
-    X, y, _ = arx_data(a=0.0, n_campaigns=2, seed=5)
-    small, big = sm.OLS(y, sm.add_constant(X[:, :2])).fit(), sm.OLS(y, sm.add_constant(X[:, :5])).fit()
-    ic_small = information_criteria(small.ssr, len(y), 3)
-    ic_big = information_criteria(big.ssr, len(y), 6)
-    assert ic_big["aic"] - ic_small["aic"] == pytest.approx(big.aic - small.aic, rel=1e-9)
-    assert ic_big["bic"] - ic_small["bic"] == pytest.approx(big.bic - small.bic, rel=1e-9)
-    # the corrections only add penalty, and vanish as n grows
-    assert ic_small["bicc"] > ic_small["bic"] and ic_small["aicc"] > ic_small["aic"]
-    far = information_criteria(1.0, 10**9, 3)
-    assert far["bicc"] - far["bic"] == pytest.approx(0.0, abs=1e-3)
 
 
 def test_arx_finds_the_input_delay():

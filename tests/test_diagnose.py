@@ -9,12 +9,13 @@ from sklearn.utils.estimator_checks import check_estimator
 
 from thermocomp.compensator import Compensator
 from thermocomp.diagnose import CONTROL, AugmentedRegressor, Effect, SearchOptions, diagnose
-from thermocomp.diagnose.cv import Problem, sign_flip_pvalue, unit_labels
+from thermocomp.diagnose.cv import Problem, sign_flip_pvalue
 from thermocomp.diagnose.features import first_order_lag, in_frame
 from thermocomp.diagnose.sensors import self_prediction
 from thermocomp.errors import ConfigError, ParameterError
 from thermocomp.frame import stack
 from thermocomp.io.contract import Dataset
+from thermocomp.model_selection import unit_labels
 from thermocomp.models import MLR
 
 DT = 300.0

@@ -4,7 +4,8 @@ The *unit* of cross-validation is a campaign: every campaign is held out once
 and predicted by a model that never saw it.  When the train split is a single
 campaign (one long record) the units are contiguous time blocks of it (CLI.md).
 Units go to ``n_folds`` folds in turn (unit ``i`` -> fold ``i mod K``), so with
-campaigns in calendar order every fold spans the seasons.
+campaigns in calendar order every fold spans the seasons
+(:class:`~thermocomp.model_selection.LeaveCampaignsOut`).
 
 Everything works on the stacked train matrices: the selector and the
 estimator are refitted in every fold exactly as the
@@ -23,19 +24,9 @@ import pandas as pd
 from sklearn.base import clone
 
 from ..context import CAMPAIGN, Y_MEASURED, for_target
+from ..model_selection import LeaveCampaignsOut
 from ..select import AllInputs
 from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
-
-
-def unit_labels(campaigns: np.ndarray, n_blocks: int) -> np.ndarray:
-    """CV unit of each row: its campaign, or ``<campaign>#<k>`` blocks for a single campaign."""
-    campaigns = np.asarray(campaigns, dtype=object)
-    ids = list(dict.fromkeys(campaigns))
-    if len(ids) > 1:
-        return campaigns
-    n = len(campaigns)
-    block = np.minimum((np.arange(n) * n_blocks) // max(n, 1), n_blocks - 1)
-    return np.array([f"{ids[0]}#{k + 1}" for k in block], dtype=object)
 
 
 @dataclass
@@ -64,8 +55,7 @@ class Problem:
         self.unit_names = list(dict.fromkeys(self.units))
         pos = {u: i for i, u in enumerate(self.unit_names)}
         self.unit_index = np.array([pos[u] for u in self.units])
-        k = max(2, min(int(self.n_folds), len(self.unit_names)))
-        self.folds = self.unit_index % k
+        self.folds = LeaveCampaignsOut(self.n_folds).fold_index(self.units)
 
     def varies(self, column: str) -> bool:
         """True when context ``column`` changes within the train data (in the target's frame)."""

@@ -16,9 +16,10 @@ from ..frame import stack
 from ..io.contract import ContractError, Dataset
 from ..jsonsafe import json_safe
 from ..metrics import split_scores
+from ..model_selection import LeaveCampaignsOut, unit_labels
 from .augmented import AugmentedRegressor
 from .candidates import CONTROL, random_walk
-from .cv import Problem, unit_labels
+from .cv import Problem
 from .features import Effect
 from .search import Search, SearchOptions, SearchResult, sensor_health
 
@@ -229,7 +230,8 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            for t, r in found.items()}
     n_units = len(dict.fromkeys(units))
     cv = {"units": n_units, "unit": "campaign" if len(train_ids) > 1 else "time block",
-          "folds": max(2, min(options.n_folds, n_units)), "train_campaigns": train_ids,
+          "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=units),
+          "train_campaigns": train_ids,
           "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},

@@ -21,6 +21,7 @@ from ..context import (AMBIENT_C0, SideInputs, context_columns, groups_of, merge
                        scalar, subset)
 from ..errors import ContractError, ParameterError
 from ..metrics import rsd, sm_sd
+from ..model_selection import LeaveOneCampaignOut
 from .linear import MLR
 
 CLUSTERINGS = ("fuzzy", "hard")
@@ -229,10 +230,12 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def _cv_rsd(self, X, y, campaign, a0: pd.Series, n: int, context) -> np.ndarray:
         """Held-out Rsd of each campaign with ``n`` intervals rebuilt from the others."""
         out = []
-        for k in a0.index:
+        for _, test in LeaveOneCampaignOut().split(X, y, groups=campaign):
+            k = campaign[test[0]]
             others = a0.drop(k)
             bounds = self._intervals(others.to_numpy(), n) if n > 1 else np.empty(0)
             mine = interval_of([a0[k]], bounds)[0]
+            # train on the other campaigns of the held-out campaign's interval
             train_campaigns = others.index[interval_of(others.to_numpy(), bounds) == mine]
             rows_train = np.isin(campaign, train_campaigns)
             rows_test = campaign == k

@@ -12,7 +12,8 @@ from torch import nn
 
 from ..context import SideInputs, groups_of
 from ..errors import ParameterError
-from ._dynamics import segment_bounds, window_index
+from ..model_selection import CampaignHoldOut
+from ._dynamics import window_index
 
 
 class _Net(nn.Module):
@@ -136,21 +137,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
 
     def _validation_rows(self, groups, n: int) -> np.ndarray:
         """Boolean mask of validation rows: whole campaigns, or the tail of a single one."""
-        frac = float(self.validation_fraction)
-        val = np.zeros(n, dtype=bool)
-        if frac == 0 or n < 2:
-            return val
-        bounds = segment_bounds(groups, n)
-        if len(bounds) >= 2:
-            rng = np.random.default_rng(self.random_state)
-            n_val = min(len(bounds) - 1, max(1, round(frac * len(bounds))))
-            for i in rng.choice(len(bounds), size=n_val, replace=False):
-                val[slice(*bounds[i])] = True
-        else:
-            n_val = int(round(frac * n))
-            if n_val >= 1 and n - n_val >= 1:
-                val[n - n_val:] = True
-        return val
+        holdout = CampaignHoldOut(self.validation_fraction, random_state=self.random_state)
+        return holdout.test_mask(groups, np.empty((n, 0)))
 
     def _windows(self, X, groups) -> tuple[torch.Tensor, np.ndarray]:
         Xs = (np.asarray(X, dtype=float) - self.x_mean_) / self.x_scale_
