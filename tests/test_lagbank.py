@@ -122,16 +122,22 @@ def test_recovers_a_lagged_system_far_better_than_a_static_model_on_held_out_cam
     assert not np.any(np.isclose(lag.taus_, TAU_TRUE_S, rtol=0.05))
 
 
-def test_one_step_mode_uses_the_measured_previous_error():
+@pytest.mark.parametrize("ar", [True, "auto"])
+def test_one_step_mode_uses_the_measured_previous_error(ar):
     """An unmeasured drift: free run cannot follow it, one-step prediction (AR term fed the
-    measured previous error) can, and the forced AR term keeps a stable pole."""
+    measured previous error, penalty chosen on the one-step CV error) can."""
     X, y, context = _lagged_system(seed=5, drift_um=0.2)
     train, c_train, c_test = _split(context, 5)
-    est = LagBank(ar=True).fit(X[train], y[train], context=c_train)
-    assert 0.0 < est.ar_coef_ < 1.0
+    est = LagBank(ar=ar).fit(X[train], y[train], context=c_train)
+    assert 0.0 < est.ar_coef_one_step_ < 1.0
+    ar_rows = est.cv_results_[est.cv_results_["ar"]]
+    assert est.alpha_one_step_ == ar_rows.loc[ar_rows["cv_mse_one_step"].idxmin(), "alpha"]
     free = est.predict(X[~train], context=c_test)
     one_step = est.predict(X[~train], context=c_test.assign(y_measured=y[~train]))
     assert _rmse(one_step, y[~train]) < 0.5 * _rmse(free, y[~train])
+    static = LagBank(ar=False).fit(X[train], y[train], context=c_train)   # no AR: modes coincide
+    np.testing.assert_array_equal(static.predict(X[~train], context=c_test.assign(y_measured=y[~train])),
+                                  static.predict(X[~train], context=c_test))
 
 
 def test_ar_auto_decides_on_the_free_run_cv_error():

@@ -200,6 +200,11 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     validation error, as the model runs on a machine (the one-step error
     instead only if no penalty gives a stable model); ``ar='auto'`` keeps the
     term only if its best free-run CV error beats the model without it.
+    Whenever the AR design was fitted (``ar=True`` or ``'auto'``), one-step
+    prediction uses the AR model whose penalty has the lowest *one-step* CV
+    error (``alpha_one_step_``): the penalty that suits a free run shrinks the
+    measured :math:`y(t-1)` along with the lags.  With ``ar=False`` both modes
+    coincide.
 
     Lags never cross a campaign start (the context's ``campaign``); the time
     steps come from the context's ``time`` (s), else from the row index times
@@ -221,7 +226,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     n_splits : int, default 5
         Folds of the CV (fewer with fewer campaigns or samples).
     ar : {False, True, 'auto'}, default False
-        Autoregressive term; ``'auto'`` decides by the free-run CV error.
+        Autoregressive term; ``'auto'`` decides by the free-run CV error (one-step
+        prediction uses the AR model with either ``True`` or ``'auto'``).
     sample_period_s : float, default 60.0
         Time step (s) assumed when the context has no ``time``.
 
@@ -240,6 +246,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     intercept_ : float
     alpha_ : float
         Chosen ridge penalty.
+    coef_one_step_, ar_coef_one_step_, intercept_one_step_, alpha_one_step_ : ndarray, float or None
+        The one-step AR model (None with ``ar=False``).
     splitter_ : cross-validator
         The splitter used; ``gap_`` its gap (rows, forward chaining only).
     cv_results_ : DataFrame
@@ -351,15 +359,26 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.cv_results_ = table
         with_ar, self.alpha_ = bool(table.loc[best, "ar"]), float(table.loc[best, "alpha"])
 
-        scaler = fits[with_ar]
-        D = np.column_stack([F, y_prev]) if with_ar else F
-        ridge = Ridge(alpha=self.alpha_).fit(scaler.transform(D), y)
-        coef = ridge.coef_ / scaler.scale_
-        self.intercept_ = float(ridge.intercept_ - scaler.mean_ @ coef)
-        self.coef_ = coef[:F.shape[1]].copy()
-        self.ar_coef_ = float(coef[-1]) if with_ar else 0.0
+        self.coef_, self.ar_coef_, self.intercept_ = self._refit(F, y, y_prev, fits[with_ar],
+                                                                  with_ar, self.alpha_)
+        self.alpha_one_step_ = self.coef_one_step_ = None
+        self.ar_coef_one_step_ = self.intercept_one_step_ = None
+        if True in fits:   # the AR design was fitted: keep its best one-step model for y_measured
+            ar_rows = table[table["ar"]]
+            self.alpha_one_step_ = float(ar_rows.loc[ar_rows["cv_mse_one_step"].idxmin(), "alpha"])
+            self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_ = self._refit(
+                F, y, y_prev, fits[True], True, self.alpha_one_step_)
         self.context_columns_ = [TIME] if time is not None else []
         return self
+
+    @staticmethod
+    def _refit(F, y, y_prev, scaler, with_ar: bool, alpha: float):
+        """``(coef, a, c)`` of the ridge fit on all training rows, back in unstandardised units."""
+        D = np.column_stack([F, y_prev]) if with_ar else F
+        ridge = Ridge(alpha=alpha).fit(scaler.transform(D), y)
+        coef = ridge.coef_ / scaler.scale_
+        a = float(coef[-1]) if with_ar else 0.0
+        return coef[:F.shape[1]].copy(), a, float(ridge.intercept_ - scaler.mean_ @ coef)
 
     @staticmethod
     def _choose(table: pd.DataFrame) -> int:
@@ -380,21 +399,25 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
         X = np.asarray(X, dtype=float)
-        u = self._features(X, context) @ self.coef_ + self.intercept_
-        if self.ar_coef_ == 0.0:
-            return u
         groups, y_measured = groups_of(context), values(context, Y_MEASURED, X.shape[0])
+        if y_measured is not None and self.coef_one_step_ is not None:
+            coef, a, c = self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_
+        else:
+            coef, a, c = self.coef_, self.ar_coef_, self.intercept_
+        u = self._features(X, context) @ coef + c
+        if a == 0.0:
+            return u
         if y_measured is None:
-            return free_run(self.ar_coef_, u, groups)
+            return free_run(a, u, groups)
         y_prev = previous(y_measured, groups)
         missing = np.isnan(y_prev)
         if not missing.any():
-            return self.ar_coef_ * y_prev + u
+            return a * y_prev + u
         starts = set(segment_starts(groups, len(u)).tolist())   # a gap: carry the model's estimate
         out = np.empty_like(u)
         for t in range(len(u)):
             prev = 0.0 if t in starts else (out[t - 1] if missing[t] else y_prev[t])
-            out[t] = self.ar_coef_ * prev + u[t]
+            out[t] = a * prev + u[t]
         return out
 
     # -- streaming (deployment) ---------------------------------------------------------
