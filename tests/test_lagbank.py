@@ -124,14 +124,18 @@ def test_recovers_a_lagged_system_far_better_than_a_static_model_on_held_out_cam
 
 @pytest.mark.parametrize("ar", [True, "auto"])
 def test_one_step_mode_uses_the_measured_previous_error(ar):
-    """An unmeasured drift: free run cannot follow it, one-step prediction (AR term fed the
-    measured previous error, penalty chosen on the one-step CV error) can."""
+    """An unmeasured drift: free run cannot follow it, one-step prediction (the measured previous
+    error an input, design and penalty chosen on the one-step CV error) can."""
     X, y, context = _lagged_system(seed=5, drift_um=0.2)
     train, c_train, c_test = _split(context, 5)
     est = LagBank(ar=ar).fit(X[train], y[train], context=c_train)
-    assert 0.0 < est.ar_coef_one_step_ < 1.0
-    ar_rows = est.cv_results_[est.cv_results_["ar"]]
-    assert est.alpha_one_step_ == ar_rows.loc[ar_rows["cv_mse_one_step"].idxmin(), "alpha"]
+    table = est.cv_results_
+    assert np.isinf(table.loc[table["design"] == "increments", "cv_mse_free_run"]).all()
+    candidates = table[table["design"] != "lags"]
+    pick = candidates.loc[candidates["cv_mse_one_step"].idxmin()]
+    assert (est.one_step_design_, est.alpha_one_step_) == (pick["design"], pick["alpha"])
+    assert 0.0 < est.ar_coef_one_step_ <= 1.0 and not table.loc[table["chosen"], "design"].eq(
+        "increments").any()
     free = est.predict(X[~train], context=c_test)
     one_step = est.predict(X[~train], context=c_test.assign(y_measured=y[~train]))
     assert _rmse(one_step, y[~train]) < 0.5 * _rmse(free, y[~train])

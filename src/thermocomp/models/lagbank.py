@@ -37,7 +37,8 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import TIME, Y_MEASURED, SideInputs, groups_of, scalar, values
 from ..errors import ParameterError
-from ._dynamics import first_order_lags, free_run, previous, segment_bounds, segment_starts
+from ._dynamics import (first_order_lags, free_run, lag_index, previous, segment_bounds,
+                        segment_starts)
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
 MIN_SPLITS = 2
@@ -171,6 +172,11 @@ def _summary(name: str, folds: np.ndarray) -> dict:
     return {name: float(np.mean(folds)), f"{name}_sd": float(np.std(folds))}
 
 
+def _increments(F, groups) -> np.ndarray:
+    """``F(t) - F(t-1)`` per segment, 0 at a segment's first row (steady before it)."""
+    return F - F[lag_index(groups, len(F), 1)]
+
+
 # -- the estimator ---------------------------------------------------------------------------------
 class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     r"""Linear model of the inputs and their first-order lags on a log grid, ridge by time-series CV.
@@ -200,10 +206,17 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     validation error, as the model runs on a machine (the one-step error
     instead only if no penalty gives a stable model); ``ar='auto'`` keeps the
     term only if its best free-run CV error beats the model without it.
-    Whenever the AR design was fitted (``ar=True`` or ``'auto'``), one-step
-    prediction uses the AR model whose penalty has the lowest *one-step* CV
-    error (``alpha_one_step_``): the penalty that suits a free run shrinks the
-    measured :math:`y(t-1)` along with the lags.  With ``ar=False`` both modes
+    With ``ar=True`` or ``'auto'`` one-step prediction has its own model, the
+    lowest *one-step* CV error among two designs and all penalties: the AR
+    model above (a free-run penalty would shrink the measured :math:`y(t-1)`
+    along with the lags), and the increments model
+
+    .. math:: \hat y(t) = y(t-1) + c + \sum_j b_j \big(f_j(t) - f_j(t-1)\big)
+
+    over the same features :math:`f_j` -- persistence plus the effect of what
+    changed since the last sample, which the penalty shrinks towards
+    persistence (on a drifting record a fitted :math:`a < 1` pulls every
+    prediction back towards the training mean).  With ``ar=False`` both modes
     coincide.
 
     Lags never cross a campaign start (the context's ``campaign``); the time
@@ -246,13 +259,17 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     intercept_ : float
     alpha_ : float
         Chosen ridge penalty.
+    one_step_design_ : {'lags+ar', 'increments'} or None
+        Design of the one-step model (None with ``ar=False``).
     coef_one_step_, ar_coef_one_step_, intercept_one_step_, alpha_one_step_ : ndarray, float or None
-        The one-step AR model (None with ``ar=False``).
+        Its coefficients (``ar_coef_one_step_`` is 1 for ``increments``) and penalty.
     splitter_ : cross-validator
         The splitter used; ``gap_`` its gap (rows, forward chaining only).
     cv_results_ : DataFrame
-        One row per (``ar``, ``alpha``): mean and s.d. over folds of the
-        validation MSE in ``free_run`` and ``one_step`` mode, ``chosen``.
+        One row per (``design``, ``alpha``), designs ``lags``, ``lags+ar``
+        (``ar`` True) and ``increments``: mean and s.d. over folds of the
+        validation MSE in ``free_run`` (inf for ``increments``) and
+        ``one_step`` mode; ``chosen`` marks the free-run model.
     context_columns_ : list of str
         ``['time']`` when fitted with a ``time`` context, else ``[]``.
     """
@@ -339,45 +356,61 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.gap_ = int(getattr(self.splitter_, "gap", 0))
         splits = list(self.splitter_.split(F, y, groups))
 
-        options = [False, True] if self.ar == "auto" else [bool(self.ar)]
+        designs = {False: ["lags"], True: ["lags+ar"], "auto": ["lags", "lags+ar"]}[self.ar]
+        if self.ar is not False:
+            designs.append("increments")   # one-step only: persistence plus the feature changes
         y_prev = previous(y, groups)
-        records, fits = [], {}
-        for with_ar in options:
-            D = np.column_stack([F, y_prev]) if with_ar else F
-            scaler = StandardScaler().fit(D)
-            scores = ridge_path_cv(scaler.transform(D), y, splits, alphas, groups,
-                                   ar_column=D.shape[1] - 1 if with_ar else None,
+        records, scalers = [], {}
+        for design in designs:
+            D, target = self._design(design, F, y, y_prev, groups)
+            scalers[design] = scaler = StandardScaler().fit(D)
+            scores = ridge_path_cv(scaler.transform(D), target, splits, alphas, groups,
+                                   ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
                                    ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]))
-            fits[with_ar] = scaler
             for i, alpha in enumerate(alphas):
-                records.append({"ar": with_ar, "alpha": float(alpha),
-                                **_summary("cv_mse_free_run", scores["free_run"][:, i]),
+                free = scores["free_run"][:, i] if design != "increments" else np.array([np.inf])
+                records.append({"design": design, "ar": design == "lags+ar", "alpha": float(alpha),
+                                **_summary("cv_mse_free_run", free),
                                 **_summary("cv_mse_one_step", scores["one_step"][:, i])})
         table = pd.DataFrame(records)
-        best = self._choose(table)
+        best = self._choose(table[table["design"] != "increments"])
         table["chosen"] = table.index == best
         self.cv_results_ = table
-        with_ar, self.alpha_ = bool(table.loc[best, "ar"]), float(table.loc[best, "alpha"])
-
-        self.coef_, self.ar_coef_, self.intercept_ = self._refit(F, y, y_prev, fits[with_ar],
-                                                                  with_ar, self.alpha_)
-        self.alpha_one_step_ = self.coef_one_step_ = None
+        design, self.alpha_ = str(table.loc[best, "design"]), float(table.loc[best, "alpha"])
+        self.coef_, self.ar_coef_, self.intercept_ = self._refit(design, F, y, y_prev, groups,
+                                                                  scalers[design], self.alpha_)
+        self.one_step_design_ = self.alpha_one_step_ = self.coef_one_step_ = None
         self.ar_coef_one_step_ = self.intercept_one_step_ = None
-        if True in fits:   # the AR design was fitted: keep its best one-step model for y_measured
-            ar_rows = table[table["ar"]]
-            self.alpha_one_step_ = float(ar_rows.loc[ar_rows["cv_mse_one_step"].idxmin(), "alpha"])
+        if self.ar is not False:   # the one-step model: the best one-step CV error of the AR designs
+            rows = table[table["design"] != "lags"]
+            pick = rows["cv_mse_one_step"].idxmin()
+            self.one_step_design_ = str(table.loc[pick, "design"])
+            self.alpha_one_step_ = float(table.loc[pick, "alpha"])
             self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_ = self._refit(
-                F, y, y_prev, fits[True], True, self.alpha_one_step_)
+                self.one_step_design_, F, y, y_prev, groups, scalers[self.one_step_design_],
+                self.alpha_one_step_)
         self.context_columns_ = [TIME] if time is not None else []
         return self
 
     @staticmethod
-    def _refit(F, y, y_prev, scaler, with_ar: bool, alpha: float):
-        """``(coef, a, c)`` of the ridge fit on all training rows, back in unstandardised units."""
-        D = np.column_stack([F, y_prev]) if with_ar else F
-        ridge = Ridge(alpha=alpha).fit(scaler.transform(D), y)
+    def _design(design: str, F, y, y_prev, groups):
+        """Regressors and target of a design: ``lags`` ``(F, y)``, ``lags+ar`` ``([F | y(t-1)], y)``,
+        ``increments`` ``(F(t) - F(t-1), y(t) - y(t-1))``."""
+        if design == "lags":
+            return F, y
+        if design == "lags+ar":
+            return np.column_stack([F, y_prev]), y
+        return _increments(F, groups), y - y_prev
+
+    def _refit(self, design: str, F, y, y_prev, groups, scaler, alpha: float):
+        """``(coef, a, c)`` of the ridge fit on all training rows, back in unstandardised units.
+
+        ``increments`` predicts ``y(t) = y(t-1) + (F(t) - F(t-1)) b + c``: ``a = 1``.
+        """
+        D, target = self._design(design, F, y, y_prev, groups)
+        ridge = Ridge(alpha=alpha).fit(scaler.transform(D), target)
         coef = ridge.coef_ / scaler.scale_
-        a = float(coef[-1]) if with_ar else 0.0
+        a = {"lags": 0.0, "lags+ar": float(coef[-1]), "increments": 1.0}[design]
         return coef[:F.shape[1]].copy(), a, float(ridge.intercept_ - scaler.mean_ @ coef)
 
     @staticmethod
@@ -400,11 +433,14 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         X = validate_data(self, X, reset=False)
         X = np.asarray(X, dtype=float)
         groups, y_measured = groups_of(context), values(context, Y_MEASURED, X.shape[0])
+        F = self._features(X, context)
         if y_measured is not None and self.coef_one_step_ is not None:
             coef, a, c = self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_
+            if self.one_step_design_ == "increments":
+                F = _increments(F, groups)
         else:
             coef, a, c = self.coef_, self.ar_coef_, self.intercept_
-        u = self._features(X, context) @ coef + c
+        u = F @ coef + c
         if a == 0.0:
             return u
         if y_measured is None:
