@@ -58,11 +58,10 @@ from dataclasses import asdict, dataclass, fields
 
 import numpy as np
 import pandas as pd
-from scipy.signal import lfilter
 
 from ..errors import ParameterError
 from ..io.contract import ContractError
-from ..models._dynamics import segment_bounds
+from ..models._dynamics import first_order_lag, segment_bounds  # noqa: F401 (re-exported)
 
 KINDS = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear", "sensor_fault")
 TRANSFORMS = ("raw", "first_order_lag", "lowpass_inputs", "ambient_linear", "ambient_step",
@@ -193,35 +192,6 @@ class Effect:
 
 def as_effect(e) -> Effect:
     return e if isinstance(e, Effect) else Effect.from_dict(e)
-
-
-def first_order_lag(u, time, groups, tau_s: float) -> np.ndarray:
-    """First-order lag of each column of ``u`` per segment of ``groups`` (steady start).
-
-    Uniform sampling runs through :func:`scipy.signal.lfilter`; irregular
-    sampling through the exact recursion with a per-step pole.
-    """
-    u = np.asarray(u, dtype=float)
-    squeeze = u.ndim == 1
-    u = u.reshape(len(u), -1)
-    time = np.asarray(time, dtype=float)
-    out = np.empty_like(u)
-    for start, stop in segment_bounds(groups, len(u)):
-        seg, t = u[start:stop], time[start:stop]
-        dt = np.diff(t)
-        if dt.size == 0:
-            out[start:stop] = seg
-        elif np.allclose(dt, dt[0]):
-            a = float(np.exp(-dt[0] / tau_s))
-            out[start:stop] = lfilter([1.0 - a], [1.0, -a], seg, axis=0, zi=a * seg[:1])[0]
-        else:
-            a = np.exp(-dt / tau_s)
-            z = np.empty_like(seg)
-            z[0] = seg[0]
-            for k in range(1, len(seg)):
-                z[k] = a[k - 1] * z[k - 1] + (1.0 - a[k - 1]) * seg[k]
-            out[start:stop] = z
-    return out[:, 0] if squeeze else out
 
 
 def in_frame(values, groups, reference: str = "first_sample") -> np.ndarray:

@@ -70,3 +70,71 @@ def window_index(groups, n: int, window: int) -> np.ndarray:
     steady before a campaign starts, as in the reference frame).
     """
     return np.stack([lag_index(groups, n, lag) for lag in range(window - 1, -1, -1)], axis=1)
+
+
+# Sampling counts as uniform when every step equals the first to this relative tolerance (float
+# rounding of computed times); then lfilter runs the recursion, else the exact per-step loop.  A
+# looser test (np.allclose) would let lfilter use one pole where a stream uses the true steps.
+_UNIFORM_RTOL = 1e-12
+
+
+def first_order_lags(u, time, groups, taus) -> np.ndarray:
+    r"""First-order lags of every column of ``u`` for every time constant, per segment.
+
+    .. math:: z_k = a_k\, z_{k-1} + (1 - a_k)\, u_k, \quad a_k = e^{-(t_k - t_{k-1})/\tau},
+       \quad z_0 = u_0
+
+    the exact discretisation of :math:`\tau \dot z + z = u` for an input held
+    over each step, for any (also irregular) sampling, starting in steady
+    state at each segment's first sample.  Uniform sampling runs through
+    :func:`scipy.signal.lfilter`; irregular sampling through the recursion
+    above, all columns and time constants at once.
+
+    Parameters
+    ----------
+    u : array (n,) or (n, p)
+    time : array (n,)
+        Sample time (s).
+    groups : array (n,) or None
+        Segment labels (see :func:`segment_starts`).
+    taus : sequence of float
+        Time constants (s).
+
+    Returns
+    -------
+    ndarray (n, len(taus) * p)
+        Column ``i * p + j`` is the lag of column ``j`` with ``taus[i]``.
+    """
+    u = np.asarray(u, dtype=float)
+    u = u.reshape(len(u), -1)
+    taus = np.asarray(taus, dtype=float).ravel()
+    time = np.asarray(time, dtype=float)
+    p = u.shape[1]
+    out = np.empty((len(u), taus.size * p))
+    for start, stop in segment_bounds(groups, len(u)):
+        seg, dt = u[start:stop], np.diff(time[start:stop])
+        if dt.size == 0:
+            out[start:stop] = np.tile(seg, taus.size)
+        elif np.all(np.abs(dt - dt[0]) <= _UNIFORM_RTOL * abs(dt[0])):
+            for i, tau in enumerate(taus):
+                a = float(np.exp(-dt[0] / tau))
+                out[start:stop, i * p:(i + 1) * p] = lfilter([1.0 - a], [1.0, -a], seg, axis=0,
+                                                             zi=a * seg[:1])[0]
+        else:
+            a = np.exp(-dt[:, None] / np.repeat(taus, p)[None, :])
+            wide = np.tile(seg, taus.size)
+            z = out[start:stop]
+            z[0] = wide[0]
+            for k in range(1, len(seg)):
+                z[k] = a[k - 1] * z[k - 1] + (1.0 - a[k - 1]) * wide[k]
+    return out
+
+
+def first_order_lag(u, time, groups, tau_s: float) -> np.ndarray:
+    """First-order lag of each column of ``u`` per segment of ``groups`` (steady start).
+
+    One time constant of :func:`first_order_lags` (same shape as ``u``).
+    """
+    u = np.asarray(u, dtype=float)
+    out = first_order_lags(u, time, groups, [tau_s])
+    return out[:, 0] if u.ndim == 1 else out
