@@ -12,7 +12,7 @@ from sklearn.utils.estimator_checks import check_estimator
 
 from thermocomp.compensator import Compensator
 from thermocomp.diagnose import AugmentedRegressor, Effect
-from thermocomp.models import ARX, ARXRF, LSTM, MLR, PCR
+from thermocomp.models import ARX, ARXRF, LSTM, MLR, PCR, LagBank
 from thermocomp.models.ati import ATIRegressor
 from thermocomp.select import PearsonSelector
 
@@ -33,6 +33,7 @@ ESTIMATORS = {
     "ARX": (ARX(), {}),
     "ARX-dynamic": (ARX(ar=True, delays=(0, 2)), ORDER_CHECKS),
     "LSTM": (LSTM(window=3, hidden_size=4, max_epochs=3), ORDER_CHECKS),
+    "LagBank": (LagBank(), ORDER_CHECKS),
     "ARXRF": (ARXRF(state_column=None, forest=_forest()), {}),
     "ATI(MLR)": (ATIRegressor(MLR()), {}),
     "ATI(ARXRF)": (ATIRegressor(ARXRF(state_column=None, forest=_forest())), {}),
@@ -101,6 +102,7 @@ WRAPPED = {
         LSTM(window=3, hidden_size=4, max_epochs=2),
         [Effect("signal", "raw", "S_door").to_dict()]),
     "PCR": PCR,
+    "ATI(LagBank ar)": lambda: ATIRegressor(LagBank(ar=True, n_taus=3), n_intervals=2),
 }
 
 

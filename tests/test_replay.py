@@ -16,7 +16,7 @@ from thermocomp.deploy.replay import replay
 from thermocomp.paths import conf_dir
 from thermocomp.stages.common import build_compensator
 
-MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm")
+MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm", "lagbank")
 ATIS = ("none", "cmeans")
 DENOISERS = ("none", "emd")
 SELECTORS = ("all", "pearson", "greedy_residual", "cluster_grey")
