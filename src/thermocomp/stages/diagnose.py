@@ -175,7 +175,7 @@ def diagnose(cfg: DictConfig) -> dict:
             jsons[t] = j
         with atomic_dir(folder) as tmp:
             tmp.chmod(0o755)
-            figures = diagnosis_figures(result, tmp / "plots") if dcfg.plots else {}
+            figures = diagnosis_figures(result, tmp / "plots") if cfg.plots != "none" else {}
             header = (f"# Written by `thermocomp diagnose` on {ds.name}: {cfg.model.name} + the effects "
                       f"it accepted.\n# Rerun: {rerun}\n")
             (tmp / "conf" / "model").mkdir(parents=True)
