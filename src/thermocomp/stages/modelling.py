@@ -4,8 +4,10 @@ from __future__ import annotations
 
 import time
 from contextlib import contextmanager
+from functools import partial
 
 from omegaconf import DictConfig
+from sklearn.base import clone
 
 from .. import io
 from ..compensator import Compensator
@@ -66,7 +68,8 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
         if cfg.plots == "all":
             _campaign_figures(draw, folder, comp, ds, _train_predictions(comp, ds, ev.mode))
         clock.lap("figures")
-        make_base = lambda: build_compensator(cfg, ati=False)  # noqa: E731
+        # instantiate once, then copies for the 26 baseline and mutual-prediction models
+        make_base = partial(clone, build_compensator(cfg, ati=False), safe=False)
         metrics["anova"] = anova(comp, ds, float(ev.get("anova_alpha", 0.001)), predictions)
         clock.lap("anova")
         ati_name = cfg.ati.name if cfg.get("ati") is not None else "none"
