@@ -33,8 +33,9 @@ import time
 import numpy as np
 import statsmodels.api as sm
 
+from thermocomp.model_selection import information_criteria
 from thermocomp.models._dynamics import free_run, previous
-from thermocomp.models.arx import ARX, information_criteria
+from thermocomp.models.arx import ARX
 
 
 def synthetic(n_targets: int, n_sensors: int, n_samples: int, period_s: float = 30.0, seed: int = 0):
@@ -63,6 +64,7 @@ def statsmodels_selection(X, y, criterion="bicc", max_inputs=10):
     y_prev = previous(y, None)
     rows = np.arange(1, n)                   # y(t-1) unknown at the first sample
     Xr, yr, lag = X[rows], y[rows], y_prev[rows]
+    tss = float(np.sum((yr - yr.mean()) ** 2))
     best = (np.inf, None)
     for with_ar in (False, True):
         forced = sm.add_constant(lag[:, None]) if with_ar else np.ones((len(yr), 1))
@@ -76,7 +78,8 @@ def statsmodels_selection(X, y, criterion="bicc", max_inputs=10):
             resid = resid - fits[j].params[1] * partial[:, j]
             order.append(j)
             joint = sm.OLS(yr, np.column_stack([Xr[:, order], forced])).fit()
-            value = information_criteria(joint.ssr, len(yr), len(order) + forced.shape[1])[criterion]
+            value = information_criteria(joint.ssr, len(yr), len(order) + forced.shape[1],
+                                         tss=tss)[criterion]
             if value < best[0]:
                 best = (value, (with_ar, list(order)))
     return best[1]

@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
+import pandas as pd
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -24,13 +26,20 @@ def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.Complet
     return proc
 
 
+def ctx(groups=None, **columns) -> pd.DataFrame:
+    """A side-input context (thermocomp.context): ``campaign`` per row plus any other columns."""
+    data = {"campaign": np.asarray(groups, dtype=object)} if groups is not None else {}
+    data.update({k: np.asarray(v) for k, v in columns.items()})
+    return pd.DataFrame(data)
+
+
 def stream_predictions(est, X, groups) -> list[float]:
     """Feed ``X`` sample by sample through the streaming protocol, restarting at each campaign."""
     out = []
     for t in range(len(X)):
         if t == 0 or groups[t] != groups[t - 1]:
-            state = est.stream_init()
-        y_hat, state = est.stream_step(X[t], state)
+            state = est.stream_init({"campaign": groups[t]})
+        y_hat, state = est.stream_step(X[t], state, {"campaign": groups[t]})
         out.append(y_hat)
     return out
 

@@ -5,14 +5,12 @@ import pickle
 import numpy as np
 import pandas as pd
 import pytest
-import statsmodels.api as sm
 from sklearn.utils.estimator_checks import check_estimator
 
-from conftest import stream_predictions
+from conftest import ctx, stream_predictions
 from thermocomp.compensator import Compensator
-from thermocomp.errors import ConfigError
+from thermocomp.errors import ParameterError
 from thermocomp.models import ARX
-from thermocomp.models.arx import greedy_path, information_criteria
 
 DYNAMIC_CHECKS = {
     "check_methods_sample_order_invariance": "an AR term / delays make predictions depend on row order",
@@ -47,13 +45,13 @@ def test_arx_with_ar_and_delays_passes_all_but_documented_order_checks():
 @pytest.mark.parametrize("selection_error", ["simulation", "equation"])
 def test_arx_selects_the_ar_term_only_when_the_truth_has_one(selection_error):
     X, y, g = arx_data(a=0.9)
-    dyn = ARX(selection_error=selection_error).fit(X, y, groups=g)
+    dyn = ARX(selection_error=selection_error).fit(X, y, context=ctx(g))
     assert dyn.chosen_["ar"] is True
     assert dyn.ar_coef_ == pytest.approx(0.9, abs=0.03)
     assert sorted(dyn.inputs_[:2]) == ["x1", "x4"]
 
     X, y, g = arx_data(a=0.0, seed=1)
-    static = ARX(selection_error=selection_error).fit(X, y, groups=g)
+    static = ARX(selection_error=selection_error).fit(X, y, context=ctx(g))
     assert static.chosen_["ar"] is False and static.ar_coef_ == 0.0
     assert {"x1", "x4"} <= set(static.inputs_)
     np.testing.assert_allclose(static.coef_[[static.inputs_.index("x1"), static.inputs_.index("x4")]],
@@ -66,63 +64,19 @@ def test_arx_selects_the_ar_term_only_when_the_truth_has_one(selection_error):
     assert "without AR term" in static.chosen_["reason"]
 
 
-def test_greedy_path_rss_equals_least_squares_refit():
-    X, y, _ = arx_data(a=0.0, n_campaigns=2, seed=3)
-    A = np.column_stack([X, y])
-    A = A - A.mean(axis=0)
-    M = A.T @ A
-    for search in ("residual", "forward"):
-        order, rss = greedy_path(M, X.shape[1], range(X.shape[1]), range(X.shape[1]),
-                                 max_inputs=5, search=search)
-        assert len(order) == 5 and len(set(order)) == 5
-        for k in range(1, 6):
-            design = sm.add_constant(X[:, order[:k]])
-            assert rss[k - 1] == pytest.approx(sm.OLS(y, design).fit().ssr, rel=1e-8)
-
-
-def test_residual_search_is_the_papers_split_greedy():
-    """Each step: one-input fit of the current residual per remaining sensor, keep the best, subtract."""
-    X, y, _ = arx_data(a=0.0, n_campaigns=2, seed=4)
-    X = X + 0.7 * X[:, [1]]                       # correlated sensors: residual != forward search
-    A = np.column_stack([X, y])
-    M = (A - A.mean(axis=0)).T @ (A - A.mean(axis=0))
-    order, _ = greedy_path(M, 8, range(8), range(8), max_inputs=4, search="residual")
-    resid, expected = y.copy(), []
-    for _ in range(4):
-        fits = {j: np.polyfit(X[:, j], resid, 1) for j in range(8) if j not in expected}
-        mse = {j: np.mean((resid - np.polyval(c, X[:, j])) ** 2) for j, c in fits.items()}
-        best = min(mse, key=mse.get)
-        resid = resid - np.polyval(fits[best], X[:, best])
-        expected.append(best)
-    assert order == expected
-
-
-def test_criterion_differences_match_statsmodels_likelihood():
-    X, y, _ = arx_data(a=0.0, n_campaigns=2, seed=5)
-    small, big = sm.OLS(y, sm.add_constant(X[:, :2])).fit(), sm.OLS(y, sm.add_constant(X[:, :5])).fit()
-    ic_small = information_criteria(small.ssr, len(y), 3)
-    ic_big = information_criteria(big.ssr, len(y), 6)
-    assert ic_big["aic"] - ic_small["aic"] == pytest.approx(big.aic - small.aic, rel=1e-9)
-    assert ic_big["bic"] - ic_small["bic"] == pytest.approx(big.bic - small.bic, rel=1e-9)
-    # the corrections only add penalty, and vanish as n grows
-    assert ic_small["bicc"] > ic_small["bic"] and ic_small["aicc"] > ic_small["aic"]
-    far = information_criteria(1.0, 10**9, 3)
-    assert far["bicc"] - far["bic"] == pytest.approx(0.0, abs=1e-3)
-
-
 def test_arx_finds_the_input_delay():
     X, y, g = arx_data(a=0.0, delay=3, seed=6)
-    est = ARX(delays=(0, 1, 2, 3, 4, 5)).fit(X, y, groups=g)
+    est = ARX(delays=(0, 1, 2, 3, 4, 5)).fit(X, y, context=ctx(g))
     assert "x1[t-3]" in est.inputs_
     assert not any(name.startswith("x1") and name != "x1[t-3]" for name in est.inputs_)
 
 
 def test_simulation_free_runs_and_one_step_uses_the_measured_error():
     X, y, g = arx_data(a=0.9, seed=7)
-    est = ARX(ar=True).fit(X, y, groups=g)
+    est = ARX(ar=True).fit(X, y, context=ctx(g))
     a, u = est.ar_coef_, est._exogenous(X, g)
-    sim = est.predict(X, groups=g)
-    one = est.predict(X, groups=g, y_measured=y)
+    sim = est.predict(X, context=ctx(g))
+    one = est.predict(X, context=ctx(g, y_measured=y))
     starts = np.flatnonzero(np.r_[True, g[1:] != g[:-1]])
     # campaign starts: previous error is 0 in both modes (nothing crosses campaigns)
     np.testing.assert_allclose(sim[starts], u[starts])
@@ -134,26 +88,26 @@ def test_simulation_free_runs_and_one_step_uses_the_measured_error():
     # a gap in the measurement falls back on the model's own previous estimate
     y_gap = y.copy()
     y_gap[50] = np.nan
-    gap = est.predict(X, groups=g, y_measured=y_gap)
+    gap = est.predict(X, context=ctx(g, y_measured=y_gap))
     assert gap[51] == pytest.approx(a * gap[50] + u[51])
     np.testing.assert_allclose(np.delete(gap, 51), np.delete(one, 51))
 
 
 def test_streaming_reproduces_simulation_predict():
     X, y, g = arx_data(a=0.9, n_campaigns=3, seed=8)
-    est = ARX(ar=True, delays=(0, 2)).fit(X, y, groups=g)
-    batch = est.predict(X, groups=g)
+    est = ARX(ar=True, delays=(0, 2)).fit(X, y, context=ctx(g))
+    batch = est.predict(X, context=ctx(g))
     stream = stream_predictions(est, X, g)
     np.testing.assert_allclose(stream, batch, rtol=0, atol=1e-9)
 
 
 def test_pickle_round_trip_identical_predictions():
     X, y, g = arx_data(a=0.9, n_campaigns=3, seed=9)
-    est = ARX().fit(X, y, groups=g)
+    est = ARX().fit(X, y, context=ctx(g))
     again = pickle.loads(pickle.dumps(est))
-    np.testing.assert_array_equal(est.predict(X, groups=g), again.predict(X, groups=g))
-    np.testing.assert_array_equal(est.predict(X, groups=g, y_measured=y),
-                                  again.predict(X, groups=g, y_measured=y))
+    np.testing.assert_array_equal(est.predict(X, context=ctx(g)), again.predict(X, context=ctx(g)))
+    np.testing.assert_array_equal(est.predict(X, context=ctx(g, y_measured=y)),
+                                  again.predict(X, context=ctx(g, y_measured=y)))
 
 
 def test_compensator_one_step_mode_reaches_arx():
@@ -171,7 +125,7 @@ def test_compensator_one_step_mode_reaches_arx():
     meas = comp.measured(camps)
     for cid in camps:
         Xc = camps[cid][names].to_numpy()
-        np.testing.assert_allclose(one[cid]["E_Z"], est.predict(Xc, y_measured=meas[cid]["E_Z"].to_numpy()))
+        np.testing.assert_allclose(one[cid]["E_Z"], est.predict(Xc, context=ctx(y_measured=meas[cid]["E_Z"].to_numpy())))
         np.testing.assert_allclose(sim[cid]["E_Z"], est.predict(Xc))
 
 
@@ -179,5 +133,5 @@ def test_compensator_one_step_mode_reaches_arx():
                                  {"max_inputs": 0}, {"delays": [-1]}])
 def test_bad_hyperparameters_are_config_errors(bad):
     X, y, g = arx_data(a=0.0, n_campaigns=1, n=30)
-    with pytest.raises(ConfigError):
-        ARX(**bad).fit(X, y, groups=g)
+    with pytest.raises(ParameterError):
+        ARX(**bad).fit(X, y, context=ctx(g))

@@ -102,7 +102,7 @@ def test_streaming_reproduces_simulation_predict(door_data):
     for cid, df in list(camps.items())[1:]:          # the second campaign: states restart
         X = (df[comp.selected_["E_X"]] - df[comp.selected_["E_X"]].iloc[0]).to_numpy()
         batch = comp.predict({cid: df})[cid]["E_X"].to_numpy()
-        state, stream = est.stream_init(), []
+        state, stream = est.stream_init({}), []
         for t in range(len(df)):
             y_hat, state = est.stream_step(X[t], state, context={"time": df["time"].iloc[t],
                                                                  "S_door": df["S_door"].iloc[t]})

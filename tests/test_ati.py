@@ -91,11 +91,11 @@ def test_stream_protocol_reproduces_predict(data):
     comp = Compensator(ATIRegressor(MLR()), inputs=["T_1"]).fit(train)
     est = comp.estimators_["E_Z"]
     for cid, df in test.items():
-        state = est.stream_init(ambient_c0=initial_ambient(df))
+        state = est.stream_init({"ambient_c0": initial_ambient(df)})
         x = (df[["T_1"]] - df[["T_1"]].iloc[0]).to_numpy()
         streamed = []
         for row in x:
-            y, state = est.stream_step(row, state)
+            y, state = est.stream_step(row, state, {})
             streamed.append(y)
         np.testing.assert_allclose(streamed, comp.predict({cid: df})[cid]["E_Z"], atol=1e-10)
 

@@ -5,6 +5,7 @@ import pickle
 import numpy as np
 import pandas as pd
 import pytest
+from sklearn.frozen import FrozenEstimator
 from PyEMD import EMD
 from sklearn.utils.estimator_checks import check_estimator
 
@@ -145,15 +146,16 @@ def test_compensator_denoises_before_stacking_and_round_trips_through_pickle():
     assert not np.allclose(comp.estimators_["E_Z"].coef_, plain.estimators_["E_Z"].coef_)
 
 
-def test_prefitted_denoiser_and_denoised_campaigns_give_the_same_model():
-    """The `denoise` stage path (denoised data + fitted denoiser) equals in-process denoising."""
+def test_prefitted_denoiser_gives_the_same_model():
+    """The `denoise` stage path (a fitted denoiser passed frozen) equals in-process denoising."""
     rng = np.random.default_rng(7)
     camps = _campaigns(rng)
     inputs = ["T_a", "T_b"]
     direct = Compensator(MLR(), inputs=inputs, denoiser=EMDDenoiser()).fit(camps)
-    den, denoised = fit_denoiser(EMDDenoiser(), camps, inputs)
-    staged = Compensator(MLR(), inputs=inputs, denoiser=den).fit(denoised, denoised=True)
+    den, _ = fit_denoiser(EMDDenoiser(), camps, inputs)
+    staged = Compensator(MLR(), inputs=inputs, denoiser=FrozenEstimator(den)).fit(camps)
     np.testing.assert_array_equal(direct.estimators_["E_Z"].coef_, staged.estimators_["E_Z"].coef_)
     np.testing.assert_array_equal(direct.denoiser_.fir_, staged.denoiser_.fir_)
+    assert staged.denoiser_ is den          # used as fitted, not refitted
     with pytest.raises(ValueError, match="fitted on"):
-        Compensator(MLR(), inputs=["T_a"], denoiser=den).fit(denoised, denoised=True)
+        Compensator(MLR(), inputs=["T_a"], denoiser=FrozenEstimator(den)).fit(camps)

@@ -18,6 +18,7 @@ import pytest
 from sklearn.base import BaseEstimator, RegressorMixin
 
 from thermocomp.compensator import Compensator
+from thermocomp.context import SideInputs, groups_of, values
 from thermocomp.deploy import (
     Envelope,
     OutOfEnvelopeError,
@@ -38,7 +39,7 @@ def _segments(groups, n):
     return list(zip(starts, np.r_[starts[1:], n]))
 
 
-class ARStub(RegressorMixin, BaseEstimator):
+class ARStub(SideInputs, RegressorMixin, BaseEstimator):
     r"""Test-local first-order ARX with the streaming protocol.
 
     .. math:: \hat y(t) = a\,\hat y(t-1) + b^\top x(t) + c,\quad \hat y(-1) = 0
@@ -46,7 +47,8 @@ class ARStub(RegressorMixin, BaseEstimator):
     per campaign, fitted by least squares on the measured ``y(t-1)``.
     """
 
-    def fit(self, X, y, groups=None):
+    def fit(self, X, y, context=None):
+        groups = groups_of(context)
         X, y = np.asarray(X, float), np.asarray(y, float)
         prev = np.zeros_like(y)
         for a, b in _segments(groups, len(y)):
@@ -55,7 +57,8 @@ class ARStub(RegressorMixin, BaseEstimator):
         self.a_, self.b_, self.c_ = float(coef[0]), coef[1:-1], float(coef[-1])
         return self
 
-    def predict(self, X, groups=None, y_measured=None):
+    def predict(self, X, context=None):
+        groups, y_measured = groups_of(context), values(context, "y_measured")
         u = np.asarray(X, float) @ self.b_ + self.c_
         y = np.empty_like(u)
         for a, b in _segments(groups, len(u)):
@@ -65,10 +68,10 @@ class ARStub(RegressorMixin, BaseEstimator):
                 state = y[i] if y_measured is None else y_measured[i]
         return y
 
-    def stream_init(self):
+    def stream_init(self, context=None):
         return 0.0
 
-    def stream_step(self, x_row, state):
+    def stream_step(self, x_row, state, context=None):
         y = self.a_ * state + float(x_row @ self.b_) + self.c_
         return y, y
 

@@ -9,12 +9,13 @@ from sklearn.utils.estimator_checks import check_estimator
 
 from thermocomp.compensator import Compensator
 from thermocomp.diagnose import CONTROL, AugmentedRegressor, Effect, SearchOptions, diagnose
-from thermocomp.diagnose.cv import Problem, sign_flip_pvalue, unit_labels
+from thermocomp.diagnose.cv import Problem, sign_flip_pvalue
 from thermocomp.diagnose.features import first_order_lag, in_frame
 from thermocomp.diagnose.sensors import self_prediction
-from thermocomp.errors import ConfigError
+from thermocomp.errors import ConfigError, ParameterError
 from thermocomp.frame import stack
 from thermocomp.io.contract import Dataset
+from thermocomp.model_selection import unit_labels
 from thermocomp.models import MLR
 
 DT = 300.0
@@ -95,11 +96,11 @@ def test_effect_round_trips_through_its_config_dict_and_refuses_bad_specs():
     assert Effect.from_dict(e.to_dict()) == e and hash(Effect.from_dict(e.to_dict())) == hash(e)
     assert e.to_dict()["initial_state"] == ["T_a", "T_b"]
     assert Effect("signal", "first_order_lag", "S_door", tau_s=240).label == "first_order_lag(tau=240s)"
-    with pytest.raises(ConfigError):
+    with pytest.raises(ParameterError):
         Effect("magic", "raw", "S_door")
-    with pytest.raises(ConfigError):
+    with pytest.raises(ParameterError):
         Effect("signal", "first_order_lag", "S_door")          # no tau
-    with pytest.raises(ConfigError):
+    with pytest.raises(ParameterError):
         Effect.from_dict({"kind": "signal", "transform": "raw", "column": "S_x", "colour": 1})
 
 

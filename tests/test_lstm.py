@@ -7,8 +7,8 @@ import pytest
 import torch
 from sklearn.utils.estimator_checks import check_estimator
 
-from conftest import stream_predictions
-from thermocomp.errors import ConfigError
+from conftest import ctx, stream_predictions
+from thermocomp.errors import ParameterError
 from thermocomp.models import LSTM
 from thermocomp.models._dynamics import free_run
 
@@ -45,17 +45,17 @@ def test_lstm_learns_dynamics_deterministically_and_leaves_torch_globals_alone()
     train, test = g < 6, g >= 6
     torch.manual_seed(123)
     before_rng, before_threads = torch.get_rng_state(), torch.get_num_threads()
-    a = quick().fit(X[train], y[train], groups=g[train])
+    a = quick().fit(X[train], y[train], context=ctx(g[train]))
     assert torch.equal(torch.get_rng_state(), before_rng) and torch.get_num_threads() == before_threads
-    b = quick().fit(X[train], y[train], groups=g[train])
-    pred = a.predict(X[test], groups=g[test])
-    np.testing.assert_array_equal(pred, b.predict(X[test], groups=g[test]))
+    b = quick().fit(X[train], y[train], context=ctx(g[train]))
+    pred = a.predict(X[test], context=ctx(g[test]))
+    np.testing.assert_array_equal(pred, b.predict(X[test], context=ctx(g[test])))
     rmse = np.sqrt(np.mean((y[test] - pred) ** 2))
     assert rmse < 0.5 * y[test].std(), (rmse, y[test].std())
     # early stopping kept the best validation epoch
     assert a.best_epoch_ == int(np.argmin(a.validation_curve_)) + 1
     assert a.n_epochs_ == len(a.loss_curve_) <= 60
-    assert quick(random_state=1).fit(X[train], y[train], groups=g[train]).predict(X[test]).tolist() \
+    assert quick(random_state=1).fit(X[train], y[train], context=ctx(g[train])).predict(X[test]).tolist() \
         != a.predict(X[test]).tolist()
 
 
@@ -70,23 +70,23 @@ def test_validation_split_whole_campaigns_or_the_tail_of_one():
 
 def test_streaming_reproduces_predict_and_pickle_round_trip():
     X, y, g = lagged_data(n_campaigns=4)
-    est = quick(max_epochs=5).fit(X, y, groups=g)
-    batch = est.predict(X, groups=g)
+    est = quick(max_epochs=5).fit(X, y, context=ctx(g))
+    batch = est.predict(X, context=ctx(g))
     stream = stream_predictions(est, X, g)
     np.testing.assert_allclose(stream, batch, rtol=0, atol=1e-9)
     again = pickle.loads(pickle.dumps(est))
-    np.testing.assert_array_equal(again.predict(X, groups=g), batch)
+    np.testing.assert_array_equal(again.predict(X, context=ctx(g)), batch)
 
 
 def test_windows_never_cross_campaigns():
     X, y, g = lagged_data(n_campaigns=2)
-    est = quick(max_epochs=3).fit(X, y, groups=g)
+    est = quick(max_epochs=3).fit(X, y, context=ctx(g))
     second = g == 1
-    np.testing.assert_allclose(est.predict(X, groups=g)[second], est.predict(X[second]), atol=1e-12)
+    np.testing.assert_allclose(est.predict(X, context=ctx(g))[second], est.predict(X[second]), atol=1e-12)
 
 
 @pytest.mark.parametrize("bad", [{"window": 0}, {"validation_fraction": 1.0}, {"max_epochs": 0}])
 def test_bad_hyperparameters_are_config_errors(bad):
     X, y, g = lagged_data(n_campaigns=2, n=10)
-    with pytest.raises(ConfigError):
-        LSTM(**bad).fit(X, y, groups=g)
+    with pytest.raises(ParameterError):
+        LSTM(**bad).fit(X, y, context=ctx(g))

@@ -10,12 +10,7 @@ from sklearn.utils.estimator_checks import check_estimator
 
 from thermocomp.compensator import Compensator
 from thermocomp.models import MLR
-from thermocomp.select import (
-    ClusterGreySelector,
-    GreedyResidualSelector,
-    PearsonSelector,
-    information_criterion,
-)
+from thermocomp.select import ClusterGreySelector, GreedyResidualSelector, PearsonSelector
 
 DRIVERS = {"T_g0_1": 2.0, "T_g2_0": -1.5}
 
@@ -114,18 +109,6 @@ def test_cluster_grey_takes_one_representative_per_group_of_collinear_sensors():
         assert sel.scores_[mates].idxmax() == s
     auto = ClusterGreySelector(k=None, k_max=6).fit(X, y)
     assert list(auto.ic_.index) == list(range(1, 7)) and len(auto.selected_) in auto.ic_.index
-
-
-def test_information_criteria():
-    n, rss = 100, 4.0
-    base = n * np.log(rss / n)
-    assert information_criterion(rss, n, 3, "aic") == pytest.approx(base + 6)
-    assert information_criterion(rss, n, 3, "bic") == pytest.approx(base + 3 * np.log(n))
-    assert information_criterion(rss, n, 3, "bicc") == pytest.approx(base + n * 3 * np.log(n) / 95)
-    assert information_criterion(rss, n, 3, "bicc") > information_criterion(rss, n, 3, "bic")
-    assert information_criterion(rss, 5, 3, "bicc") == np.inf
-    with pytest.raises(ValueError):
-        information_criterion(rss, n, 3, "hqc")
 
 
 @pytest.mark.parametrize("selector", [PearsonSelector(), PearsonSelector(k=None),

@@ -14,15 +14,12 @@ environment).  The id is also written to ``<sweep dir>/sweep.json`` so
 from __future__ import annotations
 
 import atexit
-import json
 import os
 from pathlib import Path
 from typing import Any
 
 from hydra.experimental.callback import Callback
 from omegaconf import DictConfig
-
-SWEEP_FILE = "sweep.json"
 
 
 def _say(msg: str) -> None:
@@ -57,12 +54,12 @@ class MlflowSweepCallback(Callback):
         self.run_id = start_parent_run(config, f"sweep/{config.get('name')}", tags)
         self._previous = os.environ.get(PARENT_ENV)
         os.environ[PARENT_ENV] = self.run_id
-        from .io.contract import atomic_write_text
+        from .files import write_json
         from .paths import resolve
+        from .sweeps import SWEEP_FILE
 
-        path = resolve(sweep_dir) / SWEEP_FILE
-        atomic_write_text(path, json.dumps({"parent_run_id": self.run_id,
-                                            "overrides": overrides}, indent=2) + "\n")
+        write_json(resolve(sweep_dir) / SWEEP_FILE, {"parent_run_id": self.run_id,
+                                                     "overrides": overrides})
         _say(f"sweep parent run {self.run_id}")
         # A failing job ends the multirun without on_multirun_end: close the parent run anyway.
         atexit.register(self._abandon, config)

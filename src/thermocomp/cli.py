@@ -26,6 +26,7 @@ stages:
   run        ingest .. evaluate in one process; -m for a sweep (one MLflow parent run)
   compare    table of a sweep's child runs, best first (compare.sweep=, compare.sort_by=)
   promote    register the best run's compensator; move @champion only if it is better
+  replay     stream the test campaigns row by row through the deployable compensator (replay.json)
 
 overrides: data.path=<dir> data.inputs=[T_*] data.targets=[E_Z] model=mlr select=all denoise=none
            eval.mode=simulation|one_step out=<dir> tracking_uri=<uri> seed=<int>

@@ -1,46 +1,36 @@
-"""The compensation model as one object: declared inputs -> selector -> estimator, per target.
+"""The compensation model as one estimator: declared inputs -> selector -> estimator, per target.
 
 Pure core: takes campaign DataFrames (contract columns), returns predictions.
-Stages pickle it to ``models/<name>/model.pkl``; deployment wraps it.
+Stages pickle it to ``model.pkl``; deployment wraps it
+(:class:`thermocomp.deploy.StreamingCompensator`).
 """
 
 from __future__ import annotations
 
-import inspect
 from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
-from sklearn.base import clone
+from sklearn.base import BaseEstimator, clone
 
+from .context import Y_MEASURED, for_target, with_column
 from .denoise import denoise_campaigns, fit_denoiser
-from .frame import resolve_columns, stack
+from .frame import Matrices, resolve_columns, stack
 from .select import AllInputs
 
 MODES = ("simulation", "one_step")
 
 
-def _accepts(method, name: str) -> bool:
-    return name in inspect.signature(method).parameters
-
-
-def _side_inputs(method, m) -> dict:
-    """``groups``/``context`` for the estimator methods that take them."""
-    side = {"groups": m.groups, "context": m.context}
-    return {k: v for k, v in side.items() if _accepts(method, k)}
-
-
-class Compensator:
+class Compensator(BaseEstimator):
     """Per-target thermal error model on a campaign dataset.
 
     Parameters
     ----------
     estimator : regressor
-        Cloned once per target.  Its ``fit``/``predict`` get, when their
-        signature accepts them, ``groups`` (campaign of each row, so dynamic
-        models never cross campaigns) and ``context`` (a per-row DataFrame with
-        ``campaign``, ``time``, ``ambient_c0``; see :class:`thermocomp.frame.Matrices`);
-        ``fit`` also gets ``target`` (the ``E_`` column) when it accepts it.
+        Cloned once per target (through ``for_target`` when it has per-target
+        settings).  It gets the per-row ``context`` of the campaigns
+        (:mod:`thermocomp.context`): campaign, time, initial ambient, raw
+        ``S_``/``T_`` columns and, in one-step mode, the measured target.
     selector : selector, optional
         Chooses inputs among the declared ones, per target (default: all).
     inputs : list of glob patterns
@@ -53,7 +43,12 @@ class Compensator:
         Applied per campaign to the declared input columns before stacking
         (so before referencing): offline on the training data, and in
         ``predict`` causally when its ``online`` is true (see
-        :class:`thermocomp.denoise.EMDDenoiser`).
+        :class:`thermocomp.denoise.EMDDenoiser`).  A fitted denoiser wrapped in
+        :class:`sklearn.frozen.FrozenEstimator` is used as fitted (the
+        ``denoise`` stage's output).
+    selection : dict target -> list of str, optional
+        Inputs chosen beforehand (the ``select`` stage's output), used
+        instead of fitting ``selector``.
 
     Attributes
     ----------
@@ -65,60 +60,70 @@ class Compensator:
     """
 
     def __init__(self, estimator, selector=None, inputs=("T_*",), targets=None,
-                 reference: str = "first_sample", denoiser=None):
+                 reference: str = "first_sample", denoiser=None, selection=None):
         self.estimator = estimator
         self.selector = selector
         self.inputs = inputs
         self.targets = targets
         self.reference = reference
         self.denoiser = denoiser
+        self.selection = selection
 
-    def fit(self, campaigns: Mapping[str, pd.DataFrame], denoised: bool = False,
-            selected: Mapping[str, list] | None = None) -> "Compensator":
-        """Fit per target.  ``denoised=True``: ``campaigns`` already went through
-        ``denoiser``, which is then used as fitted (the ``denoise`` stage's output);
-        ``selected``: inputs per target chosen beforehand (the ``select`` stage),
-        used instead of refitting the selector."""
+    # -- matrices ---------------------------------------------------------------------------
+    def stacked(self, campaigns: Mapping[str, pd.DataFrame], targets=None) -> Matrices:
+        """The campaigns as the fitted model sees them: denoised (causally when online),
+        stacked in the reference frame, with their context."""
+        campaigns = denoise_campaigns(getattr(self, "denoiser_", None), campaigns)
+        return stack(campaigns, self.inputs_, self.targets_ if targets is None else targets,
+                     self.reference)
+
+    def fit(self, campaigns: Mapping[str, pd.DataFrame]) -> "Compensator":
+        """Fit the denoiser, the selector and the estimator of each target on ``campaigns``."""
         columns = list(dict.fromkeys(c for df in campaigns.values() for c in df.columns))
         self.inputs_, self.targets_ = resolve_columns(columns, self.inputs, self.targets)
-        self.denoiser_, campaigns = fit_denoiser(self.denoiser, campaigns, self.inputs_, denoised)
-        m = stack(campaigns, self.inputs_, self.targets_, self.reference)
+        self.denoiser_, campaigns = fit_denoiser(self.denoiser, campaigns, self.inputs_)
+        return self.fit_stacked(stack(campaigns, self.inputs_, self.targets_, self.reference))
+
+    def fit_stacked(self, m: Matrices) -> "Compensator":
+        """Fit selector and estimators on already stacked matrices (``inputs_``, ``targets_``
+        and ``denoiser_`` set): the rows may be any subset of campaigns of one stack."""
         selector = self.selector if self.selector is not None else AllInputs()
         self.selected_, self.estimators_ = {}, {}
         for target in self.targets_:
             y = m.Y[target].to_numpy()
-            names = list(selected[target]) if selected is not None else \
-                list(clone(selector).fit(m.X, y, groups=m.groups).selected_)
-            est = clone(self.estimator)
-            X = m.X[names].to_numpy()
-            side = _side_inputs(est.fit, m)
-            if _accepts(est.fit, "target"):  # per-target settings (diagnosed effects)
-                side["target"] = target
-            est.fit(X, y, **side)
+            names = (list(self.selection[target]) if self.selection is not None
+                     else list(clone(selector).fit(m.X, y).selected_))
+            est = clone(for_target(self.estimator, target))
+            est.fit(m.X[names].to_numpy(), y, context=m.context)
             self.selected_[target], self.estimators_[target] = names, est
         return self
+
+    # -- prediction -------------------------------------------------------------------------
+    def predict_stacked(self, m: Matrices, mode: str = "simulation") -> np.ndarray:
+        """Predicted error ``(n_rows, n_targets)`` of stacked matrices (see :meth:`stacked`)."""
+        if mode not in MODES:
+            raise ValueError(f"eval.mode must be one of {MODES}, got {mode!r}")
+        out = np.empty((len(m.X), len(self.targets_)))
+        for k, (target, est) in enumerate(self.estimators_.items()):
+            context = m.context
+            if mode == "one_step":   # the measured error is a side input too
+                context = with_column(context, Y_MEASURED, m.Y[target].to_numpy(), len(m.X))
+            out[:, k] = est.predict(m.X[self.selected_[target]].to_numpy(), context=context)
+        return out
 
     def predict(self, campaigns: Mapping[str, pd.DataFrame], mode: str = "simulation"
                 ) -> dict[str, pd.DataFrame]:
         """Predicted error per campaign (columns = targets), in the reference frame.
 
         ``mode='simulation'`` never uses a measured target; ``'one_step'`` hands
-        the measured previous error to models that have an autoregressive part.
+        the measured error to the estimators (models with an autoregressive
+        part use its previous value).
         """
-        if mode not in MODES:
-            raise ValueError(f"eval.mode must be one of {MODES}, got {mode!r}")
-        campaigns = denoise_campaigns(getattr(self, "denoiser_", None), campaigns)
-        m = stack(campaigns, self.inputs_, self.targets_, self.reference)
-        out = pd.DataFrame(index=m.X.index, columns=self.targets_, dtype=float)
-        for target, est in self.estimators_.items():
-            X = m.X[self.selected_[target]].to_numpy()
-            kwargs = _side_inputs(est.predict, m)
-            if mode == "one_step" and _accepts(est.predict, "y_measured"):
-                kwargs["y_measured"] = m.Y[target].to_numpy()
-            out[target] = np.asarray(est.predict(X, **kwargs), dtype=float)
+        m = self.stacked(campaigns, self.targets_ if mode == "one_step" else [])
+        out = pd.DataFrame(self.predict_stacked(m, mode), columns=self.targets_)
         return {cid: out[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}
 
     def measured(self, campaigns: Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
         """Measured targets per campaign in the same reference frame as ``predict``."""
-        m = stack(campaigns, self.inputs_, self.targets_, self.reference)
+        m = stack(campaigns, [], self.targets_, self.reference)
         return {cid: m.Y[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}

@@ -16,6 +16,7 @@ from .compensator import Compensator
 from .frame import initial_ambient
 from .io.contract import TIME, ContractError, Dataset
 from .iso10791 import a3_report
+from .jsonsafe import json_safe
 from .metrics import reduction_pct, rsd, sm_sd, split_scores
 from .stats import anova_oneway, mutual_prediction
 
@@ -123,8 +124,8 @@ def mutual_prediction_report(make_compensator: Callable[[], Compensator], ds: Da
     amb = ambient_by_campaign(ds)
     ids = sorted(ds.ids(), key=lambda c: (np.nan_to_num(amb[c], nan=np.inf), c))
     mats = mutual_prediction({c: ds.campaigns[c] for c in ids}, make_compensator, mode)
-    return {t: {"campaigns": ids, "ambient_c0": [_num(amb[c]) for c in ids],
-                "rsd": [[_num(v) for v in row] for row in m.to_numpy()]}
+    return {t: {"campaigns": ids, "ambient_c0": json_safe([amb[c] for c in ids]),
+                "rsd": json_safe(m.to_numpy())}
             for t, m in mats.items()}
 
 
@@ -160,7 +161,7 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
         entry = {"n_intervals": int(getattr(est, "n_intervals_", 1))}
         if hasattr(est, "intervals_"):
             entry.update(boundaries_c=[float(b) for b in est.boundaries_],
-                         intervals=est.intervals_, elbow=_clean(est.elbow_),
+                         intervals=est.intervals_, elbow=json_safe(est.elbow_),
                          campaign_ambient_c0=est.campaign_ambient_)
         entry["test"] = {k: _sm_sd_entry(v[t]) for k, v in test.items()}
         model = entry["test"]["model"]
@@ -170,20 +171,3 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
             for stat, key in (("sm", "rsd_mean"), ("sd", "rsd_sd"))}
         out["targets"][t] = entry
     return out
-
-
-def _num(v):
-    return float(v) if v is not None and np.isfinite(v) else None
-
-
-def _clean(obj):
-    """JSON-safe copy: numpy scalars/arrays -> Python, NaN -> None."""
-    if isinstance(obj, dict):
-        return {k: _clean(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple, np.ndarray)):
-        return [_clean(v) for v in obj]
-    if isinstance(obj, (float, np.floating)):
-        return _num(float(obj))
-    if isinstance(obj, np.integer):
-        return int(obj)
-    return obj

@@ -1,8 +1,14 @@
-"""Campaign frames -> model matrices, in the contract's reference frame.
+"""Campaign frames -> model matrices and side inputs, in the contract's reference frame.
 
 With ``reference="first_sample"`` every ``T_`` and ``E_`` column is taken
 relative to the campaign's first valid sample (ΔT, ΔE); ``S_`` columns keep
 their values.  Models, metrics and diagnosis all work in this frame.
+
+:func:`stack` builds the matrices of a batch of campaigns and their per-row
+``context`` (:mod:`thermocomp.context`); :func:`context_record` is the one rule
+for a context row, used by :func:`stack` on whole campaigns and by the
+streaming compensator on one sample.  Written on NumPy arrays: the evaluation
+stacks the same campaigns hundreds of times (mutual prediction, ATI baselines).
 """
 
 from __future__ import annotations
@@ -13,35 +19,72 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from .io.contract import TIME, ContractError, match_columns
+from .context import AMBIENT_C0, CAMPAIGN, TIME
+from .errors import ContractError
+from .io.contract import match_columns
 
 REFERENCES = ("first_sample", "none")
+REFERENCED_PREFIXES = ("T_", "E_")   # taken relative to the first sample; S_ keep their values
+RAW_PREFIXES = ("S_", "T_")          # ride along raw in the context
+
+
+def check_reference(reference: str) -> None:
+    if reference not in REFERENCES:
+        raise ContractError(f"data.reference must be one of {REFERENCES}, got {reference!r}")
+
+
+def first_valid(A: np.ndarray) -> np.ndarray:
+    """First non-NaN value of each column of ``A`` (NaN for an all-NaN column)."""
+    A = np.asarray(A, dtype=float)
+    if A.shape[0] == 0:
+        return np.full(A.shape[1], np.nan)
+    valid = ~np.isnan(A)
+    first = A[valid.argmax(axis=0), np.arange(A.shape[1])]
+    first[~valid.any(axis=0)] = np.nan
+    return first
 
 
 def referenced(df: pd.DataFrame, reference: str = "first_sample") -> pd.DataFrame:
     """Copy of ``df`` with ``T_``/``E_`` columns relative to their first valid sample."""
-    if reference not in REFERENCES:
-        raise ContractError(f"data.reference must be one of {REFERENCES}, got {reference!r}")
+    check_reference(reference)
     if reference == "none":
         return df
     out = df.copy()
-    cols = [c for c in df.columns if c.startswith(("T_", "E_"))]
-    first = df[cols].bfill().iloc[0]
-    out[cols] = df[cols] - first
+    cols = [c for c in df.columns if c.startswith(REFERENCED_PREFIXES)]
+    out[cols] = df[cols].to_numpy(float) - first_valid(df[cols].to_numpy(float))
     return out
+
+
+def is_ambient(column: str) -> bool:
+    """``T_amb`` or ``T_amb_<name>`` (DATA_FORMAT.md)."""
+    return column == "T_amb" or column.startswith("T_amb_")
+
+
+def ambient_c0(first_values) -> float:
+    """Initial ambient (°C) from the first valid absolute values of the ambient sensors."""
+    v = np.asarray(first_values, dtype=float)
+    return float(v.mean()) if v.size else float("nan")
+
+
+def initial_ambient(df: pd.DataFrame) -> float:
+    """First valid absolute ambient temperature (°C) of a campaign, NaN if none."""
+    amb = [c for c in df.columns if is_ambient(c)]
+    return ambient_c0(first_valid(df[amb].to_numpy(float))) if amb else float("nan")
+
+
+def context_record(campaign, time, ambient: float, raw: Mapping) -> dict:
+    """One context entry (a sample, or arrays for a whole campaign): the rule of :mod:`.context`."""
+    return {CAMPAIGN: campaign, TIME: time, AMBIENT_C0: ambient, **raw}
 
 
 @dataclass
 class Matrices:
-    """Stacked campaigns: inputs ``X``, targets ``Y``, campaign of each row, time.
+    """Stacked campaigns: inputs ``X``, targets ``Y``, campaign of each row, time, context.
 
-    ``context`` has one row per sample with what a model may know besides its
-    inputs: ``campaign``, ``time`` (s) and ``ambient_c0`` (the campaign's first
-    valid absolute ambient temperature, °C, NaN without a ``T_amb*`` column) --
-    the key of ambient-interval (ATI) models -- and every ``S_`` and ``T_`` column
-    of the campaigns, raw values (NaN where a campaign lacks it), for models that
-    use a machine state or a sensor outside the declared inputs (the door signal
-    of ARX+RF, the effects of :class:`thermocomp.diagnose.AugmentedRegressor`).
+    ``context`` has one row per sample (see :mod:`thermocomp.context`):
+    ``campaign``, ``time`` (s), ``ambient_c0`` (the campaign's first valid
+    absolute ambient, °C, NaN without a ``T_amb*`` column) and every ``S_`` and
+    ``T_`` column of the campaigns, raw values (NaN where a campaign lacks it).
     """
 
     X: pd.DataFrame
@@ -82,35 +125,44 @@ def resolve_columns(columns, inputs, targets) -> tuple[list[str], list[str]]:
     return x_cols, y_cols
 
 
-def initial_ambient(df: pd.DataFrame) -> float:
-    """First valid absolute ambient temperature (°C) of a campaign, NaN if none."""
-    amb = [c for c in df.columns if c == "T_amb" or c.startswith("T_amb_")]
-    if not amb:
-        return float("nan")
-    first = df[amb].bfill().iloc[0]
-    return float(first.mean())
+def _framed(A: np.ndarray, cols, reference: str) -> np.ndarray:
+    """Columns of one campaign in the reference frame."""
+    if reference == "none" or A.shape[1] == 0:
+        return A
+    shift = np.where([c.startswith(REFERENCED_PREFIXES) for c in cols], first_valid(A), 0.0)
+    return A - shift
 
 
 def stack(campaigns: Mapping[str, pd.DataFrame], x_cols, y_cols,
           reference: str = "first_sample") -> Matrices:
-    """Stack campaigns (in the reference frame) into model matrices."""
-    xs, ys, groups, times, amb0, states = [], [], [], [], [], []
+    """Stack campaigns (in the reference frame) into model matrices and their context."""
+    check_reference(reference)
+    x_cols, y_cols = list(x_cols), list(y_cols)
+    raw_cols = list(dict.fromkeys(c for df in campaigns.values() for c in df.columns
+                                  if c.startswith(RAW_PREFIXES)))
+    xs, ys, groups, times, amb0, raws = [], [], [], [], [], []
     for cid, df in campaigns.items():
-        missing = [c for c in list(x_cols) + list(y_cols) if c not in df.columns]
+        pos = {c: j for j, c in enumerate(df.columns)}
+        missing = [c for c in x_cols + y_cols if c not in pos]
         if missing:
             raise ContractError("campaign lacks a column the model needs", file=cid,
                                 column=",".join(missing))
-        ref = referenced(df, reference)
-        xs.append(ref[list(x_cols)])
-        ys.append(ref[list(y_cols)])
-        groups.append(np.full(len(df), cid, dtype=object))
-        times.append(df[TIME].to_numpy(float))
-        amb0.append(np.full(len(df), initial_ambient(df)))
-        # machine states (S_*) and every sensor (T_*, declared or not), raw values, ride along
-        # for models that use them (ARX+RF door, the diagnosis' AugmentedRegressor)
-        states.append(df[[c for c in df.columns if c.startswith(("S_", "T_"))]].reset_index(drop=True))
+        A = df.to_numpy(dtype=float)      # one conversion; columns picked by position below
+        n = len(df)
+        xs.append(_framed(A[:, [pos[c] for c in x_cols]], x_cols, reference))
+        ys.append(_framed(A[:, [pos[c] for c in y_cols]], y_cols, reference))
+        groups.append(np.full(n, cid, dtype=object))
+        times.append(A[:, pos[TIME]])
+        amb = [pos[c] for c in df.columns if is_ambient(c)]
+        amb0.append(np.full(n, ambient_c0(first_valid(A[:, amb])) if amb else np.nan))
+        raw = np.full((n, len(raw_cols)), np.nan)
+        have = [j for j, c in enumerate(raw_cols) if c in pos]
+        raw[:, have] = A[:, [pos[raw_cols[j]] for j in have]]
+        raws.append(raw)
     groups, times = np.concatenate(groups), np.concatenate(times)
-    context = pd.DataFrame({"campaign": groups, "time": times, "ambient_c0": np.concatenate(amb0)})
-    context = pd.concat([context, pd.concat(states, ignore_index=True)], axis=1)
-    return Matrices(pd.concat(xs, ignore_index=True), pd.concat(ys, ignore_index=True),
-                    groups, times, context)
+    raw = np.concatenate(raws) if raws else np.empty((0, len(raw_cols)))
+    context = pd.DataFrame(context_record(groups, times, np.concatenate(amb0),
+                                          {c: raw[:, j] for j, c in enumerate(raw_cols)}))
+    X = pd.DataFrame(np.concatenate(xs) if xs else np.empty((0, len(x_cols))), columns=x_cols)
+    Y = pd.DataFrame(np.concatenate(ys) if ys else np.empty((0, len(y_cols))), columns=y_cols)
+    return Matrices(X, Y, groups, times, context)

@@ -10,6 +10,8 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
+from .jsonsafe import json_safe
+
 
 def rmse(residual) -> float:
     r"""Root-mean-square error :math:`\sqrt{\tfrac1n\sum_j r_j^2}`."""
@@ -233,7 +235,7 @@ def reduction_pct(before: float, after: float) -> float | None:
     """
     if before is None or after is None or not before:
         return None
-    return _finite(100.0 * (1.0 - after / before))
+    return json_safe(100.0 * (1.0 - after / before))
 
 
 def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.ndarray],
@@ -266,22 +268,15 @@ def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.n
     after = window_curves([residual[c] for c in ids], lengths, e_p95_statistic)
     for key, curve in (("e_p95", "percentile"), ("e_max", "max"), ("e_mean", "mean")):
         out[key] = {"statistic": e_p95_statistic, "window_s": window_s,
-                    "before": _finite_list(before[curve]), "after": _finite_list(after[curve])}
+                    "before": json_safe(before[curve]), "after": json_safe(after[curve])}
     return out
 
 
 def _campaign_scores(measured, residual) -> dict:
-    s = {"rmse": rmse(residual), "rsd": _finite(rsd(residual)),
+    s = {"rmse": rmse(residual), "rsd": json_safe(rsd(residual)),
          "rms_before": rms(measured), "rms_after": rms(residual),
          "p2p_before": p2p(measured), "p2p_after": p2p(residual)}
     s["rms_reduction_pct"] = reduction_pct(s["rms_before"], s["rms_after"])
     s["p2p_reduction_pct"] = reduction_pct(s["p2p_before"], s["p2p_after"])
     return s
 
-
-def _finite(v):
-    return None if v is None or not np.isfinite(v) else float(v)
-
-
-def _finite_list(values):
-    return [_finite(v) for v in values]

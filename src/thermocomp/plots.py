@@ -7,9 +7,9 @@ draws them in worker processes while the caller goes on computing.
 
 from __future__ import annotations
 
+import io
 import multiprocessing
 import os
-import tempfile
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
 
@@ -18,6 +18,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+
+from .files import atomic_write_bytes  # noqa: E402
 
 DPI = 110
 
@@ -299,25 +301,18 @@ def _arr(values) -> np.ndarray:
 
 
 def save_figure(fig, path) -> Path:
-    """Write ``fig`` as PNG to ``path`` atomically (temp file + rename, mode 0644) and close it.
+    """Write ``fig`` as PNG to ``path`` atomically and close it (the one figure saver).
 
-    A reader never sees half a figure, and figures drawn by parallel workers
-    never share a temp file.
+    Rendered in memory, then :func:`~thermocomp.files.atomic_write_bytes` (temp
+    file + rename, 0644): a reader never sees half a figure, and parallel
+    workers never share a temp file.
     """
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    png = io.BytesIO()
     try:
-        with os.fdopen(fd, "wb") as f:
-            fig.savefig(f, format="png", dpi=DPI)
-        os.chmod(tmp, 0o644)  # mkstemp makes it private; a figure is for reading
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+        fig.savefig(png, format="png", dpi=DPI)
     finally:
         plt.close(fig)
-    return path
+    return atomic_write_bytes(path, png.getvalue())
 
 
 def _cpus() -> int:

@@ -12,6 +12,7 @@ import pandas as pd
 from scipy import stats as sps
 
 from .metrics import rsd
+from .model_selection import TrainOnEachCampaign
 
 
 def anova_oneway(samples: Mapping[str, np.ndarray], alpha: float = 0.001) -> dict:
@@ -83,7 +84,9 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     """
     ids = list(campaigns)
     measured, residuals, bounds = None, {}, []
-    for i in ids:
+    # one split per campaign, on one row per campaign: train on campaign i, predict them all
+    for train, _ in TrainOnEachCampaign().split(ids, groups=ids):
+        i = ids[train[0]]
         comp = make_compensator().fit({i: campaigns[i]})
         if measured is None:
             frames = comp.measured(campaigns)

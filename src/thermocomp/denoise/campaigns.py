@@ -7,6 +7,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 from sklearn.base import clone
+from sklearn.frozen import FrozenEstimator
 from sklearn.utils.validation import check_is_fitted
 
 
@@ -19,28 +20,30 @@ def _replaced(campaigns: Mapping[str, pd.DataFrame], columns, values: dict) -> d
     return out
 
 
-def fit_denoiser(denoiser, campaigns: Mapping[str, pd.DataFrame], columns, prefit: bool = False):
+def fit_denoiser(denoiser, campaigns: Mapping[str, pd.DataFrame], columns):
     """Fit ``denoiser`` on ``columns`` of the campaigns; return it and the denoised campaigns.
 
-    Every campaign is one time series (groups).  With ``prefit=True`` the
-    campaigns were already denoised by this fitted denoiser (the output of
-    ``thermocomp denoise``): it is checked and returned with them unchanged,
-    so nothing is denoised twice.  ``denoiser=None`` passes through.
+    Every campaign is one time series (groups).  A denoiser fitted elsewhere
+    (the ``denoise`` stage) comes wrapped in :class:`sklearn.frozen.FrozenEstimator`:
+    it is checked against ``columns`` and only applies its offline transform.
+    ``denoiser=None`` passes through.
     """
     columns = list(columns)
     if denoiser is None:
         return None, dict(campaigns)
-    if prefit:
-        check_is_fitted(denoiser)
-        fitted = list(getattr(denoiser, "feature_names_in_", []))
+    den = clone(denoiser)               # a FrozenEstimator clones to itself
+    X = pd.concat([df[columns] for df in campaigns.values()], ignore_index=True)
+    groups = np.concatenate([np.full(len(df), cid, dtype=object) for cid, df in campaigns.items()])
+    if isinstance(den, FrozenEstimator):
+        den = den.estimator
+        check_is_fitted(den)
+        fitted = list(getattr(den, "feature_names_in_", []))
         if fitted != columns:
             raise ValueError(f"the prefitted denoiser was fitted on {fitted}, the model's inputs "
                              f"are {columns}")
-        return denoiser, dict(campaigns)
-    den = clone(denoiser)
-    X = pd.concat([df[columns] for df in campaigns.values()], ignore_index=True)
-    groups = np.concatenate([np.full(len(df), cid, dtype=object) for cid, df in campaigns.items()])
-    out = den.fit_transform(X, groups=groups).to_numpy()
+        out = den.transform(X, groups=groups).to_numpy()
+    else:
+        out = den.fit_transform(X, groups=groups).to_numpy()
     return den, _replaced(campaigns, columns, {c: out[groups == c] for c in campaigns})
 
 

@@ -1,9 +1,9 @@
 """A fitted compensator as a causal, stateful, sample-by-sample process (pure core).
 
 :class:`StreamingCompensator` wraps a fitted :class:`~thermocomp.compensator.Compensator`
-for the machine side.  It sees one sample (or a block of consecutive samples)
-at a time, in time order, and keeps between calls everything it needs, in the
-order :meth:`Compensator.predict` applies it:
+for the machine side.  It sees one sample at a time (or a block of consecutive
+samples, streamed row by row), in time order, and keeps between calls
+everything it needs, in the order :meth:`Compensator.predict` applies it:
 
 1. the state of the **causal denoiser** (``denoiser_``, streamed on the raw
    declared inputs, as the Compensator denoises before referencing);
@@ -12,19 +12,19 @@ order :meth:`Compensator.predict` applies it:
    (``data.reference=first_sample``), as the machinist zeroes the error when
    setting up a workpiece; its ambient reading is ``ambient_c0`` (ATI models);
 3. the **training envelope** check (clamp / refuse / off);
-4. the state of every **model with memory**: ARX uses its own past
-   predictions, never a measured error.
+4. the state of every **model**, through the one streaming protocol of
+   :mod:`thermocomp.context` (``stream_init(context)``, ``stream_step(x_row,
+   state, context)``): ARX uses its own past predictions, never a measured
+   error; wrappers forward it to the models they hold.
 
-Models with memory implement the streaming protocol ``stream_init() -> state``
-(ATI: ``stream_init(ambient_c0=...)``) and ``stream_step(x_row, state) ->
-(y_hat, state)``; a model using a machine state outside its inputs (ARX+RF's
-door) takes ``context={'time': t, <state_column>: value}`` per sample.  Static
-models don't implement it and are evaluated on whole blocks.
+The per-sample context is built by :func:`thermocomp.frame.context_record`,
+the rule :func:`thermocomp.frame.stack` applies to a whole batch; the columns
+it carries are what the fitted estimators declare in ``context_columns_``.
 """
 
 from __future__ import annotations
 
-import inspect
+import copy
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -32,8 +32,8 @@ import numpy as np
 import pandas as pd
 
 from ..compensator import Compensator
-from ..denoise import denoise_campaigns
-from ..frame import stack
+from ..context import AMBIENT_C0, RESERVED, TIME, context_columns, merge_columns
+from ..frame import ambient_c0, context_record, is_ambient
 from ..metrics import split_scores
 
 POLICIES = ("clamp", "refuse", "off")
@@ -44,32 +44,9 @@ class OutOfEnvelopeError(ValueError):
     """An input left the training envelope under ``policy='refuse'``, or is missing."""
 
 
-def _accepts(method, name: str) -> bool:
-    return name in inspect.signature(method).parameters
-
-
 def has_stream_protocol(obj) -> bool:
-    """True when ``obj`` implements ``stream_init``/``stream_step`` (a model with memory)."""
+    """True when ``obj`` implements ``stream_init``/``stream_step``."""
     return callable(getattr(obj, "stream_init", None)) and callable(getattr(obj, "stream_step", None))
-
-
-def _is_ambient(column: str) -> bool:
-    return column == "T_amb" or column.startswith("T_amb_")
-
-
-def _needs_ambient(est) -> bool:
-    init = getattr(est, "stream_init", None)
-    if init is not None and (_accepts(init, "ambient_c0") or _accepts(init, "context")):
-        return True
-    return init is None and _accepts(est.predict, "context")
-
-
-def _state_columns(est) -> list[str]:
-    """Raw columns a model reads from ``context``: ARX+RF's ``state_column``, and the
-    ``required_context_`` of a diagnosed model (:class:`thermocomp.diagnose.AugmentedRegressor`)."""
-    col = getattr(est, "state_column", None)
-    cols = [col] if isinstance(col, str) else []
-    return cols + [c for c in getattr(est, "required_context_", []) if c not in cols]
 
 
 @dataclass(frozen=True)
@@ -118,8 +95,8 @@ class StreamingCompensator:
     ----------
     columns_ : list of str
         Columns every call needs (the pyfunc signature): declared inputs, extra
-        ambient sensors, machine states read through ``context``; plus ``time``
-        when ``time_required_``.
+        ambient sensors, raw columns the models read from their context; plus
+        ``time`` when ``time_required_``.
     targets_ : list of str
     n_samples_ : int
         Samples streamed since the last reset.
@@ -128,7 +105,8 @@ class StreamingCompensator:
     -----
     Each call continues the stream; :meth:`reset` starts a new campaign and the
     next sample becomes its reference.  Prediction is always in simulation
-    mode: no measured error ever enters.
+    mode: no measured error ever enters.  :meth:`predict` is the loop of
+    :meth:`step` over the block's rows.
     """
 
     def __init__(self, compensator: Compensator, envelope: Envelope | None = None,
@@ -142,29 +120,31 @@ class StreamingCompensator:
         if envelope is not None and list(envelope.columns) != inputs:
             raise ValueError(f"envelope columns {list(envelope.columns)} != model inputs {inputs}")
         ests = compensator.estimators_
+        missing = [t for t, e in ests.items() if not has_stream_protocol(e)]
+        if missing:
+            raise ValueError(f"the estimator of {missing} has no streaming mode "
+                             "(stream_init/stream_step): it cannot run on a machine")
         self.targets_ = list(compensator.targets_)
+        needs = merge_columns(*(context_columns(e) for e in ests.values()))
+        self.time_required_ = TIME in needs
         self.ambient_columns = (list(ambient_columns) if ambient_columns is not None
-                                else [c for c in inputs if _is_ambient(c)])
-        self._stream = {t: has_stream_protocol(e) for t, e in ests.items()}
-        self._ctx = {t: self._stream[t] and _accepts(e.stream_step, "context") for t, e in ests.items()}
-        state_cols = [c for t, e in ests.items() if self._ctx[t] or not self._stream[t]
-                      for c in _state_columns(e)]
-        self.state_columns = [c for c in dict.fromkeys(state_cols) if c not in inputs]
+                                else [c for c in inputs if is_ambient(c)])
+        if AMBIENT_C0 in needs and not self.ambient_columns:
+            raise ValueError("the model needs the campaign's initial ambient temperature, but no "
+                             "T_amb / T_amb_* column was given")
+        raw = [c for c in needs if c not in RESERVED]
         extra = [c for c in self.ambient_columns if c not in inputs]
-        self.columns_ = inputs + extra + self.state_columns
-        # Raw columns handed to models through ``context`` (may include declared inputs).
-        self.context_columns = list(dict.fromkeys(state_cols))
-        self.time_required_ = any(self._ctx.values())
+        self.columns_ = inputs + extra + [c for c in raw if c not in inputs and c not in extra]
+        # raw context columns, as positions in the row vector (declared inputs: denoised value)
+        self._raw = [(c, self.columns_.index(c)) for c in raw]
         self._n_inputs, self._n_checked = len(inputs), len(inputs) + len(extra)
         self._amb_idx = [self.columns_.index(c) for c in self.ambient_columns]
         referenced = compensator.reference == "first_sample"
         self._is_ref = np.array([referenced and c.startswith("T_") for c in inputs])
-        self._idx = {t: [inputs.index(c) for c in compensator.selected_[t]] for t in self.targets_}
-        # step(): per target (estimator, input index or None for all inputs in order, streams, context)
-        self._plan = [(ests[t], None if self._idx[t] == list(range(len(inputs)))
-                       else np.asarray(self._idx[t]), self._stream[t], self._ctx[t])
+        idx = {t: [inputs.index(c) for c in compensator.selected_[t]] for t in self.targets_}
+        # per target: estimator, input positions (None: all inputs in order)
+        self._plan = [(t, ests[t], None if idx[t] == list(range(len(inputs))) else np.asarray(idx[t]))
                       for t in self.targets_]
-        self._context_idx = [self.columns_.index(c) for c in self.context_columns]
         self.denoiser = getattr(compensator, "denoiser_", None)
         if self.denoiser is not None:
             if not has_stream_protocol(self.denoiser):
@@ -187,13 +167,11 @@ class StreamingCompensator:
         Ambient sensors that are not declared inputs are added to the input
         columns when a model needs the initial ambient temperature (ATI).
         """
-        den = getattr(compensator, "denoiser_", None)
-        seen = denoise_campaigns(den, campaigns) if den is not None else campaigns
-        m = stack(seen, compensator.inputs_, compensator.targets_, compensator.reference)
+        m = compensator.stacked(campaigns, targets=[])
         ambient = None
-        if any(_needs_ambient(e) for e in compensator.estimators_.values()):
+        if AMBIENT_C0 in merge_columns(*(context_columns(e) for e in compensator.estimators_.values())):
             cols = dict.fromkeys(c for df in campaigns.values() for c in df.columns)
-            ambient = [c for c in cols if _is_ambient(c)]
+            ambient = [c for c in cols if is_ambient(c)]
         return cls(compensator, Envelope.from_data(m.X, margin), policy, ambient)
 
     # -- state ------------------------------------------------------------------------------
@@ -206,49 +184,12 @@ class StreamingCompensator:
         self._den_state = None
         self.n_samples_ = 0
 
-    def _init_states(self, ambient_c0: float) -> dict:
-        states = {}
-        for t, est in self.compensator.estimators_.items():
-            if not self._stream[t]:
-                continue
-            if _accepts(est.stream_init, "ambient_c0"):
-                states[t] = est.stream_init(ambient_c0=ambient_c0)
-            elif _accepts(est.stream_init, "context"):
-                states[t] = est.stream_init(context={"campaign": STREAM_ID, "ambient_c0": ambient_c0})
-            else:
-                states[t] = est.stream_init()
-        return states
+    def _snapshot(self) -> tuple:
+        return (self._ref, self._ambient_c0, copy.deepcopy(self._states),
+                copy.deepcopy(self._den_state), self.n_samples_)
 
-    # -- input ------------------------------------------------------------------------------
-
-    def _matrix(self, frame: pd.DataFrame) -> np.ndarray:
-        need = self.columns_ + (["time"] if self.time_required_ else [])
-        missing = [c for c in need if c not in frame.columns]
-        if missing:
-            raise OutOfEnvelopeError(f"input lacks column(s) {missing} (need {need})")
-        X = np.column_stack([frame[c].to_numpy(dtype=float) for c in self.columns_])
-        bad = ~np.isfinite(X[:, :self._n_checked])
-        if bad.any():
-            i, j = np.argwhere(bad)[0]
-            raise OutOfEnvelopeError(f"input {self.columns_[j]} has no finite value at row "
-                                     f"{self.n_samples_ + i} (sensor dropout?)")
-        return X
-
-    def _apply_envelope(self, dX: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        clamps = np.zeros(len(dX), dtype=np.int64)
-        if self.envelope is None or self.policy == "off":
-            return dX, clamps
-        out = self.envelope.outside(dX)
-        if not out.any():
-            return dX, clamps
-        if self.policy == "refuse":
-            i, j = np.argwhere(out)[0]
-            frame = " (change since the first sample)" if self._is_ref[j] else ""
-            raise OutOfEnvelopeError(
-                f"input {self.columns_[j]} = {dX[i, j]:.4g}{frame} at row {self.n_samples_ + i} is "
-                f"outside the training envelope [{self.envelope.lo[j]:.4g}, "
-                f"{self.envelope.hi[j]:.4g}]; refused (policy=refuse)")
-        return np.clip(dX, self.envelope.lo, self.envelope.hi), out.sum(axis=1)
+    def _restore(self, snap: tuple) -> None:
+        self._ref, self._ambient_c0, self._states, self._den_state, self.n_samples_ = snap
 
     # -- prediction -------------------------------------------------------------------------
 
@@ -256,118 +197,77 @@ class StreamingCompensator:
         """Predicted error (µm, one column per target) for consecutive samples of the stream,
         and ``n_clamped`` (inputs of the row clamped to the envelope).
 
-        The state advances only when the whole block is accepted.
+        The rows go through :meth:`step` one by one; the state advances only
+        when the whole block is accepted.
         """
-        X = self._matrix(frame)
-        n = len(X)
-        y = np.empty((n, len(self.targets_)))
-        if n == 0:
-            return self._frame(y, np.zeros(0, dtype=np.int64))
-        # Work on copies: a refused block or a failing model leaves the stream as it was.
-        seen = X.copy()
-        den_state = self._den_state
-        if self.denoiser is not None:
-            if self._ref is None:
-                den_state = self.denoiser.stream_init()
-            for i in range(n):
-                row, den_state = self.denoiser.stream_step(X[i, :self._n_inputs], den_state)
-                seen[i, :self._n_inputs] = row
-        ref, ambient_c0, states = self._ref, self._ambient_c0, dict(self._states)
-        if ref is None:
-            ref = np.where(self._is_ref, seen[0, :self._n_inputs], 0.0)
-            amb = seen[0, self._amb_idx]
-            ambient_c0 = float(amb.mean()) if amb.size else float("nan")
-            states = self._init_states(ambient_c0)
-        dX, clamps = self._apply_envelope(seen[:, :self._n_inputs] - ref)
-        time = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(n, np.nan)
-        for k, (t, est) in enumerate(self.compensator.estimators_.items()):
-            Xt = dX[:, self._idx[t]]
-            if not self._stream[t]:
-                y[:, k] = est.predict(Xt, **self._side(est.predict, n, time, X, ambient_c0))
-                continue
-            st = states[t]
-            if self._ctx[t]:
-                ctx = self._row_context(time, X)
-                for i in range(n):
-                    y[i, k], st = est.stream_step(Xt[i], st, context=ctx[i])
-            else:
-                for i in range(n):
-                    y[i, k], st = est.stream_step(Xt[i], st)
-            states[t] = st
-        self._ref, self._ambient_c0, self._states, self._den_state = ref, ambient_c0, states, den_state
-        self.n_samples_ += n
-        return self._frame(y, clamps)
+        need = self.columns_ + ([TIME] if self.time_required_ else [])
+        missing = [c for c in need if c not in frame.columns]
+        if missing:
+            raise OutOfEnvelopeError(f"input lacks column(s) {missing} (need {need})")
+        X = np.column_stack([frame[c].to_numpy(dtype=float) for c in self.columns_]) \
+            if self.columns_ else np.empty((len(frame), 0))
+        time = frame[TIME].to_numpy(float) if TIME in frame.columns else np.full(len(frame), np.nan)
+        y = np.empty((len(X), len(self.targets_)))
+        clamps = np.zeros(len(X), dtype=np.int64)
+        snap = self._snapshot()
+        try:
+            for i in range(len(X)):
+                y[i], clamps[i] = self._step(X[i], time[i])
+        except Exception:
+            self._restore(snap)
+            raise
+        out = pd.DataFrame(y, columns=self.targets_)
+        out["n_clamped"] = clamps
+        return out
 
     def step(self, x_row, time: float = float("nan")) -> np.ndarray:
         """One sample (values in the order of ``columns_``) -> predicted error per target.
 
-        The low-latency path for a CNC loop: no DataFrame, one array in, one out;
-        same result as :meth:`predict` on that row.
+        The low-latency path for a CNC loop: no DataFrame, one array in, one out.
         """
-        x = np.asarray(x_row, dtype=float)
+        return self._step(np.asarray(x_row, dtype=float), time)[0]
+
+    def _step(self, x: np.ndarray, time: float) -> tuple[np.ndarray, int]:
         checked = x[:self._n_checked]
         if not np.isfinite(checked.sum()):          # one reduction instead of a mask
             j = int(np.flatnonzero(~np.isfinite(checked))[0])
             raise OutOfEnvelopeError(f"input {self.columns_[j]} has no finite value at row "
-                                     f"{self.n_samples_}")
-        seen = x[:self._n_inputs]
+                                     f"{self.n_samples_} (sensor dropout?)")
         first = self._ref is None
+        seen = x
         if self.denoiser is not None:
-            seen, self._den_state = self.denoiser.stream_step(
-                seen, self.denoiser.stream_init() if first else self._den_state)
-            seen = np.asarray(seen, float)
+            den, self._den_state = self.denoiser.stream_step(
+                x[:self._n_inputs], self.denoiser.stream_init() if first else self._den_state)
+            seen = x.copy()
+            seen[:self._n_inputs] = den
         if first:
-            self._ref = np.where(self._is_ref, seen, 0.0)
-            amb = np.concatenate([seen, x[self._n_inputs:]])[self._amb_idx]
-            self._ambient_c0 = float(amb.mean()) if amb.size else float("nan")
-            self._states = self._init_states(self._ambient_c0)
-        dx = seen - self._ref
+            self._ref = np.where(self._is_ref, seen[:self._n_inputs], 0.0)
+            self._ambient_c0 = ambient_c0(seen[self._amb_idx])
+            start = context_record(STREAM_ID, time, self._ambient_c0, {})
+            self._states = {t: est.stream_init(start) for t, est, _ in self._plan}
+        dx = seen[:self._n_inputs] - self._ref
+        n_clamped = 0
         env = self.envelope
-        if env is not None and self.policy != "off" and (
-                (dx < env.lo).any() or (dx > env.hi).any()):
-            if self.policy == "refuse":
-                self._apply_envelope(dx[None, :])       # raises with the column and bounds
-            dx = np.minimum(np.maximum(dx, env.lo), env.hi)
+        if env is not None and self.policy != "off":
+            out = (dx < env.lo) | (dx > env.hi)
+            if out.any():
+                if self.policy == "refuse":
+                    j = int(np.flatnonzero(out)[0])
+                    frame = " (change since the first sample)" if self._is_ref[j] else ""
+                    raise OutOfEnvelopeError(
+                        f"input {self.columns_[j]} = {dx[j]:.4g}{frame} at row {self.n_samples_} is "
+                        f"outside the training envelope [{env.lo[j]:.4g}, {env.hi[j]:.4g}]; "
+                        "refused (policy=refuse)")
+                dx = np.minimum(np.maximum(dx, env.lo), env.hi)
+                n_clamped = int(out.sum())
+        context = context_record(STREAM_ID, time, self._ambient_c0,
+                                 {c: seen[j] for c, j in self._raw})
         y = np.empty(len(self._plan))
         states = self._states
-        for k, (est, idx, streams, ctx) in enumerate(self._plan):
-            xt = dx if idx is None else dx[idx]
-            t = self.targets_[k]
-            if streams:
-                if ctx:
-                    context = {"time": time, **{c: x[j] for c, j in
-                                                zip(self.context_columns, self._context_idx)}}
-                    y[k], states[t] = est.stream_step(xt, states[t], context=context)
-                else:
-                    y[k], states[t] = est.stream_step(xt, states[t])
-            else:
-                side = self._side(est.predict, 1, np.array([time]), x[None, :], self._ambient_c0)
-                y[k] = est.predict(xt[None, :], **side)[0]
+        for k, (t, est, idx) in enumerate(self._plan):
+            y[k], states[t] = est.stream_step(dx if idx is None else dx[idx], states[t], context)
         self.n_samples_ += 1
-        return y
-
-    def _row_context(self, time: np.ndarray, X: np.ndarray) -> list[dict]:
-        cols = {c: X[:, j] for c, j in zip(self.context_columns, self._context_idx)}
-        for c in self.columns_[:self._n_inputs]:
-            if c.startswith("S_"):
-                cols.setdefault(c, X[:, self.columns_.index(c)])
-        return [{"time": time[i], **{c: v[i] for c, v in cols.items()}} for i in range(len(time))]
-
-    def _side(self, method, n: int, time: np.ndarray, X: np.ndarray, ambient_c0: float) -> dict:
-        side = {}
-        if _accepts(method, "groups"):
-            side["groups"] = np.full(n, STREAM_ID, dtype=object)
-        if _accepts(method, "context"):
-            ctx = {"campaign": np.full(n, STREAM_ID, dtype=object), "time": time,
-                   "ambient_c0": np.full(n, ambient_c0)}
-            ctx.update({c: X[:, j] for j, c in enumerate(self.columns_) if c.startswith("S_")})
-            side["context"] = pd.DataFrame(ctx)
-        return side
-
-    def _frame(self, y: np.ndarray, clamps: np.ndarray) -> pd.DataFrame:
-        out = pd.DataFrame(y, columns=self.targets_)
-        out["n_clamped"] = clamps
-        return out
+        return y, n_clamped
 
 
 def replay(streaming: StreamingCompensator, campaign: pd.DataFrame, chunk: int | None = None

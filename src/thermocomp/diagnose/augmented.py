@@ -2,32 +2,20 @@ r"""The diagnosed model: any estimator plus the features of the accepted effects
 
 from __future__ import annotations
 
-import inspect
 from collections.abc import Mapping
 
 import numpy as np
-import pandas as pd
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..errors import ConfigError
+from ..context import (AMBIENT_C0, TIME, SideInputs, context_columns, groups_of, merge_columns,
+                       scalar)
+from ..errors import ContractError, ParameterError
 from ..models.linear import MLR
 from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, initial_weights
 
 
-def _accepts(method, name: str) -> bool:
-    return name in inspect.signature(method).parameters
-
-
-def _side(method, **side) -> dict:
-    return {k: v for k, v in side.items() if v is not None and _accepts(method, k)}
-
-
-def _has_stream(obj) -> bool:
-    return callable(getattr(obj, "stream_init", None)) and callable(getattr(obj, "stream_step", None))
-
-
-class AugmentedRegressor(RegressorMixin, BaseEstimator):
+class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
     r"""A model family with extra regressors from diagnosed effects.
 
     .. math:: \hat y(t) = f\big(x(t),\ \phi_1(t), \dots, \phi_m(t)\big)
@@ -36,7 +24,7 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
     model ...) and :math:`\phi_j` are the features of the accepted effects
     (:func:`thermocomp.diagnose.features.effect_features`: lags of an undeclared
     signal, low-pass copies of the inputs, ambient interactions, products,
-    squares), built per row from the inputs and the Compensator's ``context``.
+    squares), built per row from the inputs and the ``context`` (:mod:`thermocomp.context`).
     The estimator sees them as extra inputs, so it fits them its own way (OLS,
     principal components, greedy ARX selection ...).  ``sensor_fault`` effects
     build nothing: the faulty sensor is left out of ``data.inputs`` instead.
@@ -48,8 +36,8 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
     effects : list of effect dicts, or dict target -> list
         :class:`~thermocomp.diagnose.features.Effect` fields (``kind``,
         ``transform``, ``column``, ``other``, ``tau_s``, ``threshold_c``).  A
-        dict gives each target its own effects: the Compensator passes
-        ``target`` to ``fit``; a target missing from it gets none.
+        dict gives each target its own effects: :meth:`for_target` picks them
+        (the Compensator calls it per target); a target missing from it gets none.
     reference : {'first_sample', 'none'}
         Frame of the context columns (``data.reference``).
 
@@ -57,9 +45,11 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
     ----------
     estimator_ : fitted base estimator
     effects_ : list of Effect used for this target
-    target_ : str or None
     required_context_ : list of str
         Raw context columns (``S_``/``T_``) the effects need at prediction time.
+    context_columns_ : list of str
+        Everything read from the context at prediction time (the effects' and
+        the base estimator's).
     initial_weights_ : list of (ndarray or None)
         Per effect, the initial-state directions learned from the training
         campaigns (effects with ``initial_directions``).
@@ -71,59 +61,63 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
         self.effects = effects
         self.reference = reference
 
-    def _effects_for(self, target) -> list[Effect]:
+    def for_target(self, target: str) -> "AugmentedRegressor":
+        """An unfitted copy with the effects of ``target`` (per-target dict) as a list."""
         effects = self.effects if self.effects is not None else ()
         if isinstance(effects, Mapping):
-            effects = effects.get(target, ()) if target is not None else ()
-        out = [as_effect(e) for e in effects]
-        return [e for e in out if e.transform != "remove"]
+            effects = effects.get(target, ())
+        return clone(self).set_params(effects=[dict(e) if isinstance(e, Mapping) else e
+                                               for e in effects])
 
-    def _design(self, X, groups, context) -> np.ndarray:
+    def _effects(self) -> list[Effect]:
+        effects = self.effects if self.effects is not None else ()
+        if isinstance(effects, Mapping):
+            raise ParameterError("AugmentedRegressor effects are given per target: fit the copy "
+                                 "for_target(target) returns (the Compensator does)")
+        return [e for e in (as_effect(e) for e in effects) if e.transform != "remove"]
+
+    def _design(self, X, context) -> np.ndarray:
         if context is not None and len(context) != X.shape[0]:
             raise ValueError(f"context has {len(context)} rows, X has {X.shape[0]}")
-        return design(X, self.effects_, context, groups, self.reference, self.initial_weights_)
+        return design(X, self.effects_, context, groups_of(context), self.reference,
+                      self.initial_weights_)
 
-    def fit(self, X, y, groups=None, context=None, target=None):
+    def fit(self, X, y, context=None):
         if self.reference not in ("first_sample", "none"):
-            raise ConfigError(f"AugmentedRegressor reference={self.reference!r} is not "
-                              "first_sample or none")
+            raise ParameterError(f"AugmentedRegressor reference={self.reference!r} is not "
+                                 "first_sample or none")
         X, y = validate_data(self, X, y, y_numeric=True)
-        self.target_ = target
-        self.effects_ = self._effects_for(target)
+        self.effects_ = self._effects()
         self.required_context_ = list(dict.fromkeys(c for e in self.effects_ for c in e.context_columns))
-        g = groups if groups is not None else (
-            np.asarray(context["campaign"]) if context is not None and "campaign" in context else None)
+        g = groups_of(context)
         self.initial_weights_ = [
             initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
             for e in self.effects_]
-        Z = self._design(X, groups, context)
-        base = clone(self.estimator if self.estimator is not None else MLR())
-        self.estimator_ = base.fit(Z, y, **_side(base.fit, groups=groups, context=context))
+        Z = self._design(X, context)
+        self.estimator_ = clone(self.estimator if self.estimator is not None else MLR()) \
+            .fit(Z, y, context=context)
+        self.context_columns_ = merge_columns([TIME, AMBIENT_C0] if self.effects_ else [],
+                                              self.required_context_,
+                                              context_columns(self.estimator_))
         return self
 
-    def predict(self, X, groups=None, context=None, y_measured=None):
+    def predict(self, X, context=None):
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
-        Z = self._design(X, groups, context)
-        est = self.estimator_
-        return est.predict(Z, **_side(est.predict, groups=groups, context=context,
-                                      y_measured=y_measured))
+        return self.estimator_.predict(self._design(X, context), context=context)
 
     # -- streaming (deployment) -------------------------------------------------------------
     def stream_init(self, context: Mapping | None = None) -> dict:
         """State before a campaign's first sample; ``context`` may hold ``ambient_c0``."""
         check_is_fitted(self)
-        base = self.estimator_
-        state = {"first": {}, "last": {}, "lag": {}, "t": None,
-                 "ambient_c0": float((context or {}).get("ambient_c0", np.nan))}
-        if _has_stream(base):
-            kw = {"context": dict(context or {})} if _accepts(base.stream_init, "context") else {}
-            state["base"] = base.stream_init(**kw)
-        return state
+        return {"first": {}, "last": {}, "lag": {}, "t": None,
+                "ambient_c0": scalar(context, AMBIENT_C0),
+                "base": self.estimator_.stream_init(context)}
 
     def _raw(self, column, context, state) -> float:
         if context is None or column not in context:
-            raise ConfigError(f"stream_step needs {column!r} in context (raw value of this sample)")
+            raise ContractError("the diagnosed model's stream_step needs this column in its context "
+                                "(raw value of the sample)", column=column)
         value = float(context[column])
         if np.isnan(value):   # hold the last valid value, as the batch frame does
             value = state["last"].get(column, np.nan)
@@ -161,11 +155,11 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
         and every column of ``required_context_`` to this sample's raw value.
         """
         x = np.asarray(x_row, dtype=float).ravel()
-        t = float((context or {}).get("time", np.nan))
+        t = scalar(context, TIME)
         state.setdefault("t0", t)
         dt = None if state["t"] is None or np.isnan(t) else t - state["t"]
         state["t"] = t if not np.isnan(t) else state["t"]
-        a0 = float((context or {}).get("ambient_c0", state["ambient_c0"]))
+        a0 = scalar(context, AMBIENT_C0, state["ambient_c0"])
         parts = [x]
         for i, e in enumerate(self.effects_):
             tr = e.transform
@@ -188,12 +182,5 @@ class AugmentedRegressor(RegressorMixin, BaseEstimator):
             elif tr == "ambient_step":
                 parts.append(x * float(a0 > e.threshold_c))
         z = np.concatenate(parts)
-        base = self.estimator_
-        if "base" in state:
-            kw = {"context": context} if _accepts(base.stream_step, "context") else {}
-            y, state["base"] = base.stream_step(z, state["base"], **kw)
-            return float(y), state
-        ctx = pd.DataFrame({"campaign": ["stream"], "time": [t], "ambient_c0": [a0]})
-        y = base.predict(z[None, :], **_side(base.predict, groups=np.array(["stream"], dtype=object),
-                                             context=ctx))
-        return float(np.asarray(y).ravel()[0]), state
+        y, state["base"] = self.estimator_.stream_step(z, state["base"], context)
+        return float(y), state

@@ -4,7 +4,8 @@ The *unit* of cross-validation is a campaign: every campaign is held out once
 and predicted by a model that never saw it.  When the train split is a single
 campaign (one long record) the units are contiguous time blocks of it (CLI.md).
 Units go to ``n_folds`` folds in turn (unit ``i`` -> fold ``i mod K``), so with
-campaigns in calendar order every fold spans the seasons.
+campaigns in calendar order every fold spans the seasons
+(:class:`~thermocomp.model_selection.LeaveCampaignsOut`).
 
 Everything works on the stacked train matrices: the selector and the
 estimator are refitted in every fold exactly as the
@@ -15,7 +16,6 @@ over dozens of candidates affordable).
 
 from __future__ import annotations
 
-import inspect
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
@@ -23,23 +23,10 @@ import numpy as np
 import pandas as pd
 from sklearn.base import clone
 
+from ..context import CAMPAIGN, Y_MEASURED, for_target
+from ..model_selection import LeaveCampaignsOut
 from ..select import AllInputs
 from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
-
-
-def _accepts(method, name: str) -> bool:
-    return name in inspect.signature(method).parameters
-
-
-def unit_labels(campaigns: np.ndarray, n_blocks: int) -> np.ndarray:
-    """CV unit of each row: its campaign, or ``<campaign>#<k>`` blocks for a single campaign."""
-    campaigns = np.asarray(campaigns, dtype=object)
-    ids = list(dict.fromkeys(campaigns))
-    if len(ids) > 1:
-        return campaigns
-    n = len(campaigns)
-    block = np.minimum((np.arange(n) * n_blocks) // max(n, 1), n_blocks - 1)
-    return np.array([f"{ids[0]}#{k + 1}" for k in block], dtype=object)
 
 
 @dataclass
@@ -68,8 +55,7 @@ class Problem:
         self.unit_names = list(dict.fromkeys(self.units))
         pos = {u: i for i, u in enumerate(self.unit_names)}
         self.unit_index = np.array([pos[u] for u in self.units])
-        k = max(2, min(int(self.n_folds), len(self.unit_names)))
-        self.folds = self.unit_index % k
+        self.folds = LeaveCampaignsOut(self.n_folds).fold_index(self.units)
 
     def varies(self, column: str) -> bool:
         """True when context ``column`` changes within the train data (in the target's frame)."""
@@ -105,9 +91,10 @@ class CrossValidator:
     ----------
     problem : Problem
     estimator : regressor
-        The configured estimator (cloned per fold; gets ``groups``,
-        ``context``, ``target`` and, in one-step mode, ``y_measured`` when its
-        signature takes them).
+        The configured estimator (cloned per fold, for the problem's target);
+        it gets the fold's context, whose ``campaign`` is the CV unit (a time
+        block of a single campaign is a campaign of its own: no lag reaches
+        across a held-out block), and in one-step mode the measured target.
     selector : selector or None
         Refitted per fold on the declared inputs left after exclusions.
     """
@@ -130,7 +117,7 @@ class CrossValidator:
             else:
                 rows = np.ones(len(p.y), bool) if fold is None else p.folds != fold
                 Xf = p.X.loc[rows, list(inputs)].reset_index(drop=True)
-                names = list(clone(self.selector).fit(Xf, p.y[rows], groups=p.units[rows]).selected_)
+                names = list(clone(self.selector).fit(Xf, p.y[rows]).selected_)
             self._selection[key] = names
         return self._selection[key]
 
@@ -181,7 +168,11 @@ class CrossValidator:
         if key not in self._ctx:
             p = self.problem
             rows = (p.folds != fold) if train else (p.folds == fold)
-            self._ctx[key] = p.context.loc[rows].reset_index(drop=True)
+            ctx = p.context.loc[rows].reset_index(drop=True)
+            ctx[CAMPAIGN] = p.units[rows]
+            if p.mode == "one_step" and not train:
+                ctx[Y_MEASURED] = p.y[rows]
+            self._ctx[key] = ctx
         return self._ctx[key]
 
     # -- cross-validation -------------------------------------------------------------------
@@ -193,14 +184,9 @@ class CrossValidator:
         for k in p.fold_ids:
             tr, te = p.folds != k, p.folds == k
             Z = self.design(self.selection(tuple(inputs), k), effects, k)
-            est = clone(self.estimator)
-            side = {"groups": p.units[tr], "context": self._context(k, True), "target": p.target}
-            est.fit(Z[tr], p.y[tr], **{n: v for n, v in side.items() if _accepts(est.fit, n)})
-            side = {"groups": p.units[te], "context": self._context(k, False)}
-            if p.mode == "one_step":
-                side["y_measured"] = p.y[te]
-            kw = {n: v for n, v in side.items() if _accepts(est.predict, n)}
-            pred[te] = np.asarray(est.predict(Z[te], **kw), dtype=float)
+            est = clone(for_target(self.estimator, p.target))
+            est.fit(Z[tr], p.y[tr], context=self._context(k, True))
+            pred[te] = np.asarray(est.predict(Z[te], context=self._context(k, False)), dtype=float)
         return self._result(pred)
 
     def _result(self, pred: np.ndarray) -> CVResult:

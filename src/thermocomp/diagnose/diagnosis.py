@@ -6,7 +6,7 @@ import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
-import numpy as np
+from sklearn.base import clone
 from threadpoolctl import threadpool_limits
 
 from ..compensator import Compensator
@@ -14,10 +14,12 @@ from ..denoise import denoise_campaigns
 from ..evaluation import require_split, sample_period
 from ..frame import stack
 from ..io.contract import ContractError, Dataset
+from ..jsonsafe import json_safe
 from ..metrics import split_scores
+from ..model_selection import LeaveCampaignsOut, unit_labels
 from .augmented import AugmentedRegressor
 from .candidates import CONTROL, random_walk
-from .cv import Problem, unit_labels
+from .cv import Problem
 from .features import Effect
 from .search import Search, SearchOptions, SearchResult, sensor_health
 
@@ -36,15 +38,7 @@ def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
                              {t: [Effect.to_dict(e) if isinstance(e, Effect) else dict(e) for e in es]
                               for t, es in effects.items()},
                              template.reference)
-    return Compensator(est, selector=template.selector, inputs=kept, targets=template.targets,
-                       reference=template.reference, denoiser=getattr(template, "denoiser", None))
-
-
-def fresh(template: Compensator) -> Compensator:
-    """An unfitted copy of a Compensator (same settings)."""
-    return Compensator(template.estimator, selector=template.selector, inputs=template.inputs,
-                       targets=template.targets, reference=template.reference,
-                       denoiser=getattr(template, "denoiser", None))
+    return clone(template).set_params(estimator=est, inputs=kept)
 
 
 @dataclass
@@ -98,7 +92,7 @@ class Diagnosis:
         effects += [ev.entry() for ev in rejected]
         control = last.control.entry() if last and last.control else None
         te_b, te_a = d.before["test"], d.after["test"]
-        return _json_safe({
+        return json_safe({
             "target": t,
             "model": self.model,
             "before": _summary(te_b, d.original_cv_rmse),
@@ -138,21 +132,6 @@ class Diagnosis:
                               for o, x in self.targets.items() if o != t},
             "seconds": self.seconds,
         })
-
-
-def _json_safe(obj):
-    """NaN/inf -> None and numpy scalars -> Python, recursively (JSON never holds NaN)."""
-    if isinstance(obj, dict):
-        return {k: _json_safe(v) for k, v in obj.items()}
-    if isinstance(obj, (list, tuple)):
-        return [_json_safe(v) for v in obj]
-    if isinstance(obj, (float, np.floating)):
-        return float(obj) if np.isfinite(obj) else None
-    if isinstance(obj, np.integer):
-        return int(obj)
-    if isinstance(obj, np.bool_):
-        return bool(obj)
-    return obj
 
 
 def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, points
@@ -216,7 +195,7 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
               e_p95_points, model_name) -> Diagnosis:
     t0 = time.perf_counter()
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
-    before = fresh(compensator).fit({c: ds.campaigns[c] for c in train_ids})
+    before = clone(compensator).fit({c: ds.campaigns[c] for c in train_ids})
     before_scores, before_pred = test_scores(before, ds, test_ids, mode, e_p95_statistic,
                                              e_p95_points)
     targets = list(before.targets_) if targets is None else (
@@ -251,7 +230,8 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            for t, r in found.items()}
     n_units = len(dict.fromkeys(units))
     cv = {"units": n_units, "unit": "campaign" if len(train_ids) > 1 else "time block",
-          "folds": max(2, min(options.n_folds, n_units)), "train_campaigns": train_ids,
+          "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=units),
+          "train_campaigns": train_ids,
           "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},

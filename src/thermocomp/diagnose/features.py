@@ -60,7 +60,7 @@ import numpy as np
 import pandas as pd
 from scipy.signal import lfilter
 
-from ..errors import ConfigError
+from ..errors import ParameterError
 from ..io.contract import ContractError
 from ..models._dynamics import segment_bounds
 
@@ -115,22 +115,22 @@ class Effect:
     def __post_init__(self):
         object.__setattr__(self, "initial_state", _tuple(self.initial_state))
         if self.kind not in KINDS:
-            raise ConfigError(f"effect kind {self.kind!r} is not one of {list(KINDS)}")
+            raise ParameterError(f"effect kind {self.kind!r} is not one of {list(KINDS)}")
         if self.transform not in TRANSFORMS:
-            raise ConfigError(f"effect transform {self.transform!r} is not one of {list(TRANSFORMS)}")
+            raise ParameterError(f"effect transform {self.transform!r} is not one of {list(TRANSFORMS)}")
         needs = {"first_order_lag": ("column", "tau_s"), "raw": ("column",), "square": ("column",),
                  "product": ("column", "other"), "lowpass_inputs": ("tau_s",),
                  "ambient_step": ("threshold_c",), "remove": ("column",)}
         missing = [k for k in needs.get(self.transform, ()) if getattr(self, k) is None]
         if missing:
-            raise ConfigError(f"effect {self.transform!r} needs {missing}")
+            raise ParameterError(f"effect {self.transform!r} needs {missing}")
         if self.tau_s is not None and not self.tau_s > 0:
-            raise ConfigError(f"effect tau_s must be > 0 s, got {self.tau_s}")
+            raise ParameterError(f"effect tau_s must be > 0 s, got {self.tau_s}")
         if self.initial_state and self.transform not in ("first_order_lag", "lowpass_inputs"):
-            raise ConfigError("effect initial_state only goes with a lag")
+            raise ParameterError("effect initial_state only goes with a lag")
         if self.initial_directions is not None and not (
                 self.initial_state and 1 <= int(self.initial_directions) <= len(self.initial_state)):
-            raise ConfigError("effect initial_directions must be 1 .. the number of initial_state sensors")
+            raise ParameterError("effect initial_directions must be 1 .. the number of initial_state sensors")
 
     @property
     def label(self) -> str:
@@ -181,7 +181,7 @@ class Effect:
         known = {f.name for f in fields(cls)}
         unknown = set(d) - known
         if unknown:
-            raise ConfigError(f"effect has unknown key(s) {sorted(unknown)} (known: {sorted(known)})")
+            raise ParameterError(f"effect has unknown key(s) {sorted(unknown)} (known: {sorted(known)})")
         d = dict(d)
         for key in ("tau_s", "threshold_c"):
             if d.get(key) is not None:

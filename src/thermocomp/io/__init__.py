@@ -3,8 +3,6 @@
 from .contract import (
                        ContractError,
                        Dataset,
-                       atomic_dir,
-                       atomic_write_text,
                        match_columns,
                        role,
                        write_dataset,
@@ -12,7 +10,6 @@ from .contract import (
 from .read import INGEST_REPORT, ReadOptions, ingest, load_interim, read_campaign, read_dataset, read_manifest
 
 __all__ = [
-    "INGEST_REPORT", "ContractError", "Dataset", "ReadOptions", "atomic_dir",
-    "atomic_write_text", "ingest", "load_interim", "match_columns", "read_campaign",
-    "read_dataset", "read_manifest", "role", "write_dataset",
+    "INGEST_REPORT", "ContractError", "Dataset", "ReadOptions", "ingest", "load_interim",
+    "match_columns", "read_campaign", "read_dataset", "read_manifest", "role", "write_dataset",
 ]

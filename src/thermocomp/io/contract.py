@@ -12,14 +12,13 @@ from __future__ import annotations
 
 import fnmatch
 import os
-import shutil
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import pandas as pd
 
 from ..errors import ContractError  # noqa: F401  (re-exported: the contract's error type)
+from ..files import atomic_dir
 
 TIME = "time"
 PREFIXES = ("T_", "E_", "S_")
@@ -87,53 +86,6 @@ class Dataset:
         ids = list(ids)
         return Dataset(self.manifest.loc[ids], {i: self.campaigns[i] for i in ids},
                        self.name, dict(self.meta))
-
-
-def atomic_dir(dest: str | os.PathLike):
-    """Context manager yielding a temp folder that replaces ``dest`` on success.
-
-    Nothing half-written is ever visible at ``dest``: on error the temp folder
-    is removed and ``dest`` keeps its previous content.
-    """
-    return _AtomicDir(Path(dest))
-
-
-class _AtomicDir:
-    def __init__(self, dest: Path):
-        self.dest = dest
-
-    def __enter__(self) -> Path:
-        self.dest.parent.mkdir(parents=True, exist_ok=True)
-        self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.dest.name}.", dir=self.dest.parent))
-        return self.tmp
-
-    def __exit__(self, exc_type, exc, tb):
-        if exc_type is not None:
-            shutil.rmtree(self.tmp, ignore_errors=True)
-            return False
-        old = None
-        if self.dest.exists():
-            old = self.dest.with_name(f".{self.dest.name}.old")
-            shutil.rmtree(old, ignore_errors=True)
-            os.replace(self.dest, old)
-        os.replace(self.tmp, self.dest)
-        if old is not None:
-            shutil.rmtree(old, ignore_errors=True)
-        return False
-
-
-def atomic_write_text(path: str | os.PathLike, text: str) -> None:
-    """Write a text file through a temp file and a rename."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", dir=path.parent)
-    try:
-        with os.fdopen(fd, "w") as f:
-            f.write(text)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
 
 
 def write_dataset(ds: Dataset, path: str | os.PathLike, fmt: str = "csv") -> Path:

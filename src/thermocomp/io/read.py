@@ -56,7 +56,8 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
-from .contract import MANIFEST, MANIFEST_REQUIRED, SPLITS, TIME, ContractError, Dataset, atomic_dir, role
+from ..files import atomic_dir, write_json
+from .contract import MANIFEST, MANIFEST_REQUIRED, SPLITS, TIME, ContractError, Dataset, role
 
 INGEST_REPORT = "ingest_report.json"
 CAMPAIGN_SUFFIXES = (".csv", ".parquet")
@@ -959,7 +960,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None) -> dic
         out = manifest.assign(file=[f"{cid}.parquet" for cid in manifest.index])
         (tmp / MANIFEST).write_text(_manifest_csv(out))
         report = _dataset_report(src.name, entries, columns, opts)
-        (tmp / INGEST_REPORT).write_text(json.dumps(report, indent=2, ensure_ascii=False) + "\n")
+        write_json(tmp / INGEST_REPORT, report, ensure_ascii=False)
     return report
 
 

@@ -1,10 +1,12 @@
 """Model families: scikit-learn estimators mapping temperatures (and states) to thermal error.
 
-Every estimator takes ``fit(X, y, groups=None)`` and
-``predict(X, groups=None, y_measured=None)``; ``groups`` marks campaign
-boundaries (dynamics never cross them), ``y_measured`` switches models with an
-autoregressive part to one-step-ahead prediction (``eval.mode=one_step``).
-Without it they run in simulation (free-run) mode, as on a machine.
+Every estimator follows the side-input and streaming protocol of
+:mod:`thermocomp.context`: ``fit(X, y, context=None)``, ``predict(X, context=None)``,
+``stream_init(context)`` and ``stream_step(x_row, state, context)``.  The
+context's ``campaign`` marks campaign boundaries (dynamics never cross them);
+its ``y_measured`` switches models with an autoregressive part to one-step-ahead
+prediction (``eval.mode=one_step``).  Without it they run in simulation
+(free-run) mode, as on a machine.
 """
 
 from .arx import ARX

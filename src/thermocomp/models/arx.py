@@ -8,107 +8,13 @@ from scipy.linalg import lstsq, solve
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..errors import ConfigError
+from ..context import Y_MEASURED, SideInputs, groups_of, values
+from ..errors import ParameterError
+from ..model_selection.criteria import CRITERIA, LABELS, information_criteria
+from ..model_selection.greedy import SEARCHES, greedy_path, scaled_gram
 from ._dynamics import free_run, lag_index, previous, segment_starts
 
-CRITERIA = ("aic", "aicc", "bic", "bicc")
-_LABELS = {"aic": "AIC", "aicc": "AICc", "bic": "BIC", "bicc": "BICc"}
-SEARCHES = ("residual", "forward")
 SELECTION_ERRORS = ("equation", "simulation")
-_COLLINEAR = 1e-10   # a candidate whose partialled variance falls below this share is collinear
-
-
-def information_criteria(rss: float, n_obs: int, n_params: int) -> dict[str, float]:
-    r"""AIC, AICc, BIC and BICc of a Gaussian least-squares fit.
-
-    With :math:`L = N \ln(\mathrm{RSS}/N)`:
-    ``aic`` :math:`= L + 2k`, ``aicc`` :math:`= \mathrm{AIC} + 2k(k+1)/(N-k-1)`,
-    ``bic`` :math:`= L + k \ln N` and ``bicc`` :math:`= L + N k \ln N/(N-k-2)`, the
-    small-sample corrected Schwarz criterion of McQuarrie (1999).  Constants
-    common to all models are dropped.  Undefined values (too few samples) are +inf.
-    """
-    n, k = float(n_obs), float(n_params)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        fit = n * np.log(rss / n) if n > 0 else np.inf
-        out = {"aic": fit + 2 * k,
-               "aicc": fit + 2 * k + (2 * k * (k + 1) / (n - k - 1) if n - k - 1 > 0 else np.inf),
-               "bic": fit + k * np.log(n) if n > 0 else np.inf,
-               "bicc": fit + (n * k * np.log(n) / (n - k - 2) if n - k - 2 > 0 else np.inf)}
-    return {name: float(v) if np.isfinite(v) or v == -np.inf else np.inf for name, v in out.items()}
-
-
-def _sweep(M: np.ndarray, k: int) -> None:
-    """Partial column ``k`` out of the cross-product matrix ``M`` in place (the sweep operator)."""
-    col = M[:, k].copy()
-    M -= np.outer(col, col) / col[k]
-    M[k, :] = 0.0
-    M[:, k] = 0.0
-
-
-def greedy_path(M: np.ndarray, y: int, candidates, sensor_of, forced=(), max_inputs: int = 10,
-                search: str = "residual") -> tuple[list[int], list[float]]:
-    """Greedy input order and the joint least-squares RSS after each step, from a Gram matrix.
-
-    Parameters
-    ----------
-    M : ndarray (q, q)
-        Cross-product matrix of the (centred) regressors and the target.
-    y : int
-        Index of the target in ``M``.
-    candidates : sequence of int
-        Indices of candidate inputs.
-    sensor_of : sequence of int
-        Sensor of each index (delayed copies of one sensor share it; once a
-        sensor is in, its other delays are out).
-    forced : sequence of int
-        Regressors always in the model (the autoregressive term), partialled out first.
-    search : {'residual', 'forward'}
-        ``residual``: the split greedy of paper 000 -- each step fits a one-input
-        model of the current residual for every remaining candidate, keeps the
-        best and subtracts its fit.  ``forward``: classical forward selection --
-        each step keeps the candidate that most lowers the RSS of the joint fit.
-
-    Returns
-    -------
-    order : list of int
-        Selected indices, in order.
-    rss : list of float
-        RSS of the joint fit of forced terms + the first ``j`` selected inputs.
-
-    Everything works on ``M``: one Gram matrix per target instead of one
-    regression per candidate (that is what makes the search fast).
-    """
-    M = np.array(M, dtype=float, copy=True)
-    base = np.diag(M).copy()
-    for f in forced:
-        if not M[f, f] > _COLLINEAR * base[f]:
-            raise np.linalg.LinAlgError("forced regressor is constant or collinear")
-        _sweep(M, f)
-    partial = M.copy()              # Gram with only the forced terms partialled out
-    resid = partial[:, y].copy()    # covariances of the candidates with the running residual
-    cand = np.asarray(candidates, dtype=int)
-    sensors = np.asarray(sensor_of)[cand] if len(cand) else np.zeros(0, int)
-    free = np.ones(len(cand), dtype=bool)
-    order, rss = [], []
-    for _ in range(max_inputs):
-        joint_var = np.diag(M)[cand]
-        ok = free & (joint_var > _COLLINEAR * base[cand])
-        if not ok.any():
-            break
-        if search == "forward":
-            score = M[cand, y] ** 2 / np.where(ok, joint_var, 1.0)
-        else:
-            score = resid[cand] ** 2 / np.where(ok, np.diag(partial)[cand], 1.0)
-        score[~ok] = -np.inf
-        pos = int(np.argmax(score))
-        j = int(cand[pos])
-        if search == "residual":
-            resid -= resid[j] / partial[j, j] * partial[:, j]
-        _sweep(M, j)
-        free &= sensors != sensors[pos]
-        order.append(j)
-        rss.append(max(float(M[y, y]), 0.0))
-    return order, rss
 
 
 def _exogenous(X, groups, terms, coef, intercept) -> np.ndarray:
@@ -122,7 +28,7 @@ def _exogenous(X, groups, terms, coef, intercept) -> np.ndarray:
     return u
 
 
-class ARX(RegressorMixin, BaseEstimator):
+class ARX(SideInputs, RegressorMixin, BaseEstimator):
     r"""First-order ARX per error parameter with greedy input and model selection.
 
     .. math:: \hat y(t) = a\, y(t-1) + \sum_{n \in S} b_n\, x_n(t - k_n) + c
@@ -135,13 +41,13 @@ class ARX(RegressorMixin, BaseEstimator):
     Coefficients are least squares on the equation error: in training the AR
     regressor is the *measured* previous error.
 
-    Prediction runs in two modes.  Simulation (default, ``y_measured=None``):
-    the AR term is fed the model's own previous prediction (free run, starting
-    from 0 at each campaign start, the reference frame's initial error), as on
-    a machine with no measured error.  One-step (``y_measured`` given): the AR
-    term uses the measured previous error.  Lags never cross campaigns
-    (``groups``): before a campaign's first sample inputs are held at their
-    first value and the previous error is 0.
+    Prediction runs in two modes.  Simulation (default): the AR term is fed
+    the model's own previous prediction (free run, starting from 0 at each
+    campaign start, the reference frame's initial error), as on a machine with
+    no measured error.  One-step (``y_measured`` in the context): the AR term
+    uses the measured previous error.  Lags never cross campaigns (the
+    context's ``campaign``): before a campaign's first sample inputs are held
+    at their first value and the previous error is 0.
 
     scikit-learn's ``check_estimator`` passes with the default ``delays=(0,)``
     whenever the AR term loses; a model with an AR term or delays depends on
@@ -151,7 +57,8 @@ class ARX(RegressorMixin, BaseEstimator):
     Parameters
     ----------
     criterion : {'bicc', 'bic', 'aicc', 'aic'}, default 'bicc'
-        Information criterion of the model choice (see :func:`information_criteria`).
+        Information criterion of the model choice
+        (see :func:`~thermocomp.model_selection.information_criteria`).
     max_inputs : int, default 10
         Largest number of inputs tried.
     ar : {'auto', True, False}, default 'auto'
@@ -159,7 +66,8 @@ class ARX(RegressorMixin, BaseEstimator):
     delays : sequence of int, default (0,)
         Input delays (samples) tried for every input; one delay per input is kept.
     search : {'residual', 'forward'}, default 'residual'
-        Greedy search (see :func:`greedy_path`); ``residual`` is the paper's.
+        Greedy search (see :func:`~thermocomp.model_selection.greedy_path`); ``residual``
+        is the paper's.
     selection_error : {'simulation', 'equation'}, default 'simulation'
         RSS the criterion scores.  ``simulation``: AR models are scored on
         their free-run error (an unstable ``|a| >= 1`` model scores +inf), which
@@ -207,12 +115,12 @@ class ARX(RegressorMixin, BaseEstimator):
                    "ar": (self.ar, ("auto", True, False))}
         for name, (value, allowed) in options.items():
             if not any(value is a or (isinstance(a, str) and value == a) for a in allowed):
-                raise ConfigError(f"ARX {name}={value!r} is not one of {list(allowed)}")
+                raise ParameterError(f"ARX {name}={value!r} is not one of {list(allowed)}")
         if int(self.max_inputs) < 1:
-            raise ConfigError(f"ARX max_inputs={self.max_inputs!r} must be >= 1")
+            raise ParameterError(f"ARX max_inputs={self.max_inputs!r} must be >= 1")
         delays = tuple(sorted({int(d) for d in np.atleast_1d(self.delays)}))
         if not delays or delays[0] < 0:
-            raise ConfigError(f"ARX delays={self.delays!r} must be non-negative sample counts")
+            raise ParameterError(f"ARX delays={self.delays!r} must be non-negative sample counts")
         return delays
 
     # -- design -------------------------------------------------------------------------
@@ -237,8 +145,9 @@ class ARX(RegressorMixin, BaseEstimator):
         name = str(names[j]) if names is not None else f"x{j}"
         return name if d == 0 else f"{name}[t-{d}]"
 
-    def fit(self, X, y, groups=None):
+    def fit(self, X, y, context=None):
         delays = self._check_params()
+        groups = groups_of(context)
         X, y = validate_data(self, X, y, y_numeric=True)
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         n, p = X.shape
@@ -255,27 +164,24 @@ class ARX(RegressorMixin, BaseEstimator):
                 options, rows = [False], np.ones(n, dtype=bool)
 
         A, means = self._design(X, y, groups, delays, rows)
-        M = A.T @ A
-        scale = np.sqrt(np.diag(M))
-        scale[scale == 0] = 1.0                      # constant columns stay 0: never selected
-        M = M / np.outer(scale, scale)               # unit diagonal: a well-conditioned sweep
+        M, scale = scaled_gram(A)                    # constant columns stay 0: never selected
         i_ar, i_y = len(terms), len(terms) + 1
         sensor_of = [j for j, _ in terms] + [-1, -2]
         n_obs = int(rows.sum())
+        tss = float(M[i_y, i_y]) * scale[i_y] ** 2   # the target's sum of squares: the RSS floor's scale
         max_k = min(int(self.max_inputs), p)
 
         records, paths = [], {}
         for with_ar in options:
             try:
-                order, rss = greedy_path(M, i_y, range(len(terms)), sensor_of,
-                                         forced=(i_ar,) if with_ar else (), max_inputs=max_k,
-                                         search=self.search)
+                order, rss, _ = greedy_path(M, i_y, range(len(terms)), sensor_of,
+                                            forced=(i_ar,) if with_ar else (), max_inputs=max_k,
+                                            search=self.search)
             except np.linalg.LinAlgError:        # constant previous error: no AR model
                 continue
             paths[with_ar] = order
-            floor = 1e-15 * max(float(M[i_y, i_y]), 1e-300)
             for k in range(1, len(order) + 1):
-                value = max(rss[k - 1], floor) * scale[i_y] ** 2
+                value = rss[k - 1] * scale[i_y] ** 2
                 if with_ar and self.selection_error == "simulation":
                     value = self._free_run_rss(X, y, groups, rows, M, scale, means,
                                                [terms[j] for j in order[:k]], order[:k])
@@ -283,7 +189,7 @@ class ARX(RegressorMixin, BaseEstimator):
                 records.append({"ar": with_ar, "n_inputs": k,
                                 "inputs": ", ".join(self._term_name(terms[j]) for j in order[:k]),
                                 "n_params": n_params, "n_obs": n_obs, "rss": value,
-                                **information_criteria(value, n_obs, n_params)})
+                                **information_criteria(value, n_obs, n_params, tss=tss)})
         if not records:
             raise ValueError("ARX found no usable input: every column is constant")
         table = pd.DataFrame(records)
@@ -304,6 +210,7 @@ class ARX(RegressorMixin, BaseEstimator):
         self.chosen_ = {"ar": with_ar, "n_inputs": k, "inputs": list(self.inputs_),
                         "criterion": self.criterion, "value": float(win[self.criterion]),
                         "reason": self._reason(table, best)}
+        self.context_columns_ = []
         return self
 
     @staticmethod
@@ -345,7 +252,7 @@ class ARX(RegressorMixin, BaseEstimator):
 
     def _reason(self, table: pd.DataFrame, best: int) -> str:
         crit, win = self.criterion, table.loc[best]
-        text = (f"lowest {_LABELS[crit]} = {win[crit]:.2f} of {len(table)} models tried "
+        text = (f"lowest {LABELS[crit]} = {win[crit]:.2f} of {len(table)} models tried "
                 f"({int(win['n_inputs'])} inputs, {'with' if win['ar'] else 'without'} AR term)")
         other = table[table["ar"] != win["ar"]]
         if len(other):
@@ -358,10 +265,11 @@ class ARX(RegressorMixin, BaseEstimator):
     def _exogenous(self, X, groups) -> np.ndarray:
         return _exogenous(X, groups, self.terms_, self.coef_, self.intercept_)
 
-    def predict(self, X, groups=None, y_measured=None):
-        """Predicted error: free run (simulation) or one-step with ``y_measured``."""
+    def predict(self, X, context=None):
+        """Predicted error: free run (simulation), or one-step with ``y_measured`` in ``context``."""
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
+        groups, y_measured = groups_of(context), values(context, Y_MEASURED, X.shape[0])
         u = self._exogenous(X, groups)
         if self.ar_coef_ == 0.0:
             return u
@@ -379,12 +287,12 @@ class ARX(RegressorMixin, BaseEstimator):
         return self.ar_coef_ * y_prev + u
 
     # -- streaming (deployment) ---------------------------------------------------------
-    def stream_init(self) -> dict:
+    def stream_init(self, context=None) -> dict:
         """State at a campaign start: previous output 0, no input history yet."""
         check_is_fitted(self)
         return {"y_prev": 0.0, "history": None}
 
-    def stream_step(self, x_row, state: dict) -> tuple[float, dict]:
+    def stream_step(self, x_row, state: dict, context=None) -> tuple[float, dict]:
         """One sample of simulation-mode ``predict``: ``(y_hat, new_state)``."""
         x_row = np.asarray(x_row, dtype=float).reshape(-1)
         depth = max((d for _, d in self.terms_), default=0) + 1

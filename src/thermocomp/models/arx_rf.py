@@ -11,8 +11,9 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.ensemble import RandomForestRegressor
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..errors import ConfigError
-from ..io.contract import ContractError
+from ..context import (TIME, Y_MEASURED, SideInputs, context_columns, groups_of, has, merge_columns,
+                       require, values, with_column)
+from ..errors import ParameterError
 from ._dynamics import segment_bounds
 from .arx import ARX
 
@@ -20,7 +21,7 @@ from .arx import ARX
 def _taus(tau_s) -> np.ndarray:
     taus = np.atleast_1d(np.asarray(tau_s, dtype=float))
     if taus.size == 0 or not np.all(taus > 0):
-        raise ConfigError(f"ARXRF tau_s={tau_s!r} must be one or more positive times (s)")
+        raise ParameterError(f"ARXRF tau_s={tau_s!r} must be one or more positive times (s)")
     return taus
 
 
@@ -73,7 +74,53 @@ def logistic_switching(state, time, groups=None, tau_s=60.0) -> np.ndarray:
     return out
 
 
-class ARXRF(RegressorMixin, BaseEstimator):
+def _flat_trees(forest) -> tuple:
+    """Node arrays of every tree of a fitted forest, padded to one table (cached on the forest)."""
+    cached = getattr(forest, "_thermocomp_flat", None)
+    if cached is not None:
+        return cached
+    trees = [e.tree_ for e in getattr(forest, "estimators_", [])]
+    width = max(t.node_count for t in trees)
+
+    def table(get, fill, dtype):
+        out = np.full((len(trees), width), fill, dtype=dtype)
+        for i, t in enumerate(trees):
+            out[i, :t.node_count] = get(t)
+        return out
+
+    flat = (table(lambda t: t.children_left, -1, np.int64), table(lambda t: t.children_right, -1, np.int64),
+            table(lambda t: np.maximum(t.feature, 0), 0, np.int64),   # leaves: -2 -> any column
+            table(lambda t: t.threshold, 0.0, float),
+            table(lambda t: t.value[:, 0, 0], 0.0, float))
+    forest._thermocomp_flat = flat
+    return flat
+
+
+def _one_row_predict(forest, x) -> float:
+    """``forest.predict(x[None, :])[0]`` for one sample, all trees walked at once in NumPy.
+
+    Written by hand because scikit-learn's ``predict`` spends ~80 µs per tree on
+    validation and dispatch for a single row (8 ms for 100 trees, every sample
+    of a stream); the walk below is the same comparison (features cast to
+    float32 as the trees see them) and the same mean of the leaf values.
+    Any other regressor goes through its own ``predict``.
+    """
+    if not hasattr(forest, "estimators_") or not all(hasattr(e, "tree_") for e in forest.estimators_):
+        return float(forest.predict(np.asarray(x, float)[None, :])[0])
+    left, right, feature, threshold, value = _flat_trees(forest)
+    x32 = np.asarray(x, dtype=np.float32).astype(float)
+    rows = np.arange(left.shape[0])
+    node = np.zeros(left.shape[0], dtype=np.int64)
+    while True:
+        inner = left[rows, node] >= 0
+        if not inner.any():
+            break
+        go_left = x32[feature[rows, node]] <= threshold[rows, node]
+        node = np.where(inner, np.where(go_left, left[rows, node], right[rows, node]), node)
+    return float(value[rows, node].mean())
+
+
+class ARXRF(SideInputs, RegressorMixin, BaseEstimator):
     r"""Stacked ARX + random forest: the forest models what the ARX misses from a machine state.
 
     .. math:: \hat y(t) = \hat y_{\mathrm{ARX}}(t) + f_{\mathrm{RF}}\big(s(t)\big)
@@ -123,53 +170,52 @@ class ARXRF(RegressorMixin, BaseEstimator):
         self.state_column = state_column
         self.tau_s = tau_s
 
-    def _state_features(self, n: int, groups, context) -> np.ndarray:
+    def _state_features(self, n: int, context) -> np.ndarray:
         taus = _taus(self.tau_s)
         if self.state_column is None:
             return np.zeros((n, 1))
-        if context is None or self.state_column not in context:
-            raise ContractError(f"the ARX+RF model needs the machine-state signal "
-                                f"{self.state_column!r} (an S_ column of the campaigns, passed as "
-                                f"context); the data have none", column=self.state_column)
-        if len(context) != n:
-            raise ValueError(f"context has {len(context)} rows, X has {n}")
-        if groups is None and "campaign" in context:
-            groups = np.asarray(context["campaign"])
-        time = np.asarray(context["time"], dtype=float) if "time" in context else np.arange(n, dtype=float)
-        return logistic_switching(np.asarray(context[self.state_column], dtype=float), time,
-                                  groups, taus)
+        state = require(context, self.state_column, f"the ARX+RF model (machine-state signal "
+                                                    f"{self.state_column!r})")
+        if len(state) != n:
+            raise ValueError(f"context has {len(state)} rows, X has {n}")
+        time = values(context, TIME, n)
+        return logistic_switching(np.asarray(state, dtype=float),
+                                  time if time is not None else np.arange(n, dtype=float),
+                                  groups_of(context), taus)
 
     def _new_forest(self):
         if self.forest is not None:
             return clone(self.forest)
         return RandomForestRegressor(n_estimators=100, min_samples_leaf=5, random_state=0)
 
-    def fit(self, X, y, groups=None, context=None):
+    def fit(self, X, y, context=None):
         X, y = validate_data(self, X, y, y_numeric=True)
         y = np.asarray(y, dtype=float)
-        S = self._state_features(len(y), groups, context)
-        self.arx_ = clone(self.arx if self.arx is not None else ARX()).fit(X, y, groups=groups)
-        self.forest_ = self._new_forest().fit(S, y - self.arx_.predict(X, groups=groups))
+        S = self._state_features(len(y), context)
+        self.arx_ = clone(self.arx if self.arx is not None else ARX()).fit(X, y, context=context)
+        self.forest_ = self._new_forest().fit(S, y - self.arx_.predict(X, context=context))
         self.forest_one_step_ = None
         if self.arx_.ar_coef_ != 0.0:
-            one_step = self.arx_.predict(X, groups=groups, y_measured=y)
+            one_step = self.arx_.predict(X, context=with_column(context, Y_MEASURED, y, len(y)))
             self.forest_one_step_ = self._new_forest().fit(S, y - one_step)
+        self.context_columns_ = merge_columns(
+            [TIME, self.state_column] if self.state_column is not None else [],
+            context_columns(self.arx_))
         return self
 
-    def predict(self, X, groups=None, context=None, y_measured=None):
-        """ARX prediction (free run, or one-step with ``y_measured``) + forest on the state."""
+    def predict(self, X, context=None):
+        """ARX prediction (free run, or one-step with ``y_measured`` in ``context``) + forest on the state."""
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
-        S = self._state_features(X.shape[0], groups, context)
-        base = self.arx_.predict(X, groups=groups, y_measured=y_measured)
-        forest = self.forest_one_step_ if (y_measured is not None and self.forest_one_step_
-                                           is not None) else self.forest_
-        return base + forest.predict(S)
+        S = self._state_features(X.shape[0], context)
+        base = self.arx_.predict(X, context=context)
+        one_step = has(context, Y_MEASURED) and self.forest_one_step_ is not None
+        return base + (self.forest_one_step_ if one_step else self.forest_).predict(S)
 
     # -- streaming (deployment) ---------------------------------------------------------
-    def stream_init(self) -> dict:
+    def stream_init(self, context=None) -> dict:
         check_is_fitted(self)
-        return {"arx": self.arx_.stream_init(), "door": None, "t0": None}
+        return {"arx": self.arx_.stream_init(context), "door": None, "t0": None}
 
     def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
         """One sample of simulation-mode ``predict``.
@@ -178,16 +224,13 @@ class ARXRF(RegressorMixin, BaseEstimator):
         values (the extension of the streaming protocol for models that use a
         machine state; static-input models take ``x_row`` only).
         """
-        y_arx, arx_state = self.arx_.stream_step(x_row, state["arx"])
+        y_arx, arx_state = self.arx_.stream_step(x_row, state["arx"], context)
         door, t0 = state["door"], state["t0"]
         if self.state_column is None:
             features = np.zeros((1, 1))
         else:
-            if context is None or self.state_column not in context:
-                raise ContractError("stream_step needs the state signal in context",
-                                    column=self.state_column)
-            t = float(context["time"])
-            value = float(context[self.state_column])
+            value = float(require(context, self.state_column, "ARX+RF stream_step"))
+            t = float(require(context, TIME, "ARX+RF stream_step"))
             on = (door if door is not None else False) if np.isnan(value) else value > 0.5
             if door is not None and on != door:
                 t0 = t
@@ -197,5 +240,5 @@ class ARXRF(RegressorMixin, BaseEstimator):
                 features = np.full((1, taus.size), float(on))
             else:
                 features = expit((1.0 if on else -1.0) * (t - t0) / taus)[None, :]
-        y_hat = float(y_arx + self.forest_.predict(features)[0])
+        y_hat = float(y_arx + _one_row_predict(self.forest_, features[0]))
         return y_hat, {"arx": arx_state, "door": door, "t0": t0}

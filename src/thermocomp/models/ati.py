@@ -9,7 +9,6 @@ campaign's initial ambient temperature.
 
 from __future__ import annotations
 
-import inspect
 from functools import lru_cache
 
 import numpy as np
@@ -18,25 +17,14 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.cluster import KMeans
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..io.contract import ContractError
+from ..context import (AMBIENT_C0, SideInputs, context_columns, groups_of, merge_columns,
+                       scalar, subset)
+from ..errors import ContractError, ParameterError
 from ..metrics import rsd, sm_sd
+from ..model_selection import LeaveOneCampaignOut
 from .linear import MLR
 
 CLUSTERINGS = ("fuzzy", "hard")
-
-
-def _side(method, **side) -> dict:
-    """The side inputs (``groups``, ``context``, ``y_measured``) ``method`` accepts."""
-    params = inspect.signature(method).parameters
-    return {k: v for k, v in side.items() if k in params and v is not None}
-
-
-def _subset(side, rows):
-    if side is None:
-        return None
-    if isinstance(side, pd.DataFrame):
-        return side.loc[rows].reset_index(drop=True)
-    return np.asarray(side)[rows]
 
 
 def cluster_ambient(ambient, n_clusters: int, clustering: str = "fuzzy", fuzziness: float = 2.0,
@@ -102,7 +90,7 @@ def interval_of(ambient, boundaries) -> np.ndarray:
     return np.searchsorted(np.asarray(boundaries, float), np.asarray(ambient, float), side="left")
 
 
-class ATIRegressor(RegressorMixin, BaseEstimator):
+class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     r"""One model per ambient temperature interval (ATI), chosen by initial ambient (paper 003).
 
     Campaign :math:`k` with initial ambient :math:`A_k` is predicted by the
@@ -126,16 +114,15 @@ class ATIRegressor(RegressorMixin, BaseEstimator):
     campaign per interval (the coldest of it); here every campaign of the
     interval trains its model.
 
-    ``fit``/``predict`` take ``context`` (per-row ``campaign`` and
-    ``ambient_c0``, as :class:`~thermocomp.compensator.Compensator` passes it).
-    Without ``context`` the campaigns' ambient is unknown and the model is one
-    ``base_estimator`` (one interval).
+    ``fit``/``predict`` read ``campaign`` and ``ambient_c0`` from ``context``
+    (:mod:`thermocomp.context`) and hand each base model the context of its
+    rows.  Without ``context`` the campaigns' ambient is unknown and the model
+    is one ``base_estimator`` (one interval).
 
     Parameters
     ----------
     base_estimator : regressor, default MLR()
-        Any model family; cloned per interval.  Gets ``groups``, ``context``
-        and ``y_measured`` when its signature accepts them.
+        Any model family; cloned per interval; gets the context of its rows.
     n_intervals : int or 'elbow', default 'elbow'
     candidates : sequence of int, default (2, 3, 4, 5, 6)
         Numbers of intervals tried by the elbow (paper 003's range; add 1 to
@@ -178,84 +165,85 @@ class ATIRegressor(RegressorMixin, BaseEstimator):
     def _base(self):
         return clone(self.base_estimator if self.base_estimator is not None else MLR())
 
-    def _fit_base(self, X, y, rows, groups, context):
-        est = self._base()
-        est.fit(X[rows], y[rows], **_side(est.fit, groups=_subset(groups, rows),
-                                          context=_subset(context, rows)))
-        return est
+    def _fit_base(self, X, y, rows, context):
+        return self._base().fit(X[rows], y[rows], context=subset(context, rows))
 
-    def _predict_base(self, est, X, rows, groups, context, y_measured=None):
-        return est.predict(X[rows], **_side(est.predict, groups=_subset(groups, rows),
-                                            context=_subset(context, rows),
-                                            y_measured=_subset(y_measured, rows)))
+    @staticmethod
+    def _predict_base(est, X, rows, context):
+        return est.predict(X[rows], context=subset(context, rows))
 
     def _intervals(self, ambient: np.ndarray, n: int) -> np.ndarray:
         labels = cluster_ambient(ambient, n, self.clustering, self.fuzziness, self.random_state)
         return interval_boundaries(ambient, labels)
 
-    def fit(self, X, y, groups=None, context=None):
+    def fit(self, X, y, context=None):
         if self.clustering not in CLUSTERINGS:
-            raise ValueError(f"clustering must be one of {CLUSTERINGS}, got {self.clustering!r}")
+            raise ParameterError(f"clustering must be one of {CLUSTERINGS}, got {self.clustering!r}")
         X, y = validate_data(self, X, y, y_numeric=True)
         self.elbow_ = None
-        if context is None:
+        if context is None or AMBIENT_C0 not in context:
             self.campaign_ambient_ = {}
-            return self._fit_intervals(X, y, np.empty(0), np.zeros(len(y), int), groups, None)
-        campaign = np.asarray(context["campaign"] if "campaign" in context else groups, dtype=object)
+            return self._fit_intervals(X, y, np.empty(0), np.zeros(len(y), int), context)
+        campaign = groups_of(context)
+        if campaign is None:
+            campaign = np.zeros(len(y), dtype=object)
         a0_rows = self._ambient(context)
         a0 = pd.Series(a0_rows).groupby(campaign, sort=False).first()
         self.campaign_ambient_ = {str(k): float(v) for k, v in a0.items()}
         distinct = np.unique(a0.to_numpy()).size
         if self.n_intervals == "elbow":
-            n = self._elbow(X, y, campaign, a0, groups, context)
+            n = self._elbow(X, y, campaign, a0, context)
         else:
             n = int(self.n_intervals)
             if n < 1:
-                raise ValueError(f"n_intervals must be >= 1 or 'elbow', got {self.n_intervals!r}")
+                raise ParameterError(f"n_intervals must be >= 1 or 'elbow', got {self.n_intervals!r}")
         n = min(n, distinct)
         bounds = self._intervals(a0.to_numpy(), n) if n > 1 else np.empty(0)
-        return self._fit_intervals(X, y, bounds, interval_of(a0_rows, bounds), groups, context,
-                                   campaign)
+        return self._fit_intervals(X, y, bounds, interval_of(a0_rows, bounds), context, campaign)
 
-    def _fit_intervals(self, X, y, bounds, row_interval, groups, context, campaign=None):
+    def _fit_intervals(self, X, y, bounds, row_interval, context, campaign=None):
         self.boundaries_ = bounds
         self.n_intervals_ = bounds.size + 1
         self.estimators_, self.intervals_ = [], []
         edges = [None, *bounds.tolist(), None]
         for m in range(self.n_intervals_):
             rows = row_interval == m
-            self.estimators_.append(self._fit_base(X, y, rows, groups, context))
+            self.estimators_.append(self._fit_base(X, y, rows, context))
             members = sorted(set(campaign[rows])) if campaign is not None else []
             amb = [self.campaign_ambient_[str(c)] for c in members]
             self.intervals_.append({"low": edges[m], "high": edges[m + 1],
                                     "ambient_min": min(amb) if amb else None,
                                     "ambient_max": max(amb) if amb else None,
                                     "campaigns": [str(c) for c in members]})
+        self.context_columns_ = merge_columns([AMBIENT_C0] if self.n_intervals_ > 1 else [],
+                                              *(context_columns(e) for e in self.estimators_))
         return self
 
     @staticmethod
     def _ambient(context) -> np.ndarray:
-        a0 = np.asarray(context["ambient_c0"], float)
+        a0 = np.asarray(context[AMBIENT_C0], float)
         if not np.all(np.isfinite(a0)):
             raise ContractError("ATI models need each campaign's initial ambient temperature, "
                                 "but a campaign has no valid T_amb / T_amb_* value", column="T_amb")
         return a0
 
-    def _cv_rsd(self, X, y, campaign, a0: pd.Series, n: int, groups, context) -> np.ndarray:
+    def _cv_rsd(self, X, y, campaign, a0: pd.Series, n: int, context) -> np.ndarray:
         """Held-out Rsd of each campaign with ``n`` intervals rebuilt from the others."""
         out = []
-        for k in a0.index:
+        for _, test in LeaveOneCampaignOut().split(X, y, groups=campaign):
+            k = campaign[test[0]]
             others = a0.drop(k)
             bounds = self._intervals(others.to_numpy(), n) if n > 1 else np.empty(0)
             mine = interval_of([a0[k]], bounds)[0]
+            # train on the other campaigns of the held-out campaign's interval
             train_campaigns = others.index[interval_of(others.to_numpy(), bounds) == mine]
             rows_train = np.isin(campaign, train_campaigns)
             rows_test = campaign == k
-            est = self._fit_base(X, y, rows_train, groups, context)
-            out.append(rsd(y[rows_test] - self._predict_base(est, X, rows_test, groups, context)))
+            est = self._fit_base(X, y, rows_train, context)
+            out.append(rsd(y[rows_test] - self._predict_base(est, X, rows_test, context)))
         return np.array(out)
 
-    def _elbow(self, X, y, campaign, a0: pd.Series, groups, context) -> int:
+    def _elbow(self, X, y, campaign, a0: pd.Series, context) -> int:
         """Choose the number of intervals; fills ``elbow_``."""
         k = len(a0)
         feasible = [int(n) for n in self.candidates
@@ -268,10 +256,10 @@ class ATIRegressor(RegressorMixin, BaseEstimator):
             return 1
         sm, sd = [], []
         for n in feasible:
-            m, s = sm_sd(self._cv_rsd(X, y, campaign, a0, n, groups, context))
+            m, s = sm_sd(self._cv_rsd(X, y, campaign, a0, n, context))
             sm.append(m)
             sd.append(s)
-        single = sm_sd(self._cv_rsd(X, y, campaign, a0, 1, groups, context))
+        single = sm_sd(self._cv_rsd(X, y, campaign, a0, 1, context))
         score = np.array(sm) + np.array(sd)
         chosen = feasible[int(np.flatnonzero(score <= (1 + self.elbow_tolerance) * score.min())[0])]
         self.elbow_ = {"n_intervals": feasible, "sm": sm, "sd": sd, "chosen": chosen,
@@ -287,32 +275,30 @@ class ATIRegressor(RegressorMixin, BaseEstimator):
                              "with each row's `ambient_c0`")
         return interval_of(self._ambient(context), self.boundaries_)
 
-    def predict(self, X, groups=None, context=None, y_measured=None):
+    def predict(self, X, context=None):
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
         which = self._row_intervals(X.shape[0], context)
         out = np.empty(X.shape[0])
         for m in np.unique(which):
             rows = which == m
-            out[rows] = self._predict_base(self.estimators_[m], X, rows, groups, context, y_measured)
+            out[rows] = self._predict_base(self.estimators_[m], X, rows, context)
         return out
 
     # -- streaming (deployment) -------------------------------------------------------------
-    def stream_init(self, ambient_c0: float | None = None):
-        """State for :meth:`stream_step`: the interval of ``ambient_c0`` and its model's state."""
+    def stream_init(self, context=None):
+        """State for :meth:`stream_step`: the interval of the context's ``ambient_c0`` and its
+        model's state."""
         check_is_fitted(self)
-        if self.n_intervals_ > 1 and (ambient_c0 is None or not np.isfinite(ambient_c0)):
-            raise ValueError("stream_init needs the campaign's initial ambient temperature (°C)")
-        m = 0 if self.n_intervals_ == 1 else int(interval_of([ambient_c0], self.boundaries_)[0])
-        est = self.estimators_[m]
-        return m, (est.stream_init() if hasattr(est, "stream_init") else None)
+        a0 = scalar(context, AMBIENT_C0)
+        if self.n_intervals_ > 1 and not np.isfinite(a0):
+            raise ContractError("this ATI model needs the campaign's initial ambient temperature "
+                                "(°C) to start a stream: no T_amb / T_amb_* value", column=AMBIENT_C0)
+        m = 0 if self.n_intervals_ == 1 else int(interval_of([a0], self.boundaries_)[0])
+        return m, self.estimators_[m].stream_init(context)
 
-    def stream_step(self, x_row, state):
+    def stream_step(self, x_row, state, context=None):
         """One sample: ``(y_hat, state)``, as :meth:`predict` in simulation mode."""
         m, inner = state
-        est = self.estimators_[m]
-        if hasattr(est, "stream_step"):
-            y_hat, inner = est.stream_step(x_row, inner)
-        else:
-            y_hat = est.predict(np.asarray(x_row, float)[None, :])[0]
+        y_hat, inner = self.estimators_[m].stream_step(x_row, inner, context)
         return float(y_hat), (m, inner)

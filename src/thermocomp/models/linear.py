@@ -6,8 +6,10 @@ from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.linear_model import LinearRegression
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from .base import LinearStreamMixin
 
-class MLR(RegressorMixin, BaseEstimator):
+
+class MLR(LinearStreamMixin, RegressorMixin, BaseEstimator):
     r"""Multiple linear regression of the error on the inputs.
 
     .. math:: \hat y(t) = b_0 + \sum_{i=1}^{p} b_i\, x_i(t)
@@ -28,14 +30,15 @@ class MLR(RegressorMixin, BaseEstimator):
     def __init__(self, fit_intercept: bool = True):
         self.fit_intercept = fit_intercept
 
-    def fit(self, X, y, groups=None):
+    def fit(self, X, y, context=None):
         X, y = validate_data(self, X, y, y_numeric=True)
         lr = LinearRegression(fit_intercept=self.fit_intercept).fit(X, y)
         self.coef_ = lr.coef_
         self.intercept_ = lr.intercept_
+        self.context_columns_ = []
         return self
 
-    def predict(self, X, groups=None, y_measured=None):
+    def predict(self, X, context=None):
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
         return X @ self.coef_ + self.intercept_

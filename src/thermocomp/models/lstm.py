@@ -10,8 +10,10 @@ from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 from torch import nn
 
-from ..errors import ConfigError
-from ._dynamics import segment_bounds, window_index
+from ..context import SideInputs, groups_of
+from ..errors import ParameterError
+from ..model_selection import CampaignHoldOut
+from ._dynamics import window_index
 
 
 class _Net(nn.Module):
@@ -42,7 +44,7 @@ class _torch_threads:
         torch.set_num_threads(self.previous)
 
 
-class LSTM(RegressorMixin, BaseEstimator):
+class LSTM(SideInputs, RegressorMixin, BaseEstimator):
     r"""Long short-term memory network on windows of the inputs.
 
     .. math:: \hat y(t) = w^\top h_t + c, \qquad
@@ -129,34 +131,22 @@ class LSTM(RegressorMixin, BaseEstimator):
                     "n_threads": self.n_threads}
         for name, value in positive.items():
             if int(value) < 1:
-                raise ConfigError(f"LSTM {name}={value!r} must be >= 1")
+                raise ParameterError(f"LSTM {name}={value!r} must be >= 1")
         if not 0 <= float(self.validation_fraction) < 1:
-            raise ConfigError(f"LSTM validation_fraction={self.validation_fraction!r} must be in [0, 1)")
+            raise ParameterError(f"LSTM validation_fraction={self.validation_fraction!r} must be in [0, 1)")
 
     def _validation_rows(self, groups, n: int) -> np.ndarray:
         """Boolean mask of validation rows: whole campaigns, or the tail of a single one."""
-        frac = float(self.validation_fraction)
-        val = np.zeros(n, dtype=bool)
-        if frac == 0 or n < 2:
-            return val
-        bounds = segment_bounds(groups, n)
-        if len(bounds) >= 2:
-            rng = np.random.default_rng(self.random_state)
-            n_val = min(len(bounds) - 1, max(1, round(frac * len(bounds))))
-            for i in rng.choice(len(bounds), size=n_val, replace=False):
-                val[slice(*bounds[i])] = True
-        else:
-            n_val = int(round(frac * n))
-            if n_val >= 1 and n - n_val >= 1:
-                val[n - n_val:] = True
-        return val
+        holdout = CampaignHoldOut(self.validation_fraction, random_state=self.random_state)
+        return holdout.test_mask(groups, np.empty((n, 0)))
 
     def _windows(self, X, groups) -> tuple[torch.Tensor, np.ndarray]:
         Xs = (np.asarray(X, dtype=float) - self.x_mean_) / self.x_scale_
         return torch.tensor(Xs, dtype=torch.float64), window_index(groups, len(Xs), int(self.window))
 
-    def fit(self, X, y, groups=None):
+    def fit(self, X, y, context=None):
         self._check_params()
+        groups = groups_of(context)
         X, y = validate_data(self, X, y, y_numeric=True)
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         n = len(y)
@@ -208,6 +198,7 @@ class LSTM(RegressorMixin, BaseEstimator):
                 net.load_state_dict(best_state)
         self.n_epochs_, self.best_epoch_ = epoch, best_epoch
         self.net_ = net.double().eval()
+        self.context_columns_ = []
         return self
 
     def _run(self, windows: torch.Tensor) -> np.ndarray:
@@ -216,19 +207,19 @@ class LSTM(RegressorMixin, BaseEstimator):
                 else torch.zeros(0, dtype=torch.float64)
         return out.numpy() * self.y_scale_ + self.y_mean_
 
-    def predict(self, X, groups=None):
+    def predict(self, X, context=None):
         """Predicted error (the same in simulation and one-step mode)."""
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
-        xs, idx = self._windows(X, groups)
+        xs, idx = self._windows(X, groups_of(context))
         return self._run(xs[torch.as_tensor(idx)])
 
     # -- streaming (deployment) ---------------------------------------------------------
-    def stream_init(self) -> dict:
+    def stream_init(self, context=None) -> dict:
         check_is_fitted(self)
         return {"history": None}
 
-    def stream_step(self, x_row, state: dict) -> tuple[float, dict]:
+    def stream_step(self, x_row, state: dict, context=None) -> tuple[float, dict]:
         """One sample of ``predict``: the window of the last ``window`` samples."""
         x = (np.asarray(x_row, dtype=float).reshape(-1) - self.x_mean_) / self.x_scale_
         history = state["history"]

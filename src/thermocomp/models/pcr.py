@@ -8,8 +8,11 @@ from sklearn.linear_model import LinearRegression
 from sklearn.preprocessing import StandardScaler
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from ..errors import ParameterError
+from .base import LinearStreamMixin
 
-class PCR(RegressorMixin, BaseEstimator):
+
+class PCR(LinearStreamMixin, RegressorMixin, BaseEstimator):
     r"""Principal component regression mapped back onto the sensors.
 
     Inputs are standardised, :math:`x^*_i = (x_i - \bar x_i)/s_i`; principal
@@ -45,10 +48,10 @@ class PCR(RegressorMixin, BaseEstimator):
     def __init__(self, variance: float = 0.95):
         self.variance = variance
 
-    def fit(self, X, y, groups=None):
+    def fit(self, X, y, context=None):
         X, y = validate_data(self, X, y, y_numeric=True)
         if not 0 < self.variance <= 1:
-            raise ValueError(f"variance must be in (0, 1], got {self.variance}")
+            raise ParameterError(f"variance must be in (0, 1], got {self.variance}")
         scaler = StandardScaler().fit(X)
         Xs = scaler.transform(X)
         n_comp = self.variance if self.variance < 1 else min(X.shape)
@@ -60,9 +63,10 @@ class PCR(RegressorMixin, BaseEstimator):
                                 - scaler.mean_ @ self.coef_)
         self.n_components_ = int(pca.n_components_)
         self.explained_variance_ratio_ = pca.explained_variance_ratio_
+        self.context_columns_ = []
         return self
 
-    def predict(self, X, groups=None, y_measured=None):
+    def predict(self, X, context=None):
         check_is_fitted(self)
         X = validate_data(self, X, reset=False)
         return X @ self.coef_ + self.intercept_

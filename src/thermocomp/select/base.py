@@ -8,7 +8,7 @@ from sklearn.base import BaseEstimator
 from sklearn.feature_selection import SelectorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from .criteria import CRITERIA, ic_path
+from ..model_selection.criteria import CRITERIA, ic_path
 
 
 class AllInputs(BaseEstimator):
@@ -82,7 +82,9 @@ class TSPSelector(SelectorMixin, BaseEstimator):
 
     def _candidate_sets(self, A, y, groups):
         order, scores = self._rank(A, y, groups)
-        return [list(order[:k]) for k in self._sizes(A.shape[1], len(y))], scores
+        # a ranking may be short: the greedy search never picks a constant or collinear sensor
+        sizes = [k for k in self._sizes(A.shape[1], len(y)) if k <= len(order)] or [len(order)]
+        return [list(order[:k]) for k in sizes], scores
 
     def _get_support_mask(self):
         check_is_fitted(self)

@@ -69,7 +69,7 @@ class ClusterGreySelector(TSPSelector):
     Parameters
     ----------
     k : int or None, default None
-    criterion : {'aic', 'bic', 'bicc'}, default 'bicc'
+    criterion : {'aic', 'aicc', 'bic', 'bicc'}, default 'bicc'
     k_max : int, default 10
     m : float, default 2.0
         Fuzzy exponent.

@@ -4,41 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..model_selection.greedy import greedy_path, scaled_gram
 from .base import TSPSelector
-
-
-def greedy_residual_path(A: np.ndarray, y: np.ndarray, steps: int) -> tuple[list[int], np.ndarray]:
-    """Greedy order and the residual-variance reduction of every candidate.
-
-    Each step fits ``r ≈ a + b x_n`` for every remaining sensor ``x_n`` on the
-    current residual ``r`` (start: ``r = y``), keeps the one with the lowest
-    mean squared error, subtracts its fit from ``r`` and repeats.  Returns the
-    chosen column indices and, per candidate, the mean squared error it removed
-    at the step it entered (for the others: what it would remove after the
-    last step).  Vectorised: a one-input fit is closed form,
-    ``SSE = Σr_c² - (Σx_c r_c)² / Σx_c²`` on centred data.
-    """
-    n, p = A.shape
-    Ac = A - A.mean(axis=0)
-    sxx = (Ac * Ac).sum(axis=0)
-    r = y - y.mean()
-    remaining = np.ones(p, dtype=bool)
-    order, gain = [], np.zeros(p)
-    for _ in range(min(steps, p)):
-        sxr = Ac.T @ r
-        with np.errstate(invalid="ignore", divide="ignore"):
-            reduction = np.where(sxx > 0, sxr * sxr / sxx, 0.0) / n
-        best = int(np.argmax(np.where(remaining, reduction, -np.inf)))
-        order.append(best)
-        gain[best] = reduction[best]
-        remaining[best] = False
-        if sxx[best] > 0:
-            r = r - (sxr[best] / sxx[best]) * Ac[:, best]
-    if remaining.any():
-        sxr = Ac.T @ r
-        with np.errstate(invalid="ignore", divide="ignore"):
-            gain[remaining] = np.where(sxx > 0, sxr * sxr / sxx, 0.0)[remaining] / n
-    return order, gain
 
 
 class GreedyResidualSelector(TSPSelector):
@@ -54,12 +21,15 @@ class GreedyResidualSelector(TSPSelector):
     with ``k=None``, the size in ``1..k_max`` minimising ``criterion`` (BICc in
     paper 000) for a joint OLS fit on the first sensors of the greedy order.
     The one-input fits are static, so campaign boundaries (``groups``) do not
-    matter; lagged (ARX) variants belong to :mod:`thermocomp.models.arx`.
+    matter; lagged (ARX) variants belong to :mod:`thermocomp.models.arx`.  The
+    search runs on the Gram matrix of the centred data
+    (:func:`~thermocomp.model_selection.greedy_path`, shared with ARX): a sensor
+    constant on the data, or collinear with those already kept, is never picked.
 
     Parameters
     ----------
     k : int or None, default None
-    criterion : {'aic', 'bic', 'bicc'}, default 'bicc'
+    criterion : {'aic', 'aicc', 'bic', 'bicc'}, default 'bicc'
     k_max : int, default 10
 
     Attributes
@@ -80,6 +50,13 @@ class GreedyResidualSelector(TSPSelector):
         self.k_max = k_max
 
     def _rank(self, A, y, groups):
-        steps = max(self._sizes(A.shape[1], len(y)))
-        order, gain = greedy_residual_path(A, y, steps)
-        return np.asarray(order, dtype=int), gain
+        n, p = A.shape
+        steps = max(self._sizes(p, n))
+        data = np.column_stack([A, y])
+        M, scale = scaled_gram(data - data.mean(axis=0))
+        path = greedy_path(M, p, range(p), max_inputs=steps, search="residual")
+        if not path.order:
+            raise ValueError(f"{type(self).__name__} found no usable sensor: every one of the {p} "
+                             f"columns is constant on {n} sample(s)")
+        # the path's gain is the residual sum of squares removed, in units of M: back to MSE
+        return np.asarray(path.order, dtype=int), path.gain * scale[p] ** 2 / n

@@ -28,7 +28,7 @@ class PearsonSelector(TSPSelector):
     ----------
     k : int or None, default 2
         Number of sensors; ``None`` chooses it in ``1..k_max`` by ``criterion``.
-    criterion : {'aic', 'bic', 'bicc'}, default 'bicc'
+    criterion : {'aic', 'aicc', 'bic', 'bicc'}, default 'bicc'
     k_max : int, default 10
 
     Attributes

@@ -10,15 +10,18 @@ planted on demand.  Scenarios (``conf/sim/<name>.yaml``):
 * :class:`~thermocomp.sim.large_mill.LargeMillWeek` -- ``large_mill_week``
 * :class:`~thermocomp.sim.swiss_lathe.SwissLatheDoor` -- ``swiss_lathe_door``
 * :class:`~thermocomp.sim.column.ColumnMovingSource` -- ``column_moving_source``
+* :class:`~thermocomp.sim.long_record.LongRecord` -- ``long_record``
 """
 
 from thermocomp.sim.column import ColumnMovingSource
 from thermocomp.sim.effects import EFFECTS
 from thermocomp.sim.large_mill import LargeMillWeek
+from thermocomp.sim.long_record import LongRecord
 from thermocomp.sim.swiss_lathe import SwissLatheDoor
 from thermocomp.sim.yearround import YearRoundSpindle
 
-SCENARIOS = {cls.name: cls for cls in (YearRoundSpindle, LargeMillWeek, SwissLatheDoor, ColumnMovingSource)}
+SCENARIOS = {cls.name: cls for cls in (YearRoundSpindle, LargeMillWeek, SwissLatheDoor, ColumnMovingSource,
+                                       LongRecord)}
 
-__all__ = ["EFFECTS", "SCENARIOS", "ColumnMovingSource", "LargeMillWeek", "SwissLatheDoor",
+__all__ = ["EFFECTS", "SCENARIOS", "ColumnMovingSource", "LargeMillWeek", "LongRecord", "SwissLatheDoor",
            "YearRoundSpindle"]

@@ -13,16 +13,17 @@ nothing is done twice on the DVC path.
 
 from __future__ import annotations
 
-import hashlib
 import json
 import pickle
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
+from sklearn.frozen import FrozenEstimator
 
 from .. import io
 from ..compensator import Compensator
 from ..evaluation import require_split
+from ..files import folder_digest
 from ..paths import resolve
 from .common import build_compensator, say
 
@@ -37,19 +38,9 @@ def _plain(node) -> object:
     return json.loads(json.dumps(data))
 
 
-def data_digest(folder: Path) -> str:
-    """SHA-256 over the files of an ingested dataset folder (names and bytes)."""
-    h = hashlib.sha256()
-    for f in sorted(p for p in Path(folder).iterdir() if p.is_file()):
-        h.update(f.name.encode())
-        with open(f, "rb") as fh:
-            h.update(hashlib.file_digest(fh, "sha256").digest())
-    return h.hexdigest()
-
-
 def denoise_fingerprint(cfg: DictConfig) -> dict:
     return {"denoise": _plain(cfg.denoise), "inputs": _plain(list(cfg.data.inputs)),
-            "interim": data_digest(resolve(cfg.data.interim))}
+            "interim": folder_digest(resolve(cfg.data.interim))}
 
 
 def selection_fingerprint(cfg: DictConfig) -> dict:
@@ -95,21 +86,20 @@ def fit_from_artifacts(cfg: DictConfig, ds) -> Compensator:
     """Fit the configured compensator on the train split, reusing ``denoise``/``select`` outputs.
 
     ``ds`` is the ingested dataset (``data.interim``).  With a matching
-    ``data.processed`` the already denoised train campaigns and the fitted
-    denoiser are used; with a matching ``selection.json`` the stored inputs.
+    ``data.processed`` the fitted denoiser is used as fitted (frozen); with a
+    matching ``selection.json`` the stored inputs.
     """
     comp = build_compensator(cfg)
     ids = require_split(ds, "train")
-    campaigns, denoised = {c: ds.campaigns[c] for c in ids}, False
     processed = processed_data(cfg)
-    if processed is not None:
-        pds, den = processed
-        campaigns = {c: pds.campaigns[c] for c in ids}
-        comp.denoiser, denoised = den, den is not None
+    den = processed[1] if processed is not None else None
+    if den is not None:
+        comp.set_params(denoiser=FrozenEstimator(den))
     selected = stored_selection(cfg)
     if selected is not None and comp.targets is not None and sorted(selected) != sorted(comp.targets):
         selected = None
+    comp.set_params(selection=selected)
     say(f"fitting {cfg.model.name} on {len(ids)} train campaigns "
-        f"(inputs: {'denoised by the denoise stage' if denoised else 'as ingested'}; "
+        f"(denoiser: {'fitted by the denoise stage' if den is not None else 'as configured'}; "
         f"selection: {'selection.json' if selected is not None else cfg.select.name})")
-    return comp.fit(campaigns, denoised=denoised, selected=selected)
+    return comp.fit({c: ds.campaigns[c] for c in ids})

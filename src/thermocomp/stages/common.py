@@ -1,8 +1,7 @@
-"""Helpers shared by the stages: config checks, model files, JSON, progress, the result table."""
+"""Helpers shared by the stages: config checks, model files, progress, the result table."""
 
 from __future__ import annotations
 
-import json
 import pickle
 import sys
 import time
@@ -14,8 +13,8 @@ from omegaconf import DictConfig, OmegaConf
 from .. import io
 from ..compensator import MODES, Compensator
 from ..errors import ConfigError
+from ..files import atomic_write_bytes
 from ..frame import REFERENCES
-from ..io.contract import atomic_write_text
 from ..paths import resolve
 
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
@@ -93,20 +92,8 @@ def build_denoiser(cfg: DictConfig):
     return denoiser
 
 
-def write_json(path, obj) -> Path:
-    path = resolve(path)
-    atomic_write_text(path, json.dumps(obj, indent=2, allow_nan=False) + "\n")
-    return path
-
-
 def save_model(comp: Compensator, path) -> Path:
-    path = resolve(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.tmp")
-    with open(tmp, "wb") as f:
-        pickle.dump(comp, f)
-    tmp.replace(path)
-    return path
+    return atomic_write_bytes(resolve(path), pickle.dumps(comp))
 
 
 def load_model(path) -> Compensator:

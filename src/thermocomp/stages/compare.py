@@ -9,100 +9,22 @@ and the settings that vary across the sweep.  Printed (Markdown), saved as
 
 from __future__ import annotations
 
-import json
-import tempfile
-from pathlib import Path
-
 import pandas as pd
 from omegaconf import DictConfig
 
-from ..callbacks import SWEEP_FILE
 from ..errors import ConfigError
-from ..io.contract import atomic_write_text
-from ..leaderboard import FIGURES, rank, summary, to_markdown
+from ..files import atomic_write_text, write_json
+from ..jsonsafe import json_safe
+from ..leaderboard import FIGURES, rank, to_markdown
 from ..paths import resolve
-from ..tracking import child_runs, connect, latest_sweep, retry_locked
+from ..sweeps import parent_run_id, sweep_rows
 from ..tracking import client as mlflow_client
-from .common import say, write_json
-
-# Parameters shown as their own column, or never worth showing as a varied setting.
-_NAMED = {"model.name": "model", "select.name": "select", "ati.name": "ati", "denoise.name": "denoise"}
-_HIDDEN = {"out", "model_path", "name"}
-
-
-def parent_run_id(cfg: DictConfig, client) -> str:
-    """The sweep to compare: ``compare.sweep`` (run id or sweep folder), else the latest one."""
-    sweep = cfg.compare.get("sweep")
-    if sweep is None:
-        found = latest_sweep(client, str(cfg.experiment_name))
-        if found is None:
-            raise ConfigError(f"no sweep in MLflow experiment {cfg.experiment_name!r} at "
-                              f"{cfg.tracking_uri}; run `thermocomp run -m ...` first")
-        return found
-    path = resolve(str(sweep))
-    if path.is_dir():
-        path = path / SWEEP_FILE
-    if path.is_file():
-        return json.loads(path.read_text())["parent_run_id"]
-    try:
-        retry_locked(client.get_run, str(sweep))
-    except Exception as exc:
-        raise ConfigError(f"compare.sweep={sweep!r} is neither a sweep folder with {SWEEP_FILE} "
-                          f"nor a run id of {cfg.tracking_uri}") from exc
-    return str(sweep)
-
-
-def run_metrics(run_id: str, uri: str) -> dict | None:
-    """The ``metrics.json`` a run logged, or None."""
-    import mlflow
-
-    with tempfile.TemporaryDirectory() as tmp:
-        try:
-            path = mlflow.artifacts.download_artifacts(run_id=run_id, artifact_path="metrics.json",
-                                                       dst_path=tmp, tracking_uri=uri)
-        except Exception:
-            return None
-        return json.loads(Path(path).read_text())
-
-
-def _varied(params: list[dict]) -> list[str]:
-    """Parameters that differ across the runs, beyond the named config-group choices.
-
-    A key missing from some runs only reflects their group choice (``model=pcr``
-    has no ``max_inputs``), and the keys of a group whose choice varies are
-    summed up by its name column: neither is shown.
-    """
-    groups = {key.split(".")[0] for key in _NAMED if len({p.get(key) for p in params}) > 1}
-    keys = sorted({k for p in params for k in p})
-    return [k for k in keys if k not in _NAMED and k not in _HIDDEN and not k.endswith("._target_")
-            and not k.startswith("hydra") and k.split(".")[0] not in groups
-            and all(k in p for p in params) and len({p[k] for p in params}) > 1]
-
-
-def sweep_rows(client, uri: str, parent_id: str, target: str = "mean") -> list[dict]:
-    """One row per child run of ``parent_id`` (unsorted)."""
-    children = child_runs(client, parent_id)
-    varied = _varied([r.data.params for r in children])
-    rows = []
-    for r in children:
-        p = r.data.params
-        row = {"run_id": r.info.run_id, "status": r.info.status}
-        row.update({col: p.get(key, "none" if col in ("ati", "denoise") else None)
-                    for key, col in _NAMED.items()})
-        row["settings"] = " ".join(f"{k}={p.get(k)}" for k in varied)
-        metrics = run_metrics(r.info.run_id, uri)
-        try:
-            figures = summary(metrics["targets"], target) if metrics else dict.fromkeys(FIGURES)
-        except KeyError as exc:
-            raise ConfigError(f"compare.target: {exc.args[0]}") from None
-        row.update(figures)
-        row["fit_time_s"] = r.data.metrics.get("fit_time_s")
-        rows.append(row)
-    return rows
+from ..tracking import connect, retry_locked
+from .common import say
 
 
 def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str) -> dict:
-    records = json.loads(table.to_json(orient="records"))  # NaN -> null
+    records = json_safe(table.to_dict(orient="records"))
     numeric = [c for c in (*FIGURES, "fit_time_s") if c in table.columns]
     return {"parent_run_id": parent_id, "sort_by": sort_by, "target": target,
             "n_runs": len(records),

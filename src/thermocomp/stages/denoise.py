@@ -10,7 +10,6 @@ fitted denoiser (``denoiser.pkl``) instead of denoising again.  With
 
 from __future__ import annotations
 
-import json
 import pickle
 import shutil
 import time
@@ -21,8 +20,8 @@ from omegaconf import DictConfig
 from .. import io
 from ..denoise import EMDDenoiser, denoise_campaigns, fit_denoiser
 from ..evaluation import require_split
+from ..files import atomic_dir, write_json
 from ..frame import resolve_columns
-from ..io import atomic_dir
 from ..io.contract import MANIFEST
 from ..io.read import INGEST_REPORT
 from ..paths import resolve
@@ -76,7 +75,7 @@ def denoise(cfg: DictConfig) -> dict:
         if fitted is not None:
             with open(tmp / DENOISER_PKL, "wb") as f:
                 pickle.dump(fitted, f)
-        (tmp / DENOISE_JSON).write_text(json.dumps(report, indent=2, allow_nan=False) + "\n")
+        write_json(tmp / DENOISE_JSON, report)
     figures = resolve(cfg.out) / "denoise"
     with atomic_dir(figures) as tmp:
         _figures(ds, train, fitted, inputs, tmp)

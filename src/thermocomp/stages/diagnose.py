@@ -32,10 +32,10 @@ from ..diagnose.features import KINDS
 from ..diagnose.figures import diagnosis_figures
 from ..diagnose.report import markdown, to_html
 from ..errors import ConfigError
-from ..io import atomic_dir
+from ..files import atomic_dir, write_json
 from ..paths import resolve
 from ..tracking import stage_run
-from .common import build_compensator, check_config, data_options, say, write_json
+from .common import build_compensator, check_config, data_options, say
 
 MODEL_NAME = "diagnosed"
 
@@ -174,7 +174,6 @@ def diagnose(cfg: DictConfig) -> dict:
                      rerun=rerun, report=str(folder / reports[t]))
             jsons[t] = j
         with atomic_dir(folder) as tmp:
-            tmp.chmod(0o755)
             figures = diagnosis_figures(result, tmp / "plots") if cfg.plots != "none" else {}
             header = (f"# Written by `thermocomp diagnose` on {ds.name}: {cfg.model.name} + the effects "
                       f"it accepted.\n# Rerun: {rerun}\n")

@@ -13,13 +13,13 @@ from .. import io
 from ..compensator import Compensator
 from ..evaluation import (ambient_by_campaign, anova, ati_report, mutual_prediction_report,
                           require_split, score)
-from ..io import atomic_dir
+from ..files import atomic_dir, write_json
 from ..iso10791 import a3_campaign
 from ..paths import resolve
 from ..tracking import stage_run
 from .artifacts import fit_from_artifacts
 from .common import (Clock, build_compensator, check_config, data_options, load_model,
-                     result_table, save_model, say, write_json)
+                     result_table, save_model, say)
 
 
 def _fit(cfg: DictConfig, ds) -> Compensator:
@@ -69,7 +69,7 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
             _campaign_figures(draw, folder, comp, ds, _train_predictions(comp, ds, ev.mode))
         clock.lap("figures")
         # instantiate once, then copies for the 26 baseline and mutual-prediction models
-        make_base = partial(clone, build_compensator(cfg, ati=False), safe=False)
+        make_base = partial(clone, build_compensator(cfg, ati=False))
         metrics["anova"] = anova(comp, ds, float(ev.get("anova_alpha", 0.001)), predictions)
         clock.lap("anova")
         ati_name = cfg.ati.name if cfg.get("ati") is not None else "none"
@@ -113,7 +113,6 @@ def _plots_folder(out, level: str):
     from ..plots import FigurePool
 
     with atomic_dir(out / "plots") as folder, FigurePool() as pool:
-        folder.chmod(0o755)  # mkdtemp makes it private; a report folder is for reading
         yield pool.submit, folder
 
 

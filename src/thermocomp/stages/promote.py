@@ -18,11 +18,9 @@ Writes ``<out>/promote.json``.
 
 from __future__ import annotations
 
-import hashlib
 import pickle
 import subprocess
 import tempfile
-from pathlib import Path
 
 from omegaconf import DictConfig
 
@@ -30,22 +28,13 @@ from .. import io
 from ..deploy import StreamingCompensator, stream_scores, streaming_deviation
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
+from ..files import folder_digest, write_json
 from ..leaderboard import beats, rank, summary
 from ..paths import project_root, resolve
+from ..sweeps import parent_run_id, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
-from .common import check_config, data_options, say, write_json
-from .compare import parent_run_id, sweep_rows
-
-
-def dataset_hash(path: Path) -> str:
-    """SHA-256 over the relative paths and bytes of every file of a dataset folder."""
-    h = hashlib.sha256()
-    for f in sorted(p for p in Path(path).rglob("*") if p.is_file()):
-        h.update(str(f.relative_to(path)).encode() + b"\0")
-        with open(f, "rb") as fh:
-            h.update(hashlib.file_digest(fh, "sha256").digest())
-    return h.hexdigest()
+from .common import check_config, data_options, say
 
 
 def git_commit() -> tuple[str, bool]:
@@ -187,7 +176,7 @@ def promote(cfg: DictConfig) -> dict:
         why = (f"{criterion} {_fmt(cand_score)} {verb} the champion's {_fmt(champ_score)} "
                f"(version {champion.version}) on the same {len(test_ids)} test campaigns")
     commit, dirty = git_commit()
-    tags = {"dataset_hash": dataset_hash(data_path), "dataset": ds.name, "git_commit": commit,
+    tags = {"dataset_hash": folder_digest(data_path), "dataset": ds.name, "git_commit": commit,
             "git_dirty": dirty, "source_run_id": run_id,
             "model": run_params.get("model.name"), "select": run_params.get("select.name"),
             "criterion": criterion, "criterion_target": str(opts.target),

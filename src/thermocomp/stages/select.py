@@ -12,8 +12,6 @@ selection runs once.  Figure: ``<out>/select/selection.png``.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from hydra.utils import instantiate
 from omegaconf import DictConfig
@@ -23,17 +21,18 @@ from .. import io
 from ..denoise import fit_denoiser
 from ..errors import ConfigError
 from ..evaluation import require_split
+from ..files import atomic_dir, write_json
 from ..frame import resolve_columns, stack
-from ..io import atomic_dir
+from ..jsonsafe import json_safe
 from ..paths import resolve
 from ..select.pearson import abs_correlation
 from ..tracking import stage_run
 from .artifacts import processed_data, selection_fingerprint, selection_path
-from .common import build_denoiser, check_config, say, write_json
+from .common import build_denoiser, check_config, say
 
 
 def _series(s) -> dict:
-    return {str(k): (None if not math.isfinite(float(v)) else float(v)) for k, v in s.items()}
+    return json_safe({str(k): float(v) for k, v in s.items()})
 
 
 def select(cfg: DictConfig) -> dict:
@@ -58,7 +57,7 @@ def select(cfg: DictConfig) -> dict:
     result, scores, names = {}, {}, {}
     for t in targets:
         y = m.Y[t].to_numpy()
-        sel = clone(selector).fit(m.X, y, groups=m.groups)
+        sel = clone(selector).fit(m.X, y)
         entry = {"selected": list(sel.selected_)}
         if hasattr(sel, "scores_"):
             entry["scores"] = _series(sel.scores_)

@@ -8,9 +8,10 @@ from hydra.utils import instantiate
 from omegaconf import DictConfig
 
 from .. import io
+from ..files import write_json
 from ..paths import resolve
 from ..tracking import stage_run
-from .common import say, write_json
+from .common import say
 
 
 def simulate(cfg: DictConfig) -> dict:

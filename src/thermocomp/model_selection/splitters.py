@@ -1,0 +1,231 @@
+"""Campaign splitters: scikit-learn cross-validators over the campaigns of stacked rows.
+
+Rows arrive stacked campaign after campaign and ``groups`` holds the
+campaign of each row (None: one campaign).  Every splitter here works with
+``cross_val_score(est, X, y, groups=campaign_per_row, cv=splitter)`` and, with
+metadata routing enabled, requests ``groups`` by default.
+
+The unit of cross-validation is a campaign.  When there is a single campaign
+(one long record) the campaign splitters use ``n_blocks`` contiguous time
+blocks of it instead (``shared/spec/CLI.md``; :func:`unit_labels`).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from sklearn.model_selection import BaseCrossValidator, TimeSeriesSplit
+from sklearn.utils import indexable
+
+from ..errors import ParameterError
+
+
+def unit_labels(groups, n_blocks: int) -> np.ndarray:
+    """CV unit of each row: its campaign, or ``<campaign>#<k>`` blocks for a single campaign.
+
+    Parameters
+    ----------
+    groups : array-like of shape (n_samples,)
+        Campaign of each row.
+    n_blocks : int
+        Number of contiguous, near-equal time blocks a single campaign is cut into.
+
+    Returns
+    -------
+    ndarray of object, shape (n_samples,)
+    """
+    campaigns = np.asarray(groups, dtype=object)
+    ids = list(dict.fromkeys(campaigns))
+    if len(ids) > 1:
+        return campaigns
+    n = len(campaigns)
+    block = np.minimum((np.arange(n) * n_blocks) // max(n, 1), n_blocks - 1)
+    return np.array([f"{ids[0]}#{k + 1}" for k in block], dtype=object)
+
+
+def _index_of(labels) -> tuple[np.ndarray, int]:
+    """Position of each row's label in the order of first appearance, and the number of labels."""
+    names = list(dict.fromkeys(labels))
+    pos = {u: i for i, u in enumerate(names)}
+    return np.array([pos[u] for u in labels], dtype=int), len(names)
+
+
+def _campaigns(X, groups) -> np.ndarray:
+    """``groups`` as an array, or one campaign for all rows of ``X`` when it is None."""
+    if groups is not None:
+        return np.asarray(groups, dtype=object)
+    if X is None:
+        raise ValueError("pass groups (the campaign of each row) or X")
+    return np.zeros(len(X), dtype=object)
+
+
+class _CampaignSplitter(BaseCrossValidator):
+    """Common part: units of CV (campaigns or blocks) and the ``groups`` request."""
+
+    # request ``groups`` under metadata routing, as scikit-learn's group splitters do
+    __metadata_request__split = {"groups": True}
+
+    def _units(self, X, groups) -> tuple[np.ndarray, int]:
+        if int(self.n_blocks) < 2:
+            raise ParameterError(f"n_blocks={self.n_blocks!r} must be >= 2")
+        return _index_of(unit_labels(_campaigns(X, groups), int(self.n_blocks)))
+
+    def _n_folds(self, n_units: int) -> int:
+        raise NotImplementedError
+
+    def fold_index(self, groups, X=None) -> np.ndarray:
+        """Fold of each row: unit ``i`` (in order of appearance) -> fold ``i mod K``."""
+        unit, n_units = self._units(X, groups)
+        return unit % self._n_folds(n_units)
+
+    def _iter_test_masks(self, X=None, y=None, groups=None):
+        fold = self.fold_index(groups, X)
+        if len(fold) and int(fold.max()) < 1:
+            raise ValueError("campaign cross-validation needs at least 2 units (campaigns or blocks)")
+        for k in range(int(fold.max()) + 1 if len(fold) else 0):
+            yield fold == k
+
+    def get_n_splits(self, X=None, y=None, groups=None):
+        """Number of folds ``K`` for these ``groups`` (or the rows of ``X``: one campaign)."""
+        return self._n_folds(self._units(X, groups)[1])
+
+
+class LeaveCampaignsOut(_CampaignSplitter):
+    """K-fold over whole campaigns, in turn: unit ``i`` -> fold ``i mod K``.
+
+    With campaigns in calendar order every fold spans the seasons.
+    ``K = max(2, min(n_folds, n_units))``; a single campaign is cut into
+    ``n_blocks`` contiguous time blocks, the units then.
+
+    Parameters
+    ----------
+    n_folds : int, default 10
+    n_blocks : int, default 8
+    """
+
+    def __init__(self, n_folds: int = 10, n_blocks: int = 8):
+        self.n_folds = n_folds
+        self.n_blocks = n_blocks
+
+    def _n_folds(self, n_units: int) -> int:
+        if int(self.n_folds) < 1:
+            raise ParameterError(f"n_folds={self.n_folds!r} must be >= 1")
+        return max(2, min(int(self.n_folds), n_units))
+
+
+class LeaveOneCampaignOut(_CampaignSplitter):
+    """Every campaign held out once (in order of appearance); blocks of a single campaign.
+
+    Parameters
+    ----------
+    n_blocks : int, default 8
+    """
+
+    def __init__(self, n_blocks: int = 8):
+        self.n_blocks = n_blocks
+
+    def _n_folds(self, n_units: int) -> int:
+        return n_units
+
+
+class TrainOnEachCampaign(BaseCrossValidator):
+    """Train on one campaign, test on every campaign (itself included): one split per campaign.
+
+    The splits of the mutual-prediction matrix (paper 003, Sect. 3.4): split
+    ``i`` trains on campaign ``i`` (in order of appearance) and its test part
+    is all rows, so entry ``(i, j)`` is read off the test rows of campaign
+    ``j``.  Train and test overlap by design (the diagonal is the self-fit).
+    The matrix is indexed by campaigns, so a single campaign is not cut into
+    blocks: it gives one split, its self-fit.
+    """
+
+    __metadata_request__split = {"groups": True}
+
+    def split(self, X, y=None, groups=None):
+        """Yield ``(rows of campaign i, all rows)`` for each campaign ``i``."""
+        X, y, groups = indexable(X, y, groups)
+        unit, n_units = _index_of(_campaigns(X, groups))
+        everything = np.arange(len(unit))
+        for i in range(n_units):
+            yield np.flatnonzero(unit == i), everything
+
+    def get_n_splits(self, X=None, y=None, groups=None):
+        """Number of campaigns."""
+        return len(dict.fromkeys(_campaigns(X, groups)))
+
+
+class CampaignHoldOut(BaseCrossValidator):
+    """One split: a share of whole campaigns held out, or the tail of a single campaign.
+
+    With two campaigns or more, ``round(validation_fraction * n_campaigns)``
+    of them (at least 1, at most all but one), drawn with
+    ``numpy.random.default_rng(random_state)``, are the test part.  With a
+    single campaign the test part is its last ``round(validation_fraction *
+    n_samples)`` rows (when that leaves both parts non-empty).  Otherwise --
+    ``validation_fraction=0`` or fewer than 2 rows -- the test part is empty.
+    This is the validation data of early stopping (:class:`~thermocomp.models.LSTM`).
+
+    Parameters
+    ----------
+    validation_fraction : float in [0, 1), default 0.2
+    random_state : int or None, default 0
+    """
+
+    __metadata_request__split = {"groups": True}
+
+    def __init__(self, validation_fraction: float = 0.2, random_state=0):
+        self.validation_fraction = validation_fraction
+        self.random_state = random_state
+
+    def test_mask(self, groups, X=None) -> np.ndarray:
+        """Boolean mask of the held-out rows."""
+        frac = float(self.validation_fraction)
+        if not 0 <= frac < 1:
+            raise ParameterError(f"validation_fraction={self.validation_fraction!r} must be in [0, 1)")
+        unit, n_units = _index_of(_campaigns(X, groups))
+        n = len(unit)
+        held = np.zeros(n, dtype=bool)
+        if frac == 0 or n < 2:
+            return held
+        if n_units >= 2:
+            rng = np.random.default_rng(self.random_state)
+            n_val = min(n_units - 1, max(1, round(frac * n_units)))
+            held[np.isin(unit, rng.choice(n_units, size=n_val, replace=False))] = True
+        else:
+            n_val = int(round(frac * n))
+            if n_val >= 1 and n - n_val >= 1:
+                held[n - n_val:] = True
+        return held
+
+    def _iter_test_masks(self, X=None, y=None, groups=None):
+        yield self.test_mask(groups, X)
+
+    def get_n_splits(self, X=None, y=None, groups=None):
+        return 1
+
+
+class ForwardChaining(TimeSeriesSplit):
+    """Expanding-window splits over one time-ordered record, ``gap`` samples between parts.
+
+    Split ``i`` trains on the first rows and tests on the next block, after
+    leaving out ``gap`` samples so that the test part does not start where the
+    train part's slow thermal state still lingers.  scikit-learn's
+    :class:`~sklearn.model_selection.TimeSeriesSplit`; rows must be in time
+    order (``groups`` is ignored).
+
+    Parameters
+    ----------
+    n_splits : int, default 5
+    gap : int, default 0
+        Samples dropped between the end of each train part and its test part.
+    test_size : int or None, default None
+        Rows per test part (default ``n_samples // (n_splits + 1)``).
+    """
+
+    def __init__(self, n_splits: int = 5, gap: int = 0, test_size: int | None = None):
+        super().__init__(n_splits=n_splits, gap=gap, test_size=test_size)
+
+    def split(self, X, y=None, groups=None):
+        """Yield ``(train, test)`` row indices, train strictly before test."""
+        if int(self.gap) < 0:
+            raise ParameterError(f"gap={self.gap!r} must be >= 0 samples")
+        yield from super().split(X, y, groups)

@@ -1,0 +1,113 @@
+"""Any configuration `run` accepts can be deployed: `replay` streams it row by row as it predicts."""
+
+from __future__ import annotations
+
+import json
+import pickle
+from functools import lru_cache
+
+import pytest
+from hydra import compose, initialize_config_dir
+
+from conftest import thermocomp
+from thermocomp import io
+from thermocomp.deploy import StreamingCompensator
+from thermocomp.deploy.replay import replay
+from thermocomp.paths import conf_dir
+from thermocomp.stages.common import build_compensator
+
+MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm")
+ATIS = ("none", "cmeans")
+DENOISERS = ("none", "emd")
+SELECTORS = ("all", "pearson", "greedy_residual", "cluster_grey")
+SMALL = {  # keep every fit small: the point is the plumbing, not the accuracy
+    "lstm": ["model.estimator.max_epochs=2", "model.estimator.hidden_size=4", "model.estimator.window=4"],
+    "arx_rf": ["model.estimator.forest.n_estimators=5"],
+}
+TOLERANCE_UM = 1e-6
+
+
+@pytest.fixture(scope="module")
+def door_data(tmp_path_factory):
+    """9 short year-round campaigns (6 train, 3 test) with an undeclared door signal S_door."""
+    path = tmp_path_factory.mktemp("replay") / "door"
+    thermocomp("simulate", f"data.path={path}", "track=false", "sim.generator.n_campaigns=9",
+               "sim.generator.duration_h=[2.0,3.0]", "sim.generator.effects=[door]")
+    return path
+
+
+@lru_cache(maxsize=2)
+def _dataset(path: str):
+    ds, _ = io.read_dataset(path)
+    return ds
+
+
+def _compose(*overrides):
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        return compose(config_name="config", overrides=list(overrides))
+
+
+@pytest.mark.parametrize("select", SELECTORS)
+@pytest.mark.parametrize("denoise", DENOISERS)
+@pytest.mark.parametrize("ati", ATIS)
+@pytest.mark.parametrize("model", MODELS)
+def test_every_configuration_streams_exactly_as_it_predicts(door_data, model, ati, denoise, select):
+    cfg = _compose(f"model={model}", f"ati={ati}", f"denoise={denoise}", f"select={select}",
+                   *SMALL.get(model, []))
+    ds = _dataset(str(door_data))
+    comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in ds.ids("train")})
+    streaming = StreamingCompensator.from_training(comp, {c: ds.campaigns[c] for c in ds.ids("train")})
+    if model == "arx_rf":   # the door reaches the forest through the context, in every wrapper
+        assert "S_door" in streaming.columns_ and streaming.time_required_
+    if ati == "cmeans" and any(e.n_intervals_ > 1 for e in comp.estimators_.values()):
+        assert "T_amb" in streaming.columns_
+    result = replay(streaming, {c: ds.campaigns[c] for c in ds.ids("test")})
+    for target, r in result.items():
+        assert r["n_samples"] == sum(len(ds.campaigns[c]) for c in ds.ids("test"))
+        assert r["max_abs_stream_minus_batch"] <= TOLERANCE_UM, (target, r)
+        assert r["rmse"] == pytest.approx(r["rmse_batch"], abs=TOLERANCE_UM)   # envelope never hit here
+    # the deployed object survives pickling (what promote registers) and streams the same
+    again = pickle.loads(pickle.dumps(streaming))
+    assert replay(again, {c: ds.campaigns[c] for c in ds.ids("test")[:1]}).keys() == result.keys()
+
+
+@pytest.mark.slow
+def test_replay_command_fits_or_loads_and_writes_replay_json(door_data, tmp_path):
+    common = [f"data.path={door_data}", "track=false"]
+    thermocomp("replay", *common, f"out={tmp_path / 'fit'}", "model=arx_rf", "ati=cmeans",
+               "model.estimator.forest.n_estimators=5")
+    report = json.loads((tmp_path / "fit" / "replay.json").read_text())
+    assert report["source"] == "fitted" and report["model"] == "arx_rf"
+    assert set(report) >= {"model", "source", "targets", "excluded_inputs", "events"}
+    for r in report["targets"].values():
+        assert set(r) >= {"n_samples", "max_abs_stream_minus_batch", "rmse", "us_per_sample"}
+        assert r["max_abs_stream_minus_batch"] <= TOLERANCE_UM and r["us_per_sample"] > 0
+    # a model written by `run` is loaded, not refitted: same streamed figures
+    thermocomp("run", *common, f"out={tmp_path / 'run'}", "model=arx", "eval.mutual_prediction=false",
+               "eval.ati_baselines=false", "plots=none")
+    thermocomp("replay", *common, f"out={tmp_path / 'load'}", f"replay.model={tmp_path / 'run' / 'model.pkl'}")
+    thermocomp("replay", *common, f"out={tmp_path / 'refit'}", "model=arx")
+    loaded = json.loads((tmp_path / "load" / "replay.json").read_text())
+    refit = json.loads((tmp_path / "refit" / "replay.json").read_text())
+    assert loaded["source"].endswith("model.pkl")
+    for t, r in loaded["targets"].items():
+        assert r["rmse"] == pytest.approx(refit["targets"][t]["rmse"], rel=1e-12)
+    bad = thermocomp("replay", *common, f"out={tmp_path / 'bad'}",
+                     f"replay.model={tmp_path / 'nothing.pkl'}", check=False)
+    assert bad.returncode == 2 and not (tmp_path / "bad" / "replay.json").exists()
+
+
+@pytest.mark.slow
+def test_diagnosed_ati_model_replays(door_data, tmp_path):
+    """The model diagnose builds around an ATI model (augmented ∘ ATI) starts a stream and streams
+    exactly as it predicts."""
+    out = tmp_path / "diag"
+    thermocomp("diagnose", f"data.path={door_data}", f"out={out}", "track=false", "ati=cmeans",
+               "diagnose.max_effects=2")
+    thermocomp("replay", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]",
+               "experiment=diagnosed", f"data.path={door_data}", f"out={tmp_path / 'replay'}",
+               "track=false")
+    report = json.loads((tmp_path / "replay" / "replay.json").read_text())
+    assert report["model"] == "diagnosed" and report["source"] == "fitted"
+    for r in report["targets"].values():
+        assert r["max_abs_stream_minus_batch"] <= TOLERANCE_UM
