@@ -328,10 +328,17 @@ class FigurePool:
     ``submit(plot, *args, **kwargs)`` queues ``plot(*args, **kwargs)``, a
     drawing function of this module (it returns the saved path); leaving the
     ``with`` block waits for every figure and re-raises the first error.
-    Drawing is Python-bound (layout, ticks) and matplotlib is not thread-safe,
-    hence processes; ``fork`` makes a worker cost a few ms instead of a fresh
-    interpreter importing matplotlib.  With one CPU, ``workers=0`` or without
-    ``fork`` (Windows, macOS default) figures are drawn at submit time.
+    Drawing is Python-bound (layout, ticks) and matplotlib is not thread-safe
+    (a thread pool was slower and crashed in mathtext), hence processes;
+    ``fork`` makes a worker cost a few ms instead of a fresh interpreter
+    importing matplotlib.
+
+    Parameters
+    ----------
+    workers : int, optional
+        Worker processes; default one per CPU this process may use.  ``0``
+        (the default on one CPU), or no ``fork`` (Windows, macOS default):
+        figures are drawn in this process at submit time.
 
     Attributes
     ----------
@@ -340,10 +347,11 @@ class FigurePool:
     """
 
     def __init__(self, workers: int | None = None):
-        workers = _cpus() if workers is None else workers
+        if workers is None:
+            workers = _cpus() if _cpus() > 1 else 0
         fork = "fork" in multiprocessing.get_all_start_methods()
         self._pool = (ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
-                      if workers > 1 and fork else None)
+                      if workers > 0 and fork else None)
         self._pending: list = []
         self.paths: list[Path] = []
 
