@@ -1,6 +1,8 @@
 """End to end through the real console command: simulate -> run -> metrics.json."""
 
 import json
+import subprocess
+import sys
 
 import numpy as np
 import pandas as pd
@@ -44,7 +46,10 @@ def test_simulate_then_run_writes_valid_metrics(default_dataset, tmp_path):
     # issue 2 acceptance: MLR on the default data removes > 60 % of the test RMS
     for t, tm in m["targets"].items():
         assert tm["test"]["rms_after"] < 0.4 * tm["test"]["rms_before"], t
-    assert (out / "plots" / f"residual_{test_ids[0]}_E_Z.png").stat().st_size > 10_000
+    # plots=summary (default): what a user looks at first, per target
+    assert {p.name for p in (out / "plots").iterdir()} == {
+        f"{name}_{t}.png" for name in ("e_p95", "rsd") for t in ("E_X", "E_Y", "E_Z")}
+    assert (out / "plots" / "e_p95_E_Z.png").stat().st_size > 10_000
 
     import mlflow
     mlflow.set_tracking_uri(f"sqlite:///{db}")
@@ -53,6 +58,26 @@ def test_simulate_then_run_writes_valid_metrics(default_dataset, tmp_path):
     assert runs["metrics.targets.E_Z.test.rmse"].iloc[0] == pytest.approx(
         m["targets"]["E_Z"]["test"]["rmse"])
     assert (db.parent / "thermocomp").is_dir()  # artifacts under mlruns/
+
+
+def _modules_after(*argv: str) -> set[str]:
+    """Top-level modules (and thermocomp subpackages) loaded by ``thermocomp <argv>``, in a
+    fresh interpreter."""
+    code = ("import sys\nfrom thermocomp.cli import main\n"
+            f"assert main({list(argv)!r}) == 0\n"
+            "print(' '.join(sorted({'.'.join(m.split('.')[:2]) for m in sys.modules})))")
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    return set(proc.stdout.split())
+
+
+def test_each_command_imports_only_what_it_needs(default_dataset, tmp_path):
+    """Stages are imported on use: ``--help`` loads no stage nor pandas; ``run track=false``
+    neither MLflow nor torch nor another stage, and with ``plots=none`` no matplotlib."""
+    assert not {"pandas", "thermocomp.stages"} & _modules_after("--help")
+    loaded = _modules_after("run", f"data.path={default_dataset}", f"out={tmp_path}",
+                            "track=false", "plots=none", "eval.mutual_prediction=false")
+    assert "thermocomp.stages" in loaded and "sklearn" in loaded  # it did run
+    assert not {"mlflow", "torch", "matplotlib", "thermocomp.diagnose", "thermocomp.deploy"} & loaded
 
 
 def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
@@ -87,6 +112,7 @@ def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
     (["run", "model=nope"], "nope"),
     (["run", "data.path=/nonexistent/dataset"], "campaigns.csv"),
     (["run", "eval.mode=sideways"], "eval.mode"),
+    (["run", "plots=some"], "plots"),
     (["frobnicate"], "frobnicate"),
 ])
 def test_bad_config_exits_2_with_one_line(args, needle, capsys, tmp_path):

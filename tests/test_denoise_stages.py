@@ -14,7 +14,7 @@ from conftest import thermocomp
 
 pytestmark = pytest.mark.slow
 
-FAST = ["track=false", "eval.plots=false", "eval.mutual_prediction=false",
+FAST = ["track=false", "plots=none", "eval.mutual_prediction=false",
         "eval.ati_baselines=false"]
 
 

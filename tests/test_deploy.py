@@ -121,7 +121,7 @@ def write_small_dataset(path, seed=0, k=6, n_test=2, **kw):
 
 
 # The figures the sweep/promote tests need, without the report extras (keeps the jobs short).
-LIGHT_EVAL = ("eval.plots=false", "eval.mutual_prediction=false", "eval.ati_baselines=false",
+LIGHT_EVAL = ("plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
               "eval.iso10791_a3=false")
 _TEMPLATE: dict[str, Path] = {}
 

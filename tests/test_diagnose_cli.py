@@ -10,7 +10,7 @@ from conftest import thermocomp
 
 pytestmark = pytest.mark.slow
 
-QUIET_EVAL = ["eval.plots=false", "eval.mutual_prediction=false", "eval.ati_baselines=false",
+QUIET_EVAL = ["plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
               "eval.iso10791_a3=false"]
 
 

@@ -19,9 +19,12 @@ CAMPAIGN_KEYS = {"rmse", "rsd", "p2p_before", "p2p_after",  # CLI.md
                  "rms_before", "rms_after", "rms_reduction_pct", "p2p_reduction_pct"}
 
 
-def check_report(m: dict, plots: Path, ati: bool) -> None:
-    """Every key of issue 5 in ``metrics.json`` and every figure under ``plots``."""
+def check_report(m: dict, plots: Path, ati: bool, level: str = "summary",
+                 train: tuple = ()) -> None:
+    """Every key of issue 5 in ``metrics.json``, and under ``plots`` exactly the figures that
+    ``plots=level`` asks for (``train``: the train campaigns, whose residuals ``all`` draws)."""
     targets = list(m["targets"])
+    expected = set()
     assert targets and {"model", "mode", "targets", "anova", "ati", "mutual_prediction"} <= set(m)
     for t in targets:
         te = m["targets"][t]["test"]
@@ -56,16 +59,22 @@ def check_report(m: dict, plots: Path, ati: bool) -> None:
         assert {"sm_vs_coldest", "sd_vs_coldest", "sm_vs_warmest", "sd_vs_warmest"} <= set(
             at["improvement_pct"])
         assert at["test"]["model"]["rsd_mean"] == pytest.approx(te["rsd_mean"])
-        names = ["e_p95", "rsd", "mutual_prediction"] + (["ati_intervals", "ati_elbow"] if ati else [])
+        names = ["e_p95", "rsd"] + (["ati_intervals", "ati_elbow"] if ati else [])
+        names += ["mutual_prediction"] if level in ("test", "all") else []
         for name in names:
             assert (plots / f"{name}_{t}.png").stat().st_size > 10_000, name
-        for cid in te["per_campaign"]:
-            assert (plots / f"residual_{cid}_{t}.png").is_file()
+        expected |= {f"{name}_{t}.png" for name in names}
+        if level in ("test", "all"):
+            expected |= {f"residual_{cid}_{t}.png" for cid in te["per_campaign"]}
+        if level == "all":
+            expected |= {f"residual_{cid}_{t}.png" for cid in train}
         if ati:
             assert at["n_intervals"] == len(at["intervals"]) == len(at["boundaries_c"]) + 1
             assert at["elbow"]["chosen"] == at["n_intervals"]
             assert "single_model" in at["test"]
     assert m["ati"]["ati_model"] is ati
+    assert {p.name for p in plots.iterdir()} == expected  # nothing else, no temp file left
+    assert all(p.stat().st_mode & 0o777 == 0o644 for p in plots.iterdir())
 
 
 @pytest.fixture(scope="module")
@@ -79,8 +88,8 @@ def small_year():
     return ds
 
 
-@pytest.mark.parametrize("ati", ["none", "cmeans"])
-def test_report_has_every_key_and_figure(small_year, tmp_path, ati, capsys):
+@pytest.mark.parametrize("ati, level", [("none", "all"), ("cmeans", "test")])
+def test_report_has_every_key_and_figure(small_year, tmp_path, ati, level, capsys):
     from thermocomp.cli import _compose
     from thermocomp.stages.common import build_compensator
     from thermocomp.stages.modelling import _report
@@ -88,15 +97,36 @@ def test_report_has_every_key_and_figure(small_year, tmp_path, ati, capsys):
 
     # one target with ATI keeps the test fast; the layout does not depend on the target
     extra = ["data.targets=[E_Z]"] if ati == "cmeans" else []
-    cfg = _compose([f"out={tmp_path / 'out'}", f"ati={ati}", "track=false", *extra])
+    cfg = _compose([f"out={tmp_path / 'out'}", f"ati={ati}", "track=false", f"plots={level}", *extra])
     ds = small_year
     comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in ds.ids("train")})
     metrics = _report(cfg, comp, ds, _Null())
     on_disk = json.loads((tmp_path / "out" / "metrics.json").read_text())  # strict JSON
     assert on_disk["targets"].keys() == metrics["targets"].keys()
-    check_report(on_disk, tmp_path / "out" / "plots", ati=(ati == "cmeans"))
+    check_report(on_disk, tmp_path / "out" / "plots", ati=(ati == "cmeans"), level=level,
+                 train=tuple(ds.ids("train")))
     assert on_disk["ati"]["name"] == ati
     assert "RMS before" in capsys.readouterr().out
+
+
+def test_plots_none_writes_no_figure_and_the_same_numbers(small_year, tmp_path):
+    """``plots=none``: no plots folder at all; metrics.json as with the default figures."""
+    from thermocomp.cli import _compose
+    from thermocomp.stages.common import build_compensator
+    from thermocomp.stages.modelling import _report
+    from thermocomp.tracking import _Null
+
+    ds = small_year
+    light = ["track=false", "data.targets=[E_Z]", "eval.mutual_prediction=false"]
+    reports = {}
+    for level in ("none", "summary"):
+        cfg = _compose([f"out={tmp_path / level}", f"plots={level}", *light])
+        comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in ds.ids("train")})
+        reports[level] = _report(cfg, comp, ds, _Null())
+    assert not (tmp_path / "none" / "plots").exists()
+    assert {p.name for p in (tmp_path / "summary" / "plots").iterdir()} == {"e_p95_E_Z.png",
+                                                                           "rsd_E_Z.png"}
+    assert reports["none"] == reports["summary"]
 
 
 @pytest.mark.slow
@@ -126,7 +156,8 @@ def test_cli_evaluate_then_dvc_plots_show(tmp_path):
     mlflow.set_tracking_uri(f"sqlite:///{proj / 'mlruns' / 'mlflow.db'}")
     run = mlflow.search_runs(experiment_names=["thermocomp"]).iloc[0]
     logged = {a.path for a in mlflow.MlflowClient().list_artifacts(run.run_id, "plots")}
-    assert {"plots/e_p95_E_Z.png", "plots/ati_elbow_E_Z.png", "plots/mutual_prediction_E_Z.png"} <= logged
+    assert logged == {f"plots/{p.name}" for p in (report / "plots").iterdir()}
+    assert {"plots/e_p95_E_Z.png", "plots/rsd_E_Z.png", "plots/ati_elbow_E_Z.png"} <= logged
     assert run["metrics.ati.E_Z.test.model.rsd_mean"] == pytest.approx(
         m["ati"]["targets"]["E_Z"]["test"]["model"]["rsd_mean"])
 

@@ -69,7 +69,7 @@ def test_paper_settings_reach_the_estimators():
 def test_arx_runs_in_both_modes_through_the_cli(default_dataset, tmp_path, mode):
     out = tmp_path / mode
     thermocomp("run", "model=arx", f"eval.mode={mode}", f"data.path={default_dataset}", f"out={out}",
-               "track=false", "eval.plots=false", "eval.mutual_prediction=false",
+               "track=false", "plots=none", "eval.mutual_prediction=false",
                "eval.ati_baselines=false")
     m = json.loads((out / "metrics.json").read_text())
     assert m["model"] == "arx" and m["mode"] == mode
@@ -82,16 +82,16 @@ def test_arx_runs_in_both_modes_through_the_cli(default_dataset, tmp_path, mode)
 def test_lstm_experiment_and_arx_rf_without_door_run_on_the_default_data(default_dataset, tmp_path):
     thermocomp("run", "experiment=lstm_yearround", "model.estimator.max_epochs=5",
                f"data.path={default_dataset}", f"out={tmp_path / 'lstm'}", "track=false",
-               "eval.plots=false")
+               "plots=none")
     assert json.loads((tmp_path / "lstm" / "metrics.json").read_text())["model"] == "lstm"
     # the default data have no door: a named state column that is missing is a clean exit 2 ...
     proc = thermocomp("run", "model=arx_rf", f"data.path={default_dataset}", f"out={tmp_path / 'rf'}",
-                      "track=false", "eval.plots=false", "eval.mutual_prediction=false", check=False)
+                      "track=false", "plots=none", "eval.mutual_prediction=false", check=False)
     assert proc.returncode == 2 and "S_door" in proc.stderr
     # ... and another state signal can stand in (spindle on/off)
     thermocomp("run", "model=arx_rf", "model.estimator.state_column=S_spindle_rpm",
                f"data.path={default_dataset}", f"out={tmp_path / 'rf'}", "track=false",
-               "eval.plots=false", "eval.mutual_prediction=false")
+               "plots=none", "eval.mutual_prediction=false")
     assert json.loads((tmp_path / "rf" / "metrics.json").read_text())["model"] == "arx_rf"
 
 

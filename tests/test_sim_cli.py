@@ -32,7 +32,7 @@ def test_simulate_with_effects_then_run(scenario, tmp_path):
     assert header.startswith("campaign,file,split")
     out = tmp_path / "out"
     thermocomp("run", f"data.path={path}", f"out={out}", f"model_path={out / 'model.pkl'}", "track=false",
-               "eval.plots=false")
+               "plots=none")
     metrics = json.loads((out / "metrics.json").read_text())
     assert set(metrics["targets"]) >= {"E_X", "E_Y"}
 

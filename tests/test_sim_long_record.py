@@ -206,7 +206,7 @@ def test_simulate_and_run_through_the_cli(tmp_path):
     assert truth["scenario"] == "long_record" and truth["split"]["test"] == "R1b"
     out = tmp_path / "out"
     thermocomp("run", "sim=long_record", f"data.path={path}", f"out={out}", f"model_path={out / 'model.pkl'}",
-               "track=false", "eval.plots=false")
+               "track=false", "plots=none")
     metrics = json.loads((out / "metrics.json").read_text())["targets"]["E_Z"]["test"]
     assert list(metrics["per_campaign"]) == ["R1b"]
     measured = pd.read_csv(path / "R1b.csv")["E_Z"]

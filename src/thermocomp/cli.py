@@ -80,9 +80,9 @@ def _hydra_main(stage: str, args: list[str]) -> None:
     import hydra
 
     from .paths import conf_dir
-    from .stages import STAGES
+    from .stages import stage as lookup
 
-    fn = STAGES[stage]
+    fn = lookup(stage)
 
     @hydra.main(config_path=str(conf_dir()), config_name="config", version_base="1.3")
     def task(cfg):
@@ -98,7 +98,7 @@ def main(argv: list[str] | None = None) -> int:
         print(USAGE)
         return 0 if argv else 2
     stage, args = argv[0], argv[1:]
-    from .stages import STAGES
+    from .stages import STAGES, stage as lookup
 
     if stage not in STAGES:
         print(f"thermocomp: error: unknown or not yet available stage {stage!r} "
@@ -109,7 +109,7 @@ def main(argv: list[str] | None = None) -> int:
             _hydra_main(stage, args)
         else:
             cfg = _guarded(_compose, args)
-            _guarded(STAGES[stage], cfg)
+            _guarded(lookup(stage), cfg)
     except SystemExit as exc:
         return exc.code if isinstance(exc.code, int) else 1
     except KeyboardInterrupt:

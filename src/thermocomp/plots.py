@@ -1,14 +1,45 @@
-"""Figures (matplotlib, Agg backend, PNG)."""
+"""Figures (matplotlib, Agg backend, PNG), saved atomically by :func:`save_figure`.
+
+Every figure of the pipeline is drawn here (the diagnosis' own in
+:mod:`thermocomp.diagnose.figures`, saved the same way); :class:`FigurePool`
+draws them in worker processes while the caller goes on computing.
+"""
 
 from __future__ import annotations
 
+import io
+import multiprocessing
+import os
+from concurrent.futures import ProcessPoolExecutor
+from functools import cache
 from pathlib import Path
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+from .files import atomic_write_bytes
+
+DPI = 110
+
+
+@cache
+def _pyplot():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot
+
+    return matplotlib.pyplot
+
+
+class _Pyplot:
+    """``matplotlib.pyplot`` on the Agg backend, imported on first use: a run whose figures
+    are drawn by :class:`FigurePool` workers never pays that import (0.3 s) itself."""
+
+    def __getattr__(self, name):
+        return getattr(_pyplot(), name)
+
+
+plt = _Pyplot()
 
 
 def residual_plot(time_s, measured, predicted, target: str, campaign: str, path) -> Path:
@@ -29,7 +60,7 @@ def residual_plot(time_s, measured, predicted, target: str, campaign: str, path)
     axr.set_xlabel("time since campaign start (h)")
     axr.grid(alpha=0.3)
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 BEFORE, AFTER = "#c0392b", "#1f5fa8"  # measured error / residual, in every figure
@@ -58,7 +89,7 @@ def e_p95_plot(window_s, before, after, target: str, statistic: str, path,
     ax.set_ylim(bottom=0)
     ax.legend(loc="upper left", fontsize=8)
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def rsd_plot(per_campaign: dict, target: str, path, ambient: dict | None = None,
@@ -99,7 +130,7 @@ def rsd_plot(per_campaign: dict, target: str, path, ambient: dict | None = None,
     else:
         ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def mutual_prediction_plot(campaigns, rsd_matrix, target: str, path, ambient=None) -> Path:
@@ -122,7 +153,7 @@ def mutual_prediction_plot(campaigns, rsd_matrix, target: str, path, ambient=Non
     ax.set_title(f"{target}: mutual prediction, Rsd (µm)")
     fig.colorbar(im, ax=ax, shrink=0.8, label=f"{target} Rsd (µm)")
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def ati_intervals_plot(campaign_ambient: dict, boundaries, target: str, path,
@@ -166,7 +197,7 @@ def ati_intervals_plot(campaign_ambient: dict, boundaries, target: str, path,
     ax.set_title(f"{target}: ambient temperature intervals (one model each)")
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def elbow_plot(elbow: dict, target: str, path) -> Path:
@@ -195,7 +226,7 @@ def elbow_plot(elbow: dict, target: str, path) -> Path:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def iso_a3_plot(start_s, range_before, range_after, target: str, campaign: str, path) -> Path:
@@ -211,7 +242,60 @@ def iso_a3_plot(start_s, range_before, range_after, target: str, campaign: str, 
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
+
+
+def raw_vs_denoised_plot(hours, raw, offline, causal, sensor: str, campaign: str, path,
+                         applied: bool = True) -> Path:
+    """Raw sensor, offline EMD and causal denoising, and what was removed (°C against h)."""
+    fig, (ax, axr) = plt.subplots(2, 1, figsize=(7.5, 5), sharex=True,
+                                  gridspec_kw={"height_ratios": [2, 1]})
+    ax.plot(hours, raw, color="0.6", lw=1, label="raw")
+    ax.plot(hours, offline, color="k", lw=1.3, label="offline EMD (IMF-1 removed)")
+    ax.plot(hours, causal, color="tab:red", lw=1, ls="--", label="causal (deployed)")
+    ax.set_ylabel(f"{sensor} (°C)")
+    title = f"{sensor}, campaign {campaign}"
+    ax.set_title(title if applied else title + " -- illustration, denoise=none")
+    ax.legend(fontsize=8)
+    axr.plot(hours, np.asarray(raw) - np.asarray(offline), color="k", lw=0.8, label="offline")
+    axr.plot(hours, np.asarray(raw) - np.asarray(causal), color="tab:red", lw=0.8, ls="--",
+             label="causal")
+    axr.set_ylabel("removed (°C)")
+    axr.set_xlabel("time (h)")
+    axr.legend(fontsize=8)
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
+def imf_plot(hours, raw, imfs, sensor: str, campaign: str, path) -> Path:
+    """The signal, its IMFs and the residue stacked (each in °C, centred IMFs), as in paper 004 Fig. 6."""
+    rows = [("signal", raw)] + [(f"IMF-{i + 1}", imf) for i, imf in enumerate(imfs[:-1])] + \
+        [("residue", imfs[-1])]
+    fig, axes = plt.subplots(len(rows), 1, figsize=(7.5, 1.3 * len(rows) + 0.6), sharex=True)
+    for ax, (label, values) in zip(np.atleast_1d(axes), rows):
+        ax.plot(hours, values, color="k", lw=0.9)
+        ax.set_ylabel(f"{label}\n(°C)", fontsize=8)
+        ax.tick_params(labelsize=7)
+    np.atleast_1d(axes)[0].set_title(f"EMD of {sensor}, campaign {campaign}")
+    np.atleast_1d(axes)[-1].set_xlabel("time (h)")
+    fig.tight_layout()
+    return save_figure(fig, path)
+
+
+def selection_plot(scores: dict, selected: dict, score_names: dict, path) -> Path:
+    """Per target: the score of every candidate sensor, selected ones highlighted."""
+    targets = list(scores)
+    fig, axes = plt.subplots(len(targets), 1, figsize=(7.5, 2.4 * len(targets) + 0.4), squeeze=False)
+    for ax, t in zip(axes[:, 0], targets):
+        names = list(scores[t])
+        values = [scores[t][n] for n in names]
+        colors = ["tab:red" if n in selected[t] else "0.7" for n in names]
+        ax.bar(range(len(names)), values, color=colors)
+        ax.set_xticks(range(len(names)), names, rotation=45, ha="right", fontsize=7)
+        ax.set_ylabel(score_names[t], fontsize=8)
+        ax.set_title(f"{t}: selected {', '.join(selected[t])}", fontsize=9)
+    fig.tight_layout()
+    return save_figure(fig, path)
 
 
 def _hour_ticks(ax, hours) -> None:
@@ -234,11 +318,74 @@ def _arr(values) -> np.ndarray:
     return np.array([np.nan if v is None else v for v in values], float)
 
 
-def _save(fig, path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.tmp.png")
-    fig.savefig(tmp, dpi=110)
-    plt.close(fig)
-    tmp.replace(path)
-    return path
+def save_figure(fig, path) -> Path:
+    """Write ``fig`` as PNG to ``path`` atomically and close it (the one figure saver).
+
+    Rendered in memory, then :func:`~thermocomp.files.atomic_write_bytes` (temp
+    file + rename, 0644): a reader never sees half a figure, and parallel
+    workers never share a temp file.
+    """
+    png = io.BytesIO()
+    try:
+        fig.savefig(png, format="png", dpi=DPI)
+    finally:
+        plt.close(fig)
+    return atomic_write_bytes(path, png.getvalue())
+
+
+def _cpus() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # not on Linux
+        return os.cpu_count() or 1
+
+
+class FigurePool:
+    """Draw figures in forked worker processes while the caller goes on computing.
+
+    ``submit(plot, *args, **kwargs)`` queues ``plot(*args, **kwargs)``, a
+    drawing function of this module (it returns the saved path); leaving the
+    ``with`` block waits for every figure and re-raises the first error.
+    Drawing is Python-bound (layout, ticks) and matplotlib is not thread-safe
+    (a thread pool was slower and crashed in mathtext), hence processes;
+    ``fork`` makes a worker cost a few ms instead of a fresh interpreter (a
+    worker imports pyplot for its first figure, while the caller computes).
+
+    Parameters
+    ----------
+    workers : int, optional
+        Worker processes; default one per CPU this process may use.  ``0``
+        (the default on one CPU), or no ``fork`` (Windows, macOS default):
+        figures are drawn in this process at submit time.
+
+    Attributes
+    ----------
+    paths : list of Path
+        The figures written, in submit order (complete after the ``with`` block).
+    """
+
+    def __init__(self, workers: int | None = None):
+        if workers is None:
+            workers = _cpus() if _cpus() > 1 else 0
+        fork = "fork" in multiprocessing.get_all_start_methods()
+        self._pool = (ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
+                      if workers > 0 and fork else None)
+        self._pending: list = []
+        self.paths: list[Path] = []
+
+    def submit(self, plot, *args, **kwargs) -> None:
+        if self._pool is None:
+            self.paths.append(plot(*args, **kwargs))
+        else:
+            self._pending.append(self._pool.submit(plot, *args, **kwargs))
+
+    def __enter__(self) -> "FigurePool":
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> bool:
+        if self._pool is not None:
+            # wait even on error: no worker may still write once the caller cleans up
+            self._pool.shutdown(wait=True, cancel_futures=exc_type is not None)
+            if exc_type is None:
+                self.paths += [f.result() for f in self._pending]
+        return False

@@ -66,6 +66,10 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     :math:`j`; entry :math:`(i, j)` is :math:`R_{sd}` of that prediction (paper
     003, Eq. 17, in the target's unit).  The diagonal is the self-fit.
 
+    Each model predicts all campaigns in one call; the measured targets are
+    taken once (the reference frame does not depend on the model) and the
+    Rsd of every (model, campaign) pair comes from one residual array per target.
+
     Parameters
     ----------
     campaigns : dict id -> campaign DataFrame (contract columns)
@@ -79,18 +83,26 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     order of ``campaigns``.
     """
     ids = list(campaigns)
-    out: dict[str, pd.DataFrame] = {}
-    meas = None
+    measured, residuals, bounds = None, {}, []
     # one split per campaign, on one row per campaign: train on campaign i, predict them all
     for train, _ in TrainOnEachCampaign().split(ids, groups=ids):
         i = ids[train[0]]
         comp = make_compensator().fit({i: campaigns[i]})
-        pred = comp.predict(campaigns, mode=mode)
-        meas = comp.measured(campaigns) if meas is None else meas  # same for every model
+        if measured is None:
+            frames = comp.measured(campaigns)
+            measured = _by_target(frames, ids, comp.targets_)
+            ends = np.cumsum([len(frames[c]) for c in ids])
+            bounds = list(zip(ends - np.diff(ends, prepend=0), ends))  # rows of each campaign
+        pred = _by_target(comp.predict(campaigns, mode=mode), ids, comp.targets_)
         for t in comp.targets_:
-            m = out.setdefault(t, pd.DataFrame(np.nan, index=ids, columns=ids))
-            for j in ids:
-                m.loc[i, j] = rsd(meas[j][t].to_numpy() - pred[j][t].to_numpy())
-    for m in out.values():
-        m.index.name, m.columns.name = "trained_on", "predicted"
-    return out
+            residuals.setdefault(t, []).append(measured[t] - pred[t])
+    index = pd.Index(ids, name="trained_on")
+    columns = pd.Index(ids, name="predicted")
+    return {t: pd.DataFrame([[rsd(row[a:b]) for a, b in bounds] for row in r],
+                            index=index, columns=columns)
+            for t, r in residuals.items()}
+
+
+def _by_target(frames: Mapping[str, pd.DataFrame], ids, targets) -> dict[str, np.ndarray]:
+    """Per target, the column of every campaign of ``frames`` end to end (in ``ids`` order)."""
+    return {t: np.concatenate([frames[c][t].to_numpy(float) for c in ids]) for t in targets}

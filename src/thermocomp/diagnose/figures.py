@@ -6,7 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..plots import AFTER, BEFORE, _arr, _hour_ticks, _save, plt
+from ..plots import AFTER, BEFORE, _arr, _hour_ticks, plt, save_figure
 
 
 def residual_vs_effect(residual, signal, units, label: str, target: str, path) -> Path:
@@ -45,7 +45,7 @@ def residual_vs_effect(residual, signal, units, label: str, target: str, path) -
         axt.grid(alpha=0.3)
         axt.legend(fontsize=8)
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def e_p95_before_after(window_s, measured, before, after, target: str, statistic: str,
@@ -65,7 +65,7 @@ def e_p95_before_after(window_s, measured, before, after, target: str, statistic
     ax.set_ylim(bottom=0)
     ax.legend(fontsize=8, loc="upper left")
     fig.tight_layout()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def diagnosis_figures(diagnosis, folder) -> dict[str, list[Path]]:

@@ -3,18 +3,24 @@
 Each reads its inputs from files, calls the pure core, writes its outputs
 atomically and logs to MLflow through :mod:`thermocomp.tracking`.  A stage
 never reaches into another stage's internals: they meet at files.
+
+Stages are looked up by name and imported on first use (:func:`stage`), so a
+command imports only what it runs: ``thermocomp run`` never imports MLflow's
+registry code of ``promote`` or the diagnosis of ``diagnose``, and ``--help``
+imports nothing.
 """
 
-from .compare import compare
-from .denoise import denoise
-from .diagnose import diagnose
-from .ingest import ingest
-from .modelling import evaluate, run, train
-from .promote import promote
-from .replay import replay
-from .select import select
-from .simulate import simulate
+from __future__ import annotations
 
-STAGES = {"simulate": simulate, "ingest": ingest, "denoise": denoise, "select": select,
-          "train": train, "evaluate": evaluate, "diagnose": diagnose, "run": run,
-          "compare": compare, "promote": promote, "replay": replay}
+from importlib import import_module
+
+STAGES = {"simulate": "simulate:simulate", "ingest": "ingest:ingest", "denoise": "denoise:denoise",
+          "select": "select:select", "train": "modelling:train", "evaluate": "modelling:evaluate",
+          "diagnose": "diagnose:diagnose", "run": "modelling:run", "compare": "compare:compare",
+          "promote": "promote:promote", "replay": "replay:replay"}
+
+
+def stage(name: str):
+    """The function of stage ``name`` (a key of :data:`STAGES`), its module imported now."""
+    module, function = STAGES[name].split(":")
+    return getattr(import_module(f"{__name__}.{module}"), function)

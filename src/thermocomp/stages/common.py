@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import pickle
 import sys
+import time
 from pathlib import Path
 
 from hydra.utils import instantiate
@@ -16,16 +17,41 @@ from ..files import atomic_write_bytes
 from ..frame import REFERENCES
 from ..paths import resolve
 
+PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
+
 
 def say(msg: str) -> None:
     """Progress on stderr, so stdout stays the result table."""
     print(f"[thermocomp] {msg}", file=sys.stderr, flush=True)
 
 
+class Clock:
+    """Wall time of a stage's phases, for the one timing line a stage logs at its end.
+
+    ``lap(name)`` adds the time since the previous lap (or the clock's start)
+    to phase ``name``; a phase lapped twice accumulates.
+    """
+
+    def __init__(self):
+        self.seconds: dict[str, float] = {}
+        self._last = time.perf_counter()
+
+    def lap(self, name: str) -> None:
+        now = time.perf_counter()
+        self.seconds[name] = self.seconds.get(name, 0.0) + now - self._last
+        self._last = now
+
+    def line(self) -> str:
+        total = sum(self.seconds.values())
+        return (f"time (s): {total:.2f} = "
+                + " + ".join(f"{name} {s:.2f}" for name, s in self.seconds.items()))
+
+
 def check_config(cfg: DictConfig) -> None:
     """Refuse bad choices before anything is read or written."""
     choices = {"eval.mode": (cfg.eval.mode, MODES), "data.reference": (cfg.data.reference, REFERENCES),
-               "eval.e_p95.statistic": (cfg.eval.e_p95.statistic, ("range", "std"))}
+               "eval.e_p95.statistic": (cfg.eval.e_p95.statistic, ("range", "std")),
+               "plots": (cfg.plots, PLOTS)}
     ati = cfg.get("ati") or {}
     if ati.get("estimator") is not None and "clustering" in ati.estimator:
         choices["ati.estimator.clustering"] = (ati.estimator.clustering, ("fuzzy", "hard"))

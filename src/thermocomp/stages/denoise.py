@@ -91,7 +91,7 @@ def denoise(cfg: DictConfig) -> dict:
 
 def _figures(ds, train: dict, fitted, inputs, folder) -> None:
     """Raw vs denoised and the IMFs of the noisiest T_ sensor in the longest train campaign."""
-    from .figures import imf_plot, raw_vs_denoised_plot
+    from ..plots import imf_plot, raw_vs_denoised_plot
 
     den = fitted if fitted is not None else EMDDenoiser().fit(
         next(iter(train.values()))[inputs])  # illustration of what denoise=emd would remove

@@ -174,7 +174,7 @@ def diagnose(cfg: DictConfig) -> dict:
                      rerun=rerun, report=str(folder / reports[t]))
             jsons[t] = j
         with atomic_dir(folder) as tmp:
-            figures = diagnosis_figures(result, tmp / "plots") if dcfg.plots else {}
+            figures = diagnosis_figures(result, tmp / "plots") if cfg.plots != "none" else {}
             header = (f"# Written by `thermocomp diagnose` on {ds.name}: {cfg.model.name} + the effects "
                       f"it accepted.\n# Rerun: {rerun}\n")
             (tmp / "conf" / "model").mkdir(parents=True)

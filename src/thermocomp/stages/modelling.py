@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
+from functools import partial
 
 from omegaconf import DictConfig
+from sklearn.base import clone
 
 from .. import io
 from ..compensator import Compensator
@@ -13,11 +16,10 @@ from ..evaluation import (ambient_by_campaign, anova, ati_report, mutual_predict
 from ..files import atomic_dir, write_json
 from ..iso10791 import a3_campaign
 from ..paths import resolve
-from ..plots import (ati_intervals_plot, e_p95_plot, elbow_plot, iso_a3_plot,
-                     mutual_prediction_plot, residual_plot, rsd_plot)
 from ..tracking import stage_run
 from .artifacts import fit_from_artifacts
-from .common import build_compensator, check_config, data_options, load_model, result_table, save_model, say
+from .common import (Clock, build_compensator, check_config, data_options, load_model,
+                     result_table, save_model, say)
 
 
 def _fit(cfg: DictConfig, ds) -> Compensator:
@@ -42,38 +44,76 @@ def train(cfg: DictConfig) -> Compensator:
     return comp
 
 
-def _report(cfg: DictConfig, comp: Compensator, ds, tracker, extra: dict | None = None) -> dict:
-    """Score, write metrics.json and figures under ``out``, print the table."""
-    ev = cfg.eval
-    targets, predictions = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points,
-                                 iso_a3=ev.get("iso10791_a3", True))
-    metrics = {"model": cfg.model.name, "mode": ev.mode, "targets": targets,
-               "select": cfg.select.name, "dataset": ds.name,
-               "inputs": {t: comp.selected_[t] for t in comp.targets_}}
-    metrics.update(extra or {})
-    make_base = lambda: build_compensator(cfg, ati=False)  # noqa: E731
-    metrics["anova"] = anova(comp, ds, float(ev.get("anova_alpha", 0.001)), predictions)
-    ati_name = cfg.ati.name if cfg.get("ati") is not None else "none"
-    if ev.get("ati_baselines", True):
-        say("ATI report: cold/warm single-campaign baselines")
-        metrics["ati"] = ati_report(comp, ds, make_base, ev.mode, ati_name)
-    if ev.get("mutual_prediction", True):
-        say(f"mutual prediction: {len(ds.ids())} single-campaign models")
-        metrics["mutual_prediction"] = mutual_prediction_report(make_base, ds, ev.mode)
-    out = resolve(cfg.out)
-    path = write_json(out / "metrics.json", metrics)
-    if ev.plots:
-        with atomic_dir(out / "plots") as tmp:
-            tmp.chmod(0o755)  # mkdtemp makes it private; a report folder is for reading
-            _figures(metrics, comp, ds, predictions, tmp)
+def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None = None,
+            extra: dict | None = None) -> dict:
+    """Score, write metrics.json and the figures ``plots`` asks for under ``out``, print the table.
+
+    Figures are queued as soon as their numbers exist and drawn by worker
+    processes while the next numbers are computed (see :class:`~thermocomp.plots.FigurePool`).
+    """
+    ev, out = cfg.eval, resolve(cfg.out)
+    clock = clock or Clock()
+    with _plots_folder(out, cfg.plots) as (draw, folder):
+        targets, predictions = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points,
+                                     iso_a3=ev.get("iso10791_a3", True))
+        clock.lap("score")
+        metrics = {"model": cfg.model.name, "mode": ev.mode, "targets": targets,
+                   "select": cfg.select.name, "dataset": ds.name,
+                   "inputs": {t: comp.selected_[t] for t in comp.targets_}}
+        metrics.update(extra or {})
+        if cfg.plots != "none":
+            _e_p95_figures(draw, folder, targets)
+        if cfg.plots in ("test", "all"):
+            _campaign_figures(draw, folder, comp, ds, predictions)
+        if cfg.plots == "all":
+            _campaign_figures(draw, folder, comp, ds, _train_predictions(comp, ds, ev.mode))
+        clock.lap("figures")
+        # instantiate once, then copies for the 26 baseline and mutual-prediction models
+        make_base = partial(clone, build_compensator(cfg, ati=False))
+        metrics["anova"] = anova(comp, ds, float(ev.get("anova_alpha", 0.001)), predictions)
+        clock.lap("anova")
+        ati_name = cfg.ati.name if cfg.get("ati") is not None else "none"
+        if ev.get("ati_baselines", True):
+            say("ATI report: cold/warm single-campaign baselines")
+            metrics["ati"] = ati_report(comp, ds, make_base, ev.mode, ati_name)
+            clock.lap("ati")
+        if cfg.plots != "none":
+            _rsd_figures(draw, folder, metrics, ambient_by_campaign(ds, list(predictions)))
+            clock.lap("figures")
+        if ev.get("mutual_prediction", True):
+            say(f"mutual prediction: {len(ds.ids())} single-campaign models")
+            metrics["mutual_prediction"] = mutual_prediction_report(make_base, ds, ev.mode)
+            clock.lap("mutual_prediction")
+            if cfg.plots in ("test", "all"):
+                _mutual_figures(draw, folder, metrics["mutual_prediction"])
+                clock.lap("figures")
+        path = write_json(out / "metrics.json", metrics)
+        clock.lap("write")
+    clock.lap("figures")  # drawing still under way once every number is written
     tracker.log_metrics({"targets": targets, "anova": metrics["anova"],
                          "ati": _ati_summary(metrics.get("ati", {}))})
     tracker.log_artifact(path)
-    if (out / "plots").is_dir():
+    if cfg.plots != "none":  # not the figures an earlier run left
         tracker.log_artifacts(out / "plots", "plots")
+    clock.lap("log")
     print(result_table(metrics))
     say(f"metrics: {path}")
+    say(clock.line())
     return metrics
+
+
+@contextmanager
+def _plots_folder(out, level: str):
+    """``(draw, folder)``: ``draw(plot, *args)`` queues a figure of ``folder``, the temp folder
+    that replaces ``<out>/plots`` when the block succeeds; nothing at all with ``plots=none``
+    (not even a matplotlib import)."""
+    if level == "none":
+        yield None, None
+        return
+    from ..plots import FigurePool
+
+    with atomic_dir(out / "plots") as folder, FigurePool() as pool:
+        yield pool.submit, folder
 
 
 def _ati_summary(ati: dict) -> dict:
@@ -84,25 +124,46 @@ def _ati_summary(ati: dict) -> dict:
             for t, e in ati.get("targets", {}).items()}
 
 
-def _figures(metrics: dict, comp: Compensator, ds, predictions: dict, plots) -> None:
-    """Every figure of the report, as PNG under ``plots``."""
+def _train_predictions(comp: Compensator, ds, mode: str) -> dict:
+    """``{campaign: (measured, predicted)}`` of the train campaigns (``plots=all``)."""
+    camps = {c: ds.campaigns[c] for c in require_split(ds, "train")}
+    pred, meas = comp.predict(camps, mode=mode), comp.measured(camps)
+    return {c: (meas[c], pred[c]) for c in camps}
+
+
+def _campaign_figures(draw, folder, comp: Compensator, ds, predictions: dict) -> None:
+    """Residual and ISO 10791-10 A.3 figures of every campaign of ``predictions``."""
+    from ..plots import iso_a3_plot, residual_plot
+
     for cid, (meas, pred) in predictions.items():
         time_s = ds.campaigns[cid]["time"].to_numpy()
         for t in comp.targets_:
-            residual_plot(time_s, meas[t], pred[t], t, cid, plots / f"residual_{cid}_{t}.png")
-            a3 = a3_campaign(time_s, meas[t], (meas[t] - pred[t]))
+            y, yhat = meas[t].to_numpy(), pred[t].to_numpy()
+            draw(residual_plot, time_s, y, yhat, t, cid, folder / f"residual_{cid}_{t}.png")
+            a3 = a3_campaign(time_s, y, y - yhat)
             if a3["available"]:
                 mv = a3["moving"]
-                iso_a3_plot(mv["start_s"], mv["range_before"], mv["range_after"], t, cid,
-                            plots / f"iso10791_a3_{cid}_{t}.png")
-    test_ambient = ambient_by_campaign(ds, list(predictions))
+                draw(iso_a3_plot, mv["start_s"], mv["range_before"], mv["range_after"], t, cid,
+                     folder / f"iso10791_a3_{cid}_{t}.png")
+
+
+def _e_p95_figures(draw, folder, targets: dict) -> None:
+    """Per target: E_P95 (and E_max) before/after compensation on the test split."""
+    from ..plots import e_p95_plot
+
+    for t, tm in targets.items():
+        e, emax = tm["test"]["e_p95"], tm["test"]["e_max"]
+        draw(e_p95_plot, e["window_s"], e["before"], e["after"], t, e["statistic"],
+             folder / f"e_p95_{t}.png", emax["before"], emax["after"])
+
+
+def _rsd_figures(draw, folder, metrics: dict, test_ambient: dict) -> None:
+    """Per target: Rsd per test campaign (with the ATI baselines), the ATI figures of an ATI model."""
+    from ..plots import ati_intervals_plot, elbow_plot, rsd_plot
+
     ati = metrics.get("ati", {}).get("targets", {})
     for t, tm in metrics["targets"].items():
-        te = tm["test"]
-        e, emax = te["e_p95"], te["e_max"]
-        e_p95_plot(e["window_s"], e["before"], e["after"], t, e["statistic"],
-                   plots / f"e_p95_{t}.png", emax["before"], emax["after"])
-        per = {c: v["rsd"] for c, v in te["per_campaign"].items()}
+        per = {c: v["rsd"] for c, v in tm["test"]["per_campaign"].items()}
         baselines = {}
         for name, label in (("coldest", "coldest-campaign model"), ("warmest", "warmest-campaign model"),
                             ("single_model", "one model, all train")):
@@ -112,40 +173,53 @@ def _figures(metrics: dict, comp: Compensator, ds, predictions: dict, plots) -> 
                     ati[t]["test"][name]["per_campaign"]
         n_int = ati.get(t, {}).get("n_intervals", 1)
         label = metrics["model"] + (f", {n_int} ATIs" if "intervals" in ati.get(t, {}) else "")
-        rsd_plot(per, t, plots / f"rsd_{t}.png", test_ambient, baselines, label)
+        draw(rsd_plot, per, t, folder / f"rsd_{t}.png", test_ambient, baselines, label)
         entry = ati.get(t, {})
         if "intervals" in entry:
-            ati_intervals_plot(entry["campaign_ambient_c0"], entry["boundaries_c"], t,
-                               plots / f"ati_intervals_{t}.png", test_ambient,
-                               [i["campaigns"] for i in entry["intervals"]])
+            draw(ati_intervals_plot, entry["campaign_ambient_c0"], entry["boundaries_c"], t,
+                 folder / f"ati_intervals_{t}.png", test_ambient,
+                 [i["campaigns"] for i in entry["intervals"]])
             if entry.get("elbow") and entry["elbow"].get("n_intervals"):
-                elbow_plot(entry["elbow"], t, plots / f"ati_elbow_{t}.png")
-    for t, mp in metrics.get("mutual_prediction", {}).items():
-        mutual_prediction_plot(mp["campaigns"], mp["rsd"], t, plots / f"mutual_prediction_{t}.png",
-                               mp["ambient_c0"])
+                draw(elbow_plot, entry["elbow"], t, folder / f"ati_elbow_{t}.png")
+
+
+def _mutual_figures(draw, folder, mutual: dict) -> None:
+    """The mutual prediction heat map of every target."""
+    from ..plots import mutual_prediction_plot
+
+    for t, mp in mutual.items():
+        draw(mutual_prediction_plot, mp["campaigns"], mp["rsd"], t,
+             folder / f"mutual_prediction_{t}.png", mp["ambient_c0"])
 
 
 def evaluate(cfg: DictConfig) -> dict:
     """Score the trained model on train and test splits; write ``out/metrics.json``."""
     check_config(cfg)
+    clock = Clock()
     ds = io.load_interim(resolve(cfg.data.interim))
     comp = load_model(cfg.model_path)
+    clock.lap("read")
     with stage_run(cfg, "evaluate") as tr:
-        return _report(cfg, comp, ds, tr)
+        return _report(cfg, comp, ds, tr, clock)
 
 
 def run(cfg: DictConfig) -> dict:
     """ingest .. evaluate in one process (nothing written under data/)."""
     check_config(cfg)
     say(f"reading {resolve(cfg.data.path)}")
+    clock = Clock()
     ds, report = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
+    clock.lap("read")
     with stage_run(cfg, "run") as tr:
+        clock.lap("log")
         t0 = time.perf_counter()
         comp = _fit(cfg, ds)
         fit_s = time.perf_counter() - t0
         out = resolve(cfg.out)
         model_path = save_model(comp, out / "model.pkl")
         write_json(out / "ingest_report.json", report)
+        clock.lap("fit")
         tr.log_metrics({"fit_time_s": fit_s})
         tr.log_artifact(model_path)
-        return _report(cfg, comp, ds, tr, {"fit_time_s": fit_s})
+        clock.lap("log")
+        return _report(cfg, comp, ds, tr, clock, {"fit_time_s": fit_s})

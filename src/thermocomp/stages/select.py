@@ -75,7 +75,7 @@ def select(cfg: DictConfig) -> dict:
     path = write_json(selection_path(cfg), doc)
     figures = resolve(cfg.out) / "select"
     with atomic_dir(figures) as tmp:
-        from .figures import selection_plot
+        from ..plots import selection_plot
 
         selection_plot({t: {k: (np.nan if v is None else v) for k, v in s.items()}
                         for t, s in scores.items()},
