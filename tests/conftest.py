@@ -33,15 +33,22 @@ def ctx(groups=None, **columns) -> pd.DataFrame:
     return pd.DataFrame(data)
 
 
+def stream_context(est, X, context: pd.DataFrame) -> np.ndarray:
+    """Feed ``X`` sample by sample through the streaming protocol with each row's context,
+    restarting (``stream_init``) at each campaign."""
+    out, state = [], None
+    records = context.to_dict("records")
+    for t, row in enumerate(records):
+        if t == 0 or row["campaign"] != records[t - 1]["campaign"]:
+            state = est.stream_init(row)
+        y, state = est.stream_step(X[t], state, row)
+        out.append(y)
+    return np.array(out)
+
+
 def stream_predictions(est, X, groups) -> list[float]:
-    """Feed ``X`` sample by sample through the streaming protocol, restarting at each campaign."""
-    out = []
-    for t in range(len(X)):
-        if t == 0 or groups[t] != groups[t - 1]:
-            state = est.stream_init({"campaign": groups[t]})
-        y_hat, state = est.stream_step(X[t], state, {"campaign": groups[t]})
-        out.append(y_hat)
-    return out
+    """:func:`stream_context` with only the campaign of each row."""
+    return stream_context(est, X, ctx(groups)).tolist()
 
 
 @pytest.fixture(scope="session")

@@ -14,7 +14,7 @@ from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
 from sklearn.utils.estimator_checks import check_estimator
 
-from conftest import thermocomp
+from conftest import stream_context, thermocomp
 from thermocomp.errors import ParameterError
 from thermocomp.models import MLR, LagBank
 from thermocomp.models._dynamics import first_order_lags
@@ -49,17 +49,6 @@ def _split(context, n_train):
     return train, context[train].reset_index(drop=True), context[~train].reset_index(drop=True)
 
 
-def _stream(est, X, context):
-    out, state = [], None
-    records = context.to_dict("records")
-    for t, row in enumerate(records):
-        if t == 0 or row["campaign"] != records[t - 1]["campaign"]:
-            state = est.stream_init(row)
-        y, state = est.stream_step(X[t], state, row)
-        out.append(y)
-    return np.array(out)
-
-
 def _rmse(a, b):
     return float(np.sqrt(np.mean((np.asarray(a) - np.asarray(b)) ** 2)))
 
@@ -81,12 +70,12 @@ def test_stream_equals_batch_over_campaigns_with_irregular_time(ar):
     assert est.context_columns_ == ["time"]
     assert (est.ar_coef_ != 0.0) == ar
     batch = est.predict(X[~train], context=c_test)
-    np.testing.assert_allclose(_stream(est, X[~train], c_test), batch, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(stream_context(est, X[~train], c_test), batch, rtol=0, atol=1e-9)
     again = pickle.loads(pickle.dumps(est))   # deployable: the pickled model streams the same
-    np.testing.assert_allclose(_stream(again, X[~train], c_test), batch, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(stream_context(again, X[~train], c_test), batch, rtol=0, atol=1e-9)
 
 
-def test_without_time_samples_are_sample_period_apart_in_batch_and_stream():
+def test_without_time_samples_are_sample_period_apart_in_batch_andstream_context():
     X, y, context = _lagged_system(seed=2, jitter=0.0)
     groups = context[["campaign"]]
     est = LagBank(sample_period_s=60.0).fit(X, y, context=groups)
@@ -95,7 +84,7 @@ def test_without_time_samples_are_sample_period_apart_in_batch_and_stream():
     assert with_time.sample_period_s_ == pytest.approx(60.0)
     np.testing.assert_allclose(est.predict(X, context=groups), with_time.predict(X, context=context),
                                atol=1e-9)
-    np.testing.assert_allclose(_stream(est, X, groups), est.predict(X, context=groups), atol=1e-9)
+    np.testing.assert_allclose(stream_context(est, X, groups), est.predict(X, context=groups), atol=1e-9)
 
 
 @pytest.mark.parametrize("ar", [False, True])

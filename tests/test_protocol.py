@@ -10,6 +10,7 @@ from sklearn.base import clone
 from sklearn.model_selection import GroupKFold, cross_val_score
 from sklearn.utils.estimator_checks import check_estimator
 
+from conftest import stream_context
 from thermocomp.compensator import Compensator
 from thermocomp.diagnose import AugmentedRegressor, Effect
 from thermocomp.models import ARX, ARXRF, LSTM, MLR, PCR, LagBank
@@ -80,17 +81,6 @@ def test_context_is_routed_through_nested_wrappers_by_scikit_learn_cross_validat
     assert with_door > without + 0.05
 
 
-def _stream(est, X, context):
-    out, state = [], None
-    records = context.to_dict("records")
-    for t, row in enumerate(records):
-        if t == 0 or row["campaign"] != records[t - 1]["campaign"]:
-            state = est.stream_init(row)
-        y, state = est.stream_step(X[t], state, row)
-        out.append(y)
-    return np.array(out)
-
-
 WRAPPED = {
     "ATI(ARXRF)": lambda: ATIRegressor(ARXRF(forest=_forest()), n_intervals=2),
     "ATI(ARX ar)": lambda: ATIRegressor(ARX(ar=True), n_intervals=3),
@@ -113,7 +103,7 @@ def test_wrappers_forward_streaming_and_declare_what_they_read(name):
     est = WRAPPED[name]().fit(X[train], y[train], context=context[train].reset_index(drop=True))
     test_ctx = context[~train].reset_index(drop=True)
     batch = est.predict(X[~train], context=test_ctx)
-    np.testing.assert_allclose(_stream(est, X[~train], test_ctx), batch, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(stream_context(est, X[~train], test_ctx), batch, rtol=0, atol=1e-9)
     reads = est.context_columns_
     if "ARXRF" in name:
         assert {"time", "S_door"} <= set(reads)
