@@ -85,8 +85,16 @@ class Compensator(BaseEstimator):
         return self.fit_stacked(stack(campaigns, self.inputs_, self.targets_, self.reference))
 
     def fit_stacked(self, m: Matrices) -> "Compensator":
-        """Fit selector and estimators on already stacked matrices (``inputs_``, ``targets_``
-        and ``denoiser_`` set): the rows may be any subset of campaigns of one stack."""
+        """Fit selector and estimators on already stacked matrices: the rows may be any subset
+        of campaigns of one stack (its columns are the inputs and targets).  Without a fitted
+        denoiser (``fit`` sets one) the matrices are taken as they are, so a configured
+        denoiser is refused."""
+        if not hasattr(self, "denoiser_"):
+            if self.denoiser is not None:
+                raise ValueError("fit_stacked takes matrices as they are: fit() a compensator "
+                                 "with a denoiser")
+            self.denoiser_ = None
+        self.inputs_, self.targets_ = list(m.X.columns), list(m.Y.columns)
         selector = self.selector if self.selector is not None else AllInputs()
         self.selected_, self.estimators_ = {}, {}
         for target in self.targets_:

@@ -96,6 +96,13 @@ class Matrices:
     def rows_of(self, cid: str) -> np.ndarray:
         return self.groups == cid
 
+    def subset(self, rows) -> "Matrices":
+        """The rows ``rows`` (boolean mask), index reset."""
+        idx = np.flatnonzero(rows)
+        return Matrices(self.X.iloc[idx].reset_index(drop=True), self.Y.iloc[idx].reset_index(drop=True),
+                        self.groups[idx], self.time[idx],
+                        None if self.context is None else self.context.iloc[idx].reset_index(drop=True))
+
 
 def resolve_columns(columns, inputs, targets) -> tuple[list[str], list[str]]:
     """Declared input columns and target columns among ``columns``.

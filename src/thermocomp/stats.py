@@ -11,6 +11,9 @@ import numpy as np
 import pandas as pd
 from scipy import stats as sps
 
+from sklearn.base import clone
+
+from .frame import stack
 from .metrics import rsd
 from .model_selection import TrainOnEachCampaign
 
@@ -83,8 +86,40 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     order of ``campaigns``.
     """
     ids = list(campaigns)
+    first = make_compensator()
+    if first.denoiser is not None:      # denoised per training campaign: the campaign-level path
+        return _mutual_by_campaign(campaigns, make_compensator, mode)
+    # no denoiser: stack every campaign once; each model fits on its campaign's rows of the stack
+    # and predicts the whole stack (the same numbers as fit/predict on the campaign dicts)
+    probe = first.fit({ids[0]: campaigns[ids[0]]})
+    m = stack(campaigns, probe.inputs_, probe.targets_, probe.reference)
+    bounds = _bounds(m.groups, ids)
+    Y = m.Y.to_numpy()
+    residuals = {t: [] for t in probe.targets_}
+    for train, _ in TrainOnEachCampaign().split(ids, groups=ids):
+        comp = clone(first).fit_stacked(m.subset(m.rows_of(ids[train[0]])))
+        r = Y - comp.predict_stacked(m, mode)
+        for k, t in enumerate(comp.targets_):
+            residuals[t].append(r[:, k])
+    return _rsd_matrices(residuals, ids, bounds)
+
+
+def _bounds(groups, ids) -> list[tuple[int, int]]:
+    """(start, stop) rows of each campaign of a stack, in ``ids`` order."""
+    return [(int(np.flatnonzero(groups == c)[0]), int(np.flatnonzero(groups == c)[-1]) + 1) for c in ids]
+
+
+def _rsd_matrices(residuals: dict, ids, bounds) -> dict[str, pd.DataFrame]:
+    index = pd.Index(ids, name="trained_on")
+    columns = pd.Index(ids, name="predicted")
+    return {t: pd.DataFrame([[rsd(row[a:b]) for a, b in bounds] for row in r],
+                            index=index, columns=columns)
+            for t, r in residuals.items()}
+
+
+def _mutual_by_campaign(campaigns, make_compensator, mode) -> dict[str, pd.DataFrame]:
+    ids = list(campaigns)
     measured, residuals, bounds = None, {}, []
-    # one split per campaign, on one row per campaign: train on campaign i, predict them all
     for train, _ in TrainOnEachCampaign().split(ids, groups=ids):
         i = ids[train[0]]
         comp = make_compensator().fit({i: campaigns[i]})
@@ -96,11 +131,7 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
         pred = _by_target(comp.predict(campaigns, mode=mode), ids, comp.targets_)
         for t in comp.targets_:
             residuals.setdefault(t, []).append(measured[t] - pred[t])
-    index = pd.Index(ids, name="trained_on")
-    columns = pd.Index(ids, name="predicted")
-    return {t: pd.DataFrame([[rsd(row[a:b]) for a, b in bounds] for row in r],
-                            index=index, columns=columns)
-            for t, r in residuals.items()}
+    return _rsd_matrices(residuals, ids, bounds)
 
 
 def _by_target(frames: Mapping[str, pd.DataFrame], ids, targets) -> dict[str, np.ndarray]:
