@@ -108,6 +108,23 @@ def test_forward_chaining_on_one_record_never_looks_ahead():
     assert late["per_unit"][units[-1]] > 10 * entry["per_unit"][units[-1]]
 
 
+def test_shared_forward_chaining_validates_the_second_half_like_lagbank():
+    from thermocomp.model_selection import ForwardChaining
+    from thermocomp.models import lagbank
+
+    X = np.zeros((101, 1))
+    shared = list(ForwardChaining(4, gap=3, min_train_fraction=0.5).split(X))
+    assert len(shared) == 4
+    held = np.concatenate([te for _, te in shared])
+    assert held[-1] == 100 and np.all(np.diff(held) == 1) and held[0] >= 50   # the second half
+    for tr, te in shared:
+        assert tr[-1] + 3 < te[0] and tr[0] == 0 and len(tr) >= 50 - 3       # gap, expanding
+    theirs = list(lagbank.ForwardChaining(4, gap=3, min_train_fraction=0.5).split(X))
+    for (a, b), (c, d) in zip(shared, theirs):
+        np.testing.assert_array_equal(a, c)
+        np.testing.assert_array_equal(b, d)
+
+
 # -- the acceptance's poisoning test, through the CLI ----------------------------------------
 def _poison_folder(src, dst, seed=1):
     shutil.copytree(src, dst)
