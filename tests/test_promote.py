@@ -71,7 +71,11 @@ def test_promote_moves_champion_only_for_a_better_model(project, capsys):
     assert second["candidate"]["score"] < second["champion"]["score"]
     third, said = _promote(project, weak, "p3", capsys)
     assert not third["moved"] and "does not beat" in third["reason"] and "not promoted" in said
-    assert third["champion"]["score"] == pytest.approx(second["candidate"]["score"], rel=1e-12)
+    # the gate compares validation scores; the champion's is the one it was promoted with
+    assert third["champion"]["score"] == pytest.approx(second["candidate"]["score"], rel=1e-5)
+    assert third["candidate"]["score"] == pytest.approx(first["candidate"]["score"], rel=1e-12)
+    assert second["candidate"]["score"] == second["candidate"]["validation"]["val_rmse"]
+    assert "rmse" in second["candidate"]["test_reported"]
 
     champion = client.get_model_version_by_alias(NAME, "champion")
     assert str(champion.version) == second["version"] == "2"
@@ -82,7 +86,10 @@ def test_promote_moves_champion_only_for_a_better_model(project, capsys):
     assert len(tags["dataset_hash"]) == 64
     assert tags["dataset_hash"] == client.get_model_version(NAME, "3").tags["dataset_hash"]
     assert tags["git_commit"] == "unknown" or len(tags["git_commit"]) == 40
-    assert float(tags["metric.rsd_mean"]) == pytest.approx(second["candidate"]["score"], rel=1e-5)
+    assert float(tags["metric.val_rmse"]) == pytest.approx(second["candidate"]["score"], rel=1e-5)
+    assert float(tags["metric.rsd_mean"]) == pytest.approx(          # test: reported beside it
+        second["candidate"]["test_reported"]["rsd_mean"], rel=1e-5)
+    assert tags["criterion"] == "val_rmse" and tags["eval_mode"] == "simulation"
     assert client.get_model_version(NAME, "3").tags["promoted"] == "False"
     assert champion.current_stage in (None, "None")             # aliases only, no stages
     model = client.get_registered_model(NAME)
@@ -93,6 +100,12 @@ def test_promote_without_run_or_sweep_is_a_config_error(project, capsys):
     _, common, *_ = project
     assert main(["promote", *common]) == 2
     assert "no sweep" in capsys.readouterr().err
+
+
+def test_promote_refuses_to_choose_by_a_test_figure(project, capsys):
+    _, common, _, weak, _ = project
+    assert main(["promote", *common, f"promote.run_id={weak}", "promote.criterion=rsd_mean"]) == 2
+    assert "test figure" in capsys.readouterr().err
 
 
 def _free_port() -> int:

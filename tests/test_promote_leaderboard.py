@@ -5,7 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from thermocomp.leaderboard import beats, e_p95_at, rank, summary, to_markdown
+from thermocomp.leaderboard import (beats, e_p95_at, is_validation, rank, summary, to_markdown,
+                                   validation_method)
 from thermocomp.metrics import split_scores
 
 
@@ -59,3 +60,22 @@ def test_rank_orders_by_criterion_missing_last_and_beats_respects_direction():
     assert not beats(math.nan, 1.0, "rsd_mean")
     md = to_markdown(rank(rows, "rsd_mean"))
     assert md.splitlines()[2].startswith("| c") and "n/a" in md
+
+
+def test_summary_carries_the_validation_figures_that_rank_and_the_test_ones_beside():
+    targets = _targets(scale_x=1.0, scale_z=3.0)
+    assert summary(targets)["val_rmse"] is None               # eval.validation=false: no figure
+    for t, v in (("E_X", 1.0), ("E_Z", 3.0)):
+        targets[t]["validation"] = {"rmse": v, "rsd_mean": v / 2, "rsd_sd": None,
+                                    "method": "leave-campaigns-out (4 folds)"}
+    x, mean = summary(targets, "E_X"), summary(targets)
+    assert (x["val_rmse"], mean["val_rmse"], mean["val_rsd_mean"]) == (1.0, 2.0, 1.0)
+    assert mean["val_rsd_sd"] is None and mean["rsd_mean"] == pytest.approx(
+        (x["rsd_mean"] + summary(targets, "E_Z")["rsd_mean"]) / 2)
+    assert validation_method(targets) == "leave-campaigns-out (4 folds)"
+    assert is_validation("val_rmse") and not is_validation("rsd_mean")
+    rows = [{"run_id": "a", "val_rmse": 2.0, "rmse": 0.1}, {"run_id": "b", "val_rmse": 1.0, "rmse": 9.0}]
+    table = rank(rows)                                           # default: validation RMSE
+    assert list(table["run_id"]) == ["b", "a"]
+    header = to_markdown(table).splitlines()[0]
+    assert "val_rmse" in header and "test:rmse" in header

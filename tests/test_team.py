@@ -57,6 +57,10 @@ def test_sweep_compare_promote_against_a_postgresql_backed_server(tmp_path):
     assert main(["promote", *common, f"promote.model_name={model_name}", f"out={tmp_path}"]) == 0
     report = json.loads((tmp_path / "promote.json").read_text())
     assert report["moved"] and report["run_id"] in {r.info.run_id for r in children}
+    import pandas as pd
+
+    table = pd.read_csv(tmp_path / "cmp" / "compare.csv")    # best by validation, not by test
+    assert table["val_rmse"].is_monotonic_increasing and report["run_id"] == table["run_id"].iloc[0]
     assert str(client.get_model_version_by_alias(model_name, "champion").version) == report["version"]
 
     if PG_URI:                                        # the runs really are in PostgreSQL

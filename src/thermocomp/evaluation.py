@@ -171,3 +171,166 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
             for stat, key in (("sm", "rsd_mean"), ("sd", "rsd_sd"))}
         out["targets"][t] = entry
     return out
+
+
+# -- validation: the score that chooses (compare, promote); the test split only reports --------
+VAL_FOLDS = 5
+MIN_TRAIN_FRACTION = 0.5   # forward chaining validates a single record on its second half
+
+
+def validation_report(make_compensator: Callable[[], Compensator], ds: Dataset,
+                      mode: str = "simulation", fitted: Compensator | None = None,
+                      n_folds: int = VAL_FOLDS) -> dict:
+    r"""Per-target validation figures, computed without the test split.
+
+    * ``val`` campaigns in the manifest: the model fitted on the train split
+      (``fitted``, else a new one) predicts them (``method = "val split"``).
+    * otherwise cross-validation on the train campaigns: several campaigns ->
+      :class:`~thermocomp.model_selection.LeaveCampaignsOut` with
+      ``min(n_folds, n_campaigns)`` folds; a single long record ->
+      :class:`~thermocomp.model_selection.ForwardChaining` on its second half
+      (expanding window, a gap of half a validation block).  Each fold refits
+      the whole configured compensator (``make_compensator()``: selection,
+      denoiser, ATI elbow, everything) on its training rows and predicts its
+      held-out rows in ``mode`` (simulation: inputs only).  A forward-chaining
+      fold predicts the record from its start, so the model's state carries
+      over the gap as on the machine, and is scored on the held-out block.
+
+    With ``R_u`` the residual of held-out unit ``u`` (a campaign, or a block of
+    the record) and :math:`R_{sd}` of paper 003 (Eq. 17):
+
+    .. math:: \mathrm{rmse} = \sqrt{\frac{\sum_u \sum_j R_{u,j}^2}{\sum_u n_u}},\quad
+              \mathrm{rsd\_mean},\ \mathrm{rsd\_sd} = \mathrm{SM}, \mathrm{SD}
+              \text{ of } \{R_{sd}(R_u)\}_u
+
+    Returns
+    -------
+    dict target -> ``{"rmse", "rsd_mean", "rsd_sd", "method", "n_folds", "per_unit"}``
+    """
+    val_ids = ds.ids("val")
+    train = require_split(ds, "train")
+    if val_ids:
+        comp = fitted if fitted is not None else make_compensator().fit(
+            {c: ds.campaigns[c] for c in train})
+        camps = {c: ds.campaigns[c] for c in val_ids}
+        pred, meas = comp.predict(camps, mode=mode), comp.measured(camps)
+        residual = {t: {c: meas[c][t].to_numpy() - pred[c][t].to_numpy() for c in val_ids}
+                    for t in comp.targets_}
+        return _validation_entries(residual, "val split", 1)
+    template = make_compensator()
+    camps = {c: ds.campaigns[c] for c in train}
+    if len(train) >= 2:
+        folds = _campaign_folds(camps, n_folds)
+        method = f"leave-campaigns-out ({len(folds)} folds)"
+    else:
+        folds = _forward_folds(camps, n_folds)
+        method = "forward chaining"
+    residual = (_fold_residuals_stacked(template, camps, folds, mode)
+                if template.denoiser is None else _fold_residuals(template, camps, folds, mode))
+    out = _validation_entries(residual, method, len(folds))
+    if method == "forward chaining":
+        for entry in out.values():
+            entry["gap_samples"] = folds[0][3] if folds else 0
+    return out
+
+
+def _campaign_folds(camps: dict, n_folds: int) -> list[tuple]:
+    """``(fit rows, predict rows, {unit: score rows}, gap)`` as ``{campaign: row count}`` maps."""
+    from .model_selection import LeaveCampaignsOut
+
+    ids = list(camps)
+    lengths = {c: len(camps[c]) for c in ids}
+    folds = []
+    for fit, held in LeaveCampaignsOut(n_folds=n_folds).split(ids, groups=ids):
+        fit_ids, held_ids = [ids[i] for i in fit], [ids[i] for i in held]
+        folds.append(({c: lengths[c] for c in fit_ids}, {c: lengths[c] for c in held_ids},
+                      {c: (c, 0, lengths[c]) for c in held_ids}, 0))
+    return folds
+
+
+def _forward_folds(camps: dict, n_folds: int) -> list[tuple]:
+    """Forward-chaining folds of the single record: fit on a prefix, predict up to the block's end."""
+    from .model_selection import ForwardChaining
+    from .model_selection.splitters import forward_block
+
+    (cid, df), = camps.items()
+    n = len(df)
+    k = max(1, min(int(n_folds), n - 1))
+    gap = forward_block(n, k, MIN_TRAIN_FRACTION) // 2
+    folds = []
+    for j, (fit, held) in enumerate(ForwardChaining(k, gap=gap, min_train_fraction=MIN_TRAIN_FRACTION)
+                                    .split(np.zeros((n, 1)))):
+        a, b = int(held[0]), int(held[-1]) + 1
+        folds.append(({cid: int(fit[-1]) + 1}, {cid: b}, {f"{cid}#{j + 1}": (cid, a, b)}, gap))
+    return folds
+
+
+def _fold_residuals_stacked(template: Compensator, camps: dict, folds, mode: str) -> dict:
+    """Residuals of every fold from one stack of the train campaigns (no denoiser to refit)."""
+    from sklearn.base import clone
+
+    from .frame import resolve_columns, stack
+
+    columns = list(dict.fromkeys(c for df in camps.values() for c in df.columns))
+    inputs, targets = resolve_columns(columns, template.inputs, template.targets)
+    m = stack(camps, inputs, targets, template.reference)
+    start = dict(zip(camps, np.cumsum([0] + [len(df) for df in camps.values()])))
+    residual: dict = {t: {} for t in targets}
+    for fit_rows, pred_rows, units, _ in folds:
+        comp = clone(template)
+        comp.inputs_, comp.targets_, comp.denoiser_ = inputs, targets, None
+        comp.fit_stacked(_rows(m, _mask(start, fit_rows, len(m.X))))
+        sub = _rows(m, _mask(start, pred_rows, len(m.X)))
+        pred = comp.predict_stacked(sub, mode)
+        order = [c for c in camps if c in pred_rows]      # the stack's order
+        offsets = dict(zip(order, np.cumsum([0] + [pred_rows[c] for c in order])))
+        for unit, (c, a, b) in units.items():
+            rows = slice(offsets[c] + a, offsets[c] + b)
+            for k, t in enumerate(targets):
+                residual[t][unit] = sub.Y[t].to_numpy()[rows] - pred[rows, k]
+    return residual
+
+
+def _fold_residuals(template: Compensator, camps: dict, folds, mode: str) -> dict:
+    """Residuals of every fold, refitting the whole compensator (denoiser included) on campaigns."""
+    from sklearn.base import clone
+
+    residual: dict = {}
+    for fit_rows, pred_rows, units, _ in folds:
+        comp = clone(template).fit({c: camps[c].iloc[:n] for c, n in fit_rows.items()})
+        part = {c: camps[c].iloc[:n] for c, n in pred_rows.items()}
+        pred, meas = comp.predict(part, mode=mode), comp.measured(part)
+        for unit, (c, a, b) in units.items():
+            for t in comp.targets_:
+                residual.setdefault(t, {})[unit] = (meas[c][t].to_numpy()[a:b]
+                                                    - pred[c][t].to_numpy()[a:b])
+    return residual
+
+
+def _mask(start: dict, rows: dict, n: int) -> np.ndarray:
+    """Rows of the stack: the first ``rows[c]`` rows of each campaign ``c``."""
+    mask = np.zeros(n, dtype=bool)
+    for c, k in rows.items():
+        mask[start[c]:start[c] + k] = True
+    return mask
+
+
+def _rows(m, mask: np.ndarray):
+    """The stacked matrices restricted to ``mask`` (rows stay in campaign, then time order)."""
+    from .frame import Matrices
+
+    context = None if m.context is None else m.context[mask].reset_index(drop=True)
+    return Matrices(m.X[mask].reset_index(drop=True), m.Y[mask].reset_index(drop=True),
+                    m.groups[mask], m.time[mask], context)
+
+
+def _validation_entries(residual: dict, method: str, n_folds: int) -> dict:
+    out = {}
+    for t, per in residual.items():
+        pooled = np.concatenate([np.asarray(r, float) for r in per.values()])
+        per_unit = {u: rsd(r) for u, r in per.items()}
+        sm, sd = sm_sd([v for v in per_unit.values() if np.isfinite(v)])
+        out[t] = {"rmse": float(np.sqrt(np.mean(pooled ** 2))) if pooled.size else None,
+                  "rsd_mean": sm, "rsd_sd": sd, "method": method, "n_folds": int(n_folds),
+                  "per_unit": json_safe(per_unit)}
+    return out

@@ -1,10 +1,13 @@
-"""Ranking fitted models by their test figures (pure core: dicts in, table out).
+"""Ranking fitted models by their validation figures (pure core: dicts in, table out).
 
 A *row* summarises one run's ``metrics.json`` ``targets`` block for one target
-(or the mean over targets): test Rsd SM/SD, RMSE, RMS reduction, E_P95 of the
-residual at 1 h and 8 h.  ``thermocomp compare`` ranks the runs of a sweep with
-it and ``thermocomp promote`` uses the same criterion to decide whether a model
-beats the champion.
+(or the mean over targets): the validation RMSE and Rsd SM/SD (``val_*``, from
+the ``val`` split or cross-validation on the train split, see
+:func:`thermocomp.evaluation.validation_report`), then the test figures --
+Rsd SM/SD, RMSE, RMS reduction, E_P95 of the residual at 1 h and 8 h --
+reported beside them.  ``thermocomp compare`` ranks the runs of a sweep by a
+validation figure and ``thermocomp promote`` gates on one: a choice made by
+looking at the test split would flatter whatever it chose.
 """
 
 from __future__ import annotations
@@ -15,7 +18,9 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-FIGURES = ("rsd_mean", "rsd_sd", "rmse", "rms_reduction_pct", "e_p95_1h", "e_p95_8h")
+FIGURES = ("rsd_mean", "rsd_sd", "rmse", "rms_reduction_pct", "e_p95_1h", "e_p95_8h")  # test
+VAL_FIGURES = ("val_rmse", "val_rsd_mean", "val_rsd_sd")   # what ranks and gates
+VAL_PREFIX = "val_"
 HIGHER_IS_BETTER = {"rms_reduction_pct"}
 HOUR_S = 3600.0
 
@@ -45,19 +50,41 @@ def _target_figures(test: Mapping) -> dict:
             "e_p95_8h": e_p95_at(test.get("e_p95"), 8 * HOUR_S)}
 
 
+def _val_figures(validation: Mapping | None) -> dict:
+    v = validation or {}
+    return {f"{VAL_PREFIX}{k}": v.get(k) for k in ("rmse", "rsd_mean", "rsd_sd")}
+
+
+def _figures(m: Mapping) -> dict:
+    return {**_val_figures(m.get("validation")), **_target_figures(m["test"])}
+
+
+def is_validation(criterion: str) -> bool:
+    """Whether ``criterion`` names a validation figure (the only kind allowed to choose)."""
+    return criterion in VAL_FIGURES
+
+
+def validation_method(targets: Mapping, target: str = "mean") -> str | None:
+    """How the validation figures were computed (``method`` of ``metrics.json``), or None."""
+    entries = [targets[target]] if target != "mean" else list(targets.values())
+    methods = {(m.get("validation") or {}).get("method") for m in entries} - {None}
+    return " / ".join(sorted(methods)) or None
+
+
 def summary(targets: Mapping, target: str = "mean") -> dict:
-    """Test figures of one target, or their mean over targets (``target='mean'``).
+    """Validation and test figures of one target, or their mean over targets (``target='mean'``).
 
     ``targets`` is the ``targets`` block of ``metrics.json``.  A figure missing
-    for some target is averaged over the others; ``None`` if missing for all.
+    for some target is averaged over the others; ``None`` if missing for all
+    (the ``val_*`` figures of a run made with ``eval.validation=false``).
     """
     if target != "mean":
         if target not in targets:
             raise KeyError(f"target {target!r} not in metrics (have {sorted(targets)})")
-        return _target_figures(targets[target]["test"])
-    per = [_target_figures(m["test"]) for m in targets.values()]
+        return _figures(targets[target])
+    per = [_figures(m) for m in targets.values()]
     out = {}
-    for f in FIGURES:
+    for f in (*VAL_FIGURES, *FIGURES):
         vals = [p[f] for p in per if p[f] is not None and math.isfinite(p[f])]
         out[f] = float(np.mean(vals)) if vals else None
     return out
@@ -67,7 +94,7 @@ def descending_for(criterion: str) -> bool:
     return criterion in HIGHER_IS_BETTER
 
 
-def rank(rows: Sequence[Mapping], sort_by: str = "rsd_mean",
+def rank(rows: Sequence[Mapping], sort_by: str = "val_rmse",
          descending: bool | None = None) -> pd.DataFrame:
     """Rows as a table, best first by ``sort_by`` (missing values last)."""
     table = pd.DataFrame(list(rows))
@@ -94,8 +121,8 @@ def beats(candidate: float | None, incumbent: float | None, criterion: str,
 
 
 def to_markdown(table: pd.DataFrame, digits: int = 2) -> str:
-    """GitHub Markdown table (``n/a`` for missing figures)."""
-    shown = table.copy()
+    """GitHub Markdown table (``n/a`` for missing figures); test columns headed ``test:``."""
+    shown = table.rename(columns={f: f"test:{f}" for f in FIGURES})
     for c in shown.columns:
         if pd.api.types.is_float_dtype(shown[c]):
             shown[c] = [("n/a" if pd.isna(v) else f"{v:.{digits}f}") for v in shown[c]]

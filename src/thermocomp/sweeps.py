@@ -13,7 +13,7 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from .errors import ConfigError
-from .leaderboard import FIGURES, summary
+from .leaderboard import FIGURES, VAL_FIGURES, summary, validation_method
 from .paths import resolve
 from .tracking import child_runs, latest_sweep, retry_locked
 
@@ -87,10 +87,14 @@ def sweep_rows(client, uri: str, parent_id: str, target: str = "mean") -> list[d
         row["settings"] = " ".join(f"{k}={p.get(k)}" for k in varied)
         metrics = run_metrics(r.info.run_id, uri)
         try:
-            figures = summary(metrics["targets"], target) if metrics else dict.fromkeys(FIGURES)
+            figures = (summary(metrics["targets"], target) if metrics
+                       else dict.fromkeys((*VAL_FIGURES, *FIGURES)))
+            method = validation_method(metrics["targets"], target) if metrics else None
         except KeyError as exc:
             raise ConfigError(f"compare.target: {exc.args[0]}") from None
-        row.update(figures)
+        row.update({f: figures[f] for f in VAL_FIGURES})     # what ranks, then what is reported
+        row["val_method"] = method
+        row.update({f: figures[f] for f in FIGURES})
         row["fit_time_s"] = r.data.metrics.get("fit_time_s")
         rows.append(row)
     return rows

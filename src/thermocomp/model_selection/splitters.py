@@ -212,6 +212,13 @@ class ForwardChaining(TimeSeriesSplit):
     :class:`~sklearn.model_selection.TimeSeriesSplit`; rows must be in time
     order (``groups`` is ignored).
 
+    With ``min_train_fraction`` the test parts are the last ``1 -
+    min_train_fraction`` of the rows cut into ``n_splits`` blocks
+    (:func:`forward_block`), so every fold model sees at least about that
+    share of the record, like the final model that sees all of it: folds
+    trained on the first few percent of a drifting record extrapolate far
+    worse than the final model will, and their errors would dominate the mean.
+
     Parameters
     ----------
     n_splits : int, default 5
@@ -219,13 +226,31 @@ class ForwardChaining(TimeSeriesSplit):
         Samples dropped between the end of each train part and its test part.
     test_size : int or None, default None
         Rows per test part (default ``n_samples // (n_splits + 1)``).
+    min_train_fraction : float in [0, 1) or None, default None
+        Validate on the last ``1 - min_train_fraction`` of the rows only
+        (overrides ``test_size``).
     """
 
-    def __init__(self, n_splits: int = 5, gap: int = 0, test_size: int | None = None):
+    def __init__(self, n_splits: int = 5, gap: int = 0, test_size: int | None = None,
+                 min_train_fraction: float | None = None):
         super().__init__(n_splits=n_splits, gap=gap, test_size=test_size)
+        self.min_train_fraction = min_train_fraction
 
     def split(self, X, y=None, groups=None):
         """Yield ``(train, test)`` row indices, train strictly before test."""
         if int(self.gap) < 0:
             raise ParameterError(f"gap={self.gap!r} must be >= 0 samples")
-        yield from super().split(X, y, groups)
+        if self.min_train_fraction is None:
+            yield from super().split(X, y, groups)
+            return
+        frac = float(self.min_train_fraction)
+        if not 0 <= frac < 1:
+            raise ParameterError(f"min_train_fraction={self.min_train_fraction!r} must be in [0, 1)")
+        block = forward_block(len(X), int(self.n_splits), frac)
+        yield from TimeSeriesSplit(n_splits=self.n_splits, gap=self.gap,
+                                   test_size=block).split(X, y, groups)
+
+
+def forward_block(n: int, n_splits: int, min_train_fraction: float = 0.5) -> int:
+    """Rows of a validation block: the last ``1 - min_train_fraction`` of ``n`` in ``n_splits`` blocks."""
+    return max(1, (n - int(np.ceil(min_train_fraction * n))) // int(n_splits))

@@ -1,8 +1,10 @@
-"""`thermocomp compare`: one table of every child run of a sweep, best first.
+"""`thermocomp compare`: one table of every child run of a sweep, best first by validation.
 
-Columns: model, selection, ATI, test Rsd SM/SD, RMSE, RMS reduction, E_P95 of
-the residual at 1 h / 8 h (``null`` when the campaigns are shorter), fit time,
-and the settings that vary across the sweep.  Printed (Markdown), saved as
+Columns: model, selection, ATI, the settings that vary across the sweep, the
+validation RMSE and Rsd SM/SD with their method (``val_*``: what ranks), then
+the test Rsd SM/SD, RMSE, RMS reduction, E_P95 of the residual at 1 h / 8 h
+(``null`` when the campaigns are shorter) -- reported, never used to choose --
+and the fit time.  Printed (Markdown), saved as
 ``compare.csv``, ``compare.md`` and ``compare.json`` (a DVC metric) under
 ``compare.out``, and logged as artifacts of the sweep's parent run.
 """
@@ -15,7 +17,7 @@ from omegaconf import DictConfig
 from ..errors import ConfigError
 from ..files import atomic_write_text, write_json
 from ..jsonsafe import json_safe
-from ..leaderboard import FIGURES, rank, to_markdown
+from ..leaderboard import FIGURES, VAL_FIGURES, is_validation, rank, to_markdown
 from ..paths import resolve
 from ..sweeps import parent_run_id, sweep_rows
 from ..tracking import client as mlflow_client
@@ -25,8 +27,10 @@ from .common import say
 
 def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str) -> dict:
     records = json_safe(table.to_dict(orient="records"))
-    numeric = [c for c in (*FIGURES, "fit_time_s") if c in table.columns]
+    numeric = [c for c in (*VAL_FIGURES, *FIGURES, "fit_time_s") if c in table.columns]
     return {"parent_run_id": parent_id, "sort_by": sort_by, "target": target,
+            "ranked_by_validation": is_validation(sort_by),
+            "reported_not_used_to_choose": [c for c in FIGURES if c in table.columns],
             "n_runs": len(records),
             "best": {k: records[0][k] for k in ("run_id", "model", "select", *numeric)} if records else {},
             "runs": {f"{i:02d}_{r['run_id'][:8]}": {k: r[k] for k in numeric} for i, r in
@@ -53,8 +57,10 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     write_json(out / "compare.json", _json_table(table, str(opts.sort_by), str(opts.target), parent_id))
     for name in ("compare.csv", "compare.md", "compare.json"):
         retry_locked(client.log_artifact, parent_id, str(out / name), "compare")
+    basis = ("validation" if is_validation(str(opts.sort_by))
+             else "a TEST figure, as asked: do not choose a model by it")
     print(f"sweep {parent_id}: {len(table)} runs, sorted by {opts.sort_by} "
-          f"(target {opts.target}, test split)")
+          f"(target {opts.target}, {basis}); test: columns are reported, not used to choose")
     print(md)
     say(f"comparison: {out / 'compare.md'}")
     return table

@@ -11,8 +11,8 @@ from sklearn.base import clone
 
 from .. import io
 from ..compensator import Compensator
-from ..evaluation import (ambient_by_campaign, anova, ati_report, mutual_prediction_report,
-                          require_split, score)
+from ..evaluation import (VAL_FOLDS, ambient_by_campaign, anova, ati_report,
+                          mutual_prediction_report, require_split, score, validation_report)
 from ..files import atomic_dir, write_json
 from ..iso10791 import a3_campaign
 from ..paths import resolve
@@ -57,6 +57,9 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
         targets, predictions = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points,
                                      iso_a3=ev.get("iso10791_a3", True))
         clock.lap("score")
+        if ev.get("validation", True):
+            _add_validation(cfg, comp, ds, targets)
+            clock.lap("validation")
         metrics = {"model": cfg.model.name, "mode": ev.mode, "targets": targets,
                    "select": cfg.select.name, "dataset": ds.name,
                    "inputs": {t: comp.selected_[t] for t in comp.targets_}}
@@ -100,6 +103,19 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
     say(f"metrics: {path}")
     say(clock.line())
     return metrics
+
+
+def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> None:
+    """``targets[t]["validation"]``: the score compare and promote choose by (never the test split).
+
+    The configured compensator (not the loaded one: its selection or denoiser
+    may have been fitted on all train campaigns) is refitted per fold.
+    """
+    say("validation: " + ("the val split" if ds.ids("val") else "cross-validation on the train split"))
+    val = validation_report(partial(clone, build_compensator(cfg)), ds, cfg.eval.mode, fitted=comp,
+                            n_folds=int(cfg.eval.get("validation_folds", VAL_FOLDS)))
+    for t, entry in val.items():
+        targets[t]["validation"] = entry
 
 
 @contextmanager

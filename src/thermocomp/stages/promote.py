@@ -1,17 +1,22 @@
 """`thermocomp promote`: register a run's compensator, move ``champion`` only if it is better.
 
 1. The candidate is ``promote.run_id``, or the best child of the sweep
-   ``compare.sweep`` (default: the latest) by ``promote.criterion``.
+   ``compare.sweep`` (default: the latest) by ``promote.criterion``, a
+   validation figure (``val_*``; a test figure is refused).
 2. Its ``model.pkl`` becomes a deployable :class:`~thermocomp.deploy.StreamingCompensator`
    (training envelope from the train split of ``data.path``), checked to stream
    exactly as it predicts in batch (causality), and is registered as an
    ``mlflow.pyfunc`` model with a signature: a new version of ``promote.model_name``,
-   tagged with the dataset hash, git commit and its test figures.
-3. Candidate and current champion are both scored, as deployed (streamed from a
-   reset per campaign), on the same test campaigns of ``data.path``.  The alias
-   moves only if the candidate beats the champion by more than
-   ``promote.min_improvement``; otherwise the stage says so and leaves it.
-   No registry stages (deprecated): aliases and tags only.
+   tagged with the dataset hash, git commit, its validation figures (from its
+   run's ``metrics.json``) and its test figures (streamed from a reset per
+   test campaign, as deployed: reported, never used to decide).
+3. The gate compares validation scores on the same dataset: the candidate's
+   against the one the champion was promoted with, when the champion's
+   ``dataset_hash``, ``criterion_target`` and ``eval_mode`` tags match.  The
+   alias moves only if the candidate beats it by more than
+   ``promote.min_improvement``; a champion with no comparable validation score
+   stays unless ``promote.force``.  No registry stages (deprecated): aliases
+   and tags only.
 
 Writes ``<out>/promote.json``.
 """
@@ -29,9 +34,9 @@ from ..deploy import StreamingCompensator, stream_scores, streaming_deviation
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json
-from ..leaderboard import beats, rank, summary
+from ..leaderboard import beats, is_validation, rank, summary
 from ..paths import project_root, resolve
-from ..sweeps import parent_run_id, sweep_rows
+from ..sweeps import parent_run_id, run_metrics, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
 from .common import check_config, data_options, say
@@ -79,12 +84,39 @@ def _load_run_model(run_id: str, uri: str):
             return pickle.load(f)
 
 
-def _criterion(targets: dict, cfg: DictConfig) -> tuple[float | None, dict]:
+def _figures(targets: dict, cfg: DictConfig) -> dict:
     try:
-        figures = summary(targets, str(cfg.promote.target))
-        return figures[str(cfg.promote.criterion)], figures
+        return summary(targets, str(cfg.promote.target))
     except KeyError as exc:
-        raise ConfigError(f"promote.criterion/target: {exc.args[0]}") from None
+        raise ConfigError(f"promote.target: {exc.args[0]}") from None
+
+
+def _validation_score(run_id: str, uri: str, cfg: DictConfig) -> tuple[float, dict, str]:
+    """The candidate's validation figures from its run's ``metrics.json``: (score, figures, mode)."""
+    metrics = run_metrics(run_id, uri)
+    if not metrics or "targets" not in metrics:
+        raise ConfigError(f"run {run_id} has no metrics.json: promote a `run` or `evaluate` run")
+    figures = {k: v for k, v in _figures(metrics["targets"], cfg).items() if is_validation(k)}
+    score = figures[str(cfg.promote.criterion)]
+    if score is None:
+        raise ConfigError(f"run {run_id} has no {cfg.promote.criterion} (made with "
+                          f"eval.validation=false?): rerun it with eval.validation=true")
+    return score, figures, str(metrics.get("mode", "simulation"))
+
+
+def _champion_validation(champion, criterion: str, target: str, dataset_hash: str, mode: str
+                         ) -> tuple[float | None, str | None]:
+    """The validation score the champion was promoted with, if it is comparable here."""
+    tags = champion.tags or {}
+    for key, want, what in (("dataset_hash", dataset_hash, "another dataset"),
+                            ("criterion_target", target, f"another target than {target}"),
+                            ("eval_mode", mode, f"another eval.mode than {mode}")):
+        if tags.get(key) != want:
+            return None, f"its validation score is on {what} ({key}={tags.get(key)})"
+    value = tags.get(f"metric.{criterion}")
+    if value in (None, "null"):
+        return None, f"it has no validation score {criterion}"
+    return float(value), None
 
 
 def _fmt(value: float | None) -> str:
@@ -106,6 +138,11 @@ def promote(cfg: DictConfig) -> dict:
     from ..deploy.pyfunc import correction_column, log_compensator
 
     opts = cfg.promote
+    criterion = str(opts.criterion)
+    if not is_validation(criterion):
+        raise ConfigError(f"promote.criterion={criterion} is a test figure: the test split is "
+                          f"reported, never used to choose (use val_rmse, val_rsd_mean or "
+                          f"val_rsd_sd)")
     client = mlflow_client(cfg)
     uri = connect(cfg)
     run_id = str(opts.run_id) if opts.get("run_id") else _best_run(cfg, client, uri)
@@ -116,8 +153,9 @@ def promote(cfg: DictConfig) -> dict:
     data_path = resolve(cfg.data.path)
     trained_on = run_params.get("data.path")
     if trained_on and resolve(trained_on) != data_path:
-        say(f"warning: run {run_id} was trained on data.path={trained_on}; scoring and the "
-            f"envelope use data.path={data_path}")
+        raise ConfigError(f"run {run_id} was trained and validated on data.path={trained_on}, "
+                          f"not {data_path}: promote it with that data.path")
+    cand_score, val_figures, mode = _validation_score(run_id, uri, cfg)
     ds, _ = io.read_dataset(data_path, data_options(cfg))
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     try:
@@ -137,22 +175,18 @@ def promote(cfg: DictConfig) -> dict:
     dt = sample_period(ds, test_ids)
     statistic, points = cfg.eval.e_p95.statistic, cfg.eval.e_p95.max_points
 
-    def score(s: StreamingCompensator):
-        return _criterion(stream_scores(s, test, dt, statistic, points), cfg)
-
-    cand_score, cand_figures = score(streaming)
+    # the test figures, as deployed: reported beside the validation ones, never used to decide
+    test_figures = {k: v for k, v in _figures(stream_scores(streaming, test, dt, statistic, points),
+                                              cfg).items() if not is_validation(k)}
+    cand_figures = {**val_figures, **test_figures}
+    dataset_hash = folder_digest(data_path)
 
     name, alias = str(opts.model_name), str(opts.alias)
     champion = _current_champion(client, name, alias)
     champ_score, champ_note = None, None
     if champion is not None:
-        try:
-            model = mlflow.pyfunc.load_model(f"models:/{name}@{alias}")
-            champ_score, _ = score(model.unwrap_python_model().streaming)
-        except ConfigError:
-            raise
-        except Exception as exc:
-            champ_note = " ".join(str(exc).split())[:300]
+        champ_score, champ_note = _champion_validation(champion, criterion, str(opts.target),
+                                                       dataset_hash, mode)
 
     example = test[test_ids[0]][streaming.columns_ + ["time"]].head(5)
     retry_locked(mlflow.start_run, run_id=run_id)
@@ -162,24 +196,22 @@ def promote(cfg: DictConfig) -> dict:
         retry_locked(mlflow.end_run)
     version = str(info.registered_model_version)
 
-    criterion = str(opts.criterion)
     if champion is None:
         moved, why = True, "no champion yet"
     elif champ_score is None:
         moved = bool(opts.get("force", False))
-        why = (f"the champion (version {champion.version}) cannot be scored on these test "
-               f"campaigns ({champ_note or 'no figure'})" + ("; forced" if moved else
-                                                             "; set promote.force=true to replace it"))
+        why = (f"the champion (version {champion.version}) has no comparable validation score "
+               f"({champ_note})" + ("; forced" if moved else "; set promote.force=true to replace it"))
     else:
         moved = beats(cand_score, champ_score, criterion, float(opts.min_improvement))
         verb = "beats" if moved else "does not beat"
-        why = (f"{criterion} {_fmt(cand_score)} {verb} the champion's {_fmt(champ_score)} "
-               f"(version {champion.version}) on the same {len(test_ids)} test campaigns")
+        why = (f"validation {criterion} {_fmt(cand_score)} {verb} the champion's "
+               f"{_fmt(champ_score)} (version {champion.version}) on the same dataset")
     commit, dirty = git_commit()
-    tags = {"dataset_hash": folder_digest(data_path), "dataset": ds.name, "git_commit": commit,
+    tags = {"dataset_hash": dataset_hash, "dataset": ds.name, "git_commit": commit,
             "git_dirty": dirty, "source_run_id": run_id,
             "model": run_params.get("model.name"), "select": run_params.get("select.name"),
-            "criterion": criterion, "criterion_target": str(opts.target),
+            "criterion": criterion, "criterion_target": str(opts.target), "eval_mode": mode,
             "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
             "envelope_policy": str(opts.envelope.policy),
             "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
@@ -196,7 +228,8 @@ def promote(cfg: DictConfig) -> dict:
             f"{champion.version}: {why}")
     report = {"model_name": name, "alias": alias, "version": version, "run_id": run_id,
               "moved": moved, "reason": why, "criterion": criterion,
-              "candidate": {"score": cand_score, "figures": cand_figures},
+              "candidate": {"score": cand_score, "figures": cand_figures,
+                            "validation": val_figures, "test_reported": test_figures},
               "champion": None if champion is None else {"version": str(champion.version),
                                                          "score": champ_score},
               "stream_deviation_um": deviation, "model_uri": f"models:/{name}/{version}"}
