@@ -77,10 +77,10 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
     campaign start with the default reference), so the recurrent state, like
     the machine's thermal state, starts every campaign from rest.
 
-    The linear skip path :math:`w, c` is the least-squares fit on all
-    training rows and stays fixed; the read-out :math:`v, d` starts at zero,
-    so the untrained model *is* ordinary least squares and the network learns
-    only what the static law leaves over.  Training minimises the mean squared
+    The linear skip path :math:`w, c` is the least-squares fit on the rows
+    the network trains on and stays fixed during training; the read-out
+    :math:`v, d` starts at zero, so the network learns only what the static
+    law leaves over.  Training minimises the mean squared
     error with Adam by truncated back-propagation through time: every
     campaign is cut into pieces of ``chunk`` samples, each piece starting from
     the (detached) state the network reaches there when run from the campaign
@@ -90,6 +90,9 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
     the tail of a single campaign, whose state is then carried in from the
     training part) keeps the best epoch, the linear model (epoch 0) included:
     a network that does not beat the static law on held-out rows is dropped.
+    Finally :math:`w, c` are refitted by least squares on all training rows
+    with the learned residual held fixed, so without a network the model is
+    ordinary least squares on the training data.
 
     Seeded and deterministic on CPU (``random_state``, a forked torch RNG, a
     fixed thread count); the global torch RNG and thread setting are left as
@@ -214,8 +217,10 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
             torch.manual_seed(int(self.random_state))
             gen = torch.Generator().manual_seed(int(self.random_state))
             net = _Net(p, int(self.hidden_size), int(self.num_layers), float(self.dropout))
-            # the static law first, fixed: the network is trained on what it leaves over only
-            self._least_squares(net, Xs, ys)
+            # the static law first, fitted on the rows the network trains on and held fixed: the
+            # network learns only what it leaves over, and epoch 0 (no network) is judged on
+            # held-out rows like every other epoch
+            self._least_squares(net, Xs[~val], ys[~val])
             net.skip.requires_grad_(False)
             opt = torch.optim.Adam([q for q in net.parameters() if q.requires_grad], lr=float(self.learning_rate),
                                    weight_decay=float(self.weight_decay))
@@ -258,7 +263,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
                 net.load_state_dict(best_state)
         self.n_epochs_, self.best_epoch_ = epoch, best_epoch if val.any() else epoch
         self.net_ = net.double().eval()
-        self._least_squares(self.net_, Xs, ys)       # the frozen skip path again, in float64
+        # the linear law refitted on every training row, the learned residual held fixed
+        self._least_squares(self.net_, Xs, ys - self._outputs(Xs, groups, residual=True))
         self.context_columns_ = []
         return self
 
@@ -281,13 +287,13 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
             net.skip.bias.fill_(float(coef[-1]))
 
     # -- inference -----------------------------------------------------------------------
-    def _outputs(self, Xs: np.ndarray, groups) -> np.ndarray:
-        """Prediction of the net, standardised, per row."""
+    def _outputs(self, Xs: np.ndarray, groups, residual: bool = False) -> np.ndarray:
+        """Prediction (or only the network's residual) of the net, standardised, per row."""
         out = np.zeros(len(Xs))
         with _torch_threads(int(self.n_threads)), torch.no_grad():
             for start, stop in segment_bounds(groups, len(Xs)):
                 x = torch.tensor(Xs[None, start:stop], dtype=torch.float64)
-                out[start:stop] = self.net_(x)[0][0].numpy()
+                out[start:stop] = self.net_(x)[1 if residual else 0][0].numpy()
         return out
 
     def predict(self, X, context=None):
