@@ -192,7 +192,7 @@ def _library(name: str) -> Compensator:
         return Compensator(_library_model(name, **{"arx.max_inputs": 2, "forest.n_estimators": 10,
                                                    "forest.random_state": 0}))
     if name == "lstm":
-        return Compensator(_library_model(name, window=4, hidden_size=4, max_epochs=3,
+        return Compensator(_library_model(name, hidden_size=4, max_epochs=3,
                                           random_state=0), targets=["E_Z"])
     if name == "ati_arx":
         return Compensator(ATIRegressor(_library_model("arx", **arx), n_intervals=2,

@@ -33,7 +33,7 @@ ESTIMATORS = {
     "PCR": (PCR(), {}),
     "ARX": (ARX(), {}),
     "ARX-dynamic": (ARX(ar=True, delays=(0, 2)), ORDER_CHECKS),
-    "LSTM": (LSTM(window=3, hidden_size=4, max_epochs=3), ORDER_CHECKS),
+    "LSTM": (LSTM(hidden_size=4, max_epochs=3), ORDER_CHECKS),
     "LagBank": (LagBank(), ORDER_CHECKS),
     "ARXRF": (ARXRF(state_column=None, forest=_forest()), {}),
     "ATI(MLR)": (ATIRegressor(MLR()), {}),
@@ -89,7 +89,7 @@ WRAPPED = {
         [Effect("signal", "first_order_lag", "S_door", tau_s=600).to_dict(),
          Effect("ambient_interval", "ambient_linear").to_dict()]),
     "Augmented(LSTM)": lambda: AugmentedRegressor(
-        LSTM(window=3, hidden_size=4, max_epochs=2),
+        LSTM(hidden_size=4, max_epochs=2),
         [Effect("signal", "raw", "S_door").to_dict()]),
     "PCR": PCR,
     "ATI(LagBank ar)": lambda: ATIRegressor(LagBank(ar=True, n_taus=3), n_intervals=2),

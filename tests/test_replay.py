@@ -21,7 +21,7 @@ ATIS = ("none", "cmeans")
 DENOISERS = ("none", "emd")
 SELECTORS = ("all", "pearson", "greedy_residual", "cluster_grey")
 SMALL = {  # keep every fit small: the point is the plumbing, not the accuracy
-    "lstm": ["model.estimator.max_epochs=2", "model.estimator.hidden_size=4", "model.estimator.window=4"],
+    "lstm": ["model.estimator.max_epochs=2", "model.estimator.hidden_size=4", "model.estimator.chunk=16"],
     "arx_rf": ["model.estimator.forest.n_estimators=5"],
 }
 TOLERANCE_UM = 1e-6
