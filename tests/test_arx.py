@@ -129,8 +129,9 @@ def test_compensator_one_step_mode_is_the_law_over_the_arx_simulation():
         np.testing.assert_allclose(sim[cid]["E_Z"], s)
         y_c = meas[cid]["E_Z"].to_numpy()
         np.testing.assert_allclose(one[cid]["E_Z"], law.predict(s[:, None], context=ctx(y_measured=y_c)))
-        # the law: persistence plus k times the simulated change, the simulation at the first sample
-        np.testing.assert_allclose(one[cid]["E_Z"].to_numpy()[1:], y_c[:-1] + law.k_ * np.diff(s))
+        # the law: persistence, the simulated change, the model's miss; the simulation at the start
+        np.testing.assert_allclose(one[cid]["E_Z"].to_numpy()[1:],
+                                   y_c[:-1] + law.k_ * np.diff(s) - law.g_ * (y_c[:-1] - s[:-1]))
         assert one[cid]["E_Z"].iloc[0] == pytest.approx(s[0])
     y_all = np.concatenate([meas[c]["E_Z"] for c in camps])
     assert np.sqrt(np.mean((y_all - np.concatenate([one[c]["E_Z"] for c in camps])) ** 2)) < \

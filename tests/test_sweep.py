@@ -57,8 +57,13 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
     assert table["rsd_mean"].is_monotonic_increasing
     assert table["e_p95_1h"].notna().all() and table["e_p95_8h"].isna().all()  # 2 h campaigns
     assert "['T_1']" in table["settings"].iloc[-1]      # one sensor cannot explain E_X: worst
-    best = json.loads((sweep_dir / "compare.json").read_text())["best"]
+    compared = json.loads((sweep_dir / "compare.json").read_text())
+    best = compared["best"]
     assert best["run_id"] == table["run_id"].iloc[0]
+    # persistence does not depend on the model: one baseline row below the ranked runs, not ranked
+    assert [b["model"] for b in compared["baselines"]] == ["persistence (baseline)"]
+    md = (sweep_dir / "compare.md").read_text().strip().splitlines()
+    assert "persistence (baseline)" in md[-1] and "persistence" not in "".join(table["model"].astype(str))
     from mlflow import MlflowClient
 
     logged = {a.path for a in MlflowClient(uri).list_artifacts(parent_id, "compare")}

@@ -3,18 +3,25 @@ r"""One-step prediction, the same law for every model family, and the persistenc
 The CLI contract's ``eval.mode=one_step``: the previous *measured* error is an
 input too.  Every family is fitted for simulation (its own free run, no
 measured error: what a machine can deploy); :class:`OneStepLaw` turns its
-simulation output :math:`\hat s` into a one-step predictor
+simulation output :math:`\hat s` into a one-step predictor, an
+error-correction form
 
 .. math:: \hat y(t) = y(t-1) + k\,\big(\hat s(t) - \hat s(t-1)\big)
+                     - g\,\big(y(t-1) - \hat s(t-1)\big)
 
--- persistence of the measured error plus the change the model expects since
-the last sample, scaled by one gain :math:`k` fitted by least squares on the
-*training* rows' one-step increments :math:`y(t) - y(t-1)`.  One scalar per
-target is hard to overfit, needs no CV, and puts every family on the same
-footing (its one-step skill is exactly how well its simulation tracks
-changes); with :math:`k = 0` it is persistence.  There is no intercept: a
-constant drift per sample fitted on the train record is not a property of the
-machine worth extrapolating.
+-- persistence of the measured error, plus the change the model expects since
+the last sample, minus a share of the model's current miss.  The two gains
+are fitted by least squares on the *training* rows' one-step increments
+:math:`y(t) - y(t-1)`.  It contains persistence (:math:`k = g = 0`) and the
+simulation itself (:math:`k = g = 1`), so the fit decides how far to trust the
+measurement against the model: with sensor noise larger than the model's
+error, :math:`g \to 1` (a noisy :math:`y(t-1)` is worse than the model); with
+a drifting model, :math:`g \to 0`.  Two scalars per target are hard to
+overfit and need no CV; there is no intercept (a constant drift per sample of
+the train record is not worth extrapolating).  :math:`\hat s` on the training
+rows is in-sample, so its miss there is somewhat smaller than on new data
+and :math:`g` leans towards the model: negligible for models with few
+parameters per sample (all families on records of thousands of samples).
 
 At a campaign's first sample there is no previous measurement: the law
 predicts :math:`\hat s(t)` (the model's own simulation value).  In the
@@ -28,7 +35,8 @@ predecessor, so the law sees that sample.
 Families with their own one-step model (ARX with an AR term, ARX+RF, LagBank
 with ``ar``) still provide it when *they* are handed ``y_measured``, but the
 :class:`~thermocomp.compensator.Compensator` uses this law for all of them:
-one definition, fitted on the train split only, comparable across families.
+one definition, fitted on the train split only, comparable across families,
+and on ``sim=long_record`` about as good as the best family-specific one.
 """
 
 from __future__ import annotations
@@ -67,23 +75,26 @@ def _bounds(groups, n):
 class OneStepLaw(SideInputs, RegressorMixin, BaseEstimator):
     r"""One-step predictor from a model's simulation output and the measured previous error.
 
-    .. math:: \hat y(t) = y(t-1) + k\,\big(\hat s(t) - \hat s(t-1)\big),
+    .. math:: \hat y(t) = y(t-1) + k\,\big(\hat s(t) - \hat s(t-1)\big)
+                         - g\,\big(y(t-1) - \hat s(t-1)\big),
               \qquad \hat y(t_0) = \hat s(t_0) \text{ at a campaign start}
 
     ``X`` is the one column :math:`\hat s` (the model's simulation prediction
     of the same rows); ``y_measured`` comes from the context (side-input
     protocol, :mod:`thermocomp.context`), as does ``campaign``.  ``fit``
-    estimates :math:`k` by least squares on the increments of the rows that
-    have a previous sample in their campaign.  A missing measured value
+    estimates :math:`(k, g)` by least squares on the increments of the rows
+    that have a previous sample in their campaign.  A missing measured value
     (NaN) is replaced by the law's own previous prediction.
 
     Attributes
     ----------
     k_ : float
-        Gain on the model's expected change (0 when the model's output never
-        changes: persistence).
+        Gain on the model's expected change.
+    g_ : float
+        Share of the model's previous miss corrected (0: persistence plus
+        changes, 1: back to the model's level).
     n_rows_ : int
-        Rows the gain was fitted on.
+        Rows the gains were fitted on.
     """
 
     def fit(self, X, y, context=None):
@@ -92,14 +103,14 @@ class OneStepLaw(SideInputs, RegressorMixin, BaseEstimator):
         groups = groups_of(context)
         rows = np.ones(len(y), dtype=bool)
         rows[segment_starts(groups, len(y))] = False
-        ds = (s - previous(s, groups))[rows]
-        dy = (y - previous(y, groups))[rows]
-        ok = np.isfinite(dy)
-        ds, dy = ds[ok], dy[ok]
-        denom = float(ds @ ds)
-        # a tiny relative tolerance: an output that never changes leaves persistence alone
-        self.k_ = float(ds @ dy) / denom if denom > 1e-24 * max(len(ds), 1) else 0.0
-        self.n_rows_ = int(ds.size)
+        s_prev, y_prev = previous(s, groups), previous(y, groups)
+        A = np.c_[s - s_prev, s_prev - y_prev][rows]
+        dy = (y - y_prev)[rows]
+        ok = np.isfinite(dy) & np.isfinite(A).all(axis=1)
+        # lstsq: the minimum-norm answer when the model's output never changes (k = g = 0 there)
+        theta = np.linalg.lstsq(A[ok], dy[ok], rcond=None)[0] if ok.any() else np.zeros(2)
+        self.k_, self.g_ = float(theta[0]), float(theta[1])
+        self.n_rows_ = int(ok.sum())
         self.context_columns_ = []
         return self
 
@@ -113,10 +124,12 @@ class OneStepLaw(SideInputs, RegressorMixin, BaseEstimator):
         y = values(context, Y_MEASURED, n)
         groups = groups_of(context)
         starts = segment_starts(groups, n)
-        step = s - previous(s, groups)
-        out = previous(y, groups) + self.k_ * step
+        s_prev = previous(s, groups)
+        out = self._law(previous(y, groups), s, s_prev)
         out[starts] = s[starts]
-        gaps = np.flatnonzero(np.isnan(out))
-        for t in gaps:   # measurement gap: continue from the law's own previous prediction
-            out[t] = out[t - 1] + self.k_ * step[t]
+        for t in np.flatnonzero(np.isnan(out)):   # measurement gap: go on from the law's own output
+            out[t] = self._law(out[t - 1], s[t], s_prev[t])
         return out
+
+    def _law(self, y_prev, s, s_prev):
+        return y_prev + self.k_ * (s - s_prev) - self.g_ * (y_prev - s_prev)
