@@ -47,7 +47,10 @@ def predecessors(ds: Dataset) -> dict[str, str]:
             if isinstance(prev, str) and prev.strip() in ids and prev.strip() != cid:
                 out[cid] = prev.strip()
     if START in man.columns:
-        starts = pd.to_datetime(man[START], errors="coerce", format="ISO8601")
+        try:
+            starts = pd.to_datetime(man[START], errors="coerce", format="ISO8601")
+        except (TypeError, ValueError):   # e.g. mixed time zones: no contiguity to read from
+            return out
         ends = {}
         for cid, t0 in starts.items():
             df = ds.campaigns.get(cid)
