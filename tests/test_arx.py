@@ -110,7 +110,7 @@ def test_pickle_round_trip_identical_predictions():
                                   again.predict(X, context=ctx(g, y_measured=y)))
 
 
-def test_compensator_one_step_mode_reaches_arx():
+def test_compensator_one_step_mode_is_the_law_over_the_arx_simulation():
     X, y, g = arx_data(a=0.9, n_campaigns=4, p=5, seed=10)
     names = ["T_a", "T_b", "T_c", "T_d", "T_e"]
     camps = {}
@@ -119,14 +119,23 @@ def test_compensator_one_step_mode_reaches_arx():
         camps[cid] = pd.DataFrame({"time": np.arange(rows.sum()) * 60.0,
                                    **{name: X[rows, j] for j, name in enumerate(names)}, "E_Z": y[rows]})
     comp = Compensator(ARX()).fit(camps)
-    est = comp.estimators_["E_Z"]
+    est, law = comp.estimators_["E_Z"], comp.one_step_["E_Z"]
     assert est.chosen_["ar"] is True and comp.selected_["E_Z"] == names
     sim, one = comp.predict(camps), comp.predict(camps, mode="one_step")
     meas = comp.measured(camps)
     for cid in camps:
         Xc = camps[cid][names].to_numpy()
-        np.testing.assert_allclose(one[cid]["E_Z"], est.predict(Xc, context=ctx(y_measured=meas[cid]["E_Z"].to_numpy())))
-        np.testing.assert_allclose(sim[cid]["E_Z"], est.predict(Xc))
+        s = est.predict(Xc)
+        np.testing.assert_allclose(sim[cid]["E_Z"], s)
+        y_c = meas[cid]["E_Z"].to_numpy()
+        np.testing.assert_allclose(one[cid]["E_Z"], law.predict(s[:, None], context=ctx(y_measured=y_c)))
+        # the law: persistence, the simulated change, the model's miss; the simulation at the start
+        np.testing.assert_allclose(one[cid]["E_Z"].to_numpy()[1:],
+                                   y_c[:-1] + law.k_ * np.diff(s) - law.g_ * (y_c[:-1] - s[:-1]))
+        assert one[cid]["E_Z"].iloc[0] == pytest.approx(s[0])
+    y_all = np.concatenate([meas[c]["E_Z"] for c in camps])
+    assert np.sqrt(np.mean((y_all - np.concatenate([one[c]["E_Z"] for c in camps])) ** 2)) < \
+        np.sqrt(np.mean((y_all - np.concatenate([sim[c]["E_Z"] for c in camps])) ** 2))
 
 
 @pytest.mark.parametrize("bad", [{"criterion": "hqic"}, {"ar": "maybe"}, {"search": "random"},

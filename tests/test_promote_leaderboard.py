@@ -5,8 +5,8 @@ import math
 import numpy as np
 import pytest
 
-from thermocomp.leaderboard import (beats, e_p95_at, is_validation, rank, summary, to_markdown,
-                                   validation_method)
+from thermocomp.leaderboard import (baseline_rows, beats, e_p95_at, is_validation, persistence_summary,
+                                   rank, summary, to_markdown, validation_method)
 from thermocomp.metrics import split_scores
 
 
@@ -79,3 +79,20 @@ def test_summary_carries_the_validation_figures_that_rank_and_the_test_ones_besi
     assert list(table["run_id"]) == ["b", "a"]
     header = to_markdown(table).splitlines()[0]
     assert "val_rmse" in header and "test:rmse" in header
+
+
+def test_persistence_baseline_row_from_the_runs_metrics():
+    rng = np.random.default_rng(4)
+    targets = _targets()
+    for t, m in targets.items():   # the persistence block score() writes: its residual's figures
+        y = {c: np.cumsum(rng.normal(0, 1, 241)) for c in ("A", "B")}
+        r = {c: y[c] - np.r_[0.0, y[c][:-1]] for c in y}
+        m["persistence"] = split_scores(y, r, 60.0, with_before_after=False)
+    x, mean = persistence_summary(targets, "E_X"), persistence_summary(targets)
+    p = targets["E_X"]["persistence"]
+    assert (x["rmse"], x["rsd_mean"], x["rsd_sd"]) == (p["rmse"], p["rsd_mean"], p["rsd_sd"])
+    assert x["rms_reduction_pct"] == pytest.approx(100 * (1 - p["rmse"] / targets["E_X"]["test"]["rms_before"]))
+    assert mean["rmse"] == pytest.approx((p["rmse"] + targets["E_Z"]["persistence"]["rmse"]) / 2)
+    rows = baseline_rows([mean, None, dict(mean), x])   # runs on the same data share one baseline
+    assert [r["model"] for r in rows] == ["persistence (baseline)"] * 2
+    assert persistence_summary({"E_X": {"test": {}}}) is None   # metrics of an older run

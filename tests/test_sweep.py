@@ -63,6 +63,10 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
     summary = json.loads((sweep_dir / "compare.json").read_text())
     assert summary["best"]["run_id"] == table["run_id"].iloc[0] and summary["ranked_by_validation"]
     assert "rsd_mean" in summary["reported_not_used_to_choose"]
+    # persistence does not depend on the model: one baseline row below the ranked runs, not ranked
+    assert [b["model"] for b in summary["baselines"]] == ["persistence (baseline)"]
+    md = (sweep_dir / "compare.md").read_text().strip().splitlines()
+    assert "persistence (baseline)" in md[-1] and "persistence" not in "".join(table["model"].astype(str))
     from mlflow import MlflowClient
 
     logged = {a.path for a in MlflowClient(uri).list_artifacts(parent_id, "compare")}

@@ -16,6 +16,7 @@ from sklearn.base import BaseEstimator, clone
 from .context import Y_MEASURED, for_target, with_column
 from .denoise import denoise_campaigns, fit_denoiser
 from .frame import Matrices, resolve_columns, stack
+from .one_step import OneStepLaw
 from .select import AllInputs
 
 MODES = ("simulation", "one_step")
@@ -57,6 +58,9 @@ class Compensator(BaseEstimator):
     targets_ : list of str
     selected_ : dict target -> list of str
     estimators_ : dict target -> fitted estimator
+    one_step_ : dict target -> fitted :class:`~thermocomp.one_step.OneStepLaw`
+        The one-step law of each target, fitted on the training rows from the
+        estimator's own simulation prediction (``eval.mode=one_step``).
     """
 
     def __init__(self, estimator, selector=None, inputs=("T_*",), targets=None,
@@ -96,13 +100,18 @@ class Compensator(BaseEstimator):
             self.denoiser_ = None
         self.inputs_, self.targets_ = list(m.X.columns), list(m.Y.columns)
         selector = self.selector if self.selector is not None else AllInputs()
-        self.selected_, self.estimators_ = {}, {}
+        self.selected_, self.estimators_, self.one_step_ = {}, {}, {}
+        context = _simulation(m.context)
         for target in self.targets_:
             y = m.Y[target].to_numpy()
             names = (list(self.selection[target]) if self.selection is not None
                      else list(clone(selector).fit(m.X, y).selected_))
             est = clone(for_target(self.estimator, target))
-            est.fit(m.X[names].to_numpy(), y, context=m.context)
+            X = m.X[names].to_numpy()
+            est.fit(X, y, context=context)
+            # the one-step law: from the fitted model's simulation on these (training) rows only
+            s = np.asarray(est.predict(X, context=context), dtype=float).reshape(-1, 1)
+            self.one_step_[target] = OneStepLaw().fit(s, y, context=context)
             self.selected_[target], self.estimators_[target] = names, est
         return self
 
@@ -112,20 +121,30 @@ class Compensator(BaseEstimator):
         if mode not in MODES:
             raise ValueError(f"eval.mode must be one of {MODES}, got {mode!r}")
         out = np.empty((len(m.X), len(self.targets_)))
+        laws = getattr(self, "one_step_", None)   # None: a model pickled before the law existed
+        context = _simulation(m.context) if laws is not None else m.context
         for k, (target, est) in enumerate(self.estimators_.items()):
-            context = m.context
-            if mode == "one_step":   # the measured error is a side input too
-                context = with_column(context, Y_MEASURED, m.Y[target].to_numpy(), len(m.X))
-            out[:, k] = est.predict(m.X[self.selected_[target]].to_numpy(), context=context)
+            X = m.X[self.selected_[target]].to_numpy()
+            if mode == "simulation":
+                out[:, k] = est.predict(X, context=context)
+                continue
+            # one-step: the measured error is a side input too (of the law, or of an old model)
+            measured = with_column(context, Y_MEASURED, m.Y[target].to_numpy(), len(m.X))
+            if laws is None:
+                out[:, k] = est.predict(X, context=measured)
+                continue
+            s = np.asarray(est.predict(X, context=context), dtype=float).reshape(-1, 1)
+            out[:, k] = laws[target].predict(s, context=measured)
         return out
 
     def predict(self, campaigns: Mapping[str, pd.DataFrame], mode: str = "simulation"
                 ) -> dict[str, pd.DataFrame]:
         """Predicted error per campaign (columns = targets), in the reference frame.
 
-        ``mode='simulation'`` never uses a measured target; ``'one_step'`` hands
-        the measured error to the estimators (models with an autoregressive
-        part use its previous value).
+        ``mode='simulation'`` never uses a measured target; ``'one_step'``
+        feeds the model's simulation and the measured previous error to the
+        target's one-step law (:class:`~thermocomp.one_step.OneStepLaw`, the
+        same for every family).
         """
         m = self.stacked(campaigns, self.targets_ if mode == "one_step" else [])
         out = pd.DataFrame(self.predict_stacked(m, mode), columns=self.targets_)
@@ -135,3 +154,10 @@ class Compensator(BaseEstimator):
         """Measured targets per campaign in the same reference frame as ``predict``."""
         m = stack(campaigns, [], self.targets_, self.reference)
         return {cid: m.Y[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}
+
+
+def _simulation(context):
+    """The context without a measured target: families are fitted and run in simulation."""
+    if context is not None and Y_MEASURED in context:
+        return context.drop(columns=[Y_MEASURED])
+    return context

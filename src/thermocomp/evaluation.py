@@ -12,7 +12,8 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .compensator import Compensator
+from . import continuation
+from .compensator import MODES, Compensator
 from .frame import initial_ambient
 from .io.contract import TIME, ContractError, Dataset
 from .iso10791 import a3_report
@@ -43,22 +44,27 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
 
     The test split also gets ``iso10791_a3``, the ISO 10791-10 A.3 virtual
     test of :mod:`thermocomp.iso10791` (``summary`` null with a reason when no
-    test campaign lasts the test's 15 h).
+    test campaign lasts the test's 15 h).  Beside the figures of ``mode``,
+    each target gets the test figures (``rmse``, ``rsd_mean``, ``rsd_sd``) of
+    the other mode (``test_one_step`` or ``test_simulation``) and of the
+    persistence baseline (``persistence``: the previous measured error as the
+    prediction).  A campaign that continues another one is predicted with the
+    model's state carried over (:mod:`thermocomp.continuation`).
 
     Returns
     -------
     targets : dict
-        ``{target: {"train": {...}, "test": {...}}}``.
+        ``{target: {"train": {...}, "test": {...}, "test_<other mode>": {...},
+        "persistence": {...}}}``.
     predictions : dict
         ``{campaign: (measured DataFrame, predicted DataFrame)}`` for test campaigns.
     """
     out = {t: {} for t in comp.targets_}
     predictions = {}
+    carried = continuation.carry_over(comp, ds)
     for split in ("train", "test"):
         ids = require_split(ds, split)
-        camps = {c: ds.campaigns[c] for c in ids}
-        pred = comp.predict(camps, mode=mode)
-        meas = comp.measured(camps)
+        pred, meas = continuation.predict(comp, ds, ids, mode, carried)
         dt = sample_period(ds, ids)
         for t in comp.targets_:
             y = {c: meas[c][t].to_numpy() for c in ids}
@@ -70,7 +76,25 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
                 out[t][split]["iso10791_a3"] = a3_report(times, y, r)
         if split == "test":
             predictions = {c: (meas[c], pred[c]) for c in ids}
+    ids = require_split(ds, "test")
+    other = next(m for m in MODES if m != mode)
+    baselines = {f"test_{other}": continuation.predict(comp, ds, ids, other, carried)[0],
+                 "persistence": continuation.persistence(comp, ds, ids, carried)}
+    for key, pred in baselines.items():
+        for t in comp.targets_:
+            y = {c: predictions[c][0][t].to_numpy() for c in ids}
+            out[t][key] = split_scores(y, {c: y[c] - pred[c][t].to_numpy() for c in ids}, 1.0,
+                                       with_before_after=False)
     return out, predictions
+
+
+def predict_split(comp: Compensator, ds: Dataset, split: str, mode: str = "simulation"
+                  ) -> dict:
+    """``{campaign: (measured, predicted)}`` of a split, state carried over where it applies
+    (what :func:`score` scores; for ``diagnose``'s test scoring and ``replay``)."""
+    ids = require_split(ds, split)
+    pred, meas = continuation.predict(comp, ds, ids, mode)
+    return {c: (meas[c], pred[c]) for c in ids}
 
 
 def ambient_by_campaign(ds: Dataset, ids=None) -> dict[str, float]:
@@ -81,8 +105,7 @@ def ambient_by_campaign(ds: Dataset, ids=None) -> dict[str, float]:
 def _test_rsd(comp: Compensator, ds: Dataset, mode: str) -> dict[str, dict[str, float]]:
     """Per target, the Rsd of each test campaign."""
     ids = require_split(ds, "test")
-    camps = {c: ds.campaigns[c] for c in ids}
-    pred, meas = comp.predict(camps, mode=mode), comp.measured(camps)
+    pred, meas = continuation.predict(comp, ds, ids, mode)
     return {t: {c: rsd(meas[c][t].to_numpy() - pred[c][t].to_numpy()) for c in ids}
             for t in comp.targets_}
 

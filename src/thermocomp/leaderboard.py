@@ -8,6 +8,8 @@ Rsd SM/SD, RMSE, RMS reduction, E_P95 of the residual at 1 h and 8 h --
 reported beside them.  ``thermocomp compare`` ranks the runs of a sweep by a
 validation figure and ``thermocomp promote`` gates on one: a choice made by
 looking at the test split would flatter whatever it chose.
+:func:`baseline_rows` gives the persistence baseline (previous measured error as
+the prediction) in the same layout, shown beside the ranking, never ranked.
 """
 
 from __future__ import annotations
@@ -88,6 +90,50 @@ def summary(targets: Mapping, target: str = "mean") -> dict:
         vals = [p[f] for p in per if p[f] is not None and math.isfinite(p[f])]
         out[f] = float(np.mean(vals)) if vals else None
     return out
+
+
+def persistence_summary(targets: Mapping, target: str = "mean") -> dict | None:
+    """The persistence baseline's test figures in the layout of :func:`summary` (None if absent).
+
+    Persistence predicts the previous measured error (``persistence`` block of
+    a target in ``metrics.json``); its RMS reduction is against the target's
+    RMS before compensation, E_P95 is not computed (None).
+    """
+    def figures(m: Mapping) -> dict | None:
+        p, before = m.get("persistence"), m["test"].get("rms_before")
+        if not p:
+            return None
+        return {"rsd_mean": p.get("rsd_mean"), "rsd_sd": p.get("rsd_sd"), "rmse": p.get("rmse"),
+                "rms_reduction_pct": 100.0 * (1.0 - p["rmse"] / before) if before else None,
+                "e_p95_1h": None, "e_p95_8h": None}
+
+    if target != "mean":
+        return figures(targets[target]) if target in targets else None
+    per = [figures(m) for m in targets.values()]
+    if any(p is None for p in per) or not per:
+        return None
+    out = {}
+    for f in FIGURES:
+        vals = [p[f] for p in per if p[f] is not None and math.isfinite(p[f])]
+        out[f] = float(np.mean(vals)) if vals else None
+    return out
+
+
+def baseline_rows(summaries: Sequence[Mapping | None]) -> list[dict]:
+    """One ``persistence`` row per distinct baseline of the runs (one when they share the data)."""
+    rows: list[dict] = []
+    for s in summaries:
+        if s is None:
+            continue
+        if not any(all(_same(s[f], r[f]) for f in FIGURES) for r in rows):
+            rows.append({"model": "persistence (baseline)", **s})
+    return rows
+
+
+def _same(a, b) -> bool:
+    if a is None or b is None:
+        return a is b
+    return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12)
 
 
 def descending_for(criterion: str) -> bool:

@@ -13,7 +13,7 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from .errors import ConfigError
-from .leaderboard import FIGURES, VAL_FIGURES, summary, validation_method
+from .leaderboard import FIGURES, VAL_FIGURES, persistence_summary, summary, validation_method
 from .paths import resolve
 from .tracking import child_runs, latest_sweep, retry_locked
 
@@ -74,8 +74,13 @@ def _varied(params: list[dict]) -> list[str]:
             and all(k in p for p in params) and len({p[k] for p in params}) > 1]
 
 
-def sweep_rows(client, uri: str, parent_id: str, target: str = "mean") -> list[dict]:
-    """One row per child run of ``parent_id`` (unsorted)."""
+def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
+               baselines: list | None = None) -> list[dict]:
+    """One row per child run of ``parent_id`` (unsorted).
+
+    ``baselines``, when given, receives each run's persistence figures
+    (:func:`~thermocomp.leaderboard.persistence_summary`, None when absent).
+    """
     children = child_runs(client, parent_id)
     varied = _varied([r.data.params for r in children])
     rows = []
@@ -95,6 +100,8 @@ def sweep_rows(client, uri: str, parent_id: str, target: str = "mean") -> list[d
         row.update({f: figures[f] for f in VAL_FIGURES})     # what ranks, then what is reported
         row["val_method"] = method
         row.update({f: figures[f] for f in FIGURES})
+        if baselines is not None:
+            baselines.append(persistence_summary(metrics["targets"], target) if metrics else None)
         row["fit_time_s"] = r.data.metrics.get("fit_time_s")
         rows.append(row)
     return rows

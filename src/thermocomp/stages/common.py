@@ -105,20 +105,30 @@ def load_model(path) -> Compensator:
 
 
 def result_table(metrics: dict) -> str:
-    """The table `make run` prints: test Rsd SM/SD and RMS before -> after per target."""
+    """The table `make run` prints per target: test Rsd SM/SD, RMS before -> after, and the
+    test RMSE in simulation and one-step mode next to the persistence baseline's."""
     def f(v):
         return "  n/a" if v is None else f"{v:5.2f}"
+
+    def test_rmse(m: dict, mode: str):
+        block = m["test"] if mode == metrics["mode"] else m.get(f"test_{mode}")
+        return None if block is None else block.get("rmse")
 
     head = (f"model={metrics['model']}  select={metrics.get('select', 'all')}  "
             f"mode={metrics['mode']}  dataset={metrics.get('dataset', '')}")
     lines = [head,
              f"{'target':<8} {'test Rsd SM':>11} {'SD':>6}   {'RMS before':>10} -> {'after':>6}"
-             f"  {'reduction':>9}   (µm)",
-             "-" * 66]
+             f"  {'reduction':>9}   {'RMSE sim':>8} {'1-step':>6} {'persist.':>8}   (µm)",
+             "-" * 96]
     for t, m in metrics["targets"].items():
         te = m["test"]
         red = 100 * (1 - te["rms_after"] / te["rms_before"]) if te["rms_before"] else float("nan")
         lines.append(f"{t:<8} {f(te['rsd_mean']):>11} {f(te['rsd_sd']):>6}   "
-                     f"{te['rms_before']:>10.2f} -> {te['rms_after']:>6.2f}  {red:>8.1f}%")
+                     f"{te['rms_before']:>10.2f} -> {te['rms_after']:>6.2f}  {red:>8.1f}%   "
+                     f"{f(test_rmse(m, 'simulation')):>8} {f(test_rmse(m, 'one_step')):>6} "
+                     f"{f(m.get('persistence', {}).get('rmse')):>8}")
+    carried = metrics.get("carry_over")
+    if carried:
+        lines.append("state carried over: " + "; ".join(
+            f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items()))
     return "\n".join(lines)
-

@@ -4,7 +4,10 @@ Columns: model, selection, ATI, the settings that vary across the sweep, the
 validation RMSE and Rsd SM/SD with their method (``val_*``: what ranks), then
 the test Rsd SM/SD, RMSE, RMS reduction, E_P95 of the residual at 1 h / 8 h
 (``null`` when the campaigns are shorter) -- reported, never used to choose --
-and the fit time.  Printed (Markdown), saved as
+and the fit time.  Below the ranked runs, a ``persistence (baseline)`` row (the
+previous measured error as the prediction, read from the runs' metrics;
+``baselines`` in ``compare.json``); ``compare.csv`` holds the ranked runs only.
+Printed (Markdown), saved as
 ``compare.csv``, ``compare.md`` and ``compare.json`` (a DVC metric) under
 ``compare.out``, and logged as artifacts of the sweep's parent run.
 """
@@ -17,7 +20,7 @@ from omegaconf import DictConfig
 from ..errors import ConfigError
 from ..files import atomic_write_text, write_json
 from ..jsonsafe import json_safe
-from ..leaderboard import FIGURES, VAL_FIGURES, is_validation, rank, to_markdown
+from ..leaderboard import FIGURES, VAL_FIGURES, baseline_rows, is_validation, rank, to_markdown
 from ..paths import resolve
 from ..sweeps import parent_run_id, sweep_rows
 from ..tracking import client as mlflow_client
@@ -25,7 +28,8 @@ from ..tracking import connect, retry_locked
 from .common import say
 
 
-def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str) -> dict:
+def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
+                baselines: list[dict] = ()) -> dict:
     records = json_safe(table.to_dict(orient="records"))
     numeric = [c for c in (*VAL_FIGURES, *FIGURES, "fit_time_s") if c in table.columns]
     return {"parent_run_id": parent_id, "sort_by": sort_by, "target": target,
@@ -34,7 +38,8 @@ def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str) 
             "n_runs": len(records),
             "best": {k: records[0][k] for k in ("run_id", "model", "select", *numeric)} if records else {},
             "runs": {f"{i:02d}_{r['run_id'][:8]}": {k: r[k] for k in numeric} for i, r in
-                     enumerate(records)}}
+                     enumerate(records)},
+            "baselines": json_safe([{k: b[k] for k in ("model", *FIGURES)} for b in baselines])}
 
 
 def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
@@ -42,7 +47,8 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     client = mlflow_client(cfg)
     uri = connect(cfg)
     opts = cfg.compare
-    rows = sweep_rows(client, uri, parent_id, str(opts.target))
+    found: list = []
+    rows = sweep_rows(client, uri, parent_id, str(opts.target), found)
     if not rows:
         raise ConfigError(f"sweep {parent_id} has no child runs")
     try:
@@ -50,11 +56,16 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     except KeyError as exc:
         raise ConfigError(f"compare.sort_by: {exc.args[0]}") from None
     out = resolve(out if out is not None else opts.out)
-    md = to_markdown(table.drop(columns=["run_id"]).assign(run=table["run_id"].str[:8]))
+    baselines = baseline_rows(found)
+    shown = table.drop(columns=["run_id"]).assign(run=table["run_id"].str[:8])
+    # the persistence baseline below the ranked runs (never ranked itself)
+    md = to_markdown(pd.concat([shown, pd.DataFrame(baselines, columns=shown.columns)],
+                               ignore_index=True) if baselines else shown)
     out.mkdir(parents=True, exist_ok=True)
     atomic_write_text(out / "compare.csv", table.to_csv(index=False))
     atomic_write_text(out / "compare.md", md + "\n")
-    write_json(out / "compare.json", _json_table(table, str(opts.sort_by), str(opts.target), parent_id))
+    write_json(out / "compare.json", _json_table(table, str(opts.sort_by), str(opts.target), parent_id,
+                                                 baselines))
     for name in ("compare.csv", "compare.md", "compare.json"):
         retry_locked(client.log_artifact, parent_id, str(out / name), "compare")
     basis = ("validation" if is_validation(str(opts.sort_by))

@@ -11,8 +11,10 @@ from sklearn.base import clone
 
 from .. import io
 from ..compensator import Compensator
+from ..continuation import carry_over
 from ..evaluation import (VAL_FOLDS, ambient_by_campaign, anova, ati_report,
-                          mutual_prediction_report, require_split, score, validation_report)
+                          mutual_prediction_report, predict_split, require_split, score,
+                          validation_report)
 from ..files import atomic_dir, write_json
 from ..iso10791 import a3_campaign
 from ..paths import resolve
@@ -62,7 +64,8 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
             clock.lap("validation")
         metrics = {"model": cfg.model.name, "mode": ev.mode, "targets": targets,
                    "select": cfg.select.name, "dataset": ds.name,
-                   "inputs": {t: comp.selected_[t] for t in comp.targets_}}
+                   "inputs": {t: comp.selected_[t] for t in comp.targets_},
+                   "carry_over": carry_over(comp, ds)}
         metrics.update(extra or {})
         if cfg.plots != "none":
             _e_p95_figures(draw, folder, targets)
@@ -142,9 +145,7 @@ def _ati_summary(ati: dict) -> dict:
 
 def _train_predictions(comp: Compensator, ds, mode: str) -> dict:
     """``{campaign: (measured, predicted)}`` of the train campaigns (``plots=all``)."""
-    camps = {c: ds.campaigns[c] for c in require_split(ds, "train")}
-    pred, meas = comp.predict(camps, mode=mode), comp.measured(camps)
-    return {c: (meas[c], pred[c]) for c in camps}
+    return predict_split(comp, ds, "train", mode)
 
 
 def _campaign_figures(draw, folder, comp: Compensator, ds, predictions: dict) -> None:

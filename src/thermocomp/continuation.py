@@ -1,0 +1,150 @@
+"""Campaigns that continue one another: state carried over across a cut record.
+
+A long record cut into consecutive files (train = the first part, test = the
+last) is one experiment: the machine's thermal state at the test part's first
+sample is what the train part left.  Predicting the test file on its own
+restarts every dynamic state (lags, AR feedback, LSTM memory, the previous
+measured error of one-step prediction) at its first sample; here it is
+predicted *joined* to its predecessor(s) instead -- one campaign, times made
+continuous -- and only its own rows are scored.  Predictions of the joined
+campaign sliced to the last file are exactly what a model streaming through
+the whole record would output there.
+
+A campaign continues another when the manifest says so (column
+``continues``, as ``thermocomp simulate sim=long_record`` writes), or, for a
+user's own files without that column, when its ``start`` (ISO 8601) is the
+other's end -- start + last ``time`` + one sample period -- within half a
+period.  State is carried over only with ``data.reference=none``: in the
+first-sample frame each file is referenced to its own first sample and the
+joined campaign is not in that frame.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+
+from .io.contract import TIME, Dataset
+
+CONTINUES = "continues"
+START = "start"
+
+
+def _period(df: pd.DataFrame) -> float:
+    steps = np.diff(df[TIME].to_numpy(float))
+    return float(np.median(steps)) if steps.size else float("nan")
+
+
+def predecessors(ds: Dataset) -> dict[str, str]:
+    """``{campaign: the campaign it continues}`` for the campaigns of ``ds`` that continue one."""
+    ids = set(ds.ids())
+    out: dict[str, str] = {}
+    man = ds.manifest
+    if CONTINUES in man.columns:
+        for cid, prev in man[CONTINUES].items():
+            if isinstance(prev, str) and prev.strip() in ids and prev.strip() != cid:
+                out[cid] = prev.strip()
+    if START in man.columns:
+        try:
+            starts = pd.to_datetime(man[START], errors="coerce", format="ISO8601")
+        except (TypeError, ValueError):   # e.g. mixed time zones: no contiguity to read from
+            return out
+        ends = {}
+        for cid, t0 in starts.items():
+            df = ds.campaigns.get(cid)
+            if pd.isna(t0) or df is None or len(df) < 2:
+                continue
+            period = _period(df)
+            ends[cid] = (t0 + pd.to_timedelta(float(df[TIME].iloc[-1]) + period, unit="s"), period)
+        for cid, t0 in starts.items():
+            if cid in out or pd.isna(t0):
+                continue
+            for prev, (end, period) in ends.items():
+                if prev != cid and abs((t0 - end).total_seconds()) <= period / 2:
+                    out[cid] = prev
+                    break
+    return out
+
+
+def chain(ds: Dataset, cid: str, links: Mapping[str, str] | None = None) -> list[str]:
+    """The campaigns ``cid`` continues, oldest first, then ``cid`` (``[cid]`` for none)."""
+    links = predecessors(ds) if links is None else links
+    out = [cid]
+    while out[0] in links and links[out[0]] not in out:   # guard against a cyclic manifest
+        out.insert(0, links[out[0]])
+    return out
+
+
+def joined(ds: Dataset, ids: list[str]) -> pd.DataFrame:
+    """The campaigns ``ids`` end to end as one campaign, ``time`` continuous.
+
+    Each file's time is shifted so that its first sample follows the previous
+    file's last one by the previous file's sample period.
+    """
+    frames, offset = [], 0.0
+    for k, cid in enumerate(ids):
+        df = ds.campaigns[cid]
+        t = df[TIME].to_numpy(float)
+        if k:
+            offset = frames[-1][TIME].iloc[-1] + _period(ds.campaigns[ids[k - 1]]) - t[0]
+        frames.append(df.assign(**{TIME: t + offset}))
+    return pd.concat(frames, ignore_index=True)
+
+
+def carry_over(comp, ds: Dataset) -> dict[str, list[str]]:
+    """``{campaign: its chain}`` for the campaigns ``comp`` predicts with state carried over.
+
+    Empty unless the compensator reads data absolute (``reference='none'``).
+    """
+    if getattr(comp, "reference", "first_sample") != "none":
+        return {}
+    links = predecessors(ds)
+    return {c: chain(ds, c, links) for c in ds.ids() if c in links}
+
+
+def predict(comp, ds: Dataset, ids, mode: str = "simulation", carried: Mapping | None = None
+            ) -> tuple[dict[str, pd.DataFrame], dict[str, pd.DataFrame]]:
+    """Predicted and measured errors of the campaigns ``ids``, state carried over where it applies.
+
+    Campaigns without a predecessor (or with ``reference='first_sample'``) are
+    predicted together as usual; each continuing campaign is predicted as its
+    :func:`joined` chain and sliced to its own rows.  ``carried`` is
+    :func:`carry_over`'s result (computed when None).
+
+    Returns
+    -------
+    predicted, measured : dict campaign -> DataFrame (columns = targets)
+    """
+    carried = carry_over(comp, ds) if carried is None else carried
+    ids = list(ids)
+    plain = [c for c in ids if c not in carried]
+    pred, meas = {}, {}
+    if plain:
+        camps = {c: ds.campaigns[c] for c in plain}
+        pred.update(comp.predict(camps, mode=mode))
+        meas.update(comp.measured(camps))
+    for c in ids:
+        if c in carried:
+            n = len(ds.campaigns[c])
+            whole = {c: joined(ds, carried[c])}
+            pred[c] = comp.predict(whole, mode=mode)[c].iloc[-n:].reset_index(drop=True)
+            meas[c] = comp.measured(whole)[c].iloc[-n:].reset_index(drop=True)
+    return {c: pred[c] for c in ids}, {c: meas[c] for c in ids}
+
+
+def persistence(comp, ds: Dataset, ids, carried: Mapping | None = None) -> dict[str, pd.DataFrame]:
+    """Persistence prediction (previous measured error; 0 at a campaign start) per campaign,
+    from the predecessor's last sample for a continuing campaign."""
+    from .one_step import persistence as law
+
+    carried = carry_over(comp, ds) if carried is None else carried
+    out = {}
+    for c in ids:
+        chain_ids = carried.get(c, [c])
+        n = len(ds.campaigns[c])
+        whole = joined(ds, chain_ids) if len(chain_ids) > 1 else ds.campaigns[c]
+        meas = comp.measured({c: whole})[c]
+        out[c] = meas.apply(lambda col: law(col.to_numpy())).iloc[-n:].reset_index(drop=True)
+    return out
