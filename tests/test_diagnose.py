@@ -236,7 +236,8 @@ def test_diagnosed_model_refit_reproduces_the_after_figures(door_diagnosis):
     train = {c: ds.campaigns[c] for c in ds.ids("train")}
     test = {c: ds.campaigns[c] for c in ds.ids("test")}
     again = Compensator(AugmentedRegressor(MLR(), {t: [e.to_dict() for e in es]
-                                                   for t, es in d.effects().items()}),
+                                                   for t, es in d.effects().items()},
+                                           alpha=d.cv["shrink_alpha"]),
                         inputs=d.after_model.inputs).fit(train)
     pred, meas = again.predict(test), again.measured(test)
     r = np.concatenate([meas[c]["E_Z"] - pred[c]["E_Z"] for c in test])
@@ -252,19 +253,50 @@ def test_nothing_is_accepted_when_the_model_misses_nothing():
     assert not j["control_ever_clears_bar"]
 
 
-def test_a_single_train_campaign_is_cross_validated_in_time_blocks():
-    rng = np.random.default_rng(7)
-    long = _campaign(rng, 0, n=400, door_gain=4.0)
-    short = _campaign(rng, 1, n=120, door_gain=4.0)
-    ds = Dataset(pd.DataFrame({"file": ["L.csv", "S.csv"], "split": ["train", "test"]},
-                               index=pd.Index(["L", "S"], name="campaign")),
-                 {"L": long, "S": short}, name="one-record")
+def _one_record(seed=7, n=400, door_gain=4.0) -> Dataset:
+    rng = np.random.default_rng(seed)
+    long = _campaign(rng, 0, n=n, door_gain=door_gain)
+    short = _campaign(rng, 1, n=120, door_gain=door_gain)
+    return Dataset(pd.DataFrame({"file": ["L.csv", "S.csv"], "split": ["train", "test"]},
+                                index=pd.Index(["L", "S"], name="campaign")),
+                   {"L": long, "S": short}, name="one-record")
+
+
+def test_a_single_train_campaign_is_cross_validated_forward_in_time():
+    ds = _one_record()
     d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, n_blocks=8))
     j = d.to_json("E_Z")
-    assert j["cv"]["unit"] == "time block" and j["cv"]["units"] == 8
-    assert all(u.startswith("L#") for u in unit_labels(np.array(["L"] * 400), 8))
+    assert j["cv"]["scheme"] == "forward" and j["cv"]["units"] == 8
+    # the longest lag tried (14400 s = 48 samples) capped at half a validation block (200 / 8 rows)
+    assert j["cv"]["gap_samples"] == 12
     top = next(e for e in j["effects"] if e["accepted"])
     assert top["column"] == "S_door"
+    start = d.targets["E_Z"].search.start          # only the validation blocks are scored
+    assert np.isnan(start.residual[:200]).all() and np.isfinite(start.residual[200:]).all()
+
+
+def test_forward_folds_train_only_on_the_past_and_run_through_it():
+    m = stack({"L": _campaign(np.random.default_rng(1), 0, n=200)}, ["T_a", "T_b"], ["E_Z"],
+              reference="none")
+    p = Problem(m.X, m.Y["E_Z"].to_numpy(), m.context, m.groups, m.groups, "E_Z", reference="none",
+                scheme="forward", n_blocks=4, gap=5, min_train_fraction=0.5)
+    assert p.fold_ids == [0, 1, 2, 3] and p.n_units == 4
+    for k in p.fold_ids:
+        test = np.flatnonzero(p.test_rows(k))
+        train = np.flatnonzero(p.train_rows(k))
+        assert train[-1] == test[0] - 6 and train[0] == 0          # the past less the gap
+        run = np.flatnonzero(p.predict_rows(k))
+        assert run[0] == 0 and run[-1] == test[-1]                 # states carry over to the block
+    assert not p.validated[:100].any() and p.validated[100:].all()
+
+
+def test_the_campaign_scheme_can_be_forced_on_one_record():
+    d = diagnose(_one_record(), Compensator(MLR()),
+                 options=SearchOptions(max_effects=1, n_blocks=8, cv="campaigns"))
+    j = d.to_json("E_Z")
+    assert j["cv"]["scheme"] == "campaigns" and j["cv"]["unit"] == "time block"
+    assert j["cv"]["units"] == 8
+    assert all(u.startswith("L#") for u in unit_labels(np.array(["L"] * 400), 8))
 
 
 def test_the_control_signal_is_a_random_walk_no_physical_column_can_collide_with():
