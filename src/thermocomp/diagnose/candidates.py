@@ -66,6 +66,17 @@ def _varies(values: np.ndarray) -> bool:
     return bool(np.nanstd(values) > 1e-12)
 
 
+def _start_varies(problem, column: str) -> bool:
+    """True when ``column``'s first valid value differs between the train campaigns.
+
+    Otherwise its absolute and referenced frames differ by one constant, and
+    so do their lags: one candidate, not two (a single record included).
+    """
+    first = pd.Series(problem.context[column].to_numpy(float)).groupby(
+        np.asarray(problem.campaigns, dtype=object), sort=False).first()
+    return first.nunique() > 1
+
+
 def ambient_thresholds(ambient_by_unit: pd.Series, min_per_side: int) -> list[float]:
     """Midpoints between consecutive campaign ambients with enough campaigns on each side."""
     a = np.sort(ambient_by_unit.dropna().to_numpy(float))
@@ -98,8 +109,8 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
     if "signal" in fam:
         for col in unused_t + s_cols:
             out += signal_family(col)
-        if len(dict.fromkeys(problem.campaigns)) > 1:   # in one campaign the frames differ by a
-            for col in s_cols:                             # constant only: the same candidate
+        for col in s_cols:
+            if _start_varies(problem, col):
                 out += signal_family(col, other_frame)
     if "dynamics" in fam:
         temps_in = tuple(c for c in model_inputs if c.startswith("T_"))
@@ -121,11 +132,13 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
     if "interaction" in fam:
         temps = [c for c in model_inputs if c.startswith("T_")] + unused_t
         out += [Effect("interaction", "product", s, other=t) for s in s_cols for t in temps]
-        # the state, absolute and referenced, times a temperature rise (legacy frame excluded:
-        # with reference=first_sample both factors are already referenced)
-        frames = ["absolute"] + (["referenced"] if problem.reference != "first_sample" else [])
-        out += [Effect("interaction", "product", s, other=t, frame=f)
-                for f in frames for s in s_cols for t in temps]
+        # the state, referenced and absolute, times a temperature rise (with reference=first_sample
+        # the referenced one is the legacy product; the absolute one differs from the referenced
+        # one by S(0) times the rise, the same candidate when S(0) is the same in every campaign)
+        for s in s_cols:
+            frames = ([] if problem.reference == "first_sample" else ["referenced"]) + (
+                ["absolute"] if _start_varies(problem, s) else [])
+            out += [Effect("interaction", "product", s, other=t, frame=f) for f in frames for t in temps]
     if "nonlinear" in fam and options.n_squares > 0:
         X = problem.X[model_inputs].to_numpy(float)
         corr = np.abs([np.corrcoef(X[:, j], problem.y)[0, 1] if _varies(X[:, j]) else 0.0
