@@ -5,17 +5,19 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import pytest
+from sklearn.linear_model import LinearRegression
 from sklearn.utils.estimator_checks import check_estimator
 
 from thermocomp.compensator import Compensator
 from thermocomp.diagnose import CONTROL, AugmentedRegressor, Effect, SearchOptions, diagnose
 from thermocomp.diagnose.cv import Problem, sign_flip_pvalue
-from thermocomp.diagnose.features import first_order_lag, in_frame
+from thermocomp.diagnose.features import effect_features, first_order_lag, in_frame
+from thermocomp.diagnose.shrink import PartialRidgePath
 from thermocomp.diagnose.sensors import self_prediction
 from thermocomp.errors import ConfigError, ParameterError
 from thermocomp.frame import stack
 from thermocomp.io.contract import Dataset
-from thermocomp.model_selection import unit_labels
+from thermocomp.model_selection import ForwardChaining, cv_scheme, forward_gap, unit_labels
 from thermocomp.models import MLR
 
 DT = 300.0
@@ -131,24 +133,29 @@ def test_compensator_gives_each_target_its_own_effects():
     assert comp.estimators_["E_Z"].required_context_ == ["S_door"]
 
 
-def test_streaming_reproduces_predict_sample_by_sample():
+@pytest.mark.parametrize("reference, alpha", [("first_sample", None), ("none", 1e-3)])
+def test_streaming_reproduces_predict_sample_by_sample(reference, alpha):
     rng = np.random.default_rng(3)
     ds = _dataset(door_gain=2.0, n_campaigns=8, test_every=100)
     irregular = np.cumsum(np.r_[0.0, rng.uniform(200, 400, 59)])
     ds.campaigns["C01"] = _campaign(rng, 0, door_gain=2.0, time=irregular)
     effects = [Effect("signal", "first_order_lag", "S_door", tau_s=1800),
+               Effect("signal", "first_order_lag", "T_c", tau_s=900, frame="absolute"),
+               Effect("signal", "raw", "T_c", frame="referenced"),
                Effect("interaction", "product", "S_door", other="T_c"),
+               Effect("interaction", "product", "T_c", other="T_a", frame="referenced"),
+               Effect("interaction", "product", "T_c", other="T_b", frame="absolute"),
                Effect("dynamics", "lowpass_inputs", tau_s=3600, initial_state=["T_a", "T_b", "T_c"],
                       initial_directions=2),
                Effect("ambient_interval", "ambient_step", threshold_c=15.0),
                Effect("nonlinear", "square", "T_a")]
-    comp = Compensator(AugmentedRegressor(MLR(), [e.to_dict() for e in effects]),
-                       inputs=["T_a", "T_b", "T_amb"]).fit(ds.campaigns)
+    comp = Compensator(AugmentedRegressor(MLR(), [e.to_dict() for e in effects], reference, alpha),
+                       inputs=["T_a", "T_b", "T_amb"], reference=reference).fit(ds.campaigns)
     est = comp.estimators_["E_Z"]
     df = ds.campaigns["C01"]
     batch = comp.predict({"C01": df})["C01"]["E_Z"].to_numpy()
-    ref = df.iloc[0]
-    a0 = float(ref["T_amb"])
+    ref = df.iloc[0] if reference == "first_sample" else 0.0 * df.iloc[0]
+    a0 = float(df.iloc[0]["T_amb"])
     state = est.stream_init(context={"ambient_c0": a0})
     streamed = []
     for _, row in df.iterrows():
@@ -156,6 +163,71 @@ def test_streaming_reproduces_predict_sample_by_sample():
         y, state = est.stream_step(x, state, context={**row.to_dict(), "ambient_c0": a0})
         streamed.append(y)
     np.testing.assert_allclose(streamed, batch, atol=1e-8)
+
+
+def test_state_frames_give_absolute_referenced_and_rise_products():
+    g = np.array(["a"] * 3 + ["b"] * 3)
+    ctx = pd.DataFrame({"campaign": g, "time": np.tile([0.0, 60, 120], 2),
+                        "S_pos": [5.0, 7, 9, 1, 1, 4], "T_x": [20.0, 21, 23, 10, 12, 12]})
+    X = np.empty((6, 0))
+    feats = lambda e, ref: effect_features(e, X, ctx, g, ref)[:, 0]      # noqa: E731
+    for ref in ("first_sample", "none"):
+        assert_equal = np.testing.assert_allclose
+        assert_equal(feats(Effect("signal", "raw", "S_pos", frame="absolute"), ref), ctx["S_pos"])
+        assert_equal(feats(Effect("signal", "raw", "S_pos", frame="referenced"), ref), [0, 2, 4, 0, 0, 3])
+        assert_equal(feats(Effect("interaction", "product", "S_pos", other="T_x", frame="referenced"), ref),
+                     [0, 2, 12, 0, 0, 6])
+        assert_equal(feats(Effect("interaction", "product", "S_pos", other="T_x", frame="absolute"), ref),
+                     [0, 7, 27, 0, 2, 8])
+    # without a frame both factors follow the data's reference, as before
+    np.testing.assert_allclose(feats(Effect("interaction", "product", "S_pos", other="T_x"), "none"),
+                               ctx["S_pos"] * ctx["T_x"])
+    with pytest.raises(ParameterError):
+        Effect("dynamics", "first_order_lag", "T_x", tau_s=60, frame="absolute")
+    with pytest.raises(ParameterError):
+        Effect("signal", "raw", "S_pos", frame="relative")
+
+
+# -- shrinking the effects and forward chaining ------------------------------------------------
+def test_partial_ridge_path_is_least_squares_at_zero_and_penalises_only_the_effects():
+    rng = np.random.default_rng(4)
+    n = 300
+    X = rng.standard_normal((n, 3))
+    X = np.column_stack([X, X[:, 0] - X[:, 1]])                       # collinear inputs too
+    F = X[:, :2] @ rng.standard_normal((2, 5)) + 0.05 * rng.standard_normal((n, 5))
+    y = X[:, :3] @ [1.0, -2.0, 0.5] + F @ [1.0, -1.0, 0.5, 0.0, 2.0] + rng.standard_normal(n)
+    Z, Znew = np.hstack([X, F]), rng.standard_normal((20, 9))
+    path = PartialRidgePath(Z, y, n_free=4)
+    ols = LinearRegression().fit(Z, y)
+    np.testing.assert_allclose(path.predict(Znew, [0.0])[:, 0], ols.predict(Znew), atol=1e-8)
+    # alpha > 0: the objective with a penalty on the standardised effect columns only
+    alpha = 1e-2
+    Fs = (F - F.mean(0)) / F.std(0)
+    A = np.column_stack([np.ones(n), X, Fs])
+    penalty = np.hstack([np.zeros((5, 5)), np.sqrt(alpha * n) * np.eye(5)])
+    sol = np.linalg.lstsq(np.vstack([A, penalty]), np.r_[y, np.zeros(5)], rcond=None)[0]
+    np.testing.assert_allclose(path.predict(Z, [alpha])[:, 0], A @ sol, atol=1e-8)
+    coef, intercept = path.coefficients(alpha)
+    np.testing.assert_allclose(Z @ coef + intercept, A @ sol, atol=1e-8)
+    big = path.coefficients(1e6)[0][4:]
+    assert np.abs(big).max() < 1e-3 * np.abs(coef[4:]).max()         # effects shrunk to nothing
+    fitted = AugmentedRegressor(MLR(), [], alpha=alpha).fit(X, y)     # no effects: plain MLR
+    np.testing.assert_allclose(fitted.predict(Znew[:, :4]), LinearRegression().fit(X, y).predict(Znew[:, :4]))
+
+
+def test_forward_chaining_validates_the_end_of_the_record_and_cv_is_chosen_by_the_campaigns():
+    X = np.zeros((1000, 1))
+    splits = list(ForwardChaining(8, gap=10, min_train_fraction=0.5).split(X))
+    tests = np.concatenate([te for _, te in splits])
+    assert len(splits) == 8 and tests.min() >= 500 and tests.max() == 999
+    assert all(tr.max() == te.min() - 11 and tr.min() == 0 for tr, te in splits)
+    legacy = [te for _, te in ForwardChaining(4).split(X)]                # the option is opt-in
+    assert [te[0] for te in legacy] == [200, 400, 600, 800]
+    assert forward_gap(240, 62) == 31 and forward_gap(12.2, 62) == 13
+    assert cv_scheme(["R1a"] * 5) == "forward" and cv_scheme(["A", "A", "B"]) == "campaigns"
+    assert cv_scheme(["A", "A", "B"], "forward") == "forward"
+    with pytest.raises(ParameterError):
+        cv_scheme(["A"], "random")
 
 
 # -- sensor self-prediction ------------------------------------------------------------------
@@ -236,7 +308,8 @@ def test_diagnosed_model_refit_reproduces_the_after_figures(door_diagnosis):
     train = {c: ds.campaigns[c] for c in ds.ids("train")}
     test = {c: ds.campaigns[c] for c in ds.ids("test")}
     again = Compensator(AugmentedRegressor(MLR(), {t: [e.to_dict() for e in es]
-                                                   for t, es in d.effects().items()}),
+                                                   for t, es in d.effects().items()},
+                                           alpha=d.cv["shrink_alpha"]),
                         inputs=d.after_model.inputs).fit(train)
     pred, meas = again.predict(test), again.measured(test)
     r = np.concatenate([meas[c]["E_Z"] - pred[c]["E_Z"] for c in test])
@@ -252,19 +325,50 @@ def test_nothing_is_accepted_when_the_model_misses_nothing():
     assert not j["control_ever_clears_bar"]
 
 
-def test_a_single_train_campaign_is_cross_validated_in_time_blocks():
-    rng = np.random.default_rng(7)
-    long = _campaign(rng, 0, n=400, door_gain=4.0)
-    short = _campaign(rng, 1, n=120, door_gain=4.0)
-    ds = Dataset(pd.DataFrame({"file": ["L.csv", "S.csv"], "split": ["train", "test"]},
-                               index=pd.Index(["L", "S"], name="campaign")),
-                 {"L": long, "S": short}, name="one-record")
+def _one_record(seed=7, n=400, door_gain=4.0) -> Dataset:
+    rng = np.random.default_rng(seed)
+    long = _campaign(rng, 0, n=n, door_gain=door_gain)
+    short = _campaign(rng, 1, n=120, door_gain=door_gain)
+    return Dataset(pd.DataFrame({"file": ["L.csv", "S.csv"], "split": ["train", "test"]},
+                                index=pd.Index(["L", "S"], name="campaign")),
+                   {"L": long, "S": short}, name="one-record")
+
+
+def test_a_single_train_campaign_is_cross_validated_forward_in_time():
+    ds = _one_record()
     d = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, n_blocks=8))
     j = d.to_json("E_Z")
-    assert j["cv"]["unit"] == "time block" and j["cv"]["units"] == 8
-    assert all(u.startswith("L#") for u in unit_labels(np.array(["L"] * 400), 8))
+    assert j["cv"]["scheme"] == "forward" and j["cv"]["units"] == 8
+    # the longest lag tried (14400 s = 48 samples) capped at half a validation block (200 / 8 rows)
+    assert j["cv"]["gap_samples"] == 12
     top = next(e for e in j["effects"] if e["accepted"])
     assert top["column"] == "S_door"
+    start = d.targets["E_Z"].search.start          # only the validation blocks are scored
+    assert np.isnan(start.residual[:200]).all() and np.isfinite(start.residual[200:]).all()
+
+
+def test_forward_folds_train_only_on_the_past_and_run_through_it():
+    m = stack({"L": _campaign(np.random.default_rng(1), 0, n=200)}, ["T_a", "T_b"], ["E_Z"],
+              reference="none")
+    p = Problem(m.X, m.Y["E_Z"].to_numpy(), m.context, m.groups, m.groups, "E_Z", reference="none",
+                scheme="forward", n_blocks=4, gap=5, min_train_fraction=0.5)
+    assert p.fold_ids == [0, 1, 2, 3] and p.n_units == 4
+    for k in p.fold_ids:
+        test = np.flatnonzero(p.test_rows(k))
+        train = np.flatnonzero(p.train_rows(k))
+        assert train[-1] == test[0] - 6 and train[0] == 0          # the past less the gap
+        run = np.flatnonzero(p.predict_rows(k))
+        assert run[0] == 0 and run[-1] == test[-1]                 # states carry over to the block
+    assert not p.validated[:100].any() and p.validated[100:].all()
+
+
+def test_the_campaign_scheme_can_be_forced_on_one_record():
+    d = diagnose(_one_record(), Compensator(MLR()),
+                 options=SearchOptions(max_effects=1, n_blocks=8, cv="campaigns"))
+    j = d.to_json("E_Z")
+    assert j["cv"]["scheme"] == "campaigns" and j["cv"]["unit"] == "time block"
+    assert j["cv"]["units"] == 8
+    assert all(u.startswith("L#") for u in unit_labels(np.array(["L"] * 400), 8))
 
 
 def test_the_control_signal_is_a_random_walk_no_physical_column_can_collide_with():

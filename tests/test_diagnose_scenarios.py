@@ -11,6 +11,7 @@ from __future__ import annotations
 from functools import lru_cache
 
 import numpy as np
+import pandas as pd
 import pytest
 from hydra import compose, initialize_config_dir
 from hydra.utils import instantiate
@@ -38,14 +39,15 @@ def scenario(effect: str | None):
 
 
 @lru_cache(maxsize=None)
-def diagnosis(effect: str | None, model: str = "mlr", all_targets: bool = False, max_effects: int = 3):
+def diagnosis(effect: str | None, model: str = "mlr", all_targets: bool = False, max_effects: int = 3,
+              reference: str = "first_sample"):
     ds, truth = scenario(effect)
     planted = truth["undeclared_effects"]
     targets = (planted[0]["targets"] if all_targets else planted[0]["targets"][:1]) if planted else ["E_Z"]
     estimator = {"mlr": MLR(), "pcr": PCR(), "arx": ARX(),
                  "arx_rf": ARXRF(state_column=None, forest=RandomForestRegressor(
                      n_estimators=5, min_samples_leaf=20, random_state=0))}[model]
-    d = diagnose(ds, Compensator(estimator), targets=targets, model_name=model,
+    d = diagnose(ds, Compensator(estimator, reference=reference), targets=targets, model_name=model,
                  options=SearchOptions(max_effects=max_effects))
     return truth, {t: d.to_json(t) for t in targets}
 
@@ -124,4 +126,48 @@ def test_every_model_family_is_diagnosed_the_same_way(model):
     assert (top["kind"], top["column"]) == (planted["kind"], planted["column"])
     assert j["model"] == model
     assert j["after"]["test_rmse"] < 0.8 * j["before"]["test_rmse"]
+    _no_random_signal_accepted(j)
+
+
+def test_the_axis_position_is_found_when_the_data_are_read_absolute():
+    # data.reference=none, as a long record is run: the position acts through its lever p - p(0)
+    # on a temperature rise, so the state is only found when tried referenced to the first sample
+    truth, result = diagnosis("axis_position", reference="none")
+    planted = truth["undeclared_effects"][0]
+    j = next(iter(result.values()))
+    first = next(e for e in _accepted(j) if e["kind"] != "ambient_interval")
+    assert (first["kind"], first["column"]) == ("interaction", planted["column"])
+    assert first["effect"]["frame"] == "referenced"
+    assert j["after"]["test_rmse"] <= 0.6 * j["before"]["test_rmse"]
+    _no_random_signal_accepted(j)
+
+
+@lru_cache(maxsize=None)
+def long_record(days: float = 6.0):
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=["sim=long_record", "seed=0",
+                                                         f"sim.generator.duration_days={days}"])
+    ds, _ = instantiate(cfg.sim.generator).generate()
+    return ds, str(cfg.data.reference)
+
+
+def carried_test_rmse(model, ds) -> float:
+    """Test RMSE of R1b predicted as the continuation of R1a (the model's states carried over)."""
+    train, test = ds.campaigns["R1a"], ds.campaigns["R1b"]
+    shifted = test.assign(time=test["time"] + float(ds.manifest.loc["R1b", "record_offset_s"]))
+    whole = pd.concat([train, shifted], ignore_index=True)
+    pred = model.predict({"R1": whole})["R1"]["E_Z"].to_numpy()[len(train):]
+    return float(np.sqrt(np.mean((test["E_Z"].to_numpy() - pred) ** 2)))
+
+
+def test_one_long_record_is_cross_validated_forward_and_a_dynamic_effect_is_accepted():
+    ds, reference = long_record()
+    assert reference == "none"
+    d = diagnose(ds, Compensator(MLR(), reference=reference), options=SearchOptions(max_effects=2))
+    j = d.to_json("E_Z")
+    assert j["cv"]["scheme"] == "forward" and j["cv"]["units"] == 8 and j["cv"]["gap_samples"] > 0
+    assert _accepted(j)[0]["kind"] == "dynamics"
+    assert j["after"]["cv_rmse"] < 0.8 * j["before"]["cv_rmse"]
+    # the CV scores what follows the training rows, states carried over: so is the test part
+    assert carried_test_rmse(d.after_model, ds) < 0.9 * carried_test_rmse(d.before_model, ds)
     _no_random_signal_accepted(j)

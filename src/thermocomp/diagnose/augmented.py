@@ -12,7 +12,8 @@ from ..context import (AMBIENT_C0, TIME, SideInputs, context_columns, groups_of,
                        scalar)
 from ..errors import ContractError, ParameterError
 from ..models.linear import MLR
-from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, initial_weights
+from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
+from .shrink import PartialRidgePath
 
 
 class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
@@ -26,7 +27,11 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
     signal, low-pass copies of the inputs, ambient interactions, products,
     squares), built per row from the inputs and the ``context`` (:mod:`thermocomp.context`).
     The estimator sees them as extra inputs, so it fits them its own way (OLS,
-    principal components, greedy ARX selection ...).  ``sensor_fault`` effects
+    principal components, greedy ARX selection ...).  With ``alpha`` and an
+    :class:`~thermocomp.models.MLR` base the effect coefficients are shrunk
+    instead (ridge on the standardised :math:`\phi_j`, the inputs unpenalised,
+    :mod:`thermocomp.diagnose.shrink`): many correlated extra regressors fitted
+    on one long record otherwise extrapolate badly.  ``sensor_fault`` effects
     build nothing: the faulty sensor is left out of ``data.inputs`` instead.
 
     Parameters
@@ -40,6 +45,11 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         (the Compensator calls it per target); a target missing from it gets none.
     reference : {'first_sample', 'none'}
         Frame of the context columns (``data.reference``).
+    alpha : float >= 0, dict target -> float, or None
+        Ridge penalty on the standardised effect features when the base is an
+        MLR (chosen by ``diagnose``'s cross-validation); ``None`` or 0: the
+        base estimator fits them as plain inputs.  Other bases ignore it (they
+        fit their own way: PCR truncates, ARX selects, lagbank has its ridge).
 
     Attributes
     ----------
@@ -56,18 +66,20 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
     n_features_in_ : int
     """
 
-    def __init__(self, estimator=None, effects=(), reference: str = "first_sample"):
+    def __init__(self, estimator=None, effects=(), reference: str = "first_sample", alpha=None):
         self.estimator = estimator
         self.effects = effects
         self.reference = reference
+        self.alpha = alpha
 
     def for_target(self, target: str) -> "AugmentedRegressor":
         """An unfitted copy with the effects of ``target`` (per-target dict) as a list."""
         effects = self.effects if self.effects is not None else ()
         if isinstance(effects, Mapping):
             effects = effects.get(target, ())
+        alpha = self.alpha.get(target) if isinstance(self.alpha, Mapping) else self.alpha
         return clone(self).set_params(effects=[dict(e) if isinstance(e, Mapping) else e
-                                               for e in effects])
+                                               for e in effects], alpha=alpha)
 
     def _effects(self) -> list[Effect]:
         effects = self.effects if self.effects is not None else ()
@@ -86,6 +98,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if self.reference not in ("first_sample", "none"):
             raise ParameterError(f"AugmentedRegressor reference={self.reference!r} is not "
                                  "first_sample or none")
+        alpha = self._alpha()
         X, y = validate_data(self, X, y, y_numeric=True)
         self.effects_ = self._effects()
         self.required_context_ = list(dict.fromkeys(c for e in self.effects_ for c in e.context_columns))
@@ -94,12 +107,25 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
             for e in self.effects_]
         Z = self._design(X, context)
-        self.estimator_ = clone(self.estimator if self.estimator is not None else MLR()) \
-            .fit(Z, y, context=context)
+        base = self.estimator if self.estimator is not None else MLR()
+        self.estimator_ = clone(base).fit(Z, y, context=context)
+        if alpha and isinstance(self.estimator_, MLR) and Z.shape[1] > X.shape[1]:
+            # the same law, its effect coefficients shrunk (streams as any MLR does)
+            path = PartialRidgePath(Z, y, X.shape[1], self.estimator_.fit_intercept)
+            self.estimator_.coef_, self.estimator_.intercept_ = path.coefficients(alpha)
         self.context_columns_ = merge_columns([TIME, AMBIENT_C0] if self.effects_ else [],
                                               self.required_context_,
                                               context_columns(self.estimator_))
         return self
+
+    def _alpha(self) -> float:
+        if isinstance(self.alpha, Mapping):
+            raise ParameterError("AugmentedRegressor alpha is given per target: fit the copy "
+                                 "for_target(target) returns (the Compensator does)")
+        alpha = 0.0 if self.alpha is None else float(self.alpha)
+        if not alpha >= 0:
+            raise ParameterError(f"AugmentedRegressor alpha={self.alpha!r} must be >= 0")
+        return alpha
 
     def predict(self, X, context=None):
         check_is_fitted(self)
@@ -114,7 +140,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 "ambient_c0": scalar(context, AMBIENT_C0),
                 "base": self.estimator_.stream_init(context)}
 
-    def _raw(self, column, context, state) -> float:
+    def _raw(self, column, context, state, reference: str | None = None) -> float:
         if context is None or column not in context:
             raise ContractError("the diagnosed model's stream_step needs this column in its context "
                                 "(raw value of the sample)", column=column)
@@ -126,7 +152,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             state["first"].setdefault(column, value)
         if np.isnan(value):
             return 0.0
-        return value - state["first"][column] if self.reference == "first_sample" else value
+        reference = self.reference if reference is None else reference
+        return value - state["first"][column] if reference == "first_sample" else value
 
     def _lag(self, key, u: np.ndarray, tau: float, dt: float | None, state) -> np.ndarray:
         prev = state["lag"].get(key)
@@ -163,16 +190,17 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         parts = [x]
         for i, e in enumerate(self.effects_):
             tr = e.transform
+            own, other = frames(e, self.reference)
             if tr in ("raw", "first_order_lag", "square"):
-                c = np.array([self._raw(e.column, context, state)])
+                c = np.array([self._raw(e.column, context, state, own)])
                 if tr == "first_order_lag":
                     c = self._lag(i, c, e.tau_s, dt, state)
                 parts.append(c**2 if tr == "square" else c)
                 if tr == "first_order_lag" and e.initial_state:
                     parts.append(self._initial_state(i, e, context, a0, t, state))
             elif tr == "product":
-                parts.append(np.array([self._raw(e.column, context, state)
-                                       * self._raw(e.other, context, state)]))
+                parts.append(np.array([self._raw(e.column, context, state, own)
+                                       * self._raw(e.other, context, state, other)]))
             elif tr == "lowpass_inputs":
                 parts.append(self._lag(i, x, e.tau_s, dt, state))
                 if e.initial_state:

@@ -7,7 +7,14 @@ inputs (unmeasured masses, delays, the AR pole), all together (optionally with
 the transient of the campaign's initial disequilibrium) or one at a time; ``ambient_interval`` -- the
 inputs times the initial ambient (linear, or a step at a threshold between
 the train campaigns' ambients); ``interaction`` -- products of a state signal
-and a temperature; ``nonlinear`` -- squares of the strongest inputs.  (``sensor_fault``,
+and a temperature; ``nonlinear`` -- squares of the strongest inputs.
+
+A state signal (``S_`` column) is tried in both frames: absolute and as its
+change since the campaign's first sample (like the error with
+``reference=first_sample``), raw, lagged, and times the rise of every
+temperature -- whichever the data's reference is: an axis that dwells away
+from its home position tilts the tool through the lever :math:`p - p(0)`,
+a spindle speed acts through its absolute value.  (``sensor_fault``,
 removing a declared sensor whose self-prediction jumps, is weighed before the
 search for all targets at once: :func:`thermocomp.diagnose.search.sensor_health`.)
 
@@ -59,6 +66,17 @@ def _varies(values: np.ndarray) -> bool:
     return bool(np.nanstd(values) > 1e-12)
 
 
+def _start_varies(problem, column: str) -> bool:
+    """True when ``column``'s first valid value differs between the train campaigns.
+
+    Otherwise its absolute and referenced frames differ by one constant, and
+    so do their lags: one candidate, not two (a single record included).
+    """
+    first = pd.Series(problem.context[column].to_numpy(float)).groupby(
+        np.asarray(problem.campaigns, dtype=object), sort=False).first()
+    return first.nunique() > 1
+
+
 def ambient_thresholds(ambient_by_unit: pd.Series, min_per_side: int) -> list[float]:
     """Midpoints between consecutive campaign ambients with enough campaigns on each side."""
     a = np.sort(ambient_by_unit.dropna().to_numpy(float))
@@ -82,12 +100,18 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
     s_cols = [c for c in s_cols if problem.varies(c)]
     unused_t = [c for c in t_cols if c not in model_inputs and problem.varies(c)]
 
-    def signal_family(col: str) -> list[Effect]:
-        return [Effect("signal", "raw", col)] + [Effect("signal", "first_order_lag", col, tau_s=t)
-                                                  for t in taus]
+    # the frame of a state other than the data's (the data's own is the legacy frame=None)
+    other_frame = "absolute" if problem.reference == "first_sample" else "referenced"
+
+    def signal_family(col: str, frame: str | None = None) -> list[Effect]:
+        return [Effect("signal", "raw", col, frame=frame)] + [
+            Effect("signal", "first_order_lag", col, tau_s=t, frame=frame) for t in taus]
     if "signal" in fam:
         for col in unused_t + s_cols:
             out += signal_family(col)
+        for col in s_cols:
+            if _start_varies(problem, col):
+                out += signal_family(col, other_frame)
     if "dynamics" in fam:
         temps_in = tuple(c for c in model_inputs if c.startswith("T_"))
         field_temps = tuple(c for c in temps_in if not (c == "T_amb" or c.startswith("T_amb_")))
@@ -108,6 +132,13 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
     if "interaction" in fam:
         temps = [c for c in model_inputs if c.startswith("T_")] + unused_t
         out += [Effect("interaction", "product", s, other=t) for s in s_cols for t in temps]
+        # the state, referenced and absolute, times a temperature rise (with reference=first_sample
+        # the referenced one is the legacy product; the absolute one differs from the referenced
+        # one by S(0) times the rise, the same candidate when S(0) is the same in every campaign)
+        for s in s_cols:
+            frames = ([] if problem.reference == "first_sample" else ["referenced"]) + (
+                ["absolute"] if _start_varies(problem, s) else [])
+            out += [Effect("interaction", "product", s, other=t, frame=f) for f in frames for t in temps]
     if "nonlinear" in fam and options.n_squares > 0:
         X = problem.X[model_inputs].to_numpy(float)
         corr = np.abs([np.corrcoef(X[:, j], problem.y)[0, 1] if _varies(X[:, j]) else 0.0

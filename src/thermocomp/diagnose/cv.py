@@ -1,17 +1,34 @@
-"""Honest residuals: leave-campaigns-out cross-validation on the train split, and its test.
+"""Honest residuals: cross-validation on the train split, and its test.
 
-The *unit* of cross-validation is a campaign: every campaign is held out once
-and predicted by a model that never saw it.  When the train split is a single
-campaign (one long record) the units are contiguous time blocks of it (CLI.md).
-Units go to ``n_folds`` folds in turn (unit ``i`` -> fold ``i mod K``), so with
-campaigns in calendar order every fold spans the seasons
-(:class:`~thermocomp.model_selection.LeaveCampaignsOut`).
+Two schemes (``diagnose.cv``, chosen by
+:func:`~thermocomp.model_selection.cv_scheme`: ``auto`` takes the first for
+several train campaigns, the second for one):
+
+* **campaigns** -- the *unit* of cross-validation is a campaign: every campaign
+  is held out once and predicted by a model that never saw it.  Units go to
+  ``n_folds`` folds in turn (unit ``i`` -> fold ``i mod K``), so with campaigns
+  in calendar order every fold spans the seasons
+  (:class:`~thermocomp.model_selection.LeaveCampaignsOut`).  A single campaign
+  forced into this scheme is cut into contiguous time blocks.
+* **forward** -- one long record (or campaigns taken as one time line): the
+  last ``1 - min_train_fraction`` of the rows are cut into ``n_blocks``
+  validation blocks; block ``k`` is predicted by a model trained on every row
+  before it less a ``gap`` (the longest lag tried), as the deployed model
+  predicts what follows its training data
+  (:class:`~thermocomp.model_selection.ForwardChaining`).  A block held out in
+  the middle of a drifting record would be an extrapolation in both
+  directions, scored far worse than the deployed model ever is.  The model
+  runs through the whole record up to the block (its lags and AR states carry
+  over, as on the machine); only the block's rows are scored.  The units of
+  the sign-flip test are then the validation blocks.
 
 Everything works on the stacked train matrices: the selector and the
 estimator are refitted in every fold exactly as the
 :class:`~thermocomp.compensator.Compensator` fits them, without re-reading
 or re-referencing the campaigns for each fit (that is what makes a search
-over dozens of candidates affordable).
+over dozens of candidates affordable).  An :class:`~thermocomp.models.MLR`
+base is fitted in closed form, with the penalty on the effect features that
+minimises the CV error (:mod:`.shrink`).
 """
 
 from __future__ import annotations
@@ -24,9 +41,11 @@ import pandas as pd
 from sklearn.base import clone
 
 from ..context import CAMPAIGN, Y_MEASURED, for_target
-from ..model_selection import LeaveCampaignsOut
+from ..model_selection import ForwardChaining, LeaveCampaignsOut
+from ..models.linear import MLR
 from ..select import AllInputs
 from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
+from .shrink import ALPHAS, PartialRidgePath
 
 
 @dataclass
@@ -35,7 +54,10 @@ class Problem:
 
     ``campaigns`` drives the features (lags run over whole campaigns);
     ``units`` are what CV holds out and what the model sees as ``groups``
-    (the campaigns themselves, or blocks of a single campaign).
+    (the campaigns themselves, or blocks of a single campaign) in the
+    ``campaigns`` scheme.  In the ``forward`` scheme the units are the
+    validation blocks (the rows before the first one are never scored), and
+    the model sees the real campaigns.
     """
 
     X: pd.DataFrame               # declared inputs, reference frame
@@ -47,15 +69,35 @@ class Problem:
     mode: str = "simulation"
     reference: str = "first_sample"
     n_folds: int = 10
+    scheme: str = "campaigns"     # or "forward"
+    n_blocks: int = 8             # forward: validation blocks
+    gap: int = 0                  # forward: rows left out before each validation block
+    min_train_fraction: float = 0.5
     unit_names: list = field(init=False)
     unit_index: np.ndarray = field(init=False)
     folds: np.ndarray = field(init=False)
 
     def __post_init__(self):
-        self.unit_names = list(dict.fromkeys(self.units))
+        n = len(self.y)
+        if self.scheme == "forward":
+            splitter = ForwardChaining(int(self.n_blocks), int(self.gap),
+                                       min_train_fraction=self.min_train_fraction)
+            self.folds = np.full(n, -1)
+            self._train_end = []
+            for k, (tr, te) in enumerate(splitter.split(np.empty((n, 1)))):
+                self.folds[te] = k
+                self._train_end.append(int(tr[-1]) + 1)
+            labels = np.asarray(self.campaigns, dtype=object)
+            self.units = np.array([f"{c}#{k + 1}" if k >= 0 else str(c)
+                                   for c, k in zip(labels, self.folds)], dtype=object)
+        elif self.scheme == "campaigns":
+            self.folds = LeaveCampaignsOut(self.n_folds).fold_index(self.units)
+        else:
+            raise ValueError(f"unknown CV scheme {self.scheme!r}")
+        self.validated = self.folds >= 0
+        self.unit_names = list(dict.fromkeys(self.units[self.validated]))
         pos = {u: i for i, u in enumerate(self.unit_names)}
-        self.unit_index = np.array([pos[u] for u in self.units])
-        self.folds = LeaveCampaignsOut(self.n_folds).fold_index(self.units)
+        self.unit_index = np.array([pos[u] if ok else -1 for u, ok in zip(self.units, self.validated)])
 
     def varies(self, column: str) -> bool:
         """True when context ``column`` changes within the train data (in the target's frame)."""
@@ -66,56 +108,101 @@ class Problem:
         return cache[column]
 
     @property
+    def forward(self) -> bool:
+        return self.scheme == "forward"
+
+    @property
     def n_units(self) -> int:
+        """Units that are scored (validated)."""
         return len(self.unit_names)
 
     @property
     def fold_ids(self) -> list[int]:
-        return sorted(set(self.folds.tolist()))
+        return sorted(set(self.folds[self.validated].tolist()))
+
+    def train_rows(self, fold: int | None) -> np.ndarray:
+        """Rows fold ``fold`` trains on (all rows for None)."""
+        if fold is None:
+            return np.ones(len(self.y), bool)
+        if self.forward:
+            return np.arange(len(self.y)) < self._train_end[fold]
+        return self.folds != fold
+
+    def test_rows(self, fold: int) -> np.ndarray:
+        """Rows fold ``fold`` scores."""
+        return self.folds == fold
+
+    def predict_rows(self, fold: int) -> np.ndarray:
+        """Rows fold ``fold``'s model runs through: its test rows, or (forward) the record up to
+        the end of its block, so that its states carry over as on the machine."""
+        if not self.forward:
+            return self.test_rows(fold)
+        return np.arange(len(self.y)) <= np.flatnonzero(self.folds == fold)[-1]
+
+    @property
+    def splits(self) -> list[tuple[np.ndarray, np.ndarray]]:
+        """``(train rows, test rows)`` of every fold."""
+        return [(self.train_rows(k), self.test_rows(k)) for k in self.fold_ids]
 
 
 @dataclass
 class CVResult:
-    """Cross-validated prediction of the train rows and its error per unit."""
+    """Cross-validated prediction of the train rows and its error per unit.
+
+    Rows that no fold scores (forward: before the first validation block)
+    hold NaN in ``prediction`` and ``residual``.
+    """
 
     prediction: np.ndarray
     residual: np.ndarray
     rmse: float
     unit_mse: np.ndarray      # mean squared residual of each held-out unit
+    alpha: float | None = None   # penalty on the effect features (MLR base; None: none)
 
 
 class CrossValidator:
-    """Leave-units-out predictions of a Compensator-like model with extra effects.
+    """Held-out predictions of a Compensator-like model with extra effects.
 
     Parameters
     ----------
     problem : Problem
     estimator : regressor
         The configured estimator (cloned per fold, for the problem's target);
-        it gets the fold's context, whose ``campaign`` is the CV unit (a time
-        block of a single campaign is a campaign of its own: no lag reaches
-        across a held-out block), and in one-step mode the measured target.
+        it gets the fold's context, whose ``campaign`` is the CV unit in the
+        ``campaigns`` scheme (a time block of a single campaign is a campaign
+        of its own: no lag reaches across a held-out block), and in one-step
+        mode the measured target.
     selector : selector or None
         Refitted per fold on the declared inputs left after exclusions.
+    shrink : bool, default True
+        With an :class:`~thermocomp.models.MLR` base, penalise the effect
+        features (ridge, :mod:`.shrink`) with the penalty among
+        :data:`~thermocomp.diagnose.shrink.ALPHAS` of least CV error.
     """
 
-    def __init__(self, problem: Problem, estimator, selector=None):
+    def __init__(self, problem: Problem, estimator, selector=None, shrink: bool = True):
         self.problem, self.estimator = problem, estimator
         self.selector = selector if selector is not None else AllInputs()
+        self.shrink = shrink
         self._selection: dict = {}
         self._features: dict = {}
         self._ctx: dict = {}
 
+    @property
+    def closed_form(self) -> bool:
+        """True when the base is a plain MLR (fitted here in closed form, with the penalty path)."""
+        return type(for_target(self.estimator, self.problem.target)) is MLR
+
     # -- building blocks --------------------------------------------------------------------
     def selection(self, inputs: tuple, fold: int | None) -> list[str]:
-        """Selected inputs among ``inputs`` on the rows outside ``fold`` (all rows for None)."""
+        """Selected inputs among ``inputs`` on the rows of ``fold``'s training (all rows for None)."""
         key = (tuple(inputs), fold)
         if key not in self._selection:
             p = self.problem
             if isinstance(self.selector, AllInputs):
                 names = list(inputs)
             else:
-                rows = np.ones(len(p.y), bool) if fold is None else p.folds != fold
+                rows = p.train_rows(fold)
                 Xf = p.X.loc[rows, list(inputs)].reset_index(drop=True)
                 names = list(clone(self.selector).fit(Xf, p.y[rows]).selected_)
             self._selection[key] = names
@@ -130,8 +217,8 @@ class CrossValidator:
     def features(self, effect: Effect, names: list[str], fold: int | None = None) -> np.ndarray:
         """Features of ``effect`` on all train rows (cached; input effects per input set).
 
-        An effect that ``learns`` (initial directions) learns from the rows
-        outside ``fold`` (all rows for None), as the fitted model would.
+        An effect that ``learns`` (initial directions) learns from the training
+        rows of ``fold`` (all rows for None), as the fitted model would.
         """
         fold = fold if effect.learns else None
         key = (effect, tuple(names) if effect.uses_inputs else None, fold)
@@ -142,7 +229,7 @@ class CrossValidator:
                 offsets = self._offsets(effect.initial_state)
                 weights = None
                 if effect.learns:
-                    rows = np.ones(len(p.y), bool) if fold is None else p.folds != fold
+                    rows = p.train_rows(fold)
                     weights = principal_directions(offsets[rows], p.campaigns[rows],
                                                    effect.initial_directions)
                 start = transient(offsets, weights, p.context["time"].to_numpy(float), p.campaigns,
@@ -167,9 +254,9 @@ class CrossValidator:
         key = (fold, train)
         if key not in self._ctx:
             p = self.problem
-            rows = (p.folds != fold) if train else (p.folds == fold)
+            rows = p.train_rows(fold) if train else p.predict_rows(fold)
             ctx = p.context.loc[rows].reset_index(drop=True)
-            ctx[CAMPAIGN] = p.units[rows]
+            ctx[CAMPAIGN] = (p.campaigns if p.forward else p.units)[rows]
             if p.mode == "one_step" and not train:
                 ctx[Y_MEASURED] = p.y[rows]
             self._ctx[key] = ctx
@@ -180,21 +267,43 @@ class CrossValidator:
         """CV prediction with declared ``inputs`` (after exclusions) and extra ``effects``."""
         p = self.problem
         effects = [e for e in effects if e.transform != "remove"]
-        pred = np.empty(len(p.y))
+        if self.closed_form:
+            return self._run_closed_form(inputs, effects)
+        pred = np.full(len(p.y), np.nan)
         for k in p.fold_ids:
-            tr, te = p.folds != k, p.folds == k
+            tr, te, run = p.train_rows(k), p.test_rows(k), p.predict_rows(k)
             Z = self.design(self.selection(tuple(inputs), k), effects, k)
             est = clone(for_target(self.estimator, p.target))
             est.fit(Z[tr], p.y[tr], context=self._context(k, True))
-            pred[te] = np.asarray(est.predict(Z[te], context=self._context(k, False)), dtype=float)
+            out = np.asarray(est.predict(Z[run], context=self._context(k, False)), dtype=float)
+            pred[te] = out[te[run]]
         return self._result(pred)
 
-    def _result(self, pred: np.ndarray) -> CVResult:
+    def _run_closed_form(self, inputs, effects) -> CVResult:
+        """MLR on the design, the effect features penalised by each of the alphas; the best one."""
+        p = self.problem
+        base = for_target(self.estimator, p.target)
+        shrink = self.shrink and bool(effects)
+        alphas = ALPHAS if shrink else np.zeros(1)
+        pred = np.full((len(p.y), alphas.size), np.nan)
+        for k in p.fold_ids:
+            tr, te = p.train_rows(k), p.test_rows(k)
+            names = self.selection(tuple(inputs), k)
+            Z = self.design(names, effects, k)
+            path = PartialRidgePath(Z[tr], p.y[tr], len(names), base.fit_intercept)
+            pred[te] = path.predict(Z[te], alphas)
+        mse = np.nanmean((p.y[:, None] - pred) ** 2, axis=0)
+        best = int(np.argmin(mse))           # ties: the smallest penalty (least squares first)
+        return self._result(pred[:, best], float(alphas[best]) if shrink else None)
+
+    def _result(self, pred: np.ndarray, alpha: float | None = None) -> CVResult:
         p = self.problem
         r = p.y - pred
-        sums = np.bincount(p.unit_index, weights=r**2, minlength=p.n_units)
-        counts = np.bincount(p.unit_index, minlength=p.n_units)
-        return CVResult(pred, r, float(np.sqrt(np.mean(r**2))), sums / np.maximum(counts, 1))
+        ok = p.validated
+        sums = np.bincount(p.unit_index[ok], weights=r[ok] ** 2, minlength=p.n_units)
+        counts = np.bincount(p.unit_index[ok], minlength=p.n_units)
+        return CVResult(pred, r, float(np.sqrt(np.mean(r[ok] ** 2))), sums / np.maximum(counts, 1),
+                        alpha)
 
 
 @lru_cache(maxsize=8)

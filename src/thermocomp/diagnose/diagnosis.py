@@ -16,7 +16,9 @@ from ..frame import stack
 from ..io.contract import ContractError, Dataset
 from ..jsonsafe import json_safe
 from ..metrics import split_scores
-from ..model_selection import LeaveCampaignsOut, unit_labels
+import numpy as np
+
+from ..model_selection import ForwardChaining, LeaveCampaignsOut, cv_scheme, forward_gap, unit_labels
 from .augmented import AugmentedRegressor
 from .candidates import CONTROL, random_walk
 from .cv import Problem
@@ -25,19 +27,21 @@ from .search import Search, SearchOptions, SearchResult, sensor_health
 
 
 def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
-            inputs=None) -> Compensator:
+            inputs=None, alphas: Mapping[str, float | None] | None = None) -> Compensator:
     """An unfitted copy of ``template`` whose estimator adds ``effects`` (per target).
 
     ``excluded`` sensors (accepted ``sensor_fault``) leave the declared inputs:
     ``inputs`` (the resolved input columns, default ``template.inputs_``)
-    without them become the explicit input list.
+    without them become the explicit input list.  ``alphas``: per target, the
+    penalty on the effect features (MLR base, chosen by the CV).
     """
     base_inputs = list(inputs) if inputs is not None else list(getattr(template, "inputs_", []))
     kept = [c for c in base_inputs if c not in set(excluded)] if excluded else template.inputs
     est = AugmentedRegressor(template.estimator,
                              {t: [Effect.to_dict(e) if isinstance(e, Effect) else dict(e) for e in es]
                               for t, es in effects.items()},
-                             template.reference)
+                             template.reference,
+                             {t: a for t, a in (alphas or {}).items() if a} or None)
     return clone(template).set_params(estimator=est, inputs=kept)
 
 
@@ -175,8 +179,9 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
     options : SearchOptions
     make_compensator : callable, optional
         ``(effects: dict target -> list[Effect], excluded: list[str],
-        inputs: list[str]) -> Compensator``, the diagnosed model, given the
-        resolved declared inputs (default :func:`augment` of the template;
+        inputs: list[str], alphas: dict target -> float or None) -> Compensator``,
+        the diagnosed model, given the resolved declared inputs and the
+        penalties on the effect features (default :func:`augment` of the template;
         the ``diagnose`` stage builds it from the config it writes, so
         ``thermocomp run`` with that config gives the same "after").
 
@@ -189,6 +194,18 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
     with threadpool_limits(limits=1, user_api="blas"):
         return _diagnose(ds, compensator, targets, mode, options or SearchOptions(),
                          make_compensator, e_p95_statistic, e_p95_points, model_name)
+
+
+def _gap(context, groups, options: SearchOptions) -> int:
+    """Forward chaining's gap: the longest lag tried in samples, capped at half a block."""
+    t = context["time"].to_numpy(float)
+    g = np.asarray(groups, dtype=object)
+    dt = np.diff(t)[g[1:] == g[:-1]]
+    dt = float(np.median(dt[dt > 0])) if np.any(dt > 0) else 1.0
+    taus = [float(x) for x in options.candidates.taus_s] or [0.0]
+    block = ForwardChaining(options.n_blocks, min_train_fraction=options.min_train_fraction) \
+        .block_size(len(t))
+    return forward_gap(max(taus) / dt, block)
 
 
 def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_statistic,
@@ -215,24 +232,35 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     later = stack(test, before.inputs_, [], before.reference)   # (the test targets stay out)
     context = m.context.copy()
     context[CONTROL] = random_walk(m.groups, options.seed)
-    units = unit_labels(m.groups, options.n_blocks)
+    scheme = cv_scheme(m.groups, options.cv)
+    units = unit_labels(m.groups, options.n_blocks) if scheme == "campaigns" else m.groups
+    gap = _gap(m.context, m.groups, options) if scheme == "forward" else 0
     searches = {t: Search(Problem(m.X, m.Y[t].to_numpy(float), context, m.groups, units, t, mode,
-                                  before.reference, options.n_folds),
+                                  before.reference, options.n_folds, scheme, options.n_blocks, gap,
+                                  options.min_train_fraction),
                           compensator.estimator, compensator.selector, before.inputs_, options)
                 for t in targets}
     excluded, faults, health, original, table = sensor_health(searches, later.X, later.groups, options)
     found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
     effects = {t: r.effects for t, r in found.items()}
-    build = make_compensator or (lambda eff, exc, inputs: augment(compensator, eff, exc, inputs))
-    after = build(effects, excluded, list(before.inputs_)).fit({c: ds.campaigns[c] for c in train_ids})
+    alphas = {t: r.alpha for t, r in found.items()}
+    build = make_compensator or (lambda eff, exc, inputs, al: augment(compensator, eff, exc, inputs, al))
+    after = build(effects, excluded, list(before.inputs_), alphas).fit(
+        {c: ds.campaigns[c] for c in train_ids})
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
     out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
            for t, r in found.items()}
-    n_units = len(dict.fromkeys(units))
-    cv = {"units": n_units, "unit": "campaign" if len(train_ids) > 1 else "time block",
-          "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=units),
-          "train_campaigns": train_ids,
-          "test_campaigns": test_ids}
+    problem = next(iter(searches.values())).problem
+    if scheme == "forward":
+        cv = {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
+              "folds": problem.n_units, "gap_samples": gap,
+              "min_train_fraction": options.min_train_fraction}
+    else:
+        cv = {"scheme": "campaigns", "units": problem.n_units,
+              "unit": "campaign" if len(train_ids) > 1 else "time block",
+              "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=units)}
+    cv |= {"shrink_alpha": {t: r.alpha for t, r in found.items()},
+           "train_campaigns": train_ids, "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},
                      options, cv, time.perf_counter() - t0)

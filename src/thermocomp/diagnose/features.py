@@ -13,7 +13,13 @@ from
 Columns taken from the context are put in the target's frame first: with
 ``reference='first_sample'`` a ``T_`` or ``S_`` column becomes its change since
 the campaign's first valid sample (DATA_FORMAT.md: the error is zeroed there,
-so a state acts through its change).  Every transform is causal (the value at
+so a state acts through its change).  A state signal may also be taken in a
+frame of its own (``frame``): ``absolute`` (its raw value) or ``referenced``
+(:math:`S(t) - S(0)`, its change since the campaign's first sample, like the
+error), whatever the data's reference; a product with a ``frame`` multiplies
+that state by the *rise* :math:`\Delta o(t) = o(t) - o(0)` of a temperature
+(an axis position acts through its lever :math:`p - p(0)` on a thermal tilt
+that grows from the campaign start).  Every transform is causal (the value at
 ``t`` uses samples up to ``t`` of the same campaign), so it runs on a machine.
 
 ==================  ====================  =================================================
@@ -27,6 +33,8 @@ dynamics            ``lowpass_inputs``    :math:`L_\tau[x_i](t)` for every model
 ambient_interval    ``ambient_linear``    :math:`x_i(t)\,(A_0 - 20\,°C)` for every input
 ambient_interval    ``ambient_step``      :math:`x_i(t)\,[A_0 > A_{thr}]` for every input
 interaction         ``product``           :math:`\Delta c(t)\,\Delta o(t)`
+(signal, product)   ``frame``             :math:`c` absolute or :math:`c - c(0)` (then
+                                          :math:`o - o(0)` in a product)
 nonlinear           ``square``            :math:`\Delta c(t)^2`
 sensor_fault        ``remove``            none: the declared sensor ``c`` leaves the inputs
 ==================  ====================  =================================================
@@ -63,6 +71,7 @@ from ..errors import ParameterError
 from ..io.contract import ContractError
 from ..models._dynamics import first_order_lag, segment_bounds  # noqa: F401 (re-exported)
 
+FRAMES = ("absolute", "referenced")   # frame of a state signal of its own (None: the data's)
 KINDS = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear", "sensor_fault")
 TRANSFORMS = ("raw", "first_order_lag", "lowpass_inputs", "ambient_linear", "ambient_step",
               "product", "square", "remove")
@@ -100,6 +109,12 @@ class Effect:
         directions over the training campaigns (sensors on one body carry one
         number, not one each); learned when the model is fitted
         (:func:`initial_weights`).  ``None`` keeps one regressor per sensor.
+    frame : {'absolute', 'referenced'} or None
+        ``raw``/``first_order_lag``/``square``/``product`` of a context column:
+        take ``column`` absolute or as its change since the campaign's first
+        sample, whatever the data's reference; a ``product`` then multiplies it
+        by the rise of ``other`` since the first sample.  ``None``: both in the
+        data's frame (``reference``).
     """
 
     kind: str
@@ -110,6 +125,7 @@ class Effect:
     threshold_c: float | None = None
     initial_state: tuple | None = None
     initial_directions: int | None = None
+    frame: str | None = None
 
     def __post_init__(self):
         object.__setattr__(self, "initial_state", _tuple(self.initial_state))
@@ -127,6 +143,10 @@ class Effect:
             raise ParameterError(f"effect tau_s must be > 0 s, got {self.tau_s}")
         if self.initial_state and self.transform not in ("first_order_lag", "lowpass_inputs"):
             raise ParameterError("effect initial_state only goes with a lag")
+        if self.frame is not None and (self.frame not in FRAMES or self.transform not in (
+                "raw", "first_order_lag", "square", "product") or self.kind == "dynamics"):
+            raise ParameterError(f"effect frame {self.frame!r} must be one of {list(FRAMES)}, on a "
+                                 "raw, first_order_lag, square or product of a signal")
         if self.initial_directions is not None and not (
                 self.initial_state and 1 <= int(self.initial_directions) <= len(self.initial_state)):
             raise ParameterError("effect initial_directions must be 1 .. the number of initial_state sensors")
@@ -139,15 +159,17 @@ class Effect:
         if self.initial_state:
             k = self.initial_directions or len(self.initial_state)
             start = f", from the initial thermal state ({k} direction{'s' if k > 1 else ''})"
+        frame = {"absolute": " (absolute)", "referenced": " (change since the first sample)",
+                 None: ""}[self.frame]
         return {
-            "raw": "raw",
-            "first_order_lag": f"first_order_lag({tau}){start}",
+            "raw": f"raw{frame}",
+            "first_order_lag": f"first_order_lag({tau}){start}{frame}",
             "lowpass_inputs": f"first_order_lag({tau}) of the model inputs{start}",
             "ambient_linear": f"model inputs x (ambient_c0 - {AMBIENT_CENTRE_C:g}°C)",
             "ambient_step": f"model inputs x [ambient_c0 > {self.threshold_c:.2f}°C]"
             if self.threshold_c is not None else "",
-            "product": f"product({self.other})",
-            "square": "square",
+            "product": f"product({self.other}{' rise' if self.frame else ''}){frame}",
+            "square": f"square{frame}",
             "remove": "remove from the inputs",
         }[self.transform]
 
@@ -192,6 +214,13 @@ class Effect:
 
 def as_effect(e) -> Effect:
     return e if isinstance(e, Effect) else Effect.from_dict(e)
+
+
+def frames(effect: Effect, reference: str) -> tuple[str, str]:
+    """Reference of ``effect.column`` and of ``effect.other`` (``'first_sample'`` or ``'none'``)."""
+    if effect.frame is None:
+        return reference, reference
+    return ("none" if effect.frame == "absolute" else "first_sample"), "first_sample"
 
 
 def in_frame(values, groups, reference: str = "first_sample") -> np.ndarray:
@@ -324,15 +353,16 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
     tr = effect.transform
     if tr == "remove":
         return np.empty((n, 0))
+    own, other = frames(effect, reference)
     if tr in ("raw", "first_order_lag", "square"):
-        c = in_frame(_context_column(context, effect.column), g, reference)
+        c = in_frame(_context_column(context, effect.column), g, own)
         if tr == "first_order_lag":
             return _with_start(first_order_lag(c, _time(context, n), g, effect.tau_s)[:, None],
                                effect, context, g, weights)
         return (c**2 if tr == "square" else c)[:, None]
     if tr == "product":
-        a = in_frame(_context_column(context, effect.column), g, reference)
-        b = in_frame(_context_column(context, effect.other), g, reference)
+        a = in_frame(_context_column(context, effect.column), g, own)
+        b = in_frame(_context_column(context, effect.other), g, other)
         return (a * b)[:, None]
     if tr == "lowpass_inputs":
         return _with_start(first_order_lag(X, _time(context, n), g, effect.tau_s), effect, context, g,

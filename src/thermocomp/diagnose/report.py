@@ -62,13 +62,18 @@ def markdown(j: dict, figures: list[str] | None = None, rerun: str | None = None
     lines = [f"# Residual diagnosis: {j['model']} on {j['dataset']}, target {j['target']}", ""]
     accepted = [x for x in j["effects"] if x["accepted"]]
     cv = j["cv"]
+    if cv.get("scheme") == "forward":
+        how = (f"forward chaining: {cv['units']} validation blocks over the last "
+               f"{100 * (1 - cv['min_train_fraction']):.0f} % of the rows, each predicted by a model "
+               f"trained on the rows before it less a gap of {cv['gap_samples']} samples")
+    else:
+        how = f"{cv['units']} {cv['unit']}s, held out in {cv['folds']} folds"
     lines += [f"The model was cross-validated on the {len(cv['train_campaigns'])} train campaign(s) "
-              f"({cv['units']} {cv['unit']}s, held out in {cv['folds']} folds, mode "
-              f"`{j['mode']}`); the search never saw the errors of the {len(cv['test_campaigns'])} "
+              f"({how}, mode `{j['mode']}`); the search never saw the errors of the {len(cv['test_campaigns'])} "
               f"test campaign(s), "
               f"on which before and after are measured.  A candidate is accepted when its CV RMSE gain "
               f"is at least {bar['min_gain_pct']:g} % and the one-sided sign-flip test of the "
-              f"per-campaign gains gives p ≤ {bar['alpha']:g} (a removed sensor: self-prediction jump "
+              f"per-unit gains gives p ≤ {bar['alpha']:g} (a removed sensor: self-prediction jump "
               f"≥ its tolerance), and when it beats the random-walk control; at most "
               f"{bar['max_effects']} effects.", ""]
     lines += ["## Before and after (test split)", "",

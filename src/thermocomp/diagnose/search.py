@@ -3,7 +3,8 @@ r"""The closed loop: honest residual -> candidate effects -> screening -> CV ref
 One target at a time, on the train split only (the test split is touched
 once, at the end, to report before and after):
 
-1. **Residual** of the current model by leave-campaigns-out CV (:mod:`.cv`).
+1. **Residual** of the current model by cross-validation (:mod:`.cv`): leave
+   campaigns out, or forward chaining over one long record.
 2. **Candidates** of every family (:mod:`.candidates`), the random-walk control
    among them; ``sensor_fault`` candidates come from self-prediction
    (:mod:`.sensors`), which also watches the *temperatures* of the campaigns
@@ -16,7 +17,10 @@ once, at the end, to report before and after):
    column, the best of every family, the best control transform, every
    nominated sensor fault) gets a full CV refit: evidence is the CV RMSE gain
    :math:`g = \mathrm{RMSE}_{cv} - \mathrm{RMSE}_{cv}^{+}` and the one-sided
-   sign-flip p-value of the per-campaign gains in mean squared error.
+   sign-flip p-value of the per-campaign (per validation block) gains in
+   mean squared error.  With an MLR base the effect features are shrunk by
+   the ridge penalty of least CV error (:mod:`.shrink`), so an effect of many
+   correlated regressors competes at its best generalising strength.
 5. **Accept**, among the candidates that clear the bar (:math:`g \ge`
    ``min_gain_pct`` % of the current CV RMSE *and* :math:`p \le` ``alpha``)
    and beat the control, the simplest one within one standard error of the
@@ -61,6 +65,9 @@ class SearchOptions:
     n_folds: int = 10
     n_blocks: int = 8
     seed: int = 0
+    cv: str = "auto"                  # auto | campaigns | forward (model_selection.cv_scheme)
+    min_train_fraction: float = 0.5   # forward: validate on the rest of the record
+    shrink: bool = True               # MLR base: ridge on the effect features, penalty by CV
     candidates: CandidateOptions = field(default_factory=CandidateOptions)
 
 
@@ -80,6 +87,7 @@ class Evaluation:
     jump_ratio: float | None = None
     gain_lcb: float = float("nan")
     n_features: int = 0
+    alpha: float | None = None
     result: CVResult | None = field(default=None, repr=False)
 
     def entry(self) -> dict:
@@ -90,7 +98,8 @@ class Evaluation:
                "evidence": {"cv_rmse_gain": self.gain, "p_value": self.p_value,
                             "cv_rmse_gain_pct": self.gain_pct, "cv_rmse": self.cv_rmse,
                             "cv_rmse_gain_lcb": self.gain_lcb, "n_features": self.n_features,
-                            "screen_r2": self.screen_r2, "clears_bar": self.clears_bar},
+                            "screen_r2": self.screen_r2, "clears_bar": self.clears_bar,
+                            "shrink_alpha": self.alpha},
                "accepted": self.accepted}
         if self.control:
             out["control"] = True
@@ -138,6 +147,11 @@ class SearchResult:
     rounds: list             # list of Round
     self_prediction: pd.DataFrame   # before any sensor was excluded (the evidence)
     steps: list              # cv_rmse after each accepted effect
+
+    @property
+    def alpha(self) -> float | None:
+        """Penalty on the effect features of the final model (MLR base; None: none)."""
+        return self.final.alpha
 
     @property
     def effects(self) -> list[Effect]:
@@ -213,7 +227,7 @@ class Search:
                  options: SearchOptions, excluded=()):
         self.problem, self.options = problem, options
         self.declared = list(declared)
-        self.cv = CrossValidator(problem, estimator, selector)
+        self.cv = CrossValidator(problem, estimator, selector, options.shrink)
         self.excluded = list(excluded)
         self.effects: list[Effect] = []
 
@@ -241,7 +255,7 @@ class Search:
             clears = bool(pct >= self.options.min_gain_pct and p <= self.options.alpha)
         q = self.cv.features(effect, self.cv.selection(self.inputs(), None)).shape[1]
         return Evaluation(effect, res.rmse, gain, pct, p, r2, clears, effect.column == CONTROL,
-                          jump_ratio=jump, gain_lcb=lcb, n_features=q, result=res)
+                          jump_ratio=jump, gain_lcb=lcb, n_features=q, alpha=res.alpha, result=res)
 
     def _shortlist(self, scored: list[tuple[Effect, float]]) -> list[tuple[Effect, float]]:
         opts = self.options
@@ -274,12 +288,13 @@ class Search:
         for step in range(int(opts.max_effects)):
             names = self.cv.selection(self.inputs(), None)
             cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates)
-            Z = np.column_stack([np.ones(len(p.y)), self.cv.design(names, self.effects)])
+            ok = p.validated                  # the rows CV scores (forward: not the first part)
+            Z = np.column_stack([np.ones(len(p.y)), self.cv.design(names, self.effects)])[ok]
             Q = _orthonormal(Z)
-            r_perp = current.residual - Q @ (Q.T @ current.residual)
+            r_perp = current.residual[ok] - Q @ (Q.T @ current.residual[ok])
             scored, signals = [], {}
             for e in cands:
-                r2, signals[e] = screen_r2(Q, r_perp, self.cv.features(e, names))
+                r2, signals[e] = screen_r2(Q, r_perp, self.cv.features(e, names)[ok])
                 scored.append((e, r2))
             evals = [self._evaluate(e, current, r2) for e, r2 in self._shortlist(scored)]
             evals.sort(key=lambda ev: -ev.gain)
@@ -296,8 +311,8 @@ class Search:
             best = eligible[0]
             best.accepted = True
             rnd.accepted = best
-            rnd.figure_data = {"residual": current.residual.copy(),
-                               "signal": signals.get(best.effect), "units": p.units}
+            rnd.figure_data = {"residual": current.residual[ok].copy(),
+                               "signal": signals.get(best.effect), "units": p.units[ok]}
             accepted.append(best)
             self.effects.append(best.effect)
             current = best.result

@@ -48,16 +48,17 @@ def is_ambient(column: str) -> bool:
 
 
 def _unit_rms(errors: np.ndarray, index: np.ndarray, n_units: int) -> np.ndarray:
-    """RMS of each column of ``errors`` per unit: shape (columns, units)."""
-    counts = np.maximum(np.bincount(index, minlength=n_units), 1)
-    return np.vstack([np.sqrt(np.bincount(index, weights=e**2, minlength=n_units) / counts)
+    """RMS of each column of ``errors`` per unit: shape (columns, units); index -1: not scored."""
+    ok = index >= 0
+    counts = np.maximum(np.bincount(index[ok], minlength=n_units), 1)
+    return np.vstack([np.sqrt(np.bincount(index[ok], weights=e[ok] ** 2, minlength=n_units) / counts)
                       for e in errors.T])
 
 
 def _errors(problem: Problem, T, judged, predictors, L=None):
     """Held-out self-prediction errors on the train rows (and on ``L``, fitted on all rows)."""
-    E = np.empty((len(T), len(judged)))
-    folds = [(problem.folds != k, problem.folds == k) for k in problem.fold_ids]
+    E = np.full((len(T), len(judged)), np.nan)     # rows no fold scores stay NaN
+    folds = list(problem.splits)
     if L is not None:
         folds.append((np.ones(len(T), bool), None))
         EL = np.empty((len(L), len(judged)))
@@ -123,7 +124,7 @@ def self_prediction(problem: Problem, inputs, later: pd.DataFrame | None = None,
             if all(apart[j] for j in judged):
                 E, per_unit, worst, cross, own = jumps(apart)
     out = pd.DataFrame({
-        "cv_rmse": np.sqrt(np.mean(E**2, axis=0)),
+        "cv_rmse": np.sqrt(np.mean(E[problem.validated] ** 2, axis=0)),
         "worst_unit": [names[i] for i in per_unit.argmax(axis=1)],
         "worst_unit_rmse": worst,
         "cross_ratio": cross,

@@ -10,14 +10,18 @@ Pure core (numpy, pandas, scipy, scikit-learn): the one home of
 from .criteria import CRITERIA, ic_path, information_criteria, information_criterion
 from .greedy import GreedyPath, greedy_path, scaled_gram
 from .splitters import (
+    CV_SCHEMES,
     CampaignHoldOut,
     ForwardChaining,
     LeaveCampaignsOut,
     LeaveOneCampaignOut,
     TrainOnEachCampaign,
+    cv_scheme,
+    forward_gap,
     unit_labels,
 )
 
 __all__ = ["CRITERIA", "CampaignHoldOut", "ForwardChaining", "GreedyPath", "LeaveCampaignsOut",
            "LeaveOneCampaignOut", "TrainOnEachCampaign", "greedy_path", "ic_path",
-           "information_criteria", "information_criterion", "scaled_gram", "unit_labels"]
+           "information_criteria", "information_criterion", "scaled_gram", "unit_labels",
+           "cv_scheme", "forward_gap", "CV_SCHEMES"]

@@ -212,12 +212,11 @@ class ForwardChaining(TimeSeriesSplit):
     :class:`~sklearn.model_selection.TimeSeriesSplit`; rows must be in time
     order (``groups`` is ignored).
 
-    With ``min_train_fraction`` the test parts are the last ``1 -
-    min_train_fraction`` of the rows cut into ``n_splits`` blocks
-    (:func:`forward_block`), so every fold model sees at least about that
-    share of the record, like the final model that sees all of it: folds
-    trained on the first few percent of a drifting record extrapolate far
-    worse than the final model will, and their errors would dominate the mean.
+    With ``min_train_fraction`` the test blocks tile the last ``1 -
+    min_train_fraction`` of the rows (``test_size`` is derived from it), so
+    every split trains on at least about that share of the record, as the
+    final model trains on all of it: a split trained on the first few percent
+    of a drifting record extrapolates far worse than the final model will.
 
     Parameters
     ----------
@@ -226,7 +225,7 @@ class ForwardChaining(TimeSeriesSplit):
         Samples dropped between the end of each train part and its test part.
     test_size : int or None, default None
         Rows per test part (default ``n_samples // (n_splits + 1)``).
-    min_train_fraction : float in [0, 1) or None, default None
+    min_train_fraction : float in (0, 1) or None, default None
         Validate on the last ``1 - min_train_fraction`` of the rows only
         (overrides ``test_size``).
     """
@@ -236,6 +235,15 @@ class ForwardChaining(TimeSeriesSplit):
         super().__init__(n_splits=n_splits, gap=gap, test_size=test_size)
         self.min_train_fraction = min_train_fraction
 
+    def block_size(self, n_samples: int) -> int | None:
+        """Rows per test part for ``n_samples`` rows (None: scikit-learn's default)."""
+        f = self.min_train_fraction
+        if f is None:
+            return self.test_size
+        if not 0 < float(f) < 1:
+            raise ParameterError(f"min_train_fraction={f!r} must be in (0, 1)")
+        return max(1, (n_samples - int(np.ceil(float(f) * n_samples))) // int(self.n_splits))
+
     def split(self, X, y=None, groups=None):
         """Yield ``(train, test)`` row indices, train strictly before test."""
         if int(self.gap) < 0:
@@ -243,14 +251,42 @@ class ForwardChaining(TimeSeriesSplit):
         if self.min_train_fraction is None:
             yield from super().split(X, y, groups)
             return
-        frac = float(self.min_train_fraction)
-        if not 0 <= frac < 1:
-            raise ParameterError(f"min_train_fraction={self.min_train_fraction!r} must be in [0, 1)")
-        block = forward_block(len(X), int(self.n_splits), frac)
-        yield from TimeSeriesSplit(n_splits=self.n_splits, gap=self.gap,
-                                   test_size=block).split(X, y, groups)
+        X, y, groups = indexable(X, y, groups)
+        inner = TimeSeriesSplit(n_splits=self.n_splits, gap=self.gap,
+                                test_size=self.block_size(len(X)))
+        yield from inner.split(X, y, groups)
 
 
 def forward_block(n: int, n_splits: int, min_train_fraction: float = 0.5) -> int:
     """Rows of a validation block: the last ``1 - min_train_fraction`` of ``n`` in ``n_splits`` blocks."""
-    return max(1, (n - int(np.ceil(min_train_fraction * n))) // int(n_splits))
+    return ForwardChaining(n_splits=n_splits, min_train_fraction=min_train_fraction).block_size(n)
+
+
+def forward_gap(longest_lag_samples: float, block_samples: int) -> int:
+    """Gap of forward chaining: the longest lag in samples, at most half a validation block.
+
+    A lag of time constant ``tau`` remembers ``tau`` worth of the past, so a
+    gap that long keeps the validation rows from sharing that memory with the
+    last training rows; time constants of days exceed most records, so the
+    gap is capped at half a block (each split then loses at most that many
+    training rows).
+    """
+    return int(max(0, min(np.ceil(longest_lag_samples), block_samples // 2)))
+
+
+CV_SCHEMES = ("auto", "campaigns", "forward")
+
+
+def cv_scheme(groups, cv: str = "auto") -> str:
+    """``'campaigns'`` or ``'forward'``: how rows of these campaigns are cross-validated.
+
+    ``auto``: several campaigns -> leave-campaigns-out (campaigns are the units
+    that are independent of each other); one campaign (one long record) ->
+    forward chaining, since time blocks of one drifting record held out in
+    the middle are extrapolations a deployed model never faces.
+    """
+    if cv not in CV_SCHEMES:
+        raise ParameterError(f"cv={cv!r} is not one of {list(CV_SCHEMES)}")
+    if cv != "auto":
+        return cv
+    return "campaigns" if len(dict.fromkeys(_campaigns(None, groups))) > 1 else "forward"

@@ -32,6 +32,7 @@ from ..diagnose.features import KINDS
 from ..diagnose.figures import diagnosis_figures
 from ..diagnose.report import markdown, to_html
 from ..errors import ConfigError
+from ..model_selection import CV_SCHEMES
 from ..files import atomic_dir, write_json
 from ..paths import resolve
 from ..tracking import stage_run
@@ -54,6 +55,12 @@ def search_options(dcfg) -> SearchOptions:
     alpha = float(dcfg.alpha)
     if not 0 < alpha < 1:
         raise ConfigError(f"diagnose.alpha={alpha} must be in (0, 1)")
+    cv = str(dcfg.get("cv", "auto"))
+    if cv not in CV_SCHEMES:
+        raise ConfigError(f"diagnose.cv={cv!r} must be one of {list(CV_SCHEMES)}")
+    fraction = float(dcfg.get("min_train_fraction", 0.5))
+    if not 0 < fraction < 1:
+        raise ConfigError(f"diagnose.min_train_fraction={fraction} must be in (0, 1)")
     taus = tuple(float(t) for t in dcfg.taus_s)
     if any(t <= 0 for t in taus):
         raise ConfigError(f"diagnose.taus_s={list(taus)} must all be > 0 s")
@@ -63,7 +70,8 @@ def search_options(dcfg) -> SearchOptions:
         alpha=alpha, shortlist=positive("shortlist", int, 1, strict=False),
         n_folds=positive("n_folds", int, 2, strict=False),
         n_blocks=positive("n_blocks", int, 2, strict=False),
-        seed=int(dcfg.seed),
+        seed=int(dcfg.seed), cv=cv, min_train_fraction=fraction,
+        shrink=bool(dcfg.get("shrink", True)),
         candidates=CandidateOptions(taus_s=taus, n_squares=positive("n_squares", int, 0, strict=False),
                                     fault_ratio=positive("fault_ratio"), families=families,
                                     initial_directions=tuple(int(k) for k in dcfg.initial_directions)))
@@ -73,8 +81,9 @@ def _container(node):
     return OmegaConf.to_container(node, resolve=True) if node is not None else None
 
 
-def diagnosed_model(cfg: DictConfig, effects: dict, name: str) -> dict:
-    """The ``model`` config of the diagnosed model (an ATI wrapper moves inside it)."""
+def diagnosed_model(cfg: DictConfig, effects: dict, name: str, alphas: dict | None = None) -> dict:
+    """The ``model`` config of the diagnosed model (an ATI wrapper moves inside it);
+    ``alphas``: per target, the CV-chosen penalty on the effect features (MLR base)."""
     base = _container(cfg.model.estimator)
     ati = cfg.get("ati")
     if ati is not None and ati.get("estimator") is not None:
@@ -86,6 +95,7 @@ def diagnosed_model(cfg: DictConfig, effects: dict, name: str) -> dict:
         "_target_": "thermocomp.diagnose.AugmentedRegressor", "_convert_": "all",
         "reference": str(cfg.data.reference),
         "effects": {t: [e.to_dict() for e in es] for t, es in effects.items()},
+        "alpha": {t: float(a) for t, a in (alphas or {}).items() if a} or None,
         "estimator": base}}
 
 
@@ -145,9 +155,9 @@ def diagnose(cfg: DictConfig) -> dict:
     name = f"{cfg.model.name}+{MODEL_NAME}"
     written: dict = {}
 
-    def make_after(effects, excluded, inputs):
+    def make_after(effects, excluded, inputs, alphas=None):
         kept = _kept_inputs(inputs, excluded) if excluded else None
-        written["model"] = diagnosed_model(cfg, effects, name)
+        written["model"] = diagnosed_model(cfg, effects, name, alphas)
         written["kept"] = kept
         return build_compensator(after_config(cfg, written["model"], kept))
 

@@ -1,0 +1,81 @@
+r"""Ridge on the diagnosed effects only: the model inputs stay unpenalised.
+
+A diagnosed linear model :math:`\hat y = c + b^\top x + w^\top \phi` adds
+many regressors :math:`\phi` (a lag of every input, products ...) that are
+strongly correlated with the inputs and with each other.  On one long,
+drifting record their least-squares coefficients grow large and of opposite
+signs, and the model extrapolates badly.  The penalty acts on them alone, on
+their standardised scale:
+
+.. math:: \min_{c, b, w}\ \lVert y - c - X b - \Phi_s w\rVert^2 + \alpha\, n\, \lVert w\rVert^2
+
+(:math:`\Phi_s` the effect features centred and scaled by their standard
+deviation, :math:`n` the number of rows), so :math:`\alpha = 0` is ordinary
+least squares and the input coefficients are those of a regression on what
+the effects leave.  By Frisch-Waugh-Lovell, :math:`w` is the ridge solution
+of the residuals of :math:`y` and :math:`\Phi_s` on :math:`[1, X]`, and
+:math:`(c, b)` the least-squares fit of :math:`y - \Phi_s w` on :math:`[1, X]`.
+One eigendecomposition of the residual Gram matrix gives the whole path over
+:math:`\alpha`, which is how the cross-validation picks it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+ALPHAS = np.r_[0.0, np.logspace(-7, 1, 17)]   # penalties tried by the CV (0 = least squares)
+_RANK_TOL = 1e-10                             # relative eigenvalue floor of the residual Gram
+
+
+class PartialRidgePath:
+    """The fits of ``y`` on ``Z = [X, Phi]`` for every penalty on ``Phi``, on some rows.
+
+    Parameters
+    ----------
+    Z : ndarray (n, p + q)
+        The first ``n_free`` columns are the unpenalised inputs ``X``.
+    y : ndarray (n,)
+    n_free : int
+    fit_intercept : bool, default True
+    """
+
+    def __init__(self, Z, y, n_free: int, fit_intercept: bool = True):
+        Z, y = np.asarray(Z, float), np.asarray(y, float)
+        self.n_free, self.fit_intercept, self.n = int(n_free), fit_intercept, len(y)
+        # centred on these rows with an intercept (the least-squares part then matches
+        # LinearRegression's minimum-norm solution, also for collinear inputs)
+        self.z_mean = Z.mean(axis=0) if fit_intercept else np.zeros(Z.shape[1])
+        self.y_mean = float(y.mean()) if fit_intercept else 0.0
+        Zc = Z - self.z_mean
+        A, F = Zc[:, :self.n_free], Zc[:, self.n_free:]
+        sd = F.std(axis=0)
+        self.f_scale = np.where(sd > 0, sd, 1.0)
+        Fs = F / self.f_scale
+        # least squares of y and of every standardised feature on the inputs
+        coef, *_ = np.linalg.lstsq(A, np.column_stack([y - self.y_mean, Fs]), rcond=None)
+        self.b_y, self.B_f = coef[:, 0], coef[:, 1:]
+        ry, RF = y - self.y_mean - A @ self.b_y, Fs - A @ self.B_f
+        if Fs.shape[1]:
+            lam, V = np.linalg.eigh(RF.T @ RF)
+        else:
+            lam, V = np.zeros(0), np.zeros((0, 0))
+        keep = lam > _RANK_TOL * max(float(lam.max()) if lam.size else 0.0, 1e-300)
+        self.lam, self.V = lam[keep], V[:, keep]
+        self.u = self.V.T @ (RF.T @ ry)
+
+    def _weights(self, alphas) -> np.ndarray:
+        """Standardised effect coefficients ``(q, n_alphas)``."""
+        alphas = np.atleast_1d(np.asarray(alphas, float))
+        return self.V @ (self.u[:, None] / (self.lam[:, None] + alphas[None, :] * self.n))
+
+    def predict(self, Z, alphas) -> np.ndarray:
+        """Predictions ``(m, n_alphas)`` of the rows ``Z`` for every penalty."""
+        Zc = np.asarray(Z, float) - self.z_mean
+        A, Fs = Zc[:, :self.n_free], Zc[:, self.n_free:] / self.f_scale
+        return self.y_mean + (A @ self.b_y)[:, None] + (Fs - A @ self.B_f) @ self._weights(alphas)
+
+    def coefficients(self, alpha: float) -> tuple[np.ndarray, float]:
+        """``(coef over Z's columns, intercept)`` of the fit with penalty ``alpha``."""
+        w = self._weights([alpha])[:, 0]
+        coef = np.r_[self.b_y - self.B_f @ w, w / self.f_scale]
+        return coef, self.y_mean - float(self.z_mean @ coef)
