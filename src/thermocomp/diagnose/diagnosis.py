@@ -6,9 +6,11 @@ import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
+import numpy as np
 from sklearn.base import clone
 from threadpoolctl import threadpool_limits
 
+from .. import continuation
 from ..compensator import Compensator
 from ..denoise import denoise_campaigns
 from ..evaluation import require_split, sample_period
@@ -16,8 +18,6 @@ from ..frame import stack
 from ..io.contract import ContractError, Dataset
 from ..jsonsafe import json_safe
 from ..metrics import split_scores
-import numpy as np
-
 from ..model_selection import ForwardChaining, LeaveCampaignsOut, cv_scheme, forward_gap, unit_labels
 from .augmented import AugmentedRegressor
 from .candidates import CONTROL, random_walk
@@ -142,8 +142,7 @@ def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, 
                 ) -> tuple[dict, dict]:
     """``{target: {"test": ...}}`` as :func:`thermocomp.evaluation.score` computes the test split
     (``metrics.json`` layout, without the ISO virtual test), and the predictions."""
-    camps = {c: ds.campaigns[c] for c in ids}
-    pred, meas = comp.predict(camps, mode=mode), comp.measured(camps)
+    pred, meas = continuation.predict(comp, ds, list(ids), mode)   # state carried over where it applies
     dt = sample_period(ds, ids)
     out = {}
     for t in comp.targets_:
