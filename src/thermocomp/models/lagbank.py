@@ -31,12 +31,14 @@ import numpy as np
 import pandas as pd
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.linear_model import Ridge
-from sklearn.model_selection import BaseCrossValidator, GroupKFold, TimeSeriesSplit
+from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import TIME, Y_MEASURED, SideInputs, groups_of, scalar, values
 from ..errors import ParameterError
+from ..model_selection.splitters import ForwardChaining, forward_block
+from ..model_selection.splitters import forward_gap as shared_forward_gap
 from ._dynamics import (first_order_lags, free_run, lag_index, previous, segment_bounds,
                         segment_starts)
 
@@ -44,42 +46,8 @@ DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised feat
 MIN_SPLITS = 2
 
 
-# -- time-series splitters (the lead swaps these for thermocomp.model_selection.splitters) ---------
+# -- time-series splitters: the shared ones (thermocomp.model_selection.splitters) ------------------
 MIN_TRAIN_FRACTION = 0.5
-
-
-def forward_block(n: int, n_splits: int, min_train_fraction: float = MIN_TRAIN_FRACTION) -> int:
-    """Rows of a validation block: the last ``1 - min_train_fraction`` of ``n`` in ``n_splits`` blocks."""
-    return max(1, (n - int(np.ceil(min_train_fraction * n))) // int(n_splits))
-
-
-class ForwardChaining(BaseCrossValidator):
-    """Expanding-window forward chaining for one long record, with a gap before each validation block.
-
-    The last ``1 - min_train_fraction`` of the rows are cut into ``n_splits``
-    consecutive validation blocks; fold ``k`` trains on every row before block
-    ``k`` less the ``gap`` rows just before it (scikit-learn's
-    :class:`~sklearn.model_selection.TimeSeriesSplit` with that ``test_size``).
-    Every fold model thus sees at least about ``min_train_fraction`` of the
-    record, like the final model that sees all of it: folds trained on the
-    first few percent of a drifting record extrapolate far worse than the
-    final model will, and their errors would dominate the mean.  The rows must
-    be in time order; ``groups`` is accepted and ignored.
-    """
-
-    def __init__(self, n_splits: int = 5, gap: int = 0,
-                 min_train_fraction: float = MIN_TRAIN_FRACTION):
-        self.n_splits = n_splits
-        self.gap = gap
-        self.min_train_fraction = min_train_fraction
-
-    def split(self, X, y=None, groups=None):
-        n = len(X)
-        block = forward_block(n, self.n_splits, self.min_train_fraction)
-        return TimeSeriesSplit(n_splits=self.n_splits, gap=self.gap, test_size=block).split(X)
-
-    def get_n_splits(self, X=None, y=None, groups=None):
-        return int(self.n_splits)
 
 
 def default_splitter(groups, n: int, gap: int, n_splits: int = 5):
@@ -95,21 +63,14 @@ def default_splitter(groups, n: int, gap: int, n_splits: int = 5):
         n_campaigns = len(pd.unique(np.asarray(groups, dtype=object)))
         if n_campaigns >= 2:
             return GroupKFold(n_splits=min(int(n_splits), n_campaigns))
-    return ForwardChaining(n_splits=int(n_splits), gap=int(gap))
+    return ForwardChaining(n_splits=int(n_splits), gap=int(gap), min_train_fraction=MIN_TRAIN_FRACTION)
 
 
 def forward_gap(longest_lag_samples: float, n: int, n_splits: int,
                 min_train_fraction: float = MIN_TRAIN_FRACTION) -> int:
-    """Gap of forward chaining: the longest lag in samples, at most half a validation block.
-
-    A lag of time constant ``tau`` remembers ``tau`` worth of the past, so a
-    gap that long keeps the validation rows from sharing that memory with the
-    last training rows.  Time constants of days exceed most records: the cap
-    at half a validation block (:func:`forward_block`; 5 % of the record with
-    5 folds from half of it) costs each fold at most that many training rows.
-    """
-    return int(min(np.ceil(longest_lag_samples),
-                   forward_block(n, n_splits, min_train_fraction) // 2))
+    """Gap of forward chaining over ``n`` rows: the longest lag in samples, at most half a
+    validation block (:func:`thermocomp.model_selection.splitters.forward_gap`)."""
+    return shared_forward_gap(longest_lag_samples, forward_block(n, n_splits, min_train_fraction))
 
 
 # -- the ridge path over the folds ---------------------------------------------------------------
