@@ -187,3 +187,24 @@ def test_eval_mode_changes_the_numbers_of_an_ar_model_through_the_cli(long_recor
     assert one["test"]["rmse"] < 0.9 * sim["test"]["rmse"]
     assert sim["test_one_step"]["rmse"] == pytest.approx(one["test"]["rmse"], rel=1e-9)
     assert one["test_simulation"]["rmse"] == pytest.approx(sim["test"]["rmse"], rel=1e-9)
+
+
+def test_iso_timestamped_files_cut_from_one_record_are_seen_as_one(tmp_path):
+    """A record whose `time` is ISO 8601, cut into two files with no `start` in the manifest:
+    the reader fills `start` from the first timestamps, so the test file continues the train one."""
+    from thermocomp import io
+    from thermocomp.continuation import predecessors
+
+    t = pd.date_range("2026-01-01T00:00:00", periods=200, freq="60s")
+    rng = np.random.default_rng(0)
+    temp = np.cumsum(rng.normal(0, 0.1, 200)) + 20
+    df = pd.DataFrame({"time": t.strftime("%Y-%m-%dT%H:%M:%S"), "T_a": temp,
+                       "E_Z": 2 * temp + rng.normal(0, 0.1, 200)})
+    df.iloc[:180].to_csv(tmp_path / "A.csv", index=False)
+    df.iloc[180:].to_csv(tmp_path / "B.csv", index=False)
+    df.iloc[185:].to_csv(tmp_path / "C.csv", index=False)       # starts 5 min after A ends: no
+    pd.DataFrame({"campaign": ["A", "B", "C"], "file": ["A.csv", "B.csv", "C.csv"],
+                  "split": ["train", "test", "test"]}).to_csv(tmp_path / "campaigns.csv", index=False)
+    ds, _ = io.read_dataset(tmp_path)
+    assert ds.manifest.loc["B", "start"] == pd.Timestamp("2026-01-01T03:00:00")
+    assert predecessors(ds) == {"B": "A"}

@@ -912,7 +912,25 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None) -> tuple[Dataset,
         campaigns[cid], entries[cid] = _to_frame(table), entry
         del table
     report = _dataset_report(root.name, entries, columns, opts)
+    manifest = _starts_from_timestamps(manifest, entries)
     return Dataset(manifest, campaigns, root.name, {"path": str(root)}), report
+
+
+def _starts_from_timestamps(manifest: pd.DataFrame, entries: Mapping) -> pd.DataFrame:
+    """The manifest with ``start`` filled, where it is empty, by the campaign's first timestamp
+    (files whose ``time`` is ISO 8601): the optional ``start`` column then says when each
+    campaign began, so a record cut into consecutive files is seen as one (carry-over)."""
+    origins = {cid: e.get("time_origin") for cid, e in entries.items() if e.get("time_origin")}
+    if not origins:
+        return manifest
+    out = manifest.copy()
+    if "start" not in out.columns:
+        out["start"] = pd.Series([None] * len(out), index=out.index, dtype=object)
+    out["start"] = out["start"].astype(object)
+    for cid, origin in origins.items():
+        if cid in out.index and pd.isna(out.at[cid, "start"]):
+            out.at[cid, "start"] = pd.Timestamp(origin)
+    return out
 
 
 def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None) -> dict:
@@ -957,7 +975,8 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None) -> dic
             entries[cid] = entry
             del table
             pa.default_memory_pool().release_unused()
-        out = manifest.assign(file=[f"{cid}.parquet" for cid in manifest.index])
+        out = _starts_from_timestamps(manifest, entries).assign(
+            file=[f"{cid}.parquet" for cid in manifest.index])
         (tmp / MANIFEST).write_text(_manifest_csv(out))
         report = _dataset_report(src.name, entries, columns, opts)
         write_json(tmp / INGEST_REPORT, report, ensure_ascii=False)
