@@ -166,3 +166,31 @@ def test_acceptance_ati_beats_coldest_and_warmest_models_on_default_year(default
         for base in ("coldest", "warmest"):
             assert test["model"]["rsd_mean"] < test[base]["rsd_mean"], (target, base, test)
             assert test["model"]["rsd_sd"] < test[base]["rsd_sd"], (target, base, test)
+
+
+def _linear_law_campaign(ambient, seed, n=40, noise=0.05):
+    """The error per kelvin grows linearly with the ambient level (no steps)."""
+    df = campaign(ambient, seed, n, noise)
+    rng = np.random.default_rng(seed + 1000)
+    df["E_Z"] = (0.5 + 0.2 * ambient) * (df["T_1"] - df["T_1"].iloc[0]) + rng.normal(0, noise, n)
+    return df
+
+
+def test_ambient_interaction_follows_a_law_linear_in_the_ambient_and_streams():
+    train = {f"A{a:02d}": _linear_law_campaign(a, i) for i, a in enumerate(TRAIN)}
+    test = {f"B{a:02d}": _linear_law_campaign(a, 100 + i) for i, a in enumerate(TEST)}
+    steps = Compensator(ATIRegressor(MLR()), inputs=["T_1"]).fit(train)
+    linear = Compensator(ATIRegressor(MLR(), candidates=(1, 2, 3, 4, 5, 6), ambient_interaction=True),
+                         inputs=["T_1"]).fit(train)
+    sm_steps, _ = _test_sm_sd(steps, test)
+    sm_linear, _ = _test_sm_sd(linear, test)
+    assert sm_linear < 0.5 * sm_steps           # piecewise-constant intervals cannot follow a slope
+    est = linear.estimators_["E_Z"]
+    assert est.n_intervals_ == 1 and "ambient_c0" in est.context_columns_   # chosen by the LOCO elbow
+    df = test["B17"]
+    state = est.stream_init({"ambient_c0": initial_ambient(df)})
+    streamed = []
+    for row in (df[["T_1"]] - df[["T_1"]].iloc[0]).to_numpy():
+        y, state = est.stream_step(row, state, {})
+        streamed.append(y)
+    np.testing.assert_allclose(streamed, linear.predict({"B17": df})["B17"]["E_Z"], atol=1e-10)

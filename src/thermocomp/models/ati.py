@@ -25,6 +25,7 @@ from ..model_selection import LeaveOneCampaignOut
 from .linear import MLR
 
 CLUSTERINGS = ("fuzzy", "hard")
+AMBIENT_CENTRE_C = 20.0   # ISO 1 reference temperature: only re-centres the interaction
 
 
 def cluster_ambient(ambient, n_clusters: int, clustering: str = "fuzzy", fuzziness: float = 2.0,
@@ -152,7 +153,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, base_estimator=None, n_intervals="elbow", candidates=(2, 3, 4, 5, 6),
                  clustering: str = "fuzzy", fuzziness: float = 2.0, elbow_tolerance: float = 0.10,
-                 random_state: int = 0):
+                 random_state: int = 0, ambient_interaction: bool = False):
         self.base_estimator = base_estimator
         self.n_intervals = n_intervals
         self.candidates = candidates
@@ -160,17 +161,28 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.fuzziness = fuzziness
         self.elbow_tolerance = elbow_tolerance
         self.random_state = random_state
+        self.ambient_interaction = ambient_interaction
 
     # -- fitting ----------------------------------------------------------------------------
     def _base(self):
         return clone(self.base_estimator if self.base_estimator is not None else MLR())
 
-    def _fit_base(self, X, y, rows, context):
-        return self._base().fit(X[rows], y[rows], context=subset(context, rows))
+    def _design(self, X, context) -> np.ndarray:
+        """``X``, and with ``ambient_interaction`` also ``X·(A0 − 20 °C)``: within an interval the
+        law may still change linearly with the ambient level."""
+        if not self.ambient_interaction:
+            return X
+        a0 = self._ambient(context) if context is not None and AMBIENT_C0 in context \
+            else np.full(X.shape[0], AMBIENT_CENTRE_C)
+        return np.hstack([X, X * (a0 - AMBIENT_CENTRE_C)[:, None]])
 
-    @staticmethod
-    def _predict_base(est, X, rows, context):
-        return est.predict(X[rows], context=subset(context, rows))
+    def _fit_base(self, X, y, rows, context):
+        ctx = subset(context, rows)
+        return self._base().fit(self._design(X[rows], ctx), y[rows], context=ctx)
+
+    def _predict_base(self, est, X, rows, context):
+        ctx = subset(context, rows)
+        return est.predict(self._design(X[rows], ctx), context=ctx)
 
     def _intervals(self, ambient: np.ndarray, n: int) -> np.ndarray:
         labels = cluster_ambient(ambient, n, self.clustering, self.fuzziness, self.random_state)
@@ -215,7 +227,8 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                                     "ambient_min": min(amb) if amb else None,
                                     "ambient_max": max(amb) if amb else None,
                                     "campaigns": [str(c) for c in members]})
-        self.context_columns_ = merge_columns([AMBIENT_C0] if self.n_intervals_ > 1 else [],
+        self.context_columns_ = merge_columns([AMBIENT_C0] if self.n_intervals_ > 1
+                                              or self.ambient_interaction else [],
                                               *(context_columns(e) for e in self.estimators_))
         return self
 
@@ -294,11 +307,17 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if self.n_intervals_ > 1 and not np.isfinite(a0):
             raise ContractError("this ATI model needs the campaign's initial ambient temperature "
                                 "(°C) to start a stream: no T_amb / T_amb_* value", column=AMBIENT_C0)
+        if self.ambient_interaction and not np.isfinite(a0):
+            raise ContractError("this ATI model needs the campaign's initial ambient temperature "
+                                "(°C) to start a stream: no T_amb / T_amb_* value", column=AMBIENT_C0)
         m = 0 if self.n_intervals_ == 1 else int(interval_of([a0], self.boundaries_)[0])
-        return m, self.estimators_[m].stream_init(context)
+        return m, a0, self.estimators_[m].stream_init(context)
 
     def stream_step(self, x_row, state, context=None):
         """One sample: ``(y_hat, state)``, as :meth:`predict` in simulation mode."""
-        m, inner = state
-        y_hat, inner = self.estimators_[m].stream_step(x_row, inner, context)
-        return float(y_hat), (m, inner)
+        m, a0, inner = state
+        x = np.asarray(x_row, dtype=float).ravel()
+        if self.ambient_interaction:
+            x = np.concatenate([x, x * (a0 - AMBIENT_CENTRE_C)])
+        y_hat, inner = self.estimators_[m].stream_step(x, inner, context)
+        return float(y_hat), (m, a0, inner)
