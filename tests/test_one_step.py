@@ -225,3 +225,22 @@ def test_iso_timestamped_files_cut_from_one_record_are_seen_as_one(tmp_path):
     ds, _ = io.read_dataset(tmp_path)
     assert ds.manifest.loc["B", "start"] == pd.Timestamp("2026-01-01T03:00:00")
     assert predecessors(ds) == {"B": "A"}
+
+
+def test_a_record_cut_with_its_time_column_kept_is_seen_as_one(tmp_path):
+    """Seconds that do not restart at 0 in the second file: the same clock, so it continues."""
+    from thermocomp import io
+    from thermocomp.continuation import predecessors
+
+    rng = np.random.default_rng(1)
+    temp = np.cumsum(rng.normal(0, 0.1, 200)) + 20
+    df = pd.DataFrame({"time": np.arange(200) * 60.0, "T_a": temp,
+                       "E_Z": 2 * temp + rng.normal(0, 0.1, 200)})
+    df.iloc[:180].to_csv(tmp_path / "A.csv", index=False)
+    df.iloc[180:].to_csv(tmp_path / "B.csv", index=False)
+    df.iloc[185:].assign(time=lambda d: d["time"] - d["time"].iloc[0]).to_csv(tmp_path / "C.csv",
+                                                                              index=False)
+    pd.DataFrame({"campaign": ["A", "B", "C"], "file": ["A.csv", "B.csv", "C.csv"],
+                  "split": ["train", "test", "test"]}).to_csv(tmp_path / "campaigns.csv", index=False)
+    ds, _ = io.read_dataset(tmp_path)
+    assert predecessors(ds) == {"B": "A"}            # C restarts its clock at 0: its own campaign

@@ -38,7 +38,12 @@ def _period(df: pd.DataFrame) -> float:
 
 
 def predecessors(ds: Dataset) -> dict[str, str]:
-    """``{campaign: the campaign it continues}`` for the campaigns of ``ds`` that continue one."""
+    """``{campaign: the campaign it continues}`` for the campaigns of ``ds`` that continue one.
+
+    A campaign continues another when the manifest's ``continues`` names it, when its
+    ``time`` does not restart at 0 but starts one sample period after the other's last
+    ``time`` (one clock), or when its ``start`` is the other's start + last ``time`` + one
+    period (within half a period)."""
     ids = set(ds.ids())
     out: dict[str, str] = {}
     man = ds.manifest
@@ -46,6 +51,17 @@ def predecessors(ds: Dataset) -> dict[str, str]:
         for cid, prev in man[CONTINUES].items():
             if isinstance(prev, str) and prev.strip() in ids and prev.strip() != cid:
                 out[cid] = prev.strip()
+    # one clock: a file whose time does not restart at 0 but picks up one sample period after
+    # another file's last time (a record cut in a spreadsheet keeps its time column)
+    last = {c: (float(df[TIME].iloc[-1]), _period(df)) for c, df in ds.campaigns.items() if len(df) >= 2}
+    for cid, df in ds.campaigns.items():
+        t0 = float(df[TIME].iloc[0]) if len(df) else 0.0
+        if cid in out or t0 <= 0:
+            continue
+        for prev, (end, period) in last.items():
+            if prev != cid and abs(t0 - (end + period)) <= period / 2:
+                out[cid] = prev
+                break
     if START in man.columns:
         try:
             starts = pd.to_datetime(man[START], errors="coerce", format="ISO8601")
