@@ -131,7 +131,8 @@ def test_config_wraps_any_model_in_ati():
     cfg = _compose(["ati=cmeans", "ati.estimator.clustering=hard"])
     comp = build_compensator(cfg)
     assert isinstance(comp.estimator, ATIRegressor)
-    assert comp.estimator.clustering == "hard" and list(comp.estimator.candidates) == [2, 3, 4, 5, 6]
+    assert comp.estimator.clustering == "hard" and list(comp.estimator.candidates) == [1, 2, 3, 4, 5, 6]
+    assert comp.estimator.ambient_interaction is True
     assert type(comp.estimator.base_estimator).__name__ == "MLR"
     assert not isinstance(build_compensator(cfg, ati=False).estimator, ATIRegressor)
     assert not isinstance(build_compensator(_compose([])).estimator, ATIRegressor)
