@@ -26,6 +26,7 @@ from .linear import MLR
 
 CLUSTERINGS = ("fuzzy", "hard")
 AMBIENT_CENTRE_C = 20.0   # ISO 1 reference temperature: only re-centres the interaction
+MIN_AMBIENTS = 3          # distinct ambient levels an interval needs to fit a slope in ambient
 
 
 def cluster_ambient(ambient, n_clusters: int, clustering: str = "fuzzy", fuzziness: float = 2.0,
@@ -135,6 +136,12 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     elbow_tolerance : float, default 0.10
         Relative tolerance of the elbow.
     random_state : int, default 0
+    ambient_interaction : bool, default False
+        Each interval's model also gets :math:`x\,(A_k - 20\,°C)`, so the law
+        may change linearly with the ambient inside an interval
+        (:math:`\hat y = f_m(x, x (A_k - 20))`); used only for an interval whose
+        training campaigns have at least ``MIN_AMBIENTS`` (3) distinct ambient
+        levels, where that slope is identifiable.
 
     Attributes
     ----------
@@ -144,6 +151,8 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         Per interval: ``low``/``high`` (°C, None for the open ends),
         ``ambient_min``/``ambient_max`` of its training campaigns, ``campaigns``.
     estimators_ : list of fitted base estimators, coldest interval first
+    interactions_ : list of bool
+        Per interval, whether its model takes the ambient interaction.
     elbow_ : dict or None
         ``n_intervals``, ``sm``, ``sd`` (µm) per candidate, ``chosen``,
         ``single_model`` (the one-model CV SM/SD) and ``reason`` when no
@@ -167,22 +176,33 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def _base(self):
         return clone(self.base_estimator if self.base_estimator is not None else MLR())
 
-    def _design(self, X, context) -> np.ndarray:
-        """``X``, and with ``ambient_interaction`` also ``X·(A0 − 20 °C)``: within an interval the
-        law may still change linearly with the ambient level."""
-        if not self.ambient_interaction:
+    def _interacts(self, context) -> bool:
+        """Whether a model fitted on these rows takes ``X·(A0 − 20 °C)`` too: only with
+        ``ambient_interaction`` and rows from at least ``MIN_AMBIENTS`` distinct ambient levels
+        (with fewer the slope in ambient is not identifiable and would only extrapolate)."""
+        if not self.ambient_interaction or context is None or AMBIENT_C0 not in context:
+            return False
+        return np.unique(np.asarray(context[AMBIENT_C0], float).round(6)).size >= MIN_AMBIENTS
+
+    @staticmethod
+    def _design(X, context, interacts: bool) -> np.ndarray:
+        """``X``, or ``[X, X·(A0 − 20 °C)]``: within an interval the law may still change
+        linearly with the ambient level."""
+        if not interacts:
             return X
-        a0 = self._ambient(context) if context is not None and AMBIENT_C0 in context \
-            else np.full(X.shape[0], AMBIENT_CENTRE_C)
+        a0 = np.asarray(context[AMBIENT_C0], float)
         return np.hstack([X, X * (a0 - AMBIENT_CENTRE_C)[:, None]])
 
-    def _fit_base(self, X, y, rows, context):
+    def _fit_base(self, X, y, rows, context) -> tuple:
+        """``(fitted base model, whether it takes the interaction)`` on the rows ``rows``."""
         ctx = subset(context, rows)
-        return self._base().fit(self._design(X[rows], ctx), y[rows], context=ctx)
+        interacts = self._interacts(ctx)
+        return self._base().fit(self._design(X[rows], ctx, interacts), y[rows], context=ctx), interacts
 
-    def _predict_base(self, est, X, rows, context):
+    def _predict_base(self, fitted: tuple, X, rows, context):
+        est, interacts = fitted
         ctx = subset(context, rows)
-        return est.predict(self._design(X[rows], ctx), context=ctx)
+        return est.predict(self._design(X[rows], ctx, interacts), context=ctx)
 
     def _intervals(self, ambient: np.ndarray, n: int) -> np.ndarray:
         labels = cluster_ambient(ambient, n, self.clustering, self.fuzziness, self.random_state)
@@ -216,11 +236,13 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def _fit_intervals(self, X, y, bounds, row_interval, context, campaign=None):
         self.boundaries_ = bounds
         self.n_intervals_ = bounds.size + 1
-        self.estimators_, self.intervals_ = [], []
+        self.estimators_, self.intervals_, self.interactions_ = [], [], []
         edges = [None, *bounds.tolist(), None]
         for m in range(self.n_intervals_):
             rows = row_interval == m
-            self.estimators_.append(self._fit_base(X, y, rows, context))
+            est, interacts = self._fit_base(X, y, rows, context)
+            self.estimators_.append(est)
+            self.interactions_.append(interacts)
             members = sorted(set(campaign[rows])) if campaign is not None else []
             amb = [self.campaign_ambient_[str(c)] for c in members]
             self.intervals_.append({"low": edges[m], "high": edges[m + 1],
@@ -228,7 +250,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                                     "ambient_max": max(amb) if amb else None,
                                     "campaigns": [str(c) for c in members]})
         self.context_columns_ = merge_columns([AMBIENT_C0] if self.n_intervals_ > 1
-                                              or self.ambient_interaction else [],
+                                              or any(self.interactions_) else [],
                                               *(context_columns(e) for e in self.estimators_))
         return self
 
@@ -252,8 +274,8 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             train_campaigns = others.index[interval_of(others.to_numpy(), bounds) == mine]
             rows_train = np.isin(campaign, train_campaigns)
             rows_test = campaign == k
-            est = self._fit_base(X, y, rows_train, context)
-            out.append(rsd(y[rows_test] - self._predict_base(est, X, rows_test, context)))
+            fitted = self._fit_base(X, y, rows_train, context)
+            out.append(rsd(y[rows_test] - self._predict_base(fitted, X, rows_test, context)))
         return np.array(out)
 
     def _elbow(self, X, y, campaign, a0: pd.Series, context) -> int:
@@ -295,7 +317,8 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         out = np.empty(X.shape[0])
         for m in np.unique(which):
             rows = which == m
-            out[rows] = self._predict_base(self.estimators_[m], X, rows, context)
+            out[rows] = self._predict_base((self.estimators_[m], self.interactions_[m]), X, rows,
+                                           context)
         return out
 
     # -- streaming (deployment) -------------------------------------------------------------
@@ -304,10 +327,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         model's state."""
         check_is_fitted(self)
         a0 = scalar(context, AMBIENT_C0)
-        if self.n_intervals_ > 1 and not np.isfinite(a0):
-            raise ContractError("this ATI model needs the campaign's initial ambient temperature "
-                                "(°C) to start a stream: no T_amb / T_amb_* value", column=AMBIENT_C0)
-        if self.ambient_interaction and not np.isfinite(a0):
+        if AMBIENT_C0 in self.context_columns_ and not np.isfinite(a0):
             raise ContractError("this ATI model needs the campaign's initial ambient temperature "
                                 "(°C) to start a stream: no T_amb / T_amb_* value", column=AMBIENT_C0)
         m = 0 if self.n_intervals_ == 1 else int(interval_of([a0], self.boundaries_)[0])
@@ -317,7 +337,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         """One sample: ``(y_hat, state)``, as :meth:`predict` in simulation mode."""
         m, a0, inner = state
         x = np.asarray(x_row, dtype=float).ravel()
-        if self.ambient_interaction:
+        if self.interactions_[m]:
             x = np.concatenate([x, x * (a0 - AMBIENT_CENTRE_C)])
         y_hat, inner = self.estimators_[m].stream_step(x, inner, context)
         return float(y_hat), (m, a0, inner)
