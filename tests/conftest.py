@@ -51,6 +51,21 @@ def stream_predictions(est, X, groups) -> list[float]:
     return stream_context(est, X, ctx(groups)).tolist()
 
 
+def poisoned_copy(src: Path, dest: Path, scale: float = -50.0, offset: float = 1e3) -> Path:
+    """A copy of dataset ``src`` whose test campaigns' ``E_`` columns are garbage
+    (``E * scale + offset``): whatever a model chooses must not change with it."""
+    import shutil
+
+    shutil.copytree(src, dest)
+    index = pd.read_csv(src / "campaigns.csv")
+    for _, row in index[index["split"] == "test"].iterrows():
+        df = pd.read_csv(dest / row["file"])
+        errors = [c for c in df.columns if c.startswith("E_")]
+        df[errors] = df[errors] * scale + offset
+        df.to_csv(dest / row["file"], index=False)
+    return dest
+
+
 @pytest.fixture(scope="session")
 def default_dataset(tmp_path_factory) -> Path:
     """The default year-round scenario at its default size."""

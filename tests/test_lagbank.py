@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import pickle
-import shutil
 
 import numpy as np
 import pandas as pd
@@ -14,7 +13,7 @@ from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
 from sklearn.utils.estimator_checks import check_estimator
 
-from conftest import stream_context, thermocomp
+from conftest import poisoned_copy, stream_context, thermocomp
 from thermocomp.errors import ParameterError
 from thermocomp.models import MLR, LagBank
 from thermocomp.models._dynamics import first_order_lags
@@ -200,16 +199,7 @@ def small_data(tmp_path_factory):
     clean = root / "clean"
     thermocomp("simulate", f"data.path={clean}", "track=false", "sim.generator.n_campaigns=9",
                "sim.generator.duration_h=[2.0,3.0]")
-    poisoned = root / "poisoned"
-    shutil.copytree(clean, poisoned)
-    index = pd.read_csv(clean / "campaigns.csv")
-    for _, row in index[index["split"] == "test"].iterrows():
-        path = poisoned / row["file"]
-        df = pd.read_csv(path)
-        errors = [c for c in df.columns if c.startswith("E_")]
-        df[errors] = df[errors] * -50.0 + 1e3
-        df.to_csv(path, index=False)
-    return root, clean, poisoned
+    return root, clean, poisoned_copy(clean, root / "poisoned")
 
 
 @pytest.mark.slow

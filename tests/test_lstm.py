@@ -1,15 +1,13 @@
 """LSTM residual over whole campaigns: sklearn API, a static baseline, determinism, streaming."""
 
 import pickle
-import shutil
 
 import numpy as np
-import pandas as pd
 import pytest
 import torch
 from sklearn.utils.estimator_checks import check_estimator
 
-from conftest import ctx, stream_predictions, thermocomp
+from conftest import ctx, poisoned_copy, stream_predictions, thermocomp
 from thermocomp.errors import ParameterError
 from thermocomp.models import LSTM, MLR
 from thermocomp.models._dynamics import free_run
@@ -128,14 +126,7 @@ def test_poisoned_test_campaigns_do_not_change_the_fitted_network(tmp_path):
     clean = tmp_path / "clean"
     thermocomp("simulate", f"data.path={clean}", "track=false", "sim.generator.n_campaigns=6",
                "sim.generator.duration_h=[2.0,3.0]")
-    poisoned = tmp_path / "poisoned"
-    shutil.copytree(clean, poisoned)
-    index = pd.read_csv(clean / "campaigns.csv")
-    for _, row in index[index["split"] == "test"].iterrows():
-        df = pd.read_csv(poisoned / row["file"])
-        errors = [c for c in df.columns if c.startswith("E_")]
-        df[errors] = df[errors] * -50.0 + 1e3
-        df.to_csv(poisoned / row["file"], index=False)
+    poisoned = poisoned_copy(clean, tmp_path / "poisoned")
     fitted = {}
     for name, path in (("clean", clean), ("poisoned", poisoned)):
         thermocomp("run", f"data.path={path}", "track=false", f"out={tmp_path / name}", "model=lstm",

@@ -82,6 +82,17 @@ class AmbientModel:
         return asdict(self)
 
 
+def room_response(t_s, target, room_tau_h: float) -> np.ndarray:
+    """Air of a hall following its ``target`` temperature as a first-order lag of ``room_tau_h``
+    (exact for any sampling; starts at the target)."""
+    decay = np.exp(-np.diff(t_s) / (3600.0 * room_tau_h))
+    level = np.empty(len(t_s))
+    level[0] = target[0]
+    for k, a in enumerate(decay, start=1):
+        level[k] = a * level[k - 1] + (1.0 - a) * target[k - 1]
+    return level
+
+
 @dataclass(frozen=True)
 class HallClimate:
     """A climate-controlled hall: setpoint programme, HVAC hours, cycling, drift (°C).
@@ -136,12 +147,7 @@ class HallClimate:
 
     def sample(self, t_s, rng: np.random.Generator) -> np.ndarray:
         t_s = np.asarray(t_s, dtype=float)
-        target = self.target(t_s)
-        decay = np.exp(-np.diff(t_s) / (3600.0 * self.room_tau_h))
-        level = np.empty(len(t_s))
-        level[0] = target[0]
-        for k, a in enumerate(decay, start=1):
-            level[k] = a * level[k - 1] + (1.0 - a) * target[k - 1]
+        level = room_response(t_s, self.target(t_s), self.room_tau_h)
         drift = AmbientModel(drift_sd_c=self.drift_sd_c, drift_tau_h=self.drift_tau_h).drift(t_s, rng)
         return level + drift
 

@@ -130,7 +130,7 @@ import pandas as pd
 
 from thermocomp.errors import ConfigError
 from thermocomp.io.contract import Dataset
-from thermocomp.sim.ambient import DAY_S, AmbientModel
+from thermocomp.sim.ambient import DAY_S, AmbientModel, room_response
 from thermocomp.sim.campaign import Machine, Programme
 from thermocomp.sim.network import Link, Node, ThermalNetwork
 from thermocomp.sim.scenario import CampaignPlan, Scenario, initial_air, plain
@@ -287,12 +287,7 @@ class WorkshopClimate:
     def sample(self, t_s, rng: np.random.Generator) -> np.ndarray:
         t_s = np.asarray(t_s, dtype=float)
         weather = AmbientModel(drift_sd_c=self.weather_sd_c, drift_tau_h=self.weather_tau_h).drift(t_s, rng)
-        target = self.target(t_s, weather)
-        decay = np.exp(-np.diff(t_s) / (HOUR * self.room_tau_h))
-        level = np.empty(len(t_s))
-        level[0] = target[0]
-        for k, a in enumerate(decay, start=1):
-            level[k] = a * level[k - 1] + (1.0 - a) * target[k - 1]
+        level = room_response(t_s, self.target(t_s, weather), self.room_tau_h)
         fast = AmbientModel(drift_sd_c=self.drift_sd_c, drift_tau_h=self.drift_tau_h).drift(t_s, rng)
         return level + fast
 
