@@ -12,7 +12,7 @@ from hydra import compose, initialize_config_dir
 from conftest import thermocomp
 from thermocomp import io
 from thermocomp.deploy import StreamingCompensator
-from thermocomp.deploy.replay import replay
+from thermocomp.deploy.replay import replay_report
 from thermocomp.paths import conf_dir
 from thermocomp.stages.common import build_compensator
 
@@ -61,14 +61,14 @@ def test_every_configuration_streams_exactly_as_it_predicts(door_data, model, at
         assert "S_door" in streaming.columns_ and streaming.time_required_
     if ati == "cmeans" and any(e.n_intervals_ > 1 for e in comp.estimators_.values()):
         assert "T_amb" in streaming.columns_
-    result = replay(streaming, {c: ds.campaigns[c] for c in ds.ids("test")})
+    result = replay_report(streaming, {c: ds.campaigns[c] for c in ds.ids("test")})
     for target, r in result.items():
         assert r["n_samples"] == sum(len(ds.campaigns[c]) for c in ds.ids("test"))
         assert r["max_abs_stream_minus_batch"] <= TOLERANCE_UM, (target, r)
         assert r["rmse"] == pytest.approx(r["rmse_batch"], abs=TOLERANCE_UM)   # envelope never hit here
     # the deployed object survives pickling (what promote registers) and streams the same
     again = pickle.loads(pickle.dumps(streaming))
-    assert replay(again, {c: ds.campaigns[c] for c in ds.ids("test")[:1]}).keys() == result.keys()
+    assert replay_report(again, {c: ds.campaigns[c] for c in ds.ids("test")[:1]}).keys() == result.keys()
 
 
 @pytest.mark.slow

@@ -37,7 +37,7 @@ def stream_rows(streaming: StreamingCompensator, campaign: pd.DataFrame) -> tupl
     return y, clamped, seconds
 
 
-def replay(streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame]) -> dict:
+def replay_report(streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame]) -> dict:
     """Per target: samples, largest |stream − batch| (envelope off), RMSE of the residual left by
     the streamed correction (envelope as deployed), µs per sample, clamped samples.
 
@@ -48,13 +48,9 @@ def replay(streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame
     measured = comp.measured(campaigns)
     targets = streaming.targets_
     diffs, residuals, clamps, seconds, n = [], [], 0, 0.0, 0
-    policy = streaming.policy
     for cid, df in campaigns.items():
-        streaming.policy = "off"          # the same inputs as batch: any difference is the stream's
-        try:
+        with streaming.envelope_off():   # the same inputs as batch: any difference is the stream's
             free, _, _ = stream_rows(streaming, df)
-        finally:
-            streaming.policy = policy
         deployed, clamped, s = stream_rows(streaming, df)
         diffs.append(np.abs(free - batch[cid][targets].to_numpy()))
         residuals.append(measured[cid][targets].to_numpy() - deployed)

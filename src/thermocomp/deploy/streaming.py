@@ -26,6 +26,7 @@ from __future__ import annotations
 
 import copy
 from collections.abc import Mapping
+from contextlib import contextmanager
 from dataclasses import dataclass
 
 import numpy as np
@@ -184,6 +185,16 @@ class StreamingCompensator:
         self._den_state = None
         self.n_samples_ = 0
 
+    @contextmanager
+    def envelope_off(self):
+        """Within the block the envelope is off (the inputs reach the models as batch gets them);
+        the policy is restored after, whatever happens."""
+        saved, self.policy = self.policy, "off"
+        try:
+            yield self
+        finally:
+            self.policy = saved
+
     def _snapshot(self) -> tuple:
         return (self._ref, self._ambient_c0, copy.deepcopy(self._states),
                 copy.deepcopy(self._den_state), self.n_samples_)
@@ -287,12 +298,10 @@ def streaming_deviation(streaming: StreamingCompensator, campaign: pd.DataFrame,
     campaign in blocks of ``chunk`` samples, envelope off.  A model with memory
     that lacks the streaming protocol, or breaks causality, shows up here.
     """
-    saved = streaming.policy
-    streaming.policy = "off"
     try:
-        streamed = replay(streaming, campaign, chunk)
+        with streaming.envelope_off():
+            streamed = replay(streaming, campaign, chunk)
     finally:
-        streaming.policy = saved
         streaming.reset()
     batch = streaming.compensator.predict({STREAM_ID: campaign})[STREAM_ID]
     diff = streamed[streaming.targets_].to_numpy() - batch[streaming.targets_].to_numpy()

@@ -16,7 +16,7 @@ from omegaconf import DictConfig
 
 from .. import io
 from ..deploy import StreamingCompensator
-from ..deploy.replay import replay as replay_campaigns
+from ..deploy.replay import replay_report
 from ..errors import ConfigError
 from ..evaluation import require_split
 from ..paths import resolve
@@ -74,7 +74,7 @@ def replay(cfg: DictConfig) -> dict:
             raise io.ContractError("a test campaign lacks a column the deployed model reads",
                                    column=",".join(missing))
         say(f"streaming {len(test_ids)} test campaigns row by row ({', '.join(streaming.columns_)})")
-        targets = replay_campaigns(streaming, {c: ds.campaigns[c] for c in test_ids})
+        targets = replay_report(streaming, {c: ds.campaigns[c] for c in test_ids})
         report = {"model": name, "source": source, "targets": targets,
                   "excluded_inputs": [], "events": [],
                   "columns": list(streaming.columns_), "time_required": streaming.time_required_,
