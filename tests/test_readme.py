@@ -1,0 +1,157 @@
+"""The README's commands, run exactly as written, in a fresh copy of the project.
+
+Every fenced ``bash`` block of README.md is run, in order, by ``bash -euo pipefail`` from the
+root of a scratch clone whose ``.venv`` is NOT activated (``PATH`` has no venv in it), unless an
+HTML comment on the line before it says otherwise:
+
+- ``<!-- readme-test: skip — <reason> -->``: not run (a synopsis, the test suite itself, ...);
+- ``<!-- readme-test: background <host>:<port> -->``: started in the background (a server);
+  the next blocks run once the port accepts connections, and it is stopped at the end;
+- ``<!-- readme-test: expect <regex> -->``: the block's output must match ``regex``;
+- ``<!-- readme-test: file <path> -->`` before a ``yaml`` block: written to ``<path>``.
+
+So the README cannot drift from what the commands do: a renamed override, a moved output or a
+command that needs an activated venv fails here.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+
+pytestmark = pytest.mark.slow
+
+BLOCK = re.compile(r"(?:<!--\s*readme-test:\s*(?P<directive>.*?)\s*-->\s*\n)?"
+                   r"```(?P<lang>bash|yaml)\n(?P<body>.*?)```", re.S)
+
+
+def readme_blocks(text: str) -> list[dict]:
+    """The fenced bash/yaml blocks of ``text`` with their directive (kind, argument)."""
+    blocks = []
+    for m in BLOCK.finditer(text):
+        directive = (m["directive"] or "").strip()
+        kind, _, arg = directive.partition(" ")
+        blocks.append({"lang": m["lang"], "body": m["body"], "kind": kind or "run",
+                       "arg": arg.strip(), "line": text[:m.start()].count("\n") + 1})
+    return blocks
+
+
+def _project_files() -> list[Path]:
+    """Tracked and untracked, not ignored files: what a clone of the working tree would hold."""
+    out = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"], cwd=ROOT,
+                         capture_output=True, text=True, check=True).stdout
+    return [Path(p) for p in out.split("\0") if p and (ROOT / p).is_file()]
+
+
+def fresh_clone(dest: Path) -> Path:
+    """A copy of the working tree with its own venv (hard links of this one, scripts and the
+    editable install pointed at the copy), so nothing of it runs from this checkout."""
+    for rel in _project_files():
+        (dest / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(ROOT / rel, dest / rel)
+    venv = Path(sys.prefix)
+    subprocess.run(["cp", "-al", str(venv), str(dest / ".venv")], check=True)
+    old, new = f"{ROOT}/", f"{dest}/"
+    for script in (dest / ".venv/bin").iterdir():
+        if script.is_symlink() or not script.is_file():
+            continue
+        data = script.read_bytes()
+        if old.encode() in data[:4096]:
+            script.unlink()  # hard link: write a new file, never the original's inode
+            script.write_bytes(data.replace(old.encode(), new.encode()))
+            script.chmod(0o755)
+    for pth in (dest / ".venv/lib").glob("python*/site-packages/__editable__.thermocomp-*.pth"):
+        pth.unlink()
+        pth.write_text(f"{dest / 'src'}\n")
+    # the copied files keep their times, so `make` sees the install as current
+    stamp = dest / ".venv/.installed"
+    stamp.unlink(missing_ok=True)
+    stamp.touch()
+    subprocess.run(["git", "init", "-q"], cwd=dest, check=True)
+    subprocess.run(["git", "add", "-A"], cwd=dest, check=True)
+    subprocess.run(["git", "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "clone"],
+                   cwd=dest, check=True)
+    return dest
+
+
+def _user_env(home: Path) -> dict:
+    """A shell as a new user has it: no venv on PATH, no project variables."""
+    path = os.pathsep.join(p for p in os.environ["PATH"].split(os.pathsep)
+                           if not p.startswith(sys.prefix))
+    env = {k: v for k, v in os.environ.items()
+           if not k.startswith(("THERMOCOMP_", "MLFLOW_", "VIRTUAL_ENV", "PYTEST", "DVC_"))}
+    return {**env, "PATH": path, "HOME": str(home)}
+
+
+def _wait_port(host: str, port: int, proc: subprocess.Popen, timeout: float = 180) -> None:
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if proc.poll() is not None:
+            raise AssertionError(f"background command exited with {proc.returncode}")
+        with socket.socket() as s:
+            if s.connect_ex((host, port)) == 0:
+                return
+        time.sleep(0.5)
+    raise AssertionError(f"nothing listens on {host}:{port} after {timeout} s")
+
+
+def test_readme_blocks_are_all_accounted_for():
+    blocks = readme_blocks((ROOT / "README.md").read_text())
+    kinds = {b["kind"] for b in blocks}
+    assert kinds <= {"run", "skip", "background", "expect", "file"}, kinds
+    for b in blocks:
+        if b["kind"] == "skip":
+            assert b["arg"], f"README line {b['line']}: a skipped block needs a reason"
+        if b["lang"] == "yaml":
+            assert b["kind"] in ("file", "skip"), f"README line {b['line']}: yaml needs file/skip"
+    assert sum(b["kind"] != "skip" and b["lang"] == "bash" for b in blocks) >= 8
+
+
+def test_readme_commands_as_written(tmp_path):
+    clone = fresh_clone(tmp_path / "clone")
+    home = tmp_path / "home"
+    home.mkdir()
+    env = _user_env(home)
+    background, log = [], []
+    try:
+        for b in readme_blocks((ROOT / "README.md").read_text()):
+            where = f"README.md line {b['line']}"
+            if b["kind"] == "skip":
+                continue
+            if b["lang"] == "yaml":
+                target = clone / b["arg"]
+                target.parent.mkdir(parents=True, exist_ok=True)
+                target.write_text(b["body"])
+                continue
+            if b["kind"] == "background":
+                host, port = b["arg"].rsplit(":", 1)
+                proc = subprocess.Popen(["bash", "-c", b["body"]], cwd=clone, env=env,
+                                        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                        start_new_session=True)
+                background.append(proc)
+                _wait_port(host, int(port), proc)
+                continue
+            proc = subprocess.run(["bash", "-euo", "pipefail", "-c", b["body"]], cwd=clone,
+                                  env=env, capture_output=True, text=True, timeout=1200)
+            output = proc.stdout + proc.stderr
+            log.append(f"--- {where}\n{b['body']}{output[-3000:]}")
+            assert proc.returncode == 0, f"{where} failed ({proc.returncode}):\n{b['body']}\n{output}"
+            if b["kind"] == "expect":
+                assert re.search(b["arg"], output), f"{where}: no match for {b['arg']!r}\n{output}"
+    finally:
+        for proc in background:
+            os.killpg(proc.pid, signal.SIGTERM)
+            proc.wait(timeout=30)
+        (tmp_path / "readme_run.log").write_text("\n".join(log))
+    assert not (clone / "mlflow.db").exists(), "a command left a stray ./mlflow.db"
