@@ -220,8 +220,8 @@ def markdown(jsons: dict[str, dict], figures: dict[str, list[str]] | None = None
                      f"{len(_accepted(jsons[t]))} effect(s) accepted")
     if rerun:
         lines.append(f"- {_link(RERUN, RERUN)}")
-    lines += ["", "| target | test RMSE before → after (µm) | CV RMSE before → after (µm) | accepted effects |",
-              "|---|---:|---:|---|"]
+    lines += ["", "| target | test RMSE before → after (µm) | CV RMSE before → after (µm) "
+              "| accepted effects |", "|---|---:|---:|---|"]
     for t in order:
         j = jsons[t]
         lines.append(f"| {_link(t, t)} | {_f(j['before']['test_rmse'])} → {_f(j['after']['test_rmse'])} | "
