@@ -9,42 +9,46 @@ import numpy as np
 from ..plots import AFTER, BEFORE, _arr, _hour_ticks, plt, save_figure
 
 
-def residual_vs_effect(residual, signal, units, label: str, target: str, path) -> Path:
+def residual_vs_effect(residual, signal, units, label: str, target: str, path, time_s=None) -> Path:
     """The CV residual before an effect against the part of it the effect's features explain.
 
-    Left: scatter over all train samples, one colour per campaign, with the
-    identity line (an effect that explained the residual completely would
-    put every point on it).  Right: both against time for the campaign where
-    the effect explains most.
+    Left: scatter over all train samples, one colour per campaign (or CV block),
+    named in the legend, with the identity line (an effect that explained the
+    residual completely would put every point on it).  Right: both against
+    time (h since the campaign's start; sample index when ``time_s`` is None)
+    for the campaign where the effect explains most.
     """
     r, s = np.asarray(residual, float), np.asarray(signal, float)
     units = np.asarray(units, dtype=object)
     ids = list(dict.fromkeys(units))
-    fig, (ax, axt) = plt.subplots(1, 2, figsize=(11, 4.3), gridspec_kw={"width_ratios": [1, 1.4]})
+    hours = None if time_s is None else np.asarray(time_s, float) / 3600.0
+    fig, (ax, axt) = plt.subplots(1, 2, figsize=(11, 4.8), gridspec_kw={"width_ratios": [1, 1.4]},
+                                  layout="constrained")
     cmap = plt.get_cmap("viridis", max(len(ids), 2))
     for i, u in enumerate(ids):
         rows = units == u
-        ax.plot(s[rows], r[rows], ".", ms=3, color=cmap(i), alpha=0.7)
+        ax.plot(s[rows], r[rows], ".", ms=3, color=cmap(i), alpha=0.7, label=str(u))
     lim = np.nanmax(np.abs(np.r_[r, s])) if r.size else 1.0
     ax.plot([-lim, lim], [-lim, lim], color="k", lw=0.8, ls="--", label="residual = effect")
     ax.set_xlabel("effect signal: the residual part its features explain (µm)")
     ax.set_ylabel(f"{target} CV residual before (µm)")
     ax.set_title(label, fontsize=9)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    # one entry per campaign: below the axes, in columns, so many campaigns stay readable
+    ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=min(6, len(ids) + 1),
+              markerscale=3, title="train campaign (CV unit)", title_fontsize=7, frameon=False)
     best = max(ids, key=lambda u: float(np.sum(s[units == u] ** 2))) if ids else None
     if best is not None:
         rows = np.flatnonzero(units == best)
-        axt.plot(np.arange(rows.size), r[rows], color=BEFORE, lw=1.2, label="CV residual before")
-        axt.plot(np.arange(rows.size), s[rows], color=AFTER, lw=1.2, ls="--", label="effect signal")
-        axt.plot(np.arange(rows.size), r[rows] - s[rows], color="grey", lw=0.9,
-                 label="what is left")
-        axt.set_xlabel(f"sample of campaign {best}")
-        axt.set_ylabel("µm")
+        x = hours[rows] if hours is not None else np.arange(rows.size)
+        axt.plot(x, r[rows], color=BEFORE, lw=1.2, label="CV residual before")
+        axt.plot(x, s[rows], color=AFTER, lw=1.2, ls="--", label="effect signal")
+        axt.plot(x, r[rows] - s[rows], color="grey", lw=0.9, label="what is left")
+        axt.set_xlabel("time since campaign start (h)" if hours is not None else f"sample of {best}")
+        axt.set_ylabel(f"{target} (µm)")
         axt.set_title(f"{best}: the campaign the effect explains most", fontsize=9)
         axt.grid(alpha=0.3)
         axt.legend(fontsize=8)
-    fig.tight_layout()
     return save_figure(fig, path)
 
 
@@ -84,6 +88,7 @@ def diagnosis_figures(diagnosis, folder) -> dict[str, list[Path]]:
             e = rnd.accepted.effect
             label = f"step {k + 1}: {e.kind} {e.column or ''} {e.label}".replace("  ", " ")
             paths.append(residual_vs_effect(data["residual"], data["signal"], data["units"], label, t,
-                                            folder / f"residual_vs_effect_{t}_{k + 1}.png"))
+                                            folder / f"residual_vs_effect_{t}_{k + 1}.png",
+                                            data.get("time_s")))
         out[t] = paths
     return out

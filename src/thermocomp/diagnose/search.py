@@ -312,7 +312,8 @@ class Search:
             best.accepted = True
             rnd.accepted = best
             rnd.figure_data = {"residual": current.residual[ok].copy(),
-                               "signal": signals.get(best.effect), "units": p.units[ok]}
+                               "signal": signals.get(best.effect), "units": p.units[ok],
+                               "time_s": p.context["time"].to_numpy(float)[ok]}
             accepted.append(best)
             self.effects.append(best.effect)
             current = best.result

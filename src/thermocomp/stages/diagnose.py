@@ -6,7 +6,7 @@ configured model and writes, under ``out``:
 * ``diagnosis.json`` -- CLI.md layout, for the primary target (the one with
   the largest CV RMSE before);
 * ``diagnosis/``: ``diagnosis_<target>.json`` for every target, ``report.md``
-  and ``report.html`` (+ ``report_<target>.*``), ``plots/``;
+  and ``report.html`` (every target; the HTML embeds the figures), ``plots/``;
 * ``diagnosis/conf/model/diagnosed.yaml`` -- the model plus the accepted
   effects -- and ``diagnosis/conf/experiment/diagnosed.yaml`` pinning what the
   diagnosis ran with, so ``thermocomp run hydra.searchpath=[file://<out>/diagnosis/conf]
@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import copy
 import shlex
-from pathlib import Path
 
 import yaml
 from omegaconf import DictConfig, OmegaConf
@@ -30,7 +29,7 @@ from ..diagnose import CandidateOptions, SearchOptions
 from ..diagnose import diagnose as run_diagnosis
 from ..diagnose.features import KINDS
 from ..diagnose.figures import diagnosis_figures
-from ..diagnose.report import markdown, to_html
+from ..diagnose.report import write_report
 from ..errors import ConfigError
 from ..model_selection import CV_SCHEMES
 from ..files import atomic_dir, write_json
@@ -175,13 +174,12 @@ def diagnose(cfg: DictConfig) -> dict:
                  + f" experiment={MODEL_NAME} " + shlex.quote(f"data.path={resolve(cfg.data.path)}")
                  + " " + shlex.quote(f"out={out / MODEL_NAME}"))
         primary = result.primary
-        reports = {t: ("report.md" if t == primary else f"report_{t}.md") for t in result.targets}
         jsons = {}
         for t in result.targets:
             j = result.to_json(t)
             j.update(config=str(conf_dir / "model" / f"{MODEL_NAME}.yaml"),
                      experiment=str(conf_dir / "experiment" / f"{MODEL_NAME}.yaml"),
-                     rerun=rerun, report=str(folder / reports[t]))
+                     rerun=rerun, report=str(folder / "report.html"))
             jsons[t] = j
         with atomic_dir(folder) as tmp:
             figures = diagnosis_figures(result, tmp / "plots") if cfg.plots != "none" else {}
@@ -194,12 +192,8 @@ def diagnose(cfg: DictConfig) -> dict:
                 _yaml("# @package _global_\n" + header, experiment(cfg, written["kept"])))
             for t, j in jsons.items():
                 write_json(tmp / f"diagnosis_{t}.json", j)
-                rel = [str(Path("plots") / p.name) for p in figures.get(t, [])]
-                others = {o: reports[o] for o in result.targets if o != t}
-                md = markdown(j, rel, rerun, others)
-                stem = Path(reports[t]).stem
-                (tmp / f"{stem}.md").write_text(md)
-                (tmp / f"{stem}.html").write_text(to_html(md, f"diagnosis {t}"))
+            write_report(tmp, jsons, {t: [f"plots/{p.name}" for p in ps] for t, ps in figures.items()},
+                         rerun, primary)
         main = write_json(out / "diagnosis.json", jsons[primary])
         tracker.log_metrics({"diagnose": {t: {
             "before_test_rmse": d.before["test"]["rmse"], "after_test_rmse": d.after["test"]["rmse"],
