@@ -57,9 +57,16 @@ def _compose(overrides: list[str]):
 
     from .paths import conf_dir
 
+    from hydra.core.hydra_config import HydraConfig
+    from omegaconf import open_dict
+
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3",
                                job_name="thermocomp"):
-        return compose(config_name="config", overrides=overrides)
+        cfg = compose(config_name="config", overrides=overrides, return_hydra_config=True)
+    HydraConfig.instance().set_config(cfg)   # the overrides name the MLflow run, as under hydra.main
+    with open_dict(cfg):
+        del cfg["hydra"]
+    return cfg
 
 
 def _per_job(cfg):
