@@ -27,6 +27,7 @@ stages:
   compare    table of a sweep's child runs, best first (compare.sweep=, compare.sort_by=)
   promote    register the best run's compensator; move @champion only if it is better
   replay     stream the test campaigns row by row through the deployable compensator (replay.json)
+  serve      the registered compensator over HTTP (serve.model=, serve.port=; one worker)
 
 overrides: data.path=<dir> data.inputs=[T_*] data.targets=[E_Z] model=mlr select=all denoise=none
            eval.mode=simulation|one_step out=<dir> tracking_uri=<uri> seed=<int>

@@ -45,6 +45,7 @@ from .paths import project_root, resolve
 DEFAULT_URI = "sqlite:///mlruns/mlflow.db"
 PARENT_ENV = "THERMOCOMP_PARENT_RUN_ID"
 SWEEP_TAG = "thermocomp.sweep"          # "parent" on a sweep's parent run
+DATASET_TAG = "dataset_hash"            # folder digest of data.path a run read
 _LOCKED = ("database is locked", "database table is locked")
 
 
@@ -264,6 +265,12 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
     tags = {"stage": stage, "run_name": str(cfg.get("name")), "project_root": str(project_root())}
     if overrides is not None:
         tags["overrides"] = " ".join(overrides)[:5000]
+    data = (cfg.get("data") or {}).get("path")
+    data = resolve(str(data)) if data else None
+    if stage != "simulate" and data is not None and data.is_dir():   # what promote checks
+        from .files import folder_digest
+
+        tags[DATASET_TAG] = folder_digest(data)
     parent = os.environ.get(PARENT_ENV) or None
     with _ending_on_signals() as got:
         run = retry_locked(mlflow.start_run, experiment_id=exp_id, tags=tags, parent_run_id=parent,
