@@ -298,10 +298,10 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
 _GROUPS = (("model", None), ("select", "all"), ("ati", "none"), ("denoise", "none"))
 # Overrides that say where things go or how much is reported, not what is fitted.
 _NOT_NAMING = re.compile(r"^(hydra|tracking_uri|experiment_name|out|model_path|name|track|plots|"
-                         r"compare|promote|replay|serve|data\.(path|interim|processed))(\.|$)"
+                         r"compare|promote|replay|serve|data\.(path|interim|processed))([./]|$)"
                          r"|^eval\.(?!mode$)")
 # Config leaves always logged as params (when present); plus every overridden key.
-PARAM_KEYS = ("name", "seed", "data.path", "data.inputs", "data.targets", "data.reference",
+PARAM_KEYS = ("name", "out", "seed", "data.path", "data.inputs", "data.targets", "data.reference",
               "model.name", "select.name", "ati.name", "denoise.name", "eval.mode",
               "eval.validation")
 _HYPER = ("model.estimator.", "select.selector.")    # the fitted model's own parameters
@@ -327,6 +327,7 @@ def _split(override: str) -> tuple[str, str]:
 def _short(value: str) -> str:
     """A value as a run-name token: no brackets, quotes, spaces, slashes."""
     value = re.sub(r"[\[\]{}()'\" ]", "", value)
+    value = value.lower() if value in ("True", "False") else value   # a sweep writes `False`
     return re.sub(r"[/\\:]+", "_", value).strip("_") or "none"
 
 
