@@ -110,6 +110,15 @@ def test_promoting_the_champion_again_registers_nothing(project, capsys):
     assert f"already champion: version {champion}" in said
     assert (again["version"], again["registered"], again["moved"]) == (str(champion), False, False)
     assert {v.version for v in client.search_model_versions(f"name='{NAME}'")} == before
+    # the same configuration run again: another run id, the same model and figures
+    assert main(["run", *common, "name=strong_again", f"out={root / 'strong_again'}",
+                 "model.name=ar_stub", "~model.estimator.fit_intercept",
+                 "model.estimator._target_=test_deploy.ARStub"]) == 0
+    [rerun] = client.search_runs([client.get_run(strong).info.experiment_id],
+                                 filter_string="tags.run_name = 'strong_again'")
+    third, said = _promote(project, rerun.info.run_id, "q3", capsys)
+    assert f"already champion: version {champion}" in said and not third["registered"]
+    assert {v.version for v in client.search_model_versions(f"name='{NAME}'")} == before
 
 
 def test_promote_refuses_a_tampered_run_model_without_unpickling_it(project, capsys, tmp_path):

@@ -2,8 +2,11 @@
 
 1. The candidate is ``promote.run_id``, or the best child of the sweep
    ``compare.sweep`` (default: the latest) by ``promote.criterion``, a
-   validation figure (``val_*``; a test figure is refused).
-2. Its ``model.pkl`` becomes a deployable :class:`~thermocomp.deploy.StreamingCompensator`
+   validation figure (``val_*``; a test figure is refused), among the children
+   scored on ``data.path`` (their ``dataset_hash`` tag): a dataset no child
+   was scored on is refused, naming the hashes the sweep saw.
+2. Its ``model.pkl`` (signature checked before unpickling: a tracking server
+   may have no authentication) becomes a deployable :class:`~thermocomp.deploy.StreamingCompensator`
    (training envelope from the train split of ``data.path``), checked to stream
    exactly as it predicts in batch (causality), and is registered as an
    ``mlflow.pyfunc`` model with a signature: a new version of ``promote.model_name``,
@@ -17,6 +20,9 @@
    ``promote.min_improvement``; a champion with no comparable validation score
    stays unless ``promote.force``.  No registry stages (deprecated): aliases
    and tags only.
+4. Idempotent: a candidate already registered on this dataset (the same run,
+   the same model bytes ``model_digest``, or the champion's figures) gets no
+   new version; promoting the champion again says ``already champion: version N``.
 
 Writes ``<out>/promote.json``.
 """
