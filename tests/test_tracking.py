@@ -25,7 +25,7 @@ from thermocomp.cli import _compose, main
 from thermocomp.files import folder_digest
 from thermocomp.models import MLR
 from thermocomp.tracking import (PARAM_KEYS, config_container, headline_metrics, run_name,
-                                 run_params, task_overrides)
+                                 run_params, sweep_name, task_overrides)
 
 TESTS = Path(__file__).resolve().parent
 
@@ -58,6 +58,12 @@ def test_run_name_says_what_differs_from_the_defaults():
     assert (_named("data.inputs=[T_1,T_2]", "model.estimator.fit_intercept=false")
             == "mlr-inputs=T_1,T_2-fit_intercept=false")
     assert _named("name=weak", "denoise=emd") == "weak/mlr-emd"
+
+
+def test_a_sweep_is_named_from_what_it_sweeps():
+    assert (sweep_name(["data.path=/x", "model=mlr,pcr", "seed=range(0,3)", "plots=none"])
+            == "sweep/model=mlr,pcr-seed=range0,3")
+    assert sweep_name(["data.path=/x"], "study") == "sweep/study"
 
 
 def test_params_are_the_meaningful_leaves_plus_what_was_overridden():

@@ -21,7 +21,7 @@ from typing import Any
 from hydra.experimental.callback import Callback
 from omegaconf import DictConfig, OmegaConf
 
-from .tracking import enabled
+from .tracking import enabled, sweep_name
 
 
 def _say(msg: str) -> None:
@@ -53,7 +53,7 @@ class MlflowSweepCallback(Callback):
         sweep_dir = Path(str(config.hydra.sweep.dir))
         tags = {"sweep.overrides": " ".join(overrides)[:5000], "sweep.dir": str(sweep_dir),
                 "launcher": str(config.hydra.launcher.get("_target_", "")).rsplit(".", 1)[-1]}
-        self.run_id = start_parent_run(config, f"sweep/{config.get('name')}", tags)
+        self.run_id = start_parent_run(config, sweep_name(overrides, config.get("name")), tags)
         self._previous = os.environ.get(PARENT_ENV)
         os.environ[PARENT_ENV] = self.run_id
         from .files import write_json

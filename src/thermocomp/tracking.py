@@ -368,6 +368,15 @@ def run_name(cfg: DictConfig, overrides: list[str] | None = None) -> str:
     return name[:250]
 
 
+def sweep_name(overrides: list[str], name: str = "default") -> str:
+    """A sweep's parent run name from what it sweeps: ``sweep/model=mlr,pcr-seed=range0,3``."""
+    swept = [(k, v) for k, v in map(_split, overrides)
+             if ("," in v or v.startswith(("range(", "choice(", "glob("))) and not _NOT_NAMING.match(k)]
+    parts = [f"{k.rsplit('.', 1)[-1]}={_short(v)}" for k, v in swept]
+    prefix = "sweep" if name in (None, "default") else f"sweep/{name}"
+    return (f"{prefix}/{'-'.join(parts)}" if parts else prefix)[:250]
+
+
 def run_params(container: dict, overrides: list[str] | None = None) -> dict:
     """The params worth comparing runs by (not all ~130 leaves; ``config.yaml`` has them):
     :data:`PARAM_KEYS`, the model's and selector's own parameters, every overridden key."""
