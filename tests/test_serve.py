@@ -21,14 +21,12 @@ import pandas as pd
 import pytest
 
 from conftest import BIN
-from test_deploy import LIGHT_EVAL, campaigns, mlflow_store, write_small_dataset
+from test_deploy import LIGHT_EVAL, ARStub, campaigns, mlflow_store, write_small_dataset
 from thermocomp.cli import _compose, main
 from thermocomp.compensator import Compensator
 from thermocomp.deploy import StreamingCompensator
 from thermocomp.deploy.pyfunc import DEFAULT_SESSION, CompensatorModel
 from thermocomp.errors import ConfigError
-
-from test_deploy import ARStub
 
 NAME = "thermocomp-compensator"
 

@@ -54,7 +54,8 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
     for job in range(4):
         said = (sweep_dir / str(job) / ".hydra" / "overrides.yaml").read_text().lower()
         run = children[children["params.out"] == str(sweep_dir / str(job))]
-        assert len(run) == 1 and f"model.estimator.fit_intercept={run['params.model.estimator.fit_intercept'].iloc[0].lower()}" in said
+        intercept = run["params.model.estimator.fit_intercept"].iloc[0].lower()
+        assert len(run) == 1 and f"model.estimator.fit_intercept={intercept}" in said
     assert parents["metrics.sweep.jobs"].iloc[0] == 4
     assert json.loads((sweep_dir / "sweep.json").read_text())["parent_run_id"] == parent_id
 
