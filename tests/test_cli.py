@@ -55,7 +55,7 @@ def test_simulate_then_run_writes_valid_metrics(default_dataset, tmp_path):
     mlflow.set_tracking_uri(f"sqlite:///{db}")
     runs = mlflow.search_runs(experiment_names=["thermocomp"])
     assert len(runs) == 1
-    assert runs["metrics.targets.E_Z.test.rmse"].iloc[0] == pytest.approx(
+    assert runs["metrics.E_Z.test.rmse"].iloc[0] == pytest.approx(
         m["targets"]["E_Z"]["test"]["rmse"])
     assert (db.parent / "thermocomp").is_dir()  # artifacts under mlruns/
 

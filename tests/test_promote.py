@@ -71,6 +71,7 @@ def test_promote_moves_champion_only_for_a_better_model(project, capsys):
     assert second["candidate"]["score"] < second["champion"]["score"]
     third, said = _promote(project, weak, "p3", capsys)
     assert not third["moved"] and "does not beat" in third["reason"] and "not promoted" in said
+    assert third["version"] == first["version"] and not third["registered"]   # weak: already v1
     # the gate compares validation scores; the champion's is the one it was promoted with
     assert third["champion"]["score"] == pytest.approx(second["candidate"]["score"], rel=1e-5)
     assert third["candidate"]["score"] == pytest.approx(first["candidate"]["score"], rel=1e-12)
@@ -79,21 +80,65 @@ def test_promote_moves_champion_only_for_a_better_model(project, capsys):
 
     champion = client.get_model_version_by_alias(NAME, "champion")
     assert str(champion.version) == second["version"] == "2"
-    assert sorted(str(v.version) for v in client.search_model_versions(f"name='{NAME}'")) == ["1", "2", "3"]
+    assert sorted(str(v.version) for v in client.search_model_versions(f"name='{NAME}'")) == ["1", "2"]
     tags = champion.tags
     assert tags["source_run_id"] == strong and tags["model"] == "ar_stub"
     assert tags["test_campaigns"] == "K04,K05" and tags["promoted"] == "True"
     assert len(tags["dataset_hash"]) == 64
-    assert tags["dataset_hash"] == client.get_model_version(NAME, "3").tags["dataset_hash"]
+    assert tags["dataset_hash"] == client.get_model_version(NAME, "1").tags["dataset_hash"]
+    assert len(tags["model_digest"]) == 64
     assert tags["git_commit"] == "unknown" or len(tags["git_commit"]) == 40
     assert float(tags["metric.val_rmse"]) == pytest.approx(second["candidate"]["score"], rel=1e-5)
     assert float(tags["metric.rsd_mean"]) == pytest.approx(          # test: reported beside it
         second["candidate"]["test_reported"]["rsd_mean"], rel=1e-5)
     assert tags["criterion"] == "val_rmse" and tags["eval_mode"] == "simulation"
-    assert client.get_model_version(NAME, "3").tags["promoted"] == "False"
+    assert "does not beat" in client.get_model_version(NAME, "1").tags["decision"]
     assert champion.current_stage in (None, "None")             # aliases only, no stages
     model = client.get_registered_model(NAME)
     assert {k: str(v) for k, v in model.aliases.items()} == {"champion": "2"}
+
+
+def test_promoting_the_champion_again_registers_nothing(project, capsys):
+    root, common, uri, weak, strong = project
+    from mlflow import MlflowClient
+
+    client = MlflowClient(uri)
+    _promote(project, strong, "q1", capsys)
+    before = {v.version for v in client.search_model_versions(f"name='{NAME}'")}
+    champion = client.get_model_version_by_alias(NAME, "champion").version
+    again, said = _promote(project, strong, "q2", capsys)
+    assert f"already champion: version {champion}" in said
+    assert (again["version"], again["registered"], again["moved"]) == (str(champion), False, False)
+    assert {v.version for v in client.search_model_versions(f"name='{NAME}'")} == before
+    # the same configuration run again: another run id, the same model and figures
+    assert main(["run", *common, "name=strong_again", f"out={root / 'strong_again'}",
+                 "model.name=ar_stub", "~model.estimator.fit_intercept",
+                 "model.estimator._target_=test_deploy.ARStub"]) == 0
+    [rerun] = client.search_runs([client.get_run(strong).info.experiment_id],
+                                 filter_string="tags.run_name = 'strong_again'")
+    third, said = _promote(project, rerun.info.run_id, "q3", capsys)
+    assert f"already champion: version {champion}" in said and not third["registered"]
+    assert {v.version for v in client.search_model_versions(f"name='{NAME}'")} == before
+
+
+def test_promote_refuses_a_tampered_run_model_without_unpickling_it(project, capsys, tmp_path):
+    root, common, uri, weak, strong = project
+    from mlflow import MlflowClient
+
+    from test_signing import evil_pickle
+
+    client = MlflowClient(uri)
+    assert main(["run", *common, "name=victim", f"out={root / 'victim'}"]) == 0
+    [victim] = client.search_runs([client.get_run(weak).info.experiment_id],
+                                  filter_string="tags.run_name = 'victim'")
+    stored = Path(victim.info.artifact_uri.removeprefix("file://")) / "model.pkl"
+    marker = tmp_path / "marker"
+    evil_pickle(stored, marker)                   # the store was written to behind our back
+    capsys.readouterr()
+    assert main(["promote", *common, f"promote.run_id={victim.info.run_id}",
+                 f"out={root / 'pv'}"]) == 2
+    assert "signature mismatch" in capsys.readouterr().err
+    assert not marker.exists() and not (root / "pv" / "promote.json").exists()
 
 
 def test_promote_without_run_or_sweep_is_a_config_error(project, capsys):

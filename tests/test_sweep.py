@@ -12,6 +12,7 @@ import pytest
 from conftest import thermocomp
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import main
+from thermocomp.files import folder_digest
 from thermocomp.tracking import SWEEP_TAG, _is_locked, retry_locked
 
 
@@ -36,17 +37,25 @@ def _sweep(tmp_path, dataset, n_jobs: int, *overrides: str):
 
 
 @pytest.mark.slow
-def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_path, dataset):
+def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_path, dataset, capsys):
     uri, sweep_dir, proc, parents, children = _sweep(
         tmp_path, dataset, 2, "model.estimator.fit_intercept=true,false", "data.inputs=[T_*],[T_1]")
     assert len(parents) == 1 and len(children) == 4
     parent_id = parents["run_id"].iloc[0]
     assert (children["tags.mlflow.parentRunId"] == parent_id).all()
     assert (children["status"] == "FINISHED").all() and parents["status"].iloc[0] == "FINISHED"
-    assert children["metrics.targets.E_Z.test.rmse"].notna().all()
+    assert children["metrics.E_Z.test.rmse"].notna().all()
     assert children["metrics.fit_time_s"].notna().all()
     combos = set(zip(children["params.model.estimator.fit_intercept"], children["params.data.inputs"]))
     assert len(combos) == 4                                     # every combination ran once
+    # each child is named from its own overrides, each job folder says what ran
+    assert sorted(children["tags.mlflow.runName"]) == sorted(
+        f"mlr-fit_intercept={b}-inputs={i}" for b in ("true", "false") for i in ("T_*", "T_1"))
+    for job in range(4):
+        said = (sweep_dir / str(job) / ".hydra" / "overrides.yaml").read_text().lower()
+        run = children[children["params.out"] == str(sweep_dir / str(job))]
+        intercept = run["params.model.estimator.fit_intercept"].iloc[0].lower()
+        assert len(run) == 1 and f"model.estimator.fit_intercept={intercept}" in said
     assert parents["metrics.sweep.jobs"].iloc[0] == 4
     assert json.loads((sweep_dir / "sweep.json").read_text())["parent_run_id"] == parent_id
 
@@ -81,6 +90,23 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
     assert (out / "compare.md").read_text().startswith("| status")
     assert main(["compare", f"tracking_uri={uri}", "compare.sort_by=nope"]) == 2
 
+    # promote the sweep's best: only with the dataset its runs were scored on, and only once
+    other = write_small_dataset(tmp_path / "other", seed=1)
+    promote = ["promote", f"tracking_uri={uri}", f"compare.sweep={sweep_dir}", f"out={tmp_path / 'p'}"]
+    assert main([*promote, f"data.path={other}"]) == 2
+    err = capsys.readouterr().err
+    assert f"data.path={other}" in err and "was not scored by any run of sweep" in err
+    assert folder_digest(other)[:12] in err and folder_digest(dataset)[:12] in err
+    assert main([*promote, f"data.path={dataset}"]) == 0
+    first = json.loads((tmp_path / "p" / "promote.json").read_text())
+    assert first["run_id"] == table["run_id"].iloc[0] and first["moved"]
+    capsys.readouterr()
+    assert main([*promote, f"data.path={dataset}"]) == 0
+    assert f"already champion: version {first['version']}" in capsys.readouterr().out
+    again = json.loads((tmp_path / "p" / "promote.json").read_text())
+    assert not again["registered"] and again["version"] == first["version"]
+    assert len(MlflowClient(uri).search_model_versions("name='thermocomp-compensator'")) == 1
+
 
 @pytest.mark.slow
 def test_eight_parallel_jobs_on_one_sqlite_store_lose_no_run(tmp_path, dataset):
@@ -88,7 +114,7 @@ def test_eight_parallel_jobs_on_one_sqlite_store_lose_no_run(tmp_path, dataset):
     assert len(parents) == 1 and len(children) == 8
     assert (children["status"] == "FINISHED").all()
     assert sorted(children["params.seed"].astype(int)) == list(range(8))
-    assert children["metrics.targets.E_X.test.rsd_mean"].notna().all()
+    assert children["metrics.E_X.test.rsd_mean"].notna().all()
     for job in range(8):
         assert (sweep_dir / str(job) / "metrics.json").is_file()
     db = uri[len("sqlite:///"):]

@@ -19,7 +19,9 @@ from pathlib import Path
 from typing import Any
 
 from hydra.experimental.callback import Callback
-from omegaconf import DictConfig
+from omegaconf import DictConfig, OmegaConf
+
+from .tracking import enabled, sweep_name
 
 
 def _say(msg: str) -> None:
@@ -43,7 +45,7 @@ class MlflowSweepCallback(Callback):
         self._previous: str | None = None
 
     def on_multirun_start(self, config: DictConfig, **kwargs: Any) -> None:
-        if not config.get("track", True):
+        if not enabled(config):
             return
         from .tracking import PARENT_ENV, start_parent_run
 
@@ -51,7 +53,7 @@ class MlflowSweepCallback(Callback):
         sweep_dir = Path(str(config.hydra.sweep.dir))
         tags = {"sweep.overrides": " ".join(overrides)[:5000], "sweep.dir": str(sweep_dir),
                 "launcher": str(config.hydra.launcher.get("_target_", "")).rsplit(".", 1)[-1]}
-        self.run_id = start_parent_run(config, f"sweep/{config.get('name')}", tags)
+        self.run_id = start_parent_run(config, sweep_name(overrides, config.get("name")), tags)
         self._previous = os.environ.get(PARENT_ENV)
         os.environ[PARENT_ENV] = self.run_id
         from .files import write_json
@@ -63,6 +65,21 @@ class MlflowSweepCallback(Callback):
         _say(f"sweep parent run {self.run_id}")
         # A failing job ends the multirun without on_multirun_end: close the parent run anyway.
         atexit.register(self._abandon, config)
+
+    def on_job_start(self, config: DictConfig, **kwargs: Any) -> None:
+        """A sweep job's folder says what ran: ``.hydra/overrides.yaml`` and ``.hydra/config.yaml``
+        (Hydra's own layout; written here because ``hydra.output_subdir`` is null so that
+        single runs leave no ``.hydra/`` in the project root)."""
+        from hydra.types import RunMode
+
+        if config.hydra.mode != RunMode.MULTIRUN or config.hydra.output_subdir is not None:
+            return
+        from .files import atomic_write_text
+
+        folder = Path(str(config.hydra.runtime.output_dir)) / ".hydra"
+        task = OmegaConf.masked_copy(config, [k for k in config if k != "hydra"])
+        atomic_write_text(folder / "overrides.yaml", OmegaConf.to_yaml(config.hydra.overrides.task))
+        atomic_write_text(folder / "config.yaml", OmegaConf.to_yaml(task))
 
     def _abandon(self, config: DictConfig) -> None:
         if self.run_id is None:

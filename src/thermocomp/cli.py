@@ -27,6 +27,7 @@ stages:
   compare    table of a sweep's child runs, best first (compare.sweep=, compare.sort_by=)
   promote    register the best run's compensator; move @champion only if it is better
   replay     stream the test campaigns row by row through the deployable compensator (replay.json)
+  serve      the registered compensator over HTTP (serve.model=, serve.port=; one worker)
 
 overrides: data.path=<dir> data.inputs=[T_*] data.targets=[E_Z] model=mlr select=all denoise=none
            eval.mode=simulation|one_step out=<dir> tracking_uri=<uri> seed=<int>
@@ -57,9 +58,16 @@ def _compose(overrides: list[str]):
 
     from .paths import conf_dir
 
+    from hydra.core.hydra_config import HydraConfig
+    from omegaconf import open_dict
+
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3",
                                job_name="thermocomp"):
-        return compose(config_name="config", overrides=overrides)
+        cfg = compose(config_name="config", overrides=overrides, return_hydra_config=True)
+    HydraConfig.instance().set_config(cfg)   # the overrides name the MLflow run, as under hydra.main
+    with open_dict(cfg):
+        del cfg["hydra"]
+    return cfg
 
 
 def _per_job(cfg):

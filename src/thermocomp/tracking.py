@@ -10,7 +10,19 @@ Sweeps: a Hydra callback (:mod:`thermocomp.callbacks`) opens one *parent* run
 per sweep and exports its id as ``THERMOCOMP_PARENT_RUN_ID``; every job's stage
 run becomes its child (jobs in other processes inherit the variable).  Parallel
 jobs on one SQLite file contend for its write lock: every MLflow call here is
-retried with exponential backoff on ``database is locked``.
+retried with exponential backoff on ``database is locked``, and a fresh store is
+created (schema migrations) by one process at a time under a file lock
+(``mlflow.db.lock`` next to it) before any other MLflow call.
+
+What a run records: a name made of what differs from the defaults
+(``mlr-pearson-seed1``, :func:`run_name`), the tag ``stage``, the meaningful
+config leaves as params (:func:`run_params`; the whole config is the artifact
+``config.yaml``), the headline metrics a user compares (:func:`headline_metrics`;
+the full ``metrics.json`` is an artifact).  A run ends FINISHED, FAILED on an
+exception, KILLED on SIGTERM/SIGINT (then the process exits 143/130).
+
+``track``: ``null`` (default) logs every stage but ``simulate`` (a dataset is
+not an experiment), ``true`` every stage, ``false`` none.
 """
 
 from __future__ import annotations
@@ -19,6 +31,9 @@ import logging
 import math
 import os
 import random
+import re
+import signal
+import threading
 import time
 from contextlib import contextmanager
 from pathlib import Path
@@ -30,6 +45,7 @@ from .paths import project_root, resolve
 DEFAULT_URI = "sqlite:///mlruns/mlflow.db"
 PARENT_ENV = "THERMOCOMP_PARENT_RUN_ID"
 SWEEP_TAG = "thermocomp.sweep"          # "parent" on a sweep's parent run
+DATASET_TAG = "dataset_hash"            # folder digest of data.path a run read
 _LOCKED = ("database is locked", "database table is locked")
 
 
@@ -64,6 +80,35 @@ def resolve_uri(uri: str) -> str:
         path.parent.mkdir(parents=True, exist_ok=True)
         return prefix + str(path)
     return uri
+
+
+def enabled(cfg, default: bool = True) -> bool:
+    """Whether a stage logs to MLflow: ``track`` if set (true/false), else the stage's default."""
+    track = cfg.get("track")
+    return default if track is None else bool(track)
+
+
+_READY: set[str] = set()    # stores this process has made sure exist
+
+
+def ensure_store(uri: str) -> None:
+    """Create (or upgrade) a SQLite store once, under an inter-process file lock.
+
+    MLflow creates the schema with Alembic migrations when a client first opens
+    an empty database; parallel processes on a fresh file race there and most
+    fail.  The first process to take ``<db>.lock`` creates the store, the others
+    find it ready.  MLflow caches the store per URI, so later clients reuse it.
+    """
+    if not uri.startswith("sqlite:///") or uri in _READY:
+        return
+    from filelock import FileLock
+    from mlflow import MlflowClient
+
+    db = Path(uri[len("sqlite:///"):])
+    db.parent.mkdir(parents=True, exist_ok=True)
+    with FileLock(f"{db}.lock", timeout=600):
+        retry_locked(MlflowClient(uri).search_experiments, max_results=1)
+    _READY.add(uri)
 
 
 def artifact_root(uri: str, experiment: str) -> str | None:
@@ -111,6 +156,9 @@ class _Tracker(_Null):
 
     def log_artifact(self, path) -> None:
         retry_locked(self._mlflow.log_artifact, str(path))
+        sig = Path(f"{path}.sig")          # a signed pickle travels with its signature
+        if sig.is_file():
+            retry_locked(self._mlflow.log_artifact, str(sig))
 
     def log_artifacts(self, path, artifact_path=None) -> None:
         retry_locked(self._mlflow.log_artifacts, str(path), artifact_path)
@@ -133,12 +181,13 @@ def connect(cfg) -> str:
     _quiet_mlflow()
     uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
     mlflow.set_tracking_uri(uri)
+    ensure_store(uri)
     return uri
 
 
 def client(cfg):
-    """An ``MlflowClient`` on ``cfg.tracking_uri``; stages that read runs need ``track=true``."""
-    if not cfg.get("track", True):
+    """An ``MlflowClient`` on ``cfg.tracking_uri``; stages that read runs need ``track`` on."""
+    if not enabled(cfg):
         from .errors import ConfigError
 
         raise ConfigError("this stage reads MLflow runs: it needs track=true")
@@ -174,34 +223,201 @@ def config_container(cfg: DictConfig) -> dict:
 
 
 @contextmanager
-def stage_run(cfg: DictConfig, stage: str):
-    """An MLflow run for one stage, with the resolved config logged; yields a tracker.
+def _ending_on_signals():
+    """SIGTERM/SIGINT inside the block raise (SystemExit(143) / KeyboardInterrupt) so the
+    run can be closed; yields a dict whose ``"signal"`` says which one came."""
+    got: dict = {"signal": None}
+    if threading.current_thread() is not threading.main_thread():
+        yield got                              # handlers can only be set in the main thread
+        return
+
+    def handler(signum, frame):
+        got["signal"] = signum
+        if signum == signal.SIGINT:
+            raise KeyboardInterrupt
+        raise SystemExit(128 + signum)
+
+    previous = {s: signal.signal(s, handler) for s in (signal.SIGTERM, signal.SIGINT)}
+    try:
+        yield got
+    finally:
+        for s, h in previous.items():
+            signal.signal(s, h)
+
+
+@contextmanager
+def stage_run(cfg: DictConfig, stage: str, default: bool = True):
+    """An MLflow run for one stage, with the meaningful config logged; yields a tracker.
 
     Inside a sweep (``THERMOCOMP_PARENT_RUN_ID`` set) the run is a child of the
-    sweep's parent run.
+    sweep's parent run.  ``default`` is whether the stage is tracked when
+    ``track`` is null.  The run ends FINISHED, FAILED (an exception), or KILLED
+    (SIGTERM -> exit 143, SIGINT -> exit 130).
     """
-    if not cfg.get("track", True):
+    if not enabled(cfg, default):
         yield _Null()
         return
     import mlflow
 
     uri = connect(cfg)
     exp_id = experiment_id(uri, str(cfg.get("experiment_name", "thermocomp")))
+    overrides = task_overrides()
     tags = {"stage": stage, "run_name": str(cfg.get("name")), "project_root": str(project_root())}
+    if overrides is not None:
+        tags["overrides"] = " ".join(overrides)[:5000]
+    data = (cfg.get("data") or {}).get("path")
+    data = resolve(str(data)) if data else None
+    if stage != "simulate" and data is not None and data.is_dir():   # what promote checks
+        from .files import folder_digest
+
+        tags[DATASET_TAG] = folder_digest(data)
     parent = os.environ.get(PARENT_ENV) or None
-    run = retry_locked(mlflow.start_run, experiment_id=exp_id, run_name=f"{cfg.get('name')}/{stage}",
-                       tags=tags, parent_run_id=parent)
-    status = "FAILED"
+    with _ending_on_signals() as got:
+        run = retry_locked(mlflow.start_run, experiment_id=exp_id, tags=tags, parent_run_id=parent,
+                           run_name=run_name(cfg, overrides))
+        status = "FAILED"
+        try:
+            container = config_container(cfg)
+            retry_locked(mlflow.log_dict, container, "config.yaml")
+            retry_locked(mlflow.log_params, run_params(container, overrides))
+            yield _Tracker(mlflow, run)
+            status = "FINISHED"
+        except KeyboardInterrupt:
+            status = "KILLED"
+            raise
+        except SystemExit:
+            status = "KILLED" if got["signal"] is not None else "FAILED"
+            raise
+        finally:
+            retry_locked(mlflow.end_run, status)
+
+
+# --- what a run is called and what it records ------------------------------------------------
+
+# Config groups in the order they name a run; a group at its default is left out (not the model).
+_GROUPS = (("model", None), ("select", "all"), ("ati", "none"), ("denoise", "none"))
+# Overrides that say where things go or how much is reported, not what is fitted.
+_NOT_NAMING = re.compile(r"^(hydra|tracking_uri|experiment_name|out|model_path|name|track|plots|"
+                         r"compare|promote|replay|serve|data\.(path|interim|processed))([./]|$)"
+                         r"|^eval\.(?!mode$)")
+# Config leaves always logged as params (when present); plus every overridden key.
+PARAM_KEYS = ("name", "out", "seed", "data.path", "data.inputs", "data.targets", "data.reference",
+              "model.name", "select.name", "ati.name", "denoise.name", "eval.mode",
+              "eval.validation")
+_HYPER = ("model.estimator.", "select.selector.")    # the fitted model's own parameters
+
+
+def task_overrides() -> list[str] | None:
+    """The command line's overrides of this job (Hydra's ``overrides.task``), or None."""
+    from hydra.core.hydra_config import HydraConfig
+
+    if not HydraConfig.initialized():
+        return None
     try:
-        container = config_container(cfg)
-        retry_locked(mlflow.log_dict, container, "config.yaml")
-        params = list(_flat_params(container).items())
-        for i in range(0, len(params), 100):
-            retry_locked(mlflow.log_params, dict(params[i:i + 100]))
-        yield _Tracker(mlflow, run)
-        status = "FINISHED"
-    finally:
-        retry_locked(mlflow.end_run, status)
+        return [str(o) for o in HydraConfig.get().overrides.task]
+    except Exception:  # a Hydra config without overrides (composed by hand)
+        return None
+
+
+def _split(override: str) -> tuple[str, str]:
+    key, _, value = override.partition("=")
+    return key.lstrip("+~"), value
+
+
+def _short(value: str) -> str:
+    """A value as a run-name token: no brackets, quotes, spaces, slashes."""
+    value = re.sub(r"[\[\]{}()'\" ]", "", value)
+    value = value.lower() if value in ("True", "False") else value   # a sweep writes `False`
+    return re.sub(r"[/\\:]+", "_", value).strip("_") or "none"
+
+
+def run_name(cfg: DictConfig, overrides: list[str] | None = None) -> str:
+    """A short, stable name of what ran, from what differs from the defaults.
+
+    The model, the non-default selector, ATI and denoiser, ``eval.mode``, the
+    seed when set, then every other override that changes what is fitted
+    (``leaf=value``): ``mlr-pearson-seed1``, ``arx-cmeans-one_step``,
+    ``mlr-inputs=T_1``.  A ``name`` other than ``default`` prefixes it (``weak/mlr``).
+    """
+    parts = []
+    for group, default in _GROUPS:
+        value = (cfg.get(group) or {}).get("name")
+        if value is not None and value != default:
+            parts.append(str(value))
+    mode = (cfg.get("eval") or {}).get("mode")
+    if mode not in (None, "simulation"):
+        parts.append(str(mode))
+    keys = {_split(o)[0] for o in overrides or ()}
+    if "seed" in keys or cfg.get("seed", 0) != 0:
+        parts.append(f"seed{cfg.get('seed')}")
+    named = {g for g, _ in _GROUPS} | {"seed", "eval.mode"}
+    for o in overrides or ():
+        key, value = _split(o)
+        if key in named or _NOT_NAMING.match(key):
+            continue
+        leaf = key.rsplit(".", 1)[-1]
+        if o.startswith("~"):
+            parts.append(f"no-{leaf}")
+        elif "." not in key:               # a config group (sim=..., experiment=...): its choice
+            parts.append(_short(value))
+        else:
+            parts.append(f"{leaf}={_short(value)}")
+    name = "-".join(parts) or "default"
+    if cfg.get("name") not in (None, "default"):
+        name = f"{cfg.get('name')}/{name}"
+    return name[:250]
+
+
+def sweep_name(overrides: list[str], name: str = "default") -> str:
+    """A sweep's parent run name from what it sweeps: ``sweep/model=mlr,pcr-seed=range0,3``."""
+    swept = [(k, v) for k, v in map(_split, overrides)
+             if ("," in v or v.startswith(("range(", "choice(", "glob("))) and not _NOT_NAMING.match(k)]
+    parts = [f"{k.rsplit('.', 1)[-1]}={_short(v)}" for k, v in swept]
+    prefix = "sweep" if name in (None, "default") else f"sweep/{name}"
+    return (f"{prefix}/{'-'.join(parts)}" if parts else prefix)[:250]
+
+
+def run_params(container: dict, overrides: list[str] | None = None) -> dict:
+    """The params worth comparing runs by (not all ~130 leaves; ``config.yaml`` has them):
+    :data:`PARAM_KEYS`, the model's and selector's own parameters, every overridden key."""
+    flat = {k: v for k, v in _flat_params(container).items()
+            if not k.rsplit(".", 1)[-1].startswith("_")}          # no _target_ & co
+    keys = [k for k in PARAM_KEYS if k in flat] + [k for k in flat if k.startswith(_HYPER)]
+    for o in overrides or ():
+        key = _split(o)[0]
+        if key.startswith(("hydra", "tracking_uri", "experiment_name", "track")):
+            continue
+        if f"{key}.name" in flat:           # a config group choice: its name, not its leaves
+            keys.append(f"{key}.name")
+        else:
+            keys += [k for k in flat if k == key or k.startswith(key + ".")]
+    return {k: flat[k] for k in dict.fromkeys(keys)}
+
+
+def headline_metrics(metrics: dict) -> dict:
+    """The ~10 figures per target a user compares runs by, as ``<target>.<block>.<figure>``.
+
+    Validation RMSE and Rsd SM, test RMSE, Rsd SM/SD, RMS before/after, E_P95 of
+    the residual at 1 h and 8 h (when the campaigns are that long), the other
+    ``eval.mode``'s test RMSE and the persistence baseline's.  (``fit_time_s``
+    is logged by the stage that fits.)
+    """
+    from .leaderboard import HOUR_S, e_p95_at
+
+    out = {}
+    for t, m in metrics.get("targets", {}).items():
+        val, test = m.get("validation") or {}, m.get("test") or {}
+        figures = {"val.rmse": val.get("rmse"), "val.rsd_mean": val.get("rsd_mean")}
+        figures.update({f"test.{k}": test.get(k)
+                        for k in ("rmse", "rsd_mean", "rsd_sd", "rms_before", "rms_after")})
+        figures["test.e_p95_1h"] = e_p95_at(test.get("e_p95"), HOUR_S)
+        figures["test.e_p95_8h"] = e_p95_at(test.get("e_p95"), 8 * HOUR_S)
+        for other in ("test_one_step", "test_simulation"):
+            if m.get(other):
+                figures[f"{other}.rmse"] = m[other].get("rmse")
+        figures["persistence.rmse"] = (m.get("persistence") or {}).get("rmse")
+        out.update({f"{t}.{k}": v for k, v in figures.items() if v is not None})
+    return out
 
 
 def start_parent_run(cfg: DictConfig, run_name: str, tags: dict | None = None) -> str:

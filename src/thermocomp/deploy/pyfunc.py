@@ -6,10 +6,21 @@ Output: the correction per axis in µm, ``C_<axis> = -Ê_<axis>`` (what to add
 to the axis command to cancel the predicted thermal error ``E_<axis>``), and
 ``n_clamped``, the number of inputs of that row clamped to the training envelope.
 
-State is kept between calls (one stream per loaded model).  A call with
-``params={"reset": true}`` starts a new campaign: its first row becomes the
-reference sample (``T_`` inputs are taken relative to it) and every memory
-(AR terms, causal denoiser) is cleared.  A freshly loaded model starts reset.
+State is kept between calls, one stream per ``session`` parameter
+(``params={"session": "machine-7"}``; callers that send none share the session
+``"default"``), so several machines can call one server.  A call with
+``params={"reset": true}`` starts a new campaign in its session: its first row
+becomes the reference sample (``T_`` inputs are taken relative to it) and every
+memory (AR terms, causal denoiser) is cleared.  A new session starts reset; at
+most :data:`MAX_SESSIONS` are kept (the least recently used one is dropped and
+starts reset if it calls again).  The state lives in the serving *process*:
+with several server workers each worker holds its own sessions, so serve with
+one worker (``thermocomp serve`` does).
+
+The pickled :class:`StreamingCompensator` travels with its signature
+(:mod:`thermocomp.signing`), checked before it is unpickled: the serving
+machine needs the project key (``THERMOCOMP_SIGNING_KEY`` or the key file) of
+the machine that promoted the model.
 
 Depends on the core and MLflow only: no Hydra, no stages.  The model carries
 the ``thermocomp`` package source (``code_paths``), so a serving environment
@@ -18,9 +29,9 @@ needs only its third-party requirements.
 
 from __future__ import annotations
 
-import pickle
 import tempfile
 import threading
+from collections import OrderedDict
 from pathlib import Path
 
 import mlflow
@@ -31,10 +42,14 @@ from mlflow.models import ModelSignature
 from mlflow.protos.databricks_pb2 import INVALID_PARAMETER_VALUE
 from mlflow.types import ColSpec, ParamSchema, ParamSpec, Schema
 
+from .. import signing
 from .streaming import StreamingCompensator
 
 MODEL_NAME = "compensator"          # artifact name of the pyfunc model inside a run
 COMPENSATOR_ARTIFACT = "compensator"  # the pickled StreamingCompensator inside the model
+SIGNATURE_ARTIFACT = "compensator_sig"  # its signature (HMAC, thermocomp.signing)
+DEFAULT_SESSION = "default"
+MAX_SESSIONS = 1024
 CORRECTION_PREFIX = "C_"
 
 
@@ -53,23 +68,39 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
     def __init__(self, streaming: StreamingCompensator | None = None):
         self.streaming = streaming
         self._lock = threading.Lock()
+        self._sessions: OrderedDict = OrderedDict()   # session -> stream state, LRU order
 
     def load_context(self, context) -> None:
-        if context is not None and COMPENSATOR_ARTIFACT in (context.artifacts or {}):
-            with open(context.artifacts[COMPENSATOR_ARTIFACT], "rb") as f:
-                self.streaming = pickle.load(f)
+        artifacts = (context.artifacts or {}) if context is not None else {}
+        if COMPENSATOR_ARTIFACT in artifacts:
+            # the signature is checked on the bytes before anything is unpickled
+            self.streaming = signing.load(artifacts[COMPENSATOR_ARTIFACT], StreamingCompensator,
+                                          sig=artifacts.get(SIGNATURE_ARTIFACT))
         self.streaming.reset()
+        self._sessions.clear()
+
+    def _state(self, session: str, reset: bool):
+        """The stream state of ``session`` (a fresh one when new or reset), most recent last."""
+        if reset or session not in self._sessions:
+            self.streaming.reset()
+            self._sessions[session] = self.streaming._snapshot()
+            while len(self._sessions) > MAX_SESSIONS:
+                self._sessions.popitem(last=False)
+        self._sessions.move_to_end(session)
+        return self._sessions[session]
 
     def predict(self, context, model_input: pd.DataFrame, params: dict | None = None) -> pd.DataFrame:
         params = params or {}
-        # Serving may call from several threads: one stream, one sample order.
+        session = str(params.get("session") or DEFAULT_SESSION)
+        # Serving may call from several threads: one session's samples in order, one at a time.
         with self._lock:
-            if params.get("reset"):
-                self.streaming.reset()
+            self.streaming._restore(self._state(session, bool(params.get("reset"))))
             try:
                 pred = self.streaming.predict(pd.DataFrame(model_input))
             except ValueError as exc:  # OutOfEnvelopeError, ContractError: the caller's input
                 raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
+            finally:  # a refused block leaves the session where it was (predict rolls back)
+                self._sessions[session] = self.streaming._snapshot()
         out = pd.DataFrame({correction_column(t): -pred[t].to_numpy(float)
                             for t in self.streaming.targets_})
         out["n_clamped"] = pred["n_clamped"].to_numpy(np.int64)
@@ -77,13 +108,14 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
 
 
 def signature(streaming: StreamingCompensator) -> ModelSignature:
-    """Input/output schema (and the ``reset`` parameter) of the deployed compensator."""
+    """Input/output schema (and the ``reset``, ``session`` parameters) of the deployed compensator."""
     inputs = Schema([ColSpec("double", c) for c in streaming.columns_]
                     + [ColSpec("double", "time", required=streaming.time_required_)])
     outputs = Schema([ColSpec("double", correction_column(t)) for t in streaming.targets_]
                      + [ColSpec("long", "n_clamped")])
     return ModelSignature(inputs=inputs, outputs=outputs,
-                          params=ParamSchema([ParamSpec("reset", "boolean", False)]))
+                          params=ParamSchema([ParamSpec("reset", "boolean", False),
+                                               ParamSpec("session", "string", DEFAULT_SESSION)]))
 
 
 # Third-party distributions the core imports when a compensator is unpickled (the package
@@ -102,17 +134,16 @@ def _requirements(pickled: bytes = b"") -> list[str]:
 def _model_kwargs(streaming: StreamingCompensator, pickle_path: Path) -> dict:
     here = Path(__file__).resolve().parent
     return dict(python_model=str(here / "model_code.py"),
-                artifacts={COMPENSATOR_ARTIFACT: str(pickle_path)}, signature=signature(streaming),
-                code_paths=[str(here.parent)],
+                artifacts={COMPENSATOR_ARTIFACT: str(pickle_path),
+                           SIGNATURE_ARTIFACT: str(signing.sig_path(pickle_path))},
+                signature=signature(streaming), code_paths=[str(here.parent)],
                 pip_requirements=_requirements(Path(pickle_path).read_bytes()))
 
 
 def _pickled(streaming: StreamingCompensator, folder: str) -> Path:
+    """``<folder>/compensator.pkl`` and its signature ``compensator.pkl.sig``."""
     streaming.reset()
-    path = Path(folder) / "compensator.pkl"
-    with open(path, "wb") as f:
-        pickle.dump(streaming, f)
-    return path
+    return signing.dump(streaming, Path(folder) / "compensator.pkl")
 
 
 def save_compensator(streaming: StreamingCompensator, path, input_example=None) -> Path:

@@ -14,13 +14,13 @@ nothing is done twice on the DVC path.
 from __future__ import annotations
 
 import json
-import pickle
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
+from sklearn.base import BaseEstimator
 from sklearn.frozen import FrozenEstimator
 
-from .. import io
+from .. import io, signing
 from ..compensator import Compensator
 from ..evaluation import require_split
 from ..files import folder_digest
@@ -65,8 +65,7 @@ def processed_data(cfg: DictConfig):
         return None
     den = None
     if (root / DENOISER_PKL).is_file():
-        with open(root / DENOISER_PKL, "rb") as f:
-            den = pickle.load(f)
+        den = signing.load(root / DENOISER_PKL, BaseEstimator)   # signature checked first
     return io.load_interim(root), den
 
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import pickle
 import sys
 import time
 from pathlib import Path
@@ -10,10 +9,9 @@ from pathlib import Path
 from hydra.utils import instantiate
 from omegaconf import DictConfig, OmegaConf
 
-from .. import io
+from .. import io, signing
 from ..compensator import MODES, Compensator
 from ..errors import ConfigError
-from ..files import atomic_write_bytes
 from ..frame import REFERENCES
 from ..paths import resolve
 
@@ -93,15 +91,16 @@ def build_denoiser(cfg: DictConfig):
 
 
 def save_model(comp: Compensator, path) -> Path:
-    return atomic_write_bytes(resolve(path), pickle.dumps(comp))
+    """Pickle ``comp`` to ``path`` with its signature ``<path>.sig`` (:mod:`thermocomp.signing`)."""
+    return signing.dump(comp, resolve(path))
 
 
 def load_model(path) -> Compensator:
+    """The :class:`Compensator` pickled at ``path``; its signature is checked before unpickling."""
     path = resolve(path)
     if not path.is_file():
         raise io.ContractError("no trained model; run `thermocomp train` first", file=path)
-    with open(path, "rb") as f:
-        return pickle.load(f)
+    return signing.load(path, Compensator)
 
 
 def result_table(metrics: dict) -> str:

@@ -10,14 +10,13 @@ fitted denoiser (``denoiser.pkl``) instead of denoising again.  With
 
 from __future__ import annotations
 
-import pickle
 import shutil
 import time
 
 import numpy as np
 from omegaconf import DictConfig
 
-from .. import io
+from .. import io, signing
 from ..denoise import EMDDenoiser, denoise_campaigns, fit_denoiser
 from ..evaluation import require_split
 from ..files import atomic_dir, write_json
@@ -73,8 +72,7 @@ def denoise(cfg: DictConfig) -> dict:
         for name in (MANIFEST, INGEST_REPORT):
             shutil.copy2(src / name, tmp / name)
         if fitted is not None:
-            with open(tmp / DENOISER_PKL, "wb") as f:
-                pickle.dump(fitted, f)
+            signing.dump(fitted, tmp / DENOISER_PKL)   # + denoiser.pkl.sig
         write_json(tmp / DENOISE_JSON, report)
     figures = resolve(cfg.out) / "denoise"
     with atomic_dir(figures) as tmp:

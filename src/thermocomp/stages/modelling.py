@@ -18,7 +18,7 @@ from ..evaluation import (VAL_FOLDS, ambient_by_campaign, anova, ati_report,
 from ..files import atomic_dir, write_json
 from ..iso10791 import a3_campaign
 from ..paths import resolve
-from ..tracking import stage_run
+from ..tracking import headline_metrics, stage_run
 from .artifacts import fit_from_artifacts
 from .common import (Clock, build_compensator, check_config, data_options, load_model,
                      result_table, save_model, say)
@@ -96,8 +96,7 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
         path = write_json(out / "metrics.json", metrics)
         clock.lap("write")
     clock.lap("figures")  # drawing still under way once every number is written
-    tracker.log_metrics({"targets": targets, "anova": metrics["anova"],
-                         "ati": _ati_summary(metrics.get("ati", {}))})
+    tracker.log_metrics(headline_metrics(metrics))     # the full metrics.json is the artifact
     tracker.log_artifact(path)
     if cfg.plots != "none":  # not the figures an earlier run left
         tracker.log_artifacts(out / "plots", "plots")
@@ -133,14 +132,6 @@ def _plots_folder(out, level: str):
 
     with atomic_dir(out / "plots") as folder, FigurePool() as pool:
         yield pool.submit, folder
-
-
-def _ati_summary(ati: dict) -> dict:
-    """The ATI scalars worth an MLflow metric: intervals and test SM/SD per model."""
-    return {t: {"n_intervals": e["n_intervals"],
-                "test": {k: {"rsd_mean": v["rsd_mean"], "rsd_sd": v["rsd_sd"]}
-                         for k, v in e["test"].items()}}
-            for t, e in ati.get("targets", {}).items()}
 
 
 def _train_predictions(comp: Compensator, ds, mode: str) -> dict:

@@ -2,8 +2,11 @@
 
 1. The candidate is ``promote.run_id``, or the best child of the sweep
    ``compare.sweep`` (default: the latest) by ``promote.criterion``, a
-   validation figure (``val_*``; a test figure is refused).
-2. Its ``model.pkl`` becomes a deployable :class:`~thermocomp.deploy.StreamingCompensator`
+   validation figure (``val_*``; a test figure is refused), among the children
+   scored on ``data.path`` (their ``dataset_hash`` tag): a dataset no child
+   was scored on is refused, naming the hashes the sweep saw.
+2. Its ``model.pkl`` (signature checked before unpickling: a tracking server
+   may have no authentication) becomes a deployable :class:`~thermocomp.deploy.StreamingCompensator`
    (training envelope from the train split of ``data.path``), checked to stream
    exactly as it predicts in batch (causality), and is registered as an
    ``mlflow.pyfunc`` model with a signature: a new version of ``promote.model_name``,
@@ -17,19 +20,24 @@
    ``promote.min_improvement``; a champion with no comparable validation score
    stays unless ``promote.force``.  No registry stages (deprecated): aliases
    and tags only.
+4. Idempotent: a candidate already registered on this dataset (the same run,
+   the same model bytes ``model_digest``, or the champion's figures) gets no
+   new version; promoting the champion again says ``already champion: version N``.
 
 Writes ``<out>/promote.json``.
 """
 
 from __future__ import annotations
 
-import pickle
+import hashlib
 import subprocess
 import tempfile
+from pathlib import Path
 
 from omegaconf import DictConfig
 
-from .. import io
+from .. import io, signing
+from ..compensator import Compensator
 from ..deploy import StreamingCompensator, stream_scores, streaming_deviation
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
@@ -37,8 +45,8 @@ from ..files import folder_digest, write_json
 from ..leaderboard import beats, is_validation, rank, summary
 from ..paths import project_root, resolve
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
+from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
-from ..tracking import connect, retry_locked
 from .common import check_config, data_options, say
 
 
@@ -57,10 +65,17 @@ def git_commit() -> tuple[str, bool]:
         return "unknown", False
 
 
-def _best_run(cfg: DictConfig, client, uri: str) -> str:
+def _best_run(cfg: DictConfig, client, uri: str, dataset_hash: str, data_path) -> str:
+    """The best finished child of the sweep among those scored on this dataset."""
     parent = parent_run_id(cfg, client)
+    seen = {r.info.run_id: r.data.tags.get(DATASET_TAG) for r in child_runs(client, parent)}
+    if seen and dataset_hash not in seen.values():
+        hashes = ", ".join(sorted({(h or "none")[:12] for h in seen.values()}))
+        raise ConfigError(f"data.path={data_path} (dataset {dataset_hash[:12]}) was not scored by "
+                          f"any run of sweep {parent} (datasets seen: {hashes}); promote with "
+                          f"the data.path the sweep ran on")
     rows = [r for r in sweep_rows(client, uri, parent, str(cfg.promote.target))
-            if r["status"] == "FINISHED"]
+            if r["status"] == "FINISHED" and seen.get(r["run_id"]) in (dataset_hash, None)]
     if not rows:
         raise ConfigError(f"sweep {parent} has no finished child run to promote")
     try:
@@ -70,7 +85,9 @@ def _best_run(cfg: DictConfig, client, uri: str) -> str:
     return str(table["run_id"].iloc[0])
 
 
-def _load_run_model(run_id: str, uri: str):
+def _load_run_model(run_id: str, uri: str) -> tuple[Compensator, str]:
+    """The run's compensator and the SHA-256 of its pickle; the signature is checked before
+    anything is unpickled (a tracking server may not be trusted)."""
     import mlflow
 
     with tempfile.TemporaryDirectory() as tmp:
@@ -80,8 +97,13 @@ def _load_run_model(run_id: str, uri: str):
         except Exception as exc:
             raise ConfigError(f"run {run_id} has no model.pkl artifact (promote a `run` or "
                               f"`train` run): {' '.join(str(exc).split())[:200]}") from None
-        with open(path, "rb") as f:
-            return pickle.load(f)
+        try:
+            mlflow.artifacts.download_artifacts(run_id=run_id, artifact_path="model.pkl.sig",
+                                                dst_path=tmp, tracking_uri=uri)
+        except Exception:  # verified_bytes says "not signed by this project"
+            pass
+        digest = hashlib.sha256(Path(path).read_bytes()).hexdigest()
+        return signing.load(path, Compensator), digest
 
 
 def _figures(targets: dict, cfg: DictConfig) -> dict:
@@ -130,8 +152,55 @@ def _current_champion(client, name: str, alias: str):
         return None
 
 
+def _check_dataset(run, run_id: str, dataset_hash: str, data_path) -> None:
+    """Refuse a dataset the candidate was not scored on (its ``dataset_hash`` tag, else its
+    ``data.path`` param for runs made before the tag existed)."""
+    seen = run.data.tags.get(DATASET_TAG)
+    if seen is not None:
+        if seen != dataset_hash:
+            raise ConfigError(f"data.path={data_path} (dataset {dataset_hash[:12]}) is not the "
+                              f"dataset run {run_id} was scored on (dataset {seen[:12]}): promote "
+                              f"it with that data.path")
+        return
+    trained_on = run.data.params.get("data.path")
+    if trained_on and resolve(trained_on) != data_path:
+        raise ConfigError(f"run {run_id} was trained and validated on data.path={trained_on}, "
+                          f"not {data_path}: promote it with that data.path")
+
+
+def _registered(client, name: str, run_id: str, digest: str, dataset_hash: str, champion,
+                figures: dict):
+    """The version that already holds this candidate, or None.
+
+    The same run, or the same model bytes, on the same dataset; or a champion
+    whose figures (validation and test, as tagged) equal the candidate's there.
+    """
+    if champion is not None and (champion.tags or {}).get("dataset_hash") == dataset_hash:
+        tags = champion.tags
+        if all(tags.get(f"metric.{k}") == _tag(v) for k, v in figures.items()):
+            return champion
+    try:
+        versions = retry_locked(client.search_model_versions, f"name='{name}'")
+    except Exception:  # no registered model yet
+        return None
+    for v in sorted(versions, key=lambda v: int(v.version)):
+        tags = v.tags or {}
+        if tags.get("dataset_hash") == dataset_hash and (
+                tags.get("source_run_id") == run_id or tags.get("model_digest") == digest):
+            return v
+    return None
+
+
+def _tag(value) -> str:
+    return "null" if value is None else f"{value:.6g}"
+
+
 def promote(cfg: DictConfig) -> dict:
-    """Register the candidate's compensator; move the alias if it beats the champion."""
+    """Register the candidate's compensator; move the alias if it beats the champion.
+
+    Idempotent: a candidate already registered (same run, same model bytes, or
+    the champion's figures on the same dataset) gets no new version.
+    """
     check_config(cfg)
     import mlflow
 
@@ -145,18 +214,17 @@ def promote(cfg: DictConfig) -> dict:
                           f"val_rsd_sd)")
     client = mlflow_client(cfg)
     uri = connect(cfg)
-    run_id = str(opts.run_id) if opts.get("run_id") else _best_run(cfg, client, uri)
-    say(f"candidate run {run_id}")
-    comp = _load_run_model(run_id, uri)
-    run_params = retry_locked(client.get_run, run_id).data.params
-
     data_path = resolve(cfg.data.path)
-    trained_on = run_params.get("data.path")
-    if trained_on and resolve(trained_on) != data_path:
-        raise ConfigError(f"run {run_id} was trained and validated on data.path={trained_on}, "
-                          f"not {data_path}: promote it with that data.path")
-    cand_score, val_figures, mode = _validation_score(run_id, uri, cfg)
     ds, _ = io.read_dataset(data_path, data_options(cfg))
+    dataset_hash = folder_digest(data_path)
+    run_id = (str(opts.run_id) if opts.get("run_id")
+              else _best_run(cfg, client, uri, dataset_hash, data_path))
+    say(f"candidate run {run_id}")
+    run = retry_locked(client.get_run, run_id)
+    _check_dataset(run, run_id, dataset_hash, data_path)
+    run_params = run.data.params
+    comp, digest = _load_run_model(run_id, uri)
+    cand_score, val_figures, mode = _validation_score(run_id, uri, cfg)
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     try:
         streaming = StreamingCompensator.from_training(
@@ -179,25 +247,29 @@ def promote(cfg: DictConfig) -> dict:
     test_figures = {k: v for k, v in _figures(stream_scores(streaming, test, dt, statistic, points),
                                               cfg).items() if not is_validation(k)}
     cand_figures = {**val_figures, **test_figures}
-    dataset_hash = folder_digest(data_path)
 
     name, alias = str(opts.model_name), str(opts.alias)
     champion = _current_champion(client, name, alias)
+    existing = _registered(client, name, run_id, digest, dataset_hash, champion, cand_figures)
     champ_score, champ_note = None, None
     if champion is not None:
         champ_score, champ_note = _champion_validation(champion, criterion, str(opts.target),
                                                        dataset_hash, mode)
-
-    example = test[test_ids[0]][streaming.columns_ + ["time"]].head(5)
-    retry_locked(mlflow.start_run, run_id=run_id)
-    try:
-        info = log_compensator(streaming, input_example=example, registered_model_name=name)
-    finally:
-        retry_locked(mlflow.end_run)
-    version = str(info.registered_model_version)
+    if existing is not None:
+        version = str(existing.version)
+    else:
+        example = test[test_ids[0]][streaming.columns_ + ["time"]].head(5)
+        retry_locked(mlflow.start_run, run_id=run_id)
+        try:
+            info = log_compensator(streaming, input_example=example, registered_model_name=name)
+        finally:
+            retry_locked(mlflow.end_run)
+        version = str(info.registered_model_version)
 
     if champion is None:
         moved, why = True, "no champion yet"
+    elif version == str(champion.version):
+        moved, why = False, f"already champion: version {version}"
     elif champ_score is None:
         moved = bool(opts.get("force", False))
         why = (f"the champion (version {champion.version}) has no comparable validation score "
@@ -207,32 +279,39 @@ def promote(cfg: DictConfig) -> dict:
         verb = "beats" if moved else "does not beat"
         why = (f"validation {criterion} {_fmt(cand_score)} {verb} the champion's "
                f"{_fmt(champ_score)} (version {champion.version}) on the same dataset")
-    commit, dirty = git_commit()
-    tags = {"dataset_hash": dataset_hash, "dataset": ds.name, "git_commit": commit,
-            "git_dirty": dirty, "source_run_id": run_id,
-            "model": run_params.get("model.name"), "select": run_params.get("select.name"),
-            "criterion": criterion, "criterion_target": str(opts.target), "eval_mode": mode,
-            "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
-            "envelope_policy": str(opts.envelope.policy),
-            "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
-                correction_column(t) for t in streaming.targets_),
-            "promoted": moved, "decision": why}
-    tags.update({f"metric.{k}": "null" if v is None else f"{v:.6g}" for k, v in cand_figures.items()})
+    tags = {"decision": why}
+    if existing is None:       # a new version: what it is and where it comes from
+        commit, dirty = git_commit()
+        tags.update({"dataset_hash": dataset_hash, "dataset": ds.name, "git_commit": commit,
+                     "git_dirty": dirty, "source_run_id": run_id, "model_digest": digest,
+                     "model": run_params.get("model.name"), "select": run_params.get("select.name"),
+                     "criterion": criterion, "criterion_target": str(opts.target), "eval_mode": mode,
+                     "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
+                     "envelope_policy": str(opts.envelope.policy),
+                     "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
+                         correction_column(t) for t in streaming.targets_), "promoted": moved})
+        tags.update({f"metric.{k}": _tag(v) for k, v in cand_figures.items()})
+    elif moved:
+        tags["promoted"] = True
     for k, v in tags.items():
         retry_locked(client.set_model_version_tag, name, version, k, str(v))
+    kept = "already registered, no new version" if existing is not None else "registered"
     if moved:
         retry_locked(client.set_registered_model_alias, name, alias, version)
-        say(f"{name} version {version} is now @{alias}: {why}")
+        say(f"{name} version {version} ({kept}) is now @{alias}: {why}")
     else:
-        say(f"{name} version {version} registered; @{alias} stays on version "
+        say(f"{name} version {version} {kept}; @{alias} stays on version "
             f"{champion.version}: {why}")
     report = {"model_name": name, "alias": alias, "version": version, "run_id": run_id,
-              "moved": moved, "reason": why, "criterion": criterion,
+              "moved": moved, "registered": existing is None, "reason": why,
+              "criterion": criterion,
               "candidate": {"score": cand_score, "figures": cand_figures,
                             "validation": val_figures, "test_reported": test_figures},
               "champion": None if champion is None else {"version": str(champion.version),
                                                          "score": champ_score},
               "stream_deviation_um": deviation, "model_uri": f"models:/{name}/{version}"}
     write_json(resolve(cfg.out) / "promote.json", report)
-    print(f"{name} v{version}: {'promoted to @' + alias if moved else 'not promoted'} ({why})")
+    state = ("promoted to @" + alias if moved else
+             f"{why}" if version == str(getattr(champion, "version", "")) else "not promoted")
+    print(f"{name} v{version}: {state}" + ("" if state == why else f" ({why})"))
     return report

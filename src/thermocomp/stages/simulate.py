@@ -26,7 +26,7 @@ def simulate(cfg: DictConfig) -> dict:
     rows = int(sum(len(df) for df in ds.campaigns.values()))
     say(f"wrote {len(ds.campaigns)} campaigns, {rows} rows to {path} "
         f"({time.perf_counter() - t0:.1f} s); truth: {truth_path}")
-    with stage_run(cfg, "simulate") as tr:
+    with stage_run(cfg, "simulate", default=False) as tr:   # logged only with track=true
         tr.log_metrics({"campaigns": len(ds.campaigns), "rows": rows})
         tr.log_artifact(truth_path)
     return {"path": str(path), "truth": str(truth_path)}

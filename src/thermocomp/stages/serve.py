@@ -1,0 +1,85 @@
+"""`thermocomp serve`: the registered compensator over HTTP, without an activated venv.
+
+Runs ``mlflow models serve -m <serve.model> --env-manager local -w 1`` with
+
+* the project's tracking store (``tracking_uri`` resolved against the project
+  root, as every stage does) in ``MLFLOW_TRACKING_URI``, so ``models:/...``
+  resolves there and no stray ``./mlflow.db`` appears in the current folder;
+* the directory of this Python's executables first on ``PATH``, so the server
+  (``uvicorn``) is found even when the venv is not activated.
+
+One worker: the served compensator keeps one stream state per ``session``
+parameter inside the serving process; several workers would each hold their
+own, and a session's samples would be split between them.  The process is
+replaced by the server (``exec``): stop it with Ctrl-C or SIGTERM.
+
+Request: ``POST http://<host>:<port>/invocations`` with
+``{"dataframe_split": {"columns": [...], "data": [[...]]}, "params": {"session": "machine-7",
+"reset": true}}`` (``reset`` on the first block of each campaign).
+"""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+
+from omegaconf import DictConfig
+
+from ..errors import ConfigError
+from ..paths import resolve
+from ..tracking import DEFAULT_URI, resolve_uri, retry_locked
+from .common import say
+
+
+def _check_model(model: str, uri: str) -> str:
+    """``model`` as ``mlflow models serve`` takes it; refuse one that does not exist (exit 2)."""
+    if not model.startswith("models:/"):
+        path = resolve(model)
+        if not (path / "MLmodel").is_file():
+            raise ConfigError(f"serve.model={model}: neither models:/<name>@<alias> nor a pyfunc "
+                              f"model folder (no {path / 'MLmodel'})")
+        return str(path)
+    from mlflow import MlflowClient
+
+    from ..tracking import ensure_store
+
+    ensure_store(uri)
+    name, sep, alias = model[len("models:/"):].partition("@")
+    client = MlflowClient(uri, registry_uri=uri)
+    try:
+        if sep:
+            retry_locked(client.get_model_version_by_alias, name, alias)
+        else:
+            name, _, version = name.partition("/")
+            retry_locked(client.get_model_version, name, version)
+    except Exception:
+        raise ConfigError(f"serve.model={model}: no such model version in {uri}; run "
+                          f"`thermocomp promote` first") from None
+    return model
+
+
+def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
+    """``(argv, environment)`` of the server ``thermocomp serve`` runs."""
+    opts = cfg.serve
+    uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
+    model = _check_model(str(opts.model), uri)
+    port = int(opts.port)
+    if not 0 < port < 65536:
+        raise ConfigError(f"serve.port={opts.port} is not a TCP port")
+    bin_dir = str(Path(sys.executable).parent)
+    env = {**os.environ, "MLFLOW_TRACKING_URI": uri, "MLFLOW_REGISTRY_URI": uri,
+           "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")])}
+    argv = [str(Path(bin_dir) / "mlflow"), "models", "serve", "-m", model, "--env-manager", "local",
+            "-h", str(opts.host), "-p", str(port), "-w", "1", "-t", str(int(opts.timeout_s))]
+    return argv, env
+
+
+def serve(cfg: DictConfig) -> None:
+    """Replace this process by ``mlflow models serve`` (see the module doc)."""
+    argv, env = serve_command(cfg)
+    say(f"serving {cfg.serve.model} on http://{cfg.serve.host}:{int(cfg.serve.port)}/invocations "
+        f"(one worker; store {env['MLFLOW_TRACKING_URI']})")
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os.execve(argv[0], argv, env)
