@@ -23,9 +23,9 @@ from omegaconf import DictConfig
 
 
 def _say(msg: str) -> None:
-    import sys
+    from .log import logger
 
-    print(f"[thermocomp] {msg}", file=sys.stderr, flush=True)
+    logger.info(msg)
 
 
 class MlflowSweepCallback(Callback):
