@@ -17,12 +17,15 @@ from .log import level_name
 log = logging.getLogger("thermocomp")
 
 
-def bar(iterable=None, desc: str | None = None, total: int | None = None, unit: str = "it", **kwargs):
-    """``tqdm(iterable)`` on stderr: shown on a TTY (``disable=None``) or at ``-v``, hidden at ``-q``."""
+def bar(iterable=None, desc: str | None = None, total: int | None = None, unit: str = "it",
+        disable: bool | None = None, **kwargs):
+    """``tqdm(iterable)`` on stderr: shown on a TTY or at ``-v``, hidden at ``-q`` or when the
+    caller passes ``disable=True`` (a loop too short to need one)."""
     from tqdm import tqdm
 
     level = level_name()
-    disable = True if level == "WARNING" else (False if level == "DEBUG" else None)
+    if disable is not True:
+        disable = True if level == "WARNING" else (False if level == "DEBUG" else None)
     return tqdm(iterable, desc=desc, total=total, unit=unit, file=sys.stderr, disable=disable,
                 leave=False, dynamic_ncols=True, **kwargs)
 

@@ -201,6 +201,10 @@ def stage_run(cfg: DictConfig, stage: str):
         yield _Tracker(mlflow, run)
         status = "FINISHED"
     finally:
+        from .log import current_file  # the run's log so far (thermocomp.log), failed runs too
+
+        if current_file() is not None and current_file().is_file():
+            retry_locked(mlflow.log_artifact, str(current_file()))
         retry_locked(mlflow.end_run, status)
 
 
