@@ -6,12 +6,17 @@ STAMP   := $(VENV)/.installed
 
 .PHONY: run test install benchmark clean team-test
 
+# Each install step says what it does and how long it took; pip shows its own progress bars.
+STEP = @step() { echo "[install] $$1 ..."; s=$$(date +%s); shift; "$$@" || exit $$?; \
+	echo "[install] done in $$(( $$(date +%s) - s )) s"; }; step
+
 $(STAMP): pyproject.toml requirements.lock
-	test -x $(BIN)/python || $(PY) -m venv $(VENV)
-	$(BIN)/python -m pip install -q --upgrade "pip>=24"
+	$(STEP) "virtual environment $(VENV)" sh -c 'test -x $(BIN)/python || $(PY) -m venv $(VENV)'
+	$(STEP) "pip" $(BIN)/python -m pip install --progress-bar on --upgrade "pip>=24"
 	# torch first and alone: the CPU wheel of exactly this version is on disk.
-	$(BIN)/python -m pip install -q torch==2.13.0
-	$(BIN)/python -m pip install -q -c requirements.lock -e ".[test]"
+	$(STEP) "torch (CPU)" $(BIN)/python -m pip install --progress-bar on torch==2.13.0
+	$(STEP) "thermocomp and its dependencies (the long step)" \
+		$(BIN)/python -m pip install --progress-bar on -c requirements.lock -e ".[test]"
 	touch $(STAMP)
 
 install: $(STAMP)

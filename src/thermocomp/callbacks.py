@@ -25,9 +25,9 @@ from .tracking import enabled, sweep_name
 
 
 def _say(msg: str) -> None:
-    import sys
+    from .log import logger
 
-    print(f"[thermocomp] {msg}", file=sys.stderr, flush=True)
+    logger.info(msg)
 
 
 class MlflowSweepCallback(Callback):

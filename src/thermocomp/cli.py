@@ -1,19 +1,23 @@
-"""``thermocomp <stage> [overrides]`` (see ``shared/spec/CLI.md``).
+"""``thermocomp <stage> [overrides]`` (see ``docs/cli.md``).
 
 Hydra is the one source of configuration.  A single run composes ``conf/``
 with the compose API (so bad config maps to exit status 2 cleanly); ``-m`` /
 ``--multirun`` and Hydra's own flags (``--cfg job`` ...) go through
 ``hydra.main`` so sweeps, launchers and callbacks work unchanged.
+``-q``/``-v`` (log level) and ``-h`` (this command's help) are ours and never
+reach Hydra.
 
 Exit status: 0 success, 2 bad input or bad config (one line on stderr), 1 otherwise.
 """
 
 from __future__ import annotations
 
+import difflib
 import sys
 import traceback
 
-USAGE = """usage: thermocomp <stage> [key=value ...] [-m]
+USAGE = """usage: thermocomp [-q | -v] <stage> [key=value ...] [-m]
+       thermocomp <stage> --help | --version
 
 stages:
   simulate   write a dataset from the built-in digital twin (sim=<scenario>)
@@ -31,7 +35,68 @@ stages:
 
 overrides: data.path=<dir> data.inputs=[T_*] data.targets=[E_Z] model=mlr select=all denoise=none
            eval.mode=simulation|one_step out=<dir> tracking_uri=<uri> seed=<int>
+options:   -q/--quiet (warnings only)  -v/--verbose (debug, progress bars off a terminal too)
 Relative paths are resolved against the project root."""
+
+# stage -> (what it does, reads, writes, main overrides)
+STAGE_HELP = {
+    "simulate": ("write a dataset from the built-in digital twin", "conf/sim/<scenario>.yaml",
+                 "data.path (default data/raw/<scenario>/) and <data.path>.truth.json",
+                 "sim=<scenario> seed=<int> data.path=<dir> \"sim.generator.effects=[door]\""),
+    "ingest": ("validate a dataset folder", "data.path",
+               "data.interim (data/interim/<name>/: Parquet + ingest_report.json)",
+               "data.path=<dir> data.delimiter=\";\" data.decimal=\",\" data.columns={T0:T_0} "
+               "data.split_overrides={K01:test}"),
+    "denoise": ("denoise the declared inputs", "data.interim",
+                "data.processed (data/processed/<name>/), <out>/denoise/", "denoise=none|emd"),
+    "select": ("choose the inputs per target", "data.interim, data.processed",
+               "models/<name>/selection.json, <out>/select/",
+               "select=all|pearson|greedy_residual|cluster_grey data.targets=[E_Z]"),
+    "train": ("fit the configured model on the train split",
+              "data.interim (+ the denoise/select outputs when they match)",
+              "model_path (models/<name>/model.pkl)", "model=mlr|pcr|arx|arx_rf|lstm|lagbank "
+              "select=... ati=none|cmeans denoise=none|emd"),
+    "evaluate": ("score the trained model on train/test", "data.interim, model_path",
+                 "<out>/metrics.json, <out>/headline.json, <out>/plots/ (PNG + CSV)",
+                 "eval.mode=simulation|one_step plots=summary|test|all|none"),
+    "diagnose": ("residual -> missing effect -> refit -> before/after", "data.path",
+                 "<out>/diagnosis.json, <out>/diagnosis_headline.json, <out>/diagnosis/",
+                 "model=... diagnose.targets=[E_Z] plots=none"),
+    "run": ("ingest .. evaluate in one process; -m for a sweep", "data.path",
+            "<out>/: model.pkl, ingest_report.json, metrics.json, headline.json, plots/",
+            "data.path=<dir> model=... select=... eval.mode=... out=<dir>; "
+            "-m model=mlr,pcr select=all,pearson"),
+    "compare": ("table of a sweep's child runs, best first", "the sweep's MLflow runs",
+                "compare.out: compare.csv, compare.md, compare.json",
+                "compare.sweep=<dir|run id> compare.sort_by=val_rmse compare.target=E_Z"),
+    "promote": ("register the best run's compensator, move @champion if better",
+                "the sweep's MLflow runs", "the MLflow model registry", "promote.* (conf/promote/)"),
+    "replay": ("stream the test campaigns row by row through the deployable compensator",
+               "data.path and a fitted or registered model", "<out>/replay.json",
+               "replay.model=<path|models:/name@alias>"),
+}
+LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
+# Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
+FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params")
+
+
+def version() -> str:
+    from importlib.metadata import PackageNotFoundError
+    from importlib.metadata import version as dist_version
+
+    try:
+        return dist_version("thermocomp")
+    except PackageNotFoundError:  # a source tree without install
+        return "unknown"
+
+
+def stage_help(stage: str) -> str:
+    what, reads, writes, overrides = STAGE_HELP.get(stage, (f"stage {stage}", "-", "-", "-"))
+    return (f"usage: thermocomp [-q | -v] {stage} [key=value ...]\n\n{stage}: {what}\n"
+            f"  reads:     {reads}\n  writes:    {writes}\n  overrides: {overrides}\n"
+            "  common:    out=<dir> name=<run> track=false tracking_uri=<uri> seed=<int> plots=...\n\n"
+            f"full config: thermocomp {stage} --cfg job   (one group: --cfg job --package model)\n"
+            f"Hydra's help: thermocomp {stage} --hydra-help")
 
 
 def _config_errors() -> tuple[type, ...]:
@@ -43,14 +108,17 @@ def _config_errors() -> tuple[type, ...]:
     return (ThermocompError, HydraException, OmegaConfBaseException)
 
 
+def _fail(msg: str):
+    print(f"thermocomp: error: {' '.join(str(msg).split())}", file=sys.stderr)
+    sys.exit(2)
+
+
 def _guarded(fn, *args):
     """Call ``fn``; bad input/config -> one line on stderr and exit 2."""
     try:
         return fn(*args)
     except _config_errors() as exc:
-        msg = " ".join(str(exc).split())
-        print(f"thermocomp: error: {msg}", file=sys.stderr)
-        sys.exit(2)
+        _fail(exc)
 
 
 def _compose(overrides: list[str]):
@@ -70,6 +138,91 @@ def _compose(overrides: list[str]):
     return cfg
 
 
+def lenient(args: list[str]) -> list[str]:
+    """The overrides as Hydra wants them, for the values the README writes.
+
+    ``key=value`` that Hydra's grammar rejects (``data.delimiter=;``, ``data.decimal=,``
+    as bash passes ``";"`` and ``","``) is retried with the value quoted; ``key={...}``
+    on a free-form map (:data:`FREE_MAPS`) becomes ``++key={...}`` (add keys).  Nothing
+    else is rewritten, so a typo still fails.
+    """
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+
+    parser = OverridesParser.create()
+    out = []
+    for arg in args:
+        key, eq, value = arg.partition("=")
+        if arg.startswith("-") or not eq:
+            out.append(arg)
+        elif key in FREE_MAPS and value.startswith("{"):
+            out.append(f"++{arg}")
+        else:
+            try:
+                parser.parse_override(arg)
+                out.append(arg)
+            except Exception:
+                plain = not any(c in value for c in "[]{}()'\"") and not value.endswith("\\")
+                out.append(f"{key}='{value}'" if plain else arg)
+    return out
+
+
+def _fix_key(key: str, config: dict) -> str | None:
+    """``key`` with its first unknown segment replaced by the closest existing one, or None."""
+    node, done = config, []
+    parts = key.split(".")
+    for i, part in enumerate(parts):
+        if not isinstance(node, dict):
+            return None
+        if part not in node:
+            close = _closest(part, [str(k) for k in node])
+            return ".".join([*done, close[0], *parts[i + 1:]]) if close else None
+        node, done = node[part], [*done, part]
+    return None
+
+
+def _closest(word: str, options, n: int = 1) -> list[str]:
+    return difflib.get_close_matches(word, list(options), n=n, cutoff=0.6)
+
+
+def _explain(exc: BaseException) -> str:
+    """Hydra's message, with the closest option or key when the user made a typo."""
+    import re
+
+    from hydra.errors import MissingConfigException
+    from omegaconf import OmegaConf
+
+    msg = " ".join(str(exc).split())
+    if isinstance(exc, MissingConfigException) and exc.missing_cfg_file and exc.options:
+        group, _, option = exc.missing_cfg_file.rpartition("/")
+        ranked = sorted(exc.options, key=lambda o: -difflib.SequenceMatcher(None, option, o).ratio())
+        return f"unknown {group} {option!r}; options, closest first: {', '.join(ranked)}"
+    m = re.match(r"Could not override '([^']+)'", msg)
+    if m:
+        key = m.group(1)
+        close = _fix_key(key, OmegaConf.to_container(_compose([]), resolve=False))
+        if close:
+            return f"unknown config key {key!r}; did you mean {close!r}? ({msg})"
+    return msg
+
+
+def _compose_or_explain(args: list[str]):
+    try:
+        return _compose(args)
+    except _config_errors() as exc:
+        _fail(_explain(exc))
+
+
+def _log_folder(stage: str, cfg):
+    """Where the run's ``thermocomp.log`` goes: the stage's output folder."""
+    from .paths import resolve
+
+    def folder():
+        if stage == "compare" and cfg.get("compare") is not None:
+            return resolve(cfg.compare.out)
+        return resolve(cfg.out) if cfg.get("out") else None
+    return folder
+
+
 def _per_job(cfg):
     """In a multirun every job writes under its own Hydra output folder."""
     from hydra.core.hydra_config import HydraConfig
@@ -84,6 +237,15 @@ def _per_job(cfg):
     return cfg
 
 
+def _run(stage: str, fn, cfg, args: list[str]):
+    """Run stage ``fn`` on ``cfg`` with its log file (``<out>/thermocomp.log`` on success)."""
+    from . import log
+
+    with log.run_log(_log_folder(stage, cfg)):
+        log.logger.debug("thermocomp %s: %s %s", version(), stage, " ".join(args))
+        return _guarded(fn, cfg)
+
+
 def _hydra_main(stage: str, args: list[str]) -> None:
     import hydra
 
@@ -94,14 +256,22 @@ def _hydra_main(stage: str, args: list[str]) -> None:
 
     @hydra.main(config_path=str(conf_dir()), config_name="config", version_base="1.3")
     def task(cfg):
-        return _guarded(fn, _per_job(cfg))
+        return _run(stage, fn, _per_job(cfg), args)
 
     sys.argv = [f"thermocomp-{stage}", *args]
     task()
 
 
 def main(argv: list[str] | None = None) -> int:
+    from . import log
+
     argv = list(sys.argv[1:] if argv is None else argv)
+    levels = [LOG_FLAGS[a] for a in argv if a in LOG_FLAGS]
+    argv = [a for a in argv if a not in LOG_FLAGS]
+    log.configure(levels[-1] if levels else "INFO")
+    if argv and argv[0] in ("-V", "--version"):
+        print(f"thermocomp {version()}")
+        return 0
     if not argv or argv[0] in ("-h", "--help", "help"):
         print(USAGE)
         return 0 if argv else 2
@@ -109,15 +279,20 @@ def main(argv: list[str] | None = None) -> int:
     from .stages import STAGES, stage as lookup
 
     if stage not in STAGES:
-        print(f"thermocomp: error: unknown or not yet available stage {stage!r} "
-              f"(available: {', '.join(STAGES)})", file=sys.stderr)
+        close = _closest(stage, STAGES)
+        hint = f"; did you mean {close[0]!r}?" if close else ""
+        print(f"thermocomp: error: unknown stage {stage!r}{hint} (stages: {', '.join(STAGES)})",
+              file=sys.stderr)
         return 2
+    if any(a in ("-h", "--help") for a in args):
+        print(stage_help(stage))
+        return 0
     try:
+        args = lenient(args)
         if any(a.startswith("-") for a in args):
             _hydra_main(stage, args)
         else:
-            cfg = _guarded(_compose, args)
-            _guarded(lookup(stage), cfg)
+            _run(stage, lookup(stage), _compose_or_explain(args), args)
     except SystemExit as exc:
         return exc.code if isinstance(exc.code, int) else 1
     except KeyboardInterrupt:

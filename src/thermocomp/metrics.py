@@ -171,7 +171,10 @@ def window_curves(series: Sequence, lengths: Sequence[int], statistic: str = "ra
         prepared.append((x, *_prepare(x, statistic)))
     out = {key: np.full(len(lengths), np.nan) for key in ("percentile", "max", "mean")}
     guess = None
-    for i, length in enumerate(lengths):
+    from .progress import bar
+
+    for i, length in enumerate(bar(lengths, desc="E_P95 windows", unit="window",
+                                   disable=True if len(lengths) < 500 else None)):
         parts = [window_statistic(x, int(length), statistic, t, c) for x, t, c in prepared]
         parts = [p for p in parts if p.size]
         if not parts:

@@ -96,7 +96,10 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     bounds = _bounds(m.groups, ids)
     Y = m.Y.to_numpy()
     residuals = {t: [] for t in probe.targets_}
-    for train, _ in TrainOnEachCampaign().split(ids, groups=ids):
+    from .progress import bar
+
+    for train, _ in bar(TrainOnEachCampaign().split(ids, groups=ids), desc="mutual prediction",
+                        total=len(ids), unit="model"):
         comp = clone(first).fit_stacked(m.subset(m.rows_of(ids[train[0]])))
         r = Y - comp.predict_stacked(m, mode)
         for k, t in enumerate(comp.targets_):

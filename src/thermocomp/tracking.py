@@ -289,6 +289,11 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
             status = "KILLED" if got["signal"] is not None else "FAILED"
             raise
         finally:
+            from .log import current_file  # the run's log so far (thermocomp.log), failed runs too
+
+            log_file = current_file()
+            if log_file is not None and log_file.is_file():
+                retry_locked(mlflow.log_artifact, str(log_file))
             retry_locked(mlflow.end_run, status)
 
 

@@ -48,6 +48,9 @@ def replay_report(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
     measured = comp.measured(campaigns)
     targets = streaming.targets_
     diffs, residuals, clamps, seconds, n = [], [], 0, 0.0, 0
+    from ..progress import bar
+
+    rows = bar(total=sum(len(df) for df in campaigns.values()), desc="replay", unit="row")
     for cid, df in campaigns.items():
         with streaming.envelope_off():   # the same inputs as batch: any difference is the stream's
             free, _, _ = stream_rows(streaming, df)
@@ -57,6 +60,8 @@ def replay_report(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
         clamps += int((clamped > 0).sum())
         seconds += s
         n += len(df)
+        rows.update(len(df))
+    rows.close()
     diff, resid = np.concatenate(diffs), np.concatenate(residuals)
     us = 1e6 * seconds / max(n, 1)
     return {t: {"n_samples": int(n),

@@ -285,7 +285,9 @@ class Search:
         rounds = [health] if health is not None else []
         steps = [{"effect": f"sensor_fault: {ev.effect.column} {ev.effect.label}",
                   "cv_rmse": ev.cv_rmse} for ev in accepted]
-        for step in range(int(opts.max_effects)):
+        from ..progress import bar
+
+        for step in bar(range(int(opts.max_effects)), desc="diagnose rounds", unit="round"):
             names = self.cv.selection(self.inputs(), None)
             cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates)
             ok = p.validated                  # the rows CV scores (forward: not the first part)

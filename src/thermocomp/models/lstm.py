@@ -227,6 +227,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
             best, best_state, best_epoch, waited = np.inf, None, 0, 0
             self.loss_curve_, self.validation_curve_ = [], []
             epoch = 0
+            from ..progress import bar
+            epochs = bar(total=int(self.max_epochs), desc="LSTM epochs", unit="epoch")
             while True:
                 net.eval()
                 out, starts = self._states(net, xs)
@@ -238,8 +240,10 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
                     else:
                         waited += 1
                 if epoch >= int(self.max_epochs) or (val.any() and waited >= int(self.patience)):
+                    epochs.close()
                     break
                 epoch += 1
+                epochs.update()
                 net.train()
                 total, weight = 0.0, 0.0
                 order = torch.randperm(len(pieces), generator=gen).tolist()

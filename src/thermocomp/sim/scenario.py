@@ -153,7 +153,9 @@ class Scenario:
         measurement = self.measurement()
         rows, frames, truth_campaigns, measured = [], {}, {}, {}
         self.node_temperatures_ = {}
-        for k, plan in enumerate(plans):
+        from ..progress import bar
+
+        for k, plan in enumerate(bar(plans, desc="simulate", unit="campaign")):
             ctx = CampaignContext(plan.cid, k, len(plans), plan.split, plan.start_s, plan.duration_s,
                                   plan.sample_period_s, machine)
             frame, info = run_campaign(

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import sys
 import time
 from pathlib import Path
 
@@ -13,14 +12,16 @@ from .. import io, signing
 from ..compensator import MODES, Compensator
 from ..errors import ConfigError
 from ..frame import REFERENCES
+from ..log import logger
 from ..paths import resolve
 
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
 
 
 def say(msg: str) -> None:
-    """Progress on stderr, so stdout stays the result table."""
-    print(f"[thermocomp] {msg}", file=sys.stderr, flush=True)
+    """Progress at INFO level through the ``thermocomp`` logger (stderr and the run's log file),
+    so stdout stays the result table."""
+    logger.info(msg)
 
 
 class Clock:

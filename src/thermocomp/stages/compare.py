@@ -22,6 +22,7 @@ from ..files import atomic_write_text, write_json
 from ..jsonsafe import json_safe
 from ..leaderboard import FIGURES, VAL_FIGURES, baseline_rows, is_validation, rank, to_markdown
 from ..paths import resolve
+from ..plotdata import write_compare
 from ..sweeps import parent_run_id, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
@@ -66,6 +67,7 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     atomic_write_text(out / "compare.md", md + "\n")
     write_json(out / "compare.json", _json_table(table, str(opts.sort_by), str(opts.target), parent_id,
                                                  baselines))
+    write_compare(out, table)  # compare_plot.csv, for `dvc plots show`
     for name in ("compare.csv", "compare.md", "compare.json"):
         retry_locked(client.log_artifact, parent_id, str(out / name), "compare")
     basis = ("validation" if is_validation(str(opts.sort_by))

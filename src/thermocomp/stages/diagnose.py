@@ -33,6 +33,7 @@ from ..diagnose.report import write_report
 from ..errors import ConfigError
 from ..model_selection import CV_SCHEMES
 from ..files import atomic_dir, write_json
+from ..headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import build_compensator, check_config, data_options, say
@@ -195,6 +196,7 @@ def diagnose(cfg: DictConfig) -> dict:
             write_report(tmp, jsons, {t: [f"plots/{p.name}" for p in ps] for t, ps in figures.items()},
                          rerun, primary)
         main = write_json(out / "diagnosis.json", jsons[primary])
+        write_headline(out / DIAGNOSIS_HEADLINE, diagnosis_headline(jsons))  # `dvc metrics show`
         tracker.log_metrics({"diagnose": {t: {
             "before_test_rmse": d.before["test"]["rmse"], "after_test_rmse": d.after["test"]["rmse"],
             "before_cv_rmse": d.original_cv_rmse, "after_cv_rmse": d.final_cv_rmse,

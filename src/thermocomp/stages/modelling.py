@@ -16,6 +16,7 @@ from ..evaluation import (VAL_FOLDS, ambient_by_campaign, anova, ati_report,
                           mutual_prediction_report, predict_split, require_split, score,
                           validation_report)
 from ..files import atomic_dir, write_json
+from ..headline import HEADLINE, evaluation_headline, write_headline
 from ..iso10791 import a3_campaign
 from ..paths import resolve
 from ..tracking import headline_metrics, stage_run
@@ -94,6 +95,7 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
                 _mutual_figures(draw, folder, metrics["mutual_prediction"])
                 clock.lap("figures")
         path = write_json(out / "metrics.json", metrics)
+        write_headline(out / HEADLINE, evaluation_headline(metrics))  # for `dvc metrics show`
         clock.lap("write")
     clock.lap("figures")  # drawing still under way once every number is written
     tracker.log_metrics(headline_metrics(metrics))     # the full metrics.json is the artifact
@@ -141,6 +143,7 @@ def _train_predictions(comp: Compensator, ds, mode: str) -> dict:
 
 def _campaign_figures(draw, folder, comp: Compensator, ds, predictions: dict) -> None:
     """Residual and ISO 10791-10 A.3 figures of every campaign of ``predictions``."""
+    from ..plotdata import write_residual
     from ..plots import iso_a3_plot, residual_plot
 
     for cid, (meas, pred) in predictions.items():
@@ -148,6 +151,7 @@ def _campaign_figures(draw, folder, comp: Compensator, ds, predictions: dict) ->
         for t in comp.targets_:
             y, yhat = meas[t].to_numpy(), pred[t].to_numpy()
             draw(residual_plot, time_s, y, yhat, t, cid, folder / f"residual_{cid}_{t}.png")
+            write_residual(folder, time_s, y, yhat, t, cid)  # the data, for `dvc plots show`
             a3 = a3_campaign(time_s, y, y - yhat)
             if a3["available"]:
                 mv = a3["moving"]
@@ -157,8 +161,10 @@ def _campaign_figures(draw, folder, comp: Compensator, ds, predictions: dict) ->
 
 def _e_p95_figures(draw, folder, targets: dict) -> None:
     """Per target: E_P95 (and E_max) before/after compensation on the test split."""
+    from ..plotdata import write_e_p95
     from ..plots import e_p95_plot
 
+    write_e_p95(folder, targets)  # the curves as data, for `dvc plots show`
     for t, tm in targets.items():
         e, emax = tm["test"]["e_p95"], tm["test"]["e_max"]
         draw(e_p95_plot, e["window_s"], e["before"], e["after"], t, e["statistic"],

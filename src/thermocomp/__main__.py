@@ -1,0 +1,7 @@
+"""``python -m thermocomp <stage> ...``: the console command without the script on PATH."""
+
+import sys
+
+from .cli import main
+
+sys.exit(main())

@@ -1,0 +1,119 @@
+"""Logging of the ``thermocomp`` command: one logger, three levels, a log file per run.
+
+Stages log through the ``thermocomp`` logger (:data:`logger`): progress and
+information on stderr, so stdout stays the result table.  ``-q/--quiet`` shows
+warnings only, ``-v/--verbose`` debug messages too (and progress bars even off a
+terminal); the level travels in ``THERMOCOMP_LOG_LEVEL`` so sweep jobs in other
+processes (joblib, SLURM) log at the same level through Hydra's job logging
+(``conf/hydra/job_logging/thermocomp.yaml``, the same format).
+
+Each stage run also logs at DEBUG level to a temp file (:func:`run_log`): the
+MLflow run gets it as the artifact ``thermocomp.log`` and, when the stage
+succeeds, it is copied to ``<out>/thermocomp.log`` (a refused run leaves nothing).
+"""
+
+from __future__ import annotations
+
+import logging
+import os
+import shutil
+import sys
+import tempfile
+from contextlib import contextmanager
+from pathlib import Path
+
+NAME = "thermocomp"
+LEVEL_ENV = "THERMOCOMP_LOG_LEVEL"
+LOG_FILE = "thermocomp.log"
+FILE_FORMAT = "%(asctime)s %(levelname)-7s %(name)s: %(message)s"
+LEVELS = {"quiet": "WARNING", "normal": "INFO", "verbose": "DEBUG"}
+
+logger = logging.getLogger(NAME)
+_run_files: list[Path] = []  # the log files of the stage runs under way (innermost last)
+
+
+class Formatter(logging.Formatter):
+    """``[thermocomp] message``; ``[hydra] ...`` for Hydra's own logger; warnings and errors
+    say so."""
+
+    def format(self, record: logging.LogRecord) -> str:
+        tag = record.name.split(".")[0]
+        tag = "hydra" if tag == "hydra_plugins" else tag
+        level = f"{record.levelname.lower()}: " if record.levelno >= logging.WARNING else ""
+        text = f"[{tag}] {level}{record.getMessage()}"
+        if record.exc_info:
+            text += "\n" + self.formatException(record.exc_info)
+        return text
+
+
+class Handler(logging.Handler):
+    """Console handler: the ``sys.stderr`` of the moment (so pytest's capture and redirected
+    streams work), written through ``tqdm.write`` so a progress bar is redrawn below the line."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        try:
+            from tqdm import tqdm
+
+            tqdm.write(self.format(record), file=sys.stderr)
+        except Exception:  # logging must never kill a run
+            self.handleError(record)
+
+
+def level_name() -> str:
+    """The console level of this process (``INFO`` unless ``-q``/``-v`` set it)."""
+    name = os.environ.get(LEVEL_ENV, "INFO").upper()
+    return name if name in LEVELS.values() else "INFO"
+
+
+def configure(level: str | None = None) -> None:
+    """Console logging for this process at ``level`` (``WARNING``/``INFO``/``DEBUG``); the level is
+    exported to child processes. Calling it again replaces the handler (no duplicate lines)."""
+    if level is not None:
+        os.environ[LEVEL_ENV] = level
+    for h in [h for h in logger.handlers if isinstance(h, Handler)]:
+        logger.removeHandler(h)
+    handler = Handler(level_name())
+    handler.setFormatter(Formatter())
+    logger.addHandler(handler)
+    logger.setLevel(logging.DEBUG)  # handlers filter: the run's log file keeps DEBUG
+    logger.propagate = False
+
+
+@contextmanager
+def run_log(folder=None):
+    """Log this stage run (DEBUG) to a temp ``thermocomp.log``; yields its path.
+
+    On success the file is copied atomically to ``folder() / thermocomp.log``
+    when ``folder`` (a callable, evaluated at the end) returns an existing
+    folder, i.e. one the stage wrote its outputs to.
+    """
+    from .files import atomic_write_bytes
+
+    tmp = Path(tempfile.mkdtemp(prefix="thermocomp-log-"))
+    path = tmp / LOG_FILE
+    handler = logging.FileHandler(path, encoding="utf-8")
+    handler.setLevel(logging.DEBUG)
+    handler.setFormatter(logging.Formatter(FILE_FORMAT))
+    logger.addHandler(handler)
+    if logger.level in (logging.NOTSET,) or logger.level > logging.DEBUG:
+        logger.setLevel(logging.DEBUG)
+    _run_files.append(path)
+    ok = False
+    try:
+        yield path
+        ok = True
+    finally:
+        _run_files.remove(path)
+        logger.removeHandler(handler)
+        handler.close()
+        try:
+            dest = folder() if (ok and folder is not None) else None
+            if dest is not None and Path(dest).is_dir():
+                atomic_write_bytes(Path(dest) / LOG_FILE, path.read_bytes())
+        finally:
+            shutil.rmtree(tmp, ignore_errors=True)
+
+
+def current_file() -> Path | None:
+    """The log file of the stage run under way, if any (what MLflow logs as an artifact)."""
+    return _run_files[-1] if _run_files else None
