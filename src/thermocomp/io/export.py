@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 
 from ..files import atomic_dir
+from ..log import configure, logger
 from .read import read_manifest
 
 
@@ -70,7 +71,8 @@ def main(argv: list[str] | None = None) -> int:
         parser.error("columns are CONTRACT=LAB pairs, e.g. \"E_X=delta L\"")
     dest = export_foreign(args.src, args.dest, dict(pairs), delimiter=args.delimiter,
                           decimal=args.decimal, keep_time=args.keep_time)
-    print(f"{dest}: sample period {sample_period(args.src):g} s", file=sys.stderr)
+    configure()
+    logger.info("%s: sample period %g s", dest, sample_period(args.src))
     return 0
 
 
