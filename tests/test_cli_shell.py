@@ -14,8 +14,9 @@ import pytest
 
 from conftest import ROOT
 from thermocomp import log
+from thermocomp.callbacks import sweep_size
 from thermocomp.cli import lenient, main
-from thermocomp.progress import bar, sweep_size
+from thermocomp.progress import bar
 
 FAST = ["track=false", "plots=none", "eval.validation=false", "eval.mutual_prediction=false",
         "eval.ati_baselines=false"]

@@ -120,3 +120,47 @@ class MlflowSweepCallback(Callback):
                 compare_sweep(config, run_id, out=resolve(str(config.hydra.sweep.dir)))
             except Exception as exc:  # the sweep itself succeeded; say why there is no table
                 _say(f"no comparison table: {' '.join(str(exc).split())}")
+
+
+def sweep_size(task_overrides) -> int | None:
+    """Number of jobs of a basic sweep (the product of the sweep overrides' lengths), or None."""
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+
+    try:
+        n = 1
+        for o in OverridesParser.create().parse_overrides(list(task_overrides)):
+            if o.is_sweep_override():
+                n *= len(list(o.sweep_iterator()))
+        return n
+    except Exception:  # another sweeper's syntax: no total
+        return None
+
+
+class SweepProgress(Callback):
+    """Hydra callback: one line per finished sweep job, ``sweep: 3/8 jobs done``.
+
+    Jobs may run in other processes (joblib, SLURM): each marks itself done in
+    ``<sweep dir>/.done/`` and counts the marks, so the count is across processes.
+    """
+
+    def on_multirun_start(self, config, **kwargs) -> None:
+        total = sweep_size(config.hydra.overrides.task)
+        done = Path(str(config.hydra.sweep.dir)) / ".done"
+        done.mkdir(parents=True, exist_ok=True)
+        for f in done.iterdir():  # a rerun into the same folder counts afresh
+            f.unlink()
+        (done / "total").write_text("" if total is None else str(total))
+
+    def on_job_end(self, config, job_return, **kwargs) -> None:
+        from hydra.core.utils import JobStatus
+
+        done = Path(str(config.hydra.sweep.dir)) / ".done"
+        if not done.is_dir():
+            return
+        num = config.hydra.job.num
+        (done / f"job{num}").touch()
+        n = sum(1 for f in done.iterdir() if f.name.startswith("job"))
+        total = (done / "total").read_text() if (done / "total").is_file() else ""
+        status = "ok" if job_return.status == JobStatus.COMPLETED else "FAILED"
+        overrides = " ".join(config.hydra.overrides.task)
+        _say(f"sweep: {n}/{total or '?'} jobs done (#{num} {status}: {overrides})")
