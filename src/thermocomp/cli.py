@@ -52,6 +52,15 @@ def _guarded(fn, *args):
         sys.exit(2)
 
 
+def _check_seed(cfg) -> None:
+    """``seed`` steers every random choice of every stage: an integer, checked before any."""
+    from .errors import ConfigError
+
+    seed = cfg.get("seed")
+    if isinstance(seed, bool) or not isinstance(seed, int):
+        raise ConfigError(f"seed={seed!r} is not an integer")
+
+
 def _compose(overrides: list[str]):
     from hydra import compose, initialize_config_dir
 
@@ -86,6 +95,7 @@ def _hydra_main(stage: str, args: list[str]) -> None:
 
     @hydra.main(config_path=str(conf_dir()), config_name="config", version_base="1.3")
     def task(cfg):
+        _guarded(_check_seed, cfg)
         return _guarded(fn, _per_job(cfg))
 
     sys.argv = [f"thermocomp-{stage}", *args]
@@ -109,6 +119,7 @@ def main(argv: list[str] | None = None) -> int:
             _hydra_main(stage, args)
         else:
             cfg = _guarded(_compose, args)
+            _guarded(_check_seed, cfg)
             _guarded(lookup(stage), cfg)
     except SystemExit as exc:
         return exc.code if isinstance(exc.code, int) else 1
