@@ -424,7 +424,7 @@ def _ordered(names: list[str]) -> list[str]:
 def _load_csv(path: Path, opts: ReadOptions) -> dict:
     header, first_row = _peek_csv(path, opts.delimiter)
     if len(header) == 1:
-        _check_delimiter(header[0], first_row[0], path, opts)
+        _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     names = _contract_names(header, opts.columns, path, has_period=opts.sample_period_s is not None)
     if len(first_row) != len(names):
         raise ContractError(f"expected {len(names)} fields, got {len(first_row)}", file=path, row=1)
