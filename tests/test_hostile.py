@@ -182,7 +182,9 @@ READ_CASES = {
                           ["K02.csv", "column 'T_amb'", "row 3", "kelvin"]),
     "single-row campaign": (_single_row, [], ["K04.csv", "1 complete sample", "at least 2"]),
     "resample to 30 GB": (lambda ds: None, ["data.resample_s=0.0001"],
-                          ["K01.csv", "data.resample_s=0.0001 would make 1.74e+07 rows of 30"]),
+                          ["K01.csv", "data.resample_s=0.0001 would make 1.74e+07 rows from the file's 30"]),
+    "resampled to one sample": (lambda ds: None, ["data.resample_s=100000"],
+                                ["K01.csv", "1 (after data.resample_s=100000) sample(s)"]),
     "path in a column name": (_rename_column("K01", "E_X", "E_X/../../x"), [],
                               ["K01.csv", "column 'E_X/../../x'", "identifier-like"]),
     "control character in a column name": (_rename_column("K02", "T_amb", "T_amb\x1b[2J"), [],
@@ -287,7 +289,7 @@ def test_out_below_a_file_or_in_a_read_only_place_is_refused(paths, capsys, tmp_
 
 
 @pytest.mark.parametrize("stage", STAGES)
-@pytest.mark.parametrize("seed", ["abc", "1.5", "true"])
+@pytest.mark.parametrize("seed", ["abc", "1.5", "true", "-1"])
 def test_a_non_integer_seed_is_refused_by_every_stage(stage, seed, capsys, tmp_path):
     refused([stage, f"seed={seed}", "track=false", f"out={tmp_path / 'o'}"], capsys,
             "is not an integer")

@@ -57,8 +57,8 @@ def _check_seed(cfg) -> None:
     from .errors import ConfigError
 
     seed = cfg.get("seed")
-    if isinstance(seed, bool) or not isinstance(seed, int):
-        raise ConfigError(f"seed={seed!r} is not an integer")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ConfigError(f"seed={seed!r} is not an integer >= 0")
 
 
 def _compose(overrides: list[str]):

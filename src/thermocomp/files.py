@@ -99,7 +99,7 @@ def staged_outputs(out: str | os.PathLike, last: tuple[str, ...] = ("metrics.jso
     NotADirectoryError
         If ``out`` exists and is not a folder (checked before the work).
     """
-    out = Path(out)
+    out = Path(os.path.realpath(out))  # stage beside the real folder: renames stay on one disk
     if out.exists() and not out.is_dir():
         raise NotADirectoryError(f"{out} exists and is not a folder")
     with _temp_folder(out, "stage") as tmp:

@@ -907,6 +907,13 @@ def _patched(column, positions: np.ndarray, values: np.ndarray) -> pa.ChunkedArr
 # Resampling and assembly
 
 
+def _check_length(rows: int, path: Path, what: str) -> None:
+    if rows < MIN_ROWS:
+        raise ContractError(f"the campaign has {rows} {what}sample(s): at least {MIN_ROWS} are "
+                            "needed (the first is the reference, the others are scored)",
+                            file=path)
+
+
 def _check_fahrenheit(columns: dict, path: Path, threshold: float | None, start: int) -> None:
     """A lab's coldest sensor sits near ambient at a campaign's first sample: if even the
     coldest ``T_`` is above ``threshold`` (°C) there, the file is in °F."""
@@ -925,8 +932,8 @@ def _resample(columns: dict, step: float, path: Path, max_factor: float) -> None
     time = _values(columns[TIME])
     count = (time[-1] - time[0]) / step + 1
     if not count <= min(max_factor * len(time), MAX_GRID_ROWS):  # before allocating it
-        raise ContractError(f"data.resample_s={step:g} would make {count:.4g} rows of "
-                            f"{len(time)} (at most data.max_resample_factor={max_factor:g} "
+        raise ContractError(f"data.resample_s={step:g} would make {count:.4g} rows from "
+                            f"the file's {len(time)} (at most data.max_resample_factor={max_factor:g} "
                             f"times the file's rows and {MAX_GRID_ROWS:.0e})", file=path)
     count = int(math.floor((time[-1] - time[0]) / step + 1e-9)) + 1
     grid = time[0] + step * np.arange(count)
@@ -976,15 +983,12 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
         raise ContractError("file has no data rows", file=path)
     report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts),
               **_repair_missing(columns, rows, path, opts)}
-    kept = len(columns[TIME])
-    if kept < MIN_ROWS:
-        raise ContractError(f"the campaign has {kept} complete sample(s): at least {MIN_ROWS} are "
-                            "needed (the first is the reference, the others are scored)",
-                            file=path)
+    _check_length(len(columns[TIME]), path, "complete ")
     _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
     if opts.resample_s is not None:
         _resample(columns, opts.resample_s, path, opts.max_resample_factor)
         report["resampled_s"] = opts.resample_s
+        _check_length(len(columns[TIME]), path, f"(after data.resample_s={opts.resample_s:g}) ")
     table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
     return table, {"rows": table.num_rows, **report}
 
