@@ -255,11 +255,13 @@ def test_fahrenheit_and_period_checks_can_be_switched_off_or_tightened(tmp_path,
 
 
 CONFIG_CASES = {
-    "k=0": (["select=pearson", "select.selector.k=0"], ["select.selector", "k must be a positive integer or None, got 0"]),
+    "k=0": (["select=pearson", "select.selector.k=0"],
+            ["select.selector", "k must be a positive integer or None, got 0"]),
     "k=-3": (["select=greedy_residual", "select.selector.k=-3"], ["got -3"]),
     "k=1.5": (["select=pearson", "select.selector.k=1.5"], ["got 1.5"]),
     "k=abc": (["select=cluster_grey", "select.selector.k=abc"], ["got 'abc'"]),
-    "k_max=0": (["select=greedy_residual", "select.selector.k_max=0"], ["k_max must be a positive integer, got 0"]),
+    "k_max=0": (["select=greedy_residual", "select.selector.k_max=0"],
+                ["k_max must be a positive integer, got 0"]),
     "m=1": (["select=cluster_grey", "select.selector.m=1"], ["m must be a number > 1"]),
     "out=/dev/null": (["out=/dev/null"], ["out=/dev/null: exists and is not a folder"]),
     "seed=abc": (["seed=abc"], ["seed='abc' is not an integer"]),
