@@ -121,6 +121,15 @@ def _guarded(fn, *args):
         _fail(exc)
 
 
+def _check_seed(cfg) -> None:
+    """``seed`` steers every random choice of every stage: an integer, checked before any."""
+    from .errors import ConfigError
+
+    seed = cfg.get("seed")
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise ConfigError(f"seed={seed!r} is not an integer >= 0")
+
+
 def _compose(overrides: list[str]):
     from hydra import compose, initialize_config_dir
 
@@ -241,6 +250,7 @@ def _run(stage: str, fn, cfg, args: list[str]):
     """Run stage ``fn`` on ``cfg`` with its log file (``<out>/thermocomp.log`` on success)."""
     from . import log
 
+    _guarded(_check_seed, cfg)   # before anything is written, the log file included
     with log.run_log(_log_folder(stage, cfg)):
         log.logger.debug("thermocomp %s: %s %s", version(), stage, " ".join(args))
         return _guarded(fn, cfg)

@@ -2,8 +2,14 @@
 
 Nothing half-written is ever visible under a final name: a file is written to
 a temp file in the same folder and renamed over the destination, a folder is
-built in a temp folder next to it and swapped in.  Files end up readable by
-everyone (0644), folders 0755, whatever ``tempfile`` gave the temp object.
+built in a temp folder next to it and swapped in, and the outputs of a whole
+run are staged in a temp folder next to their destination and moved in at the
+end (:func:`staged_outputs`).  Files end up readable by everyone (0644), folders
+0755, whatever ``tempfile`` gave the temp object.
+
+Temp folders carry the writer's pid (``.<name>.tmp-<pid>-<random>``): SIGTERM
+and SIGINT remove them on the way out, and one left by a killed process
+(SIGKILL, power loss) is swept by the next writer of the same destination.
 """
 
 from __future__ import annotations
@@ -11,8 +17,12 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 import shutil
+import signal
 import tempfile
+import threading
+from contextlib import contextmanager
 from pathlib import Path
 
 from .jsonsafe import json_safe
@@ -57,38 +67,177 @@ def write_json(path: str | os.PathLike, obj, *, ensure_ascii: bool = True) -> Pa
     return atomic_write_text(path, text + "\n")
 
 
+@contextmanager
 def atomic_dir(dest: str | os.PathLike):
     """Context manager yielding a temp folder that replaces ``dest`` on success.
 
-    Nothing half-written is ever visible at ``dest``: on error the temp folder
-    is removed and ``dest`` keeps its previous content.
+    Nothing half-written is ever visible at ``dest``: on error (SIGTERM and
+    SIGINT included) the temp folder is removed and ``dest`` keeps its previous
+    content.  Two writers of one ``dest`` at once each build their own folder;
+    the last to finish wins, whole.
     """
-    return _AtomicDir(Path(dest))
+    dest = Path(dest)
+    with _temp_folder(dest) as tmp:
+        yield tmp
+        _swap_in(tmp, dest)
 
 
-class _AtomicDir:
-    def __init__(self, dest: Path):
-        self.dest = dest
+@contextmanager
+def staged_outputs(out: str | os.PathLike, last: tuple[str, ...] = ("metrics.json",)):
+    """Context manager yielding a temp folder whose entries are moved into ``out`` on success.
 
-    def __enter__(self) -> Path:
-        self.dest.parent.mkdir(parents=True, exist_ok=True)
-        self.tmp = Path(tempfile.mkdtemp(prefix=f".{self.dest.name}.", dir=self.dest.parent))
-        self.tmp.chmod(DIR_MODE)
-        return self.tmp
+    Every output of a run is written into the temp folder (next to ``out``, so
+    the moves are renames); leaving the block moves each file and folder into
+    ``out`` (a folder replaces the one there whole; entries named in ``last``
+    go last, so ``metrics.json`` appears only once everything else is in).
+    Other files in ``out`` are left alone.  On error, SIGTERM or SIGINT the temp
+    folder is removed: a refused run changes nothing in ``out`` and creates no
+    folder.
 
-    def __exit__(self, exc_type, exc, tb):
-        if exc_type is not None:
-            shutil.rmtree(self.tmp, ignore_errors=True)
-            return False
+    Raises
+    ------
+    NotADirectoryError
+        If ``out`` exists and is not a folder (checked before the work).
+    """
+    out = Path(os.path.realpath(out))  # stage beside the real folder: renames stay on one disk
+    if out.exists() and not out.is_dir():
+        raise NotADirectoryError(f"{out} exists and is not a folder")
+    with _temp_folder(out, "stage") as tmp:
+        yield tmp
+        out.mkdir(parents=True, exist_ok=True)
+        order = {name: i + 1 for i, name in enumerate(last)}
+        for entry in sorted(tmp.iterdir(), key=lambda p: (order.get(p.name, 0), p.name)):
+            if entry.is_dir():
+                _swap_in(entry, out / entry.name)
+            else:
+                os.replace(entry, out / entry.name)
+
+
+_TEMP = re.compile(r"\.(?P<name>.+)\.(?:tmp|stage|old)-(?P<pid>\d+)-[^/]+")
+
+
+@contextmanager
+def _temp_folder(dest: Path, kind: str = "tmp"):
+    """A fresh ``.<dest name>.<kind>-<pid>-<random>`` folder next to ``dest``, removed on any
+    exit (SIGTERM/SIGINT too); stale ones of dead processes are swept first.  Folders this
+    creates above ``dest`` are removed again if the block fails."""
+    made = [p for p in (dest.parent, *dest.parent.parents) if not p.exists()]
+    dest.parent.mkdir(parents=True, exist_ok=True)
+    sweep_stale(dest)
+    tmp = Path(tempfile.mkdtemp(prefix=f".{dest.name}.{kind}-{os.getpid()}-", dir=dest.parent))
+    tmp.chmod(DIR_MODE)
+    ok = False
+    try:
+        with _signals_raise():
+            yield tmp
+        ok = True
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+        if not ok:
+            for folder in made:  # innermost first; stops at the first one not empty
+                try:
+                    folder.rmdir()
+                except OSError:
+                    break
+
+
+def _swap_in(src: Path, dest: Path) -> None:
+    """Rename folder ``src`` to ``dest``, replacing a folder there (moved aside first, under a
+    name of this process's own, so two writers never collide)."""
+    for _ in range(10):  # another writer may swap its own folder in between two renames
         old = None
-        if self.dest.exists():
-            old = self.dest.with_name(f".{self.dest.name}.old")
-            shutil.rmtree(old, ignore_errors=True)
-            os.replace(self.dest, old)
-        os.replace(self.tmp, self.dest)
-        if old is not None:
-            shutil.rmtree(old, ignore_errors=True)
+        if dest.exists():
+            old = dest.with_name(f".{dest.name}.old-{os.getpid()}-{os.urandom(4).hex()}")
+            try:
+                os.replace(dest, old)
+            except FileNotFoundError:
+                continue
+        try:
+            os.replace(src, dest)
+        except OSError:
+            if old is None:
+                continue
+            raise
+        finally:
+            if old is not None:
+                shutil.rmtree(old, ignore_errors=True)
+        return
+    raise OSError(f"could not replace {dest}: other processes keep writing it")
+
+
+def sweep_stale(dest: str | os.PathLike) -> list[Path]:
+    """Remove the temp folders of ``dest`` (see :func:`atomic_dir`) left by dead processes.
+
+    Returns
+    -------
+    list of Path
+        The folders removed.
+    """
+    dest = Path(dest)
+    removed = []
+    if not dest.parent.is_dir():
+        return removed
+    for p in dest.parent.glob(f".{glob_escape(dest.name)}.*-*-*"):
+        m = _TEMP.fullmatch(p.name)
+        if m and m["name"] == dest.name and p.is_dir() and not _alive(int(m["pid"])):
+            shutil.rmtree(p, ignore_errors=True)
+            removed.append(p)
+    return removed
+
+
+def glob_escape(name: str) -> str:
+    return re.sub(r"([*?\[])", r"[\1]", name)
+
+
+def _alive(pid: int) -> bool:
+    if pid == os.getpid():
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
         return False
+    except PermissionError:
+        return True
+    return True
+
+
+class Terminated(SystemExit):
+    """SIGTERM, raised as an exception so that ``finally`` blocks clean up."""
+
+
+@contextmanager
+def _signals_raise():
+    """Within the block SIGTERM raises :class:`Terminated` (SIGINT raises KeyboardInterrupt
+    already), so temp files are removed on the way out; the previous handler comes back after.
+    Only the main thread can set handlers: elsewhere this does nothing."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+
+    def terminate(signum, frame):
+        raise Terminated(128 + signum)
+
+    previous = signal.signal(signal.SIGTERM, terminate)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+
+
+def safe_name(*parts: str) -> str:
+    """One file name from ``parts`` (joined with ``_``): every character other than letters,
+    digits, ``_``, ``-`` and ``.`` becomes ``_``, and it cannot start with a dot."""
+    name = re.sub(r"[^\w.\-]", "_", "_".join(str(p) for p in parts)).replace("..", "__")
+    return "_" + name[1:] if name.startswith(".") else name
+
+
+def inside(folder: str | os.PathLike, name: str) -> Path:
+    """``folder / name``, refusing (ValueError) a path that would leave ``folder``."""
+    folder = Path(folder)
+    path = folder / name
+    if path.resolve().parent != folder.resolve():
+        raise ValueError(f"file name {name!r} leaves {folder}")
+    return path
 
 
 def folder_digest(folder: str | os.PathLike) -> str:

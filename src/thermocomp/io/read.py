@@ -42,8 +42,10 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import io
 import json
 import math
+import os
 import re
 from collections.abc import Iterator, Mapping
 from dataclasses import asdict, dataclass, field
@@ -56,7 +58,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 import pyarrow.parquet as pq
 
-from ..files import atomic_dir, write_json
+from ..files import atomic_dir, folder_digest, write_json
 from .contract import MANIFEST, MANIFEST_REQUIRED, SPLITS, TIME, ContractError, Dataset, role
 
 INGEST_REPORT = "ingest_report.json"
@@ -72,6 +74,14 @@ _ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d
 _UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
 _CONVERSION_ERROR = re.compile(r"In CSV column #(\d+)")
 _ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
+# A contract name: prefix + identifier-like name (it becomes part of file names: no path
+# separators, '..', spaces or control characters).
+_NAME = re.compile(r"[TES]_[\w.\-]+")
+_OTHER_DELIMITERS = (";", "\t", "|", ",")
+MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
+MAX_GRID_ROWS = 5_000_000
+_READ_ATTEMPTS = 5
+MAX_ABS_T_C = 1e4  # refused whatever data.kelvin_threshold_c says
 
 
 # ---------------------------------------------------------------------------
@@ -94,6 +104,12 @@ class ReadOptions:
     max_edge_samples: int = 0
     resample_s: float | None = None
     kelvin_threshold_c: float = 200.0
+    fahrenheit_threshold_c: float | None = 45.0
+    max_abs_error: float = 1e6
+    max_abs_state: float = 1e9
+    max_period_ratio: float | None = 100.0
+    max_duration_days: float | None = 366.0
+    max_resample_factor: float = 10.0
     delimiter: str = ","
     decimal: str = "."
 
@@ -116,6 +132,12 @@ class ReadOptions:
             max_edge_samples=_count(cfg, "max_edge_samples"),
             resample_s=_positive_float(cfg, "resample_s"),
             kelvin_threshold_c=_float(cfg, "kelvin_threshold_c", 200.0),
+            fahrenheit_threshold_c=_float(cfg, "fahrenheit_threshold_c", 45.0, nullable=True),
+            max_abs_error=_positive_float(cfg, "max_abs_error", 1e6),
+            max_abs_state=_positive_float(cfg, "max_abs_state", 1e9),
+            max_period_ratio=_positive_float(cfg, "max_period_ratio", 100.0, nullable=True),
+            max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
+            max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
             delimiter=str(cfg.get("delimiter", ",") or ","),
             decimal=str(cfg.get("decimal", ".") or "."),
         )
@@ -144,10 +166,15 @@ def _str_mapping(cfg: Mapping, key: str) -> dict:
     return {str(k): str(v) for k, v in value.items()}
 
 
-def _float(cfg: Mapping, key: str, default: float | None) -> float | None:
-    value = cfg.get(key, None)
-    if value is None:
+def _float(cfg: Mapping, key: str, default: float | None, nullable: bool = False
+           ) -> float | None:
+    """``cfg[key]`` as a finite float; a missing key gives ``default``, and so does null
+    unless ``nullable`` (then null switches the check it steers off)."""
+    if key not in cfg:
         return default
+    value = cfg.get(key)
+    if value is None:
+        return None if nullable else default
     try:
         number = float(value)
     except (TypeError, ValueError):
@@ -157,8 +184,9 @@ def _float(cfg: Mapping, key: str, default: float | None) -> float | None:
     return number
 
 
-def _positive_float(cfg: Mapping, key: str) -> float | None:
-    number = _float(cfg, key, None)
+def _positive_float(cfg: Mapping, key: str, default: float | None = None,
+                    nullable: bool = False) -> float | None:
+    number = _float(cfg, key, default, nullable)
     if number is not None and number <= 0:
         raise ContractError(f"data.{key} must be > 0, got {number:g}")
     return number
@@ -203,7 +231,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     opts = opts or ReadOptions()
     root = Path(root)
     path = root / MANIFEST
-    raw = _load_manifest(path)
+    raw = _load_manifest(path, opts.delimiter)
     _check_manifest_rows(raw, path, root)
     manifest = raw.set_index("campaign")
     _apply_split_overrides(manifest, opts.split_overrides, path)
@@ -212,11 +240,14 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     return manifest
 
 
-def _load_manifest(path: Path) -> pd.DataFrame:
+def _load_manifest(path: Path, delimiter: str = ",") -> pd.DataFrame:
     if not path.is_file():
         raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})", file=path)
+    text = _utf8_text(path, delimiter)
+    header = text.splitlines()[0] if text.strip() else ""
     try:
-        raw = pd.read_csv(path, dtype=str, keep_default_na=False)
+        raw = pd.read_csv(io.StringIO(text), sep=_manifest_delimiter(header, delimiter, path),
+                          dtype=str, keep_default_na=False)
     except pd.errors.EmptyDataError:
         raise ContractError("manifest is empty", file=path) from None
     except pd.errors.ParserError as exc:
@@ -230,6 +261,63 @@ def _load_manifest(path: Path) -> pd.DataFrame:
     return raw.fillna("").apply(lambda s: s.str.strip())
 
 
+def _header_cells(line: str, delimiter: str) -> list[str]:
+    return [c.strip() for c in next(csv.reader([line], delimiter=delimiter), [])]
+
+
+def _manifest_delimiter(header: str, delimiter: str, path: Path) -> str:
+    """``data.delimiter``, or ``,`` (the contract's own format) when the manifest's header
+    only parses with it; a header that only parses with another separator is refused with
+    the setting that reads it (instead of a misleading "column 'campaign' missing")."""
+    def parses(sep):
+        return set(MANIFEST_REQUIRED) <= set(_header_cells(header, sep))
+
+    for sep in dict.fromkeys((delimiter, ",")):
+        if parses(sep):
+            return sep
+    for sep in _OTHER_DELIMITERS:
+        if parses(sep):
+            raise ContractError(f"{MANIFEST} looks {sep!r}-separated: set data.delimiter={sep!r}",
+                                file=path)
+    return delimiter
+
+
+def _utf8_text(path: Path, delimiter: str) -> str:
+    """The whole (small) file as text; bytes that are not UTF-8 are refused where they are."""
+    data = path.read_bytes()
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise _not_utf8(path, delimiter) from None
+
+
+def _not_utf8(path: Path, delimiter: str, names: list[str] | None = None) -> ContractError:
+    """The error naming the line (data row, or the header) and field of the first byte that
+    is not UTF-8."""
+    return (_utf8_failure(path, delimiter, names)
+            or ContractError("file is not UTF-8 text", file=path))
+
+
+def _utf8_failure(path: Path, delimiter: str, names: list[str] | None) -> ContractError | None:
+    """:func:`_not_utf8`'s error, or None if every line is UTF-8 (read line by line, so a
+    large file is never held whole)."""
+    with open(path, "rb") as f:
+        header = names
+        for line_no, line in enumerate(f):
+            if header is None:  # the file's own header names the fields
+                header = _header_cells(line.decode("utf-8", "replace").lstrip("\ufeff"),
+                                       delimiter)
+            try:
+                line.decode("utf-8")
+            except UnicodeDecodeError as exc:
+                field = line[:exc.start].count(delimiter.encode())
+                column = header[field] if header and field < len(header) else None
+                return ContractError(f"byte 0x{line[exc.start]:02x} is not UTF-8 text "
+                                     "(save the file as UTF-8)", file=path, column=column,
+                                     row=line_no or None)
+    return None
+
+
 def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
     seen: dict[str, int] = {}
     for row, (cid, fname, split) in enumerate(zip(raw["campaign"], raw["file"], raw["split"]), 1):
@@ -241,6 +329,9 @@ def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
             problem = "campaign", f"duplicate campaign id {cid!r} (first at row {seen[cid]})"
         elif split not in SPLITS:
             problem = "split", f"split {split!r} is not one of {', '.join(SPLITS)}"
+        elif os.path.isabs(fname) or os.path.normpath(fname).split(os.sep)[0] == "..":
+            problem = "file", (f"campaign file {fname!r} lies outside the dataset folder: "
+                               "files are paths relative to it, without '..'")
         elif Path(fname).suffix.lower() not in CAMPAIGN_SUFFIXES:
             problem = "file", f"campaign file {fname!r} is neither .csv nor .parquet"
         elif not (root / fname).is_file():
@@ -297,10 +388,15 @@ def _contract_names(raw_names: list[str], mapping: dict, file: Path, *,
     names = []
     for raw in raw_names:
         name = mapping.get(raw, raw)
+        alias = f" (raw name {raw!r})" if name != raw else ""
         if role(name) is None:
-            alias = f" (raw name {raw!r})" if name != raw else ""
             raise ContractError(f"column name{alias} has no contract role: expected 'time' or "
                                 "a T_/E_/S_ prefix (map it with data.columns)",
+                                file=file, column=name)
+        if name != TIME and (not _NAME.fullmatch(name) or ".." in name):
+            raise ContractError(f"column name{alias} is not a prefix plus an identifier-like name "
+                                "(letters, digits, '_', '-', '.'; no path separator, '..', space "
+                                "or control character): map it with data.columns",
                                 file=file, column=name)
         if name in names:
             raise ContractError("duplicate column (after data.columns mapping)",
@@ -327,6 +423,8 @@ def _ordered(names: list[str]) -> list[str]:
 
 def _load_csv(path: Path, opts: ReadOptions) -> dict:
     header, first_row = _peek_csv(path, opts.delimiter)
+    if len(header) == 1:
+        _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     names = _contract_names(header, opts.columns, path, has_period=opts.sample_period_s is not None)
     if len(first_row) != len(names):
         raise ContractError(f"expected {len(names)} fields, got {len(first_row)}", file=path, row=1)
@@ -334,6 +432,19 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     if TIME in names:
         types[TIME] = _csv_time_type(path, first_row, names.index(TIME), opts)
     return _columns(_read_csv_typed(path, names, types, opts))
+
+
+def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> None:
+    """A single column whose name holds another separator: the file was read with the wrong
+    ``data.delimiter`` (say which one reads it, rather than a misleading name error)."""
+    for sep in _OTHER_DELIMITERS:
+        if sep != opts.delimiter and sep in header:
+            cells = next(csv.reader([first], delimiter=sep), [])
+            comma = sep != "," and opts.decimal != "," and any(
+                re.fullmatch(r"[+-]?\d+,\d+", c.strip()) for c in cells)
+            hint = " data.decimal=','" if comma else ""
+            raise ContractError(f"file looks {sep!r}-separated (one column {header!r}): "
+                                f"set data.delimiter={sep!r}{hint}", file=path)
 
 
 def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
@@ -344,7 +455,7 @@ def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
             header = next(rows, None)
             first = next((r for r in rows if r), None)
     except UnicodeDecodeError:
-        raise ContractError("file is not UTF-8 text", file=path) from None
+        raise _not_utf8(path, delimiter) from None
     if not header:
         raise ContractError("empty file", file=path)
     if first is None:
@@ -393,6 +504,11 @@ def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions
 def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
     """Turn Arrow's row-less CSV error into one naming the column and row."""
     message = _first_line(exc)
+    if "UTF8" in message or _CONVERSION_ERROR.search(message):
+        # a cell that is not UTF-8 cannot be read back as text to locate it
+        bad_bytes = _utf8_failure(path, opts.delimiter, names)
+        if bad_bytes is not None:
+            return bad_bytes
     match = _CONVERSION_ERROR.search(message)
     if match:
         column = names[int(match.group(1))]
@@ -564,6 +680,7 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions) -
         raise ContractError("missing time value", file=path, column=TIME, row=row)
     seconds, info = _seconds(column)
     _check_increasing(seconds, path)
+    _check_duration(seconds, path, opts.max_duration_days)
     columns[TIME] = pa.array(seconds)
     return info
 
@@ -596,6 +713,41 @@ def _check_increasing(seconds: np.ndarray, path: Path) -> None:
     raise ContractError(what, file=path, column=TIME, row=i + 2)
 
 
+def _check_duration(seconds: np.ndarray, path: Path, max_days: float | None) -> None:
+    days = (seconds[-1] - seconds[0]) / 86400
+    if max_days is not None and days > max_days:
+        raise ContractError(f"the campaign lasts {days:.4g} days, more than "
+                            f"data.max_duration_days={max_days:g}: is time in ms? it must be "
+                            "in seconds", file=path, column=TIME, row=len(seconds))
+
+
+def _median_period(table: pa.Table) -> float | None:
+    time = table.column(TIME).to_numpy()
+    return float(np.median(np.diff(time))) if len(time) > 1 else None
+
+
+def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | None) -> None:
+    """Refuse a campaign whose median sample period is ``ratio`` times (or 1/``ratio``) the
+    median of the others': its time column is in another unit (ms, minutes) than theirs."""
+    periods = {c: p for c, p in periods.items() if p}
+    if ratio is None or len(periods) < 2:
+        return
+    off = {}
+    for cid, p in periods.items():
+        r = p / np.median([q for c, q in periods.items() if c != cid])
+        if r >= ratio or r <= 1 / ratio:
+            off[cid] = r
+    if not off:
+        return
+    cid = max(off, key=off.get)  # two campaigns disagree: ms (a time 1000x too large) is likelier
+    r = off[cid]
+    unit = ("ms" if r < 3e4 else "µs") if r > 1 else ("minutes" if r > 1 / 600 else "hours")
+    raise ContractError(f"median sample period {periods[cid]:g} s is {r:.3g}x the other "
+                        f"campaigns' ({periods[cid] / r:g} s): is its time in {unit}? it must be "
+                        f"in seconds (data.max_period_ratio={ratio:g})",
+                        file=root / files[cid], column=TIME)
+
+
 # ---------------------------------------------------------------------------
 # Values and missing samples
 
@@ -614,6 +766,16 @@ def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) 
         if missing.size == values.size:
             raise ContractError("column has no valid value (every cell is empty)",
                                 file=path, column=name)
+    limit, unit, what = {"E": (opts.max_abs_error, "µm", "error"),
+                         "S": (opts.max_abs_state, "", "state")}.get(role(name), (None,) * 3)
+    if limit is not None:
+        with np.errstate(invalid="ignore"):
+            beyond = np.abs(values) > limit
+        if beyond.any():
+            row = int(np.argmax(beyond)) + 1
+            raise ContractError(f"value {values[row - 1]:g}{' ' + unit if unit else ''} is beyond "
+                                f"data.max_abs_{what}={limit:g}: not a plausible {what} value "
+                                "(check the unit)", file=path, column=name, row=row)
     if role(name) == "T":
         _check_celsius(values, name, path, opts.kelvin_threshold_c, complete=not missing.size)
     return missing
@@ -623,8 +785,8 @@ def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
                    complete: bool) -> None:
     lowest, highest = ((values.min(), values.max()) if complete
                        else (np.nanmin(values), np.nanmax(values)))
-    if highest > threshold:
-        row = int(np.argmax(values > threshold)) + 1
+    if highest > min(threshold, MAX_ABS_T_C):
+        row = int(np.argmax(values > min(threshold, MAX_ABS_T_C))) + 1
         raise ContractError(f"{values[row - 1]:g} °C is above data.kelvin_threshold_c="
                             f"{threshold:g}: temperatures look like kelvin, convert to °C",
                             file=path, column=name, row=row)
@@ -745,9 +907,34 @@ def _patched(column, positions: np.ndarray, values: np.ndarray) -> pa.ChunkedArr
 # Resampling and assembly
 
 
-def _resample(columns: dict, step: float) -> None:
+def _check_length(rows: int, path: Path, what: str) -> None:
+    if rows < MIN_ROWS:
+        raise ContractError(f"the campaign has {rows} {what}sample(s): at least {MIN_ROWS} are "
+                            "needed (the first is the reference, the others are scored)",
+                            file=path)
+
+
+def _check_fahrenheit(columns: dict, path: Path, threshold: float | None, start: int) -> None:
+    """A lab's coldest sensor sits near ambient at a campaign's first sample: if even the
+    coldest ``T_`` is above ``threshold`` (°C) there, the file is in °F."""
+    first = {n: c[0].as_py() for n, c in columns.items() if role(n) == "T"}
+    if threshold is None or not first:
+        return
+    name = min(first, key=first.get)
+    if first[name] > threshold:
+        raise ContractError(f"the coldest temperature at the first sample is {first[name]:g} °C, "
+                            f"above data.fahrenheit_threshold_c={threshold:g}: temperatures look "
+                            "like °F, convert to °C", file=path, column=name, row=start + 1)
+
+
+def _resample(columns: dict, step: float, path: Path, max_factor: float) -> None:
     """Linear interpolation of every column onto ``t0, t0 + step, ...``."""
     time = _values(columns[TIME])
+    count = (time[-1] - time[0]) / step + 1
+    if not count <= min(max_factor * len(time), MAX_GRID_ROWS):  # before allocating it
+        raise ContractError(f"data.resample_s={step:g} would make {count:.4g} rows from "
+                            f"the file's {len(time)} (at most data.max_resample_factor={max_factor:g} "
+                            f"times the file's rows and {MAX_GRID_ROWS:.0e})", file=path)
     count = int(math.floor((time[-1] - time[0]) / step + 1e-9)) + 1
     grid = time[0] + step * np.arange(count)
     for name in columns:
@@ -796,19 +983,27 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
         raise ContractError("file has no data rows", file=path)
     report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts),
               **_repair_missing(columns, rows, path, opts)}
+    _check_length(len(columns[TIME]), path, "complete ")
+    _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
     if opts.resample_s is not None:
-        _resample(columns, opts.resample_s)
+        _resample(columns, opts.resample_s, path, opts.max_resample_factor)
         report["resampled_s"] = opts.resample_s
+        _check_length(len(columns[TIME]), path, f"(after data.resample_s={opts.resample_s:g}) ")
     table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
     return table, {"rows": table.num_rows, **report}
 
 
 def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
                     ) -> Iterator[tuple[str, pa.Table, dict]]:
+    """Every campaign, read and validated; once all are read, their sample periods are
+    compared (a campaign timed in another unit is refused)."""
+    periods = {}
     for cid, row in manifest.iterrows():
         table, report = read_campaign(root / row["file"], opts)
+        periods[cid] = _median_period(table)
         yield cid, table, {"file": row["file"], "split": row["split"], **report}
         del table  # before reading the next campaign
+    _check_periods(periods, manifest["file"], root, opts.max_period_ratio)
 
 
 def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) -> dict:
@@ -995,15 +1190,34 @@ def load_interim(path: str | Path) -> Dataset:
     -------
     Dataset
         As :func:`read_dataset` returns it; ``meta["ingest_report"]`` holds
-        the ingest report.
+        the ingest report, ``meta["digest"]`` the folder's digest
+        (:func:`~thermocomp.files.folder_digest`) of exactly what was read.
 
     Raises
     ------
     ContractError
         If the folder has no ``ingest_report.json`` (it was not written by
         :func:`ingest`) or its manifest is invalid.
+
+    Notes
+    -----
+    Another ``ingest`` may swap the folder while it is read: the digest is
+    taken before and after, and the read is repeated until both agree, so the
+    dataset is one ingest's, whole, and its digest says which.
     """
     root = Path(path)
+    for _ in range(_READ_ATTEMPTS):
+        with contextlib.suppress(FileNotFoundError, pa.ArrowInvalid):
+            before = folder_digest(root)
+            ds = _load_interim_once(root)
+            if folder_digest(root) == before:
+                ds.meta["digest"] = before
+                return ds
+    raise ContractError("the folder kept changing while it was read (another ingest writing "
+                        "it?)", file=root)
+
+
+def _load_interim_once(root: Path) -> Dataset:
     report_path = root / INGEST_REPORT
     if not report_path.is_file():
         raise ContractError(f"no {INGEST_REPORT}: not an ingested dataset (run ingest first)",

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 import pandas as pd
 from sklearn.base import BaseEstimator
 from sklearn.feature_selection import SelectorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from ..errors import ParameterError
 from ..model_selection.criteria import CRITERIA, ic_path
 
 
@@ -48,13 +51,15 @@ class TSPSelector(SelectorMixin, BaseEstimator):
                           dtype=object)
 
     def check_params(self) -> None:
-        """Raise ValueError for a parameter outside its allowed values."""
-        if self.k is not None and int(self.k) < 1:
-            raise ValueError(f"k must be a positive integer or None, got {self.k}")
-        if int(self.k_max) < 1:
-            raise ValueError(f"k_max must be >= 1, got {self.k_max}")
+        """Raise :class:`~thermocomp.errors.ParameterError` (a ValueError) for a parameter
+        outside its allowed values."""
+        for name, value, none in (("k", self.k, " or None"), ("k_max", self.k_max, "")):
+            if (value is None and none) or (isinstance(value, numbers.Integral)
+                                            and not isinstance(value, bool) and value >= 1):
+                continue
+            raise ParameterError(f"{name} must be a positive integer{none}, got {value!r}")
         if self.criterion not in CRITERIA:
-            raise ValueError(f"criterion must be one of {CRITERIA}, got {self.criterion!r}")
+            raise ParameterError(f"criterion must be one of {CRITERIA}, got {self.criterion!r}")
 
     def fit(self, X, y, groups=None):
         """Select sensors for target ``y``; ``groups`` (campaign per row) is accepted for API

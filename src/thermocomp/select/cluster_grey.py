@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import numbers
+
 import numpy as np
 import skfuzzy
 
+from ..errors import ParameterError
 from .base import TSPSelector
 from .pearson import abs_correlation
 
@@ -102,10 +105,11 @@ class ClusterGreySelector(TSPSelector):
 
     def check_params(self) -> None:
         super().check_params()
-        if not self.m > 1:
-            raise ValueError(f"m must be > 1, got {self.m}")
-        if not self.rho > 0:
-            raise ValueError(f"rho must be > 0, got {self.rho}")
+        for name, value in (("m", self.m), ("rho", self.rho)):
+            bound = 1 if name == "m" else 0
+            if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
+                    and value > bound):
+                raise ParameterError(f"{name} must be a number > {bound}, got {value!r}")
 
     def _candidate_sets(self, A, y, groups):
         grey = grey_relational_degree(A, y, self.rho)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import tempfile
 import time
 from pathlib import Path
 
@@ -46,8 +47,13 @@ class Clock:
                 + " + ".join(f"{name} {s:.2f}" for name, s in self.seconds.items()))
 
 
-def check_config(cfg: DictConfig) -> None:
-    """Refuse bad choices before anything is read or written."""
+def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",)) -> None:
+    """Refuse bad choices before anything is read or written.
+
+    ``outputs`` are the config keys of what the stage writes: folders (``out``,
+    ``data.interim``) or files (``model_path``); each must be writable where it
+    is (not an existing file in a folder's place, not a read-only place).
+    """
     choices = {"eval.mode": (cfg.eval.mode, MODES), "data.reference": (cfg.data.reference, REFERENCES),
                "eval.e_p95.statistic": (cfg.eval.e_p95.statistic, ("range", "std")),
                "plots": (cfg.plots, PLOTS)}
@@ -57,6 +63,30 @@ def check_config(cfg: DictConfig) -> None:
     for key, (value, allowed) in choices.items():
         if value not in allowed:
             raise ConfigError(f"{key}={value!r} is not one of {list(allowed)}")
+    selector = instantiate(cfg.select.selector)
+    if hasattr(selector, "check_params"):
+        try:
+            selector.check_params()
+        except ValueError as exc:
+            raise ConfigError(f"select.selector: {exc}") from exc
+    for key in outputs:
+        _check_writable(key, OmegaConf.select(cfg, key), folder=key != "model_path")
+
+
+def _check_writable(key: str, value, folder: bool) -> None:
+    """``key=value`` names a place this process can write a folder (or a file) to."""
+    path = resolve(value)
+    if path.exists() and path.is_dir() != folder:
+        raise ConfigError(f"{key}={value}: exists and is {'not ' * folder}a folder")
+    probe = [path] if folder and path.is_dir() else []
+    nearest = next(p for p in path.parents if p.exists())  # where its folders get created
+    if not nearest.is_dir():
+        raise ConfigError(f"{key}={value}: {nearest} is not a folder")
+    for where in (*probe, nearest):
+        try:
+            tempfile.TemporaryFile(dir=where).close()
+        except OSError as exc:
+            raise ConfigError(f"{key}={value}: cannot write in {where} ({exc.strerror})") from None
 
 
 def data_options(cfg: DictConfig) -> dict:

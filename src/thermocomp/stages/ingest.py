@@ -12,7 +12,7 @@ from .common import check_config, data_options, say
 
 def ingest(cfg: DictConfig) -> dict:
     """Validate ``data.path`` and write it as Parquet to ``data.interim`` with a report."""
-    check_config(cfg)
+    check_config(cfg, outputs=("data.interim",))
     src, dest = resolve(cfg.data.path), resolve(cfg.data.interim)
     say(f"ingesting {src} -> {dest}")
     report = io.ingest(src, dest, data_options(cfg))

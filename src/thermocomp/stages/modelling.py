@@ -1,4 +1,10 @@
-"""`thermocomp train | evaluate | run`: fit the compensator, score it, report."""
+"""`thermocomp train | evaluate | run`: fit the compensator, score it, report.
+
+A run's outputs (``model.pkl``, ``ingest_report.json``, ``metrics.json``,
+``plots/``) are staged in a temp folder next to ``out`` and moved in only
+when everything is computed (:func:`~thermocomp.files.staged_outputs`): a
+refused or killed run leaves ``out`` as it was.
+"""
 
 from __future__ import annotations
 
@@ -15,7 +21,7 @@ from ..continuation import carry_over
 from ..evaluation import (VAL_FOLDS, ambient_by_campaign, anova, ati_report,
                           mutual_prediction_report, predict_split, require_split, score,
                           validation_report)
-from ..files import atomic_dir, write_json
+from ..files import inside, safe_name, staged_outputs, write_json
 from ..headline import HEADLINE, evaluation_headline, write_headline
 from ..iso10791 import a3_campaign
 from ..paths import resolve
@@ -34,11 +40,13 @@ def _fit(cfg: DictConfig, ds) -> Compensator:
 def train(cfg: DictConfig) -> Compensator:
     """Fit the configured model on the train split of ``data.interim``, reusing the outputs of
     ``denoise`` and ``select`` when they match the config (see ``stages/artifacts.py``)."""
-    check_config(cfg)
+    check_config(cfg, outputs=("model_path",))
     ds = io.load_interim(resolve(cfg.data.interim))
     t0 = time.perf_counter()
     comp = fit_from_artifacts(cfg, ds)
     fit_s = time.perf_counter() - t0
+    # which ingest it learnt from: evaluate refuses another (two runs sharing data.interim)
+    comp.interim_digest_ = ds.meta["digest"]
     path = save_model(comp, cfg.model_path)
     say(f"model saved to {path} ({fit_s:.2f} s)")
     with stage_run(cfg, "train") as tr:
@@ -48,15 +56,28 @@ def train(cfg: DictConfig) -> Compensator:
 
 
 def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None = None,
-            extra: dict | None = None) -> dict:
+            extra: dict | None = None, stage_files=None) -> dict:
     """Score, write metrics.json and the figures ``plots`` asks for under ``out``, print the table.
 
     Figures are queued as soon as their numbers exist and drawn by worker
     processes while the next numbers are computed (see :class:`~thermocomp.plots.FigurePool`).
+    ``stage_files(folder)`` writes the run's other outputs into the staging folder first;
+    ``out`` receives everything at once at the end (nothing if anything fails).
     """
-    ev, out = cfg.eval, resolve(cfg.out)
-    clock = clock or Clock()
-    with _plots_folder(out, cfg.plots) as (draw, folder):
+    out, clock = resolve(cfg.out), clock or Clock()
+    with staged_outputs(out) as stage:
+        if stage_files is not None:
+            stage_files(stage)
+        metrics = _score(cfg, comp, ds, stage, clock, extra)
+    _publish(cfg, metrics, out, tracker, clock)
+    return metrics
+
+
+def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
+           extra: dict | None) -> dict:
+    """The numbers and figures of :func:`_report`, written into ``stage``."""
+    ev = cfg.eval
+    with _plots_folder(stage, cfg.plots) as (draw, folder):
         targets, predictions = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points,
                                      iso_a3=ev.get("iso10791_a3", True))
         clock.lap("score")
@@ -94,10 +115,16 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
             if cfg.plots in ("test", "all"):
                 _mutual_figures(draw, folder, metrics["mutual_prediction"])
                 clock.lap("figures")
-        path = write_json(out / "metrics.json", metrics)
-        write_headline(out / HEADLINE, evaluation_headline(metrics))  # for `dvc metrics show`
+        write_json(stage / "metrics.json", metrics)
+        write_headline(stage / HEADLINE, evaluation_headline(metrics))  # for `dvc metrics show`
         clock.lap("write")
     clock.lap("figures")  # drawing still under way once every number is written
+    return metrics
+
+
+def _publish(cfg: DictConfig, metrics: dict, out, tracker, clock: Clock) -> None:
+    """Log the committed outputs of a run to MLflow and print its table."""
+    path = out / "metrics.json"
     tracker.log_metrics(headline_metrics(metrics))     # the full metrics.json is the artifact
     tracker.log_artifact(path)
     if cfg.plots != "none":  # not the figures an earlier run left
@@ -106,7 +133,6 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
     print(result_table(metrics))
     say(f"metrics: {path}")
     say(clock.line())
-    return metrics
 
 
 def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> None:
@@ -123,17 +149,25 @@ def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> No
 
 
 @contextmanager
-def _plots_folder(out, level: str):
-    """``(draw, folder)``: ``draw(plot, *args)`` queues a figure of ``folder``, the temp folder
-    that replaces ``<out>/plots`` when the block succeeds; nothing at all with ``plots=none``
-    (not even a matplotlib import)."""
+def _plots_folder(stage, level: str):
+    """``(draw, folder)``: ``draw(plot, *args)`` queues a figure of ``folder``,
+    ``<stage>/plots`` (it replaces ``<out>/plots`` when the run is committed); nothing at all
+    with ``plots=none`` (not even a matplotlib import)."""
     if level == "none":
         yield None, None
         return
     from ..plots import FigurePool
 
-    with atomic_dir(out / "plots") as folder, FigurePool() as pool:
+    folder = stage / "plots"
+    folder.mkdir()
+    with FigurePool() as pool:
         yield pool.submit, folder
+
+
+def _figure(folder, *parts: str):
+    """``<folder>/<parts joined>.png``; the name is sanitised and must stay in ``folder`` (column
+    and campaign names are checked at ingest, this is the second line of defence)."""
+    return inside(folder, safe_name(*parts) + ".png")
 
 
 def _train_predictions(comp: Compensator, ds, mode: str) -> dict:
@@ -150,13 +184,13 @@ def _campaign_figures(draw, folder, comp: Compensator, ds, predictions: dict) ->
         time_s = ds.campaigns[cid]["time"].to_numpy()
         for t in comp.targets_:
             y, yhat = meas[t].to_numpy(), pred[t].to_numpy()
-            draw(residual_plot, time_s, y, yhat, t, cid, folder / f"residual_{cid}_{t}.png")
+            draw(residual_plot, time_s, y, yhat, t, cid, _figure(folder, "residual", cid, t))
             write_residual(folder, time_s, y, yhat, t, cid)  # the data, for `dvc plots show`
             a3 = a3_campaign(time_s, y, y - yhat)
             if a3["available"]:
                 mv = a3["moving"]
                 draw(iso_a3_plot, mv["start_s"], mv["range_before"], mv["range_after"], t, cid,
-                     folder / f"iso10791_a3_{cid}_{t}.png")
+                     _figure(folder, "iso10791_a3", cid, t))
 
 
 def _e_p95_figures(draw, folder, targets: dict) -> None:
@@ -168,7 +202,7 @@ def _e_p95_figures(draw, folder, targets: dict) -> None:
     for t, tm in targets.items():
         e, emax = tm["test"]["e_p95"], tm["test"]["e_max"]
         draw(e_p95_plot, e["window_s"], e["before"], e["after"], t, e["statistic"],
-             folder / f"e_p95_{t}.png", emax["before"], emax["after"])
+             _figure(folder, "e_p95", t), emax["before"], emax["after"])
 
 
 def _rsd_figures(draw, folder, metrics: dict, test_ambient: dict) -> None:
@@ -187,14 +221,14 @@ def _rsd_figures(draw, folder, metrics: dict, test_ambient: dict) -> None:
                     ati[t]["test"][name]["per_campaign"]
         n_int = ati.get(t, {}).get("n_intervals", 1)
         label = metrics["model"] + (f", {n_int} ATIs" if "intervals" in ati.get(t, {}) else "")
-        draw(rsd_plot, per, t, folder / f"rsd_{t}.png", test_ambient, baselines, label)
+        draw(rsd_plot, per, t, _figure(folder, "rsd", t), test_ambient, baselines, label)
         entry = ati.get(t, {})
         if "intervals" in entry:
             draw(ati_intervals_plot, entry["campaign_ambient_c0"], entry["boundaries_c"], t,
-                 folder / f"ati_intervals_{t}.png", test_ambient,
+                 _figure(folder, "ati_intervals", t), test_ambient,
                  [i["campaigns"] for i in entry["intervals"]])
             if entry.get("elbow") and entry["elbow"].get("n_intervals"):
-                draw(elbow_plot, entry["elbow"], t, folder / f"ati_elbow_{t}.png")
+                draw(elbow_plot, entry["elbow"], t, _figure(folder, "ati_elbow", t))
 
 
 def _mutual_figures(draw, folder, mutual: dict) -> None:
@@ -203,15 +237,20 @@ def _mutual_figures(draw, folder, mutual: dict) -> None:
 
     for t, mp in mutual.items():
         draw(mutual_prediction_plot, mp["campaigns"], mp["rsd"], t,
-             folder / f"mutual_prediction_{t}.png", mp["ambient_c0"])
+             _figure(folder, "mutual_prediction", t), mp["ambient_c0"])
 
 
 def evaluate(cfg: DictConfig) -> dict:
     """Score the trained model on train and test splits; write ``out/metrics.json``."""
     check_config(cfg)
     clock = Clock()
-    ds = io.load_interim(resolve(cfg.data.interim))
+    interim = resolve(cfg.data.interim)
+    ds = io.load_interim(interim)
     comp = load_model(cfg.model_path)
+    trained_on = getattr(comp, "interim_digest_", None)
+    if trained_on is not None and trained_on != ds.meta["digest"]:
+        raise io.ContractError("the model was trained on another ingest of this folder (another "
+                               "run's ingest replaced it since); rerun train", file=interim)
     clock.lap("read")
     with stage_run(cfg, "evaluate") as tr:
         return _report(cfg, comp, ds, tr, clock)
@@ -229,11 +268,13 @@ def run(cfg: DictConfig) -> dict:
         t0 = time.perf_counter()
         comp = _fit(cfg, ds)
         fit_s = time.perf_counter() - t0
-        out = resolve(cfg.out)
-        model_path = save_model(comp, out / "model.pkl")
-        write_json(out / "ingest_report.json", report)
         clock.lap("fit")
+
+        def stage_files(stage):  # committed with metrics.json, or not at all
+            save_model(comp, stage / "model.pkl")
+            write_json(stage / "ingest_report.json", report)
+
+        metrics = _report(cfg, comp, ds, tr, clock, {"fit_time_s": fit_s}, stage_files)
         tr.log_metrics({"fit_time_s": fit_s})
-        tr.log_artifact(model_path)
-        clock.lap("log")
-        return _report(cfg, comp, ds, tr, clock, {"fit_time_s": fit_s})
+        tr.log_artifact(resolve(cfg.out) / "model.pkl")
+        return metrics

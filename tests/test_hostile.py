@@ -1,0 +1,408 @@
+"""Hostile input and faults: every case exits 2 with one line and leaves nothing behind.
+
+Each case runs the real command (``thermocomp.cli.main``) on a small hand-made
+dataset and checks the exit status, that the one error line names the file,
+column and row where they apply, and that ``out``, ``data.interim`` and the
+model file are byte-identical to before (or still absent).
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import signal
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from thermocomp import files
+from thermocomp.cli import main
+from thermocomp.io import load_interim, read_dataset
+from thermocomp.stages import STAGES
+
+CAMPAIGNS = (("K01", "train"), ("K02", "train"), ("K03", "train"), ("K04", "test"))
+FAST = ["track=false", "plots=none", "eval.validation=false", "eval.mutual_prediction=false",
+        "eval.ati_baselines=false"]
+
+
+def make_dataset(root: Path, rows: int = 30, gain: float = 3.0) -> Path:
+    """Four campaigns (three train, one test) of a two-sensor machine whose error is linear in
+    the sensor rises (``gain`` µm/K on ``T_0``), one sample a minute."""
+    root.mkdir(parents=True)
+    rng = np.random.default_rng(0)
+    t = np.arange(rows) * 60.0
+    for i, (cid, _) in enumerate(CAMPAIGNS):
+        amb = 18.0 + 2 * i
+        t0 = amb + 5 * (1 - np.exp(-t / 900)) + rng.normal(0, 0.05, rows)
+        t1 = amb + 2 * (1 - np.exp(-t / 1500)) + rng.normal(0, 0.05, rows)
+        e = gain * (t0 - t0[0]) - 1.5 * (t1 - t1[0]) + rng.normal(0, 0.2, rows)
+        pd.DataFrame({"time": t, "T_0": t0, "T_amb": t1, "E_X": e}).to_csv(
+            root / f"{cid}.csv", index=False)
+    pd.DataFrame([(c, f"{c}.csv", s, "") for c, s in CAMPAIGNS],
+                 columns=["campaign", "file", "split", "notes"]).to_csv(
+        root / "campaigns.csv", index=False)
+    return root
+
+
+def edit_csv(path: Path, fn) -> None:
+    df = pd.read_csv(path)
+    fn(df)
+    df.to_csv(path, index=False)
+
+
+def replace_line(path: Path, line: int, old: bytes, new: bytes) -> None:
+    """Replace ``old`` by ``new`` in line ``line`` (0 = the header) of a file, as bytes."""
+    lines = path.read_bytes().split(b"\n")
+    assert old in lines[line]
+    lines[line] = lines[line].replace(old, new, 1)
+    path.write_bytes(b"\n".join(lines))
+
+
+def snapshot(*paths: Path) -> dict:
+    """Every file under ``paths`` (bytes), and every temp entry next to them."""
+    state = {}
+    for p in paths:
+        if p.is_file():
+            state[str(p)] = p.read_bytes()
+        elif p.is_dir():
+            state.update({str(f): f.read_bytes() for f in sorted(p.rglob("*")) if f.is_file()})
+        else:
+            state[str(p)] = None
+        if p.parent.is_dir():
+            state[f"{p.parent} entries"] = sorted(q.name for q in p.parent.iterdir())
+    return state
+
+
+def refused(args: list[str], capsys, *says: str) -> str:
+    """``thermocomp <args>`` exits 2 with one error line holding every one of ``says``."""
+    code = main(args)
+    err = capsys.readouterr().err
+    lines = [ln for ln in err.splitlines() if ln.startswith("thermocomp: error")]
+    assert code == 2, err
+    assert len(lines) == 1, err
+    for words in says:
+        assert words in lines[0], lines[0]
+    return lines[0]
+
+
+@pytest.fixture
+def paths(tmp_path):
+    """A dataset and where a run writes, with an earlier ingest and model in place."""
+    ds = make_dataset(tmp_path / "ds")
+    p = {"ds": ds, "out": tmp_path / "reports" / "out", "interim": tmp_path / "interim",
+         "model": tmp_path / "models" / "model.pkl"}
+    p["args"] = [f"data.path={ds}", f"out={p['out']}", f"data.interim={p['interim']}",
+                 f"model_path={p['model']}", *FAST]
+    return p
+
+
+# -- refused at read: the matrix ----------------------------------------------------------
+
+
+def _non_utf8_manifest(ds):
+    replace_line(ds / "campaigns.csv", 2, b"train,", b"train,caf\xe9 ")
+
+
+def _non_utf8_cell(ds):
+    lines = (ds / "K02.csv").read_bytes().split(b"\n")
+    cells = lines[5].split(b",")
+    cells[1] = b"20\xb0"  # a latin-1 degree sign in T_0
+    lines[5] = b",".join(cells)
+    (ds / "K02.csv").write_bytes(b"\n".join(lines))
+
+
+def _cell(cid, column, row, value):
+    def mutate(ds):
+        edit_csv(ds / f"{cid}.csv", lambda df: df.__setitem__(
+            column, df[column].where(df.index != row - 1, value)))
+    return mutate
+
+
+def _single_row(ds):
+    lines = (ds / "K04.csv").read_text().splitlines()
+    (ds / "K04.csv").write_text("\n".join(lines[:2]) + "\n")
+
+
+def _rename_column(cid, old, new):
+    def mutate(ds):
+        text = (ds / f"{cid}.csv").read_text().splitlines()
+        text[0] = text[0].replace(old, new)
+        (ds / f"{cid}.csv").write_text("\n".join(text) + "\n")
+    return mutate
+
+
+def _manifest_file(cid, name_of):
+    def mutate(ds):
+        outside = ds.parent / "x.csv"
+        outside.write_bytes((ds / f"{cid}.csv").read_bytes())
+        edit_csv(ds / "campaigns.csv", lambda df: df.__setitem__(
+            "file", df["file"].where(df["campaign"] != cid, name_of(outside))))
+    return mutate
+
+
+def _time_scaled(cid, factor, only=False):
+    def mutate(ds):
+        edit_csv(ds / f"{cid}.csv", lambda df: df.__setitem__("time", df["time"] * factor))
+        if only:  # a single-campaign dataset: nothing to compare the sample period with
+            edit_csv(ds / "campaigns.csv", lambda df: df.drop(df.index[df["campaign"] != cid],
+                                                              inplace=True))
+    return mutate
+
+
+def _fahrenheit(cid):
+    def mutate(ds):
+        def to_f(df):
+            for c in ("T_0", "T_amb"):
+                df[c] = df[c] * 9 / 5 + 32
+        edit_csv(ds / f"{cid}.csv", to_f)
+    return mutate
+
+
+def _semicolons(ds):
+    text = (ds / "campaigns.csv").read_text()
+    (ds / "campaigns.csv").write_text(text.replace(",", ";"))
+
+
+def _campaign_semicolons(ds):
+    df = pd.read_csv(ds / "K01.csv")
+    df.to_csv(ds / "K01.csv", index=False, sep=";", decimal=",")
+
+
+READ_CASES = {
+    "non-UTF-8 manifest": (_non_utf8_manifest, [],
+                           ["campaigns.csv", "column 'notes'", "row 2", "0xe9 is not UTF-8"]),
+    "non-UTF-8 cell": (_non_utf8_cell, [], ["K02.csv", "column 'T_0'", "row 5", "0xb0 is not UTF-8"]),
+    "1e300 error": (_cell("K03", "E_X", 7, 1e300), [],
+                    ["K03.csv", "column 'E_X'", "row 7", "data.max_abs_error"]),
+    "1e300 temperature": (_cell("K02", "T_amb", 3, 1e300), [],
+                          ["K02.csv", "column 'T_amb'", "row 3", "kelvin"]),
+    "single-row campaign": (_single_row, [], ["K04.csv", "1 complete sample", "at least 2"]),
+    "resample to 30 GB": (lambda ds: None, ["data.resample_s=0.0001"],
+                          ["K01.csv", "data.resample_s=0.0001 would make 1.74e+07 rows from the file's 30"]),
+    "resampled to one sample": (lambda ds: None, ["data.resample_s=100000"],
+                                ["K01.csv", "1 (after data.resample_s=100000) sample(s)"]),
+    "path in a column name": (_rename_column("K01", "E_X", "E_X/../../x"), [],
+                              ["K01.csv", "column 'E_X/../../x'", "identifier-like"]),
+    "control character in a column name": (_rename_column("K02", "T_amb", "T_amb\x1b[2J"), [],
+                                           ["K02.csv", r"column 'T_amb\x1b[2J'", "identifier-like"]),
+    "manifest file outside": (_manifest_file("K02", lambda p: "../x.csv"), [],
+                              ["campaigns.csv", "column 'file'", "row 2", "outside the dataset"]),
+    "manifest file absolute": (_manifest_file("K03", lambda p: str(p)), [],
+                               ["campaigns.csv", "column 'file'", "row 3", "outside the dataset"]),
+    "one campaign in ms": (_time_scaled("K02", 1000), [],
+                           ["K02.csv", "column 'time'", "60000 s is 1e+03x", "time in ms?"]),
+    "one campaign in hours": (_time_scaled("K03", 1 / 3600), [],
+                              ["K03.csv", "column 'time'", "time in hours?"]),
+    "a lone campaign in ms": (_time_scaled("K01", 1e6, only=True), [],
+                              ["K01.csv", "column 'time'", "row 30", "lasts 2.014e+04 days", "ms?"]),
+    "°F": (_fahrenheit("K03"), [], ["K03.csv", "column 'T_", "row 1", "look like °F"]),
+    "°F threshold": (lambda ds: None, ["data.fahrenheit_threshold_c=19"],
+                     ["K02.csv", "column 'T_", "row 1", "data.fahrenheit_threshold_c=19"]),
+    ";-separated manifest": (_semicolons, [],
+                             ["campaigns.csv", "looks ';'-separated: set data.delimiter=';'"]),
+    ";-separated campaign": (_campaign_semicolons, [],
+                             ["K01.csv", "one column 'time;T_0;T_amb;E_X'",
+                              "set data.delimiter=';' data.decimal=','"]),
+}
+
+
+@pytest.mark.parametrize("case", READ_CASES)
+@pytest.mark.parametrize("command", ["run", "ingest"])
+def test_bad_data_is_refused_and_leaves_nothing(paths, capsys, case, command):
+    mutate, extra, says = READ_CASES[case]
+    mutate(paths["ds"])
+    make_dataset(paths["interim"].parent / "previous")  # an earlier good ingest stays as it was
+    assert main(["ingest", f"data.path={paths['interim'].parent / 'previous'}",
+                 f"data.interim={paths['interim']}", "track=false"]) == 0
+    capsys.readouterr()
+    before = snapshot(paths["out"], paths["interim"], paths["model"], paths["ds"])
+
+    refused([command, *paths["args"], *extra], capsys, *says)
+
+    assert snapshot(paths["out"], paths["interim"], paths["model"], paths["ds"]) == before
+
+
+def test_a_semicolon_dataset_reads_with_the_suggested_settings(paths):
+    _semicolons(paths["ds"])
+    for cid, _ in CAMPAIGNS:
+        df = pd.read_csv(paths["ds"] / f"{cid}.csv")
+        df.to_csv(paths["ds"] / f"{cid}.csv", index=False, sep=";", decimal=",")
+    ds, _ = read_dataset(paths["ds"], {"delimiter": ";", "decimal": ","})
+    assert ds.ids("test") == ["K04"] and list(ds.campaigns["K01"].columns) == [
+        "time", "T_0", "T_amb", "E_X"]
+
+
+@pytest.mark.parametrize("limit, refused_too", [(None, False), (5.0, True)])
+def test_fahrenheit_and_period_checks_can_be_switched_off_or_tightened(tmp_path, limit,
+                                                                       refused_too):
+    ds = make_dataset(tmp_path / "ds")
+    _time_scaled("K02", 10)(ds)  # a 10-min log among 1-min logs: plausible
+    read_dataset(ds)
+    cfg = {"max_period_ratio": limit, "fahrenheit_threshold_c": None}
+    _fahrenheit("K01")(ds)
+    if refused_too:
+        with pytest.raises(ValueError, match="max_period_ratio=5"):
+            read_dataset(ds, cfg)
+    else:
+        assert read_dataset(ds, cfg)[0].campaigns["K01"]["T_0"].iloc[0] > 45
+
+
+# -- refused config ----------------------------------------------------------------------
+
+
+CONFIG_CASES = {
+    "k=0": (["select=pearson", "select.selector.k=0"],
+            ["select.selector", "k must be a positive integer or None, got 0"]),
+    "k=-3": (["select=greedy_residual", "select.selector.k=-3"], ["got -3"]),
+    "k=1.5": (["select=pearson", "select.selector.k=1.5"], ["got 1.5"]),
+    "k=abc": (["select=cluster_grey", "select.selector.k=abc"], ["got 'abc'"]),
+    "k_max=0": (["select=greedy_residual", "select.selector.k_max=0"],
+                ["k_max must be a positive integer, got 0"]),
+    "m=1": (["select=cluster_grey", "select.selector.m=1"], ["m must be a number > 1"]),
+    "out=/dev/null": (["out=/dev/null"], ["out=/dev/null: exists and is not a folder"]),
+    "seed=abc": (["seed=abc"], ["seed='abc' is not an integer"]),
+    "seed=1.5": (["seed=1.5"], ["seed=1.5 is not an integer"]),
+}
+
+
+@pytest.mark.parametrize("case", CONFIG_CASES)
+def test_bad_config_is_refused_before_any_work(paths, capsys, case):
+    extra, says = CONFIG_CASES[case]
+    before = snapshot(paths["out"], paths["interim"], paths["model"])
+    refused(["run", *paths["args"], *extra], capsys, *says)
+    assert snapshot(paths["out"], paths["interim"], paths["model"]) == before
+
+
+def test_out_below_a_file_or_in_a_read_only_place_is_refused(paths, capsys, tmp_path):
+    (tmp_path / "a_file").write_text("x")
+    refused(["run", *paths["args"], f"out={tmp_path / 'a_file' / 'out'}"], capsys,
+            "is not a folder")
+    refused(["run", *paths["args"], "out=/proc/thermocomp_out"], capsys,
+            "out=/proc/thermocomp_out: cannot write in /proc")
+    refused(["train", *paths["args"], f"model_path={tmp_path}"], capsys,
+            f"model_path={tmp_path}: exists and is a folder")
+    refused(["ingest", *paths["args"], f"data.interim={tmp_path / 'a_file'}"], capsys,
+            "exists and is not a folder")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file", "ds"]
+
+
+@pytest.mark.parametrize("stage", STAGES)
+@pytest.mark.parametrize("seed", ["abc", "1.5", "true", "-1"])
+def test_a_non_integer_seed_is_refused_by_every_stage(stage, seed, capsys, tmp_path):
+    refused([stage, f"seed={seed}", "track=false", f"out={tmp_path / 'o'}"], capsys,
+            "is not an integer")
+    assert not (tmp_path / "o").exists()
+
+
+# -- a run's outputs: all or nothing -------------------------------------------------------
+
+
+def test_refused_runs_leave_no_model_or_ingest_report(paths, capsys):
+    refused(["run", *paths["args"], "+data.split_overrides.K04=train"], capsys,
+            "no 'test' campaign")
+    edit_csv(paths["ds"] / "K02.csv", lambda df: df.rename(columns={"E_X": "E_Y"}, inplace=True))
+    refused(["run", *paths["args"]], capsys, "K0", "column 'E_")
+    assert not paths["out"].exists() and not paths["out"].parent.exists()
+
+
+def test_a_refused_run_keeps_the_previous_run_of_the_same_out(paths, capsys):
+    assert main(["run", *paths["args"], "plots=summary"]) == 0
+    mlr = snapshot(paths["out"])
+    assert {"model.pkl", "ingest_report.json", "metrics.json", "plots"} <= {
+        p.name for p in paths["out"].iterdir()}
+
+    refused(["run", *paths["args"], "model=pcr", "plots=summary",
+             "+data.split_overrides.K04=train"], capsys, "no 'test' campaign")
+
+    assert snapshot(paths["out"]) == mlr
+
+
+@pytest.mark.parametrize("signum, code", [(signal.SIGTERM, 128 + signal.SIGTERM),
+                                          (signal.SIGINT, 130)])
+def test_a_killed_run_removes_its_temp_files(paths, capsys, monkeypatch, signum, code):
+    from thermocomp.stages import modelling
+
+    def killed(*args, **kwargs):
+        os.kill(os.getpid(), signum)  # delivered at once: raised in this frame
+        raise AssertionError("not reached")
+
+    assert main(["run", *paths["args"], "plots=summary"]) == 0
+    before, handler = snapshot(paths["out"]), signal.getsignal(signal.SIGTERM)
+    monkeypatch.setattr(modelling, "anova", killed)  # after the figures were queued
+    assert main(["run", *paths["args"], "plots=summary", "model=pcr"]) == code
+    assert snapshot(paths["out"]) == before
+    assert signal.getsignal(signal.SIGTERM) == handler
+
+
+def test_stale_temp_folders_of_dead_processes_are_swept(paths):
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"],
+                          capture_output=True, text=True, check=True).stdout.strip()
+    parent = paths["out"].parent
+    stale = [parent / f".out.stage-{dead}-abc", parent / f".out.old-{dead}-abc"]
+    live = parent / f".out.stage-{os.getppid()}-abc"  # a run still going on
+    for folder in (*stale, live):
+        (folder / "plots").mkdir(parents=True)
+    assert main(["run", *paths["args"]]) == 0
+    assert sorted(p.name for p in parent.iterdir()) == sorted(["out", live.name])
+
+
+# -- two runs sharing data/interim ---------------------------------------------------------
+
+
+def test_evaluate_refuses_a_model_trained_on_another_ingest(paths, tmp_path, capsys):
+    other = make_dataset(tmp_path / "other", gain=6.0)
+    interim = [f"data.interim={paths['interim']}", f"model_path={paths['model']}",
+               f"data.processed={tmp_path / 'processed'}", *FAST]
+    assert main(["ingest", f"data.path={paths['ds']}", *interim]) == 0
+    assert main(["train", *interim]) == 0
+    assert main(["ingest", f"data.path={other}", *interim]) == 0  # another run's ingest
+    model = paths["model"].read_bytes()
+
+    refused(["evaluate", *interim, f"out={paths['out']}"], capsys, "interim",
+            "trained on another ingest", "rerun train")
+
+    assert not paths["out"].exists() and paths["model"].read_bytes() == model
+    assert main(["train", *interim]) == 0
+    assert main(["evaluate", *interim, f"out={paths['out']}"]) == 0
+
+
+def test_interleaved_ingests_leave_one_whole_dataset(paths, tmp_path, monkeypatch):
+    """A second ingest starts and ends while the first is writing: the folder then holds the
+    first one's dataset, whole (the last to finish wins), and no temp folder is left."""
+    from thermocomp.io import read as io_read
+
+    other = make_dataset(tmp_path / "other", rows=20, gain=6.0)
+    write_table, nested = io_read.pq.write_table, []
+
+    def interleaved(*args, **kwargs):
+        if not nested:
+            nested.append(True)
+            assert main(["ingest", f"data.path={other}", f"data.interim={paths['interim']}",
+                         "track=false"]) == 0
+            assert load_interim(paths["interim"]).campaigns["K01"].shape[0] == 20
+        return write_table(*args, **kwargs)
+
+    monkeypatch.setattr(io_read.pq, "write_table", interleaved)
+    assert main(["ingest", f"data.path={paths['ds']}", f"data.interim={paths['interim']}",
+                 "track=false"]) == 0
+
+    got, want = load_interim(paths["interim"]), read_dataset(paths["ds"])[0]
+    for cid in want.ids():
+        pd.testing.assert_frame_equal(got.campaigns[cid], want.campaigns[cid])
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["ds", "interim", "other"]
+
+
+# -- file names built from data ------------------------------------------------------------
+
+
+@pytest.mark.parametrize("name", ["E_Z/../../x", "../../etc/x", "..", ".hidden", "a\x00b"])
+def test_figure_names_from_data_stay_in_their_folder(tmp_path, name):
+    path = files.inside(tmp_path, files.safe_name("residual", "K01", name) + ".png")
+    assert path.parent == tmp_path and not path.name.startswith(".")
+    assert re.fullmatch(r"[\w.\-]+", path.name) and ".." not in path.name
+    with pytest.raises(ValueError, match="leaves"):
+        files.inside(tmp_path, "../x.png")
