@@ -73,8 +73,11 @@ def check_report(m: dict, plots: Path, ati: bool, level: str = "summary",
             assert at["elbow"]["chosen"] == at["n_intervals"]
             assert "single_model" in at["test"]
     assert m["ati"]["ati_model"] is ati
+    expected |= {"e_p95", "residuals"}  # the figures' data for `dvc plots show` (CSV)
     assert {p.name for p in plots.iterdir()} == expected  # nothing else, no temp file left
-    assert all(p.stat().st_mode & 0o777 == 0o644 for p in plots.iterdir())
+    assert {p.name for p in (plots / "e_p95").iterdir()} == {f"{t}.csv" for t in m["targets"]}
+    assert all(p.stat().st_mode & 0o777 == (0o755 if p.is_dir() else 0o644)
+               for p in plots.rglob("*"))
 
 
 @pytest.fixture(scope="module")
@@ -124,8 +127,8 @@ def test_plots_none_writes_no_figure_and_the_same_numbers(small_year, tmp_path):
         comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in ds.ids("train")})
         reports[level] = _report(cfg, comp, ds, _Null())
     assert not (tmp_path / "none" / "plots").exists()
-    assert {p.name for p in (tmp_path / "summary" / "plots").iterdir()} == {"e_p95_E_Z.png",
-                                                                           "rsd_E_Z.png"}
+    assert {p.name for p in (tmp_path / "summary" / "plots").iterdir()} == {
+        "e_p95_E_Z.png", "rsd_E_Z.png", "e_p95", "residuals"}
     assert reports["none"] == reports["summary"]
 
 
