@@ -48,7 +48,8 @@ def test_simulate_then_run_writes_valid_metrics(default_dataset, tmp_path):
         assert tm["test"]["rms_after"] < 0.4 * tm["test"]["rms_before"], t
     # plots=summary (default): what a user looks at first, per target
     assert {p.name for p in (out / "plots").iterdir()} == {
-        f"{name}_{t}.png" for name in ("e_p95", "rsd") for t in ("E_X", "E_Y", "E_Z")}
+        f"{name}_{t}.png" for name in ("e_p95", "rsd") for t in ("E_X", "E_Y", "E_Z")} | {
+        "e_p95", "residuals"}  # + the figures' data (CSV) for `dvc plots show`
     assert (out / "plots" / "e_p95_E_Z.png").stat().st_size > 10_000
 
     import mlflow

@@ -164,3 +164,9 @@ class SweepProgress(Callback):
         status = "ok" if job_return.status == JobStatus.COMPLETED else "FAILED"
         overrides = " ".join(config.hydra.overrides.task)
         _say(f"sweep: {n}/{total or '?'} jobs done (#{num} {status}: {overrides})")
+
+    def on_multirun_end(self, config, **kwargs) -> None:
+        import shutil
+
+        # the marks only count jobs: the sweep folder keeps its job folders and nothing else
+        shutil.rmtree(Path(str(config.hydra.sweep.dir)) / ".done", ignore_errors=True)
