@@ -26,6 +26,19 @@ def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.Complet
     return proc
 
 
+def stop_process_group(proc: subprocess.Popen, timeout: float = 20) -> None:
+    """Stop a server started with ``start_new_session=True``: SIGTERM its group, SIGKILL if it
+    lingers."""
+    import signal
+
+    os.killpg(proc.pid, signal.SIGTERM)
+    try:
+        proc.wait(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.wait(timeout=timeout)
+
+
 def ctx(groups=None, **columns) -> pd.DataFrame:
     """A side-input context (thermocomp.context): ``campaign`` per row plus any other columns."""
     data = {"campaign": np.asarray(groups, dtype=object)} if groups is not None else {}

@@ -9,7 +9,6 @@ models:/<name>@champion`` answers over HTTP exactly as the model in process.
 from __future__ import annotations
 
 import os
-import signal
 import socket
 import subprocess
 import sys
@@ -19,6 +18,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+
+from conftest import stop_process_group
 
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import main
@@ -205,12 +206,7 @@ def test_served_champion_answers_http_exactly_as_in_process(project, capsys):
         resp = _post(port, bad, True)
         assert resp.status_code == 400 and "T_amb" in resp.text
     finally:
-        os.killpg(server.pid, signal.SIGTERM)
-        try:
-            server.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            os.killpg(server.pid, signal.SIGKILL)
-            server.wait(timeout=20)
+        stop_process_group(server)
         log.close()
 
 

@@ -10,7 +10,6 @@ without an activated venv and writes no ``./mlflow.db``.
 from __future__ import annotations
 
 import os
-import signal
 import socket
 import subprocess
 import time
@@ -20,7 +19,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import BIN
+from conftest import BIN, stop_process_group
 from test_deploy import LIGHT_EVAL, ARStub, campaigns, mlflow_store, write_small_dataset
 from thermocomp.cli import _compose, main
 from thermocomp.compensator import Compensator
@@ -174,11 +173,6 @@ def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promot
             np.testing.assert_allclose(served[["C_X", "C_Z"]].to_numpy(),
                                        expected[s][["C_X", "C_Z"]].to_numpy(), rtol=0, atol=1e-9)
     finally:
-        os.killpg(server.pid, signal.SIGTERM)
-        try:
-            server.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            os.killpg(server.pid, signal.SIGKILL)
-            server.wait(timeout=20)
+        stop_process_group(server)
         log.close()
     assert not (tmp_path / "mlflow.db").exists() and not (tmp_path / "mlruns").exists()
