@@ -26,6 +26,35 @@ def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.Complet
     return proc
 
 
+def free_port() -> int:
+    """A TCP port on 127.0.0.1 that nothing listens on now."""
+    import socket
+
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def wait_until_up(port: int, server: subprocess.Popen, log_path: Path, timeout_s: float = 120):
+    """Wait until the MLflow scoring server on ``port`` answers ``/ping``; fail with its log if
+    it exits or is not up after ``timeout_s``."""
+    import time
+
+    import requests
+
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline:
+        if server.poll() is not None:
+            pytest.fail(f"the server exited {server.returncode}:\n{log_path.read_text()}")
+        try:
+            if requests.get(f"http://127.0.0.1:{port}/ping", timeout=2).status_code == 200:
+                return
+        except requests.RequestException:
+            pass
+        time.sleep(0.5)
+    pytest.fail(f"the server is not up after {timeout_s} s:\n{log_path.read_text()}")
+
+
 def stop_process_group(proc: subprocess.Popen, timeout: float = 20) -> None:
     """Stop a server started with ``start_new_session=True``: SIGTERM its group, SIGKILL if it
     lingers."""

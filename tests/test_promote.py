@@ -9,17 +9,15 @@ models:/<name>@champion`` answers over HTTP exactly as the model in process.
 from __future__ import annotations
 
 import os
-import socket
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import stop_process_group
+from conftest import free_port, stop_process_group, wait_until_up
 
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import main
@@ -154,12 +152,6 @@ def test_promote_refuses_to_choose_by_a_test_figure(project, capsys):
     assert "test figure" in capsys.readouterr().err
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 def _post(port, frame: pd.DataFrame, reset: bool):
     import requests
 
@@ -174,7 +166,7 @@ def test_served_champion_answers_http_exactly_as_in_process(project, capsys):
 
     if not _champion_exists(uri):
         _promote(project, strong, "p_serve", capsys)
-    port = _free_port()
+    port = free_port()
     bin_dir = str(Path(sys.executable).parent)            # uvicorn lives next to mlflow
     env = {**os.environ, "MLFLOW_TRACKING_URI": uri,
            "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")]),
@@ -185,7 +177,7 @@ def test_served_champion_answers_http_exactly_as_in_process(project, capsys):
     server = subprocess.Popen(cmd, env=env, stdout=log, stderr=subprocess.STDOUT,
                               start_new_session=True)
     try:
-        _wait_until_up(port, server, root / "serve.log", timeout_s=120)
+        wait_until_up(port, server, root / "serve.log", timeout_s=120)
         test = pd.read_csv(Path(common[0].split("=", 1)[1]) / "K05.csv")
         frame = test[["time", "T_1", "T_2", "T_amb"]].astype(float)
         local = mlflow.pyfunc.load_model(f"models:/{NAME}@champion")
@@ -218,19 +210,3 @@ def _champion_exists(uri) -> bool:
         return True
     except Exception:
         return False
-
-
-def _wait_until_up(port, server, log_path, timeout_s):
-    import requests
-
-    deadline = time.monotonic() + timeout_s
-    while time.monotonic() < deadline:
-        if server.poll() is not None:
-            pytest.fail(f"mlflow models serve exited {server.returncode}:\n{log_path.read_text()}")
-        try:
-            if requests.get(f"http://127.0.0.1:{port}/ping", timeout=2).status_code == 200:
-                return
-        except requests.RequestException:
-            pass
-        time.sleep(0.5)
-    pytest.fail(f"mlflow models serve not up after {timeout_s} s:\n{log_path.read_text()}")

@@ -10,16 +10,14 @@ without an activated venv and writes no ``./mlflow.db``.
 from __future__ import annotations
 
 import os
-import socket
 import subprocess
-import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import BIN, stop_process_group
+from conftest import BIN, free_port, stop_process_group, wait_until_up
 from test_deploy import LIGHT_EVAL, ARStub, campaigns, mlflow_store, write_small_dataset
 from thermocomp.cli import _compose, main
 from thermocomp.compensator import Compensator
@@ -116,12 +114,6 @@ def test_serve_without_a_promoted_model_exits_2(tmp_path, capsys):
     assert "thermocomp promote" in capsys.readouterr().err
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
-
-
 def _post(port, frame: pd.DataFrame, **params):
     import requests
 
@@ -135,10 +127,9 @@ def _post(port, frame: pd.DataFrame, **params):
 @pytest.mark.slow
 def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promoted, tmp_path):
     import mlflow
-    import requests
 
     root, data, uri = promoted
-    port = _free_port()
+    port = free_port()
     env = {k: v for k, v in os.environ.items() if k != "VIRTUAL_ENV"}
     env["PATH"] = os.pathsep.join(p for p in os.environ.get("PATH", "").split(os.pathsep)
                                   if Path(p) != BIN) or "/usr/bin:/bin"
@@ -148,17 +139,7 @@ def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promot
                                f"serve.port={port}"], cwd=tmp_path, env=env, stdout=log,
                               stderr=subprocess.STDOUT, start_new_session=True)
     try:
-        deadline = time.monotonic() + 120
-        while True:
-            if server.poll() is not None:
-                pytest.fail(f"serve exited {server.returncode}:\n{(tmp_path / 'serve.log').read_text()}")
-            try:
-                if requests.get(f"http://127.0.0.1:{port}/ping", timeout=2).status_code == 200:
-                    break
-            except requests.RequestException:
-                pass
-            assert time.monotonic() < deadline, (tmp_path / "serve.log").read_text()
-            time.sleep(0.5)
+        wait_until_up(port, server, tmp_path / "serve.log", timeout_s=120)
         k4, k5 = (pd.read_csv(data / f"{c}.csv").astype(float) for c in ("K04", "K05"))
         cols = ["time", "T_1", "T_2", "T_amb"]
         local = mlflow.pyfunc.load_model(f"models:/{NAME}@champion")
