@@ -14,6 +14,7 @@ and SIGINT remove them on the way out, and one left by a killed process
 
 from __future__ import annotations
 
+import glob
 import hashlib
 import json
 import os
@@ -128,7 +129,7 @@ def _temp_folder(dest: Path, kind: str = "tmp"):
     tmp.chmod(DIR_MODE)
     ok = False
     try:
-        with _signals_raise():
+        with signals_raise():
             yield tmp
         ok = True
     finally:
@@ -177,16 +178,12 @@ def sweep_stale(dest: str | os.PathLike) -> list[Path]:
     removed = []
     if not dest.parent.is_dir():
         return removed
-    for p in dest.parent.glob(f".{glob_escape(dest.name)}.*-*-*"):
+    for p in dest.parent.glob(f".{glob.escape(dest.name)}.*-*-*"):
         m = _TEMP.fullmatch(p.name)
         if m and m["name"] == dest.name and p.is_dir() and not _alive(int(m["pid"])):
             shutil.rmtree(p, ignore_errors=True)
             removed.append(p)
     return removed
-
-
-def glob_escape(name: str) -> str:
-    return re.sub(r"([*?\[])", r"[\1]", name)
 
 
 def _alive(pid: int) -> bool:
@@ -202,26 +199,32 @@ def _alive(pid: int) -> bool:
 
 
 class Terminated(SystemExit):
-    """SIGTERM, raised as an exception so that ``finally`` blocks clean up."""
+    """SIGTERM, raised as an exception (exit status 128 + 15) so that ``finally`` blocks clean up
+    and callers can tell a terminated block from one that failed."""
 
 
 @contextmanager
-def _signals_raise():
-    """Within the block SIGTERM raises :class:`Terminated` (SIGINT raises KeyboardInterrupt
-    already), so temp files are removed on the way out; the previous handler comes back after.
-    Only the main thread can set handlers: elsewhere this does nothing."""
+def signals_raise(sigint: bool = False):
+    """Within the block SIGTERM raises :class:`Terminated` (and, with ``sigint``, SIGINT raises
+    KeyboardInterrupt even where it was ignored), so temp files are removed and runs closed on
+    the way out; the previous handlers come back after.  Only the main thread can set
+    handlers: elsewhere this does nothing."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
 
-    def terminate(signum, frame):
+    def handler(signum, frame):
+        if signum == signal.SIGINT:
+            raise KeyboardInterrupt
         raise Terminated(128 + signum)
 
-    previous = signal.signal(signal.SIGTERM, terminate)
+    signals = (signal.SIGTERM, signal.SIGINT) if sigint else (signal.SIGTERM,)
+    previous = {s: signal.signal(s, handler) for s in signals}
     try:
         yield
     finally:
-        signal.signal(signal.SIGTERM, previous)
+        for s, h in previous.items():
+            signal.signal(s, h)
 
 
 def safe_name(*parts: str) -> str:

@@ -32,14 +32,13 @@ import math
 import os
 import random
 import re
-import signal
-import threading
 import time
 from contextlib import contextmanager
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
 
+from .files import Terminated, signals_raise
 from .paths import project_root, resolve
 
 DEFAULT_URI = "sqlite:///mlruns/mlflow.db"
@@ -223,29 +222,6 @@ def config_container(cfg: DictConfig) -> dict:
 
 
 @contextmanager
-def _ending_on_signals():
-    """SIGTERM/SIGINT inside the block raise (SystemExit(143) / KeyboardInterrupt) so the
-    run can be closed; yields a dict whose ``"signal"`` says which one came."""
-    got: dict = {"signal": None}
-    if threading.current_thread() is not threading.main_thread():
-        yield got                              # handlers can only be set in the main thread
-        return
-
-    def handler(signum, frame):
-        got["signal"] = signum
-        if signum == signal.SIGINT:
-            raise KeyboardInterrupt
-        raise SystemExit(128 + signum)
-
-    previous = {s: signal.signal(s, handler) for s in (signal.SIGTERM, signal.SIGINT)}
-    try:
-        yield got
-    finally:
-        for s, h in previous.items():
-            signal.signal(s, h)
-
-
-@contextmanager
 def stage_run(cfg: DictConfig, stage: str, default: bool = True):
     """An MLflow run for one stage, with the meaningful config logged; yields a tracker.
 
@@ -272,7 +248,7 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
 
         tags[DATASET_TAG] = folder_digest(data)
     parent = os.environ.get(PARENT_ENV) or None
-    with _ending_on_signals() as got:
+    with signals_raise(sigint=True):
         run = retry_locked(mlflow.start_run, experiment_id=exp_id, tags=tags, parent_run_id=parent,
                            run_name=run_name(cfg, overrides))
         status = "FAILED"
@@ -282,11 +258,8 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
             retry_locked(mlflow.log_params, run_params(container, overrides))
             yield _Tracker(mlflow, run)
             status = "FINISHED"
-        except KeyboardInterrupt:
+        except (KeyboardInterrupt, Terminated):  # SIGINT / SIGTERM (files.signals_raise)
             status = "KILLED"
-            raise
-        except SystemExit:
-            status = "KILLED" if got["signal"] is not None else "FAILED"
             raise
         finally:
             from .log import current_file  # the run's log so far (thermocomp.log), failed runs too
