@@ -12,6 +12,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from .files import atomic_dir, write_json
+from .metrics import reduction_pct
 
 HEADLINE, DIAGNOSIS_HEADLINE = "headline", "diagnosis_headline"
 
@@ -22,11 +23,8 @@ def evaluation_headline(metrics: dict) -> dict:
     out = {}
     for t, m in metrics["targets"].items():
         te = m["test"]
-        reduction = te.get("rms_reduction_pct")
-        if reduction is None and te.get("rms_before"):
-            reduction = 100.0 * (1.0 - te["rms_after"] / te["rms_before"])
-        out[t] = {"test_rmse": te["rmse"], "test_rsd_mean": te["rsd_mean"],
-                  "test_rsd_sd": te["rsd_sd"], "rms_reduction_pct": reduction,
+        out[t] = {"test_rmse": te["rmse"], "test_rsd_mean": te["rsd_mean"], "test_rsd_sd": te["rsd_sd"],
+                  "rms_reduction_pct": reduction_pct(te["rms_before"], te["rms_after"]),
                   "val_rmse": (m.get("validation") or {}).get("rmse")}
     return out
 

@@ -20,6 +20,8 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
+from .metrics import reduction_pct
+
 FIGURES = ("rsd_mean", "rsd_sd", "rmse", "rms_reduction_pct", "e_p95_1h", "e_p95_8h")  # test
 VAL_FIGURES = ("val_rmse", "val_rsd_mean", "val_rsd_sd")   # what ranks and gates
 VAL_PREFIX = "val_"
@@ -44,10 +46,8 @@ def e_p95_at(e_p95: Mapping | None, seconds: float, curve: str = "after") -> flo
 
 
 def _target_figures(test: Mapping) -> dict:
-    before, after = test.get("rms_before"), test.get("rms_after")
-    reduction = 100.0 * (1.0 - after / before) if before else None
-    return {"rsd_mean": test.get("rsd_mean"), "rsd_sd": test.get("rsd_sd"),
-            "rmse": test.get("rmse"), "rms_reduction_pct": reduction,
+    return {"rsd_mean": test.get("rsd_mean"), "rsd_sd": test.get("rsd_sd"), "rmse": test.get("rmse"),
+            "rms_reduction_pct": reduction_pct(test.get("rms_before"), test.get("rms_after")),
             "e_p95_1h": e_p95_at(test.get("e_p95"), HOUR_S),
             "e_p95_8h": e_p95_at(test.get("e_p95"), 8 * HOUR_S)}
 
@@ -104,7 +104,7 @@ def persistence_summary(targets: Mapping, target: str = "mean") -> dict | None:
         if not p:
             return None
         return {"rsd_mean": p.get("rsd_mean"), "rsd_sd": p.get("rsd_sd"), "rmse": p.get("rmse"),
-                "rms_reduction_pct": 100.0 * (1.0 - p["rmse"] / before) if before else None,
+                "rms_reduction_pct": reduction_pct(before, p["rmse"]),
                 "e_p95_1h": None, "e_p95_8h": None}
 
     if target != "mean":
