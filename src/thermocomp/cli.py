@@ -57,13 +57,13 @@ STAGE_HELP = {
               "model_path (models/<name>/model.pkl)", "model=mlr|pcr|arx|arx_rf|lstm|lagbank "
               "select=... ati=none|cmeans denoise=none|emd"),
     "evaluate": ("score the trained model on train/test", "data.interim, model_path",
-                 "<out>/metrics.json, <out>/headline.json, <out>/plots/ (PNG + CSV)",
+                 "<out>/metrics.json, <out>/headline/<target>.json, <out>/plots/ (PNG + CSV)",
                  "eval.mode=simulation|one_step plots=summary|test|all|none"),
     "diagnose": ("residual -> missing effect -> refit -> before/after", "data.path",
-                 "<out>/diagnosis.json, <out>/diagnosis_headline.json, <out>/diagnosis/",
+                 "<out>/diagnosis.json, <out>/diagnosis_headline/<target>.json, <out>/diagnosis/",
                  "model=... diagnose.targets=[E_Z] plots=none"),
     "run": ("ingest .. evaluate in one process; -m for a sweep", "data.path",
-            "<out>/: model.pkl, ingest_report.json, metrics.json, headline.json, plots/",
+            "<out>/: model.pkl, ingest_report.json, metrics.json, headline/, plots/",
             "data.path=<dir> model=... select=... eval.mode=... out=<dir>; "
             "-m model=mlr,pcr select=all,pearson"),
     "compare": ("table of a sweep's child runs, best first", "the sweep's MLflow runs",
@@ -74,6 +74,9 @@ STAGE_HELP = {
     "replay": ("stream the test campaigns row by row through the deployable compensator",
                "data.path and a fitted or registered model", "<out>/replay.json",
                "replay.model=<path|models:/name@alias>"),
+    "serve": ("the registered compensator over HTTP (mlflow models serve, one worker)",
+              "serve.model from the tracking store", "nothing (answers POST /invocations)",
+              "serve.model=models:/thermocomp-compensator@champion serve.port=5001 serve.host=127.0.0.1"),
 }
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
 # Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
