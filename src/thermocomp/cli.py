@@ -135,11 +135,10 @@ def _check_seed(cfg) -> None:
 
 def _compose(overrides: list[str]):
     from hydra import compose, initialize_config_dir
-
-    from .paths import conf_dir
-
     from hydra.core.hydra_config import HydraConfig
     from omegaconf import open_dict
+
+    from .paths import conf_dir
 
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3",
                                job_name="thermocomp"):
@@ -289,7 +288,8 @@ def main(argv: list[str] | None = None) -> int:
         print(USAGE)
         return 0 if argv else 2
     stage, args = argv[0], argv[1:]
-    from .stages import STAGES, stage as lookup
+    from .stages import STAGES
+    from .stages import stage as lookup
 
     if stage not in STAGES:
         close = _closest(stage, STAGES)
