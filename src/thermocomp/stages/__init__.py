@@ -17,7 +17,8 @@ from importlib import import_module
 STAGES = {"simulate": "simulate:simulate", "ingest": "ingest:ingest", "denoise": "denoise:denoise",
           "select": "select:select", "train": "modelling:train", "evaluate": "modelling:evaluate",
           "diagnose": "diagnose:diagnose", "run": "modelling:run", "compare": "compare:compare",
-          "promote": "promote:promote", "replay": "replay:replay", "serve": "serve:serve"}
+          "promote": "promote:promote", "replay": "replay:replay", "serve": "serve:serve",
+          "monitor": "monitor:monitor"}
 
 
 def stage(name: str):

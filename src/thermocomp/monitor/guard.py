@@ -1,0 +1,92 @@
+"""A bound and a rate limit on the correction the compensator sends to the CNC (pure core).
+
+Whatever the inputs do, the correction stays finite, inside the training error
+range widened by ``margin`` × its width, and changes by at most
+``(1 + rate_margin)`` × the fastest change of the measured error in training
+per second.  Each target's state (``free``, ``bounded``, ``rate_limited``,
+``held``) changes with an event.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+
+FREE, BOUNDED, RATE, HELD = "free", "bounded", "rate_limited", "held"
+
+
+class CorrectionGuard:
+    """Bound (``lo``, ``hi``, µm) and rate limit (µm/s) per target."""
+
+    def __init__(self, targets: Sequence[str], lo, hi, max_rate_per_s, period_s: float):
+        self.targets = list(targets)
+        self.lo, self.hi = np.asarray(lo, float), np.asarray(hi, float)
+        self.max_rate_per_s = np.asarray(max_rate_per_s, float)
+        self.period_s = float(period_s)
+        self.reset()
+
+    @classmethod
+    def from_training(cls, targets: Sequence[str], measured: Sequence[np.ndarray],
+                      times: Sequence[np.ndarray], margin: float = 0.2, rate_margin: float = 1.0
+                      ) -> "CorrectionGuard":
+        """``measured``: referenced training errors per campaign (n, k); ``times`` in s."""
+        if margin < 0 or rate_margin < 0:
+            raise ValueError("guard margins must be >= 0")
+        Y = np.vstack(measured)
+        lo, hi = np.nanmin(Y, axis=0), np.nanmax(Y, axis=0)
+        width = np.maximum(hi - lo, 1e-9)
+        rates, periods = [], []
+        for y, t in zip(measured, times):
+            if len(y) > 1:
+                dt = np.diff(np.asarray(t, float))
+                rates.append(np.nanmax(np.abs(np.diff(y, axis=0)) / dt[:, None], axis=0))
+                periods.append(np.median(dt))
+        rate = np.max(rates, axis=0) if rates else np.full(Y.shape[1], np.inf)
+        return cls(targets, lo - margin * width, hi + margin * width, (1 + rate_margin) * rate,
+                   float(np.median(periods)) if periods else 1.0)
+
+    def reset(self) -> None:
+        self._prev = None
+        self._state = [FREE] * len(self.targets)
+
+    def snapshot(self) -> tuple:
+        return (None if self._prev is None else self._prev.copy(), list(self._state))
+
+    def restore(self, snap: tuple) -> None:
+        self._prev, self._state = (None if snap[0] is None else snap[0].copy()), list(snap[1])
+
+    def step(self, y: np.ndarray, dt: float, time: float) -> tuple[np.ndarray, list[dict]]:
+        """Guarded correction for the model's ``y`` (NaN: held at the previous one)."""
+        y = np.asarray(y, dtype=float)
+        held = ~np.isfinite(y)
+        prev = self._prev if self._prev is not None else np.zeros_like(y)
+        out = np.where(held, prev, y)
+        state = np.where(held, HELD, FREE).astype(object)
+        if self._prev is not None:
+            lim = self.max_rate_per_s * (dt if np.isfinite(dt) and dt > 0 else self.period_s)
+            fast = np.abs(out - prev) > lim
+            out = np.where(fast, prev + np.sign(out - prev) * lim, out)
+            state[fast & ~held] = RATE
+        outside = (out < self.lo) | (out > self.hi)
+        out = np.minimum(np.maximum(out, self.lo), self.hi)
+        state[outside & ~held] = BOUNDED
+        events = []
+        for k, new in enumerate(state):
+            if new != self._state[k]:
+                events.append({"time": float(time), "sensor": None, "target": self.targets[k],
+                               "from": self._state[k], "to": str(new),
+                               "reason": _reason(str(new), y[k], self.lo[k], self.hi[k])})
+                self._state[k] = str(new)
+        self._prev = out
+        return out, events
+
+
+def _reason(state: str, y: float, lo: float, hi: float) -> str:
+    if state == BOUNDED:
+        return f"correction bounded: model gave {y:.4g} µm, bound [{lo:.3g}, {hi:.3g}] µm"
+    if state == RATE:
+        return f"correction rate-limited: model gave {y:.4g} µm"
+    if state == HELD:
+        return "correction held: the model gave no finite value"
+    return "correction within bound and rate again"

@@ -1,0 +1,205 @@
+"""`thermocomp monitor`: sensor surveillance and the fault-tolerant compensator, streamed.
+
+The compensator is fitted on the train split of ``data.path`` (or loaded:
+``monitor.model=<model.pkl>``), made deployable as ``promote`` does, and wrapped
+in an :class:`~thermocomp.monitor.AdaptiveCompensator` whose POD, detector
+limits and correction guard are fitted on the same train split.  Each test
+campaign (or the CSV rows of stdin, ``monitor.input=-``) is streamed twice from
+a reset: through the fixed compensator and the adaptive one.  Writes
+``<out>/monitor.json`` (CLI.md) and figures in ``<out>/monitor/``.
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from omegaconf import DictConfig, OmegaConf
+
+from .. import io
+from ..context import TIME
+from ..deploy import StreamingCompensator
+from ..errors import ConfigError
+from ..evaluation import require_split
+from ..files import staged_outputs, write_json
+from ..monitor import STATES, AdaptiveCompensator, covariance_sensors, qr_sensors
+from ..paths import resolve
+from ..tracking import stage_run
+from .common import build_compensator, check_config, data_options, load_model, say
+
+
+def _adaptive(cfg: DictConfig, streaming, train) -> AdaptiveCompensator:
+    m = cfg.monitor
+    share = m.pod.fit_share
+    pod = {"energy": float(m.pod.energy), "modes": m.pod.modes,
+           "fit_band_c": None if share is None else float(share) * float(m.bands.warning_c),
+           "window": int(m.window), "max_leverage": float(m.pod.max_leverage)}
+    options = {"warning_c": float(m.bands.warning_c), "alarm_c": float(m.bands.alarm_c),
+               "window": int(m.window), "confirm": int(m.confirm), "adaptive": bool(m.adaptive),
+               "exclude_at": str(m.exclude_at), **OmegaConf.to_container(m.detectors)}
+    try:
+        return AdaptiveCompensator.from_training(
+            streaming, train, monitor=options, pod=pod,
+            guard=OmegaConf.to_container(m.guard), learned_bands=bool(m.bands.learned))
+    except ValueError as exc:
+        raise ConfigError(f"monitor: {exc}") from None
+
+
+def _stdin_campaign(columns: list[str]) -> dict[str, pd.DataFrame]:
+    try:
+        df = pd.read_csv(sys.stdin)
+    except Exception as exc:    # pandas raises several kinds for a bad stream
+        raise io.ContractError(f"stdin is not a CSV table with a header ({exc})", file="<stdin>")
+    missing = [c for c in columns if c not in df.columns]
+    if missing:
+        raise io.ContractError("stdin lacks a column the compensator reads", file="<stdin>",
+                               column=",".join(missing))
+    for c in list(columns) + ([TIME] if TIME in df.columns else []):
+        bad = pd.to_numeric(df[c], errors="coerce").isna() & df[c].notna()
+        if bad.any():
+            raise io.ContractError("non-numeric value", file="<stdin>", column=c,
+                                   row=int(np.flatnonzero(bad)[0]) + 1)
+        df[c] = pd.to_numeric(df[c], errors="coerce")
+    return {"stdin": df}
+
+
+def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.ndarray]]:
+    """Stream one campaign from a reset; a step that fails holds the previous correction."""
+    X = df[model.columns_].to_numpy(float)
+    t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
+    y = np.zeros((len(X), len(model.targets_)))
+    events, states, errors = [], [], []
+    model.reset()
+    for i in range(len(X)):
+        try:
+            y[i] = model._step(X[i], t[i])[0]
+        except ValueError:                   # the fixed compensator on a missing value
+            y[i] = y[i - 1] if i else np.nan
+        mon = getattr(model, "monitor", None)
+        if mon is not None:
+            events += model.last_events_
+            states.append(mon.states)
+            errors.append(mon.last_error_)
+    model.reset()
+    return y, events, (states, errors)
+
+
+def monitor(cfg: DictConfig) -> dict:
+    """Stream the test campaigns (or stdin) through the fixed and the adaptive compensator."""
+    check_config(cfg)
+    source = cfg.monitor.get("input")
+    if source not in (None, "-"):
+        raise ConfigError(f"monitor.input must be null (test campaigns) or '-' (stdin), got {source!r}")
+    say(f"reading {resolve(cfg.data.path)}")
+    ds, _ = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
+    train_ids = require_split(ds, "train")
+    train = {c: ds.campaigns[c] for c in train_ids}
+    with stage_run(cfg, "monitor") as tr:
+        path = cfg.monitor.get("model")
+        comp = build_compensator(cfg).fit(train) if path is None else load_model(resolve(str(path)))
+        env = cfg.promote.envelope
+        try:
+            streaming = StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
+        except ValueError as exc:
+            raise ConfigError(f"the model cannot be deployed: {exc}") from None
+        fixed = StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
+        adaptive = _adaptive(cfg, streaming, train)
+        if adaptive.monitor is None:
+            raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns)")
+        if source == "-":
+            streamed = _stdin_campaign(adaptive.columns_)
+        else:
+            streamed = {c: ds.campaigns[c] for c in require_split(ds, "test")}
+            missing = sorted({c for c in adaptive.columns_ for i in streamed
+                              if c not in streamed[i].columns})
+            if missing:
+                raise io.ContractError("a test campaign lacks a column the model reads",
+                                       column=",".join(missing))
+        say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
+        report, traces = _report(adaptive, fixed, comp, streamed)
+        out = Path(resolve(cfg.out))
+        with staged_outputs(out, last=("monitor.json",)) as stage:
+            if cfg.plots != "none":
+                from ..monitor.figures import draw
+                draw(stage / "monitor", adaptive, traces, report, cfg.monitor.get("map_time_h"))
+            write_json(stage / "monitor.json", report)
+        tr.log_metrics({"monitor": report["targets"]})
+        tr.log_artifact(out / "monitor.json")
+    _print(report)
+    say(f"monitor: {out / 'monitor.json'}")
+    return report
+
+
+def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, streamed) -> tuple[dict, dict]:
+    mon = adaptive.monitor
+    names = mon.names
+    counts = np.zeros((len(names), len(STATES)), dtype=np.int64)
+    first_alarm: dict = {}
+    events, traces = [], {}
+    measured = comp.measured(streamed) if all(t in df.columns for df in streamed.values()
+                                              for t in comp.targets_) else None
+    res_f, res_a, corr = [], [], []
+    for cid, df in streamed.items():
+        y_fix, _, _ = _stream(fixed, df)
+        y_ad, ev, (states, errors) = _stream(adaptive, df)
+        for e in ev:
+            events.append({"campaign": cid, **e})
+            if e.get("sensor") in names and e["to"] in ("alarm", "excluded") and e["sensor"] not in first_alarm:
+                first_alarm[e["sensor"]] = {"campaign": cid, "time": e["time"]}
+        S = np.asarray(states)
+        for k in range(len(STATES)):
+            counts[:, k] += (S == k).sum(axis=0)
+        t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
+        traces[cid] = {"time": t, "states": S, "errors": np.asarray(errors), "fixed": y_fix,
+                       "adaptive": y_ad,
+                       "measured": None if measured is None else measured[cid][adaptive.targets_].to_numpy()}
+        corr.append(y_ad)
+        if measured is not None:
+            m = measured[cid][adaptive.targets_].to_numpy()
+            res_f.append(m - y_fix)
+            res_a.append(m - y_ad)
+    C = np.vstack(corr)
+    rf = np.vstack(res_f) if res_f else None
+    ra = np.vstack(res_a) if res_a else None
+
+    def rmse(r, k):
+        return None if r is None else float(np.sqrt(np.nanmean(r[:, k] ** 2)))
+
+    pod = mon.pod
+    rank = qr_sensors(pod.phi_) if pod.n_modes_ <= len(names) else np.arange(len(names))
+    cov = covariance_sensors(pod.phi_, pod.singular_values_, 1, None)
+    report = {
+        "sensors": {n: {"state_counts": dict(zip(STATES, map(int, counts[j]))),
+                        "first_alarm": first_alarm.get(n),
+                        "observable": bool(mon._observable[j]) if n not in mon.excluded else None}
+                    for j, n in enumerate(names)},
+        "events": events,
+        "targets": {t: {"rmse_fixed": rmse(rf, k), "rmse_adaptive": rmse(ra, k),
+                        "max_abs_correction": float(np.max(np.abs(C[:, k]))) if len(C) else 0.0,
+                        "all_finite": bool(np.all(np.isfinite(C[:, k]))),
+                        "bound": [float(adaptive.guard.lo[k]), float(adaptive.guard.hi[k])]}
+                    for k, t in enumerate(adaptive.targets_)},
+        "pod": {"n_sensors": len(names), "n_modes": int(pod.n_modes_),
+                "n_modes_energy": int(pod.n_modes_energy_),
+                "captured_energy": float(pod.energy_[pod.n_modes_ - 1]),
+                "train_self_prediction_c": float(pod.train_band_c_),
+                "sensor_rank_qr": [names[i] for i in rank],
+                "sensor_rank_covariance": [names[i] for i in cov]},
+        "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist()},
+        "campaigns": list(streamed),
+    }
+    return report, traces
+
+
+def _print(report: dict) -> None:
+    print(f"{'target':<8} {'RMSE fixed':>11} {'RMSE adaptive':>14} {'max|corr|':>10} {'finite':>7}")
+    for t, r in report["targets"].items():
+        f = "-" if r["rmse_fixed"] is None else f"{r['rmse_fixed']:.3f}"
+        a = "-" if r["rmse_adaptive"] is None else f"{r['rmse_adaptive']:.3f}"
+        print(f"{t:<8} {f:>11} {a:>14} {r['max_abs_correction']:>10.3g} {str(r['all_finite']):>7}")
+    excl = [e for e in report["events"] if e["to"] == "excluded"]
+    print(f"events: {len(report['events'])}, exclusions: {len(excl)}"
+          + (f", first: {excl[0]['sensor']} ({excl[0]['campaign']}, {excl[0]['time'] / 3600:.2f} h)"
+             if excl else ""))
