@@ -34,6 +34,13 @@ rely on complete rows.  Nothing is invented without a config key saying so:
   Up to ``max_edge_samples`` such rows (default ``0``) are dropped at each end
   (counted in the report under ``trimmed``); more is a :class:`ContractError`.
 
+``ReadOptions.missing="keep"`` (not a data config key: the ``monitor`` stage
+passes it through ``read_dataset(..., missing="keep")`` to stream a campaign
+as the machine saw it) skips both repairs: missing values stay NaN, no row is
+trimmed, no gap is refused, and the report counts the cells kept per column
+(``missing``).  Everything else is still refused, including a column with no
+valid value and a missing ``time``.
+
 Row numbers in error messages are 1-based data rows of the source file,
 header excluded.
 """
@@ -48,7 +55,7 @@ import math
 import os
 import re
 from collections.abc import Iterator, Mapping
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -66,6 +73,7 @@ CAMPAIGN_SUFFIXES = (".csv", ".parquet")
 TIME_FORMATS = ("auto", "seconds", "iso8601")
 ABSOLUTE_ZERO_C = -273.15
 ROLE_ORDER = ("T", "E", "S")
+MISSING_MODES = ("repair", "keep")
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
 _CSV_BLOCK_BYTES = 16 << 20
@@ -112,6 +120,11 @@ class ReadOptions:
     max_resample_factor: float = 10.0
     delimiter: str = ","
     decimal: str = "."
+    missing: str = "repair"  # internal (no data config key): "keep" leaves missing values NaN
+
+    def __post_init__(self):
+        if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's
+            raise ValueError(f"missing must be one of {MISSING_MODES}, got {self.missing!r}")
 
     @classmethod
     def from_cfg(cls, cfg: Mapping | None) -> "ReadOptions":
@@ -823,6 +836,20 @@ def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> 
     return {"repairs": repairs, "trimmed": {"start": start, "end": rows - stop}}
 
 
+def _keep_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> dict:
+    """Validate every data column and leave its missing values as they are (``missing="keep"``).
+
+    Returns ``{"repairs": {}, "trimmed": {"start": 0, "end": 0}, "missing": {column: n}}``.
+    """
+    kept = {}
+    for name in columns:
+        if name != TIME:
+            count = _check_values(_values(columns[name]), name, path, opts).size
+            if count:
+                kept[name] = int(count)
+    return {"repairs": {}, "trimmed": {"start": 0, "end": 0}, "missing": kept}
+
+
 def _complete_span(rows: int, gaps: dict, path: Path, max_edge: int) -> tuple[int, int]:
     """First and past-last row where every column is valid, within the trim limit."""
     incomplete = np.zeros(rows, dtype=bool)
@@ -918,6 +945,7 @@ def _check_fahrenheit(columns: dict, path: Path, threshold: float | None, start:
     """A lab's coldest sensor sits near ambient at a campaign's first sample: if even the
     coldest ``T_`` is above ``threshold`` (°C) there, the file is in °F."""
     first = {n: c[0].as_py() for n, c in columns.items() if role(n) == "T"}
+    first = {n: v for n, v in first.items() if v is not None and not math.isnan(v)}  # kept missing
     if threshold is None or not first:
         return
     name = min(first, key=first.get)
@@ -958,12 +986,14 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     -------
     table : pyarrow.Table
         ``time`` (float seconds), then ``T_``, ``E_``, ``S_`` columns, all
-        float64, no missing value.
+        float64, no missing value (``missing="keep"``: missing values stay,
+        as nulls; a resampled grid point next to one is missing too).
     report : dict
         ``rows``, ``source_rows``, ``time`` (``'seconds'``, ``'iso8601'`` or
         ``'sample_period_s'``; ``time_origin`` for timestamps), ``repairs``
-        ({column: interpolated samples}), ``trimmed`` ({"start", "end"} rows)
-        and ``resampled_s`` when resampled.
+        ({column: interpolated samples}), ``trimmed`` ({"start", "end"} rows),
+        ``resampled_s`` when resampled and, with ``missing="keep"``,
+        ``missing`` ({column: missing cells kept}).
 
     Raises
     ------
@@ -981,9 +1011,10 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     rows = len(next(iter(columns.values())))
     if rows == 0:
         raise ContractError("file has no data rows", file=path)
+    missing = _keep_missing if opts.missing == "keep" else _repair_missing
     report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts),
-              **_repair_missing(columns, rows, path, opts)}
-    _check_length(len(columns[TIME]), path, "complete ")
+              **missing(columns, rows, path, opts)}
+    _check_length(len(columns[TIME]), path, "complete " if opts.missing == "repair" else "")
     _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
     if opts.resample_s is not None:
         _resample(columns, opts.resample_s, path, opts.max_resample_factor)
@@ -1007,14 +1038,20 @@ def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
 
 
 def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) -> dict:
-    totals: dict[str, int] = {}
-    for entry in entries.values():
-        for column, count in entry["repairs"].items():
-            totals[column] = totals.get(column, 0) + count
-    return {"dataset": name, "rows": sum(e["rows"] for e in entries.values()),
-            "campaigns": entries, "repairs": totals,
-            "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
-            "settings": asdict(opts)}
+    def totals(key: str) -> dict[str, int]:
+        out: dict[str, int] = {}
+        for entry in entries.values():
+            for column, count in entry.get(key, {}).items():
+                out[column] = out.get(column, 0) + count
+        return out
+
+    report = {"dataset": name, "rows": sum(e["rows"] for e in entries.values()),
+              "campaigns": entries, "repairs": totals("repairs"),
+              "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
+              "settings": {k: v for k, v in asdict(opts).items() if k != "missing"}}
+    if opts.missing == "keep":
+        report["missing"] = totals("missing")
+    return report
 
 
 def _collect_roles(columns: dict, names: list[str]) -> None:
@@ -1031,7 +1068,8 @@ def _to_frame(table: pa.Table) -> pd.DataFrame:
 # Public entry points
 
 
-def read_dataset(path: str | Path, cfg: Mapping | None = None) -> tuple[Dataset, dict]:
+def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str = "repair"
+                 ) -> tuple[Dataset, dict]:
     """Read, validate and repair a dataset folder.
 
     Parameters
@@ -1066,19 +1104,25 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None) -> tuple[Dataset,
             A ``T_`` value above it is taken for kelvin and refused.
         delimiter, decimal : str, default ',' and '.'
             CSV field separator and decimal mark of the campaign files.
+    missing : {'repair', 'keep'}, default 'repair'
+        Not a config key: ``'keep'`` leaves missing values NaN (no trim, no
+        interpolation, no gap refused) and counts them in the report's
+        ``missing``, for a stage that must see the data as it was recorded.
 
     Returns
     -------
     dataset : Dataset
         Manifest indexed by campaign id; one float64 frame per campaign with
         ``time`` (s), then ``T_``, ``E_``, ``S_`` columns in file order, and
-        no missing value.
+        no missing value (unless ``missing='keep'``).
     report : dict
         ``{"dataset": name, "rows": total, "campaigns": {id: {"file", "split",
         "rows", "source_rows", "time", "repairs": {column: n}, "trimmed":
         {"start", "end"}, ...}}, "repairs": {column: total}, "columns": {"T":
         [...], "E": [...], "S": [...]}, "settings": {...}}``.  ``repairs``
-        lists only columns with at least one interpolated sample.
+        lists only columns with at least one interpolated sample; with
+        ``missing='keep'`` the campaigns and the report also have ``missing``
+        ({column: missing cells}, columns with at least one).
 
     Raises
     ------
@@ -1098,7 +1142,7 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None) -> tuple[Dataset,
     are interpolated and edges trimmed only up to the configured limits, and
     every repair is counted.
     """
-    opts = ReadOptions.from_cfg(cfg)
+    opts = replace(ReadOptions.from_cfg(cfg), missing=missing)
     root = Path(path)
     manifest = read_manifest(root, opts)
     campaigns, entries, columns = {}, {}, {}

@@ -34,6 +34,9 @@ effect                    kind            mechanism
 ``ambient_law``           ambient_interval the sensitivities of the targets grow by a factor
                                           :math:`1 + \gamma\,\sigma((T_{lev} - T_{thr})/w)`
                                           once the structure's level passes a threshold
+``sensor_faults``         sensor_fault    one sensor's *reading* fails in the written test
+                                          campaigns: freeze, jump, dropout (empty cells), drift,
+                                          or a spike on the reference (first) sample
 ========================  ==============  =====================================================
 
 ``axis_position``: with ``p(0)`` the home position of every campaign, the term
@@ -43,6 +46,11 @@ diagnosis reports ``kind = "interaction"`` with ``column = "S_pos_<axis>"``.
 ``S_`` column so that no ``T_*`` glob declares it; set
 ``effect_params.hidden_source.column=T_<name>`` to write it as a declared
 sensor instead (then only a selection that drops it leaves the effect unseen).
+``sensor_faults`` is the one effect that does not act through the physics: it
+rewrites the written campaign files (:meth:`UndeclaredEffect.modify_dataset`,
+after the measurement chain and, for ``long_record``, after the cut), so the
+thermal network and the errors are untouched and every healthy sample is the
+one of the dataset without it.
 """
 
 from __future__ import annotations
@@ -139,6 +147,11 @@ class UndeclaredEffect:
 
     def extra_columns(self, ctx: CampaignContext) -> dict:
         return {}
+
+    def modify_dataset(self, dataset, truth: dict) -> tuple:
+        """Change the written campaigns (after the measurement chain and any cut of the
+        record) and their truth; returns ``(dataset, truth)``."""
+        return dataset, truth
 
     # --- bookkeeping ----------------------------------------------------------------------
     @property
@@ -526,7 +539,170 @@ class AmbientLaw(UndeclaredEffect):
         return errors
 
 
-EFFECTS = {cls.name: cls for cls in (Door, HiddenSource, LagNode, AxisPosition, SensorDrift, AmbientLaw)}
+FAULT_KINDS = ("freeze", "jump", "dropout", "drift", "spike_ref")
+
+
+def is_ambient(column: str) -> bool:
+    """``T_amb`` or ``T_amb_<name>``: an air sensor (DATA_FORMAT.md)."""
+    return column == "T_amb" or column.startswith("T_amb_")
+
+
+class SensorFaults(UndeclaredEffect):
+    """One temperature sensor's reading fails partway through the affected campaigns.
+
+    Acts on the written files only (:meth:`modify_dataset`): the thermal
+    network and the errors are untouched, and every sample outside the fault
+    is the one of the dataset without it (same seed).  ``kind``:
+
+    ``freeze``
+        from the onset on the reading keeps the value it had at the onset,
+        exactly (no noise);
+    ``jump``
+        ``+magnitude_c`` from the onset on (a step offset);
+    ``dropout``
+        empty cells from the onset for ``duration_samples`` (null: to the end);
+    ``drift``
+        ``+rate_K_per_h * (t - t_onset)`` from the onset on;
+    ``spike_ref``
+        the campaign's first sample (the reference sample) reads
+        ``+magnitude_c``; the others are healthy.
+
+    The onset is ``onset_fraction`` of each affected campaign's duration,
+    snapped to the nearest sample; faulty values are quantised like the
+    logger's.  ``column=""`` draws a non-ambient sensor with the effect's own
+    generator (``default_rng([seed, crc32(name)])``).  The truth records, per
+    affected campaign, ``kind``, ``column``, ``onset_s``, ``onset_index`` (row of
+    the written file), ``end_index`` (first row after the fault) and the size
+    (``magnitude_c``, ``rate_K_per_h``, ``held_c`` or ``duration_samples``).
+    """
+
+    name, kind = "sensor_faults", "sensor_fault"
+    defaults = {
+        "kind": "jump",                  # one of FAULT_KINDS
+        "column": "",                    # "" = drawn among the non-ambient sensors
+        "magnitude_c": 3.0,              # jump, spike_ref
+        "rate_K_per_h": 1.0,             # drift
+        "onset_fraction": 0.5,           # onset as a fraction of each affected campaign
+        "duration_samples": None,        # dropout length; None = to the end of the campaign
+        "splits": ["test"],              # splits whose campaigns are affected
+        "campaigns": None,               # campaign ids to restrict to (None = all of `splits`)
+        "targets": [],
+    }
+
+    def __init__(self, seed: int = 0, **params):
+        super().__init__(seed, **params)
+        p, key = self.params, f"sim.generator.effect_params.{self.name}"
+        if p["kind"] not in FAULT_KINDS:
+            raise ConfigError(f"{key}.kind must be one of {', '.join(FAULT_KINDS)}, "
+                              f"got {p['kind']!r}")
+        for name in ("magnitude_c", "rate_K_per_h", "onset_fraction"):
+            if isinstance(p[name], bool) or not isinstance(p[name], (int, float)) \
+                    or not np.isfinite(p[name]):
+                raise ConfigError(f"{key}.{name} must be a finite number, got {p[name]!r}")
+        if not 0.0 <= p["onset_fraction"] <= 1.0:
+            raise ConfigError(f"{key}.onset_fraction must lie in [0, 1], got {p['onset_fraction']}")
+        duration = p["duration_samples"]
+        if duration is not None and (isinstance(duration, bool) or not isinstance(duration, int)
+                                     or duration < 1):
+            raise ConfigError(f"{key}.duration_samples must be an integer >= 1 or null, "
+                              f"got {duration!r}")
+        bad = [s for s in p["splits"] if s not in ("train", "val", "test")]
+        if bad or isinstance(p["splits"], str):
+            raise ConfigError(f"{key}.splits must be a list of train, val, test; got {p['splits']!r}")
+        self.column_ = p["column"] or None
+
+    @property
+    def column(self):
+        return self.column_
+
+    def description(self):
+        p = self.params
+        size = {"jump": f"+{p['magnitude_c']:g} °C step", "spike_ref": f"+{p['magnitude_c']:g} °C "
+                "on the reference (first) sample", "drift": f"drift of {p['rate_K_per_h']:g} K/h",
+                "freeze": "frozen reading", "dropout": "dropout (empty cells)"}[p["kind"]]
+        where = "" if p["kind"] == "spike_ref" else f" from {p['onset_fraction']:.0%} of each campaign on"
+        return (f"sensor {self.column or '(drawn)'} fails: {size}{where} "
+                f"({'/'.join(p['splits'])} campaigns); the physics and the errors are untouched")
+
+    def modify_machine(self, machine):
+        sensors = list(machine.sensor_array.columns)
+        if self.params["column"]:
+            if self.params["column"] not in sensors:
+                raise ConfigError(f"sim.generator.effect_params.{self.name}.column: "
+                                  f"{self.params['column']!r} is no sensor (have {sensors})")
+        else:
+            candidates = [c for c in sensors if not is_ambient(c)]
+            rng = np.random.default_rng([self.seed, zlib.crc32(self.name.encode())])
+            self.column_ = str(candidates[int(rng.integers(len(candidates)))])
+        return machine
+
+    def affected(self, dataset) -> list[str]:
+        """Ids of the campaigns the fault hits (``splits``, restricted to ``campaigns``)."""
+        key = f"sim.generator.effect_params.{self.name}"
+        ids = [c for c in dataset.ids() if dataset.manifest.loc[c, "split"] in self.params["splits"]]
+        wanted = self.params["campaigns"]
+        if wanted is not None:
+            wanted = [str(c) for c in ([wanted] if isinstance(wanted, str) else wanted)]
+            unknown = [c for c in wanted if c not in dataset.ids()]
+            if unknown:
+                raise ConfigError(f"{key}.campaigns: unknown {unknown} (have {dataset.ids()})")
+            ids = [c for c in ids if c in wanted]
+        if not ids:
+            raise ConfigError(f"{key} hits no campaign (splits={list(self.params['splits'])}, "
+                              f"campaigns={wanted}; have {dict(dataset.manifest['split'])})")
+        return ids
+
+    def fault(self, time_s: np.ndarray, reading: np.ndarray, quantum_c: float = 0.0
+              ) -> tuple[np.ndarray, dict]:
+        """The faulty reading of one campaign from its healthy one, and its truth."""
+        p = self.params
+        kind, n = p["kind"], len(time_s)
+        onset = 0
+        if kind != "spike_ref":
+            t0 = time_s[0] + float(p["onset_fraction"]) * (time_s[-1] - time_s[0])
+            onset = int(np.argmin(np.abs(time_s - t0)))
+        out, end = reading.astype(float).copy(), n
+        truth = {"kind": kind, "column": self.column, "onset_index": onset,
+                 "onset_s": float(time_s[onset])}
+        if kind == "freeze":
+            out[onset:] = reading[onset]
+            truth["held_c"] = float(reading[onset])
+        elif kind == "jump":
+            out[onset:] = quantise(reading[onset:] + float(p["magnitude_c"]), quantum_c)
+            truth["magnitude_c"] = float(p["magnitude_c"])
+        elif kind == "drift":
+            hours = (time_s[onset:] - time_s[onset]) / 3600.0
+            out[onset:] = quantise(reading[onset:] + float(p["rate_K_per_h"]) * hours, quantum_c)
+            truth["rate_K_per_h"] = float(p["rate_K_per_h"])
+        elif kind == "dropout":
+            if p["duration_samples"] is not None:
+                end = min(n, onset + int(p["duration_samples"]))
+            out[onset:end] = np.nan
+            truth["duration_samples"] = end - onset
+        else:  # spike_ref: the reference sample only
+            end = 1
+            out[0] = quantise(reading[:1] + float(p["magnitude_c"]), quantum_c)[0]
+            truth["magnitude_c"] = float(p["magnitude_c"])
+        truth["end_index"] = end
+        return out, truth
+
+    def modify_dataset(self, dataset, truth):
+        quantum = float(truth.get("noise", {}).get("temperature_quantum_c") or 0.0)
+        faults = {}
+        for cid in self.affected(dataset):
+            frame = dataset.campaigns[cid]
+            values, faults[cid] = self.fault(frame["time"].to_numpy(), frame[self.column].to_numpy(),
+                                             quantum)
+            dataset.campaigns[cid] = frame.assign(**{self.column: values})
+            truth["campaigns"][cid].setdefault("effects", {})[self.name] = faults[cid]
+        for record in truth["undeclared_effects"]:
+            if record["name"] == self.name:
+                record["campaigns"] = faults
+        return dataset, truth
+
+
+EFFECTS = {cls.name: cls for cls in (Door, HiddenSource, LagNode, AxisPosition, SensorDrift, AmbientLaw,
+                                      SensorFaults)}
 
 
 def build_effects(names, params: dict | None, defaults: dict, seed: int) -> list[UndeclaredEffect]:

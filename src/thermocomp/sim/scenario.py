@@ -141,11 +141,14 @@ class Scenario:
         only add overhead (3x slower on a busy machine).
         """
         with single_threaded_blas():
-            return self._generate()
+            dataset, truth = self._generate()
+        for effect in self.effects_:   # effects on the written files (sensor faults), after any cut
+            dataset, truth = effect.modify_dataset(dataset, truth)
+        return dataset, truth
 
     def _generate(self) -> tuple[Dataset, dict]:
         rng = np.random.default_rng(self.seed)
-        effects = self.effects_list()
+        self.effects_ = effects = self.effects_list()
         machine = self.machine()
         for effect in effects:
             machine = effect.modify_machine(machine)
