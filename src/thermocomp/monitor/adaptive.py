@@ -54,6 +54,7 @@ class AdaptiveCompensator:
                 raise ValueError(f"monitored sensors {unknown} are not inputs of the compensator")
         self._mon = np.array([cols.index(c) for c in monitor.names] if monitor else [], dtype=int)
         self._other = np.array([j for j, c in enumerate(cols) if j not in set(self._mon)], dtype=int)
+        self._mon_all = len(self._mon) == len(cols) and bool(np.all(self._mon == np.arange(len(cols))))
         self.reset()
 
     @classmethod
@@ -151,15 +152,20 @@ class AdaptiveCompensator:
     def _step(self, x: np.ndarray, time: float) -> tuple[np.ndarray, int]:
         events: list[dict] = []
         t, dt = self._check_time(float(time), events)
-        x = x.copy()
         if self.monitor is not None:
-            clean, ev = self.monitor.update(x[self._mon], t)
+            clean, ev = self.monitor.update(x if self._mon_all else x[self._mon], t)
             events += ev
             if self._base is None:
                 ref = self.monitor._ref
                 self._base = np.where(np.isfinite(ref), ref, self.monitor.first_c)
-            x[self._mon] = self._base + clean
+            if self._mon_all:
+                x = self._base + clean
+            else:
+                x = x.copy()
+                x[self._mon] = self._base + clean
         if len(self._other):
+            if self.monitor is None:
+                x = x.copy()
             x[self._other] = self._hold(x[self._other], t, events)
         try:
             y, clamped = self.streaming._step(x, t)

@@ -49,16 +49,24 @@ class CorrectionGuard:
     def reset(self) -> None:
         self._prev = None
         self._state = [FREE] * len(self.targets)
+        self._free = True
 
     def snapshot(self) -> tuple:
         return (None if self._prev is None else self._prev.copy(), list(self._state))
 
     def restore(self, snap: tuple) -> None:
         self._prev, self._state = (None if snap[0] is None else snap[0].copy()), list(snap[1])
+        self._free = all(s == FREE for s in self._state)
 
     def step(self, y: np.ndarray, dt: float, time: float) -> tuple[np.ndarray, list[dict]]:
         """Guarded correction for the model's ``y`` (NaN: held at the previous one)."""
         y = np.asarray(y, dtype=float)
+        prev = self._prev
+        if self._free and prev is not None and np.isfinite(y.sum()):   # the usual case, fast
+            lim = self.max_rate_per_s * (dt if dt > 0 else self.period_s)
+            if (np.abs(y - prev) <= lim).all() and (y >= self.lo).all() and (y <= self.hi).all():
+                self._prev = y
+                return y, []
         held = ~np.isfinite(y)
         prev = self._prev if self._prev is not None else np.zeros_like(y)
         out = np.where(held, prev, y)
@@ -78,6 +86,7 @@ class CorrectionGuard:
                                "from": self._state[k], "to": str(new),
                                "reason": _reason(str(new), y[k], self.lo[k], self.hi[k])})
                 self._state[k] = str(new)
+        self._free = all(s == FREE for s in self._state)
         self._prev = out
         return out, events
 

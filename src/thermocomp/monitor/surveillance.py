@@ -106,6 +106,18 @@ class SensorMonitor:
         self.first_c = arr(first_c, 0.0)
         self.jump_factor, self.freeze_factor = float(jump_factor), float(freeze_factor)
         self.range_margin_c = float(range_margin_c)
+        self._lo_lim = self.lo_c - self.range_margin_c
+        self._hi_lim = self.hi_c + self.range_margin_c
+        self._jump_lim = self.jump_factor * self.max_step_c
+        self._blind_run = np.maximum(self.freeze_factor * self.longest_run, self.window)
+        self._true = np.ones(n, dtype=bool)
+        self._zero_run = np.zeros(n, dtype=np.int64)
+        self._mid, self._half = (self._lo_lim + self._hi_lim) / 2, (self._hi_lim - self._lo_lim) / 2
+        # ring rows of the `confirm - 1` samples before each write position
+        self._before = (np.arange(self.window)[:, None] - 1 - np.arange(self.confirm - 1)) % self.window
+        self._before_all = (np.arange(self.window)[:, None] - 1 - np.arange(self.window - 1)) % self.window
+        # ring positions of the last `confirm` samples, for each write position
+        self._recent = (np.arange(self.window)[:, None] - 1 - np.arange(self.confirm)) % self.window
         self.r_ = pod.n_modes_
         self.min_active_ = self.r_ + 1
         self.reset()
@@ -149,34 +161,46 @@ class SensorMonitor:
                    first_c=first, **options)
 
     # -- state ------------------------------------------------------------------------------
+    _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
+              "_prev_e", "_run", "_run_pred", "_clean", "_quiet")
+
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
         n = len(self.names)
         self._ref = None
         self._active = np.ones(n, dtype=bool)
         self._state = np.zeros(n, dtype=np.int8)
-        self._why = [""] * n               # the detector that excluded each sensor
         self._hist = np.full((self.window, n), np.nan)   # referenced readings, ring buffer
+        self._err = np.full((self.window, n), np.nan)    # their errors under the current operator
         self._pos = 0
         self._count = 0
         self._prev = np.full(n, np.nan)
         self._prev_e = np.full(n, np.nan)
         self._run = np.zeros(n, dtype=np.int64)
         self._run_pred = np.full(n, np.nan)
-        self._prev_other = np.full(n, np.nan)
         self._clean = np.zeros(n)
+        self._quiet = False          # every sensor active and ok: the fast path may run
         self._set_operator()
 
     def _set_operator(self) -> None:
-        M, h = self.pod.operator(self._active) if self._active.any() else (None, None)
+        """Operator, leverages and error scale of the active set; the window's errors redone."""
+        active = self._active
+        self._all_active = bool(active.all())
+        M, h = self.pod.operator(active) if active.any() else (None, None)
         self._M = M
         lev = np.ones(len(self.names))
         if h is not None:
-            lev[self._active] = h
+            lev[active] = h
         self._lev = lev
         self._observable = lev < self.pod.max_leverage
-        self._scale = np.where(self._active & self._observable, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
-        self._scale[self._active & ~self._observable] = np.nan
+        self._judged = active & self._observable
+        self._scale = np.where(self._judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
+        self._scale[active & ~self._observable] = np.nan
+        self._std = np.sqrt(np.abs(1 - lev))
+        if self._count:
+            H = np.where(np.isfinite(self._hist), self._hist, 0.0)
+            pred = H[:, active] @ M.T if M is not None else np.full_like(H, np.nan)
+            self._err = (self._hist - pred) * self._scale
 
     @property
     def excluded(self) -> list[str]:
@@ -188,189 +212,243 @@ class SensorMonitor:
         return self._state.copy()
 
     def snapshot(self) -> tuple:
-        return tuple(np.copy(v) if isinstance(v, np.ndarray) else
-                     (list(v) if isinstance(v, list) else v)
-                     for v in (self._ref, self._active, self._state, self._why, self._hist,
-                               self._pos, self._count, self._prev, self._prev_e, self._run,
-                               self._run_pred, self._prev_other, self._clean))
+        return tuple(np.copy(getattr(self, k)) if isinstance(getattr(self, k), np.ndarray)
+                     else getattr(self, k) for k in self._STATE)
 
     def restore(self, snap: tuple) -> None:
-        (self._ref, self._active, self._state, self._why, self._hist, self._pos, self._count,
-         self._prev, self._prev_e, self._run, self._run_pred, self._prev_other, self._clean) = (
-            np.copy(v) if isinstance(v, np.ndarray) else (list(v) if isinstance(v, list) else v)
-            for v in snap)
+        for k, v in zip(self._STATE, snap):
+            setattr(self, k, np.copy(v) if isinstance(v, np.ndarray) else v)
+        count = self._count
+        self._count = 0          # the window's errors are restored, not recomputed
         self._set_operator()
+        self._count = count
 
     # -- one sample ---------------------------------------------------------------------------
-    def _residuals(self, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        """``(prediction, leave-one-out error)`` of every sensor from the active ones."""
+    def _errors(self, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(prediction, error)`` of every sensor from the active ones (leave-one-out for the
+        judged sensors, NaN for active unobservable ones)."""
         if self._M is None:
-            return np.full_like(d, np.nan), np.full_like(d, np.nan)
-        pred = self._M @ np.nan_to_num(d[self._active])
-        E = d - pred
-        return pred, E * self._scale
+            nan = np.full_like(d, np.nan)
+            return nan, nan
+        pred = self._M @ (d if self._all_active else np.where(self._active, d, 0.0)[self._active])
+        return pred, (d - pred) * self._scale
 
-    def _window_errors(self) -> np.ndarray:
-        """Leave-one-out errors of the samples in the window under the current operator,
-        most recent first."""
-        k = min(self._count, self.window)
-        H = self._hist[(self._pos - 1 - np.arange(k)) % self.window]
-        if self._M is None:
-            return np.full_like(H, np.nan)
-        pred = np.nan_to_num(H[:, self._active]) @ self._M.T
-        return (H - pred) * self._scale
-
-    def _judge(self, W: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _judge(self) -> tuple[np.ndarray, np.ndarray]:
         """``(level, error)`` per sensor: the band (0 ok, 1 warning, 2 alarm) that the last
         ``confirm`` errors all exceed, and their mean."""
-        last = W[:self.confirm]
-        err = _nanmean(last, W.shape[1])
-        if len(last) < self.confirm:
-            return np.zeros(W.shape[1], dtype=np.int8), err
-        a = np.abs(last)
-        with np.errstate(invalid="ignore"):
-            level = (np.all(a >= self.warning_c, axis=0).astype(np.int8)
-                     + np.all(a >= self.alarm_c, axis=0))
-        return level, err
+        k = min(self._count, self.confirm)
+        last = self._err[self._recent[self._pos, :k]]
+        err = last.sum(axis=0) / k
+        if k < self.confirm:
+            return np.zeros(len(err), dtype=np.int8), err
+        a = np.abs(last).min(axis=0)          # NaN (unobservable) compares False
+        return (a >= self.warning_c).view(np.int8) + (a >= self.alarm_c), err
 
     def update(self, reading, time: float = float("nan")) -> tuple[np.ndarray, list[dict]]:
         """One sample (absolute °C, order of ``names``) -> (referenced field for the model,
         events).  Never NaN unless every sensor has been missing since the start."""
         x = np.asarray(reading, dtype=float)
-        finite = np.isfinite(x)
+        with np.errstate(invalid="ignore"):    # NaN (missing, unobservable) compares False
+            if self._quiet:
+                clean = self._fast(x)
+                if clean is not None:
+                    return clean, []
+            out = self._update(x, time)
+        self._quiet = not self._state[self._active].any()
+        return out
+
+    @property
+    def last_error_(self) -> np.ndarray:
+        """Error per sensor over the last ``confirm`` samples (NaN: not judged)."""
+        k = min(self._count, self.confirm)
+        if not k:
+            return np.full(len(self.names), np.nan)
+        err = self._err[self._recent[self._pos, :k]].sum(axis=0) / k
+        return np.where(self._judged | ~self._active, err, np.nan)
+
+    def _fast(self, x: np.ndarray):
+        """The usual sample, every sensor active and ok, nothing firing: the field as read.
+        ``None`` (nothing changed) when any check needs the full path of :meth:`_update`."""
+        if self._count < self.confirm:
+            return None
+        d = x - self._ref
+        step = d - self._prev
+        if (not np.isfinite(d.sum()) or (np.abs(x - self._mid) > self._half).any()
+                or (np.abs(step) > self._jump_lim).any()):
+            return None
+        pred = self._M @ (d if self._all_active else d[self._active])
+        e = (d - pred) * self._scale
+        ae = np.abs(e)
+        pos = self._pos
+        a = np.minimum(np.abs(self._err[self._before[pos]]).min(axis=0), ae)
+        if self._all_active:
+            if (ae >= self.alarm_c).any() or (a >= self.warning_c).any():
+                return None
+        else:
+            judged = self._judged
+            if (judged & ((ae >= self.alarm_c) | (a >= self.warning_c))).any():
+                return None
+            if self._count >= self.window:   # an excluded sensor due for re-admission?
+                rows = np.abs(self._err[self._before_all[pos]])
+                inside = ~judged & (np.maximum(rows.max(axis=0), ae) < self.warning_c)
+                if (inside & ~self._active).any():
+                    return None
+        same = step == 0
+        if same.any():
+            other = np.where(self._judged, d - e, pred)
+            run_pred = np.where(same & (self._run == 0), other, self._run_pred)
+            run = np.where(same, self._run + 1, 0)
+            moved = np.abs(other - run_pred)
+            if (same & ((self._observable & (moved >= self.warning_c))
+                        | (~self._observable & (run > self._blind_run)))).any():
+                return None
+            self._run, self._run_pred = run, run_pred
+        else:
+            self._run = self._zero_run
+        self._hist[pos] = d
+        self._err[pos] = e
+        self._pos = (pos + 1) % self.window
+        self._count += 1
+        self._prev, self._prev_e = d, e
+        clean = d if self._all_active else np.where(self._active, d, pred)
+        self._clean = clean
+        return clean
+
+    def _update(self, x: np.ndarray, time: float) -> tuple[np.ndarray, list[dict]]:
         events: list[dict] = []
         if self._ref is None:
-            self._ref = np.where(finite, x, np.nan)
-        late = finite & ~np.isfinite(self._ref)      # first value of a sensor missing at the start
+            self._ref = np.where(np.isfinite(x), x, np.nan)
         d = x - self._ref
-        self._hist[self._pos] = d
-        self._pos = (self._pos + 1) % self.window
+        all_finite = bool(np.isfinite(d.sum()))
+        finite = np.isfinite(d) if not all_finite else self._true
+        pos = self._pos
+        self._hist[pos] = d
+        self._pos = (pos + 1) % self.window
         self._count += 1
 
-        # instant detectors on the raw reading
-        instant: dict[int, str] = {}
-        for j in np.flatnonzero(~finite):
-            instant[j] = "dropout: no finite value"
-        rng = finite & ((x < self.lo_c - self.range_margin_c) | (x > self.hi_c + self.range_margin_c))
-        for j in np.flatnonzero(rng):
-            instant[j] = (f"out of range: {x[j]:.4g} °C outside the training range "
-                          f"[{self.lo_c[j]:.3g}, {self.hi_c[j]:.3g}] ± {self.range_margin_c:g} °C")
+        # instant detectors on the raw reading (vectorised check, details only when one fires)
         step = d - self._prev
-        big = np.isfinite(step) & (np.abs(step) > self.jump_factor * self.max_step_c) & ~rng
-        for j in np.flatnonzero(big):
-            instant[j] = (f"jump: {step[j]:+.3g} °C in one sample (largest step in training "
-                          f"{self.max_step_c[j]:.3g} °C)")
-        same = finite & (step == 0)
+        rng = (x < self._lo_lim) | (x > self._hi_lim)
+        big = np.abs(step) > self._jump_lim
+        same = step == 0
+        instant: dict[int, str] = {}
+        if not all_finite or (rng | big).any():
+            instant = self._instant(x, d, step, finite, rng, big & ~rng)
+            for j, why in instant.items():
+                if self._active[j]:
+                    self._exclude(j, why, time, events)
         self._run = np.where(same, self._run + 1, 0)
-
-        for j in list(instant):
-            if self._active[j]:
-                self._exclude(j, instant[j], time, events)
-        pred, e = self._residuals(d)
-        for j in np.flatnonzero(late):                 # referenced so that it agrees with the field
-            if np.isfinite(pred[j]):
+        pred, e = self._errors(d)
+        if not all_finite:
+            late = finite & ~np.isfinite(self._ref)   # first value of a sensor missing at the start
+            for j in np.flatnonzero(late & np.isfinite(pred)):   # referenced to agree with the field
                 self._ref[j] = x[j] - pred[j]
-                d[j] = pred[j]
-                self._hist[(self._pos - 1) % self.window, j] = d[j]
+                d[j] = self._hist[pos, j] = pred[j]
                 e[j] = 0.0
+        self._err[pos] = e
 
         # freeze: constant while the field (its prediction from the others) moves
-        other = np.where(np.isfinite(e), d - e, pred)   # what the other sensors say it reads
-        start = same & (self._run == 1)
-        self._run_pred[start] = self._prev_other[start]
-        self._prev_other = other
-        moved = np.abs(other - self._run_pred)
-        frozen_obs = same & self._observable & (moved >= self.warning_c)
-        frozen_blind = same & ~self._observable & (self._run > np.maximum(
-            self.freeze_factor * self.longest_run, self.window))
-        for j in np.flatnonzero(frozen_obs | frozen_blind):
-            if j in instant:
-                continue
-            why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field moved "
-                   f"{moved[j]:.2g} °C" if frozen_obs[j] else
-                   f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples (longest constant run "
-                   f"in training {self.longest_run[j]:.0f})")
-            instant[j] = why
-            if self._active[j]:
-                self._exclude(j, why, time, events)
+        other = d - np.where(np.isfinite(e), e, d - pred)
+        if same.any():
+            start = same & (self._run == 1)
+            self._run_pred[start] = other[start]
+            moved = np.abs(other - self._run_pred)
+            frozen = same & ((self._observable & (moved >= self.warning_c))
+                             | (~self._observable & (self._run > self._blind_run)))
+            for j in np.flatnonzero(frozen):
+                if j in instant:
+                    continue
+                why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field "
+                       f"moved {moved[j]:.2g} °C" if self._observable[j] else
+                       f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples (longest constant "
+                       f"run in training {self.longest_run[j]:.0f})")
+                instant[j] = why
+                if self._active[j]:
+                    self._exclude(j, why, time, events)
+
         # a self-prediction error that steps past the alarm band in one sample
         de = e - self._prev_e
-        stepped = (self._active & self._observable & np.isfinite(de)
-                   & (np.abs(e) >= self.alarm_c) & (np.abs(de) >= self.alarm_c))
+        stepped = self._judged & (np.abs(e) >= self.alarm_c) & (np.abs(de) >= self.alarm_c)
         if stepped.any():
             for j in np.flatnonzero(stepped):
-                if j not in instant:
-                    instant[j] = f"jump: self-prediction error stepped {de[j]:+.3g} °C in one sample"
+                instant.setdefault(j, f"jump: self-prediction error stepped {de[j]:+.3g} °C in "
+                                      "one sample")
             if self.adaptive:
-                j = int(np.argmax(np.where(stepped, np.abs(e) * np.sqrt(np.abs(1 - self._lev)), -1)))
+                j = int(np.argmax(np.where(stepped, np.abs(e) * self._std, -1)))
                 self._exclude(j, instant[j], time, events)
-        if events:
-            pred, e = self._residuals(d)
 
-        # windowed judgement, worst first, re-evaluated after every exclusion
-        for _ in range(len(self.names)):
-            W = self._window_errors()
-            level, err = self._judge(W)
-            judged = self._active & self._observable
-            if not (self.adaptive and (judged & (level >= self.exclude_level)).any()
-                    and self._active.sum() > self.min_active_):
-                break
+        # judgement over the last `confirm` samples, worst first, redone after every exclusion
+        level, err = self._judge()
+        while (self.adaptive and (self._judged & (level >= self.exclude_level)).any()
+               and self._active.sum() > self.min_active_):
             # the culprit is the largest *standardised* error |E|/sqrt(1-h) among all judged
             # sensors, in alarm or not: a fault on j gives every other sensor i a smaller one
             # (|H_ij| <= sqrt((1-h_ii)(1-h_jj))), while its leave-one-out error may be smaller
             # than a coupled neighbour's
-            z = np.where(judged, np.abs(np.nan_to_num(err)) * np.sqrt(np.abs(1 - self._lev)), -1)
+            z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std, -1)
             j = int(np.argmax(z))
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events)
             # a sensor out of band that no other can predict once j is out cannot be
             # vouched for (two coupled sensors look alike to self-prediction): out too
-            blind = self._active & ~self._observable & judged & (z >= 0.7 * z[j])
+            blind = self._active & ~self._observable & (z >= 0.7 * z[j])
             for i in np.flatnonzero(blind):
                 if self._active.sum() > self.min_active_:
                     self._exclude(i, f"drift: self-prediction error {err[i]:+.2g} °C and no other "
                                      f"sensor predicts it once {self.names[j]} is out", time, events)
-        pred, e = self._residuals(d)
+            level, err = self._judge()
 
         # re-admission: back within the warning band for a whole window, no detector firing
-        if self.adaptive and (~self._active).any() and self._count >= self.window:
-            back = (~self._active & finite & (self._run == 0)
-                    & np.all(np.abs(W) < self.warning_c, axis=0) if len(W) == self.window else
-                    np.zeros(len(d), bool))
-            back &= np.array([j not in instant for j in range(len(d))])
+        if self.adaptive and not self._all_active and self._count >= self.window:
+            inside = np.all(np.abs(self._err) < self.warning_c, axis=0)
+            back = ~self._active & finite & (self._run == 0) & inside
             for j in np.flatnonzero(back):
+                if j in instant:
+                    continue
                 self._set_state(j, OK, time, f"re-admitted: within ±{self.warning_c[j]:g} °C "
                                               f"for {self.window} samples", events)
                 self._active[j] = True
-            if back.any():
                 self._set_operator()
-                pred, e = self._residuals(d)
-                W = self._window_errors()
-                level, err = self._judge(W)
+            if back.any():
+                level, err = self._judge()
+        pred, e = self._errors(d)
 
-        # states of the sensors still active
-        for j in np.flatnonzero(self._active):
-            if j in instant:      # monitor-only mode: a firing detector holds the alarm
-                self._set_state(j, ALARM, time, instant[j], events)
-                continue
-            new = int(level[j]) if self._observable[j] else OK
-            if new != self._state[j]:
-                self._set_state(j, new, time, f"self-prediction error {err[j]:+.2g} °C over the "
-                                              f"last {self.confirm} samples", events)
+        # states of the sensors still active (monitor-only mode: a firing detector holds alarm)
+        new = np.where(self._judged, level, OK).astype(np.int8)
+        for j, why in instant.items():
+            if self._active[j]:
+                new[j] = ALARM
+        changed = self._active & (new != self._state)
+        for j in (np.flatnonzero(changed) if changed.any() else ()):
+            self._set_state(j, int(new[j]), time, instant.get(j) or
+                            f"self-prediction error {err[j]:+.2g} °C over the last "
+                            f"{self.confirm} samples", events)
         self._prev = np.where(finite, d, self._prev)
         self._prev_e = e
-        self.last_error_ = np.where(self._observable | ~self._active, err, np.nan)
-        clean = np.where(self._active & finite, d, pred)
-        clean = np.where(np.isfinite(clean), clean, self._clean)   # nothing to rebuild from: hold
+        clean = d if (self._all_active and all_finite) else np.where(self._active & finite, d, pred)
+        if not np.isfinite(clean.sum()):
+            clean = np.where(np.isfinite(clean), clean, self._clean)   # nothing to rebuild from
         self._clean = clean
         return clean, events
+
+    def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:
+        """Reasons of the instant detectors that fire (dropout, out of range, jump)."""
+        out: dict[int, str] = {}
+        for j in np.flatnonzero(~finite):
+            out[j] = "dropout: no finite value"
+        for j in np.flatnonzero(rng):
+            out[j] = (f"out of range: {x[j]:.4g} °C outside the training range "
+                      f"[{self.lo_c[j]:.3g}, {self.hi_c[j]:.3g}] ± {self.range_margin_c:g} °C")
+        for j in np.flatnonzero(big):
+            out[j] = (f"jump: {step[j]:+.3g} °C in one sample (largest step in training "
+                      f"{self.max_step_c[j]:.3g} °C)")
+        return out
 
     def _exclude(self, j: int, reason: str, time: float, events: list) -> None:
         if not self.adaptive:
             self._set_state(j, ALARM, time, reason, events)
             return
         self._active[j] = False
-        self._why[j] = reason
         self._set_state(j, EXCLUDED, time, reason, events)
         self._set_operator()
 
@@ -381,14 +459,6 @@ class SensorMonitor:
                        "to": STATES[new], "reason": reason})
         self._state[j] = new
 
-
-def _nanmean(W: np.ndarray, n: int) -> np.ndarray:
-    """Column means over the finite values (NaN where none), without warnings."""
-    ok = np.isfinite(W)
-    count = ok.sum(axis=0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(count > 0, np.where(ok, W, 0.0).sum(axis=0) / count, np.nan) \
-            if len(W) else np.full(n, np.nan)
 
 
 def _longest_runs(a: np.ndarray) -> np.ndarray:
