@@ -111,6 +111,8 @@ class SensorMonitor:
         self._jump_lim = self.jump_factor * self.max_step_c
         self._blind_run = np.maximum(self.freeze_factor * self.longest_run, self.window)
         self._true = np.ones(n, dtype=bool)
+        # which sensors the others can predict with every sensor in (re-admission check)
+        self._predictable = pod.operator(self._true)[1] < pod.max_leverage
         self._zero_run = np.zeros(n, dtype=np.int64)
         self._mid, self._half = (self._lo_lim + self._hi_lim) / 2, (self._hi_lim - self._lo_lim) / 2
         # ring rows of the `confirm - 1` samples before each write position
@@ -162,7 +164,7 @@ class SensorMonitor:
 
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
-              "_prev_e", "_run", "_run_pred", "_clean", "_quiet")
+              "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other", "_last_good")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -177,6 +179,9 @@ class SensorMonitor:
         self._prev = np.full(n, np.nan)
         self._prev_e = np.full(n, np.nan)
         self._run = np.zeros(n, dtype=np.int64)
+        self._calm = np.zeros(n, dtype=np.int64)   # samples since a detector last fired
+        self._prev_other = np.full(n, np.nan)       # each sensor as the others predict it
+        self._last_good = np.zeros(n)               # last reading while the sensor was in
         self._run_pred = np.full(n, np.nan)
         self._clean = np.zeros(n)
         self._quiet = False          # every sensor active and ok: the fast path may run
@@ -288,11 +293,8 @@ class SensorMonitor:
             judged = self._judged
             if (judged & ((ae >= self.alarm_c) | (a >= self.warning_c))).any():
                 return None
-            if self._count >= self.window:   # an excluded sensor due for re-admission?
-                rows = np.abs(self._err[self._before_all[pos]])
-                inside = ~judged & (np.maximum(rows.max(axis=0), ae) < self.warning_c)
-                if (inside & ~self._active).any():
-                    return None
+            if ((self._calm + 1 >= self.window) & ~self._active).any():
+                return None                  # an excluded sensor may be due for re-admission
         same = step == 0
         if same.any():
             other = np.where(self._judged, d - e, pred)
@@ -309,8 +311,15 @@ class SensorMonitor:
         self._err[pos] = e
         self._pos = (pos + 1) % self.window
         self._count += 1
+        self._calm += 1
+        self._prev_other = np.where(self._judged, d - e, np.nan)
         self._prev, self._prev_e = d, e
-        clean = d if self._all_active else np.where(self._active, d, pred)
+        clean = d if self._all_active else np.where(
+            self._active, d, np.where(self._predictable, pred, self._last_good))
+        if self._all_active:
+            self._last_good = d
+        else:
+            self._last_good = np.where(self._active, d, self._last_good)
         self._clean = clean
         return clean
 
@@ -332,12 +341,28 @@ class SensorMonitor:
         big = np.abs(step) > self._jump_lim
         same = step == 0
         instant: dict[int, str] = {}
+        if self._count == 2 and big.any():
+            # a jump right after the reference sample: the reference is the glitch (or the
+            # sensor took an offset at once: the same thing to a model of changes since the
+            # start), so the sensor is re-referenced and stays in
+            for j in np.flatnonzero(big & ~rng):
+                self._ref[j] += step[j]
+                d[j] = self._hist[pos, j] = 0.0
+                events.append({"time": float(time), "sensor": self.names[j], "from": STATES[self._state[j]],
+                               "to": "re-referenced", "reason": f"reference glitch: {-step[j]:+.3g} °C "
+                               "at the reference sample against the next one; re-referenced"})
+            step = d - self._prev
+            big = np.abs(step) > self._jump_lim
         if not all_finite or (rng | big).any():
             instant = self._instant(x, d, step, finite, rng, big & ~rng)
+            self._hist[pos] = d             # a jump re-referenced the sensor
             for j, why in instant.items():
                 if self._active[j]:
                     self._exclude(j, why, time, events)
         self._run = np.where(same, self._run + 1, 0)
+        self._calm += 1
+        for j in instant:
+            self._calm[j] = 0
         pred, e = self._errors(d)
         if not all_finite:
             late = finite & ~np.isfinite(self._ref)   # first value of a sensor missing at the start
@@ -400,8 +425,9 @@ class SensorMonitor:
 
         # re-admission: back within the warning band for a whole window, no detector firing
         if self.adaptive and not self._all_active and self._count >= self.window:
-            inside = np.all(np.abs(self._err) < self.warning_c, axis=0)
-            back = ~self._active & finite & (self._run == 0) & inside
+            # checked against the field where the others can predict it, else calm is enough
+            inside = np.all(np.abs(self._err) < self.warning_c, axis=0) | ~self._predictable
+            back = ~self._active & finite & (self._run == 0) & (self._calm >= self.window) & inside
             for j in np.flatnonzero(back):
                 if j in instant:
                     continue
@@ -423,9 +449,14 @@ class SensorMonitor:
             self._set_state(j, int(new[j]), time, instant.get(j) or
                             f"self-prediction error {err[j]:+.2g} °C over the last "
                             f"{self.confirm} samples", events)
+        self._prev_other = np.where(self._judged, d - e, np.nan)
         self._prev = np.where(finite, d, self._prev)
         self._prev_e = e
-        clean = d if (self._all_active and all_finite) else np.where(self._active & finite, d, pred)
+        good = self._active & finite
+        self._last_good = np.where(good, d, self._last_good)
+        # an excluded sensor: rebuilt from the field, or held where the others cannot predict it
+        clean = d if (self._all_active and all_finite) else np.where(
+            good, d, np.where(self._predictable, pred, self._last_good))
         if not np.isfinite(clean.sum()):
             clean = np.where(np.isfinite(clean), clean, self._clean)   # nothing to rebuild from
         self._clean = clean
@@ -434,14 +465,24 @@ class SensorMonitor:
     def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:
         """Reasons of the instant detectors that fire (dropout, out of range, jump)."""
         out: dict[int, str] = {}
+        if big.any():   # the change of a jumping sensor as the other sensors see it
+            pred, e = self._errors(np.where(finite, d, 0.0))
+            other = np.where(self._judged, d - e, np.nan)
+            expected = other - self._prev_other
         for j in np.flatnonzero(~finite):
             out[j] = "dropout: no finite value"
         for j in np.flatnonzero(rng):
             out[j] = (f"out of range: {x[j]:.4g} °C outside the training range "
                       f"[{self.lo_c[j]:.3g}, {self.hi_c[j]:.3g}] ± {self.range_margin_c:g} °C")
         for j in np.flatnonzero(big):
+            # no temperature jumps: the offset is the sensor's, so it is re-referenced at once
+            # (a model of changes since the start then sees its true changes again) and stays
+            # out until it has been calm, and agrees with the field, for a window
+            offset = step[j] - (expected[j] if np.isfinite(expected[j]) else 0.0)
+            self._ref[j] += offset               # changes as the field says it changed
+            d[j] -= offset
             out[j] = (f"jump: {step[j]:+.3g} °C in one sample (largest step in training "
-                      f"{self.max_step_c[j]:.3g} °C)")
+                      f"{self.max_step_c[j]:.3g} °C); re-referenced")
         return out
 
     def _exclude(self, j: int, reason: str, time: float, events: list) -> None:
