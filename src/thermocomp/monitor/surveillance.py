@@ -75,7 +75,7 @@ class SensorMonitor:
     """
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
-                 window: int = 10, confirm: int = 3, adaptive: bool = True,
+                 window: int = 10, confirm: int = 2, adaptive: bool = True,
                  exclude_at: str = "warning", max_step_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0):
@@ -285,7 +285,7 @@ class SensorMonitor:
         e = (d - pred) * self._scale
         ae = np.abs(e)
         pos = self._pos
-        a = np.minimum(np.abs(self._err[self._before[pos]]).min(axis=0), ae)
+        a = np.minimum(np.abs(self._err[self._before[pos]]).min(axis=0), ae) if self.confirm > 1 else ae
         if self._all_active:
             if (ae >= self.alarm_c).any() or (a >= self.warning_c).any():
                 return None
