@@ -149,6 +149,35 @@ def test_a_simulated_fault_on_the_most_influential_sensor_is_caught_bounded_and_
         assert all("dropout" in c["event"]["reason"] for c in check["campaigns"].values())
 
 
+# the same on a second scenario: one 12 h production campaign of the Swiss-type lathe (12 sensors)
+SWISS = ["sim=swiss_lathe_door", "sim.generator.calibration_hours=40"]
+SWISS_GAPS = {   # measured, not tuned away (nothing in src is changed to pass)
+    "spike_ref": "adaptive RMSE 2.8x the healthy one: the faulty sensor is excluded at sample 1, "
+                 "T_guidebush and T_nc_x1_drive are excluded after it",
+    "drift": "adaptive RMSE 3.6x (E_X) / 4.1x (E_Y) the healthy one: the drift is reported "
+             "within 10 samples of leaving the band, but the correction reaches its bound",
+}
+
+
+@pytest.fixture(scope="module")
+def swiss(tmp_path_factory):
+    root = tmp_path_factory.mktemp("swiss")
+    thermocomp("simulate", f"data.path={root / 'healthy'}", "track=false", *SWISS)
+    report = run_monitor(root / "healthy", root / "mon", "plots=none", *SWISS)
+    return root / "healthy", report, most_influential(root / "healthy")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("kind", [pytest.param(k, marks=pytest.mark.xfail(
+    reason=SWISS_GAPS[k], strict=True)) if k in SWISS_GAPS else k for k in KINDS])
+def test_a_simulated_fault_on_the_swiss_lathe_is_caught_bounded_and_compensated(swiss, tmp_path, kind):
+    healthy_path, report_h, sensor = swiss
+    faults = simulate_fault(tmp_path / "faulty", kind, sensor, *SWISS)
+    report = run_monitor(tmp_path / "faulty", tmp_path / "out", "plots=none", *SWISS)
+    assert_caught(fault_check(healthy_path, report_h, tmp_path / "faulty", faults, report, sensor),
+                  kind)
+
+
 # -- hostile input: exit 2, one line, nothing written -----------------------------------------
 def refused(args: list[str], capsys, *says: str) -> str:
     code = main(args)

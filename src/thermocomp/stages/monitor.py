@@ -194,7 +194,7 @@ def monitor(cfg: DictConfig) -> dict:
                 raise io.ContractError("a test campaign lacks a column the model reads",
                                        column=",".join(absent))
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
-        report, traces = _report(adaptive, fixed, comp, streamed)
+        report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement))
         if missing:
             report["missing"] = missing
         out = Path(resolve(cfg.out))
@@ -210,7 +210,8 @@ def monitor(cfg: DictConfig) -> dict:
     return report
 
 
-def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, streamed) -> tuple[dict, dict]:
+def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, streamed,
+            placement: str = "qr") -> tuple[dict, dict]:
     mon = adaptive.monitor
     names = mon.names
     counts = np.zeros((len(names), len(STATES)), dtype=np.int64)
@@ -264,7 +265,9 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
                 "captured_energy": float(pod.energy_[pod.n_modes_ - 1]),
                 "train_self_prediction_c": float(pod.train_band_c_),
                 "sensor_rank_qr": [names[i] for i in rank],
-                "sensor_rank_covariance": [names[i] for i in cov]},
+                "sensor_rank_covariance": [names[i] for i in cov],
+                "placement": placement,
+                "sensor_rank": [names[i] for i in (rank if placement == "qr" else cov)]},
         "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist()},
         "campaigns": list(streamed),
     }
