@@ -225,7 +225,8 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
         y_ad, ev, (states, errors) = _stream(adaptive, df)
         for e in ev:
             events.append({"campaign": cid, **e})
-            if e.get("sensor") in names and e["to"] in ("alarm", "excluded") and e["sensor"] not in first_alarm:
+            if (e.get("sensor") in names and e["to"] in ("alarm", "excluded")
+                    and e["sensor"] not in first_alarm):
                 first_alarm[e["sensor"]] = {"campaign": cid, "time": e["time"]}
         S = np.asarray(states)
         for k in range(len(STATES)):
