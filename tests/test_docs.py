@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
+import subprocess
 
+import pandas as pd
 import pytest
 import yaml
 
-from conftest import ROOT, thermocomp
+from conftest import BIN, ROOT, thermocomp
 from thermocomp.stages import STAGES
 
 CLI = (ROOT / "docs" / "cli.md").read_text()
@@ -69,6 +72,56 @@ def test_every_key_of_a_real_metrics_and_replay_json_is_in_the_cli_reference(def
         found = {k for k in found if not k.startswith(("K", "E_"))}   # campaign ids, targets
         missing = sorted(k for k in found if not _documented(k, CLI))
         assert not missing, f"docs/cli.md lacks keys of {name}: {missing}"
+
+
+def test_every_monitor_config_key_is_in_the_cli_reference():
+    def leaves(d: dict, prefix: str) -> list[str]:
+        return [k for key, v in d.items()
+                for k in (leaves(v, f"{prefix}{key}.") if isinstance(v, dict) else [prefix + key])]
+
+    keys = leaves(yaml.safe_load((ROOT / "conf" / "monitor" / "default.yaml").read_text()), "monitor.")
+    missing = [k for k in keys if f"| `{k}` |" not in CLI]
+    assert keys and not missing, f"docs/cli.md lacks the monitor config keys {missing}"
+
+
+@pytest.mark.slow
+def test_every_key_of_a_real_monitor_json_is_in_the_cli_reference(default_dataset, tmp_path):
+    # a dropout on one test campaign: `missing`, the dropout and guard events too
+    data = tmp_path / "ds"
+    shutil.copytree(default_dataset, data)
+    index = pd.read_csv(data / "campaigns.csv")
+    test = data / index.loc[index["split"] == "test", "file"].iloc[0]
+    df = pd.read_csv(test)
+    sensor = next(c for c in df.columns if c.startswith("T_") and not c.startswith("T_amb"))
+    df.loc[len(df) // 2:, sensor] = None
+    df.to_csv(test, index=False)
+    thermocomp("monitor", f"data.path={data}", "track=false", f"out={tmp_path / 'mon'}")
+    report = json.loads((tmp_path / "mon" / "monitor.json").read_text())
+    # stdin, judged only: a time that goes back and a +50 °C jump reach the guard
+    df.loc[len(df) // 2:, sensor] = pd.read_csv(default_dataset / test.name)[sensor] + 50.0
+    df.loc[5, "time"] = df.loc[3, "time"]
+    proc = subprocess.run([str(BIN / "thermocomp"), "monitor", "monitor.input=-", "track=false",
+                           "monitor.adaptive=false", f"data.path={data}", f"out={tmp_path / 'in'}",
+                           "plots=none"], input=df.to_csv(index=False), capture_output=True,
+                          text=True, cwd=ROOT)
+    assert proc.returncode == 0, proc.stderr
+    stdin = json.loads((tmp_path / "in" / "monitor.json").read_text())
+    events = report["events"] + stdin["events"]
+    assert report["missing"] and {"time", None} <= {e["sensor"] for e in events}
+    keys = {
+        "monitor.json": set(report) | set(stdin),
+        "monitor.json sensors.<s>": _keys(report["sensors"][sensor], 2),
+        "monitor.json targets.<t>": set(next(iter(report["targets"].values()))),
+        "monitor.json events": {k for e in events for k in e},
+        "monitor.json pod, bands": set(report["pod"]) | set(report["bands"]),
+    }
+    for name, found in keys.items():
+        missing = sorted(k for k in found if not _documented(k, CLI))
+        assert not missing, f"docs/cli.md lacks keys of {name}: {missing}"
+    states = {e[k] for e in events for k in ("from", "to")}
+    assert not [s for s in states if f"`{s}`" not in CLI]
+    figures = sorted(p.name for p in (tmp_path / "mon" / "monitor").iterdir())
+    assert figures and not [f for f in figures if f"`{f}`" not in CLI]
 
 
 LINK = re.compile(r"!?\[[^\]]*\]\(([^)\s]+)(?:\s+\"[^\"]*\")?\)")

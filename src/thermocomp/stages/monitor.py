@@ -5,12 +5,15 @@ The compensator is fitted on the train split of ``data.path`` (or loaded:
 in an :class:`~thermocomp.monitor.AdaptiveCompensator` whose POD, detector
 limits and correction guard are fitted on the same train split.  Each test
 campaign (or the CSV rows of stdin, ``monitor.input=-``) is streamed twice from
-a reset: through the fixed compensator and the adaptive one.  Writes
+a reset: through the fixed compensator and the adaptive one.  Test campaigns
+are read as recorded (missing cells stay NaN, counted in ``missing``); train
+campaigns must be complete, or repaired within the ``data`` limits.  Writes
 ``<out>/monitor.json`` (CLI.md) and figures in ``<out>/monitor/``.
 """
 
 from __future__ import annotations
 
+import math
 import sys
 from pathlib import Path
 
@@ -47,22 +50,29 @@ def _adaptive(cfg: DictConfig, streaming, train) -> AdaptiveCompensator:
         raise ConfigError(f"monitor: {exc}") from None
 
 
-def _stdin_campaign(columns: list[str]) -> dict[str, pd.DataFrame]:
+def _stdin_campaign(columns: list[str], targets: list[str]) -> tuple[dict, dict]:
+    """``({"stdin": frame}, missing cells)`` from CSV rows on stdin (header first); empty cells
+    stay NaN, a non-numeric one is refused with its row."""
     try:
         df = pd.read_csv(sys.stdin)
     except Exception as exc:    # pandas raises several kinds for a bad stream
-        raise io.ContractError(f"stdin is not a CSV table with a header ({exc})", file="<stdin>")
-    missing = [c for c in columns if c not in df.columns]
-    if missing:
+        raise io.ContractError(f"stdin is not a CSV table with a header ({' '.join(str(exc).split())})",
+                               file="<stdin>") from None
+    absent = [c for c in columns if c not in df.columns]
+    if not absent and df.empty:
+        raise io.ContractError("stdin has a header but no data row", file="<stdin>")
+    if absent:
         raise io.ContractError("stdin lacks a column the compensator reads", file="<stdin>",
-                               column=",".join(missing))
-    for c in list(columns) + ([TIME] if TIME in df.columns else []):
+                               column=",".join(absent))
+    numeric = [*columns, *(c for c in (TIME, *targets) if c in df.columns)]
+    for c in numeric:
         bad = pd.to_numeric(df[c], errors="coerce").isna() & df[c].notna()
         if bad.any():
             raise io.ContractError("non-numeric value", file="<stdin>", column=c,
                                    row=int(np.flatnonzero(bad)[0]) + 1)
         df[c] = pd.to_numeric(df[c], errors="coerce")
-    return {"stdin": df}
+    counts = {c: int(n) for c, n in df[numeric].isna().sum().items() if n}
+    return {"stdin": df}, ({"stdin": counts} if counts else {})
 
 
 def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.ndarray]]:
@@ -86,15 +96,81 @@ def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.nd
     return y, events, (states, errors)
 
 
+def check_monitor(m: DictConfig) -> None:
+    """Refuse a ``monitor.*`` value the monitor cannot use, before any data is read."""
+    def number(key, value, low=None, high=None, low_open=False, integer=False, null=False):
+        if value is None and null:
+            return
+        kind = "an integer" if integer else "a number"
+        ok = (not isinstance(value, bool) and isinstance(value, int if integer else (int, float))
+              and math.isfinite(value)
+              and (low is None or (value > low if low_open else value >= low))
+              and (high is None or value <= high))
+        if not ok:
+            where = "".join([f" {'>' if low_open else '>='} {low:g}" if low is not None else "",
+                             f" and <= {high:g}" if high is not None else ""])
+            raise ConfigError(f"monitor.{key} must be {kind}{where}{' or null' * null}, "
+                              f"got {value!r}")
+
+    def choice(key, value, allowed):
+        if value not in allowed:
+            raise ConfigError(f"monitor.{key}={value!r} is not one of {list(allowed)}")
+
+    choice("input", m.get("input"), (None, "-"))
+    choice("adaptive", m.adaptive, (True, False))
+    choice("exclude_at", m.exclude_at, ("warning", "alarm"))
+    choice("bands.learned", m.bands.learned, (True, False))
+    choice("pod.placement", m.pod.placement, ("qr", "covariance"))
+    number("window", m.window, 1, integer=True)
+    number("confirm", m.confirm, 1, m.window, integer=True)
+    number("bands.warning_c", m.bands.warning_c, 0, low_open=True)
+    number("bands.alarm_c", m.bands.alarm_c, m.bands.warning_c)
+    number("pod.energy", m.pod.energy, 0, 1, low_open=True)
+    number("pod.modes", m.pod.modes, 1, integer=True, null=True)
+    number("pod.fit_share", m.pod.fit_share, 0, low_open=True, null=True)
+    number("pod.max_leverage", m.pod.max_leverage, 0, 1, low_open=True)
+    for key in ("jump_factor", "freeze_factor"):
+        number(f"detectors.{key}", m.detectors[key], 0, low_open=True)
+    number("detectors.range_margin_c", m.detectors.range_margin_c, 0)
+    for key in ("margin", "rate_margin"):
+        number(f"guard.{key}", m.guard[key], 0)
+    number("map_time_h", m.get("map_time_h"), 0, null=True)
+
+
+def _read(cfg: DictConfig, stdin: bool):
+    """``(dataset, train ids, streamed campaigns, missing cells per streamed campaign)``.
+
+    Test campaigns are read as recorded (``missing="keep"``: a dropout streams as NaN);
+    train campaigns as ``run`` reads them (gaps repaired within ``data.max_gap_samples`` /
+    ``data.max_edge_samples``, else refused), since the POD and the model are fitted on
+    complete records.
+    """
+    root = resolve(cfg.data.path)
+    say(f"reading {root}")
+    ds, report = io.read_dataset(root, data_options(cfg), missing="keep")
+    train_ids = require_split(ds, "train")
+    test_ids = [] if stdin else require_split(ds, "test")
+    for cid in train_ids:
+        if report["campaigns"][cid].get("missing"):
+            try:
+                table, _ = io.read_campaign(root / ds.manifest.loc[cid, "file"], data_options(cfg))
+            except io.ContractError as exc:
+                raise io.ContractError(f"train campaign {cid}: {exc.reason} (the monitor is fitted "
+                                       "on complete train records)", file=exc.file,
+                                       column=exc.column, row=exc.row) from None
+            ds.campaigns[cid] = table.to_pandas(split_blocks=True)
+    streamed = {c: ds.campaigns[c] for c in test_ids}
+    missing = {c: report["campaigns"][c]["missing"] for c in test_ids
+               if report["campaigns"][c].get("missing")}
+    return ds, train_ids, streamed, missing
+
+
 def monitor(cfg: DictConfig) -> dict:
     """Stream the test campaigns (or stdin) through the fixed and the adaptive compensator."""
     check_config(cfg)
-    source = cfg.monitor.get("input")
-    if source not in (None, "-"):
-        raise ConfigError(f"monitor.input must be null (test campaigns) or '-' (stdin), got {source!r}")
-    say(f"reading {resolve(cfg.data.path)}")
-    ds, _ = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
-    train_ids = require_split(ds, "train")
+    check_monitor(cfg.monitor)
+    stdin = cfg.monitor.get("input") == "-"
+    ds, train_ids, streamed, missing = _read(cfg, stdin)
     train = {c: ds.campaigns[c] for c in train_ids}
     with stage_run(cfg, "monitor") as tr:
         path = cfg.monitor.get("model")
@@ -107,18 +183,20 @@ def monitor(cfg: DictConfig) -> dict:
         fixed = StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
         adaptive = _adaptive(cfg, streaming, train)
         if adaptive.monitor is None:
-            raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns)")
-        if source == "-":
-            streamed = _stdin_campaign(adaptive.columns_)
+            raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
+                              f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")
+        if stdin:
+            streamed, missing = _stdin_campaign(adaptive.columns_, comp.targets_)
         else:
-            streamed = {c: ds.campaigns[c] for c in require_split(ds, "test")}
-            missing = sorted({c for c in adaptive.columns_ for i in streamed
-                              if c not in streamed[i].columns})
-            if missing:
+            absent = sorted({c for c in adaptive.columns_ for i in streamed
+                             if c not in streamed[i].columns})
+            if absent:
                 raise io.ContractError("a test campaign lacks a column the model reads",
-                                       column=",".join(missing))
+                                       column=",".join(absent))
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
-        report, traces = _report(adaptive, fixed, comp, streamed)
+        report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement))
+        if missing:
+            report["missing"] = missing
         out = Path(resolve(cfg.out))
         with staged_outputs(out, last=("monitor.json",)) as stage:
             if cfg.plots != "none":
@@ -132,7 +210,8 @@ def monitor(cfg: DictConfig) -> dict:
     return report
 
 
-def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, streamed) -> tuple[dict, dict]:
+def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, streamed,
+            placement: str = "qr") -> tuple[dict, dict]:
     mon = adaptive.monitor
     names = mon.names
     counts = np.zeros((len(names), len(STATES)), dtype=np.int64)
@@ -146,7 +225,8 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
         y_ad, ev, (states, errors) = _stream(adaptive, df)
         for e in ev:
             events.append({"campaign": cid, **e})
-            if e.get("sensor") in names and e["to"] in ("alarm", "excluded") and e["sensor"] not in first_alarm:
+            if (e.get("sensor") in names and e["to"] in ("alarm", "excluded")
+                    and e["sensor"] not in first_alarm):
                 first_alarm[e["sensor"]] = {"campaign": cid, "time": e["time"]}
         S = np.asarray(states)
         for k in range(len(STATES)):
@@ -186,7 +266,9 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
                 "captured_energy": float(pod.energy_[pod.n_modes_ - 1]),
                 "train_self_prediction_c": float(pod.train_band_c_),
                 "sensor_rank_qr": [names[i] for i in rank],
-                "sensor_rank_covariance": [names[i] for i in cov]},
+                "sensor_rank_covariance": [names[i] for i in cov],
+                "placement": placement,
+                "sensor_rank": [names[i] for i in (rank if placement == "qr" else cov)]},
         "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist()},
         "campaigns": list(streamed),
     }
