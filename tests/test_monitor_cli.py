@@ -151,12 +151,7 @@ def test_a_simulated_fault_on_the_most_influential_sensor_is_caught_bounded_and_
 
 # the same on a second scenario: one 12 h production campaign of the Swiss-type lathe (12 sensors)
 SWISS = ["sim=swiss_lathe_door", "sim.generator.calibration_hours=40"]
-SWISS_GAPS = {   # measured, not tuned away (nothing in src is changed to pass)
-    "spike_ref": "adaptive RMSE 2.8x the healthy one: the faulty sensor is excluded at sample 1, "
-                 "T_guidebush and T_nc_x1_drive are excluded after it",
-    "drift": "adaptive RMSE 3.6x (E_X) / 4.1x (E_Y) the healthy one: the drift is reported "
-             "within 10 samples of leaving the band, but the correction reaches its bound",
-}
+SWISS_GAPS: dict[str, str] = {}   # measured gaps, as strict xfails (none left)
 
 
 @pytest.fixture(scope="module")

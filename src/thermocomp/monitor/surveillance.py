@@ -41,6 +41,7 @@ import numpy as np
 from .pod import ThermalPOD
 
 OK, WARNING, ALARM, EXCLUDED = 0, 1, 2, 3
+READMIT = 0.5   # hysteresis: back in when within this share of the warning band for a window
 STATES = ("ok", "warning", "alarm", "excluded")
 
 
@@ -164,7 +165,7 @@ class SensorMonitor:
 
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
-              "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other", "_last_good")
+              "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other", "_last_good", "_by_field")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -182,6 +183,7 @@ class SensorMonitor:
         self._calm = np.zeros(n, dtype=np.int64)   # samples since a detector last fired
         self._prev_other = np.full(n, np.nan)       # each sensor as the others predict it
         self._last_good = np.zeros(n)               # last reading while the sensor was in
+        self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
         self._run_pred = np.full(n, np.nan)
         self._clean = np.zeros(n)
         self._quiet = False          # every sensor active and ok: the fast path may run
@@ -400,7 +402,7 @@ class SensorMonitor:
                                       "one sample")
             if self.adaptive:
                 j = int(np.argmax(np.where(stepped, np.abs(e) * self._std, -1)))
-                self._exclude(j, instant[j], time, events)
+                self._exclude(j, instant[j], time, events, by_field=True)
 
         # judgement over the last `confirm` samples, worst first, redone after every exclusion
         level, err = self._judge()
@@ -413,27 +415,44 @@ class SensorMonitor:
             z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std, -1)
             j = int(np.argmax(z))
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
-                             f"{self.confirm} samples", time, events)
+                             f"{self.confirm} samples", time, events, by_field=True)
             # a sensor out of band that no other can predict once j is out cannot be
             # vouched for (two coupled sensors look alike to self-prediction): out too
             blind = self._active & ~self._observable & (z >= 0.7 * z[j])
             for i in np.flatnonzero(blind):
                 if self._active.sum() > self.min_active_:
                     self._exclude(i, f"drift: self-prediction error {err[i]:+.2g} °C and no other "
-                                     f"sensor predicts it once {self.names[j]} is out", time, events)
+                                     f"sensor predicts it once {self.names[j]} is out", time, events,
+                                  by_field=True)
             level, err = self._judge()
 
         # re-admission: back within the warning band for a whole window, no detector firing
         if self.adaptive and not self._all_active and self._count >= self.window:
             # checked against the field where the others can predict it, else calm is enough
-            inside = np.all(np.abs(self._err) < self.warning_c, axis=0) | ~self._predictable
+            inside = (np.all(np.abs(self._err) < READMIT * self.warning_c, axis=0)
+                      | ~self._predictable)
             back = ~self._active & finite & (self._run == 0) & (self._calm >= self.window) & inside
             for j in np.flatnonzero(back):
                 if j in instant:
                     continue
-                self._set_state(j, OK, time, f"re-admitted: within ±{self.warning_c[j]:g} °C "
+                if self._predictable[j]:
+                    # back only if it would pass its own judgement once back: its leave-one-out
+                    # error in the set with it, over the whole window (not its error against a
+                    # set that a coupled partner may have left blind to it)
+                    trial = self._active.copy()
+                    trial[j] = True
+                    M, h = self.pod.operator(trial)
+                    hj = h[int(np.sum(trial[:j]))]
+                    if hj >= self.pod.max_leverage:
+                        continue
+                    H = np.where(np.isfinite(self._hist), self._hist, 0.0)
+                    e_trial = (H[:, j] - H[:, trial] @ M[j]) / (1 - hj)
+                    if not np.all(np.abs(e_trial) < READMIT * self.warning_c[j]):
+                        continue
+                self._set_state(j, OK, time, f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C "
                                               f"for {self.window} samples", events)
                 self._active[j] = True
+                self._by_field[j] = False
                 self._set_operator()
             if back.any():
                 level, err = self._judge()
@@ -485,11 +504,13 @@ class SensorMonitor:
                       f"{self.max_step_c[j]:.3g} °C); re-referenced")
         return out
 
-    def _exclude(self, j: int, reason: str, time: float, events: list) -> None:
+    def _exclude(self, j: int, reason: str, time: float, events: list, by_field: bool = False) -> None:
         if not self.adaptive:
             self._set_state(j, ALARM, time, reason, events)
             return
         self._active[j] = False
+        self._calm[j] = 0            # back in only after a whole window inside the band
+        self._by_field[j] = by_field
         self._set_state(j, EXCLUDED, time, reason, events)
         self._set_operator()
 
