@@ -465,9 +465,10 @@ class SensorMonitor:
                 new[j] = ALARM
         changed = self._active & (new != self._state)
         for j in (np.flatnonzero(changed) if changed.any() else ()):
-            self._set_state(j, int(new[j]), time, instant.get(j) or
-                            f"self-prediction error {err[j]:+.2g} °C over the last "
-                            f"{self.confirm} samples", events)
+            self._set_state(j, int(new[j]), time, instant.get(j) or (
+                f"self-prediction error {err[j]:+.2g} °C over the last {self.confirm} samples"
+                if np.isfinite(err[j]) and self._judged[j] else
+                "no longer judged: no other active sensor predicts it"), events)
         self._prev_other = np.where(self._judged, d - e, np.nan)
         self._prev = np.where(finite, d, self._prev)
         self._prev_e = e
