@@ -121,6 +121,33 @@ def build_denoiser(cfg: DictConfig):
     return denoiser
 
 
+def build_adaptive(cfg: DictConfig, streaming, train: dict):
+    """The :class:`~thermocomp.monitor.AdaptiveCompensator` of the ``monitor`` group around
+    ``streaming``: POD, detector limits and correction guard fitted on ``train``."""
+    from ..monitor import AdaptiveCompensator  # loaded by the stages that deploy, only
+
+    m = cfg.monitor
+    share = m.pod.fit_share
+    pod = {"energy": float(m.pod.energy), "modes": m.pod.modes,
+           "fit_band_c": None if share is None else float(share) * float(m.bands.warning_c),
+           "window": int(m.window), "max_leverage": float(m.pod.max_leverage)}
+    options = {"warning_c": float(m.bands.warning_c), "alarm_c": float(m.bands.alarm_c),
+               "window": int(m.window), "confirm": int(m.confirm), "adaptive": bool(m.adaptive),
+               "exclude_at": str(m.exclude_at), **OmegaConf.to_container(m.detectors)}
+    try:
+        return AdaptiveCompensator.from_training(
+            streaming, train, monitor=options, pod=pod,
+            guard=OmegaConf.to_container(m.guard), learned_bands=bool(m.bands.learned))
+    except ValueError as exc:
+        raise ConfigError(f"monitor: {exc}") from None
+
+
+def deployable(cfg: DictConfig, streaming, train: dict):
+    """What ``promote`` registers and ``replay`` streams: the adaptive compensator around
+    ``streaming`` when ``monitor.adaptive`` (default), else ``streaming`` itself."""
+    return build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
+
+
 def save_model(comp: Compensator, path) -> Path:
     """Pickle ``comp`` to ``path`` with its signature ``<path>.sig`` (:mod:`thermocomp.signing`)."""
     return signing.dump(comp, resolve(path))
