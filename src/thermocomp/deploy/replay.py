@@ -61,12 +61,13 @@ def summary(deployed) -> dict:
     return {"adaptive": isinstance(deployed, AdaptiveCompensator), "pod": pod}
 
 
-def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "") -> Streamed:
+def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None) -> Streamed:
     """Stream one campaign from a reset through ``_step`` (the body of ``step`` and ``predict``).
 
     The adaptive compensator's events get ``campaign`` (``cid``) added.  A row the
     plain streaming compensator refuses (a missing value, an input outside the
-    envelope with ``policy=refuse``) raises :class:`ContractError` naming the campaign.
+    envelope with ``policy=refuse``) raises :class:`ContractError` naming the
+    campaign, its ``file``, the column and the row (1-based).
     """
     X = campaign[deployed.columns_].to_numpy(float)
     t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.full(len(campaign), np.nan)
@@ -77,6 +78,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "") -> Streamed:
     deployed.reset()
     step = deployed._step   # returns the clamp count too
     start = clock.perf_counter()
+    i = 0
     try:
         for i in range(len(X)):
             y[i], clamped[i] = step(X[i], t[i])
@@ -84,8 +86,13 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "") -> Streamed:
                 events += [{"campaign": cid, **e} for e in deployed.last_events_]
     except OutOfEnvelopeError as exc:
         deployed.reset()
-        raise ContractError(f"campaign {cid}: {exc}; the streaming compensator refuses it "
-                            "(monitor.adaptive=true holds or reconstructs such a value)") from None
+        gap = np.flatnonzero(~np.isfinite(X[i]))
+        if len(gap):
+            raise ContractError(f"campaign {cid}: no finite value (sensor dropout?), which the plain "
+                                "streaming compensator refuses (monitor.adaptive=true holds or "
+                                "reconstructs it)", file=file, column=deployed.columns_[gap[0]],
+                                row=i + 1) from None
+        raise ContractError(f"campaign {cid}: {exc}", file=file, row=i + 1) from None
     seconds = clock.perf_counter() - start
     excluded = list(deployed.excluded_inputs) if adaptive else []
     deployed.reset()
@@ -98,8 +105,10 @@ def complete_rows(campaign: pd.DataFrame, columns) -> int:
     return int(np.argmax(bad)) if bad.any() else len(campaign)
 
 
-def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame]) -> dict:
-    """Stream ``campaigns`` through ``deployed`` (see module doc).
+def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
+                  files: Mapping[str, object] | None = None) -> dict:
+    """Stream ``campaigns`` through ``deployed`` (see module doc); ``files`` (campaign -> file)
+    only name the file of a refused row.
 
     Returns
     -------
@@ -134,7 +143,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame]) -> dict:
                 free = stream_rows(stream, head, cid).y
             diffs.append(np.abs(free - batch))
             batch_residuals.append(m[:k] - batch)
-        run = stream_rows(deployed, df, cid)
+        run = stream_rows(deployed, df, cid, (files or {}).get(cid))
         residuals.append(m - run.y)
         outputs.append(run.y)
         events += run.events

@@ -100,7 +100,8 @@ def replay(cfg: DictConfig) -> dict:
         kind = "adaptive" if deployed is not plain(deployed) else "streaming"
         say(f"streaming {len(test_ids)} test campaigns row by row through the {kind} compensator "
             f"({', '.join(deployed.columns_)})")
-        result = replay_report(deployed, {c: ds.campaigns[c] for c in test_ids})
+        result = replay_report(deployed, {c: ds.campaigns[c] for c in test_ids},
+                               {c: root / str(ds.manifest.loc[c, "file"]) for c in test_ids})
         targets = result["targets"]
         stream = plain(deployed)
         report = {"model": name, "source": source, "targets": targets,
