@@ -305,7 +305,9 @@ def promote(cfg: DictConfig) -> dict:
         why = (f"the champion (version {champion.version}) has no comparable validation score "
                f"({champ_note})" + ("; forced" if moved else "; set promote.force=true to replace it"))
     else:
-        moved = beats(cand_score, champ_score, criterion, float(opts.min_improvement))
+        # the champion's score comes back from a tag (6 significant digits): compare at that
+        # precision, so the same model (e.g. deployed another way) ties instead of "beating" it
+        moved = beats(float(_tag(cand_score)), champ_score, criterion, float(opts.min_improvement))
         verb = "beats" if moved else "does not beat"
         why = (f"validation {criterion} {_fmt(cand_score)} {verb} the champion's "
                f"{_fmt(champ_score)} (version {champion.version}) on the same dataset")
