@@ -52,13 +52,14 @@ def plain(deployed) -> StreamingCompensator:
 def summary(deployed) -> dict:
     """``{"adaptive": bool, "pod": {...} | None}``: what ``promote.json`` and ``replay.json``
     say of the deployed object (the POD of its sensor monitor, when it has one)."""
-    mon = getattr(deployed, "monitor", None) if isinstance(deployed, AdaptiveCompensator) else None
+    adaptive = isinstance(deployed, AdaptiveCompensator)
+    mon = deployed.monitor if adaptive else None
     pod = None
     if mon is not None:
         p = mon.pod
         pod = {"n_sensors": len(mon.names), "n_modes": int(p.n_modes_),
                "captured_energy": float(p.energy_[p.n_modes_ - 1]), "sensors": list(mon.names)}
-    return {"adaptive": isinstance(deployed, AdaptiveCompensator), "pod": pod}
+    return {"adaptive": adaptive, "pod": pod}
 
 
 def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None) -> Streamed:
@@ -158,7 +159,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     resid = np.concatenate(residuals) if residuals else np.empty((0, k_targets))
     bres = np.concatenate(batch_residuals) if batch_residuals else np.empty((0, k_targets))
     out = np.concatenate(outputs) if outputs else np.empty((0, k_targets))
-    guard = getattr(deployed, "guard", None) if isinstance(deployed, AdaptiveCompensator) else None
+    guard = deployed.guard if isinstance(deployed, AdaptiveCompensator) else None
     us = 1e6 * seconds / max(n, 1)
 
     def rms(r):
