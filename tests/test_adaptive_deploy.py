@@ -158,9 +158,16 @@ def test_replay_cli_plain_stream_refuses_a_dropout_and_an_incomplete_train_split
     df = pd.read_csv(broken / train_file)
     df.loc[4, "T_nose"] = np.nan
     df.to_csv(broken / train_file, index=False)
+    df = pd.read_csv(broken / manifest.set_index("campaign").loc[cid, "file"])   # the dropout
     bad = thermocomp("replay", *common, f"data.path={broken}", f"out={tmp_path / 'b'}", check=False)
     assert bad.returncode == 2 and train_file in bad.stderr and "'T_nose'" in bad.stderr
     assert "row 5" in bad.stderr and not (tmp_path / "b").exists()
+    # ... unless the data config repairs it, as `run` would; the test dropout still streams as NaN
+    thermocomp("replay", *common, f"data.path={broken}", f"out={tmp_path / 'r'}", "data.max_gap_samples=1")
+    report = json.loads((tmp_path / "r" / "replay.json").read_text())
+    n_gap = len(df) - k
+    assert report["missing"] == {cid: {sensor: n_gap}}
+    _check_faults_reported(report, faults)
 
 
 # -- the pyfunc -------------------------------------------------------------------------------

@@ -10,47 +10,31 @@ row from a reset.  A pyfunc model is replayed as it is (what it holds).
 
 The test campaigns are read with their missing values kept (a sensor dropout
 streams through the adaptive compensator as the machine would see it); the
-train split must be complete.  Writes ``<out>/replay.json`` (CLI.md).
+train split as ``run`` reads it (:func:`~.common.read_streamed`).  Writes
+``<out>/replay.json`` (CLI.md).
 """
 
 from __future__ import annotations
 
 from pathlib import Path
 
-import numpy as np
 from omegaconf import DictConfig
 
 from .. import io
 from ..deploy import StreamingCompensator
 from ..deploy.replay import plain, replay_report
 from ..errors import ConfigError
-from ..evaluation import require_split
 from ..files import write_json
 from ..paths import resolve
 from ..tracking import connect, stage_run
-from .common import build_compensator, check_config, data_options, deployable, load_model, say
+from .common import build_compensator, check_config, deployable, load_model, read_streamed, say
 
 
-def _require_complete(ds, ids, root: Path) -> None:
-    """Refuse a train campaign with a missing value (the models are fitted on complete records)."""
-    for cid in ids:
-        df = ds.campaigns[cid]
-        bad = df.isna().to_numpy()
-        if bad.any():
-            row, col = np.argwhere(bad)[0]
-            raise io.ContractError(
-                f"train campaign {cid} has a missing value: replay fits on complete train "
-                "campaigns (only test campaigns stream with missing values)",
-                file=root / str(ds.manifest.loc[cid, "file"]), column=str(df.columns[col]),
-                row=int(row) + 1)
-
-
-def _deployable(cfg: DictConfig, ds, train_ids, root: Path) -> tuple[object, str, str]:
+def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
     """``(deployed compensator, source, model name)``."""
     source = cfg.replay.get("model")
     env = cfg.promote.envelope
     if source is None:
-        _require_complete(ds, train_ids, root)
         say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
         train = {c: ds.campaigns[c] for c in train_ids}
         comp, name, source = build_compensator(cfg).fit(train), str(cfg.model.name), "fitted"
@@ -70,7 +54,6 @@ def _deployable(cfg: DictConfig, ds, train_ids, root: Path) -> tuple[object, str
             return deployed, source, _name(plain(deployed).compensator)
         comp = load_model(path)
         name = _name(comp)
-        _require_complete(ds, train_ids, root)
         train = {c: ds.campaigns[c] for c in train_ids}
     try:
         streaming = StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
@@ -86,12 +69,10 @@ def _name(comp) -> str:
 def replay(cfg: DictConfig) -> dict:
     """Stream the test campaigns of ``data.path``; write ``<out>/replay.json``."""
     check_config(cfg)
+    ds, train_ids, test_ids, gaps = read_streamed(cfg)
     root = resolve(cfg.data.path)
-    say(f"reading {root}")
-    ds, _ = io.read_dataset(root, data_options(cfg), missing="keep")
-    train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     with stage_run(cfg, "replay") as tr:
-        deployed, source, name = _deployable(cfg, ds, train_ids, root)
+        deployed, source, name = _deployable(cfg, ds, train_ids)
         missing = sorted({c for c in deployed.columns_ for i in test_ids
                           if c not in ds.campaigns[i].columns})
         if missing:
@@ -111,6 +92,8 @@ def replay(cfg: DictConfig) -> dict:
                   "envelope": {"policy": stream.policy,
                                "margin": stream.envelope.margin if stream.envelope else None},
                   "test_campaigns": test_ids}
+        if gaps:
+            report["missing"] = gaps      # missing cells per test campaign and column, streamed as NaN
         path = write_json(Path(resolve(cfg.out)) / "replay.json", report)
         tr.log_metrics({"replay": targets})
         tr.log_artifact(path)
