@@ -76,6 +76,9 @@ def test_promote_moves_champion_only_for_a_better_model(project, capsys):
     assert third["candidate"]["score"] == pytest.approx(first["candidate"]["score"], rel=1e-12)
     assert second["candidate"]["score"] == second["candidate"]["validation"]["val_rmse"]
     assert "rmse" in second["candidate"]["test_reported"]
+    # monitor.adaptive (default): the adaptive compensator is registered; its POD needs >= 3 sensors
+    assert first["adaptive"] and first["pod"] is None                    # weak: T_1 only
+    assert second["adaptive"] and second["pod"]["n_sensors"] == 3 and second["pod"]["n_modes"] >= 1
 
     champion = client.get_model_version_by_alias(NAME, "champion")
     assert str(champion.version) == second["version"] == "2"
@@ -91,6 +94,8 @@ def test_promote_moves_champion_only_for_a_better_model(project, capsys):
     assert float(tags["metric.rsd_mean"]) == pytest.approx(          # test: reported beside it
         second["candidate"]["test_reported"]["rsd_mean"], rel=1e-5)
     assert tags["criterion"] == "val_rmse" and tags["eval_mode"] == "simulation"
+    assert tags["adaptive"] == "True" and tags["outputs"] == "C_X,C_Z,excluded_inputs,events"
+    assert tags["pod_modes"] == str(second["pod"]["n_modes"]) and len(tags["deploy_config"]) == 12
     assert "does not beat" in client.get_model_version(NAME, "1").tags["decision"]
     assert champion.current_stage in (None, "None")             # aliases only, no stages
     model = client.get_registered_model(NAME)
@@ -187,7 +192,7 @@ def test_served_champion_answers_http_exactly_as_in_process(project, capsys):
         for exp, resp in zip(expected, got):
             assert resp.status_code == 200, resp.text
             served = pd.DataFrame(resp.json()["predictions"])
-            assert list(served.columns) == ["C_X", "C_Z", "n_clamped"]
+            assert list(served.columns) == ["C_X", "C_Z", "n_clamped", "excluded_inputs", "events"]
             np.testing.assert_allclose(served[["C_X", "C_Z"]].to_numpy(),
                                        exp[["C_X", "C_Z"]].to_numpy(), rtol=0, atol=1e-9)
         # The memory matters: restarting the stream at row 70 would answer differently.
@@ -210,3 +215,35 @@ def _champion_exists(uri) -> bool:
         return True
     except Exception:
         return False
+
+
+def test_monitor_adaptive_false_registers_the_plain_stream_once(project, capsys):
+    """The monitor group decides what is deployed: the same run deployed plain is another
+    version (another deploy_config), registered once; the champion's alias stays."""
+    import json
+
+    import mlflow
+    from mlflow import MlflowClient
+
+    from thermocomp.deploy import StreamingCompensator
+
+    root, common, uri, weak, strong = project
+    client = MlflowClient(uri)
+    champion = client.get_model_version_by_alias(NAME, "champion").version
+    reports = []
+    for tag in ("plain1", "plain2"):
+        assert main(["promote", *common, f"promote.run_id={strong}", "monitor.adaptive=false",
+                     f"out={root / tag}"]) == 0
+        reports.append(json.loads((root / tag / "promote.json").read_text()))
+    capsys.readouterr()
+    first, again = reports
+    assert first["registered"] and not first["adaptive"] and first["pod"] is None
+    assert (again["version"], again["registered"]) == (first["version"], False)
+    assert client.get_model_version_by_alias(NAME, "champion").version == champion != first["version"]
+    tags = client.get_model_version(NAME, first["version"]).tags
+    assert tags["adaptive"] == "False" and tags["outputs"] == "C_X,C_Z" and tags["source_run_id"] == strong
+    assert tags["deploy_config"] != client.get_model_version(NAME, champion).tags["deploy_config"]
+    mlflow.set_tracking_uri(uri)
+    model = mlflow.pyfunc.load_model(first["model_uri"])
+    assert type(model.unwrap_python_model().streaming) is StreamingCompensator
+    assert model.metadata.get_output_schema().input_names() == ["C_X", "C_Z", "n_clamped"]

@@ -9,6 +9,7 @@ without an activated venv and writes no ``./mlflow.db``.
 
 from __future__ import annotations
 
+import json
 import os
 import subprocess
 from pathlib import Path
@@ -153,6 +154,13 @@ def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promot
             served = pd.concat(got[s], ignore_index=True)
             np.testing.assert_allclose(served[["C_X", "C_Z"]].to_numpy(),
                                        expected[s][["C_X", "C_Z"]].to_numpy(), rtol=0, atol=1e-9)
+        # the promoted (adaptive) compensator answers a sensor sent as JSON null with a correction
+        gap = k4[cols].iloc[:20].astype(object)
+        gap.loc[10:, "T_2"] = None
+        served = _post(port, gap, session="gap", reset=True)
+        assert np.isfinite(served[["C_X", "C_Z"]].to_numpy(float)).all()
+        assert "T_2" in served["excluded_inputs"].iloc[-1].split(",")
+        assert any(e["sensor"] == "T_2" for e in json.loads(served["events"].iloc[10]))
     finally:
         stop_process_group(server)
         log.close()

@@ -140,6 +140,6 @@ def load(path: str | os.PathLike, expected: type | tuple[type, ...],
     """
     obj = pickle.loads(verified_bytes(path, sig))
     if not isinstance(obj, expected):
-        names = ", ".join(t.__name__ for t in (expected if isinstance(expected, tuple) else (expected,)))
+        names = " or ".join(t.__name__ for t in (expected if isinstance(expected, tuple) else (expected,)))
         raise ContractError(f"holds a {type(obj).__name__}, not a {names}", file=path)
     return obj

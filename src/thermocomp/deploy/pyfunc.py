@@ -1,26 +1,37 @@
 """The deployable compensator as an ``mlflow.pyfunc`` model.
 
+It holds a :class:`StreamingCompensator` or, as ``promote`` registers it by
+default (``monitor.adaptive=true``), an :class:`~thermocomp.monitor.AdaptiveCompensator`
+(the same stream behind sensor surveillance and a correction guard).
+
 Input: a table of sensor readings (declared ``T_``/``S_`` inputs, all float;
 an optional ``time`` column in s), one row per sample, in time order.
 Output: the correction per axis in µm, ``C_<axis> = -Ê_<axis>`` (what to add
 to the axis command to cancel the predicted thermal error ``E_<axis>``), and
 ``n_clamped``, the number of inputs of that row clamped to the training envelope.
+The adaptive compensator adds, per row, ``excluded_inputs`` (the sensors it
+has excluded after that row, comma-separated, ``""`` when none) and
+``events`` (a JSON list of that row's events: ``time``, ``sensor``, ``from``,
+``to``, ``reason``, and ``target`` for a guarded correction).  A missing value
+(NaN or JSON ``null``) in a row, a missing, repeated or backward ``time`` then
+still gives a finite correction, within the guard's bound, with the event
+that says what was held, reconstructed or substituted; the plain streaming
+compensator refuses such a row (HTTP 400).
 
 State is kept between calls, one stream per ``session`` parameter
 (``params={"session": "machine-7"}``; callers that send none share the session
 ``"default"``), so several machines can call one server.  A call with
 ``params={"reset": true}`` starts a new campaign in its session: its first row
 becomes the reference sample (``T_`` inputs are taken relative to it) and every
-memory (AR terms, causal denoiser) is cleared.  A new session starts reset; at
-most :data:`MAX_SESSIONS` are kept (the least recently used one is dropped and
-starts reset if it calls again).  The state lives in the serving *process*:
-with several server workers each worker holds its own sessions, so serve with
-one worker (``thermocomp serve`` does).
+memory (AR terms, causal denoiser, sensor monitor, guard) is cleared.  A new
+session starts reset; at most :data:`MAX_SESSIONS` are kept (the least recently
+used one is dropped and starts reset if it calls again).  The state lives in
+the serving *process*: with several server workers each worker holds its own
+sessions, so serve with one worker (``thermocomp serve`` does).
 
-The pickled :class:`StreamingCompensator` travels with its signature
-(:mod:`thermocomp.signing`), checked before it is unpickled: the serving
-machine needs the project key (``THERMOCOMP_SIGNING_KEY`` or the key file) of
-the machine that promoted the model.
+The pickled compensator travels with its signature (:mod:`thermocomp.signing`),
+checked before it is unpickled: the serving machine needs the project key
+(``THERMOCOMP_SIGNING_KEY`` or the key file) of the machine that promoted the model.
 
 Depends on the core and MLflow only: no Hydra, no stages.  The model carries
 the ``thermocomp`` package source (``code_paths``), so a serving environment
@@ -43,14 +54,17 @@ from mlflow.protos.databricks_pb2 import INVALID_PARAMETER_VALUE
 from mlflow.types import ColSpec, ParamSchema, ParamSpec, Schema
 
 from .. import signing
+from ..monitor.adaptive import AdaptiveCompensator
 from .streaming import StreamingCompensator
 
 MODEL_NAME = "compensator"          # artifact name of the pyfunc model inside a run
-COMPENSATOR_ARTIFACT = "compensator"  # the pickled StreamingCompensator inside the model
+COMPENSATOR_ARTIFACT = "compensator"  # the pickled (streaming or adaptive) compensator
 SIGNATURE_ARTIFACT = "compensator_sig"  # its signature (HMAC, thermocomp.signing)
 DEFAULT_SESSION = "default"
 MAX_SESSIONS = 1024
 CORRECTION_PREFIX = "C_"
+DEPLOYABLE = (StreamingCompensator, AdaptiveCompensator)   # what the model may hold
+REPORT_COLUMNS = ("excluded_inputs", "events")              # the adaptive compensator's extras
 
 
 def correction_column(target: str) -> str:
@@ -58,14 +72,25 @@ def correction_column(target: str) -> str:
     return CORRECTION_PREFIX + (target[2:] if target.startswith("E_") else target)
 
 
-class CompensatorModel(mlflow.pyfunc.PythonModel):
-    """``mlflow.pyfunc`` wrapper of a :class:`StreamingCompensator` (see module doc).
+def is_adaptive(deployed) -> bool:
+    """True for the compensator that watches its inputs (and reports exclusions and events)."""
+    return isinstance(deployed, AdaptiveCompensator)
 
-    Logged as *model from code* (``model_code.py``); the streaming compensator
-    itself is the pickled artifact ``compensator``, loaded in :meth:`load_context`.
+
+class CompensatorModel(mlflow.pyfunc.PythonModel):
+    """``mlflow.pyfunc`` wrapper of a :class:`StreamingCompensator` or an
+    :class:`~thermocomp.monitor.AdaptiveCompensator` (see module doc).
+
+    Logged as *model from code* (``model_code.py``); the compensator itself is
+    the pickled artifact ``compensator``, loaded in :meth:`load_context`.
+
+    Parameters
+    ----------
+    streaming : StreamingCompensator or AdaptiveCompensator, optional
+        The deployed object (both have ``reset``, ``predict``, ``_snapshot``/``_restore``).
     """
 
-    def __init__(self, streaming: StreamingCompensator | None = None):
+    def __init__(self, streaming: StreamingCompensator | AdaptiveCompensator | None = None):
         self.streaming = streaming
         self._lock = threading.Lock()
         self._sessions: OrderedDict = OrderedDict()   # session -> stream state, LRU order
@@ -74,7 +99,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         artifacts = (context.artifacts or {}) if context is not None else {}
         if COMPENSATOR_ARTIFACT in artifacts:
             # the signature is checked on the bytes before anything is unpickled
-            self.streaming = signing.load(artifacts[COMPENSATOR_ARTIFACT], StreamingCompensator,
+            self.streaming = signing.load(artifacts[COMPENSATOR_ARTIFACT], DEPLOYABLE,
                                           sig=artifacts.get(SIGNATURE_ARTIFACT))
         self.streaming.reset()
         self._sessions.clear()
@@ -104,15 +129,20 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         out = pd.DataFrame({correction_column(t): -pred[t].to_numpy(float)
                             for t in self.streaming.targets_})
         out["n_clamped"] = pred["n_clamped"].to_numpy(np.int64)
+        if is_adaptive(self.streaming):
+            for c in REPORT_COLUMNS:
+                out[c] = pred[c].to_numpy(object)
         return out
 
 
-def signature(streaming: StreamingCompensator) -> ModelSignature:
+def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSignature:
     """Input/output schema (and the ``reset``, ``session`` parameters) of the deployed compensator."""
     inputs = Schema([ColSpec("double", c) for c in streaming.columns_]
                     + [ColSpec("double", "time", required=streaming.time_required_)])
     outputs = Schema([ColSpec("double", correction_column(t)) for t in streaming.targets_]
-                     + [ColSpec("long", "n_clamped")])
+                     + [ColSpec("long", "n_clamped")]
+                     + ([ColSpec("string", c) for c in REPORT_COLUMNS]
+                        if is_adaptive(streaming) else []))
     return ModelSignature(inputs=inputs, outputs=outputs,
                           params=ParamSchema([ParamSpec("reset", "boolean", False),
                                                ParamSpec("session", "string", DEFAULT_SESSION)]))
@@ -131,7 +161,7 @@ def _requirements(pickled: bytes = b"") -> list[str]:
     return [f"{p}=={version(p)}" for p in names]
 
 
-def _model_kwargs(streaming: StreamingCompensator, pickle_path: Path) -> dict:
+def _model_kwargs(streaming, pickle_path: Path) -> dict:
     here = Path(__file__).resolve().parent
     return dict(python_model=str(here / "model_code.py"),
                 artifacts={COMPENSATOR_ARTIFACT: str(pickle_path),
@@ -140,13 +170,14 @@ def _model_kwargs(streaming: StreamingCompensator, pickle_path: Path) -> dict:
                 pip_requirements=_requirements(Path(pickle_path).read_bytes()))
 
 
-def _pickled(streaming: StreamingCompensator, folder: str) -> Path:
+def _pickled(streaming, folder: str) -> Path:
     """``<folder>/compensator.pkl`` and its signature ``compensator.pkl.sig``."""
     streaming.reset()
     return signing.dump(streaming, Path(folder) / "compensator.pkl")
 
 
-def save_compensator(streaming: StreamingCompensator, path, input_example=None) -> Path:
+def save_compensator(streaming: StreamingCompensator | AdaptiveCompensator, path,
+                     input_example=None) -> Path:
     """Write the pyfunc model to a local folder (no tracking server): ``mlflow.pyfunc.load_model(path)``."""
     with tempfile.TemporaryDirectory() as tmp:
         mlflow.pyfunc.save_model(str(path), input_example=input_example,
@@ -154,9 +185,9 @@ def save_compensator(streaming: StreamingCompensator, path, input_example=None) 
     return Path(path)
 
 
-def log_compensator(streaming: StreamingCompensator, input_example: pd.DataFrame | None = None,
-                    registered_model_name: str | None = None, name: str = MODEL_NAME,
-                    **kwargs):
+def log_compensator(streaming: StreamingCompensator | AdaptiveCompensator,
+                    input_example: pd.DataFrame | None = None,
+                    registered_model_name: str | None = None, name: str = MODEL_NAME, **kwargs):
     """Log the compensator as a pyfunc model in the active run; returns the ``ModelInfo``.
 
     ``registered_model_name`` also registers it (a new version) in the Model Registry.

@@ -1,75 +1,181 @@
 """Replay: stream campaigns row by row through a deployable compensator and check it (pure core).
 
-The deployed object is a :class:`~thermocomp.deploy.StreamingCompensator`
-(what ``promote`` registers inside the pyfunc model).  Each campaign is
-streamed from a reset, one sample at a time through :meth:`~StreamingCompensator.step`,
-as a CNC loop calls it, and compared with the batch prediction of the same
-fitted :class:`~thermocomp.compensator.Compensator`.  The result is the
-``replay.json`` layout of CLI.md.
+The deployed object is what ``promote`` registers inside the pyfunc model: a
+:class:`~thermocomp.deploy.StreamingCompensator`, or (default) an
+:class:`~thermocomp.monitor.AdaptiveCompensator` around one (sensor
+surveillance, adaptive inputs, guarded correction).  Each campaign is streamed
+from a reset, one sample at a time, as a CNC loop calls it.  Two streams per
+campaign:
+
+* the **plain** stream (the streaming compensator alone, envelope off, no
+  monitor), compared with the batch prediction of the same fitted
+  :class:`~thermocomp.compensator.Compensator`: any difference is the
+  stream's (causality, state).  Both stop at a campaign's first missing value,
+  which the plain stream refuses;
+* the **deployed** stream (as registered), whose residual gives ``rmse`` and
+  whose events and excluded sensors fill ``replay.json``.
+
+The result is the ``replay.json`` layout of CLI.md.
 """
 
 from __future__ import annotations
 
 import time as clock
 from collections.abc import Mapping
+from dataclasses import dataclass, field
 
 import numpy as np
 import pandas as pd
 
 from ..context import TIME
-from .streaming import StreamingCompensator
+from ..errors import ContractError
+from ..monitor.adaptive import AdaptiveCompensator
+from .streaming import OutOfEnvelopeError, StreamingCompensator
 
 
-def stream_rows(streaming: StreamingCompensator, campaign: pd.DataFrame) -> tuple[np.ndarray, np.ndarray, float]:
-    """Stream one campaign from a reset through ``step``: ``(predictions (n, targets),
-    clamped inputs per row, seconds spent in step)``."""
-    X = campaign[streaming.columns_].to_numpy(float)
-    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.full(len(campaign), np.nan)
-    y = np.empty((len(X), len(streaming.targets_)))
-    clamped = np.zeros(len(X), dtype=np.int64)
-    streaming.reset()
-    step = streaming._step   # the body of step() and predict(); returns the clamp count too
-    start = clock.perf_counter()
-    for i in range(len(X)):
-        y[i], clamped[i] = step(X[i], t[i])
-    seconds = clock.perf_counter() - start
-    streaming.reset()
-    return y, clamped, seconds
+@dataclass
+class Streamed:
+    """One campaign streamed from a reset."""
+
+    y: np.ndarray                      # prediction per row and target (n, targets)
+    clamped: np.ndarray                # inputs clamped to the envelope, per row
+    seconds: float                     # time spent in the step loop
+    events: list = field(default_factory=list)     # the adaptive compensator's, in order
+    excluded: list = field(default_factory=list)   # sensors excluded after the last row
 
 
-def replay_report(streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame]) -> dict:
-    """Per target: samples, largest |stream − batch| (envelope off), RMSE of the residual left by
-    the streamed correction (envelope as deployed), µs per sample, clamped samples.
+def plain(deployed) -> StreamingCompensator:
+    """The streaming compensator inside ``deployed`` (itself when it is one)."""
+    return deployed.streaming if isinstance(deployed, AdaptiveCompensator) else deployed
 
-    Returns the ``targets`` part of ``replay.json``.
+
+def summary(deployed) -> dict:
+    """``{"adaptive": bool, "pod": {...} | None}``: what ``promote.json`` and ``replay.json``
+    say of the deployed object (the POD of its sensor monitor, when it has one)."""
+    adaptive = isinstance(deployed, AdaptiveCompensator)
+    mon = deployed.monitor if adaptive else None
+    pod = None
+    if mon is not None:
+        p = mon.pod
+        pod = {"n_sensors": len(mon.names), "n_modes": int(p.n_modes_),
+               "captured_energy": float(p.energy_[p.n_modes_ - 1]), "sensors": list(mon.names)}
+    return {"adaptive": adaptive, "pod": pod}
+
+
+def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None) -> Streamed:
+    """Stream one campaign from a reset through ``_step`` (the body of ``step`` and ``predict``).
+
+    The adaptive compensator's events get ``campaign`` (``cid``) added.  A row the
+    plain streaming compensator refuses (a missing value, an input outside the
+    envelope with ``policy=refuse``) raises :class:`ContractError` naming the
+    campaign, its ``file``, the column and the row (1-based).
     """
-    comp = streaming.compensator
-    batch = comp.predict(campaigns)
+    X = campaign[deployed.columns_].to_numpy(float)
+    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.full(len(campaign), np.nan)
+    y = np.empty((len(X), len(deployed.targets_)))
+    clamped = np.zeros(len(X), dtype=np.int64)
+    adaptive = isinstance(deployed, AdaptiveCompensator)
+    events: list[dict] = []
+    deployed.reset()
+    step = deployed._step   # returns the clamp count too
+    start = clock.perf_counter()
+    i = 0
+    try:
+        for i in range(len(X)):
+            y[i], clamped[i] = step(X[i], t[i])
+            if adaptive and deployed.last_events_:
+                events += [{"campaign": cid, **e} for e in deployed.last_events_]
+    except OutOfEnvelopeError as exc:
+        deployed.reset()
+        gap = np.flatnonzero(~np.isfinite(X[i]))
+        if len(gap):
+            raise ContractError(f"campaign {cid}: no finite value (sensor dropout?), which the plain "
+                                "streaming compensator refuses (monitor.adaptive=true holds or "
+                                "reconstructs it)", file=file, column=deployed.columns_[gap[0]],
+                                row=i + 1) from None
+        raise ContractError(f"campaign {cid}: {exc}", file=file, row=i + 1) from None
+    seconds = clock.perf_counter() - start
+    excluded = list(deployed.excluded_inputs) if adaptive else []
+    deployed.reset()
+    return Streamed(y, clamped, seconds, events, excluded)
+
+
+def complete_rows(campaign: pd.DataFrame, columns) -> int:
+    """Rows before the campaign's first missing value in ``columns``."""
+    bad = ~np.isfinite(campaign[list(columns)].to_numpy(float)).all(axis=1)
+    return int(np.argmax(bad)) if bad.any() else len(campaign)
+
+
+def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
+                  files: Mapping[str, object] | None = None) -> dict:
+    """Stream ``campaigns`` through ``deployed`` (see module doc); ``files`` (campaign -> file)
+    only name the file of a refused row.
+
+    Returns
+    -------
+    dict
+        ``targets`` (per target: ``n_samples``; ``max_abs_stream_minus_batch``, the
+        largest |plain stream − batch| over the complete rows, envelope off;
+        ``rmse``, of the residual the deployed correction leaves (missing
+        measurements skipped); ``rmse_batch``, the batch prediction's over the
+        complete rows; ``us_per_sample``; ``clamped_samples``; ``max_abs_correction``
+        and ``all_finite`` of the deployed stream; ``streamed_range`` [min, max] of it;
+        ``bound``, the guard's [lo, hi] or null), ``excluded_inputs`` (sensors excluded
+        at the end of any campaign, sorted) and ``events`` (every event with its
+        ``campaign``), plus :func:`summary`'s ``adaptive`` and ``pod``.
+    """
+    stream = plain(deployed)
+    comp = stream.compensator
     measured = comp.measured(campaigns)
-    targets = streaming.targets_
-    diffs, residuals, clamps, seconds, n = [], [], 0, 0.0, 0
+    targets = list(deployed.targets_)
+    diffs, residuals, batch_residuals, outputs = [], [], [], []
+    events, excluded = [], set()
+    clamps, seconds, n = 0, 0.0, 0
     from ..progress import bar
 
     rows = bar(total=sum(len(df) for df in campaigns.values()), desc="replay", unit="row")
     for cid, df in campaigns.items():
-        with streaming.envelope_off():   # the same inputs as batch: any difference is the stream's
-            free, _, _ = stream_rows(streaming, df)
-        deployed, clamped, s = stream_rows(streaming, df)
-        diffs.append(np.abs(free - batch[cid][targets].to_numpy()))
-        residuals.append(measured[cid][targets].to_numpy() - deployed)
-        clamps += int((clamped > 0).sum())
-        seconds += s
+        m = measured[cid][targets].to_numpy(float)
+        k = complete_rows(df, stream.columns_)
+        if k:
+            head = df.iloc[:k]
+            batch = comp.predict({cid: head})[cid][targets].to_numpy()
+            with stream.envelope_off():   # the same inputs as batch: any difference is the stream's
+                free = stream_rows(stream, head, cid).y
+            diffs.append(np.abs(free - batch))
+            batch_residuals.append(m[:k] - batch)
+        run = stream_rows(deployed, df, cid, (files or {}).get(cid))
+        residuals.append(m - run.y)
+        outputs.append(run.y)
+        events += run.events
+        excluded.update(run.excluded)
+        clamps += int((run.clamped > 0).sum())
+        seconds += run.seconds
         n += len(df)
         rows.update(len(df))
     rows.close()
-    diff, resid = np.concatenate(diffs), np.concatenate(residuals)
+    k_targets = len(targets)
+    diff = np.concatenate(diffs) if diffs else np.empty((0, k_targets))
+    resid = np.concatenate(residuals) if residuals else np.empty((0, k_targets))
+    bres = np.concatenate(batch_residuals) if batch_residuals else np.empty((0, k_targets))
+    out = np.concatenate(outputs) if outputs else np.empty((0, k_targets))
+    guard = deployed.guard if isinstance(deployed, AdaptiveCompensator) else None
     us = 1e6 * seconds / max(n, 1)
-    return {t: {"n_samples": int(n),
-                "max_abs_stream_minus_batch": float(np.max(diff[:, k])) if n else 0.0,
-                "rmse": float(np.sqrt(np.nanmean(resid[:, k] ** 2))) if n else None,
-                "us_per_sample": us,
-                "rmse_batch": float(np.sqrt(np.nanmean(
-                    np.concatenate([measured[c][t].to_numpy() - batch[c][t].to_numpy()
-                                    for c in campaigns]) ** 2))) if n else None,
-                "clamped_samples": clamps}
-            for k, t in enumerate(targets)}
+
+    def rms(r):
+        ok = np.isfinite(r)
+        return float(np.sqrt(np.mean(r[ok] ** 2))) if ok.any() else None
+
+    report = {t: {"n_samples": int(n),
+                  "max_abs_stream_minus_batch": float(np.max(diff[:, j])) if len(diff) else 0.0,
+                  "rmse": rms(resid[:, j]),
+                  "us_per_sample": us,
+                  "rmse_batch": rms(bres[:, j]),
+                  "clamped_samples": clamps,
+                  "max_abs_correction": float(np.max(np.abs(out[:, j]))) if n else 0.0,
+                  "all_finite": bool(np.all(np.isfinite(out[:, j]))),
+                  "streamed_range": [float(np.min(out[:, j])), float(np.max(out[:, j]))] if n else None,
+                  "bound": None if guard is None else [float(guard.lo[j]), float(guard.hi[j])]}
+              for j, t in enumerate(targets)}
+    return {"targets": report, "excluded_inputs": sorted(excluded), "events": events,
+            **summary(deployed)}

@@ -121,6 +121,64 @@ def build_denoiser(cfg: DictConfig):
     return denoiser
 
 
+def read_streamed(cfg: DictConfig, test: bool = True):
+    """``(dataset, train ids, test ids, missing cells per test campaign)`` of ``data.path`` as a
+    stream sees it.
+
+    Test campaigns are read as recorded (``missing="keep"``: a dropout streams as NaN);
+    train campaigns as ``run`` reads them (gaps repaired within ``data.max_gap_samples`` /
+    ``data.max_edge_samples``, else refused naming campaign, column and row), since the
+    models and the sensor monitor are fitted on complete records.  ``test=False``: no
+    test split needed (the stream comes from elsewhere).
+    """
+    from ..evaluation import require_split
+
+    root = resolve(cfg.data.path)
+    say(f"reading {root}")
+    ds, report = io.read_dataset(root, data_options(cfg), missing="keep")
+    train_ids = require_split(ds, "train")
+    test_ids = require_split(ds, "test") if test else []
+    for cid in train_ids:
+        if report["campaigns"][cid].get("missing"):
+            try:
+                table, _ = io.read_campaign(root / ds.manifest.loc[cid, "file"], data_options(cfg))
+            except io.ContractError as exc:
+                raise io.ContractError(f"train campaign {cid}: {exc.reason} (models and the sensor "
+                                       "monitor are fitted on complete train records)",
+                                       file=exc.file, column=exc.column, row=exc.row) from None
+            ds.campaigns[cid] = table.to_pandas(split_blocks=True)
+    missing = {c: report["campaigns"][c]["missing"] for c in test_ids
+               if report["campaigns"][c].get("missing")}
+    return ds, train_ids, test_ids, missing
+
+
+def build_adaptive(cfg: DictConfig, streaming, train: dict):
+    """The :class:`~thermocomp.monitor.AdaptiveCompensator` of the ``monitor`` group around
+    ``streaming``: POD, detector limits and correction guard fitted on ``train``."""
+    from ..monitor import AdaptiveCompensator  # loaded by the stages that deploy, only
+
+    m = cfg.monitor
+    share = m.pod.fit_share
+    pod = {"energy": float(m.pod.energy), "modes": m.pod.modes,
+           "fit_band_c": None if share is None else float(share) * float(m.bands.warning_c),
+           "window": int(m.window), "max_leverage": float(m.pod.max_leverage)}
+    options = {"warning_c": float(m.bands.warning_c), "alarm_c": float(m.bands.alarm_c),
+               "window": int(m.window), "confirm": int(m.confirm), "adaptive": bool(m.adaptive),
+               "exclude_at": str(m.exclude_at), **OmegaConf.to_container(m.detectors)}
+    try:
+        return AdaptiveCompensator.from_training(
+            streaming, train, monitor=options, pod=pod,
+            guard=OmegaConf.to_container(m.guard), learned_bands=bool(m.bands.learned))
+    except ValueError as exc:
+        raise ConfigError(f"monitor: {exc}") from None
+
+
+def deployable(cfg: DictConfig, streaming, train: dict):
+    """What ``promote`` registers and ``replay`` streams: the adaptive compensator around
+    ``streaming`` when ``monitor.adaptive`` (default), else ``streaming`` itself."""
+    return build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
+
+
 def save_model(comp: Compensator, path) -> Path:
     """Pickle ``comp`` to ``path`` with its signature ``<path>.sig`` (:mod:`thermocomp.signing`)."""
     return signing.dump(comp, resolve(path))

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from omegaconf import DictConfig, OmegaConf
+from omegaconf import DictConfig
 
 from .. import io
 from ..context import TIME
@@ -30,24 +30,7 @@ from ..files import staged_outputs, write_json
 from ..monitor import STATES, AdaptiveCompensator, covariance_sensors, qr_sensors
 from ..paths import resolve
 from ..tracking import stage_run
-from .common import build_compensator, check_config, data_options, load_model, say
-
-
-def _adaptive(cfg: DictConfig, streaming, train) -> AdaptiveCompensator:
-    m = cfg.monitor
-    share = m.pod.fit_share
-    pod = {"energy": float(m.pod.energy), "modes": m.pod.modes,
-           "fit_band_c": None if share is None else float(share) * float(m.bands.warning_c),
-           "window": int(m.window), "max_leverage": float(m.pod.max_leverage)}
-    options = {"warning_c": float(m.bands.warning_c), "alarm_c": float(m.bands.alarm_c),
-               "window": int(m.window), "confirm": int(m.confirm), "adaptive": bool(m.adaptive),
-               "exclude_at": str(m.exclude_at), **OmegaConf.to_container(m.detectors)}
-    try:
-        return AdaptiveCompensator.from_training(
-            streaming, train, monitor=options, pod=pod,
-            guard=OmegaConf.to_container(m.guard), learned_bands=bool(m.bands.learned))
-    except ValueError as exc:
-        raise ConfigError(f"monitor: {exc}") from None
+from .common import build_adaptive, build_compensator, check_config, data_options, load_model, say
 
 
 def _stdin_campaign(columns: list[str], targets: list[str]) -> tuple[dict, dict]:
@@ -181,7 +164,7 @@ def monitor(cfg: DictConfig) -> dict:
         except ValueError as exc:
             raise ConfigError(f"the model cannot be deployed: {exc}") from None
         fixed = StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
-        adaptive = _adaptive(cfg, streaming, train)
+        adaptive = build_adaptive(cfg, streaming, train)
         if adaptive.monitor is None:
             raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")

@@ -8,11 +8,17 @@
 2. Its ``model.pkl`` (signature checked before unpickling: a tracking server
    may have no authentication) becomes a deployable :class:`~thermocomp.deploy.StreamingCompensator`
    (training envelope from the train split of ``data.path``), checked to stream
-   exactly as it predicts in batch (causality), and is registered as an
+   exactly as it predicts in batch (causality; the plain stream, envelope off).
+   With ``monitor.adaptive`` (default) what is registered is the
+   :class:`~thermocomp.monitor.AdaptiveCompensator` of the ``monitor`` group
+   around it (POD, detectors and guard fitted on the train split: missing or
+   faulty sensors, bad times, bounded correction); ``monitor.adaptive=false``
+   registers the plain streaming compensator.  It is registered as an
    ``mlflow.pyfunc`` model with a signature: a new version of ``promote.model_name``,
-   tagged with the dataset hash, git commit, its validation figures (from its
-   run's ``metrics.json``) and its test figures (streamed from a reset per
-   test campaign, as deployed: reported, never used to decide).
+   tagged with the dataset hash, git commit, what was deployed (``adaptive``,
+   ``deploy_config``), its validation figures (from its run's ``metrics.json``)
+   and its test figures (streamed from a reset per test campaign, as deployed:
+   reported, never used to decide).
 3. The gate compares validation scores on the same dataset: the candidate's
    against the one the champion was promoted with, when the champion's
    ``dataset_hash``, ``criterion_target`` and ``eval_mode`` tags match.  The
@@ -20,9 +26,11 @@
    ``promote.min_improvement``; a champion with no comparable validation score
    stays unless ``promote.force``.  No registry stages (deprecated): aliases
    and tags only.
-4. Idempotent: a candidate already registered on this dataset (the same run,
-   the same model bytes ``model_digest``, or the champion's figures) gets no
-   new version; promoting the champion again says ``already champion: version N``.
+4. Idempotent: a candidate already registered on this dataset and deployed the
+   same way (``deploy_config``: adaptive or not, the ``monitor`` group, the
+   envelope) -- the same run, the same model bytes ``model_digest``, or the
+   champion's figures -- gets no new version; promoting the champion again says
+   ``already champion: version N``.
 
 Writes ``<out>/promote.json``.
 """
@@ -30,15 +38,17 @@ Writes ``<out>/promote.json``.
 from __future__ import annotations
 
 import hashlib
+import json
 import subprocess
 import tempfile
 from pathlib import Path
 
-from omegaconf import DictConfig
+from omegaconf import DictConfig, OmegaConf
 
 from .. import io, signing
 from ..compensator import Compensator
 from ..deploy import StreamingCompensator, stream_scores, streaming_deviation
+from ..deploy.replay import summary as deployed_summary
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json
@@ -47,7 +57,7 @@ from ..paths import project_root, resolve
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
 from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
-from .common import check_config, data_options, say
+from .common import check_config, data_options, deployable, say
 
 
 def git_commit() -> tuple[str, bool]:
@@ -168,14 +178,29 @@ def _check_dataset(run, run_id: str, dataset_hash: str, data_path) -> None:
                           f"not {data_path}: promote it with that data.path")
 
 
+def deploy_config(cfg: DictConfig) -> str:
+    """SHA-256 (12 hex) of what makes the deployed object from a fitted model: adaptive or
+    not, the ``monitor`` settings it is built with, the envelope."""
+    adaptive = bool(cfg.monitor.adaptive)
+    monitor = None
+    if adaptive:  # the keys the adaptive compensator is built from (not the monitor stage's own)
+        monitor = {k: v for k, v in OmegaConf.to_container(cfg.monitor, resolve=True).items()
+                   if k not in ("model", "input", "map_time_h")}
+    spec = {"adaptive": adaptive, "monitor": monitor,
+            "envelope": OmegaConf.to_container(cfg.promote.envelope, resolve=True)}
+    return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()[:12]
+
+
 def _registered(client, name: str, run_id: str, digest: str, dataset_hash: str, champion,
-                figures: dict):
+                figures: dict, deployed: str):
     """The version that already holds this candidate, or None.
 
-    The same run, or the same model bytes, on the same dataset; or a champion
-    whose figures (validation and test, as tagged) equal the candidate's there.
+    Deployed the same way (``deployed``: :func:`deploy_config`) on the same
+    dataset: the same run, or the same model bytes; or a champion whose figures
+    (validation and test, as tagged) equal the candidate's.
     """
-    if champion is not None and (champion.tags or {}).get("dataset_hash") == dataset_hash:
+    if champion is not None and (champion.tags or {}).get("dataset_hash") == dataset_hash \
+            and champion.tags.get("deploy_config") == deployed:
         tags = champion.tags
         if all(tags.get(f"metric.{k}") == _tag(v) for k, v in figures.items()):
             return champion
@@ -185,7 +210,7 @@ def _registered(client, name: str, run_id: str, digest: str, dataset_hash: str, 
         return None
     for v in sorted(versions, key=lambda v: int(v.version)):
         tags = v.tags or {}
-        if tags.get("dataset_hash") == dataset_hash and (
+        if tags.get("dataset_hash") == dataset_hash and tags.get("deploy_config") == deployed and (
                 tags.get("source_run_id") == run_id or tags.get("model_digest") == digest):
             return v
     return None
@@ -204,7 +229,7 @@ def promote(cfg: DictConfig) -> dict:
     check_config(cfg)
     import mlflow
 
-    from ..deploy.pyfunc import correction_column, log_compensator
+    from ..deploy.pyfunc import REPORT_COLUMNS, correction_column, log_compensator
 
     opts = cfg.promote
     criterion = str(opts.criterion)
@@ -226,31 +251,36 @@ def promote(cfg: DictConfig) -> dict:
     comp, digest = _load_run_model(run_id, uri)
     cand_score, val_figures, mode = _validation_score(run_id, uri, cfg)
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
+    train = {c: ds.campaigns[c] for c in train_ids}
     try:
         streaming = StreamingCompensator.from_training(
-            comp, {c: ds.campaigns[c] for c in train_ids}, float(opts.envelope.margin),
-            str(opts.envelope.policy))
+            comp, train, float(opts.envelope.margin), str(opts.envelope.policy))
     except ValueError as exc:
         raise ConfigError(f"cannot deploy run {run_id}: {exc}") from None
+    # causality is a property of the plain stream (envelope off, no monitor), checked before wrapping
     deviation = max(streaming_deviation(streaming, ds.campaigns[c]) for c in train_ids[:2])
     if deviation > float(opts.max_stream_deviation_um):
         raise ConfigError(
             f"run {run_id}: streamed predictions differ from batch ones by {deviation:.3g} µm "
             f"(> promote.max_stream_deviation_um); a model with memory must implement "
             f"stream_init/stream_step to be deployed")
+    deployed = deployable(cfg, streaming, train)   # what the pyfunc holds (monitor.adaptive)
+    kind = deployed_summary(deployed)
+    deploy_key = deploy_config(cfg)
 
     test = {c: ds.campaigns[c] for c in test_ids}
     dt = sample_period(ds, test_ids)
     statistic, points = cfg.eval.e_p95.statistic, cfg.eval.e_p95.max_points
 
     # the test figures, as deployed: reported beside the validation ones, never used to decide
-    test_figures = {k: v for k, v in _figures(stream_scores(streaming, test, dt, statistic, points),
+    test_figures = {k: v for k, v in _figures(stream_scores(deployed, test, dt, statistic, points),
                                               cfg).items() if not is_validation(k)}
     cand_figures = {**val_figures, **test_figures}
 
     name, alias = str(opts.model_name), str(opts.alias)
     champion = _current_champion(client, name, alias)
-    existing = _registered(client, name, run_id, digest, dataset_hash, champion, cand_figures)
+    existing = _registered(client, name, run_id, digest, dataset_hash, champion, cand_figures,
+                           deploy_key)
     champ_score, champ_note = None, None
     if champion is not None:
         champ_score, champ_note = _champion_validation(champion, criterion, str(opts.target),
@@ -261,7 +291,7 @@ def promote(cfg: DictConfig) -> dict:
         example = test[test_ids[0]][streaming.columns_ + ["time"]].head(5)
         retry_locked(mlflow.start_run, run_id=run_id)
         try:
-            info = log_compensator(streaming, input_example=example, registered_model_name=name)
+            info = log_compensator(deployed, input_example=example, registered_model_name=name)
         finally:
             retry_locked(mlflow.end_run)
         version = str(info.registered_model_version)
@@ -275,7 +305,9 @@ def promote(cfg: DictConfig) -> dict:
         why = (f"the champion (version {champion.version}) has no comparable validation score "
                f"({champ_note})" + ("; forced" if moved else "; set promote.force=true to replace it"))
     else:
-        moved = beats(cand_score, champ_score, criterion, float(opts.min_improvement))
+        # the champion's score comes back from a tag (6 significant digits): compare at that
+        # precision, so the same model (e.g. deployed another way) ties instead of "beating" it
+        moved = beats(float(_tag(cand_score)), champ_score, criterion, float(opts.min_improvement))
         verb = "beats" if moved else "does not beat"
         why = (f"validation {criterion} {_fmt(cand_score)} {verb} the champion's "
                f"{_fmt(champ_score)} (version {champion.version}) on the same dataset")
@@ -289,7 +321,11 @@ def promote(cfg: DictConfig) -> dict:
                      "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
                      "envelope_policy": str(opts.envelope.policy),
                      "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
-                         correction_column(t) for t in streaming.targets_), "promoted": moved})
+                         [correction_column(t) for t in streaming.targets_]
+                         + (list(REPORT_COLUMNS) if kind["adaptive"] else [])),
+                     "adaptive": kind["adaptive"], "deploy_config": deploy_key,
+                     "pod_modes": "none" if kind["pod"] is None else kind["pod"]["n_modes"],
+                     "promoted": moved})
         tags.update({f"metric.{k}": _tag(v) for k, v in cand_figures.items()})
     elif moved:
         tags["promoted"] = True
@@ -309,7 +345,8 @@ def promote(cfg: DictConfig) -> dict:
                             "validation": val_figures, "test_reported": test_figures},
               "champion": None if champion is None else {"version": str(champion.version),
                                                          "score": champ_score},
-              "stream_deviation_um": deviation, "model_uri": f"models:/{name}/{version}"}
+              "stream_deviation_um": deviation, "model_uri": f"models:/{name}/{version}",
+              "adaptive": kind["adaptive"], "pod": kind["pod"]}
     write_json(resolve(cfg.out) / "promote.json", report)
     state = ("promoted to @" + alias if moved else
              f"{why}" if version == str(getattr(champion, "version", "")) else "not promoted")

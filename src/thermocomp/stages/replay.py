@@ -3,8 +3,14 @@
 The compensator is fitted on the train split of ``data.path`` with the
 configured model (``replay.model=null``) or loaded (``replay.model=<model.pkl |
 pyfunc folder | models:/name@alias>``), made deployable exactly as ``promote``
-does (:meth:`StreamingCompensator.from_training` with ``promote.envelope``), and
-every test campaign is streamed row by row from a reset.  Writes
+does (:meth:`StreamingCompensator.from_training` with ``promote.envelope``,
+wrapped in the adaptive compensator of the ``monitor`` group when
+``monitor.adaptive``, the default), and every test campaign is streamed row by
+row from a reset.  A pyfunc model is replayed as it is (what it holds).
+
+The test campaigns are read with their missing values kept (a sensor dropout
+streams through the adaptive compensator as the machine would see it); the
+train split as ``run`` reads it (:func:`~.common.read_streamed`).  Writes
 ``<out>/replay.json`` (CLI.md).
 """
 
@@ -16,22 +22,21 @@ from omegaconf import DictConfig
 
 from .. import io
 from ..deploy import StreamingCompensator
-from ..deploy.replay import replay_report
+from ..deploy.replay import plain, replay_report
 from ..errors import ConfigError
-from ..evaluation import require_split
+from ..files import write_json
 from ..paths import resolve
 from ..tracking import connect, stage_run
-from ..files import write_json
-from .common import build_compensator, check_config, data_options, load_model, say
+from .common import build_compensator, check_config, deployable, load_model, read_streamed, say
 
 
-def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[StreamingCompensator, str, str]:
-    """``(streaming compensator, source, model name)``."""
+def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
+    """``(deployed compensator, source, model name)``."""
     source = cfg.replay.get("model")
     env = cfg.promote.envelope
-    train = {c: ds.campaigns[c] for c in train_ids}
     if source is None:
         say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
+        train = {c: ds.campaigns[c] for c in train_ids}
         comp, name, source = build_compensator(cfg).fit(train), str(cfg.model.name), "fitted"
     else:
         source = str(source)
@@ -45,15 +50,16 @@ def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[StreamingCompensator, s
             except Exception as exc:
                 raise ConfigError(f"replay.model={source}: cannot load it "
                                   f"({' '.join(str(exc).split())[:200]})") from None
-            streaming = model.unwrap_python_model().streaming
-            return streaming, source, _name(streaming.compensator)
+            deployed = model.unwrap_python_model().streaming   # replayed as registered
+            return deployed, source, _name(plain(deployed).compensator)
         comp = load_model(path)
         name = _name(comp)
+        train = {c: ds.campaigns[c] for c in train_ids}
     try:
         streaming = StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
     except ValueError as exc:
         raise ConfigError(f"the model cannot be deployed: {exc}") from None
-    return streaming, source, name
+    return deployable(cfg, streaming, train), source, name
 
 
 def _name(comp) -> str:
@@ -63,30 +69,41 @@ def _name(comp) -> str:
 def replay(cfg: DictConfig) -> dict:
     """Stream the test campaigns of ``data.path``; write ``<out>/replay.json``."""
     check_config(cfg)
-    say(f"reading {resolve(cfg.data.path)}")
-    ds, _ = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
-    train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
+    ds, train_ids, test_ids, gaps = read_streamed(cfg)
+    root = resolve(cfg.data.path)
     with stage_run(cfg, "replay") as tr:
-        streaming, source, name = _deployable(cfg, ds, train_ids)
-        missing = sorted({c for c in streaming.columns_ for i in test_ids
+        deployed, source, name = _deployable(cfg, ds, train_ids)
+        missing = sorted({c for c in deployed.columns_ for i in test_ids
                           if c not in ds.campaigns[i].columns})
         if missing:
             raise io.ContractError("a test campaign lacks a column the deployed model reads",
                                    column=",".join(missing))
-        say(f"streaming {len(test_ids)} test campaigns row by row ({', '.join(streaming.columns_)})")
-        targets = replay_report(streaming, {c: ds.campaigns[c] for c in test_ids})
+        kind = "adaptive" if deployed is not plain(deployed) else "streaming"
+        say(f"streaming {len(test_ids)} test campaigns row by row through the {kind} compensator "
+            f"({', '.join(deployed.columns_)})")
+        result = replay_report(deployed, {c: ds.campaigns[c] for c in test_ids},
+                               {c: root / str(ds.manifest.loc[c, "file"]) for c in test_ids})
+        targets = result["targets"]
+        stream = plain(deployed)
         report = {"model": name, "source": source, "targets": targets,
-                  "excluded_inputs": [], "events": [],
-                  "columns": list(streaming.columns_), "time_required": streaming.time_required_,
-                  "envelope": {"policy": streaming.policy,
-                               "margin": streaming.envelope.margin if streaming.envelope else None},
+                  "excluded_inputs": result["excluded_inputs"], "events": result["events"],
+                  "adaptive": result["adaptive"], "pod": result["pod"],
+                  "columns": list(deployed.columns_), "time_required": deployed.time_required_,
+                  "envelope": {"policy": stream.policy,
+                               "margin": stream.envelope.margin if stream.envelope else None},
                   "test_campaigns": test_ids}
+        if gaps:
+            report["missing"] = gaps      # missing cells per test campaign and column, streamed as NaN
         path = write_json(Path(resolve(cfg.out)) / "replay.json", report)
         tr.log_metrics({"replay": targets})
         tr.log_artifact(path)
     print(f"{'target':<8} {'samples':>8} {'max|stream-batch|':>18} {'RMSE':>8} {'µs/sample':>10}")
     for t, r in targets.items():
+        rmse = "-" if r["rmse"] is None else f"{r['rmse']:.3f}"
         print(f"{t:<8} {r['n_samples']:>8} {r['max_abs_stream_minus_batch']:>18.3g} "
-              f"{r['rmse']:>8.3f} {r['us_per_sample']:>10.1f}")
+              f"{rmse:>8} {r['us_per_sample']:>10.1f}")
+    if report["adaptive"]:
+        print(f"events: {len(report['events'])}, excluded at a campaign's end: "
+              f"{', '.join(report['excluded_inputs']) or 'none'}")
     say(f"replay: {path}")
     return report
