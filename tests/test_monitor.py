@@ -208,7 +208,8 @@ def test_column_monitor_alarms_only_once_the_new_source_is_on_nearest_sensor_fir
     q3 = next(s for s in truth["heat_sources"] if s["name"] == "Q3_new")
     node = next(iter(q3["split"]))
     on = truth["campaigns"]["test_cycle"]["q3_on_s"][0][0]
-    bad = [e for e in report["events"] if e["to"] in ("alarm", "excluded") and e["sensor"] in report["sensors"]]
+    bad = [e for e in report["events"]
+           if e["to"] in ("alarm", "excluded") and e["sensor"] in report["sensors"]]
     assert bad and min(e["time"] for e in bad) >= on
     nearest = [s for s, n in truth["sensor_nodes"].items() if n == node]
     assert bad[0]["sensor"] in nearest

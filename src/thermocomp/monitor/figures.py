@@ -60,7 +60,8 @@ def draw(folder: Path, adaptive, traces: dict, report: dict, map_time_h=None) ->
         ax.axvline(band, color="k", ls=":", lw=0.8)
         ax.axvline(-band, color="k", ls=":", lw=0.8)
     ax.set(xlabel="self-prediction error (°C)",
-           title=f"{cid} at {hours[i]:.2f} h: sensor states (green ok, yellow warning, red alarm, grey excluded)")
+           title=f"{cid} at {hours[i]:.2f} h: sensor states "
+                 "(green ok, yellow warning, red alarm, grey excluded)")
     out.append(save_figure(fig, folder / "sensor_map.png"))
 
     # 3. compensation error, fixed vs adaptive

@@ -165,7 +165,8 @@ class SensorMonitor:
 
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
-              "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other", "_last_good", "_by_field")
+              "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
+              "_last_good", "_by_field")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""

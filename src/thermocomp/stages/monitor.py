@@ -25,12 +25,11 @@ from .. import io
 from ..context import TIME
 from ..deploy import StreamingCompensator
 from ..errors import ConfigError
-from ..evaluation import require_split
 from ..files import staged_outputs, write_json
 from ..monitor import STATES, AdaptiveCompensator, covariance_sensors, qr_sensors
 from ..paths import resolve
 from ..tracking import stage_run
-from .common import build_adaptive, build_compensator, check_config, data_options, load_model, say
+from .common import build_adaptive, build_compensator, check_config, load_model, read_streamed, say
 
 
 def _stdin_campaign(columns: list[str], targets: list[str]) -> tuple[dict, dict]:
@@ -120,40 +119,13 @@ def check_monitor(m: DictConfig) -> None:
     number("map_time_h", m.get("map_time_h"), 0, null=True)
 
 
-def _read(cfg: DictConfig, stdin: bool):
-    """``(dataset, train ids, streamed campaigns, missing cells per streamed campaign)``.
-
-    Test campaigns are read as recorded (``missing="keep"``: a dropout streams as NaN);
-    train campaigns as ``run`` reads them (gaps repaired within ``data.max_gap_samples`` /
-    ``data.max_edge_samples``, else refused), since the POD and the model are fitted on
-    complete records.
-    """
-    root = resolve(cfg.data.path)
-    say(f"reading {root}")
-    ds, report = io.read_dataset(root, data_options(cfg), missing="keep")
-    train_ids = require_split(ds, "train")
-    test_ids = [] if stdin else require_split(ds, "test")
-    for cid in train_ids:
-        if report["campaigns"][cid].get("missing"):
-            try:
-                table, _ = io.read_campaign(root / ds.manifest.loc[cid, "file"], data_options(cfg))
-            except io.ContractError as exc:
-                raise io.ContractError(f"train campaign {cid}: {exc.reason} (the monitor is fitted "
-                                       "on complete train records)", file=exc.file,
-                                       column=exc.column, row=exc.row) from None
-            ds.campaigns[cid] = table.to_pandas(split_blocks=True)
-    streamed = {c: ds.campaigns[c] for c in test_ids}
-    missing = {c: report["campaigns"][c]["missing"] for c in test_ids
-               if report["campaigns"][c].get("missing")}
-    return ds, train_ids, streamed, missing
-
-
 def monitor(cfg: DictConfig) -> dict:
     """Stream the test campaigns (or stdin) through the fixed and the adaptive compensator."""
     check_config(cfg)
     check_monitor(cfg.monitor)
     stdin = cfg.monitor.get("input") == "-"
-    ds, train_ids, streamed, missing = _read(cfg, stdin)
+    ds, train_ids, test_ids, missing = read_streamed(cfg, test=not stdin)
+    streamed = {c: ds.campaigns[c] for c in test_ids}
     train = {c: ds.campaigns[c] for c in train_ids}
     with stage_run(cfg, "monitor") as tr:
         path = cfg.monitor.get("model")
