@@ -281,8 +281,10 @@ class SensorMonitor:
             return None
         d = x - self._ref
         step = d - self._prev
-        if (not np.isfinite(d.sum()) or (np.abs(x - self._mid) > self._half).any()
-                or (np.abs(step) > self._jump_lim).any()):
+        complete = bool(np.isfinite(d.sum()))
+        finite = self._true if complete else np.isfinite(d)
+        if ((not complete and (self._active & ~finite).any())   # a sensor in use went missing
+                or (np.abs(x - self._mid) > self._half).any() or (np.abs(step) > self._jump_lim).any()):
             return None
         pred = self._M @ (d if self._all_active else d[self._active])
         e = (d - pred) * self._scale
@@ -316,7 +318,12 @@ class SensorMonitor:
         self._count += 1
         self._calm += 1
         self._prev_other = np.where(self._judged, d - e, np.nan)
-        self._prev, self._prev_e = d, e
+        if complete:
+            self._prev = d
+        else:                            # an excluded sensor still missing: not calm
+            self._calm[~finite] = 0
+            self._prev = np.where(finite, d, self._prev)
+        self._prev_e = e
         clean = d if self._all_active else np.where(
             self._active, d, np.where(self._predictable, pred, self._last_good))
         if self._all_active:
