@@ -19,7 +19,7 @@ from hydra import compose, initialize_config_dir
 from conftest import thermocomp
 from thermocomp import io
 from thermocomp.deploy import StreamingCompensator
-from thermocomp.deploy.replay import plain, replay_report
+from thermocomp.deploy.report import plain, replay_report
 from thermocomp.monitor import AdaptiveCompensator
 from thermocomp.paths import conf_dir
 from thermocomp.stages.common import build_compensator, deployable

@@ -374,3 +374,16 @@ def test_pyfunc_round_trip_signature_state_and_errors(data, tmp_path):
         model.predict(hot, params={"reset": True})
     with pytest.raises(MlflowException, match="T_amb"):
         model.predict(test.drop(columns="T_amb"), params={"reset": True})
+
+
+def test_no_deploy_submodule_shadows_an_exported_function():
+    """Importing every submodule of ``thermocomp.deploy`` leaves its exports as they are (a
+    submodule named like a function, e.g. ``replay``, would replace it on first import)."""
+    import importlib
+    import pkgutil
+
+    import thermocomp.deploy as deploy
+
+    for info in pkgutil.iter_modules(deploy.__path__):
+        importlib.import_module(f"thermocomp.deploy.{info.name}")
+    assert all(not isinstance(getattr(deploy, name), type(deploy)) for name in deploy.__all__)

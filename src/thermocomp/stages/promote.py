@@ -48,7 +48,7 @@ from omegaconf import DictConfig, OmegaConf
 from .. import io, signing
 from ..compensator import Compensator
 from ..deploy import StreamingCompensator, stream_scores, streaming_deviation
-from ..deploy.replay import summary as deployed_summary
+from ..deploy.report import summary as deployed_summary
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json

@@ -22,7 +22,7 @@ from omegaconf import DictConfig
 
 from .. import io
 from ..deploy import StreamingCompensator
-from ..deploy.replay import plain, replay_report
+from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
 from ..paths import resolve

@@ -1,4 +1,5 @@
-"""Replay: stream campaigns row by row through a deployable compensator and check it (pure core).
+"""The replay report: stream campaigns row by row through a deployable compensator and check it
+(pure core; a module of its own, not `replay`, which names the streaming function).
 
 The deployed object is what ``promote`` registers inside the pyfunc model: a
 :class:`~thermocomp.deploy.StreamingCompensator`, or (default) an
