@@ -4,7 +4,8 @@ Whatever the inputs do, the correction stays finite, inside the training error
 range widened by ``margin`` × its width, and changes by at most
 ``(1 + rate_margin)`` × the fastest change of the measured error in training
 per second.  Each target's state (``free``, ``bounded``, ``rate_limited``,
-``held``) changes with an event.
+``held``) changes with an event; it is reported ``free`` again only after
+:data:`CALM` samples within bound and rate, so a jumpy episode is one event pair.
 """
 
 from __future__ import annotations
@@ -14,6 +15,7 @@ from collections.abc import Sequence
 import numpy as np
 
 FREE, BOUNDED, RATE, HELD = "free", "bounded", "rate_limited", "held"
+CALM = 5   # samples within bound and rate before a target is reported free again
 
 
 class CorrectionGuard:
@@ -50,12 +52,15 @@ class CorrectionGuard:
         self._prev = None
         self._state = [FREE] * len(self.targets)
         self._free = True
+        self._calm = np.zeros(len(self.targets), dtype=np.int64)
 
     def snapshot(self) -> tuple:
-        return (None if self._prev is None else self._prev.copy(), list(self._state))
+        return (None if self._prev is None else self._prev.copy(), list(self._state),
+                self._calm.copy())
 
     def restore(self, snap: tuple) -> None:
         self._prev, self._state = (None if snap[0] is None else snap[0].copy()), list(snap[1])
+        self._calm = snap[2].copy()
         self._free = all(s == FREE for s in self._state)
 
     def step(self, y: np.ndarray, dt: float, time: float) -> tuple[np.ndarray, list[dict]]:
@@ -80,7 +85,10 @@ class CorrectionGuard:
         out = np.minimum(np.maximum(out, self.lo), self.hi)
         state[outside & ~held] = BOUNDED
         events = []
+        self._calm = np.where(state == FREE, self._calm + 1, 0)
         for k, new in enumerate(state):
+            if new == FREE and self._calm[k] < CALM:
+                continue     # free again only after CALM samples: one event per episode
             if new != self._state[k]:
                 events.append({"time": float(time), "sensor": None, "target": self.targets[k],
                                "from": self._state[k], "to": str(new),
