@@ -26,6 +26,21 @@ def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.Complet
     return proc
 
 
+def refused(args: list[str], capsys, *says: str) -> str:
+    """``thermocomp <args>`` (in process) exits 2 with one error line holding every one of
+    ``says``; returns that line."""
+    from thermocomp.cli import main
+
+    code = main(args)
+    err = capsys.readouterr().err
+    lines = [ln for ln in err.splitlines() if ln.startswith("thermocomp: error")]
+    assert code == 2, err
+    assert len(lines) == 1, err
+    for words in says:
+        assert words in lines[0], lines[0]
+    return lines[0]
+
+
 def free_port() -> int:
     """A TCP port on 127.0.0.1 that nothing listens on now."""
     import socket

@@ -19,6 +19,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import refused
 from thermocomp import files
 from thermocomp.cli import main
 from thermocomp.io import load_interim, read_dataset
@@ -75,18 +76,6 @@ def snapshot(*paths: Path) -> dict:
         if p.parent.is_dir():
             state[f"{p.parent} entries"] = sorted(q.name for q in p.parent.iterdir())
     return state
-
-
-def refused(args: list[str], capsys, *says: str) -> str:
-    """``thermocomp <args>`` exits 2 with one error line holding every one of ``says``."""
-    code = main(args)
-    err = capsys.readouterr().err
-    lines = [ln for ln in err.splitlines() if ln.startswith("thermocomp: error")]
-    assert code == 2, err
-    assert len(lines) == 1, err
-    for words in says:
-        assert words in lines[0], lines[0]
-    return lines[0]
 
 
 @pytest.fixture

@@ -20,7 +20,7 @@ import pytest
 from hydra.utils import instantiate
 from omegaconf import OmegaConf
 
-from conftest import ROOT, thermocomp
+from conftest import ROOT, refused, thermocomp
 from thermocomp import io as tio
 from thermocomp.cli import main
 from thermocomp.compensator import Compensator
@@ -174,17 +174,6 @@ def test_a_simulated_fault_on_the_swiss_lathe_is_caught_bounded_and_compensated(
 
 
 # -- hostile input: exit 2, one line, nothing written -----------------------------------------
-def refused(args: list[str], capsys, *says: str) -> str:
-    code = main(args)
-    err = capsys.readouterr().err
-    lines = [ln for ln in err.splitlines() if ln.startswith("thermocomp: error")]
-    assert code == 2, err
-    assert len(lines) == 1, err
-    for words in says:
-        assert words in lines[0], lines[0]
-    return lines[0]
-
-
 CONFIG_CASES = {
     "input=bad": (["monitor.input=bad"], ["monitor.input='bad'", "'-'"]),
     "warning_c=-1": (["monitor.bands.warning_c=-1"], ["monitor.bands.warning_c", "got -1"]),
