@@ -68,7 +68,7 @@ class AdaptiveCompensator:
         mon = None
         if len(names) >= 3:
             raw = {c: df[names].to_numpy(float) for c, df in campaigns.items()}
-            mon = SensorMonitor.from_training(ThermalPOD(**(pod or {})), names, raw,
+            mon = SensorMonitor.from_training(ThermalPOD(**pod) if pod else None, names, raw,
                                               learned_bands=learned_bands, **(monitor or {}))
         measured = comp.measured(campaigns)
         times = [df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
@@ -169,7 +169,7 @@ class AdaptiveCompensator:
             x[self._other] = self._hold(x[self._other], t, events)
         try:
             y, clamped = self.streaming._step(x, t)
-        except (OutOfEnvelopeError, ValueError) as exc:
+        except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
             y, clamped = np.full(len(self.targets_), np.nan), 0
             events.append({"time": t, "sensor": None, "from": "running", "to": "held",
                            "reason": f"correction held: {exc}"})

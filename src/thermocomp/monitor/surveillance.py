@@ -38,7 +38,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from .pod import ThermalPOD
+from .pod import ThermalPOD, windowed_mean
 
 OK, WARNING, ALARM, EXCLUDED = 0, 1, 2, 3
 READMIT = 0.5   # hysteresis: back in when within this share of the warning band for a window
@@ -117,9 +117,7 @@ class SensorMonitor:
         self._zero_run = np.zeros(n, dtype=np.int64)
         self._mid, self._half = (self._lo_lim + self._hi_lim) / 2, (self._hi_lim - self._lo_lim) / 2
         # ring rows of the `confirm - 1` samples before each write position
-        self._before = (np.arange(self.window)[:, None] - 1 - np.arange(self.confirm - 1)) % self.window
-        self._before_all = (np.arange(self.window)[:, None] - 1 - np.arange(self.window - 1)) % self.window
-        # ring positions of the last `confirm` samples, for each write position
+        # ring positions of the last `confirm` samples before each write position
         self._recent = (np.arange(self.window)[:, None] - 1 - np.arange(self.confirm)) % self.window
         self.r_ = pod.n_modes_
         self.min_active_ = self.r_ + 1
@@ -129,8 +127,8 @@ class SensorMonitor:
     def from_training(cls, pod: ThermalPOD | None, names: Sequence[str],
                       campaigns: Mapping[str, np.ndarray], learned_bands: bool = False,
                       **options) -> "SensorMonitor":
-        """Fit the POD (when not fitted) and the detectors' limits on training campaigns
-        (absolute readings, (n_samples, n_sensors) per campaign, complete)."""
+        """Fit the POD (when not fitted; ``None``: the default one) and the detectors' limits on
+        training campaigns (absolute readings, (n_samples, n_sensors) per campaign, complete)."""
         arrays = [np.asarray(a, float) for a in campaigns.values()]
         for cid, a in zip(campaigns, arrays):
             if not np.isfinite(a).all():
@@ -138,12 +136,10 @@ class SensorMonitor:
                                  "fitted on complete records")
         snaps = np.vstack([a - a[0] for a in arrays])
         groups = np.concatenate([np.full(len(a), k) for k, a in enumerate(arrays)])
-        pod = pod if pod is not None else ThermalPOD()
+        if pod is None:   # the default basis fits the training field within half the warning band
+            pod = ThermalPOD(fit_band_c=0.5 * float(np.min(options.get("warning_c", 0.4))),
+                             window=int(options.get("window", 10)))
         if not hasattr(pod, "n_modes_"):
-            band = options.get("warning_c", 0.4)
-            pod.set_params(fit_band_c=None if pod.fit_band_c is None else
-                           min(pod.fit_band_c, 0.5 * float(np.min(band))),
-                           window=int(options.get("window", pod.window)))
             pod.fit(snaps, groups=groups)
         steps = np.vstack([np.abs(np.diff(a, axis=0)) for a in arrays if len(a) > 1]
                           or [np.zeros((1, len(names)))])
@@ -155,7 +151,6 @@ class SensorMonitor:
             # bands from the training spread: 4× the 99.5th percentile of the windowed
             # leave-one-out error per sensor, never below the configured bands' half
             E = pod.deleted_residuals(snaps)
-            from .pod import windowed_mean
             spread = np.nanquantile(np.abs(windowed_mean(np.nan_to_num(E), groups,
                                                          pod.window)), 0.995, axis=0)
             warn = np.maximum(4 * spread, 0.5 * np.asarray(options.get("warning_c", 0.4), float))
@@ -290,7 +285,8 @@ class SensorMonitor:
         e = (d - pred) * self._scale
         ae = np.abs(e)
         pos = self._pos
-        a = np.minimum(np.abs(self._err[self._before[pos]]).min(axis=0), ae) if self.confirm > 1 else ae
+        before = self._recent[pos, :self.confirm - 1]     # the sample being read is the last one
+        a = np.minimum(np.abs(self._err[before]).min(axis=0), ae) if len(before) else ae
         if self._all_active:
             if (ae >= self.alarm_c).any() or (a >= self.warning_c).any():
                 return None

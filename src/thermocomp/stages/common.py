@@ -152,6 +152,18 @@ def read_streamed(cfg: DictConfig, test: bool = True):
     return ds, train_ids, test_ids, missing
 
 
+def deploy_stream(cfg: DictConfig, comp: Compensator, train: dict, what: str = "the model"):
+    """:meth:`StreamingCompensator.from_training` with ``promote.envelope`` (the plain stream
+    every deployment starts from); a model that cannot stream is a ConfigError naming ``what``."""
+    from ..deploy import StreamingCompensator
+
+    env = cfg.promote.envelope
+    try:
+        return StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
+    except ValueError as exc:
+        raise ConfigError(f"{what} cannot be deployed: {exc}") from None
+
+
 def build_adaptive(cfg: DictConfig, streaming, train: dict):
     """The :class:`~thermocomp.monitor.AdaptiveCompensator` of the ``monitor`` group around
     ``streaming``: POD, detector limits and correction guard fitted on ``train``."""

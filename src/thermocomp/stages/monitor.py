@@ -29,7 +29,15 @@ from ..files import staged_outputs, write_json
 from ..monitor import STATES, AdaptiveCompensator, covariance_sensors, qr_sensors
 from ..paths import resolve
 from ..tracking import stage_run
-from .common import build_adaptive, build_compensator, check_config, load_model, read_streamed, say
+from .common import (
+    build_adaptive,
+    build_compensator,
+    check_config,
+    deploy_stream,
+    load_model,
+    read_streamed,
+    say,
+)
 
 
 def _stdin_campaign(columns: list[str], targets: list[str]) -> tuple[dict, dict]:
@@ -130,13 +138,10 @@ def monitor(cfg: DictConfig) -> dict:
     with stage_run(cfg, "monitor") as tr:
         path = cfg.monitor.get("model")
         comp = build_compensator(cfg).fit(train) if path is None else load_model(resolve(str(path)))
-        env = cfg.promote.envelope
-        try:
-            streaming = StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
-        except ValueError as exc:
-            raise ConfigError(f"the model cannot be deployed: {exc}") from None
-        fixed = StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
-        adaptive = build_adaptive(cfg, streaming, train)
+        # one plain stream serves both: the fixed run and the adaptive one are each streamed
+        # from a reset, one after the other
+        fixed = deploy_stream(cfg, comp, train)
+        adaptive = build_adaptive(cfg, fixed, train)
         if adaptive.monitor is None:
             raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")

@@ -47,7 +47,7 @@ from omegaconf import DictConfig, OmegaConf
 
 from .. import io, signing
 from ..compensator import Compensator
-from ..deploy import StreamingCompensator, stream_scores, streaming_deviation
+from ..deploy import stream_scores, streaming_deviation
 from ..deploy.report import summary as deployed_summary
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
@@ -57,7 +57,7 @@ from ..paths import project_root, resolve
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
 from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
-from .common import check_config, data_options, deployable, say
+from .common import check_config, data_options, deploy_stream, deployable, say
 
 
 def git_commit() -> tuple[str, bool]:
@@ -252,11 +252,7 @@ def promote(cfg: DictConfig) -> dict:
     cand_score, val_figures, mode = _validation_score(run_id, uri, cfg)
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     train = {c: ds.campaigns[c] for c in train_ids}
-    try:
-        streaming = StreamingCompensator.from_training(
-            comp, train, float(opts.envelope.margin), str(opts.envelope.policy))
-    except ValueError as exc:
-        raise ConfigError(f"cannot deploy run {run_id}: {exc}") from None
+    streaming = deploy_stream(cfg, comp, train, f"run {run_id}")
     # causality is a property of the plain stream (envelope off, no monitor), checked before wrapping
     deviation = max(streaming_deviation(streaming, ds.campaigns[c]) for c in train_ids[:2])
     if deviation > float(opts.max_stream_deviation_um):

@@ -21,19 +21,17 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from .. import io
-from ..deploy import StreamingCompensator
 from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
 from ..paths import resolve
 from ..tracking import connect, stage_run
-from .common import build_compensator, check_config, deployable, load_model, read_streamed, say
+from .common import build_compensator, check_config, deploy_stream, deployable, load_model, read_streamed, say
 
 
 def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
     """``(deployed compensator, source, model name)``."""
     source = cfg.replay.get("model")
-    env = cfg.promote.envelope
     if source is None:
         say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
         train = {c: ds.campaigns[c] for c in train_ids}
@@ -55,11 +53,7 @@ def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
         comp = load_model(path)
         name = _name(comp)
         train = {c: ds.campaigns[c] for c in train_ids}
-    try:
-        streaming = StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
-    except ValueError as exc:
-        raise ConfigError(f"the model cannot be deployed: {exc}") from None
-    return deployable(cfg, streaming, train), source, name
+    return deployable(cfg, deploy_stream(cfg, comp, train), train), source, name
 
 
 def _name(comp) -> str:
