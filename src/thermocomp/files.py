@@ -203,25 +203,54 @@ class Terminated(SystemExit):
     and callers can tell a terminated block from one that failed."""
 
 
+class _Signals:
+    """What :func:`signals_raise` yields: ``deferred()`` holds a signal back until the end of a
+    block that must not be cut in two (creating a run and entering the ``try`` that closes it;
+    closing it), then raises it."""
+
+    def __init__(self) -> None:
+        self._depth = 0
+        self._pending: int | None = None
+
+    def handle(self, signum: int) -> None:
+        if self._depth:
+            self._pending = self._pending or signum
+            return
+        _raise_for(signum)
+
+    @contextmanager
+    def deferred(self):
+        self._depth += 1
+        try:
+            yield
+        finally:
+            self._depth -= 1
+            if not self._depth and self._pending is not None:
+                signum, self._pending = self._pending, None
+                _raise_for(signum)
+
+
+def _raise_for(signum: int) -> None:
+    if signum == signal.SIGINT:
+        raise KeyboardInterrupt
+    raise Terminated(128 + signum)
+
+
 @contextmanager
 def signals_raise(sigint: bool = False):
     """Within the block SIGTERM raises :class:`Terminated` (and, with ``sigint``, SIGINT raises
     KeyboardInterrupt even where it was ignored), so temp files are removed and runs closed on
-    the way out; the previous handlers come back after.  Only the main thread can set
-    handlers: elsewhere this does nothing."""
+    the way out; the previous handlers come back after.  Yields a :class:`_Signals` whose
+    ``deferred()`` holds a signal back over a critical section.  Only the main thread can set
+    handlers: elsewhere this only yields."""
+    control = _Signals()
     if threading.current_thread() is not threading.main_thread():
-        yield
+        yield control
         return
-
-    def handler(signum, frame):
-        if signum == signal.SIGINT:
-            raise KeyboardInterrupt
-        raise Terminated(128 + signum)
-
     signals = (signal.SIGTERM, signal.SIGINT) if sigint else (signal.SIGTERM,)
-    previous = {s: signal.signal(s, handler) for s in signals}
+    previous = {s: signal.signal(s, lambda signum, frame: control.handle(signum)) for s in signals}
     try:
-        yield
+        yield control
     finally:
         for s, h in previous.items():
             signal.signal(s, h)

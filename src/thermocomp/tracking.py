@@ -248,11 +248,14 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
 
         tags[DATASET_TAG] = folder_digest(data)
     parent = os.environ.get(PARENT_ENV) or None
-    with signals_raise(sigint=True):
-        run = retry_locked(mlflow.start_run, experiment_id=exp_id, tags=tags, parent_run_id=parent,
-                           run_name=run_name(cfg, overrides))
-        status = "FAILED"
+    with signals_raise(sigint=True) as signals:
+        # A signal while the run is being created or closed waits for the end of that step:
+        # cut there, the run would stay RUNNING in the store for ever.
+        run, status = None, "FAILED"
         try:
+            with signals.deferred():
+                run = retry_locked(mlflow.start_run, experiment_id=exp_id, tags=tags,
+                                   parent_run_id=parent, run_name=run_name(cfg, overrides))
             container = config_container(cfg)
             retry_locked(mlflow.log_dict, container, "config.yaml")
             retry_locked(mlflow.log_params, run_params(container, overrides))
@@ -262,12 +265,19 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
             status = "KILLED"
             raise
         finally:
-            from .log import current_file  # the run's log so far (thermocomp.log), failed runs too
+            if run is not None:
+                with signals.deferred():
+                    _close(mlflow, status)
 
-            log_file = current_file()
-            if log_file is not None and log_file.is_file():
-                retry_locked(mlflow.log_artifact, str(log_file))
-            retry_locked(mlflow.end_run, status)
+
+def _close(mlflow, status: str) -> None:
+    """Attach the run's log so far (thermocomp.log, failed runs too) and end it with ``status``."""
+    from .log import current_file
+
+    log_file = current_file()
+    if log_file is not None and log_file.is_file():
+        retry_locked(mlflow.log_artifact, str(log_file))
+    retry_locked(mlflow.end_run, status)
 
 
 # --- what a run is called and what it records ------------------------------------------------
