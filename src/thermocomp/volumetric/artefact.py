@@ -1,0 +1,137 @@
+"""A 1D ball array, its poses in the working volume, and the measurement set-up (``volumetric.json``).
+
+The artefact (paper 001, Fig. 4): ``n_balls`` balls over ``length_mm``; with a misalignment
+angle θ every other ball is set off the bar's axis by ``spacing · tan θ``, alternately
+across and along the second normal, so that the array sees the volume's errors in more
+than one direction.  A pose places it: centre (mm, commanded TCP coordinates) and a
+direction.  The position sets of paper 001: ``S1`` along the three axes, ``S2`` the four
+volume diagonals, ``S3`` the six face diagonals, each repeated at several X centres on a
+long X axis.
+
+A distance column of a dataset is ``E_<pose>_B<i>_B<j>``: the measured minus the
+calibrated distance between balls i and j (µm) in that pose.
+"""
+
+from __future__ import annotations
+
+import itertools
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .kinematics import AXES, KinematicModel
+
+SETUP_FILE = "volumetric.json"
+COLUMN = re.compile(r"^E_(?P<pose>[A-Za-z0-9]+)_B(?P<i>\d+)_B(?P<j>\d+)$")
+POSITION_SETS = ("S1", "S2", "S3")
+
+
+@dataclass
+class BallArray:
+    """Nominal ball centres of a 1D ball array in its own frame (bar along x), mm."""
+
+    n_balls: int = 11
+    length_mm: float = 1500.0
+    misalignment_deg: float = 0.0
+
+    def centres(self) -> np.ndarray:
+        if self.n_balls < 2:
+            raise ValueError(f"a ball array needs at least 2 balls, not {self.n_balls}")
+        s = np.linspace(-self.length_mm / 2, self.length_mm / 2, self.n_balls)
+        out = np.zeros((self.n_balls, 3))
+        out[:, 0] = s
+        offset = (s[1] - s[0]) * np.tan(np.radians(self.misalignment_deg))
+        for k in range(1, self.n_balls, 2):          # every other ball, alternately across / up
+            out[k, 1 + (k // 2) % 2] = offset
+        return out
+
+
+@dataclass
+class Pose:
+    """One placement of the artefact: centre (mm) and the bar's direction (any length)."""
+
+    name: str
+    centre: tuple
+    direction: tuple
+
+    def frame(self) -> np.ndarray:
+        """Rows: the bar's unit direction and two unit normals."""
+        u = np.asarray(self.direction, float)
+        u = u / np.linalg.norm(u)
+        helper = np.eye(3)[np.argmin(np.abs(u))]
+        v1 = np.cross(u, helper)
+        v1 /= np.linalg.norm(v1)
+        return np.vstack([u, v1, np.cross(u, v1)])
+
+    def balls(self, array: BallArray) -> np.ndarray:
+        """(n_balls, 3) nominal ball centres in machine coordinates (mm)."""
+        return np.asarray(self.centre, float) + array.centres() @ self.frame()
+
+
+def position_set(sets=POSITION_SETS, ranges=None, x_centres=(0.25, 0.75)) -> list[Pose]:
+    """Poses of the sets ``S1`` (axes), ``S2`` (volume diagonals), ``S3`` (face diagonals) at each
+    X centre (a fraction of the X travel), centred in Y and Z."""
+    ranges = ranges or {a: (0.0, 1.0) for a in AXES}
+    directions = {
+        "S1": [(1, 0, 0), (0, 1, 0), (0, 0, 1)],
+        "S2": [(1, 1, 1), (1, 1, -1), (1, -1, 1), (1, -1, -1)],
+        "S3": [(1, 1, 0), (1, -1, 0), (0, 1, 1), (0, 1, -1), (1, 0, 1), (1, 0, -1)],
+    }
+    unknown = [s for s in sets if s not in directions]
+    if unknown:
+        raise ValueError(f"unknown position set(s) {unknown}: use {list(directions)}")
+    mid = {a: 0.5 * sum(ranges[a]) for a in AXES}
+    poses = []
+    for ix, fx in enumerate(x_centres):
+        x = ranges["X"][0] + float(fx) * (ranges["X"][1] - ranges["X"][0])
+        for s in sets:
+            for k, d in enumerate(directions[s]):
+                poses.append(Pose(f"{s}x{ix + 1}d{k + 1}", (x, mid["Y"], mid["Z"]), d))
+    return poses
+
+
+def pairs(n_balls: int) -> list[tuple[int, int]]:
+    """Every ball pair (i < j), 1-based as in the column names."""
+    return list(itertools.combinations(range(1, n_balls + 1), 2))
+
+
+def column(pose: str, i: int, j: int) -> str:
+    return f"E_{pose}_B{i:02d}_B{j:02d}"
+
+
+@dataclass
+class Setup:
+    """What a volumetric dataset was measured with (``volumetric.json`` in the dataset folder).
+
+    ``probing_um``: standard uncertainty of one probed ball centre per coordinate;
+    ``ball_um``: of the artefact's calibrated ball centres per coordinate.
+    """
+
+    model: KinematicModel
+    array: BallArray
+    poses: list[Pose]
+    probing_um: float = 0.5
+    ball_um: float = 0.5
+    extra: dict = field(default_factory=dict)
+
+    def columns(self) -> list[str]:
+        return [column(p.name, i, j) for p in self.poses for i, j in pairs(self.array.n_balls)]
+
+    def to_dict(self) -> dict:
+        return {"machine": self.model.to_dict(),
+                "artefact": {"n_balls": self.array.n_balls, "length_mm": self.array.length_mm,
+                             "misalignment_deg": self.array.misalignment_deg},
+                "poses": [{"name": p.name, "centre": list(map(float, p.centre)),
+                           "direction": list(map(float, p.direction))} for p in self.poses],
+                "uncertainty_um": {"probing": self.probing_um, "ball": self.ball_um},
+                **self.extra}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> Setup:
+        known = {"machine", "artefact", "poses", "uncertainty_um"}
+        u = d.get("uncertainty_um", {})
+        return cls(KinematicModel.from_dict(d["machine"]), BallArray(**d["artefact"]),
+                   [Pose(p["name"], tuple(p["centre"]), tuple(p["direction"])) for p in d["poses"]],
+                   float(u.get("probing", 0.5)), float(u.get("ball", 0.5)),
+                   {k: v for k, v in d.items() if k not in known})

@@ -1,0 +1,212 @@
+r"""Artefact calibration: error parameters from measured ball distances (papers 000 and 001).
+
+Linearised, the deviation of the distance between balls i and j of a pose is
+
+.. math::
+
+    \Delta d_{ij} = u_{ij}^T \, (e(q_j) - e(q_i)) + \nu_{ij}, \qquad e(q) = B(q)\, p,
+
+with :math:`u_{ij}` the nominal unit vector from ball i to ball j, :math:`B` the small-angle
+kinematic model's basis and :math:`\nu` the measurement noise: every probed centre off by
+``probing_um`` per coordinate, every calibrated ball of the artefact by ``ball_um`` (the
+same in every pose), plus a floor for what the linearisation leaves out.  The noise is
+therefore correlated (distances share balls, poses share the artefact); the parameters are
+found by generalised least squares, :math:`\hat p = (A^T \Sigma^{-1} A)^{-1} A^T \Sigma^{-1}
+\Delta d`, with standard uncertainties from :math:`(A^T \Sigma^{-1} A)^{-1}`.
+
+What a pose set cannot see is found before fitting: the parameters are taken in priority
+order and one whose whitened column is (numerically) a combination of those kept before
+is dropped, reported with the kept parameters it is confounded with.  Distances whose
+studentised residual exceeds ``outlier_z`` are flagged and the cycle is refitted without
+them.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy import linalg
+
+from .artefact import Setup, column, pairs
+
+FLOOR_UM = 0.02          # what the linearisation leaves out (second order: ~0.01 µm at 50 µm errors)
+DEPENDENT = 1e-6         # a column this close (relative) to the span of the kept ones is not seen
+
+
+@dataclass
+class Design:
+    """The linearised measurement model of a set-up: one row per (pose, ball pair)."""
+
+    columns: list[str]
+    rows: list[tuple[str, int, int]]
+    A: np.ndarray                  # (m, p) distance deviation per unit parameter (µm per unit)
+    cov: np.ndarray                # (m, m) noise covariance (µm²)
+
+
+def design(setup: Setup, floor_um: float = FLOOR_UM) -> Design:
+    """The measurement model of every pose and ball pair of ``setup``."""
+    model, array = setup.model, setup.array
+    nb = array.n_balls
+    ball_pairs = pairs(nb)
+    local = array.centres()
+    rows, blocks, probing, artefact = [], [], [], []
+    for k, pose in enumerate(setup.poses):
+        balls = pose.balls(array)
+        basis = model.basis(balls - model.tool)               # commands that put the TCP on a ball
+        for i, j in ball_pairs:
+            d = balls[j - 1] - balls[i - 1]
+            u = d / np.linalg.norm(d)
+            rows.append((pose.name, i, j))
+            blocks.append(u @ (basis[j - 1] - basis[i - 1]))
+            g = np.zeros((len(setup.poses), nb, 3))
+            g[k, j - 1], g[k, i - 1] = u, -u
+            probing.append(g.ravel())
+            w = local[j - 1] - local[i - 1]
+            h = np.zeros((nb, 3))
+            h[j - 1], h[i - 1] = w / np.linalg.norm(w), -w / np.linalg.norm(w)
+            artefact.append(h.ravel())
+    G, H = np.array(probing), np.array(artefact)
+    cov = (setup.probing_um ** 2) * G @ G.T + (setup.ball_um ** 2) * H @ H.T
+    cov[np.diag_indices_from(cov)] += floor_um ** 2
+    return Design([column(*r) for r in rows], rows, np.array(blocks), cov)
+
+
+@dataclass
+class Identifiability:
+    kept: list[int]
+    dropped: dict = field(default_factory=dict)     # name -> names it is confounded with
+
+
+def identifiability(A_white: np.ndarray, names: list[str]) -> Identifiability:
+    """Which parameters a (whitened) design sees, in the given priority order."""
+    norms = np.linalg.norm(A_white, axis=0)
+    scale = norms.max() if norms.size and norms.max() > 0 else 1.0
+    kept, dropped = [], {}
+    for j, name in enumerate(names):
+        col = A_white[:, j]
+        if norms[j] <= DEPENDENT * scale:
+            dropped[name] = []                            # no effect at all on these distances
+            continue
+        if kept:
+            coef, *_ = np.linalg.lstsq(A_white[:, kept], col, rcond=None)
+            residual = col - A_white[:, kept] @ coef
+            if np.linalg.norm(residual) <= DEPENDENT * norms[j]:
+                weight = np.abs(coef) * norms[kept]
+                order = np.argsort(weight)[::-1]
+                dropped[name] = [names[kept[k]] for k in order[:3] if weight[k] > 1e-3 * norms[j]]
+                continue
+        kept.append(j)
+    return Identifiability(kept, dropped)
+
+
+class ArtefactCalibration:
+    """Identify the error parameters of every measurement cycle.
+
+    Parameters
+    ----------
+    setup : Setup
+        Machine model, artefact, poses and uncertainties.
+    outlier_z : float
+        A distance whose studentised residual exceeds this is flagged and left out of its cycle.
+
+    Attributes
+    ----------
+    design_ : Design
+    names_ : list of str
+        The identified parameters (those the poses see), in model order.
+    unidentifiable_ : dict
+        Parameter -> the identified parameters it is confounded with ([] = no effect at all).
+    uncertainty_ : ndarray
+        Standard uncertainty of each identified parameter (one cycle, all distances).
+    """
+
+    def __init__(self, setup: Setup, outlier_z: float = 6.0):
+        self.setup = setup
+        self.outlier_z = outlier_z
+
+    def fit(self) -> ArtefactCalibration:
+        self.design_ = design(self.setup)
+        self._chol = linalg.cholesky(self.design_.cov, lower=True)
+        white = linalg.solve_triangular(self._chol, self.design_.A, lower=True)
+        names = self.setup.model.names
+        ident = identifiability(white, names)
+        self.kept_ = ident.kept
+        self.names_ = [names[j] for j in ident.kept]
+        self.unidentifiable_ = ident.dropped
+        Aw = white[:, self.kept_]
+        self.param_cov_ = np.linalg.inv(Aw.T @ Aw)
+        self.uncertainty_ = np.sqrt(np.diag(self.param_cov_))
+        # p = M d (all distances present); residual covariance for the studentised residuals
+        self._solve = self.param_cov_ @ Aw.T @ linalg.solve_triangular(
+            self._chol, np.eye(len(self.design_.rows)), lower=True)
+        A = self.design_.A[:, self.kept_]
+        resid_cov = self.design_.cov - A @ self.param_cov_ @ A.T
+        self._resid_sd = np.sqrt(np.clip(np.diag(resid_cov), 1e-12, None))
+        return self
+
+    def full(self, estimates: np.ndarray) -> np.ndarray:
+        """Identified parameters ``(..., k)`` -> the model's full vector (unseen ones at 0)."""
+        out = np.zeros(estimates.shape[:-1] + (len(self.setup.model.names),))
+        out[..., self.kept_] = estimates
+        return out
+
+    def predict(self, estimates: np.ndarray) -> np.ndarray:
+        """Distance deviations ``(..., m)`` of identified parameters ``(..., k)``."""
+        return estimates @ self.design_.A[:, self.kept_].T
+
+    def identify(self, distances: np.ndarray) -> tuple[np.ndarray, list[dict]]:
+        """Parameters ``(n_cycles, k)`` of distance deviations ``(n_cycles, m)`` (columns in
+        ``design_.columns`` order, NaN = not measured), and the flagged outliers
+        ``[{"cycle", "column", "residual_um", "z"}]``."""
+        D = np.atleast_2d(np.asarray(distances, float))
+        P = np.where(np.isfinite(D), D, 0.0) @ self._solve.T
+        flagged = []
+        for t in range(D.shape[0]):
+            mask = np.isfinite(D[t])
+            if mask.all():
+                z = (D[t] - self.predict(P[t])) / self._resid_sd
+                if np.max(np.abs(z)) <= self.outlier_z:
+                    continue
+            P[t], out = self._robust_cycle(D[t], mask)
+            flagged += [{"cycle": t, **o} for o in out]
+        return P, flagged
+
+    def _masked(self, d, mask):
+        """GLS of one cycle from the distances in ``mask``: estimate and studentised residuals."""
+        A = self.design_.A[np.ix_(mask, self.kept_)]
+        chol = linalg.cholesky(self.design_.cov[np.ix_(mask, mask)], lower=True)
+        Aw = linalg.solve_triangular(chol, A, lower=True)
+        dw = linalg.solve_triangular(chol, d[mask], lower=True)
+        try:
+            cov = np.linalg.inv(Aw.T @ Aw)
+        except np.linalg.LinAlgError as err:
+            raise ValueError("the distances left measured cannot identify the parameters") from err
+        p = cov @ Aw.T @ dw
+        r = d[mask] - A @ p
+        sd = np.sqrt(np.clip(np.diag(self.design_.cov[np.ix_(mask, mask)] - A @ cov @ A.T), 1e-12, None))
+        return p, r, r / sd
+
+    def _robust_cycle(self, d, mask):
+        """Leave out the worst distance while any studentised residual exceeds ``outlier_z``."""
+        mask = mask.copy()
+        out = []
+        while True:
+            p, r, z = self._masked(d, mask)
+            worst = int(np.argmax(np.abs(z)))
+            if abs(z[worst]) <= self.outlier_z or len(out) >= 0.1 * mask.size:
+                return p, out
+            idx = np.flatnonzero(mask)[worst]
+            out.append({"column": self.design_.columns[idx], "residual_um": float(r[worst]),
+                        "z": float(z[worst])})
+            mask[idx] = False
+
+
+def equivalent_truth(calibration: ArtefactCalibration, truth: np.ndarray) -> np.ndarray:
+    """The identified parameters' values that reproduce the distances of a full true parameter
+    vector (rows): the truth the estimates are to be compared with when a dropped parameter
+    is confounded with kept ones."""
+    A = calibration.design_.A
+    full = np.atleast_2d(truth) @ A.T
+    coef, *_ = np.linalg.lstsq(A[:, calibration.kept_], full.T, rcond=None)
+    return coef.T

@@ -1,0 +1,95 @@
+"""A volumetric dataset (distance columns + ``volumetric.json``) -> the parameter series dataset.
+
+A raw volumetric dataset is a dataset of the contract whose targets are the artefact's
+distance deviations ``E_<pose>_B<i>_B<j>`` (µm), one row per measurement cycle, with the
+temperatures of that cycle; ``volumetric.json`` in the folder says what was measured
+(:class:`~thermocomp.volumetric.artefact.Setup`).  Calibrating it gives a dataset of the
+same campaigns whose targets are the identified error parameters (``E_XX1`` ...), the
+input of the thermal model per parameter.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..io.contract import ContractError, Dataset
+from .artefact import COLUMN, SETUP_FILE, Setup
+from .identify import ArtefactCalibration
+
+
+def load_setup(folder) -> Setup | None:
+    """The set-up of a volumetric dataset folder, or None when it is not one."""
+    path = Path(folder) / SETUP_FILE
+    if not path.is_file():
+        return None
+    try:
+        return Setup.from_dict(json.loads(path.read_text()))
+    except (ValueError, KeyError, TypeError) as err:
+        raise ContractError(f"not a valid set-up: {err}", file=path) from err
+
+
+def check_columns(ds: Dataset, setup: Setup) -> None:
+    """Every distance the set-up declares is a column of every campaign; no stray distance columns.
+
+    Raises ContractError naming the campaign file, the pose and the balls.
+    """
+    declared = setup.columns()
+    known = set(declared)
+    poses = {p.name for p in setup.poses}
+    for cid, df in ds.campaigns.items():
+        file = ds.manifest.loc[cid, "file"] if "file" in ds.manifest else cid
+        have = set(df.columns)
+        for pose in setup.poses:
+            cols = [c for c in declared if c.startswith(f"E_{pose.name}_B")]
+            missing = [c for c in cols if c not in have]
+            if len(missing) == len(cols):
+                raise ContractError(f"pose {pose.name} (declared in {SETUP_FILE}) has no distance "
+                                    f"column (E_{pose.name}_B<i>_B<j>)", file=file)
+            if missing:
+                m = COLUMN.match(missing[0])
+                raise ContractError(f"pose {pose.name}: the distance of balls {int(m['i'])} and "
+                                    f"{int(m['j'])} is missing ({len(missing)} of {len(cols)} "
+                                    f"distances of this pose)", file=file, column=missing[0])
+        for c in df.columns:
+            m = COLUMN.match(c)
+            if m and c not in known:
+                why = (f"ball {max(int(m['i']), int(m['j']))} of {setup.array.n_balls}"
+                       if m["pose"] in poses else f"pose {m['pose']} not declared in {SETUP_FILE}")
+                raise ContractError(f"distance column of an unknown measurement: {why}", file=file,
+                                    column=c)
+
+
+def calibrate_dataset(ds: Dataset, setup: Setup, outlier_z: float = 6.0):
+    """``(parameter dataset, calibration, outliers)``.
+
+    The parameter dataset keeps every campaign's time, ``T_`` and ``S_`` columns and replaces
+    the distances by the identified parameters; ``outliers`` lists every flagged distance
+    with its campaign, time and studentised residual.
+    """
+    check_columns(ds, setup)
+    cal = ArtefactCalibration(setup, outlier_z=outlier_z).fit()
+    columns = cal.design_.columns
+    campaigns, outliers = {}, []
+    for cid, df in ds.campaigns.items():
+        P, flagged = cal.identify(df[columns].to_numpy(float))
+        keep = [c for c in df.columns if not c.startswith("E_")]
+        out = df[keep].copy()
+        out[[f"{n}" for n in cal.names_]] = pd.DataFrame(P, index=df.index, columns=cal.names_)
+        campaigns[cid] = out
+        for f in flagged:
+            m = COLUMN.match(f["column"])
+            outliers.append({"campaign": cid, "time": float(df["time"].iloc[f["cycle"]]),
+                             "row": int(f["cycle"]), "column": f["column"], "pose": m["pose"],
+                             "balls": [int(m["i"]), int(m["j"])],
+                             "residual_um": f["residual_um"], "z": f["z"]})
+    manifest = ds.manifest.copy()
+    return Dataset(manifest, campaigns, name=ds.name, meta=dict(ds.meta)), cal, outliers
+
+
+def distance_matrix(df: pd.DataFrame, cal: ArtefactCalibration) -> np.ndarray:
+    """A campaign's distance deviations in the calibration's column order."""
+    return df[cal.design_.columns].to_numpy(float)
