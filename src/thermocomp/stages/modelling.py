@@ -257,11 +257,21 @@ def evaluate(cfg: DictConfig) -> dict:
 
 
 def run(cfg: DictConfig) -> dict:
-    """ingest .. evaluate in one process (nothing written under data/)."""
+    """ingest .. evaluate in one process (nothing written under data/).
+
+    On a volumetric dataset (``volumetric.json`` in the folder) the distances are calibrated
+    into the error parameter series first, a thermal model is fitted per parameter, and
+    ``metrics.json`` gains the ``volumetric`` section (:mod:`thermocomp.volumetric.validation`).
+    """
     check_config(cfg)
     say(f"reading {resolve(cfg.data.path)}")
     clock = Clock()
     ds, report = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
+    volumetric = _calibrated(cfg, ds)
+    if volumetric is not None:
+        raw, (ds, cal, outliers) = ds, volumetric
+        report = {**report, "calibration": {"parameters": cal.names_, "outliers": len(outliers),
+                                            "unidentifiable": sorted(cal.unidentifiable_)}}
     clock.lap("read")
     with stage_run(cfg, "run") as tr:
         clock.lap("log")
@@ -269,12 +279,73 @@ def run(cfg: DictConfig) -> dict:
         comp = _fit(cfg, ds)
         fit_s = time.perf_counter() - t0
         clock.lap("fit")
+        extra, curves = {"fit_time_s": fit_s}, None
+        if volumetric is not None:
+            extra["volumetric"], curves = _volumetric(cfg, comp, raw, ds, cal)
+            clock.lap("volumetric")
 
         def stage_files(stage):  # committed with metrics.json, or not at all
             save_model(comp, stage / "model.pkl")
             write_json(stage / "ingest_report.json", report)
+            if curves is not None and cfg.plots != "none":
+                from ..volumetric.figures import draw_validation
 
-        metrics = _report(cfg, comp, ds, tr, clock, {"fit_time_s": fit_s}, stage_files)
+                draw_validation(stage / "volumetric", extra["volumetric"], curves)
+
+        metrics = _report(cfg, comp, ds, tr, clock, extra, stage_files)
         tr.log_metrics({"fit_time_s": fit_s})
+        if volumetric is not None:
+            tr.log_metrics(volumetric_headline(extra["volumetric"]))
         tr.log_artifact(resolve(cfg.out) / "model.pkl")
         return metrics
+
+
+def _calibrated(cfg: DictConfig, ds):
+    """``(parameter dataset, calibration, outliers)`` of a volumetric dataset, else None."""
+    from ..volumetric import calibrate_dataset, load_setup
+
+    setup = load_setup(resolve(cfg.data.path))
+    if setup is None:
+        return None
+    outlier_z = float((cfg.get("calibrate") or {}).get("outlier_z", 6.0))
+    say(f"volumetric dataset: calibrating {len(setup.poses)} poses x "
+        f"{setup.array.n_balls} balls into {len(setup.model.names)} error parameters")
+    return calibrate_dataset(ds, setup, outlier_z)
+
+
+def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal):
+    """The ``volumetric`` section on the test split, and the curves of its figures."""
+    import numpy as np
+
+    from ..evaluation import predict_split
+    from ..volumetric.series import distance_matrix
+    from ..volumetric.validation import volumetric_report
+
+    say("volumetric validation: distances, VE/VCE, trajectories, ISO 10791-10 A.3")
+    pairs = predict_split(comp, ds, "test", cfg.eval.mode)
+    changes, predicted, distances, times = {}, {}, {}, {}
+    for cid, (meas, pred) in pairs.items():
+        P = ds.campaigns[cid][cal.names_].to_numpy(float)
+        changes[cid] = P - P[:1]
+        predicted[cid] = np.column_stack([pred[n].to_numpy(float) if n in pred else np.zeros(len(P))
+                                          for n in cal.names_])
+        distances[cid] = distance_matrix(raw.campaigns[cid], cal)
+        times[cid] = ds.campaigns[cid]["time"].to_numpy(float)
+    models = {}
+    for name, est in comp.estimators_.items():
+        chosen = getattr(est, "chosen_", None) or {}
+        models[name] = {"n_inputs": int(chosen.get("n_inputs", len(comp.selected_[name]))),
+                        "ar": bool(chosen.get("ar", False))}
+    return volumetric_report(cal, distances, changes, predicted, times, models)
+
+
+def volumetric_headline(section: dict) -> dict:
+    """The volumetric figures logged as MLflow metrics (``volumetric.<block>.<figure>``)."""
+    out = {}
+    for block in ("distance_error", "vce"):
+        for k in ("rms_before", "rms_after"):
+            out[f"volumetric.{block}.{k}"] = section[block][k]
+    for k in ("range_before", "range_after"):
+        if section["iso_a3"].get(k) is not None:
+            out[f"volumetric.iso_a3.{k}"] = section["iso_a3"][k]
+    return out

@@ -1,0 +1,140 @@
+r"""Validation of the volumetric thermal twin on held-out campaigns (paper 000, Sects. 2.3-4.4).
+
+Everything is in the first-cycle frame of each campaign, as the thermal model predicts it:
+:math:`\Delta p(t)` is the change of the identified parameters since the campaign's first
+cycle, :math:`\Delta\hat p(t)` the thermal model's prediction of it.  Then
+
+* distance errors: before :math:`\Delta d(t)`, after :math:`\Delta d(t) - A\,\Delta\hat p(t)`
+  (every measured distance of every cycle), RMS and P2P;
+* VE/VCE on a 3D grid of commands (paper 001, Eqs. 4 and 7, in the thermal frame): before the
+  TCP error of :math:`\Delta p`, after that of :math:`\Delta p - \Delta\hat p`, RMS over grid
+  points and cycles;
+* TCP error along three mid-range trajectories, one per axis: per error direction, the
+  E_P95(σ) curve (the 95th percentile of the error's standard deviation over every window of
+  each length, pooled over the trajectory's points) before and after;
+* the ISO 10791-10 A.3 virtual test on the axial (Z) error at the volume's centre, started at
+  every cycle: the slot range before/after, mean and max;
+* per parameter (the paper's Table 1): P2P and RMS before, their reduction after, the number
+  of inputs and whether the autoregressive term was kept.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+from ..iso10791 import a3_report
+from ..metrics import e_p95, p2p, reduction_pct, window_lengths
+from .identify import ArtefactCalibration
+from .kinematics import AXES
+
+GRID = (20, 8, 8)
+TRAJECTORY_POINTS = 21
+
+
+def grid(model, shape=GRID) -> np.ndarray:
+    """(n, 3) commands on a regular grid over the travel ranges."""
+    axes = [np.linspace(*model.ranges[a], n) for a, n in zip(AXES, shape)]
+    return np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 3)
+
+
+def trajectory(model, axis: str, n: int = TRAJECTORY_POINTS) -> np.ndarray:
+    """(n, 3) commands along ``axis`` through the middle of the other two ranges."""
+    mid = np.array([0.5 * sum(model.ranges[a]) for a in AXES])
+    out = np.tile(mid, (n, 1))
+    out[:, AXES.index(axis)] = np.linspace(*model.ranges[axis], n)
+    return out
+
+
+def _rms(x) -> float:
+    x = np.asarray(x, float)
+    x = x[np.isfinite(x)]
+    return float(np.sqrt(np.mean(x ** 2))) if x.size else float("nan")
+
+
+def _pair(before, after) -> dict:
+    b, a = _rms(before), _rms(after)
+    return {"rms_before": b, "rms_after": a, "rms_reduction_pct": reduction_pct(b, a),
+            "p2p_before": p2p(np.ravel(before)), "p2p_after": p2p(np.ravel(after))}
+
+
+def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarray],
+                      changes: Mapping[str, np.ndarray], predicted: Mapping[str, np.ndarray],
+                      times: Mapping[str, np.ndarray], models: Mapping[str, dict],
+                      grid_shape=GRID, max_points: int | None = 60) -> tuple[dict, dict]:
+    """``(the metrics.json "volumetric" section, curves for the figures)``.
+
+    Parameters
+    ----------
+    cal : fitted ArtefactCalibration (its ``names_`` are the parameter columns)
+    distances : campaign -> (n, m) measured distance deviations (µm, absolute)
+    changes, predicted : campaign -> (n, k) identified parameter change since the first cycle,
+        and the thermal model's prediction of it (0 where a parameter is not modelled)
+    times : campaign -> (n,) s since the campaign start
+    models : parameter -> {"n_inputs": int, "ar": bool} of its thermal model
+    """
+    model = cal.setup.model
+    ids = list(changes)
+    full = {c: cal.full(changes[c]) for c in ids}
+    resid = {c: cal.full(changes[c] - predicted[c]) for c in ids}
+
+    d_before = {c: distances[c] - distances[c][:1] for c in ids}
+    d_after = {c: d_before[c] - cal.predict(predicted[c]) for c in ids}
+    out = {"campaigns": ids, "n_cycles": int(sum(len(times[c]) for c in ids)),
+           "distance_error": _pair(np.concatenate([d_before[c] for c in ids]),
+                                   np.concatenate([d_after[c] for c in ids]))}
+
+    basis = model.basis(grid(model, grid_shape))                         # (g, 3, p)
+    ve = np.concatenate([np.linalg.norm(basis @ full[c].T, axis=1).T for c in ids])     # (t, g)
+    vce = np.concatenate([np.linalg.norm(basis @ resid[c].T, axis=1).T for c in ids])
+    out["vce"] = {**_pair(ve, vce), "grid": list(grid_shape)}
+
+    curves = {"trajectories": {}, "iso_a3": None}
+    out["trajectories"] = {}
+    period = float(np.median(np.concatenate([np.diff(times[c]) for c in ids])))
+    longest = max(len(times[c]) for c in ids)
+    lengths = window_lengths(longest, max_points)
+    for axis in AXES:
+        tb = model.basis(trajectory(model, axis))                          # (s, 3, p)
+        entry = {}
+        for k, direction in enumerate(AXES):
+            before = [tb[:, k] @ full[c].T for c in ids]                   # (s, t) per campaign
+            after = [tb[:, k] @ resid[c].T for c in ids]
+            eb = e_p95([row for b in before for row in b], lengths, "std")
+            ea = e_p95([row for a in after for row in a], lengths, "std")
+            entry[f"E_{direction}"] = {
+                "window_s": (period * (lengths - 1)).tolist(), "before": eb.tolist(),
+                "after": ea.tolist(),
+                "whole_test_sigma_before": _rms([np.std(r) for b in before for r in b]),
+                "whole_test_sigma_after": _rms([np.std(r) for a in after for r in a])}
+        out["trajectories"][axis] = entry
+    curves["trajectories"] = out["trajectories"]
+
+    centre = model.basis(trajectory(model, "X", 3))[1:2, 2]                 # Z error at the centre
+    a3 = a3_report(dict(times), {c: (centre @ full[c].T)[0] for c in ids},
+                   {c: (centre @ resid[c].T)[0] for c in ids}, keep_curves=True)
+    summary = a3.get("summary")
+    if summary:
+        out["iso_a3"] = {"range_before": summary["range_before_mean"],
+                         "range_after": summary["range_after_mean"],
+                         "range_before_max": summary["range_before_max"],
+                         "range_after_max": summary["range_after_max"],
+                         "mean_reduction_pct": summary["mean_reduction_pct"],
+                         "n_starts": summary["n_starts"], "direction": "Z", "point": "volume centre"}
+        curves["iso_a3"] = {c: p["moving"] for c, p in a3["per_campaign"].items() if p["available"]}
+    else:
+        out["iso_a3"] = {"range_before": None, "range_after": None, "reason": a3.get("reason")}
+
+    params = {}
+    for j, name in enumerate(cal.names_):
+        before = np.concatenate([changes[c][:, j] for c in ids])
+        after = np.concatenate([changes[c][:, j] - predicted[c][:, j] for c in ids])
+        rb, ra = _rms(before), _rms(after)
+        params[name] = {"unit": model.parameters[cal.kept_[j]].unit,
+                        "p2p_before": p2p(before), "rms_before": rb, "p2p_after": p2p(after),
+                        "rms_after": ra, "reduction_pct": reduction_pct(rb, ra),
+                        "p2p_reduction_pct": reduction_pct(p2p(before), p2p(after)),
+                        **models.get(name, {"n_inputs": 0, "ar": False})}
+    out["parameters"] = params
+    return out, curves
