@@ -19,13 +19,22 @@ HEADLINE, DIAGNOSIS_HEADLINE = "headline", "diagnosis_headline"
 
 def evaluation_headline(metrics: dict) -> dict:
     """``{target: {test_rmse, test_rsd_mean, test_rsd_sd, rms_reduction_pct, val_rmse}}``
-    from a ``metrics.json`` document (``val_rmse`` null without validation)."""
+    from a ``metrics.json`` document (``val_rmse`` null without validation), plus
+    ``volumetric`` (distance and VCE RMS, A.3 range, before/after) for a volumetric run."""
     out = {}
     for t, m in metrics["targets"].items():
         te = m["test"]
         out[t] = {"test_rmse": te["rmse"], "test_rsd_mean": te["rsd_mean"], "test_rsd_sd": te["rsd_sd"],
                   "rms_reduction_pct": reduction_pct(te["rms_before"], te["rms_after"]),
                   "val_rmse": (m.get("validation") or {}).get("rmse")}
+    vol = metrics.get("volumetric")
+    if vol:  # a volumetric run: the twin's own figures (headline/volumetric.json)
+        out["volumetric"] = {
+            "distance_rms_before": vol["distance_error"]["rms_before"],
+            "distance_rms_after": vol["distance_error"]["rms_after"],
+            "vce_rms_before": vol["vce"]["rms_before"], "vce_rms_after": vol["vce"]["rms_after"],
+            "iso_a3_range_before": vol["iso_a3"].get("range_before"),
+            "iso_a3_range_after": vol["iso_a3"].get("range_after")}
     return out
 
 
