@@ -46,7 +46,7 @@ import numpy as np
 import pandas as pd
 
 from thermocomp.sim.large_mill import LargeMillWeek, moving_column_mill
-from thermocomp.sim.scenario import plain
+from thermocomp.sim.scenario import plain, single_threaded_blas
 from thermocomp.sim.thermoelastic import ThermoelasticMap
 from thermocomp.volumetric import SETUP_FILE, BallArray, KinematicModel, Setup, position_set
 from thermocomp.volumetric.artefact import pairs
@@ -224,6 +224,10 @@ class LargeMillVolumetric(LargeMillWeek):
         setup = self.setup_ = self.setup()
         model = setup.model
         ds, truth = super().generate()
+        with single_threaded_blas():
+            return self._measure(ds, truth, setup, model)
+
+    def _measure(self, ds, truth, setup, model):
         rng = np.random.default_rng([int(self.seed), zlib.crc32(SCENARIO.encode())])
         cold_rng, ball_rng, probe_rng = rng.spawn(3)
         cold = self.cold_geometry(model, cold_rng)

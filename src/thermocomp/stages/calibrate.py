@@ -34,6 +34,7 @@ from ..errors import ConfigError, ContractError
 from ..files import staged_outputs, write_json
 from ..log import logger
 from ..paths import resolve
+from ..sim.scenario import single_threaded_blas
 from ..tracking import stage_run
 from ..volumetric import SETUP_FILE, ArtefactCalibration, check_columns, equivalent_truth, load_setup
 from ..volumetric.artefact import COLUMN
@@ -200,7 +201,8 @@ def calibrate(cfg: DictConfig) -> dict:
     root = resolve(cfg.data.path)
     say(f"reading {root}")
     with stage_run(cfg, "calibrate") as tr:
-        params, cal, report, _ = calibrate_folder(root, c, data_options(cfg))
+        with single_threaded_blas():      # 1430-wide matrices: threads on 2 busy cores only thrash
+            params, cal, report, _ = calibrate_folder(root, c, data_options(cfg))
         truth_path = Path(f"{root}.truth.json")
         if truth_path.is_file():
             result = {cid: (params.campaigns[cid][cal.names_].to_numpy(), None) for cid in params.campaigns}
