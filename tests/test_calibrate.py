@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import refused
+from conftest import ROOT, refused
 from thermocomp import io
 from thermocomp.cli import main
 from thermocomp.files import write_json
@@ -252,3 +252,25 @@ def test_bad_calibrate_config_is_refused(raw, tmp_path, capsys):
         refused(["calibrate", f"data.path={raw}", f"out={tmp_path / 'out'}", "track=false", bad],
                 capsys, says)
     _untouched(tmp_path / "out")
+
+
+def test_every_calibrate_key_is_documented(raw, clean, tmp_path):
+    import yaml
+
+    from test_docs import CLI, DATA_FORMAT, _documented
+
+    keys = yaml.safe_load((ROOT / "conf" / "calibrate" / "default.yaml").read_text())
+    assert not [k for k in keys if f"| `calibrate.{k}` |" not in CLI]
+    data = copy(raw, tmp_path)          # an outlier and an excluded column: every key shows
+    edit(data, "train_week", lambda df: df.__setitem__("E_S1x2d1_B01_B11", df["E_S1x2d1_B01_B11"] + 1e3))
+    edit(data, "train_week", lambda df: df.__setitem__("E_S2x1d3_B04_B09", df["E_S2x1d3_B04_B09"]
+                                                       + np.r_[1e3, np.zeros(len(df) - 1)]))
+    report = calibrate(data, tmp_path / "out")
+    assert report["outliers"] and report["excluded"]
+    found = (set(report) | set(report["roundtrip"]) | set(next(iter(report["parameters"].values())))
+             | set(report["outliers"][0]) | set(report["excluded"][0]))
+    assert not sorted(k for k in found if not _documented(k, CLI))
+    setup = json.loads((raw / SETUP_FILE).read_text())
+    fields = set(setup) | set(setup["machine"]) | set(setup["artefact"]) | set(setup["poses"][0]) \
+        | set(setup["uncertainty_um"])
+    assert not sorted(k for k in fields if not _documented(k, DATA_FORMAT))
