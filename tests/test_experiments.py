@@ -18,6 +18,7 @@ EXPERIMENTS = {
     "arx_bicc_large_mill": ("large_mill_week", "arx", "all", "none"),
     "arx_rf_swiss_door": ("swiss_lathe_door", "arx_rf", "all", "emd"),
     "lstm_yearround": ("yearround_spindle", "lstm", "all", "none"),
+    "volumetric_large_mill": ("large_mill_volumetric", "arx", "all", "none"),
 }
 
 

@@ -88,11 +88,13 @@ class Dataset:
                        self.name, dict(self.meta))
 
 
-def write_dataset(ds: Dataset, path: str | os.PathLike, fmt: str = "csv") -> Path:
+def write_dataset(ds: Dataset, path: str | os.PathLike, fmt: str = "csv",
+                  files: dict[str, str] | None = None) -> Path:
     """Write ``ds`` as a dataset folder in the contract (atomically).
 
     ``fmt`` is ``'csv'`` or ``'parquet'`` for the campaign files; the manifest
-    is always ``campaigns.csv``.
+    is always ``campaigns.csv``.  ``files``: more files of the folder, name -> text
+    (a volumetric dataset's ``volumetric.json``).
     """
     if fmt not in ("csv", "parquet"):
         raise ValueError(f"unknown campaign file format {fmt!r}")
@@ -109,4 +111,6 @@ def write_dataset(ds: Dataset, path: str | os.PathLike, fmt: str = "csv") -> Pat
                 df.to_parquet(tmp / f"{cid}.parquet", index=False)
         cols = ["file", "split"] + [c for c in manifest.columns if c not in ("file", "split")]
         manifest[cols].reset_index().to_csv(tmp / MANIFEST, index=False)
+        for name, text in (files or {}).items():
+            (tmp / name).write_text(text)
     return path

@@ -18,7 +18,8 @@ STAGES = {"simulate": "simulate:simulate", "ingest": "ingest:ingest", "denoise":
           "select": "select:select", "train": "modelling:train", "evaluate": "modelling:evaluate",
           "diagnose": "diagnose:diagnose", "run": "modelling:run", "compare": "compare:compare",
           "promote": "promote:promote", "replay": "replay:replay", "serve": "serve:serve",
-          "monitor": "monitor:monitor"}
+          "monitor": "monitor:monitor",
+          "calibrate": "calibrate:calibrate"}
 
 
 def stage(name: str):

@@ -21,7 +21,9 @@ def simulate(cfg: DictConfig) -> dict:
     say(f"simulating {cfg.sim.name} ...")
     ds, truth = generator.generate()
     path = resolve(cfg.data.path)
-    io.write_dataset(ds, path)
+    # a scenario may ask for Parquet files and more files in the folder (volumetric.json)
+    io.write_dataset(ds, path, getattr(generator, "file_format", "csv"),
+                     generator.dataset_files() if hasattr(generator, "dataset_files") else None)
     truth_path = write_json(f"{path}.truth.json", truth)
     rows = int(sum(len(df) for df in ds.campaigns.values()))
     say(f"wrote {len(ds.campaigns)} campaigns, {rows} rows to {path} "

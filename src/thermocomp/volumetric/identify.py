@@ -4,10 +4,12 @@ Linearised, the deviation of the distance between balls i and j of a pose is
 
 .. math::
 
-    \Delta d_{ij} = u_{ij}^T \, (e(q_j) - e(q_i)) + \nu_{ij}, \qquad e(q) = B(q)\, p,
+    \Delta d_{ij} = -u_{ij}^T \, (e(q_j) - e(q_i)) + \nu_{ij}, \qquad e(q) = B(q)\, p,
 
 with :math:`u_{ij}` the nominal unit vector from ball i to ball j, :math:`B` the small-angle
-kinematic model's basis and :math:`\nu` the measurement noise: every probed centre off by
+kinematic model's basis and :math:`\nu` the measurement noise.  The minus: the machine
+reads a ball at the command :math:`q` whose actual TCP :math:`q + e(q)` is on it, so its
+reading is the ball's centre minus the error there.  Every probed centre is off by
 ``probing_um`` per coordinate, every calibrated ball of the artefact by ``ball_um`` (the
 same in every pose), plus a floor for what the linearisation leaves out.  The noise is
 therefore correlated (distances share balls, poses share the artefact); the parameters are
@@ -58,7 +60,7 @@ def design(setup: Setup, floor_um: float = FLOOR_UM) -> Design:
             d = balls[j - 1] - balls[i - 1]
             u = d / np.linalg.norm(d)
             rows.append((pose.name, i, j))
-            blocks.append(u @ (basis[j - 1] - basis[i - 1]))
+            blocks.append(-u @ (basis[j - 1] - basis[i - 1]))   # reading = centre - error
             g = np.zeros((len(setup.poses), nb, 3))
             g[k, j - 1], g[k, i - 1] = u, -u
             probing.append(g.ravel())
@@ -166,25 +168,40 @@ class ArtefactCalibration:
             mask = np.isfinite(D[t])
             if mask.all():
                 z = (D[t] - self.predict(P[t])) / self._resid_sd
-                if np.max(np.abs(z)) <= self.outlier_z:
-                    continue
+            else:                       # the same gaps in many cycles: one solver (cached)
+                P[t], _, z = self._masked(D[t], mask)
+            if np.max(np.abs(z)) <= self.outlier_z:
+                continue
             P[t], out = self._robust_cycle(D[t], mask)
             flagged += [{"cycle": t, **o} for o in out]
         return P, flagged
 
+    def _solver(self, mask):
+        """``(M, A, sd)`` of the GLS from the distances in ``mask``: estimate ``M @ d[mask]``,
+        model ``A``, standard deviation of each residual; cached per mask."""
+        cache = self.__dict__.setdefault("_solvers", {})
+        key = mask.tobytes()
+        if key not in cache:
+            A = self.design_.A[np.ix_(mask, self.kept_)]
+            cov_d = self.design_.cov[np.ix_(mask, mask)]
+            chol = linalg.cholesky(cov_d, lower=True)
+            Aw = linalg.solve_triangular(chol, A, lower=True)
+            try:
+                cov = np.linalg.inv(Aw.T @ Aw)
+            except np.linalg.LinAlgError as err:
+                raise ValueError("the distances left measured cannot identify the parameters") from err
+            M = cov @ linalg.solve_triangular(chol, Aw, lower=True, trans="T").T     # cov A' S^-1
+            sd = np.sqrt(np.clip(np.diag(cov_d) - np.einsum("ij,jk,ik->i", A, cov, A), 1e-12, None))
+            if len(cache) >= 64:
+                cache.pop(next(iter(cache)))
+            cache[key] = (M, A, sd)
+        return cache[key]
+
     def _masked(self, d, mask):
-        """GLS of one cycle from the distances in ``mask``: estimate and studentised residuals."""
-        A = self.design_.A[np.ix_(mask, self.kept_)]
-        chol = linalg.cholesky(self.design_.cov[np.ix_(mask, mask)], lower=True)
-        Aw = linalg.solve_triangular(chol, A, lower=True)
-        dw = linalg.solve_triangular(chol, d[mask], lower=True)
-        try:
-            cov = np.linalg.inv(Aw.T @ Aw)
-        except np.linalg.LinAlgError as err:
-            raise ValueError("the distances left measured cannot identify the parameters") from err
-        p = cov @ Aw.T @ dw
+        """GLS of one cycle from the distances in ``mask``: estimate, residuals, studentised."""
+        M, A, sd = self._solver(mask)
+        p = M @ d[mask]
         r = d[mask] - A @ p
-        sd = np.sqrt(np.clip(np.diag(self.design_.cov[np.ix_(mask, mask)] - A @ cov @ A.T), 1e-12, None))
         return p, r, r / sd
 
     def _robust_cycle(self, d, mask):

@@ -1,0 +1,276 @@
+"""`thermocomp calibrate`: the round trip (core and CLI), and bad artefact data."""
+
+from __future__ import annotations
+
+import json
+import shutil
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import ROOT, refused
+from thermocomp import io
+from thermocomp.cli import main
+from thermocomp.files import write_json
+from thermocomp.sim.volumetric import LargeMillVolumetric, simulate_distances
+from thermocomp.volumetric import (
+    SETUP_FILE,
+    ArtefactCalibration,
+    BallArray,
+    KinematicModel,
+    Setup,
+    equivalent_truth,
+    position_set,
+)
+
+
+# --- core: random geometry -> distances -> parameters -----------------------------------------
+
+@pytest.fixture(scope="module")
+def default_calibration():
+    model = KinematicModel()
+    setup = Setup(model, BallArray(), position_set(ranges=model.ranges))
+    return setup, ArtefactCalibration(setup).fit()
+
+
+def test_round_trip_random_parameters_within_2u(default_calibration):
+    """Machines drawn at random, each measured with its own artefact (ball errors) and probing
+    noise through the full HTM model: >= 95 % of the identified values are within 2 standard
+    uncertainties of the truth they can be compared with, and the uncertainties are the spread."""
+    setup, cal = default_calibration
+    rng = np.random.default_rng(20240)
+    z = []
+    for _ in range(60):
+        truth = rng.normal(0.0, 10.0, (2, len(setup.model.names)))      # µm, µm/m
+        balls = setup.ball_um * rng.standard_normal((setup.array.n_balls, 3))
+        P, flagged = cal.identify(simulate_distances(setup, truth, rng, balls))
+        assert not flagged
+        z.append((P - equivalent_truth(cal, truth)) / cal.uncertainty_)
+    z = np.vstack(z)
+    assert np.mean(np.abs(z) <= 2.0) >= 0.95
+    assert 0.9 < np.std(z) < 1.1
+    assert np.all(0.75 < np.std(z, axis=0)) and np.all(np.std(z, axis=0) < 1.3)
+
+
+def test_unidentifiable_parameters_are_named_with_what_they_hide_behind(default_calibration):
+    setup, cal = default_calibration
+    names = setup.model.names
+    assert sorted(cal.names_ + list(cal.unidentifiable_)) == sorted(names)
+    basis = setup.model.basis(np.random.default_rng(0).uniform([0, 0, 0], [4000, 1600, 1600], (50, 3)))
+    for name, confounded in cal.unidentifiable_.items():
+        assert set(confounded) <= set(cal.names_)
+        if not confounded:       # no effect on the TCP at all, wherever it is
+            assert np.allclose(basis[..., names.index(name)], 0.0)
+    # every translation (positioning, straightness, squareness) is seen by S1+S2+S3
+    assert all(p.angular for p in setup.model.parameters if p.name in cal.unidentifiable_)
+
+
+# --- the CLI on a small simulated dataset ------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def raw(tmp_path_factory):
+    """A small volumetric dataset (6 h + 4 h, a cycle every 20 min) and its truth."""
+    gen = LargeMillVolumetric(train_hours=6.0, test_hours=4.0, seed=0)
+    ds, truth = gen.generate()
+    path = tmp_path_factory.mktemp("vol") / "raw"
+    io.write_dataset(ds, path, gen.file_format, gen.dataset_files())
+    write_json(f"{path}.truth.json", truth)
+    return path
+
+
+def copy(raw, tmp_path, truth=True):
+    dest = tmp_path / "raw"
+    shutil.copytree(raw, dest)
+    if truth:
+        shutil.copy(f"{raw}.truth.json", f"{dest}.truth.json")
+    return dest
+
+
+def calibrate(data, out, *extra):
+    code = main(["calibrate", f"data.path={data}", f"out={out}", "track=false", *extra])
+    assert code in (0, None)
+    return json.loads((out / "calibration.json").read_text())
+
+
+def edit(data, campaign, fn):
+    f = data / f"{campaign}.parquet"
+    df = pd.read_parquet(f)
+    fn(df)
+    df.to_parquet(f, index=False)
+
+
+@pytest.fixture(scope="module")
+def clean(raw, tmp_path_factory):
+    out = tmp_path_factory.mktemp("clean")
+    return calibrate(raw, out), out
+
+
+def test_calibration_json_and_the_parameter_dataset(raw, clean, capsys):
+    report, out = clean
+    setup = Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
+    cal = ArtefactCalibration(setup).fit()
+    assert list(report)[:2] == ["parameters", "roundtrip"]
+    assert set(report["parameters"]) == set(cal.names_)
+    for name, p in report["parameters"].items():
+        assert p["unit"] == ("µm/m" if name[2] in "ABC" else "µm") and p["uncertainty"] > 0
+    assert set(report["roundtrip"]) >= {"n_parameters", "max_abs_z", "share_within_2u"}
+    assert {k: set(v) for k, v in report["unidentifiable"].items()} == {
+        k: set(v) for k, v in cal.unidentifiable_.items()}        # (ties in any order)
+    assert report["outliers"] == [] and report["excluded"] == []
+    assert report["poses"] == [p.name for p in setup.poses]
+    ds, _ = io.read_dataset(out / "parameters")
+    raw_ds, _ = io.read_dataset(raw)
+    assert list(ds.manifest.index) == list(raw_ds.manifest.index)
+    assert dict(ds.manifest["split"]) == {"train_week": "train", "validation_week": "test"}
+    truth = json.loads(raw.with_name("raw.truth.json").read_text())
+    z = []
+    for cid, df in ds.campaigns.items():
+        assert [c for c in df.columns if c.startswith("E_")] == cal.names_
+        T = [c for c in raw_ds.campaigns[cid].columns if c.startswith("T_")]
+        assert np.array_equal(df[T].to_numpy(), raw_ds.campaigns[cid][T].to_numpy())
+        full = np.column_stack([truth["campaigns"][cid]["parameters"][n] for n in setup.model.names])
+        z.append((df[cal.names_].to_numpy() - equivalent_truth(cal, full)) / cal.uncertainty_)
+    z = np.vstack(z)
+    rt = report["roundtrip"]
+    # the round trip is the dataset's against its truth, every parameter and cycle
+    assert rt["n_parameters"] == len(cal.names_)
+    assert rt["max_abs_z"] == pytest.approx(np.max(np.abs(z)))
+    assert rt["share_within_2u"] == pytest.approx(np.mean(np.abs(z) <= 2))
+    # one artefact for the whole dataset: its ball errors bias each parameter for every cycle,
+    # so the dataset's z spread is that of ~22 draws; still of unit size
+    assert 0.6 < rt["z_sd"] < 1.5
+
+
+def test_no_truth_no_round_trip(raw, tmp_path):
+    data = copy(raw, tmp_path, truth=False)
+    report = calibrate(data, tmp_path / "out")
+    assert "roundtrip" not in report and "parameters" in report
+
+
+def test_one_distance_off_by_1_mm_is_an_outlier_of_its_cycle(raw, clean, tmp_path):
+    data = copy(raw, tmp_path)
+    column = "E_S2x1d3_B04_B09"
+    edit(data, "validation_week", lambda df: df.__setitem__(column, df[column] + np.r_[0, 0, 1000.0,
+                                                                                       np.zeros(len(df) - 3)]))
+    report = calibrate(data, tmp_path / "out")
+    [o] = report["outliers"]
+    assert (o["campaign"], o["row"], o["pose"], o["balls"], o["column"]) == (
+        "validation_week", 3, "S2x1d3", [4, 9], column)
+    assert o["residual_um"] == pytest.approx(1000.0, abs=20) and o["z"] > 6
+    assert report["excluded"] == []
+    # the cycle is identified from its other distances: as without the bad one
+    ref, ref_out = clean
+    names = list(ref["parameters"])
+    u = np.array([ref["parameters"][n]["uncertainty"] for n in names])
+    a = pd.read_parquet(tmp_path / "out" / "parameters" / "validation_week.parquet")[names]
+    b = pd.read_parquet(ref_out / "parameters" / "validation_week.parquet")[names]
+    assert np.all(np.abs(a.iloc[2] - b.iloc[2]) < 0.5 * u)
+    assert np.array_equal(a.drop(index=2).to_numpy(), b.drop(index=2).to_numpy())
+
+
+def test_a_whole_column_off_by_1_mm_is_excluded_and_named(raw, clean, tmp_path):
+    data = copy(raw, tmp_path)
+    column = "E_S1x2d1_B01_B11"
+    for cid in ("train_week", "validation_week"):
+        edit(data, cid, lambda df: df.__setitem__(column, df[column] - 1000.0))
+    report = calibrate(data, tmp_path / "out")
+    [x] = report["excluded"]
+    assert (x["column"], x["pose"], x["balls"]) == (column, "S1x2d1", [1, 11])
+    assert x["cycles_flagged"] == report["n_cycles"] and x["share"] == 1.0
+    assert report["outliers"] == []             # once excluded, no cycle flags it again
+    ref, _ = clean
+    u = np.array([ref["parameters"][n]["uncertainty"] for n in ref["parameters"]])
+    for cid in ("train_week", "validation_week"):
+        a = pd.read_parquet(tmp_path / "out" / "parameters" / f"{cid}.parquet")[list(ref["parameters"])]
+        b = pd.read_parquet(clean[1] / "parameters" / f"{cid}.parquet")[list(ref["parameters"])]
+        assert np.all(np.abs(a.to_numpy() - b.to_numpy()) < 0.5 * u)
+    # with a share above what the column reached, it is flagged cycle by cycle instead
+    report = calibrate(data, tmp_path / "out2", "calibrate.column_share=1.0")
+    assert report["excluded"] == [] and len(report["outliers"]) == report["n_cycles"]
+    assert {o["column"] for o in report["outliers"]} == {column}
+
+
+def _untouched(out):
+    assert not out.exists() or (out / "calibration.json").read_text() == "old"
+
+
+def test_a_missing_pose_is_refused_naming_it(raw, tmp_path, capsys):
+    data = copy(raw, tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "calibration.json").write_text("old")
+    edit(data, "validation_week",
+         lambda df: df.drop(columns=[c for c in df.columns if c.startswith("E_S3x2d4_")], inplace=True))
+    refused(["calibrate", f"data.path={data}", f"out={out}", "track=false"], capsys,
+            "pose S3x2d4", "validation_week.parquet")
+    _untouched(out)
+    assert not (out / "parameters").exists()
+
+
+def _keep_poses(data, keep):
+    setup = json.loads((data / SETUP_FILE).read_text())
+    setup["poses"] = [p for p in setup["poses"] if p["name"] in keep]
+    (data / SETUP_FILE).write_text(json.dumps(setup))
+    for cid in ("train_week", "validation_week"):
+        edit(data, cid, lambda df: df.drop(columns=[c for c in df.columns if c.startswith("E_")
+                                                    and c.split("_")[1] not in keep], inplace=True))
+
+
+def test_too_few_poses_are_refused_naming_what_they_cannot_see(raw, tmp_path, capsys):
+    data = copy(raw, tmp_path)
+    out = tmp_path / "out"
+    _keep_poses(data, {"S1x1d1", "S1x1d2", "S1x1d3"})            # the three axes, once
+    line = refused(["calibrate", f"data.path={data}", f"out={out}", "track=false"], capsys,
+                   "S1x1d1, S1x1d2, S1x1d3", "cannot see", "E_XY1 (straightness)", SETUP_FILE)
+    assert "E_XX1" not in line                   # the positioning errors the axes do see
+    _untouched(out)
+    # only the volume diagonals: the positioning of Y is not seen
+    data = copy(raw, tmp_path / "s2")
+    _keep_poses(data, {f"S2x{i}d{k}" for i in (1, 2) for k in (1, 2, 3, 4)})
+    refused(["calibrate", f"data.path={data}", f"out={out}", "track=false"], capsys,
+            "E_YY1 (positioning)", "S2x1d1")
+    _untouched(out)
+    # accepted on request: what they cannot see is then named in calibration.json
+    report = calibrate(data, out, "calibrate.require_seen=[]")
+    assert "E_YY1" in report["unidentifiable"] and "E_YY1" not in report["parameters"]
+
+
+def test_a_dataset_without_setup_is_refused(raw, tmp_path, capsys):
+    data = copy(raw, tmp_path)
+    (data / SETUP_FILE).unlink()
+    refused(["calibrate", f"data.path={data}", f"out={tmp_path / 'out'}", "track=false"], capsys,
+            "not a volumetric dataset", SETUP_FILE)
+    _untouched(tmp_path / "out")
+
+
+def test_bad_calibrate_config_is_refused(raw, tmp_path, capsys):
+    for bad, says in (("calibrate.outlier_z=0", "calibrate.outlier_z"),
+                      ("calibrate.column_share=2", "calibrate.column_share"),
+                      ("calibrate.format=xlsx", "calibrate.format"),
+                      ("calibrate.require_seen=[squareness]", "calibrate.require_seen")):
+        refused(["calibrate", f"data.path={raw}", f"out={tmp_path / 'out'}", "track=false", bad],
+                capsys, says)
+    _untouched(tmp_path / "out")
+
+
+def test_every_calibrate_key_is_documented(raw, clean, tmp_path):
+    import yaml
+
+    from test_docs import CLI, DATA_FORMAT, _documented
+
+    keys = yaml.safe_load((ROOT / "conf" / "calibrate" / "default.yaml").read_text())
+    assert not [k for k in keys if f"| `calibrate.{k}` |" not in CLI]
+    data = copy(raw, tmp_path)          # an outlier and an excluded column: every key shows
+    edit(data, "train_week", lambda df: df.__setitem__("E_S1x2d1_B01_B11", df["E_S1x2d1_B01_B11"] + 1e3))
+    edit(data, "train_week", lambda df: df.__setitem__("E_S2x1d3_B04_B09", df["E_S2x1d3_B04_B09"]
+                                                       + np.r_[1e3, np.zeros(len(df) - 1)]))
+    report = calibrate(data, tmp_path / "out")
+    assert report["outliers"] and report["excluded"]
+    found = (set(report) | set(report["roundtrip"]) | set(next(iter(report["parameters"].values())))
+             | set(report["outliers"][0]) | set(report["excluded"][0]))
+    assert not sorted(k for k in found if not _documented(k, CLI))
+    setup = json.loads((raw / SETUP_FILE).read_text())
+    fields = set(setup) | set(setup["machine"]) | set(setup["artefact"]) | set(setup["poses"][0]) \
+        | set(setup["uncertainty_um"])
+    assert not sorted(k for k in fields if not _documented(k, DATA_FORMAT))
