@@ -18,17 +18,33 @@ from sklearn.base import clone
 from .. import io
 from ..compensator import Compensator
 from ..continuation import carry_over
-from ..evaluation import (VAL_FOLDS, ambient_by_campaign, anova, ati_report,
-                          mutual_prediction_report, predict_split, require_split, score,
-                          validation_report)
+from ..evaluation import (
+    VAL_FOLDS,
+    ambient_by_campaign,
+    anova,
+    ati_report,
+    mutual_prediction_report,
+    predict_split,
+    require_split,
+    score,
+    validation_report,
+)
 from ..files import inside, safe_name, staged_outputs, write_json
 from ..headline import HEADLINE, evaluation_headline, write_headline
 from ..iso10791 import a3_campaign
 from ..paths import resolve
 from ..tracking import headline_metrics, stage_run
 from .artifacts import fit_from_artifacts
-from .common import (Clock, build_compensator, check_config, data_options, load_model,
-                     result_table, save_model, say)
+from .common import (
+    Clock,
+    build_compensator,
+    check_config,
+    data_options,
+    load_model,
+    result_table,
+    save_model,
+    say,
+)
 
 
 def _fit(cfg: DictConfig, ds) -> Compensator:
@@ -266,12 +282,12 @@ def run(cfg: DictConfig) -> dict:
     check_config(cfg)
     say(f"reading {resolve(cfg.data.path)}")
     clock = Clock()
-    ds, report = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
-    volumetric = _calibrated(cfg, ds)
-    if volumetric is not None:
-        raw, (ds, cal, outliers) = ds, volumetric
-        report = {**report, "calibration": {"parameters": cal.names_, "outliers": len(outliers),
-                                            "unidentifiable": sorted(cal.unidentifiable_)}}
+    volumetric = _calibrated(cfg)
+    if volumetric is None:
+        ds, report = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
+    else:
+        ds, cal, calibration, raw = volumetric
+        report = {"dataset": raw.name, "calibration": calibration}
     clock.lap("read")
     with stage_run(cfg, "run") as tr:
         clock.lap("log")
@@ -300,17 +316,20 @@ def run(cfg: DictConfig) -> dict:
         return metrics
 
 
-def _calibrated(cfg: DictConfig, ds):
-    """``(parameter dataset, calibration, outliers)`` of a volumetric dataset, else None."""
-    from ..volumetric import calibrate_dataset, load_setup
+def _calibrated(cfg: DictConfig):
+    """``(parameter dataset, calibration, its report, distance dataset)`` of a volumetric dataset
+    (``volumetric.json`` in ``data.path``), calibrated as ``thermocomp calibrate`` does; else None."""
+    from ..sim.scenario import single_threaded_blas
+    from ..volumetric import SETUP_FILE
+    from .calibrate import calibrate_folder, check_calibrate
 
-    setup = load_setup(resolve(cfg.data.path))
-    if setup is None:
+    root = resolve(cfg.data.path)
+    if not (root / SETUP_FILE).is_file():
         return None
-    outlier_z = float((cfg.get("calibrate") or {}).get("outlier_z", 6.0))
-    say(f"volumetric dataset: calibrating {len(setup.poses)} poses x "
-        f"{setup.array.n_balls} balls into {len(setup.model.names)} error parameters")
-    return calibrate_dataset(ds, setup, outlier_z)
+    check_calibrate(cfg.calibrate)
+    say("volumetric dataset: calibrating the artefact distances into the error parameters")
+    with single_threaded_blas():
+        return calibrate_folder(root, cfg.calibrate, data_options(cfg))
 
 
 def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal):
@@ -336,7 +355,32 @@ def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal):
         chosen = getattr(est, "chosen_", None) or {}
         models[name] = {"n_inputs": int(chosen.get("n_inputs", len(comp.selected_[name]))),
                         "ar": bool(chosen.get("ar", False))}
-    return volumetric_report(cal, distances, changes, predicted, times, models)
+    return volumetric_report(cal, distances, changes, predicted, times, models,
+                             _true_changes(cfg, cal, times))
+
+
+def _true_changes(cfg: DictConfig, cal, times: dict):
+    """Campaign -> the true change of every parameter since the first cycle, from
+    ``<data.path>.truth.json`` when the data were simulated (and it matches), else None."""
+    import json
+    from pathlib import Path
+
+    import numpy as np
+
+    path = Path(f"{resolve(cfg.data.path)}.truth.json")
+    if not path.is_file():
+        return None
+    names = cal.setup.model.names
+    out = {}
+    for cid, t in times.items():
+        series = ((json.loads(path.read_text()).get("campaigns") or {}).get(cid) or {}).get("parameters")
+        if not series or set(series) != set(names) or len(series[names[0]]) != len(t):
+            say(f"{path} does not hold campaign {cid}'s parameter series: VCE against the "
+                "identified parameters")
+            return None
+        P = np.column_stack([series[n] for n in names])
+        out[cid] = P - P[:1]
+    return out
 
 
 def volumetric_headline(section: dict) -> dict:

@@ -4,8 +4,8 @@ the parameter series of a thermal test, and the calibration design study."""
 from .artefact import SETUP_FILE, BallArray, Pose, Setup, position_set
 from .identify import ArtefactCalibration, design, equivalent_truth
 from .kinematics import KinematicModel, Parameter, parameter_list
-from .series import calibrate_dataset, check_columns, load_setup
+from .series import check_columns, load_setup
 
 __all__ = ["SETUP_FILE", "ArtefactCalibration", "BallArray", "KinematicModel", "Parameter", "Pose",
-           "Setup", "calibrate_dataset", "check_columns", "design", "equivalent_truth", "load_setup",
+           "Setup", "check_columns", "design", "equivalent_truth", "load_setup",
            "parameter_list", "position_set"]

@@ -36,7 +36,7 @@ def iso_a3_plot(curves: dict, path) -> Path:
         ax.plot(h, mv["range_after"], color=AFTER, lw=1.2, label="after" if k == 0 else None)
     ax.set_xlabel("start of the 15 h A.3 test (h)")
     ax.set_ylabel("Z slot range (µm)")
-    ax.set_title("ISO 10791-10 A.3 virtual test at the volume centre")
+    ax.set_title("ISO 10791-10 A.3 virtual test, test piece on the table")
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     fig.tight_layout()

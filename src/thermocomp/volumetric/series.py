@@ -1,11 +1,11 @@
-"""A volumetric dataset (distance columns + ``volumetric.json``) -> the parameter series dataset.
+"""Reading a volumetric dataset: its set-up (``volumetric.json``) and its distance columns.
 
 A raw volumetric dataset is a dataset of the contract whose targets are the artefact's
 distance deviations ``E_<pose>_B<i>_B<j>`` (µm), one row per measurement cycle, with the
 temperatures of that cycle; ``volumetric.json`` in the folder says what was measured
 (:class:`~thermocomp.volumetric.artefact.Setup`).  Calibrating it gives a dataset of the
 same campaigns whose targets are the identified error parameters (``E_XX1`` ...), the
-input of the thermal model per parameter.
+input of the thermal model per parameter (:func:`thermocomp.stages.calibrate.calibrate_folder`).
 """
 
 from __future__ import annotations
@@ -61,33 +61,6 @@ def check_columns(ds: Dataset, setup: Setup) -> None:
                        if m["pose"] in poses else f"pose {m['pose']} not declared in {SETUP_FILE}")
                 raise ContractError(f"distance column of an unknown measurement: {why}", file=file,
                                     column=c)
-
-
-def calibrate_dataset(ds: Dataset, setup: Setup, outlier_z: float = 6.0):
-    """``(parameter dataset, calibration, outliers)``.
-
-    The parameter dataset keeps every campaign's time, ``T_`` and ``S_`` columns and replaces
-    the distances by the identified parameters; ``outliers`` lists every flagged distance
-    with its campaign, time and studentised residual.
-    """
-    check_columns(ds, setup)
-    cal = ArtefactCalibration(setup, outlier_z=outlier_z).fit()
-    columns = cal.design_.columns
-    campaigns, outliers = {}, []
-    for cid, df in ds.campaigns.items():
-        P, flagged = cal.identify(df[columns].to_numpy(float))
-        keep = [c for c in df.columns if not c.startswith("E_")]
-        out = df[keep].copy()
-        out[[f"{n}" for n in cal.names_]] = pd.DataFrame(P, index=df.index, columns=cal.names_)
-        campaigns[cid] = out
-        for f in flagged:
-            m = COLUMN.match(f["column"])
-            outliers.append({"campaign": cid, "time": float(df["time"].iloc[f["cycle"]]),
-                             "row": int(f["cycle"]), "column": f["column"], "pose": m["pose"],
-                             "balls": [int(m["i"]), int(m["j"])],
-                             "residual_um": f["residual_um"], "z": f["z"]})
-    manifest = ds.manifest.copy()
-    return Dataset(manifest, campaigns, name=ds.name, meta=dict(ds.meta)), cal, outliers
 
 
 def distance_matrix(df: pd.DataFrame, cal: ArtefactCalibration) -> np.ndarray:

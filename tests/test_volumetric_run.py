@@ -1,0 +1,120 @@
+"""`thermocomp run` on a volumetric dataset: calibrated, a thermal model per parameter, and the
+`volumetric` section of metrics.json (distance errors, VE/VCE, trajectories, A.3, Table 1)."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import numpy as np
+import pytest
+
+from conftest import ROOT, refused
+from thermocomp import io
+from thermocomp.cli import main
+from thermocomp.files import write_json
+from thermocomp.sim.volumetric import LargeMillVolumetric
+
+CLI_DOC = (ROOT / "docs" / "cli.md").read_text()
+
+
+@pytest.fixture(scope="module")
+def raw(tmp_path_factory):
+    """Two days of training, a day and a half of validation (the A.3 test needs 15 h), a cycle
+    every 20 min: every heater phase of the weeks, compressed."""
+    gen = LargeMillVolumetric(train_hours=48.0, test_hours=36.0, seed=3)
+    ds, truth = gen.generate()
+    path = tmp_path_factory.mktemp("volrun") / "raw"
+    io.write_dataset(ds, path, gen.file_format, gen.dataset_files())
+    write_json(f"{path}.truth.json", truth)
+    return path
+
+
+def _run(raw, out, *extra):
+    assert main(["run", "experiment=volumetric_large_mill", f"data.path={raw}", f"out={out}",
+                 "track=false", "eval.mutual_prediction=false", "eval.ati_baselines=false",
+                 *extra]) == 0
+    return json.loads((out / "metrics.json").read_text()), out
+
+
+@pytest.fixture(scope="module")
+def run(raw, tmp_path_factory):
+    return _run(raw, tmp_path_factory.mktemp("volrun_out"), "plots=none")
+
+
+def test_the_targets_are_the_identified_parameters_and_the_table_is_written(run):
+    metrics, out = run
+    vol = metrics["volumetric"]
+    assert set(metrics["targets"]) == set(vol["parameters"])
+    assert all(re.fullmatch(r"E_[XYZABC][XYZ]\d", t) for t in metrics["targets"])
+    for name, row in vol["parameters"].items():
+        assert {"p2p_before", "rms_before", "reduction_pct", "n_inputs", "ar"} <= set(row)
+        assert 1 <= row["n_inputs"] <= 10 and isinstance(row["ar"], bool)
+        # the table's RMS before/after are the per-target test scores of the same run
+        assert row["rms_before"] == pytest.approx(metrics["targets"][name]["test"]["rms_before"], rel=1e-6)
+        assert row["rms_after"] == pytest.approx(metrics["targets"][name]["test"]["rmse"], rel=1e-6)
+    report = json.loads((out / "ingest_report.json").read_text())
+    assert sorted(report["calibration"]["parameters"]) == sorted(vol["parameters"])
+
+
+def test_the_twin_halves_the_distance_error_and_the_volumetric_error(run):
+    vol = run[0]["volumetric"]
+    assert vol["reference"] == "truth"            # simulated: VCE against the true machine
+    for block in ("distance_error", "vce", "vce_identified"):
+        b = vol[block]
+        assert b["rms_after"] < b["rms_before"]
+    assert vol["distance_error"]["rms_reduction_pct"] >= 50
+    assert vol["vce"]["rms_reduction_pct"] >= 50
+    # the identified reference carries the identification noise: a smaller reduction
+    assert vol["vce_identified"]["rms_after"] > vol["vce"]["rms_after"]
+
+
+def test_trajectories_and_the_a3_test_before_and_after(run):
+    vol = run[0]["volumetric"]
+    for axis in "XYZ":
+        for direction in ("E_X", "E_Y", "E_Z"):
+            c = vol["trajectories"][axis][direction]
+            assert len(c["window_s"]) == len(c["before"]) == len(c["after"]) > 5
+            assert np.all(np.diff(c["window_s"]) > 0)
+            assert c["whole_test_sigma_after"] < c["whole_test_sigma_before"]
+    a3 = vol["iso_a3"]
+    assert a3["n_starts"] > 0 and np.isfinite(a3["range_after"]) and a3["point_mm"][2] == 0.0
+    assert a3["range_before_max"] >= a3["range_before"]
+
+
+def test_figures_headline_and_every_key_documented(raw, run, tmp_path):
+    assert not (run[1] / "volumetric").exists()                     # plots=none: no figure
+    # two parameters modelled: the others count uncompensated in every figure
+    metrics, out = _run(raw, tmp_path, "plots=summary", "data.targets=[E_ZZ1,E_XZ1]")
+    table = metrics["volumetric"]["parameters"]
+    assert set(table) == set(run[0]["volumetric"]["parameters"])     # every identified one
+    assert {n for n, row in table.items() if row["n_inputs"]} == {"E_ZZ1", "E_XZ1"}
+    assert all(table[n]["reduction_pct"] == 0 for n in table if n not in ("E_ZZ1", "E_XZ1"))
+    assert metrics["volumetric"]["vce"]["rms_after"] > run[0]["volumetric"]["vce"]["rms_after"]
+    names = sorted(p.name for p in (out / "volumetric").iterdir())
+    assert names == ["e_p95_sigma_X_trajectory.png", "e_p95_sigma_Y_trajectory.png",
+                     "e_p95_sigma_Z_trajectory.png", "iso10791_a3.png", "parameters.png"]
+    assert all(f"`{n.replace('X', '<X|Y|Z>', 1)}`" in CLI_DOC or n in CLI_DOC for n in names
+               if "trajectory" not in n)
+    head = json.loads((out / "headline" / "volumetric.json").read_text())
+    assert head["vce_rms_after"] == metrics["volumetric"]["vce"]["rms_after"]
+
+    def keys(d, depth):
+        out = set(d)
+        for k, v in d.items():
+            if isinstance(v, dict) and depth > 1 and not k.startswith("E_"):
+                out |= keys(v, depth - 1)
+        return out
+
+    vol = metrics["volumetric"]
+    found = keys(vol, 3) - set(vol["trajectories"]) - set(vol["parameters"])
+    found |= set(next(iter(vol["parameters"].values())))
+    found |= set(vol["trajectories"]["X"]["E_X"])
+    missing = sorted(k for k in found if not re.search(rf"`[^`\n]*\b{re.escape(k)}\b[^`\n]*`", CLI_DOC))
+    assert not missing, f"docs/cli.md lacks {missing}"
+
+
+def test_the_separate_stages_refuse_a_volumetric_dataset(raw, tmp_path, capsys):
+    refused(["ingest", f"data.path={raw}", f"data.interim={tmp_path / 'interim'}", "track=false"],
+            capsys, "volumetric dataset", "thermocomp run")
+    assert not (tmp_path / "interim").exists()
