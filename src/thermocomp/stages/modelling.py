@@ -257,7 +257,12 @@ def evaluate(cfg: DictConfig) -> dict:
 
 
 def run(cfg: DictConfig) -> dict:
-    """ingest .. evaluate in one process (nothing written under data/)."""
+    """ingest .. evaluate in one process (nothing written under data/); with ``data.group_by``
+    one model per group of campaigns (a fleet's machines, ``stages/fleet.py``)."""
+    if cfg.data.get("group_by"):
+        from .fleet import run_grouped
+
+        return run_grouped(cfg)
     check_config(cfg)
     say(f"reading {resolve(cfg.data.path)}")
     clock = Clock()
