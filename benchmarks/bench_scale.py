@@ -2,13 +2,15 @@
 
 Usage::
 
-    python benchmarks/bench_scale.py [MACHINES ...] [--jobs N] [--keep DIR]   # default 1 10 100
+    python benchmarks/bench_scale.py [MACHINES ...] [--jobs N] [--group-jobs N] [--no-validation]
+                                     [--keep DIR]                           # default 1 10 100
 
 For each fleet size: the ``fleet`` scenario (30 days at 30 s, 40 sensors per
 machine, Parquet partitions) is written in a temporary folder outside the
 repository by ``Fleet.write`` (``--jobs`` processes), then ``thermocomp run
-data.group_by=machine data.group_jobs=1 track=false plots=none`` runs in a
-child process.  Peak memory is that of the run's whole process tree: the sum
+data.group_by=machine data.group_jobs=<--group-jobs> track=false plots=none``
+(``eval.validation=false`` with ``--no-validation``: the cross-validation refits
+each machine's model 5 times) runs in a child process.  Peak memory is that of the run's whole process tree: the sum
 of the RSS of the process and its children, sampled every 0.1 s (psutil), and
 the largest single process (``ru_maxrss`` of the waited-for children, in this
 process's fresh child accounting per size).  Time per machine stays flat and
@@ -73,6 +75,8 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("machines", nargs="*", type=int, default=[1, 10, 100])
     parser.add_argument("--jobs", type=int, default=2, help="processes generating the fleet")
+    parser.add_argument("--group-jobs", type=int, default=1, help="machines fitted at once")
+    parser.add_argument("--no-validation", action="store_true", help="eval.validation=false")
     parser.add_argument("--keep", type=Path, help="keep the datasets under this folder")
     opts = parser.parse_args()
     base = Path(opts.keep or tempfile.mkdtemp(prefix="thermocomp-bench-scale-"))
@@ -88,7 +92,8 @@ def main() -> None:
             disk = sum(f.stat().st_size for f in data.rglob("*") if f.is_file()) / 2**20
             run_s, peak, single = run_measured(
                 [str(BIN / "thermocomp"), "-q", "run", f"data.path={data}", "data.group_by=machine",
-                 "data.group_jobs=1", "track=false", "plots=none", f"out={out}"])
+                 f"data.group_jobs={opts.group_jobs}", "track=false", "plots=none", f"out={out}",
+                 *(["eval.validation=false"] if opts.no_validation else [])])
             row = {"machines": n, "rows": truth["rows"], "disk_mb": disk, "generate_s": gen_s,
                    "run_s": run_s, "run_s_per_machine": run_s / n, "peak_tree_mb": peak / 2**20,
                    "peak_process_mb": single / 2**20}
