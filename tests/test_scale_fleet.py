@@ -84,3 +84,26 @@ def test_group_by_refuses_an_unknown_column_and_empty_cells(fleet, tmp_path, cap
                             index=pd.Index(["a", "b"], name="campaign"))
     with pytest.raises(io.ContractError, match="row 2"):
         groups(manifest, "machine")
+
+
+def test_simulate_sim_fleet_streams_the_partitions_then_run_reads_them_by_machine(tmp_path):
+    from hydra import compose, initialize_config_dir
+    from hydra.utils import instantiate
+
+    from thermocomp.paths import conf_dir
+
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose("config", ["sim=fleet"])
+    assert cfg.data.group_by == "machine" and cfg.sim.generator.n_machines == 100
+    assert isinstance(instantiate(cfg.sim.generator), Fleet)
+    data = tmp_path / "fleet"
+    small = [f"sim.generator.{k}={v}" for k, v in TINY.items() if k != "seed"]
+    assert main(["simulate", "sim=fleet", *small, "sim.generator.n_machines=2", f"data.path={data}",
+                 "track=false"]) == 0
+    truth = json.loads((tmp_path / "fleet.truth.json").read_text())
+    assert sorted(truth["machines"]) == ["M001", "M002"] and truth["campaigns"] == 8
+    assert main(["run", "sim=fleet", f"data.path={data}", "track=false", f"out={tmp_path / 'out'}",
+                 "eval.validation=false"]) == 0
+    metrics = json.loads((tmp_path / "out" / "metrics.json").read_text())
+    assert sorted(metrics["groups"]) == ["M001", "M002"]
+    assert all(g["targets"]["E_Z"]["validation"] is None for g in metrics["groups"].values())
