@@ -6,15 +6,19 @@ Registered in ``conf/config.yaml`` under ``hydra.callbacks``.  On
 stage run (:func:`thermocomp.tracking.stage_run`) becomes its child, whether the
 job runs in this process (basic launcher), in a joblib worker process (the
 workers inherit the environment) or on a SLURM node (submitit exports the
-environment).  The id is also written to ``<sweep dir>/sweep.json`` so
-``thermocomp compare compare.sweep=<sweep dir>`` finds the sweep again.
-``on_multirun_end`` closes the parent run and prints the comparison table.
+environment; Ray: the launcher's runtime environment, see
+``conf/hydra/launcher/ray.yaml``).  The id is also written to
+``<sweep dir>/sweep.json`` so ``thermocomp compare compare.sweep=<sweep dir>``
+finds the sweep again.  ``on_multirun_end`` closes the parent run and prints the
+comparison table.  :class:`SweepObjective` hands a search sweeper (Optuna) each
+job's validation score.
 """
 
 from __future__ import annotations
 
 import atexit
 import os
+import sys
 from pathlib import Path
 from typing import Any
 
@@ -52,7 +56,8 @@ class MlflowSweepCallback(Callback):
         overrides = list(config.hydra.overrides.task)
         sweep_dir = Path(str(config.hydra.sweep.dir))
         tags = {"sweep.overrides": " ".join(overrides)[:5000], "sweep.dir": str(sweep_dir),
-                "launcher": str(config.hydra.launcher.get("_target_", "")).rsplit(".", 1)[-1]}
+                "launcher": str(config.hydra.launcher.get("_target_", "")).rsplit(".", 1)[-1],
+                "sweeper": str(config.hydra.sweeper.get("_target_", "")).rsplit(".", 1)[-1]}
         self.run_id = start_parent_run(config, sweep_name(overrides, config.get("name")), tags)
         self._previous = os.environ.get(PARENT_ENV)
         os.environ[PARENT_ENV] = self.run_id
@@ -103,6 +108,7 @@ class MlflowSweepCallback(Callback):
         run_id = self.run_id
         children = child_runs(MlflowClient(connect(config)), run_id)
         failed = sum(r.info.status != "FINISHED" for r in children)
+        _log_search_results(config, run_id)
         end_parent_run(config, run_id, "FAILED" if failed else "FINISHED",
                        {"sweep.jobs": len(children), "sweep.failed_jobs": failed})
         atexit.unregister(self._abandon)
@@ -122,10 +128,73 @@ class MlflowSweepCallback(Callback):
                 _say(f"no comparison table: {' '.join(str(exc).split())}")
 
 
-def sweep_size(task_overrides) -> int | None:
-    """Number of jobs of a basic sweep (the product of the sweep overrides' lengths), or None."""
+def _log_search_results(config: DictConfig, run_id: str) -> None:
+    """A search sweeper's ``optimization_results.yaml`` (Optuna: best params and value) on the
+    parent run, its best value as the metric ``sweep.best_value``."""
+    results = Path(str(config.hydra.sweep.dir)) / "optimization_results.yaml"
+    if not results.is_file():
+        return
+    from mlflow import MlflowClient
+
+    from .tracking import connect, retry_locked
+
+    client = MlflowClient(connect(config))
+    retry_locked(client.log_artifact, run_id, str(results))
+    best = OmegaConf.load(results).get("best_value")
+    if best is not None:
+        retry_locked(client.log_metric, run_id, "sweep.best_value", float(best))
+
+
+def _searches(config: DictConfig) -> bool:
+    """Whether the sweeper proposes the jobs from their scores (Optuna) rather than a grid."""
+    target = str(config.hydra.sweeper.get("_target_", ""))
+    return bool(target) and not target.endswith("BasicSweeper")
+
+
+class SweepObjective(Callback):
+    """Hydra callback: a search sweeper's objective, each job's validation score.
+
+    A search sweeper (``hydra/sweeper=optuna``) needs a number back from every
+    job; ``run`` returns its metrics.  When the job ends, its return value
+    becomes ``promote.criterion`` of ``promote.target`` (default ``val_rmse``,
+    mean over targets): the figure ``compare`` ranks by and ``promote`` chooses
+    by, from the val split or cross-validation on the train split, never the test
+    split.  So the best trial is the run ``thermocomp promote`` promotes.  A job
+    without that figure (``eval.validation=false``) returns NaN: a failed trial.
+    """
+
+    def on_multirun_start(self, config: DictConfig, **kwargs: Any) -> None:
+        from .leaderboard import VAL_FIGURES, is_validation
+
+        criterion = str(config.promote.criterion)
+        if _searches(config) and not is_validation(criterion):
+            # exit 2 with one line, as any bad config (Hydra would turn a raise into status 1)
+            print(f"thermocomp: error: promote.criterion={criterion!r} cannot be a search objective: "
+                  f"only a validation figure ({', '.join(VAL_FIGURES)}) may choose", file=sys.stderr)
+            raise SystemExit(2)
+
+    def on_job_end(self, config: DictConfig, job_return, **kwargs: Any) -> None:
+        from hydra.core.utils import JobStatus
+
+        if not _searches(config) or job_return.status != JobStatus.COMPLETED:
+            return
+        from .sweeps import objective
+
+        metrics = job_return.return_value
+        if isinstance(metrics, dict) and "targets" in metrics:
+            value = objective(metrics, str(config.promote.criterion), str(config.promote.target))
+            _say(f"objective {config.promote.criterion} ({config.promote.target}): {value:.6g}")
+            job_return.return_value = value
+
+
+def sweep_size(task_overrides, sweeper=None) -> int | None:
+    """Number of jobs of a sweep, or None: a search sweeper's ``n_trials``, else the product of
+    the sweep overrides' lengths (a grid)."""
     from hydra.core.override_parser.overrides_parser import OverridesParser
 
+    trials = (sweeper or {}).get("n_trials")
+    if trials is not None:
+        return int(trials)
     try:
         n = 1
         for o in OverridesParser.create().parse_overrides(list(task_overrides)):
@@ -144,7 +213,7 @@ class SweepProgress(Callback):
     """
 
     def on_multirun_start(self, config, **kwargs) -> None:
-        total = sweep_size(config.hydra.overrides.task)
+        total = sweep_size(config.hydra.overrides.task, config.hydra.sweeper)
         done = Path(str(config.hydra.sweep.dir)) / ".done"
         done.mkdir(parents=True, exist_ok=True)
         for f in done.iterdir():  # a rerun into the same folder counts afresh

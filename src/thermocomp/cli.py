@@ -15,6 +15,11 @@ from __future__ import annotations
 import difflib
 import sys
 import traceback
+import warnings
+
+# conf/hydra/launcher/ray.yaml extends the Ray launcher plugin's config of
+# the same name on purpose (Hydra still validates it against the plugin's schema).
+warnings.filterwarnings("ignore", message=r"\s*'hydra/launcher/ray' is validated against")
 
 USAGE = """usage: thermocomp [-q | -v] <stage> [key=value ...] [-m]
        thermocomp <stage> --help | --version

@@ -1,7 +1,8 @@
 """A Hydra multirun as MLflow sees it: the parent run of a sweep and one row per child run.
 
 Shared by ``thermocomp compare`` (the table), ``thermocomp promote`` (the best
-child) and the sweep callback (which writes :data:`SWEEP_FILE`).
+child) and the sweep callbacks (which write :data:`SWEEP_FILE` and hand a search
+sweeper its :func:`objective`).
 """
 
 from __future__ import annotations
@@ -45,6 +46,26 @@ def parent_run_id(cfg: DictConfig, client) -> str:
         raise ConfigError(f"compare.sweep={sweep!r} is neither a sweep folder with {SWEEP_FILE} "
                           f"nor a run id of {cfg.tracking_uri}") from exc
     return str(sweep)
+
+
+def objective(metrics: dict, criterion: str = "val_rmse", target: str = "mean") -> float:
+    """The number a search sweeper minimises for one run: ``criterion`` of ``target`` from the
+    run's ``metrics.json`` (as :func:`sweep_rows` ranks it), NaN when the run has none.
+
+    Parameters
+    ----------
+    metrics : dict
+        What ``thermocomp run`` returns (its ``metrics.json``).
+    criterion : str
+        A validation figure (``val_rmse``, ``val_rsd_mean``, ``val_rsd_sd``).
+    target : str
+        One ``E_`` column, or ``mean`` over targets.
+    """
+    try:
+        value = summary(metrics["targets"], target)[criterion]
+    except KeyError as exc:
+        raise ConfigError(f"promote.target / promote.criterion: {exc.args[0]}") from None
+    return float("nan") if value is None else float(value)
 
 
 def run_metrics(run_id: str, uri: str) -> dict | None:

@@ -54,7 +54,7 @@ import json
 import math
 import os
 import re
-from collections.abc import Iterator, Mapping
+from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import asdict, dataclass, field, replace
 from pathlib import Path
 
@@ -1068,8 +1068,8 @@ def _to_frame(table: pa.Table) -> pd.DataFrame:
 # Public entry points
 
 
-def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str = "repair"
-                 ) -> tuple[Dataset, dict]:
+def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str = "repair",
+                 campaigns: Sequence[str] | None = None) -> tuple[Dataset, dict]:
     """Read, validate and repair a dataset folder.
 
     Parameters
@@ -1145,14 +1145,16 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     opts = replace(ReadOptions.from_cfg(cfg), missing=missing)
     root = Path(path)
     manifest = read_manifest(root, opts)
-    campaigns, entries, columns = {}, {}, {}
+    if campaigns is not None:
+        manifest = manifest.loc[list(campaigns)]
+    frames, entries, columns = {}, {}, {}
     for cid, table, entry in _iter_campaigns(root, manifest, opts):
         _collect_roles(columns, table.column_names)
-        campaigns[cid], entries[cid] = _to_frame(table), entry
+        frames[cid], entries[cid] = _to_frame(table), entry
         del table
     report = _dataset_report(root.name, entries, columns, opts)
     manifest = _starts_from_timestamps(manifest, entries)
-    return Dataset(manifest, campaigns, root.name, {"path": str(root)}), report
+    return Dataset(manifest, frames, root.name, {"path": str(root)}), report
 
 
 def _starts_from_timestamps(manifest: pd.DataFrame, entries: Mapping) -> pd.DataFrame:

@@ -273,12 +273,17 @@ def evaluate(cfg: DictConfig) -> dict:
 
 
 def run(cfg: DictConfig) -> dict:
-    """ingest .. evaluate in one process (nothing written under data/).
+    """ingest .. evaluate in one process (nothing written under data/); with ``data.group_by``
+    one model per group of campaigns (a fleet's machines, ``stages/fleet.py``).
 
     On a volumetric dataset (``volumetric.json`` in the folder) the distances are calibrated
     into the error parameter series first, a thermal model is fitted per parameter, and
     ``metrics.json`` gains the ``volumetric`` section (:mod:`thermocomp.volumetric.validation`).
     """
+    if cfg.data.get("group_by"):
+        from .fleet import run_grouped
+
+        return run_grouped(cfg)
     check_config(cfg)
     say(f"reading {resolve(cfg.data.path)}")
     clock = Clock()

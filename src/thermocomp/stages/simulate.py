@@ -19,16 +19,20 @@ def simulate(cfg: DictConfig) -> dict:
     t0 = time.perf_counter()
     generator = instantiate(cfg.sim.generator)
     say(f"simulating {cfg.sim.name} ...")
-    ds, truth = generator.generate()
     path = resolve(cfg.data.path)
-    # a scenario may ask for Parquet files and more files in the folder (volumetric.json)
-    io.write_dataset(ds, path, getattr(generator, "file_format", "csv"),
-                     generator.dataset_files() if hasattr(generator, "dataset_files") else None)
+    if hasattr(generator, "write"):       # a big scenario (fleet) streams to disk, never whole in memory
+        truth = generator.write(path)
+        n_campaigns, rows = truth["campaigns"], truth["rows"]
+    else:
+        ds, truth = generator.generate()
+        # a scenario may ask for Parquet files and more files in the folder (volumetric.json)
+        io.write_dataset(ds, path, getattr(generator, "file_format", "csv"),
+                         generator.dataset_files() if hasattr(generator, "dataset_files") else None)
+        n_campaigns, rows = len(ds.campaigns), int(sum(len(df) for df in ds.campaigns.values()))
     truth_path = write_json(f"{path}.truth.json", truth)
-    rows = int(sum(len(df) for df in ds.campaigns.values()))
-    say(f"wrote {len(ds.campaigns)} campaigns, {rows} rows to {path} "
+    say(f"wrote {n_campaigns} campaigns, {rows} rows to {path} "
         f"({time.perf_counter() - t0:.1f} s); truth: {truth_path}")
     with stage_run(cfg, "simulate", default=False) as tr:   # logged only with track=true
-        tr.log_metrics({"campaigns": len(ds.campaigns), "rows": rows})
+        tr.log_metrics({"campaigns": n_campaigns, "rows": rows})
         tr.log_artifact(truth_path)
     return {"path": str(path), "truth": str(truth_path)}

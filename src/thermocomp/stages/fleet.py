@@ -1,0 +1,116 @@
+"""`thermocomp run data.group_by=<column>`: one compensator per machine of a fleet dataset.
+
+Shared helper of ``stages/modelling.run`` (not a command of its own).  The
+manifest is read once; then each group's campaigns (one machine's partitions)
+are read, fitted on their train split, scored on their test split (and
+validated on the train split, as a single run), and dropped before the next
+group: memory grows with ``data.group_jobs`` (groups in flight, one process
+each), not with the number of machines.  Outputs, staged and moved into
+``out`` at the end like a single run's: ``metrics.json`` (per group and the
+fleet summary), ``fleet.csv`` (one row per group and target) and
+``models/<group>.pkl`` (signed).
+"""
+
+from __future__ import annotations
+
+import time
+from functools import partial
+
+import pandas as pd
+from omegaconf import DictConfig
+from sklearn.base import clone
+
+from .. import fleet, io
+from ..errors import ConfigError
+from ..evaluation import VAL_FOLDS, require_split, score, validation_report
+from ..files import inside, safe_name, staged_outputs, write_json
+from ..paths import resolve
+from ..tracking import stage_run
+from .common import build_compensator, check_config, data_options, save_model, say
+
+_TEST = ("rmse", "rsd_mean", "rsd_sd", "rms_before", "rms_after", "rms_reduction_pct")
+
+
+def _slim(targets: dict) -> dict:
+    """The per-group figures kept in ``metrics.json`` (no curves: a fleet has hundreds of groups)."""
+    out = {}
+    for t, m in targets.items():
+        val = m.get("validation") or {}
+        out[t] = {"train": {"rmse": m["train"]["rmse"]},
+                  "test": {k: m["test"].get(k) for k in _TEST},
+                  "validation": {k: val.get(k) for k in ("rmse", "method")} if val else None}
+    return out
+
+
+def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
+    """Read, fit, score and save one group; returns its figures (nothing of its data)."""
+    ds, report = io.read_dataset(root, data_options(cfg), campaigns=ids)
+    train = require_split(ds, "train")
+    require_split(ds, "test")
+    t0 = time.perf_counter()
+    comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in train})
+    fit_s = time.perf_counter() - t0
+    ev = cfg.eval
+    targets, _ = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points, iso_a3=False)
+    if ev.get("validation", True):
+        val = validation_report(partial(clone, build_compensator(cfg)), ds, ev.mode, fitted=comp,
+                                n_folds=int(ev.get("validation_folds", VAL_FOLDS)))
+        for t, entry in val.items():
+            targets[t]["validation"] = entry
+    save_model(comp, inside(stage / "models", safe_name(group) + ".pkl"))
+    targets = _slim(targets)
+    say(f"{group}: {len(ids)} campaigns, {report['rows']} rows, fit {fit_s:.2f} s, test RMSE "
+        + ", ".join(f"{t} {m['test']['rmse']:.2f}" for t, m in targets.items()))
+    return {"campaigns": len(ids), "rows": int(report["rows"]), "fit_time_s": fit_s,
+            "inputs": {t: comp.selected_[t] for t in comp.targets_}, "targets": targets}
+
+
+def _table(metrics: dict) -> str:
+    """Per target: groups, test RMSE mean / median / p95 / max, RMS before -> after (means)."""
+    head = (f"model={metrics['model']}  mode={metrics['mode']}  dataset={metrics['dataset']}  "
+            f"group_by={metrics['group_by']} ({len(metrics['groups'])} groups)")
+    lines = [head, f"{'target':8} {'groups':>6}  test RMSE mean  median    p95    max   "
+                   f"RMS before -> after (mean)   worst   (µm)", "-" * 96]
+    for t, s in metrics["fleet"].items():
+        rmse, before, after = s["test_rmse"], s["test_rms_before"], s["test_rms_after"]
+        lines.append(f"{t:8} {s['groups']:>6}  {rmse['mean']:14.2f} {rmse['median']:7.2f} "
+                     f"{rmse['p95']:6.2f} {rmse['max']:6.2f}   {before['mean']:10.2f} -> "
+                     f"{after['mean']:6.2f}            {s['worst_group']}")
+    return "\n".join(lines)
+
+
+def run_grouped(cfg: DictConfig) -> dict:
+    """``run`` on a fleet: one compensator per value of the manifest column ``data.group_by``."""
+    from joblib import Parallel, delayed
+
+    check_config(cfg)
+    column, jobs = str(cfg.data.group_by), cfg.data.get("group_jobs", 1)
+    if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
+        raise ConfigError(f"data.group_jobs must be an integer >= 1, got {jobs!r}")
+    root = resolve(cfg.data.path)
+    manifest = io.read_manifest(root, io.ReadOptions.from_cfg(data_options(cfg)))
+    members = fleet.groups(manifest, column, root / "campaigns.csv")
+    say(f"reading {root}: {len(members)} groups by {column!r}, {jobs} at a time")
+    out = resolve(cfg.out)
+    t0 = time.perf_counter()
+    with stage_run(cfg, "run") as tr:
+        with staged_outputs(out) as stage:
+            results = Parallel(n_jobs=jobs)(delayed(_group)(cfg, root, g, ids, stage)
+                                            for g, ids in members.items())
+            per_group = dict(zip(members, results))
+            table = pd.DataFrame([row for g, r in per_group.items()
+                                  for row in fleet.machine_rows(g, r["targets"])])
+            metrics = {"model": cfg.model.name, "mode": cfg.eval.mode, "select": cfg.select.name,
+                       "dataset": root.name, "group_by": column, "fleet": fleet.summary(table),
+                       "groups": per_group, "fit_time_s": sum(r["fit_time_s"] for r in results),
+                       "wall_time_s": time.perf_counter() - t0}
+            table.to_csv(stage / "fleet.csv", index=False)
+            write_json(stage / "metrics.json", metrics)
+        tr.log_metrics({"fit_time_s": metrics["fit_time_s"], "groups": len(per_group),
+                        **{f"{t}.fleet.{k}_{stat}": s[k][stat] for t, s in metrics["fleet"].items()
+                           for k in ("test_rmse", "val_rmse") if s[k] for stat in ("mean", "p95", "max")}})
+        tr.log_artifact(out / "metrics.json")
+        tr.log_artifact(out / "fleet.csv")
+    print(_table(metrics))
+    say(f"metrics: {out / 'metrics.json'}, per group: {out / 'fleet.csv'}, models: {out / 'models'}")
+    return metrics
