@@ -32,6 +32,7 @@ stages:
   promote    register the best run's compensator; move @champion only if it is better
   replay     stream the test campaigns row by row through the deployable compensator (replay.json)
   serve      the registered compensator over HTTP (serve.model=, serve.port=; one worker)
+  design     Monte Carlo study of artefact calibration strategies (<out>/design.json)
 
 overrides: data.path=<dir> data.inputs=[T_*] data.targets=[E_Z] model=mlr select=all denoise=none
            eval.mode=simulation|one_step out=<dir> tracking_uri=<uri> seed=<int>
@@ -79,6 +80,10 @@ STAGE_HELP = {
                 "data.path (or CSV rows on stdin: monitor.input=-) and a fitted model",
                 "<out>/monitor.json, <out>/monitor/ (figures)",
                 "monitor.adaptive=true monitor.bands.warning_c=0.4 monitor.pod.energy=0.99"),
+    "design": ("Monte Carlo study of artefact calibration strategies (paper 001)",
+               "data.path/volumetric.json when present (else the kinematic model defaults)",
+               "<out>/design.json, <out>/design/ (figures)",
+               "design.n_machines=200 design.n_jobs=-1 design.ranges.angular=6 design.machine.order=4"),
     "serve": ("the registered compensator over HTTP (mlflow models serve, one worker)",
               "serve.model from the tracking store", "nothing (answers POST /invocations)",
               "serve.model=models:/thermocomp-compensator@champion serve.port=5001 serve.host=127.0.0.1"),

@@ -18,7 +18,7 @@ STAGES = {"simulate": "simulate:simulate", "ingest": "ingest:ingest", "denoise":
           "select": "select:select", "train": "modelling:train", "evaluate": "modelling:evaluate",
           "diagnose": "diagnose:diagnose", "run": "modelling:run", "compare": "compare:compare",
           "promote": "promote:promote", "replay": "replay:replay", "serve": "serve:serve",
-          "monitor": "monitor:monitor"}
+          "monitor": "monitor:monitor", "design": "design:design"}
 
 
 def stage(name: str):
