@@ -40,8 +40,8 @@ def test_small_angle_form_is_linear_in_the_parameters(model, points):
     np.testing.assert_allclose(np.einsum("nip,p->ni", model.basis(points), p), e[0], atol=1e-9)
 
 
-@pytest.mark.parametrize("chain", ["tool-Y-Z-bed-workpiece", "Y-Z-X-bed-workpiece", "tool-Y-Y-X-bed-workpiece",
-                                   "tool-Y-Z-X-workpiece", "tool-Y-Z-X-bed"])
+@pytest.mark.parametrize("chain", ["tool-Y-Z-bed-workpiece", "Y-Z-X-bed-workpiece",
+                                   "tool-Y-Y-X-bed-workpiece", "tool-Y-Z-X-workpiece", "tool-Y-Z-X-bed"])
 def test_a_bad_chain_is_refused_with_the_expected_form(chain):
     with pytest.raises(ValueError, match="tool-...-bed-...-workpiece"):
         KinematicModel(chain=chain)

@@ -57,7 +57,8 @@ def check_design(d: dict) -> None:
     machine = d.get("machine") or {}
     _number("machine.order", machine.get("order"), 1, integer=True, null=True)
     if machine.get("cross_terms") not in (True, False):
-        raise ConfigError(f"design.machine.cross_terms must be true or false, got {machine.get('cross_terms')!r}")
+        raise ConfigError("design.machine.cross_terms must be true or false, "
+                          f"got {machine.get('cross_terms')!r}")
     ranges = dict(d.get("ranges") or {})
     _number("ranges.decay", ranges.pop("decay", None), 0)
     for k, v in ranges.items():
@@ -166,4 +167,5 @@ def _print(report: dict) -> None:
               f"{m['vce_best']:.2f} at {m['best_deg']:g}° ({m['reduction_pct']:.0f} % less)")
     if "best_position_set" in f:
         b = f["best_position_set"]
-        print(f"best position set: {b['position_set']} (VCE {b['median']:.2f} µm, {b['n_probings']} probed points)")
+        print(f"best position set: {b['position_set']} (VCE {b['median']:.2f} µm, "
+              f"{b['n_probings']} probed points)")

@@ -49,8 +49,8 @@ def draw(folder, result: dict) -> list[Path]:
     if sets:
         fig, ax = plt.subplots(figsize=(6, 4))
         for r in sets:
-            ax.errorbar(r["n_probings"], r["median"], yerr=[[r["median"] - r["p5"]], [r["p95"] - r["median"]]],
-                        fmt="o", capsize=3)
+            spread = [[r["median"] - r["p5"]], [r["p95"] - r["median"]]]
+            ax.errorbar(r["n_probings"], r["median"], yerr=spread, fmt="o", capsize=3)
             ax.annotate(r["position_set"], (r["n_probings"], r["median"]), textcoords="offset points",
                         xytext=(4, 4), fontsize=8)
         ax.axhline(ve["median"], color="k", ls="--", label="VE (median)")
