@@ -38,6 +38,7 @@ stages:
   replay     stream the test campaigns row by row through the deployable compensator (replay.json)
   serve      the registered compensator over HTTP (serve.model=, serve.port=; one worker)
   calibrate  artefact distances of a volumetric dataset -> error parameter series (calibration.json)
+  design     Monte Carlo study of artefact calibration strategies (<out>/design.json)
 
 overrides: data.path=<dir> data.inputs=[T_*] data.targets=[E_Z] model=mlr select=all denoise=none
            eval.mode=simulation|one_step out=<dir> tracking_uri=<uri> seed=<int>
@@ -89,6 +90,10 @@ STAGE_HELP = {
                   "data.path (a volumetric dataset: volumetric.json + E_<pose>_B<i>_B<j> columns)",
                   "<out>/calibration.json, calibrate.dataset (default <out>/parameters/)",
                   "calibrate.outlier_z=6 calibrate.column_share=0.5 calibrate.require_seen=[]"),
+    "design": ("Monte Carlo study of artefact calibration strategies (paper 001)",
+               "data.path/volumetric.json when present (else the kinematic model defaults)",
+               "<out>/design.json, <out>/design/ (figures)",
+               "design.n_machines=200 design.n_jobs=-1 design.ranges.angular=6 design.machine.order=4"),
     "serve": ("the registered compensator over HTTP (mlflow models serve, one worker)",
               "serve.model from the tracking store", "nothing (answers POST /invocations)",
               "serve.model=models:/thermocomp-compensator@champion serve.port=5001 serve.host=127.0.0.1"),

@@ -49,7 +49,7 @@ from thermocomp.sim.large_mill import LargeMillWeek, moving_column_mill
 from thermocomp.sim.scenario import plain, single_threaded_blas
 from thermocomp.sim.thermoelastic import ThermoelasticMap
 from thermocomp.volumetric import SETUP_FILE, BallArray, KinematicModel, Setup, position_set
-from thermocomp.volumetric.artefact import pairs
+from thermocomp.volumetric.measure import artefact_distances
 
 SCENARIO = "large_mill_volumetric"
 REFERENCE_C = 20.0
@@ -111,22 +111,10 @@ def simulate_distances(setup: Setup, params: np.ndarray, rng: np.random.Generato
     ``params`` (n_cycles, p): the full parameter vector of each cycle; ``ball_error_um``
     (n_balls, 3): the artefact's ball centres off their calibrated ones (its own frame).
     """
-    model, array = setup.model, setup.array
     params = np.atleast_2d(params)
-    nominal = array.centres()
-    true_local = nominal + 1e-3 * ball_error_um
-    ij = np.array(pairs(array.n_balls)) - 1
-    calibrated = np.linalg.norm(nominal[ij[:, 1]] - nominal[ij[:, 0]], axis=1)      # mm
-    out = []
-    for pose in setup.poses:
-        frame = pose.frame()
-        balls = np.asarray(pose.centre, float) + true_local @ frame                 # mm
-        e = model.error(params, balls - model.tool, form="htm")                    # (k, n, 3) µm
-        reading = balls[None] - 1e-3 * e
-        reading = reading + 1e-3 * setup.probing_um * rng.standard_normal(reading.shape)
-        measured = np.linalg.norm(reading[:, ij[:, 1]] - reading[:, ij[:, 0]], axis=-1)
-        out.append(1e3 * (measured - calibrated))
-    return np.concatenate(out, axis=1)
+    noise = setup.probing_um * rng.standard_normal((len(params), len(setup.poses),
+                                                    setup.array.n_balls, 3))
+    return artefact_distances(setup.model, setup, params, ball_error_um, noise)
 
 
 class LargeMillVolumetric(LargeMillWeek):

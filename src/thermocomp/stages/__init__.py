@@ -19,7 +19,7 @@ STAGES = {"simulate": "simulate:simulate", "ingest": "ingest:ingest", "denoise":
           "diagnose": "diagnose:diagnose", "run": "modelling:run", "compare": "compare:compare",
           "promote": "promote:promote", "replay": "replay:replay", "serve": "serve:serve",
           "monitor": "monitor:monitor",
-          "calibrate": "calibrate:calibrate"}
+          "calibrate": "calibrate:calibrate", "design": "design:design"}
 
 
 def stage(name: str):

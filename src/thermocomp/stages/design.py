@@ -1,0 +1,171 @@
+"""`thermocomp design`: Monte Carlo study of artefact calibration strategies (paper 001).
+
+The compensation model C and the artefact are the set-up of ``data.path/volumetric.json``
+when there is one (a volumetric dataset), else the kinematic model's defaults; the machine
+family M, the strategies and the Monte Carlo are ``design.*``.  Writes
+``<out>/design.json`` (one row per strategy with the VCE ``median`` and ``p95``; CLI.md)
+and figures in ``<out>/design/``; prints the table and the findings.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from omegaconf import DictConfig, OmegaConf
+
+from ..errors import ConfigError
+from ..files import staged_outputs, write_json
+from ..paths import resolve
+from ..tracking import stage_run
+from ..volumetric import KinematicModel, load_setup
+from ..volumetric.artefact import POSITION_SETS
+from ..volumetric.design import KINDS, CalibrationDesignStudy, MachineFamily, strategies
+from .common import check_config, say
+
+
+def _number(key, value, low=None, integer=False, null=False, low_open=False):
+    if value is None and null:
+        return
+    ok = (not isinstance(value, bool) and isinstance(value, int if integer else (int, float))
+          and math.isfinite(value) and (low is None or (value > low if low_open else value >= low)))
+    if not ok:
+        bound = "" if low is None else f" {'>' if low_open else '>='} {low:g}"
+        raise ConfigError(f"design.{key} must be {'an integer' if integer else 'a number'}{bound}"
+                          f"{' or null' * null}, got {value!r}")
+
+
+def check_design(d: dict) -> None:
+    """Refuse a ``design.*`` value the study cannot use, before any work."""
+    _number("n_machines", d.get("n_machines"), 1, integer=True)
+    _number("n_jobs", d.get("n_jobs"), integer=True)
+    if d.get("n_jobs") == 0:
+        raise ConfigError("design.n_jobs must not be 0 (-1: every core)")
+    grid = d.get("grid")
+    if not isinstance(grid, list) or len(grid) != 3:
+        raise ConfigError(f"design.grid must be 3 numbers of points (X, Y, Z), got {grid!r}")
+    for g in grid:
+        _number("grid", g, 2, integer=True)
+    xc = d.get("x_centres")
+    if not isinstance(xc, list) or not xc or not all(
+            isinstance(x, (int, float)) and not isinstance(x, bool) and 0 <= x <= 1 for x in xc):
+        raise ConfigError(f"design.x_centres must be fractions of the X travel in [0, 1], got {xc!r}")
+    _number("length_mm", d.get("length_mm"), 0, null=True, low_open=True)
+    for key in ("probing_um", "ball_um"):
+        _number(key, d.get(key), 0, null=True)
+    _number("compensation_order", d.get("compensation_order"), 1, integer=True, null=True)
+    machine = d.get("machine") or {}
+    _number("machine.order", machine.get("order"), 1, integer=True, null=True)
+    if machine.get("cross_terms") not in (True, False):
+        raise ConfigError("design.machine.cross_terms must be true or false, "
+                          f"got {machine.get('cross_terms')!r}")
+    ranges = dict(d.get("ranges") or {})
+    _number("ranges.decay", ranges.pop("decay", None), 0)
+    for k, v in ranges.items():
+        if k not in KINDS:
+            raise ConfigError(f"design.ranges.{k}: not a parameter kind ({', '.join(KINDS)}, decay)")
+        for a in (v if isinstance(v, list) else [v]):
+            _number(f"ranges.{k}", a, 0)
+    studies = d.get("studies")
+    if not isinstance(studies, dict) or not studies:
+        raise ConfigError("design.studies must map study names to n_balls, misalignment_deg, position_sets")
+    for name, s in studies.items():
+        for key in ("n_balls", "misalignment_deg", "position_sets"):
+            if not isinstance((s or {}).get(key), list) or not s[key]:
+                raise ConfigError(f"design.studies.{name}.{key} must be a non-empty list")
+        for nb in s["n_balls"]:
+            _number(f"studies.{name}.n_balls", nb, 2, integer=True)
+        for th in s["misalignment_deg"]:
+            _number(f"studies.{name}.misalignment_deg", th, 0)
+            if th >= 90:
+                raise ConfigError(f"design.studies.{name}.misalignment_deg must be below 90, got {th!r}")
+        for ps in s["position_sets"]:
+            bad = [p for p in str(ps).split("+") if p.strip() not in POSITION_SETS]
+            if bad:
+                raise ConfigError(f"design.studies.{name}.position_sets: {ps!r} is not a "
+                                  f"'+'-joined choice of {list(POSITION_SETS)}")
+
+
+def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
+    """The study of the config, its studies, and where the set-up came from."""
+    d = OmegaConf.to_container(cfg.design, resolve=True)
+    check_design(d)
+    data = (cfg.get("data") or {}).get("path")
+    setup = load_setup(resolve(str(data))) if data else None
+    if setup is not None:
+        base, source = setup.model, f"{Path(str(data)) / 'volumetric.json'}"
+        length, probing, ball = setup.array.length_mm, setup.probing_um, setup.ball_um
+    else:
+        base, source = KinematicModel(), "kinematic model defaults"
+        length, probing, ball = 1500.0, 0.5, 0.5
+    geometry = {"ranges": base.ranges, "chain": base.chain, "tool": base.tool}
+    c_order = d["compensation_order"] or base.order
+    compensation = KinematicModel(**geometry, order=c_order, cross_terms=base.cross_terms)
+    m_order = d["machine"]["order"] or c_order + 2
+    if m_order < c_order:
+        raise ConfigError(f"design.machine.order={m_order} is below the compensation model's {c_order}")
+    machine = KinematicModel(**geometry, order=m_order,
+                             cross_terms=bool(d["machine"]["cross_terms"] or base.cross_terms))
+    ranges = dict(d["ranges"])
+    family = MachineFamily(machine, {k: v for k, v in ranges.items() if k != "decay"},
+                           float(ranges.get("decay", 0.3)))
+    try:
+        study = CalibrationDesignStudy(
+            compensation, family, length_mm=d["length_mm"] or length, x_centres=d["x_centres"],
+            probing_um=probing if d["probing_um"] is None else d["probing_um"],
+            ball_um=ball if d["ball_um"] is None else d["ball_um"], grid=d["grid"],
+            n_machines=d["n_machines"], n_jobs=d["n_jobs"], seed=int(cfg.seed))
+        strategies(d["studies"])
+    except ValueError as err:
+        raise ConfigError(f"design: {err}") from None
+    return study, d["studies"], source
+
+
+def design(cfg: DictConfig) -> dict:
+    """Run the study; write ``design.json`` and the figures."""
+    check_config(cfg)
+    study, studies, source = build_study(cfg)
+    n = len(strategies(studies)[0])
+    with stage_run(cfg, "design") as tr:
+        say(f"design: {study.n_machines} machines × {n} strategies (C: {source})")
+        result = study.run(studies)
+        report = {"n_machines": study.n_machines, "seed": study.seed, "setup": source,
+                  "compensation": study.compensation.to_dict(),
+                  "machine": {**study.family.model.to_dict(), "ranges_a": study.family.amplitudes,
+                              "decay": study.family.decay},
+                  "artefact": {"length_mm": study.length_mm, "x_centres": list(study.x_centres),
+                               "probing_um": study.probing_um, "ball_um": study.ball_um},
+                  "grid": list(study.grid), **result}
+        out = Path(resolve(cfg.out))
+        with staged_outputs(out, last=("design.json",)) as stage:
+            if cfg.plots != "none":
+                from ..volumetric.design_figures import draw
+                draw(stage / "design", report)
+            write_json(stage / "design.json", report)
+        f = result["findings"]
+        tr.log_metrics({"design": {"ve_median": result["ve"]["median"],
+                                   "balls_for_95pct": f.get("balls_for_95pct"),
+                                   "time_s": result["time_s"]}})
+        tr.log_artifact(out / "design.json")
+    _print(report)
+    say(f"design: {out / 'design.json'} ({result['time_s']:.1f} s)")
+    return report
+
+
+def _print(report: dict) -> None:
+    print(f"VE (median, p95): {report['ve']['median']:.2f}, {report['ve']['p95']:.2f} µm "
+          f"over {report['n_machines']} machines")
+    print(f"{'set':<10} {'balls':>5} {'θ (°)':>6} {'VCE med':>8} {'p95':>7} {'impr.':>6} {'ident.':>6}")
+    for r in report["strategies"]:
+        print(f"{r['position_set']:<10} {r['n_balls']:>5} {r['misalignment_deg']:>6g} "
+              f"{r['median']:>8.2f} {r['p95']:>7.2f} {r['improvement_pct']:>5.0f}% {r['n_identified']:>6}")
+    f = report["findings"]
+    if "balls_for_95pct" in f:
+        print(f"95 % of the best improvement with {f['balls_for_95pct']} balls")
+    for s, m in f.get("misalignment", {}).items():
+        print(f"misalignment, {s}: VCE {m['vce_aligned']:.2f} at {m['aligned_deg']:g}° -> "
+              f"{m['vce_best']:.2f} at {m['best_deg']:g}° ({m['reduction_pct']:.0f} % less)")
+    if "best_position_set" in f:
+        b = f["best_position_set"]
+        print(f"best position set: {b['position_set']} (VCE {b['median']:.2f} µm, "
+              f"{b['n_probings']} probed points)")

@@ -1,0 +1,147 @@
+"""`thermocomp design` (paper 001): a small Monte Carlo reproduces the study's qualitative
+findings; the command writes design.json and refuses bad config."""
+
+from __future__ import annotations
+
+import json
+import re
+
+import numpy as np
+import pytest
+import yaml
+
+from conftest import ROOT, refused, thermocomp
+from thermocomp.volumetric import KinematicModel
+from thermocomp.volumetric.design import CalibrationDesignStudy, MachineFamily
+
+SMALL = {"x_centres": (0.25, 0.75), "grid": (12, 6, 6), "n_machines": 12, "n_jobs": 1, "seed": 0}
+
+
+@pytest.fixture(scope="module")
+def study():
+    fam = MachineFamily(KinematicModel(order=4, cross_terms=True))
+    return CalibrationDesignStudy(KinematicModel(), fam, **SMALL)
+
+
+@pytest.fixture(scope="module")
+def result(study):
+    return study.run({
+        "balls": {"n_balls": [3, 5, 11], "misalignment_deg": [15.0], "position_sets": ["S2+S3"]},
+        "misalignment": {"n_balls": [11], "misalignment_deg": [0.0, 20.0], "position_sets": ["S2", "S2+S3"]},
+    })
+
+
+def _vce(result, balls, theta, sets):
+    return next(r["median"] for r in result["strategies"] if (r["n_balls"], r["misalignment_deg"],
+                                                                 r["position_set"]) == (balls, theta, sets))
+
+
+def test_more_balls_help_with_diminishing_returns(result):
+    ve = result["ve"]["median"]
+    v3, v5, v11 = (_vce(result, n, 15.0, "S2+S3") for n in (3, 5, 11))
+    assert v11 < v3 < ve or v11 < ve <= v3
+    assert v3 - v5 > abs(v5 - v11)                   # the first balls bring most of the gain
+    assert result["findings"]["balls_for_95pct"] in (5, 11)
+
+
+def test_misalignment_helps_the_sparse_diagonal_set(result):
+    s2 = result["findings"]["misalignment"]["S2"]
+    assert s2["best_deg"] == 20.0 and s2["reduction_pct"] > 25
+    # the denser set is at least as good at every angle
+    for theta in (0.0, 20.0):
+        assert _vce(result, 11, theta, "S2+S3") <= _vce(result, 11, theta, "S2")
+
+
+def test_a_calibration_beats_no_calibration_and_vce_is_a_distribution(result):
+    for r in result["strategies"]:
+        assert r["p5"] <= r["median"] <= r["p95"]
+    best = min(r["median"] for r in result["strategies"])
+    assert best < 0.6 * result["ve"]["median"]
+
+
+def test_without_noise_and_with_m_equal_to_c_the_calibration_is_exact():
+    """No probing or ball noise, M = C: every VCE is what the pose set cannot see, which is
+    nothing for a strategy that identifies every parameter that moves the TCP differently."""
+    c = KinematicModel()
+    fam = MachineFamily(KinematicModel(), decay=0.3)
+    st = CalibrationDesignStudy(c, fam, probing_um=0.0, ball_um=0.0, **{**SMALL, "n_machines": 3})
+    noisy = CalibrationDesignStudy(c, fam, **{**SMALL, "n_machines": 3})
+    spec = {"s": {"n_balls": [11], "misalignment_deg": [20.0], "position_sets": ["S1+S2+S3"]}}
+    exact, rough = st.run(spec), noisy.run(spec)
+    assert exact["strategies"][0]["median"] < 0.05 * exact["ve"]["median"]
+    assert rough["strategies"][0]["median"] > 5 * exact["strategies"][0]["median"]
+
+
+def test_the_result_does_not_depend_on_the_number_of_workers():
+    fam = MachineFamily(KinematicModel(order=3))
+    spec = {"s": {"n_balls": [5], "misalignment_deg": [0.0], "position_sets": ["S1", "S3"]}}
+    one = CalibrationDesignStudy(KinematicModel(), fam, **{**SMALL, "n_machines": 4}).run(spec)
+    two = CalibrationDesignStudy(KinematicModel(), fam, **{**SMALL, "n_machines": 4, "n_jobs": 2}).run(spec)
+    assert [r["median"] for r in one["strategies"]] == [r["median"] for r in two["strategies"]]
+
+
+def test_family_ranges_scale_the_volumetric_error():
+    m = KinematicModel(order=3)
+    small = MachineFamily(m).draw([(0, i) for i in range(5)])
+    big = MachineFamily(m, {k: 2 * v for k, v in MachineFamily(m).amplitudes.items()}).draw(
+        [(0, i) for i in range(5)])
+    np.testing.assert_allclose(big, 2 * small)
+    with pytest.raises(ValueError, match="unknown parameter kind"):
+        MachineFamily(m, {"wobble": 1.0})
+
+
+TINY = ["track=false", "design.n_machines=3", "design.n_jobs=1", "design.grid=[8,5,5]",
+        "design.x_centres=[0.25,0.75]", "design.studies={balls:{n_balls:[3,5],misalignment_deg:[15],"
+        "position_sets:[S2+S3]},misalignment:{n_balls:[5],misalignment_deg:[0,20],position_sets:[S2]},"
+        "position_sets:{n_balls:[5],misalignment_deg:[0],position_sets:[S2]}}"]
+
+
+def test_the_command_writes_design_json_and_figures(tmp_path):
+    out = tmp_path / "d"
+    proc = thermocomp("design", *TINY, f"out={out}")
+    report = json.loads((out / "design.json").read_text())
+    rows = report["strategies"]
+    assert {(r["n_balls"], r["misalignment_deg"], r["position_set"]) for r in rows} == {
+        (3, 15.0, "S2+S3"), (5, 15.0, "S2+S3"), (5, 0.0, "S2"), (5, 20.0, "S2")}
+    for r in rows:
+        assert {"median", "p95", "n_balls", "misalignment_deg", "position_set"} <= set(r)
+        assert r["median"] > 0 and r["p95"] >= r["median"]
+    assert report["n_machines"] == 3 and report["findings"]["balls_for_95pct"] in (3, 5)
+    assert sorted(p.name for p in (out / "design").iterdir()) == ["balls.png", "misalignment.png",
+                                                                     "position_sets.png"]
+    assert "95 % of the best improvement" in proc.stdout
+
+
+@pytest.mark.parametrize("override, says", [
+    ("design.n_machines=0", "design.n_machines"),
+    ("design.studies.balls.position_sets=[S4]", "position_sets"),
+    ("design.ranges.wobble=3", "design.ranges.wobble"),
+    ("design.grid=[8,5]", "design.grid"),
+    ("design.machine.order=1", "design.machine.order"),
+])
+def test_bad_design_config_exits_2_and_writes_nothing(override, says, tmp_path, capsys):
+    out = tmp_path / "d"
+    refused(["design", "track=false", f"out={out}", override], capsys, says)
+    assert not out.exists()
+
+
+def _documented(key: str, text: str) -> bool:
+    return re.search(rf'`[^`\n]*\b{re.escape(key)}\b[^`\n]*`|"{re.escape(key)}":', text) is not None
+
+
+def test_every_design_key_is_in_the_cli_reference(tmp_path):
+    cli = (ROOT / "docs" / "cli.md").read_text()
+    conf = yaml.safe_load((ROOT / "conf" / "design" / "default.yaml").read_text())
+    keys = [f"design.{k}" for k, v in conf.items() if not isinstance(v, dict)]
+    keys += [f"design.{k}.{kk}" for k, v in conf.items() if isinstance(v, dict) and k != "studies"
+             for kk in v]
+    missing = [k for k in keys + ["design.studies"] if f"| `{k}` |" not in cli]
+    assert not missing, f"docs/cli.md lacks the design config keys {missing}"
+    out = tmp_path / "d"
+    thermocomp("design", *TINY, f"out={out}", "plots=none")
+    report = json.loads((out / "design.json").read_text())
+    found = set(report) | set(report["strategies"][0]) | set(report["findings"]) | set(report["ve"])
+    found |= set(next(iter(report["findings"]["misalignment"].values())))
+    found |= set(report["artefact"]) | {"ranges_a", "decay"}
+    missing = sorted(k for k in found if not _documented(k, cli))
+    assert not missing, f"docs/cli.md lacks keys of design.json: {missing}"

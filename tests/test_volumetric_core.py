@@ -1,0 +1,102 @@
+"""The volumetric core: kinematics (small-angle vs HTM, chains, linearity), artefact
+calibration round trip and identifiability by name."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from thermocomp.volumetric import ArtefactCalibration, BallArray, KinematicModel, Setup, position_set
+from thermocomp.volumetric.identify import design
+
+
+@pytest.fixture(scope="module")
+def model():
+    return KinematicModel(order=3, cross_terms=True)
+
+
+@pytest.fixture(scope="module")
+def points(model):
+    rng = np.random.default_rng(0)
+    lo = np.array([model.ranges[a][0] for a in "XYZ"])
+    hi = np.array([model.ranges[a][1] for a in "XYZ"])
+    return lo + rng.random((300, 3)) * (hi - lo)
+
+
+def test_small_angle_and_htm_differ_by_second_order_terms_only(model, points):
+    p = np.random.default_rng(1).uniform(-20, 20, len(model.names))
+    diff = [np.abs(model.error(s * p, points, "htm") - model.error(s * p, points, "small")).max()
+            for s in (1.0, 10.0)]
+    size = np.abs(model.error(p, points, "small")).max()
+    assert diff[0] < 1e-3 * size                 # agree within second-order terms
+    assert diff[1] / diff[0] == pytest.approx(100, rel=0.05)   # params × 10 -> difference × 100
+
+
+def test_small_angle_form_is_linear_in_the_parameters(model, points):
+    rng = np.random.default_rng(2)
+    p, q = rng.normal(size=(2, len(model.names)))
+    e = model.error(np.vstack([p, q, 2 * p - 3 * q]), points)
+    np.testing.assert_allclose(e[2], 2 * e[0] - 3 * e[1], atol=1e-9)
+    np.testing.assert_allclose(np.einsum("nip,p->ni", model.basis(points), p), e[0], atol=1e-9)
+
+
+@pytest.mark.parametrize("chain", ["tool-Y-Z-bed-workpiece", "Y-Z-X-bed-workpiece",
+                                   "tool-Y-Y-X-bed-workpiece", "tool-Y-Z-X-workpiece", "tool-Y-Z-X-bed"])
+def test_a_bad_chain_is_refused_with_the_expected_form(chain):
+    with pytest.raises(ValueError, match="tool-...-bed-...-workpiece"):
+        KinematicModel(chain=chain)
+
+
+def test_the_part_side_moves_the_part_the_other_way():
+    """A positioning error of X gives the same TCP error whether X carries the tool or the part."""
+    tool = KinematicModel(chain="tool-Y-Z-X-bed-workpiece")
+    part = KinematicModel(chain="tool-Y-Z-bed-X-workpiece")
+    q = np.array([[1000.0, 800.0, 400.0], [3000.0, 200.0, 1200.0]])
+    p = np.zeros(len(tool.names))
+    p[tool.names.index("E_XX1")] = 5.0
+    pp = np.zeros(len(part.names))
+    pp[part.names.index("E_XX1")] = 5.0
+    np.testing.assert_allclose(tool.error(p, q), -part.error(pp, q), atol=1e-12)
+    assert abs(tool.error(p, q)[1, 0]) == pytest.approx(5.0 * 0.5)       # L1(0.5) = 0.5
+
+
+def _setup(sets=("S1", "S2", "S3"), misalignment=0.0, tool=(0.0, 0.0, -150.0)):
+    m = KinematicModel(tool=tool)
+    return Setup(m, BallArray(11, 1500.0, misalignment), position_set(sets, m.ranges))
+
+
+def test_identification_round_trip_within_two_uncertainties():
+    setup = _setup(("S1", "S3"))
+    cal = ArtefactCalibration(setup).fit()
+    d = design(setup)
+    rng = np.random.default_rng(3)
+    truth = rng.uniform(-10, 10, (20, len(setup.model.names)))
+    noise = rng.standard_normal((20, len(d.A))) @ np.linalg.cholesky(d.cov).T   # correlated, as d.cov
+    noisy = truth @ d.A.T + noise
+    est, flagged = cal.identify(noisy)
+    from thermocomp.volumetric import equivalent_truth
+    z = (est - equivalent_truth(cal, truth)) / cal.uncertainty_
+    assert not flagged
+    assert np.mean(np.abs(z) <= 2) >= 0.9
+    assert np.abs(z).max() < 5
+
+
+def test_unseen_parameters_are_named():
+    """With the probe along Z, a rotation of Y about Z moves nothing: named as not seen at all;
+    its rotation about X equals its positioning error, named with it."""
+    cal = ArtefactCalibration(_setup()).fit()
+    assert cal.unidentifiable_["E_CY1"] == [] and cal.unidentifiable_["E_CY2"] == []
+    assert cal.unidentifiable_["E_AY1"] == ["E_YY1"]
+    assert not set(cal.unidentifiable_) & set(cal.names_)
+    assert len(cal.names_) + len(cal.unidentifiable_) == len(cal.setup.model.names)
+    # a probe set off along X gives the rotation about Z a lever along Y: it now moves the
+    # TCP as the positioning error of Y does, and is named with it
+    offset = ArtefactCalibration(_setup(tool=(100.0, 0.0, -150.0))).fit()
+    assert offset.unidentifiable_["E_CY1"] == ["E_YY1"]
+
+
+def test_a_misaligned_array_sees_more_parameters():
+    aligned = ArtefactCalibration(_setup(("S2",))).fit()
+    tilted = ArtefactCalibration(_setup(("S2",), misalignment=15.0)).fit()
+    assert len(tilted.names_) > len(aligned.names_)
+    assert set(aligned.names_) < set(tilted.names_)
