@@ -21,7 +21,7 @@ ROOT = "thermocomp"
 # The core: pure computations a CNC deployment or a notebook can import without the shell.
 CORE = ("models", "select", "denoise", "metrics", "stats", "iso10791", "frame", "compensator",
         "evaluation", "diagnose", "deploy", "model_selection", "files", "jsonsafe", "errors",
-        "plots")
+        "plots", "volumetric", "monitor")
 # What the core must never import, even through another module.
 SHELL = (f"{ROOT}.stages", f"{ROOT}.cli", f"{ROOT}.callbacks", f"{ROOT}.tracking",
          "hydra", "omegaconf")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import tempfile
 import time
 from pathlib import Path
@@ -232,3 +233,27 @@ def result_table(metrics: dict) -> str:
         lines.append("state carried over: " + "; ".join(
             f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items()))
     return "\n".join(lines)
+
+
+# --- calibrate (the stage and `run` on a volumetric dataset) -------------------------------
+
+KINDS = ("positioning", "straightness", "angular", "cross")
+FORMATS = ("parquet", "csv")
+
+
+def check_calibrate(c: DictConfig) -> None:
+    """Refuse a ``calibrate.*`` value the stage cannot use, before any data is read."""
+    def number(key, low, high=None):
+        v = c.get(key)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+                or v <= low or (high is not None and v > high):
+            raise ConfigError(f"calibrate.{key} must be a number > {low:g}"
+                              f"{f' and <= {high:g}' if high is not None else ''}, got {v!r}")
+
+    number("outlier_z", 0)
+    number("column_share", 0, 1)
+    if c.get("format") not in FORMATS:
+        raise ConfigError(f"calibrate.format={c.get('format')!r} is not one of {list(FORMATS)}")
+    bad = [k for k in (c.get("require_seen") or []) if k not in KINDS]
+    if bad:
+        raise ConfigError(f"calibrate.require_seen: unknown kind(s) {bad}; use {list(KINDS)}")

@@ -326,7 +326,8 @@ def _calibrated(cfg: DictConfig):
     (``volumetric.json`` in ``data.path``), calibrated as ``thermocomp calibrate`` does; else None."""
     from ..sim.scenario import single_threaded_blas
     from ..volumetric import SETUP_FILE
-    from .calibrate import calibrate_folder, check_calibrate
+    from ..volumetric.calibration import calibrate_folder
+    from .common import check_calibrate
 
     root = resolve(cfg.data.path)
     if not (root / SETUP_FILE).is_file():
@@ -334,7 +335,9 @@ def _calibrated(cfg: DictConfig):
     check_calibrate(cfg.calibrate)
     say("volumetric dataset: calibrating the artefact distances into the error parameters")
     with single_threaded_blas():
-        return calibrate_folder(root, cfg.calibrate, data_options(cfg))
+        c = cfg.calibrate
+        return calibrate_folder(root, data_options(cfg), c.outlier_z, c.column_share,
+                                c.get("require_seen"))
 
 
 def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal):

@@ -1,0 +1,152 @@
+"""Artefact calibration of a whole volumetric dataset: every cycle's error parameters.
+
+Reads a volumetric dataset as recorded (an empty cell is a distance not measured in that cycle),
+checks every pose of the set-up has its distances, identifies every cycle
+(:class:`~thermocomp.volumetric.identify.ArtefactCalibration`), leaves out a distance column
+flagged in most cycles, and gives the parameter series as a dataset with the report of
+``calibration.json``.  Used by ``thermocomp calibrate`` and by ``run`` on a volumetric dataset.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .. import io
+from ..errors import ContractError
+from ..log import logger
+from .artefact import COLUMN, SETUP_FILE
+from .identify import ArtefactCalibration, equivalent_truth
+from .series import check_columns, load_setup
+
+
+def _kinds(setup) -> dict:
+    return {p.name: p for p in setup.model.parameters}
+
+
+def _require_seen(cal: ArtefactCalibration, setup, kinds) -> None:
+    """A pose set that cannot see a parameter of a required kind is bad input: name both."""
+    params = _kinds(setup)
+    unseen = [n for n in cal.unidentifiable_ if params[n].kind in kinds]
+    if unseen:
+        poses = [p.name for p in setup.poses]
+        what = ", ".join(f"{n} ({params[n].kind})" for n in unseen)
+        raise ContractError(f"the poses {', '.join(poses)} cannot see {what}: add poses (position "
+                            "sets S1 axes, S2 volume diagonals, S3 face diagonals) or "
+                            "calibrate.require_seen=[]", file=setup_path(cal))
+
+
+def setup_path(cal) -> str:
+    return getattr(cal, "source_", SETUP_FILE)
+
+
+def _identify(cal, ds, excluded=()):
+    """Per campaign ``(P, flagged)``, the columns in ``excluded`` left out of every cycle."""
+    cols = cal.design_.columns
+    out = {}
+    for cid, df in ds.campaigns.items():
+        D = df[cols].to_numpy(float)
+        if excluded:
+            D[:, [cols.index(c) for c in excluded]] = np.nan
+        try:
+            out[cid] = cal.identify(D)
+        except ValueError as exc:
+            raise ContractError(f"campaign {cid}: {exc} (too many distances missing or excluded)",
+                                file=ds.manifest.loc[cid, "file"]) from None
+    return out
+
+
+def _described(column: str) -> dict:
+    m = COLUMN.match(column)
+    return {"column": column, "pose": m["pose"], "balls": [int(m["i"]), int(m["j"])]}
+
+
+def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_share: float = 0.5,
+                     require_seen=("positioning", "straightness")):
+    """``(parameter dataset, calibration, report, distance dataset)`` of the volumetric dataset
+    in ``root`` (the arguments: ``calibrate.*``, docs/cli.md)."""
+    setup = load_setup(root)
+    if setup is None:
+        raise ContractError(f"not a volumetric dataset: no {SETUP_FILE} (write one with "
+                            "thermocomp simulate sim=large_mill_volumetric, or see docs/data-format.md)",
+                            file=root)
+    ds, _ = io.read_dataset(root, data_cfg, missing="keep")     # NaN = a distance not measured
+    check_columns(ds, setup)
+    cal = ArtefactCalibration(setup, outlier_z=float(outlier_z)).fit()
+    cal.source_ = str(root / SETUP_FILE)
+    _require_seen(cal, setup, list(require_seen or []))
+    n_cycles = sum(len(df) for df in ds.campaigns.values())
+    result = _identify(cal, ds)
+    counts: dict[str, int] = {}
+    for _, flagged in result.values():
+        for f in flagged:
+            counts[f["column"]] = counts.get(f["column"], 0) + 1
+    excluded = sorted(col for col, k in counts.items() if k > float(column_share) * n_cycles)
+    if excluded:     # a column off in most cycles is the artefact or its label, not a cycle
+        logger.warning("calibrate: %d distance column(s) flagged in more than %.0f %% of the cycles, "
+                       "left out of every cycle: %s", len(excluded), 100 * float(column_share),
+                       ", ".join(excluded[:5]))
+        result = _identify(cal, ds, excluded)
+    report = _report(cal, setup, ds, result, excluded, counts, n_cycles)
+    campaigns = {}
+    for cid, df in ds.campaigns.items():
+        keep = df[[col for col in df.columns if not col.startswith("E_")]]
+        P = pd.DataFrame(result[cid][0], index=df.index, columns=cal.names_)
+        campaigns[cid] = pd.concat([keep, P], axis=1)
+    params = io.Dataset(ds.manifest.copy(), campaigns, name=ds.name, meta=dict(ds.meta))
+    return params, cal, report, ds
+
+
+def _report(cal, setup, ds, result, excluded, counts, n_cycles) -> dict:
+    params = _kinds(setup)
+    cols = cal.design_.columns
+    outliers, sq, n = [], 0.0, 0
+    for cid, (P, flagged) in result.items():
+        df = ds.campaigns[cid]
+        D = df[cols].to_numpy(float)
+        R = D - cal.predict(P)
+        skip = np.zeros_like(R, dtype=bool)
+        for col in excluded:
+            skip[:, cols.index(col)] = True
+        for f in flagged:
+            skip[f["cycle"], cols.index(f["column"])] = True
+            outliers.append({"campaign": cid, "time": float(df["time"].iloc[f["cycle"]]),
+                             "row": int(f["cycle"]) + 1, **_described(f["column"]),
+                             "residual_um": f["residual_um"], "z": f["z"]})
+        ok = np.isfinite(R) & ~skip
+        sq += float(np.sum(R[ok] ** 2))
+        n += int(ok.sum())
+    return {
+        "parameters": {name: {"unit": params[name].unit, "uncertainty": float(u),
+                              "kind": params[name].kind}
+                       for name, u in zip(cal.names_, cal.uncertainty_)},
+        "unidentifiable": dict(cal.unidentifiable_),
+        "outliers": outliers,
+        "excluded": [{**_described(col), "cycles_flagged": counts[col],
+                      "share": counts[col] / n_cycles} for col in excluded],
+        "n_cycles": n_cycles,
+        "n_distances": len(cols),
+        "poses": [p.name for p in setup.poses],
+        "residual_rms_um": math.sqrt(sq / n) if n else None,
+        "campaigns": {cid: len(df) for cid, df in ds.campaigns.items()},
+    }
+
+
+def roundtrip(cal: ArtefactCalibration, result: dict, truth: dict) -> dict | None:
+    """z = (identified - equivalent truth) / uncertainty over every parameter and cycle, or None
+    when the truth does not hold this dataset's parameter series."""
+    names = cal.setup.model.names
+    z = []
+    for cid, (P, _) in result.items():
+        series = (truth.get("campaigns", {}).get(cid) or {}).get("parameters")
+        if not series or set(series) != set(names) or len(series[names[0]]) != len(P):
+            return None
+        full = np.column_stack([series[n] for n in names])
+        z.append((P - equivalent_truth(cal, full)) / cal.uncertainty_)
+    z = np.vstack(z)
+    return {"n_parameters": int(z.shape[1]), "max_abs_z": float(np.max(np.abs(z))),
+            "share_within_2u": float(np.mean(np.abs(z) <= 2.0)), "n_values": int(z.size),
+            "z_sd": float(np.std(z))}
