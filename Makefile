@@ -26,7 +26,7 @@ run: $(STAMP)
 	$(BIN)/thermocomp run
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n 2   # 2 workers (pytest-xdist): the end-to-end tests mostly wait on subprocesses
+	$(BIN)/python -m pytest -q -n 2 --dist loadgroup   # 2 workers (pytest-xdist; an xdist_group stays on one worker)
 
 benchmark: $(STAMP)
 	for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done

@@ -1,7 +1,12 @@
-"""What DVC shows of the default study: headline metrics (narrow), a handful of `exp show`
-columns, data-driven plots. One `dvc repro` in a scratch copy, the venv not on PATH."""
+"""`dvc repro` of the default study in a scratch copy of the project, the venv not on PATH, and
+what DVC shows of it: headline metrics (narrow), a handful of `exp show` columns, data-driven
+plots, and what a changed model parameter reruns.  One full repro for the module: its tests run
+on one xdist worker (group `dvc_study`, `make test` uses `--dist loadgroup`), the one that
+changes the study last.  (The README test checks that a second `dvc repro` runs nothing.)"""
 
 import json
+import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -9,10 +14,11 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from test_dvc import copy_project
+from conftest import ROOT
 from thermocomp.plotdata import write_compare
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("dvc_study")]
+STAGES = ("simulate", "ingest", "denoise", "select", "train", "evaluate", "diagnose")
 TARGETS = ("E_X", "E_Y", "E_Z")
 # The README's `dvc exp show` (a handful of columns: the test and validation RMSE per target)
 EXP_SHOW = ["exp", "show", "--drop", ".*", "--keep",
@@ -26,10 +32,44 @@ def _dvc(*args, cwd, env) -> subprocess.CompletedProcess:
     return proc
 
 
+def _ran(log: str) -> set[str]:
+    return {s for s in STAGES if f"Running stage '{s}'" in log}
+
+
+def copy_project(dest: Path) -> tuple[Path, dict]:
+    """A scratch copy of the project (its `.venv` a link to this one) and an environment whose
+    PATH does NOT hold the venv: `dvc repro` must work as a new user types it."""
+    dest.mkdir()
+    for item in ("conf", "src", "dvc.yaml", ".dvc", "pipelines"):
+        src = ROOT / item
+        if src.is_dir():
+            shutil.copytree(src, dest / item, ignore=shutil.ignore_patterns("__pycache__", "tmp"))
+        else:
+            shutil.copy2(src, dest / item)
+    os.symlink(Path(sys.executable).parent.parent, dest / ".venv")
+    git = dict(GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@t", GIT_COMMITTER_NAME="t",
+               GIT_COMMITTER_EMAIL="t@t")
+    venv_bin = str(Path(sys.executable).parent)
+    path = os.pathsep.join(p for p in os.environ["PATH"].split(os.pathsep)
+                           if p and Path(p).resolve() != Path(venv_bin).resolve())
+    env = {**os.environ, **git, "THERMOCOMP_ROOT": str(dest), "PATH": path}
+    env.pop("VIRTUAL_ENV", None)
+    # The study as committed, minus the report extras that refit one model per campaign:
+    # this test is about what DVC reruns, not about the report (tested elsewhere).
+    eval_conf = dest / "conf/eval/default.yaml"
+    eval_conf.write_text(eval_conf.read_text().replace("mutual_prediction: true",
+                                                       "mutual_prediction: false"))
+    subprocess.run(["git", "init", "-q"], cwd=dest, check=True)
+    return dest, env
+
+
 @pytest.fixture(scope="module")
 def repro(tmp_path_factory):
     dest, env = copy_project(tmp_path_factory.mktemp("dvcm") / "proj")
-    _dvc("repro", cwd=dest, env=env)
+    first = _dvc("repro", cwd=dest, env=env)
+    assert _ran(first.stdout + first.stderr) == set(STAGES), first.stdout + first.stderr
+    assert (dest / "reports/default/metrics.json").is_file()
+    assert (dest / "mlruns/mlflow.db").is_file()
     (dest / ".gitignore").write_text("/mlruns/\n/reports/\ndvc_plots/\n.venv\n")
     subprocess.run(["git", "add", "-A"], cwd=dest, env=env, check=True, capture_output=True)
     subprocess.run(["git", "commit", "-qm", "study"], cwd=dest, env=env, check=True)
@@ -125,3 +165,15 @@ def test_residual_and_sweep_plots(repro):
     (cmp,) = data["reports/sweep_compare/compare_plot.csv"]
     assert cmp["content"]["encoding"]["x"]["field"] == "rank"
     assert {v["field"] for v in cmp["content"]["data"]["values"]} == {"val_rmse", "test_rmse"}
+
+
+def test_a_model_parameter_reruns_train_evaluate_and_diagnose_only(repro):
+    """Last in the module: it changes the study."""
+    dest, env = repro
+    model_conf = dest / "conf/model/mlr.yaml"
+    model_conf.write_text(model_conf.read_text().replace("fit_intercept: true",
+                                                         "fit_intercept: false"))
+    again = _dvc("repro", cwd=dest, env=env)
+    assert _ran(again.stdout + again.stderr) == {"train", "evaluate", "diagnose"}, again.stdout
+    shown = _dvc("metrics", "show", cwd=dest, env=env).stdout
+    assert "reports/default/headline/E_Z.json" in shown and "test_rmse" in shown
