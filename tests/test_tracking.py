@@ -164,3 +164,24 @@ def test_a_signalled_run_ends_killed(tmp_path, dataset, sig, code):
     assert proc.returncode == code
     assert _statuses(uri) == ["KILLED"]
     assert not (tmp_path / "o" / "metrics.json").exists()
+
+
+def test_a_locked_store_while_a_run_ends_still_ends_it(tmp_path, dataset, monkeypatch):
+    """The store is locked (another process reading it) on the first attempt to write the end
+    status: the retry writes it (a retried `mlflow.end_run` had popped the run and ended nothing)."""
+    from mlflow import MlflowClient
+
+    real = MlflowClient.set_terminated
+    calls = []
+
+    def locked_once(self, run_id, status=None, end_time=None):
+        calls.append(status)
+        if len(calls) == 1:
+            raise sqlite3.OperationalError("database is locked")
+        return real(self, run_id, status, end_time)
+
+    monkeypatch.setattr(MlflowClient, "set_terminated", locked_once)
+    uri = mlflow_store(tmp_path)
+    assert main(["run", f"data.path={dataset}", f"tracking_uri={uri}", f"out={tmp_path / 'o'}",
+                 *LIGHT_EVAL]) == 0
+    assert calls[:2] == ["FINISHED", "FINISHED"] and _statuses(uri) == ["FINISHED"]

@@ -277,7 +277,26 @@ def _close(mlflow, status: str) -> None:
     log_file = current_file()
     if log_file is not None and log_file.is_file():
         retry_locked(mlflow.log_artifact, str(log_file))
-    retry_locked(mlflow.end_run, status)
+    end_active_run(mlflow, status)
+
+
+def end_active_run(mlflow, status: str = "FINISHED") -> None:
+    """End the active (fluent) run with ``status``, safe on a busy SQLite store.
+
+    The status is written through the client, retried while the store is locked; only then
+    does the run leave the fluent stack.  (``retry_locked(mlflow.end_run)`` was not safe:
+    ``end_run`` pops the run before writing, so a retry after a lock error ended nothing and
+    the run stayed RUNNING, as a signalled run did when another process read the store.)
+    """
+    run = mlflow.active_run()
+    if run is None:
+        return
+    retry_locked(mlflow.MlflowClient().set_terminated, run.info.run_id, status)
+    try:
+        mlflow.end_run(status)     # pops the stack; writes the same status again
+    except Exception as exc:
+        if not _is_locked(exc):
+            raise
 
 
 # --- what a run is called and what it records ------------------------------------------------

@@ -55,7 +55,7 @@ from ..files import folder_digest, write_json
 from ..leaderboard import beats, is_validation, rank, summary
 from ..paths import project_root, resolve
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
-from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
+from ..tracking import DATASET_TAG, child_runs, connect, end_active_run, retry_locked
 from ..tracking import client as mlflow_client
 from .common import check_config, data_options, deploy_stream, deployable, say
 
@@ -289,7 +289,7 @@ def promote(cfg: DictConfig) -> dict:
         try:
             info = log_compensator(deployed, input_example=example, registered_model_name=name)
         finally:
-            retry_locked(mlflow.end_run)
+            end_active_run(mlflow)
         version = str(info.registered_model_version)
 
     if champion is None:
