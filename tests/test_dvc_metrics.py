@@ -2,7 +2,8 @@
 what DVC shows of it: headline metrics (narrow), a handful of `exp show` columns, data-driven
 plots, and what a changed model parameter reruns.  One full repro for the module: its tests run
 on one xdist worker (group `dvc_study`, `make test` uses `--dist loadgroup`), the one that
-changes the study last.  (The README test checks that a second `dvc repro` runs nothing.)"""
+changes the study last.  The README's `dvc repro`, `dvc repro` (nothing runs), `dvc metrics show`
+are run here, as written."""
 
 import json
 import os
@@ -70,6 +71,8 @@ def repro(tmp_path_factory):
     assert _ran(first.stdout + first.stderr) == set(STAGES), first.stdout + first.stderr
     assert (dest / "reports/default/metrics.json").is_file()
     assert (dest / "mlruns/mlflow.db").is_file()
+    again = _dvc("repro", cwd=dest, env=env)          # the README's second `dvc repro`
+    assert _ran(again.stdout + again.stderr) == set() and "up to date" in again.stdout + again.stderr
     (dest / ".gitignore").write_text("/mlruns/\n/reports/\ndvc_plots/\n.venv\n")
     subprocess.run(["git", "add", "-A"], cwd=dest, env=env, check=True, capture_output=True)
     subprocess.run(["git", "commit", "-qm", "study"], cwd=dest, env=env, check=True)
