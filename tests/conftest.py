@@ -108,6 +108,16 @@ def stream_predictions(est, X, groups) -> list[float]:
     return stream_context(est, X, ctx(groups)).tolist()
 
 
+def simulated(generator, path: Path) -> Path:
+    """``path`` written as ``thermocomp simulate`` writes it: the dataset and its truth."""
+    from thermocomp.files import write_json
+    from thermocomp.sim.scenario import write_scenario
+
+    truth, _, _ = write_scenario(generator, path)
+    write_json(f"{path}.truth.json", truth)
+    return path
+
+
 def poisoned_copy(src: Path, dest: Path, scale: float = -50.0, offset: float = 1e3) -> Path:
     """A copy of dataset ``src`` whose test campaigns' ``E_`` columns are garbage
     (``E * scale + offset``): whatever a model chooses must not change with it."""

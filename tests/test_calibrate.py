@@ -9,10 +9,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import ROOT, refused
+from conftest import ROOT, refused, simulated
 from thermocomp import io
 from thermocomp.cli import main
-from thermocomp.files import write_json
 from thermocomp.sim.volumetric import LargeMillVolumetric, simulate_distances
 from thermocomp.volumetric import (
     SETUP_FILE,
@@ -23,7 +22,6 @@ from thermocomp.volumetric import (
     equivalent_truth,
     position_set,
 )
-
 
 # --- core: random geometry -> distances -> parameters -----------------------------------------
 
@@ -72,11 +70,7 @@ def test_unidentifiable_parameters_are_named_with_what_they_hide_behind(default_
 def raw(tmp_path_factory):
     """A small volumetric dataset (6 h + 4 h, a cycle every 20 min) and its truth."""
     gen = LargeMillVolumetric(train_hours=6.0, test_hours=4.0, seed=0)
-    ds, truth = gen.generate()
-    path = tmp_path_factory.mktemp("vol") / "raw"
-    io.write_dataset(ds, path, gen.file_format, gen.dataset_files())
-    write_json(f"{path}.truth.json", truth)
-    return path
+    return simulated(gen, tmp_path_factory.mktemp("vol") / "raw")
 
 
 def copy(raw, tmp_path, truth=True):
@@ -151,8 +145,8 @@ def test_no_truth_no_round_trip(raw, tmp_path):
 def test_one_distance_off_by_1_mm_is_an_outlier_of_its_cycle(raw, clean, tmp_path):
     data = copy(raw, tmp_path)
     column = "E_S2x1d3_B04_B09"
-    edit(data, "validation_week", lambda df: df.__setitem__(column, df[column] + np.r_[0, 0, 1000.0,
-                                                                                       np.zeros(len(df) - 3)]))
+    edit(data, "validation_week",
+         lambda df: df.__setitem__(column, df[column] + np.r_[0, 0, 1000.0, np.zeros(len(df) - 3)]))
     report = calibrate(data, tmp_path / "out")
     [o] = report["outliers"]
     assert (o["campaign"], o["row"], o["pose"], o["balls"], o["column"]) == (

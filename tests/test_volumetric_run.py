@@ -9,10 +9,8 @@ import re
 import numpy as np
 import pytest
 
-from conftest import ROOT, refused
-from thermocomp import io
+from conftest import ROOT, refused, simulated
 from thermocomp.cli import main
-from thermocomp.files import write_json
 from thermocomp.sim.volumetric import LargeMillVolumetric
 
 CLI_DOC = (ROOT / "docs" / "cli.md").read_text()
@@ -23,11 +21,7 @@ def raw(tmp_path_factory):
     """Two days of training, a day and a half of validation (the A.3 test needs 15 h), a cycle
     every 20 min: every heater phase of the weeks, compressed."""
     gen = LargeMillVolumetric(train_hours=48.0, test_hours=36.0, seed=3)
-    ds, truth = gen.generate()
-    path = tmp_path_factory.mktemp("volrun") / "raw"
-    io.write_dataset(ds, path, gen.file_format, gen.dataset_files())
-    write_json(f"{path}.truth.json", truth)
-    return path
+    return simulated(gen, tmp_path_factory.mktemp("volrun") / "raw")
 
 
 def _run(raw, out, *extra):

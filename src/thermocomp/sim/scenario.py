@@ -27,7 +27,7 @@ import numpy as np
 import pandas as pd
 
 from thermocomp.errors import ConfigError
-from thermocomp.io.contract import Dataset
+from thermocomp.io.contract import Dataset, write_dataset
 from thermocomp.sim.campaign import (
     CampaignContext,
     Measurement,
@@ -47,6 +47,22 @@ def single_threaded_blas():
     except ImportError:  # pragma: no cover - threadpoolctl ships with scikit-learn
         return contextlib.nullcontext()
     return threadpool_limits(limits=1, user_api="blas")
+
+
+def write_scenario(generator, path) -> tuple[dict, int, int]:
+    """Write ``generator``'s dataset to ``path`` -> ``(truth, campaigns, rows)``.
+
+    A generator with ``write(path)`` (a fleet) streams to disk, never whole in memory; others
+    are generated, then written in their ``file_format`` (default CSV) with the extra files of
+    their ``dataset_files()`` (``volumetric.json``).  The caller writes the truth.
+    """
+    if hasattr(generator, "write"):
+        truth = generator.write(path)
+        return truth, truth["campaigns"], truth["rows"]
+    ds, truth = generator.generate()
+    write_dataset(ds, path, getattr(generator, "file_format", "csv"),
+                  generator.dataset_files() if hasattr(generator, "dataset_files") else None)
+    return truth, len(ds.campaigns), int(sum(len(df) for df in ds.campaigns.values()))
 
 
 def plain(value):

@@ -30,10 +30,9 @@ from .. import io
 from ..files import staged_outputs, write_json
 from ..log import logger
 from ..paths import resolve
-from ..sim.scenario import single_threaded_blas
 from ..tracking import stage_run
-from ..volumetric.calibration import calibrate_folder, roundtrip
-from .common import _check_writable, check_calibrate, check_config, data_options, say
+from ..volumetric.calibration import roundtrip
+from .common import _check_writable, calibrated_dataset, check_calibrate, check_config, say
 
 
 def calibrate(cfg: DictConfig) -> dict:
@@ -48,9 +47,7 @@ def calibrate(cfg: DictConfig) -> dict:
     root = resolve(cfg.data.path)
     say(f"reading {root}")
     with stage_run(cfg, "calibrate") as tr:
-        with single_threaded_blas():      # 1430-wide matrices: threads on 2 busy cores only thrash
-            params, cal, report, _ = calibrate_folder(root, data_options(cfg), c.outlier_z,
-                                                      c.column_share, c.get("require_seen"))
+        params, cal, report, _ = calibrated_dataset(cfg)
         truth_path = Path(f"{root}.truth.json")
         if truth_path.is_file():
             result = {cid: (params.campaigns[cid][cal.names_].to_numpy(), None) for cid in params.campaigns}

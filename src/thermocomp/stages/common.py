@@ -257,3 +257,16 @@ def check_calibrate(c: DictConfig) -> None:
     bad = [k for k in (c.get("require_seen") or []) if k not in KINDS]
     if bad:
         raise ConfigError(f"calibrate.require_seen: unknown kind(s) {bad}; use {list(KINDS)}")
+
+
+def calibrated_dataset(cfg: DictConfig):
+    """``volumetric.calibration.calibrate_folder`` of ``data.path`` with the ``calibrate.*``
+    settings (the caller has checked them: :func:`check_calibrate`): what ``calibrate``
+    writes and ``run`` models."""
+    from ..sim.scenario import single_threaded_blas
+    from ..volumetric.calibration import calibrate_folder
+
+    c = cfg.calibrate
+    with single_threaded_blas():      # 1430-wide matrices: threads on 2 busy cores only thrash
+        return calibrate_folder(resolve(cfg.data.path), data_options(cfg), c.outlier_z,
+                                c.column_share, c.get("require_seen"))

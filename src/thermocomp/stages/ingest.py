@@ -5,8 +5,8 @@ from __future__ import annotations
 from omegaconf import DictConfig
 
 from .. import io
-from ..paths import resolve
 from ..errors import ConfigError
+from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric.artefact import SETUP_FILE
 from .common import check_config, data_options, say

@@ -324,20 +324,14 @@ def run(cfg: DictConfig) -> dict:
 def _calibrated(cfg: DictConfig):
     """``(parameter dataset, calibration, its report, distance dataset)`` of a volumetric dataset
     (``volumetric.json`` in ``data.path``), calibrated as ``thermocomp calibrate`` does; else None."""
-    from ..sim.scenario import single_threaded_blas
     from ..volumetric import SETUP_FILE
-    from ..volumetric.calibration import calibrate_folder
-    from .common import check_calibrate
+    from .common import calibrated_dataset, check_calibrate
 
-    root = resolve(cfg.data.path)
-    if not (root / SETUP_FILE).is_file():
+    if not (resolve(cfg.data.path) / SETUP_FILE).is_file():
         return None
     check_calibrate(cfg.calibrate)
     say("volumetric dataset: calibrating the artefact distances into the error parameters")
-    with single_threaded_blas():
-        c = cfg.calibrate
-        return calibrate_folder(root, data_options(cfg), c.outlier_z, c.column_share,
-                                c.get("require_seen"))
+    return calibrated_dataset(cfg)
 
 
 def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal):
@@ -373,20 +367,19 @@ def _true_changes(cfg: DictConfig, cal, times: dict):
     import json
     from pathlib import Path
 
-    import numpy as np
+    from ..volumetric.calibration import true_parameters
 
     path = Path(f"{resolve(cfg.data.path)}.truth.json")
     if not path.is_file():
         return None
-    names = cal.setup.model.names
+    truth = json.loads(path.read_text())
     out = {}
     for cid, t in times.items():
-        series = ((json.loads(path.read_text()).get("campaigns") or {}).get(cid) or {}).get("parameters")
-        if not series or set(series) != set(names) or len(series[names[0]]) != len(t):
+        P = true_parameters(truth, cid, cal.setup.model.names, len(t))
+        if P is None:
             say(f"{path} does not hold campaign {cid}'s parameter series: VCE against the "
                 "identified parameters")
             return None
-        P = np.column_stack([series[n] for n in names])
         out[cid] = P - P[:1]
     return out
 

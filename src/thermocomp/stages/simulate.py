@@ -7,9 +7,9 @@ import time
 from hydra.utils import instantiate
 from omegaconf import DictConfig
 
-from .. import io
 from ..files import write_json
 from ..paths import resolve
+from ..sim.scenario import write_scenario
 from ..tracking import stage_run
 from .common import say
 
@@ -20,15 +20,7 @@ def simulate(cfg: DictConfig) -> dict:
     generator = instantiate(cfg.sim.generator)
     say(f"simulating {cfg.sim.name} ...")
     path = resolve(cfg.data.path)
-    if hasattr(generator, "write"):       # a big scenario (fleet) streams to disk, never whole in memory
-        truth = generator.write(path)
-        n_campaigns, rows = truth["campaigns"], truth["rows"]
-    else:
-        ds, truth = generator.generate()
-        # a scenario may ask for Parquet files and more files in the folder (volumetric.json)
-        io.write_dataset(ds, path, getattr(generator, "file_format", "csv"),
-                         generator.dataset_files() if hasattr(generator, "dataset_files") else None)
-        n_campaigns, rows = len(ds.campaigns), int(sum(len(df) for df in ds.campaigns.values()))
+    truth, n_campaigns, rows = write_scenario(generator, path)
     truth_path = write_json(f"{path}.truth.json", truth)
     say(f"wrote {n_campaigns} campaigns, {rows} rows to {path} "
         f"({time.perf_counter() - t0:.1f} s); truth: {truth_path}")

@@ -20,7 +20,7 @@ from ..errors import ContractError
 from ..log import logger
 from .artefact import COLUMN, SETUP_FILE
 from .identify import ArtefactCalibration, equivalent_truth
-from .series import check_columns, load_setup
+from .series import check_columns, distance_matrix, load_setup
 
 
 def _kinds(setup) -> dict:
@@ -48,7 +48,7 @@ def _identify(cal, ds, excluded=()):
     cols = cal.design_.columns
     out = {}
     for cid, df in ds.campaigns.items():
-        D = df[cols].to_numpy(float)
+        D = distance_matrix(df, cal)
         if excluded:
             D[:, [cols.index(c) for c in excluded]] = np.nan
         try:
@@ -106,8 +106,7 @@ def _report(cal, setup, ds, result, excluded, counts, n_cycles) -> dict:
     outliers, sq, n = [], 0.0, 0
     for cid, (P, flagged) in result.items():
         df = ds.campaigns[cid]
-        D = df[cols].to_numpy(float)
-        R = D - cal.predict(P)
+        R = distance_matrix(df, cal) - cal.predict(P)
         skip = np.zeros_like(R, dtype=bool)
         for col in excluded:
             skip[:, cols.index(col)] = True
@@ -138,15 +137,22 @@ def _report(cal, setup, ds, result, excluded, counts, n_cycles) -> dict:
 def roundtrip(cal: ArtefactCalibration, result: dict, truth: dict) -> dict | None:
     """z = (identified - equivalent truth) / uncertainty over every parameter and cycle, or None
     when the truth does not hold this dataset's parameter series."""
-    names = cal.setup.model.names
     z = []
     for cid, (P, _) in result.items():
-        series = (truth.get("campaigns", {}).get(cid) or {}).get("parameters")
-        if not series or set(series) != set(names) or len(series[names[0]]) != len(P):
+        full = true_parameters(truth, cid, cal.setup.model.names, len(P))
+        if full is None:
             return None
-        full = np.column_stack([series[n] for n in names])
         z.append((P - equivalent_truth(cal, full)) / cal.uncertainty_)
     z = np.vstack(z)
     return {"n_parameters": int(z.shape[1]), "max_abs_z": float(np.max(np.abs(z))),
             "share_within_2u": float(np.mean(np.abs(z) <= 2.0)), "n_values": int(z.size),
             "z_sd": float(np.std(z))}
+
+
+def true_parameters(truth: dict, campaign: str, names: list[str], n_cycles: int):
+    """``(n_cycles, p)``: a simulated campaign's true parameters (every one of ``names``) from its
+    ground truth document, or None when the truth does not hold that series."""
+    series = ((truth.get("campaigns") or {}).get(campaign) or {}).get("parameters")
+    if not series or set(series) != set(names) or len(series[names[0]]) != n_cycles:
+        return None
+    return np.column_stack([series[n] for n in names])

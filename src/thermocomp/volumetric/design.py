@@ -38,7 +38,7 @@ from joblib import Parallel, delayed
 
 from .artefact import BallArray, Setup, position_set
 from .identify import ArtefactCalibration
-from .kinematics import AXES, KinematicModel, Parameter
+from .kinematics import KinematicModel, Parameter, workspace_grid
 from .measure import artefact_distances
 
 KINDS = ("positioning", "straightness", "squareness", "angular", "cross")
@@ -233,8 +233,7 @@ class CalibrationDesignStudy:
 
     def grid_points(self) -> np.ndarray:
         """``(n, 3)`` commanded positions (mm) spanning the workspace."""
-        axes = [np.linspace(*self.family.model.ranges[a], n) for a, n in zip(AXES, self.grid)]
-        return np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, 3)
+        return workspace_grid(self.family.model, self.grid)
 
     def setup(self, strategy: Strategy) -> Setup:
         """The measurement set-up of a strategy (C as the model)."""

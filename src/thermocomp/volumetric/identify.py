@@ -136,15 +136,11 @@ class ArtefactCalibration:
         self.kept_ = ident.kept
         self.names_ = [names[j] for j in ident.kept]
         self.unidentifiable_ = ident.dropped
-        Aw = white[:, self.kept_]
-        self.param_cov_ = np.linalg.inv(Aw.T @ Aw)
+        # every distance measured: the solver of that mask, from the factor computed above
+        self._solvers = {}
+        everything = np.ones(len(self.design_.rows), bool)
+        self._solve, _, self._resid_sd, self.param_cov_ = self._solver(everything, self._chol)
         self.uncertainty_ = np.sqrt(np.diag(self.param_cov_))
-        # p = M d (all distances present); residual covariance for the studentised residuals
-        self._solve = self.param_cov_ @ Aw.T @ linalg.solve_triangular(
-            self._chol, np.eye(len(self.design_.rows)), lower=True)
-        A = self.design_.A[:, self.kept_]
-        resid_cov = self.design_.cov - A @ self.param_cov_ @ A.T
-        self._resid_sd = np.sqrt(np.clip(np.diag(resid_cov), 1e-12, None))
         return self
 
     def full(self, estimates: np.ndarray) -> np.ndarray:
@@ -176,15 +172,17 @@ class ArtefactCalibration:
             flagged += [{"cycle": t, **o} for o in out]
         return P, flagged
 
-    def _solver(self, mask):
-        """``(M, A, sd)`` of the GLS from the distances in ``mask``: estimate ``M @ d[mask]``,
-        model ``A``, standard deviation of each residual; cached per mask."""
-        cache = self.__dict__.setdefault("_solvers", {})
+    def _solver(self, mask, chol=None):
+        """``(M, A, sd, cov)`` of the GLS from the distances in ``mask``: estimate
+        ``M @ d[mask]``, model ``A``, standard deviation of each residual, covariance of the
+        estimate; cached per mask (``chol``: the noise covariance's factor on ``mask``, if known)."""
+        cache = self._solvers
         key = mask.tobytes()
         if key not in cache:
             A = self.design_.A[np.ix_(mask, self.kept_)]
             cov_d = self.design_.cov[np.ix_(mask, mask)]
-            chol = linalg.cholesky(cov_d, lower=True)
+            if chol is None:
+                chol = linalg.cholesky(cov_d, lower=True)
             Aw = linalg.solve_triangular(chol, A, lower=True)
             try:
                 cov = np.linalg.inv(Aw.T @ Aw)
@@ -194,12 +192,12 @@ class ArtefactCalibration:
             sd = np.sqrt(np.clip(np.diag(cov_d) - np.einsum("ij,jk,ik->i", A, cov, A), 1e-12, None))
             if len(cache) >= 64:
                 cache.pop(next(iter(cache)))
-            cache[key] = (M, A, sd)
+            cache[key] = (M, A, sd, cov)
         return cache[key]
 
     def _masked(self, d, mask):
         """GLS of one cycle from the distances in ``mask``: estimate, residuals, studentised."""
-        M, A, sd = self._solver(mask)
+        M, A, sd, _ = self._solver(mask)
         p = M @ d[mask]
         r = d[mask] - A @ p
         return p, r, r / sd

@@ -242,6 +242,12 @@ class KinematicModel:
         return 1e3 * (relative - q[None] - self.tool)                   # mm -> µm
 
 
+def workspace_grid(model: KinematicModel, shape) -> np.ndarray:
+    """``(n, 3)`` commands on a regular grid over the travel ranges, ``shape`` points along X, Y, Z."""
+    axes = [np.linspace(*model.ranges[a], int(n)) for a, n in zip(AXES, shape)]
+    return np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 3)
+
+
 def _rotations(angles) -> np.ndarray:
     """``R = Rx(a) Ry(b) Rz(c)`` for angles ``(..., 3)`` in rad."""
     a, b, c = np.moveaxis(angles, -1, 0)

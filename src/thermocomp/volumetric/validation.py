@@ -28,17 +28,11 @@ import numpy as np
 from ..iso10791 import a3_report
 from ..metrics import e_p95, p2p, reduction_pct, window_lengths
 from .identify import ArtefactCalibration
-from .kinematics import AXES
+from .kinematics import AXES, workspace_grid
 
 GRID = (20, 8, 8)
 TRAJECTORY_POINTS = 21
 A3_POINT = (0.5, 0.5, 0.0)      # the A.3 test piece: fractions of the X, Y, Z travel
-
-
-def grid(model, shape=GRID) -> np.ndarray:
-    """(n, 3) commands on a regular grid over the travel ranges."""
-    axes = [np.linspace(*model.ranges[a], n) for a, n in zip(AXES, shape)]
-    return np.stack(np.meshgrid(*axes, indexing="ij"), -1).reshape(-1, 3)
 
 
 def trajectory(model, axis: str, n: int = TRAJECTORY_POINTS) -> np.ndarray:
@@ -95,7 +89,7 @@ def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarr
            "distance_error": _pair(np.concatenate([d_before[c] for c in ids]),
                                    np.concatenate([d_after[c] for c in ids]))}
 
-    basis = model.basis(grid(model, grid_shape))                         # (g, 3, p)
+    basis = model.basis(workspace_grid(model, grid_shape))                         # (g, 3, p)
     ve = np.concatenate([np.linalg.norm(basis @ full[c].T, axis=1).T for c in ids])     # (t, g)
     vce = np.concatenate([np.linalg.norm(basis @ resid[c].T, axis=1).T for c in ids])
     out["vce"] = {**_pair(ve, vce), "grid": list(grid_shape)}
