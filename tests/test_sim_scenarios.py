@@ -14,7 +14,7 @@ from thermocomp.io.contract import PREFIXES, write_dataset
 from thermocomp.io.read import read_dataset
 from thermocomp.sim import SCENARIOS
 from thermocomp.sim.campaign import integrate
-from thermocomp.sim.column import POSITION, Q2, machine_column
+from thermocomp.sim.column import LEVELS, POSITION, Q2, machine_column
 from thermocomp.sim.effects import EFFECTS
 
 CONF = Path(__file__).resolve().parents[1] / "conf" / "sim"
@@ -191,7 +191,7 @@ def test_moving_source_heats_where_the_axis_stands_and_rise_scales_with_heat():
         states = {POSITION: np.full(len(times), z), Q2: np.ones(len(times))}
         temps = integrate(machine, np.full(network.n_nodes, 20.0), times, ambient, states)
         hot[z] = temps[-1] - 20.0
-    low, high = network.index["front_1"], network.index["front_5"]
+    low, high = network.index["front_1"], network.index[f"front_{LEVELS}"]
     assert hot[250.0][low] > 2 * hot[250.0][high] and hot[2250.0][high] > 2 * hot[2250.0][low]
     # Steady state: twice the heat, twice the rise.
     q = machine.injector.heat({POSITION: 1000.0, Q2: 1.0}, np.full(network.n_nodes, 20.0))
@@ -204,7 +204,8 @@ def test_third_source_only_in_the_test_half():
     ds, truth = gen.generate()
     assert truth["campaigns"]["train_cycle"]["q3_on_s"] == [] and truth["campaigns"]["test_cycle"]["q3_on_s"]
     assert truth["novel_sources"][0]["split"] == "test"
-    rise = {cid: truth["campaigns"][cid]["node_max_rise_c"]["right_4"] for cid in ds.ids()}
+    q3 = truth["novel_sources"][0]["node"]
+    rise = {cid: truth["campaigns"][cid]["node_max_rise_c"][q3] for cid in ds.ids()}
     assert rise["test_cycle"] > rise["train_cycle"] + 2.0
     frame = ds.campaigns["test_cycle"]
     assert frame[POSITION].between(250.0, 2250.0).all() and frame[POSITION].nunique() > 20

@@ -5,29 +5,45 @@ a milling-machine column (k = 50 W/(m K), c = 500 J/(kg K)) with a fixed local
 source Q1 (200 W steps, a motor or auxiliary unit), a source Q2 (250 W) that
 moves with the vertical axis along the guideways (heat conducted from the
 ram), a ±2 °C sinusoidal ambient of 24 h period, and -- in the test half only
--- a third source Q3 that training never saw (for the monitoring of issue 8's
-self-prediction error).  Temperatures and errors every 100 s.
+-- a third local source Q3 that training never saw (for the monitoring of
+issue 14's self-prediction error).  Temperatures and errors every 100 s.
 
-Lumped column: 5 levels (0.5 m each, 2.5 m high) x 3 faces (front with the
-guideways, left, right), ~200 kg per node: C = 1e5 J/K, hA = 0.4 m² · 8 W/(m² K)
-= 3.2 W/K; sensors read nodes through a 1-min lag (the paper reads FE nodal
-temperatures); vertical links k A / L = 50 · 0.1 / 0.5 = 10 W/K, across a level
-50 · 0.06 / 0.4 ≈ 7.5 W/K; a base (bed joint) of 5e5 J/K.
-:class:`~thermocomp.sim.sources.MovingSource` shares Q2 between the two front
-nodes around the axis position ``S_pos_Z`` (mm, written).
+As in the paper's FE model, the column has more deforming nodes than sensors:
+10 levels of 0.25 m (2.5 m high) x 4 faces (front with the guideways, left,
+right, back) + a base = 41 nodes, read by 19 structure sensors (+ the air), and
+the thermoelastic map runs over every node, measured or not.  A face node is a
+0.25 m strip of a 0.8 m wide, 0.1 m² wall: 100 kg, C = 5e4 J/K,
+hA = 0.2 m² · 8 W/(m² K) = 1.6 W/K; vertical links k A / L = 50 · 0.1 / 0.25 =
+20 W/K, corner links between neighbouring faces 50 · 0.03 / 0.4 = 3.75 W/K (front
+and back face each other through the air: no link); each level-1 node sits on
+the base (5e5 J/K, bed joint) through 15 W/K.
 
-Errors at the column top (µm/K of node rises): a face warmer than the others
-bends the column; a level at height :math:`h` tilts the top by
-:math:`\alpha\,\Delta z\,(H - h)/d` = 11.5 · 0.5 · (2.5 - h) / 0.4 µm/K.
-E_Y: front against the mean of the sides; E_X: left against right;
-E_Z: growth, 11.5 · 0.5 / 3 ≈ 1.9 µm/K per node.  The same errors at the guideways'
-mid-height (1.0 m, two levels below Q3; paper 002 follows several points of the column):
-``E_X_mid``, ``E_Y_mid``, ``E_Z_mid``, moved by the two levels below that point only.
+Sensors (unchanged names) keep their heights: ``T_<face>k`` is glued on the
+upper node of the k-th 0.5 m band (level 2k, 0.5 k - 0.125 m), ``T_edgek`` between
+the front and a side at that level; the odd levels, the whole back face and the
+base are not measured.  Sensors read their node through a 1-min lag.
+Q1 heats the left face over 0.5-1.0 m (levels 3-4); Q2 is shared by
+:class:`~thermocomp.sim.sources.MovingSource` between the two front nodes
+around the axis position ``S_pos_Z`` (mm, written).  Q3 (200 W) is local: one
+node, ``right_7`` (1.5-1.75 m), unmeasured, between the nodes of ``T_right3`` and
+``T_right4`` (the truth's ``nearest_sensors``).  As in the paper, the sensors were
+placed for the training field, so the new source sits near sensors, not on one
+(on a 100 kg sensor node its 200 W would step the reading by 0.4 K in a sample).
+
+Errors at the column top (µm/K of node rises, α = 11.5 µm/(m K), Δz = 0.25 m):
+a level centred at height :math:`h` below the point :math:`P` tilts it by
+:math:`\alpha\,\Delta z\,(P - h)/d` per kelvin of difference across the section:
+E_Y front against back (depth d = 0.4 m), E_X left against right (width 0.8 m);
+E_Z growth α Δz / 4 per face node, 6 µm/K for the base slab.  The same errors at the
+guideways' mid-height (1.0 m, two levels below Q3's; paper 002 follows
+several points of the column): ``E_X_mid``, ``E_Y_mid``, ``E_Z_mid``, moved by the
+four levels below that point only.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.sparse.csgraph import shortest_path
 
 from thermocomp.sim.ambient import DAY_S, SinusoidalAmbient
 from thermocomp.sim.campaign import Machine
@@ -39,12 +55,18 @@ from thermocomp.sim.sources import ConstantWhileRunning, MovingSource
 from thermocomp.sim.thermoelastic import ThermoelasticMap
 
 SCENARIO = "column_moving_source"
-FACES = ("front", "left", "right")
-LEVELS = 5
-LEVEL_M = 0.5
+FACES = ("front", "left", "right", "back")
+RING = (("front", "left"), ("left", "back"), ("back", "right"), ("right", "front"))  # corner links
+LEVELS = 10
+LEVEL_M = 0.25
+BANDS = 5                    # the sensors' 0.5 m bands: T_<face>k on level 2k
+HEIGHT_M = LEVELS * LEVEL_M
+DEPTH_M, WIDTH_M = 0.4, 0.8  # front-back, left-right
+ALPHA = 11.5                 # µm/(m K)
 POSITION = "S_pos_Z"
-MID_M = 1.0   # height (m) of the second measured point: guideways, top of level 2
+MID_M = 1.0   # height (m) of the second error point: guideways, top of level 4
 Q1, Q2, Q3 = "_q1_on", "_q2_on", "_q3_on"
+Q3_NODE = "right_7"
 
 
 def node(face, level):
@@ -52,80 +74,91 @@ def node(face, level):
 
 
 def column_network() -> ThermalNetwork:
-    nodes = [Node(node(f, k), 1.0e5, 3.2) for k in range(1, LEVELS + 1) for f in FACES]
+    nodes = [Node(node(f, k), 5.0e4, 1.6) for k in range(1, LEVELS + 1) for f in FACES]
     nodes.append(Node("base", 5.0e5, 10.0))
     links = []
     for k in range(1, LEVELS + 1):
-        links += [Link(node("front", k), node("left", k), 7.5), Link(node("front", k), node("right", k), 7.5),
-                  Link(node("left", k), node("right", k), 5.0)]
+        links += [Link(node(a, k), node(b, k), 3.75) for a, b in RING]
         if k < LEVELS:
-            links += [Link(node(f, k), node(f, k + 1), 10.0) for f in FACES]
+            links += [Link(node(f, k), node(f, k + 1), 20.0) for f in FACES]
     links += [Link(node(f, 1), "base", 15.0) for f in FACES]
     return ThermalNetwork(nodes, links)
 
 
 def thermoelastic_map() -> ThermoelasticMap:
     """Errors at the column top (``E_X``, ``E_Y``, ``E_Z``) and at the guideways' mid-height
-    (``E_X_mid``, ``E_Y_mid``, ``E_Z_mid``, :data:`MID_M` above the base)."""
+    (``E_X_mid``, ``E_Y_mid``, ``E_Z_mid``, :data:`MID_M` above the base), over all nodes."""
     out, quadratic = {}, {}
-    for suffix, point in (("", LEVELS * LEVEL_M), ("_mid", MID_M)):
-        alpha, depth = 11.5, 0.4
+    for suffix, point in (("", HEIGHT_M), ("_mid", MID_M)):
         ex, ey, ez = {}, {}, {"base": 6.0}   # the 0.5 m base slab lifts everything
         for k in range(1, LEVELS + 1):
             h = (k - 0.5) * LEVEL_M
             if h >= point:   # a level above the point does not move it
                 continue
-            c = alpha * LEVEL_M * (point - h) / depth
-            ey[node("front", k)] = c
-            ey[node("left", k)] = ey[node("right", k)] = -c / 2
-            ex[node("left", k)], ex[node("right", k)] = c / 2, -c / 2
+            tilt = ALPHA * LEVEL_M * (point - h)
+            ey[node("front", k)], ey[node("back", k)] = tilt / DEPTH_M, -tilt / DEPTH_M
+            ex[node("left", k)], ex[node("right", k)] = tilt / WIDTH_M, -tilt / WIDTH_M
             for f in FACES:
-                ez[node(f, k)] = alpha * LEVEL_M / 3
+                ez[node(f, k)] = ALPHA * LEVEL_M / len(FACES)
         out.update({f"E_X{suffix}": ex, f"E_Y{suffix}": ey, f"E_Z{suffix}": ez})
         # the bed joint's nonlinearity tilts the column foot: its effect scales with the lever arm
         quadratic[f"E_Y{suffix}"] = {node("front", 1): 0.05 * (point - 0.5 * LEVEL_M)
-                                     / (LEVELS * LEVEL_M - 0.5 * LEVEL_M)}
+                                     / (HEIGHT_M - 0.5 * LEVEL_M)}
     return ThermoelasticMap(out, quadratic=quadratic)
 
 
-def heat_sources(q3_face="right", q3_level=4):
+def heat_sources(q3_node=Q3_NODE):
     path = tuple(node("front", k) for k in range(1, LEVELS + 1))
     return [
-        ConstantWhileRunning("Q1_fixed", {node("left", 2): 1.0}, power_W=200.0, when=Q1),
+        ConstantWhileRunning("Q1_fixed", {node("left", 3): 0.5, node("left", 4): 0.5}, power_W=200.0,
+                             when=Q1),
         MovingSource("Q2_moving", {}, path=path,
                      positions_mm=tuple(1000.0 * (k - 0.5) * LEVEL_M for k in range(1, LEVELS + 1)),
                      signal=POSITION, when=Q2, power_W=250.0),
-        ConstantWhileRunning("Q3_new", {node(q3_face, q3_level): 1.0}, power_W=200.0, when=Q3),
+        ConstantWhileRunning("Q3_new", {q3_node: 1.0}, power_W=200.0, when=Q3),
     ]
 
 
 def sensors():
-    """One sensor per face and level, four between faces, one for the air (20)."""
+    """One sensor per measured face and 0.5 m band (on level 2k), four between faces, one for the
+    air (20); the odd levels, the back face and the base carry none."""
     rng = np.random.default_rng(2002)
-    out = [TemperatureSensor(f"T_{f}{k}", {node(f, k): 1.0}, float(np.round(rng.uniform(-0.1, 0.1), 2)),
-                             lag_s=60.0) for f in FACES for k in range(1, LEVELS + 1)]
+    out = [TemperatureSensor(f"T_{f}{k}", {node(f, 2 * k): 1.0}, float(np.round(rng.uniform(-0.1, 0.1), 2)),
+                             lag_s=60.0) for f in FACES[:3] for k in range(1, BANDS + 1)]
     for k in (1, 2, 4, 5):
         side = "right" if k % 2 else "left"
-        out.append(TemperatureSensor(f"T_edge{k}", {node("front", k): 0.5, node(side, k): 0.5},
+        out.append(TemperatureSensor(f"T_edge{k}", {node("front", 2 * k): 0.5, node(side, 2 * k): 0.5},
                                      float(np.round(rng.uniform(-0.1, 0.1), 2)), lag_s=60.0))
     out.append(TemperatureSensor("T_amb", {AMBIENT: 0.97, "base": 0.03}, 0.02, lag_s=120.0))
     return out
+
+
+def nearest_sensors(target: str) -> list[str]:
+    """The sensors whose node is fewest links away from node ``target`` (the first a local source
+    there disturbs)."""
+    network = column_network()
+    adjacency = (network.loss_matrix != 0) & ~np.eye(network.n_nodes, dtype=bool)
+    hops = shortest_path(adjacency.astype(float), unweighted=True, indices=network.index[target])
+    measured = {x.column: hops[network.index[x.main_node]] for x in sensors() if x.main_node in network.index}
+    return [c for c, h in measured.items() if h == min(measured.values())]
 
 
 def machine_column() -> Machine:
     return Machine(column_network(), heat_sources(), sensors(), thermoelastic_map())
 
 
+# The 0.5 m bands 2 and 3 of the former 5-level column are levels 3-6.
+_MIDDLE = range(3, 7)
 COLUMN_EFFECTS = {
-    # Every face node carries a sensor: a draught is only unseen on the (unmeasured) base.
+    # A draught on the (unmeasured) base.
     "door": {"nodes": {"base": 40.0}, "air_offset_c": -8.0,
              "rate_per_h": 0.5, "duration_min": [10.0, 30.0], "targets": ["E_Z"]},
     "hidden_source": {"anchor": "base", "power_W": 400.0, "conductance_W_per_K": 10.0, "targets": ["E_Z"]},
-    "lag_node": {"parent": node("front", 3), "capacity_J_per_K": 6.0e5, "conductance_W_per_K": 15.0,
+    "lag_node": {"parent": node("front", 6), "capacity_J_per_K": 6.0e5, "conductance_W_per_K": 15.0,
                  "convection_W_per_K": 0.5, "sensitivity_um_per_K": {"E_Y": 10.0}, "targets": ["E_Y"]},
     "axis_position": {"axis": "Z", "travel_mm": [250.0, 2250.0], "home_mm": 1250.0,
-                      "tilt_nodes": {node("left", 2): 0.5, node("left", 3): 0.5, node("right", 2): -0.5,
-                                     node("right", 3): -0.5},
+                      "tilt_nodes": {**{node("left", k): 0.25 for k in _MIDDLE},
+                                     **{node("right", k): -0.25 for k in _MIDDLE}},
                       "gain_um_per_K_per_m": 8.0, "targets": ["E_X"]},
     "sensor_drift": {"column": "T_front3", "rate_K_per_h": 0.1, "onset_fraction": 0.3, "splits": ["test"],
                      "targets": ["E_Y"]},
@@ -248,6 +281,7 @@ class ColumnMovingSource(Scenario):
         if not self.q3:
             return {"novel_sources": []}
         return {"novel_sources": [{
-            "name": "Q3_new", "split": "test", "node": node("right", 4), "power_W": 200.0,
+            "name": "Q3_new", "split": "test", "node": Q3_NODE, "power_W": 200.0,
+            "nearest_sensors": nearest_sensors(Q3_NODE),
             "description": "local source present only in the second half of the test cycle (never in "
                            "training): a monitoring target, not an undeclared effect a diagnosis can learn"}]}
