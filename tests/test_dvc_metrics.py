@@ -64,7 +64,7 @@ def copy_project(dest: Path) -> tuple[Path, dict]:
     return dest, env
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def repro(tmp_path_factory):
     dest, env = copy_project(tmp_path_factory.mktemp("dvcm") / "proj")
     first = _dvc("repro", cwd=dest, env=env)

@@ -59,7 +59,7 @@ def test_placement_picks_sensors_that_determine_the_modes(rank):
 
 
 # -- the adaptive compensator on the default scenario -------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def deployed(default_dataset):
     ds, _ = io.read_dataset(default_dataset, {})
     train = {c: ds.campaigns[c] for c in ds.ids("train")}
@@ -193,7 +193,7 @@ def test_predict_reports_excluded_inputs_and_events_per_row(deployed):
 
 
 # -- column_moving_source: the never-trained source Q3 ------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def column(tmp_path_factory):
     path = tmp_path_factory.mktemp("col") / "column"
     thermocomp("simulate", "sim=column_moving_source", f"data.path={path}", "track=false")

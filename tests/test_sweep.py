@@ -16,7 +16,7 @@ from thermocomp.files import folder_digest
 from thermocomp.tracking import SWEEP_TAG, _is_locked, retry_locked
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def dataset(tmp_path_factory):
     return write_small_dataset(tmp_path_factory.mktemp("sweep") / "small")
 

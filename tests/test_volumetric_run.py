@@ -16,7 +16,7 @@ from thermocomp.sim.volumetric import LargeMillVolumetric
 CLI_DOC = (ROOT / "docs" / "cli.md").read_text()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def raw(tmp_path_factory):
     """Two days of training, a day and a half of validation (the A.3 test needs 15 h), a cycle
     every 20 min: every heater phase of the weeks, compressed."""
@@ -31,7 +31,7 @@ def _run(raw, out, *extra):
     return json.loads((out / "metrics.json").read_text()), out
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def run(raw, tmp_path_factory):
     return _run(raw, tmp_path_factory.mktemp("volrun_out"), "plots=none")
 
