@@ -219,6 +219,23 @@ def test_column_monitor_alarms_only_once_the_new_source_is_on_nearest_sensor_fir
                                                              "compensation.png"}
 
 
+def test_column_adaptive_beats_fixed_away_from_the_new_source_and_lets_its_sensors_back(column):
+    report, truth, _ = column
+    on, off = truth["campaigns"]["test_cycle"]["q3_on_s"][0]
+    # the guideways' mid-height point is two levels below Q3 (paper 002, Fig. 11: EX, EY improved
+    # away from Q3, worsened near it)
+    away = [t for t in report["targets"] if t.endswith("_mid")]
+    assert away
+    for t in away:
+        assert report["targets"][t]["rmse_adaptive"] < report["targets"][t]["rmse_fixed"], t
+    # once one sensor is out, others leave only beyond the alarm band: no cascade to the far face
+    out = [e for e in report["events"] if e["to"] == "excluded" and e["sensor"] in report["sensors"]]
+    assert out and all(e["reason"].startswith("drift") for e in out)
+    assert all(abs(float(e["reason"].split()[3])) >= report["bands"]["alarm_c"][0] for e in out[1:])
+    back = {e["sensor"] for e in report["events"] if e["from"] == "excluded" and e["time"] > off}
+    assert back == {e["sensor"] for e in out}
+
+
 def test_monitor_reads_csv_rows_from_stdin(default_dataset, tmp_path):
     import subprocess
     import sys

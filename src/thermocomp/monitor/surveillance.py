@@ -27,7 +27,9 @@ Detectors, each named in the event's reason:
 Adaptive mode (paper 002, 2.3): the worst sensor in alarm (largest standardised
 error :math:`|E_s|/\sqrt{1-h_{ss}}`, which is always the faulty one for a
 single fault) is excluded and the operator recomputed, while more than
-``r + 1`` sensors remain active; an excluded sensor whose reading returns
+``r + 1`` sensors remain active (the first at ``exclude_at``, any further one while
+a sensor is out by its error only beyond the alarm band:
+:meth:`SensorMonitor._field_level`); an excluded sensor whose reading returns
 within the warning band for a whole window is re-admitted.  Every change of
 state is an event ``{"time", "sensor", "from", "to", "reason"}``.
 """
@@ -58,6 +60,9 @@ class SensorMonitor:
     window : int
         Samples of self-prediction error kept; an excluded sensor is re-admitted when all
         of them are within the warning band.
+    exclude_at : {"warning", "alarm"}
+        Band whose crossing excludes the first sensor by its self-prediction error (any
+        further one while it is out: the alarm band).
     confirm : int
         A band is left when the last ``confirm`` errors are all beyond it (one noisy
         sample is no fault); the reported error is their mean.
@@ -405,12 +410,15 @@ class SensorMonitor:
                 instant.setdefault(j, f"jump: self-prediction error stepped {de[j]:+.3g} °C in "
                                       "one sample")
             if self.adaptive:
-                j = int(np.argmax(np.where(stepped, np.abs(e) * self._std, -1)))
+                # the culprit by its standardised *step*: a step fault on j steps every other
+                # error by less (the bound below), while the errors' levels carry each sensor's
+                # own model error (a coupled partner's may exceed the faulty one's)
+                j = int(np.argmax(np.where(stepped, np.abs(de) * self._std, -1)))
                 self._exclude(j, instant[j], time, events, by_field=True)
 
         # judgement over the last `confirm` samples, worst first, redone after every exclusion
         level, err = self._judge()
-        while (self.adaptive and (self._judged & (level >= self.exclude_level)).any()
+        while (self.adaptive and (self._judged & (level >= self._field_level())).any()
                and self._active.sum() > self.min_active_):
             # the culprit is the largest *standardised* error |E|/sqrt(1-h) among all judged
             # sensors, in alarm or not: a fault on j gives every other sensor i a smaller one
@@ -508,6 +516,15 @@ class SensorMonitor:
             out[j] = (f"jump: {step[j]:+.3g} °C in one sample (largest step in training "
                       f"{self.max_step_c[j]:.3g} °C); re-referenced")
         return out
+
+    def _field_level(self) -> int:
+        """Band whose crossing excludes a sensor by its self-prediction error: ``exclude_at``
+        while no sensor is out by it, the alarm band while one is.  One sensor out of band is
+        what a single fault looks like, and excluding it early spares the correction; sensors
+        still leaving the band once the worst is out mean a field that training never saw (paper
+        002: a new source), which self-prediction cannot pin on a sensor -- the paper excludes
+        a sensor then only beyond its tolerance (the alarm band)."""
+        return ALARM if (self._by_field & ~self._active).any() else self.exclude_level
 
     def _exclude(self, j: int, reason: str, time: float, events: list, by_field: bool = False) -> None:
         if not self.adaptive:

@@ -20,7 +20,9 @@ Errors at the column top (µm/K of node rises): a face warmer than the others
 bends the column; a level at height :math:`h` tilts the top by
 :math:`\alpha\,\Delta z\,(H - h)/d` = 11.5 · 0.5 · (2.5 - h) / 0.4 µm/K.
 E_Y: front against the mean of the sides; E_X: left against right;
-E_Z: growth, 11.5 · 0.5 / 3 ≈ 1.9 µm/K per node.
+E_Z: growth, 11.5 · 0.5 / 3 ≈ 1.9 µm/K per node.  The same errors at the guideways'
+mid-height (1.0 m, two levels below Q3; paper 002 follows several points of the column):
+``E_X_mid``, ``E_Y_mid``, ``E_Z_mid``, moved by the two levels below that point only.
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ FACES = ("front", "left", "right")
 LEVELS = 5
 LEVEL_M = 0.5
 POSITION = "S_pos_Z"
+MID_M = 1.0   # height (m) of the second measured point: guideways, top of level 2
 Q1, Q2, Q3 = "_q1_on", "_q2_on", "_q3_on"
 
 
@@ -62,17 +65,27 @@ def column_network() -> ThermalNetwork:
 
 
 def thermoelastic_map() -> ThermoelasticMap:
-    alpha, depth, height = 11.5, 0.4, LEVELS * LEVEL_M
-    ex, ey, ez = {}, {}, {"base": 6.0}   # the 0.5 m base slab lifts everything
-    for k in range(1, LEVELS + 1):
-        h = (k - 0.5) * LEVEL_M
-        c = alpha * LEVEL_M * (height - h) / depth
-        ey[node("front", k)] = c
-        ey[node("left", k)] = ey[node("right", k)] = -c / 2
-        ex[node("left", k)], ex[node("right", k)] = c / 2, -c / 2
-        for f in FACES:
-            ez[node(f, k)] = alpha * LEVEL_M / 3
-    return ThermoelasticMap({"E_X": ex, "E_Y": ey, "E_Z": ez}, quadratic={"E_Y": {node("front", 1): 0.05}})
+    """Errors at the column top (``E_X``, ``E_Y``, ``E_Z``) and at the guideways' mid-height
+    (``E_X_mid``, ``E_Y_mid``, ``E_Z_mid``, :data:`MID_M` above the base)."""
+    out, quadratic = {}, {}
+    for suffix, point in (("", LEVELS * LEVEL_M), ("_mid", MID_M)):
+        alpha, depth = 11.5, 0.4
+        ex, ey, ez = {}, {}, {"base": 6.0}   # the 0.5 m base slab lifts everything
+        for k in range(1, LEVELS + 1):
+            h = (k - 0.5) * LEVEL_M
+            if h >= point:   # a level above the point does not move it
+                continue
+            c = alpha * LEVEL_M * (point - h) / depth
+            ey[node("front", k)] = c
+            ey[node("left", k)] = ey[node("right", k)] = -c / 2
+            ex[node("left", k)], ex[node("right", k)] = c / 2, -c / 2
+            for f in FACES:
+                ez[node(f, k)] = alpha * LEVEL_M / 3
+        out.update({f"E_X{suffix}": ex, f"E_Y{suffix}": ey, f"E_Z{suffix}": ez})
+        # the bed joint's nonlinearity tilts the column foot: its effect scales with the lever arm
+        quadratic[f"E_Y{suffix}"] = {node("front", 1): 0.05 * (point - 0.5 * LEVEL_M)
+                                     / (LEVELS * LEVEL_M - 0.5 * LEVEL_M)}
+    return ThermoelasticMap(out, quadratic=quadratic)
 
 
 def heat_sources(q3_face="right", q3_level=4):
