@@ -26,7 +26,7 @@ run: $(STAMP)
 	$(BIN)/thermocomp run
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n 2 --dist loadgroup   # 2 workers (pytest-xdist; an xdist_group stays on one worker)
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile   # 2 workers (pytest-xdist), a module's tests on one: its fixtures built once
 
 benchmark: $(STAMP)
 	for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done

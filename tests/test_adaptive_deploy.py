@@ -40,7 +40,7 @@ def _compose(*overrides):
         return compose(config_name="config", overrides=list(overrides))
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def faulty(tmp_path_factory):
     """``(path, {"jump": (campaign, sensor, first faulty row), "dropout": (...), "healthy": id})``."""
     root = tmp_path_factory.mktemp("adaptive")
@@ -172,7 +172,7 @@ def test_replay_cli_plain_stream_refuses_a_dropout_and_an_incomplete_train_split
 
 # -- the pyfunc -------------------------------------------------------------------------------
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def served(faulty, tmp_path_factory):
     """An adaptive ARX compensator saved as a pyfunc folder and loaded back through MLflow."""
     import mlflow

@@ -36,7 +36,7 @@ def door_campaign(rng, n=480, dt=60.0, door_um=-6.0, tau_door_s=900.0):
                          "S_door": door, "E_X": E})
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def door_data():
     rng = np.random.default_rng(0)
     train = {f"K{i}": door_campaign(rng) for i in range(6)}

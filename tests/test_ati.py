@@ -33,7 +33,7 @@ TRAIN = [3, 5, 7, 9, 14, 16, 18, 20, 25, 27, 29, 31]
 TEST = [6, 17, 28, 33]
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def data():
     train = {f"A{a:02d}": campaign(a, i) for i, a in enumerate(TRAIN)}
     test = {f"B{a:02d}": campaign(a, 100 + i) for i, a in enumerate(TEST)}
@@ -138,7 +138,7 @@ def test_config_wraps_any_model_in_ati():
     assert not isinstance(build_compensator(_compose([])).estimator, ATIRegressor)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def default_year(tmp_path_factory):
     """The default simulated year (conf/sim), generated in-process."""
     from hydra.utils import instantiate

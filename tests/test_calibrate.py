@@ -25,7 +25,7 @@ from thermocomp.volumetric import (
 
 # --- core: random geometry -> distances -> parameters -----------------------------------------
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def default_calibration():
     model = KinematicModel()
     setup = Setup(model, BallArray(), position_set(ranges=model.ranges))
@@ -66,7 +66,7 @@ def test_unidentifiable_parameters_are_named_with_what_they_hide_behind(default_
 
 # --- the CLI on a small simulated dataset ------------------------------------------------------
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def raw(tmp_path_factory):
     """A small volumetric dataset (6 h + 4 h, a cycle every 20 min) and its truth."""
     gen = LargeMillVolumetric(train_hours=6.0, test_hours=4.0, seed=0)
@@ -94,7 +94,7 @@ def edit(data, campaign, fn):
     df.to_parquet(f, index=False)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def clean(raw, tmp_path_factory):
     out = tmp_path_factory.mktemp("clean")
     return calibrate(raw, out), out

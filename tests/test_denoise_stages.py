@@ -18,7 +18,7 @@ FAST = ["track=false", "plots=none", "eval.mutual_prediction=false",
         "eval.ati_baselines=false"]
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def interim(default_dataset, tmp_path_factory):
     """The default dataset, ingested once for this module."""
     path = tmp_path_factory.mktemp("ingested") / "interim"

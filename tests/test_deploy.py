@@ -150,7 +150,7 @@ def mlflow_store(root) -> str:
 # ------------------------------------------------------------------------------------------
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def data():
     camps = campaigns(0)
     train = {c: camps[c] for c in list(camps)[:4]}

@@ -17,13 +17,13 @@ from thermocomp.volumetric.design import CalibrationDesignStudy, MachineFamily
 SMALL = {"x_centres": (0.25, 0.75), "grid": (12, 6, 6), "n_machines": 12, "n_jobs": 1, "seed": 0}
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def study():
     fam = MachineFamily(KinematicModel(order=4, cross_terms=True))
     return CalibrationDesignStudy(KinematicModel(), fam, **SMALL)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def result(study):
     return study.run({
         "balls": {"n_balls": [3, 5, 11], "misalignment_deg": [15.0], "position_sets": ["S2+S3"]},

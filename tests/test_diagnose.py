@@ -265,7 +265,7 @@ def test_self_prediction_flags_the_drifting_sensor_not_its_neighbours():
 
 
 # -- the loop ---------------------------------------------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def door_diagnosis():
     ds = _dataset(door_gain=4.0, random_column=True)
     return ds, diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=2))

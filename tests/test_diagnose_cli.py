@@ -14,7 +14,7 @@ QUIET_EVAL = ["plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=
               "eval.iso10791_a3=false"]
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def door(tmp_path_factory):
     root = tmp_path_factory.mktemp("diag")
     data = root / "door"

@@ -1,8 +1,8 @@
 """`dvc repro` of the default study in a scratch copy of the project, the venv not on PATH, and
 what DVC shows of it: headline metrics (narrow), a handful of `exp show` columns, data-driven
 plots, and what a changed model parameter reruns.  One full repro for the module: its tests run
-on one xdist worker (group `dvc_study`, `make test` uses `--dist loadgroup`), the one that
-changes the study last.  The README's `dvc repro`, `dvc repro` (nothing runs), `dvc metrics show`
+on one xdist worker (`make test` uses `--dist loadfile`), in file order, the one that changes
+the study last.  The README's `dvc repro`, `dvc repro` (nothing runs), `dvc metrics show`
 are run here, as written."""
 
 import json
@@ -18,7 +18,7 @@ import pytest
 from conftest import ROOT
 from thermocomp.plotdata import write_compare
 
-pytestmark = [pytest.mark.slow, pytest.mark.xdist_group("dvc_study")]
+pytestmark = pytest.mark.slow
 STAGES = ("simulate", "ingest", "denoise", "select", "train", "evaluate", "diagnose")
 TARGETS = ("E_X", "E_Y", "E_Z")
 # The README's `dvc exp show` (a handful of columns: the test and validation RMSE per target)
@@ -64,7 +64,7 @@ def copy_project(dest: Path) -> tuple[Path, dict]:
     return dest, env
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def repro(tmp_path_factory):
     dest, env = copy_project(tmp_path_factory.mktemp("dvcm") / "proj")
     first = _dvc("repro", cwd=dest, env=env)

@@ -80,7 +80,7 @@ def check_report(m: dict, plots: Path, ati: bool, level: str = "summary",
                for p in plots.rglob("*"))
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def small_year():
     """Nine simulated campaigns (six train, three test) of the default scenario, in memory."""
     from hydra.utils import instantiate

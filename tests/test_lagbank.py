@@ -192,7 +192,7 @@ def test_bad_parameters_raise_parameter_error(params):
         LagBank(**params).fit(X, y, context=context)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def small_data(tmp_path_factory):
     """9 short campaigns (6 train, 3 test) and a copy whose test campaigns' errors are poisoned."""
     root = tmp_path_factory.mktemp("lagbank")

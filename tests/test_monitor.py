@@ -59,7 +59,7 @@ def test_placement_picks_sensors_that_determine_the_modes(rank):
 
 
 # -- the adaptive compensator on the default scenario -------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def deployed(default_dataset):
     ds, _ = io.read_dataset(default_dataset, {})
     train = {c: ds.campaigns[c] for c in ds.ids("train")}
@@ -149,6 +149,79 @@ def test_a_fault_on_the_most_influential_sensor_is_reported_bounded_and_compensa
     assert worst <= 1.5, worst
 
 
+# Faults of other shapes and sizes than the simulator's (off our happy path): each on the most
+# influential sensor, or on it and the second one, at mid-campaign
+def _other_fault(df, sensors, kind, rng):
+    df, n = df.copy(), len(df)
+    k0 = n // 2
+    v = df[sensors[0]].to_numpy(float).copy()
+    hours = (df["time"].to_numpy(float) - df["time"].to_numpy(float)[k0]) / 3600
+    if kind == "spike":                       # one sample off, then back
+        v[k0] += 3.0
+    elif kind == "spikes":                    # every 10th sample off
+        v[k0::10] += 2.0
+    elif kind == "jump_small":                # +1 °C: not a jump by the raw step detector
+        v[k0:] += 1.0
+    elif kind == "jump_down":
+        v[k0:] -= 3.0
+    elif kind == "stuck_at_zero":
+        v[k0:] = 0.0
+    elif kind == "short_dropout":             # 5 samples missing, then back
+        v[k0:k0 + 5] = np.nan
+    elif kind == "frozen_from_start":
+        v[1:] = v[0]
+        k0 = 1
+    elif kind == "noisy":                     # ±0.5 °C noise, a loose contact
+        v[k0:] += rng.normal(0.0, 0.5, n - k0)
+    elif kind in ("two_jumps", "two_dropouts"):
+        w = df[sensors[1]].to_numpy(float).copy()
+        w[k0:] = w[k0:] + 3.0 if kind == "two_jumps" else np.nan
+        v[k0:] = v[k0:] + 3.0 if kind == "two_jumps" else np.nan
+        df[sensors[1]] = w
+    elif kind.startswith("drift_"):           # slower than the simulator's 1 K/h
+        v[k0:] += float(kind.split("_")[1]) * hours[k0:]
+    df[sensors[0]] = v
+    return df, k0
+
+
+SLOW_DRIFT = pytest.mark.xfail(strict=True, reason=(
+    "known gap: a slow drift on T_motor2 leaves the band when its coupled partner T_motor1 does, "
+    "the two look alike to self-prediction and both go out; reconstructed from the others, the "
+    "motor heating is lost on some campaigns (worst 1.7-1.8x, pooled 1.04x)"))
+
+
+@pytest.mark.parametrize("kind", ["spike", "spikes", "jump_small", "jump_down", "stuck_at_zero",
+                                  "short_dropout", "frozen_from_start", "noisy", "two_dropouts",
+                                  pytest.param("two_jumps", marks=pytest.mark.xfail(strict=True, reason=(
+                                      "two sensors jumping +3 °C at once (beyond the issue's single "
+                                      "fault): 1.53x the healthy RMSE on one campaign"))),
+                                  pytest.param("drift_0.5", marks=SLOW_DRIFT),
+                                  pytest.param("drift_0.2", marks=SLOW_DRIFT)])
+def test_faults_of_other_shapes_stay_bounded_and_cost_at_most_1_5x_the_healthy_error(deployed, kind):
+    adaptive, comp, test, sensor = deployed
+    base = comp.predict(test)
+
+    def shift(s):   # the second most influential sensor, as the fixture ranks the first
+        moved = comp.predict({c: df.assign(**{s: df[s] + (np.arange(len(df)) > 0)})
+                              for c, df in test.items()})
+        return max(float(np.abs(moved[c] - base[c]).to_numpy().max()) for c in test)
+
+    second = max((c for c in comp.inputs_ if not c.startswith("T_amb") and c != sensor), key=shift)
+    measured, g, rng = comp.measured(test), adaptive.guard, np.random.default_rng(7)
+    worst = 0.0
+    for cid, df in test.items():
+        faulty, _ = _other_fault(df, (sensor, second), kind, rng)
+        y, events = _stream(adaptive, faulty)
+        assert np.isfinite(y).all() and (y >= g.lo - 1e-9).all() and (y <= g.hi + 1e-9).all()
+        if kind != "noisy":                    # the noise stays within the bands on some campaigns
+            assert any(e["sensor"] in (sensor, second) for e in events), (cid, kind)
+        m = measured[cid][adaptive.targets_].to_numpy()
+        healthy, _ = _stream(adaptive, df)
+        ratio = np.sqrt(np.mean((m - y) ** 2, 0)) / np.sqrt(np.mean((m - healthy) ** 2, 0))
+        worst = max(worst, float(ratio.max()))
+    assert worst <= 1.5, worst
+
+
 def test_freeze_and_drift_are_reported_within_10_samples_of_becoming_observable(deployed):
     adaptive, comp, test, sensor = deployed
     for kind in ("freeze", "drift"):
@@ -193,7 +266,7 @@ def test_predict_reports_excluded_inputs_and_events_per_row(deployed):
 
 
 # -- column_moving_source: the never-trained source Q3 ------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def column(tmp_path_factory):
     path = tmp_path_factory.mktemp("col") / "column"
     thermocomp("simulate", "sim=column_moving_source", f"data.path={path}", "track=false")

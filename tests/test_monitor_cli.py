@@ -112,7 +112,7 @@ def assert_caught(check: dict, kind: str) -> None:
 
 
 # -- faults through the CLI -------------------------------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def healthy(default_dataset, tmp_path_factory):
     out = tmp_path_factory.mktemp("healthy")
     return run_monitor(default_dataset, out), out, most_influential(default_dataset)
@@ -154,7 +154,7 @@ SWISS = ["sim=swiss_lathe_door", "sim.generator.calibration_hours=40"]
 SWISS_GAPS: dict[str, str] = {}   # measured gaps, as strict xfails (none left)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def swiss(tmp_path_factory):
     root = tmp_path_factory.mktemp("swiss")
     thermocomp("simulate", f"data.path={root / 'healthy'}", "track=false", *SWISS)
@@ -199,7 +199,7 @@ def test_a_bad_monitor_value_is_refused_before_the_data_is_read(tmp_path, capsys
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def small(default_dataset, tmp_path_factory) -> Path:
     """A copy of the default dataset with only 2 train and 2 test campaigns (fast)."""
     path = tmp_path_factory.mktemp("small") / "ds"

@@ -138,7 +138,7 @@ def test_one_step_law_is_least_squares_on_the_training_increments():
 
 
 # -- end to end on sim=long_record (8 days) -------------------------------------------------------
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def long_record(tmp_path_factory):
     path = tmp_path_factory.mktemp("lr") / "lr"
     thermocomp("simulate", "sim=long_record", f"data.path={path}", "sim.generator.duration_days=8",

@@ -21,7 +21,7 @@ SEARCH = ("hydra/sweeper=optuna", f"hydra.sweeper.n_trials={N_TRIALS}", "hydra.s
           "model=pcr", "model.estimator.variance=interval(0.3,0.999)")
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def datasets(tmp_path_factory):
     root = tmp_path_factory.mktemp("optuna")
     clean = write_small_dataset(root / "small")

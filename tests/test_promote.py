@@ -27,7 +27,7 @@ NAME = "thermocomp-compensator"
 TESTS = Path(__file__).resolve().parent
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def project(tmp_path_factory):
     root = tmp_path_factory.mktemp("promote")
     data = write_small_dataset(root / "small")

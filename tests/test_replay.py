@@ -27,7 +27,7 @@ SMALL = {  # keep every fit small: the point is the plumbing, not the accuracy
 TOLERANCE_UM = 1e-6
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def door_data(tmp_path_factory):
     """9 short year-round campaigns (6 train, 3 test) with an undeclared door signal S_door."""
     path = tmp_path_factory.mktemp("replay") / "door"

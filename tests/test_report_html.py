@@ -52,7 +52,7 @@ class Page(HTMLParser):
             self.h2.append(data.strip())
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def report(tmp_path_factory):
     """A diagnosis of three targets with an accepted effect each (a planted door)."""
     root = tmp_path_factory.mktemp("report")

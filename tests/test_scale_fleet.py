@@ -19,7 +19,7 @@ from thermocomp.sim.fleet import Fleet
 TINY = dict(n_machines=3, days=4, test_days=1, n_sensors=8, sample_period_s=300.0, n_jobs=2, seed=3)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def fleet(tmp_path_factory):
     path = tmp_path_factory.mktemp("fleet") / "fleet"
     truth = Fleet(**TINY).write(path)

@@ -14,7 +14,7 @@ from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.tracking import SWEEP_TAG
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def dataset(tmp_path_factory):
     return write_small_dataset(tmp_path_factory.mktemp("launchers") / "small")
 

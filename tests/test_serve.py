@@ -82,7 +82,7 @@ def test_a_refused_block_leaves_its_session_where_it_was():
 
 # -- thermocomp serve --------------------------------------------------------------------------
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def promoted(tmp_path_factory):
     root = tmp_path_factory.mktemp("serve")
     data = write_small_dataset(root / "small")

@@ -37,7 +37,7 @@ def key(monkeypatch):
     monkeypatch.setenv(signing.KEY_ENV, "k" * 40)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def fitted():
     camps = campaigns(0)
     return Compensator(MLR()).fit({c: camps[c] for c in list(camps)[:4]})

@@ -23,7 +23,7 @@ SPINDLE_NODES = ("motor", "spindle_shaft", "bearing_front", "bearing_rear")
 HEAVY_NODES = ("column_front", "column_back", "bed")
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def yearround():
     t0 = time.perf_counter()
     dataset, truth = YearRoundSpindle(seed=0).generate()
@@ -31,7 +31,7 @@ def yearround():
     return dataset, truth
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def machine():
     return vertical_machining_centre()
 

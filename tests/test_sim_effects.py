@@ -26,7 +26,7 @@ KW = dict(n_campaigns=9, duration_h=(4.0, 6.0), seed=0)
 TAUS = (600.0, 1800.0, 3600.0, 7200.0)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def base():
     return YearRoundSpindle(**KW).generate()[0]
 

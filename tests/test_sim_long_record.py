@@ -44,7 +44,7 @@ def rmse(r) -> float:
     return float(np.sqrt(np.mean(np.square(r))))
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def short():
     gen = LongRecord(duration_days=4.0, seed=0)
     ds, truth = gen.generate()

@@ -37,7 +37,7 @@ class Sleepy(MLR):
         return super().fit(X, y, context)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def dataset(tmp_path_factory):
     return write_small_dataset(tmp_path_factory.mktemp("tracking") / "small")
 

@@ -10,12 +10,12 @@ from thermocomp.volumetric import ArtefactCalibration, BallArray, KinematicModel
 from thermocomp.volumetric.identify import design
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def model():
     return KinematicModel(order=3, cross_terms=True)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def points(model):
     rng = np.random.default_rng(0)
     lo = np.array([model.ranges[a][0] for a in "XYZ"])

@@ -9,14 +9,14 @@ import re
 import numpy as np
 import pytest
 
-from conftest import ROOT, refused, simulated
+from conftest import ROOT, simulated
 from thermocomp.cli import main
 from thermocomp.sim.volumetric import LargeMillVolumetric
 
 CLI_DOC = (ROOT / "docs" / "cli.md").read_text()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def raw(tmp_path_factory):
     """Two days of training, a day and a half of validation (the A.3 test needs 15 h), a cycle
     every 20 min: every heater phase of the weeks, compressed."""
@@ -31,7 +31,7 @@ def _run(raw, out, *extra):
     return json.loads((out / "metrics.json").read_text()), out
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def run(raw, tmp_path_factory):
     return _run(raw, tmp_path_factory.mktemp("volrun_out"), "plots=none")
 
@@ -108,7 +108,21 @@ def test_figures_headline_and_every_key_documented(raw, run, tmp_path):
     assert not missing, f"docs/cli.md lacks {missing}"
 
 
-def test_the_separate_stages_refuse_a_volumetric_dataset(raw, tmp_path, capsys):
-    refused(["ingest", f"data.path={raw}", f"data.interim={tmp_path / 'interim'}", "track=false"],
-            capsys, "volumetric dataset", "thermocomp run")
-    assert not (tmp_path / "interim").exists()
+def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_path):
+    """ingest calibrates into data.interim, train models the parameters, evaluate validates them
+    against the distances: the same section as `run` with the same settings."""
+    common = ["experiment=volumetric_large_mill", f"data.path={raw}", f"data.interim={tmp_path / 'interim'}",
+              f"model_path={tmp_path / 'model.pkl'}", "track=false", "eval.mutual_prediction=false",
+              "eval.ati_baselines=false", "plots=none", "data.targets=[E_ZZ1,E_XZ1]"]
+    assert main(["ingest", *common]) == 0
+    report = json.loads((tmp_path / "interim" / "ingest_report.json").read_text())
+    assert report["dataset"] == raw.name and "E_ZZ1" in report["calibration"]["parameters"]
+    assert main(["train", *common]) == 0
+    assert main(["evaluate", *common, f"out={tmp_path / 'staged'}"]) == 0
+    staged = json.loads((tmp_path / "staged" / "metrics.json").read_text())
+    whole, _ = _run(raw, tmp_path / "run", "plots=none", "data.targets=[E_ZZ1,E_XZ1]")
+    for block in ("distance_error", "vce", "vce_identified"):
+        for k in ("rms_before", "rms_after"):
+            assert staged["volumetric"][block][k] == pytest.approx(whole["volumetric"][block][k], rel=1e-9)
+    assert staged["volumetric"]["parameters"] == whole["volumetric"]["parameters"]
+    assert (tmp_path / "staged" / "headline" / "volumetric.json").is_file()

@@ -14,7 +14,7 @@ from thermocomp.sim.volumetric import LargeMillVolumetric, simulate_distances, v
 from thermocomp.volumetric import SETUP_FILE, ArtefactCalibration, Setup, load_setup
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def small():
     gen = LargeMillVolumetric(train_hours=6.0, test_hours=4.0, seed=3)
     ds, truth = gen.generate()

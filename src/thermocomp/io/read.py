@@ -1174,7 +1174,7 @@ def _starts_from_timestamps(manifest: pd.DataFrame, entries: Mapping) -> pd.Data
     return out
 
 
-def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None) -> dict:
+def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra: dict | None = None) -> dict:
     """Validate a raw dataset and write it as Parquet to ``dest``.
 
     Campaigns are read, validated and written one at a time as Arrow tables,
@@ -1192,6 +1192,8 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None) -> dic
         ``src`` or lie inside it (or contain it).
     cfg : mapping, optional
         The ``data`` config, as for :func:`read_dataset`.
+    extra : dict, optional
+        More keys of the report (a volumetric dataset's ``dataset`` and ``calibration``).
 
     Returns
     -------
@@ -1219,7 +1221,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None) -> dic
         out = _starts_from_timestamps(manifest, entries).assign(
             file=[f"{cid}.parquet" for cid in manifest.index])
         (tmp / MANIFEST).write_text(_manifest_csv(out))
-        report = _dataset_report(src.name, entries, columns, opts)
+        report = {**_dataset_report(src.name, entries, columns, opts), **(extra or {})}
         write_json(tmp / INGEST_REPORT, report, ensure_ascii=False)
     return report
 

@@ -410,7 +410,10 @@ class SensorMonitor:
                 instant.setdefault(j, f"jump: self-prediction error stepped {de[j]:+.3g} °C in "
                                       "one sample")
             if self.adaptive:
-                j = int(np.argmax(np.where(stepped, np.abs(e) * self._std, -1)))
+                # the culprit by its standardised *step*: a step fault on j steps every other
+                # error by less (the bound below), while the errors' levels carry each sensor's
+                # own model error (a coupled partner's may exceed the faulty one's)
+                j = int(np.argmax(np.where(stepped, np.abs(de) * self._std, -1)))
                 self._exclude(j, instant[j], time, events, by_field=True)
 
         # judgement over the last `confirm` samples, worst first, redone after every exclusion

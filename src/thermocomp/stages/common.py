@@ -270,3 +270,20 @@ def calibrated_dataset(cfg: DictConfig):
     with single_threaded_blas():      # 1430-wide matrices: threads on 2 busy cores only thrash
         return calibrate_folder(resolve(cfg.data.path), data_options(cfg), c.outlier_z,
                                 c.column_share, c.get("require_seen"))
+
+
+def volumetric_source(cfg: DictConfig):
+    """``(distance dataset, calibration)`` when ``data.path`` is a volumetric dataset, else None:
+    what ``evaluate`` validates the parameter models against (``ingest`` calibrated the same
+    folder into ``data.interim``; the calibration's model is fitted again, not its cycles)."""
+    from ..volumetric import SETUP_FILE, ArtefactCalibration
+    from ..volumetric.series import check_columns, load_setup
+
+    root = resolve(cfg.data.path)
+    if not (root / SETUP_FILE).is_file():
+        return None
+    check_calibrate(cfg.calibrate)
+    setup = load_setup(root)
+    raw, _ = io.read_dataset(root, data_options(cfg), missing="keep")
+    check_columns(raw, setup)
+    return raw, ArtefactCalibration(setup, outlier_z=float(cfg.calibrate.outlier_z)).fit()

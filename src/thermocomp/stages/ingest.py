@@ -1,31 +1,48 @@
-"""`thermocomp ingest`: validate a dataset folder, write Parquet + report to data.interim."""
+"""`thermocomp ingest`: validate a dataset folder, write Parquet + report to data.interim.
+
+A volumetric dataset (``volumetric.json`` in ``data.path``) is calibrated first, as
+``thermocomp calibrate`` does: ``data.interim`` then holds its error parameter series (one
+``E_`` column per identified parameter), which ``denoise`` .. ``train`` model like any dataset
+and ``evaluate`` validates against the distances (the ``volumetric`` section).
+"""
 
 from __future__ import annotations
+
+import tempfile
 
 from omegaconf import DictConfig
 
 from .. import io
-from ..errors import ConfigError
 from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric.artefact import SETUP_FILE
-from .common import check_config, data_options, say
+from .common import calibrated_dataset, check_calibrate, check_config, data_options, say
 
 
 def ingest(cfg: DictConfig) -> dict:
     """Validate ``data.path`` and write it as Parquet to ``data.interim`` with a report."""
     check_config(cfg, outputs=("data.interim",))
     src, dest = resolve(cfg.data.path), resolve(cfg.data.interim)
-    if (src / SETUP_FILE).is_file():
-        # its targets are 1000+ distances: the separate stages would fit a model per distance
-        raise ConfigError(f"{src} is a volumetric dataset ({SETUP_FILE}): `thermocomp run` calibrates "
-                          "it and fits a thermal model per error parameter; `thermocomp calibrate` "
-                          "writes the parameter series as a dataset the separate stages can read")
     say(f"ingesting {src} -> {dest}")
-    report = io.ingest(src, dest, data_options(cfg))
+    if (src / SETUP_FILE).is_file():
+        report = _calibrated(cfg, dest)
+    else:
+        report = io.ingest(src, dest, data_options(cfg))
     say(f"{report['rows']} rows in {len(report['campaigns'])} campaigns; "
         f"repairs: {report['repairs'] or 'none'}")
     with stage_run(cfg, "ingest") as tr:
         tr.log_metrics({"rows": report["rows"], "campaigns": len(report["campaigns"])})
         tr.log_artifact(dest / "ingest_report.json")
     return report
+
+
+def _calibrated(cfg: DictConfig, dest) -> dict:
+    """The parameter series of a volumetric dataset, ingested as a dataset of its own."""
+    check_calibrate(cfg.calibrate)
+    say("volumetric dataset: calibrating the artefact distances into the error parameters")
+    params, _, calibration, raw = calibrated_dataset(cfg)
+    # written, then read back through the one validating reader (the splits and names are
+    # already the configured ones: no data.* option applies twice)
+    with tempfile.TemporaryDirectory(prefix="thermocomp-params-") as tmp:
+        folder = io.write_dataset(params, f"{tmp}/{raw.name or 'parameters'}", "parquet")
+        return io.ingest(folder, dest, extra={"calibration": calibration})

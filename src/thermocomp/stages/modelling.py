@@ -44,6 +44,7 @@ from .common import (
     result_table,
     save_model,
     say,
+    volumetric_source,
 )
 
 
@@ -257,7 +258,8 @@ def _mutual_figures(draw, folder, mutual: dict) -> None:
 
 
 def evaluate(cfg: DictConfig) -> dict:
-    """Score the trained model on train and test splits; write ``out/metrics.json``."""
+    """Score the trained model on train and test splits; write ``out/metrics.json`` (with the
+    ``volumetric`` section when ``data.path`` is a volumetric dataset)."""
     check_config(cfg)
     clock = Clock()
     interim = resolve(cfg.data.interim)
@@ -267,9 +269,17 @@ def evaluate(cfg: DictConfig) -> dict:
     if trained_on is not None and trained_on != ds.meta["digest"]:
         raise io.ContractError("the model was trained on another ingest of this folder (another "
                                "run's ingest replaced it since); rerun train", file=interim)
+    volumetric = volumetric_source(cfg)
+    if volumetric is not None:
+        lacking = [n for n in volumetric[1].names_ if n not in ds.columns]
+        if lacking:
+            raise io.ContractError(f"it does not hold the parameter series of the volumetric dataset "
+                                   f"{resolve(cfg.data.path)} (no {lacking[0]}); rerun ingest", file=interim)
     clock.lap("read")
     with stage_run(cfg, "evaluate") as tr:
-        return _report(cfg, comp, ds, tr, clock)
+        if volumetric is None:
+            return _report(cfg, comp, ds, tr, clock)
+        return _volumetric_report(cfg, comp, ds, *volumetric, tr, clock, {})
 
 
 def run(cfg: DictConfig) -> dict:
@@ -300,25 +310,38 @@ def run(cfg: DictConfig) -> dict:
         comp = _fit(cfg, ds)
         fit_s = time.perf_counter() - t0
         clock.lap("fit")
-        extra, curves = {"fit_time_s": fit_s}, None
-        if volumetric is not None:
-            extra["volumetric"], curves = _volumetric(cfg, comp, raw, ds, cal)
-            clock.lap("volumetric")
+        extra = {"fit_time_s": fit_s}
 
         def stage_files(stage):  # committed with metrics.json, or not at all
             save_model(comp, stage / "model.pkl")
             write_json(stage / "ingest_report.json", report)
-            if curves is not None and cfg.plots != "none":
-                from ..volumetric.figures import draw_validation
 
-                draw_validation(stage / "volumetric", extra["volumetric"], curves)
-
-        metrics = _report(cfg, comp, ds, tr, clock, extra, stage_files)
+        if volumetric is None:
+            metrics = _report(cfg, comp, ds, tr, clock, extra, stage_files)
+        else:
+            metrics = _volumetric_report(cfg, comp, ds, raw, cal, tr, clock, extra, stage_files)
         tr.log_metrics({"fit_time_s": fit_s})
-        if volumetric is not None:
-            tr.log_metrics(volumetric_headline(extra["volumetric"]))
         tr.log_artifact(resolve(cfg.out) / "model.pkl")
         return metrics
+
+
+def _volumetric_report(cfg: DictConfig, comp: Compensator, ds, raw, cal, tracker, clock: Clock,
+                       extra: dict, stage_files=None) -> dict:
+    """:func:`_report` with the ``volumetric`` section, its figures and its MLflow metrics."""
+    extra["volumetric"], curves = _volumetric(cfg, comp, raw, ds, cal)
+    clock.lap("volumetric")
+
+    def files(stage):
+        if stage_files is not None:
+            stage_files(stage)
+        if cfg.plots != "none":
+            from ..volumetric.figures import draw_validation
+
+            draw_validation(stage / "volumetric", extra["volumetric"], curves)
+
+    metrics = _report(cfg, comp, ds, tracker, clock, extra, files)
+    tracker.log_metrics(volumetric_headline(extra["volumetric"]))
+    return metrics
 
 
 def _calibrated(cfg: DictConfig):
