@@ -300,10 +300,11 @@ def test_column_adaptive_beats_fixed_away_from_the_new_source_and_lets_its_senso
     assert away
     for t in away:
         assert report["targets"][t]["rmse_adaptive"] < report["targets"][t]["rmse_fixed"], t
-    # once one sensor is out, others leave only beyond the alarm band: no cascade to the far face
+    # no cascade to the faces away from Q3 (it heats the right face): the front and left sensors
+    # stay in while the field is out of its trained subspace, and every one out comes back
     out = [e for e in report["events"] if e["to"] == "excluded" and e["sensor"] in report["sensors"]]
     assert out and all(e["reason"].startswith("drift") for e in out)
-    assert all(abs(float(e["reason"].split()[3])) >= report["bands"]["alarm_c"][0] for e in out[1:])
+    assert not [e["sensor"] for e in out if e["sensor"].startswith(("T_front", "T_left"))]
     back = {e["sensor"] for e in report["events"] if e["from"] == "excluded" and e["time"] > off}
     assert back == {e["sensor"] for e in out}
 

@@ -24,9 +24,10 @@ Detectors, each named in the event's reason:
   for longer than ``freeze_factor`` × its longest constant run in training);
 * ``drift`` — the windowed self-prediction error leaves the band gradually.
 
-Adaptive mode (paper 002, 2.3): the worst sensor in alarm (largest standardised
-error :math:`|E_s|/\sqrt{1-h_{ss}}`, which is always the faulty one for a
-single fault) is excluded and the operator recomputed, while more than
+Adaptive mode (paper 002, 2.3): the worst sensor (largest self-prediction error
+of the paper's Eq. 7, the sensor against the field fitted to all active sensors;
+a one-sample step blames the largest standardised step, always the faulty
+sensor for a single fault) is excluded and the operator recomputed, while more than
 ``r + 1`` sensors remain active (the first at ``exclude_at``, any further one while
 a sensor is out by its error only beyond the alarm band:
 :meth:`SensorMonitor._field_level`); an excluded sensor whose reading returns
@@ -420,11 +421,14 @@ class SensorMonitor:
         level, err = self._judge()
         while (self.adaptive and (self._judged & (level >= self._field_level())).any()
                and self._active.sum() > self.min_active_):
-            # the culprit is the largest *standardised* error |E|/sqrt(1-h) among all judged
-            # sensors, in alarm or not: a fault on j gives every other sensor i a smaller one
-            # (|H_ij| <= sqrt((1-h_ii)(1-h_jj))), while its leave-one-out error may be smaller
-            # than a coupled neighbour's
-            z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std, -1)
+            # the culprit is the largest self-prediction error of paper 002 (Eq. 7: the sensor
+            # against the field fitted to all active sensors, itself included: |E|(1-h) of the
+            # leave-one-out error E), among all judged sensors, in alarm or not.  Not the
+            # standardised |E|/sqrt(1-h), which is the right pick for one faulty sensor but not
+            # for a new source spread over several: its high-leverage sensors near the source
+            # pull the fit, and a well-predicted sensor far away then looks worst (measured on a
+            # column with more nodes than sensors: the far T_left1 went out first on 3 of 5 runs)
+            z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
             j = int(np.argmax(z))
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
