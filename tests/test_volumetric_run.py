@@ -9,7 +9,7 @@ import re
 import numpy as np
 import pytest
 
-from conftest import ROOT, simulated
+from conftest import ROOT, refused, simulated
 from thermocomp.cli import main
 from thermocomp.sim.volumetric import LargeMillVolumetric
 
@@ -126,3 +126,10 @@ def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_pa
             assert staged["volumetric"][block][k] == pytest.approx(whole["volumetric"][block][k], rel=1e-9)
     assert staged["volumetric"]["parameters"] == whole["volumetric"]["parameters"]
     assert (tmp_path / "staged" / "headline" / "volumetric.json").is_file()
+
+
+def test_an_interim_inside_the_volumetric_dataset_is_refused_before_calibrating(raw, capsys):
+    before = sorted(p.name for p in raw.iterdir())
+    refused(["ingest", "experiment=volumetric_large_mill", f"data.path={raw}",
+             f"data.interim={raw / 'interim'}", "track=false"], capsys, "overlaps the raw dataset")
+    assert sorted(p.name for p in raw.iterdir()) == before

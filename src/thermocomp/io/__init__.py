@@ -7,9 +7,18 @@ from .contract import (
                        role,
                        write_dataset,
 )
-from .read import INGEST_REPORT, ReadOptions, ingest, load_interim, read_campaign, read_dataset, read_manifest
+from .read import (
+    INGEST_REPORT,
+    ReadOptions,
+    check_separate,
+    ingest,
+    load_interim,
+    read_campaign,
+    read_dataset,
+    read_manifest,
+)
 
 __all__ = [
-    "INGEST_REPORT", "ContractError", "Dataset", "ReadOptions", "ingest", "load_interim",
+    "INGEST_REPORT", "ContractError", "Dataset", "ReadOptions", "check_separate", "ingest", "load_interim",
     "match_columns", "read_campaign", "read_dataset", "read_manifest", "role", "write_dataset",
 ]

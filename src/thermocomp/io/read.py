@@ -1208,7 +1208,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
     """
     opts = ReadOptions.from_cfg(cfg)
     src, dest = Path(src), Path(dest)
-    _check_separate(src, dest)
+    check_separate(src, dest)
     manifest = read_manifest(src, opts)
     entries, columns = {}, {}
     with atomic_dir(dest) as tmp:
@@ -1276,7 +1276,7 @@ def _load_interim_once(root: Path) -> Dataset:
     return Dataset(manifest, campaigns, root.name, meta)
 
 
-def _check_separate(src: Path, dest: Path) -> None:
+def check_separate(src: Path, dest: Path) -> None:
     a, b = src.resolve(), dest.resolve()
     if a == b or a in b.parents or b in a.parents:
         raise ContractError(f"ingest destination {dest} overlaps the raw dataset {src}; "

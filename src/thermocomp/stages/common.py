@@ -272,6 +272,18 @@ def calibrated_dataset(cfg: DictConfig):
                                 c.column_share, c.get("require_seen"))
 
 
+def volumetric_calibration(cfg: DictConfig):
+    """:func:`calibrated_dataset` when ``data.path`` is a volumetric dataset (``volumetric.json``
+    in it; ``calibrate.*`` checked first), else None: how ``ingest`` and ``run`` read one."""
+    from ..volumetric import SETUP_FILE
+
+    if not (resolve(cfg.data.path) / SETUP_FILE).is_file():
+        return None
+    check_calibrate(cfg.calibrate)
+    say("volumetric dataset: calibrating the artefact distances into the error parameters")
+    return calibrated_dataset(cfg)
+
+
 def volumetric_source(cfg: DictConfig):
     """``(distance dataset, calibration)`` when ``data.path`` is a volumetric dataset, else None:
     what ``evaluate`` validates the parameter models against (``ingest`` calibrated the same

@@ -15,8 +15,7 @@ from omegaconf import DictConfig
 from .. import io
 from ..paths import resolve
 from ..tracking import stage_run
-from ..volumetric.artefact import SETUP_FILE
-from .common import calibrated_dataset, check_calibrate, check_config, data_options, say
+from .common import check_config, data_options, say, volumetric_calibration
 
 
 def ingest(cfg: DictConfig) -> dict:
@@ -24,10 +23,12 @@ def ingest(cfg: DictConfig) -> dict:
     check_config(cfg, outputs=("data.interim",))
     src, dest = resolve(cfg.data.path), resolve(cfg.data.interim)
     say(f"ingesting {src} -> {dest}")
-    if (src / SETUP_FILE).is_file():
-        report = _calibrated(cfg, dest)
-    else:
+    io.check_separate(src, dest)      # before a volumetric dataset's calibration, too
+    volumetric = volumetric_calibration(cfg)
+    if volumetric is None:
         report = io.ingest(src, dest, data_options(cfg))
+    else:
+        report = _parameters(volumetric, dest)
     say(f"{report['rows']} rows in {len(report['campaigns'])} campaigns; "
         f"repairs: {report['repairs'] or 'none'}")
     with stage_run(cfg, "ingest") as tr:
@@ -36,11 +37,9 @@ def ingest(cfg: DictConfig) -> dict:
     return report
 
 
-def _calibrated(cfg: DictConfig, dest) -> dict:
-    """The parameter series of a volumetric dataset, ingested as a dataset of its own."""
-    check_calibrate(cfg.calibrate)
-    say("volumetric dataset: calibrating the artefact distances into the error parameters")
-    params, _, calibration, raw = calibrated_dataset(cfg)
+def _parameters(volumetric, dest) -> dict:
+    """The parameter series of a calibrated volumetric dataset, ingested as a dataset of its own."""
+    params, _, calibration, raw = volumetric
     # written, then read back through the one validating reader (the splits and names are
     # already the configured ones: no data.* option applies twice)
     with tempfile.TemporaryDirectory(prefix="thermocomp-params-") as tmp:

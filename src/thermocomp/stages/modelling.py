@@ -44,6 +44,7 @@ from .common import (
     result_table,
     save_model,
     say,
+    volumetric_calibration,
     volumetric_source,
 )
 
@@ -297,7 +298,7 @@ def run(cfg: DictConfig) -> dict:
     check_config(cfg)
     say(f"reading {resolve(cfg.data.path)}")
     clock = Clock()
-    volumetric = _calibrated(cfg)
+    volumetric = volumetric_calibration(cfg)
     if volumetric is None:
         ds, report = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
     else:
@@ -342,19 +343,6 @@ def _volumetric_report(cfg: DictConfig, comp: Compensator, ds, raw, cal, tracker
     metrics = _report(cfg, comp, ds, tracker, clock, extra, files)
     tracker.log_metrics(volumetric_headline(extra["volumetric"]))
     return metrics
-
-
-def _calibrated(cfg: DictConfig):
-    """``(parameter dataset, calibration, its report, distance dataset)`` of a volumetric dataset
-    (``volumetric.json`` in ``data.path``), calibrated as ``thermocomp calibrate`` does; else None."""
-    from ..volumetric import SETUP_FILE
-    from .common import calibrated_dataset, check_calibrate
-
-    if not (resolve(cfg.data.path) / SETUP_FILE).is_file():
-        return None
-    check_calibrate(cfg.calibrate)
-    say("volumetric dataset: calibrating the artefact distances into the error parameters")
-    return calibrated_dataset(cfg)
 
 
 def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal):
