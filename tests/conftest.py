@@ -26,6 +26,20 @@ def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.Complet
     return proc
 
 
+def influence(comp, test: dict) -> dict[str, float]:
+    """Per input of the fitted ``comp``: the largest change of its test predictions when that
+    reading is raised by 1 °C after the first sample (a constant offset is removed by the
+    reference sample, so it would move nothing)."""
+    base = comp.predict(test)
+
+    def moved(sensor: str) -> float:
+        shifted = comp.predict({c: df.assign(**{sensor: df[sensor] + (np.arange(len(df)) > 0)})
+                                for c, df in test.items()})
+        return max(float(np.abs(shifted[c] - base[c]).to_numpy().max()) for c in test)
+
+    return {s: moved(s) for s in comp.inputs_}
+
+
 def refused(args: list[str], capsys, *says: str) -> str:
     """``thermocomp <args>`` (in process) exits 2 with one error line holding every one of
     ``says``; returns that line."""

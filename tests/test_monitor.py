@@ -10,7 +10,7 @@ import pytest
 from hydra.utils import instantiate
 from omegaconf import OmegaConf
 
-from conftest import ROOT, thermocomp
+from conftest import ROOT, influence, thermocomp
 from thermocomp import io
 from thermocomp.compensator import Compensator
 from thermocomp.deploy import StreamingCompensator
@@ -68,14 +68,8 @@ def deployed(default_dataset):
     comp = Compensator(est).fit(train)
     adaptive = AdaptiveCompensator.from_training(StreamingCompensator.from_training(comp, train), train)
     # the most influential sensor: the largest change of the test predictions per °C
-    base = comp.predict(test)
-
-    def shift(s):   # +1 °C after the first sample (a constant shift moves nothing: referencing)
-        moved = comp.predict({c: df.assign(**{s: df[s] + (np.arange(len(df)) > 0)})
-                              for c, df in test.items()})
-        return max(float(np.abs(moved[c] - base[c]).to_numpy().max()) for c in test)
-
-    sensor = max((c for c in comp.inputs_ if not c.startswith("T_amb")), key=shift)
+    effect = influence(comp, test)
+    sensor = max((c for c in effect if not c.startswith("T_amb")), key=effect.get)
     return adaptive, comp, test, sensor
 
 
@@ -199,14 +193,8 @@ SLOW_DRIFT = pytest.mark.xfail(strict=True, reason=(
                                   pytest.param("drift_0.2", marks=SLOW_DRIFT)])
 def test_faults_of_other_shapes_stay_bounded_and_cost_at_most_1_5x_the_healthy_error(deployed, kind):
     adaptive, comp, test, sensor = deployed
-    base = comp.predict(test)
-
-    def shift(s):   # the second most influential sensor, as the fixture ranks the first
-        moved = comp.predict({c: df.assign(**{s: df[s] + (np.arange(len(df)) > 0)})
-                              for c, df in test.items()})
-        return max(float(np.abs(moved[c] - base[c]).to_numpy().max()) for c in test)
-
-    second = max((c for c in comp.inputs_ if not c.startswith("T_amb") and c != sensor), key=shift)
+    effect = influence(comp, test)   # the second most influential sensor, as the fixture ranks the first
+    second = max((c for c in effect if not c.startswith("T_amb") and c != sensor), key=effect.get)
     measured, g, rng = comp.measured(test), adaptive.guard, np.random.default_rng(7)
     worst = 0.0
     for cid, df in test.items():

@@ -20,7 +20,7 @@ import pytest
 from hydra.utils import instantiate
 from omegaconf import OmegaConf
 
-from conftest import ROOT, refused, thermocomp
+from conftest import ROOT, influence, refused, thermocomp
 from thermocomp import io as tio
 from thermocomp.cli import main
 from thermocomp.compensator import Compensator
@@ -40,14 +40,8 @@ def most_influential(path: Path) -> str:
     train = {c: ds.campaigns[c] for c in ds.ids("train")}
     test = {c: ds.campaigns[c] for c in ds.ids("test")}
     comp = Compensator(instantiate(OmegaConf.load(ROOT / "conf/model/mlr.yaml").estimator)).fit(train)
-    base = comp.predict(test)
-
-    def effect(sensor: str) -> float:
-        moved = comp.predict({c: df.assign(**{sensor: df[sensor] + (np.arange(len(df)) > 0)})
-                              for c, df in test.items()})
-        return max(float(np.abs(moved[c] - base[c]).to_numpy().max()) for c in test)
-
-    return max(comp.inputs_, key=effect)
+    effect = influence(comp, test)
+    return max(effect, key=effect.get)
 
 
 def run_monitor(path: Path, out: Path, *extra: str) -> dict:
