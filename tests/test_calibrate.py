@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 import shutil
 
 import numpy as np
@@ -185,6 +186,28 @@ def test_a_whole_column_off_by_1_mm_is_excluded_and_named(raw, clean, tmp_path):
     assert {o["column"] for o in report["outliers"]} == {column}
 
 
+def test_distances_that_do_not_fit_the_setup_at_all_are_refused_before_every_cycle_is_searched(
+        raw, tmp_path, capsys):
+    # deviations against a wrong certificate: every column off by its own 0.2-1 mm, every cycle
+    data = copy(raw, tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "calibration.json").write_text("old")
+    rng = np.random.default_rng(0)
+    cols = [c for c in pd.read_parquet(data / "train_week.parquet").columns if c.startswith("E_S")]
+    offset = dict(zip(cols, rng.choice([-1, 1], len(cols)) * rng.uniform(200, 1000, len(cols))))
+    for cid in ("train_week", "validation_week"):
+        edit(data, cid, lambda df: [df.__setitem__(c, df[c] + v) for c, v in offset.items()])
+    line = refused(["calibrate", f"data.path={data}", f"out={out}", "track=false"], capsys,
+                   "do not fit", SETUP_FILE, "campaign train_week, row 1", "calibrate.outlier_z=inf")
+    pose, i, j = re.search(r"worst pose (\w+) balls (\d+)-(\d+)", line).groups()
+    assert f"E_{pose}_B{int(i):02d}_B{int(j):02d}" in offset
+    _untouched(out)
+    # fitted as they are on request: nothing flagged, and the residual shows the misfit
+    report = calibrate(data, out, "calibrate.outlier_z=inf")
+    assert report["outliers"] == [] and report["residual_rms_um"] > 100
+
+
 def _untouched(out):
     assert not out.exists() or (out / "calibration.json").read_text() == "old"
 
@@ -240,6 +263,8 @@ def test_a_dataset_without_setup_is_refused(raw, tmp_path, capsys):
 
 def test_bad_calibrate_config_is_refused(raw, tmp_path, capsys):
     for bad, says in (("calibrate.outlier_z=0", "calibrate.outlier_z"),
+                      ("calibrate.outlier_z=nan", "calibrate.outlier_z"),
+                      ("calibrate.column_share=inf", "calibrate.column_share"),
                       ("calibrate.column_share=2", "calibrate.column_share"),
                       ("calibrate.format=xlsx", "calibrate.format"),
                       ("calibrate.require_seen=[squareness]", "calibrate.require_seen")):

@@ -3,6 +3,8 @@ calibration round trip and identifiability by name."""
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 
@@ -100,3 +102,76 @@ def test_a_misaligned_array_sees_more_parameters():
     tilted = ArtefactCalibration(_setup(("S2",), misalignment=15.0)).fit()
     assert len(tilted.names_) > len(aligned.names_)
     assert set(aligned.names_) < set(tilted.names_)
+
+
+# --- another machine's physics: an independent forward model ----------------------------------
+
+def _other_machine_error(coeffs, q, ranges, tool, ref):
+    """TCP error (µm) of a table-moving-X machine (tool-Z-Y-bed-X-workpiece) written apart from
+    thermocomp: error motions are power series of the position in m (not Legendre), each
+    carriage rotates about its own reference point ``ref`` (not the origin), and the rotations
+    are exact (scipy rotation vectors)."""
+    from scipy.spatial.transform import Rotation
+
+    def frame(axis, sign):
+        i = "XYZ".index(axis)
+        s = (q[:, i] - 0.5 * sum(ranges[axis])) / 1000.0
+        m = sum(coeffs[i, :, k][None] * s[:, None] ** k for k in range(coeffs.shape[2]))
+        rot = Rotation.from_rotvec(1e-6 * m[:, 3:]).as_matrix()
+        t = np.tile(np.eye(4), (len(q), 1, 1))
+        t[:, :3, :3] = rot
+        t[:, :3, 3] = ref[axis] - rot @ ref[axis] + 1e-3 * m[:, :3]
+        t[:, i, 3] += sign * q[:, i]
+        return t
+
+    carried = frame("Y", 1) @ frame("Z", 1) @ np.append(tool, 1.0)
+    relative = np.einsum("nij,nj->ni", np.linalg.inv(frame("X", -1)), carried)[:, :3]
+    return 1e3 * (relative - q - tool)
+
+
+def _without_rigid_motion(e, points):
+    """What is left of a field (n, 3) once the best-fitting small rigid motion is taken out (a
+    rigid motion of the whole machine changes no distance)."""
+    p = points / 1000.0
+    cols = [np.tile(np.eye(3)[k], (len(p), 1)) for k in range(3)]
+    cols += [np.cross(np.eye(3)[k], p) for k in range(3)]
+    A = np.stack([c.reshape(-1) for c in cols], 1)
+    coef = np.linalg.lstsq(A, e.reshape(-1), rcond=None)[0]
+    return (e.reshape(-1) - A @ coef).reshape(-1, 3)
+
+
+def test_a_machine_written_apart_is_recovered_from_its_distances_up_to_a_rigid_motion():
+    """Distances of an independently written machine (part-side X, rotations about carriage
+    points off the origin, power series) are fitted to noise level, and the identified model
+    predicts its TCP error over the volume up to a rigid motion, which no distance sees."""
+    ranges = {"X": (0.0, 2500.0), "Y": (0.0, 1000.0), "Z": (0.0, 800.0)}
+    tool = np.array([0.0, 0.0, -200.0])
+    ref = {"X": np.array([1250.0, -400.0, -300.0]), "Y": np.array([0.0, 500.0, 900.0]),
+           "Z": np.array([0.0, 0.0, 400.0])}
+    rng = np.random.default_rng(7)
+    coeffs = rng.normal(0, 1, (3, 6, 4)) * np.array([0, 6, 4, 2])          # µm, µrad per m^k
+    model = KinematicModel(ranges=ranges, chain="tool-Z-Y-bed-X-workpiece", tool=tool, order=3)
+    array = BallArray(9, 1200.0, 8.0)
+    poses = position_set(("S1", "S2", "S3"), ranges, (0.3, 0.7))
+    setup = Setup(model, array, poses)
+    cal = ArtefactCalibration(setup).fit()
+    d = []
+    for pose in poses:
+        balls = pose.balls(array)
+        q = balls - tool                          # the command whose actual TCP is on each ball
+        for _ in range(3):
+            q = balls - tool - 1e-3 * _other_machine_error(coeffs, q, ranges, tool, ref)
+        read = q + tool
+        d += [1e3 * (np.linalg.norm(read[j - 1] - read[i - 1]) - np.linalg.norm(balls[j - 1] - balls[i - 1]))
+              for i, j in itertools.combinations(range(1, array.n_balls + 1), 2)]
+    d = np.array(d)
+    est, flagged = cal.identify(d[None])
+    assert not flagged
+    assert np.sqrt(np.mean((d - cal.predict(est)[0]) ** 2)) < 1e-3 * np.sqrt(np.mean(d ** 2))
+    grid = np.stack(np.meshgrid(*[np.linspace(*ranges[a], 7) for a in "XYZ"], indexing="ij"), -1)
+    grid = grid.reshape(-1, 3)
+    truth = _other_machine_error(coeffs, grid, ranges, tool, ref)
+    gap = _without_rigid_motion(truth - model.error(cal.full(est)[0], grid), grid)
+    ve = np.sqrt(np.mean(np.sum(_without_rigid_motion(truth, grid) ** 2, 1)))
+    assert ve > 5.0                                             # a machine with errors to find
+    assert np.sqrt(np.mean(np.sum(gap ** 2, 1))) < 1e-3 * ve

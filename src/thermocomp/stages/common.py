@@ -243,14 +243,16 @@ FORMATS = ("parquet", "csv")
 
 def check_calibrate(c: DictConfig) -> None:
     """Refuse a ``calibrate.*`` value the stage cannot use, before any data is read."""
-    def number(key, low, high=None):
+    def number(key, low, high=None, infinite=False):
         v = c.get(key)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or math.isnan(v) \
+                or (math.isinf(v) and not (infinite and v > 0)) \
                 or v <= low or (high is not None and v > high):
             raise ConfigError(f"calibrate.{key} must be a number > {low:g}"
-                              f"{f' and <= {high:g}' if high is not None else ''}, got {v!r}")
+                              f"{f' and <= {high:g}' if high is not None else ''}"
+                              f"{' (or inf)' if infinite else ''}, got {v!r}")
 
-    number("outlier_z", 0)
+    number("outlier_z", 0, infinite=True)
     number("column_share", 0, 1)
     if c.get("format") not in FORMATS:
         raise ConfigError(f"calibrate.format={c.get('format')!r} is not one of {list(FORMATS)}")

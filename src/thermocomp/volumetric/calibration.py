@@ -59,6 +59,42 @@ def _identify(cal, ds, excluded=()):
     return out
 
 
+def _check_fits(cal: ArtefactCalibration, ds) -> None:
+    """Refuse distances that do not fit the set-up at all, before identifying every cycle.
+
+    The first, middle and last cycles are screened; when two of them (or every one, with fewer)
+    have a tenth of their distances gross outliers, the distances are not deviations in µm from
+    the artefact's calibrated ones, or the artefact or machine is described wrongly.  No outlier
+    rule mends that, and the outlier search of every cycle would take minutes (15 on a 720-distance
+    dataset with 40 bad columns) to end in a meaningless fit.
+    """
+    if not np.isfinite(cal.outlier_z):
+        return
+    rows = [(cid, k) for cid, df in ds.campaigns.items() for k in range(len(df))]
+    picks = sorted({0, len(rows) // 2, len(rows) - 1})
+    bad = []
+    for i in picks:
+        cid, k = rows[i]
+        out, capped = cal.screen(distance_matrix(ds.campaigns[cid].iloc[[k]], cal)[0])
+        if capped:
+            bad.append((cid, k, out))
+    if len(bad) < min(2, len(picks)):
+        return
+    cid, k, out = bad[0]
+    worst = max(out, key=lambda o: abs(o["z"]))
+    where = _described(worst["column"])
+    raise ContractError(
+        f"the distances do not fit the artefact and machine described here: in campaign {cid}, "
+        f"row {k + 1}, the outlier search left out a tenth of the {len(cal.design_.columns)} "
+        f"distances ({len(out)}) and the rest still do not fit, the worst pose {where['pose']} balls "
+        f"{where['balls'][0]}-{where['balls'][1]} off by {worst['residual_um']:.1f} µm "
+        f"(z = {worst['z']:.0f}); so in {len(bad)} of the {len(picks)} cycles screened; check that "
+        "the E_ columns are measured minus calibrated distances in µm, the artefact (n_balls, "
+        "length_mm, misalignment_deg), the poses and the machine's order, or fit them as they are "
+        "with calibrate.outlier_z=inf",
+        file=setup_path(cal), column=worst["column"])
+
+
 def _described(column: str) -> dict:
     m = COLUMN.match(column)
     return {"column": column, "pose": m["pose"], "balls": [int(m["i"]), int(m["j"])]}
@@ -79,6 +115,7 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
     cal.source_ = str(root / SETUP_FILE)
     _require_seen(cal, setup, list(require_seen or []))
     n_cycles = sum(len(df) for df in ds.campaigns.values())
+    _check_fits(cal, ds)
     result = _identify(cal, ds)
     counts: dict[str, int] = {}
     for _, flagged in result.values():

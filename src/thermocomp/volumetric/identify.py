@@ -168,9 +168,18 @@ class ArtefactCalibration:
                 P[t], _, z = self._masked(D[t], mask)
             if np.max(np.abs(z)) <= self.outlier_z:
                 continue
-            P[t], out = self._robust_cycle(D[t], mask)
+            P[t], out, _ = self._robust_cycle(D[t], mask)
             flagged += [{"cycle": t, **o} for o in out]
         return P, flagged
+
+    def screen(self, distances: np.ndarray) -> tuple[list[dict], bool]:
+        """The outliers of one cycle (as :meth:`identify` flags them) and whether they reached
+        the cap of a tenth of its distances: then the distances do not fit the set-up at all
+        (an artefact or a machine described wrongly), which no outlier rule can mend."""
+        d = np.asarray(distances, float)
+        mask = np.isfinite(d)
+        _, out, capped = self._robust_cycle(d, mask)
+        return out, capped
 
     def _solver(self, mask, chol=None):
         """``(M, A, sd, cov)`` of the GLS from the distances in ``mask``: estimate
@@ -190,7 +199,9 @@ class ArtefactCalibration:
                 raise ValueError("the distances left measured cannot identify the parameters") from err
             M = cov @ linalg.solve_triangular(chol, Aw, lower=True, trans="T").T     # cov A' S^-1
             sd = np.sqrt(np.clip(np.diag(cov_d) - np.einsum("ij,jk,ik->i", A, cov, A), 1e-12, None))
-            if len(cache) >= 64:
+            # room for every mask of one cycle's outlier search (up to a tenth of the distances),
+            # which the next cycles with the same bad distances repeat
+            if len(cache) >= max(64, len(mask) // 10 + 2):
                 cache.pop(next(iter(cache)))
             cache[key] = (M, A, sd, cov)
         return cache[key]
@@ -203,14 +214,17 @@ class ArtefactCalibration:
         return p, r, r / sd
 
     def _robust_cycle(self, d, mask):
-        """Leave out the worst distance while any studentised residual exceeds ``outlier_z``."""
+        """Leave out the worst distance while any studentised residual exceeds ``outlier_z``, up
+        to a tenth of the distances: ``(estimate, left out, whether the cap was reached)``."""
         mask = mask.copy()
         out = []
         while True:
             p, r, z = self._masked(d, mask)
             worst = int(np.argmax(np.abs(z)))
-            if abs(z[worst]) <= self.outlier_z or len(out) >= 0.1 * mask.size:
-                return p, out
+            if abs(z[worst]) <= self.outlier_z:
+                return p, out, False
+            if len(out) >= 0.1 * mask.size:
+                return p, out, True
             idx = np.flatnonzero(mask)[worst]
             out.append({"column": self.design_.columns[idx], "residual_um": float(r[worst]),
                         "z": float(z[worst])})
