@@ -208,6 +208,40 @@ def test_distances_that_do_not_fit_the_setup_at_all_are_refused_before_every_cyc
     assert report["outliers"] == [] and report["residual_rms_um"] > 100
 
 
+def test_gaps_in_a_cycle_are_fitted_from_what_was_measured_and_an_empty_cycle_is_refused_by_row(
+        raw, clean, tmp_path, capsys):
+    data = copy(raw, tmp_path)
+    df = pd.read_parquet(data / "validation_week.parquet")
+    pose = [c for c in df.columns if c.startswith("E_S2x1d2_")]
+    ball = [c for c in df.columns if c.startswith("E_S3x2d1_") and "_B05" in c]
+
+    def blank(df):
+        df.loc[3, pose] = np.nan                      # a pose not measured in one cycle
+        df.loc[5:8, ball] = np.nan                    # a ball not probed in four
+
+    edit(data, "validation_week", blank)
+    report = calibrate(data, tmp_path / "out")
+    names = list(report["parameters"])
+    a = pd.read_parquet(tmp_path / "out" / "parameters" / "validation_week.parquet")[names]
+    b = pd.read_parquet(clean[1] / "parameters" / "validation_week.parquet")[names]
+    u = np.array([clean[0]["parameters"][n]["uncertainty"] for n in names])
+    gaps = [3, 5, 6, 7, 8]
+    assert np.isfinite(a.to_numpy()).all()
+    assert np.all(np.abs(a.iloc[gaps] - b.iloc[gaps]) < 3 * u)         # from the other distances
+    assert np.array_equal(a.drop(index=gaps).to_numpy(), b.drop(index=gaps).to_numpy())
+    # a cycle with no distance at all: refused naming its file and row, nothing written
+    every = [c for c in df.columns if c.startswith("E_S")]
+
+    def empty(df):
+        df.loc[11, every] = np.nan
+
+    edit(data, "validation_week", empty)
+    out = tmp_path / "out2"
+    refused(["calibrate", f"data.path={data}", f"out={out}", "track=false"], capsys,
+            "validation_week.parquet", "row 12", f"0 of the {len(every)} distances")
+    _untouched(out)
+
+
 def _untouched(out):
     assert not out.exists() or (out / "calibration.json").read_text() == "old"
 

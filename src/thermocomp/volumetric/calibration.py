@@ -19,7 +19,7 @@ from .. import io
 from ..errors import ContractError
 from ..log import logger
 from .artefact import COLUMN, SETUP_FILE
-from .identify import ArtefactCalibration, equivalent_truth
+from .identify import ArtefactCalibration, CycleError, equivalent_truth
 from .series import check_columns, distance_matrix, load_setup
 
 
@@ -53,6 +53,12 @@ def _identify(cal, ds, excluded=()):
             D[:, [cols.index(c) for c in excluded]] = np.nan
         try:
             out[cid] = cal.identify(D)
+        except CycleError as exc:
+            raise ContractError(f"campaign {cid}: {exc.total - exc.missing} of the {exc.total} distances "
+                                "measured in this cycle (the others empty"
+                                f"{' or excluded' if excluded else ''}) cannot identify the parameters: "
+                                "measure its poses again or drop the row",
+                                file=ds.manifest.loc[cid, "file"], row=exc.cycle + 1) from None
         except ValueError as exc:
             raise ContractError(f"campaign {cid}: {exc} (too many distances missing or excluded)",
                                 file=ds.manifest.loc[cid, "file"]) from None
@@ -75,7 +81,10 @@ def _check_fits(cal: ArtefactCalibration, ds) -> None:
     bad = []
     for i in picks:
         cid, k = rows[i]
-        out, capped = cal.screen(distance_matrix(ds.campaigns[cid].iloc[[k]], cal)[0])
+        try:
+            out, capped = cal.screen(distance_matrix(ds.campaigns[cid].iloc[[k]], cal)[0])
+        except ValueError:          # too few distances measured: identifying it names the row
+            continue
         if capped:
             bad.append((cid, k, out))
     if len(bad) < min(2, len(picks)):

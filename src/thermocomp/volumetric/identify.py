@@ -36,6 +36,15 @@ FLOOR_UM = 0.02          # what the linearisation leaves out (second order: ~0.0
 DEPENDENT = 1e-6         # a column this close (relative) to the span of the kept ones is not seen
 
 
+class CycleError(ValueError):
+    """A cycle whose measured distances cannot identify the parameters (``cycle`` 0-based)."""
+
+    def __init__(self, cycle: int, missing: int, total: int):
+        self.cycle, self.missing, self.total = cycle, missing, total
+        super().__init__(f"cycle {cycle + 1}: the {total - missing} distances measured of {total} "
+                         "cannot identify the parameters")
+
+
 @dataclass
 class Design:
     """The linearised measurement model of a set-up: one row per (pose, ball pair)."""
@@ -165,7 +174,10 @@ class ArtefactCalibration:
             if mask.all():
                 z = (D[t] - self.predict(P[t])) / self._resid_sd
             else:                       # the same gaps in many cycles: one solver (cached)
-                P[t], _, z = self._masked(D[t], mask)
+                try:
+                    P[t], _, z = self._masked(D[t], mask)
+                except ValueError as err:
+                    raise CycleError(t, int(mask.size - mask.sum()), mask.size) from err
             if np.max(np.abs(z)) <= self.outlier_z:
                 continue
             P[t], out, _ = self._robust_cycle(D[t], mask)
