@@ -72,7 +72,6 @@ def test_folder_digest_sees_names_bytes_and_subfolders_not_the_location(tmp_path
 
 
 def test_a_signal_inside_a_deferred_block_is_raised_at_its_end_not_inside():
-    import os
     import signal
 
     from thermocomp.files import Terminated, signals_raise
@@ -81,12 +80,12 @@ def test_a_signal_inside_a_deferred_block_is_raised_at_its_end_not_inside():
     with pytest.raises(Terminated) as caught:
         with signals_raise() as signals:
             with signals.deferred():
-                os.kill(os.getpid(), signal.SIGTERM)
+                signal.raise_signal(signal.SIGTERM)
                 reached.append("after the signal")   # the block is not cut
             reached.append("after the block")        # never: the signal is raised on leaving
     assert reached == ["after the signal"] and caught.value.code == 128 + signal.SIGTERM
     with pytest.raises(Terminated):                  # outside a deferred block: at once
         with signals_raise():
-            os.kill(os.getpid(), signal.SIGTERM)
+            signal.raise_signal(signal.SIGTERM)
             reached.append("never")
     assert reached == ["after the signal"]
