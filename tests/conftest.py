@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -135,8 +136,6 @@ def simulated(generator, path: Path) -> Path:
 def poisoned_copy(src: Path, dest: Path, scale: float = -50.0, offset: float = 1e3) -> Path:
     """A copy of dataset ``src`` whose test campaigns' ``E_`` columns are garbage
     (``E * scale + offset``): whatever a model chooses must not change with it."""
-    import shutil
-
     shutil.copytree(src, dest)
     index = pd.read_csv(src / "campaigns.csv")
     for _, row in index[index["split"] == "test"].iterrows():
@@ -153,3 +152,30 @@ def default_dataset(tmp_path_factory) -> Path:
     path = tmp_path_factory.mktemp("sim") / "yearround_spindle"
     thermocomp("simulate", f"data.path={path}", "track=false")
     return path
+
+
+def copy_project(dest: Path) -> tuple[Path, dict]:
+    """A scratch copy of the project (its `.venv` a link to this one) and an environment whose
+    PATH does NOT hold the venv: `dvc repro` must work as a new user types it."""
+    dest.mkdir()
+    for item in ("conf", "src", "dvc.yaml", ".dvc", "pipelines"):
+        src = ROOT / item
+        if src.is_dir():
+            shutil.copytree(src, dest / item, ignore=shutil.ignore_patterns("__pycache__", "tmp"))
+        else:
+            shutil.copy2(src, dest / item)
+    os.symlink(Path(sys.executable).parent.parent, dest / ".venv")
+    git = dict(GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@t", GIT_COMMITTER_NAME="t",
+               GIT_COMMITTER_EMAIL="t@t")
+    venv_bin = str(Path(sys.executable).parent)
+    path = os.pathsep.join(p for p in os.environ["PATH"].split(os.pathsep)
+                           if p and Path(p).resolve() != Path(venv_bin).resolve())
+    env = {**os.environ, **git, "THERMOCOMP_ROOT": str(dest), "PATH": path}
+    env.pop("VIRTUAL_ENV", None)
+    # The study as committed, minus the report extras that refit one model per campaign:
+    # this test is about what DVC reruns, not about the report (tested elsewhere).
+    eval_conf = dest / "conf/eval/default.yaml"
+    eval_conf.write_text(eval_conf.read_text().replace("mutual_prediction: true",
+                                                       "mutual_prediction: false"))
+    subprocess.run(["git", "init", "-q"], cwd=dest, check=True)
+    return dest, env

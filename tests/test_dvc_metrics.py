@@ -6,8 +6,6 @@ the study last.  The README's `dvc repro`, `dvc repro` (nothing runs), `dvc metr
 are run here, as written."""
 
 import json
-import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -15,7 +13,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from conftest import ROOT
+from conftest import copy_project
 from thermocomp.plotdata import write_compare
 
 pytestmark = pytest.mark.slow
@@ -35,33 +33,6 @@ def _dvc(*args, cwd, env) -> subprocess.CompletedProcess:
 
 def _ran(log: str) -> set[str]:
     return {s for s in STAGES if f"Running stage '{s}'" in log}
-
-
-def copy_project(dest: Path) -> tuple[Path, dict]:
-    """A scratch copy of the project (its `.venv` a link to this one) and an environment whose
-    PATH does NOT hold the venv: `dvc repro` must work as a new user types it."""
-    dest.mkdir()
-    for item in ("conf", "src", "dvc.yaml", ".dvc", "pipelines"):
-        src = ROOT / item
-        if src.is_dir():
-            shutil.copytree(src, dest / item, ignore=shutil.ignore_patterns("__pycache__", "tmp"))
-        else:
-            shutil.copy2(src, dest / item)
-    os.symlink(Path(sys.executable).parent.parent, dest / ".venv")
-    git = dict(GIT_AUTHOR_NAME="t", GIT_AUTHOR_EMAIL="t@t", GIT_COMMITTER_NAME="t",
-               GIT_COMMITTER_EMAIL="t@t")
-    venv_bin = str(Path(sys.executable).parent)
-    path = os.pathsep.join(p for p in os.environ["PATH"].split(os.pathsep)
-                           if p and Path(p).resolve() != Path(venv_bin).resolve())
-    env = {**os.environ, **git, "THERMOCOMP_ROOT": str(dest), "PATH": path}
-    env.pop("VIRTUAL_ENV", None)
-    # The study as committed, minus the report extras that refit one model per campaign:
-    # this test is about what DVC reruns, not about the report (tested elsewhere).
-    eval_conf = dest / "conf/eval/default.yaml"
-    eval_conf.write_text(eval_conf.read_text().replace("mutual_prediction: true",
-                                                       "mutual_prediction: false"))
-    subprocess.run(["git", "init", "-q"], cwd=dest, check=True)
-    return dest, env
 
 
 @pytest.fixture(scope="session")
