@@ -154,6 +154,14 @@ def default_dataset(tmp_path_factory) -> Path:
     return path
 
 
+def dvc(*args: str, cwd, env) -> subprocess.CompletedProcess:
+    """The venv's ``dvc <args>`` in ``cwd``; it must succeed."""
+    proc = subprocess.run([str(Path(sys.executable).parent / "dvc"), *args], cwd=cwd, env=env,
+                          capture_output=True, text=True, timeout=600)
+    assert proc.returncode == 0, proc.stdout + proc.stderr
+    return proc
+
+
 def copy_project(dest: Path) -> tuple[Path, dict]:
     """A scratch copy of the project (its `.venv` a link to this one) and an environment whose
     PATH does NOT hold the venv: `dvc repro` must work as a new user types it."""

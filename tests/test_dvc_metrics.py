@@ -7,13 +7,11 @@ are run here, as written."""
 
 import json
 import subprocess
-import sys
-from pathlib import Path
 
 import pandas as pd
 import pytest
 
-from conftest import copy_project
+from conftest import copy_project, dvc
 from thermocomp.plotdata import write_compare
 
 pytestmark = pytest.mark.slow
@@ -24,13 +22,6 @@ EXP_SHOW = ["exp", "show", "--drop", ".*", "--keep",
             "Experiment|Created|.*headline/.*:(test_rmse|val_rmse)$"]
 
 
-def _dvc(*args, cwd, env) -> subprocess.CompletedProcess:
-    proc = subprocess.run([str(Path(sys.executable).parent / "dvc"), *args], cwd=cwd, env=env,
-                          capture_output=True, text=True, timeout=600)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    return proc
-
-
 def _ran(log: str) -> set[str]:
     return {s for s in STAGES if f"Running stage '{s}'" in log}
 
@@ -38,11 +29,11 @@ def _ran(log: str) -> set[str]:
 @pytest.fixture(scope="session")
 def repro(tmp_path_factory):
     dest, env = copy_project(tmp_path_factory.mktemp("dvcm") / "proj")
-    first = _dvc("repro", cwd=dest, env=env)
+    first = dvc("repro", cwd=dest, env=env)
     assert _ran(first.stdout + first.stderr) == set(STAGES), first.stdout + first.stderr
     assert (dest / "reports/default/metrics.json").is_file()
     assert (dest / "mlruns/mlflow.db").is_file()
-    again = _dvc("repro", cwd=dest, env=env)          # the README's second `dvc repro`
+    again = dvc("repro", cwd=dest, env=env)          # the README's second `dvc repro`
     assert _ran(again.stdout + again.stderr) == set() and "up to date" in again.stdout + again.stderr
     (dest / ".gitignore").write_text("/mlruns/\n/reports/\ndvc_plots/\n.venv\n")
     subprocess.run(["git", "add", "-A"], cwd=dest, env=env, check=True, capture_output=True)
@@ -52,7 +43,7 @@ def repro(tmp_path_factory):
 
 def test_metrics_show_is_narrow_and_loads_everything(repro):
     dest, env = repro
-    proc = _dvc("metrics", "show", cwd=dest, env=env)
+    proc = dvc("metrics", "show", cwd=dest, env=env)
     text = proc.stdout + proc.stderr
     assert "failed to load" not in text            # not even for pipelines/sweep before a sweep
     assert max(len(line) for line in proc.stdout.splitlines()) <= 200
@@ -63,7 +54,7 @@ def test_metrics_show_is_narrow_and_loads_everything(repro):
 
 def test_headline_numbers_are_the_full_reports_numbers(repro):
     dest, env = repro
-    shown = json.loads(_dvc("metrics", "show", "--json", cwd=dest, env=env).stdout)[""]["data"]
+    shown = json.loads(dvc("metrics", "show", "--json", cwd=dest, env=env).stdout)[""]["data"]
     metrics = json.loads((dest / "reports/default/metrics.json").read_text())
     for t in TARGETS:
         head = shown[f"reports/default/headline/{t}.json"]["data"]
@@ -83,7 +74,7 @@ def test_headline_numbers_are_the_full_reports_numbers(repro):
 
 def test_exp_show_has_a_handful_of_columns(repro):
     dest, env = repro
-    table = pd.read_csv(pd.io.common.StringIO(_dvc(*EXP_SHOW, "--csv", cwd=dest, env=env).stdout))
+    table = pd.read_csv(pd.io.common.StringIO(dvc(*EXP_SHOW, "--csv", cwd=dest, env=env).stdout))
     metric_cols = [c for c in table.columns if "headline" in c]
     assert len(table.columns) <= 8 and len(metric_cols) == 2 * len(TARGETS)
     workspace = table.iloc[0]
@@ -92,7 +83,7 @@ def test_exp_show_has_a_handful_of_columns(repro):
 
 
 def _plots(dest, env) -> dict:
-    return json.loads(_dvc("plots", "show", "--json", cwd=dest, env=env).stdout)
+    return json.loads(dvc("plots", "show", "--json", cwd=dest, env=env).stdout)
 
 
 def test_plots_show_draws_the_data_and_the_figures(repro):
@@ -147,7 +138,7 @@ def test_a_model_parameter_reruns_train_evaluate_and_diagnose_only(repro):
     model_conf = dest / "conf/model/mlr.yaml"
     model_conf.write_text(model_conf.read_text().replace("fit_intercept: true",
                                                          "fit_intercept: false"))
-    again = _dvc("repro", cwd=dest, env=env)
+    again = dvc("repro", cwd=dest, env=env)
     assert _ran(again.stdout + again.stderr) == {"train", "evaluate", "diagnose"}, again.stdout
-    shown = _dvc("metrics", "show", cwd=dest, env=env).stdout
+    shown = dvc("metrics", "show", cwd=dest, env=env).stdout
     assert "reports/default/headline/E_Z.json" in shown and "test_rmse" in shown

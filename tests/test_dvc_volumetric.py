@@ -3,24 +3,15 @@ of the project, the venv not on PATH: its four stage commands as committed, on s
 a smaller Monte Carlo (the scratch copy's params files), then nothing to rerun."""
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import pytest
 
-from conftest import copy_project
+from conftest import copy_project, dvc
 
 pytestmark = pytest.mark.slow
 STAGES = ("simulate", "calibrate", "run", "design")
 PIPELINE = "pipelines/volumetric/dvc.yaml"
-
-
-def _dvc(*args, cwd, env) -> str:
-    proc = subprocess.run([str(Path(sys.executable).parent / "dvc"), *args], cwd=cwd, env=env,
-                          capture_output=True, text=True, timeout=900)
-    assert proc.returncode == 0, proc.stdout + proc.stderr
-    return proc.stdout + proc.stderr
 
 
 def _shrink(path: Path, **values) -> None:
@@ -36,7 +27,8 @@ def test_the_volumetric_pipeline_runs_its_four_stages_then_nothing(tmp_path):
     dest, env = copy_project(tmp_path / "proj")
     _shrink(dest / "conf/sim/large_mill_volumetric.yaml", train_hours=30.0, test_hours=20.0)
     _shrink(dest / "conf/design/default.yaml", n_machines=4, grid="[6, 4, 4]")
-    log = _dvc("repro", PIPELINE, cwd=dest, env=env)
+    proc = dvc("repro", PIPELINE, cwd=dest, env=env)
+    log = proc.stdout + proc.stderr
     assert {s for s in STAGES if f"Running stage '{PIPELINE}:{s}'" in log} == set(STAGES), log
     reports = dest / "reports/volumetric_large_mill"
     calibration = json.loads((reports / "calibrate/calibration.json").read_text())
@@ -47,5 +39,6 @@ def test_the_volumetric_pipeline_runs_its_four_stages_then_nothing(tmp_path):
     assert json.loads((reports / "run/headline/volumetric.json").read_text())
     design = json.loads((reports / "design/design.json").read_text())
     assert design["n_machines"] == 4 and design["strategies"]
-    again = _dvc("repro", PIPELINE, cwd=dest, env=env)
+    proc = dvc("repro", PIPELINE, cwd=dest, env=env)
+    again = proc.stdout + proc.stderr
     assert "Running stage" not in again and "up to date" in again

@@ -3,13 +3,13 @@ calibration round trip and identifiability by name."""
 
 from __future__ import annotations
 
-import itertools
-
 import numpy as np
 import pytest
 
 from thermocomp.volumetric import ArtefactCalibration, BallArray, KinematicModel, Setup, position_set
+from thermocomp.volumetric.artefact import pairs
 from thermocomp.volumetric.identify import design
+from thermocomp.volumetric.kinematics import workspace_grid
 
 
 @pytest.fixture(scope="session")
@@ -163,13 +163,12 @@ def test_a_machine_written_apart_is_recovered_from_its_distances_up_to_a_rigid_m
             q = balls - tool - 1e-3 * _other_machine_error(coeffs, q, ranges, tool, ref)
         read = q + tool
         d += [1e3 * (np.linalg.norm(read[j - 1] - read[i - 1]) - np.linalg.norm(balls[j - 1] - balls[i - 1]))
-              for i, j in itertools.combinations(range(1, array.n_balls + 1), 2)]
+              for i, j in pairs(array.n_balls)]
     d = np.array(d)
     est, flagged = cal.identify(d[None])
     assert not flagged
     assert np.sqrt(np.mean((d - cal.predict(est)[0]) ** 2)) < 1e-3 * np.sqrt(np.mean(d ** 2))
-    grid = np.stack(np.meshgrid(*[np.linspace(*ranges[a], 7) for a in "XYZ"], indexing="ij"), -1)
-    grid = grid.reshape(-1, 3)
+    grid = workspace_grid(model, (7, 7, 7))
     truth = _other_machine_error(coeffs, grid, ranges, tool, ref)
     gap = _without_rigid_motion(truth - model.error(cal.full(est)[0], grid), grid)
     ve = np.sqrt(np.mean(np.sum(_without_rigid_motion(truth, grid) ** 2, 1)))

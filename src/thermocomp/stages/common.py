@@ -245,8 +245,8 @@ def check_calibrate(c: DictConfig) -> None:
     """Refuse a ``calibrate.*`` value the stage cannot use, before any data is read."""
     def number(key, low, high=None, infinite=False):
         v = c.get(key)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or math.isnan(v) \
-                or (math.isinf(v) and not (infinite and v > 0)) \
+        if isinstance(v, bool) or not isinstance(v, (int, float)) \
+                or not (math.isfinite(v) or (infinite and v == math.inf)) \
                 or v <= low or (high is not None and v > high):
             raise ConfigError(f"calibrate.{key} must be a number > {low:g}"
                               f"{f' and <= {high:g}' if high is not None else ''}"

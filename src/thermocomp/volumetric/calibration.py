@@ -56,12 +56,9 @@ def _identify(cal, ds, excluded=()):
         except CycleError as exc:
             raise ContractError(f"campaign {cid}: {exc.total - exc.missing} of the {exc.total} distances "
                                 "measured in this cycle (the others empty"
-                                f"{' or excluded' if excluded else ''}) cannot identify the parameters: "
-                                "measure its poses again or drop the row",
+                                f"{' or excluded' if excluded else ''}), with any outliers left out, "
+                                "cannot identify the parameters: measure its poses again or drop the row",
                                 file=ds.manifest.loc[cid, "file"], row=exc.cycle + 1) from None
-        except ValueError as exc:
-            raise ContractError(f"campaign {cid}: {exc} (too many distances missing or excluded)",
-                                file=ds.manifest.loc[cid, "file"]) from None
     return out
 
 

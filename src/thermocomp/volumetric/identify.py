@@ -170,19 +170,24 @@ class ArtefactCalibration:
         P = np.where(np.isfinite(D), D, 0.0) @ self._solve.T
         flagged = []
         for t in range(D.shape[0]):
-            mask = np.isfinite(D[t])
-            if mask.all():
-                z = (D[t] - self.predict(P[t])) / self._resid_sd
-            else:                       # the same gaps in many cycles: one solver (cached)
-                try:
-                    P[t], _, z = self._masked(D[t], mask)
-                except ValueError as err:
-                    raise CycleError(t, int(mask.size - mask.sum()), mask.size) from err
-            if np.max(np.abs(z)) <= self.outlier_z:
-                continue
-            P[t], out, _ = self._robust_cycle(D[t], mask)
+            try:
+                P[t], out = self._cycle(D[t], P[t])
+            except ValueError as err:
+                raise CycleError(t, int(np.isnan(D[t]).sum()), D.shape[1]) from err
             flagged += [{"cycle": t, **o} for o in out]
         return P, flagged
+
+    def _cycle(self, d, p):
+        """One cycle's estimate (``p``: the estimate from every distance) and its outliers."""
+        mask = np.isfinite(d)
+        if mask.all():
+            z = (d - self.predict(p)) / self._resid_sd
+        else:                           # the same gaps in many cycles: one solver (cached)
+            p, _, z = self._masked(d, mask)
+        if np.max(np.abs(z)) <= self.outlier_z:
+            return p, []
+        p, out, _ = self._robust_cycle(d, mask)
+        return p, out
 
     def screen(self, distances: np.ndarray) -> tuple[list[dict], bool]:
         """The outliers of one cycle (as :meth:`identify` flags them) and whether they reached
