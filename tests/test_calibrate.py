@@ -9,6 +9,7 @@ import shutil
 import numpy as np
 import pandas as pd
 import pytest
+import yaml
 
 from conftest import ROOT, refused, simulated
 from thermocomp import io
@@ -63,6 +64,35 @@ def test_unidentifiable_parameters_are_named_with_what_they_hide_behind(default_
             assert np.allclose(basis[..., names.index(name)], 0.0)
     # every translation (positioning, straightness, squareness) is seen by S1+S2+S3
     assert all(p.angular for p in setup.model.parameters if p.name in cal.unidentifiable_)
+
+
+def test_a_prior_shares_what_the_poses_cannot_see_and_its_uncertainties_hold():
+    """Machines drawn from a family, measured with the sparse aligned S2 set (15 of 33
+    parameters seen): with the family as prior every parameter is estimated, the error over
+    the volume is a fraction of GLS's (which leaves the unseen at 0 and gives the faintly seen
+    the noise), and the posterior uncertainties are the spread of the errors."""
+    from thermocomp.volumetric.design import MachineFamily, measure
+    from thermocomp.volumetric.kinematics import workspace_grid
+
+    model = KinematicModel()
+    family = MachineFamily(model)
+    truth = family.draw([(5, i) for i in range(40)])
+    setup = Setup(model, BallArray(11, 1500.0, 0.0), position_set(["S2"], model.ranges, (0.25, 0.75)))
+    D = measure(model, truth, setup, [np.random.default_rng((6, i)) for i in range(len(truth))])
+    basis = model.basis(workspace_grid(model, (10, 5, 5)))
+    vce, z = {}, None
+    for name, prior in (("gls", None), ("prior", family.sd())):
+        cal = ArtefactCalibration(setup, outlier_z=np.inf, prior_sd=prior).fit()
+        est = cal.full(cal.identify(D)[0])
+        err = np.einsum("nip,kp->kni", basis, est - truth)
+        vce[name] = np.median(np.sqrt(np.mean(np.sum(err ** 2, -1), -1)))
+        if prior is not None:
+            assert cal.names_ == model.names and len(cal.seen_) < len(model.names) / 2
+            z = (est - truth) / cal.uncertainty_
+    assert vce["prior"] < 0.5 * vce["gls"]
+    assert 0.8 < np.std(z) < 1.2 and np.mean(np.abs(z) <= 2) >= 0.95
+    with pytest.raises(ValueError, match="prior_sd"):
+        ArtefactCalibration(setup, prior_sd=np.ones(3)).fit()
 
 
 # --- the CLI on a small simulated dataset ------------------------------------------------------
@@ -135,6 +165,24 @@ def test_calibration_json_and_the_parameter_dataset(raw, clean, capsys):
     # one artefact for the whole dataset: its ball errors bias each parameter for every cycle,
     # so the dataset's z spread is that of ~22 draws; still of unit size
     assert 0.6 < rt["z_sd"] < 1.5
+
+
+def test_a_prior_estimates_every_parameter_and_fits_the_distances_as_well(raw, clean, tmp_path, capsys):
+    report, _ = clean
+    out = tmp_path / "out"
+    capsys.readouterr()
+    prior = calibrate(raw, out, "calibrate.prior=${design.ranges}")
+    assert "all 33 parameters estimated with calibrate.prior (11 not seen" in capsys.readouterr().out
+    setup = Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
+    ranges = yaml.safe_load((ROOT / "conf" / "design" / "default.yaml").read_text())["ranges"]
+    assert prior["prior"] == ranges and report["prior"] is None
+    assert list(prior["parameters"]) == setup.model.names
+    assert prior["unidentifiable"] == report["unidentifiable"]       # what the distances see
+    assert prior["roundtrip"]["n_parameters"] == len(setup.model.names)
+    # the prior shares out what the distances cannot tell apart; it does not fight them
+    assert prior["residual_rms_um"] < 1.1 * report["residual_rms_um"]
+    ds, _ = io.read_dataset(out / "parameters")
+    assert [c for c in ds.campaigns["train_week"].columns if c.startswith("E_")] == setup.model.names
 
 
 def test_no_truth_no_round_trip(raw, tmp_path):
@@ -306,15 +354,16 @@ def test_bad_calibrate_config_is_refused(raw, tmp_path, capsys):
                       ("calibrate.column_share=inf", "calibrate.column_share"),
                       ("calibrate.column_share=2", "calibrate.column_share"),
                       ("calibrate.format=xlsx", "calibrate.format"),
-                      ("calibrate.require_seen=[squareness]", "calibrate.require_seen")):
+                      ("calibrate.require_seen=[squareness]", "calibrate.require_seen"),
+                      ("calibrate.prior=3", "calibrate.prior"),
+                      ("calibrate.prior={positioning:10}", "calibrate.prior needs a range"),
+                      ("calibrate.prior={positioning:10,angular:-1}", "calibrate.prior.angular")):
         refused(["calibrate", f"data.path={raw}", f"out={tmp_path / 'out'}", "track=false", bad],
                 capsys, says)
     _untouched(tmp_path / "out")
 
 
 def test_every_calibrate_key_is_documented(raw, clean, tmp_path):
-    import yaml
-
     from test_docs import CLI, DATA_FORMAT, _documented
 
     keys = yaml.safe_load((ROOT / "conf" / "calibrate" / "default.yaml").read_text())

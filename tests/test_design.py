@@ -52,6 +52,23 @@ def test_misalignment_helps_the_sparse_diagonal_set(result):
         assert _vce(result, 11, theta, "S2+S3") <= _vce(result, 11, theta, "S2")
 
 
+def test_a_calibration_that_knows_the_family_lifts_the_sparse_set(study, result):
+    """With the family as prior (calibrate.prior='${design.ranges}') what the aligned S2 set
+    cannot see is shared as the family expects: its VCE is well below GLS's, no strategy gets
+    worse, and misalignment still helps S2."""
+    sd = dict(zip(study.family.model.names, study.family.sd()))
+    informed = CalibrationDesignStudy(study.compensation, study.family, **SMALL,
+                                      prior_sd=[sd[n] for n in study.compensation.names])
+    spec = {"misalignment": {"n_balls": [11], "misalignment_deg": [0.0, 20.0],
+                             "position_sets": ["S2", "S2+S3"]}}
+    res = informed.run(spec)
+    assert res["ve"] == result["ve"]                          # the same machines
+    for theta, sets in ((0.0, "S2"), (20.0, "S2"), (0.0, "S2+S3"), (20.0, "S2+S3")):
+        assert _vce(res, 11, theta, sets) <= 1.05 * _vce(result, 11, theta, sets)
+    assert _vce(res, 11, 0.0, "S2") < 0.6 * _vce(result, 11, 0.0, "S2")
+    assert res["findings"]["misalignment"]["S2"]["reduction_pct"] > 20
+
+
 def test_a_calibration_beats_no_calibration_and_vce_is_a_distribution(result):
     for r in result["strategies"]:
         assert r["p5"] <= r["median"] <= r["p95"]
@@ -109,7 +126,12 @@ def test_the_command_writes_design_json_and_figures(tmp_path):
     assert report["n_machines"] == 3 and report["findings"]["balls_for_95pct"] in (3, 5)
     assert sorted(p.name for p in (out / "design").iterdir()) == ["balls.png", "misalignment.png",
                                                                      "position_sets.png"]
-    assert "95 % of the best improvement" in proc.stdout
+    assert "95 % of the best improvement" in proc.stdout and report["prior"] is None
+    thermocomp("design", *TINY, "plots=none", "calibrate.prior=${design.ranges}", f"out={tmp_path / 'p'}")
+    informed = json.loads((tmp_path / "p" / "design.json").read_text())
+    ranges = yaml.safe_load((ROOT / "conf" / "design" / "default.yaml").read_text())["ranges"]
+    assert informed["prior"] == ranges
+    assert informed["ve"] == report["ve"] and informed["strategies"] != report["strategies"]
 
 
 @pytest.mark.parametrize("override, says", [
@@ -118,6 +140,7 @@ def test_the_command_writes_design_json_and_figures(tmp_path):
     ("design.ranges.wobble=3", "design.ranges.wobble"),
     ("design.grid=[8,5]", "design.grid"),
     ("design.machine.order=1", "design.machine.order"),
+    ("calibrate.prior={positioning:10}", "calibrate.prior needs a range"),
 ])
 def test_bad_design_config_exits_2_and_writes_nothing(override, says, tmp_path, capsys):
     out = tmp_path / "d"

@@ -108,19 +108,23 @@ def test_figures_headline_and_every_key_documented(raw, run, tmp_path):
     assert not missing, f"docs/cli.md lacks {missing}"
 
 
-def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_path):
+@pytest.mark.parametrize("prior", ["null", "${design.ranges}"])
+def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_path, prior):
     """ingest calibrates into data.interim, train models the parameters, evaluate validates them
-    against the distances: the same section as `run` with the same settings."""
+    against the distances: the same section as `run` with the same settings (a prior too)."""
     common = ["experiment=volumetric_large_mill", f"data.path={raw}", f"data.interim={tmp_path / 'interim'}",
               f"model_path={tmp_path / 'model.pkl'}", "track=false", "eval.mutual_prediction=false",
-              "eval.ati_baselines=false", "plots=none", "data.targets=[E_ZZ1,E_XZ1]"]
+              "eval.ati_baselines=false", "plots=none", "data.targets=[E_ZZ1,E_XZ1]",
+              f"calibrate.prior={prior}"]
     assert main(["ingest", *common]) == 0
     report = json.loads((tmp_path / "interim" / "ingest_report.json").read_text())
     assert report["dataset"] == raw.name and "E_ZZ1" in report["calibration"]["parameters"]
+    assert (report["calibration"]["prior"] is None) == (prior == "null")
     assert main(["train", *common]) == 0
     assert main(["evaluate", *common, f"out={tmp_path / 'staged'}"]) == 0
     staged = json.loads((tmp_path / "staged" / "metrics.json").read_text())
-    whole, _ = _run(raw, tmp_path / "run", "plots=none", "data.targets=[E_ZZ1,E_XZ1]")
+    whole, _ = _run(raw, tmp_path / "run", "plots=none", "data.targets=[E_ZZ1,E_XZ1]",
+                    f"calibrate.prior={prior}")
     for block in ("distance_error", "vce", "vce_identified"):
         for k in ("rms_before", "rms_after"):
             assert staged["volumetric"][block][k] == pytest.approx(whole["volumetric"][block][k], rel=1e-9)

@@ -73,11 +73,15 @@ def calibrate(cfg: DictConfig) -> dict:
 
 
 def _summary(cal, report) -> str:
-    line = (f"calibrate: {len(cal.names_)} of {len(cal.setup.model.names)} parameters identified "
-            f"({len(report['unidentifiable'])} not seen by the {len(report['poses'])} poses), "
-            f"{report['n_cycles']} cycles, {len(report['outliers'])} outlier(s), "
-            f"{len(report['excluded'])} column(s) excluded, residual RMS "
-            f"{report['residual_rms_um'] or float('nan'):.3f} µm")
+    seen = f"{len(report['unidentifiable'])} not seen by the {len(report['poses'])} poses"
+    if report.get("prior") is None:
+        n = len(cal.setup.model.names)
+        line = f"calibrate: {len(cal.names_)} of {n} parameters identified ({seen}), "
+    else:
+        line = f"calibrate: all {len(cal.names_)} parameters estimated with calibrate.prior ({seen}), "
+    line += (f"{report['n_cycles']} cycles, {len(report['outliers'])} outlier(s), "
+             f"{len(report['excluded'])} column(s) excluded, residual RMS "
+             f"{report['residual_rms_um'] or float('nan'):.3f} µm")
     rt = report.get("roundtrip")
     if rt:
         line += (f"; round trip: {100 * rt['share_within_2u']:.1f} % within 2u "

@@ -8,7 +8,7 @@ import time
 from pathlib import Path
 
 from hydra.utils import instantiate
-from omegaconf import DictConfig, OmegaConf
+from omegaconf import DictConfig, ListConfig, OmegaConf
 
 from .. import io, signing
 from ..compensator import MODES, Compensator
@@ -223,9 +223,10 @@ def result_table(metrics: dict) -> str:
              "-" * 96]
     for t, m in metrics["targets"].items():
         te = m["test"]
-        red = 100 * (1 - te["rms_after"] / te["rms_before"]) if te["rms_before"] else float("nan")
+        # a target that does not move (a parameter no distance sees, under a prior) has none
+        red = f"{100 * (1 - te['rms_after'] / te['rms_before']):>8.1f}%" if te["rms_before"] else "     n/a "
         lines.append(f"{t:<8} {f(te['rsd_mean']):>11} {f(te['rsd_sd']):>6}   "
-                     f"{te['rms_before']:>10.2f} -> {te['rms_after']:>6.2f}  {red:>8.1f}%   "
+                     f"{te['rms_before']:>10.2f} -> {te['rms_after']:>6.2f}  {red}   "
                      f"{f(test_rmse(m, 'simulation')):>8} {f(test_rmse(m, 'one_step')):>6} "
                      f"{f(m.get('persistence', {}).get('rmse')):>8}")
     carried = metrics.get("carry_over")
@@ -259,6 +260,16 @@ def check_calibrate(c: DictConfig) -> None:
     bad = [k for k in (c.get("require_seen") or []) if k not in KINDS]
     if bad:
         raise ConfigError(f"calibrate.require_seen: unknown kind(s) {bad}; use {list(KINDS)}")
+    prior = c.get("prior")
+    if prior is not None:
+        if not isinstance(prior, DictConfig) or not prior:
+            raise ConfigError("calibrate.prior must be null or a range a per kind (as design.ranges: "
+                              f"positioning, straightness, squareness, angular, cross, decay), got {prior!r}")
+        for k, v in prior.items():
+            for a in (v if isinstance(v, ListConfig) and k != "decay" else [v]):   # a per order
+                if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a) or a < 0:
+                    raise ConfigError(f"calibrate.prior.{k} must be a number >= 0 (or a list of them, "
+                                      f"one per order), got {v!r}")
 
 
 def calibrated_dataset(cfg: DictConfig):
@@ -271,7 +282,12 @@ def calibrated_dataset(cfg: DictConfig):
     c = cfg.calibrate
     with single_threaded_blas():      # 1430-wide matrices: threads on 2 busy cores only thrash
         return calibrate_folder(resolve(cfg.data.path), data_options(cfg), c.outlier_z,
-                                c.column_share, c.get("require_seen"))
+                                c.column_share, c.get("require_seen"), calibration_prior(c))
+
+
+def calibration_prior(c: DictConfig) -> dict | None:
+    """``calibrate.prior`` as a plain mapping (its interpolations resolved), or None."""
+    return None if c.get("prior") is None else OmegaConf.to_container(c.prior, resolve=True)
 
 
 def volumetric_calibration(cfg: DictConfig):
@@ -300,4 +316,7 @@ def volumetric_source(cfg: DictConfig):
     setup = load_setup(root)
     raw, _ = io.read_dataset(root, data_options(cfg), missing="keep")
     check_columns(raw, setup)
-    return raw, ArtefactCalibration(setup, outlier_z=float(cfg.calibrate.outlier_z)).fit()
+    from ..volumetric.calibration import prior_sd
+
+    return raw, ArtefactCalibration(setup, outlier_z=float(cfg.calibrate.outlier_z),
+                                    prior_sd=prior_sd(setup.model, calibration_prior(cfg.calibrate))).fit()

@@ -20,8 +20,9 @@ from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric import KinematicModel, load_setup
 from ..volumetric.artefact import POSITION_SETS
+from ..volumetric.calibration import prior_sd
 from ..volumetric.design import KINDS, CalibrationDesignStudy, MachineFamily, strategies
-from .common import check_config, say
+from .common import calibration_prior, check_calibrate, check_config, say
 
 
 def _number(key, value, low=None, integer=False, null=False, low_open=False):
@@ -90,6 +91,8 @@ def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
     """The study of the config, its studies, and where the set-up came from."""
     d = OmegaConf.to_container(cfg.design, resolve=True)
     check_design(d)
+    check_calibrate(cfg.calibrate)
+    prior = calibration_prior(cfg.calibrate)
     data = (cfg.get("data") or {}).get("path")
     setup = load_setup(resolve(str(data))) if data else None
     if setup is not None:
@@ -109,12 +112,14 @@ def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
     ranges = dict(d["ranges"])
     family = MachineFamily(machine, {k: v for k, v in ranges.items() if k != "decay"},
                            float(ranges.get("decay", 0.3)))
+    sd = prior_sd(compensation, prior)
     try:
         study = CalibrationDesignStudy(
             compensation, family, length_mm=d["length_mm"] or length, x_centres=d["x_centres"],
             probing_um=probing if d["probing_um"] is None else d["probing_um"],
             ball_um=ball if d["ball_um"] is None else d["ball_um"], grid=d["grid"],
-            n_machines=d["n_machines"], n_jobs=d["n_jobs"], seed=int(cfg.seed))
+            n_machines=d["n_machines"], n_jobs=d["n_jobs"], seed=int(cfg.seed),
+            prior_sd=sd)
         strategies(d["studies"])
     except ValueError as err:
         raise ConfigError(f"design: {err}") from None
@@ -130,6 +135,7 @@ def design(cfg: DictConfig) -> dict:
         say(f"design: {study.n_machines} machines × {n} strategies (C: {source})")
         result = study.run(studies)
         report = {"n_machines": study.n_machines, "seed": study.seed, "setup": source,
+                  "prior": calibration_prior(cfg.calibrate),
                   "compensation": study.compensation.to_dict(),
                   "machine": {**study.family.model.to_dict(), "ranges_a": study.family.amplitudes,
                               "decay": study.family.decay},

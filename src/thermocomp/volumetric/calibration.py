@@ -16,7 +16,7 @@ import numpy as np
 import pandas as pd
 
 from .. import io
-from ..errors import ContractError
+from ..errors import ConfigError, ContractError
 from ..log import logger
 from .artefact import COLUMN, SETUP_FILE
 from .identify import ArtefactCalibration, CycleError, equivalent_truth
@@ -37,6 +37,23 @@ def _require_seen(cal: ArtefactCalibration, setup, kinds) -> None:
         raise ContractError(f"the poses {', '.join(poses)} cannot see {what}: add poses (position "
                             "sets S1 axes, S2 volume diagonals, S3 face diagonals) or "
                             "calibrate.require_seen=[]", file=setup_path(cal))
+
+
+def prior_sd(model, prior: dict | None):
+    """The calibration's prior standard deviations from ``calibrate.prior`` (a uniform range
+    ``[-a, a]`` per kind, as ``design.ranges``), or None."""
+    from .design import KINDS, MachineFamily, kind
+
+    if prior is None:
+        return None
+    amplitudes = {k: v for k, v in dict(prior).items() if k != "decay"}
+    missing = sorted({kind(p) for p in model.parameters} - set(amplitudes))
+    unknown = sorted(set(amplitudes) - set(KINDS))
+    if missing or unknown:
+        raise ConfigError(f"calibrate.prior needs a range for every kind of the machine's parameters: "
+                          f"{'missing ' + str(missing) if missing else 'unknown ' + str(unknown)} "
+                          f"(kinds {list(KINDS)}, and decay)")
+    return MachineFamily(model, amplitudes, float(dict(prior).get("decay", 0.3))).sd()
 
 
 def setup_path(cal) -> str:
@@ -107,7 +124,7 @@ def _described(column: str) -> dict:
 
 
 def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_share: float = 0.5,
-                     require_seen=("positioning", "straightness")):
+                     require_seen=("positioning", "straightness"), prior=None):
     """``(parameter dataset, calibration, report, distance dataset)`` of the volumetric dataset
     in ``root`` (the arguments: ``calibrate.*``, docs/cli.md)."""
     setup = load_setup(root)
@@ -117,7 +134,7 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
                             file=root)
     ds, _ = io.read_dataset(root, data_cfg, missing="keep")     # NaN = a distance not measured
     check_columns(ds, setup)
-    cal = ArtefactCalibration(setup, outlier_z=float(outlier_z)).fit()
+    cal = ArtefactCalibration(setup, outlier_z=float(outlier_z), prior_sd=prior_sd(setup.model, prior)).fit()
     cal.source_ = str(root / SETUP_FILE)
     _require_seen(cal, setup, list(require_seen or []))
     n_cycles = sum(len(df) for df in ds.campaigns.values())
@@ -134,6 +151,7 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
                        ", ".join(excluded[:5]))
         result = _identify(cal, ds, excluded)
     report = _report(cal, setup, ds, result, excluded, counts, n_cycles)
+    report["prior"] = prior
     campaigns = {}
     for cid, df in ds.campaigns.items():
         keep = df[[col for col in df.columns if not col.startswith("E_")]]
@@ -179,13 +197,16 @@ def _report(cal, setup, ds, result, excluded, counts, n_cycles) -> dict:
 
 def roundtrip(cal: ArtefactCalibration, result: dict, truth: dict) -> dict | None:
     """z = (identified - equivalent truth) / uncertainty over every parameter and cycle, or None
-    when the truth does not hold this dataset's parameter series."""
+    when the truth does not hold this dataset's parameter series.  With a prior every parameter
+    is estimated and compared with its own truth (the posterior's uncertainty holds what the
+    distances cannot tell apart)."""
     z = []
     for cid, (P, _) in result.items():
         full = true_parameters(truth, cid, cal.setup.model.names, len(P))
         if full is None:
             return None
-        z.append((P - equivalent_truth(cal, full)) / cal.uncertainty_)
+        ref = full if cal.prior_sd is not None else equivalent_truth(cal, full)
+        z.append((P - ref) / cal.uncertainty_)
     z = np.vstack(z)
     return {"n_parameters": int(z.shape[1]), "max_abs_z": float(np.max(np.abs(z))),
             "share_within_2u": float(np.mean(np.abs(z) <= 2.0)), "n_values": int(z.size),

@@ -11,8 +11,9 @@ over the same bar length, misalignment angle θ, position set):
    matrices, with the probing noise of every probed centre and the calibration error of
    every ball (the same in every pose);
 2. C is identified from the distance deviations by
-   :class:`~thermocomp.volumetric.identify.ArtefactCalibration` (GLS; parameters the poses
-   cannot see stay at 0);
+   :class:`~thermocomp.volumetric.identify.ArtefactCalibration` as ``calibrate`` would: by GLS
+   (parameters the poses cannot see stay at 0, those they see faintly take the noise), or with
+   a prior (``prior_sd``) as the posterior mean of every parameter;
 3. the volumetric compensation error is the RMS over a 3D grid of the workspace of
    :math:`\|C(X) - M(X)\|` (paper 001, Eq. 7), the volumetric error VE that of
    :math:`\|M(X)\|` (Eq. 4).
@@ -105,6 +106,12 @@ class MachineFamily:
             raise ValueError("parameter ranges must be finite and >= 0")
         return bounds
 
+    def sd(self) -> np.ndarray:
+        """Standard deviation ``a / sqrt(3)`` of every parameter (uniform in ``[-a, a]``), as a
+        calibration's prior; a parameter held at 0 gets a tiny one (known exactly, without 1/0)."""
+        sd = self.bounds() / np.sqrt(3.0)
+        return np.maximum(sd, 1e-6 * max(sd.max(), 1e-12))
+
     def draw(self, seeds) -> np.ndarray:
         """One parameter row per seed (``(n, p)``)."""
         a = self.bounds()
@@ -167,14 +174,15 @@ def _strategy(study: CalibrationDesignStudy, s: int, strategy: Strategy, params:
               truth: np.ndarray) -> tuple[np.ndarray, dict]:
     """VCE ``(k,)`` of every machine calibrated with one strategy, and the strategy's row facts."""
     setup = study.setup(strategy)
-    cal = ArtefactCalibration(setup, outlier_z=np.inf).fit()   # no gross error is simulated
+    cal = ArtefactCalibration(setup, outlier_z=np.inf,             # no gross error is simulated
+                              prior_sd=study.prior_sd).fit()
     rngs = [np.random.default_rng((study.seed, i, s + 1)) for i in range(len(params))]
     estimates, _ = cal.identify(measure(study.family.model, params, setup, rngs))
     model = np.einsum("nip,kp->kni", study.compensation.basis(study.grid_points()),
                       cal.full(estimates))
     n_poses = len(setup.poses)
     facts = {"n_poses": n_poses, "n_distances": len(cal.design_.rows),
-             "n_probings": n_poses * strategy.n_balls, "n_identified": len(cal.names_),
+             "n_probings": n_poses * strategy.n_balls, "n_identified": len(cal.seen_),
              "unidentifiable": sorted(cal.unidentifiable_)}
     return _rms(model - truth), facts
 
@@ -201,6 +209,9 @@ class CalibrationDesignStudy:
     n_jobs : int
         joblib workers over chunks of machines (-1: every core).
     seed : int
+    prior_sd : array-like or None
+        The calibration's prior standard deviation of each parameter of C (None: GLS);
+        :meth:`MachineFamily.sd` of the family is the prior that knows the machines exactly.
 
     Attributes
     ----------
@@ -210,7 +221,7 @@ class CalibrationDesignStudy:
 
     def __init__(self, compensation: KinematicModel, family: MachineFamily, length_mm=1500.0,
                  x_centres=(1 / 6, 0.5, 5 / 6), probing_um=0.5, ball_um=0.5,
-                 grid=(30, 12, 12), n_machines=100, n_jobs=1, seed=0):
+                 grid=(30, 12, 12), n_machines=100, n_jobs=1, seed=0, prior_sd=None):
         self.compensation = compensation
         self.family = family
         self.length_mm = float(length_mm)
@@ -221,6 +232,7 @@ class CalibrationDesignStudy:
         self.n_machines = int(n_machines)
         self.n_jobs = n_jobs
         self.seed = int(seed)
+        self.prior_sd = None if prior_sd is None else np.asarray(prior_sd, float)
         missing = [n for n in compensation.names if n not in family.model.names]
         if missing:
             raise ValueError(f"the machine family lacks parameters of the compensation model: "

@@ -16,6 +16,14 @@ therefore correlated (distances share balls, poses share the artefact); the para
 found by generalised least squares, :math:`\hat p = (A^T \Sigma^{-1} A)^{-1} A^T \Sigma^{-1}
 \Delta d`, with standard uncertainties from :math:`(A^T \Sigma^{-1} A)^{-1}`.
 
+With a prior (``prior_sd``: what the machine's parameters are expected to be, zero mean and
+standard deviation :math:`s`, e.g. the ranges a design study draws machines from) every
+parameter is estimated by its posterior mean, :math:`\hat p = (A^T \Sigma^{-1} A + S^{-1})^{-1}
+A^T \Sigma^{-1} \Delta d` with :math:`S = \mathrm{diag}(s^2)`: a combination the poses cannot
+see, or see only faintly, is shared among its parameters as the prior expects instead of being
+given to one of them in full (or amplified from the noise), which is what the volumetric error
+of the identified model depends on.
+
 What a pose set cannot see is found before fitting: the parameters are taken in priority
 order and one whose whitened column is (numerically) a combination of those kept before
 is dropped, reported with the kept parameters it is confounded with.  Distances whose
@@ -120,30 +128,46 @@ class ArtefactCalibration:
         Machine model, artefact, poses and uncertainties.
     outlier_z : float
         A distance whose studentised residual exceeds this is flagged and left out of its cycle.
+    prior_sd : array-like or None
+        Prior standard deviation of every parameter of the model (µm, µm/m): then every
+        parameter is estimated (posterior mean); None: generalised least squares of those
+        the poses see.
 
     Attributes
     ----------
     design_ : Design
     names_ : list of str
-        The identified parameters (those the poses see), in model order.
+        The estimated parameters in model order: those the poses see, or all with a prior.
+    seen_ : list of str
+        The parameters the distances alone identify.
     unidentifiable_ : dict
         Parameter -> the identified parameters it is confounded with ([] = no effect at all).
     uncertainty_ : ndarray
-        Standard uncertainty of each identified parameter (one cycle, all distances).
+        Standard uncertainty of each estimated parameter (one cycle, all distances; with a
+        prior, the posterior's).
     """
 
-    def __init__(self, setup: Setup, outlier_z: float = 6.0):
+    def __init__(self, setup: Setup, outlier_z: float = 6.0, prior_sd=None):
         self.setup = setup
         self.outlier_z = outlier_z
+        self.prior_sd = prior_sd
 
     def fit(self) -> ArtefactCalibration:
+        names = self.setup.model.names
+        self._precision = 0.0
+        if self.prior_sd is not None:
+            sd = np.asarray(self.prior_sd, float)
+            if sd.shape != (len(names),) or not np.all(np.isfinite(sd)) or np.any(sd <= 0):
+                raise ValueError(f"prior_sd must be {len(names)} finite positive numbers, one per "
+                                 f"parameter of the model, got shape {sd.shape}")
+            self._precision = np.diag(1.0 / sd ** 2)
         self.design_ = design(self.setup)
         self._chol = linalg.cholesky(self.design_.cov, lower=True)
         white = linalg.solve_triangular(self._chol, self.design_.A, lower=True)
-        names = self.setup.model.names
         ident = identifiability(white, names)
-        self.kept_ = ident.kept
-        self.names_ = [names[j] for j in ident.kept]
+        self.seen_ = [names[j] for j in ident.kept]
+        self.kept_ = ident.kept if self.prior_sd is None else list(range(len(names)))
+        self.names_ = [names[j] for j in self.kept_]
         self.unidentifiable_ = ident.dropped
         # every distance measured: the solver of that mask, from the factor computed above
         self._solvers = {}
@@ -199,7 +223,7 @@ class ArtefactCalibration:
         return out, capped
 
     def _solver(self, mask, chol=None):
-        """``(M, A, sd, cov)`` of the GLS from the distances in ``mask``: estimate
+        """``(M, A, sd, cov)`` of the GLS (or posterior mean) from the distances in ``mask``: estimate
         ``M @ d[mask]``, model ``A``, standard deviation of each residual, covariance of the
         estimate; cached per mask (``chol``: the noise covariance's factor on ``mask``, if known)."""
         cache = self._solvers
@@ -211,7 +235,7 @@ class ArtefactCalibration:
                 chol = linalg.cholesky(cov_d, lower=True)
             Aw = linalg.solve_triangular(chol, A, lower=True)
             try:
-                cov = np.linalg.inv(Aw.T @ Aw)
+                cov = np.linalg.inv(Aw.T @ Aw + self._precision)
             except np.linalg.LinAlgError as err:
                 raise ValueError("the distances left measured cannot identify the parameters") from err
             M = cov @ linalg.solve_triangular(chol, Aw, lower=True, trans="T").T     # cov A' S^-1
