@@ -95,6 +95,29 @@ def test_a_prior_shares_what_the_poses_cannot_see_and_its_uncertainties_hold():
         ArtefactCalibration(setup, prior_sd=np.ones(3)).fit()
 
 
+def test_a_prior_narrower_than_the_machine_biases_what_the_poses_see():
+    """Noiseless distances of machines every pose set sees (S1+S2+S3, 15°): GLS recovers the
+    volume's error exactly, the family's own prior nearly so, a prior ten times too narrow
+    pulls the parameters towards 0 against the distances."""
+    from thermocomp.volumetric.design import MachineFamily, measure
+    from thermocomp.volumetric.kinematics import workspace_grid
+
+    model = KinematicModel()
+    family = MachineFamily(model)
+    truth = family.draw([(7, i) for i in range(10)])
+    setup = Setup(model, BallArray(11, 1500.0, 15.0), position_set(["S1", "S2", "S3"], model.ranges,
+                                                                    (0.25, 0.75)), 0.0, 0.0)
+    D = measure(model, truth, setup, [np.random.default_rng((8, i)) for i in range(len(truth))])
+    basis = model.basis(workspace_grid(model, (10, 5, 5)))
+
+    def vce(prior):
+        cal = ArtefactCalibration(setup, outlier_z=np.inf, prior_sd=prior).fit()
+        err = np.einsum("nip,kp->kni", basis, cal.full(cal.identify(D)[0]) - truth)
+        return np.median(np.sqrt(np.mean(np.sum(err ** 2, -1), -1)))
+
+    assert vce(None) < 0.01 and vce(family.sd()) < 0.05 and vce(family.sd() / 10) > 0.5
+
+
 # --- the CLI on a small simulated dataset ------------------------------------------------------
 
 @pytest.fixture(scope="session")

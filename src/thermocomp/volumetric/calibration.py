@@ -113,8 +113,9 @@ def _check_fits(cal: ArtefactCalibration, ds) -> None:
         f"{where['balls'][0]}-{where['balls'][1]} off by {worst['residual_um']:.1f} µm "
         f"(z = {worst['z']:.0f}); so in {len(bad)} of the {len(picks)} cycles screened; check that "
         "the E_ columns are measured minus calibrated distances in µm, the artefact (n_balls, "
-        "length_mm, misalignment_deg), the poses and the machine's order, or fit them as they are "
-        "with calibrate.outlier_z=inf",
+        "length_mm, misalignment_deg), the poses and the machine's order"
+        f"{', calibrate.prior (ranges narrower than the machine?)' if cal.prior_sd is not None else ''}"
+        ", or fit them as they are with calibrate.outlier_z=inf",
         file=setup_path(cal), column=worst["column"])
 
 
