@@ -66,6 +66,32 @@ def test_unidentifiable_parameters_are_named_with_what_they_hide_behind(default_
     assert all(p.angular for p in setup.model.parameters if p.name in cal.unidentifiable_)
 
 
+@pytest.mark.parametrize("prior", [False, True])
+def test_the_outlier_search_equals_refitting_without_the_distances_it_leaves_out(default_calibration,
+                                                                                 prior):
+    """A left-out distance is a free offset of its own in the search: the estimate and the
+    residuals are those of the GLS (or posterior) refitted from the other distances, with gaps."""
+    setup, cal = default_calibration
+    if prior:
+        from thermocomp.volumetric.design import MachineFamily
+
+        cal = ArtefactCalibration(setup, prior_sd=MachineFamily(setup.model).sd()).fit()
+    rng = np.random.default_rng(3)
+    truth = rng.normal(0.0, 5.0, (1, len(setup.model.names)))
+    d = simulate_distances(setup, truth, rng, setup.ball_um * rng.standard_normal((11, 3)))[0]
+    gross = rng.choice(d.size, 6, replace=False)
+    d[gross[:4]] += [900.0, -700.0, 300.0, -1000.0]
+    d[gross[4:]] = np.nan                                          # not measured
+    p, out, capped = cal._robust_cycle(d, np.isfinite(d))
+    cols = cal.design_.columns
+    assert not capped and {o["column"] for o in out} == {cols[i] for i in gross[:4]}
+    keep = np.isfinite(d)
+    keep[gross[:4]] = False
+    direct, resid, z = cal._masked(d, keep)
+    np.testing.assert_allclose(p, direct, rtol=1e-8, atol=1e-9)
+    assert np.max(np.abs(z)) <= cal.outlier_z
+
+
 def test_a_prior_shares_what_the_poses_cannot_see_and_its_uncertainties_hold():
     """Machines drawn from a family, measured with the sparse aligned S2 set (15 of 33
     parameters seen): with the family as prior every parameter is estimated, the error over
@@ -380,7 +406,10 @@ def test_bad_calibrate_config_is_refused(raw, tmp_path, capsys):
                       ("calibrate.require_seen=[squareness]", "calibrate.require_seen"),
                       ("calibrate.prior=3", "calibrate.prior"),
                       ("calibrate.prior={positioning:10}", "calibrate.prior needs a range"),
-                      ("calibrate.prior={positioning:10,angular:-1}", "calibrate.prior.angular")):
+                      ("calibrate.prior={positioning:10,angular:-1}", "calibrate.prior.angular"),
+                      # a prior of a perfect machine: no distance can be fitted
+                      ("calibrate.prior={positioning:0,straightness:0,squareness:0,angular:0}",
+                       "calibrate.prior (ranges narrower than the machine?)")):
         refused(["calibrate", f"data.path={raw}", f"out={tmp_path / 'out'}", "track=false", bad],
                 capsys, says)
     _untouched(tmp_path / "out")

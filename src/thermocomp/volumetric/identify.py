@@ -240,9 +240,7 @@ class ArtefactCalibration:
                 raise ValueError("the distances left measured cannot identify the parameters") from err
             M = cov @ linalg.solve_triangular(chol, Aw, lower=True, trans="T").T     # cov A' S^-1
             sd = np.sqrt(np.clip(np.diag(cov_d) - np.einsum("ij,jk,ik->i", A, cov, A), 1e-12, None))
-            # room for every mask of one cycle's outlier search (up to a tenth of the distances),
-            # which the next cycles with the same bad distances repeat
-            if len(cache) >= max(64, len(mask) // 10 + 2):
+            if len(cache) >= 64:            # the gaps of a few dozen cycles
                 cache.pop(next(iter(cache)))
             cache[key] = (M, A, sd, cov)
         return cache[key]
@@ -256,20 +254,47 @@ class ArtefactCalibration:
 
     def _robust_cycle(self, d, mask):
         """Leave out the worst distance while any studentised residual exceeds ``outlier_z``, up
-        to a tenth of the distances: ``(estimate, left out, whether the cap was reached)``."""
-        mask = mask.copy()
+        to a tenth of the distances: ``(estimate, left out, whether the cap was reached)``.
+
+        A distance left out is given a free offset of its own, one more column of the whitened
+        design (the same estimate as refitting without it): the noise covariance is factorised
+        once per cycle, not once per distance left out, so a search over a tenth of 1430
+        correlated distances takes seconds instead of a minute.
+        """
+        idx = np.flatnonzero(mask)
+        A = self.design_.A[np.ix_(idx, self.kept_)]
+        chol = self._chol if mask.all() else linalg.cholesky(self.design_.cov[np.ix_(idx, idx)], lower=True)
+        X = linalg.solve_triangular(chol, A, lower=True)              # whitened design, grows
+        dw = linalg.solve_triangular(chol, d[idx], lower=True)
+        gram, rhs = X.T @ X + self._precision, X.T @ dw
+        var = np.diag(self.design_.cov)[idx]
+        k = A.shape[1]
+        left = np.zeros(idx.size, bool)
         out = []
         while True:
-            p, r, z = self._masked(d, mask)
+            try:
+                cov = np.linalg.inv(gram)
+            except np.linalg.LinAlgError as err:
+                raise ValueError("the distances left measured cannot identify the parameters") from err
+            p = (cov @ rhs)[:k]
+            r = d[idx] - A @ p
+            sd = np.sqrt(np.clip(var - np.einsum("ij,jk,ik->i", A, cov[:k, :k], A), 1e-12, None))
+            z = np.where(left, 0.0, r / sd)
             worst = int(np.argmax(np.abs(z)))
             if abs(z[worst]) <= self.outlier_z:
                 return p, out, False
             if len(out) >= 0.1 * mask.size:
                 return p, out, True
-            idx = np.flatnonzero(mask)[worst]
-            out.append({"column": self.design_.columns[idx], "residual_um": float(r[worst]),
+            out.append({"column": self.design_.columns[idx[worst]], "residual_um": float(r[worst]),
                         "z": float(z[worst])})
-            mask[idx] = False
+            left[worst] = True
+            unit = np.zeros(idx.size)
+            unit[worst] = 1.0
+            w = linalg.solve_triangular(chol, unit, lower=True)
+            cross = X.T @ w
+            gram = np.block([[gram, cross[:, None]], [cross[None, :], np.array([[w @ w]])]])
+            rhs = np.append(rhs, w @ dw)
+            X = np.column_stack([X, w])
 
 
 def equivalent_truth(calibration: ArtefactCalibration, truth: np.ndarray) -> np.ndarray:
