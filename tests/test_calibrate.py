@@ -261,6 +261,36 @@ def test_one_distance_off_by_1_mm_is_an_outlier_of_its_cycle(raw, clean, tmp_pat
     assert np.array_equal(a.drop(index=2).to_numpy(), b.drop(index=2).to_numpy())
 
 
+def test_a_ball_probed_50_um_off_flags_its_distances_in_that_pose_and_cycle_only(raw, clean, tmp_path):
+    """A mis-probed centre moves every distance of its ball in that pose, each along its own
+    direction: those ten are the cycle's outliers, and the cycle is identified without them."""
+    data = copy(raw, tmp_path)
+    setup = Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
+    pose = setup.poses[5]
+    balls = pose.balls(setup.array)
+    shift = 50.0 * np.array([1.0, -1.0, 0.5]) / 1.5                  # µm, |shift| = 50
+    hit = {}
+    for j in range(setup.array.n_balls):
+        if j != 4:                                                   # ball 5
+            i1, j1 = sorted((4, j))
+            u = (balls[j1] - balls[i1]) / np.linalg.norm(balls[j1] - balls[i1])
+            hit[f"E_{pose.name}_B{i1 + 1:02d}_B{j1 + 1:02d}"] = (1 if j1 == 4 else -1) * u @ shift
+
+    def misprobe(df):
+        for col, dd in hit.items():
+            df.loc[3, col] += dd
+    edit(data, "train_week", misprobe)
+    report = calibrate(data, tmp_path / "out")
+    assert {o["column"] for o in report["outliers"]} == set(hit)
+    assert {(o["campaign"], o["row"]) for o in report["outliers"]} == {("train_week", 4)}
+    ref, ref_out = clean
+    names = list(ref["parameters"])
+    u = np.array([ref["parameters"][n]["uncertainty"] for n in names])
+    a = pd.read_parquet(tmp_path / "out" / "parameters" / "train_week.parquet")[names]
+    b = pd.read_parquet(ref_out / "parameters" / "train_week.parquet")[names]
+    assert np.all(np.abs(a.iloc[3] - b.iloc[3]) < 0.5 * u)
+
+
 def test_a_whole_column_off_by_1_mm_is_excluded_and_named(raw, clean, tmp_path):
     data = copy(raw, tmp_path)
     column = "E_S1x2d1_B01_B11"
