@@ -313,6 +313,29 @@ def test_a_whole_column_off_by_1_mm_is_excluded_and_named(raw, clean, tmp_path):
     assert {o["column"] for o in report["outliers"]} == {column}
 
 
+def test_a_twentieth_of_the_columns_off_in_every_cycle_are_all_excluded(raw, clean, tmp_path):
+    """72 of the 1430 columns off by +-1 mm in every cycle (each cycle's search leaves out 72
+    distances): every one is excluded and named, no other, and the parameters are the clean
+    dataset's."""
+    data = copy(raw, tmp_path)
+    ref, ref_out = clean
+    cols = list(np.random.default_rng(11).choice(
+        [c for c in pd.read_parquet(raw / "train_week.parquet").columns if c.startswith("E_")], 72,
+        replace=False))
+    sign = np.where(np.arange(72) % 2, 1000.0, -1000.0)
+    for cid in ("train_week", "validation_week"):
+        edit(data, cid, lambda df: df.__setitem__(cols, df[cols] + sign))
+    report = calibrate(data, tmp_path / "out")
+    assert sorted(x["column"] for x in report["excluded"]) == sorted(cols)
+    assert report["outliers"] == []
+    names = list(ref["parameters"])
+    u = np.array([ref["parameters"][n]["uncertainty"] for n in names])
+    for cid in ("train_week", "validation_week"):
+        a = pd.read_parquet(tmp_path / "out" / "parameters" / f"{cid}.parquet")[names]
+        b = pd.read_parquet(ref_out / "parameters" / f"{cid}.parquet")[names]
+        assert np.all(np.abs(a.to_numpy() - b.to_numpy()) < 0.5 * u)
+
+
 def test_distances_that_do_not_fit_the_setup_at_all_are_refused_before_every_cycle_is_searched(
         raw, tmp_path, capsys):
     # deviations against a wrong certificate: every column off by its own 0.2-1 mm, every cycle
