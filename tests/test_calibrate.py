@@ -92,6 +92,70 @@ def test_the_outlier_search_equals_refitting_without_the_distances_it_leaves_out
     assert np.max(np.abs(z)) <= cal.outlier_z
 
 
+@pytest.mark.parametrize("prior", [False, True])
+def test_many_lone_gross_errors_are_found_by_the_closure_test_when_they_swamp_the_fit(prior):
+    """A 9-ball bar in 20 poses (720 distances), 39 of them 1 mm off: the studentised search
+    leaves out good distances first and reaches the cap; the mean-shift (closure) test then
+    finds exactly the 39, and the estimate is the refit without them."""
+    from thermocomp.volumetric.design import MachineFamily
+
+    model = KinematicModel()
+    setup = Setup(model, BallArray(9, 1500.0, 8.0), position_set(["S2", "S3"], model.ranges, (0.25, 0.75)))
+    cal = ArtefactCalibration(setup, prior_sd=MachineFamily(model).sd() if prior else None).fit()
+    rng = np.random.default_rng(0)
+    for _ in range(3):
+        truth = rng.normal(0.0, 5.0, (1, len(model.names)))
+        d = simulate_distances(setup, truth, rng, setup.ball_um * rng.standard_normal((9, 3)))[0]
+        bad = rng.choice(d.size, 39, replace=False)
+        d[bad] += 1000.0
+        mask = np.isfinite(d)
+        p, out, capped = cal._robust_cycle(d, mask)
+        found = {o["column"] for o in out}
+        if prior:
+            # the prior holds the fit below the cap, so the studentised search's result stands:
+            # every gross error out, and some good distances with them (the known cost of
+            # swamping; the closure test is not run below the cap)
+            assert not capped and found >= {cal.design_.columns[i] for i in bad}
+            p, out, capped = cal._closure_search(d, mask, cal._whitener(mask))    # (its prior rows)
+            found = {o["column"] for o in out}
+        else:
+            assert cal._marginal_search(d, mask, cal._whitener(mask))[2]      # capped
+        assert not capped and found == {cal.design_.columns[i] for i in bad}
+        keep = mask.copy()
+        keep[bad] = False
+        np.testing.assert_allclose(p, cal._masked(d, keep)[0], rtol=1e-6, atol=1e-6)
+
+
+def test_the_closure_test_is_the_mean_shift_t_of_each_distance():
+    """The incremental closure search against the test computed from scratch at every step:
+    t_i = w_i' r / sqrt(w_i' (I - H) w_i), w_i the whitened unit vector of distance i, H the hat
+    matrix of the whitened design with a column per distance left out."""
+    model = KinematicModel()
+    setup = Setup(model, BallArray(9, 1500.0, 8.0), position_set(["S2", "S3"], model.ranges, (0.25, 0.75)))
+    cal = ArtefactCalibration(setup).fit()
+    rng = np.random.default_rng(5)
+    d = simulate_distances(setup, rng.normal(0.0, 5.0, (1, len(model.names))), rng,
+                           setup.ball_um * rng.standard_normal((9, 3)))[0]
+    d[rng.choice(d.size, 12, replace=False)] += rng.uniform(-50.0, 50.0, 12)
+    mask = np.isfinite(d)
+    linv = cal._whitener(mask)
+    _, out, _ = cal._closure_search(d, mask, linv)
+    A = cal.design_.A[:, cal.kept_]
+    cols = cal.design_.columns
+    left = []
+    for o in out:
+        E = np.eye(d.size)[:, left]
+        Q, _ = np.linalg.qr(linv @ np.hstack([A, E]))
+        r = linv @ d - Q @ (Q.T @ (linv @ d))
+        with np.errstate(divide="ignore", invalid="ignore"):       # the left out: no test
+            t = (linv.T @ r) / np.sqrt(np.sum(linv ** 2, 0) - np.sum((Q.T @ linv) ** 2, 0))
+        t[left] = 0.0
+        worst = int(np.argmax(np.abs(t)))
+        assert cols[worst] == o["column"] and t[worst] == pytest.approx(o["z"], rel=1e-6)
+        left.append(worst)
+    assert len(out) >= 10
+
+
 def test_a_prior_shares_what_the_poses_cannot_see_and_its_uncertainties_hold():
     """Machines drawn from a family, measured with the sparse aligned S2 set (15 of 33
     parameters seen): with the family as prior every parameter is estimated, the error over

@@ -257,6 +257,37 @@ class ArtefactCalibration:
         """Leave out the worst distance while any studentised residual exceeds ``outlier_z``, up
         to a tenth of the distances: ``(estimate, left out, whether the cap was reached)``.
 
+        When that search reaches the cap, the gross errors may be many and swamp the fit (the
+        good distances' residuals grow with them); then the search is run again with the
+        mean-shift test of :meth:`_closure_search`, and its result kept if it ends below the cap
+        with every distance it keeps within ``outlier_z`` studentised: the closure test alone
+        would accept distances the noise model can explain at any size (a mis-probed ball, a
+        wrong machine or prior).
+        """
+        linv = self._whitener(mask)
+        p, out, capped = self._marginal_search(d, mask, linv)
+        if capped:
+            p2, out2, capped2 = self._closure_search(d, mask, linv)
+            if not capped2:
+                keep = mask.copy()
+                keep[[self.design_.columns.index(o["column"]) for o in out2]] = False
+                if np.max(np.abs(self._masked(d, keep)[2])) <= self.outlier_z:
+                    return p2, out2, False
+        return p, out, capped
+
+    def _whitener(self, mask):
+        """``L^-1`` of the noise covariance of the distances in ``mask`` (cached when all are)."""
+        if mask.all():
+            if self._linv is None:
+                self._linv = linalg.solve_triangular(self._chol, np.eye(mask.size), lower=True)
+            return self._linv
+        idx = np.flatnonzero(mask)
+        chol = linalg.cholesky(self.design_.cov[np.ix_(idx, idx)], lower=True)
+        return linalg.solve_triangular(chol, np.eye(idx.size), lower=True)
+
+    def _marginal_search(self, d, mask, linv):
+        """The search on studentised residuals (each against its own standard deviation).
+
         A distance left out is given a free offset of its own, one more column of the whitened
         design (the same estimate as refitting without it): the noise covariance is inverted
         once (per set of gaps), not factorised again for every distance left out; a search
@@ -265,13 +296,6 @@ class ArtefactCalibration:
         """
         idx = np.flatnonzero(mask)
         A = self.design_.A[np.ix_(idx, self.kept_)]
-        if mask.all():          # L^-1 once for every search of a fully measured cycle
-            if self._linv is None:
-                self._linv = linalg.solve_triangular(self._chol, np.eye(idx.size), lower=True)
-            linv = self._linv
-        else:
-            chol = linalg.cholesky(self.design_.cov[np.ix_(idx, idx)], lower=True)
-            linv = linalg.solve_triangular(chol, np.eye(idx.size), lower=True)
         k, cap = A.shape[1], int(np.floor(0.1 * mask.size)) + 1
         X = np.empty((idx.size, k + cap))                    # whitened design, a column per left out
         X[:, :k] = linv @ A
@@ -305,6 +329,55 @@ class ArtefactCalibration:
             X[:, q] = w
             gram[:q + 1, q] = gram[q, :q + 1] = X[:, :q + 1].T @ w
             rhs[q] = w @ dw
+
+
+    def _closure_search(self, d, mask, linv):
+        """The search on the mean-shift test of every distance: its deviation from what the fit
+        and the other distances (through the correlated noise: distances sharing a ball, poses
+        sharing the artefact) predict, in its own standard deviation.
+
+        Distances computed from probed centres agree with each other to the probing noise
+        within a pose, so this test sees a lone gross error however many there are; but a
+        mis-probed ball moves all its distances alike and is explained by the noise model,
+        which is why it is the fallback of the studentised search, not its replacement.  The
+        whitened design grows by one column per distance left out, kept orthonormal
+        (Gram-Schmidt, twice) for a test that stays exact when the gross errors are 10^4
+        standard deviations.
+        """
+        idx = np.flatnonzero(mask)
+        A = self.design_.A[np.ix_(idx, self.kept_)]
+        m, k = A.shape
+        X = linv @ A
+        dw = linv @ d[idx]
+        if self.prior_sd is not None:       # the prior as k pseudo-distances of value 0
+            X = np.vstack([X, np.diag(1.0 / np.asarray(self.prior_sd, float)[self.kept_])])
+            dw = np.append(dw, np.zeros(k))
+        Q, R = np.linalg.qr(X)
+        den = np.sum(linv ** 2, axis=0) - np.sum((linv.T @ Q[:m]) ** 2, axis=1)
+        left = np.zeros(m, bool)
+        out = []
+        while True:
+            coef = Q.T @ dw
+            p = linalg.solve_triangular(R, coef)[:k]
+            t = np.where(left, 0.0, (linv.T @ (dw - Q @ coef)[:m]) / np.sqrt(np.clip(den, 1e-300, None)))
+            worst = int(np.argmax(np.abs(t)))
+            if abs(t[worst]) <= self.outlier_z:
+                return p, out, False
+            if len(out) >= 0.1 * mask.size:
+                return p, out, True
+            out.append({"column": self.design_.columns[idx[worst]],
+                        "residual_um": float(d[idx[worst]] - A[worst] @ p), "z": float(t[worst])})
+            left[worst] = True
+            w = np.zeros(Q.shape[0])
+            w[:m] = linv[:, worst]
+            c = Q.T @ w
+            w -= Q @ c
+            c2 = Q.T @ w
+            w -= Q @ c2
+            rho = np.linalg.norm(w)
+            Q = np.column_stack([Q, w / rho])
+            R = np.block([[R, (c + c2)[:, None]], [np.zeros((1, R.shape[1])), np.array([[rho]])]])
+            den = den - (linv.T @ Q[:m, -1]) ** 2
 
 
 def equivalent_truth(calibration: ArtefactCalibration, truth: np.ndarray) -> np.ndarray:
