@@ -83,10 +83,10 @@ def _check_fits(cal: ArtefactCalibration, ds) -> None:
     """Refuse distances that do not fit the set-up at all, before identifying every cycle.
 
     The first, middle and last cycles are screened; when two of them (or every one, with fewer)
-    have a tenth of their distances gross outliers, the distances are not deviations in µm from
-    the artefact's calibrated ones, or the artefact or machine is described wrongly.  No outlier
-    rule mends that, and the outlier search of every cycle would take minutes (15 on a 720-distance
-    dataset with 40 bad columns) to end in a meaningless fit.
+    have a tenth of their distances gross outliers by both searches of
+    :meth:`ArtefactCalibration._robust_cycle`, the distances are not deviations in µm from the
+    artefact's calibrated ones, or the artefact, machine or prior is described wrongly.  No
+    outlier rule mends that, and searching every cycle would only end in a meaningless fit.
     """
     if not np.isfinite(cal.outlier_z):
         return
