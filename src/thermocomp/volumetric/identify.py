@@ -257,18 +257,20 @@ class ArtefactCalibration:
         """Leave out the worst distance while any studentised residual exceeds ``outlier_z``, up
         to a tenth of the distances: ``(estimate, left out, whether the cap was reached)``.
 
-        When that search reaches the cap, the gross errors may be many and swamp the fit (the
-        good distances' residuals grow with them); then the search is run again with the
-        mean-shift test of :meth:`_closure_search`, and its result kept if it ends below the cap
-        with every distance it keeps within ``outlier_z`` studentised: the closure test alone
-        would accept distances the noise model can explain at any size (a mis-probed ball, a
-        wrong machine or prior).
+        Many gross errors swamp that search (the good distances' residuals grow with them): it
+        leaves out good distances with the bad (one whose offset, given the rest, is not beyond
+        ``outlier_z``), or reaches the cap.  Then the cycle is searched again with the
+        mean-shift test of :meth:`_closure_search`, and that result is kept when it leaves out
+        fewer distances (or the first reached the cap), stays below the cap, and keeps every
+        distance within ``outlier_z`` studentised: the closure test alone would
+        accept distances the noise model can explain at any size (a mis-probed ball, a wrong
+        machine or prior).
         """
         linv = self._whitener(mask)
-        p, out, capped = self._marginal_search(d, mask, linv)
-        if capped:
+        p, out, capped, swamped = self._marginal_search(d, mask, linv)
+        if swamped:
             p2, out2, capped2 = self._closure_search(d, mask, linv)
-            if not capped2:
+            if not capped2 and (capped or len(out2) < len(out)):
                 keep = mask.copy()
                 keep[[self.design_.columns.index(o["column"]) for o in out2]] = False
                 if np.max(np.abs(self._masked(d, keep)[2])) <= self.outlier_z:
@@ -286,7 +288,9 @@ class ArtefactCalibration:
         return linalg.solve_triangular(chol, np.eye(idx.size), lower=True)
 
     def _marginal_search(self, d, mask, linv):
-        """The search on studentised residuals (each against its own standard deviation).
+        """The search on studentised residuals (each against its own standard deviation):
+        ``(estimate, left out, capped, swamped)``, swamped when it reached the cap or left out
+        a distance whose offset, given the rest, is within ``outlier_z`` of its uncertainty.
 
         A distance left out is given a free offset of its own, one more column of the whitened
         design (the same estimate as refitting without it): the noise covariance is inverted
@@ -313,15 +317,19 @@ class ArtefactCalibration:
                 cov = np.linalg.inv(gram[:q, :q])
             except np.linalg.LinAlgError as err:
                 raise ValueError("the distances left measured cannot identify the parameters") from err
-            p = (cov @ rhs[:q])[:k]
+            beta = cov @ rhs[:q]
+            p = beta[:k]
             r = d[idx] - A @ p
             sd = np.sqrt(np.clip(var - np.sum((A @ cov[:k, :k]) * A, axis=1), 1e-12, None))
             z = np.where(left, 0.0, r / sd)
             worst = int(np.argmax(np.abs(z)))
             if abs(z[worst]) <= self.outlier_z:
-                return p, out, False
+                # each left-out distance's offset against its own uncertainty (its mean-shift
+                # test given the rest): all beyond outlier_z, the search left out no good one
+                shift = np.abs(beta[k:]) / np.sqrt(np.clip(np.diag(cov)[k:], 1e-300, None))
+                return p, out, False, bool(np.any(shift <= self.outlier_z))
             if len(out) >= 0.1 * mask.size:
-                return p, out, True
+                return p, out, True, True
             out.append({"column": self.design_.columns[idx[worst]], "residual_um": float(r[worst]),
                         "z": float(z[worst])})
             left[worst] = True
