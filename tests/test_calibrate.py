@@ -319,20 +319,36 @@ def test_one_distance_off_by_1_mm_is_an_outlier_of_its_cycle(raw, clean, tmp_pat
     assert np.array_equal(a.drop(index=2).to_numpy(), b.drop(index=2).to_numpy())
 
 
+def _misprobed(setup, pose_index, ball, shift_um):
+    """The distance deviations (column -> µm) of ball ``ball`` (0-based) probed ``shift_um`` off
+    in pose ``pose_index``: every distance to it moves along its own direction."""
+    pose = setup.poses[pose_index]
+    balls = pose.balls(setup.array)
+    hit = {}
+    for j in range(setup.array.n_balls):
+        if j != ball:
+            i1, j1 = sorted((ball, j))
+            u = (balls[j1] - balls[i1]) / np.linalg.norm(balls[j1] - balls[i1])
+            hit[f"E_{pose.name}_B{i1 + 1:02d}_B{j1 + 1:02d}"] = (1 if j1 == ball else -1) * u @ shift_um
+    return hit
+
+
+def _cycle_as_clean(clean, out, campaign, row):
+    """Max |identified - clean| / u over the parameters in one cycle (0-based row)."""
+    ref, ref_out = clean
+    names = list(ref["parameters"])
+    u = np.array([ref["parameters"][n]["uncertainty"] for n in names])
+    a = pd.read_parquet(out / "parameters" / f"{campaign}.parquet")[names]
+    b = pd.read_parquet(ref_out / "parameters" / f"{campaign}.parquet")[names]
+    return float(np.max(np.abs(a.iloc[row] - b.iloc[row]) / u))
+
+
 def test_a_ball_probed_50_um_off_flags_its_distances_in_that_pose_and_cycle_only(raw, clean, tmp_path):
     """A mis-probed centre moves every distance of its ball in that pose, each along its own
     direction: those ten are the cycle's outliers, and the cycle is identified without them."""
     data = copy(raw, tmp_path)
     setup = Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
-    pose = setup.poses[5]
-    balls = pose.balls(setup.array)
-    shift = 50.0 * np.array([1.0, -1.0, 0.5]) / 1.5                  # µm, |shift| = 50
-    hit = {}
-    for j in range(setup.array.n_balls):
-        if j != 4:                                                   # ball 5
-            i1, j1 = sorted((4, j))
-            u = (balls[j1] - balls[i1]) / np.linalg.norm(balls[j1] - balls[i1])
-            hit[f"E_{pose.name}_B{i1 + 1:02d}_B{j1 + 1:02d}"] = (1 if j1 == 4 else -1) * u @ shift
+    hit = _misprobed(setup, 5, 4, 50.0 * np.array([1.0, -1.0, 0.5]) / 1.5)   # ball 5, |shift| 50 µm
 
     def misprobe(df):
         for col, dd in hit.items():
@@ -341,12 +357,37 @@ def test_a_ball_probed_50_um_off_flags_its_distances_in_that_pose_and_cycle_only
     report = calibrate(data, tmp_path / "out")
     assert {o["column"] for o in report["outliers"]} == set(hit)
     assert {(o["campaign"], o["row"]) for o in report["outliers"]} == {("train_week", 4)}
-    ref, ref_out = clean
-    names = list(ref["parameters"])
-    u = np.array([ref["parameters"][n]["uncertainty"] for n in names])
-    a = pd.read_parquet(tmp_path / "out" / "parameters" / "train_week.parquet")[names]
-    b = pd.read_parquet(ref_out / "parameters" / "train_week.parquet")[names]
-    assert np.all(np.abs(a.iloc[3] - b.iloc[3]) < 0.5 * u)
+    assert _cycle_as_clean(clean, tmp_path / "out", "train_week", 3) < 0.5
+
+
+def test_mis_probed_balls_and_lone_errors_in_one_cycle_are_told_apart(raw, clean, tmp_path):
+    """One cycle with two balls mis-probed in two poses, a third mis-probed in a pose that also
+    has a lone 1 mm error, and six lone 1 mm errors elsewhere: exactly those 37 distances are
+    its outliers, no other cycle has any, and the cycle is identified as without them."""
+    data = copy(raw, tmp_path)
+    setup = Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
+    hit = {**_misprobed(setup, 5, 4, 50.0 * np.array([1.0, -1.0, 0.5]) / 1.5),
+           **_misprobed(setup, 12, 7, 40.0 * np.array([-0.3, 1.0, 1.0]) / 1.45)}
+    third = _misprobed(setup, 20, 2, 60.0 * np.array([0.6, 0.5, 0.62]))
+    assert min(abs(v) for v in third.values()) > 30             # along the bar, not across it
+    hit.update(third)
+    lone = f"E_{setup.poses[20].name}_B05_B09"                  # not a distance to ball 3
+    hit[lone] = 1000.0
+    columns = setup.columns()
+    rng = np.random.default_rng(0)
+    for c in rng.choice([c for c in columns if c not in hit], 6, replace=False):
+        hit[c] = float(rng.choice([-1000.0, 1000.0]))
+    assert len(hit) == 37
+
+    def corrupt(df):
+        for col, dd in hit.items():
+            df.loc[3, col] += dd
+    edit(data, "train_week", corrupt)
+    report = calibrate(data, tmp_path / "out")
+    assert {o["column"] for o in report["outliers"]} == set(hit)
+    assert {(o["campaign"], o["row"]) for o in report["outliers"]} == {("train_week", 4)}
+    assert report["excluded"] == []
+    assert _cycle_as_clean(clean, tmp_path / "out", "train_week", 3) < 0.5
 
 
 def test_a_whole_column_off_by_1_mm_is_excluded_and_named(raw, clean, tmp_path):
