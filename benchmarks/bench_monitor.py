@@ -68,7 +68,8 @@ def main():
     print(f"numpy 50x50 matvec          {matvec:8.2f} µs")
     print(f"streaming compensator (MLR) {bare:8.2f} µs  ({bare / matvec:.0f}x matvec)")
     print(f"monitor + compensation      {healthy:8.2f} µs  ({healthy / matvec:.0f}x matvec) healthy")
-    print(f"monitor + compensation      {fault:8.2f} µs  ({fault / matvec:.0f}x matvec) one sensor out (dropout)")
+    print(f"monitor + compensation      {fault:8.2f} µs  ({fault / matvec:.0f}x matvec) "
+          "one sensor out (dropout)")
 
 
 if __name__ == "__main__":

@@ -10,8 +10,8 @@ machine, Parquet partitions) is written in a temporary folder outside the
 repository by ``Fleet.write`` (``--jobs`` processes), then ``thermocomp run
 data.group_by=machine data.group_jobs=<--group-jobs> track=false plots=none``
 (``eval.validation=false`` with ``--no-validation``: the cross-validation refits
-each machine's model 5 times) runs in a child process.  Peak memory is that of the run's whole process tree: the sum
-of the RSS of the process and its children, sampled every 0.1 s (psutil), and
+each machine's model 5 times) runs in a child process.  Peak memory is that of the run's
+whole process tree: the sum of the RSS of the process and its children, sampled every 0.1 s (psutil), and
 the largest single process (``ru_maxrss`` of the waited-for children, in this
 process's fresh child accounting per size).  Time per machine stays flat and
 peak memory stays at one machine's when the run streams the fleet.

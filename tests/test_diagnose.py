@@ -12,8 +12,8 @@ from thermocomp.compensator import Compensator
 from thermocomp.diagnose import CONTROL, AugmentedRegressor, Effect, SearchOptions, diagnose
 from thermocomp.diagnose.cv import Problem, sign_flip_pvalue
 from thermocomp.diagnose.features import effect_features, first_order_lag, in_frame
-from thermocomp.diagnose.shrink import PartialRidgePath
 from thermocomp.diagnose.sensors import self_prediction
+from thermocomp.diagnose.shrink import PartialRidgePath
 from thermocomp.errors import ConfigError, ParameterError
 from thermocomp.frame import stack
 from thermocomp.io.contract import Dataset

@@ -13,7 +13,8 @@ from thermocomp.models import LSTM, MLR
 from thermocomp.models._dynamics import free_run
 
 STATE_CHECKS = {
-    "check_methods_sample_order_invariance": "the state carried from the campaign start feeds each prediction",
+    "check_methods_sample_order_invariance":
+        "the state carried from the campaign start feeds each prediction",
     "check_methods_subset_invariance": "the state carried from the campaign start feeds each prediction",
 }
 

@@ -8,8 +8,8 @@ import pickle
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import thermocomp
 
+from conftest import thermocomp
 from thermocomp import continuation
 from thermocomp.compensator import Compensator
 from thermocomp.evaluation import score

@@ -76,7 +76,8 @@ def test_optuna_minimises_the_validation_score_and_its_best_trial_is_promoted(tm
     np.testing.assert_allclose([objective(m) for m in poisoned_jobs], values, rtol=1e-12)
     assert list(poisoned_children["params.model.estimator.variance"]) == list(
         children["params.model.estimator.variance"])
-    assert poisoned_jobs[0]["targets"]["E_Z"]["test"]["rmse"] > 100 * jobs[0]["targets"]["E_Z"]["test"]["rmse"]
+    poisoned_rmse = poisoned_jobs[0]["targets"]["E_Z"]["test"]["rmse"]
+    assert poisoned_rmse > 100 * jobs[0]["targets"]["E_Z"]["test"]["rmse"]
 
 
 def test_objective_is_the_promote_criterion_and_nan_without_validation():

@@ -18,7 +18,6 @@ import pandas as pd
 import pytest
 
 from conftest import free_port, stop_process_group, wait_until_up
-
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import main
 

@@ -87,7 +87,8 @@ def test_replay_command_fits_or_loads_and_writes_replay_json(door_data, tmp_path
     # a model written by `run` is loaded, not refitted: same streamed figures
     thermocomp("run", *common, f"out={tmp_path / 'run'}", "model=arx", "eval.mutual_prediction=false",
                "eval.ati_baselines=false", "plots=none")
-    thermocomp("replay", *common, f"out={tmp_path / 'load'}", f"replay.model={tmp_path / 'run' / 'model.pkl'}")
+    thermocomp("replay", *common, f"out={tmp_path / 'load'}",
+               f"replay.model={tmp_path / 'run' / 'model.pkl'}")
     thermocomp("replay", *common, f"out={tmp_path / 'refit'}", "model=arx")
     loaded = json.loads((tmp_path / "load" / "replay.json").read_text())
     refit = json.loads((tmp_path / "refit" / "replay.json").read_text())

@@ -88,4 +88,5 @@ def test_launcher_and_sweeper_configs_compose():
     assert "THERMOCOMP_PARENT_RUN_ID" in env                     # the parent run reaches any node
     assert local.hydra.launcher._target_.endswith("LocalLauncher")
     assert optuna.hydra.sweeper._target_.endswith("OptunaSweeper")
-    assert optuna.hydra.sweeper.params.model == "arx" and str(optuna.hydra.sweeper.direction).endswith("minimize")
+    sweeper = optuna.hydra.sweeper
+    assert sweeper.params.model == "arx" and str(sweeper.direction).endswith("minimize")

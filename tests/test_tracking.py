@@ -23,8 +23,15 @@ from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import _compose, main
 from thermocomp.files import folder_digest
 from thermocomp.models import MLR
-from thermocomp.tracking import (PARAM_KEYS, config_container, headline_metrics, run_name,
-                                 run_params, sweep_name, task_overrides)
+from thermocomp.tracking import (
+    PARAM_KEYS,
+    config_container,
+    headline_metrics,
+    run_name,
+    run_params,
+    sweep_name,
+    task_overrides,
+)
 
 TESTS = Path(__file__).resolve().parent
 

@@ -22,10 +22,10 @@ from sklearn.base import clone
 
 from conftest import thermocomp
 from test_deploy import LIGHT_EVAL, campaigns, mlflow_store, write_small_dataset
-from thermocomp.compensator import Compensator
-from thermocomp.evaluation import score, validation_report
 from thermocomp import io
 from thermocomp.cli import main
+from thermocomp.compensator import Compensator
+from thermocomp.evaluation import score, validation_report
 from thermocomp.io.contract import Dataset
 from thermocomp.metrics import rmse
 from thermocomp.models import MLR

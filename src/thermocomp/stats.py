@@ -10,7 +10,6 @@ from collections.abc import Callable, Mapping
 import numpy as np
 import pandas as pd
 from scipy import stats as sps
-
 from sklearn.base import clone
 
 from .frame import stack

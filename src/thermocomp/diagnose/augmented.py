@@ -8,8 +8,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..context import (AMBIENT_C0, TIME, SideInputs, context_columns, groups_of, merge_columns,
-                       scalar)
+from ..context import AMBIENT_C0, TIME, SideInputs, context_columns, groups_of, merge_columns, scalar
 from ..errors import ContractError, ParameterError
 from ..models.linear import MLR
 from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights

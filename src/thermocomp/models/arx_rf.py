@@ -11,8 +11,18 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.ensemble import RandomForestRegressor
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..context import (TIME, Y_MEASURED, SideInputs, context_columns, groups_of, has, merge_columns,
-                       require, values, with_column)
+from ..context import (
+    TIME,
+    Y_MEASURED,
+    SideInputs,
+    context_columns,
+    groups_of,
+    has,
+    merge_columns,
+    require,
+    values,
+    with_column,
+)
 from ..errors import ParameterError
 from ._dynamics import segment_bounds
 from .arx import ARX

@@ -17,8 +17,7 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.cluster import KMeans
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..context import (AMBIENT_C0, SideInputs, context_columns, groups_of, merge_columns,
-                       scalar, subset)
+from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, merge_columns, scalar, subset
 from ..errors import ContractError, ParameterError
 from ..metrics import rsd, sm_sd
 from ..model_selection import LeaveOneCampaignOut

@@ -39,8 +39,7 @@ from ..context import TIME, Y_MEASURED, SideInputs, groups_of, scalar, values
 from ..errors import ParameterError
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
-from ._dynamics import (first_order_lags, free_run, lag_index, previous, segment_bounds,
-                        segment_starts)
+from ._dynamics import first_order_lags, free_run, lag_index, previous, segment_bounds, segment_starts
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
 MIN_SPLITS = 2

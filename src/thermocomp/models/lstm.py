@@ -222,7 +222,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
             # held-out rows like every other epoch
             self._least_squares(net, Xs[~val], ys[~val])
             net.skip.requires_grad_(False)
-            opt = torch.optim.Adam([q for q in net.parameters() if q.requires_grad], lr=float(self.learning_rate),
+            opt = torch.optim.Adam([q for q in net.parameters() if q.requires_grad],
+                                   lr=float(self.learning_rate),
                                    weight_decay=float(self.weight_decay))
             best, best_state, best_epoch, waited = np.inf, None, 0, 0
             self.loss_curve_, self.validation_curve_ = [], []
@@ -236,7 +237,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
                     val_loss = float((val_w * (out - yp) ** 2).sum() / val_w.sum())
                     self.validation_curve_.append(val_loss)
                     if val_loss < best:
-                        best, best_state, best_epoch, waited = val_loss, copy.deepcopy(net.state_dict()), epoch, 0
+                        best, best_epoch, waited = val_loss, epoch, 0
+                        best_state = copy.deepcopy(net.state_dict())
                     else:
                         waited += 1
                 if epoch >= int(self.max_epochs) or (val.any() and waited >= int(self.patience)):

@@ -31,9 +31,9 @@ from ..diagnose.features import KINDS
 from ..diagnose.figures import diagnosis_figures
 from ..diagnose.report import write_report
 from ..errors import ConfigError
-from ..model_selection import CV_SCHEMES
 from ..files import atomic_dir, write_json
 from ..headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
+from ..model_selection import CV_SCHEMES
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import build_compensator, check_config, data_options, say
