@@ -232,6 +232,10 @@ def edit(data, campaign, fn):
     df.to_parquet(f, index=False)
 
 
+def _setup(raw):
+    return Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
+
+
 @pytest.fixture(scope="session")
 def clean(raw, tmp_path_factory):
     out = tmp_path_factory.mktemp("clean")
@@ -240,7 +244,7 @@ def clean(raw, tmp_path_factory):
 
 def test_calibration_json_and_the_parameter_dataset(raw, clean, capsys):
     report, out = clean
-    setup = Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
+    setup = _setup(raw)
     cal = ArtefactCalibration(setup).fit()
     assert list(report)[:2] == ["parameters", "roundtrip"]
     assert set(report["parameters"]) == set(cal.names_)
@@ -280,7 +284,7 @@ def test_a_prior_estimates_every_parameter_and_fits_the_distances_as_well(raw, c
     capsys.readouterr()
     prior = calibrate(raw, out, "calibrate.prior=${design.ranges}")
     assert "all 33 parameters estimated with calibrate.prior (11 not seen" in capsys.readouterr().out
-    setup = Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
+    setup = _setup(raw)
     ranges = yaml.safe_load((ROOT / "conf" / "design" / "default.yaml").read_text())["ranges"]
     assert prior["prior"] == ranges and report["prior"] is None
     assert list(prior["parameters"]) == setup.model.names
@@ -333,6 +337,21 @@ def _misprobed(setup, pose_index, ball, shift_um):
     return hit
 
 
+def _corrupt_one_cycle(raw, tmp_path, hit):
+    """Calibrate a copy of ``raw`` whose 4th training cycle has ``hit`` (column -> µm) added;
+    check that exactly those distances are outliers, all of that cycle; the report."""
+    data = copy(raw, tmp_path)
+
+    def corrupt(df):
+        for col, dd in hit.items():
+            df.loc[3, col] += dd
+    edit(data, "train_week", corrupt)
+    report = calibrate(data, tmp_path / "out")
+    assert {o["column"] for o in report["outliers"]} == set(hit)
+    assert {(o["campaign"], o["row"]) for o in report["outliers"]} == {("train_week", 4)}
+    return report
+
+
 def _cycle_as_clean(clean, out, campaign, row):
     """Max |identified - clean| / u over the parameters in one cycle (0-based row)."""
     ref, ref_out = clean
@@ -346,17 +365,9 @@ def _cycle_as_clean(clean, out, campaign, row):
 def test_a_ball_probed_50_um_off_flags_its_distances_in_that_pose_and_cycle_only(raw, clean, tmp_path):
     """A mis-probed centre moves every distance of its ball in that pose, each along its own
     direction: those ten are the cycle's outliers, and the cycle is identified without them."""
-    data = copy(raw, tmp_path)
-    setup = Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
+    setup = _setup(raw)
     hit = _misprobed(setup, 5, 4, 50.0 * np.array([1.0, -1.0, 0.5]) / 1.5)   # ball 5, |shift| 50 µm
-
-    def misprobe(df):
-        for col, dd in hit.items():
-            df.loc[3, col] += dd
-    edit(data, "train_week", misprobe)
-    report = calibrate(data, tmp_path / "out")
-    assert {o["column"] for o in report["outliers"]} == set(hit)
-    assert {(o["campaign"], o["row"]) for o in report["outliers"]} == {("train_week", 4)}
+    _corrupt_one_cycle(raw, tmp_path, hit)
     assert _cycle_as_clean(clean, tmp_path / "out", "train_week", 3) < 0.5
 
 
@@ -364,8 +375,7 @@ def test_mis_probed_balls_and_lone_errors_in_one_cycle_are_told_apart(raw, clean
     """One cycle with two balls mis-probed in two poses, a third mis-probed in a pose that also
     has a lone 1 mm error, and six lone 1 mm errors elsewhere: exactly those 37 distances are
     its outliers, no other cycle has any, and the cycle is identified as without them."""
-    data = copy(raw, tmp_path)
-    setup = Setup.from_dict(json.loads((raw / SETUP_FILE).read_text()))
+    setup = _setup(raw)
     hit = {**_misprobed(setup, 5, 4, 50.0 * np.array([1.0, -1.0, 0.5]) / 1.5),
            **_misprobed(setup, 12, 7, 40.0 * np.array([-0.3, 1.0, 1.0]) / 1.45)}
     third = _misprobed(setup, 20, 2, 60.0 * np.array([0.6, 0.5, 0.62]))
@@ -378,14 +388,7 @@ def test_mis_probed_balls_and_lone_errors_in_one_cycle_are_told_apart(raw, clean
     for c in rng.choice([c for c in columns if c not in hit], 6, replace=False):
         hit[c] = float(rng.choice([-1000.0, 1000.0]))
     assert len(hit) == 37
-
-    def corrupt(df):
-        for col, dd in hit.items():
-            df.loc[3, col] += dd
-    edit(data, "train_week", corrupt)
-    report = calibrate(data, tmp_path / "out")
-    assert {o["column"] for o in report["outliers"]} == set(hit)
-    assert {(o["campaign"], o["row"]) for o in report["outliers"]} == {("train_week", 4)}
+    report = _corrupt_one_cycle(raw, tmp_path, hit)
     assert report["excluded"] == []
     assert _cycle_as_clean(clean, tmp_path / "out", "train_week", 3) < 0.5
 
