@@ -141,11 +141,25 @@ def test_the_command_writes_design_json_and_figures(tmp_path):
     ("design.grid=[8,5]", "design.grid"),
     ("design.machine.order=1", "design.machine.order"),
     ("calibrate.prior={positioning:10}", "calibrate.prior needs a range"),
+    ("design.studies={a:{n_balls:[1],misalignment_deg:[0],position_sets:[S2]}}",
+     "design.studies.a.n_balls"),
+    ("design.studies={balls:null,misalignment:null,position_sets:null}", "none left to run"),
 ])
 def test_bad_design_config_exits_2_and_writes_nothing(override, says, tmp_path, capsys):
     out = tmp_path / "d"
     refused(["design", "track=false", f"out={out}", override], capsys, says)
     assert not out.exists()
+
+
+def test_a_study_of_its_own_name_runs_alone_when_the_defaults_are_dropped(tmp_path):
+    # Hydra merges maps: a new name adds a study, null drops a default one
+    out = tmp_path / "d"
+    thermocomp("design", *TINY[:5], "plots=none", f"out={out}",
+               "design.studies={mine:{n_balls:[4],misalignment_deg:[0,10],position_sets:[S1+S3]},"
+               "balls:null,misalignment:null,position_sets:null}")
+    rows = json.loads((out / "design.json").read_text())["strategies"]
+    assert [(r["n_balls"], r["misalignment_deg"], r["position_set"]) for r in rows] == [
+        (4, 0.0, "S1+S3"), (4, 10.0, "S1+S3")]
 
 
 def _documented(key: str, text: str) -> bool:

@@ -100,7 +100,7 @@ STAGE_HELP = {
 }
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
 # Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
-FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params")
+FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params", "design.studies")
 
 
 def version() -> str:

@@ -49,6 +49,7 @@ from thermocomp.sim.ambient import DAY_S, SinusoidalAmbient
 from thermocomp.sim.campaign import Machine
 from thermocomp.sim.effects import intervals_signal
 from thermocomp.sim.network import Link, Node, ThermalNetwork
+from thermocomp.sim.params import BOOLEAN, NON_NEGATIVE, POSITIVE, number, samples_in
 from thermocomp.sim.scenario import CampaignPlan, Scenario
 from thermocomp.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.sim.sources import ConstantWhileRunning, MovingSource
@@ -185,6 +186,12 @@ class ColumnMovingSource(Scenario):
     """
 
     name = SCENARIO
+    param_rules = {**Scenario.param_rules, "train_hours": POSITIVE, "test_hours": POSITIVE,
+                   "sample_period_s": POSITIVE, "ambient_mean_c": number(),
+                   "ambient_amplitude_c": NON_NEGATIVE, "q3": BOOLEAN}
+
+    def param_relations(self) -> list[tuple[str, str]]:
+        return samples_in(self, ("train_hours", "test_hours"), "sample_period_s")
 
     def __init__(self, train_hours=40.0, test_hours=40.0, sample_period_s=100.0, ambient_mean_c=20.0,
                  ambient_amplitude_c=2.0, q3=True, temp_noise_c=0.02, temp_quantum_c=0.01,

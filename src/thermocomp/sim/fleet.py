@@ -43,6 +43,7 @@ from thermocomp.files import atomic_dir
 from thermocomp.sim.ambient import DAY_S
 from thermocomp.sim.long_record import WorkshopClimate, jobs_signal, workload
 from thermocomp.sim.network import Link, Node, ThermalNetwork
+from thermocomp.sim.params import POSITIVE, check_params, integer, number, numbers
 from thermocomp.sim.scenario import plain
 from thermocomp.sim.sensors import quantise
 
@@ -96,12 +97,25 @@ class Fleet:
 
     def __init__(self, n_machines=100, days=30, sample_period_s=30.0, n_sensors=40, test_days=6,
                  spread=0.2, start_day=74, speeds_rpm=(1500, 3000, 4500, 6000, 8000), n_jobs=2, seed=0):
-        if n_sensors <= N_AMBIENT or days <= test_days or test_days < 1 or n_machines < 1:
-            raise ValueError("fleet: need n_sensors > 4, n_machines >= 1 and days > test_days >= 1")
         self.n_machines, self.days, self.sample_period_s = int(n_machines), int(days), float(sample_period_s)
         self.n_sensors, self.test_days, self.spread = int(n_sensors), int(test_days), float(spread)
         self.start_day, self.speeds_rpm = int(start_day), tuple(float(s) for s in speeds_rpm)
         self.n_jobs, self.seed = int(n_jobs), int(seed)
+
+    param_rules = {"n_machines": integer(1), "days": integer(2), "sample_period_s": POSITIVE,
+                   "n_sensors": integer(N_AMBIENT + 1), "test_days": integer(1),
+                   "spread": number(0.0, 1.0, open_hi=True), "start_day": integer(0, 364),
+                   "speeds_rpm": numbers(0.0), "n_jobs": integer(-1)}
+
+    def param_relations(self) -> list[tuple[str, str]]:
+        out = []
+        if self.test_days >= self.days:
+            out.append(("test_days", f"must be below sim.generator.days={self.days}"))
+        if self.n_jobs == 0:
+            out.append(("n_jobs", "must not be 0 (-1: every core)"))
+        if DAY_S < 2 * self.sample_period_s:
+            out.append(("sample_period_s", "must fit twice in a day"))
+        return out
 
     def get_params(self) -> dict:
         return plain({k: v for k, v in vars(self).items()})
@@ -182,6 +196,7 @@ class Fleet:
 
         from thermocomp.files import atomic_write_text
 
+        check_params(self)
         root = Path(path)
         root.mkdir(parents=True, exist_ok=True)
         (root / MANIFEST).unlink(missing_ok=True)       # until every partition is there
@@ -197,6 +212,7 @@ class Fleet:
         """The fleet in memory (small fleets: tests); :meth:`write` streams a big one to disk."""
         from thermocomp.io.contract import Dataset
 
+        check_params(self)
         campaigns, rows, truths = {}, [], {}
         for i in range(self.n_machines):
             days, truths[machine_id(i)] = self.machine(i)

@@ -40,6 +40,7 @@ import numpy as np
 from thermocomp.sim.ambient import DAY_S, HallClimate
 from thermocomp.sim.campaign import Machine
 from thermocomp.sim.network import Link, Node, ThermalNetwork
+from thermocomp.sim.params import NON_NEGATIVE, POSITIVE, samples_in
 from thermocomp.sim.scenario import CampaignPlan, Scenario
 from thermocomp.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.sim.sources import ConstantWhileRunning
@@ -187,6 +188,11 @@ class LargeMillWeek(Scenario):
     """
 
     name = SCENARIO
+    param_rules = {**Scenario.param_rules, "train_hours": POSITIVE, "test_hours": POSITIVE,
+                   "sample_period_s": POSITIVE, "heater_power_W": NON_NEGATIVE}
+
+    def param_relations(self) -> list[tuple[str, str]]:
+        return samples_in(self, ("train_hours", "test_hours"), "sample_period_s")
 
     def __init__(self, train_hours=234.0, test_hours=169.0, sample_period_s=30.0, heater_power_W=450.0,
                  temp_noise_c=0.05, temp_quantum_c=0.01, error_noise_um=0.5, error_quantum_um=0.1,

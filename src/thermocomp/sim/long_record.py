@@ -133,6 +133,7 @@ from thermocomp.io.contract import Dataset
 from thermocomp.sim.ambient import DAY_S, AmbientModel, room_response
 from thermocomp.sim.campaign import Machine, Programme
 from thermocomp.sim.network import Link, Node, ThermalNetwork
+from thermocomp.sim.params import FRACTION, POSITIVE, integer, number, numbers, overrides, span
 from thermocomp.sim.scenario import CampaignPlan, Scenario, initial_air, plain
 from thermocomp.sim.sensors import AMBIENT, TemperatureSensor, quantise
 from thermocomp.sim.sources import (
@@ -406,6 +407,13 @@ class LongRecord(Scenario):
     """
 
     name = SCENARIO
+    param_rules = {**Scenario.param_rules, "duration_days": POSITIVE, "sample_period_s": POSITIVE,
+                   "test_fraction": number(0.0, 1.0, open_lo=True, open_hi=True),
+                   "start_day": integer(0, 364), "start_hour": number(0.0, 24.0, open_hi=True),
+                   "speeds_rpm": numbers(0.0), "utilisation": span(0.0, 1.0),
+                   "third_shift_p": FRACTION, "saturday_p": FRACTION,
+                   "n_temperature_outliers": integer(0), "n_error_outliers": integer(0),
+                   "climate": overrides(WorkshopClimate)}
     year = 2023
 
     def __init__(self, duration_days=21.0, sample_period_s=60.0, test_fraction=0.1, start_day=74,

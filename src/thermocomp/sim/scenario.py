@@ -37,6 +37,7 @@ from thermocomp.sim.campaign import (
     run_campaign,
 )
 from thermocomp.sim.effects import build_effects
+from thermocomp.sim.params import BOOLEAN, NON_NEGATIVE, check_params
 from thermocomp.sim.sensors import quantise
 
 
@@ -111,6 +112,10 @@ class Scenario:
     builtin_effects: ClassVar[tuple] = ()
     year: int = 2023
     error_gaps: str = "hold"
+    # what each parameter may be (thermocomp.sim.params); subclasses add theirs
+    param_rules: ClassVar[dict] = {"temp_noise_c": NON_NEGATIVE, "temp_quantum_c": NON_NEGATIVE,
+                                   "error_noise_um": NON_NEGATIVE, "error_quantum_um": NON_NEGATIVE,
+                                   "clean": BOOLEAN}
 
     # --- to be provided by scenarios ------------------------------------------------------
     def machine(self):
@@ -156,6 +161,7 @@ class Scenario:
         BLAS is held to one thread: the matrices are 9-60 wide, where threads
         only add overhead (3x slower on a busy machine).
         """
+        check_params(self)
         with single_threaded_blas():
             dataset, truth = self._generate()
         for effect in self.effects_:   # effects on the written files (sensor faults), after any cut

@@ -52,6 +52,7 @@ import numpy as np
 from thermocomp.sim.ambient import DAY_S, HallClimate
 from thermocomp.sim.campaign import Machine, Programme
 from thermocomp.sim.network import Link, Node, ThermalNetwork
+from thermocomp.sim.params import POSITIVE, choice, numbers, samples_in, span
 from thermocomp.sim.scenario import CampaignPlan, Scenario
 from thermocomp.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.sim.sources import SPINDLE, ConstantWhileRunning, SpeedLosses, StateConvection
@@ -170,6 +171,14 @@ class SwissLatheDoor(Scenario):
     """
 
     name = SCENARIO
+    param_rules = {**Scenario.param_rules, "calibration_hours": POSITIVE, "production_hours": POSITIVE,
+                   "sample_period_s": POSITIVE, "error_period_s": POSITIVE,
+                   "error_gaps": choice("hold", "nan"), "spindle_rpm": numbers(0.0),
+                   "tool_rpm": numbers(0.0), "segment_h": span(open_lo=True),
+                   "production_rpm": numbers(0.0, length=2)}
+
+    def param_relations(self) -> list[tuple[str, str]]:
+        return samples_in(self, ("calibration_hours", "production_hours"), "sample_period_s")
     builtin_effects = ("door",)
 
     def __init__(self, calibration_hours=80.0, production_hours=24.0, sample_period_s=60.0,

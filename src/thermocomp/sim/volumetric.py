@@ -46,9 +46,21 @@ import numpy as np
 import pandas as pd
 
 from thermocomp.sim.large_mill import LargeMillWeek, moving_column_mill
+from thermocomp.sim.params import (
+    BOOLEAN,
+    NON_NEGATIVE,
+    POSITIVE,
+    check_params,
+    integer,
+    number,
+    numbers,
+    samples_in,
+    subset,
+)
 from thermocomp.sim.scenario import plain, single_threaded_blas
 from thermocomp.sim.thermoelastic import ThermoelasticMap
 from thermocomp.volumetric import SETUP_FILE, BallArray, KinematicModel, Setup, position_set
+from thermocomp.volumetric.artefact import POSITION_SETS
 from thermocomp.volumetric.measure import artefact_distances
 
 SCENARIO = "large_mill_volumetric"
@@ -145,6 +157,16 @@ class LargeMillVolumetric(LargeMillWeek):
     """
 
     name = SCENARIO
+    param_rules = {"train_hours": POSITIVE, "test_hours": POSITIVE, "cycle_min": POSITIVE,
+                   "heater_power_W": NON_NEGATIVE, "temp_noise_c": NON_NEGATIVE,
+                   "temp_quantum_c": NON_NEGATIVE, "probing_um": NON_NEGATIVE, "ball_um": NON_NEGATIVE,
+                   "cold_ve_um": NON_NEGATIVE, "thermal_gain": NON_NEGATIVE, "order": integer(1, 10),
+                   "cross_terms": BOOLEAN, "n_balls": integer(2), "length_mm": POSITIVE,
+                   "misalignment_deg": number(0.0, 90.0, open_hi=True),
+                   "sets": subset(POSITION_SETS), "x_centres": numbers(0.0, 1.0)}
+
+    def param_relations(self) -> list[tuple[str, str]]:
+        return samples_in(self, ("train_hours", "test_hours"), "cycle_min", 60.0)
 
     def __init__(self, train_hours=234.0, test_hours=169.0, cycle_min=20.0, heater_power_W=450.0,
                  temp_noise_c=0.05, temp_quantum_c=0.01, probing_um=0.5, ball_um=0.5, cold_ve_um=12.0,
@@ -179,8 +201,6 @@ class LargeMillVolumetric(LargeMillWeek):
 
     def setup(self) -> Setup:
         """The measurement set-up (``volumetric.json``)."""
-        if not float(self.cycle_min) > 0:
-            raise ValueError(f"cycle_min must be > 0, got {self.cycle_min!r}")
         model = KinematicModel(order=int(self.order), cross_terms=bool(self.cross_terms))
         array = BallArray(int(self.n_balls), float(self.length_mm), float(self.misalignment_deg))
         poses = position_set(list(plain(self.sets)), model.ranges, list(plain(self.x_centres)))
@@ -209,6 +229,7 @@ class LargeMillVolumetric(LargeMillWeek):
         Also sets ``setup_`` (the :class:`~thermocomp.volumetric.Setup`) and ``parameters_``
         (campaign id -> DataFrame of the true parameters per cycle).
         """
+        check_params(self)
         setup = self.setup_ = self.setup()
         model = setup.model
         ds, truth = super().generate()

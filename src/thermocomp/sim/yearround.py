@@ -15,6 +15,7 @@ import numpy as np
 
 from thermocomp.sim.ambient import DAY_S, AmbientModel
 from thermocomp.sim.campaign import Programme
+from thermocomp.sim.params import FRACTION, NON_NEGATIVE, POSITIVE, integer, numbers, overrides, span
 from thermocomp.sim.scenario import CampaignPlan, Scenario, single_threaded_blas  # noqa: F401
 from thermocomp.sim.vmc import VMC_EFFECTS, vertical_machining_centre
 
@@ -65,6 +66,17 @@ class YearRoundSpindle(Scenario):
     """
 
     name = SCENARIO
+    param_rules = {**Scenario.param_rules, "n_campaigns": integer(1), "sample_period_s": POSITIVE,
+                   "duration_h": span(open_lo=True), "speeds_rpm": numbers(0.0),
+                   "step_fraction": FRACTION, "test_every": integer(1), "year": integer(1, 9998),
+                   "start_hours": span(0.0, 24.0), "ambient": overrides(AmbientModel),
+                   "summer_air_gain": NON_NEGATIVE, "air_movement_sd": NON_NEGATIVE}
+
+    def param_relations(self) -> list[tuple[str, str]]:
+        if 3600.0 * float(self.duration_h[0]) < 2 * float(self.sample_period_s):
+            return [("duration_h", "the shortest campaign must hold two samples of "
+                                   f"sim.generator.sample_period_s={self.sample_period_s}")]
+        return []
 
     def __init__(self, n_campaigns=24, sample_period_s=300.0, duration_h=(4.0, 8.0),
                  speeds_rpm=(2000, 4000, 6000), step_fraction=0.4, temp_noise_c=0.03,

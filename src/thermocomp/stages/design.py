@@ -70,7 +70,11 @@ def check_design(d: dict) -> None:
     studies = d.get("studies")
     if not isinstance(studies, dict) or not studies:
         raise ConfigError("design.studies must map study names to n_balls, misalignment_deg, position_sets")
+    if all(s is None for s in studies.values()):
+        raise ConfigError("design.studies: every study is null, none left to run")
     for name, s in studies.items():
+        if s is None:            # a default study dropped
+            continue
         for key in ("n_balls", "misalignment_deg", "position_sets"):
             if not isinstance((s or {}).get(key), list) or not s[key]:
                 raise ConfigError(f"design.studies.{name}.{key} must be a non-empty list")
@@ -91,6 +95,7 @@ def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
     """The study of the config, its studies, and where the set-up came from."""
     d = OmegaConf.to_container(cfg.design, resolve=True)
     check_design(d)
+    d["studies"] = {name: s for name, s in d["studies"].items() if s is not None}
     check_calibrate(cfg.calibrate)
     prior = calibration_prior(cfg.calibrate)
     data = (cfg.get("data") or {}).get("path")

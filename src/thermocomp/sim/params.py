@@ -1,0 +1,150 @@
+"""What a scenario's parameters (``sim.generator.*``) may be, checked before anything is simulated.
+
+A value outside its domain used to fail deep inside the simulation (a division by zero, an
+empty array: exit 1 with a traceback) or quietly write nonsense (a negative noise).  Each
+scenario lists a :class:`Rule` per parameter in ``param_rules`` (and relations between
+parameters in ``param_relations``); :func:`check_params` applies them and raises a
+:class:`~thermocomp.errors.ConfigError` naming the key, the value and what it may be (exit 2).
+
+Hand-written: scikit-learn's parameter validation (``sklearn.utils._param_validation``) is
+private API, and these rules need lists and pairs of numbers it does not describe.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from numbers import Integral, Real
+
+from thermocomp.errors import ConfigError
+
+
+@dataclass(frozen=True)
+class Rule:
+    """A test of one value and what it says a valid value is (``"a number > 0"``)."""
+
+    test: Callable[[object], bool]
+    says: str
+
+    def __call__(self, value) -> bool:
+        try:
+            return bool(self.test(value))
+        except (TypeError, ValueError):
+            return False
+
+
+def _number(v) -> bool:
+    return isinstance(v, Real) and not isinstance(v, bool) and math.isfinite(v)
+
+
+def _integer(v) -> bool:
+    return isinstance(v, Integral) and not isinstance(v, bool)
+
+
+def _items(v) -> list | None:
+    if isinstance(v, (str, bytes, Mapping)) or not hasattr(v, "__iter__"):
+        return None
+    return list(v)
+
+
+def number(lo: float = -math.inf, hi: float = math.inf, *, open_lo: bool = False,
+           open_hi: bool = False) -> Rule:
+    """A finite number in the interval (open or closed at each end)."""
+    def test(v):
+        return (_number(v) and (v > lo if open_lo else v >= lo) and (v < hi if open_hi else v <= hi))
+    left, right = "(" if open_lo else "[", ")" if open_hi else "]"
+    if hi == math.inf:
+        says = f"a number {'>' if open_lo else '>='} {lo:g}"
+    else:
+        says = f"a number in {left}{lo:g}, {hi:g}{right}"
+    return Rule(test, says)
+
+
+def integer(lo: int, hi: int | None = None) -> Rule:
+    return Rule(lambda v: _integer(v) and v >= lo and (hi is None or v <= hi),
+                f"an integer >= {lo}" if hi is None else f"an integer in [{lo}, {hi}]")
+
+
+def numbers(lo: float = 0.0, hi: float = math.inf, *, length: int | None = None) -> Rule:
+    """A non-empty list of finite numbers in ``[lo, hi]`` (exactly ``length`` of them when given)."""
+    def test(v):
+        items = _items(v)
+        return (items is not None and len(items) >= 1 and (length is None or len(items) == length)
+                and all(_number(x) and lo <= x <= hi for x in items))
+    count = f"{length} numbers" if length else "a non-empty list of numbers"
+    return Rule(test, f"{count} >= {lo:g}" if hi == math.inf else f"{count} in [{lo:g}, {hi:g}]")
+
+
+def span(lo: float = 0.0, hi: float = math.inf, *, open_lo: bool = False) -> Rule:
+    """A pair ``[a, b]`` of numbers with ``lo <= a <= b <= hi`` (``lo < a`` when open)."""
+    def test(v):
+        items = _items(v)
+        return (items is not None and len(items) == 2 and all(_number(x) for x in items)
+                and (items[0] > lo if open_lo else items[0] >= lo) and items[0] <= items[1] <= hi)
+    where = f"{'>' if open_lo else '>='} {lo:g}" + ("" if hi == math.inf else f" and <= {hi:g}")
+    return Rule(test, f"a pair [low, high] of numbers {where}, low <= high")
+
+
+def subset(options, *, empty: bool = False) -> Rule:
+    """A list of some of ``options`` (non-empty unless ``empty``)."""
+    def test(v):
+        items = _items(v)
+        return items is not None and (empty or len(items) >= 1) and all(x in options for x in items)
+    return Rule(test, f"a {'' if empty else 'non-empty '}list of {', '.join(map(str, options))}")
+
+
+def choice(*options) -> Rule:
+    return Rule(lambda v: v in options, f"one of {', '.join(map(str, options))}")
+
+
+def overrides(cls) -> Rule:
+    """``None`` or a map of some of the dataclass ``cls``'s fields to numbers (or lists of them)."""
+    names = list(getattr(cls, "__dataclass_fields__", {}))
+
+    def value(x):
+        items = _items(x)
+        return _number(x) or (items is not None and all(_number(i) for i in items))
+
+    def test(v):
+        return v is None or (isinstance(v, Mapping) and all(k in names and value(x)
+                                                            for k, x in v.items()))
+    return Rule(test, f"null or a map of some of {', '.join(names)} to numbers")
+
+
+BOOLEAN = Rule(lambda v: isinstance(v, bool), "true or false")
+POSITIVE = number(0.0, open_lo=True)
+NON_NEGATIVE = number(0.0)
+FRACTION = number(0.0, 1.0)
+
+
+def samples_in(generator, spans, period: str, unit_s: float = 1.0) -> list[tuple[str, str]]:
+    """Relations: each of the ``spans`` (hours) holds at least two samples of ``period`` (in
+    ``unit_s`` seconds)."""
+    step_s = float(getattr(generator, period)) * unit_s
+    return [(key, f"must hold two samples of sim.generator.{period}={getattr(generator, period)}")
+            for key in spans
+            if 3600.0 * float(getattr(generator, key)) < 2 * step_s]
+
+
+def check_params(generator) -> None:
+    """Raise :class:`ConfigError` for the first parameter of ``generator`` outside its rule,
+    then for the first broken relation (``param_relations()``: ``(key, what it must be)``)."""
+    for key, rule in getattr(generator, "param_rules", {}).items():
+        value = _plain(getattr(generator, key))
+        if not rule(value):
+            raise ConfigError(f"sim.generator.{key}={value!r}: must be {rule.says}")
+    relations = getattr(generator, "param_relations", None)
+    broken = relations() if relations else []
+    if broken:
+        key, message = broken[0]
+        raise ConfigError(f"sim.generator.{key}={_plain(getattr(generator, key))!r}: {message}")
+
+
+def _plain(value):
+    """Hydra's ListConfig (and tuples) as lists, for the message and the tests."""
+    if isinstance(value, Mapping):
+        return {str(k): _plain(v) for k, v in value.items()}
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__iter__"):
+        return value
+    return [_plain(v) for v in value]
