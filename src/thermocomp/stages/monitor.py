@@ -26,7 +26,13 @@ from ..context import TIME
 from ..deploy import StreamingCompensator
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
-from ..monitor import STATES, AdaptiveCompensator, covariance_sensors, qr_sensors
+from ..monitor import (
+    STATES,
+    AdaptiveCompensator,
+    covariance_sensors,
+    qr_sensors,
+    undetected_offset_um,
+)
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import (
@@ -155,6 +161,12 @@ def monitor(cfg: DictConfig) -> dict:
                                        column=",".join(absent))
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
         report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement))
+        mon = adaptive.monitor
+        band = mon.warning_c if mon.exclude_at == "warning" else mon.alarm_c
+        cost = undetected_offset_um(comp, train, dict(zip(mon.names, band.tolist())))
+        for j, name in enumerate(mon.names):
+            report["sensors"][name]["undetected_offset_c"] = float(band[j])
+            report["sensors"][name]["undetected_offset_um"] = cost[name]
         if missing:
             report["missing"] = missing
         out = Path(resolve(cfg.out))
@@ -241,6 +253,15 @@ def _print(report: dict) -> None:
         f = "-" if r["rmse_fixed"] is None else f"{r['rmse_fixed']:.3f}"
         a = "-" if r["rmse_adaptive"] is None else f"{r['rmse_adaptive']:.3f}"
         print(f"{t:<8} {f:>11} {a:>14} {r['max_abs_correction']:>10.3g} {str(r['all_finite']):>7}")
+    costs = [(max(v for v in r["undetected_offset_um"].values() if v is not None), n, r)
+             for n, r in report["sensors"].items()
+             if any(v is not None for v in r.get("undetected_offset_um", {}).values())]
+    if costs:
+        worst, name, r = max(costs, key=lambda c: c[0])
+        target = max((t for t, v in r["undetected_offset_um"].items() if v is not None),
+                     key=r["undetected_offset_um"].get)
+        print(f"an offset inside the exclusion band costs up to {worst:.3g} µm ({name} "
+              f"{r['undetected_offset_c']:g} °C, {target}; per sensor in monitor.json)")
     excl = [e for e in report["events"] if e["to"] == "excluded"]
     print(f"events: {len(report['events'])}, exclusions: {len(excl)}"
           + (f", first: {excl[0]['sensor']} ({excl[0]['campaign']}, {excl[0]['time'] / 3600:.2f} h)"
