@@ -131,7 +131,7 @@ def test_works_with_no_scenario_entry_for_its_parameters():
 
 
 @pytest.mark.parametrize("params, match", [
-    ({"kind": "stuck"}, "kind must be one of freeze, jump, dropout, drift, spike_ref"),
+    ({"kind": "stuck"}, "kind='stuck': must be one of freeze, jump, dropout, drift, spike_ref"),
     ({"column": "T_nowhere"}, r"'T_nowhere' is no sensor \(have \[.*'T_box1'"),
     ({"campaigns": ["K99"]}, "unknown.*K99"),
     ({"splits": ["val"]}, "hits no campaign"),

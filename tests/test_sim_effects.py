@@ -259,6 +259,17 @@ def test_truth_records_every_effect_and_pairs_the_data(base):
     (dict(effects=["lag_node"], effect_params={"lag_node": {"parent": "spindle_nose"}}), "unknown node"),
     (dict(effects=["sensor_drift"], effect_params={"sensor_drift": {"column": "T_x"}}), "no sensor"),
     (dict(effects=["door", "door"]), "twice"),
+    (dict(effects=["door"], effect_params={"door": {"duration_min": 5}}),
+     r"door.duration_min=5: must be a pair"),
+    (dict(effects=["lag_node"], effect_params={"lag_node": {"capacity_J_per_K": 0}}),
+     r"lag_node.capacity_J_per_K=0: must be a number > 0"),
+    (dict(effects=["hidden_source"], effect_params={"hidden_source": {"on_min": [5, 1]}}),
+     r"hidden_source.on_min=\[5, 1\]: must be a pair \[low, high\]"),
+    (dict(effects=["ambient_law"], effect_params={"ambient_law": {"width_c": -0.1}}), r"width_c=-0.1"),
+    (dict(effects=["sensor_drift"], effect_params={"sensor_drift": {"mode": "wobble"}}),
+     "one of drift, stuck"),
+    (dict(effects=["axis_position"], effect_params={"axis_position": {"tilt_nodes": {"column": "a"}}}),
+     "a map of names to numbers"),
 ])
 def test_bad_effect_config_is_a_config_error(kwargs, match):
     with pytest.raises(ConfigError, match=match):

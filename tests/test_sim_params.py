@@ -12,6 +12,7 @@ import pytest
 
 from conftest import refused
 from thermocomp.sim.column import ColumnMovingSource
+from thermocomp.sim.effects import EFFECTS
 from thermocomp.sim.fleet import Fleet
 from thermocomp.sim.large_mill import LargeMillWeek
 from thermocomp.sim.long_record import LongRecord
@@ -72,3 +73,14 @@ def test_every_scenario_parameter_has_a_rule_and_the_defaults_pass_it(cls):
     names = set(inspect.signature(cls.__init__).parameters) - UNRULED
     assert names <= set(cls.param_rules), sorted(names - set(cls.param_rules))
     check_params(cls())          # the defaults are valid
+
+
+NAMES = {"column", "targets", "parent", "anchor", "level_node", "campaigns", "axis"}   # checked
+# against the machine when the effect is planted (unknown sensor, node, target or campaign)
+
+
+@pytest.mark.parametrize("effect", sorted(EFFECTS), ids=str)
+def test_every_effect_parameter_but_names_has_a_rule_and_the_defaults_pass_it(effect):
+    cls = EFFECTS[effect]
+    assert set(cls.defaults) - NAMES == set(cls.param_rules), effect
+    cls()                        # the defaults are valid

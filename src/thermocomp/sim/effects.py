@@ -56,6 +56,7 @@ one of the dataset without it.
 from __future__ import annotations
 
 import copy
+import math
 import zlib
 from typing import ClassVar
 
@@ -64,6 +65,19 @@ import numpy as np
 from thermocomp.errors import ConfigError
 from thermocomp.sim.campaign import CampaignContext, Machine
 from thermocomp.sim.network import Link, Node, ThermalNetwork
+from thermocomp.sim.params import (
+    FRACTION,
+    NON_NEGATIVE,
+    POSITIVE,
+    check_params,
+    choice,
+    integer,
+    number,
+    number_map,
+    optional,
+    span,
+    subset,
+)
 from thermocomp.sim.sensors import first_order_lag, quantise
 from thermocomp.sim.sources import ConstantWhileRunning, StateConvection
 from thermocomp.sim.thermoelastic import ThermoelasticMap
@@ -120,6 +134,7 @@ class UndeclaredEffect:
     name: ClassVar[str] = ""
     kind: ClassVar[str] = ""
     defaults: ClassVar[dict] = {}
+    param_rules: ClassVar[dict] = {}     # what each parameter may be (thermocomp.sim.params)
 
     def __init__(self, seed: int = 0, **params):
         unknown = set(params) - set(self.defaults)
@@ -128,6 +143,7 @@ class UndeclaredEffect:
                               f"{sorted(unknown)} (known: {sorted(self.defaults)})")
         self.seed = int(seed)
         self.params = {**copy.deepcopy(self.defaults), **params}
+        check_params(self, f"sim.generator.effect_params.{self.name}", self.params)
 
     # --- hooks (no-ops by default) -------------------------------------------------------
     def modify_machine(self, machine: Machine) -> Machine:
@@ -192,6 +208,8 @@ class Door(UndeclaredEffect):
     """Door openings: shop air sweeps the work area while the door is open (S_door = 1)."""
 
     name, kind = "door", "signal"
+    param_rules = {"nodes": number_map(0.0), "air_offset_c": number(), "rate_per_h": NON_NEGATIVE,
+                   "duration_min": span(open_lo=True)}
     defaults = {
         "column": "S_door",
         "nodes": {},                 # node -> extra convection hA (W/K) while open
@@ -256,6 +274,10 @@ class HiddenSource(UndeclaredEffect):
     """A hydraulic power unit bolted to the structure, switched by its own duty cycle."""
 
     name, kind = "hidden_source", "signal"
+    param_rules = {"power_W": NON_NEGATIVE, "capacity_J_per_K": POSITIVE,
+                   "convection_W_per_K": NON_NEGATIVE, "conductance_W_per_K": POSITIVE,
+                   "on_min": span(open_lo=True), "off_min": span(open_lo=True),
+                   "noise_c": NON_NEGATIVE, "quantum_c": NON_NEGATIVE}
     defaults = {
         "column": "S_hydraulic_temp_C",  # the controller's oil temperature, the only witness
         "anchor": "",                    # structure node the unit is bolted to
@@ -322,6 +344,8 @@ class LagNode(UndeclaredEffect):
     """An unmeasured internal mass that follows a heated node with a long lag and moves the TCP."""
 
     name, kind = "lag_node", "dynamics"
+    param_rules = {"capacity_J_per_K": POSITIVE, "conductance_W_per_K": POSITIVE,
+                   "convection_W_per_K": NON_NEGATIVE, "sensitivity_um_per_K": number_map()}
     defaults = {
         "parent": "",                    # the heated node it hangs on
         "capacity_J_per_K": 2.0e5,
@@ -361,6 +385,9 @@ class AxisPosition(UndeclaredEffect):
     """An axis dwells at varying positions; a thermal tilt acts on the TCP through its lever."""
 
     name, kind = "axis_position", "interaction"
+    param_rules = {"travel_mm": span(-math.inf), "home_mm": number(),
+                   "dwell_min": span(open_lo=True), "tilt_nodes": number_map(),
+                   "gain_um_per_K_per_m": number()}
     defaults = {
         "axis": "Z",
         "travel_mm": [0.0, 500.0],
@@ -427,6 +454,9 @@ class SensorDrift(UndeclaredEffect):
     """One declared temperature sensor drifts (or freezes) partway through the campaigns."""
 
     name, kind = "sensor_drift", "sensor_fault"
+    param_rules = {"mode": choice("drift", "stuck"), "rate_K_per_h": number(),
+                   "onset_fraction": FRACTION, "from_fraction": FRACTION,
+                   "splits": subset(("train", "val", "test"))}
     defaults = {
         "column": "",
         "mode": "drift",                 # drift: + rate*(t - t0); stuck: frozen from t0
@@ -485,6 +515,8 @@ class AmbientLaw(UndeclaredEffect):
     """The thermoelastic law changes with the ambient level (an unmodelled ambient interval)."""
 
     name, kind = "ambient_law", "ambient_interval"
+    param_rules = {"level_lag_h": NON_NEGATIVE, "threshold_c": number(), "width_c": POSITIVE,
+                   "gain": number()}
     defaults = {
         "level_node": "",                # node (or "ambient": the air) whose level sets the interval
         "level_lag_h": 0.0,              # the level is that temperature through a first-order lag
@@ -577,6 +609,9 @@ class SensorFaults(UndeclaredEffect):
     """
 
     name, kind = "sensor_faults", "sensor_fault"
+    param_rules = {"kind": choice(*FAULT_KINDS), "magnitude_c": number(), "rate_K_per_h": number(),
+                   "onset_fraction": FRACTION, "duration_samples": optional(integer(1)),
+                   "splits": subset(("train", "val", "test"))}
     defaults = {
         "kind": "jump",                  # one of FAULT_KINDS
         "column": "",                    # "" = drawn among the non-ambient sensors
@@ -591,24 +626,7 @@ class SensorFaults(UndeclaredEffect):
 
     def __init__(self, seed: int = 0, **params):
         super().__init__(seed, **params)
-        p, key = self.params, f"sim.generator.effect_params.{self.name}"
-        if p["kind"] not in FAULT_KINDS:
-            raise ConfigError(f"{key}.kind must be one of {', '.join(FAULT_KINDS)}, "
-                              f"got {p['kind']!r}")
-        for name in ("magnitude_c", "rate_K_per_h", "onset_fraction"):
-            if isinstance(p[name], bool) or not isinstance(p[name], (int, float)) \
-                    or not np.isfinite(p[name]):
-                raise ConfigError(f"{key}.{name} must be a finite number, got {p[name]!r}")
-        if not 0.0 <= p["onset_fraction"] <= 1.0:
-            raise ConfigError(f"{key}.onset_fraction must lie in [0, 1], got {p['onset_fraction']}")
-        duration = p["duration_samples"]
-        if duration is not None and (isinstance(duration, bool) or not isinstance(duration, int)
-                                     or duration < 1):
-            raise ConfigError(f"{key}.duration_samples must be an integer >= 1 or null, "
-                              f"got {duration!r}")
-        bad = [s for s in p["splits"] if s not in ("train", "val", "test")]
-        if bad or isinstance(p["splits"], str):
-            raise ConfigError(f"{key}.splits must be a list of train, val, test; got {p['splits']!r}")
+        p = self.params
         self.column_ = p["column"] or None
 
     @property

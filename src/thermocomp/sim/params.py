@@ -1,6 +1,7 @@
 """What a scenario's parameters (``sim.generator.*``) may be, checked before anything is simulated.
 
-A value outside its domain used to fail deep inside the simulation (a division by zero, an
+(Planted effects too: ``param_rules`` over ``sim.generator.effect_params.<effect>``.)  A value
+outside its domain used to fail deep inside the simulation (a division by zero, an
 empty array: exit 1 with a traceback) or quietly write nonsense (a negative noise).  Each
 scenario lists a :class:`Rule` per parameter in ``param_rules`` (and relations between
 parameters in ``param_relations``); :func:`check_params` applies them and raises a
@@ -112,6 +113,16 @@ def overrides(cls) -> Rule:
     return Rule(test, f"null or a map of some of {', '.join(names)} to numbers")
 
 
+def optional(rule: Rule) -> Rule:
+    return Rule(lambda v: v is None or rule(v), f"null or {rule.says}")
+
+
+def number_map(lo: float = -math.inf) -> Rule:
+    """A map of names to finite numbers >= ``lo``."""
+    return Rule(lambda v: isinstance(v, Mapping) and all(_number(x) and x >= lo for x in v.values()),
+                "a map of names to numbers" + ("" if lo == -math.inf else f" >= {lo:g}"))
+
+
 BOOLEAN = Rule(lambda v: isinstance(v, bool), "true or false")
 POSITIVE = number(0.0, open_lo=True)
 NON_NEGATIVE = number(0.0)
@@ -127,18 +138,21 @@ def samples_in(generator, spans, period: str, unit_s: float = 1.0) -> list[tuple
             if 3600.0 * float(getattr(generator, key)) < 2 * step_s]
 
 
-def check_params(generator) -> None:
-    """Raise :class:`ConfigError` for the first parameter of ``generator`` outside its rule,
-    then for the first broken relation (``param_relations()``: ``(key, what it must be)``)."""
-    for key, rule in getattr(generator, "param_rules", {}).items():
-        value = _plain(getattr(generator, key))
-        if not rule(value):
-            raise ConfigError(f"sim.generator.{key}={value!r}: must be {rule.says}")
-    relations = getattr(generator, "param_relations", None)
+def check_params(owner, prefix: str = "sim.generator", values: Mapping | None = None) -> None:
+    """Raise :class:`ConfigError` for the first parameter of ``owner`` outside its rule (its
+    attribute, or its entry of ``values``), then for the first broken relation
+    (``param_relations()``: ``(key, what it must be)``); the key is named under ``prefix``."""
+    def get(key):
+        return _plain(values[key] if values is not None else getattr(owner, key))
+
+    for key, rule in getattr(owner, "param_rules", {}).items():
+        if not rule(get(key)):
+            raise ConfigError(f"{prefix}.{key}={get(key)!r}: must be {rule.says}")
+    relations = getattr(owner, "param_relations", None)
     broken = relations() if relations else []
     if broken:
         key, message = broken[0]
-        raise ConfigError(f"sim.generator.{key}={_plain(getattr(generator, key))!r}: {message}")
+        raise ConfigError(f"{prefix}.{key}={get(key)!r}: {message}")
 
 
 def _plain(value):
