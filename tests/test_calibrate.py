@@ -552,6 +552,42 @@ def test_a_dataset_without_setup_is_refused(raw, tmp_path, capsys):
     _untouched(tmp_path / "out")
 
 
+def _set(path, value):
+    def edit(d):
+        *parents, last = path
+        for key in parents:
+            d = d[key]
+        d[last] = value
+    return edit
+
+
+# volumetric.json from outside: each field against its domain (these were tracebacks, exit 1, or
+# read as given: a negative length, a pose declared twice, a negative probing uncertainty)
+SETUP_FAULTS = [
+    (_set(("machine", "order"), 0), "machine.order=0"),
+    (_set(("machine", "tool"), [0, 0]), "machine.tool=[0, 0]: must be null or 3 finite numbers"),
+    (_set(("artefact", "n_balls"), "11"), "artefact.n_balls='11': must be an integer >= 2"),
+    (_set(("artefact", "length_mm"), -1500), "artefact.length_mm=-1500"),
+    (_set(("artefact", "misalignment_deg"), 90), "artefact.misalignment_deg=90"),
+    (_set(("poses", 0, "direction"), [0, 0, 0]), "poses[0] (S1x1d1).direction=[0, 0, 0]: must not be zero"),
+    (_set(("poses", 1, "centre"), [float("nan"), 0, 0]), "poses[1].centre=[nan, 0, 0]"),
+    (_set(("poses", 2, "name"), "S1x1d1"), "poses[2].name='S1x1d1': declared twice"),
+    (_set(("uncertainty_um",), {"probing": -1, "ball": 0.5}), "uncertainty_um.probing=-1"),
+    (_set(("poses",), []), "poses: must be a non-empty list"),
+]
+
+
+@pytest.mark.parametrize("fault, says", SETUP_FAULTS, ids=[s.split(":")[0] for _, s in SETUP_FAULTS])
+def test_a_setup_field_outside_its_domain_is_refused_naming_it(raw, tmp_path, capsys, fault, says):
+    data = copy(raw, tmp_path, truth=False)
+    d = json.loads((data / SETUP_FILE).read_text())
+    fault(d)
+    (data / SETUP_FILE).write_text(json.dumps(d))
+    refused(["calibrate", f"data.path={data}", f"out={tmp_path / 'out'}", "track=false"], capsys,
+            f"{data / SETUP_FILE}", "not a valid set-up", says)
+    _untouched(tmp_path / "out")
+
+
 def test_bad_calibrate_config_is_refused(raw, tmp_path, capsys):
     for bad, says in (("calibrate.outlier_z=0", "calibrate.outlier_z"),
                       ("calibrate.outlier_z=nan", "calibrate.outlier_z"),

@@ -11,12 +11,12 @@ import inspect
 import pytest
 
 from conftest import refused
+from thermocomp.params import check_params
 from thermocomp.sim.column import ColumnMovingSource
 from thermocomp.sim.effects import EFFECTS
 from thermocomp.sim.fleet import Fleet
 from thermocomp.sim.large_mill import LargeMillWeek
 from thermocomp.sim.long_record import LongRecord
-from thermocomp.sim.params import check_params
 from thermocomp.sim.swiss_lathe import SwissLatheDoor
 from thermocomp.sim.volumetric import LargeMillVolumetric
 from thermocomp.sim.yearround import YearRoundSpindle
@@ -36,7 +36,7 @@ HOSTILE = [
     ("column_moving_source", "test_hours=-1", "number > 0"),
     ("swiss_lathe_door", "segment_h=[0,0]", "pair [low, high]"),
     ("swiss_lathe_door", "error_gaps=foo", "one of hold, nan"),
-    ("swiss_lathe_door", "production_rpm=[1]", "2 numbers"),
+    ("swiss_lathe_door", "production_rpm=[1]", "2 finite numbers"),
     ("long_record", "test_fraction=0", "(0, 1)"),
     ("long_record", "climate={bar:2}", "setpoint_c"),
     ("long_record", "duration_days=-1", "number > 0"),

@@ -45,11 +45,11 @@ from __future__ import annotations
 import numpy as np
 from scipy.sparse.csgraph import shortest_path
 
+from thermocomp.params import BOOLEAN, NON_NEGATIVE, POSITIVE, number, samples_in
 from thermocomp.sim.ambient import DAY_S, SinusoidalAmbient
 from thermocomp.sim.campaign import Machine
 from thermocomp.sim.effects import intervals_signal
 from thermocomp.sim.network import Link, Node, ThermalNetwork
-from thermocomp.sim.params import BOOLEAN, NON_NEGATIVE, POSITIVE, number, samples_in
 from thermocomp.sim.scenario import CampaignPlan, Scenario
 from thermocomp.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.sim.sources import ConstantWhileRunning, MovingSource

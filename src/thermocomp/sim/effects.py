@@ -63,9 +63,7 @@ from typing import ClassVar
 import numpy as np
 
 from thermocomp.errors import ConfigError
-from thermocomp.sim.campaign import CampaignContext, Machine
-from thermocomp.sim.network import Link, Node, ThermalNetwork
-from thermocomp.sim.params import (
+from thermocomp.params import (
     FRACTION,
     NON_NEGATIVE,
     POSITIVE,
@@ -78,6 +76,8 @@ from thermocomp.sim.params import (
     span,
     subset,
 )
+from thermocomp.sim.campaign import CampaignContext, Machine
+from thermocomp.sim.network import Link, Node, ThermalNetwork
 from thermocomp.sim.sensors import first_order_lag, quantise
 from thermocomp.sim.sources import ConstantWhileRunning, StateConvection
 from thermocomp.sim.thermoelastic import ThermoelasticMap
@@ -134,7 +134,7 @@ class UndeclaredEffect:
     name: ClassVar[str] = ""
     kind: ClassVar[str] = ""
     defaults: ClassVar[dict] = {}
-    param_rules: ClassVar[dict] = {}     # what each parameter may be (thermocomp.sim.params)
+    param_rules: ClassVar[dict] = {}     # what each parameter may be (thermocomp.params)
 
     def __init__(self, seed: int = 0, **params):
         unknown = set(params) - set(self.defaults)

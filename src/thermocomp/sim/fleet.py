@@ -40,10 +40,10 @@ import numpy as np
 import pandas as pd
 
 from thermocomp.files import atomic_dir
+from thermocomp.params import POSITIVE, check_params, integer, number, numbers
 from thermocomp.sim.ambient import DAY_S
 from thermocomp.sim.long_record import WorkshopClimate, jobs_signal, workload
 from thermocomp.sim.network import Link, Node, ThermalNetwork
-from thermocomp.sim.params import POSITIVE, check_params, integer, number, numbers
 from thermocomp.sim.scenario import plain
 from thermocomp.sim.sensors import quantise
 

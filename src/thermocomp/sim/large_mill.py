@@ -37,10 +37,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from thermocomp.params import NON_NEGATIVE, POSITIVE, samples_in
 from thermocomp.sim.ambient import DAY_S, HallClimate
 from thermocomp.sim.campaign import Machine
 from thermocomp.sim.network import Link, Node, ThermalNetwork
-from thermocomp.sim.params import NON_NEGATIVE, POSITIVE, samples_in
 from thermocomp.sim.scenario import CampaignPlan, Scenario
 from thermocomp.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.sim.sources import ConstantWhileRunning

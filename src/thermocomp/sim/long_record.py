@@ -130,10 +130,10 @@ import pandas as pd
 
 from thermocomp.errors import ConfigError
 from thermocomp.io.contract import Dataset
+from thermocomp.params import FRACTION, POSITIVE, integer, number, numbers, overrides, span
 from thermocomp.sim.ambient import DAY_S, AmbientModel, room_response
 from thermocomp.sim.campaign import Machine, Programme
 from thermocomp.sim.network import Link, Node, ThermalNetwork
-from thermocomp.sim.params import FRACTION, POSITIVE, integer, number, numbers, overrides, span
 from thermocomp.sim.scenario import CampaignPlan, Scenario, initial_air, plain
 from thermocomp.sim.sensors import AMBIENT, TemperatureSensor, quantise
 from thermocomp.sim.sources import (

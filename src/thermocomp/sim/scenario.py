@@ -28,6 +28,7 @@ import pandas as pd
 
 from thermocomp.errors import ConfigError
 from thermocomp.io.contract import Dataset, write_dataset
+from thermocomp.params import BOOLEAN, NON_NEGATIVE, check_params
 from thermocomp.sim.campaign import (
     CampaignContext,
     Measurement,
@@ -37,7 +38,6 @@ from thermocomp.sim.campaign import (
     run_campaign,
 )
 from thermocomp.sim.effects import build_effects
-from thermocomp.sim.params import BOOLEAN, NON_NEGATIVE, check_params
 from thermocomp.sim.sensors import quantise
 
 
@@ -112,7 +112,7 @@ class Scenario:
     builtin_effects: ClassVar[tuple] = ()
     year: int = 2023
     error_gaps: str = "hold"
-    # what each parameter may be (thermocomp.sim.params); subclasses add theirs
+    # what each parameter may be (thermocomp.params); subclasses add theirs
     param_rules: ClassVar[dict] = {"temp_noise_c": NON_NEGATIVE, "temp_quantum_c": NON_NEGATIVE,
                                    "error_noise_um": NON_NEGATIVE, "error_quantum_um": NON_NEGATIVE,
                                    "clean": BOOLEAN}

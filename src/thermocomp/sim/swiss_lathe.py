@@ -49,10 +49,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from thermocomp.params import POSITIVE, choice, numbers, samples_in, span
 from thermocomp.sim.ambient import DAY_S, HallClimate
 from thermocomp.sim.campaign import Machine, Programme
 from thermocomp.sim.network import Link, Node, ThermalNetwork
-from thermocomp.sim.params import POSITIVE, choice, numbers, samples_in, span
 from thermocomp.sim.scenario import CampaignPlan, Scenario
 from thermocomp.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.sim.sources import SPINDLE, ConstantWhileRunning, SpeedLosses, StateConvection

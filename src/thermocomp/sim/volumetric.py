@@ -45,8 +45,7 @@ import zlib
 import numpy as np
 import pandas as pd
 
-from thermocomp.sim.large_mill import LargeMillWeek, moving_column_mill
-from thermocomp.sim.params import (
+from thermocomp.params import (
     BOOLEAN,
     NON_NEGATIVE,
     POSITIVE,
@@ -57,6 +56,7 @@ from thermocomp.sim.params import (
     samples_in,
     subset,
 )
+from thermocomp.sim.large_mill import LargeMillWeek, moving_column_mill
 from thermocomp.sim.scenario import plain, single_threaded_blas
 from thermocomp.sim.thermoelastic import ThermoelasticMap
 from thermocomp.volumetric import SETUP_FILE, BallArray, KinematicModel, Setup, position_set

@@ -13,9 +13,9 @@ import math
 
 import numpy as np
 
+from thermocomp.params import FRACTION, NON_NEGATIVE, POSITIVE, integer, numbers, overrides, span
 from thermocomp.sim.ambient import DAY_S, AmbientModel
 from thermocomp.sim.campaign import Programme
-from thermocomp.sim.params import FRACTION, NON_NEGATIVE, POSITIVE, integer, numbers, overrides, span
 from thermocomp.sim.scenario import CampaignPlan, Scenario, single_threaded_blas  # noqa: F401
 from thermocomp.sim.vmc import VMC_EFFECTS, vertical_machining_centre
 

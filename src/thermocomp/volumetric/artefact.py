@@ -15,11 +15,24 @@ calibrated distance between balls i and j (µm) in that pose.
 from __future__ import annotations
 
 import itertools
+import math
 import re
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..params import (
+    BOOLEAN,
+    NON_NEGATIVE,
+    POSITIVE,
+    Rule,
+    check_values,
+    integer,
+    number,
+    numbers,
+    optional,
+)
 from .kinematics import AXES, KinematicModel
 
 SETUP_FILE = "volumetric.json"
@@ -129,9 +142,53 @@ class Setup:
 
     @classmethod
     def from_dict(cls, d: dict) -> Setup:
+        """The set-up of ``volumetric.json`` (docs/data-format.md); a field outside its domain is
+        a ``ValueError`` naming it (``artefact.n_balls='5': must be an integer >= 2``)."""
         known = {"machine", "artefact", "poses", "uncertainty_um"}
+        _check_setup(d)
         u = d.get("uncertainty_um", {})
         return cls(KinematicModel.from_dict(d["machine"]), BallArray(**d["artefact"]),
                    [Pose(p["name"], tuple(p["centre"]), tuple(p["direction"])) for p in d["poses"]],
                    float(u.get("probing", 0.5)), float(u.get("ball", 0.5)),
                    {k: v for k, v in d.items() if k not in known})
+
+
+POINT = numbers(-math.inf, length=3)
+SETUP_RULES = {
+    "machine": {"order": optional(integer(1, 10)), "tool": optional(POINT),
+                "cross_terms": optional(BOOLEAN)},
+    "artefact": {"n_balls": integer(2), "length_mm": POSITIVE,
+                 "misalignment_deg": optional(number(-90.0, 90.0, open_lo=True, open_hi=True))},
+    "uncertainty_um": {"probing": optional(NON_NEGATIVE), "ball": optional(NON_NEGATIVE)},
+}
+POSE_RULES = {"name": Rule(lambda v: isinstance(v, str) and re.fullmatch(r"[A-Za-z0-9]+", v),
+                           "letters and digits"),
+              "centre": POINT, "direction": numbers(-math.inf, length=3)}
+
+
+def _check_setup(d) -> None:
+    """Each field of a set-up read from outside against its rule (the kinematic model checks
+    its chain and ranges itself)."""
+    if not isinstance(d, Mapping):
+        raise ValueError(f"expected an object with {', '.join(SETUP_RULES)} and poses")
+    for part, rules in SETUP_RULES.items():
+        if part == "uncertainty_um" and part not in d:
+            continue
+        if not isinstance(d.get(part), Mapping):
+            raise ValueError(f"{part}: missing or not an object")
+        check_values(d[part], rules, part)
+    poses = d.get("poses")
+    if not isinstance(poses, list) or not poses:
+        raise ValueError("poses: must be a non-empty list")
+    names = set()
+    for k, pose in enumerate(poses):
+        where = f"poses[{k}]"
+        if not isinstance(pose, Mapping):
+            raise ValueError(f"{where}: not an object")
+        check_values(pose, POSE_RULES, where)
+        if not np.linalg.norm(np.asarray(pose["direction"], float)) > 0:
+            raise ValueError(f"{where} ({pose['name']}).direction={list(pose['direction'])}: "
+                             "must not be zero")
+        if pose["name"] in names:
+            raise ValueError(f"{where}.name={pose['name']!r}: declared twice")
+        names.add(pose["name"])

@@ -1,4 +1,5 @@
-"""What a scenario's parameters (``sim.generator.*``) may be, checked before anything is simulated.
+"""What a parameter may be: rules for the scenarios' parameters (``sim.generator.*``, checked
+before anything is simulated) and for a volumetric set-up read from outside (``volumetric.json``).
 
 (Planted effects too: ``param_rules`` over ``sim.generator.effect_params.<effect>``.)  A value
 outside its domain used to fail deep inside the simulation (a division by zero, an
@@ -73,7 +74,9 @@ def numbers(lo: float = 0.0, hi: float = math.inf, *, length: int | None = None)
         items = _items(v)
         return (items is not None and len(items) >= 1 and (length is None or len(items) == length)
                 and all(_number(x) and lo <= x <= hi for x in items))
-    count = f"{length} numbers" if length else "a non-empty list of numbers"
+    count = f"{length} finite numbers" if length else "a non-empty list of finite numbers"
+    if lo == -math.inf and hi == math.inf:
+        return Rule(test, count)
     return Rule(test, f"{count} >= {lo:g}" if hi == math.inf else f"{count} in [{lo:g}, {hi:g}]")
 
 
@@ -138,21 +141,28 @@ def samples_in(generator, spans, period: str, unit_s: float = 1.0) -> list[tuple
             if 3600.0 * float(getattr(generator, key)) < 2 * step_s]
 
 
-def check_params(owner, prefix: str = "sim.generator", values: Mapping | None = None) -> None:
-    """Raise :class:`ConfigError` for the first parameter of ``owner`` outside its rule (its
-    attribute, or its entry of ``values``), then for the first broken relation
-    (``param_relations()``: ``(key, what it must be)``); the key is named under ``prefix``."""
-    def get(key):
-        return _plain(values[key] if values is not None else getattr(owner, key))
+def check_values(values: Mapping, rules: Mapping[str, Rule], prefix: str) -> None:
+    """Raise :class:`ConfigError` ``<prefix>.<key>=<value>: must be ...`` for the first entry of
+    ``values`` outside its rule (a missing entry is ``None``)."""
+    for key, rule in rules.items():
+        value = _plain(values.get(key))
+        if not rule(value):
+            raise ConfigError(f"{prefix}.{key}={value!r}: must be {rule.says}")
 
-    for key, rule in getattr(owner, "param_rules", {}).items():
-        if not rule(get(key)):
-            raise ConfigError(f"{prefix}.{key}={get(key)!r}: must be {rule.says}")
+
+def check_params(owner, prefix: str = "sim.generator", values: Mapping | None = None) -> None:
+    """:func:`check_values` of ``owner``'s ``param_rules`` over its attributes (or ``values``),
+    then its first broken relation (``param_relations()``: ``(key, what it must be)``)."""
+    rules = getattr(owner, "param_rules", {})
+    if values is None:
+        values = {key: getattr(owner, key) for key in rules}
+    check_values(values, rules, prefix)
     relations = getattr(owner, "param_relations", None)
     broken = relations() if relations else []
     if broken:
         key, message = broken[0]
-        raise ConfigError(f"{prefix}.{key}={get(key)!r}: {message}")
+        value = _plain(values[key] if key in values else getattr(owner, key))
+        raise ConfigError(f"{prefix}.{key}={value!r}: {message}")
 
 
 def _plain(value):
