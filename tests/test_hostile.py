@@ -261,6 +261,8 @@ CONFIG_CASES = {
     "out=/dev/null": (["out=/dev/null"], ["out=/dev/null: exists and is not a folder"]),
     "seed=abc": (["seed=abc"], ["seed='abc' is not an integer"]),
     "seed=1.5": (["seed=1.5"], ["seed=1.5 is not an integer"]),
+    "max_points=0": (["eval.e_p95.max_points=0"],          # an empty E_P95 curve before
+                     ["eval.e_p95.max_points=0: must be null or an integer >= 2"]),
 }
 
 

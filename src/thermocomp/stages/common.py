@@ -15,6 +15,7 @@ from ..compensator import MODES, Compensator
 from ..errors import ConfigError
 from ..frame import REFERENCES
 from ..log import logger
+from ..params import check_values, integer, optional
 from ..paths import resolve
 
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
@@ -64,6 +65,9 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",)) -> None:
     for key, (value, allowed) in choices.items():
         if value not in allowed:
             raise ConfigError(f"{key}={value!r} is not one of {list(allowed)}")
+    # 0 or 1 window lengths would leave the E_P95 curve empty
+    check_values({"max_points": cfg.eval.e_p95.get("max_points")},
+                 {"max_points": optional(integer(2))}, "eval.e_p95")
     selector = instantiate(cfg.select.selector)
     if hasattr(selector, "check_params"):
         try:
