@@ -1,11 +1,11 @@
-"""What a parameter may be: rules for the scenarios' parameters (``sim.generator.*``, checked
-before anything is simulated) and for a volumetric set-up read from outside (``volumetric.json``).
+"""What a parameter may be, checked before any work: the scenarios' parameters
+(``sim.generator.*``) and their effects' (``sim.generator.effect_params.<effect>.*``), a
+volumetric set-up read from outside (``volumetric.json``), and config keys of the shell.
 
-(Planted effects too: ``param_rules`` over ``sim.generator.effect_params.<effect>``.)  A value
-outside its domain used to fail deep inside the simulation (a division by zero, an
-empty array: exit 1 with a traceback) or quietly write nonsense (a negative noise).  Each
-scenario lists a :class:`Rule` per parameter in ``param_rules`` (and relations between
-parameters in ``param_relations``); :func:`check_params` applies them and raises a
+A value outside its domain used to fail deep inside the work (a division by zero, an empty
+array: exit 1 with a traceback) or quietly produce nonsense (a negative noise).  An owner lists
+a :class:`Rule` per parameter in ``param_rules`` (and relations between parameters in
+``param_relations``); :func:`check_params` / :func:`check_values` apply them and raise a
 :class:`~thermocomp.errors.ConfigError` naming the key, the value and what it may be (exit 2).
 
 Hand-written: scikit-learn's parameter validation (``sklearn.utils._param_validation``) is
@@ -56,7 +56,9 @@ def number(lo: float = -math.inf, hi: float = math.inf, *, open_lo: bool = False
     def test(v):
         return (_number(v) and (v > lo if open_lo else v >= lo) and (v < hi if open_hi else v <= hi))
     left, right = "(" if open_lo else "[", ")" if open_hi else "]"
-    if hi == math.inf:
+    if lo == -math.inf and hi == math.inf:
+        says = "a finite number"
+    elif hi == math.inf:
         says = f"a number {'>' if open_lo else '>='} {lo:g}"
     else:
         says = f"a number in {left}{lo:g}, {hi:g}{right}"
