@@ -90,4 +90,4 @@ def test_select_stage_without_denoise_stage_and_bad_config(default_dataset, inte
     assert bad.returncode == 2 and "stopping" in bad.stderr
     bad = thermocomp("select", *common, "select=greedy_residual", "select.selector.k=0",
                      check=False)
-    assert bad.returncode == 2 and "select.selector: k must be" in bad.stderr
+    assert bad.returncode == 2 and "select.selector.k=0: must be null or an integer >= 1" in bad.stderr

@@ -94,7 +94,9 @@ def test_the_result_does_not_depend_on_the_number_of_workers():
     spec = {"s": {"n_balls": [5], "misalignment_deg": [0.0], "position_sets": ["S1", "S3"]}}
     one = CalibrationDesignStudy(KinematicModel(), fam, **{**SMALL, "n_machines": 4}).run(spec)
     two = CalibrationDesignStudy(KinematicModel(), fam, **{**SMALL, "n_machines": 4, "n_jobs": 2}).run(spec)
-    assert [r["median"] for r in one["strategies"]] == [r["median"] for r in two["strategies"]]
+    # the same machines and fits; a worker's BLAS may sum in another order (last digits only)
+    np.testing.assert_allclose([r["median"] for r in two["strategies"]],
+                               [r["median"] for r in one["strategies"]], rtol=1e-10, atol=0)
 
 
 def test_family_ranges_scale_the_volumetric_error():

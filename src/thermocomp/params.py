@@ -19,7 +19,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from numbers import Integral, Real
 
-from thermocomp.errors import ConfigError
+from thermocomp.errors import ConfigError, ParameterError
 
 
 @dataclass(frozen=True)
@@ -42,6 +42,10 @@ def _number(v) -> bool:
 
 def _integer(v) -> bool:
     return isinstance(v, Integral) and not isinstance(v, bool)
+
+
+def _boolean(v) -> bool:
+    return isinstance(v, bool) or type(v).__name__ == "bool_"    # numpy's too
 
 
 def _items(v) -> list | None:
@@ -70,16 +74,36 @@ def integer(lo: int, hi: int | None = None) -> Rule:
                 f"an integer >= {lo}" if hi is None else f"an integer in [{lo}, {hi}]")
 
 
-def numbers(lo: float = 0.0, hi: float = math.inf, *, length: int | None = None) -> Rule:
-    """A non-empty list of finite numbers in ``[lo, hi]`` (exactly ``length`` of them when given)."""
+def numbers(lo: float = 0.0, hi: float = math.inf, *, length: int | None = None,
+            open_lo: bool = False, empty: bool = False) -> Rule:
+    """A non-empty list of finite numbers in ``[lo, hi]`` (exactly ``length`` of them when given;
+    ``> lo`` when ``open_lo``; possibly empty when ``empty``)."""
     def test(v):
         items = _items(v)
-        return (items is not None and len(items) >= 1 and (length is None or len(items) == length)
-                and all(_number(x) and lo <= x <= hi for x in items))
-    count = f"{length} finite numbers" if length else "a non-empty list of finite numbers"
+        return (items is not None and (empty or len(items) >= 1)
+                and (length is None or len(items) == length)
+                and all(_number(x) and (x > lo if open_lo else x >= lo) and x <= hi for x in items))
+    count = (f"{length} finite numbers" if length else
+             f"a {'' if empty else 'non-empty '}list of finite numbers")
     if lo == -math.inf and hi == math.inf:
         return Rule(test, count)
-    return Rule(test, f"{count} >= {lo:g}" if hi == math.inf else f"{count} in [{lo:g}, {hi:g}]")
+    if hi == math.inf:
+        return Rule(test, f"{count} {'>' if open_lo else '>='} {lo:g}")
+    return Rule(test, f"{count} in {'(' if open_lo else '['}{lo:g}, {hi:g}]")
+
+
+def integers(lo: int, *, empty: bool = False) -> Rule:
+    """A list of integers >= ``lo`` (non-empty unless ``empty``)."""
+    def test(v):
+        items = _items(v)
+        return items is not None and (empty or len(items) >= 1) and all(
+            _integer(x) and x >= lo for x in items)
+    return Rule(test, f"a {'' if empty else 'non-empty '}list of integers >= {lo}")
+
+
+def either(*rules: Rule) -> Rule:
+    """Any one of ``rules``."""
+    return Rule(lambda v: any(r(v) for r in rules), " or ".join(r.says for r in rules))
 
 
 def span(lo: float = 0.0, hi: float = math.inf, *, open_lo: bool = False) -> Rule:
@@ -101,7 +125,18 @@ def subset(options, *, empty: bool = False) -> Rule:
 
 
 def choice(*options) -> Rule:
-    return Rule(lambda v: v in options, f"one of {', '.join(map(str, options))}")
+    """One of ``options``; ``True``/``False`` only as themselves (``1`` is not ``True``)."""
+    def test(v):
+        return any(v is o or (not _boolean(v) and not _boolean(o) and v == o) for o in options)
+    names = ", ".join(_spelled(o) for o in options)
+    return Rule(test, f"one of {names}" if len(options) > 1 else names)
+
+
+def _spelled(option) -> str:
+    """An option as a config file spells it."""
+    if option is None:
+        return "null"
+    return ("true" if option else "false") if _boolean(option) else str(option)
 
 
 def overrides(cls) -> Rule:
@@ -128,7 +163,20 @@ def number_map(lo: float = -math.inf) -> Rule:
                 "a map of names to numbers" + ("" if lo == -math.inf else f" >= {lo:g}"))
 
 
-BOOLEAN = Rule(lambda v: isinstance(v, bool), "true or false")
+def text() -> Rule:
+    return Rule(lambda v: isinstance(v, str) and v != "", "a non-empty text")
+
+
+def texts(what: str = "texts", *, empty: bool = False) -> Rule:
+    """A list of non-empty texts (non-empty unless ``empty``)."""
+    def test(v):
+        items = _items(v)
+        return items is not None and (empty or len(items) >= 1) and all(
+            isinstance(x, str) and x != "" for x in items)
+    return Rule(test, f"a {'' if empty else 'non-empty '}list of {what}")
+
+
+BOOLEAN = Rule(_boolean, "true or false")
 POSITIVE = number(0.0, open_lo=True)
 NON_NEGATIVE = number(0.0)
 FRACTION = number(0.0, 1.0)
@@ -143,28 +191,40 @@ def samples_in(generator, spans, period: str, unit_s: float = 1.0) -> list[tuple
             if 3600.0 * float(getattr(generator, key)) < 2 * step_s]
 
 
-def check_values(values: Mapping, rules: Mapping[str, Rule], prefix: str) -> None:
-    """Raise :class:`ConfigError` ``<prefix>.<key>=<value>: must be ...`` for the first entry of
-    ``values`` outside its rule (a missing entry is ``None``)."""
+def check_values(values: Mapping, rules: Mapping[str, Rule], prefix: str,
+                 error: type[ValueError] = ConfigError) -> None:
+    """Raise ``error`` (:class:`ConfigError`) ``<prefix>.<key>=<value>: must be ...`` for the
+    first entry of ``values`` outside its rule (a missing entry is ``None``)."""
     for key, rule in rules.items():
         value = _plain(values.get(key))
         if not rule(value):
-            raise ConfigError(f"{prefix}.{key}={value!r}: must be {rule.says}")
+            raise error(f"{prefix + '.' if prefix else ''}{key}={value!r}: must be {rule.says}")
 
 
-def check_params(owner, prefix: str = "sim.generator", values: Mapping | None = None) -> None:
+def check_params(owner, prefix: str = "sim.generator", values: Mapping | None = None,
+                 error: type[ValueError] = ConfigError) -> None:
     """:func:`check_values` of ``owner``'s ``param_rules`` over its attributes (or ``values``),
-    then its first broken relation (``param_relations()``: ``(key, what it must be)``)."""
+    then its first broken relation (``param_relations()``: ``(key, what it must be)``).
+
+    An estimator checks itself in ``fit`` with ``prefix`` its class name and ``error``
+    :class:`~thermocomp.errors.ParameterError`; the shell checks the same rules before any
+    work with ``prefix`` the config key (``model.estimator``)."""
     rules = getattr(owner, "param_rules", {})
     if values is None:
         values = {key: getattr(owner, key) for key in rules}
-    check_values(values, rules, prefix)
+    check_values(values, rules, prefix, error)
     relations = getattr(owner, "param_relations", None)
     broken = relations() if relations else []
     if broken:
         key, message = broken[0]
         value = _plain(values[key] if key in values else getattr(owner, key))
-        raise ConfigError(f"{prefix}.{key}={value!r}: {message}")
+        raise error(f"{prefix}.{key}={value!r}: {message}")
+
+
+def check_estimator(estimator) -> None:
+    """An estimator's own check in ``fit``: :class:`~thermocomp.errors.ParameterError`
+    ``ARX.max_inputs=0: must be an integer >= 1``."""
+    check_params(estimator, type(estimator).__name__, error=ParameterError)
 
 
 def _plain(value):

@@ -7,9 +7,11 @@ import pandas as pd
 from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from ..errors import ContractError
 from ..io.contract import match_columns
+from ..params import BOOLEAN, POSITIVE, check_estimator, choice, integer, texts
 from .causal import apply_fir, fit_fir, sliding_window
-from .emd import END_EFFECTS, decompose, emd_engine, remove_imfs
+from .emd import END_EFFECTS, SPLINES, STOPPING, decompose, emd_engine, remove_imfs
 
 CAUSAL = ("fir", "window")
 
@@ -107,17 +109,17 @@ class EMDDenoiser(TransformerMixin, BaseEstimator):
         self.online = online
 
     # -- offline -----------------------------------------------------------------------
+    param_rules = {"n_imfs": integer(1), "sensors": texts("column names or glob patterns"),
+                   "stopping": choice(*STOPPING), "max_siftings": integer(1),
+                   "s_number": integer(1), "sd_threshold": POSITIVE,
+                   "end_effect": choice(*END_EFFECTS), "pad": integer(0),
+                   "spline": choice(*SPLINES), "causal": choice(*CAUSAL), "causal_taps": integer(1),
+                   "causal_window": integer(4), "online": BOOLEAN}
+
     def check_params(self) -> None:
-        """Raise ValueError for a parameter outside its allowed values (before any data is read)."""
-        if int(self.n_imfs) < 1:
-            raise ValueError(f"n_imfs must be >= 1, got {self.n_imfs}")
-        if self.end_effect not in END_EFFECTS:
-            raise ValueError(f"end_effect must be one of {END_EFFECTS}, got {self.end_effect!r}")
-        if self.causal not in CAUSAL:
-            raise ValueError(f"causal must be one of {CAUSAL}, got {self.causal!r}")
-        if int(self.causal_taps) < 1 or int(self.causal_window) < 4:
-            raise ValueError("causal_taps must be >= 1 and causal_window >= 4")
-        emd_engine(self.stopping, self.max_siftings, self.s_number, self.sd_threshold, self.spline)
+        """Raise :class:`~thermocomp.errors.ParameterError` for a parameter outside its rule
+        (before any data is read)."""
+        check_estimator(self)
 
     def _engine(self):
         return emd_engine(self.stopping, self.max_siftings, self.s_number, self.sd_threshold,
@@ -156,6 +158,9 @@ class EMDDenoiser(TransformerMixin, BaseEstimator):
             self.denoised_ = np.ones(A.shape[1], dtype=bool)
         else:
             hits = set(match_columns(list(names), self.sensors))
+            if not hits:   # a typo in the pattern would otherwise denoise nothing, silently
+                raise ContractError(f"the denoiser's sensors {list(self.sensors)} match none of "
+                                    f"the inputs {list(names)}", column=str(self.sensors[0]))
             self.denoised_ = np.array([n in hits for n in names], dtype=bool)
         out = self._offline(A, groups)
         taps = int(self.causal_taps)

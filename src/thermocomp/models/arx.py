@@ -9,9 +9,9 @@ from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import Y_MEASURED, SideInputs, groups_of, values
-from ..errors import ParameterError
 from ..model_selection.criteria import CRITERIA, LABELS, information_criteria
 from ..model_selection.greedy import SEARCHES, greedy_path, scaled_gram
+from ..params import BOOLEAN, check_estimator, choice, either, integer, integers
 from ._dynamics import free_run, lag_index, previous, segment_starts
 
 SELECTION_ERRORS = ("equation", "simulation")
@@ -109,19 +109,14 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
         self.fit_intercept = fit_intercept
 
     # -- parameters ---------------------------------------------------------------------
+    param_rules = {"criterion": choice(*CRITERIA), "max_inputs": integer(1),
+                   "ar": choice("auto", True, False), "delays": either(integer(0), integers(0)),
+                   "search": choice(*SEARCHES), "selection_error": choice(*SELECTION_ERRORS),
+                   "fit_intercept": BOOLEAN}
+
     def _check_params(self) -> tuple[int, ...]:
-        options = {"criterion": (self.criterion, CRITERIA), "search": (self.search, SEARCHES),
-                   "selection_error": (self.selection_error, SELECTION_ERRORS),
-                   "ar": (self.ar, ("auto", True, False))}
-        for name, (value, allowed) in options.items():
-            if not any(value is a or (isinstance(a, str) and value == a) for a in allowed):
-                raise ParameterError(f"ARX {name}={value!r} is not one of {list(allowed)}")
-        if int(self.max_inputs) < 1:
-            raise ParameterError(f"ARX max_inputs={self.max_inputs!r} must be >= 1")
-        delays = tuple(sorted({int(d) for d in np.atleast_1d(self.delays)}))
-        if not delays or delays[0] < 0:
-            raise ParameterError(f"ARX delays={self.delays!r} must be non-negative sample counts")
-        return delays
+        check_estimator(self)
+        return tuple(sorted({int(d) for d in np.atleast_1d(self.delays)}))
 
     # -- design -------------------------------------------------------------------------
     def _design(self, X, y, groups, delays, rows) -> tuple[np.ndarray, np.ndarray]:

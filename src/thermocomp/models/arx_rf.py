@@ -24,6 +24,7 @@ from ..context import (
     with_column,
 )
 from ..errors import ParameterError
+from ..params import POSITIVE, check_estimator, either, numbers, optional, text
 from ._dynamics import segment_bounds
 from .arx import ARX
 
@@ -174,6 +175,9 @@ class ARXRF(SideInputs, RegressorMixin, BaseEstimator):
         both residuals coincide).
     """
 
+    param_rules = {"state_column": optional(text()),
+                   "tau_s": either(POSITIVE, numbers(0.0, open_lo=True))}
+
     def __init__(self, arx=None, forest=None, state_column: str | None = "S_door", tau_s=60.0):
         self.arx = arx
         self.forest = forest
@@ -199,6 +203,7 @@ class ARXRF(SideInputs, RegressorMixin, BaseEstimator):
         return RandomForestRegressor(n_estimators=100, min_samples_leaf=5, random_state=0)
 
     def fit(self, X, y, context=None):
+        check_estimator(self)
         X, y = validate_data(self, X, y, y_numeric=True)
         y = np.asarray(y, dtype=float)
         S = self._state_features(len(y), context)

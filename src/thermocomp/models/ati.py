@@ -18,9 +18,10 @@ from sklearn.cluster import KMeans
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, merge_columns, scalar, subset
-from ..errors import ContractError, ParameterError
+from ..errors import ContractError
 from ..metrics import rsd, sm_sd
 from ..model_selection import LeaveOneCampaignOut
+from ..params import BOOLEAN, NON_NEGATIVE, check_estimator, choice, either, integer, integers, number
 from .linear import MLR
 
 CLUSTERINGS = ("fuzzy", "hard")
@@ -159,6 +160,11 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     campaign_ambient_ : dict campaign -> initial ambient (°C) of the training data
     """
 
+    param_rules = {"n_intervals": either(choice("elbow"), integer(1)),
+                   "candidates": integers(1), "clustering": choice(*CLUSTERINGS),
+                   "fuzziness": number(1.0, open_lo=True), "elbow_tolerance": NON_NEGATIVE,
+                   "ambient_interaction": BOOLEAN}
+
     def __init__(self, base_estimator=None, n_intervals="elbow", candidates=(2, 3, 4, 5, 6),
                  clustering: str = "fuzzy", fuzziness: float = 2.0, elbow_tolerance: float = 0.10,
                  random_state: int = 0, ambient_interaction: bool = False):
@@ -208,8 +214,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         return interval_boundaries(ambient, labels)
 
     def fit(self, X, y, context=None):
-        if self.clustering not in CLUSTERINGS:
-            raise ParameterError(f"clustering must be one of {CLUSTERINGS}, got {self.clustering!r}")
+        check_estimator(self)
         X, y = validate_data(self, X, y, y_numeric=True)
         self.elbow_ = None
         if context is None or AMBIENT_C0 not in context:
@@ -226,8 +231,6 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             n = self._elbow(X, y, campaign, a0, context)
         else:
             n = int(self.n_intervals)
-            if n < 1:
-                raise ParameterError(f"n_intervals must be >= 1 or 'elbow', got {self.n_intervals!r}")
         n = min(n, distinct)
         bounds = self._intervals(a0.to_numpy(), n) if n > 1 else np.empty(0)
         return self._fit_intervals(X, y, bounds, interval_of(a0_rows, bounds), context, campaign)

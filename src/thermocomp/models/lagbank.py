@@ -36,9 +36,9 @@ from sklearn.preprocessing import StandardScaler
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import TIME, Y_MEASURED, SideInputs, groups_of, scalar, values
-from ..errors import ParameterError
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
+from ..params import POSITIVE, check_estimator, choice, either, integer, numbers, optional
 from ._dynamics import first_order_lags, free_run, lag_index, previous, segment_bounds, segment_starts
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
@@ -246,24 +246,20 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.sample_period_s = sample_period_s
 
     # -- parameters ---------------------------------------------------------------------
-    def _check_params(self) -> np.ndarray:
-        if not any(self.ar is v for v in (True, False)) and self.ar != "auto":
-            raise ParameterError(f"LagBank ar={self.ar!r} is not one of [False, True, 'auto']")
-        checks = {"n_taus": (self.n_taus, 1), "n_splits": (self.n_splits, MIN_SPLITS)}
-        for name, (value, low) in checks.items():
-            if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < low:
-                raise ParameterError(f"LagBank {name}={value!r} must be an integer >= {low}")
-        for name in ("tau_max_s", "sample_period_s") + (("tau_min_s",) if self.tau_min_s is not None
-                                                         else ()):
-            value = getattr(self, name)
-            if not (isinstance(value, (int, float, np.number)) and np.isfinite(value) and value > 0):
-                raise ParameterError(f"LagBank {name}={value!r} must be a positive time (s)")
+    param_rules = {"n_taus": integer(1), "tau_min_s": optional(POSITIVE), "tau_max_s": POSITIVE,
+                   "alphas": optional(either(POSITIVE, numbers(0.0, open_lo=True))),
+                   "n_splits": integer(MIN_SPLITS), "ar": choice(False, True, "auto"),
+                   "sample_period_s": POSITIVE}
+
+    def param_relations(self) -> list[tuple[str, str]]:
         if self.tau_min_s is not None and not self.tau_min_s <= self.tau_max_s:
-            raise ParameterError(f"LagBank tau_min_s={self.tau_min_s} exceeds tau_max_s={self.tau_max_s}")
+            return [("tau_min_s", f"must not exceed tau_max_s={self.tau_max_s}")]
+        return []
+
+    def _check_params(self) -> np.ndarray:
+        check_estimator(self)
         alphas = DEFAULT_ALPHAS if self.alphas is None else np.atleast_1d(
             np.asarray(self.alphas, dtype=float))
-        if alphas.ndim != 1 or alphas.size == 0 or not np.all(np.isfinite(alphas) & (alphas > 0)):
-            raise ParameterError(f"LagBank alphas={self.alphas!r} must be positive numbers")
         return np.sort(alphas)
 
     # -- features -----------------------------------------------------------------------

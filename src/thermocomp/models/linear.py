@@ -6,6 +6,7 @@ from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.linear_model import LinearRegression
 from sklearn.utils.validation import check_is_fitted, validate_data
 
+from ..params import BOOLEAN, check_estimator
 from .base import LinearStreamMixin
 
 
@@ -27,10 +28,13 @@ class MLR(LinearStreamMixin, RegressorMixin, BaseEstimator):
     intercept_ : float
     """
 
+    param_rules = {"fit_intercept": BOOLEAN}
+
     def __init__(self, fit_intercept: bool = True):
         self.fit_intercept = fit_intercept
 
     def fit(self, X, y, context=None):
+        check_estimator(self)
         X, y = validate_data(self, X, y, y_numeric=True)
         lr = LinearRegression(fit_intercept=self.fit_intercept).fit(X, y)
         self.coef_ = lr.coef_

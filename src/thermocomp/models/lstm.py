@@ -11,8 +11,8 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 from torch import nn
 
 from ..context import SideInputs, groups_of
-from ..errors import ParameterError
 from ..model_selection import CampaignHoldOut
+from ..params import NON_NEGATIVE, check_estimator, integer, number
 from ._dynamics import segment_bounds
 
 
@@ -163,16 +163,15 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         tags.non_deterministic = False
         return tags
 
+    param_rules = {**{name: integer(1) for name in ("hidden_size", "num_layers", "chunk",
+                                                      "batch_size", "max_epochs", "patience",
+                                                      "n_threads")},
+                   "dropout": number(0.0, 1.0, open_hi=True), "learning_rate": NON_NEGATIVE,
+                   "weight_decay": NON_NEGATIVE,
+                   "validation_fraction": number(0.0, 1.0, open_hi=True)}
+
     def _check_params(self) -> None:
-        positive = {"hidden_size": self.hidden_size, "num_layers": self.num_layers,
-                    "chunk": self.chunk, "batch_size": self.batch_size,
-                    "max_epochs": self.max_epochs, "patience": self.patience,
-                    "n_threads": self.n_threads}
-        for name, value in positive.items():
-            if int(value) < 1:
-                raise ParameterError(f"LSTM {name}={value!r} must be >= 1")
-        if not 0 <= float(self.validation_fraction) < 1:
-            raise ParameterError(f"LSTM validation_fraction={self.validation_fraction!r} must be in [0, 1)")
+        check_estimator(self)
 
     def _validation_rows(self, groups, n: int) -> np.ndarray:
         """Boolean mask of validation rows: whole campaigns, or the tail of a single one."""

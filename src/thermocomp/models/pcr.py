@@ -8,7 +8,7 @@ from sklearn.linear_model import LinearRegression
 from sklearn.preprocessing import StandardScaler
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..errors import ParameterError
+from ..params import check_estimator, number
 from .base import LinearStreamMixin
 
 
@@ -45,13 +45,14 @@ class PCR(LinearStreamMixin, RegressorMixin, BaseEstimator):
     explained_variance_ratio_ : ndarray of shape (n_components_,)
     """
 
+    param_rules = {"variance": number(0.0, 1.0, open_lo=True)}
+
     def __init__(self, variance: float = 0.95):
         self.variance = variance
 
     def fit(self, X, y, context=None):
+        check_estimator(self)
         X, y = validate_data(self, X, y, y_numeric=True)
-        if not 0 < self.variance <= 1:
-            raise ParameterError(f"variance must be in (0, 1], got {self.variance}")
         scaler = StandardScaler().fit(X)
         Xs = scaler.transform(X)
         n_comp = self.variance if self.variance < 1 else min(X.shape)

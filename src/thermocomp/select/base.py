@@ -2,16 +2,14 @@
 
 from __future__ import annotations
 
-import numbers
-
 import numpy as np
 import pandas as pd
 from sklearn.base import BaseEstimator
 from sklearn.feature_selection import SelectorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..errors import ParameterError
 from ..model_selection.criteria import CRITERIA, ic_path
+from ..params import check_estimator, choice, integer, optional
 
 
 class AllInputs(BaseEstimator):
@@ -44,6 +42,7 @@ class TSPSelector(SelectorMixin, BaseEstimator):
     """
 
     _k_min = 1
+    param_rules = {"k": optional(integer(1)), "criterion": choice(*CRITERIA), "k_max": integer(1)}
 
     def _names(self, n_features: int) -> np.ndarray:
         names = getattr(self, "feature_names_in_", None)
@@ -53,13 +52,7 @@ class TSPSelector(SelectorMixin, BaseEstimator):
     def check_params(self) -> None:
         """Raise :class:`~thermocomp.errors.ParameterError` (a ValueError) for a parameter
         outside its allowed values."""
-        for name, value, none in (("k", self.k, " or None"), ("k_max", self.k_max, "")):
-            if (value is None and none) or (isinstance(value, numbers.Integral)
-                                            and not isinstance(value, bool) and value >= 1):
-                continue
-            raise ParameterError(f"{name} must be a positive integer{none}, got {value!r}")
-        if self.criterion not in CRITERIA:
-            raise ParameterError(f"criterion must be one of {CRITERIA}, got {self.criterion!r}")
+        check_estimator(self)
 
     def fit(self, X, y, groups=None):
         """Select sensors for target ``y``; ``groups`` (campaign per row) is accepted for API

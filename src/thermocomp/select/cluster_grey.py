@@ -2,12 +2,10 @@
 
 from __future__ import annotations
 
-import numbers
-
 import numpy as np
 import skfuzzy
 
-from ..errors import ParameterError
+from ..params import number
 from .base import TSPSelector
 from .pearson import abs_correlation
 
@@ -93,6 +91,9 @@ class ClusterGreySelector(TSPSelector):
     """
 
     score_label = "grey relational degree"
+    # rho: the grey distinguishing coefficient, in (0, 1] (0.5 usual)
+    param_rules = {**TSPSelector.param_rules, "m": number(1.0, open_lo=True),
+                   "rho": number(0.0, 1.0, open_lo=True)}
 
     def __init__(self, k: int | None = None, criterion: str = "bicc", k_max: int = 10,
                  m: float = 2.0, rho: float = 0.5, random_state: int = 0):
@@ -103,13 +104,6 @@ class ClusterGreySelector(TSPSelector):
         self.rho = rho
         self.random_state = random_state
 
-    def check_params(self) -> None:
-        super().check_params()
-        for name, value in (("m", self.m), ("rho", self.rho)):
-            bound = 1 if name == "m" else 0
-            if not (isinstance(value, numbers.Real) and not isinstance(value, bool)
-                    and value > bound):
-                raise ParameterError(f"{name} must be a number > {bound}, got {value!r}")
 
     def _candidate_sets(self, A, y, groups):
         grey = grey_relational_degree(A, y, self.rho)

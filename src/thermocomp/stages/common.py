@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 import tempfile
 import time
@@ -15,10 +16,22 @@ from ..compensator import MODES, Compensator
 from ..errors import ConfigError
 from ..frame import REFERENCES
 from ..log import logger
-from ..params import check_values, integer, optional
+from ..params import BOOLEAN, check_params, check_values, integer, number, optional, texts
 from ..paths import resolve
 
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
+
+# What the plain keys of the shared config groups may be (the components below check their own).
+CONFIG_RULES = {
+    "track": optional(BOOLEAN),
+    "eval.e_p95.max_points": optional(integer(2)),  # 0 or 1 window lengths: an empty E_P95 curve
+    "eval.anova_alpha": number(0.0, 1.0, open_lo=True, open_hi=True),
+    "eval.mutual_prediction": BOOLEAN, "eval.ati_baselines": BOOLEAN, "eval.iso10791_a3": BOOLEAN,
+    "eval.validation": BOOLEAN, "eval.validation_folds": integer(2),
+    "data.targets": optional(texts("E_ column names")),
+}
+# The configured estimators, denoiser and selector: each checks its ``param_rules``.
+COMPONENTS = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector")
 
 
 def say(msg: str) -> None:
@@ -59,23 +72,44 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",)) -> None:
     choices = {"eval.mode": (cfg.eval.mode, MODES), "data.reference": (cfg.data.reference, REFERENCES),
                "eval.e_p95.statistic": (cfg.eval.e_p95.statistic, ("range", "std")),
                "plots": (cfg.plots, PLOTS)}
-    ati = cfg.get("ati") or {}
-    if ati.get("estimator") is not None and "clustering" in ati.estimator:
-        choices["ati.estimator.clustering"] = (ati.estimator.clustering, ("fuzzy", "hard"))
     for key, (value, allowed) in choices.items():
         if value not in allowed:
             raise ConfigError(f"{key}={value!r} is not one of {list(allowed)}")
-    # 0 or 1 window lengths would leave the E_P95 curve empty
-    check_values({"max_points": cfg.eval.e_p95.get("max_points")},
-                 {"max_points": optional(integer(2))}, "eval.e_p95")
-    selector = instantiate(cfg.select.selector)
-    if hasattr(selector, "check_params"):
-        try:
-            selector.check_params()
-        except ValueError as exc:
-            raise ConfigError(f"select.selector: {exc}") from exc
+    check_keys(cfg, CONFIG_RULES)
+    for key in COMPONENTS:
+        node = OmegaConf.select(cfg, key)
+        if node is not None:
+            check_component(instantiate(node), key)
     for key in outputs:
         _check_writable(key, OmegaConf.select(cfg, key), folder=key != "model_path")
+
+
+def check_keys(cfg: DictConfig, rules: dict) -> None:
+    """Every dotted key of ``rules`` in ``cfg`` within its rule (``eval.validation_folds=1:
+    must be an integer >= 2``)."""
+    for key, rule in rules.items():
+        group, _, name = key.rpartition(".")
+        check_values({name: OmegaConf.select(cfg, key)}, {name: rule}, group)
+
+
+def check_component(component, key: str) -> None:
+    """``component`` (instantiated from config ``key``; a ``_partial_`` one too) and the
+    estimators it holds, each against its ``param_rules``: ``model.estimator.arx.max_inputs=0:
+    must be an integer >= 1`` before any data is read."""
+    if isinstance(component, functools.partial):       # ati.estimator: the base comes later
+        component = component.func(*component.args, **component.keywords)
+    check_params(component, key)
+    # scikit-learn's own estimators (the forest of arx_rf) check their parameters in fit, after
+    # the data are read: ask them now (private API, but the one scikit-learn itself uses).
+    if not hasattr(component, "param_rules") and hasattr(component, "_parameter_constraints"):
+        try:
+            component._validate_params()
+        except ValueError as exc:
+            raise ConfigError(f"{key}: {exc}") from None
+    if hasattr(component, "get_params"):
+        for name, value in component.get_params(deep=False).items():
+            if hasattr(value, "get_params"):
+                check_component(value, f"{key}.{name}")
 
 
 def _check_writable(key: str, value, folder: bool) -> None:
@@ -119,10 +153,7 @@ def build_denoiser(cfg: DictConfig):
     if den is None or den.get("denoiser") is None:
         return None
     denoiser = instantiate(den.denoiser)
-    try:
-        denoiser.check_params()
-    except ValueError as exc:
-        raise ConfigError(f"denoise.denoiser: {exc}") from exc
+    check_component(denoiser, "denoise.denoiser")
     return denoiser
 
 

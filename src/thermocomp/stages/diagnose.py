@@ -34,6 +34,18 @@ from ..errors import ConfigError
 from ..files import atomic_dir, write_json
 from ..headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
 from ..model_selection import CV_SCHEMES
+from ..params import (
+    BOOLEAN,
+    NON_NEGATIVE,
+    POSITIVE,
+    check_values,
+    choice,
+    integer,
+    integers,
+    number,
+    numbers,
+    subset,
+)
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import build_compensator, check_config, data_options, say
@@ -41,40 +53,30 @@ from .common import build_compensator, check_config, data_options, say
 MODEL_NAME = "diagnosed"
 
 
+# What each ``diagnose.*`` key may be (``targets`` is checked against the modelled targets).
+DIAGNOSE_RULES = {
+    "max_effects": integer(0), "min_gain_pct": NON_NEGATIVE,
+    "alpha": number(0.0, 1.0, open_lo=True, open_hi=True), "shortlist": integer(1),
+    "cv": choice(*CV_SCHEMES), "n_folds": integer(2), "n_blocks": integer(2),
+    "min_train_fraction": number(0.0, 1.0, open_lo=True, open_hi=True), "shrink": BOOLEAN,
+    "taus_s": numbers(0.0, open_lo=True, empty=True),        # empty: no lagged effects tried
+    "initial_directions": integers(1, empty=True), "n_squares": integer(0),
+    "fault_ratio": POSITIVE, "families": subset(KINDS),
+}
+
+
 def search_options(dcfg) -> SearchOptions:
-    """``diagnose.*`` -> SearchOptions; a value out of range is a ConfigError (exit 2)."""
-    def positive(key, cast=float, minimum=0.0, strict=True):
-        v = cast(dcfg[key])
-        if v < minimum or (strict and v == minimum):
-            raise ConfigError(f"diagnose.{key}={dcfg[key]!r} must be {'>' if strict else '>='} {minimum}")
-        return v
-    families = tuple(dcfg.families)
-    unknown = [f for f in families if f not in KINDS]
-    if unknown:
-        raise ConfigError(f"diagnose.families has unknown {unknown} (known: {list(KINDS)})")
-    alpha = float(dcfg.alpha)
-    if not 0 < alpha < 1:
-        raise ConfigError(f"diagnose.alpha={alpha} must be in (0, 1)")
-    cv = str(dcfg.get("cv", "auto"))
-    if cv not in CV_SCHEMES:
-        raise ConfigError(f"diagnose.cv={cv!r} must be one of {list(CV_SCHEMES)}")
-    fraction = float(dcfg.get("min_train_fraction", 0.5))
-    if not 0 < fraction < 1:
-        raise ConfigError(f"diagnose.min_train_fraction={fraction} must be in (0, 1)")
-    taus = tuple(float(t) for t in dcfg.taus_s)
-    if any(t <= 0 for t in taus):
-        raise ConfigError(f"diagnose.taus_s={list(taus)} must all be > 0 s")
+    """``diagnose.*`` -> SearchOptions; a value outside its rule is a ConfigError (exit 2)."""
+    check_values(dcfg, DIAGNOSE_RULES, "diagnose")
     return SearchOptions(
-        max_effects=positive("max_effects", int, 0, strict=False),
-        min_gain_pct=positive("min_gain_pct", float, 0, strict=False),
-        alpha=alpha, shortlist=positive("shortlist", int, 1, strict=False),
-        n_folds=positive("n_folds", int, 2, strict=False),
-        n_blocks=positive("n_blocks", int, 2, strict=False),
-        seed=int(dcfg.seed), cv=cv, min_train_fraction=fraction,
-        shrink=bool(dcfg.get("shrink", True)),
-        candidates=CandidateOptions(taus_s=taus, n_squares=positive("n_squares", int, 0, strict=False),
-                                    fault_ratio=positive("fault_ratio"), families=families,
-                                    initial_directions=tuple(int(k) for k in dcfg.initial_directions)))
+        max_effects=dcfg.max_effects, min_gain_pct=float(dcfg.min_gain_pct),
+        alpha=float(dcfg.alpha), shortlist=dcfg.shortlist, n_folds=dcfg.n_folds,
+        n_blocks=dcfg.n_blocks, seed=int(dcfg.seed), cv=str(dcfg.cv),
+        min_train_fraction=float(dcfg.min_train_fraction), shrink=dcfg.shrink,
+        candidates=CandidateOptions(taus_s=tuple(float(t) for t in dcfg.taus_s),
+                                    n_squares=dcfg.n_squares, fault_ratio=float(dcfg.fault_ratio),
+                                    families=tuple(dcfg.families),
+                                    initial_directions=tuple(dcfg.initial_directions)))
 
 
 def _container(node):
