@@ -150,6 +150,25 @@ def test_promote_without_run_or_sweep_is_a_config_error(project, capsys):
     assert "no sweep" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize("override, says", [
+    # each was read as given: a truthy text forced the alias, a negative bar let a worse model in
+    ("promote.force=maybe", "promote.force='maybe': must be true or false"),
+    ("promote.min_improvement=-1", "promote.min_improvement=-1: must be a number >= 0"),
+    ("promote.envelope.policy=ignore", "promote.envelope.policy='ignore': must be one of clamp"),
+    ("promote.envelope.margin=-0.5", "promote.envelope.margin=-0.5: must be a number >= 0"),
+    ("promote.max_stream_deviation_um=-1", "promote.max_stream_deviation_um=-1:"),
+])
+def test_promote_refuses_bad_settings_before_reading_a_run(project, capsys, override, says):
+    import mlflow
+
+    _, common, uri, weak, _ = project
+    mlflow.set_tracking_uri(uri)
+    before = len(mlflow.search_registered_models())
+    assert main(["promote", *common, f"promote.run_id={weak}", override]) == 2
+    assert says in capsys.readouterr().err
+    assert len(mlflow.search_registered_models()) == before
+
+
 def test_promote_refuses_to_choose_by_a_test_figure(project, capsys):
     _, common, _, weak, _ = project
     assert main(["promote", *common, f"promote.run_id={weak}", "promote.criterion=rsd_mean"]) == 2

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import os
+import re
 import subprocess
 from pathlib import Path
 
@@ -108,6 +109,11 @@ def test_serve_command_uses_the_project_store_one_worker_and_the_venv_bin(promot
     assert argv[argv.index("-w") + 1] == "1" and argv[argv.index("-p") + 1] == "5123"
     with pytest.raises(ConfigError, match="no such model version"):
         serve_command(_compose([f"tracking_uri={mlflow_store(root / 'empty')}"]))
+    # settings first, before the store is opened (`serve.port=abc` was a traceback)
+    for override, says in [("serve.port=abc", "serve.port='abc': must be an integer in [1, 65535]"),
+                           ("serve.port=0", "serve.port=0:"), ("serve.timeout_s=0", "serve.timeout_s=0:")]:
+        with pytest.raises(ConfigError, match=re.escape(says)):
+            serve_command(_compose([f"tracking_uri={uri}", override]))
 
 
 def test_serve_without_a_promoted_model_exits_2(tmp_path, capsys):

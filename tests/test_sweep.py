@@ -89,6 +89,9 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
     assert again["rms_reduction_pct"].is_monotonic_decreasing and len(again) == 4
     assert (out / "compare.md").read_text().startswith("| status")
     assert main(["compare", f"tracking_uri={uri}", "compare.sort_by=nope"]) == 2
+    capsys.readouterr()
+    assert main(["compare", f"tracking_uri={uri}", "compare.descending=maybe"]) == 2  # was: truthy
+    assert "compare.descending='maybe': must be null or true or false" in capsys.readouterr().err
 
     # promote the sweep's best: only with the dataset its runs were scored on, and only once
     other = write_small_dataset(tmp_path / "other", seed=1)

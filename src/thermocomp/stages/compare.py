@@ -21,12 +21,13 @@ from ..errors import ConfigError
 from ..files import atomic_write_text, write_json
 from ..jsonsafe import json_safe
 from ..leaderboard import FIGURES, VAL_FIGURES, baseline_rows, is_validation, rank, to_markdown
+from ..params import BOOLEAN, optional, text
 from ..paths import resolve
 from ..plotdata import write_compare
 from ..sweeps import parent_run_id, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
-from .common import say
+from .common import check_keys, say
 
 
 def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
@@ -45,6 +46,7 @@ def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
 
 def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     """Rank the children of ``parent_id``; print, save and log the table."""
+    check_keys(cfg, {"compare.descending": optional(BOOLEAN), "compare.target": text()})
     client = mlflow_client(cfg)
     uri = connect(cfg)
     opts = cfg.compare

@@ -47,17 +47,26 @@ from omegaconf import DictConfig, OmegaConf
 
 from .. import io, signing
 from ..compensator import Compensator
-from ..deploy import stream_scores, streaming_deviation
+from ..deploy import POLICIES, stream_scores, streaming_deviation
 from ..deploy.report import summary as deployed_summary
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json
 from ..leaderboard import beats, is_validation, rank, summary
+from ..params import BOOLEAN, NON_NEGATIVE, choice, text
 from ..paths import project_root, resolve
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
 from ..tracking import DATASET_TAG, child_runs, connect, end_active_run, retry_locked
 from ..tracking import client as mlflow_client
-from .common import check_config, data_options, deploy_stream, deployable, say
+from .common import check_config, check_keys, data_options, deploy_stream, deployable, say
+
+# What the plain promote.* keys may be (the criterion and target are checked against the runs).
+PROMOTE_RULES = {
+    "promote.model_name": text(), "promote.alias": text(),
+    "promote.min_improvement": NON_NEGATIVE,   # negative would let a worse candidate replace it
+    "promote.force": BOOLEAN, "promote.envelope.policy": choice(*POLICIES),
+    "promote.envelope.margin": NON_NEGATIVE, "promote.max_stream_deviation_um": NON_NEGATIVE,
+}
 
 
 def git_commit() -> tuple[str, bool]:
@@ -227,6 +236,7 @@ def promote(cfg: DictConfig) -> dict:
     the champion's figures on the same dataset) gets no new version.
     """
     check_config(cfg)
+    check_keys(cfg, PROMOTE_RULES)
     import mlflow
 
     from ..deploy.pyfunc import REPORT_COLUMNS, correction_column, log_compensator

@@ -20,6 +20,7 @@ Request: ``POST http://<host>:<port>/invocations`` with
 
 from __future__ import annotations
 
+import math
 import os
 import sys
 from pathlib import Path
@@ -27,9 +28,12 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from ..errors import ConfigError
+from ..params import POSITIVE, check_values, integer, text
 from ..paths import resolve
 from ..tracking import DEFAULT_URI, resolve_uri, retry_locked
 from .common import say
+
+SERVE_RULES = {"model": text(), "host": text(), "port": integer(1, 65535), "timeout_s": POSITIVE}
 
 
 def _check_model(model: str, uri: str) -> str:
@@ -62,16 +66,15 @@ def _check_model(model: str, uri: str) -> str:
 def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
     """``(argv, environment)`` of the server ``thermocomp serve`` runs."""
     opts = cfg.serve
+    check_values(opts, SERVE_RULES, "serve")
     uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
     model = _check_model(str(opts.model), uri)
-    port = int(opts.port)
-    if not 0 < port < 65536:
-        raise ConfigError(f"serve.port={opts.port} is not a TCP port")
+    port = opts.port
     bin_dir = str(Path(sys.executable).parent)
     env = {**os.environ, "MLFLOW_TRACKING_URI": uri, "MLFLOW_REGISTRY_URI": uri,
            "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")])}
     argv = [str(Path(bin_dir) / "mlflow"), "models", "serve", "-m", model, "--env-manager", "local",
-            "-h", str(opts.host), "-p", str(port), "-w", "1", "-t", str(int(opts.timeout_s))]
+            "-h", str(opts.host), "-p", str(port), "-w", "1", "-t", str(math.ceil(opts.timeout_s))]
     return argv, env
 
 
