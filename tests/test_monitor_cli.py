@@ -169,18 +169,21 @@ def test_a_simulated_fault_on_the_swiss_lathe_is_caught_bounded_and_compensated(
 
 # -- hostile input: exit 2, one line, nothing written -----------------------------------------
 CONFIG_CASES = {
-    "input=bad": (["monitor.input=bad"], ["monitor.input='bad'", "'-'"]),
-    "warning_c=-1": (["monitor.bands.warning_c=-1"], ["monitor.bands.warning_c", "got -1"]),
-    "alarm below warning": (["monitor.bands.alarm_c=0.2"], ["monitor.bands.alarm_c", ">= 0.4"]),
-    "window=0": (["monitor.window=0"], ["monitor.window must be an integer >= 1, got 0"]),
-    "window=abc": (["monitor.window=abc"], ["monitor.window", "got 'abc'"]),
-    "confirm=20": (["monitor.confirm=20"], ["monitor.confirm", "<= 10", "got 20"]),
-    "exclude_at=x": (["monitor.exclude_at=x"], ["monitor.exclude_at='x'", "'warning', 'alarm'"]),
-    "pod.energy=2": (["monitor.pod.energy=2"], ["monitor.pod.energy", "<= 1", "got 2"]),
-    "pod.modes=0": (["monitor.pod.modes=0"], ["monitor.pod.modes", "got 0"]),
+    "input=bad": (["monitor.input=bad"], ["monitor.input='bad': must be one of null, -"]),
+    "warning_c=-1": (["monitor.bands.warning_c=-1"], ["monitor.bands.warning_c=-1: must be a number > 0"]),
+    "alarm below warning": (["monitor.bands.alarm_c=0.2"],
+                            ["monitor.bands.alarm_c=0.2: must be >= monitor.bands.warning_c=0.4"]),
+    "window=0": (["monitor.window=0"], ["monitor.window=0: must be an integer >= 1"]),
+    "window=abc": (["monitor.window=abc"], ["monitor.window='abc': must be an integer >= 1"]),
+    "confirm=20": (["monitor.confirm=20"], ["monitor.confirm=20: must be <= monitor.window=10"]),
+    "exclude_at=x": (["monitor.exclude_at=x"], ["monitor.exclude_at='x': must be one of warning, alarm"]),
+    "pod.energy=2": (["monitor.pod.energy=2"], ["monitor.pod.energy=2: must be a number in (0, 1]"]),
+    "pod.modes=0": (["monitor.pod.modes=0"], ["monitor.pod.modes=0: must be null or an integer >= 1"]),
     "pod.placement=svd": (["monitor.pod.placement=svd"], ["monitor.pod.placement='svd'"]),
-    "guard.margin=-0.1": (["monitor.guard.margin=-0.1"], ["monitor.guard.margin", "got -0.1"]),
-    "map_time_h=-1": (["monitor.map_time_h=-1"], ["monitor.map_time_h", "got -1"]),
+    "guard.margin=-0.1": (["monitor.guard.margin=-0.1"],
+                          ["monitor.guard.margin=-0.1: must be a number >= 0"]),
+    "map_time_h=-1": (["monitor.map_time_h=-1"], ["monitor.map_time_h=-1: must be null or a number >= 0"]),
+    "adaptive=maybe": (["monitor.adaptive=maybe"], ["monitor.adaptive='maybe': must be true or false"]),
 }
 
 

@@ -6,17 +6,33 @@ import functools
 import math
 import tempfile
 import time
+from collections.abc import Mapping
 from pathlib import Path
 
 from hydra.utils import instantiate
-from omegaconf import DictConfig, ListConfig, OmegaConf
+from omegaconf import DictConfig, OmegaConf
 
 from .. import io, signing
 from ..compensator import MODES, Compensator
 from ..errors import ConfigError
 from ..frame import REFERENCES
 from ..log import logger
-from ..params import BOOLEAN, check_params, check_values, integer, number, optional, texts
+from ..params import (
+    BOOLEAN,
+    NON_NEGATIVE,
+    POSITIVE,
+    Rule,
+    check_params,
+    check_values,
+    choice,
+    either,
+    integer,
+    number,
+    numbers,
+    optional,
+    subset,
+    texts,
+)
 from ..paths import resolve
 
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
@@ -275,36 +291,23 @@ def result_table(metrics: dict) -> str:
 
 KINDS = ("positioning", "straightness", "angular", "cross")
 FORMATS = ("parquet", "csv")
+CALIBRATE_RULES = {
+    "outlier_z": either(POSITIVE, Rule(lambda v: v == math.inf, "inf")),  # inf: fit them as they are
+    "column_share": number(0.0, 1.0, open_lo=True), "format": choice(*FORMATS),
+    "require_seen": subset(KINDS, empty=True),
+    "prior": optional(Rule(lambda v: isinstance(v, Mapping) and len(v) > 0,
+                           "a range a per kind (as design.ranges: positioning, straightness, "
+                           "squareness, angular, cross, decay)")),
+}
 
 
 def check_calibrate(c: DictConfig) -> None:
     """Refuse a ``calibrate.*`` value the stage cannot use, before any data is read."""
-    def number(key, low, high=None, infinite=False):
-        v = c.get(key)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) \
-                or not (math.isfinite(v) or (infinite and v == math.inf)) \
-                or v <= low or (high is not None and v > high):
-            raise ConfigError(f"calibrate.{key} must be a number > {low:g}"
-                              f"{f' and <= {high:g}' if high is not None else ''}"
-                              f"{' (or inf)' if infinite else ''}, got {v!r}")
-
-    number("outlier_z", 0, infinite=True)
-    number("column_share", 0, 1)
-    if c.get("format") not in FORMATS:
-        raise ConfigError(f"calibrate.format={c.get('format')!r} is not one of {list(FORMATS)}")
-    bad = [k for k in (c.get("require_seen") or []) if k not in KINDS]
-    if bad:
-        raise ConfigError(f"calibrate.require_seen: unknown kind(s) {bad}; use {list(KINDS)}")
+    check_values(c, CALIBRATE_RULES, "calibrate")
     prior = c.get("prior")
-    if prior is not None:
-        if not isinstance(prior, DictConfig) or not prior:
-            raise ConfigError("calibrate.prior must be null or a range a per kind (as design.ranges: "
-                              f"positioning, straightness, squareness, angular, cross, decay), got {prior!r}")
-        for k, v in prior.items():
-            for a in (v if isinstance(v, ListConfig) and k != "decay" else [v]):   # a per order
-                if isinstance(a, bool) or not isinstance(a, (int, float)) or not math.isfinite(a) or a < 0:
-                    raise ConfigError(f"calibrate.prior.{k} must be a number >= 0 (or a list of them, "
-                                      f"one per order), got {v!r}")
+    if prior is not None:    # a range per kind (decay: one number), or one per Legendre order
+        check_values(prior, {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0))
+                             for k in prior}, "calibrate.prior")
 
 
 def calibrated_dataset(cfg: DictConfig):

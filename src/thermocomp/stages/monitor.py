@@ -13,7 +13,6 @@ campaigns must be complete, or repaired within the ``data`` limits.  Writes
 
 from __future__ import annotations
 
-import math
 import sys
 from pathlib import Path
 
@@ -33,12 +32,14 @@ from ..monitor import (
     qr_sensors,
     undetected_offset_um,
 )
+from ..params import BOOLEAN, NON_NEGATIVE, POSITIVE, choice, integer, number, optional
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import (
     build_adaptive,
     build_compensator,
     check_config,
+    check_keys,
     deploy_stream,
     load_model,
     read_streamed,
@@ -92,51 +93,34 @@ def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.nd
     return y, events, (states, errors)
 
 
-def check_monitor(m: DictConfig) -> None:
+# What each monitor.* key may be; the relations between them are in check_monitor.
+MONITOR_RULES = {f"monitor.{k}": rule for k, rule in {
+    "input": choice(None, "-"), "adaptive": BOOLEAN, "window": integer(1), "confirm": integer(1),
+    "exclude_at": choice("warning", "alarm"), "bands.warning_c": POSITIVE,
+    "bands.alarm_c": POSITIVE, "bands.learned": BOOLEAN,
+    "pod.energy": number(0.0, 1.0, open_lo=True), "pod.modes": optional(integer(1)),
+    "pod.fit_share": optional(POSITIVE), "pod.max_leverage": number(0.0, 1.0, open_lo=True),
+    "pod.placement": choice("qr", "covariance"), "detectors.jump_factor": POSITIVE,
+    "detectors.freeze_factor": POSITIVE, "detectors.range_margin_c": NON_NEGATIVE,
+    "guard.margin": NON_NEGATIVE, "guard.rate_margin": NON_NEGATIVE,
+    "map_time_h": optional(NON_NEGATIVE)}.items()}
+
+
+def check_monitor(cfg: DictConfig) -> None:
     """Refuse a ``monitor.*`` value the monitor cannot use, before any data is read."""
-    def number(key, value, low=None, high=None, low_open=False, integer=False, null=False):
-        if value is None and null:
-            return
-        kind = "an integer" if integer else "a number"
-        ok = (not isinstance(value, bool) and isinstance(value, int if integer else (int, float))
-              and math.isfinite(value)
-              and (low is None or (value > low if low_open else value >= low))
-              and (high is None or value <= high))
-        if not ok:
-            where = "".join([f" {'>' if low_open else '>='} {low:g}" if low is not None else "",
-                             f" and <= {high:g}" if high is not None else ""])
-            raise ConfigError(f"monitor.{key} must be {kind}{where}{' or null' * null}, "
-                              f"got {value!r}")
-
-    def choice(key, value, allowed):
-        if value not in allowed:
-            raise ConfigError(f"monitor.{key}={value!r} is not one of {list(allowed)}")
-
-    choice("input", m.get("input"), (None, "-"))
-    choice("adaptive", m.adaptive, (True, False))
-    choice("exclude_at", m.exclude_at, ("warning", "alarm"))
-    choice("bands.learned", m.bands.learned, (True, False))
-    choice("pod.placement", m.pod.placement, ("qr", "covariance"))
-    number("window", m.window, 1, integer=True)
-    number("confirm", m.confirm, 1, m.window, integer=True)
-    number("bands.warning_c", m.bands.warning_c, 0, low_open=True)
-    number("bands.alarm_c", m.bands.alarm_c, m.bands.warning_c)
-    number("pod.energy", m.pod.energy, 0, 1, low_open=True)
-    number("pod.modes", m.pod.modes, 1, integer=True, null=True)
-    number("pod.fit_share", m.pod.fit_share, 0, low_open=True, null=True)
-    number("pod.max_leverage", m.pod.max_leverage, 0, 1, low_open=True)
-    for key in ("jump_factor", "freeze_factor"):
-        number(f"detectors.{key}", m.detectors[key], 0, low_open=True)
-    number("detectors.range_margin_c", m.detectors.range_margin_c, 0)
-    for key in ("margin", "rate_margin"):
-        number(f"guard.{key}", m.guard[key], 0)
-    number("map_time_h", m.get("map_time_h"), 0, null=True)
+    check_keys(cfg, MONITOR_RULES)
+    m = cfg.monitor
+    if m.confirm > m.window:
+        raise ConfigError(f"monitor.confirm={m.confirm}: must be <= monitor.window={m.window}")
+    if m.bands.alarm_c < m.bands.warning_c:
+        raise ConfigError(f"monitor.bands.alarm_c={m.bands.alarm_c}: must be >= "
+                          f"monitor.bands.warning_c={m.bands.warning_c}")
 
 
 def monitor(cfg: DictConfig) -> dict:
     """Stream the test campaigns (or stdin) through the fixed and the adaptive compensator."""
     check_config(cfg)
-    check_monitor(cfg.monitor)
+    check_monitor(cfg)
     stdin = cfg.monitor.get("input") == "-"
     ds, train_ids, test_ids, missing = read_streamed(cfg, test=not stdin)
     streamed = {c: ds.campaigns[c] for c in test_ids}
