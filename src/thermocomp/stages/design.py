@@ -9,13 +9,25 @@ and figures in ``<out>/design/``; prints the table and the findings.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
 
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
+from ..params import (
+    BOOLEAN,
+    NON_NEGATIVE,
+    POSITIVE,
+    Rule,
+    check_values,
+    either,
+    integer,
+    integers,
+    numbers,
+    optional,
+    texts,
+)
 from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric import KinematicModel, load_setup
@@ -25,70 +37,50 @@ from ..volumetric.design import KINDS, CalibrationDesignStudy, MachineFamily, st
 from .common import calibration_prior, check_calibrate, check_config, say
 
 
-def _number(key, value, low=None, integer=False, null=False, low_open=False):
-    if value is None and null:
-        return
-    ok = (not isinstance(value, bool) and isinstance(value, int if integer else (int, float))
-          and math.isfinite(value) and (low is None or (value > low if low_open else value >= low)))
-    if not ok:
-        bound = "" if low is None else f" {'>' if low_open else '>='} {low:g}"
-        raise ConfigError(f"design.{key} must be {'an integer' if integer else 'a number'}{bound}"
-                          f"{' or null' * null}, got {value!r}")
+def _not_zero(v) -> bool:
+    return integer(1)(v) or (integer(-(2 ** 31))(v) and v < 0)
+
+
+def _position_sets(v) -> bool:
+    return texts()(v) and all(p.strip() in POSITION_SETS for ps in v for p in str(ps).split("+"))
+
+
+# What each design.* key may be (the study's structure and the machine's order are checked below).
+DESIGN_RULES = {
+    "n_machines": integer(1),
+    "n_jobs": Rule(_not_zero, "an integer other than 0 (-1: every core)"),
+    "grid": Rule(lambda v: integers(2)(v) and len(list(v)) == 3, "3 integers >= 2 (points in X, Y, Z)"),
+    "x_centres": numbers(0.0, 1.0), "length_mm": optional(POSITIVE),
+    "probing_um": optional(NON_NEGATIVE), "ball_um": optional(NON_NEGATIVE),
+    "compensation_order": optional(integer(1)),
+}
+STUDY_RULES = {
+    "n_balls": integers(2),
+    "misalignment_deg": Rule(lambda v: numbers(0.0)(v) and all(x < 90 for x in v),
+                             "a non-empty list of angles in [0, 90)"),
+    "position_sets": Rule(_position_sets, f"a non-empty list of '+'-joined {', '.join(POSITION_SETS)}"),
+}
 
 
 def check_design(d: dict) -> None:
     """Refuse a ``design.*`` value the study cannot use, before any work."""
-    _number("n_machines", d.get("n_machines"), 1, integer=True)
-    _number("n_jobs", d.get("n_jobs"), integer=True)
-    if d.get("n_jobs") == 0:
-        raise ConfigError("design.n_jobs must not be 0 (-1: every core)")
-    grid = d.get("grid")
-    if not isinstance(grid, list) or len(grid) != 3:
-        raise ConfigError(f"design.grid must be 3 numbers of points (X, Y, Z), got {grid!r}")
-    for g in grid:
-        _number("grid", g, 2, integer=True)
-    xc = d.get("x_centres")
-    if not isinstance(xc, list) or not xc or not all(
-            isinstance(x, (int, float)) and not isinstance(x, bool) and 0 <= x <= 1 for x in xc):
-        raise ConfigError(f"design.x_centres must be fractions of the X travel in [0, 1], got {xc!r}")
-    _number("length_mm", d.get("length_mm"), 0, null=True, low_open=True)
-    for key in ("probing_um", "ball_um"):
-        _number(key, d.get(key), 0, null=True)
-    _number("compensation_order", d.get("compensation_order"), 1, integer=True, null=True)
-    machine = d.get("machine") or {}
-    _number("machine.order", machine.get("order"), 1, integer=True, null=True)
-    if machine.get("cross_terms") not in (True, False):
-        raise ConfigError("design.machine.cross_terms must be true or false, "
-                          f"got {machine.get('cross_terms')!r}")
-    ranges = dict(d.get("ranges") or {})
-    _number("ranges.decay", ranges.pop("decay", None), 0)
-    for k, v in ranges.items():
-        if k not in KINDS:
-            raise ConfigError(f"design.ranges.{k}: not a parameter kind ({', '.join(KINDS)}, decay)")
-        for a in (v if isinstance(v, list) else [v]):
-            _number(f"ranges.{k}", a, 0)
+    check_values(d, DESIGN_RULES, "design")
+    check_values(d.get("machine") or {}, {"order": optional(integer(1)), "cross_terms": BOOLEAN},
+                 "design.machine")
+    ranges = d.get("ranges") or {}
+    unknown = [k for k in ranges if k not in (*KINDS, "decay")]
+    if unknown:
+        raise ConfigError(f"design.ranges.{unknown[0]}: not a parameter kind ({', '.join(KINDS)}, decay)")
+    check_values(ranges, {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0))
+                          for k in ("decay", *ranges)}, "design.ranges")
     studies = d.get("studies")
     if not isinstance(studies, dict) or not studies:
         raise ConfigError("design.studies must map study names to n_balls, misalignment_deg, position_sets")
     if all(s is None for s in studies.values()):
         raise ConfigError("design.studies: every study is null, none left to run")
-    for name, s in studies.items():
-        if s is None:            # a default study dropped
-            continue
-        for key in ("n_balls", "misalignment_deg", "position_sets"):
-            if not isinstance((s or {}).get(key), list) or not s[key]:
-                raise ConfigError(f"design.studies.{name}.{key} must be a non-empty list")
-        for nb in s["n_balls"]:
-            _number(f"studies.{name}.n_balls", nb, 2, integer=True)
-        for th in s["misalignment_deg"]:
-            _number(f"studies.{name}.misalignment_deg", th, 0)
-            if th >= 90:
-                raise ConfigError(f"design.studies.{name}.misalignment_deg must be below 90, got {th!r}")
-        for ps in s["position_sets"]:
-            bad = [p for p in str(ps).split("+") if p.strip() not in POSITION_SETS]
-            if bad:
-                raise ConfigError(f"design.studies.{name}.position_sets: {ps!r} is not a "
-                                  f"'+'-joined choice of {list(POSITION_SETS)}")
+    for name, study in studies.items():
+        if study is not None:            # null: a default study dropped
+            check_values(study if isinstance(study, dict) else {}, STUDY_RULES, f"design.studies.{name}")
 
 
 def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
