@@ -19,6 +19,8 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from numbers import Integral, Real
 
+import numpy as np
+
 from thermocomp.errors import ConfigError, ParameterError
 
 
@@ -45,7 +47,7 @@ def _integer(v) -> bool:
 
 
 def _boolean(v) -> bool:
-    return isinstance(v, bool) or type(v).__name__ == "bool_"    # numpy's too
+    return isinstance(v, (bool, np.bool_))
 
 
 def _items(v) -> list | None:

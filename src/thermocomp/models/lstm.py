@@ -170,9 +170,6 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
                    "weight_decay": NON_NEGATIVE,
                    "validation_fraction": number(0.0, 1.0, open_hi=True)}
 
-    def _check_params(self) -> None:
-        check_estimator(self)
-
     def _validation_rows(self, groups, n: int) -> np.ndarray:
         """Boolean mask of validation rows: whole campaigns, or the tail of a single one."""
         holdout = CampaignHoldOut(self.validation_fraction, random_state=self.random_state)
@@ -190,7 +187,7 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         return torch.cat(outs, dim=1), starts
 
     def fit(self, X, y, context=None):
-        self._check_params()
+        check_estimator(self)
         groups = groups_of(context)
         X, y = validate_data(self, X, y, y_numeric=True)
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)

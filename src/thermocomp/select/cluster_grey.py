@@ -104,7 +104,6 @@ class ClusterGreySelector(TSPSelector):
         self.rho = rho
         self.random_state = random_state
 
-
     def _candidate_sets(self, A, y, groups):
         grey = grey_relational_degree(A, y, self.rho)
         # a constant sensor carries nothing: rank it last whatever its grey degree

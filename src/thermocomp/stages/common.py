@@ -39,7 +39,8 @@ PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage dr
 
 # What the plain keys of the shared config groups may be (the components below check their own).
 CONFIG_RULES = {
-    "track": optional(BOOLEAN),
+    "track": optional(BOOLEAN), "plots": choice(*PLOTS), "data.reference": choice(*REFERENCES),
+    "eval.mode": choice(*MODES), "eval.e_p95.statistic": choice("range", "std"),
     "eval.e_p95.max_points": optional(integer(2)),  # 0 or 1 window lengths: an empty E_P95 curve
     "eval.anova_alpha": number(0.0, 1.0, open_lo=True, open_hi=True),
     "eval.mutual_prediction": BOOLEAN, "eval.ati_baselines": BOOLEAN, "eval.iso10791_a3": BOOLEAN,
@@ -85,12 +86,6 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",)) -> None:
     ``data.interim``) or files (``model_path``); each must be writable where it
     is (not an existing file in a folder's place, not a read-only place).
     """
-    choices = {"eval.mode": (cfg.eval.mode, MODES), "data.reference": (cfg.data.reference, REFERENCES),
-               "eval.e_p95.statistic": (cfg.eval.e_p95.statistic, ("range", "std")),
-               "plots": (cfg.plots, PLOTS)}
-    for key, (value, allowed) in choices.items():
-        if value not in allowed:
-            raise ConfigError(f"{key}={value!r} is not one of {list(allowed)}")
     check_keys(cfg, CONFIG_RULES)
     for key in COMPONENTS:
         node = OmegaConf.select(cfg, key)

@@ -9,6 +9,7 @@ and figures in ``<out>/design/``; prints the table and the findings.
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
@@ -37,10 +38,6 @@ from ..volumetric.design import KINDS, CalibrationDesignStudy, MachineFamily, st
 from .common import calibration_prior, check_calibrate, check_config, say
 
 
-def _not_zero(v) -> bool:
-    return integer(1)(v) or (integer(-(2 ** 31))(v) and v < 0)
-
-
 def _position_sets(v) -> bool:
     return texts()(v) and all(p.strip() in POSITION_SETS for ps in v for p in str(ps).split("+"))
 
@@ -48,7 +45,7 @@ def _position_sets(v) -> bool:
 # What each design.* key may be (the study's structure and the machine's order are checked below).
 DESIGN_RULES = {
     "n_machines": integer(1),
-    "n_jobs": Rule(_not_zero, "an integer other than 0 (-1: every core)"),
+    "n_jobs": Rule(lambda v: integer(-math.inf)(v) and v != 0, "an integer other than 0 (-1: every core)"),
     "grid": Rule(lambda v: integers(2)(v) and len(list(v)) == 3, "3 integers >= 2 (points in X, Y, Z)"),
     "x_centres": numbers(0.0, 1.0), "length_mm": optional(POSITIVE),
     "probing_um": optional(NON_NEGATIVE), "ball_um": optional(NON_NEGATIVE),
