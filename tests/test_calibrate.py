@@ -503,6 +503,23 @@ def _untouched(out):
     assert not out.exists() or (out / "calibration.json").read_text() == "old"
 
 
+@pytest.mark.parametrize("name, says", [
+    ("E_S1x1d1_B00_B05", "ball 0: the balls are numbered 1 to 11"),
+    ("E_S1x1d1_B07_B03", "balls 7 and 3: write the lower ball first (E_S1x1d1_B03_B07)"),
+    ("E_S1x1d1_B3_B7", "balls 3 and 7: ball numbers have 2 digits (E_S1x1d1_B03_B07)"),
+    ("E_S1x1d1_B04_B04", "ball 4 twice"),
+    ("E_S9x1d1_B01_B02", "pose S9x1d1 not declared"),
+])
+def test_a_misnamed_distance_column_is_named_with_what_is_wrong(raw, tmp_path, capsys, name, says):
+    data = copy(raw, tmp_path, truth=False)
+    right = "E_S1x1d1_B03_B07"
+    edit(data, "train_week", lambda df: df.rename(columns={right: name} if name.startswith(
+        ("E_S1x1d1_B07", "E_S1x1d1_B3_")) else {}, inplace=True) or df.__setitem__(name, 0.0))
+    refused(["calibrate", f"data.path={data}", f"out={tmp_path / 'out'}", "track=false"], capsys,
+            "train_week.parquet", f"column '{name}'", says)
+    _untouched(tmp_path / "out")
+
+
 def test_a_missing_pose_is_refused_naming_it(raw, tmp_path, capsys):
     data = copy(raw, tmp_path)
     out = tmp_path / "out"
@@ -565,7 +582,18 @@ def _set(path, value):
 # read as given: a negative length, a pose declared twice, a negative probing uncertainty)
 SETUP_FAULTS = [
     (_set(("machine", "order"), 0), "machine.order=0"),
-    (_set(("machine", "tool"), [0, 0]), "machine.tool=[0, 0]: must be null or 3 finite numbers"),
+    (_set(("machine", "tool"), [0, 0]), "machine.tool=[0, 0]: must be 3 finite numbers"),
+    (_set(("machine", "tool"), None), "machine.tool=None: must be 3 finite numbers"),
+    # no default travel or probe offset could be right for a measured machine (a travel of
+    # 0..4000 mm instead of 0..8000 halved every identified X parameter, silently)
+    (lambda d: d["machine"].pop("ranges"), "machine.ranges: missing"),
+    (lambda d: d["machine"]["ranges"].pop("Z"), "machine.ranges.Z: missing"),
+    (lambda d: d["machine"].pop("tool"), "machine.tool: missing"),
+    (_set(("machine", "ranges", "Y"), [1600, 0]), "machine.ranges.Y=[1600, 0]: must be a travel"),
+    (_set(("uncertainty_um",), {"probing": 0.5, "ball": 1e6}), "uncertainty_um.ball=1000000.0"),
+    # a typed centre: the balls would be "measured" where no probe goes
+    (_set(("poses", 0, "centre"), [90000, 800, 800]), "pose S1x1d1: ball 1 at X=89250 mm lies "
+                                                      "outside the X travel"),
     (_set(("artefact", "n_balls"), "11"), "artefact.n_balls='11': must be an integer >= 2"),
     (_set(("artefact", "length_mm"), -1500), "artefact.length_mm=-1500"),
     (_set(("artefact", "misalignment_deg"), 90), "artefact.misalignment_deg=90"),

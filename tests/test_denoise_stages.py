@@ -40,8 +40,11 @@ def _load(path):
 def test_staged_chain_and_run_give_the_same_model(default_dataset, interim, tmp_path):
     common = [*_common(default_dataset, interim, tmp_path), "denoise=emd", "select=pearson",
               "model=pcr"]
-    for stage in ("denoise", "select", "train", "evaluate"):
+    for stage in ("denoise", "select"):       # plots=none draws nothing, in every stage
         thermocomp(stage, *common)
+        assert list((tmp_path / "rep" / stage).iterdir()) == []
+    for stage in ("denoise", "select", "train", "evaluate"):
+        thermocomp(stage, *common, *(["plots=summary"] if stage in ("denoise", "select") else []))
     processed = tmp_path / "processed"
     report = json.loads((processed / "denoise.json").read_text())
     assert (processed / "denoiser.pkl").is_file() and (processed / "campaigns.csv").is_file()
@@ -66,6 +69,7 @@ def test_staged_chain_and_run_give_the_same_model(default_dataset, interim, tmp_
     np.testing.assert_array_equal(staged.denoiser_.fir_, direct.denoiser_.fir_)
     m_staged = json.loads((tmp_path / "rep/metrics.json").read_text())
     m_run = json.loads((tmp_path / "run/metrics.json").read_text())
+    assert m_staged["dataset"] == m_run["dataset"] == default_dataset.name  # not the interim's
     for t in staged.targets_:
         assert m_staged["targets"][t]["test"]["rsd_mean"] == m_run["targets"][t]["test"]["rsd_mean"]
         assert m_run["targets"][t]["test"]["rms_after"] < 0.5 * m_run["targets"][t]["test"]["rms_before"]

@@ -146,11 +146,29 @@ def test_the_command_writes_design_json_and_figures(tmp_path):
     ("design.studies={a:{n_balls:[1],misalignment_deg:[0],position_sets:[S2]}}",
      "design.studies.a.n_balls"),
     ("design.studies={balls:null,misalignment:null,position_sets:null}", "none left to run"),
+    # were tracebacks (a 60 GB grid, a singular calibration) or absurd numbers with exit 0
+    ("design.grid=[2000,2000,2000]", "design.grid=[2000, 2000, 2000]: must be 3 integers >= 2"),
+    ("design.ball_um=1e6", "design.ball_um=1000000.0: must be null or a number in [0, 1000]"),
+    ("design.compensation_order=11", "design.compensation_order=11"),
+    ("design.studies={mine:{n_balls:[4],misalignment_deg:[0]}}",
+     "design.studies.mine.position_sets: missing"),
+    ("+design.studies.balls.colour=[red]", "design.studies.balls.colour: not a study key"),
 ])
 def test_bad_design_config_exits_2_and_writes_nothing(override, says, tmp_path, capsys):
     out = tmp_path / "d"
     refused(["design", "track=false", f"out={out}", override], capsys, says)
     assert not out.exists()
+
+
+def test_balls_beyond_the_travel_are_studied_with_a_warning(tmp_path, caplog):
+    from thermocomp.cli import main
+
+    with caplog.at_level("WARNING", logger="thermocomp"):
+        assert main(["design", *TINY, "plots=none", f"out={tmp_path / 'd'}",
+                     "design.studies={balls:null,position_sets:null,misalignment:{n_balls:[5],"
+                     "misalignment_deg:[80],position_sets:[S2]}}"]) == 0
+    assert "5 balls over 1500 mm at 80° (S2): pose S2x1d1: ball 2 at" in caplog.text
+    assert "lies outside the" in caplog.text
 
 
 def test_a_study_of_its_own_name_runs_alone_when_the_defaults_are_dropped(tmp_path):

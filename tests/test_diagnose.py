@@ -371,6 +371,25 @@ def test_the_campaign_scheme_can_be_forced_on_one_record():
     assert all(u.startswith("L#") for u in unit_labels(np.array(["L"] * 400), 8))
 
 
+def test_too_few_campaigns_for_the_test_are_validated_forward_in_time(caplog):
+    """5 train campaigns: the sign-flip test over campaigns cannot go below 1/32, so no effect
+    could ever pass alpha=0.01; auto validates blocks of the campaigns' time line instead."""
+    ds = _dataset(door_gain=4.0, n_campaigns=6, test_every=6)
+    j = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1)).to_json("E_Z")
+    assert j["cv"]["scheme"] == "forward" and j["cv"]["units"] == 8
+    assert "5 train campaigns are too few" in j["cv"]["why"] and "needs 8" in j["cv"]["why"]
+    top = next(e for e in j["effects"] if e["accepted"])
+    assert top["column"] == "S_door" and j["after"]["test_rmse"] < 0.6 * j["before"]["test_rmse"]
+
+    with caplog.at_level("WARNING", logger="thermocomp"):
+        forced = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1,
+                                                                       cv="campaigns"))
+    j = forced.to_json("E_Z")
+    assert j["cv"]["scheme"] == "campaigns" and not any(e["accepted"] for e in j["effects"])
+    assert min(e["evidence"]["p_value"] for e in j["effects"]) == pytest.approx(1 / 32)
+    assert "cannot reach alpha=0.01 (it needs 8)" in caplog.text
+
+
 def test_the_control_signal_is_a_random_walk_no_physical_column_can_collide_with():
     assert not CONTROL.startswith(("T_", "S_", "E_"))
 

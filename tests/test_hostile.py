@@ -246,6 +246,54 @@ def test_fahrenheit_and_period_checks_can_be_switched_off_or_tightened(tmp_path,
         assert read_dataset(ds, cfg)[0].campaigns["K01"]["T_0"].iloc[0] > 45
 
 
+# -- a declared column in some campaigns only: refused before any fit ----------------------
+
+
+def _drop_column(cid, column):
+    return lambda ds: edit_csv(ds / f"{cid}.csv", lambda df: df.drop(columns=column, inplace=True))
+
+
+def _extra_sensor(cid):
+    return lambda ds: edit_csv(ds / f"{cid}.csv", lambda df: df.__setitem__("T_extra", 20.0))
+
+
+UNEVEN_CASES = {
+    "a test campaign lacks an input": (_drop_column("K04", "T_0"),
+                                       ["K04.", "column 'T_0'", "1 of 4 campaigns lack it (K04)"]),
+    # the odd one out is the campaign that has the sensor, not the first that lacks it
+    "one train campaign has an extra sensor": (_extra_sensor("K02"), [
+        "K02.", "column 'T_extra'", "only 1 of 4 campaigns have it (K02)",
+        "leave it out of data.inputs"]),
+}
+
+
+@pytest.mark.parametrize("case", UNEVEN_CASES)
+@pytest.mark.parametrize("command", ["run", "train", "diagnose"])
+def test_a_declared_column_missing_from_some_campaigns_names_the_odd_file(paths, capsys, case,
+                                                                          command):
+    mutate, says = UNEVEN_CASES[case]
+    mutate(paths["ds"])
+    if command == "train":   # the campaigns keep the contract: ingest takes them as they are
+        assert main(["ingest", *paths["args"]]) == 0
+        capsys.readouterr()
+    before = snapshot(paths["out"], paths["model"])
+    line = refused([command, *paths["args"]], capsys, *says)
+    assert (".parquet" if command == "train" else ".csv") in line
+    assert snapshot(paths["out"], paths["model"]) == before
+
+
+def test_ati_without_an_ambient_sensor_says_so(paths, capsys):
+    for cid, _ in CAMPAIGNS:
+        _rename_column(cid, "T_amb", "T_room")(paths["ds"])
+    refused(["run", *paths["args"], "ati=cmeans"], capsys,
+            "column 'T_amb'", "no campaign has a valid T_amb / T_amb_* value")
+
+
+def test_a_sensor_of_one_campaign_left_out_of_the_inputs_runs(paths):
+    _extra_sensor("K02")(paths["ds"])
+    assert main(["run", *paths["args"], "data.inputs=[T_0,T_amb]"]) == 0
+
+
 # -- refused config ----------------------------------------------------------------------
 
 

@@ -80,6 +80,16 @@ def test_manifest_with_duplicate_id(tmp_path):
             says=["duplicate", "first at row 1"])
 
 
+@pytest.mark.parametrize("second", ["K01.csv", "./K01.csv", "sub/../K01.csv"])
+def test_manifest_listing_one_file_under_two_ids(tmp_path, second):
+    """A test campaign pointing at a train file would be scored on what the model was fit on."""
+    (tmp_path / "ds" / "sub").mkdir(parents=True)
+    manifest = f"campaign,file,split\nK01,K01.csv,train\nK02,{second},test\n"
+    write_raw(tmp_path / "ds", {"K01.csv": GOOD}, manifest)
+    refused(tmp_path / "ds", file="campaigns.csv", column="file", row=2,
+            says=["already listed at row 1", "one file per campaign"])
+
+
 def test_manifest_row_with_a_missing_field(tmp_path):
     write_raw(tmp_path / "ds", {"K01.csv": GOOD}, "campaign,file,split\nK01,K01.csv\n")
     refused(tmp_path / "ds", file="campaigns.csv", column="split", row=1, says="split ''")

@@ -69,3 +69,20 @@ def test_split_scores_layout_and_values():
     assert s["per_campaign"]["B"]["p2p_before"] == 2.0
     assert s["e_p95"]["window_s"] == [60.0, 120.0]
     assert s["e_p95"]["before"][1] == pytest.approx(4.0)
+
+
+@pytest.mark.parametrize("target, unit", [("E_Z", "µm"), ("E_XX1", "µm"), ("E_AZ1", "µm/m"),
+                                          ("E_CZY1", "µm/m"), ("E_BX", "µm/m"), ("E_Amp", "µm")])
+def test_an_angular_error_is_in_um_per_m(target, unit):
+    assert M.unit(target) == unit
+
+
+def test_the_result_table_gives_the_unit_of_angular_targets():
+    from thermocomp.stages.common import result_table
+
+    block = {"rsd_mean": 1.0, "rsd_sd": 0.5, "rms_before": 4.0, "rms_after": 1.0, "rmse": 1.0}
+    table = {"model": "mlr", "mode": "simulation", "targets": {}}
+    table["targets"]["E_X"] = {"test": dict(block)}
+    assert result_table(table).splitlines()[1].endswith("(µm)")
+    table["targets"]["E_AZ"] = {"test": dict(block)}
+    assert result_table(table).splitlines()[1].endswith("(µm; E_AZ in µm/m)")

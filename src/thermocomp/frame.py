@@ -132,6 +132,35 @@ def resolve_columns(columns, inputs, targets) -> tuple[list[str], list[str]]:
     return x_cols, y_cols
 
 
+def check_common_columns(campaigns: Mapping[str, pd.DataFrame], columns,
+                         files: Mapping[str, object] | None = None) -> None:
+    """Every campaign holds every column the model reads (``columns``).
+
+    Otherwise a ContractError naming the odd one out: the campaign that lacks a column the
+    others have, or, when only a few have it, the first of those (a sensor fitted to once
+    would be missing wherever the model runs).  ``files`` maps campaign ids to the files
+    named in the error (default: the ids, in the message).
+    """
+    n = len(campaigns)
+    for column in columns:
+        have = [cid for cid, df in campaigns.items() if column in df.columns]
+        if len(have) == n:
+            continue
+        lack = [cid for cid in campaigns if cid not in have]
+        if have and len(have) < len(lack):
+            odd, what = have[0], f"only {len(have)} of {n} campaigns have it ({_ids(have)})"
+        else:
+            odd, what = lack[0], f"{len(lack)} of {n} campaigns lack it ({_ids(lack)})"
+        where = {"file": files[odd]} if files and odd in files else {}
+        raise ContractError(f"{what}: the model reads every declared column (data.inputs, "
+                            "data.targets) in every campaign; give it to all of them or leave "
+                            "it out of data.inputs", column=column, **where)
+
+
+def _ids(ids: list[str], most: int = 5) -> str:
+    return ", ".join(ids[:most]) + (f" and {len(ids) - most} more" if len(ids) > most else "")
+
+
 def _framed(A: np.ndarray, cols, reference: str) -> np.ndarray:
     """Columns of one campaign in the reference frame."""
     if reference == "none" or A.shape[1] == 0:
@@ -150,10 +179,8 @@ def stack(campaigns: Mapping[str, pd.DataFrame], x_cols, y_cols,
     xs, ys, groups, times, amb0, raws = [], [], [], [], [], []
     for cid, df in campaigns.items():
         pos = {c: j for j, c in enumerate(df.columns)}
-        missing = [c for c in x_cols + y_cols if c not in pos]
-        if missing:
-            raise ContractError("campaign lacks a column the model needs", file=cid,
-                                column=",".join(missing))
+        if any(c not in pos for c in x_cols + y_cols):
+            check_common_columns(campaigns, x_cols + y_cols)
         A = df.to_numpy(dtype=float)      # one conversion; columns picked by position below
         n = len(df)
         xs.append(_framed(A[:, [pos[c] for c in x_cols]], x_cols, reference))

@@ -1,16 +1,25 @@
 r"""Accuracy metrics of a thermal error compensation.
 
 All take the measured error ``y`` and/or the residual ``r = y - \hat y`` of
-one campaign in the target's unit (µm), in the reference frame of the data.
+one campaign in the target's unit (µm, or µm/m for an angular error: :func:`unit`), in the
+reference frame of the data.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 
 from .jsonsafe import json_safe
+
+_ANGULAR = re.compile(r"^E_[ABC][XYZ]")   # ISO 230-1: E_AX .. E_CZ, rotations (+ order, cross axis)
+
+
+def unit(target: str) -> str:
+    """The unit of an ``E_`` column (DATA_FORMAT.md): µm/m for an angular error, else µm."""
+    return "µm/m" if _ANGULAR.match(target) else "µm"
 
 
 def rmse(residual) -> float:

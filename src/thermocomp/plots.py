@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .files import atomic_write_bytes
+from .metrics import unit
 
 DPI = 110
 
@@ -50,13 +51,13 @@ def residual_plot(time_s, measured, predicted, target: str, campaign: str, path)
                                   gridspec_kw={"height_ratios": [2, 1]})
     ax.plot(t, y, label=f"measured {target}", color="k", lw=1.2)
     ax.plot(t, yhat, label="model", color="tab:blue", lw=1.2, ls="--")
-    ax.set_ylabel("error (µm)")
+    ax.set_ylabel(f"error ({unit(target)})")
     ax.set_title(f"{campaign}: {target} before and after compensation")
     ax.legend(loc="best", fontsize=8)
     ax.grid(alpha=0.3)
     axr.plot(t, y - yhat, color="tab:red", lw=1.0, label="residual = measured − model")
     axr.axhline(0, color="grey", lw=0.8)
-    axr.set_ylabel("residual (µm)")
+    axr.set_ylabel(f"residual ({unit(target)})")
     axr.set_xlabel("time since campaign start (h)")
     axr.legend(loc="best", fontsize=8)
     axr.grid(alpha=0.3)
@@ -83,7 +84,7 @@ def e_p95_plot(window_s, before, after, target: str, statistic: str, path,
         ax.plot(h, _arr(max_after), color=AFTER, lw=0.9, ls=":", label="$E_{max}$ after")
     _hour_ticks(ax, h)
     ax.set_xlabel("window length Δt (h)")
-    ax.set_ylabel(f"{target} error {label} in window (µm)")
+    ax.set_ylabel(f"{target} error {label} in window ({unit(target)})")
     ax.set_title(f"{target}: in 95 % of windows of length Δt the error varies less than this")
     ax.title.set_fontsize(10)
     ax.grid(alpha=0.3, which="both")
@@ -113,16 +114,16 @@ def rsd_plot(per_campaign: dict, target: str, path, ambient: dict | None = None,
     x = np.arange(len(ids))
     fig, ax = plt.subplots(figsize=(max(6, 0.65 * len(ids) + 2) + (3.2 if baselines else 0), 4.2))
     ax.bar(x, v, color=AFTER, alpha=0.8, width=0.6, label=label)
-    ax.axhline(sm, color="k", lw=1.5, label=f"SM = {sm:.2f} µm")
-    ax.axhspan(sm - sd, sm + sd, color="grey", alpha=0.2, label=f"SM ± SD (SD = {sd:.2f} µm)")
+    ax.axhline(sm, color="k", lw=1.5, label=f"SM = {sm:.2f} {unit(target)}")
+    ax.axhspan(sm - sd, sm + sd, color="grey", alpha=0.2, label=f"SM ± SD (SD = {sd:.2f} {unit(target)})")
     markers = iter("ov^sD")
     for name, values in (baselines or {}).items():
         b = np.array([values.get(c, np.nan) for c in ids], float)
         ax.plot(x, b, ls="none", marker=next(markers, "x"), mfc="none", ms=7,
-                label=f"{name} (SM = {np.nanmean(b):.2f} µm)")
+                label=f"{name} (SM = {np.nanmean(b):.2f} {unit(target)})")
     ax.set_xticks(x, ticks, fontsize=8)
     ax.set_xlabel("test campaign (initial ambient)" if ticks is not ids else "test campaign")
-    ax.set_ylabel(f"{target} residual Rsd (µm)")
+    ax.set_ylabel(f"{target} residual Rsd ({unit(target)})")
     ax.set_title(f"{target}: Rsd per test campaign (accuracy SM, robustness SD)")
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3, axis="y")
@@ -151,8 +152,8 @@ def mutual_prediction_plot(campaigns, rsd_matrix, target: str, path, ambient=Non
     ax.set_yticks(range(n), labels, fontsize=7)
     ax.set_xlabel("predicted campaign (initial ambient)")
     ax.set_ylabel("model trained on campaign (initial ambient)")
-    ax.set_title(f"{target}: mutual prediction, Rsd (µm)")
-    fig.colorbar(im, ax=ax, shrink=0.8, label=f"{target} Rsd (µm)")
+    ax.set_title(f"{target}: mutual prediction, Rsd ({unit(target)})")
+    fig.colorbar(im, ax=ax, shrink=0.8, label=f"{target} Rsd ({unit(target)})")
     fig.tight_layout()
     return save_figure(fig, path)
 
@@ -220,7 +221,7 @@ def elbow_plot(elbow: dict, target: str, path) -> Path:
                 label=f"chosen: {chosen} intervals")
     ax.set_xticks(n)
     ax.set_xlabel("number of ambient temperature intervals")
-    ax.set_ylabel(f"{target} held-out Rsd (µm)")
+    ax.set_ylabel(f"{target} held-out Rsd ({unit(target)})")
     ax.set_title(f"{target}: elbow (leave-one-campaign-out on train campaigns)")
     ax.title.set_fontsize(10)
     ax.set_ylim(bottom=0)
@@ -237,7 +238,7 @@ def iso_a3_plot(start_s, range_before, range_after, target: str, campaign: str, 
     ax.plot(h, range_before, color=BEFORE, lw=1.5, label="before (measured)")
     ax.plot(h, range_after, color=AFTER, lw=1.5, label="after (residual)")
     ax.set_xlabel("start of the 15 h A.3 test since campaign start (h)")
-    ax.set_ylabel(f"{target} range of 16 slots (µm)")
+    ax.set_ylabel(f"{target} range of 16 slots ({unit(target)})")
     ax.set_title(f"{campaign}: ISO 10791-10 A.3 virtual test started at every sample")
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)

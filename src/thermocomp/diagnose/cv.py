@@ -87,8 +87,11 @@ class Problem:
             for k, (tr, te) in enumerate(splitter.split(np.empty((n, 1)))):
                 self.folds[te] = k
                 self._train_end.append(int(tr[-1]) + 1)
+            # one unit per block, named after the campaign it starts in (a block may run on
+            # into the next campaign of the time line: still one fold, one unit of the test)
             labels = np.asarray(self.campaigns, dtype=object)
-            self.units = np.array([f"{c}#{k + 1}" if k >= 0 else str(c)
+            first = {k: labels[np.argmax(self.folds == k)] for k in set(self.folds.tolist()) if k >= 0}
+            self.units = np.array([f"{first[k]}#{k + 1}" if k >= 0 else str(c)
                                    for c, k in zip(labels, self.folds)], dtype=object)
         elif self.scheme == "campaigns":
             self.folds = LeaveCampaignsOut(self.n_folds).fold_index(self.units)
@@ -309,6 +312,13 @@ class CrossValidator:
 @lru_cache(maxsize=8)
 def _sign_patterns(n: int) -> np.ndarray:
     return 1.0 - 2.0 * ((np.arange(2**n)[:, None] >> np.arange(n)) & 1)
+
+
+def units_needed(alpha: float) -> int:
+    """Fewest units with which the sign-flip test can reach ``alpha`` even when one of them
+    goes against the candidate (:math:`2 / 2^n \\le \\alpha`): with fewer, a real effect is
+    refused whatever its size (5 campaigns: p >= 1/32)."""
+    return int(np.ceil(1.0 + np.log2(1.0 / float(alpha)) - 1e-9))
 
 
 def sign_flip_pvalue(d, n_resamples: int = 20000, seed: int = 0) -> float:

@@ -17,11 +17,12 @@ from ..evaluation import require_split, sample_period
 from ..frame import stack
 from ..io.contract import ContractError, Dataset
 from ..jsonsafe import json_safe
+from ..log import logger
 from ..metrics import split_scores
 from ..model_selection import ForwardChaining, LeaveCampaignsOut, cv_scheme, forward_gap, unit_labels
 from .augmented import AugmentedRegressor
 from .candidates import CONTROL, random_walk
-from .cv import Problem
+from .cv import Problem, units_needed
 from .features import Effect
 from .search import Search, SearchOptions, SearchResult, sensor_health
 
@@ -231,7 +232,15 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     later = stack(test, before.inputs_, [], before.reference)   # (the test targets stay out)
     context = m.context.copy()
     context[CONTROL] = random_walk(m.groups, options.seed)
-    scheme = cv_scheme(m.groups, options.cv)
+    scheme, why = cv_scheme(m.groups, options.cv), None
+    need = units_needed(options.alpha)
+    if options.cv == "auto" and scheme == "campaigns" and len(train_ids) < need:
+        # too few campaigns for the test to ever pass: validation blocks of the campaigns taken
+        # as one time line instead, as for one long record
+        scheme = "forward"
+        why = (f"{len(train_ids)} train campaigns are too few for the sign-flip test to reach "
+               f"alpha={options.alpha:g} (it needs {need})")
+        logger.info(f"diagnose: {why}: forward chaining over them, {options.n_blocks} blocks")
     units = unit_labels(m.groups, options.n_blocks) if scheme == "campaigns" else m.groups
     gap = _gap(m.context, m.groups, options) if scheme == "forward" else 0
     searches = {t: Search(Problem(m.X, m.Y[t].to_numpy(float), context, m.groups, units, t, mode,
@@ -239,6 +248,11 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
                                   options.min_train_fraction),
                           compensator.estimator, compensator.selector, before.inputs_, options)
                 for t in targets}
+    problem = next(iter(searches.values())).problem
+    if problem.n_units < need:
+        logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}): the sign-flip test "
+                       f"cannot reach alpha={options.alpha:g} (it needs {need}), so no effect "
+                       "can be accepted; raise diagnose.n_blocks or diagnose.alpha")
     excluded, faults, health, original, table = sensor_health(searches, later.X, later.groups, options)
     found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
     effects = {t: r.effects for t, r in found.items()}
@@ -249,11 +263,12 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
     out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
            for t, r in found.items()}
-    problem = next(iter(searches.values())).problem
     if scheme == "forward":
         cv = {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
               "folds": problem.n_units, "gap_samples": gap,
               "min_train_fraction": options.min_train_fraction}
+        if why:
+            cv["why"] = why
     else:
         cv = {"scheme": "campaigns", "units": problem.n_units,
               "unit": "campaign" if len(train_ids) > 1 else "time block",

@@ -238,7 +238,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     ------
     ContractError
         Missing or empty manifest, missing required column, empty or
-        duplicate id, invalid split, missing campaign file, unsupported file
+        duplicate id, invalid split, missing campaign file, a file listed twice, unsupported file
         type, unparseable ``start``, override of an unknown id.
     """
     opts = opts or ReadOptions()
@@ -333,6 +333,7 @@ def _utf8_failure(path: Path, delimiter: str, names: list[str] | None) -> Contra
 
 def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
     seen: dict[str, int] = {}
+    files: dict[Path, int] = {}   # one file per campaign: a file under two ids would score twice
     for row, (cid, fname, split) in enumerate(zip(raw["campaign"], raw["file"], raw["split"]), 1):
         problem = None
         if not cid or _UNSAFE_ID.search(cid):
@@ -349,10 +350,14 @@ def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
             problem = "file", f"campaign file {fname!r} is neither .csv nor .parquet"
         elif not (root / fname).is_file():
             problem = "file", f"campaign file {fname!r} not found in {root}"
+        elif (root / fname).resolve() in files:
+            problem = "file", (f"campaign file {fname!r} is already listed at row "
+                               f"{files[(root / fname).resolve()]}: one file per campaign")
         if problem:
             column, message = problem
             raise ContractError(message, file=path, column=column, row=row)
         seen[cid] = row
+        files[(root / fname).resolve()] = row
 
 
 def _apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path) -> None:
@@ -1273,7 +1278,8 @@ def _load_interim_once(root: Path) -> Dataset:
     manifest = read_manifest(root)
     campaigns = {cid: _to_frame(pq.read_table(root / f)) for cid, f in manifest["file"].items()}
     meta = {"path": str(root), "ingest_report": json.loads(report_path.read_text())}
-    return Dataset(manifest, campaigns, root.name, meta)
+    # named after the dataset it was ingested from, as run names it (not the interim folder)
+    return Dataset(manifest, campaigns, meta["ingest_report"].get("dataset") or root.name, meta)
 
 
 def check_separate(src: Path, dest: Path) -> None:

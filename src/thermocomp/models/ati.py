@@ -260,8 +260,13 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def _ambient(context) -> np.ndarray:
         a0 = np.asarray(context[AMBIENT_C0], float)
         if not np.all(np.isfinite(a0)):
+            groups = groups_of(context)
+            odd = [] if groups is None else list(dict.fromkeys(map(str, groups[~np.isfinite(a0)])))
+            which = ("no campaign has a" if groups is not None and len(odd) == len(set(groups))
+                     else f"campaign {odd[0]} has no" if len(odd) == 1
+                     else f"campaigns {', '.join(odd)} have no" if odd else "a campaign has no")
             raise ContractError("ATI models need each campaign's initial ambient temperature, "
-                                "but a campaign has no valid T_amb / T_amb_* value", column="T_amb")
+                                f"but {which} valid T_amb / T_amb_* value", column="T_amb")
         return a0
 
     def _cv_rsd(self, X, y, campaign, a0: pd.Series, n: int, context) -> np.ndarray:

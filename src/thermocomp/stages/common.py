@@ -17,6 +17,7 @@ from ..compensator import MODES, Compensator
 from ..errors import ConfigError
 from ..frame import REFERENCES
 from ..log import logger
+from ..metrics import unit
 from ..params import (
     BOOLEAN,
     NON_NEGATIVE,
@@ -168,6 +169,19 @@ def build_denoiser(cfg: DictConfig):
     return denoiser
 
 
+def check_declared(cfg: DictConfig, ds) -> None:
+    """Every campaign of ``ds`` holds every column ``data.inputs``/``data.targets`` declare
+    (before anything is fitted): the error names the odd campaign's file."""
+    from ..frame import check_common_columns, resolve_columns
+
+    targets = cfg.data.get("targets")
+    inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
+                                      None if targets is None else list(targets))
+    root = Path(ds.meta.get("path", "."))
+    check_common_columns(ds.campaigns, inputs + targets,
+                         {cid: root / f for cid, f in ds.manifest["file"].items()})
+
+
 def read_streamed(cfg: DictConfig, test: bool = True):
     """``(dataset, train ids, test ids, missing cells per test campaign)`` of ``data.path`` as a
     stream sees it.
@@ -261,11 +275,13 @@ def result_table(metrics: dict) -> str:
         block = m["test"] if mode == metrics["mode"] else m.get(f"test_{mode}")
         return None if block is None else block.get("rmse")
 
+    angular = [t for t in metrics["targets"] if unit(t) != "µm"]
+    units = "(µm)" if not angular else f"(µm; {_listed(angular)} in µm/m)"
     head = (f"model={metrics['model']}  select={metrics.get('select', 'all')}  "
             f"mode={metrics['mode']}  dataset={metrics.get('dataset', '')}")
     lines = [head,
              f"{'target':<8} {'test Rsd SM':>11} {'SD':>6}   {'RMS before':>10} -> {'after':>6}"
-             f"  {'reduction':>9}   {'RMSE sim':>8} {'1-step':>6} {'persist.':>8}   (µm)",
+             f"  {'reduction':>9}   {'RMSE sim':>8} {'1-step':>6} {'persist.':>8}   {units}",
              "-" * 96]
     for t, m in metrics["targets"].items():
         te = m["test"]
@@ -280,6 +296,10 @@ def result_table(metrics: dict) -> str:
         lines.append("state carried over: " + "; ".join(
             f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items()))
     return "\n".join(lines)
+
+
+def _listed(names: list[str], most: int = 3) -> str:
+    return ", ".join(names[:most]) + (f" and {len(names) - most} more" if len(names) > most else "")
 
 
 # --- calibrate (the stage and `run` on a volumetric dataset) -------------------------------

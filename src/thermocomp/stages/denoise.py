@@ -75,8 +75,9 @@ def denoise(cfg: DictConfig) -> dict:
             signing.dump(fitted, tmp / DENOISER_PKL)   # + denoiser.pkl.sig
         write_json(tmp / DENOISE_JSON, report)
     figures = resolve(cfg.out) / "denoise"
-    with atomic_dir(figures) as tmp:
-        _figures(ds, train, fitted, inputs, tmp)
+    with atomic_dir(figures) as tmp:      # plots=none: emptied, not an earlier run's figures
+        if cfg.plots != "none":
+            _figures(ds, train, fitted, inputs, tmp)
     with stage_run(cfg, "denoise") as tr:
         tr.log_metrics({"denoise_seconds": seconds,
                         "removed_rms_c": report.get("removed_rms_c", {}),

@@ -16,6 +16,7 @@ from omegaconf import DictConfig, OmegaConf
 
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
+from ..log import logger
 from ..params import (
     BOOLEAN,
     NON_NEGATIVE,
@@ -32,7 +33,7 @@ from ..params import (
 from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric import KinematicModel, load_setup
-from ..volumetric.artefact import POSITION_SETS
+from ..volumetric.artefact import POSITION_SETS, UNCERTAINTY, check_reach
 from ..volumetric.calibration import prior_sd
 from ..volumetric.design import KINDS, CalibrationDesignStudy, MachineFamily, strategies
 from .common import calibration_prior, check_calibrate, check_config, say
@@ -42,14 +43,17 @@ def _position_sets(v) -> bool:
     return texts()(v) and all(p.strip() in POSITION_SETS for ps in v for p in str(ps).split("+"))
 
 
+MAX_GRID = 1_000_000          # VCE grid points: ~24 MB per machine at most, not a MemoryError
+
 # What each design.* key may be (the study's structure and the machine's order are checked below).
 DESIGN_RULES = {
     "n_machines": integer(1),
     "n_jobs": Rule(lambda v: integer(-math.inf)(v) and v != 0, "an integer other than 0 (-1: every core)"),
-    "grid": Rule(lambda v: integers(2)(v) and len(list(v)) == 3, "3 integers >= 2 (points in X, Y, Z)"),
+    "grid": Rule(lambda v: integers(2)(v) and len(list(v)) == 3 and math.prod(v) <= MAX_GRID,
+                 f"3 integers >= 2 (points in X, Y, Z), {MAX_GRID:,} points at most"),
     "x_centres": numbers(0.0, 1.0), "length_mm": optional(POSITIVE),
-    "probing_um": optional(NON_NEGATIVE), "ball_um": optional(NON_NEGATIVE),
-    "compensation_order": optional(integer(1)),
+    "probing_um": optional(UNCERTAINTY), "ball_um": optional(UNCERTAINTY),
+    "compensation_order": optional(integer(1, 10)),
 }
 STUDY_RULES = {
     "n_balls": integers(2),
@@ -77,7 +81,13 @@ def check_design(d: dict) -> None:
         raise ConfigError("design.studies: every study is null, none left to run")
     for name, study in studies.items():
         if study is not None:            # null: a default study dropped
-            check_values(study if isinstance(study, dict) else {}, STUDY_RULES, f"design.studies.{name}")
+            keys = set(study) if isinstance(study, dict) else set()
+            odd = sorted(keys - set(STUDY_RULES)) + sorted(set(STUDY_RULES) - keys)
+            if odd:
+                what = "not a study key" if odd[0] in keys else "missing"
+                raise ConfigError(f"design.studies.{name}.{odd[0]}: {what} (a study gives "
+                                  f"{', '.join(STUDY_RULES)})")
+            check_values(study, STUDY_RULES, f"design.studies.{name}")
 
 
 def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
@@ -93,6 +103,9 @@ def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
         base, source = setup.model, f"{Path(str(data)) / 'volumetric.json'}"
         length, probing, ball = setup.array.length_mm, setup.probing_um, setup.ball_um
     else:
+        if data and not resolve(str(data)).exists():
+            logger.warning(f"design: data.path {data} does not exist: the kinematic model's "
+                           "default machine and artefact are studied")
         base, source = KinematicModel(), "kinematic model defaults"
         length, probing, ball = 1500.0, 0.5, 0.5
     geometry = {"ranges": base.ranges, "chain": base.chain, "tool": base.tool}
@@ -114,7 +127,14 @@ def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
             ball_um=ball if d["ball_um"] is None else d["ball_um"], grid=d["grid"],
             n_machines=d["n_machines"], n_jobs=d["n_jobs"], seed=int(cfg.seed),
             prior_sd=sd)
-        strategies(d["studies"])
+        for strategy in strategies(d["studies"])[0]:     # is every ball where a probe can go?
+            setup = study.setup(strategy)
+            try:
+                check_reach(setup.model, setup.array, setup.poses)
+            except ValueError as err:     # studied all the same: a what-if, not a measurement
+                logger.warning(f"design: {strategy.n_balls} balls over {study.length_mm:g} mm at "
+                               f"{strategy.misalignment_deg:g}° ({strategy.position_set}): {err}")
+                break
     except ValueError as err:
         raise ConfigError(f"design: {err}") from None
     return study, d["studies"], source

@@ -40,20 +40,24 @@ from ..params import (
     POSITIVE,
     check_values,
     choice,
+    either,
     integer,
     integers,
     number,
     numbers,
+    optional,
     subset,
+    text,
+    texts,
 )
 from ..paths import resolve
 from ..tracking import stage_run
-from .common import build_compensator, check_config, data_options, say
+from .common import build_compensator, check_config, check_declared, data_options, say
 
 MODEL_NAME = "diagnosed"
 
 
-# What each ``diagnose.*`` key may be (``targets`` is checked against the modelled targets).
+# What each ``diagnose.*`` key may be (``targets`` is also checked against the modelled targets).
 DIAGNOSE_RULES = {
     "max_effects": integer(0), "min_gain_pct": NON_NEGATIVE,
     "alpha": number(0.0, 1.0, open_lo=True, open_hi=True), "shortlist": integer(1),
@@ -62,6 +66,7 @@ DIAGNOSE_RULES = {
     "taus_s": numbers(0.0, open_lo=True, empty=True),        # empty: no lagged effects tried
     "initial_directions": integers(1, empty=True), "n_squares": integer(0),
     "fault_ratio": POSITIVE, "families": subset(KINDS),
+    "targets": optional(either(text(), texts("targets"))), "seed": integer(0),
 }
 
 
@@ -154,6 +159,7 @@ def diagnose(cfg: DictConfig) -> dict:
     template = build_compensator(cfg)
     say(f"reading {resolve(cfg.data.path)}")
     ds, _ = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
+    check_declared(cfg, ds)
     name = f"{cfg.model.name}+{MODEL_NAME}"
     written: dict = {}
 

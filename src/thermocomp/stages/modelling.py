@@ -39,6 +39,7 @@ from .common import (
     Clock,
     build_compensator,
     check_config,
+    check_declared,
     data_options,
     load_model,
     result_table,
@@ -60,6 +61,7 @@ def train(cfg: DictConfig) -> Compensator:
     ``denoise`` and ``select`` when they match the config (see ``stages/artifacts.py``)."""
     check_config(cfg, outputs=("model_path",))
     ds = io.load_interim(resolve(cfg.data.interim))
+    check_declared(cfg, ds)
     t0 = time.perf_counter()
     comp = fit_from_artifacts(cfg, ds)
     fit_s = time.perf_counter() - t0
@@ -301,6 +303,7 @@ def run(cfg: DictConfig) -> dict:
     volumetric = volumetric_calibration(cfg)
     if volumetric is None:
         ds, report = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
+        check_declared(cfg, ds)
     else:
         ds, cal, calibration, raw = volumetric
         report = {"dataset": raw.name, "calibration": calibration}

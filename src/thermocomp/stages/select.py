@@ -74,12 +74,14 @@ def select(cfg: DictConfig) -> dict:
            "train_campaigns": ids, "targets": result}
     path = write_json(selection_path(cfg), doc)
     figures = resolve(cfg.out) / "select"
-    with atomic_dir(figures) as tmp:
+    with atomic_dir(figures) as tmp:      # plots=none: emptied, not an earlier run's figures
         from ..plots import selection_plot
 
-        selection_plot({t: {k: (np.nan if v is None else v) for k, v in s.items()}
-                        for t, s in scores.items()},
-                       {t: e["selected"] for t, e in result.items()}, names, tmp / "selection.png")
+        if cfg.plots != "none":
+            selection_plot({t: {k: (np.nan if v is None else v) for k, v in s.items()}
+                            for t, s in scores.items()},
+                           {t: e["selected"] for t, e in result.items()}, names,
+                           tmp / "selection.png")
     with stage_run(cfg, "select") as tr:
         tr.log_metrics({"n_selected": {t: len(e["selected"]) for t, e in result.items()}})
         tr.log_artifact(path)

@@ -24,7 +24,6 @@ import numpy as np
 
 from ..params import (
     BOOLEAN,
-    NON_NEGATIVE,
     POSITIVE,
     Rule,
     check_values,
@@ -104,6 +103,22 @@ def position_set(sets=POSITION_SETS, ranges=None, x_centres=(0.25, 0.75)) -> lis
     return poses
 
 
+def check_reach(model: KinematicModel, array: BallArray, poses: list[Pose],
+                margin_mm: float = 1.0) -> None:
+    """Every ball of every pose lies within the machine's travel (a typed centre, or a bar
+    longer than the volume, would be "measured" where no probe can go): a ValueError naming
+    the pose, the ball and the axis."""
+    lo = np.array([model.ranges[a][0] for a in AXES]) - margin_mm
+    hi = np.array([model.ranges[a][1] for a in AXES]) + margin_mm
+    for pose in poses:
+        balls = pose.balls(array)
+        out = (balls < lo) | (balls > hi)
+        if out.any():
+            k, a = np.argwhere(out)[0]
+            raise ValueError(f"pose {pose.name}: ball {k + 1} at {AXES[a]}={balls[k, a]:.6g} mm lies "
+                             f"outside the {AXES[a]} travel {lo[a] + margin_mm:g}..{hi[a] - margin_mm:g} mm")
+
+
 def pairs(n_balls: int) -> list[tuple[int, int]]:
     """Every ball pair (i < j), 1-based as in the column names."""
     return list(itertools.combinations(range(1, n_balls + 1), 2))
@@ -147,23 +162,43 @@ class Setup:
         known = {"machine", "artefact", "poses", "uncertainty_um"}
         _check_setup(d)
         u = d.get("uncertainty_um", {})
-        return cls(KinematicModel.from_dict(d["machine"]), BallArray(**d["artefact"]),
-                   [Pose(p["name"], tuple(p["centre"]), tuple(p["direction"])) for p in d["poses"]],
-                   float(u.get("probing", 0.5)), float(u.get("ball", 0.5)),
-                   {k: v for k, v in d.items() if k not in known})
+        setup = cls(KinematicModel.from_dict(d["machine"]), BallArray(**d["artefact"]),
+                    [Pose(p["name"], tuple(p["centre"]), tuple(p["direction"])) for p in d["poses"]],
+                    float(u.get("probing", 0.5)), float(u.get("ball", 0.5)),
+                    {k: v for k, v in d.items() if k not in known})
+        check_reach(setup.model, setup.array, setup.poses)
+        return setup
 
 
 POINT = numbers(-math.inf, length=3)
+UNCERTAINTY = number(0.0, 1000.0)    # µm: beyond a millimetre the distances say nothing
 SETUP_RULES = {
-    "machine": {"order": optional(integer(1, 10)), "tool": optional(POINT),
+    "machine": {"order": optional(integer(1, 10)), "tool": POINT,
                 "cross_terms": optional(BOOLEAN)},
     "artefact": {"n_balls": integer(2), "length_mm": POSITIVE,
                  "misalignment_deg": optional(number(-90.0, 90.0, open_lo=True, open_hi=True))},
-    "uncertainty_um": {"probing": optional(NON_NEGATIVE), "ball": optional(NON_NEGATIVE)},
+    "uncertainty_um": {"probing": optional(UNCERTAINTY), "ball": optional(UNCERTAINTY)},
 }
 POSE_RULES = {"name": Rule(lambda v: isinstance(v, str) and re.fullmatch(r"[A-Za-z0-9]+", v),
                            "letters and digits"),
               "centre": POINT, "direction": numbers(-math.inf, length=3)}
+
+
+def _check_geometry(machine: Mapping) -> None:
+    """The travel and the probe offset have no default that could be right for a measured
+    machine (a wrong travel rescales every Legendre argument): both must be given."""
+    for key, what in (("ranges", "X, Y, Z travel [min, max] in mm"), ("tool", "probe offset, mm")):
+        if key not in machine:
+            raise ValueError(f"machine.{key}: missing (the {what})")
+    ranges = machine["ranges"]
+    if not isinstance(ranges, Mapping):
+        raise ValueError("machine.ranges: must be an object of X, Y, Z travels")
+    travel = Rule(lambda v: numbers(-math.inf, length=2)(v) and v[0] < v[1],
+                  "a travel [min, max] in mm, min < max")
+    for axis in AXES:
+        if axis not in ranges:
+            raise ValueError(f"machine.ranges.{axis}: missing (a travel [min, max], mm)")
+        check_values(ranges, {axis: travel}, "machine.ranges")
 
 
 def _check_setup(d) -> None:
@@ -176,6 +211,8 @@ def _check_setup(d) -> None:
             continue
         if not isinstance(d.get(part), Mapping):
             raise ValueError(f"{part}: missing or not an object")
+        if part == "machine":
+            _check_geometry(d[part])
         check_values(d[part], rules, part)
     poses = d.get("poses")
     if not isinstance(poses, list) or not poses:

@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from ..io.contract import ContractError, Dataset
-from .artefact import COLUMN, SETUP_FILE, Setup
+from .artefact import COLUMN, SETUP_FILE, Setup, column
 from .identify import ArtefactCalibration
 
 
@@ -43,6 +43,11 @@ def check_columns(ds: Dataset, setup: Setup) -> None:
     for cid, df in ds.campaigns.items():
         file = ds.manifest.loc[cid, "file"] if "file" in ds.manifest else cid
         have = set(df.columns)
+        for c in df.columns:        # a stray column first: it often explains a "missing" one
+            m = COLUMN.match(c)
+            if m and c not in known:
+                raise ContractError(f"distance column of an unknown measurement: "
+                                    f"{_stray(m, poses, setup.array.n_balls)}", file=file, column=c)
         for pose in setup.poses:
             cols = [c for c in declared if c.startswith(f"E_{pose.name}_B")]
             missing = [c for c in cols if c not in have]
@@ -54,13 +59,21 @@ def check_columns(ds: Dataset, setup: Setup) -> None:
                 raise ContractError(f"pose {pose.name}: the distance of balls {int(m['i'])} and "
                                     f"{int(m['j'])} is missing ({len(missing)} of {len(cols)} "
                                     f"distances of this pose)", file=file, column=missing[0])
-        for c in df.columns:
-            m = COLUMN.match(c)
-            if m and c not in known:
-                why = (f"ball {max(int(m['i']), int(m['j']))} of {setup.array.n_balls}"
-                       if m["pose"] in poses else f"pose {m['pose']} not declared in {SETUP_FILE}")
-                raise ContractError(f"distance column of an unknown measurement: {why}", file=file,
-                                    column=c)
+
+
+def _stray(m, poses: set, n_balls: int) -> str:
+    """Why a distance column names no declared measurement."""
+    i, j = int(m["i"]), int(m["j"])
+    if m["pose"] not in poses:
+        return f"pose {m['pose']} not declared in {SETUP_FILE}"
+    bad = [k for k in (i, j) if not 1 <= k <= n_balls]
+    if bad:
+        return f"ball {bad[0]}: the balls are numbered 1 to {n_balls}"
+    if i == j:
+        return f"ball {i} twice: a distance needs two balls"
+    if i > j:
+        return f"balls {i} and {j}: write the lower ball first ({column(m['pose'], min(i, j), max(i, j))})"
+    return f"balls {i} and {j}: ball numbers have 2 digits ({column(m['pose'], i, j)})"
 
 
 def distance_matrix(df: pd.DataFrame, cal: ArtefactCalibration) -> np.ndarray:
