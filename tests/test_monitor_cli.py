@@ -294,7 +294,7 @@ DATA_CASES = {
                              ["at least 3 temperature inputs", "T_nose"]),
     "pod.modes=999": (lambda p: None, ["monitor.pod.modes=999"], ["monitor:", "modes=999"]),
     "test lacks a column": (lambda p: _drop_test_column(p, "T_box1"), [],
-                            ["column 'T_box1'", "test campaign lacks"]),
+                            ["column 'T_box1'", "lacks a column the model reads", ".csv, column"]),
 }
 
 

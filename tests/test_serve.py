@@ -105,7 +105,10 @@ def test_serve_command_uses_the_project_store_one_worker_and_the_venv_bin(promot
     argv, env = serve_command(_compose([f"tracking_uri={uri}", "serve.port=5123"]))
     assert env["MLFLOW_TRACKING_URI"] == uri
     assert env["PATH"].split(os.pathsep)[0] == str(BIN)
-    assert argv[:5] == [str(BIN / "mlflow"), "models", "serve", "-m", f"models:/{NAME}@champion"]
+    assert argv[:4] == [str(BIN / "mlflow"), "models", "serve", "-m"]
+    # a folder of this package around the registered, signed pickle: the model's code never runs
+    served = Path(argv[4])
+    assert (served / "MLmodel").is_file() and (served / "artifacts" / "compensator.pkl").is_file()
     assert argv[argv.index("-w") + 1] == "1" and argv[argv.index("-p") + 1] == "5123"
     with pytest.raises(ConfigError, match="no such model version"):
         serve_command(_compose([f"tracking_uri={mlflow_store(root / 'empty')}"]))
@@ -114,6 +117,39 @@ def test_serve_command_uses_the_project_store_one_worker_and_the_venv_bin(promot
                            ("serve.port=0", "serve.port=0:"), ("serve.timeout_s=0", "serve.timeout_s=0:")]:
         with pytest.raises(ConfigError, match=re.escape(says)):
             serve_command(_compose([f"tracking_uri={uri}", override]))
+
+
+def test_a_registered_models_code_never_runs_and_its_pickle_is_checked(promoted, tmp_path, capsys):
+    """Only the pickle is signed: replay and serve take it alone, never the model's own code
+    (an edited model_code.py in the store ran before, with exit 0)."""
+    from mlflow import MlflowClient
+
+    from thermocomp.errors import ContractError
+    from thermocomp.stages.serve import serve_command
+
+    root, data, uri = promoted
+    client = MlflowClient(uri, registry_uri=uri)
+    version = client.get_model_version_by_alias(NAME, "champion").version
+    stored = Path(client.get_model_version_download_uri(NAME, version).removeprefix("file://"))
+    code, pickled = stored / "model_code.py", stored / "artifacts" / "compensator.pkl"
+    originals = {f: f.read_bytes() for f in (code, pickled)}
+    planted = tmp_path / "PWNED"
+    replay = ["replay", f"data.path={data}", f"tracking_uri={uri}", "track=false", "plots=none",
+              f"replay.model=models:/{NAME}@champion", f"out={tmp_path / 'r'}"]
+    try:
+        code.write_text(f"open({str(planted)!r}, 'w')\n" + originals[code].decode())
+        assert main(replay) == 0 and not planted.exists()
+        serve_command(_compose([f"tracking_uri={uri}"]))
+        assert not planted.exists()
+        pickled.write_bytes(originals[pickled][:-1] + bytes([originals[pickled][-1] ^ 1]))
+        capsys.readouterr()
+        assert main([*replay[:-1], f"out={tmp_path / 'r2'}"]) == 2
+        assert "signature" in capsys.readouterr().err and not (tmp_path / "r2").exists()
+        with pytest.raises(ContractError, match="signature"):
+            serve_command(_compose([f"tracking_uri={uri}"]))
+    finally:
+        for f, b in originals.items():
+            f.write_bytes(b)
 
 
 def test_serve_without_a_promoted_model_exits_2(tmp_path, capsys):

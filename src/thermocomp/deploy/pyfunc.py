@@ -196,3 +196,33 @@ def log_compensator(streaming: StreamingCompensator | AdaptiveCompensator,
         return mlflow.pyfunc.log_model(
             name=name, input_example=input_example, registered_model_name=registered_model_name,
             **_model_kwargs(streaming, _pickled(streaming, tmp)), **kwargs)
+
+
+def load_deployed(source: str, folder: str | Path | None = None):
+    """The signed compensator inside a pyfunc model, loaded by *this* installed package.
+
+    ``folder``: the model's local folder; else ``source`` (``models:/<name>@<alias>``) is
+    downloaded from the registry first.  Only the pickle is taken from the model, after its
+    HMAC signature is checked: the model's own code (``model_code.py``, ``code/``, the loader
+    ``MLmodel`` names) is never run, since any of them could be edited in a store and the
+    signature covers the pickle alone.  A ContractError (exit 2) names what is wrong.
+    """
+    import yaml
+
+    from ..errors import ContractError
+
+    with tempfile.TemporaryDirectory(prefix="thermocomp-model-") as tmp:
+        root = Path(folder) if folder is not None else Path(
+            mlflow.artifacts.download_artifacts(artifact_uri=source, dst_path=tmp))
+        spec = root / "MLmodel"
+        try:
+            flavor = yaml.safe_load(spec.read_text())["flavors"]["python_function"]
+            arts = flavor["artifacts"]
+            pickled, sig = (root / arts[k]["path"] for k in (COMPENSATOR_ARTIFACT, SIGNATURE_ARTIFACT))
+        except (OSError, yaml.YAMLError, KeyError, TypeError) as exc:
+            raise ContractError(f"not a thermocomp compensator model ({type(exc).__name__}: {exc})",
+                                file=spec) from None
+        inside = root.resolve()
+        if not all(inside in p.resolve().parents for p in (pickled, sig)):
+            raise ContractError("the artifacts it names lie outside the model folder", file=spec)
+        return signing.load(pickled, DEPLOYABLE, sig=sig)

@@ -182,6 +182,17 @@ def check_declared(cfg: DictConfig, ds) -> None:
                          {cid: root / f for cid, f in ds.manifest["file"].items()})
 
 
+def check_streamed_columns(ds, ids, columns, what: str) -> None:
+    """Every campaign ``ids`` of ``ds`` holds every column ``what`` reads: else a ContractError
+    naming the first campaign's file and column that lack."""
+    root = Path(ds.meta.get("path", "."))
+    for cid in ids:
+        absent = [c for c in columns if c not in ds.campaigns[cid].columns]
+        if absent:
+            raise io.ContractError(f"test campaign {cid} lacks a column {what} reads",
+                                   file=root / ds.manifest.loc[cid, "file"], column=",".join(absent))
+
+
 def read_streamed(cfg: DictConfig, test: bool = True):
     """``(dataset, train ids, test ids, missing cells per test campaign)`` of ``data.path`` as a
     stream sees it.

@@ -40,6 +40,7 @@ from .common import (
     build_compensator,
     check_config,
     check_keys,
+    check_streamed_columns,
     deploy_stream,
     load_model,
     read_streamed,
@@ -138,11 +139,7 @@ def monitor(cfg: DictConfig) -> dict:
         if stdin:
             streamed, missing = _stdin_campaign(adaptive.columns_, comp.targets_)
         else:
-            absent = sorted({c for c in adaptive.columns_ for i in streamed
-                             if c not in streamed[i].columns})
-            if absent:
-                raise io.ContractError("a test campaign lacks a column the model reads",
-                                       column=",".join(absent))
+            check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
         report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement))
         mon = adaptive.monitor

@@ -26,7 +26,16 @@ from ..errors import ConfigError
 from ..files import write_json
 from ..paths import resolve
 from ..tracking import connect, stage_run
-from .common import build_compensator, check_config, deploy_stream, deployable, load_model, read_streamed, say
+from .common import (
+    build_compensator,
+    check_config,
+    check_streamed_columns,
+    deploy_stream,
+    deployable,
+    load_model,
+    read_streamed,
+    say,
+)
 
 
 def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
@@ -40,15 +49,17 @@ def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
         source = str(source)
         path = resolve(source) if not source.startswith("models:/") else None
         if path is None or (path / "MLmodel").is_file():
-            import mlflow
+            from ..deploy.pyfunc import load_deployed
 
-            connect(cfg)
+            if path is None:
+                connect(cfg)     # only a registry model needs the store (track=false writes none)
             try:
-                model = mlflow.pyfunc.load_model(source if path is None else str(path))
+                deployed = load_deployed(source, path)      # replayed as registered
+            except io.ContractError:
+                raise
             except Exception as exc:
                 raise ConfigError(f"replay.model={source}: cannot load it "
                                   f"({' '.join(str(exc).split())[:200]})") from None
-            deployed = model.unwrap_python_model().streaming   # replayed as registered
             return deployed, source, _name(plain(deployed).compensator)
         comp = load_model(path)
         name = _name(comp)
@@ -67,11 +78,7 @@ def replay(cfg: DictConfig) -> dict:
     root = resolve(cfg.data.path)
     with stage_run(cfg, "replay") as tr:
         deployed, source, name = _deployable(cfg, ds, train_ids)
-        missing = sorted({c for c in deployed.columns_ for i in test_ids
-                          if c not in ds.campaigns[i].columns})
-        if missing:
-            raise io.ContractError("a test campaign lacks a column the deployed model reads",
-                                   column=",".join(missing))
+        check_streamed_columns(ds, test_ids, deployed.columns_, "the deployed model")
         kind = "adaptive" if deployed is not plain(deployed) else "streaming"
         say(f"streaming {len(test_ids)} test campaigns row by row through the {kind} compensator "
             f"({', '.join(deployed.columns_)})")

@@ -1,6 +1,7 @@
 """`thermocomp serve`: the registered compensator over HTTP, without an activated venv.
 
-Runs ``mlflow models serve -m <serve.model> --env-manager local -w 1`` with
+Runs ``mlflow models serve -m <folder> --env-manager local -w 1`` on a pyfunc folder this
+installed package writes around ``serve.model``'s signed pickle (its own code never runs), with
 
 * the project's tracking store (``tracking_uri`` resolved against the project
   root, as every stage does) in ``MLFLOW_TRACKING_URI``, so ``models:/...``
@@ -63,12 +64,31 @@ def _check_model(model: str, uri: str) -> str:
     return model
 
 
+def _trusted_copy(model: str, uri: str) -> str:
+    """A pyfunc folder made by this installed package around the model's signed pickle, which
+    is what the server loads: the registered model's own code (``model_code.py``, ``code/``,
+    ``MLmodel``) is never run (the signature covers the pickle alone).  A pickle whose
+    signature does not match is refused here (exit 2), before any server starts."""
+    import tempfile
+
+    import mlflow
+
+    from ..deploy.pyfunc import load_deployed, save_compensator
+
+    mlflow.set_tracking_uri(uri)
+    mlflow.set_registry_uri(uri)
+    local = None if model.startswith("models:/") else Path(model)
+    streaming = load_deployed(model, local)
+    # outlives this process (exec'd into the server); one small folder per serve in the temp dir
+    return str(save_compensator(streaming, Path(tempfile.mkdtemp(prefix="thermocomp-serve-")) / "model"))
+
+
 def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
     """``(argv, environment)`` of the server ``thermocomp serve`` runs."""
     opts = cfg.serve
     check_values(opts, SERVE_RULES, "serve")
     uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
-    model = _check_model(str(opts.model), uri)
+    model = _trusted_copy(_check_model(str(opts.model), uri), uri)
     port = opts.port
     bin_dir = str(Path(sys.executable).parent)
     env = {**os.environ, "MLFLOW_TRACKING_URI": uri, "MLFLOW_REGISTRY_URI": uri,
