@@ -303,12 +303,13 @@ def run(cfg: DictConfig) -> dict:
     volumetric = volumetric_calibration(cfg)
     if volumetric is None:
         ds, report = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
-        check_declared(cfg, ds)
     else:
         ds, cal, calibration, raw = volumetric
         report = {"dataset": raw.name, "calibration": calibration}
     clock.lap("read")
-    with stage_run(cfg, "run") as tr:
+    with stage_run(cfg, "run") as tr:     # a run refused from here on is recorded FAILED
+        if volumetric is None:
+            check_declared(cfg, ds)
         clock.lap("log")
         t0 = time.perf_counter()
         comp = _fit(cfg, ds)
