@@ -3,6 +3,7 @@
 import math
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from thermocomp.leaderboard import (
@@ -106,3 +107,10 @@ def test_persistence_baseline_row_from_the_runs_metrics():
     rows = baseline_rows([mean, None, dict(mean), x])   # runs on the same data share one baseline
     assert [r["model"] for r in rows] == ["persistence (baseline)"] * 2
     assert persistence_summary({"E_X": {"test": {}}}) is None   # metrics of an older run
+
+
+def test_the_markdown_table_rounds_a_column_with_a_missing_figure():
+    table = pd.DataFrame({"run": ["a", "b"], "e_p95_1h": [3.0209619546576048, None],
+                          "n": [1, 2]})
+    rows = to_markdown(table).splitlines()[2:]
+    assert "| 3.02 " in rows[0] and "n/a" in rows[1] and "3.0209" not in "".join(rows)

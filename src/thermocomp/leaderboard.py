@@ -169,7 +169,8 @@ def beats(candidate: float | None, incumbent: float | None, criterion: str,
 def to_markdown(table: pd.DataFrame, digits: int = 2) -> str:
     """GitHub Markdown table (``n/a`` for missing figures); test columns headed ``test:``."""
     shown = table.rename(columns={f: f"test:{f}" for f in FIGURES})
-    for c in shown.columns:
-        if pd.api.types.is_float_dtype(shown[c]):
-            shown[c] = [("n/a" if pd.isna(v) else f"{v:.{digits}f}") for v in shown[c]]
+    for c in shown.columns:      # per cell: a column with a missing figure is of object dtype
+        shown[c] = [f"{v:.{digits}f}" if isinstance(v, float) and not pd.isna(v) else
+                    "n/a" if v is None or (isinstance(v, float) and pd.isna(v)) else v
+                    for v in shown[c]]
     return shown.fillna("n/a").to_markdown(index=False, disable_numparse=True)
