@@ -75,8 +75,8 @@ def _trusted_copy(model: str, uri: str) -> str:
 
     from ..deploy.pyfunc import load_deployed, save_compensator
 
-    mlflow.set_tracking_uri(uri)
-    mlflow.set_registry_uri(uri)
+    mlflow.set_tracking_uri(uri)    # the registry follows it (no process-wide registry URI:
+                                    # it would outlive this call in a process that goes on)
     local = None if model.startswith("models:/") else Path(model)
     streaming = load_deployed(model, local)
     # outlives this process (exec'd into the server); one small folder per serve in the temp dir
