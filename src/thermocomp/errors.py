@@ -39,3 +39,9 @@ class ContractError(ThermocompError):
                  f"row {row}" if row is not None else None]
         where = ", ".join(w for w in where if w)
         super().__init__(f"{where}: {message}" if where else message)
+
+
+def listed(names, most: int = 5) -> str:
+    """``a, b, c and 4 more``: the first ``most`` of ``names`` in a one-line message."""
+    names = [str(n) for n in names]
+    return ", ".join(names[:most]) + (f" and {len(names) - most} more" if len(names) > most else "")

@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 
 from .context import AMBIENT_C0, CAMPAIGN, TIME
-from .errors import ContractError
+from .errors import ContractError, listed
 from .io.contract import match_columns
 
 REFERENCES = ("first_sample", "none")
@@ -148,17 +148,13 @@ def check_common_columns(campaigns: Mapping[str, pd.DataFrame], columns,
             continue
         lack = [cid for cid in campaigns if cid not in have]
         if have and len(have) < len(lack):
-            odd, what = have[0], f"only {len(have)} of {n} campaigns have it ({_ids(have)})"
+            odd, what = have[0], f"only {len(have)} of {n} campaigns have it ({listed(have)})"
         else:
-            odd, what = lack[0], f"{len(lack)} of {n} campaigns lack it ({_ids(lack)})"
+            odd, what = lack[0], f"{len(lack)} of {n} campaigns lack it ({listed(lack)})"
         where = {"file": files[odd]} if files and odd in files else {}
         raise ContractError(f"{what}: the model reads every declared column (data.inputs, "
                             "data.targets) in every campaign; give it to all of them or leave "
                             "it out of data.inputs", column=column, **where)
-
-
-def _ids(ids: list[str], most: int = 5) -> str:
-    return ", ".join(ids[:most]) + (f" and {len(ids) - most} more" if len(ids) > most else "")
 
 
 def _framed(A: np.ndarray, cols, reference: str) -> np.ndarray:

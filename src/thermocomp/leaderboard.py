@@ -169,8 +169,11 @@ def beats(candidate: float | None, incumbent: float | None, criterion: str,
 def to_markdown(table: pd.DataFrame, digits: int = 2) -> str:
     """GitHub Markdown table (``n/a`` for missing figures); test columns headed ``test:``."""
     shown = table.rename(columns={f: f"test:{f}" for f in FIGURES})
-    for c in shown.columns:      # per cell: a column with a missing figure is of object dtype
-        shown[c] = [f"{v:.{digits}f}" if isinstance(v, float) and not pd.isna(v) else
-                    "n/a" if v is None or (isinstance(v, float) and pd.isna(v)) else v
-                    for v in shown[c]]
+    def cell(v):                 # per cell: a column with a missing figure is of object dtype
+        if v is None or (isinstance(v, float) and np.isnan(v)):
+            return "n/a"
+        return f"{v:.{digits}f}" if isinstance(v, float) else v
+
+    for c in shown.columns:
+        shown[c] = [cell(v) for v in shown[c]]
     return shown.fillna("n/a").to_markdown(index=False, disable_numparse=True)

@@ -18,7 +18,7 @@ from sklearn.cluster import KMeans
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, merge_columns, scalar, subset
-from ..errors import ContractError
+from ..errors import ContractError, listed
 from ..metrics import rsd, sm_sd
 from ..model_selection import LeaveOneCampaignOut
 from ..params import BOOLEAN, NON_NEGATIVE, check_estimator, choice, either, integer, integers, number
@@ -264,7 +264,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             odd = [] if groups is None else list(dict.fromkeys(map(str, groups[~np.isfinite(a0)])))
             which = ("no campaign has a" if groups is not None and len(odd) == len(set(groups))
                      else f"campaign {odd[0]} has no" if len(odd) == 1
-                     else f"campaigns {', '.join(odd)} have no" if odd else "a campaign has no")
+                     else f"campaigns {listed(odd)} have no" if odd else "a campaign has no")
             raise ContractError("ATI models need each campaign's initial ambient temperature, "
                                 f"but {which} valid T_amb / T_amb_* value", column="T_amb")
         return a0

@@ -14,7 +14,7 @@ from omegaconf import DictConfig, OmegaConf
 
 from .. import io, signing
 from ..compensator import MODES, Compensator
-from ..errors import ConfigError
+from ..errors import ConfigError, listed
 from ..frame import REFERENCES
 from ..log import logger
 from ..metrics import unit
@@ -177,20 +177,22 @@ def check_declared(cfg: DictConfig, ds) -> None:
     targets = cfg.data.get("targets")
     inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
                                       None if targets is None else list(targets))
-    root = Path(ds.meta.get("path", "."))
-    check_common_columns(ds.campaigns, inputs + targets,
-                         {cid: root / f for cid, f in ds.manifest["file"].items()})
+    check_common_columns(ds.campaigns, inputs + targets, {cid: campaign_file(ds, cid) for cid in ds.ids()})
+
+
+def campaign_file(ds, cid: str) -> Path:
+    """The file campaign ``cid`` of ``ds`` was read from (what an error names)."""
+    return Path(ds.meta.get("path", ".")) / ds.manifest.loc[cid, "file"]
 
 
 def check_streamed_columns(ds, ids, columns, what: str) -> None:
     """Every campaign ``ids`` of ``ds`` holds every column ``what`` reads: else a ContractError
     naming the first campaign's file and column that lack."""
-    root = Path(ds.meta.get("path", "."))
     for cid in ids:
         absent = [c for c in columns if c not in ds.campaigns[cid].columns]
         if absent:
             raise io.ContractError(f"test campaign {cid} lacks a column {what} reads",
-                                   file=root / ds.manifest.loc[cid, "file"], column=",".join(absent))
+                                   file=campaign_file(ds, cid), column=",".join(absent))
 
 
 def read_streamed(cfg: DictConfig, test: bool = True):
@@ -287,7 +289,7 @@ def result_table(metrics: dict) -> str:
         return None if block is None else block.get("rmse")
 
     angular = [t for t in metrics["targets"] if unit(t) != "µm"]
-    units = "(µm)" if not angular else f"(µm; {_listed(angular)} in µm/m)"
+    units = "(µm)" if not angular else f"(µm; {listed(angular, 3)} in µm/m)"
     head = (f"model={metrics['model']}  select={metrics.get('select', 'all')}  "
             f"mode={metrics['mode']}  dataset={metrics.get('dataset', '')}")
     lines = [head,
@@ -307,10 +309,6 @@ def result_table(metrics: dict) -> str:
         lines.append("state carried over: " + "; ".join(
             f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items()))
     return "\n".join(lines)
-
-
-def _listed(names: list[str], most: int = 3) -> str:
-    return ", ".join(names[:most]) + (f" and {len(names) - most} more" if len(names) > most else "")
 
 
 # --- calibrate (the stage and `run` on a volumetric dataset) -------------------------------

@@ -108,15 +108,15 @@ def check_reach(model: KinematicModel, array: BallArray, poses: list[Pose],
     """Every ball of every pose lies within the machine's travel (a typed centre, or a bar
     longer than the volume, would be "measured" where no probe can go): a ValueError naming
     the pose, the ball and the axis."""
-    lo = np.array([model.ranges[a][0] for a in AXES]) - margin_mm
-    hi = np.array([model.ranges[a][1] for a in AXES]) + margin_mm
+    lo = np.array([model.ranges[a][0] for a in AXES])
+    hi = np.array([model.ranges[a][1] for a in AXES])
     for pose in poses:
         balls = pose.balls(array)
-        out = (balls < lo) | (balls > hi)
+        out = (balls < lo - margin_mm) | (balls > hi + margin_mm)
         if out.any():
             k, a = np.argwhere(out)[0]
             raise ValueError(f"pose {pose.name}: ball {k + 1} at {AXES[a]}={balls[k, a]:.6g} mm lies "
-                             f"outside the {AXES[a]} travel {lo[a] + margin_mm:g}..{hi[a] - margin_mm:g} mm")
+                             f"outside the {AXES[a]} travel {lo[a]:g}..{hi[a]:g} mm")
 
 
 def pairs(n_balls: int) -> list[tuple[int, int]]:
@@ -172,6 +172,8 @@ class Setup:
 
 POINT = numbers(-math.inf, length=3)
 UNCERTAINTY = number(0.0, 1000.0)    # µm: beyond a millimetre the distances say nothing
+TRAVEL = Rule(lambda v: numbers(-math.inf, length=2)(v) and v[0] < v[1],
+              "a travel [min, max] in mm, min < max")
 SETUP_RULES = {
     "machine": {"order": optional(integer(1, 10)), "tool": POINT,
                 "cross_terms": optional(BOOLEAN)},
@@ -193,17 +195,15 @@ def _check_geometry(machine: Mapping) -> None:
     ranges = machine["ranges"]
     if not isinstance(ranges, Mapping):
         raise ValueError("machine.ranges: must be an object of X, Y, Z travels")
-    travel = Rule(lambda v: numbers(-math.inf, length=2)(v) and v[0] < v[1],
-                  "a travel [min, max] in mm, min < max")
     for axis in AXES:
         if axis not in ranges:
             raise ValueError(f"machine.ranges.{axis}: missing (a travel [min, max], mm)")
-        check_values(ranges, {axis: travel}, "machine.ranges")
+    check_values(ranges, dict.fromkeys(AXES, TRAVEL), "machine.ranges")
 
 
 def _check_setup(d) -> None:
     """Each field of a set-up read from outside against its rule (the kinematic model checks
-    its chain and ranges itself)."""
+    its chain itself)."""
     if not isinstance(d, Mapping):
         raise ValueError(f"expected an object with {', '.join(SETUP_RULES)} and poses")
     for part, rules in SETUP_RULES.items():
