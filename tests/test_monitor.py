@@ -216,6 +216,41 @@ def test_faults_of_other_shapes_stay_bounded_and_cost_at_most_1_5x_the_healthy_e
     assert worst <= 1.5, worst
 
 
+@pytest.mark.parametrize("sensor", ["T_amb", "most_influential"])
+@pytest.mark.parametrize("reading", [+50.0, -50.0, "open"])
+def test_an_out_of_range_reading_is_no_measurement_and_its_return_no_jump(deployed, sensor, reading):
+    # a one-sample spike far outside the training range (or an open circuit reading 850 °C for
+    # 5 samples): the sensor is out while it lasts and comes back as it was.  Before, the
+    # spike became the previous value, its return read as a jump, and the ambient sensor (which
+    # no other predicts) was re-referenced by -50 °C and re-admitted so: 6.5x the healthy error
+    adaptive, comp, test, influential = deployed
+    sensor = influential if sensor == "most_influential" else sensor
+    measured, g = comp.measured(test), adaptive.guard
+    worst = 0.0
+    for cid, df in test.items():
+        v = df[sensor].to_numpy(float).copy()
+        k0 = len(v) // 2
+        if reading == "open":
+            v[k0:k0 + 5] = 850.0
+        else:
+            v[k0] += reading
+        y, events = _stream(adaptive, df.assign(**{sensor: v}))
+        assert np.isfinite(y).all() and (y >= g.lo - 1e-9).all() and (y <= g.hi + 1e-9).all()
+        out = [e for e in events if e["to"] == "excluded"]
+        assert {e["sensor"] for e in out} == {sensor}, (cid, events)
+        # the ambient sensor is its own mode: its exclusion says it is held, not rebuilt
+        unpredictable = not adaptive.monitor._predictable[adaptive.monitor.names.index(sensor)]
+        assert unpredictable == (sensor == "T_amb")
+        assert all(("no other sensor predicts it" in e["reason"]) == unpredictable for e in out)
+        assert not any(e["to"] == "re-referenced" or e["reason"].startswith("jump") for e in events)
+        assert adaptive.excluded_inputs == []          # back in by the end of the campaign
+        m = measured[cid][adaptive.targets_].to_numpy()
+        healthy, _ = _stream(adaptive, df)
+        ratio = np.sqrt(np.mean((m - y) ** 2, 0)) / np.sqrt(np.mean((m - healthy) ** 2, 0))
+        worst = max(worst, float(ratio.max()))
+    assert worst <= 1.25, worst
+
+
 def test_an_offset_inside_the_band_moves_the_correction_by_the_reported_cost_and_no_more(deployed):
     # what monitor.json's undetected_offset_um says: the fault the monitor cannot see, priced
     adaptive, comp, test, sensor = deployed

@@ -337,8 +337,9 @@ class SensorMonitor:
 
     def _update(self, x: np.ndarray, time: float) -> tuple[np.ndarray, list[dict]]:
         events: list[dict] = []
-        if self._ref is None:
-            self._ref = np.where(np.isfinite(x), x, np.nan)
+        rng = (x < self._lo_lim) | (x > self._hi_lim)
+        if self._ref is None:       # an out-of-range reference is no reference (as if missing)
+            self._ref = np.where(np.isfinite(x) & ~rng, x, np.nan)
         d = x - self._ref
         all_finite = bool(np.isfinite(d.sum()))
         finite = np.isfinite(d) if not all_finite else self._true
@@ -349,7 +350,6 @@ class SensorMonitor:
 
         # instant detectors on the raw reading (vectorised check, details only when one fires)
         step = d - self._prev
-        rng = (x < self._lo_lim) | (x > self._hi_lim)
         big = np.abs(step) > self._jump_lim
         same = step == 0
         instant: dict[int, str] = {}
@@ -367,10 +367,18 @@ class SensorMonitor:
             big = np.abs(step) > self._jump_lim
         if not all_finite or (rng | big).any():
             instant = self._instant(x, d, step, finite, rng, big & ~rng)
-            self._hist[pos] = d             # a jump re-referenced the sensor
             for j, why in instant.items():
                 if self._active[j]:
                     self._exclude(j, why, time, events)
+            if rng.any():
+                # an out-of-range reading is no measurement: read as missing from here on, so it
+                # is neither the previous value of the next step (a +50 °C spike on T_amb then
+                # read its return as a -50 °C jump and re-referenced the sensor by it) nor in the
+                # window that decides re-admission
+                d[rng] = np.nan
+                finite = finite & ~rng
+                all_finite = False
+            self._hist[pos] = d             # a jump re-referenced the sensor
         self._run = np.where(same, self._run + 1, 0)
         self._calm += 1
         for j in instant:
@@ -534,6 +542,8 @@ class SensorMonitor:
         if not self.adaptive:
             self._set_state(j, ALARM, time, reason, events)
             return
+        if not self._predictable[j]:   # say so: for a frozen sensor the exclusion changes nothing
+            reason += "; held at its last good reading: no other sensor predicts it"
         self._active[j] = False
         self._calm[j] = 0            # back in only after a whole window inside the band
         self._by_field[j] = by_field
