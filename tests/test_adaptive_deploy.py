@@ -288,7 +288,7 @@ def test_replay_of_a_saved_pyfunc_replays_what_it_holds(served, faulty, tmp_path
     thermocomp("replay", f"data.path={path}", f"out={tmp_path}", "track=false", "model=mlr",
                f"replay.model={folder}")
     report = json.loads((tmp_path / "replay.json").read_text())
-    assert report["source"] == str(folder) and report["model"] == "ARX" and report["adaptive"]
+    assert report["source"] == str(folder) and report["model"] == "arx" and report["adaptive"]
     assert report["pod"]["n_modes"] == adaptive.monitor.pod.n_modes_
     _check_faults_reported(report, faults)
     _check_bounded(report)

@@ -115,6 +115,11 @@ def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
     (["run", "eval.mode=sideways"], "eval.mode"),
     (["run", "plots=some"], "plots"),
     (["frobnicate"], "frobnicate"),
+    # Hydra takes these, but no stage would read them as meant
+    (["run", "model=null"], "'model' needs one of its options (arx, arx_rf"),
+    (["run", "+diagnose.alpah=0.05"], "did you mean 'diagnose.alpha'"),
+    (["run", "+model.foo=1"], "unknown config key 'model.foo'"),
+    (["run", "-m", "model=mlr,pcr", "+eval.foo=1"], "unknown config key 'eval.foo'"),
 ])
 def test_bad_config_exits_2_with_one_line(args, needle, capsys, tmp_path):
     code = main([*args, "track=false", f"out={tmp_path / 'o'}"] if args[0] == "run" else args)

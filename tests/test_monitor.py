@@ -304,6 +304,18 @@ def test_bad_time_is_substituted_and_reported(deployed):
     assert np.isfinite(y).all()
     reasons = [e["reason"] for e in events if e["sensor"] == "time"]
     assert any("no finite value" in r for r in reasons) and any("does not increase" in r for r in reasons)
+    assert events[-1]["sensor"] != "time" or events[-1]["to"] == "ok"
+
+
+def test_a_swapped_pair_of_rows_is_one_substituted_time_then_the_record_again(deployed):
+    adaptive, comp, test, _ = deployed
+    df = next(iter(test.values()))
+    order = np.arange(len(df))
+    order[[20, 21]] = order[[21, 20]]
+    y, events = _stream(adaptive, df.iloc[order].reset_index(drop=True))
+    changes = [(e["row"], e["to"]) for e in events if e["sensor"] == "time"]
+    assert changes == [(21, "substituted"), (22, "ok")], changes
+    assert np.isfinite(y).all()
 
 
 def test_predict_reports_excluded_inputs_and_events_per_row(deployed):

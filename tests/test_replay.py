@@ -11,10 +11,15 @@ from hydra import compose, initialize_config_dir
 
 from conftest import thermocomp
 from thermocomp import io
+from thermocomp.compensator import Compensator
 from thermocomp.deploy import StreamingCompensator
 from thermocomp.deploy.report import replay_report
+from thermocomp.diagnose.augmented import AugmentedRegressor
+from thermocomp.models.ati import ATIRegressor
+from thermocomp.models.pcr import PCR
 from thermocomp.paths import conf_dir
 from thermocomp.stages.common import build_compensator
+from thermocomp.stages.replay import _name
 
 MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm", "lagbank")
 ATIS = ("none", "cmeans")
@@ -93,6 +98,7 @@ def test_replay_command_fits_or_loads_and_writes_replay_json(door_data, tmp_path
     loaded = json.loads((tmp_path / "load" / "replay.json").read_text())
     refit = json.loads((tmp_path / "refit" / "replay.json").read_text())
     assert loaded["source"].endswith("model.pkl")
+    assert loaded["model"] == refit["model"] == "arx"        # named alike, fitted or loaded
     for t, r in loaded["targets"].items():
         assert r["rmse"] == pytest.approx(refit["targets"][t]["rmse"], rel=1e-12)
     bad = thermocomp("replay", *common, f"out={tmp_path / 'bad'}",
@@ -114,3 +120,9 @@ def test_diagnosed_ati_model_replays(door_data, tmp_path):
     assert report["model"].endswith("diagnosed") and report["source"] == "fitted"
     for r in report["targets"].values():
         assert r["max_abs_stream_minus_batch"] <= TOLERANCE_UM
+
+
+def test_a_loaded_model_is_named_by_its_family_as_a_fitted_one():
+    assert _name(Compensator(PCR())) == "pcr"
+    assert _name(Compensator(ATIRegressor(PCR()))) == "pcr"
+    assert _name(Compensator(AugmentedRegressor(ATIRegressor(PCR())))) == "pcr+diagnosed"

@@ -236,6 +236,55 @@ def _explain(exc: BaseException) -> str:
     return msg
 
 
+def _check_overrides(args: list[str]) -> None:
+    """What Hydra accepts but no stage would read as meant: a config group set to ``null``
+    (Hydra's ValueError names no key) and a key added with ``+``/``++`` that the config does
+    not have (a typo like ``+diagnose.alpah=0.05`` was silently ignored).  Added keys are
+    fine under a free-form map (:data:`FREE_MAPS`) or an object built by ``_target_`` (its
+    constructor checks its arguments)."""
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+    from hydra.core.override_parser.types import OverrideType
+    from omegaconf import OmegaConf
+
+    from .paths import conf_dir
+
+    parser = OverridesParser.create()
+    base, added = [], []
+    for arg in args:
+        if arg.startswith("-"):
+            continue
+        try:
+            o = parser.parse_override(arg)
+        except Exception:
+            base.append(arg)         # composing reports it with Hydra's message
+            continue
+        key = o.key_or_group
+        if (conf_dir() / key.replace(".", "/")).is_dir():       # a config group
+            if o.value() is None and o.type != OverrideType.DEL:
+                options = sorted(f.stem for f in (conf_dir() / key.replace(".", "/")).glob("*.yaml"))
+                _fail(f"{key}=null: the config group {key!r} needs one of its options "
+                      f"({', '.join(options)})")
+        elif o.type in (OverrideType.ADD, OverrideType.FORCE_ADD) and not key.startswith("hydra."):
+            added.append(key)
+            continue
+        if not o.is_sweep_override():
+            base.append(arg)
+    if not added:
+        return
+    config = OmegaConf.to_container(_compose_or_explain(base), resolve=False)
+    for key in added:
+        node, parts = config, key.split(".")
+        for i, part in enumerate(parts):
+            if ".".join(parts[:i]) in FREE_MAPS or (isinstance(node, dict) and "_target_" in node):
+                break
+            if not isinstance(node, dict) or part not in node:
+                close = _fix_key(key, config)
+                hint = f"; did you mean {close!r}?" if close else ""
+                _fail(f"unknown config key {key!r} (added with '+'): thermocomp reads no such "
+                      f"key{hint}")
+            node = node[part]
+
+
 def _compose_or_explain(args: list[str]):
     try:
         return _compose(args)
@@ -322,6 +371,7 @@ def main(argv: list[str] | None = None) -> int:
         return 0
     try:
         args = lenient(args)
+        _check_overrides(args)
         if any(a.startswith("-") for a in args):
             _hydra_main(stage, args)
         else:

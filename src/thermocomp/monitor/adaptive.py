@@ -121,6 +121,7 @@ class AdaptiveCompensator:
             self.guard.reset()
         self._base = None
         self._last_time = float("nan")
+        self._last_read = float("nan")
         self._held = np.full(len(self._other), np.nan)
         self._held_state = np.zeros(len(self._other), dtype=bool)
         self._time_bad = False
@@ -132,11 +133,11 @@ class AdaptiveCompensator:
         return (self.streaming._snapshot(), self.monitor.snapshot() if self.monitor else None,
                 self.guard.snapshot() if self.guard else None,
                 None if self._base is None else self._base.copy(), self._last_time,
-                self._held.copy(), self._held_state.copy(), self._time_bad,
+                self._last_read, self._held.copy(), self._held_state.copy(), self._time_bad,
                 None if self._y is None else self._y.copy(), self.n_samples_)
 
     def _restore(self, snap: tuple) -> None:
-        (s, m, g, self._base, self._last_time, self._held, self._held_state, self._time_bad,
+        (s, m, g, self._base, self._last_time, self._last_read, self._held, self._held_state, self._time_bad,
          self._y, self.n_samples_) = snap
         self.streaming._restore(s)
         if self.monitor is not None:
@@ -184,12 +185,17 @@ class AdaptiveCompensator:
         return y, clamped
 
     def _check_time(self, t: float, events: list) -> tuple[float, float]:
-        last = self._last_time
+        # judged against the last time *read*, not the last one used: after a swapped pair of
+        # rows the substitutes run one period ahead of the record, and judging against them
+        # kept every later time 'substituted' to the end of the stream
+        last, read = self._last_time, self._last_read
         bad = None
         if not np.isfinite(t):
             bad = "time has no finite value"
-        elif np.isfinite(last) and t <= last:
-            bad = f"time {t:.6g} s does not increase (previous {last:.6g} s)"
+        elif np.isfinite(read) and t <= read:
+            bad = f"time {t:.6g} s does not increase (previous {read:.6g} s)"
+        else:
+            self._last_read = t
         if bad is not None:
             t = (last + self.period_s) if np.isfinite(last) else 0.0
             if not self._time_bad:

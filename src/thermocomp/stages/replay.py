@@ -18,13 +18,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from omegaconf import DictConfig
+from omegaconf import DictConfig, OmegaConf
 
 from .. import io
 from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
-from ..paths import resolve
+from ..paths import conf_dir, resolve
 from ..tracking import connect, stage_run
 from .common import (
     build_compensator,
@@ -68,7 +68,25 @@ def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
 
 
 def _name(comp) -> str:
-    return ", ".join(sorted({type(e).__name__ for e in comp.estimators_.values()}))
+    """The model family (``conf/model/<name>.yaml``'s ``name``) of a loaded compensator, as
+    ``replay.json`` names a fitted one: through an ATI or a diagnosed wrapper to the model
+    inside; the class name for an estimator no config builds."""
+    families = {}
+    for f in sorted(conf_dir().glob("model/*.yaml")):
+        c = OmegaConf.load(f)
+        families[str(c.estimator._target_).rsplit(".", 1)[-1]] = str(c.name)
+    from ..diagnose.augmented import AugmentedRegressor
+    from .diagnose import MODEL_NAME
+
+    est, suffix = comp.estimator, ""
+    while type(est).__name__ not in families:
+        if isinstance(est, AugmentedRegressor):
+            suffix = f"+{MODEL_NAME}"            # as diagnose names it: <family>+diagnosed
+        inner = getattr(est, "base_estimator", None) or getattr(est, "estimator", None)
+        if inner is None:
+            return type(comp.estimator).__name__
+        est = inner
+    return families[type(est).__name__] + suffix
 
 
 def replay(cfg: DictConfig) -> dict:
