@@ -242,6 +242,33 @@ def test_a_test_campaign_with_missing_values_streams_and_counts_them(small, tmp_
     assert all(t["rmse_adaptive"] is not None for t in report["targets"].values())
 
 
+def _set_cells(path: Path, split: str, column: str, rows: slice, value: float) -> tuple[str, str]:
+    index = pd.read_csv(path / "campaigns.csv")
+    cid, file = index[index["split"] == split][["campaign", "file"]].iloc[0]
+    df = pd.read_csv(path / file)
+    df[column] = df[column].astype(float)
+    df.loc[rows, column] = value
+    df.to_csv(path / file, index=False)
+    return cid, file
+
+
+def test_an_open_circuit_streams_from_a_test_file_and_is_refused_in_a_train_one(small, tmp_path, capsys):
+    # 850 °C for 5 samples: a failing sensor, not kelvin (the column's median is in °C); the
+    # deployed compensator is there to catch it, so a recorded test campaign streams with it
+    path = tmp_path / "ds"
+    shutil.copytree(small, path)
+    cid, _ = _set_cells(path, "test", "T_motor2", slice(40, 44), 850.0)
+    report = run_monitor(path, tmp_path / "out", "plots=none")
+    mine = [e for e in report["events"] if e["campaign"] == cid and e["sensor"] == "T_motor2"]
+    assert mine and mine[0]["to"] == "excluded" and mine[0]["reason"].startswith("out of range")
+    assert all(t["all_finite"] for t in report["targets"].values())
+    _, file = _set_cells(path, "train", "T_motor2", slice(40, 44), 850.0)
+    out = tmp_path / "refused"
+    refused(["monitor", f"data.path={path}", f"out={out}", "track=false", "plots=none"], capsys,
+            file, "column 'T_motor2'", "row 41", "faulty reading")
+    assert not out.exists()
+
+
 def _stdin_rows(path: Path) -> pd.DataFrame:
     index = pd.read_csv(path / "campaigns.csv")
     return pd.read_csv(path / index[index["split"] == "test"]["file"].iloc[0])

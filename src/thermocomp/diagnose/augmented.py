@@ -14,6 +14,8 @@ from ..models.linear import MLR
 from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
 from .shrink import PartialRidgePath
 
+MODEL_NAME = "diagnosed"   # the model diagnose writes (conf/model/diagnosed.yaml, "<family>+diagnosed")
+
 
 class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
     r"""A model family with extra regressors from diagnosed effects.

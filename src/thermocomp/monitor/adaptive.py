@@ -109,6 +109,11 @@ class AdaptiveCompensator:
             yield self
 
     @property
+    def _absolute(self) -> bool:
+        """The model reads absolute temperatures (``data.reference=none``), not changes."""
+        return self.streaming.compensator.reference != "first_sample"
+
+    @property
     def excluded_inputs(self) -> list[str]:
         return self.monitor.excluded if self.monitor is not None else []
 
@@ -120,6 +125,7 @@ class AdaptiveCompensator:
         if self.guard is not None:
             self.guard.reset()
         self._base = None
+        self._late = None
         self._last_time = float("nan")
         self._last_read = float("nan")
         self._held = np.full(len(self._other), np.nan)
@@ -132,13 +138,14 @@ class AdaptiveCompensator:
     def _snapshot(self) -> tuple:
         return (self.streaming._snapshot(), self.monitor.snapshot() if self.monitor else None,
                 self.guard.snapshot() if self.guard else None,
-                None if self._base is None else self._base.copy(), self._last_time,
+                None if self._base is None else self._base.copy(),
+                None if self._late is None else self._late.copy(), self._last_time,
                 self._last_read, self._held.copy(), self._held_state.copy(), self._time_bad,
                 None if self._y is None else self._y.copy(), self.n_samples_)
 
     def _restore(self, snap: tuple) -> None:
-        (s, m, g, self._base, self._last_time, self._last_read, self._held, self._held_state, self._time_bad,
-         self._y, self.n_samples_) = snap
+        (s, m, g, self._base, self._late, self._last_time, self._last_read, self._held,
+         self._held_state, self._time_bad, self._y, self.n_samples_) = snap
         self.streaming._restore(s)
         if self.monitor is not None:
             self.monitor.restore(m)
@@ -156,9 +163,16 @@ class AdaptiveCompensator:
         if self.monitor is not None:
             clean, ev = self.monitor.update(x if self._mon_all else x[self._mon], t)
             events += ev
+            ref = self.monitor._ref
             if self._base is None:
-                ref = self.monitor._ref
                 self._base = np.where(np.isfinite(ref), ref, self.monitor.first_c)
+                self._late = ~np.isfinite(ref)
+            elif self._absolute and self._late.any():
+                # a model of absolute readings sees a sensor missing at the start as read once it
+                # is referenced (a model of changes keeps the stand-in: its reference is row 0)
+                now = self._late & np.isfinite(ref)
+                self._base[now] = ref[now]
+                self._late &= ~now
             if self._mon_all:
                 x = self._base + clean
             else:

@@ -167,7 +167,7 @@ class SensorMonitor:
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
-              "_last_good", "_by_field")
+              "_last_good", "_by_field", "_jumps", "_ref0")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -186,6 +186,8 @@ class SensorMonitor:
         self._prev_other = np.full(n, np.nan)       # each sensor as the others predict it
         self._last_good = np.zeros(n)               # last reading while the sensor was in
         self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
+        self._jumps = np.zeros(n, dtype=np.int64)    # jumps since it was last admitted
+        self._ref0 = np.full(n, np.nan)              # its reference before the first of them
         self._run_pred = np.full(n, np.nan)
         self._clean = np.zeros(n)
         self._quiet = False          # every sensor active and ok: the fast path may run
@@ -284,7 +286,8 @@ class SensorMonitor:
         step = d - self._prev
         complete = bool(np.isfinite(d.sum()))
         finite = self._true if complete else np.isfinite(d)
-        if ((not complete and (self._active & ~finite).any())   # a sensor in use went missing
+        if ((not complete and ((self._active & ~finite).any()   # a sensor in use went missing
+                               or (np.isfinite(x) & ~finite).any()))   # or one comes, unreferenced
                 or (np.abs(x - self._mid) > self._half).any() or (np.abs(step) > self._jump_lim).any()):
             return None
         pred = self._M @ (d if self._all_active else d[self._active])
@@ -385,11 +388,17 @@ class SensorMonitor:
             self._calm[j] = 0
         pred, e = self._errors(d)
         if not all_finite:
-            late = finite & ~np.isfinite(self._ref)   # first value of a sensor missing at the start
-            for j in np.flatnonzero(late & np.isfinite(pred)):   # referenced to agree with the field
-                self._ref[j] = x[j] - pred[j]
-                d[j] = self._hist[pos, j] = pred[j]
-                e[j] = 0.0
+            # the first value of a sensor missing at the start (or out of range there): referenced
+            # to agree with the field where the others predict it, else to go on from the value
+            # the model was given meanwhile (its reference was NaN, so it stayed out for good)
+            late = np.isfinite(x) & ~np.isfinite(self._ref) & ~rng
+            for j in np.flatnonzero(late):
+                by_field = bool(self._predictable[j] and np.isfinite(pred[j]))
+                value = pred[j] if by_field else self._clean[j]
+                self._ref[j] = x[j] - value
+                d[j] = self._hist[pos, j] = value
+                e[j] = 0.0 if by_field else np.nan
+                finite[j] = True
         self._err[pos] = e
 
         # freeze: constant while the field (its prediction from the others) moves
@@ -473,8 +482,23 @@ class SensorMonitor:
                     e_trial = (H[:, j] - H[:, trial] @ M[j]) / (1 - hj)
                     if not np.all(np.abs(e_trial) < READMIT * self.warning_c[j]):
                         continue
-                self._set_state(j, OK, time, f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C "
-                                              f"for {self.window} samples", events)
+                why = f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C for {self.window} samples"
+                shift = self._ref[j] - self._ref0[j]
+                if not self._predictable[j] and (self._jumps[j] > 1 or (
+                        self._jumps[j] and abs(d[j] + shift - self._last_good[j])
+                        < abs(d[j] - self._last_good[j]))):
+                    # a sensor no other predicts: its outage's jumps were re-referenced one by
+                    # one, which is right for a step (an offset that stays) and wrong for noise
+                    # (a loose contact: the reading returns, and a noisy step kept was an offset
+                    # for good: 6.7x the healthy error on T_amb).  Several jumps are noise or a
+                    # spike; of one, the reading (with it or without) closer to the value
+                    # before the outage is taken: this temperature cannot be seen to move
+                    self._ref[j] = self._ref0[j]
+                    d[j] += shift
+                    self._hist[:, j] += shift
+                    why += f"; its {self._jumps[j]} jump(s) undone: the reading returned ({shift:+.3g} °C)"
+                self._set_state(j, OK, time, why, events)
+                self._jumps[j] = 0
                 self._active[j] = True
                 self._by_field[j] = False
                 self._set_operator()
@@ -523,6 +547,9 @@ class SensorMonitor:
             # (a model of changes since the start then sees its true changes again) and stays
             # out until it has been calm, and agrees with the field, for a window
             offset = step[j] - (expected[j] if np.isfinite(expected[j]) else 0.0)
+            if not self._jumps[j]:
+                self._ref0[j] = self._ref[j]
+            self._jumps[j] += 1
             self._ref[j] += offset               # changes as the field says it changed
             d[j] -= offset
             out[j] = (f"jump: {step[j]:+.3g} °C in one sample (largest step in training "

@@ -27,6 +27,7 @@ from omegaconf import DictConfig, OmegaConf
 from .. import io
 from ..diagnose import CandidateOptions, SearchOptions
 from ..diagnose import diagnose as run_diagnosis
+from ..diagnose.augmented import MODEL_NAME
 from ..diagnose.features import KINDS
 from ..diagnose.figures import diagnosis_figures
 from ..diagnose.report import write_report
@@ -53,9 +54,6 @@ from ..params import (
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import build_compensator, check_config, check_declared, data_options, say
-
-MODEL_NAME = "diagnosed"
-
 
 # What each ``diagnose.*`` key may be (``targets`` is also checked against the modelled targets).
 DIAGNOSE_RULES = {

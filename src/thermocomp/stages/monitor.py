@@ -197,8 +197,10 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
     rf = np.vstack(res_f) if res_f else None
     ra = np.vstack(res_a) if res_a else None
 
-    def rmse(r, k):
-        return None if r is None else float(np.sqrt(np.nanmean(r[:, k] ** 2)))
+    def rmse(r, k):     # None: nothing to score (no errors, or no finite residual at all)
+        if r is None or not np.isfinite(r[:, k]).any():
+            return None
+        return float(np.sqrt(np.nanmean(r[:, k] ** 2)))
 
     pod = mon.pod
     rank = qr_sensors(pod.phi_) if pod.n_modes_ <= len(names) else np.arange(len(names))

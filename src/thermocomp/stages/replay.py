@@ -75,8 +75,7 @@ def _name(comp) -> str:
     for f in sorted(conf_dir().glob("model/*.yaml")):
         c = OmegaConf.load(f)
         families[str(c.estimator._target_).rsplit(".", 1)[-1]] = str(c.name)
-    from ..diagnose.augmented import AugmentedRegressor
-    from .diagnose import MODEL_NAME
+    from ..diagnose.augmented import MODEL_NAME, AugmentedRegressor
 
     est, suffix = comp.estimator, ""
     while type(est).__name__ not in families:
