@@ -114,6 +114,15 @@ def test_too_few_campaigns_fall_back_to_one_model(data):
     assert est.n_intervals_ == 1 and "too few" in est.elbow_["reason"]
 
 
+def test_no_count_that_can_be_cross_validated_is_one_model(data, monkeypatch):
+    # diagnose's folds of a small dataset left every count's held-out Rsd undefined: the elbow
+    # then indexed an empty choice (IndexError, exit 1)
+    train, _ = data
+    monkeypatch.setattr(ATIRegressor, "_cv_rsd", lambda self, *a: np.full(3, np.nan))
+    est = Compensator(ATIRegressor(MLR()), inputs=["T_1"]).fit(train).estimators_["E_Z"]
+    assert est.n_intervals_ == 1 and "could be cross-validated" in est.elbow_["reason"]
+
+
 @pytest.mark.filterwarnings("ignore::sklearn.exceptions.SkipTestWarning")
 def test_without_context_is_one_model_and_passes_sklearn_checks():
     check_estimator(ATIRegressor())

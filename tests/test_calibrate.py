@@ -652,3 +652,24 @@ def test_every_calibrate_key_is_documented(raw, clean, tmp_path):
     fields = set(setup) | set(setup["machine"]) | set(setup["artefact"]) | set(setup["poses"][0]) \
         | set(setup["uncertainty_um"])
     assert not sorted(k for k in fields if not _documented(k, DATA_FORMAT))
+
+
+def test_the_parameter_dataset_never_replaces_data_or_a_folder_of_something_else(
+        raw, clean, tmp_path, capsys, default_dataset):
+    # calibrate.dataset is replaced whole: pointed at data.path it once deleted the distances,
+    # at another dataset its campaigns
+    data = copy(raw, tmp_path)
+    other = tmp_path / "other"
+    shutil.copytree(default_dataset, other)
+    before = sorted(p.name for p in other.iterdir())
+    for target, says in ((data, "which holds data.path"), (data / "sub", "which holds data.path"),
+                         (other, "does not hold this dataset's parameter series")):
+        refused(["calibrate", f"data.path={data}", f"out={tmp_path / 'out'}", "track=false",
+                 f"calibrate.dataset={target}"], capsys, says)
+    assert sorted(p.name for p in other.iterdir()) == before
+    assert (data / SETUP_FILE).is_file()
+    # its own earlier series (same campaigns) is replaced, as before
+    series = tmp_path / "series"
+    for _ in range(2):
+        calibrate(data, tmp_path / "out", f"calibrate.dataset={series}")
+    assert (series / "campaigns.csv").is_file()

@@ -120,6 +120,10 @@ def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
     (["run", "+diagnose.alpah=0.05"], "did you mean 'diagnose.alpha'"),
     (["run", "+model.foo=1"], "unknown config key 'model.foo'"),
     (["run", "-m", "model=mlr,pcr", "+eval.foo=1"], "unknown config key 'eval.foo'"),
+    # found by an outside probe: a traceback (exit 1) or a silent misreading before
+    (["run", "seed=4294967296"], "seed=4294967296 is not an integer in [0, 2**32 - 1]"),
+    (["run", "data.targets=[E_Z,E_Z]"], "each once"),
+    (["run", "data.inputs=T_amb"], "data.inputs='T_amb': must be a non-empty list"),
 ])
 def test_bad_config_exits_2_with_one_line(args, needle, capsys, tmp_path):
     code = main([*args, "track=false", f"out={tmp_path / 'o'}"] if args[0] == "run" else args)
@@ -127,3 +131,21 @@ def test_bad_config_exits_2_with_one_line(args, needle, capsys, tmp_path):
     assert code == 2
     assert len(errors) == 1 and needle in errors[0]
     assert not (tmp_path / "o").exists()
+
+
+def test_an_empty_out_is_refused_not_the_project_root(capsys, tmp_path):
+    assert main(["run", "track=false", "out="]) == 2
+    assert "out is empty" in capsys.readouterr().err
+
+
+def test_simulate_never_replaces_a_file_or_a_folder_of_something_else(capsys, tmp_path):
+    afile = tmp_path / "afile"
+    afile.write_text("keep me")
+    notes = tmp_path / "notes"
+    notes.mkdir()
+    (notes / "n.txt").write_text("keep me too")
+    for path, says in ((afile, "exists and is not a folder"), (notes, "holds no dataset")):
+        assert main(["simulate", f"data.path={path}", "track=false"]) == 2
+        assert says in capsys.readouterr().err
+    assert afile.read_text() == "keep me" and (notes / "n.txt").read_text() == "keep me too"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["afile", "notes"]   # nothing left behind

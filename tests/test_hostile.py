@@ -490,3 +490,18 @@ def test_figure_names_from_data_stay_in_their_folder(tmp_path, name):
     assert re.fullmatch(r"[\w.\-]+", path.name) and ".." not in path.name
     with pytest.raises(ValueError, match="leaves"):
         files.inside(tmp_path, "../x.png")
+
+
+def test_evaluate_refuses_settings_the_model_was_not_trained_with(paths, tmp_path, capsys):
+    # model=pcr on an MLR model once printed the MLR's figures labelled pcr; another
+    # data.targets was a KeyError traceback
+    interim = [f"data.path={paths['ds']}", f"data.interim={paths['interim']}",
+               f"model_path={paths['model']}", f"data.processed={tmp_path / 'processed'}", *FAST]
+    assert main(["ingest", *interim]) == 0
+    assert main(["train", *interim]) == 0
+    for bad, says in (("model=pcr", "trained with mlr"),
+                      ("data.targets=[E_Z]", "trained with every E_ column"),
+                      ("data.inputs=[T_0]", "trained with ['T_*']")):
+        refused(["evaluate", *interim, f"out={paths['out']}", bad], capsys, bad.split("=")[0], says)
+        assert not paths["out"].exists()
+    assert main(["evaluate", *interim, f"out={paths['out']}"]) == 0

@@ -287,6 +287,10 @@ STDIN_CASES = {
     "lacks a column": (lambda df: df.drop(columns="T_box2").to_csv(index=False),
                        ["<stdin>", "column 'T_box2'", "lacks a column"]),
     "non-numeric cell": (_bad_cell, ["<stdin>", "column 'T_motor1'", "row 12", "non-numeric"]),
+    # a column the model does not read is still data (a traceback before)
+    "non-numeric signal": (lambda df: df.astype({"S_spindle_rpm": object}).assign(
+        S_spindle_rpm=lambda d: d["S_spindle_rpm"].where(d.index != 4, "abc")).to_csv(index=False),
+        ["<stdin>", "column 'S_spindle_rpm'", "row 5", "non-numeric"]),
 }
 
 

@@ -149,8 +149,9 @@ def _check_seed(cfg) -> None:
     from .errors import ConfigError
 
     seed = cfg.get("seed")
-    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
-        raise ConfigError(f"seed={seed!r} is not an integer >= 0")
+    if isinstance(seed, bool) or not isinstance(seed, int) or not 0 <= seed < 2 ** 32:
+        # NumPy's legacy RandomState (random forests, LSTM init) takes seeds below 2**32
+        raise ConfigError(f"seed={seed!r} is not an integer in [0, 2**32 - 1]")
 
 
 def _compose(overrides: list[str]):

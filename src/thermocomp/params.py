@@ -169,13 +169,13 @@ def text() -> Rule:
     return Rule(lambda v: isinstance(v, str) and v != "", "a non-empty text")
 
 
-def texts(what: str = "texts", *, empty: bool = False) -> Rule:
-    """A list of non-empty texts (non-empty unless ``empty``)."""
+def texts(what: str = "texts", *, empty: bool = False, unique: bool = False) -> Rule:
+    """A list of non-empty texts (non-empty unless ``empty``; each once when ``unique``)."""
     def test(v):
         items = _items(v)
         return items is not None and (empty or len(items) >= 1) and all(
-            isinstance(x, str) and x != "" for x in items)
-    return Rule(test, f"a {'' if empty else 'non-empty '}list of {what}")
+            isinstance(x, str) and x != "" for x in items) and (not unique or len(set(items)) == len(items))
+    return Rule(test, f"a {'' if empty else 'non-empty '}list of {what}{', each once' if unique else ''}")
 
 
 BOOLEAN = Rule(_boolean, "true or false")

@@ -90,6 +90,7 @@ MIN_ROWS = 2  # the first sample is the reference: one more is needed to have an
 MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
 MAX_ABS_T_C = 1e4  # refused whatever data.kelvin_threshold_c says
+FAULTY_SHARE = 0.1  # at most this share of a streamed T_ column above the kelvin threshold: faults
 
 
 # ---------------------------------------------------------------------------
@@ -810,14 +811,15 @@ def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) 
 def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
                    complete: bool, streamed: bool = False) -> None:
     """Refuse kelvin (a column above ``threshold``) and values no sensor reads.  A streamed
-    campaign (``missing="keep"``) keeps a few readings above ``threshold`` in a column whose
-    median is in °C: a failing sensor (an open circuit reads 850 °C) that the compensator's
+    campaign (``missing="keep"``) keeps a few readings (at most :data:`FAULTY_SHARE`) above
+    ``threshold``: a failing sensor (an open circuit reads 850 °C) that the compensator's
     range check is there to catch, as on the machine."""
     lowest, highest = ((values.min(), values.max()) if complete
                        else (np.nanmin(values), np.nanmax(values)))
     if highest > min(threshold, MAX_ABS_T_C):
         median = float(np.nanmedian(values))
-        if streamed and median <= threshold and highest <= MAX_ABS_T_C:
+        share = float(np.mean(values[np.isfinite(values)] > threshold))
+        if streamed and share <= FAULTY_SHARE and highest <= MAX_ABS_T_C:
             pass
         else:
             row = int(np.argmax(values > min(threshold, MAX_ABS_T_C))) + 1

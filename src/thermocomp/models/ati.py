@@ -302,8 +302,15 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             sm.append(m)
             sd.append(s)
         single = sm_sd(self._cv_rsd(X, y, campaign, a0, 1, context))
-        score = np.array(sm) + np.array(sd)
-        chosen = feasible[int(np.flatnonzero(score <= (1 + self.elbow_tolerance) * score.min())[0])]
+        score = np.array(sm, dtype=float) + np.array(sd, dtype=float)
+        if not np.isfinite(score).any():    # no count could be scored (a held-out campaign
+            # whose interval had no other campaign to fit on, for every count): one model
+            self.elbow_ = {"n_intervals": feasible, "sm": sm, "sd": sd, "chosen": 1,
+                           "single_model": {"sm": single[0], "sd": single[1]},
+                           "reason": "no number of intervals could be cross-validated; one model"}
+            return 1
+        best = np.nanmin(score)
+        chosen = feasible[int(np.flatnonzero(score <= (1 + self.elbow_tolerance) * best)[0])]
         self.elbow_ = {"n_intervals": feasible, "sm": sm, "sd": sd, "chosen": chosen,
                        "single_model": {"sm": single[0], "sd": single[1]}, "reason": None}
         return chosen

@@ -27,6 +27,7 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from .. import io
+from ..errors import ConfigError
 from ..files import staged_outputs, write_json
 from ..log import logger
 from ..paths import resolve
@@ -42,9 +43,11 @@ def calibrate(cfg: DictConfig) -> dict:
     check_calibrate(c)
     out = resolve(cfg.out)
     target = resolve(c.dataset) if c.get("dataset") else out / "parameters"
+    root = resolve(cfg.data.path)
     if c.get("dataset"):
         _check_writable("calibrate.dataset", c.dataset, folder=True)
-    root = resolve(cfg.data.path)
+    _check_replaceable(target, root, f"calibrate.dataset={c.dataset}" if c.get("dataset") else
+                       f"out={cfg.out}")
     say(f"reading {root}")
     with stage_run(cfg, "calibrate") as tr:
         params, cal, report, _ = calibrated_dataset(cfg)
@@ -70,6 +73,30 @@ def calibrate(cfg: DictConfig) -> dict:
     print(_summary(cal, report))
     say(f"calibrate: {out / 'calibration.json'}, parameters: {target}")
     return report
+
+
+def _check_replaceable(target: Path, root: Path, key: str) -> None:
+    """The parameter series replace ``target`` whole: refuse a folder that is, holds or lies
+    in ``data.path``, and a non-empty one that is not this dataset's parameter series from an
+    earlier calibrate (same campaigns): it once deleted a dataset given there by mistake."""
+    import pandas as pd
+
+    t, r = target.resolve(), root.resolve()
+    if t == r or r in t.parents or t in r.parents:
+        raise ConfigError(f"{key}: the parameter series would replace {t}, which holds data.path "
+                          f"{r}; give a folder of its own")
+    if not t.is_dir() or not any(t.iterdir()):
+        return
+    manifest = t / "campaigns.csv"
+    try:
+        ids = set(pd.read_csv(manifest)["campaign"].astype(str))
+        mine = set(pd.read_csv(r / "campaigns.csv")["campaign"].astype(str))
+    except Exception:
+        ids, mine = None, set()
+    if ids != mine:
+        raise ConfigError(f"{key}: {t} is not empty and does not hold this dataset's parameter "
+                          "series (written by an earlier calibrate); it would be replaced whole: "
+                          "give an empty or new folder")
 
 
 def _summary(cal, report) -> str:

@@ -34,7 +34,7 @@ from ..params import (
     subset,
     texts,
 )
-from ..paths import resolve
+from ..paths import conf_dir, resolve
 
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
 
@@ -46,7 +46,8 @@ CONFIG_RULES = {
     "eval.anova_alpha": number(0.0, 1.0, open_lo=True, open_hi=True),
     "eval.mutual_prediction": BOOLEAN, "eval.ati_baselines": BOOLEAN, "eval.iso10791_a3": BOOLEAN,
     "eval.validation": BOOLEAN, "eval.validation_folds": integer(2),
-    "data.targets": optional(texts("E_ column names")),
+    "data.inputs": texts("column names or patterns", unique=True),
+    "data.targets": optional(texts("E_ column names", unique=True)),
 }
 # The configured estimators, denoiser and selector: each checks its ``param_rules``.
 COMPONENTS = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector")
@@ -126,6 +127,8 @@ def check_component(component, key: str) -> None:
 
 def _check_writable(key: str, value, folder: bool) -> None:
     """``key=value`` names a place this process can write a folder (or a file) to."""
+    if value is None or not str(value).strip():      # resolved, '' is the project root
+        raise ConfigError(f"{key} is empty: give a {'folder' if folder else 'file'}")
     path = resolve(value)
     if path.exists() and path.is_dir() != folder:
         raise ConfigError(f"{key}={value}: exists and is {'not ' * folder}a folder")
@@ -279,6 +282,27 @@ def load_model(path) -> Compensator:
     if not path.is_file():
         raise io.ContractError("no trained model; run `thermocomp train` first", file=path)
     return signing.load(path, Compensator)
+
+
+def model_family(comp) -> str:
+    """The model family (``conf/model/<name>.yaml``'s ``name``) of a loaded compensator, as
+    ``replay.json`` names a fitted one: through an ATI or a diagnosed wrapper to the model
+    inside; the class name for an estimator no config builds."""
+    families = {}
+    for f in sorted(conf_dir().glob("model/*.yaml")):
+        c = OmegaConf.load(f)
+        families[str(c.estimator._target_).rsplit(".", 1)[-1]] = str(c.name)
+    from ..diagnose.augmented import MODEL_NAME, AugmentedRegressor
+
+    est, suffix = comp.estimator, ""
+    while type(est).__name__ not in families:
+        if isinstance(est, AugmentedRegressor):
+            suffix = f"+{MODEL_NAME}"            # as diagnose names it: <family>+diagnosed
+        inner = getattr(est, "base_estimator", None) or getattr(est, "estimator", None)
+        if inner is None:
+            return type(comp.estimator).__name__
+        est = inner
+    return families[type(est).__name__] + suffix
 
 
 def result_table(metrics: dict) -> str:

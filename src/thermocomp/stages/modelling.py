@@ -18,6 +18,7 @@ from sklearn.base import clone
 from .. import io
 from ..compensator import Compensator
 from ..continuation import carry_over
+from ..errors import ConfigError
 from ..evaluation import (
     VAL_FOLDS,
     ambient_by_campaign,
@@ -42,6 +43,7 @@ from .common import (
     check_declared,
     data_options,
     load_model,
+    model_family,
     result_table,
     save_model,
     say,
@@ -260,6 +262,22 @@ def _mutual_figures(draw, folder, mutual: dict) -> None:
              _figure(folder, "mutual_prediction", t), mp["ambient_c0"])
 
 
+def _check_trained_as_configured(cfg: DictConfig, comp) -> None:
+    """``evaluate`` scores the model at ``model_path`` and labels the result with the config:
+    the two must agree (``model=pcr`` on an MLR model printed the MLR's figures as pcr's, and
+    another ``data.targets`` was a KeyError)."""
+    family = model_family(comp)
+    targets = None if cfg.data.targets is None else list(cfg.data.targets)
+    differs = [(f"model={cfg.model.name}", family) if family != str(cfg.model.name) else None,
+               (f"data.inputs={list(cfg.data.inputs)}", list(comp.inputs))
+               if list(cfg.data.inputs) != list(comp.inputs) else None,
+               (f"data.targets={targets}", comp.targets or "every E_ column")
+               if targets != (None if comp.targets is None else list(comp.targets)) else None]
+    for key, trained in filter(None, differs):
+        raise ConfigError(f"{key}, but the model at model_path={cfg.model_path} was trained with "
+                          f"{trained}: evaluate with the training's settings, or train again")
+
+
 def evaluate(cfg: DictConfig) -> dict:
     """Score the trained model on train and test splits; write ``out/metrics.json`` (with the
     ``volumetric`` section when ``data.path`` is a volumetric dataset)."""
@@ -268,6 +286,7 @@ def evaluate(cfg: DictConfig) -> dict:
     interim = resolve(cfg.data.interim)
     ds = io.load_interim(interim)
     comp = load_model(cfg.model_path)
+    _check_trained_as_configured(cfg, comp)
     trained_on = getattr(comp, "interim_digest_", None)
     if trained_on is not None and trained_on != ds.meta["digest"]:
         raise io.ContractError("the model was trained on another ingest of this folder (another "

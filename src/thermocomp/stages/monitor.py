@@ -48,7 +48,7 @@ from .common import (
 )
 
 
-def _stdin_campaign(columns: list[str], targets: list[str]) -> tuple[dict, dict]:
+def _stdin_campaign(columns: list[str]) -> tuple[dict, dict]:
     """``({"stdin": frame}, missing cells)`` from CSV rows on stdin (header first); empty cells
     stay NaN, a non-numeric one is refused with its row."""
     try:
@@ -62,7 +62,10 @@ def _stdin_campaign(columns: list[str], targets: list[str]) -> tuple[dict, dict]
     if absent:
         raise io.ContractError("stdin lacks a column the compensator reads", file="<stdin>",
                                column=",".join(absent))
-    numeric = [*columns, *(c for c in (TIME, *targets) if c in df.columns)]
+    # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
+    # model reads: the measured errors and the context are read from the same frame
+    numeric = list(dict.fromkeys([*columns, *(c for c in df.columns
+                                              if c == TIME or str(c)[:2] in ("T_", "E_", "S_"))]))
     for c in numeric:
         bad = pd.to_numeric(df[c], errors="coerce").isna() & df[c].notna()
         if bad.any():
@@ -137,7 +140,7 @@ def monitor(cfg: DictConfig) -> dict:
             raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")
         if stdin:
-            streamed, missing = _stdin_campaign(adaptive.columns_, comp.targets_)
+            streamed, missing = _stdin_campaign(adaptive.columns_)
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")

@@ -18,13 +18,13 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from omegaconf import DictConfig, OmegaConf
+from omegaconf import DictConfig
 
 from .. import io
 from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
-from ..paths import conf_dir, resolve
+from ..paths import resolve
 from ..tracking import connect, stage_run
 from .common import (
     build_compensator,
@@ -33,6 +33,7 @@ from .common import (
     deploy_stream,
     deployable,
     load_model,
+    model_family,
     read_streamed,
     say,
 )
@@ -60,32 +61,11 @@ def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
             except Exception as exc:
                 raise ConfigError(f"replay.model={source}: cannot load it "
                                   f"({' '.join(str(exc).split())[:200]})") from None
-            return deployed, source, _name(plain(deployed).compensator)
+            return deployed, source, model_family(plain(deployed).compensator)
         comp = load_model(path)
-        name = _name(comp)
+        name = model_family(comp)
         train = {c: ds.campaigns[c] for c in train_ids}
     return deployable(cfg, deploy_stream(cfg, comp, train), train), source, name
-
-
-def _name(comp) -> str:
-    """The model family (``conf/model/<name>.yaml``'s ``name``) of a loaded compensator, as
-    ``replay.json`` names a fitted one: through an ATI or a diagnosed wrapper to the model
-    inside; the class name for an estimator no config builds."""
-    families = {}
-    for f in sorted(conf_dir().glob("model/*.yaml")):
-        c = OmegaConf.load(f)
-        families[str(c.estimator._target_).rsplit(".", 1)[-1]] = str(c.name)
-    from ..diagnose.augmented import MODEL_NAME, AugmentedRegressor
-
-    est, suffix = comp.estimator, ""
-    while type(est).__name__ not in families:
-        if isinstance(est, AugmentedRegressor):
-            suffix = f"+{MODEL_NAME}"            # as diagnose names it: <family>+diagnosed
-        inner = getattr(est, "base_estimator", None) or getattr(est, "estimator", None)
-        if inner is None:
-            return type(comp.estimator).__name__
-        est = inner
-    return families[type(est).__name__] + suffix
 
 
 def replay(cfg: DictConfig) -> dict:

@@ -7,11 +7,12 @@ import time
 from hydra.utils import instantiate
 from omegaconf import DictConfig
 
+from ..errors import ConfigError
 from ..files import write_json
 from ..paths import resolve
 from ..sim.scenario import write_scenario
 from ..tracking import stage_run
-from .common import say
+from .common import _check_writable, say
 
 
 def simulate(cfg: DictConfig) -> dict:
@@ -20,6 +21,11 @@ def simulate(cfg: DictConfig) -> dict:
     generator = instantiate(cfg.sim.generator)
     say(f"simulating {cfg.sim.name} ...")
     path = resolve(cfg.data.path)
+    _check_writable("data.path", cfg.data.path, folder=True)
+    if path.is_dir() and any(path.iterdir()) and not (path / "campaigns.csv").is_file():
+        # the dataset replaces data.path whole: never a folder of something else
+        raise ConfigError(f"data.path={cfg.data.path}: not empty and holds no dataset "
+                          "(campaigns.csv); simulate replaces it whole: give a new or empty folder")
     truth, n_campaigns, rows = write_scenario(generator, path)
     truth_path = write_json(f"{path}.truth.json", truth)
     say(f"wrote {n_campaigns} campaigns, {rows} rows to {path} "
