@@ -149,3 +149,25 @@ def test_simulate_never_replaces_a_file_or_a_folder_of_something_else(capsys, tm
         assert says in capsys.readouterr().err
     assert afile.read_text() == "keep me" and (notes / "n.txt").read_text() == "keep me too"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["afile", "notes"]   # nothing left behind
+
+
+def test_the_usage_lists_every_stage(capsys):
+    from thermocomp.stages import STAGES
+
+    assert main(["--help"]) == 0
+    listed = {line.split()[0] for line in capsys.readouterr().out.splitlines()
+              if line.startswith("  ") and line.split() and not line.startswith("   ")}
+    assert set(STAGES) <= listed, set(STAGES) - listed
+
+
+@pytest.mark.parametrize("uri, says", [
+    ("bogus://x", "not a store MLflow opens here"),
+    ("sqlite:////proc/x/m.db", "cannot write in /proc/x"),
+    # nothing listens on the discard port: MLflow retried for minutes, silently
+    ("http://127.0.0.1:9", "no server answers"),
+])
+def test_a_store_that_cannot_be_opened_is_refused_at_once(capsys, tmp_path, uri, says):
+    assert main(["run", f"tracking_uri={uri}", f"out={tmp_path / 'o'}", "plots=none",
+                 "data.path=/nonexistent"]) == 2
+    err = capsys.readouterr().err
+    assert says in err and f"tracking_uri={uri}" in err

@@ -157,6 +157,11 @@ def test_promote_without_run_or_sweep_is_a_config_error(project, capsys):
     ("promote.envelope.policy=ignore", "promote.envelope.policy='ignore': must be one of clamp"),
     ("promote.envelope.margin=-0.5", "promote.envelope.margin=-0.5: must be a number >= 0"),
     ("promote.max_stream_deviation_um=-1", "promote.max_stream_deviation_um=-1:"),
+    # MlflowException tracebacks (exit 1) or a wrong reason before
+    ("promote.alias='has space'", "promote.alias='has space': must be letters, digits"),
+    ("promote.alias=v3", "not v<number>"),
+    ("promote.criterion=bogus", "promote.criterion=bogus is not a figure"),
+    ("promote.run_id=deadbeef", "promote.run_id=deadbeef: no such run"),
 ])
 def test_promote_refuses_bad_settings_before_reading_a_run(project, capsys, override, says):
     import mlflow

@@ -92,6 +92,15 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
     capsys.readouterr()
     assert main(["compare", f"tracking_uri={uri}", "compare.descending=maybe"]) == 2  # was: truthy
     assert "compare.descending='maybe': must be null or true or false" in capsys.readouterr().err
+    # tracebacks before: the sweep read through another store, a file in compare.out's place
+    other_store = f"sqlite:///{tmp_path / 'other_store' / 'mlflow.db'}"
+    assert main(["compare", f"tracking_uri={other_store}", f"compare.sweep={sweep_dir}"]) == 2
+    assert "tracked in another store" in capsys.readouterr().err
+    afile = tmp_path / "afile"
+    afile.write_text("")
+    assert main(["compare", f"tracking_uri={uri}", f"compare.sweep={sweep_dir}",
+                 f"compare.out={afile}"]) == 2
+    assert "exists and is not a folder" in capsys.readouterr().err
 
     # promote the sweep's best: only with the dataset its runs were scored on, and only once
     other = write_small_dataset(tmp_path / "other", seed=1)

@@ -37,6 +37,8 @@ stages:
   promote    register the best run's compensator; move @champion only if it is better
   replay     stream the test campaigns row by row through the deployable compensator (replay.json)
   serve      the registered compensator over HTTP (serve.model=, serve.port=; one worker)
+  monitor    stream test campaigns (or stdin) through the fixed and the fault-tolerant
+             compensator: sensor events, RMSE of both (<out>/monitor.json)
   calibrate  artefact distances of a volumetric dataset -> error parameter series (calibration.json)
   design     Monte Carlo study of artefact calibration strategies (<out>/design.json)
 

@@ -39,7 +39,14 @@ def parent_run_id(cfg: DictConfig, client) -> str:
     if path.is_dir():
         path = path / SWEEP_FILE
     if path.is_file():
-        return json.loads(path.read_text())["parent_run_id"]
+        parent = json.loads(path.read_text())["parent_run_id"]
+        try:
+            retry_locked(client.get_run, parent)
+        except Exception:
+            raise ConfigError(f"compare.sweep={sweep}: its parent run {parent} is not in "
+                              f"{cfg.tracking_uri} (the sweep was tracked in another store: give "
+                              "its tracking_uri)") from None
+        return parent
     try:
         retry_locked(client.get_run, str(sweep))
     except Exception as exc:

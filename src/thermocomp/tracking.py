@@ -32,6 +32,7 @@ import math
 import os
 import random
 import re
+import tempfile
 import time
 from contextlib import contextmanager
 from pathlib import Path
@@ -178,10 +179,53 @@ def connect(cfg) -> str:
     import mlflow
 
     _quiet_mlflow()
-    uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
+    uri = store_uri(cfg)
     mlflow.set_tracking_uri(uri)
     ensure_store(uri)
     return uri
+
+
+def store_uri(cfg) -> str:
+    """``cfg.tracking_uri`` resolved, once checked that MLflow can open it (ConfigError)."""
+    raw = str(cfg.get("tracking_uri") or DEFAULT_URI)
+    try:
+        uri = resolve_uri(raw)
+    except OSError as exc:
+        from .errors import ConfigError
+
+        raise ConfigError(f"tracking_uri={raw}: cannot create its folder ({exc.strerror})") from None
+    check_reachable(uri)
+    return uri
+
+
+STORE_SCHEMES = ("sqlite", "http", "https", "postgresql", "mysql", "mssql", "databricks")
+
+
+def check_reachable(uri: str) -> None:
+    """A store MLflow can open: a known scheme, a SQLite file in a folder this process can
+    write, a server that answers within seconds (MLflow retries an unreachable one for minutes,
+    silently)."""
+    from .errors import ConfigError
+
+    scheme = uri.partition(":")[0].partition("+")[0]
+    if scheme not in STORE_SCHEMES:
+        raise ConfigError(f"tracking_uri={uri}: not a store MLflow opens here (schemes: "
+                          f"{', '.join(STORE_SCHEMES)}; the default is {DEFAULT_URI})")
+    if scheme == "sqlite" and uri.startswith("sqlite:///"):
+        folder = Path(uri[len("sqlite:///"):]).parent
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            tempfile.TemporaryFile(dir=folder).close()
+        except OSError as exc:
+            raise ConfigError(f"tracking_uri={uri}: cannot write in {folder} ({exc.strerror})") from None
+    elif scheme in ("http", "https"):
+        import requests
+
+        try:
+            requests.get(uri.rstrip("/") + "/health", timeout=10)
+        except requests.RequestException as exc:
+            raise ConfigError(f"tracking_uri={uri}: no server answers "
+                              f"({type(exc).__name__}); is it running?") from None
 
 
 def client(cfg):

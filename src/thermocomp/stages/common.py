@@ -35,6 +35,7 @@ from ..params import (
     texts,
 )
 from ..paths import conf_dir, resolve
+from ..tracking import enabled, store_uri
 
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
 
@@ -95,6 +96,8 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",)) -> None:
             check_component(instantiate(node), key)
     for key in outputs:
         _check_writable(key, OmegaConf.select(cfg, key), folder=key != "model_path")
+    if enabled(cfg):     # before any data is read: an unreachable server once hung a run for minutes
+        store_uri(cfg)
 
 
 def check_keys(cfg: DictConfig, rules: dict) -> None:

@@ -27,7 +27,7 @@ from ..plotdata import write_compare
 from ..sweeps import parent_run_id, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
-from .common import check_keys, say
+from .common import _check_writable, check_keys, say
 
 
 def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
@@ -83,5 +83,7 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
 
 def compare(cfg: DictConfig) -> pd.DataFrame:
     """`thermocomp compare`: the comparison table of ``compare.sweep`` (default: latest sweep)."""
+    if cfg.compare.get("out") is not None:
+        _check_writable("compare.out", cfg.compare.out, folder=True)
     client = mlflow_client(cfg)
     return compare_sweep(cfg, parent_run_id(cfg, client))

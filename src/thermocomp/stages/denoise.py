@@ -42,7 +42,7 @@ def _removed_rms(raw: dict, den: dict, columns) -> dict:
 
 def denoise(cfg: DictConfig) -> dict:
     """Write the denoised dataset to ``data.processed`` and figures to ``<out>/denoise``."""
-    check_config(cfg)
+    check_config(cfg, outputs=("out", "data.processed"))
     src, dest = resolve(cfg.data.interim), resolve(cfg.data.processed)
     ds = io.load_interim(src)
     inputs, _ = resolve_columns(ds.columns, list(cfg.data.inputs), None)
@@ -84,7 +84,7 @@ def denoise(cfg: DictConfig) -> dict:
                         "causal_vs_offline_rms_c": report.get("causal_vs_offline_rms_c", {})})
         tr.log_artifact(dest / DENOISE_JSON)
         tr.log_artifacts(figures, "denoise")
-    say(f"processed data: {dest}; figures: {figures}")
+    say(f"processed data: {dest}" + (f"; figures: {figures}" if cfg.plots != "none" else ""))
     return report
 
 

@@ -39,6 +39,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import re
 import subprocess
 import tempfile
 from pathlib import Path
@@ -52,8 +53,8 @@ from ..deploy.report import summary as deployed_summary
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json
-from ..leaderboard import beats, is_validation, rank, summary
-from ..params import BOOLEAN, NON_NEGATIVE, choice, text
+from ..leaderboard import FIGURES, beats, is_validation, rank, summary
+from ..params import BOOLEAN, NON_NEGATIVE, Rule, choice, text
 from ..paths import project_root, resolve
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
 from ..tracking import DATASET_TAG, child_runs, connect, end_active_run, retry_locked
@@ -62,7 +63,11 @@ from .common import check_config, check_keys, data_options, deploy_stream, deplo
 
 # What the plain promote.* keys may be (the criterion and target are checked against the runs).
 PROMOTE_RULES = {
-    "promote.model_name": text(), "promote.alias": text(),
+    "promote.model_name": text(),
+    # MLflow's alias rule: letters, digits, _ and -; not a version (v1) nor 'latest'
+    "promote.alias": Rule(lambda v: isinstance(v, str) and re.fullmatch(r"[\w-]+", v) is not None
+                          and re.fullmatch(r"[vV]\d+|latest", v) is None,
+                          "letters, digits, _ and - (not v<number> nor latest)"),
     "promote.min_improvement": NON_NEGATIVE,   # negative would let a worse candidate replace it
     "promote.force": BOOLEAN, "promote.envelope.policy": choice(*POLICIES),
     "promote.envelope.margin": NON_NEGATIVE, "promote.max_stream_deviation_um": NON_NEGATIVE,
@@ -244,8 +249,9 @@ def promote(cfg: DictConfig) -> dict:
     opts = cfg.promote
     criterion = str(opts.criterion)
     if not is_validation(criterion):
-        raise ConfigError(f"promote.criterion={criterion} is a test figure: the test split is "
-                          f"reported, never used to choose (use val_rmse, val_rsd_mean or "
+        what = ("is a test figure: the test split is reported, never used to choose"
+                if criterion in FIGURES else "is not a figure")
+        raise ConfigError(f"promote.criterion={criterion} {what} (use val_rmse, val_rsd_mean or "
                           f"val_rsd_sd)")
     client = mlflow_client(cfg)
     uri = connect(cfg)
@@ -255,7 +261,11 @@ def promote(cfg: DictConfig) -> dict:
     run_id = (str(opts.run_id) if opts.get("run_id")
               else _best_run(cfg, client, uri, dataset_hash, data_path))
     say(f"candidate run {run_id}")
-    run = retry_locked(client.get_run, run_id)
+    try:
+        run = retry_locked(client.get_run, run_id)
+    except mlflow.exceptions.MlflowException as exc:
+        raise ConfigError(f"promote.run_id={run_id}: no such run in {uri} "
+                          f"({' '.join(str(exc).split())[:120]})") from None
     _check_dataset(run, run_id, dataset_hash, data_path)
     run_params = run.data.params
     comp, digest = _load_run_model(run_id, uri)

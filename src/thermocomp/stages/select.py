@@ -37,7 +37,7 @@ def _series(s) -> dict:
 
 def select(cfg: DictConfig) -> dict:
     """Fit the selector per target on the train split and write ``selection.json``."""
-    check_config(cfg)
+    check_config(cfg, outputs=("out", "model_path"))
     selector = instantiate(cfg.select.selector)
     try:
         if hasattr(selector, "check_params"):
