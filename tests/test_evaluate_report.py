@@ -130,6 +130,10 @@ def test_plots_none_writes_no_figure_and_the_same_numbers(small_year, tmp_path):
     assert {p.name for p in (tmp_path / "summary" / "plots").iterdir()} == {
         "e_p95_E_Z.png", "rsd_E_Z.png", "e_p95", "residuals"}
     assert reports["none"] == reports["summary"]
+    # plots=none into the folder of a run with figures: none of them stay beside its numbers
+    cfg = _compose([f"out={tmp_path / 'summary'}", "plots=none", *light])
+    _report(cfg, build_compensator(cfg).fit({c: ds.campaigns[c] for c in ds.ids("train")}), ds, _Null())
+    assert not (tmp_path / "summary" / "plots").exists()
 
 
 @pytest.mark.slow

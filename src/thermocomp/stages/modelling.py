@@ -8,6 +8,7 @@ refused or killed run leaves ``out`` as it was.
 
 from __future__ import annotations
 
+import shutil
 import time
 from contextlib import contextmanager
 from functools import partial
@@ -91,6 +92,8 @@ def _report(cfg: DictConfig, comp: Compensator, ds, tracker, clock: Clock | None
         if stage_files is not None:
             stage_files(stage)
         metrics = _score(cfg, comp, ds, stage, clock, extra)
+    if cfg.plots == "none":      # no figures of this run: none of an earlier one beside its numbers
+        shutil.rmtree(out / "plots", ignore_errors=True)
     _publish(cfg, metrics, out, tracker, clock)
     return metrics
 
