@@ -124,6 +124,9 @@ def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
     (["run", "seed=4294967296"], "seed=4294967296 is not an integer in [0, 2**32 - 1]"),
     (["run", "data.targets=[E_Z,E_Z]"], "each once"),
     (["run", "data.inputs=T_amb"], "data.inputs='T_amb': must be a non-empty list"),
+    (["replay", "replay.model=", "track=false"], "replay.model is empty"),
+    (["run", "~model"], "~model: thermocomp reads every key and group"),
+    (["monitor", "monitor.model=models:/m@champion", "track=false"], "a registered model replays"),
 ])
 def test_bad_config_exits_2_with_one_line(args, needle, capsys, tmp_path):
     code = main([*args, "track=false", f"out={tmp_path / 'o'}"] if args[0] == "run" else args)

@@ -102,6 +102,8 @@ STAGE_HELP = {
 }
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
 # Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
+# objects built from `_target_` (their constructor's defaults stand in for a removed argument)
+BUILT = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector", "sim.generator")
 FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params", "design.studies")
 
 
@@ -262,8 +264,12 @@ def _check_overrides(args: list[str]) -> None:
             base.append(arg)         # composing reports it with Hydra's message
             continue
         key = o.key_or_group
+        if o.type == OverrideType.DEL and not any(key.startswith(f"{m}.") for m in (*FREE_MAPS,
+                                                                                   *BUILT)):
+            _fail(f"~{key}: thermocomp reads every key and group of its config; set it instead "
+                  f"({key}=...)")
         if (conf_dir() / key.replace(".", "/")).is_dir():       # a config group
-            if o.value() is None and o.type != OverrideType.DEL:
+            if o.value() is None:
                 options = sorted(f.stem for f in (conf_dir() / key.replace(".", "/")).glob("*.yaml"))
                 _fail(f"{key}=null: the config group {key!r} needs one of its options "
                       f"({', '.join(options)})")

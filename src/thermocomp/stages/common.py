@@ -201,6 +201,15 @@ def check_streamed_columns(ds, ids, columns, what: str) -> None:
                                    file=campaign_file(ds, cid), column=",".join(absent))
 
 
+def warn_stream_mode(cfg: DictConfig, stage: str) -> None:
+    """A deployed compensator predicts from the inputs alone (simulation): ``eval.mode`` is
+    said not to apply, rather than silently dropped."""
+    if str(cfg.eval.mode) != "simulation":
+        logger.warning("%s: eval.mode=%s is not used: the deployed compensator streams its "
+                       "correction from the inputs alone (simulation mode, no measured error)",
+                       stage, cfg.eval.mode)
+
+
 def read_streamed(cfg: DictConfig, test: bool = True):
     """``(dataset, train ids, test ids, missing cells per test campaign)`` of ``data.path`` as a
     stream sees it.

@@ -103,8 +103,10 @@ def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
         base, source = setup.model, f"{Path(str(data)) / 'volumetric.json'}"
         length, probing, ball = setup.array.length_mm, setup.probing_um, setup.ball_um
     else:
-        if data and not resolve(str(data)).exists():
-            logger.warning(f"design: data.path {data} does not exist: the kinematic model's "
+        if data:
+            why = ("does not exist" if not resolve(str(data)).exists() else
+                   "holds no volumetric.json (not a volumetric dataset)")
+            logger.warning(f"design: data.path {data} {why}: the kinematic model's "
                            "default machine and artefact are studied")
         base, source = KinematicModel(), "kinematic model defaults"
         length, probing, ball = 1500.0, 0.5, 0.5

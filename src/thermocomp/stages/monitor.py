@@ -45,6 +45,7 @@ from .common import (
     load_model,
     read_streamed,
     say,
+    warn_stream_mode,
 )
 
 
@@ -124,7 +125,12 @@ def check_monitor(cfg: DictConfig) -> None:
 def monitor(cfg: DictConfig) -> dict:
     """Stream the test campaigns (or stdin) through the fixed and the adaptive compensator."""
     check_config(cfg)
+    warn_stream_mode(cfg, "monitor")
     check_monitor(cfg)
+    model = cfg.monitor.get("model")
+    if model is not None and (not str(model).strip() or str(model).startswith("models:/")):
+        raise ConfigError(f"monitor.model={model}: a model.pkl file (run's or train's); a "
+                          "registered model replays through replay.model=models:/<name>@<alias>")
     stdin = cfg.monitor.get("input") == "-"
     ds, train_ids, test_ids, missing = read_streamed(cfg, test=not stdin)
     streamed = {c: ds.campaigns[c] for c in test_ids}

@@ -36,6 +36,7 @@ from .common import (
     model_family,
     read_streamed,
     say,
+    warn_stream_mode,
 )
 
 
@@ -71,6 +72,10 @@ def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
 def replay(cfg: DictConfig) -> dict:
     """Stream the test campaigns of ``data.path``; write ``<out>/replay.json``."""
     check_config(cfg)
+    warn_stream_mode(cfg, "replay")
+    model = cfg.replay.get("model")
+    if model is not None and not str(model).strip():     # resolved, '' is the project root
+        raise ConfigError("replay.model is empty: a model.pkl, a pyfunc folder or models:/<name>@<alias>")
     ds, train_ids, test_ids, gaps = read_streamed(cfg)
     root = resolve(cfg.data.path)
     with stage_run(cfg, "replay") as tr:
