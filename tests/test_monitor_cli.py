@@ -167,6 +167,26 @@ def test_a_simulated_fault_on_the_swiss_lathe_is_caught_bounded_and_compensated(
                   kind)
 
 
+@pytest.mark.slow
+def test_a_noise_burst_on_the_swiss_lathe_blames_no_healthy_partner(swiss, tmp_path):
+    # ±0.5 °C for 60 samples on the most influential sensor (an outside probe's case): its
+    # coupled partner, a quantised sensor reading 3 equal samples while the noisy field moved,
+    # was excluded as frozen, and the adaptive correction was 5x worse than the fixed one
+    healthy_path, report_h, sensor = swiss
+    path = tmp_path / "faulty"
+    shutil.copytree(healthy_path, path)
+    index = pd.read_csv(path / "campaigns.csv")
+    for file in index[index["split"] == "test"]["file"]:
+        df = pd.read_csv(path / file)
+        k0 = len(df) // 2
+        df.loc[k0:k0 + 59, sensor] += np.random.default_rng(0).normal(0.0, 0.5, 60)
+        df.to_csv(path / file, index=False)
+    report = run_monitor(path, tmp_path / "out", "plots=none", *SWISS)
+    assert not [e for e in report["events"] if e["reason"].startswith("freeze")]
+    for t, r in report["targets"].items():
+        assert r["rmse_adaptive"] <= 1.1 * r["rmse_fixed"], (t, r)
+
+
 # -- hostile input: exit 2, one line, nothing written -----------------------------------------
 CONFIG_CASES = {
     "input=bad": (["monitor.input=bad"], ["monitor.input='bad': must be one of null, -"]),

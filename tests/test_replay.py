@@ -18,8 +18,7 @@ from thermocomp.diagnose.augmented import AugmentedRegressor
 from thermocomp.models.ati import ATIRegressor
 from thermocomp.models.pcr import PCR
 from thermocomp.paths import conf_dir
-from thermocomp.stages.common import build_compensator
-from thermocomp.stages.replay import _name
+from thermocomp.stages.common import build_compensator, model_family
 
 MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm", "lagbank")
 ATIS = ("none", "cmeans")
@@ -123,6 +122,6 @@ def test_diagnosed_ati_model_replays(door_data, tmp_path):
 
 
 def test_a_loaded_model_is_named_by_its_family_as_a_fitted_one():
-    assert _name(Compensator(PCR())) == "pcr"
-    assert _name(Compensator(ATIRegressor(PCR()))) == "pcr"
-    assert _name(Compensator(AugmentedRegressor(ATIRegressor(PCR())))) == "pcr+diagnosed"
+    assert model_family(Compensator(PCR())) == "pcr"
+    assert model_family(Compensator(ATIRegressor(PCR()))) == "pcr"
+    assert model_family(Compensator(AugmentedRegressor(ATIRegressor(PCR())))) == "pcr+diagnosed"

@@ -19,9 +19,10 @@ Detectors, each named in the event's reason:
 * ``jump`` — a one-sample step larger than ``jump_factor`` × the largest step
   seen in training, or a self-prediction error that steps past the alarm band
   in one sample;
-* ``freeze`` — the reading does not change while its prediction from the other
+* ``freeze`` — the reading does not change, for longer than its longest constant
+  run in training (capped at ``window``), while its prediction from the other
   sensors moves by the warning band (for a sensor no other predicts: no change
-  for longer than ``freeze_factor`` × its longest constant run in training);
+  for longer than ``freeze_factor`` × that run);
 * ``drift`` — the windowed self-prediction error leaves the band gradually.
 
 Adaptive mode (paper 002, 2.3): the worst sensor (largest self-prediction error
@@ -117,6 +118,9 @@ class SensorMonitor:
         self._hi_lim = self.hi_c + self.range_margin_c
         self._jump_lim = self.jump_factor * self.max_step_c
         self._blind_run = np.maximum(self.freeze_factor * self.longest_run, self.window)
+        # a run no longer than training's longest is no freeze, whatever the field did (a noisy
+        # partner moved the field 0.55 °C while a quantised sensor read 3 equal samples)
+        self._seen_run = np.minimum(self.longest_run, self.window)
         self._true = np.ones(n, dtype=bool)
         # which sensors the others can predict with every sensor in (re-admission check)
         self._predictable = pod.operator(self._true)[1] < pod.max_leverage
@@ -311,7 +315,7 @@ class SensorMonitor:
             run_pred = np.where(same & (self._run == 0), other, self._run_pred)
             run = np.where(same, self._run + 1, 0)
             moved = np.abs(other - run_pred)
-            if (same & ((self._observable & (moved >= self.warning_c))
+            if (same & ((self._observable & (moved >= self.warning_c) & (run >= self._seen_run))
                         | (~self._observable & (run > self._blind_run)))).any():
                 return None
             self._run, self._run_pred = run, run_pred
@@ -407,7 +411,7 @@ class SensorMonitor:
             start = same & (self._run == 1)
             self._run_pred[start] = other[start]
             moved = np.abs(other - self._run_pred)
-            frozen = same & ((self._observable & (moved >= self.warning_c))
+            frozen = same & ((self._observable & (moved >= self.warning_c) & (self._run >= self._seen_run))
                              | (~self._observable & (self._run > self._blind_run)))
             for j in np.flatnonzero(frozen):
                 if j in instant:
