@@ -126,6 +126,7 @@ def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
     (["run", "data.inputs=T_amb"], "data.inputs='T_amb': must be a non-empty list"),
     (["replay", "replay.model=", "track=false"], "replay.model is empty"),
     (["run", "~model"], "~model: thermocomp reads every key and group"),
+    (["run", "-m", "model=mlr,nosuch"], "unknown model 'nosuch' in the sweep model=mlr,nosuch"),
     (["monitor", "monitor.model=models:/m@champion", "track=false"], "a registered model replays"),
 ])
 def test_bad_config_exits_2_with_one_line(args, needle, capsys, tmp_path):

@@ -121,6 +121,17 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
 
 
 @pytest.mark.slow
+def test_a_sweep_writes_its_table_where_compare_out_says_and_says_out_is_per_job(tmp_path, dataset):
+    # both were silently ignored: the table went to the sweep folder, out= nowhere
+    table = tmp_path / "table"
+    _, sweep_dir, proc, _, children = _sweep(tmp_path, dataset, 1, "model.estimator.fit_intercept=true,false",
+                                             f"compare.out={table}", f"out={tmp_path / 'ignored'}")
+    assert len(children) == 2 and (table / "compare.csv").is_file()
+    assert not (sweep_dir / "compare.csv").exists() and not (tmp_path / "ignored").exists()
+    assert "out= is not used" in proc.stderr
+
+
+@pytest.mark.slow
 def test_a_failing_job_still_closes_the_parent_run(tmp_path, dataset):
     uri = mlflow_store(tmp_path)
     proc = thermocomp("run", "-m", f"data.path={dataset}", f"tracking_uri={uri}", *LIGHT_EVAL,

@@ -123,7 +123,9 @@ class MlflowSweepCallback(Callback):
                 from .paths import resolve
                 from .stages.compare import compare_sweep
 
-                compare_sweep(config, run_id, out=resolve(str(config.hydra.sweep.dir)))
+                given = any(o.startswith("compare.out=") for o in config.hydra.overrides.task)
+                compare_sweep(config, run_id, out=resolve(str(
+                    config.compare.out if given else config.hydra.sweep.dir)))
             except Exception as exc:  # the sweep itself succeeded; say why there is no table
                 _say(f"no comparison table: {' '.join(str(exc).split())}")
 

@@ -278,6 +278,27 @@ def _check_overrides(args: list[str]) -> None:
             continue
         if not o.is_sweep_override():
             base.append(arg)
+    sweeping = any(a in ("-m", "--multirun") for a in args)
+    if sweeping and any(a.startswith("out=") for a in args):
+        from .log import logger
+
+        logger.warning("in a sweep every job writes to <hydra.sweep.dir>/<job number>: out= is "
+                       "not used (set hydra.sweep.dir=...)")
+    searchpath = any(a.startswith("hydra.searchpath") for a in args)   # options from elsewhere
+    if sweeping and not searchpath:   # each option of a swept group exists (Hydra: many lines, exit 1)
+        for arg in args:
+            try:
+                o = parser.parse_override(arg)
+                values = list(o.sweep_string_iterator()) if o.is_sweep_override() else []
+            except Exception:
+                continue
+            group = conf_dir() / o.key_or_group.replace(".", "/")
+            if values and group.is_dir() and o.type != OverrideType.DEL:
+                options = sorted(f.stem for f in group.glob("*.yaml"))
+                for value in values:
+                    if value not in options:
+                        _fail(f"unknown {o.key_or_group} {value!r} in the sweep {arg}; options: "
+                              f"{', '.join(options)}")
     if not added:
         return
     config = OmegaConf.to_container(_compose_or_explain(base), resolve=False)
