@@ -9,6 +9,7 @@ campaign's initial ambient temperature.
 
 from __future__ import annotations
 
+import warnings
 from functools import lru_cache
 
 import numpy as np
@@ -231,6 +232,9 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             n = self._elbow(X, y, campaign, a0, context)
         else:
             n = int(self.n_intervals)
+            if n > distinct:
+                warnings.warn(f"ATI n_intervals={n}: the train campaigns have {distinct} distinct "
+                              f"ambient level(s); {distinct} interval(s)", UserWarning, stacklevel=3)
         n = min(n, distinct)
         bounds = self._intervals(a0.to_numpy(), n) if n > 1 else np.empty(0)
         return self._fit_intervals(X, y, bounds, interval_of(a0_rows, bounds), context, campaign)

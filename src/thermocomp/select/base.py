@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pandas as pd
 from sklearn.base import BaseEstimator
@@ -74,6 +76,9 @@ class TSPSelector(SelectorMixin, BaseEstimator):
 
     def _sizes(self, n_features: int, n_samples: int) -> list[int]:
         if self.k is not None:
+            if int(self.k) > n_features:
+                warnings.warn(f"select k={self.k}: only {n_features} candidate inputs, all taken",
+                              UserWarning, stacklevel=3)
             return [min(int(self.k), n_features)]
         top = max(self._k_min, min(int(self.k_max), n_features, max(n_samples - 3, 1)))
         return list(range(self._k_min, top + 1))
