@@ -101,9 +101,9 @@ STAGE_HELP = {
               "serve.model=models:/thermocomp-compensator@champion serve.port=5001 serve.host=127.0.0.1"),
 }
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
-# Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
-# objects built from `_target_` (their constructor's defaults stand in for a removed argument)
+# Objects built from `_target_`: `~key` of an argument leaves the constructor's default.
 BUILT = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector", "sim.generator")
+# Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
 FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params", "design.studies")
 
 
@@ -242,65 +242,77 @@ def _explain(exc: BaseException) -> str:
 
 
 def _check_overrides(args: list[str]) -> None:
-    """What Hydra accepts but no stage would read as meant: a config group set to ``null``
-    (Hydra's ValueError names no key) and a key added with ``+``/``++`` that the config does
-    not have (a typo like ``+diagnose.alpah=0.05`` was silently ignored).  Added keys are
-    fine under a free-form map (:data:`FREE_MAPS`) or an object built by ``_target_`` (its
-    constructor checks its arguments)."""
+    """What Hydra accepts but no stage would read as meant, refused with one line (exit 2):
+    a config group set to ``null`` or removed with ``~`` (Hydra's ValueError or OmegaConf's
+    'not in struct' name no key), a swept group option that does not exist (many lines, exit
+    1), and a key added with ``+``/``++`` that the config does not have (``+diagnose.alpah``
+    was silently ignored)."""
     from hydra.core.override_parser.overrides_parser import OverridesParser
-    from hydra.core.override_parser.types import OverrideType
-    from omegaconf import OmegaConf
-
-    from .paths import conf_dir
 
     parser = OverridesParser.create()
-    base, added = [], []
+    parsed, base = [], []
     for arg in args:
         if arg.startswith("-"):
             continue
         try:
-            o = parser.parse_override(arg)
+            parsed.append((arg, parser.parse_override(arg)))
         except Exception:
             base.append(arg)         # composing reports it with Hydra's message
-            continue
-        key = o.key_or_group
-        if o.type == OverrideType.DEL and not any(key.startswith(f"{m}.") for m in (*FREE_MAPS,
-                                                                                   *BUILT)):
-            _fail(f"~{key}: thermocomp reads every key and group of its config; set it instead "
-                  f"({key}=...)")
-        if (conf_dir() / key.replace(".", "/")).is_dir():       # a config group
-            if o.value() is None:
-                options = sorted(f.stem for f in (conf_dir() / key.replace(".", "/")).glob("*.yaml"))
-                _fail(f"{key}=null: the config group {key!r} needs one of its options "
-                      f"({', '.join(options)})")
-        elif o.type in (OverrideType.ADD, OverrideType.FORCE_ADD) and not key.startswith("hydra."):
-            added.append(key)
-            continue
-        if not o.is_sweep_override():
-            base.append(arg)
     sweeping = any(a in ("-m", "--multirun") for a in args)
     if sweeping and any(a.startswith("out=") for a in args):
         from .log import logger
 
         logger.warning("in a sweep every job writes to <hydra.sweep.dir>/<job number>: out= is "
                        "not used (set hydra.sweep.dir=...)")
-    searchpath = any(a.startswith("hydra.searchpath") for a in args)   # options from elsewhere
-    if sweeping and not searchpath:   # each option of a swept group exists (Hydra: many lines, exit 1)
-        for arg in args:
-            try:
-                o = parser.parse_override(arg)
-                values = list(o.sweep_string_iterator()) if o.is_sweep_override() else []
-            except Exception:
-                continue
-            group = conf_dir() / o.key_or_group.replace(".", "/")
-            if values and group.is_dir() and o.type != OverrideType.DEL:
-                options = sorted(f.stem for f in group.glob("*.yaml"))
-                for value in values:
-                    if value not in options:
-                        _fail(f"unknown {o.key_or_group} {value!r} in the sweep {arg}; options: "
-                              f"{', '.join(options)}")
-    if not added:
-        return
+    added = []
+    for arg, o in parsed:
+        if _check_group_or_deletion(arg, o, sweeping and not any(
+                a.startswith("hydra.searchpath") for a in args)):    # options from elsewhere
+            added.append(o.key_or_group)
+        elif not o.is_sweep_override():
+            base.append(arg)
+    if added:
+        _check_added_keys(added, base)
+
+
+def _group_options(key: str) -> list[str] | None:
+    """The options of config group ``key`` (``conf/<key>/*.yaml``), None if it is no group."""
+    from .paths import conf_dir
+
+    folder = conf_dir() / key.replace(".", "/")
+    return sorted(f.stem for f in folder.glob("*.yaml")) if folder.is_dir() else None
+
+
+def _check_group_or_deletion(arg: str, o, check_swept: bool) -> bool:
+    """Refuse a deletion outside an object's arguments or a free map, a group set to null, a
+    swept group option that does not exist; True when ``o`` adds a key (checked later)."""
+    from hydra.core.override_parser.types import OverrideType
+
+    key = o.key_or_group
+    if o.type == OverrideType.DEL and not any(key.startswith(f"{m}.") for m in (*FREE_MAPS, *BUILT)):
+        _fail(f"~{key}: thermocomp reads every key and group of its config; set it instead "
+              f"({key}=...)")
+    options = _group_options(key)
+    if options is None:
+        return o.type in (OverrideType.ADD, OverrideType.FORCE_ADD) and not key.startswith("hydra.")
+    if not o.is_sweep_override() and o.value() is None:
+        _fail(f"{key}=null: the config group {key!r} needs one of its options ({', '.join(options)})")
+    if check_swept and o.is_sweep_override():
+        try:
+            values = list(o.sweep_string_iterator())
+        except Exception:            # a search dimension (interval, glob): the sweeper reports it
+            values = []
+        for value in values:
+            if value not in options:
+                _fail(f"unknown {key} {value!r} in the sweep {arg}; options: {', '.join(options)}")
+    return False
+
+
+def _check_added_keys(added: list[str], base: list[str]) -> None:
+    """Each added key exists in the config composed without them, or lies under a free-form
+    map (:data:`FREE_MAPS`) or an object built by ``_target_`` (its constructor checks it)."""
+    from omegaconf import OmegaConf
+
     config = OmegaConf.to_container(_compose_or_explain(base), resolve=False)
     for key in added:
         node, parts = config, key.split(".")
