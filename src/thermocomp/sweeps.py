@@ -38,21 +38,17 @@ def parent_run_id(cfg: DictConfig, client) -> str:
     path = resolve(str(sweep))
     if path.is_dir():
         path = path / SWEEP_FILE
-    if path.is_file():
-        parent = json.loads(path.read_text())["parent_run_id"]
-        try:
-            retry_locked(client.get_run, parent)
-        except Exception:
-            raise ConfigError(f"compare.sweep={sweep}: its parent run {parent} is not in "
-                              f"{cfg.tracking_uri} (the sweep was tracked in another store: give "
-                              "its tracking_uri)") from None
-        return parent
+    folder = path.is_file()
+    run_id = json.loads(path.read_text())["parent_run_id"] if folder else str(sweep)
     try:
-        retry_locked(client.get_run, str(sweep))
+        retry_locked(client.get_run, run_id)
     except Exception as exc:
-        raise ConfigError(f"compare.sweep={sweep!r} is neither a sweep folder with {SWEEP_FILE} "
-                          f"nor a run id of {cfg.tracking_uri}") from exc
-    return str(sweep)
+        raise ConfigError(
+            f"compare.sweep={sweep}: its parent run {run_id} is not in {cfg.tracking_uri} (the "
+            "sweep was tracked in another store: give its tracking_uri)" if folder else
+            f"compare.sweep={sweep!r} is neither a sweep folder with {SWEEP_FILE} nor a run id "
+            f"of {cfg.tracking_uri}") from exc
+    return run_id
 
 
 def objective(metrics: dict, criterion: str = "val_rmse", target: str = "mean") -> float:

@@ -198,6 +198,7 @@ def store_uri(cfg) -> str:
     return uri
 
 
+_REACHABLE: set[str] = set()   # stores this process has found it can open
 STORE_SCHEMES = ("sqlite", "http", "https", "postgresql", "mysql", "mssql", "databricks")
 
 
@@ -205,6 +206,8 @@ def check_reachable(uri: str) -> None:
     """A store MLflow can open: a known scheme, a SQLite file in a folder this process can
     write, a server that answers within seconds (MLflow retries an unreachable one for minutes,
     silently)."""
+    if uri in _REACHABLE:      # once per process: every connect() comes here
+        return
     from .errors import ConfigError
 
     scheme = uri.partition(":")[0].partition("+")[0]
@@ -226,6 +229,7 @@ def check_reachable(uri: str) -> None:
         except requests.RequestException as exc:
             raise ConfigError(f"tracking_uri={uri}: no server answers "
                               f"({type(exc).__name__}); is it running?") from None
+    _REACHABLE.add(uri)
 
 
 def client(cfg):

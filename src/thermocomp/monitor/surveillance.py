@@ -315,8 +315,7 @@ class SensorMonitor:
             run_pred = np.where(same & (self._run == 0), other, self._run_pred)
             run = np.where(same, self._run + 1, 0)
             moved = np.abs(other - run_pred)
-            if (same & ((self._observable & (moved >= self.warning_c) & (run >= self._seen_run))
-                        | (~self._observable & (run > self._blind_run)))).any():
+            if self._frozen(same, run, moved).any():
                 return None
             self._run, self._run_pred = run, run_pred
         else:
@@ -411,9 +410,7 @@ class SensorMonitor:
             start = same & (self._run == 1)
             self._run_pred[start] = other[start]
             moved = np.abs(other - self._run_pred)
-            frozen = same & ((self._observable & (moved >= self.warning_c) & (self._run >= self._seen_run))
-                             | (~self._observable & (self._run > self._blind_run)))
-            for j in np.flatnonzero(frozen):
+            for j in np.flatnonzero(self._frozen(same, self._run, moved)):
                 if j in instant:
                     continue
                 why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field "
@@ -533,6 +530,12 @@ class SensorMonitor:
             clean = np.where(np.isfinite(clean), clean, self._clean)   # nothing to rebuild from
         self._clean = clean
         return clean, events
+
+    def _frozen(self, same: np.ndarray, run: np.ndarray, moved: np.ndarray) -> np.ndarray:
+        """The freeze rule (module doc), for :meth:`_fast` and :meth:`_update` alike: ``same``
+        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change."""
+        return same & ((self._observable & (moved >= self.warning_c) & (run >= self._seen_run))
+                       | (~self._observable & (run > self._blind_run)))
 
     def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:
         """Reasons of the instant detectors that fire (dropout, out of range, jump)."""

@@ -227,7 +227,7 @@ def read_streamed(cfg: DictConfig, test: bool = True):
     ds, report = io.read_dataset(root, data_options(cfg), missing="keep")
     train_ids = require_split(ds, "train")
     test_ids = require_split(ds, "test") if test else []
-    hot = float(cfg.data.get("kelvin_threshold_c", 200.0))
+    hot = io.ReadOptions.from_cfg(data_options(cfg)).kelvin_threshold_c
     for cid in train_ids:
         df = ds.campaigns[cid]
         faulty = any(df[c].max() > hot for c in df.columns if c.startswith("T_"))

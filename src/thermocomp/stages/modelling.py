@@ -269,16 +269,15 @@ def _check_trained_as_configured(cfg: DictConfig, comp) -> None:
     """``evaluate`` scores the model at ``model_path`` and labels the result with the config:
     the two must agree (``model=pcr`` on an MLR model printed the MLR's figures as pcr's, and
     another ``data.targets`` was a KeyError)."""
-    family = model_family(comp)
     targets = None if cfg.data.targets is None else list(cfg.data.targets)
-    differs = [(f"model={cfg.model.name}", family) if family != str(cfg.model.name) else None,
-               (f"data.inputs={list(cfg.data.inputs)}", list(comp.inputs))
-               if list(cfg.data.inputs) != list(comp.inputs) else None,
-               (f"data.targets={targets}", comp.targets or "every E_ column")
-               if targets != (None if comp.targets is None else list(comp.targets)) else None]
-    for key, trained in filter(None, differs):
-        raise ConfigError(f"{key}, but the model at model_path={cfg.model_path} was trained with "
-                          f"{trained}: evaluate with the training's settings, or train again")
+    for key, given, trained in (("model", str(cfg.model.name), model_family(comp)),
+                                ("data.inputs", list(cfg.data.inputs), list(comp.inputs)),
+                                ("data.targets", targets,
+                                 None if comp.targets is None else list(comp.targets))):
+        if given != trained:
+            raise ConfigError(f"{key}={given}, but the model at model_path={cfg.model_path} was "
+                              f"trained with {'every E_ column' if trained is None else trained}: "
+                              "evaluate with the training's settings, or train again")
 
 
 def evaluate(cfg: DictConfig) -> dict:
