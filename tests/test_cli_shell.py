@@ -184,3 +184,14 @@ def test_launcher_without_venv_fails_clearly_before_anything(tmp_path):
     proc = subprocess.run([str(root / "pipelines" / "thermocomp"), "--version"], env=env,
                           capture_output=True, text=True, cwd=tmp_path)
     assert proc.returncode == 0 and proc.stdout.strip() == f"thermocomp {version('thermocomp')}"
+
+
+def test_validation_folds_beyond_the_train_campaigns_are_said(default_dataset, tmp_path, capsys):
+    fast = [a for a in FAST if a != "eval.validation=false"]
+    code = main(["run", f"data.path={default_dataset}", f"out={tmp_path}", *fast,
+                 "eval.validation_folds=50"])
+    err = capsys.readouterr().err
+    assert code == 0
+    entry = json.loads((tmp_path / "metrics.json").read_text())["targets"]["E_Z"]["validation"]
+    assert entry["n_folds"] < 50
+    assert f"eval.validation_folds=50: {entry['n_folds']} fold(s), {entry['method']}" in err

@@ -34,6 +34,7 @@ from ..evaluation import (
 from ..files import inside, safe_name, staged_outputs, write_json
 from ..headline import HEADLINE, evaluation_headline, write_headline
 from ..iso10791 import a3_campaign
+from ..log import logger
 from ..paths import resolve
 from ..tracking import headline_metrics, stage_run
 from .artifacts import fit_from_artifacts
@@ -167,8 +168,13 @@ def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> No
     may have been fitted on all train campaigns) is refitted per fold.
     """
     say("validation: " + ("the val split" if ds.ids("val") else "cross-validation on the train split"))
+    asked = int(cfg.eval.get("validation_folds", VAL_FOLDS))
     val = validation_report(partial(clone, build_compensator(cfg)), ds, cfg.eval.mode, fitted=comp,
-                            n_folds=int(cfg.eval.get("validation_folds", VAL_FOLDS)))
+                            n_folds=asked)
+    used = next(iter(val.values()), {}).get("n_folds", asked)
+    if asked != VAL_FOLDS and used != asked:  # the default is clamped quietly: it is not a choice
+        logger.warning("eval.validation_folds=%d: %d fold(s), %s", asked, used,
+                       next(iter(val.values()))["method"])
     for t, entry in val.items():
         targets[t]["validation"] = entry
 
