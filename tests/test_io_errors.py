@@ -10,7 +10,7 @@ import pyarrow.parquet as pq
 import pytest
 
 from thermocomp.io import ContractError, ingest, read_dataset
-from thermocomp.io import read as io_read
+from thermocomp.io import tables as io_tables
 
 GOOD = "time,T_0,E_X\n0,20,0\n1,20.5,1\n2,21,2\n"
 
@@ -190,7 +190,7 @@ def test_non_numeric_cell(tmp_path):
 
 
 def test_non_numeric_cell_deep_in_a_large_file(tmp_path, monkeypatch):
-    monkeypatch.setattr(io_read, "_CSV_BLOCK_BYTES", 4096)  # many blocks, as in big files
+    monkeypatch.setattr(io_tables, "_CSV_BLOCK_BYTES", 4096)  # many blocks, as in big files
     n = 20_000
     table = pa.table({"time": np.arange(n, dtype=float), "T_0": np.full(n, 20.0),
                       "E_X": pa.array(["0.5"] * 17_345 + ["1,5"] + ["0.5"] * (n - 17_346))})

@@ -18,7 +18,7 @@ from thermocomp.io import (
     read_dataset,
     write_dataset,
 )
-from thermocomp.io import read as io_read
+from thermocomp.io import tables as io_tables
 
 
 def write_raw(root: Path, files: dict, splits: dict | None = None) -> Path:
@@ -189,7 +189,7 @@ def test_gap_repair_interpolates_in_time_and_is_counted(tmp_path):
 
 
 def test_gap_repair_across_arrow_chunks(tmp_path, monkeypatch):
-    monkeypatch.setattr(io_read, "_CSV_BLOCK_BYTES", 2048)  # a few hundred rows per chunk
+    monkeypatch.setattr(io_tables, "_CSV_BLOCK_BYTES", 2048)  # a few hundred rows per chunk
     rng = np.random.default_rng(1)
     n = 5_000
     time = np.cumsum(rng.uniform(0.5, 2.0, n))

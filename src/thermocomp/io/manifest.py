@@ -1,0 +1,202 @@
+"""The manifest ``campaigns.csv``: its delimiter, encoding, rows, splits and start times."""
+
+from __future__ import annotations
+
+import csv
+import io
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .contract import MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
+from .options import _OTHER_DELIMITERS, ReadOptions, _first_line
+
+CAMPAIGN_SUFFIXES = (".csv", ".parquet")
+_UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
+
+# ---------------------------------------------------------------------------
+# Manifest
+
+
+def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataFrame:
+    """Read and validate ``<root>/campaigns.csv``.
+
+    Parameters
+    ----------
+    root : str or Path
+        Dataset folder.
+    opts : ReadOptions, optional
+        Only ``split_overrides`` is used.
+
+    Returns
+    -------
+    DataFrame
+        Indexed by campaign id (``str``), columns ``file`` and ``split`` (with
+        overrides applied), ``start`` as datetimes if present, then every other
+        manifest column (numeric where every cell is a number).
+
+    Raises
+    ------
+    ContractError
+        Missing or empty manifest, missing required column, empty or
+        duplicate id, invalid split, missing campaign file, a file listed twice, unsupported file
+        type, unparseable ``start``, override of an unknown id.
+    """
+    opts = opts or ReadOptions()
+    root = Path(root)
+    path = root / MANIFEST
+    raw = _load_manifest(path, opts.delimiter)
+    _check_manifest_rows(raw, path, root)
+    manifest = raw.set_index("campaign")
+    _apply_split_overrides(manifest, opts.split_overrides, path)
+    for column in manifest.columns.drop(["file", "split"]):
+        manifest[column] = _metadata_column(manifest[column], path, column)
+    return manifest
+
+
+def _load_manifest(path: Path, delimiter: str = ",") -> pd.DataFrame:
+    if not path.is_file():
+        raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})", file=path)
+    text = _utf8_text(path, delimiter)
+    header = text.splitlines()[0] if text.strip() else ""
+    try:
+        raw = pd.read_csv(io.StringIO(text), sep=_manifest_delimiter(header, delimiter, path),
+                          dtype=str, keep_default_na=False)
+    except pd.errors.EmptyDataError:
+        raise ContractError("manifest is empty", file=path) from None
+    except pd.errors.ParserError as exc:
+        raise ContractError(f"manifest is not valid CSV ({_first_line(exc)})", file=path) from None
+    raw.columns = [c.strip() for c in raw.columns]
+    for column in MANIFEST_REQUIRED:
+        if column not in raw.columns:
+            raise ContractError("required manifest column missing", file=path, column=column)
+    if raw.empty:
+        raise ContractError("manifest lists no campaign", file=path)
+    return raw.fillna("").apply(lambda s: s.str.strip())
+
+
+def _header_cells(line: str, delimiter: str) -> list[str]:
+    return [c.strip() for c in next(csv.reader([line], delimiter=delimiter), [])]
+
+
+def _manifest_delimiter(header: str, delimiter: str, path: Path) -> str:
+    """``data.delimiter``, or ``,`` (the contract's own format) when the manifest's header
+    only parses with it; a header that only parses with another separator is refused with
+    the setting that reads it (instead of a misleading "column 'campaign' missing")."""
+    def parses(sep):
+        return set(MANIFEST_REQUIRED) <= set(_header_cells(header, sep))
+
+    for sep in dict.fromkeys((delimiter, ",")):
+        if parses(sep):
+            return sep
+    for sep in _OTHER_DELIMITERS:
+        if parses(sep):
+            raise ContractError(f"{MANIFEST} looks {sep!r}-separated: set data.delimiter={sep!r}",
+                                file=path)
+    return delimiter
+
+
+def _utf8_text(path: Path, delimiter: str) -> str:
+    """The whole (small) file as text; bytes that are not UTF-8 are refused where they are."""
+    data = path.read_bytes()
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise _not_utf8(path, delimiter) from None
+
+
+def _not_utf8(path: Path, delimiter: str, names: list[str] | None = None) -> ContractError:
+    """The error naming the line (data row, or the header) and field of the first byte that
+    is not UTF-8."""
+    return (_utf8_failure(path, delimiter, names)
+            or ContractError("file is not UTF-8 text", file=path))
+
+
+def _utf8_failure(path: Path, delimiter: str, names: list[str] | None) -> ContractError | None:
+    """:func:`_not_utf8`'s error, or None if every line is UTF-8 (read line by line, so a
+    large file is never held whole)."""
+    with open(path, "rb") as f:
+        header = names
+        for line_no, line in enumerate(f):
+            if header is None:  # the file's own header names the fields
+                header = _header_cells(line.decode("utf-8", "replace").lstrip("\ufeff"),
+                                       delimiter)
+            try:
+                line.decode("utf-8")
+            except UnicodeDecodeError as exc:
+                field = line[:exc.start].count(delimiter.encode())
+                column = header[field] if header and field < len(header) else None
+                return ContractError(f"byte 0x{line[exc.start]:02x} is not UTF-8 text "
+                                     "(save the file as UTF-8)", file=path, column=column,
+                                     row=line_no or None)
+    return None
+
+
+def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
+    seen: dict[str, int] = {}
+    files: dict[Path, int] = {}   # one file per campaign: a file under two ids would score twice
+    for row, (cid, fname, split) in enumerate(zip(raw["campaign"], raw["file"], raw["split"]), 1):
+        problem = None
+        if not cid or _UNSAFE_ID.search(cid):
+            problem = ("campaign", f"campaign id {cid!r} is empty, contains a path separator "
+                                   "or starts with '.'")
+        elif cid in seen:
+            problem = "campaign", f"duplicate campaign id {cid!r} (first at row {seen[cid]})"
+        elif split not in SPLITS:
+            problem = "split", f"split {split!r} is not one of {', '.join(SPLITS)}"
+        elif os.path.isabs(fname) or os.path.normpath(fname).split(os.sep)[0] == "..":
+            problem = "file", (f"campaign file {fname!r} lies outside the dataset folder: "
+                               "files are paths relative to it, without '..'")
+        elif Path(fname).suffix.lower() not in CAMPAIGN_SUFFIXES:
+            problem = "file", f"campaign file {fname!r} is neither .csv nor .parquet"
+        elif not (root / fname).is_file():
+            problem = "file", f"campaign file {fname!r} not found in {root}"
+        elif (root / fname).resolve() in files:
+            problem = "file", (f"campaign file {fname!r} is already listed at row "
+                               f"{files[(root / fname).resolve()]}: one file per campaign")
+        if problem:
+            column, message = problem
+            raise ContractError(message, file=path, column=column, row=row)
+        seen[cid] = row
+        files[(root / fname).resolve()] = row
+
+
+def _apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path) -> None:
+    unknown = [cid for cid in overrides if cid not in manifest.index]
+    if unknown:
+        raise ContractError(f"data.split_overrides names campaign {unknown[0]!r}, "
+                            f"which the manifest does not list", file=path, column="campaign")
+    for cid, split in overrides.items():
+        manifest.loc[cid, "split"] = split
+
+
+def _metadata_column(values: pd.Series, path: Path, column: str) -> pd.Series:
+    if column == "start":
+        return _parse_start(values, path)
+    if column == "notes":
+        return values
+    present = values[values != ""]
+    numbers = pd.to_numeric(present, errors="coerce")
+    if len(present) and numbers.notna().all():
+        return pd.to_numeric(values.replace("", np.nan))
+    return values
+
+
+def _parse_start(values: pd.Series, path: Path) -> pd.Series:
+    for row, value in enumerate(values, 1):
+        if value:
+            try:
+                pd.to_datetime(value, format="ISO8601")
+            except (ValueError, TypeError):
+                raise ContractError(f"start {value!r} is not an ISO 8601 time",
+                                    file=path, column="start", row=row) from None
+    present = values.replace("", None)
+    try:
+        return pd.to_datetime(present, format="ISO8601")
+    except ValueError:  # several zone offsets: keep instants, in UTC
+        return pd.to_datetime(present, format="ISO8601", utc=True)
+
+

@@ -1,0 +1,144 @@
+"""The ``data`` config keys that steer reading (:class:`ReadOptions`) and the reader's limits."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .contract import SPLITS, ContractError
+
+TIME_FORMATS = ("auto", "seconds", "iso8601")
+ROLE_ORDER = ("T", "E", "S")
+MISSING_MODES = ("repair", "keep")
+
+_OTHER_DELIMITERS = (";", "\t", "|", ",")
+
+
+# ---------------------------------------------------------------------------
+# Options
+
+
+@dataclass(frozen=True)
+class ReadOptions:
+    """The ``data`` config keys that steer reading; see :func:`read_dataset`.
+
+    Build it with :meth:`from_cfg`; every field has the default a missing key
+    gets.
+    """
+
+    columns: dict = field(default_factory=dict)
+    sample_period_s: float | None = None
+    time: str = "auto"
+    split_overrides: dict = field(default_factory=dict)
+    max_gap_samples: int = 0
+    max_edge_samples: int = 0
+    resample_s: float | None = None
+    kelvin_threshold_c: float = 200.0
+    fahrenheit_threshold_c: float | None = 45.0
+    max_abs_error: float = 1e6
+    max_abs_state: float = 1e9
+    max_period_ratio: float | None = 100.0
+    max_duration_days: float | None = 366.0
+    max_resample_factor: float = 10.0
+    delimiter: str = ","
+    decimal: str = "."
+    missing: str = "repair"  # internal (no data config key): "keep" leaves missing values NaN
+
+    def __post_init__(self):
+        if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's
+            raise ValueError(f"missing must be one of {MISSING_MODES}, got {self.missing!r}")
+
+    @classmethod
+    def from_cfg(cls, cfg: Mapping | None) -> "ReadOptions":
+        """Options from a mapping (dict or OmegaConf ``DictConfig``).
+
+        Raises
+        ------
+        ContractError
+            If a value has the wrong type or range.
+        """
+        cfg = {} if cfg is None else cfg
+        opts = cls(
+            columns=_str_mapping(cfg, "columns"),
+            sample_period_s=_positive_float(cfg, "sample_period_s"),
+            time=str(cfg.get("time", "auto") or "auto"),
+            split_overrides=_str_mapping(cfg, "split_overrides"),
+            max_gap_samples=_count(cfg, "max_gap_samples"),
+            max_edge_samples=_count(cfg, "max_edge_samples"),
+            resample_s=_positive_float(cfg, "resample_s"),
+            kelvin_threshold_c=_float(cfg, "kelvin_threshold_c", 200.0),
+            fahrenheit_threshold_c=_float(cfg, "fahrenheit_threshold_c", 45.0, nullable=True),
+            max_abs_error=_positive_float(cfg, "max_abs_error", 1e6),
+            max_abs_state=_positive_float(cfg, "max_abs_state", 1e9),
+            max_period_ratio=_positive_float(cfg, "max_period_ratio", 100.0, nullable=True),
+            max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
+            max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
+            delimiter=str(cfg.get("delimiter", ",") or ","),
+            decimal=str(cfg.get("decimal", ".") or "."),
+        )
+        opts._check()
+        return opts
+
+    def _check(self) -> None:
+        if self.time not in TIME_FORMATS:
+            raise ContractError(f"data.time must be one of {', '.join(TIME_FORMATS)}, "
+                                f"got {self.time!r}")
+        bad_split = {k: v for k, v in self.split_overrides.items() if v not in SPLITS}
+        if bad_split:
+            cid, split = next(iter(bad_split.items()))
+            raise ContractError(f"data.split_overrides.{cid}: split {split!r} is not one of "
+                                f"{', '.join(SPLITS)}")
+        for key in ("delimiter", "decimal"):
+            if len(getattr(self, key)) != 1:
+                raise ContractError(f"data.{key} must be one character, "
+                                    f"got {getattr(self, key)!r}")
+
+
+def _str_mapping(cfg: Mapping, key: str) -> dict:
+    value = cfg.get(key, None) or {}
+    if not hasattr(value, "items"):
+        raise ContractError(f"data.{key} must be a mapping, got {value!r}")
+    return {str(k): str(v) for k, v in value.items()}
+
+
+def _float(cfg: Mapping, key: str, default: float | None, nullable: bool = False
+           ) -> float | None:
+    """``cfg[key]`` as a finite float; a missing key gives ``default``, and so does null
+    unless ``nullable`` (then null switches the check it steers off)."""
+    if key not in cfg:
+        return default
+    value = cfg.get(key)
+    if value is None:
+        return None if nullable else default
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ContractError(f"data.{key} must be a number, got {value!r}") from None
+    if isinstance(value, bool) or not math.isfinite(number):
+        raise ContractError(f"data.{key} must be a finite number, got {value!r}")
+    return number
+
+
+def _positive_float(cfg: Mapping, key: str, default: float | None = None,
+                    nullable: bool = False) -> float | None:
+    number = _float(cfg, key, default, nullable)
+    if number is not None and number <= 0:
+        raise ContractError(f"data.{key} must be > 0, got {number:g}")
+    return number
+
+
+def _count(cfg: Mapping, key: str) -> int:
+    value = cfg.get(key, 0)
+    value = 0 if value is None else value
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+        raise ContractError(f"data.{key} must be an integer >= 0, got {value!r}")
+    return int(value)
+
+
+def _first_line(exc: BaseException) -> str:
+    """The first line of an exception's message (its type when it has none)."""
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__

@@ -1,0 +1,317 @@
+"""One campaign file as an Arrow table: contract column names, CSV typed column by column
+(the failing cell located by file, column and row), Parquet."""
+
+from __future__ import annotations
+
+import contextlib
+import csv
+import re
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.compute as pc
+import pyarrow.csv as pacsv
+import pyarrow.parquet as pq
+
+from .contract import TIME, ContractError, role
+from .manifest import _not_utf8, _utf8_failure
+from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
+
+# Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
+_CSV_BLOCK_BYTES = 16 << 20
+_PANDAS_INDEX = re.compile(r"__index_level_\d+__")
+_ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
+_CONVERSION_ERROR = re.compile(r"In CSV column #(\d+)")
+_ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
+# A contract name: prefix + identifier-like name (it becomes part of file names: no path
+# separators, '..', spaces or control characters).
+_NAME = re.compile(r"[TES]_[\w.\-]+")
+
+# ---------------------------------------------------------------------------
+# Column names
+
+
+def _contract_names(raw_names: list[str], mapping: dict, file: Path, *,
+                    has_period: bool) -> list[str]:
+    """Mapped column names, checked against the contract's vocabulary."""
+    names = []
+    for raw in raw_names:
+        name = mapping.get(raw, raw)
+        alias = f" (raw name {raw!r})" if name != raw else ""
+        if role(name) is None:
+            raise ContractError(f"column name{alias} has no contract role: expected 'time' or "
+                                "a T_/E_/S_ prefix (map it with data.columns)",
+                                file=file, column=name)
+        if name != TIME and (not _NAME.fullmatch(name) or ".." in name):
+            raise ContractError(f"column name{alias} is not a prefix plus an identifier-like name "
+                                "(letters, digits, '_', '-', '.'; no path separator, '..', space "
+                                "or control character): map it with data.columns",
+                                file=file, column=name)
+        if name in names:
+            raise ContractError("duplicate column (after data.columns mapping)",
+                                file=file, column=name)
+        names.append(name)
+    if not any(role(n) == "E" for n in names):
+        raise ContractError("no E_ column: a campaign needs at least one measured error",
+                            file=file)
+    if TIME not in names and not has_period:
+        raise ContractError("no 'time' column and no data.sample_period_s to build one",
+                            file=file)
+    return names
+
+
+def _ordered(names: list[str]) -> list[str]:
+    """``time`` first, then ``T_``, ``E_``, ``S_`` columns, each in file order."""
+    data = [n for n in names if n != TIME]
+    return [TIME] + sorted(data, key=lambda n: ROLE_ORDER.index(role(n)))
+
+
+# ---------------------------------------------------------------------------
+# Loading CSV
+
+
+def _load_csv(path: Path, opts: ReadOptions) -> dict:
+    header, first_row = _peek_csv(path, opts.delimiter)
+    if len(header) == 1:
+        _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
+    names = _contract_names(header, opts.columns, path, has_period=opts.sample_period_s is not None)
+    if len(first_row) != len(names):
+        raise ContractError(f"expected {len(names)} fields, got {len(first_row)}", file=path, row=1)
+    types = {n: pa.float64() for n in names if n != TIME}
+    if TIME in names:
+        types[TIME] = _csv_time_type(path, first_row, names.index(TIME), opts)
+    return _columns(_read_csv_typed(path, names, types, opts))
+
+
+def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> None:
+    """A single column whose name holds another separator: the file was read with the wrong
+    ``data.delimiter`` (say which one reads it, rather than a misleading name error)."""
+    for sep in _OTHER_DELIMITERS:
+        if sep != opts.delimiter and sep in header:
+            cells = next(csv.reader([first], delimiter=sep), [])
+            comma = sep != "," and opts.decimal != "," and any(
+                re.fullmatch(r"[+-]?\d+,\d+", c.strip()) for c in cells)
+            hint = " data.decimal=','" if comma else ""
+            raise ContractError(f"file looks {sep!r}-separated (one column {header!r}): "
+                                f"set data.delimiter={sep!r}{hint}", file=path)
+
+
+def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
+    """Header (stripped names) and first data row, without reading the file."""
+    try:
+        with open(path, newline="", encoding="utf-8-sig") as f:
+            rows = csv.reader(f, delimiter=delimiter)
+            header = next(rows, None)
+            first = next((r for r in rows if r), None)
+    except UnicodeDecodeError:
+        raise _not_utf8(path, delimiter) from None
+    if not header:
+        raise ContractError("empty file", file=path)
+    if first is None:
+        raise ContractError("file has a header but no data rows", file=path)
+    return [name.strip() for name in header], first
+
+
+def _csv_time_type(path: Path, first_row: list[str], index: int,
+                   opts: ReadOptions) -> pa.DataType:
+    value = first_row[index].strip()
+    if not value:
+        raise ContractError("missing time value", file=path, column=TIME, row=1)
+    kind = opts.time
+    if kind == "auto":
+        kind = "seconds" if _is_number(value, opts.decimal) else "iso8601"
+    if kind == "seconds":
+        return pa.float64()
+    return pa.timestamp("ns", tz="UTC" if _ZONE_OFFSET.search(value) else None)
+
+
+def _is_number(text: str, decimal: str) -> bool:
+    try:
+        float(text.replace(decimal, "."))
+    except ValueError:
+        return False
+    return True
+
+
+def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=None,
+                 use_threads=True, invalid_row_handler=None):
+    read = pacsv.ReadOptions(column_names=names, skip_rows=1, use_threads=use_threads,
+                             block_size=_CSV_BLOCK_BYTES)
+    parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
+    convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
+                                   decimal_point=opts.decimal, strings_can_be_null=True)
+    return dict(read_options=read, parse_options=parse, convert_options=convert)
+
+
+def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions) -> pa.Table:
+    try:
+        return pacsv.read_csv(path, **_csv_options(names, opts, types=types))
+    except pa.ArrowInvalid as exc:
+        raise _locate_csv_error(path, names, types, opts, exc) from None
+
+
+def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
+    """Turn Arrow's row-less CSV error into one naming the column and row."""
+    message = _first_line(exc)
+    if "UTF8" in message or _CONVERSION_ERROR.search(message):
+        # a cell that is not UTF-8 cannot be read back as text to locate it
+        bad_bytes = _utf8_failure(path, opts.delimiter, names)
+        if bad_bytes is not None:
+            return bad_bytes
+    match = _CONVERSION_ERROR.search(message)
+    if match:
+        column = names[int(match.group(1))]
+        return _bad_cell_error(path, names, column, types[column], opts)
+    if "CSV parse error" in message:
+        return _malformed_row_error(path, names, opts, message)
+    return ContractError(f"unreadable CSV ({message})", file=path)
+
+
+def _bad_cell_error(path, names, column, target, opts) -> ContractError:
+    text = pacsv.read_csv(path, **_csv_options(names, opts, include=[column],
+                                                types={column: pa.string()})).column(column)
+    if opts.decimal != "." and pa.types.is_floating(target):
+        text = pc.replace_substring(text, opts.decimal, ".")
+    found = _first_cast_failure(text, target)
+    if found is None:
+        return ContractError(f"cannot convert to {target}", file=path, column=column)
+    row, value = found
+    return ContractError(f"value {value!r} is not {_describe(target)}",
+                         file=path, column=column, row=row + 1)
+
+
+def _malformed_row_error(path, names, opts, message) -> ContractError:
+    bad = []
+
+    def remember(row):
+        bad.append(row)
+        return "error"
+
+    with contextlib.suppress(pa.ArrowInvalid):
+        pacsv.read_csv(path, **_csv_options(names, opts, include=[names[0]],
+                                            types={names[0]: pa.string()}, use_threads=False,
+                                            invalid_row_handler=remember))
+    if not bad:
+        return ContractError(f"unreadable CSV ({message})", file=path)
+    row = bad[0]
+    return ContractError(f"expected {row.expected_columns} fields, got {row.actual_columns}",
+                         file=path, row=None if row.number is None else row.number - 1)
+
+
+def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType) -> tuple[int, object] | None:
+    """Position and value of the first element that does not cast to ``target``.
+
+    Bisects inside the first failing chunk, so the cost is a few casts of
+    one chunk rather than a Python loop over the column.
+    """
+    offset = 0
+    for chunk in values.chunks:
+        if not _casts(chunk, target):
+            ok, fails = 0, len(chunk)  # chunk[:ok] casts, chunk[:fails] does not
+            while fails - ok > 1:
+                mid = (ok + fails) // 2
+                ok, fails = (mid, fails) if _casts(chunk[:mid], target) else (ok, mid)
+            return offset + fails - 1, chunk[fails - 1].as_py()
+        offset += len(chunk)
+    return None
+
+
+def _casts(values, target: pa.DataType) -> bool:
+    try:
+        pc.cast(values, target)
+    except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
+        return False
+    return True
+
+
+def _describe(target: pa.DataType) -> str:
+    if pa.types.is_timestamp(target):
+        zone = "with" if target.tz else "without"
+        return f"an ISO 8601 timestamp {zone} zone offset (like the first row)"
+    return "a number"
+
+
+# ---------------------------------------------------------------------------
+# Loading Parquet
+
+
+def _load_parquet(path: Path, opts: ReadOptions) -> dict:
+    try:
+        table = pq.read_table(path)
+    except (pa.ArrowInvalid, OSError) as exc:
+        reason = _ARROW_SOURCE.sub("", _first_line(exc))
+        raise ContractError(f"unreadable Parquet file ({reason})", file=path) from None
+    table = table.drop_columns([c for c in table.column_names if _PANDAS_INDEX.fullmatch(c)])
+    names = _contract_names(table.column_names, opts.columns, path,
+                            has_period=opts.sample_period_s is not None)
+    table = table.rename_columns(names)
+    for i, name in enumerate(names):
+        column = table.column(i)
+        if name == TIME:
+            column = _parquet_time(column, path, opts)
+        else:
+            column = _parquet_numbers(column, name, path)
+        table = table.set_column(i, name, column)
+    return _columns(table)
+
+
+def _parquet_numbers(column: pa.ChunkedArray, name: str, path: Path) -> pa.ChunkedArray:
+    kind = column.type
+    numeric = (pa.types.is_floating(kind) or pa.types.is_integer(kind)
+               or pa.types.is_decimal(kind) or (pa.types.is_boolean(kind) and role(name) == "S"))
+    if numeric:
+        return pc.cast(column, pa.float64())
+    found = _first_cast_failure(column, pa.float64()) or _first_valid(column)
+    row = None if found is None else found[0] + 1
+    raise ContractError(f"Parquet dtype {kind} where numbers are expected",
+                        file=path, column=name, row=row)
+
+
+def _parquet_time(column: pa.ChunkedArray, path: Path, opts: ReadOptions) -> pa.ChunkedArray:
+    kind = column.type
+    if pa.types.is_string(kind) or pa.types.is_large_string(kind):
+        first = _first_valid(column)
+        target = _csv_time_type(path, [first[1] if first else ""], 0, opts)
+        found = _first_cast_failure(column, target)
+        if found is not None:
+            raise ContractError(f"value {found[1]!r} is not {_describe(target)}",
+                                file=path, column=TIME, row=found[0] + 1)
+        return pc.cast(column, target)
+    if (pa.types.is_floating(kind) or pa.types.is_integer(kind) or pa.types.is_timestamp(kind)
+            or pa.types.is_duration(kind)):
+        return column
+    raise ContractError(f"Parquet dtype {kind} where seconds or timestamps are expected",
+                        file=path, column=TIME)
+
+
+def _first_valid(column: pa.ChunkedArray) -> tuple[int, object] | None:
+    valid = np.flatnonzero(column.is_valid().to_numpy(zero_copy_only=False))
+    return (int(valid[0]), column[int(valid[0])].as_py()) if valid.size else None
+
+
+# ---------------------------------------------------------------------------
+# Columns
+#
+# From here on a campaign is a dict {name: Arrow column}.  Steps replace
+# entries in place, so a replaced column is freed at once and memory stays at
+# about one copy of the campaign.
+
+
+def _columns(table: pa.Table) -> dict:
+    return dict(zip(table.column_names, table.columns))
+
+
+def _values(column) -> np.ndarray:
+    """A float column as a numpy copy, NaN where missing."""
+    if column.null_count:
+        column = pc.fill_null(column, np.nan)
+    if isinstance(column, pa.ChunkedArray):
+        return column.to_numpy()
+    return column.to_numpy(zero_copy_only=False)
+
+
+def _chunks(column) -> list:
+    return column.chunks if isinstance(column, pa.ChunkedArray) else [column]
+
+
