@@ -342,6 +342,8 @@ class SensorMonitor:
         return clean
 
     def _update(self, x: np.ndarray, time: float) -> tuple[np.ndarray, list[dict]]:
+        """One sample through every check, in order: reference, instant detectors, late
+        reference, freeze, a stepped error, exclusion by judgement, re-admission, states."""
         events: list[dict] = []
         rng = (x < self._lo_lim) | (x > self._hi_lim)
         if self._ref is None:       # an out-of-range reference is no reference (as if missing)
@@ -360,17 +362,7 @@ class SensorMonitor:
         same = step == 0
         instant: dict[int, str] = {}
         if self._count == 2 and big.any():
-            # a jump right after the reference sample: the reference is the glitch (or the
-            # sensor took an offset at once: the same thing to a model of changes since the
-            # start), so the sensor is re-referenced and stays in
-            for j in np.flatnonzero(big & ~rng):
-                self._ref[j] += step[j]
-                d[j] = self._hist[pos, j] = 0.0
-                events.append({"time": float(time), "sensor": self.names[j], "from": STATES[self._state[j]],
-                               "to": "re-referenced", "reason": f"reference glitch: {-step[j]:+.3g} °C "
-                               "at the reference sample against the next one; re-referenced"})
-            step = d - self._prev
-            big = np.abs(step) > self._jump_lim
+            step, big = self._reference_glitch(d, step, big & ~rng, pos, time, events)
         if not all_finite or (rng | big).any():
             instant = self._instant(x, d, step, finite, rng, big & ~rng)
             for j, why in instant.items():
@@ -391,51 +383,92 @@ class SensorMonitor:
             self._calm[j] = 0
         pred, e = self._errors(d)
         if not all_finite:
-            # the first value of a sensor missing at the start (or out of range there): referenced
-            # to agree with the field where the others predict it, else to go on from the value
-            # the model was given meanwhile (its reference was NaN, so it stayed out for good)
-            late = np.isfinite(x) & ~np.isfinite(self._ref) & ~rng
-            for j in np.flatnonzero(late):
-                by_field = bool(self._predictable[j] and np.isfinite(pred[j]))
-                value = pred[j] if by_field else self._clean[j]
-                self._ref[j] = x[j] - value
-                d[j] = self._hist[pos, j] = value
-                e[j] = 0.0 if by_field else np.nan
-                finite[j] = True
+            self._reference_late(x, d, e, pred, finite, rng, pos)
         self._err[pos] = e
+        self._check_freeze(x, d, e, pred, same, instant, time, events)
+        self._check_stepped(e, instant, time, events)
+        level, err = self._exclude_by_judgement(time, events)
+        if self.adaptive and not self._all_active and self._count >= self.window:
+            if self._readmit(d, finite, instant, time, events):
+                level, err = self._judge()
+        pred, e = self._errors(d)
+        self._set_states(level, err, instant, time, events)
+        self._prev_other = np.where(self._judged, d - e, np.nan)
+        self._prev = np.where(finite, d, self._prev)
+        self._prev_e = e
+        good = self._active & finite
+        self._last_good = np.where(good, d, self._last_good)
+        # an excluded sensor: rebuilt from the field, or held where the others cannot predict it
+        clean = d if (self._all_active and all_finite) else np.where(
+            good, d, np.where(self._predictable, pred, self._last_good))
+        if not np.isfinite(clean.sum()):
+            clean = np.where(np.isfinite(clean), clean, self._clean)   # nothing to rebuild from
+        self._clean = clean
+        return clean, events
 
-        # freeze: constant while the field (its prediction from the others) moves
+    def _reference_glitch(self, d, step, big, pos, time, events) -> tuple[np.ndarray, np.ndarray]:
+        """A jump right after the reference sample: the reference is the glitch (or the sensor
+        took an offset at once: the same thing to a model of changes since the start), so the
+        sensor is re-referenced and stays in.  ``(step, big)`` after it."""
+        for j in np.flatnonzero(big):
+            self._ref[j] += step[j]
+            d[j] = self._hist[pos, j] = 0.0
+            events.append({"time": float(time), "sensor": self.names[j], "from": STATES[self._state[j]],
+                           "to": "re-referenced", "reason": f"reference glitch: {-step[j]:+.3g} °C "
+                           "at the reference sample against the next one; re-referenced"})
+        step = d - self._prev
+        return step, np.abs(step) > self._jump_lim
+
+    def _reference_late(self, x, d, e, pred, finite, rng, pos) -> None:
+        """The first value of a sensor missing at the start (or out of range there): referenced
+        to agree with the field where the others predict it, else to go on from the value the
+        model was given meanwhile (its reference was NaN, so it stayed out for good)."""
+        late = np.isfinite(x) & ~np.isfinite(self._ref) & ~rng
+        for j in np.flatnonzero(late):
+            by_field = bool(self._predictable[j] and np.isfinite(pred[j]))
+            value = pred[j] if by_field else self._clean[j]
+            self._ref[j] = x[j] - value
+            d[j] = self._hist[pos, j] = value
+            e[j] = 0.0 if by_field else np.nan
+            finite[j] = True
+
+    def _check_freeze(self, x, d, e, pred, same, instant, time, events) -> None:
+        """Freeze: constant while the field (its prediction from the others) moves."""
+        if not same.any():
+            return
         other = d - np.where(np.isfinite(e), e, d - pred)
-        if same.any():
-            start = same & (self._run == 1)
-            self._run_pred[start] = other[start]
-            moved = np.abs(other - self._run_pred)
-            for j in np.flatnonzero(self._frozen(same, self._run, moved)):
-                if j in instant:
-                    continue
-                why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field "
-                       f"moved {moved[j]:.2g} °C" if self._observable[j] else
-                       f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples (longest constant "
-                       f"run in training {self.longest_run[j]:.0f})")
-                instant[j] = why
-                if self._active[j]:
-                    self._exclude(j, why, time, events)
+        start = same & (self._run == 1)
+        self._run_pred[start] = other[start]
+        moved = np.abs(other - self._run_pred)
+        for j in np.flatnonzero(self._frozen(same, self._run, moved)):
+            if j in instant:
+                continue
+            why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field "
+                   f"moved {moved[j]:.2g} °C" if self._observable[j] else
+                   f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples (longest constant "
+                   f"run in training {self.longest_run[j]:.0f})")
+            instant[j] = why
+            if self._active[j]:
+                self._exclude(j, why, time, events)
 
-        # a self-prediction error that steps past the alarm band in one sample
+    def _check_stepped(self, e, instant, time, events) -> None:
+        """A self-prediction error that steps past the alarm band in one sample."""
         de = e - self._prev_e
         stepped = self._judged & (np.abs(e) >= self.alarm_c) & (np.abs(de) >= self.alarm_c)
-        if stepped.any():
-            for j in np.flatnonzero(stepped):
-                instant.setdefault(j, f"jump: self-prediction error stepped {de[j]:+.3g} °C in "
-                                      "one sample")
-            if self.adaptive:
-                # the culprit by its standardised *step*: a step fault on j steps every other
-                # error by less (the bound below), while the errors' levels carry each sensor's
-                # own model error (a coupled partner's may exceed the faulty one's)
-                j = int(np.argmax(np.where(stepped, np.abs(de) * self._std, -1)))
-                self._exclude(j, instant[j], time, events, by_field=True)
+        if not stepped.any():
+            return
+        for j in np.flatnonzero(stepped):
+            instant.setdefault(j, f"jump: self-prediction error stepped {de[j]:+.3g} °C in one sample")
+        if self.adaptive:
+            # the culprit by its standardised *step*: a step fault on j steps every other
+            # error by less (the bound below), while the errors' levels carry each sensor's
+            # own model error (a coupled partner's may exceed the faulty one's)
+            j = int(np.argmax(np.where(stepped, np.abs(de) * self._std, -1)))
+            self._exclude(j, instant[j], time, events, by_field=True)
 
-        # judgement over the last `confirm` samples, worst first, redone after every exclusion
+    def _exclude_by_judgement(self, time, events) -> tuple[np.ndarray, np.ndarray]:
+        """Judgement over the last ``confirm`` samples, worst first, redone after every
+        exclusion; ``(level, error)`` of :meth:`_judge` after it."""
         level, err = self._judge()
         while (self.adaptive and (self._judged & (level >= self._field_level())).any()
                and self._active.sum() > self.min_active_):
@@ -459,55 +492,56 @@ class SensorMonitor:
                                      f"sensor predicts it once {self.names[j]} is out", time, events,
                                   by_field=True)
             level, err = self._judge()
+        return level, err
 
-        # re-admission: back within the warning band for a whole window, no detector firing
-        if self.adaptive and not self._all_active and self._count >= self.window:
-            # checked against the field where the others can predict it, else calm is enough
-            inside = (np.all(np.abs(self._err) < READMIT * self.warning_c, axis=0)
-                      | ~self._predictable)
-            back = ~self._active & finite & (self._run == 0) & (self._calm >= self.window) & inside
-            for j in np.flatnonzero(back):
-                if j in instant:
-                    continue
-                if self._predictable[j]:
-                    # back only if it would pass its own judgement once back: its leave-one-out
-                    # error in the set with it, over the whole window (not its error against a
-                    # set that a coupled partner may have left blind to it)
-                    trial = self._active.copy()
-                    trial[j] = True
-                    M, h = self.pod.operator(trial)
-                    hj = h[int(np.sum(trial[:j]))]
-                    if hj >= self.pod.max_leverage:
-                        continue
-                    H = np.where(np.isfinite(self._hist), self._hist, 0.0)
-                    e_trial = (H[:, j] - H[:, trial] @ M[j]) / (1 - hj)
-                    if not np.all(np.abs(e_trial) < READMIT * self.warning_c[j]):
-                        continue
-                why = f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C for {self.window} samples"
-                shift = self._ref[j] - self._ref0[j]
-                if not self._predictable[j] and (self._jumps[j] > 1 or (
-                        self._jumps[j] and abs(d[j] + shift - self._last_good[j])
-                        < abs(d[j] - self._last_good[j]))):
-                    # a sensor no other predicts: its outage's jumps were re-referenced one by
-                    # one, which is right for a step (an offset that stays) and wrong for noise
-                    # (a loose contact: the reading returns, and a noisy step kept was an offset
-                    # for good: 6.7x the healthy error on T_amb).  Several jumps are noise or a
-                    # spike; of one, the reading (with it or without) closer to the value
-                    # before the outage is taken: this temperature cannot be seen to move
-                    self._ref[j] = self._ref0[j]
-                    d[j] += shift
-                    self._hist[:, j] += shift
-                    why += f"; its {self._jumps[j]} jump(s) undone: the reading returned ({shift:+.3g} °C)"
-                self._set_state(j, OK, time, why, events)
-                self._jumps[j] = 0
-                self._active[j] = True
-                self._by_field[j] = False
-                self._set_operator()
-            if back.any():
-                level, err = self._judge()
-        pred, e = self._errors(d)
+    def _readmit(self, d, finite, instant, time, events) -> bool:
+        """Re-admission: back within the warning band for a whole window, no detector firing
+        (checked against the field where the others can predict it, else calm is enough).
+        Whether any sensor came back."""
+        inside = (np.all(np.abs(self._err) < READMIT * self.warning_c, axis=0)
+                  | ~self._predictable)
+        back = ~self._active & finite & (self._run == 0) & (self._calm >= self.window) & inside
+        for j in np.flatnonzero(back):
+            if j in instant or (self._predictable[j] and not self._passes_once_back(j)):
+                continue
+            why = f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C for {self.window} samples"
+            shift = self._ref[j] - self._ref0[j]
+            if not self._predictable[j] and (self._jumps[j] > 1 or (
+                    self._jumps[j] and abs(d[j] + shift - self._last_good[j])
+                    < abs(d[j] - self._last_good[j]))):
+                # a sensor no other predicts: its outage's jumps were re-referenced one by
+                # one, which is right for a step (an offset that stays) and wrong for noise
+                # (a loose contact: the reading returns, and a noisy step kept was an offset
+                # for good: 6.7x the healthy error on T_amb).  Several jumps are noise or a
+                # spike; of one, the reading (with it or without) closer to the value
+                # before the outage is taken: this temperature cannot be seen to move
+                self._ref[j] = self._ref0[j]
+                d[j] += shift
+                self._hist[:, j] += shift
+                why += f"; its {self._jumps[j]} jump(s) undone: the reading returned ({shift:+.3g} °C)"
+            self._set_state(j, OK, time, why, events)
+            self._jumps[j] = 0
+            self._active[j] = True
+            self._by_field[j] = False
+            self._set_operator()
+        return bool(back.any())
 
-        # states of the sensors still active (monitor-only mode: a firing detector holds alarm)
+    def _passes_once_back(self, j: int) -> bool:
+        """Whether sensor ``j`` would pass its own judgement once back: its leave-one-out error
+        in the set with it, over the whole window (not its error against a set that a coupled
+        partner may have left blind to it)."""
+        trial = self._active.copy()
+        trial[j] = True
+        M, h = self.pod.operator(trial)
+        hj = h[int(np.sum(trial[:j]))]
+        if hj >= self.pod.max_leverage:
+            return False
+        H = np.where(np.isfinite(self._hist), self._hist, 0.0)
+        e_trial = (H[:, j] - H[:, trial] @ M[j]) / (1 - hj)
+        return bool(np.all(np.abs(e_trial) < READMIT * self.warning_c[j]))
+
+    def _set_states(self, level, err, instant, time, events) -> None:
+        """States of the sensors still active (monitor-only mode: a firing detector holds alarm)."""
         new = np.where(self._judged, level, OK).astype(np.int8)
         for j, why in instant.items():
             if self._active[j]:
@@ -518,18 +552,6 @@ class SensorMonitor:
                 f"self-prediction error {err[j]:+.2g} °C over the last {self.confirm} samples"
                 if np.isfinite(err[j]) and self._judged[j] else
                 "no longer judged: no other active sensor predicts it"), events)
-        self._prev_other = np.where(self._judged, d - e, np.nan)
-        self._prev = np.where(finite, d, self._prev)
-        self._prev_e = e
-        good = self._active & finite
-        self._last_good = np.where(good, d, self._last_good)
-        # an excluded sensor: rebuilt from the field, or held where the others cannot predict it
-        clean = d if (self._all_active and all_finite) else np.where(
-            good, d, np.where(self._predictable, pred, self._last_good))
-        if not np.isfinite(clean.sum()):
-            clean = np.where(np.isfinite(clean), clean, self._clean)   # nothing to rebuild from
-        self._clean = clean
-        return clean, events
 
     def _frozen(self, same: np.ndarray, run: np.ndarray, moved: np.ndarray) -> np.ndarray:
         """The freeze rule (module doc), for :meth:`_fast` and :meth:`_update` alike: ``same``
