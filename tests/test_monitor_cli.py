@@ -370,3 +370,26 @@ def test_data_the_monitor_cannot_use_is_refused(small, tmp_path, capsys, case):
     refused(["monitor", f"data.path={path}", f"out={tmp_path / 'out'}", "track=false", *extra],
             capsys, *says)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["ds"]
+
+
+def test_event_times_are_seconds_from_the_campaign_start_whatever_the_file_clock(small, tmp_path):
+    # CLI.md, monitor.json: "`time` is in seconds from the campaign start"
+    path = tmp_path / "ds"
+    shutil.copytree(small, path)
+    cid, file = _set_cells(path, "test", "T_motor2", slice(40, 44), 850.0)
+    t = pd.read_csv(path / file)["time"].to_numpy(float)
+    times = {}
+    for shift in (0.0, 36000.0):
+        df = pd.read_csv(path / file)
+        df["time"] = t + shift
+        df.to_csv(path / file, index=False)
+        report = run_monitor(path, tmp_path / f"mon{shift:g}", "plots=none")
+        thermocomp("replay", f"data.path={path}", f"out={tmp_path / f'rep{shift:g}'}", "track=false",
+                   "monitor.adaptive=true")
+        replayed = json.loads((tmp_path / f"rep{shift:g}" / "replay.json").read_text())["events"]
+        times[shift] = ([e["time"] for e in report["events"] if e["campaign"] == cid],
+                        report["sensors"]["T_motor2"]["first_alarm"]["time"],
+                        [e["time"] for e in replayed if e["campaign"] == cid])
+    assert times[36000.0] == times[0.0]
+    events, first, replayed = times[0.0]
+    assert first == pytest.approx(t[40] - t[0]) and first in events and first in replayed

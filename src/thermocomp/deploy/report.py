@@ -63,10 +63,19 @@ def summary(deployed) -> dict:
     return {"adaptive": adaptive, "pod": pod}
 
 
+def campaign_start(campaign: pd.DataFrame) -> float:
+    """The campaign's first known ``time`` (0 without one): event times are written in seconds
+    from it (CLI.md, ``monitor.json``), whatever clock the file keeps."""
+    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.empty(0)
+    known = t[np.isfinite(t)]
+    return float(known[0]) if len(known) else 0.0
+
+
 def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None) -> Streamed:
     """Stream one campaign from a reset through ``_step`` (the body of ``step`` and ``predict``).
 
-    The adaptive compensator's events get ``campaign`` (``cid``) added.  A row the
+    The adaptive compensator's events get ``campaign`` (``cid``) added, their ``time`` from the
+    campaign's start (:func:`campaign_start`).  A row the
     plain streaming compensator refuses (a missing value, an input outside the
     envelope with ``policy=refuse``) raises :class:`ContractError` naming the
     campaign, its ``file``, the column and the row (1-based).
@@ -76,6 +85,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None) -> S
     y = np.empty((len(X), len(deployed.targets_)))
     clamped = np.zeros(len(X), dtype=np.int64)
     adaptive = isinstance(deployed, AdaptiveCompensator)
+    t0 = campaign_start(campaign)
     events: list[dict] = []
     deployed.reset()
     step = deployed._step   # returns the clamp count too
@@ -85,7 +95,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None) -> S
         for i in range(len(X)):
             y[i], clamped[i] = step(X[i], t[i])
             if adaptive and deployed.last_events_:
-                events += [{"campaign": cid, **e} for e in deployed.last_events_]
+                events += [{"campaign": cid, **e, "time": e["time"] - t0} for e in deployed.last_events_]
     except OutOfEnvelopeError as exc:
         deployed.reset()
         gap = np.flatnonzero(~np.isfinite(X[i]))

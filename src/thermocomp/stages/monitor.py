@@ -23,6 +23,7 @@ from omegaconf import DictConfig
 from .. import io
 from ..context import TIME
 from ..deploy import StreamingCompensator
+from ..deploy.report import campaign_start
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
 from ..monitor import (
@@ -185,15 +186,17 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
     for cid, df in streamed.items():
         y_fix, _, _ = _stream(fixed, df)
         y_ad, ev, (states, errors) = _stream(adaptive, df)
+        start = campaign_start(df)      # CLI.md: event times in seconds from the campaign start
+        t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
         for e in ev:
-            events.append({"campaign": cid, **e})
+            e = {"campaign": cid, **e, "time": e["time"] - start}
+            events.append(e)
             if (e.get("sensor") in names and e["to"] in ("alarm", "excluded")
                     and e["sensor"] not in first_alarm):
                 first_alarm[e["sensor"]] = {"campaign": cid, "time": e["time"]}
         S = np.asarray(states)
         for k in range(len(STATES)):
             counts[:, k] += (S == k).sum(axis=0)
-        t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
         traces[cid] = {"time": t, "states": S, "errors": np.asarray(errors), "fixed": y_fix,
                        "adaptive": y_ad,
                        "measured": None if measured is None else measured[cid][adaptive.targets_].to_numpy()}
