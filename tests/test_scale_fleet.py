@@ -73,6 +73,21 @@ def test_run_fits_one_model_per_machine_on_its_own_campaigns(fleet, tmp_path):
     for c in test:
         np.testing.assert_allclose(pred[c]["E_Z"], ref[c]["E_Z"], atol=1e-9)
     assert metrics["groups"]["M002"]["campaigns"] == 4
+    # CLI.md's `targets`: the whole fleet as one split, each campaign predicted by its machine's
+    # model (recomputed here from the saved models)
+    residual = {}
+    for m in ("M001", "M002", "M003"):
+        model = load(out / "models" / f"{m}.pkl", Compensator)
+        test = {c: ds.campaigns[c] for c in ds.ids("test") if c.startswith(m)}
+        pred, meas = model.predict(test, "simulation"), model.measured(test)
+        residual.update({c: meas[c]["E_Z"].to_numpy() - pred[c]["E_Z"].to_numpy() for c in test})
+    pooled = metrics["targets"]["E_Z"]
+    assert set(pooled["test"]["per_campaign"]) == set(residual) == set(ds.ids("test"))
+    assert pooled["test"]["rmse"] == pytest.approx(np.sqrt(np.mean(np.concatenate(list(residual.values())) ** 2)))
+    for c, r in residual.items():
+        assert pooled["test"]["per_campaign"][c]["rmse"] == pytest.approx(np.sqrt(np.mean(r ** 2)))
+    assert len(pooled["test"]["e_p95"]["window_s"]) == len(pooled["test"]["e_p95"]["after"]) > 1
+    assert {"rmse", "rsd_mean", "rsd_sd"} <= set(pooled["train"]) and pooled["train"]["rsd_sd"] > 0
 
 
 def test_group_by_refuses_an_unknown_column_and_empty_cells(fleet, tmp_path, capsys):

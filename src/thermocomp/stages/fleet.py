@@ -16,14 +16,16 @@ from __future__ import annotations
 import time
 from functools import partial
 
+import numpy as np
 import pandas as pd
 from omegaconf import DictConfig
 from sklearn.base import clone
 
-from .. import fleet, io
+from .. import continuation, fleet, io
 from ..errors import ConfigError
-from ..evaluation import VAL_FOLDS, require_split, score, validation_report
+from ..evaluation import VAL_FOLDS, require_split, sample_period, validation_report
 from ..files import inside, safe_name, staged_outputs, write_json
+from ..metrics import rsd, sm_sd, split_scores
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import build_compensator, check_config, data_options, save_model, say
@@ -51,7 +53,7 @@ def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
     comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in train})
     fit_s = time.perf_counter() - t0
     ev = cfg.eval
-    targets, _ = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points, iso_a3=False)
+    targets, pooled = _scores(comp, ds, ev)
     if ev.get("validation", True):
         val = validation_report(partial(clone, build_compensator(cfg)), ds, ev.mode, fitted=comp,
                                 n_folds=int(ev.get("validation_folds", VAL_FOLDS)))
@@ -62,7 +64,46 @@ def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
     say(f"{group}: {len(ids)} campaigns, {report['rows']} rows, fit {fit_s:.2f} s, test RMSE "
         + ", ".join(f"{t} {m['test']['rmse']:.2f}" for t, m in targets.items()))
     return {"campaigns": len(ids), "rows": int(report["rows"]), "fit_time_s": fit_s,
-            "inputs": {t: comp.selected_[t] for t in comp.targets_}, "targets": targets}
+            "inputs": {t: comp.selected_[t] for t in comp.targets_}, "targets": targets,
+            "pooled": pooled}
+
+
+def _scores(comp, ds, ev) -> tuple[dict, dict]:
+    """``(figures, pooled)`` of one group: its train and test figures (as a single run's), and
+    what the fleet's pooled ``targets`` need of it: the test split's measured errors and
+    residuals, and of each train campaign only its row count, sum of squared residuals and Rsd
+    (the train split is most of the data; its pooled RMSE and SM/SD need no more)."""
+    carried = continuation.carry_over(comp, ds)
+    figures, pooled = {t: {} for t in comp.targets_}, {t: {} for t in comp.targets_}
+    for split in ("train", "test"):
+        ids = require_split(ds, split)
+        pred, meas = continuation.predict(comp, ds, ids, ev.mode, carried)
+        dt = sample_period(ds, ids)
+        for t in comp.targets_:
+            y = {c: meas[c][t].to_numpy() for c in ids}
+            r = {c: y[c] - pred[c][t].to_numpy() for c in ids}
+            figures[t][split] = split_scores(y, r, dt, ev.e_p95.statistic, ev.e_p95.max_points,
+                                             with_before_after=(split == "test"))
+            pooled[t][split] = ((y, r, dt) if split == "test" else
+                                {c: (len(r[c]), float(np.sum(r[c] ** 2)), rsd(r[c])) for c in ids})
+    return figures, pooled
+
+
+def _fleet_targets(results: list[dict], ev) -> dict:
+    """CLI.md's ``targets`` of ``metrics.json`` for the whole fleet: every group's campaigns, each
+    predicted by its own group's model, pooled as one split (campaign ids are unique in the
+    manifest)."""
+    out = {}
+    for t in results[0]["pooled"]:
+        train = {c: v for r in results for c, v in r["pooled"][t]["train"].items()}
+        n, ss = sum(v[0] for v in train.values()), sum(v[1] for v in train.values())
+        sm, sd = sm_sd([v[2] for v in train.values()])
+        y = {c: a for r in results for c, a in r["pooled"][t]["test"][0].items()}
+        res = {c: a for r in results for c, a in r["pooled"][t]["test"][1].items()}
+        dt = float(np.median([r["pooled"][t]["test"][2] for r in results]))
+        out[t] = {"train": {"rmse": float(np.sqrt(ss / n)), "rsd_mean": sm, "rsd_sd": sd},
+                  "test": split_scores(y, res, dt, ev.e_p95.statistic, ev.e_p95.max_points)}
+    return out
 
 
 def _table(metrics: dict) -> str:
@@ -97,11 +138,15 @@ def run_grouped(cfg: DictConfig) -> dict:
         with staged_outputs(out) as stage:
             results = Parallel(n_jobs=jobs)(delayed(_group)(cfg, root, g, ids, stage)
                                             for g, ids in members.items())
+            targets = _fleet_targets(results, cfg.eval)
+            for r in results:
+                del r["pooled"]
             per_group = dict(zip(members, results))
             table = pd.DataFrame([row for g, r in per_group.items()
                                   for row in fleet.machine_rows(g, r["targets"])])
             metrics = {"model": cfg.model.name, "mode": cfg.eval.mode, "select": cfg.select.name,
-                       "dataset": root.name, "group_by": column, "fleet": fleet.summary(table),
+                       "dataset": root.name, "group_by": column, "targets": targets,
+                       "fleet": fleet.summary(table),
                        "groups": per_group, "fit_time_s": sum(r["fit_time_s"] for r in results),
                        "wall_time_s": time.perf_counter() - t0}
             table.to_csv(stage / "fleet.csv", index=False)
