@@ -148,3 +148,29 @@ def test_links_resolve_inside_the_repository(doc):
 def test_the_link_check_sees_links_and_skips_code():
     text = "see [a](docs/a.md) and ![b](x.png#y)\n`[c](nope.md)`\n```\n[d](nope2.md)\n```\n"
     assert _links(text) == ["docs/a.md", "x.png#y"]
+
+
+# The contracts are fixed: docs/cli.md and docs/data-format.md copy them word for word above
+# their rule, and extend them only below it.  A clone has no ../shared/spec, so the copies are
+# held to the digests of the contracts as given; where the originals are at hand, to them too.
+CONTRACTS = {"cli.md": ("# Command-line contract", "# Extensions in thermocomp", "CLI.md",
+                        "5b0f8c533d30f00d"),
+             "data-format.md": ("# Data contract", "\n---\n", "DATA_FORMAT.md", "a6090a68b0508abf")}
+
+
+def _contract_text(text: str) -> str:
+    return "\n".join(line.rstrip() for line in text.strip().splitlines()).strip("-\n ")
+
+
+@pytest.mark.parametrize("doc", sorted(CONTRACTS))
+def test_the_contract_part_of_the_docs_is_word_for_word(doc):
+    import hashlib
+
+    start, end, original, digest = CONTRACTS[doc]
+    text = (ROOT / "docs" / doc).read_text()
+    copy = _contract_text(text[text.index(start):text.index(end, text.index(start))])
+    spec = ROOT.parent / "shared" / "spec" / original
+    if spec.is_file():
+        assert copy == _contract_text(spec.read_text()), f"docs/{doc} departs from {original}"
+    assert hashlib.sha256(copy.encode()).hexdigest()[:len(digest)] == digest, (
+        f"docs/{doc}: the contract part changed (extensions go below the rule)")
