@@ -297,6 +297,8 @@ def test_diagnosis_json_follows_the_cli_contract(door_diagnosis):
                              "sensor_fault")
         assert {"kind", "column", "transform", "evidence", "accepted"} <= set(e)
         assert {"cv_rmse_gain", "p_value"} <= set(e["evidence"])
+        assert not e.get("control") and (e["kind"] != "signal" or e["column"])  # a column not used
+    assert j["control"]["control"] and j["control"]["column"] is None     # the control, apart
     gains = [e["evidence"]["cv_rmse_gain"] for e in j["effects"] if not e["accepted"]]
     assert gains == sorted(gains, reverse=True)             # ranked, best first
     assert [e["accepted"] for e in j["effects"]] == sorted((e["accepted"] for e in j["effects"]),

@@ -93,7 +93,7 @@ def test_promote_moves_champion_only_for_a_better_model(project, capsys):
     assert float(tags["metric.rsd_mean"]) == pytest.approx(          # test: reported beside it
         second["candidate"]["test_reported"]["rsd_mean"], rel=1e-5)
     assert tags["criterion"] == "val_rmse" and tags["eval_mode"] == "simulation"
-    assert tags["adaptive"] == "True" and tags["outputs"] == "C_X,C_Z,excluded_inputs,events"
+    assert tags["adaptive"] == "True" and tags["outputs"] == "C_X,C_Z,n_clamped,excluded_inputs,events"
     assert tags["pod_modes"] == str(second["pod"]["n_modes"]) and len(tags["deploy_config"]) == 12
     assert "does not beat" in client.get_model_version(NAME, "1").tags["decision"]
     assert champion.current_stage in (None, "None")             # aliases only, no stages
@@ -264,7 +264,8 @@ def test_monitor_adaptive_false_registers_the_plain_stream_once(project, capsys)
     assert (again["version"], again["registered"]) == (first["version"], False)
     assert client.get_model_version_by_alias(NAME, "champion").version == champion != first["version"]
     tags = client.get_model_version(NAME, first["version"]).tags
-    assert tags["adaptive"] == "False" and tags["outputs"] == "C_X,C_Z" and tags["source_run_id"] == strong
+    assert tags["adaptive"] == "False" and tags["outputs"] == "C_X,C_Z,n_clamped"
+    assert tags["source_run_id"] == strong
     assert tags["deploy_config"] != client.get_model_version(NAME, champion).tags["deploy_config"]
     mlflow.set_tracking_uri(uri)
     model = mlflow.pyfunc.load_model(first["model_uri"])

@@ -83,7 +83,8 @@ def test_run_fits_one_model_per_machine_on_its_own_campaigns(fleet, tmp_path):
         residual.update({c: meas[c]["E_Z"].to_numpy() - pred[c]["E_Z"].to_numpy() for c in test})
     pooled = metrics["targets"]["E_Z"]
     assert set(pooled["test"]["per_campaign"]) == set(residual) == set(ds.ids("test"))
-    assert pooled["test"]["rmse"] == pytest.approx(np.sqrt(np.mean(np.concatenate(list(residual.values())) ** 2)))
+    pooled_rmse = np.sqrt(np.mean(np.concatenate(list(residual.values())) ** 2))
+    assert pooled["test"]["rmse"] == pytest.approx(pooled_rmse)
     for c, r in residual.items():
         assert pooled["test"]["per_campaign"][c]["rmse"] == pytest.approx(np.sqrt(np.mean(r ** 2)))
     assert len(pooled["test"]["e_p95"]["window_s"]) == len(pooled["test"]["e_p95"]["after"]) > 1

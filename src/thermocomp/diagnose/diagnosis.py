@@ -92,7 +92,9 @@ class Diagnosis:
         d = self.targets[t]
         s = d.search
         last = s.rounds[-1] if s.rounds else None
-        rejected = [ev for ev in (last.evaluated if last else []) if not ev.accepted]
+        # the random-walk control is no effect (CLI.md: a `signal` is a column the model did not
+        # use): it is reported apart, under `control`
+        rejected = [ev for ev in (last.evaluated if last else []) if not ev.accepted and not ev.control]
         effects = [ev.entry() | {"step": i + 1} for i, ev in enumerate(s.accepted)]
         effects += [ev.entry() for ev in rejected]
         control = last.control.entry() if last and last.control else None

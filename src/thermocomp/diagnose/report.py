@@ -58,10 +58,6 @@ EFFECT_HEAD = ("| kind | column | transform | CV RMSE (µm) | gain (µm) | gain 
                "| p | clears bar | accepted |\n|---|---|---|---:|---:|---:|---:|---:|---|---|")
 
 
-EFFECT_HEAD = ("| kind | column | transform | CV RMSE (µm) | gain (µm) | gain | gain 95 % LCB (µm) "
-               "| p | clears bar | accepted |\n|---|---|---|---:|---:|---:|---:|---:|---|---|")
-
-
 def slug(text: str) -> str:
     """The anchor of a heading: lower case, punctuation dropped, spaces to ``-`` (GitHub's rule,
     so the Markdown's own links work where it is rendered too)."""

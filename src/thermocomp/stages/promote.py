@@ -337,7 +337,7 @@ def promote(cfg: DictConfig) -> dict:
                      "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
                      "envelope_policy": str(opts.envelope.policy),
                      "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
-                         [correction_column(t) for t in streaming.targets_]
+                         [correction_column(t) for t in streaming.targets_] + ["n_clamped"]
                          + (list(REPORT_COLUMNS) if kind["adaptive"] else [])),
                      "adaptive": kind["adaptive"], "deploy_config": deploy_key,
                      "pod_modes": "none" if kind["pod"] is None else kind["pod"]["n_modes"],
