@@ -10,7 +10,7 @@ from sklearn.utils.estimator_checks import check_estimator
 
 from thermocomp.compensator import Compensator
 from thermocomp.diagnose import CONTROL, AugmentedRegressor, Effect, SearchOptions, diagnose
-from thermocomp.diagnose.cv import Problem, sign_flip_pvalue
+from thermocomp.diagnose.cv import Problem, sign_flip_maxt, sign_flip_pvalue
 from thermocomp.diagnose.features import effect_features, first_order_lag, in_frame
 from thermocomp.diagnose.sensors import self_prediction
 from thermocomp.diagnose.shrink import PartialRidgePath
@@ -114,6 +114,25 @@ def test_sign_flip_pvalue_is_exact_for_few_campaigns_and_calibrated_under_the_nu
     null = [sign_flip_pvalue(rng.standard_normal(10)) for _ in range(300)]
     assert 0.02 < np.mean(np.array(null) <= 0.05) < 0.09       # ~5 % of nulls reject at 5 %
     assert sign_flip_pvalue(rng.standard_normal(30) + 1.0) < 1e-3   # Monte Carlo branch
+
+
+def test_the_family_wise_p_value_bounds_any_false_claim_of_a_round_and_keeps_a_real_one():
+    rng = np.random.default_rng(1)
+    # a round of 12 correlated candidates, none helping, on 8 campaigns (campaign-level noise
+    # shared by all candidates, as their gains share the current model's residual)
+    families = [rng.standard_normal((12, 8)) + rng.standard_normal((1, 8)) for _ in range(400)]
+    one_by_one = np.mean([min(sign_flip_pvalue(d) for d in D) <= 0.05 for D in families])
+    family_wise = np.mean([sign_flip_maxt(D).min() <= 0.05 for D in families])
+    assert one_by_one > 0.15 and family_wise <= 0.05 + 3 * np.sqrt(0.05 * 0.95 / 400)
+    # a real effect that every campaign shares keeps the smallest p-value there is
+    D = rng.standard_normal((12, 8))
+    D[3] = 3.0 + 0.3 * rng.standard_normal(8)
+    p = sign_flip_maxt(D)
+    assert p[3] == pytest.approx(1 / 256) and p.argmin() == 3
+    # step-down: a second real effect is not hidden by the first one
+    D[7] = 2.0 + 0.2 * rng.standard_normal(8)
+    assert sign_flip_maxt(D)[7] <= 0.01 and sign_flip_maxt(D)[3] == pytest.approx(1 / 256)
+    assert sign_flip_maxt(rng.standard_normal((3, 20)) + 2.0).max() < 1e-3   # Monte Carlo branch
 
 
 # -- the diagnosed estimator ----------------------------------------------------------------
@@ -298,6 +317,8 @@ def test_diagnosis_json_follows_the_cli_contract(door_diagnosis):
         assert {"kind", "column", "transform", "evidence", "accepted"} <= set(e)
         assert {"cv_rmse_gain", "p_value"} <= set(e["evidence"])
         assert not e.get("control") and (e["kind"] != "signal" or e["column"])  # a column not used
+        if e["evidence"]["clears_bar"] and e["kind"] != "sensor_fault":   # the bar is family-wise
+            assert e["evidence"]["p_value_family"] <= 0.01
     assert j["control"]["control"] and j["control"]["column"] is None     # the control, apart
     gains = [e["evidence"]["cv_rmse_gain"] for e in j["effects"] if not e["accepted"]]
     assert gains == sorted(gains, reverse=True)             # ranked, best first
@@ -378,7 +399,7 @@ def test_too_few_campaigns_for_the_test_are_validated_forward_in_time(caplog):
     could ever pass alpha=0.01; auto validates blocks of the campaigns' time line instead."""
     ds = _dataset(door_gain=4.0, n_campaigns=6, test_every=6)
     j = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1)).to_json("E_Z")
-    assert j["cv"]["scheme"] == "forward" and j["cv"]["units"] == 8
+    assert j["cv"]["scheme"] == "forward" and j["cv"]["units"] == 16
     assert "5 train campaigns are too few" in j["cv"]["why"] and "needs 8" in j["cv"]["why"]
     top = next(e for e in j["effects"] if e["accepted"])
     assert top["column"] == "S_door" and j["after"]["test_rmse"] < 0.6 * j["before"]["test_rmse"]

@@ -345,3 +345,40 @@ def sign_flip_pvalue(d, n_resamples: int = 20000, seed: int = 0) -> float:
     signs = rng.choice([-1.0, 1.0], size=(n_resamples, n))
     means = signs @ d / n
     return float((1 + np.sum(means >= observed - tol)) / (n_resamples + 1))
+
+
+def sign_flip_maxt(D, n_resamples: int = 20000, seed: int = 0) -> np.ndarray:
+    r"""Family-wise one-sided p-values of ``mean(D[c]) > 0`` for every row ``c`` of ``D``.
+
+    ``D`` holds one gain per unit (campaign, validation block) for every candidate of a round
+    (candidates × units).  The step-down max-T of Westfall & Young (1993, Alg. 4.1): the signs
+    of whole units are flipped alike for every candidate (their correlation is kept); the
+    candidate of the largest t of the mean gain is compared with the largest t over all
+    candidates of every flipped pattern, the next one with the largest over the candidates
+    from it down, and so on (p-values kept monotone).  Tested one by one at ``alpha``, the
+    shortlist of a round (~14 candidates) accepted a false effect far more often than
+    ``alpha``: 6 of 30 targets of noise-free null data at 0.01, one making the test error
+    2.3x worse.  Step-down, so that a real effect found by several candidates does not hide
+    another one.  Exact up to 16 units, Monte Carlo beyond.
+    """
+    D = np.nan_to_num(np.atleast_2d(np.asarray(D, dtype=float)))
+    k, n = D.shape
+    if n < 2 or k == 0:
+        return np.ones(k)
+    signs = (_sign_patterns(n) if n <= 16
+             else np.random.default_rng(seed).choice([-1.0, 1.0], size=(n_resamples, n)))
+
+    def t(mean, square):      # t of the mean; a flip keeps every unit's square
+        return mean / np.sqrt(np.maximum(square - n * mean ** 2, 1e-300) / ((n - 1) * n))
+
+    order = np.argsort(-t(D.mean(axis=1), (D ** 2).sum(axis=1)))
+    D = D[order]                                   # best observed first
+    square = (D ** 2).sum(axis=1)
+    observed = t(D.mean(axis=1), square)
+    flipped = t(signs @ D.T / n, square)           # patterns × candidates
+    tail_max = np.maximum.accumulate(flipped[:, ::-1], axis=1)[:, ::-1]
+    hits = (tail_max >= observed - 1e-9 * np.maximum(np.abs(observed), 1.0)).sum(axis=0)
+    p = hits / len(signs) if n <= 16 else (1 + hits) / (len(signs) + 1)
+    out = np.empty(k)
+    out[order] = np.maximum.accumulate(p)
+    return out

@@ -116,7 +116,8 @@ class Diagnosis:
             "control_ever_clears_bar": any(r.control is not None and r.control.clears_bar
                                            for r in s.rounds),
             "bar": {"min_gain_pct": self.options.min_gain_pct, "alpha": self.options.alpha,
-                    "test": "one-sided sign flip of per-unit CV MSE gains",
+                    "test": "one-sided sign flip of per-unit CV MSE gains, family-wise over the "
+                            "round (step-down max-T)",
                     "max_effects": self.options.max_effects},
             "cv": self.cv,
             "test_e_p95": {"statistic": te_b["e_p95"]["statistic"],
