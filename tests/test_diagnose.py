@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import pytest
+from sklearn.ensemble import RandomForestRegressor
 from sklearn.linear_model import LinearRegression
 from sklearn.utils.estimator_checks import check_estimator
 
@@ -18,7 +19,7 @@ from thermocomp.errors import ConfigError, ParameterError
 from thermocomp.frame import stack
 from thermocomp.io.contract import Dataset
 from thermocomp.model_selection import ForwardChaining, cv_scheme, forward_gap, unit_labels
-from thermocomp.models import MLR
+from thermocomp.models import ARXRF, MLR
 
 DT = 300.0
 
@@ -434,3 +435,19 @@ def test_bad_diagnose_settings_are_config_errors(key, value):
     dcfg[key] = value
     with pytest.raises(ConfigError, match=f"diagnose.{key}"):
         search_options(dcfg)
+
+
+def test_a_column_the_model_reads_is_no_missing_signal():
+    # CLI.md: a `signal` is a column the model did not use; a declared door's lag is dynamics
+    ds = _dataset(door_gain=4.0)
+    declared = diagnose(ds, Compensator(MLR(), inputs=["T_*", "S_door"]),
+                        options=SearchOptions(max_effects=1)).to_json("E_Z")
+    evaluated = [e for r in declared["rounds"] for e in r["evaluated"]]
+    assert not [e for e in evaluated if e["kind"] == "signal" and e["column"] == "S_door"]
+    top = next(e for e in declared["effects"] if e["accepted"])
+    assert (top["kind"], top["column"]) == ("dynamics", "S_door")
+    # an ARX+RF reads the door as its state column: not offered as a signal either
+    forest = ARXRF(state_column="S_door", forest=RandomForestRegressor(n_estimators=5, random_state=0))
+    j = diagnose(ds, Compensator(forest), options=SearchOptions(max_effects=1)).to_json("E_Z")
+    assert not [e for r in j["rounds"] for e in r["evaluated"]
+                if e["kind"] == "signal" and e["column"] == "S_door"]

@@ -88,9 +88,12 @@ def ambient_thresholds(ambient_by_unit: pd.Series, min_per_side: int) -> list[fl
 
 
 def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[Effect],
-               options: CandidateOptions) -> list[Effect]:
+               options: CandidateOptions, used: set = frozenset()) -> list[Effect]:
     """Every candidate effect of one round, the control included (sensor faults are found
-    before the search, :func:`thermocomp.diagnose.search.sensor_health`)."""
+    before the search, :func:`thermocomp.diagnose.search.sensor_health`).  ``used``: columns
+    the estimator reads beside ``model_inputs`` (an ARX+RF's state column): like the inputs,
+    they are no ``signal`` (CLI.md: a column the model did not use); a declared ``S_`` input's
+    lags are tried as ``dynamics``."""
     ctx, fam = problem.context, set(options.families)
     taus = [float(t) for t in options.taus_s]
     out: list[Effect] = []
@@ -107,9 +110,10 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
         return [Effect("signal", "raw", col, frame=frame)] + [
             Effect("signal", "first_order_lag", col, tau_s=t, frame=frame) for t in taus]
     if "signal" in fam:
-        for col in unused_t + s_cols:
+        unused_s = [c for c in s_cols if c not in model_inputs and c not in used]
+        for col in unused_t + unused_s:
             out += signal_family(col)
-        for col in s_cols:
+        for col in unused_s:
             if _start_varies(problem, col):
                 out += signal_family(col, other_frame)
     if "dynamics" in fam:
@@ -119,10 +123,12 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
         starts = [{}] + [{"initial_state": field_temps, "initial_directions": int(k)}
                          for k in options.initial_directions
                          if 1 <= k <= len(field_temps) and n_campaigns >= k + 3]
+        states_in = [c for c in model_inputs if c.startswith("S_") and c in s_cols]
         for t in taus:
             out += [Effect("dynamics", "lowpass_inputs", tau_s=t, **st) for st in starts]
             out += [Effect("dynamics", "first_order_lag", c, tau_s=t, **st)
                     for c in temps_in for st in starts]
+            out += [Effect("dynamics", "first_order_lag", c, tau_s=t) for c in states_in]
     if "ambient_interval" in fam and "ambient_c0" in ctx and np.isfinite(ctx["ambient_c0"]).all():
         by_unit = ctx["ambient_c0"].groupby(problem.units, sort=False).first()
         if by_unit.nunique() >= 2 * options.min_units_per_side:

@@ -259,6 +259,13 @@ class Search:
         return Evaluation(effect, res.rmse, gain, pct, p, r2, clears, effect.column == CONTROL,
                           jump_ratio=jump, gain_lcb=lcb, n_features=q, alpha=res.alpha, result=res)
 
+    def _read_columns(self) -> set:
+        """Context columns the estimator is set to read (a string parameter naming one, e.g. an
+        ARX+RF's ``state_column``): the model uses them, so they are no missing signal."""
+        params = self.cv.estimator.get_params(deep=True) if hasattr(self.cv.estimator, "get_params") else {}
+        ctx = self.problem.context.columns
+        return {v for v in params.values() if isinstance(v, str) and v in ctx}
+
     def _family_bar(self, evals: list[Evaluation], current: CVResult) -> None:
         """The bar's p-value is family-wise over the round's candidate effects (not the control,
         nor a sensor fault, which has its own bar): :func:`~.cv.sign_flip_maxt` of each unit's
@@ -307,7 +314,8 @@ class Search:
 
         for step in bar(range(int(opts.max_effects)), desc="diagnose rounds", unit="round"):
             names = self.cv.selection(self.inputs(), None)
-            cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates)
+            cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates,
+                               used=self._read_columns())
             ok = p.validated                  # the rows CV scores (forward: not the first part)
             Z = np.column_stack([np.ones(len(p.y)), self.cv.design(names, self.effects)])[ok]
             Q = _orthonormal(Z)
