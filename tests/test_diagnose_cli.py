@@ -78,3 +78,23 @@ def test_a_target_the_model_does_not_have_exits_2_with_one_line(door, tmp_path):
     lines = [line for line in proc.stderr.splitlines() if line.startswith("thermocomp: error")]
     assert len(lines) == 1 and "E_Q" in lines[0]
     assert not (tmp_path / "diagnosis.json").exists()
+
+
+def test_one_step_scores_the_test_split_only_and_says_the_search_stays_in_simulation(tmp_path, capsys):
+    from thermocomp.cli import main
+    data = tmp_path / "door"
+    assert main(["simulate", f"data.path={data}", "track=false", "++sim.generator.effects=[door]",
+                 "sim.generator.n_campaigns=12"]) == 0
+    capsys.readouterr()
+    runs = {}
+    for mode in ("simulation", "one_step"):
+        out = tmp_path / mode
+        assert main(["diagnose", f"data.path={data}", f"out={out}", "track=false", "plots=none",
+                     f"eval.mode={mode}", "diagnose.max_effects=1", "diagnose.targets=[E_Y]"]) == 0
+        runs[mode] = (json.loads((out / "diagnosis.json").read_text()), capsys.readouterr())
+    (sim, _), (one, said) = runs["simulation"], runs["one_step"]
+    assert sim["cv"]["mode"] == one["cv"]["mode"] == "simulation" and one["mode"] == "one_step"
+    assert one["before"]["cv_rmse"] == sim["before"]["cv_rmse"]          # the same search
+    assert one["before"]["test_rmse"] != sim["before"]["test_rmse"]      # another test scoring
+    assert "cross-validation (cv_rmse, the bar) stays in simulation mode" in said.err
+    assert "(test; CV: simulation)" in said.out

@@ -358,8 +358,9 @@ def sign_flip_maxt(D, n_resamples: int = 20000, seed: int = 0) -> np.ndarray:
     from it down, and so on (p-values kept monotone).  Tested one by one at ``alpha``, the
     shortlist of a round (~14 candidates) accepted a false effect far more often than
     ``alpha``: 6 of 30 targets of noise-free null data at 0.01, one making the test error
-    2.3x worse (1 of 30 with this, on the gains of :meth:`~.search.Search._family_bar`).  Step-down, so that a real effect found by several candidates does not hide
-    another one.  Exact up to 16 units, Monte Carlo beyond.
+    2.3x worse (1 of 30 with this, on the gains of :meth:`~.search.Search._family_bar`).
+    Step-down, so that a real effect found by several candidates does not hide another one.
+    Exact up to 16 units, Monte Carlo beyond.
     """
     D = np.nan_to_num(np.atleast_2d(np.asarray(D, dtype=float)))
     k, n = D.shape

@@ -276,7 +276,8 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
         cv = {"scheme": "campaigns", "units": problem.n_units,
               "unit": "campaign" if len(train_ids) > 1 else "time block",
               "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=units)}
-    cv |= {"shrink_alpha": {t: r.alpha for t, r in found.items()},
+    cv |= {"mode": "simulation",   # the search scores what the machine runs, whatever ``mode`` is
+           "shrink_alpha": {t: r.alpha for t, r in found.items()},
            "train_campaigns": train_ids, "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},

@@ -34,6 +34,7 @@ from ..diagnose.report import write_report
 from ..errors import ConfigError
 from ..files import atomic_dir, write_json
 from ..headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
+from ..log import logger
 from ..model_selection import CV_SCHEMES
 from ..params import (
     BOOLEAN,
@@ -169,6 +170,10 @@ def diagnose(cfg: DictConfig) -> dict:
 
     say(f"diagnosing {cfg.model.name} ({cfg.select.name} inputs) on {ds.name}: "
         f"{len(ds.ids('train'))} train / {len(ds.ids('test'))} test campaigns")
+    if str(cfg.eval.mode) != "simulation":
+        logger.warning("diagnose: eval.mode=%s scores the test split only; the search's "
+                       "cross-validation (cv_rmse, the bar) stays in simulation mode, what the "
+                       "deployed compensator runs (diagnosis.json cv.mode)", cfg.eval.mode)
     with stage_run(cfg, "diagnose") as tracker:
         result = run_diagnosis(ds, template, targets, str(cfg.eval.mode), options, make_after,
                                str(cfg.eval.e_p95.statistic), cfg.eval.e_p95.get("max_points", 200),
@@ -222,7 +227,8 @@ def diagnose(cfg: DictConfig) -> dict:
 
 def summary_table(result) -> str:
     """What the stage prints: per target, test RMSE before -> after and the accepted effects."""
-    lines = [f"model={result.model}  dataset={result.dataset}  mode={result.mode}",
+    lines = [f"model={result.model}  dataset={result.dataset}  mode={result.mode}"
+             + ("" if result.mode == "simulation" else " (test; CV: simulation)"),
              f"{'target':<8} {'test RMSE before':>16} -> {'after':>6}   {'CV before':>9} -> {'after':>6}"
              "   accepted effects", "-" * 96]
     for t, d in result.targets.items():
