@@ -499,6 +499,39 @@ def test_gaps_in_a_cycle_are_fitted_from_what_was_measured_and_an_empty_cycle_is
     _untouched(out)
 
 
+def test_an_empty_temperature_cell_follows_the_rules_of_any_dataset(raw, clean, tmp_path, capsys):
+    # an empty T_ cell is no distance left unmeasured: it was written into the parameter series
+    # (then `run` crashed in the fit) and `ingest` named its own temporary file
+    data = copy(raw, tmp_path)
+    col = next(c for c in pd.read_parquet(data / "train_week.parquet").columns if c.startswith("T_"))
+    edit(data, "train_week", lambda df: df.__setitem__(col, df[col].where(df.index != 5)))
+    for args in (["calibrate", f"out={tmp_path / 'out'}"], ["ingest", f"data.interim={tmp_path / 'int'}"],
+                 ["run", "experiment=volumetric_large_mill", f"out={tmp_path / 'run'}"]):
+        refused([*args, f"data.path={data}", "track=false"], capsys,
+                f"{data / 'train_week.parquet'}", f"column '{col}'", "row 6", "data.max_gap_samples=0")
+    _untouched(tmp_path / "out")
+    # interpolated as for any dataset when data.max_gap_samples allows it
+    report = calibrate(data, tmp_path / "out", "data.max_gap_samples=1")
+    assert report["repairs"] == {col: 1} and report["trimmed"] == {}
+    series = pd.read_parquet(tmp_path / "out" / "parameters" / "train_week.parquet")
+    before = pd.read_parquet(raw / "train_week.parquet")[col]
+    assert series[col][5] == pytest.approx((before[4] + before[6]) / 2)
+    names = list(report["parameters"])
+    assert np.array_equal(series[names].to_numpy(),
+                          pd.read_parquet(clean[1] / "parameters" / "train_week.parquet")[names].to_numpy())
+    # an empty first cell is an incomplete edge: trimmed on request, the rows named are the file's
+    edit(data, "train_week", lambda df: df.__setitem__(col, df[col].where(df.index != 0)))
+    edit(data, "train_week", lambda df: df.__setitem__("E_S1x1d1_B01_B02", df["E_S1x1d1_B01_B02"]
+                                                        + np.where(df.index == 2, 1e3, 0.0)))
+    report = calibrate(data, tmp_path / "out2", "data.max_gap_samples=1", "data.max_edge_samples=1")
+    assert report["trimmed"] == {"train_week": {"start": 1, "end": 0}}
+    assert report["campaigns"]["train_week"] == len(before) - 1
+    assert [o["row"] for o in report["outliers"]] == [3]        # the file's row, not the cycle's
+    assert main(["run", "experiment=volumetric_large_mill", f"data.path={data}", f"out={tmp_path / 'run'}",
+                 "track=false", "plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
+                 "data.max_gap_samples=1", "data.max_edge_samples=1"]) == 0
+
+
 def _untouched(out):
     assert not out.exists() or (out / "calibration.json").read_text() == "old"
 

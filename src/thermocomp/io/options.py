@@ -12,7 +12,7 @@ from .contract import SPLITS, ContractError
 
 TIME_FORMATS = ("auto", "seconds", "iso8601")
 ROLE_ORDER = ("T", "E", "S")
-MISSING_MODES = ("repair", "keep")
+MISSING_MODES = ("repair", "keep", "keep_errors")
 
 _OTHER_DELIMITERS = (";", "\t", "|", ",")
 
@@ -45,7 +45,9 @@ class ReadOptions:
     max_resample_factor: float = 10.0
     delimiter: str = ","
     decimal: str = "."
-    missing: str = "repair"  # internal (no data config key): "keep" leaves missing values NaN
+    # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
+    # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
+    missing: str = "repair"
 
     def __post_init__(self):
         if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's

@@ -39,7 +39,10 @@ passes it through ``read_dataset(..., missing="keep")`` to stream a campaign
 as the machine saw it) skips both repairs: missing values stay NaN, no row is
 trimmed, no gap is refused, and the report counts the cells kept per column
 (``missing``).  Everything else is still refused, including a column with no
-valid value and a missing ``time``.
+valid value and a missing ``time``.  ``missing="keep_errors"`` (a volumetric
+dataset: an empty ``E_`` cell is a distance not measured in that cycle) keeps
+the ``E_`` columns' missing values and counts them so, and repairs or refuses
+the other columns' as above.
 
 Row numbers in error messages are 1-based data rows of the source file,
 header excluded.
@@ -155,7 +158,7 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     missing = _keep_missing if opts.missing == "keep" else _repair_missing
     report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts),
               **missing(columns, rows, path, opts)}
-    _check_length(len(columns[TIME]), path, "complete " if opts.missing == "repair" else "")
+    _check_length(len(columns[TIME]), path, "complete " if opts.missing != "keep" else "")
     _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
     if opts.resample_s is not None:
         _resample(columns, opts.resample_s, path, opts.max_resample_factor)
@@ -190,7 +193,7 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
               "campaigns": entries, "repairs": totals("repairs"),
               "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
               "settings": {k: v for k, v in asdict(opts).items() if k != "missing"}}
-    if opts.missing == "keep":
+    if opts.missing != "repair":
         report["missing"] = totals("missing")
     return report
 
@@ -245,10 +248,12 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
             A ``T_`` value above it is taken for kelvin and refused.
         delimiter, decimal : str, default ',' and '.'
             CSV field separator and decimal mark of the campaign files.
-    missing : {'repair', 'keep'}, default 'repair'
+    missing : {'repair', 'keep', 'keep_errors'}, default 'repair'
         Not a config key: ``'keep'`` leaves missing values NaN (no trim, no
         interpolation, no gap refused) and counts them in the report's
-        ``missing``, for a stage that must see the data as it was recorded.
+        ``missing``, for a stage that must see the data as it was recorded;
+        ``'keep_errors'`` does so for the ``E_`` columns only (a volumetric
+        dataset's distances not measured) and repairs the others.
 
     Returns
     -------

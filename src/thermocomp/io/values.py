@@ -172,16 +172,21 @@ def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
 def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> dict:
     """Validate every data column; trim incomplete edge rows, interpolate gaps.
 
-    Returns ``{"repairs": {column: n}, "trimmed": {"start": n, "end": n}}``.
+    Returns ``{"repairs": {column: n}, "trimmed": {"start": n, "end": n}}``; with
+    ``missing="keep_errors"`` the ``E_`` columns' missing values are left as they are (a
+    volumetric dataset's distance not measured in a cycle) and counted under ``missing``.
     """
     gaps = {}  # column -> sorted positions of its missing values
+    kept = {}
     for name in columns:
         if name != TIME:
             missing = _check_values(_values(columns[name]), name, path, opts)
-            if missing.size:
+            if missing.size and opts.missing == "keep_errors" and role(name) == "E":
+                kept[name] = missing
+            elif missing.size:
                 gaps[name] = missing
     if not gaps:
-        return {"repairs": {}, "trimmed": {"start": 0, "end": 0}}
+        return {"repairs": {}, "trimmed": {"start": 0, "end": 0}, **_kept(kept, 0, rows, opts)}
     start, stop = _complete_span(rows, gaps, path, opts.max_edge_samples)
     for name in columns:
         columns[name] = columns[name].slice(start, stop - start)
@@ -193,7 +198,17 @@ def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> 
             _check_gap_lengths(inside, name, start, path, opts.max_gap_samples)
             columns[name] = _patched(columns[name], inside, _gap_values(columns[name], time, inside))
             repairs[name] = int(inside.size)
-    return {"repairs": repairs, "trimmed": {"start": start, "end": rows - stop}}
+    return {"repairs": repairs, "trimmed": {"start": start, "end": rows - stop},
+            **_kept(kept, start, stop, opts)}
+
+
+def _kept(kept: dict, start: int, stop: int, opts: ReadOptions) -> dict:
+    """``{"missing": {column: n}}`` of the cells left missing within the rows kept (only with
+    ``missing="keep_errors"``)."""
+    if opts.missing != "keep_errors":
+        return {}
+    counts = {name: int(np.sum((p >= start) & (p < stop))) for name, p in kept.items()}
+    return {"missing": {name: n for name, n in counts.items() if n}}
 
 
 def _keep_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> dict:

@@ -415,7 +415,7 @@ def volumetric_source(cfg: DictConfig):
         return None
     check_calibrate(cfg.calibrate)
     setup = load_setup(root)
-    raw, _ = io.read_dataset(root, data_options(cfg), missing="keep")
+    raw, _ = io.read_dataset(root, data_options(cfg), missing="keep_errors")   # as calibrate reads it
     check_columns(raw, setup)
     from ..volumetric.calibration import prior_sd
 

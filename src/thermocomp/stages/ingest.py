@@ -44,4 +44,6 @@ def _parameters(volumetric, dest) -> dict:
     # already the configured ones: no data.* option applies twice)
     with tempfile.TemporaryDirectory(prefix="thermocomp-params-") as tmp:
         folder = io.write_dataset(params, f"{tmp}/{raw.name or 'parameters'}", "parquet")
-        return io.ingest(folder, dest, extra={"calibration": calibration})
+        # the temperatures' repairs were made reading the distances' dataset, not this one
+        return io.ingest(folder, dest, extra={"calibration": calibration,
+                                              "repairs": calibration["repairs"]})

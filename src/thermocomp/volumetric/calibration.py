@@ -60,8 +60,9 @@ def setup_path(cal) -> str:
     return getattr(cal, "source_", SETUP_FILE)
 
 
-def _identify(cal, ds, excluded=()):
-    """Per campaign ``(P, flagged)``, the columns in ``excluded`` left out of every cycle."""
+def _identify(cal, ds, skipped, excluded=()):
+    """Per campaign ``(P, flagged)``, the columns in ``excluded`` left out of every cycle
+    (``skipped``: campaign -> rows trimmed at its start, for the rows named)."""
     cols = cal.design_.columns
     out = {}
     for cid, df in ds.campaigns.items():
@@ -75,11 +76,11 @@ def _identify(cal, ds, excluded=()):
                                 "measured in this cycle (the others empty"
                                 f"{' or excluded' if excluded else ''}), with any outliers left out, "
                                 "cannot identify the parameters: measure its poses again or drop the row",
-                                file=ds.manifest.loc[cid, "file"], row=exc.cycle + 1) from None
+                                file=ds.manifest.loc[cid, "file"], row=skipped[cid] + exc.cycle + 1) from None
     return out
 
 
-def _check_fits(cal: ArtefactCalibration, ds) -> None:
+def _check_fits(cal: ArtefactCalibration, ds, skipped) -> None:
     """Refuse distances that do not fit the set-up at all, before identifying every cycle.
 
     The first, middle and last cycles are screened; when two of them (or every one, with fewer)
@@ -108,7 +109,7 @@ def _check_fits(cal: ArtefactCalibration, ds) -> None:
     where = _described(worst["column"])
     raise ContractError(
         f"the distances do not fit the artefact and machine described here: in campaign {cid}, "
-        f"row {k + 1}, the outlier search left out a tenth of the {len(cal.design_.columns)} "
+        f"row {skipped[cid] + k + 1}, the outlier search left out a tenth of the {len(cal.design_.columns)} "
         f"distances ({len(out)}) and the rest still do not fit, the worst pose {where['pose']} balls "
         f"{where['balls'][0]}-{where['balls'][1]} off by {worst['residual_um']:.1f} µm "
         f"(z = {worst['z']:.0f}); so in {len(bad)} of the {len(picks)} cycles screened; check that "
@@ -133,14 +134,16 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
         raise ContractError(f"not a volumetric dataset: no {SETUP_FILE} (write one with "
                             "thermocomp simulate sim=large_mill_volumetric, or see docs/data-format.md)",
                             file=root)
-    ds, _ = io.read_dataset(root, data_cfg, missing="keep")     # NaN = a distance not measured
+    # an empty E_ cell is a distance not measured; the temperatures are read as for any dataset
+    ds, read = io.read_dataset(root, data_cfg, missing="keep_errors")
+    skipped = {cid: e["trimmed"]["start"] for cid, e in read["campaigns"].items()}
     check_columns(ds, setup)
     cal = ArtefactCalibration(setup, outlier_z=float(outlier_z), prior_sd=prior_sd(setup.model, prior)).fit()
     cal.source_ = str(root / SETUP_FILE)
     _require_seen(cal, setup, list(require_seen or []))
     n_cycles = sum(len(df) for df in ds.campaigns.values())
-    _check_fits(cal, ds)
-    result = _identify(cal, ds)
+    _check_fits(cal, ds, skipped)
+    result = _identify(cal, ds, skipped)
     counts: dict[str, int] = {}
     for _, flagged in result.values():
         for f in flagged:
@@ -150,9 +153,12 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
         logger.warning("calibrate: %d distance column(s) flagged in more than %.0f %% of the cycles, "
                        "left out of every cycle: %s", len(excluded), 100 * float(column_share),
                        ", ".join(excluded[:5]))
-        result = _identify(cal, ds, excluded)
-    report = _report(cal, setup, ds, result, excluded, counts, n_cycles)
+        result = _identify(cal, ds, skipped, excluded)
+    report = _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped)
     report["prior"] = prior
+    report["repairs"] = read["repairs"]          # T_/S_ gaps interpolated (data.max_gap_samples)
+    report["trimmed"] = {cid: e["trimmed"] for cid, e in read["campaigns"].items()
+                         if any(e["trimmed"].values())}
     campaigns = {}
     for cid, df in ds.campaigns.items():
         keep = df[[col for col in df.columns if not col.startswith("E_")]]
@@ -162,7 +168,7 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
     return params, cal, report, ds
 
 
-def _report(cal, setup, ds, result, excluded, counts, n_cycles) -> dict:
+def _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped) -> dict:
     params = _kinds(setup)
     cols = cal.design_.columns
     outliers, sq, n = [], 0.0, 0
@@ -175,7 +181,7 @@ def _report(cal, setup, ds, result, excluded, counts, n_cycles) -> dict:
         for f in flagged:
             skip[f["cycle"], cols.index(f["column"])] = True
             outliers.append({"campaign": cid, "time": float(df["time"].iloc[f["cycle"]]),
-                             "row": int(f["cycle"]) + 1, **_described(f["column"]),
+                             "row": skipped[cid] + int(f["cycle"]) + 1, **_described(f["column"]),
                              "residual_um": f["residual_um"], "z": f["z"]})
         ok = np.isfinite(R) & ~skip
         sq += float(np.sum(R[ok] ** 2))
