@@ -635,6 +635,18 @@ SETUP_FAULTS = [
     (_set(("poses", 2, "name"), "S1x1d1"), "poses[2].name='S1x1d1': declared twice"),
     (_set(("uncertainty_um",), {"probing": -1, "ball": 0.5}), "uncertainty_um.probing=-1"),
     (_set(("poses",), []), "poses: must be a non-empty list"),
+    # a misspelt key was read as its default (or was a TypeError of BallArray, exit 2 with
+    # Python's words)
+    (lambda d: d.__setitem__("uncertainty", d.pop("uncertainty_um")),
+     "uncertainty: unknown key; did you mean 'uncertainty_um'? valid keys: machine, artefact, poses, "
+     "uncertainty_um"),
+    (_set(("machine", "crossterms"), True), "machine.crossterms: unknown key; did you mean 'cross_terms'? "
+                                            "valid keys: ranges, chain, tool, order, cross_terms"),
+    (_set(("artefact", "misalignment"), 5.0), "artefact.misalignment: unknown key; did you mean "
+                                              "'misalignment_deg'?"),
+    (_set(("uncertainty_um", "probe"), 0.1), "uncertainty_um.probe: unknown key; did you mean 'probing'?"),
+    (_set(("poses", 3, "centr"), [0, 0, 0]), "poses[3].centr: unknown key; did you mean 'centre'?"),
+    (_set(("machine", "ranges", "W"), [0, 1]), "machine.ranges.W: unknown key; valid keys: X, Y, Z"),
 ]
 
 

@@ -14,11 +14,12 @@ calibrated distance between balls i and j (µm) in that pose.
 
 from __future__ import annotations
 
+import difflib
 import itertools
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -141,7 +142,6 @@ class Setup:
     poses: list[Pose]
     probing_um: float = 0.5
     ball_um: float = 0.5
-    extra: dict = field(default_factory=dict)
 
     def columns(self) -> list[str]:
         return [column(p.name, i, j) for p in self.poses for i, j in pairs(self.array.n_balls)]
@@ -152,20 +152,18 @@ class Setup:
                              "misalignment_deg": self.array.misalignment_deg},
                 "poses": [{"name": p.name, "centre": list(map(float, p.centre)),
                            "direction": list(map(float, p.direction))} for p in self.poses],
-                "uncertainty_um": {"probing": self.probing_um, "ball": self.ball_um},
-                **self.extra}
+                "uncertainty_um": {"probing": self.probing_um, "ball": self.ball_um}}
 
     @classmethod
     def from_dict(cls, d: dict) -> Setup:
         """The set-up of ``volumetric.json`` (docs/data-format.md); a field outside its domain is
-        a ``ValueError`` naming it (``artefact.n_balls='5': must be an integer >= 2``)."""
-        known = {"machine", "artefact", "poses", "uncertainty_um"}
+        a ``ValueError`` naming it (``artefact.n_balls='5': must be an integer >= 2``), and so is
+        a key it does not know (a misspelt one would be read as its default)."""
         _check_setup(d)
         u = d.get("uncertainty_um", {})
         setup = cls(KinematicModel.from_dict(d["machine"]), BallArray(**d["artefact"]),
                     [Pose(p["name"], tuple(p["centre"]), tuple(p["direction"])) for p in d["poses"]],
-                    float(u.get("probing", 0.5)), float(u.get("ball", 0.5)),
-                    {k: v for k, v in d.items() if k not in known})
+                    float(u.get("probing", 0.5)), float(u.get("ball", 0.5)))
         check_reach(setup.model, setup.array, setup.poses)
         return setup
 
@@ -181,9 +179,27 @@ SETUP_RULES = {
                  "misalignment_deg": optional(number(-90.0, 90.0, open_lo=True, open_hi=True))},
     "uncertainty_um": {"probing": optional(UNCERTAINTY), "ball": optional(UNCERTAINTY)},
 }
+KEYS = {"": ("machine", "artefact", "poses", "uncertainty_um"),
+        "machine": ("ranges", "chain", "tool", "order", "cross_terms"),
+        "machine.ranges": AXES,
+        "artefact": ("n_balls", "length_mm", "misalignment_deg"),
+        "uncertainty_um": ("probing", "ball"),
+        "poses": ("name", "centre", "direction")}
 POSE_RULES = {"name": Rule(lambda v: isinstance(v, str) and re.fullmatch(r"[A-Za-z0-9]+", v),
                            "letters and digits"),
               "centre": POINT, "direction": numbers(-math.inf, length=3)}
+
+
+def _check_keys(d: Mapping, part: str, where: str | None = None) -> None:
+    """Refuse a key ``part`` does not have, naming the closest valid one: misspelt, it was
+    ignored and its default used (``uncertainty`` for ``uncertainty_um``)."""
+    valid = list(KEYS[part])
+    for key in d:
+        if key not in valid:
+            close = difflib.get_close_matches(str(key), valid, n=1, cutoff=0.6)
+            hint = f"did you mean {close[0]!r}? " if close else ""
+            path = f"{where or part}.{key}" if where or part else str(key)
+            raise ValueError(f"{path}: unknown key; {hint}valid keys: {', '.join(valid)}")
 
 
 def _check_geometry(machine: Mapping) -> None:
@@ -195,6 +211,7 @@ def _check_geometry(machine: Mapping) -> None:
     ranges = machine["ranges"]
     if not isinstance(ranges, Mapping):
         raise ValueError("machine.ranges: must be an object of X, Y, Z travels")
+    _check_keys(ranges, "machine.ranges")
     for axis in AXES:
         if axis not in ranges:
             raise ValueError(f"machine.ranges.{axis}: missing (a travel [min, max], mm)")
@@ -206,11 +223,13 @@ def _check_setup(d) -> None:
     its chain itself)."""
     if not isinstance(d, Mapping):
         raise ValueError(f"expected an object with {', '.join(SETUP_RULES)} and poses")
+    _check_keys(d, "")
     for part, rules in SETUP_RULES.items():
         if part == "uncertainty_um" and part not in d:
             continue
         if not isinstance(d.get(part), Mapping):
             raise ValueError(f"{part}: missing or not an object")
+        _check_keys(d[part], part)
         if part == "machine":
             _check_geometry(d[part])
         check_values(d[part], rules, part)
@@ -222,6 +241,7 @@ def _check_setup(d) -> None:
         where = f"poses[{k}]"
         if not isinstance(pose, Mapping):
             raise ValueError(f"{where}: not an object")
+        _check_keys(pose, "poses", where)
         check_values(pose, POSE_RULES, where)
         if not np.linalg.norm(np.asarray(pose["direction"], float)) > 0:
             raise ValueError(f"{where} ({pose['name']}).direction={list(pose['direction'])}: "
