@@ -225,6 +225,13 @@ def calibrate(data, out, *extra):
     return json.loads((out / "calibration.json").read_text())
 
 
+def run(data, out, *extra):
+    """`thermocomp run` of the volumetric experiment, without figures or the slow baselines."""
+    assert main(["run", "experiment=volumetric_large_mill", f"data.path={data}", f"out={out}",
+                 "track=false", "plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
+                 *extra]) == 0
+
+
 def edit(data, campaign, fn):
     f = data / f"{campaign}.parquet"
     df = pd.read_parquet(f)
@@ -294,6 +301,38 @@ def test_a_prior_estimates_every_parameter_and_fits_the_distances_as_well(raw, c
     assert prior["residual_rms_um"] < 1.1 * report["residual_rms_um"]
     ds, _ = io.read_dataset(out / "parameters")
     assert [c for c in ds.campaigns["train_week"].columns if c.startswith("E_")] == setup.model.names
+
+
+def test_the_residual_scatter_is_checked_against_the_declared_uncertainties(raw, clean, tmp_path, capsys):
+    # distances in mm calibrated silently (residual 0.001 µm against 0.5 µm probing), and
+    # uncertainties declared 4x too small flagged thousands of "outliers", without a word
+    fit = clean[0]["fit"]
+    assert fit["consistent"] and 0.8 < fit["rms_ratio"] < 1.25      # seeds 0-7: 0.89-1.19
+    assert fit["rms_ratio"] == pytest.approx(clean[0]["residual_rms_um"] / fit["expected_rms_um"])
+    lo, hi = fit["accepted"]
+    assert lo == pytest.approx(0.5, abs=0.05) and hi == 2.0      # the factor 2 decides here
+    data = copy(raw, tmp_path, truth=False)
+    for cid in ("train_week", "validation_week"):
+        edit(data, cid, lambda df: df.update(df.filter(like="E_S") / 1e3))
+    capsys.readouterr()
+    fit = calibrate(data, tmp_path / "mm")["fit"]
+    assert not fit["consistent"] and fit["rms_ratio"] < 0.01
+    assert "another unit than µm" in capsys.readouterr().err
+    run(data, tmp_path / "run")
+    assert "another unit than µm" in capsys.readouterr().err
+    # declared 2.5x too small: the outlier search leaves out what they make look gross, the
+    # rest still scatter 2.7x; 4x too small, a tenth of the distances are "gross": refused
+    data = copy(raw, tmp_path / "small_u", truth=False)
+    setup = json.loads((data / SETUP_FILE).read_text())
+    for u, says in ((0.2, None), (0.125, "uncertainty_um (declared too small?)")):
+        setup["uncertainty_um"] = {"probing": u, "ball": u}
+        (data / SETUP_FILE).write_text(json.dumps(setup))
+        if says:
+            refused(["calibrate", f"data.path={data}", f"out={tmp_path / 'u'}", "track=false"], capsys, says)
+            continue
+        fit = calibrate(data, tmp_path / "u")["fit"]
+        assert not fit["consistent"] and fit["rms_ratio"] > 2
+        assert "or the uncertainties in volumetric.json wrong" in capsys.readouterr().err
 
 
 def test_no_truth_no_round_trip(raw, tmp_path):
@@ -527,9 +566,7 @@ def test_an_empty_temperature_cell_follows_the_rules_of_any_dataset(raw, clean, 
     assert report["trimmed"] == {"train_week": {"start": 1, "end": 0}}
     assert report["campaigns"]["train_week"] == len(before) - 1
     assert [o["row"] for o in report["outliers"]] == [3]        # the file's row, not the cycle's
-    assert main(["run", "experiment=volumetric_large_mill", f"data.path={data}", f"out={tmp_path / 'run'}",
-                 "track=false", "plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
-                 "data.max_gap_samples=1", "data.max_edge_samples=1"]) == 0
+    run(data, tmp_path / "run", "data.max_gap_samples=1", "data.max_edge_samples=1")
 
 
 def _untouched(out):
@@ -691,6 +728,7 @@ def test_every_calibrate_key_is_documented(raw, clean, tmp_path):
     report = calibrate(data, tmp_path / "out")
     assert report["outliers"] and report["excluded"]
     found = (set(report) | set(report["roundtrip"]) | set(next(iter(report["parameters"].values())))
+             | set(report["fit"])
              | set(report["outliers"][0]) | set(report["excluded"][0]))
     assert not sorted(k for k in found if not _documented(k, CLI))
     setup = json.loads((raw / SETUP_FILE).read_text())

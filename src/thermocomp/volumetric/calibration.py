@@ -22,6 +22,9 @@ from .artefact import COLUMN, SETUP_FILE
 from .identify import ArtefactCalibration, CycleError, equivalent_truth
 from .series import check_columns, distance_matrix, load_setup
 
+ALPHA = 1e-6      # of the chi-square test of the residuals' scatter against the uncertainties
+SCATTER = 2.0     # and the factor in RMS it must be off by too, before a warning
+
 
 def _kinds(setup) -> dict:
     return {p.name: p for p in setup.model.parameters}
@@ -114,7 +117,8 @@ def _check_fits(cal: ArtefactCalibration, ds, skipped) -> None:
         f"{where['balls'][0]}-{where['balls'][1]} off by {worst['residual_um']:.1f} µm "
         f"(z = {worst['z']:.0f}); so in {len(bad)} of the {len(picks)} cycles screened; check that "
         "the E_ columns are measured minus calibrated distances in µm, the artefact (n_balls, "
-        "length_mm, misalignment_deg), the poses and the machine's order"
+        "length_mm, misalignment_deg), the poses, the machine's order, uncertainty_um (declared "
+        "too small?)"
         f"{', calibrate.prior (ranges narrower than the machine?)' if cal.prior_sd is not None else ''}"
         ", or fit them as they are with calibrate.outlier_z=inf",
         file=setup_path(cal), column=worst["column"])
@@ -171,7 +175,7 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
 def _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped) -> dict:
     params = _kinds(setup)
     cols = cal.design_.columns
-    outliers, sq, n = [], 0.0, 0
+    outliers, sq, n, expected = [], 0.0, 0, 0.0
     for cid, (P, flagged) in result.items():
         df = ds.campaigns[cid]
         R = distance_matrix(df, cal) - cal.predict(P)
@@ -186,6 +190,9 @@ def _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped) -> dict
         ok = np.isfinite(R) & ~skip
         sq += float(np.sum(R[ok] ** 2))
         n += int(ok.sum())
+        # each distance's residual variance with every distance measured: near enough (and
+        # far cheaper than a solver per cycle) for a test of a factor 2
+        expected += float(np.sum(np.where(ok, cal.residual_sd_ ** 2, 0.0)))
     return {
         "parameters": {name: {"unit": params[name].unit, "uncertainty": float(u),
                               "kind": params[name].kind}
@@ -198,8 +205,40 @@ def _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped) -> dict
         "n_distances": len(cols),
         "poses": [p.name for p in setup.poses],
         "residual_rms_um": math.sqrt(sq / n) if n else None,
+        "fit": _consistency(sq / n if n else 0.0, expected / n if n else 0.0, cal, setup),
         "campaigns": {cid: len(df) for cid, df in ds.campaigns.items()},
     }
+
+
+def _consistency(observed: float, expected: float, cal, setup) -> dict:
+    """The residuals' scatter against what the declared uncertainties predict: the RMS of the
+    distances' residuals over the RMS their GLS covariance gives (1 when ``uncertainty_um`` is
+    right), with a warning when it is off both statistically and by a factor of 2.
+
+    The sum of squares of a cycle is a weighted chi-square of ``cal.residual_dof_`` effective
+    degrees of freedom; the cycles share the artefact's ball errors, so they are not
+    independent draws and the bound is that of one cycle, the widest the pooled value can
+    spread.  It decides on small set-ups; on large ones it is tight, and the factor 2 is what
+    decides: distances in mm or nm, or uncertainties declared 2x off or more."""
+    from scipy import stats
+
+    if not expected > 0:
+        return {"expected_rms_um": None, "rms_ratio": None, "effective_dof": None, "accepted": None,
+                "consistent": None}
+    ratio, nu = math.sqrt(observed / expected), cal.residual_dof_
+    lo = min(math.sqrt(stats.chi2.ppf(ALPHA / 2, nu) / nu), 1 / SCATTER)
+    hi = max(math.sqrt(stats.chi2.isf(ALPHA / 2, nu) / nu), SCATTER)    # beyond both, to warn
+    consistent = bool(lo <= ratio <= hi)
+    if not consistent:
+        logger.warning(
+            "calibrate: the distances' residuals scatter %.3g times what the declared uncertainties "
+            "(uncertainty_um: probing %g, ball %g µm) predict (RMS %.3g µm instead of %.3g; expected "
+            "%.2f..%.2f times): the E_ distances may be in another unit than µm, or the uncertainties "
+            "in %s wrong; the parameters' uncertainties and the outliers flagged rest on them",
+            ratio, setup.probing_um, setup.ball_um, math.sqrt(observed), math.sqrt(expected), lo, hi,
+            SETUP_FILE)
+    return {"expected_rms_um": math.sqrt(expected), "rms_ratio": ratio, "effective_dof": nu,
+            "accepted": [lo, hi], "consistent": consistent}
 
 
 def roundtrip(cal: ArtefactCalibration, result: dict, truth: dict) -> dict | None:

@@ -145,6 +145,13 @@ class ArtefactCalibration:
     uncertainty_ : ndarray
         Standard uncertainty of each estimated parameter (one cycle, all distances; with a
         prior, the posterior's).
+    residual_sd_ : ndarray
+        Standard deviation of each distance's residual that the declared uncertainties predict
+        (one cycle, all distances).
+    residual_dof_ : float
+        Effective degrees of freedom of one cycle's residual sum of squares (Satterthwaite:
+        a distance's noise is shared with the others of its balls, so far fewer than the
+        distances less the parameters).
     """
 
     def __init__(self, setup: Setup, outlier_z: float = 6.0, prior_sd=None):
@@ -173,8 +180,11 @@ class ArtefactCalibration:
         # every distance measured: the solver of that mask, from the factor computed above
         self._solvers = {}
         everything = np.ones(len(self.design_.rows), bool)
-        self._solve, _, self._resid_sd, self.param_cov_ = self._solver(everything, self._chol)
+        self._solve, _, self.residual_sd_, self.param_cov_ = self._solver(everything, self._chol)
         self.uncertainty_ = np.sqrt(np.diag(self.param_cov_))
+        A = self.design_.A[:, self.kept_]
+        V = self.design_.cov - A @ self.param_cov_ @ A.T            # the residuals' covariance
+        self.residual_dof_ = float(np.trace(V) ** 2 / np.sum(V ** 2))   # Satterthwaite
         return self
 
     def full(self, estimates: np.ndarray) -> np.ndarray:
@@ -206,7 +216,7 @@ class ArtefactCalibration:
         """One cycle's estimate (``p``: the estimate from every distance) and its outliers."""
         mask = np.isfinite(d)
         if mask.all():
-            z = (d - self.predict(p)) / self._resid_sd
+            z = (d - self.predict(p)) / self.residual_sd_
         else:                           # the same gaps in many cycles: one solver (cached)
             p, _, z = self._masked(d, mask)
         if np.max(np.abs(z)) <= self.outlier_z:
