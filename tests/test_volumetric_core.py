@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from thermocomp.volumetric import ArtefactCalibration, BallArray, KinematicModel, Setup, position_set
+from thermocomp.volumetric import ArtefactCalibration, BallArray, KinematicModel, Pose, Setup, position_set
 from thermocomp.volumetric.artefact import pairs
 from thermocomp.volumetric.identify import design
 from thermocomp.volumetric.kinematics import workspace_grid
@@ -174,3 +174,33 @@ def test_a_machine_written_apart_is_recovered_from_its_distances_up_to_a_rigid_m
     ve = np.sqrt(np.mean(np.sum(_without_rigid_motion(truth, grid) ** 2, 1)))
     assert ve > 5.0                                             # a machine with errors to find
     assert np.sqrt(np.mean(np.sum(gap ** 2, 1))) < 1e-3 * ve
+
+
+def test_the_misalignment_offsets_are_where_data_format_md_says(model):
+    # a user describing a real misaligned bar needs the normal each ball is set off along
+    from test_docs import DATA_FORMAT
+
+    rule = ("balls 2, 6, 10, … (1-based) along v1 = u × e / \\|u × e\\|, e the machine axis on which u "
+            "has its smallest component (X before Y before Z on a tie), balls 4, 8, … along v2 = u × v1")
+    assert rule in DATA_FORMAT
+    for example in ("Along +X: v1 = +Z, v2 = −Y", "along +Y: v1 = −Z, v2 = −X", "along +Z: v1 = +Y, v2 = −X"):
+        assert example in DATA_FORMAT
+    array = BallArray(n_balls=11, length_mm=1000.0, misalignment_deg=10.0)
+    offset = 100.0 * np.tan(np.radians(10.0))
+    for direction in [(1, 0, 0), (0, 1, 0), (0, 0, 1), (1, -1, 1), (0, 2, -1), (-1, 0, 0)]:
+        u = np.asarray(direction, float) / np.linalg.norm(direction)
+        e = np.eye(3)[np.argmin(np.abs(u))]
+        v1 = np.cross(u, e) / np.linalg.norm(np.cross(u, e))
+        v2 = np.cross(u, v1)
+        centre = np.array([100.0, 200.0, 300.0])
+        along = np.linspace(-500, 500, 11)
+        expected = centre + along[:, None] * u
+        expected[1::4] += offset * v1           # balls 2, 6, 10
+        expected[3::4] += offset * v2           # balls 4, 8
+        balls = Pose("p", tuple(centre), direction).balls(array)
+        assert np.allclose(balls, expected), direction
+    axes = {"X": (1, 0, 0), "Y": (0, 1, 0), "Z": (0, 0, 1)}
+    for axis, v1, v2 in (("X", (0, 0, 1), (0, -1, 0)), ("Y", (0, 0, -1), (-1, 0, 0)),
+                         ("Z", (0, 1, 0), (-1, 0, 0))):
+        assert np.allclose(Pose("p", (0, 0, 0), axes[axis]).frame()[1:], [v1, v2])
+

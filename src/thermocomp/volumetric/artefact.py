@@ -2,11 +2,12 @@
 
 The artefact (paper 001, Fig. 4): ``n_balls`` balls over ``length_mm``; with a misalignment
 angle θ every other ball is set off the bar's axis by ``spacing · tan θ``, alternately
-across and along the second normal, so that the array sees the volume's errors in more
-than one direction.  A pose places it: centre (mm, commanded TCP coordinates) and a
-direction.  The position sets of paper 001: ``S1`` along the three axes, ``S2`` the four
-volume diagonals, ``S3`` the six face diagonals, each repeated at several X centres on a
-long X axis.
+along the first and the second normal of the pose's frame (:meth:`Pose.frame`: balls
+2, 6, 10, ... along v1, balls 4, 8, ... along v2; docs/data-format.md), so that the array
+sees the volume's errors in more than one direction.  A pose places it: centre (mm,
+commanded TCP coordinates) and a direction.  The position sets of paper 001: ``S1`` along
+the three axes, ``S2`` the four volume diagonals, ``S3`` the six face diagonals, each
+repeated at several X centres on a long X axis.
 
 A distance column of a dataset is ``E_<pose>_B<i>_B<j>``: the measured minus the
 calibrated distance between balls i and j (µm) in that pose.
@@ -69,7 +70,8 @@ class Pose:
     direction: tuple
 
     def frame(self) -> np.ndarray:
-        """Rows: the bar's unit direction and two unit normals."""
+        """Rows: the bar's unit direction u, ``v1 = u × e`` normalised (``e`` the machine axis of
+        u's smallest component, the first on a tie) and ``v2 = u × v1``."""
         u = np.asarray(self.direction, float)
         u = u / np.linalg.norm(u)
         helper = np.eye(3)[np.argmin(np.abs(u))]
