@@ -82,8 +82,9 @@ def _check_replaceable(target: Path, root: Path, key: str) -> None:
     import pandas as pd
 
     t, r = target.resolve(), root.resolve()
-    if t == r or r in t.parents or t in r.parents:
-        raise ConfigError(f"{key}: the parameter series would replace {t}, which holds data.path "
+    where = "is" if t == r else "lies inside" if r in t.parents else "holds" if t in r.parents else None
+    if where:
+        raise ConfigError(f"{key}: the parameter series would replace {t}, which {where} data.path "
                           f"{r}; give a folder of its own")
     if not t.is_dir() or not any(t.iterdir()):
         return
