@@ -379,7 +379,7 @@ def test_a_non_integer_seed_is_refused_by_every_stage(stage, seed, capsys, tmp_p
 
 def test_refused_runs_leave_no_model_or_ingest_report(paths, capsys):
     refused(["run", *paths["args"], "+data.split_overrides.K04=train"], capsys,
-            "no 'test' campaign")
+            "no 'test' campaign", f"file {paths['ds'] / 'campaigns.csv'}")   # the whole path
     edit_csv(paths["ds"] / "K02.csv", lambda df: df.rename(columns={"E_X": "E_Y"}, inplace=True))
     refused(["run", *paths["args"]], capsys, "K0", "column 'E_")
     assert not paths["out"].exists() and not paths["out"].parent.exists()

@@ -66,20 +66,23 @@ STAGE_HELP = {
               "model_path (models/<name>/model.pkl)", "model=mlr|pcr|arx|arx_rf|lstm|lagbank "
               "select=... ati=none|cmeans denoise=none|emd"),
     "evaluate": ("score the trained model on train/test", "data.interim, model_path",
-                 "<out>/metrics.json, <out>/headline/<target>.json, <out>/plots/ (PNG + CSV)",
+                 "<out>/metrics.json, <out>/headline/<target>.json, <out>/plots/ (PNG + CSV), "
+                 "<out>/volumetric/ (a volumetric dataset)",
                  "eval.mode=simulation|one_step plots=summary|test|all|none"),
     "diagnose": ("residual -> missing effect -> refit -> before/after", "data.path",
                  "<out>/diagnosis.json, <out>/diagnosis_headline/<target>.json, <out>/diagnosis/",
                  "model=... diagnose.targets=[E_Z] plots=none"),
     "run": ("ingest .. evaluate in one process; -m for a sweep", "data.path",
-            "<out>/: model.pkl, ingest_report.json, metrics.json, headline/, plots/",
+            "<out>/: model.pkl, ingest_report.json, metrics.json, headline/, plots/ "
+            "(data.group_by: metrics.json, fleet.csv, models/<group>.pkl)",
             "data.path=<dir> model=... select=... eval.mode=... out=<dir>; "
             "-m model=mlr,pcr select=all,pearson"),
     "compare": ("table of a sweep's child runs, best first", "the sweep's MLflow runs",
                 "compare.out: compare.csv, compare.md, compare.json",
                 "compare.sweep=<dir|run id> compare.sort_by=val_rmse compare.target=E_Z"),
     "promote": ("register the best run's compensator, move @champion if better",
-                "the sweep's MLflow runs", "the MLflow model registry",
+                "the sweep's MLflow runs, data.path (the stream is checked on its train campaigns)",
+                "the MLflow model registry, <out>/promote.json",
                 "promote.* (conf/promote/); monitor.adaptive=false registers the plain stream"),
     "replay": ("stream the test campaigns row by row through the deployable compensator",
                "data.path and a fitted or registered model", "<out>/replay.json",

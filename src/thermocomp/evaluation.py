@@ -32,8 +32,10 @@ def sample_period(ds: Dataset, ids) -> float:
 def require_split(ds: Dataset, split: str) -> list[str]:
     ids = ds.ids(split)
     if not ids:
+        root = ds.meta.get("path")
         raise ContractError(f"the dataset has no {split!r} campaign (set `split` in the manifest "
-                            f"or data.split_overrides)", file="campaigns.csv", column="split")
+                            f"or data.split_overrides)", column="split",
+                            file=f"{root}/campaigns.csv" if root else "campaigns.csv")
     return ids
 
 

@@ -237,7 +237,8 @@ def client(cfg):
     if not enabled(cfg):
         from .errors import ConfigError
 
-        raise ConfigError("this stage reads MLflow runs: it needs track=true")
+        raise ConfigError("this stage reads MLflow runs: it needs tracking on "
+                          "(track=null, the default, or track=true)")
     from mlflow import MlflowClient
 
     return MlflowClient(connect(cfg))
