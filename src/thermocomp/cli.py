@@ -403,6 +403,7 @@ def main(argv: list[str] | None = None) -> int:
         return 0 if argv else 2
     stage, args = argv[0], argv[1:]
     from .files import Terminated
+    from .log import logger
     from .stages import STAGES
     from .stages import stage as lookup
 
@@ -423,12 +424,12 @@ def main(argv: list[str] | None = None) -> int:
         else:
             _run(stage, lookup(stage), _compose_or_explain(args), args)
     except Terminated:  # the contract's statuses are 0, 2 and 1 for anything else
-        print(f"thermocomp: {stage} terminated (SIGTERM)", file=sys.stderr)
+        logger.warning("%s terminated (SIGTERM)", stage)
         return 1
     except SystemExit as exc:
         return exc.code if isinstance(exc.code, int) else 1
     except KeyboardInterrupt:
-        print(f"thermocomp: {stage} interrupted (Ctrl-C)", file=sys.stderr)
+        logger.warning("%s interrupted (Ctrl-C)", stage)
         return 1
     except Exception:  # anything else is a bug or an environment failure: status 1
         traceback.print_exc()
