@@ -30,7 +30,7 @@ from thermocomp.volumetric import (
 @pytest.fixture(scope="session")
 def default_calibration():
     model = KinematicModel()
-    setup = Setup(model, BallArray(), position_set(ranges=model.ranges))
+    setup = Setup(model, BallArray(), position_set(ranges=model.ranges, tool=model.tool))
     return setup, ArtefactCalibration(setup).fit()
 
 
@@ -100,7 +100,8 @@ def test_many_lone_gross_errors_are_found_by_the_closure_test_when_they_swamp_th
     from thermocomp.volumetric.design import MachineFamily
 
     model = KinematicModel()
-    setup = Setup(model, BallArray(9, 1500.0, 8.0), position_set(["S2", "S3"], model.ranges, (0.25, 0.75)))
+    setup = Setup(model, BallArray(9, 1500.0, 8.0), position_set(["S2", "S3"], model.ranges, (0.25, 0.75),
+                                                                               model.tool))
     cal = ArtefactCalibration(setup, prior_sd=MachineFamily(model).sd() if prior else None).fit()
     rng = np.random.default_rng(0)
     for _ in range(3):
@@ -125,7 +126,8 @@ def test_the_closure_test_is_the_mean_shift_t_of_each_distance():
     t_i = w_i' r / sqrt(w_i' (I - H) w_i), w_i the whitened unit vector of distance i, H the hat
     matrix of the whitened design with a column per distance left out."""
     model = KinematicModel()
-    setup = Setup(model, BallArray(9, 1500.0, 8.0), position_set(["S2", "S3"], model.ranges, (0.25, 0.75)))
+    setup = Setup(model, BallArray(9, 1500.0, 8.0), position_set(["S2", "S3"], model.ranges, (0.25, 0.75),
+                                                                               model.tool))
     cal = ArtefactCalibration(setup).fit()
     rng = np.random.default_rng(5)
     d = simulate_distances(setup, rng.normal(0.0, 5.0, (1, len(model.names))), rng,
@@ -161,7 +163,8 @@ def test_a_prior_shares_what_the_poses_cannot_see_and_its_uncertainties_hold():
     model = KinematicModel()
     family = MachineFamily(model)
     truth = family.draw([(5, i) for i in range(40)])
-    setup = Setup(model, BallArray(11, 1500.0, 0.0), position_set(["S2"], model.ranges, (0.25, 0.75)))
+    setup = Setup(model, BallArray(11, 1500.0, 0.0), position_set(["S2"], model.ranges, (0.25, 0.75),
+                                                                             model.tool))
     D = measure(model, truth, setup, [np.random.default_rng((6, i)) for i in range(len(truth))])
     basis = model.basis(workspace_grid(model, (10, 5, 5)))
     vce, z = {}, None
@@ -190,7 +193,7 @@ def test_a_prior_narrower_than_the_machine_biases_what_the_poses_see():
     family = MachineFamily(model)
     truth = family.draw([(7, i) for i in range(10)])
     setup = Setup(model, BallArray(11, 1500.0, 15.0), position_set(["S1", "S2", "S3"], model.ranges,
-                                                                    (0.25, 0.75)), 0.0, 0.0)
+                                                                    (0.25, 0.75), model.tool), 0.0, 0.0)
     D = measure(model, truth, setup, [np.random.default_rng((8, i)) for i in range(len(truth))])
     basis = model.basis(workspace_grid(model, (10, 5, 5)))
 
@@ -662,8 +665,8 @@ SETUP_FAULTS = [
     (_set(("machine", "ranges", "Y"), [1600, 0]), "machine.ranges.Y=[1600, 0]: must be a travel"),
     (_set(("uncertainty_um",), {"probing": 0.5, "ball": 1e6}), "uncertainty_um.ball=1000000.0"),
     # a typed centre: the balls would be "measured" where no probe goes
-    (_set(("poses", 0, "centre"), [90000, 800, 800]), "pose S1x1d1: ball 1 at X=89250 mm lies "
-                                                      "outside the X travel"),
+    (_set(("poses", 0, "centre"), [90000, 800, 800]), "pose S1x1d1: ball 1 at X=89250 mm puts "
+                                                      "the X axis at 89250 mm"),
     (_set(("artefact", "n_balls"), "11"), "artefact.n_balls='11': must be an integer >= 2"),
     (_set(("artefact", "length_mm"), -1500), "artefact.length_mm=-1500"),
     (_set(("artefact", "misalignment_deg"), 90), "artefact.misalignment_deg=90"),

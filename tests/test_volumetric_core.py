@@ -64,7 +64,7 @@ def test_the_part_side_moves_the_part_the_other_way():
 
 def _setup(sets=("S1", "S2", "S3"), misalignment=0.0, tool=(0.0, 0.0, -150.0)):
     m = KinematicModel(tool=tool)
-    return Setup(m, BallArray(11, 1500.0, misalignment), position_set(sets, m.ranges))
+    return Setup(m, BallArray(11, 1500.0, misalignment), position_set(sets, m.ranges, tool=m.tool))
 
 
 def test_identification_round_trip_within_two_uncertainties():
@@ -205,11 +205,6 @@ def test_the_misalignment_offsets_are_where_data_format_md_says(model):
         assert np.allclose(Pose("p", (0, 0, 0), axes[axis]).frame()[1:], [v1, v2])
 
 
-
-@pytest.mark.xfail(strict=True, reason="known gap: check_reach compares the balls (tool points) with the "
-                   "travel, the model evaluates the errors at the axes = ball - tool (identify.design); "
-                   "with that fixed the default scenario's S1x?d3 poses (axis Z 200..1700 mm on a 0..1600 "
-                   "travel) are refused, and centring them changes the README's volumetric numbers")
 def test_the_reach_check_uses_the_axis_positions_the_model_evaluates():
     model = KinematicModel(ranges={"X": (0, 800), "Y": (-300, 300), "Z": (0, 700)}, tool=(0, 0, -120))
     array = BallArray(n_balls=7, length_mm=420.0)
@@ -218,3 +213,21 @@ def test_the_reach_check_uses_the_axis_positions_the_model_evaluates():
     high = Pose("high", (200.0, -150.0, 470.0), (0, 0, 1))    # ball 6 at Z 610: its axis at 730
     with pytest.raises(ValueError, match="pose high: ball 6 at Z=610 mm puts the Z axis at 730 mm"):
         Setup.from_dict(Setup(model, array, [high]).to_dict())
+
+
+def test_the_poses_are_centred_in_the_reachable_volume_in_axis_coordinates():
+    # the default scenario: a 1500 mm bar along Z on a 0..1600 travel, tool at Z -150
+    model = KinematicModel()
+    poses = position_set(("S1", "S2", "S3"), model.ranges, (0.25, 0.75), model.tool)
+    for pose in poses:
+        axes = pose.balls(BallArray()) - model.tool
+        mid = [0.5 * sum(model.ranges[a]) for a in "YZ"]
+        assert np.allclose(0.5 * (axes.min(0) + axes.max(0))[1:], mid), pose.name
+    Setup.from_dict(Setup(model, BallArray(), poses).to_dict())      # every ball reached
+    assert poses[2].centre == (1000.0, 800.0, 650.0)                 # S1x1d3: axes Z 50..1550
+    with pytest.raises(ValueError, match="pose S1x1d3: ball 11 at Z=1550 mm puts the Z axis at 1700 mm"):
+        Setup.from_dict(Setup(model, BallArray(), position_set(("S1",), model.ranges)).to_dict())
+    odd = KinematicModel(ranges={"X": (-500, 900), "Y": (100, 1300), "Z": (-200, 1500)}, tool=(30, -40, -260))
+    poses = position_set(("S1", "S2", "S3"), odd.ranges, (0.5,), odd.tool)
+    assert {p.centre for p in poses} == {(230.0, 660.0, 390.0)}
+    Setup.from_dict(Setup(odd, BallArray(11, 1100.0, 10.0), poses).to_dict())

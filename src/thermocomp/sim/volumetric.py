@@ -203,7 +203,8 @@ class LargeMillVolumetric(LargeMillWeek):
         """The measurement set-up (``volumetric.json``)."""
         model = KinematicModel(order=int(self.order), cross_terms=bool(self.cross_terms))
         array = BallArray(int(self.n_balls), float(self.length_mm), float(self.misalignment_deg))
-        poses = position_set(list(plain(self.sets)), model.ranges, list(plain(self.x_centres)))
+        poses = position_set(list(plain(self.sets)), model.ranges, list(plain(self.x_centres)),
+                             model.tool)
         return Setup(model, array, poses, float(self.probing_um), float(self.ball_um))
 
     def sensitivities(self, model: KinematicModel) -> dict:

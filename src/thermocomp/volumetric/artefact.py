@@ -84,10 +84,13 @@ class Pose:
         return np.asarray(self.centre, float) + array.centres() @ self.frame()
 
 
-def position_set(sets=POSITION_SETS, ranges=None, x_centres=(0.25, 0.75)) -> list[Pose]:
+def position_set(sets=POSITION_SETS, ranges=None, x_centres=(0.25, 0.75), tool=(0.0, 0.0, 0.0)) -> list[Pose]:
     """Poses of the sets ``S1`` (axes), ``S2`` (volume diagonals), ``S3`` (face diagonals) at each
-    X centre (a fraction of the X travel), centred in Y and Z."""
+    X centre (a fraction of the X travel), centred in Y and Z: in axis coordinates, where the
+    kinematic model evaluates the errors (:func:`check_reach`), so a pose's centre, a tool point,
+    is the axis position plus the ``tool`` offset (mm; the model's ``tool``)."""
     ranges = ranges or {a: (0.0, 1.0) for a in AXES}
+    tool = np.broadcast_to(np.asarray(tool, float), (3,))
     directions = {
         "S1": [(1, 0, 0), (0, 1, 0), (0, 0, 1)],
         "S2": [(1, 1, 1), (1, 1, -1), (1, -1, 1), (1, -1, -1)],
@@ -100,26 +103,30 @@ def position_set(sets=POSITION_SETS, ranges=None, x_centres=(0.25, 0.75)) -> lis
     poses = []
     for ix, fx in enumerate(x_centres):
         x = ranges["X"][0] + float(fx) * (ranges["X"][1] - ranges["X"][0])
+        centre = tuple(float(c) for c in np.array([x, mid["Y"], mid["Z"]]) + tool)
         for s in sets:
             for k, d in enumerate(directions[s]):
-                poses.append(Pose(f"{s}x{ix + 1}d{k + 1}", (x, mid["Y"], mid["Z"]), d))
+                poses.append(Pose(f"{s}x{ix + 1}d{k + 1}", centre, d))
     return poses
 
 
 def check_reach(model: KinematicModel, array: BallArray, poses: list[Pose],
                 margin_mm: float = 1.0) -> None:
-    """Every ball of every pose lies within the machine's travel (a typed centre, or a bar
+    """Every ball of every pose is reached within the machine's travel (a typed centre, or a bar
     longer than the volume, would be "measured" where no probe can go): a ValueError naming
-    the pose, the ball and the axis."""
+    the pose, the ball and the axis.  The axes stand at the ball less the tool offset, where
+    the kinematic model evaluates the errors (``identify.design``)."""
     lo = np.array([model.ranges[a][0] for a in AXES])
     hi = np.array([model.ranges[a][1] for a in AXES])
     for pose in poses:
         balls = pose.balls(array)
-        out = (balls < lo - margin_mm) | (balls > hi + margin_mm)
+        axes = balls - model.tool
+        out = (axes < lo - margin_mm) | (axes > hi + margin_mm)
         if out.any():
             k, a = np.argwhere(out)[0]
-            raise ValueError(f"pose {pose.name}: ball {k + 1} at {AXES[a]}={balls[k, a]:.6g} mm lies "
-                             f"outside the {AXES[a]} travel {lo[a]:g}..{hi[a]:g} mm")
+            raise ValueError(f"pose {pose.name}: ball {k + 1} at {AXES[a]}={balls[k, a]:.6g} mm puts the "
+                             f"{AXES[a]} axis at {axes[k, a]:.6g} mm (tool offset {model.tool[a]:g}), "
+                             f"outside its travel {lo[a]:g}..{hi[a]:g} mm")
 
 
 def pairs(n_balls: int) -> list[tuple[int, int]]:

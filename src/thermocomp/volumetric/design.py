@@ -250,7 +250,8 @@ class CalibrationDesignStudy:
     def setup(self, strategy: Strategy) -> Setup:
         """The measurement set-up of a strategy (C as the model)."""
         array = BallArray(strategy.n_balls, self.length_mm, strategy.misalignment_deg)
-        poses = position_set(strategy.sets, self.compensation.ranges, self.x_centres)
+        poses = position_set(strategy.sets, self.compensation.ranges, self.x_centres,
+                             self.compensation.tool)
         return Setup(self.compensation, array, poses, self.probing_um, self.ball_um)
 
     def run(self, studies: dict | None = None) -> dict:
