@@ -17,6 +17,8 @@ import sys
 import traceback
 import warnings
 
+from .errors import closest
+
 # conf/hydra/launcher/ray.yaml extends the Ray launcher plugin's config of
 # the same name on purpose (Hydra still validates it against the plugin's schema).
 warnings.filterwarnings("ignore", message=r"\s*'hydra/launcher/ray' is validated against")
@@ -213,14 +215,11 @@ def _fix_key(key: str, config: dict) -> str | None:
         if not isinstance(node, dict):
             return None
         if part not in node:
-            close = _closest(part, [str(k) for k in node])
+            close = closest(part, [str(k) for k in node])
             return ".".join([*done, close[0], *parts[i + 1:]]) if close else None
         node, done = node[part], [*done, part]
     return None
 
-
-def _closest(word: str, options, n: int = 1) -> list[str]:
-    return difflib.get_close_matches(word, list(options), n=n, cutoff=0.6)
 
 
 def _explain(exc: BaseException) -> str:
@@ -408,7 +407,7 @@ def main(argv: list[str] | None = None) -> int:
     from .stages import stage as lookup
 
     if stage not in STAGES:
-        close = _closest(stage, STAGES)
+        close = closest(stage, STAGES)
         hint = f"; did you mean {close[0]!r}?" if close else ""
         print(f"thermocomp: error: unknown stage {stage!r}{hint} (stages: {', '.join(STAGES)})",
               file=sys.stderr)

@@ -9,7 +9,14 @@ it cannot use.  Anything else that escapes a command is a bug (exit status 1).
 
 from __future__ import annotations
 
+import difflib
 import os
+
+
+def closest(word: str, options, n: int = 1) -> list[str]:
+    """The ``n`` options closest to a mistyped ``word``, closest first (the "did you mean" of
+    an error message)."""
+    return difflib.get_close_matches(str(word), [str(o) for o in options], n=n, cutoff=0.6)
 
 
 class ThermocompError(ValueError):

@@ -66,11 +66,9 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
     carried = continuation.carry_over(comp, ds)
     for split in ("train", "test"):
         ids = require_split(ds, split)
-        pred, meas = continuation.predict(comp, ds, ids, mode, carried)
+        pred, meas, series = split_residuals(comp, ds, ids, mode, carried)
         dt = sample_period(ds, ids)
-        for t in comp.targets_:
-            y = {c: meas[c][t].to_numpy() for c in ids}
-            r = {c: y[c] - pred[c][t].to_numpy() for c in ids}
+        for t, (y, r) in series.items():
             out[t][split] = split_scores(y, r, dt, e_p95_statistic, e_p95_points,
                                          with_before_after=(split == "test"))
             if split == "test" and iso_a3:
@@ -88,6 +86,19 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
             out[t][key] = split_scores(y, {c: y[c] - pred[c][t].to_numpy() for c in ids}, 1.0,
                                        with_before_after=False)
     return out, predictions
+
+
+def split_residuals(comp: Compensator, ds: Dataset, ids, mode: str, carried=None
+                    ) -> tuple[dict, dict, dict]:
+    """``(predicted, measured, {target: (measured, residual)})`` of the campaigns ``ids``, state
+    carried over where it applies; the last per target as ``{campaign: array}`` maps, what
+    :func:`~thermocomp.metrics.split_scores` scores."""
+    pred, meas = continuation.predict(comp, ds, ids, mode, carried)
+    series = {}
+    for t in comp.targets_:
+        y = {c: meas[c][t].to_numpy() for c in ids}
+        series[t] = (y, {c: y[c] - pred[c][t].to_numpy() for c in ids})
+    return pred, meas, series
 
 
 def predict_split(comp: Compensator, ds: Dataset, split: str, mode: str = "simulation"

@@ -253,8 +253,8 @@ class Search:
         if effect.transform == "remove":   # evidence of the fault is the self-prediction jump
             clears = bool(jump is not None and jump >= self.options.candidates.fault_ratio
                           and pct > -self.options.min_gain_pct)
-        else:
-            clears = bool(pct >= self.options.min_gain_pct and p <= self.options.alpha)
+        else:   # the control's bar; an effect's p is made family-wise by _family_bar
+            clears = self._clears(pct, p)
         q = self.cv.features(effect, self.cv.selection(self.inputs(), None)).shape[1]
         return Evaluation(effect, res.rmse, gain, pct, p, r2, clears, effect.column == CONTROL,
                           jump_ratio=jump, gain_lcb=lcb, n_features=q, alpha=res.alpha, result=res)
@@ -280,7 +280,11 @@ class Search:
         p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
-            ev.clears_bar = bool(ev.gain_pct >= self.options.min_gain_pct and pf <= self.options.alpha)
+            ev.clears_bar = self._clears(ev.gain_pct, pf)
+
+    def _clears(self, gain_pct: float, p: float) -> bool:
+        """The bar: a gain of ``min_gain_pct`` % of the CV RMSE at least, at ``p <= alpha``."""
+        return bool(gain_pct >= self.options.min_gain_pct and p <= self.options.alpha)
 
     def _shortlist(self, scored: list[tuple[Effect, float]]) -> list[tuple[Effect, float]]:
         opts = self.options
@@ -312,10 +316,10 @@ class Search:
                   "cv_rmse": ev.cv_rmse} for ev in accepted]
         from ..progress import bar
 
+        used = self._read_columns()
         for step in bar(range(int(opts.max_effects)), desc="diagnose rounds", unit="round"):
             names = self.cv.selection(self.inputs(), None)
-            cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates,
-                               used=self._read_columns())
+            cands = candidates(p, names, set(self.excluded), self.effects, opts.candidates, used)
             ok = p.validated                  # the rows CV scores (forward: not the first part)
             Z = np.column_stack([np.ones(len(p.y)), self.cv.design(names, self.effects)])[ok]
             Q = _orthonormal(Z)

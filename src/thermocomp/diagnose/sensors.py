@@ -52,7 +52,7 @@ HEALTH_BLOCKS = 8   # time blocks a sensor's self-prediction is judged on (see _
 
 def _health_units(problem: Problem) -> tuple[np.ndarray, int, list[str]]:
     """``(index, count, names)`` of the units a sensor's jump is judged on: the campaigns, but
-    time blocks of one record merged pairwise down to :data:`HEALTH_BLOCKS` (the lower quartile
+    time blocks of one record merged, adjacent ones together, into :data:`HEALTH_BLOCKS` (the lower quartile
     of many short blocks is a quiet stretch, not the sensor's usual error: with 16 blocks a
     healthy motor sensor of a long record passed the jump ratio of 3 and was removed)."""
     index, n, names = problem.unit_index, problem.n_units, list(problem.unit_names)

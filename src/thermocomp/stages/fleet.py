@@ -23,7 +23,7 @@ from sklearn.base import clone
 
 from .. import continuation, fleet, io
 from ..errors import ConfigError
-from ..evaluation import VAL_FOLDS, require_split, sample_period, validation_report
+from ..evaluation import VAL_FOLDS, require_split, sample_period, split_residuals, validation_report
 from ..files import inside, safe_name, staged_outputs, write_json
 from ..metrics import rsd, sm_sd, split_scores
 from ..paths import resolve
@@ -77,11 +77,8 @@ def _scores(comp, ds, ev) -> tuple[dict, dict]:
     figures, pooled = {t: {} for t in comp.targets_}, {t: {} for t in comp.targets_}
     for split in ("train", "test"):
         ids = require_split(ds, split)
-        pred, meas = continuation.predict(comp, ds, ids, ev.mode, carried)
         dt = sample_period(ds, ids)
-        for t in comp.targets_:
-            y = {c: meas[c][t].to_numpy() for c in ids}
-            r = {c: y[c] - pred[c][t].to_numpy() for c in ids}
+        for t, (y, r) in split_residuals(comp, ds, ids, ev.mode, carried)[2].items():
             figures[t][split] = split_scores(y, r, dt, ev.e_p95.statistic, ev.e_p95.max_points,
                                              with_before_after=(split == "test"))
             pooled[t][split] = ((y, r, dt) if split == "test" else

@@ -15,7 +15,6 @@ calibrated distance between balls i and j (µm) in that pose.
 
 from __future__ import annotations
 
-import difflib
 import itertools
 import math
 import re
@@ -24,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import closest
 from ..params import (
     BOOLEAN,
     POSITIVE,
@@ -205,7 +205,7 @@ def _check_keys(d: Mapping, part: str, where: str | None = None) -> None:
     valid = list(KEYS[part])
     for key in d:
         if key not in valid:
-            close = difflib.get_close_matches(str(key), valid, n=1, cutoff=0.6)
+            close = closest(key, valid)
             hint = f"did you mean {close[0]!r}? " if close else ""
             path = f"{where or part}.{key}" if where or part else str(key)
             raise ValueError(f"{path}: unknown key; {hint}valid keys: {', '.join(valid)}")
