@@ -5,8 +5,10 @@ from __future__ import annotations
 
 import json
 import re
+import shutil
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import ROOT, refused, simulated
@@ -61,6 +63,43 @@ def test_the_twin_halves_the_distance_error_and_the_volumetric_error(run):
     assert vol["vce"]["rms_reduction_pct"] >= 50
     # the identified reference carries the identification noise: a smaller reduction
     assert vol["vce_identified"]["rms_after"] > vol["vce"]["rms_after"]
+
+
+def test_the_first_cycles_identification_error_is_not_compensated_at_every_cycle(raw, run, tmp_path):
+    """Every parameter series is referenced to its campaign's first cycle, identified with noise:
+    written into the distances, a first training cycle five standard uncertainties off (a draw
+    of the identification covariance) sits on every target row.  The intercepts learn it and the
+    compensation leaves them out, so the validation week's VCE does not take it on."""
+    from thermocomp.volumetric import ArtefactCalibration
+    from thermocomp.volumetric.kinematics import workspace_grid
+    from thermocomp.volumetric.series import load_setup
+    from thermocomp.volumetric.validation import GRID
+
+    cal = ArtefactCalibration(load_setup(raw)).fit()
+    rng = np.random.default_rng(0)
+    delta = 5 * np.linalg.cholesky(cal.param_cov_) @ rng.standard_normal(len(cal.names_))
+    model = cal.setup.model
+    tcp = np.linalg.norm(model.basis(workspace_grid(model, GRID)) @ cal.full(delta), axis=1)
+    clean = run[0]["volumetric"]
+    assert np.sqrt(np.mean(tcp ** 2)) > 2 * clean["vce"]["rms_after"]     # worth learning
+
+    bad = tmp_path / "raw"
+    shutil.copytree(raw, bad)
+    shutil.copy(f"{raw}.truth.json", f"{bad}.truth.json")
+    index = pd.read_csv(bad / "campaigns.csv")
+    train = bad / index.loc[index["split"] == "train", "file"].iloc[0]
+    df = pd.read_parquet(train)
+    df.loc[0, cal.design_.columns] += cal.predict(delta)
+    df.to_parquet(train)
+    metrics, _ = _run(bad, tmp_path / "out", "plots=none")
+    vol = metrics["volumetric"]
+    assert vol["offsets"]["mode"] == "drop"
+    static = [n for n, row in vol["parameters"].items() if not row["ar"]]
+    learnt = np.array([vol["offsets"]["dropped"][n] for n in static])
+    offset = -delta[[cal.names_.index(n) for n in static]]
+    assert np.corrcoef(learnt, offset)[0, 1] > 0.8       # with what the short weeks leave
+    assert vol["vce"]["rms_after"] < 1.2 * clean["vce"]["rms_after"]
+    assert vol["distance_error"]["rms_after"] < 1.2 * clean["distance_error"]["rms_after"]
 
 
 def test_trajectories_and_the_a3_test_before_and_after(run):

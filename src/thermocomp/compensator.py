@@ -20,6 +20,7 @@ from .one_step import OneStepLaw
 from .select import AllInputs
 
 MODES = ("simulation", "one_step")
+OFFSETS = ("predict", "drop")
 
 
 class Compensator(BaseEstimator):
@@ -50,6 +51,16 @@ class Compensator(BaseEstimator):
     selection : dict target -> list of str, optional
         Inputs chosen beforehand (the ``select`` stage's output), used
         instead of fitting ``selector``.
+    offsets : {'predict', 'drop'}, default 'predict'
+        ``'drop'``: a linear family's intercept is fitted, so that the gains
+        are free of a constant offset of the targets, and then left out of
+        every prediction (batch, streaming, exported code: they all read
+        ``intercept_``).  For targets referenced to a noisy first sample -- the
+        identified error parameters of a volumetric dataset, whose first
+        cycle's identification error every row of the campaign shares -- the
+        intercept is that error, not a thermal effect, and a compensation
+        predicting it would apply it at every cycle.  A family without
+        ``intercept_`` (ARX+RF, LSTM, the ATI wrapper) keeps its predictions.
 
     Attributes
     ----------
@@ -61,10 +72,13 @@ class Compensator(BaseEstimator):
     one_step_ : dict target -> fitted :class:`~thermocomp.one_step.OneStepLaw`
         The one-step law of each target, fitted on the training rows from the
         estimator's own simulation prediction (``eval.mode=one_step``).
+    offsets_ : dict target -> float
+        The intercepts left out (``offsets='drop'``), in the targets' unit.
     """
 
     def __init__(self, estimator, selector=None, inputs=("T_*",), targets=None,
-                 reference: str = "first_sample", denoiser=None, selection=None):
+                 reference: str = "first_sample", denoiser=None, selection=None,
+                 offsets: str = "predict"):
         self.estimator = estimator
         self.selector = selector
         self.inputs = inputs
@@ -72,6 +86,7 @@ class Compensator(BaseEstimator):
         self.reference = reference
         self.denoiser = denoiser
         self.selection = selection
+        self.offsets = offsets
 
     # -- matrices ---------------------------------------------------------------------------
     def stacked(self, campaigns: Mapping[str, pd.DataFrame], targets=None) -> Matrices:
@@ -99,8 +114,10 @@ class Compensator(BaseEstimator):
                                  "with a denoiser")
             self.denoiser_ = None
         self.inputs_, self.targets_ = list(m.X.columns), list(m.Y.columns)
+        if self.offsets not in OFFSETS:
+            raise ValueError(f"offsets must be one of {OFFSETS}, got {self.offsets!r}")
         selector = self.selector if self.selector is not None else AllInputs()
-        self.selected_, self.estimators_, self.one_step_ = {}, {}, {}
+        self.selected_, self.estimators_, self.one_step_, self.offsets_ = {}, {}, {}, {}
         context = _simulation(m.context)
         for target in self.targets_:
             y = m.Y[target].to_numpy()
@@ -109,6 +126,9 @@ class Compensator(BaseEstimator):
             est = clone(for_target(self.estimator, target))
             X = m.X[names].to_numpy()
             est.fit(X, y, context=context)
+            if self.offsets == "drop" and hasattr(est, "intercept_"):
+                self.offsets_[target] = float(est.intercept_)
+                est.intercept_ = 0.0
             # the one-step law: from the fitted model's simulation on these (training) rows only
             s = np.asarray(est.predict(X, context=context), dtype=float).reshape(-1, 1)
             self.one_step_[target] = OneStepLaw().fit(s, y, context=context)

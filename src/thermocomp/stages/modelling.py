@@ -390,8 +390,9 @@ def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal):
     for cid, (meas, pred) in pairs.items():
         P = ds.campaigns[cid][cal.names_].to_numpy(float)
         changes[cid] = P - P[:1]
-        predicted[cid] = np.column_stack([pred[n].to_numpy(float) if n in pred else np.zeros(len(P))
-                                          for n in cal.names_])
+        Q = np.column_stack([pred[n].to_numpy(float) if n in pred else np.zeros(len(P))
+                             for n in cal.names_])
+        predicted[cid] = Q - Q[:1]      # the model's change since the first cycle, as `changes`
         distances[cid] = distance_matrix(raw.campaigns[cid], cal)
         times[cid] = ds.campaigns[cid]["time"].to_numpy(float)
     models = {}
@@ -399,8 +400,12 @@ def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal):
         chosen = getattr(est, "chosen_", None) or {}
         models[name] = {"n_inputs": int(chosen.get("n_inputs", len(comp.selected_[name]))),
                         "ar": bool(chosen.get("ar", False))}
-    return volumetric_report(cal, distances, changes, predicted, times, models,
-                             _true_changes(cfg, cal, times))
+    out, curves = volumetric_report(cal, distances, changes, predicted, times, models,
+                                    _true_changes(cfg, cal, times))
+    # the intercepts the thermal models learnt and do not predict (the first cycle's error)
+    out["offsets"] = {"mode": getattr(comp, "offsets", "predict"),
+                      "dropped": dict(getattr(comp, "offsets_", {}))}
+    return out, curves
 
 
 def _true_changes(cfg: DictConfig, cal, times: dict):
