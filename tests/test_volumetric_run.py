@@ -176,3 +176,22 @@ def test_an_interim_inside_the_volumetric_dataset_is_refused_before_calibrating(
     refused(["ingest", "experiment=volumetric_large_mill", f"data.path={raw}",
              f"data.interim={raw / 'interim'}", "track=false"], capsys, "overlaps the raw dataset")
     assert sorted(p.name for p in raw.iterdir()) == before
+
+
+def test_replay_and_monitor_stream_the_parameters_the_run_models(raw, run, tmp_path):
+    """A volumetric dataset's E_ columns are distances; replay and monitor calibrate it as run
+    does and stream the parameter models (run's saved model, or one fitted alike)."""
+    common = ["experiment=volumetric_large_mill", f"data.path={raw}", "track=false"]
+    assert main(["replay", *common, f"replay.model={run[1] / 'model.pkl'}", f"out={tmp_path / 'r'}"]) == 0
+    report = json.loads((tmp_path / "r" / "replay.json").read_text())
+    table = run[0]["volumetric"]["parameters"]
+    assert set(report["targets"]) == set(table)
+    for name, row in report["targets"].items():
+        assert row["max_abs_stream_minus_batch"] < 1e-9
+        assert row["rmse_batch"] == pytest.approx(table[name]["rms_after"], rel=1e-9)
+    assert main(["monitor", *common, f"out={tmp_path / 'm'}"]) == 0
+    monitor = json.loads((tmp_path / "m" / "monitor.json").read_text())
+    assert set(monitor["targets"]) == set(table)
+    fixed = {n: r["rmse_fixed"] for n, r in monitor["targets"].items()}
+    # the same models; the fixed stream clamps inputs to the training envelope, a few cycles differ
+    assert fixed == pytest.approx({n: table[n]["rms_after"] for n in table}, rel=1e-2)

@@ -230,12 +230,18 @@ def read_streamed(cfg: DictConfig, test: bool = True):
     train campaigns as ``run`` reads them (gaps repaired within ``data.max_gap_samples`` /
     ``data.max_edge_samples``, else refused naming campaign, column and row), since the
     models and the sensor monitor are fitted on complete records.  ``test=False``: no
-    test split needed (the stream comes from elsewhere).
+    test split needed (the stream comes from elsewhere).  A volumetric dataset is calibrated
+    as ``run`` calibrates it: the streamed targets are its error parameters, every cycle
+    identified (repaired as ``run`` repairs it).
     """
     from ..evaluation import require_split
 
     root = resolve(cfg.data.path)
     say(f"reading {root}")
+    volumetric = volumetric_calibration(cfg)
+    if volumetric is not None:    # its E_ columns are distances: stream the parameters, as `run` models them
+        ds = volumetric[0]
+        return ds, require_split(ds, "train"), require_split(ds, "test") if test else [], {}
     ds, report = io.read_dataset(root, data_options(cfg), missing="keep")
     train_ids = require_split(ds, "train")
     test_ids = require_split(ds, "test") if test else []
