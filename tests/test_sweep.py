@@ -132,18 +132,26 @@ def test_a_sweep_writes_its_table_where_compare_out_says_and_says_out_is_per_job
 
 
 @pytest.mark.slow
-def test_a_failing_job_still_closes_the_parent_run(tmp_path, dataset):
+def test_a_failing_job_does_not_stop_the_sweep_and_the_parent_run_says_so(tmp_path, dataset):
+    """The first job's config is bad (exit 2, its message on stderr): the second still runs,
+    the sweep ends with the worst job's status and a summary naming the failed job."""
     uri = mlflow_store(tmp_path)
     proc = thermocomp("run", "-m", f"data.path={dataset}", f"tracking_uri={uri}", *LIGHT_EVAL,
                       "data.inputs=[X_*],[T_*]", f"hydra.sweep.dir={tmp_path / 'sweep'}", check=False)
     assert proc.returncode == 2 and "X_*" in proc.stderr
+    assert "1 sweep job(s) failed: 0 (" in proc.stderr and "data.inputs=[X_*]): exit 2" in proc.stderr
+    assert "2/2 jobs done (#1 ok" in proc.stderr and "1/2 jobs done (#0 FAILED" in proc.stderr
+    assert (tmp_path / "sweep" / "1" / "metrics.json").is_file()
+    assert not (tmp_path / "sweep" / "0" / "metrics.json").exists()
     import mlflow
 
     mlflow.set_tracking_uri(uri)
     runs = mlflow.search_runs(experiment_names=["thermocomp"])
     parent = runs[runs[f"tags.{SWEEP_TAG}"] == "parent"]
-    assert list(parent["status"]) == ["FAILED"]               # not left RUNNING
-    assert list(runs[runs["tags.mlflow.parentRunId"].notna()]["status"]) == ["FAILED"]
+    assert list(parent["status"]) == ["FAILED"]               # not left RUNNING, not FINISHED
+    assert list(parent["metrics.sweep.failed_jobs"]) == [1] and list(parent["metrics.sweep.jobs"]) == [2]
+    children = runs[runs["tags.mlflow.parentRunId"].notna()]
+    assert sorted(children["status"]) == ["FAILED", "FINISHED"]
 
 
 def test_retry_on_database_is_locked_then_give_up_on_other_errors():

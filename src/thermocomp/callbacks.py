@@ -68,7 +68,8 @@ class MlflowSweepCallback(Callback):
         write_json(resolve(sweep_dir) / SWEEP_FILE, {"parent_run_id": self.run_id,
                                                      "overrides": overrides})
         _say(f"sweep parent run {self.run_id}")
-        # A failing job ends the multirun without on_multirun_end: close the parent run anyway.
+        # A sweep stopped early (Ctrl-C, SIGTERM, a launcher's failure) skips on_multirun_end:
+        # close the parent run anyway.  A failing job does not stop it (cli._job_failed).
         atexit.register(self._abandon, config)
 
     def on_job_start(self, config: DictConfig, **kwargs: Any) -> None:
@@ -232,7 +233,10 @@ class SweepProgress(Callback):
         (done / f"job{num}").touch()
         n = sum(1 for f in done.iterdir() if f.name.startswith("job"))
         total = (done / "total").read_text() if (done / "total").is_file() else ""
-        status = "ok" if job_return.status == JobStatus.COMPLETED else "FAILED"
+        value = job_return.return_value if job_return.status == JobStatus.COMPLETED else None
+        # a job the shell caught (cli._job_failed) completes for Hydra with NaN, the sweep goes on
+        failed = job_return.status != JobStatus.COMPLETED or (isinstance(value, float) and value != value)
+        status = "FAILED" if failed else "ok"
         overrides = " ".join(config.hydra.overrides.task)
         _say(f"sweep: {n}/{total or '?'} jobs done (#{num} {status}: {overrides})")
 

@@ -13,9 +13,12 @@ Exit status: 0 success, 2 bad input or bad config (one line on stderr), 1 otherw
 from __future__ import annotations
 
 import difflib
+import json
+import os
 import sys
 import traceback
 import warnings
+from pathlib import Path
 
 from .errors import closest
 
@@ -350,10 +353,9 @@ def _log_folder(stage: str, cfg):
 def _per_job(cfg):
     """In a multirun every job writes under its own Hydra output folder."""
     from hydra.core.hydra_config import HydraConfig
-    from hydra.types import RunMode
     from omegaconf import open_dict
 
-    if HydraConfig.initialized() and HydraConfig.get().mode == RunMode.MULTIRUN:
+    if _multirun():
         out = HydraConfig.get().runtime.output_dir
         with open_dict(cfg):
             cfg.out = out
@@ -371,9 +373,38 @@ def _run(stage: str, fn, cfg, args: list[str]):
         return _guarded(fn, cfg)
 
 
+FAILED_JOBS_ENV = "THERMOCOMP_FAILED_JOBS"   # folder where a sweep's failed jobs leave a note
+
+
+def _job_failed(exc: BaseException) -> float:
+    """A sweep job that failed: said on stderr and noted for the end of the sweep, which goes
+    on (its MLflow child run is already FAILED).  NaN: a failed trial for a search sweeper."""
+    from hydra.core.hydra_config import HydraConfig
+
+    from .files import write_json
+    from .log import logger
+
+    code = exc.code if isinstance(exc, SystemExit) and isinstance(exc.code, int) else 1
+    job = HydraConfig.get().job
+    overrides = list(HydraConfig.get().overrides.task)
+    if not isinstance(exc, SystemExit):
+        traceback.print_exc()
+    logger.error("sweep job %s (%s) failed with exit status %d; the sweep goes on",
+                 job.num, " ".join(overrides), code)
+    folder = os.environ.get(FAILED_JOBS_ENV)
+    if folder and Path(folder).is_dir():    # absent on a remote node (Ray, SLURM): MLflow has it
+        write_json(Path(folder) / f"{job.num}.json", {"job": job.num, "overrides": overrides,
+                                                       "exit": code})
+    return float("nan")
+
+
 def _hydra_main(stage: str, args: list[str]) -> None:
+    import tempfile
+
     import hydra
 
+    from .files import Terminated
+    from .log import logger
     from .paths import conf_dir
     from .stages import stage as lookup
 
@@ -381,10 +412,38 @@ def _hydra_main(stage: str, args: list[str]) -> None:
 
     @hydra.main(config_path=str(conf_dir()), config_name="config", version_base="1.3")
     def task(cfg):
-        return _run(stage, fn, _per_job(cfg), args)
+        try:
+            return _run(stage, fn, _per_job(cfg), args)
+        except Terminated:
+            raise
+        except (SystemExit, Exception) as exc:   # one bad job of a sweep does not end the others
+            if not _multirun() or (isinstance(exc, SystemExit) and exc.code in (0, None)):
+                raise
+            return _job_failed(exc)
 
     sys.argv = [f"thermocomp-{stage}", *args]
-    task()
+    with tempfile.TemporaryDirectory(prefix="thermocomp-sweep-") as notes:
+        previous = os.environ.get(FAILED_JOBS_ENV)
+        os.environ[FAILED_JOBS_ENV] = notes
+        try:
+            task()
+        finally:
+            if previous is None:
+                os.environ.pop(FAILED_JOBS_ENV, None)
+            else:
+                os.environ[FAILED_JOBS_ENV] = previous
+        failed = [json.loads(f.read_text()) for f in sorted(Path(notes).glob("*.json"))]
+    if failed:
+        logger.error("%d sweep job(s) failed: %s", len(failed), "; ".join(
+            f"{f['job']} ({' '.join(f['overrides'])}): exit {f['exit']}" for f in failed))
+        raise SystemExit(max(f["exit"] for f in failed))
+
+
+def _multirun() -> bool:
+    from hydra.core.hydra_config import HydraConfig
+    from hydra.types import RunMode
+
+    return HydraConfig.initialized() and HydraConfig.get().mode == RunMode.MULTIRUN
 
 
 def main(argv: list[str] | None = None) -> int:
