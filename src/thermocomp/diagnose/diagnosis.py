@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from sklearn.base import clone
@@ -25,6 +25,7 @@ from .candidates import CONTROL, random_walk
 from .cv import Problem, units_needed
 from .features import Effect
 from .search import Search, SearchOptions, SearchResult, sensor_health
+from .sensors import self_prediction
 
 
 def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
@@ -77,6 +78,7 @@ class Diagnosis:
     options: SearchOptions
     cv: dict
     seconds: float = 0.0
+    test_sensors: list = field(default_factory=list)   # broken in the test split: said, not acted on
 
     @property
     def primary(self) -> str:
@@ -132,6 +134,7 @@ class Diagnosis:
                  "cross_ratio": float(r["cross_ratio"]), "own_ratio": float(r["own_ratio"]),
                  "jump_ratio": float(r["jump_ratio"])}
                 for name, r in s.self_prediction.iterrows()],
+            "test_sensor_warnings": self.test_sensors,
             "rounds": [r.to_dict() for r in s.rounds],
             "other_targets": {o: {"before_test_rmse": x.before["test"]["rmse"],
                                   "after_test_rmse": x.after["test"]["rmse"],
@@ -199,6 +202,27 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
                          make_compensator, e_p95_statistic, e_p95_points, model_name)
 
 
+def test_sensor_warnings(search: Search, excluded, later, options: SearchOptions) -> list[dict]:
+    """Sensors whose self-prediction breaks only in the test split's temperatures (never its
+    errors): said, and left in.  Acting on them would let the test split choose the model
+    (and flatter its "after"); a deployed compensator meets such a sensor with ``monitor``,
+    which excludes it online."""
+    tol = options.candidates.fault_ratio
+    if later is None or not len(later.X):
+        return []
+    table = self_prediction(search.problem, search.inputs(excluded), later.X, later.groups, tol)
+    test_ids = set(np.asarray(later.groups, dtype=object))
+    out = [{"sensor": name, "campaign": r["worst_unit"], "rmse_c": float(r["worst_unit_rmse"]),
+            "jump_ratio": float(r["jump_ratio"]), "acted_on": False}
+           for name, r in table.iterrows() if r["jump_ratio"] >= tol and r["worst_unit"] in test_ids]
+    for w in out:
+        logger.warning(f"diagnose: sensor {w['sensor']} breaks from its neighbours in test campaign "
+                       f"{w['campaign']} (self-prediction {w['rmse_c']:.2g} °C, jump ratio "
+                       f"{w['jump_ratio']:.1f}); left in: the search never sees the test split "
+                       "(`thermocomp monitor` excludes such a sensor online)")
+    return out
+
+
 def _gap(context, groups, options: SearchOptions) -> int:
     """Forward chaining's gap: the longest lag tried in samples, capped at half a block."""
     t = context["time"].to_numpy(float)
@@ -256,7 +280,9 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
         logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}): the sign-flip test "
                        f"cannot reach alpha={options.alpha:g} (it needs {need}), so no effect "
                        "can be accepted; raise diagnose.n_blocks or diagnose.alpha")
-    excluded, faults, health, original, table = sensor_health(searches, later.X, later.groups, options)
+    # sensor health on the train campaigns only: the search never sees the test split
+    excluded, faults, health, original, table = sensor_health(searches, options=options)
+    test_sensors = test_sensor_warnings(next(iter(searches.values())), excluded, later, options)
     found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
     effects = {t: r.effects for t, r in found.items()}
     alphas = {t: r.alpha for t, r in found.items()}
@@ -281,4 +307,4 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            "train_campaigns": train_ids, "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},
-                     options, cv, time.perf_counter() - t0)
+                     options, cv, time.perf_counter() - t0, test_sensors)

@@ -172,16 +172,22 @@ def _target_section(j: dict, figures: list[str], primary: bool) -> list[str]:
         lines.append("")
     if j["self_prediction"]:
         lines += [f"### {h['sensor self-prediction']}", "",
-                  "Each declared sensor predicted from the others (paper 002): on each train campaign "
-                  "by a fit without it, on each test campaign (its temperatures only -- what a deployed "
-                  "compensator sees) by the fit on all train campaigns.  Jump ratio = the smaller of "
-                  "its worst campaign against the median sensor's (cross) and against its own "
-                  "lower-quartile campaign (own).", "",
+                  "Each declared sensor predicted from the others (paper 002) on each train campaign "
+                  "by a fit without it.  Jump ratio = the smaller of its worst campaign against the "
+                  "median sensor's (cross) and against its own lower-quartile campaign (own).", "",
                   "| sensor | CV RMSE (°C) | worst campaign | its RMSE (°C) | cross | own | jump ratio |",
                   "|---|---:|---|---:|---:|---:|---:|"]
         lines += [f"| {s['sensor']} | {s['cv_rmse_c']:.3f} | {s['worst_unit']} ({s['worst_unit_split']}) | "
                   f"{s['worst_unit_rmse_c']:.3f} | {s['cross_ratio']:.1f} | {s['own_ratio']:.1f} | "
                   f"{s['jump_ratio']:.1f} |" for s in j["self_prediction"]]
+        lines.append("")
+    if j.get("test_sensor_warnings"):
+        lines += ["Broken in the test split's temperatures (the fit on all train campaigns; not acted "
+                  "on: the search never sees the test split, `thermocomp monitor` excludes such a "
+                  "sensor online):", "",
+                  "| sensor | test campaign | its RMSE (°C) | jump ratio |", "|---|---|---:|---:|"]
+        lines += [f"| {w['sensor']} | {w['campaign']} | {w['rmse_c']:.3f} | {w['jump_ratio']:.1f} |"
+                  for w in j["test_sensor_warnings"]]
         lines.append("")
     return lines
 

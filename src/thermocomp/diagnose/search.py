@@ -357,10 +357,10 @@ class Search:
                             self_prediction_table, steps)
 
 
-def sensor_health(searches: dict, later=None, later_units=None, options: SearchOptions | None = None):
+def sensor_health(searches: dict, options: SearchOptions | None = None):
     """Find the broken declared sensors once, for every target (a sensor is broken for all).
 
-    Self-prediction (:mod:`.sensors`) nominates the sensor with the largest
+    Self-prediction on the train campaigns (:mod:`.sensors`) nominates the sensor with the largest
     jump ratio at or above ``fault_ratio``; it is excluded when no target's
     model gets worse without it by ``min_gain_pct`` % or more (CV RMSE), and
     the table is recomputed without it; a nominee that fails is kept and the
@@ -378,7 +378,7 @@ def sensor_health(searches: dict, later=None, later_units=None, options: SearchO
     evaluated = {t: [] for t in searches}
     table = first_table = None
     while "sensor_fault" in options.candidates.families:
-        table = self_prediction(first.problem, first.inputs(excluded), later, later_units, tol)
+        table = self_prediction(first.problem, first.inputs(excluded), tolerance=tol)
         first_table = table if first_table is None else first_table
         nominees = [c for c, row in table.iterrows() if row["jump_ratio"] >= tol and c not in rejected]
         if not nominees or len(first.inputs(excluded)) <= 2:
@@ -406,5 +406,5 @@ def sensor_health(searches: dict, later=None, later_units=None, options: SearchO
               for t, evs in evaluated.items()}
     accepted = {t: [ev for ev in evs if ev.accepted] for t, evs in evaluated.items()}
     if first_table is None:
-        first_table = self_prediction(first.problem, first.inputs([]), later, later_units, tol)
+        first_table = self_prediction(first.problem, first.inputs([]), tolerance=tol)
     return excluded, accepted, rounds, original, first_table

@@ -9,9 +9,11 @@ is dropped from the model.
 
 Here each declared sensor :math:`j` is predicted from the other declared
 sensors by least squares fitted on train campaigns: on each train campaign by
-a fit without it (the folds of the residual), and on every later campaign the
-compensator will face (the test split's *temperatures* -- never its errors)
-by the fit on all train campaigns.  A healthy thermal field is smooth, so
+a fit without it (the folds of the residual), which is what the search acts on;
+for the report only, also on every later campaign the compensator will face
+(the test split's *temperatures* -- never its errors) by the fit on all train
+campaigns: a sensor broken there is said, not removed (the test split chooses
+nothing).  A healthy thermal field is smooth, so
 every sensor is well predicted by its neighbours and the errors of all
 sensors are of one size; a faulty one jumps above it.  The statistic is the
 *jump ratio*

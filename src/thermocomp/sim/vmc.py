@@ -131,6 +131,6 @@ VMC_EFFECTS = {
     # there drift, the training campaigns stay healthy (a fault seen in training is absorbed by
     # the collinear sensors and leaves no residual).
     "sensor_drift": {"column": "T_box1", "mode": "drift", "rate_K_per_h": 0.8, "from_fraction": 0.5,
-                     "splits": ["test"], "targets": ["E_X", "E_Z"]},
+                     "splits": ["train", "test"], "targets": ["E_X", "E_Z"]},
     "ambient_law": {"level_node": "bed", "threshold_c": 18.5, "gain": 0.8, "targets": ["E_X", "E_Y"]},
 }
