@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
 import functools
+import json
 import math
 import tempfile
 import time
@@ -185,6 +187,32 @@ def build_denoiser(cfg: DictConfig):
     denoiser = instantiate(den.denoiser)
     check_component(denoiser, "denoise.denoiser")
     return denoiser
+
+
+def ingest_settings(cfg: DictConfig) -> dict:
+    """What an ingest of ``data.path`` depends on: the folder and every reading option (as JSON
+    holds them).  ``ingest`` records it; the stages reading ``data.interim`` compare."""
+    opts = dataclasses.asdict(io.ReadOptions.from_cfg(data_options(cfg)))
+    opts.pop("missing")      # internal: no data config key
+    return json.loads(json.dumps({"path": str(resolve(cfg.data.path)), **opts}, default=str))
+
+
+def load_ingested(cfg: DictConfig, folder: Path | None = None):
+    """``data.interim`` (or ``folder``, written from it) as ``ingest`` left it, refused when it was
+    ingested from another ``data.path`` or with other ``data.*`` reading options: a stage would
+    otherwise score a stale dataset under this config's name (an ingest predating the record
+    is read as it is)."""
+    root = resolve(cfg.data.interim) if folder is None else folder
+    ds = io.load_interim(root)
+    made = ds.meta["ingest_report"].get("ingested_with")
+    if made is not None:
+        want = ingest_settings(cfg)
+        for key in [k for k in want if made.get(k) != want[k]][:1]:
+            raise io.ContractError(
+                f"it was ingested with data.{key}={made.get(key)!r}, not {want[key]!r}: run "
+                "`thermocomp ingest` with this config first (or give another name= to keep both)",
+                file=root / io.INGEST_REPORT)
+    return ds
 
 
 def check_declared(cfg: DictConfig, ds) -> None:

@@ -16,7 +16,7 @@ import time
 import numpy as np
 from omegaconf import DictConfig
 
-from .. import io, signing
+from .. import signing
 from ..denoise import EMDDenoiser, denoise_campaigns, fit_denoiser
 from ..evaluation import require_split
 from ..files import atomic_dir, write_json
@@ -26,7 +26,7 @@ from ..io.read import INGEST_REPORT
 from ..paths import resolve
 from ..tracking import stage_run
 from .artifacts import DENOISE_JSON, DENOISER_PKL, denoise_fingerprint
-from .common import build_denoiser, check_config, say
+from .common import build_denoiser, check_config, load_ingested, say
 
 
 def _rms(a) -> float:
@@ -44,7 +44,7 @@ def denoise(cfg: DictConfig) -> dict:
     """Write the denoised dataset to ``data.processed`` and figures to ``<out>/denoise``."""
     check_config(cfg, outputs=("out", "data.processed"))
     src, dest = resolve(cfg.data.interim), resolve(cfg.data.processed)
-    ds = io.load_interim(src)
+    ds = load_ingested(cfg)
     inputs, _ = resolve_columns(ds.columns, list(cfg.data.inputs), None)
     denoiser = build_denoiser(cfg)
     ids = require_split(ds, "train")

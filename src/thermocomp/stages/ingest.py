@@ -15,7 +15,7 @@ from omegaconf import DictConfig
 from .. import io
 from ..paths import resolve
 from ..tracking import stage_run
-from .common import check_config, data_options, say, volumetric_calibration
+from .common import check_config, data_options, ingest_settings, say, volumetric_calibration
 
 
 def ingest(cfg: DictConfig) -> dict:
@@ -25,10 +25,11 @@ def ingest(cfg: DictConfig) -> dict:
     say(f"ingesting {src} -> {dest}")
     io.check_separate(src, dest)      # before a volumetric dataset's calibration, too
     volumetric = volumetric_calibration(cfg)
+    made = {"ingested_with": ingest_settings(cfg)}     # what train .. evaluate check
     if volumetric is None:
-        report = io.ingest(src, dest, data_options(cfg))
+        report = io.ingest(src, dest, data_options(cfg), extra=made)
     else:
-        report = _parameters(volumetric, dest)
+        report = _parameters(volumetric, dest, made)
     say(f"{report['rows']} rows in {len(report['campaigns'])} campaigns; "
         f"repairs: {report['repairs'] or 'none'}")
     with stage_run(cfg, "ingest") as tr:
@@ -37,7 +38,7 @@ def ingest(cfg: DictConfig) -> dict:
     return report
 
 
-def _parameters(volumetric, dest) -> dict:
+def _parameters(volumetric, dest, made: dict) -> dict:
     """The parameter series of a calibrated volumetric dataset, ingested as a dataset of its own."""
     params, _, calibration, raw = volumetric
     # written, then read back through the one validating reader (the splits and names are
@@ -46,4 +47,4 @@ def _parameters(volumetric, dest) -> dict:
         folder = io.write_dataset(params, f"{tmp}/{raw.name or 'parameters'}", "parquet")
         # the temperatures' repairs were made reading the distances' dataset, not this one
         return io.ingest(folder, dest, extra={"calibration": calibration,
-                                              "repairs": calibration["repairs"]})
+                                              "repairs": calibration["repairs"], **made})

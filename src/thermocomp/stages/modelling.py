@@ -44,6 +44,7 @@ from .common import (
     check_config,
     check_declared,
     data_options,
+    load_ingested,
     load_model,
     model_family,
     result_table,
@@ -64,7 +65,7 @@ def train(cfg: DictConfig) -> Compensator:
     """Fit the configured model on the train split of ``data.interim``, reusing the outputs of
     ``denoise`` and ``select`` when they match the config (see ``stages/artifacts.py``)."""
     check_config(cfg, outputs=("model_path",))
-    ds = io.load_interim(resolve(cfg.data.interim))
+    ds = load_ingested(cfg)
     check_declared(cfg, ds)
     t0 = time.perf_counter()
     comp = fit_from_artifacts(cfg, ds)
@@ -292,7 +293,7 @@ def evaluate(cfg: DictConfig) -> dict:
     check_config(cfg)
     clock = Clock()
     interim = resolve(cfg.data.interim)
-    ds = io.load_interim(interim)
+    ds = load_ingested(cfg)
     comp = load_model(cfg.model_path)
     _check_trained_as_configured(cfg, comp)
     trained_on = getattr(comp, "interim_digest_", None)

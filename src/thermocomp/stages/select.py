@@ -17,7 +17,6 @@ from hydra.utils import instantiate
 from omegaconf import DictConfig
 from sklearn.base import clone
 
-from .. import io
 from ..denoise import fit_denoiser
 from ..errors import ConfigError
 from ..evaluation import require_split
@@ -28,7 +27,7 @@ from ..paths import resolve
 from ..select.pearson import abs_correlation
 from ..tracking import stage_run
 from .artifacts import processed_data, selection_fingerprint, selection_path
-from .common import build_denoiser, check_config, say
+from .common import build_denoiser, check_config, load_ingested, say
 
 
 def _series(s) -> dict:
@@ -44,7 +43,7 @@ def select(cfg: DictConfig) -> dict:
             selector.check_params()
     except ValueError as exc:
         raise ConfigError(f"select.selector: {exc}") from exc
-    ds = io.load_interim(resolve(cfg.data.interim))
+    ds = load_ingested(cfg)
     ids = require_split(ds, "train")
     inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
                                       None if cfg.data.targets is None else list(cfg.data.targets))
