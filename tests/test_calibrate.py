@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import re
 import shutil
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -344,6 +345,16 @@ def test_no_truth_no_round_trip(raw, tmp_path):
     assert "roundtrip" not in report and "parameters" in report
 
 
+@pytest.mark.parametrize("truth", ["{oops", "[]"])
+def test_a_malformed_truth_file_costs_the_round_trip_not_the_run(raw, tmp_path, capsys, truth):
+    # a traceback (JSONDecodeError, 'list' object has no attribute 'get'), exit 1, before
+    data = copy(raw, tmp_path, truth=False)
+    Path(f"{data}.truth.json").write_text(truth)
+    report = calibrate(data, tmp_path / "out")
+    assert "roundtrip" not in report and "parameters" in report
+    assert f"{data}.truth.json is no" in capsys.readouterr().err
+
+
 def test_one_distance_off_by_1_mm_is_an_outlier_of_its_cycle(raw, clean, tmp_path):
     data = copy(raw, tmp_path)
     column = "E_S2x1d3_B04_B09"
@@ -582,6 +593,9 @@ def _untouched(out):
     ("E_S1x1d1_B3_B7", "balls 3 and 7: ball numbers have 2 digits (E_S1x1d1_B03_B07)"),
     ("E_S1x1d1_B04_B04", "ball 4 twice"),
     ("E_S9x1d1_B01_B02", "pose S9x1d1 not declared"),
+    # were dropped unsaid: an offset column, a lower-case b
+    ("E_Xoffset", "is a distance deviation named E_<pose>_B<i>_B<j>"),
+    ("E_S1x1d1_b01_b02", "is a distance deviation named E_<pose>_B<i>_B<j>"),
 ])
 def test_a_misnamed_distance_column_is_named_with_what_is_wrong(raw, tmp_path, capsys, name, says):
     data = copy(raw, tmp_path, truth=False)
@@ -589,7 +603,7 @@ def test_a_misnamed_distance_column_is_named_with_what_is_wrong(raw, tmp_path, c
     edit(data, "train_week", lambda df: df.rename(columns={right: name} if name.startswith(
         ("E_S1x1d1_B07", "E_S1x1d1_B3_")) else {}, inplace=True) or df.__setitem__(name, 0.0))
     refused(["calibrate", f"data.path={data}", f"out={tmp_path / 'out'}", "track=false"], capsys,
-            "train_week.parquet", f"column '{name}'", says)
+            f"file {data / 'train_week.parquet'}", f"column '{name}'", says)
     _untouched(tmp_path / "out")
 
 
@@ -667,7 +681,9 @@ SETUP_FAULTS = [
     # a typed centre: the balls would be "measured" where no probe goes
     (_set(("poses", 0, "centre"), [90000, 800, 800]), "pose S1x1d1: ball 1 at X=89250 mm puts "
                                                       "the X axis at 89250 mm"),
-    (_set(("artefact", "n_balls"), "11"), "artefact.n_balls='11': must be an integer >= 2"),
+    (_set(("artefact", "n_balls"), "11"), "artefact.n_balls='11': must be an integer in [2, 100]"),
+    # a typo that exhausted the memory (exit 137) instead of being refused
+    (_set(("artefact", "n_balls"), 10 ** 9), "artefact.n_balls=1000000000: must be an integer in [2, 100]"),
     (_set(("artefact", "length_mm"), -1500), "artefact.length_mm=-1500"),
     (_set(("artefact", "misalignment_deg"), 90), "artefact.misalignment_deg=90"),
     (_set(("poses", 0, "direction"), [0, 0, 0]), "poses[0] (S1x1d1).direction=[0, 0, 0]: must not be zero"),

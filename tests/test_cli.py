@@ -175,3 +175,15 @@ def test_a_store_that_cannot_be_opened_is_refused_at_once(capsys, tmp_path, uri,
                  "data.path=/nonexistent"]) == 2
     err = capsys.readouterr().err
     assert says in err and f"tracking_uri={uri}" in err
+
+
+def test_a_sweep_with_a_key_some_swept_models_lack_is_refused_naming_the_job(tmp_path, capsys):
+    # Hydra composes each job in its launcher: pcr has no fit_intercept, so the whole sweep
+    # ended there with Hydra's multi-line message, exit 1, and no job ran (not even mlr's)
+    from conftest import refused
+
+    sweep = tmp_path / "sweep"
+    refused(["run", "-m", "model=mlr,pcr", "model.estimator.fit_intercept=true", "track=false",
+             f"hydra.sweep.dir={sweep}"], capsys, "sweep job model=pcr",
+            "Could not override 'model.estimator.fit_intercept'")
+    assert not sweep.exists()

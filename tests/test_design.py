@@ -153,6 +153,9 @@ def test_the_command_writes_design_json_and_figures(tmp_path):
     ("design.studies={mine:{n_balls:[4],misalignment_deg:[0]}}",
      "design.studies.mine.position_sets: missing"),
     ("+design.studies.balls.colour=[red]", "design.studies.balls.colour: not a study key"),
+    # a MemoryError traceback before
+    ("design.studies={mine:{n_balls:[1000000],misalignment_deg:[0],position_sets:[S1]}}",
+     "design.studies.mine.n_balls=[1000000]: must be a non-empty list of integers in [2, 100]"),
 ])
 def test_bad_design_config_exits_2_and_writes_nothing(override, says, tmp_path, capsys):
     out = tmp_path / "d"

@@ -479,6 +479,32 @@ def test_a_stage_refuses_an_ingest_of_other_data_or_settings(paths, tmp_path, ca
     assert main([stage, *ingested, other]) == 0
 
 
+@pytest.mark.parametrize("fault", ["dead channel", "mm", "minutes"])
+def test_a_plausible_but_suspect_campaign_is_said_with_its_file_and_column(paths, capsys, fault):
+    # what no unit check can refuse (an idle campaign drifts little; two logging rates may be 60x
+    # apart), but a measurement hardly shows: ingested, and said, naming file and column
+    ds = paths["ds"]
+    f = ds / "K02.csv"
+    df = pd.read_csv(f)
+    if fault == "dead channel":
+        df["E_X"] = 0.0
+    elif fault == "mm":
+        df["E_X"] = df["E_X"] / 1000
+    else:
+        df["time"] = df["time"] / 60
+    df.to_csv(f, index=False)
+    assert main(["ingest", f"data.path={ds}", f"data.interim={paths['interim']}", *FAST]) == 0
+    err = [ln for ln in capsys.readouterr().err.splitlines() if "warning" in ln]
+    assert len(err) == 1 and str(f) in err[0], err
+    assert {"dead channel": "column 'E_X': constant", "mm": "another unit",
+            "minutes": "in minutes"}[fault] in err[0]
+
+
+def test_a_clean_dataset_is_ingested_without_a_warning(paths, capsys):
+    assert main(["ingest", f"data.path={paths['ds']}", f"data.interim={paths['interim']}", *FAST]) == 0
+    assert "warning" not in capsys.readouterr().err
+
+
 def test_interleaved_ingests_leave_one_whole_dataset(paths, tmp_path, monkeypatch):
     """A second ingest starts and ends while the first is writing: the folder then holds the
     first one's dataset, whole (the last to finish wins), and no temp folder is left."""
@@ -530,3 +556,25 @@ def test_evaluate_refuses_settings_the_model_was_not_trained_with(paths, tmp_pat
         refused(["evaluate", *interim, f"out={paths['out']}", bad], capsys, bad.split("=")[0], says)
         assert not paths["out"].exists()
     assert main(["evaluate", *interim, f"out={paths['out']}"]) == 0
+
+
+def test_a_data_path_that_links_to_itself_is_refused(tmp_path, capsys):
+    # ingest crashed with pathlib's RuntimeError (exit 1); run, monitor and replay said it
+    loop = tmp_path / "ds"
+    loop.symlink_to(loop)
+    refused(["ingest", f"data.path={loop}", f"data.interim={tmp_path / 'interim'}", *FAST], capsys,
+            "Symlink loop", str(loop))
+
+
+def test_an_unreadable_file_is_one_line_and_exit_2(tmp_path, capsys):
+    # root reads a chmod-000 file anyway, so the error is raised as a read would raise it
+    from thermocomp.cli import _guarded
+
+    def read():
+        raise PermissionError(13, "Permission denied", str(tmp_path / "K01.csv"))
+
+    with pytest.raises(SystemExit) as info:
+        _guarded(read)
+    err = capsys.readouterr().err.strip().splitlines()
+    assert info.value.code == 2 and len(err) == 1
+    assert f"file {tmp_path / 'K01.csv'}" in err[0] and "Permission denied" in err[0]

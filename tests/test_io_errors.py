@@ -311,3 +311,48 @@ def test_ingest_refuses_to_write_into_the_raw_dataset(tmp_path):
         ingest(raw, raw / "interim")
     with pytest.raises(ContractError, match="overlaps the raw dataset"):
         ingest(raw, raw)
+
+
+# -- found off our happy path (an outside probe): were tracebacks or silent ----------------------
+
+
+@pytest.mark.parametrize("links, row, says", [
+    (["", "K09"], 2, "names campaign 'K09', which the manifest does not list"),
+    (["", "K02"], 2, "names itself"),
+    (["K02", "K01"], 1, "closes a cycle: K01 -> K02 -> K01"),
+])
+def test_a_continues_link_to_nothing_itself_or_round_a_cycle(tmp_path, links, row, says):
+    manifest = "campaign,file,split,continues\n" + "".join(
+        f"{c},{c}.csv,train,{prev}\n" for c, prev in zip(("K01", "K02"), links))
+    root = write_raw(tmp_path / "ds", {"K01.csv": GOOD, "K02.csv": GOOD}, manifest)
+    refused(root, file="campaigns.csv", column="continues", row=row, says=says)
+
+
+def test_a_gzip_file_named_csv(tmp_path):
+    import gzip
+
+    root = write_raw(tmp_path / "ds", {"K01.csv": GOOD})
+    (root / "K01.csv").write_bytes(gzip.compress(GOOD.encode() * 50))
+    refused(root, file="K01.csv", says="gzip-compressed")
+
+
+@pytest.mark.parametrize("token", ["n/a", "#N/A", "NULL", "null", "NA"])
+def test_a_text_token_is_no_missing_value(tmp_path, token):
+    # Arrow read these as missing (then interpolated and counted as repairs): the contract's
+    # missing value is an empty cell; a numeric export's NaN is read as one too
+    root = write_raw(tmp_path / "ds", {"K01.csv": GOOD.replace("1,20.5,1", f"1,{token},1")})
+    refused(root, {"max_gap_samples": 2}, file="K01.csv", column="T_0", row=2)
+    ok = write_raw(tmp_path / "nan", {"K01.csv": GOOD.replace("1,20.5,1", "1,nan,1")})
+    ds, report = read_dataset(ok, {"max_gap_samples": 2})
+    assert report["repairs"] == {"T_0": 1}
+
+
+@pytest.mark.parametrize("cfg, says", [
+    ({"delimiter": ""}, "data.delimiter must be one character"),    # was read as ','
+    ({"delimiter": ";", "decimal": ";"}, "data.decimal=';' is the field separator too"),
+    ({"kelvin_threshold_c": -300}, "data.kelvin_threshold_c must be > 0"),   # every file refused
+])
+def test_a_reading_option_that_cannot_be_meant_is_refused_before_any_file(tmp_path, cfg, says):
+    write_raw(tmp_path / "ds", {"K01.csv": GOOD})
+    with pytest.raises(ContractError, match=re.escape(says)):
+        read_dataset(tmp_path / "ds", cfg)

@@ -32,3 +32,11 @@ def test_export_names_a_missing_column(default_dataset, tmp_path):
     assert not (tmp_path / "lab").exists()
     with pytest.raises(SystemExit):
         main([str(default_dataset), str(tmp_path / "x"), "T_nose"])
+
+
+def test_the_command_says_bad_input_in_one_line_and_exits_2(tmp_path, capsys):
+    # a missing folder printed an 18-line traceback, exit 1
+    assert main([str(tmp_path / "nowhere"), str(tmp_path / "lab"), "E_X=delta L"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "nowhere" in err[0] and "campaigns.csv" in err[0], err
+    assert not (tmp_path / "lab").exists()

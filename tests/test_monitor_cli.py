@@ -336,6 +336,28 @@ def test_stdin_rows_with_empty_cells_stream_and_are_counted(small, tmp_path, mon
     assert all(t["all_finite"] for t in report["targets"].values())
 
 
+def test_stdin_rows_with_iso_8601_times_stream_as_their_seconds(small, tmp_path, monkeypatch, capsys):
+    # the contract allows ISO 8601 in `time`, and ingest reads them; stdin refused them before
+    df = _stdin_rows(small)
+    iso = df.assign(time=(pd.Timestamp("2026-03-01T08:00:00+01:00")
+                          + pd.to_timedelta(df["time"] - df["time"].iloc[0], unit="s"))
+                    .map(lambda t: t.isoformat()))
+    reports = {}
+    for name, rows in (("seconds", df.assign(time=df["time"] - df["time"].iloc[0])), ("iso", iso)):
+        monkeypatch.setattr("sys.stdin", io.StringIO(rows.to_csv(index=False)))
+        assert main(["monitor", "monitor.input=-", f"data.path={small}", f"out={tmp_path / name}",
+                     "track=false", "plots=none"]) == 0
+        reports[name] = json.loads((tmp_path / name / "monitor.json").read_text())
+    assert reports["iso"]["targets"] == reports["seconds"]["targets"]
+    assert reports["iso"]["events"] == reports["seconds"]["events"]
+    bad = iso.copy()
+    bad.loc[7, "time"] = "2026-03-01 8 o'clock"
+    monkeypatch.setattr("sys.stdin", io.StringIO(bad.to_csv(index=False)))
+    refused(["monitor", "monitor.input=-", f"data.path={small}", f"out={tmp_path / 'bad'}",
+             "track=false"], capsys, "<stdin>", "column 'time'", "row 8", "ISO 8601")
+    assert not (tmp_path / "bad").exists()
+
+
 DATA_CASES = {
     "no test split": (lambda p: _splits(p, {"test": "val"}), [],
                       ["campaigns.csv", "column 'split'", "no 'test' campaign"]),

@@ -60,6 +60,8 @@ def test_rank_orders_by_criterion_missing_last_and_beats_respects_direction():
     assert list(rank(rows, "rsd_mean")["run_id"]) == ["c", "a", "b"]
     assert list(rank(rows, "rms_reduction_pct")["run_id"]) == ["c", "a", "b"]
     assert list(rank(rows, "rsd_mean", descending=True)["run_id"]) == ["a", "c", "b"]
+    # a test column as the printed table heads it (test:rsd_mean) was refused
+    assert list(rank(rows, "test:rms_reduction_pct")["run_id"]) == ["c", "a", "b"]
     with pytest.raises(KeyError, match="nope"):
         rank(rows, "nope")
     assert beats(1.0, 2.0, "rsd_mean") and not beats(2.0, 1.0, "rsd_mean")

@@ -44,7 +44,7 @@ HOSTILE = [
     ("large_mill_volumetric", "sets=[]", "S1, S2, S3"),
     ("large_mill_volumetric", "sets=[S4]", "S1, S2, S3"),
     ("large_mill_volumetric", "cycle_min=0", "number > 0"),
-    ("large_mill_volumetric", "n_balls=1", "integer >= 2"),
+    ("large_mill_volumetric", "n_balls=1", "integer in [2, 100]"),
     ("large_mill_volumetric", "x_centres=[1.5]", "[0, 1]"),
     ("large_mill_volumetric", "train_hours=0.2", "two samples of sim.generator.cycle_min=20"),
     ("fleet", "n_machines=0", "integer >= 1"),

@@ -4,12 +4,14 @@ a comparison table.  (Eight parallel runs on one fresh SQLite store: test_tracki
 from __future__ import annotations
 
 import json
+import shutil
 import sqlite3
+import subprocess
 
 import pandas as pd
 import pytest
 
-from conftest import thermocomp
+from conftest import BIN, copy_project, thermocomp
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import main
 from thermocomp.files import folder_digest
@@ -152,6 +154,52 @@ def test_a_failing_job_does_not_stop_the_sweep_and_the_parent_run_says_so(tmp_pa
     assert list(parent["metrics.sweep.failed_jobs"]) == [1] and list(parent["metrics.sweep.jobs"]) == [2]
     children = runs[runs["tags.mlflow.parentRunId"].notna()]
     assert sorted(children["status"]) == ["FAILED", "FINISHED"]
+
+
+@pytest.mark.slow
+def test_a_job_failing_on_its_data_before_its_run_starts_is_counted_by_the_parent(tmp_path, dataset):
+    # a job refused on reading its data (exit 2) never starts its child run: the parent was
+    # FINISHED with sweep.jobs=1, sweep.failed_jobs=0 (0 and 0 when every job failed so)
+    bad = tmp_path / "bad"
+    shutil.copytree(dataset, bad)
+    first = sorted(bad.glob("*.parquet")) or sorted(p for p in bad.glob("*.csv") if p.name != "campaigns.csv")
+    df = pd.read_parquet(first[0]) if first[0].suffix == ".parquet" else pd.read_csv(first[0])
+    df = df.astype({"T_1": object})
+    df.loc[3, "T_1"] = "abc"
+    csv = first[0].with_suffix(".csv")
+    first[0].unlink()
+    df.to_csv(csv, index=False)
+    manifest = pd.read_csv(bad / "campaigns.csv")
+    manifest["file"] = manifest["file"].replace(first[0].name, csv.name)
+    manifest.to_csv(bad / "campaigns.csv", index=False)
+    uri = mlflow_store(tmp_path)
+    proc = thermocomp("run", "-m", f"data.path={dataset},{bad}", f"tracking_uri={uri}", *LIGHT_EVAL,
+                      f"hydra.sweep.dir={tmp_path / 'sweep'}", check=False)
+    assert proc.returncode == 2 and "column 'T_1', row 4" in proc.stderr, proc.stderr
+    import mlflow
+
+    mlflow.set_tracking_uri(uri)
+    runs = mlflow.search_runs(experiment_names=["thermocomp"])
+    parent = runs[runs[f"tags.{SWEEP_TAG}"] == "parent"]
+    assert list(parent["status"]) == ["FAILED"]
+    assert list(parent["metrics.sweep.jobs"]) == [2] and list(parent["metrics.sweep.failed_jobs"]) == [1]
+
+
+@pytest.mark.slow
+def test_a_sweep_started_elsewhere_writes_every_job_under_the_project_root(tmp_path, dataset):
+    # Hydra made the job folders relative to the current directory, sweep.json went to the root
+    dest, env = copy_project(tmp_path / "proj")
+    elsewhere = tmp_path / "elsewhere"
+    elsewhere.mkdir()
+    for sweep_dir in ([], ["hydra.sweep.dir=reports/mine"]):
+        proc = subprocess.run([str(BIN / "thermocomp"), "run", "-m", "model=mlr,pcr",
+                               f"data.path={dataset}", "track=false", *LIGHT_EVAL, *sweep_dir],
+                              cwd=elsewhere, env=env, capture_output=True, text=True)
+        assert proc.returncode == 0, proc.stderr
+        assert list(elsewhere.iterdir()) == []
+    jobs = sorted(p.relative_to(dest / "reports") for p in (dest / "reports").rglob("metrics.json"))
+    assert len(jobs) == 4 and [j.parts[0] for j in jobs].count("mine") == 2, jobs
+    assert all(j.parts[0] in ("multirun", "mine") for j in jobs), jobs
 
 
 def test_retry_on_database_is_locked_then_give_up_on_other_errors():

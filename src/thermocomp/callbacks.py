@@ -27,6 +27,8 @@ from omegaconf import DictConfig, OmegaConf
 
 from .tracking import enabled, sweep_name
 
+FAILED_JOBS_ENV = "THERMOCOMP_FAILED_JOBS"   # folder where a sweep's failed jobs leave a note
+
 
 def _say(msg: str) -> None:
     from .log import logger
@@ -108,17 +110,22 @@ class MlflowSweepCallback(Callback):
 
         run_id = self.run_id
         children = child_runs(MlflowClient(connect(config)), run_id)
-        failed = sum(r.info.status != "FINISHED" for r in children)
+        # a job that failed before its child run started (bad data: read first) has no child;
+        # the shell's note (local launchers) and the sweep's size count it
+        notes = os.environ.get(FAILED_JOBS_ENV)
+        noted = len(list(Path(notes).glob("*.json"))) if notes and Path(notes).is_dir() else 0
+        failed = max(sum(r.info.status != "FINISHED" for r in children), noted)
+        jobs = max(len(children), sweep_size(config.hydra.overrides.task, config.hydra.sweeper) or 0)
         _log_search_results(config, run_id)
         end_parent_run(config, run_id, "FAILED" if failed else "FINISHED",
-                       {"sweep.jobs": len(children), "sweep.failed_jobs": failed})
+                       {"sweep.jobs": jobs, "sweep.failed_jobs": failed})
         atexit.unregister(self._abandon)
         self.run_id = None
         if self._previous is None:
             os.environ.pop(PARENT_ENV, None)
         else:
             os.environ[PARENT_ENV] = self._previous
-        _say(f"sweep parent run {run_id}: {len(children)} child runs, {failed} failed")
+        _say(f"sweep parent run {run_id}: {jobs} jobs ({len(children)} child runs), {failed} failed")
         if self.compare and children:
             try:
                 from .paths import resolve

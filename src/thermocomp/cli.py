@@ -149,11 +149,18 @@ def _fail(msg: str):
 
 
 def _guarded(fn, *args):
-    """Call ``fn``; bad input/config -> one line on stderr and exit 2."""
+    """Call ``fn``; bad input/config -> one line on stderr and exit 2 (a file the user named
+    that cannot be read -- no permission, a symlink loop -- is bad input too)."""
     try:
         return fn(*args)
     except _config_errors() as exc:
         _fail(exc)
+    except PermissionError as exc:
+        _fail(f"file {exc.filename}: cannot be read or written here ({exc.strerror})")
+    except RuntimeError as exc:
+        if "Symlink loop" not in str(exc):      # pathlib's resolve() on a loop of links
+            raise
+        _fail(f"{exc}: a path that links to itself")
 
 
 def _check_seed(cfg) -> None:
@@ -278,6 +285,57 @@ def _check_overrides(args: list[str]) -> None:
             base.append(arg)
     if added:
         _check_added_keys(added, base)
+    if sweeping:
+        _check_sweep_jobs([a for a in args if not a.startswith("-")])
+
+
+MAX_CHECKED_JOBS = 100   # jobs of a grid sweep composed up front (~0.1-0.3 s each)
+
+
+def _check_sweep_jobs(args: list[str]) -> None:
+    """Compose the jobs of a grid sweep before any runs.  Hydra composes each job in its
+    launcher, and one it cannot compose (a key that only some of the swept models have) ended
+    the whole sweep with Hydra's multi-line message, exit 1, no job run; here it is one line
+    naming the job, exit 2.  A search sweeper's intervals are not enumerated."""
+    import itertools
+
+    from hydra import compose, initialize_config_dir
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+    from hydra.errors import OverrideParseException
+
+    from .paths import conf_dir
+
+    parser = OverridesParser.create()
+    fixed, groups, keys = [], {}, []
+    try:
+        for arg in args:
+            o = parser.parse_override(arg)
+            if not o.is_sweep_override():
+                fixed.append(arg)
+            elif _group_options(o.key_or_group) is not None:
+                groups[o.key_or_group] = [f"{o.get_key_element()}={v}" for v in o.sweep_string_iterator()]
+            else:
+                keys.append(o)
+    except Exception:     # an interval, a sweeper's own syntax, a parse error: Hydra says it
+        return
+    # what can fail is a key set inside a swept group that some of its options lack: one job
+    # per combination of the swept groups, a swept key at its first value
+    inside = [a.lstrip("+~").split("=", 1)[0] for a in fixed] + [o.key_or_group for o in keys]
+    if not any(k.startswith(f"{g.replace('/', '.')}.") for k in inside for g in groups):
+        return
+    fixed += [f"{o.get_key_element()}={next(iter(o.sweep_string_iterator()))}" for o in keys]
+    failed = None
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3", job_name="thermocomp"):
+        for job in itertools.islice(itertools.product(*groups.values()), MAX_CHECKED_JOBS):
+            try:
+                compose(config_name="config", overrides=[*fixed, *job])
+            except OverrideParseException:   # a value this re-spelling does not quote as typed
+                return
+            except _config_errors() as exc:
+                failed = job, exc
+                break
+    if failed:                             # explained outside: the explanation composes too
+        _fail(f"sweep job {' '.join(failed[0])}: {_explain(failed[1])}")
 
 
 def _group_options(key: str) -> list[str] | None:
@@ -373,7 +431,6 @@ def _run(stage: str, fn, cfg, args: list[str]):
         return _guarded(fn, cfg)
 
 
-FAILED_JOBS_ENV = "THERMOCOMP_FAILED_JOBS"   # folder where a sweep's failed jobs leave a note
 
 
 def _job_failed(exc: BaseException) -> float:
@@ -381,6 +438,7 @@ def _job_failed(exc: BaseException) -> float:
     on (its MLflow child run is already FAILED).  NaN: a failed trial for a search sweeper."""
     from hydra.core.hydra_config import HydraConfig
 
+    from .callbacks import FAILED_JOBS_ENV
     from .files import write_json
     from .log import logger
 
@@ -403,9 +461,10 @@ def _hydra_main(stage: str, args: list[str]) -> None:
 
     import hydra
 
+    from .callbacks import FAILED_JOBS_ENV
     from .files import Terminated
     from .log import logger
-    from .paths import conf_dir
+    from .paths import conf_dir, rooted_override
     from .stages import stage as lookup
 
     fn = lookup(stage)
@@ -421,7 +480,7 @@ def _hydra_main(stage: str, args: list[str]) -> None:
                 raise
             return _job_failed(exc)
 
-    sys.argv = [f"thermocomp-{stage}", *args]
+    sys.argv = [f"thermocomp-{stage}", *map(rooted_override, args)]
     with tempfile.TemporaryDirectory(prefix="thermocomp-sweep-") as notes:
         previous = os.environ.get(FAILED_JOBS_ENV)
         os.environ[FAILED_JOBS_ENV] = notes

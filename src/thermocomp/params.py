@@ -94,13 +94,14 @@ def numbers(lo: float = 0.0, hi: float = math.inf, *, length: int | None = None,
     return Rule(test, f"{count} in {'(' if open_lo else '['}{lo:g}, {hi:g}]")
 
 
-def integers(lo: int, *, empty: bool = False) -> Rule:
-    """A list of integers >= ``lo`` (non-empty unless ``empty``)."""
+def integers(lo: int, hi: int | None = None, *, empty: bool = False) -> Rule:
+    """A list of integers in [``lo``, ``hi``] (non-empty unless ``empty``)."""
     def test(v):
         items = _items(v)
         return items is not None and (empty or len(items) >= 1) and all(
-            _integer(x) and x >= lo for x in items)
-    return Rule(test, f"a {'' if empty else 'non-empty '}list of integers >= {lo}")
+            _integer(x) and x >= lo and (hi is None or x <= hi) for x in items)
+    bound = f">= {lo}" if hi is None else f"in [{lo}, {hi}]"
+    return Rule(test, f"a {'' if empty else 'non-empty '}list of integers {bound}")
 
 
 def either(*rules: Rule) -> Rule:
@@ -167,6 +168,14 @@ def number_map(lo: float = -math.inf) -> Rule:
 
 def text() -> Rule:
     return Rule(lambda v: isinstance(v, str) and v != "", "a non-empty text")
+
+
+def file_name() -> Rule:
+    """A name that is one path component: it names folders (``data/interim/<name>``), and ``..``,
+    a ``/`` or nothing would put them outside their parent, or make them the parent itself."""
+    return Rule(lambda v: isinstance(v, str) and v not in ("", ".", "..") and "/" not in v
+                and "\\" not in v and not v.startswith("~") and "\0" not in v,
+                "one path component: not empty, '.' or '..', no '/'")
 
 
 def texts(what: str = "texts", *, empty: bool = False, unique: bool = False) -> Rule:

@@ -11,6 +11,8 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+from omegaconf import OmegaConf
+
 
 def project_root() -> Path:
     env = os.environ.get("THERMOCOMP_ROOT")
@@ -30,3 +32,17 @@ def resolve(path: str | os.PathLike) -> Path:
 
 def conf_dir() -> Path:
     return project_root() / "conf"
+
+
+def rooted_override(arg: str) -> str:
+    """``hydra.sweep.dir=`` / ``hydra.run.dir=`` with a relative value, rooted at the project root:
+    Hydra makes those folders relative to the current directory (a sweep started elsewhere wrote
+    its jobs there, and its sweep.json here)."""
+    for key in ("hydra.sweep.dir=", "hydra.run.dir="):
+        if arg.startswith(key) and not os.path.isabs(os.path.expanduser(arg[len(key):])):
+            return f"{key}{resolve(arg[len(key):])}"
+    return arg
+
+
+# `${root:reports/x}` in the config: the path under the project root (Hydra's own folders)
+OmegaConf.register_new_resolver("root", lambda path=".": str(resolve(path)), replace=True)

@@ -20,6 +20,8 @@ import pandas as pd
 
 from ..files import atomic_dir
 from ..log import configure, logger
+from ..paths import resolve
+from .contract import ContractError
 from .read import read_manifest
 
 
@@ -69,10 +71,15 @@ def main(argv: list[str] | None = None) -> int:
     pairs = [c.split("=", 1) for c in args.columns]
     if any(len(p) != 2 for p in pairs):
         parser.error("columns are CONTRACT=LAB pairs, e.g. \"E_X=delta L\"")
-    dest = export_foreign(args.src, args.dest, dict(pairs), delimiter=args.delimiter,
-                          decimal=args.decimal, keep_time=args.keep_time)
     configure()
-    logger.info("%s: sample period %g s", dest, sample_period(args.src))
+    src = resolve(args.src)          # relative to the project root, as every thermocomp path
+    try:
+        dest = export_foreign(src, resolve(args.dest), dict(pairs), delimiter=args.delimiter,
+                              decimal=args.decimal, keep_time=args.keep_time)
+    except (ContractError, ValueError) as exc:   # one line, exit 2: as the CLI says bad input
+        print(f"thermocomp: error: {exc}", file=sys.stderr)
+        return 2
+    logger.info("%s: sample period %g s", dest, sample_period(src))
     return 0
 
 

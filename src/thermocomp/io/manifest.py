@@ -50,6 +50,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     path = root / MANIFEST
     raw = _load_manifest(path, opts.delimiter)
     _check_manifest_rows(raw, path, root)
+    _check_continues(raw, path)
     manifest = raw.set_index("campaign")
     _apply_split_overrides(manifest, opts.split_overrides, path)
     for column in manifest.columns.drop(["file", "split"]):
@@ -79,7 +80,10 @@ def _load_manifest(path: Path, delimiter: str = ",") -> pd.DataFrame:
 
 
 def _header_cells(line: str, delimiter: str) -> list[str]:
-    return [c.strip() for c in next(csv.reader([line], delimiter=delimiter), [])]
+    try:
+        return [c.strip() for c in next(csv.reader([line], delimiter=delimiter), [])]
+    except csv.Error:              # binary bytes (a stray carriage return): no CSV header
+        return [c.strip() for c in line.split(delimiter)]
 
 
 def _manifest_delimiter(header: str, delimiter: str, path: Path) -> str:
@@ -111,6 +115,10 @@ def _utf8_text(path: Path, delimiter: str) -> str:
 def _not_utf8(path: Path, delimiter: str, names: list[str] | None = None) -> ContractError:
     """The error naming the line (data row, or the header) and field of the first byte that
     is not UTF-8."""
+    with open(path, "rb") as f:
+        if f.read(2) == b"\x1f\x8b":
+            return ContractError("a gzip-compressed file, not CSV text: unpack it first",
+                                 file=path)
     return (_utf8_failure(path, delimiter, names)
             or ContractError("file is not UTF-8 text", file=path))
 
@@ -162,6 +170,29 @@ def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
             raise ContractError(message, file=path, column=column, row=row)
         seen[cid] = row
         files[(root / fname).resolve()] = row
+
+
+def _check_continues(raw: pd.DataFrame, path: Path) -> None:
+    """The optional ``continues`` column names, per row, the campaign the row's record continues
+    (empty: none): another campaign of the manifest, and no chain of them back to itself (an
+    unknown id or a cycle was ignored, or carried state round the cycle)."""
+    if "continues" not in raw.columns:
+        return
+    rows = {cid: row for row, cid in enumerate(raw["campaign"], 1)}
+    links = {cid: prev for cid, prev in zip(raw["campaign"], raw["continues"]) if prev}
+    for cid, prev in links.items():
+        why = ("names itself" if prev == cid else
+               f"names campaign {prev!r}, which the manifest does not list" if prev not in rows else None)
+        if why is None:
+            seen, at = [cid], prev
+            while at in links and at not in seen:
+                seen.append(at)
+                at = links[at]
+            if at == cid:
+                why = f"closes a cycle: {' -> '.join([*seen, cid])}"
+        if why:
+            raise ContractError(f"'continues' {why}: a record continues an earlier, other one",
+                                file=path, column="continues", row=rows[cid])
 
 
 def _apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path) -> None:

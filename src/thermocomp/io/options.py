@@ -78,8 +78,8 @@ class ReadOptions:
             max_period_ratio=_positive_float(cfg, "max_period_ratio", 100.0, nullable=True),
             max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
             max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
-            delimiter=str(cfg.get("delimiter", ",") or ","),
-            decimal=str(cfg.get("decimal", ".") or "."),
+            delimiter=str(cfg.get("delimiter", ",") if cfg.get("delimiter") is not None else ","),
+            decimal=str(cfg.get("decimal", ".") if cfg.get("decimal") is not None else "."),
         )
         opts._check()
         return opts
@@ -97,6 +97,12 @@ class ReadOptions:
             if len(getattr(self, key)) != 1:
                 raise ContractError(f"data.{key} must be one character, "
                                     f"got {getattr(self, key)!r}")
+        if self.decimal == self.delimiter:
+            raise ContractError(f"data.decimal={self.decimal!r} is the field separator too "
+                                "(data.delimiter): a lab writing decimal commas separates with ';'")
+        if self.kelvin_threshold_c <= 0.0:    # every reading above it is refused as kelvin
+            raise ContractError(f"data.kelvin_threshold_c must be > 0 (°C), got "
+                                f"{self.kelvin_threshold_c:g}")
 
 
 def _str_mapping(cfg: Mapping, key: str) -> dict:

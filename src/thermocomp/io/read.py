@@ -67,7 +67,15 @@ from .contract import MANIFEST, TIME, ContractError, Dataset, role
 from .manifest import read_manifest
 from .options import ROLE_ORDER, ReadOptions
 from .tables import _load_csv, _load_parquet, _ordered, _values
-from .values import _check_periods, _keep_missing, _median_period, _repair_missing, _set_time_seconds
+from .values import (
+    _check_periods,
+    _error_ranges,
+    _keep_missing,
+    _median_period,
+    _repair_missing,
+    _set_time_seconds,
+    _warn_error_ranges,
+)
 
 INGEST_REPORT = "ingest_report.json"
 MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
@@ -172,13 +180,15 @@ def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
                     ) -> Iterator[tuple[str, pa.Table, dict]]:
     """Every campaign, read and validated; once all are read, their sample periods are
     compared (a campaign timed in another unit is refused)."""
-    periods = {}
+    periods, ranges = {}, {}
     for cid, row in manifest.iterrows():
         table, report = read_campaign(root / row["file"], opts)
         periods[cid] = _median_period(table)
+        ranges[cid] = _error_ranges(table)
         yield cid, table, {"file": row["file"], "split": row["split"], **report}
         del table  # before reading the next campaign
     _check_periods(periods, manifest["file"], root, opts.max_period_ratio)
+    _warn_error_ranges(ranges, manifest["file"], root)
 
 
 def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) -> dict:

@@ -71,6 +71,11 @@ def _ordered(names: list[str]) -> list[str]:
 # Loading CSV
 
 
+# A missing value is an empty cell (the contract), or the NaN a numeric export writes for one.
+# Arrow's defaults also read 'n/a', 'NULL', '#N/A', ... as missing: those are refused as text.
+MISSING_TOKENS = ("", "nan", "NaN", "NAN", "-nan", "-NaN")
+
+
 def _load_csv(path: Path, opts: ReadOptions) -> dict:
     header, first_row = _peek_csv(path, opts.delimiter)
     if len(header) == 1:
@@ -106,6 +111,9 @@ def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
             first = next((r for r in rows if r), None)
     except UnicodeDecodeError:
         raise _not_utf8(path, delimiter) from None
+    except csv.Error as exc:       # binary content (a gzip named .csv): no CSV text
+        raise ContractError(f"not a CSV text file ({exc}); a compressed or binary file "
+                            "must be unpacked or saved as .parquet", file=path) from None
     if not header:
         raise ContractError("empty file", file=path)
     if first is None:
@@ -140,7 +148,8 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
                              block_size=_CSV_BLOCK_BYTES)
     parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
     convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
-                                   decimal_point=opts.decimal, strings_can_be_null=True)
+                                   decimal_point=opts.decimal, strings_can_be_null=True,
+                                   null_values=list(MISSING_TOKENS))
     return dict(read_options=read, parse_options=parse, convert_options=convert)
 
 

@@ -11,6 +11,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from ..log import logger
 from .contract import TIME, ContractError, role
 from .options import ReadOptions
 from .tables import _chunks, _values
@@ -91,13 +92,18 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
     """Refuse a campaign whose median sample period is ``ratio`` times (or 1/``ratio``) the
     median of the others': its time column is in another unit (ms, minutes) than theirs."""
     periods = {c: p for c, p in periods.items() if p}
-    if ratio is None or len(periods) < 2:
+    if len(periods) < 2:
         return
     off = {}
     for cid, p in periods.items():
         r = p / np.median([q for c, q in periods.items() if c != cid])
-        if r >= ratio or r <= 1 / ratio:
+        if ratio is not None and (r >= ratio or r <= 1 / ratio):
             off[cid] = r
+        elif any(abs(np.log(r) - k * np.log(60)) < 0.05 for k in (-1, 1)):
+            # 60x apart may be two logging rates (1 s and 1 min): said, not refused
+            logger.warning(f"{root / files[cid]}: median sample period {p:g} s is {r:.3g}x the "
+                           "other campaigns': if its time is in minutes (or theirs), convert it "
+                           "to seconds")
     if not off:
         return
     cid = max(off, key=off.get)  # two campaigns disagree: ms (a time 1000x too large) is likelier
@@ -107,6 +113,45 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
                         f"campaigns' ({periods[cid] / r:g} s): is its time in {unit}? it must be "
                         f"in seconds (data.max_period_ratio={ratio:g})",
                         file=root / files[cid], column=TIME)
+
+
+def _error_ranges(table: pa.Table) -> dict:
+    """``{E_ column: (peak-to-peak, constant)}`` of one campaign (finite values only)."""
+    out = {}
+    for name in table.column_names:
+        if role(name) == "E":
+            v = table.column(name).to_numpy(zero_copy_only=False).astype(float)
+            v = v[np.isfinite(v)]
+            if len(v):
+                out[name] = (float(np.ptp(v)), len(v) >= 3 and bool(np.all(v == v[0])))
+    return out
+
+
+SCALE_FACTOR = 300.0   # a campaign's error range this far off the others' median: another unit?
+
+
+def _warn_error_ranges(ranges: dict, files: Mapping, root: Path) -> None:
+    """Say what no unit check can refuse but a measurement hardly shows: an ``E_`` column
+    constant over a whole campaign (a dead channel: not measured is an empty cell), and one
+    whose range is :data:`SCALE_FACTOR` times off the other campaigns' median (mm or nm for
+    µm).  Said on stderr, not refused: an idle campaign may drift little."""
+    columns = {c for r in ranges.values() for c in r}
+    for col in sorted(columns):
+        spans = {cid: r[col][0] for cid, r in ranges.items() if col in r and r[col][0] > 0}
+        for cid, r in ranges.items():
+            if col not in r:
+                continue
+            span, constant = r[col]
+            if constant:
+                logger.warning(f"{root / files[cid]}, column '{col}': constant over the whole "
+                               "campaign (a dead channel?); leave the cells empty where it was not "
+                               "measured")
+            elif len(spans) >= 3:
+                typical = float(np.median([v for c, v in spans.items() if c != cid]))
+                if span * SCALE_FACTOR < typical or span > SCALE_FACTOR * typical:
+                    logger.warning(f"{root / files[cid]}, column '{col}': range {span:.3g} against "
+                                   f"{typical:.3g} in the other campaigns (median): is it in "
+                                   "another unit? E_ columns are in µm (µm/m angular)")
 
 
 # ---------------------------------------------------------------------------

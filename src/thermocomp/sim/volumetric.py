@@ -60,7 +60,7 @@ from thermocomp.sim.large_mill import LargeMillWeek, moving_column_mill
 from thermocomp.sim.scenario import plain, single_threaded_blas
 from thermocomp.sim.thermoelastic import ThermoelasticMap
 from thermocomp.volumetric import SETUP_FILE, BallArray, KinematicModel, Setup, position_set
-from thermocomp.volumetric.artefact import POSITION_SETS
+from thermocomp.volumetric.artefact import MAX_BALLS, POSITION_SETS
 from thermocomp.volumetric.measure import artefact_distances
 
 SCENARIO = "large_mill_volumetric"
@@ -161,7 +161,7 @@ class LargeMillVolumetric(LargeMillWeek):
                    "heater_power_W": NON_NEGATIVE, "temp_noise_c": NON_NEGATIVE,
                    "temp_quantum_c": NON_NEGATIVE, "probing_um": NON_NEGATIVE, "ball_um": NON_NEGATIVE,
                    "cold_ve_um": NON_NEGATIVE, "thermal_gain": NON_NEGATIVE, "order": integer(1, 10),
-                   "cross_terms": BOOLEAN, "n_balls": integer(2), "length_mm": POSITIVE,
+                   "cross_terms": BOOLEAN, "n_balls": integer(2, MAX_BALLS), "length_mm": POSITIVE,
                    "misalignment_deg": number(0.0, 90.0, open_hi=True),
                    "sets": subset(POSITION_SETS), "x_centres": numbers(0.0, 1.0)}
 

@@ -21,7 +21,6 @@ label) -> left out of every cycle and named in ``excluded``.
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
 from omegaconf import DictConfig
@@ -33,7 +32,14 @@ from ..log import logger
 from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric.calibration import roundtrip
-from .common import _check_writable, calibrated_dataset, check_calibrate, check_config, say
+from .common import (
+    _check_writable,
+    calibrated_dataset,
+    check_calibrate,
+    check_config,
+    say,
+    simulated_truth,
+)
 
 
 def calibrate(cfg: DictConfig) -> dict:
@@ -51,10 +57,10 @@ def calibrate(cfg: DictConfig) -> dict:
     say(f"reading {root}")
     with stage_run(cfg, "calibrate") as tr:
         params, cal, report, _ = calibrated_dataset(cfg)
-        truth_path = Path(f"{root}.truth.json")
-        if truth_path.is_file():
+        truth_path, truth = simulated_truth(cfg)
+        if truth is not None:
             result = {cid: (params.campaigns[cid][cal.names_].to_numpy(), None) for cid in params.campaigns}
-            rt = roundtrip(cal, result, json.loads(truth_path.read_text()))
+            rt = roundtrip(cal, result, truth)
             if rt is None:
                 logger.warning("calibrate: %s does not hold this dataset's parameter series; no "
                                "round trip", truth_path)

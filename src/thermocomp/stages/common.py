@@ -29,6 +29,7 @@ from ..params import (
     check_values,
     choice,
     either,
+    file_name,
     integer,
     number,
     numbers,
@@ -43,6 +44,7 @@ PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage dr
 
 # What the plain keys of the shared config groups may be (the components below check their own).
 CONFIG_RULES = {
+    "name": file_name(),
     "track": optional(BOOLEAN), "plots": choice(*PLOTS), "data.reference": choice(*REFERENCES),
     "eval.mode": choice(*MODES), "eval.e_p95.statistic": choice("range", "std"),
     "eval.e_p95.max_points": optional(integer(2)),  # 0 or 1 window lengths: an empty E_P95 curve
@@ -187,6 +189,37 @@ def build_denoiser(cfg: DictConfig):
     denoiser = instantiate(den.denoiser)
     check_component(denoiser, "denoise.denoiser")
     return denoiser
+
+
+def check_replaceable(cfg: DictConfig, key: str, marker: str) -> None:
+    """The folder of ``key`` is replaced whole by the stage: a non-empty one that no earlier run
+    of it wrote (no ``marker`` in it) is refused before any work.  An ingest once deleted a
+    folder of the user's given as ``data.interim``, and with ``name=`` (empty) all of
+    ``data/interim/``."""
+    folder = resolve(str(OmegaConf.select(cfg, key)))
+    if folder.is_dir() and any(folder.iterdir()) and not (folder / marker).is_file():
+        raise ConfigError(f"{key}: {folder} is not empty and holds no {marker}, so this stage did "
+                          "not write it; it would be replaced whole: give an empty or new folder")
+
+
+def simulated_truth(cfg: DictConfig) -> tuple[Path, dict | None]:
+    """``(<data.path>.truth.json, its content)``: None when there is none, or one that is no JSON
+    object (said; the truth only adds figures, so a bad one costs them, not the run)."""
+    import json
+
+    path = Path(f"{resolve(cfg.data.path)}.truth.json")
+    if not path.is_file():
+        return path, None
+    try:
+        truth = json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        logger.warning("%s is not readable JSON (%s): no comparison with the truth",
+                       path, " ".join(str(exc).split()))
+        return path, None
+    if not isinstance(truth, dict):
+        logger.warning("%s is no JSON object: no comparison with the truth", path)
+        return path, None
+    return path, truth
 
 
 def ingest_settings(cfg: DictConfig) -> dict:

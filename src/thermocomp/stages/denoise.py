@@ -26,7 +26,7 @@ from ..io.read import INGEST_REPORT
 from ..paths import resolve
 from ..tracking import stage_run
 from .artifacts import DENOISE_JSON, DENOISER_PKL, denoise_fingerprint
-from .common import build_denoiser, check_config, load_ingested, say
+from .common import build_denoiser, check_config, check_replaceable, load_ingested, say
 
 
 def _rms(a) -> float:
@@ -43,6 +43,7 @@ def _removed_rms(raw: dict, den: dict, columns) -> dict:
 def denoise(cfg: DictConfig) -> dict:
     """Write the denoised dataset to ``data.processed`` and figures to ``<out>/denoise``."""
     check_config(cfg, outputs=("out", "data.processed"))
+    check_replaceable(cfg, "data.processed", DENOISE_JSON)
     src, dest = resolve(cfg.data.interim), resolve(cfg.data.processed)
     ds = load_ingested(cfg)
     inputs, _ = resolve_columns(ds.columns, list(cfg.data.inputs), None)

@@ -33,7 +33,7 @@ from ..params import (
 from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric import KinematicModel, load_setup
-from ..volumetric.artefact import POSITION_SETS, UNCERTAINTY, check_reach
+from ..volumetric.artefact import MAX_BALLS, POSITION_SETS, UNCERTAINTY, check_reach
 from ..volumetric.calibration import prior_sd
 from ..volumetric.design import KINDS, CalibrationDesignStudy, MachineFamily, strategies
 from .common import calibration_prior, check_calibrate, check_config, say
@@ -56,7 +56,7 @@ DESIGN_RULES = {
     "compensation_order": optional(integer(1, 10)),
 }
 STUDY_RULES = {
-    "n_balls": integers(2),
+    "n_balls": integers(2, MAX_BALLS),
     "misalignment_deg": Rule(lambda v: numbers(0.0)(v) and all(x < 90 for x in v),
                              "a non-empty list of angles in [0, 90)"),
     "position_sets": Rule(_position_sets, f"a non-empty list of '+'-joined {', '.join(POSITION_SETS)}"),

@@ -15,12 +15,20 @@ from omegaconf import DictConfig
 from .. import io
 from ..paths import resolve
 from ..tracking import stage_run
-from .common import check_config, data_options, ingest_settings, say, volumetric_calibration
+from .common import (
+    check_config,
+    check_replaceable,
+    data_options,
+    ingest_settings,
+    say,
+    volumetric_calibration,
+)
 
 
 def ingest(cfg: DictConfig) -> dict:
     """Validate ``data.path`` and write it as Parquet to ``data.interim`` with a report."""
     check_config(cfg, outputs=("data.interim",))
+    check_replaceable(cfg, "data.interim", io.INGEST_REPORT)
     src, dest = resolve(cfg.data.path), resolve(cfg.data.interim)
     say(f"ingesting {src} -> {dest}")
     io.check_separate(src, dest)      # before a volumetric dataset's calibration, too

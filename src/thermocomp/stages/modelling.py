@@ -50,6 +50,7 @@ from .common import (
     result_table,
     save_model,
     say,
+    simulated_truth,
     volumetric_calibration,
     volumetric_source,
 )
@@ -412,15 +413,11 @@ def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal):
 def _true_changes(cfg: DictConfig, cal, times: dict):
     """Campaign -> the true change of every parameter since the first cycle, from
     ``<data.path>.truth.json`` when the data were simulated (and it matches), else None."""
-    import json
-    from pathlib import Path
-
     from ..volumetric.calibration import true_parameters
 
-    path = Path(f"{resolve(cfg.data.path)}.truth.json")
-    if not path.is_file():
+    path, truth = simulated_truth(cfg)
+    if truth is None:
         return None
-    truth = json.loads(path.read_text())
     out = {}
     for cid, t in times.items():
         P = true_parameters(truth, cid, cal.setup.model.names, len(t))

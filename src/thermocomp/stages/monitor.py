@@ -50,9 +50,10 @@ from .common import (
 )
 
 
-def _stdin_campaign(columns: list[str]) -> tuple[dict, dict]:
+def _stdin_campaign(columns: list[str], time_format: str = "auto") -> tuple[dict, dict]:
     """``({"stdin": frame}, missing cells)`` from CSV rows on stdin (header first); empty cells
-    stay NaN, a non-numeric one is refused with its row."""
+    stay NaN, a non-numeric one is refused with its row.  ``time`` in seconds or as ISO 8601
+    timestamps (``data.time``; ``auto``: as the first row reads, like a campaign file)."""
     try:
         df = pd.read_csv(sys.stdin)
     except Exception as exc:    # pandas raises several kinds for a bad stream
@@ -64,6 +65,8 @@ def _stdin_campaign(columns: list[str]) -> tuple[dict, dict]:
     if absent:
         raise io.ContractError("stdin lacks a column the compensator reads", file="<stdin>",
                                column=",".join(absent))
+    if TIME in df.columns:
+        df[TIME] = _stdin_seconds(df[TIME], time_format)
     # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
     # model reads: the measured errors and the context are read from the same frame
     numeric = list(dict.fromkeys([*columns, *(c for c in df.columns
@@ -76,6 +79,25 @@ def _stdin_campaign(columns: list[str]) -> tuple[dict, dict]:
         df[c] = pd.to_numeric(df[c], errors="coerce")
     counts = {c: int(n) for c, n in df[numeric].isna().sum().items() if n}
     return {"stdin": df}, ({"stdin": counts} if counts else {})
+
+
+def _stdin_seconds(time: pd.Series, time_format: str) -> pd.Series:
+    """The stream's ``time`` in seconds since its first row when it holds ISO 8601 timestamps
+    (as given otherwise: the numeric check refuses what is no number).  A time that goes back
+    is no refusal here: the stream's guard judges it, as on the machine."""
+    first = time.iloc[0]
+    iso = time_format == "iso8601" or (time_format == "auto" and isinstance(first, str)
+                                       and pd.isna(pd.to_numeric(first, errors="coerce")))
+    if not iso:
+        return time
+    stamps = pd.to_datetime(time.astype(str).where(time.notna()), format="ISO8601", utc=True,
+                            errors="coerce")
+    bad = stamps.isna() & time.notna()
+    if bad.any() or pd.isna(stamps.iloc[0]):
+        row = int(np.flatnonzero(bad)[0]) + 1 if bad.any() else 1
+        raise io.ContractError(f"not an ISO 8601 time (data.time={time_format}: the stream's first "
+                               "row is a timestamp)", file="<stdin>", column=TIME, row=row)
+    return (stamps - stamps.iloc[0]).dt.total_seconds()
 
 
 def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.ndarray]]:
@@ -147,7 +169,7 @@ def monitor(cfg: DictConfig) -> dict:
             raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")
         if stdin:
-            streamed, missing = _stdin_campaign(adaptive.columns_)
+            streamed, missing = _stdin_campaign(adaptive.columns_, str(cfg.data.get("time", "auto")))
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")

@@ -181,10 +181,13 @@ POINT = numbers(-math.inf, length=3)
 UNCERTAINTY = number(0.0, 1000.0)    # µm: beyond a millimetre the distances say nothing
 TRAVEL = Rule(lambda v: numbers(-math.inf, length=2)(v) and v[0] < v[1],
               "a travel [min, max] in mm, min < max")
+# A 1D ball bar: n (n - 1) / 2 distances per pose are identified at once; 100 balls is already
+# 4950 per pose (a typo of 10^9 balls exhausted the memory instead of being refused)
+MAX_BALLS = 100
 SETUP_RULES = {
     "machine": {"order": optional(integer(1, 10)), "tool": POINT,
                 "cross_terms": optional(BOOLEAN)},
-    "artefact": {"n_balls": integer(2), "length_mm": POSITIVE,
+    "artefact": {"n_balls": integer(2, MAX_BALLS), "length_mm": POSITIVE,
                  "misalignment_deg": optional(number(-90.0, 90.0, open_lo=True, open_hi=True))},
     "uncertainty_um": {"probing": optional(UNCERTAINTY), "ball": optional(UNCERTAINTY)},
 }

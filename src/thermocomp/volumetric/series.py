@@ -41,13 +41,17 @@ def check_columns(ds: Dataset, setup: Setup) -> None:
     known = set(declared)
     poses = {p.name for p in setup.poses}
     for cid, df in ds.campaigns.items():
-        file = ds.manifest.loc[cid, "file"] if "file" in ds.manifest else cid
+        file = (Path(ds.meta.get("path", "")) / ds.manifest.loc[cid, "file"]
+                if "file" in ds.manifest else cid)
         have = set(df.columns)
         for c in df.columns:        # a stray column first: it often explains a "missing" one
             m = COLUMN.match(c)
             if m and c not in known:
                 raise ContractError(f"distance column of an unknown measurement: "
                                     f"{_stray(m, poses, setup.array.n_balls)}", file=file, column=c)
+            if not m and c.startswith("E_"):   # was dropped unsaid (a typo, an offset column)
+                raise ContractError("an E_ column of a volumetric dataset is a distance "
+                                    "deviation named E_<pose>_B<i>_B<j>", file=file, column=c)
         for pose in setup.poses:
             cols = [c for c in declared if c.startswith(f"E_{pose.name}_B")]
             missing = [c for c in cols if c not in have]
