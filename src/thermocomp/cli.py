@@ -231,7 +231,6 @@ def _fix_key(key: str, config: dict) -> str | None:
     return None
 
 
-
 def _explain(exc: BaseException) -> str:
     """Hydra's message, with the closest option or key when the user made a typo."""
     import re
@@ -429,8 +428,6 @@ def _run(stage: str, fn, cfg, args: list[str]):
     with log.run_log(_log_folder(stage, cfg)):
         log.logger.debug("thermocomp %s: %s %s", version(), stage, " ".join(args))
         return _guarded(fn, cfg)
-
-
 
 
 def _job_failed(exc: BaseException) -> float:

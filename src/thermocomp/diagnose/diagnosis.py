@@ -10,10 +10,9 @@ import numpy as np
 from sklearn.base import clone
 from threadpoolctl import threadpool_limits
 
-from .. import continuation
 from ..compensator import Compensator
 from ..denoise import denoise_campaigns
-from ..evaluation import require_split, sample_period
+from ..evaluation import require_split, sample_period, split_residuals
 from ..frame import stack
 from ..io.contract import ContractError, Dataset
 from ..jsonsafe import json_safe
@@ -149,13 +148,11 @@ def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, 
                 ) -> tuple[dict, dict]:
     """``{target: {"test": ...}}`` as :func:`thermocomp.evaluation.score` computes the test split
     (``metrics.json`` layout, without the ISO virtual test), and the predictions."""
-    pred, meas = continuation.predict(comp, ds, list(ids), mode)   # state carried over where it applies
+    ids = list(ids)
+    pred, meas, series = split_residuals(comp, ds, ids, mode)   # state carried over where it applies
     dt = sample_period(ds, ids)
-    out = {}
-    for t in comp.targets_:
-        y = {c: meas[c][t].to_numpy() for c in ids}
-        r = {c: y[c] - pred[c][t].to_numpy() for c in ids}
-        out[t] = {"test": split_scores(y, r, dt, statistic, points, with_before_after=True)}
+    out = {t: {"test": split_scores(y, r, dt, statistic, points, with_before_after=True)}
+           for t, (y, r) in series.items()}
     return out, {c: (meas[c], pred[c]) for c in ids}
 
 

@@ -64,6 +64,13 @@ class Dataset:
     name: str = ""
     meta: dict = field(default_factory=dict)
 
+    def file_path(self, cid: str) -> Path:
+        """The file campaign ``cid`` was read from (what an error names); its id for a dataset
+        made in memory."""
+        if "file" not in self.manifest.columns:
+            return Path(cid)
+        return Path(self.meta.get("path", "")) / self.manifest.loc[cid, "file"]
+
     def ids(self, split: str | None = None) -> list[str]:
         if split is None:
             return list(self.manifest.index)

@@ -78,8 +78,8 @@ class ReadOptions:
             max_period_ratio=_positive_float(cfg, "max_period_ratio", 100.0, nullable=True),
             max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
             max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
-            delimiter=str(cfg.get("delimiter", ",") if cfg.get("delimiter") is not None else ","),
-            decimal=str(cfg.get("decimal", ".") if cfg.get("decimal") is not None else "."),
+            delimiter=_text(cfg, "delimiter", ","),
+            decimal=_text(cfg, "decimal", "."),
         )
         opts._check()
         return opts
@@ -103,6 +103,12 @@ class ReadOptions:
         if self.kelvin_threshold_c <= 0.0:    # every reading above it is refused as kelvin
             raise ContractError(f"data.kelvin_threshold_c must be > 0 (°C), got "
                                 f"{self.kelvin_threshold_c:g}")
+
+
+def _text(cfg: Mapping, key: str, default: str) -> str:
+    """``cfg[key]`` as text, ``default`` when missing or null (an empty text stays, refused)."""
+    value = cfg.get(key)
+    return default if value is None else str(value)
 
 
 def _str_mapping(cfg: Mapping, key: str) -> dict:

@@ -120,7 +120,7 @@ def _error_ranges(table: pa.Table) -> dict:
     out = {}
     for name in table.column_names:
         if role(name) == "E":
-            v = table.column(name).to_numpy(zero_copy_only=False).astype(float)
+            v = _values(table.column(name))
             v = v[np.isfinite(v)]
             if len(v):
                 out[name] = (float(np.ptp(v)), len(v) >= 3 and bool(np.all(v == v[0])))

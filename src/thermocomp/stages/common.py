@@ -205,8 +205,6 @@ def check_replaceable(cfg: DictConfig, key: str, marker: str) -> None:
 def simulated_truth(cfg: DictConfig) -> tuple[Path, dict | None]:
     """``(<data.path>.truth.json, its content)``: None when there is none, or one that is no JSON
     object (said; the truth only adds figures, so a bad one costs them, not the run)."""
-    import json
-
     path = Path(f"{resolve(cfg.data.path)}.truth.json")
     if not path.is_file():
         return path, None
@@ -230,17 +228,17 @@ def ingest_settings(cfg: DictConfig) -> dict:
     return json.loads(json.dumps({"path": str(resolve(cfg.data.path)), **opts}, default=str))
 
 
-def load_ingested(cfg: DictConfig, folder: Path | None = None):
-    """``data.interim`` (or ``folder``, written from it) as ``ingest`` left it, refused when it was
-    ingested from another ``data.path`` or with other ``data.*`` reading options: a stage would
-    otherwise score a stale dataset under this config's name (an ingest predating the record
-    is read as it is)."""
-    root = resolve(cfg.data.interim) if folder is None else folder
+def load_ingested(cfg: DictConfig):
+    """``data.interim`` as ``ingest`` left it, refused when it was ingested from another
+    ``data.path`` or with other ``data.*`` reading options: a stage would otherwise score a
+    stale dataset under this config's name (an ingest predating the record is read as it is)."""
+    root = resolve(cfg.data.interim)
     ds = io.load_interim(root)
     made = ds.meta["ingest_report"].get("ingested_with")
     if made is not None:
         want = ingest_settings(cfg)
-        for key in [k for k in want if made.get(k) != want[k]][:1]:
+        key = next((k for k in want if made.get(k) != want[k]), None)
+        if key is not None:
             raise io.ContractError(
                 f"it was ingested with data.{key}={made.get(key)!r}, not {want[key]!r}: run "
                 "`thermocomp ingest` with this config first (or give another name= to keep both)",
@@ -256,12 +254,7 @@ def check_declared(cfg: DictConfig, ds) -> None:
     targets = cfg.data.get("targets")
     inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
                                       None if targets is None else list(targets))
-    check_common_columns(ds.campaigns, inputs + targets, {cid: campaign_file(ds, cid) for cid in ds.ids()})
-
-
-def campaign_file(ds, cid: str) -> Path:
-    """The file campaign ``cid`` of ``ds`` was read from (what an error names)."""
-    return Path(ds.meta.get("path", ".")) / ds.manifest.loc[cid, "file"]
+    check_common_columns(ds.campaigns, inputs + targets, {cid: ds.file_path(cid) for cid in ds.ids()})
 
 
 def check_streamed_columns(ds, ids, columns, what: str) -> None:
@@ -271,7 +264,7 @@ def check_streamed_columns(ds, ids, columns, what: str) -> None:
         absent = [c for c in columns if c not in ds.campaigns[cid].columns]
         if absent:
             raise io.ContractError(f"test campaign {cid} lacks a column {what} reads",
-                                   file=campaign_file(ds, cid), column=",".join(absent))
+                                   file=ds.file_path(cid), column=",".join(absent))
 
 
 def warn_stream_mode(cfg: DictConfig, stage: str) -> None:

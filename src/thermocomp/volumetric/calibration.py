@@ -79,7 +79,7 @@ def _identify(cal, ds, skipped, excluded=()):
                                 "measured in this cycle (the others empty"
                                 f"{' or excluded' if excluded else ''}), with any outliers left out, "
                                 "cannot identify the parameters: measure its poses again or drop the row",
-                                file=Path(ds.meta.get("path", "")) / ds.manifest.loc[cid, "file"],
+                                file=ds.file_path(cid),
                                 row=skipped[cid] + exc.cycle + 1) from None
     return out
 

@@ -41,8 +41,7 @@ def check_columns(ds: Dataset, setup: Setup) -> None:
     known = set(declared)
     poses = {p.name for p in setup.poses}
     for cid, df in ds.campaigns.items():
-        file = (Path(ds.meta.get("path", "")) / ds.manifest.loc[cid, "file"]
-                if "file" in ds.manifest else cid)
+        file = ds.file_path(cid)
         have = set(df.columns)
         for c in df.columns:        # a stray column first: it often explains a "missing" one
             m = COLUMN.match(c)
