@@ -111,6 +111,13 @@ def _cell(cid, column, row, value):
     return mutate
 
 
+def _time_jump(cid, row, seconds):
+    def mutate(ds):
+        edit_csv(ds / f"{cid}.csv", lambda df: df.__setitem__(
+            "time", df["time"] + np.where(df.index >= row - 1, seconds, 0.0)))
+    return mutate
+
+
 def _single_row(ds):
     lines = (ds / "K04.csv").read_text().splitlines()
     (ds / "K04.csv").write_text("\n".join(lines[:2]) + "\n")
@@ -188,6 +195,12 @@ READ_CASES = {
                               ["K03.csv", "column 'time'", "time in hours?"]),
     "a lone campaign in ms": (_time_scaled("K01", 1e6, only=True), [],
                               ["K01.csv", "column 'time'", "row 30", "lasts 2.014e+04 days", "ms?"]),
+    # one wild time, not a unit: the row of the jump is named, not the last row
+    "a first time 1e300 s early": (_cell("K02", "time", 1, -1e300), [],
+                                   ["K02.csv", "column 'time'", "row 1", "jumps by 1.157e+295 days"]),
+    "a logger 2 years on from row 15": (_time_jump("K03", 15, 6.4e7), [],
+                                        ["K03.csv", "column 'time'", "row 15",
+                                         "from row 14 to row 15"]),
     "°F": (_fahrenheit("K03"), [], ["K03.csv", "column 'T_", "row 1", "look like °F"]),
     "°F threshold": (lambda ds: None, ["data.fahrenheit_threshold_c=19"],
                      ["K02.csv", "column 'T_", "row 1", "data.fahrenheit_threshold_c=19"]),
@@ -421,6 +434,50 @@ def test_a_killed_run_removes_its_temp_files(paths, capsys, monkeypatch, signum,
     assert snapshot(paths["out"]) == before
     assert said in capsys.readouterr().err
     assert signal.getsignal(signal.SIGTERM) == handler
+
+
+def test_sigterm_while_reading_ends_the_stage_with_status_1_and_says_so(paths, capsys,
+                                                                        monkeypatch):
+    # outside any MLflow run or file write (ingest without tracking, still reading): before,
+    # the default handler ended the process with 143 and no word
+    def stray(signum, frame):
+        raise AssertionError("SIGTERM reached the caller's handler")
+
+    def killed(*args, **kwargs):
+        signal.raise_signal(signal.SIGTERM)
+        raise AssertionError("not reached")
+
+    monkeypatch.setattr("thermocomp.io.ingest", killed)
+    previous = signal.signal(signal.SIGTERM, stray)
+    try:
+        assert main(["ingest", *paths["args"]]) == 1
+        assert signal.getsignal(signal.SIGTERM) == stray
+    finally:
+        signal.signal(signal.SIGTERM, previous)
+    err = capsys.readouterr().err
+    assert "ingest terminated (SIGTERM)" in err and "AssertionError" not in err
+    assert not paths["interim"].exists() and not paths["out"].exists()
+
+
+def test_a_library_warning_is_one_log_line(paths, capsys, monkeypatch):
+    import warnings
+
+    from thermocomp.stages import modelling
+
+    fit = modelling.anova
+
+    def warns(*args, **kwargs):
+        warnings.warn("the solver did not converge\n  within 100 steps", UserWarning)
+        return fit(*args, **kwargs)
+
+    monkeypatch.setattr(modelling, "anova", warns)
+    assert main(["run", *paths["args"]]) == 0
+    err = capsys.readouterr().err
+    said = [ln for ln in err.splitlines() if "did not converge" in ln]
+    assert said == ["[thermocomp] warning: UserWarning: the solver did not converge within 100 "
+                    "steps (test_hostile.py:"
+                    f"{warns.__code__.co_firstlineno + 1})"], err
+    assert "warnings.warn(" not in err
 
 
 def test_stale_temp_folders_of_dead_processes_are_swept(paths):

@@ -125,3 +125,36 @@ def test_a_loaded_model_is_named_by_its_family_as_a_fitted_one():
     assert model_family(Compensator(PCR())) == "pcr"
     assert model_family(Compensator(ATIRegressor(PCR()))) == "pcr"
     assert model_family(Compensator(AugmentedRegressor(ATIRegressor(PCR())))) == "pcr+diagnosed"
+
+
+def test_a_test_campaign_without_a_target_streams_and_is_scored_where_measured(door_data, tmp_path):
+    """A stream carries no error column on the machine: replay and monitor score a target on
+    the campaigns that recorded it (before: exit 2, 'column E_Z: 1 of 3 campaigns lack it')."""
+    import shutil
+
+    import pandas as pd
+
+    index = pd.read_csv(door_data / "campaigns.csv")
+    first, *others = index[index["split"] == "test"]["campaign"]
+    lacking, without = tmp_path / "lacking", tmp_path / "without"
+    shutil.copytree(door_data, lacking)
+    shutil.copytree(door_data, without)
+    df = pd.read_csv(lacking / f"{first}.csv")
+    df.drop(columns=["E_Z"]).to_csv(lacking / f"{first}.csv", index=False)
+    index[index["campaign"] != first].to_csv(without / "campaigns.csv", index=False)
+    reports = {}
+    for stage, name in (("replay", "replay.json"), ("monitor", "monitor.json")):
+        for label, path in (("full", door_data), ("lacking", lacking), ("without", without)):
+            out = tmp_path / f"{stage}_{label}"
+            thermocomp(stage, f"data.path={path}", f"out={out}", "track=false", "plots=none")
+            reports[stage, label] = json.loads((out / name).read_text())["targets"]
+    key = {"replay": "rmse", "monitor": "rmse_fixed"}
+    for stage in ("replay", "monitor"):
+        got = reports[stage, "lacking"]
+        # E_Z is scored on the other test campaigns only, E_X on all of them
+        assert got["E_Z"][key[stage]] == pytest.approx(reports[stage, "without"]["E_Z"][key[stage]],
+                                                       rel=1e-9)
+        assert got["E_X"][key[stage]] == pytest.approx(reports[stage, "full"]["E_X"][key[stage]],
+                                                       rel=1e-9)
+        assert got["E_Z"][key[stage]] != pytest.approx(reports[stage, "full"]["E_Z"][key[stage]],
+                                                       rel=1e-6)

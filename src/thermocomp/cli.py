@@ -423,9 +423,12 @@ def _per_job(cfg):
 def _run(stage: str, fn, cfg, args: list[str]):
     """Run stage ``fn`` on ``cfg`` with its log file (``<out>/thermocomp.log`` on success)."""
     from . import log
+    from .files import signals_raise
 
     _guarded(_check_seed, cfg)   # before anything is written, the log file included
-    with log.run_log(_log_folder(stage, cfg)):
+    # SIGTERM anywhere in the stage (reading, fitting) ends it with status 1 and a message,
+    # as the contract's statuses say, not 143; a library's warnings go to the log, one line each
+    with signals_raise(), log.warnings_logged(), log.run_log(_log_folder(stage, cfg)):
         log.logger.debug("thermocomp %s: %s %s", version(), stage, " ".join(args))
         return _guarded(fn, cfg)
 

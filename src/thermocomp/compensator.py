@@ -171,7 +171,10 @@ class Compensator(BaseEstimator):
         return {cid: out[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}
 
     def measured(self, campaigns: Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
-        """Measured targets per campaign in the same reference frame as ``predict``."""
+        """Measured targets per campaign in the same reference frame as ``predict``; a target
+        a campaign did not record (a stream scored where it was measured) is NaN there."""
+        campaigns = {cid: df.assign(**{t: np.nan for t in self.targets_ if t not in df.columns})
+                     for cid, df in campaigns.items()}
         m = stack(campaigns, [], self.targets_, self.reference)
         return {cid: m.Y[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}
 

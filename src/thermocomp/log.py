@@ -19,6 +19,7 @@ import os
 import shutil
 import sys
 import tempfile
+import warnings
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -117,3 +118,18 @@ def run_log(folder=None):
 def current_file() -> Path | None:
     """The log file of the stage run under way, if any (what MLflow logs as an artifact)."""
     return _run_files[-1] if _run_files else None
+
+
+@contextmanager
+def warnings_logged():
+    """Within the block a Python warning (a library's ``UserWarning``, numpy's
+    ``RuntimeWarning``, ...) is logged as one ``[thermocomp] warning:`` line naming its
+    category and source file (its lines joined), instead of the interpreter's two raw lines; the filters
+    (each shown once per place) and the previous display come back after."""
+    def show(message, category, filename, lineno, file=None, line=None):
+        logger.warning("%s: %s (%s:%d)", category.__name__, " ".join(str(message).split()),
+                       Path(filename).name, lineno)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        yield

@@ -77,10 +77,18 @@ def _check_increasing(seconds: np.ndarray, path: Path) -> None:
 
 def _check_duration(seconds: np.ndarray, path: Path, max_days: float | None) -> None:
     days = (seconds[-1] - seconds[0]) / 86400
-    if max_days is not None and days > max_days:
-        raise ContractError(f"the campaign lasts {days:.4g} days, more than "
-                            f"data.max_duration_days={max_days:g}: is time in ms? it must be "
-                            "in seconds", file=path, column=TIME, row=len(seconds))
+    if max_days is None or days <= max_days:
+        return
+    limit = f"more than data.max_duration_days={max_days:g}"
+    steps = np.diff(seconds)
+    i = int(np.argmax(steps))
+    if steps[i] > 0.5 * (seconds[-1] - seconds[0]):   # one jump, not a unit: name its row
+        row = 1 if i == 0 else i + 2      # a first time far before the rest is the odd one
+        raise ContractError(f"time jumps by {steps[i] / 86400:.4g} days from row {i + 1} to "
+                            f"row {i + 2}: the campaign would last {days:.4g} days, {limit}",
+                            file=path, column=TIME, row=row)
+    raise ContractError(f"the campaign lasts {days:.4g} days, {limit}: is time in ms? it must be "
+                        "in seconds", file=path, column=TIME, row=len(seconds))
 
 
 def _median_period(table: pa.Table) -> float | None:

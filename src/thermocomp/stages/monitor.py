@@ -202,7 +202,7 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
     counts = np.zeros((len(names), len(STATES)), dtype=np.int64)
     first_alarm: dict = {}
     events, traces = [], {}
-    measured = comp.measured(streamed) if all(t in df.columns for df in streamed.values()
+    measured = comp.measured(streamed) if any(t in df.columns for df in streamed.values()
                                               for t in comp.targets_) else None
     res_f, res_a, corr = [], [], []
     for cid, df in streamed.items():
