@@ -648,6 +648,47 @@ def test_too_few_poses_are_refused_naming_what_they_cannot_see(raw, tmp_path, ca
     assert "E_YY1" in report["unidentifiable"] and "E_YY1" not in report["parameters"]
 
 
+def test_poses_that_see_a_kind_only_faintly_are_refused(tmp_path, capsys):
+    """Two bars along X and Y with offset balls (an outside probe's set-up): Z's
+    straightness and squareness are seen through the offsets alone, to hundreds of µm a cycle.
+    A rank test passed it (exit 0, a 'compensated' VCE of 617 µm); the uncertainty does not."""
+    gen = LargeMillVolumetric(train_hours=1.0, test_hours=1.0, misalignment_deg=10.0,
+                              sets=("S1",), seed=1)
+    data = simulated(gen, tmp_path / "raw")
+    out = tmp_path / "out"
+    calibrate(data, tmp_path / "all")               # the three axes are fine
+    _keep_poses(data, {"S1x1d1", "S1x1d2"})        # along X and Y
+    line = refused(["calibrate", f"data.path={data}", f"out={out}", "track=false"], capsys,
+                   "the poses S1x1d1, S1x1d2 see", "only faintly", "(straightness, ±", SETUP_FILE,
+                   "calibrate.require_seen=[]")
+    assert "E_ZZ1" in line or "E_ZX" in line or "E_XZ" in line or "E_YZ" in line
+    assert not out.exists()
+    report = calibrate(data, out, "calibrate.require_seen=[]")     # on request, as it is
+    assert max(p["uncertainty"] for p in report["parameters"].values()) > 100 * np.hypot(0.5, 0.5)
+
+
+def test_a_pose_off_in_many_cycles_is_named_as_suspect(tmp_path, capsys):
+    """Offset balls declared on the wrong side (θ -10° for 10°): no outlier on the right
+    description, outliers in several cycles of some poses on the wrong one, named with a
+    warning (an outside probe's had 191 outliers, 144 in one pose, and no word)."""
+    data = simulated(LargeMillVolumetric(train_hours=2.0, test_hours=2.0, misalignment_deg=10.0,
+                                         seed=2), tmp_path / "raw")
+    assert calibrate(data, tmp_path / "ok")["suspect_poses"] == []
+    assert "suspect" not in capsys.readouterr().err
+    setup = json.loads((data / SETUP_FILE).read_text())
+    setup["artefact"]["misalignment_deg"] = -10.0
+    (data / SETUP_FILE).write_text(json.dumps(setup))
+    report = calibrate(data, tmp_path / "bad")
+    suspect = report["suspect_poses"]
+    assert suspect and all(e["cycles"] >= 3 and e["share"] > 0.05 for e in suspect)
+    assert [e["cycles"] for e in suspect] == sorted((e["cycles"] for e in suspect), reverse=True)
+    pose = suspect[0]["pose"]
+    assert sum(o["pose"] == pose for o in report["outliers"]) >= suspect[0]["cycles"]
+    err = capsys.readouterr().err
+    assert f"pose {pose} has outliers in {suspect[0]['cycles']} of 14 cycles" in err
+    assert "misalignment_deg declared right" in err
+
+
 def test_a_dataset_without_setup_is_refused(raw, tmp_path, capsys):
     data = copy(raw, tmp_path)
     (data / SETUP_FILE).unlink()

@@ -168,6 +168,13 @@ def _campaign_semicolons(ds):
     df.to_csv(ds / "K01.csv", index=False, sep=";", decimal=",")
 
 
+def _wide_semicolons(ds):
+    # a volumetric record has hundreds of columns: the message showed its whole 8 kB header
+    df = pd.read_csv(ds / "K01.csv")
+    extra = pd.DataFrame({f"T_extra{k:03d}": df["T_0"] for k in range(200)})
+    pd.concat([df, extra], axis=1).to_csv(ds / "K01.csv", index=False, sep=";", decimal=",")
+
+
 READ_CASES = {
     "non-UTF-8 manifest": (_non_utf8_manifest, [],
                            ["campaigns.csv", "column 'notes'", "row 2", "0xe9 is not UTF-8"]),
@@ -209,6 +216,9 @@ READ_CASES = {
     ";-separated campaign": (_campaign_semicolons, [],
                              ["K01.csv", "one column 'time;T_0;T_amb;E_X'",
                               "set data.delimiter=';' data.decimal=','"]),
+    ";-separated, 200 columns": (_wide_semicolons, [],
+                                 ["K01.csv", "one column 'time;T_0;T_amb;E_X;T_extra000;",
+                                  "... (2218 characters)'", "set data.delimiter=';' data.decimal=','"]),
 }
 
 

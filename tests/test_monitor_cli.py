@@ -262,6 +262,19 @@ def test_a_test_campaign_with_missing_values_streams_and_counts_them(small, tmp_
     assert all(t["rmse_adaptive"] is not None for t in report["targets"].values())
 
 
+def test_a_map_time_after_the_campaign_is_said(small, tmp_path, capsys):
+    # 1e300 h was drawn at the last sample without a word
+    out = tmp_path / "out"
+    assert main(["monitor", f"data.path={small}", f"out={out}", "track=false", "plots=summary",
+                 "monitor.map_time_h=1e300"]) == 0
+    said = [ln for ln in capsys.readouterr().err.splitlines() if "map_time_h" in ln]
+    assert len(said) == 1 and "after the end of campaign" in said[0] and "last sample" in said[0]
+    assert (out / "monitor" / "sensor_map.png").exists()
+    assert main(["monitor", f"data.path={small}", f"out={tmp_path / 'o2'}", "track=false",
+                 "plots=summary", "monitor.map_time_h=1"]) == 0
+    assert "map_time_h" not in capsys.readouterr().err
+
+
 def _set_cells(path: Path, split: str, column: str, rows: slice, value: float) -> tuple[str, str]:
     index = pd.read_csv(path / "campaigns.csv")
     cid, file = index[index["split"] == split][["campaign", "file"]].iloc[0]

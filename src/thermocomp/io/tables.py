@@ -98,7 +98,8 @@ def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> 
             comma = sep != "," and opts.decimal != "," and any(
                 re.fullmatch(r"[+-]?\d+,\d+", c.strip()) for c in cells)
             hint = " data.decimal=','" if comma else ""
-            raise ContractError(f"file looks {sep!r}-separated (one column {header!r}): "
+            shown = header if len(header) <= 80 else f"{header[:60]}... ({len(header)} characters)"
+            raise ContractError(f"file looks {sep!r}-separated (one column {shown!r}): "
                                 f"set data.delimiter={sep!r}{hint}", file=path)
 
 

@@ -156,7 +156,8 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         Per interval, whether its model takes the ambient interaction.
     elbow_ : dict or None
         ``n_intervals``, ``sm``, ``sd`` (µm) per candidate, ``chosen``,
-        ``single_model`` (the one-model CV SM/SD) and ``reason`` when no
+        ``single_model`` (the CV SM/SD of one interval: this wrapper's, with the ambient
+        interaction when it is on, not the bare base model) and ``reason`` when no
         candidate could be cross-validated.
     campaign_ambient_ : dict campaign -> initial ambient (°C) of the training data
     """

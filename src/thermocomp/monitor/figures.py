@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..log import logger
 from ..plots import plt, save_figure
 from .surveillance import STATES
 
@@ -46,6 +47,9 @@ def draw(folder: Path, adaptive, traces: dict, report: dict, map_time_h=None) ->
     out.append(save_figure(fig, folder / "self_prediction.png"))
 
     # 2. sensor map state at an instant
+    if map_time_h is not None and float(map_time_h) > hours[-1]:
+        logger.warning(f"monitor.map_time_h={float(map_time_h):g} is after the end of campaign {cid} "
+                       f"({hours[-1]:.4g} h): the sensor map shows its last sample")
     if map_time_h is None:
         first = [e for e in report["events"] if e["campaign"] == cid and e["to"] in ("alarm", "excluded")
                  and e.get("sensor") in report["sensors"]]

@@ -129,14 +129,21 @@ def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
             ball_um=ball if d["ball_um"] is None else d["ball_um"], grid=d["grid"],
             n_machines=d["n_machines"], n_jobs=d["n_jobs"], seed=int(cfg.seed),
             prior_sd=sd)
-        for strategy in strategies(d["studies"])[0]:     # is every ball where a probe can go?
+        todo = strategies(d["studies"])[0]
+        unreachable: dict[str, list[str]] = {}     # is every ball where a probe can go?
+        for strategy in todo:
             setup = study.setup(strategy)
             try:
                 check_reach(setup.model, setup.array, setup.poses)
             except ValueError as err:     # studied all the same: a what-if, not a measurement
-                logger.warning(f"design: {strategy.n_balls} balls over {study.length_mm:g} mm at "
-                               f"{strategy.misalignment_deg:g}° ({strategy.position_set}): {err}")
-                break
+                unreachable.setdefault(str(err), []).append(
+                    f"{strategy.n_balls} balls at {strategy.misalignment_deg:g}° ({strategy.position_set})")
+        if unreachable:
+            n = sum(len(v) for v in unreachable.values())
+            logger.warning(f"design: {n} of {len(todo)} strategies put a ball outside the travel "
+                           f"({study.length_mm:g} mm bar), studied all the same (reachable: false in "
+                           "design.json): " + "; ".join(f"{', '.join(who)}: {why}"
+                                                        for why, who in unreachable.items()))
     except ValueError as err:
         raise ConfigError(f"design: {err}") from None
     return study, d["studies"], source
@@ -177,16 +184,20 @@ def design(cfg: DictConfig) -> dict:
 def _print(report: dict) -> None:
     print(f"VE (median, p95): {report['ve']['median']:.2f}, {report['ve']['p95']:.2f} µm "
           f"over {report['n_machines']} machines")
-    print(f"{'set':<10} {'balls':>5} {'θ (°)':>6} {'VCE med':>8} {'p95':>7} {'impr.':>6} {'ident.':>6}")
+    print(f"{'set':<10} {'balls':>5} {'θ (°)':>6} {'VCE med':>8} {'p95':>7} {'impr.':>6} {'ident.':>6} "
+          f"{'no noise':>8} {'noise':>6}")
     for r in report["strategies"]:
         print(f"{r['position_set']:<10} {r['n_balls']:>5} {r['misalignment_deg']:>6g} "
-              f"{r['median']:>8.2f} {r['p95']:>7.2f} {r['improvement_pct']:>5.0f}% {r['n_identified']:>6}")
+              f"{r['median']:>8.2f} {r['p95']:>7.2f} {r['improvement_pct']:>5.0f}% {r['n_identified']:>6} "
+              f"{r['noise_free_median']:>8.2f} {r['noise_only_median']:>6.2f}")
     f = report["findings"]
     if "balls_for_95pct" in f:
         print(f"95 % of the best improvement with {f['balls_for_95pct']} balls")
     for s, m in f.get("misalignment", {}).items():
         print(f"misalignment, {s}: VCE {m['vce_aligned']:.2f} at {m['aligned_deg']:g}° -> "
-              f"{m['vce_best']:.2f} at {m['best_deg']:g}° ({m['reduction_pct']:.0f} % less)")
+              f"{m['vce_best']:.2f} at {m['best_deg']:g}° ({m['reduction_pct']:.0f} % less); "
+              f"noise-free {m['noise_free'][0]:.2f} -> {m['noise_free'][1]:.2f}, noise alone "
+              f"{m['noise_only'][0]:.2f} -> {m['noise_only'][1]:.2f}")
     if "best_position_set" in f:
         b = f["best_position_set"]
         print(f"best position set: {b['position_set']} (VCE {b['median']:.2f} µm, "

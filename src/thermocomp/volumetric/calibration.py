@@ -30,16 +30,34 @@ def _kinds(setup) -> dict:
     return {p.name: p for p in setup.model.parameters}
 
 
+FAINT = 100.0     # a parameter known per cycle to no better than this × the distance noise is not seen
+
+
 def _require_seen(cal: ArtefactCalibration, setup, kinds) -> None:
-    """A pose set that cannot see a parameter of a required kind is bad input: name both."""
+    """A pose set that cannot see a parameter of a required kind is bad input: name both.  So is
+    one that sees it only faintly (an outside probe's two bars in the XY plane at 10°: Z's
+    straightness and squareness seen through the balls' 20 mm offsets alone, E_ZX1 to ±788 µm a
+    cycle, and a 'compensated' VCE of 617 µm, exit 0): a rank test passes it, its standard
+    uncertainty per cycle more than FAINT times the noise of one distance does not."""
     params = _kinds(setup)
+    poses = ", ".join(p.name for p in setup.poses)
+    fix = ("add poses (position sets S1 axes, S2 volume diagonals, S3 face diagonals) or "
+           "calibrate.require_seen=[]")
     unseen = [n for n in cal.unidentifiable_ if params[n].kind in kinds]
     if unseen:
-        poses = [p.name for p in setup.poses]
         what = ", ".join(f"{n} ({params[n].kind})" for n in unseen)
-        raise ContractError(f"the poses {', '.join(poses)} cannot see {what}: add poses (position "
-                            "sets S1 axes, S2 volume diagonals, S3 face diagonals) or "
-                            "calibrate.require_seen=[]", file=setup_path(cal))
+        raise ContractError(f"the poses {poses} cannot see {what}: {fix}", file=setup_path(cal))
+    if cal.prior_sd is not None:        # a prior bounds every uncertainty: nothing is unseen
+        return
+    noise = math.hypot(setup.probing_um, setup.ball_um)
+    faint = sorted(((u, n) for u, n in zip(cal.uncertainty_, cal.names_)
+                    if params[n].kind in kinds and u > FAINT * noise), reverse=True)
+    if faint:
+        what = ", ".join(f"{n} ({params[n].kind}, ±{u:.3g} {params[n].unit})" for u, n in faint[:4])
+        more = f" and {len(faint) - 4} more" if len(faint) > 4 else ""
+        raise ContractError(f"the poses {poses} see {what}{more} only faintly: standard uncertainty "
+                            f"per cycle over {FAINT:g} times the {noise:.2g} µm noise of a distance "
+                            f"(probing and ball uncertainty_um); {fix}", file=setup_path(cal))
 
 
 def prior_sd(model, prior: dict | None):
@@ -125,6 +143,22 @@ def _check_fits(cal: ArtefactCalibration, ds, skipped) -> None:
         file=setup_path(cal), column=worst["column"])
 
 
+def flagged(report: dict, campaign: str, columns: list[str], n_cycles: int) -> np.ndarray:
+    """``(n_cycles, len(columns))`` True where calibration ``report`` (``calibration.json``) left
+    a distance out of its cycle: an outlier of that cycle, or a column ``excluded`` from all."""
+    mask = np.zeros((n_cycles, len(columns)), bool)
+    where = {c: j for j, c in enumerate(columns)}
+    for e in report.get("excluded", []):
+        if e["column"] in where:
+            mask[:, where[e["column"]]] = True
+    start = report.get("trimmed", {}).get(campaign, {}).get("start", 0)
+    for o in report.get("outliers", []):
+        cycle = o["row"] - 1 - start         # rows named are the file's
+        if o["campaign"] == campaign and o["column"] in where and 0 <= cycle < n_cycles:
+            mask[cycle, where[o["column"]]] = True
+    return mask
+
+
 def _described(column: str) -> dict:
     m = COLUMN.match(column)
     return {"column": column, "pose": m["pose"], "balls": [int(m["i"]), int(m["j"])]}
@@ -161,6 +195,7 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
         result = _identify(cal, ds, skipped, excluded)
     report = _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped)
     report["prior"] = prior
+    report["suspect_poses"] = _suspect_poses(report["outliers"], n_cycles)
     report["repairs"] = read["repairs"]          # T_/S_ gaps interpolated (data.max_gap_samples)
     report["trimmed"] = {cid: e["trimmed"] for cid, e in read["campaigns"].items()
                          if any(e["trimmed"].values())}
@@ -171,6 +206,28 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
         campaigns[cid] = pd.concat([keep, P], axis=1)
     params = io.Dataset(ds.manifest.copy(), campaigns, name=ds.name, meta=dict(ds.meta))
     return params, cal, report, ds
+
+
+SUSPECT = 0.05    # a pose with outliers in more than this share of the cycles is described wrongly?
+
+
+def _suspect_poses(outliers: list[dict], n_cycles: int) -> list[dict]:
+    """Poses with outliers in more than ``SUSPECT`` of the cycles (and 3 at least), worst first,
+    with a warning: a mis-probed ball is one cycle's, a pose whose direction, centre or the
+    artefact's misalignment is declared wrong is off in many (an outside probe's θ declared
+    -10° for 10°: 144 outliers in 84 of 218 cycles of one pose, 191 in all, and no word)."""
+    cycles: dict[str, set] = {}
+    for o in outliers:
+        cycles.setdefault(o["pose"], set()).add((o["campaign"], o["row"]))
+    out = sorted(({"pose": p, "cycles": len(c), "share": len(c) / n_cycles} for p, c in cycles.items()
+                  if len(c) >= 3 and len(c) > SUSPECT * n_cycles), key=lambda e: -e["cycles"])
+    if out:
+        logger.warning("calibrate: %s: is the direction or centre of %s, or the artefact's "
+                       "n_balls, length_mm or misalignment_deg declared right in %s?",
+                       ", ".join(f"pose {e['pose']} has outliers in {e['cycles']} of {n_cycles} cycles"
+                                 for e in out[:3]),
+                       "it" if len(out) == 1 else "them", SETUP_FILE)
+    return out
 
 
 def _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped) -> dict:

@@ -49,10 +49,15 @@ def _rms(x) -> float:
     return float(np.sqrt(np.mean(x ** 2))) if x.size else float("nan")
 
 
+def _finite(x) -> np.ndarray:
+    x = np.ravel(np.asarray(x, float))
+    return x[np.isfinite(x)]
+
+
 def _pair(before, after) -> dict:
     b, a = _rms(before), _rms(after)
     return {"rms_before": b, "rms_after": a, "rms_reduction_pct": reduction_pct(b, a),
-            "p2p_before": p2p(np.ravel(before)), "p2p_after": p2p(np.ravel(after))}
+            "p2p_before": p2p(_finite(before)), "p2p_after": p2p(_finite(after))}
 
 
 def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarray],
@@ -65,7 +70,8 @@ def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarr
     Parameters
     ----------
     cal : fitted ArtefactCalibration (its ``names_`` are the parameter columns)
-    distances : campaign -> (n, m) measured distance deviations (µm, absolute)
+    distances : campaign -> (n, m) measured distance deviations (µm, absolute; NaN: not measured
+        or left out), each taken from its first cycle measured
     changes, predicted : campaign -> (n, k) identified parameter change since the first cycle,
         and the thermal model's prediction of it (0 where a parameter is not modelled)
     times : campaign -> (n,) s since the campaign start
@@ -82,8 +88,14 @@ def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarr
     full = dict(truth) if truth is not None else identified
     resid = {c: full[c] - compensation[c] for c in ids}
 
-    d_before = {c: distances[c] - distances[c][:1] for c in ids}
-    d_after = {c: d_before[c] - cal.predict(predicted[c]) for c in ids}
+    d_before, d_after = {}, {}
+    for c in ids:      # each distance from its first cycle measured (NaN: left out or not measured)
+        D = distances[c]
+        first = np.argmax(np.isfinite(D), axis=0)
+        residual = D - cal.predict(predicted[c])
+        cols = np.arange(D.shape[1])
+        d_before[c] = D - D[first, cols]
+        d_after[c] = residual - residual[first, cols]
     out = {"reference": "truth" if truth is not None else "identified",
            "campaigns": ids, "n_cycles": int(sum(len(times[c]) for c in ids)),
            "distance_error": _pair(np.concatenate([d_before[c] for c in ids]),
