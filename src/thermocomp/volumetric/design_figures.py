@@ -14,7 +14,8 @@ def _band(ax, x, rows, label):
 
 
 def draw(folder, result: dict) -> list[Path]:
-    """``balls.png`` (VCE vs balls), ``misalignment.png`` (VCE vs θ per set) and
+    """``balls.png`` (VCE vs balls), ``misalignment.png`` (VCE vs θ per set, with the VCE of
+    the noise-free distances and of the noise alone) and
     ``position_sets.png`` (VCE per set vs probed points), each with VE as a reference."""
     folder = Path(folder)
     rows, ve = result["strategies"], result["ve"]
@@ -39,7 +40,14 @@ def draw(folder, result: dict) -> list[Path]:
         fig, axes = plt.subplots(1, len(sets), figsize=(5 * len(sets), 4), sharey=True, squeeze=False)
         for ax, s in zip(axes[0], sets):
             rs = sorted((r for r in mis if r["position_set"] == s), key=lambda r: r["misalignment_deg"])
-            _band(ax, [r["misalignment_deg"] for r in rs], rs, "VCE")
+            theta = [r["misalignment_deg"] for r in rs]
+            _band(ax, theta, rs, "VCE")
+            # why: the VCE of the noise-free distances and of the noise alone (the identified
+            # error is the sum of the two errors, not of their RMS)
+            ax.plot(theta, [r["noise_free_median"] for r in rs], "s:", ms=3, lw=1,
+                    label="noise-free distances (median)")
+            ax.plot(theta, [r["noise_only_median"] for r in rs], "^:", ms=3, lw=1,
+                    label="probing and ball noise alone (median)")
             ax.axhline(ve["median"], color="k", ls="--", label="VE (median)")
             ax.set(xlabel="misalignment θ (°)", ylabel="µm", title=f"{s}, {rs[0]['n_balls']} balls",
                    ylim=(0, None))
