@@ -818,3 +818,19 @@ def test_the_parameter_dataset_never_replaces_data_or_a_folder_of_something_else
     for _ in range(2):
         calibrate(data, tmp_path / "out", f"calibrate.dataset={series}")
     assert (series / "campaigns.csv").is_file()
+
+
+@pytest.mark.parametrize("stage", ["calibrate", "run", "ingest"])
+@pytest.mark.parametrize("prior, says", [
+    ("{positioning:10}", "missing ['straightness', 'squareness', 'angular']"),
+    ("{positioning:10,straightness:8,squareness:8,angular:6,bogus:1}", "unknown ['bogus']")])
+def test_a_prior_without_every_kind_is_one_line_before_any_reading(raw, tmp_path, capsys, stage,
+                                                                   prior, says):
+    # it was found after the data had been read (a progress line first, then the error)
+    out = tmp_path / "out"
+    code = main([stage, "experiment=volumetric_large_mill", f"data.path={raw}", f"out={out}",
+                 f"data.interim={tmp_path / 'interim'}", "track=false", f"calibrate.prior={prior}"])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1, err
+    assert err[0].startswith("thermocomp: error: calibrate.prior needs a range") and says in err[0]
+    assert not out.exists() and not (tmp_path / "interim").exists()

@@ -139,6 +139,8 @@ def test_the_command_writes_design_json_and_figures(tmp_path):
 @pytest.mark.parametrize("override, says", [
     ("design.n_machines=0", "design.n_machines"),
     ("design.studies.balls.position_sets=[S4]", "position_sets"),
+    # every S1 pose measured twice, without a word
+    ("design.studies.balls.position_sets=[S1+S1]", "each at most once"),
     ("design.ranges.wobble=3", "design.ranges.wobble"),
     ("design.grid=[8,5]", "design.grid"),
     ("design.machine.order=1", "design.machine.order"),
@@ -161,6 +163,24 @@ def test_bad_design_config_exits_2_and_writes_nothing(override, says, tmp_path, 
     out = tmp_path / "d"
     refused(["design", "track=false", f"out={out}", override], capsys, says)
     assert not out.exists()
+
+
+def test_a_study_where_no_strategy_improves_says_so(tmp_path, capsys):
+    # 1 mm of probing noise (allowed), or a machine without errors: VCE above VE everywhere;
+    # a StopIteration traceback and exit 1 before
+    from thermocomp.cli import main
+
+    for extra in (["design.probing_um=1000"],
+                  [f"design.ranges.{k}=0" for k in ("positioning", "straightness", "squareness",
+                                                     "angular", "cross")]):
+        out = tmp_path / extra[0]
+        assert main(["design", *TINY, "plots=none", f"out={out}", *extra]) == 0
+        report = json.loads((out / "design.json").read_text())
+        assert report["findings"]["balls_for_95pct"] is None
+        assert all(r["median"] > report["ve"]["median"] for r in report["strategies"])
+        assert "no number of balls improves" in capsys.readouterr().out
+    assert report["ve"]["median"] == 0 and all(r["improvement_pct"] is None
+                                               for r in report["strategies"])
 
 
 def test_balls_beyond_the_travel_are_studied_with_a_warning(tmp_path, capsys):

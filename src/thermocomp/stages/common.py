@@ -441,8 +441,12 @@ def check_calibrate(c: DictConfig) -> None:
     check_values(c, CALIBRATE_RULES, "calibrate")
     prior = c.get("prior")
     if prior is not None:    # a range per kind (decay: one number), or one per Legendre order
+        from ..volumetric.calibration import check_prior_kinds
+
         check_values(prior, {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0))
                              for k in prior}, "calibrate.prior")
+        # the kinds every machine has (cross only with its cross terms: checked with the model)
+        check_prior_kinds(prior, {"positioning", "straightness", "squareness", "angular"})
 
 
 def calibrated_dataset(cfg: DictConfig):
@@ -461,6 +465,15 @@ def calibrated_dataset(cfg: DictConfig):
 def calibration_prior(c: DictConfig) -> dict | None:
     """``calibrate.prior`` as a plain mapping (its interpolations resolved), or None."""
     return None if c.get("prior") is None else OmegaConf.to_container(c.prior, resolve=True)
+
+
+def check_volumetric(cfg: DictConfig) -> None:
+    """``calibrate.*`` checked when ``data.path`` is a volumetric dataset: before a stage says
+    anything, so a bad value is one line."""
+    from ..volumetric import SETUP_FILE
+
+    if (resolve(cfg.data.path) / SETUP_FILE).is_file():
+        check_calibrate(cfg.calibrate)
 
 
 def volumetric_calibration(cfg: DictConfig):

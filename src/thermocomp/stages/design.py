@@ -40,7 +40,12 @@ from .common import calibration_prior, check_calibrate, check_config, say
 
 
 def _position_sets(v) -> bool:
-    return texts()(v) and all(p.strip() in POSITION_SETS for ps in v for p in str(ps).split("+"))
+    if not texts()(v):
+        return False
+    parts = [[p.strip() for p in str(ps).split("+")] for ps in v]
+    # each set once: 'S1+S1' measured every S1 pose twice without a word
+    return all(p in POSITION_SETS for ps in parts for p in ps) and all(
+        len(set(ps)) == len(ps) for ps in parts)
 
 
 MAX_GRID = 1_000_000          # VCE grid points: ~24 MB per machine at most, not a MemoryError
@@ -59,7 +64,8 @@ STUDY_RULES = {
     "n_balls": integers(2, MAX_BALLS),
     "misalignment_deg": Rule(lambda v: numbers(0.0)(v) and all(x < 90 for x in v),
                              "a non-empty list of angles in [0, 90)"),
-    "position_sets": Rule(_position_sets, f"a non-empty list of '+'-joined {', '.join(POSITION_SETS)}"),
+    "position_sets": Rule(_position_sets, f"a non-empty list of '+'-joined {', '.join(POSITION_SETS)}, "
+                                          "each at most once"),
 }
 
 
@@ -181,6 +187,10 @@ def design(cfg: DictConfig) -> dict:
     return report
 
 
+def _pct(value) -> str:
+    return "n/a" if value is None else f"{value:.0f} %"
+
+
 def _print(report: dict) -> None:
     print(f"VE (median, p95): {report['ve']['median']:.2f}, {report['ve']['p95']:.2f} µm "
           f"over {report['n_machines']} machines")
@@ -188,14 +198,16 @@ def _print(report: dict) -> None:
           f"{'no noise':>8} {'noise':>6}")
     for r in report["strategies"]:
         print(f"{r['position_set']:<10} {r['n_balls']:>5} {r['misalignment_deg']:>6g} "
-              f"{r['median']:>8.2f} {r['p95']:>7.2f} {r['improvement_pct']:>5.0f}% {r['n_identified']:>6} "
+              f"{r['median']:>8.2f} {r['p95']:>7.2f} {_pct(r['improvement_pct']):>6} {r['n_identified']:>6} "
               f"{r['noise_free_median']:>8.2f} {r['noise_only_median']:>6.2f}")
     f = report["findings"]
-    if "balls_for_95pct" in f:
+    if f.get("balls_for_95pct") is not None:
         print(f"95 % of the best improvement with {f['balls_for_95pct']} balls")
+    elif "balls_for_95pct" in f:
+        print("no number of balls improves on the uncompensated machine (VCE above VE)")
     for s, m in f.get("misalignment", {}).items():
         print(f"misalignment, {s}: VCE {m['vce_aligned']:.2f} at {m['aligned_deg']:g}° -> "
-              f"{m['vce_best']:.2f} at {m['best_deg']:g}° ({m['reduction_pct']:.0f} % less); "
+              f"{m['vce_best']:.2f} at {m['best_deg']:g}° ({_pct(m['reduction_pct'])} less); "
               f"noise-free {m['noise_free'][0]:.2f} -> {m['noise_free'][1]:.2f}, noise alone "
               f"{m['noise_only'][0]:.2f} -> {m['noise_only'][1]:.2f}")
     if "best_position_set" in f:

@@ -18,6 +18,7 @@ from ..tracking import stage_run
 from .common import (
     check_config,
     check_replaceable,
+    check_volumetric,
     data_options,
     ingest_settings,
     say,
@@ -29,6 +30,7 @@ def ingest(cfg: DictConfig) -> dict:
     """Validate ``data.path`` and write it as Parquet to ``data.interim`` with a report."""
     check_config(cfg, outputs=("data.interim",))
     check_replaceable(cfg, "data.interim", io.INGEST_REPORT)
+    check_volumetric(cfg)
     src, dest = resolve(cfg.data.path), resolve(cfg.data.interim)
     say(f"ingesting {src} -> {dest}")
     io.check_separate(src, dest)      # before a volumetric dataset's calibration, too

@@ -63,18 +63,25 @@ def _require_seen(cal: ArtefactCalibration, setup, kinds) -> None:
 def prior_sd(model, prior: dict | None):
     """The calibration's prior standard deviations from ``calibrate.prior`` (a uniform range
     ``[-a, a]`` per kind, as ``design.ranges``), or None."""
-    from .design import KINDS, MachineFamily, kind
+    from .design import MachineFamily, kind
 
     if prior is None:
         return None
+    check_prior_kinds(prior, {kind(p) for p in model.parameters})
     amplitudes = {k: v for k, v in dict(prior).items() if k != "decay"}
-    missing = sorted({kind(p) for p in model.parameters} - set(amplitudes))
-    unknown = sorted(set(amplitudes) - set(KINDS))
+    return MachineFamily(model, amplitudes, float(dict(prior).get("decay", 0.3))).sd()
+
+
+def check_prior_kinds(prior, needed) -> None:
+    """``calibrate.prior`` gives a range for each kind in ``needed`` and no other kind."""
+    from .design import KINDS
+
+    missing = [k for k in KINDS if k in needed and k not in prior]
+    unknown = sorted(set(prior) - set(KINDS) - {"decay"})
     if missing or unknown:
         raise ConfigError(f"calibrate.prior needs a range for every kind of the machine's parameters: "
                           f"{'missing ' + str(missing) if missing else 'unknown ' + str(unknown)} "
                           f"(kinds {list(KINDS)}, and decay)")
-    return MachineFamily(model, amplitudes, float(dict(prior).get("decay", 0.3))).sd()
 
 
 def setup_path(cal) -> str:

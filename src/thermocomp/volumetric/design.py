@@ -37,6 +37,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from joblib import Parallel, delayed
 
+from ..metrics import reduction_pct
 from .artefact import BallArray, Setup, check_reach, position_set
 from .identify import ArtefactCalibration
 from .kinematics import KinematicModel, Parameter, workspace_grid
@@ -318,7 +319,7 @@ def _distribution(v: np.ndarray) -> dict:
 def _row(st: Strategy, vce: np.ndarray, ve: np.ndarray, studies: list[str], facts: dict) -> dict:
     return {"n_balls": st.n_balls, "misalignment_deg": st.misalignment_deg,
             "position_set": st.position_set, "studies": studies, **_distribution(vce),
-            "improvement_pct": float(100 * (1 - np.median(vce) / np.median(ve))), **facts}
+            "improvement_pct": reduction_pct(float(np.median(ve)), float(np.median(vce))), **facts}
 
 
 def findings(rows: list[dict], ve_median: float) -> dict:
@@ -335,8 +336,9 @@ def findings(rows: list[dict], ve_median: float) -> dict:
     if balls:
         gain = np.array([ve_median - r["median"] for r in balls])
         best = gain.max()
-        enough = next(r["n_balls"] for r, g in zip(balls, gain) if g >= 0.95 * best)
-        out["balls_for_95pct"] = int(enough) if best > 0 else None
+        # no improvement at all (noise far above the machine's errors): no number of balls
+        out["balls_for_95pct"] = (int(next(r["n_balls"] for r, g in zip(balls, gain)
+                                           if g >= 0.95 * best)) if best > 0 else None)
         out["balls_improvement_um"] = {str(r["n_balls"]): float(g) for r, g in zip(balls, gain)}
     mis = [r for r in rows if "misalignment" in r["studies"]]
     if mis:
@@ -347,7 +349,7 @@ def findings(rows: list[dict], ve_median: float) -> dict:
             out["misalignment"][s] = {
                 "vce_aligned": rs[0]["median"], "aligned_deg": rs[0]["misalignment_deg"],
                 "vce_best": best["median"], "best_deg": best["misalignment_deg"],
-                "reduction_pct": float(100 * (1 - best["median"] / rs[0]["median"])),
+                "reduction_pct": reduction_pct(rs[0]["median"], best["median"]),
                 # why: what the poses cannot see (noise-free) and the noise they amplify
                 "noise_free": [rs[0]["noise_free_median"], best["noise_free_median"]],
                 "noise_only": [rs[0]["noise_only_median"], best["noise_only_median"]]}
