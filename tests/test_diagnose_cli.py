@@ -98,3 +98,32 @@ def test_one_step_scores_the_test_split_only_and_says_the_search_stays_in_simula
     assert one["before"]["test_rmse"] != sim["before"]["test_rmse"]      # another test scoring
     assert "cross-validation (cv_rmse, the bar) stays in simulation mode" in said.err
     assert "(test; CV: simulation)" in said.out
+
+
+def test_the_printed_rerun_reads_the_data_as_the_diagnosis_did(door, tmp_path):
+    """A lab's ';'-separated files with decimal commas, read through the user's own data config:
+    the rerun command diagnose prints carries that config (it gave only the written one, and
+    the rerun exactly as printed was refused: 'campaigns.csv looks ;-separated')."""
+    import shlex
+
+    import pandas as pd
+
+    data, out, _, _ = door
+    lab = tmp_path / "lab"
+    lab.mkdir()
+    for f in data.iterdir():
+        pd.read_csv(f).to_csv(lab / f.name, index=False, sep=";", decimal=",")
+    conf = tmp_path / "myconf" / "data"
+    conf.mkdir(parents=True)
+    (conf / "lab.yaml").write_text('defaults:\n  - default\ndelimiter: ";"\ndecimal: ","\n')
+    diag = tmp_path / "diag"
+    thermocomp("diagnose", f"hydra.searchpath=[file://{tmp_path / 'myconf'}]", "data=lab",
+               f"data.path={lab}", f"out={diag}", "track=false", "diagnose.targets=[E_Y]",
+               "data.max_gap_samples=0")
+    j = json.loads((diag / "diagnosis.json").read_text())
+    words = shlex.split(j["rerun"])
+    assert words[:2] == ["thermocomp", "run"] and "data=lab" in words
+    assert "data.max_gap_samples=0" in words
+    thermocomp(*words[1:], "track=false", *QUIET_EVAL)
+    metrics = json.loads((diag / "diagnosed" / "metrics.json").read_text())
+    assert metrics["targets"]["E_Y"]["test"]["rmse"] == pytest.approx(j["after"]["test_rmse"], rel=1e-9)

@@ -216,6 +216,9 @@ READ_CASES = {
     ";-separated campaign": (_campaign_semicolons, [],
                              ["K01.csv", "one column 'time;T_0;T_amb;E_X'",
                               "set data.delimiter=';' data.decimal=','"]),
+    # the separator set, the decimal comma forgotten: the setting that reads it is named
+    "decimal commas": (_campaign_semicolons, ["data.delimiter=';'"],
+                       ["K01.csv", "column 'time'", "row 1", "a decimal comma? set data.decimal=','"]),
     ";-separated, 200 columns": (_wide_semicolons, [],
                                  ["K01.csv", "one column 'time;T_0;T_amb;E_X;T_extra000;",
                                   "... (2218 characters)'", "set data.delimiter=';' data.decimal=','"]),

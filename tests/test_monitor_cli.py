@@ -371,6 +371,34 @@ def test_stdin_rows_with_iso_8601_times_stream_as_their_seconds(small, tmp_path,
     assert not (tmp_path / "bad").exists()
 
 
+def test_stdin_rows_are_read_as_the_campaign_files_are(small, tmp_path, monkeypatch, capsys):
+    """A lab's logger rows (';', decimal commas, its own column names) stream through the data
+    config the campaign files are read with; stdin ignored it before ('lacks a column
+    T_...' for the whole ';'-joined header)."""
+    lab = tmp_path / "lab"
+    lab.mkdir()
+    for f in small.iterdir():
+        df = pd.read_csv(f)
+        if f.name != "campaigns.csv":
+            df = df.rename(columns={"T_motor1": "Motor 1"})
+        df.to_csv(lab / f.name, index=False, sep=";", decimal=",")
+    rows = _stdin_rows(small)
+    settings = ["data.delimiter=;", "data.decimal=','", "data.columns={Motor 1:T_motor1}"]
+    reports = {}
+    for name, path, text, extra in (
+            ("contract", small, rows.to_csv(index=False), []),
+            ("lab", lab, rows.rename(columns={"T_motor1": "Motor 1"}).to_csv(index=False, sep=";",
+                                                                             decimal=","), settings)):
+        monkeypatch.setattr("sys.stdin", io.StringIO(text))
+        assert main(["monitor", "monitor.input=-", f"data.path={path}", f"out={tmp_path / name}",
+                     "track=false", "plots=none", *extra]) == 0, capsys.readouterr().err
+        reports[name] = json.loads((tmp_path / name / "monitor.json").read_text())
+    for t, got in reports["lab"]["targets"].items():
+        want = reports["contract"]["targets"][t]
+        assert got["rmse_fixed"] == pytest.approx(want["rmse_fixed"], rel=1e-9)
+        assert got["rmse_adaptive"] == pytest.approx(want["rmse_adaptive"], rel=1e-9)
+
+
 DATA_CASES = {
     "no test split": (lambda p: _splits(p, {"test": "val"}), [],
                       ["campaigns.csv", "column 'split'", "no 'test' campaign"]),

@@ -197,3 +197,36 @@ def test_a_locked_store_while_a_run_ends_still_ends_it(tmp_path, dataset, monkey
     assert main(["run", f"data.path={dataset}", f"tracking_uri={uri}", f"out={tmp_path / 'o'}",
                  *LIGHT_EVAL]) == 0
     assert calls[:2] == ["FINISHED", "FINISHED"] and _statuses(uri) == ["FINISHED"]
+
+
+def test_a_lab_column_name_with_units_is_tracked(tmp_path, dataset):
+    """A lab's headers carry units ('dX [µm]', 'Spindle [°C]'); mapped through a data config
+    they became param names MLflow refuses, and the run ended with a traceback, exit 1."""
+    import pandas as pd
+
+    lab = tmp_path / "lab"
+    lab.mkdir()
+    names = {}
+    for f in dataset.iterdir():
+        if f.name == "campaigns.csv" or f.suffix != ".csv":
+            (lab / f.name).write_bytes(f.read_bytes())
+            continue
+        df = pd.read_csv(f)
+        names = {c: f"{c[2:]} [{'µm' if c.startswith('E_') else '°C'}]" for c in df.columns
+                 if c.startswith(("T_", "E_"))}
+        df.rename(columns=names).to_csv(lab / f.name, index=False)
+    conf = tmp_path / "myconf" / "data"
+    conf.mkdir(parents=True)
+    mapping = "\n".join(f'  "{lab_name}": {contract}' for contract, lab_name in names.items())
+    (conf / "lab.yaml").write_text(f"defaults:\n  - default\ncolumns:\n{mapping}\n")
+    uri = mlflow_store(tmp_path)
+    assert main(["run", f"hydra.searchpath=[file://{tmp_path / 'myconf'}]", "data=lab",
+                 f"data.path={lab}", f"tracking_uri={uri}", f"out={tmp_path / 'out'}",
+                 *LIGHT_EVAL]) == 0
+    from mlflow import MlflowClient
+
+    client = MlflowClient(uri)
+    [run] = client.search_runs([client.get_experiment_by_name("thermocomp").experiment_id])
+    assert run.info.status == "FINISHED"
+    logged = [k for k in run.data.params if k.startswith("data.columns.")]
+    assert logged and all("[" not in k and "µ" not in k and "°" not in k for k in logged)

@@ -447,7 +447,15 @@ def run_params(container: dict, overrides: list[str] | None = None) -> dict:
             keys.append(f"{key}.name")
         else:
             keys += [k for k in flat if k == key or k.startswith(key + ".")]
-    return {k: flat[k] for k in dict.fromkeys(keys)}
+    out = {}
+    for k in dict.fromkeys(keys):      # a lab's column name as a key: 'data.columns.dZ [µm]'
+        out.setdefault(_UNSAFE.sub("_", k), flat[k])
+    return out
+
+
+# what MLflow allows in a param name; anything else (brackets, °, µ) became an exception that
+# ended the run with a traceback
+_UNSAFE = re.compile(r"[^A-Za-z0-9_\-. :/]")
 
 
 def headline_metrics(metrics: dict) -> dict:

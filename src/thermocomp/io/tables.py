@@ -187,7 +187,10 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
     if found is None:
         return ContractError(f"cannot convert to {target}", file=path, column=column)
     row, value = found
-    return ContractError(f"value {value!r} is not {_describe(target)}",
+    # a decimal comma read with data.decimal='.': say the setting that reads it
+    hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
+            and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
+    return ContractError(f"value {value!r} is not {_describe(target)}{hint}",
                          file=path, column=column, row=row + 1)
 
 

@@ -20,6 +20,7 @@ from __future__ import annotations
 
 import copy
 import shlex
+from pathlib import Path
 
 import yaml
 from omegaconf import DictConfig, OmegaConf
@@ -142,6 +143,30 @@ def experiment(cfg: DictConfig, kept_inputs: list[str] | None) -> dict:
     return out
 
 
+def rerun_command(cfg: DictConfig, conf_dir: Path, out: Path, kept_inputs) -> str:
+    """The ``thermocomp run`` that reproduces the "after" figures: the written experiment, and
+    how this diagnosis read its data, the user's own search path, ``data=`` config and
+    ``data.*`` overrides included (without them a lab's ';'-separated files were refused)."""
+    from hydra.core.hydra_config import HydraConfig
+
+    from ..tracking import task_overrides
+
+    paths, data_config = [], None
+    if HydraConfig.initialized():
+        hc = HydraConfig.get()
+        paths = [str(p) for p in (hc.searchpath or [])]
+        data_config = hc.runtime.choices.get("data")
+    pinned = {"data.path", "data.interim", "data.reference"} | (
+        {"data.inputs"} if kept_inputs is not None else set())     # the experiment pins these
+    extra = [o for o in task_overrides() or []
+             if o.lstrip("+~").startswith("data.") and o.lstrip("+~").partition("=")[0] not in pinned]
+    parts = ["thermocomp run", f"hydra.searchpath=[{','.join([*paths, f'file://{conf_dir}'])}]"]
+    if data_config not in (None, "default"):
+        parts.append(f"data={data_config}")
+    parts += [f"experiment={MODEL_NAME}", *extra, f"data.path={resolve(cfg.data.path)}", f"out={out}"]
+    return " ".join(shlex.quote(p) if i else p for i, p in enumerate(parts))
+
+
 def _yaml(header: str, body: dict) -> str:
     return header + yaml.safe_dump(body, sort_keys=False, allow_unicode=True, width=100)
 
@@ -182,9 +207,7 @@ def diagnose(cfg: DictConfig) -> dict:
         out.mkdir(parents=True, exist_ok=True)
         folder = out / "diagnosis"
         conf_dir = folder / "conf"
-        rerun = ("thermocomp run " + shlex.quote(f"hydra.searchpath=[file://{conf_dir}]")
-                 + f" experiment={MODEL_NAME} " + shlex.quote(f"data.path={resolve(cfg.data.path)}")
-                 + " " + shlex.quote(f"out={out / MODEL_NAME}"))
+        rerun = rerun_command(cfg, conf_dir, out / MODEL_NAME, written.get("kept"))
         primary = result.primary
         jsons = {}
         for t in result.targets:

@@ -42,6 +42,7 @@ from .common import (
     check_config,
     check_keys,
     check_streamed_columns,
+    data_options,
     deploy_stream,
     load_model,
     read_streamed,
@@ -50,15 +51,20 @@ from .common import (
 )
 
 
-def _stdin_campaign(columns: list[str], time_format: str = "auto") -> tuple[dict, dict]:
-    """``({"stdin": frame}, missing cells)`` from CSV rows on stdin (header first); empty cells
-    stay NaN, a non-numeric one is refused with its row.  ``time`` in seconds or as ISO 8601
-    timestamps (``data.time``; ``auto``: as the first row reads, like a campaign file)."""
+def _stdin_campaign(columns: list[str], opts: io.ReadOptions) -> tuple[dict, dict]:
+    """``({"stdin": frame}, missing cells)`` from CSV rows on stdin (header first), read as a
+    campaign file is (``data.delimiter``, ``data.decimal``, ``data.columns``: a lab's logger
+    rows stream as they are written); empty cells stay NaN, a non-numeric one is refused with
+    its row.  ``time`` in seconds or as ISO 8601 timestamps (``data.time``; ``auto``: as the
+    first row reads, like a campaign file)."""
     try:
-        df = pd.read_csv(sys.stdin)
+        df = pd.read_csv(sys.stdin, sep=opts.delimiter, decimal=opts.decimal)
     except Exception as exc:    # pandas raises several kinds for a bad stream
-        raise io.ContractError(f"stdin is not a CSV table with a header ({' '.join(str(exc).split())})",
+        raise io.ContractError(f"stdin is not a CSV table with a header, data.delimiter="
+                               f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
                                file="<stdin>") from None
+    df = df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns})
+    time_format = opts.time
     absent = [c for c in columns if c not in df.columns]
     if not absent and df.empty:
         raise io.ContractError("stdin has a header but no data row", file="<stdin>")
@@ -169,7 +175,8 @@ def monitor(cfg: DictConfig) -> dict:
             raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")
         if stdin:
-            streamed, missing = _stdin_campaign(adaptive.columns_, str(cfg.data.get("time", "auto")))
+            streamed, missing = _stdin_campaign(adaptive.columns_,
+                                                io.ReadOptions.from_cfg(data_options(cfg)))
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
