@@ -834,3 +834,32 @@ def test_a_prior_without_every_kind_is_one_line_before_any_reading(raw, tmp_path
     assert code == 2 and len(err) == 1, err
     assert err[0].startswith("thermocomp: error: calibrate.prior needs a range") and says in err[0]
     assert not out.exists() and not (tmp_path / "interim").exists()
+
+
+def test_a_cycle_that_measured_one_pose_only_is_refused_naming_its_row(tmp_path, capsys):
+    """One pose's distances left in a cycle, offset balls (an outside probe's): the cycle's GLS
+    inverted a nearly singular matrix, E_XX1 came out 2.6e16 µm and run 'compensated' to a VCE
+    of 7e14 µm, exit 0.  Now the cycle is refused, as an empty one is; a cycle missing one pose
+    is fine."""
+    raw = simulated(LargeMillVolumetric(train_hours=2.0, test_hours=2.0, misalignment_deg=10.0,
+                                        seed=2), tmp_path / "src" / "raw")
+    data = copy(raw, tmp_path)
+
+    def keep_one_pose(df):
+        gone = [c for c in df.columns if c.startswith("E_") and not c.startswith("E_S1x1d1_")]
+        df.loc[2, gone] = np.nan
+
+    edit(data, "validation_week", keep_one_pose)
+    out = tmp_path / "out"
+    line = refused(["calibrate", f"data.path={data}", f"out={out}", "track=false"], capsys,
+                   "validation_week.parquet", "row 3", "cannot identify the parameters",
+                   "the distances left measured know", "times a full cycle's")
+    assert not out.exists(), line
+    data = copy(raw, tmp_path / "one_missing")
+
+    def drop_one_pose(df):
+        df.loc[2, [c for c in df.columns if c.startswith("E_S2x1d1_")]] = np.nan
+
+    edit(data, "validation_week", drop_one_pose)
+    report = calibrate(data, tmp_path / "fine")
+    assert report["n_cycles"] == sum(report["campaigns"].values())

@@ -3,6 +3,7 @@
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -153,6 +154,17 @@ def test_simulate_never_replaces_a_file_or_a_folder_of_something_else(capsys, tm
         assert says in capsys.readouterr().err
     assert afile.read_text() == "keep me" and (notes / "n.txt").read_text() == "keep me too"
     assert sorted(p.name for p in tmp_path.iterdir()) == ["afile", "notes"]   # nothing left behind
+    # a dataset simulate did not write (a measured one: no truth next to it) was replaced silently
+    small = ["sim.generator.n_campaigns=3", "sim.generator.test_every=3", "track=false"]
+    sim = tmp_path / "sim"
+    assert main(["simulate", f"data.path={sim}", *small]) == 0
+    assert main(["simulate", f"data.path={sim}", *small, "seed=2"]) == 0     # its own: replaced
+    Path(f"{sim}.truth.json").unlink()
+    before = {f.name: f.read_bytes() for f in sim.iterdir()}
+    capsys.readouterr()
+    assert main(["simulate", f"data.path={sim}", *small]) == 2
+    assert "holds a dataset simulate did not write" in capsys.readouterr().err
+    assert {f.name: f.read_bytes() for f in sim.iterdir()} == before
 
 
 def test_the_usage_lists_every_stage(capsys):

@@ -223,3 +223,24 @@ def test_a_distance_the_calibration_left_out_is_no_distance_error(raw, run, tmp_
     assert main(["evaluate", *common, f"out={tmp_path / 'staged'}"]) == 0
     staged = json.loads((tmp_path / "staged" / "metrics.json").read_text())["volumetric"]
     assert staged["distance_error"]["rms_after"] == pytest.approx(err["rms_after"], rel=1e-9)
+
+
+def test_a_model_of_another_calibration_is_refused_by_the_stages_and_the_stream(raw, tmp_path, capsys):
+    """Ingested and trained with the family as prior (every parameter estimated), evaluated or
+    streamed without it (only those the poses see): exit 0 before, with 33 targets against 25
+    rows, or 8 targets streamed as NaN (an outside probe)."""
+    prior = "calibrate.prior=${design.ranges}"
+    common = ["experiment=volumetric_large_mill", f"data.path={raw}", f"data.interim={tmp_path / 'i'}",
+              f"model_path={tmp_path / 'model.pkl'}", "track=false", "plots=none",
+              "eval.mutual_prediction=false", "eval.ati_baselines=false"]
+    assert main(["ingest", *common, prior]) == 0 and main(["train", *common, prior]) == 0
+    capsys.readouterr()
+    refused(["evaluate", *common, f"out={tmp_path / 'e'}"], capsys,
+            "it was ingested with calibrate.prior=", "not None", "thermocomp ingest")
+    refused(["train", *common], capsys, "it was ingested with calibrate.prior=")
+    assert main(["evaluate", *common, prior, f"out={tmp_path / 'e'}"]) == 0
+    for stage, key in (("replay", "replay.model"), ("monitor", "monitor.model")):
+        refused([stage, "experiment=volumetric_large_mill", f"data.path={raw}", "track=false",
+                 "plots=none", f"{key}={tmp_path / 'model.pkl'}", f"out={tmp_path / stage}"], capsys,
+                f"{key}=", "which this calibration of", "does not identify", "calibrate.prior")
+        assert not (tmp_path / stage).exists()

@@ -223,9 +223,18 @@ def simulated_truth(cfg: DictConfig) -> tuple[Path, dict | None]:
 def ingest_settings(cfg: DictConfig) -> dict:
     """What an ingest of ``data.path`` depends on: the folder and every reading option (as JSON
     holds them).  ``ingest`` records it; the stages reading ``data.interim`` compare."""
+    from ..volumetric import SETUP_FILE
+
     opts = dataclasses.asdict(io.ReadOptions.from_cfg(data_options(cfg)))
     opts.pop("missing")      # internal: no data config key
-    return json.loads(json.dumps({"path": str(resolve(cfg.data.path)), **opts}, default=str))
+    made = {"path": str(resolve(cfg.data.path)), **opts}
+    if (resolve(cfg.data.path) / SETUP_FILE).is_file() and cfg.get("calibrate") is not None:
+        # a volumetric dataset's parameter series depend on its calibration too (an outside
+        # probe's ingest with a prior was evaluated without one: 33 targets, 25 rows, exit 0)
+        c = OmegaConf.to_container(cfg.calibrate, resolve=True)
+        made.update({f"calibrate.{k}": c.get(k) for k in ("outlier_z", "column_share",
+                                                           "require_seen", "prior")})
+    return json.loads(json.dumps(made, default=str))
 
 
 def load_ingested(cfg: DictConfig):
@@ -237,10 +246,13 @@ def load_ingested(cfg: DictConfig):
     made = ds.meta["ingest_report"].get("ingested_with")
     if made is not None:
         want = ingest_settings(cfg)
-        key = next((k for k in want if made.get(k) != want[k]), None)
+        # calibrate.*: recorded since a later version; an earlier ingest is read as it is
+        key = next((k for k in want if made.get(k) != want[k]
+                    and (k in made or not k.startswith("calibrate."))), None)
         if key is not None:
+            name = key if key.startswith("calibrate.") else f"data.{key}"
             raise io.ContractError(
-                f"it was ingested with data.{key}={made.get(key)!r}, not {want[key]!r}: run "
+                f"it was ingested with {name}={made.get(key)!r}, not {want[key]!r}: run "
                 "`thermocomp ingest` with this config first (or give another name= to keep both)",
                 file=root / io.INGEST_REPORT)
     return ds
@@ -314,6 +326,22 @@ def read_streamed(cfg: DictConfig, test: bool = True):
     missing = {c: report["campaigns"][c]["missing"] for c in test_ids
                if report["campaigns"][c].get("missing")}
     return ds, train_ids, test_ids, missing
+
+
+def check_volumetric_targets(cfg: DictConfig, ds, targets, what: str) -> None:
+    """On a volumetric dataset, every parameter ``what`` predicts is one this calibration
+    identifies: a model trained with another ``calibrate.*`` (a prior estimates all 33, GLS the
+    25 seen) streamed 8 targets as NaN with exit 0 (an outside probe)."""
+    from ..volumetric import SETUP_FILE
+
+    if not (resolve(cfg.data.path) / SETUP_FILE).is_file():
+        return
+    missing = [t for t in targets if t not in ds.columns]
+    if missing:
+        raise ConfigError(f"{what} predicts {', '.join(missing[:5])}"
+                          f"{f' and {len(missing) - 5} more' if len(missing) > 5 else ''}, which "
+                          f"this calibration of {cfg.data.path} does not identify: calibrate with "
+                          "the calibrate.* settings it was trained with (calibrate.prior?)")
 
 
 def deploy_stream(cfg: DictConfig, comp: Compensator, train: dict, what: str = "the model"):

@@ -201,16 +201,23 @@ def _print(report: dict) -> None:
               f"{r['median']:>8.2f} {r['p95']:>7.2f} {_pct(r['improvement_pct']):>6} {r['n_identified']:>6} "
               f"{r['noise_free_median']:>8.2f} {r['noise_only_median']:>6.2f}")
     f = report["findings"]
+    what_ifs = {study: sum(not r["reachable"] for r in report["strategies"] if study in r["studies"])
+                for study in ("balls", "misalignment", "position_sets")}
+
+    def caveat(study):
+        n = what_ifs[study]
+        return f" ({n} of its strategies put a ball outside the travel: what-ifs)" if n else ""
+
     if f.get("balls_for_95pct") is not None:
-        print(f"95 % of the best improvement with {f['balls_for_95pct']} balls")
+        print(f"95 % of the best improvement with {f['balls_for_95pct']} balls{caveat('balls')}")
     elif "balls_for_95pct" in f:
         print("no number of balls improves on the uncompensated machine (VCE above VE)")
     for s, m in f.get("misalignment", {}).items():
         print(f"misalignment, {s}: VCE {m['vce_aligned']:.2f} at {m['aligned_deg']:g}° -> "
               f"{m['vce_best']:.2f} at {m['best_deg']:g}° ({_pct(m['reduction_pct'])} less); "
               f"noise-free {m['noise_free'][0]:.2f} -> {m['noise_free'][1]:.2f}, noise alone "
-              f"{m['noise_only'][0]:.2f} -> {m['noise_only'][1]:.2f}")
+              f"{m['noise_only'][0]:.2f} -> {m['noise_only'][1]:.2f}{caveat('misalignment')}")
     if "best_position_set" in f:
         b = f["best_position_set"]
         print(f"best position set: {b['position_set']} (VCE {b['median']:.2f} µm, "
-              f"{b['n_probings']} probed points)")
+              f"{b['n_probings']} probed points){caveat('position_sets')}")

@@ -42,6 +42,7 @@ from .common import (
     check_config,
     check_keys,
     check_streamed_columns,
+    check_volumetric_targets,
     data_options,
     deploy_stream,
     load_model,
@@ -167,6 +168,7 @@ def monitor(cfg: DictConfig) -> dict:
     with stage_run(cfg, "monitor") as tr:
         path = cfg.monitor.get("model")
         comp = build_compensator(cfg).fit(train) if path is None else load_model(resolve(str(path)))
+        check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
         # one plain stream serves both: the fixed run and the adaptive one are each streamed
         # from a reset, one after the other
         fixed = deploy_stream(cfg, comp, train)

@@ -30,6 +30,7 @@ from .common import (
     build_compensator,
     check_config,
     check_streamed_columns,
+    check_volumetric_targets,
     deploy_stream,
     deployable,
     load_model,
@@ -80,6 +81,7 @@ def replay(cfg: DictConfig) -> dict:
     root = resolve(cfg.data.path)
     with stage_run(cfg, "replay") as tr:
         deployed, source, name = _deployable(cfg, ds, train_ids)
+        check_volumetric_targets(cfg, ds, deployed.targets_, f"replay.model={source}")
         check_streamed_columns(ds, test_ids, deployed.columns_, "the deployed model")
         kind = "adaptive" if deployed is not plain(deployed) else "streaming"
         say(f"streaming {len(test_ids)} test campaigns row by row through the {kind} compensator "

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import time
+from pathlib import Path
 
 from hydra.utils import instantiate
 from omegaconf import DictConfig
@@ -26,6 +27,11 @@ def simulate(cfg: DictConfig) -> dict:
         # the dataset replaces data.path whole: never a folder of something else
         raise ConfigError(f"data.path={cfg.data.path}: not empty and holds no dataset "
                           "(campaigns.csv); simulate replaces it whole: give a new or empty folder")
+    if (path / "campaigns.csv").is_file() and not Path(f"{path}.truth.json").is_file():
+        # nor a dataset it did not write: an outside probe's measured one was replaced silently
+        raise ConfigError(f"data.path={cfg.data.path}: holds a dataset simulate did not write (no "
+                          f"{path.name}.truth.json next to it: measured data?); simulate replaces "
+                          "it whole: give a new or empty folder")
     truth, n_campaigns, rows = write_scenario(generator, path)
     truth_path = write_json(f"{path}.truth.json", truth)
     say(f"wrote {n_campaigns} campaigns, {rows} rows to {path} "

@@ -103,7 +103,8 @@ def _identify(cal, ds, skipped, excluded=()):
             raise ContractError(f"campaign {cid}: {exc.total - exc.missing} of the {exc.total} distances "
                                 "measured in this cycle (the others empty"
                                 f"{' or excluded' if excluded else ''}), with any outliers left out, "
-                                "cannot identify the parameters: measure its poses again or drop the row",
+                                f"cannot identify the parameters{f' ({exc.why})' if exc.why else ''}: "
+                                "measure its poses again or drop the row",
                                 file=ds.file_path(cid),
                                 row=skipped[cid] + exc.cycle + 1) from None
     return out

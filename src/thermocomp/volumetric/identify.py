@@ -42,15 +42,16 @@ from .artefact import Setup, column, pairs
 
 FLOOR_UM = 0.02          # what the linearisation leaves out (second order: ~0.01 µm at 50 µm errors)
 DEPENDENT = 1e-6         # a column this close (relative) to the span of the kept ones is not seen
+PARTIAL = 10.0           # a cycle knowing a parameter this many times worse than a full one cannot
 
 
 class CycleError(ValueError):
     """A cycle whose measured distances cannot identify the parameters (``cycle`` 0-based)."""
 
-    def __init__(self, cycle: int, missing: int, total: int):
-        self.cycle, self.missing, self.total = cycle, missing, total
+    def __init__(self, cycle: int, missing: int, total: int, why: str = ""):
+        self.cycle, self.missing, self.total, self.why = cycle, missing, total, why
         super().__init__(f"cycle {cycle + 1}: the {total - missing} distances measured of {total} "
-                         "cannot identify the parameters")
+                         f"cannot identify the parameters{f' ({why})' if why else ''}")
 
 
 @dataclass
@@ -208,7 +209,7 @@ class ArtefactCalibration:
             try:
                 P[t], out = self._cycle(D[t], P[t])
             except ValueError as err:
-                raise CycleError(t, int(np.isnan(D[t]).sum()), D.shape[1]) from err
+                raise CycleError(t, int(np.isnan(D[t]).sum()), D.shape[1], str(err)) from err
             flagged += [{"cycle": t, **o} for o in out]
         return P, flagged
 
@@ -249,12 +250,25 @@ class ArtefactCalibration:
                 cov = np.linalg.inv(Aw.T @ Aw + self._precision)
             except np.linalg.LinAlgError as err:
                 raise ValueError("the distances left measured cannot identify the parameters") from err
+            if self.prior_sd is None and not mask.all():
+                self._check_seen(np.sqrt(np.clip(np.diag(cov), 0.0, None)))
             M = cov @ linalg.solve_triangular(chol, Aw, lower=True, trans="T").T     # cov A' S^-1
             sd = np.sqrt(np.clip(np.diag(cov_d) - np.einsum("ij,jk,ik->i", A, cov, A), 1e-12, None))
             if len(cache) >= 64:            # the gaps of a few dozen cycles
                 cache.pop(next(iter(cache)))
             cache[key] = (M, A, sd, cov)
         return cache[key]
+
+    def _check_seen(self, u) -> None:
+        """A cycle whose measured distances know a parameter far worse than a full cycle
+        (``PARTIAL`` times its uncertainty) cannot identify it: an outside probe's cycle with
+        one pose of 16 measured gave E_XX1 = 2.6e16 µm and a 'compensated' VCE of 7e14 µm, exit
+        0; inverting a nearly singular matrix raises nothing."""
+        worse = u / np.maximum(self.uncertainty_, 1e-300)
+        if np.any(~np.isfinite(worse) | (worse > PARTIAL)):
+            j = int(np.argmax(np.where(np.isfinite(worse), worse, np.inf)))
+            raise ValueError(f"the distances left measured know {self.names_[j]} to ±{u[j]:.3g}, "
+                             f"{worse[j]:.3g} times a full cycle's")
 
     def _masked(self, d, mask):
         """GLS of one cycle from the distances in ``mask``: estimate, residuals, studentised."""
