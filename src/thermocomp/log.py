@@ -124,9 +124,17 @@ def current_file() -> Path | None:
 def warnings_logged():
     """Within the block a Python warning (a library's ``UserWarning``, numpy's
     ``RuntimeWarning``, ...) is logged as one ``[thermocomp] warning:`` line naming its
-    category and source file (its lines joined), instead of the interpreter's two raw lines; the filters
-    (each shown once per place) and the previous display come back after."""
+    category and source file (its lines joined), instead of the interpreter's two raw lines, once
+    per place and text; the filters and the previous display come back after."""
+    seen = set()
+
     def show(message, category, filename, lineno, file=None, line=None):
+        # once per place and text: libraries reset the filters (catch_warnings) and with them
+        # Python's once-per-place memory, so a numpy warning in a loop came dozens of times
+        key = (category, str(message), filename, lineno)
+        if key in seen:
+            return
+        seen.add(key)
         logger.warning("%s: %s (%s:%d)", category.__name__, " ".join(str(message).split()),
                        Path(filename).name, lineno)
 
