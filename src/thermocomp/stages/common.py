@@ -170,15 +170,20 @@ def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
     )
 
 
+def is_volumetric(cfg: DictConfig) -> bool:
+    """``data.path`` is a volumetric dataset (``volumetric.json`` in it)."""
+    from ..volumetric import SETUP_FILE
+
+    return (resolve(cfg.data.path) / SETUP_FILE).is_file()
+
+
 def identified_targets(cfg: DictConfig) -> bool:
     """The targets are error parameters identified from a volumetric dataset, each referenced to
     its first cycle: that cycle's identification error is on every row of the campaign, and a
     fitted intercept learns it (:class:`~thermocomp.compensator.Compensator`, ``offsets``).
     On probe data (an aligned 7-ball bar, E_XX1 u = 13.4 µm) predicting it raised the VCE from
     11.0 to 44.1 µm; with the intercept left out, 4.5 µm."""
-    from ..volumetric import SETUP_FILE
-
-    return cfg.data.reference == "first_sample" and (resolve(cfg.data.path) / SETUP_FILE).is_file()
+    return cfg.data.reference == "first_sample" and is_volumetric(cfg)
 
 
 def build_denoiser(cfg: DictConfig):
@@ -223,12 +228,10 @@ def simulated_truth(cfg: DictConfig) -> tuple[Path, dict | None]:
 def ingest_settings(cfg: DictConfig) -> dict:
     """What an ingest of ``data.path`` depends on: the folder and every reading option (as JSON
     holds them).  ``ingest`` records it; the stages reading ``data.interim`` compare."""
-    from ..volumetric import SETUP_FILE
-
     opts = dataclasses.asdict(io.ReadOptions.from_cfg(data_options(cfg)))
     opts.pop("missing")      # internal: no data config key
     made = {"path": str(resolve(cfg.data.path)), **opts}
-    if (resolve(cfg.data.path) / SETUP_FILE).is_file() and cfg.get("calibrate") is not None:
+    if is_volumetric(cfg) and cfg.get("calibrate") is not None:
         # a volumetric dataset's parameter series depend on its calibration too (an outside
         # probe's ingest with a prior was evaluated without one: 33 targets, 25 rows, exit 0)
         c = OmegaConf.to_container(cfg.calibrate, resolve=True)
@@ -332,9 +335,7 @@ def check_volumetric_targets(cfg: DictConfig, ds, targets, what: str) -> None:
     """On a volumetric dataset, every parameter ``what`` predicts is one this calibration
     identifies: a model trained with another ``calibrate.*`` (a prior estimates all 33, GLS the
     25 seen) streamed 8 targets as NaN with exit 0 (an outside probe)."""
-    from ..volumetric import SETUP_FILE
-
-    if not (resolve(cfg.data.path) / SETUP_FILE).is_file():
+    if not is_volumetric(cfg):
         return
     missing = [t for t in targets if t not in ds.columns]
     if missing:
@@ -498,18 +499,14 @@ def calibration_prior(c: DictConfig) -> dict | None:
 def check_volumetric(cfg: DictConfig) -> None:
     """``calibrate.*`` checked when ``data.path`` is a volumetric dataset: before a stage says
     anything, so a bad value is one line."""
-    from ..volumetric import SETUP_FILE
-
-    if (resolve(cfg.data.path) / SETUP_FILE).is_file():
+    if is_volumetric(cfg):
         check_calibrate(cfg.calibrate)
 
 
 def volumetric_calibration(cfg: DictConfig):
     """:func:`calibrated_dataset` when ``data.path`` is a volumetric dataset (``volumetric.json``
     in it; ``calibrate.*`` checked first), else None: how ``ingest`` and ``run`` read one."""
-    from ..volumetric import SETUP_FILE
-
-    if not (resolve(cfg.data.path) / SETUP_FILE).is_file():
+    if not is_volumetric(cfg):
         return None
     check_calibrate(cfg.calibrate)
     say("volumetric dataset: calibrating the artefact distances into the error parameters")
@@ -520,12 +517,12 @@ def volumetric_source(cfg: DictConfig):
     """``(distance dataset, calibration)`` when ``data.path`` is a volumetric dataset, else None:
     what ``evaluate`` validates the parameter models against (``ingest`` calibrated the same
     folder into ``data.interim``; the calibration's model is fitted again, not its cycles)."""
-    from ..volumetric import SETUP_FILE, ArtefactCalibration
+    from ..volumetric import ArtefactCalibration
     from ..volumetric.series import check_columns, load_setup
 
-    root = resolve(cfg.data.path)
-    if not (root / SETUP_FILE).is_file():
+    if not is_volumetric(cfg):
         return None
+    root = resolve(cfg.data.path)
     check_calibrate(cfg.calibrate)
     setup = load_setup(root)
     raw, _ = io.read_dataset(root, data_options(cfg), missing="keep_errors")   # as calibrate reads it

@@ -149,7 +149,7 @@ def rerun_command(cfg: DictConfig, conf_dir: Path, out: Path, kept_inputs) -> st
     ``data.*`` overrides included (without them a lab's ';'-separated files were refused)."""
     from hydra.core.hydra_config import HydraConfig
 
-    from ..tracking import task_overrides
+    from ..tracking import _split, task_overrides
 
     paths, data_config = [], None
     if HydraConfig.initialized():
@@ -159,7 +159,7 @@ def rerun_command(cfg: DictConfig, conf_dir: Path, out: Path, kept_inputs) -> st
     pinned = {"data.path", "data.interim", "data.reference"} | (
         {"data.inputs"} if kept_inputs is not None else set())     # the experiment pins these
     extra = [o for o in task_overrides() or []
-             if o.lstrip("+~").startswith("data.") and o.lstrip("+~").partition("=")[0] not in pinned]
+             if _split(o)[0].startswith("data.") and _split(o)[0] not in pinned]
     parts = ["thermocomp run", f"hydra.searchpath=[{','.join([*paths, f'file://{conf_dir}'])}]"]
     if data_config not in (None, "default"):
         parts.append(f"data={data_config}")

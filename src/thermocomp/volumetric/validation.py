@@ -43,15 +43,14 @@ def trajectory(model, axis: str, n: int = TRAJECTORY_POINTS) -> np.ndarray:
     return out
 
 
-def _rms(x) -> float:
-    x = np.asarray(x, float)
-    x = x[np.isfinite(x)]
-    return float(np.sqrt(np.mean(x ** 2))) if x.size else float("nan")
-
-
 def _finite(x) -> np.ndarray:
     x = np.ravel(np.asarray(x, float))
     return x[np.isfinite(x)]
+
+
+def _rms(x) -> float:
+    x = _finite(x)
+    return float(np.sqrt(np.mean(x ** 2))) if x.size else float("nan")
 
 
 def _pair(before, after) -> dict:
