@@ -43,6 +43,7 @@ class ReadOptions:
     max_period_ratio: float | None = 100.0
     max_duration_days: float | None = 366.0
     max_resample_factor: float = 10.0
+    max_step_ratio: float | None = 5.0
     delimiter: str = ","
     decimal: str = "."
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
@@ -78,6 +79,7 @@ class ReadOptions:
             max_period_ratio=_positive_float(cfg, "max_period_ratio", 100.0, nullable=True),
             max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
             max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
+            max_step_ratio=_positive_float(cfg, "max_step_ratio", 5.0, nullable=True),
             delimiter=_text(cfg, "delimiter", ","),
             decimal=_text(cfg, "decimal", "."),
         )

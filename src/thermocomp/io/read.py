@@ -11,8 +11,8 @@ copy of the campaign:
 3. build ``time`` in seconds (float seconds as given, ISO 8601 timestamps as
    seconds since the first sample, or ``row * sample_period_s``) and require
    it strictly increasing;
-4. check values (finite, not all missing, temperatures in °C) and deal with
-   missing values (see below);
+4. check values (finite, not all missing, temperatures in °C, no unit changing part
+   way through a file) and deal with missing values (see below);
 5. optionally resample onto a uniform grid; order the columns ``time``, then
    ``T_``, ``E_``, ``S_`` in file order.
 
@@ -66,6 +66,7 @@ from ..files import atomic_dir, folder_digest, write_json
 from .contract import MANIFEST, TIME, ContractError, Dataset, role
 from .manifest import read_manifest
 from .options import ROLE_ORDER, ReadOptions
+from .steps import check_unit_steps
 from .tables import _load_csv, _load_parquet, _ordered, _values
 from .values import (
     _check_periods,
@@ -168,6 +169,7 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
               **missing(columns, rows, path, opts)}
     _check_length(len(columns[TIME]), path, "complete " if opts.missing != "keep" else "")
     _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
+    check_unit_steps(columns, path, opts.max_step_ratio, report["trimmed"]["start"])
     if opts.resample_s is not None:
         _resample(columns, opts.resample_s, path, opts.max_resample_factor)
         report["resampled_s"] = opts.resample_s
@@ -256,6 +258,10 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
             grid with this step, starting at its first sample.
         kelvin_threshold_c : float, default 200
             A ``T_`` value above it is taken for kelvin and refused.
+        max_step_ratio : float or None, default 5
+            A unit change inside a file (a ``T_`` or ``E_`` step this many
+            times the column's typical step that a unit conversion explains
+            and that persists) is refused; see :mod:`thermocomp.io.steps`.
         delimiter, decimal : str, default ',' and '.'
             CSV field separator and decimal mark of the campaign files.
     missing : {'repair', 'keep', 'keep_errors'}, default 'repair'
@@ -288,7 +294,8 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
         manifest or campaign file, invalid manifest, empty file, unknown
         column prefix, no ``E_`` column, no time, unreadable time, duplicate
         or decreasing times, non-numeric cells (or non-numeric Parquet
-        dtypes), infinite values, temperatures that look like kelvin, an
+        dtypes), infinite values, temperatures that look like kelvin, a
+        unit that changes inside a file, an
         all-missing column, gaps or incomplete edges beyond the configured
         limits, and invalid config values.
 

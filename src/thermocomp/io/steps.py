@@ -1,0 +1,113 @@
+"""A unit changed inside a file: a step that no sensor makes and that a unit conversion undoes.
+
+A logger set to °F (or a probe to mm) part way through a campaign leaves a file whose values
+are all plausible on their own: the whole-file checks (``data.fahrenheit_threshold_c``,
+``data.kelvin_threshold_c``, the other campaigns' error ranges) cannot see it, and a model is
+fitted on it.  A generic step test cannot tell it from a physical step either (a door opens:
+the ambient sensor jumps a few K in one coarse sample; a fault offsets one sensor).  So a step
+is refused only when three things hold, each against the column's own history:
+
+1. it is a step the column does not make: larger than ``data.max_step_ratio`` times its robust
+   sample-to-sample scale (1.4826 x the MAD of its differences);
+2. a unit conversion accounts for it: the value after is, within a tenth of the step, the value
+   before converted (°C -> °F: 1.8 x + 32, µm -> mm: x / 1000, ...), so the level jumps by the
+   factor the unit makes, which a physical step matches only by chance;
+3. it persists: the next samples, converted back, continue with steps the column makes
+   (a spike or a re-zeroed probe goes on at the new level in the old unit's steps).
+
+A step that fits a unit while another sensor of the same kind steps at the same row without
+fitting one is ambiguous (an event that moved several sensors): it is warned about, not refused.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from ..log import logger
+from .contract import ContractError, role
+from .tables import _values
+
+FIT = 0.2         # a conversion must leave at most this share of the step, there and after
+PERSIST = 3       # samples after the step that must continue in the old unit, converted back
+MIN_SAMPLES = 6   # fewer finite values: no history to judge a step against
+CANDIDATES = 8    # largest steps a unit explains that are examined, per unit and column
+
+# role -> (what the rows from the step on read as, the conversion from the rows before to
+# them, and back); E_ columns are µm, T_ columns °C (or °F before a change to °C)
+UNITS = {
+    "T": (("°F of the °C before", lambda x: 1.8 * x + 32, lambda y: (y - 32) / 1.8),
+          ("°C of the °F before", lambda x: (x - 32) / 1.8, lambda y: 1.8 * y + 32)),
+    "E": (("mm of the µm before", lambda x: x / 1000, lambda y: y * 1000),
+          ("1000x the rows before (nm after µm, or µm after mm)", lambda x: x * 1000,
+           lambda y: y / 1000)),
+}
+
+
+def robust_step_scale(values: np.ndarray) -> float:
+    """1.4826 x the MAD of the sample-to-sample differences (the smallest non-zero
+    difference when most are zero: a quantised, mostly constant reading)."""
+    steps = np.diff(values)
+    scale = 1.4826 * float(np.median(np.abs(steps - np.median(steps))))
+    if scale > 0:
+        return scale
+    moved = np.abs(steps[steps != 0])
+    return float(moved.min()) if moved.size else 0.0
+
+
+def unit_change(x: np.ndarray, ratio: float, units) -> tuple[int, int]:
+    """``(k, i)``: the first step of the finite values ``x`` (``x[k]`` to ``x[k+1]``) that is
+    a change to ``units[i]`` (see the module docstring); ``(-1, -1)`` when there is none."""
+    steps = np.diff(x)
+    found = []
+    for i, (_, forward, back) in enumerate(units):
+        with np.errstate(over="ignore", invalid="ignore"):
+            explained = np.abs(x[1:] - forward(x[:-1])) <= FIT * np.abs(steps)
+        explained &= steps != 0
+        # the largest few: a file has one or two unit changes, not hundreds
+        for k in sorted(np.flatnonzero(explained), key=lambda k: -abs(steps[k]))[:CANDIDATES]:
+            # the column as if the unit had been kept: its history judges the step
+            kept = np.concatenate((x[:k + 1], back(x[k + 1:])))
+            scale = robust_step_scale(kept)
+            after = np.abs(np.diff(kept)[k:k + PERSIST + 1])
+            # x1000 of a value within the noise of zero predicts nothing: the conversion of
+            # the value before must be sharper than the fit it is held to
+            spread = abs(forward(x[k] + scale) - forward(x[k]))
+            if (abs(steps[k]) > ratio * scale and spread <= FIT * abs(steps[k])
+                    and after.size > 1 and (after <= FIT * abs(steps[k])).all()):
+                found.append((int(k), i))
+    return min(found, default=(-1, -1))
+
+
+def check_unit_steps(columns: dict, path: Path, ratio: float | None, offset: int) -> None:
+    """Refuse a ``T_`` or ``E_`` column whose unit changes inside the file (see the module
+    docstring), naming the first row in the new unit (1-based data row of the source file:
+    ``offset`` rows were trimmed before ``columns``' first)."""
+    if ratio is None:
+        return
+    for kind, units in UNITS.items():
+        found, physical = [], None
+        for name in (n for n in columns if role(n) == kind):
+            v = _values(columns[name])
+            rows = np.flatnonzero(np.isfinite(v))
+            if rows.size < MIN_SAMPLES:
+                continue
+            x = v[rows]
+            k, unit = unit_change(x, ratio, units)
+            if physical is None:
+                physical = np.zeros(v.size, dtype=bool)
+            large = np.abs(np.diff(x)) > ratio * robust_step_scale(x)
+            if k >= 0:
+                large[k] = False
+                found.append((int(rows[k + 1]), name, x[k], x[k + 1], units[unit][0]))
+            physical[rows[1:][large]] = True    # the rows other large steps land on
+        for row, name, before, after, what in sorted(found, key=lambda f: f[0]):
+            says = (f"steps from {before:g} to {after:g} in one sample and the rows from here on "
+                    f"read as {what}: the unit changes inside the file, convert it "
+                    f"(data.max_step_ratio={ratio:g})")
+            if physical[row]:   # another sensor of this kind stepped here without fitting a unit
+                logger.warning(f"{path}, column '{name}', row {row + offset + 1}: {says}; other "
+                               "sensors step at the same row, so it may be a real event")
+                continue
+            raise ContractError(says, file=path, column=name, row=row + offset + 1)
