@@ -7,16 +7,18 @@ fault offsets one reading) and every simulated scenario read as before.
 
 from __future__ import annotations
 
+import io
 import logging
 import shutil
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import refused
 from test_hostile import FAST, edit_csv, make_dataset, snapshot
 from thermocomp.cli import main
-from thermocomp.io import read_dataset
+from thermocomp.io import ContractError, read_dataset
 
 
 @pytest.fixture
@@ -169,3 +171,84 @@ def test_the_default_dataset_passes_and_its_unit_changes_are_found(default_datas
                 found[kind].append((unit_change(y, 5.0, UNITS[kind])[0] == half - 1, level))
     assert all(hit for hit, _ in found["T"])
     assert all(hit for hit, level in found["E"] if level > 20)
+
+
+# -- item 14: a thousands separator --------------------------------------------------------
+
+
+def _grouped_speeds(df):
+    """An S_ column written as a lab's export writes it: ``"6,000"`` (quoted)."""
+    df["S_rpm"] = [f"{v:,.0f}" for v in np.where(df.index % 2, 6000.0, 12000.0)]
+
+
+@pytest.mark.parametrize("command", ["run", "ingest", "monitor"])
+def test_a_thousands_separator_is_named_not_blamed_on_a_decimal_comma(paths, capsys, command):
+    edit_csv(paths["ds"] / "K03.csv", _grouped_speeds)
+    before = snapshot(paths["out"], paths["interim"], paths["model"], paths["ds"])
+
+    line = refused([command, *paths["args"]], capsys, "K03.csv", "column 'S_rpm'", "row 1",
+                   "'12,000'", "a thousands separator? set data.thousands=','")
+
+    assert "decimal" not in line
+    assert snapshot(paths["out"], paths["interim"], paths["model"], paths["ds"]) == before
+
+
+def test_data_thousands_reads_grouped_digits(paths, capsys):
+    for cid in ("K01", "K02", "K03", "K04"):
+        edit_csv(paths["ds"] / f"{cid}.csv", _grouped_speeds)
+    assert main(["ingest", *paths["args"], "data.thousands=,"]) == 0
+    ds, _ = read_dataset(paths["ds"], {"thousands": ","})
+    assert ds.campaigns["K03"]["S_rpm"].tolist()[:2] == [12000.0, 6000.0]
+
+
+def test_a_european_export_reads_with_a_point_for_thousands(paths):
+    # 6.000 with a decimal comma: the hint names '.', and data.thousands='.' reads it
+    for cid in ("K01", "K02", "K03", "K04"):
+        path = paths["ds"] / f"{cid}.csv"
+        df = pd.read_csv(path).assign(S_rpm=lambda d: np.where(d.index % 2, "6.000", "1.500"))
+        df.to_csv(path, index=False, sep=";", decimal=",")
+    cfg = {"delimiter": ";", "decimal": ","}
+    with pytest.raises(ContractError, match="row 1: value '1.500' .*data.thousands='.'"):
+        read_dataset(paths["ds"], cfg)
+    ds, _ = read_dataset(paths["ds"], {**cfg, "thousands": "."})
+    assert ds.campaigns["K01"]["S_rpm"].tolist()[:2] == [1500.0, 6000.0]
+    assert ds.campaigns["K01"]["T_0"].between(15, 30).all()  # the decimal comma still reads
+
+
+def test_a_decimal_comma_is_still_named_when_the_column_has_one(paths):
+    # '6,000' alone could be either; '21,35' in the same column settles it
+    def mutate(df):
+        df["T_0"] = df["T_0"].map(lambda v: f"{v:.2f}")
+        df.loc[2, "T_0"], df.loc[5, "T_0"] = "21,000", "21,35"
+    edit_csv(paths["ds"] / "K02.csv", mutate)
+    with pytest.raises(ContractError, match="row 3: value '21,000' .*decimal comma"):
+        read_dataset(paths["ds"])
+
+
+def test_a_cell_not_grouped_by_three_is_refused(paths):
+    def mutate(df):
+        _grouped_speeds(df)
+        df.loc[6, "S_rpm"] = "6,00"
+    edit_csv(paths["ds"] / "K02.csv", mutate)
+    with pytest.raises(ContractError, match="K02.csv, column 'S_rpm', row 7: .*by three"):
+        read_dataset(paths["ds"], {"thousands": ","})
+
+
+@pytest.mark.parametrize("value", ["'.'", "x", "1", "' '", "'--'"])
+def test_a_bad_data_thousands_is_refused(paths, capsys, value):
+    refused(["ingest", *paths["args"], f"data.thousands={value}"], capsys, "data.thousands")
+
+
+def test_monitor_stdin_reads_grouped_digits_with_data_thousands(default_copy, tmp_path, capsys,
+                                                                monkeypatch):
+    index = pd.read_csv(default_copy / "campaigns.csv")
+    keep = pd.concat([index[index["split"] == s].head(2) for s in ("train", "test")])
+    keep.to_csv(default_copy / "campaigns.csv", index=False)
+    rows = pd.read_csv(default_copy / keep["file"].iloc[-1])
+    rows["time"] = rows["time"].map(lambda t: f"{t:,.0f}")          # 1,200 s from row 5
+    args = ["monitor", "monitor.input=-", f"data.path={default_copy}", f"out={tmp_path / 'out'}",
+            "track=false", "plots=none"]
+    monkeypatch.setattr("sys.stdin", io.StringIO(rows.to_csv(index=False)))
+    refused(args, capsys, "<stdin>", "column 'time'", "row 5")
+    monkeypatch.setattr("sys.stdin", io.StringIO(rows.to_csv(index=False)))
+    assert main([*args, "data.thousands=,"]) == 0

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -46,6 +47,7 @@ class ReadOptions:
     max_step_ratio: float | None = 5.0
     delimiter: str = ","
     decimal: str = "."
+    thousands: str | None = None
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
@@ -82,6 +84,7 @@ class ReadOptions:
             max_step_ratio=_positive_float(cfg, "max_step_ratio", 5.0, nullable=True),
             delimiter=_text(cfg, "delimiter", ","),
             decimal=_text(cfg, "decimal", "."),
+            thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
         )
         opts._check()
         return opts
@@ -99,6 +102,12 @@ class ReadOptions:
             if len(getattr(self, key)) != 1:
                 raise ContractError(f"data.{key} must be one character, "
                                     f"got {getattr(self, key)!r}")
+        # (the field separator may be it: a CSV writer quotes "6,000")
+        if self.thousands is not None and (len(self.thousands) != 1 or self.thousands
+                                           == self.decimal or re.match(r"[\w+\-\s]", self.thousands)):
+            raise ContractError(f"data.thousands must be one character other than the decimal "
+                                "mark, not a digit, letter, sign or space (',', '.', \"'\" or "
+                                f"null), got {self.thousands!r}")
         if self.decimal == self.delimiter:
             raise ContractError(f"data.decimal={self.decimal!r} is the field separator too "
                                 "(data.delimiter): a lab writing decimal commas separates with ';'")

@@ -264,6 +264,8 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
             and that persists) is refused; see :mod:`thermocomp.io.steps`.
         delimiter, decimal : str, default ',' and '.'
             CSV field separator and decimal mark of the campaign files.
+        thousands : str or None, default None
+            CSV thousands separator (``','`` reads ``6,000``).
     missing : {'repair', 'keep', 'keep_errors'}, default 'repair'
         Not a config key: ``'keep'`` leaves missing values NaN (no trim, no
         interpolation, no gap refused) and counts them in the report's

@@ -17,6 +17,7 @@ import pyarrow.parquet as pq
 from .contract import TIME, ContractError, role
 from .manifest import _not_utf8, _utf8_failure
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
+from .separators import misgrouped, thousands_hint, ungrouped
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
 _CSV_BLOCK_BYTES = 16 << 20
@@ -129,13 +130,15 @@ def _csv_time_type(path: Path, first_row: list[str], index: int,
         raise ContractError("missing time value", file=path, column=TIME, row=1)
     kind = opts.time
     if kind == "auto":
-        kind = "seconds" if _is_number(value, opts.decimal) else "iso8601"
+        kind = "seconds" if _is_number(value, opts.decimal, opts.thousands) else "iso8601"
     if kind == "seconds":
         return pa.float64()
     return pa.timestamp("ns", tz="UTC" if _ZONE_OFFSET.search(value) else None)
 
 
-def _is_number(text: str, decimal: str) -> bool:
+def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
+    if thousands is not None:
+        text = text.replace(thousands, "")
     try:
         float(text.replace(decimal, "."))
     except ValueError:
@@ -155,10 +158,34 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
 
 
 def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions) -> pa.Table:
+    # Arrow's reader knows no thousands separator: with one, numbers are read as text first
+    read_as = types if opts.thousands is None else {
+        n: pa.string() if pa.types.is_floating(t) else t for n, t in types.items()}
     try:
-        return pacsv.read_csv(path, **_csv_options(names, opts, types=types))
+        table = pacsv.read_csv(path, **_csv_options(names, opts, types=read_as))
     except pa.ArrowInvalid as exc:
         raise _locate_csv_error(path, names, types, opts, exc) from None
+    return table if opts.thousands is None else _ungroup(table, types, path, opts)
+
+
+def _ungroup(table: pa.Table, types: dict, path: Path, opts: ReadOptions) -> pa.Table:
+    """The number columns read as text, cast to float without ``data.thousands``."""
+    for name, kind in types.items():
+        if not pa.types.is_floating(kind):
+            continue
+        raw = table.column(name)
+        at = misgrouped(raw, opts.thousands, opts.decimal)
+        if at is not None:
+            raise ContractError(f"value {raw[at].as_py()!r} does not group its digits by three "
+                                f"with data.thousands={opts.thousands!r}",
+                                file=path, column=name, row=at + 1)
+        text = ungrouped(raw, opts.thousands, opts.decimal)
+        found = _first_cast_failure(text, kind)
+        if found is not None:
+            raise ContractError(f"value {raw[found[0]].as_py()!r} is not a number",
+                                file=path, column=name, row=found[0] + 1)
+        table = table.set_column(table.column_names.index(name), name, pc.cast(text, kind))
+    return table
 
 
 def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
@@ -179,17 +206,19 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
 
 
 def _bad_cell_error(path, names, column, target, opts) -> ContractError:
-    text = pacsv.read_csv(path, **_csv_options(names, opts, include=[column],
-                                                types={column: pa.string()})).column(column)
-    if opts.decimal != "." and pa.types.is_floating(target):
-        text = pc.replace_substring(text, opts.decimal, ".")
+    raw = pacsv.read_csv(path, **_csv_options(names, opts, include=[column],
+                                               types={column: pa.string()})).column(column)
+    number = pa.types.is_floating(target)
+    text = ungrouped(raw, opts.thousands, opts.decimal) if number else raw
     found = _first_cast_failure(text, target)
     if found is None:
         return ContractError(f"cannot convert to {target}", file=path, column=column)
-    row, value = found
-    # a decimal comma read with data.decimal='.': say the setting that reads it
-    hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
-            and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
+    row, value = found[0], raw[found[0]].as_py()
+    # a thousands separator or a decimal comma the settings do not read: name the setting
+    hint = thousands_hint(str(value), raw, opts.decimal) if number else None
+    if hint is None:
+        hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
+                and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
     return ContractError(f"value {value!r} is not {_describe(target)}{hint}",
                          file=path, column=column, row=row + 1)
 

@@ -59,7 +59,8 @@ def _stdin_campaign(columns: list[str], opts: io.ReadOptions) -> tuple[dict, dic
     its row.  ``time`` in seconds or as ISO 8601 timestamps (``data.time``; ``auto``: as the
     first row reads, like a campaign file)."""
     try:
-        df = pd.read_csv(sys.stdin, sep=opts.delimiter, decimal=opts.decimal)
+        df = pd.read_csv(sys.stdin, sep=opts.delimiter, decimal=opts.decimal,
+                         thousands=opts.thousands)
     except Exception as exc:    # pandas raises several kinds for a bad stream
         raise io.ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                                f"{opts.delimiter!r} ({' '.join(str(exc).split())})",

@@ -1,0 +1,57 @@
+"""Thousands separators in CSV numbers: read with ``data.thousands``, and named when a cell
+holds one that the settings do not read (rather than blaming a decimal comma)."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.compute as pc
+
+# marks a lab may group digits with (6,000  6.000  6'000); a space is never one in a CSV cell
+# that Arrow reads, it would be a field of its own or trimmed
+GROUP_MARKS = (",", ".", "'")
+
+
+def grouped(mark: str, decimal: str) -> str:
+    """A number whose digits are grouped by three with ``mark`` (a regex, whole cell)."""
+    m, d = re.escape(mark), re.escape(decimal)
+    return rf"\s*[+-]?\d{{1,3}}(?:{m}\d{{3}})+(?:{d}\d*)?(?:[eE][+-]?\d+)?\s*"
+
+
+def thousands_hint(value: str, column: pa.ChunkedArray, decimal: str) -> str | None:
+    """``": a thousands separator? set data.thousands=','"`` when ``value`` groups its digits
+    by three with a mark other than ``decimal``.  ``6,000`` could also be a decimal comma with
+    three decimals: it is one only if another cell of ``column`` (the raw text) has a comma
+    followed by other than three digits (``21,35``)."""
+    for mark in GROUP_MARKS:
+        if mark == decimal or not re.fullmatch(grouped(mark, decimal), value):
+            continue
+        if mark in ",." and value.count(mark) == 1 and decimal not in value:
+            m = re.escape(mark)
+            as_decimal = pc.match_substring_regex(
+                column, rf"^\s*[+-]?\d*{m}(?:\d{{1,2}}|\d{{4,}})(?:[eE][+-]?\d+)?\s*$")
+            if pc.any(as_decimal).as_py():
+                return None
+        return f": a thousands separator? set data.thousands={mark!r}"
+    return None
+
+
+def misgrouped(column: pa.ChunkedArray, mark: str, decimal: str) -> int | None:
+    """Position of the first cell that holds ``mark`` without grouping digits by three with
+    it (``6,00`` with ``data.thousands=','`` is no thousand: it is refused, not read as 600)."""
+    bad = pc.and_(pc.match_substring(column, mark),
+                  pc.invert(pc.match_substring_regex(column, f"^{grouped(mark, decimal)}$")))
+    flags = pc.fill_null(bad, False).to_numpy(zero_copy_only=False)
+    return int(np.argmax(flags)) if flags.any() else None
+
+
+def ungrouped(column: pa.ChunkedArray, mark: str | None, decimal: str) -> pa.ChunkedArray:
+    """The text of ``column`` as Arrow casts it to float: no ``mark`` (none when ``None``),
+    ``.`` as the decimal mark (a ``.`` where ``decimal`` is another mark stays invalid, as
+    Arrow's reader has it)."""
+    text = column if mark is None else pc.replace_substring(column, mark, "")
+    if decimal != ".":
+        text = pc.replace_substring(pc.replace_substring(text, ".", "!"), decimal, ".")
+    return text
