@@ -65,6 +65,26 @@ def test_a_unit_changed_inside_a_file_is_refused_at_its_row(paths, capsys, case,
     assert snapshot(paths["out"], paths["interim"], paths["model"], paths["ds"]) == before
 
 
+def test_the_row_named_is_the_files_after_a_trimmed_edge_or_a_kept_empty_cell(paths, capsys):
+    # rows are 1-based data rows of the source file: one incomplete first row dropped
+    # (data.max_edge_samples=1), or an empty cell a streamed test campaign keeps (monitor)
+    def trimmed(df):
+        df["T_amb"] = df["T_amb"].where(df.index != 0)
+        from_row("T_0", 15, FAHRENHEIT)(df)
+
+    def gap(df):
+        df["T_0"] = df["T_0"].where(df.index != 9)
+        from_row("T_0", 15, FAHRENHEIT)(df)
+    edit_csv(paths["ds"] / "K02.csv", trimmed)
+    refused(["ingest", *paths["args"], "data.max_edge_samples=1"], capsys, "K02.csv",
+            "column 'T_0'", "row 15")
+    edit_csv(paths["ds"] / "K02.csv", lambda df: df.__setitem__("T_0", df["T_0"].where(
+        df.index < 14, (df["T_0"] - 32) / 1.8)))
+    edit_csv(paths["ds"] / "K04.csv", gap)
+    refused(["monitor", *paths["args"], "data.max_edge_samples=1"], capsys, "K04.csv",
+            "column 'T_0'", "row 15")
+
+
 @pytest.fixture
 def default_copy(default_dataset, tmp_path):
     return shutil.copytree(default_dataset, tmp_path / "yearround_spindle")

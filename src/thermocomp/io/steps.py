@@ -8,15 +8,21 @@ the ambient sensor jumps a few K in one coarse sample; a fault offsets one senso
 is refused only when three things hold, each against the column's own history:
 
 1. it is a step the column does not make: larger than ``data.max_step_ratio`` times its robust
-   sample-to-sample scale (1.4826 x the MAD of its differences);
-2. a unit conversion accounts for it: the value after is, within a tenth of the step, the value
+   sample-to-sample scale (1.4826 x the MAD of its differences, the column taken as if the unit
+   had been kept, so that the rows in the other unit do not set the scale);
+2. a unit conversion accounts for it: the value after is, within a fifth of the step, the value
    before converted (°C -> °F: 1.8 x + 32, µm -> mm: x / 1000, ...), so the level jumps by the
-   factor the unit makes, which a physical step matches only by chance;
-3. it persists: the next samples, converted back, continue with steps the column makes
-   (a spike or a re-zeroed probe goes on at the new level in the old unit's steps).
+   factor the unit makes, which a physical step matches only by chance (a door's 3 K at 20 °C
+   would have to be 48 K), and the value before is far enough from zero for x1000 to say so;
+3. it persists: the next samples, converted back, move less than a fifth of the step (a spike
+   steps back; a re-zeroed probe goes on at the new level in the old unit's steps, which
+   converted back are 1000x the noise).
 
-A step that fits a unit while another sensor of the same kind steps at the same row without
-fitting one is ambiguous (an event that moved several sensors): it is warned about, not refused.
+Unit-aware rather than a generic step test: doors and faults make steps as large, so a generic
+test could only warn, on every such event; none of them lands where a conversion puts the value,
+so this one can refuse.  A step that fits a unit while another sensor of the same kind steps at
+the same row without fitting one is ambiguous (an event that moved several sensors): it is
+warned about, not refused.
 """
 
 from __future__ import annotations
@@ -24,6 +30,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from numpy.lib.stride_tricks import sliding_window_view
 
 from ..log import logger
 from .contract import ContractError, role
@@ -32,7 +39,7 @@ from .tables import _values
 FIT = 0.2         # a conversion must leave at most this share of the step, there and after
 PERSIST = 3       # samples after the step that must continue in the old unit, converted back
 MIN_SAMPLES = 6   # fewer finite values: no history to judge a step against
-CANDIDATES = 8    # largest steps a unit explains that are examined, per unit and column
+CANDIDATES = 8    # steps a unit explains that are judged against the history, per unit
 
 # role -> (what the rows from the step on read as, the conversion from the rows before to
 # them, and back); E_ columns are µm, T_ columns °C (or °F before a change to °C)
@@ -60,24 +67,51 @@ def unit_change(x: np.ndarray, ratio: float, units) -> tuple[int, int]:
     """``(k, i)``: the first step of the finite values ``x`` (``x[k]`` to ``x[k+1]``) that is
     a change to ``units[i]`` (see the module docstring); ``(-1, -1)`` when there is none."""
     steps = np.diff(x)
+    tolerance = FIT * np.abs(steps)
     found = []
     for i, (_, forward, back) in enumerate(units):
         with np.errstate(over="ignore", invalid="ignore"):
-            explained = np.abs(x[1:] - forward(x[:-1])) <= FIT * np.abs(steps)
-        explained &= steps != 0
-        # the largest few: a file has one or two unit changes, not hundreds
-        for k in sorted(np.flatnonzero(explained), key=lambda k: -abs(steps[k]))[:CANDIDATES]:
+            explained = (np.abs(x[1:] - forward(x[:-1])) <= tolerance) & (steps != 0)
+            if not explained.any():
+                continue
+            undone = back(x)
+            # step k with the rows after it converted back, and the PERSIST steps after it
+            at = np.abs(undone[1:] - x[:-1])
+            moves = np.concatenate((np.abs(np.diff(undone)), np.full(PERSIST, -np.inf)))
+            after = sliding_window_view(moves[1:], PERSIST).max(axis=1)
+            fits = explained & (at <= tolerance) & (after > -np.inf) & (after <= tolerance)
+        for k in np.flatnonzero(fits)[:CANDIDATES]:
             # the column as if the unit had been kept: its history judges the step
-            kept = np.concatenate((x[:k + 1], back(x[k + 1:])))
-            scale = robust_step_scale(kept)
-            after = np.abs(np.diff(kept)[k:k + PERSIST + 1])
+            scale = robust_step_scale(np.concatenate((x[:k + 1], undone[k + 1:])))
             # x1000 of a value within the noise of zero predicts nothing: the conversion of
             # the value before must be sharper than the fit it is held to
             spread = abs(forward(x[k] + scale) - forward(x[k]))
-            if (abs(steps[k]) > ratio * scale and spread <= FIT * abs(steps[k])
-                    and after.size > 1 and (after <= FIT * abs(steps[k])).all()):
+            if abs(steps[k]) > ratio * scale and spread <= tolerance[k]:
                 found.append((int(k), i))
+                break
     return min(found, default=(-1, -1))
+
+
+def _finite(column) -> tuple[np.ndarray, np.ndarray]:
+    """The rows of ``column`` that hold a value, and those values."""
+    v = _values(column)
+    rows = np.flatnonzero(np.isfinite(v))
+    return rows, v[rows]
+
+
+def _steps_without_a_unit(columns: dict, names: list[str], row: int, ratio: float,
+                          units) -> bool:
+    """Whether one of ``names`` steps into ``row`` by more than ``ratio`` times its typical
+    step with no unit change there (an event that moved several sensors)."""
+    for name in names:
+        rows, x = _finite(columns[name])
+        k = int(np.searchsorted(rows, row))
+        if rows.size < MIN_SAMPLES or not 0 < k < rows.size or rows[k] != row:
+            continue
+        change, _ = unit_change(x, ratio, units)
+        if abs(x[k] - x[k - 1]) > ratio * robust_step_scale(x) and change != k - 1:
+            return True
+    return False
 
 
 def check_unit_steps(columns: dict, path: Path, ratio: float | None, offset: int) -> None:
@@ -87,26 +121,19 @@ def check_unit_steps(columns: dict, path: Path, ratio: float | None, offset: int
     if ratio is None:
         return
     for kind, units in UNITS.items():
-        found, physical = [], None
-        for name in (n for n in columns if role(n) == kind):
-            v = _values(columns[name])
-            rows = np.flatnonzero(np.isfinite(v))
-            if rows.size < MIN_SAMPLES:
-                continue
-            x = v[rows]
-            k, unit = unit_change(x, ratio, units)
-            if physical is None:
-                physical = np.zeros(v.size, dtype=bool)
-            large = np.abs(np.diff(x)) > ratio * robust_step_scale(x)
+        names = [n for n in columns if role(n) == kind]
+        found = []
+        for name in names:
+            rows, x = _finite(columns[name])
+            k, unit = unit_change(x, ratio, units) if rows.size >= MIN_SAMPLES else (-1, -1)
             if k >= 0:
-                large[k] = False
                 found.append((int(rows[k + 1]), name, x[k], x[k + 1], units[unit][0]))
-            physical[rows[1:][large]] = True    # the rows other large steps land on
         for row, name, before, after, what in sorted(found, key=lambda f: f[0]):
             says = (f"steps from {before:g} to {after:g} in one sample and the rows from here on "
                     f"read as {what}: the unit changes inside the file, convert it "
                     f"(data.max_step_ratio={ratio:g})")
-            if physical[row]:   # another sensor of this kind stepped here without fitting a unit
+            others = [n for n in names if n != name]
+            if _steps_without_a_unit(columns, others, row, ratio, units):
                 logger.warning(f"{path}, column '{name}', row {row + offset + 1}: {says}; other "
                                "sensors step at the same row, so it may be a real event")
                 continue
