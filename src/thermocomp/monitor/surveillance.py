@@ -32,7 +32,10 @@ sensor for a single fault) is excluded and the operator recomputed, while more t
 ``r + 1`` sensors remain active (the first at ``exclude_at``, any further one while
 a sensor is out by its error only beyond the alarm band:
 :meth:`SensorMonitor._field_level`); an excluded sensor whose reading returns
-within the warning band for a whole window is re-admitted.  Every change of
+within the warning band for a whole window is re-admitted, the sensors due back
+at once judged together (:meth:`SensorMonitor._returning`: after a total dropout
+none could pass alone).  While too few sensors are in to rebuild the field, a
+sensor out only for a dropout gives its reading as it waits.  Every change of
 state is an event ``{"time", "sensor", "from", "to", "reason"}``.
 """
 
@@ -171,7 +174,7 @@ class SensorMonitor:
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
-              "_last_good", "_by_field", "_jumps", "_ref0")
+              "_last_good", "_by_field", "_jumps", "_ref0", "_dropped")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -190,6 +193,7 @@ class SensorMonitor:
         self._prev_other = np.full(n, np.nan)       # each sensor as the others predict it
         self._last_good = np.zeros(n)               # last reading while the sensor was in
         self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
+        self._dropped = np.zeros(n, dtype=bool)      # its last detector to fire was a dropout
         self._jumps = np.zeros(n, dtype=np.int64)    # jumps since it was last admitted
         self._ref0 = np.full(n, np.nan)              # its reference before the first of them
         self._run_pred = np.full(n, np.nan)
@@ -208,6 +212,8 @@ class SensorMonitor:
             lev[active] = h
         self._lev = lev
         self._observable = lev < self.pod.max_leverage
+        # enough sensors in to rebuild the others (a total dropout leaves none)
+        self._rebuilds = int(active.sum()) >= self.min_active_
         self._judged = active & self._observable
         self._scale = np.where(self._judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
         self._scale[active & ~self._observable] = np.nan
@@ -269,7 +275,7 @@ class SensorMonitor:
                 if clean is not None:
                     return clean, []
             out = self._update(x, time)
-        self._quiet = not self._state[self._active].any()
+        self._quiet = self._rebuilds and not self._state[self._active].any()
         return out
 
     @property
@@ -396,8 +402,15 @@ class SensorMonitor:
         self._prev_other = np.where(self._judged, d - e, np.nan)
         self._prev = np.where(finite, d, self._prev)
         self._prev_e = e
+        for j in instant:
+            self._dropped[j] = not np.isfinite(x[j])
         good = self._active & finite
         self._last_good = np.where(good, d, self._last_good)
+        if not self._rebuilds:
+            # too few sensors in to rebuild the field: a sensor out only for a dropout whose
+            # reading is back feeds the model while it waits out its window, nearer the truth
+            # than a held value (10 held samples of a warm-up doubled the adaptive error)
+            good = good | (self._dropped & finite & (self._run == 0))
         # an excluded sensor: rebuilt from the field, or held where the others cannot predict it
         clean = d if (self._all_active and all_finite) else np.where(
             good, d, np.where(self._predictable, pred, self._last_good))
@@ -498,12 +511,10 @@ class SensorMonitor:
         """Re-admission: back within the warning band for a whole window, no detector firing
         (checked against the field where the others can predict it, else calm is enough).
         Whether any sensor came back."""
-        inside = (np.all(np.abs(self._err) < READMIT * self.warning_c, axis=0)
-                  | ~self._predictable)
-        back = ~self._active & finite & (self._run == 0) & (self._calm >= self.window) & inside
+        due = ~self._active & finite & (self._run == 0) & (self._calm >= self.window)
+        due[list(instant)] = False
+        back = self._returning(due) if due.any() else due
         for j in np.flatnonzero(back):
-            if j in instant or (self._predictable[j] and not self._passes_once_back(j)):
-                continue
             why = f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C for {self.window} samples"
             shift = self._ref[j] - self._ref0[j]
             if not self._predictable[j] and (self._jumps[j] > 1 or (
@@ -526,19 +537,37 @@ class SensorMonitor:
             self._set_operator()
         return bool(back.any())
 
-    def _passes_once_back(self, j: int) -> bool:
-        """Whether sensor ``j`` would pass its own judgement once back: its leave-one-out error
-        in the set with it, over the whole window (not its error against a set that a coupled
-        partner may have left blind to it)."""
-        trial = self._active.copy()
-        trial[j] = True
+    def _returning(self, due: np.ndarray) -> np.ndarray:
+        """Which of the ``due`` sensors come back: those that pass their own judgement in the
+        set of the active sensors and every due one, the worst failing one left out until the
+        rest pass.  Judged together, not one at a time: a sensor whose coupled partner is out
+        too, or any sensor after a total dropout, has no set to pass in on its own."""
+        trial = self._active | due
+        while True:
+            ok, worst = self._pass_once_back(trial)
+            failing = due & trial & ~ok
+            if not failing.any():
+                return due & trial
+            trial[int(np.argmax(np.where(failing, worst, -1.0)))] = False
+
+    def _pass_once_back(self, trial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(passes, worst error)`` of the sensors of the set ``trial``: their leave-one-out
+        error in it over the whole window within the re-admission band (not their error against
+        a set that a coupled partner may have left blind to them).  A sensor the others in
+        ``trial`` cannot predict passes where no other predicts it at all (calm is enough then)."""
+        n = len(self.names)
+        if trial.sum() < self.min_active_:
+            return np.zeros(n, dtype=bool), np.full(n, np.inf)
         M, h = self.pod.operator(trial)
-        hj = h[int(np.sum(trial[:j]))]
-        if hj >= self.pod.max_leverage:
-            return False
+        lev = np.ones(n)
+        lev[trial] = h
+        blind = lev >= self.pod.max_leverage
         H = np.where(np.isfinite(self._hist), self._hist, 0.0)
-        e_trial = (H[:, j] - H[:, trial] @ M[j]) / (1 - hj)
-        return bool(np.all(np.abs(e_trial) < READMIT * self.warning_c[j]))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            worst = np.abs((H - H[:, trial] @ M.T) / (1 - lev)).max(axis=0)
+        worst[blind] = np.inf
+        ok = np.where(blind, ~self._predictable, worst < READMIT * self.warning_c) & trial
+        return ok, worst
 
     def _set_states(self, level, err, instant, time, events) -> None:
         """States of the sensors still active (monitor-only mode: a firing detector holds alarm)."""
