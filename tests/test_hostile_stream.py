@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import io as text_io
 import json
+import re
 import sys
 
 import numpy as np
@@ -19,10 +20,11 @@ from omegaconf import OmegaConf
 
 from conftest import ROOT
 from thermocomp import io
-from thermocomp.cli import main
+from thermocomp.cli import _compose, main
 from thermocomp.compensator import Compensator
 from thermocomp.deploy import StreamingCompensator
 from thermocomp.deploy.pyfunc import CompensatorModel
+from thermocomp.errors import ConfigError
 from thermocomp.monitor import STATES, AdaptiveCompensator
 from thermocomp.stages.monitor import _stream
 
@@ -167,3 +169,158 @@ def test_a_failing_adaptive_step_is_raised_not_logged_again_with_the_last_rows_e
     assert adaptive.last_events_ == []
     monkeypatch.undo()
     adaptive.reset()
+
+
+# -- the served model: request limits (item 10) and a warning for a public host (item 14) --------
+
+def _asgi(app, body: bytes, chunk: int = 1 << 16, content_type: str = "application/json",
+          declare: bool = True) -> tuple[int, dict, int]:
+    """``(status, JSON answer, bytes the app let the client send)`` of one POST through ``app``."""
+    import asyncio
+
+    chunks = [body[i:i + chunk] for i in range(0, len(body), chunk)] or [b""]
+    read, sent = [0], []
+
+    async def receive():
+        if read[0] >= len(chunks):
+            return {"type": "http.disconnect"}
+        read[0] += 1
+        return {"type": "http.request", "body": chunks[read[0] - 1],
+                "more_body": read[0] < len(chunks)}
+
+    async def send(message):
+        sent.append(message)
+
+    headers = [(b"content-type", content_type.encode())]
+    if declare:
+        headers.append((b"content-length", str(len(body)).encode()))
+    scope = {"type": "http", "asgi": {"version": "3.0"}, "http_version": "1.1", "method": "POST",
+             "scheme": "http", "path": "/invocations", "raw_path": b"/invocations",
+             "query_string": b"", "headers": headers, "server": ("127.0.0.1", 80),
+             "client": ("127.0.0.1", 1)}
+    asyncio.run(app(scope, receive, send))
+    answer = b"".join(m.get("body", b"") for m in sent if m["type"] == "http.response.body")
+    return sent[0]["status"], json.loads(answer), sum(len(c) for c in chunks[:read[0]])
+
+
+def _split(frame: pd.DataFrame, **params) -> bytes:
+    split = frame.astype(object).where(frame.notna(), None).to_dict(orient="split")
+    split.pop("index")
+    return json.dumps({"dataframe_split": split, "params": params}).encode()
+
+
+@pytest.fixture(scope="module")
+def scoring(deployed, tmp_path_factory):
+    """``(pyfunc folder, MLflow's scoring app for it, a block of healthy rows)``."""
+    import mlflow
+    from mlflow.pyfunc import scoring_server
+
+    from thermocomp.deploy.pyfunc import save_compensator
+
+    adaptive, test = deployed
+    rows = next(iter(test.values()))[adaptive.columns_ + ["time"]].reset_index(drop=True)
+    folder = save_compensator(adaptive, tmp_path_factory.mktemp("served") / "model",
+                              input_example=rows.head(3))
+    app = scoring_server.init(mlflow.pyfunc.load_model(str(folder)))
+    return folder, app, rows
+
+
+def test_the_served_model_refuses_too_big_too_many_and_too_deep_before_it_parses(scoring, monkeypatch):
+    from thermocomp.deploy.server import MAX_DEPTH, RequestLimits
+
+    _, app, rows = scoring
+    parsed = []
+    monkeypatch.setattr("mlflow.pyfunc.scoring_server.invocations",
+                        lambda *a: parsed.append(a) or pytest.fail("the app parsed it"))
+    block = _split(rows.head(20), reset=True)
+    limited = RequestLimits(app, max_body_bytes=len(block) + 100, max_rows=30)
+    too_big = _split(pd.concat([rows] * 5), reset=True)
+    status, answer, read = _asgi(limited, too_big)              # Content-Length: nothing read
+    assert (status, read) == (413, 0) and "serve.max_body_mb" in answer["message"]
+    status, answer, read = _asgi(limited, too_big, chunk=1024, declare=False)   # chunked
+    assert status == 413 and read <= len(block) + 100 + 1024 < len(too_big)
+    many = _split(pd.DataFrame(np.zeros((31, 1)), columns=["T_x"]))
+    assert len(many) < len(block)
+    status, answer, _ = _asgi(limited, many)
+    assert status == 413 and "31 rows over serve.max_rows (30)" in answer["message"]
+    for fmt in ("dataframe_records", "instances"):
+        body = json.dumps({fmt: [{"T_x": 0.0}] * 31}).encode()
+        assert _asgi(limited, body)[0] == 413, fmt
+    csv = ("T_x\n" + "0\n" * 31).encode()
+    assert _asgi(limited, csv, content_type="text/csv")[0] == 413
+    deep = b'{"dataframe_split": ' + b"[" * (MAX_DEPTH + 1) + b"]" * (MAX_DEPTH + 1) + b"}"
+    status, answer, _ = _asgi(limited, deep)
+    assert status == 400 and f"nested more than {MAX_DEPTH} deep" in answer["message"]
+    assert "[" not in answer["message"] and parsed == []
+
+
+def test_the_served_model_answers_a_block_within_the_limits_as_without_them(scoring):
+    from thermocomp.deploy.server import RequestLimits
+
+    _, app, rows = scoring
+    block = _split(rows.head(20), reset=True)
+    plain = _asgi(app, block)
+    limited = _asgi(RequestLimits(app, max_body_bytes=len(block), max_rows=20), block, chunk=500,
+                    declare=False)
+    assert plain[0] == limited[0] == 200 and limited[1] == plain[1]
+    assert len(limited[1]["predictions"]) == 20
+
+
+def test_serve_runs_the_limited_app_and_warns_when_the_network_can_reach_it(scoring, tmp_path,
+                                                                            caplog):
+    from thermocomp.deploy import server
+    from thermocomp.stages.serve import serve_command
+
+    folder = scoring[0]
+    common = [f"serve.model={folder}", f"tracking_uri=sqlite:///{tmp_path / 'mlflow.db'}"]
+    argv, env = serve_command(_compose(common + ["serve.max_rows=7", "serve.max_body_mb=0.5"]))
+    assert argv[argv.index("--factory") + 1] == "thermocomp.deploy.server:scoring_app"
+    assert argv[argv.index("--workers") + 1] == "1"
+    assert (env[server.ROWS_ENV], env[server.BODY_ENV]) == ("7", str(2**19))
+    assert not [r for r in caplog.records if r.levelname == "WARNING"]
+    for host in ("0.0.0.0", "192.168.1.5", "::", "machine.example"):
+        caplog.clear()
+        serve_command(_compose(common + [f"serve.host={host}"]))
+        [warning] = [r.getMessage() for r in caplog.records if r.levelname == "WARNING"]
+        assert f"serve.host={host}" in warning and "reachable from the network" in warning
+    for host in ("127.0.0.1", "localhost", "::1", "127.0.0.2"):
+        caplog.clear()
+        serve_command(_compose(common + [f"serve.host={host}"]))
+        assert not [r for r in caplog.records if r.levelname == "WARNING"], host
+    for override in ("serve.max_rows=0", "serve.max_body_mb=0", "serve.max_body_mb=nan"):
+        with pytest.raises(ConfigError, match=re.escape(override.split("=")[0])):
+            serve_command(_compose(common + [override]))
+
+
+@pytest.mark.slow
+def test_thermocomp_serve_answers_413_and_400_over_http_and_serves_on(scoring, tmp_path):
+    import subprocess
+
+    import requests
+
+    from conftest import BIN, free_port, stop_process_group, wait_until_up
+
+    folder, _, rows = scoring
+    port = free_port()
+    log = open(tmp_path / "serve.log", "w")
+    server = subprocess.Popen([str(BIN / "thermocomp"), "serve", f"serve.model={folder}",
+                               f"serve.port={port}", "serve.max_rows=20", "serve.max_body_mb=0.01",
+                               f"tracking_uri=sqlite:///{tmp_path / 'mlflow.db'}"], cwd=tmp_path,
+                              stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    url = f"http://127.0.0.1:{port}/invocations"
+
+    def post(body: bytes):
+        return requests.post(url, data=body, headers={"Content-Type": "application/json"}, timeout=60)
+
+    try:
+        wait_until_up(port, server, tmp_path / "serve.log")
+        assert post(b"[" * 5000 + b"]" * 5000).status_code == 400
+        many = post(_split(rows.head(21).round(2), reset=True))
+        assert many.status_code == 413 and "serve.max_rows" in many.json()["message"]
+        big = post(b" " * 20_000)
+        assert big.status_code == 413 and "serve.max_body_mb" in big.json()["message"]
+        ok = post(_split(rows.head(20), reset=True))
+        assert ok.status_code == 200 and len(ok.json()["predictions"]) == 20
+    finally:
+        stop_process_group(server)
+        log.close()
