@@ -73,12 +73,17 @@ def _per_row(adaptive, df: pd.DataFrame) -> tuple[list[list[dict]], np.ndarray]:
 
 # -- a total dropout: every sensor comes back (item 3) --------------------------------------------
 
-def test_every_sensor_comes_back_after_a_total_dropout_and_the_error_stays_near_fixed(deployed):
+@pytest.mark.parametrize("campaign, first, rows, near", [(0, None, 3, ("fixed", "healthy")),
+                                                         (1, 3, 6, ("fixed",))])
+def test_every_sensor_comes_back_after_a_total_dropout_and_the_error_stays_near_fixed(
+        deployed, campaign, first, rows, near):
+    """Three rows a third in; six early in the warm-up, whose change across the gap is no jump
+    (it was taken for one: four sensors re-referenced by it, three never back, 7.5x fixed; the
+    gap itself costs the fixed compensator 1.4x the healthy error there)."""
     adaptive, test = deployed
     fixed = adaptive.streaming
-    cid, healthy = next(iter(test.items()))
-    first = len(healthy) // 3
-    df = _dropout(healthy, first)
+    healthy = list(test.values())[campaign]
+    df = _dropout(healthy, len(healthy) // 3 if first is None else first, rows)
     y_ad, events, _ = _stream(adaptive, df)
     y_fix, _, _ = _stream(fixed, df)          # holds its last correction on the missing rows
     y_ok, _, _ = _stream(adaptive, healthy)
@@ -87,8 +92,10 @@ def test_every_sensor_comes_back_after_a_total_dropout_and_the_error_stays_near_
     last = {e["sensor"]: e["to"] for e in events if e["sensor"] in adaptive.monitor.names}
     assert set(last.values()) == {"ok"}, last
     assert np.isfinite(y_ad).all()
-    got, fix, ok = _rmse(adaptive, df, y_ad), _rmse(adaptive, df, y_fix), _rmse(adaptive, healthy, y_ok)
-    assert (got <= 1.2 * np.minimum(fix, ok)).all(), (got, fix, ok)
+    got = _rmse(adaptive, df, y_ad)
+    against = {"fixed": _rmse(adaptive, df, y_fix), "healthy": _rmse(adaptive, healthy, y_ok)}
+    for name in near:
+        assert (got <= 1.2 * against[name]).all(), (name, got, against)
 
 
 def test_monitor_on_stdin_takes_the_sensors_back_after_a_total_dropout(default_dataset, tmp_path,

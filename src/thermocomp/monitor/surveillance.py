@@ -17,8 +17,9 @@ Detectors, each named in the event's reason:
 * ``dropout`` — no finite value;
 * ``out of range`` — outside the training range widened by ``range_margin_c``;
 * ``jump`` — a one-sample step larger than ``jump_factor`` × the largest step
-  seen in training, or a self-prediction error that steps past the alarm band
-  in one sample;
+  seen in training (across missing samples, the step since the last reading
+  against that limit times the samples it spans), or a self-prediction error
+  that steps past the alarm band in one sample;
 * ``freeze`` — the reading does not change, for longer than its longest constant
   run in training (capped at ``window``), while its prediction from the other
   sensors moves by the warning band (for a sensor no other predicts: no change
@@ -174,7 +175,7 @@ class SensorMonitor:
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
-              "_last_good", "_by_field", "_jumps", "_ref0", "_dropped")
+              "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -194,6 +195,10 @@ class SensorMonitor:
         self._last_good = np.zeros(n)               # last reading while the sensor was in
         self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
         self._dropped = np.zeros(n, dtype=bool)      # its last detector to fire was a dropout
+        # samples the next step spans (1 + missing ones since the last reading): the jump limit
+        # is per sample (a warm-up across 6 missing rows read as a 4 °C jump, re-referenced away)
+        self._gap = np.ones(n)
+        self._gapped = False
         self._jumps = np.zeros(n, dtype=np.int64)    # jumps since it was last admitted
         self._ref0 = np.full(n, np.nan)              # its reference before the first of them
         self._run_pred = np.full(n, np.nan)
@@ -298,7 +303,8 @@ class SensorMonitor:
         finite = self._true if complete else np.isfinite(d)
         if ((not complete and ((self._active & ~finite).any()   # a sensor in use went missing
                                or (np.isfinite(x) & ~finite).any()))   # or one comes, unreferenced
-                or (np.abs(x - self._mid) > self._half).any() or (np.abs(step) > self._jump_lim).any()):
+                or (np.abs(x - self._mid) > self._half).any()
+                or (np.abs(step) > (self._jump_lim * self._gap if self._gapped else self._jump_lim)).any()):
             return None
         pred = self._M @ (d if self._all_active else d[self._active])
         e = (d - pred) * self._scale
@@ -334,9 +340,12 @@ class SensorMonitor:
         self._prev_other = np.where(self._judged, d - e, np.nan)
         if complete:
             self._prev = d
+            if self._gapped:
+                self._gap, self._gapped = np.ones(len(d)), False
         else:                            # an excluded sensor still missing: not calm
             self._calm[~finite] = 0
             self._prev = np.where(finite, d, self._prev)
+            self._gap, self._gapped = np.where(finite, 1.0, self._gap + 1), True
         self._prev_e = e
         clean = d if self._all_active else np.where(
             self._active, d, np.where(self._predictable, pred, self._last_good))
@@ -364,7 +373,7 @@ class SensorMonitor:
 
         # instant detectors on the raw reading (vectorised check, details only when one fires)
         step = d - self._prev
-        big = np.abs(step) > self._jump_lim
+        big = np.abs(step) > self._jump_lim * self._gap
         same = step == 0
         instant: dict[int, str] = {}
         if self._count == 2 and big.any():
@@ -401,6 +410,8 @@ class SensorMonitor:
         self._set_states(level, err, instant, time, events)
         self._prev_other = np.where(self._judged, d - e, np.nan)
         self._prev = np.where(finite, d, self._prev)
+        self._gap = np.where(finite, 1.0, self._gap + 1)
+        self._gapped = bool((self._gap > 1).any())
         self._prev_e = e
         for j in instant:
             self._dropped[j] = not np.isfinite(x[j])
