@@ -104,7 +104,7 @@ STAGE_HELP = {
                "data.path/volumetric.json when present (else the kinematic model defaults)",
                "<out>/design.json, <out>/design/ (figures)",
                "design.n_machines=200 design.n_jobs=-1 design.ranges.angular=6 design.machine.order=4"),
-    "serve": ("the registered compensator over HTTP (mlflow models serve, one worker)",
+    "serve": ("the registered compensator over HTTP (MLflow's scoring server, one worker)",
               "serve.model from the tracking store", "nothing (answers POST /invocations)",
               "serve.model=models:/thermocomp-compensator@champion serve.port=5001 serve.host=127.0.0.1"),
 }

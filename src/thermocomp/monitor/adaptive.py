@@ -158,6 +158,7 @@ class AdaptiveCompensator:
         return self._step(np.asarray(x_row, dtype=float), time)[0]
 
     def _step(self, x: np.ndarray, time: float) -> tuple[np.ndarray, int]:
+        self.last_events_: list[dict] = []    # a step that fails reports none, not the last ones
         events: list[dict] = []
         t, dt = self._check_time(float(time), events)
         if self.monitor is not None:

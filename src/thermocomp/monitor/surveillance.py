@@ -17,8 +17,9 @@ Detectors, each named in the event's reason:
 * ``dropout`` — no finite value;
 * ``out of range`` — outside the training range widened by ``range_margin_c``;
 * ``jump`` — a one-sample step larger than ``jump_factor`` × the largest step
-  seen in training, or a self-prediction error that steps past the alarm band
-  in one sample;
+  seen in training (across missing samples, the step since the last reading
+  against that limit times the samples it spans), or a self-prediction error
+  that steps past the alarm band in one sample;
 * ``freeze`` — the reading does not change, for longer than its longest constant
   run in training (capped at ``window``), while its prediction from the other
   sensors moves by the warning band (for a sensor no other predicts: no change
@@ -32,7 +33,10 @@ sensor for a single fault) is excluded and the operator recomputed, while more t
 ``r + 1`` sensors remain active (the first at ``exclude_at``, any further one while
 a sensor is out by its error only beyond the alarm band:
 :meth:`SensorMonitor._field_level`); an excluded sensor whose reading returns
-within the warning band for a whole window is re-admitted.  Every change of
+within the warning band for a whole window is re-admitted, the sensors due back
+at once judged together (:meth:`SensorMonitor._returning`: after a total dropout
+none could pass alone).  While too few sensors are in to rebuild the field, a
+sensor out only for a dropout gives its reading as it waits.  Every change of
 state is an event ``{"time", "sensor", "from", "to", "reason"}``.
 """
 
@@ -171,7 +175,7 @@ class SensorMonitor:
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
-              "_last_good", "_by_field", "_jumps", "_ref0")
+              "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -190,6 +194,11 @@ class SensorMonitor:
         self._prev_other = np.full(n, np.nan)       # each sensor as the others predict it
         self._last_good = np.zeros(n)               # last reading while the sensor was in
         self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
+        self._dropped = np.zeros(n, dtype=bool)      # its last detector to fire was a dropout
+        # samples the next step spans (1 + missing ones since the last reading): the jump limit
+        # is per sample (a warm-up across 6 missing rows read as a 4 °C jump, re-referenced away)
+        self._gap = np.ones(n)
+        self._gapped = False
         self._jumps = np.zeros(n, dtype=np.int64)    # jumps since it was last admitted
         self._ref0 = np.full(n, np.nan)              # its reference before the first of them
         self._run_pred = np.full(n, np.nan)
@@ -208,6 +217,8 @@ class SensorMonitor:
             lev[active] = h
         self._lev = lev
         self._observable = lev < self.pod.max_leverage
+        # enough sensors in to rebuild the others (a total dropout leaves none)
+        self._rebuilds = int(active.sum()) >= self.min_active_
         self._judged = active & self._observable
         self._scale = np.where(self._judged, 1.0 / np.maximum(1 - lev, 1e-12), 1.0)
         self._scale[active & ~self._observable] = np.nan
@@ -269,7 +280,7 @@ class SensorMonitor:
                 if clean is not None:
                     return clean, []
             out = self._update(x, time)
-        self._quiet = not self._state[self._active].any()
+        self._quiet = self._rebuilds and not self._state[self._active].any()
         return out
 
     @property
@@ -292,7 +303,8 @@ class SensorMonitor:
         finite = self._true if complete else np.isfinite(d)
         if ((not complete and ((self._active & ~finite).any()   # a sensor in use went missing
                                or (np.isfinite(x) & ~finite).any()))   # or one comes, unreferenced
-                or (np.abs(x - self._mid) > self._half).any() or (np.abs(step) > self._jump_lim).any()):
+                or (np.abs(x - self._mid) > self._half).any()
+                or (np.abs(step) > (self._jump_lim * self._gap if self._gapped else self._jump_lim)).any()):
             return None
         pred = self._M @ (d if self._all_active else d[self._active])
         e = (d - pred) * self._scale
@@ -328,9 +340,12 @@ class SensorMonitor:
         self._prev_other = np.where(self._judged, d - e, np.nan)
         if complete:
             self._prev = d
+            if self._gapped:
+                self._gap, self._gapped = np.ones(len(d)), False
         else:                            # an excluded sensor still missing: not calm
             self._calm[~finite] = 0
             self._prev = np.where(finite, d, self._prev)
+            self._gap, self._gapped = np.where(finite, 1.0, self._gap + 1), True
         self._prev_e = e
         clean = d if self._all_active else np.where(
             self._active, d, np.where(self._predictable, pred, self._last_good))
@@ -358,7 +373,7 @@ class SensorMonitor:
 
         # instant detectors on the raw reading (vectorised check, details only when one fires)
         step = d - self._prev
-        big = np.abs(step) > self._jump_lim
+        big = np.abs(step) > self._jump_lim * self._gap
         same = step == 0
         instant: dict[int, str] = {}
         if self._count == 2 and big.any():
@@ -395,9 +410,18 @@ class SensorMonitor:
         self._set_states(level, err, instant, time, events)
         self._prev_other = np.where(self._judged, d - e, np.nan)
         self._prev = np.where(finite, d, self._prev)
+        self._gap = np.where(finite, 1.0, self._gap + 1)
+        self._gapped = bool((self._gap > 1).any())
         self._prev_e = e
+        for j in instant:
+            self._dropped[j] = not np.isfinite(x[j])
         good = self._active & finite
         self._last_good = np.where(good, d, self._last_good)
+        if not self._rebuilds:
+            # too few sensors in to rebuild the field: a sensor out only for a dropout whose
+            # reading is back feeds the model while it waits out its window, nearer the truth
+            # than a held value (10 held samples of a warm-up doubled the adaptive error)
+            good = good | (self._dropped & finite & (self._run == 0))
         # an excluded sensor: rebuilt from the field, or held where the others cannot predict it
         clean = d if (self._all_active and all_finite) else np.where(
             good, d, np.where(self._predictable, pred, self._last_good))
@@ -498,12 +522,10 @@ class SensorMonitor:
         """Re-admission: back within the warning band for a whole window, no detector firing
         (checked against the field where the others can predict it, else calm is enough).
         Whether any sensor came back."""
-        inside = (np.all(np.abs(self._err) < READMIT * self.warning_c, axis=0)
-                  | ~self._predictable)
-        back = ~self._active & finite & (self._run == 0) & (self._calm >= self.window) & inside
+        due = ~self._active & finite & (self._run == 0) & (self._calm >= self.window)
+        due[list(instant)] = False
+        back = self._returning(due) if due.any() else due
         for j in np.flatnonzero(back):
-            if j in instant or (self._predictable[j] and not self._passes_once_back(j)):
-                continue
             why = f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C for {self.window} samples"
             shift = self._ref[j] - self._ref0[j]
             if not self._predictable[j] and (self._jumps[j] > 1 or (
@@ -526,19 +548,37 @@ class SensorMonitor:
             self._set_operator()
         return bool(back.any())
 
-    def _passes_once_back(self, j: int) -> bool:
-        """Whether sensor ``j`` would pass its own judgement once back: its leave-one-out error
-        in the set with it, over the whole window (not its error against a set that a coupled
-        partner may have left blind to it)."""
-        trial = self._active.copy()
-        trial[j] = True
+    def _returning(self, due: np.ndarray) -> np.ndarray:
+        """Which of the ``due`` sensors come back: those that pass their own judgement in the
+        set of the active sensors and every due one, the worst failing one left out until the
+        rest pass.  Judged together, not one at a time: a sensor whose coupled partner is out
+        too, or any sensor after a total dropout, has no set to pass in on its own."""
+        trial = self._active | due
+        while True:
+            ok, worst = self._pass_once_back(trial)
+            failing = due & trial & ~ok
+            if not failing.any():
+                return due & trial
+            trial[int(np.argmax(np.where(failing, worst, -1.0)))] = False
+
+    def _pass_once_back(self, trial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(passes, worst error)`` of the sensors of the set ``trial``: their leave-one-out
+        error in it over the whole window within the re-admission band (not their error against
+        a set that a coupled partner may have left blind to them).  A sensor the others in
+        ``trial`` cannot predict passes where no other predicts it at all (calm is enough then)."""
+        n = len(self.names)
+        if trial.sum() < self.min_active_:
+            return np.zeros(n, dtype=bool), np.full(n, np.inf)
         M, h = self.pod.operator(trial)
-        hj = h[int(np.sum(trial[:j]))]
-        if hj >= self.pod.max_leverage:
-            return False
+        lev = np.ones(n)
+        lev[trial] = h
+        blind = lev >= self.pod.max_leverage
         H = np.where(np.isfinite(self._hist), self._hist, 0.0)
-        e_trial = (H[:, j] - H[:, trial] @ M[j]) / (1 - hj)
-        return bool(np.all(np.abs(e_trial) < READMIT * self.warning_c[j]))
+        with np.errstate(divide="ignore", invalid="ignore"):
+            worst = np.abs((H - H[:, trial] @ M.T) / (1 - lev)).max(axis=0)
+        worst[blind] = np.inf
+        ok = np.where(blind, ~self._predictable, worst < READMIT * self.warning_c) & trial
+        return ok, worst
 
     def _set_states(self, level, err, instant, time, events) -> None:
         """States of the sensors still active (monitor-only mode: a firing detector holds alarm)."""

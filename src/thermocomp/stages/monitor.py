@@ -109,7 +109,9 @@ def _stdin_seconds(time: pd.Series, time_format: str) -> pd.Series:
 
 
 def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.ndarray]]:
-    """Stream one campaign from a reset; a step that fails holds the previous correction."""
+    """Stream one campaign from a reset; a step of the fixed compensator that refuses its row
+    holds the previous correction (the adaptive one gives one for every row: a failure there is
+    a defect, raised, not a held correction whose row re-reported the previous row's events)."""
     X = df[model.columns_].to_numpy(float)
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
     y = np.zeros((len(X), len(model.targets_)))
@@ -119,6 +121,8 @@ def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.nd
         try:
             y[i] = model._step(X[i], t[i])[0]
         except ValueError:                   # the fixed compensator on a missing value
+            if isinstance(model, AdaptiveCompensator):
+                raise
             y[i] = y[i - 1] if i else np.nan
         mon = getattr(model, "monitor", None)
         if mon is not None:

@@ -1,7 +1,10 @@
 """`thermocomp serve`: the registered compensator over HTTP, without an activated venv.
 
-Runs ``mlflow models serve -m <folder> --env-manager local -w 1`` on a pyfunc folder this
-installed package writes around ``serve.model``'s signed pickle (its own code never runs), with
+Runs MLflow's scoring server (what ``mlflow models serve -m <folder> --env-manager local -w 1``
+runs: uvicorn, one worker) behind the request limits of :mod:`thermocomp.deploy.server`
+(``serve.max_body_mb``, ``serve.max_rows``: 413, too deep a JSON: 400, before the model
+parses anything), on a pyfunc folder this installed package writes around ``serve.model``'s
+signed pickle (its own code never runs), with
 
 * the project's tracking store (``tracking_uri`` resolved against the project
   root, as every stage does) in ``MLFLOW_TRACKING_URI``, so ``models:/...``
@@ -29,12 +32,24 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from ..errors import ConfigError
-from ..params import POSITIVE, check_values, integer, text
+from ..log import logger
+from ..params import POSITIVE, check_values, integer, number, text
 from ..paths import resolve
 from ..tracking import DEFAULT_URI, resolve_uri, retry_locked
 from .common import say
 
-SERVE_RULES = {"model": text(), "host": text(), "port": integer(1, 65535), "timeout_s": POSITIVE}
+SERVE_RULES = {"model": text(), "host": text(), "port": integer(1, 65535), "timeout_s": POSITIVE,
+               "max_rows": integer(1, 10_000_000), "max_body_mb": number(0.0, 4096.0, open_lo=True)}
+
+
+def _loopback(host: str) -> bool:
+    """Whether ``host`` listens on this machine only (``localhost`` or a loopback address)."""
+    import ipaddress
+
+    try:
+        return host == "localhost" or ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False      # a name that may resolve to any interface
 
 
 def _check_model(model: str, uri: str) -> str:
@@ -85,21 +100,32 @@ def _trusted_copy(model: str, uri: str) -> str:
 
 def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
     """``(argv, environment)`` of the server ``thermocomp serve`` runs."""
+    from mlflow.pyfunc.scoring_server import _SERVER_MODEL_PATH
+    from mlflow.utils.file_utils import path_to_local_file_uri
+
+    from ..deploy import server
+
     opts = cfg.serve
     check_values(opts, SERVE_RULES, "serve")
+    if not _loopback(str(opts.host)):
+        logger.warning("serve.host=%s is not a loopback address: the model is reachable from the "
+                       "network, without authentication", opts.host)
     uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
     model = _trusted_copy(_check_model(str(opts.model), uri), uri)
-    port = opts.port
     bin_dir = str(Path(sys.executable).parent)
     env = {**os.environ, "MLFLOW_TRACKING_URI": uri, "MLFLOW_REGISTRY_URI": uri,
-           "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")])}
-    argv = [str(Path(bin_dir) / "mlflow"), "models", "serve", "-m", model, "--env-manager", "local",
-            "-h", str(opts.host), "-p", str(port), "-w", "1", "-t", str(math.ceil(opts.timeout_s))]
+           "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")]),
+           _SERVER_MODEL_PATH: path_to_local_file_uri(model),
+           "MLFLOW_SCORING_SERVER_REQUEST_TIMEOUT": str(math.ceil(opts.timeout_s)),
+           server.ROWS_ENV: str(int(opts.max_rows)),
+           server.BODY_ENV: str(int(opts.max_body_mb * 2**20))}
+    argv = [str(Path(bin_dir) / "uvicorn"), "--host", str(opts.host), "--port", str(opts.port),
+            "--workers", "1", "--factory", f"{server.__name__}:{server.scoring_app.__name__}"]
     return argv, env
 
 
 def serve(cfg: DictConfig) -> None:
-    """Replace this process by ``mlflow models serve`` (see the module doc)."""
+    """Replace this process by the scoring server (see the module doc)."""
     argv, env = serve_command(cfg)
     say(f"serving {cfg.serve.model} on http://{cfg.serve.host}:{int(cfg.serve.port)}/invocations "
         f"(one worker; store {env['MLFLOW_TRACKING_URI']})")
