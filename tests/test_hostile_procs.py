@@ -122,6 +122,7 @@ def _statuses(sweep) -> dict:
     return {r: client.get_run(r).info.status for r in sweep["runs"]}
 
 
+@pytest.mark.slow
 def test_two_promotes_at_once_leave_the_best_run_champion_and_decide_once(sweep, tmp_path):
     name = "race"
     first = _promote(sweep, tmp_path, "pause", "first", name)     # held inside its registration
@@ -142,6 +143,7 @@ def test_two_promotes_at_once_leave_the_best_run_champion_and_decide_once(sweep,
     assert set(_statuses(sweep).values()) == {"FINISHED"}
 
 
+@pytest.mark.slow
 def test_a_promote_killed_while_registering_changes_no_run_and_the_next_picks_the_best(
         sweep, tmp_path):
     name = "killed"
@@ -221,6 +223,50 @@ def test_a_run_sigkilled_during_its_figures_leaves_no_worker_and_ends_killed(tmp
     statuses = {r.data.tags["run_name"]: r.info.status for r in client.search_runs(
         [killed.info.experiment_id])}
     assert statuses == {"killed": "KILLED", "next": "FINISHED"}
+
+
+def _children_when(proc: subprocess.Popen, ready) -> list:
+    """``proc``'s child processes once ``ready(children)`` holds (or ``proc`` has ended)."""
+    parent = psutil.Process(proc.pid)
+
+    def children():
+        try:
+            return parent.children(recursive=True)
+        except psutil.Error:
+            return []
+    _wait_for(lambda: ready(children()), [proc])
+    return children()
+
+
+def _loky(children) -> list:
+    return [c for c in children if "loky" in " ".join(c.cmdline())]
+
+
+@pytest.mark.slow
+def test_joblib_workers_of_a_sigkilled_stage_die_with_it(tmp_path):
+    design = subprocess.Popen([sys.executable, "-m", "thermocomp", "design", "design.n_machines=2000",
+                               "design.n_jobs=2", "track=false", "plots=none",
+                               f"out={tmp_path / 'design'}"], cwd=tmp_path,
+                              env={**os.environ, "PYTHONPATH": str(SRC)},
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    children = _children_when(design, lambda c: len(_loky(c)) >= 2)
+    assert len(_loky(children)) >= 2, "design ended before starting its workers"
+    assert _orphans_after_kill(design, children) == []
+
+
+@pytest.mark.slow
+def test_joblib_sweep_jobs_die_with_a_sigkilled_sweep(tmp_path):
+    ds = make_dataset(tmp_path / "ds")
+    sweep_dir = tmp_path / "sweep"
+    sweep = subprocess.Popen([sys.executable, "-m", "thermocomp", "run", "-m", "hydra/launcher=joblib",
+                              "hydra.launcher.n_jobs=2", f"data.path={ds}", *FAST, "seed=0,1,2,3",
+                              f"hydra.sweep.dir={sweep_dir}", f"out={tmp_path / 'out'}"],
+                             cwd=tmp_path, env={**os.environ, "PYTHONPATH": str(SRC)},
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    started = lambda _: len(list(sweep_dir.glob("*/.hydra/overrides.yaml"))) >= 2  # noqa: E731
+    children = _children_when(sweep, started)
+    assert started(None) and _loky(children), "the sweep ended before its jobs started"
+    assert _orphans_after_kill(sweep, children) == []
 
 
 def test_a_run_of_a_live_process_is_not_marked_killed(tmp_path):

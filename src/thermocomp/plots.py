@@ -7,13 +7,9 @@ draws them in worker processes while the caller goes on computing.
 
 from __future__ import annotations
 
-import ctypes
 import io
 import multiprocessing
 import os
-import signal
-import threading
-import time
 from concurrent.futures import ProcessPoolExecutor
 from functools import cache
 from pathlib import Path
@@ -21,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .files import atomic_write_bytes
+from .lifetime import die_with_parent
 from .metrics import unit
 
 DPI = 110
@@ -346,34 +343,6 @@ def _cpus() -> int:
         return os.cpu_count() or 1
 
 
-PR_SET_PDEATHSIG = 1     # linux/prctl.h
-
-
-def _die_with_parent(parent: int) -> None:
-    """Worker initializer: the worker ends when the process that made the pool does.
-
-    A worker outlives a SIGKILLed parent otherwise, blocked in ``Queue.get`` for ever (every
-    worker holds the queue's write end, so no end of file comes).  On Linux the kernel kills
-    it (``PR_SET_PDEATHSIG``: nothing to poll; it follows the forking *thread*, and the pool
-    forks its workers from the thread that submits first, the caller's); elsewhere a thread
-    checks the parent once a second.
-    """
-    try:
-        armed = ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL) == 0
-    except (OSError, AttributeError):   # no prctl: not Linux
-        armed = False
-    if not armed:
-        threading.Thread(target=_watch_parent, args=(parent,), daemon=True).start()
-    if os.getppid() != parent:          # the parent died before the signal was armed
-        os._exit(1)
-
-
-def _watch_parent(parent: int) -> None:
-    while os.getppid() == parent:
-        time.sleep(1.0)
-    os._exit(1)
-
-
 class FigurePool:
     """Draw figures in forked worker processes while the caller goes on computing.
 
@@ -384,7 +353,8 @@ class FigurePool:
     (a thread pool was slower and crashed in mathtext), hence processes;
     ``fork`` makes a worker cost a few ms instead of a fresh interpreter (a
     worker imports pyplot for its first figure, while the caller computes).  A worker dies
-    with the caller, even a SIGKILLed one (:func:`_die_with_parent`).
+    with the caller, even a SIGKILLed one
+    (:func:`~thermocomp.lifetime.die_with_parent`).
 
     Parameters
     ----------
@@ -404,7 +374,7 @@ class FigurePool:
             workers = _cpus() if _cpus() > 1 else 0
         fork = "fork" in multiprocessing.get_all_start_methods()
         self._pool = (ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"),
-                                          initializer=_die_with_parent, initargs=(os.getpid(),))
+                                          initializer=die_with_parent, initargs=(os.getpid(),))
                       if workers > 0 and fork else None)
         self._pending: list = []
         self.paths: list[Path] = []
