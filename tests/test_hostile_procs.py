@@ -16,6 +16,7 @@ import subprocess
 import sys
 import textwrap
 import time
+from contextlib import closing
 from pathlib import Path
 
 import psutil
@@ -304,6 +305,40 @@ def test_a_store_creation_cut_short_leaves_no_store_and_the_next_run_creates_it(
     client = _client(f"sqlite:///{store / 'mlflow.db'}")
     exp = client.get_experiment_by_name("thermocomp")
     assert [r.info.status for r in client.search_runs([exp.experiment_id])] == ["FINISHED"]
+
+
+def _old_schema(db: Path) -> None:
+    with closing(sqlite3.connect(db)) as con:
+        con.execute("UPDATE alembic_version SET version_num = 'c8d9e0f1a2b3'")
+        con.commit()
+
+
+def _half_migrated(db: Path) -> None:       # as a migration cut short leaves it
+    _old_schema(db)
+    with closing(sqlite3.connect(db)) as con:
+        con.execute("DROP TABLE latest_metrics")
+        con.commit()
+
+
+def _not_a_database(db: Path) -> None:
+    db.write_bytes(b"\x7fELF" + bytes(range(256)) * 8)
+
+
+@pytest.mark.parametrize("damage, says", [(_old_schema, "not a complete store"),
+                                          (_half_migrated, "not a complete store"),
+                                          (_not_a_database, "not an SQLite database")],
+                         ids=["old-schema", "half-migrated", "not-a-database"])
+def test_a_damaged_store_is_said_in_one_line_and_left_as_it_is(tmp_path, capsys, damage, says):
+    from test_deploy import mlflow_store
+
+    uri = mlflow_store(tmp_path)
+    db = Path(uri[len("sqlite:///"):])
+    damage(db)
+    ds = make_dataset(tmp_path / "ds")
+    before = db.read_bytes()
+    refused(["run", f"data.path={ds}", f"tracking_uri={uri}", f"out={tmp_path / 'out'}",
+             *UNTRACKED], capsys, f"tracking_uri={uri}", says)
+    assert db.read_bytes() == before and not (tmp_path / "out").exists()
 
 
 # -- tracking URIs MLflow would retry or fail on at length: one line, exit 2, nothing written -

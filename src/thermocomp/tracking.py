@@ -39,7 +39,7 @@ import re
 import socket
 import tempfile
 import time
-from contextlib import contextmanager
+from contextlib import closing, contextmanager
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
@@ -114,8 +114,51 @@ def ensure_store(uri: str) -> None:
     with FileLock(f"{db}.lock", timeout=600):
         if not db.is_file() or db.stat().st_size == 0:
             _create_store(db)
-        retry_locked(MlflowClient(uri).search_experiments, max_results=1)
+        else:
+            _check_schema(uri, db)
+        try:
+            retry_locked(MlflowClient(uri).search_experiments, max_results=1)
+        except Exception:
+            _check_schema(uri, db, head=True)     # a store of another schema: one line
+            raise
     _READY.add(uri)
+
+
+def _check_schema(uri: str, db: Path, head: bool = False) -> None:
+    """Refuse (ConfigError, one line, the file untouched) a store that is not a complete store of
+    this MLflow: MLflow's own error came as a traceback at every run, in another shape for each
+    kind of damage, and after it had written into the file.
+
+    Always: not an SQLite file; migrated (``alembic_version``) but missing tables, as a
+    creation cut short by a version that did not create stores whole leaves it.  With
+    ``head`` (once MLflow has failed on it): a schema version other than this MLflow's.
+    """
+    import sqlite3
+
+    from mlflow.store.tracking.dbmodels.models import Base
+
+    from .errors import ConfigError
+
+    try:
+        with closing(sqlite3.connect(f"file:{db}?mode=ro", uri=True)) as con:
+            tables = {r[0] for r in con.execute("SELECT name FROM sqlite_master WHERE type='table'")}
+            version = (con.execute("SELECT version_num FROM alembic_version").fetchone() or [None])[0] \
+                if "alembic_version" in tables else None
+    except sqlite3.DatabaseError as err:
+        raise ConfigError(f"tracking_uri={uri}: {db} is not an SQLite database ({err})") from None
+    missing = set(Base.metadata.tables) - tables
+    expected = None
+    if head:
+        from alembic.script import ScriptDirectory
+        from mlflow.store.db.utils import _get_alembic_config
+
+        expected = ScriptDirectory.from_config(_get_alembic_config(uri)).get_current_head()
+    if (version is not None and missing) or (head and version != expected):
+        raise ConfigError(
+            f"tracking_uri={uri}: {db} is not a complete store of this MLflow (schema {version}"
+            + (f", this MLflow's {expected}" if head else "") + f"; {len(missing)} tables "
+            f"missing): a creation cut short or an older MLflow; move it away (a new one is "
+            f"created) or back it up and run `mlflow db upgrade sqlite:///{db}`") from None
 
 
 def _create_store(db: Path) -> None:
