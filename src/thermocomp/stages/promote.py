@@ -56,8 +56,9 @@ from ..files import folder_digest, write_json
 from ..leaderboard import FIGURES, beats, is_validation, rank, summary
 from ..params import BOOLEAN, NON_NEGATIVE, Rule, choice, text
 from ..paths import project_root, resolve
+from ..store import registry_lock
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
-from ..tracking import DATASET_TAG, child_runs, connect, registry_lock, retry_locked
+from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
 from .common import check_config, check_keys, data_options, deploy_stream, deployable, say
 
