@@ -28,6 +28,7 @@ from omegaconf import DictConfig, OmegaConf
 from .tracking import enabled, sweep_name
 
 FAILED_JOBS_ENV = "THERMOCOMP_FAILED_JOBS"   # folder where a sweep's failed jobs leave a note
+SWEEP_PID_ENV = "THERMOCOMP_SWEEP_PID"       # the process that launches a sweep's jobs
 
 
 def _say(msg: str) -> None:
@@ -51,6 +52,7 @@ class MlflowSweepCallback(Callback):
         self._previous: str | None = None
 
     def on_multirun_start(self, config: DictConfig, **kwargs: Any) -> None:
+        os.environ[SWEEP_PID_ENV] = str(os.getpid())   # jobs of local workers die with it
         if not enabled(config):
             return
         from .tracking import PARENT_ENV, start_parent_run
@@ -77,9 +79,14 @@ class MlflowSweepCallback(Callback):
     def on_job_start(self, config: DictConfig, **kwargs: Any) -> None:
         """A sweep job's folder says what ran: ``.hydra/overrides.yaml`` and ``.hydra/config.yaml``
         (Hydra's own layout; written here because ``hydra.output_subdir`` is null so that
-        single runs leave no ``.hydra/`` in the project root)."""
+        single runs leave no ``.hydra/`` in the project root).  A job in a worker process of a
+        local launcher (joblib) ends with the sweep's process, even a SIGKILLed one."""
         from hydra.types import RunMode
 
+        from .lifetime import watch_parent
+
+        if os.environ.get(SWEEP_PID_ENV):   # a local launcher's worker (joblib) ends with the sweep
+            watch_parent(int(os.environ[SWEEP_PID_ENV]))
         if config.hydra.mode != RunMode.MULTIRUN or config.hydra.output_subdir is not None:
             return
         from .files import atomic_write_text

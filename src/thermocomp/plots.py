@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from .files import atomic_write_bytes
+from .lifetime import die_with_parent
 from .metrics import unit
 
 DPI = 110
@@ -351,7 +352,9 @@ class FigurePool:
     Drawing is Python-bound (layout, ticks) and matplotlib is not thread-safe
     (a thread pool was slower and crashed in mathtext), hence processes;
     ``fork`` makes a worker cost a few ms instead of a fresh interpreter (a
-    worker imports pyplot for its first figure, while the caller computes).
+    worker imports pyplot for its first figure, while the caller computes).  A worker dies
+    with the caller, even a SIGKILLed one
+    (:func:`~thermocomp.lifetime.die_with_parent`).
 
     Parameters
     ----------
@@ -370,7 +373,8 @@ class FigurePool:
         if workers is None:
             workers = _cpus() if _cpus() > 1 else 0
         fork = "fork" in multiprocessing.get_all_start_methods()
-        self._pool = (ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"))
+        self._pool = (ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"),
+                                          initializer=die_with_parent, initargs=(os.getpid(),))
                       if workers > 0 and fork else None)
         self._pending: list = []
         self.paths: list[Path] = []

@@ -19,7 +19,10 @@ What a run records: a name made of what differs from the defaults
 config leaves as params (:func:`run_params`; the whole config is the artifact
 ``config.yaml``), the headline metrics a user compares (:func:`headline_metrics`;
 the full ``metrics.json`` is an artifact).  A run ends FINISHED, FAILED on an
-exception, KILLED on SIGTERM/SIGINT (then the process exits 143/130).
+exception, KILLED on SIGTERM/SIGINT (then the process exits 143/130); one whose
+process died without a word (SIGKILL, the OOM killer) is marked KILLED by the next
+command that opens the store on the same machine (the run's ``thermocomp.pid``,
+``thermocomp.host`` and ``thermocomp.process_start`` tags say whose it was).
 
 ``track``: ``null`` (default) logs every stage but ``simulate`` (a dataset is
 not an experiment), ``true`` every stage, ``false`` none.
@@ -30,48 +33,22 @@ from __future__ import annotations
 import logging
 import math
 import os
-import random
 import re
 import tempfile
-import time
 from contextlib import contextmanager
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
 
+from . import store
 from .files import Terminated, signals_raise
 from .paths import project_root, resolve
+from .store import _is_locked, retry_locked  # the store's lock retries, used here and re-exported
 
 DEFAULT_URI = "sqlite:///mlruns/mlflow.db"
 PARENT_ENV = "THERMOCOMP_PARENT_RUN_ID"
 SWEEP_TAG = "thermocomp.sweep"          # "parent" on a sweep's parent run
 DATASET_TAG = "dataset_hash"            # folder digest of data.path a run read
-_LOCKED = ("database is locked", "database table is locked")
-
-
-def _is_locked(exc: BaseException) -> bool:
-    seen = set()
-    while exc is not None and id(exc) not in seen:
-        seen.add(id(exc))
-        if any(m in str(exc) for m in _LOCKED):
-            return True
-        exc = exc.__cause__ or exc.__context__
-    return False
-
-
-def retry_locked(fn, *args, attempts: int = 12, base_delay: float = 0.05,
-                 max_delay: float = 3.0, **kwargs):
-    """``fn(*args, **kwargs)``, retried with jittered exponential backoff while
-    SQLite answers ``database is locked`` (parallel sweep jobs on one store)."""
-    for attempt in range(attempts):
-        try:
-            return fn(*args, **kwargs)
-        except Exception as exc:
-            if attempt == attempts - 1 or not _is_locked(exc):
-                raise
-            time.sleep(min(max_delay, base_delay * 2**attempt) * random.uniform(0.5, 1.5))
-
-
 def resolve_uri(uri: str) -> str:
     """Make a relative ``sqlite:///path`` absolute (against the project root)."""
     prefix = "sqlite:///"
@@ -107,7 +84,15 @@ def ensure_store(uri: str) -> None:
     db = Path(uri[len("sqlite:///"):])
     db.parent.mkdir(parents=True, exist_ok=True)
     with FileLock(f"{db}.lock", timeout=600):
-        retry_locked(MlflowClient(uri).search_experiments, max_results=1)
+        if not db.is_file() or db.stat().st_size == 0:
+            store.create_store(db)
+        else:
+            store.check_schema(uri, db)
+        try:
+            retry_locked(MlflowClient(uri).search_experiments, max_results=1)
+        except Exception:
+            store.check_schema(uri, db, head=True)     # a store of another schema: one line
+            raise
     _READY.add(uri)
 
 
@@ -174,7 +159,11 @@ def _quiet_mlflow() -> None:
 
 
 def connect(cfg) -> str:
-    """Point MLflow at ``cfg.tracking_uri`` (resolved); returns the URI."""
+    """Point MLflow at ``cfg.tracking_uri`` (resolved); returns the URI.
+
+    The first time in a process, runs left RUNNING by processes of this machine that are
+    gone are marked KILLED (:func:`~thermocomp.store.mark_orphan_runs`).
+    """
     os.environ.setdefault("MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR", "false")
     import mlflow
 
@@ -182,12 +171,25 @@ def connect(cfg) -> str:
     uri = store_uri(cfg)
     mlflow.set_tracking_uri(uri)
     ensure_store(uri)
+    if uri not in _SWEPT:
+        _SWEPT.add(uri)
+        try:
+            store.mark_orphan_runs(uri)
+        except Exception as exc:   # housekeeping: never the reason a command fails
+            from .log import logger
+
+            logger.warning("could not look for runs left RUNNING by dead processes: %s",
+                           " ".join(str(exc).split())[:200])
     return uri
+
+
+_SWEPT: set[str] = set()     # stores whose orphan runs this process has marked
 
 
 def store_uri(cfg) -> str:
     """``cfg.tracking_uri`` resolved, once checked that MLflow can open it (ConfigError)."""
     raw = str(cfg.get("tracking_uri") or DEFAULT_URI)
+    store.check_sqlite_path(raw)
     try:
         uri = resolve_uri(raw)
     except OSError as exc:
@@ -229,6 +231,10 @@ def check_reachable(uri: str) -> None:
         except requests.RequestException as exc:
             raise ConfigError(f"tracking_uri={uri}: no server answers "
                               f"({type(exc).__name__}); is it running?") from None
+    elif scheme == "databricks":
+        store.check_databricks_credentials(uri)
+    elif scheme in store.DB_PORTS:
+        store.check_database_answers(uri, scheme)
     _REACHABLE.add(uri)
 
 
@@ -287,7 +293,8 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
     uri = connect(cfg)
     exp_id = experiment_id(uri, str(cfg.get("experiment_name", "thermocomp")))
     overrides = task_overrides()
-    tags = {"stage": stage, "run_name": str(cfg.get("name")), "project_root": str(project_root())}
+    tags = {"stage": stage, "run_name": str(cfg.get("name")), "project_root": str(project_root()),
+            **store.process_tags()}
     if overrides is not None:
         tags["overrides"] = " ".join(overrides)[:5000]
     data = (cfg.get("data") or {}).get("path")
@@ -491,7 +498,7 @@ def start_parent_run(cfg: DictConfig, run_name: str, tags: dict | None = None) -
     uri = connect(cfg)
     exp_id = experiment_id(uri, str(cfg.get("experiment_name", "thermocomp")))
     all_tags = {SWEEP_TAG: "parent", "mlflow.runName": run_name,
-                "project_root": str(project_root()), **(tags or {})}
+                "project_root": str(project_root()), **store.process_tags(), **(tags or {})}
     client = MlflowClient(uri)
     run = retry_locked(client.create_run, exp_id, tags={k: str(v) for k, v in all_tags.items()},
                        run_name=run_name)

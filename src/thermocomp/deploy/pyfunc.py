@@ -187,15 +187,27 @@ def save_compensator(streaming: StreamingCompensator | AdaptiveCompensator, path
 
 def log_compensator(streaming: StreamingCompensator | AdaptiveCompensator,
                     input_example: pd.DataFrame | None = None,
-                    registered_model_name: str | None = None, name: str = MODEL_NAME, **kwargs):
-    """Log the compensator as a pyfunc model in the active run; returns the ``ModelInfo``.
+                    registered_model_name: str | None = None, name: str = MODEL_NAME,
+                    run_id: str | None = None, **kwargs):
+    """Log the compensator as a pyfunc model; returns the ``ModelInfo``.
 
+    Into run ``run_id`` (its experiment) without resuming it, so a finished run stays
+    FINISHED whatever happens to this process; without ``run_id``, into the active run.
     ``registered_model_name`` also registers it (a new version) in the Model Registry.
     """
     with tempfile.TemporaryDirectory() as tmp:
-        return mlflow.pyfunc.log_model(
-            name=name, input_example=input_example, registered_model_name=registered_model_name,
-            **_model_kwargs(streaming, _pickled(streaming, tmp)), **kwargs)
+        model_kwargs = _model_kwargs(streaming, _pickled(streaming, tmp))
+        if run_id is None:
+            return mlflow.pyfunc.log_model(
+                name=name, input_example=input_example,
+                registered_model_name=registered_model_name, **model_kwargs, **kwargs)
+        from mlflow.models import Model
+
+        # the logged model belongs to the run's experiment (else MLflow's Default one)
+        mlflow.set_experiment(experiment_id=mlflow.get_run(run_id).info.experiment_id)
+        return Model.log(artifact_path=None, name=name, flavor=mlflow.pyfunc, run_id=run_id,
+                         input_example=input_example,
+                         registered_model_name=registered_model_name, **model_kwargs, **kwargs)
 
 
 def load_deployed(source: str, folder: str | Path | None = None):

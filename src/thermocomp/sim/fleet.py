@@ -192,15 +192,16 @@ class Fleet:
 
     def write(self, path) -> dict:
         """Write the fleet dataset to ``path`` (partitions in parallel, manifest last); returns the truth."""
-        from joblib import Parallel, delayed
+        from joblib import delayed
 
         from thermocomp.files import atomic_write_text
+        from thermocomp.lifetime import parallel
 
         check_params(self)
         root = Path(path)
         root.mkdir(parents=True, exist_ok=True)
         (root / MANIFEST).unlink(missing_ok=True)       # until every partition is there
-        truths = Parallel(n_jobs=self.n_jobs)(delayed(self._write_machine)(root, i)
+        truths = parallel(self.n_jobs)(delayed(self._write_machine)(root, i)
                                               for i in range(self.n_machines))
         rows = [r for i in range(self.n_machines) for r in self._rows(i)]
         atomic_write_text(root / MANIFEST, pd.DataFrame(rows).to_csv(index=False))

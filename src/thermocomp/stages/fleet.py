@@ -119,7 +119,9 @@ def _table(metrics: dict) -> str:
 
 def run_grouped(cfg: DictConfig) -> dict:
     """``run`` on a fleet: one compensator per value of the manifest column ``data.group_by``."""
-    from joblib import Parallel, delayed
+    from joblib import delayed
+
+    from ..lifetime import parallel
 
     check_config(cfg)
     column, jobs = str(cfg.data.group_by), cfg.data.get("group_jobs", 1)
@@ -133,7 +135,7 @@ def run_grouped(cfg: DictConfig) -> dict:
     t0 = time.perf_counter()
     with stage_run(cfg, "run") as tr:
         with staged_outputs(out) as stage:
-            results = Parallel(n_jobs=jobs)(delayed(_group)(cfg, root, g, ids, stage)
+            results = parallel(jobs)(delayed(_group)(cfg, root, g, ids, stage)
                                             for g, ids in members.items())
             targets = _fleet_targets(results, cfg.eval)
             for r in results:

@@ -56,8 +56,9 @@ from ..files import folder_digest, write_json
 from ..leaderboard import FIGURES, beats, is_validation, rank, summary
 from ..params import BOOLEAN, NON_NEGATIVE, Rule, choice, text
 from ..paths import project_root, resolve
+from ..store import registry_lock
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
-from ..tracking import DATASET_TAG, child_runs, connect, end_active_run, retry_locked
+from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
 from .common import check_config, check_keys, data_options, deploy_stream, deployable, say
 
@@ -294,66 +295,67 @@ def promote(cfg: DictConfig) -> dict:
     cand_figures = {**val_figures, **test_figures}
 
     name, alias = str(opts.model_name), str(opts.alias)
-    champion = _current_champion(client, name, alias)
-    existing = _registered(client, name, run_id, digest, dataset_hash, champion, cand_figures,
-                           deploy_key)
-    champ_score, champ_note = None, None
-    if champion is not None:
-        champ_score, champ_note = _champion_validation(champion, criterion, str(opts.target),
-                                                       dataset_hash, mode)
-    if existing is not None:
-        version = str(existing.version)
-    else:
-        example = test[test_ids[0]][streaming.columns_ + ["time"]].head(5)
-        retry_locked(mlflow.start_run, run_id=run_id)
-        try:
-            info = log_compensator(deployed, input_example=example, registered_model_name=name)
-        finally:
-            end_active_run(mlflow)
-        version = str(info.registered_model_version)
+    # one transaction: read the champion, register, compare, move the alias; a second
+    # promote waits here and then compares against what this one decided
+    with registry_lock(uri):
+        champion = _current_champion(client, name, alias)
+        existing = _registered(client, name, run_id, digest, dataset_hash, champion, cand_figures,
+                               deploy_key)
+        champ_score, champ_note = None, None
+        if champion is not None:
+            champ_score, champ_note = _champion_validation(champion, criterion, str(opts.target),
+                                                           dataset_hash, mode)
+        if existing is not None:
+            version = str(existing.version)
+        else:
+            example = test[test_ids[0]][streaming.columns_ + ["time"]].head(5)
+            # into the run without resuming it: a killed promote leaves its status alone
+            info = log_compensator(deployed, input_example=example, registered_model_name=name,
+                                   run_id=run_id)
+            version = str(info.registered_model_version)
 
-    if champion is None:
-        moved, why = True, "no champion yet"
-    elif version == str(champion.version):
-        moved, why = False, f"already champion: version {version}"
-    elif champ_score is None:
-        moved = bool(opts.get("force", False))
-        why = (f"the champion (version {champion.version}) has no comparable validation score "
-               f"({champ_note})" + ("; forced" if moved else "; set promote.force=true to replace it"))
-    else:
-        # the champion's score comes back from a tag (6 significant digits): compare at that
-        # precision, so the same model (e.g. deployed another way) ties instead of "beating" it
-        moved = beats(float(_tag(cand_score)), champ_score, criterion, float(opts.min_improvement))
-        verb = "beats" if moved else "does not beat"
-        why = (f"validation {criterion} {_fmt(cand_score)} {verb} the champion's "
-               f"{_fmt(champ_score)} (version {champion.version}) on the same dataset")
-    tags = {"decision": why}
-    if existing is None:       # a new version: what it is and where it comes from
-        commit, dirty = git_commit()
-        tags.update({"dataset_hash": dataset_hash, "dataset": ds.name, "git_commit": commit,
-                     "git_dirty": dirty, "source_run_id": run_id, "model_digest": digest,
-                     "model": run_params.get("model.name"), "select": run_params.get("select.name"),
-                     "criterion": criterion, "criterion_target": str(opts.target), "eval_mode": mode,
-                     "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
-                     "envelope_policy": str(opts.envelope.policy),
-                     "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
-                         [correction_column(t) for t in streaming.targets_] + ["n_clamped"]
-                         + (list(REPORT_COLUMNS) if kind["adaptive"] else [])),
-                     "adaptive": kind["adaptive"], "deploy_config": deploy_key,
-                     "pod_modes": "none" if kind["pod"] is None else kind["pod"]["n_modes"],
-                     "promoted": moved})
-        tags.update({f"metric.{k}": _tag(v) for k, v in cand_figures.items()})
-    elif moved:
-        tags["promoted"] = True
-    for k, v in tags.items():
-        retry_locked(client.set_model_version_tag, name, version, k, str(v))
-    kept = "already registered, no new version" if existing is not None else "registered"
-    if moved:
-        retry_locked(client.set_registered_model_alias, name, alias, version)
-        say(f"{name} version {version} ({kept}) is now @{alias}: {why}")
-    else:
-        say(f"{name} version {version} {kept}; @{alias} stays on version "
-            f"{champion.version}: {why}")
+        if champion is None:
+            moved, why = True, "no champion yet"
+        elif version == str(champion.version):
+            moved, why = False, f"already champion: version {version}"
+        elif champ_score is None:
+            moved = bool(opts.get("force", False))
+            why = (f"the champion (version {champion.version}) has no comparable validation score "
+                   f"({champ_note})" + ("; forced" if moved else "; set promote.force=true to replace it"))
+        else:
+            # the champion's score comes back from a tag (6 significant digits): compare at that
+            # precision, so the same model (e.g. deployed another way) ties instead of "beating" it
+            moved = beats(float(_tag(cand_score)), champ_score, criterion, float(opts.min_improvement))
+            verb = "beats" if moved else "does not beat"
+            why = (f"validation {criterion} {_fmt(cand_score)} {verb} the champion's "
+                   f"{_fmt(champ_score)} (version {champion.version}) on the same dataset")
+        tags = {"decision": why}
+        if existing is None:       # a new version: what it is and where it comes from
+            commit, dirty = git_commit()
+            tags.update({"dataset_hash": dataset_hash, "dataset": ds.name, "git_commit": commit,
+                         "git_dirty": dirty, "source_run_id": run_id, "model_digest": digest,
+                         "model": run_params.get("model.name"), "select": run_params.get("select.name"),
+                         "criterion": criterion, "criterion_target": str(opts.target), "eval_mode": mode,
+                         "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
+                         "envelope_policy": str(opts.envelope.policy),
+                         "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
+                             [correction_column(t) for t in streaming.targets_] + ["n_clamped"]
+                             + (list(REPORT_COLUMNS) if kind["adaptive"] else [])),
+                         "adaptive": kind["adaptive"], "deploy_config": deploy_key,
+                         "pod_modes": "none" if kind["pod"] is None else kind["pod"]["n_modes"],
+                         "promoted": moved})
+            tags.update({f"metric.{k}": _tag(v) for k, v in cand_figures.items()})
+        elif moved:
+            tags["promoted"] = True
+        for k, v in tags.items():
+            retry_locked(client.set_model_version_tag, name, version, k, str(v))
+        kept = "already registered, no new version" if existing is not None else "registered"
+        if moved:
+            retry_locked(client.set_registered_model_alias, name, alias, version)
+            say(f"{name} version {version} ({kept}) is now @{alias}: {why}")
+        else:
+            say(f"{name} version {version} {kept}; @{alias} stays on version "
+                f"{champion.version}: {why}")
     report = {"model_name": name, "alias": alias, "version": version, "run_id": run_id,
               "moved": moved, "registered": existing is None, "reason": why,
               "criterion": criterion,

@@ -35,8 +35,9 @@ import time
 from dataclasses import dataclass, field
 
 import numpy as np
-from joblib import Parallel, delayed
+from joblib import delayed
 
+from ..lifetime import parallel
 from ..metrics import reduction_pct
 from .artefact import BallArray, Setup, check_reach, position_set
 from .identify import ArtefactCalibration
@@ -285,13 +286,13 @@ class CalibrationDesignStudy:
         todo, member = strategies(studies)
         # draws in parallel for the machines' truth, then strategies in parallel (each fits its
         # calibration once and measures every machine; seeds are per machine and strategy)
-        parallel = Parallel(n_jobs=self.n_jobs)
+        jobs = parallel(self.n_jobs)
         chunks = [c for c in np.array_split(np.arange(self.n_machines), _workers(self.n_jobs)) if c.size]
-        parts = parallel(delayed(_truth)(self, c) for c in chunks)
+        parts = jobs(delayed(_truth)(self, c) for c in chunks)
         params = np.vstack([p[0] for p in parts])
         truth = np.concatenate([p[1] for p in parts])
         ve = _rms(truth)
-        done = parallel(delayed(_strategy)(self, s, st, params, truth) for s, st in enumerate(todo))
+        done = jobs(delayed(_strategy)(self, s, st, params, truth) for s, st in enumerate(todo))
         vce = np.column_stack([d[0] for d in done])
         rows = [_row(st, vce[:, s], ve, member[st], done[s][1]) for s, st in enumerate(todo)]
         self.ve_, self.vce_, self.strategies_ = ve, vce, todo
