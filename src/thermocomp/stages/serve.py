@@ -29,12 +29,10 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from ..errors import ConfigError
-from ..params import POSITIVE, check_values, integer, text
 from ..paths import resolve
 from ..tracking import DEFAULT_URI, resolve_uri, retry_locked
 from .common import say
-
-SERVE_RULES = {"model": text(), "host": text(), "port": integer(1, 65535), "timeout_s": POSITIVE}
+from .rules import SERVE_RULES, check_keys
 
 
 def _check_model(model: str, uri: str) -> str:
@@ -86,7 +84,7 @@ def _trusted_copy(model: str, uri: str) -> str:
 def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
     """``(argv, environment)`` of the server ``thermocomp serve`` runs."""
     opts = cfg.serve
-    check_values(opts, SERVE_RULES, "serve")
+    check_keys(cfg, SERVE_RULES)     # serve runs no check_config: no data, no output
     uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
     model = _trusted_copy(_check_model(str(opts.model), uri), uri)
     port = opts.port

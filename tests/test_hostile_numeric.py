@@ -1,0 +1,151 @@
+"""Hostile numbers: NaN, infinities and absurd sizes in any config knob, a signature file with
+no end, lags longer than the data, another axis's error as an input, more IMFs than a signal
+has.  Each is refused in one line (exit 2) before any work, or warned about; nothing is left
+behind.
+
+The meta-tests walk every config group's yaml: each number a user can set must be covered by a
+rule that refuses NaN and ±inf (and, for a count, a size no machine can hold), checked by every
+stage -- a knob without a rule, or checked only by its own stage, cannot come back unnoticed.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from pathlib import Path
+
+import pytest
+from hydra import compose, initialize_config_dir
+from hydra.errors import InstantiationException
+from hydra.utils import instantiate
+from omegaconf import OmegaConf
+
+from conftest import refused
+from thermocomp.errors import ThermocompError
+from thermocomp.params import check_params
+from thermocomp.paths import conf_dir
+
+# Documented as a value that switches a check off (docs/cli.md): accepted on purpose.
+OFF_VALUES = {("calibrate.outlier_z", math.inf)}
+HUGE = 10 ** 15          # a count no machine holds in memory nor loops over in a lifetime
+
+
+def _options() -> list[list[str]]:
+    """One override list per option of every config group (the default composition first)."""
+    found = [[]]
+    for group in sorted(p for p in Path(conf_dir()).iterdir() if p.is_dir() and p.name != "hydra"):
+        found += [[f"{group.name}={option.stem}"] for option in sorted(group.glob("*.yaml"))]
+    return found
+
+
+def _numbers(node, prefix: str = ""):
+    """``(dotted key, value)`` of every number or list of numbers in a plain config tree."""
+    if isinstance(node, dict):
+        for key, value in node.items():
+            yield from _numbers(value, f"{prefix}{key}.")
+    elif isinstance(node, list):
+        if node and all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in node):
+            yield prefix[:-1], node
+    elif isinstance(node, (int, float)) and not isinstance(node, bool):
+        yield prefix[:-1], node
+
+
+@functools.cache
+def _composed(overrides: tuple[str, ...]):
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        return compose(config_name="config", overrides=[*overrides, "track=false"])
+
+
+def _knobs() -> dict[str, tuple[tuple[str, ...], object]]:
+    """Every numeric config key -> (the overrides composing a config that has it, its value)."""
+    knobs = {}
+    for overrides in _options():
+        tree = OmegaConf.to_container(_composed(tuple(overrides)))
+        tree.pop("hydra", None)
+        for key, value in _numbers(tree):
+            knobs.setdefault(key, (tuple(overrides), value))
+    return knobs
+
+
+KNOBS = _knobs()
+
+
+def _accepted(overrides: tuple[str, ...], key: str, value) -> bool:
+    """Whether the checks every stage runs before any work (``sim.*``: simulate's) let
+    ``key=value`` through (set in the cached config for the call, then restored)."""
+    cfg = _composed(overrides)
+    before = OmegaConf.to_object(OmegaConf.select(cfg, key)) if isinstance(value, list) else \
+        OmegaConf.select(cfg, key)      # a plain copy: update changes a list in place
+    OmegaConf.update(cfg, key, value)
+    try:
+        _check(cfg, key)
+    except ThermocompError:
+        return False
+    finally:
+        OmegaConf.update(cfg, key, before)
+    return True
+
+
+def _check(cfg, key: str) -> None:
+    from thermocomp.cli import _check_seed
+    from thermocomp.stages.common import check_config
+
+    if not key.startswith("sim."):
+        _check_seed(cfg)
+        check_config(cfg, outputs=())
+        return
+    try:
+        generator = instantiate(cfg.sim.generator)
+    except InstantiationException as exc:      # the CLI says its cause's line
+        raise exc.__cause__ if isinstance(exc.__cause__, ThermocompError) else exc
+    check_params(generator)
+    if ".effect_params." in key:     # an effect's parameters are checked when it is planted
+        generator.effects = [key.split(".")[3]]
+        generator.effects_list()
+
+
+def _hostile(value) -> list:
+    """NaN and ±inf for a real knob, one of them in a list; a huge count for an integer one."""
+    if isinstance(value, list):
+        return [[bad, *value[1:]] for bad in _hostile(value[0])]
+    return [math.nan, math.inf, -math.inf]
+
+
+@pytest.mark.parametrize("key", sorted(KNOBS))
+def test_every_numeric_knob_refuses_non_finite_values_and_huge_counts(key):
+    """Each number of conf/ refuses NaN and ±inf (an integer knob refuses them as not integers),
+    and a count (a knob that refuses a half) refuses a size no machine holds.  Before, replay
+    took ``promote.envelope.margin=nan`` and streamed with the clamp off."""
+    overrides, value = KNOBS[key]
+    first = value[0] if isinstance(value, list) else value
+    assert _accepted(overrides, key, value), f"{key}: its own default is refused"
+    for bad in _hostile(value):
+        shown = bad[0] if isinstance(bad, list) else bad
+        if (key, shown) not in OFF_VALUES:
+            assert not _accepted(overrides, key, bad), f"{key}={bad} is accepted"
+    if isinstance(first, int) and not _accepted(overrides, key, _with(value, first + 0.5)):
+        assert not _accepted(overrides, key, _with(value, HUGE)), f"{key}={HUGE} is accepted"
+
+
+def _with(value, first):
+    return [first, *value[1:]] if isinstance(value, list) else first
+
+
+@pytest.mark.parametrize("stage, override, says", [
+    # replay streamed with the clamp off (an outside probe: max correction 1,216 µm against 251)
+    ("replay", "promote.envelope.margin=nan", "promote.envelope.margin=nan: must be a number >= 0"),
+    ("monitor", "promote.envelope.margin=inf", "promote.envelope.margin=inf"),
+    ("replay", "monitor.guard.margin=-inf", "monitor.guard.margin=-inf"),
+    # OOM-killed at 24 GB; 211 s, then killed
+    ("monitor", "monitor.window=1000000000", "monitor.window=1000000000: must be an integer >= 1"),
+    ("design", "design.n_machines=1000000000", "design.n_machines=1000000000: must be an integer"),
+    ("run", "model=arx_rf", "model.estimator.forest.n_estimators=1000000000000"),
+])
+def test_a_hostile_number_is_refused_in_one_line_by_the_stage_that_reads_it(tmp_path, capsys, stage,
+                                                                            override, says):
+    from test_hostile import FAST, make_dataset
+
+    data, out = make_dataset(tmp_path / "ds"), tmp_path / "out"
+    extra = ["model.estimator.forest.n_estimators=1000000000000"] if override == "model=arx_rf" else []
+    refused([stage, f"data.path={data}", f"out={out}", *FAST, override, *extra], capsys, says)
+    assert not out.exists()
