@@ -21,6 +21,7 @@ from hydra.utils import instantiate
 from omegaconf import OmegaConf
 
 from conftest import refused
+from thermocomp.cli import main
 from thermocomp.errors import ThermocompError
 from thermocomp.params import check_params
 from thermocomp.paths import conf_dir
@@ -149,3 +150,27 @@ def test_a_hostile_number_is_refused_in_one_line_by_the_stage_that_reads_it(tmp_
     extra = ["model.estimator.forest.n_estimators=1000000000000"] if override == "model=arx_rf" else []
     refused([stage, f"data.path={data}", f"out={out}", *FAST, override, *extra], capsys, says)
     assert not out.exists()
+
+
+@pytest.mark.parametrize("signature, says", [("/dev/zero", "not signed by this project"),
+                                             ("huge", "model.pkl.sig is larger than a signature")])
+def test_a_signature_with_no_end_is_refused_without_reading_it(tmp_path, capsys, monkeypatch,
+                                                               signature, says):
+    """A ``model.pkl.sig`` that is ``/dev/zero`` was read until memory ran out (MemoryError,
+    exit 1): a signature is read bounded, and a device is never read."""
+    from test_hostile import FAST, make_dataset
+    from thermocomp import signing
+
+    monkeypatch.setenv(signing.KEY_ENV, "k" * 40)
+    data = make_dataset(tmp_path / "ds")
+    model = tmp_path / "run" / "model.pkl"
+    assert main(["run", f"data.path={data}", f"out={model.parent}", *FAST]) == 0
+    sig = signing.sig_path(model)
+    sig.unlink()
+    if signature == "huge":                  # a regular file: 8 MB of a valid line repeated
+        sig.write_text(f"{signing.SCHEME} {'0' * 64}\n" * 100_000)
+    else:
+        sig.symlink_to(signature)
+    refused(["replay", f"data.path={data}", f"replay.model={model}", f"out={tmp_path / 'out'}",
+             *FAST], capsys, str(model), says, "refusing to unpickle it")
+    assert not (tmp_path / "out").exists()
