@@ -174,3 +174,17 @@ def test_a_signature_with_no_end_is_refused_without_reading_it(tmp_path, capsys,
     refused(["replay", f"data.path={data}", f"replay.model={model}", f"out={tmp_path / 'out'}",
              *FAST], capsys, str(model), says, "refusing to unpickle it")
     assert not (tmp_path / "out").exists()
+
+
+def test_an_arx_delay_as_long_as_a_campaign_is_refused_naming_it(tmp_path, capsys):
+    """``delays=[100000]`` held every input at its campaign's first value and ended in 'ARX found
+    no usable input' (a traceback, exit 1)."""
+    from test_hostile import FAST, make_dataset
+
+    data, out = make_dataset(tmp_path / "ds", rows=30), tmp_path / "out"
+    common = ["run", f"data.path={data}", f"out={out}", *FAST, "model=arx"]
+    refused([*common, "model.estimator.delays=[0,100000]"], capsys,
+            "ARX.delays=[0, 100000]: each delay must be shorter than the shortest campaign",
+            "30 samples")
+    assert not out.exists()
+    assert main([*common, "model.estimator.delays=[0,5]"]) == 0

@@ -168,7 +168,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
                                                       "n_threads")},
                    "dropout": number(0.0, 1.0, open_hi=True), "learning_rate": NON_NEGATIVE,
                    "weight_decay": NON_NEGATIVE,
-                   "validation_fraction": number(0.0, 1.0, open_hi=True)}
+                   "validation_fraction": number(0.0, 1.0, open_hi=True),
+                   "random_state": integer(0, 2 ** 32 - 1)}
 
     def _validation_rows(self, groups, n: int) -> np.ndarray:
         """Boolean mask of validation rows: whole campaigns, or the tail of a single one."""
