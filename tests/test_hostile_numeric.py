@@ -12,8 +12,11 @@ from __future__ import annotations
 
 import functools
 import math
+import warnings
 from pathlib import Path
 
+import numpy as np
+import pandas as pd
 import pytest
 from hydra import compose, initialize_config_dir
 from hydra.errors import InstantiationException
@@ -188,3 +191,58 @@ def test_an_arx_delay_as_long_as_a_campaign_is_refused_naming_it(tmp_path, capsy
             "30 samples")
     assert not out.exists()
     assert main([*common, "model.estimator.delays=[0,5]"]) == 0
+
+
+def test_another_axis_error_as_an_input_is_refused_naming_it(tmp_path, capsys):
+    """``data.inputs=[E_X,T_*]`` for E_Y fitted E_Y on E_X, measured in the test but not on a
+    machine that is compensating: exit 0 without a word before."""
+    from test_hostile import FAST, edit_csv, make_dataset
+
+    data, out = make_dataset(tmp_path / "ds"), tmp_path / "out"
+    for f in data.glob("K*.csv"):
+        edit_csv(f, lambda df: df.insert(len(df.columns), "E_Y", 0.5 * df["E_X"]))
+    refused(["run", f"data.path={data}", f"out={out}", *FAST, "data.inputs=[E_X,T_*]",
+             "data.targets=[E_Y]"], capsys, "column 'E_X'", "takes a measured error as an input")
+    refused(["run", f"data.path={data}", f"out={out}", *FAST, "data.inputs=[*]",
+             "data.targets=[E_Y]"], capsys, "column 'E_X,E_Y'")
+    assert not out.exists()
+
+
+def _signals(n: int = 200) -> pd.DataFrame:
+    """Noise (6 IMFs) and a sine on a ramp (2 IMFs)."""
+    t = np.arange(n, dtype=float)
+    return pd.DataFrame({"T_noisy": np.random.default_rng(0).normal(size=n),
+                         "T_smooth": np.sin(t / 3) + t / 100})
+
+
+def test_more_imfs_than_a_signal_has_are_said_and_than_any_has_refused():
+    """Asking more IMFs than a signal has removed all of them, the trend alone left, without a
+    word (an outside probe: n_imfs=1000 changed test E_Z 5.80 -> 8.47 µm)."""
+    from thermocomp.denoise import EMDDenoiser
+    from thermocomp.denoise.emd import leading_imfs
+    from thermocomp.errors import ParameterError
+
+    X = _signals()
+    found = {c: len(leading_imfs(X[c].to_numpy(), 100)) for c in X}
+    assert found["T_smooth"] < 4 <= found["T_noisy"]
+    with pytest.warns(UserWarning, match=r"n_imfs=4: 1 of 2 input signals have fewer IMFs "
+                                         r"\(T_smooth: \d\)"):
+        EMDDenoiser(n_imfs=4).fit(X)
+    with pytest.raises(ParameterError, match=f"no input signal has that many IMFs \\(at most "
+                                             f"{found['T_noisy']}: T_noisy\\)"):
+        EMDDenoiser(n_imfs=found["T_noisy"] + 1).fit(X)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        EMDDenoiser(n_imfs=min(found.values())).fit(X)         # every signal has that many
+
+
+def test_an_imf_count_no_signal_can_have_is_refused_before_any_work(tmp_path, capsys):
+    from test_hostile import FAST, make_dataset
+
+    data, out = make_dataset(tmp_path / "ds"), tmp_path / "out"
+    common = ["run", f"data.path={data}", f"out={out}", *FAST, "denoise=emd"]
+    refused([*common, "denoise.denoiser.n_imfs=1000"], capsys,
+            "denoise.denoiser.n_imfs=1000: must be an integer >= 1, at most 32")
+    refused([*common, "denoise.denoiser.n_imfs=30"], capsys,
+            "EMDDenoiser.n_imfs=30: no input signal has that many IMFs")
+    assert not out.exists()
