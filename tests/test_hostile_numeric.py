@@ -246,3 +246,17 @@ def test_an_imf_count_no_signal_can_have_is_refused_before_any_work(tmp_path, ca
     refused([*common, "denoise.denoiser.n_imfs=30"], capsys,
             "EMDDenoiser.n_imfs=30: no input signal has that many IMFs")
     assert not out.exists()
+
+
+@pytest.mark.parametrize("overrides, says", [
+    (["sim.generator.sample_period_s=0.0001"], "sim.generator: 24 campaigns of"),
+    (["sim=long_record", "sim.generator.duration_days=100000"], "more than 10,000,000"),
+    (["sim=fleet", "sim.generator.n_machines=10000"], "sim.generator.n_machines=10000: makes"),
+])
+def test_a_dataset_too_large_to_simulate_is_refused_before_simulating(tmp_path, capsys, overrides,
+                                                                      says):
+    """No single parameter's rule refuses a period of 1e-6 s or 1e5 days, yet together they
+    would simulate until memory ran out: the sample count is estimated from the plans first."""
+    data = tmp_path / "ds"
+    refused(["simulate", f"data.path={data}", "track=false", *overrides], capsys, says)
+    assert not data.exists()

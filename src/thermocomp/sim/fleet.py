@@ -44,7 +44,7 @@ from thermocomp.params import POSITIVE, check_params, check_values, integer, num
 from thermocomp.sim.ambient import DAY_S
 from thermocomp.sim.long_record import WorkshopClimate, jobs_signal, workload
 from thermocomp.sim.network import Link, Node, ThermalNetwork
-from thermocomp.sim.scenario import plain
+from thermocomp.sim.scenario import MAX_SAMPLES, plain
 from thermocomp.sim.sensors import quantise
 
 MANIFEST = "campaigns.csv"
@@ -121,6 +121,13 @@ class Fleet:
             out.append(("n_jobs", "must not be 0 (-1: every core)"))
         if DAY_S < 2 * self.sample_period_s:
             out.append(("sample_period_s", "must fit twice in a day"))
+        per_machine = self.days * DAY_S / self.sample_period_s   # one machine is held at once
+        if per_machine > MAX_SAMPLES:
+            out.append(("sample_period_s", f"makes {per_machine:,.0f} samples per machine over "
+                                           f"{self.days} days, more than {MAX_SAMPLES:,}"))
+        elif self.n_machines * per_machine > 10 * MAX_SAMPLES:
+            out.append(("n_machines", f"makes {self.n_machines * per_machine:,.0f} samples in all, "
+                                      f"more than {10 * MAX_SAMPLES:,}"))
         return out
 
     def get_params(self) -> dict:
