@@ -118,8 +118,9 @@ class EMDDenoiser(TransformerMixin, BaseEstimator):
                    "stopping": choice(*STOPPING), "max_siftings": integer(1),
                    "s_number": integer(1), "sd_threshold": POSITIVE,
                    "end_effect": choice(*END_EFFECTS), "pad": integer(0),
-                   "spline": choice(*SPLINES), "causal": choice(*CAUSAL), "causal_taps": integer(1),
-                   "causal_window": integer(4), "online": BOOLEAN}
+                   "spline": choice(*SPLINES), "causal": choice(*CAUSAL),
+                   "causal_taps": integer(1, at_most=4096), "causal_window": integer(4),
+                   "online": BOOLEAN}
 
     def check_params(self) -> None:
         """Raise :class:`~thermocomp.errors.ParameterError` for a parameter outside its rule
