@@ -22,9 +22,8 @@ from thermocomp.select import ClusterGreySelector, GreedyResidualSelector, Pears
 
 CLASSES = [MLR, PCR, ARX, ARXRF, LSTM, LagBank, ATIRegressor, EMDDenoiser, PearsonSelector,
            GreedyResidualSelector, ClusterGreySelector]
-# held estimators check themselves (and the shell checks them under their own key); a seed is
-# whatever numpy / torch accept
-UNRULED = {"arx", "forest", "base_estimator", "random_state"}
+# held estimators check themselves (and the shell checks them under their own key)
+UNRULED = {"arx", "forest", "base_estimator"}
 
 # one value outside each rule, of the kinds a config override produces: text for a number,
 # text for a flag, a number off its range, an empty list
@@ -39,7 +38,7 @@ HOSTILE = {
     "ambient_interaction": "yes", "n_imfs": 0, "sensors": "T_*", "stopping": "never",
     "max_siftings": 0, "s_number": 0, "sd_threshold": 0, "end_effect": "none", "pad": -1,
     "spline": "quintic", "causal": "foo", "causal_taps": 0, "causal_window": 3, "online": "no",
-    "k": 0, "k_max": 0, "m": 1.0, "rho": 1.5,
+    "k": 0, "k_max": 0, "m": 1.0, "rho": 1.5, "random_state": float("nan"),
 }
 
 

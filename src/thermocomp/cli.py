@@ -154,7 +154,8 @@ def _guarded(fn, *args):
     try:
         return fn(*args)
     except _config_errors() as exc:
-        _fail(exc)
+        # a generator's own check in its __init__ comes wrapped by Hydra's instantiate: its line
+        _fail(exc.__cause__ if isinstance(exc.__cause__, _config_errors()[0]) else exc)
     except PermissionError as exc:
         _fail(f"file {exc.filename}: cannot be read or written here ({exc.strerror})")
     except RuntimeError as exc:

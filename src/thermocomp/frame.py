@@ -116,6 +116,11 @@ def resolve_columns(columns, inputs, targets) -> tuple[list[str], list[str]]:
     if not x_cols:
         raise ContractError(f"data.inputs {inputs} matches no column (have {list(columns)})",
                             column=",".join(inputs))
+    errors = [c for c in x_cols if c.startswith("E_")]
+    if errors:      # data.inputs=[E_X, T_*] for E_Z fitted on another axis's measurement, silently
+        raise ContractError(f"data.inputs {inputs} takes a measured error as an input: a machine "
+                            "that is compensating does not measure it (inputs are T_ and S_ "
+                            "columns)", column=",".join(errors))
     all_targets = [c for c in columns if c.startswith("E_")]
     if targets is None:
         y_cols = all_targets

@@ -71,9 +71,20 @@ def number(lo: float = -math.inf, hi: float = math.inf, *, open_lo: bool = False
     return Rule(test, says)
 
 
-def integer(lo: int, hi: int | None = None) -> Rule:
-    return Rule(lambda v: _integer(v) and v >= lo and (hi is None or v <= hi),
-                f"an integer >= {lo}" if hi is None else f"an integer in [{lo}, {hi}]")
+# Every integer knob sizes something (an array, a loop, a pool): a billion samples of a monitor
+# window was OOM-killed at 24 GB, a billion Monte Carlo machines ran until killed.  So a count
+# is bounded unless its rule says more: a million is beyond every documented use.
+MAX_COUNT = 1_000_000
+
+
+def integer(lo: int, hi: int | None = None, *, at_most: int = MAX_COUNT) -> Rule:
+    """An integer in [``lo``, ``hi``]; without ``hi``, a count of at most ``at_most``."""
+    top = at_most if hi is None else hi
+    return Rule(lambda v: _integer(v) and lo <= v <= top, f"an integer {_between(lo, hi, at_most)}")
+
+
+def _between(lo, hi, at_most) -> str:
+    return f">= {lo}, at most {at_most:,}" if hi is None else f"in [{lo}, {hi}]"
 
 
 def numbers(lo: float = 0.0, hi: float = math.inf, *, length: int | None = None,
@@ -94,14 +105,16 @@ def numbers(lo: float = 0.0, hi: float = math.inf, *, length: int | None = None,
     return Rule(test, f"{count} in {'(' if open_lo else '['}{lo:g}, {hi:g}]")
 
 
-def integers(lo: int, hi: int | None = None, *, empty: bool = False) -> Rule:
-    """A list of integers in [``lo``, ``hi``] (non-empty unless ``empty``)."""
+def integers(lo: int, hi: int | None = None, *, empty: bool = False, at_most: int = MAX_COUNT) -> Rule:
+    """A list of integers in [``lo``, ``hi``] (non-empty unless ``empty``); without ``hi``, counts
+    of at most ``at_most``."""
+    top = at_most if hi is None else hi
+
     def test(v):
         items = _items(v)
         return items is not None and (empty or len(items) >= 1) and all(
-            _integer(x) and x >= lo and (hi is None or x <= hi) for x in items)
-    bound = f">= {lo}" if hi is None else f"in [{lo}, {hi}]"
-    return Rule(test, f"a {'' if empty else 'non-empty '}list of integers {bound}")
+            _integer(x) and lo <= x <= top for x in items)
+    return Rule(test, f"a {'' if empty else 'non-empty '}list of integers {_between(lo, hi, at_most)}")
 
 
 def either(*rules: Rule) -> Rule:

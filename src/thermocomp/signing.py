@@ -32,6 +32,7 @@ from .files import atomic_write_bytes, atomic_write_text
 KEY_ENV = "THERMOCOMP_SIGNING_KEY"
 SUFFIX = ".sig"
 SCHEME = "hmac-sha256"
+MAX_SIG_BYTES = 1024     # a signature is 77 bytes ("hmac-sha256 <64 hex>\n")
 
 
 class SignatureError(ContractError):
@@ -112,17 +113,32 @@ def verified_bytes(path: str | os.PathLike, sig: str | os.PathLike | None = None
     """
     path = Path(path)
     sig = Path(sig) if sig is not None else sig_path(path)
+    scheme, _, expected = _signature(sig, path).strip().partition(" ")
+    if not path.is_file():      # a device (/dev/zero) would be read until memory runs out
+        raise SignatureError("is not a regular file; refusing to read it", file=path)
     data = path.read_bytes()
-    try:
-        scheme, _, expected = sig.read_text(encoding="ascii").strip().partition(" ")
-    except (OSError, UnicodeDecodeError):
-        raise SignatureError(f"not signed by this project (no readable {sig.name} next to it); "
-                             "refusing to unpickle it", file=path) from None
     if scheme != SCHEME or not hmac.compare_digest(expected, digest(data)):
         raise SignatureError(f"signature mismatch ({sig.name}): the file was changed or signed "
                              f"with another key ({KEY_ENV} or {key_path()}); refusing to "
                              "unpickle it", file=path)
     return data
+
+
+def _signature(sig: Path, path: Path) -> str:
+    """The text of signature file ``sig``, read bounded: a ``.sig`` that is ``/dev/zero`` was
+    read until memory ran out (MemoryError, exit 1)."""
+    try:
+        if not sig.is_file():        # a device or a pipe is no signature: never read from it
+            raise OSError
+        with sig.open("rb") as f:
+            raw = f.read(MAX_SIG_BYTES + 1)
+        if len(raw) > MAX_SIG_BYTES:
+            raise SignatureError(f"{sig.name} is larger than a signature ({MAX_SIG_BYTES} bytes at "
+                                 "most); refusing to unpickle it", file=path)
+        return raw.decode("ascii")
+    except (OSError, UnicodeDecodeError):
+        raise SignatureError(f"not signed by this project (no readable {sig.name} next to it); "
+                             "refusing to unpickle it", file=path) from None
 
 
 def load(path: str | os.PathLike, expected: type | tuple[type, ...],

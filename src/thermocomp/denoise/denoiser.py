@@ -2,16 +2,20 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pandas as pd
 from sklearn.base import BaseEstimator, TransformerMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ..errors import ContractError
+from ..errors import ContractError, ParameterError
 from ..io.contract import match_columns
 from ..params import BOOLEAN, POSITIVE, check_estimator, choice, integer, texts
 from .causal import apply_fir, fit_fir, sliding_window
-from .emd import END_EFFECTS, SPLINES, STOPPING, decompose, emd_engine, remove_imfs
+from .emd import END_EFFECTS, SPLINES, STOPPING, decompose, emd_engine, leading_imfs, remove_imfs
+
+MAX_IMFS = 32      # ~log2 of the longest signal EMD could decompose here
 
 CAUSAL = ("fir", "window")
 
@@ -109,12 +113,14 @@ class EMDDenoiser(TransformerMixin, BaseEstimator):
         self.online = online
 
     # -- offline -----------------------------------------------------------------------
-    param_rules = {"n_imfs": integer(1), "sensors": texts("column names or glob patterns"),
+    # EMD halves the extrema from one IMF to the next: a signal has at most ~log2(N) of them
+    param_rules = {"n_imfs": integer(1, at_most=MAX_IMFS), "sensors": texts("column names or glob patterns"),
                    "stopping": choice(*STOPPING), "max_siftings": integer(1),
                    "s_number": integer(1), "sd_threshold": POSITIVE,
                    "end_effect": choice(*END_EFFECTS), "pad": integer(0),
-                   "spline": choice(*SPLINES), "causal": choice(*CAUSAL), "causal_taps": integer(1),
-                   "causal_window": integer(4), "online": BOOLEAN}
+                   "spline": choice(*SPLINES), "causal": choice(*CAUSAL),
+                   "causal_taps": integer(1, at_most=4096), "causal_window": integer(4),
+                   "online": BOOLEAN}
 
     def check_params(self) -> None:
         """Raise :class:`~thermocomp.errors.ParameterError` for a parameter outside its rule
@@ -132,12 +138,45 @@ class EMDDenoiser(TransformerMixin, BaseEstimator):
         """IMFs (up to ``max_imfs``) and residue of one signal, with this denoiser's settings."""
         return decompose(x, max_imfs, self._engine(), self.end_effect, int(self.pad))
 
-    def _offline(self, A: np.ndarray, groups) -> np.ndarray:
+    def _offline(self, A: np.ndarray, groups, found: list | None = None) -> np.ndarray:
+        """``A`` less the leading IMFs of each denoised column, per campaign; ``found`` gets
+        ``(IMFs found, first row, column)`` of each signal."""
         out = A.copy()
         for rows in _segments(len(A), groups):
             for j in np.flatnonzero(self.denoised_):
-                out[rows, j] = self._denoise_1d(A[rows, j])
+                imfs = leading_imfs(A[rows, j], int(self.n_imfs), self._engine(), self.end_effect,
+                                    int(self.pad))
+                if imfs.size:
+                    out[rows, j] = A[rows, j] - imfs.sum(axis=0)
+                if found is not None:
+                    found.append((len(imfs), np.arange(len(A))[rows][0], j))
         return out
+
+    def _check_found(self, found: list, names, groups) -> None:
+        """Asking more IMFs than a signal has removes all of them, its trend alone left: the
+        model changed without a word (n_imfs=1000: test E_Z 5.80 -> 8.47 µm).  Refused when no
+        signal has that many, said when some have fewer (a signal without any, monotone, keeps
+        all of itself: nothing to say)."""
+        n = int(self.n_imfs)
+        if not found:
+            return
+        most = max(found)
+        if 0 < most[0] < n:          # (none at all: nothing is removed, nothing lost)
+            raise ParameterError(f"EMDDenoiser.n_imfs={n}: no input signal has that many IMFs (at "
+                                 f"most {most[0]}: {self._signal(most, names, groups)}); every IMF "
+                                 "would be removed, the trend alone left")
+        short = [f for f in found if 0 < f[0] < n]
+        if short:
+            warnings.warn(f"EMDDenoiser.n_imfs={n}: {len(short)} of {len(found)} input signals have "
+                          f"fewer IMFs ({self._signal(min(short), names, groups)}: {min(short)[0]}); "
+                          "all of theirs are removed, their trend alone left", UserWarning,
+                          stacklevel=3)
+
+    @staticmethod
+    def _signal(entry, names, groups) -> str:
+        _, row, j = entry
+        return (f"{names[j] if names is not None else f'column {j}'}"
+                + (f" of campaign {np.asarray(groups)[row]}" if groups is not None else ""))
 
     def _wrap(self, X, values):
         if isinstance(X, pd.DataFrame):
@@ -162,7 +201,9 @@ class EMDDenoiser(TransformerMixin, BaseEstimator):
                 raise ContractError(f"the denoiser's sensors {list(self.sensors)} match none of "
                                     f"the inputs {list(names)}", column=str(self.sensors[0]))
             self.denoised_ = np.array([n in hits for n in names], dtype=bool)
-        out = self._offline(A, groups)
+        found = []
+        out = self._offline(A, groups, found)
+        self._check_found(found, names, groups)
         taps = int(self.causal_taps)
         self.fir_ = np.zeros((taps, A.shape[1]))
         self.fir_[0] = 1.0

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ..params import MAX_COUNT
 from .contract import SPLITS, ContractError
 
 TIME_FORMATS = ("auto", "seconds", "iso8601")
@@ -158,8 +159,8 @@ def _positive_float(cfg: Mapping, key: str, default: float | None = None,
 def _count(cfg: Mapping, key: str) -> int:
     value = cfg.get(key, 0)
     value = 0 if value is None else value
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
-        raise ContractError(f"data.{key} must be an integer >= 0, got {value!r}")
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 0 <= value <= MAX_COUNT:
+        raise ContractError(f"data.{key} must be an integer >= 0, at most {MAX_COUNT:,}, got {value!r}")
     return int(value)
 
 

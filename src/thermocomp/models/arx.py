@@ -9,10 +9,11 @@ from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import Y_MEASURED, SideInputs, groups_of, values
+from ..errors import ParameterError
 from ..model_selection.criteria import CRITERIA, LABELS, information_criteria
 from ..model_selection.greedy import SEARCHES, greedy_path, scaled_gram
 from ..params import BOOLEAN, check_estimator, choice, either, integer, integers
-from ._dynamics import free_run, lag_index, previous, segment_starts
+from ._dynamics import free_run, lag_index, previous, segment_bounds, segment_starts
 
 SELECTION_ERRORS = ("equation", "simulation")
 
@@ -118,6 +119,17 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
         check_estimator(self)
         return tuple(sorted({int(d) for d in np.atleast_1d(self.delays)}))
 
+    def _check_delays(self, delays, groups, n: int) -> None:
+        """A delay as long as a campaign holds its input at the campaign's first value throughout
+        (``delays=[100000]`` ended in 'ARX found no usable input', a traceback): refused, naming
+        the shortest campaign."""
+        bounds = segment_bounds(groups, n)
+        lo, hi = min(bounds, key=lambda b: b[1] - b[0])
+        if max(delays) >= hi - lo:
+            name = f" ({np.asarray(groups)[lo]})" if groups is not None else ""
+            raise ParameterError(f"ARX.delays={[int(d) for d in delays]}: each delay must be shorter "
+                                 f"than the shortest campaign{name}, {hi - lo} samples")
+
     # -- design -------------------------------------------------------------------------
     def _design(self, X, y, groups, delays, rows) -> tuple[np.ndarray, np.ndarray]:
         """Centred ``[x_j(t-d) for every (d, j) | y(t-1) | y(t)]`` on ``rows``, and the means.
@@ -148,6 +160,7 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
         n, p = X.shape
         if n < 2:
             raise ValueError(f"ARX needs at least 2 samples, got n_samples={n}")
+        self._check_delays(delays, groups, n)
         terms = [(j, d) for d in delays for j in range(p)]
         options = [False, True] if self.ar == "auto" else [bool(self.ar)]
         rows = np.ones(n, dtype=bool)

@@ -165,7 +165,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     param_rules = {"n_intervals": either(choice("elbow"), integer(1)),
                    "candidates": integers(1), "clustering": choice(*CLUSTERINGS),
                    "fuzziness": number(1.0, open_lo=True), "elbow_tolerance": NON_NEGATIVE,
-                   "ambient_interaction": BOOLEAN}
+                   "ambient_interaction": BOOLEAN, "random_state": integer(0, 2 ** 32 - 1)}
 
     def __init__(self, base_estimator=None, n_intervals="elbow", candidates=(2, 3, 4, 5, 6),
                  clustering: str = "fuzzy", fuzziness: float = 2.0, elbow_tolerance: float = 0.10,

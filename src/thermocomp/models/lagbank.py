@@ -246,7 +246,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.sample_period_s = sample_period_s
 
     # -- parameters ---------------------------------------------------------------------
-    param_rules = {"n_taus": integer(1), "tau_min_s": optional(POSITIVE), "tau_max_s": POSITIVE,
+    # n_taus: a feature per input and time constant
+    param_rules = {"n_taus": integer(1, at_most=1000), "tau_min_s": optional(POSITIVE), "tau_max_s": POSITIVE,
                    "alphas": optional(either(POSITIVE, numbers(0.0, open_lo=True))),
                    "n_splits": integer(MIN_SPLITS), "ar": choice(False, True, "auto"),
                    "sample_period_s": POSITIVE}

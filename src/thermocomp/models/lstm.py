@@ -163,12 +163,14 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         tags.non_deterministic = False
         return tags
 
-    param_rules = {**{name: integer(1) for name in ("hidden_size", "num_layers", "chunk",
-                                                      "batch_size", "max_epochs", "patience",
-                                                      "n_threads")},
+    # the weights grow as hidden_size² x num_layers: 4096 x 64 is ~17 GB of them already
+    param_rules = {**{name: integer(1) for name in ("chunk", "batch_size", "max_epochs", "patience")},
+                   "hidden_size": integer(1, at_most=4096), "num_layers": integer(1, at_most=64),
+                   "n_threads": integer(1, at_most=1024),
                    "dropout": number(0.0, 1.0, open_hi=True), "learning_rate": NON_NEGATIVE,
                    "weight_decay": NON_NEGATIVE,
-                   "validation_fraction": number(0.0, 1.0, open_hi=True)}
+                   "validation_fraction": number(0.0, 1.0, open_hi=True),
+                   "random_state": integer(0, 2 ** 32 - 1)}
 
     def _validation_rows(self, groups, n: int) -> np.ndarray:
         """Boolean mask of validation rows: whole campaigns, or the tail of a single one."""

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import skfuzzy
 
-from ..params import number
+from ..params import integer, number
 from .base import TSPSelector
 from .pearson import abs_correlation
 
@@ -93,7 +93,7 @@ class ClusterGreySelector(TSPSelector):
     score_label = "grey relational degree"
     # rho: the grey distinguishing coefficient, in (0, 1] (0.5 usual)
     param_rules = {**TSPSelector.param_rules, "m": number(1.0, open_lo=True),
-                   "rho": number(0.0, 1.0, open_lo=True)}
+                   "rho": number(0.0, 1.0, open_lo=True), "random_state": integer(0, 2 ** 32 - 1)}
 
     def __init__(self, k: int | None = None, criterion: str = "bicc", k_max: int = 10,
                  m: float = 2.0, rho: float = 0.5, random_state: int = 0):

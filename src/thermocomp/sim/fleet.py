@@ -40,11 +40,11 @@ import numpy as np
 import pandas as pd
 
 from thermocomp.files import atomic_dir
-from thermocomp.params import POSITIVE, check_params, integer, number, numbers
+from thermocomp.params import POSITIVE, check_params, check_values, integer, number, numbers
 from thermocomp.sim.ambient import DAY_S
 from thermocomp.sim.long_record import WorkshopClimate, jobs_signal, workload
 from thermocomp.sim.network import Link, Node, ThermalNetwork
-from thermocomp.sim.scenario import plain
+from thermocomp.sim.scenario import MAX_SAMPLES, plain
 from thermocomp.sim.sensors import quantise
 
 MANIFEST = "campaigns.csv"
@@ -97,15 +97,21 @@ class Fleet:
 
     def __init__(self, n_machines=100, days=30, sample_period_s=30.0, n_sensors=40, test_days=6,
                  spread=0.2, start_day=74, speeds_rpm=(1500, 3000, 4500, 6000, 8000), n_jobs=2, seed=0):
+        # checked before the conversions below (int(nan) was a traceback, exit 1)
+        check_values(dict(n_machines=n_machines, days=days, sample_period_s=sample_period_s,
+                          n_sensors=n_sensors, test_days=test_days, spread=spread,
+                          start_day=start_day, speeds_rpm=speeds_rpm, n_jobs=n_jobs),
+                     self.param_rules, "sim.generator")
         self.n_machines, self.days, self.sample_period_s = int(n_machines), int(days), float(sample_period_s)
         self.n_sensors, self.test_days, self.spread = int(n_sensors), int(test_days), float(spread)
         self.start_day, self.speeds_rpm = int(start_day), tuple(float(s) for s in speeds_rpm)
         self.n_jobs, self.seed = int(n_jobs), int(seed)
 
-    param_rules = {"n_machines": integer(1), "days": integer(2), "sample_period_s": POSITIVE,
-                   "n_sensors": integer(N_AMBIENT + 1), "test_days": integer(1),
+    param_rules = {"n_machines": integer(1, at_most=10_000), "days": integer(2, at_most=3660),
+                   "sample_period_s": POSITIVE, "n_sensors": integer(N_AMBIENT + 1, at_most=1000),
+                   "test_days": integer(1, at_most=3660),
                    "spread": number(0.0, 1.0, open_hi=True), "start_day": integer(0, 364),
-                   "speeds_rpm": numbers(0.0), "n_jobs": integer(-1)}
+                   "speeds_rpm": numbers(0.0), "n_jobs": integer(-1, at_most=1024)}
 
     def param_relations(self) -> list[tuple[str, str]]:
         out = []
@@ -115,6 +121,13 @@ class Fleet:
             out.append(("n_jobs", "must not be 0 (-1: every core)"))
         if DAY_S < 2 * self.sample_period_s:
             out.append(("sample_period_s", "must fit twice in a day"))
+        per_machine = self.days * DAY_S / self.sample_period_s   # one machine is held at once
+        if per_machine > MAX_SAMPLES:
+            out.append(("sample_period_s", f"makes {per_machine:,.0f} samples per machine over "
+                                           f"{self.days} days, more than {MAX_SAMPLES:,}"))
+        elif self.n_machines * per_machine > 10 * MAX_SAMPLES:
+            out.append(("n_machines", f"makes {self.n_machines * per_machine:,.0f} samples in all, "
+                                      f"more than {10 * MAX_SAMPLES:,}"))
         return out
 
     def get_params(self) -> dict:

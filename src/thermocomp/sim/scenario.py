@@ -99,6 +99,19 @@ class CampaignPlan:
     truth: dict = field(default_factory=dict)
 
 
+# Samples of a simulated dataset, all campaigns: 200x the largest scenario's default (a period
+# of 1e-6 s or campaigns of 1e6 h are not refused by any one parameter's rule, and would simulate
+# until memory ran out).  Counted from the plans, before anything is simulated.
+MAX_SAMPLES = 10_000_000
+
+
+def check_size(samples: float, campaigns: int) -> None:
+    if not samples <= MAX_SAMPLES:
+        raise ConfigError(f"sim.generator: {campaigns} campaigns of {samples:,.0f} samples in all, "
+                          f"more than {MAX_SAMPLES:,}: shorten them or sample less often "
+                          "(sample_period_s)")
+
+
 class Scenario:
     """Base class of the generators (sklearn style: ``__init__`` only stores).
 
@@ -175,6 +188,7 @@ class Scenario:
         for effect in effects:
             machine = effect.modify_machine(machine)
         plans = self.plans(rng)
+        check_size(sum(plan.duration_s / plan.sample_period_s for plan in plans), len(plans))
         measurement = self.measurement()
         rows, frames, truth_campaigns, measured = [], {}, {}, {}
         self.node_temperatures_ = {}

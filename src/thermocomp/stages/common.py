@@ -9,6 +9,7 @@ import math
 import tempfile
 import time
 from collections.abc import Mapping
+from numbers import Integral
 from pathlib import Path
 
 from hydra.utils import instantiate
@@ -22,6 +23,7 @@ from ..log import logger
 from ..metrics import unit
 from ..params import (
     BOOLEAN,
+    MAX_COUNT,
     NON_NEGATIVE,
     POSITIVE,
     Rule,
@@ -39,6 +41,7 @@ from ..params import (
 )
 from ..paths import conf_dir, resolve
 from ..tracking import enabled, store_uri
+from .rules import check_groups, check_keys
 
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
 
@@ -50,7 +53,8 @@ CONFIG_RULES = {
     "eval.e_p95.max_points": optional(integer(2)),  # 0 or 1 window lengths: an empty E_P95 curve
     "eval.anova_alpha": number(0.0, 1.0, open_lo=True, open_hi=True),
     "eval.mutual_prediction": BOOLEAN, "eval.ati_baselines": BOOLEAN, "eval.iso10791_a3": BOOLEAN,
-    "eval.validation": BOOLEAN, "eval.validation_folds": integer(2),
+    "eval.validation": BOOLEAN, "eval.validation_folds": integer(2, at_most=1000),
+    "data.group_jobs": integer(1, at_most=1024),           # processes
     "data.inputs": texts("column names or patterns", unique=True),
     "data.targets": optional(texts("E_ column names", unique=True)),
 }
@@ -94,6 +98,10 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",)) -> None:
     is (not an existing file in a folder's place, not a read-only place).
     """
     check_keys(cfg, CONFIG_RULES)
+    check_groups(cfg)        # every group, whatever the stage: replay streams with promote.* too
+    io.ReadOptions.from_cfg(data_options(cfg))      # data.*: before any file is read
+    if cfg.get("calibrate") is not None:
+        check_calibrate(cfg.calibrate)
     for key in COMPONENTS:
         node = OmegaConf.select(cfg, key)
         if node is not None:
@@ -102,14 +110,6 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",)) -> None:
         _check_writable(key, OmegaConf.select(cfg, key), folder=key != "model_path")
     if enabled(cfg):     # before any data is read: an unreachable server once hung a run for minutes
         store_uri(cfg)
-
-
-def check_keys(cfg: DictConfig, rules: dict) -> None:
-    """Every dotted key of ``rules`` in ``cfg`` within its rule (``eval.validation_folds=1:
-    must be an integer >= 2``)."""
-    for key, rule in rules.items():
-        group, _, name = key.rpartition(".")
-        check_values({name: OmegaConf.select(cfg, key)}, {name: rule}, group)
 
 
 def check_component(component, key: str) -> None:
@@ -126,6 +126,11 @@ def check_component(component, key: str) -> None:
             component._validate_params()
         except ValueError as exc:
             raise ConfigError(f"{key}: {exc}") from None
+        # their counts have no upper bound there (n_estimators=1e15 would loop for ever)
+        for name, value in component.get_params(deep=False).items():
+            if (name != "random_state" and isinstance(value, Integral) and not isinstance(value, bool)
+                    and abs(value) > MAX_COUNT):
+                raise ConfigError(f"{key}.{name}={value}: must be at most {MAX_COUNT:,}")
     if hasattr(component, "get_params"):
         for name, value in component.get_params(deep=False).items():
             if hasattr(value, "get_params"):

@@ -9,7 +9,6 @@ and figures in ``<out>/design/``; prints the table and the findings.
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
@@ -17,83 +16,14 @@ from omegaconf import DictConfig, OmegaConf
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
 from ..log import logger
-from ..params import (
-    BOOLEAN,
-    NON_NEGATIVE,
-    POSITIVE,
-    Rule,
-    check_values,
-    either,
-    integer,
-    integers,
-    numbers,
-    optional,
-    texts,
-)
 from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric import KinematicModel, load_setup
-from ..volumetric.artefact import MAX_BALLS, POSITION_SETS, UNCERTAINTY, check_reach
+from ..volumetric.artefact import check_reach
 from ..volumetric.calibration import prior_sd
-from ..volumetric.design import KINDS, CalibrationDesignStudy, MachineFamily, strategies
+from ..volumetric.design import CalibrationDesignStudy, MachineFamily, strategies
 from .common import calibration_prior, check_calibrate, check_config, say
-
-
-def _position_sets(v) -> bool:
-    if not texts()(v):
-        return False
-    parts = [[p.strip() for p in str(ps).split("+")] for ps in v]
-    # each set once: 'S1+S1' measured every S1 pose twice without a word
-    return all(p in POSITION_SETS for ps in parts for p in ps) and all(
-        len(set(ps)) == len(ps) for ps in parts)
-
-
-MAX_GRID = 1_000_000          # VCE grid points: ~24 MB per machine at most, not a MemoryError
-
-# What each design.* key may be (the study's structure and the machine's order are checked below).
-DESIGN_RULES = {
-    "n_machines": integer(1),
-    "n_jobs": Rule(lambda v: integer(-math.inf)(v) and v != 0, "an integer other than 0 (-1: every core)"),
-    "grid": Rule(lambda v: integers(2)(v) and len(list(v)) == 3 and math.prod(v) <= MAX_GRID,
-                 f"3 integers >= 2 (points in X, Y, Z), {MAX_GRID:,} points at most"),
-    "x_centres": numbers(0.0, 1.0), "length_mm": optional(POSITIVE),
-    "probing_um": optional(UNCERTAINTY), "ball_um": optional(UNCERTAINTY),
-    "compensation_order": optional(integer(1, 10)),
-}
-STUDY_RULES = {
-    "n_balls": integers(2, MAX_BALLS),
-    "misalignment_deg": Rule(lambda v: numbers(0.0)(v) and all(x < 90 for x in v),
-                             "a non-empty list of angles in [0, 90)"),
-    "position_sets": Rule(_position_sets, f"a non-empty list of '+'-joined {', '.join(POSITION_SETS)}, "
-                                          "each at most once"),
-}
-
-
-def check_design(d: dict) -> None:
-    """Refuse a ``design.*`` value the study cannot use, before any work."""
-    check_values(d, DESIGN_RULES, "design")
-    check_values(d.get("machine") or {}, {"order": optional(integer(1)), "cross_terms": BOOLEAN},
-                 "design.machine")
-    ranges = d.get("ranges") or {}
-    unknown = [k for k in ranges if k not in (*KINDS, "decay")]
-    if unknown:
-        raise ConfigError(f"design.ranges.{unknown[0]}: not a parameter kind ({', '.join(KINDS)}, decay)")
-    check_values(ranges, {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0))
-                          for k in ("decay", *ranges)}, "design.ranges")
-    studies = d.get("studies")
-    if not isinstance(studies, dict) or not studies:
-        raise ConfigError("design.studies must map study names to n_balls, misalignment_deg, position_sets")
-    if all(s is None for s in studies.values()):
-        raise ConfigError("design.studies: every study is null, none left to run")
-    for name, study in studies.items():
-        if study is not None:            # null: a default study dropped
-            keys = set(study) if isinstance(study, dict) else set()
-            odd = sorted(keys - set(STUDY_RULES)) + sorted(set(STUDY_RULES) - keys)
-            if odd:
-                what = "not a study key" if odd[0] in keys else "missing"
-                raise ConfigError(f"design.studies.{name}.{odd[0]}: {what} (a study gives "
-                                  f"{', '.join(STUDY_RULES)})")
-            check_values(study, STUDY_RULES, f"design.studies.{name}")
+from .rules import check_design
 
 
 def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:

@@ -36,38 +36,18 @@ from ..errors import ConfigError
 from ..files import atomic_dir, write_json
 from ..headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
 from ..log import logger
-from ..model_selection import CV_SCHEMES
 from ..params import (
-    BOOLEAN,
-    NON_NEGATIVE,
-    POSITIVE,
     check_values,
-    choice,
-    either,
-    integer,
-    integers,
-    number,
-    numbers,
-    optional,
     subset,
-    text,
-    texts,
 )
 from ..paths import resolve
 from ..tracking import stage_run
+from . import rules
 from .common import build_compensator, check_config, check_declared, data_options, say
 
-# What each ``diagnose.*`` key may be (``targets`` is also checked against the modelled targets).
-DIAGNOSE_RULES = {
-    "max_effects": integer(0), "min_gain_pct": NON_NEGATIVE,
-    "alpha": number(0.0, 1.0, open_lo=True, open_hi=True), "shortlist": integer(1),
-    "cv": choice(*CV_SCHEMES), "n_folds": integer(2), "n_blocks": integer(2),
-    "min_train_fraction": number(0.0, 1.0, open_lo=True, open_hi=True), "shrink": BOOLEAN,
-    "taus_s": numbers(0.0, open_lo=True, empty=True),        # empty: no lagged effects tried
-    "initial_directions": integers(1, empty=True), "n_squares": integer(0),
-    "fault_ratio": POSITIVE, "families": subset(KINDS),
-    "targets": optional(either(text(), texts("targets"))), "seed": integer(0),
-}
+# What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are
+# this stage's (``targets`` is also checked against the modelled targets).
+DIAGNOSE_RULES = {**rules.DIAGNOSE_RULES, "families": subset(KINDS)}
 
 
 def search_options(dcfg) -> SearchOptions:

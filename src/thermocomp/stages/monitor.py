@@ -33,14 +33,12 @@ from ..monitor import (
     qr_sensors,
     undetected_offset_um,
 )
-from ..params import BOOLEAN, NON_NEGATIVE, POSITIVE, choice, integer, number, optional
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import (
     build_adaptive,
     build_compensator,
     check_config,
-    check_keys,
     check_streamed_columns,
     check_volumetric_targets,
     data_options,
@@ -50,6 +48,7 @@ from .common import (
     say,
     warn_stream_mode,
 )
+from .rules import check_monitor
 
 
 def _stdin_campaign(columns: list[str], opts: io.ReadOptions) -> tuple[dict, dict]:
@@ -131,30 +130,6 @@ def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.nd
             errors.append(mon.last_error_)
     model.reset()
     return y, events, (states, errors)
-
-
-# What each monitor.* key may be; the relations between them are in check_monitor.
-MONITOR_RULES = {f"monitor.{k}": rule for k, rule in {
-    "input": choice(None, "-"), "adaptive": BOOLEAN, "window": integer(1), "confirm": integer(1),
-    "exclude_at": choice("warning", "alarm"), "bands.warning_c": POSITIVE,
-    "bands.alarm_c": POSITIVE, "bands.learned": BOOLEAN,
-    "pod.energy": number(0.0, 1.0, open_lo=True), "pod.modes": optional(integer(1)),
-    "pod.fit_share": optional(POSITIVE), "pod.max_leverage": number(0.0, 1.0, open_lo=True),
-    "pod.placement": choice("qr", "covariance"), "detectors.jump_factor": POSITIVE,
-    "detectors.freeze_factor": POSITIVE, "detectors.range_margin_c": NON_NEGATIVE,
-    "guard.margin": NON_NEGATIVE, "guard.rate_margin": NON_NEGATIVE,
-    "map_time_h": optional(NON_NEGATIVE)}.items()}
-
-
-def check_monitor(cfg: DictConfig) -> None:
-    """Refuse a ``monitor.*`` value the monitor cannot use, before any data is read."""
-    check_keys(cfg, MONITOR_RULES)
-    m = cfg.monitor
-    if m.confirm > m.window:
-        raise ConfigError(f"monitor.confirm={m.confirm}: must be <= monitor.window={m.window}")
-    if m.bands.alarm_c < m.bands.warning_c:
-        raise ConfigError(f"monitor.bands.alarm_c={m.bands.alarm_c}: must be >= "
-                          f"monitor.bands.warning_c={m.bands.warning_c}")
 
 
 def monitor(cfg: DictConfig) -> dict:

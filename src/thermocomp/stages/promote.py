@@ -39,7 +39,6 @@ from __future__ import annotations
 
 import hashlib
 import json
-import re
 import subprocess
 import tempfile
 from pathlib import Path
@@ -54,7 +53,7 @@ from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json
 from ..leaderboard import FIGURES, beats, is_validation, rank, summary
-from ..params import BOOLEAN, NON_NEGATIVE, Rule, choice, text
+from ..params import choice
 from ..paths import project_root, resolve
 from ..store import registry_lock
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
@@ -62,17 +61,9 @@ from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
 from .common import check_config, check_keys, data_options, deploy_stream, deployable, say
 
-# What the plain promote.* keys may be (the criterion and target are checked against the runs).
-PROMOTE_RULES = {
-    "promote.model_name": text(),
-    # MLflow's alias rule: letters, digits, _ and -; not a version (v1) nor 'latest'
-    "promote.alias": Rule(lambda v: isinstance(v, str) and re.fullmatch(r"[\w-]+", v) is not None
-                          and re.fullmatch(r"[vV]\d+|latest", v) is None,
-                          "letters, digits, _ and - (not v<number> nor latest)"),
-    "promote.min_improvement": NON_NEGATIVE,   # negative would let a worse candidate replace it
-    "promote.force": BOOLEAN, "promote.envelope.policy": choice(*POLICIES),
-    "promote.envelope.margin": NON_NEGATIVE, "promote.max_stream_deviation_um": NON_NEGATIVE,
-}
+# The plain promote.* keys are checked by every stage (rules.PROMOTE_RULES); the envelope's
+# policies are the deployment's own.
+POLICY_RULE = {"promote.envelope.policy": choice(*POLICIES)}
 
 
 def git_commit() -> tuple[str, bool]:
@@ -242,7 +233,7 @@ def promote(cfg: DictConfig) -> dict:
     the champion's figures on the same dataset) gets no new version.
     """
     check_config(cfg)
-    check_keys(cfg, PROMOTE_RULES)
+    check_keys(cfg, POLICY_RULE)
     import mlflow
 
     from ..deploy.pyfunc import REPORT_COLUMNS, correction_column, log_compensator

@@ -33,13 +33,10 @@ from omegaconf import DictConfig
 
 from ..errors import ConfigError
 from ..log import logger
-from ..params import POSITIVE, check_values, integer, number, text
 from ..paths import resolve
 from ..tracking import DEFAULT_URI, resolve_uri, retry_locked
 from .common import say
-
-SERVE_RULES = {"model": text(), "host": text(), "port": integer(1, 65535), "timeout_s": POSITIVE,
-               "max_rows": integer(1, 10_000_000), "max_body_mb": number(0.0, 4096.0, open_lo=True)}
+from .rules import SERVE_RULES, check_keys
 
 
 def _loopback(host: str) -> bool:
@@ -106,7 +103,7 @@ def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
     from ..deploy import server
 
     opts = cfg.serve
-    check_values(opts, SERVE_RULES, "serve")
+    check_keys(cfg, SERVE_RULES)     # serve runs no check_config: no data, no output
     if not _loopback(str(opts.host)):
         logger.warning("serve.host=%s is not a loopback address: the model is reachable from the "
                        "network, without authentication", opts.host)
