@@ -78,6 +78,13 @@ def test_a_tracking_store_in_the_raw_data_is_refused(ds, tmp_path, capsys):
     assert snapshot(ds) == before
 
 
+def test_a_sweep_folder_in_the_raw_data_is_refused_before_hydra_writes_there(ds, capsys):
+    before = snapshot(ds)       # Hydra wrote multirun.yaml and <job>/.hydra/ there first
+    refused(["run", "-m", f"data.path={ds}", f"hydra.sweep.dir={ds / 'sweep'}", *FAST], capsys,
+            f"hydra.sweep.dir={ds / 'sweep'} lies inside data.path={ds}")
+    assert snapshot(ds) == before
+
+
 def test_a_link_to_the_raw_data_is_the_raw_data(ds, tmp_path, capsys):
     link = tmp_path / "link"
     link.symlink_to(ds, target_is_directory=True)

@@ -173,12 +173,6 @@ def _check_seed(cfg) -> None:
         raise ConfigError(f"seed={seed!r} is not an integer in [0, 2**32 - 1]")
 
 
-def _check_targets(cfg, where: str = "") -> None:
-    from .build import check_targets
-
-    check_targets(cfg, where)
-
-
 # Another primary config or config folder would escape the check of what Hydra builds.
 CONFIG_FLAGS = ("-cp", "--config-path", "-cn", "--config-name", "-cd", "--config-dir")
 
@@ -209,8 +203,11 @@ def _check_hydra_node(args: list[str]) -> None:
     except _config_errors():
         return                        # as above: Hydra's own message, nothing built
     from .build import check_built
+    from .stages.apart import check_apart
 
     _guarded(check_built, cfg.hydra, "hydra")     # resolved: Hydra imports them anyway
+    if any(a in ("-m", "--multirun") for a in args):   # Hydra writes multirun.yaml there first
+        _guarded(check_apart, cfg, ("hydra.sweep.dir",), ())
 
 
 def _compose_hydra(overrides: list[str]):
@@ -468,10 +465,11 @@ def _per_job(cfg):
 def _run(stage: str, fn, cfg, args: list[str]):
     """Run stage ``fn`` on ``cfg`` with its log file (``<out>/thermocomp.log`` on success)."""
     from . import log
+    from .build import check_targets
     from .files import signals_raise
 
     _guarded(_check_seed, cfg)   # before anything is written, the log file included
-    _guarded(_check_targets, cfg)
+    _guarded(check_targets, cfg)     # a _target_ of the project's, named anywhere in it
     # SIGTERM anywhere in the stage (reading, fitting) ends it with status 1 and a message,
     # as the contract's statuses say, not 143; a library's warnings go to the log, one line each
     with signals_raise(), log.warnings_logged(), log.run_log(_log_folder(stage, cfg)):
