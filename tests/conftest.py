@@ -14,6 +14,8 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
+# the test-local estimators a config may build (thermocomp.build): an environment setting
+os.environ.setdefault("THERMOCOMP_TARGETS", "test_deploy.,test_tracking.")
 
 
 def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.CompletedProcess:

@@ -805,9 +805,9 @@ def test_the_parameter_dataset_never_replaces_data_or_a_folder_of_something_else
     other = tmp_path / "other"
     shutil.copytree(default_dataset, other)
     before = sorted(p.name for p in other.iterdir())
-    for target, says in ((data, f"{data}, which is data.path"),
-                         (data / "sub", f"{data / 'sub'}, which lies inside data.path"),
-                         (tmp_path, f"{tmp_path}, which holds data.path"),
+    for target, says in ((data, f"calibrate.dataset={data} is data.path"),
+                         (data / "sub", f"calibrate.dataset={data / 'sub'} lies inside data.path"),
+                         (tmp_path, f"calibrate.dataset={tmp_path} holds data.path"),
                          (other, "does not hold this dataset's parameter series")):
         refused(["calibrate", f"data.path={data}", f"out={tmp_path / 'out'}", "track=false",
                  f"calibrate.dataset={target}"], capsys, says)

@@ -385,11 +385,12 @@ def test_out_below_a_file_or_in_a_read_only_place_is_refused(paths, capsys, tmp_
             "is not a folder")
     refused(["run", *paths["args"], "out=/proc/thermocomp_out"], capsys,
             "out=/proc/thermocomp_out: cannot write in /proc")
-    refused(["train", *paths["args"], f"model_path={tmp_path}"], capsys,
-            f"model_path={tmp_path}: exists and is a folder")
+    (tmp_path / "a_folder").mkdir()     # not one holding data.path: that is refused first
+    refused(["train", *paths["args"], f"model_path={tmp_path / 'a_folder'}"], capsys,
+            f"model_path={tmp_path / 'a_folder'}: exists and is a folder")
     refused(["ingest", *paths["args"], f"data.interim={tmp_path / 'a_file'}"], capsys,
             "exists and is not a folder")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file", "ds"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a_file", "a_folder", "ds"]
 
 
 @pytest.mark.parametrize("stage", STAGES)

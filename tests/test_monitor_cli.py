@@ -390,9 +390,10 @@ def test_stdin_rows_are_read_as_the_campaign_files_are(small, tmp_path, monkeypa
             ("lab", lab, rows.rename(columns={"T_motor1": "Motor 1"}).to_csv(index=False, sep=";",
                                                                              decimal=","), settings)):
         monkeypatch.setattr("sys.stdin", io.StringIO(text))
-        assert main(["monitor", "monitor.input=-", f"data.path={path}", f"out={tmp_path / name}",
+        out = tmp_path / f"{name}_out"      # not the lab's dataset: no stage writes into data.path
+        assert main(["monitor", "monitor.input=-", f"data.path={path}", f"out={out}",
                      "track=false", "plots=none", *extra]) == 0, capsys.readouterr().err
-        reports[name] = json.loads((tmp_path / name / "monitor.json").read_text())
+        reports[name] = json.loads((out / "monitor.json").read_text())
     for t, got in reports["lab"]["targets"].items():
         want = reports["contract"]["targets"][t]
         assert got["rmse_fixed"] == pytest.approx(want["rmse_fixed"], rel=1e-9)

@@ -54,8 +54,9 @@ def test_sweep_compare_promote_against_a_postgresql_backed_server(tmp_path):
 
     assert main(["compare", *common, f"compare.out={tmp_path / 'cmp'}"]) == 0
     assert (tmp_path / "cmp" / "compare.csv").read_text().count("\n") == 3  # header + 2 runs
-    assert main(["promote", *common, f"promote.model_name={model_name}", f"out={tmp_path}"]) == 0
-    report = json.loads((tmp_path / "promote.json").read_text())
+    # out beside the dataset: one holding data.path is refused (no stage writes into it)
+    assert main(["promote", *common, f"promote.model_name={model_name}", f"out={tmp_path / 'p'}"]) == 0
+    report = json.loads((tmp_path / "p" / "promote.json").read_text())
     assert report["moved"] and report["run_id"] in {r.info.run_id for r in children}
     import pandas as pd
 

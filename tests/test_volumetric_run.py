@@ -174,7 +174,8 @@ def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_pa
 def test_an_interim_inside_the_volumetric_dataset_is_refused_before_calibrating(raw, capsys):
     before = sorted(p.name for p in raw.iterdir())
     refused(["ingest", "experiment=volumetric_large_mill", f"data.path={raw}",
-             f"data.interim={raw / 'interim'}", "track=false"], capsys, "overlaps the raw dataset")
+             f"data.interim={raw / 'interim'}", "track=false"], capsys,
+            f"data.interim={raw / 'interim'} lies inside data.path={raw}")
     assert sorted(p.name for p in raw.iterdir()) == before
 
 

@@ -174,16 +174,58 @@ def _check_seed(cfg) -> None:
         raise ConfigError(f"seed={seed!r} is not an integer in [0, 2**32 - 1]")
 
 
-def _compose(overrides: list[str]):
+# Another primary config or config folder would escape the check of what Hydra builds.
+CONFIG_FLAGS = ("-cp", "--config-path", "-cn", "--config-name", "-cd", "--config-dir")
+
+
+def _check_hydra_node(args: list[str]) -> None:
+    """What Hydra itself builds under ``hydra.main`` (callbacks, launcher, sweeper, logging),
+    checked before it runs: ``hydra.callbacks.x._target_=builtins.open`` was called with its
+    arguments before any job.  A sweep composes its ``hydra`` node without sweep overrides."""
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+
+    flag = next((a.split("=")[0] for a in args if a.split("=")[0] in CONFIG_FLAGS), None)
+    if flag:
+        _fail(f"{flag}: thermocomp composes conf/ of its project; add config folders with "
+              "hydra.searchpath=[file://<dir>]")
+    parser = OverridesParser.create()
+    fixed = []
+    for arg in args:
+        if arg.startswith("-"):
+            continue
+        try:
+            if parser.parse_override(arg).is_sweep_override():
+                continue
+        except Exception:
+            return                    # Hydra reports it, before building anything
+        fixed.append(arg)
+    try:
+        cfg = _compose_hydra(fixed)
+    except _config_errors():
+        return                        # as above: Hydra's own message, nothing built
+    from .build import check_built
+    from .stages.apart import check_apart
+
+    _guarded(check_built, cfg.hydra, "hydra")     # resolved: Hydra imports them anyway
+    if any(a in ("-m", "--multirun") for a in args):   # Hydra writes multirun.yaml there first
+        _guarded(check_apart, cfg, ("hydra.sweep.dir",), ())
+
+
+def _compose_hydra(overrides: list[str]):
     from hydra import compose, initialize_config_dir
-    from hydra.core.hydra_config import HydraConfig
-    from omegaconf import open_dict
 
     from .paths import conf_dir
 
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3",
                                job_name="thermocomp"):
-        cfg = compose(config_name="config", overrides=overrides, return_hydra_config=True)
+        return compose(config_name="config", overrides=overrides, return_hydra_config=True)
+
+
+def _compose(overrides: list[str]):
+    from hydra.core.hydra_config import HydraConfig
+    from omegaconf import open_dict
+
+    cfg = _compose_hydra(overrides)
     HydraConfig.instance().set_config(cfg)   # the overrides name the MLflow run, as under hydra.main
     with open_dict(cfg):
         del cfg["hydra"]
@@ -424,9 +466,11 @@ def _per_job(cfg):
 def _run(stage: str, fn, cfg, args: list[str]):
     """Run stage ``fn`` on ``cfg`` with its log file (``<out>/thermocomp.log`` on success)."""
     from . import log
+    from .build import check_targets
     from .files import signals_raise
 
     _guarded(_check_seed, cfg)   # before anything is written, the log file included
+    _guarded(check_targets, cfg)     # a _target_ of the project's, named anywhere in it
     # SIGTERM anywhere in the stage (reading, fitting) ends it with status 1 and a message,
     # as the contract's statuses say, not 143; a library's warnings go to the log, one line each
     with signals_raise(), log.warnings_logged(), log.run_log(_log_folder(stage, cfg)):
@@ -538,6 +582,7 @@ def main(argv: list[str] | None = None) -> int:
         args = lenient(args)
         _check_overrides(args)
         if any(a.startswith("-") for a in args):
+            _check_hydra_node(args)
             _hydra_main(stage, args)
         else:
             _run(stage, lookup(stage), _compose_or_explain(args), args)

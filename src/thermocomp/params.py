@@ -183,12 +183,16 @@ def text() -> Rule:
     return Rule(lambda v: isinstance(v, str) and v != "", "a non-empty text")
 
 
-def file_name() -> Rule:
+def file_name(most: int = 100) -> Rule:
     """A name that is one path component: it names folders (``data/interim/<name>``), and ``..``,
-    a ``/`` or nothing would put them outside their parent, or make them the parent itself."""
+    a ``/`` or nothing would put them outside their parent, or make them the parent itself.
+    At most ``most`` characters, none a control character: the stages stage their folders as
+    ``.<name>.stage-<pid>-<random>``, and 300 characters ended a run in 'File name too long'."""
     return Rule(lambda v: isinstance(v, str) and v not in ("", ".", "..") and "/" not in v
-                and "\\" not in v and not v.startswith("~") and "\0" not in v,
-                "one path component: not empty, '.' or '..', no '/'")
+                and "\\" not in v and not v.startswith("~") and len(v) <= most
+                and v.isprintable(),
+                f"one path component of at most {most} printable characters: not empty, '.' "
+                "or '..', no '/'")
 
 
 def texts(what: str = "texts", *, empty: bool = False, unique: bool = False) -> Rule:

@@ -32,6 +32,7 @@ from ..log import logger
 from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric.calibration import roundtrip
+from .apart import check_apart
 from .common import (
     _check_writable,
     calibrated_dataset,
@@ -51,6 +52,7 @@ def calibrate(cfg: DictConfig) -> dict:
     target = resolve(c.dataset) if c.get("dataset") else out / "parameters"
     root = resolve(cfg.data.path)
     if c.get("dataset"):
+        check_apart(cfg, ("calibrate.dataset",), ())   # the default, <out>/parameters: as out
         _check_writable("calibrate.dataset", c.dataset, folder=True)
     _check_replaceable(target, root, f"calibrate.dataset={c.dataset}" if c.get("dataset") else
                        f"out={cfg.out}")
@@ -82,16 +84,12 @@ def calibrate(cfg: DictConfig) -> dict:
 
 
 def _check_replaceable(target: Path, root: Path, key: str) -> None:
-    """The parameter series replace ``target`` whole: refuse a folder that is, holds or lies
-    in ``data.path``, and a non-empty one that is not this dataset's parameter series from an
-    earlier calibrate (same campaigns): it once deleted a dataset given there by mistake."""
+    """The parameter series replace ``target`` whole: refuse a non-empty folder that is not this
+    dataset's parameter series from an earlier calibrate (same campaigns): it once deleted a
+    dataset given there by mistake (one inside ``data.path``: :mod:`.apart`)."""
     import pandas as pd
 
     t, r = target.resolve(), root.resolve()
-    where = "is" if t == r else "lies inside" if r in t.parents else "holds" if t in r.parents else None
-    if where:
-        raise ConfigError(f"{key}: the parameter series would replace {t}, which {where} data.path "
-                          f"{r}; give a folder of its own")
     if not t.is_dir() or not any(t.iterdir()):
         return
     manifest = t / "campaigns.csv"

@@ -12,10 +12,10 @@ from collections.abc import Mapping
 from numbers import Integral
 from pathlib import Path
 
-from hydra.utils import instantiate
 from omegaconf import DictConfig, OmegaConf
 
 from .. import io, signing
+from ..build import build
 from ..compensator import MODES, Compensator
 from ..errors import ConfigError, listed
 from ..frame import REFERENCES
@@ -41,8 +41,10 @@ from ..params import (
 )
 from ..paths import conf_dir, resolve
 from ..tracking import enabled, store_uri
+from .apart import check_apart
 from .rules import check_groups, check_keys
 
+MAX_COMPONENT = 200   # bytes of one name in a written path: 255 less the staging decoration
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
 
 # What the plain keys of the shared config groups may be (the components below check their own).
@@ -90,22 +92,27 @@ class Clock:
                 + " + ".join(f"{name} {s:.2f}" for name, s in self.seconds.items()))
 
 
-def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",)) -> None:
+def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
+                 inputs: tuple[str, ...] = ()) -> None:
     """Refuse bad choices before anything is read or written.
 
     ``outputs`` are the config keys of what the stage writes: folders (``out``,
     ``data.interim``) or files (``model_path``); each must be writable where it
     is (not an existing file in a folder's place, not a read-only place).
+    ``inputs`` are the keys of what it reads besides ``data.path``: no output (nor
+    ``out``, where its log goes) is, lies inside or holds one (:mod:`.apart`).
     """
     check_keys(cfg, CONFIG_RULES)
     check_groups(cfg)        # every group, whatever the stage: replay streams with promote.* too
     io.ReadOptions.from_cfg(data_options(cfg))      # data.*: before any file is read
     if cfg.get("calibrate") is not None:
         check_calibrate(cfg.calibrate)
+    store = ("tracking_uri",) if enabled(cfg) else ()    # a SQLite store and its artifacts
+    check_apart(cfg, (*outputs, "out", *store), inputs)
     for key in COMPONENTS:
         node = OmegaConf.select(cfg, key)
         if node is not None:
-            check_component(instantiate(node), key)
+            check_component(build(node, key), key)
     for key in outputs:
         _check_writable(key, OmegaConf.select(cfg, key), folder=key != "model_path")
     if enabled(cfg):     # before any data is read: an unreachable server once hung a run for minutes
@@ -142,6 +149,10 @@ def _check_writable(key: str, value, folder: bool) -> None:
     if value is None or not str(value).strip():      # resolved, '' is the project root
         raise ConfigError(f"{key} is empty: give a {'folder' if folder else 'file'}")
     path = resolve(value)
+    long = next((p for p in path.parts if len(p.encode()) > MAX_COMPONENT), None)
+    if long is not None:      # the staging folder, .<name>.stage-<pid>-<random>, must fit too
+        raise ConfigError(f"{key}={value}: a folder or file name of {len(long.encode())} bytes "
+                          f"(at most {MAX_COMPONENT})")
     if path.exists() and path.is_dir() != folder:
         raise ConfigError(f"{key}={value}: exists and is {'not ' * folder}a folder")
     probe = [path] if folder and path.is_dir() else []
@@ -161,12 +172,12 @@ def data_options(cfg: DictConfig) -> dict:
 
 def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
     """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``)."""
-    estimator = instantiate(cfg.model.estimator)
+    estimator = build(cfg.model.estimator, "model.estimator")
     if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
-        estimator = instantiate(cfg.ati.estimator)(base_estimator=estimator)
+        estimator = build(cfg.ati.estimator, "ati.estimator")(base_estimator=estimator)
     return Compensator(
         estimator=estimator,
-        selector=instantiate(cfg.select.selector),
+        selector=build(cfg.select.selector, "select.selector"),
         inputs=list(cfg.data.inputs),
         targets=None if cfg.data.targets is None else list(cfg.data.targets),
         reference=cfg.data.reference,
@@ -196,7 +207,7 @@ def build_denoiser(cfg: DictConfig):
     den = cfg.get("denoise")
     if den is None or den.get("denoiser") is None:
         return None
-    denoiser = instantiate(den.denoiser)
+    denoiser = build(den.denoiser, "denoise.denoiser")
     check_component(denoiser, "denoise.denoiser")
     return denoiser
 

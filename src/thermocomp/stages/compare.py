@@ -27,6 +27,7 @@ from ..plotdata import write_compare
 from ..sweeps import parent_run_id, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
+from .apart import check_apart
 from .common import _check_writable, check_keys, say
 
 
@@ -84,6 +85,7 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
 def compare(cfg: DictConfig) -> pd.DataFrame:
     """`thermocomp compare`: the comparison table of ``compare.sweep`` (default: latest sweep)."""
     if cfg.compare.get("out") is not None:
+        check_apart(cfg, ("compare.out",), ())
         _check_writable("compare.out", cfg.compare.out, folder=True)
     client = mlflow_client(cfg)
     return compare_sweep(cfg, parent_run_id(cfg, client))

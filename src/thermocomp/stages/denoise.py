@@ -42,7 +42,7 @@ def _removed_rms(raw: dict, den: dict, columns) -> dict:
 
 def denoise(cfg: DictConfig) -> dict:
     """Write the denoised dataset to ``data.processed`` and figures to ``<out>/denoise``."""
-    check_config(cfg, outputs=("out", "data.processed"))
+    check_config(cfg, outputs=("out", "data.processed"), inputs=("data.interim",))
     check_replaceable(cfg, "data.processed", DENOISE_JSON)
     src, dest = resolve(cfg.data.interim), resolve(cfg.data.processed)
     ds = load_ingested(cfg)

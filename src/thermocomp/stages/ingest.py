@@ -28,7 +28,7 @@ from .common import (
 
 def ingest(cfg: DictConfig) -> dict:
     """Validate ``data.path`` and write it as Parquet to ``data.interim`` with a report."""
-    check_config(cfg, outputs=("data.interim",))
+    check_config(cfg, outputs=("data.interim",))   # data.path: always an input
     check_replaceable(cfg, "data.interim", io.INGEST_REPORT)
     check_volumetric(cfg)
     src, dest = resolve(cfg.data.path), resolve(cfg.data.interim)

@@ -66,7 +66,7 @@ def _fit(cfg: DictConfig, ds) -> Compensator:
 def train(cfg: DictConfig) -> Compensator:
     """Fit the configured model on the train split of ``data.interim``, reusing the outputs of
     ``denoise`` and ``select`` when they match the config (see ``stages/artifacts.py``)."""
-    check_config(cfg, outputs=("model_path",))
+    check_config(cfg, outputs=("model_path",), inputs=("data.interim", "data.processed"))
     ds = load_ingested(cfg)
     check_declared(cfg, ds)
     t0 = time.perf_counter()
@@ -292,7 +292,7 @@ def _check_trained_as_configured(cfg: DictConfig, comp) -> None:
 def evaluate(cfg: DictConfig) -> dict:
     """Score the trained model on train and test splits; write ``out/metrics.json`` (with the
     ``volumetric`` section when ``data.path`` is a volumetric dataset)."""
-    check_config(cfg)
+    check_config(cfg, inputs=("data.interim", "model_path"))
     clock = Clock()
     interim = resolve(cfg.data.interim)
     ds = load_ingested(cfg)

@@ -134,7 +134,7 @@ def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.nd
 
 def monitor(cfg: DictConfig) -> dict:
     """Stream the test campaigns (or stdin) through the fixed and the adaptive compensator."""
-    check_config(cfg)
+    check_config(cfg, inputs=("monitor.model",))
     warn_stream_mode(cfg, "monitor")
     check_monitor(cfg)
     model = cfg.monitor.get("model")

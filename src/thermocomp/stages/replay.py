@@ -72,7 +72,7 @@ def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
 
 def replay(cfg: DictConfig) -> dict:
     """Stream the test campaigns of ``data.path``; write ``<out>/replay.json``."""
-    check_config(cfg)
+    check_config(cfg, inputs=("replay.model",))
     warn_stream_mode(cfg, "replay")
     model = cfg.replay.get("model")
     if model is not None and not str(model).strip():     # resolved, '' is the project root

@@ -13,10 +13,10 @@ selection runs once.  Figure: ``<out>/select/selection.png``.
 from __future__ import annotations
 
 import numpy as np
-from hydra.utils import instantiate
 from omegaconf import DictConfig
 from sklearn.base import clone
 
+from ..build import build
 from ..denoise import fit_denoiser
 from ..errors import ConfigError
 from ..evaluation import require_split
@@ -36,8 +36,8 @@ def _series(s) -> dict:
 
 def select(cfg: DictConfig) -> dict:
     """Fit the selector per target on the train split and write ``selection.json``."""
-    check_config(cfg, outputs=("out", "model_path"))
-    selector = instantiate(cfg.select.selector)
+    check_config(cfg, outputs=("out", "model_path"), inputs=("data.interim", "data.processed"))
+    selector = build(cfg.select.selector, "select.selector")
     try:
         if hasattr(selector, "check_params"):
             selector.check_params()

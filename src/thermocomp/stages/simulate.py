@@ -5,9 +5,9 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-from hydra.utils import instantiate
 from omegaconf import DictConfig
 
+from ..build import build
 from ..errors import ConfigError
 from ..files import write_json
 from ..paths import resolve
@@ -19,7 +19,7 @@ from .common import _check_writable, say
 def simulate(cfg: DictConfig) -> dict:
     """Write a dataset from the digital twin to ``data.path`` and its truth next to it."""
     t0 = time.perf_counter()
-    generator = instantiate(cfg.sim.generator)
+    generator = build(cfg.sim.generator, "sim.generator")
     say(f"simulating {cfg.sim.name} ...")
     path = resolve(cfg.data.path)
     _check_writable("data.path", cfg.data.path, folder=True)
