@@ -207,9 +207,9 @@ def test_the_test_split_does_not_choose_the_penalty_through_the_cli(small_data):
     root, clean, poisoned = small_data
     fitted = {}
     for name, path in (("clean", clean), ("poisoned", poisoned)):
-        thermocomp("run", f"data.path={path}", "track=false", f"out={root / name}", "model=lagbank",
+        thermocomp("run", f"data.path={path}", "track=false", f"out={root / 'out' / name}", "model=lagbank",
                    "eval.mutual_prediction=false", "eval.ati_baselines=false")
-        with open(root / name / "model.pkl", "rb") as fh:
+        with open(root / "out" / name / "model.pkl", "rb") as fh:
             fitted[name] = pickle.load(fh)
     clean_est, poisoned_est = fitted["clean"].estimators_, fitted["poisoned"].estimators_
     assert clean_est.keys() == poisoned_est.keys()

@@ -130,11 +130,11 @@ def test_poisoned_test_campaigns_do_not_change_the_fitted_network(tmp_path):
     poisoned = poisoned_copy(clean, tmp_path / "poisoned")
     fitted = {}
     for name, path in (("clean", clean), ("poisoned", poisoned)):
-        thermocomp("run", f"data.path={path}", "track=false", f"out={tmp_path / name}", "model=lstm",
+        thermocomp("run", f"data.path={path}", "track=false", f"out={tmp_path / 'out' / name}", "model=lstm",
                    "model.estimator.hidden_size=4", "model.estimator.max_epochs=3", "plots=none",
                    "data.targets=[E_X]",
                    "eval.mutual_prediction=false", "eval.ati_baselines=false")
-        with open(tmp_path / name / "model.pkl", "rb") as fh:
+        with open(tmp_path / "out" / name / "model.pkl", "rb") as fh:
             fitted[name] = pickle.load(fh).estimators_
     assert fitted["clean"].keys() == fitted["poisoned"].keys()
     for target, est in fitted["clean"].items():

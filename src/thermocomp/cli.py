@@ -155,7 +155,9 @@ def _guarded(fn, *args):
         return fn(*args)
     except _config_errors() as exc:
         # a generator's own check in its __init__ comes wrapped by Hydra's instantiate: its line
-        _fail(exc.__cause__ if isinstance(exc.__cause__, _config_errors()[0]) else exc)
+        # (our own errors keep theirs: they name the file of the cause they wrap)
+        wrapped = not isinstance(exc, _config_errors()[0]) and isinstance(exc.__cause__, _config_errors()[0])
+        _fail(exc.__cause__ if wrapped else exc)
     except PermissionError as exc:
         _fail(f"file {exc.filename}: cannot be read or written here ({exc.strerror})")
     except RuntimeError as exc:

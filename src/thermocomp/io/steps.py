@@ -10,8 +10,8 @@ is refused only when three things hold, each against the column's own history:
 1. it is a step the column does not make: larger than ``data.max_step_ratio`` times its robust
    sample-to-sample scale (1.4826 x the MAD of its differences, the column taken as if the unit
    had been kept, so that the rows in the other unit do not set the scale);
-2. a unit conversion accounts for it: the value after is, within a fifth of the step, the value
-   before converted (°C -> °F: 1.8 x + 32, µm -> mm: x / 1000, ...), so the level jumps by the
+2. a unit conversion accounts for it: the value after is, within a fifth of the step and, converted
+   back, within the column's step limit of the value before, the value before converted (°C -> °F: 1.8 x + 32, µm -> mm: x / 1000, ...), so the level jumps by the
    factor the unit makes, which a physical step matches only by chance (a door's 3 K at 20 °C
    would have to be 48 K), and the value before is far enough from zero for x1000 to say so;
 3. it persists: the next samples, converted back, move less than a fifth of the step (a spike
@@ -86,7 +86,17 @@ def unit_change(x: np.ndarray, ratio: float, units) -> tuple[int, int]:
             # x1000 of a value within the noise of zero predicts nothing: the conversion of
             # the value before must be sharper than the fit it is held to
             spread = abs(forward(x[k] + scale) - forward(x[k]))
-            if abs(steps[k]) > ratio * scale and spread <= tolerance[k]:
+            # converted back, the step is one the column makes: no larger than its step limit
+            # or its largest other step (plus the resolution the new unit is written at). A
+            # fault offset of 50 K at 14 °C lands within a fifth of the step of 1.8 x + 32
+            # (64.4 for 57.7), but 3.7 K off where the column never steps 0.5 K
+            kept = np.abs(np.diff(np.concatenate((x[:k + 1], undone[k + 1:]))))
+            moved = np.abs(np.diff(x[k + 1:]))
+            quantum = float(moved[moved > 0].min()) if (moved > 0).any() else 0.0
+            ordinary = (max(ratio * scale, float(np.delete(kept, k).max(initial=0.0)))
+                        + abs(back(x[k + 1] + quantum) - back(x[k + 1])))
+            if (abs(steps[k]) > ratio * scale and spread <= tolerance[k]
+                    and abs(undone[k + 1] - x[k]) <= ordinary):
                 found.append((int(k), i))
                 break
     return min(found, default=(-1, -1))
