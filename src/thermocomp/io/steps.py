@@ -10,10 +10,12 @@ is refused only when three things hold, each against the column's own history:
 1. it is a step the column does not make: larger than ``data.max_step_ratio`` times its robust
    sample-to-sample scale (1.4826 x the MAD of its differences, the column taken as if the unit
    had been kept, so that the rows in the other unit do not set the scale);
-2. a unit conversion accounts for it: the value after is, within a fifth of the step and, converted
-   back, within the column's step limit of the value before, the value before converted (°C -> °F: 1.8 x + 32, µm -> mm: x / 1000, ...), so the level jumps by the
-   factor the unit makes, which a physical step matches only by chance (a door's 3 K at 20 °C
-   would have to be 48 K), and the value before is far enough from zero for x1000 to say so;
+2. a unit conversion accounts for it: the value after is the value before converted (°C -> °F:
+   1.8 x + 32, µm -> mm: x / 1000, ...) within a fifth of the step, and converted back it is
+   within a step the column makes of the value before (a fault offset lands near a conversion
+   only as far as a fifth of its size); so the level jumps by the factor the unit makes, which
+   a physical step matches only by chance (a door's 3 K at 20 °C would have to be 48 K), and
+   the value before is far enough from zero for x1000 to say so;
 3. it persists: the next samples, converted back, move less than a fifth of the step (a spike
    steps back; a re-zeroed probe goes on at the new level in the old unit's steps, which
    converted back are 1000x the noise).
