@@ -63,6 +63,9 @@ def test_split_scores_layout_and_values():
     r = {"A": np.array([0.0, 1.0, -1.0]), "B": np.array([0.0, 1.0])}
     s = M.split_scores(y, r, sample_period_s=60.0)
     assert s["rmse"] == pytest.approx(np.sqrt(3 / 5))
+    assert s["mae"] == pytest.approx(3 / 5)                 # |0|+|1|+|-1|+|0|+|1| over 5
+    assert s["per_campaign"]["A"]["mae"] == pytest.approx(2 / 3)
+    assert M.split_scores(y, r, 60.0, with_before_after=False)["mae"] == pytest.approx(3 / 5)
     assert s["rms_before"] == pytest.approx(np.sqrt(24 / 5))
     assert s["p2p_before"] == 6.0 and s["p2p_after"] == 2.0
     assert s["rsd_mean"] == pytest.approx((1.0 + 1.0) / 2)

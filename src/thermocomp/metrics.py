@@ -31,6 +31,12 @@ def rmse(residual) -> float:
 rms = rmse  # RMS of a signal is the same formula; named apart for "before" (measured error)
 
 
+def mae(residual) -> float:
+    r"""Mean absolute error :math:`\tfrac1n\sum_j |r_j|` (what published comparisons often
+    report beside, or instead of, the RMSE)."""
+    return float(np.mean(np.abs(np.asarray(residual, float))))
+
+
 def rsd(residual) -> float:
     r"""Residual standard deviation of paper 003, Eq. (10).
 
@@ -255,7 +261,7 @@ def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.n
                  e_p95_points: int | None = 200, with_before_after: bool = True) -> dict:
     """All ``metrics.json`` figures of one target on one split.
 
-    ``rmse``, ``rms_*`` and ``p2p_*`` are pooled over all samples of the split's
+    ``rmse``, ``mae``, ``rms_*`` and ``p2p_*`` are pooled over all samples of the split's
     campaigns (in the reference frame); ``rsd_mean``/``rsd_sd`` are SM/SD of the
     per-campaign Rsd; ``*_reduction_pct`` is :func:`reduction_pct` of before/after.
     Window lengths of ``e_p95`` run from one sample step to the longest campaign
@@ -266,7 +272,7 @@ def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.n
     y_all = np.concatenate([np.asarray(measured[c], float) for c in ids])
     r_all = np.concatenate([np.asarray(residual[c], float) for c in ids])
     sm, sd = sm_sd([rsd(residual[c]) for c in ids])
-    out = {"rmse": rmse(r_all), "rsd_mean": sm, "rsd_sd": sd}
+    out = {"rmse": rmse(r_all), "mae": mae(r_all), "rsd_mean": sm, "rsd_sd": sd}
     if not with_before_after:
         return out
     out.update(rms_before=rms(y_all), rms_after=rms(r_all),
@@ -285,7 +291,7 @@ def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.n
 
 
 def _campaign_scores(measured, residual) -> dict:
-    s = {"rmse": rmse(residual), "rsd": json_safe(rsd(residual)),
+    s = {"rmse": rmse(residual), "mae": mae(residual), "rsd": json_safe(rsd(residual)),
          "rms_before": rms(measured), "rms_after": rms(residual),
          "p2p_before": p2p(measured), "p2p_after": p2p(residual)}
     s["rms_reduction_pct"] = reduction_pct(s["rms_before"], s["rms_after"])
