@@ -36,7 +36,6 @@ from .apart import check_apart
 from .common import (
     _check_writable,
     calibrated_dataset,
-    check_calibrate,
     check_config,
     say,
     simulated_truth,
@@ -47,7 +46,6 @@ def calibrate(cfg: DictConfig) -> dict:
     """Identify the error parameters of every measurement cycle of ``data.path``."""
     check_config(cfg)
     c = cfg.calibrate
-    check_calibrate(c)
     out = resolve(cfg.out)
     target = resolve(c.dataset) if c.get("dataset") else out / "parameters"
     root = resolve(cfg.data.path)

@@ -512,19 +512,11 @@ def calibration_prior(c: DictConfig) -> dict | None:
     return None if c.get("prior") is None else OmegaConf.to_container(c.prior, resolve=True)
 
 
-def check_volumetric(cfg: DictConfig) -> None:
-    """``calibrate.*`` checked when ``data.path`` is a volumetric dataset: before a stage says
-    anything, so a bad value is one line."""
-    if is_volumetric(cfg):
-        check_calibrate(cfg.calibrate)
-
-
 def volumetric_calibration(cfg: DictConfig):
     """:func:`calibrated_dataset` when ``data.path`` is a volumetric dataset (``volumetric.json``
-    in it; ``calibrate.*`` checked first), else None: how ``ingest`` and ``run`` read one."""
+    in it; ``calibrate.*`` checked by ``check_config``), else None: how ``ingest`` and ``run`` read one."""
     if not is_volumetric(cfg):
         return None
-    check_calibrate(cfg.calibrate)
     say("volumetric dataset: calibrating the artefact distances into the error parameters")
     return calibrated_dataset(cfg)
 
@@ -539,7 +531,6 @@ def volumetric_source(cfg: DictConfig):
     if not is_volumetric(cfg):
         return None
     root = resolve(cfg.data.path)
-    check_calibrate(cfg.calibrate)
     setup = load_setup(root)
     raw, _ = io.read_dataset(root, data_options(cfg), missing="keep_errors")   # as calibrate reads it
     check_columns(raw, setup)

@@ -22,16 +22,13 @@ from ..volumetric import KinematicModel, load_setup
 from ..volumetric.artefact import check_reach
 from ..volumetric.calibration import prior_sd
 from ..volumetric.design import CalibrationDesignStudy, MachineFamily, strategies
-from .common import calibration_prior, check_calibrate, check_config, say
-from .rules import check_design
+from .common import calibration_prior, check_config, say
 
 
 def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
     """The study of the config, its studies, and where the set-up came from."""
-    d = OmegaConf.to_container(cfg.design, resolve=True)
-    check_design(d)
+    d = OmegaConf.to_container(cfg.design, resolve=True)     # checked by check_config
     d["studies"] = {name: s for name, s in d["studies"].items() if s is not None}
-    check_calibrate(cfg.calibrate)
     prior = calibration_prior(cfg.calibrate)
     data = (cfg.get("data") or {}).get("path")
     setup = load_setup(resolve(str(data))) if data else None

@@ -18,7 +18,6 @@ from ..tracking import stage_run
 from .common import (
     check_config,
     check_replaceable,
-    check_volumetric,
     data_options,
     ingest_settings,
     say,
@@ -30,10 +29,8 @@ def ingest(cfg: DictConfig) -> dict:
     """Validate ``data.path`` and write it as Parquet to ``data.interim`` with a report."""
     check_config(cfg, outputs=("data.interim",))   # data.path: always an input
     check_replaceable(cfg, "data.interim", io.INGEST_REPORT)
-    check_volumetric(cfg)
     src, dest = resolve(cfg.data.path), resolve(cfg.data.interim)
     say(f"ingesting {src} -> {dest}")
-    io.check_separate(src, dest)      # before a volumetric dataset's calibration, too
     volumetric = volumetric_calibration(cfg)
     made = {"ingested_with": ingest_settings(cfg)}     # what train .. evaluate check
     if volumetric is None:

@@ -43,7 +43,6 @@ from .common import (
     build_compensator,
     check_config,
     check_declared,
-    check_volumetric,
     data_options,
     load_ingested,
     load_model,
@@ -330,7 +329,6 @@ def run(cfg: DictConfig) -> dict:
 
         return run_grouped(cfg)
     check_config(cfg)
-    check_volumetric(cfg)
     say(f"reading {resolve(cfg.data.path)}")
     clock = Clock()
     volumetric = volumetric_calibration(cfg)

@@ -48,7 +48,6 @@ from .common import (
     say,
     warn_stream_mode,
 )
-from .rules import check_monitor
 
 
 def _stdin_campaign(columns: list[str], opts: io.ReadOptions) -> tuple[dict, dict]:
@@ -136,7 +135,6 @@ def monitor(cfg: DictConfig) -> dict:
     """Stream the test campaigns (or stdin) through the fixed and the adaptive compensator."""
     check_config(cfg, inputs=("monitor.model",))
     warn_stream_mode(cfg, "monitor")
-    check_monitor(cfg)
     model = cfg.monitor.get("model")
     if model is not None and (not str(model).strip() or str(model).startswith("models:/")):
         raise ConfigError(f"monitor.model={model}: a model.pkl file (run's or train's); a "
