@@ -14,16 +14,17 @@ from thermocomp.errors import ParameterError
 from thermocomp.models.arx import ARX
 from thermocomp.models.arx_rf import ARXRF
 from thermocomp.models.ati import ATIRegressor
+from thermocomp.models.hammerstein import Hammerstein
 from thermocomp.models.lagbank import LagBank
 from thermocomp.models.linear import MLR
 from thermocomp.models.lstm import LSTM
 from thermocomp.models.pcr import PCR
 from thermocomp.select import ClusterGreySelector, GreedyResidualSelector, PearsonSelector
 
-CLASSES = [MLR, PCR, ARX, ARXRF, LSTM, LagBank, ATIRegressor, EMDDenoiser, PearsonSelector,
+CLASSES = [MLR, PCR, ARX, ARXRF, LSTM, LagBank, Hammerstein, ATIRegressor, EMDDenoiser, PearsonSelector,
            GreedyResidualSelector, ClusterGreySelector]
 # held estimators check themselves (and the shell checks them under their own key)
-UNRULED = {"arx", "forest", "base_estimator"}
+UNRULED = {"arx", "forest", "base_estimator", "lagbank"}
 
 # one value outside each rule, of the kinds a config override produces: text for a number,
 # text for a flag, a number off its range, an empty list
@@ -38,7 +39,7 @@ HOSTILE = {
     "ambient_interaction": "yes", "n_imfs": 0, "sensors": "T_*", "stopping": "never",
     "max_siftings": 0, "s_number": 0, "sd_threshold": 0, "end_effect": "none", "pad": -1,
     "spline": "quintic", "causal": "foo", "causal_taps": 0, "causal_window": 3, "online": "no",
-    "k": 0, "k_max": 0, "m": 1.0, "rho": 1.5, "random_state": float("nan"),
+    "states": [], "exponents": [0.0], "k": 0, "k_max": 0, "m": 1.0, "rho": 1.5, "random_state": float("nan"),
 }
 
 

@@ -13,7 +13,7 @@ from sklearn.utils.estimator_checks import check_estimator
 from conftest import stream_context
 from thermocomp.compensator import Compensator
 from thermocomp.diagnose import AugmentedRegressor, Effect
-from thermocomp.models import ARX, ARXRF, LSTM, MLR, PCR, LagBank
+from thermocomp.models import ARX, ARXRF, LSTM, MLR, PCR, Hammerstein, LagBank
 from thermocomp.models.ati import ATIRegressor
 from thermocomp.select import PearsonSelector
 
@@ -35,6 +35,7 @@ ESTIMATORS = {
     "ARX-dynamic": (ARX(ar=True, delays=(0, 2)), ORDER_CHECKS),
     "LSTM": (LSTM(hidden_size=4, max_epochs=3), ORDER_CHECKS),
     "LagBank": (LagBank(), ORDER_CHECKS),
+    "Hammerstein": (Hammerstein(lagbank=LagBank(n_taus=3)), ORDER_CHECKS),
     "ARXRF": (ARXRF(state_column=None, forest=_forest()), {}),
     "ATI(MLR)": (ATIRegressor(MLR()), {}),
     "ATI(ARXRF)": (ATIRegressor(ARXRF(state_column=None, forest=_forest())), {}),
@@ -93,6 +94,8 @@ WRAPPED = {
         [Effect("signal", "raw", "S_door").to_dict()]),
     "PCR": PCR,
     "ATI(LagBank ar)": lambda: ATIRegressor(LagBank(ar=True, n_taus=3), n_intervals=2),
+    "ATI(Hammerstein)": lambda: ATIRegressor(Hammerstein(lagbank=LagBank(n_taus=3), states=["S_door"]),
+                                             n_intervals=2),
 }
 
 
@@ -105,7 +108,7 @@ def test_wrappers_forward_streaming_and_declare_what_they_read(name):
     batch = est.predict(X[~train], context=test_ctx)
     np.testing.assert_allclose(stream_context(est, X[~train], test_ctx), batch, rtol=0, atol=1e-9)
     reads = est.context_columns_
-    if "ARXRF" in name:
+    if "ARXRF" in name or "Hammerstein" in name:
         assert {"time", "S_door"} <= set(reads)
     if name.startswith("ATI") or "ATI(" in name:
         assert "ambient_c0" in reads

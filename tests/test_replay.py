@@ -20,7 +20,7 @@ from thermocomp.models.pcr import PCR
 from thermocomp.paths import conf_dir
 from thermocomp.stages.common import build_compensator, model_family
 
-MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm", "lagbank")
+MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm", "lagbank", "hammerstein")
 ATIS = ("none", "cmeans")
 DENOISERS = ("none", "emd")
 SELECTORS = ("all", "pearson", "greedy_residual", "cluster_grey")

@@ -68,7 +68,7 @@ STAGE_HELP = {
                "select=all|pearson|greedy_residual|cluster_grey data.targets=[E_Z]"),
     "train": ("fit the configured model on the train split",
               "data.interim (+ the denoise/select outputs when they match)",
-              "model_path (models/<name>/model.pkl)", "model=mlr|pcr|arx|arx_rf|lstm|lagbank "
+              "model_path (models/<name>/model.pkl)", "model=mlr|pcr|arx|arx_rf|lstm|lagbank|hammerstein "
               "select=... ati=none|cmeans denoise=none|emd"),
     "evaluate": ("score the trained model on train/test", "data.interim, model_path",
                  "<out>/metrics.json, <out>/headline/<target>.json, <out>/plots/ (PNG + CSV), "

@@ -11,11 +11,12 @@ prediction (``eval.mode=one_step``).  Without it they run in simulation
 
 from .arx import ARX
 from .arx_rf import ARXRF
+from .hammerstein import Hammerstein
 from .lagbank import LagBank
 from .linear import MLR
 from .pcr import PCR
 
-__all__ = ["MLR", "PCR", "ARX", "ARXRF", "LagBank", "LSTM"]
+__all__ = ["MLR", "PCR", "ARX", "ARXRF", "LagBank", "Hammerstein", "LSTM"]
 
 
 def __getattr__(name):  # LSTM lazily: importing torch costs seconds the other models don't need
