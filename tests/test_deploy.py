@@ -199,10 +199,12 @@ def _library(name: str) -> Compensator:
                                         clustering="hard"))
     if name == "emd_arx":
         return Compensator(_library_model("arx", **arx), denoiser=EMDDenoiser(pad=10))
+    if name == "hammerstein":
+        return Compensator(_library_model(name, **{"lagbank.n_taus": 3}))
     return Compensator(_library_model(name, **(arx if name == "arx" else {})))
 
 
-LIBRARY = ["pcr", "arx", "arx_rf", "lstm", "ati_arx", "emd_arx"]
+LIBRARY = ["pcr", "arx", "arx_rf", "lstm", "ati_arx", "emd_arx", "hammerstein"]
 
 
 @pytest.mark.parametrize("name", LIBRARY)
@@ -217,6 +219,8 @@ def test_every_library_model_streams_exactly_as_it_predicts(data, name):
         assert "S_door" in s.columns_ and s.time_required_
     if name == "ati_arx":
         assert "T_amb" in s.columns_
+    if name == "hammerstein":   # the chosen machine states are asked of the machine
+        assert {c for e in comp.estimators_.values() for c in e.state_columns_} <= set(s.columns_)
 
 
 def test_ar_stub_is_dynamic_so_the_protocol_matters(data):
