@@ -8,7 +8,7 @@ import pytest
 from sklearn.metrics import mean_squared_error
 
 from conftest import refused, stream_context
-from test_hostile import FAST, make_dataset
+from test_hostile import CAMPAIGNS, FAST, edit_csv, make_dataset
 from thermocomp.errors import ContractError, ParameterError
 from thermocomp.models import MLR, Hammerstein, LagBank
 from thermocomp.models._dynamics import first_order_lag
@@ -94,6 +94,38 @@ def test_a_state_it_was_fitted_on_missing_at_prediction_names_the_column():
     ham = Hammerstein(lagbank=LagBank(n_taus=3)).fit(Xtr, ytr, context=ctr)
     with pytest.raises(ContractError, match="S_spindle_rpm"):
         ham.predict(Xte, context=cte.drop(columns=["S_spindle_rpm"]))
+
+
+def test_a_campaign_that_never_measures_a_state_is_left_out_in_fit_and_refused_in_predict():
+    """Holding 0 through a campaign without the speed would read as a machine at rest: a state
+    some train campaign lacks is not used, and a campaign to predict that lacks a used one is
+    refused, naming both."""
+    (Xtr, ytr, ctr), (Xte, _, cte) = _split(*_spindle_problem(seed=0), n_train=6)
+    ctr = ctr.assign(S_door=np.where(ctr["campaign"] == "C0", np.nan, ctr["time"] % 1200 < 600))
+    ham = Hammerstein(lagbank=LagBank(n_taus=3)).fit(Xtr, ytr, context=ctr)
+    assert ham.state_columns_ == ["S_spindle_rpm"]
+    cte.loc[cte["campaign"] == "C7", "S_spindle_rpm"] = np.nan
+    with pytest.raises(ContractError, match="campaign 'C7' has no value of 'S_spindle_rpm'"):
+        ham.predict(Xte, context=cte)
+
+
+def _with_speed(ds, test_has_it: bool = True):
+    """``make_dataset`` with a spindle speed S_rpm whose square heats the error."""
+    for i, (cid, split) in enumerate(CAMPAIGNS):
+        def add(df, i=i, split=split):
+            rpm = np.where(np.arange(len(df)) % 10 < 5, 0.0, 1000.0 * (i + 1))
+            df["E_X"] = df["E_X"] + 3.0 * (rpm / 4000.0) ** 2
+            if test_has_it or split != "test":
+                df["S_rpm"] = rpm
+        edit_csv(ds / f"{cid}.csv", add)
+    return ds
+
+
+def test_run_refuses_a_test_campaign_without_the_state_the_model_reads(tmp_path, capsys):
+    ds = _with_speed(make_dataset(tmp_path / "ds", rows=40), test_has_it=False)
+    refused(["run", f"data.path={ds}", f"out={tmp_path / 'out'}", "model=hammerstein", *FAST],
+            capsys, "'S_rpm'", "Hammerstein")
+    assert not (tmp_path / "out").exists()
 
 
 def test_an_output_feedback_lag_bank_is_refused():

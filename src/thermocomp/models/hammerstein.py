@@ -26,10 +26,17 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import SideInputs, groups_of, merge_columns, require
+from ..errors import ContractError
 from ..io.contract import match_columns
 from ..params import check_estimator, numbers, optional, texts
 from ._dynamics import segment_bounds
 from .lagbank import LagBank
+
+
+def _unmeasured(values: np.ndarray, groups) -> list[tuple[int, int]]:
+    """``(column, first row)`` of each campaign in which a state column has no value at all."""
+    return [(j, start) for start, stop in segment_bounds(groups, len(values))
+            for j in np.flatnonzero(np.isnan(values[start:stop]).all(axis=0))]
 
 
 def _held(values: np.ndarray, groups) -> np.ndarray:
@@ -64,6 +71,9 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
     No output feedback: simulation and one-step prediction coincide.
 
     A missing state sample holds the previous one (0 before a campaign's first).
+    A state that some training campaign never measures is left out; a campaign
+    to predict that never measures a state the model uses is refused
+    (:class:`~thermocomp.errors.ContractError`), as is one without its column.
     Without a context (or without state columns) this is the plain lag bank.
 
     Parameters
@@ -111,14 +121,26 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         U = S / self.state_scale_
         return np.hstack([np.abs(U) ** e * np.sign(U) for e in exponents]) if exponents else U[:, :0]
 
-    def _states(self, context, n: int, columns) -> np.ndarray:
+    @staticmethod
+    def _raw_states(context, n: int, columns) -> np.ndarray:
         if not columns:
             return np.zeros((n, 0))
         S = np.column_stack([np.asarray(require(context, c, "the Hammerstein model (machine state)"),
                                         dtype=float) for c in columns])
         if len(S) != n:
             raise ValueError(f"context has {len(S)} rows, X has {n}")
-        return _held(S, groups_of(context))
+        return S
+
+    def _states(self, context, n: int) -> np.ndarray:
+        """The fitted state columns, held over missing samples; a campaign that never measures one
+        is refused (holding 0 through it would read as a machine at rest)."""
+        S = self._raw_states(context, n, self.state_columns_)
+        groups = groups_of(context)
+        for j, row in _unmeasured(S, groups):
+            where = f"campaign {groups[row]!r}" if groups is not None else "the rows"
+            raise ContractError(f"{where} has no value of {self.state_columns_[j]!r}, a machine state "
+                                f"the Hammerstein model reads", column=self.state_columns_[j])
+        return _held(S, groups)
 
     def fit(self, X, y, context=None):
         check_estimator(self)
@@ -127,9 +149,11 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         found = [] if context is None or self.states is None else match_columns(
             [str(c) for c in context.columns], list(self.states))
-        S = self._states(context, len(y), found)
-        spread = np.ptp(S, axis=0) if S.size else np.zeros(0)
-        keep = spread > 0
+        S = self._raw_states(context, len(y), found)
+        # a state some train campaign never measures, or constant, carries nothing to fit: left out
+        unmeasured = {j for j, _ in _unmeasured(S, groups_of(context))}
+        S = _held(S, groups_of(context))
+        keep = (np.ptp(S, axis=0) > 0) & ~np.isin(np.arange(S.shape[1]), list(unmeasured))
         S, found = S[:, keep], [c for c, k in zip(found, keep) if k]
         scale = np.max(np.abs(S), axis=0) if S.size else np.zeros(0)
         self.state_scale_ = scale
@@ -156,7 +180,7 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         """Predicted error (free run; ``y_measured`` in ``context`` changes nothing)."""
         check_is_fitted(self)
         X = np.asarray(validate_data(self, X, reset=False), dtype=float)
-        S = self._states(context, X.shape[0], self.state_columns_)
+        S = self._states(context, X.shape[0])
         return self.lagbank_.predict(np.hstack([X, self._basis(S, self.exponents_)]), context=context)
 
     # -- streaming (deployment) ---------------------------------------------------------
