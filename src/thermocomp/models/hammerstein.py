@@ -1,7 +1,7 @@
 r"""Hammerstein lag bank: machine states through a static power law, then the lag bank's dynamics.
 
-.. math:: \hat y(t) = \mathrm{LagBank}\big[x(t),\; u_1(t)^{p},\, \dots,\, u_m(t)^{p}
-          \;\; (p \in P)\big], \qquad u_j = s_j / \max_{\text{train}} |s_j|
+.. math:: \hat y(t) = \mathrm{LagBank}\big[x(t),\; u_1(t)^{e},\, \dots,\, u_m(t)^{e}
+          \;\; (e \in E)\big], \qquad u_j = s_j / \max_{\text{train}} |s_j|
 
 A Hammerstein model is a static nonlinearity followed by linear dynamics.  The
 heat a spindle, a drive or a pump puts into the structure is not linear in its
@@ -62,7 +62,9 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
 
     where :math:`x` are the declared inputs, :math:`u_j = s_j / \max_{\mathrm{train}}|s_j|`
     the machine-state columns of the context matching ``states`` (scaled on
-    the training rows; a state constant there is left out), :math:`L_\tau` the
+    the training rows; a state constant there is left out), :math:`u^e` the
+    sign-preserving power :math:`\mathrm{sign}(u)\,|u|^e` (a speed is
+    :math:`\ge 0`; a signed state keeps its sign), :math:`L_\tau` the
     first-order lags and :math:`b, c` the ridge fit of
     :class:`~thermocomp.models.lagbank.LagBank` (see there).  The set
     :math:`E` is the subset of ``exponents`` (the empty set -- the plain lag
