@@ -109,6 +109,16 @@ def joined(ds: Dataset, ids: list[str]) -> pd.DataFrame:
     return pd.concat(frames, ignore_index=True)
 
 
+def lead_in(ds: Dataset, ids: list[str]) -> pd.DataFrame:
+    """The campaigns before the last of ``ids`` (a :func:`chain`), joined: what a stream is
+    warmed on before that campaign.  Its times are shifted so that it ends one sample period
+    before the campaign's first sample, which keeps its own clock (the :func:`joined` campaign,
+    moved in time as a whole)."""
+    whole, n = joined(ds, ids), len(ds.campaigns[ids[-1]])
+    shift = float(ds.campaigns[ids[-1]][TIME].iloc[0]) - float(whole[TIME].iloc[-n])
+    return whole.iloc[:-n].assign(**{TIME: whole[TIME].iloc[:-n] + shift})
+
+
 def carry_over(comp, ds: Dataset) -> dict[str, list[str]]:
     """``{campaign: its chain}`` for the campaigns ``comp`` predicts with state carried over.
 

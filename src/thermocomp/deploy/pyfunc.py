@@ -29,6 +29,18 @@ used one is dropped and starts reset if it calls again).  The state lives in
 the serving *process*: with several server workers each worker holds its own
 sessions, so serve with one worker (``thermocomp serve`` does).
 
+A campaign that continues one the model was deployed on (a long record cut in
+two, ``data.reference=none``: the machine did not stop) starts from the state
+that campaign left, as ``run`` scores it: ``params={"continues": "<campaign>"}``
+starts the session there instead of from a reset (``promote`` saves every
+campaign's end state in the model, ``end_states_``); the session's ``time`` is
+then shifted so that its first row follows that campaign's last sample by one
+sample period (event times are given back in the caller's clock).
+
+Columns may come under the lab's own names (``data.columns`` of the record the
+model was deployed from, carried as ``lab_names_``) or contract names; a block
+naming one column by both is refused.
+
 The pickled compensator travels with its signature (:mod:`thermocomp.signing`),
 checked before it is unpickled: the serving machine needs the project key
 (``THERMOCOMP_SIGNING_KEY`` or the key file) of the machine that promoted the model.
@@ -40,6 +52,8 @@ needs only its third-party requirements.
 
 from __future__ import annotations
 
+import copy
+import json
 import tempfile
 import threading
 from collections import OrderedDict
@@ -54,8 +68,10 @@ from mlflow.protos.databricks_pb2 import INVALID_PARAMETER_VALUE
 from mlflow.types import ColSpec, ParamSchema, ParamSpec, Schema
 
 from .. import signing
+from ..context import TIME
 from ..monitor.adaptive import AdaptiveCompensator
-from .streaming import StreamingCompensator
+from .naming import to_contract
+from .streaming import EndState, StreamingCompensator
 
 MODEL_NAME = "compensator"          # artifact name of the pyfunc model inside a run
 COMPENSATOR_ARTIFACT = "compensator"  # the pickled (streaming or adaptive) compensator
@@ -104,48 +120,96 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         self.streaming.reset()
         self._sessions.clear()
 
-    def _state(self, session: str, reset: bool):
-        """The stream state of ``session`` (a fresh one when new or reset), most recent last."""
-        if reset or session not in self._sessions:
+    def _end_state(self, campaign: str) -> EndState:
+        ends = getattr(self.streaming, "end_states_", {})
+        if campaign not in ends:
+            have = ", ".join(sorted(ends)) or ("none: the model reads temperature changes from "
+                                               "each campaign's first sample (data.reference="
+                                               "first_sample)" if self.streaming.compensator
+                                               .reference != "none" else "none")
+            raise MlflowException(f"continues={campaign!r}: the model holds no end state of that "
+                                  f"campaign (it holds: {have})", error_code=INVALID_PARAMETER_VALUE)
+        return ends[campaign]
+
+    def _state(self, session: str, reset: bool, continues: str = "") -> list:
+        """``[stream state, time shift]`` of ``session``, most recent last: a fresh one when new
+        or reset; the end state of campaign ``continues`` when given (its time shift, an
+        :class:`EndState` until the session's first row fixes it)."""
+        if continues:
+            end = self._end_state(continues)
+            self._sessions[session] = [copy.deepcopy(end.state), end]
+        elif reset or session not in self._sessions:
             self.streaming.reset()
-            self._sessions[session] = self.streaming._snapshot()
-            while len(self._sessions) > MAX_SESSIONS:
-                self._sessions.popitem(last=False)
+            self._sessions[session] = [self.streaming._snapshot(), 0.0]
+        while len(self._sessions) > MAX_SESSIONS:
+            self._sessions.popitem(last=False)
         self._sessions.move_to_end(session)
         return self._sessions[session]
 
     def predict(self, context, model_input: pd.DataFrame, params: dict | None = None) -> pd.DataFrame:
         params = params or {}
         session = str(params.get("session") or DEFAULT_SESSION)
+        names = getattr(self.streaming, "lab_names_", {})
+        try:
+            frame = to_contract(pd.DataFrame(model_input), names)
+        except ValueError as exc:
+            raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
         # Serving may call from several threads: one session's samples in order, one at a time.
         with self._lock:
-            self.streaming._restore(self._state(session, bool(params.get("reset"))))
+            state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""))
+            if isinstance(state[1], EndState):
+                # a continuing campaign's clock follows its predecessor's last sample by one
+                # period, as `run` joins them (the client's own clock may restart at 0)
+                end = state[1]
+                state[1] = (end.time + end.period - float(frame[TIME].iloc[0])
+                            if TIME in frame.columns and len(frame) else 0.0)
+            shift = state[1]
+            if shift and TIME in frame.columns:
+                frame = frame.assign(**{TIME: pd.to_numeric(frame[TIME], errors="coerce") + shift})
+            self.streaming._restore(state[0])
             try:
-                pred = self.streaming.predict(pd.DataFrame(model_input))
+                pred = self.streaming.predict(frame)
             except ValueError as exc:  # OutOfEnvelopeError, ContractError: the caller's input
                 raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
             finally:  # a refused block leaves the session where it was (predict rolls back)
-                self._sessions[session] = self.streaming._snapshot()
+                state[0] = self.streaming._snapshot()
         out = pd.DataFrame({correction_column(t): -pred[t].to_numpy(float)
                             for t in self.streaming.targets_})
         out["n_clamped"] = pred["n_clamped"].to_numpy(np.int64)
         if is_adaptive(self.streaming):
             for c in REPORT_COLUMNS:
                 out[c] = pred[c].to_numpy(object)
+            if shift:      # event times in the caller's clock
+                out["events"] = [_shifted(e, -shift) for e in out["events"]]
         return out
 
 
+def _shifted(events: str, by: float) -> str:
+    """A row's events (JSON list) with their ``time`` moved by ``by`` s."""
+    listed = json.loads(events)
+    if not listed:
+        return events
+    return json.dumps([{**e, "time": e["time"] + by} if isinstance(e.get("time"), (int, float))
+                       else e for e in listed], ensure_ascii=False)
+
+
 def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSignature:
-    """Input/output schema (and the ``reset``, ``session`` parameters) of the deployed compensator."""
-    inputs = Schema([ColSpec("double", c) for c in streaming.columns_]
-                    + [ColSpec("double", "time", required=streaming.time_required_)])
+    """Input/output schema (and the ``reset``, ``session``, ``continues`` parameters) of the
+    deployed compensator.  With the lab's names (``lab_names_``) every input may come under
+    either name, so none is required by the schema; the model checks that each is there."""
+    names = getattr(streaming, "lab_names_", {})
+    required = {c: not names for c in streaming.columns_}
+    required[TIME] = streaming.time_required_ and not names
+    inputs = Schema([ColSpec("double", c, required=r) for c, r in required.items()]
+                    + [ColSpec("double", names[c], required=False) for c in required if c in names])
     outputs = Schema([ColSpec("double", correction_column(t)) for t in streaming.targets_]
                      + [ColSpec("long", "n_clamped")]
                      + ([ColSpec("string", c) for c in REPORT_COLUMNS]
                         if is_adaptive(streaming) else []))
     return ModelSignature(inputs=inputs, outputs=outputs,
                           params=ParamSchema([ParamSpec("reset", "boolean", False),
-                                               ParamSpec("session", "string", DEFAULT_SESSION)]))
+                                               ParamSpec("session", "string", DEFAULT_SESSION),
+                                               ParamSpec("continues", "string", "")]))
 
 
 # Third-party distributions the core imports when a compensator is unpickled (the package

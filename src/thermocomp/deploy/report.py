@@ -5,13 +5,15 @@ The deployed object is what ``promote`` registers inside the pyfunc model: a
 :class:`~thermocomp.deploy.StreamingCompensator`, or (default) an
 :class:`~thermocomp.monitor.AdaptiveCompensator` around one (sensor
 surveillance, adaptive inputs, guarded correction).  Each campaign is streamed
-from a reset, one sample at a time, as a CNC loop calls it.  Two streams per
-campaign:
+from its start, one sample at a time, as a CNC loop calls it: from a reset, or,
+for a campaign that continues others (``data.reference=none``), warmed on them
+unscored (:func:`~.streaming.warm`).  Two streams per campaign:
 
 * the **plain** stream (the streaming compensator alone, envelope off, no
   monitor), compared with the batch prediction of the same fitted
-  :class:`~thermocomp.compensator.Compensator`: any difference is the
-  stream's (causality, state).  Both stop at a campaign's first missing value,
+  :class:`~thermocomp.compensator.Compensator` (of the campaign joined to the
+  ones it continues, as ``run`` scores it): any difference is the stream's
+  (causality, state).  Both stop at a campaign's first missing value,
   which the plain stream refuses;
 * the **deployed** stream (as registered), whose residual gives ``rmse`` and
   whose events and excluded sensors fill ``replay.json``.
@@ -31,12 +33,12 @@ import pandas as pd
 from ..context import TIME
 from ..errors import ContractError
 from ..monitor.adaptive import AdaptiveCompensator
-from .streaming import OutOfEnvelopeError, StreamingCompensator
+from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
 
 
 @dataclass
 class Streamed:
-    """One campaign streamed from a reset."""
+    """One campaign streamed from its start."""
 
     y: np.ndarray                      # prediction per row and target (n, targets)
     clamped: np.ndarray                # inputs clamped to the envelope, per row
@@ -71,8 +73,10 @@ def campaign_start(campaign: pd.DataFrame) -> float:
     return float(known[0]) if len(known) else 0.0
 
 
-def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None) -> Streamed:
-    """Stream one campaign from a reset through ``_step`` (the body of ``step`` and ``predict``).
+def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
+                lead_in: pd.DataFrame | None = None) -> Streamed:
+    """Stream one campaign from its start through ``_step`` (the body of ``step`` and ``predict``):
+    from a reset, or warmed on ``lead_in``, the campaigns it continues (:func:`~.streaming.warm`).
 
     The adaptive compensator's events get ``campaign`` (``cid``) added, their ``time`` from the
     campaign's start (:func:`campaign_start`).  A row the
@@ -87,7 +91,10 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None) -> S
     adaptive = isinstance(deployed, AdaptiveCompensator)
     t0 = campaign_start(campaign)
     events: list[dict] = []
-    deployed.reset()
+    try:
+        warm(deployed, lead_in)
+    except OutOfEnvelopeError as exc:
+        raise ContractError(f"campaign {cid}: {exc}", file=file) from None
     step = deployed._step   # returns the clamp count too
     start = clock.perf_counter()
     i = 0
@@ -118,9 +125,12 @@ def complete_rows(campaign: pd.DataFrame, columns) -> int:
 
 
 def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
-                  files: Mapping[str, object] | None = None) -> dict:
+                  files: Mapping[str, object] | None = None,
+                  lead_ins: Mapping[str, pd.DataFrame] | None = None) -> dict:
     """Stream ``campaigns`` through ``deployed`` (see module doc); ``files`` (campaign -> file)
-    only name the file of a refused row.
+    only name the file of a refused row.  A campaign with a ``lead_ins`` entry continues the
+    campaigns in it: both streams are warmed on it and the batch prediction is that of the
+    campaign joined to it, as ``run`` scores it (like with like).
 
     Returns
     -------
@@ -137,6 +147,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     """
     stream = plain(deployed)
     comp = stream.compensator
+    lead_ins = lead_ins or {}
     measured = comp.measured(campaigns)
     targets = list(deployed.targets_)
     diffs, residuals, batch_residuals, outputs = [], [], [], []
@@ -150,12 +161,13 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         k = complete_rows(df, stream.columns_)
         if k:
             head = df.iloc[:k]
-            batch = comp.predict({cid: head})[cid][targets].to_numpy()
+            lead = lead_ins.get(cid)
+            batch = batch_prediction(comp, head, lead)[targets].to_numpy()
             with stream.envelope_off():   # the same inputs as batch: any difference is the stream's
-                free = stream_rows(stream, head, cid).y
+                free = stream_rows(stream, head, cid, lead_in=lead).y
             diffs.append(np.abs(free - batch))
             batch_residuals.append(m[:k] - batch)
-        run = stream_rows(deployed, df, cid, (files or {}).get(cid))
+        run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid))
         residuals.append(m - run.y)
         outputs.append(run.y)
         events += run.events

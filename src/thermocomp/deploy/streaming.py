@@ -102,6 +102,13 @@ class StreamingCompensator:
     n_samples_ : int
         Samples streamed since the last reset.
 
+    lab_names_ : dict
+        ``{contract name: the lab's name}`` of the columns (``data.columns``): the served
+        model reads either (:mod:`thermocomp.deploy.naming`); set by the stage that deploys.
+    end_states_ : dict
+        ``{campaign: EndState}`` of the record it was deployed on (:func:`end_states`), from
+        which a served stream may continue; set by ``promote``.
+
     Notes
     -----
     Each call continues the stream; :meth:`reset` starts a new campaign and the
@@ -109,6 +116,9 @@ class StreamingCompensator:
     mode: no measured error ever enters.  :meth:`predict` is the loop of
     :meth:`step` over the block's rows.
     """
+
+    lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
+    end_states_: dict = {}
 
     def __init__(self, compensator: Compensator, envelope: Envelope | None = None,
                  policy: str = "clamp", ambient_columns=None):
@@ -281,43 +291,107 @@ class StreamingCompensator:
         return y, n_clamped
 
 
-def replay(streaming: StreamingCompensator, campaign: pd.DataFrame, chunk: int | None = None
-           ) -> pd.DataFrame:
-    """Stream one whole campaign from a reset, in blocks of ``chunk`` samples (all at once if None)."""
-    streaming.reset()
+def warm(deployed, lead_in: pd.DataFrame | None = None) -> None:
+    """Start a campaign: reset, then stream ``lead_in`` (the rows of the campaigns it continues,
+    :func:`thermocomp.continuation.lead_in`; predictions discarded), so that the campaign starts
+    from the state its predecessor left, as ``run`` predicts it joined to them.  ``deployed``:
+    a :class:`StreamingCompensator` or an adaptive compensator around one."""
+    deployed.reset()
+    if lead_in is None or not len(lead_in):
+        return
+    X = lead_in[deployed.columns_].to_numpy(float)
+    t = lead_in[TIME].to_numpy(float) if TIME in lead_in.columns else np.full(len(X), np.nan)
+    try:
+        for i in range(len(X)):
+            deployed._step(X[i], t[i])
+    except ValueError as exc:
+        deployed.reset()
+        raise OutOfEnvelopeError(f"warming the stream on the campaign(s) it continues, row "
+                                 f"{i + 1} of {len(X)}: {exc}") from None
+
+
+def batch_prediction(compensator: Compensator, campaign: pd.DataFrame,
+                     lead_in: pd.DataFrame | None = None) -> pd.DataFrame:
+    """:meth:`Compensator.predict` (simulation) of ``campaign`` joined to its ``lead_in``, sliced
+    to its own rows: what ``run`` scores, and what a warmed stream must equal."""
+    joined = campaign if lead_in is None else pd.concat([lead_in, campaign], ignore_index=True)
+    predicted = compensator.predict({STREAM_ID: joined})[STREAM_ID]
+    return predicted.iloc[len(joined) - len(campaign):].reset_index(drop=True)
+
+
+@dataclass(frozen=True)
+class EndState:
+    """Where a campaign left a deployed stream: the state after its last sample, that sample's
+    ``time`` and the campaign's sample period (the next sample follows one period later)."""
+
+    state: tuple
+    time: float
+    period: float
+
+
+def end_states(deployed, campaigns: Mapping[str, pd.DataFrame],
+               lead_ins: Mapping[str, pd.DataFrame] | None = None) -> dict[str, EndState]:
+    """``{campaign: EndState}``: each campaign streamed to its end (warmed on its ``lead_ins``
+    entry), so that a served stream may start where it left off (``continues``).  Empty
+    unless the model reads absolute temperatures (``data.reference=none``): in the
+    first-sample frame every campaign starts from its own reference."""
+    if deployed.compensator.reference != "none":
+        return {}
+    lead_ins = lead_ins or {}
+    out = {}
+    for cid, df in campaigns.items():
+        if len(df) < 2 or TIME not in df.columns:
+            continue
+        lead = lead_ins.get(cid)
+        warm(deployed, df if lead is None else pd.concat([lead, df], ignore_index=True))
+        t = df[TIME].to_numpy(float)
+        out[cid] = EndState(deployed._snapshot(), float(t[-1]), float(np.median(np.diff(t))))
+    deployed.reset()
+    return out
+
+
+def replay(streaming: StreamingCompensator, campaign: pd.DataFrame, chunk: int | None = None,
+           lead_in: pd.DataFrame | None = None) -> pd.DataFrame:
+    """Stream one whole campaign from its start (:func:`warm`), in blocks of ``chunk`` samples
+    (all at once if None)."""
+    warm(streaming, lead_in)
     step = chunk or max(len(campaign), 1)
     parts = [streaming.predict(campaign.iloc[i:i + step]) for i in range(0, len(campaign), step)]
     return pd.concat(parts, ignore_index=True)
 
 
 def streaming_deviation(streaming: StreamingCompensator, campaign: pd.DataFrame,
-                        chunk: int = 7) -> float:
+                        chunk: int = 7, lead_in: pd.DataFrame | None = None) -> float:
     """Largest |streamed - batch| prediction (µm) over one campaign.
 
-    Batch is :meth:`Compensator.predict` in simulation mode; streaming feeds the
-    campaign in blocks of ``chunk`` samples, envelope off.  A model with memory
-    that lacks the streaming protocol, or breaks causality, shows up here.
+    Batch is :func:`batch_prediction` (the campaign joined to its ``lead_in``, as ``run``
+    scores it); the stream is warmed on the same ``lead_in`` and fed the campaign in blocks
+    of ``chunk`` samples, envelope off.  A model with memory that lacks the streaming
+    protocol, or breaks causality, shows up here; so does a stream that restarts where
+    ``run`` carries the state over.
     """
     try:
         with streaming.envelope_off():
-            streamed = replay(streaming, campaign, chunk)
+            streamed = replay(streaming, campaign, chunk, lead_in)
     finally:
         streaming.reset()
-    batch = streaming.compensator.predict({STREAM_ID: campaign})[STREAM_ID]
+    batch = batch_prediction(streaming.compensator, campaign, lead_in)
     diff = streamed[streaming.targets_].to_numpy() - batch[streaming.targets_].to_numpy()
     return float(np.max(np.abs(diff))) if diff.size else 0.0
 
 
 def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame],
-                  sample_period_s: float, statistic: str = "range", points: int | None = 200
-                  ) -> dict:
+                  sample_period_s: float, statistic: str = "range", points: int | None = 200,
+                  lead_ins: Mapping[str, pd.DataFrame] | None = None) -> dict:
     """Test figures of the *deployed* predictions, in the layout of ``metrics.json``.
 
-    Each campaign is streamed from a reset, as on the machine; returns
-    ``{target: {"test": {...}}}`` (see :func:`thermocomp.metrics.split_scores`).
+    Each campaign is streamed from its start, as on the machine: from a reset, or warmed on
+    its ``lead_ins`` entry (the campaigns it continues); returns ``{target: {"test": {...}}}``
+    (see :func:`thermocomp.metrics.split_scores`).
     """
+    lead_ins = lead_ins or {}
     measured = streaming.compensator.measured(campaigns)
-    predicted = {c: replay(streaming, df) for c, df in campaigns.items()}
+    predicted = {c: replay(streaming, df, lead_in=lead_ins.get(c)) for c, df in campaigns.items()}
     streaming.reset()
     out = {}
     for t in streaming.targets_:

@@ -41,7 +41,13 @@ class AdaptiveCompensator:
     guard : CorrectionGuard, optional
     period_s : float
         Nominal sampling period (substitute for a bad ``time``).
+
+    Attributes ``lab_names_`` and ``end_states_``: as :class:`StreamingCompensator`'s (the
+    deployed object carries them; end states are of this adaptive stream).
     """
+
+    lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
+    end_states_: dict = {}
 
     def __init__(self, streaming: StreamingCompensator, monitor: SensorMonitor | None = None,
                  guard: CorrectionGuard | None = None, period_s: float = 1.0):

@@ -394,10 +394,28 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict):
         raise ConfigError(f"monitor: {exc}") from None
 
 
+def lead_ins(comp: Compensator, ds, ids) -> dict:
+    """``{campaign: lead-in}`` for the campaigns of ``ids`` that continue others: their stream
+    is warmed on their predecessors (unscored) so that it predicts what ``run`` scores
+    (:func:`thermocomp.continuation.lead_ins`); says which."""
+    from ..continuation import carry_over, lead_in
+
+    carried = {c: chain for c, chain in carry_over(comp, ds).items() if c in ids}
+    if carried:
+        say("stream warmed on the campaigns it continues (state carried over, unscored): "
+            + "; ".join(f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items()))
+    return {c: lead_in(ds, chain) for c, chain in carried.items()}
+
+
 def deployable(cfg: DictConfig, streaming, train: dict):
     """What ``promote`` registers and ``replay`` streams: the adaptive compensator around
-    ``streaming`` when ``monitor.adaptive`` (default), else ``streaming`` itself."""
-    return build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
+    ``streaming`` when ``monitor.adaptive`` (default), else ``streaming`` itself; it reads
+    the lab's column names too (:func:`~thermocomp.deploy.naming.lab_names`)."""
+    from ..deploy.naming import lab_names
+
+    deployed = build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
+    deployed.lab_names_ = lab_names(cfg)
+    return deployed
 
 
 def save_model(comp: Compensator, path) -> Path:

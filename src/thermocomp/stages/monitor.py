@@ -5,7 +5,9 @@ The compensator is fitted on the train split of ``data.path`` (or loaded:
 in an :class:`~thermocomp.monitor.AdaptiveCompensator` whose POD, detector
 limits and correction guard are fitted on the same train split.  Each test
 campaign (or the CSV rows of stdin, ``monitor.input=-``) is streamed twice from
-a reset: through the fixed compensator and the adaptive one.  Test campaigns
+its start -- a reset, or, for a campaign that continues others
+(``data.reference=none``), warmed on them unscored -- through the fixed
+compensator and the adaptive one.  Test campaigns
 are read as recorded (missing cells stay NaN, counted in ``missing``); train
 campaigns must be complete, or repaired within the ``data`` limits.  Writes
 ``<out>/monitor.json`` (CLI.md) and figures in ``<out>/monitor/``.
@@ -24,6 +26,7 @@ from .. import io
 from ..context import TIME
 from ..deploy import StreamingCompensator
 from ..deploy.report import campaign_start
+from ..deploy.streaming import warm
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
 from ..monitor import (
@@ -43,6 +46,7 @@ from .common import (
     check_volumetric_targets,
     data_options,
     deploy_stream,
+    lead_ins,
     load_model,
     read_streamed,
     say,
@@ -106,15 +110,18 @@ def _stdin_seconds(time: pd.Series, time_format: str) -> pd.Series:
     return (stamps - stamps.iloc[0]).dt.total_seconds()
 
 
-def _stream(model, df: pd.DataFrame) -> tuple[np.ndarray, list[dict], list[np.ndarray]]:
-    """Stream one campaign from a reset; a step of the fixed compensator that refuses its row
-    holds the previous correction (the adaptive one gives one for every row: a failure there is
-    a defect, raised, not a held correction whose row re-reported the previous row's events)."""
+def _stream(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
+            ) -> tuple[np.ndarray, list[dict], list[np.ndarray]]:
+    """Stream one campaign from its start (a reset, or warmed on ``lead_in``, the campaigns it
+    continues: :func:`~thermocomp.deploy.streaming.warm`); a step of the fixed compensator
+    that refuses its row holds the previous correction (the adaptive one gives one for every
+    row: a failure there is a defect, raised, not a held correction whose row re-reported the
+    previous row's events)."""
     X = df[model.columns_].to_numpy(float)
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
     y = np.zeros((len(X), len(model.targets_)))
     events, states, errors = [], [], []
-    model.reset()
+    warm(model, lead_in)
     for i in range(len(X)):
         try:
             y[i] = model._step(X[i], t[i])[0]
@@ -160,7 +167,9 @@ def monitor(cfg: DictConfig) -> dict:
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
-        report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement))
+        leads = {} if stdin else lead_ins(comp, ds, list(streamed))
+        report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement),
+                                 leads)
         mon = adaptive.monitor
         band = mon.warning_c if mon.exclude_at == "warning" else mon.alarm_c
         cost = undetected_offset_um(comp, train, dict(zip(mon.names, band.tolist())))
@@ -183,7 +192,7 @@ def monitor(cfg: DictConfig) -> dict:
 
 
 def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, streamed,
-            placement: str = "qr") -> tuple[dict, dict]:
+            placement: str = "qr", leads: dict | None = None) -> tuple[dict, dict]:
     mon = adaptive.monitor
     names = mon.names
     counts = np.zeros((len(names), len(STATES)), dtype=np.int64)
@@ -193,8 +202,9 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
                                               for t in comp.targets_) else None
     res_f, res_a, corr = [], [], []
     for cid, df in streamed.items():
-        y_fix, _, _ = _stream(fixed, df)
-        y_ad, ev, (states, errors) = _stream(adaptive, df)
+        lead = (leads or {}).get(cid)
+        y_fix, _, _ = _stream(fixed, df, lead)
+        y_ad, ev, (states, errors) = _stream(adaptive, df, lead)
         start = campaign_start(df)      # CLI.md: event times in seconds from the campaign start
         t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
         for e in ev:

@@ -17,8 +17,9 @@
    ``mlflow.pyfunc`` model with a signature: a new version of ``promote.model_name``,
    tagged with the dataset hash, git commit, what was deployed (``adaptive``,
    ``deploy_config``), its validation figures (from its run's ``metrics.json``)
-   and its test figures (streamed from a reset per test campaign, as deployed:
-   reported, never used to decide).
+   and its test figures (streamed per test campaign as deployed, from a reset
+   or, for a campaign that continues others, warmed on them: reported, never
+   used to decide).
 3. The gate compares validation scores on the same dataset: the candidate's
    against the one the champion was promoted with, when the champion's
    ``dataset_hash``, ``criterion_target`` and ``eval_mode`` tags match.  The
@@ -49,6 +50,7 @@ from .. import io, signing
 from ..compensator import Compensator
 from ..deploy import POLICIES, stream_scores, streaming_deviation
 from ..deploy.report import summary as deployed_summary
+from ..deploy.streaming import end_states
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json
@@ -59,7 +61,15 @@ from ..store import registry_lock
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
 from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
-from .common import check_config, check_keys, data_options, deploy_stream, deployable, say
+from .common import (
+    check_config,
+    check_keys,
+    data_options,
+    deploy_stream,
+    deployable,
+    lead_ins,
+    say,
+)
 
 # The plain promote.* keys are checked by every stage (rules.PROMOTE_RULES); the envelope's
 # policies are the deployment's own.
@@ -266,13 +276,18 @@ def promote(cfg: DictConfig) -> dict:
     train = {c: ds.campaigns[c] for c in train_ids}
     streaming = deploy_stream(cfg, comp, train, f"run {run_id}")
     # causality is a property of the plain stream (envelope off, no monitor), checked before wrapping
-    deviation = max(streaming_deviation(streaming, ds.campaigns[c]) for c in train_ids[:2])
+    leads = lead_ins(comp, ds, train_ids + test_ids)   # continuing campaigns start warmed
+    deviation = max(streaming_deviation(streaming, ds.campaigns[c], lead_in=leads.get(c))
+                    for c in train_ids[:2])
     if deviation > float(opts.max_stream_deviation_um):
         raise ConfigError(
             f"run {run_id}: streamed predictions differ from batch ones by {deviation:.3g} µm "
             f"(> promote.max_stream_deviation_um); a model with memory must implement "
             f"stream_init/stream_step to be deployed")
     deployed = deployable(cfg, streaming, train)   # what the pyfunc holds (monitor.adaptive)
+    # where each campaign leaves the stream: a served campaign may continue it (``continues``)
+    deployed.end_states_ = end_states(deployed, {c: ds.campaigns[c] for c in train_ids + test_ids},
+                                      leads)
     kind = deployed_summary(deployed)
     deploy_key = deploy_config(cfg)
 
@@ -281,8 +296,9 @@ def promote(cfg: DictConfig) -> dict:
     statistic, points = cfg.eval.e_p95.statistic, cfg.eval.e_p95.max_points
 
     # the test figures, as deployed: reported beside the validation ones, never used to decide
-    test_figures = {k: v for k, v in _figures(stream_scores(deployed, test, dt, statistic, points),
-                                              cfg).items() if not is_validation(k)}
+    test_figures = {k: v for k, v in _figures(stream_scores(deployed, test, dt, statistic, points,
+                                                            leads), cfg).items()
+                    if not is_validation(k)}
     cand_figures = {**val_figures, **test_figures}
 
     name, alias = str(opts.model_name), str(opts.alias)
@@ -355,7 +371,8 @@ def promote(cfg: DictConfig) -> dict:
               "champion": None if champion is None else {"version": str(champion.version),
                                                          "score": champ_score},
               "stream_deviation_um": deviation, "model_uri": f"models:/{name}/{version}",
-              "adaptive": kind["adaptive"], "pod": kind["pod"]}
+              "adaptive": kind["adaptive"], "pod": kind["pod"],
+              "continuable": sorted(deployed.end_states_)}
     write_json(resolve(cfg.out) / "promote.json", report)
     state = ("promoted to @" + alias if moved else
              f"{why}" if version == str(getattr(champion, "version", "")) else "not promoted")

@@ -6,7 +6,9 @@ pyfunc folder | models:/name@alias>``), made deployable exactly as ``promote``
 does (:meth:`StreamingCompensator.from_training` with ``promote.envelope``,
 wrapped in the adaptive compensator of the ``monitor`` group when
 ``monitor.adaptive``, the default), and every test campaign is streamed row by
-row from a reset.  A pyfunc model is replayed as it is (what it holds).
+row from its start: from a reset, or, when it continues other campaigns
+(``data.reference=none``), warmed on them unscored, as ``run`` scores it.  A
+pyfunc model is replayed as it is (what it holds).
 
 The test campaigns are read with their missing values kept (a sensor dropout
 streams through the adaptive compensator as the machine would see it); the
@@ -33,6 +35,7 @@ from .common import (
     check_volumetric_targets,
     deploy_stream,
     deployable,
+    lead_ins,
     load_model,
     model_family,
     read_streamed,
@@ -87,7 +90,8 @@ def replay(cfg: DictConfig) -> dict:
         say(f"streaming {len(test_ids)} test campaigns row by row through the {kind} compensator "
             f"({', '.join(deployed.columns_)})")
         result = replay_report(deployed, {c: ds.campaigns[c] for c in test_ids},
-                               {c: root / str(ds.manifest.loc[c, "file"]) for c in test_ids})
+                               {c: root / str(ds.manifest.loc[c, "file"]) for c in test_ids},
+                               lead_ins(plain(deployed).compensator, ds, test_ids))
         targets = result["targets"]
         stream = plain(deployed)
         report = {"model": name, "source": source, "targets": targets,
