@@ -118,9 +118,10 @@ class Diagnosis:
             "control_ever_clears_bar": any(r.control is not None and r.control.clears_bar
                                            for r in s.rounds),
             "bar": {"min_gain_pct": self.options.min_gain_pct, "alpha": self.options.alpha,
-                    "test": "one-sided sign flip of the signed ranks of the test blocks' CV MSE "
-                            "gains, family-wise over the round (step-down max-T); a gain where "
-                            "no fold extrapolates and a positive 95 % lower bound of the gain",
+                    "test": "one-sided sign flip of the test blocks' CV MSE gains (signed ranks "
+                            "of blocks finer than the CV units, else shares of each unit's MSE), "
+                            "family-wise over the round (step-down max-T); a gain where no fold "
+                            "extrapolates and a positive 95 % lower bound of the gain",
                     "min_p": self.cv["min_p"],
                     "max_effects": self.options.max_effects},
             "cv": self.cv,

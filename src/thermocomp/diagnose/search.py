@@ -25,8 +25,8 @@ once, at the end, to report before and after):
    correlated regressors competes at its best generalising strength.
 5. **Accept**, among the candidates that clear the bar (:math:`g \ge`
    ``min_gain_pct`` % of the current CV RMSE *and* :math:`p \le` ``alpha``, with
-   :math:`p` family-wise over the round's candidates: :func:`~.cv.sign_flip_maxt`
-   of signed ranks), that gain on the rows where no fold extrapolates and
+   :math:`p` family-wise over the round's candidates: :func:`~.cv.sign_flip_maxt`,
+   see :meth:`Search._family_bar`), that gain on the rows where no fold extrapolates and
    whose gain has a positive 95 % lower bound, and beat the control, the
    simplest one within one standard error of the largest gain (fewest extra
    regressors; ties: the largest 95 % lower confidence bound of the gain,
@@ -288,31 +288,42 @@ class Search:
 
     def _family_bar(self, evals: list[Evaluation], current: CVResult) -> None:
         """The bar's p-value is family-wise over the round's candidate effects (not the control,
-        nor a sensor fault, which has its own bar): :func:`~.cv.sign_flip_maxt` of the signed
-        ranks of the test blocks' MSE gains (:mod:`.blocks`; Wilcoxon's signed-rank statistic,
-        flipped).  Ranks, since the blocks' errors differ by orders of magnitude (a campaign's
-        start against its hot end, a cold campaign against a hot one): raw gains let one block
-        set the null's scale (a hidden source every campaign showed was refused at 0.01), gains
-        as a share of each unit's MSE let many small-error blocks outvote the large ones (a lag
-        of 11 % CV gain whose mean gain was not above zero passed at 0.0007 with 56 blocks of 8
-        campaigns and raised the test error 17 %)."""
+        nor a sensor fault, which has its own bar): :func:`~.cv.sign_flip_maxt` of the test
+        blocks' MSE gains (:mod:`.blocks`).  With one block per CV unit, each unit's gain as a
+        share of its own MSE, clipped to [-1, 1] (a unit counts at most its whole error either
+        way: a candidate that blows one campaign up does not set the null's scale; with raw
+        MSE gains a hidden source every campaign showed was refused at 0.01).  With finer
+        blocks, their signed ranks (Wilcoxon's statistic, flipped): blocks of one campaign differ
+        in error by orders of magnitude (its start against its hot end), and as shares of the
+        campaign's MSE many small-error blocks outvoted the large ones (on clean data an ambient
+        step with 9 blocks of 8 campaigns passed at 0.008 and raised the test error 13 %; a lag
+        of 11 % CV gain whose mean gain was not above zero passed at 0.0007, and at 0.0015 by
+        ranks, raising it 17 %: hence the lower bound of :meth:`_clears`).  Ranks of 8 are too
+        coarse for the family-wise test: with one block per unit the shares stay (8 campaigns'
+        lag and ambient law at 0.004 and 0.008)."""
         family = [ev for ev in evals if not ev.control and ev.effect.transform != "remove"]
         if not family:
             return
-        D = np.array([current.block_mse - ev.result.block_mse for ev in family])
-        D = np.sign(D) * rankdata(np.abs(D), axis=1)
+        if self.problem.n_blocks_tested > self.problem.n_units:
+            D = np.array([current.block_mse - ev.result.block_mse for ev in family])
+            D = np.sign(D) * rankdata(np.abs(D), axis=1)
+        else:   # one block per unit: each unit's gain as a share of its MSE, as ever
+            D = np.array([current.unit_mse - ev.result.unit_mse for ev in family])
+            D = np.clip(D / np.maximum(current.unit_mse, 1e-300), -1.0, 1.0)
         p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.gain_lcb)
 
     def _clears(self, gain_pct: float, p: float, in_range_pct: float, lcb: float) -> bool:
-        """The bar: a gain of ``min_gain_pct`` % of the CV RMSE at least, at ``p <= alpha``; a
-        gain where no fold extrapolates too (not one the extrapolating campaigns make); and a
-        95 % lower bound of the mean gain above zero (ranks count how often a change helps, not
-        by how much: many modest gains must not outweigh a few large losses)."""
+        """The bar: a gain of ``min_gain_pct`` % of the CV RMSE at least, at ``p <= alpha``, and
+        a gain where no fold extrapolates too (not one the extrapolating campaigns make).  With
+        blocks finer than the units (ranks: how often a change helps, not by how much) also a
+        95 % lower bound of the mean gain above zero: many modest gains must not outweigh a few
+        large losses."""
+        ranked = self.problem.n_blocks_tested > self.problem.n_units
         return bool(gain_pct >= self.options.min_gain_pct and p <= self.options.alpha
-                    and in_range_pct > 0.0 and lcb > 0.0)
+                    and in_range_pct > 0.0 and (lcb > 0.0 or not ranked))
 
     def _shortlist(self, scored: list[tuple[Effect, float]]) -> list[tuple[Effect, float]]:
         opts = self.options
