@@ -121,7 +121,7 @@ class Diagnosis:
                     "test": "one-sided sign flip of the test blocks' CV MSE gains (signed ranks "
                             "of blocks finer than the CV units, else shares of each unit's MSE), "
                             "family-wise over the round (step-down max-T); a gain where no fold "
-                            "extrapolates and a positive 95 % lower bound of the gain",
+                            "extrapolates and, with ranks, a positive 95 % lower bound of the gain",
                     "min_p": self.cv["min_p"],
                     "max_effects": self.options.max_effects},
             "cv": self.cv,
@@ -278,10 +278,12 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
                 for t in targets}
     # the test's blocks, as long as the slowest target's residual takes to decorrelate: one
     # design (and one smallest p) for the whole diagnosis
-    length = max(decorrelation_length(s.cv.run(s.inputs([]), []).residual, m.groups,
-                                      s.problem.validated) for s in searches.values())
-    for s in searches.values():
+    start = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
+    length = max(decorrelation_length(r.residual, m.groups, searches[t].problem.validated)
+                 for t, r in start.items())
+    for t, s in searches.items():
         s.problem.set_test_blocks(length)
+        start[t] = s.cv._result(start[t].prediction, start[t].alpha)   # scored on the blocks
     problem = next(iter(searches.values())).problem
     reach = smallest_p(problem.n_blocks_tested)
     if reach > options.alpha:
@@ -290,7 +292,7 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
                        f"alpha={options.alpha:g} (min p {reach:.2g}; it needs {need} blocks), so no "
                        "effect can be accepted; raise diagnose.n_blocks or diagnose.alpha")
     # sensor health on the train campaigns only: the search never sees the test split
-    excluded, faults, health, original, table = sensor_health(searches, options=options)
+    excluded, faults, health, original, table = sensor_health(searches, options=options, start=start)
     test_sensors = test_sensor_warnings(next(iter(searches.values())), excluded, later, options)
     found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
     effects = {t: r.effects for t, r in found.items()}

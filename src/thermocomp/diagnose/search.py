@@ -396,7 +396,7 @@ class Search:
                             self_prediction_table, steps)
 
 
-def sensor_health(searches: dict, options: SearchOptions | None = None):
+def sensor_health(searches: dict, options: SearchOptions | None = None, start: dict | None = None):
     """Find the broken declared sensors once, for every target (a sensor is broken for all).
 
     Self-prediction on the train campaigns (:mod:`.sensors`) nominates the sensor with the largest
@@ -406,12 +406,13 @@ def sensor_health(searches: dict, options: SearchOptions | None = None):
     next one is tried.  Returns the excluded sensors in order, per target the
     evaluations (accepted ones first) and the health :class:`Round`, the CV
     result of each target's model with them excluded, and the first
-    self-prediction table (the evidence).
+    self-prediction table (the evidence).  ``start``: each target's CV result of the model as
+    it is, when already computed.
     """
     options = options or SearchOptions()
     tol = options.candidates.fault_ratio
     first = next(iter(searches.values()))
-    current = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
+    current = dict(start) if start else {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
     original = dict(current)
     excluded, rejected = [], set()
     evaluated = {t: [] for t in searches}
