@@ -14,7 +14,8 @@ import pytest
 from conftest import refused
 from test_hostile import FAST, snapshot
 from thermocomp.cli import main
-from thermocomp.frame import stack
+from thermocomp.continuation import joined
+from thermocomp.frame import initial_ambient, stack
 from thermocomp.io import read_dataset
 
 SPLITS = ["train", "train", "test", "train", "train", "test", "train", "train"]
@@ -84,3 +85,10 @@ def test_a_non_numeric_ambient_c_is_refused_naming_file_column_and_row(tmp_path,
     refused(["run", f"data.path={ds}", f"out={out}", "ati=cmeans", *FAST], capsys,
             "campaigns.csv", "column 'ambient_c'", "row 3", repr(value))
     assert snapshot(out) == before
+
+
+def test_a_record_cut_in_files_starts_at_its_first_files_ambient(tmp_path):
+    # a continuing test file is predicted joined to its predecessor (state carried over): the
+    # joined campaign's ambient is the predecessor's, as its first sample's sensor would be
+    ds, _ = read_dataset(make_dataset(tmp_path / "ds"))
+    assert initial_ambient(joined(ds, ["R02", "R03"])) == 15.0 == initial_ambient(ds.campaigns["R02"])
