@@ -405,13 +405,19 @@ def test_too_few_campaigns_for_the_test_are_validated_forward_in_time(caplog):
     top = next(e for e in j["effects"] if e["accepted"])
     assert top["column"] == "S_door" and j["after"]["test_rmse"] < 0.6 * j["before"]["test_rmse"]
 
-    with caplog.at_level("WARNING", logger="thermocomp"):
-        forced = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1,
-                                                                       cv="campaigns"))
+    # forced over the 5 campaigns, the test's units are time blocks within them (issue 34): no
+    # longer capped at 1/32, the door is found there too
+    forced = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, cv="campaigns"))
     j = forced.to_json("E_Z")
-    assert j["cv"]["scheme"] == "campaigns" and not any(e["accepted"] for e in j["effects"])
-    assert min(e["evidence"]["p_value"] for e in j["effects"]) == pytest.approx(1 / 32)
-    assert "cannot reach alpha=0.01 (it needs 8)" in caplog.text
+    assert j["cv"]["scheme"] == "campaigns" and j["cv"]["units"] == 5
+    assert j["cv"]["test_blocks"] > 5 and j["cv"]["min_p"] < 1 / 32
+    top = next(e for e in j["effects"] if e["accepted"])
+    assert top["column"] == "S_door" and top["evidence"]["p_value_family"] <= 0.01
+
+    with caplog.at_level("WARNING", logger="thermocomp"):     # too few blocks: said
+        diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, cv="campaigns",
+                                                               alpha=1e-6))
+    assert "cannot reach alpha=1e-06" in caplog.text
 
 
 def test_the_control_signal_is_a_random_walk_no_physical_column_can_collide_with():

@@ -106,7 +106,9 @@ def joined(ds: Dataset, ids: list[str]) -> pd.DataFrame:
         if k:
             offset = frames[-1][TIME].iloc[-1] + _period(ds.campaigns[ids[k - 1]]) - t[0]
         frames.append(df.assign(**{TIME: t + offset}))
-    return pd.concat(frames, ignore_index=True)
+    out = pd.concat(frames, ignore_index=True)
+    out.attrs = dict(frames[0].attrs)      # the chain's start: its manifest ambient_c (DATA_FORMAT)
+    return out
 
 
 def lead_in(ds: Dataset, ids: list[str]) -> pd.DataFrame:

@@ -14,7 +14,7 @@ import numpy as np
 
 from . import continuation
 from .compensator import MODES, Compensator
-from .frame import initial_ambient
+from .frame import ambient_source, initial_ambient
 from .io.contract import TIME, ContractError, Dataset
 from .iso10791 import a3_report
 from .jsonsafe import json_safe
@@ -176,7 +176,8 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
     """
     train = require_split(ds, "train")
     amb = ambient_by_campaign(ds, train)
-    out: dict = {"name": name}
+    out: dict = {"name": name,      # T_amb (sensors) or ambient_c (the manifest), per campaign
+                 "ambient_source": sorted({str(ambient_source(ds.campaigns[c])) for c in train})}
     models = {"model": comp}
     if all(np.isfinite(v) for v in amb.values()):
         cold, warm = min(amb, key=amb.get), max(amb, key=amb.get)
@@ -185,8 +186,8 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
         models["coldest"] = make_base().fit({cold: ds.campaigns[cold]})
         models["warmest"] = make_base().fit({warm: ds.campaigns[warm]})
     else:
-        out["reason"] = ("no initial ambient temperature (T_amb*) in the train campaigns: "
-                         "no cold/warm baselines")
+        out["reason"] = ("no initial ambient temperature (T_amb*, or the manifest's ambient_c) "
+                         "in the train campaigns: no cold/warm baselines")
     out["ati_model"] = any(hasattr(e, "intervals_") for e in comp.estimators_.values())
     if out["ati_model"]:
         models["single_model"] = make_base().fit({c: ds.campaigns[c] for c in train})

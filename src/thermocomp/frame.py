@@ -21,7 +21,7 @@ import pandas as pd
 
 from .context import AMBIENT_C0, CAMPAIGN, TIME
 from .errors import ContractError, listed
-from .io.contract import match_columns
+from .io.contract import AMBIENT_C, match_columns
 
 REFERENCES = ("first_sample", "none")
 REFERENCED_PREFIXES = ("T_", "E_")   # taken relative to the first sample; S_ keep their values
@@ -66,10 +66,24 @@ def ambient_c0(first_values) -> float:
     return float(v.mean()) if v.size else float("nan")
 
 
+def manifest_ambient(df: pd.DataFrame) -> float:
+    """The manifest's ``ambient_c`` of a campaign without an ambient sensor (NaN: none)."""
+    return float(df.attrs.get(AMBIENT_C, float("nan")))
+
+
+def ambient_source(df: pd.DataFrame) -> str | None:
+    """Where :func:`initial_ambient` takes a campaign's ambient from: ``T_amb`` (its sensors),
+    ``ambient_c`` (the manifest) or None."""
+    if any(is_ambient(c) for c in df.columns):
+        return "T_amb"
+    return AMBIENT_C if np.isfinite(manifest_ambient(df)) else None
+
+
 def initial_ambient(df: pd.DataFrame) -> float:
-    """First valid absolute ambient temperature (°C) of a campaign, NaN if none."""
+    """First valid absolute ambient temperature (°C) of a campaign: its ``T_amb*`` sensors, else
+    the manifest's ``ambient_c``; NaN if neither."""
     amb = [c for c in df.columns if is_ambient(c)]
-    return ambient_c0(first_valid(df[amb].to_numpy(float))) if amb else float("nan")
+    return ambient_c0(first_valid(df[amb].to_numpy(float))) if amb else manifest_ambient(df)
 
 
 def context_record(campaign, time, ambient: float, raw: Mapping) -> dict:
@@ -83,7 +97,8 @@ class Matrices:
 
     ``context`` has one row per sample (see :mod:`thermocomp.context`):
     ``campaign``, ``time`` (s), ``ambient_c0`` (the campaign's first valid
-    absolute ambient, °C, NaN without a ``T_amb*`` column) and every ``S_`` and
+    absolute ambient, °C: its ``T_amb*`` columns, else the manifest's ``ambient_c``, else NaN)
+    and every ``S_`` and
     ``T_`` column of the campaigns, raw values (NaN where a campaign lacks it).
     """
 
@@ -189,7 +204,7 @@ def stack(campaigns: Mapping[str, pd.DataFrame], x_cols, y_cols,
         groups.append(np.full(n, cid, dtype=object))
         times.append(A[:, pos[TIME]])
         amb = [pos[c] for c in df.columns if is_ambient(c)]
-        amb0.append(np.full(n, ambient_c0(first_valid(A[:, amb])) if amb else np.nan))
+        amb0.append(np.full(n, ambient_c0(first_valid(A[:, amb])) if amb else manifest_ambient(df)))
         raw = np.full((n, len(raw_cols)), np.nan)
         have = [j for j, c in enumerate(raw_cols) if c in pos]
         raw[:, have] = A[:, [pos[raw_cols[j]] for j in have]]

@@ -44,6 +44,7 @@ from ..context import CAMPAIGN, Y_MEASURED, for_target
 from ..model_selection import ForwardChaining, LeaveCampaignsOut
 from ..models.linear import MLR
 from ..select import AllInputs
+from .blocks import cut_blocks, within_range
 from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
 from .shrink import ALPHAS, PartialRidgePath
 
@@ -101,6 +102,30 @@ class Problem:
         self.unit_names = list(dict.fromkeys(self.units[self.validated]))
         pos = {u: i for i, u in enumerate(self.unit_names)}
         self.unit_index = np.array([pos[u] if ok else -1 for u, ok in zip(self.units, self.validated)])
+        self.block_index, self.block_samples = self.unit_index, None   # the test's units (below)
+
+    def set_test_blocks(self, length: int) -> None:
+        """Test the gains on time blocks of ``length`` samples within the units: as long as the
+        model's CV residual takes to decorrelate (:mod:`.blocks`)."""
+        self.block_samples = int(length)
+        self.block_index = cut_blocks(self.unit_index, self.campaigns, self.block_samples)
+
+    @property
+    def n_blocks_tested(self) -> int:
+        """Units of the acceptance test (time blocks within the CV units)."""
+        return int(self.block_index.max()) + 1 if self.validated.any() else 0
+
+    @property
+    def in_range(self) -> np.ndarray:
+        """Scored rows where the fold that scores them does not extrapolate in the declared
+        inputs (:func:`.blocks.within_range`)."""
+        if "_in_range" not in self.__dict__:
+            X = self.X.to_numpy(float)
+            out = np.zeros(len(self.y), bool)
+            for k in self.fold_ids:
+                out |= within_range(X, self.train_rows(k), self.test_rows(k))
+            self._in_range = out
+        return self._in_range
 
     def varies(self, column: str) -> bool:
         """True when context ``column`` changes within the train data (in the target's frame)."""
@@ -161,6 +186,8 @@ class CVResult:
     rmse: float
     unit_mse: np.ndarray      # mean squared residual of each held-out unit
     alpha: float | None = None   # penalty on the effect features (MLR base; None: none)
+    block_mse: np.ndarray | None = None   # ... of each test block (the acceptance test's units)
+    in_range_rmse: float = float("nan")   # RMSE on the rows no fold extrapolates to
 
 
 class CrossValidator:
@@ -305,13 +332,27 @@ class CrossValidator:
         ok = p.validated
         sums = np.bincount(p.unit_index[ok], weights=r[ok] ** 2, minlength=p.n_units)
         counts = np.bincount(p.unit_index[ok], minlength=p.n_units)
+        n_blocks = p.n_blocks_tested
+        block_sums = np.bincount(p.block_index[ok], weights=r[ok] ** 2, minlength=n_blocks)
+        block_mse = block_sums / np.maximum(np.bincount(p.block_index[ok], minlength=n_blocks), 1)
+        inside = p.in_range
+        in_range = float(np.sqrt(np.mean(r[inside] ** 2))) if inside.any() else float("nan")
         return CVResult(pred, r, float(np.sqrt(np.mean(r[ok] ** 2))), sums / np.maximum(counts, 1),
-                        alpha)
+                        alpha, block_mse, in_range)
 
 
 @lru_cache(maxsize=8)
 def _sign_patterns(n: int) -> np.ndarray:
     return 1.0 - 2.0 * ((np.arange(2**n)[:, None] >> np.arange(n)) & 1)
+
+
+def smallest_p(n_units: int, n_resamples: int = 20000) -> float:
+    """The smallest p-value the sign-flip tests here can give with ``n_units`` units (every
+    unit's gain positive): :math:`1/2^n` exact up to 16 units, :math:`1/(R+1)` by Monte Carlo
+    beyond; family-wise it can only be larger.  No effect is accepted when it exceeds alpha."""
+    if n_units < 2:
+        return 1.0
+    return 2.0 ** -n_units if n_units <= 16 else 1.0 / (n_resamples + 1)
 
 
 def units_needed(alpha: float) -> int:

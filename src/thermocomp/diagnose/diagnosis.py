@@ -20,8 +20,9 @@ from ..log import logger
 from ..metrics import split_scores
 from ..model_selection import ForwardChaining, LeaveCampaignsOut, cv_scheme, forward_gap, unit_labels
 from .augmented import AugmentedRegressor
+from .blocks import decorrelation_length
 from .candidates import CONTROL, random_walk
-from .cv import Problem, units_needed
+from .cv import Problem, smallest_p, units_needed
 from .features import Effect
 from .search import Search, SearchOptions, SearchResult, sensor_health
 from .sensors import self_prediction
@@ -117,8 +118,11 @@ class Diagnosis:
             "control_ever_clears_bar": any(r.control is not None and r.control.clears_bar
                                            for r in s.rounds),
             "bar": {"min_gain_pct": self.options.min_gain_pct, "alpha": self.options.alpha,
-                    "test": "one-sided sign flip of per-unit CV MSE gains, family-wise over the "
-                            "round (step-down max-T)",
+                    "test": "one-sided sign flip of the test blocks' CV MSE gains (signed ranks "
+                            "of blocks finer than the CV units, else shares of each unit's MSE), "
+                            "family-wise over the round (step-down max-T); a gain where no fold "
+                            "extrapolates and, with ranks, a positive 95 % lower bound of the gain",
+                    "min_p": self.cv["min_p"],
                     "max_effects": self.options.max_effects},
             "cv": self.cv,
             "test_e_p95": {"statistic": te_b["e_p95"]["statistic"],
@@ -272,13 +276,23 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
                                   options.min_train_fraction),
                           compensator.estimator, compensator.selector, before.inputs_, options)
                 for t in targets}
+    # the test's blocks, as long as the slowest target's residual takes to decorrelate: one
+    # design (and one smallest p) for the whole diagnosis
+    start = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
+    length = max(decorrelation_length(r.residual, m.groups, searches[t].problem.validated)
+                 for t, r in start.items())
+    for t, s in searches.items():
+        s.problem.set_test_blocks(length)
+        start[t] = s.cv._result(start[t].prediction, start[t].alpha)   # scored on the blocks
     problem = next(iter(searches.values())).problem
-    if problem.n_units < need:
-        logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}): the sign-flip test "
-                       f"cannot reach alpha={options.alpha:g} (it needs {need}), so no effect "
-                       "can be accepted; raise diagnose.n_blocks or diagnose.alpha")
+    reach = smallest_p(problem.n_blocks_tested)
+    if reach > options.alpha:
+        logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}) in "
+                       f"{problem.n_blocks_tested} test blocks: the sign-flip test cannot reach "
+                       f"alpha={options.alpha:g} (min p {reach:.2g}; it needs {need} blocks), so no "
+                       "effect can be accepted; raise diagnose.n_blocks or diagnose.alpha")
     # sensor health on the train campaigns only: the search never sees the test split
-    excluded, faults, health, original, table = sensor_health(searches, options=options)
+    excluded, faults, health, original, table = sensor_health(searches, options=options, start=start)
     test_sensors = test_sensor_warnings(next(iter(searches.values())), excluded, later, options)
     found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
     effects = {t: r.effects for t, r in found.items()}
@@ -299,7 +313,10 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
         cv = {"scheme": "campaigns", "units": problem.n_units,
               "unit": "campaign" if len(train_ids) > 1 else "time block",
               "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=units)}
-    cv |= {"mode": "simulation",   # the search scores what the machine runs, whatever ``mode`` is
+    cv |= {"test_blocks": problem.n_blocks_tested, "block_samples": problem.block_samples,
+           "min_p": reach,
+           "in_range_share": float(problem.in_range[problem.validated].mean()),
+           "mode": "simulation",   # the search scores what the machine runs, whatever ``mode`` is
            "shrink_alpha": {t: r.alpha for t, r in found.items()},
            "train_campaigns": train_ids, "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,

@@ -25,6 +25,9 @@ PREFIXES = ("T_", "E_", "S_")
 SPLITS = ("train", "val", "test")
 MANIFEST = "campaigns.csv"
 MANIFEST_REQUIRED = ("campaign", "file", "split")
+# Manifest extension: a campaign's ambient (°C) where no ambient sensor (T_amb*) was recorded;
+# ``read_dataset`` hands it on as the campaign frame's ``attrs[AMBIENT_C]``
+AMBIENT_C = "ambient_c"
 
 
 def role(column: str) -> str | None:

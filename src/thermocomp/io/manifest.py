@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .contract import MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
+from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
 from .options import _OTHER_DELIMITERS, ReadOptions, _first_line
 
 CAMPAIGN_SUFFIXES = (".csv", ".parquet")
@@ -54,7 +54,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     manifest = raw.set_index("campaign")
     _apply_split_overrides(manifest, opts.split_overrides, path)
     for column in manifest.columns.drop(["file", "split"]):
-        manifest[column] = _metadata_column(manifest[column], path, column)
+        manifest[column] = _metadata_column(manifest[column], path, column, opts.decimal)
     return manifest
 
 
@@ -204,11 +204,21 @@ def _apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path) 
         manifest.loc[cid, "split"] = split
 
 
-def _metadata_column(values: pd.Series, path: Path, column: str) -> pd.Series:
+def _metadata_column(values: pd.Series, path: Path, column: str, decimal: str = ".") -> pd.Series:
     if column == "start":
         return _parse_start(values, path)
     if column == "notes":
         return values
+    if column == AMBIENT_C:      # a campaign's ambient (°C): a number or empty, never text
+        cells = values.astype(str).str.strip()
+        if decimal != ".":       # the files' decimal mark (data.decimal) holds here too
+            cells = cells.str.replace(decimal, ".", regex=False)
+        numbers = pd.to_numeric(cells.replace("", np.nan), errors="coerce").astype(float)
+        for row, (value, number) in enumerate(zip(values, numbers), 1):
+            if str(value).strip() and not np.isfinite(number):
+                raise ContractError(f"ambient_c {value!r} is not a temperature in °C (a number, "
+                                    "or empty where unknown)", file=path, column=column, row=row)
+        return numbers
     present = values[values != ""]
     numbers = pd.to_numeric(present, errors="coerce")
     if len(present) and numbers.notna().all():

@@ -63,7 +63,8 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from ..files import atomic_dir, folder_digest, write_json
-from .contract import MANIFEST, TIME, ContractError, Dataset, role
+from ..log import logger
+from .contract import AMBIENT_C, MANIFEST, TIME, ContractError, Dataset, role
 from .manifest import read_manifest
 from .options import ROLE_ORDER, ReadOptions
 from .steps import check_unit_steps
@@ -318,8 +319,29 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
         frames[cid], entries[cid] = _to_frame(table), entry
         del table
     report = _dataset_report(root.name, entries, columns, opts)
+    report["ambient"] = _manifest_ambient(manifest, frames)
     manifest = _starts_from_timestamps(manifest, entries)
     return Dataset(manifest, frames, root.name, {"path": str(root)}), report
+
+
+def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:
+    """Where each campaign's ambient comes from: its ``T_amb*`` sensors, else the manifest's
+    ``ambient_c`` (handed on in the frame's ``attrs``), else nowhere; said once per dataset."""
+    sources = {}
+    for cid, df in frames.items():
+        value = manifest.at[cid, AMBIENT_C] if AMBIENT_C in manifest.columns else float("nan")
+        if any(c == "T_amb" or c.startswith("T_amb_") for c in df.columns):
+            sources[cid] = "T_amb"
+        elif pd.notna(value):
+            df.attrs[AMBIENT_C] = float(value)
+            sources[cid] = AMBIENT_C
+        else:
+            sources[cid] = None
+    n = sum(v == AMBIENT_C for v in sources.values())
+    if n:
+        logger.info(f"ambient: {MANIFEST} column {AMBIENT_C} for the {n} campaign(s) without a "
+                    "T_amb / T_amb_* sensor")
+    return {"source": sorted({str(v) for v in sources.values()}), "campaigns": sources}
 
 
 def _starts_from_timestamps(manifest: pd.DataFrame, entries: Mapping) -> pd.DataFrame:

@@ -271,7 +271,8 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                      else f"campaign {odd[0]} has no" if len(odd) == 1
                      else f"campaigns {listed(odd)} have no" if odd else "a campaign has no")
             raise ContractError("ATI models need each campaign's initial ambient temperature, "
-                                f"but {which} valid T_amb / T_amb_* value", column="T_amb")
+                                f"but {which} valid T_amb / T_amb_* value (nor a manifest "
+                                "ambient_c, its ambient where no sensor is)", column="T_amb")
         return a0
 
     def _cv_rsd(self, X, y, campaign, a0: pd.Series, n: int, context) -> np.ndarray:

@@ -239,4 +239,8 @@ def summary_table(result) -> str:
                         for ev in d.accepted) or "none"
         lines.append(f"{t:<8} {d.before['test']['rmse']:>16.2f} -> {d.after['test']['rmse']:>6.2f}   "
                      f"{d.original_cv_rmse:>9.2f} -> {d.final_cv_rmse:>6.2f}   {acc}")
+    cv = result.cv
+    lines.append(f"acceptance test: {cv['test_blocks']} time blocks of ~{cv['block_samples']} samples "
+                 f"in {cv['units']} CV units; smallest reachable p {cv['min_p']:.2g} "
+                 f"(alpha {result.options.alpha:g})")
     return "\n".join(lines)
