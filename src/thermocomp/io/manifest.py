@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 
 from .contract import MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
-from .options import _OTHER_DELIMITERS, ReadOptions, _first_line
+from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
 
 CAMPAIGN_SUFFIXES = (".csv", ".parquet")
 _UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
@@ -61,7 +61,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
 def _load_manifest(path: Path, delimiter: str = ",") -> pd.DataFrame:
     if not path.is_file():
         raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})", file=path)
-    text = _utf8_text(path, delimiter)
+    text = _utf8_text(path, "," if delimiter == AUTO else delimiter)
     header = text.splitlines()[0] if text.strip() else ""
     try:
         raw = pd.read_csv(io.StringIO(text), sep=_manifest_delimiter(header, delimiter, path),
@@ -93,6 +93,8 @@ def _manifest_delimiter(header: str, delimiter: str, path: Path) -> str:
     def parses(sep):
         return set(MANIFEST_REQUIRED) <= set(_header_cells(header, sep))
 
+    if delimiter == AUTO:      # detected: the first separator whose header names the columns
+        return next((sep for sep in (",", *_OTHER_DELIMITERS) if parses(sep)), ",")
     for sep in dict.fromkeys((delimiter, ",")):
         if parses(sep):
             return sep
