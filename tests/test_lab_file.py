@@ -245,3 +245,12 @@ def test_init_refuses_a_file_it_cannot_time_and_writes_nothing(tmp_path, capsys)
     path = _lab_file(tmp_path / "lab.csv")
     refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, "data.sample_period_s")
     assert not (tmp_path / "init").exists()
+
+
+def test_a_one_file_record_has_a_digest_of_its_own(tmp_path):
+    # runs are matched to their dataset by this digest (promote): two records must differ
+    from thermocomp.files import folder_digest
+
+    a, b = _lab_file(tmp_path / "a.csv"), tmp_path / "b.csv"
+    b.write_text(a.read_text().replace("20.", "21."))
+    assert folder_digest(a) != folder_digest(b)

@@ -28,16 +28,20 @@ def resolved(path: Path, opts: ReadOptions) -> ReadOptions:
     """
     if AUTO not in (opts.delimiter, opts.decimal):
         return opts
-    lines = _head(path)
-    delimiter = _delimiter(lines, path) if opts.delimiter == AUTO else opts.delimiter
-    decimal = _decimal(lines, delimiter, path) if opts.decimal == AUTO else opts.decimal
+    return detected(_head(path), opts, path)
+
+
+def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
+    """:func:`resolved` on the first (non-empty) lines of a CSV text; ``where`` names it."""
+    lines = [ln for ln in lines if ln.strip()][:SNIFF_LINES]
+    delimiter = _delimiter(lines, where) if opts.delimiter == AUTO else opts.delimiter
+    decimal = _decimal(lines, delimiter, where) if opts.decimal == AUTO else opts.decimal
     return replace(opts, delimiter=delimiter, decimal=decimal)
 
 
 def _head(path: Path) -> list[str]:
     with open(path, "rb") as f:
-        text = f.read(_SNIFF_BYTES).decode("utf-8-sig", "replace")
-    return [ln for ln in text.splitlines() if ln.strip()][:SNIFF_LINES]
+        return f.read(_SNIFF_BYTES).decode("utf-8-sig", "replace").splitlines()
 
 
 def _fields(line: str, sep: str) -> int:

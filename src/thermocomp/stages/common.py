@@ -352,8 +352,10 @@ def read_streamed(cfg: DictConfig, test: bool = True):
     volumetric = volumetric_calibration(cfg)
     if volumetric is not None:    # its E_ columns are distances: stream the parameters, as `run` models them
         ds = volumetric[0]
+        resolve_reference(cfg, ds)
         return ds, require_split(ds, "train"), require_split(ds, "test") if test else [], {}
     ds, report = io.read_dataset(root, data_options(cfg), missing="keep")
+    resolve_reference(cfg, ds)
     train_ids = require_split(ds, "train")
     test_ids = require_split(ds, "test") if test else []
     hot = io.ReadOptions.from_cfg(data_options(cfg)).kelvin_threshold_c

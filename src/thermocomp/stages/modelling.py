@@ -338,7 +338,8 @@ def run(cfg: DictConfig) -> dict:
         report["reference"] = resolve_reference(cfg, ds)
     else:
         ds, cal, calibration, raw = volumetric
-        report = {"dataset": raw.name, "calibration": calibration}
+        report = {"dataset": raw.name, "calibration": calibration,
+                  "reference": resolve_reference(cfg, ds)}
     clock.lap("read")
     with stage_run(cfg, "run") as tr:     # a run refused from here on is recorded FAILED
         if volumetric is None:
