@@ -20,7 +20,6 @@ from conftest import ROOT, refused
 from test_hostile import FAST, snapshot
 from thermocomp.cli import main
 from thermocomp.io import read_dataset
-from thermocomp.io.roles import contract_columns
 
 RECORD = ROOT / "datasets" / "fl_thermal" / "spindle_test.csv"
 ROLES = ["data.roles.error=['ch*']", "data.roles.state=['spindle*']"]
@@ -180,6 +179,8 @@ def test_every_column_not_read_is_named_in_one_message(tmp_path, capsys):
 
 
 def test_contract_columns_names_a_labs_headers():
+    from thermocomp.io.roles import contract_columns
+
     headers = ["Zeit", "X-Achse [mm]", "spindle(RPM)", "t 1(°C)", "air(°C)", "T_spindle", "note"]
     assert contract_columns(headers, {"error": ["X*"], "state": ["spindle"], "ambient": ["air"],
                                       "ignore": ["note"]}, {"T_spindle": "T_head"}) == {
@@ -254,3 +255,19 @@ def test_a_one_file_record_has_a_digest_of_its_own(tmp_path):
     a, b = _lab_file(tmp_path / "a.csv"), tmp_path / "b.csv"
     b.write_text(a.read_text().replace("20.", "21."))
     assert folder_digest(a) != folder_digest(b)
+
+
+def test_a_folder_written_the_european_way_reads_as_written_the_contracts(tmp_path):
+    from test_hostile import make_dataset
+
+    plain = make_dataset(tmp_path / "plain")
+    european = tmp_path / "european"
+    european.mkdir()
+    for f in plain.iterdir():
+        frame = pd.read_csv(f)
+        frame.to_csv(european / f.name, sep=";", decimal=",", index=False)
+    ds, _ = read_dataset(european)               # data.delimiter, data.decimal: auto
+    expected, _ = read_dataset(plain)
+    assert ds.ids("test") == expected.ids("test")
+    for cid, frame in expected.campaigns.items():
+        pd.testing.assert_frame_equal(ds.campaigns[cid], frame)
