@@ -271,3 +271,28 @@ def test_a_folder_written_the_european_way_reads_as_written_the_contracts(tmp_pa
     assert ds.ids("test") == expected.ids("test")
     for cid, frame in expected.campaigns.items():
         pd.testing.assert_frame_equal(ds.campaigns[cid], frame)
+
+
+def test_a_parquet_record_with_two_time_looking_columns_names_the_key_to_set(tmp_path):
+    from thermocomp.io import ContractError
+
+    t = np.arange(30) * 15.0
+    frame = pd.DataFrame({"Zeit (s)": t, "time": t / 60, "X (um)": t / 100, "T1 (°C)": 20 + t / 1e3})
+    frame.to_parquet(tmp_path / "r.parquet")
+    with pytest.raises(ContractError, match=r"'Zeit \(s\)' and 'time' both look like the time "
+                                            r"\(set data.roles.time\)"):
+        read_dataset(tmp_path / "r.parquet", {"roles": {"error": ["X"]}})
+    ds, report = read_dataset(tmp_path / "r.parquet", {"roles": {"error": ["X"], "time": "Zeit",
+                                                                "ignore": ["time"]}})
+    np.testing.assert_allclose(ds.campaigns["r"]["time"], t)
+    assert report["column_map"] == {"Zeit (s)": "time", "X (um)": "E_X", "T1 (°C)": "T_T1"}
+
+
+def test_an_explicit_first_sample_on_a_cut_record_is_warned_about(tmp_path, capsys):
+    path = _lab_file(tmp_path / "lab.csv")
+    metrics = _run(tmp_path, "out", f"data.path={path}", "data.roles.error=['ch*']",
+                   "data.sample_period_s=60", "data.test_fraction=0.25",
+                   "data.reference=first_sample")
+    assert metrics["reference"] == "first_sample" and metrics["carry_over"] == {}
+    warned = [ln for ln in capsys.readouterr().err.splitlines() if "no state carried" in ln]
+    assert len(warned) == 1 and "lab_test continues lab_train" in warned[0]

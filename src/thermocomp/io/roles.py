@@ -150,6 +150,9 @@ def _time_header(headers, roles, columns, first, problems) -> str | None:
         return found[0] if found else None
     free = [h for h in headers if h not in columns and not _hits(h, roles)]
     named = [h for h in free if split_unit(h)[0].lower() in TIME_HEADERS]
+    if len(named) > 1:
+        problems.append(f"{' and '.join(map(repr, named))} both look like the time (set "
+                        "data.roles.time)")
     if named:
         return named[0]
     stamped = [h for h in free if role(h) is None and _ISO.match(str(first.get(h) or ""))]
