@@ -182,7 +182,7 @@ def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
         selector=build(cfg.select.selector, "select.selector"),
         inputs=list(cfg.data.inputs),
         targets=None if cfg.data.targets is None else list(cfg.data.targets),
-        reference=cfg.data.reference,
+        reference=reference(cfg),
         denoiser=build_denoiser(cfg),
         offsets="drop" if identified_targets(cfg) else "predict",
     )
@@ -201,7 +201,7 @@ def identified_targets(cfg: DictConfig) -> bool:
     fitted intercept learns it (:class:`~thermocomp.compensator.Compensator`, ``offsets``).
     On probe data (an aligned 7-ball bar, E_XX1 u = 13.4 µm) predicting it raised the VCE from
     11.0 to 44.1 µm; with the intercept left out, 4.5 µm."""
-    return cfg.data.reference == "first_sample" and is_volumetric(cfg)
+    return reference(cfg) == "first_sample" and is_volumetric(cfg)
 
 
 def build_denoiser(cfg: DictConfig):
@@ -256,6 +256,13 @@ def ingest_settings(cfg: DictConfig) -> dict:
         made.update({f"calibrate.{k}": c.get(k) for k in ("outlier_z", "column_share",
                                                            "require_seen", "prior")})
     return json.loads(json.dumps(made, default=str))
+
+
+def reference(cfg: DictConfig) -> str:
+    """``data.reference`` as resolved by :func:`resolve_reference`; ``auto`` before the data are
+    read (a library caller building from the config alone) is the contract's ``first_sample``."""
+    given = str(cfg.data.reference)
+    return "first_sample" if given == AUTO_REFERENCE else given
 
 
 def resolve_reference(cfg: DictConfig, ds) -> str:
