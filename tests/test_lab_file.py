@@ -296,3 +296,18 @@ def test_an_explicit_first_sample_on_a_cut_record_is_warned_about(tmp_path, caps
     assert metrics["reference"] == "first_sample" and metrics["carry_over"] == {}
     warned = [ln for ln in capsys.readouterr().err.splitlines() if "no state carried" in ln]
     assert len(warned) == 1 and "lab_test continues lab_train" in warned[0]
+
+
+def test_a_folder_without_a_split_column_is_cut_by_the_fraction(tmp_path):
+    folder = tmp_path / "ds"
+    folder.mkdir()
+    for k in range(4):
+        frame = pd.read_csv(_lab_file(folder / f"c{k}.csv"))
+        frame.set_axis(["E_X (mm)", "T_1", "T_2"], axis=1).to_csv(folder / f"c{k}.csv", index=False)
+    (folder / "campaigns.csv").write_text("campaign,file\n" + "".join(f"c{k},c{k}.csv\n"
+                                                                        for k in range(4)))
+    ds, _ = read_dataset(folder, {"test_fraction": 0.25, "sample_period_s": 60,
+                                  "roles": {"error": ["E_*"]}})
+    assert ds.ids("test") == ["c3"] and ds.ids("train") == ["c0", "c1", "c2"]
+    frame = pd.read_csv(folder / "c0.csv")           # a unit in a contract name: converted
+    np.testing.assert_allclose(ds.campaigns["c0"]["E_X"], frame["E_X (mm)"] * 1000)

@@ -109,6 +109,8 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
         kind = hits[0] if hits else None
         if kind == "ignore":
             continue
+        if kind is None and by_role and unit and role(base) in ("E", "S", "T"):   # with a unit
+            kind = {"E": "error", "S": "state", "T": "temperature"}[role(base)]
         if kind is None and (role(header) is not None or not by_role):
             out.names[header], out.roles[header] = header, "name"   # contract form, or unmapped
             if role(header) is None:
@@ -174,9 +176,9 @@ def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: s
     known = UNITS[kind]
     scale = known.get(unit.lower().replace(" ", ""))
     if scale is None:
-        what = {"E": "an error (µm, mm, m, nm)", "T": "a temperature (°C, K, °F)",
-                "time": "a time (s, ms, min, h)"}[kind]
-        problems.append(f"{header!r}: unit {unit!r} is not one of {what}")
+        what = {"E": "an error's (µm, mm, m, nm)", "T": "a temperature's (°C, K, °F)",
+                "time": "a time's (s, ms, min, h)"}[kind]
+        problems.append(f"{header!r}: unit {unit!r} is not {what}")
     elif scale != (1.0, 0.0):
         out.scales[name] = scale
 
