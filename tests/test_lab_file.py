@@ -311,3 +311,8 @@ def test_a_folder_without_a_split_column_is_cut_by_the_fraction(tmp_path):
     assert ds.ids("test") == ["c3"] and ds.ids("train") == ["c0", "c1", "c2"]
     frame = pd.read_csv(folder / "c0.csv")           # a unit in a contract name: converted
     np.testing.assert_allclose(ds.campaigns["c0"]["E_X"], frame["E_X (mm)"] * 1000)
+
+
+def test_a_record_that_is_not_there_is_named(tmp_path, capsys):
+    refused(["run", f"data.path={tmp_path / 'lab.csv'}", f"out={tmp_path / 'out'}", *MLR], capsys,
+            "lab.csv", "no such file")

@@ -1,12 +1,14 @@
 """Read, validate and ingest datasets in the contract of ``DATA_FORMAT.md``.
 
 A dataset folder holds a manifest ``campaigns.csv`` and one ``.csv`` or
-``.parquet`` file per campaign.  Every campaign goes through the same steps,
+``.parquet`` file per campaign (or ``data.path`` is one such file, a record cut by
+:mod:`.record`).  Every campaign goes through the same steps,
 column by column on an Arrow table so that memory stays bounded by about one
 copy of the campaign:
 
 1. load (``pyarrow.csv.read_csv`` with every data column typed ``float64``, or
-   ``pyarrow.parquet.read_table``) and rename columns through ``data.columns``;
+   ``pyarrow.parquet.read_table``; separator and decimal mark detected by :mod:`.sniff`) and
+   rename columns through ``data.columns`` and ``data.roles`` (:mod:`.roles`, units converted);
 2. check names: only ``time``, ``T_*``, ``E_*``, ``S_*``; at least one ``E_``;
 3. build ``time`` in seconds (float seconds as given, ISO 8601 timestamps as
    seconds since the first sample, or ``row * sample_period_s``) and require
@@ -64,7 +66,7 @@ import pyarrow.parquet as pq
 
 from ..files import atomic_dir, folder_digest, write_json
 from .contract import MANIFEST, TIME, ContractError, Dataset, role
-from .manifest import read_manifest
+from .manifest import CAMPAIGN_SUFFIXES, read_manifest
 from .options import ROLE_ORDER, ReadOptions
 from .record import cut, hold_out, record_id
 from .steps import check_unit_steps
@@ -244,7 +246,8 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     Parameters
     ----------
     path : str or Path
-        Dataset folder with ``campaigns.csv`` and the campaign files.
+        Dataset folder with ``campaigns.csv`` and the campaign files, or one ``.csv`` /
+        ``.parquet`` file: one record (:mod:`.record`).
     cfg : mapping, optional
         The ``data`` config group (dict or ``DictConfig``); every key is
         optional:
@@ -252,6 +255,12 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
         columns : mapping
             Raw column name -> contract name, applied to every campaign file
             before validation (e.g. ``{"delta L": "E_L", "Zeit": "time"}``).
+        roles : mapping
+            ``error``/``state``/``ambient``/``ignore`` header patterns and ``time``
+            (:mod:`.roles`); ``columns`` wins.
+        test_fraction, val_fraction, split_order
+            A chronological test (val) part of one record, or the last campaigns of a folder
+            without that split (:mod:`.record`).
         sample_period_s : float
             Files without a ``time`` column get ``time = row * sample_period_s``.
             A file with a ``time`` column keeps its own.
@@ -275,8 +284,9 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
             A unit change inside a file (a ``T_`` or ``E_`` step this many
             times the column's typical step that a unit conversion explains
             and that persists) is refused; see :mod:`thermocomp.io.steps`.
-        delimiter, decimal : str, default ',' and '.'
-            CSV field separator and decimal mark of the campaign files.
+        delimiter, decimal : str, default 'auto'
+            CSV field separator and decimal mark of the campaign files; ``'auto'``:
+            detected from each file's first lines (:mod:`.sniff`).
         thousands : str or None, default None
             CSV thousands separator (``','`` reads ``6,000``).
     missing : {'repair', 'keep', 'keep_errors'}, default 'repair'
@@ -342,6 +352,9 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     """The folder campaign files are relative to, the manifest, and the campaigns read:
     a dataset folder's (the last train campaigns held out as ``data.test_fraction`` asks) or
     a one-file record's, cut chronologically (:mod:`.record`)."""
+    if path.suffix.lower() in CAMPAIGN_SUFFIXES and not path.exists():
+        raise ContractError("no such file (data.path: a dataset folder or one record's file)",
+                            file=path)
     if path.is_file():
         table, report = read_campaign(path, opts)
         manifest, parts = cut(path, table, report, opts)

@@ -112,7 +112,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
         if kind is None and by_role and unit and role(base) in ("E", "S", "T"):   # with a unit
             kind = {"E": "error", "S": "state", "T": "temperature"}[role(base)]
         if kind is None and (role(header) is not None or not by_role):
-            out.names[header], out.roles[header] = header, "name"   # contract form, or unmapped
+            out.names[header], out.roles[header] = header, "contract"   # its own name, or unmapped
             if role(header) is None:
                 out.roles[header] = "unmapped"
                 problems.append(f"{header!r} has no role")
