@@ -211,15 +211,16 @@ READ_CASES = {
     "°F": (_fahrenheit("K03"), [], ["K03.csv", "column 'T_", "row 1", "look like °F"]),
     "°F threshold": (lambda ds: None, ["data.fahrenheit_threshold_c=19"],
                      ["K02.csv", "column 'T_", "row 1", "data.fahrenheit_threshold_c=19"]),
-    ";-separated manifest": (_semicolons, [],
+    # (data.delimiter/decimal=auto, the default, reads these: set, the wrong one is named)
+    ";-separated manifest": (_semicolons, ["data.delimiter=,"],
                              ["campaigns.csv", "looks ';'-separated: set data.delimiter=';'"]),
-    ";-separated campaign": (_campaign_semicolons, [],
+    ";-separated campaign": (_campaign_semicolons, ["data.delimiter=,"],
                              ["K01.csv", "one column 'time;T_0;T_amb;E_X'",
                               "set data.delimiter=';' data.decimal=','"]),
     # the separator set, the decimal comma forgotten: the setting that reads it is named
-    "decimal commas": (_campaign_semicolons, ["data.delimiter=';'"],
+    "decimal commas": (_campaign_semicolons, ["data.delimiter=';'", "data.decimal=."],
                        ["K01.csv", "column 'time'", "row 1", "a decimal comma? set data.decimal=','"]),
-    ";-separated, 200 columns": (_wide_semicolons, [],
+    ";-separated, 200 columns": (_wide_semicolons, ["data.delimiter=,"],
                                  ["K01.csv", "one column 'time;T_0;T_amb;E_X;T_extra000;",
                                   "... (2218 characters)'", "set data.delimiter=';' data.decimal=','"]),
 }

@@ -31,6 +31,7 @@ USAGE = """usage: thermocomp [-q | -v] <stage> [key=value ...] [-m]
 
 stages:
   simulate   write a dataset from the built-in digital twin (sim=<scenario>)
+  init       thermocomp init <file-or-folder>: what is detected, the data config that reads it
   ingest     validate data.path, write Parquet + report to data.interim
   denoise    denoise the declared inputs (denoise=none|emd) -> data.processed + figures
   select     choose the inputs per target (select=...) -> models/<name>/selection.json
@@ -57,6 +58,10 @@ STAGE_HELP = {
     "simulate": ("write a dataset from the built-in digital twin", "conf/sim/<scenario>.yaml",
                  "data.path (default data/raw/<scenario>/) and <data.path>.truth.json",
                  "sim=<scenario> seed=<int> data.path=<dir> \"sim.generator.effects=[door]\""),
+    "init": ("detect a lab's file (or folder) and write the data config that reads it",
+             "<file-or-folder> (data.path)", "<out>/conf/data/<name>.yaml; the `run` command to use",
+             "thermocomp init lab.csv [data.roles.error=['ch*']] [data.sample_period_s=15] "
+             "[data.test_fraction=0.1] [out=<dir>]"),
     "ingest": ("validate a dataset folder", "data.path",
                "data.interim (data/interim/<name>/: Parquet + ingest_report.json)",
                "data.path=<dir> data.delimiter=\";\" data.decimal=\",\" data.columns={T0:T_0} "
@@ -552,6 +557,18 @@ def _multirun() -> bool:
     return HydraConfig.initialized() and HydraConfig.get().mode == RunMode.MULTIRUN
 
 
+def _positional_path(args: list[str]) -> list[str]:
+    """``thermocomp init <path>``: the path (relative to the current folder, as a shell user
+    names a file) as ``data.path``."""
+    out = []
+    for arg in args:
+        if "=" not in arg and not arg.startswith("-"):
+            path = Path(arg).expanduser()
+            arg = f"data.path={path.resolve() if path.exists() else arg}"
+        out.append(arg)
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     from . import log
 
@@ -577,6 +594,8 @@ def main(argv: list[str] | None = None) -> int:
         print(f"thermocomp: error: unknown stage {stage!r}{hint} (stages: {', '.join(STAGES)})",
               file=sys.stderr)
         return 2
+    if stage == "init":
+        args = _positional_path(args)
     if any(a in ("-h", "--help") for a in args):
         print(stage_help(stage))
         return 0

@@ -273,15 +273,18 @@ def inside(folder: str | os.PathLike, name: str) -> Path:
 
 
 def folder_digest(folder: str | os.PathLike) -> str:
-    """SHA-256 over every file under ``folder``: relative path and bytes, recursively, sorted.
+    """SHA-256 over every file under ``folder``: relative path and bytes, recursively, sorted
+    (a file: its name and bytes).
 
     Renaming, moving, adding or changing any file changes the digest; the
     folder's own location and the files' times do not.
     """
     root = Path(folder)
     h = hashlib.sha256()
-    for f in sorted(p for p in root.rglob("*") if p.is_file()):
-        h.update(f.relative_to(root).as_posix().encode() + b"\0")
+    # a one-file record (data.path a file) is digested as a folder holding only it
+    files = [root] if root.is_file() else sorted(p for p in root.rglob("*") if p.is_file())
+    for f in files:
+        h.update((f.name if f == root else f.relative_to(root).as_posix()).encode() + b"\0")
         with open(f, "rb") as fh:
             h.update(hashlib.file_digest(fh, "sha256").digest())
     return h.hexdigest()

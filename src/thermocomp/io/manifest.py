@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
-from .options import _OTHER_DELIMITERS, ReadOptions, _first_line
+from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
 
 CAMPAIGN_SUFFIXES = (".csv", ".parquet")
 _UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
@@ -48,7 +48,10 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     opts = opts or ReadOptions()
     root = Path(root)
     path = root / MANIFEST
-    raw = _load_manifest(path, opts.delimiter)
+    held_out = opts.test_fraction is not None or opts.val_fraction is not None
+    raw = _load_manifest(path, opts.delimiter, optional=("split",) if held_out else ())
+    if "split" not in raw.columns:    # every campaign train: data.test_fraction holds some out
+        raw.insert(2, "split", "train")
     _check_manifest_rows(raw, path, root)
     _check_continues(raw, path)
     manifest = raw.set_index("campaign")
@@ -58,13 +61,14 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     return manifest
 
 
-def _load_manifest(path: Path, delimiter: str = ",") -> pd.DataFrame:
+def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = ()) -> pd.DataFrame:
     if not path.is_file():
         raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})", file=path)
-    text = _utf8_text(path, delimiter)
+    text = _utf8_text(path, "," if delimiter == AUTO else delimiter)
     header = text.splitlines()[0] if text.strip() else ""
     try:
-        raw = pd.read_csv(io.StringIO(text), sep=_manifest_delimiter(header, delimiter, path),
+        raw = pd.read_csv(io.StringIO(text), sep=_manifest_delimiter(header, delimiter, path,
+                                                                      optional),
                           dtype=str, keep_default_na=False)
     except pd.errors.EmptyDataError:
         raise ContractError("manifest is empty", file=path) from None
@@ -72,7 +76,7 @@ def _load_manifest(path: Path, delimiter: str = ",") -> pd.DataFrame:
         raise ContractError(f"manifest is not valid CSV ({_first_line(exc)})", file=path) from None
     raw.columns = [c.strip() for c in raw.columns]
     for column in MANIFEST_REQUIRED:
-        if column not in raw.columns:
+        if column not in raw.columns and column not in optional:
             raise ContractError("required manifest column missing", file=path, column=column)
     if raw.empty:
         raise ContractError("manifest lists no campaign", file=path)
@@ -86,13 +90,15 @@ def _header_cells(line: str, delimiter: str) -> list[str]:
         return [c.strip() for c in line.split(delimiter)]
 
 
-def _manifest_delimiter(header: str, delimiter: str, path: Path) -> str:
+def _manifest_delimiter(header: str, delimiter: str, path: Path, optional: tuple = ()) -> str:
     """``data.delimiter``, or ``,`` (the contract's own format) when the manifest's header
     only parses with it; a header that only parses with another separator is refused with
     the setting that reads it (instead of a misleading "column 'campaign' missing")."""
     def parses(sep):
-        return set(MANIFEST_REQUIRED) <= set(_header_cells(header, sep))
+        return set(MANIFEST_REQUIRED) - set(optional) <= set(_header_cells(header, sep))
 
+    if delimiter == AUTO:      # detected: the first separator whose header names the columns
+        return next((sep for sep in (",", *_OTHER_DELIMITERS) if parses(sep)), ",")
     for sep in dict.fromkeys((delimiter, ",")):
         if parses(sep):
             return sep
@@ -211,8 +217,9 @@ def _metadata_column(values: pd.Series, path: Path, column: str, decimal: str = 
         return values
     if column == AMBIENT_C:      # a campaign's ambient (°C): a number or empty, never text
         cells = values.astype(str).str.strip()
-        if decimal != ".":       # the files' decimal mark (data.decimal) holds here too
-            cells = cells.str.replace(decimal, ".", regex=False)
+        if decimal != ".":       # the files' decimal mark (data.decimal) holds here too;
+            # detected (auto): a comma inside one cell can only be a decimal comma
+            cells = cells.str.replace("," if decimal == AUTO else decimal, ".", regex=False)
         numbers = pd.to_numeric(cells.replace("", np.nan), errors="coerce").astype(float)
         for row, (value, number) in enumerate(zip(values, numbers), 1):
             if str(value).strip() and not np.isfinite(number):

@@ -13,6 +13,9 @@ from ..params import MAX_COUNT
 from .contract import SPLITS, ContractError
 
 TIME_FORMATS = ("auto", "seconds", "iso8601")
+AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
+ROLE_PATTERNS = ("error", "state", "ambient", "ignore")   # data.roles.<key>: glob patterns
+SPLIT_ORDER = ("train", "val", "test")
 ROLE_ORDER = ("T", "E", "S")
 MISSING_MODES = ("repair", "keep", "keep_errors")
 
@@ -46,9 +49,13 @@ class ReadOptions:
     max_duration_days: float | None = 366.0
     max_resample_factor: float = 10.0
     max_step_ratio: float | None = 5.0
-    delimiter: str = ","
-    decimal: str = "."
+    delimiter: str = AUTO
+    decimal: str = AUTO
     thousands: str | None = None
+    roles: dict = field(default_factory=dict)     # see io.roles; {} (or all empty): none
+    test_fraction: float | None = None
+    val_fraction: float | None = None
+    split_order: list = field(default_factory=lambda: list(SPLIT_ORDER))
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
@@ -83,9 +90,13 @@ class ReadOptions:
             max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
             max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
             max_step_ratio=_positive_float(cfg, "max_step_ratio", 5.0, nullable=True),
-            delimiter=_text(cfg, "delimiter", ","),
-            decimal=_text(cfg, "decimal", "."),
+            delimiter=_text(cfg, "delimiter", AUTO),
+            decimal=_text(cfg, "decimal", AUTO),
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
+            roles=_roles(cfg),
+            test_fraction=_fraction(cfg, "test_fraction"),
+            val_fraction=_fraction(cfg, "val_fraction"),
+            split_order=_split_order(cfg),
         )
         opts._check()
         return opts
@@ -100,16 +111,19 @@ class ReadOptions:
             raise ContractError(f"data.split_overrides.{cid}: split {split!r} is not one of "
                                 f"{', '.join(SPLITS)}")
         for key in ("delimiter", "decimal"):
-            if len(getattr(self, key)) != 1:
-                raise ContractError(f"data.{key} must be one character, "
+            if len(getattr(self, key)) != 1 and getattr(self, key) != AUTO:
+                raise ContractError(f"data.{key} must be one character or 'auto', "
                                     f"got {getattr(self, key)!r}")
+        if (self.test_fraction or 0.0) + (self.val_fraction or 0.0) >= 1.0:
+            raise ContractError(f"data.test_fraction + data.val_fraction must be < 1 (a train "
+                                f"part is left), got {self.test_fraction} + {self.val_fraction}")
         # (the field separator may be it: a CSV writer quotes "6,000")
         if self.thousands is not None and (len(self.thousands) != 1 or self.thousands
                                            == self.decimal or re.match(r"[\w+\-\s]", self.thousands)):
             raise ContractError(f"data.thousands must be one character other than the decimal "
                                 "mark, not a digit, letter, sign or space (',', '.', \"'\" or "
                                 f"null), got {self.thousands!r}")
-        if self.decimal == self.delimiter:
+        if self.decimal == self.delimiter != AUTO:
             raise ContractError(f"data.decimal={self.decimal!r} is the field separator too "
                                 "(data.delimiter): a lab writing decimal commas separates with ';'")
         if self.kelvin_threshold_c <= 0.0:    # every reading above it is refused as kelvin
@@ -121,6 +135,44 @@ def _text(cfg: Mapping, key: str, default: str) -> str:
     """``cfg[key]`` as text, ``default`` when missing or null (an empty text stays, refused)."""
     value = cfg.get(key)
     return default if value is None else str(value)
+
+
+def _roles(cfg: Mapping) -> dict:
+    """``data.roles`` as ``{error, state, ambient, ignore: list of patterns, time: name|auto}``."""
+    value = cfg.get("roles") or {}
+    if not hasattr(value, "items"):
+        raise ContractError(f"data.roles must be a mapping, got {value!r}")
+    unknown = [k for k in value if k not in (*ROLE_PATTERNS, "time")]
+    if unknown:
+        raise ContractError(f"data.roles.{unknown[0]}: unknown role; roles: "
+                            f"{', '.join((*ROLE_PATTERNS, 'time'))}")
+    out = {}
+    for key in ROLE_PATTERNS:
+        patterns = value.get(key) or []
+        patterns = [patterns] if isinstance(patterns, str) else patterns
+        if not all(isinstance(p, str) and p for p in patterns):
+            raise ContractError(f"data.roles.{key} must be a list of header patterns, got "
+                                f"{value.get(key)!r}")
+        out[key] = list(patterns)
+    time = value.get("time", AUTO)
+    out["time"] = AUTO if time is None else str(time)
+    return out
+
+
+def _fraction(cfg: Mapping, key: str) -> float | None:
+    number = _float(cfg, key, None)
+    if number is not None and not 0.0 < number < 1.0:
+        raise ContractError(f"data.{key} must be in (0, 1) (a share of the record), got {number:g}")
+    return number
+
+
+def _split_order(cfg: Mapping) -> tuple:
+    value = cfg.get("split_order") or SPLIT_ORDER
+    order = tuple(str(v) for v in ([value] if isinstance(value, str) else value))
+    if sorted(order) != sorted(SPLIT_ORDER):
+        raise ContractError(f"data.split_order must order train, val and test once each "
+                            f"(chronologically), got {list(order)}")
+    return list(order)
 
 
 def _str_mapping(cfg: Mapping, key: str) -> dict:

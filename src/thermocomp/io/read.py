@@ -1,12 +1,14 @@
 """Read, validate and ingest datasets in the contract of ``DATA_FORMAT.md``.
 
 A dataset folder holds a manifest ``campaigns.csv`` and one ``.csv`` or
-``.parquet`` file per campaign.  Every campaign goes through the same steps,
+``.parquet`` file per campaign (or ``data.path`` is one such file, a record cut by
+:mod:`.record`).  Every campaign goes through the same steps,
 column by column on an Arrow table so that memory stays bounded by about one
 copy of the campaign:
 
 1. load (``pyarrow.csv.read_csv`` with every data column typed ``float64``, or
-   ``pyarrow.parquet.read_table``) and rename columns through ``data.columns``;
+   ``pyarrow.parquet.read_table``; separator and decimal mark detected by :mod:`.sniff`) and
+   rename columns through ``data.columns`` and ``data.roles`` (:mod:`.roles`, units converted);
 2. check names: only ``time``, ``T_*``, ``E_*``, ``S_*``; at least one ``E_``;
 3. build ``time`` in seconds (float seconds as given, ISO 8601 timestamps as
    seconds since the first sample, or ``row * sample_period_s``) and require
@@ -65,8 +67,9 @@ import pyarrow.parquet as pq
 from ..files import atomic_dir, folder_digest, write_json
 from ..log import logger
 from .contract import AMBIENT_C, MANIFEST, TIME, ContractError, Dataset, role
-from .manifest import read_manifest
+from .manifest import CAMPAIGN_SUFFIXES, read_manifest
 from .options import ROLE_ORDER, ReadOptions
+from .record import cut, hold_out, record_id
 from .steps import check_unit_steps
 from .tables import _load_csv, _load_parquet, _ordered, _values
 from .values import (
@@ -161,7 +164,7 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     if path.stat().st_size == 0:
         raise ContractError("empty file", file=path)
     load = _load_parquet if path.suffix.lower() == ".parquet" else _load_csv
-    columns = load(path, opts)
+    columns, renamed = load(path, opts)
     rows = len(next(iter(columns.values())))
     if rows == 0:
         raise ContractError("file has no data rows", file=path)
@@ -176,6 +179,8 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
         report["resampled_s"] = opts.resample_s
         _check_length(len(columns[TIME]), path, f"(after data.resample_s={opts.resample_s:g}) ")
     table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
+    if renamed:          # the file's own names (data.columns, data.roles): raw -> contract
+        report["columns"] = renamed
     return table, {"rows": table.num_rows, **report}
 
 
@@ -205,10 +210,20 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
     report = {"dataset": name, "rows": sum(e["rows"] for e in entries.values()),
               "campaigns": entries, "repairs": totals("repairs"),
               "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
+              **_renamed(entries),
               "settings": {k: v for k, v in asdict(opts).items() if k != "missing"}}
     if opts.missing != "repair":
         report["missing"] = totals("missing")
     return report
+
+
+def _renamed(entries: dict) -> dict:
+    """``{"column_map": {raw: contract}}`` over every campaign whose headers were renamed (what
+    :func:`.roles.contract_columns` gives; a deployed model reads the lab's names through it)."""
+    out: dict[str, str] = {}
+    for entry in entries.values():
+        out.update(entry.get("columns", {}))
+    return {"column_map": out} if out else {}
 
 
 def _collect_roles(columns: dict, names: list[str]) -> None:
@@ -232,7 +247,8 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     Parameters
     ----------
     path : str or Path
-        Dataset folder with ``campaigns.csv`` and the campaign files.
+        Dataset folder with ``campaigns.csv`` and the campaign files, or one ``.csv`` /
+        ``.parquet`` file: one record (:mod:`.record`).
     cfg : mapping, optional
         The ``data`` config group (dict or ``DictConfig``); every key is
         optional:
@@ -240,6 +256,12 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
         columns : mapping
             Raw column name -> contract name, applied to every campaign file
             before validation (e.g. ``{"delta L": "E_L", "Zeit": "time"}``).
+        roles : mapping
+            ``error``/``state``/``ambient``/``ignore`` header patterns and ``time``
+            (:mod:`.roles`); ``columns`` wins.
+        test_fraction, val_fraction, split_order
+            A chronological test (val) part of one record, or the last campaigns of a folder
+            without that split (:mod:`.record`).
         sample_period_s : float
             Files without a ``time`` column get ``time = row * sample_period_s``.
             A file with a ``time`` column keeps its own.
@@ -263,8 +285,9 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
             A unit change inside a file (a ``T_`` or ``E_`` step this many
             times the column's typical step that a unit conversion explains
             and that persists) is refused; see :mod:`thermocomp.io.steps`.
-        delimiter, decimal : str, default ',' and '.'
-            CSV field separator and decimal mark of the campaign files.
+        delimiter, decimal : str, default 'auto'
+            CSV field separator and decimal mark of the campaign files; ``'auto'``:
+            detected from each file's first lines (:mod:`.sniff`).
         thousands : str or None, default None
             CSV thousands separator (``','`` reads ``6,000``).
     missing : {'repair', 'keep', 'keep_errors'}, default 'repair'
@@ -309,19 +332,41 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     every repair is counted.
     """
     opts = replace(ReadOptions.from_cfg(cfg), missing=missing)
-    root = Path(path)
-    manifest = read_manifest(root, opts)
-    if campaigns is not None:
-        manifest = manifest.loc[list(campaigns)]
+    root, manifest, tables = _source(Path(path), opts, campaigns)
     frames, entries, columns = {}, {}, {}
-    for cid, table, entry in _iter_campaigns(root, manifest, opts):
+    for cid, table, entry in tables:
         _collect_roles(columns, table.column_names)
         frames[cid], entries[cid] = _to_frame(table), entry
         del table
-    report = _dataset_report(root.name, entries, columns, opts)
+    report = _dataset_report(_name(path), entries, columns, opts)
     report["ambient"] = _manifest_ambient(manifest, frames)
     manifest = _starts_from_timestamps(manifest, entries)
-    return Dataset(manifest, frames, root.name, {"path": str(root)}), report
+    return Dataset(manifest, frames, _name(path), {"path": str(root)}), report
+
+
+def _name(path) -> str:
+    """The dataset's name: its folder's, or a one-file record's stem."""
+    path = Path(path)
+    return record_id(path) if path.is_file() else path.name
+
+
+def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.DataFrame, Iterator]:
+    """The folder campaign files are relative to, the manifest, and the campaigns read:
+    a dataset folder's (the last train campaigns held out as ``data.test_fraction`` asks) or
+    a one-file record's, cut chronologically (:mod:`.record`)."""
+    if path.suffix.lower() in CAMPAIGN_SUFFIXES and not path.exists():
+        raise ContractError("no such file (data.path: a dataset folder or one record's file)",
+                            file=path)
+    if path.is_file():
+        table, report = read_campaign(path, opts)
+        manifest, parts = cut(path, table, report, opts)
+        del table
+        ids = list(manifest.index if campaigns is None else campaigns)
+        return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
+    manifest = hold_out(read_manifest(path, opts), opts, path)
+    if campaigns is not None:
+        manifest = manifest.loc[list(campaigns)]
+    return path, manifest, _iter_campaigns(path, manifest, opts)
 
 
 def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:
@@ -396,10 +441,10 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
     opts = ReadOptions.from_cfg(cfg)
     src, dest = Path(src), Path(dest)
     check_separate(src, dest)
-    manifest = read_manifest(src, opts)
+    _, manifest, tables = _source(src, opts)
     entries, columns = {}, {}
     with atomic_dir(dest) as tmp:
-        for cid, table, entry in _iter_campaigns(src, manifest, opts):
+        for cid, table, entry in tables:
             _collect_roles(columns, table.column_names)
             pq.write_table(table, tmp / f"{cid}.parquet")
             entries[cid] = entry
@@ -408,7 +453,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
         out = _starts_from_timestamps(manifest, entries).assign(
             file=[f"{cid}.parquet" for cid in manifest.index])
         (tmp / MANIFEST).write_text(_manifest_csv(out))
-        report = {**_dataset_report(src.name, entries, columns, opts), **(extra or {})}
+        report = {**_dataset_report(_name(src), entries, columns, opts), **(extra or {})}
         write_json(tmp / INGEST_REPORT, report, ensure_ascii=False)
     return report
 

@@ -17,7 +17,9 @@ import pyarrow.parquet as pq
 from .contract import TIME, ContractError, role
 from .manifest import _not_utf8, _utf8_failure
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
+from .roles import naming
 from .separators import misgrouped, thousands_hint, ungrouped
+from .sniff import resolved
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
 _CSV_BLOCK_BYTES = 16 << 20
@@ -33,12 +35,17 @@ _NAME = re.compile(r"[TES]_[\w.\-]+")
 # Column names
 
 
-def _contract_names(raw_names: list[str], mapping: dict, file: Path, *,
-                    has_period: bool) -> list[str]:
-    """Mapped column names, checked against the contract's vocabulary."""
-    names = []
+def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
+                    first: dict | None = None) -> tuple[list[str | None], dict]:
+    """Contract names of the file's columns (None: left out by ``data.roles.ignore``) and the
+    unit conversions (:mod:`.roles`), checked against the contract's vocabulary."""
+    plan = naming(raw_names, opts.roles, opts.columns, first, opts.decimal, file)
+    names: list[str | None] = []
     for raw in raw_names:
-        name = mapping.get(raw, raw)
+        name = plan.names.get(raw)
+        if name is None:
+            names.append(None)
+            continue
         alias = f" (raw name {raw!r})" if name != raw else ""
         if role(name) is None:
             raise ContractError(f"column name{alias} has no contract role: expected 'time' or "
@@ -53,13 +60,22 @@ def _contract_names(raw_names: list[str], mapping: dict, file: Path, *,
             raise ContractError("duplicate column (after data.columns mapping)",
                                 file=file, column=name)
         names.append(name)
-    if not any(role(n) == "E" for n in names):
+    if not any(role(n) == "E" for n in names if n):
         raise ContractError("no E_ column: a campaign needs at least one measured error",
                             file=file)
-    if TIME not in names and not has_period:
-        raise ContractError("no 'time' column and no data.sample_period_s to build one",
-                            file=file)
-    return names
+    if TIME not in names and opts.sample_period_s is None:
+        raise ContractError("no 'time' column (none named like 'time', 't(s)', 'Zeit', no ISO "
+                            "8601 timestamps, no data.roles.time): set data.sample_period_s "
+                            "(the seconds between rows)", file=file)
+    return names, plan.scales
+
+
+def _converted(columns: dict, scales: dict) -> dict:
+    """Columns in the contract's units (µm, °C, s): ``value * scale + offset``."""
+    for name, (scale, offset) in scales.items():
+        if name in columns:
+            columns[name] = pc.add(pc.multiply(pc.cast(columns[name], pa.float64()), scale), offset)
+    return columns
 
 
 def _ordered(names: list[str]) -> list[str]:
@@ -78,16 +94,20 @@ MISSING_TOKENS = ("", "nan", "NaN", "NAN", "-nan", "-NaN")
 
 
 def _load_csv(path: Path, opts: ReadOptions) -> dict:
+    opts = resolved(path, opts)
     header, first_row = _peek_csv(path, opts.delimiter)
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
-    names = _contract_names(header, opts.columns, path, has_period=opts.sample_period_s is not None)
-    if len(first_row) != len(names):
-        raise ContractError(f"expected {len(names)} fields, got {len(first_row)}", file=path, row=1)
-    types = {n: pa.float64() for n in names if n != TIME}
+    named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
+    if len(first_row) != len(named):
+        raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
+    # a column left out (data.roles.ignore) is read under a name no contract column can have
+    names = [n if n is not None else f" ignored {i}" for i, n in enumerate(named)]
+    types = {n: pa.float64() for n in named if n is not None and n != TIME}
     if TIME in names:
         types[TIME] = _csv_time_type(path, first_row, names.index(TIME), opts)
-    return _columns(_read_csv_typed(path, names, types, opts))
+    table = _read_csv_typed(path, names, types, opts)
+    return _converted(_columns(table.select(list(types))), scales), _renames(header, named)
 
 
 def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> None:
@@ -162,7 +182,8 @@ def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions
     read_as = types if opts.thousands is None else {
         n: pa.string() if pa.types.is_floating(t) else t for n, t in types.items()}
     try:
-        table = pacsv.read_csv(path, **_csv_options(names, opts, types=read_as))
+        table = pacsv.read_csv(path, **_csv_options(names, opts, types=read_as,
+                                                    include=[n for n in names if n in types]))
     except pa.ArrowInvalid as exc:
         raise _locate_csv_error(path, names, types, opts, exc) from None
     return table if opts.thousands is None else _ungroup(table, types, path, opts)
@@ -285,8 +306,10 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
         reason = _ARROW_SOURCE.sub("", _first_line(exc))
         raise ContractError(f"unreadable Parquet file ({reason})", file=path) from None
     table = table.drop_columns([c for c in table.column_names if _PANDAS_INDEX.fullmatch(c)])
-    names = _contract_names(table.column_names, opts.columns, path,
-                            has_period=opts.sample_period_s is not None)
+    first = {c: _first_text(table.column(c)) for c in table.column_names}
+    named, scales = _contract_names(table.column_names, opts, path, first=first)
+    table = table.drop_columns([c for c, n in zip(table.column_names, named) if n is None])
+    names = [n for n in named if n is not None]
     table = table.rename_columns(names)
     for i, name in enumerate(names):
         column = table.column(i)
@@ -295,7 +318,25 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
         else:
             column = _parquet_numbers(column, name, path)
         table = table.set_column(i, name, column)
-    return _columns(table)
+    return _converted(_columns(table), scales), _renames(list(first), named)
+
+
+def _renames(raw: list[str], named: list[str | None]) -> dict[str, str]:
+    return {r: n for r, n in zip(raw, named) if n is not None and n != r}
+
+
+def _first_text(column: pa.ChunkedArray) -> str | None:
+    """A Parquet column's first value as text: a number for a numeric column (what a role needs
+    to know), the first string or timestamp otherwise."""
+    kind = column.type
+    if pa.types.is_timestamp(kind):
+        found = _first_valid(column)
+        return None if found is None else found[1].isoformat()
+    if pa.types.is_string(kind) or pa.types.is_large_string(kind):
+        found = _first_valid(column)
+        return None if found is None else str(found[1])
+    return "0" if (pa.types.is_floating(kind) or pa.types.is_integer(kind)
+                   or pa.types.is_decimal(kind) or pa.types.is_boolean(kind)) else kind.__str__()
 
 
 def _parquet_numbers(column: pa.ChunkedArray, name: str, path: Path) -> pa.ChunkedArray:

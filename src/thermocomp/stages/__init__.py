@@ -14,7 +14,8 @@ from __future__ import annotations
 
 from importlib import import_module
 
-STAGES = {"simulate": "simulate:simulate", "ingest": "ingest:ingest", "denoise": "denoise:denoise",
+STAGES = {"simulate": "simulate:simulate", "init": "init:init",
+          "ingest": "ingest:ingest", "denoise": "denoise:denoise",
           "select": "select:select", "train": "modelling:train", "evaluate": "modelling:evaluate",
           "diagnose": "diagnose:diagnose", "run": "modelling:run", "compare": "compare:compare",
           "promote": "promote:promote", "replay": "replay:replay", "serve": "serve:serve",

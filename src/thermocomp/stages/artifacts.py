@@ -25,7 +25,7 @@ from ..compensator import Compensator
 from ..evaluation import require_split
 from ..files import folder_digest
 from ..paths import resolve
-from .common import build_compensator, say
+from .common import build_compensator, reference, say
 
 DENOISE_JSON = "denoise.json"
 DENOISER_PKL = "denoiser.pkl"
@@ -45,7 +45,7 @@ def denoise_fingerprint(cfg: DictConfig) -> dict:
 
 def selection_fingerprint(cfg: DictConfig) -> dict:
     targets = None if cfg.data.targets is None else _plain(list(cfg.data.targets))
-    return {"select": _plain(cfg.select), "targets": targets, "reference": cfg.data.reference,
+    return {"select": _plain(cfg.select), "targets": targets, "reference": reference(cfg),
             **denoise_fingerprint(cfg)}
 
 

@@ -12,7 +12,7 @@ from collections.abc import Mapping
 from numbers import Integral
 from pathlib import Path
 
-from omegaconf import DictConfig, OmegaConf
+from omegaconf import DictConfig, OmegaConf, open_dict
 
 from .. import io, signing
 from ..build import build
@@ -44,13 +44,15 @@ from ..tracking import enabled, store_uri
 from .apart import check_apart
 from .rules import check_groups, check_keys
 
+AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
 MAX_COMPONENT = 200   # bytes of one name in a written path: 255 less the staging decoration
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
 
 # What the plain keys of the shared config groups may be (the components below check their own).
 CONFIG_RULES = {
     "name": file_name(),
-    "track": optional(BOOLEAN), "plots": choice(*PLOTS), "data.reference": choice(*REFERENCES),
+    "track": optional(BOOLEAN), "plots": choice(*PLOTS),
+    "data.reference": choice(*REFERENCES, AUTO_REFERENCE),
     "eval.mode": choice(*MODES), "eval.e_p95.statistic": choice("range", "std"),
     "eval.e_p95.max_points": optional(integer(2)),  # 0 or 1 window lengths: an empty E_P95 curve
     "eval.anova_alpha": number(0.0, 1.0, open_lo=True, open_hi=True),
@@ -180,7 +182,7 @@ def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
         selector=build(cfg.select.selector, "select.selector"),
         inputs=list(cfg.data.inputs),
         targets=None if cfg.data.targets is None else list(cfg.data.targets),
-        reference=cfg.data.reference,
+        reference=reference(cfg),
         denoiser=build_denoiser(cfg),
         offsets="drop" if identified_targets(cfg) else "predict",
     )
@@ -199,7 +201,7 @@ def identified_targets(cfg: DictConfig) -> bool:
     fitted intercept learns it (:class:`~thermocomp.compensator.Compensator`, ``offsets``).
     On probe data (an aligned 7-ball bar, E_XX1 u = 13.4 µm) predicting it raised the VCE from
     11.0 to 44.1 µm; with the intercept left out, 4.5 µm."""
-    return cfg.data.reference == "first_sample" and is_volumetric(cfg)
+    return reference(cfg) == "first_sample" and is_volumetric(cfg)
 
 
 def build_denoiser(cfg: DictConfig):
@@ -256,6 +258,36 @@ def ingest_settings(cfg: DictConfig) -> dict:
     return json.loads(json.dumps(made, default=str))
 
 
+def reference(cfg: DictConfig) -> str:
+    """``data.reference`` as resolved by :func:`resolve_reference`; ``auto`` before the data are
+    read (a library caller building from the config alone) is the contract's ``first_sample``."""
+    given = str(cfg.data.reference)
+    return "first_sample" if given == AUTO_REFERENCE else given
+
+
+def resolve_reference(cfg: DictConfig, ds) -> str:
+    """``data.reference=auto`` made ``none`` where a test or val campaign of ``ds`` continues
+    another (its state is carried over, :mod:`thermocomp.continuation`), else ``first_sample``;
+    said in one line.  An explicit ``first_sample`` there is warned about: each part restarts."""
+    from ..continuation import predecessors
+
+    links = predecessors(ds)
+    scored = [c for c in ds.ids() if c in links and ds.manifest.loc[c, "split"] in ("test", "val")]
+    given = cfg.data.reference
+    if given == AUTO_REFERENCE:
+        resolved = "none" if scored else "first_sample"
+        why = (f"{scored[0]} continues {links[scored[0]]}: its state is carried over" if scored
+               else "no test or val campaign continues another")
+        say(f"data.reference=auto: {resolved} ({why})")
+        with open_dict(cfg):
+            cfg.data.reference = resolved
+    elif given == "first_sample" and scored:
+        logger.warning(f"data.reference=first_sample: {scored[0]} continues {links[scored[0]]}, "
+                       "but each campaign restarts at its own first sample, no state carried "
+                       "over (data.reference=none or auto carries it)")
+    return cfg.data.reference
+
+
 def load_ingested(cfg: DictConfig):
     """``data.interim`` as ``ingest`` left it, refused when it was ingested from another
     ``data.path`` or with other ``data.*`` reading options: a stage would otherwise score a
@@ -274,6 +306,7 @@ def load_ingested(cfg: DictConfig):
                 f"it was ingested with {name}={made.get(key)!r}, not {want[key]!r}: run "
                 "`thermocomp ingest` with this config first (or give another name= to keep both)",
                 file=root / io.INGEST_REPORT)
+    resolve_reference(cfg, ds)
     return ds
 
 
@@ -326,8 +359,10 @@ def read_streamed(cfg: DictConfig, test: bool = True):
     volumetric = volumetric_calibration(cfg)
     if volumetric is not None:    # its E_ columns are distances: stream the parameters, as `run` models them
         ds = volumetric[0]
+        resolve_reference(cfg, ds)
         return ds, require_split(ds, "train"), require_split(ds, "test") if test else [], {}
     ds, report = io.read_dataset(root, data_options(cfg), missing="keep")
+    resolve_reference(cfg, ds)
     train_ids = require_split(ds, "train")
     test_ids = require_split(ds, "test") if test else []
     hot = io.ReadOptions.from_cfg(data_options(cfg)).kelvin_threshold_c

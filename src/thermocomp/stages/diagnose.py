@@ -43,7 +43,7 @@ from ..params import (
 from ..paths import resolve
 from ..tracking import stage_run
 from . import rules
-from .common import build_compensator, check_config, check_declared, data_options, say
+from .common import build_compensator, check_config, check_declared, data_options, resolve_reference, say
 
 # What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are
 # this stage's (``targets`` is also checked against the modelled targets).
@@ -160,9 +160,10 @@ def diagnose(cfg: DictConfig) -> dict:
     options = search_options(dcfg)
     targets = None if dcfg.targets is None else (
         [str(dcfg.targets)] if isinstance(dcfg.targets, str) else [str(t) for t in dcfg.targets])
-    template = build_compensator(cfg)
     say(f"reading {resolve(cfg.data.path)}")
     ds, _ = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
+    resolve_reference(cfg, ds)
+    template = build_compensator(cfg)
     check_declared(cfg, ds)
     name = f"{cfg.model.name}+{MODEL_NAME}"
     written: dict = {}

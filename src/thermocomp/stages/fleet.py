@@ -28,7 +28,7 @@ from ..files import inside, safe_name, staged_outputs, write_json
 from ..metrics import rsd, sm_sd, split_scores
 from ..paths import resolve
 from ..tracking import stage_run
-from .common import build_compensator, check_config, data_options, save_model, say
+from .common import build_compensator, check_config, data_options, resolve_reference, save_model, say
 
 _TEST = ("rmse", "rsd_mean", "rsd_sd", "rms_before", "rms_after", "rms_reduction_pct")
 
@@ -47,6 +47,7 @@ def _slim(targets: dict) -> dict:
 def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
     """Read, fit, score and save one group; returns its figures (nothing of its data)."""
     ds, report = io.read_dataset(root, data_options(cfg), campaigns=ids)
+    report["reference"] = resolve_reference(cfg, ds)
     train = require_split(ds, "train")
     require_split(ds, "test")
     t0 = time.perf_counter()

@@ -47,6 +47,7 @@ from .common import (
     load_ingested,
     load_model,
     model_family,
+    resolve_reference,
     result_table,
     save_model,
     say,
@@ -115,7 +116,7 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
         metrics = {"model": cfg.model.name, "mode": ev.mode, "targets": targets,
                    "select": cfg.select.name, "dataset": ds.name,
                    "inputs": {t: comp.selected_[t] for t in comp.targets_},
-                   "carry_over": carry_over(comp, ds)}
+                   "reference": comp.reference, "carry_over": carry_over(comp, ds)}
         metrics.update(extra or {})
         if cfg.plots != "none":
             _e_p95_figures(draw, folder, targets)
@@ -334,9 +335,11 @@ def run(cfg: DictConfig) -> dict:
     volumetric = volumetric_calibration(cfg)
     if volumetric is None:
         ds, report = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
+        report["reference"] = resolve_reference(cfg, ds)
     else:
         ds, cal, calibration, raw = volumetric
-        report = {"dataset": raw.name, "calibration": calibration}
+        report = {"dataset": raw.name, "calibration": calibration,
+                  "reference": resolve_reference(cfg, ds)}
     clock.lap("read")
     with stage_run(cfg, "run") as tr:     # a run refused from here on is recorded FAILED
         if volumetric is None:

@@ -16,6 +16,7 @@ campaigns must be complete, or repaired within the ``data`` limits.  Writes
 from __future__ import annotations
 
 import sys
+from io import StringIO
 from pathlib import Path
 
 import numpy as np
@@ -29,6 +30,7 @@ from ..deploy.report import campaign_start
 from ..deploy.streaming import warm
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
+from ..io.sniff import SNIFF_LINES, detected
 from ..monitor import (
     STATES,
     AdaptiveCompensator,
@@ -60,8 +62,10 @@ def _stdin_campaign(columns: list[str], opts: io.ReadOptions) -> tuple[dict, dic
     rows stream as they are written); empty cells stay NaN, a non-numeric one is refused with
     its row.  ``time`` in seconds or as ISO 8601 timestamps (``data.time``; ``auto``: as the
     first row reads, like a campaign file)."""
+    text = sys.stdin.read().lstrip("\ufeff")
+    opts = detected(text.splitlines()[:SNIFF_LINES], opts, "<stdin>")   # data.delimiter=auto ...
     try:
-        df = pd.read_csv(sys.stdin, sep=opts.delimiter, decimal=opts.decimal,
+        df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
                          thousands=opts.thousands)
     except Exception as exc:    # pandas raises several kinds for a bad stream
         raise io.ContractError(f"stdin is not a CSV table with a header, data.delimiter="

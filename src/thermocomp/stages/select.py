@@ -27,7 +27,7 @@ from ..paths import resolve
 from ..select.pearson import abs_correlation
 from ..tracking import stage_run
 from .artifacts import processed_data, selection_fingerprint, selection_path
-from .common import build_denoiser, check_config, load_ingested, say
+from .common import build_denoiser, check_config, load_ingested, reference, say
 
 
 def _series(s) -> dict:
@@ -52,7 +52,7 @@ def select(cfg: DictConfig) -> dict:
         campaigns = {c: processed[0].campaigns[c] for c in ids}
     else:
         _, campaigns = fit_denoiser(build_denoiser(cfg), {c: ds.campaigns[c] for c in ids}, inputs)
-    m = stack(campaigns, inputs, targets, cfg.data.reference)
+    m = stack(campaigns, inputs, targets, reference(cfg))
     result, scores, names = {}, {}, {}
     for t in targets:
         y = m.Y[t].to_numpy()

@@ -1,0 +1,80 @@
+"""``data.delimiter=auto`` and ``data.decimal=auto``: the separator and decimal mark a CSV file
+is written with, read from its first lines (a lab's export: ``;`` and decimal commas, a BOM)."""
+
+from __future__ import annotations
+
+import csv
+import re
+from dataclasses import replace
+from pathlib import Path
+
+from .contract import ContractError
+from .options import _OTHER_DELIMITERS, AUTO, ReadOptions
+
+SNIFF_LINES = 50
+_SNIFF_BYTES = 1 << 16
+_DECIMAL_COMMA = re.compile(r"\s*[+-]?\d*,\d+(?:[eE][+-]?\d+)?\s*")
+_DECIMAL_POINT = re.compile(r"\s*[+-]?\d*\.\d+(?:[eE][+-]?\d+)?\s*")
+
+
+def resolved(path: Path, opts: ReadOptions) -> ReadOptions:
+    """``opts`` with ``delimiter`` and ``decimal`` detected where they say ``auto``.
+
+    Raises
+    ------
+    ContractError
+        When two separators (or both decimal marks) read the file equally well: naming the
+        key to set.
+    """
+    if AUTO not in (opts.delimiter, opts.decimal):
+        return opts
+    return detected(_head(path), opts, path)
+
+
+def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
+    """:func:`resolved` on the first (non-empty) lines of a CSV text; ``where`` names it."""
+    lines = [ln for ln in lines if ln.strip()][:SNIFF_LINES]
+    delimiter = _delimiter(lines, where) if opts.delimiter == AUTO else opts.delimiter
+    decimal = _decimal(lines, delimiter, where) if opts.decimal == AUTO else opts.decimal
+    return replace(opts, delimiter=delimiter, decimal=decimal)
+
+
+def _head(path: Path) -> list[str]:
+    with open(path, "rb") as f:
+        return f.read(_SNIFF_BYTES).decode("utf-8-sig", "replace").splitlines()
+
+
+def _fields(line: str, sep: str) -> int:
+    try:
+        return len(next(csv.reader([line], delimiter=sep), []))
+    except csv.Error:
+        return 0
+
+
+def _delimiter(lines: list[str], path: Path) -> str:
+    """The separator splitting every sampled line into the same number (> 1) of fields; ``,``
+    (the contract's) for a file of one column."""
+    body = lines[:-1] if len(lines) > 2 else lines       # the last line may be cut short
+    if not body:
+        return ","
+    fits = [sep for sep in dict.fromkeys((",", *_OTHER_DELIMITERS))
+            if len({_fields(ln, sep) for ln in body}) == 1 and _fields(body[0], sep) > 1]
+    if len(fits) > 1:
+        raise ContractError(f"the field separator is ambiguous ({' or '.join(map(repr, fits))} "
+                            "both split every line alike): set data.delimiter", file=path)
+    return fits[0] if fits else ","
+
+
+def _decimal(lines: list[str], delimiter: str, path: Path) -> str:
+    """``,`` when number cells hold decimal commas and none a decimal point (never with ``,``
+    separating the fields), else ``.``."""
+    if delimiter == ",":
+        return "."
+    cells = [c for ln in lines[1:] for c in next(csv.reader([ln], delimiter=delimiter), [])]
+    comma = any(_DECIMAL_COMMA.fullmatch(c) for c in cells)
+    point = any(_DECIMAL_POINT.fullmatch(c) for c in cells)
+    if comma and point:
+        raise ContractError("the decimal mark is ambiguous (cells with ',' and with '.'): set "
+                            "data.decimal (and data.thousands if one of them groups digits)",
+                            file=path)
+    return "," if comma else "."
