@@ -316,3 +316,17 @@ def test_a_folder_without_a_split_column_is_cut_by_the_fraction(tmp_path):
 def test_a_record_that_is_not_there_is_named(tmp_path, capsys):
     refused(["run", f"data.path={tmp_path / 'lab.csv'}", f"out={tmp_path / 'out'}", *MLR], capsys,
             "lab.csv", "no such file")
+
+
+def test_the_deployed_model_takes_the_labs_names_of_columns_it_did_not_convert(tmp_path):
+    from omegaconf import OmegaConf
+
+    from thermocomp.deploy.naming import lab_names
+
+    t = np.arange(30) * 10.0
+    pd.DataFrame({"t(s)": t, "X(mm)": t / 1e4, "Y(um)": t, "a(°C)": 20 + t / 100,
+                  "b(K)": 293.15 + t / 100}).to_csv(tmp_path / "r.csv", index=False)
+    ds, _ = read_dataset(tmp_path / "r.csv", {"roles": {"error": ["X", "Y"]}})
+    names = lab_names(OmegaConf.create({"data": {"columns": {}}}), ds)
+    # renamed only: the lab's name carries the contract's values; converted ones do not
+    assert names == {"time": "t(s)", "E_Y": "Y(um)", "T_a": "a(°C)"}

@@ -15,11 +15,19 @@ import pandas as pd
 from ..errors import ContractError
 
 
-def lab_names(cfg) -> dict[str, str]:
-    """``{contract name: the lab's raw name}`` of the data config: the one place that knows
-    how a record's headers map to contract names (today ``data.columns``)."""
-    columns = cfg.data.get("columns") or {}
-    return {str(contract): str(raw) for raw, contract in columns.items() if str(raw) != str(contract)}
+def lab_names(cfg, ds=None) -> dict[str, str]:
+    """``{contract name: the lab's raw name}``: the one place that knows how a record's
+    headers map to contract names -- as the dataset ``ds`` was read (``data.columns`` and
+    ``data.roles``, :func:`thermocomp.io.roles.contract_columns`), else ``data.columns``.
+    A column read in another unit (``ch1(mm)`` -> ``E_ch1`` in µm) is left out: under the
+    lab's name it would carry the lab's unit, so the model takes it by its contract name only."""
+    columns = dict(cfg.data.get("columns") or {})
+    converted = set()
+    if ds is not None:
+        columns.update(ds.meta.get("column_map") or {})
+        converted = set(ds.meta.get("converted") or ())
+    return {str(contract): str(raw) for raw, contract in columns.items()
+            if str(raw) != str(contract) and str(contract) not in converted}
 
 
 def to_contract(frame: pd.DataFrame, names: Mapping[str, str]) -> pd.DataFrame:

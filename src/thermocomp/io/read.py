@@ -164,7 +164,7 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     if path.stat().st_size == 0:
         raise ContractError("empty file", file=path)
     load = _load_parquet if path.suffix.lower() == ".parquet" else _load_csv
-    columns, renamed = load(path, opts)
+    columns, renamed, rescaled = load(path, opts)
     rows = len(next(iter(columns.values())))
     if rows == 0:
         raise ContractError("file has no data rows", file=path)
@@ -181,6 +181,8 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
     if renamed:          # the file's own names (data.columns, data.roles): raw -> contract
         report["columns"] = renamed
+    if rescaled:         # read in another unit (mm, K, ...): the lab's name carries other values
+        report["converted"] = rescaled
     return table, {"rows": table.num_rows, **report}
 
 
@@ -341,7 +343,9 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     report = _dataset_report(_name(path), entries, columns, opts)
     report["ambient"] = _manifest_ambient(manifest, frames)
     manifest = _starts_from_timestamps(manifest, entries)
-    return Dataset(manifest, frames, _name(path), {"path": str(root)}), report
+    meta = {"path": str(root), "column_map": report.get("column_map", {}),
+            "converted": sorted({c for e in entries.values() for c in e.get("converted", [])})}
+    return Dataset(manifest, frames, _name(path), meta), report
 
 
 def _name(path) -> str:

@@ -107,7 +107,8 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     if TIME in names:
         types[TIME] = _csv_time_type(path, first_row, names.index(TIME), opts)
     table = _read_csv_typed(path, names, types, opts)
-    return _converted(_columns(table.select(list(types))), scales), _renames(header, named)
+    return (_converted(_columns(table.select(list(types))), scales), _renames(header, named),
+            _rescaled(scales))
 
 
 def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> None:
@@ -318,7 +319,12 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
         else:
             column = _parquet_numbers(column, name, path)
         table = table.set_column(i, name, column)
-    return _converted(_columns(table), scales), _renames(list(first), named)
+    return _converted(_columns(table), scales), _renames(list(first), named), _rescaled(scales)
+
+
+def _rescaled(scales: dict) -> list[str]:
+    """Contract names whose values were converted to the contract's unit (not only renamed)."""
+    return sorted(n for n, (scale, offset) in scales.items() if (scale, offset) != (1.0, 0.0))
 
 
 def _renames(raw: list[str], named: list[str | None]) -> dict[str, str]:

@@ -442,14 +442,14 @@ def lead_ins(comp: Compensator, ds, ids) -> dict:
     return {c: lead_in(ds, chain) for c, chain in carried.items()}
 
 
-def deployable(cfg: DictConfig, streaming, train: dict):
+def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     """What ``promote`` registers and ``replay`` streams: the adaptive compensator around
     ``streaming`` when ``monitor.adaptive`` (default), else ``streaming`` itself; it reads
     the lab's column names too (:func:`~thermocomp.deploy.naming.lab_names`)."""
     from ..deploy.naming import lab_names
 
     deployed = build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
-    deployed.lab_names_ = lab_names(cfg)
+    deployed.lab_names_ = lab_names(cfg, ds)
     return deployed
 
 

@@ -284,7 +284,7 @@ def promote(cfg: DictConfig) -> dict:
             f"run {run_id}: streamed predictions differ from batch ones by {deviation:.3g} µm "
             f"(> promote.max_stream_deviation_um); a model with memory must implement "
             f"stream_init/stream_step to be deployed")
-    deployed = deployable(cfg, streaming, train)   # what the pyfunc holds (monitor.adaptive)
+    deployed = deployable(cfg, streaming, train, ds)   # what the pyfunc holds (monitor.adaptive)
     # where each campaign leaves the stream: a served campaign may continue it (``continues``)
     deployed.end_states_ = end_states(deployed, {c: ds.campaigns[c] for c in train_ids + test_ids},
                                       leads)

@@ -70,7 +70,7 @@ def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
         comp = load_model(path)
         name = model_family(comp)
         train = {c: ds.campaigns[c] for c in train_ids}
-    return deployable(cfg, deploy_stream(cfg, comp, train), train), source, name
+    return deployable(cfg, deploy_stream(cfg, comp, train), train, ds), source, name
 
 
 def replay(cfg: DictConfig) -> dict:
