@@ -29,17 +29,20 @@ from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
+import scipy.linalg
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.linear_model import Ridge
 from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
 from sklearn.utils.validation import check_is_fitted, validate_data
+from threadpoolctl import threadpool_limits
 
 from ..context import TIME, Y_MEASURED, SideInputs, groups_of, scalar, values
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
 from ..params import POSITIVE, check_estimator, choice, either, integer, numbers, optional
 from ._dynamics import first_order_lags, free_run, lag_index, previous, segment_bounds, segment_starts
+from ._memo import ArrayMemo
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
 MIN_SPLITS = 2
@@ -100,13 +103,18 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     one_step = np.empty((n_folds, alphas.size))
     free = np.empty_like(one_step)
     others = [j for j in range(Z.shape[1]) if j != ar_column]
+    # the folds' Gram matrices depend on Z alone: every target of a compensator shares them
+    spectra = _fold_spectra(Z, alphas[0] if alphas.size == 1 else None,
+                            *(rows for split in splits for rows in split))
     for f, (tr, va) in enumerate(splits):
-        Ztr = Z[tr]
-        mean, y_mean = Ztr.mean(axis=0), y[tr].mean()
-        Ztr = Ztr - mean
-        lam, V = np.linalg.eigh(Ztr.T @ Ztr)
-        proj = V.T @ (Ztr.T @ (y[tr] - y_mean))
-        W = V @ (proj[:, None] / (np.clip(lam, 0.0, None)[:, None] + alphas[None, :]))
+        (mean, lam, V), y_mean = spectra[f], y[tr].mean()
+        weights = np.zeros(len(y))
+        weights[tr] = y[tr] - y_mean
+        rhs = Z.T @ weights                  # (Z_tr - mean)^T (y_tr - y_mean): the centred y sums to 0
+        if lam is None:   # one penalty (fixed beforehand): V holds the factor of G + alpha I
+            W = scipy.linalg.cho_solve(V, rhs)[:, None]
+        else:
+            W = V @ ((V.T @ rhs)[:, None] / (np.clip(lam, 0.0, None)[:, None] + alphas[None, :]))
         c = y_mean - mean @ W
         one_step[f] = np.mean((Z[va] @ W + c - y[va, None]) ** 2, axis=0)
         if ar_column is None:
@@ -125,11 +133,41 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     return {"one_step": one_step, "free_run": free}
 
 
+def _compute_fold_spectra(Z, alpha, *splits) -> tuple:
+    """Per fold ``(mean, eigenvalues, eigenvectors)`` of the centred training rows' Gram
+    matrix, or with one penalty ``alpha`` ``(mean, None, Cholesky factor of G + alpha I)``."""
+    out = []
+    for tr in splits[::2]:
+        Ztr = Z[tr]
+        mean = Ztr.mean(axis=0)
+        Ztr -= mean
+        gram = Ztr.T @ Ztr
+        if alpha is None:
+            out.append((mean, *np.linalg.eigh(gram)))
+        else:
+            gram[np.diag_indices_from(gram)] += alpha
+            out.append((mean, None, scipy.linalg.cho_factor(gram)))
+    return tuple(out)
+
+
+_fold_spectra = ArrayMemo(_compute_fold_spectra, size=2)
+
+
 def _summary(name: str, folds: np.ndarray) -> dict:
     """Mean and s.d. over folds (``inf`` for an unstable model)."""
     if not np.all(np.isfinite(folds)):
         return {name: float("inf"), f"{name}_sd": float("inf")}
     return {name: float(np.mean(folds)), f"{name}_sd": float(np.std(folds))}
+
+
+def _compute_features(X, time, runs, taus) -> np.ndarray:
+    lags = first_order_lags(X, time, runs, taus)
+    lags -= np.tile(X, taus.size)
+    return np.hstack([X, lags])
+
+
+# one stack of rows is featurised for every target, every fold and every single-campaign model
+_lag_bank_features = ArrayMemo(_compute_features)
 
 
 def _increments(F, groups) -> np.ndarray:
@@ -276,10 +314,13 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         return out
 
     def _features(self, X, context) -> np.ndarray:
-        """``[x | L_tau1[x] - x | ... | L_tauK[x] - x]``, one block of ``p`` columns per time constant."""
-        groups = groups_of(context)
-        lags = first_order_lags(X, self._time(context, groups, X.shape[0]), groups, self.taus_)
-        return np.hstack([X, lags - np.tile(X, self.taus_.size)])
+        """``[x | L_tau1[x] - x | ... | L_tauK[x] - x]``, one block of ``p`` columns per time
+        constant (read-only: remembered for the next model on the same rows)."""
+        groups, n = groups_of(context), X.shape[0]
+        starts = segment_starts(groups, n)    # campaigns as run numbers: a numeric memo key
+        runs = None if groups is None else np.repeat(np.arange(starts.size), np.diff(np.r_[starts, n]))
+        return _lag_bank_features(np.asarray(X, dtype=float), self._time(context, groups, n), runs,
+                                  self.taus_)
 
     @staticmethod
     def _period(time, groups) -> float | None:
@@ -288,6 +329,9 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         return float(np.median(steps)) if steps.size else None
 
     # -- fit ----------------------------------------------------------------------------
+    # The ridge path's matrices are a few hundred columns wide: BLAS threads only add contention
+    # (an eigendecomposition 15x slower with 2 threads on a busy 2-core machine), as in diagnose.
+    @threadpool_limits.wrap(limits=1, user_api="blas")
     def fit(self, X, y, context=None):
         alphas = self._check_params()
         X, y = validate_data(self, X, y, y_numeric=True)
@@ -349,6 +393,14 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.context_columns_ = [TIME] if time is not None else []
         return self
 
+    def chosen_params(self) -> dict:
+        """The parameters that fix what the CV chose (one penalty, the AR term kept or not):
+        a copy fitted with them runs no choice of its own (see
+        :func:`thermocomp.compensator.with_chosen_hyperparameters`)."""
+        check_is_fitted(self)
+        chosen = self.cv_results_.loc[self.cv_results_["chosen"]].iloc[0]
+        return {"alphas": [self.alpha_], "ar": bool(chosen["ar"])}
+
     @staticmethod
     def _design(design: str, F, y, y_prev, groups):
         """Regressors and target of a design: ``lags`` ``(F, y)``, ``lags+ar`` ``([F | y(t-1)], y)``,
@@ -384,6 +436,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         return int(table.index[order[0]])
 
     # -- prediction ---------------------------------------------------------------------
+    @threadpool_limits.wrap(limits=1, user_api="blas")
     def predict(self, X, context=None):
         """Predicted error: free run (simulation), or one-step with ``y_measured`` in ``context``."""
         check_is_fitted(self)
