@@ -10,7 +10,9 @@ samples a minute apart, ``--sensors`` temperatures driven by a few heat sources 
 first-order lags, two error columns, the last tenth of the campaigns the test split), then
 runs ``thermocomp run track=false plots=none`` with each model in a fresh process (median
 of ``--repeats``, 3), prints each run's phases (the ``time (s): ...`` line it logs), the wall
-times and their ratio (acceptance: <= 3).
+times and their ratio (acceptance: <= 3).  ``--blas-threads 1`` runs both single-threaded: on
+a shared, loaded machine multi-threaded BLAS on small matrices is many times slower, which
+favours whichever model limits its threads; the single-threaded ratio is the models' own.
 """
 
 from __future__ import annotations
@@ -81,11 +83,11 @@ def phases(stderr: str) -> dict[str, float]:
     return {name: float(s) for name, s in (p.rsplit(" ", 1) for p in match[1].split(" + "))}
 
 
-def timed_run(data: Path, out: Path, model: str, overrides: list[str]) -> tuple[float, dict]:
+def timed_run(data: Path, out: Path, model: str, overrides: list[str], env: dict) -> tuple[float, dict]:
     cmd = [str(BIN / "thermocomp"), "run", "track=false", "plots=none", f"data.path={data}",
            f"out={out}", f"model={model}", *overrides]
     t0 = time.perf_counter()
-    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    proc = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True, env=env)
     seconds = time.perf_counter() - t0
     if proc.returncode != 0:
         raise RuntimeError(f"{' '.join(cmd)} failed:\n{proc.stderr[-2000:]}")
@@ -98,17 +100,24 @@ def main() -> None:
     parser.add_argument("--rows", type=int, default=600)
     parser.add_argument("--sensors", type=int, default=24)
     parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--blas-threads", type=int, default=None,
+                        help="BLAS threads of both runs (default: the library's own choice)")
     args, overrides = parser.parse_known_args()
+    env = dict(os.environ)
+    if args.blas_threads is not None:   # both models alike: the ratio without thread contention
+        env.update({k: str(args.blas_threads) for k in
+                    ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS")})
     one, five, _ = os.getloadavg()
     print(f"{args.campaigns} campaigns x {args.rows} rows x {args.sensors} sensors; "
-          f"load average {one:.2f} {five:.2f} on {os.cpu_count()} cores")
+          f"load average {one:.2f} {five:.2f} on {os.cpu_count()} cores; BLAS threads "
+          f"{args.blas_threads or 'default'}")
     with tempfile.TemporaryDirectory() as tmp:
         data = write_campaigns(Path(tmp) / "data", args.campaigns, args.rows, args.sensors)
         walls: dict[str, list[float]] = {m: [] for m in MODELS}
         parts: dict[str, list[dict]] = {m: [] for m in MODELS}
         for _ in range(args.repeats):
             for model in MODELS:
-                seconds, split = timed_run(data, Path(tmp) / f"out_{model}", model, overrides)
+                seconds, split = timed_run(data, Path(tmp) / f"out_{model}", model, overrides, env)
                 walls[model].append(seconds)
                 parts[model].append(split)
     for model in MODELS:

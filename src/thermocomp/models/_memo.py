@@ -28,8 +28,9 @@ class ArrayMemo:
         self._lock = threading.Lock()
 
     @staticmethod
-    def _key(args) -> bytes:
-        digest = hashlib.blake2b(digest_size=20)
+    def key(*args) -> bytes:
+        """The digest that finds ``fn(*args)`` again (a caller may build its own from it)."""
+        digest = hashlib.sha256()
         for a in args:
             if isinstance(a, np.ndarray):
                 if a.dtype == object:
@@ -42,7 +43,11 @@ class ArrayMemo:
         return digest.digest()
 
     def __call__(self, *args):
-        key = self._key(args)
+        return self.lookup(self.key(*args), *args)
+
+    def lookup(self, key: bytes, *args):
+        """``fn(*args)``, remembered under ``key``: a caller that knows what ``args`` derive from
+        (a digest of :meth:`key`, the settings) saves hashing large arrays."""
         with self._lock:
             if key in self._results:
                 self._results.move_to_end(key)

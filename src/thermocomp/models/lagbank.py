@@ -77,7 +77,7 @@ def forward_gap(longest_lag_samples: float, n: int, n_splits: int,
 
 # -- the ridge path over the folds ---------------------------------------------------------------
 def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = None,
-                  ar_scaling: tuple[float, float] = (0.0, 1.0)) -> dict:
+                  ar_scaling: tuple[float, float] = (0.0, 1.0), z_key: bytes | None = None) -> dict:
     r"""Validation MSE of ridge fits of ``y`` on ``Z`` for every fold and penalty.
 
     Each fold centres ``Z`` and ``y`` on its training rows and solves
@@ -93,6 +93,10 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     ``groups`` through every row, as on a machine -- and scored on the
     validation rows (``inf`` when unstable).
 
+    The folds' factorisations depend on ``Z`` alone and are remembered (every target of a
+    compensator shares its features): by ``z_key``, a digest standing for ``Z``, else by
+    ``Z``'s bytes.
+
     Returns
     -------
     dict
@@ -104,8 +108,9 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     free = np.empty_like(one_step)
     others = [j for j in range(Z.shape[1]) if j != ar_column]
     # the folds' Gram matrices depend on Z alone: every target of a compensator shares them
-    spectra = _fold_spectra(Z, alphas[0] if alphas.size == 1 else None,
-                            *(rows for split in splits for rows in split))
+    args = (alphas[0] if alphas.size == 1 else None, *(rows for split in splits for rows in split))
+    key = _fold_spectra.key(z_key, *args) if z_key is not None else _fold_spectra.key(Z, *args)
+    spectra = _fold_spectra.lookup(key, Z, *args)
     for f, (tr, va) in enumerate(splits):
         (mean, lam, V), y_mean = spectra[f], y[tr].mean()
         weights = np.zeros(len(y))
@@ -150,7 +155,7 @@ def _compute_fold_spectra(Z, alpha, *splits) -> tuple:
     return tuple(out)
 
 
-_fold_spectra = ArrayMemo(_compute_fold_spectra, size=2)
+_fold_spectra = ArrayMemo(_compute_fold_spectra, size=4)
 
 
 def _summary(name: str, folds: np.ndarray) -> dict:
@@ -316,11 +321,16 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     def _features(self, X, context) -> np.ndarray:
         """``[x | L_tau1[x] - x | ... | L_tauK[x] - x]``, one block of ``p`` columns per time
         constant (read-only: remembered for the next model on the same rows)."""
+        return self._keyed_features(X, context)[1]
+
+    def _keyed_features(self, X, context) -> tuple[bytes, np.ndarray]:
+        """(digest of what the features derive from, :meth:`_features`)."""
         groups, n = groups_of(context), X.shape[0]
         starts = segment_starts(groups, n)    # campaigns as run numbers: a numeric memo key
         runs = None if groups is None else np.repeat(np.arange(starts.size), np.diff(np.r_[starts, n]))
-        return _lag_bank_features(np.asarray(X, dtype=float), self._time(context, groups, n), runs,
-                                  self.taus_)
+        args = (np.asarray(X, dtype=float), self._time(context, groups, n), runs, self.taus_)
+        key = _lag_bank_features.key(*args)
+        return key, _lag_bank_features.lookup(key, *args)
 
     @staticmethod
     def _period(time, groups) -> float | None:
@@ -350,7 +360,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         names = [str(c) for c in getattr(self, "feature_names_in_", [f"x{j}" for j in range(p)])]
         self.features_ = names + [f"L[{tau:.6g}s]({c})-{c}" for tau in self.taus_ for c in names]
 
-        F = self._features(X, context)
+        f_key, F = self._keyed_features(X, context)
         k = min(int(self.n_splits), n - 1)   # tiny samples: fewer folds, blocks of >= 1 row
         self.splitter_ = default_splitter(groups, n, forward_gap(self.taus_[-1] / self.sample_period_s_,
                                                                  n, k), n_splits=k)
@@ -365,9 +375,12 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         for design in designs:
             D, target = self._design(design, F, y, y_prev, groups)
             scalers[design] = scaler = StandardScaler().fit(D)
+            # D is F, F with y(t-1) or F's increments, standardised: F's digest stands for it
+            z_key = ArrayMemo.key(f_key, design, scaler.mean_, scaler.scale_,
+                                  y_prev if design == "lags+ar" else None)
             scores = ridge_path_cv(scaler.transform(D), target, splits, alphas, groups,
                                    ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
-                                   ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]))
+                                   ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]), z_key=z_key)
             for i, alpha in enumerate(alphas):
                 free = scores["free_run"][:, i] if design != "increments" else np.array([np.inf])
                 records.append({"design": design, "ar": design == "lags+ar", "alpha": float(alpha),
