@@ -97,7 +97,8 @@ def two_mode_sweep(tmp_path_factory):
                                                             str(root))).read())
         runs[r.info.run_id] = {"inputs": r.data.params["data.inputs"], "mode": metrics["mode"],
                                "own": metrics["targets"]["E_X"]["validation"]["rmse"],
-                               "simulation": summary(metrics["targets"])["val_rmse"]}
+                               "simulation": summary(metrics["targets"])["val_rmse"],
+                               "logged": r.data.metrics}
     assert len(runs) == 4
     return {"root": root, "data": data, "uri": uri, "sweep": sweep, "runs": runs}
 
@@ -111,6 +112,13 @@ def test_the_two_rankings_differ_on_this_data(two_mode_sweep):
     by_own, by_sim = runs[_best(runs, "own")], runs[_best(runs, "simulation")]
     assert (by_own["inputs"], by_own["mode"]) == ("['T_1']", "one_step")
     assert by_sim["inputs"] == "['T_2']"
+
+
+def test_a_one_step_run_logs_its_simulation_validation_to_mlflow(two_mode_sweep):
+    runs = two_mode_sweep["runs"].values()
+    for one in (r for r in runs if r["mode"] == "one_step"):
+        sim = next(r for r in runs if r["mode"] == "simulation" and r["inputs"] == one["inputs"])
+        assert one["logged"]["E_X.validation_simulation.rmse"] == sim["logged"]["E_X.val.rmse"]
 
 
 def test_promote_chooses_by_the_simulation_mode_validation_and_says_so(two_mode_sweep, capsys):

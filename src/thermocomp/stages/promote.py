@@ -272,6 +272,8 @@ def promote(cfg: DictConfig) -> dict:
     comp, digest = _load_run_model(run_id, uri)
     cand_score, val_figures, mode, val_mode = _validation_score(run_id, uri, cfg)
     basis = basis or {"figure": criterion, "mode": DEPLOYED_MODE, "fallback": {}}
+    say(f"run {run_id}: {criterion} {_fmt(cand_score)} of its {val_mode}-mode validation (scored "
+        f"in {mode}; the deployed compensator runs in {DEPLOYED_MODE})")
     if val_mode != DEPLOYED_MODE:
         basis["fallback"][run_id] = val_mode
         logger.warning("run %s has no %s-mode validation (scored in %s before it was recorded): "
