@@ -73,3 +73,19 @@ def test_a_second_model_on_the_same_rows_reuses_their_lag_features(tmp_path):
     moved[5, 0] += 1.0                                              # one reading differs: recomputed
     Fm = a._features(moved, context)
     assert Fm is not Fa and not np.array_equal(Fm, Fa)
+
+
+def test_fold_grams_from_the_whole_gram_equal_those_of_the_training_rows():
+    from sklearn.model_selection import GroupKFold
+
+    from thermocomp.models.lagbank import ForwardChaining, _training_grams
+
+    rng = np.random.default_rng(3)
+    Z = rng.normal(size=(200, 6)) @ rng.normal(size=(6, 6)) + rng.normal(size=6)
+    groups = np.repeat(np.arange(8), 25)
+    for splitter in (GroupKFold(4), ForwardChaining(4, gap=3, min_train_fraction=0.5)):
+        splits = [rows for split in splitter.split(Z, None, groups) for rows in split]
+        for (mean, gram), tr in zip(_training_grams(Z, splits), splits[::2]):
+            centred = Z[tr] - Z[tr].mean(axis=0)
+            np.testing.assert_allclose(mean, Z[tr].mean(axis=0), rtol=1e-12, atol=1e-12)
+            np.testing.assert_allclose(gram, centred.T @ centred, rtol=1e-10, atol=1e-9)

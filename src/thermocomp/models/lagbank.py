@@ -138,15 +138,32 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     return {"one_step": one_step, "free_run": free}
 
 
+def _training_grams(Z, splits):
+    """``(mean, centred Gram)`` of each fold's training rows.  Folds that split the rows in
+    two (leave-campaigns-out) take the whole Gram less the validation rows' (one product of
+    all rows and one of each validation block, instead of one of each training set)."""
+    n = len(Z)
+    trains, valids = splits[::2], splits[1::2]
+    if all(np.array_equal(np.bincount(np.r_[tr, va], minlength=n), np.ones(n, dtype=int))
+           for tr, va in zip(trains, valids)):
+        total, sums = Z.T @ Z, Z.sum(axis=0)
+        for tr, va in zip(trains, valids):
+            Zva = Z[va]
+            mean = (sums - Zva.sum(axis=0)) / len(tr)
+            yield mean, total - Zva.T @ Zva - len(tr) * np.outer(mean, mean)
+        return
+    for tr in trains:                  # forward chaining: the training rows are a prefix
+        Ztr = Z[tr]
+        mean = Ztr.mean(axis=0)
+        Ztr -= mean
+        yield mean, Ztr.T @ Ztr
+
+
 def _compute_fold_spectra(Z, alpha, *splits) -> tuple:
     """Per fold ``(mean, eigenvalues, eigenvectors)`` of the centred training rows' Gram
     matrix, or with one penalty ``alpha`` ``(mean, None, Cholesky factor of G + alpha I)``."""
     out = []
-    for tr in splits[::2]:
-        Ztr = Z[tr]
-        mean = Ztr.mean(axis=0)
-        Ztr -= mean
-        gram = Ztr.T @ Ztr
+    for mean, gram in _training_grams(Z, splits):
         if alpha is None:
             out.append((mean, *np.linalg.eigh(gram)))
         else:
