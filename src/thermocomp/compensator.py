@@ -184,3 +184,17 @@ def _simulation(context):
     if context is not None and Y_MEASURED in context:
         return context.drop(columns=[Y_MEASURED])
     return context
+
+
+def with_chosen_hyperparameters(template: Compensator, fitted: Compensator) -> Compensator:
+    """``template`` (unfitted) whose estimator takes, per target, the hyper-parameters that
+    ``fitted``'s estimator chose by its own cross-validation (``chosen_params()``), so that its
+    copies fit without one: the many small models of mutual prediction.  Families without
+    ``chosen_params`` (and targets ``fitted`` does not have) are left as they are."""
+    from .models.base import PerTarget
+
+    chosen = {t: est.chosen_params() for t, est in getattr(fitted, "estimators_", {}).items()
+              if callable(getattr(est, "chosen_params", None))}
+    if not chosen:
+        return template
+    return clone(template).set_params(estimator=PerTarget(template.estimator, chosen))

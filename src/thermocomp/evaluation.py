@@ -244,16 +244,29 @@ def validation_report(make_compensator: Callable[[], Compensator], ds: Dataset,
     -------
     dict target -> ``{"rmse", "rsd_mean", "rsd_sd", "method", "n_folds", "per_unit"}``
     """
+    return validation_reports(make_compensator, ds, (mode,), fitted, n_folds)[mode]
+
+
+def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
+                       modes=("simulation",), fitted: Compensator | None = None,
+                       n_folds: int = VAL_FOLDS) -> dict:
+    """:func:`validation_report` in each of ``modes`` from the same fits (a fold's model is
+    fitted once and predicts in every mode): ``{mode: {target: entry}}``."""
+    modes = tuple(dict.fromkeys(modes))
     val_ids = ds.ids("val")
     train = require_split(ds, "train")
     if val_ids:
         comp = fitted if fitted is not None else make_compensator().fit(
             {c: ds.campaigns[c] for c in train})
         camps = {c: ds.campaigns[c] for c in val_ids}
-        pred, meas = comp.predict(camps, mode=mode), comp.measured(camps)
-        residual = {t: {c: meas[c][t].to_numpy() - pred[c][t].to_numpy() for c in val_ids}
-                    for t in comp.targets_}
-        return _validation_entries(residual, "val split", 1)
+        meas = comp.measured(camps)
+        out = {}
+        for mode in modes:
+            pred = comp.predict(camps, mode=mode)
+            residual = {t: {c: meas[c][t].to_numpy() - pred[c][t].to_numpy() for c in val_ids}
+                        for t in comp.targets_}
+            out[mode] = _validation_entries(residual, "val split", 1)
+        return out
     template = make_compensator()
     camps = {c: ds.campaigns[c] for c in train}
     if len(train) >= 2:
@@ -262,12 +275,14 @@ def validation_report(make_compensator: Callable[[], Compensator], ds: Dataset,
     else:
         folds = _forward_folds(camps, n_folds)
         method = "forward chaining"
-    residual = (_fold_residuals_stacked(template, camps, folds, mode)
-                if template.denoiser is None else _fold_residuals(template, camps, folds, mode))
-    out = _validation_entries(residual, method, len(folds))
-    if method == "forward chaining":
-        for entry in out.values():
-            entry["gap_samples"] = folds[0][3] if folds else 0
+    residuals = (_fold_residuals_stacked(template, camps, folds, modes)
+                 if template.denoiser is None else _fold_residuals(template, camps, folds, modes))
+    out = {}
+    for mode in modes:
+        out[mode] = _validation_entries(residuals[mode], method, len(folds))
+        if method == "forward chaining":
+            for entry in out[mode].values():
+                entry["gap_samples"] = folds[0][3] if folds else 0
     return out
 
 
@@ -302,8 +317,9 @@ def _forward_folds(camps: dict, n_folds: int) -> list[tuple]:
     return folds
 
 
-def _fold_residuals_stacked(template: Compensator, camps: dict, folds, mode: str) -> dict:
-    """Residuals of every fold from one stack of the train campaigns (no denoiser to refit)."""
+def _fold_residuals_stacked(template: Compensator, camps: dict, folds, modes) -> dict:
+    """``{mode: residuals}`` of every fold from one stack of the train campaigns (no denoiser
+    to refit)."""
     from sklearn.base import clone
 
     from .frame import resolve_columns, stack
@@ -312,35 +328,39 @@ def _fold_residuals_stacked(template: Compensator, camps: dict, folds, mode: str
     inputs, targets = resolve_columns(columns, template.inputs, template.targets)
     m = stack(camps, inputs, targets, template.reference)
     start = dict(zip(camps, np.cumsum([0] + [len(df) for df in camps.values()])))
-    residual: dict = {t: {} for t in targets}
+    residual: dict = {mode: {t: {} for t in targets} for mode in modes}
     for fit_rows, pred_rows, units, _ in folds:
         comp = clone(template)
         comp.inputs_, comp.targets_, comp.denoiser_ = inputs, targets, None
         comp.fit_stacked(_rows(m, _mask(start, fit_rows, len(m.X))))
         sub = _rows(m, _mask(start, pred_rows, len(m.X)))
-        pred = comp.predict_stacked(sub, mode)
         order = [c for c in camps if c in pred_rows]      # the stack's order
         offsets = dict(zip(order, np.cumsum([0] + [pred_rows[c] for c in order])))
-        for unit, (c, a, b) in units.items():
-            rows = slice(offsets[c] + a, offsets[c] + b)
-            for k, t in enumerate(targets):
-                residual[t][unit] = sub.Y[t].to_numpy()[rows] - pred[rows, k]
+        for mode in modes:
+            pred = comp.predict_stacked(sub, mode)
+            for unit, (c, a, b) in units.items():
+                rows = slice(offsets[c] + a, offsets[c] + b)
+                for k, t in enumerate(targets):
+                    residual[mode][t][unit] = sub.Y[t].to_numpy()[rows] - pred[rows, k]
     return residual
 
 
-def _fold_residuals(template: Compensator, camps: dict, folds, mode: str) -> dict:
-    """Residuals of every fold, refitting the whole compensator (denoiser included) on campaigns."""
+def _fold_residuals(template: Compensator, camps: dict, folds, modes) -> dict:
+    """``{mode: residuals}`` of every fold, refitting the whole compensator (denoiser included)
+    on campaigns."""
     from sklearn.base import clone
 
-    residual: dict = {}
+    residual: dict = {mode: {} for mode in modes}
     for fit_rows, pred_rows, units, _ in folds:
         comp = clone(template).fit({c: camps[c].iloc[:n] for c, n in fit_rows.items()})
         part = {c: camps[c].iloc[:n] for c, n in pred_rows.items()}
-        pred, meas = comp.predict(part, mode=mode), comp.measured(part)
-        for unit, (c, a, b) in units.items():
-            for t in comp.targets_:
-                residual.setdefault(t, {})[unit] = (meas[c][t].to_numpy()[a:b]
-                                                    - pred[c][t].to_numpy()[a:b])
+        meas = comp.measured(part)
+        for mode in modes:
+            pred = comp.predict(part, mode=mode)
+            for unit, (c, a, b) in units.items():
+                for t in comp.targets_:
+                    residual[mode].setdefault(t, {})[unit] = (meas[c][t].to_numpy()[a:b]
+                                                              - pred[c][t].to_numpy()[a:b])
     return residual
 
 

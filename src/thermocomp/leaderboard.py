@@ -6,7 +6,8 @@ the ``val`` split or cross-validation on the train split, see
 :func:`thermocomp.evaluation.validation_report`), then the test figures --
 Rsd SM/SD, RMSE, RMS reduction, E_P95 of the residual at 1 h and 8 h --
 reported beside them.  ``thermocomp compare`` ranks the runs of a sweep by a
-validation figure and ``thermocomp promote`` gates on one: a choice made by
+validation figure and ``thermocomp promote`` gates on one, in simulation mode whatever
+``eval.mode`` a run was scored in (a deployed compensator runs free): a choice made by
 looking at the test split would flatter whatever it chose.
 :func:`baseline_rows` gives the persistence baseline (previous measured error as
 the prediction) in the same layout, shown beside the ranking, never ranked.
@@ -22,6 +23,7 @@ import pandas as pd
 
 from .metrics import reduction_pct
 
+DEPLOYED_MODE = "simulation"   # a deployed compensator runs free: the validation that chooses
 FIGURES = ("rsd_mean", "rsd_sd", "rmse", "rms_reduction_pct", "e_p95_1h", "e_p95_8h")  # test
 VAL_FIGURES = ("val_rmse", "val_rsd_mean", "val_rsd_sd")   # what ranks and gates
 VAL_PREFIX = "val_"
@@ -57,8 +59,27 @@ def _val_figures(validation: Mapping | None) -> dict:
     return {f"{VAL_PREFIX}{k}": v.get(k) for k in ("rmse", "rsd_mean", "rsd_sd")}
 
 
+def deployed_validation(m: Mapping) -> Mapping | None:
+    """A target's validation in the deployed mode: ``validation_simulation`` of a run scored in
+    ``one_step``, else ``validation`` (of a simulation run; of an old one_step run, see
+    :func:`validation_mode`)."""
+    return m.get(f"validation_{DEPLOYED_MODE}") or m.get("validation")
+
+
+def validation_mode(metrics: Mapping) -> str:
+    """The mode of the validation figures :func:`summary` gives for a run's ``metrics.json``:
+    ``simulation``, unless the run was scored in another mode and has no simulation-mode
+    validation (a run made before it was recorded)."""
+    mode = str(metrics.get("mode", DEPLOYED_MODE))
+    targets = metrics.get("targets") or {}
+    if mode == DEPLOYED_MODE or (targets and all(
+            m.get(f"validation_{DEPLOYED_MODE}") for m in targets.values())):
+        return DEPLOYED_MODE
+    return mode
+
+
 def _figures(m: Mapping) -> dict:
-    return {**_val_figures(m.get("validation")), **_target_figures(m["test"])}
+    return {**_val_figures(deployed_validation(m)), **_target_figures(m["test"])}
 
 
 def is_validation(criterion: str) -> bool:
@@ -69,14 +90,15 @@ def is_validation(criterion: str) -> bool:
 def validation_method(targets: Mapping, target: str = "mean") -> str | None:
     """How the validation figures were computed (``method`` of ``metrics.json``), or None."""
     entries = [targets[target]] if target != "mean" else list(targets.values())
-    methods = {(m.get("validation") or {}).get("method") for m in entries} - {None}
+    methods = {(deployed_validation(m) or {}).get("method") for m in entries} - {None}
     return " / ".join(sorted(methods)) or None
 
 
 def summary(targets: Mapping, target: str = "mean") -> dict:
     """Validation and test figures of one target, or their mean over targets (``target='mean'``).
 
-    ``targets`` is the ``targets`` block of ``metrics.json``.  A figure missing
+    ``targets`` is the ``targets`` block of ``metrics.json``; the ``val_*`` figures are
+    of the deployed mode (:func:`deployed_validation`).  A figure missing
     for some target is averaged over the others; ``None`` if missing for all
     (the ``val_*`` figures of a run made with ``eval.validation=false``).
     """
@@ -142,7 +164,12 @@ def descending_for(criterion: str) -> bool:
 
 def rank(rows: Sequence[Mapping], sort_by: str = "val_rmse",
          descending: bool | None = None) -> pd.DataFrame:
-    """Rows as a table, best first by ``sort_by`` (missing values last)."""
+    """Rows as a table, best first by ``sort_by`` (missing values last).
+
+    By a validation figure, rows whose ``val_mode`` is not the deployed mode
+    (old one_step runs: :func:`validation_mode`) come after every other: their
+    figure is not comparable, it ranks them only among themselves.
+    """
     table = pd.DataFrame(list(rows))
     if table.empty:
         return table
@@ -151,8 +178,18 @@ def rank(rows: Sequence[Mapping], sort_by: str = "val_rmse",
     if sort_by not in table.columns:
         raise KeyError(f"cannot sort by {sort_by!r}; columns are {list(table.columns)}")
     desc = descending_for(sort_by) if descending is None else bool(descending)
-    return table.sort_values(sort_by, ascending=not desc, na_position="last",
-                             kind="stable").reset_index(drop=True)
+    table = table.sort_values(sort_by, ascending=not desc, na_position="last", kind="stable")
+    if is_validation(sort_by) and "val_mode" in table.columns:
+        table = table.sort_values("val_mode", key=lambda m: m != DEPLOYED_MODE, kind="stable")
+    return table.reset_index(drop=True)
+
+
+def fallback_runs(table: pd.DataFrame) -> dict:
+    """``{run_id: mode}`` of the ranked runs whose validation is not in the deployed mode."""
+    if table.empty or "val_mode" not in table.columns:
+        return {}
+    other = table[table["val_mode"].notna() & (table["val_mode"] != DEPLOYED_MODE)]
+    return dict(zip(other["run_id"], other["val_mode"]))
 
 
 def beats(candidate: float | None, incumbent: float | None, criterion: str,

@@ -14,7 +14,14 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from .errors import ConfigError
-from .leaderboard import FIGURES, VAL_FIGURES, persistence_summary, summary, validation_method
+from .leaderboard import (
+    FIGURES,
+    VAL_FIGURES,
+    persistence_summary,
+    summary,
+    validation_method,
+    validation_mode,
+)
 from .paths import resolve
 from .tracking import child_runs, latest_sweep, retry_locked
 
@@ -100,7 +107,8 @@ def _varied(params: list[dict]) -> list[str]:
 
 def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
                baselines: list | None = None) -> list[dict]:
-    """One row per child run of ``parent_id`` (unsorted).
+    """One row per child run of ``parent_id`` (unsorted); its ``val_*`` figures are of the
+    deployed (simulation) mode, ``val_mode`` says so (or names the fallback of an old run).
 
     ``baselines``, when given, receives each run's persistence figures
     (:func:`~thermocomp.leaderboard.persistence_summary`, None when absent).
@@ -123,6 +131,7 @@ def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
             raise ConfigError(f"compare.target: {exc.args[0]}") from None
         row.update({f: figures[f] for f in VAL_FIGURES})     # what ranks, then what is reported
         row["val_method"] = method
+        row["val_mode"] = validation_mode(metrics) if metrics else None   # simulation, or a fallback
         row.update({f: figures[f] for f in FIGURES})
         if baselines is not None:
             baselines.append(persistence_summary(metrics["targets"], target) if metrics else None)

@@ -5,8 +5,9 @@ from __future__ import annotations
 from collections.abc import Mapping
 
 import numpy as np
+from sklearn.base import BaseEstimator, clone
 
-from ..context import SideInputs
+from ..context import SideInputs, for_target
 
 
 class LinearStreamMixin(SideInputs):
@@ -14,3 +15,16 @@ class LinearStreamMixin(SideInputs):
 
     def stream_step(self, x_row, state, context: Mapping | None = None):
         return float(np.asarray(x_row, dtype=float) @ self.coef_ + self.intercept_), state
+
+
+class PerTarget(BaseEstimator):
+    """``estimator`` with per-target parameters: ``for_target(t)`` is an unfitted copy with
+    ``params[t]`` set (the hyper-parameters a fit on more data chose, see
+    :func:`thermocomp.compensator.with_chosen_hyperparameters`)."""
+
+    def __init__(self, estimator, params: Mapping | None = None):
+        self.estimator = estimator
+        self.params = params
+
+    def for_target(self, target: str):
+        return clone(for_target(self.estimator, target)).set_params(**(self.params or {}).get(target, {}))

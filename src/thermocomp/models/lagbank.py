@@ -29,17 +29,20 @@ from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
+import scipy.linalg
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.linear_model import Ridge
 from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
 from sklearn.utils.validation import check_is_fitted, validate_data
+from threadpoolctl import threadpool_limits
 
 from ..context import TIME, Y_MEASURED, SideInputs, groups_of, scalar, values
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
 from ..params import POSITIVE, check_estimator, choice, either, integer, numbers, optional
 from ._dynamics import first_order_lags, free_run, lag_index, previous, segment_bounds, segment_starts
+from ._memo import ArrayMemo
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
 MIN_SPLITS = 2
@@ -74,7 +77,7 @@ def forward_gap(longest_lag_samples: float, n: int, n_splits: int,
 
 # -- the ridge path over the folds ---------------------------------------------------------------
 def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = None,
-                  ar_scaling: tuple[float, float] = (0.0, 1.0)) -> dict:
+                  ar_scaling: tuple[float, float] = (0.0, 1.0), z_key: bytes | None = None) -> dict:
     r"""Validation MSE of ridge fits of ``y`` on ``Z`` for every fold and penalty.
 
     Each fold centres ``Z`` and ``y`` on its training rows and solves
@@ -90,6 +93,10 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     ``groups`` through every row, as on a machine -- and scored on the
     validation rows (``inf`` when unstable).
 
+    The folds' factorisations depend on ``Z`` alone and are remembered (every target of a
+    compensator shares its features): by ``z_key``, a digest standing for ``Z``, else by
+    ``Z``'s bytes.
+
     Returns
     -------
     dict
@@ -100,13 +107,19 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     one_step = np.empty((n_folds, alphas.size))
     free = np.empty_like(one_step)
     others = [j for j in range(Z.shape[1]) if j != ar_column]
+    # the folds' Gram matrices depend on Z alone: every target of a compensator shares them
+    args = (alphas[0] if alphas.size == 1 else None, *(rows for split in splits for rows in split))
+    key = _fold_spectra.key(z_key, *args) if z_key is not None else _fold_spectra.key(Z, *args)
+    spectra = _fold_spectra.lookup(key, Z, *args)
     for f, (tr, va) in enumerate(splits):
-        Ztr = Z[tr]
-        mean, y_mean = Ztr.mean(axis=0), y[tr].mean()
-        Ztr = Ztr - mean
-        lam, V = np.linalg.eigh(Ztr.T @ Ztr)
-        proj = V.T @ (Ztr.T @ (y[tr] - y_mean))
-        W = V @ (proj[:, None] / (np.clip(lam, 0.0, None)[:, None] + alphas[None, :]))
+        (mean, lam, V), y_mean = spectra[f], y[tr].mean()
+        weights = np.zeros(len(y))
+        weights[tr] = y[tr] - y_mean
+        rhs = Z.T @ weights                  # (Z_tr - mean)^T (y_tr - y_mean): the centred y sums to 0
+        if lam is None:   # one penalty (fixed beforehand): V holds the factor of G + alpha I
+            W = scipy.linalg.cho_solve(V, rhs)[:, None]
+        else:
+            W = V @ ((V.T @ rhs)[:, None] / (np.clip(lam, 0.0, None)[:, None] + alphas[None, :]))
         c = y_mean - mean @ W
         one_step[f] = np.mean((Z[va] @ W + c - y[va, None]) ** 2, axis=0)
         if ar_column is None:
@@ -125,11 +138,58 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     return {"one_step": one_step, "free_run": free}
 
 
+def _training_grams(Z, splits):
+    """``(mean, centred Gram)`` of each fold's training rows.  Folds that split the rows in
+    two (leave-campaigns-out) take the whole Gram less the validation rows' (one product of
+    all rows and one of each validation block, instead of one of each training set)."""
+    n = len(Z)
+    trains, valids = splits[::2], splits[1::2]
+    if all(np.array_equal(np.bincount(np.r_[tr, va], minlength=n), np.ones(n, dtype=int))
+           for tr, va in zip(trains, valids)):
+        total, sums = Z.T @ Z, Z.sum(axis=0)
+        for tr, va in zip(trains, valids):
+            Zva = Z[va]
+            mean = (sums - Zva.sum(axis=0)) / len(tr)
+            yield mean, total - Zva.T @ Zva - len(tr) * np.outer(mean, mean)
+        return
+    for tr in trains:                  # forward chaining: the training rows are a prefix
+        Ztr = Z[tr]
+        mean = Ztr.mean(axis=0)
+        Ztr -= mean
+        yield mean, Ztr.T @ Ztr
+
+
+def _compute_fold_spectra(Z, alpha, *splits) -> tuple:
+    """Per fold ``(mean, eigenvalues, eigenvectors)`` of the centred training rows' Gram
+    matrix, or with one penalty ``alpha`` ``(mean, None, Cholesky factor of G + alpha I)``."""
+    out = []
+    for mean, gram in _training_grams(Z, splits):
+        if alpha is None:
+            out.append((mean, *np.linalg.eigh(gram)))
+        else:
+            gram[np.diag_indices_from(gram)] += alpha
+            out.append((mean, None, scipy.linalg.cho_factor(gram)))
+    return tuple(out)
+
+
+_fold_spectra = ArrayMemo(_compute_fold_spectra, size=4)
+
+
 def _summary(name: str, folds: np.ndarray) -> dict:
     """Mean and s.d. over folds (``inf`` for an unstable model)."""
     if not np.all(np.isfinite(folds)):
         return {name: float("inf"), f"{name}_sd": float("inf")}
     return {name: float(np.mean(folds)), f"{name}_sd": float(np.std(folds))}
+
+
+def _compute_features(X, time, runs, taus) -> np.ndarray:
+    lags = first_order_lags(X, time, runs, taus)
+    lags -= np.tile(X, taus.size)
+    return np.hstack([X, lags])
+
+
+# one stack of rows is featurised for every target, every fold and every single-campaign model
+_lag_bank_features = ArrayMemo(_compute_features)
 
 
 def _increments(F, groups) -> np.ndarray:
@@ -276,10 +336,18 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         return out
 
     def _features(self, X, context) -> np.ndarray:
-        """``[x | L_tau1[x] - x | ... | L_tauK[x] - x]``, one block of ``p`` columns per time constant."""
-        groups = groups_of(context)
-        lags = first_order_lags(X, self._time(context, groups, X.shape[0]), groups, self.taus_)
-        return np.hstack([X, lags - np.tile(X, self.taus_.size)])
+        """``[x | L_tau1[x] - x | ... | L_tauK[x] - x]``, one block of ``p`` columns per time
+        constant (read-only: remembered for the next model on the same rows)."""
+        return self._keyed_features(X, context)[1]
+
+    def _keyed_features(self, X, context) -> tuple[bytes, np.ndarray]:
+        """(digest of what the features derive from, :meth:`_features`)."""
+        groups, n = groups_of(context), X.shape[0]
+        starts = segment_starts(groups, n)    # campaigns as run numbers: a numeric memo key
+        runs = None if groups is None else np.repeat(np.arange(starts.size), np.diff(np.r_[starts, n]))
+        args = (np.asarray(X, dtype=float), self._time(context, groups, n), runs, self.taus_)
+        key = _lag_bank_features.key(*args)
+        return key, _lag_bank_features.lookup(key, *args)
 
     @staticmethod
     def _period(time, groups) -> float | None:
@@ -288,6 +356,9 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         return float(np.median(steps)) if steps.size else None
 
     # -- fit ----------------------------------------------------------------------------
+    # The ridge path's matrices are a few hundred columns wide: BLAS threads only add contention
+    # (an eigendecomposition 15x slower with 2 threads on a busy 2-core machine), as in diagnose.
+    @threadpool_limits.wrap(limits=1, user_api="blas")
     def fit(self, X, y, context=None):
         alphas = self._check_params()
         X, y = validate_data(self, X, y, y_numeric=True)
@@ -306,7 +377,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         names = [str(c) for c in getattr(self, "feature_names_in_", [f"x{j}" for j in range(p)])]
         self.features_ = names + [f"L[{tau:.6g}s]({c})-{c}" for tau in self.taus_ for c in names]
 
-        F = self._features(X, context)
+        f_key, F = self._keyed_features(X, context)
         k = min(int(self.n_splits), n - 1)   # tiny samples: fewer folds, blocks of >= 1 row
         self.splitter_ = default_splitter(groups, n, forward_gap(self.taus_[-1] / self.sample_period_s_,
                                                                  n, k), n_splits=k)
@@ -321,9 +392,12 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         for design in designs:
             D, target = self._design(design, F, y, y_prev, groups)
             scalers[design] = scaler = StandardScaler().fit(D)
+            # D is F, F with y(t-1) or F's increments, standardised: F's digest stands for it
+            z_key = ArrayMemo.key(f_key, design, scaler.mean_, scaler.scale_,
+                                  y_prev if design == "lags+ar" else None)
             scores = ridge_path_cv(scaler.transform(D), target, splits, alphas, groups,
                                    ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
-                                   ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]))
+                                   ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]), z_key=z_key)
             for i, alpha in enumerate(alphas):
                 free = scores["free_run"][:, i] if design != "increments" else np.array([np.inf])
                 records.append({"design": design, "ar": design == "lags+ar", "alpha": float(alpha),
@@ -348,6 +422,14 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                 self.alpha_one_step_)
         self.context_columns_ = [TIME] if time is not None else []
         return self
+
+    def chosen_params(self) -> dict:
+        """The parameters that fix what the CV chose (one penalty, the AR term kept or not):
+        a copy fitted with them runs no choice of its own (see
+        :func:`thermocomp.compensator.with_chosen_hyperparameters`)."""
+        check_is_fitted(self)
+        chosen = self.cv_results_.loc[self.cv_results_["chosen"]].iloc[0]
+        return {"alphas": [self.alpha_], "ar": bool(chosen["ar"])}
 
     @staticmethod
     def _design(design: str, F, y, y_prev, groups):
@@ -384,6 +466,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         return int(table.index[order[0]])
 
     # -- prediction ---------------------------------------------------------------------
+    @threadpool_limits.wrap(limits=1, user_api="blas")
     def predict(self, X, context=None):
         """Predicted error: free run (simulation), or one-step with ``y_measured`` in ``context``."""
         check_is_fitted(self)

@@ -20,7 +20,16 @@ from omegaconf import DictConfig
 from ..errors import ConfigError
 from ..files import atomic_write_text, write_json
 from ..jsonsafe import json_safe
-from ..leaderboard import FIGURES, VAL_FIGURES, baseline_rows, is_validation, rank, to_markdown
+from ..leaderboard import (
+    DEPLOYED_MODE,
+    FIGURES,
+    VAL_FIGURES,
+    baseline_rows,
+    fallback_runs,
+    is_validation,
+    rank,
+    to_markdown,
+)
 from ..params import BOOLEAN, optional, text
 from ..paths import resolve
 from ..plotdata import write_compare
@@ -31,12 +40,32 @@ from .apart import check_apart
 from .common import _check_writable, check_keys, say
 
 
+def ranked_by(table: pd.DataFrame, sort_by: str) -> dict:
+    """Which figure ranked: ``figure``, ``mode`` (of a validation figure: the deployed mode) and
+    ``fallback`` (``{run_id: mode}`` of runs without a simulation-mode validation, ranked after
+    the others by their own)."""
+    if not is_validation(sort_by):
+        return {"figure": sort_by, "mode": None, "fallback": {}}
+    return {"figure": sort_by, "mode": DEPLOYED_MODE, "fallback": fallback_runs(table)}
+
+
+def ranking_line(basis: dict) -> str:
+    """The printed sentence of :func:`ranked_by`."""
+    line = (f"{basis['figure']} of the {basis['mode']}-mode validation (the deployed mode, "
+            f"whatever eval.mode a run was scored in)")
+    if basis["fallback"]:
+        line += (f"; {len(basis['fallback'])} run(s) without one (made before it was recorded: "
+                 + ", ".join(f"{r[:8]} {m}" for r, m in basis["fallback"].items())
+                 + ") ranked after the others by their own mode's validation")
+    return line
+
+
 def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
                 baselines: list[dict] = ()) -> dict:
     records = json_safe(table.to_dict(orient="records"))
     numeric = [c for c in (*VAL_FIGURES, *FIGURES, "fit_time_s") if c in table.columns]
     return {"parent_run_id": parent_id, "sort_by": sort_by, "target": target,
-            "ranked_by_validation": is_validation(sort_by),
+            "ranked_by_validation": is_validation(sort_by), "ranked_by": ranked_by(table, sort_by),
             "reported_not_used_to_choose": [c for c in FIGURES if c in table.columns],
             "n_runs": len(records),
             "best": {k: records[0][k] for k in ("run_id", "model", "select", *numeric)} if records else {},
@@ -73,7 +102,7 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     write_compare(out, table)  # compare_plot.csv, for `dvc plots show`
     for name in ("compare.csv", "compare.md", "compare.json"):
         retry_locked(client.log_artifact, parent_id, str(out / name), "compare")
-    basis = ("validation" if is_validation(str(opts.sort_by))
+    basis = (ranking_line(ranked_by(table, str(opts.sort_by))) if is_validation(str(opts.sort_by))
              else "a TEST figure, as asked: do not choose a model by it")
     print(f"sweep {parent_id}: {len(table)} runs, sorted by {opts.sort_by} "
           f"(target {opts.target}, {basis}); test: columns are reported, not used to choose")

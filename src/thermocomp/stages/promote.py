@@ -54,7 +54,8 @@ from ..deploy.streaming import end_states
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json
-from ..leaderboard import FIGURES, beats, is_validation, rank, summary
+from ..leaderboard import DEPLOYED_MODE, FIGURES, beats, is_validation, rank, summary, validation_mode
+from ..log import logger
 from ..params import choice
 from ..paths import project_root, resolve
 from ..store import registry_lock
@@ -70,6 +71,7 @@ from .common import (
     lead_ins,
     say,
 )
+from .compare import ranked_by, ranking_line
 
 # The plain promote.* keys are checked by every stage (rules.PROMOTE_RULES); the envelope's
 # policies are the deployment's own.
@@ -91,8 +93,9 @@ def git_commit() -> tuple[str, bool]:
         return "unknown", False
 
 
-def _best_run(cfg: DictConfig, client, uri: str, dataset_hash: str, data_path) -> str:
-    """The best finished child of the sweep among those scored on this dataset."""
+def _best_run(cfg: DictConfig, client, uri: str, dataset_hash: str, data_path) -> tuple[str, dict]:
+    """The best finished child of the sweep among those scored on this dataset, by its
+    simulation-mode validation, and what ranked (:func:`~thermocomp.stages.compare.ranked_by`)."""
     parent = parent_run_id(cfg, client)
     seen = {r.info.run_id: r.data.tags.get(DATASET_TAG) for r in child_runs(client, parent)}
     if seen and dataset_hash not in seen.values():
@@ -108,7 +111,9 @@ def _best_run(cfg: DictConfig, client, uri: str, dataset_hash: str, data_path) -
         table = rank(rows, str(cfg.promote.criterion))
     except KeyError as exc:
         raise ConfigError(f"promote.criterion: {exc.args[0]}") from None
-    return str(table["run_id"].iloc[0])
+    basis = ranked_by(table, str(cfg.promote.criterion))
+    say(f"sweep {parent}: {len(table)} finished run(s) ranked by {ranking_line(basis)}")
+    return str(table["run_id"].iloc[0]), basis
 
 
 def _load_run_model(run_id: str, uri: str) -> tuple[Compensator, str]:
@@ -139,8 +144,9 @@ def _figures(targets: dict, cfg: DictConfig) -> dict:
         raise ConfigError(f"promote.target: {exc.args[0]}") from None
 
 
-def _validation_score(run_id: str, uri: str, cfg: DictConfig) -> tuple[float, dict, str]:
-    """The candidate's validation figures from its run's ``metrics.json``: (score, figures, mode)."""
+def _validation_score(run_id: str, uri: str, cfg: DictConfig) -> tuple[float, dict, str, str]:
+    """The candidate's validation figures from its run's ``metrics.json``, in simulation mode
+    where it has them: (score, figures, the run's eval.mode, the figures' mode)."""
     metrics = run_metrics(run_id, uri)
     if not metrics or "targets" not in metrics:
         raise ConfigError(f"run {run_id} has no metrics.json: promote a `run` or `evaluate` run")
@@ -149,16 +155,19 @@ def _validation_score(run_id: str, uri: str, cfg: DictConfig) -> tuple[float, di
     if score is None:
         raise ConfigError(f"run {run_id} has no {cfg.promote.criterion} (made with "
                           f"eval.validation=false?): rerun it with eval.validation=true")
-    return score, figures, str(metrics.get("mode", "simulation"))
+    return score, figures, str(metrics.get("mode", DEPLOYED_MODE)), validation_mode(metrics)
 
 
 def _champion_validation(champion, criterion: str, target: str, dataset_hash: str, mode: str
                          ) -> tuple[float | None, str | None]:
-    """The validation score the champion was promoted with, if it is comparable here."""
-    tags = champion.tags or {}
+    """The validation score the champion was promoted with, if it is comparable here: same
+    dataset, target and mode of the validation figures (``mode``; an old champion's is its
+    ``eval_mode``)."""
+    tags = dict(champion.tags or {})
+    tags.setdefault("validation_mode", tags.get("eval_mode"))
     for key, want, what in (("dataset_hash", dataset_hash, "another dataset"),
                             ("criterion_target", target, f"another target than {target}"),
-                            ("eval_mode", mode, f"another eval.mode than {mode}")):
+                            ("validation_mode", mode, f"another mode than {mode}")):
         if tags.get(key) != want:
             return None, f"its validation score is on {what} ({key}={tags.get(key)})"
     value = tags.get(f"metric.{criterion}")
@@ -260,8 +269,8 @@ def promote(cfg: DictConfig) -> dict:
     data_path = resolve(cfg.data.path)
     ds, _ = io.read_dataset(data_path, data_options(cfg))
     dataset_hash = folder_digest(data_path)
-    run_id = (str(opts.run_id) if opts.get("run_id")
-              else _best_run(cfg, client, uri, dataset_hash, data_path))
+    run_id, basis = ((str(opts.run_id), None) if opts.get("run_id")
+                     else _best_run(cfg, client, uri, dataset_hash, data_path))
     say(f"candidate run {run_id}")
     try:
         run = retry_locked(client.get_run, run_id)
@@ -271,7 +280,15 @@ def promote(cfg: DictConfig) -> dict:
     _check_dataset(run, run_id, dataset_hash, data_path)
     run_params = run.data.params
     comp, digest = _load_run_model(run_id, uri)
-    cand_score, val_figures, mode = _validation_score(run_id, uri, cfg)
+    cand_score, val_figures, mode, val_mode = _validation_score(run_id, uri, cfg)
+    basis = basis or {"figure": criterion, "mode": DEPLOYED_MODE, "fallback": {}}
+    say(f"run {run_id}: {criterion} {_fmt(cand_score)} of its {val_mode}-mode validation (scored "
+        f"in {mode}; the deployed compensator runs in {DEPLOYED_MODE})")
+    if val_mode != DEPLOYED_MODE:
+        basis["fallback"][run_id] = val_mode
+        logger.warning("run %s has no %s-mode validation (scored in %s before it was recorded): "
+                       "its %s validation decides; rerun it to choose by the deployed mode",
+                       run_id, DEPLOYED_MODE, val_mode, val_mode)
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     train = {c: ds.campaigns[c] for c in train_ids}
     streaming = deploy_stream(cfg, comp, train, f"run {run_id}")
@@ -311,7 +328,7 @@ def promote(cfg: DictConfig) -> dict:
         champ_score, champ_note = None, None
         if champion is not None:
             champ_score, champ_note = _champion_validation(champion, criterion, str(opts.target),
-                                                           dataset_hash, mode)
+                                                           dataset_hash, val_mode)
         if existing is not None:
             version = str(existing.version)
         else:
@@ -334,7 +351,7 @@ def promote(cfg: DictConfig) -> dict:
             # precision, so the same model (e.g. deployed another way) ties instead of "beating" it
             moved = beats(float(_tag(cand_score)), champ_score, criterion, float(opts.min_improvement))
             verb = "beats" if moved else "does not beat"
-            why = (f"validation {criterion} {_fmt(cand_score)} {verb} the champion's "
+            why = (f"{val_mode}-mode validation {criterion} {_fmt(cand_score)} {verb} the champion's "
                    f"{_fmt(champ_score)} (version {champion.version}) on the same dataset")
         tags = {"decision": why}
         if existing is None:       # a new version: what it is and where it comes from
@@ -343,6 +360,7 @@ def promote(cfg: DictConfig) -> dict:
                          "git_dirty": dirty, "source_run_id": run_id, "model_digest": digest,
                          "model": run_params.get("model.name"), "select": run_params.get("select.name"),
                          "criterion": criterion, "criterion_target": str(opts.target), "eval_mode": mode,
+                         "validation_mode": val_mode,
                          "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
                          "envelope_policy": str(opts.envelope.policy),
                          "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
@@ -365,7 +383,7 @@ def promote(cfg: DictConfig) -> dict:
                 f"{champion.version}: {why}")
     report = {"model_name": name, "alias": alias, "version": version, "run_id": run_id,
               "moved": moved, "registered": existing is None, "reason": why,
-              "criterion": criterion,
+              "criterion": criterion, "ranked_by": basis,
               "candidate": {"score": cand_score, "figures": cand_figures,
                             "validation": val_figures, "test_reported": test_figures},
               "champion": None if champion is None else {"version": str(champion.version),

@@ -1,0 +1,69 @@
+"""The last few results of a pure function of arrays, found again by the arrays' bytes.
+
+Mutual prediction and validation predict the same stacked rows with many models, and a
+compensator fits and predicts each target on the same inputs: a model whose features are
+costly (the lag bank's filter responses) computes them once per distinct input.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import threading
+from collections import OrderedDict
+
+import numpy as np
+
+
+class ArrayMemo:
+    """``fn(*arrays, *params)`` remembered for the ``size`` most recent distinct arguments.
+
+    Arrays are keyed by dtype, shape and bytes (numeric arrays only: an object array's
+    bytes are pointers), the other arguments by ``repr``.  Results (arrays, or tuples of
+    them) are returned read-only.
+    """
+
+    def __init__(self, fn, size: int = 4):
+        self.fn, self.size = fn, int(size)
+        self._results: OrderedDict = OrderedDict()
+        self._lock = threading.Lock()
+
+    @staticmethod
+    def key(*args) -> bytes:
+        """The digest that finds ``fn(*args)`` again (a caller may build its own from it)."""
+        digest = hashlib.sha256()
+        for a in args:
+            if isinstance(a, np.ndarray):
+                if a.dtype == object:
+                    raise TypeError("ArrayMemo keys numeric arrays only")
+                digest.update(f"{a.dtype}{a.shape}".encode())
+                digest.update(np.ascontiguousarray(a).data)
+            else:
+                digest.update(repr(a).encode())
+            digest.update(b"|")
+        return digest.digest()
+
+    def __call__(self, *args):
+        return self.lookup(self.key(*args), *args)
+
+    def lookup(self, key: bytes, *args):
+        """``fn(*args)``, remembered under ``key``: a caller that knows what ``args`` derive from
+        (a digest of :meth:`key`, the settings) saves hashing large arrays."""
+        with self._lock:
+            if key in self._results:
+                self._results.move_to_end(key)
+                return self._results[key]
+        out = self.fn(*args)
+        _read_only(out)
+        with self._lock:
+            self._results[key] = out
+            while len(self._results) > self.size:
+                self._results.popitem(last=False)
+        return out
+
+
+def _read_only(out) -> None:
+    if isinstance(out, np.ndarray):
+        out.flags.writeable = False
+    elif isinstance(out, tuple):
+        for item in out:
+            _read_only(item)
