@@ -42,6 +42,7 @@ from ..params import (
 from ..paths import conf_dir, resolve
 from ..tracking import enabled, store_uri
 from .apart import check_apart
+from .auto import auto_table, build_candidates, is_auto
 from .rules import check_groups, check_keys
 
 MAX_COMPONENT = 200   # bytes of one name in a written path: 255 less the staging decoration
@@ -113,6 +114,9 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
         node = OmegaConf.select(cfg, key)
         if node is not None:
             check_component(build(node, key), key)
+    if is_auto(cfg):
+        for name, candidate in build_candidates(cfg).items():
+            check_component(candidate, f"model.candidates.{name}")
     for key in outputs:
         _check_writable(key, OmegaConf.select(cfg, key), folder=key != "model_path")
     if enabled(cfg):     # before any data is read: an unreachable server once hung a run for minutes
@@ -173,6 +177,8 @@ def data_options(cfg: DictConfig) -> dict:
 def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
     """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``)."""
     estimator = build(cfg.model.estimator, "model.estimator")
+    if is_auto(cfg):           # model=auto: the families it chooses among, from their configs
+        estimator = estimator(candidates=build_candidates(cfg))
     if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
         estimator = build(cfg.ati.estimator, "ati.estimator")(base_estimator=estimator)
     return Compensator(
@@ -464,7 +470,7 @@ def result_table(metrics: dict) -> str:
     if carried:
         lines.append("state carried over: " + "; ".join(
             f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items()))
-    return "\n".join(lines)
+    return "\n".join(lines + auto_table(metrics))
 
 
 # --- calibrate (the stage and `run` on a volumetric dataset) -------------------------------

@@ -109,6 +109,9 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
         targets, predictions = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points,
                                      iso_a3=ev.get("iso10791_a3", True))
         clock.lap("score")
+        for t, est in comp.estimators_.items():      # model=auto: what each target chose, and why
+            if hasattr(est, "family_"):
+                targets[t]["auto"] = est.report()
         if ev.get("validation", True):
             _add_validation(cfg, comp, ds, targets)
             clock.lap("validation")

@@ -1,0 +1,165 @@
+"""``model=auto``: every candidate family validated in free run, the best one kept (per target).
+
+The :class:`~thermocomp.compensator.Compensator` clones its estimator once per
+target, so this one estimator choosing among its candidates is the per-target
+composite: each target keeps its own family, and scoring, the saved model,
+streaming (replay, serve, promote) and figures see one estimator of the usual
+protocol (:mod:`thermocomp.context`), the chosen one's.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from sklearn.base import BaseEstimator, RegressorMixin, clone
+from sklearn.utils.validation import check_is_fitted
+
+from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, subset
+from ..errors import ParameterError
+from ..metrics import rmse
+from ..model_selection import BlockedForward
+from ..one_step import persistence
+from ..params import check_estimator, integer, number
+
+ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
+BASELINE = "mlr"         # always validated beside the candidates, with persistence
+MIN_AMBIENT_LEVELS = 3   # distinct initial ambients (to 0.5 °C) an ATI candidate needs
+
+
+class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
+    """Fit every candidate that applies, keep the one with the lowest free-run validation RMSE.
+
+    Validation is :class:`~thermocomp.model_selection.BlockedForward` on the
+    training rows only (the test split never reaches ``fit``): the later
+    campaigns (or the tail of one record) validate models fitted on the
+    earlier ones, always in simulation (no measured error enters), whatever
+    ``eval.mode`` scores the run in.  A candidate that cannot fit these data
+    (an ATI wrapper with campaigns at one ambient level, a family refusing
+    them) is skipped with its reason.  MLR is validated as the baseline even
+    when it is no candidate, and persistence (the previous measured error) is
+    reported beside it.
+
+    Parameters
+    ----------
+    candidates : dict name -> estimator
+        The families to choose among (``model.candidates``, built by the config).
+    n_folds : int, default 5
+    min_train_fraction : float in (0, 1), default 0.5
+        Validate on the last ``1 - min_train_fraction`` of the training units.
+    max_seconds : float or None
+        A candidate whose first fold took longer than this is not validated further
+        (skipped, its time recorded): a time budget for the slow families.
+
+    Attributes
+    ----------
+    estimator_ : the chosen candidate, fitted on all training rows
+    family_ : str
+    validation_ : dict name -> validation RMSE of every validated candidate (and baseline)
+    skipped_ : dict name -> why it was not validated
+    reason_ : str
+    fit_seconds_ : dict name -> seconds of its validation folds
+    """
+
+    param_rules = {"n_folds": integer(1, at_most=100),
+                   "min_train_fraction": number(0.0, 1.0, open_lo=True, open_hi=True)}
+
+    def __init__(self, candidates=None, n_folds: int = 5, min_train_fraction: float = 0.5,
+                 max_seconds: float | None = None):
+        self.candidates = candidates
+        self.n_folds = n_folds
+        self.min_train_fraction = min_train_fraction
+        self.max_seconds = max_seconds
+
+    def fit(self, X, y, context=None):
+        check_estimator(self)
+        if not self.candidates:
+            raise ParameterError("model.candidates is empty: name at least one model family")
+        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        groups = groups_of(context)
+        folds = BlockedForward(self.n_folds, self.min_train_fraction).folds(groups, len(y))
+        self.validation_, self.skipped_, self.fit_seconds_ = {}, {}, {}
+        runs = dict(self.candidates)
+        if BASELINE not in runs:
+            from .linear import MLR
+
+            runs[BASELINE] = MLR()
+        for name, est in runs.items():
+            why = _not_applicable(name, context, groups)
+            if why is None:
+                why = self._validate(name, est, X, y, context, folds)
+            if why is not None:
+                self.skipped_[name] = why
+        held = np.any([score for *_, score in folds], axis=0)
+        last = persistence(y, groups)
+        self.validation_["persistence"] = rmse(y[held] - last[held])
+        ranked = sorted((v, n) for n, v in self.validation_.items() if n in self.candidates)
+        if not ranked:
+            raise ParameterError("model=auto: no candidate could be validated on these data ("
+                                 + "; ".join(f"{n}: {w}" for n, w in self.skipped_.items()) + ")")
+        best, self.family_ = ranked[0]
+        runner = f", next {ranked[1][1]} {ranked[1][0]:.4g}" if len(ranked) > 1 else ""
+        self.reason_ = (f"lowest free-run validation RMSE {best:.4g} ({_describe(folds, groups)})"
+                        f"{runner}; MLR {self.validation_.get(BASELINE, float('nan')):.4g}, "
+                        f"persistence {self.validation_['persistence']:.4g}")
+        self.estimator_ = clone(self.candidates[self.family_]).fit(X, y, context=context)
+        self.context_columns_ = context_columns(self.estimator_)
+        return self
+
+    def _validate(self, name, est, X, y, context, folds) -> str | None:
+        """Record ``name``'s pooled validation RMSE; the reason when it cannot be validated."""
+        residual, t0 = [], time.perf_counter()
+        for fit, pred, score in folds:
+            try:
+                model = clone(est).fit(X[fit], y[fit], context=subset(context, fit))
+                yhat = np.asarray(model.predict(X[pred], context=subset(context, pred)), float)
+            except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+                return f"cannot fit: {' '.join(str(exc).split())}"
+            residual.append(y[score] - yhat[score[pred]])
+            spent = time.perf_counter() - t0
+            over = self.max_seconds is not None and spent > float(self.max_seconds)
+            if over and len(residual) < len(folds):
+                self.fit_seconds_[name] = spent
+                return f"over the time budget: {spent:.1f} s > max_seconds={self.max_seconds}"
+        self.fit_seconds_[name] = time.perf_counter() - t0
+        self.validation_[name] = rmse(np.concatenate(residual))
+        return None
+
+    def predict(self, X, context=None):
+        check_is_fitted(self, "estimator_")
+        return self.estimator_.predict(X, context=context)
+
+    def stream_init(self, context=None):
+        check_is_fitted(self, "estimator_")
+        return self.estimator_.stream_init(context)
+
+    def stream_step(self, x_row, state, context=None):
+        return self.estimator_.stream_step(x_row, state, context)
+
+    def report(self) -> dict:
+        """``{candidates, chosen, reason, skipped}`` for ``metrics.json`` (``targets.<t>.auto``)."""
+        check_is_fitted(self, "estimator_")
+        return {"candidates": {n: float(v) for n, v in self.validation_.items()},
+                "chosen": self.family_, "reason": self.reason_, "skipped": dict(self.skipped_),
+                "validation_s": {n: round(s, 3) for n, s in self.fit_seconds_.items()}}
+
+
+def _not_applicable(name: str, context, groups) -> str | None:
+    """Why candidate ``name`` does not apply to these training rows (None: it does)."""
+    if not name.startswith(ATI):
+        return None
+    if context is None or AMBIENT_C0 not in context:
+        return "no campaign ambient (T_amb) to choose an interval by"
+    a0 = np.asarray(context[AMBIENT_C0], float)
+    first = np.unique(groups, return_index=True)[1] if groups is not None else [0]
+    levels = np.unique(np.round(a0[first] * 2) / 2)
+    levels = levels[np.isfinite(levels)]
+    if levels.size < MIN_AMBIENT_LEVELS:
+        return (f"the train campaigns span {levels.size} ambient level(s), fewer than "
+                f"{MIN_AMBIENT_LEVELS}")
+    return None
+
+
+def _describe(folds, groups) -> str:
+    unit = "campaigns" if groups is not None and len(set(groups)) > 1 else "one record"
+    return f"{len(folds)} blocked forward fold(s) over {unit}"

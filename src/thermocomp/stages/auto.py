@@ -1,0 +1,89 @@
+"""``model=auto`` in the stages: its candidates built from their own configs, its table.
+
+A candidate is named by its family's config (``conf/model/<name>.yaml``), so a new
+family becomes a candidate by a config edit (``model.candidates=[...]``);
+``ati`` / ``ati+<family>`` is the ATI wrapper (``conf/ati/cmeans.yaml``) of MLR /
+that family.
+"""
+
+from __future__ import annotations
+
+from omegaconf import DictConfig, OmegaConf
+
+from ..build import build
+from ..errors import ConfigError
+from ..models.auto import ATI, BASELINE
+from ..paths import conf_dir
+
+AUTO = "auto"
+
+
+def is_auto(cfg: DictConfig) -> bool:
+    return cfg.model.get("candidates") is not None
+
+
+def build_candidates(cfg: DictConfig) -> dict:
+    """``{name: unfitted estimator}`` of ``model.candidates``, with ``model.candidate_params``."""
+    names = list(cfg.model.candidates)
+    params = cfg.model.get("candidate_params") or {}
+    if not names:
+        raise ConfigError("model.candidates is empty: name at least one model family")
+    for name in params:
+        if name not in names:
+            raise ConfigError(f"model.candidate_params.{name}: {name} is not among model.candidates "
+                              f"{names}")
+    out = {}
+    for name in names:
+        wrapped = str(name).split("+", 1)
+        family = BASELINE if wrapped == [ATI] else wrapped[-1]
+        if len(wrapped) == 2 and wrapped[0] != ATI or family in (AUTO, ATI) or not str(name).strip():
+            raise ConfigError(f"model.candidates: {name!r} is not a model family nor ati[+family]")
+        estimator = _family(cfg, family, params.get(name), name)
+        if family != name:   # an ATI candidate
+            ati = _load(cfg, conf_dir() / "ati" / "cmeans.yaml", f"model.candidates: {name}")
+            estimator = build(ati.estimator, f"model.candidates.{name}")(base_estimator=estimator)
+        out[str(name)] = estimator
+    return out
+
+
+def _family(cfg: DictConfig, family: str, overrides, name: str):
+    path = conf_dir() / "model" / f"{family}.yaml"
+    if not path.is_file():
+        known = sorted(p.stem for p in (conf_dir() / "model").glob("*.yaml") if p.stem != AUTO)
+        raise ConfigError(f"model.candidates: {name!r} is not a model family (conf/model/ has "
+                          f"{', '.join(known)}; ati or ati+<family> for the ATI wrapper)")
+    node = _load(cfg, path, f"model.candidates: {name}")
+    if overrides:
+        node.estimator = OmegaConf.merge(node.estimator, overrides)
+    return build(node.estimator, f"model.candidate_params.{name}" if overrides else
+                 f"model.candidates.{name}")
+
+
+def _load(cfg: DictConfig, path, where: str) -> DictConfig:
+    """The config file at ``path``, its interpolations (``${seed}``) against ``cfg``'s root."""
+    root = OmegaConf.create({"seed": cfg.get("seed", 0)})
+    root.node = OmegaConf.load(path)
+    try:
+        return OmegaConf.create(OmegaConf.to_container(root.node, resolve=True))
+    except Exception as exc:   # an interpolation this root does not hold: say where
+        raise ConfigError(f"{where}: {path} cannot be composed ({exc})") from None
+
+
+def auto_table(metrics: dict) -> list[str]:
+    """Lines of the printed table: per target the chosen family and every candidate's
+    free-run validation RMSE (MLR and persistence always among them); none without auto."""
+    rows = {t: m["auto"] for t, m in metrics["targets"].items() if "auto" in m}
+    if not rows:
+        return []
+    names = list(dict.fromkeys(n for a in rows.values() for n in a["candidates"]))
+    lines = ["model=auto: free-run validation RMSE per candidate (* chosen; the test split chose "
+             "nothing)", f"{'target':<8} {'chosen':<10} " + " ".join(f"{n[:11]:>11}" for n in names)]
+    for t, a in rows.items():
+        cells = []
+        for n in names:
+            v = a["candidates"].get(n)
+            cells.append(f"{'n/a' if v is None else f'{v:.3g}' + ('*' if n == a['chosen'] else ''):>11}")
+        lines.append(f"{t:<8} {a['chosen']:<10} " + " ".join(cells))
+    skipped = {n: w for a in rows.values() for n, w in a.get("skipped", {}).items()}
+    lines += [f"  skipped {n}: {w}" for n, w in skipped.items()]
+    return lines

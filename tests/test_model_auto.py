@@ -1,0 +1,146 @@
+"""``model=auto``: per target the family with the best free-run validation, as one model.
+
+Tiny data: two sensors, two targets built so that they prefer different families
+(``E_A`` static in the sensors: MLR; ``E_B`` a slow lag of them: the lag bank).
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import refused
+from test_hostile import snapshot
+from thermocomp.cli import main
+
+SPLITS = ("train",) * 6 + ("test",) * 2
+FAST = ["track=false", "plots=none", "eval.validation=false", "eval.mutual_prediction=false",
+        "eval.ati_baselines=false", "eval.iso10791_a3=false"]
+PAIR = "model.candidates=[mlr,lagbank]"
+
+
+def lagged(x: np.ndarray, tau_s: float, dt_s: float) -> np.ndarray:
+    """First-order lag of ``x`` (steady start), the slow part the lag bank can model."""
+    out, a = np.empty_like(x), dt_s / (tau_s + dt_s)
+    out[0] = x[0]
+    for i in range(1, len(x)):
+        out[i] = out[i - 1] + a * (x[i] - out[i - 1])
+    return out
+
+
+def make_two_targets(root: Path, rows: int = 80, test_gain: float = 1.0) -> Path:
+    """Eight campaigns (six train, two test) of heating then cooling; ``test_gain`` multiplies
+    the measured errors of the test campaigns (values the choice must not see)."""
+    root.mkdir(parents=True)
+    rng = np.random.default_rng(1)
+    dt, t = 60.0, np.arange(rows) * 60.0
+    for i, split in enumerate(SPLITS):
+        amb = 20.0 + 0.3 * i
+        on = (t < (0.4 + 0.05 * i) * t[-1]).astype(float)
+        heat = lagged(on * (4 + i % 3), 600.0, dt)
+        t0 = amb + heat + rng.normal(0, 0.02, rows)
+        t1 = amb + 0.3 * heat + rng.normal(0, 0.02, rows)
+        e_a = 3 * (t0 - t0[0]) - 1.0 * (t1 - t1[0]) + rng.normal(0, 0.3, rows)
+        e_b = 6 * lagged(t0 - t0[0], 2400.0, dt) + rng.normal(0, 0.05, rows)
+        gain = test_gain if split == "test" else 1.0
+        pd.DataFrame({"time": t, "T_0": t0, "T_1": t1, "E_A": gain * e_a, "E_B": gain * e_b}
+                     ).to_csv(root / f"K{i + 1:02d}.csv", index=False)
+    pd.DataFrame({"campaign": [f"K{i + 1:02d}" for i in range(len(SPLITS))],
+                  "file": [f"K{i + 1:02d}.csv" for i in range(len(SPLITS))], "split": SPLITS}
+                 ).to_csv(root / "campaigns.csv", index=False)
+    return root
+
+
+def _run(data: Path, out: Path, *extra: str) -> dict:
+    assert main(["run", f"data.path={data}", f"out={out}", *FAST, *extra]) == 0
+    return json.loads((out / "metrics.json").read_text())
+
+
+@pytest.fixture(scope="module")
+def two_targets(tmp_path_factory):
+    root = tmp_path_factory.mktemp("auto")
+    data = make_two_targets(root / "data")
+    return data, _run(data, root / "auto", "model=auto", PAIR), root
+
+
+def test_each_target_keeps_the_family_with_the_best_free_run_validation(two_targets):
+    data, metrics, root = two_targets
+    chosen = {t: m["auto"]["chosen"] for t, m in metrics["targets"].items()}
+    assert chosen == {"E_A": "mlr", "E_B": "lagbank"}
+    for t, m in metrics["targets"].items():
+        scores = {n: v for n, v in m["auto"]["candidates"].items() if n in ("mlr", "lagbank")}
+        assert m["auto"]["chosen"] == min(scores, key=scores.get)
+        assert "persistence" in m["auto"]["candidates"]
+    # the composite scores exactly as each chosen family fitted alone
+    for family, target in (("mlr", "E_A"), ("lagbank", "E_B")):
+        alone = _run(data, root / family, f"model={family}")
+        assert metrics["targets"][target]["test"]["rmse"] == pytest.approx(
+            alone["targets"][target]["test"]["rmse"], rel=1e-9)
+
+
+def test_the_test_split_chooses_nothing(two_targets, tmp_path):
+    _, metrics, _ = two_targets
+    shifted = make_two_targets(tmp_path / "data", test_gain=-3.0)
+    other = _run(shifted, tmp_path / "auto", "model=auto", PAIR)
+    for t, m in metrics["targets"].items():
+        assert other["targets"][t]["auto"]["candidates"] == m["auto"]["candidates"]
+        assert other["targets"][t]["auto"]["chosen"] == m["auto"]["chosen"]
+        assert other["targets"][t]["test"]["rmse"] > 3 * m["test"]["rmse"]   # the test did change
+
+
+def test_the_composite_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
+    data, _, _ = two_targets
+    model = tmp_path / "model.pkl"
+    common = [f"data.path={data}", "track=false", f"model_path={model}", "model=auto", PAIR]
+    assert main(["run", *common, *FAST[1:], f"out={tmp_path / 'run'}"]) == 0
+    import shutil
+
+    shutil.copy(tmp_path / "run" / "model.pkl", model)
+    assert main(["replay", *common, f"out={tmp_path / 'replay'}"]) == 0
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
+    run = json.loads((tmp_path / "run" / "metrics.json").read_text())
+    for t in ("E_A", "E_B"):
+        assert replay["targets"][t]["max_abs_stream_minus_batch"] < 1e-6
+        assert replay["targets"][t]["rmse"] == pytest.approx(run["targets"][t]["test"]["rmse"], rel=1e-6)
+
+
+def test_an_ati_candidate_is_skipped_with_its_reason_where_ambients_do_not_span(two_targets, tmp_path):
+    data, _, _ = two_targets
+    metrics = _run(data, tmp_path / "auto", "model=auto", "model.candidates=[mlr,ati]")
+    for m in metrics["targets"].values():
+        assert m["auto"]["chosen"] == "mlr"
+        assert "ambient level" in m["auto"]["skipped"]["ati"]
+        assert "ati" not in m["auto"]["candidates"]
+
+
+@pytest.mark.parametrize("candidates, says", [
+    ("[mlr,nope]", "model.candidates: 'nope' is not a model family"),
+    ("[auto]", "model.candidates: 'auto'"),
+    ("[]", "model.candidates is empty"),
+])
+def test_a_bad_candidate_list_is_refused_before_any_work(two_targets, tmp_path, capsys, candidates, says):
+    data, _, _ = two_targets
+    out = tmp_path / "out"
+    before = snapshot(out)
+    refused(["run", f"data.path={data}", f"out={out}", *FAST, "model=auto",
+             f"model.candidates={candidates}"], capsys, says)
+    assert snapshot(out) == before
+
+
+def test_blocked_forward_folds_never_fit_on_later_units():
+    from thermocomp.model_selection import BlockedForward
+
+    groups = np.repeat([f"K{i}" for i in range(6)], 3)
+    folds = BlockedForward(n_folds=5, min_train_fraction=0.5).folds(groups)
+    assert len(folds) == 3                                   # the later half: K3, K4, K5
+    for fit, pred, score in folds:
+        assert np.flatnonzero(fit).max() < np.flatnonzero(score).min()
+        assert (pred == score).all()
+    one = BlockedForward(n_folds=2).folds(None, 40)         # one record: the prefix, a gap
+    for fit, pred, score in one:
+        first = np.flatnonzero(score).min()
+        assert np.flatnonzero(fit).max() < first - 1 and pred[:first].all()
