@@ -7,6 +7,7 @@ Tiny data: two sensors, two targets built so that they prefer different families
 from __future__ import annotations
 
 import json
+import shutil
 from pathlib import Path
 
 import numpy as np
@@ -97,8 +98,6 @@ def test_the_composite_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_
     model = tmp_path / "model.pkl"
     common = [f"data.path={data}", "track=false", f"model_path={model}", "model=auto", PAIR]
     assert main(["run", *common, *FAST[1:], f"out={tmp_path / 'run'}"]) == 0
-    import shutil
-
     shutil.copy(tmp_path / "run" / "model.pkl", model)
     assert main(["replay", *common, f"out={tmp_path / 'replay'}"]) == 0
     replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
@@ -144,3 +143,39 @@ def test_blocked_forward_folds_never_fit_on_later_units():
     for fit, pred, score in one:
         first = np.flatnonzero(score).min()
         assert np.flatnonzero(fit).max() < first - 1 and pred[:first].all()
+
+
+def test_validation_holds_campaigns_out_as_the_test_split_is():
+    from test_validation import MAKE, _dataset, _poisoned
+    from thermocomp.evaluation import holdout_scheme, validation_report
+
+    last = _dataset(["train"] * 6 + ["test"] * 2)             # the test campaigns come last
+    among = _dataset(["train", "train", "test"] * 2 + ["train", "train"])
+    assert (holdout_scheme(last), holdout_scheme(among)) == ("forward", "interleaved")
+
+    val = validation_report(MAKE, last, n_folds=3)
+    assert val["E_Z"]["method"] == "blocked forward (3 folds)"
+    train = last.ids("train")
+    assert set(val["E_Z"]["per_unit"]) == set(train[3:])      # the later half, each once
+    # by hand: each later campaign predicted by a fit on the campaigns before it
+    res = []
+    for i in range(3, 6):
+        comp = MAKE().fit({c: last.campaigns[c] for c in train[:i]})
+        part = {train[i]: last.campaigns[train[i]]}
+        pred, meas = comp.predict(part), comp.measured(part)
+        res.append(meas[train[i]]["E_Z"].to_numpy() - pred[train[i]]["E_Z"].to_numpy())
+    assert val["E_Z"]["rmse"] == pytest.approx(float(np.sqrt(np.mean(np.concatenate(res) ** 2))), rel=1e-9)
+    assert validation_report(MAKE, _poisoned(last), n_folds=3) == val
+    assert validation_report(MAKE, among, n_folds=3)["E_Z"]["method"] == "leave-campaigns-out (3 folds)"
+
+
+def test_auto_validates_as_the_test_split_is_held_out(two_targets, tmp_path):
+    data, metrics, _ = two_targets
+    assert {m["auto"]["scheme"] for m in metrics["targets"].values()} == {"blocked forward"}
+    among = tmp_path / "among"
+    shutil.copytree(data, among)
+    manifest = pd.read_csv(among / "campaigns.csv")
+    manifest["split"] = ["train", "train", "test", "train", "train", "train", "test", "train"]
+    manifest.to_csv(among / "campaigns.csv", index=False)
+    other = _run(among, tmp_path / "auto", "model=auto", PAIR)
+    assert {m["auto"]["scheme"] for m in other["targets"].values()} == {"leave-campaigns-out"}

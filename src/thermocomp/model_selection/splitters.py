@@ -314,11 +314,14 @@ class BlockedForward:
     ----------
     n_folds : int, default 5
     min_train_fraction : float in (0, 1), default 0.5
+    gap_blocks : float >= 0, default 0.5
+        The gap of a single record, in validation blocks.
     """
 
-    def __init__(self, n_folds: int = 5, min_train_fraction: float = 0.5):
+    def __init__(self, n_folds: int = 5, min_train_fraction: float = 0.5, gap_blocks: float = 0.5):
         self.n_folds = n_folds
         self.min_train_fraction = min_train_fraction
+        self.gap_blocks = gap_blocks
 
     def folds(self, groups, n: int | None = None) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
         """``(fit, predict, score)`` boolean row masks of each fold (``groups``: campaign of each
@@ -337,7 +340,7 @@ class BlockedForward:
                     for a, b in zip(edges[:-1], edges[1:])]
         rows = np.arange(len(unit))
         k = max(1, min(int(self.n_folds), len(rows) - 1))
-        gap = forward_block(len(rows), k, f) // 2
+        gap = int(forward_block(len(rows), k, f) * float(self.gap_blocks))
         out = []
         for fit, held in ForwardChaining(k, gap=gap, min_train_fraction=f).split(rows[:, None]):
             a, b = int(held[0]), int(held[-1]) + 1

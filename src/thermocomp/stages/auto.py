@@ -22,6 +22,16 @@ def is_auto(cfg: DictConfig) -> bool:
     return cfg.model.get("candidates") is not None
 
 
+def auto_scheme(cfg: DictConfig, ds) -> dict:
+    """``{"scheme": ...}``: validate as the test split of ``ds`` is held out, unless
+    ``model.estimator.scheme`` names one (``{}`` without a dataset)."""
+    if ds is None or cfg.model.estimator.get("scheme", "auto") != "auto":
+        return {}
+    from ..evaluation import holdout_scheme
+
+    return {"scheme": holdout_scheme(ds)}
+
+
 def build_candidates(cfg: DictConfig) -> dict:
     """``{name: unfitted estimator}`` of ``model.candidates``, with ``model.candidate_params``."""
     names = list(cfg.model.candidates)
@@ -77,7 +87,8 @@ def auto_table(metrics: dict) -> list[str]:
         return []
     names = list(dict.fromkeys(n for a in rows.values() for n in a["candidates"]))
     lines = ["model=auto: free-run validation RMSE per candidate (* chosen; the test split chose "
-             "nothing)", f"{'target':<8} {'chosen':<10} " + " ".join(f"{n[:11]:>11}" for n in names)]
+             "nothing; persistence: the previous measured error, one-step)",
+             f"{'target':<8} {'chosen':<10} " + " ".join(f"{n[:11]:>11}" for n in names)]
     for t, a in rows.items():
         cells = []
         for n in names:

@@ -42,7 +42,7 @@ from ..params import (
 from ..paths import conf_dir, resolve
 from ..tracking import enabled, store_uri
 from .apart import check_apart
-from .auto import auto_table, build_candidates, is_auto
+from .auto import auto_scheme, auto_table, build_candidates, is_auto
 from .rules import check_groups, check_keys
 
 MAX_COMPONENT = 200   # bytes of one name in a written path: 255 less the staging decoration
@@ -57,6 +57,7 @@ CONFIG_RULES = {
     "eval.anova_alpha": number(0.0, 1.0, open_lo=True, open_hi=True),
     "eval.mutual_prediction": BOOLEAN, "eval.ati_baselines": BOOLEAN, "eval.iso10791_a3": BOOLEAN,
     "eval.validation": BOOLEAN, "eval.validation_folds": integer(2, at_most=1000),
+    "eval.validation_scheme": choice("auto", "forward", "interleaved"),
     "data.group_jobs": integer(1, at_most=1024),           # processes
     "data.inputs": texts("column names or patterns", unique=True),
     "data.targets": optional(texts("E_ column names", unique=True)),
@@ -174,11 +175,12 @@ def data_options(cfg: DictConfig) -> dict:
     return OmegaConf.to_container(cfg.data, resolve=True)
 
 
-def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
-    """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``)."""
+def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator:
+    """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``).
+    ``ds``: the dataset it will be fitted on, whose split ``model=auto`` validates like."""
     estimator = build(cfg.model.estimator, "model.estimator")
     if is_auto(cfg):           # model=auto: the families it chooses among, from their configs
-        estimator = estimator(candidates=build_candidates(cfg))
+        estimator = estimator(candidates=build_candidates(cfg), **auto_scheme(cfg, ds))
     if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
         estimator = build(cfg.ati.estimator, "ati.estimator")(base_estimator=estimator)
     return Compensator(

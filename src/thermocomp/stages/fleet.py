@@ -50,13 +50,14 @@ def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
     train = require_split(ds, "train")
     require_split(ds, "test")
     t0 = time.perf_counter()
-    comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in train})
+    comp = build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train})
     fit_s = time.perf_counter() - t0
     ev = cfg.eval
     targets, pooled = _scores(comp, ds, ev)
     if ev.get("validation", True):
-        val = validation_report(partial(clone, build_compensator(cfg)), ds, ev.mode, fitted=comp,
-                                n_folds=int(ev.get("validation_folds", VAL_FOLDS)))
+        val = validation_report(partial(clone, build_compensator(cfg, ds=ds)), ds, ev.mode, fitted=comp,
+                                n_folds=int(ev.get("validation_folds", VAL_FOLDS)),
+                                scheme=ev.get("validation_scheme", "auto"))
         for t, entry in val.items():
             targets[t]["validation"] = entry
     save_model(comp, inside(stage / "models", safe_name(group) + ".pkl"))

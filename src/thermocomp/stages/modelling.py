@@ -59,7 +59,7 @@ from .common import (
 def _fit(cfg: DictConfig, ds) -> Compensator:
     ids = require_split(ds, "train")
     say(f"fitting {cfg.model.name} ({cfg.select.name} inputs) on {len(ids)} train campaigns")
-    return build_compensator(cfg).fit({c: ds.campaigns[c] for c in ids})
+    return build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in ids})
 
 
 def train(cfg: DictConfig) -> Compensator:
@@ -174,8 +174,8 @@ def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> No
     """
     say("validation: " + ("the val split" if ds.ids("val") else "cross-validation on the train split"))
     asked = int(cfg.eval.get("validation_folds", VAL_FOLDS))
-    val = validation_report(partial(clone, build_compensator(cfg)), ds, cfg.eval.mode, fitted=comp,
-                            n_folds=asked)
+    val = validation_report(partial(clone, build_compensator(cfg, ds=ds)), ds, cfg.eval.mode, fitted=comp,
+                            n_folds=asked, scheme=cfg.eval.get("validation_scheme", "auto"))
     used = next(iter(val.values()), {}).get("n_folds", asked)
     if asked != VAL_FOLDS and used != asked:  # the default is clamped quietly: it is not a choice
         logger.warning("eval.validation_folds=%d: %d fold(s), %s", asked, used,
