@@ -179,3 +179,31 @@ def test_auto_validates_as_the_test_split_is_held_out(two_targets, tmp_path):
     manifest.to_csv(among / "campaigns.csv", index=False)
     other = _run(among, tmp_path / "auto", "model=auto", PAIR)
     assert {m["auto"]["scheme"] for m in other["targets"].values()} == {"leave-campaigns-out"}
+
+
+def test_the_run_validates_the_families_auto_chose_as_they_validated(two_targets, tmp_path):
+    data, _, _ = two_targets
+    metrics = _run(data, tmp_path / "auto", "model=auto", PAIR, "eval.validation=true")
+    for m in metrics["targets"].values():    # the chosen family refitted per fold: its own score
+        assert m["validation"]["method"] == "blocked forward (3 folds)"
+        chosen = m["auto"]["candidates"][m["auto"]["chosen"]]
+        assert m["validation"]["rmse"] == pytest.approx(chosen, rel=1e-9)
+
+
+def test_the_run_refits_the_chosen_families_not_the_whole_choice(two_targets):
+    from sklearn.base import clone
+
+    from thermocomp.compensator import Compensator
+    from thermocomp.io import read_dataset
+    from thermocomp.models import MLR, LagBank
+    from thermocomp.models.auto import AutoRegressor
+    from thermocomp.stages.auto import as_chosen
+
+    ds, _ = read_dataset(two_targets[0])
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    template = Compensator(AutoRegressor({"mlr": MLR(), "lagbank": LagBank()}))
+    fitted = clone(template).fit(train)
+    refit = as_chosen(clone(template), fitted).fit(train)
+    assert {t: type(e) for t, e in refit.estimators_.items()} == {"E_A": MLR, "E_B": LagBank}
+    for t in ("E_A", "E_B"):     # the same fit as the chosen family's inside the auto model
+        assert (refit.predict(train)["K01"][t] == fitted.predict(train)["K01"][t]).all()

@@ -60,8 +60,13 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     gap_blocks : float, default 0.5
         One record: rows left out before each validation block, in blocks.
     max_seconds : float or None
-        A candidate whose first fold took longer than this is not validated further
+        A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
+    chosen : dict target -> candidate name, optional
+        The choice already made (:meth:`for_target` then gives that candidate): the
+        run's validation refits the chosen families, not the whole choice (nested,
+        candidates x folds² fits), so it is the chosen family's, optimistic by the
+        selection.
 
     Attributes
     ----------
@@ -81,8 +86,9 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
-                 max_seconds: float | None = None):
+                 max_seconds: float | None = None, chosen=None):
         self.candidates = candidates
+        self.chosen = chosen
         self.scheme = scheme
         self.n_folds = n_folds
         self.min_train_fraction = min_train_fraction
@@ -124,6 +130,13 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                         f"persistence {self.validation_['persistence']:.4g}")
         self.estimator_ = clone(self.candidates[self.family_]).fit(X, y, context=context)
         self.context_columns_ = context_columns(self.estimator_)
+        return self
+
+    def for_target(self, target: str):
+        """The estimator of ``target``: its chosen candidate once ``chosen`` names one, else self
+        (:func:`thermocomp.context.for_target`)."""
+        if self.chosen and target in self.chosen:
+            return self.candidates[self.chosen[target]]
         return self
 
     def _folds(self, groups, n: int) -> list:

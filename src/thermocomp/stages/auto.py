@@ -32,6 +32,16 @@ def auto_scheme(cfg: DictConfig, ds) -> dict:
     return {"scheme": holdout_scheme(ds)}
 
 
+def as_chosen(template, fitted):
+    """``template`` (an unfitted compensator) fitting, per target, the family ``fitted`` (a
+    model=auto compensator) chose: what its validation refits (the choice itself is not
+    re-validated: candidates x folds² fits).  Any other ``template`` as it is."""
+    chosen = {t: getattr(est, "family_", None) for t, est in getattr(fitted, "estimators_", {}).items()}
+    if not chosen or None in chosen.values() or "chosen" not in template.estimator.get_params(deep=False):
+        return template
+    return template.set_params(estimator__chosen=chosen)
+
+
 def build_candidates(cfg: DictConfig) -> dict:
     """``{name: unfitted estimator}`` of ``model.candidates``, with ``model.candidate_params``."""
     names = list(cfg.model.candidates)

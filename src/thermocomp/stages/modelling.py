@@ -38,6 +38,7 @@ from ..log import logger
 from ..paths import resolve
 from ..tracking import headline_metrics, stage_run
 from .artifacts import fit_from_artifacts
+from .auto import as_chosen
 from .common import (
     Clock,
     build_compensator,
@@ -174,7 +175,8 @@ def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> No
     """
     say("validation: " + ("the val split" if ds.ids("val") else "cross-validation on the train split"))
     asked = int(cfg.eval.get("validation_folds", VAL_FOLDS))
-    val = validation_report(partial(clone, build_compensator(cfg, ds=ds)), ds, cfg.eval.mode, fitted=comp,
+    template = as_chosen(build_compensator(cfg, ds=ds), comp)   # model=auto: its choice
+    val = validation_report(partial(clone, template), ds, cfg.eval.mode, fitted=comp,
                             n_folds=asked, scheme=cfg.eval.get("validation_scheme", "auto"))
     used = next(iter(val.values()), {}).get("n_folds", asked)
     if asked != VAL_FOLDS and used != asked:  # the default is clamped quietly: it is not a choice
