@@ -107,13 +107,28 @@ def test_the_composite_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_
         assert replay["targets"][t]["rmse"] == pytest.approx(run["targets"][t]["test"]["rmse"], rel=1e-6)
 
 
-def test_an_ati_candidate_is_skipped_with_its_reason_where_ambients_do_not_span(two_targets, tmp_path):
+def _with_ambient(data: Path, to: Path, level) -> Path:
+    """A copy of ``data`` with an air sensor ``T_amb`` at ``level(i)`` °C in campaign ``i``."""
+    shutil.copytree(data, to)
+    for i, f in enumerate(sorted(to.glob("K*.csv"))):
+        df = pd.read_csv(f)
+        df["T_amb"] = level(i) + 0.01 * np.sin(df["time"] / 600.0)
+        df.to_csv(f, index=False)
+    return to
+
+
+def test_an_ati_candidate_applies_only_where_the_train_campaigns_span_ambient_levels(two_targets, tmp_path):
     data, _, _ = two_targets
-    metrics = _run(data, tmp_path / "auto", "model=auto", "model.candidates=[mlr,ati]")
-    for m in metrics["targets"].values():
-        assert m["auto"]["chosen"] == "mlr"
-        assert "ambient level" in m["auto"]["skipped"]["ati"]
-        assert "ati" not in m["auto"]["candidates"]
+    ati = ["model=auto", "model.candidates=[mlr,ati]"]
+    for m in _run(data, tmp_path / "none", *ati)["targets"].values():
+        assert m["auto"]["chosen"] == "mlr" and "ati" not in m["auto"]["candidates"]
+        assert "no campaign ambient" in m["auto"]["skipped"]["ati"]
+    one = _with_ambient(data, tmp_path / "one", lambda i: 20.0)
+    for m in _run(one, tmp_path / "one_out", *ati)["targets"].values():
+        assert "span 1 ambient level(s)" in m["auto"]["skipped"]["ati"]
+    seasons = _with_ambient(data, tmp_path / "seasons", lambda i: 12.0 + 2.0 * i)
+    for m in _run(seasons, tmp_path / "seasons_out", *ati)["targets"].values():
+        assert "ati" in m["auto"]["candidates"] and not m["auto"]["skipped"]
 
 
 @pytest.mark.parametrize("candidates, says", [

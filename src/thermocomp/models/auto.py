@@ -190,9 +190,9 @@ def _not_applicable(name: str, context, groups) -> str | None:
     """Why candidate ``name`` does not apply to these training rows (None: it does)."""
     if not name.startswith(ATI):
         return None
-    if context is None or AMBIENT_C0 not in context:
-        return "no campaign ambient (T_amb) to choose an interval by"
-    a0 = np.asarray(context[AMBIENT_C0], float)
+    a0 = np.asarray(context[AMBIENT_C0], float) if context is not None and AMBIENT_C0 in context else None
+    if a0 is None or not np.isfinite(a0).any():
+        return "no campaign ambient (a T_amb sensor) to choose an interval by"
     first = np.unique(groups, return_index=True)[1] if groups is not None else [0]
     levels = np.unique(np.round(a0[first] * 2) / 2)
     levels = levels[np.isfinite(levels)]
