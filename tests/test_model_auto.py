@@ -222,3 +222,14 @@ def test_the_run_refits_the_chosen_families_not_the_whole_choice(two_targets):
     assert {t: type(e) for t, e in refit.estimators_.items()} == {"E_A": MLR, "E_B": LagBank}
     for t in ("E_A", "E_B"):     # the same fit as the chosen family's inside the auto model
         assert (refit.predict(train)["K01"][t] == fitted.predict(train)["K01"][t]).all()
+
+
+def test_mlr_is_kept_unless_a_candidate_validates_enough_lower(two_targets, tmp_path):
+    data, metrics, _ = two_targets
+    b = metrics["targets"]["E_B"]["auto"]
+    gain = 100 * (1 - b["candidates"]["lagbank"] / b["candidates"]["mlr"])
+    assert b["chosen"] == "lagbank" and gain > 1          # the default: 1 %
+    strict = _run(data, tmp_path / "strict", "model=auto", PAIR,
+                  f"model.estimator.min_gain_pct={min(100.0, gain + 1):.3f}")["targets"]["E_B"]["auto"]
+    assert strict["candidates"] == b["candidates"] and strict["chosen"] == "mlr"
+    assert "the simpler family kept" in strict["reason"]

@@ -62,6 +62,11 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     max_seconds : float or None
         A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
+    min_gain_pct : float, default 1.0
+        MLR, when a candidate, is kept unless the best candidate's validation RMSE is lower
+        by more than this share: a tie goes to the simplest family (on ``swiss_lathe_door``
+        E_X the LSTM, whose early stopping kept the linear law, validated 2.16 as MLR and
+        tested 3.43 against 3.38).
     chosen : dict target -> candidate name, optional
         The choice already made (:meth:`for_target` then gives that candidate): the
         run's validation refits the chosen families, not the whole choice (nested,
@@ -82,12 +87,13 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     param_rules = {"scheme": choice("auto", "forward", "interleaved"), "n_folds": integer(1, at_most=100),
                    "min_train_fraction": number(0.0, 1.0, open_lo=True, open_hi=True),
-                   "gap_blocks": number(0.0, 10.0)}
+                   "gap_blocks": number(0.0, 10.0), "min_gain_pct": number(0.0, 100.0)}
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
-                 max_seconds: float | None = None, chosen=None):
+                 max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None):
         self.candidates = candidates
+        self.min_gain_pct = min_gain_pct
         self.chosen = chosen
         self.scheme = scheme
         self.n_folds = n_folds
@@ -124,9 +130,15 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         best, self.family_ = ranked[0]
         runner = f", next {ranked[1][1]} {ranked[1][0]:.4g}" if len(ranked) > 1 else ""
         self.scheme_ = _scheme(self.scheme, groups)
-        self.reason_ = (f"lowest free-run validation RMSE {best:.4g} ({len(folds)} {self.scheme_} "
-                        f"fold(s))"
-                        f"{runner}; MLR {self.validation_.get(BASELINE, float('nan')):.4g}, "
+        lead = f"lowest free-run validation RMSE {best:.4g}"
+        base = self.validation_.get(BASELINE)
+        if (BASELINE in self.candidates and self.family_ != BASELINE and base is not None
+                and best > base * (1 - float(self.min_gain_pct) / 100)):
+            lead = (f"{self.family_}'s validation RMSE {best:.4g} is not {self.min_gain_pct:g} % "
+                    "below MLR's: the simpler family kept")
+            self.family_, runner = BASELINE, ""
+        self.reason_ = (f"{lead} ({len(folds)} {self.scheme_} fold(s)){runner}; "
+                        f"MLR {self.validation_.get(BASELINE, float('nan')):.4g}, "
                         f"persistence {self.validation_['persistence']:.4g}")
         self.estimator_ = clone(self.candidates[self.family_]).fit(X, y, context=context)
         self.context_columns_ = context_columns(self.estimator_)
