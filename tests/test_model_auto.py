@@ -131,17 +131,20 @@ def test_an_ati_candidate_applies_only_where_the_train_campaigns_span_ambient_le
         assert "ati" in m["auto"]["candidates"] and not m["auto"]["skipped"]
 
 
-@pytest.mark.parametrize("candidates, says", [
-    ("[mlr,nope]", "model.candidates: 'nope' is not a model family"),
-    ("[auto]", "model.candidates: 'auto'"),
-    ("[]", "model.candidates is empty"),
+@pytest.mark.parametrize("overrides, says", [
+    (["model.candidates=[mlr,nope]"], "model.candidates: 'nope' is not a model family"),
+    (["model.candidates=[auto]"], "model.candidates: 'auto'"),
+    (["model.candidates=[]"], "model.candidates is empty"),
+    (["model.candidate_params={lstm:{max_epochs:2}}"], "model.candidate_params.lstm"),
+    (["model.candidate_params={mlr:{fit_intercept:maybe}}"], "fit_intercept"),
+    (["ati=cmeans"], "model=auto with ati=cmeans"),
 ])
-def test_a_bad_candidate_list_is_refused_before_any_work(two_targets, tmp_path, capsys, candidates, says):
+def test_a_bad_auto_config_is_refused_before_any_work(two_targets, tmp_path, capsys, overrides, says):
     data, _, _ = two_targets
     out = tmp_path / "out"
     before = snapshot(out)
     refused(["run", f"data.path={data}", f"out={out}", *FAST, "model=auto",
-             f"model.candidates={candidates}"], capsys, says)
+             "model.candidates=[mlr,lagbank]", *overrides], capsys, says)
     assert snapshot(out) == before
 
 
@@ -233,3 +236,14 @@ def test_mlr_is_kept_unless_a_candidate_validates_enough_lower(two_targets, tmp_
                   f"model.estimator.min_gain_pct={min(100.0, gain + 1):.3f}")["targets"]["E_B"]["auto"]
     assert strict["candidates"] == b["candidates"] and strict["chosen"] == "mlr"
     assert "the simpler family kept" in strict["reason"]
+
+
+def test_candidate_params_reach_their_candidate(two_targets, tmp_path):
+    import pickle
+
+    data, _, _ = two_targets
+    _run(data, tmp_path / "out", "model=auto", PAIR, "model.candidate_params={lagbank:{n_taus:3}}")
+    comp = pickle.loads((tmp_path / "out" / "model.pkl").read_bytes())
+    chosen = comp.estimators_["E_B"]
+    assert chosen.family_ == "lagbank" and chosen.estimator_.n_taus == 3
+    assert chosen.candidates["mlr"].get_params() == {"fit_intercept": True}

@@ -32,6 +32,13 @@ def auto_scheme(cfg: DictConfig, ds) -> dict:
     return {"scheme": holdout_scheme(ds)}
 
 
+def auto_reports(comp) -> dict:
+    """``{target: its choice}`` (``metrics.json`` ``targets.<t>.auto``) of a model=auto
+    compensator; ``{}`` for any other."""
+    return {t: est.report() for t, est in getattr(comp, "estimators_", {}).items()
+            if hasattr(est, "family_")}
+
+
 def as_chosen(template, fitted):
     """``template`` (an unfitted compensator) fitting, per target, the family ``fitted`` (a
     model=auto compensator) chose: what its validation refits (the choice itself is not
@@ -44,6 +51,9 @@ def as_chosen(template, fitted):
 
 def build_candidates(cfg: DictConfig) -> dict:
     """``{name: unfitted estimator}`` of ``model.candidates``, with ``model.candidate_params``."""
+    if cfg.get("ati") is not None and cfg.ati.get("estimator") is not None:
+        raise ConfigError(f"model=auto with ati={cfg.ati.name}: the ATI wrapper is a candidate of its "
+                          "own, name it in model.candidates (ati, or ati+<family>) with ati=none")
     names = list(cfg.model.candidates)
     params = cfg.model.get("candidate_params") or {}
     if not names:

@@ -38,7 +38,7 @@ from ..log import logger
 from ..paths import resolve
 from ..tracking import headline_metrics, stage_run
 from .artifacts import fit_from_artifacts
-from .auto import as_chosen
+from .auto import as_chosen, auto_reports
 from .common import (
     Clock,
     build_compensator,
@@ -110,9 +110,8 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
         targets, predictions = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points,
                                      iso_a3=ev.get("iso10791_a3", True))
         clock.lap("score")
-        for t, est in comp.estimators_.items():      # model=auto: what each target chose, and why
-            if hasattr(est, "family_"):
-                targets[t]["auto"] = est.report()
+        for t, chosen in auto_reports(comp).items():      # model=auto: each target's choice
+            targets[t]["auto"] = chosen
         if ev.get("validation", True):
             _add_validation(cfg, comp, ds, targets)
             clock.lap("validation")
