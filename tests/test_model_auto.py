@@ -247,3 +247,23 @@ def test_candidate_params_reach_their_candidate(two_targets, tmp_path):
     chosen = comp.estimators_["E_B"]
     assert chosen.family_ == "lagbank" and chosen.estimator_.n_taus == 3
     assert chosen.candidates["mlr"].get_params() == {"fit_intercept": True}
+
+
+def test_with_a_val_split_auto_chooses_on_it_as_the_run_validates(two_targets, tmp_path):
+    data, _, _ = two_targets
+    with_val = tmp_path / "val"
+    shutil.copytree(data, with_val)
+    manifest = pd.read_csv(with_val / "campaigns.csv")
+    manifest.loc[5, "split"] = "val"                     # K06: after the train, before the test
+    manifest.to_csv(with_val / "campaigns.csv", index=False)
+    auto = _run(with_val, tmp_path / "auto", "model=auto", PAIR, "eval.validation=true")
+    for family in ("mlr", "lagbank"):
+        alone = _run(with_val, tmp_path / family, f"model={family}", "eval.validation=true")
+        for t, m in auto["targets"].items():
+            assert m["auto"]["scheme"] == "val split"
+            assert m["auto"]["candidates"][family] == pytest.approx(
+                alone["targets"][t]["validation"]["rmse"], rel=1e-9)
+    for m in auto["targets"].values():
+        scores = {n: m["auto"]["candidates"][n] for n in ("mlr", "lagbank")}
+        assert m["auto"]["chosen"] == min(scores, key=scores.get)
+        assert m["validation"]["rmse"] == pytest.approx(scores[m["auto"]["chosen"]], rel=1e-9)

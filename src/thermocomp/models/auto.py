@@ -67,6 +67,12 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         by more than this share: a tie goes to the simplest family (on ``swiss_lathe_door``
         E_X the LSTM, whose early stopping kept the linear law, validated 2.16 as MLR and
         tested 3.43 against 3.38).
+    val_scores : dict target -> {candidate: RMSE or None}, optional
+        Each candidate's free-run RMSE on the manifest's ``val`` split (fitted on the train
+        split; :func:`thermocomp.stages.auto.val_split_scores`), used instead of folds, as the
+        run's validation uses the val split when there is one (None: it could not fit).
+    given_scores : dict candidate -> RMSE or None, optional
+        One target's ``val_scores`` (:meth:`for_target` sets it).
     chosen : dict target -> candidate name, optional
         The choice already made (:meth:`for_target` then gives that candidate): the
         run's validation refits the chosen families, not the whole choice (nested,
@@ -91,8 +97,11 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
-                 max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None):
+                 max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
+                 val_scores=None, given_scores=None):
         self.candidates = candidates
+        self.val_scores = val_scores
+        self.given_scores = given_scores
         self.min_gain_pct = min_gain_pct
         self.chosen = chosen
         self.scheme = scheme
@@ -107,6 +116,9 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             raise ParameterError("model.candidates is empty: name at least one model family")
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         groups = groups_of(context)
+        if self.given_scores is not None:      # the val split's, computed by the stage
+            self.scheme_ = "val split"
+            return self._keep_best(X, y, context, dict(self.given_scores), "the val split")
         folds = self._folds(groups, len(y))
         self.validation_, self.skipped_, self.fit_seconds_ = {}, {}, {}
         runs = dict(self.candidates)
@@ -123,13 +135,22 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         held = np.any([score for *_, score in folds], axis=0)
         last = persistence(y, groups)
         self.validation_["persistence"] = rmse(y[held] - last[held])
+        self.scheme_ = _scheme(self.scheme, groups)
+        return self._keep_best(X, y, context, None, f"{len(folds)} {self.scheme_} fold(s)")
+
+    def _keep_best(self, X, y, context, given, how: str):
+        """Choose among the validated candidates (``given``: scores from elsewhere) and refit."""
+        if given is not None:
+            self.fit_seconds_ = {}
+            self.skipped_ = {n: "cannot fit these data" for n, v in given.items() if v is None}
+            self.skipped_.update({n: "not validated" for n in self.candidates if n not in given})
+            self.validation_ = {n: float(v) for n, v in given.items() if v is not None}
         ranked = sorted((v, n) for n, v in self.validation_.items() if n in self.candidates)
         if not ranked:
             raise ParameterError("model=auto: no candidate could be validated on these data ("
                                  + "; ".join(f"{n}: {w}" for n, w in self.skipped_.items()) + ")")
         best, self.family_ = ranked[0]
         runner = f", next {ranked[1][1]} {ranked[1][0]:.4g}" if len(ranked) > 1 else ""
-        self.scheme_ = _scheme(self.scheme, groups)
         lead = f"lowest free-run validation RMSE {best:.4g}"
         base = self.validation_.get(BASELINE)
         if (BASELINE in self.candidates and self.family_ != BASELINE and base is not None
@@ -137,9 +158,9 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             lead = (f"{self.family_}'s validation RMSE {best:.4g} is not {self.min_gain_pct:g} % "
                     "below MLR's: the simpler family kept")
             self.family_, runner = BASELINE, ""
-        self.reason_ = (f"{lead} ({len(folds)} {self.scheme_} fold(s)){runner}; "
+        self.reason_ = (f"{lead} ({how}){runner}; "
                         f"MLR {self.validation_.get(BASELINE, float('nan')):.4g}, "
-                        f"persistence {self.validation_['persistence']:.4g}")
+                        f"persistence {self.validation_.get('persistence', float('nan')):.4g}")
         self.estimator_ = clone(self.candidates[self.family_]).fit(X, y, context=context)
         self.context_columns_ = context_columns(self.estimator_)
         return self
@@ -149,6 +170,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         (:func:`thermocomp.context.for_target`)."""
         if self.chosen and target in self.chosen:
             return self.candidates[self.chosen[target]]
+        if self.val_scores is not None:
+            return clone(self).set_params(val_scores=None, given_scores=self.val_scores.get(target, {}))
         return self
 
     def _folds(self, groups, n: int) -> list:

@@ -32,6 +32,42 @@ def auto_scheme(cfg: DictConfig, ds) -> dict:
     return {"scheme": holdout_scheme(ds)}
 
 
+def val_split_scores(comp, ds) -> dict:
+    """``{target: {candidate: free-run RMSE on the val split}}`` of a model=auto compensator's
+    candidates (and MLR, persistence), each fitted on the train split as the run's validation
+    scores a val split (:func:`~thermocomp.evaluation.validation_report`); None where a
+    candidate cannot fit.  The test split is not read."""
+    import numpy as np
+    from sklearn.base import clone
+
+    from ..evaluation import validation_report
+    from ..metrics import rmse
+    from ..models import MLR
+    from ..one_step import persistence
+
+    candidates = {**comp.estimator.candidates}
+    candidates.setdefault(BASELINE, MLR())
+    scores: dict = {}
+    for name, candidate in candidates.items():
+        one = clone(comp).set_params(estimator=clone(candidate))
+        try:
+            report = validation_report(lambda one=one: one, ds, "simulation")
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError):
+            scores.setdefault(None, {})[name] = None
+            continue
+        for t, entry in report.items():
+            scores.setdefault(t, {})[name] = entry["rmse"]
+    failed = scores.pop(None, {})
+    val = {c: ds.campaigns[c] for c in ds.ids("val")}
+    measured = clone(comp).set_params(estimator=MLR()).fit(
+        {c: ds.campaigns[c] for c in ds.ids("train")}).measured(val)
+    for t in scores:
+        scores[t].update(failed)
+        y = [measured[c][t].to_numpy(float) for c in val]
+        scores[t]["persistence"] = rmse(np.concatenate([v - persistence(v) for v in y]))
+    return scores
+
+
 def auto_reports(comp) -> dict:
     """``{target: its choice}`` (``metrics.json`` ``targets.<t>.auto``) of a model=auto
     compensator; ``{}`` for any other."""

@@ -42,7 +42,7 @@ from ..params import (
 from ..paths import conf_dir, resolve
 from ..tracking import enabled, store_uri
 from .apart import check_apart
-from .auto import auto_scheme, auto_table, build_candidates, is_auto
+from .auto import auto_scheme, auto_table, build_candidates, is_auto, val_split_scores
 from .rules import check_groups, check_keys
 
 MAX_COMPONENT = 200   # bytes of one name in a written path: 255 less the staging decoration
@@ -183,7 +183,7 @@ def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator
         estimator = estimator(candidates=build_candidates(cfg), **auto_scheme(cfg, ds))
     if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
         estimator = build(cfg.ati.estimator, "ati.estimator")(base_estimator=estimator)
-    return Compensator(
+    comp = Compensator(
         estimator=estimator,
         selector=build(cfg.select.selector, "select.selector"),
         inputs=list(cfg.data.inputs),
@@ -192,6 +192,9 @@ def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator
         denoiser=build_denoiser(cfg),
         offsets="drop" if identified_targets(cfg) else "predict",
     )
+    if is_auto(cfg) and ds is not None and ds.ids("val"):   # chosen on the val split, as validated
+        comp.estimator.set_params(val_scores=val_split_scores(comp, ds))
+    return comp
 
 
 def is_volumetric(cfg: DictConfig) -> bool:

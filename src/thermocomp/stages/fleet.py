@@ -56,7 +56,7 @@ def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
     ev = cfg.eval
     targets, pooled = _scores(comp, ds, ev)
     if ev.get("validation", True):
-        template = as_chosen(build_compensator(cfg, ds=ds), comp)     # model=auto: its choice
+        template = as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), comp)
         val = validation_report(partial(clone, template), ds, ev.mode, fitted=comp,
                                 n_folds=int(ev.get("validation_folds", VAL_FOLDS)),
                                 scheme=ev.get("validation_scheme", "auto"))

@@ -174,7 +174,8 @@ def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> No
     """
     say("validation: " + ("the val split" if ds.ids("val") else "cross-validation on the train split"))
     asked = int(cfg.eval.get("validation_folds", VAL_FOLDS))
-    template = as_chosen(build_compensator(cfg, ds=ds), comp)   # model=auto: its choice
+    # model=auto: its choice refitted (a val split scores the fitted model: no template needed)
+    template = as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), comp)
     val = validation_report(partial(clone, template), ds, cfg.eval.mode, fitted=comp,
                             n_folds=asked, scheme=cfg.eval.get("validation_scheme", "auto"))
     used = next(iter(val.values()), {}).get("n_folds", asked)
