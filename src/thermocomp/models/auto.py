@@ -41,9 +41,11 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     ones (every third by date): leave-campaigns-out, folds spread over the
     campaigns.  On year-round campaigns with every third held out, blocked
     forward folds ranked the five families against their test order
-    (Spearman -0.63), interleaved ones with it (+0.17).  A candidate that cannot fit these data
-    (an ATI wrapper with campaigns at one ambient level, a family refusing
-    them) is skipped with its reason.  MLR is validated as the baseline even
+    (Spearman -0.63), interleaved ones with it (+0.17).  With a ``val`` split
+    in the manifest the stage scores each candidate on it instead
+    (``val_scores``), as the run's validation does.  A candidate that cannot
+    fit these data (an ATI wrapper with campaigns at one ambient level, a
+    family refusing them) is skipped with its reason.  MLR is validated as the baseline even
     when it is no candidate, and persistence (the previous measured error) is
     reported beside it.
 
