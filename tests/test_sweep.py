@@ -68,7 +68,7 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
     table = pd.read_csv(sweep_dir / "compare.csv")
     assert sorted(table["run_id"]) == sorted(children["run_id"])
     assert table["val_rmse"].is_monotonic_increasing and table["rsd_mean"].notna().all()
-    assert (table["val_method"] == "leave-campaigns-out (4 folds)").all()   # 4 train campaigns
+    assert (table["val_method"] == "blocked forward (2 folds)").all()   # test last: the later 2 of 4
     assert table["e_p95_1h"].notna().all() and table["e_p95_8h"].isna().all()  # 2 h campaigns
     assert "['T_1']" in table["settings"].iloc[-1]      # one sensor cannot explain E_X: worst
     summary = json.loads((sweep_dir / "compare.json").read_text())

@@ -52,7 +52,7 @@ def _poisoned(ds: Dataset, split: str = "test", seed: int = 1) -> Dataset:
 
 def test_leave_campaigns_out_refits_per_fold_and_ignores_the_test_split():
     ds = _dataset(["train"] * 5 + ["test"] * 2)
-    val = validation_report(MAKE, ds, n_folds=3)
+    val = validation_report(MAKE, ds, n_folds=3, scheme="interleaved")
     assert set(val) == {"E_X", "E_Z"}
     assert val["E_Z"]["method"] == "leave-campaigns-out (3 folds)"
     assert set(val["E_Z"]["per_unit"]) == set(ds.ids("train"))   # every train campaign held out once
@@ -69,7 +69,7 @@ def test_leave_campaigns_out_refits_per_fold_and_ignores_the_test_split():
     assert val["E_Z"]["rmse"] == pytest.approx(rmse(np.concatenate(res)), rel=1e-9)
 
     poisoned = _poisoned(ds)
-    assert validation_report(MAKE, poisoned, n_folds=3) == val
+    assert validation_report(MAKE, poisoned, n_folds=3, scheme="interleaved") == val
     full = MAKE().fit({c: ds.campaigns[c] for c in train})
     # the poison is real: the test figures it gives are garbage
     assert score(full, poisoned)[0]["E_Z"]["test"]["rmse"] > 100 * score(full, ds)[0]["E_Z"]["test"]["rmse"]

@@ -11,6 +11,7 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
+import pandas as pd
 
 from . import continuation
 from .compensator import MODES, Compensator
@@ -215,16 +216,45 @@ VAL_FOLDS = 5
 MIN_TRAIN_FRACTION = 0.5   # forward chaining validates a single record on its second half
 
 
+SCHEMES = ("forward", "interleaved")
+
+
+def holdout_scheme(ds: Dataset) -> str:
+    """How the test split is held out of the campaigns, so that validation does the same:
+    ``'forward'`` when every test campaign comes after every train campaign (by the manifest's
+    ``start`` when it has one for each, else in the manifest's order; one record cut in time
+    too), else ``'interleaved'`` (test campaigns among the train ones, e.g. every third by
+    date).  Only the split's layout is read, never a test value."""
+    order = ds.ids()
+    if "start" in ds.manifest.columns:
+        try:
+            starts = pd.to_datetime(ds.manifest["start"], errors="coerce", format="ISO8601")
+        except (TypeError, ValueError):    # mixed time zones: the manifest's order
+            starts = pd.Series([pd.NaT])
+        if starts.notna().all():
+            order = list(starts.sort_values(kind="stable").index)
+    train, test = set(ds.ids("train")), set(ds.ids("test"))
+    where = {c: i for i, c in enumerate(order)}
+    if len(train) < 2 or not test or min(where[c] for c in test) > max(where[c] for c in train):
+        return "forward"
+    return "interleaved"
+
+
 def validation_report(make_compensator: Callable[[], Compensator], ds: Dataset,
                       mode: str = "simulation", fitted: Compensator | None = None,
-                      n_folds: int = VAL_FOLDS) -> dict:
+                      n_folds: int = VAL_FOLDS, scheme: str = "auto") -> dict:
     r"""Per-target validation figures, computed without the test split.
 
     * ``val`` campaigns in the manifest: the model fitted on the train split
       (``fitted``, else a new one) predicts them (``method = "val split"``).
-    * otherwise cross-validation on the train campaigns: several campaigns ->
+    * otherwise cross-validation on the train campaigns, holding them out as the
+      test split is held out (``scheme``; ``auto``: :func:`holdout_scheme`):
+      several campaigns, ``interleaved`` ->
       :class:`~thermocomp.model_selection.LeaveCampaignsOut` with
-      ``min(n_folds, n_campaigns)`` folds; a single long record ->
+      ``min(n_folds, n_campaigns)`` folds, ``forward`` ->
+      :class:`~thermocomp.model_selection.BlockedForward` (the later half of the
+      campaigns in blocks, each predicted by a fit on the campaigns before it);
+      a single long record ->
       :class:`~thermocomp.model_selection.ForwardChaining` on its second half
       (expanding window, a gap of half a validation block).  Each fold refits
       the whole configured compensator (``make_compensator()``: selection,
@@ -244,12 +274,12 @@ def validation_report(make_compensator: Callable[[], Compensator], ds: Dataset,
     -------
     dict target -> ``{"rmse", "rsd_mean", "rsd_sd", "method", "n_folds", "per_unit"}``
     """
-    return validation_reports(make_compensator, ds, (mode,), fitted, n_folds)[mode]
+    return validation_reports(make_compensator, ds, (mode,), fitted, n_folds, scheme)[mode]
 
 
 def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
                        modes=("simulation",), fitted: Compensator | None = None,
-                       n_folds: int = VAL_FOLDS) -> dict:
+                       n_folds: int = VAL_FOLDS, scheme: str = "auto") -> dict:
     """:func:`validation_report` in each of ``modes`` from the same fits (a fold's model is
     fitted once and predicts in every mode): ``{mode: {target: entry}}``."""
     modes = tuple(dict.fromkeys(modes))
@@ -269,7 +299,12 @@ def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
         return out
     template = make_compensator()
     camps = {c: ds.campaigns[c] for c in train}
-    if len(train) >= 2:
+    if scheme not in ("auto", *SCHEMES):
+        raise ValueError(f"scheme must be auto or one of {SCHEMES}, got {scheme!r}")
+    if len(train) >= 2 and (holdout_scheme(ds) if scheme == "auto" else scheme) == "forward":
+        folds = _blocked_folds(camps, n_folds)
+        method = f"blocked forward ({len(folds)} folds)"
+    elif len(train) >= 2:
         folds = _campaign_folds(camps, n_folds)
         method = f"leave-campaigns-out ({len(folds)} folds)"
     else:
@@ -295,6 +330,21 @@ def _campaign_folds(camps: dict, n_folds: int) -> list[tuple]:
     folds = []
     for fit, held in LeaveCampaignsOut(n_folds=n_folds).split(ids, groups=ids):
         fit_ids, held_ids = [ids[i] for i in fit], [ids[i] for i in held]
+        folds.append(({c: lengths[c] for c in fit_ids}, {c: lengths[c] for c in held_ids},
+                      {c: (c, 0, lengths[c]) for c in held_ids}, 0))
+    return folds
+
+
+def _blocked_folds(camps: dict, n_folds: int) -> list[tuple]:
+    """:func:`_campaign_folds` of :class:`~thermocomp.model_selection.BlockedForward`: the later
+    campaigns in blocks, each fold fitted on the campaigns before its block."""
+    from .model_selection import BlockedForward
+
+    ids = list(camps)
+    lengths = {c: len(camps[c]) for c in ids}
+    folds = []
+    for fit, _, held in BlockedForward(n_folds, MIN_TRAIN_FRACTION).folds(np.array(ids, dtype=object)):
+        fit_ids, held_ids = [c for c, f in zip(ids, fit) if f], [c for c, h in zip(ids, held) if h]
         folds.append(({c: lengths[c] for c in fit_ids}, {c: lengths[c] for c in held_ids},
                       {c: (c, 0, lengths[c]) for c in held_ids}, 0))
     return folds

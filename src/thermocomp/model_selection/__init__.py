@@ -11,6 +11,7 @@ from .criteria import CRITERIA, ic_path, information_criteria, information_crite
 from .greedy import GreedyPath, greedy_path, scaled_gram
 from .splitters import (
     CV_SCHEMES,
+    BlockedForward,
     CampaignHoldOut,
     ForwardChaining,
     LeaveCampaignsOut,
@@ -21,7 +22,8 @@ from .splitters import (
     unit_labels,
 )
 
-__all__ = ["CRITERIA", "CampaignHoldOut", "ForwardChaining", "GreedyPath", "LeaveCampaignsOut",
+__all__ = ["BlockedForward", "CRITERIA", "CampaignHoldOut",
+           "ForwardChaining", "GreedyPath", "LeaveCampaignsOut",
            "LeaveOneCampaignOut", "TrainOnEachCampaign", "greedy_path", "ic_path",
            "information_criteria", "information_criterion", "scaled_gram", "unit_labels",
            "cv_scheme", "forward_gap", "CV_SCHEMES"]

@@ -290,3 +290,59 @@ def cv_scheme(groups, cv: str = "auto") -> str:
     if cv != "auto":
         return cv
     return "campaigns" if len(dict.fromkeys(_campaigns(None, groups))) > 1 else "forward"
+
+
+class BlockedForward:
+    """Forward-chaining validation folds, blocked: the later units validate, the earlier fit.
+
+    Units are campaigns in order of appearance (the manifest's, calendar order),
+    or for a single campaign its rows.  The last ``1 - min_train_fraction`` of
+    the units are cut into ``n_folds`` consecutive blocks; fold ``k`` fits on
+    every unit before block ``k`` and validates on the block, so no fold looks
+    ahead and every fold fits on at least about ``min_train_fraction`` of the
+    data, as the final model will.  Interleaved leave-campaigns-out folds fit
+    on campaigns from after the held-out one: on a record whose behaviour
+    drifts that rewards interpolation the test campaigns (later, outside the
+    range) never get.
+
+    Campaigns are predicted from their own start.  A single record is predicted
+    from its start up to the block's end by the model fitted on the rows before
+    the block less a gap of half a block (its slow states do not reach into the
+    block), so the state carries over as on the machine, and scored on the block.
+
+    Parameters
+    ----------
+    n_folds : int, default 5
+    min_train_fraction : float in (0, 1), default 0.5
+    gap_blocks : float >= 0, default 0.5
+        The gap of a single record, in validation blocks.
+    """
+
+    def __init__(self, n_folds: int = 5, min_train_fraction: float = 0.5, gap_blocks: float = 0.5):
+        self.n_folds = n_folds
+        self.min_train_fraction = min_train_fraction
+        self.gap_blocks = gap_blocks
+
+    def folds(self, groups, n: int | None = None) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """``(fit, predict, score)`` boolean row masks of each fold (``groups``: campaign of each
+        row, None for ``n`` rows of one record)."""
+        f = float(self.min_train_fraction)
+        if not 0 < f < 1:
+            raise ParameterError(f"min_train_fraction={self.min_train_fraction!r} must be in (0, 1)")
+        if int(self.n_folds) < 1:
+            raise ParameterError(f"n_folds={self.n_folds!r} must be >= 1")
+        unit, n_units = _index_of(_campaigns(np.zeros(n or 0), groups))
+        if n_units >= 2:
+            n_val = min(n_units - 1, max(1, int(n_units - np.ceil(f * n_units))))
+            k = min(int(self.n_folds), n_val)
+            edges = n_units - n_val + (np.arange(k + 1) * n_val) // k
+            return [(unit < a, (unit >= a) & (unit < b), (unit >= a) & (unit < b))
+                    for a, b in zip(edges[:-1], edges[1:])]
+        rows = np.arange(len(unit))
+        k = max(1, min(int(self.n_folds), len(rows) - 1))
+        gap = int(forward_block(len(rows), k, f) * float(self.gap_blocks))
+        out = []
+        for fit, held in ForwardChaining(k, gap=gap, min_train_fraction=f).split(rows[:, None]):
+            a, b = int(held[0]), int(held[-1]) + 1
+            out.append((rows <= fit[-1], rows < b, (rows >= a) & (rows < b)))
+        return out

@@ -88,7 +88,7 @@ def fit_from_artifacts(cfg: DictConfig, ds) -> Compensator:
     ``data.processed`` the fitted denoiser is used as fitted (frozen); with a
     matching ``selection.json`` the stored inputs.
     """
-    comp = build_compensator(cfg)
+    comp = build_compensator(cfg, ds=ds)
     ids = require_split(ds, "train")
     processed = processed_data(cfg)
     den = processed[1] if processed is not None else None

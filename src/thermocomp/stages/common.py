@@ -42,6 +42,7 @@ from ..params import (
 from ..paths import conf_dir, resolve
 from ..tracking import enabled, store_uri
 from .apart import check_apart
+from .auto import auto_scheme, auto_table, build_candidates, is_auto, val_split_scores
 from .rules import check_groups, check_keys
 
 AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
@@ -58,6 +59,7 @@ CONFIG_RULES = {
     "eval.anova_alpha": number(0.0, 1.0, open_lo=True, open_hi=True),
     "eval.mutual_prediction": BOOLEAN, "eval.ati_baselines": BOOLEAN, "eval.iso10791_a3": BOOLEAN,
     "eval.validation": BOOLEAN, "eval.validation_folds": integer(2, at_most=1000),
+    "eval.validation_scheme": choice("auto", "forward", "interleaved"),
     "data.group_jobs": integer(1, at_most=1024),           # processes
     "data.inputs": texts("column names or patterns", unique=True),
     "data.targets": optional(texts("E_ column names", unique=True)),
@@ -115,6 +117,9 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
         node = OmegaConf.select(cfg, key)
         if node is not None:
             check_component(build(node, key), key)
+    if is_auto(cfg):
+        for name, candidate in build_candidates(cfg).items():
+            check_component(candidate, f"model.candidates.{name}")
     for key in outputs:
         _check_writable(key, OmegaConf.select(cfg, key), folder=key != "model_path")
     if enabled(cfg):     # before any data is read: an unreachable server once hung a run for minutes
@@ -172,12 +177,15 @@ def data_options(cfg: DictConfig) -> dict:
     return OmegaConf.to_container(cfg.data, resolve=True)
 
 
-def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
-    """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``)."""
+def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator:
+    """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``).
+    ``ds``: the dataset it will be fitted on, whose split ``model=auto`` validates like."""
     estimator = build(cfg.model.estimator, "model.estimator")
+    if is_auto(cfg):           # model=auto: the families it chooses among, from their configs
+        estimator = estimator(candidates=build_candidates(cfg), **auto_scheme(cfg, ds))
     if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
         estimator = build(cfg.ati.estimator, "ati.estimator")(base_estimator=estimator)
-    return Compensator(
+    comp = Compensator(
         estimator=estimator,
         selector=build(cfg.select.selector, "select.selector"),
         inputs=list(cfg.data.inputs),
@@ -186,6 +194,9 @@ def build_compensator(cfg: DictConfig, ati: bool = True) -> Compensator:
         denoiser=build_denoiser(cfg),
         offsets="drop" if identified_targets(cfg) else "predict",
     )
+    if is_auto(cfg) and ds is not None and ds.ids("val"):   # chosen on the val split, as validated
+        comp.estimator.set_params(val_scores=val_split_scores(comp, ds))
+    return comp
 
 
 def is_volumetric(cfg: DictConfig) -> bool:
@@ -517,7 +528,7 @@ def result_table(metrics: dict) -> str:
     if carried:
         lines.append("state carried over: " + "; ".join(
             f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items()))
-    return "\n".join(lines)
+    return "\n".join(lines + auto_table(metrics))
 
 
 # --- calibrate (the stage and `run` on a volumetric dataset) -------------------------------

@@ -28,6 +28,7 @@ from ..files import inside, safe_name, staged_outputs, write_json
 from ..metrics import rsd, sm_sd, split_scores
 from ..paths import resolve
 from ..tracking import stage_run
+from .auto import as_chosen
 from .common import build_compensator, check_config, data_options, resolve_reference, save_model, say
 
 _TEST = ("rmse", "rsd_mean", "rsd_sd", "rms_before", "rms_after", "rms_reduction_pct")
@@ -51,13 +52,15 @@ def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
     train = require_split(ds, "train")
     require_split(ds, "test")
     t0 = time.perf_counter()
-    comp = build_compensator(cfg).fit({c: ds.campaigns[c] for c in train})
+    comp = build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train})
     fit_s = time.perf_counter() - t0
     ev = cfg.eval
     targets, pooled = _scores(comp, ds, ev)
     if ev.get("validation", True):
-        val = validation_report(partial(clone, build_compensator(cfg)), ds, ev.mode, fitted=comp,
-                                n_folds=int(ev.get("validation_folds", VAL_FOLDS)))
+        template = as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), comp)
+        val = validation_report(partial(clone, template), ds, ev.mode, fitted=comp,
+                                n_folds=int(ev.get("validation_folds", VAL_FOLDS)),
+                                scheme=ev.get("validation_scheme", "auto"))
         for t, entry in val.items():
             targets[t]["validation"] = entry
     save_model(comp, inside(stage / "models", safe_name(group) + ".pkl"))

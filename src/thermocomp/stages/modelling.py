@@ -39,6 +39,7 @@ from ..log import logger
 from ..paths import resolve
 from ..tracking import headline_metrics, stage_run
 from .artifacts import fit_from_artifacts
+from .auto import as_chosen, auto_reports
 from .common import (
     Clock,
     build_compensator,
@@ -61,7 +62,7 @@ from .common import (
 def _fit(cfg: DictConfig, ds) -> Compensator:
     ids = require_split(ds, "train")
     say(f"fitting {cfg.model.name} ({cfg.select.name} inputs) on {len(ids)} train campaigns")
-    return build_compensator(cfg).fit({c: ds.campaigns[c] for c in ids})
+    return build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in ids})
 
 
 def train(cfg: DictConfig) -> Compensator:
@@ -111,6 +112,8 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
         targets, predictions = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points,
                                      iso_a3=ev.get("iso10791_a3", True))
         clock.lap("score")
+        for t, chosen in auto_reports(comp).items():      # model=auto: each target's choice
+            targets[t]["auto"] = chosen
         if ev.get("validation", True):
             _add_validation(cfg, comp, ds, targets)
             clock.lap("validation")
@@ -177,9 +180,11 @@ def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> No
     say("validation: " + ("the val split" if ds.ids("val") else "cross-validation on the train split"))
     asked = int(cfg.eval.get("validation_folds", VAL_FOLDS))
     mode = str(cfg.eval.mode)
+    # model=auto: its choice refitted (a val split scores the fitted model: no template needed)
+    template = as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), comp)
     # the deployed mode too: compare and promote choose by it, whatever eval.mode scored the run
-    both = validation_reports(partial(clone, build_compensator(cfg)), ds, (mode, DEPLOYED_MODE),
-                              fitted=comp, n_folds=asked)
+    both = validation_reports(partial(clone, template), ds, (mode, DEPLOYED_MODE), fitted=comp,
+                              n_folds=asked, scheme=cfg.eval.get("validation_scheme", "auto"))
     val = both[mode]
     used = next(iter(val.values()), {}).get("n_folds", asked)
     if asked != VAL_FOLDS and used != asked:  # the default is clamped quietly: it is not a choice

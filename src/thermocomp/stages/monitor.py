@@ -156,7 +156,7 @@ def monitor(cfg: DictConfig) -> dict:
     train = {c: ds.campaigns[c] for c in train_ids}
     with stage_run(cfg, "monitor") as tr:
         path = cfg.monitor.get("model")
-        comp = build_compensator(cfg).fit(train) if path is None else load_model(resolve(str(path)))
+        comp = build_compensator(cfg, ds=ds).fit(train) if path is None else load_model(resolve(str(path)))
         check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
         # one plain stream serves both: the fixed run and the adaptive one are each streamed
         # from a reset, one after the other

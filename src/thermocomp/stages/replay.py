@@ -50,7 +50,7 @@ def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
     if source is None:
         say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
         train = {c: ds.campaigns[c] for c in train_ids}
-        comp, name, source = build_compensator(cfg).fit(train), str(cfg.model.name), "fitted"
+        comp, name, source = build_compensator(cfg, ds=ds).fit(train), str(cfg.model.name), "fitted"
     else:
         source = str(source)
         path = resolve(source) if not source.startswith("models:/") else None

@@ -1,0 +1,246 @@
+"""``model=auto``: every candidate family validated in free run, the best one kept (per target).
+
+The :class:`~thermocomp.compensator.Compensator` clones its estimator once per
+target, so this one estimator choosing among its candidates is the per-target
+composite: each target keeps its own family, and scoring, the saved model,
+streaming (replay, serve, promote) and figures see one estimator of the usual
+protocol (:mod:`thermocomp.context`), the chosen one's.
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+from sklearn.base import BaseEstimator, RegressorMixin, clone
+from sklearn.utils.validation import check_is_fitted
+
+from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, subset
+from ..errors import ParameterError
+from ..metrics import rmse
+from ..model_selection import BlockedForward, LeaveCampaignsOut
+from ..one_step import persistence
+from ..params import check_estimator, choice, integer, number
+
+ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
+BASELINE = "mlr"         # always validated beside the candidates, with persistence
+MIN_AMBIENT_LEVELS = 3   # distinct initial ambients (to 0.5 °C) an ATI candidate needs
+
+
+class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
+    """Fit every candidate that applies, keep the one with the lowest free-run validation RMSE.
+
+    Validation holds training campaigns out the way the test split is held out
+    of the data (``scheme``), on the training rows only (the test split never
+    reaches ``fit``), always in simulation (no measured error enters), whatever
+    ``eval.mode`` scores the run in: ``forward``
+    (:class:`~thermocomp.model_selection.BlockedForward`) where the test
+    campaigns come after the train ones, or for one record: the later
+    campaigns (or the later part of the record) validate models fitted on the
+    earlier ones; ``interleaved`` where the test campaigns lie among the train
+    ones (every third by date): leave-campaigns-out, folds spread over the
+    campaigns.  On year-round campaigns with every third held out, blocked
+    forward folds ranked the five families against their test order
+    (Spearman -0.63), interleaved ones with it (+0.17).  With a ``val`` split
+    in the manifest the stage scores each candidate on it instead
+    (``val_scores``), as the run's validation does.  A candidate that cannot
+    fit these data (an ATI wrapper with campaigns at one ambient level, a
+    family refusing them) is skipped with its reason.  MLR is validated as the baseline even
+    when it is no candidate, and persistence (the previous measured error) is
+    reported beside it.
+
+    Parameters
+    ----------
+    candidates : dict name -> estimator
+        The families to choose among (``model.candidates``, built by the config).
+    scheme : {'auto', 'forward', 'interleaved'}, default 'auto'
+        How validation folds hold campaigns out; the stages set it from the dataset's
+        split (:func:`thermocomp.evaluation.holdout_scheme`), ``auto`` alone is ``forward``.
+    n_folds : int, default 5
+    min_train_fraction : float in (0, 1), default 0.5
+        Validate on the last ``1 - min_train_fraction`` of the training units.
+    gap_blocks : float, default 0.5
+        One record: rows left out before each validation block, in blocks.
+    max_seconds : float or None
+        A candidate whose folds take longer than this is not validated further
+        (skipped, its time recorded): a time budget for the slow families.
+    min_gain_pct : float, default 1.0
+        MLR, when a candidate, is kept unless the best candidate's validation RMSE is lower
+        by more than this share: a tie goes to the simplest family (on ``swiss_lathe_door``
+        E_X the LSTM, whose early stopping kept the linear law, validated 2.16 as MLR and
+        tested 3.43 against 3.38).
+    val_scores : dict target -> {candidate: RMSE or None}, optional
+        Each candidate's free-run RMSE on the manifest's ``val`` split (fitted on the train
+        split; :func:`thermocomp.stages.auto.val_split_scores`), used instead of folds, as the
+        run's validation uses the val split when there is one (None: it could not fit).
+    given_scores : dict candidate -> RMSE or None, optional
+        One target's ``val_scores`` (:meth:`for_target` sets it).
+    chosen : dict target -> candidate name, optional
+        The choice already made (:meth:`for_target` then gives that candidate): the
+        run's validation refits the chosen families, not the whole choice (nested,
+        candidates x folds² fits), so it is the chosen family's, optimistic by the
+        selection.
+
+    Attributes
+    ----------
+    estimator_ : the chosen candidate, fitted on all training rows
+    family_ : str
+    validation_ : dict name -> validation RMSE of every validated candidate (and baseline)
+    skipped_ : dict name -> why it was not validated
+    reason_ : str
+    scheme_ : str
+        The folds used: ``blocked forward``, ``leave-campaigns-out`` or ``forward-chaining (one record)``.
+    fit_seconds_ : dict name -> seconds of its validation folds
+    """
+
+    param_rules = {"scheme": choice("auto", "forward", "interleaved"), "n_folds": integer(1, at_most=100),
+                   "min_train_fraction": number(0.0, 1.0, open_lo=True, open_hi=True),
+                   "gap_blocks": number(0.0, 10.0), "min_gain_pct": number(0.0, 100.0)}
+
+    def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
+                 min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
+                 max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
+                 val_scores=None, given_scores=None):
+        self.candidates = candidates
+        self.val_scores = val_scores
+        self.given_scores = given_scores
+        self.min_gain_pct = min_gain_pct
+        self.chosen = chosen
+        self.scheme = scheme
+        self.n_folds = n_folds
+        self.min_train_fraction = min_train_fraction
+        self.gap_blocks = gap_blocks
+        self.max_seconds = max_seconds
+
+    def fit(self, X, y, context=None):
+        check_estimator(self)
+        if not self.candidates:
+            raise ParameterError("model.candidates is empty: name at least one model family")
+        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        groups = groups_of(context)
+        if self.given_scores is not None:      # the val split's, computed by the stage
+            self.scheme_ = "val split"
+            return self._keep_best(X, y, context, dict(self.given_scores), "the val split")
+        folds = self._folds(groups, len(y))
+        self.validation_, self.skipped_, self.fit_seconds_ = {}, {}, {}
+        runs = dict(self.candidates)
+        if BASELINE not in runs:
+            from .linear import MLR
+
+            runs[BASELINE] = MLR()
+        for name, est in runs.items():
+            why = _not_applicable(name, context, groups)
+            if why is None:
+                why = self._validate(name, est, X, y, context, folds)
+            if why is not None:
+                self.skipped_[name] = why
+        held = np.any([score for *_, score in folds], axis=0)
+        last = persistence(y, groups)
+        self.validation_["persistence"] = rmse(y[held] - last[held])
+        self.scheme_ = _scheme(self.scheme, groups)
+        return self._keep_best(X, y, context, None, f"{len(folds)} {self.scheme_} fold(s)")
+
+    def _keep_best(self, X, y, context, given, how: str):
+        """Choose among the validated candidates (``given``: scores from elsewhere) and refit."""
+        if given is not None:
+            self.fit_seconds_ = {}
+            self.skipped_ = {n: "cannot fit these data" for n, v in given.items() if v is None}
+            self.skipped_.update({n: "not validated" for n in self.candidates if n not in given})
+            self.validation_ = {n: float(v) for n, v in given.items() if v is not None}
+        ranked = sorted((v, n) for n, v in self.validation_.items() if n in self.candidates)
+        if not ranked:
+            raise ParameterError("model=auto: no candidate could be validated on these data ("
+                                 + "; ".join(f"{n}: {w}" for n, w in self.skipped_.items()) + ")")
+        best, self.family_ = ranked[0]
+        runner = f", next {ranked[1][1]} {ranked[1][0]:.4g}" if len(ranked) > 1 else ""
+        lead = f"lowest free-run validation RMSE {best:.4g}"
+        base = self.validation_.get(BASELINE)
+        if (BASELINE in self.candidates and self.family_ != BASELINE and base is not None
+                and best > base * (1 - float(self.min_gain_pct) / 100)):
+            lead = (f"{self.family_}'s validation RMSE {best:.4g} is not {self.min_gain_pct:g} % "
+                    "below MLR's: the simpler family kept")
+            self.family_, runner = BASELINE, ""
+        self.reason_ = (f"{lead} ({how}){runner}; "
+                        f"MLR {self.validation_.get(BASELINE, float('nan')):.4g}, "
+                        f"persistence {self.validation_.get('persistence', float('nan')):.4g}")
+        self.estimator_ = clone(self.candidates[self.family_]).fit(X, y, context=context)
+        self.context_columns_ = context_columns(self.estimator_)
+        return self
+
+    def for_target(self, target: str):
+        """The estimator of ``target``: its chosen candidate once ``chosen`` names one, else self
+        (:func:`thermocomp.context.for_target`)."""
+        if self.chosen and target in self.chosen:
+            return self.candidates[self.chosen[target]]
+        if self.val_scores is not None:
+            return clone(self).set_params(val_scores=None, given_scores=self.val_scores.get(target, {}))
+        return self
+
+    def _folds(self, groups, n: int) -> list:
+        """``(fit, predict, score)`` row masks: held out as the test split is (``scheme``)."""
+        if _scheme(self.scheme, groups) == "leave-campaigns-out" and len(set(groups)) > 1:
+            return [(~held, held, held) for held in
+                    (np.isin(np.arange(n), rows) for _, rows in
+                     LeaveCampaignsOut(n_folds=self.n_folds).split(np.zeros(n), groups=groups))]
+        return BlockedForward(self.n_folds, self.min_train_fraction, self.gap_blocks).folds(groups, n)
+
+    def _validate(self, name, est, X, y, context, folds) -> str | None:
+        """Record ``name``'s pooled validation RMSE; the reason when it cannot be validated."""
+        residual, t0 = [], time.perf_counter()
+        for fit, pred, score in folds:
+            try:
+                model = clone(est).fit(X[fit], y[fit], context=subset(context, fit))
+                yhat = np.asarray(model.predict(X[pred], context=subset(context, pred)), float)
+            except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+                return f"cannot fit: {' '.join(str(exc).split())}"
+            residual.append(y[score] - yhat[score[pred]])
+            spent = time.perf_counter() - t0
+            over = self.max_seconds is not None and spent > float(self.max_seconds)
+            if over and len(residual) < len(folds):
+                self.fit_seconds_[name] = spent
+                return f"over the time budget: {spent:.1f} s > max_seconds={self.max_seconds}"
+        self.fit_seconds_[name] = time.perf_counter() - t0
+        self.validation_[name] = rmse(np.concatenate(residual))
+        return None
+
+    def predict(self, X, context=None):
+        check_is_fitted(self, "estimator_")
+        return self.estimator_.predict(X, context=context)
+
+    def stream_init(self, context=None):
+        check_is_fitted(self, "estimator_")
+        return self.estimator_.stream_init(context)
+
+    def stream_step(self, x_row, state, context=None):
+        return self.estimator_.stream_step(x_row, state, context)
+
+    def report(self) -> dict:
+        """``{candidates, chosen, reason, skipped}`` for ``metrics.json`` (``targets.<t>.auto``)."""
+        check_is_fitted(self, "estimator_")
+        return {"candidates": {n: float(v) for n, v in self.validation_.items()},
+                "chosen": self.family_, "reason": self.reason_, "scheme": self.scheme_,
+                "skipped": dict(self.skipped_),
+                "validation_s": {n: round(s, 3) for n, s in self.fit_seconds_.items()}}
+
+
+def _not_applicable(name: str, context, groups) -> str | None:
+    """Why candidate ``name`` does not apply to these training rows (None: it does)."""
+    if not name.startswith(ATI):
+        return None
+    a0 = np.asarray(context[AMBIENT_C0], float) if context is not None and AMBIENT_C0 in context else None
+    if a0 is None or not np.isfinite(a0).any():
+        return "no campaign ambient (a T_amb sensor) to choose an interval by"
+    first = np.unique(groups, return_index=True)[1] if groups is not None else [0]
+    levels = np.unique(np.round(a0[first] * 2) / 2)
+    levels = levels[np.isfinite(levels)]
+    if levels.size < MIN_AMBIENT_LEVELS:
+        return (f"the train campaigns span {levels.size} ambient level(s), fewer than "
+                f"{MIN_AMBIENT_LEVELS}")
+    return None
+
+
+def _scheme(scheme: str, groups) -> str:
+    """What the folds were: over campaigns (as ``scheme`` holds them out) or one record."""
+    if groups is None or len(set(groups)) < 2:
+        return "forward-chaining (one record)"
+    return "leave-campaigns-out" if scheme == "interleaved" else "blocked forward"

@@ -1,0 +1,156 @@
+"""``model=auto`` in the stages: its candidates built from their own configs, its table.
+
+A candidate is named by its family's config (``conf/model/<name>.yaml``), so a new
+family becomes a candidate by a config edit (``model.candidates=[...]``);
+``ati`` / ``ati+<family>`` is the ATI wrapper (``conf/ati/cmeans.yaml``) of MLR /
+that family.
+"""
+
+from __future__ import annotations
+
+from omegaconf import DictConfig, OmegaConf
+
+from ..build import build
+from ..errors import ConfigError
+from ..models.auto import ATI, BASELINE
+from ..paths import conf_dir
+
+AUTO = "auto"
+
+
+def is_auto(cfg: DictConfig) -> bool:
+    return cfg.model.get("candidates") is not None
+
+
+def auto_scheme(cfg: DictConfig, ds) -> dict:
+    """``{"scheme": ...}``: validate as the test split of ``ds`` is held out, unless
+    ``model.estimator.scheme`` names one (``{}`` without a dataset)."""
+    if ds is None or cfg.model.estimator.get("scheme", "auto") != "auto":
+        return {}
+    from ..evaluation import holdout_scheme
+
+    return {"scheme": holdout_scheme(ds)}
+
+
+def val_split_scores(comp, ds) -> dict:
+    """``{target: {candidate: free-run RMSE on the val split}}`` of a model=auto compensator's
+    candidates (and MLR, persistence), each fitted on the train split as the run's validation
+    scores a val split (:func:`~thermocomp.evaluation.validation_report`); None where a
+    candidate cannot fit.  The test split is not read."""
+    import numpy as np
+    from sklearn.base import clone
+
+    from ..evaluation import validation_report
+    from ..metrics import rmse
+    from ..models import MLR
+    from ..one_step import persistence
+
+    candidates = {**comp.estimator.candidates}
+    candidates.setdefault(BASELINE, MLR())
+    scores: dict = {}
+    for name, candidate in candidates.items():
+        one = clone(comp).set_params(estimator=clone(candidate))
+        try:
+            report = validation_report(lambda one=one: one, ds, "simulation")
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError):
+            scores.setdefault(None, {})[name] = None
+            continue
+        for t, entry in report.items():
+            scores.setdefault(t, {})[name] = entry["rmse"]
+    failed = scores.pop(None, {})
+    val = {c: ds.campaigns[c] for c in ds.ids("val")}
+    measured = clone(comp).set_params(estimator=MLR()).fit(
+        {c: ds.campaigns[c] for c in ds.ids("train")}).measured(val)
+    for t in scores:
+        scores[t].update(failed)
+        y = [measured[c][t].to_numpy(float) for c in val]
+        scores[t]["persistence"] = rmse(np.concatenate([v - persistence(v) for v in y]))
+    return scores
+
+
+def auto_reports(comp) -> dict:
+    """``{target: its choice}`` (``metrics.json`` ``targets.<t>.auto``) of a model=auto
+    compensator; ``{}`` for any other."""
+    return {t: est.report() for t, est in getattr(comp, "estimators_", {}).items()
+            if hasattr(est, "family_")}
+
+
+def as_chosen(template, fitted):
+    """``template`` (an unfitted compensator) fitting, per target, the family ``fitted`` (a
+    model=auto compensator) chose: what its validation refits (the choice itself is not
+    re-validated: candidates x folds² fits).  Any other ``template`` as it is."""
+    chosen = {t: getattr(est, "family_", None) for t, est in getattr(fitted, "estimators_", {}).items()}
+    if not chosen or None in chosen.values() or "chosen" not in template.estimator.get_params(deep=False):
+        return template
+    return template.set_params(estimator__chosen=chosen)
+
+
+def build_candidates(cfg: DictConfig) -> dict:
+    """``{name: unfitted estimator}`` of ``model.candidates``, with ``model.candidate_params``."""
+    if cfg.get("ati") is not None and cfg.ati.get("estimator") is not None:
+        raise ConfigError(f"model=auto with ati={cfg.ati.name}: the ATI wrapper is a candidate of its "
+                          "own, name it in model.candidates (ati, or ati+<family>) with ati=none")
+    names = list(cfg.model.candidates)
+    params = cfg.model.get("candidate_params") or {}
+    if not names:
+        raise ConfigError("model.candidates is empty: name at least one model family")
+    for name in params:
+        if name not in names:
+            raise ConfigError(f"model.candidate_params.{name}: {name} is not among model.candidates "
+                              f"{names}")
+    out = {}
+    for name in names:
+        wrapped = str(name).split("+", 1)
+        family = BASELINE if wrapped == [ATI] else wrapped[-1]
+        if len(wrapped) == 2 and wrapped[0] != ATI or family in (AUTO, ATI) or not str(name).strip():
+            raise ConfigError(f"model.candidates: {name!r} is not a model family nor ati[+family]")
+        estimator = _family(cfg, family, params.get(name), name)
+        if family != name:   # an ATI candidate
+            ati = _load(cfg, conf_dir() / "ati" / "cmeans.yaml", f"model.candidates: {name}")
+            estimator = build(ati.estimator, f"model.candidates.{name}")(base_estimator=estimator)
+        out[str(name)] = estimator
+    return out
+
+
+def _family(cfg: DictConfig, family: str, overrides, name: str):
+    path = conf_dir() / "model" / f"{family}.yaml"
+    if not path.is_file():
+        known = sorted(p.stem for p in (conf_dir() / "model").glob("*.yaml") if p.stem != AUTO)
+        raise ConfigError(f"model.candidates: {name!r} is not a model family (conf/model/ has "
+                          f"{', '.join(known)}; ati or ati+<family> for the ATI wrapper)")
+    node = _load(cfg, path, f"model.candidates: {name}")
+    if overrides:
+        node.estimator = OmegaConf.merge(node.estimator, overrides)
+    return build(node.estimator, f"model.candidate_params.{name}" if overrides else
+                 f"model.candidates.{name}")
+
+
+def _load(cfg: DictConfig, path, where: str) -> DictConfig:
+    """The config file at ``path``, its interpolations (``${seed}``) against ``cfg``'s root."""
+    root = OmegaConf.create({"seed": cfg.get("seed", 0)})
+    root.node = OmegaConf.load(path)
+    try:
+        return OmegaConf.create(OmegaConf.to_container(root.node, resolve=True))
+    except Exception as exc:   # an interpolation this root does not hold: say where
+        raise ConfigError(f"{where}: {path} cannot be composed ({exc})") from None
+
+
+def auto_table(metrics: dict) -> list[str]:
+    """Lines of the printed table: per target the chosen family and every candidate's
+    free-run validation RMSE (MLR and persistence always among them); none without auto."""
+    rows = {t: m["auto"] for t, m in metrics["targets"].items() if "auto" in m}
+    if not rows:
+        return []
+    names = list(dict.fromkeys(n for a in rows.values() for n in a["candidates"]))
+    lines = ["model=auto: free-run validation RMSE per candidate (* chosen; the test split chose "
+             "nothing; persistence: the previous measured error, one-step)",
+             f"{'target':<8} {'chosen':<10} " + " ".join(f"{n[:11]:>11}" for n in names)]
+    for t, a in rows.items():
+        cells = []
+        for n in names:
+            v = a["candidates"].get(n)
+            cells.append(f"{'n/a' if v is None else f'{v:.3g}' + ('*' if n == a['chosen'] else ''):>11}")
+        lines.append(f"{t:<8} {a['chosen']:<10} " + " ".join(cells))
+    skipped = {n: w for a in rows.values() for n, w in a.get("skipped", {}).items()}
+    lines += [f"  skipped {n}: {w}" for n, w in skipped.items()]
+    return lines
