@@ -11,8 +11,12 @@ campaign-wide offset keeps the blocks of that campaign long) falls to
 :data:`DECORRELATED`.  Neighbouring blocks are then near-independent and
 their gains as likely positive as negative under the null.  A residual that
 never forgets within a campaign (a slow drift) gives one block per unit, the
-campaign test as before.  The smallest p the design can reach is reported
-(``min_p``).
+campaign test as before.  Units that follow each other on one time line
+(forward validation blocks, time blocks of a single campaign) shorter than the
+decorrelation length share test blocks of that length (on a measured spindle record, 16 validation blocks of
+312 samples against a decorrelation of 715 were tested as 16 units, and a lag
+that raised two probes' test error by a third passed).  The smallest p the
+design can reach is reported (``min_p``).
 
 **Rows within the train range.**  A held-out campaign whose inputs leave the
 range of the campaigns the fold trained on is an extrapolation: there a
@@ -66,15 +70,16 @@ def _runs(campaigns: np.ndarray, ok: np.ndarray) -> list[np.ndarray]:
     return np.split(idx, breaks)
 
 
-def cut_blocks(unit_index: np.ndarray, campaigns, length: int) -> np.ndarray:
-    """Test block of each row (-1: not scored): every contiguous stretch of one unit and one
-    campaign cut into ``len // length`` near-equal blocks (at least one)."""
+def cut_blocks(unit_index: np.ndarray, campaigns, length: int, timeline: bool = False) -> np.ndarray:
+    """Test block of each row (-1: not scored): every contiguous scored stretch of one campaign
+    (``timeline``: of the campaigns taken as one time line, as forward validation blocks run
+    on into the next campaign) cut into ``len // length`` near-equal blocks (at least one).
+    Neighbouring units shorter than ``length`` (time blocks of one record) thus share a test
+    block: they are not independent of each other."""
     unit_index = np.asarray(unit_index)
     out = np.full(unit_index.shape, -1)
     ok = unit_index >= 0
-    # stretches of one unit and one campaign (a forward block may run into the next campaign)
-    key = np.asarray([f"{u}\x00{c}" for u, c in zip(unit_index, np.asarray(campaigns, dtype=object))],
-                     dtype=object)
+    key = np.zeros(len(unit_index)) if timeline else np.asarray(campaigns, dtype=object)
     n = 0
     for run in _runs(key, ok):
         k = max(1, len(run) // max(int(length), 1))

@@ -20,7 +20,8 @@ several train campaigns, the second for one):
   directions, scored far worse than the deployed model ever is.  The model
   runs through the whole record up to the block (its lags and AR states carry
   over, as on the machine); only the block's rows are scored.  The units of
-  the sign-flip test are then the validation blocks.
+  the sign-flip test are then runs of validation blocks at least as long as
+  the residual takes to decorrelate (:mod:`.blocks`).
 
 Everything works on the stacked train matrices: the selector and the
 estimator are refitted in every fold exactly as the
@@ -108,7 +109,8 @@ class Problem:
         """Test the gains on time blocks of ``length`` samples within the units: as long as the
         model's CV residual takes to decorrelate (:mod:`.blocks`)."""
         self.block_samples = int(length)
-        self.block_index = cut_blocks(self.unit_index, self.campaigns, self.block_samples)
+        self.block_index = cut_blocks(self.unit_index, self.campaigns, self.block_samples,
+                                      timeline=self.forward)
 
     @property
     def n_blocks_tested(self) -> int:

@@ -287,10 +287,13 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     problem = next(iter(searches.values())).problem
     reach = smallest_p(problem.n_blocks_tested)
     if reach > options.alpha:
+        advice = ("the record is short for its residual's memory (test blocks are as long as it "
+                  "takes to decorrelate); raise diagnose.alpha" if scheme == "forward"
+                  else "raise diagnose.n_blocks or diagnose.alpha")
         logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}) in "
                        f"{problem.n_blocks_tested} test blocks: the sign-flip test cannot reach "
                        f"alpha={options.alpha:g} (min p {reach:.2g}; it needs {need} blocks), so no "
-                       "effect can be accepted; raise diagnose.n_blocks or diagnose.alpha")
+                       f"effect can be accepted; {advice}")
     # sensor health on the train campaigns only: the search never sees the test split
     excluded, faults, health, original, table = sensor_health(searches, options=options, start=start)
     test_sensors = test_sensor_warnings(next(iter(searches.values())), excluded, later, options)

@@ -289,8 +289,9 @@ class Search:
     def _family_bar(self, evals: list[Evaluation], current: CVResult) -> None:
         """The bar's p-value is family-wise over the round's candidate effects (not the control,
         nor a sensor fault, which has its own bar): :func:`~.cv.sign_flip_maxt` of the test
-        blocks' MSE gains (:mod:`.blocks`).  With one block per CV unit, each unit's gain as a
-        share of its own MSE, clipped to [-1, 1] (a unit counts at most its whole error either
+        blocks' MSE gains (:mod:`.blocks`).  With one block per CV unit (or per run of forward
+        validation blocks), each block's gain as a share of its own MSE, clipped to [-1, 1] (a
+        unit counts at most its whole error either
         way: a candidate that blows one campaign up does not set the null's scale; with raw
         MSE gains a hidden source every campaign showed was refused at 0.01).  With finer
         blocks, their signed ranks (Wilcoxon's statistic, flipped): blocks of one campaign differ
@@ -307,9 +308,9 @@ class Search:
         if self.problem.n_blocks_tested > self.problem.n_units:
             D = np.array([current.block_mse - ev.result.block_mse for ev in family])
             D = np.sign(D) * rankdata(np.abs(D), axis=1)
-        else:   # one block per unit: each unit's gain as a share of its MSE, as ever
-            D = np.array([current.unit_mse - ev.result.unit_mse for ev in family])
-            D = np.clip(D / np.maximum(current.unit_mse, 1e-300), -1.0, 1.0)
+        else:   # one block per unit (or per run of forward units): its gain as a share of its MSE
+            D = np.array([current.block_mse - ev.result.block_mse for ev in family])
+            D = np.clip(D / np.maximum(current.block_mse, 1e-300), -1.0, 1.0)
         p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
