@@ -267,3 +267,24 @@ def test_with_a_val_split_auto_chooses_on_it_as_the_run_validates(two_targets, t
         scores = {n: m["auto"]["candidates"][n] for n in ("mlr", "lagbank")}
         assert m["auto"]["chosen"] == min(scores, key=scores.get)
         assert m["validation"]["rmse"] == pytest.approx(scores[m["auto"]["chosen"]], rel=1e-9)
+
+
+def test_mutual_prediction_fits_each_targets_chosen_family_with_its_chosen_penalty(two_targets):
+    from sklearn.base import clone
+
+    from thermocomp.compensator import Compensator, with_chosen_hyperparameters
+    from thermocomp.io import read_dataset
+    from thermocomp.models import MLR, LagBank
+    from thermocomp.models.auto import AutoRegressor
+    from thermocomp.stages.auto import as_chosen
+
+    ds, _ = read_dataset(two_targets[0])
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    template = Compensator(AutoRegressor({"mlr": MLR(), "lagbank": LagBank()}))
+    fitted = clone(template).fit(train)
+    single = clone(with_chosen_hyperparameters(as_chosen(clone(template), fitted), fitted))
+    one = {c: train[c] for c in list(train)[:1]}
+    models = single.fit(one).estimators_
+    # no choice among candidates again: the chosen family, with the penalty it chose on all
+    assert {t: type(e) for t, e in models.items()} == {"E_A": MLR, "E_B": LagBank}
+    assert list(models["E_B"].alphas) == [fitted.estimators_["E_B"].estimator_.alpha_]

@@ -167,6 +167,14 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.context_columns_ = context_columns(self.estimator_)
         return self
 
+    def chosen_params(self) -> dict:
+        """What the chosen family's own CV chose (its ``chosen_params``; none for a family
+        without a choice of its own): with ``chosen``, a copy fits that family alone, as chosen
+        (:func:`thermocomp.compensator.with_chosen_hyperparameters`)."""
+        check_is_fitted(self)
+        own = getattr(self.estimator_, "chosen_params", None)
+        return dict(own()) if callable(own) else {}
+
     def for_target(self, target: str):
         """The estimator of ``target``: its chosen candidate once ``chosen`` names one, else self
         (:func:`thermocomp.context.for_target`)."""

@@ -144,8 +144,9 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
         if ev.get("mutual_prediction", True):
             say(f"mutual prediction: {len(ds.ids())} single-campaign models")
             # its single-campaign models keep the hyper-parameters the model chose on all train
-            # campaigns: one CV per campaign cost 43 x 43 lag banks on a lathe record
-            make_single = partial(clone, with_chosen_hyperparameters(make_base(), comp))
+            # campaigns: one CV per campaign cost 43 x 43 lag banks on a lathe record (model=auto:
+            # each target's chosen family, not the whole choice again per campaign)
+            make_single = partial(clone, with_chosen_hyperparameters(as_chosen(make_base(), comp), comp))
             metrics["mutual_prediction"] = mutual_prediction_report(make_single, ds, ev.mode)
             clock.lap("mutual_prediction")
             if cfg.plots in ("test", "all"):
