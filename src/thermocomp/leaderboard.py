@@ -216,3 +216,23 @@ def to_markdown(table: pd.DataFrame, digits: int = 2) -> str:
     for c in shown.columns:
         shown[c] = [cell(v) for v in shown[c]]
     return shown.fillna("n/a").to_markdown(index=False, disable_numparse=True)
+
+
+def ranked_by(table: pd.DataFrame, sort_by: str) -> dict:
+    """Which figure ranked: ``figure``, ``mode`` (of a validation figure: the deployed mode) and
+    ``fallback`` (``{run_id: mode}`` of runs without a simulation-mode validation, ranked after
+    the others by their own)."""
+    if not is_validation(sort_by):
+        return {"figure": sort_by, "mode": None, "fallback": {}}
+    return {"figure": sort_by, "mode": DEPLOYED_MODE, "fallback": fallback_runs(table)}
+
+
+def ranking_line(basis: dict) -> str:
+    """The printed sentence of :func:`ranked_by`."""
+    line = (f"{basis['figure']} of the {basis['mode']}-mode validation (the deployed mode, "
+            f"whatever eval.mode a run was scored in)")
+    if basis["fallback"]:
+        line += (f"; {len(basis['fallback'])} run(s) without one (made before it was recorded: "
+                 + ", ".join(f"{r[:8]} {m}" for r, m in basis["fallback"].items())
+                 + ") ranked after the others by their own mode's validation")
+    return line

@@ -8,7 +8,9 @@ that family.
 
 from __future__ import annotations
 
-from omegaconf import DictConfig, OmegaConf
+from collections.abc import Mapping
+
+from omegaconf import DictConfig, ListConfig, OmegaConf
 
 from ..build import build
 from ..errors import ConfigError
@@ -90,8 +92,14 @@ def build_candidates(cfg: DictConfig) -> dict:
     if cfg.get("ati") is not None and cfg.ati.get("estimator") is not None:
         raise ConfigError(f"model=auto with ati={cfg.ati.name}: the ATI wrapper is a candidate of its "
                           "own, name it in model.candidates (ati, or ati+<family>) with ati=none")
-    names = list(cfg.model.candidates)
-    params = cfg.model.get("candidate_params") or {}
+    candidates, params = cfg.model.get("candidates"), cfg.model.get("candidate_params") or {}
+    if not isinstance(candidates, (list, tuple, ListConfig)):
+        raise ConfigError(f"model.candidates={candidates}: must be a list of model families, "
+                          "e.g. [mlr,lagbank]")
+    if not isinstance(params, (Mapping, DictConfig)):
+        raise ConfigError(f"model.candidate_params={params}: must be a mapping candidate -> "
+                          "its keys, e.g. {lstm:{max_epochs:30}}")
+    names = list(candidates)
     if not names:
         raise ConfigError("model.candidates is empty: name at least one model family")
     for name in params:

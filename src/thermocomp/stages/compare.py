@@ -21,13 +21,13 @@ from ..errors import ConfigError
 from ..files import atomic_write_text, write_json
 from ..jsonsafe import json_safe
 from ..leaderboard import (
-    DEPLOYED_MODE,
     FIGURES,
     VAL_FIGURES,
     baseline_rows,
-    fallback_runs,
     is_validation,
     rank,
+    ranked_by,
+    ranking_line,
     to_markdown,
 )
 from ..params import BOOLEAN, optional, text
@@ -38,26 +38,6 @@ from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
 from .apart import check_apart
 from .common import _check_writable, check_keys, say
-
-
-def ranked_by(table: pd.DataFrame, sort_by: str) -> dict:
-    """Which figure ranked: ``figure``, ``mode`` (of a validation figure: the deployed mode) and
-    ``fallback`` (``{run_id: mode}`` of runs without a simulation-mode validation, ranked after
-    the others by their own)."""
-    if not is_validation(sort_by):
-        return {"figure": sort_by, "mode": None, "fallback": {}}
-    return {"figure": sort_by, "mode": DEPLOYED_MODE, "fallback": fallback_runs(table)}
-
-
-def ranking_line(basis: dict) -> str:
-    """The printed sentence of :func:`ranked_by`."""
-    line = (f"{basis['figure']} of the {basis['mode']}-mode validation (the deployed mode, "
-            f"whatever eval.mode a run was scored in)")
-    if basis["fallback"]:
-        line += (f"; {len(basis['fallback'])} run(s) without one (made before it was recorded: "
-                 + ", ".join(f"{r[:8]} {m}" for r, m in basis["fallback"].items())
-                 + ") ranked after the others by their own mode's validation")
-    return line
 
 
 def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,

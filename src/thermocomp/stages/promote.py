@@ -54,7 +54,17 @@ from ..deploy.streaming import end_states
 from ..errors import ConfigError
 from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json
-from ..leaderboard import DEPLOYED_MODE, FIGURES, beats, is_validation, rank, summary, validation_mode
+from ..leaderboard import (
+    DEPLOYED_MODE,
+    FIGURES,
+    beats,
+    is_validation,
+    rank,
+    ranked_by,
+    ranking_line,
+    summary,
+    validation_mode,
+)
 from ..log import logger
 from ..params import choice
 from ..paths import project_root, resolve
@@ -71,7 +81,6 @@ from .common import (
     lead_ins,
     say,
 )
-from .compare import ranked_by, ranking_line
 
 # The plain promote.* keys are checked by every stage (rules.PROMOTE_RULES); the envelope's
 # policies are the deployment's own.
@@ -95,7 +104,7 @@ def git_commit() -> tuple[str, bool]:
 
 def _best_run(cfg: DictConfig, client, uri: str, dataset_hash: str, data_path) -> tuple[str, dict]:
     """The best finished child of the sweep among those scored on this dataset, by its
-    simulation-mode validation, and what ranked (:func:`~thermocomp.stages.compare.ranked_by`)."""
+    simulation-mode validation, and what ranked (:func:`~thermocomp.leaderboard.ranked_by`)."""
     parent = parent_run_id(cfg, client)
     seen = {r.info.run_id: r.data.tags.get(DATASET_TAG) for r in child_runs(client, parent)}
     if seen and dataset_hash not in seen.values():
