@@ -65,7 +65,12 @@ def test_replay_of_a_continuing_campaign_scores_as_run(record, tmp_path, capsys,
         # like with like: the batch side is `run`'s joined prediction, the stream is warmed
         assert replay[t]["rmse_batch"] == pytest.approx(rmse, rel=1e-9)
         assert replay[t]["max_abs_stream_minus_batch"] < 1e-6
-    assert "B continues A" in capsys.readouterr().err
+    captured = capsys.readouterr()
+    assert "B continues A" in captured.err
+    # the printed table shows the streamed RMSE beside the batch one (run's figure)
+    row = [line.split() for line in captured.out.splitlines() if line.startswith("E_ch1 ")][-1]
+    assert float(row[3]) == pytest.approx(replay["E_ch1"]["rmse"], abs=1e-3)
+    assert float(row[4]) == pytest.approx(run["E_ch1"], abs=1e-3)
 
 
 def test_monitor_streams_a_continuing_campaign_as_run_scores_it(record, tmp_path):
