@@ -148,6 +148,20 @@ def poisoned_copy(src: Path, dest: Path, scale: float = -50.0, offset: float = 1
     return dest
 
 
+@pytest.fixture
+def paths(tmp_path):
+    """The hostile matrix's small dataset (``test_hostile.make_dataset``) and where a run writes
+    (``out``, ``interim``, ``model``), with the command-line arguments naming them (``args``)."""
+    from test_hostile import FAST, make_dataset
+
+    ds = make_dataset(tmp_path / "ds")
+    p = {"ds": ds, "out": tmp_path / "reports" / "out", "interim": tmp_path / "interim",
+         "model": tmp_path / "models" / "model.pkl"}
+    p["args"] = [f"data.path={ds}", f"out={p['out']}", f"data.interim={p['interim']}",
+                 f"model_path={p['model']}", *FAST]
+    return p
+
+
 @pytest.fixture(scope="session")
 def default_dataset(tmp_path_factory) -> Path:
     """The default year-round scenario at its default size."""

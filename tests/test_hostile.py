@@ -78,17 +78,6 @@ def snapshot(*paths: Path) -> dict:
     return state
 
 
-@pytest.fixture
-def paths(tmp_path):
-    """A dataset and where a run writes, with an earlier ingest and model in place."""
-    ds = make_dataset(tmp_path / "ds")
-    p = {"ds": ds, "out": tmp_path / "reports" / "out", "interim": tmp_path / "interim",
-         "model": tmp_path / "models" / "model.pkl"}
-    p["args"] = [f"data.path={ds}", f"out={p['out']}", f"data.interim={p['interim']}",
-                 f"model_path={p['model']}", *FAST]
-    return p
-
-
 # -- refused at read: the matrix ----------------------------------------------------------
 
 

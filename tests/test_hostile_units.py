@@ -16,19 +16,9 @@ import pandas as pd
 import pytest
 
 from conftest import refused
-from test_hostile import FAST, edit_csv, make_dataset, snapshot
+from test_hostile import edit_csv, snapshot
 from thermocomp.cli import main
 from thermocomp.io import ContractError, read_dataset
-
-
-@pytest.fixture
-def paths(tmp_path):
-    ds = make_dataset(tmp_path / "ds")
-    p = {"ds": ds, "out": tmp_path / "reports" / "out", "interim": tmp_path / "interim",
-         "model": tmp_path / "models" / "model.pkl"}
-    p["args"] = [f"data.path={ds}", f"out={p['out']}", f"data.interim={p['interim']}",
-                 f"model_path={p['model']}", *FAST]
-    return p
 
 
 def from_row(column, row, convert):
