@@ -376,16 +376,14 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
 def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:
     """Where each campaign's ambient comes from: its ``T_amb*`` sensors, else the manifest's
     ``ambient_c`` (handed on in the frame's ``attrs``), else nowhere; said once per dataset."""
+    from ..frame import ambient_source, is_ambient  # frame imports io: not at module level
+
     sources = {}
     for cid, df in frames.items():
         value = manifest.at[cid, AMBIENT_C] if AMBIENT_C in manifest.columns else float("nan")
-        if any(c == "T_amb" or c.startswith("T_amb_") for c in df.columns):
-            sources[cid] = "T_amb"
-        elif pd.notna(value):
+        if not any(is_ambient(c) for c in df.columns) and pd.notna(value):
             df.attrs[AMBIENT_C] = float(value)
-            sources[cid] = AMBIENT_C
-        else:
-            sources[cid] = None
+        sources[cid] = ambient_source(df)
     n = sum(v == AMBIENT_C for v in sources.values())
     if n:
         logger.info(f"ambient: {MANIFEST} column {AMBIENT_C} for the {n} campaign(s) without a "
