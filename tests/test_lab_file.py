@@ -330,3 +330,21 @@ def test_the_deployed_model_takes_the_labs_names_of_columns_it_did_not_convert(t
     names = lab_names(OmegaConf.create({"data": {"columns": {}}}), ds)
     # renamed only: the lab's name carries the contract's values; converted ones do not
     assert names == {"time": "t(s)", "E_Y": "Y(um)", "T_a": "a(°C)"}
+
+
+def test_init_keeps_every_reading_key_given_and_reads_a_manifest_as_run_does(tmp_path, capsys):
+    folder = tmp_path / "ds"
+    folder.mkdir()
+    for k in range(4):
+        frame = pd.read_csv(_lab_file(folder / f"c{k}.csv"))
+        frame.set_axis(["E_X", "T_1", "T_2"], axis=1).assign(time=np.arange(40) * 60.0).to_csv(
+            folder / f"c{k}.csv", index=False)
+    # no split column: held out by data.test_fraction, which init must read the manifest with
+    (folder / "campaigns.csv").write_text("campaign,file\n" + "".join(
+        f"c{k},c{k}.csv\n" for k in range(4)))
+    out = tmp_path / "init"
+    assert main(["init", str(folder), "data.test_fraction=0.25", "data.max_gap_samples=2",
+                 f"out={out}"]) == 0
+    written = yaml.safe_load((out / "conf" / "data" / "ds.yaml").read_text())
+    assert written["test_fraction"] == 0.25 and written["max_gap_samples"] == 2
+    assert "interim" not in written and "thousands" not in written    # defaults left to default

@@ -14,22 +14,22 @@ from pathlib import Path
 
 import numpy as np
 import yaml
-from omegaconf import DictConfig
+from omegaconf import DictConfig, OmegaConf
 
 from .. import io
 from ..files import atomic_write_text
 from ..io.options import ROLE_PATTERNS
-from ..io.record import record_id
-from ..io.roles import UNITS, naming, split_unit
+from ..io.roles import UNITS, _numeric, naming, split_unit
 from ..io.sniff import resolved
 from ..io.tables import _peek_csv
-from ..paths import resolve
+from ..paths import conf_dir, resolve
 from .common import data_options
 
 # units that say "a machine state" (speeds, loads, positions, on/off)
 STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
                "on/off", "0/1", "mm/min"}
 _GLOB = re.compile(r"([*?\[])")
+_WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
 def init(cfg: DictConfig) -> dict:
@@ -37,7 +37,7 @@ def init(cfg: DictConfig) -> dict:
     command."""
     src = resolve(cfg.data.path)
     given = data_options(cfg)
-    sample = _sample_file(src)
+    sample = _sample_file(src, io.ReadOptions.from_cfg(given))
     opts = resolved(sample, io.ReadOptions.from_cfg(given)) if sample.suffix.lower() == ".csv" \
         else io.ReadOptions.from_cfg(given)
     header, first = _peek_csv(sample, opts.delimiter) if sample.suffix.lower() == ".csv" \
@@ -46,7 +46,7 @@ def init(cfg: DictConfig) -> dict:
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample)
     config = _config(src, given, opts, roles)
     ds, report = io.read_dataset(src, config)           # refused here as `run` would refuse it
-    name = record_id(src) if src.is_file() else src.name
+    name = ds.name
     path = resolve(cfg.out) / "conf" / "data" / f"{name}.yaml"
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")
@@ -54,11 +54,11 @@ def init(cfg: DictConfig) -> dict:
     return {"config": str(path), "columns": plan.names}
 
 
-def _sample_file(src: Path) -> Path:
+def _sample_file(src: Path, opts) -> Path:
     """The file whose header is shown: the record itself, or a folder's first campaign."""
     if src.is_file():
         return src
-    manifest = io.read_manifest(src)
+    manifest = io.read_manifest(src, opts)
     return src / manifest["file"].iloc[0]
 
 
@@ -83,26 +83,19 @@ def _proposed_roles(header: list[str], first: dict, opts) -> dict:
             roles["error"].append(pattern)
         elif unit in STATE_UNITS:
             roles["state"].append(pattern)
-        elif not _number(first.get(h), opts.decimal) and not re.match(r"\d{4}-\d\d-\d\d", str(first.get(h))):
+        elif not _numeric(first.get(h), opts.decimal) and not re.match(r"\d{4}-\d\d-\d\d", str(first.get(h))):
             roles["ignore"].append(pattern)
     return roles
-
-
-def _number(text, decimal: str) -> bool:
-    try:
-        float(str(text).strip().replace(decimal, "."))
-    except ValueError:
-        return not str(text).strip()
-    return True
 
 
 def _config(src: Path, given: dict, opts, roles: dict) -> dict:
     config = {"path": str(src), "delimiter": opts.delimiter, "decimal": opts.decimal,
               "roles": roles}
-    for key in ("columns", "sample_period_s", "test_fraction", "val_fraction", "split_order",
-                "reference"):
-        if given.get(key) not in (None, {}, [], ["train", "val", "test"], "auto"):
-            config[key] = given[key]
+    # every other key the user set (data.thousands, data.time, ...): what reads the data
+    defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
+    for key, value in given.items():
+        if key not in config and key not in _WHERE and key in defaults and value != defaults[key]:
+            config[key] = value
     if src.is_file() and given.get("test_fraction") is None:
         config["test_fraction"] = 0.1        # one record: its last tenth is the test campaign
     return config
