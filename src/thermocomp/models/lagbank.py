@@ -428,6 +428,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         a copy fitted with them runs no choice of its own (see
         :func:`thermocomp.compensator.with_chosen_hyperparameters`)."""
         check_is_fitted(self)
+        if self.ar is not False:   # a one-step model chosen apart (its own design and penalty):
+            return {}              # fixing the free-run choice alone would lose it
         chosen = self.cv_results_.loc[self.cv_results_["chosen"]].iloc[0]
         return {"alphas": [self.alpha_], "ar": bool(chosen["ar"])}
 
