@@ -21,10 +21,10 @@ from ..metrics import rmse
 from ..model_selection import BlockedForward, LeaveCampaignsOut
 from ..one_step import persistence
 from ..params import check_estimator, choice, integer, number
+from .ati import MIN_AMBIENTS
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
 BASELINE = "mlr"         # always validated beside the candidates, with persistence
-MIN_AMBIENT_LEVELS = 3   # distinct initial ambients (to 0.5 °C) an ATI candidate needs
 
 
 class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
@@ -121,6 +121,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if self.given_scores is not None:      # the val split's, computed by the stage
             self.scheme_ = "val split"
             return self._keep_best(X, y, context, dict(self.given_scores), "the val split")
+        self.scheme_ = _scheme(self.scheme, groups)
         folds = self._folds(groups, len(y))
         self.validation_, self.skipped_, self.fit_seconds_ = {}, {}, {}
         runs = dict(self.candidates)
@@ -137,7 +138,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         held = np.any([score for *_, score in folds], axis=0)
         last = persistence(y, groups)
         self.validation_["persistence"] = rmse(y[held] - last[held])
-        self.scheme_ = _scheme(self.scheme, groups)
         return self._keep_best(X, y, context, None, f"{len(folds)} {self.scheme_} fold(s)")
 
     def _keep_best(self, X, y, context, given, how: str):
@@ -186,7 +186,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def _folds(self, groups, n: int) -> list:
         """``(fit, predict, score)`` row masks: held out as the test split is (``scheme``)."""
-        if _scheme(self.scheme, groups) == "leave-campaigns-out" and len(set(groups)) > 1:
+        if self.scheme_ == "leave-campaigns-out":     # two or more campaigns (_scheme)
             return [(~held, held, held) for held in
                     (np.isin(np.arange(n), rows) for _, rows in
                      LeaveCampaignsOut(n_folds=self.n_folds).split(np.zeros(n), groups=groups))]
@@ -241,9 +241,9 @@ def _not_applicable(name: str, context, groups) -> str | None:
     first = np.unique(groups, return_index=True)[1] if groups is not None else [0]
     levels = np.unique(np.round(a0[first] * 2) / 2)
     levels = levels[np.isfinite(levels)]
-    if levels.size < MIN_AMBIENT_LEVELS:
+    if levels.size < MIN_AMBIENTS:   # distinct initial ambients (to 0.5 °C), as ATI needs
         return (f"the train campaigns span {levels.size} ambient level(s), fewer than "
-                f"{MIN_AMBIENT_LEVELS}")
+                f"{MIN_AMBIENTS}")
     return None
 
 
