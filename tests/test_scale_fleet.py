@@ -125,3 +125,20 @@ def test_simulate_sim_fleet_streams_the_partitions_then_run_reads_them_by_machin
     metrics = json.loads((tmp_path / "out" / "metrics.json").read_text())
     assert sorted(metrics["groups"]) == ["M001", "M002"]
     assert all(g["targets"]["E_Z"]["validation"] is None for g in metrics["groups"].values())
+
+
+def test_each_group_resolves_data_reference_auto_for_itself(fleet, tmp_path):
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.paths import conf_dir
+    from thermocomp.stages.fleet import _group
+
+    path, _ = fleet
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose("config", overrides=[f"data.path={path}", "data.group_by=machine",
+                                           "track=false", "eval.validation=false"])
+    ds, _ = io.read_dataset(path)
+    for machine in ("M001", "M002"):
+        _group(cfg, path, machine, [c for c in ds.ids() if c.startswith(machine)], tmp_path)
+        # the next group (same process, data.group_jobs=1) still sees auto, not this one's answer
+        assert cfg.data.reference == "auto"

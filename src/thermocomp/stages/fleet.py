@@ -13,6 +13,7 @@ fleet summary), ``fleet.csv`` (one row per group and target) and
 
 from __future__ import annotations
 
+import copy
 import time
 from functools import partial
 
@@ -47,6 +48,9 @@ def _slim(targets: dict) -> dict:
 
 def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
     """Read, fit, score and save one group; returns its figures (nothing of its data)."""
+    # its own copy: data.reference=auto is resolved per group, and the groups of one process
+    # (data.group_jobs=1) share the caller's config
+    cfg = copy.deepcopy(cfg)
     ds, report = io.read_dataset(root, data_options(cfg), campaigns=ids)
     report["reference"] = resolve_reference(cfg, ds)
     train = require_split(ds, "train")
