@@ -49,14 +49,14 @@ def decorrelation_length(residual, campaigns, scored) -> int:
     longest = max(len(run) for run in runs)
     if var <= 0.0:
         return 1
+    series = [centred[run] for run in runs]     # copied once, not at every lag
     for lag in range(1, longest):
         num = cnt = 0.0
-        for run in runs:
-            if len(run) > lag:
-                x = centred[run]
+        for x in series:
+            if len(x) > lag:
                 num += float(x[:-lag] @ x[lag:])
-                cnt += len(run) - lag
-        if cnt == 0 or num / cnt / var <= DECORRELATED:
+                cnt += len(x) - lag
+        if num / cnt / var <= DECORRELATED:       # cnt > 0: lag < the longest run
             return lag
     return longest
 
