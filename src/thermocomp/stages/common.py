@@ -443,7 +443,8 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict):
 def lead_ins(comp: Compensator, ds, ids) -> dict:
     """``{campaign: lead-in}`` for the campaigns of ``ids`` that continue others: their stream
     is warmed on their predecessors (unscored) so that it predicts what ``run`` scores
-    (:func:`thermocomp.continuation.lead_ins`); says which."""
+    (:func:`thermocomp.continuation.carry_over`, :func:`~thermocomp.continuation.lead_in`);
+    says which."""
     from ..continuation import carry_over, lead_in
 
     carried = {c: chain for c, chain in carry_over(comp, ds).items() if c in ids}

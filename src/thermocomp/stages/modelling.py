@@ -350,11 +350,10 @@ def run(cfg: DictConfig) -> dict:
     volumetric = volumetric_calibration(cfg)
     if volumetric is None:
         ds, report = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
-        report["reference"] = resolve_reference(cfg, ds)
     else:
         ds, cal, calibration, raw = volumetric
-        report = {"dataset": raw.name, "calibration": calibration,
-                  "reference": resolve_reference(cfg, ds)}
+        report = {"dataset": raw.name, "calibration": calibration}
+    report["reference"] = resolve_reference(cfg, ds)
     clock.lap("read")
     with stage_run(cfg, "run") as tr:     # a run refused from here on is recorded FAILED
         if volumetric is None:

@@ -22,7 +22,8 @@
    used to decide).
 3. The gate compares validation scores on the same dataset: the candidate's
    against the one the champion was promoted with, when the champion's
-   ``dataset_hash``, ``criterion_target`` and ``eval_mode`` tags match.  The
+   ``dataset_hash``, ``criterion_target`` and ``validation_mode`` tags match
+   (``eval_mode`` for a champion tagged before ``validation_mode`` existed).  The
    alias moves only if the candidate beats it by more than
    ``promote.min_improvement``; a champion with no comparable validation score
    stays unless ``promote.force``.  No registry stages (deprecated): aliases
