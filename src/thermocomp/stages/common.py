@@ -440,6 +440,11 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict):
         raise ConfigError(f"monitor: {exc}") from None
 
 
+def carried_text(carried: dict) -> str:
+    """``A continues B + C; ...`` of ``{campaign: chain}`` (:func:`thermocomp.continuation.carry_over`)."""
+    return "; ".join(f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items())
+
+
 def lead_ins(comp: Compensator, ds, ids) -> dict:
     """``{campaign: lead-in}`` for the campaigns of ``ids`` that continue others: their stream
     is warmed on their predecessors (unscored) so that it predicts what ``run`` scores
@@ -450,7 +455,7 @@ def lead_ins(comp: Compensator, ds, ids) -> dict:
     carried = {c: chain for c, chain in carry_over(comp, ds).items() if c in ids}
     if carried:
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
-            + "; ".join(f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items()))
+            + carried_text(carried))
     return {c: lead_in(ds, chain) for c, chain in carried.items()}
 
 
@@ -527,8 +532,7 @@ def result_table(metrics: dict) -> str:
                      f"{f(m.get('persistence', {}).get('rmse')):>8}")
     carried = metrics.get("carry_over")
     if carried:
-        lines.append("state carried over: " + "; ".join(
-            f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items()))
+        lines.append("state carried over: " + carried_text(carried))
     return "\n".join(lines + auto_table(metrics))
 
 
