@@ -348,3 +348,11 @@ def test_init_keeps_every_reading_key_given_and_reads_a_manifest_as_run_does(tmp
     written = yaml.safe_load((out / "conf" / "data" / "ds.yaml").read_text())
     assert written["test_fraction"] == 0.25 and written["max_gap_samples"] == 2
     assert "interim" not in written and "thousands" not in written    # defaults left to default
+
+
+def test_init_never_writes_beside_the_labs_record(tmp_path, capsys):
+    path = _lab_file(tmp_path / "lab.csv")
+    before = snapshot(tmp_path)
+    refused(["init", str(path), "data.sample_period_s=60", f"out={tmp_path}"], capsys,
+            "holds data.path")
+    assert snapshot(tmp_path) == before

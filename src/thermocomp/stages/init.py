@@ -23,7 +23,7 @@ from ..io.roles import UNITS, _numeric, naming, split_unit
 from ..io.sniff import resolved
 from ..io.tables import _peek_csv
 from ..paths import conf_dir, resolve
-from .common import data_options
+from .common import check_config, data_options
 
 # units that say "a machine state" (speeds, loads, positions, on/off)
 STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
@@ -35,6 +35,7 @@ _WHERE = ("interim", "processed")     # where stages write: the project's, not t
 def init(cfg: DictConfig) -> dict:
     """Detect, propose, check by reading, write ``<out>/conf/data/<name>.yaml``; print the run
     command."""
+    check_config(cfg)         # out never holds data.path: the lab's record is never written beside
     src = resolve(cfg.data.path)
     given = data_options(cfg)
     sample = _sample_file(src, io.ReadOptions.from_cfg(given))
