@@ -21,7 +21,6 @@ from ..metrics import rmse
 from ..model_selection import BlockedForward, LeaveCampaignsOut
 from ..one_step import persistence
 from ..params import check_estimator, choice, integer, number
-from .ati import MIN_AMBIENTS
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
 BASELINE = "mlr"         # always validated beside the candidates, with persistence
@@ -241,6 +240,8 @@ def _not_applicable(name: str, context, groups) -> str | None:
     first = np.unique(groups, return_index=True)[1] if groups is not None else [0]
     levels = np.unique(np.round(a0[first] * 2) / 2)
     levels = levels[np.isfinite(levels)]
+    from .ati import MIN_AMBIENTS  # here: ati's sklearn.cluster (OpenMP) kept off start-up
+
     if levels.size < MIN_AMBIENTS:   # distinct initial ambients (to 0.5 °C), as ATI needs
         return (f"the train campaigns span {levels.size} ambient level(s), fewer than "
                 f"{MIN_AMBIENTS}")
