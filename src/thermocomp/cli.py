@@ -42,6 +42,7 @@ stages:
   compare    table of a sweep's child runs, best first (compare.sweep=, compare.sort_by=)
   promote    register the best run's compensator; move @champion only if it is better
   replay     stream the test campaigns row by row through the deployable compensator (replay.json)
+  export     the deployed compensator as code: json, C + stream.c, Structured Text (export.*)
   serve      the registered compensator over HTTP (serve.model=, serve.port=; one worker)
   monitor    stream test campaigns (or stdin) through the fixed and the fault-tolerant
              compensator: sensor events, RMSE of both (<out>/monitor.json)
@@ -97,6 +98,10 @@ STAGE_HELP = {
     "replay": ("stream the test campaigns row by row through the deployable compensator",
                "data.path and a fitted or registered model", "<out>/replay.json",
                "replay.model=<path|models:/name@alias> monitor.adaptive=false (the plain stream)"),
+    "export": ("the deployed compensator as coefficients and code a CNC runs",
+               "export.model (a model.pkl with data.path, a pyfunc folder, models:/name@alias)",
+               "<out>/compensator.json (+ compensator.h/.c, stream.c | compensator.st)",
+               "export.model=models:/thermocomp-compensator@champion export.format=c|st|json"),
     "monitor": ("sensor surveillance (POD self-prediction) + fault-tolerant compensation, streamed",
                 "data.path (or CSV rows on stdin: monitor.input=-) and a fitted model",
                 "<out>/monitor.json, <out>/monitor/ (figures)",

@@ -18,7 +18,8 @@ STAGES = {"simulate": "simulate:simulate", "init": "init:init",
           "ingest": "ingest:ingest", "denoise": "denoise:denoise",
           "select": "select:select", "train": "modelling:train", "evaluate": "modelling:evaluate",
           "diagnose": "diagnose:diagnose", "run": "modelling:run", "compare": "compare:compare",
-          "promote": "promote:promote", "replay": "replay:replay", "serve": "serve:serve",
+          "promote": "promote:promote", "replay": "replay:replay", "export": "export:export",
+          "serve": "serve:serve",
           "monitor": "monitor:monitor",
           "calibrate": "calibrate:calibrate", "design": "design:design"}
 

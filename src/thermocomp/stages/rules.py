@@ -63,6 +63,8 @@ PROMOTE_RULES = {
     "promote.max_stream_deviation_um": NON_NEGATIVE,
 }
 
+EXPORT_RULES = {"export.model": optional(text()),
+                "export.format": choice("json", "c", "st", "onnx")}
 SERVE_RULES = {"serve.model": text(), "serve.host": text(), "serve.port": integer(1, 65535),
                "serve.timeout_s": POSITIVE, "serve.max_rows": integer(1, 10_000_000),
                "serve.max_body_mb": number(0.0, 4096.0, open_lo=True)}
@@ -161,6 +163,7 @@ def check_groups(cfg: DictConfig) -> None:
     for group, check in (("monitor", check_monitor),
                          ("promote", lambda c: check_keys(c, PROMOTE_RULES)),
                          ("serve", lambda c: check_keys(c, SERVE_RULES)),
+                         ("export", lambda c: check_keys(c, EXPORT_RULES)),
                          ("diagnose", lambda c: check_values(c.diagnose, DIAGNOSE_RULES, "diagnose")),
                          ("design", lambda c: check_design(
                              OmegaConf.to_container(c.design, resolve=True)))):

@@ -1,0 +1,42 @@
+"""`thermocomp export`: a deployed compensator as coefficients and code a CNC runs (pure core).
+
+:func:`exported_files` turns a deployed compensator into ``{file name: text}``:
+
+* ``json`` -- ``compensator.json``, the state-space arrays (:mod:`.statespace`);
+* ``c`` -- ``compensator.h``, ``compensator.c`` and the CSV driver ``stream.c`` (:mod:`.c`);
+* ``st`` -- ``compensator.st``, an IEC 61131-3 function block (:mod:`.st`).
+
+Every format also writes ``compensator.json``, the arrays the code was generated from.  Only
+the linear families export (:data:`~.statespace.LINEAR_FAMILIES`); any other model is refused
+(:class:`~.statespace.NotExportable`) with one line naming them.
+"""
+
+from __future__ import annotations
+
+import json
+
+from .statespace import FORMATS, LINEAR_FAMILIES, NotExportable, Simulator, StateSpace, state_space
+
+__all__ = ["FORMATS", "LINEAR_FAMILIES", "NotExportable", "Simulator", "StateSpace", "exported_files",
+           "state_space"]
+
+
+def exported_files(stream, fmt: str, provenance: dict | None = None) -> dict[str, str]:
+    """``{file name: text}`` of format ``fmt`` for the plain deployed ``stream``."""
+    if fmt not in FORMATS:
+        raise NotExportable(f"export.format={fmt!r}: one of {', '.join(FORMATS)}")
+    if fmt == "onnx":
+        raise NotExportable("export.format=onnx: no ONNX export is implemented yet; the linear "
+                            f"families ({', '.join(LINEAR_FAMILIES)}) export to json, c and st")
+    ss = state_space(stream, provenance)
+    files = {"compensator.json": json.dumps(ss.to_dict(), indent=1) + "\n"}
+    if fmt == "c":
+        from . import c
+
+        files.update({"compensator.h": c.header(ss), "compensator.c": c.source(ss),
+                      "stream.c": c.DRIVER})
+    elif fmt == "st":
+        from . import st
+
+        files["compensator.st"] = st.function_block(ss)
+    return files

@@ -1,0 +1,235 @@
+"""The exported system (:class:`~.statespace.StateSpace`) as C99: ``compensator.h``/``.c``
+(``tc_init``/``tc_step`` on a caller-owned state struct, no allocation, no library beyond
+``exp``) and ``stream.c``, a driver that reads CSV rows on stdin and prints the corrections.
+
+Build and run: ``cc compensator.c stream.c -lm -o stream && ./stream < campaign.csv``.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .statespace import StateSpace
+from .text import banner, correction_names
+
+
+def number(v: float) -> str:
+    """A double literal that reads back to the same double."""
+    if math.isinf(v):
+        return "HUGE_VAL" if v > 0 else "-HUGE_VAL"
+    return repr(float(v))
+
+
+def _array(name: str, values, shape: tuple[int, ...]) -> str:
+    dims = "".join(f"[{max(d, 1)}]" for d in shape)
+    return f"static const double {name}{dims} = {_braced(values, len(shape))};"
+
+
+def _braced(values, rank: int) -> str:
+    """A nested C initialiser; an empty dimension holds one zero (C has no empty arrays)."""
+    if rank == 0:
+        return number(values)
+    items = [_braced(v, rank - 1) for v in values] or [_braced([] if rank > 1 else 0.0, rank - 1)]
+    return "{" + ", ".join(items) + "}"
+
+
+def header(ss: StateSpace) -> str:
+    n, m, taps = len(ss.inputs), len(ss.targets), len(ss.fir)
+    names = ", ".join(f'"{c}"' for c in ss.inputs)
+    outs = ", ".join(f'"{c}"' for c in correction_names(ss.targets))
+    return f"""{banner(ss, "/*", " *", " */")}
+#ifndef THERMOCOMP_COMPENSATOR_H
+#define THERMOCOMP_COMPENSATOR_H
+
+#define TC_N_INPUTS {n}
+#define TC_N_OUTPUTS {m}
+#define TC_TAPS {taps}
+#define TC_DEPTH {ss.depth}
+#define TC_N_LAGS {len(ss.taus)}
+#define TC_USES_TIME {int(ss.uses_time)}
+
+/* Everything the compensator remembers between samples; the caller owns it. */
+typedef struct {{
+    int first;                                  /* 1: the next sample starts a campaign */
+    double buf[TC_TAPS][TC_N_INPUTS];           /* raw inputs, newest first (FIR denoiser) */
+    double ref[TC_N_INPUTS];                    /* first-sample reference */
+    double hist[{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
+    double z[{max(len(ss.taus), 1)}];           /* first-order lags */
+    double y[TC_N_OUTPUTS];                     /* previous predicted error (AR feedback) */
+    double t;                                   /* previous sample time, s */
+}} tc_state;
+
+static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
+static const char *const TC_OUTPUT_NAMES[TC_N_OUTPUTS] = {{{outs}}};
+
+/* Start a campaign: the next sample is the reference. */
+void tc_init(tc_state *s);
+
+/* One sample: raw inputs u (order TC_INPUT_NAMES), its time in s (NAN: one period after the
+   previous one) -> corrections c (um, order TC_OUTPUT_NAMES).  Returns the number of inputs
+   clamped to the training envelope. */
+int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]);
+
+#endif
+"""
+
+
+def source(ss: StateSpace) -> str:
+    n, m, taps, k = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus)
+    d = ss.depth
+    consts = "\n".join([
+        _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
+        _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
+        _array("TAU", ss.taus, (k,)), _array("DECAY", ss.lag_decay, (k,)),
+        f"static const int LAG_INPUT[{max(k, 1)}] = {{{', '.join(map(str, ss.lag_input)) or '0'}}};",
+        _array("INTERCEPT", ss.intercept, (m,)), _array("B0", ss.b0, (m, n)),
+        _array("BD", ss.bd, (m, d, n)), _array("G", ss.g, (m, k)), _array("AR", ss.ar, (m,)),
+        f"static const double PERIOD = {number(ss.period)};",
+        f"static const int CLAMP = {int(ss.clamp)};"])
+    return f"""{banner(ss, "/*", " *", " */")}
+#include <math.h>
+#include "compensator.h"
+
+{consts}
+
+void tc_init(tc_state *s) {{ s->first = 1; }}
+
+int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
+    double v[TC_N_INPUTS], x[TC_N_INPUTS], xl[{max(k, 1)}];
+    int i, j, l, clamped = 0;
+    /* causal FIR denoiser */
+    for (l = TC_TAPS - 1; l >= 0; l--)
+        for (j = 0; j < TC_N_INPUTS; j++)
+            s->buf[l][j] = (s->first || l == 0) ? u[j] : s->buf[l - 1][j];
+    for (j = 0; j < TC_N_INPUTS; j++) {{
+        v[j] = 0.0;
+        for (l = 0; l < TC_TAPS; l++) v[j] += s->buf[l][j] * FIR[l][j];
+        if (s->first) s->ref[j] = REFERENCED[j] != 0.0 ? v[j] : 0.0;
+        x[j] = v[j] - s->ref[j];
+        /* envelope clamp (static limit) */
+        if (CLAMP && (x[j] < LO[j] || x[j] > HI[j])) {{
+            x[j] = x[j] < LO[j] ? LO[j] : HI[j];
+            clamped++;
+        }}
+    }}
+    /* first-order lags */
+    for (l = 0; l < TC_N_LAGS; l++) {{
+        xl[l] = x[LAG_INPUT[l]];
+        if (s->first) {{
+            s->z[l] = xl[l];
+        }} else {{
+            double e = isnan(time) ? DECAY[l] : exp(-(time - s->t) / TAU[l]);
+            s->z[l] = e * s->z[l] + (1.0 - e) * xl[l];
+        }}
+    }}
+    if (s->first) {{
+        for (l = 0; l < TC_DEPTH; l++)
+            for (j = 0; j < TC_N_INPUTS; j++) s->hist[l][j] = x[j];
+        for (i = 0; i < TC_N_OUTPUTS; i++) s->y[i] = 0.0;
+        s->t = isnan(time) ? 0.0 : time;
+    }} else {{
+        s->t = isnan(time) ? s->t + PERIOD : time;
+    }}
+    /* outputs: static part, input history, lags, AR feedback */
+    for (i = 0; i < TC_N_OUTPUTS; i++) {{
+        double y = INTERCEPT[i];
+        for (j = 0; j < TC_N_INPUTS; j++) y += B0[i][j] * x[j];
+        for (l = 0; l < TC_DEPTH; l++)
+            for (j = 0; j < TC_N_INPUTS; j++) y += BD[i][l][j] * s->hist[l][j];
+        for (l = 0; l < TC_N_LAGS; l++) y += G[i][l] * (s->z[l] - xl[l]);
+        y += AR[i] * s->y[i];
+        s->y[i] = y;
+        c[i] = -y;
+    }}
+    for (l = TC_DEPTH - 1; l >= 0; l--)
+        for (j = 0; j < TC_N_INPUTS; j++) s->hist[l][j] = l == 0 ? x[j] : s->hist[l - 1][j];
+    s->first = 0;
+    return clamped;
+}}
+"""
+
+
+DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis> as CSV on stdout.
+ *
+ * The header names the columns (any order, extra columns ignored); every input of
+ * TC_INPUT_NAMES is needed, `time` (s) when the model reads it.  A blank row, or a `reset`
+ * column holding 1, starts a campaign (the next row is its reference).
+ * Build: cc compensator.c stream.c -lm -o stream
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "compensator.h"
+
+#define MAX_LINE 65536
+#define MAX_COLS 1024
+
+static int split(char *line, char **cells) {
+    int n = 0;
+    char *p = line;
+    line[strcspn(line, "\r\n")] = '\0';
+    cells[n++] = p;
+    while ((p = strchr(p, ',')) != NULL && n < MAX_COLS) { *p++ = '\0'; cells[n++] = p; }
+    return n;
+}
+
+static double value(const char *cell) {
+    char *end;
+    double v;
+    while (*cell == ' ') cell++;
+    if (*cell == '\0') return NAN;
+    v = strtod(cell, &end);
+    return end == cell ? NAN : v;
+}
+
+int main(void) {
+    static char line[MAX_LINE];
+    char *cells[MAX_COLS];
+    int where[TC_N_INPUTS], time_col = -1, reset_col = -1, ncols, i, j;
+    long row = 1;
+    tc_state s;
+    double u[TC_N_INPUTS], c[TC_N_OUTPUTS];
+
+    if (!fgets(line, sizeof line, stdin)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
+    ncols = split(line, cells);
+    for (i = 0; i < TC_N_INPUTS; i++) {
+        where[i] = -1;
+        for (j = 0; j < ncols; j++) if (strcmp(cells[j], TC_INPUT_NAMES[i]) == 0) where[i] = j;
+        if (where[i] < 0) {
+            fprintf(stderr, "stream: the header lacks input column %s\n", TC_INPUT_NAMES[i]);
+            return 2;
+        }
+    }
+    for (j = 0; j < ncols; j++) {
+        if (strcmp(cells[j], "time") == 0) time_col = j;
+        if (strcmp(cells[j], "reset") == 0) reset_col = j;
+    }
+    if (TC_USES_TIME && time_col < 0)
+        fprintf(stderr, "stream: no time column: samples taken one period apart\n");
+    for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%s", i ? "," : "", TC_OUTPUT_NAMES[i]);
+    printf("\n");
+    tc_init(&s);
+    while (fgets(line, sizeof line, stdin)) {
+        row++;
+        if (line[strspn(line, " \t\r\n")] == '\0') { tc_init(&s); continue; }
+        if (split(line, cells) != ncols) {
+            fprintf(stderr, "stream: row %ld has not %d cells\n", row, ncols);
+            return 2;
+        }
+        if (reset_col >= 0 && value(cells[reset_col]) == 1.0) tc_init(&s);
+        for (i = 0; i < TC_N_INPUTS; i++) {
+            u[i] = value(cells[where[i]]);
+            if (!isfinite(u[i])) {
+                fprintf(stderr, "stream: row %ld: input %s has no finite value\n", row,
+                        TC_INPUT_NAMES[i]);
+                return 2;
+            }
+        }
+        tc_step(&s, u, time_col >= 0 ? value(cells[time_col]) : NAN, c);
+        for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
+        printf("\n");
+    }
+    return 0;
+}
+"""

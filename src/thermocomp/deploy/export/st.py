@@ -1,0 +1,193 @@
+"""The exported system (:class:`~.statespace.StateSpace`) as an IEC 61131-3 Structured Text
+function block, ``FB_ThermoComp``, with the interface of the C code: one call is one
+``tc_step``; ``reset := TRUE`` is ``tc_init`` before it (the sample starts a campaign).
+
+Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: one period
+after the previous sample; ST has no NaN); outputs ``c`` (µm) and ``n_clamped``.  Only
+assignments, ``IF``, ``FOR`` and ``EXP`` are used, one statement a line.
+"""
+
+from __future__ import annotations
+
+from .statespace import StateSpace
+from .text import banner
+
+NAME = "FB_ThermoComp"
+
+
+def literal(v: float) -> str:
+    """An LREAL literal (always a decimal point, 17 significant digits: the same double)."""
+    return f"{float(v):.16e}"
+
+
+def _dims(*shape: int) -> str:
+    return ", ".join(f"0..{max(d, 1) - 1}" for d in shape)
+
+
+def _flat(values) -> list:
+    if isinstance(values, (list, tuple)):
+        return [v for item in values for v in _flat(item)]
+    return [values]
+
+
+def _constant(name: str, values, shape: tuple[int, ...], kind: str = "LREAL") -> str:
+    flat = _flat(values) or [0]
+    flat += [0] * (max(1, _size(shape)) - len(flat))
+    text = ", ".join(literal(v) if kind == "LREAL" else str(int(v)) for v in flat)
+    return f"    {name} : ARRAY[{_dims(*shape)}] OF {kind} := [{text}];"
+
+
+def _size(shape) -> int:
+    out = 1
+    for d in shape:
+        out *= max(d, 1)
+    return out
+
+
+def function_block(ss: StateSpace) -> str:
+    n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
+    consts = "\n".join([
+        f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    TAPS : INT := {taps};",
+        f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};",
+        f"    PERIOD : LREAL := {literal(ss.period)};",
+        f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
+        _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
+        _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
+        _constant("TAU", ss.taus, (k,)), _constant("DECAY", ss.lag_decay, (k,)),
+        _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
+        _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n)),
+        _constant("BD", ss.bd, (m, d, n)), _constant("G", ss.g, (m, k)), _constant("AR", ss.ar, (m,))])
+    return f"""{banner(ss, "(*", "  ", "*)")}
+FUNCTION_BLOCK {NAME}
+VAR_INPUT
+    u : ARRAY[{_dims(n)}] OF LREAL;
+    time_s : LREAL;
+    has_time : BOOL;
+    reset : BOOL;
+END_VAR
+VAR_OUTPUT
+    c : ARRAY[{_dims(m)}] OF LREAL;
+    n_clamped : INT;
+END_VAR
+VAR
+    first : BOOL := TRUE;
+    buf : ARRAY[{_dims(taps, n)}] OF LREAL;
+    ref : ARRAY[{_dims(n)}] OF LREAL;
+    hist : ARRAY[{_dims(d, n)}] OF LREAL;
+    z : ARRAY[{_dims(k)}] OF LREAL;
+    y_prev : ARRAY[{_dims(m)}] OF LREAL;
+    t_prev : LREAL;
+    v : ARRAY[{_dims(n)}] OF LREAL;
+    x : ARRAY[{_dims(n)}] OF LREAL;
+    xl : ARRAY[{_dims(k)}] OF LREAL;
+    e : LREAL;
+    y : LREAL;
+    i : INT;
+    j : INT;
+    l : INT;
+END_VAR
+VAR CONSTANT
+{consts}
+END_VAR
+
+IF reset THEN
+    first := TRUE;
+END_IF;
+n_clamped := 0;
+(* causal FIR denoiser: newest raw sample first *)
+FOR l := TAPS - 1 TO 0 BY -1 DO
+    FOR j := 0 TO N_INPUTS - 1 DO
+        IF first OR l = 0 THEN
+            buf[l, j] := u[j];
+        ELSE
+            buf[l, j] := buf[l - 1, j];
+        END_IF;
+    END_FOR;
+END_FOR;
+FOR j := 0 TO N_INPUTS - 1 DO
+    v[j] := 0.0;
+    FOR l := 0 TO TAPS - 1 DO
+        v[j] := v[j] + buf[l, j] * FIR[l, j];
+    END_FOR;
+    IF first THEN
+        IF REFERENCED[j] <> 0.0 THEN
+            ref[j] := v[j];
+        ELSE
+            ref[j] := 0.0;
+        END_IF;
+    END_IF;
+    x[j] := v[j] - ref[j];
+    (* envelope clamp (static limit) *)
+    IF CLAMP AND x[j] < LO[j] THEN
+        x[j] := LO[j];
+        n_clamped := n_clamped + 1;
+    ELSIF CLAMP AND x[j] > HI[j] THEN
+        x[j] := HI[j];
+        n_clamped := n_clamped + 1;
+    END_IF;
+END_FOR;
+(* first-order lags *)
+FOR l := 0 TO N_LAGS - 1 DO
+    xl[l] := x[LAG_INPUT[l]];
+    IF first THEN
+        z[l] := xl[l];
+    ELSE
+        IF has_time THEN
+            e := EXP(-(time_s - t_prev) / TAU[l]);
+        ELSE
+            e := DECAY[l];
+        END_IF;
+        z[l] := e * z[l] + (1.0 - e) * xl[l];
+    END_IF;
+END_FOR;
+IF first THEN
+    FOR l := 0 TO DEPTH - 1 DO
+        FOR j := 0 TO N_INPUTS - 1 DO
+            hist[l, j] := x[j];
+        END_FOR;
+    END_FOR;
+    FOR i := 0 TO N_OUTPUTS - 1 DO
+        y_prev[i] := 0.0;
+    END_FOR;
+    IF has_time THEN
+        t_prev := time_s;
+    ELSE
+        t_prev := 0.0;
+    END_IF;
+ELSE
+    IF has_time THEN
+        t_prev := time_s;
+    ELSE
+        t_prev := t_prev + PERIOD;
+    END_IF;
+END_IF;
+(* outputs: static part, input history, lags, AR feedback *)
+FOR i := 0 TO N_OUTPUTS - 1 DO
+    y := INTERCEPT[i];
+    FOR j := 0 TO N_INPUTS - 1 DO
+        y := y + B0[i, j] * x[j];
+    END_FOR;
+    FOR l := 0 TO DEPTH - 1 DO
+        FOR j := 0 TO N_INPUTS - 1 DO
+            y := y + BD[i, l, j] * hist[l, j];
+        END_FOR;
+    END_FOR;
+    FOR l := 0 TO N_LAGS - 1 DO
+        y := y + G[i, l] * (z[l] - xl[l]);
+    END_FOR;
+    y := y + AR[i] * y_prev[i];
+    y_prev[i] := y;
+    c[i] := -y;
+END_FOR;
+FOR l := DEPTH - 1 TO 0 BY -1 DO
+    FOR j := 0 TO N_INPUTS - 1 DO
+        IF l = 0 THEN
+            hist[l, j] := x[j];
+        ELSE
+            hist[l, j] := hist[l - 1, j];
+        END_IF;
+    END_FOR;
+END_FOR;
+first := FALSE;
+END_FUNCTION_BLOCK
+"""

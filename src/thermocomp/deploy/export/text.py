@@ -1,0 +1,31 @@
+"""What every generated file says of itself: the provenance banner, the output names."""
+
+from __future__ import annotations
+
+from ..pyfunc import correction_column
+
+
+def correction_names(targets) -> list[str]:
+    """``E_X`` -> ``C_X``: the corrections the code outputs, as the served model names them."""
+    return [correction_column(t) for t in targets]
+
+
+def banner(ss, open_: str, middle: str, close: str) -> str:
+    """A comment block: what the code is, where it came from, its inputs, units and bounds."""
+    p = ss.provenance
+    lines = ["thermocomp compensator, generated code (thermocomp export): do not edit.",
+             f"model: {p.get('model', '?')}  source: {p.get('source', '?')}",
+             f"run: {p.get('run_id') or '-'}  dataset sha256: {p.get('dataset_hash') or '-'}",
+             f"thermocomp {p.get('version', '?')}  exported {p.get('exported', '?')}",
+             "inputs, in order (raw values as measured; T_ in degC, taken relative to a campaign's "
+             "first sample where starred):"]
+    for j, c in enumerate(ss.inputs):
+        ref = "*" if ss.referenced[j] else " "
+        env = f"[{ss.lo[j]:.6g}, {ss.hi[j]:.6g}]" if ss.clamp else "not clamped"
+        lines.append(f"  {j}: {c}{ref} {p.get('units', {}).get(c, '')}  envelope {env}")
+    lines.append("time: s, " + ("read by the first-order lags" if ss.uses_time else "not read")
+                 + f"; period {ss.period:.6g} s")
+    lines.append("outputs: " + ", ".join(correction_names(ss.targets))
+                 + " in um (the correction: minus the predicted error)")
+    body = "\n".join(f"{middle} {line}".rstrip() for line in lines)
+    return f"{open_}\n{body}\n{close}"
