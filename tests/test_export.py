@@ -317,3 +317,18 @@ def test_export_without_a_model_is_refused(dataset, tmp_path, capsys):
     refused(["export", f"data.path={dataset}", "export.model=m.pkl", "export.format=pdf",
              f"out={tmp_path / 'x'}", "track=false"], capsys, "export.format")
     assert not (tmp_path / "x").exists()
+
+
+def test_a_saved_pyfunc_model_exports_as_deployed(dataset, tmp_path):
+    """A pyfunc folder (what promote registers) exports the stream it holds, with its envelope:
+    no data needed."""
+    from thermocomp.deploy.pyfunc import save_compensator
+
+    stream, tests = _deployed(dataset, "lagbank", "none", "all")
+    folder = save_compensator(stream, tmp_path / "pyfunc")
+    assert main(["export", f"export.model={folder}", "export.format=json",
+                 f"out={tmp_path / 'json'}", "track=false"]) == 0
+    exported = json.loads((tmp_path / "json" / "compensator.json").read_text())
+    assert exported["lo"] == stream.envelope.lo.tolist() and exported["taus"]
+    assert exported["provenance"]["source"] == str(folder)
+    assert exported == {**state_space(stream).to_dict(), "provenance": exported["provenance"]}
