@@ -93,9 +93,11 @@ def _deployed(dataset, family, denoise, select):
     train = {c: ds.campaigns[c] for c in train_ids}
     stream = deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train)
     tests = []
-    for c in test_ids:
+    for k, c in enumerate(test_ids):
         df = ds.campaigns[c].reset_index(drop=True).copy()
         df.loc[len(df) // 2:, stream.columns_[0]] += PUSH_C
+        if k == 1:   # irregular sampling: the lags step by the time actually elapsed
+            df["time"] += np.r_[0.0, np.random.default_rng(k).uniform(-30, 30, len(df) - 1)]
         tests.append(df)
     _FITTED[key] = stream, tests
     return stream, tests
@@ -283,9 +285,16 @@ def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(datas
     header = (out / "compensator.h").read_text()
     assert all(c in header for c in ("T_a", "lagbank", coefficients["provenance"]["dataset_hash"]))
     subprocess.run(["cc", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=out, check=True)
-    rows = pd.read_csv(dataset / "K05.csv")
-    got = _streamed(out / "stream", rows.drop(columns=["E_X", "E_Z", "S_door"]).to_csv(index=False))
+    rows = pd.read_csv(dataset / "K05.csv").drop(columns=["E_X", "E_Z", "S_door"])
+    got = _streamed(out / "stream", rows.to_csv(index=False))
     assert list(got.columns) == ["C_X", "C_Z"] and len(got) == len(rows)
+    # bad rows: exit 2, one line naming the row or the column
+    rows.loc[3, "T_b"] = np.nan
+    for text, says in ((rows.to_csv(index=False), "row 5: input T_b has no finite value"),
+                       (rows.drop(columns=["T_a"]).to_csv(index=False), "lacks input column T_a")):
+        run = subprocess.run([str(out / "stream")], input=text, text=True, capture_output=True)
+        assert run.returncode == 2 and run.stderr.strip().endswith(says), run.stderr
+        assert len(run.stderr.strip().splitlines()) == 1
     # the same model exported as ST and JSON carries the same arrays
     for fmt, name in (("st", "compensator.st"), ("json", "compensator.json")):
         assert main(["export", f"data.path={dataset}", f"export.model={model}",
