@@ -76,6 +76,9 @@ class StateSpace:
 
 def _target_law(est, n: int, period: float | None):
     """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
+    if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
+        raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
+                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)})")
     c = float(est.intercept_)
     if isinstance(est, (MLR, PCR)):
         return c, np.asarray(est.coef_, float), {}, [], 0.0, period
@@ -85,17 +88,14 @@ def _target_law(est, n: int, period: float | None):
             row = b0 if d == 0 else delayed.setdefault(int(d), np.zeros(n))
             row[j] += float(b)
         return c, b0, delayed, [], float(est.ar_coef_), period
-    if isinstance(est, LagBank):
-        coef = np.asarray(est.coef_, float)
-        lags = [(float(tau), j, float(coef[n * (i + 1) + j]))
-                for i, tau in enumerate(est.taus_) for j in range(n)]
-        own = float(est.sample_period_s_)
-        if period is not None and own != period:
-            raise NotExportable(f"the lag banks of the targets assume sample periods {period} and "
-                                f"{own} s; one exported step has one period")
-        return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
-    raise NotExportable(f"model {type(est).__name__} is not one of the linear families that export "
-                        f"to C/ST ({', '.join(LINEAR_FAMILIES)})")
+    coef = np.asarray(est.coef_, float)      # the lag bank
+    lags = [(float(tau), j, float(coef[n * (i + 1) + j]))
+            for i, tau in enumerate(est.taus_) for j in range(n)]
+    own = float(est.sample_period_s_)
+    if period is not None and own != period:
+        raise NotExportable(f"the lag banks of the targets assume sample periods {period} and "
+                            f"{own} s; one exported step has one period")
+    return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
 
 
 def state_space(stream: StreamingCompensator, provenance: dict | None = None) -> StateSpace:
