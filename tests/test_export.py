@@ -25,7 +25,7 @@ from hydra import compose, initialize_config_dir
 
 from conftest import refused
 from thermocomp.cli import main
-from thermocomp.deploy.export import exported_files, state_space
+from thermocomp.deploy.export import Simulator, exported_files, state_space
 from thermocomp.deploy.streaming import replay
 from thermocomp.paths import conf_dir
 from thermocomp.stages.common import build_compensator, deploy_stream, read_streamed
@@ -245,6 +245,12 @@ def test_the_compiled_c_and_the_structured_text_stream_as_replay(dataset, tmp_pa
         got = _streamed(binary, _stdin(stream, tests, reset_column))
         assert list(got.columns) == ["C_" + t[2:] for t in stream.targets_]
         assert np.max(np.abs(got.to_numpy(float) - expected)) <= TOLERANCE_UM
+    sim = Simulator(ss)            # the numpy reading of the same arrays
+    rows = []
+    for df in tests:
+        sim.reset()
+        rows += [sim.step(r, t) for r, t in zip(df[stream.columns_].to_numpy(float), df["time"])]
+    assert np.max(np.abs(np.array(rows) - expected)) <= TOLERANCE_UM
     fb = StructuredText(exported_files(stream, "st")["compensator.st"])
     rows = [fb(r, t, k == 0) for df in tests
             for k, (r, t) in enumerate(zip(df[stream.columns_].to_numpy(float), df["time"]))]
