@@ -113,12 +113,17 @@ def joined(ds: Dataset, ids: list[str]) -> pd.DataFrame:
 
 def lead_in(ds: Dataset, ids: list[str]) -> pd.DataFrame:
     """The campaigns before the last of ``ids`` (a :func:`chain`), joined: what a stream is
-    warmed on before that campaign.  Its times are shifted so that it ends one sample period
-    before the campaign's first sample, which keeps its own clock (the :func:`joined` campaign,
-    moved in time as a whole)."""
-    whole, n = joined(ds, ids), len(ds.campaigns[ids[-1]])
-    shift = float(ds.campaigns[ids[-1]][TIME].iloc[0]) - float(whole[TIME].iloc[-n])
-    return whole.iloc[:-n].assign(**{TIME: whole[TIME].iloc[:-n] + shift})
+    warmed on before that campaign (:func:`preceding` its first sample)."""
+    return preceding(ds, ids[:-1], float(ds.campaigns[ids[-1]][TIME].iloc[0]))
+
+
+def preceding(ds: Dataset, ids: list[str], first_time: float) -> pd.DataFrame:
+    """The campaigns ``ids`` :func:`joined`, moved in time as a whole so that they end one
+    sample period (the last one's) before ``first_time``: the lead-in of a campaign that starts
+    there and continues them (keeping the campaign's own clock)."""
+    whole = joined(ds, ids)
+    shift = first_time - _period(ds.campaigns[ids[-1]]) - float(whole[TIME].iloc[-1])
+    return whole.assign(**{TIME: whole[TIME] + shift})
 
 
 def carry_over(comp, ds: Dataset) -> dict[str, list[str]]:

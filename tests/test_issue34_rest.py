@@ -1,0 +1,85 @@
+"""Issue 34's smaller leftovers: a stdin stream that continues a campaign, the standalone
+ingest's resolved reference, a lead-in with a missing value, fleet's per-group ``model=auto``
+and ATI's manifest ambient in a stream."""
+
+from __future__ import annotations
+
+import io
+import json
+
+import pytest
+
+import test_deployed_as_scored as deployed
+from conftest import refused
+from test_hostile import FAST
+from thermocomp.cli import main
+
+PLAIN = deployed.PLAIN
+record = deployed.record    # the fixture: the spindle record cut in two, B continues A
+
+
+def _monitor(args: list[str], out, stdin: str | None, monkeypatch) -> dict:
+    if stdin is not None:
+        monkeypatch.setattr("sys.stdin", io.StringIO(stdin))
+    assert main(["monitor", f"out={out}", *PLAIN, *FAST, "model=lagbank", *args]) == 0
+    return json.loads((out / "monitor.json").read_text())["targets"]
+
+
+def test_a_stdin_stream_that_continues_a_campaign_is_warmed_on_it(record, tmp_path, monkeypatch,
+                                                                  capsys):
+    # the test file B continues A: streamed from data.path it is warmed on A (as run scores it);
+    # the same rows on stdin, said to continue A, must stream alike
+    args = [f"data.path={record}"]
+    from_file = _monitor(args, tmp_path / "file", None, monkeypatch)
+    rows = (record / "B.csv").read_text()
+    piped = _monitor([*args, "monitor.input=-", "monitor.continues=A"], tmp_path / "piped", rows,
+                     monkeypatch)
+    assert "stdin continues A" in capsys.readouterr().err
+    cold = _monitor([*args, "monitor.input=-"], tmp_path / "cold", rows, monkeypatch)
+    for t, r in from_file.items():
+        assert piped[t]["rmse_fixed"] == pytest.approx(r["rmse_fixed"], rel=1e-6)
+        assert piped[t]["rmse_adaptive"] == pytest.approx(r["rmse_adaptive"], rel=1e-6)
+    # a restarted stream is another figure: the warm-up is what made them equal
+    assert any(abs(cold[t]["rmse_fixed"] - r["rmse_fixed"]) > 0.01 * r["rmse_fixed"]
+               for t, r in from_file.items())
+
+
+def test_monitor_continues_refuses_an_unknown_campaign_naming_the_known_ones(
+        record, tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr("sys.stdin", io.StringIO((record / "B.csv").read_text()))
+    out = tmp_path / "out"
+    refused(["monitor", f"data.path={record}", f"out={out}", *PLAIN, *FAST, "monitor.input=-",
+             "monitor.continues=Z"], capsys, "monitor.continues=Z", "campaigns: A, B")
+    assert not out.exists()
+
+
+def test_monitor_continues_without_stdin_or_carried_state_is_refused(record, tmp_path,
+                                                                     monkeypatch, capsys):
+    out = tmp_path / "out"
+    refused(["monitor", f"data.path={record}", f"out={out}", *PLAIN, *FAST,
+             "monitor.continues=A"], capsys, "monitor.continues=A", "monitor.input=-")
+    monkeypatch.setattr("sys.stdin", io.StringIO((record / "B.csv").read_text()))
+    first_sample = [p if not p.startswith("data.reference=") else "data.reference=first_sample"
+                    for p in PLAIN]
+    refused(["monitor", f"data.path={record}", f"out={out}", *first_sample, *FAST,
+             "monitor.input=-", "monitor.continues=A"], capsys,
+            "monitor.continues=A", "data.reference=first_sample")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("given, resolved", [("auto", "none"), ("none", "none"),
+                                             ("first_sample", "first_sample")])
+def test_ingest_reports_the_resolved_reference_as_run_does(record, tmp_path, given, resolved):
+    # B continues A: auto resolves to none; run's ingest_report.json has said so, ingest's not
+    args = [f"data.path={record}", *PLAIN[:2], PLAIN[3], f"data.reference={given}", *FAST]
+    assert main(["ingest", *args, f"data.interim={tmp_path / 'interim'}"]) == 0
+    assert main(["run", *args, f"out={tmp_path / 'run'}"]) == 0
+    ingested = json.loads((tmp_path / "interim" / "ingest_report.json").read_text())
+    ran = json.loads((tmp_path / "run" / "ingest_report.json").read_text())
+    assert ingested["reference"] == ran["reference"] == resolved
+
+
+def test_ingest_of_campaigns_that_continue_none_reports_first_sample(paths):
+    assert main(["ingest", *paths["args"]]) == 0
+    report = json.loads((paths["interim"] / "ingest_report.json").read_text())
+    assert report["reference"] == "first_sample"
