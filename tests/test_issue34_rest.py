@@ -83,3 +83,32 @@ def test_ingest_of_campaigns_that_continue_none_reports_first_sample(paths):
     assert main(["ingest", *paths["args"]]) == 0
     report = json.loads((paths["interim"] / "ingest_report.json").read_text())
     assert report["reference"] == "first_sample"
+
+
+@pytest.mark.parametrize("adaptive", [False, True], ids=["plain", "adaptive"])
+def test_a_lead_in_with_a_missing_value_warms_as_the_stream_holds_it(adaptive):
+    # a test campaign continuing another test campaign read as recorded: its lead-in may hold
+    # a dropout; warming must pass it over as the stream does there, not refuse the campaign
+    import numpy as np
+    import pandas as pd
+
+    from test_deploy import _library, campaigns
+    from thermocomp.deploy import StreamingCompensator
+    from thermocomp.monitor import AdaptiveCompensator
+    from thermocomp.stages.monitor import _stream
+
+    camps = campaigns(0)
+    train = {c: camps[c] for c in list(camps)[:3]}
+    plain = StreamingCompensator.from_training(_library("arx").fit(train), train, policy="off")
+    deployed = AdaptiveCompensator.from_training(plain, train) if adaptive else plain
+    lead, test = camps["K04"].copy(), camps["K05"]
+    sensor = next(c for c in plain.columns_ if c.startswith("T_"))
+    lead.loc[[5, 6, len(lead) // 2], sensor] = np.nan
+    lead["time"] -= lead["time"].iloc[-1] + (lead["time"].iloc[1] - lead["time"].iloc[0])
+    whole = pd.concat([lead, test], ignore_index=True)
+    warmed, _, _ = _stream(deployed, test, lead)
+    through, _, _ = _stream(deployed, whole)
+    np.testing.assert_allclose(warmed, through[len(lead):], rtol=0, atol=1e-12)
+    assert np.isfinite(warmed).all()
+    cold, _, _ = _stream(deployed, test)     # the warm-up carries state: not a restart
+    assert np.max(np.abs(cold - warmed)) > 1e-3

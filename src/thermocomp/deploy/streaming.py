@@ -45,6 +45,10 @@ class OutOfEnvelopeError(ValueError):
     """An input left the training envelope under ``policy='refuse'``, or is missing."""
 
 
+class MissingValueError(OutOfEnvelopeError):
+    """An input has no finite value (a sensor dropout): the row is refused, the state untouched."""
+
+
 def has_stream_protocol(obj) -> bool:
     """True when ``obj`` implements ``stream_init``/``stream_step``."""
     return callable(getattr(obj, "stream_init", None)) and callable(getattr(obj, "stream_step", None))
@@ -252,7 +256,7 @@ class StreamingCompensator:
         checked = x[:self._n_checked]
         if not np.isfinite(checked.sum()):          # one reduction instead of a mask
             j = int(np.flatnonzero(~np.isfinite(checked))[0])
-            raise OutOfEnvelopeError(f"input {self.columns_[j]} has no finite value at row "
+            raise MissingValueError(f"input {self.columns_[j]} has no finite value at row "
                                      f"{self.n_samples_} (sensor dropout?)")
         first = self._ref is None
         seen = x
@@ -295,19 +299,26 @@ def warm(deployed, lead_in: pd.DataFrame | None = None) -> None:
     """Start a campaign: reset, then stream ``lead_in`` (the rows of the campaigns it continues,
     :func:`thermocomp.continuation.lead_in`; predictions discarded), so that the campaign starts
     from the state its predecessor left, as ``run`` predicts it joined to them.  ``deployed``:
-    a :class:`StreamingCompensator` or an adaptive compensator around one."""
+    a :class:`StreamingCompensator` or an adaptive compensator around one.
+
+    A lead-in row with a missing value (a continued test campaign read as recorded) is passed
+    over with the state held, as the stream holds it where that campaign itself is streamed
+    (``monitor``; the adaptive compensator reconstructs or holds it on its own); any other
+    refusal (``policy=refuse``) raises naming the row."""
     deployed.reset()
     if lead_in is None or not len(lead_in):
         return
     X = lead_in[deployed.columns_].to_numpy(float)
     t = lead_in[TIME].to_numpy(float) if TIME in lead_in.columns else np.full(len(X), np.nan)
-    try:
-        for i in range(len(X)):
+    for i in range(len(X)):
+        try:
             deployed._step(X[i], t[i])
-    except ValueError as exc:
-        deployed.reset()
-        raise OutOfEnvelopeError(f"warming the stream on the campaign(s) it continues, row "
-                                 f"{i + 1} of {len(X)}: {exc}") from None
+        except MissingValueError:
+            continue
+        except ValueError as exc:
+            deployed.reset()
+            raise OutOfEnvelopeError(f"warming the stream on the campaign(s) it continues, row "
+                                     f"{i + 1} of {len(X)}: {exc}") from None
 
 
 def batch_prediction(compensator: Compensator, campaign: pd.DataFrame,
