@@ -112,3 +112,38 @@ def test_a_lead_in_with_a_missing_value_warms_as_the_stream_holds_it(adaptive):
     assert np.isfinite(warmed).all()
     cold, _, _ = _stream(deployed, test)     # the warm-up carries state: not a restart
     assert np.max(np.abs(cold - warmed)) > 1e-3
+
+
+def test_fleet_reports_each_groups_model_auto_choice_as_its_own_run_does(tmp_path):
+    import shutil
+
+    import pandas as pd
+
+    from thermocomp.sim.fleet import Fleet
+
+    path = tmp_path / "fleet"
+    Fleet(n_machines=2, days=4, test_days=1, n_sensors=6, sample_period_s=300.0, n_jobs=1,
+          seed=3).write(path)
+    auto = ["model=auto", "model.candidates=[mlr,pcr,lagbank]", "data.reference=first_sample",
+            "track=false", "plots=none", "eval.mutual_prediction=false",
+            "eval.ati_baselines=false"]
+    assert main(["run", f"data.path={path}", "data.group_by=machine", f"out={tmp_path / 'o'}",
+                 *auto]) == 0
+    metrics = json.loads((tmp_path / "o" / "metrics.json").read_text())
+    table = pd.read_csv(tmp_path / "o" / "fleet.csv")
+    # one machine alone, as a single run: the same choice and candidates' validation
+    alone = tmp_path / "M002"
+    shutil.copytree(path / "machine=M002", alone / "machine=M002")
+    manifest = pd.read_csv(path / "campaigns.csv")
+    manifest[manifest["machine"] == "M002"].to_csv(alone / "campaigns.csv", index=False)
+    assert main(["run", f"data.path={alone}", f"out={tmp_path / 'single'}", *auto]) == 0
+    single = json.loads((tmp_path / "single" / "metrics.json").read_text())["targets"]
+    group = metrics["groups"]["M002"]["targets"]
+    for t, m in single.items():
+        assert group[t]["auto"]["chosen"] == m["auto"]["chosen"]
+        assert group[t]["auto"]["candidates"] == pytest.approx(m["auto"]["candidates"], rel=1e-9)
+    for t, s in metrics["fleet"].items():
+        rows = table[table["target"] == t]
+        assert list(rows["chosen"]) == [metrics["groups"][g]["targets"][t]["auto"]["chosen"]
+                                        for g in rows["group"]]
+        assert sum(s["chosen"].values()) == s["groups"] == 2

@@ -70,11 +70,13 @@ def val_split_scores(comp, ds) -> dict:
     return scores
 
 
-def auto_reports(comp) -> dict:
-    """``{target: its choice}`` (``metrics.json`` ``targets.<t>.auto``) of a model=auto
-    compensator; ``{}`` for any other."""
-    return {t: est.report() for t, est in getattr(comp, "estimators_", {}).items()
-            if hasattr(est, "family_")}
+def add_choices(comp, targets: dict) -> dict:
+    """``targets[t]["auto"]``: each target's choice of a model=auto compensator, as
+    ``metrics.json`` holds it (run's and each fleet group's); any other leaves ``targets`` as is."""
+    for t, est in getattr(comp, "estimators_", {}).items():
+        if hasattr(est, "family_"):
+            targets[t]["auto"] = est.report()
+    return targets
 
 
 def as_chosen(template, fitted):
