@@ -147,3 +147,57 @@ def test_fleet_reports_each_groups_model_auto_choice_as_its_own_run_does(tmp_pat
         assert list(rows["chosen"]) == [metrics["groups"][g]["targets"][t]["auto"]["chosen"]
                                         for g in rows["group"]]
         assert sum(s["chosen"].values()) == s["groups"] == 2
+
+
+@pytest.fixture(scope="module")
+def manifest_ambient_run(tmp_path_factory):
+    """An ATI model (``ati=cmeans``) run on a record whose ambient is the manifest's
+    ``ambient_c`` (no ``T_amb`` sensor): (dataset, run folder)."""
+    from test_ambient_manifest import make_dataset
+
+    root = tmp_path_factory.mktemp("ambient")
+    ds = make_dataset(root / "ds")
+    assert main(["run", f"data.path={ds}", f"out={root / 'run'}", "ati=cmeans", *FAST]) == 0
+    return ds, root / "run"
+
+
+def test_replay_streams_an_ati_model_on_the_manifest_ambient_as_run_scores_it(
+        manifest_ambient_run, tmp_path):
+    ds, run = manifest_ambient_run
+    out = tmp_path / "replay"
+    assert main(["replay", f"data.path={ds}", f"out={out}", "ati=cmeans", *FAST]) == 0
+    replay = json.loads((out / "replay.json").read_text())["targets"]
+    metrics = json.loads((run / "metrics.json").read_text())["targets"]
+    for t, m in metrics.items():
+        assert replay[t]["rmse_batch"] == pytest.approx(m["test"]["rmse"], rel=1e-9)
+        assert replay[t]["rmse"] == pytest.approx(m["test"]["rmse"], rel=0.01)
+        assert replay[t]["max_abs_stream_minus_batch"] < 1e-9
+
+
+def test_the_served_ati_model_takes_the_campaigns_ambient_as_a_param(manifest_ambient_run):
+    import numpy as np
+    from mlflow.exceptions import MlflowException
+
+    from thermocomp.deploy import StreamingCompensator
+    from thermocomp.deploy.pyfunc import CompensatorModel, correction_column
+    from thermocomp.io import read_dataset
+    from thermocomp.stages.common import load_model
+
+    ds_path, run = manifest_ambient_run
+    ds, _ = read_dataset(ds_path)
+    comp = load_model(run / "model.pkl")
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    served = CompensatorModel(StreamingCompensator.from_training(comp, train, policy="off"))
+    for cid in ds.ids("test"):
+        df = ds.campaigns[cid]
+        batch = comp.predict({cid: df})[cid].to_numpy()
+        ambient = float(ds.manifest.loc[cid, "ambient_c"])
+        got = served.predict(None, df, params={"session": cid, "ambient_c": ambient})
+        np.testing.assert_allclose(-got[[correction_column(t) for t in comp.targets_]].to_numpy(),
+                                   batch, atol=1e-9)
+        # the ambient is what ATI reads: another one corrects otherwise
+        other = served.predict(None, df, params={"session": cid, "reset": True,
+                                                 "ambient_c": ambient + 9})
+        assert not np.allclose(other.to_numpy(float), got.to_numpy(float))
+    with pytest.raises(MlflowException, match="ambient_c"):
+        served.predict(None, ds.campaigns[ds.ids("test")[0]], params={"session": "none"})

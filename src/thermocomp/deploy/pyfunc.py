@@ -37,6 +37,10 @@ campaign's end state in the model, ``end_states_``); the session's ``time`` is
 then shifted so that its first row follows that campaign's last sample by one
 sample period (event times are given back in the caller's clock).
 
+A model that needs the campaign's ambient (ATI) but reads no ambient sensor (its
+record had the manifest's ``ambient_c``) takes it as ``params={"ambient_c": <°C>}``
+when a session starts (new or ``reset``); without it the session's rows are refused.
+
 Columns may come under the lab's own names (``data.columns`` of the record the
 model was deployed from, carried as ``lab_names_``) or contract names; a block
 naming one column by both is refused.
@@ -131,15 +135,16 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
                                   f"campaign (it holds: {have})", error_code=INVALID_PARAMETER_VALUE)
         return ends[campaign]
 
-    def _state(self, session: str, reset: bool, continues: str = "") -> list:
+    def _state(self, session: str, reset: bool, continues: str = "", ambient_c=None) -> list:
         """``[stream state, time shift]`` of ``session``, most recent last: a fresh one when new
-        or reset; the end state of campaign ``continues`` when given (its time shift, an
+        or reset (with the campaign's ``ambient_c``, for a model that reads no ambient sensor);
+        the end state of campaign ``continues`` when given (its time shift, an
         :class:`EndState` until the session's first row fixes it)."""
         if continues:
             end = self._end_state(continues)
             self._sessions[session] = [copy.deepcopy(end.state), end]
         elif reset or session not in self._sessions:
-            self.streaming.reset()
+            self.streaming.reset(float("nan") if ambient_c is None else float(ambient_c))
             self._sessions[session] = [self.streaming._snapshot(), 0.0]
         while len(self._sessions) > MAX_SESSIONS:
             self._sessions.popitem(last=False)
@@ -156,7 +161,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
             raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
         # Serving may call from several threads: one session's samples in order, one at a time.
         with self._lock:
-            state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""))
+            state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""),
+                                params.get("ambient_c"))
             if isinstance(state[1], EndState):
                 # a continuing campaign's clock follows its predecessor's last sample by one
                 # period, as `run` joins them (the client's own clock may restart at 0)
@@ -209,7 +215,8 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     return ModelSignature(inputs=inputs, outputs=outputs,
                           params=ParamSchema([ParamSpec("reset", "boolean", False),
                                                ParamSpec("session", "string", DEFAULT_SESSION),
-                                               ParamSpec("continues", "string", "")]))
+                                               ParamSpec("continues", "string", ""),
+                                               ParamSpec("ambient_c", "double", None)]))
 
 
 # Third-party distributions the core imports when a compensator is unpickled (the package

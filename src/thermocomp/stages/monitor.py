@@ -149,7 +149,7 @@ def _stream(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
     y = np.zeros((len(X), len(model.targets_)))
     events, states, errors = [], [], []
-    warm(model, lead_in)
+    warm(model, lead_in, df)
     for i in range(len(X)):
         try:
             y[i] = model._step(X[i], t[i])[0]
