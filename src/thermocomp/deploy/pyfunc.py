@@ -125,7 +125,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         self._sessions.clear()
 
     def _end_state(self, campaign: str) -> EndState:
-        ends = getattr(self.streaming, "end_states_", {})
+        ends = self.streaming.end_states_
         if campaign not in ends:
             have = ", ".join(sorted(ends)) or ("none: the model reads temperature changes from "
                                                "each campaign's first sample (data.reference="
@@ -154,7 +154,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
     def predict(self, context, model_input: pd.DataFrame, params: dict | None = None) -> pd.DataFrame:
         params = params or {}
         session = str(params.get("session") or DEFAULT_SESSION)
-        names = getattr(self.streaming, "lab_names_", {})
+        names = self.streaming.lab_names_
         try:
             frame = to_contract(pd.DataFrame(model_input), names)
         except ValueError as exc:
@@ -203,7 +203,7 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     """Input/output schema (and the ``reset``, ``session``, ``continues`` parameters) of the
     deployed compensator.  With the lab's names (``lab_names_``) every input may come under
     either name, so none is required by the schema; the model checks that each is there."""
-    names = getattr(streaming, "lab_names_", {})
+    names = streaming.lab_names_
     required = {c: not names for c in streaming.columns_}
     required[TIME] = streaming.time_required_ and not names
     inputs = Schema([ColSpec("double", c, required=r) for c, r in required.items()]

@@ -34,6 +34,7 @@ import pandas as pd
 
 from ..compensator import Compensator
 from ..context import AMBIENT_C0, RESERVED, TIME, context_columns, merge_columns
+from ..continuation import campaign_period
 from ..frame import ambient_c0, context_record, is_ambient, manifest_ambient
 from ..metrics import split_scores
 
@@ -374,8 +375,7 @@ def end_states(deployed, campaigns: Mapping[str, pd.DataFrame],
         if lead is not None:
             whole.attrs = dict(lead.attrs)
         warm(deployed, whole)
-        t = df[TIME].to_numpy(float)
-        out[cid] = EndState(deployed._snapshot(), float(t[-1]), float(np.median(np.diff(t))))
+        out[cid] = EndState(deployed._snapshot(), float(df[TIME].iloc[-1]), campaign_period(df))
     deployed.reset()
     return out
 
