@@ -201,3 +201,23 @@ def test_the_served_ati_model_takes_the_campaigns_ambient_as_a_param(manifest_am
         assert not np.allclose(other.to_numpy(float), got.to_numpy(float))
     with pytest.raises(MlflowException, match="ambient_c"):
         served.predict(None, ds.campaigns[ds.ids("test")[0]], params={"session": "none"})
+
+
+def test_monitor_refuses_a_stdin_stream_for_a_model_on_the_manifest_ambient(
+        tmp_path, monkeypatch, capsys):
+    # stdin has no manifest: its ambient is unknown (the plain stream gave NaN throughout)
+    import numpy as np
+    import pandas as pd
+
+    from test_ambient_manifest import make_dataset
+
+    ds = make_dataset(tmp_path / "ds")
+    for f in ds.glob("R*.csv"):        # a third sensor: the monitor watches 3 at least
+        df = pd.read_csv(f)
+        df.assign(T_column=0.5 * (df["T_spindle"] + df["T_air"]) + np.sin(df["time"] / 700)
+                  ).to_csv(f, index=False)
+    monkeypatch.setattr("sys.stdin", io.StringIO((ds / "R03.csv").read_text()))
+    out = tmp_path / "out"
+    refused(["monitor", f"data.path={ds}", f"out={out}", "ati=cmeans", *FAST, "monitor.input=-"],
+            capsys, "monitor.input=-", "ambient_c")
+    assert not out.exists()

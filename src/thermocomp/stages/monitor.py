@@ -116,12 +116,19 @@ def _stdin_seconds(time: pd.Series, time_format: str) -> pd.Series:
     return (stamps - stamps.iloc[0]).dt.total_seconds()
 
 
-def _stdin_lead_in(cfg: DictConfig, comp, ds, stream: pd.DataFrame) -> dict:
+def _stdin_lead_in(cfg: DictConfig, fixed: StreamingCompensator, ds, stream: pd.DataFrame) -> dict:
     """``{"stdin": lead-in}`` when ``monitor.continues`` names the campaign of ``data.path`` the
     stream continues: it is warmed on that campaign and those it continues, as ``replay`` warms
-    a continuing test campaign (:func:`~thermocomp.continuation.preceding` its first row)."""
-    campaign = cfg.monitor.get("continues")
+    a continuing test campaign (:func:`~thermocomp.continuation.preceding` its first row).  A
+    model that reads the campaign's ambient from the manifest (no ambient sensor) has none for
+    a stream of its own: refused."""
+    campaign, comp = cfg.monitor.get("continues"), fixed.compensator
     if campaign is None:
+        if fixed.ambient_given_:
+            raise ConfigError("monitor.input=-: the model reads each campaign's ambient from the "
+                              "manifest's ambient_c (no T_amb sensor), which a stream on stdin "
+                              "lacks; record a T_amb sensor, or say the campaign it continues "
+                              "(monitor.continues)")
         return {}
     campaign = str(campaign)
     if campaign not in ds.ids():
@@ -195,7 +202,7 @@ def monitor(cfg: DictConfig) -> dict:
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
-        leads = _stdin_lead_in(cfg, comp, ds, streamed["stdin"]) if stdin else lead_ins(
+        leads = _stdin_lead_in(cfg, fixed, ds, streamed["stdin"]) if stdin else lead_ins(
             comp, ds, list(streamed))
         report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement),
                                  leads)
