@@ -32,7 +32,8 @@ CONTINUES = "continues"
 START = "start"
 
 
-def _period(df: pd.DataFrame) -> float:
+def campaign_period(df: pd.DataFrame) -> float:
+    """The campaign's sample period: the median step of its ``time`` (NaN with one row)."""
     steps = np.diff(df[TIME].to_numpy(float))
     return float(np.median(steps)) if steps.size else float("nan")
 
@@ -53,7 +54,8 @@ def predecessors(ds: Dataset) -> dict[str, str]:
                 out[cid] = prev.strip()
     # one clock: a file whose time does not restart at 0 but picks up one sample period after
     # another file's last time (a record cut in a spreadsheet keeps its time column)
-    last = {c: (float(df[TIME].iloc[-1]), _period(df)) for c, df in ds.campaigns.items() if len(df) >= 2}
+    last = {c: (float(df[TIME].iloc[-1]), campaign_period(df)) for c, df in ds.campaigns.items()
+            if len(df) >= 2}
     for cid, df in ds.campaigns.items():
         t0 = float(df[TIME].iloc[0]) if len(df) else 0.0
         if cid in out or t0 <= 0:
@@ -72,7 +74,7 @@ def predecessors(ds: Dataset) -> dict[str, str]:
             df = ds.campaigns.get(cid)
             if pd.isna(t0) or df is None or len(df) < 2:
                 continue
-            period = _period(df)
+            period = campaign_period(df)
             ends[cid] = (t0 + pd.to_timedelta(float(df[TIME].iloc[-1]) + period, unit="s"), period)
         for cid, t0 in starts.items():
             if cid in out or pd.isna(t0):
@@ -104,7 +106,7 @@ def joined(ds: Dataset, ids: list[str]) -> pd.DataFrame:
         df = ds.campaigns[cid]
         t = df[TIME].to_numpy(float)
         if k:
-            offset = frames[-1][TIME].iloc[-1] + _period(ds.campaigns[ids[k - 1]]) - t[0]
+            offset = frames[-1][TIME].iloc[-1] + campaign_period(ds.campaigns[ids[k - 1]]) - t[0]
         frames.append(df.assign(**{TIME: t + offset}))
     out = pd.concat(frames, ignore_index=True)
     out.attrs = dict(frames[0].attrs)      # the chain's start: its manifest ambient_c (DATA_FORMAT)
@@ -113,12 +115,17 @@ def joined(ds: Dataset, ids: list[str]) -> pd.DataFrame:
 
 def lead_in(ds: Dataset, ids: list[str]) -> pd.DataFrame:
     """The campaigns before the last of ``ids`` (a :func:`chain`), joined: what a stream is
-    warmed on before that campaign.  Its times are shifted so that it ends one sample period
-    before the campaign's first sample, which keeps its own clock (the :func:`joined` campaign,
-    moved in time as a whole)."""
-    whole, n = joined(ds, ids), len(ds.campaigns[ids[-1]])
-    shift = float(ds.campaigns[ids[-1]][TIME].iloc[0]) - float(whole[TIME].iloc[-n])
-    return whole.iloc[:-n].assign(**{TIME: whole[TIME].iloc[:-n] + shift})
+    warmed on before that campaign (:func:`preceding` its first sample)."""
+    return preceding(ds, ids[:-1], float(ds.campaigns[ids[-1]][TIME].iloc[0]))
+
+
+def preceding(ds: Dataset, ids: list[str], first_time: float) -> pd.DataFrame:
+    """The campaigns ``ids`` :func:`joined`, moved in time as a whole so that they end one
+    sample period (the last one's) before ``first_time``: the lead-in of a campaign that starts
+    there and continues them (keeping the campaign's own clock)."""
+    whole = joined(ds, ids)
+    shift = first_time - campaign_period(ds.campaigns[ids[-1]]) - float(whole[TIME].iloc[-1])
+    return whole.assign(**{TIME: whole[TIME] + shift})
 
 
 def carry_over(comp, ds: Dataset) -> dict[str, list[str]]:

@@ -302,7 +302,7 @@ def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
     if scheme not in ("auto", *SCHEMES):
         raise ValueError(f"scheme must be auto or one of {SCHEMES}, got {scheme!r}")
     if len(train) >= 2 and (holdout_scheme(ds) if scheme == "auto" else scheme) == "forward":
-        folds = _blocked_folds(camps, n_folds)
+        folds = _campaign_folds(camps, n_folds, blocked=True)
         method = f"blocked forward ({len(folds)} folds)"
     elif len(train) >= 2:
         folds = _campaign_folds(camps, n_folds)
@@ -321,30 +321,22 @@ def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
     return out
 
 
-def _campaign_folds(camps: dict, n_folds: int) -> list[tuple]:
-    """``(fit rows, predict rows, {unit: score rows}, gap)`` as ``{campaign: row count}`` maps."""
-    from .model_selection import LeaveCampaignsOut
+def _campaign_folds(camps: dict, n_folds: int, blocked: bool = False) -> list[tuple]:
+    """``(fit rows, predict rows, {unit: score rows}, gap)`` as ``{campaign: row count}`` maps:
+    leave-campaigns-out, or (``blocked``) :class:`~thermocomp.model_selection.BlockedForward`,
+    the later campaigns in blocks, each fold fitted on the campaigns before its block."""
+    from .model_selection import BlockedForward, LeaveCampaignsOut
 
     ids = list(camps)
     lengths = {c: len(camps[c]) for c in ids}
+    if blocked:
+        splits = [(np.flatnonzero(fit), np.flatnonzero(held)) for fit, _, held in
+                  BlockedForward(n_folds, MIN_TRAIN_FRACTION).folds(np.array(ids, dtype=object))]
+    else:
+        splits = LeaveCampaignsOut(n_folds=n_folds).split(ids, groups=ids)
     folds = []
-    for fit, held in LeaveCampaignsOut(n_folds=n_folds).split(ids, groups=ids):
+    for fit, held in splits:
         fit_ids, held_ids = [ids[i] for i in fit], [ids[i] for i in held]
-        folds.append(({c: lengths[c] for c in fit_ids}, {c: lengths[c] for c in held_ids},
-                      {c: (c, 0, lengths[c]) for c in held_ids}, 0))
-    return folds
-
-
-def _blocked_folds(camps: dict, n_folds: int) -> list[tuple]:
-    """:func:`_campaign_folds` of :class:`~thermocomp.model_selection.BlockedForward`: the later
-    campaigns in blocks, each fold fitted on the campaigns before its block."""
-    from .model_selection import BlockedForward
-
-    ids = list(camps)
-    lengths = {c: len(camps[c]) for c in ids}
-    folds = []
-    for fit, _, held in BlockedForward(n_folds, MIN_TRAIN_FRACTION).folds(np.array(ids, dtype=object)):
-        fit_ids, held_ids = [c for c, f in zip(ids, fit) if f], [c for c, h in zip(ids, held) if h]
         folds.append(({c: lengths[c] for c in fit_ids}, {c: lengths[c] for c in held_ids},
                       {c: (c, 0, lengths[c]) for c in held_ids}, 0))
     return folds

@@ -51,12 +51,14 @@ def machine_rows(group: str, targets: dict) -> list[dict]:
         rows.append({"group": group, "target": t, "train_rmse": train.get("rmse"),
                      "test_rmse": test.get("rmse"), "test_rms_before": test.get("rms_before"),
                      "test_rms_after": test.get("rms_after"), "val_rmse": val.get("rmse")})
+        if "auto" in m:          # model=auto: the family the group's validation chose
+            rows[-1]["chosen"] = m["auto"]["chosen"]
     return rows
 
 
 def summary(table: pd.DataFrame) -> dict:
     """Per target and figure of :data:`COLUMNS`: mean, median, 95th percentile and max over groups,
-    and the worst group by test RMSE."""
+    the worst group by test RMSE and (model=auto) how many groups chose each family."""
     out = {}
     for t, rows in table.groupby("target", sort=True):
         entry = {"groups": int(len(rows))}
@@ -67,5 +69,7 @@ def summary(table: pd.DataFrame) -> dict:
                            "p95": float(np.percentile(v, 95)), "max": float(v.max())})
         worst = pd.to_numeric(rows["test_rmse"], errors="coerce")
         entry["worst_group"] = None if worst.isna().all() else str(rows.loc[worst.idxmax(), "group"])
+        if "chosen" in rows.columns:
+            entry["chosen"] = {str(k): int(n) for k, n in rows["chosen"].value_counts().items()}
         out[str(t)] = entry
     return out

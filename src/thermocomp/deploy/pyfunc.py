@@ -37,6 +37,10 @@ campaign's end state in the model, ``end_states_``); the session's ``time`` is
 then shifted so that its first row follows that campaign's last sample by one
 sample period (event times are given back in the caller's clock).
 
+A model that needs the campaign's ambient (ATI) but reads no ambient sensor (its
+record had the manifest's ``ambient_c``) takes it as ``params={"ambient_c": <°C>}``
+when a session starts (new or ``reset``); without it the session's rows are refused.
+
 Columns may come under the lab's own names (``data.columns`` of the record the
 model was deployed from, carried as ``lab_names_``) or contract names; a block
 naming one column by both is refused.
@@ -121,7 +125,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         self._sessions.clear()
 
     def _end_state(self, campaign: str) -> EndState:
-        ends = getattr(self.streaming, "end_states_", {})
+        ends = self.streaming.end_states_
         if campaign not in ends:
             have = ", ".join(sorted(ends)) or ("none: the model reads temperature changes from "
                                                "each campaign's first sample (data.reference="
@@ -131,15 +135,16 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
                                   f"campaign (it holds: {have})", error_code=INVALID_PARAMETER_VALUE)
         return ends[campaign]
 
-    def _state(self, session: str, reset: bool, continues: str = "") -> list:
+    def _state(self, session: str, reset: bool, continues: str = "", ambient_c=None) -> list:
         """``[stream state, time shift]`` of ``session``, most recent last: a fresh one when new
-        or reset; the end state of campaign ``continues`` when given (its time shift, an
+        or reset (with the campaign's ``ambient_c``, for a model that reads no ambient sensor);
+        the end state of campaign ``continues`` when given (its time shift, an
         :class:`EndState` until the session's first row fixes it)."""
         if continues:
             end = self._end_state(continues)
             self._sessions[session] = [copy.deepcopy(end.state), end]
         elif reset or session not in self._sessions:
-            self.streaming.reset()
+            self.streaming.reset(float("nan") if ambient_c is None else float(ambient_c))
             self._sessions[session] = [self.streaming._snapshot(), 0.0]
         while len(self._sessions) > MAX_SESSIONS:
             self._sessions.popitem(last=False)
@@ -149,14 +154,15 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
     def predict(self, context, model_input: pd.DataFrame, params: dict | None = None) -> pd.DataFrame:
         params = params or {}
         session = str(params.get("session") or DEFAULT_SESSION)
-        names = getattr(self.streaming, "lab_names_", {})
+        names = self.streaming.lab_names_
         try:
             frame = to_contract(pd.DataFrame(model_input), names)
         except ValueError as exc:
             raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
         # Serving may call from several threads: one session's samples in order, one at a time.
         with self._lock:
-            state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""))
+            state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""),
+                                params.get("ambient_c"))
             if isinstance(state[1], EndState):
                 # a continuing campaign's clock follows its predecessor's last sample by one
                 # period, as `run` joins them (the client's own clock may restart at 0)
@@ -197,7 +203,7 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     """Input/output schema (and the ``reset``, ``session``, ``continues`` parameters) of the
     deployed compensator.  With the lab's names (``lab_names_``) every input may come under
     either name, so none is required by the schema; the model checks that each is there."""
-    names = getattr(streaming, "lab_names_", {})
+    names = streaming.lab_names_
     required = {c: not names for c in streaming.columns_}
     required[TIME] = streaming.time_required_ and not names
     inputs = Schema([ColSpec("double", c, required=r) for c, r in required.items()]
@@ -209,7 +215,8 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     return ModelSignature(inputs=inputs, outputs=outputs,
                           params=ParamSchema([ParamSpec("reset", "boolean", False),
                                                ParamSpec("session", "string", DEFAULT_SESSION),
-                                               ParamSpec("continues", "string", "")]))
+                                               ParamSpec("continues", "string", ""),
+                                               ParamSpec("ambient_c", "double", None)]))
 
 
 # Third-party distributions the core imports when a compensator is unpickled (the package

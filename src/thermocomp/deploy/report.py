@@ -92,7 +92,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     t0 = campaign_start(campaign)
     events: list[dict] = []
     try:
-        warm(deployed, lead_in)
+        warm(deployed, lead_in, campaign)
     except OutOfEnvelopeError as exc:
         raise ContractError(f"campaign {cid}: {exc}", file=file) from None
     step = deployed._step   # returns the clamp count too

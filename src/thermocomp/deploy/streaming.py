@@ -34,7 +34,8 @@ import pandas as pd
 
 from ..compensator import Compensator
 from ..context import AMBIENT_C0, RESERVED, TIME, context_columns, merge_columns
-from ..frame import ambient_c0, context_record, is_ambient
+from ..continuation import campaign_period
+from ..frame import ambient_c0, context_record, is_ambient, manifest_ambient
 from ..metrics import split_scores
 
 POLICIES = ("clamp", "refuse", "off")
@@ -43,6 +44,10 @@ STREAM_ID = "stream"
 
 class OutOfEnvelopeError(ValueError):
     """An input left the training envelope under ``policy='refuse'``, or is missing."""
+
+
+class MissingValueError(OutOfEnvelopeError):
+    """An input has no finite value (a sensor dropout): the row is refused, the state untouched."""
 
 
 def has_stream_protocol(obj) -> bool:
@@ -90,7 +95,9 @@ class StreamingCompensator:
         ``n_clamped``), refused with :class:`OutOfEnvelopeError`, or passed as is.
     ambient_columns : list of str, optional
         Absolute ambient sensors whose first-sample mean is ``ambient_c0``
-        (default: the ``T_amb*`` declared inputs).
+        (default: the ``T_amb*`` declared inputs).  With none, a model that needs
+        ``ambient_c0`` (ATI) takes the campaign's ambient given to :meth:`reset`
+        (``ambient_given_``), as the batch takes the manifest's ``ambient_c``.
 
     Attributes
     ----------
@@ -119,6 +126,7 @@ class StreamingCompensator:
 
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
     end_states_: dict = {}
+    ambient_given_ = False
 
     def __init__(self, compensator: Compensator, envelope: Envelope | None = None,
                  policy: str = "clamp", ambient_columns=None):
@@ -140,9 +148,8 @@ class StreamingCompensator:
         self.time_required_ = TIME in needs
         self.ambient_columns = (list(ambient_columns) if ambient_columns is not None
                                 else [c for c in inputs if is_ambient(c)])
-        if AMBIENT_C0 in needs and not self.ambient_columns:
-            raise ValueError("the model needs the campaign's initial ambient temperature, but no "
-                             "T_amb / T_amb_* column was given")
+        # no ambient sensor: the campaign's ambient is given at reset (its manifest ambient_c)
+        self.ambient_given_ = AMBIENT_C0 in needs and not self.ambient_columns
         raw = [c for c in needs if c not in RESERVED]
         extra = [c for c in self.ambient_columns if c not in inputs]
         self.columns_ = inputs + extra + [c for c in raw if c not in inputs and c not in extra]
@@ -187,10 +194,12 @@ class StreamingCompensator:
 
     # -- state ------------------------------------------------------------------------------
 
-    def reset(self) -> None:
-        """Start a new campaign: the next sample is the reference, every memory is cleared."""
+    def reset(self, ambient_c: float = float("nan")) -> None:
+        """Start a new campaign: the next sample is the reference, every memory is cleared.
+        ``ambient_c``: the campaign's ambient (°C) where no ambient sensor is read (its
+        manifest ``ambient_c``); the sensors' first sample otherwise."""
         self._ref = None
-        self._ambient_c0 = float("nan")
+        self._ambient_c0 = float(ambient_c)
         self._states: dict = {}
         self._den_state = None
         self.n_samples_ = 0
@@ -252,7 +261,7 @@ class StreamingCompensator:
         checked = x[:self._n_checked]
         if not np.isfinite(checked.sum()):          # one reduction instead of a mask
             j = int(np.flatnonzero(~np.isfinite(checked))[0])
-            raise OutOfEnvelopeError(f"input {self.columns_[j]} has no finite value at row "
+            raise MissingValueError(f"input {self.columns_[j]} has no finite value at row "
                                      f"{self.n_samples_} (sensor dropout?)")
         first = self._ref is None
         seen = x
@@ -263,7 +272,13 @@ class StreamingCompensator:
             seen[:self._n_inputs] = den
         if first:
             self._ref = np.where(self._is_ref, seen[:self._n_inputs], 0.0)
-            self._ambient_c0 = ambient_c0(seen[self._amb_idx])
+            if self._amb_idx:
+                self._ambient_c0 = ambient_c0(seen[self._amb_idx])
+            elif self.ambient_given_ and not np.isfinite(self._ambient_c0):
+                raise OutOfEnvelopeError(
+                    "the model needs the campaign's initial ambient temperature and reads no "
+                    "T_amb / T_amb_* sensor: give the campaign's ambient_c (the manifest column; "
+                    "served: params ambient_c)")
             start = context_record(STREAM_ID, time, self._ambient_c0, {})
             self._states = {t: est.stream_init(start) for t, est, _ in self._plan}
         dx = seen[:self._n_inputs] - self._ref
@@ -291,23 +306,34 @@ class StreamingCompensator:
         return y, n_clamped
 
 
-def warm(deployed, lead_in: pd.DataFrame | None = None) -> None:
+def warm(deployed, lead_in: pd.DataFrame | None = None, campaign: pd.DataFrame | None = None
+         ) -> None:
     """Start a campaign: reset, then stream ``lead_in`` (the rows of the campaigns it continues,
     :func:`thermocomp.continuation.lead_in`; predictions discarded), so that the campaign starts
     from the state its predecessor left, as ``run`` predicts it joined to them.  ``deployed``:
-    a :class:`StreamingCompensator` or an adaptive compensator around one."""
-    deployed.reset()
+    a :class:`StreamingCompensator` or an adaptive compensator around one.  The ambient of a
+    model without an ambient sensor is the manifest's ``ambient_c`` of the chain's first
+    campaign (``lead_in``'s, else ``campaign``'s), as ``run`` reads the joined campaign.
+
+    A lead-in row with a missing value (a continued test campaign read as recorded) is passed
+    over with the state held, as the stream holds it where that campaign itself is streamed
+    (``monitor``; the adaptive compensator reconstructs or holds it on its own); any other
+    refusal (``policy=refuse``) raises naming the row."""
+    start = lead_in if lead_in is not None and len(lead_in) else campaign
+    deployed.reset(float("nan") if start is None else manifest_ambient(start))
     if lead_in is None or not len(lead_in):
         return
     X = lead_in[deployed.columns_].to_numpy(float)
     t = lead_in[TIME].to_numpy(float) if TIME in lead_in.columns else np.full(len(X), np.nan)
-    try:
-        for i in range(len(X)):
+    for i in range(len(X)):
+        try:
             deployed._step(X[i], t[i])
-    except ValueError as exc:
-        deployed.reset()
-        raise OutOfEnvelopeError(f"warming the stream on the campaign(s) it continues, row "
-                                 f"{i + 1} of {len(X)}: {exc}") from None
+        except MissingValueError:
+            continue
+        except ValueError as exc:
+            deployed.reset()
+            raise OutOfEnvelopeError(f"warming the stream on the campaign(s) it continues, row "
+                                     f"{i + 1} of {len(X)}: {exc}") from None
 
 
 def batch_prediction(compensator: Compensator, campaign: pd.DataFrame,
@@ -315,6 +341,8 @@ def batch_prediction(compensator: Compensator, campaign: pd.DataFrame,
     """:meth:`Compensator.predict` (simulation) of ``campaign`` joined to its ``lead_in``, sliced
     to its own rows: what ``run`` scores, and what a warmed stream must equal."""
     joined = campaign if lead_in is None else pd.concat([lead_in, campaign], ignore_index=True)
+    if lead_in is not None:          # the chain's start: its manifest ambient_c, as run joins it
+        joined.attrs = dict(lead_in.attrs)
     predicted = compensator.predict({STREAM_ID: joined})[STREAM_ID]
     return predicted.iloc[len(joined) - len(campaign):].reset_index(drop=True)
 
@@ -343,9 +371,11 @@ def end_states(deployed, campaigns: Mapping[str, pd.DataFrame],
         if len(df) < 2 or TIME not in df.columns:
             continue
         lead = lead_ins.get(cid)
-        warm(deployed, df if lead is None else pd.concat([lead, df], ignore_index=True))
-        t = df[TIME].to_numpy(float)
-        out[cid] = EndState(deployed._snapshot(), float(t[-1]), float(np.median(np.diff(t))))
+        whole = df if lead is None else pd.concat([lead, df], ignore_index=True)
+        if lead is not None:
+            whole.attrs = dict(lead.attrs)
+        warm(deployed, whole)
+        out[cid] = EndState(deployed._snapshot(), float(df[TIME].iloc[-1]), campaign_period(df))
     deployed.reset()
     return out
 
@@ -354,7 +384,7 @@ def replay(streaming: StreamingCompensator, campaign: pd.DataFrame, chunk: int |
            lead_in: pd.DataFrame | None = None) -> pd.DataFrame:
     """Stream one whole campaign from its start (:func:`warm`), in blocks of ``chunk`` samples
     (all at once if None)."""
-    warm(streaming, lead_in)
+    warm(streaming, lead_in, campaign)
     step = chunk or max(len(campaign), 1)
     parts = [streaming.predict(campaign.iloc[i:i + step]) for i in range(0, len(campaign), step)]
     return pd.concat(parts, ignore_index=True)

@@ -348,13 +348,17 @@ def _sign_patterns(n: int) -> np.ndarray:
     return 1.0 - 2.0 * ((np.arange(2**n)[:, None] >> np.arange(n)) & 1)
 
 
-def smallest_p(n_units: int, n_resamples: int = 20000) -> float:
+EXACT_UNITS = 16      # sign patterns enumerated up to this many units (2^16), Monte Carlo beyond
+RESAMPLES = 20000     # Monte Carlo sign patterns
+
+
+def smallest_p(n_units: int, n_resamples: int = RESAMPLES) -> float:
     """The smallest p-value the sign-flip tests here can give with ``n_units`` units (every
     unit's gain positive): :math:`1/2^n` exact up to 16 units, :math:`1/(R+1)` by Monte Carlo
     beyond; family-wise it can only be larger.  No effect is accepted when it exceeds alpha."""
     if n_units < 2:
         return 1.0
-    return 2.0 ** -n_units if n_units <= 16 else 1.0 / (n_resamples + 1)
+    return 2.0 ** -n_units if n_units <= EXACT_UNITS else 1.0 / (n_resamples + 1)
 
 
 def units_needed(alpha: float) -> int:
@@ -364,7 +368,7 @@ def units_needed(alpha: float) -> int:
     return int(np.ceil(1.0 + np.log2(1.0 / float(alpha)) - 1e-9))
 
 
-def sign_flip_pvalue(d, n_resamples: int = 20000, seed: int = 0) -> float:
+def sign_flip_pvalue(d, n_resamples: int = RESAMPLES, seed: int = 0) -> float:
     """One-sided p-value of ``mean(d) > 0`` by flipping the signs of the paired differences.
 
     ``d`` holds one value per CV unit (campaign): under the null the candidate
@@ -381,7 +385,7 @@ def sign_flip_pvalue(d, n_resamples: int = 20000, seed: int = 0) -> float:
         return 1.0
     observed = d.mean()
     tol = 1e-12 * max(np.abs(d).sum(), 1e-300)
-    if n <= 16:
+    if n <= EXACT_UNITS:
         means = _sign_patterns(n) @ d / n
         return float(np.mean(means >= observed - tol))
     rng = np.random.default_rng(seed)
@@ -390,7 +394,7 @@ def sign_flip_pvalue(d, n_resamples: int = 20000, seed: int = 0) -> float:
     return float((1 + np.sum(means >= observed - tol)) / (n_resamples + 1))
 
 
-def sign_flip_maxt(D, n_resamples: int = 20000, seed: int = 0) -> np.ndarray:
+def sign_flip_maxt(D, n_resamples: int = RESAMPLES, seed: int = 0) -> np.ndarray:
     r"""Family-wise one-sided p-values of ``mean(D[c]) > 0`` for every row ``c`` of ``D``.
 
     ``D`` holds one gain per unit (campaign, validation block) for every candidate of a round
@@ -409,7 +413,7 @@ def sign_flip_maxt(D, n_resamples: int = 20000, seed: int = 0) -> np.ndarray:
     k, n = D.shape
     if n < 2 or k == 0:
         return np.ones(k)
-    signs = (_sign_patterns(n) if n <= 16
+    signs = (_sign_patterns(n) if n <= EXACT_UNITS
              else np.random.default_rng(seed).choice([-1.0, 1.0], size=(n_resamples, n)))
 
     def t(mean, square):      # t of the mean; a flip keeps every unit's square
@@ -422,7 +426,7 @@ def sign_flip_maxt(D, n_resamples: int = 20000, seed: int = 0) -> np.ndarray:
     flipped = t(signs @ D.T / n, square)           # patterns × candidates
     tail_max = np.maximum.accumulate(flipped[:, ::-1], axis=1)[:, ::-1]
     hits = (tail_max >= observed - 1e-9 * np.maximum(np.abs(observed), 1.0)).sum(axis=0)
-    p = hits / len(signs) if n <= 16 else (1 + hits) / (len(signs) + 1)
+    p = hits / len(signs) if n <= EXACT_UNITS else (1 + hits) / (len(signs) + 1)
     out = np.empty(k)
     out[order] = np.maximum.accumulate(p)
     return out

@@ -57,6 +57,7 @@ import pandas as pd
 from scipy.stats import rankdata
 from scipy.stats import t as student_t
 
+from ..metrics import reduction_pct
 from .candidates import CONTROL, CandidateOptions, candidates
 from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalue
 from .features import Effect
@@ -170,13 +171,6 @@ class SearchResult:
         return [ev.effect for ev in self.accepted if ev.effect.transform != "remove"]
 
 
-def _pct(before: float, after: float) -> float:
-    """RMSE gain of ``after`` over ``before``, % of ``before`` (NaN-safe: no rows, no gain)."""
-    if not (np.isfinite(before) and np.isfinite(after)) or before <= 0:
-        return float("nan")
-    return 100.0 * (before - after) / before
-
-
 def gain_lower_bound(mse_before, mse_after, level: float = 0.95) -> float:
     """One-sided ``level`` lower confidence bound of the CV RMSE gain (µm).
 
@@ -261,7 +255,8 @@ class Search:
             res = self.cv.run(self.inputs(), self.effects + [effect])
         gain = current.rmse - res.rmse
         pct = 100.0 * gain / current.rmse if current.rmse > 0 else 0.0
-        inside = _pct(current.in_range_rmse, res.in_range_rmse)
+        inside = reduction_pct(current.in_range_rmse, res.in_range_rmse)   # None: no such row
+        inside = float("nan") if inside is None else inside
         d = current.block_mse - res.block_mse
         p = sign_flip_pvalue(d, seed=self.options.seed)
         lcb = gain_lower_bound(current.block_mse, res.block_mse)
@@ -305,11 +300,10 @@ class Search:
         family = [ev for ev in evals if not ev.control and ev.effect.transform != "remove"]
         if not family:
             return
+        D = np.array([current.block_mse - ev.result.block_mse for ev in family])
         if self.problem.n_blocks_tested > self.problem.n_units:
-            D = np.array([current.block_mse - ev.result.block_mse for ev in family])
             D = np.sign(D) * rankdata(np.abs(D), axis=1)
         else:   # one block per unit (or per run of forward units): its gain as a share of its MSE
-            D = np.array([current.block_mse - ev.result.block_mse for ev in family])
             D = np.clip(D / np.maximum(current.block_mse, 1e-300), -1.0, 1.0)
         p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):

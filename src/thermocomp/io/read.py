@@ -408,7 +408,8 @@ def _starts_from_timestamps(manifest: pd.DataFrame, entries: Mapping) -> pd.Data
     return out
 
 
-def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra: dict | None = None) -> dict:
+def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra: dict | None = None,
+           finish=None) -> dict:
     """Validate a raw dataset and write it as Parquet to ``dest``.
 
     Campaigns are read, validated and written one at a time as Arrow tables,
@@ -428,6 +429,9 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
         The ``data`` config, as for :func:`read_dataset`.
     extra : dict, optional
         More keys of the report (a volumetric dataset's ``dataset`` and ``calibration``).
+    finish : callable, optional
+        ``finish(dataset) -> dict``: more keys of the report, judged on the dataset as written
+        (manifest and ``time`` columns only: a campaign at a time stays the peak memory).
 
     Returns
     -------
@@ -456,8 +460,16 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
             file=[f"{cid}.parquet" for cid in manifest.index])
         (tmp / MANIFEST).write_text(_manifest_csv(out))
         report = {**_dataset_report(_name(src), entries, columns, opts), **(extra or {})}
+        if finish is not None:
+            report.update(finish(_clocks(tmp, out, report["dataset"])))
         write_json(tmp / INGEST_REPORT, report, ensure_ascii=False)
     return report
+
+
+def _clocks(root: Path, manifest: pd.DataFrame, name: str) -> Dataset:
+    """The dataset written in ``root`` with each campaign's ``time`` column only."""
+    return Dataset(manifest, {cid: _to_frame(pq.read_table(root / f, columns=[TIME]))
+                              for cid, f in manifest["file"].items()}, name, {})
 
 
 def load_interim(path: str | Path) -> Dataset:

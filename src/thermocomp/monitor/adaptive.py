@@ -123,9 +123,9 @@ class AdaptiveCompensator:
     def excluded_inputs(self) -> list[str]:
         return self.monitor.excluded if self.monitor is not None else []
 
-    def reset(self) -> None:
+    def reset(self, ambient_c: float = float("nan")) -> None:
         """New campaign (see :meth:`StreamingCompensator.reset`)."""
-        self.streaming.reset()
+        self.streaming.reset(ambient_c)
         if self.monitor is not None:
             self.monitor.reset()
         if self.guard is not None:

@@ -50,19 +50,20 @@ def val_split_scores(comp, ds) -> dict:
     candidates = {**comp.estimator.candidates}
     candidates.setdefault(BASELINE, MLR())
     scores: dict = {}
+    fitted = None     # any candidate fitted on the train split: its frame gives the measured errors
     for name, candidate in candidates.items():
         one = clone(comp).set_params(estimator=clone(candidate))
         try:
-            report = validation_report(lambda one=one: one, ds, "simulation")
+            report = validation_report(lambda one=one: one, ds, "simulation")   # fits `one`
         except (ValueError, ArithmeticError, np.linalg.LinAlgError):
             scores.setdefault(None, {})[name] = None
             continue
+        fitted = one
         for t, entry in report.items():
             scores.setdefault(t, {})[name] = entry["rmse"]
     failed = scores.pop(None, {})
     val = {c: ds.campaigns[c] for c in ds.ids("val")}
-    measured = clone(comp).set_params(estimator=MLR()).fit(
-        {c: ds.campaigns[c] for c in ds.ids("train")}).measured(val)
+    measured = fitted.measured(val) if fitted is not None else {}
     for t in scores:
         scores[t].update(failed)
         y = [measured[c][t].to_numpy(float) for c in val]
@@ -70,11 +71,13 @@ def val_split_scores(comp, ds) -> dict:
     return scores
 
 
-def auto_reports(comp) -> dict:
-    """``{target: its choice}`` (``metrics.json`` ``targets.<t>.auto``) of a model=auto
-    compensator; ``{}`` for any other."""
-    return {t: est.report() for t, est in getattr(comp, "estimators_", {}).items()
-            if hasattr(est, "family_")}
+def add_choices(comp, targets: dict) -> dict:
+    """``targets[t]["auto"]``: each target's choice of a model=auto compensator, as
+    ``metrics.json`` holds it (run's and each fleet group's); any other leaves ``targets`` as is."""
+    for t, est in getattr(comp, "estimators_", {}).items():
+        if hasattr(est, "family_"):
+            targets[t]["auto"] = est.report()
+    return targets
 
 
 def as_chosen(template, fitted):

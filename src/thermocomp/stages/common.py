@@ -42,7 +42,7 @@ from ..params import (
 from ..paths import conf_dir, resolve
 from ..tracking import enabled, store_uri
 from .apart import check_apart
-from .auto import auto_scheme, auto_table, build_candidates, is_auto, val_split_scores
+from .auto import as_chosen, auto_scheme, auto_table, build_candidates, is_auto, val_split_scores
 from .rules import check_groups, check_keys
 
 AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
@@ -197,6 +197,13 @@ def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator
     if is_auto(cfg) and ds is not None and ds.ids("val"):   # chosen on the val split, as validated
         comp.estimator.set_params(val_scores=val_split_scores(comp, ds))
     return comp
+
+
+def validation_template(cfg: DictConfig, fitted: Compensator, ds) -> Compensator:
+    """What a run's validation refits per fold: the configured compensator, with the family
+    model=auto chose per target in ``fitted`` (:func:`~.auto.as_chosen`); validated like the
+    test split of ``ds`` unless a val split scores ``fitted`` itself."""
+    return as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), fitted)
 
 
 def is_volumetric(cfg: DictConfig) -> bool:

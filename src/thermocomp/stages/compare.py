@@ -41,11 +41,12 @@ from .common import _check_writable, check_keys, say
 
 
 def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
-                baselines: list[dict] = ()) -> dict:
+                baselines: list[dict], basis: dict) -> dict:
+    """compare.json; ``basis``: :func:`~thermocomp.leaderboard.ranked_by` of the table (printed too)."""
     records = json_safe(table.to_dict(orient="records"))
     numeric = [c for c in (*VAL_FIGURES, *FIGURES, "fit_time_s") if c in table.columns]
     return {"parent_run_id": parent_id, "sort_by": sort_by, "target": target,
-            "ranked_by_validation": is_validation(sort_by), "ranked_by": ranked_by(table, sort_by),
+            "ranked_by_validation": is_validation(sort_by), "ranked_by": basis,
             "reported_not_used_to_choose": [c for c in FIGURES if c in table.columns],
             "n_runs": len(records),
             "best": {k: records[0][k] for k in ("run_id", "model", "select", *numeric)} if records else {},
@@ -77,15 +78,16 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     out.mkdir(parents=True, exist_ok=True)
     atomic_write_text(out / "compare.csv", table.to_csv(index=False))
     atomic_write_text(out / "compare.md", md + "\n")
+    basis = ranked_by(table, str(opts.sort_by))
     write_json(out / "compare.json", _json_table(table, str(opts.sort_by), str(opts.target), parent_id,
-                                                 baselines))
+                                                 baselines, basis))
     write_compare(out, table)  # compare_plot.csv, for `dvc plots show`
     for name in ("compare.csv", "compare.md", "compare.json"):
         retry_locked(client.log_artifact, parent_id, str(out / name), "compare")
-    basis = (ranking_line(ranked_by(table, str(opts.sort_by))) if is_validation(str(opts.sort_by))
-             else "a TEST figure, as asked: do not choose a model by it")
+    said = (ranking_line(basis) if is_validation(str(opts.sort_by))
+            else "a TEST figure, as asked: do not choose a model by it")
     print(f"sweep {parent_id}: {len(table)} runs, sorted by {opts.sort_by} "
-          f"(target {opts.target}, {basis}); test: columns are reported, not used to choose")
+          f"(target {opts.target}, {said}); test: columns are reported, not used to choose")
     print(md)
     say(f"comparison: {out / 'compare.md'}")
     return table

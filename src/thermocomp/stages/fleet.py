@@ -29,8 +29,16 @@ from ..files import inside, safe_name, staged_outputs, write_json
 from ..metrics import rsd, sm_sd, split_scores
 from ..paths import resolve
 from ..tracking import stage_run
-from .auto import as_chosen
-from .common import build_compensator, check_config, data_options, resolve_reference, save_model, say
+from .auto import add_choices
+from .common import (
+    build_compensator,
+    check_config,
+    data_options,
+    resolve_reference,
+    save_model,
+    say,
+    validation_template,
+)
 
 _TEST = ("rmse", "rsd_mean", "rsd_sd", "rms_before", "rms_after", "rms_reduction_pct")
 
@@ -43,6 +51,8 @@ def _slim(targets: dict) -> dict:
         out[t] = {"train": {"rmse": m["train"]["rmse"]},
                   "test": {k: m["test"].get(k) for k in _TEST},
                   "validation": {k: val.get(k) for k in ("rmse", "method")} if val else None}
+        if "auto" in m:      # model=auto: the group's choice, as a single run reports it
+            out[t]["auto"] = m["auto"]
     return out
 
 
@@ -60,8 +70,9 @@ def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
     fit_s = time.perf_counter() - t0
     ev = cfg.eval
     targets, pooled = _scores(comp, ds, ev)
+    add_choices(comp, targets)
     if ev.get("validation", True):
-        template = as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), comp)
+        template = validation_template(cfg, comp, ds)
         val = validation_report(partial(clone, template), ds, ev.mode, fitted=comp,
                                 n_folds=int(ev.get("validation_folds", VAL_FOLDS)),
                                 scheme=ev.get("validation_scheme", "auto"))
@@ -122,6 +133,10 @@ def _table(metrics: dict) -> str:
         lines.append(f"{t:8} {s['groups']:>6}  {rmse['mean']:14.2f} {rmse['median']:7.2f} "
                      f"{rmse['p95']:6.2f} {rmse['max']:6.2f}   {before['mean']:10.2f} -> "
                      f"{after['mean']:6.2f}            {s['worst_group']}")
+    chosen = {t: s["chosen"] for t, s in metrics["fleet"].items() if s.get("chosen")}
+    if chosen:        # model=auto: the families the groups chose
+        lines.append("model=auto chose (groups): " + "; ".join(
+            f"{t} " + ", ".join(f"{f} {n}" for f, n in c.items()) for t, c in chosen.items()))
     return "\n".join(lines)
 
 

@@ -20,6 +20,7 @@ from .common import (
     check_replaceable,
     data_options,
     ingest_settings,
+    resolve_reference,
     say,
     volumetric_calibration,
 )
@@ -33,10 +34,14 @@ def ingest(cfg: DictConfig) -> dict:
     say(f"ingesting {src} -> {dest}")
     volumetric = volumetric_calibration(cfg)
     made = {"ingested_with": ingest_settings(cfg)}     # what train .. evaluate check
+
+    def finish(ds) -> dict:     # as run's ingest_report.json records it
+        return {"reference": resolve_reference(cfg, ds)}
+
     if volumetric is None:
-        report = io.ingest(src, dest, data_options(cfg), extra=made)
+        report = io.ingest(src, dest, data_options(cfg), extra=made, finish=finish)
     else:
-        report = _parameters(volumetric, dest, made)
+        report = _parameters(volumetric, dest, made, finish)
     say(f"{report['rows']} rows in {len(report['campaigns'])} campaigns; "
         f"repairs: {report['repairs'] or 'none'}")
     with stage_run(cfg, "ingest") as tr:
@@ -45,7 +50,7 @@ def ingest(cfg: DictConfig) -> dict:
     return report
 
 
-def _parameters(volumetric, dest, made: dict) -> dict:
+def _parameters(volumetric, dest, made: dict, finish) -> dict:
     """The parameter series of a calibrated volumetric dataset, ingested as a dataset of its own."""
     params, _, calibration, raw = volumetric
     # written, then read back through the one validating reader (the splits and names are
@@ -54,4 +59,5 @@ def _parameters(volumetric, dest, made: dict) -> dict:
         folder = io.write_dataset(params, f"{tmp}/{raw.name or 'parameters'}", "parquet")
         # the temperatures' repairs were made reading the distances' dataset, not this one
         return io.ingest(folder, dest, extra={"calibration": calibration,
-                                              "repairs": calibration["repairs"], **made})
+                                              "repairs": calibration["repairs"], **made},
+                         finish=finish)

@@ -17,6 +17,7 @@ import yaml
 from omegaconf import DictConfig, OmegaConf
 
 from .. import io
+from ..continuation import campaign_period
 from ..files import atomic_write_text
 from ..io.options import ROLE_PATTERNS
 from ..io.roles import UNITS, _numeric, naming, split_unit
@@ -105,7 +106,7 @@ def _config(src: Path, given: dict, opts, roles: dict) -> dict:
 def _print(sample, opts, header, plan, ds, report, path, name) -> None:
     print(f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}")
     times = [h for h, n in plan.names.items() if n == "time"]
-    periods = [np.median(np.diff(df["time"].to_numpy())) for df in ds.campaigns.values() if len(df) > 1]
+    periods = [campaign_period(df) for df in ds.campaigns.values() if len(df) > 1]
     print(f"time: {times[0]!r}" if times else "time: none in the file, data.sample_period_s rows apart")
     print(f"sample period: {np.median(periods):g} s, {report['rows']} rows")
     width = max(len(h) for h in header)

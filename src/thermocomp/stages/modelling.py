@@ -39,7 +39,7 @@ from ..log import logger
 from ..paths import resolve
 from ..tracking import headline_metrics, stage_run
 from .artifacts import fit_from_artifacts
-from .auto import as_chosen, auto_reports
+from .auto import add_choices, as_chosen
 from .common import (
     Clock,
     build_compensator,
@@ -54,6 +54,7 @@ from .common import (
     save_model,
     say,
     simulated_truth,
+    validation_template,
     volumetric_calibration,
     volumetric_source,
 )
@@ -112,8 +113,7 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
         targets, predictions = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points,
                                      iso_a3=ev.get("iso10791_a3", True))
         clock.lap("score")
-        for t, chosen in auto_reports(comp).items():      # model=auto: each target's choice
-            targets[t]["auto"] = chosen
+        add_choices(comp, targets)
         if ev.get("validation", True):
             _add_validation(cfg, comp, ds, targets)
             clock.lap("validation")
@@ -182,7 +182,7 @@ def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> No
     asked = int(cfg.eval.get("validation_folds", VAL_FOLDS))
     mode = str(cfg.eval.mode)
     # model=auto: its choice refitted (a val split scores the fitted model: no template needed)
-    template = as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), comp)
+    template = validation_template(cfg, comp, ds)
     # the deployed mode too: compare and promote choose by it, whatever eval.mode scored the run
     both = validation_reports(partial(clone, template), ds, (mode, DEPLOYED_MODE), fitted=comp,
                               n_folds=asked, scheme=cfg.eval.get("validation_scheme", "auto"))

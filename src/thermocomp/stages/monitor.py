@@ -25,6 +25,7 @@ from omegaconf import DictConfig
 
 from .. import io
 from ..context import TIME
+from ..continuation import chain, preceding
 from ..deploy import StreamingCompensator
 from ..deploy.report import campaign_start
 from ..deploy.streaming import warm
@@ -43,6 +44,7 @@ from ..tracking import stage_run
 from .common import (
     build_adaptive,
     build_compensator,
+    carried_text,
     check_config,
     check_streamed_columns,
     check_volumetric_targets,
@@ -114,6 +116,35 @@ def _stdin_seconds(time: pd.Series, time_format: str) -> pd.Series:
     return (stamps - stamps.iloc[0]).dt.total_seconds()
 
 
+def _stdin_lead_in(cfg: DictConfig, fixed: StreamingCompensator, ds, stream: pd.DataFrame) -> dict:
+    """``{"stdin": lead-in}`` when ``monitor.continues`` names the campaign of ``data.path`` the
+    stream continues: it is warmed on that campaign and those it continues, as ``replay`` warms
+    a continuing test campaign (:func:`~thermocomp.continuation.preceding` its first row).  A
+    model that reads the campaign's ambient from the manifest (no ambient sensor) has none for
+    a stream of its own: refused."""
+    campaign, comp = cfg.monitor.get("continues"), fixed.compensator
+    if campaign is None:
+        if fixed.ambient_given_:
+            raise ConfigError("monitor.input=-: the model reads each campaign's ambient from the "
+                              "manifest's ambient_c (no T_amb sensor), which a stream on stdin "
+                              "lacks; record a T_amb sensor, or say the campaign it continues "
+                              "(monitor.continues)")
+        return {}
+    campaign = str(campaign)
+    if campaign not in ds.ids():
+        raise ConfigError(f"monitor.continues={campaign}: no such campaign in {cfg.data.path} "
+                          f"(campaigns: {', '.join(ds.ids())})")
+    if comp.reference != "none":
+        raise ConfigError(f"monitor.continues={campaign}: the model reads temperature changes "
+                          f"from each campaign's first sample (data.reference={comp.reference}), "
+                          "so no state carries over; fit it with data.reference=none")
+    ids = chain(ds, campaign)
+    say("stream warmed on the campaigns it continues (state carried over, unscored): "
+        + carried_text({"stdin": [*ids, "stdin"]}))
+    first = float(stream[TIME].iloc[0]) if TIME in stream.columns else 0.0
+    return {"stdin": preceding(ds, ids, first)}
+
+
 def _stream(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
             ) -> tuple[np.ndarray, list[dict], list[np.ndarray]]:
     """Stream one campaign from its start (a reset, or warmed on ``lead_in``, the campaigns it
@@ -125,7 +156,7 @@ def _stream(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
     y = np.zeros((len(X), len(model.targets_)))
     events, states, errors = [], [], []
-    warm(model, lead_in)
+    warm(model, lead_in, df)
     for i in range(len(X)):
         try:
             y[i] = model._step(X[i], t[i])[0]
@@ -171,7 +202,8 @@ def monitor(cfg: DictConfig) -> dict:
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
-        leads = {} if stdin else lead_ins(comp, ds, list(streamed))
+        leads = _stdin_lead_in(cfg, fixed, ds, streamed["stdin"]) if stdin else lead_ins(
+            comp, ds, list(streamed))
         report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement),
                                  leads)
         mon = adaptive.monitor

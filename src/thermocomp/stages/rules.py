@@ -42,7 +42,8 @@ MAX_GRID = 1_000_000      # VCE grid points: ~24 MB per machine at most, not a M
 MAX_JOBS = 1024           # worker processes
 
 MONITOR_RULES = {f"monitor.{k}": rule for k, rule in {
-    "input": choice(None, "-"), "adaptive": BOOLEAN, "window": integer(1, at_most=MAX_WINDOW),
+    "input": choice(None, "-"), "continues": optional(either(text(), integer(0))),
+    "adaptive": BOOLEAN, "window": integer(1, at_most=MAX_WINDOW),
     "confirm": integer(1, at_most=MAX_WINDOW), "exclude_at": choice("warning", "alarm"),
     "bands.warning_c": POSITIVE, "bands.alarm_c": POSITIVE, "bands.learned": BOOLEAN,
     "pod.energy": number(0.0, 1.0, open_lo=True), "pod.modes": optional(integer(1)),
@@ -123,6 +124,9 @@ def check_monitor(cfg: DictConfig) -> None:
     """Refuse a ``monitor.*`` value the monitor cannot use, before any data is read."""
     check_keys(cfg, MONITOR_RULES)
     m = cfg.monitor
+    if m.get("continues") is not None and m.input != "-":
+        raise ConfigError(f"monitor.continues={m.continues}: applies to a stream on stdin "
+                          "(monitor.input=-); a test campaign's predecessor is its manifest's")
     if m.confirm > m.window:
         raise ConfigError(f"monitor.confirm={m.confirm}: must be <= monitor.window={m.window}")
     if m.bands.alarm_c < m.bands.warning_c:
