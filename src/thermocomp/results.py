@@ -15,6 +15,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from .continuation import carried_text
 from .errors import listed
 from .jsonsafe import json_safe
 from .metrics import (
@@ -108,6 +109,7 @@ class Scores:
         return bool(self.block)
 
     def get(self, key: str):
+        """A figure of the block by its key (``None`` if absent)."""
         return self.block.get(key)
 
     rmse = property(lambda self: self.get(RMSE))
@@ -131,6 +133,7 @@ class Scores:
         return reduction_pct(self.rms_before, self.rms_after)
 
     def figure(self, name: str):
+        """The figure ``name`` (a property of this class: stored, or computed from the block)."""
         return getattr(self, name)
 
 
@@ -157,6 +160,7 @@ class TargetResult:
         return Scores(self.entry.get(PERSISTENCE), self.test.rms_before)
 
     def block(self, name: str) -> Scores:
+        """The block ``name``: a property of this class, else the target's entry of that key."""
         return getattr(self, name) if hasattr(type(self), name) else Scores(self.entry.get(name))
 
     def test_in(self, mode: str, scored_mode: str) -> Scores:
@@ -196,9 +200,21 @@ class EvaluationResult:
         return json.dumps(json_safe(self.metrics), indent=2, allow_nan=False) + "\n"
 
     def headline(self, style: str = "dvc") -> dict:
-        """``{target: {name: figure}}`` of :data:`HEADLINES` ``[style]``; for ``dvc``, plus
-        ``volumetric`` (distance and VCE RMS, A.3 range, before/after) of a volumetric run;
-        for ``mlflow`` one flat ``{"<target>.<name>": figure}`` without the missing ones."""
+        """The headline figures of one reader.
+
+        Parameters
+        ----------
+        style : {'dvc', 'mlflow', 'compare', 'baseline', 'fleet'}
+            A key of :data:`HEADLINES`.
+
+        Returns
+        -------
+        dict
+            ``{target: {name: figure}}``; for ``dvc`` plus ``volumetric`` (distance and VCE
+            RMS, A.3 range, before/after) of a volumetric run; for ``mlflow`` one flat
+            ``{"<target>.<name>": figure}`` without the missing figures, the volumetric
+            ones included.
+        """
         per = {t: r.headline(style) for t, r in self.targets.items()}
         vol = self.metrics.get("volumetric")
         if style == "mlflow":
@@ -211,8 +227,6 @@ class EvaluationResult:
     def summary(self) -> str:
         """The table ``run`` prints per target: test Rsd SM/SD, RMS before -> after, and the
         test RMSE in simulation and one-step mode next to the persistence baseline's."""
-        from .continuation import carried_text
-
         m = self.metrics
         angular = [t for t in m["targets"] if unit(t) != "µm"]
         units = "(µm)" if not angular else f"(µm; {listed(angular, 3)} in µm/m)"
