@@ -183,3 +183,8 @@ def persistence(comp, ds: Dataset, ids, carried: Mapping | None = None) -> dict[
         meas = comp.measured({c: whole})[c]
         out[c] = meas.apply(lambda col: law(col.to_numpy())).iloc[-n:].reset_index(drop=True)
     return out
+
+
+def carried_text(carried: dict) -> str:
+    """``A continues B + C; ...`` of ``{campaign: chain}`` (:func:`carry_over`)."""
+    return "; ".join(f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items())

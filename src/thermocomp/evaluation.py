@@ -19,7 +19,19 @@ from .frame import ambient_source, initial_ambient
 from .io.contract import TIME, ContractError, Dataset
 from .iso10791 import a3_report
 from .jsonsafe import json_safe
-from .metrics import reduction_pct, rsd, sm_sd, split_scores
+from .metrics import (
+    ISO_A3,
+    PERSISTENCE,
+    RSD,
+    RSD_MEAN,
+    RSD_SD,
+    reduction_pct,
+    rsd,
+    rsd_summary,
+    split_scores,
+    test_block,
+    validation_scores,
+)
 from .stats import anova_oneway, mutual_prediction
 
 
@@ -74,13 +86,13 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
                                          with_before_after=(split == "test"))
             if split == "test" and iso_a3:
                 times = {c: ds.campaigns[c][TIME].to_numpy(float) for c in ids}
-                out[t][split]["iso10791_a3"] = a3_report(times, y, r)
+                out[t][split][ISO_A3] = a3_report(times, y, r)
         if split == "test":
             predictions = {c: (meas[c], pred[c]) for c in ids}
     ids = require_split(ds, "test")
     other = next(m for m in MODES if m != mode)
-    baselines = {f"test_{other}": continuation.predict(comp, ds, ids, other, carried)[0],
-                 "persistence": continuation.persistence(comp, ds, ids, carried)}
+    baselines = {test_block(other): continuation.predict(comp, ds, ids, other, carried)[0],
+                 PERSISTENCE: continuation.persistence(comp, ds, ids, carried)}
     for key, pred in baselines.items():
         for t in comp.targets_:
             y = {c: predictions[c][0][t].to_numpy() for c in ids}
@@ -124,12 +136,6 @@ def _test_rsd(comp: Compensator, ds: Dataset, mode: str) -> dict[str, dict[str, 
             for t in comp.targets_}
 
 
-def _sm_sd_entry(per_campaign: dict[str, float]) -> dict:
-    sm, sd = sm_sd(list(per_campaign.values()))
-    return {"rsd_mean": sm, "rsd_sd": sd,
-            "per_campaign": {c: (float(v) if np.isfinite(v) else None) for c, v in per_campaign.items()}}
-
-
 def anova(comp: Compensator, ds: Dataset, alpha: float = 0.001,
           predictions: dict | None = None) -> dict:
     """One-way ANOVA across campaigns per target (paper 003, Sect. 3.3).
@@ -162,7 +168,7 @@ def mutual_prediction_report(make_compensator: Callable[[], Compensator], ds: Da
     ids = sorted(ds.ids(), key=lambda c: (np.nan_to_num(amb[c], nan=np.inf), c))
     mats = mutual_prediction({c: ds.campaigns[c] for c in ids}, make_compensator, mode)
     return {t: {"campaigns": ids, "ambient_c0": json_safe([amb[c] for c in ids]),
-                "rsd": json_safe(m.to_numpy())}
+                RSD: json_safe(m.to_numpy())}
             for t, m in mats.items()}
 
 
@@ -201,12 +207,12 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
             entry.update(boundaries_c=[float(b) for b in est.boundaries_],
                          intervals=est.intervals_, elbow=json_safe(est.elbow_),
                          campaign_ambient_c0=est.campaign_ambient_)
-        entry["test"] = {k: _sm_sd_entry(v[t]) for k, v in test.items()}
+        entry["test"] = {k: rsd_summary(v[t], skip_nan=False) for k, v in test.items()}
         model = entry["test"]["model"]
         entry["improvement_pct"] = {
             f"{stat}_vs_{base}": reduction_pct(entry["test"][base][key], model[key])
             for base in ("coldest", "warmest", "single_model") if base in entry["test"]
-            for stat, key in (("sm", "rsd_mean"), ("sd", "rsd_sd"))}
+            for stat, key in (("sm", RSD_MEAN), ("sd", RSD_SD))}
         out["targets"][t] = entry
     return out
 
@@ -424,12 +430,4 @@ def _rows(m, mask: np.ndarray):
 
 
 def _validation_entries(residual: dict, method: str, n_folds: int) -> dict:
-    out = {}
-    for t, per in residual.items():
-        pooled = np.concatenate([np.asarray(r, float) for r in per.values()])
-        per_unit = {u: rsd(r) for u, r in per.items()}
-        sm, sd = sm_sd([v for v in per_unit.values() if np.isfinite(v)])
-        out[t] = {"rmse": float(np.sqrt(np.mean(pooled ** 2))) if pooled.size else None,
-                  "rsd_mean": sm, "rsd_sd": sd, "method": method, "n_folds": int(n_folds),
-                  "per_unit": json_safe(per_unit)}
-    return out
+    return {t: validation_scores(per, method, n_folds) for t, per in residual.items()}

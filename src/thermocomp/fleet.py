@@ -15,9 +15,10 @@ import numpy as np
 import pandas as pd
 
 from .errors import ContractError
+from .results import HEADLINES, TEST_RMSE, TargetResult
 
 # per target and machine: what the fleet table lists (µm)
-COLUMNS = ("train_rmse", "test_rmse", "test_rms_before", "test_rms_after", "val_rmse")
+COLUMNS = tuple(name for name, _, _ in HEADLINES["fleet"])
 
 
 def groups(manifest: pd.DataFrame, column: str, path=None) -> dict[str, list[str]]:
@@ -47,10 +48,7 @@ def machine_rows(group: str, targets: dict) -> list[dict]:
     """One row per target of one group from its ``metrics.json``-like ``targets`` block."""
     rows = []
     for t, m in targets.items():
-        train, test, val = m.get("train") or {}, m.get("test") or {}, m.get("validation") or {}
-        rows.append({"group": group, "target": t, "train_rmse": train.get("rmse"),
-                     "test_rmse": test.get("rmse"), "test_rms_before": test.get("rms_before"),
-                     "test_rms_after": test.get("rms_after"), "val_rmse": val.get("rmse")})
+        rows.append({"group": group, "target": t, **TargetResult(m).headline("fleet")})
         if "auto" in m:          # model=auto: the family the group's validation chose
             rows[-1]["chosen"] = m["auto"]["chosen"]
     return rows
@@ -67,7 +65,7 @@ def summary(table: pd.DataFrame) -> dict:
             entry[col] = (None if not len(v) else
                           {"mean": float(v.mean()), "median": float(np.median(v)),
                            "p95": float(np.percentile(v, 95)), "max": float(v.max())})
-        worst = pd.to_numeric(rows["test_rmse"], errors="coerce")
+        worst = pd.to_numeric(rows[TEST_RMSE], errors="coerce")
         entry["worst_group"] = None if worst.isna().all() else str(rows.loc[worst.idxmax(), "group"])
         if "chosen" in rows.columns:
             entry["chosen"] = {str(k): int(n) for k, n in rows["chosen"].value_counts().items()}

@@ -21,49 +21,22 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from .metrics import reduction_pct
+from .metrics import PERSISTENCE, validation_block
+from .results import DEPLOYED_MODE, HEADLINES, RMS_REDUCTION, VAL_RMSE, TargetResult
+from .results import e_p95_at as e_p95_at  # noqa: PLC0414  (read from here too)
 
-DEPLOYED_MODE = "simulation"   # a deployed compensator runs free: the validation that chooses
-FIGURES = ("rsd_mean", "rsd_sd", "rmse", "rms_reduction_pct", "e_p95_1h", "e_p95_8h")  # test
-VAL_FIGURES = ("val_rmse", "val_rsd_mean", "val_rsd_sd")   # what ranks and gates
+FIGURES = tuple(name for name, _, _ in HEADLINES["baseline"])    # test
+VAL_FIGURES = tuple(name for name, block, _ in HEADLINES["compare"]     # what ranks and gates
+                    if block == "deployed")
 VAL_PREFIX = "val_"
-HIGHER_IS_BETTER = {"rms_reduction_pct"}
-HOUR_S = 3600.0
-
-
-def e_p95_at(e_p95: Mapping | None, seconds: float, curve: str = "after") -> float | None:
-    """E_P95 of ``curve`` at a window of ``seconds``, linearly interpolated.
-
-    ``None`` when the campaigns are shorter than the window (the curve stops
-    before it) or there is no curve.
-    """
-    if not e_p95 or not e_p95.get("window_s"):
-        return None
-    w = np.asarray(e_p95["window_s"], float)
-    v = np.asarray([np.nan if x is None else x for x in e_p95[curve]], float)
-    ok = np.isfinite(v)
-    if not ok.any() or seconds > w[ok].max() or seconds < w[ok].min():
-        return None
-    return float(np.interp(seconds, w[ok], v[ok]))
-
-
-def _target_figures(test: Mapping) -> dict:
-    return {"rsd_mean": test.get("rsd_mean"), "rsd_sd": test.get("rsd_sd"), "rmse": test.get("rmse"),
-            "rms_reduction_pct": reduction_pct(test.get("rms_before"), test.get("rms_after")),
-            "e_p95_1h": e_p95_at(test.get("e_p95"), HOUR_S),
-            "e_p95_8h": e_p95_at(test.get("e_p95"), 8 * HOUR_S)}
-
-
-def _val_figures(validation: Mapping | None) -> dict:
-    v = validation or {}
-    return {f"{VAL_PREFIX}{k}": v.get(k) for k in ("rmse", "rsd_mean", "rsd_sd")}
+HIGHER_IS_BETTER = {RMS_REDUCTION}
 
 
 def deployed_validation(m: Mapping) -> Mapping | None:
     """A target's validation in the deployed mode: ``validation_simulation`` of a run scored in
     ``one_step``, else ``validation`` (of a simulation run; of an old one_step run, see
     :func:`validation_mode`)."""
-    return m.get(f"validation_{DEPLOYED_MODE}") or m.get("validation")
+    return TargetResult(m).deployed.block or None
 
 
 def validation_mode(metrics: Mapping) -> str:
@@ -73,13 +46,13 @@ def validation_mode(metrics: Mapping) -> str:
     mode = str(metrics.get("mode", DEPLOYED_MODE))
     targets = metrics.get("targets") or {}
     if mode == DEPLOYED_MODE or (targets and all(
-            m.get(f"validation_{DEPLOYED_MODE}") for m in targets.values())):
+            m.get(validation_block(DEPLOYED_MODE)) for m in targets.values())):
         return DEPLOYED_MODE
     return mode
 
 
 def _figures(m: Mapping) -> dict:
-    return {**_val_figures(deployed_validation(m)), **_target_figures(m["test"])}
+    return TargetResult(m).headline("compare")
 
 
 def is_validation(criterion: str) -> bool:
@@ -122,12 +95,7 @@ def persistence_summary(targets: Mapping, target: str = "mean") -> dict | None:
     RMS before compensation, E_P95 is not computed (None).
     """
     def figures(m: Mapping) -> dict | None:
-        p, before = m.get("persistence"), m["test"].get("rms_before")
-        if not p:
-            return None
-        return {"rsd_mean": p.get("rsd_mean"), "rsd_sd": p.get("rsd_sd"), "rmse": p.get("rmse"),
-                "rms_reduction_pct": reduction_pct(before, p["rmse"]),
-                "e_p95_1h": None, "e_p95_8h": None}
+        return TargetResult(m).headline("baseline") if m.get(PERSISTENCE) else None
 
     if target != "mean":
         return figures(targets[target]) if target in targets else None
@@ -162,7 +130,7 @@ def descending_for(criterion: str) -> bool:
     return criterion in HIGHER_IS_BETTER
 
 
-def rank(rows: Sequence[Mapping], sort_by: str = "val_rmse",
+def rank(rows: Sequence[Mapping], sort_by: str = VAL_RMSE,
          descending: bool | None = None) -> pd.DataFrame:
     """Rows as a table, best first by ``sort_by`` (missing values last).
 

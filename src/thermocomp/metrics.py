@@ -16,6 +16,29 @@ from .jsonsafe import json_safe
 
 _ANGULAR = re.compile(r"^E_[ABC][XYZ]")   # ISO 230-1: E_AX .. E_CZ, rotations (+ order, cross axis)
 
+# The keys of the scores in ``metrics.json`` (CLI.md), named here once: the figures of a split
+# and of a campaign, and the blocks of a target beside ``train``/``test``.  Elsewhere they are
+# read through :mod:`thermocomp.results` or these names (tests/test_results.py checks).
+RMSE, MAE, RSD, RSD_MEAN, RSD_SD = "rmse", "mae", "rsd", "rsd_mean", "rsd_sd"
+RMS_BEFORE, RMS_AFTER, P2P_BEFORE, P2P_AFTER = "rms_before", "rms_after", "p2p_before", "p2p_after"
+RMS_REDUCTION, P2P_REDUCTION = "rms_reduction_pct", "p2p_reduction_pct"
+E_P95, E_MAX, E_MEAN, ISO_A3, PER_UNIT = "e_p95", "e_max", "e_mean", "iso10791_a3", "per_unit"
+PER_CAMPAIGN, VALIDATION, PERSISTENCE = "per_campaign", "validation", "persistence"
+OTHER_BLOCKS = ("test_one_step", "test_simulation", "validation_simulation")
+SCORE_KEYS = (RMSE, MAE, RSD, RSD_MEAN, RSD_SD, RMS_BEFORE, RMS_AFTER, P2P_BEFORE, P2P_AFTER,
+              RMS_REDUCTION, P2P_REDUCTION, E_P95, E_MAX, E_MEAN, ISO_A3, PER_UNIT, PERSISTENCE,
+              *OTHER_BLOCKS)
+
+
+def test_block(mode: str) -> str:
+    """The key of a target's test figures in ``mode`` when the run was scored in the other."""
+    return f"test_{mode}"
+
+
+def validation_block(mode: str) -> str:
+    """The key of a target's validation in ``mode`` when the run was scored in the other."""
+    return f"{VALIDATION}_{mode}"
+
 
 def unit(target: str) -> str:
     """The unit of an ``E_`` column (DATA_FORMAT.md): µm/m for an angular error, else µm."""
@@ -272,29 +295,56 @@ def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.n
     y_all = np.concatenate([np.asarray(measured[c], float) for c in ids])
     r_all = np.concatenate([np.asarray(residual[c], float) for c in ids])
     sm, sd = sm_sd([rsd(residual[c]) for c in ids])
-    out = {"rmse": rmse(r_all), "mae": mae(r_all), "rsd_mean": sm, "rsd_sd": sd}
+    out = {RMSE: rmse(r_all), MAE: mae(r_all), RSD_MEAN: sm, RSD_SD: sd}
     if not with_before_after:
         return out
-    out.update(rms_before=rms(y_all), rms_after=rms(r_all),
-               p2p_before=p2p(y_all), p2p_after=p2p(r_all))
-    out.update(rms_reduction_pct=reduction_pct(out["rms_before"], out["rms_after"]),
-               p2p_reduction_pct=reduction_pct(out["p2p_before"], out["p2p_after"]))
-    out["per_campaign"] = {c: _campaign_scores(measured[c], residual[c]) for c in ids}
+    out.update(before_after(y_all, r_all))
+    out[PER_CAMPAIGN] = {c: _campaign_scores(measured[c], residual[c]) for c in ids}
     lengths = window_lengths(max(len(measured[c]) for c in ids), e_p95_points)
     window_s = [float((n - 1) * sample_period_s) for n in lengths]
     before = window_curves([measured[c] for c in ids], lengths, e_p95_statistic)
     after = window_curves([residual[c] for c in ids], lengths, e_p95_statistic)
-    for key, curve in (("e_p95", "percentile"), ("e_max", "max"), ("e_mean", "mean")):
+    for key, curve in ((E_P95, "percentile"), (E_MAX, "max"), (E_MEAN, "mean")):
         out[key] = {"statistic": e_p95_statistic, "window_s": window_s,
                     "before": json_safe(before[curve]), "after": json_safe(after[curve])}
     return out
 
 
+def before_after(measured, residual) -> dict:
+    """RMS and peak-to-peak of ``measured`` (before) and ``residual`` (after), and their
+    reductions: the compensation's figures of one signal."""
+    out = {RMS_BEFORE: rms(measured), RMS_AFTER: rms(residual),
+           P2P_BEFORE: p2p(measured), P2P_AFTER: p2p(residual)}
+    out[RMS_REDUCTION] = reduction_pct(out[RMS_BEFORE], out[RMS_AFTER])
+    out[P2P_REDUCTION] = reduction_pct(out[P2P_BEFORE], out[P2P_AFTER])
+    return out
+
+
 def _campaign_scores(measured, residual) -> dict:
-    s = {"rmse": rmse(residual), "mae": mae(residual), "rsd": json_safe(rsd(residual)),
-         "rms_before": rms(measured), "rms_after": rms(residual),
-         "p2p_before": p2p(measured), "p2p_after": p2p(residual)}
-    s["rms_reduction_pct"] = reduction_pct(s["rms_before"], s["rms_after"])
-    s["p2p_reduction_pct"] = reduction_pct(s["p2p_before"], s["p2p_after"])
-    return s
+    return {RMSE: rmse(residual), MAE: mae(residual), RSD: json_safe(rsd(residual)),
+            **before_after(measured, residual)}
+
+
+def rsd_summary(per_unit: Mapping[str, float], key: str = PER_CAMPAIGN, skip_nan: bool = True
+                ) -> dict:
+    """SM and SD of per-unit Rsd (:func:`sm_sd`; a NaN left out, or making them NaN with
+    ``skip_nan=False``) with the per-unit values."""
+    values = list(per_unit.values())
+    sm, sd = sm_sd([v for v in values if np.isfinite(v)] if skip_nan else values)
+    return {RSD_MEAN: sm, RSD_SD: sd, key: json_safe(dict(per_unit))}
+
+
+def pooled_scores(n: int, sum_sq: float, rsds: Sequence[float]) -> dict:
+    """RMSE of ``n`` residuals whose squares sum to ``sum_sq``, SM/SD of their units' Rsd."""
+    sm, sd = sm_sd(rsds)
+    return {RMSE: float(np.sqrt(sum_sq / n)), RSD_MEAN: sm, RSD_SD: sd}
+
+
+def validation_scores(residual: Mapping[str, np.ndarray], method: str, n_folds: int) -> dict:
+    """One target's validation figures: RMSE pooled over the held-out units, SM/SD of their Rsd."""
+    pooled = np.concatenate([np.asarray(r, float) for r in residual.values()])
+    summary = rsd_summary({u: rsd(r) for u, r in residual.items()}, PER_UNIT)
+    return {RMSE: float(np.sqrt(np.mean(pooled ** 2))) if pooled.size else None,
+            RSD_MEAN: summary[RSD_MEAN], RSD_SD: summary[RSD_SD], "method": method,
+            "n_folds": int(n_folds), PER_UNIT: summary[PER_UNIT]}
 

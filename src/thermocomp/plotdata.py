@@ -17,8 +17,10 @@ import numpy as np
 import pandas as pd
 
 from .files import atomic_write_text
+from .metrics import E_P95, RMSE
+from .results import TEST_RMSE, VAL_RMSE, TargetResult
 
-E_P95_DIR, RESIDUALS_DIR = "e_p95", "residuals"
+E_P95_DIR, RESIDUALS_DIR = E_P95, "residuals"   # the curves' folder is named as the figure
 
 
 def _write(path: Path, frame: pd.DataFrame) -> Path:
@@ -30,7 +32,7 @@ def write_e_p95(folder, targets: dict) -> None:
     folder = Path(folder)
     (folder / RESIDUALS_DIR).mkdir(parents=True, exist_ok=True)
     for t, m in targets.items():
-        e = m["test"]["e_p95"]
+        e = TargetResult(m).test.e_p95
         _write(folder / E_P95_DIR / f"{t}.csv",
                pd.DataFrame({"window_h": np.asarray(e["window_s"], float) / 3600.0,
                              "before": e["before"], "after": e["after"]}))
@@ -50,5 +52,5 @@ def write_compare(out, table: pd.DataFrame) -> Path:
     label = table[[c for c in ("model", "select") if c in table.columns]].astype(str).agg("/".join, axis=1)
     frame = pd.DataFrame({"rank": np.arange(1, len(table) + 1),
                           "run": label + " " + table["run_id"].astype(str).str[:8],
-                          "val_rmse": table.get("val_rmse"), "test_rmse": table.get("rmse")})
+                          VAL_RMSE: table.get(VAL_RMSE), TEST_RMSE: table.get(RMSE)})
     return _write(Path(out) / "compare_plot.csv", frame)

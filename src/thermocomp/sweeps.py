@@ -23,6 +23,7 @@ from .leaderboard import (
     validation_mode,
 )
 from .paths import resolve
+from .results import VAL_RMSE
 from .tracking import child_runs, latest_sweep, retry_locked
 
 # Written to the sweep folder by the callback: ``{"parent_run_id": ..., "overrides": [...]}``.
@@ -58,7 +59,7 @@ def parent_run_id(cfg: DictConfig, client) -> str:
     return run_id
 
 
-def objective(metrics: dict, criterion: str = "val_rmse", target: str = "mean") -> float:
+def objective(metrics: dict, criterion: str = VAL_RMSE, target: str = "mean") -> float:
     """The number a search sweeper minimises for one run: ``criterion`` of ``target`` from the
     run's ``metrics.json`` (as :func:`sweep_rows` ranks it), NaN when the run has none.
 

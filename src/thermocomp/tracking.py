@@ -471,25 +471,13 @@ def headline_metrics(metrics: dict) -> dict:
     Validation RMSE and Rsd SM, test RMSE, Rsd SM/SD, RMS before/after, E_P95 of
     the residual at 1 h and 8 h (when the campaigns are that long), the other
     ``eval.mode``'s test RMSE (and validation RMSE: the simulation one that ranks a one_step
-    run) and the persistence baseline's.  (``fit_time_s``
-    is logged by the stage that fits.)
+    run) and the persistence baseline's; a volumetric run's own figures
+    (:meth:`thermocomp.results.EvaluationResult.headline`).  (``fit_time_s`` is logged by the
+    stage that fits.)
     """
-    from .leaderboard import HOUR_S, e_p95_at
+    from .results import EvaluationResult
 
-    out = {}
-    for t, m in metrics.get("targets", {}).items():
-        val, test = m.get("validation") or {}, m.get("test") or {}
-        figures = {"val.rmse": val.get("rmse"), "val.rsd_mean": val.get("rsd_mean")}
-        figures.update({f"test.{k}": test.get(k)
-                        for k in ("rmse", "rsd_mean", "rsd_sd", "rms_before", "rms_after")})
-        figures["test.e_p95_1h"] = e_p95_at(test.get("e_p95"), HOUR_S)
-        figures["test.e_p95_8h"] = e_p95_at(test.get("e_p95"), 8 * HOUR_S)
-        for other in ("test_one_step", "test_simulation", "validation_simulation"):
-            if m.get(other):
-                figures[f"{other}.rmse"] = m[other].get("rmse")
-        figures["persistence.rmse"] = (m.get("persistence") or {}).get("rmse")
-        out.update({f"{t}.{k}": v for k, v in figures.items() if v is not None})
-    return out
+    return EvaluationResult(metrics).headline("mlflow")
 
 
 def start_parent_run(cfg: DictConfig, run_name: str, tags: dict | None = None) -> str:

@@ -32,6 +32,7 @@ import pandas as pd
 
 from ..context import TIME
 from ..errors import ContractError
+from ..metrics import RMSE
 from ..monitor.adaptive import AdaptiveCompensator
 from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
 
@@ -191,7 +192,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
 
     report = {t: {"n_samples": int(n),
                   "max_abs_stream_minus_batch": float(np.max(diff[:, j])) if len(diff) else 0.0,
-                  "rmse": rms(resid[:, j]),
+                  RMSE: rms(resid[:, j]),
                   "us_per_sample": us,
                   "rmse_batch": rms(bres[:, j]),
                   "clamped_samples": clamps,

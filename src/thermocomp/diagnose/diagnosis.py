@@ -17,8 +17,9 @@ from ..frame import stack
 from ..io.contract import ContractError, Dataset
 from ..jsonsafe import json_safe
 from ..log import logger
-from ..metrics import split_scores
+from ..metrics import P2P_AFTER, split_scores
 from ..model_selection import ForwardChaining, LeaveCampaignsOut, cv_scheme, forward_gap, unit_labels
+from ..results import TEST_RMSE, TEST_RSD_MEAN, TEST_RSD_SD, Scores, TargetResult
 from .augmented import AugmentedRegressor
 from .blocks import decorrelation_length
 from .candidates import CONTROL, random_walk
@@ -100,7 +101,7 @@ class Diagnosis:
         effects = [ev.entry() | {"step": i + 1} for i, ev in enumerate(s.accepted)]
         effects += [ev.entry() for ev in rejected]
         control = last.control.entry() if last and last.control else None
-        te_b, te_a = d.before["test"], d.after["test"]
+        te_b, te_a = TargetResult(d.before).test, TargetResult(d.after).test
         return json_safe({
             "target": t,
             "model": self.model,
@@ -109,8 +110,8 @@ class Diagnosis:
             "after": _summary(te_a, d.final_cv_rmse),
             "dataset": self.dataset,
             "mode": self.mode,
-            "test_rmse_after_pct_of_before": (100.0 * te_a["rmse"] / te_b["rmse"]
-                                              if te_b["rmse"] > 0 else None),
+            "test_rmse_after_pct_of_before": (100.0 * te_a.rmse / te_b.rmse
+                                              if te_b.rmse > 0 else None),
             "steps": [{"step": 0, "effect": None, "cv_rmse": d.original_cv_rmse}]
                      + [dict(step=i + 1, **st) for i, st in enumerate(s.steps)],
             "excluded_inputs": list(self.excluded),
@@ -125,11 +126,11 @@ class Diagnosis:
                     "min_p": self.cv["min_p"],
                     "max_effects": self.options.max_effects},
             "cv": self.cv,
-            "test_e_p95": {"statistic": te_b["e_p95"]["statistic"],
-                           "window_s": te_b["e_p95"]["window_s"],
-                           "measured": te_b["e_p95"]["before"],
-                           "before": te_b["e_p95"]["after"],
-                           "after": te_a["e_p95"]["after"]},
+            "test_e_p95": {"statistic": te_b.e_p95["statistic"],
+                           "window_s": te_b.e_p95["window_s"],
+                           "measured": te_b.e_p95["before"],
+                           "before": te_b.e_p95["after"],
+                           "after": te_a.e_p95["after"]},
             "self_prediction": [
                 {"sensor": name, "cv_rmse_c": float(r["cv_rmse"]), "worst_unit": r["worst_unit"],
                  "worst_unit_split": "test" if r["worst_unit"] in self.cv["test_campaigns"] else "train",
@@ -139,8 +140,8 @@ class Diagnosis:
                 for name, r in s.self_prediction.iterrows()],
             "test_sensor_warnings": self.test_sensors,
             "rounds": [r.to_dict() for r in s.rounds],
-            "other_targets": {o: {"before_test_rmse": x.before["test"]["rmse"],
-                                  "after_test_rmse": x.after["test"]["rmse"],
+            "other_targets": {o: {"before_test_rmse": TargetResult(x.before).test.rmse,
+                                  "after_test_rmse": TargetResult(x.after).test.rmse,
                                   "accepted": [f"{ev.effect.kind}:{ev.effect.column}"
                                                for ev in x.accepted]}
                               for o, x in self.targets.items() if o != t},
@@ -160,10 +161,10 @@ def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, 
     return out, {c: (meas[c], pred[c]) for c in ids}
 
 
-def _summary(test: dict, cv_rmse: float) -> dict:
-    return {"test_rmse": test["rmse"], "cv_rmse": cv_rmse,
-            "test_rsd_mean": test["rsd_mean"], "test_rsd_sd": test["rsd_sd"],
-            "test_rms_measured": test["rms_before"], "test_p2p_residual": test["p2p_after"]}
+def _summary(test: Scores, cv_rmse: float) -> dict:
+    return {TEST_RMSE: test.rmse, "cv_rmse": cv_rmse,
+            TEST_RSD_MEAN: test.rsd_mean, TEST_RSD_SD: test.rsd_sd,
+            "test_rms_measured": test.rms_before, "test_p2p_residual": test.get(P2P_AFTER)}
 
 
 def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "simulation",

@@ -16,6 +16,8 @@ from pathlib import Path
 import numpy as np
 from markdown_it import MarkdownIt
 
+from ..results import TEST_RMSE, TEST_RSD_MEAN, TEST_RSD_SD
+
 
 def _f(v, digits: int = 2, pct: bool = False) -> str:
     if v is None or (isinstance(v, float) and not np.isfinite(v)):
@@ -115,7 +117,7 @@ def _target_section(j: dict, figures: list[str], primary: bool) -> list[str]:
     accepted = _accepted(j)
     lines = [f"## {t}", "",
              ("Primary target (largest CV RMSE before; `diagnosis.json`).  " if primary else "")
-             + f"Test RMSE {_f(b['test_rmse'])} → {_f(a['test_rmse'])} µm; accepted: "
+             + f"Test RMSE {_f(b[TEST_RMSE])} → {_f(a[TEST_RMSE])} µm; accepted: "
              + (", ".join(_effect_name(x) for x in accepted) or "nothing") + ".", "",
              f"- {_link('Before and after (test split)', h['before and after'])}",
              f"- {_link('Accepted effects', h['accepted effects'])}"]
@@ -127,8 +129,8 @@ def _target_section(j: dict, figures: list[str], primary: bool) -> list[str]:
         lines.append(f"- {_link('Sensor self-prediction (paper 002)', h['sensor self-prediction'])}")
     lines += ["", f"### {h['before and after']}", "",
               "| figure | before | after | change |", "|---|---:|---:|---:|"]
-    for label, key in (("test RMSE (µm)", "test_rmse"), ("test Rsd SM (µm)", "test_rsd_mean"),
-                       ("test Rsd SD (µm)", "test_rsd_sd"), ("CV RMSE, train campaigns (µm)", "cv_rmse")):
+    for label, key in (("test RMSE (µm)", TEST_RMSE), ("test Rsd SM (µm)", TEST_RSD_MEAN),
+                       ("test Rsd SD (µm)", TEST_RSD_SD), ("CV RMSE, train campaigns (µm)", "cv_rmse")):
         lines.append(f"| {label} | {_f(b[key])} | {_f(a[key])} | {_change(b[key], a[key])} |")
     for hours in (1.0, 4.0):
         _, eb, ea = _window(e, hours)
@@ -218,7 +220,7 @@ def markdown(jsons: dict[str, dict], figures: dict[str, list[str]] | None = None
     for t in order:
         b, a = jsons[t]["before"], jsons[t]["after"]
         lines.append(f"- {_link(t, t)}{' (primary)' if t == primary else ''}: test RMSE "
-                     f"{_f(b['test_rmse'])} → {_f(a['test_rmse'])} µm, "
+                     f"{_f(b[TEST_RMSE])} → {_f(a[TEST_RMSE])} µm, "
                      f"{len(_accepted(jsons[t]))} effect(s) accepted")
     if rerun:
         lines.append(f"- {_link(RERUN, RERUN)}")
@@ -226,7 +228,7 @@ def markdown(jsons: dict[str, dict], figures: dict[str, list[str]] | None = None
               "| accepted effects |", "|---|---:|---:|---|"]
     for t in order:
         j = jsons[t]
-        lines.append(f"| {_link(t, t)} | {_f(j['before']['test_rmse'])} → {_f(j['after']['test_rmse'])} | "
+        lines.append(f"| {_link(t, t)} | {_f(j['before'][TEST_RMSE])} → {_f(j['after'][TEST_RMSE])} | "
                      f"{_f(j['before']['cv_rmse'])} → {_f(j['after']['cv_rmse'])} | "
                      + ("; ".join(_effect_name(x) for x in _accepted(j)) or "none") + " |")
     lines.append("")

@@ -17,7 +17,7 @@ from sklearn.utils.validation import check_is_fitted
 
 from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, subset
 from ..errors import ParameterError
-from ..metrics import rmse
+from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveCampaignsOut
 from ..one_step import persistence
 from ..params import check_estimator, choice, integer, number
@@ -136,7 +136,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 self.skipped_[name] = why
         held = np.any([score for *_, score in folds], axis=0)
         last = persistence(y, groups)
-        self.validation_["persistence"] = rmse(y[held] - last[held])
+        self.validation_[PERSISTENCE] = rmse(y[held] - last[held])
         return self._keep_best(X, y, context, None, f"{len(folds)} {self.scheme_} fold(s)")
 
     def _keep_best(self, X, y, context, given, how: str):
@@ -161,7 +161,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             self.family_, runner = BASELINE, ""
         self.reason_ = (f"{lead} ({how}){runner}; "
                         f"MLR {self.validation_.get(BASELINE, float('nan')):.4g}, "
-                        f"persistence {self.validation_.get('persistence', float('nan')):.4g}")
+                        f"persistence {self.validation_.get(PERSISTENCE, float('nan')):.4g}")
         self.estimator_ = clone(self.candidates[self.family_]).fit(X, y, context=context)
         self.context_columns_ = context_columns(self.estimator_)
         return self

@@ -43,7 +43,7 @@ def val_split_scores(comp, ds) -> dict:
     from sklearn.base import clone
 
     from ..evaluation import validation_report
-    from ..metrics import rmse
+    from ..metrics import PERSISTENCE, RMSE, rmse
     from ..models import MLR
     from ..one_step import persistence
 
@@ -60,14 +60,14 @@ def val_split_scores(comp, ds) -> dict:
             continue
         fitted = one
         for t, entry in report.items():
-            scores.setdefault(t, {})[name] = entry["rmse"]
+            scores.setdefault(t, {})[name] = entry[RMSE]
     failed = scores.pop(None, {})
     val = {c: ds.campaigns[c] for c in ds.ids("val")}
     measured = fitted.measured(val) if fitted is not None else {}
     for t in scores:
         scores[t].update(failed)
         y = [measured[c][t].to_numpy(float) for c in val]
-        scores[t]["persistence"] = rmse(np.concatenate([v - persistence(v) for v in y]))
+        scores[t][PERSISTENCE] = rmse(np.concatenate([v - persistence(v) for v in y]))
     return scores
 
 
@@ -144,24 +144,3 @@ def _load(cfg: DictConfig, path, where: str) -> DictConfig:
         return OmegaConf.create(OmegaConf.to_container(root.node, resolve=True))
     except Exception as exc:   # an interpolation this root does not hold: say where
         raise ConfigError(f"{where}: {path} cannot be composed ({exc})") from None
-
-
-def auto_table(metrics: dict) -> list[str]:
-    """Lines of the printed table: per target the chosen family and every candidate's
-    free-run validation RMSE (MLR and persistence always among them); none without auto."""
-    rows = {t: m["auto"] for t, m in metrics["targets"].items() if "auto" in m}
-    if not rows:
-        return []
-    names = list(dict.fromkeys(n for a in rows.values() for n in a["candidates"]))
-    lines = ["model=auto: free-run validation RMSE per candidate (* chosen; the test split chose "
-             "nothing; persistence: the previous measured error, one-step)",
-             f"{'target':<8} {'chosen':<10} " + " ".join(f"{n[:11]:>11}" for n in names)]
-    for t, a in rows.items():
-        cells = []
-        for n in names:
-            v = a["candidates"].get(n)
-            cells.append(f"{'n/a' if v is None else f'{v:.3g}' + ('*' if n == a['chosen'] else ''):>11}")
-        lines.append(f"{t:<8} {a['chosen']:<10} " + " ".join(cells))
-    skipped = {n: w for a in rows.values() for n, w in a.get("skipped", {}).items()}
-    lines += [f"  skipped {n}: {w}" for n, w in skipped.items()]
-    return lines

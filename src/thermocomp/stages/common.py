@@ -17,10 +17,10 @@ from omegaconf import DictConfig, OmegaConf, open_dict
 from .. import io, signing
 from ..build import build
 from ..compensator import MODES, Compensator
-from ..errors import ConfigError, listed
+from ..continuation import carried_text
+from ..errors import ConfigError
 from ..frame import REFERENCES
 from ..log import logger
-from ..metrics import unit
 from ..params import (
     BOOLEAN,
     MAX_COUNT,
@@ -40,9 +40,10 @@ from ..params import (
     texts,
 )
 from ..paths import conf_dir, resolve
+from ..results import EvaluationResult
 from ..tracking import enabled, store_uri
 from .apart import check_apart
-from .auto import as_chosen, auto_scheme, auto_table, build_candidates, is_auto, val_split_scores
+from .auto import as_chosen, auto_scheme, build_candidates, is_auto, val_split_scores
 from .rules import check_groups, check_keys
 
 AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
@@ -447,11 +448,6 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict):
         raise ConfigError(f"monitor: {exc}") from None
 
 
-def carried_text(carried: dict) -> str:
-    """``A continues B + C; ...`` of ``{campaign: chain}`` (:func:`thermocomp.continuation.carry_over`)."""
-    return "; ".join(f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items())
-
-
 def lead_ins(comp: Compensator, ds, ids) -> dict:
     """``{campaign: lead-in}`` for the campaigns of ``ids`` that continue others: their stream
     is warmed on their predecessors (unscored) so that it predicts what ``run`` scores
@@ -512,35 +508,8 @@ def model_family(comp) -> str:
 
 
 def result_table(metrics: dict) -> str:
-    """The table `make run` prints per target: test Rsd SM/SD, RMS before -> after, and the
-    test RMSE in simulation and one-step mode next to the persistence baseline's."""
-    def f(v):
-        return "  n/a" if v is None else f"{v:5.2f}"
-
-    def test_rmse(m: dict, mode: str):
-        block = m["test"] if mode == metrics["mode"] else m.get(f"test_{mode}")
-        return None if block is None else block.get("rmse")
-
-    angular = [t for t in metrics["targets"] if unit(t) != "µm"]
-    units = "(µm)" if not angular else f"(µm; {listed(angular, 3)} in µm/m)"
-    head = (f"model={metrics['model']}  select={metrics.get('select', 'all')}  "
-            f"mode={metrics['mode']}  dataset={metrics.get('dataset', '')}")
-    lines = [head,
-             f"{'target':<8} {'test Rsd SM':>11} {'SD':>6}   {'RMS before':>10} -> {'after':>6}"
-             f"  {'reduction':>9}   {'RMSE sim':>8} {'1-step':>6} {'persist.':>8}   {units}",
-             "-" * 96]
-    for t, m in metrics["targets"].items():
-        te = m["test"]
-        # a target that does not move (a parameter no distance sees, under a prior) has none
-        red = f"{100 * (1 - te['rms_after'] / te['rms_before']):>8.1f}%" if te["rms_before"] else "     n/a "
-        lines.append(f"{t:<8} {f(te['rsd_mean']):>11} {f(te['rsd_sd']):>6}   "
-                     f"{te['rms_before']:>10.2f} -> {te['rms_after']:>6.2f}  {red}   "
-                     f"{f(test_rmse(m, 'simulation')):>8} {f(test_rmse(m, 'one_step')):>6} "
-                     f"{f(m.get('persistence', {}).get('rmse')):>8}")
-    carried = metrics.get("carry_over")
-    if carried:
-        lines.append("state carried over: " + carried_text(carried))
-    return "\n".join(lines + auto_table(metrics))
+    """The table `make run` prints (:meth:`thermocomp.results.EvaluationResult.summary`)."""
+    return EvaluationResult(metrics).summary()
 
 
 # --- calibrate (the stage and `run` on a volumetric dataset) -------------------------------

@@ -41,6 +41,7 @@ from ..params import (
     subset,
 )
 from ..paths import resolve
+from ..results import TargetResult
 from ..tracking import stage_run
 from . import rules
 from .common import build_compensator, check_config, check_declared, data_options, resolve_reference, say
@@ -213,7 +214,8 @@ def diagnose(cfg: DictConfig) -> dict:
         main = write_json(out / "diagnosis.json", jsons[primary])
         write_headline(out / DIAGNOSIS_HEADLINE, diagnosis_headline(jsons))  # `dvc metrics show`
         tracker.log_metrics({"diagnose": {t: {
-            "before_test_rmse": d.before["test"]["rmse"], "after_test_rmse": d.after["test"]["rmse"],
+            "before_test_rmse": TargetResult(d.before).test.rmse,
+            "after_test_rmse": TargetResult(d.after).test.rmse,
             "before_cv_rmse": d.original_cv_rmse, "after_cv_rmse": d.final_cv_rmse,
             "n_accepted": len(d.accepted)} for t, d in result.targets.items()},
             "diagnose_seconds": result.seconds})
@@ -238,7 +240,8 @@ def summary_table(result) -> str:
     for t, d in result.targets.items():
         acc = ", ".join(f"{ev.effect.kind}:{ev.effect.column or '-'} {ev.effect.label}"
                         for ev in d.accepted) or "none"
-        lines.append(f"{t:<8} {d.before['test']['rmse']:>16.2f} -> {d.after['test']['rmse']:>6.2f}   "
+        before, after = TargetResult(d.before).test.rmse, TargetResult(d.after).test.rmse
+        lines.append(f"{t:<8} {before:>16.2f} -> {after:>6.2f}   "
                      f"{d.original_cv_rmse:>9.2f} -> {d.final_cv_rmse:>6.2f}   {acc}")
     cv = result.cv
     lines.append(f"acceptance test: {cv['test_blocks']} time blocks of ~{cv['block_samples']} samples "

@@ -26,8 +26,9 @@ from .. import continuation, fleet, io
 from ..errors import ConfigError
 from ..evaluation import VAL_FOLDS, require_split, sample_period, split_residuals, validation_report
 from ..files import inside, safe_name, staged_outputs, write_json
-from ..metrics import rsd, sm_sd, split_scores
+from ..metrics import VALIDATION, pooled_scores, rsd, split_scores
 from ..paths import resolve
+from ..results import TEST_RMS_AFTER, TEST_RMS_BEFORE, TEST_RMSE, VAL_RMSE, TargetResult
 from ..tracking import stage_run
 from .auto import add_choices
 from .common import (
@@ -40,17 +41,12 @@ from .common import (
     validation_template,
 )
 
-_TEST = ("rmse", "rsd_mean", "rsd_sd", "rms_before", "rms_after", "rms_reduction_pct")
-
 
 def _slim(targets: dict) -> dict:
     """The per-group figures kept in ``metrics.json`` (no curves: a fleet has hundreds of groups)."""
     out = {}
     for t, m in targets.items():
-        val = m.get("validation") or {}
-        out[t] = {"train": {"rmse": m["train"]["rmse"]},
-                  "test": {k: m["test"].get(k) for k in _TEST},
-                  "validation": {k: val.get(k) for k in ("rmse", "method")} if val else None}
+        out[t] = TargetResult(m).slim()
         if "auto" in m:      # model=auto: the group's choice, as a single run reports it
             out[t]["auto"] = m["auto"]
     return out
@@ -77,11 +73,11 @@ def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
                                 n_folds=int(ev.get("validation_folds", VAL_FOLDS)),
                                 scheme=ev.get("validation_scheme", "auto"))
         for t, entry in val.items():
-            targets[t]["validation"] = entry
+            targets[t][VALIDATION] = entry
     save_model(comp, inside(stage / "models", safe_name(group) + ".pkl"))
     targets = _slim(targets)
     say(f"{group}: {len(ids)} campaigns, {report['rows']} rows, fit {fit_s:.2f} s, test RMSE "
-        + ", ".join(f"{t} {m['test']['rmse']:.2f}" for t, m in targets.items()))
+        + ", ".join(f"{t} {TargetResult(m).test.rmse:.2f}" for t, m in targets.items()))
     return {"campaigns": len(ids), "rows": int(report["rows"]), "fit_time_s": fit_s,
             "inputs": {t: comp.selected_[t] for t in comp.targets_}, "targets": targets,
             "pooled": pooled}
@@ -113,11 +109,10 @@ def _fleet_targets(results: list[dict], ev) -> dict:
     for t in results[0]["pooled"]:
         train = {c: v for r in results for c, v in r["pooled"][t]["train"].items()}
         n, ss = sum(v[0] for v in train.values()), sum(v[1] for v in train.values())
-        sm, sd = sm_sd([v[2] for v in train.values()])
         y = {c: a for r in results for c, a in r["pooled"][t]["test"][0].items()}
         res = {c: a for r in results for c, a in r["pooled"][t]["test"][1].items()}
         dt = float(np.median([r["pooled"][t]["test"][2] for r in results]))
-        out[t] = {"train": {"rmse": float(np.sqrt(ss / n)), "rsd_mean": sm, "rsd_sd": sd},
+        out[t] = {"train": pooled_scores(n, ss, [v[2] for v in train.values()]),
                   "test": split_scores(y, res, dt, ev.e_p95.statistic, ev.e_p95.max_points)}
     return out
 
@@ -129,7 +124,7 @@ def _table(metrics: dict) -> str:
     lines = [head, f"{'target':8} {'groups':>6}  test RMSE mean  median    p95    max   "
                    f"RMS before -> after (mean)   worst   (µm)", "-" * 96]
     for t, s in metrics["fleet"].items():
-        rmse, before, after = s["test_rmse"], s["test_rms_before"], s["test_rms_after"]
+        rmse, before, after = s[TEST_RMSE], s[TEST_RMS_BEFORE], s[TEST_RMS_AFTER]
         lines.append(f"{t:8} {s['groups']:>6}  {rmse['mean']:14.2f} {rmse['median']:7.2f} "
                      f"{rmse['p95']:6.2f} {rmse['max']:6.2f}   {before['mean']:10.2f} -> "
                      f"{after['mean']:6.2f}            {s['worst_group']}")
@@ -175,7 +170,7 @@ def run_grouped(cfg: DictConfig) -> dict:
             write_json(stage / "metrics.json", metrics)
         tr.log_metrics({"fit_time_s": metrics["fit_time_s"], "groups": len(per_group),
                         **{f"{t}.fleet.{k}_{stat}": s[k][stat] for t, s in metrics["fleet"].items()
-                           for k in ("test_rmse", "val_rmse") if s[k] for stat in ("mean", "p95", "max")}})
+                           for k in (TEST_RMSE, VAL_RMSE) if s[k] for stat in ("mean", "p95", "max")}})
         tr.log_artifact(out / "metrics.json")
         tr.log_artifact(out / "fleet.csv")
     print(_table(metrics))

@@ -31,13 +31,15 @@ from ..evaluation import (
     score,
     validation_reports,
 )
-from ..files import inside, safe_name, staged_outputs, write_json
-from ..headline import HEADLINE, evaluation_headline, write_headline
+from ..files import atomic_write_text, inside, safe_name, staged_outputs, write_json
+from ..headline import HEADLINE, write_headline
 from ..iso10791 import a3_campaign
 from ..leaderboard import DEPLOYED_MODE
 from ..log import logger
+from ..metrics import E_MAX, E_P95, ISO_A3, PER_CAMPAIGN, RSD, VALIDATION, validation_block
 from ..paths import resolve
-from ..tracking import headline_metrics, stage_run
+from ..results import EvaluationResult, TargetResult
+from ..tracking import stage_run
 from .artifacts import fit_from_artifacts
 from .auto import add_choices, as_chosen
 from .common import (
@@ -50,7 +52,6 @@ from .common import (
     load_model,
     model_family,
     resolve_reference,
-    result_table,
     save_model,
     say,
     simulated_truth,
@@ -111,7 +112,7 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
     ev = cfg.eval
     with _plots_folder(stage, cfg.plots) as (draw, folder):
         targets, predictions = score(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points,
-                                     iso_a3=ev.get("iso10791_a3", True))
+                                     iso_a3=ev.get(ISO_A3, True))   # a key named as its figure
         clock.lap("score")
         add_choices(comp, targets)
         if ev.get("validation", True):
@@ -152,8 +153,9 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
             if cfg.plots in ("test", "all"):
                 _mutual_figures(draw, folder, metrics["mutual_prediction"])
                 clock.lap("figures")
-        write_json(stage / "metrics.json", metrics)
-        write_headline(stage / HEADLINE, evaluation_headline(metrics))  # for `dvc metrics show`
+        result = EvaluationResult(metrics)
+        atomic_write_text(stage / "metrics.json", result.to_json())
+        write_headline(stage / HEADLINE, result.headline("dvc"))  # for `dvc metrics show`
         clock.lap("write")
     clock.lap("figures")  # drawing still under way once every number is written
     return metrics
@@ -162,12 +164,13 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
 def _publish(cfg: DictConfig, metrics: dict, out, tracker, clock: Clock) -> None:
     """Log the committed outputs of a run to MLflow and print its table."""
     path = out / "metrics.json"
-    tracker.log_metrics(headline_metrics(metrics))     # the full metrics.json is the artifact
+    result = EvaluationResult(metrics)
+    tracker.log_metrics(result.headline("mlflow"))     # the full metrics.json is the artifact
     tracker.log_artifact(path)
     if cfg.plots != "none":  # not the figures an earlier run left
         tracker.log_artifacts(out / "plots", "plots")
     clock.lap("log")
-    print(result_table(metrics))
+    print(result.summary())
     say(f"metrics: {path}")
     say(clock.line())
 
@@ -192,9 +195,9 @@ def _add_validation(cfg: DictConfig, comp: Compensator, ds, targets: dict) -> No
         logger.warning("eval.validation_folds=%d: %d fold(s), %s", asked, used,
                        next(iter(val.values()))["method"])
     for t, entry in val.items():
-        targets[t]["validation"] = entry
+        targets[t][VALIDATION] = entry
         if mode != DEPLOYED_MODE:
-            targets[t][f"validation_{DEPLOYED_MODE}"] = both[DEPLOYED_MODE][t]
+            targets[t][validation_block(DEPLOYED_MODE)] = both[DEPLOYED_MODE][t]
 
 
 @contextmanager
@@ -239,7 +242,7 @@ def _campaign_figures(draw, folder, comp: Compensator, ds, predictions: dict) ->
             if a3["available"]:
                 mv = a3["moving"]
                 draw(iso_a3_plot, mv["start_s"], mv["range_before"], mv["range_after"], t, cid,
-                     _figure(folder, "iso10791_a3", cid, t))
+                     _figure(folder, ISO_A3, cid, t))
 
 
 def _e_p95_figures(draw, folder, targets: dict) -> None:
@@ -249,9 +252,9 @@ def _e_p95_figures(draw, folder, targets: dict) -> None:
 
     write_e_p95(folder, targets)  # the curves as data, for `dvc plots show`
     for t, tm in targets.items():
-        e, emax = tm["test"]["e_p95"], tm["test"]["e_max"]
+        e, emax = TargetResult(tm).test.e_p95, TargetResult(tm).test.get(E_MAX)
         draw(e_p95_plot, e["window_s"], e["before"], e["after"], t, e["statistic"],
-             _figure(folder, "e_p95", t), emax["before"], emax["after"])
+             _figure(folder, E_P95, t), emax["before"], emax["after"])
 
 
 def _rsd_figures(draw, folder, metrics: dict, test_ambient: dict) -> None:
@@ -260,17 +263,17 @@ def _rsd_figures(draw, folder, metrics: dict, test_ambient: dict) -> None:
 
     ati = metrics.get("ati", {}).get("targets", {})
     for t, tm in metrics["targets"].items():
-        per = {c: v["rsd"] for c, v in tm["test"]["per_campaign"].items()}
+        per = {c: v[RSD] for c, v in TargetResult(tm).test.get(PER_CAMPAIGN).items()}
         baselines = {}
         for name, label in (("coldest", "coldest-campaign model"), ("warmest", "warmest-campaign model"),
                             ("single_model", "one model, all train")):
             if name in ati.get(t, {}).get("test", {}):
                 camp = metrics["ati"].get("baseline_campaigns", {}).get(name, {}).get("campaign")
                 baselines[f"{label} ({camp})" if camp else label] = \
-                    ati[t]["test"][name]["per_campaign"]
+                    ati[t]["test"][name][PER_CAMPAIGN]
         n_int = ati.get(t, {}).get("n_intervals", 1)
         label = metrics["model"] + (f", {n_int} ATIs" if "intervals" in ati.get(t, {}) else "")
-        draw(rsd_plot, per, t, _figure(folder, "rsd", t), test_ambient, baselines, label)
+        draw(rsd_plot, per, t, _figure(folder, RSD, t), test_ambient, baselines, label)
         entry = ati.get(t, {})
         if "intervals" in entry:
             draw(ati_intervals_plot, entry["campaign_ambient_c0"], entry["boundaries_c"], t,
@@ -285,7 +288,7 @@ def _mutual_figures(draw, folder, mutual: dict) -> None:
     from ..plots import mutual_prediction_plot
 
     for t, mp in mutual.items():
-        draw(mutual_prediction_plot, mp["campaigns"], mp["rsd"], t,
+        draw(mutual_prediction_plot, mp["campaigns"], mp[RSD], t,
              _figure(folder, "mutual_prediction", t), mp["ambient_c0"])
 
 
@@ -394,9 +397,7 @@ def _volumetric_report(cfg: DictConfig, comp: Compensator, ds, raw, cal, calibra
 
             draw_validation(stage / "volumetric", extra["volumetric"], curves)
 
-    metrics = _report(cfg, comp, ds, tracker, clock, extra, files)
-    tracker.log_metrics(volumetric_headline(extra["volumetric"]))
-    return metrics
+    return _report(cfg, comp, ds, tracker, clock, extra, files)   # its MLflow figures: headline
 
 
 def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal, calibration: dict):
@@ -452,16 +453,4 @@ def _true_changes(cfg: DictConfig, cal, times: dict):
                 "identified parameters")
             return None
         out[cid] = P - P[:1]
-    return out
-
-
-def volumetric_headline(section: dict) -> dict:
-    """The volumetric figures logged as MLflow metrics (``volumetric.<block>.<figure>``)."""
-    out = {}
-    for block in ("distance_error", "vce"):
-        for k in ("rms_before", "rms_after"):
-            out[f"volumetric.{block}.{k}"] = section[block][k]
-    for k in ("range_before", "range_after"):
-        if section["iso_a3"].get(k) is not None:
-            out[f"volumetric.iso_a3.{k}"] = section["iso_a3"][k]
     return out

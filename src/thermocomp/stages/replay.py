@@ -26,6 +26,7 @@ from .. import io
 from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
+from ..metrics import RMSE
 from ..paths import resolve
 from ..tracking import connect, stage_run
 from .common import (
@@ -111,7 +112,7 @@ def replay(cfg: DictConfig) -> dict:
     print(f"{'target':<8} {'samples':>8} {'max|stream-batch|':>18} {'RMSE':>8} {'RMSE batch':>11} "
           f"{'µs/sample':>10}")
     for t, r in targets.items():
-        rmse, batch = ("-" if r.get(k) is None else f"{r[k]:.3f}" for k in ("rmse", "rmse_batch"))
+        rmse, batch = ("-" if r.get(k) is None else f"{r[k]:.3f}" for k in (RMSE, "rmse_batch"))
         print(f"{t:<8} {r['n_samples']:>8} {r['max_abs_stream_minus_batch']:>18.3g} "
               f"{rmse:>8} {batch:>11} {r['us_per_sample']:>10.1f}")
     if report["adaptive"]:

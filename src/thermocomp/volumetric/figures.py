@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..metrics import RMS_AFTER, RMS_BEFORE
 from ..plots import AFTER, BEFORE, plt, save_figure
 
 
@@ -48,8 +49,8 @@ def parameter_plot(parameters: dict, path) -> Path:
     names = list(parameters)
     x = np.arange(len(names))
     fig, ax = plt.subplots(figsize=(max(6.0, 0.35 * len(names)), 3.6))
-    ax.bar(x - 0.2, [parameters[n]["rms_before"] for n in names], 0.4, color=BEFORE, label="before")
-    ax.bar(x + 0.2, [parameters[n]["rms_after"] for n in names], 0.4, color=AFTER, label="after")
+    ax.bar(x - 0.2, [parameters[n][RMS_BEFORE] for n in names], 0.4, color=BEFORE, label="before")
+    ax.bar(x + 0.2, [parameters[n][RMS_AFTER] for n in names], 0.4, color=AFTER, label="after")
     ax.set_xticks(x, names, rotation=90, fontsize=7)
     ax.set_ylabel("RMS (µm or µm/m)")
     ax.set_title("error parameters: change on the test split, before and after the thermal model")

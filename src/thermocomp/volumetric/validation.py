@@ -26,7 +26,18 @@ from collections.abc import Mapping
 import numpy as np
 
 from ..iso10791 import a3_report
-from ..metrics import e_p95, p2p, reduction_pct, window_lengths
+from ..metrics import (
+    P2P_AFTER,
+    P2P_BEFORE,
+    P2P_REDUCTION,
+    RMS_AFTER,
+    RMS_BEFORE,
+    RMS_REDUCTION,
+    e_p95,
+    p2p,
+    reduction_pct,
+    window_lengths,
+)
 from .identify import ArtefactCalibration
 from .kinematics import AXES, workspace_grid
 
@@ -55,8 +66,8 @@ def _rms(x) -> float:
 
 def _pair(before, after) -> dict:
     b, a = _rms(before), _rms(after)
-    return {"rms_before": b, "rms_after": a, "rms_reduction_pct": reduction_pct(b, a),
-            "p2p_before": p2p(_finite(before)), "p2p_after": p2p(_finite(after))}
+    return {RMS_BEFORE: b, RMS_AFTER: a, RMS_REDUCTION: reduction_pct(b, a),
+            P2P_BEFORE: p2p(_finite(before)), P2P_AFTER: p2p(_finite(after))}
 
 
 def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarray],
@@ -154,9 +165,9 @@ def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarr
         after = np.concatenate([changes[c][:, j] - predicted[c][:, j] for c in ids])
         rb, ra = _rms(before), _rms(after)
         params[name] = {"unit": model.parameters[cal.kept_[j]].unit,
-                        "p2p_before": p2p(before), "rms_before": rb, "p2p_after": p2p(after),
-                        "rms_after": ra, "reduction_pct": reduction_pct(rb, ra),
-                        "p2p_reduction_pct": reduction_pct(p2p(before), p2p(after)),
+                        P2P_BEFORE: p2p(before), RMS_BEFORE: rb, P2P_AFTER: p2p(after),
+                        RMS_AFTER: ra, "reduction_pct": reduction_pct(rb, ra),
+                        P2P_REDUCTION: reduction_pct(p2p(before), p2p(after)),
                         **models.get(name, {"n_inputs": 0, "ar": False})}
     out["parameters"] = params
     return out, curves
