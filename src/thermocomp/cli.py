@@ -88,7 +88,7 @@ STAGE_HELP = {
             "data.path=<dir> model=... select=... eval.mode=... out=<dir>; "
             "-m model=mlr,pcr select=all,pearson"),
     "compare": ("table of a sweep's child runs, best first", "the sweep's MLflow runs",
-                "compare.out: compare.csv, compare.md, compare.json",
+                "compare.out (default: the sweep's folder): compare.csv, compare.md, compare.json",
                 "compare.sweep=<dir|run id> compare.sort_by=val_rmse compare.target=E_Z"),
     "promote": ("register the best run's compensator, move @champion if better",
                 "the sweep's MLflow runs, data.path (the stream is checked on its train campaigns)",
@@ -452,7 +452,8 @@ def _log_folder(stage: str, cfg):
 
     def folder():
         if stage == "compare" and cfg.get("compare") is not None:
-            return resolve(cfg.compare.out)
+            out = cfg.compare.get("out")     # null: beside the sweep (set once it is known)
+            return resolve(out) if out is not None else None
         return resolve(cfg.out) if cfg.get("out") else None
     return folder
 

@@ -1,0 +1,72 @@
+"""What a newcomer tripped on (issue 35, item 9), each with the behaviour that fixes it."""
+
+from __future__ import annotations
+
+import json
+
+import pandas as pd
+import pytest
+
+from conftest import thermocomp
+from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
+from thermocomp.cli import main
+
+COMPARED = ("compare.csv", "compare.md", "compare.json")
+
+
+@pytest.fixture(scope="module")
+def sweep(tmp_path_factory):
+    """``(tracking uri, sweep folder, parent run id)`` of a two-job sweep on 2 h campaigns (no
+    test campaign lasts 8 h: the table's ``e_p95_8h`` has no figure in any row)."""
+    root = tmp_path_factory.mktemp("newcomer_sweep")
+    data = write_small_dataset(root / "small")
+    uri = mlflow_store(root)
+    folder = root / "sweep"
+    thermocomp("run", "-m", f"data.path={data}", f"tracking_uri={uri}", *LIGHT_EVAL,
+               f"hydra.sweep.dir={folder}", "model.estimator.fit_intercept=true,false")
+    return uri, folder, json.loads((folder / "sweep.json").read_text())["parent_run_id"]
+
+
+def _compare(sweep, capsys, *extra: str) -> str:
+    uri, folder, parent = sweep
+    for name in COMPARED:               # the tables the sweep's end wrote there
+        (folder / name).unlink(missing_ok=True)
+    capsys.readouterr()
+    assert main(["compare", f"tracking_uri={uri}", f"compare.sweep={parent}", *extra]) == 0
+    return capsys.readouterr().out
+
+
+def test_standalone_compare_writes_beside_the_sweep_it_reads(sweep, capsys, tmp_path):
+    # it wrote reports/compare/ of the project, whichever sweep it read
+    uri, folder, parent = sweep
+    _compare(sweep, capsys)                                   # a run id: the folder it recorded
+    assert all((folder / name).is_file() for name in COMPARED)
+    assert json.loads((folder / "compare.json").read_text())["parent_run_id"] == parent
+    _compare(sweep, capsys, f"compare.out={tmp_path / 'mine'}")     # out= still wins
+    assert all((tmp_path / "mine" / name).is_file() for name in COMPARED)
+    assert not any((folder / name).exists() for name in COMPARED)
+
+
+def test_the_printed_compare_table_fits_the_terminal_without_empty_columns(sweep, capsys,
+                                                                             monkeypatch, tmp_path):
+    # ~290 characters a line, with a test:e_p95_8h column of n/a alone
+    monkeypatch.setenv("COLUMNS", "100")
+    folder = tmp_path / "cmp"
+    out = _compare(sweep, capsys, f"compare.out={folder}")
+    rows = [line for line in out.splitlines() if line.startswith("|")]
+    assert rows and max(map(len, rows)) <= 100
+    for column in ("val_rmse", "test:rsd_mean", "test:rmse", "test:e_p95_1h", "fit_time_s"):
+        assert column in out                                  # every figure there is, in blocks
+    assert "e_p95_8h" not in out and "e_p95_8h" not in (folder / "compare.md").read_text()
+    csv = pd.read_csv(folder / "compare.csv")
+    assert csv["e_p95_8h"].isna().all() and csv["e_p95_1h"].notna().all()   # the CSV keeps all
+
+
+def test_the_persistence_row_says_it_needs_the_measured_error_online(sweep, capsys, tmp_path):
+    folder = tmp_path / "cmp"
+    out = _compare(sweep, capsys, f"compare.out={folder}")
+    last = (folder / "compare.md").read_text().strip().splitlines()[-1]
+    assert "persistence (baseline): needs measured error online" in last
+    assert "persistence (baseline): needs measured error online" in out
+    (baseline,) = json.loads((folder / "compare.json").read_text())["baselines"]
+    assert baseline["needs_measured_error_online"] is True
