@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 import pandas as pd
 import pytest
@@ -70,3 +71,14 @@ def test_the_persistence_row_says_it_needs_the_measured_error_online(sweep, caps
     assert "persistence (baseline): needs measured error online" in out
     (baseline,) = json.loads((folder / "compare.json").read_text())["baselines"]
     assert baseline["needs_measured_error_online"] is True
+
+
+def test_the_readme_says_how_to_reach_the_command_before_it_first_names_it_bare():
+    # the prose said `thermocomp ...` where only .venv/bin/thermocomp exists
+    from conftest import ROOT
+
+    readme = (ROOT / "README.md").read_text()
+    first_bare = re.search(r"`thermocomp (?:simulate|run)", readme).start()   # as prose says it
+    activate = readme.find("source .venv/bin/activate")
+    assert 0 <= activate < first_bare
+    assert ".venv/bin/thermocomp" in readme[:activate]
