@@ -82,3 +82,26 @@ def test_the_readme_says_how_to_reach_the_command_before_it_first_names_it_bare(
     activate = readme.find("source .venv/bin/activate")
     assert 0 <= activate < first_bare
     assert ".venv/bin/thermocomp" in readme[:activate]
+
+
+def test_run_on_a_volumetric_dataset_prints_its_headline(tmp_path, capsys):
+    # a 22-row parameter table, and not a word of the distances, the VCE or the A.3 range
+    from conftest import simulated
+    from thermocomp.sim.volumetric import LargeMillVolumetric
+
+    raw = simulated(LargeMillVolumetric(train_hours=12.0, test_hours=16.0, seed=3), tmp_path / "raw")
+    capsys.readouterr()
+    assert main(["run", "experiment=volumetric_large_mill", f"data.path={raw}", f"out={tmp_path / 'o'}",
+                 "track=false", "plots=none", "eval.validation=false", "eval.mutual_prediction=false",
+                 "eval.ati_baselines=false"]) == 0
+    out = capsys.readouterr().out
+    vol = json.loads((tmp_path / "o" / "metrics.json").read_text())["volumetric"]
+    shown = {line.split("  ")[0]: line for line in out.splitlines()}
+    for label, block, before, after in [
+            ("distance errors", vol["distance_error"], "rms_before", "rms_after"),
+            ("VCE on a 20 x 8 x 8 grid (against the simulated machine)", vol["vce"], "rms_before",
+             "rms_after"),
+            ("VCE against the identified parameters", vol["vce_identified"], "rms_before", "rms_after"),
+            ("ISO 10791-10 A.3, Z on the table: mean slot range", vol["iso_a3"], "range_before",
+             "range_after")]:
+        assert f"{block[before]:.2f} -> {block[after]:>6.2f}" in shown[label]
