@@ -10,6 +10,7 @@ import pytest
 
 from conftest import thermocomp
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
+from test_hostile import FAST
 from test_serve import promoted  # noqa: F401  (a fixture)
 from thermocomp.cli import main
 
@@ -165,3 +166,32 @@ def test_serve_is_quiet_and_leaves_no_temp_folder_after_ctrl_c_or_sigterm(promot
         log.close()
     assert list((tmp_path / "term" / "tmp").iterdir()) == []
 
+
+def test_a_changed_generator_never_replaces_the_default_dataset(tmp_path, monkeypatch, capsys):
+    # `simulate sim=yearround_spindle "sim.generator.effects=[door,lag_node]"` replaced the
+    # dataset behind `make run` and the champion, exit 0
+    import shutil
+
+    from conftest import ROOT
+
+    shutil.copytree(ROOT / "conf", tmp_path / "conf")
+    scenario = tmp_path / "conf" / "sim" / "yearround_spindle.yaml"      # a short default
+    scenario.write_text(scenario.read_text().replace("n_campaigns: 24 ", "n_campaigns: 3 "))
+    monkeypatch.setenv("THERMOCOMP_ROOT", str(tmp_path))
+    default = tmp_path / "data" / "raw" / "yearround_spindle"
+    assert main(["simulate", "track=false"]) == 0
+    made = {f.name: f.read_bytes() for f in default.iterdir()}
+    door = ["sim.generator.effects=[door,lag_node]"]
+    capsys.readouterr()
+    assert main(["simulate", "track=false", *door]) == 0
+    err = capsys.readouterr().err
+    assert {f.name: f.read_bytes() for f in default.iterdir()} == made       # untouched
+    (apart,) = [p for p in default.parent.iterdir() if p.is_dir() and p != default]
+    assert apart.name.startswith("yearround_spindle-") and f"to {apart} " in err
+    truth = json.loads(apart.with_name(f"{apart.name}.truth.json").read_text())
+    assert {e["name"] for e in truth["undeclared_effects"]} == {"door", "lag_node"}
+    assert "S_door" in pd.read_csv(next(apart.glob("K*.csv"))).columns
+    # the stages given the same overrides read it; without them, the default one
+    for overrides, read in ((door, apart), ([], default)):
+        assert main(["run", *overrides, f"out={tmp_path / 'o'}", *FAST]) == 0
+        assert f"reading {read}\n" in capsys.readouterr().err

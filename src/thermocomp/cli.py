@@ -56,7 +56,8 @@ Relative paths are resolved against the project root."""
 # stage -> (what it does, reads, writes, main overrides)
 STAGE_HELP = {
     "simulate": ("write a dataset from the built-in digital twin", "conf/sim/<scenario>.yaml",
-                 "data.path (default data/raw/<scenario>/) and <data.path>.truth.json",
+                 "data.path (default data/raw/<scenario>/; -<digest> with a changed sim.generator) "
+                 "and <data.path>.truth.json",
                  "sim=<scenario> seed=<int> data.path=<dir> \"sim.generator.effects=[door]\""),
     "init": ("detect a lab's file (or folder) and write the data config that reads it",
              "<file-or-folder> (data.path)", "<out>/conf/data/<name>.yaml; the `run` command to use",
