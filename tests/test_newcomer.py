@@ -195,3 +195,42 @@ def test_a_changed_generator_never_replaces_the_default_dataset(tmp_path, monkey
     for overrides, read in ((door, apart), ([], default)):
         assert main(["run", *overrides, f"out={tmp_path / 'o'}", *FAST]) == 0
         assert f"reading {read}\n" in capsys.readouterr().err
+
+
+def test_design_shows_its_progress_and_marks_the_what_ifs_beyond_the_travel(tmp_path, capsys,
+                                                                            monkeypatch):
+    # ~40 s without a word, then a best position set whose every strategy puts a ball outside
+    # the travel, recommended unmarked in the table, the findings and the figures
+    from thermocomp.volumetric import design_figures
+
+    drawn = {}
+
+    def keep(fig, path):
+        drawn[path.name] = {t.get_text() for ax in fig.axes for t in ax.texts} | {
+            t.get_text() for ax in fig.axes if ax.get_legend() for t in ax.get_legend().get_texts()}
+        return real(fig, path)
+
+    real = design_figures.save_figure
+    monkeypatch.setattr(design_figures, "save_figure", keep)
+    out = tmp_path / "d"
+    assert main(["-v", "design", "track=false", "design.n_machines=3", "design.n_jobs=1",
+                 "design.grid=[8,5,5]", "design.x_centres=[0.25,0.75]", f"out={out}",
+                 "design.studies={balls:null,misalignment:{n_balls:[5],misalignment_deg:[0,80],"
+                 "position_sets:[S2]},position_sets:{n_balls:[5],misalignment_deg:[80],"
+                 "position_sets:[S2,S1]}}"]) == 0
+    said = capsys.readouterr()
+    assert "design strategies" in said.err and "3/3" in said.err        # S2 at 80° is in both
+    report = json.loads((out / "design.json").read_text())
+    rows = {(r["position_set"], r["misalignment_deg"]): r["reachable"] for r in report["strategies"]}
+    assert rows == {("S2", 0.0): True, ("S2", 80.0): False, ("S1", 80.0): False}
+    table = [line for line in said.out.splitlines() if line.startswith(("S1 ", "S2 "))]
+    assert len(table) == 3
+    for line in table:
+        assert line.endswith("what-if") == (line.split()[2] == "80")
+    best = report["findings"]["best_position_set"]
+    assert best["reachable"] is False
+    (line,) = [ln for ln in said.out.splitlines() if ln.startswith("best position set")]
+    assert "what-if" in line
+    label = design_figures.WHAT_IF_LABEL
+    assert label in drawn["misalignment.png"] and label in drawn["position_sets.png"]
+    assert f"{best['position_set']} (what-if)" in drawn["position_sets.png"]
