@@ -234,3 +234,14 @@ def test_design_shows_its_progress_and_marks_the_what_ifs_beyond_the_travel(tmp_
     label = design_figures.WHAT_IF_LABEL
     assert label in drawn["misalignment.png"] and label in drawn["position_sets.png"]
     assert f"{best['position_set']} (what-if)" in drawn["position_sets.png"]
+
+
+def test_metrics_json_marks_persistence_as_needing_the_measured_error_online(tmp_path):
+    from test_hostile import make_dataset
+
+    data = make_dataset(tmp_path / "data")
+    assert main(["run", f"data.path={data}", f"out={tmp_path / 'o'}", *FAST]) == 0
+    targets = json.loads((tmp_path / "o" / "metrics.json").read_text())["targets"]
+    for figures in targets.values():
+        assert figures["persistence"]["needs_measured_error_online"] is True
+        assert "needs_measured_error_online" not in figures["test"]        # the model's own: no
