@@ -164,7 +164,8 @@ def test_serve_is_quiet_and_leaves_no_temp_folder_after_ctrl_c_or_sigterm(promot
     finally:
         stop_process_group(server) if server.poll() is None else None
         log.close()
-    assert list((tmp_path / "term" / "tmp").iterdir()) == []
+    assert list((tmp_path / "term" / "tmp").iterdir()) == [], (
+        list((tmp_path / "term" / "tmp").rglob("*")), (tmp_path / "term" / "serve.log").read_text())
 
 
 def test_a_changed_generator_never_replaces_the_default_dataset(tmp_path, monkeypatch, capsys):

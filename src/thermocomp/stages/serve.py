@@ -93,15 +93,19 @@ def _trusted_copy(model: str, uri: str) -> str:
 
     mlflow.set_tracking_uri(uri)    # the registry follows it (no process-wide registry URI:
                                     # it would outlive this call in a process that goes on)
-    local = None if model.startswith("models:/") else Path(model)
-    streaming = load_deployed(model, local)
-    # removed by serve() when the server ends, or here when it cannot be written
+    # one folder in the temp dir holds the model and whatever MLflow stages to write it (the
+    # temp dir pointed there meanwhile): serve() removes it when the server ends, this function
+    # when it cannot be written; a signal at any point leaves nothing else behind
     folder = Path(tempfile.mkdtemp(prefix="thermocomp-serve-"))
+    previous, tempfile.tempdir = tempfile.tempdir, str(folder)
     try:
-        return str(save_compensator(streaming, folder / "model"))
+        local = None if model.startswith("models:/") else Path(model)
+        return str(save_compensator(load_deployed(model, local), folder / "model"))
     except BaseException:
         shutil.rmtree(folder, ignore_errors=True)
         raise
+    finally:
+        tempfile.tempdir = previous
 
 
 def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
