@@ -57,7 +57,8 @@ Relative paths are resolved against the project root."""
 # stage -> (what it does, reads, writes, main overrides)
 STAGE_HELP = {
     "simulate": ("write a dataset from the built-in digital twin", "conf/sim/<scenario>.yaml",
-                 "data.path (default data/raw/<scenario>/) and <data.path>.truth.json",
+                 "data.path (default data/raw/<scenario>/; -<digest> with a changed sim.generator) "
+                 "and <data.path>.truth.json",
                  "sim=<scenario> seed=<int> data.path=<dir> \"sim.generator.effects=[door]\""),
     "init": ("detect a lab's file (or folder) and write the data config that reads it",
              "<file-or-folder> (data.path)", "<out>/conf/data/<name>.yaml; the `run` command to use",
@@ -89,7 +90,7 @@ STAGE_HELP = {
             "data.path=<dir> model=... select=... eval.mode=... out=<dir>; "
             "-m model=mlr,pcr select=all,pearson"),
     "compare": ("table of a sweep's child runs, best first", "the sweep's MLflow runs",
-                "compare.out: compare.csv, compare.md, compare.json",
+                "compare.out (default: the sweep's folder): compare.csv, compare.md, compare.json",
                 "compare.sweep=<dir|run id> compare.sort_by=val_rmse compare.target=E_Z"),
     "promote": ("register the best run's compensator, move @champion if better",
                 "the sweep's MLflow runs, data.path (the stream is checked on its train campaigns)",
@@ -457,7 +458,8 @@ def _log_folder(stage: str, cfg):
 
     def folder():
         if stage == "compare" and cfg.get("compare") is not None:
-            return resolve(cfg.compare.out)
+            out = cfg.compare.get("out")     # null: beside the sweep (set once it is known)
+            return resolve(out) if out is not None else None
         return resolve(cfg.out) if cfg.get("out") else None
     return folder
 

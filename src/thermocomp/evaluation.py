@@ -98,6 +98,8 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
             y = {c: predictions[c][0][t].to_numpy() for c in ids}
             out[t][key] = split_scores(y, {c: y[c] - pred[c][t].to_numpy() for c in ids}, 1.0,
                                        with_before_after=False)
+    for t in comp.targets_:     # a reference, not a compensator: a probe must be on the machine
+        out[t]["persistence"]["needs_measured_error_online"] = True
     return out, predictions
 
 

@@ -30,6 +30,9 @@ VAL_FIGURES = tuple(name for name, block, _ in HEADLINES["compare"]     # what r
                     if block == "deployed")
 VAL_PREFIX = "val_"
 HIGHER_IS_BETTER = {RMS_REDUCTION}
+BASELINE = "persistence (baseline)"
+# persistence predicts from the previous MEASURED error: a probe on the machine in service
+ONLINE_NOTE = "needs measured error online"
 
 
 def deployed_validation(m: Mapping) -> Mapping | None:
@@ -116,7 +119,7 @@ def baseline_rows(summaries: Sequence[Mapping | None]) -> list[dict]:
         if s is None:
             continue
         if not any(all(_same(s[f], r[f]) for f in FIGURES) for r in rows):
-            rows.append({"model": "persistence (baseline)", **s})
+            rows.append({"model": BASELINE, "needs_measured_error_online": True, **s})
     return rows
 
 
@@ -173,8 +176,8 @@ def beats(candidate: float | None, incumbent: float | None, criterion: str,
     return candidate < incumbent - min_improvement
 
 
-def to_markdown(table: pd.DataFrame, digits: int = 2) -> str:
-    """GitHub Markdown table (``n/a`` for missing figures); test columns headed ``test:``."""
+def _cells(table: pd.DataFrame, digits: int) -> pd.DataFrame:
+    """The table as text (``n/a`` for missing figures); test columns headed ``test:``."""
     shown = table.rename(columns={f: f"test:{f}" for f in FIGURES})
     def cell(v):                 # per cell: a column with a missing figure is of object dtype
         if v is None or (isinstance(v, float) and np.isnan(v)):
@@ -183,7 +186,38 @@ def to_markdown(table: pd.DataFrame, digits: int = 2) -> str:
 
     for c in shown.columns:
         shown[c] = [cell(v) for v in shown[c]]
-    return shown.fillna("n/a").to_markdown(index=False, disable_numparse=True)
+    return shown.fillna("n/a")
+
+
+def to_markdown(table: pd.DataFrame, digits: int = 2) -> str:
+    """GitHub Markdown table (``n/a`` for missing figures); test columns headed ``test:``."""
+    return _cells(table, digits).to_markdown(index=False, disable_numparse=True)
+
+
+def informative(table: pd.DataFrame) -> pd.DataFrame:
+    """``table`` without its columns that hold nothing in any row (all missing or empty)."""
+    empty = [c for c in table.columns
+             if all(v is None or (isinstance(v, float) and np.isnan(v)) or str(v).strip() == ""
+                    for v in table[c])]
+    return table.drop(columns=empty)
+
+
+def fit_width(table: pd.DataFrame, width: int, key: str = "run", digits: int = 2) -> str:
+    """Markdown tables of at most ``width`` characters a line (a column wider alone excepted):
+    the columns in blocks, one under the other, each led by the ``key`` column naming the rows."""
+    text = _cells(table, digits)
+    lead = [key] if key in text.columns else []
+
+    def render(columns):
+        return text[lead + columns].to_markdown(index=False, disable_numparse=True)
+
+    blocks: list[list[str]] = []
+    for c in (c for c in text.columns if c != key):
+        if blocks and max(map(len, render(blocks[-1] + [c]).splitlines())) <= width:
+            blocks[-1].append(c)
+        else:
+            blocks.append([c])
+    return "\n\n".join(render(b) for b in blocks)
 
 
 def ranked_by(table: pd.DataFrame, sort_by: str) -> dict:

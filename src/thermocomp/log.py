@@ -16,6 +16,7 @@ from __future__ import annotations
 
 import logging
 import os
+import re
 import shutil
 import sys
 import tempfile
@@ -80,6 +81,9 @@ def configure(level: str | None = None) -> None:
     logger.propagate = False
 
 
+_ANSI = re.compile(r"\x1b\[[0-9;]*[A-Za-z]")     # terminal colour codes
+
+
 @contextmanager
 def run_log(folder=None):
     """Log this stage run (DEBUG) to a temp ``thermocomp.log``; yields its path.
@@ -135,8 +139,8 @@ def warnings_logged():
         if key in seen:
             return
         seen.add(key)
-        logger.warning("%s: %s (%s:%d)", category.__name__, " ".join(str(message).split()),
-                       Path(filename).name, lineno)
+        text = " ".join(_ANSI.sub("", str(message)).split())   # MLflow colours its warnings
+        logger.warning("%s: %s (%s:%d)", category.__name__, text, Path(filename).name, lineno)
 
     with warnings.catch_warnings():
         warnings.showwarning = show

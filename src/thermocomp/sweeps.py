@@ -59,6 +59,16 @@ def parent_run_id(cfg: DictConfig, client) -> str:
     return run_id
 
 
+def sweep_folder(cfg: DictConfig, client, run_id: str) -> Path | None:
+    """The folder of the sweep ``run_id`` (``compare.sweep`` when a folder, else the folder its
+    parent run recorded in the ``sweep.dir`` tag), None when it is not on this machine."""
+    given = cfg.compare.get("sweep")
+    if given is not None and resolve(str(given)).is_dir():
+        return resolve(str(given))
+    recorded = retry_locked(client.get_run, run_id).data.tags.get("sweep.dir")
+    return resolve(recorded) if recorded and resolve(recorded).is_dir() else None
+
+
 def objective(metrics: dict, criterion: str = VAL_RMSE, target: str = "mean") -> float:
     """The number a search sweeper minimises for one run: ``criterion`` of ``target`` from the
     run's ``metrics.json`` (as :func:`sweep_rows` ranks it), NaN when the run has none.

@@ -60,6 +60,7 @@ import copy
 import json
 import tempfile
 import threading
+import warnings
 from collections import OrderedDict
 from pathlib import Path
 
@@ -250,7 +251,9 @@ def _pickled(streaming, folder: str) -> Path:
 def save_compensator(streaming: StreamingCompensator | AdaptiveCompensator, path,
                      input_example=None) -> Path:
     """Write the pyfunc model to a local folder (no tracking server): ``mlflow.pyfunc.load_model(path)``."""
-    with tempfile.TemporaryDirectory() as tmp:
+    with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():
+        # the signature is given: MLflow's "no input example" advice says nothing to a user
+        warnings.filterwarnings("ignore", message=".*input example was not provided")
         mlflow.pyfunc.save_model(str(path), input_example=input_example,
                                  **_model_kwargs(streaming, _pickled(streaming, tmp)))
     return Path(path)

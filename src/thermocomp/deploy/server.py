@@ -23,6 +23,7 @@ import numpy as np
 
 MAX_DEPTH = 32      # a table is nested 4 deep ({"dataframe_split": {"data": [[...]]}})
 ROWS_ENV, BODY_ENV = "THERMOCOMP_SERVE_MAX_ROWS", "THERMOCOMP_SERVE_MAX_BODY_BYTES"
+PARENT_ENV = "THERMOCOMP_SERVE_PARENT"   # `thermocomp serve`'s process: the server ends with it
 _STRING = re.compile(rb'"(?:[^"\\]|\\.)*"', re.S)
 _NOT_BRACKET = bytes(b for b in range(256) if b not in b"[]{}")
 
@@ -107,5 +108,9 @@ def scoring_app():
     """MLflow's scoring app for the model its environment names, behind :class:`RequestLimits`."""
     from mlflow.pyfunc import scoring_server
 
+    from ..lifetime import watch_parent
+
+    if os.environ.get(PARENT_ENV):     # a SIGKILLed `thermocomp serve` leaves no server behind
+        watch_parent(int(os.environ[PARENT_ENV]))
     model = scoring_server.load_model_with_mlflow_config(os.environ[scoring_server._SERVER_MODEL_PATH])
     return RequestLimits(scoring_server.init(model), int(os.environ[BODY_ENV]), int(os.environ[ROWS_ENV]))

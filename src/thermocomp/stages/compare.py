@@ -9,21 +9,26 @@ previous measured error as the prediction, read from the runs' metrics;
 ``baselines`` in ``compare.json``); ``compare.csv`` holds the ranked runs only.
 Printed (Markdown), saved as
 ``compare.csv``, ``compare.md`` and ``compare.json`` (a DVC metric) under
-``compare.out``, and logged as artifacts of the sweep's parent run.
+``compare.out`` (default: the sweep's folder), and logged as artifacts of the sweep's parent run.
 """
 
 from __future__ import annotations
 
+import shutil
+
 import pandas as pd
-from omegaconf import DictConfig
+from omegaconf import DictConfig, open_dict
 
 from ..errors import ConfigError
 from ..files import atomic_write_text, write_json
 from ..jsonsafe import json_safe
 from ..leaderboard import (
     FIGURES,
+    ONLINE_NOTE,
     VAL_FIGURES,
     baseline_rows,
+    fit_width,
+    informative,
     is_validation,
     rank,
     ranked_by,
@@ -33,11 +38,13 @@ from ..leaderboard import (
 from ..params import BOOLEAN, optional, text
 from ..paths import resolve
 from ..plotdata import write_compare
-from ..sweeps import parent_run_id, sweep_rows
+from ..sweeps import parent_run_id, sweep_folder, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
 from .apart import check_apart
 from .common import _check_writable, check_keys, say
+
+NO_SWEEP_FOLDER = "reports/compare"   # a sweep whose folder is not on this machine
 
 
 def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
@@ -52,7 +59,8 @@ def _json_table(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
             "best": {k: records[0][k] for k in ("run_id", "model", "select", *numeric)} if records else {},
             "runs": {f"{i:02d}_{r['run_id'][:8]}": {k: r[k] for k in numeric} for i, r in
                      enumerate(records)},
-            "baselines": json_safe([{k: b[k] for k in ("model", *FIGURES)} for b in baselines])}
+            "baselines": json_safe([{k: b[k] for k in ("model", "needs_measured_error_online", *FIGURES)}
+                                    for b in baselines])}
 
 
 def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
@@ -72,9 +80,13 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     out = resolve(out if out is not None else opts.out)
     baselines = baseline_rows(found)
     shown = table.drop(columns=["run_id"]).assign(run=table["run_id"].str[:8])
-    # the persistence baseline below the ranked runs (never ranked itself)
-    md = to_markdown(pd.concat([shown, pd.DataFrame(baselines, columns=shown.columns)],
-                               ignore_index=True) if baselines else shown)
+    # the persistence baseline below the ranked runs (never ranked itself), marked: it predicts
+    # from the measured error, which a compensator in service does not have
+    marked = pd.DataFrame([{**b, "model": f"{b['model']}: {ONLINE_NOTE}", "run": "baseline"}
+                           for b in baselines], columns=shown.columns)
+    # what holds nothing (e_p95_8h of campaigns under 8 h) is left out; compare.csv keeps it all
+    shown = informative(pd.concat([shown, marked], ignore_index=True) if baselines else shown)
+    md = to_markdown(shown)
     out.mkdir(parents=True, exist_ok=True)
     atomic_write_text(out / "compare.csv", table.to_csv(index=False))
     atomic_write_text(out / "compare.md", md + "\n")
@@ -88,15 +100,22 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
             else "a TEST figure, as asked: do not choose a model by it")
     print(f"sweep {parent_id}: {len(table)} runs, sorted by {opts.sort_by} "
           f"(target {opts.target}, {said}); test: columns are reported, not used to choose")
-    print(md)
+    print(fit_width(shown, shutil.get_terminal_size().columns))   # a terminal's width
     say(f"comparison: {out / 'compare.md'}")
     return table
 
 
 def compare(cfg: DictConfig) -> pd.DataFrame:
-    """`thermocomp compare`: the comparison table of ``compare.sweep`` (default: latest sweep)."""
+    """`thermocomp compare`: the comparison table of ``compare.sweep`` (default: latest sweep),
+    written to ``compare.out``, by default beside the sweep it reads."""
     if cfg.compare.get("out") is not None:
         check_apart(cfg, ("compare.out",), ())
         _check_writable("compare.out", cfg.compare.out, folder=True)
     client = mlflow_client(cfg)
-    return compare_sweep(cfg, parent_run_id(cfg, client))
+    parent_id = parent_run_id(cfg, client)
+    if cfg.compare.get("out") is None:
+        folder = sweep_folder(cfg, client, parent_id)
+        with open_dict(cfg):     # the log file follows (cli._log_folder)
+            cfg.compare.out = str(folder if folder is not None else resolve(NO_SWEEP_FOLDER))
+        _check_writable("compare.out", cfg.compare.out, folder=True)
+    return compare_sweep(cfg, parent_id)

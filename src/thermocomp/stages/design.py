@@ -24,6 +24,8 @@ from ..volumetric.calibration import prior_sd
 from ..volumetric.design import CalibrationDesignStudy, MachineFamily, strategies
 from .common import calibration_prior, check_config, say
 
+WHAT_IF = "what-if"      # the mark of a strategy beyond the travel (table, findings, figures)
+
 
 def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:
     """The study of the config, its studies, and where the set-up came from."""
@@ -126,7 +128,11 @@ def _print(report: dict) -> None:
     for r in report["strategies"]:
         print(f"{r['position_set']:<10} {r['n_balls']:>5} {r['misalignment_deg']:>6g} "
               f"{r['median']:>8.2f} {r['p95']:>7.2f} {_pct(r['improvement_pct']):>6} {r['n_identified']:>6} "
-              f"{r['noise_free_median']:>8.2f} {r['noise_only_median']:>6.2f}")
+              f"{r['noise_free_median']:>8.2f} {r['noise_only_median']:>6.2f}"
+              + ("  " + WHAT_IF if not r["reachable"] else ""))
+    if any(not r["reachable"] for r in report["strategies"]):
+        print(f"{WHAT_IF}: a ball outside the travel; studied, but no bar can be measured so "
+              "(reachable: false in design.json)")
     f = report["findings"]
     what_ifs = {study: sum(not r["reachable"] for r in report["strategies"] if study in r["studies"])
                 for study in ("balls", "misalignment", "position_sets")}
@@ -147,4 +153,6 @@ def _print(report: dict) -> None:
     if "best_position_set" in f:
         b = f["best_position_set"]
         print(f"best position set: {b['position_set']} (VCE {b['median']:.2f} µm, "
-              f"{b['n_probings']} probed points){caveat('position_sets')}")
+              f"{b['n_probings']} probed points)"
+              + (f" {WHAT_IF}: a ball outside the travel" if not b.get("reachable", True)
+                 else caveat("position_sets")))

@@ -171,6 +171,10 @@ def _publish(cfg: DictConfig, metrics: dict, out, tracker, clock: Clock) -> None
         tracker.log_artifacts(out / "plots", "plots")
     clock.lap("log")
     print(result.summary())
+    if "volumetric" in metrics:     # the 22 parameters above; what they add up to here
+        from ..volumetric.validation import headline_table
+
+        print("\n" + headline_table(metrics["volumetric"]))
     say(f"metrics: {path}")
     say(clock.line())
 

@@ -14,8 +14,9 @@ signed pickle (its own code never runs), with
 
 One worker: the served compensator keeps one stream state per ``session``
 parameter inside the serving process; several workers would each hold their
-own, and a session's samples would be split between them.  The process is
-replaced by the server (``exec``): stop it with Ctrl-C or SIGTERM.
+own, and a session's samples would be split between them.  The server runs as
+a child of ``thermocomp serve`` (it ends with it): stop it with Ctrl-C or SIGTERM;
+either way the model folder written for it in the temp dir is removed.
 
 Request: ``POST http://<host>:<port>/invocations`` with
 ``{"dataframe_split": {"columns": [...], "data": [[...]]}, "params": {"session": "machine-7",
@@ -26,6 +27,7 @@ from __future__ import annotations
 
 import math
 import os
+import shutil
 import sys
 from pathlib import Path
 
@@ -37,6 +39,8 @@ from ..paths import resolve
 from ..tracking import DEFAULT_URI, resolve_uri, retry_locked
 from .common import say
 from .rules import SERVE_RULES, check_keys
+
+QUIET_DOWNLOADS = "MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR"
 
 
 def _loopback(host: str) -> bool:
@@ -89,10 +93,19 @@ def _trusted_copy(model: str, uri: str) -> str:
 
     mlflow.set_tracking_uri(uri)    # the registry follows it (no process-wide registry URI:
                                     # it would outlive this call in a process that goes on)
-    local = None if model.startswith("models:/") else Path(model)
-    streaming = load_deployed(model, local)
-    # outlives this process (exec'd into the server); one small folder per serve in the temp dir
-    return str(save_compensator(streaming, Path(tempfile.mkdtemp(prefix="thermocomp-serve-")) / "model"))
+    # one folder in the temp dir holds the model and whatever MLflow stages to write it (the
+    # temp dir pointed there meanwhile): serve() removes it when the server ends, this function
+    # when it cannot be written; a signal at any point leaves nothing else behind
+    folder = Path(tempfile.mkdtemp(prefix="thermocomp-serve-"))
+    previous, tempfile.tempdir = tempfile.tempdir, str(folder)
+    try:
+        local = None if model.startswith("models:/") else Path(model)
+        return str(save_compensator(load_deployed(model, local), folder / "model"))
+    except BaseException:
+        shutil.rmtree(folder, ignore_errors=True)
+        raise
+    finally:
+        tempfile.tempdir = previous
 
 
 def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
@@ -108,6 +121,8 @@ def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
         logger.warning("serve.host=%s is not a loopback address: the model is reachable from the "
                        "network, without authentication", opts.host)
     uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
+    # a registered model comes down file by file: a progress line each, hundreds of them
+    os.environ.setdefault(QUIET_DOWNLOADS, "false")
     model = _trusted_copy(_check_model(str(opts.model), uri), uri)
     bin_dir = str(Path(sys.executable).parent)
     env = {**os.environ, "MLFLOW_TRACKING_URI": uri, "MLFLOW_REGISTRY_URI": uri,
@@ -122,10 +137,30 @@ def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
 
 
 def serve(cfg: DictConfig) -> None:
-    """Replace this process by the scoring server (see the module doc)."""
+    """Run the scoring server until it ends or this process is stopped (see the module doc)."""
+    import signal
+    import subprocess
+
+    from mlflow.pyfunc.scoring_server import _SERVER_MODEL_PATH
+    from mlflow.utils.file_utils import local_file_uri_to_path
+
+    from ..deploy.server import PARENT_ENV
+    from ..files import Terminated
+
     argv, env = serve_command(cfg)
-    say(f"serving {cfg.serve.model} on http://{cfg.serve.host}:{int(cfg.serve.port)}/invocations "
-        f"(one worker; store {env['MLFLOW_TRACKING_URI']})")
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os.execve(argv[0], argv, env)
+    folder = Path(local_file_uri_to_path(env[_SERVER_MODEL_PATH])).parent
+    try:
+        say(f"serving {cfg.serve.model} on http://{cfg.serve.host}:{int(cfg.serve.port)}/invocations "
+            f"(one worker; store {env['MLFLOW_TRACKING_URI']})")
+        sys.stdout.flush()
+        sys.stderr.flush()
+        server = subprocess.Popen(argv, env={**env, PARENT_ENV: str(os.getpid())})
+        try:
+            code = server.wait()
+        except (KeyboardInterrupt, Terminated):    # Ctrl-C, SIGTERM: the server stops, cleanly
+            server.terminate()
+            code = server.wait()
+    finally:    # the model folder written for it, whatever ended the server
+        shutil.rmtree(folder, ignore_errors=True)
+    if code not in (0, -signal.SIGTERM, -signal.SIGINT):
+        raise SystemExit(code if code > 0 else 1)

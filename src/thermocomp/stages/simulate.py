@@ -10,7 +10,7 @@ from omegaconf import DictConfig
 from ..build import build
 from ..errors import ConfigError
 from ..files import write_json
-from ..paths import resolve
+from ..paths import resolve, scenario_dataset
 from ..sim.scenario import write_scenario
 from ..tracking import stage_run
 from .common import _check_writable, say
@@ -36,6 +36,11 @@ def simulate(cfg: DictConfig) -> dict:
     truth_path = write_json(f"{path}.truth.json", truth)
     say(f"wrote {n_campaigns} campaigns, {rows} rows to {path} "
         f"({time.perf_counter() - t0:.1f} s); truth: {truth_path}")
+    folder = scenario_dataset(cfg)
+    if folder != cfg.sim.name and path.name == folder:     # data.path as conf/data says
+        say(f"sim.generator differs from conf/sim/{cfg.sim.name}.yaml: its dataset is kept apart "
+            f"from the scenario's ({path.with_name(str(cfg.sim.name))}); the stages given the same "
+            f"overrides read it, or data.path={path}")
     with stage_run(cfg, "simulate", default=False) as tr:   # logged only with track=true
         tr.log_metrics({"campaigns": n_campaigns, "rows": rows})
         tr.log_artifact(truth_path)

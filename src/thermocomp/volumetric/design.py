@@ -39,6 +39,7 @@ from joblib import delayed
 
 from ..lifetime import parallel
 from ..metrics import reduction_pct
+from ..progress import bar
 from .artefact import BallArray, Setup, check_reach, position_set
 from .identify import ArtefactCalibration
 from .kinematics import KinematicModel, Parameter, workspace_grid
@@ -292,7 +293,10 @@ class CalibrationDesignStudy:
         params = np.vstack([p[0] for p in parts])
         truth = np.concatenate([p[1] for p in parts])
         ve = _rms(truth)
-        done = jobs(delayed(_strategy)(self, s, st, params, truth) for s, st in enumerate(todo))
+        # as they finish, in order: a bar on a terminal (or at -v) over the long part
+        done = list(bar(parallel(self.n_jobs, return_as="generator")(
+            delayed(_strategy)(self, s, st, params, truth) for s, st in enumerate(todo)),
+            desc="design strategies", total=len(todo), unit="strategy"))
         vce = np.column_stack([d[0] for d in done])
         rows = [_row(st, vce[:, s], ve, member[st], done[s][1]) for s, st in enumerate(todo)]
         self.ve_, self.vce_, self.strategies_ = ve, vce, todo
@@ -358,5 +362,6 @@ def findings(rows: list[dict], ve_median: float) -> dict:
     if sets:
         best = min(sets, key=lambda r: r["median"])
         out["best_position_set"] = {"position_set": best["position_set"], "median": best["median"],
-                                    "n_probings": best["n_probings"]}
+                                    "n_probings": best["n_probings"],
+                                    "reachable": best.get("reachable", True)}   # else a what-if
     return out

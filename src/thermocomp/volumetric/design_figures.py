@@ -6,17 +6,29 @@ from pathlib import Path
 
 from ..plots import plt, save_figure
 
+WHAT_IF_LABEL = "what-if: a ball outside the travel"
+
+
+def _what_ifs(ax, x, rows) -> None:
+    """Ring the strategies no bar can be measured in (``reachable: false``)."""
+    out = [(xi, r["median"]) for xi, r in zip(x, rows) if not r.get("reachable", True)]
+    if out:
+        ax.scatter(*zip(*out), s=160, facecolors="none", edgecolors="red", linewidths=1.5,
+                   zorder=5, label=WHAT_IF_LABEL)
+
 
 def _band(ax, x, rows, label):
     med = [r["median"] for r in rows]
     ax.fill_between(x, [r["p5"] for r in rows], [r["p95"] for r in rows], alpha=0.2)
     ax.plot(x, med, "o-", label=f"{label} (median, 5-95 %)")
+    _what_ifs(ax, x, rows)
 
 
 def draw(folder, result: dict) -> list[Path]:
     """``balls.png`` (VCE vs balls), ``misalignment.png`` (VCE vs θ per set, with the VCE of
     the noise-free distances and of the noise alone) and
-    ``position_sets.png`` (VCE per set vs probed points), each with VE as a reference."""
+    ``position_sets.png`` (VCE per set vs probed points), each with VE as a reference and the
+    strategies beyond the travel ringed as what-ifs."""
     folder = Path(folder)
     rows, ve = result["strategies"], result["ve"]
     written = []
@@ -59,8 +71,10 @@ def draw(folder, result: dict) -> list[Path]:
         for r in sets:
             spread = [[r["median"] - r["p5"]], [r["p95"] - r["median"]]]
             ax.errorbar(r["n_probings"], r["median"], yerr=spread, fmt="o", capsize=3)
-            ax.annotate(r["position_set"], (r["n_probings"], r["median"]), textcoords="offset points",
+            ax.annotate(r["position_set"] + ("" if r.get("reachable", True) else " (what-if)"),
+                        (r["n_probings"], r["median"]), textcoords="offset points",
                         xytext=(4, 4), fontsize=8)
+        _what_ifs(ax, [r["n_probings"] for r in sets], sets)
         ax.axhline(ve["median"], color="k", ls="--", label="VE (median)")
         ax.set(xlabel="probed points (poses × balls)", ylabel="VCE (µm)",
                title="VCE per position set (median, 5-95 %)", ylim=(0, None))

@@ -171,3 +171,30 @@ def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarr
                         **models.get(name, {"n_inputs": 0, "ar": False})}
     out["parameters"] = params
     return out, curves
+
+
+def headline_table(section: dict) -> str:
+    """The printed headline of the ``volumetric`` section (what the per-parameter table above it
+    does not say): distance errors, VCE and the A.3 range, before -> after, µm."""
+    def row(label: str, block: dict | None, before="rms_before", after="rms_after"):
+        if not block or block.get(before) is None:
+            return None
+        red = reduction_pct(block[before], block[after])
+        return (f"{label:<58} {block[before]:>8.2f} -> {block[after]:>6.2f}  "
+                + (f"{red:>8.1f}%" if red is not None else "      n/a"))
+
+    truth = section.get("reference") == "truth"
+    grid = " x ".join(map(str, section["vce"].get("grid", [])))
+    a3 = section["iso_a3"]
+    lines = [f"volumetric: test split, {section['n_cycles']} cycles, µm (RMS of the change since each "
+             "campaign's first cycle)",
+             f"{'':<58} {'before':>8} -> {'after':>6}  {'reduction':>9}", "-" * 96,
+             row("distance errors", section["distance_error"]),
+             row(f"VCE on a {grid} grid (against the "
+                 f"{'simulated machine' if truth else 'identified parameters'})", section["vce"]),
+             row("VCE against the identified parameters", section.get("vce_identified")),
+             row("ISO 10791-10 A.3, Z on the table: mean slot range", a3, "range_before", "range_after"),
+             row("ISO 10791-10 A.3: max slot range", a3, "range_before_max", "range_after_max")]
+    if a3.get("range_before") is None:
+        lines.append(f"ISO 10791-10 A.3: n/a ({a3.get('reason')})")
+    return "\n".join(line for line in lines if line is not None)
