@@ -99,7 +99,7 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
             out[t][key] = split_scores(y, {c: y[c] - pred[c][t].to_numpy() for c in ids}, 1.0,
                                        with_before_after=False)
     for t in comp.targets_:     # a reference, not a compensator: a probe must be on the machine
-        out[t]["persistence"]["needs_measured_error_online"] = True
+        out[t][PERSISTENCE]["needs_measured_error_online"] = True
     return out, predictions
 
 

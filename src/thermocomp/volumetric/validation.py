@@ -176,7 +176,7 @@ def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarr
 def headline_table(section: dict) -> str:
     """The printed headline of the ``volumetric`` section (what the per-parameter table above it
     does not say): distance errors, VCE and the A.3 range, before -> after, µm."""
-    def row(label: str, block: dict | None, before="rms_before", after="rms_after"):
+    def row(label: str, block: dict | None, before=RMS_BEFORE, after=RMS_AFTER):
         if not block or block.get(before) is None:
             return None
         red = reduction_pct(block[before], block[after])
