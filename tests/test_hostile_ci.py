@@ -48,3 +48,30 @@ def test_the_postgresql_test_fails_instead_of_skipping_when_ci_requires_the_serv
     required = subprocess.run(args, env={**env, "THERMOCOMP_REQUIRE_SERVER": "1"},
                               capture_output=True, text=True, timeout=300, cwd=ROOT)
     assert required.returncode == 1 and "1 failed" in required.stdout, required.stdout[-2000:]
+
+
+# -- the README test's reading of README.md (tests/test_readme.py runs the commands; this checks
+# what it reads, without copying the venv) ----------------------------------------------------
+def test_the_readme_test_accounts_for_every_block_and_directive():
+    from test_readme import readme_blocks, unaccounted
+
+    assert unaccounted((ROOT / "README.md").read_text()) == []
+    ok = ("<!-- readme-test: expect E_Z -->\n```bash\nrun\n```\n"
+          "<!-- readme-test: output -->\n```\nE_Z 1\n```\n")
+    assert unaccounted(ok) == [] and [b["kind"] for b in readme_blocks(ok)] == ["expect", "output"]
+    detached = "<!-- readme-test: skip — slow -->\n\n```bash\nmake test\n```\n"
+    assert unaccounted(detached) == ["line 1: directive not on the line before a block"]
+    for lang in ("sh", "console"):
+        assert unaccounted(f"```{lang}\nthermocomp run\n```\n") == [
+            f"line 1: a ```{lang} block is never run: write ```bash"]
+    assert unaccounted("<!-- readme-test: output -->\n```\nE_Z 1\n```\n") == [
+        "line 1: output goes on an unlabelled block after a command block"]
+
+
+def test_the_readme_test_checks_every_row_of_a_printed_table():
+    from test_readme import missing_lines
+
+    table = "target  RMSE\nE_X     0.75\nE_Y     1.42\n"
+    printed = "[thermocomp] reading\ntarget RMSE\nE_X   0.75\nE_Y   1.42\n[thermocomp] done\n"
+    assert missing_lines(table, printed) == []
+    assert missing_lines(table, printed.replace("1.42", "1.43")) == ["E_Y     1.42"]   # not row 1
