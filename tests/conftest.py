@@ -17,6 +17,15 @@ BIN = Path(sys.executable).parent
 # the test-local estimators a config may build (thermocomp.build): an environment setting
 os.environ.setdefault("THERMOCOMP_TARGETS", "test_deploy.,test_tracking.")
 
+# The fast overrides, one home: what a CLI call in a test switches off when none of its
+# assertions is about it.  UNTRACKED: no MLflow run; LIGHT: the report extras (figures, one
+# refit per campaign for mutual prediction, the ATI baselines, the ISO 10791-10 A.3 test);
+# FAST: both and no validation folds.
+UNTRACKED = ("track=false",)
+LIGHT = ("plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
+         "eval.iso10791_a3=false")
+FAST = (*UNTRACKED, *LIGHT, "eval.validation=false")
+
 
 def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.CompletedProcess:
     """Run the installed console command (the real entry point, real exit status)."""
@@ -152,7 +161,7 @@ def poisoned_copy(src: Path, dest: Path, scale: float = -50.0, offset: float = 1
 def paths(tmp_path):
     """The hostile matrix's small dataset (``test_hostile.make_dataset``) and where a run writes
     (``out``, ``interim``, ``model``), with the command-line arguments naming them (``args``)."""
-    from test_hostile import FAST, make_dataset
+    from test_hostile import make_dataset
 
     ds = make_dataset(tmp_path / "ds")
     p = {"ds": ds, "out": tmp_path / "reports" / "out", "interim": tmp_path / "interim",
@@ -162,12 +171,39 @@ def paths(tmp_path):
     return p
 
 
+# -- the catalogue of simulated datasets: each built once per test process (an xdist worker)
+# and shared by every module that asks for it.  Read-only for the tests: copy one to change it.
+SHORT = ("sim.generator.n_campaigns=9", "sim.generator.duration_h=[2.0,3.0]")  # 6 train, 3 test
+
+
+def _simulate(tmp_path_factory, name: str, *overrides: str) -> Path:
+    path = tmp_path_factory.mktemp("catalogue") / name
+    thermocomp("simulate", f"data.path={path}", *UNTRACKED, *overrides)
+    return path
+
+
 @pytest.fixture(scope="session")
 def default_dataset(tmp_path_factory) -> Path:
     """The default year-round scenario at its default size."""
-    path = tmp_path_factory.mktemp("sim") / "yearround_spindle"
-    thermocomp("simulate", f"data.path={path}", "track=false")
-    return path
+    return _simulate(tmp_path_factory, "yearround_spindle")
+
+
+@pytest.fixture(scope="session")
+def door_dataset(tmp_path_factory) -> Path:
+    """The default scenario with an undeclared door signal ``S_door`` (default size)."""
+    return _simulate(tmp_path_factory, "door", "sim.generator.effects=[door]")
+
+
+@pytest.fixture(scope="session")
+def short_dataset(tmp_path_factory) -> Path:
+    """9 short year-round campaigns (6 train, 3 test)."""
+    return _simulate(tmp_path_factory, "clean", *SHORT)
+
+
+@pytest.fixture(scope="session")
+def short_door_dataset(tmp_path_factory) -> Path:
+    """9 short year-round campaigns (6 train, 3 test) with an undeclared door signal ``S_door``."""
+    return _simulate(tmp_path_factory, "door", *SHORT, "sim.generator.effects=[door]")
 
 
 def dvc(*args: str, cwd, env) -> subprocess.CompletedProcess:

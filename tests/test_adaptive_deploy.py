@@ -41,13 +41,9 @@ def _compose(*overrides):
 
 
 @pytest.fixture(scope="session")
-def faulty(tmp_path_factory):
+def faulty(short_door_dataset, tmp_path_factory):
     """``(path, {"jump": (campaign, sensor, first faulty row), "dropout": (...), "healthy": id})``."""
-    root = tmp_path_factory.mktemp("adaptive")
-    clean = root / "clean"
-    thermocomp("simulate", f"data.path={clean}", "track=false", "sim.generator.n_campaigns=9",
-               "sim.generator.duration_h=[2.0,3.0]", "sim.generator.effects=[door]")
-    path = root / "faulty"
+    clean, path = short_door_dataset, tmp_path_factory.mktemp("adaptive") / "faulty"
     shutil.copytree(clean, path)
     manifest = pd.read_csv(path / "campaigns.csv")
     test = manifest[manifest["split"] == "test"]

@@ -15,13 +15,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import LIGHT
 from test_deploy import mlflow_store
 from thermocomp import leaderboard
 from thermocomp.cli import main
 from thermocomp.leaderboard import rank, summary
 
-LIGHT = ["plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
-         "eval.iso10791_a3=false"]
 INPUTS = {"fast": "[T_1]", "slow": "[T_2]"}
 
 

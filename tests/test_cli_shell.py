@@ -12,14 +12,11 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from conftest import ROOT
+from conftest import FAST, ROOT
 from thermocomp import log
 from thermocomp.callbacks import sweep_size
 from thermocomp.cli import lenient, main
 from thermocomp.progress import bar
-
-FAST = ["track=false", "plots=none", "eval.validation=false", "eval.mutual_prediction=false",
-        "eval.ati_baselines=false"]
 
 
 def _errors(capsys) -> list[str]:

@@ -10,12 +10,11 @@ import pickle
 import numpy as np
 import pytest
 
-from conftest import thermocomp
+from conftest import LIGHT, UNTRACKED, thermocomp
 
 pytestmark = pytest.mark.slow
 
-FAST = ["track=false", "plots=none", "eval.mutual_prediction=false",
-        "eval.ati_baselines=false"]
+FAST = [*UNTRACKED, *LIGHT]   # validation kept
 
 
 @pytest.fixture(scope="session")

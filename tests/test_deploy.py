@@ -17,6 +17,7 @@ import pandas as pd
 import pytest
 from sklearn.base import BaseEstimator, RegressorMixin
 
+from conftest import LIGHT
 from thermocomp.compensator import Compensator
 from thermocomp.context import SideInputs, groups_of, values
 from thermocomp.deploy import (
@@ -121,8 +122,7 @@ def write_small_dataset(path, seed=0, k=6, n_test=2, **kw):
 
 
 # The figures the sweep/promote tests need, without the report extras (keeps the jobs short).
-LIGHT_EVAL = ("plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
-              "eval.iso10791_a3=false")
+LIGHT_EVAL = LIGHT   # conftest: one home of the fast overrides
 _TEMPLATE: dict[str, Path] = {}
 
 

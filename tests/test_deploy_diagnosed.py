@@ -11,9 +11,8 @@ from thermocomp.deploy.streaming import StreamingCompensator, streaming_deviatio
 pytestmark = pytest.mark.slow
 
 
-def test_diagnosed_model_streams_exactly_as_it_predicts(tmp_path):
-    data, out = tmp_path / "door", tmp_path / "out"
-    thermocomp("simulate", "sim.generator.effects=[door]", f"data.path={data}", "track=false")
+def test_diagnosed_model_streams_exactly_as_it_predicts(door_dataset, tmp_path):
+    data, out = door_dataset, tmp_path / "out"
     thermocomp("diagnose", f"data.path={data}", f"out={out}", "track=false")
     thermocomp("run", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]", "experiment=diagnosed",
                f"data.path={data}", f"out={out / 'rerun'}", "track=false",

@@ -6,19 +6,16 @@ import json
 
 import pytest
 
-from conftest import thermocomp
+from conftest import LIGHT, thermocomp
 
 pytestmark = pytest.mark.slow
 
-QUIET_EVAL = ["plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
-              "eval.iso10791_a3=false"]
+QUIET_EVAL = LIGHT
 
 
 @pytest.fixture(scope="session")
-def door(tmp_path_factory):
-    root = tmp_path_factory.mktemp("diag")
-    data = root / "door"
-    thermocomp("simulate", f"data.path={data}", "track=false", "++sim.generator.effects=[door]")
+def door(door_dataset, tmp_path_factory):
+    root, data = tmp_path_factory.mktemp("diag"), door_dataset
     out = root / "out"
     uri = f"sqlite:///{root / 'mlruns' / 'mlflow.db'}"
     proc = thermocomp("diagnose", f"data.path={data}", f"out={out}", f"tracking_uri={uri}",

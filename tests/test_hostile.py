@@ -19,15 +19,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import refused
+from conftest import FAST, refused
 from thermocomp import files
 from thermocomp.cli import main
 from thermocomp.io import load_interim, read_dataset
 from thermocomp.stages import STAGES
 
 CAMPAIGNS = (("K01", "train"), ("K02", "train"), ("K03", "train"), ("K04", "test"))
-FAST = ["track=false", "plots=none", "eval.validation=false", "eval.mutual_prediction=false",
-        "eval.ati_baselines=false"]
 
 
 def make_dataset(root: Path, rows: int = 30, gain: float = 3.0) -> Path:

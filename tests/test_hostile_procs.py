@@ -23,14 +23,12 @@ import psutil
 import pytest
 
 import thermocomp
-from conftest import refused
+from conftest import LIGHT, refused
 from conftest import thermocomp as tc
 from test_hostile import FAST, make_dataset, snapshot
 from thermocomp.cli import main
 
 SRC = Path(thermocomp.__file__).resolve().parents[1]
-LIGHT = ["plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
-         "eval.iso10791_a3=false"]
 UNTRACKED = [a for a in FAST if not a.startswith("track=")]
 
 

@@ -18,7 +18,7 @@ import pytest
 from hydra.utils import instantiate
 from omegaconf import OmegaConf
 
-from conftest import ROOT
+from conftest import ROOT, UNTRACKED
 from thermocomp import io
 from thermocomp.cli import _compose, main
 from thermocomp.compensator import Compensator
@@ -28,7 +28,7 @@ from thermocomp.errors import ConfigError
 from thermocomp.monitor import STATES, AdaptiveCompensator
 from thermocomp.stages.monitor import _stream
 
-FAST = ["track=false", "plots=none"]
+FAST = [*UNTRACKED, "plots=none"]
 
 
 @pytest.fixture(scope="session")

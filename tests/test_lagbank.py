@@ -193,13 +193,10 @@ def test_bad_parameters_raise_parameter_error(params):
 
 
 @pytest.fixture(scope="session")
-def small_data(tmp_path_factory):
+def small_data(short_dataset, tmp_path_factory):
     """9 short campaigns (6 train, 3 test) and a copy whose test campaigns' errors are poisoned."""
     root = tmp_path_factory.mktemp("lagbank")
-    clean = root / "clean"
-    thermocomp("simulate", f"data.path={clean}", "track=false", "sim.generator.n_campaigns=9",
-               "sim.generator.duration_h=[2.0,3.0]")
-    return root, clean, poisoned_copy(clean, root / "poisoned")
+    return root, short_dataset, poisoned_copy(short_dataset, root / "poisoned")
 
 
 @pytest.mark.slow

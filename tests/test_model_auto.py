@@ -14,13 +14,11 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import refused
+from conftest import FAST, refused
 from test_hostile import snapshot
 from thermocomp.cli import main
 
 SPLITS = ("train",) * 6 + ("test",) * 2
-FAST = ["track=false", "plots=none", "eval.validation=false", "eval.mutual_prediction=false",
-        "eval.ati_baselines=false", "eval.iso10791_a3=false"]
 PAIR = "model.candidates=[mlr,lagbank]"
 
 

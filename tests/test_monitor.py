@@ -142,11 +142,7 @@ def test_a_fault_on_the_most_influential_sensor_is_reported_bounded_and_compensa
         m = measured[cid][adaptive.targets_].to_numpy()
         healthy, _ = _stream(adaptive, df)
         ratios.append(np.sqrt(np.mean((m - y) ** 2, 0)) / np.sqrt(np.mean((m - healthy) ** 2, 0)))
-    worst = float(np.max(ratios))
-    if kind == "drift" and worst > 1.5:
-        pytest.xfail(f"known gap: a 1 K/h drift costs {worst:.2f}x the healthy RMSE before it "
-                     "leaves the band (coupled motor sensors)")
-    assert worst <= 1.5, worst
+    assert np.max(ratios) <= 1.5, (kind, ratios)   # drift too: no runtime xfail hiding a regression
 
 
 # Faults of other shapes and sizes than the simulator's (off our happy path): each on the most
@@ -277,22 +273,22 @@ def test_an_offset_inside_the_band_moves_the_correction_by_the_reported_cost_and
 
 def test_freeze_and_drift_are_reported_within_10_samples_of_becoming_observable(deployed):
     adaptive, comp, test, sensor = deployed
-    for kind in ("freeze", "drift"):
+    mon = adaptive.monitor
+    j = mon.names.index(sensor)
+    checked = {"freeze": 0, "drift": 0}
+    for kind in checked:
         for cid, df in test.items():
             faulty, k0 = _faulty(df, sensor, kind)
-            healthy, _ = _stream(adaptive, df)
-            mon = adaptive.monitor
-            j = mon.names.index(sensor)
             # observable: the sensor's reading departs from the healthy one by the warning band
             dev = np.abs(faulty[sensor].to_numpy() - df[sensor].to_numpy())
-            if kind == "freeze":
-                dev = np.abs(df[sensor].to_numpy() - df[sensor].to_numpy()[k0]) * (np.arange(len(df)) >= k0)
             seen = np.flatnonzero(dev >= mon.warning_c[j])
-            if not len(seen):
+            if not len(seen):                  # a freeze on a campaign whose sensor stays put
                 continue
             _, events = _stream(adaptive, faulty)
             mine = [e for e in events if e["sensor"] == sensor or e["to"] == "excluded"]
             assert mine and mine[0]["row"] - seen[0] <= 10, (cid, kind, seen[0], mine[:2])
+            checked[kind] += 1
+    assert all(checked.values()), checked      # each kind judged on some campaign, not skipped
 
 
 @pytest.mark.parametrize("sensor, kind, bound", [

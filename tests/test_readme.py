@@ -8,7 +8,12 @@ HTML comment on the line before it says otherwise:
 - ``<!-- readme-test: background <host>:<port> -->``: started in the background (a server);
   the next blocks run once the port accepts connections, and it is stopped at the end;
 - ``<!-- readme-test: expect <regex> -->``: the block's output must match ``regex``;
-- ``<!-- readme-test: file <path> -->`` before a ``yaml`` block: written to ``<path>``.
+- ``<!-- readme-test: file <path> -->`` before a ``yaml`` block: written to ``<path>``;
+- ``<!-- readme-test: output -->`` before an unlabelled block: a table the last command block
+  printed, every line of it (whitespace aside), not just one row.
+
+A directive must stand on the line right before its block (one not attached to a block fails),
+and shell blocks are ``bash`` (an ``sh``/``shell``/``console`` block would not be run: it fails).
 
 So the README cannot drift from what the commands do: a renamed override, a moved output or a
 command that needs an activated venv fails here.
@@ -32,19 +37,57 @@ from conftest import ROOT
 
 pytestmark = pytest.mark.slow
 
-BLOCK = re.compile(r"(?:<!--\s*readme-test:\s*(?P<directive>.*?)\s*-->\s*\n)?"
-                   r"```(?P<lang>bash|yaml)\n(?P<body>.*?)```", re.S)
+BLOCK = re.compile(r"(?:<!--[ \t]*readme-test:[ \t]*(?P<directive>[^\n]*?)[ \t]*-->[ \t]*\n)?"
+                   r"^```(?P<lang>[\w-]*)[ \t]*\n(?P<body>.*?)^```[ \t]*$", re.S | re.M)
+DIRECTIVE = re.compile(r"<!--\s*readme-test:")
+KINDS = {"run", "skip", "background", "expect", "file", "output"}
+UNRUN_SHELLS = {"sh", "shell", "console", "zsh", "shell-session"}
 
 
 def readme_blocks(text: str) -> list[dict]:
-    """The fenced bash/yaml blocks of ``text`` with their directive (kind, argument)."""
+    """The fenced blocks of ``text`` with their language and directive (kind, argument); an
+    unlabelled block without a directive is prose (kind ``text``)."""
     blocks = []
     for m in BLOCK.finditer(text):
         directive = (m["directive"] or "").strip()
         kind, _, arg = directive.partition(" ")
-        blocks.append({"lang": m["lang"], "body": m["body"], "kind": kind or "run",
-                       "arg": arg.strip(), "line": text[:m.start()].count("\n") + 1})
+        blocks.append({"lang": m["lang"], "body": m["body"], "arg": arg.strip(),
+                       "kind": kind or ("run" if m["lang"] == "bash" else "text"),
+                       "line": text[:m.start()].count("\n") + 1,
+                       "directive_line": text[:m.start()].count("\n") + 1 if directive else None})
     return blocks
+
+
+def unaccounted(text: str) -> list[str]:
+    """What the README test would silently pass over: directives on no block, shell blocks it
+    would not run, unknown directives, skips without a reason, output tables after no command."""
+    blocks = readme_blocks(text)
+    attached = {b["directive_line"] for b in blocks}
+    problems = [f"line {n}: directive not on the line before a block"
+                for n, line in enumerate(text.splitlines(), 1)
+                if DIRECTIVE.search(line) and n not in attached]
+    last_command = None
+    for b in blocks:
+        where = f"line {b['line']}"
+        if b["lang"] in UNRUN_SHELLS:
+            problems.append(f"{where}: a ```{b['lang']} block is never run: write ```bash")
+        if b["kind"] not in KINDS | {"text"}:
+            problems.append(f"{where}: unknown directive {b['kind']!r}")
+        if b["kind"] == "skip" and not b["arg"]:
+            problems.append(f"{where}: a skipped block needs a reason")
+        if b["lang"] == "yaml" and b["kind"] not in ("file", "skip"):
+            problems.append(f"{where}: yaml needs file/skip")
+        if b["kind"] == "output" and (b["lang"] or last_command is None):
+            problems.append(f"{where}: output goes on an unlabelled block after a command block")
+        if b["lang"] == "bash" and b["kind"] in ("run", "expect"):   # skipped ones print nothing
+            last_command = b["kind"]
+    return problems
+
+
+def missing_lines(table: str, output: str) -> list[str]:
+    """The lines of ``table`` that are no line of ``output`` (runs of spaces compared as one)."""
+    printed = {" ".join(line.split()) for line in output.splitlines()}
+    return [line for line in table.splitlines() if line.strip() and " ".join(line.split()) not in printed]
 
 
 def _project_files() -> list[Path]:
@@ -107,14 +150,9 @@ def _wait_port(host: str, port: int, proc: subprocess.Popen, timeout: float = 18
 
 
 def test_readme_blocks_are_all_accounted_for():
-    blocks = readme_blocks((ROOT / "README.md").read_text())
-    kinds = {b["kind"] for b in blocks}
-    assert kinds <= {"run", "skip", "background", "expect", "file"}, kinds
-    for b in blocks:
-        if b["kind"] == "skip":
-            assert b["arg"], f"README line {b['line']}: a skipped block needs a reason"
-        if b["lang"] == "yaml":
-            assert b["kind"] in ("file", "skip"), f"README line {b['line']}: yaml needs file/skip"
+    text = (ROOT / "README.md").read_text()
+    assert not unaccounted(text), unaccounted(text)
+    blocks = readme_blocks(text)
     assert sum(b["kind"] != "skip" and b["lang"] == "bash" for b in blocks) >= 8
 
 
@@ -123,11 +161,15 @@ def test_readme_commands_as_written(tmp_path):
     home = tmp_path / "home"
     home.mkdir()
     env = _user_env(home)
-    background, log = [], []
+    background, log, output = [], [], ""
     try:
         for b in readme_blocks((ROOT / "README.md").read_text()):
             where = f"README.md line {b['line']}"
-            if b["kind"] == "skip":
+            if b["kind"] == "output":
+                missing = missing_lines(b["body"], output)
+                assert not missing, f"{where}: not printed by the command before it: {missing}\n{output}"
+                continue
+            if b["kind"] in ("skip", "text"):
                 continue
             if b["lang"] == "yaml":
                 target = clone / b["arg"]

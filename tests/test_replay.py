@@ -32,12 +32,10 @@ TOLERANCE_UM = 1e-6
 
 
 @pytest.fixture(scope="session")
-def door_data(tmp_path_factory):
-    """9 short year-round campaigns (6 train, 3 test) with an undeclared door signal S_door."""
-    path = tmp_path_factory.mktemp("replay") / "door"
-    thermocomp("simulate", f"data.path={path}", "track=false", "sim.generator.n_campaigns=9",
-               "sim.generator.duration_h=[2.0,3.0]", "sim.generator.effects=[door]")
-    return path
+def door_data(short_door_dataset):
+    """9 short year-round campaigns (6 train, 3 test) with an undeclared door signal S_door
+    (the conftest catalogue)."""
+    return short_door_dataset
 
 
 @lru_cache(maxsize=2)

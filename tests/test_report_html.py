@@ -53,12 +53,11 @@ class Page(HTMLParser):
 
 
 @pytest.fixture(scope="session")
-def report(tmp_path_factory):
+def report(door_dataset, tmp_path_factory):
     """A diagnosis of three targets (a planted door: an accepted effect on E_Y and E_Z; E_X has
     none that clears the family-wise bar)."""
     root = tmp_path_factory.mktemp("report")
-    data, out = root / "door", root / "out"
-    thermocomp("simulate", f"data.path={data}", "track=false", "++sim.generator.effects=[door]")
+    data, out = door_dataset, root / "out"
     thermocomp("diagnose", f"data.path={data}", f"out={out}", "track=false", "diagnose.max_effects=1")
     folder = out / "diagnosis"
     targets = sorted(p.stem.removeprefix("diagnosis_") for p in folder.glob("diagnosis_*.json"))

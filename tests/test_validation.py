@@ -109,6 +109,7 @@ def test_forward_chaining_on_one_record_never_looks_ahead():
 
 
 def test_shared_forward_chaining_validates_the_second_half_like_lagbank():
+    from thermocomp.evaluation import _forward_folds
     from thermocomp.model_selection import ForwardChaining
     from thermocomp.models import lagbank
 
@@ -119,10 +120,16 @@ def test_shared_forward_chaining_validates_the_second_half_like_lagbank():
     assert held[-1] == 100 and np.all(np.diff(held) == 1) and held[0] >= 50   # the second half
     for tr, te in shared:
         assert tr[-1] + 3 < te[0] and tr[0] == 0 and len(tr) >= 50 - 3       # gap, expanding
-    theirs = list(lagbank.ForwardChaining(4, gap=3, min_train_fraction=0.5).split(X))
-    for (a, b), (c, d) in zip(shared, theirs):
-        np.testing.assert_array_equal(a, c)
-        np.testing.assert_array_equal(b, d)
+    # the validation report's folds of one record hold out the blocks LagBank's own CV holds
+    # out (its splitter on one campaign, at the report's gap), and fit on the rows before them
+    folds = _forward_folds({"K00": pd.DataFrame(X)}, 4)
+    gap = folds[0][3]
+    theirs = list(lagbank.default_splitter(None, 101, gap, n_splits=4).split(X))
+    assert len(folds) == len(theirs) == 4
+    for (fit, _, parts, _), (tr, te) in zip(folds, theirs):
+        (_, a, b), = parts.values()
+        assert (a, b) == (te[0], te[-1] + 1) and fit["K00"] == tr[-1] + 1
+    assert folds[0][2]["K00#1"][1] >= 50                                    # the second half
 
 
 # -- the acceptance's poisoning test, through the CLI ----------------------------------------
