@@ -58,6 +58,20 @@ def test_a_sweep_without_its_extra_names_it_before_any_job(tmp_path, capsys, mon
     assert not (tmp_path / "sweep").exists()
 
 
+def test_a_postgresql_store_without_psycopg2_names_the_team_extra(tmp_path, capsys, monkeypatch):
+    import socket
+
+    data = make_dataset(tmp_path / "ds")
+    _hide(monkeypatch, "psycopg2")
+    with socket.socket() as server:          # a port that answers, as a database server's would
+        server.bind(("127.0.0.1", 0))
+        server.listen()
+        uri = f"postgresql+psycopg2://u@127.0.0.1:{server.getsockname()[1]}/db"
+        refused(["run", f"data.path={data}", f"out={tmp_path / 'out'}", *FAST, "track=true",
+                 f"tracking_uri={uri}"], capsys, "psycopg2", "'.[team]'")
+    assert not (tmp_path / "out").exists()
+
+
 def test_a_launcher_config_of_a_missing_plugin_names_its_extra():
     from hydra.errors import MissingConfigException
 
