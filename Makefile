@@ -3,30 +3,41 @@ PY      ?= python3
 VENV    := .venv
 BIN     := $(VENV)/bin
 STAMP   := $(VENV)/.installed
+CORE    := $(VENV)/.installed-core
 
-.PHONY: run test install benchmark clean team-test
+.PHONY: run test install docs benchmark clean team-test
 
 # Each install step says what it does and how long it took; pip shows its own progress bars.
 STEP = @step() { echo "[install] $$1 ..."; s=$$(date +%s); shift; "$$@" || exit $$?; \
 	echo "[install] done in $$(( $$(date +%s) - s )) s"; }; step
 
-$(STAMP): pyproject.toml requirements.lock
+# The core (pip install -e .) is what `make run` needs; `make install` / `make test` add every
+# extra (.[test]: lstm, pipeline, scale, team, docs + pytest, ruff); see docs/install.md.
+$(CORE): pyproject.toml requirements.lock
 	$(STEP) "virtual environment $(VENV)" sh -c 'test -x $(BIN)/python || $(PY) -m venv $(VENV)'
 	$(STEP) "pip" $(BIN)/python -m pip install --progress-bar on --upgrade "pip>=24"
+	$(STEP) "thermocomp, the core (the long step)" \
+		$(BIN)/python -m pip install --progress-bar on -c requirements.lock -e .
+	touch $(CORE)
+
+$(STAMP): $(CORE)
 	# torch first and alone: the CPU wheel of exactly this version is on disk.
 	$(STEP) "torch (CPU)" $(BIN)/python -m pip install --progress-bar on torch==2.13.0
-	$(STEP) "thermocomp and its dependencies (the long step)" \
+	$(STEP) "the extras and the test tools" \
 		$(BIN)/python -m pip install --progress-bar on -c requirements.lock -e ".[test]"
 	touch $(STAMP)
 
 install: $(STAMP)
 
-run: $(STAMP)
+run: $(CORE)
 	$(BIN)/thermocomp simulate
 	$(BIN)/thermocomp run
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q -n 2 --dist loadfile   # 2 workers (pytest-xdist), a module's tests on one: its fixtures built once
+
+docs: $(STAMP)
+	$(BIN)/mkdocs build --strict   # the docs site -> site/ (`$(BIN)/mkdocs serve` to browse)
 
 benchmark: $(STAMP)
 	for b in benchmarks/bench_*.py; do echo "== $$b"; $(BIN)/python $$b || exit 1; done
@@ -36,4 +47,4 @@ team-test: $(STAMP)
 	trap '.ci/team-server stop' EXIT; team_env=$$(.ci/team-server start) && eval "$$team_env" && THERMOCOMP_REQUIRE_SERVER=1 $(BIN)/python -m pytest -q tests/test_team.py
 
 clean:
-	rm -rf $(VENV) outputs reports models data/interim data/raw
+	rm -rf $(VENV) outputs reports models data/interim data/raw site

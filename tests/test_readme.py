@@ -1,6 +1,9 @@
-"""The README's commands, run exactly as written, in a fresh copy of the project.
+"""The commands of the README and the docs pages, run exactly as written, in a fresh copy of the
+project.
 
-Every fenced ``bash`` block of README.md is run, in order, by ``bash -euo pipefail`` from the
+Every fenced ``bash`` block of README.md, then of each page of the docs site in the order of
+``mkdocs.yml``'s ``nav`` (:func:`pages`; a page may use what an earlier one made), is run, in
+order, by ``bash -euo pipefail`` from the
 root of a scratch clone whose ``.venv`` is NOT activated (``PATH`` has no venv in it), unless an
 HTML comment on the line before it says otherwise:
 
@@ -15,8 +18,8 @@ HTML comment on the line before it says otherwise:
 A directive must stand on the line right before its block (one not attached to a block fails),
 and shell blocks are ``bash`` (an ``sh``/``shell``/``console`` block would not be run: it fails).
 
-So the README cannot drift from what the commands do: a renamed override, a moved output or a
-command that needs an activated venv fails here.
+So the README and the docs cannot drift from what the commands do: a renamed override, a moved
+output or a command that needs an activated venv fails here.
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ import time
 from pathlib import Path
 
 import pytest
+import yaml
 
 from conftest import ROOT
 
@@ -90,6 +94,26 @@ def missing_lines(table: str, output: str) -> list[str]:
     return [line for line in table.splitlines() if line.strip() and " ".join(line.split()) not in printed]
 
 
+def pages() -> list[Path]:
+    """README.md, then the docs site's pages in the order of ``mkdocs.yml``'s ``nav``."""
+    def flat(nav) -> list[str]:
+        items = nav if isinstance(nav, list) else [nav]
+        out = []
+        for item in items:
+            value = next(iter(item.values())) if isinstance(item, dict) else item
+            out += flat(value) if isinstance(value, list) else [value]
+        return out
+
+    nav = yaml.safe_load((ROOT / "mkdocs.yml").read_text())["nav"]
+    return [ROOT / "README.md", *(ROOT / "docs" / page for page in flat(nav))]
+
+
+def all_blocks() -> list[dict]:
+    """The blocks of every page of :func:`pages`, in order, each with its ``page``."""
+    return [{**b, "page": page.relative_to(ROOT)} for page in pages()
+            for b in readme_blocks(page.read_text())]
+
+
 def _project_files() -> list[Path]:
     """Tracked and untracked, not ignored files: what a clone of the working tree would hold."""
     out = subprocess.run(["git", "ls-files", "-co", "--exclude-standard", "-z"], cwd=ROOT,
@@ -118,9 +142,10 @@ def fresh_clone(dest: Path) -> Path:
         pth.unlink()
         pth.write_text(f"{dest / 'src'}\n")
     # the copied files keep their times, so `make` sees the install as current
-    stamp = dest / ".venv/.installed"
-    stamp.unlink(missing_ok=True)
-    stamp.touch()
+    for name in (".installed-core", ".installed"):     # in make's order: the core first
+        stamp = dest / ".venv" / name
+        stamp.unlink(missing_ok=True)
+        stamp.touch()
     subprocess.run(["git", "init", "-q"], cwd=dest, check=True)
     subprocess.run(["git", "add", "-A"], cwd=dest, check=True)
     subprocess.run(["git", "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "clone"],
@@ -150,10 +175,16 @@ def _wait_port(host: str, port: int, proc: subprocess.Popen, timeout: float = 18
 
 
 def test_readme_blocks_are_all_accounted_for():
-    text = (ROOT / "README.md").read_text()
-    assert not unaccounted(text), unaccounted(text)
-    blocks = readme_blocks(text)
+    for page in pages():
+        problems = unaccounted(page.read_text())
+        assert not problems, f"{page.relative_to(ROOT)}: {problems}"
+    blocks = all_blocks()
     assert sum(b["kind"] != "skip" and b["lang"] == "bash" for b in blocks) >= 8
+    # a page with commands outside the nav would never be run
+    listed = set(pages())
+    unlisted = [p.name for p in (ROOT / "docs").glob("*.md")
+                if p not in listed and readme_blocks(p.read_text())]
+    assert not unlisted, f"docs pages with commands but not in mkdocs.yml's nav: {unlisted}"
 
 
 def test_readme_commands_as_written(tmp_path):
@@ -163,8 +194,8 @@ def test_readme_commands_as_written(tmp_path):
     env = _user_env(home)
     background, log, output = [], [], ""
     try:
-        for b in readme_blocks((ROOT / "README.md").read_text()):
-            where = f"README.md line {b['line']}"
+        for b in all_blocks():
+            where = f"{b['page']} line {b['line']}"
             if b["kind"] == "output":
                 missing = missing_lines(b["body"], output)
                 assert not missing, f"{where}: not printed by the command before it: {missing}\n{output}"

@@ -20,6 +20,7 @@ import os
 from hydra.utils import instantiate
 
 from .errors import ConfigError
+from .extras import missing
 
 PROJECT = ("thermocomp.",)
 # External estimators the documentation names (conf/model/arx_rf.yaml's forest).
@@ -94,8 +95,9 @@ def check_built(node, where: str = "") -> None:
             _refuse(key, target)
         try:
             obj = _locate(target)
-        except ImportError as exc:
-            raise ConfigError(f"{key}={target}: cannot be found ({' '.join(str(exc).split())})") from None
+        except ImportError as exc:   # an optional dependency not installed names its extra
+            raise missing(exc) or ConfigError(
+                f"{key}={target}: cannot be found ({' '.join(str(exc).split())})") from None
         if not inspect.isclass(obj):
             _refuse(key, target, "not a class")
         if not f"{obj.__module__}.".startswith(prefixes):

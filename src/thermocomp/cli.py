@@ -21,6 +21,7 @@ import warnings
 from pathlib import Path
 
 from .errors import closest
+from .extras import missing
 
 # conf/hydra/launcher/ray.yaml extends the Ray launcher plugin's config of
 # the same name on purpose (Hydra still validates it against the plugin's schema).
@@ -164,7 +165,13 @@ def _guarded(fn, *args):
     that cannot be read -- no permission, a symlink loop -- is bad input too)."""
     try:
         return fn(*args)
+    except ModuleNotFoundError as exc:
+        if not missing(exc):
+            raise
+        _fail(missing(exc))
     except _config_errors() as exc:
+        if missing(exc):
+            _fail(missing(exc))
         # a generator's own check in its __init__ comes wrapped by Hydra's instantiate: its line
         # (our own errors keep theirs: they name the file of the cause they wrap)
         wrapped = not isinstance(exc, _config_errors()[0]) and isinstance(exc.__cause__, _config_errors()[0])
@@ -214,7 +221,9 @@ def _check_hydra_node(args: list[str]) -> None:
         fixed.append(arg)
     try:
         cfg = _compose_hydra(fixed)
-    except _config_errors():
+    except _config_errors() as exc:
+        if missing(exc):              # a launcher config its plugin (an extra) registers
+            _fail(missing(exc))
         return                        # as above: Hydra's own message, nothing built
     from .build import check_built
     from .stages.apart import check_apart
@@ -622,7 +631,10 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         logger.warning("%s interrupted (Ctrl-C)", stage)
         return 1
-    except Exception:  # anything else is a bug or an environment failure: status 1
+    except Exception as exc:  # anything else is a bug or an environment failure: status 1
+        if missing(exc):      # ... but for an optional dependency not installed: its extra
+            print(f"thermocomp: error: {missing(exc)}", file=sys.stderr)
+            return 2
         traceback.print_exc()
         return 1
     return 0
