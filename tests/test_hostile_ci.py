@@ -28,6 +28,7 @@ def test_ci_run_stops_when_the_team_server_does_not_start(tmp_path):
     shutil.copy2(ROOT / ".ci" / "run", tmp_path / ".ci" / "run")
     _stub(tmp_path / "bin" / "make")
     _stub(tmp_path / ".venv" / "bin" / "python")
+    _stub(tmp_path / ".venv" / "bin" / "mkdocs")
     _stub(tmp_path / ".ci" / "chromium")
     _stub(tmp_path / ".ci" / "team-server",
           STUB + '[ "$1" = start ] && { echo "[team-server] initdb failed" >&2; exit 1; }\nexit 0\n')
