@@ -288,3 +288,102 @@ def test_mutual_prediction_fits_each_targets_chosen_family_with_its_chosen_penal
     # no choice among candidates again: the chosen family, with the penalty it chose on all
     assert {t: type(e) for t, e in models.items()} == {"E_A": MLR, "E_B": LagBank}
     assert list(models["E_B"].alphas) == [fitted.estimators_["E_B"].estimator_.alpha_]
+
+
+# --- combine=stack: a blend weighted on the folds' free-run predictions ------------------------
+
+class _OneSensor:
+    """y ~ a * x[:, column] + b: each candidate sees the signal through its own noisy sensor."""
+
+    def __init__(self, column: int = 0):
+        self.column = column
+
+    def get_params(self, deep=True):
+        return {"column": self.column}
+
+    def set_params(self, **params):
+        self.column = params.get("column", self.column)
+        return self
+
+    def fit(self, X, y, context=None):
+        self.coef_ = np.polyfit(X[:, self.column], y, 1)
+        return self
+
+    def predict(self, X, context=None):
+        return np.polyval(self.coef_, X[:, self.column])
+
+
+def _two_sensors(n_campaigns: int, seed: int):
+    """``y = s`` seen by two sensors with independent noise, ``n_campaigns`` of 100 rows."""
+    rng = np.random.default_rng(seed)
+    s = rng.uniform(-1.0, 1.0, (n_campaigns * 100, 1))
+    X = s + rng.normal(0.0, 0.3, (len(s), 2))
+    context = pd.DataFrame({"campaign": np.repeat([f"K{i}" for i in range(n_campaigns)], 100)})
+    return X, s[:, 0], context
+
+
+def test_a_blend_of_candidates_with_independent_errors_beats_the_one_picked():
+    from thermocomp.models.auto import AutoRegressor
+
+    X, y, context = _two_sensors(8, seed=3)
+    X_new, y_new, context_new = _two_sensors(4, seed=4)
+    candidates = {"left": _OneSensor(0), "right": _OneSensor(1)}
+    stack = AutoRegressor(candidates, combine="stack").fit(X, y, context=context)
+    best = AutoRegressor(candidates, combine="best").fit(X, y, context=context)
+    assert set(stack.weights_) == {"left", "right"} and sum(stack.weights_.values()) == pytest.approx(1)
+    assert min(stack.weights_.values()) > 0.3             # alike sensors: about half each
+    assert stack.report()["combine"] == "stack" and "blend" in stack.report()["reason"]
+    err = {name: np.sqrt(np.mean((y_new - m.predict(X_new, context=context_new)) ** 2))
+           for name, m in (("stack", stack), ("best", best))}
+    assert err["stack"] < 0.85 * err["best"]              # the noise of two sensors averaged
+
+
+def test_stack_weights_count_every_fold_alike_not_the_one_where_all_fail():
+    from thermocomp.models.blend import stack_weights
+
+    rng = np.random.default_rng(0)
+    fold = np.repeat(np.arange(5), 200)
+    y = rng.normal(0.0, 1.0, fold.size)
+    # fold 0: every family fails by ~10 (a first fold fitted on little data), A a bit less;
+    # folds 1..4: B is three times closer than A and MLR
+    scale = np.where(fold == 0, 10.0, 1.0)
+    base = y + scale * rng.normal(0.0, 1.0, fold.size)
+    a = y + np.where(fold == 0, 9.0, 1.0) * rng.normal(0.0, 1.0, fold.size)
+    b = y + np.where(fold == 0, 11.0, 1 / 3) * rng.normal(0.0, 1.0, fold.size)
+    preds = np.column_stack([a, b])
+    w = stack_weights(preds, y, fold, base)
+    assert w.sum() == pytest.approx(1) and (w >= 0).all()
+    assert w[1] > 0.6                                      # B: better in four folds of five
+    # a baseline alike in every fold weights the pooled error, which fold 0 dominates: A
+    pooled = stack_weights(preds, y, fold, y + rng.normal(0.0, 1.0, fold.size))
+    assert pooled[0] > 0.5
+
+
+def test_a_blend_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
+    data, _, _ = two_targets
+    model = tmp_path / "model.pkl"
+    three = "model.candidates=[mlr,arx,lagbank]"      # E_B: arx and lagbank validate alike
+    common = [f"data.path={data}", "track=false", f"model_path={model}", "model=auto", three]
+    assert main(["run", *common, *FAST[1:], f"out={tmp_path / 'run'}"]) == 0
+    run = json.loads((tmp_path / "run" / "metrics.json").read_text())
+    blend = run["targets"]["E_B"]["auto"]
+    assert blend["combine"] == "stack" and len(blend["weights"]) == 2
+    assert sum(blend["weights"].values()) == pytest.approx(1, abs=1e-3)
+    assert blend["chosen"] == max(blend["weights"], key=blend["weights"].get)
+    shutil.copy(tmp_path / "run" / "model.pkl", model)
+    assert main(["replay", *common, f"out={tmp_path / 'replay'}"]) == 0
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
+    for t in ("E_A", "E_B"):
+        assert replay["targets"][t]["max_abs_stream_minus_batch"] < 1e-6
+        assert replay["targets"][t]["rmse"] == pytest.approx(run["targets"][t]["test"]["rmse"], rel=1e-6)
+
+
+def test_the_run_validates_a_blend_as_blended_with_its_weights(two_targets, tmp_path):
+    data, _, _ = two_targets
+    metrics = _run(data, tmp_path / "auto", "model=auto", "model.candidates=[mlr,arx,lagbank]",
+                   "eval.validation=true")
+    b = metrics["targets"]["E_B"]
+    assert len(b["auto"]["weights"]) == 2
+    # the blend refitted per fold with its weights: between its members' own validations or below
+    members = [b["auto"]["candidates"][n] for n in b["auto"]["weights"]]
+    assert b["validation"]["rmse"] <= max(members) * (1 + 1e-9)

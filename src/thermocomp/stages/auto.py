@@ -81,7 +81,8 @@ def as_chosen(template, fitted):
     """``template`` (an unfitted compensator) fitting, per target, the family ``fitted`` (a
     model=auto compensator) chose: what its validation refits (the choice itself is not
     re-validated: candidates x folds² fits).  Any other ``template`` as it is."""
-    chosen = {t: getattr(est, "family_", None) for t, est in getattr(fitted, "estimators_", {}).items()}
+    chosen = {t: getattr(est, "chosen_", getattr(est, "family_", None))
+              for t, est in getattr(fitted, "estimators_", {}).items()}
     if not chosen or None in chosen.values() or "chosen" not in template.estimator.get_params(deep=False):
         return template
     return template.set_params(estimator__chosen=chosen)
@@ -159,6 +160,8 @@ def auto_table(metrics: dict) -> list[str]:
             v = a["candidates"].get(n)
             cells.append(f"{'n/a' if v is None else f'{v:.3g}' + ('*' if n == a['chosen'] else ''):>11}")
         lines.append(f"{t:<8} {a['chosen']:<10} " + " ".join(cells))
+    lines += [f"  {t} blend: " + ", ".join(f"{n} {w:.2f}" for n, w in a["weights"].items())
+              for t, a in rows.items() if len(a.get("weights", {})) > 1]
     skipped = {n: w for a in rows.values() for n, w in a.get("skipped", {}).items()}
     lines += [f"  skipped {n}: {w}" for n, w in skipped.items()]
     return lines
