@@ -12,8 +12,8 @@ alone on the train split.  Per target it prints each family's test RMSE, its val
 RMSE, the Spearman correlation of the two rankings, and the test RMSE of
 
 * ``best``: the one family with the lowest validation (``combine=best``, the rule before),
-* ``stack``: the blend the auto model keeps (``combine=stack``, checked against its own
-  prediction),
+* ``auto``: the model auto keeps (``combine=vote`` by default: the blend of the candidates
+  by the folds' votes; checked against its own prediction),
 
 against MLR and the best single family (known only after the fact: the test split is read
 here, never by the choice).  ``$OUT`` (default ``/tmp/bench_auto_rank``) gets NAME.json.
@@ -75,6 +75,7 @@ def main(name: str, overrides: list[str]) -> dict:
         preds[n] = _test(single.fit(train), ds)[1]
         walls[n] = time.perf_counter() - t0
     report = {"record": name, "overrides": overrides, "targets": {}, "wall_s": walls}
+    arrays = {}    # every rule can be scored again from these (np.load(NAME.<target>.npz))
     for t, est in auto.estimators_.items():
         cands = [n for n in names if n in est.candidates and n in est.validation_]
         test = {n: rmse(meas[t] - preds[n][t]) for n in names}
@@ -82,35 +83,38 @@ def main(name: str, overrides: list[str]) -> dict:
         best = min(cands, key=val.get)
         if BASELINE in cands and val[best] > val[BASELINE] * (1 - est.min_gain_pct / 100):
             best = BASELINE
-        stack = sum(w * preds[n][t] for n, w in est.weights_.items())
-        assert np.allclose(stack, blended[t], atol=1e-6 * (1 + np.abs(stack).max())), t
+        kept = sum(w * preds[n][t] for n, w in est.weights_.items())
+        assert np.allclose(kept, blended[t], atol=1e-6 * (1 + np.abs(kept).max())), t
         near = [n for n in cands if val[n] <= 1.25 * min(val.values())]
         alternatives = {      # other rules, scored after the fact, for the record
             "equal_near_best": rmse(meas[t] - np.mean([preds[n][t] for n in near], axis=0)),
-            "stack_shrunk_25": rmse(meas[t] - 0.75 * stack - 0.25 * preds[BASELINE][t])}
+            "auto_shrunk_25": rmse(meas[t] - 0.75 * kept - 0.25 * preds[BASELINE][t])}
         row = {"test": test, "validation": val, "spearman": float(spearmanr(
             [val[n] for n in cands], [test[n] for n in cands])[0]),
                "best": {"family": best, "rmse": test[best]},
-               "stack": {"weights": est.weights_, "rmse": rmse(meas[t] - stack)},
+               "auto": {"weights": est.weights_, "rmse": rmse(meas[t] - kept)},
                "mlr": test[BASELINE], "best_single": min(test[n] for n in cands),
                "validation_s": est.fit_seconds_, "alternatives": alternatives}
         report["targets"][t] = row
+        arrays[t] = {"oof_y": est.oof_y_, "oof_fold": est.oof_fold_, "test_y": meas[t],
+                     **{f"oof_{n}": est.oof_[n] for n in est.oof_},
+                     **{f"test_{n}": preds[n][t] for n in names}}
         print(f"{name} {t}: test " + " ".join(f"{n} {v:.3g}" for n, v in test.items()))
         print("  validation " + " ".join(f"{n} {v:.3g}" for n, v in val.items())
               + f"; spearman {row['spearman']:+.2f}")
-        print(f"  best: {best} {test[best]:.3g} | stack {row['stack']['rmse']:.3g} ("
+        print(f"  best: {best} {test[best]:.3g} | auto {row['auto']['rmse']:.3g} ("
               + ", ".join(f"{n} {w:.2f}" for n, w in est.weights_.items())
               + f") | mlr {test[BASELINE]:.3g} | best single {row['best_single']:.3g} | "
               + " ".join(f"{k} {v:.3g}" for k, v in alternatives.items()))
     rows = report["targets"].values()
     mean = {k: float(np.mean([f(r) for r in rows])) for k, f in (
-        ("best", lambda r: r["best"]["rmse"]), ("stack", lambda r: r["stack"]["rmse"]),
+        ("best", lambda r: r["best"]["rmse"]), ("auto", lambda r: r["auto"]["rmse"]),
         ("mlr", lambda r: r["mlr"]), ("best_single", lambda r: r["best_single"]),
         *((k, lambda r, k=k: r["alternatives"][k]) for k in alternatives))}
     fam = {n: float(np.mean([r["test"][n] for r in rows])) for n in names}
     mean["best_single_family"] = min(fam.values())
     report["mean"], report["family_mean"] = mean, fam
-    print(f"{name} mean test RMSE: best {mean['best']:.3g} -> stack {mean['stack']:.3g}; mlr "
+    print(f"{name} mean test RMSE: best {mean['best']:.3g} -> auto {mean['auto']:.3g}; mlr "
           f"{mean['mlr']:.3g}; best single per target {mean['best_single']:.3g}, best family "
           f"{min(fam, key=fam.get)} {mean['best_single_family']:.3g}; "
           + " ".join(f"{k} {mean[k]:.3g}" for k in alternatives) + "; wall s "
@@ -118,6 +122,8 @@ def main(name: str, overrides: list[str]) -> dict:
     out = Path(os.environ.get("OUT", "/tmp/bench_auto_rank"))
     out.mkdir(parents=True, exist_ok=True)
     (out / f"{name}.json").write_text(json.dumps(report, indent=1, default=float))
+    for t, a in arrays.items():
+        np.savez(out / f"{name}.{t}.npz", **a)
     return report
 
 

@@ -21,7 +21,7 @@ from ..metrics import rmse
 from ..model_selection import BlockedForward, LeaveCampaignsOut
 from ..one_step import persistence
 from ..params import check_estimator, choice, integer, number
-from .blend import Blend, stack_weights
+from .blend import Blend, vote_weights
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
 BASELINE = "mlr"         # always validated beside the candidates, with persistence
@@ -49,14 +49,14 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     when it is no candidate, and persistence (the previous measured error) is
     reported beside it.
 
-    ``combine='stack'`` keeps a :class:`~thermocomp.models.blend.Blend` of the
-    candidates, weighted (non-negative, summing to 1) to minimise their
-    out-of-fold free-run error, each fold relative to MLR's there
-    (:func:`~thermocomp.models.blend.stack_weights`); ``'best'`` the one
+    ``combine='vote'`` keeps a :class:`~thermocomp.models.blend.Blend` of the
+    candidates weighted by bootstrap votes over the validation folds (each
+    fold's error relative to MLR's there, :func:`~thermocomp.models.blend.vote_weights`):
+    the share of fold resamples each candidate wins.  ``'best'`` keeps the one
     candidate with the lowest pooled validation RMSE.  Picking one misranked:
     validation and test orders of the families agreed with a Spearman of 0.2
     to 0.4 on the simulated records and the spindle record.  A val split gives
-    scores, not predictions: there the best is kept either way.
+    one score per candidate, no folds: there the best is kept either way.
 
     Parameters
     ----------
@@ -73,7 +73,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     max_seconds : float or None
         A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
-    combine : {'stack', 'best'}, default 'stack'
+    combine : {'vote', 'best'}, default 'vote'
     min_gain_pct : float, default 1.0
         MLR, when a candidate, is kept unless the best candidate's (or the blend's) validation
         RMSE is lower
@@ -110,12 +110,12 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     param_rules = {"scheme": choice("auto", "forward", "interleaved"), "n_folds": integer(1, at_most=100),
                    "min_train_fraction": number(0.0, 1.0, open_lo=True, open_hi=True),
                    "gap_blocks": number(0.0, 10.0), "min_gain_pct": number(0.0, 100.0),
-                   "combine": choice("stack", "best")}
+                   "combine": choice("vote", "best")}
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
-                 val_scores=None, given_scores=None, combine: str = "stack"):
+                 val_scores=None, given_scores=None, combine: str = "vote"):
         self.combine = combine
         self.candidates = candidates
         self.val_scores = val_scores
@@ -158,26 +158,27 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.oof_y_ = np.concatenate([y[score] for *_, score in folds])
         self.oof_fold_ = np.concatenate([np.full(score.sum(), k) for k, (*_, score) in enumerate(folds)])
         members = [n for n in self.candidates if n in self.oof_]
-        if self.combine == "stack" and len(members) > 1 and BASELINE in self.oof_:
+        if self.combine == "vote" and len(members) > 1 and BASELINE in self.oof_:
             return self._blend(X, y, context, members, how)
         return self._keep_best(X, y, context, None, how)
 
     def _blend(self, X, y, context, members: list, how: str):
-        """Keep the blend of ``members`` their out-of-fold predictions weight (MLR's if it is
-        not min_gain_pct better than MLR on the folds)."""
+        """Keep the blend of ``members`` the folds vote for (MLR if the blend is not
+        min_gain_pct better than MLR on the folds)."""
         preds = np.column_stack([self.oof_[n] for n in members])
-        w = stack_weights(preds, self.oof_y_, self.oof_fold_, self.oof_[BASELINE])
+        w = vote_weights(preds, self.oof_y_, self.oof_fold_, self.oof_[BASELINE])
         weights = {n: float(v) for n, v in zip(members, w) if v > 0}
         blended = rmse(self.oof_y_ - preds @ w)
         base = self.validation_[BASELINE]
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
-        lead = (f"blend of the candidates' out-of-fold free-run predictions, weights minimising "
-                f"the error relative to MLR's per fold: {mix}; blended validation RMSE {blended:.4g}")
+        lead = (f"blend by the folds' votes (share of bootstrap resamples of the folds each "
+                f"candidate wins, errors relative to MLR's per fold): {mix}; blended validation "
+                f"RMSE {blended:.4g}")
         if BASELINE in self.candidates and blended > base * (1 - float(self.min_gain_pct) / 100):
             lead = (f"the blend's validation RMSE {blended:.4g} is not {self.min_gain_pct:g} % "
                     "below MLR's: the simpler family kept")
             weights = {BASELINE: 1.0}
-        self.weights_, self.combine_ = weights, "stack"
+        self.weights_, self.combine_ = weights, "vote"
         self.family_ = max(weights, key=weights.get)
         self.chosen_ = self.family_ if len(weights) == 1 else weights
         self.reason_ = (f"{lead} ({how}); MLR {base:.4g}, "

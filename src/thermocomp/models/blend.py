@@ -2,22 +2,22 @@
 
 Choosing one family per target by a noisy validation misranks: the validation
 folds of a record rank families against their held-out order with a Spearman
-of 0.2 to 0.4, so the one picked is often not the best on test.  A convex
-blend of the candidates' free-run predictions, weighted on the same folds,
-does not hinge on that ranking: where families tie it averages their
-independent errors, where one is clearly better it takes it alone.
+of 0.2 to 0.4, so the one picked is often not the best on test.  A blend of
+the candidates weighted by how often each wins when the folds are resampled
+does not hinge on that ranking: where the folds cannot tell families apart it
+averages their errors, where one is clearly better it takes it alone.
 """
 
 from __future__ import annotations
 
 import numpy as np
-from scipy.optimize import minimize
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted
 
 from ..context import SideInputs, context_columns, merge_columns
 
 MIN_WEIGHT = 0.01   # a member weighted less is dropped (refitting it would buy nothing)
+N_RESAMPLES = 500   # bootstrap resamples of the folds: weights to 0.002, fixed seed (reproducible)
 
 
 class Blend(SideInputs, RegressorMixin, BaseEstimator):
@@ -68,26 +68,25 @@ class Blend(SideInputs, RegressorMixin, BaseEstimator):
         return {"member_params": {n: dict(f()) for n, f in own.items() if callable(f)}}
 
 
-def stack_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray,
-                  base: np.ndarray) -> np.ndarray:
-    """Non-negative weights summing to 1 of the columns of ``predictions`` (out-of-fold free-run
-    predictions of each candidate) that minimise the validation error, each fold's squared error
-    relative to that of ``base`` (MLR's predictions) there: every fold counts alike, so one fold
-    where every family fails (the first forward fold, fitted on the least data) does not decide."""
-    k = predictions.shape[1]
-    gram, cross = np.zeros((k, k)), np.zeros(k)
-    for f in np.unique(fold):
+def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base: np.ndarray,
+                 n_resamples: int = N_RESAMPLES) -> np.ndarray:
+    """Weights of the columns of ``predictions`` (each candidate's out-of-fold free-run
+    predictions): the share of bootstrap resamples of the validation folds in which the column
+    has the lowest error, a fold's squared error taken relative to that of ``base`` (MLR's
+    predictions) there and the folds' ratios averaged geometrically, so every fold counts alike
+    and one where every family fails (the first forward fold, fitted on the least data) does not
+    decide.  A clear winner takes every vote; families the folds cannot tell apart share them.
+    The errors themselves are not weighted (stacking on them fitted the folds' accidents:
+    ``fl_thermal`` 90/10 mean test RMSE 2.86 -> 3.72)."""
+    folds = np.unique(fold)
+    log_ratio = np.empty((folds.size, predictions.shape[1]))
+    for i, f in enumerate(folds):
         rows = fold == f
-        p, t = predictions[rows], y[rows]
-        scale = max(float(np.mean((t - base[rows]) ** 2)), 1e-12) * rows.sum()
-        gram += p.T @ p / scale
-        cross += p.T @ t / scale
-    gram += np.eye(k) * 1e-9 * np.trace(gram) / k   # identical candidates: one optimum
-    start = np.full(k, 1.0 / k)
-    res = minimize(lambda w: w @ gram @ w - 2 * cross @ w, start, jac=lambda w: 2 * (gram @ w - cross),
-                   bounds=[(0.0, 1.0)] * k, method="SLSQP",
-                   constraints=[{"type": "eq", "fun": lambda w: w.sum() - 1.0,
-                                 "jac": lambda w: np.ones_like(w)}])
-    w = np.clip(res.x if res.success else start, 0.0, None)
+        base_mse = max(float(np.mean((y[rows] - base[rows]) ** 2)), 1e-300)
+        mse = np.mean((y[rows, None] - predictions[rows]) ** 2, axis=0)
+        log_ratio[i] = np.log(np.maximum(mse, 1e-300) / base_mse)
+    picks = np.random.default_rng(0).integers(0, folds.size, (n_resamples, folds.size))
+    winners = np.argmin(log_ratio[picks].mean(axis=1), axis=1)
+    w = np.bincount(winners, minlength=predictions.shape[1]) / n_resamples
     w[w < MIN_WEIGHT] = 0.0
     return w / w.sum()
