@@ -75,7 +75,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         (skipped, its time recorded): a time budget for the slow families.
     combine : {'vote', 'best'}, default 'vote'
     min_gain_pct : float, default 1.0
-        MLR, when a candidate, is kept unless the best candidate's (or the blend's) validation
+        ``combine='best'``: MLR, when a candidate, is kept unless the best candidate's validation
         RMSE is lower
         by more than this share: a tie goes to the simplest family (on ``swiss_lathe_door``
         E_X the LSTM, whose early stopping kept the linear law, validated 2.16 as MLR and
@@ -163,25 +163,22 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         return self._keep_best(X, y, context, None, how)
 
     def _blend(self, X, y, context, members: list, how: str):
-        """Keep the blend of ``members`` the folds vote for (MLR if the blend is not
-        min_gain_pct better than MLR on the folds)."""
+        """Keep the blend of ``members`` the folds vote for.  MLR, a candidate, gets the votes
+        of the resamples it wins, which is its tie-break here (min_gain_pct is ``best``'s: a
+        gate on the pooled RMSE, which one fold dominates, cost column_moving_source 5.87 ->
+        6.49 µm mean test RMSE and bought large_mill_week 1.867 -> 1.856)."""
         preds = np.column_stack([self.oof_[n] for n in members])
         w = vote_weights(preds, self.oof_y_, self.oof_fold_, self.oof_[BASELINE])
         weights = {n: float(v) for n, v in zip(members, w) if v > 0}
         blended = rmse(self.oof_y_ - preds @ w)
-        base = self.validation_[BASELINE]
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
         lead = (f"blend by the folds' votes (share of bootstrap resamples of the folds each "
                 f"candidate wins, errors relative to MLR's per fold): {mix}; blended validation "
                 f"RMSE {blended:.4g}")
-        if BASELINE in self.candidates and blended > base * (1 - float(self.min_gain_pct) / 100):
-            lead = (f"the blend's validation RMSE {blended:.4g} is not {self.min_gain_pct:g} % "
-                    "below MLR's: the simpler family kept")
-            weights = {BASELINE: 1.0}
         self.weights_, self.combine_ = weights, "vote"
         self.family_ = max(weights, key=weights.get)
         self.chosen_ = self.family_ if len(weights) == 1 else weights
-        self.reason_ = (f"{lead} ({how}); MLR {base:.4g}, "
+        self.reason_ = (f"{lead} ({how}); MLR {self.validation_[BASELINE]:.4g}, "
                         f"persistence {self.validation_['persistence']:.4g}")
         return self._refit(X, y, context)
 
