@@ -361,7 +361,7 @@ def test_fold_votes_count_every_fold_alike_not_the_one_where_all_fail():
     pooled = [np.mean((y - p) ** 2) for p in preds.T]
     assert pooled[0] < pooled[1]                          # the pooled error, fold 0's: A
     w = vote_weights(preds, y, fold, base)
-    assert w.sum() == pytest.approx(1) and w[1] > 0.95      # B, better in four folds of five
+    assert w.sum() == pytest.approx(1) and w[1] > 0.9       # B, better in four folds of five
     # alike in every fold: the votes are shared, each a real part of the blend
     w = vote_weights(*_fold_errors([9, 1, 1, 1, 1], [9, 1, 1, 1, 1]))
     assert w.min() > 0.1 and w.sum() == pytest.approx(1)

@@ -173,7 +173,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         blended = rmse(self.oof_y_ - preds @ w)
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
         lead = (f"blend by the folds' votes (share of bootstrap resamples of the folds each "
-                f"candidate wins, errors relative to MLR's per fold): {mix}; blended validation "
+                f"candidate wins, mean squared errors relative to MLR's per fold): {mix}; blended validation "
                 f"RMSE {blended:.4g}")
         self.weights_, self.combine_ = weights, "vote"
         self.family_ = max(weights, key=weights.get)

@@ -72,21 +72,22 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
                  n_resamples: int = N_RESAMPLES) -> np.ndarray:
     """Weights of the columns of ``predictions`` (each candidate's out-of-fold free-run
     predictions): the share of bootstrap resamples of the validation folds in which the column
-    has the lowest error, a fold's squared error taken relative to that of ``base`` (MLR's
-    predictions) there and the folds' ratios averaged geometrically, so every fold counts alike
-    and one where every family fails (the first forward fold, fitted on the least data) does not
-    decide.  A clear winner takes every vote; families the folds cannot tell apart share them.
-    The errors themselves are not weighted (stacking on them fitted the folds' accidents:
-    ``fl_thermal`` 90/10 mean test RMSE 2.86 -> 3.72)."""
+    has the lowest error, a fold's mean squared error taken relative to that of ``base`` (MLR's
+    predictions) there and the folds' ratios averaged, so every fold counts alike and one where
+    every family fails (the first forward fold, fitted on the least data) does not decide, while
+    a family failing in one fold (extrapolating) pays for it.  A clear winner takes every vote;
+    families the folds cannot tell apart share them.  The errors themselves are not weighted
+    (stacking on them fitted the folds' accidents: ``fl_thermal`` 90/10 mean test RMSE 2.86 ->
+    3.72).  Averaging the ratios geometrically rewarded large wins in some folds over a failure
+    in another: on six records mean test RMSE 0.940 of the best family's against 0.919."""
     folds = np.unique(fold)
-    log_ratio = np.empty((folds.size, predictions.shape[1]))
+    ratio = np.empty((folds.size, predictions.shape[1]))
     for i, f in enumerate(folds):
         rows = fold == f
         base_mse = max(float(np.mean((y[rows] - base[rows]) ** 2)), 1e-300)
-        mse = np.mean((y[rows, None] - predictions[rows]) ** 2, axis=0)
-        log_ratio[i] = np.log(np.maximum(mse, 1e-300) / base_mse)
+        ratio[i] = np.mean((y[rows, None] - predictions[rows]) ** 2, axis=0) / base_mse
     picks = np.random.default_rng(0).integers(0, folds.size, (n_resamples, folds.size))
-    winners = np.argmin(log_ratio[picks].mean(axis=1), axis=1)
+    winners = np.argmin(ratio[picks].mean(axis=1), axis=1)
     w = np.bincount(winners, minlength=predictions.shape[1]) / n_resamples
     w[w < MIN_WEIGHT] = 0.0
     return w / w.sum()
