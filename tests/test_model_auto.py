@@ -395,3 +395,26 @@ def test_the_run_validates_a_blend_as_blended_with_its_weights(two_targets, tmp_
     # the blend refitted per fold with its weights: between its members' own validations or below
     members = [b["auto"]["candidates"][n] for n in b["auto"]["weights"]]
     assert b["validation"]["rmse"] <= max(members) * (1 + 1e-9)
+
+
+def test_mutual_prediction_fits_a_blend_as_blended_with_its_members_penalties(two_targets):
+    from sklearn.base import clone
+
+    from thermocomp.compensator import Compensator, with_chosen_hyperparameters
+    from thermocomp.io import read_dataset
+    from thermocomp.models import ARX, MLR, LagBank
+    from thermocomp.models.auto import AutoRegressor
+    from thermocomp.models.blend import Blend
+    from thermocomp.stages.auto import as_chosen
+
+    ds, _ = read_dataset(two_targets[0])
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    template = Compensator(AutoRegressor({"mlr": MLR(), "arx": ARX(), "lagbank": LagBank()}))
+    fitted = clone(template).fit(train)
+    weights = fitted.estimators_["E_B"].weights_
+    assert "lagbank" in weights and len(weights) > 1
+    single = clone(with_chosen_hyperparameters(as_chosen(clone(template), fitted), fitted))
+    blend = single.fit({c: train[c] for c in list(train)[:1]}).estimators_["E_B"]
+    assert isinstance(blend, Blend) and blend.weights == weights    # no vote again: its weights
+    assert list(blend.estimators_["lagbank"].alphas) == [fitted.estimators_["E_B"].estimator_
+                                                         .estimators_["lagbank"].alpha_]
