@@ -1,79 +1,136 @@
-"""Does the validation rank model families the way the held-out test campaigns do?
+"""``model=auto`` against MLR and the best single family, per record, before and after blending.
 
 Usage::
 
     python benchmarks/bench_auto_rank.py NAME [OVERRIDE ...]
-    # e.g. NAME=yr data.path=data/raw/yearround_spindle
-    # BEFORE="eval.validation_scheme=interleaved" python benchmarks/bench_auto_rank.py ...
+    # a simulated record, generated in memory:   NAME=swiss11 sim=swiss_lathe_door seed=11
+    # a dataset on disk:                         NAME=fl9010 data=fl_thermal
 
-Runs ``thermocomp run`` once per family (mlr, pcr, arx, lagbank, lstm; the run's
-validation, ``targets.<t>.validation``, with the overrides in ``$BEFORE``) and once
-``model=auto`` with those five candidates (its ``targets.<t>.auto.candidates``), in
-``$OUT`` (default ``/tmp/bench_auto_rank``)/NAME; finished runs are reused.  Per
-target it prints the test RMSE of each family, the two validations, the Spearman and
-Kendall rank correlations of each validation with the test ranking, the family each
-one picks and auto's test RMSE against MLR's and the best family's.  The test split
-is only read here, to score the choice after the fact.
+One process: the auto model is fitted on the train split (its folds give every candidate's
+out-of-fold free-run predictions and the blend's weights), then every validated candidate
+alone on the train split.  Per target it prints each family's test RMSE, its validation
+RMSE, the Spearman correlation of the two rankings, and the test RMSE of
+
+* ``best``: the one family with the lowest validation (``combine=best``, the rule before),
+* ``auto``: the model auto keeps (``combine=vote`` by default: the blend of the candidates
+  by the folds' votes; checked against its own prediction),
+
+against MLR and the best single family (known only after the fact: the test split is read
+here, never by the choice).  ``$OUT`` (default ``/tmp/bench_auto_rank``) gets NAME.json.
 """
 
 from __future__ import annotations
 
 import json
 import os
-import subprocess
 import sys
 import time
 from pathlib import Path
 
 import numpy as np
-from scipy.stats import kendalltau, spearmanr
+from hydra import compose, initialize_config_dir
+from hydra.utils import instantiate
+from scipy.stats import spearmanr
+from sklearn.base import clone
 
-FAMILIES = ["mlr", "pcr", "arx", "lagbank", "lstm"]
-ROOT = Path(__file__).resolve().parents[1]
-LIGHT = ["track=false", "plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
-         "eval.iso10791_a3=false"]
+from thermocomp import io
+from thermocomp.evaluation import split_residuals
+from thermocomp.metrics import rmse
+from thermocomp.models.auto import BASELINE
+from thermocomp.paths import conf_dir, resolve
+from thermocomp.stages.common import build_compensator, data_options, resolve_reference
+
+LIGHT = ["track=false", "plots=none", "model=auto"]
 
 
-def _run(out: Path, model: str, extra: list[str], overrides: list[str]) -> dict | None:
-    path = out / "metrics.json"
-    if not path.is_file():
+def _dataset(cfg):
+    if cfg.get("sim") is not None and any(o.startswith("sim=") for o in sys.argv[2:]):
+        return instantiate(cfg.sim.generator).generate()[0]
+    return io.read_dataset(resolve(cfg.data.path), data_options(cfg))[0]
+
+
+def _test(comp, ds) -> tuple[dict, dict]:
+    """``({target: measured}, {target: predicted})`` over the test campaigns, concatenated."""
+    ids = ds.ids("test")
+    _, _, series = split_residuals(comp, ds, ids, "simulation")
+    meas = {t: np.concatenate([y[c] for c in ids]) for t, (y, _) in series.items()}
+    return meas, {t: meas[t] - np.concatenate([r[c] for c in ids]) for t, (_, r) in series.items()}
+
+
+def main(name: str, overrides: list[str]) -> dict:
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=[*LIGHT, *overrides])
+    ds = _dataset(cfg)
+    resolve_reference(cfg, ds)
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    t0 = time.perf_counter()
+    auto = build_compensator(cfg, ds=ds).fit(train)
+    walls = {"auto": time.perf_counter() - t0}
+    meas, blended = _test(auto, ds)
+    names = list(dict.fromkeys(n for e in auto.estimators_.values() for n in e.oof_))
+    preds = {}
+    for n in names:
         t0 = time.perf_counter()
-        env = dict(os.environ, PYTHONPATH=str(ROOT / "src"))
-        done = subprocess.run([str(ROOT / ".venv/bin/thermocomp"), "run", *LIGHT, *overrides,
-                               f"model={model}", f"out={out}", *extra],
-                              cwd=ROOT, env=env, capture_output=True, text=True)
-        if done.returncode:
-            print(f"{model}: failed\n{done.stderr[-800:]}")
-            return None
-        (out / "wall.json").write_text(json.dumps({"wall_s": time.perf_counter() - t0}))
-    return json.loads(path.read_text())
+        single = clone(auto).set_params(estimator=clone(auto.estimator.candidates.get(n) or _mlr()))
+        preds[n] = _test(single.fit(train), ds)[1]
+        walls[n] = time.perf_counter() - t0
+    report = {"record": name, "overrides": overrides, "targets": {}, "wall_s": walls}
+    arrays = {}    # every rule can be scored again from these (np.load(NAME.<target>.npz))
+    for t, est in auto.estimators_.items():
+        cands = [n for n in names if n in est.candidates and n in est.validation_]
+        test = {n: rmse(meas[t] - preds[n][t]) for n in names}
+        val = {n: est.validation_[n] for n in cands}
+        best = min(cands, key=val.get)
+        if BASELINE in cands and val[best] > val[BASELINE] * (1 - est.min_gain_pct / 100):
+            best = BASELINE
+        kept = sum(w * preds[n][t] for n, w in est.weights_.items())
+        assert np.allclose(kept, blended[t], atol=1e-6 * (1 + np.abs(kept).max())), t
+        near = [n for n in cands if val[n] <= 1.25 * min(val.values())]
+        alternatives = {      # other rules, scored after the fact, for the record
+            "equal_near_best": rmse(meas[t] - np.mean([preds[n][t] for n in near], axis=0)),
+            "auto_shrunk_25": rmse(meas[t] - 0.75 * kept - 0.25 * preds[BASELINE][t])}
+        row = {"test": test, "validation": val, "spearman": float(spearmanr(
+            [val[n] for n in cands], [test[n] for n in cands])[0]),
+               "best": {"family": best, "rmse": test[best]},
+               "auto": {"weights": est.weights_, "rmse": rmse(meas[t] - kept)},
+               "mlr": test[BASELINE], "best_single": min(test[n] for n in cands),
+               "validation_s": est.fit_seconds_, "alternatives": alternatives}
+        report["targets"][t] = row
+        arrays[t] = {"oof_y": est.oof_y_, "oof_fold": est.oof_fold_, "test_y": meas[t],
+                     **{f"oof_{n}": est.oof_[n] for n in est.oof_},
+                     **{f"test_{n}": preds[n][t] for n in names}}
+        print(f"{name} {t}: test " + " ".join(f"{n} {v:.3g}" for n, v in test.items()))
+        print("  validation " + " ".join(f"{n} {v:.3g}" for n, v in val.items())
+              + f"; spearman {row['spearman']:+.2f}")
+        print(f"  best: {best} {test[best]:.3g} | auto {row['auto']['rmse']:.3g} ("
+              + ", ".join(f"{n} {w:.2f}" for n, w in est.weights_.items())
+              + f") | mlr {test[BASELINE]:.3g} | best single {row['best_single']:.3g} | "
+              + " ".join(f"{k} {v:.3g}" for k, v in alternatives.items()))
+    rows = report["targets"].values()
+    mean = {k: float(np.mean([f(r) for r in rows])) for k, f in (
+        ("best", lambda r: r["best"]["rmse"]), ("auto", lambda r: r["auto"]["rmse"]),
+        ("mlr", lambda r: r["mlr"]), ("best_single", lambda r: r["best_single"]),
+        *((k, lambda r, k=k: r["alternatives"][k]) for k in alternatives))}
+    fam = {n: float(np.mean([r["test"][n] for r in rows])) for n in names}
+    mean["best_single_family"] = min(fam.values())
+    report["mean"], report["family_mean"] = mean, fam
+    print(f"{name} mean test RMSE: best {mean['best']:.3g} -> auto {mean['auto']:.3g}; mlr "
+          f"{mean['mlr']:.3g}; best single per target {mean['best_single']:.3g}, best family "
+          f"{min(fam, key=fam.get)} {mean['best_single_family']:.3g}; "
+          + " ".join(f"{k} {mean[k]:.3g}" for k in alternatives) + "; wall s "
+          + " ".join(f"{k} {v:.0f}" for k, v in walls.items()))
+    out = Path(os.environ.get("OUT", "/tmp/bench_auto_rank"))
+    out.mkdir(parents=True, exist_ok=True)
+    (out / f"{name}.json").write_text(json.dumps(report, indent=1, default=float))
+    for t, a in arrays.items():
+        np.savez(out / f"{name}.{t}.npz", **a)
+    return report
 
 
-def main(name: str, overrides: list[str]) -> None:
-    out = Path(os.environ.get("OUT", "/tmp/bench_auto_rank")) / name
-    before = os.environ.get("BEFORE", "").split()
-    runs = {f: _run(out / f, f, ["eval.validation=true", *before], overrides) for f in FAMILIES}
-    auto = _run(out / "auto", "auto", ["eval.validation=false",
-                                       f"model.candidates=[{','.join(FAMILIES)}]"], overrides)
-    rows = []
-    for t, m in auto["targets"].items():
-        test = [runs[f]["targets"][t]["test"]["rmse"] for f in FAMILIES]
-        old = [runs[f]["targets"][t]["validation"]["rmse"] for f in FAMILIES]
-        new = [m["auto"]["candidates"][f] for f in FAMILIES]
-        rows.append([spearmanr(old, test)[0], spearmanr(new, test)[0],
-                     kendalltau(old, test)[0], kendalltau(new, test)[0]])
-        print(f"{name} {t}: test " + " ".join(f"{f} {v:.3g}" for f, v in zip(FAMILIES, test)))
-        print(f"  validation {runs['mlr']['targets'][t]['validation']['method']}: "
-              + " ".join(f"{v:.3g}" for v in old) + f" -> auto ({m['auto']['scheme']}): "
-              + " ".join(f"{v:.3g}" for v in new))
-        print(f"  spearman {rows[-1][0]:+.2f} -> {rows[-1][1]:+.2f}, kendall {rows[-1][2]:+.2f} -> "
-              f"{rows[-1][3]:+.2f}; picks {FAMILIES[int(np.argmin(old))]} -> {m['auto']['chosen']} "
-              f"(test {m['test']['rmse']:.3g}; mlr {test[0]:.3g}, best {min(test):.3g})")
-    r = np.nanmean(np.array(rows), axis=0)
-    walls = {k: json.loads((out / k / "wall.json").read_text())["wall_s"]
-             for k in [*FAMILIES, "auto"] if (out / k / "wall.json").is_file()}
-    print(f"{name} mean: spearman {r[0]:+.2f} -> {r[1]:+.2f}, kendall {r[2]:+.2f} -> {r[3]:+.2f}; "
-          "wall s " + " ".join(f"{k} {v:.0f}" for k, v in walls.items()))
+def _mlr():
+    from thermocomp.models import MLR
+
+    return MLR()
 
 
 if __name__ == "__main__":

@@ -230,7 +230,7 @@ def test_mlr_is_kept_unless_a_candidate_validates_enough_lower(two_targets, tmp_
     b = metrics["targets"]["E_B"]["auto"]
     gain = 100 * (1 - b["candidates"]["lagbank"] / b["candidates"]["mlr"])
     assert b["chosen"] == "lagbank" and gain > 1          # the default: 1 %
-    strict = _run(data, tmp_path / "strict", "model=auto", PAIR,
+    strict = _run(data, tmp_path / "strict", "model=auto", PAIR, "model.estimator.combine=best",
                   f"model.estimator.min_gain_pct={min(100.0, gain + 1):.3f}")["targets"]["E_B"]["auto"]
     assert strict["candidates"] == b["candidates"] and strict["chosen"] == "mlr"
     assert "the simpler family kept" in strict["reason"]
@@ -286,3 +286,133 @@ def test_mutual_prediction_fits_each_targets_chosen_family_with_its_chosen_penal
     # no choice among candidates again: the chosen family, with the penalty it chose on all
     assert {t: type(e) for t, e in models.items()} == {"E_A": MLR, "E_B": LagBank}
     assert list(models["E_B"].alphas) == [fitted.estimators_["E_B"].estimator_.alpha_]
+
+
+# --- combine=vote: a blend, each candidate weighted by the fold resamples it wins ----------------
+
+class _OneSensor:
+    """y ~ a * x[:, column] + b: each candidate sees the signal through its own noisy sensor."""
+
+    def __init__(self, column: int = 0):
+        self.column = column
+
+    def get_params(self, deep=True):
+        return {"column": self.column}
+
+    def set_params(self, **params):
+        self.column = params.get("column", self.column)
+        return self
+
+    def fit(self, X, y, context=None):
+        self.coef_ = np.polyfit(X[:, self.column], y, 1)
+        return self
+
+    def predict(self, X, context=None):
+        return np.polyval(self.coef_, X[:, self.column])
+
+
+def _two_sensors(n_campaigns: int, seed: int):
+    """``y = s`` seen by two sensors with independent noise, ``n_campaigns`` of 100 rows."""
+    rng = np.random.default_rng(seed)
+    s = rng.uniform(-1.0, 1.0, (n_campaigns * 100, 1))
+    X = s + rng.normal(0.0, 0.3, (len(s), 2))
+    context = pd.DataFrame({"campaign": np.repeat([f"K{i}" for i in range(n_campaigns)], 100)})
+    return X, s[:, 0], context
+
+
+def test_candidates_the_folds_cannot_tell_apart_share_the_model_and_beat_the_one_picked():
+    from thermocomp.models.auto import AutoRegressor
+
+    candidates = {"left": _OneSensor(0), "right": _OneSensor(1)}
+    X_new, y_new, context_new = _two_sensors(4, seed=0)
+    ratios = []
+    for seed in range(1, 7):       # which sensor validates better is chance: votes split by it
+        X, y, context = _two_sensors(20, seed=seed)
+        vote = AutoRegressor(candidates, combine="vote").fit(X, y, context=context)
+        best = AutoRegressor(candidates, combine="best").fit(X, y, context=context)
+        assert sum(vote.weights_.values()) == pytest.approx(1)
+        assert vote.report()["combine"] == "vote" and "votes" in vote.report()["reason"]
+        assert best.report()["weights"] == {best.family_: 1.0}
+        err = [np.sqrt(np.mean((y_new - m.predict(X_new, context=context_new)) ** 2)) for m in (vote, best)]
+        ratios.append(err[0] / err[1])
+    assert max(ratios) < 1.01 and np.mean(ratios) < 0.92   # the noise of two sensors averaged
+
+
+def _fold_errors(a_noise, b_noise, seed=0):
+    """Five folds of 200 rows: MLR's and two candidates' predictions with the given noise s.d.
+    per fold (MLR: 10 in fold 0, 1 elsewhere)."""
+    rng = np.random.default_rng(seed)
+    fold = np.repeat(np.arange(5), 200)
+    y = rng.normal(0.0, 1.0, fold.size)
+    base = y + np.where(fold == 0, 10.0, 1.0) * rng.normal(0.0, 1.0, fold.size)
+    preds = np.column_stack([y + np.asarray(sd)[fold] * rng.normal(0.0, 1.0, fold.size)
+                             for sd in (a_noise, b_noise)])
+    return preds, y, fold, base
+
+
+def test_fold_votes_count_every_fold_alike_not_the_one_where_all_fail():
+    from thermocomp.models.blend import vote_weights
+
+    # fold 0: every family fails by ~10 (a first fold fitted on little data), A a bit less;
+    # folds 1..4: B three times closer than A and MLR
+    preds, y, fold, base = _fold_errors([9, 1, 1, 1, 1], [11, 1 / 3, 1 / 3, 1 / 3, 1 / 3])
+    pooled = [np.mean((y - p) ** 2) for p in preds.T]
+    assert pooled[0] < pooled[1]                          # the pooled error, fold 0's: A
+    w = vote_weights(preds, y, fold, base)
+    assert w.sum() == pytest.approx(1) and w[1] > 0.9       # B, better in four folds of five
+    # alike in every fold: the votes are shared, each a real part of the blend
+    w = vote_weights(*_fold_errors([9, 1, 1, 1, 1], [9, 1, 1, 1, 1]))
+    assert w.min() > 0.1 and w.sum() == pytest.approx(1)
+
+
+def test_a_blend_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
+    data, _, _ = two_targets
+    model = tmp_path / "model.pkl"
+    three = "model.candidates=[mlr,arx,lagbank]"      # E_B: arx and lagbank validate alike
+    common = [f"data.path={data}", "track=false", f"model_path={model}", "model=auto", three]
+    assert main(["run", *common, *FAST[1:], f"out={tmp_path / 'run'}"]) == 0
+    run = json.loads((tmp_path / "run" / "metrics.json").read_text())
+    blend = run["targets"]["E_B"]["auto"]
+    assert blend["combine"] == "vote" and len(blend["weights"]) == 2
+    assert sum(blend["weights"].values()) == pytest.approx(1, abs=1e-3)
+    assert blend["chosen"] == max(blend["weights"], key=blend["weights"].get)
+    shutil.copy(tmp_path / "run" / "model.pkl", model)
+    assert main(["replay", *common, f"out={tmp_path / 'replay'}"]) == 0
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
+    for t in ("E_A", "E_B"):
+        assert replay["targets"][t]["max_abs_stream_minus_batch"] < 1e-6
+        assert replay["targets"][t]["rmse"] == pytest.approx(run["targets"][t]["test"]["rmse"], rel=1e-6)
+
+
+def test_the_run_validates_a_blend_as_blended_with_its_weights(two_targets, tmp_path):
+    data, _, _ = two_targets
+    metrics = _run(data, tmp_path / "auto", "model=auto", "model.candidates=[mlr,arx,lagbank]",
+                   "eval.validation=true")
+    b = metrics["targets"]["E_B"]
+    assert len(b["auto"]["weights"]) == 2
+    # the blend refitted per fold with its weights: between its members' own validations or below
+    members = [b["auto"]["candidates"][n] for n in b["auto"]["weights"]]
+    assert b["validation"]["rmse"] <= max(members) * (1 + 1e-9)
+
+
+def test_mutual_prediction_fits_a_blend_as_blended_with_its_members_penalties(two_targets):
+    from sklearn.base import clone
+
+    from thermocomp.compensator import Compensator, with_chosen_hyperparameters
+    from thermocomp.io import read_dataset
+    from thermocomp.models import ARX, MLR, LagBank
+    from thermocomp.models.auto import AutoRegressor
+    from thermocomp.models.blend import Blend
+    from thermocomp.stages.auto import as_chosen
+
+    ds, _ = read_dataset(two_targets[0])
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    template = Compensator(AutoRegressor({"mlr": MLR(), "arx": ARX(), "lagbank": LagBank()}))
+    fitted = clone(template).fit(train)
+    weights = fitted.estimators_["E_B"].weights_
+    assert "lagbank" in weights and len(weights) > 1
+    single = clone(with_chosen_hyperparameters(as_chosen(clone(template), fitted), fitted))
+    blend = single.fit({c: train[c] for c in list(train)[:1]}).estimators_["E_B"]
+    assert isinstance(blend, Blend) and blend.weights == weights    # no vote again: its weights
+    assert list(blend.estimators_["lagbank"].alphas) == [fitted.estimators_["E_B"].estimator_
+                                                         .estimators_["lagbank"].alpha_]

@@ -270,6 +270,8 @@ def auto_table(metrics: dict) -> list[str]:
             v = a["candidates"].get(n)
             cells.append(f"{'n/a' if v is None else f'{v:.3g}' + ('*' if n == a['chosen'] else ''):>11}")
         lines.append(f"{t:<8} {a['chosen']:<10} " + " ".join(cells))
+    lines += [f"  {t} blend: " + ", ".join(f"{n} {w:.2f}" for n, w in a["weights"].items())
+              for t, a in rows.items() if len(a.get("weights", {})) > 1]
     skipped = {n: w for a in rows.values() for n, w in a.get("skipped", {}).items()}
     lines += [f"  skipped {n}: {w}" for n, w in skipped.items()]
     return lines

@@ -84,7 +84,8 @@ def as_chosen(template, fitted):
     """``template`` (an unfitted compensator) fitting, per target, the family ``fitted`` (a
     model=auto compensator) chose: what its validation refits (the choice itself is not
     re-validated: candidates x folds² fits).  Any other ``template`` as it is."""
-    chosen = {t: getattr(est, "family_", None) for t, est in getattr(fitted, "estimators_", {}).items()}
+    chosen = {t: getattr(est, "chosen_", getattr(est, "family_", None))
+              for t, est in getattr(fitted, "estimators_", {}).items()}
     if not chosen or None in chosen.values() or "chosen" not in template.estimator.get_params(deep=False):
         return template
     return template.set_params(estimator__chosen=chosen)
