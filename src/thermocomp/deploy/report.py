@@ -66,6 +66,28 @@ def summary(deployed) -> dict:
     return {"adaptive": adaptive, "pod": pod}
 
 
+def streamed_hours(campaign: pd.DataFrame, period_s: float) -> float:
+    """Hours a campaign covers: its known time span plus one period (rows × period without
+    a time)."""
+    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.empty(0)
+    known = t[np.isfinite(t)]
+    span = known[-1] - known[0] + period_s if len(known) > 1 else len(campaign) * period_s
+    return float(span) / 3600
+
+
+def alarm_rate(events: list[dict], hours: float) -> dict:
+    """Sensor exclusions per 100 h streamed (on healthy campaigns: the false-alarm rate) and
+    the re-admissions, beside the hours they are counted over (CLI.md, ``alarms``)."""
+    excluded = [e for e in events if e.get("sensor") and e["to"] == "excluded"]
+    per_sensor: dict[str, int] = {}
+    for e in excluded:
+        per_sensor[e["sensor"]] = per_sensor.get(e["sensor"], 0) + 1
+    return {"hours": float(hours), "exclusions": len(excluded),
+            "exclusions_per_100h": 100 * len(excluded) / hours if hours > 0 else None,
+            "readmissions": sum(1 for e in events if e.get("sensor") and e["from"] == "excluded"),
+            "exclusions_by_sensor": per_sensor}
+
+
 def campaign_start(campaign: pd.DataFrame) -> float:
     """The campaign's first known ``time`` (0 without one): event times are written in seconds
     from it (CLI.md, ``monitor.json``), whatever clock the file keeps."""
@@ -144,7 +166,8 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         and ``all_finite`` of the deployed stream; ``streamed_range`` [min, max] of it;
         ``bound``, the guard's [lo, hi] or null), ``excluded_inputs`` (sensors excluded
         at the end of any campaign, sorted) and ``events`` (every event with its
-        ``campaign``), plus :func:`summary`'s ``adaptive`` and ``pod``.
+        ``campaign``), plus :func:`summary`'s ``adaptive`` and ``pod``, and for the adaptive
+        compensator ``alarms`` (:func:`alarm_rate`).
     """
     stream = plain(deployed)
     comp = stream.compensator
@@ -153,7 +176,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     targets = list(deployed.targets_)
     diffs, residuals, batch_residuals, outputs = [], [], [], []
     events, excluded = [], set()
-    clamps, seconds, n = 0, 0.0, 0
+    clamps, seconds, n, hours = 0, 0.0, 0, 0.0
     from ..progress import bar
 
     rows = bar(total=sum(len(df) for df in campaigns.values()), desc="replay", unit="row")
@@ -176,6 +199,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         clamps += int((run.clamped > 0).sum())
         seconds += run.seconds
         n += len(df)
+        hours += streamed_hours(df, getattr(deployed, "period_s", 1.0))
         rows.update(len(df))
     rows.close()
     k_targets = len(targets)
@@ -201,5 +225,8 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   "streamed_range": [float(np.min(out[:, j])), float(np.max(out[:, j]))] if n else None,
                   "bound": None if guard is None else [float(guard.lo[j]), float(guard.hi[j])]}
               for j, t in enumerate(targets)}
-    return {"targets": report, "excluded_inputs": sorted(excluded), "events": events,
-            **summary(deployed)}
+    result = {"targets": report, "excluded_inputs": sorted(excluded), "events": events,
+              **summary(deployed)}
+    if result["adaptive"]:
+        result["alarms"] = alarm_rate(events, hours)
+    return result

@@ -49,6 +49,8 @@ import numpy as np
 from .pod import ThermalPOD, windowed_mean
 
 OK, WARNING, ALARM, EXCLUDED = 0, 1, 2, 3
+SPREAD_FACTOR = 3.0   # bands never within this × a sensor's training spread (from_training)
+MAX_BACKOFF = 10      # a sensor excluded again waits at most window × 2**MAX_BACKOFF to return
 READMIT = 0.5   # hysteresis: back in when within this share of the warning band for a window
 STATES = ("ok", "warning", "alarm", "excluded")
 
@@ -161,21 +163,32 @@ class SensorMonitor:
         lo = np.min([a.min(0) for a in arrays], axis=0)
         hi = np.max([a.max(0) for a in arrays], axis=0)
         first = np.mean([a[0] for a in arrays], axis=0)
+        # the training spread of each sensor: 99.5th percentile of its windowed leave-one-out error
+        E = pod.deleted_residuals(snaps)
+        spread = np.nanquantile(np.abs(windowed_mean(np.nan_to_num(E), groups, pod.window)),
+                                0.995, axis=0)
+        warn = np.asarray(options.get("warning_c", 0.4), float)
+        alarm = np.asarray(options.get("alarm_c", 0.8), float)
+        factor = float(options.pop("spread_factor", SPREAD_FACTOR))
         if learned_bands:
-            # bands from the training spread: 4× the 99.5th percentile of the windowed
-            # leave-one-out error per sensor, never below the configured bands' half
-            E = pod.deleted_residuals(snaps)
-            spread = np.nanquantile(np.abs(windowed_mean(np.nan_to_num(E), groups,
-                                                         pod.window)), 0.995, axis=0)
-            warn = np.maximum(4 * spread, 0.5 * np.asarray(options.get("warning_c", 0.4), float))
-            options = {**options, "warning_c": warn, "alarm_c": 2 * warn}
+            # bands from the training spread: 4× it, never below the configured bands' half
+            warn = np.maximum(4 * spread, 0.5 * warn)
+            alarm = 2 * warn
+        else:
+            # never within `spread_factor` × the spread: a sensor the others predict loosely in
+            # training does so on a healthy campaign of another season too (fl T_9: 0.24 °C in
+            # training, past the 0.4 °C band on the test campaign, and the culprit pick then
+            # excluded T_13 21 times); the others keep the configured bands
+            floor = factor * spread
+            warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
+        options = {**options, "warning_c": warn, "alarm_c": alarm}
         return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
                    first_c=first, **options)
 
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
-              "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped")
+              "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell", "_outs")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -191,6 +204,10 @@ class SensorMonitor:
         self._prev_e = np.full(n, np.nan)
         self._run = np.zeros(n, dtype=np.int64)
         self._calm = np.zeros(n, dtype=np.int64)   # samples since a detector last fired
+        # calm samples an excluded sensor needs to return: a window, doubled at each exclusion
+        # by its error after the first in a campaign (hysteresis: a sensor cannot flap)
+        self._dwell = np.full(n, self.window, dtype=np.int64)
+        self._outs = np.zeros(n, dtype=np.int64)     # its exclusions by its error
         self._prev_other = np.full(n, np.nan)       # each sensor as the others predict it
         self._last_good = np.zeros(n)               # last reading while the sensor was in
         self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
@@ -522,11 +539,11 @@ class SensorMonitor:
         """Re-admission: back within the warning band for a whole window, no detector firing
         (checked against the field where the others can predict it, else calm is enough).
         Whether any sensor came back."""
-        due = ~self._active & finite & (self._run == 0) & (self._calm >= self.window)
+        due = ~self._active & finite & (self._run == 0) & (self._calm >= self._dwell)
         due[list(instant)] = False
         back = self._returning(due) if due.any() else due
         for j in np.flatnonzero(back):
-            why = f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C for {self.window} samples"
+            why = f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C for {self._calm[j]} samples"
             shift = self._ref[j] - self._ref0[j]
             if not self._predictable[j] and (self._jumps[j] > 1 or (
                     self._jumps[j] and abs(d[j] + shift - self._last_good[j])
@@ -642,6 +659,9 @@ class SensorMonitor:
             reason += "; held at its last good reading: no other sensor predicts it"
         self._active[j] = False
         self._calm[j] = 0            # back in only after a whole window inside the band
+        if by_field:      # out by its error again since its first return: it waits longer
+            self._dwell[j] = self.window * 2 ** min(self._outs[j], MAX_BACKOFF)
+            self._outs[j] += 1
         self._by_field[j] = by_field
         self._set_state(j, EXCLUDED, time, reason, events)
         self._set_operator()

@@ -439,7 +439,8 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict):
            "window": int(m.window), "max_leverage": float(m.pod.max_leverage)}
     options = {"warning_c": float(m.bands.warning_c), "alarm_c": float(m.bands.alarm_c),
                "window": int(m.window), "confirm": int(m.confirm), "adaptive": bool(m.adaptive),
-               "exclude_at": str(m.exclude_at), **OmegaConf.to_container(m.detectors)}
+               "exclude_at": str(m.exclude_at), "spread_factor": float(m.bands.spread_factor),
+               **OmegaConf.to_container(m.detectors)}
     try:
         return AdaptiveCompensator.from_training(
             streaming, train, monitor=options, pod=pod,

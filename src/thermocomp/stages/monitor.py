@@ -27,7 +27,7 @@ from .. import io
 from ..context import TIME
 from ..continuation import chain, preceding
 from ..deploy import StreamingCompensator
-from ..deploy.report import campaign_start
+from ..deploy.report import alarm_rate, campaign_start, streamed_hours
 from ..deploy.streaming import warm
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
@@ -237,6 +237,7 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
     measured = comp.measured(streamed) if any(t in df.columns for df in streamed.values()
                                               for t in comp.targets_) else None
     res_f, res_a, corr = [], [], []
+    hours = 0.0
     for cid, df in streamed.items():
         lead = (leads or {}).get(cid)
         y_fix, _, _ = _stream(fixed, df, lead)
@@ -249,6 +250,7 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
             if (e.get("sensor") in names and e["to"] in ("alarm", "excluded")
                     and e["sensor"] not in first_alarm):
                 first_alarm[e["sensor"]] = {"campaign": cid, "time": e["time"]}
+        hours += streamed_hours(df, adaptive.period_s)
         S = np.asarray(states)
         for k in range(len(STATES)):
             counts[:, k] += (S == k).sum(axis=0)
@@ -292,6 +294,7 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
                 "placement": placement,
                 "sensor_rank": [names[i] for i in (rank if placement == "qr" else cov)]},
         "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist()},
+        "alarms": alarm_rate(events, hours),
         "campaigns": list(streamed),
     }
     return report, traces
@@ -313,6 +316,8 @@ def _print(report: dict) -> None:
         print(f"an offset inside the exclusion band costs up to {worst:.3g} µm ({name} "
               f"{r['undetected_offset_c']:g} °C, {target}; per sensor in monitor.json)")
     excl = [e for e in report["events"] if e["to"] == "excluded"]
+    rate = report["alarms"]["exclusions_per_100h"]
     print(f"events: {len(report['events'])}, exclusions: {len(excl)}"
+          + ("" if rate is None else f" ({rate:.3g} per 100 h)")
           + (f", first: {excl[0]['sensor']} ({excl[0]['campaign']}, {excl[0]['time'] / 3600:.2f} h)"
              if excl else ""))

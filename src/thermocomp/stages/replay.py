@@ -98,6 +98,7 @@ def replay(cfg: DictConfig) -> dict:
         report = {"model": name, "source": source, "targets": targets,
                   "excluded_inputs": result["excluded_inputs"], "events": result["events"],
                   "adaptive": result["adaptive"], "pod": result["pod"],
+                  **({"alarms": result["alarms"]} if "alarms" in result else {}),
                   "columns": list(deployed.columns_), "time_required": deployed.time_required_,
                   "envelope": {"policy": stream.policy,
                                "margin": stream.envelope.margin if stream.envelope else None},

@@ -46,6 +46,7 @@ MONITOR_RULES = {f"monitor.{k}": rule for k, rule in {
     "adaptive": BOOLEAN, "window": integer(1, at_most=MAX_WINDOW),
     "confirm": integer(1, at_most=MAX_WINDOW), "exclude_at": choice("warning", "alarm"),
     "bands.warning_c": POSITIVE, "bands.alarm_c": POSITIVE, "bands.learned": BOOLEAN,
+    "bands.spread_factor": NON_NEGATIVE,
     "pod.energy": number(0.0, 1.0, open_lo=True), "pod.modes": optional(integer(1)),
     "pod.fit_share": optional(POSITIVE), "pod.max_leverage": number(0.0, 1.0, open_lo=True),
     "pod.placement": choice("qr", "covariance"), "detectors.jump_factor": POSITIVE,
