@@ -45,6 +45,8 @@ class Streamed:
     seconds: float                     # time spent in the step loop
     events: list = field(default_factory=list)     # the adaptive compensator's, in order
     excluded: list = field(default_factory=list)   # sensors excluded after the last row
+    frozen: np.ndarray | None = None   # the prediction before adaptation (adapt on)
+    references: int = 0                # reference measurements taken in the campaign
 
 
 def plain(deployed) -> StreamingCompensator:
@@ -74,7 +76,8 @@ def campaign_start(campaign: pd.DataFrame) -> float:
 
 
 def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
-                lead_in: pd.DataFrame | None = None) -> Streamed:
+                lead_in: pd.DataFrame | None = None, adapt=None,
+                measured: np.ndarray | None = None) -> Streamed:
     """Stream one campaign from its start through ``_step`` (the body of ``step`` and ``predict``):
     from a reset, or warmed on ``lead_in``, the campaigns it continues (:func:`~.streaming.warm`).
 
@@ -83,6 +86,10 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     plain streaming compensator refuses (a missing value, an input outside the
     envelope with ``policy=refuse``) raises :class:`ContractError` naming the
     campaign, its ``file``, the column and the row (1-based).
+
+    ``adapt``: ``(ReferenceAdapter, ReferenceSchedule)`` (:mod:`.adapt`); each row's correction
+    is the adapted one, and where the schedule says a reference is taken the ``measured`` error
+    of that row (rows x targets) updates the adapter *after* the row's correction was given.
     """
     X = campaign[deployed.columns_].to_numpy(float)
     t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.full(len(campaign), np.nan)
@@ -96,11 +103,22 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     except OutOfEnvelopeError as exc:
         raise ContractError(f"campaign {cid}: {exc}", file=file) from None
     step = deployed._step   # returns the clamp count too
+    adapter, schedule = adapt or (None, None)
+    frozen = np.empty_like(y) if adapter is not None else None
+    references = 0
+    if schedule is not None:
+        schedule.reset()
     start = clock.perf_counter()
     i = 0
     try:
         for i in range(len(X)):
             y[i], clamped[i] = step(X[i], t[i])
+            if adapter is not None:
+                frozen[i] = y[i]
+                y[i] = adapter.apply(y[i])
+                if measured is not None and schedule.due(t[i]):
+                    adapter.update(frozen[i], measured[i])
+                    references += 1
             if adaptive and deployed.last_events_:
                 events += [{"campaign": cid, **e, "time": e["time"] - t0} for e in deployed.last_events_]
     except OutOfEnvelopeError as exc:
@@ -115,7 +133,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     seconds = clock.perf_counter() - start
     excluded = list(deployed.excluded_inputs) if adaptive else []
     deployed.reset()
-    return Streamed(y, clamped, seconds, events, excluded)
+    return Streamed(y, clamped, seconds, events, excluded, frozen, references)
 
 
 def complete_rows(campaign: pd.DataFrame, columns) -> int:
@@ -126,7 +144,7 @@ def complete_rows(campaign: pd.DataFrame, columns) -> int:
 
 def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   files: Mapping[str, object] | None = None,
-                  lead_ins: Mapping[str, pd.DataFrame] | None = None) -> dict:
+                  lead_ins: Mapping[str, pd.DataFrame] | None = None, adapt=None) -> dict:
     """Stream ``campaigns`` through ``deployed`` (see module doc); ``files`` (campaign -> file)
     only name the file of a refused row.  A campaign with a ``lead_ins`` entry continues the
     campaigns in it: both streams are warmed on it and the batch prediction is that of the
@@ -143,14 +161,19 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         and ``all_finite`` of the deployed stream; ``streamed_range`` [min, max] of it;
         ``bound``, the guard's [lo, hi] or null), ``excluded_inputs`` (sensors excluded
         at the end of any campaign, sorted) and ``events`` (every event with its
-        ``campaign``), plus :func:`summary`'s ``adaptive`` and ``pod``.
+        ``campaign``), plus :func:`summary`'s ``adaptive`` and ``pod``.  With ``adapt``
+        (``(ReferenceAdapter, ReferenceSchedule)``, campaigns streamed in their order, what is
+        learned carried from one to the next) ``rmse`` is the adapted correction's and each
+        target gets ``adapt``: ``rmse_frozen`` (the same stream unadapted), ``gain``,
+        ``bias_um`` (at the end) and ``n_references``.
     """
     stream = plain(deployed)
     comp = stream.compensator
     lead_ins = lead_ins or {}
     measured = comp.measured(campaigns)
     targets = list(deployed.targets_)
-    diffs, residuals, batch_residuals, outputs = [], [], [], []
+    diffs, residuals, batch_residuals, outputs, frozen_residuals = [], [], [], [], []
+    references = 0
     events, excluded = [], set()
     clamps, seconds, n = 0, 0.0, 0
     from ..progress import bar
@@ -167,8 +190,11 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                 free = stream_rows(stream, head, cid, lead_in=lead).y
             diffs.append(np.abs(free - batch))
             batch_residuals.append(m[:k] - batch)
-        run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid))
+        run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid), adapt, m)
         residuals.append(m - run.y)
+        if run.frozen is not None:
+            frozen_residuals.append(m - run.frozen)
+            references += run.references
         outputs.append(run.y)
         events += run.events
         excluded.update(run.excluded)
@@ -200,5 +226,12 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   "streamed_range": [float(np.min(out[:, j])), float(np.max(out[:, j]))] if n else None,
                   "bound": None if guard is None else [float(guard.lo[j]), float(guard.hi[j])]}
               for j, t in enumerate(targets)}
+    if adapt is not None:
+        adapter = adapt[0]
+        fres = np.concatenate(frozen_residuals) if frozen_residuals else np.empty((0, k_targets))
+        for j, t in enumerate(targets):
+            report[t]["adapt"] = {"method": adapter.method, "rmse_frozen": rms(fres[:, j]),
+                                  "gain": float(adapter.gain_[j]), "bias_um": float(adapter.bias_[j]),
+                                  "n_references": references}
     return {"targets": report, "excluded_inputs": sorted(excluded), "events": events,
             **summary(deployed)}

@@ -23,6 +23,7 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from .. import io
+from ..deploy.adapt import from_config as adapt_from_config
 from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
@@ -91,7 +92,8 @@ def replay(cfg: DictConfig) -> dict:
             f"({', '.join(deployed.columns_)})")
         result = replay_report(deployed, {c: ds.campaigns[c] for c in test_ids},
                                {c: root / str(ds.manifest.loc[c, "file"]) for c in test_ids},
-                               lead_ins(plain(deployed).compensator, ds, test_ids))
+                               lead_ins(plain(deployed).compensator, ds, test_ids),
+                               adapt_from_config(cfg.get("adapt"), len(deployed.targets_)))
         targets = result["targets"]
         stream = plain(deployed)
         report = {"model": name, "source": source, "targets": targets,

@@ -1,0 +1,137 @@
+"""Learning from reference measurements: a bounded gain/bias update of a deployed correction.
+
+Machines re-measure their error from time to time (a probe touch, an artefact
+cycle).  :class:`ReferenceAdapter` takes each such measurement ``e`` with the
+correction ``y`` the deployed model gave at that sample and updates, per
+target, the map ``y -> gain * y + bias`` applied to every later correction:
+
+* ``method='rls'``: recursive least squares with forgetting on ``(gain, bias)``
+  (the law's slope changes as a machine ages or a joint clamps differently);
+* ``method='bias'``: the same filter on ``bias`` alone (an offset that drifts);
+* ``method='none'``: the frozen model.
+
+Why on the output rather than on every coefficient of the model: it is the same
+two numbers for every family (MLR, ARX, lagbank, a forest), a reference every
+few hours cannot identify more, and the model's own dynamics stay those it was
+validated with.  It never leaves the training envelope unbounded: ``gain`` is
+kept in ``[1 - max_gain_change, 1 + max_gain_change]``, ``|bias| <= max_bias_um``,
+so the adapted correction stays within a fixed affine image of the bounded one,
+and the filter's covariance never grows beyond its prior (no wind-up when
+references carry no new information).  The parameters survive :meth:`reset`
+(a new campaign on the same machine); :meth:`forget` returns to the frozen model.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+METHODS = ("none", "rls", "bias")
+
+
+class ReferenceAdapter:
+    """Bounded recursive update of ``gain * y + bias`` per target (see module doc).
+
+    Parameters
+    ----------
+    n_targets : int
+    method : {'none', 'rls', 'bias'}
+    forgetting : float in (0, 1]
+        Weight of the past per reference (1: never forget).
+    max_gain_change, max_bias_um : float
+        Bounds of the parameters around the frozen model (gain 1, bias 0).
+    prior_var_gain, prior_var_bias : float
+        Prior variance of ``gain`` and of ``bias`` (µm²): how far one reference may move them.
+    """
+
+    def __init__(self, n_targets: int, method: str = "bias", forgetting: float = 0.5,
+                 max_gain_change: float = 0.5, max_bias_um: float = 30.0,
+                 prior_var_gain: float = 0.05, prior_var_bias: float = 100.0):
+        if method not in METHODS:
+            raise ValueError(f"adapt method must be one of {METHODS}, got {method!r}")
+        if not 0 < forgetting <= 1:
+            raise ValueError(f"adapt forgetting must be in (0, 1], got {forgetting}")
+        self.n_targets, self.method, self.forgetting = int(n_targets), method, float(forgetting)
+        self.max_gain_change, self.max_bias_um = float(max_gain_change), float(max_bias_um)
+        prior = [prior_var_gain, prior_var_bias] if method == "rls" else [prior_var_bias]
+        self._prior = np.diag(np.asarray(prior, dtype=float))
+        self.forget()
+
+    def forget(self) -> None:
+        """Back to the frozen model (gain 1, bias 0, prior covariance)."""
+        self.gain_ = np.ones(self.n_targets)
+        self.bias_ = np.zeros(self.n_targets)
+        self._P = [self._prior.copy() for _ in range(self.n_targets)]
+        self.n_references_ = 0
+
+    def reset(self) -> None:
+        """A new campaign: what was learned about the machine is kept."""
+
+    def snapshot(self) -> tuple:
+        return self.gain_.copy(), self.bias_.copy(), [p.copy() for p in self._P], self.n_references_
+
+    def restore(self, snap: tuple) -> None:
+        self.gain_, self.bias_, self._P, self.n_references_ = snap
+
+    def apply(self, y: np.ndarray) -> np.ndarray:
+        """The adapted correction of the model's ``y`` (one value per target)."""
+        return self.gain_ * y + self.bias_
+
+    def update(self, y: np.ndarray, measured: np.ndarray) -> None:
+        """One reference: ``measured`` error (µm per target) where the model said ``y``.
+
+        A target without a finite measurement or prediction is left as it was."""
+        if self.method == "none":
+            return
+        lam = self.forgetting
+        for j in range(self.n_targets):
+            if not (np.isfinite(y[j]) and np.isfinite(measured[j])):
+                continue
+            theta = np.array([self.gain_[j], self.bias_[j]] if self.method == "rls" else [self.bias_[j]])
+            phi = np.array([y[j], 1.0] if self.method == "rls" else [1.0])
+            # bias alone: what the (fixed) gain leaves of the measurement
+            seen = measured[j] - (self.gain_[j] * y[j] if self.method == "bias" else 0.0)
+            P = self._P[j]
+            k = P @ phi / (lam + phi @ P @ phi)
+            theta = theta + k * (seen - phi @ theta)
+            P = (P - np.outer(k, phi @ P)) / lam
+            # no wind-up: the covariance never exceeds its prior
+            scale = max(1.0, float(np.trace(P) / np.trace(self._prior)))
+            self._P[j] = P / scale
+            if self.method == "rls":
+                self.gain_[j] = np.clip(theta[0], 1 - self.max_gain_change, 1 + self.max_gain_change)
+            self.bias_[j] = np.clip(theta[-1], -self.max_bias_um, self.max_bias_um)
+        self.n_references_ += 1
+
+
+class ReferenceSchedule:
+    """When a reference is taken: every ``every_s`` seconds of a campaign (none at its start,
+    where the error is zeroed); ``reset`` starts a campaign."""
+
+    def __init__(self, every_s: float):
+        if not every_s > 0:
+            raise ValueError(f"adapt every_s must be > 0, got {every_s}")
+        self.every_s = float(every_s)
+        self.reset()
+
+    def reset(self) -> None:
+        self._next = None
+
+    def due(self, time: float) -> bool:
+        if not np.isfinite(time):
+            return False
+        if self._next is None:
+            self._next = time + self.every_s
+            return False
+        if time + 1e-9 >= self._next:
+            self._next += self.every_s * np.floor((time - self._next) / self.every_s + 1)
+            return True
+        return False
+
+
+def from_config(adapt, n_targets: int) -> tuple[ReferenceAdapter, ReferenceSchedule] | None:
+    """``(adapter, schedule)`` of the ``adapt`` config group, or None for ``method=none``."""
+    if adapt is None or adapt.get("method", "none") == "none":
+        return None
+    keys = ("forgetting", "max_gain_change", "max_bias_um", "prior_var_gain", "prior_var_bias")
+    adapter = ReferenceAdapter(n_targets, str(adapt.method), **{k: float(adapt[k]) for k in keys})
+    return adapter, ReferenceSchedule(float(adapt.every_s))
