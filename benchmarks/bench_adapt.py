@@ -25,12 +25,14 @@ import numpy as np
 
 from thermocomp.compensator import Compensator
 from thermocomp.deploy import StreamingCompensator
-from thermocomp.deploy.adapt import ReferenceAdapter, ReferenceSchedule
+from thermocomp.deploy.adapt import Adaptation, ReferenceAdapter, ReferenceSchedule
 from thermocomp.deploy.report import replay_report
 from thermocomp.io.read import read_dataset
 from thermocomp.models import MLR
 
-SETTINGS = {"none": {}, "rls": {}, "bias": {}}
+# label -> (method, parameters other than the defaults of conf/adapt/default.yaml)
+SETTINGS = {"none": ("none", {}), "bias": ("bias", {}), "rls": ("rls", {}),
+            "rls f=0.9": ("rls", {"forgetting": 0.9})}
 
 
 def simulate(folder: Path, effects: str) -> None:
@@ -51,13 +53,10 @@ def scores(folder: Path, every_s: float) -> dict:
     test = {c: ds.campaigns[c] for c in ds.ids("test")}
     stream = StreamingCompensator.from_training(Compensator(MLR()).fit(train), train)
     out = {}
-    for method, params in SETTINGS.items():
-        adapter = ReferenceAdapter(len(stream.targets_), "rls" if method == "none" else method,
-                                   **params)
-        if method == "none":
-            adapter.method = "none"
-        report = replay_report(stream, test, adapt=(adapter, ReferenceSchedule(every_s)))
-        out[method] = {"rmse": pooled_rmse(report, frozen=False),
+    for label, (method, params) in SETTINGS.items():
+        adapter = ReferenceAdapter(len(stream.targets_), method, **params)
+        report = replay_report(stream, test, adapt=Adaptation(adapter, ReferenceSchedule(every_s)))
+        out[label] = {"rmse": pooled_rmse(report, frozen=False),
                        "per_target": {t: r["rmse"] for t, r in report["targets"].items()},
                        "references": next(iter(report["targets"].values()))["adapt"]["n_references"]}
     return out
@@ -76,7 +75,7 @@ def main() -> None:
         for method, r in res.items():
             per = ", ".join(f"{t} {v:.3f}" for t, v in r["per_target"].items())
             change = 100 * (r["rmse"] / frozen - 1)
-            print(f"  {name:<10} {method:<5} {r['rmse']:.3f}  ({change:+.1f} % vs frozen; "
+            print(f"  {name:<10} {method:<9} {r['rmse']:.3f}  ({change:+.1f} % vs frozen; "
                   f"{r['references']} references)  [{per}]")
 
 

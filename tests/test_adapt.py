@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import json
 from pathlib import Path
 
@@ -13,8 +14,9 @@ from conftest import refused
 from test_hostile import FAST, make_dataset
 from thermocomp.compensator import Compensator
 from thermocomp.deploy import StreamingCompensator
-from thermocomp.deploy.adapt import ReferenceAdapter, ReferenceSchedule
+from thermocomp.deploy.adapt import Adaptation, ReferenceAdapter, ReferenceSchedule
 from thermocomp.deploy.report import replay_report
+from thermocomp.deploy.streaming import replay
 from thermocomp.models import MLR
 
 PERIOD_S, HOURS = 300.0, 8.0
@@ -45,9 +47,7 @@ def streams():
 
 
 def rmse(stream, test, method: str) -> tuple[float, dict]:
-    adapt = (ReferenceAdapter(1, "bias" if method == "none" else method), ReferenceSchedule(7200.0))
-    if method == "none":
-        adapt[0].method = "none"
+    adapt = Adaptation(ReferenceAdapter(1, method), ReferenceSchedule(7200.0))
     report = replay_report(stream, test, adapt=adapt)["targets"]["E_X"]
     return report["rmse"], report["adapt"]
 
@@ -140,3 +140,53 @@ def test_the_ageing_machine_changes_its_law_only_after_training():
         else:    # the thermal error grows (the probe noise is the same draw in both)
             grown = (after - after.iloc[0]).abs().max() - (before - before.iloc[0]).abs().max()
             assert (grown > 0).all(), cid
+
+
+def test_the_served_model_learns_from_the_references_a_session_sends(streams, tmp_path):
+    import mlflow
+
+    from thermocomp.deploy.pyfunc import save_compensator
+
+    stream, _, aged = streams
+    deployed = copy.deepcopy(stream)
+    deployed.adapt_ = Adaptation(ReferenceAdapter(1, "bias"))      # served: no schedule
+    model = mlflow.pyfunc.load_model(str(save_compensator(deployed, tmp_path / "model")))
+    first, second = (aged[c][["time", "T_0", "T_amb"]] for c in ("T4", "T5"))
+    refs = [aged[c]["E_X"].where(aged[c]["time"] % 7200 == 0).where(aged[c]["time"] > 0)
+            for c in ("T4", "T5")]
+
+    def served(frame, session, reset=True, measured=None):
+        block = frame if measured is None else frame.assign(E_X=measured)
+        return model.predict(block, params={"session": session, "reset": reset})["C_X"].to_numpy()
+
+    # what the adaptation gives on the stream's own corrections, references where the rows carry them
+    expected = Adaptation(ReferenceAdapter(1, "bias"))
+    want = [-expected.correct(replay(stream, f)[["E_X"]].to_numpy(), f["time"].to_numpy(),
+                              r.to_numpy()[:, None])[:, 0] for f, r in zip((first, second), refs)]
+    np.testing.assert_allclose(served(first, "m1", measured=refs[0]), want[0], atol=1e-9)
+    np.testing.assert_allclose(served(second, "m1", measured=refs[1]), want[1], atol=1e-9)
+    # a new session (another machine) starts from the model as promoted: the frozen stream
+    frozen = -replay(stream, first)["E_X"].to_numpy()
+    np.testing.assert_allclose(served(first, "m2"), frozen, atol=1e-9)
+    assert np.abs(want[1] - (-replay(stream, second)["E_X"].to_numpy())).max() > 1.0
+
+
+def test_monitor_streams_the_adapted_correction(tmp_path):
+    from thermocomp.cli import main
+
+    rng = np.random.default_rng(1)
+    root = tmp_path / "ds"
+    root.mkdir()
+    rows = []
+    for i in range(6):
+        cid, split = f"K{i}", "train" if i < 3 else "test"
+        df = campaign(rng, TRAIN_GAIN * (1.0 if split == "train" else 1.5), 18 + i)
+        df.insert(2, "T_1", df["T_0"].rolling(6, min_periods=1).mean() + rng.normal(0, 0.03, len(df)))
+        df.to_csv(root / f"{cid}.csv", index=False)
+        rows.append((cid, f"{cid}.csv", split))
+    pd.DataFrame(rows, columns=["campaign", "file", "split"]).to_csv(root / "campaigns.csv", index=False)
+    out = tmp_path / "out"
+    assert main(["monitor", *FAST, f"data.path={root}", f"out={out}", "adapt.method=bias"]) == 0
+    target = json.loads((out / "monitor.json").read_text())["targets"]["E_X"]
+    assert target["adapt"]["n_references"] == 3 * 3
+    assert target["rmse_adaptive"] < 0.7 * target["adapt"]["rmse_frozen"]

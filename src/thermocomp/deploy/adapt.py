@@ -70,7 +70,9 @@ class ReferenceAdapter:
         return self.gain_.copy(), self.bias_.copy(), [p.copy() for p in self._P], self.n_references_
 
     def restore(self, snap: tuple) -> None:
-        self.gain_, self.bias_, self._P, self.n_references_ = snap
+        # copies: updates change the arrays in place, and a snapshot may be restored twice
+        gain, bias, P, self.n_references_ = snap
+        self.gain_, self.bias_, self._P = gain.copy(), bias.copy(), [p.copy() for p in P]
 
     def apply(self, y: np.ndarray) -> np.ndarray:
         """The adapted correction of the model's ``y`` (one value per target)."""
@@ -128,10 +130,64 @@ class ReferenceSchedule:
         return False
 
 
-def from_config(adapt, n_targets: int) -> tuple[ReferenceAdapter, ReferenceSchedule] | None:
-    """``(adapter, schedule)`` of the ``adapt`` config group, or None for ``method=none``."""
+class Adaptation:
+    """A :class:`ReferenceAdapter` and when references come: the one mechanism ``replay``,
+    ``monitor`` and the served model run on a stream's corrections.
+
+    With a ``schedule`` (replay, monitor: references simulated from the measured error
+    columns) a row's measurement is a reference only where the schedule says one is due;
+    without one (the served model) every row that carries a finite measurement is one.
+    Adaptation acts on the output only, so a block of corrections can be adapted after the
+    stream produced it: row by row, each row's correction is adapted with what was learned
+    *before* it, then its reference (if any) updates the adapter.
+    """
+
+    def __init__(self, adapter: ReferenceAdapter, schedule: ReferenceSchedule | None = None):
+        self.adapter, self.schedule = adapter, schedule
+
+    @property
+    def method(self) -> str:
+        return self.adapter.method
+
+    def start(self) -> None:
+        """A new campaign: the schedule restarts, what was learned is kept."""
+        if self.schedule is not None:
+            self.schedule.reset()
+
+    def correct(self, Y: np.ndarray, times: np.ndarray, measured: np.ndarray | None = None
+                ) -> np.ndarray:
+        """Adapted corrections of consecutive rows ``Y`` (rows x targets) at ``times``;
+        ``measured`` (rows x targets, NaN where none) are the reference measurements."""
+        out = np.empty_like(np.asarray(Y, dtype=float))
+        for i, y in enumerate(np.asarray(Y, dtype=float)):
+            out[i] = self.adapter.apply(y)
+            if measured is None:
+                continue
+            due = self.schedule.due(times[i]) if self.schedule is not None else True
+            if due and np.isfinite(measured[i]).any():
+                self.adapter.update(y, measured[i])
+        return out
+
+    def snapshot(self) -> tuple:
+        return self.adapter.snapshot(), None if self.schedule is None else self.schedule._next
+
+    def restore(self, snap: tuple) -> None:
+        self.adapter.restore(snap[0])
+        if self.schedule is not None:
+            self.schedule._next = snap[1]
+
+    def figures(self, target: int) -> dict:
+        """What ``replay.json`` / ``monitor.json`` say of the adaptation of one target."""
+        a = self.adapter
+        return {"method": a.method, "gain": float(a.gain_[target]), "bias_um": float(a.bias_[target]),
+                "n_references": int(a.n_references_)}
+
+
+def from_config(adapt, n_targets: int, scheduled: bool = True) -> Adaptation | None:
+    """The :class:`Adaptation` of the ``adapt`` config group (with its ``every_s`` schedule when
+    ``scheduled``), or None for ``method=none``."""
     if adapt is None or adapt.get("method", "none") == "none":
         return None
     keys = ("forgetting", "max_gain_change", "max_bias_um", "prior_var_gain", "prior_var_bias")
     adapter = ReferenceAdapter(n_targets, str(adapt.method), **{k: float(adapt[k]) for k in keys})
-    return adapter, ReferenceSchedule(float(adapt.every_s))
+    return Adaptation(adapter, ReferenceSchedule(float(adapt.every_s)) if scheduled else None)

@@ -45,8 +45,6 @@ class Streamed:
     seconds: float                     # time spent in the step loop
     events: list = field(default_factory=list)     # the adaptive compensator's, in order
     excluded: list = field(default_factory=list)   # sensors excluded after the last row
-    frozen: np.ndarray | None = None   # the prediction before adaptation (adapt on)
-    references: int = 0                # reference measurements taken in the campaign
 
 
 def plain(deployed) -> StreamingCompensator:
@@ -76,8 +74,7 @@ def campaign_start(campaign: pd.DataFrame) -> float:
 
 
 def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
-                lead_in: pd.DataFrame | None = None, adapt=None,
-                measured: np.ndarray | None = None) -> Streamed:
+                lead_in: pd.DataFrame | None = None) -> Streamed:
     """Stream one campaign from its start through ``_step`` (the body of ``step`` and ``predict``):
     from a reset, or warmed on ``lead_in``, the campaigns it continues (:func:`~.streaming.warm`).
 
@@ -86,10 +83,6 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     plain streaming compensator refuses (a missing value, an input outside the
     envelope with ``policy=refuse``) raises :class:`ContractError` naming the
     campaign, its ``file``, the column and the row (1-based).
-
-    ``adapt``: ``(ReferenceAdapter, ReferenceSchedule)`` (:mod:`.adapt`); each row's correction
-    is the adapted one, and where the schedule says a reference is taken the ``measured`` error
-    of that row (rows x targets) updates the adapter *after* the row's correction was given.
     """
     X = campaign[deployed.columns_].to_numpy(float)
     t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.full(len(campaign), np.nan)
@@ -103,22 +96,11 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     except OutOfEnvelopeError as exc:
         raise ContractError(f"campaign {cid}: {exc}", file=file) from None
     step = deployed._step   # returns the clamp count too
-    adapter, schedule = adapt or (None, None)
-    frozen = np.empty_like(y) if adapter is not None else None
-    references = 0
-    if schedule is not None:
-        schedule.reset()
     start = clock.perf_counter()
     i = 0
     try:
         for i in range(len(X)):
             y[i], clamped[i] = step(X[i], t[i])
-            if adapter is not None:
-                frozen[i] = y[i]
-                y[i] = adapter.apply(y[i])
-                if measured is not None and schedule.due(t[i]):
-                    adapter.update(frozen[i], measured[i])
-                    references += 1
             if adaptive and deployed.last_events_:
                 events += [{"campaign": cid, **e, "time": e["time"] - t0} for e in deployed.last_events_]
     except OutOfEnvelopeError as exc:
@@ -133,7 +115,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     seconds = clock.perf_counter() - start
     excluded = list(deployed.excluded_inputs) if adaptive else []
     deployed.reset()
-    return Streamed(y, clamped, seconds, events, excluded, frozen, references)
+    return Streamed(y, clamped, seconds, events, excluded)
 
 
 def complete_rows(campaign: pd.DataFrame, columns) -> int:
@@ -162,18 +144,17 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         ``bound``, the guard's [lo, hi] or null), ``excluded_inputs`` (sensors excluded
         at the end of any campaign, sorted) and ``events`` (every event with its
         ``campaign``), plus :func:`summary`'s ``adaptive`` and ``pod``.  With ``adapt``
-        (``(ReferenceAdapter, ReferenceSchedule)``, campaigns streamed in their order, what is
-        learned carried from one to the next) ``rmse`` is the adapted correction's and each
-        target gets ``adapt``: ``rmse_frozen`` (the same stream unadapted), ``gain``,
-        ``bias_um`` (at the end) and ``n_references``.
+        (an :class:`~.adapt.Adaptation`; the campaigns in their order, what is learned carried
+        from one to the next) the deployed correction is the adapted one (``rmse``,
+        ``max_abs_correction``, ...) and each target gets ``adapt``: ``rmse_frozen`` (the same
+        stream unadapted), ``method``, ``gain``, ``bias_um`` (at the end), ``n_references``.
     """
     stream = plain(deployed)
     comp = stream.compensator
     lead_ins = lead_ins or {}
     measured = comp.measured(campaigns)
     targets = list(deployed.targets_)
-    diffs, residuals, batch_residuals, outputs, frozen_residuals = [], [], [], [], []
-    references = 0
+    diffs, residuals, batch_residuals, outputs, frozen = [], [], [], [], []
     events, excluded = [], set()
     clamps, seconds, n = 0, 0.0, 0
     from ..progress import bar
@@ -190,11 +171,13 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                 free = stream_rows(stream, head, cid, lead_in=lead).y
             diffs.append(np.abs(free - batch))
             batch_residuals.append(m[:k] - batch)
-        run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid), adapt, m)
+        run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid))
+        if adapt is not None:
+            frozen.append(m - run.y)
+            adapt.start()
+            run.y = adapt.correct(run.y, df[TIME].to_numpy(float) if TIME in df.columns
+                                  else np.full(len(df), np.nan), m)
         residuals.append(m - run.y)
-        if run.frozen is not None:
-            frozen_residuals.append(m - run.frozen)
-            references += run.references
         outputs.append(run.y)
         events += run.events
         excluded.update(run.excluded)
@@ -227,11 +210,8 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   "bound": None if guard is None else [float(guard.lo[j]), float(guard.hi[j])]}
               for j, t in enumerate(targets)}
     if adapt is not None:
-        adapter = adapt[0]
-        fres = np.concatenate(frozen_residuals) if frozen_residuals else np.empty((0, k_targets))
+        fres = np.concatenate(frozen) if frozen else np.empty((0, k_targets))
         for j, t in enumerate(targets):
-            report[t]["adapt"] = {"method": adapter.method, "rmse_frozen": rms(fres[:, j]),
-                                  "gain": float(adapter.gain_[j]), "bias_um": float(adapter.bias_[j]),
-                                  "n_references": references}
+            report[t]["adapt"] = {"rmse_frozen": rms(fres[:, j]), **adapt.figures(j)}
     return {"targets": report, "excluded_inputs": sorted(excluded), "events": events,
             **summary(deployed)}

@@ -26,6 +26,8 @@ from omegaconf import DictConfig
 from .. import io
 from ..context import TIME
 from ..deploy import StreamingCompensator
+from ..deploy.adapt import Adaptation
+from ..deploy.adapt import from_config as adapt_from_config
 from ..deploy.report import campaign_start
 from ..deploy.streaming import warm
 from ..errors import ConfigError
@@ -173,7 +175,7 @@ def monitor(cfg: DictConfig) -> dict:
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
         leads = {} if stdin else lead_ins(comp, ds, list(streamed))
         report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement),
-                                 leads)
+                                 leads, adapt_from_config(cfg.get("adapt"), len(comp.targets_)))
         mon = adaptive.monitor
         band = mon.warning_c if mon.exclude_at == "warning" else mon.alarm_c
         cost = undetected_offset_um(comp, train, dict(zip(mon.names, band.tolist())))
@@ -196,7 +198,8 @@ def monitor(cfg: DictConfig) -> dict:
 
 
 def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, streamed,
-            placement: str = "qr", leads: dict | None = None) -> tuple[dict, dict]:
+            placement: str = "qr", leads: dict | None = None, adapt: Adaptation | None = None
+            ) -> tuple[dict, dict]:
     mon = adaptive.monitor
     names = mon.names
     counts = np.zeros((len(names), len(STATES)), dtype=np.int64)
@@ -204,13 +207,19 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
     events, traces = [], {}
     measured = comp.measured(streamed) if any(t in df.columns for df in streamed.values()
                                               for t in comp.targets_) else None
-    res_f, res_a, corr = [], [], []
+    res_f, res_a, res_frozen, corr = [], [], [], []
     for cid, df in streamed.items():
         lead = (leads or {}).get(cid)
         y_fix, _, _ = _stream(fixed, df, lead)
         y_ad, ev, (states, errors) = _stream(adaptive, df, lead)
         start = campaign_start(df)      # CLI.md: event times in seconds from the campaign start
         t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
+        m = None if measured is None else measured[cid][adaptive.targets_].to_numpy()
+        if adapt is not None:           # the deployed correction learns from the references
+            if m is not None:
+                res_frozen.append(m - y_ad)
+            adapt.start()
+            y_ad = adapt.correct(y_ad, t, m)
         for e in ev:
             e = {"campaign": cid, **e, "time": e["time"] - start}
             events.append(e)
@@ -221,11 +230,9 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
         for k in range(len(STATES)):
             counts[:, k] += (S == k).sum(axis=0)
         traces[cid] = {"time": t, "states": S, "errors": np.asarray(errors), "fixed": y_fix,
-                       "adaptive": y_ad,
-                       "measured": None if measured is None else measured[cid][adaptive.targets_].to_numpy()}
+                       "adaptive": y_ad, "measured": m}
         corr.append(y_ad)
-        if measured is not None:
-            m = measured[cid][adaptive.targets_].to_numpy()
+        if m is not None:
             res_f.append(m - y_fix)
             res_a.append(m - y_ad)
     C = np.vstack(corr)
@@ -262,6 +269,10 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
         "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist()},
         "campaigns": list(streamed),
     }
+    if adapt is not None:
+        rfz = np.vstack(res_frozen) if res_frozen else None
+        for k, t in enumerate(adaptive.targets_):
+            report["targets"][t]["adapt"] = {"rmse_frozen": rmse(rfz, k), **adapt.figures(k)}
     return report, traces
 
 

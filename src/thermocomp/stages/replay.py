@@ -116,6 +116,13 @@ def replay(cfg: DictConfig) -> dict:
         rmse, batch = ("-" if r.get(k) is None else f"{r[k]:.3f}" for k in ("rmse", "rmse_batch"))
         print(f"{t:<8} {r['n_samples']:>8} {r['max_abs_stream_minus_batch']:>18.3g} "
               f"{rmse:>8} {batch:>11} {r['us_per_sample']:>10.1f}")
+    adapted = {t: r["adapt"] for t, r in targets.items() if "adapt" in r}
+    if adapted:
+        a = next(iter(adapted.values()))
+        print(f"adapt ({a['method']}, {a['n_references']} references): RMSE frozen -> adapted "
+              + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r['rmse']:.3f}"
+                          for t, r in targets.items() if "adapt" in r and r["rmse"] is not None
+                          and r["adapt"]["rmse_frozen"] is not None))
     if report["adaptive"]:
         print(f"events: {len(report['events'])}, excluded at a campaign's end: "
               f"{', '.join(report['excluded_inputs']) or 'none'}")
