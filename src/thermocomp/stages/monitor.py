@@ -291,6 +291,13 @@ def _print(report: dict) -> None:
                      key=r["undetected_offset_um"].get)
         print(f"an offset inside the exclusion band costs up to {worst:.3g} µm ({name} "
               f"{r['undetected_offset_c']:g} °C, {target}; per sensor in monitor.json)")
+    adapted = [(t, r) for t, r in report["targets"].items() if "adapt" in r]
+    if adapted:
+        a = adapted[0][1]["adapt"]
+        print(f"adapt ({a['method']}, {a['n_references']} references): RMSE adaptive without -> with "
+              + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r['rmse_adaptive']:.3f}"
+                          for t, r in adapted if r["rmse_adaptive"] is not None
+                          and r["adapt"]["rmse_frozen"] is not None))
     excl = [e for e in report["events"] if e["to"] == "excluded"]
     print(f"events: {len(report['events'])}, exclusions: {len(excl)}"
           + (f", first: {excl[0]['sensor']} ({excl[0]['campaign']}, {excl[0]['time'] / 3600:.2f} h)"
