@@ -84,10 +84,12 @@ def test_a_wild_reference_moves_the_correction_within_the_bounds(method):
 
 def test_what_is_learned_survives_a_new_campaign_until_forgotten():
     adapter = ReferenceAdapter(1, "bias")
-    adapter.update(np.array([0.0]), np.array([4.0]))
+    adaptation = Adaptation(adapter, ReferenceSchedule(600.0))
+    adaptation.correct(np.zeros((12, 1)), np.arange(12) * 60.0, np.full((12, 1), 4.0))
     learned = adapter.bias_.copy()
-    adapter.reset()
+    adaptation.start()
     assert adapter.bias_ == pytest.approx(learned) and learned[0] > 0
+    assert adapter.n_references_ == 1          # at 600 s only
     adapter.forget()
     assert adapter.bias_[0] == 0.0
 

@@ -17,8 +17,9 @@ validated with.  It never leaves the training envelope unbounded: ``gain`` is
 kept in ``[1 - max_gain_change, 1 + max_gain_change]``, ``|bias| <= max_bias_um``,
 so the adapted correction stays within a fixed affine image of the bounded one,
 and the filter's covariance never grows beyond its prior (no wind-up when
-references carry no new information).  The parameters survive :meth:`reset`
-(a new campaign on the same machine); :meth:`forget` returns to the frozen model.
+references carry no new information).  The parameters survive a new campaign
+on the same machine (:meth:`Adaptation.start`); :meth:`ReferenceAdapter.forget` returns to the
+frozen model.
 """
 
 from __future__ import annotations
@@ -63,9 +64,6 @@ class ReferenceAdapter:
         self._P = [self._prior.copy() for _ in range(self.n_targets)]
         self.n_references_ = 0
 
-    def reset(self) -> None:
-        """A new campaign: what was learned about the machine is kept."""
-
     def snapshot(self) -> tuple:
         return self.gain_.copy(), self.bias_.copy(), [p.copy() for p in self._P], self.n_references_
 
@@ -97,8 +95,8 @@ class ReferenceAdapter:
             theta = theta + k * (seen - phi @ theta)
             P = (P - np.outer(k, phi @ P)) / lam
             # no wind-up: the covariance never exceeds its prior
-            scale = max(1.0, float(np.trace(P) / np.trace(self._prior)))
-            self._P[j] = P / scale
+            cap = float(np.trace(self._prior))
+            self._P[j] = P / max(1.0, float(np.trace(P)) / cap) if cap > 0 else P
             if self.method == "rls":
                 self.gain_[j] = np.clip(theta[0], 1 - self.max_gain_change, 1 + self.max_gain_change)
             self.bias_[j] = np.clip(theta[-1], -self.max_bias_um, self.max_bias_um)
