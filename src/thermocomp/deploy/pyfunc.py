@@ -29,6 +29,13 @@ used one is dropped and starts reset if it calls again).  The state lives in
 the serving *process*: with several server workers each worker holds its own
 sessions, so serve with one worker (``thermocomp serve`` does).
 
+A model deployed with ``adapt.method`` other than ``none`` (``adapt_``, extension) learns from
+reference measurements: a row that carries a finite measured error ``E_<axis>`` (optional
+input columns; a probe touch, an artefact cycle) is one; that row's correction is given with
+what was learned before it, then the gain/bias of :mod:`thermocomp.deploy.adapt` is updated,
+per session (each machine learns its own; ``reset`` keeps what the session learned, a new
+session starts from the model as promoted).
+
 A campaign that continues one the model was deployed on (a long record cut in
 two, ``data.reference=none``: the machine did not stop) starts from the state
 that campaign left, as ``run`` scores it: ``params={"continues": "<campaign>"}``
@@ -115,6 +122,11 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         self.streaming = streaming
         self._lock = threading.Lock()
         self._sessions: OrderedDict = OrderedDict()   # session -> stream state, LRU order
+        self._learned0 = self._learned_at_promotion()
+
+    def _learned_at_promotion(self):
+        adapt = getattr(self.streaming, "adapt_", None)
+        return None if adapt is None else adapt.snapshot()
 
     def load_context(self, context) -> None:
         artifacts = (context.artifacts or {}) if context is not None else {}
@@ -124,6 +136,7 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
                                           sig=artifacts.get(SIGNATURE_ARTIFACT))
         self.streaming.reset()
         self._sessions.clear()
+        self._learned0 = self._learned_at_promotion()
 
     def _end_state(self, campaign: str) -> EndState:
         ends = self.streaming.end_states_
@@ -137,16 +150,18 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         return ends[campaign]
 
     def _state(self, session: str, reset: bool, continues: str = "", ambient_c=None) -> list:
-        """``[stream state, time shift]`` of ``session``, most recent last: a fresh one when new
-        or reset (with the campaign's ``ambient_c``, for a model that reads no ambient sensor);
-        the end state of campaign ``continues`` when given (its time shift, an
-        :class:`EndState` until the session's first row fixes it)."""
+        """``[stream state, time shift, learned]`` of ``session``, most recent last: a fresh one
+        when new or reset (with the campaign's ``ambient_c``, for a model that reads no ambient
+        sensor); the end state of campaign ``continues`` when given (its time shift, an
+        :class:`EndState` until the session's first row fixes it).  ``learned`` (what the
+        adaptation learned) survives a reset: the session is the same machine."""
+        learned = self._sessions[session][2] if session in self._sessions else self._learned0
         if continues:
             end = self._end_state(continues)
-            self._sessions[session] = [copy.deepcopy(end.state), end]
+            self._sessions[session] = [copy.deepcopy(end.state), end, learned]
         elif reset or session not in self._sessions:
             self.streaming.reset(float("nan") if ambient_c is None else float(ambient_c))
-            self._sessions[session] = [self.streaming._snapshot(), 0.0]
+            self._sessions[session] = [self.streaming._snapshot(), 0.0, learned]
         while len(self._sessions) > MAX_SESSIONS:
             self._sessions.popitem(last=False)
         self._sessions.move_to_end(session)
@@ -180,6 +195,13 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
                 raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
             finally:  # a refused block leaves the session where it was (predict rolls back)
                 state[0] = self.streaming._snapshot()
+            adapt = getattr(self.streaming, "adapt_", None)
+            if adapt is not None:
+                targets = self.streaming.targets_
+                adapt.restore(state[2])
+                pred[targets] = adapt.correct(pred[targets].to_numpy(float), np.full(len(pred), np.nan),
+                                              references(frame, targets))
+                state[2] = adapt.snapshot()
         out = pd.DataFrame({correction_column(t): -pred[t].to_numpy(float)
                             for t in self.streaming.targets_})
         out["n_clamped"] = pred["n_clamped"].to_numpy(np.int64)
@@ -189,6 +211,14 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
             if shift:      # event times in the caller's clock
                 out["events"] = [_shifted(e, -shift) for e in out["events"]]
         return out
+
+
+def references(frame: pd.DataFrame, targets) -> np.ndarray | None:
+    """The measured errors a block carries (rows x targets, NaN where none), or None."""
+    if not any(t in frame.columns for t in targets):
+        return None
+    return np.column_stack([pd.to_numeric(frame[t], errors="coerce").to_numpy(float)
+                            if t in frame.columns else np.full(len(frame), np.nan) for t in targets])
 
 
 def _shifted(events: str, by: float) -> str:
@@ -207,6 +237,8 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     names = streaming.lab_names_
     required = {c: not names for c in streaming.columns_}
     required[TIME] = streaming.time_required_ and not names
+    if getattr(streaming, "adapt_", None) is not None:   # reference measurements, when taken
+        required.update({t: False for t in streaming.targets_ if t not in required})
     inputs = Schema([ColSpec("double", c, required=r) for c, r in required.items()]
                     + [ColSpec("double", names[c], required=False) for c in required if c in names])
     outputs = Schema([ColSpec("double", correction_column(t)) for t in streaming.targets_]

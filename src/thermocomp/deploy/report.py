@@ -149,7 +149,7 @@ def complete_rows(campaign: pd.DataFrame, columns) -> int:
 
 def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   files: Mapping[str, object] | None = None,
-                  lead_ins: Mapping[str, pd.DataFrame] | None = None) -> dict:
+                  lead_ins: Mapping[str, pd.DataFrame] | None = None, adapt=None) -> dict:
     """Stream ``campaigns`` through ``deployed`` (see module doc); ``files`` (campaign -> file)
     only name the file of a refused row.  A campaign with a ``lead_ins`` entry continues the
     campaigns in it: both streams are warmed on it and the batch prediction is that of the
@@ -167,14 +167,18 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         ``bound``, the guard's [lo, hi] or null), ``excluded_inputs`` (sensors excluded
         at the end of any campaign, sorted) and ``events`` (every event with its
         ``campaign``), plus :func:`summary`'s ``adaptive`` and ``pod``, and for the adaptive
-        compensator ``alarms`` (:func:`alarm_rate`).
+        compensator ``alarms`` (:func:`alarm_rate`).  With ``adapt``
+        (an :class:`~.adapt.Adaptation`; the campaigns in their order, what is learned carried
+        from one to the next) the deployed correction is the adapted one (``rmse``,
+        ``max_abs_correction``, ...) and each target gets ``adapt``: ``rmse_frozen`` (the same
+        stream unadapted), ``method``, ``gain``, ``bias_um`` (at the end), ``n_references``.
     """
     stream = plain(deployed)
     comp = stream.compensator
     lead_ins = lead_ins or {}
     measured = comp.measured(campaigns)
     targets = list(deployed.targets_)
-    diffs, residuals, batch_residuals, outputs = [], [], [], []
+    diffs, residuals, batch_residuals, outputs, frozen = [], [], [], [], []
     events, excluded = [], set()
     clamps, seconds, n, hours = 0, 0.0, 0, 0.0
     from ..progress import bar
@@ -192,6 +196,11 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
             diffs.append(np.abs(free - batch))
             batch_residuals.append(m[:k] - batch)
         run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid))
+        if adapt is not None:
+            frozen.append(m - run.y)
+            adapt.start()
+            run.y = adapt.correct(run.y, df[TIME].to_numpy(float) if TIME in df.columns
+                                  else np.full(len(df), np.nan), m)
         residuals.append(m - run.y)
         outputs.append(run.y)
         events += run.events
@@ -225,6 +234,10 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   "streamed_range": [float(np.min(out[:, j])), float(np.max(out[:, j]))] if n else None,
                   "bound": None if guard is None else [float(guard.lo[j]), float(guard.hi[j])]}
               for j, t in enumerate(targets)}
+    if adapt is not None:
+        fres = np.concatenate(frozen) if frozen else np.empty((0, k_targets))
+        for j, t in enumerate(targets):
+            report[t]["adapt"] = {"rmse_frozen": rms(fres[:, j]), **adapt.figures(j)}
     result = {"targets": report, "excluded_inputs": sorted(excluded), "events": events,
               **summary(deployed)}
     if result["adaptive"]:

@@ -115,6 +115,9 @@ class StreamingCompensator:
     end_states_ : dict
         ``{campaign: EndState}`` of the record it was deployed on (:func:`end_states`), from
         which a served stream may continue; set by ``promote``.
+    adapt_ : Adaptation or None
+        How the served model learns from reference measurements (:mod:`.adapt`, ``adapt.*``);
+        set by the stage that deploys.
 
     Notes
     -----
@@ -127,6 +130,7 @@ class StreamingCompensator:
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
     end_states_: dict = {}
     ambient_given_ = False
+    adapt_ = None
 
     def __init__(self, compensator: Compensator, envelope: Envelope | None = None,
                  policy: str = "clamp", ambient_columns=None):

@@ -42,12 +42,13 @@ class AdaptiveCompensator:
     period_s : float
         Nominal sampling period (substitute for a bad ``time``).
 
-    Attributes ``lab_names_`` and ``end_states_``: as :class:`StreamingCompensator`'s (the
+    Attributes ``lab_names_``, ``end_states_`` and ``adapt_``: as :class:`StreamingCompensator`'s (the
     deployed object carries them; end states are of this adaptive stream).
     """
 
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
     end_states_: dict = {}
+    adapt_ = None
 
     def __init__(self, streaming: StreamingCompensator, monitor: SensorMonitor | None = None,
                  guard: CorrectionGuard | None = None, period_s: float = 1.0):

@@ -34,6 +34,10 @@ effect                    kind            mechanism
 ``ambient_law``           ambient_interval the sensitivities of the targets grow by a factor
                                           :math:`1 + \gamma\,\sigma((T_{lev} - T_{thr})/w)`
                                           once the structure's level passes a threshold
+``ageing``                dynamics        the machine ages after training: in the campaigns of
+                                          ``splits`` the targets' sensitivities grow by a factor
+                                          :math:`1 + g\,(k + 1)/K` (campaign :math:`k` of
+                                          :math:`K`); *extension*, issue 36 item 6
 ``sensor_faults``         sensor_fault    one sensor's *reading* fails in the written test
                                           campaigns: freeze, jump, dropout (empty cells), drift,
                                           or a spike on the reference (first) sample
@@ -571,6 +575,51 @@ class AmbientLaw(UndeclaredEffect):
         return errors
 
 
+class Ageing(UndeclaredEffect):
+    """The machine ages after training: the thermoelastic law of the later campaigns drifts."""
+
+    name, kind = "ageing", "dynamics"
+    param_rules = {"gain": number(), "splits": subset(("train", "val", "test"))}
+    defaults = {
+        "gain": 0.4,                     # relative growth of the sensitivities at the last campaign
+        "splits": ["test"],              # the campaigns recorded after the model was trained
+        "targets": [],                   # [] = every target
+    }
+
+    @property
+    def targets(self):
+        return list(self.params["targets"]) or list(getattr(self, "_all", []))
+
+    def description(self):
+        p = self.params
+        return (f"in the {'/'.join(p['splits'])} campaigns the sensitivities of "
+                f"{', '.join(self.targets) or 'every target'} grow by up to {p['gain']:.0%} "
+                "over the series (a machine that ages: wear, preload, a settling joint)")
+
+    def modify_machine(self, machine):
+        self._all = list(machine.thermoelastic.targets)
+        self._target_rows(machine)
+        return machine
+
+    def factor(self, ctx) -> float:
+        r"""Relative change :math:`g\,(k + 1)/K` of the sensitivities in campaign ``ctx``."""
+        if ctx.split not in self.params["splits"]:
+            return 0.0
+        return float(self.params["gain"]) * (ctx.index + 1) / max(ctx.n_campaigns, 1)
+
+    def modify_errors(self, ctx, errors):
+        machine = ctx.machine
+        index = machine.network.index
+        rise = ctx.node_temps - ctx.node_temps[0]
+        factor = self.factor(ctx)
+        ctx.truth.setdefault(self.name, {})["factor"] = factor
+        errors = errors.copy()
+        for row in self._target_rows(machine):
+            coefficients = machine.thermoelastic.linear[machine.thermoelastic.targets[row]]
+            errors[:, row] += factor * sum(float(v) * rise[:, index[n]] for n, v in coefficients.items())
+        return errors
+
+
 FAULT_KINDS = ("freeze", "jump", "dropout", "drift", "spike_ref")
 
 
@@ -720,7 +769,7 @@ class SensorFaults(UndeclaredEffect):
 
 
 EFFECTS = {cls.name: cls for cls in (Door, HiddenSource, LagNode, AxisPosition, SensorDrift, AmbientLaw,
-                                      SensorFaults)}
+                                      Ageing, SensorFaults)}
 
 
 def build_effects(names, params: dict | None, defaults: dict, seed: int) -> list[UndeclaredEffect]:

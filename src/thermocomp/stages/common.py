@@ -466,11 +466,15 @@ def lead_ins(comp: Compensator, ds, ids) -> dict:
 def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     """What ``promote`` registers and ``replay`` streams: the adaptive compensator around
     ``streaming`` when ``monitor.adaptive`` (default), else ``streaming`` itself; it reads
-    the lab's column names too (:func:`~thermocomp.deploy.naming.lab_names`)."""
+    the lab's column names too (:func:`~thermocomp.deploy.naming.lab_names`) and learns from
+    reference measurements as ``adapt.*`` says (``adapt_``)."""
+    from ..deploy.adapt import from_config as adapt_from_config
     from ..deploy.naming import lab_names
 
     deployed = build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
     deployed.lab_names_ = lab_names(cfg, ds)
+    # served: every row that carries a measured error is a reference (no schedule)
+    deployed.adapt_ = adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
     return deployed
 
 

@@ -27,6 +27,8 @@ from .. import io
 from ..context import TIME
 from ..continuation import chain, preceding
 from ..deploy import StreamingCompensator
+from ..deploy.adapt import Adaptation
+from ..deploy.adapt import from_config as adapt_from_config
 from ..deploy.report import alarm_rate, campaign_start, streamed_hours
 from ..deploy.streaming import warm
 from ..errors import ConfigError
@@ -205,7 +207,7 @@ def monitor(cfg: DictConfig) -> dict:
         leads = _stdin_lead_in(cfg, fixed, ds, streamed["stdin"]) if stdin else lead_ins(
             comp, ds, list(streamed))
         report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement),
-                                 leads)
+                                 leads, adapt_from_config(cfg.get("adapt"), len(comp.targets_)))
         mon = adaptive.monitor
         band = mon.warning_c if mon.exclude_at == "warning" else mon.alarm_c
         cost = undetected_offset_um(comp, train, dict(zip(mon.names, band.tolist())))
@@ -228,7 +230,8 @@ def monitor(cfg: DictConfig) -> dict:
 
 
 def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, streamed,
-            placement: str = "qr", leads: dict | None = None) -> tuple[dict, dict]:
+            placement: str = "qr", leads: dict | None = None, adapt: Adaptation | None = None
+            ) -> tuple[dict, dict]:
     mon = adaptive.monitor
     names = mon.names
     counts = np.zeros((len(names), len(STATES)), dtype=np.int64)
@@ -236,7 +239,7 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
     events, traces = [], {}
     measured = comp.measured(streamed) if any(t in df.columns for df in streamed.values()
                                               for t in comp.targets_) else None
-    res_f, res_a, corr = [], [], []
+    res_f, res_a, res_frozen, corr = [], [], [], []
     hours = 0.0
     for cid, df in streamed.items():
         lead = (leads or {}).get(cid)
@@ -244,6 +247,12 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
         y_ad, ev, (states, errors) = _stream(adaptive, df, lead)
         start = campaign_start(df)      # CLI.md: event times in seconds from the campaign start
         t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
+        m = None if measured is None else measured[cid][adaptive.targets_].to_numpy()
+        if adapt is not None:           # the deployed correction learns from the references
+            if m is not None:
+                res_frozen.append(m - y_ad)
+            adapt.start()
+            y_ad = adapt.correct(y_ad, t, m)
         for e in ev:
             e = {"campaign": cid, **e, "time": e["time"] - start}
             events.append(e)
@@ -255,11 +264,9 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
         for k in range(len(STATES)):
             counts[:, k] += (S == k).sum(axis=0)
         traces[cid] = {"time": t, "states": S, "errors": np.asarray(errors), "fixed": y_fix,
-                       "adaptive": y_ad,
-                       "measured": None if measured is None else measured[cid][adaptive.targets_].to_numpy()}
+                       "adaptive": y_ad, "measured": m}
         corr.append(y_ad)
-        if measured is not None:
-            m = measured[cid][adaptive.targets_].to_numpy()
+        if m is not None:
             res_f.append(m - y_fix)
             res_a.append(m - y_ad)
     C = np.vstack(corr)
@@ -297,6 +304,10 @@ def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, st
         "alarms": alarm_rate(events, hours),
         "campaigns": list(streamed),
     }
+    if adapt is not None:
+        rfz = np.vstack(res_frozen) if res_frozen else None
+        for k, t in enumerate(adaptive.targets_):
+            report["targets"][t]["adapt"] = {"rmse_frozen": rmse(rfz, k), **adapt.figures(k)}
     return report, traces
 
 
@@ -315,6 +326,13 @@ def _print(report: dict) -> None:
                      key=r["undetected_offset_um"].get)
         print(f"an offset inside the exclusion band costs up to {worst:.3g} µm ({name} "
               f"{r['undetected_offset_c']:g} °C, {target}; per sensor in monitor.json)")
+    adapted = [(t, r) for t, r in report["targets"].items() if "adapt" in r]
+    if adapted:
+        a = adapted[0][1]["adapt"]
+        print(f"adapt ({a['method']}, {a['n_references']} references): RMSE adaptive without -> with "
+              + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r['rmse_adaptive']:.3f}"
+                          for t, r in adapted if r["rmse_adaptive"] is not None
+                          and r["adapt"]["rmse_frozen"] is not None))
     excl = [e for e in report["events"] if e["to"] == "excluded"]
     rate = report["alarms"]["exclusions_per_100h"]
     print(f"events: {len(report['events'])}, exclusions: {len(excl)}"

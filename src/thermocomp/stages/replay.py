@@ -23,6 +23,7 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from .. import io
+from ..deploy.adapt import from_config as adapt_from_config
 from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
@@ -92,7 +93,8 @@ def replay(cfg: DictConfig) -> dict:
             f"({', '.join(deployed.columns_)})")
         result = replay_report(deployed, {c: ds.campaigns[c] for c in test_ids},
                                {c: root / str(ds.manifest.loc[c, "file"]) for c in test_ids},
-                               lead_ins(plain(deployed).compensator, ds, test_ids))
+                               lead_ins(plain(deployed).compensator, ds, test_ids),
+                               adapt_from_config(cfg.get("adapt"), len(deployed.targets_)))
         targets = result["targets"]
         stream = plain(deployed)
         report = {"model": name, "source": source, "targets": targets,
@@ -116,6 +118,13 @@ def replay(cfg: DictConfig) -> dict:
         rmse, batch = ("-" if r.get(k) is None else f"{r[k]:.3f}" for k in (RMSE, "rmse_batch"))
         print(f"{t:<8} {r['n_samples']:>8} {r['max_abs_stream_minus_batch']:>18.3g} "
               f"{rmse:>8} {batch:>11} {r['us_per_sample']:>10.1f}")
+    adapted = {t: r["adapt"] for t, r in targets.items() if "adapt" in r}
+    if adapted:
+        a = next(iter(adapted.values()))
+        print(f"adapt ({a['method']}, {a['n_references']} references): RMSE frozen -> adapted "
+              + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r['rmse']:.3f}"
+                          for t, r in targets.items() if "adapt" in r and r["rmse"] is not None
+                          and r["adapt"]["rmse_frozen"] is not None))
     if report["adaptive"]:
         print(f"events: {len(report['events'])}, excluded at a campaign's end: "
               f"{', '.join(report['excluded_inputs']) or 'none'}")

@@ -67,6 +67,11 @@ PROMOTE_RULES = {
 
 EXPORT_RULES = {"export.model": optional(text()),
                 "export.format": choice("json", "c", "st", "onnx")}
+ADAPT_RULES = {"adapt.method": choice("none", "rls", "bias"), "adapt.every_s": POSITIVE,
+               "adapt.forgetting": number(0.0, 1.0, open_lo=True),
+               "adapt.max_gain_change": number(0.0, 1.0, open_hi=True),
+               "adapt.max_bias_um": NON_NEGATIVE, "adapt.prior_var_gain": NON_NEGATIVE,
+               "adapt.prior_var_bias": NON_NEGATIVE}
 SERVE_RULES = {"serve.model": text(), "serve.host": text(), "serve.port": integer(1, 65535),
                "serve.timeout_s": POSITIVE, "serve.max_rows": integer(1, 10_000_000),
                "serve.max_body_mb": number(0.0, 4096.0, open_lo=True)}
@@ -169,6 +174,7 @@ def check_groups(cfg: DictConfig) -> None:
                          ("promote", lambda c: check_keys(c, PROMOTE_RULES)),
                          ("serve", lambda c: check_keys(c, SERVE_RULES)),
                          ("export", lambda c: check_keys(c, EXPORT_RULES)),
+                         ("adapt", lambda c: check_keys(c, ADAPT_RULES)),
                          ("diagnose", lambda c: check_values(c.diagnose, DIAGNOSE_RULES, "diagnose")),
                          ("design", lambda c: check_design(
                              OmegaConf.to_container(c.design, resolve=True)))):
