@@ -110,6 +110,8 @@ def test_link_drop_and_server_restart_hold_then_decay(tmp_path):
     assert lo <= min(twin["offsets"]["E_X"]) and max(twin["offsets"]["E_X"]) <= hi
     events = [e["event"] for e in link["events"]]
     assert events.count("connected") >= 2 and "link_lost" in events    # came back after restart
+    assert "stale" in events and events.index("stale") < events.index("fresh")
+    assert link["samples_missed"] >= 15
     assert events[-1] == "done"
     offsets = np.array(twin["offsets"]["E_X"])
     drop = offsets[20:35]

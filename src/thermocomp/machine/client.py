@@ -61,6 +61,8 @@ class Connection:
         self.samples = 0
         self._last, self._campaign = -1, None
         self._connected = False
+        self._stale = False          # the offsets are decaying for want of fresh samples
+        self.missed = 0              # samples the server published that this client never saw
         self._start = clock.monotonic()
 
     def _event(self, kind: str, detail: str, **extra) -> None:
@@ -107,13 +109,18 @@ class Connection:
             period_ms = max(1.0, 250.0 * self.retry_s / 10)
             sub = await client.create_subscription(period_ms, _Changes(queue))
             await sub.subscribe_data_change([status[2], status[3]])
-            await self._write(offsets, (answered, self._last), self.limiter.stale(clock.monotonic()))
+            now = clock.monotonic
+            await self._write(client, offsets, (answered, self._last), self.limiter.stale(now()))
             while True:
                 try:
                     await asyncio.wait_for(queue.get(), timeout=self.retry_s / 4)
                 except asyncio.TimeoutError:
                     await client.check_connection()
-                    await self._write(offsets, None, self.limiter.stale(clock.monotonic()))
+                    if self.limiter.decaying(now()) and not self._stale:
+                        self._stale = True
+                        self._event("stale", f"no fresh sample for {self.limiter.hold_s:g} s: "
+                                             "offsets decaying")
+                    await self._write(client, offsets, None, self.limiter.stale(now()))
                     continue
                 values = await client.read_values(inputs + status)
                 row, (cid, i, k, done) = values[:len(inputs)], values[len(inputs):]
@@ -123,7 +130,7 @@ class Connection:
                 k = int(k) if k is not None else -1
                 if k > self._last:
                     y = self._step(str(cid), [number(v) for v in row], k, int(i))
-                    await self._write(offsets, (answered, k), self.limiter.fresh(y, clock.monotonic()))
+                    await self._write(client, offsets, (answered, k), self.limiter.fresh(y, now()))
         finally:
             try:     # a dead link would keep the goodbye waiting for the request timeout
                 await asyncio.wait_for(client.disconnect(), self.retry_s)
@@ -138,7 +145,10 @@ class Connection:
             self._campaign = cid
             self._event("campaign", f"campaign {cid} from its sample {i}")
         elif k > self._last + 1:
-            self._event("samples_missed", f"{k - self._last - 1} samples not seen")
+            self.missed += k - self._last - 1      # counted; an event when the inputs went stale
+        if self._stale:
+            self._event("fresh", f"samples again ({self.missed} not seen so far)")
+            self._stale = False
         self._last = k
         x = np.asarray(row[:len(d.columns_)], float)
         t = row[d.columns_.index(TIME)] if TIME in d.columns_ else row[-1]
@@ -148,10 +158,13 @@ class Connection:
         self.samples += 1
         return y
 
-    async def _write(self, offsets, answered, values: np.ndarray) -> None:
-        for node, v in zip(offsets, values):
-            await node.write_value(ua.Variant(float(v), ua.VariantType.Double))
+    async def _write(self, client, offsets, answered, values: np.ndarray) -> None:
+        """The offsets, then (``answered``: ``(node, sample)``) the sample they answer: one Write,
+        applied in order."""
+        nodes = list(offsets)
+        data = [ua.Variant(float(v), ua.VariantType.Double) for v in values]
         if answered is not None:
-            node, k = answered
-            await node.write_value(ua.Variant(k, ua.VariantType.Int64))
+            nodes.append(answered[0])
+            data.append(ua.Variant(answered[1], ua.VariantType.Int64))
+        await client.write_values(nodes, data)
         self.written.append(np.array(values, float))

@@ -49,3 +49,7 @@ class OffsetLimiter:
             self.offset = np.clip(self.offset * factor, self.lo, self.hi)
             self._fresh_at = now - self.hold_s     # decay from here on, not twice over the same span
         return self.offset
+
+    def decaying(self, now: float) -> bool:
+        """No fresh correction for longer than ``hold_s`` (after a first one)."""
+        return self._fresh_at is not None and now - self._fresh_at > self.hold_s

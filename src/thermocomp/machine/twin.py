@@ -4,7 +4,9 @@ Each sample its inputs are written to their nodes, then ``campaign``, ``campaign
 last ``sample``; one period (``1/speed`` s) later the offsets the client wrote are read (the
 correction the machine applies while that sample holds).  The machine's error at the sample,
 compensated, is its measured error minus that offset; a sample whose offsets do not answer it
-(``offset_sample``) is stale.  The first sample waits for a client (at most ``wait_s``).
+(``offset_sample``) is stale.  A campaign that continues others (``lead_ins``) is served
+after them under its own name (``campaign_sample`` < 0 there, unscored): the client's stream
+is warmed on them as ``replay`` warms it.  The first sample waits for a client (at most ``wait_s``).
 ``drops`` stop the input nodes (the sensor link down: the client sees stale inputs) and
 ``restarts`` stop the server (its address space, the offset registers, kept), for a number of
 samples each, while the machine runs on with the offsets it holds.
@@ -51,8 +53,10 @@ class Twin:
 
     def __init__(self, nodes: NodeMap, campaigns: dict[str, pd.DataFrame], columns: list[str],
                  errors: dict[str, np.ndarray], targets: list[str], *, host: str = "127.0.0.1",
-                 port: int = 4840, speed: float = 1.0, drops=(), restarts=(), wait_s: float = 0.0):
+                 port: int = 4840, speed: float = 1.0, drops=(), restarts=(), wait_s: float = 0.0,
+                 lead_ins: dict[str, pd.DataFrame] | None = None):
         self.map, self.campaigns, self.columns = nodes, campaigns, list(columns)
+        self.lead_ins = lead_ins or {}
         self.errors, self.targets = errors, list(targets)
         self.endpoint = f"opc.tcp://{host}:{port}"
         self.period = 1.0 / float(speed)
@@ -110,8 +114,12 @@ class Twin:
         start = clock.monotonic()
         try:
             for cid, df in self.campaigns.items():
+                lead = self.lead_ins.get(cid)
+                first = -len(lead) if lead is not None else 0     # the lead-in: negative samples
                 X = df[self.columns].to_numpy(float)
-                for i in range(len(df)):
+                if lead is not None:
+                    X = np.vstack([lead[self.columns].to_numpy(float), X])
+                for i in range(first, len(df)):
                     down = any(r.covers(k) for r in self.restarts)
                     if down and self.stopping is None:
                         log.info("server stopped at sample %d", k)   # the machine runs on
@@ -122,15 +130,16 @@ class Twin:
                         self.stopping = None
                         await self.server.start()    # the address space (registers) kept
                     if not down and not any(d.covers(k) for d in self.drops):
-                        for node, v in zip(self.inputs, X[i]):
+                        for node, v in zip(self.inputs, X[i - first]):
                             await node.write_value(ua.Variant(float(v), ua.VariantType.Double))
                         await self.campaign.write_value(ua.Variant(cid, ua.VariantType.String))
                         await self.campaign_sample.write_value(ua.Variant(i, ua.VariantType.Int64))
                         await self.sample.write_value(ua.Variant(k, ua.VariantType.Int64))
                     await asyncio.sleep(max(0.0, start + (k + 1) * self.period - clock.monotonic()))
                     answered = await self._read_offsets(k) and not down
-                    served.offsets.append(self.held.copy())
-                    served.stale.append(not answered)
+                    if i >= 0:                   # the lead-in warms the client, unscored
+                        served.offsets.append(self.held.copy())
+                        served.stale.append(not answered)
                     k += 1
             if self.stopping is not None:
                 await self.stopping

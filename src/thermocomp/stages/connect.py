@@ -63,7 +63,7 @@ def connect(cfg: DictConfig) -> dict:
         raise ConfigError(f"connect.endpoint={c.endpoint}: {exc}") from None
     written = np.vstack(link.written) if link.written else np.empty((0, len(deployed.targets_)))
     report = {"model": name, "source": source, "endpoint": str(c.endpoint),
-              "samples": link.samples, "writes": int(len(written)),
+              "samples": link.samples, "samples_missed": link.missed, "writes": int(len(written)),
               "max_abs_offset": {t: float(np.max(np.abs(written[:, j]))) if len(written) else 0.0
                                  for j, t in enumerate(deployed.targets_)},
               "bound": {t: [float(guard.lo[j]), float(guard.hi[j])]

@@ -13,6 +13,7 @@ from pathlib import Path
 
 from omegaconf import DictConfig
 
+from ..continuation import chain, lead_in, predecessors
 from ..errors import ConfigError
 from ..files import write_json
 from ..frame import stack
@@ -35,13 +36,20 @@ def twin(cfg: DictConfig) -> dict:
     if not targets:
         raise ConfigError(f"data.path={cfg.data.path}: the test campaigns have no E_ error "
                           "column in common: the twin has no error to compensate")
+    lead_ins = {}
+    if reference(cfg) == "none":      # state carried over: served after the campaigns it continues
+        links = predecessors(ds)
+        lead_ins = {c: lead_in(ds, chain(ds, c, links)) for c in test_ids if c in links}
+        if lead_ins:
+            say("served after the campaigns they continue (unscored): "
+                + ", ".join(f"{c} after {' + '.join(chain(ds, c, links)[:-1])}" for c in lead_ins))
     m = stack(campaigns, [], targets, reference(cfg))
     errors = {c: m.Y[m.rows_of(c)].to_numpy(float) for c in campaigns}
     t = cfg.twin
     machine = Twin(NodeMap.from_config(cfg.connect.nodes), campaigns, columns, errors, targets,
                    host=str(t.host), port=int(t.port), speed=float(t.speed),
                    drops=[Outage(*p) for p in t.drops], restarts=[Outage(*p) for p in t.restarts],
-                   wait_s=float(t.wait_s))
+                   wait_s=float(t.wait_s), lead_ins=lead_ins)
     n = sum(len(df) for df in campaigns.values())
     say(f"twin at {machine.endpoint}: {len(campaigns)} test campaigns, {n} samples at "
         f"{float(t.speed):g} per second; offsets of {', '.join(targets)}")
