@@ -31,13 +31,24 @@ ROWS = 60
 SPEED = 20          # samples per second: 50 ms for the client to answer one
 
 
-def make_machine(root: Path, fault=None) -> Path:
+def make_machine(root: Path, fault=None, continued: bool = False) -> Path:
     """Five campaigns (three train, two test) of a four-sensor machine whose error is linear
-    in two sensors' rises, one sample a minute; ``fault(df)`` edits the first test campaign."""
+    in two sensors' rises, one sample a minute; ``fault(df)`` edits the first test campaign;
+    ``continued``: the last test campaign continues the first (one record, absolute values)."""
     root.mkdir(parents=True)
     rng = np.random.default_rng(0)
     t = np.arange(ROWS) * 60.0
     for i, (cid, _) in enumerate(CAMPAIGNS):
+        if continued and cid == "K05":
+            before = pd.read_csv(root / "K04.csv")
+            temps = {c: before[c].iloc[-1] + 1.5 * (1 - np.exp(-t / 700)) * (j + 1)
+                     + rng.normal(0, 0.03, ROWS) for j, c in enumerate(["T_0", "T_1", "T_2"])}
+            temps["T_amb"] = before["T_amb"].iloc[-1] + rng.normal(0, 0.03, ROWS)
+            e = (before["E_X"].iloc[-1] + 3 * (temps["T_0"] - before["T_0"].iloc[-1])
+                 - (temps["T_2"] - before["T_2"].iloc[-1]) + rng.normal(0, 0.2, ROWS))
+            pd.DataFrame({"time": t + before["time"].iloc[-1] + 60.0, **temps, "E_X": e}).to_csv(
+                root / f"{cid}.csv", index=False)
+            continue
         amb = 18.0 + i
         heat = 1 - np.exp(-t / (900 + 100 * i))
         temps = {f"T_{j}": amb + (4 - j) * heat + rng.normal(0, 0.03, ROWS) for j in range(3)}
@@ -172,3 +183,16 @@ def test_bad_keys_refused(tmp_path, capsys, stage, key, says):
     data = make_machine(tmp_path / "data")
     refused([stage, f"data.path={data}", f"out={tmp_path / 'o'}", *FAST, key], capsys, says)
 
+
+def test_a_continuing_campaign_is_served_after_the_one_it_continues(tmp_path):
+    """K05 continues K04 (one clock, data.reference=none): the client is warmed on K04 as
+    replay warms its stream, so K05 is compensated from the state K04 left."""
+    data = make_machine(tmp_path / "data", continued=True)
+    args = ("data.reference=none",)
+    assert main(["replay", f"data.path={data}", f"out={tmp_path / 'replay'}", *FAST, *args]) == 0
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"]["E_X"]
+    twin, link = twin_and_connect(data, tmp_path, *args, connect_args=args)
+    r = twin["targets"]["E_X"]
+    assert twin["n_samples"] == 2 * ROWS            # K04 scored once, not again as K05's lead-in
+    assert link["samples"] == 3 * ROWS              # ... but streamed before K05
+    assert abs(r["rms_compensated"] - replay["rmse"]) <= 0.05 * replay["rmse"]
