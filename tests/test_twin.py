@@ -173,11 +173,25 @@ def test_connect_without_a_server_gives_up_in_one_line(tmp_path, capsys):
     assert not (tmp_path / "c" / "connect.json").exists()
 
 
+def test_twin_on_a_port_in_use_is_refused_in_one_line(tmp_path, capsys):
+    import socket
+
+    data = make_machine(tmp_path / "data")
+    with socket.socket() as busy:
+        busy.bind(("127.0.0.1", 0))
+        busy.listen()
+        port = busy.getsockname()[1]
+        refused(["twin", f"data.path={data}", f"out={tmp_path / 't'}", *FAST, f"twin.port={port}"],
+                capsys, f"twin.port={port}")
+    assert not (tmp_path / "t").exists()
+
+
 @pytest.mark.parametrize("stage, key, says", [
     ("twin", "twin.drops=[[3]]", "twin.drops"),
     ("twin", "twin.speed=0", "twin.speed"),
     ("connect", "connect.endpoint=http://127.0.0.1:4840", "connect.endpoint"),
     ("connect", "connect.hold_s=-1", "connect.hold_s"),
+    ("connect", "connect.model=' '", "connect.model is empty"),
 ])
 def test_bad_keys_refused(tmp_path, capsys, stage, key, says):
     data = make_machine(tmp_path / "data")

@@ -64,6 +64,7 @@ class Twin:
         self.wait_s = float(wait_s)
         self.held = np.zeros(len(self.targets))     # the machine's offset registers
         self.stopping = None                         # the task stopping the server, while down
+        self.server = None
 
     async def _start(self) -> None:
         server = Server()
