@@ -92,9 +92,16 @@ def twin_and_connect(data: Path, tmp: Path, *twin_args: str, connect_args=()) ->
 
 
 def test_twin_connect_compensates_as_replay_streams(tmp_path):
+    """A saved model.pkl (connect.model), made deployable as replay makes it."""
     data = make_machine(tmp_path / "data")
-    replay = replayed(data, tmp_path / "replay")["targets"]["E_X"]
-    twin, link = twin_and_connect(data, tmp_path)
+    pkl = tmp_path / "run" / "model.pkl"
+    assert main(["run", f"data.path={data}", f"out={pkl.parent}", f"model_path={pkl}", *FAST,
+                 "eval.validation=false", "eval.mutual_prediction=false"]) == 0
+    assert main(["replay", f"data.path={data}", f"out={tmp_path / 'replay'}", *FAST,
+                 f"replay.model={pkl}"]) == 0
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"]["E_X"]
+    twin, link = twin_and_connect(data, tmp_path, connect_args=(f"connect.model={pkl}",))
+    assert link["source"] == str(pkl) and link["model"] == "mlr"
     r = twin["targets"]["E_X"]
     assert twin["n_samples"] == 2 * ROWS and link["samples"] == 2 * ROWS
     assert r["stale_samples"] <= 2          # the client answered (almost) every sample in time
