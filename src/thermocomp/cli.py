@@ -45,6 +45,8 @@ stages:
   replay     stream the test campaigns row by row through the deployable compensator (replay.json)
   export     the deployed compensator as code: json, C + stream.c, Structured Text (export.*)
   serve      the registered compensator over HTTP (serve.model=, serve.port=; one worker)
+  twin       a virtual machine over OPC UA serving the test campaigns (twin.port=, twin.speed=)
+  connect    the deployed compensator as an OPC UA client of a machine (connect.endpoint=)
   monitor    stream test campaigns (or stdin) through the fixed and the fault-tolerant
              compensator: sensor events, RMSE of both (<out>/monitor.json)
   calibrate  artefact distances of a volumetric dataset -> error parameter series (calibration.json)
@@ -104,6 +106,14 @@ STAGE_HELP = {
                "export.model (a model.pkl with data.path, a pyfunc folder, models:/name@alias)",
                "<out>/compensator.json (+ compensator.h/.c, stream.c | compensator.st)",
                "export.model=models:/thermocomp-compensator@champion export.format=c|st|json"),
+    "twin": ("a virtual machine tool over OPC UA serving the test campaigns of data.path",
+             "data.path (its test campaigns)", "an OPC UA server (connect.nodes), <out>/twin.json",
+             "twin.port=4840 twin.speed=10 twin.drops=[[20,15]] twin.restarts=[[80,10]]"),
+    "connect": ("the deployed compensator as an OPC UA client: bounded offsets to a machine",
+                "connect.model (null: fitted on data.path's train split) and connect.endpoint",
+                "offsets on the machine's nodes, <out>/connect.json",
+                "connect.endpoint=opc.tcp://127.0.0.1:4840 connect.model=models:/name@alias "
+                "connect.hold_s=5 connect.decay_s=10"),
     "monitor": ("sensor surveillance (POD self-prediction) + fault-tolerant compensation, streamed",
                 "data.path (or CSV rows on stdin: monitor.input=-) and a fitted model",
                 "<out>/monitor.json, <out>/monitor/ (figures)",

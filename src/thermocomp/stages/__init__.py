@@ -19,7 +19,7 @@ STAGES = {"simulate": "simulate:simulate", "init": "init:init",
           "select": "select:select", "train": "modelling:train", "evaluate": "modelling:evaluate",
           "diagnose": "diagnose:diagnose", "run": "modelling:run", "compare": "compare:compare",
           "promote": "promote:promote", "replay": "replay:replay", "export": "export:export",
-          "serve": "serve:serve",
+          "serve": "serve:serve", "twin": "twin:twin", "connect": "connect:connect",
           "monitor": "monitor:monitor",
           "calibrate": "calibrate:calibrate", "design": "design:design"}
 

@@ -478,6 +478,38 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     return deployed
 
 
+def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[object, str, str]:
+    """``(deployed compensator, source, model name)`` of ``source`` (the value of ``key``): the
+    configured model fitted on ``train_ids`` (``None``), a model.pkl made deployable, or a pyfunc
+    folder / ``models:/name@alias`` as registered (``replay``, ``connect``)."""
+    if source is None:
+        say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
+        train = {c: ds.campaigns[c] for c in train_ids}
+        comp, name, source = build_compensator(cfg, ds=ds).fit(train), str(cfg.model.name), "fitted"
+    else:
+        source = str(source)
+        path = resolve(source) if not source.startswith("models:/") else None
+        if path is None or (path / "MLmodel").is_file():
+            from ..deploy.pyfunc import load_deployed
+            from ..deploy.report import plain
+            from ..tracking import connect
+
+            if path is None:
+                connect(cfg)     # only a registry model needs the store (track=false writes none)
+            try:
+                deployed = load_deployed(source, path)      # replayed as registered
+            except io.ContractError:
+                raise
+            except Exception as exc:
+                raise ConfigError(f"{key}={source}: cannot load it "
+                                  f"({' '.join(str(exc).split())[:200]})") from None
+            return deployed, source, model_family(plain(deployed).compensator)
+        comp = load_model(path)
+        name = model_family(comp)
+        train = {c: ds.campaigns[c] for c in train_ids}
+    return deployable(cfg, deploy_stream(cfg, comp, train), train, ds), source, name
+
+
 def save_model(comp: Compensator, path) -> Path:
     """Pickle ``comp`` to ``path`` with its signature ``<path>.sig`` (:mod:`thermocomp.signing`)."""
     return signing.dump(comp, resolve(path))

@@ -22,57 +22,23 @@ from pathlib import Path
 
 from omegaconf import DictConfig
 
-from .. import io
 from ..deploy.adapt import from_config as adapt_from_config
 from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
 from ..metrics import RMSE
 from ..paths import resolve
-from ..tracking import connect, stage_run
+from ..tracking import stage_run
 from .common import (
-    build_compensator,
     check_config,
     check_streamed_columns,
     check_volumetric_targets,
-    deploy_stream,
-    deployable,
+    deployable_model,
     lead_ins,
-    load_model,
-    model_family,
     read_streamed,
     say,
     warn_stream_mode,
 )
-
-
-def _deployable(cfg: DictConfig, ds, train_ids) -> tuple[object, str, str]:
-    """``(deployed compensator, source, model name)``."""
-    source = cfg.replay.get("model")
-    if source is None:
-        say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
-        train = {c: ds.campaigns[c] for c in train_ids}
-        comp, name, source = build_compensator(cfg, ds=ds).fit(train), str(cfg.model.name), "fitted"
-    else:
-        source = str(source)
-        path = resolve(source) if not source.startswith("models:/") else None
-        if path is None or (path / "MLmodel").is_file():
-            from ..deploy.pyfunc import load_deployed
-
-            if path is None:
-                connect(cfg)     # only a registry model needs the store (track=false writes none)
-            try:
-                deployed = load_deployed(source, path)      # replayed as registered
-            except io.ContractError:
-                raise
-            except Exception as exc:
-                raise ConfigError(f"replay.model={source}: cannot load it "
-                                  f"({' '.join(str(exc).split())[:200]})") from None
-            return deployed, source, model_family(plain(deployed).compensator)
-        comp = load_model(path)
-        name = model_family(comp)
-        train = {c: ds.campaigns[c] for c in train_ids}
-    return deployable(cfg, deploy_stream(cfg, comp, train), train, ds), source, name
 
 
 def replay(cfg: DictConfig) -> dict:
@@ -85,7 +51,8 @@ def replay(cfg: DictConfig) -> dict:
     ds, train_ids, test_ids, gaps = read_streamed(cfg)
     root = resolve(cfg.data.path)
     with stage_run(cfg, "replay") as tr:
-        deployed, source, name = _deployable(cfg, ds, train_ids)
+        deployed, source, name = deployable_model(cfg, ds, train_ids, cfg.replay.get("model"),
+                                                  "replay.model")
         check_volumetric_targets(cfg, ds, deployed.targets_, f"replay.model={source}")
         check_streamed_columns(ds, test_ids, deployed.columns_, "the deployed model")
         kind = "adaptive" if deployed is not plain(deployed) else "streaming"

@@ -76,6 +76,23 @@ SERVE_RULES = {"serve.model": text(), "serve.host": text(), "serve.port": intege
                "serve.timeout_s": POSITIVE, "serve.max_rows": integer(1, 10_000_000),
                "serve.max_body_mb": number(0.0, 4096.0, open_lo=True)}
 
+# twin.drops / twin.restarts: outages of the virtual machine, [[sample, samples], ...]
+OUTAGES = Rule(lambda v: all(len(p) == 2 and all(isinstance(x, int) and not isinstance(x, bool)
+                                                  and x >= 0 for x in p) for p in v),
+               "a list of [sample, samples] pairs of integers >= 0")
+TWIN_RULES = {"twin.host": text(), "twin.port": integer(1, 65535),
+              "twin.speed": number(0.0, 100_000.0, open_lo=True), "twin.wait_s": NON_NEGATIVE,
+              "twin.drops": OUTAGES,
+              "twin.restarts": OUTAGES}
+CONNECT_RULES = {"connect.endpoint": Rule(lambda v: isinstance(v, str) and v.startswith("opc.tcp://"),
+                                          "an opc.tcp://host:port URL"),
+                 "connect.model": optional(text()), "connect.hold_s": NON_NEGATIVE,
+                 "connect.decay_s": NON_NEGATIVE, "connect.retry_s": POSITIVE,
+                 "connect.give_up_s": POSITIVE,
+                 **{f"connect.nodes.{k}": text() for k in ("namespace", "input", "offset",
+                                                            "offset_sample", "sample", "campaign",
+                                                            "campaign_sample", "done")}}
+
 # diagnose.* (its families are the stage's: diagnose.features.KINDS)
 DIAGNOSE_RULES = {
     "max_effects": integer(0), "min_gain_pct": NON_NEGATIVE,
@@ -175,6 +192,8 @@ def check_groups(cfg: DictConfig) -> None:
                          ("serve", lambda c: check_keys(c, SERVE_RULES)),
                          ("export", lambda c: check_keys(c, EXPORT_RULES)),
                          ("adapt", lambda c: check_keys(c, ADAPT_RULES)),
+                         ("twin", lambda c: check_keys(c, TWIN_RULES)),
+                         ("connect", lambda c: check_keys(c, CONNECT_RULES)),
                          ("diagnose", lambda c: check_values(c.diagnose, DIAGNOSE_RULES, "diagnose")),
                          ("design", lambda c: check_design(
                              OmegaConf.to_container(c.design, resolve=True)))):

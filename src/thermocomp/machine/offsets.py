@@ -1,0 +1,55 @@
+"""What the client may write to the machine: bounded, rate-limited offsets that are held and
+then decay to zero while the inputs are stale (pure).
+
+The compensator's own guard (the adaptive one's) bounds and rate-limits each correction it
+computes; this limiter keeps the same promise for what reaches the machine's registers, also
+when no correction is computed: a missing one (NaN) holds the last offset, and without a
+fresh sample for ``hold_s`` the offset decays with time constant ``decay_s``; the first fresh
+ones after that come back at the rate limit, not in one jump.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+class OffsetLimiter:
+    """Per target: bound ``[lo, hi]`` µm and a largest change ``max_step`` µm per sample."""
+
+    def __init__(self, lo, hi, max_step, hold_s: float, decay_s: float):
+        self.lo, self.hi = np.asarray(lo, float), np.asarray(hi, float)
+        self.max_step = np.asarray(max_step, float)
+        self.hold_s, self.decay_s = float(hold_s), float(decay_s)
+        self.offset = np.zeros_like(self.lo)
+        self._fresh_at = None          # wall time of the last fresh correction
+        self._free = True              # the next fresh one is not rate-limited
+
+    def new_campaign(self) -> None:
+        """A campaign starts (the error is zeroed with the workpiece): its first correction is
+        taken as it is, within the bound, as the compensator's own guard takes it."""
+        self._free = True
+
+    def fresh(self, y, now: float) -> np.ndarray:
+        """The offset to write for a new correction ``y`` (NaN entries: held)."""
+        y = np.where(np.isfinite(y), np.asarray(y, float), self.offset)
+        step = y - self.offset if self._free else np.clip(y - self.offset, -self.max_step,
+                                                                  self.max_step)
+        self.offset = np.clip(self.offset + step, self.lo, self.hi)
+        self._free = False
+        self._fresh_at = now
+        return self.offset
+
+    def stale(self, now: float) -> np.ndarray:
+        """The offset while no fresh sample arrives: held ``hold_s``, then decaying to zero."""
+        if self._fresh_at is None:
+            return self.offset
+        late = now - self._fresh_at - self.hold_s
+        if late > 0:
+            factor = np.exp(-late / self.decay_s) if self.decay_s > 0 else 0.0
+            self.offset = np.clip(self.offset * factor, self.lo, self.hi)
+            self._fresh_at = now - self.hold_s     # decay from here on, not twice over the same span
+        return self.offset
+
+    def decaying(self, now: float) -> bool:
+        """No fresh correction for longer than ``hold_s`` (after a first one)."""
+        return self._fresh_at is not None and now - self._fresh_at > self.hold_s
