@@ -89,8 +89,8 @@ def replay(cfg: DictConfig) -> dict:
     if adapted:
         a = next(iter(adapted.values()))
         print(f"adapt ({a['method']}, {a['n_references']} references): RMSE frozen -> adapted "
-              + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r['rmse']:.3f}"
-                          for t, r in targets.items() if "adapt" in r and r["rmse"] is not None
+              + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r[RMSE]:.3f}"
+                          for t, r in targets.items() if "adapt" in r and r[RMSE] is not None
                           and r["adapt"]["rmse_frozen"] is not None))
     if report["adaptive"]:
         print(f"events: {len(report['events'])}, excluded at a campaign's end: "
