@@ -1,0 +1,110 @@
+"""Issue 35 item 4: the decisions that left the stages, tested as pure functions on hand-made
+values (no registry, no dataset, no config)."""
+
+from __future__ import annotations
+
+import pytest
+
+from thermocomp.champion import (
+    champion_validation,
+    check_criterion,
+    check_stream_deviation,
+    decide,
+    outcome_line,
+    same_figures,
+    tag_value,
+)
+from thermocomp.errors import ConfigError
+
+CHAMPION = {"dataset_hash": "d1", "criterion_target": "mean", "validation_mode": "simulation",
+            "metric.val_rmse": "2.5"}
+
+
+def test_a_champion_scored_the_same_way_gives_its_score():
+    assert champion_validation(CHAMPION, "val_rmse", "mean", "d1", "simulation") == (2.5, None)
+
+
+@pytest.mark.parametrize("key, value, said", [
+    ("dataset_hash", "d2", "another dataset"),
+    ("criterion_target", "ch1", "another target than mean"),
+    ("validation_mode", "one_step", "another mode than simulation"),
+    ("metric.val_rmse", "null", "no validation score val_rmse"),
+])
+def test_a_champion_scored_otherwise_is_not_comparable(key, value, said):
+    score, why = champion_validation({**CHAMPION, key: value}, "val_rmse", "mean", "d1",
+                                     "simulation")
+    assert score is None and said in why
+
+
+def test_an_old_champion_is_compared_by_its_eval_mode():
+    old = {k: v for k, v in CHAMPION.items() if k != "validation_mode"} | {"eval_mode": "simulation"}
+    assert champion_validation(old, "val_rmse", "mean", "d1", "simulation")[0] == 2.5
+    assert champion_validation(old, "val_rmse", "mean", "d1", "one_step")[0] is None
+
+
+def _decide(version="2", score=2.0, champ=("1", 2.5, None), **kw):
+    kw = {"criterion": "val_rmse", "min_improvement": 0.0} | kw
+    return decide(version, score, *champ, **kw)
+
+
+def test_no_champion_moves_the_alias():
+    assert _decide(champ=(None, None, None)) == (True, "no champion yet")
+
+
+def test_the_champion_itself_stays():
+    moved, why = _decide(version="1", score=1.0)
+    assert not moved and why == "already champion: version 1"
+
+
+def test_a_lower_error_beats_the_champion_and_a_higher_does_not():
+    moved, why = _decide(score=2.0)
+    assert moved and "beats the champion's 2.5 (version 1)" in why
+    moved, why = _decide(score=3.0)
+    assert not moved and "does not beat" in why
+
+
+def test_an_improvement_below_the_margin_does_not_move():
+    assert not _decide(score=2.4, min_improvement=0.5)[0]
+    assert _decide(score=1.9, min_improvement=0.5)[0]
+
+
+def test_the_same_score_read_back_from_a_tag_ties():
+    # the champion's score comes back from a tag (6 significant digits)
+    score = 2.123456789
+    assert not _decide(score=score, champ=("1", float(tag_value(score)), None))[0]
+
+
+def test_an_incomparable_champion_is_replaced_only_when_forced():
+    moved, why = _decide(champ=("1", None, "it has no validation score val_rmse"))
+    assert not moved and "set promote.force=true" in why and "no validation score" in why
+    moved, why = _decide(champ=("1", None, "x"), force=True)
+    assert moved and why.endswith("; forced")
+
+
+def test_only_a_validation_figure_may_choose():
+    check_criterion("val_rmse")
+    with pytest.raises(ConfigError, match="is a test figure"):
+        check_criterion("rmse")
+    with pytest.raises(ConfigError, match="is not a figure"):
+        check_criterion("accuracy")
+
+
+def test_the_stream_deviation_gate():
+    check_stream_deviation(0.01, 0.05, "r1")
+    with pytest.raises(ConfigError, match="run r1: streamed predictions differ"):
+        check_stream_deviation(0.5, 0.05, "r1")
+
+
+def test_same_figures_compares_at_tag_precision():
+    tags = {"metric.val_rmse": tag_value(1.23456789), "metric.rmse": "null"}
+    assert same_figures(tags, {"val_rmse": 1.234568, "rmse": None})
+    assert not same_figures(tags, {"val_rmse": 1.3, "rmse": None})
+
+
+def test_the_last_line_says_what_happened():
+    assert outcome_line("m", "2", "champion", True, "no champion yet", None) \
+        == "m v2: promoted to @champion (no champion yet)"
+    assert outcome_line("m", "1", "champion", False, "already champion: version 1", "1") \
+        == "m v1: already champion: version 1"
+    assert outcome_line("m", "3", "champion", False, "x does not beat", "1") \
+        == "m v3: not promoted (x does not beat)"
