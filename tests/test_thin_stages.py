@@ -108,3 +108,41 @@ def test_the_last_line_says_what_happened():
         == "m v1: already champion: version 1"
     assert outcome_line("m", "3", "champion", False, "x does not beat", "1") \
         == "m v3: not promoted (x does not beat)"
+
+
+# --- design: the study from its settings (thermocomp.volumetric.design_study) ---------------
+
+def _design_settings(**changes):
+    import yaml
+
+    from conftest import ROOT
+    d = yaml.safe_load((ROOT / "conf" / "design" / "default.yaml").read_text())
+    return d | {"grid": [6, 4, 4], "n_machines": 2, "n_jobs": 1} | changes
+
+
+def test_the_study_takes_unset_entries_from_the_defaults_and_the_machine_from_c():
+    from thermocomp.volumetric.design_study import DEFAULT_ARTEFACT, study_from_settings
+    study = study_from_settings(_design_settings(), seed=3)
+    assert (study.length_mm, study.probing_um, study.ball_um) == DEFAULT_ARTEFACT
+    assert study.family.model.order == study.compensation.order + 2 and study.seed == 3
+    study = study_from_settings(_design_settings(length_mm=900.0, compensation_order=1,
+                                                 machine={"order": 1, "cross_terms": False}))
+    assert study.length_mm == 900.0 and study.family.model.order == study.compensation.order == 1
+
+
+def test_a_machine_simpler_than_the_compensation_model_is_refused():
+    from thermocomp.volumetric.design_study import study_from_settings
+    with pytest.raises(ConfigError, match="design.machine.order=1 is below the compensation "
+                                          "model's 2"):
+        study_from_settings(_design_settings(compensation_order=2,
+                                             machine={"order": 1, "cross_terms": True}))
+
+
+def test_a_bar_longer_than_the_travel_is_unreachable():
+    from thermocomp.volumetric.design import strategies
+    from thermocomp.volumetric.design_study import study_from_settings, unreachable
+    studies = {"balls": {"n_balls": [3], "misalignment_deg": [0.0], "position_sets": ["S2"]}}
+    todo = strategies(studies)[0]
+    assert unreachable(study_from_settings(_design_settings(length_mm=500.0)), todo) == {}
+    missed = unreachable(study_from_settings(_design_settings(length_mm=50_000.0)), todo)
+    assert [who for who in missed.values()] == [["3 balls at 0° (S2)"]]
