@@ -146,3 +146,51 @@ def test_a_bar_longer_than_the_travel_is_unreachable():
     assert unreachable(study_from_settings(_design_settings(length_mm=500.0)), todo) == {}
     missed = unreachable(study_from_settings(_design_settings(length_mm=50_000.0)), todo)
     assert [who for who in missed.values()] == [["3 balls at 0° (S2)"]]
+
+
+# --- select: one selector fitted per target (thermocomp.select.per_target) -----------------
+
+def test_each_target_gets_its_own_selection_and_scores():
+    import numpy as np
+    import pandas as pd
+    from sklearn.base import BaseEstimator
+
+    from thermocomp.select.pearson import PearsonSelector
+    from thermocomp.select.per_target import CORRELATION_LABEL, select_per_target
+
+    rng = np.random.default_rng(0)
+    X = pd.DataFrame(rng.normal(size=(200, 3)), columns=["T_a", "T_b", "T_c"])
+    Y = pd.DataFrame({"E_x": 2 * X["T_b"] + 0.01 * rng.normal(size=200),
+                      "E_y": -X["T_c"] + 0.01 * rng.normal(size=200)})
+    result, scores, labels = select_per_target(PearsonSelector(k=1), X, Y, "pearson")
+    assert [result[t]["selected"] for t in Y] == [["T_b"], ["T_c"]]
+    assert max(scores["E_x"], key=scores["E_x"].get) == "T_b"
+
+    class FirstInput(BaseEstimator):     # a selector that shows no scores of its own
+        def fit(self, X, y):
+            self.selected_ = [X.columns[0]]
+            return self
+
+    result, scores, labels = select_per_target(FirstInput(), X, Y, "first")
+    assert result["E_y"] == {"selected": ["T_a"]} and labels == dict.fromkeys(Y, CORRELATION_LABEL)
+    assert max(scores["E_y"], key=scores["E_y"].get) == "T_c"     # shown by |r|
+
+
+# --- monitor: what the stage prints (thermocomp.monitor.report) -----------------------------
+
+def test_the_monitor_summary_names_the_costliest_blind_offset_and_the_first_exclusion():
+    from thermocomp.monitor.report import summary_lines
+    report = {
+        "targets": {"E_x": {"rmse_fixed": 1.5, "rmse_adaptive": None, "max_abs_correction": 12.0,
+                            "all_finite": True}},
+        "sensors": {"T_a": {"undetected_offset_c": 0.5, "undetected_offset_um": {"E_x": 0.2}},
+                    "T_b": {"undetected_offset_c": 0.8,
+                            "undetected_offset_um": {"E_x": 3.0, "E_y": None}},
+                    "T_c": {}},
+        "events": [{"to": "warning", "sensor": "T_a", "campaign": "K1", "time": 60.0},
+                   {"to": "excluded", "sensor": "T_b", "campaign": "K2", "time": 5400.0}],
+    }
+    lines = summary_lines(report)
+    assert lines[1].split() == ["E_x", "1.500", "-", "12", "True"]
+    assert "costs up to 3 µm (T_b 0.8 °C, E_x;" in lines[2]
+    assert lines[3] == "events: 2, exclusions: 1, first: T_b (K2, 1.50 h)"

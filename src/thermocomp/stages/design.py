@@ -15,13 +15,13 @@ from omegaconf import DictConfig, OmegaConf
 
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
-from ..log import logger
+from ..log import logger, say
 from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric import load_setup
 from ..volumetric.design import CalibrationDesignStudy, strategies
 from ..volumetric.design_study import study_from_settings, summary_lines, unreachable
-from .common import calibration_prior, check_config, say
+from .common import calibration_prior, check_config
 
 
 def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:

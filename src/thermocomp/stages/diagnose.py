@@ -35,7 +35,7 @@ from ..diagnose.report import write_report
 from ..errors import ConfigError
 from ..files import atomic_dir, write_json
 from ..headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
-from ..log import logger
+from ..log import logger, say
 from ..params import (
     check_values,
     subset,
@@ -44,7 +44,7 @@ from ..paths import resolve
 from ..results import TargetResult
 from ..tracking import stage_run
 from . import rules
-from .common import build_compensator, check_config, check_declared, data_options, resolve_reference, say
+from .common import build_compensator, check_config, check_declared, data_options, resolve_reference
 
 # What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are
 # this stage's (``targets`` is also checked against the modelled targets).

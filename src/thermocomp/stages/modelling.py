@@ -35,25 +35,21 @@ from ..files import atomic_write_text, inside, safe_name, staged_outputs, write_
 from ..headline import HEADLINE, write_headline
 from ..iso10791 import a3_campaign
 from ..leaderboard import DEPLOYED_MODE
-from ..log import logger
+from ..log import Clock, logger, say
 from ..metrics import E_MAX, E_P95, ISO_A3, PER_CAMPAIGN, RSD, VALIDATION, validation_block
+from ..model_store import load_model, model_family, save_model
 from ..paths import resolve
 from ..results import EvaluationResult, TargetResult
 from ..tracking import stage_run
 from .artifacts import fit_from_artifacts
 from .auto import add_choices, as_chosen
 from .common import (
-    Clock,
     build_compensator,
     check_config,
     check_declared,
     data_options,
     load_ingested,
-    load_model,
-    model_family,
     resolve_reference,
-    save_model,
-    say,
     simulated_truth,
     validation_template,
     volumetric_calibration,

@@ -30,6 +30,8 @@ from ..deploy import StreamingCompensator
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
 from ..io.sniff import SNIFF_LINES, detected
+from ..log import say
+from ..model_store import load_model
 from ..monitor.report import monitor_report, summary_lines
 from ..monitor.report import stream_campaign as _stream  # noqa: F401  (tests stream through it)
 from ..paths import resolve
@@ -44,9 +46,7 @@ from .common import (
     data_options,
     deploy_stream,
     lead_ins,
-    load_model,
     read_streamed,
-    say,
     warn_stream_mode,
 )
 

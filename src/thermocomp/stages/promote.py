@@ -76,22 +76,14 @@ from ..leaderboard import (
     summary,
     validation_mode,
 )
-from ..log import logger
+from ..log import logger, say
 from ..params import choice
 from ..paths import project_root, resolve
 from ..store import registry_lock
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
 from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
-from .common import (
-    check_config,
-    check_keys,
-    data_options,
-    deploy_stream,
-    deployable,
-    lead_ins,
-    say,
-)
+from .common import check_config, check_keys, data_options, deploy_stream, deployable, lead_ins
 
 # The plain promote.* keys are checked by every stage (rules.PROMOTE_RULES); the envelope's
 # policies are the deployment's own.

@@ -26,7 +26,9 @@ from .. import io
 from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
+from ..log import say
 from ..metrics import RMSE
+from ..model_store import load_model, model_family
 from ..paths import resolve
 from ..tracking import connect, stage_run
 from .common import (
@@ -37,10 +39,7 @@ from .common import (
     deploy_stream,
     deployable,
     lead_ins,
-    load_model,
-    model_family,
     read_streamed,
-    say,
     warn_stream_mode,
 )
 

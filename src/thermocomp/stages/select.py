@@ -21,11 +21,12 @@ from ..errors import ConfigError
 from ..evaluation import require_split
 from ..files import atomic_dir, write_json
 from ..frame import resolve_columns, stack
+from ..log import say
 from ..paths import resolve
 from ..select.per_target import select_per_target
 from ..tracking import stage_run
 from .artifacts import processed_data, selection_fingerprint, selection_path
-from .common import build_denoiser, check_config, load_ingested, reference, say
+from .common import build_denoiser, check_config, load_ingested, reference
 
 
 def select(cfg: DictConfig) -> dict:
