@@ -181,7 +181,7 @@ def test_the_served_ati_model_takes_the_campaigns_ambient_as_a_param(manifest_am
     from thermocomp.deploy import StreamingCompensator
     from thermocomp.deploy.pyfunc import CompensatorModel, correction_column
     from thermocomp.io import read_dataset
-    from thermocomp.stages.common import load_model
+    from thermocomp.model_store import load_model
 
     ds_path, run = manifest_ambient_run
     ds, _ = read_dataset(ds_path)

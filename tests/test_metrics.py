@@ -81,11 +81,11 @@ def test_an_angular_error_is_in_um_per_m(target, unit):
 
 
 def test_the_result_table_gives_the_unit_of_angular_targets():
-    from thermocomp.stages.common import result_table
+    from thermocomp.results import EvaluationResult
 
     block = {"rsd_mean": 1.0, "rsd_sd": 0.5, "rms_before": 4.0, "rms_after": 1.0, "rmse": 1.0}
     table = {"model": "mlr", "mode": "simulation", "targets": {}}
     table["targets"]["E_X"] = {"test": dict(block)}
-    assert result_table(table).splitlines()[1].endswith("(µm)")
+    assert EvaluationResult(table).summary().splitlines()[1].endswith("(µm)")
     table["targets"]["E_AZ"] = {"test": dict(block)}
-    assert result_table(table).splitlines()[1].endswith("(µm; E_AZ in µm/m)")
+    assert EvaluationResult(table).summary().splitlines()[1].endswith("(µm; E_AZ in µm/m)")

@@ -15,10 +15,11 @@ from thermocomp.compensator import Compensator
 from thermocomp.deploy import StreamingCompensator
 from thermocomp.deploy.report import replay_report
 from thermocomp.diagnose.augmented import AugmentedRegressor
+from thermocomp.model_store import model_family
 from thermocomp.models.ati import ATIRegressor
 from thermocomp.models.pcr import PCR
 from thermocomp.paths import conf_dir
-from thermocomp.stages.common import build_compensator, model_family
+from thermocomp.stages.common import build_compensator
 
 MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm", "lagbank", "hammerstein")
 ATIS = ("none", "cmeans")

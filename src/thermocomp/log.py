@@ -20,6 +20,7 @@ import re
 import shutil
 import sys
 import tempfile
+import time
 import warnings
 from contextlib import contextmanager
 from pathlib import Path
@@ -145,3 +146,31 @@ def warnings_logged():
     with warnings.catch_warnings():
         warnings.showwarning = show
         yield
+
+
+def say(msg: str) -> None:
+    """Progress at INFO level through the ``thermocomp`` logger (stderr and the run's log file),
+    so stdout stays the result table."""
+    logger.info(msg)
+
+
+class Clock:
+    """Wall time of a stage's phases, for the one timing line a stage logs at its end.
+
+    ``lap(name)`` adds the time since the previous lap (or the clock's start)
+    to phase ``name``; a phase lapped twice accumulates.
+    """
+
+    def __init__(self):
+        self.seconds: dict[str, float] = {}
+        self._last = time.perf_counter()
+
+    def lap(self, name: str) -> None:
+        now = time.perf_counter()
+        self.seconds[name] = self.seconds.get(name, 0.0) + now - self._last
+        self._last = now
+
+    def line(self) -> str:
+        total = sum(self.seconds.values())
+        return (f"time (s): {total:.2f} = "
+                + " + ".join(f"{name} {s:.2f}" for name, s in self.seconds.items()))

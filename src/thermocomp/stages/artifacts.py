@@ -24,8 +24,9 @@ from .. import io, signing
 from ..compensator import Compensator
 from ..evaluation import require_split
 from ..files import folder_digest
+from ..log import say
 from ..paths import resolve
-from .common import build_compensator, reference, say
+from .common import build_compensator, reference
 
 DENOISE_JSON = "denoise.json"
 DENOISER_PKL = "denoiser.pkl"

@@ -28,18 +28,12 @@ from omegaconf import DictConfig
 from .. import io
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
-from ..log import logger
+from ..log import logger, say
 from ..paths import resolve
 from ..tracking import stage_run
 from ..volumetric.calibration import roundtrip
 from .apart import check_apart
-from .common import (
-    _check_writable,
-    calibrated_dataset,
-    check_config,
-    say,
-    simulated_truth,
-)
+from .common import _check_writable, calibrated_dataset, check_config, simulated_truth
 
 
 def calibrate(cfg: DictConfig) -> dict:

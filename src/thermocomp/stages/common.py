@@ -7,20 +7,20 @@ import functools
 import json
 import math
 import tempfile
-import time
 from collections.abc import Mapping
 from numbers import Integral
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf, open_dict
 
-from .. import io, signing
+from .. import io
 from ..build import build
 from ..compensator import MODES, Compensator
 from ..continuation import carried_text
 from ..errors import ConfigError
 from ..frame import REFERENCES
-from ..log import logger
+from ..log import logger, say
+from ..model_store import load_model, model_family
 from ..params import (
     BOOLEAN,
     MAX_COUNT,
@@ -39,8 +39,7 @@ from ..params import (
     subset,
     texts,
 )
-from ..paths import conf_dir, resolve
-from ..results import EvaluationResult
+from ..paths import resolve
 from ..tracking import enabled, store_uri
 from .apart import check_apart
 from .auto import as_chosen, auto_scheme, build_candidates, is_auto, val_split_scores
@@ -67,34 +66,6 @@ CONFIG_RULES = {
 }
 # The configured estimators, denoiser and selector: each checks its ``param_rules``.
 COMPONENTS = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector")
-
-
-def say(msg: str) -> None:
-    """Progress at INFO level through the ``thermocomp`` logger (stderr and the run's log file),
-    so stdout stays the result table."""
-    logger.info(msg)
-
-
-class Clock:
-    """Wall time of a stage's phases, for the one timing line a stage logs at its end.
-
-    ``lap(name)`` adds the time since the previous lap (or the clock's start)
-    to phase ``name``; a phase lapped twice accumulates.
-    """
-
-    def __init__(self):
-        self.seconds: dict[str, float] = {}
-        self._last = time.perf_counter()
-
-    def lap(self, name: str) -> None:
-        now = time.perf_counter()
-        self.seconds[name] = self.seconds.get(name, 0.0) + now - self._last
-        self._last = now
-
-    def line(self) -> str:
-        total = sum(self.seconds.values())
-        return (f"time (s): {total:.2f} = "
-                + " + ".join(f"{name} {s:.2f}" for name, s in self.seconds.items()))
 
 
 def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
@@ -508,45 +479,6 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[
         name = model_family(comp)
         train = {c: ds.campaigns[c] for c in train_ids}
     return deployable(cfg, deploy_stream(cfg, comp, train), train, ds), source, name
-
-
-def save_model(comp: Compensator, path) -> Path:
-    """Pickle ``comp`` to ``path`` with its signature ``<path>.sig`` (:mod:`thermocomp.signing`)."""
-    return signing.dump(comp, resolve(path))
-
-
-def load_model(path) -> Compensator:
-    """The :class:`Compensator` pickled at ``path``; its signature is checked before unpickling."""
-    path = resolve(path)
-    if not path.is_file():
-        raise io.ContractError("no trained model; run `thermocomp train` first", file=path)
-    return signing.load(path, Compensator)
-
-
-def model_family(comp) -> str:
-    """The model family (``conf/model/<name>.yaml``'s ``name``) of a loaded compensator, as
-    ``replay.json`` names a fitted one: through an ATI or a diagnosed wrapper to the model
-    inside; the class name for an estimator no config builds."""
-    families = {}
-    for f in sorted(conf_dir().glob("model/*.yaml")):
-        c = OmegaConf.load(f)
-        families[str(c.estimator._target_).rsplit(".", 1)[-1]] = str(c.name)
-    from ..diagnose.augmented import MODEL_NAME, AugmentedRegressor
-
-    est, suffix = comp.estimator, ""
-    while type(est).__name__ not in families:
-        if isinstance(est, AugmentedRegressor):
-            suffix = f"+{MODEL_NAME}"            # as diagnose names it: <family>+diagnosed
-        inner = getattr(est, "base_estimator", None) or getattr(est, "estimator", None)
-        if inner is None:
-            return type(comp.estimator).__name__
-        est = inner
-    return families[type(est).__name__] + suffix
-
-
-def result_table(metrics: dict) -> str:
-    """The table `make run` prints (:meth:`thermocomp.results.EvaluationResult.summary`)."""
-    return EvaluationResult(metrics).summary()
 
 
 # --- calibrate (the stage and `run` on a volumetric dataset) -------------------------------

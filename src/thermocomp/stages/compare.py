@@ -35,6 +35,7 @@ from ..leaderboard import (
     ranking_line,
     to_markdown,
 )
+from ..log import say
 from ..params import BOOLEAN, optional, text
 from ..paths import resolve
 from ..plotdata import write_compare
@@ -42,7 +43,7 @@ from ..sweeps import parent_run_id, sweep_folder, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
 from .apart import check_apart
-from .common import _check_writable, check_keys, say
+from .common import _check_writable, check_keys
 
 NO_SWEEP_FOLDER = "reports/compare"   # a sweep whose folder is not on this machine
 

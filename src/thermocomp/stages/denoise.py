@@ -23,10 +23,11 @@ from ..files import atomic_dir, write_json
 from ..frame import resolve_columns
 from ..io.contract import MANIFEST
 from ..io.read import INGEST_REPORT
+from ..log import say
 from ..paths import resolve
 from ..tracking import stage_run
 from .artifacts import DENOISE_JSON, DENOISER_PKL, denoise_fingerprint
-from .common import build_denoiser, check_config, check_replaceable, load_ingested, say
+from .common import build_denoiser, check_config, check_replaceable, load_ingested
 
 
 def _rms(a) -> float:

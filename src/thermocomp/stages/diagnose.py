@@ -35,7 +35,7 @@ from ..diagnose.report import write_report
 from ..errors import ConfigError
 from ..files import atomic_dir, write_json
 from ..headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
-from ..log import logger
+from ..log import logger, say
 from ..params import (
     check_values,
     subset,
@@ -44,7 +44,7 @@ from ..paths import resolve
 from ..results import TargetResult
 from ..tracking import stage_run
 from . import rules
-from .common import build_compensator, check_config, check_declared, data_options, resolve_reference, say
+from .common import build_compensator, check_config, check_declared, data_options, resolve_reference
 
 # What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are
 # this stage's (``targets`` is also checked against the modelled targets).
@@ -152,6 +152,54 @@ def _yaml(header: str, body: dict) -> str:
     return header + yaml.safe_dump(body, sort_keys=False, allow_unicode=True, width=100)
 
 
+def _write(cfg: DictConfig, ds, result, written: dict, out: Path) -> tuple[Path, str, Path]:
+    """``diagnosis.json``, its headline and the ``diagnosis/`` folder (per-target JSONs,
+    the config to rerun the diagnosed model, figures, report): (folder, rerun, diagnosis.json)."""
+    out.mkdir(parents=True, exist_ok=True)
+    folder = out / "diagnosis"
+    conf_dir = folder / "conf"
+    rerun = rerun_command(cfg, conf_dir, out / MODEL_NAME, written.get("kept"))
+    primary = result.primary
+    jsons = {}
+    for t in result.targets:
+        j = result.to_json(t)
+        j.update(config=str(conf_dir / "model" / f"{MODEL_NAME}.yaml"),
+                 experiment=str(conf_dir / "experiment" / f"{MODEL_NAME}.yaml"),
+                 rerun=rerun, report=str(folder / "report.html"))
+        jsons[t] = j
+    with atomic_dir(folder) as tmp:
+        figures = diagnosis_figures(result, tmp / "plots") if cfg.plots != "none" else {}
+        header = (f"# Written by `thermocomp diagnose` on {ds.name}: {cfg.model.name} + the effects "
+                  f"it accepted.\n# Rerun: {rerun}\n")
+        (tmp / "conf" / "model").mkdir(parents=True)
+        (tmp / "conf" / "experiment").mkdir(parents=True)
+        (tmp / "conf" / "model" / f"{MODEL_NAME}.yaml").write_text(_yaml(header, written["model"]))
+        (tmp / "conf" / "experiment" / f"{MODEL_NAME}.yaml").write_text(
+            _yaml("# @package _global_\n" + header, experiment(cfg, written["kept"])))
+        for t, j in jsons.items():
+            write_json(tmp / f"diagnosis_{t}.json", j)
+        write_report(tmp, jsons, {t: [f"plots/{p.name}" for p in ps] for t, ps in figures.items()},
+                     rerun, primary)
+    main = write_json(out / "diagnosis.json", jsons[primary])
+    write_headline(out / DIAGNOSIS_HEADLINE, diagnosis_headline(jsons))  # `dvc metrics show`
+    return folder, rerun, main
+
+
+def _track(tracker, result, main: Path, folder: Path) -> None:
+    tracker.log_metrics({"diagnose": {t: {
+        "before_test_rmse": TargetResult(d.before).test.rmse,
+        "after_test_rmse": TargetResult(d.after).test.rmse,
+        "before_cv_rmse": d.original_cv_rmse, "after_cv_rmse": d.final_cv_rmse,
+        "n_accepted": len(d.accepted)} for t, d in result.targets.items()},
+        "diagnose_seconds": result.seconds})
+    tracker.set_tags({"diagnose.primary": result.primary,
+                      "diagnose.accepted": "; ".join(
+                          f"{t}: {ev.effect.kind} {ev.effect.column or ''} {ev.effect.label}"
+                          for t, d in result.targets.items() for ev in d.accepted) or "none"})
+    tracker.log_artifact(main)
+    tracker.log_artifacts(folder, "diagnosis")
+
+
 def diagnose(cfg: DictConfig) -> dict:
     """Diagnose the configured model on ``data.path``; write the report under ``out``."""
     check_config(cfg)
@@ -186,49 +234,12 @@ def diagnose(cfg: DictConfig) -> dict:
                                str(cfg.eval.e_p95.statistic), cfg.eval.e_p95.get("max_points", 200),
                                model_name=str(cfg.model.name))
         out = resolve(cfg.out)
-        out.mkdir(parents=True, exist_ok=True)
-        folder = out / "diagnosis"
-        conf_dir = folder / "conf"
-        rerun = rerun_command(cfg, conf_dir, out / MODEL_NAME, written.get("kept"))
-        primary = result.primary
-        jsons = {}
-        for t in result.targets:
-            j = result.to_json(t)
-            j.update(config=str(conf_dir / "model" / f"{MODEL_NAME}.yaml"),
-                     experiment=str(conf_dir / "experiment" / f"{MODEL_NAME}.yaml"),
-                     rerun=rerun, report=str(folder / "report.html"))
-            jsons[t] = j
-        with atomic_dir(folder) as tmp:
-            figures = diagnosis_figures(result, tmp / "plots") if cfg.plots != "none" else {}
-            header = (f"# Written by `thermocomp diagnose` on {ds.name}: {cfg.model.name} + the effects "
-                      f"it accepted.\n# Rerun: {rerun}\n")
-            (tmp / "conf" / "model").mkdir(parents=True)
-            (tmp / "conf" / "experiment").mkdir(parents=True)
-            (tmp / "conf" / "model" / f"{MODEL_NAME}.yaml").write_text(_yaml(header, written["model"]))
-            (tmp / "conf" / "experiment" / f"{MODEL_NAME}.yaml").write_text(
-                _yaml("# @package _global_\n" + header, experiment(cfg, written["kept"])))
-            for t, j in jsons.items():
-                write_json(tmp / f"diagnosis_{t}.json", j)
-            write_report(tmp, jsons, {t: [f"plots/{p.name}" for p in ps] for t, ps in figures.items()},
-                         rerun, primary)
-        main = write_json(out / "diagnosis.json", jsons[primary])
-        write_headline(out / DIAGNOSIS_HEADLINE, diagnosis_headline(jsons))  # `dvc metrics show`
-        tracker.log_metrics({"diagnose": {t: {
-            "before_test_rmse": TargetResult(d.before).test.rmse,
-            "after_test_rmse": TargetResult(d.after).test.rmse,
-            "before_cv_rmse": d.original_cv_rmse, "after_cv_rmse": d.final_cv_rmse,
-            "n_accepted": len(d.accepted)} for t, d in result.targets.items()},
-            "diagnose_seconds": result.seconds})
-        tracker.set_tags({"diagnose.primary": primary,
-                          "diagnose.accepted": "; ".join(
-                              f"{t}: {ev.effect.kind} {ev.effect.column or ''} {ev.effect.label}"
-                              for t, d in result.targets.items() for ev in d.accepted) or "none"})
-        tracker.log_artifact(main)
-        tracker.log_artifacts(folder, "diagnosis")
+        folder, rerun, main = _write(cfg, ds, result, written, out)
+        _track(tracker, result, main, folder)
     print(summary_table(result))
     say(f"diagnosis: {main}; report: {folder / 'report.html'}")
     say(f"rerun the diagnosed model: {rerun}")
-    return result.to_json(primary)
+    return result.to_json(result.primary)
 
 
 def summary_table(result) -> str:

@@ -18,9 +18,11 @@ from ..deploy.export import NotExportable, exported_files
 from ..deploy.report import plain
 from ..errors import ConfigError
 from ..files import folder_digest, staged_outputs
+from ..log import say
+from ..model_store import load_model, model_family
 from ..paths import resolve
 from ..tracking import connect
-from .common import check_config, deploy_stream, load_model, model_family, read_streamed, say
+from .common import check_config, deploy_stream, read_streamed
 
 
 def _registry_run(source: str) -> str | None:

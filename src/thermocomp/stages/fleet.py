@@ -26,20 +26,14 @@ from .. import continuation, fleet, io
 from ..errors import ConfigError
 from ..evaluation import VAL_FOLDS, require_split, sample_period, split_residuals, validation_report
 from ..files import inside, safe_name, staged_outputs, write_json
+from ..log import say
 from ..metrics import VALIDATION, pooled_scores, rsd, split_scores
+from ..model_store import save_model
 from ..paths import resolve
 from ..results import TEST_RMS_AFTER, TEST_RMS_BEFORE, TEST_RMSE, VAL_RMSE, TargetResult
 from ..tracking import stage_run
 from .auto import add_choices
-from .common import (
-    build_compensator,
-    check_config,
-    data_options,
-    resolve_reference,
-    save_model,
-    say,
-    validation_template,
-)
+from .common import build_compensator, check_config, data_options, resolve_reference, validation_template
 
 
 def _slim(targets: dict) -> dict:

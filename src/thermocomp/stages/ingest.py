@@ -13,6 +13,7 @@ import tempfile
 from omegaconf import DictConfig
 
 from .. import io
+from ..log import say
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import (
@@ -21,7 +22,6 @@ from .common import (
     data_options,
     ingest_settings,
     resolve_reference,
-    say,
     volumetric_calibration,
 )
 

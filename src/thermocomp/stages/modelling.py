@@ -35,25 +35,21 @@ from ..files import atomic_write_text, inside, safe_name, staged_outputs, write_
 from ..headline import HEADLINE, write_headline
 from ..iso10791 import a3_campaign
 from ..leaderboard import DEPLOYED_MODE
-from ..log import logger
+from ..log import Clock, logger, say
 from ..metrics import E_MAX, E_P95, ISO_A3, PER_CAMPAIGN, RSD, VALIDATION, validation_block
+from ..model_store import load_model, model_family, save_model
 from ..paths import resolve
 from ..results import EvaluationResult, TargetResult
 from ..tracking import stage_run
 from .artifacts import fit_from_artifacts
 from .auto import add_choices, as_chosen
 from .common import (
-    Clock,
     build_compensator,
     check_config,
     check_declared,
     data_options,
     load_ingested,
-    load_model,
-    model_family,
     resolve_reference,
-    save_model,
-    say,
     simulated_truth,
     validation_template,
     volumetric_calibration,
@@ -130,35 +126,42 @@ def _score(cfg: DictConfig, comp: Compensator, ds, stage, clock: Clock,
         if cfg.plots == "all":
             _campaign_figures(draw, folder, comp, ds, _train_predictions(comp, ds, ev.mode))
         clock.lap("figures")
-        # instantiate once, then copies for the 26 baseline and mutual-prediction models
-        make_base = partial(clone, build_compensator(cfg, ati=False))
-        metrics["anova"] = anova(comp, ds, float(ev.get("anova_alpha", 0.001)), predictions)
-        clock.lap("anova")
-        ati_name = cfg.ati.name if cfg.get("ati") is not None else "none"
-        if ev.get("ati_baselines", True):
-            say("ATI report: cold/warm single-campaign baselines")
-            metrics["ati"] = ati_report(comp, ds, make_base, ev.mode, ati_name)
-            clock.lap("ati")
-        if cfg.plots != "none":
-            _rsd_figures(draw, folder, metrics, ambient_by_campaign(ds, list(predictions)))
-            clock.lap("figures")
-        if ev.get("mutual_prediction", True):
-            say(f"mutual prediction: {len(ds.ids())} single-campaign models")
-            # its single-campaign models keep the hyper-parameters the model chose on all train
-            # campaigns: one CV per campaign cost 43 x 43 lag banks on a lathe record (model=auto:
-            # each target's chosen family, not the whole choice again per campaign)
-            make_single = partial(clone, with_chosen_hyperparameters(as_chosen(make_base(), comp), comp))
-            metrics["mutual_prediction"] = mutual_prediction_report(make_single, ds, ev.mode)
-            clock.lap("mutual_prediction")
-            if cfg.plots in ("test", "all"):
-                _mutual_figures(draw, folder, metrics["mutual_prediction"])
-                clock.lap("figures")
+        _model_reports(cfg, comp, ds, predictions, metrics, (draw, folder), clock)
         result = EvaluationResult(metrics)
         atomic_write_text(stage / "metrics.json", result.to_json())
         write_headline(stage / HEADLINE, result.headline("dvc"))  # for `dvc metrics show`
         clock.lap("write")
     clock.lap("figures")  # drawing still under way once every number is written
     return metrics
+
+
+def _model_reports(cfg: DictConfig, comp: Compensator, ds, predictions: dict, metrics: dict,
+                   figures: tuple, clock: Clock) -> None:
+    """ANOVA, the ATI baselines and mutual prediction into ``metrics`` (and their figures)."""
+    ev = cfg.eval
+    # instantiate once, then copies for the 26 baseline and mutual-prediction models
+    make_base = partial(clone, build_compensator(cfg, ati=False))
+    metrics["anova"] = anova(comp, ds, float(ev.get("anova_alpha", 0.001)), predictions)
+    clock.lap("anova")
+    ati_name = cfg.ati.name if cfg.get("ati") is not None else "none"
+    if ev.get("ati_baselines", True):
+        say("ATI report: cold/warm single-campaign baselines")
+        metrics["ati"] = ati_report(comp, ds, make_base, ev.mode, ati_name)
+        clock.lap("ati")
+    if cfg.plots != "none":
+        _rsd_figures(*figures, metrics, ambient_by_campaign(ds, list(predictions)))
+        clock.lap("figures")
+    if ev.get("mutual_prediction", True):
+        say(f"mutual prediction: {len(ds.ids())} single-campaign models")
+        # its single-campaign models keep the hyper-parameters the model chose on all train
+        # campaigns: one CV per campaign cost 43 x 43 lag banks on a lathe record (model=auto:
+        # each target's chosen family, not the whole choice again per campaign)
+        make_single = partial(clone, with_chosen_hyperparameters(as_chosen(make_base(), comp), comp))
+        metrics["mutual_prediction"] = mutual_prediction_report(make_single, ds, ev.mode)
+        clock.lap("mutual_prediction")
+        if cfg.plots in ("test", "all"):
+            _mutual_figures(*figures, metrics["mutual_prediction"])
+            clock.lap("figures")
 
 
 def _publish(cfg: DictConfig, metrics: dict, out, tracker, clock: Clock) -> None:
@@ -406,55 +409,13 @@ def _volumetric_report(cfg: DictConfig, comp: Compensator, ds, raw, cal, calibra
 
 def _volumetric(cfg: DictConfig, comp: Compensator, raw, ds, cal, calibration: dict):
     """The ``volumetric`` section on the test split, and the curves of its figures."""
-    import numpy as np
-
-    from ..evaluation import predict_split
-    from ..volumetric.calibration import flagged
-    from ..volumetric.series import distance_matrix
-    from ..volumetric.validation import volumetric_report
+    from ..volumetric.section import split_series, true_changes, volumetric_section
 
     say("volumetric validation: distances, VE/VCE, trajectories, ISO 10791-10 A.3")
-    pairs = predict_split(comp, ds, "test", cfg.eval.mode)
-    changes, predicted, distances, times = {}, {}, {}, {}
-    for cid, (meas, pred) in pairs.items():
-        P = ds.campaigns[cid][cal.names_].to_numpy(float)
-        changes[cid] = P - P[:1]
-        Q = np.column_stack([pred[n].to_numpy(float) if n in pred else np.zeros(len(P))
-                             for n in cal.names_])
-        predicted[cid] = Q - Q[:1]      # the model's change since the first cycle, as `changes`
-        D = distance_matrix(raw.campaigns[cid], cal)
-        # a distance the calibration left out (an outlier of its cycle, an excluded column) is
-        # not a distance error: 1 mm mis-probed once made the RMS after 0.95 -> 4.96 µm
-        D[flagged(calibration, cid, cal.design_.columns, len(D))] = np.nan
-        distances[cid] = D
-        times[cid] = ds.campaigns[cid]["time"].to_numpy(float)
-    models = {}
-    for name, est in comp.estimators_.items():
-        chosen = getattr(est, "chosen_", None) or {}
-        models[name] = {"n_inputs": int(chosen.get("n_inputs", len(comp.selected_[name]))),
-                        "ar": bool(chosen.get("ar", False))}
-    out, curves = volumetric_report(cal, distances, changes, predicted, times, models,
-                                    _true_changes(cfg, cal, times))
-    # the intercepts the thermal models learnt and do not predict (the first cycle's error)
-    out["offsets"] = {"mode": getattr(comp, "offsets", "predict"),
-                      "dropped": dict(getattr(comp, "offsets_", {}))}
-    return out, curves
-
-
-def _true_changes(cfg: DictConfig, cal, times: dict):
-    """Campaign -> the true change of every parameter since the first cycle, from
-    ``<data.path>.truth.json`` when the data were simulated (and it matches), else None."""
-    from ..volumetric.calibration import true_parameters
-
+    series = split_series(comp, raw, ds, cal, calibration, cfg.eval.mode)
     path, truth = simulated_truth(cfg)
-    if truth is None:
-        return None
-    out = {}
-    for cid, t in times.items():
-        P = true_parameters(truth, cid, cal.setup.model.names, len(t))
-        if P is None:
-            say(f"{path} does not hold campaign {cid}'s parameter series: VCE against the "
-                "identified parameters")
-            return None
-        out[cid] = P - P[:1]
-    return out
+    changes, missing = (None, None) if truth is None else true_changes(truth, cal, series["times"])
+    if missing is not None:
+        say(f"{path} does not hold campaign {missing}'s parameter series: VCE against the "
+            "identified parameters")
+    return volumetric_section(comp, series, cal, changes)

@@ -27,20 +27,14 @@ from .. import io
 from ..context import TIME
 from ..continuation import chain, preceding
 from ..deploy import StreamingCompensator
-from ..deploy.adapt import Adaptation
 from ..deploy.adapt import from_config as adapt_from_config
-from ..deploy.report import alarm_rate, campaign_start, streamed_hours
-from ..deploy.streaming import warm
 from ..errors import ConfigError
 from ..files import staged_outputs, write_json
 from ..io.sniff import SNIFF_LINES, detected
-from ..monitor import (
-    STATES,
-    AdaptiveCompensator,
-    covariance_sensors,
-    qr_sensors,
-    undetected_offset_um,
-)
+from ..log import say
+from ..model_store import load_model
+from ..monitor.report import monitor_report, summary_lines
+from ..monitor.report import stream_campaign as _stream  # noqa: F401  (tests stream through it)
 from ..paths import resolve
 from ..tracking import stage_run
 from .common import (
@@ -53,9 +47,7 @@ from .common import (
     data_options,
     deploy_stream,
     lead_ins,
-    load_model,
     read_streamed,
-    say,
     warn_stream_mode,
 )
 
@@ -147,34 +139,6 @@ def _stdin_lead_in(cfg: DictConfig, fixed: StreamingCompensator, ds, stream: pd.
     return {"stdin": preceding(ds, ids, first)}
 
 
-def _stream(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
-            ) -> tuple[np.ndarray, list[dict], list[np.ndarray]]:
-    """Stream one campaign from its start (a reset, or warmed on ``lead_in``, the campaigns it
-    continues: :func:`~thermocomp.deploy.streaming.warm`); a step of the fixed compensator
-    that refuses its row holds the previous correction (the adaptive one gives one for every
-    row: a failure there is a defect, raised, not a held correction whose row re-reported the
-    previous row's events)."""
-    X = df[model.columns_].to_numpy(float)
-    t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
-    y = np.zeros((len(X), len(model.targets_)))
-    events, states, errors = [], [], []
-    warm(model, lead_in, df)
-    for i in range(len(X)):
-        try:
-            y[i] = model._step(X[i], t[i])[0]
-        except ValueError:                   # the fixed compensator on a missing value
-            if isinstance(model, AdaptiveCompensator):
-                raise
-            y[i] = y[i - 1] if i else np.nan
-        mon = getattr(model, "monitor", None)
-        if mon is not None:
-            events += model.last_events_
-            states.append(mon.states)
-            errors.append(mon.last_error_)
-    model.reset()
-    return y, events, (states, errors)
-
-
 def monitor(cfg: DictConfig) -> dict:
     """Stream the test campaigns (or stdin) through the fixed and the adaptive compensator."""
     check_config(cfg, inputs=("monitor.model",))
@@ -206,14 +170,9 @@ def monitor(cfg: DictConfig) -> dict:
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
         leads = _stdin_lead_in(cfg, fixed, ds, streamed["stdin"]) if stdin else lead_ins(
             comp, ds, list(streamed))
-        report, traces = _report(adaptive, fixed, comp, streamed, str(cfg.monitor.pod.placement),
-                                 leads, adapt_from_config(cfg.get("adapt"), len(comp.targets_)))
-        mon = adaptive.monitor
-        band = mon.warning_c if mon.exclude_at == "warning" else mon.alarm_c
-        cost = undetected_offset_um(comp, train, dict(zip(mon.names, band.tolist())))
-        for j, name in enumerate(mon.names):
-            report["sensors"][name]["undetected_offset_c"] = float(band[j])
-            report["sensors"][name]["undetected_offset_um"] = cost[name]
+        report, traces = monitor_report(adaptive, fixed, comp, streamed, train,
+                                        str(cfg.monitor.pod.placement), leads,
+                                        adapt_from_config(cfg.get("adapt"), len(comp.targets_)))
         if missing:
             report["missing"] = missing
         out = Path(resolve(cfg.out))
@@ -224,118 +183,6 @@ def monitor(cfg: DictConfig) -> dict:
             write_json(stage / "monitor.json", report)
         tr.log_metrics({"monitor": report["targets"]})
         tr.log_artifact(out / "monitor.json")
-    _print(report)
+    print("\n".join(summary_lines(report)))
     say(f"monitor: {out / 'monitor.json'}")
     return report
-
-
-def _report(adaptive: AdaptiveCompensator, fixed: StreamingCompensator, comp, streamed,
-            placement: str = "qr", leads: dict | None = None, adapt: Adaptation | None = None
-            ) -> tuple[dict, dict]:
-    mon = adaptive.monitor
-    names = mon.names
-    counts = np.zeros((len(names), len(STATES)), dtype=np.int64)
-    first_alarm: dict = {}
-    events, traces = [], {}
-    measured = comp.measured(streamed) if any(t in df.columns for df in streamed.values()
-                                              for t in comp.targets_) else None
-    res_f, res_a, res_frozen, corr = [], [], [], []
-    hours = 0.0
-    for cid, df in streamed.items():
-        lead = (leads or {}).get(cid)
-        y_fix, _, _ = _stream(fixed, df, lead)
-        y_ad, ev, (states, errors) = _stream(adaptive, df, lead)
-        start = campaign_start(df)      # CLI.md: event times in seconds from the campaign start
-        t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
-        m = None if measured is None else measured[cid][adaptive.targets_].to_numpy()
-        if adapt is not None:           # the deployed correction learns from the references
-            if m is not None:
-                res_frozen.append(m - y_ad)
-            adapt.start()
-            y_ad = adapt.correct(y_ad, t, m)
-        for e in ev:
-            e = {"campaign": cid, **e, "time": e["time"] - start}
-            events.append(e)
-            if (e.get("sensor") in names and e["to"] in ("alarm", "excluded")
-                    and e["sensor"] not in first_alarm):
-                first_alarm[e["sensor"]] = {"campaign": cid, "time": e["time"]}
-        hours += streamed_hours(df, adaptive.period_s)
-        S = np.asarray(states)
-        for k in range(len(STATES)):
-            counts[:, k] += (S == k).sum(axis=0)
-        traces[cid] = {"time": t, "states": S, "errors": np.asarray(errors), "fixed": y_fix,
-                       "adaptive": y_ad, "measured": m}
-        corr.append(y_ad)
-        if m is not None:
-            res_f.append(m - y_fix)
-            res_a.append(m - y_ad)
-    C = np.vstack(corr)
-    rf = np.vstack(res_f) if res_f else None
-    ra = np.vstack(res_a) if res_a else None
-
-    def rmse(r, k):     # None: nothing to score (no errors, or no finite residual at all)
-        if r is None or not np.isfinite(r[:, k]).any():
-            return None
-        return float(np.sqrt(np.nanmean(r[:, k] ** 2)))
-
-    pod = mon.pod
-    rank = qr_sensors(pod.phi_) if pod.n_modes_ <= len(names) else np.arange(len(names))
-    cov = covariance_sensors(pod.phi_, pod.singular_values_, 1, None)
-    report = {
-        "sensors": {n: {"state_counts": dict(zip(STATES, map(int, counts[j]))),
-                        "first_alarm": first_alarm.get(n),
-                        "observable": bool(mon._observable[j]) if n not in mon.excluded else None}
-                    for j, n in enumerate(names)},
-        "events": events,
-        "targets": {t: {"rmse_fixed": rmse(rf, k), "rmse_adaptive": rmse(ra, k),
-                        "max_abs_correction": float(np.max(np.abs(C[:, k]))) if len(C) else 0.0,
-                        "all_finite": bool(np.all(np.isfinite(C[:, k]))),
-                        "bound": [float(adaptive.guard.lo[k]), float(adaptive.guard.hi[k])]}
-                    for k, t in enumerate(adaptive.targets_)},
-        "pod": {"n_sensors": len(names), "n_modes": int(pod.n_modes_),
-                "n_modes_energy": int(pod.n_modes_energy_),
-                "captured_energy": float(pod.energy_[pod.n_modes_ - 1]),
-                "train_self_prediction_c": float(pod.train_band_c_),
-                "sensor_rank_qr": [names[i] for i in rank],
-                "sensor_rank_covariance": [names[i] for i in cov],
-                "placement": placement,
-                "sensor_rank": [names[i] for i in (rank if placement == "qr" else cov)]},
-        "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist()},
-        "alarms": alarm_rate(events, hours),
-        "campaigns": list(streamed),
-    }
-    if adapt is not None:
-        rfz = np.vstack(res_frozen) if res_frozen else None
-        for k, t in enumerate(adaptive.targets_):
-            report["targets"][t]["adapt"] = {"rmse_frozen": rmse(rfz, k), **adapt.figures(k)}
-    return report, traces
-
-
-def _print(report: dict) -> None:
-    print(f"{'target':<8} {'RMSE fixed':>11} {'RMSE adaptive':>14} {'max|corr|':>10} {'finite':>7}")
-    for t, r in report["targets"].items():
-        f = "-" if r["rmse_fixed"] is None else f"{r['rmse_fixed']:.3f}"
-        a = "-" if r["rmse_adaptive"] is None else f"{r['rmse_adaptive']:.3f}"
-        print(f"{t:<8} {f:>11} {a:>14} {r['max_abs_correction']:>10.3g} {str(r['all_finite']):>7}")
-    costs = [(max(v for v in r["undetected_offset_um"].values() if v is not None), n, r)
-             for n, r in report["sensors"].items()
-             if any(v is not None for v in r.get("undetected_offset_um", {}).values())]
-    if costs:
-        worst, name, r = max(costs, key=lambda c: c[0])
-        target = max((t for t, v in r["undetected_offset_um"].items() if v is not None),
-                     key=r["undetected_offset_um"].get)
-        print(f"an offset inside the exclusion band costs up to {worst:.3g} µm ({name} "
-              f"{r['undetected_offset_c']:g} °C, {target}; per sensor in monitor.json)")
-    adapted = [(t, r) for t, r in report["targets"].items() if "adapt" in r]
-    if adapted:
-        a = adapted[0][1]["adapt"]
-        print(f"adapt ({a['method']}, {a['n_references']} references): RMSE adaptive without -> with "
-              + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r['rmse_adaptive']:.3f}"
-                          for t, r in adapted if r["rmse_adaptive"] is not None
-                          and r["adapt"]["rmse_frozen"] is not None))
-    excl = [e for e in report["events"] if e["to"] == "excluded"]
-    rate = report["alarms"]["exclusions_per_100h"]
-    print(f"events: {len(report['events'])}, exclusions: {len(excl)}"
-          + ("" if rate is None else f" ({rate:.3g} per 100 h)")
-          + (f", first: {excl[0]['sensor']} ({excl[0]['campaign']}, {excl[0]['time'] / 3600:.2f} h)"
-             if excl else ""))

@@ -43,11 +43,23 @@ import hashlib
 import json
 import subprocess
 import tempfile
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
 
 from .. import io, signing
+from ..champion import (
+    champion_validation,
+    check_criterion,
+    check_stream_deviation,
+    decide,
+    fmt,
+    outcome_line,
+    same_deployment,
+    same_figures,
+    tag_value,
+)
 from ..compensator import Compensator
 from ..deploy import POLICIES, stream_scores, streaming_deviation
 from ..deploy.report import summary as deployed_summary
@@ -57,8 +69,6 @@ from ..evaluation import require_split, sample_period
 from ..files import folder_digest, write_json
 from ..leaderboard import (
     DEPLOYED_MODE,
-    FIGURES,
-    beats,
     is_validation,
     rank,
     ranked_by,
@@ -66,22 +76,14 @@ from ..leaderboard import (
     summary,
     validation_mode,
 )
-from ..log import logger
+from ..log import logger, say
 from ..params import choice
 from ..paths import project_root, resolve
 from ..store import registry_lock
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
 from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
-from .common import (
-    check_config,
-    check_keys,
-    data_options,
-    deploy_stream,
-    deployable,
-    lead_ins,
-    say,
-)
+from .common import check_config, check_keys, data_options, deploy_stream, deployable, lead_ins
 
 # The plain promote.* keys are checked by every stage (rules.PROMOTE_RULES); the envelope's
 # policies are the deployment's own.
@@ -168,28 +170,6 @@ def _validation_score(run_id: str, uri: str, cfg: DictConfig) -> tuple[float, di
     return score, figures, str(metrics.get("mode", DEPLOYED_MODE)), validation_mode(metrics)
 
 
-def _champion_validation(champion, criterion: str, target: str, dataset_hash: str, mode: str
-                         ) -> tuple[float | None, str | None]:
-    """The validation score the champion was promoted with, if it is comparable here: same
-    dataset, target and mode of the validation figures (``mode``; an old champion's is its
-    ``eval_mode``)."""
-    tags = dict(champion.tags or {})
-    tags.setdefault("validation_mode", tags.get("eval_mode"))
-    for key, want, what in (("dataset_hash", dataset_hash, "another dataset"),
-                            ("criterion_target", target, f"another target than {target}"),
-                            ("validation_mode", mode, f"another mode than {mode}")):
-        if tags.get(key) != want:
-            return None, f"its validation score is on {what} ({key}={tags.get(key)})"
-    value = tags.get(f"metric.{criterion}")
-    if value in (None, "null"):
-        return None, f"it has no validation score {criterion}"
-    return float(value), None
-
-
-def _fmt(value: float | None) -> str:
-    return "n/a" if value is None else f"{value:.4g}"
-
-
 def _current_champion(client, name: str, alias: str):
     try:
         return retry_locked(client.get_model_version_by_alias, name, alias)
@@ -226,6 +206,7 @@ def deploy_config(cfg: DictConfig) -> str:
     return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()[:12]
 
 
+
 def _registered(client, name: str, run_id: str, digest: str, dataset_hash: str, champion,
                 figures: dict, deployed: str):
     """The version that already holds this candidate, or None.
@@ -234,25 +215,158 @@ def _registered(client, name: str, run_id: str, digest: str, dataset_hash: str, 
     dataset: the same run, or the same model bytes; or a champion whose figures
     (validation and test, as tagged) equal the candidate's.
     """
-    if champion is not None and (champion.tags or {}).get("dataset_hash") == dataset_hash \
-            and champion.tags.get("deploy_config") == deployed:
-        tags = champion.tags
-        if all(tags.get(f"metric.{k}") == _tag(v) for k, v in figures.items()):
-            return champion
+    if champion is not None and same_deployment(champion.tags, dataset_hash, deployed) \
+            and same_figures(champion.tags, figures):
+        return champion
     try:
         versions = retry_locked(client.search_model_versions, f"name='{name}'")
     except Exception:  # no registered model yet
         return None
     for v in sorted(versions, key=lambda v: int(v.version)):
         tags = v.tags or {}
-        if tags.get("dataset_hash") == dataset_hash and tags.get("deploy_config") == deployed and (
+        if same_deployment(tags, dataset_hash, deployed) and (
                 tags.get("source_run_id") == run_id or tags.get("model_digest") == digest):
             return v
     return None
 
 
-def _tag(value) -> str:
-    return "null" if value is None else f"{value:.6g}"
+@dataclass
+class _Candidate:
+    """What promote knows of the candidate once it is scored and wrapped for deployment."""
+
+    run_id: str
+    run_params: dict
+    digest: str
+    score: float
+    mode: str
+    val_mode: str
+    basis: dict
+    val_figures: dict
+    figures: dict = field(default_factory=dict)
+    test_figures: dict = field(default_factory=dict)
+    deviation: float = 0.0
+    deployed: object = None
+    streaming: object = None
+    kind: dict = field(default_factory=dict)
+    deploy_key: str = ""
+
+
+def _candidate(cfg: DictConfig, client, uri: str, data_path, dataset_hash: str) -> tuple:
+    """The candidate run, checked against the dataset, with its model and validation score."""
+    import mlflow
+
+    opts, criterion = cfg.promote, str(cfg.promote.criterion)
+    run_id, basis = ((str(opts.run_id), None) if opts.get("run_id")
+                     else _best_run(cfg, client, uri, dataset_hash, data_path))
+    say(f"candidate run {run_id}")
+    try:
+        run = retry_locked(client.get_run, run_id)
+    except mlflow.exceptions.MlflowException as exc:
+        raise ConfigError(f"promote.run_id={run_id}: no such run in {uri} "
+                          f"({' '.join(str(exc).split())[:120]})") from None
+    _check_dataset(run, run_id, dataset_hash, data_path)
+    comp, digest = _load_run_model(run_id, uri)
+    score, val_figures, mode, val_mode = _validation_score(run_id, uri, cfg)
+    basis = basis or {"figure": criterion, "mode": DEPLOYED_MODE, "fallback": {}}
+    say(f"run {run_id}: {criterion} {fmt(score)} of its {val_mode}-mode validation (scored "
+        f"in {mode}; the deployed compensator runs in {DEPLOYED_MODE})")
+    if val_mode != DEPLOYED_MODE:
+        basis["fallback"][run_id] = val_mode
+        logger.warning("run %s has no %s-mode validation (scored in %s before it was recorded): "
+                       "its %s validation decides; rerun it to choose by the deployed mode",
+                       run_id, DEPLOYED_MODE, val_mode, val_mode)
+    return comp, _Candidate(run_id, dict(run.data.params), digest, score, mode, val_mode, basis,
+                            val_figures)
+
+
+def _deploy(cfg: DictConfig, comp: Compensator, ds, cand: _Candidate) -> None:
+    """Wrap the model as deployed (causality gate first) and stream the test split through it."""
+    train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
+    train = {c: ds.campaigns[c] for c in train_ids}
+    cand.streaming = deploy_stream(cfg, comp, train, f"run {cand.run_id}")
+    # causality is a property of the plain stream (envelope off, no monitor), checked before wrapping
+    leads = lead_ins(comp, ds, train_ids + test_ids)   # continuing campaigns start warmed
+    cand.deviation = max(streaming_deviation(cand.streaming, ds.campaigns[c], lead_in=leads.get(c))
+                         for c in train_ids[:2])
+    check_stream_deviation(cand.deviation, float(cfg.promote.max_stream_deviation_um), cand.run_id)
+    cand.deployed = deployable(cfg, cand.streaming, train, ds)   # what the pyfunc holds
+    # where each campaign leaves the stream: a served campaign may continue it (``continues``)
+    cand.deployed.end_states_ = end_states(
+        cand.deployed, {c: ds.campaigns[c] for c in train_ids + test_ids}, leads)
+    cand.kind, cand.deploy_key = deployed_summary(cand.deployed), deploy_config(cfg)
+    test = {c: ds.campaigns[c] for c in test_ids}
+    dt = sample_period(ds, test_ids)
+    # the test figures, as deployed: reported beside the validation ones, never used to decide
+    scores = stream_scores(cand.deployed, test, dt, cfg.eval.e_p95.statistic,
+                           cfg.eval.e_p95.max_points, leads)
+    cand.test_figures = {k: v for k, v in _figures(scores, cfg).items() if not is_validation(k)}
+    cand.figures = {**cand.val_figures, **cand.test_figures}
+
+
+def _new_version_tags(cfg: DictConfig, cand: _Candidate, ds, dataset_hash: str) -> dict:
+    """What a new version is and where it comes from."""
+    from ..deploy.pyfunc import REPORT_COLUMNS, correction_column
+
+    opts, params, kind = cfg.promote, cand.run_params, cand.kind
+    commit, dirty = git_commit()
+    outputs = ([correction_column(t) for t in cand.streaming.targets_] + ["n_clamped"]
+               + (list(REPORT_COLUMNS) if kind["adaptive"] else []))
+    tags = {"dataset_hash": dataset_hash, "dataset": ds.name, "git_commit": commit,
+            "git_dirty": dirty, "source_run_id": cand.run_id, "model_digest": cand.digest,
+            "model": params.get("model.name"), "select": params.get("select.name"),
+            "criterion": str(opts.criterion), "criterion_target": str(opts.target),
+            "eval_mode": cand.mode, "validation_mode": cand.val_mode,
+            "test_campaigns": ",".join(require_split(ds, "test")),
+            "train_campaigns": ",".join(require_split(ds, "train")),
+            "envelope_policy": str(opts.envelope.policy),
+            "stream_deviation_um": f"{cand.deviation:.3g}", "outputs": ",".join(outputs),
+            "adaptive": kind["adaptive"], "deploy_config": cand.deploy_key,
+            "pod_modes": "none" if kind["pod"] is None else kind["pod"]["n_modes"]}
+    return {**tags, **{f"metric.{k}": tag_value(v) for k, v in cand.figures.items()}}
+
+
+def _register(cfg: DictConfig, client, uri: str, cand: _Candidate, ds, dataset_hash: str):
+    """One transaction: read the champion, register, decide, tag, move the alias; a second
+    promote waits here and then compares against what this one decided."""
+    from ..deploy.pyfunc import log_compensator
+
+    opts, name, alias = cfg.promote, str(cfg.promote.model_name), str(cfg.promote.alias)
+    with registry_lock(uri):
+        champion = _current_champion(client, name, alias)
+        existing = _registered(client, name, cand.run_id, cand.digest, dataset_hash, champion,
+                               cand.figures, cand.deploy_key)
+        champ_score, champ_note = None, None
+        if champion is not None:
+            champ_score, champ_note = champion_validation(
+                champion.tags, str(opts.criterion), str(opts.target), dataset_hash, cand.val_mode)
+        if existing is not None:
+            version = str(existing.version)
+        else:
+            test = ds.campaigns[require_split(ds, "test")[0]]
+            example = test[cand.streaming.columns_ + ["time"]].head(5)
+            # into the run without resuming it: a killed promote leaves its status alone
+            info = log_compensator(cand.deployed, input_example=example,
+                                   registered_model_name=name, run_id=cand.run_id)
+            version = str(info.registered_model_version)
+        champ_version = None if champion is None else str(champion.version)
+        moved, why = decide(version, cand.score, champ_version, champ_score, champ_note,
+                            criterion=str(opts.criterion),
+                            min_improvement=float(opts.min_improvement),
+                            force=bool(opts.get("force", False)), mode=cand.val_mode)
+        tags = {"decision": why}
+        if existing is None:
+            tags.update({**_new_version_tags(cfg, cand, ds, dataset_hash), "promoted": moved})
+        elif moved:
+            tags["promoted"] = True
+        for k, v in tags.items():
+            retry_locked(client.set_model_version_tag, name, version, k, str(v))
+        kept = "already registered, no new version" if existing is not None else "registered"
+        if moved:
+            retry_locked(client.set_registered_model_alias, name, alias, version)
+            say(f"{name} version {version} ({kept}) is now @{alias}: {why}")
+        else:
+            say(f"{name} version {version} {kept}; @{alias} stays on version {champ_version}: {why}")
+    return version, existing is None, champ_version, champ_score, moved, why
 
 
 def promote(cfg: DictConfig) -> dict:
@@ -263,146 +377,26 @@ def promote(cfg: DictConfig) -> dict:
     """
     check_config(cfg)
     check_keys(cfg, POLICY_RULE)
-    import mlflow
-
-    from ..deploy.pyfunc import REPORT_COLUMNS, correction_column, log_compensator
-
-    opts = cfg.promote
-    criterion = str(opts.criterion)
-    if not is_validation(criterion):
-        what = ("is a test figure: the test split is reported, never used to choose"
-                if criterion in FIGURES else "is not a figure")
-        raise ConfigError(f"promote.criterion={criterion} {what} (use val_rmse, val_rsd_mean or "
-                          f"val_rsd_sd)")
-    client = mlflow_client(cfg)
-    uri = connect(cfg)
+    check_criterion(str(cfg.promote.criterion))
+    client, uri = mlflow_client(cfg), connect(cfg)
     data_path = resolve(cfg.data.path)
     ds, _ = io.read_dataset(data_path, data_options(cfg))
     dataset_hash = folder_digest(data_path)
-    run_id, basis = ((str(opts.run_id), None) if opts.get("run_id")
-                     else _best_run(cfg, client, uri, dataset_hash, data_path))
-    say(f"candidate run {run_id}")
-    try:
-        run = retry_locked(client.get_run, run_id)
-    except mlflow.exceptions.MlflowException as exc:
-        raise ConfigError(f"promote.run_id={run_id}: no such run in {uri} "
-                          f"({' '.join(str(exc).split())[:120]})") from None
-    _check_dataset(run, run_id, dataset_hash, data_path)
-    run_params = run.data.params
-    comp, digest = _load_run_model(run_id, uri)
-    cand_score, val_figures, mode, val_mode = _validation_score(run_id, uri, cfg)
-    basis = basis or {"figure": criterion, "mode": DEPLOYED_MODE, "fallback": {}}
-    say(f"run {run_id}: {criterion} {_fmt(cand_score)} of its {val_mode}-mode validation (scored "
-        f"in {mode}; the deployed compensator runs in {DEPLOYED_MODE})")
-    if val_mode != DEPLOYED_MODE:
-        basis["fallback"][run_id] = val_mode
-        logger.warning("run %s has no %s-mode validation (scored in %s before it was recorded): "
-                       "its %s validation decides; rerun it to choose by the deployed mode",
-                       run_id, DEPLOYED_MODE, val_mode, val_mode)
-    train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
-    train = {c: ds.campaigns[c] for c in train_ids}
-    streaming = deploy_stream(cfg, comp, train, f"run {run_id}")
-    # causality is a property of the plain stream (envelope off, no monitor), checked before wrapping
-    leads = lead_ins(comp, ds, train_ids + test_ids)   # continuing campaigns start warmed
-    deviation = max(streaming_deviation(streaming, ds.campaigns[c], lead_in=leads.get(c))
-                    for c in train_ids[:2])
-    if deviation > float(opts.max_stream_deviation_um):
-        raise ConfigError(
-            f"run {run_id}: streamed predictions differ from batch ones by {deviation:.3g} µm "
-            f"(> promote.max_stream_deviation_um); a model with memory must implement "
-            f"stream_init/stream_step to be deployed")
-    deployed = deployable(cfg, streaming, train, ds)   # what the pyfunc holds (monitor.adaptive)
-    # where each campaign leaves the stream: a served campaign may continue it (``continues``)
-    deployed.end_states_ = end_states(deployed, {c: ds.campaigns[c] for c in train_ids + test_ids},
-                                      leads)
-    kind = deployed_summary(deployed)
-    deploy_key = deploy_config(cfg)
-
-    test = {c: ds.campaigns[c] for c in test_ids}
-    dt = sample_period(ds, test_ids)
-    statistic, points = cfg.eval.e_p95.statistic, cfg.eval.e_p95.max_points
-
-    # the test figures, as deployed: reported beside the validation ones, never used to decide
-    test_figures = {k: v for k, v in _figures(stream_scores(deployed, test, dt, statistic, points,
-                                                            leads), cfg).items()
-                    if not is_validation(k)}
-    cand_figures = {**val_figures, **test_figures}
-
-    name, alias = str(opts.model_name), str(opts.alias)
-    # one transaction: read the champion, register, compare, move the alias; a second
-    # promote waits here and then compares against what this one decided
-    with registry_lock(uri):
-        champion = _current_champion(client, name, alias)
-        existing = _registered(client, name, run_id, digest, dataset_hash, champion, cand_figures,
-                               deploy_key)
-        champ_score, champ_note = None, None
-        if champion is not None:
-            champ_score, champ_note = _champion_validation(champion, criterion, str(opts.target),
-                                                           dataset_hash, val_mode)
-        if existing is not None:
-            version = str(existing.version)
-        else:
-            example = test[test_ids[0]][streaming.columns_ + ["time"]].head(5)
-            # into the run without resuming it: a killed promote leaves its status alone
-            info = log_compensator(deployed, input_example=example, registered_model_name=name,
-                                   run_id=run_id)
-            version = str(info.registered_model_version)
-
-        if champion is None:
-            moved, why = True, "no champion yet"
-        elif version == str(champion.version):
-            moved, why = False, f"already champion: version {version}"
-        elif champ_score is None:
-            moved = bool(opts.get("force", False))
-            why = (f"the champion (version {champion.version}) has no comparable validation score "
-                   f"({champ_note})" + ("; forced" if moved else "; set promote.force=true to replace it"))
-        else:
-            # the champion's score comes back from a tag (6 significant digits): compare at that
-            # precision, so the same model (e.g. deployed another way) ties instead of "beating" it
-            moved = beats(float(_tag(cand_score)), champ_score, criterion, float(opts.min_improvement))
-            verb = "beats" if moved else "does not beat"
-            why = (f"{val_mode}-mode validation {criterion} {_fmt(cand_score)} {verb} the champion's "
-                   f"{_fmt(champ_score)} (version {champion.version}) on the same dataset")
-        tags = {"decision": why}
-        if existing is None:       # a new version: what it is and where it comes from
-            commit, dirty = git_commit()
-            tags.update({"dataset_hash": dataset_hash, "dataset": ds.name, "git_commit": commit,
-                         "git_dirty": dirty, "source_run_id": run_id, "model_digest": digest,
-                         "model": run_params.get("model.name"), "select": run_params.get("select.name"),
-                         "criterion": criterion, "criterion_target": str(opts.target), "eval_mode": mode,
-                         "validation_mode": val_mode,
-                         "test_campaigns": ",".join(test_ids), "train_campaigns": ",".join(train_ids),
-                         "envelope_policy": str(opts.envelope.policy),
-                         "stream_deviation_um": f"{deviation:.3g}", "outputs": ",".join(
-                             [correction_column(t) for t in streaming.targets_] + ["n_clamped"]
-                             + (list(REPORT_COLUMNS) if kind["adaptive"] else [])),
-                         "adaptive": kind["adaptive"], "deploy_config": deploy_key,
-                         "pod_modes": "none" if kind["pod"] is None else kind["pod"]["n_modes"],
-                         "promoted": moved})
-            tags.update({f"metric.{k}": _tag(v) for k, v in cand_figures.items()})
-        elif moved:
-            tags["promoted"] = True
-        for k, v in tags.items():
-            retry_locked(client.set_model_version_tag, name, version, k, str(v))
-        kept = "already registered, no new version" if existing is not None else "registered"
-        if moved:
-            retry_locked(client.set_registered_model_alias, name, alias, version)
-            say(f"{name} version {version} ({kept}) is now @{alias}: {why}")
-        else:
-            say(f"{name} version {version} {kept}; @{alias} stays on version "
-                f"{champion.version}: {why}")
-    report = {"model_name": name, "alias": alias, "version": version, "run_id": run_id,
-              "moved": moved, "registered": existing is None, "reason": why,
-              "criterion": criterion, "ranked_by": basis,
-              "candidate": {"score": cand_score, "figures": cand_figures,
-                            "validation": val_figures, "test_reported": test_figures},
-              "champion": None if champion is None else {"version": str(champion.version),
-                                                         "score": champ_score},
-              "stream_deviation_um": deviation, "model_uri": f"models:/{name}/{version}",
-              "adaptive": kind["adaptive"], "pod": kind["pod"],
-              "continuable": sorted(deployed.end_states_)}
+    comp, cand = _candidate(cfg, client, uri, data_path, dataset_hash)
+    _deploy(cfg, comp, ds, cand)
+    version, registered, champ_version, champ_score, moved, why = _register(
+        cfg, client, uri, cand, ds, dataset_hash)
+    name, alias = str(cfg.promote.model_name), str(cfg.promote.alias)
+    report = {"model_name": name, "alias": alias, "version": version, "run_id": cand.run_id,
+              "moved": moved, "registered": registered, "reason": why,
+              "criterion": str(cfg.promote.criterion), "ranked_by": cand.basis,
+              "candidate": {"score": cand.score, "figures": cand.figures,
+                            "validation": cand.val_figures, "test_reported": cand.test_figures},
+              "champion": None if champ_version is None else {"version": champ_version,
+                                                              "score": champ_score},
+              "stream_deviation_um": cand.deviation, "model_uri": f"models:/{name}/{version}",
+              "adaptive": cand.kind["adaptive"], "pod": cand.kind["pod"],
+              "continuable": sorted(cand.deployed.end_states_)}
     write_json(resolve(cfg.out) / "promote.json", report)
-    state = ("promoted to @" + alias if moved else
-             f"{why}" if version == str(getattr(champion, "version", "")) else "not promoted")
-    print(f"{name} v{version}: {state}" + ("" if state == why else f" ({why})"))
+    print(outcome_line(name, version, alias, moved, why, champ_version))
     return report

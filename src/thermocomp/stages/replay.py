@@ -26,6 +26,7 @@ from ..deploy.adapt import from_config as adapt_from_config
 from ..deploy.report import plain, replay_report
 from ..errors import ConfigError
 from ..files import write_json
+from ..log import say
 from ..metrics import RMSE
 from ..paths import resolve
 from ..tracking import stage_run
@@ -36,7 +37,6 @@ from .common import (
     deployable_model,
     lead_ins,
     read_streamed,
-    say,
     warn_stream_mode,
 )
 

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import numpy as np
 from omegaconf import DictConfig
-from sklearn.base import clone
 
 from ..build import build
 from ..denoise import fit_denoiser
@@ -22,16 +21,12 @@ from ..errors import ConfigError
 from ..evaluation import require_split
 from ..files import atomic_dir, write_json
 from ..frame import resolve_columns, stack
-from ..jsonsafe import json_safe
+from ..log import say
 from ..paths import resolve
-from ..select.pearson import abs_correlation
+from ..select.per_target import select_per_target
 from ..tracking import stage_run
 from .artifacts import processed_data, selection_fingerprint, selection_path
-from .common import build_denoiser, check_config, load_ingested, reference, say
-
-
-def _series(s) -> dict:
-    return json_safe({str(k): float(v) for k, v in s.items()})
+from .common import build_denoiser, check_config, load_ingested, reference
 
 
 def select(cfg: DictConfig) -> dict:
@@ -53,21 +48,9 @@ def select(cfg: DictConfig) -> dict:
     else:
         _, campaigns = fit_denoiser(build_denoiser(cfg), {c: ds.campaigns[c] for c in ids}, inputs)
     m = stack(campaigns, inputs, targets, reference(cfg))
-    result, scores, names = {}, {}, {}
-    for t in targets:
-        y = m.Y[t].to_numpy()
-        sel = clone(selector).fit(m.X, y)
-        entry = {"selected": list(sel.selected_)}
-        if hasattr(sel, "scores_"):
-            entry["scores"] = _series(sel.scores_)
-            names[t] = getattr(sel, "score_label", f"{cfg.select.name} score")
-        if getattr(sel, "ic_", None) is not None:
-            entry["criterion"] = {"name": sel.ic_.name, "by_k": _series(sel.ic_)}
-        if hasattr(sel, "clusters_"):
-            entry["clusters"] = sel.clusters_
-        result[t] = entry
-        scores[t] = entry.get("scores") or dict(zip(inputs, abs_correlation(m.X.to_numpy(), y)))
-        names.setdefault(t, "|r| with the error")
+    result, scores, names = select_per_target(selector, m.X[inputs], m.Y[targets],
+                                              str(cfg.select.name))
+    for t, entry in result.items():
         say(f"{t}: {cfg.select.name} -> {', '.join(entry['selected'])}")
     doc = {"select": cfg.select.name, "fingerprint": selection_fingerprint(cfg),
            "train_campaigns": ids, "targets": result}

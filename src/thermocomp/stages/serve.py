@@ -34,10 +34,9 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from ..errors import ConfigError
-from ..log import logger
+from ..log import logger, say
 from ..paths import resolve
 from ..tracking import DEFAULT_URI, resolve_uri, retry_locked
-from .common import say
 from .rules import SERVE_RULES, check_keys
 
 QUIET_DOWNLOADS = "MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR"

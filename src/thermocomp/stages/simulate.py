@@ -10,10 +10,11 @@ from omegaconf import DictConfig
 from ..build import build
 from ..errors import ConfigError
 from ..files import write_json
+from ..log import say
 from ..paths import resolve, scenario_dataset
 from ..sim.scenario import write_scenario
 from ..tracking import stage_run
-from .common import _check_writable, say
+from .common import _check_writable
 
 
 def simulate(cfg: DictConfig) -> dict:
