@@ -179,7 +179,7 @@ def summary_lines(report: dict) -> list[str]:
                                  for t, r in adapted if r["rmse_adaptive"] is not None
                                  and r["adapt"]["rmse_frozen"] is not None))
     excl = [e for e in report["events"] if e["to"] == "excluded"]
-    rate = report["alarms"]["exclusions_per_100h"]
+    rate = (report.get("alarms") or {}).get("exclusions_per_100h")   # none in older reports
     lines.append(f"events: {len(report['events'])}, exclusions: {len(excl)}"
                  + ("" if rate is None else f" ({rate:.3g} per 100 h)")
                  + (f", first: {excl[0]['sensor']} ({excl[0]['campaign']}, "
