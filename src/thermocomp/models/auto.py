@@ -94,7 +94,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         The choice already made (:meth:`for_target` then gives that candidate or blend): the
         run's validation refits the chosen families, not the whole choice (nested,
         candidates x folds² fits), so it is the chosen family's, optimistic by the
-        selection.
+        selection (on auto's own folds it scores :meth:`out_of_fold` instead: the same).
 
     Attributes
     ----------
