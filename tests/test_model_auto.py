@@ -137,6 +137,8 @@ def test_an_ati_candidate_applies_only_where_the_train_campaigns_span_ambient_le
     (["model.candidates=[]"], "model.candidates is empty"),
     (["model.candidate_params={lstm:{max_epochs:2}}"], "model.candidate_params.lstm"),
     (["model.candidate_params={mlr:{fit_intercept:maybe}}"], "fit_intercept"),
+    (["model.candidate_defaults=3"], "model.candidate_defaults=3"),
+    (["model.candidate_defaults={lagbank:{n_taus:-1}}"], "model.candidates.lagbank.n_taus=-1"),
     (["ati=cmeans"], "model=auto with ati=cmeans"),
 ])
 def test_a_bad_auto_config_is_refused_before_any_work(two_targets, tmp_path, capsys, overrides, says):
@@ -484,3 +486,27 @@ def test_the_run_validation_scores_the_choice_without_refitting_it(two_targets, 
         assert "out-of-fold" in stored[t]["method"] and "out-of-fold" not in entry["method"]
         assert stored[t]["rmse"] == pytest.approx(entry["rmse"], rel=1e-9)
         assert stored[t]["per_unit"] == pytest.approx(entry["per_unit"], rel=1e-9)
+
+
+def test_candidate_defaults_set_a_family_in_the_candidate_role_under_candidate_params():
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.paths import conf_dir
+    from thermocomp.stages.auto import build_candidates
+
+    def built(*overrides):
+        with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+            return build_candidates(compose(config_name="config", overrides=["model=auto", *overrides]))
+
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        alone = compose(config_name="config", overrides=["model=lstm"]).model.estimator.max_epochs
+    assert built()["lstm"].max_epochs == 30 != alone          # the family's own default: 100
+    assert built("model.candidate_params={lstm:{max_epochs:7}}")["lstm"].max_epochs == 7
+    assert built("model.candidates=[mlr,ati+lstm]")["ati+lstm"].base_estimator.max_epochs == 30
+    assert set(built("model.candidates=[mlr,lagbank]")) == {"mlr", "lagbank"}    # no lstm: ignored
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):   # as the cli adds keys
+        from thermocomp.cli import lenient
+
+        both = compose(config_name="config", overrides=["model=auto", *lenient(
+            ["model.candidate_defaults={lagbank:{n_taus:3}}"])])
+    assert both.model.candidate_defaults == {"lstm": {"max_epochs": 30}, "lagbank": {"n_taus": 3}}
