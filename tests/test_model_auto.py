@@ -135,6 +135,8 @@ def test_an_ati_candidate_applies_only_where_the_train_campaigns_span_ambient_le
     (["model.candidates=[]"], "model.candidates is empty"),
     (["model.candidate_params={lstm:{max_epochs:2}}"], "model.candidate_params.lstm"),
     (["model.candidate_params={mlr:{fit_intercept:maybe}}"], "fit_intercept"),
+    (["model.candidate_defaults=3"], "model.candidate_defaults=3"),
+    (["model.candidate_defaults={lagbank:{n_taus:-1}}"], "model.candidates.lagbank.n_taus=-1"),
     (["ati=cmeans"], "model=auto with ati=cmeans"),
 ])
 def test_a_bad_auto_config_is_refused_before_any_work(two_targets, tmp_path, capsys, overrides, says):
@@ -200,8 +202,8 @@ def test_auto_validates_as_the_test_split_is_held_out(two_targets, tmp_path):
 def test_the_run_validates_the_families_auto_chose_as_they_validated(two_targets, tmp_path):
     data, _, _ = two_targets
     metrics = _run(data, tmp_path / "auto", "model=auto", PAIR, "eval.validation=true")
-    for m in metrics["targets"].values():    # the chosen family refitted per fold: its own score
-        assert m["validation"]["method"] == "blocked forward (3 folds)"
+    for m in metrics["targets"].values():    # the chosen family on the same folds: its own score
+        assert m["validation"]["method"].startswith("blocked forward (3 folds); model=auto: its members'")
         chosen = m["auto"]["candidates"][m["auto"]["chosen"]]
         assert m["validation"]["rmse"] == pytest.approx(chosen, rel=1e-9)
 
@@ -416,3 +418,93 @@ def test_mutual_prediction_fits_a_blend_as_blended_with_its_members_penalties(tw
     assert isinstance(blend, Blend) and blend.weights == weights    # no vote again: its weights
     assert list(blend.estimators_["lagbank"].alphas) == [fitted.estimators_["E_B"].estimator_
                                                          .estimators_["lagbank"].alpha_]
+
+
+# --- cost: nothing refitted that the choice already fitted, nothing kept that has no weight ------
+
+class _Counted(_OneSensor):
+    """A :class:`_OneSensor` counting its fits (per column) in ``fits``."""
+
+    fits: list = []
+
+    def fit(self, X, y, context=None):
+        type(self).fits.append(self.column)
+        return super().fit(X, y, context)
+
+
+def test_zero_weight_members_are_neither_refitted_nor_kept():
+    import pickle
+
+    from thermocomp.models.auto import AutoRegressor
+
+    X, y, context = _two_sensors(20, seed=3)
+    X = np.column_stack([X, np.random.default_rng(9).normal(0.0, 1.0, len(y))])   # 2: noise only
+    _Counted.fits = []
+    auto = AutoRegressor({"left": _Counted(0), "right": _Counted(1), "noise": _Counted(2)}).fit(
+        X, y, context=context)
+    folds = len(auto.oof_folds_[1])
+    assert "noise" not in auto.weights_ and set(auto.estimator_.estimators_) == set(auto.weights_)
+    assert _Counted.fits.count(2) == folds                  # validated, never refitted on all rows
+    assert all(_Counted.fits.count(c) == folds + 1 for c in (0, 1) if ("left", "right")[c] in auto.weights_)
+    # the pickled model: no out-of-fold predictions unless asked, the same predictions
+    small = pickle.loads(pickle.dumps(auto))
+    assert not [k for k in vars(small) if k.startswith("oof_")] and small.out_of_fold() is None
+    assert np.array_equal(small.predict(X, context=context), auto.predict(X, context=context))
+    kept = pickle.loads(pickle.dumps(auto.set_params(keep_oof=True)))
+    assert np.array_equal(kept.oof_["noise"], auto.oof_["noise"])
+
+
+def test_the_run_validation_scores_the_choice_without_refitting_it(two_targets, monkeypatch):
+    from functools import partial
+
+    from sklearn.base import clone
+
+    from thermocomp.compensator import Compensator
+    from thermocomp.evaluation import validation_reports
+    from thermocomp.io import read_dataset
+    from thermocomp.models import ARX, MLR, LagBank
+    from thermocomp.models.auto import AutoRegressor
+
+    ds, _ = read_dataset(two_targets[0])
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    template = Compensator(AutoRegressor({"mlr": MLR(), "arx": ARX(), "lagbank": LagBank()}))
+    fitted = clone(template).fit(train)
+    assert len(fitted.estimators_["E_B"].weights_) > 1          # a blend among them
+    fits = []
+    original = LagBank.fit
+    monkeypatch.setattr(LagBank, "fit", lambda self, *a, **k: fits.append(1) or original(self, *a, **k))
+    from thermocomp.stages.auto import as_chosen
+
+    chosen = partial(clone, as_chosen(clone(template), fitted))
+    stored = validation_reports(chosen, ds, fitted=fitted)["simulation"]
+    assert fits == []                                         # nothing refitted
+    refit = validation_reports(chosen, ds)["simulation"]      # no fitted model: the folds refitted
+    assert fits
+    for t, entry in refit.items():
+        assert "out-of-fold" in stored[t]["method"] and "out-of-fold" not in entry["method"]
+        assert stored[t]["rmse"] == pytest.approx(entry["rmse"], rel=1e-9)
+        assert stored[t]["per_unit"] == pytest.approx(entry["per_unit"], rel=1e-9)
+
+
+def test_candidate_defaults_set_a_family_in_the_candidate_role_under_candidate_params():
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.paths import conf_dir
+    from thermocomp.stages.auto import build_candidates
+
+    def built(*overrides):
+        with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+            return build_candidates(compose(config_name="config", overrides=["model=auto", *overrides]))
+
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        alone = compose(config_name="config", overrides=["model=lstm"]).model.estimator.max_epochs
+    assert built()["lstm"].max_epochs == 30 != alone          # the family's own default: 100
+    assert built("model.candidate_params={lstm:{max_epochs:7}}")["lstm"].max_epochs == 7
+    assert built("model.candidates=[mlr,ati+lstm]")["ati+lstm"].base_estimator.max_epochs == 30
+    assert set(built("model.candidates=[mlr,lagbank]")) == {"mlr", "lagbank"}    # no lstm: ignored
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):   # as the cli adds keys
+        from thermocomp.cli import lenient
+
+        both = compose(config_name="config", overrides=["model=auto", *lenient(
+            ["model.candidate_defaults={lagbank:{n_taus:3}}"])])
+    assert both.model.candidate_defaults == {"lstm": {"max_epochs": 30}, "lagbank": {"n_taus": 3}}

@@ -134,7 +134,8 @@ LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": 
 # Objects built from `_target_`: `~key` of an argument leaves the constructor's default.
 BUILT = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector", "sim.generator")
 # Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
-FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params", "design.studies")
+FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params", "design.studies",
+             "model.candidate_defaults")
 
 
 def version() -> str:

@@ -318,11 +318,17 @@ def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
     else:
         folds = _forward_folds(camps, n_folds)
         method = "forward chaining"
-    residuals = (_fold_residuals_stacked(template, camps, folds, modes)
-                 if template.denoiser is None else _fold_residuals(template, camps, folds, modes))
+    residuals = _stored_residuals(fitted, template, camps, folds, modes)
+    said = method
+    if residuals is not None:
+        said += "; model=auto: its members' out-of-fold predictions, weights fixed, not refitted"
+    elif template.denoiser is None:
+        residuals = _fold_residuals_stacked(template, camps, folds, modes)
+    else:
+        residuals = _fold_residuals(template, camps, folds, modes)
     out = {}
     for mode in modes:
-        out[mode] = _validation_entries(residuals[mode], method, len(folds))
+        out[mode] = _validation_entries(residuals[mode], said, len(folds))
         if method == "forward chaining":
             for entry in out[mode].values():
                 entry["gap_samples"] = folds[0][3] if folds else 0
@@ -392,6 +398,40 @@ def _fold_residuals_stacked(template: Compensator, camps: dict, folds, modes) ->
                 rows = slice(offsets[c] + a, offsets[c] + b)
                 for k, t in enumerate(targets):
                     residual[mode][t][unit] = sub.Y[t].to_numpy()[rows] - pred[rows, k]
+    return residual
+
+
+def _stored_residuals(fitted: Compensator | None, template: Compensator, camps: dict, folds,
+                      modes) -> dict | None:
+    """``{mode: residuals}`` from ``fitted``'s own out-of-fold free-run predictions (model=auto:
+    ``out_of_fold()`` of every target's estimator) where a refit per fold would repeat them: the
+    same folds of the same rows, simulation only, nothing else fitted per fold (no denoiser, no
+    selection).  None otherwise: the folds are refitted."""
+    from .select import AllInputs
+
+    if (fitted is None or set(modes) != {"simulation"} or template.denoiser is not None
+            or not isinstance(template.selector, (AllInputs, type(None)))
+            or template.selection is not None
+            or any(fitted.selected_[t] != fitted.inputs_ for t in fitted.targets_)):
+        return None
+    stored = {t: getattr(e, "out_of_fold", lambda: None)()
+              for t, e in getattr(fitted, "estimators_", {}).items()}
+    if not stored or any(s is None for s in stored.values()):
+        return None
+    lengths = [len(df) for df in camps.values()]
+    start, n = dict(zip(camps, np.cumsum([0] + lengths))), sum(lengths)
+    wanted = [(np.flatnonzero(_mask(start, fit_rows, n)),
+               np.sort(np.concatenate([np.arange(start[c] + a, start[c] + b) for c, a, b in units.values()])))
+              for fit_rows, _, units, _ in folds]
+    residual: dict = {"simulation": {}}
+    for t, (rows, theirs, y, pred) in stored.items():
+        if rows != n or len(theirs) != len(wanted) or not all(
+                np.array_equal(a, b) for mine, other in zip(wanted, theirs) for a, b in zip(mine, other)):
+            return None
+        error = np.full(n, np.nan)
+        error[np.concatenate([score for _, score in theirs])] = y - pred
+        residual["simulation"][t] = {unit: error[start[c] + a:start[c] + b]
+                                     for *_, units, _ in folds for unit, (c, a, b) in units.items()}
     return residual
 
 

@@ -74,6 +74,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
     combine : {'vote', 'best'}, default 'vote'
+    keep_oof : bool, default False
+        Pickle the candidates' out-of-fold predictions with the model (``oof_``, ``oof_y_``,
+        ``oof_fold_``, ``oof_folds_``; 1.4 MB on ``fl_thermal``).  The fitted model holds them
+        either way: the run's validation scores the choice from them (:meth:`out_of_fold`).
     min_gain_pct : float, default 1.0
         ``combine='best'``: MLR, when a candidate, is kept unless the best candidate's validation
         RMSE is lower
@@ -90,7 +94,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         The choice already made (:meth:`for_target` then gives that candidate or blend): the
         run's validation refits the chosen families, not the whole choice (nested,
         candidates x folds² fits), so it is the chosen family's, optimistic by the
-        selection.
+        selection (on auto's own folds it scores :meth:`out_of_fold` instead: the same).
 
     Attributes
     ----------
@@ -110,13 +114,14 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     param_rules = {"scheme": choice("auto", "forward", "interleaved"), "n_folds": integer(1, at_most=100),
                    "min_train_fraction": number(0.0, 1.0, open_lo=True, open_hi=True),
                    "gap_blocks": number(0.0, 10.0), "min_gain_pct": number(0.0, 100.0),
-                   "combine": choice("vote", "best")}
+                   "combine": choice("vote", "best"), "keep_oof": choice(True, False)}
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
-                 val_scores=None, given_scores=None, combine: str = "vote"):
+                 val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False):
         self.combine = combine
+        self.keep_oof = keep_oof
         self.candidates = candidates
         self.val_scores = val_scores
         self.given_scores = given_scores
@@ -157,6 +162,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         how = f"{len(folds)} {self.scheme_} fold(s)"
         self.oof_y_ = np.concatenate([y[score] for *_, score in folds])
         self.oof_fold_ = np.concatenate([np.full(score.sum(), k) for k, (*_, score) in enumerate(folds)])
+        self.oof_folds_ = (len(y), [(np.flatnonzero(fit), np.flatnonzero(score)) for fit, _, score in folds])
         members = [n for n in self.candidates if n in self.oof_]
         if self.combine == "vote" and len(members) > 1 and BASELINE in self.oof_:
             return self._blend(X, y, context, members, how)
@@ -235,6 +241,25 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if self.val_scores is not None:
             return clone(self).set_params(val_scores=None, given_scores=self.val_scores.get(target, {}))
         return self
+
+    def out_of_fold(self):
+        """``(n_rows, [(fit rows, scored rows)] per fold, measured, predicted)`` of the kept
+        model on the validation folds: its members' out-of-fold free-run predictions, weighted.
+        A refit of the kept model on these folds predicts the same (each member fitted as in its
+        validation), so the run's validation scores it from these, as optimistic by the choice
+        (weights chosen on the same folds) as that refit; None without them (a val split)."""
+        check_is_fitted(self, "estimator_")
+        if not hasattr(self, "oof_folds_") or any(n not in self.oof_ for n in self.weights_):
+            return None
+        predicted = sum(w * self.oof_[n] for n, w in self.weights_.items())
+        return (*self.oof_folds_, self.oof_y_, predicted)
+
+    def __getstate__(self):
+        """The pickled model: without the out-of-fold predictions unless ``keep_oof``."""
+        state = super().__getstate__()
+        if not self.keep_oof:
+            state = {k: v for k, v in state.items() if not k.startswith("oof_")}
+        return state
 
     def _folds(self, groups, n: int) -> list:
         """``(fit, predict, score)`` row masks: held out as the test split is (``scheme``)."""

@@ -92,7 +92,9 @@ def as_chosen(template, fitted):
 
 
 def build_candidates(cfg: DictConfig) -> dict:
-    """``{name: unfitted estimator}`` of ``model.candidates``, with ``model.candidate_params``."""
+    """``{name: unfitted estimator}`` of ``model.candidates``, each family with its
+    ``model.candidate_defaults`` (the candidate role's settings, for the families present) and
+    the candidate's ``model.candidate_params`` over them."""
     if cfg.get("ati") is not None and cfg.ati.get("estimator") is not None:
         raise ConfigError(f"model=auto with ati={cfg.ati.name}: the ATI wrapper is a candidate of its "
                           "own, name it in model.candidates (ati, or ati+<family>) with ati=none")
@@ -102,6 +104,10 @@ def build_candidates(cfg: DictConfig) -> dict:
                           "e.g. [mlr,lagbank]")
     if not isinstance(params, (Mapping, DictConfig)):
         raise ConfigError(f"model.candidate_params={params}: must be a mapping candidate -> "
+                          "its keys, e.g. {lstm:{max_epochs:30}}")
+    defaults = cfg.model.get("candidate_defaults") or {}
+    if not isinstance(defaults, (Mapping, DictConfig)):
+        raise ConfigError(f"model.candidate_defaults={defaults}: must be a mapping family -> "
                           "its keys, e.g. {lstm:{max_epochs:30}}")
     names = list(candidates)
     if not names:
@@ -116,7 +122,7 @@ def build_candidates(cfg: DictConfig) -> dict:
         family = BASELINE if wrapped == [ATI] else wrapped[-1]
         if len(wrapped) == 2 and wrapped[0] != ATI or family in (AUTO, ATI) or not str(name).strip():
             raise ConfigError(f"model.candidates: {name!r} is not a model family nor ati[+family]")
-        estimator = _family(cfg, family, params.get(name), name)
+        estimator = _family(cfg, family, defaults.get(family), params.get(name), name)
         if family != name:   # an ATI candidate
             ati = _load(cfg, conf_dir() / "ati" / "cmeans.yaml", f"model.candidates: {name}")
             estimator = build(ati.estimator, f"model.candidates.{name}")(base_estimator=estimator)
@@ -124,17 +130,17 @@ def build_candidates(cfg: DictConfig) -> dict:
     return out
 
 
-def _family(cfg: DictConfig, family: str, overrides, name: str):
+def _family(cfg: DictConfig, family: str, defaults, overrides, name: str):
     path = conf_dir() / "model" / f"{family}.yaml"
     if not path.is_file():
         known = sorted(p.stem for p in (conf_dir() / "model").glob("*.yaml") if p.stem != AUTO)
         raise ConfigError(f"model.candidates: {name!r} is not a model family (conf/model/ has "
                           f"{', '.join(known)}; ati or ati+<family> for the ATI wrapper)")
     node = _load(cfg, path, f"model.candidates: {name}")
-    if overrides:
-        node.estimator = OmegaConf.merge(node.estimator, overrides)
-    return build(node.estimator, f"model.candidate_params.{name}" if overrides else
-                 f"model.candidates.{name}")
+    node.estimator = OmegaConf.merge(node.estimator, defaults or {}, overrides or {})
+    where = (f"model.candidate_params.{name}" if overrides else
+             f"model.candidate_defaults.{family}" if defaults else f"model.candidates.{name}")
+    return build(node.estimator, where)
 
 
 def _load(cfg: DictConfig, path, where: str) -> DictConfig:
