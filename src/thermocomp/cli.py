@@ -20,7 +20,14 @@ import traceback
 import warnings
 from pathlib import Path
 
+from omegaconf import OmegaConf
+
 from .errors import closest
+from .paths import resolve
+
+# `${root:reports/x}` in the config: the path under the project root (Hydra's own folders).  At
+# import: a sweep's job process unpickles its task from this module before Hydra resolves its dir
+OmegaConf.register_new_resolver("root", lambda path=".": str(resolve(path)), replace=True)
 
 # conf/hydra/launcher/ray.yaml extends the Ray launcher plugin's config of
 # the same name on purpose (Hydra still validates it against the plugin's schema).
@@ -448,8 +455,6 @@ def _compose_or_explain(args: list[str]):
 
 def _log_folder(stage: str, cfg):
     """Where the run's ``thermocomp.log`` goes: the stage's output folder."""
-    from .paths import resolve
-
     def folder():
         if stage == "compare" and cfg.get("compare") is not None:
             return resolve(cfg.compare.out)

@@ -4,14 +4,14 @@ Hydra runs with ``version_base="1.3"`` and no working-directory change, but a
 user may still call ``thermocomp`` from anywhere: paths are built from the
 project root (``THERMOCOMP_ROOT``, else the checkout this package lives in,
 else the current directory), never from the current directory by accident.
+No Hydra here (``io`` resolves with it too); the CLI registers the config's
+``${root:...}`` resolver on :func:`resolve`.
 """
 
 from __future__ import annotations
 
 import os
 from pathlib import Path
-
-from omegaconf import OmegaConf
 
 
 def project_root() -> Path:
@@ -42,7 +42,3 @@ def rooted_override(arg: str) -> str:
         if arg.startswith(key) and not os.path.isabs(os.path.expanduser(arg[len(key):])):
             return f"{key}{resolve(arg[len(key):])}"
     return arg
-
-
-# `${root:reports/x}` in the config: the path under the project root (Hydra's own folders)
-OmegaConf.register_new_resolver("root", lambda path=".": str(resolve(path)), replace=True)

@@ -1,7 +1,7 @@
 """The deployable compensator as an ``mlflow.pyfunc`` model.
 
 It holds a :class:`StreamingCompensator` or, as ``promote`` registers it by
-default (``monitor.adaptive=true``), an :class:`~thermocomp.monitor.AdaptiveCompensator`
+default (``monitor.adaptive=true``), an :class:`~thermocomp.deploy.AdaptiveCompensator`
 (the same stream behind sensor surveillance and a correction guard).
 
 Input: a table of sensor readings (declared ``T_``/``S_`` inputs, all float;
@@ -69,7 +69,7 @@ from mlflow.types import ColSpec, ParamSchema, ParamSpec, Schema
 
 from .. import signing
 from ..context import TIME
-from ..monitor.adaptive import AdaptiveCompensator
+from .adaptive import AdaptiveCompensator
 from .naming import to_contract
 from .streaming import EndState, StreamingCompensator
 
@@ -95,7 +95,7 @@ def is_adaptive(deployed) -> bool:
 
 class CompensatorModel(mlflow.pyfunc.PythonModel):
     """``mlflow.pyfunc`` wrapper of a :class:`StreamingCompensator` or an
-    :class:`~thermocomp.monitor.AdaptiveCompensator` (see module doc).
+    :class:`~thermocomp.deploy.AdaptiveCompensator` (see module doc).
 
     Logged as *model from code* (``model_code.py``); the compensator itself is
     the pickled artifact ``compensator``, loaded in :meth:`load_context`.

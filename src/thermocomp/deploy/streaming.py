@@ -34,7 +34,8 @@ import pandas as pd
 
 from ..compensator import Compensator
 from ..context import AMBIENT_C0, RESERVED, TIME, context_columns, merge_columns
-from ..frame import ambient_c0, context_record, is_ambient
+from ..frame import ambient_c0, context_record
+from ..io.contract import is_ambient
 from ..metrics import split_scores
 
 POLICIES = ("clamp", "refuse", "off")
