@@ -13,12 +13,14 @@ from __future__ import annotations
 import os
 from pathlib import Path
 
+import thermocomp
+
 
 def project_root() -> Path:
     env = os.environ.get("THERMOCOMP_ROOT")
     if env:
         return Path(env).resolve()
-    checkout = Path(__file__).resolve().parents[2]
+    checkout = Path(thermocomp.__file__).resolve().parents[2]   # src/thermocomp/__init__.py
     if (checkout / "conf" / "config.yaml").is_file():
         return checkout
     return Path.cwd()

@@ -67,6 +67,8 @@ from mlflow.models import ModelSignature
 from mlflow.protos.databricks_pb2 import INVALID_PARAMETER_VALUE
 from mlflow.types import ColSpec, ParamSchema, ParamSpec, Schema
 
+import thermocomp
+
 from .. import signing
 from ..context import TIME
 from .adaptive import AdaptiveCompensator
@@ -230,7 +232,8 @@ def _model_kwargs(streaming, pickle_path: Path) -> dict:
     return dict(python_model=str(here / "model_code.py"),
                 artifacts={COMPENSATOR_ARTIFACT: str(pickle_path),
                            SIGNATURE_ARTIFACT: str(signing.sig_path(pickle_path))},
-                signature=signature(streaming), code_paths=[str(here.parent)],
+                signature=signature(streaming),
+                code_paths=[str(Path(thermocomp.__file__).resolve().parent)],   # the package
                 pip_requirements=_requirements(Path(pickle_path).read_bytes()))
 
 
