@@ -14,6 +14,10 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
+# tests/ and its folders: a subprocess that unpickles or builds a test class (``_target_=
+# test_deploy.ARStub``) finds it wherever that test module lives
+TEST_PATH = os.pathsep.join(str(d) for d in (ROOT / "tests", *sorted((ROOT / "tests").glob("*/")))
+                            if d.name != "__pycache__")
 # the test-local estimators a config may build (thermocomp.build): an environment setting
 os.environ.setdefault("THERMOCOMP_TARGETS", "test_deploy.,test_tracking.")
 

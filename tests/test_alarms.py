@@ -16,7 +16,7 @@ import pandas as pd
 import pytest
 
 from conftest import thermocomp
-from thermocomp.monitor.surveillance import SensorMonitor
+from thermocomp.deploy.surveillance import SensorMonitor
 
 MAX_PER_100H = 1.0
 

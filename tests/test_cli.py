@@ -63,11 +63,12 @@ def test_simulate_then_run_writes_valid_metrics(default_dataset, tmp_path):
 
 
 def _modules_after(*argv: str) -> set[str]:
-    """Top-level modules (and thermocomp subpackages) loaded by ``thermocomp <argv>``, in a
-    fresh interpreter."""
+    """Modules loaded by ``thermocomp <argv>``, in a fresh interpreter, with their parents up to
+    three levels (``thermocomp.stages`` of ``thermocomp.stages.modelling``)."""
     code = ("import sys\nfrom thermocomp.cli import main\n"
             f"assert main({list(argv)!r}) == 0\n"
-            "print(' '.join(sorted({'.'.join(m.split('.')[:2]) for m in sys.modules})))")
+            "print(' '.join(sorted({'.'.join(m.split('.')[:i]) for m in sys.modules "
+            "for i in (1, 2, 3)})))")
     proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     return set(proc.stdout.split())
 

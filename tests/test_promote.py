@@ -17,13 +17,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import free_port, stop_process_group, wait_until_up
+from conftest import TEST_PATH, free_port, stop_process_group, wait_until_up
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import main
 
 pytestmark = pytest.mark.slow
 NAME = "thermocomp-compensator"
-TESTS = Path(__file__).resolve().parent
 
 
 @pytest.fixture(scope="session")
@@ -198,7 +197,7 @@ def test_served_champion_answers_http_exactly_as_in_process(project, capsys):
     bin_dir = str(Path(sys.executable).parent)            # uvicorn lives next to mlflow
     env = {**os.environ, "MLFLOW_TRACKING_URI": uri,
            "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")]),
-           "PYTHONPATH": os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")])}
+           "PYTHONPATH": os.pathsep.join([TEST_PATH, os.environ.get("PYTHONPATH", "")])}
     cmd = [str(Path(bin_dir) / "mlflow"), "models", "serve", "-m",
            f"models:/{NAME}@champion", "--env-manager", "local", "-h", "127.0.0.1", "-p", str(port)]
     log = open(root / "serve.log", "w")

@@ -14,11 +14,10 @@ import signal
 import sqlite3
 import subprocess
 import time
-from pathlib import Path
 
 import pytest
 
-from conftest import BIN
+from conftest import BIN, TEST_PATH
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.cli import _compose, main
 from thermocomp.files import folder_digest
@@ -32,8 +31,6 @@ from thermocomp.tracking import (
     sweep_name,
     task_overrides,
 )
-
-TESTS = Path(__file__).resolve().parent
 
 
 class Sleepy(MLR):
@@ -158,7 +155,7 @@ def test_eight_parallel_runs_on_a_fresh_store_are_all_recorded(tmp_path, dataset
                          ids=["SIGTERM", "SIGINT"])
 def test_a_signalled_run_ends_killed(tmp_path, dataset, sig, code):
     uri = mlflow_store(tmp_path)
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(TESTS), os.environ.get("PYTHONPATH", "")])}
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([TEST_PATH, os.environ.get("PYTHONPATH", "")])}
     proc = subprocess.Popen([str(BIN / "thermocomp"), "run", f"data.path={dataset}",
                              f"tracking_uri={uri}", f"out={tmp_path / 'o'}", *LIGHT_EVAL,
                              "model.estimator._target_=test_tracking.Sleepy"],

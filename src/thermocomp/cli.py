@@ -20,8 +20,17 @@ import traceback
 import warnings
 from pathlib import Path
 
+from omegaconf import OmegaConf
+
 from .errors import closest
 from .extras import missing
+from .paths import resolve
+from .resolvers import scenario_dataset
+
+# `${root:reports/x}` in the config: the path under the project root (Hydra's own folders).  At
+# import: a sweep's job process unpickles its task from this module before Hydra resolves its dir
+OmegaConf.register_new_resolver("root", lambda path=".": str(resolve(path)), replace=True)
+OmegaConf.register_new_resolver("sim_dataset", scenario_dataset, replace=True)
 
 # conf/hydra/launcher/ray.yaml extends the Ray launcher plugin's config of
 # the same name on purpose (Hydra still validates it against the plugin's schema).
@@ -474,8 +483,6 @@ def _compose_or_explain(args: list[str]):
 
 def _log_folder(stage: str, cfg):
     """Where the run's ``thermocomp.log`` goes: the stage's output folder."""
-    from .paths import resolve
-
     def folder():
         if stage == "compare" and cfg.get("compare") is not None:
             out = cfg.compare.get("out")     # null: beside the sweep (set once it is known)

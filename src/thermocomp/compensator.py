@@ -16,7 +16,7 @@ from sklearn.base import BaseEstimator, clone
 from .context import Y_MEASURED, for_target, with_column
 from .denoise import denoise_campaigns, fit_denoiser
 from .frame import Matrices, resolve_columns, stack
-from .one_step import OneStepLaw
+from .models.one_step import OneStepLaw
 from .select import AllInputs
 
 MODES = ("simulation", "one_step")
@@ -69,7 +69,7 @@ class Compensator(BaseEstimator):
     targets_ : list of str
     selected_ : dict target -> list of str
     estimators_ : dict target -> fitted estimator
-    one_step_ : dict target -> fitted :class:`~thermocomp.one_step.OneStepLaw`
+    one_step_ : dict target -> fitted :class:`~thermocomp.models.one_step.OneStepLaw`
         The one-step law of each target, fitted on the training rows from the
         estimator's own simulation prediction (``eval.mode=one_step``).
     offsets_ : dict target -> float
@@ -163,7 +163,7 @@ class Compensator(BaseEstimator):
 
         ``mode='simulation'`` never uses a measured target; ``'one_step'``
         feeds the model's simulation and the measured previous error to the
-        target's one-step law (:class:`~thermocomp.one_step.OneStepLaw`, the
+        target's one-step law (:class:`~thermocomp.models.one_step.OneStepLaw`, the
         same for every family).
         """
         m = self.stacked(campaigns, self.targets_ if mode == "one_step" else [])

@@ -172,7 +172,7 @@ def predict(comp, ds: Dataset, ids, mode: str = "simulation", carried: Mapping |
 def persistence(comp, ds: Dataset, ids, carried: Mapping | None = None) -> dict[str, pd.DataFrame]:
     """Persistence prediction (previous measured error; 0 at a campaign start) per campaign,
     from the predecessor's last sample for a continuing campaign."""
-    from .one_step import persistence as law
+    from .models.one_step import persistence as law
 
     carried = carry_over(comp, ds) if carried is None else carried
     out = {}

@@ -15,8 +15,8 @@ import pandas as pd
 
 from . import continuation
 from .compensator import MODES, Compensator
-from .frame import ambient_source, initial_ambient
-from .io.contract import TIME, ContractError, Dataset
+from .frame import initial_ambient
+from .io.contract import TIME, ContractError, Dataset, ambient_source
 from .iso10791 import a3_report
 from .jsonsafe import json_safe
 from .metrics import (

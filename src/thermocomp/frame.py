@@ -21,7 +21,7 @@ import pandas as pd
 
 from .context import AMBIENT_C0, CAMPAIGN, TIME
 from .errors import ContractError, listed
-from .io.contract import AMBIENT_C, match_columns
+from .io.contract import is_ambient, manifest_ambient, match_columns
 
 REFERENCES = ("first_sample", "none")
 REFERENCED_PREFIXES = ("T_", "E_")   # taken relative to the first sample; S_ keep their values
@@ -55,28 +55,10 @@ def referenced(df: pd.DataFrame, reference: str = "first_sample") -> pd.DataFram
     return out
 
 
-def is_ambient(column: str) -> bool:
-    """``T_amb`` or ``T_amb_<name>`` (DATA_FORMAT.md)."""
-    return column == "T_amb" or column.startswith("T_amb_")
-
-
 def ambient_c0(first_values) -> float:
     """Initial ambient (°C) from the first valid absolute values of the ambient sensors."""
     v = np.asarray(first_values, dtype=float)
     return float(v.mean()) if v.size else float("nan")
-
-
-def manifest_ambient(df: pd.DataFrame) -> float:
-    """The manifest's ``ambient_c`` of a campaign without an ambient sensor (NaN: none)."""
-    return float(df.attrs.get(AMBIENT_C, float("nan")))
-
-
-def ambient_source(df: pd.DataFrame) -> str | None:
-    """Where :func:`initial_ambient` takes a campaign's ambient from: ``T_amb`` (its sensors),
-    ``ambient_c`` (the manifest) or None."""
-    if any(is_ambient(c) for c in df.columns):
-        return "T_amb"
-    return AMBIENT_C if np.isfinite(manifest_ambient(df)) else None
 
 
 def initial_ambient(df: pd.DataFrame) -> float:

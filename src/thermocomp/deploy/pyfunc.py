@@ -1,7 +1,7 @@
 """The deployable compensator as an ``mlflow.pyfunc`` model.
 
 It holds a :class:`StreamingCompensator` or, as ``promote`` registers it by
-default (``monitor.adaptive=true``), an :class:`~thermocomp.monitor.AdaptiveCompensator`
+default (``monitor.adaptive=true``), an :class:`~thermocomp.deploy.AdaptiveCompensator`
 (the same stream behind sensor surveillance and a correction guard).
 
 Input: a table of sensor readings (declared ``T_``/``S_`` inputs, all float;
@@ -79,9 +79,11 @@ from mlflow.models import ModelSignature
 from mlflow.protos.databricks_pb2 import INVALID_PARAMETER_VALUE
 from mlflow.types import ColSpec, ParamSchema, ParamSpec, Schema
 
+import thermocomp
+
 from .. import signing
 from ..context import TIME
-from ..monitor.adaptive import AdaptiveCompensator
+from .adaptive import AdaptiveCompensator
 from .naming import to_contract
 from .streaming import EndState, StreamingCompensator
 
@@ -107,7 +109,7 @@ def is_adaptive(deployed) -> bool:
 
 class CompensatorModel(mlflow.pyfunc.PythonModel):
     """``mlflow.pyfunc`` wrapper of a :class:`StreamingCompensator` or an
-    :class:`~thermocomp.monitor.AdaptiveCompensator` (see module doc).
+    :class:`~thermocomp.deploy.AdaptiveCompensator` (see module doc).
 
     Logged as *model from code* (``model_code.py``); the compensator itself is
     the pickled artifact ``compensator``, loaded in :meth:`load_context`.
@@ -270,7 +272,8 @@ def _model_kwargs(streaming, pickle_path: Path) -> dict:
     return dict(python_model=str(here / "model_code.py"),
                 artifacts={COMPENSATOR_ARTIFACT: str(pickle_path),
                            SIGNATURE_ARTIFACT: str(signing.sig_path(pickle_path))},
-                signature=signature(streaming), code_paths=[str(here.parent)],
+                signature=signature(streaming),
+                code_paths=[str(Path(thermocomp.__file__).resolve().parent)],   # the package
                 pip_requirements=_requirements(Path(pickle_path).read_bytes()))
 
 

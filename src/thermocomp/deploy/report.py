@@ -3,7 +3,7 @@
 
 The deployed object is what ``promote`` registers inside the pyfunc model: a
 :class:`~thermocomp.deploy.StreamingCompensator`, or (default) an
-:class:`~thermocomp.monitor.AdaptiveCompensator` around one (sensor
+:class:`~thermocomp.deploy.AdaptiveCompensator` around one (sensor
 surveillance, adaptive inputs, guarded correction).  Each campaign is streamed
 from its start, one sample at a time, as a CNC loop calls it: from a reset, or,
 for a campaign that continues others (``data.reference=none``), warmed on them
@@ -33,7 +33,7 @@ import pandas as pd
 from ..context import TIME
 from ..errors import ContractError
 from ..metrics import RMSE
-from ..monitor.adaptive import AdaptiveCompensator
+from .adaptive import AdaptiveCompensator
 from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
 
 

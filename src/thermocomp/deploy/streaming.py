@@ -35,7 +35,8 @@ import pandas as pd
 from ..compensator import Compensator
 from ..context import AMBIENT_C0, RESERVED, TIME, context_columns, merge_columns
 from ..continuation import campaign_period
-from ..frame import ambient_c0, context_record, is_ambient, manifest_ambient
+from ..frame import ambient_c0, context_record
+from ..io.contract import is_ambient, manifest_ambient
 from ..metrics import split_scores
 
 POLICIES = ("clamp", "refuse", "off")

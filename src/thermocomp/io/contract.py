@@ -15,6 +15,7 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from ..errors import ContractError  # noqa: F401  (re-exported: the contract's error type)
@@ -28,6 +29,24 @@ MANIFEST_REQUIRED = ("campaign", "file", "split")
 # Manifest extension: a campaign's ambient (°C) where no ambient sensor (T_amb*) was recorded;
 # ``read_dataset`` hands it on as the campaign frame's ``attrs[AMBIENT_C]``
 AMBIENT_C = "ambient_c"
+
+
+def is_ambient(column: str) -> bool:
+    """``T_amb`` or ``T_amb_<name>`` (DATA_FORMAT.md)."""
+    return column == "T_amb" or column.startswith("T_amb_")
+
+
+def manifest_ambient(df: pd.DataFrame) -> float:
+    """The manifest's ``ambient_c`` of a campaign without an ambient sensor (NaN: none)."""
+    return float(df.attrs.get(AMBIENT_C, float("nan")))
+
+
+def ambient_source(df: pd.DataFrame) -> str | None:
+    """Where :func:`thermocomp.frame.initial_ambient` takes a campaign's ambient from: ``T_amb``
+    (its sensors), ``ambient_c`` (the manifest) or None."""
+    if any(is_ambient(c) for c in df.columns):
+        return "T_amb"
+    return AMBIENT_C if np.isfinite(manifest_ambient(df)) else None
 
 
 def role(column: str) -> str | None:

@@ -66,7 +66,16 @@ import pyarrow.parquet as pq
 
 from ..files import atomic_dir, folder_digest, write_json
 from ..log import logger
-from .contract import AMBIENT_C, MANIFEST, TIME, ContractError, Dataset, role
+from .contract import (
+    AMBIENT_C,
+    MANIFEST,
+    TIME,
+    ContractError,
+    Dataset,
+    ambient_source,
+    is_ambient,
+    role,
+)
 from .manifest import CAMPAIGN_SUFFIXES, read_manifest
 from .options import ROLE_ORDER, ReadOptions
 from .record import cut, hold_out, record_id
@@ -376,7 +385,6 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
 def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:
     """Where each campaign's ambient comes from: its ``T_amb*`` sensors, else the manifest's
     ``ambient_c`` (handed on in the frame's ``attrs``), else nowhere; said once per dataset."""
-    from ..frame import ambient_source, is_ambient  # frame imports io: not at module level
 
     sources = {}
     for cid, df in frames.items():

@@ -19,9 +19,9 @@ from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, subset
 from ..errors import ParameterError
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveCampaignsOut
-from ..one_step import persistence
 from ..params import check_estimator, choice, integer, number
 from .blend import Blend, vote_weights
+from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
 BASELINE = "mlr"         # always validated beside the candidates, with persistence

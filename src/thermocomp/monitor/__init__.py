@@ -1,19 +1,20 @@
-"""Thermal monitoring and the fault-tolerant compensator (paper 002; pure core).
+"""Thermal monitoring (paper 002; pure core): what the fault-tolerant compensator of
+:mod:`thermocomp.deploy` sees and misses.  Monitoring uses deploy, never the reverse.
 
-:mod:`.pod` — POD of the temperature field, reconstruction from any subset;
 :mod:`.placement` — optimal sensor choice (QR pivoting, sequential covariance);
-:mod:`.surveillance` — self-prediction error, detectors, adaptive sensor set;
-:mod:`.guard` — bounded, rate-limited correction;
-:mod:`.adaptive` — the deployable compensator that combines them;
-:mod:`.blind` — what a fault inside the bands costs the correction.
+:mod:`.blind` — what a fault inside the bands costs the correction;
+:mod:`.figures` — the monitor stage's figures.
+
+The deployed pieces (POD reconstruction, surveillance, guard, the adaptive compensator) live in
+:mod:`thermocomp.deploy`; they are re-exported here, monitoring's vocabulary.
 """
 
-from .adaptive import AdaptiveCompensator
+from ..deploy.adaptive import AdaptiveCompensator
+from ..deploy.guard import CorrectionGuard
+from ..deploy.pod import ThermalPOD
+from ..deploy.surveillance import STATES, SensorMonitor
 from .blind import undetected_offset_um
-from .guard import CorrectionGuard
 from .placement import covariance_sensors, qr_sensors
-from .pod import ThermalPOD
-from .surveillance import STATES, SensorMonitor
 
 __all__ = ["AdaptiveCompensator", "CorrectionGuard", "STATES", "SensorMonitor", "ThermalPOD",
            "covariance_sensors", "qr_sensors", "undetected_offset_um"]

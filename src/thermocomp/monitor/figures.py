@@ -6,9 +6,9 @@ from pathlib import Path
 
 import numpy as np
 
+from ..deploy.surveillance import STATES
 from ..log import logger
 from ..plots import plt, save_figure
-from .surveillance import STATES
 
 COLOURS = {"ok": "#2ca02c", "warning": "#ffbf00", "alarm": "#d62728", "excluded": "#7f7f7f"}
 

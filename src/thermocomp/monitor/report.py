@@ -12,12 +12,12 @@ import pandas as pd
 
 from ..context import TIME
 from ..deploy.adapt import Adaptation
+from ..deploy.adaptive import AdaptiveCompensator
 from ..deploy.report import alarm_rate, campaign_start, streamed_hours
 from ..deploy.streaming import warm
-from .adaptive import AdaptiveCompensator
+from ..deploy.surveillance import STATES
 from .blind import undetected_offset_um
 from .placement import covariance_sensors, qr_sensors
-from .surveillance import STATES
 
 
 def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None

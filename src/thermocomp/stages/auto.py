@@ -45,7 +45,7 @@ def val_split_scores(comp, ds) -> dict:
     from ..evaluation import validation_report
     from ..metrics import PERSISTENCE, RMSE, rmse
     from ..models import MLR
-    from ..one_step import persistence
+    from ..models.one_step import persistence
 
     candidates = {**comp.estimator.candidates}
     candidates.setdefault(BASELINE, MLR())

@@ -399,9 +399,9 @@ def deploy_stream(cfg: DictConfig, comp: Compensator, train: dict, what: str = "
 
 
 def build_adaptive(cfg: DictConfig, streaming, train: dict):
-    """The :class:`~thermocomp.monitor.AdaptiveCompensator` of the ``monitor`` group around
+    """The :class:`~thermocomp.deploy.AdaptiveCompensator` of the ``monitor`` group around
     ``streaming``: POD, detector limits and correction guard fitted on ``train``."""
-    from ..monitor import AdaptiveCompensator  # loaded by the stages that deploy, only
+    from ..deploy.adaptive import AdaptiveCompensator  # loaded by the stages that deploy, only
 
     m = cfg.monitor
     share = m.pod.fit_share

@@ -29,7 +29,7 @@ def _guard(cfg: DictConfig, deployed, ds, train_ids):
     if ds is None:
         raise ConfigError(f"connect.model={cfg.connect.model}: a plain stream without a correction "
                           "guard; register it with monitor.adaptive=true, or give a model.pkl")
-    from ..monitor.adaptive import AdaptiveCompensator
+    from ..deploy.adaptive import AdaptiveCompensator
 
     train = {c: ds.campaigns[c] for c in train_ids}
     return AdaptiveCompensator.from_training(deployed, train, guard=dict(cfg.monitor.guard)).guard

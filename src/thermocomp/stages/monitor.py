@@ -2,7 +2,7 @@
 
 The compensator is fitted on the train split of ``data.path`` (or loaded:
 ``monitor.model=<model.pkl>``), made deployable as ``promote`` does, and wrapped
-in an :class:`~thermocomp.monitor.AdaptiveCompensator` whose POD, detector
+in an :class:`~thermocomp.deploy.AdaptiveCompensator` whose POD, detector
 limits and correction guard are fitted on the same train split.  Each test
 campaign (or the CSV rows of stdin, ``monitor.input=-``) is streamed twice from
 its start -- a reset, or, for a campaign that continues others

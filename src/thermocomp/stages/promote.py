@@ -10,7 +10,7 @@
    (training envelope from the train split of ``data.path``), checked to stream
    exactly as it predicts in batch (causality; the plain stream, envelope off).
    With ``monitor.adaptive`` (default) what is registered is the
-   :class:`~thermocomp.monitor.AdaptiveCompensator` of the ``monitor`` group
+   :class:`~thermocomp.deploy.AdaptiveCompensator` of the ``monitor`` group
    around it (POD, detectors and guard fitted on the train split: missing or
    faulty sensors, bad times, bounded correction); ``monitor.adaptive=false``
    registers the plain streaming compensator.  It is registered as an

@@ -24,9 +24,9 @@ import numpy as np
 import pandas as pd
 
 from ..context import TIME
-from ..deploy.streaming import OutOfEnvelopeError, StreamingCompensator
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
+from .streaming import OutOfEnvelopeError, StreamingCompensator
 from .surveillance import SensorMonitor
 
 

@@ -45,8 +45,8 @@ import numpy as np
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from .context import Y_MEASURED, SideInputs, groups_of, require, values
-from .models._dynamics import previous, segment_starts
+from ..context import Y_MEASURED, SideInputs, groups_of, require, values
+from ._dynamics import previous, segment_starts
 
 
 def persistence(y_measured, groups=None) -> np.ndarray:
