@@ -11,7 +11,8 @@ from ..build import build
 from ..errors import ConfigError
 from ..files import write_json
 from ..log import say
-from ..paths import resolve, scenario_dataset
+from ..paths import resolve
+from ..resolvers import scenario_dataset
 from ..sim.scenario import write_scenario
 from ..tracking import stage_run
 from .common import _check_writable
