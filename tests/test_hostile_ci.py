@@ -5,10 +5,14 @@ from __future__ import annotations
 
 import os
 import shutil
+import signal
 import stat
 import subprocess
 import sys
+import time
 from pathlib import Path
+
+import pytest
 
 from conftest import ROOT
 
@@ -76,3 +80,34 @@ def test_the_readme_test_checks_every_row_of_a_printed_table():
     printed = "[thermocomp] reading\ntarget RMSE\nE_X   0.75\nE_Y   1.42\n[thermocomp] done\n"
     assert missing_lines(table, printed) == []
     assert missing_lines(table, printed.replace("1.42", "1.43")) == ["E_Y     1.42"]   # not row 1
+
+
+def test_a_sigterm_swallowed_by_a_weakref_callback_is_raised_again():
+    """A signal handler runs between any two bytecodes, also inside a weakref callback, where
+    Python prints "Exception ignored" and drops the exception: the stage went on to its end
+    (tests/test_tracking.py's signalled run timed out so). signals_raise raises it again."""
+    import gc
+    import weakref
+
+    from thermocomp.files import Terminated, signals_raise
+
+    class Thing:
+        pass
+
+    def callback(_ref):             # the signal arrives while the callback runs
+        os.kill(os.getpid(), signal.SIGTERM)
+        for _ in range(1000):
+            sum(range(10))
+
+    reached_end = False
+    with pytest.raises(Terminated):
+        with signals_raise():
+            thing = Thing()
+            ref = weakref.ref(thing, callback)
+            del thing                   # the callback runs here; its exception is ignored
+            gc.collect()
+            deadline = time.monotonic() + 5
+            while time.monotonic() < deadline:
+                sum(range(100))
+            reached_end = ref is not None
+    assert not reached_end

@@ -24,6 +24,7 @@ from omegaconf import OmegaConf
 
 from .errors import closest
 from .extras import missing
+from .log import version
 from .paths import resolve
 from .resolvers import scenario_dataset
 
@@ -146,15 +147,6 @@ BUILT = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selecto
 FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params", "design.studies",
              "model.candidate_defaults")
 
-
-def version() -> str:
-    from importlib.metadata import PackageNotFoundError
-    from importlib.metadata import version as dist_version
-
-    try:
-        return dist_version("thermocomp")
-    except PackageNotFoundError:  # a source tree without install
-        return "unknown"
 
 
 def stage_help(stage: str) -> str:

@@ -21,6 +21,7 @@ import os
 import re
 import shutil
 import signal
+import sys
 import tempfile
 import threading
 from contextlib import contextmanager
@@ -211,12 +212,26 @@ class _Signals:
     def __init__(self) -> None:
         self._depth = 0
         self._pending: int | None = None
+        self._raised: int | None = None
 
     def handle(self, signum: int) -> None:
         if self._depth:
             self._pending = self._pending or signum
             return
+        self._raised = signum
+        _arm(RETRY_S)
         _raise_for(signum)
+
+    def retry(self) -> None:
+        """The raised signal again, unless it is on its way out: a handler runs between any two
+        bytecodes, inside a weakref callback or ``__del__`` too, where Python prints "Exception
+        ignored" and drops it (a SIGTERM lost so, the run went on to its end)."""
+        if self._raised is None:
+            return
+        if isinstance(sys.exc_info()[1], (Terminated, KeyboardInterrupt)):
+            return                        # propagating: cleanup runs, leave it alone
+        _arm(RETRY_S)
+        _raise_for(self._raised)
 
     @contextmanager
     def deferred(self):
@@ -228,6 +243,14 @@ class _Signals:
             if not self._depth and self._pending is not None:
                 signum, self._pending = self._pending, None
                 _raise_for(signum)
+
+
+RETRY_S = 0.5     # a swallowed signal is raised again this much later
+
+
+def _arm(seconds: float) -> None:
+    if hasattr(signal, "setitimer"):
+        signal.setitimer(signal.ITIMER_REAL, seconds)
 
 
 def _raise_for(signum: int) -> None:
@@ -249,9 +272,12 @@ def signals_raise(sigint: bool = False):
         return
     signals = (signal.SIGTERM, signal.SIGINT) if sigint else (signal.SIGTERM,)
     previous = {s: signal.signal(s, lambda signum, frame: control.handle(signum)) for s in signals}
+    if hasattr(signal, "SIGALRM"):
+        previous[signal.SIGALRM] = signal.signal(signal.SIGALRM, lambda signum, frame: control.retry())
     try:
         yield control
     finally:
+        _arm(0)
         for s, h in previous.items():
             signal.signal(s, h)
 

@@ -174,3 +174,14 @@ class Clock:
         total = sum(self.seconds.values())
         return (f"time (s): {total:.2f} = "
                 + " + ".join(f"{name} {s:.2f}" for name, s in self.seconds.items()))
+
+
+def version() -> str:
+    """The installed distribution's version (as ``--version`` prints it and the log records)."""
+    from importlib.metadata import PackageNotFoundError
+    from importlib.metadata import version as dist_version
+
+    try:
+        return dist_version("thermocomp")
+    except PackageNotFoundError:  # a source tree without install
+        return "unknown"

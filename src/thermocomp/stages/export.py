@@ -72,7 +72,7 @@ def export(cfg: DictConfig) -> dict:
     if source is None or not str(source).strip():
         raise ConfigError("export.model is needed: a model.pkl, a pyfunc folder or "
                           "models:/<name>@<alias>")
-    from ..cli import version  # the installed distribution's, as --version prints it
+    from ..log import version  # the installed distribution's, as --version prints it
 
     source, fmt = str(source), str(cfg.export.format)
     deployed, provenance = _deployed(cfg, source)
