@@ -44,7 +44,7 @@ benchmark: $(STAMP)
 
 # Team scale: PostgreSQL + MLflow server on loopback, the server-backed tests, both stopped again.
 team-test: $(STAMP)
-	trap '.ci/team-server stop' EXIT; team_env=$$(.ci/team-server start) && eval "$$team_env" && THERMOCOMP_REQUIRE_SERVER=1 $(BIN)/python -m pytest -q tests/test_team.py
+	trap '.ci/team-server stop' EXIT; team_env=$$(.ci/team-server start) && eval "$$team_env" && THERMOCOMP_REQUIRE_SERVER=1 $(BIN)/python -m pytest -q tests/shell/test_team.py
 
 clean:
 	rm -rf $(VENV) outputs reports models data/interim data/raw site

@@ -23,12 +23,12 @@ from pathlib import Path
 
 import numpy as np
 
-from thermocomp.compensator import Compensator
-from thermocomp.deploy import StreamingCompensator
-from thermocomp.deploy.adapt import Adaptation, ReferenceAdapter, ReferenceSchedule
-from thermocomp.deploy.report import replay_report
-from thermocomp.io.read import read_dataset
-from thermocomp.models import MLR
+from thermocomp.apps.deploy import StreamingCompensator
+from thermocomp.apps.deploy.adapt import Adaptation, ReferenceAdapter, ReferenceSchedule
+from thermocomp.apps.deploy.report import replay_report
+from thermocomp.core.compensator import Compensator
+from thermocomp.core.io.read import read_dataset
+from thermocomp.core.models import MLR
 
 # label -> (method, parameters other than the defaults of conf/adapt/default.yaml)
 SETTINGS = {"none": ("none", {}), "bias": ("bias", {}), "rls": ("rls", {}),

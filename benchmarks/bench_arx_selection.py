@@ -33,9 +33,9 @@ import time
 import numpy as np
 import statsmodels.api as sm
 
-from thermocomp.model_selection import information_criteria
-from thermocomp.models._dynamics import free_run, previous
-from thermocomp.models.arx import ARX
+from thermocomp.core.model_selection import information_criteria
+from thermocomp.core.models._dynamics import free_run, previous
+from thermocomp.core.models.arx import ARX
 
 
 def synthetic(n_targets: int, n_sensors: int, n_samples: int, period_s: float = 30.0, seed: int = 0):

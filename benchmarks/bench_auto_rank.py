@@ -33,12 +33,12 @@ from hydra.utils import instantiate
 from scipy.stats import spearmanr
 from sklearn.base import clone
 
-from thermocomp import io
-from thermocomp.evaluation import split_residuals
-from thermocomp.metrics import rmse
-from thermocomp.models.auto import BASELINE
-from thermocomp.paths import conf_dir, resolve
-from thermocomp.stages.common import build_compensator, data_options, resolve_reference
+from thermocomp.base.paths import conf_dir, resolve
+from thermocomp.core import io
+from thermocomp.core.metrics import rmse
+from thermocomp.core.models.auto import BASELINE
+from thermocomp.core.scoring.evaluation import split_residuals
+from thermocomp.shell.stages.common import build_compensator, data_options, resolve_reference
 
 LIGHT = ["track=false", "plots=none", "model=auto"]
 
@@ -128,7 +128,7 @@ def main(name: str, overrides: list[str]) -> dict:
 
 
 def _mlr():
-    from thermocomp.models import MLR
+    from thermocomp.core.models import MLR
 
     return MLR()
 

@@ -29,7 +29,7 @@ import numpy as np
 import pandas as pd
 from PyEMD import EMD
 
-from thermocomp.denoise import EMDDenoiser, denoise_campaigns, fit_denoiser
+from thermocomp.core.denoise import EMDDenoiser, denoise_campaigns, fit_denoiser
 
 
 def sensors(n_sensors: int, n_samples: int, period_s: float = 30.0, noise: float = 0.03,
@@ -97,8 +97,7 @@ def noisy_sensor(n: int = 2000, noise: float = 0.2) -> None:
 
 
 def dataset(path: str) -> None:
-    from thermocomp import io
-
+    from thermocomp.core import io
     ds, _ = io.read_dataset(path)
     cols = ds.columns_of("T_")
     train = {c: ds.campaigns[c] for c in ds.ids("train")}

@@ -21,11 +21,11 @@ os.environ.setdefault("MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR", "false")
 import numpy as np
 import pandas as pd
 
-from thermocomp.compensator import Compensator
-from thermocomp.deploy import StreamingCompensator
-from thermocomp.deploy.pyfunc import save_compensator
-from thermocomp.models import MLR
-from thermocomp.models.arx import ARX
+from thermocomp.apps.deploy import StreamingCompensator
+from thermocomp.apps.deploy.pyfunc import save_compensator
+from thermocomp.core.compensator import Compensator
+from thermocomp.core.models import MLR
+from thermocomp.core.models.arx import ARX
 
 N_SENSORS = 10
 

@@ -7,7 +7,7 @@ Usage::
 Simulates the default ``yearround_spindle`` scenario (24 campaigns, 10 sensors,
 E_X/E_Y/E_Z; ``EFFECT`` plants one undeclared effect, e.g. ``door``), then times
 
-1. the core, :func:`thermocomp.diagnose.diagnose` on every target (before fit,
+1. the core, :func:`thermocomp.apps.diagnose.diagnose` on every target (before fit,
    leave-campaigns-out residual, candidates, screening, CV refits, after fit
    and test scores), with the number of candidates screened and refitted;
 2. the whole stage as a user runs it, ``thermocomp diagnose data.path=...
@@ -29,10 +29,10 @@ from pathlib import Path
 from hydra import compose, initialize_config_dir
 from hydra.utils import instantiate
 
-from thermocomp.diagnose import diagnose
-from thermocomp.io.contract import write_dataset
-from thermocomp.paths import conf_dir
-from thermocomp.stages.common import build_compensator
+from thermocomp.apps.diagnose import diagnose
+from thermocomp.base.paths import conf_dir
+from thermocomp.core.io.contract import write_dataset
+from thermocomp.shell.stages.common import build_compensator
 
 
 def load() -> str:

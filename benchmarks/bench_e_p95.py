@@ -7,7 +7,7 @@ Usage::
 A 30 s x 168 h series (20,160 samples, paper 000's validation test) gives
 20,159 window lengths (one sample step .. the whole record); for each the
 statistic of every sliding window is computed and reduced to its 95th
-percentile, maximum and mean (``thermocomp.metrics.window_curves``), for the
+percentile, maximum and mean (``thermocomp.core.metrics.window_curves``), for the
 range and for sigma.  Prints the best of ``REPEATS`` wall times and the
 machine load (the machine may be shared: read times next to the load), and
 checks a few lengths against a brute-force ``np.percentile``.
@@ -21,7 +21,7 @@ import time
 
 import numpy as np
 
-from thermocomp import metrics as M
+from thermocomp.core import metrics as M
 
 
 def series(hours: float, period_s: float, seed: int = 0) -> np.ndarray:

@@ -1,4 +1,4 @@
-"""Throughput and peak memory of ``thermocomp.io.ingest`` on one large campaign.
+"""Throughput and peak memory of ``thermocomp.core.io.ingest`` on one large campaign.
 
 Usage::
 
@@ -96,7 +96,7 @@ def peak_rss_kb() -> int:
 def child(src: str, dest: str) -> None:
     """Run one ingest and print its timing and peak RSS as JSON."""
     sys.path.insert(0, str(SRC))
-    from thermocomp.io import ingest
+    from thermocomp.core.io import ingest
 
     baseline_kb = peak_rss_kb()
     start, cpu_start = time.perf_counter(), time.process_time()

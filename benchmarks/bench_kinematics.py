@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from thermocomp.volumetric import KinematicModel
+from thermocomp.apps.volumetric import KinematicModel
 
 N = 100_000
 

@@ -25,9 +25,9 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "src"))
 
 from thermocomp import io  # noqa: E402
-from thermocomp.compensator import Compensator  # noqa: E402
-from thermocomp.models import MLR  # noqa: E402
-from thermocomp.models.lstm import LSTM  # noqa: E402
+from thermocomp.core.compensator import Compensator  # noqa: E402
+from thermocomp.core.models import MLR  # noqa: E402
+from thermocomp.core.models.lstm import LSTM  # noqa: E402
 
 
 def dataset(argv) -> Path:

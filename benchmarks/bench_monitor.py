@@ -26,10 +26,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from thermocomp.compensator import Compensator
-from thermocomp.deploy import StreamingCompensator
-from thermocomp.models import MLR
-from thermocomp.monitor import AdaptiveCompensator
+from thermocomp.apps.deploy import StreamingCompensator
+from thermocomp.apps.monitor import AdaptiveCompensator
+from thermocomp.core.compensator import Compensator
+from thermocomp.core.models import MLR
 
 N_SENSORS, N_ROWS = 50, 300
 

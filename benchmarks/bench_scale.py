@@ -31,7 +31,7 @@ from pathlib import Path
 
 import psutil
 
-from thermocomp.sim.fleet import Fleet
+from thermocomp.apps.sim.fleet import Fleet
 
 BIN = Path(sys.executable).parent
 

@@ -34,14 +34,14 @@ import time
 
 import numpy as np
 
-from thermocomp.sim.effects import EFFECTS
-from thermocomp.sim.sensors import first_order_lag
+from thermocomp.apps.sim.effects import EFFECTS
+from thermocomp.apps.sim.sensors import first_order_lag
 
 SCENARIOS = {
-    "yearround_spindle": "thermocomp.sim.yearround:YearRoundSpindle",
-    "large_mill_week": "thermocomp.sim.large_mill:LargeMillWeek",
-    "swiss_lathe_door": "thermocomp.sim.swiss_lathe:SwissLatheDoor",
-    "column_moving_source": "thermocomp.sim.column:ColumnMovingSource",
+    "yearround_spindle": "thermocomp.apps.sim.yearround:YearRoundSpindle",
+    "large_mill_week": "thermocomp.apps.sim.large_mill:LargeMillWeek",
+    "swiss_lathe_door": "thermocomp.apps.sim.swiss_lathe:SwissLatheDoor",
+    "column_moving_source": "thermocomp.apps.sim.column:ColumnMovingSource",
 }
 
 
@@ -129,7 +129,7 @@ def true_signals(name, rec, gen, ds, base_ds):
             return ((g[col] - g[col].iloc[0]) - (f[col] - f[col].iloc[0])).to_numpy()[:, None]
         return repaired, None, (col,)
     if name == "ambient_law":
-        from thermocomp.sim.effects import AmbientLaw
+        from thermocomp.apps.sim.effects import AmbientLaw
         law = AmbientLaw(**p)
 
         def interval(cid, f):

@@ -18,7 +18,7 @@ BIN = Path(sys.executable).parent
 # test_deploy.ARStub``) finds it wherever that test module lives
 TEST_PATH = os.pathsep.join(str(d) for d in (ROOT / "tests", *sorted((ROOT / "tests").glob("*/")))
                             if d.name != "__pycache__")
-# the test-local estimators a config may build (thermocomp.build): an environment setting
+# the test-local estimators a config may build (thermocomp.shell.build): an environment setting
 os.environ.setdefault("THERMOCOMP_TARGETS", "test_deploy.,test_tracking.")
 
 # The fast overrides, one home: what a CLI call in a test switches off when none of its
@@ -59,7 +59,7 @@ def influence(comp, test: dict) -> dict[str, float]:
 def refused(args: list[str], capsys, *says: str) -> str:
     """``thermocomp <args>`` (in process) exits 2 with one error line holding every one of
     ``says``; returns that line."""
-    from thermocomp.cli import main
+    from thermocomp.shell.cli import main
 
     code = main(args)
     err = capsys.readouterr().err
@@ -114,7 +114,7 @@ def stop_process_group(proc: subprocess.Popen, timeout: float = 20) -> None:
 
 
 def ctx(groups=None, **columns) -> pd.DataFrame:
-    """A side-input context (thermocomp.context): ``campaign`` per row plus any other columns."""
+    """A side-input context (thermocomp.core.context): ``campaign`` per row plus any other columns."""
     data = {"campaign": np.asarray(groups, dtype=object)} if groups is not None else {}
     data.update({k: np.asarray(v) for k, v in columns.items()})
     return pd.DataFrame(data)
@@ -140,8 +140,8 @@ def stream_predictions(est, X, groups) -> list[float]:
 
 def simulated(generator, path: Path) -> Path:
     """``path`` written as ``thermocomp simulate`` writes it: the dataset and its truth."""
-    from thermocomp.files import write_json
-    from thermocomp.sim.scenario import write_scenario
+    from thermocomp.apps.sim.scenario import write_scenario
+    from thermocomp.base.files import write_json
 
     truth, _, _ = write_scenario(generator, path)
     write_json(f"{path}.truth.json", truth)

@@ -12,7 +12,7 @@ import pytest
 import yaml
 
 from conftest import BIN, ROOT, thermocomp
-from thermocomp.stages import STAGES
+from thermocomp.shell.stages import STAGES
 
 CLI = (ROOT / "docs" / "cli.md").read_text()
 DATA_FORMAT = (ROOT / "docs" / "data-format.md").read_text()

@@ -1,11 +1,13 @@
-"""The import structure of ``src/thermocomp``: no cycle, and the core never reaches the shell.
+"""The import structure of ``src/thermocomp``: layers you can see, no upward import, no cycle.
 
-Every module is parsed with :mod:`ast` (nothing is imported), so the test sees
-module-level and function-level imports alike; only imports under
-``if TYPE_CHECKING:`` are left out (they never run).  A package's ``__init__``
-is a module of its own: ``from ..models import ARX`` depends on
-``thermocomp.models`` (the ``__init__``), ``from . import cv`` on
-``thermocomp.diagnose.cv``.
+The layers are the root package's folders (``base``, ``core``, ``apps``, ``shell``), lowest
+first in the root's ``__layers__``; a module imports only its own layer and those below.  A
+package (a layer's subpackage or module: ``core.io``, ``apps.deploy``) forms no cycle with
+another even where the modules do not.  Every module is parsed with :mod:`ast` (nothing is
+imported), so the test sees module-level and function-level imports alike; only imports under
+``if TYPE_CHECKING:`` are left out (they never run).  A package's ``__init__`` is a module of its
+own: ``from ..models import ARX`` depends on ``thermocomp.core.models`` (the ``__init__``),
+``from . import cv`` on ``thermocomp.apps.diagnose.cv``.
 """
 
 from __future__ import annotations
@@ -18,18 +20,20 @@ import pytest
 SRC = Path(__file__).resolve().parents[1] / "src"
 ROOT = "thermocomp"
 
-# The core: pure computations a CNC deployment or a notebook can import without the shell.
-CORE = ("models", "select", "denoise", "metrics", "stats", "iso10791", "frame", "compensator",
-        "evaluation", "diagnose", "deploy", "model_selection", "files", "jsonsafe", "errors",
-        "plots", "volumetric", "monitor", "io", "paths")
-# What the core must never import, even through another module.
-SHELL = (f"{ROOT}.stages", f"{ROOT}.cli", f"{ROOT}.callbacks", f"{ROOT}.tracking",
-         "hydra", "omegaconf")
+PACKAGE = SRC / ROOT
+# Hydra's config belongs to the top layer (the shell): the layers below never load it.
+CONFIG_LIBRARIES = ("hydra", "omegaconf")
+MAX_ROOT_MODULES = 6
 
-# Known violations in files being rewritten on another branch (issue 11: side inputs and
-# streaming).  Each entry is an import edge "importer -> imported" that is tolerated until that
-# work lands; the lead empties this set.  An entry that no longer exists fails the test below.
-PENDING: set[str] = set()
+
+def _layers() -> tuple[str, ...]:
+    """``__layers__`` of the root ``__init__``: the layer folders, lowest first."""
+    tree = ast.parse((PACKAGE / "__init__.py").read_text())
+    return next(ast.literal_eval(node.value) for node in tree.body if isinstance(node, ast.Assign)
+                and any(getattr(t, "id", None) == "__layers__" for t in node.targets))
+
+
+LAYERS = _layers()
 
 
 def _module_name(path: Path) -> str:
@@ -78,15 +82,21 @@ def _graph() -> dict[str, set[str]]:
 GRAPH = _graph()
 
 
-def _edges(graph=None, pending=None) -> dict[str, set[str]]:
-    """The graph (``GRAPH``) without the ``pending`` edges (``PENDING``)."""
-    graph, pending = GRAPH if graph is None else graph, PENDING if pending is None else pending
-    return {m: {d for d in deps if f"{m} -> {d}" not in pending} for m, deps in graph.items()}
+def _edges() -> dict[str, set[str]]:
+    return {m: set(deps) for m, deps in GRAPH.items()}
 
 
-def _stale(pending, graph) -> list[str]:
-    """The ``pending`` edges the code no longer has."""
-    return sorted(e for e in pending if e.split(" -> ")[1] not in graph.get(e.split(" -> ")[0], ()))
+def _layer(module: str) -> str | None:
+    """The layer folder a module lies in (None: the root's own modules)."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 and parts[1] in LAYERS else None
+
+
+def _upward(graph: dict[str, set[str]]) -> list[str]:
+    """Edges from a layer to a higher one (``core.x -> shell.y``)."""
+    rank = {layer: i for i, layer in enumerate(LAYERS)}
+    return sorted(f"{m} -> {d}" for m, deps in graph.items() for d in deps
+                  if _layer(m) and _layer(d) and rank[_layer(d)] > rank[_layer(m)])
 
 
 def _cycles(graph: dict[str, set[str]]) -> list[list[str]]:
@@ -165,26 +175,28 @@ def _reaches(start: str, graph, forbidden) -> list[list[str]]:
     return chains
 
 
-def _in(name: str, packages) -> bool:
-    return any(name == f"{ROOT}.{p}" or name.startswith(f"{ROOT}.{p}.") for p in packages)
-
-
 def test_the_parser_sees_function_level_and_relative_imports():
-    # callbacks imports tracking only inside its methods; compare is a stage module
-    assert f"{ROOT}.tracking" in GRAPH[f"{ROOT}.callbacks"]
-    assert f"{ROOT}.diagnose.cv" in GRAPH[f"{ROOT}.diagnose.diagnosis"]
-    assert f"{ROOT}.models" in GRAPH  # a package's __init__ is a module
+    # callbacks imports tracking only inside its methods
+    assert f"{ROOT}.shell.tracking" in GRAPH[f"{ROOT}.shell.callbacks"]
+    assert f"{ROOT}.apps.diagnose.cv" in GRAPH[f"{ROOT}.apps.diagnose.diagnosis"]
+    assert f"{ROOT}.core.models" in GRAPH  # a package's __init__ is a module
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c", "a"]]
     assert _reaches("a", {"a": {"b"}, "b": {"hydra.utils"}}, ("hydra",)) == [["a", "b", "hydra.utils"]]
 
 
-def test_pending_entries_are_still_real():
-    # the mechanism on a graph with one pending edge still there and one gone (PENDING may be empty)
-    graph = {"a": {"b", "c"}, "b": set()}
-    assert _edges(graph, {"a -> b"}) == {"a": {"c"}, "b": set()}
-    assert _stale({"a -> b", "b -> a"}, graph) == ["b -> a"]
-    stale = _stale(PENDING, GRAPH)
-    assert not stale, f"these PENDING edges are gone, remove them from tests/test_imports.py: {stale}"
+def test_the_layers_are_the_folders_and_the_root_is_small():
+    folders = {p.name for p in PACKAGE.iterdir() if (p / "__init__.py").is_file()}
+    assert folders == set(LAYERS), f"folders {sorted(folders)} != __layers__ {LAYERS}"
+    root_modules = sorted(p.name for p in PACKAGE.glob("*.py"))
+    assert len(root_modules) <= MAX_ROOT_MODULES, f"the root holds {root_modules}: give them a layer"
+
+
+def test_no_upward_import():
+    planted = {f"{ROOT}.{LAYERS[0]}.x": {f"{ROOT}.{LAYERS[-1]}.y"}, f"{ROOT}.{LAYERS[-1]}.y": set()}
+    assert _upward(planted) == [f"{ROOT}.{LAYERS[0]}.x -> {ROOT}.{LAYERS[-1]}.y"]
+    bad = _upward(_edges())
+    assert not bad, f"imports from a lower layer to a higher one ({' < '.join(LAYERS)}):\n  " + \
+        "\n  ".join(bad)
 
 
 def test_no_import_cycle():
@@ -194,8 +206,8 @@ def test_no_import_cycle():
 
 
 def _unit(module: str) -> str:
-    """The package a module belongs to: the root's subpackage or root module it lies in."""
-    return ".".join(module.split(".")[:2])
+    """The package a module belongs to: the subpackage or module of its layer it lies in."""
+    return ".".join(module.split(".")[:3] if _layer(module) else module.split(".")[:2])
 
 
 def _package_graph(graph: dict[str, set[str]]) -> dict[str, set[str]]:
@@ -212,27 +224,30 @@ def _package_graph(graph: dict[str, set[str]]) -> dict[str, set[str]]:
 def test_no_package_level_cycle():
     # A module-level DAG can still tie two packages together (deploy.pyfunc -> monitor.adaptive
     # -> deploy.streaming): then neither can be understood, tested or shipped without the other.
-    assert _package_graph({"r.a.x": {"r.b.y"}, "r.b.y": {"r.a.z"}, "r.a.z": set()}) == \
-        {"r.a": {"r.b"}, "r.b": {"r.a"}}
+    core = f"{ROOT}.{LAYERS[1]}"
+    assert _package_graph({f"{core}.a.x": {f"{core}.b"}, f"{core}.b": {f"{core}.a.z"},
+                           f"{core}.a.z": set()}) == {f"{core}.a": {f"{core}.b"},
+                                                      f"{core}.b": {f"{core}.a"}}
     cycles = _cycles(_package_graph(_edges()))
     assert not cycles, "package-level import cycles in src/thermocomp:\n" + "\n".join(
         "  " + " -> ".join(c) for c in cycles)
 
 
-@pytest.mark.parametrize("package", CORE)
-def test_core_does_not_import_the_shell(package):
+@pytest.mark.parametrize("layer", LAYERS[:-1])
+def test_below_the_shell_nothing_loads_hydra(layer):
     graph = _edges()
-    chains = [c for m in sorted(graph) if _in(m, [package]) for c in _reaches(m, graph, SHELL)]
-    assert not chains, (f"core {package!r} reaches the shell (stages, cli, callbacks, tracking, "
-                        f"hydra, omegaconf):\n" + "\n".join("  " + " -> ".join(c) for c in chains))
+    chains = [c for m in sorted(graph) if _layer(m) == layer
+              for c in _reaches(m, graph, CONFIG_LIBRARIES)]
+    assert not chains, f"{layer!r} reaches Hydra's config:\n" + "\n".join(
+        "  " + " -> ".join(c) for c in chains)
 
 
 def _stage_modules() -> set[str]:
     """The modules of the ``module:function`` entries of ``STAGES`` in ``stages/__init__``."""
-    tree = ast.parse((SRC / ROOT / "stages" / "__init__.py").read_text())
+    tree = ast.parse((PACKAGE / "shell" / "stages" / "__init__.py").read_text())
     table = next(ast.literal_eval(node.value) for node in tree.body if isinstance(node, ast.Assign)
                  and any(getattr(t, "id", None) == "STAGES" for t in node.targets))
-    return {f"{ROOT}.stages.{entry.split(':')[0]}" for entry in table.values()}
+    return {f"{ROOT}.shell.stages.{entry.split(':')[0]}" for entry in table.values()}
 
 
 def test_stages_do_not_import_each_other():
@@ -244,11 +259,3 @@ def test_stages_do_not_import_each_other():
     bad = sorted(f"{m} -> {d}" for m in stages for d in graph[m] if d in stages and d != m)
     assert not bad, "a stage imports another stage (move the shared code out of stages/):\n  " + \
         "\n  ".join(bad)
-
-
-def test_deploy_never_loads_hydra():
-    graph = _edges()
-    chains = [c for m in sorted(graph) if _in(m, ["deploy"])
-              for c in _reaches(m, graph, ("hydra", "omegaconf"))]
-    assert not chains, "the deployed model would need Hydra:\n" + "\n".join(
-        "  " + " -> ".join(c) for c in chains)

@@ -85,7 +85,7 @@ def _grid_values(dist) -> list:
 
 class OptunaSweeper(Sweeper):
     """Hydra sweeper: ``n_trials`` jobs proposed by an Optuna study, each job's return value
-    (:class:`thermocomp.callbacks.SweepObjective`: the validation score) its objective."""
+    (:class:`thermocomp.shell.callbacks.SweepObjective`: the validation score) its objective."""
 
     def __init__(self, sampler, direction="minimize", storage=None, study_name=None, n_trials=20,
                  n_jobs=2, max_failure_rate=0.0, params=None):
@@ -97,7 +97,7 @@ class OptunaSweeper(Sweeper):
 
     def setup(self, *, hydra_context: HydraContext, task_function: TaskFunction,
               config: DictConfig) -> None:
-        from thermocomp.extras import require
+        from thermocomp.base.extras import require
 
         require("optuna")   # the [scale] extra: one line naming it, not a traceback
         self.config, self.job_idx = config, 0

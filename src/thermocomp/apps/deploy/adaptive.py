@@ -1,0 +1,275 @@
+"""The fault-tolerant deployable compensator: surveillance, adaptive inputs, guarded output.
+
+:class:`AdaptiveCompensator` wraps a :class:`~thermocomp.apps.deploy.StreamingCompensator`
+and puts in front of it a :class:`~.surveillance.SensorMonitor` (every
+temperature the model reads is judged; an excluded or missing one is replaced
+by its POD reconstruction from the healthy ones), and behind it a
+:class:`~.guard.CorrectionGuard` (bounded, rate-limited correction).  It also
+checks ``time`` (NaN, repeated or backwards: taken as the previous time plus
+the sampling period) and holds a missing non-temperature input (``S_`` signal)
+at its last value.  A correction is produced for every sample.
+
+It has the interface of the streaming compensator (``columns_``, ``targets_``,
+``reset``, ``step``, ``predict``), so ``replay``, ``promote`` and the pyfunc use
+either; :meth:`predict` adds ``excluded_inputs`` and ``events`` columns.
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping
+from contextlib import contextmanager
+
+import numpy as np
+import pandas as pd
+
+from ...core.context import TIME
+from .guard import CorrectionGuard
+from .pod import ThermalPOD
+from .streaming import OutOfEnvelopeError, StreamingCompensator
+from .surveillance import SensorMonitor
+
+
+class AdaptiveCompensator:
+    """Streaming compensator + sensor monitor + correction guard (see module doc).
+
+    Parameters
+    ----------
+    streaming : StreamingCompensator
+    monitor : SensorMonitor, optional
+        Over the ``T_`` columns of ``streaming.columns_`` (``monitor.names``).
+    guard : CorrectionGuard, optional
+    period_s : float
+        Nominal sampling period (substitute for a bad ``time``).
+
+    Attributes ``lab_names_``, ``end_states_`` and ``adapt_``: as :class:`StreamingCompensator`'s (the
+    deployed object carries them; end states are of this adaptive stream).
+    """
+
+    lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
+    end_states_: dict = {}
+    adapt_ = None
+
+    def __init__(self, streaming: StreamingCompensator, monitor: SensorMonitor | None = None,
+                 guard: CorrectionGuard | None = None, period_s: float = 1.0):
+        self.streaming, self.monitor, self.guard = streaming, monitor, guard
+        self.period_s = float(period_s)
+        cols = streaming.columns_
+        if monitor is not None:
+            unknown = [c for c in monitor.names if c not in cols]
+            if unknown:
+                raise ValueError(f"monitored sensors {unknown} are not inputs of the compensator")
+        self._mon = np.array([cols.index(c) for c in monitor.names] if monitor else [], dtype=int)
+        self._other = np.array([j for j, c in enumerate(cols) if j not in set(self._mon)], dtype=int)
+        self._mon_all = len(self._mon) == len(cols) and bool(np.all(self._mon == np.arange(len(cols))))
+        self.reset()
+
+    @classmethod
+    def from_training(cls, streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame],
+                      *, monitor: dict | None = None, pod: dict | None = None,
+                      guard: dict | None = None, learned_bands: bool = False
+                      ) -> "AdaptiveCompensator":
+        """Fit the POD, the detectors' limits and the guard on the training campaigns."""
+        comp = streaming.compensator
+        names = [c for c in streaming.columns_ if c.startswith("T_")]
+        mon = None
+        if len(names) >= 3:
+            raw = {c: df[names].to_numpy(float) for c, df in campaigns.items()}
+            mon = SensorMonitor.from_training(ThermalPOD(**pod) if pod else None, names, raw,
+                                              learned_bands=learned_bands, **(monitor or {}))
+        measured = comp.measured(campaigns)
+        times = [df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
+                 for df in campaigns.values()]
+        g = CorrectionGuard.from_training(
+            streaming.targets_, [measured[c][streaming.targets_].to_numpy(float) for c in campaigns],
+            times, **(guard or {}))
+        return cls(streaming, mon, g, g.period_s)
+
+    # -- the streaming-compensator interface ---------------------------------------------------
+    @property
+    def compensator(self):
+        return self.streaming.compensator
+
+    @property
+    def columns_(self):
+        return self.streaming.columns_
+
+    @property
+    def targets_(self):
+        return self.streaming.targets_
+
+    @property
+    def time_required_(self):
+        return self.streaming.time_required_
+
+    @property
+    def envelope(self):
+        return self.streaming.envelope
+
+    @property
+    def policy(self):
+        return self.streaming.policy
+
+    @contextmanager
+    def envelope_off(self):
+        with self.streaming.envelope_off():
+            yield self
+
+    @property
+    def _absolute(self) -> bool:
+        """The model reads absolute temperatures (``data.reference=none``), not changes."""
+        return self.streaming.compensator.reference != "first_sample"
+
+    @property
+    def excluded_inputs(self) -> list[str]:
+        return self.monitor.excluded if self.monitor is not None else []
+
+    def reset(self, ambient_c: float = float("nan")) -> None:
+        """New campaign (see :meth:`StreamingCompensator.reset`)."""
+        self.streaming.reset(ambient_c)
+        if self.monitor is not None:
+            self.monitor.reset()
+        if self.guard is not None:
+            self.guard.reset()
+        self._base = None
+        self._late = None
+        self._last_time = float("nan")
+        self._last_read = float("nan")
+        self._held = np.full(len(self._other), np.nan)
+        self._held_state = np.zeros(len(self._other), dtype=bool)
+        self._time_bad = False
+        self._y = None
+        self.last_events_: list[dict] = []
+        self.n_samples_ = 0
+
+    def _snapshot(self) -> tuple:
+        return (self.streaming._snapshot(), self.monitor.snapshot() if self.monitor else None,
+                self.guard.snapshot() if self.guard else None,
+                None if self._base is None else self._base.copy(),
+                None if self._late is None else self._late.copy(), self._last_time,
+                self._last_read, self._held.copy(), self._held_state.copy(), self._time_bad,
+                None if self._y is None else self._y.copy(), self.n_samples_)
+
+    def _restore(self, snap: tuple) -> None:
+        (s, m, g, self._base, self._late, self._last_time, self._last_read, self._held,
+         self._held_state, self._time_bad, self._y, self.n_samples_) = snap
+        self.streaming._restore(s)
+        if self.monitor is not None:
+            self.monitor.restore(m)
+        if self.guard is not None:
+            self.guard.restore(g)
+
+    # -- one sample -------------------------------------------------------------------------------
+    def step(self, x_row, time: float = float("nan")) -> np.ndarray:
+        """One sample (order of ``columns_``) -> guarded correction per target (µm of error)."""
+        return self._step(np.asarray(x_row, dtype=float), time)[0]
+
+    def _step(self, x: np.ndarray, time: float) -> tuple[np.ndarray, int]:
+        self.last_events_: list[dict] = []    # a step that fails reports none, not the last ones
+        events: list[dict] = []
+        t, dt = self._check_time(float(time), events)
+        if self.monitor is not None:
+            clean, ev = self.monitor.update(x if self._mon_all else x[self._mon], t)
+            events += ev
+            ref = self.monitor._ref
+            if self._base is None:
+                self._base = np.where(np.isfinite(ref), ref, self.monitor.first_c)
+                self._late = ~np.isfinite(ref)
+            elif self._absolute and self._late.any():
+                # a model of absolute readings sees a sensor missing at the start as read once it
+                # is referenced (a model of changes keeps the stand-in: its reference is row 0)
+                now = self._late & np.isfinite(ref)
+                self._base[now] = ref[now]
+                self._late &= ~now
+            if self._mon_all:
+                x = self._base + clean
+            else:
+                x = x.copy()
+                x[self._mon] = self._base + clean
+        if len(self._other):
+            if self.monitor is None:
+                x = x.copy()
+            x[self._other] = self._hold(x[self._other], t, events)
+        try:
+            y, clamped = self.streaming._step(x, t)
+        except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
+            y, clamped = np.full(len(self.targets_), np.nan), 0
+            events.append({"time": t, "sensor": None, "from": "running", "to": "held",
+                           "reason": f"correction held: {exc}"})
+        if self.guard is not None:
+            y, ev = self.guard.step(y, dt, t)
+            events += ev
+        elif not np.all(np.isfinite(y)):
+            y = np.where(np.isfinite(y), y, 0.0 if self._y is None else self._y)
+        self._y = y
+        self.n_samples_ += 1
+        self.last_events_ = events
+        return y, clamped
+
+    def _check_time(self, t: float, events: list) -> tuple[float, float]:
+        # judged against the last time *read*, not the last one used: after a swapped pair of
+        # rows the substitutes run one period ahead of the record, and judging against them
+        # kept every later time 'substituted' to the end of the stream
+        last, read = self._last_time, self._last_read
+        bad = None
+        if not np.isfinite(t):
+            bad = "time has no finite value"
+        elif np.isfinite(read) and t <= read:
+            bad = f"time {t:.6g} s does not increase (previous {read:.6g} s)"
+        else:
+            self._last_read = t
+        if bad is not None:
+            t = (last + self.period_s) if np.isfinite(last) else 0.0
+            if not self._time_bad:
+                events.append({"time": t, "sensor": TIME, "from": "ok", "to": "substituted",
+                               "reason": f"{bad}: taken as previous + {self.period_s:g} s"})
+            self._time_bad = True
+        elif self._time_bad:
+            events.append({"time": t, "sensor": TIME, "from": "substituted", "to": "ok",
+                           "reason": "time increases again"})
+            self._time_bad = False
+        dt = t - last if np.isfinite(last) else self.period_s
+        self._last_time = t
+        return t, dt
+
+    def _hold(self, v: np.ndarray, t: float, events: list) -> np.ndarray:
+        missing = ~np.isfinite(v)
+        out = np.where(missing, np.where(np.isfinite(self._held), self._held, 0.0), v)
+        for k in np.flatnonzero(missing != self._held_state):
+            name = self.columns_[self._other[k]]
+            events.append({"time": t, "sensor": name, "from": "ok" if missing[k] else "held",
+                           "to": "held" if missing[k] else "ok",
+                           "reason": ("dropout: no finite value, last value held" if missing[k]
+                                      else "value again")})
+        self._held_state = missing
+        self._held = out
+        return out
+
+    # -- blocks -----------------------------------------------------------------------------------
+    def predict(self, frame: pd.DataFrame) -> pd.DataFrame:
+        """Guarded correction per target for consecutive samples, with ``n_clamped``,
+        ``excluded_inputs`` (comma-separated) and ``events`` (JSON list of the row's events)."""
+        missing = [c for c in self.columns_ if c not in frame.columns]
+        if missing:
+            raise OutOfEnvelopeError(f"input lacks column(s) {missing} (need {self.columns_})")
+        X = np.column_stack([pd.to_numeric(frame[c], errors="coerce").to_numpy(dtype=float)
+                             for c in self.columns_]) if self.columns_ else np.empty((len(frame), 0))
+        time = (pd.to_numeric(frame[TIME], errors="coerce").to_numpy(float) if TIME in frame.columns
+                else np.full(len(frame), np.nan))
+        y = np.empty((len(X), len(self.targets_)))
+        clamps = np.zeros(len(X), dtype=np.int64)
+        excluded, events = [], []
+        snap = self._snapshot()
+        try:
+            for i in range(len(X)):
+                y[i], clamps[i] = self._step(X[i], time[i])
+                excluded.append(",".join(self.excluded_inputs))
+                events.append(json.dumps(self.last_events_, ensure_ascii=False))
+        except Exception:
+            self._restore(snap)
+            raise
+        out = pd.DataFrame(y, columns=self.targets_)
+        out["n_clamped"] = clamps
+        out["excluded_inputs"] = excluded
+        out["events"] = events
+        return out

@@ -1,0 +1,206 @@
+"""A deployed linear compensator as one discrete linear state-space system plus static limits.
+
+:func:`state_space` reads a :class:`~thermocomp.apps.deploy.StreamingCompensator` whose models are
+linear (MLR, PCR, ARX with or without its AR term, lag bank) and writes down, as plain arrays,
+everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to one sample ``u``
+(the raw inputs, in ``inputs`` order), in this order:
+
+1. causal FIR denoiser: ``buf <- [u, buf[:-1]]``, ``v = sum_k fir[k] * buf[k]`` (no denoiser:
+   one tap of 1);
+2. reference: ``ref = referenced * v`` at a campaign's first sample, ``x = v - ref``;
+3. envelope clamp (static limit): ``x <- min(max(x, lo), hi)`` when ``clamp``;
+4. per target ``t``: ``y_t = c_t + b0_t . x + sum_d bd_t[d] . x(t-d) + sum_k g_t[k] (z_k - x[lag_input_k])
+   + a_t y_t(t-1)``, with the input history ``x(t-d)`` (``d = 1..depth``) and the first-order
+   lags ``z_k <- e_k z_k + (1 - e_k) x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the
+   time since the previous sample (``period`` when no time is given);
+5. the correction sent to the CNC is ``C_t = -y_t``.
+
+At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
+history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
+clamp and the output the system is linear: the state is ``[buf, ref, history, z, y_prev]``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+from ....core.models import ARX, MLR, PCR, LagBank
+from ..streaming import StreamingCompensator
+
+LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank")   # what exports to C / ST
+FORMATS = ("json", "c", "st", "onnx")
+
+
+class NotExportable(ValueError):
+    """The deployed compensator is not one linear system (a family or a setting the code lacks)."""
+
+
+@dataclass
+class StateSpace:
+    """Arrays of the exported system (module doc); lists, so that it is its own JSON."""
+
+    inputs: list                 # raw input columns, in the order of ``u``
+    targets: list                # error columns; the code outputs ``C_<axis>`` = -y
+    fir: list                    # (taps, n_inputs)
+    referenced: list             # (n_inputs,) 1: taken relative to the first sample
+    clamp: bool
+    lo: list | None              # (n_inputs,) envelope, in the referenced frame (clamp only)
+    hi: list | None
+    depth: int                   # input history kept (largest ARX delay)
+    taus: list                   # (n_lags,) s
+    lag_input: list              # (n_lags,) input index of each lag
+    lag_decay: list              # (n_lags,) exp(-period / tau): the step without a time
+    period: float                # s
+    intercept: list              # (n_targets,)
+    b0: list                     # (n_targets, n_inputs)
+    bd: list                     # (n_targets, depth, n_inputs)
+    g: list                      # (n_targets, n_lags)
+    ar: list                     # (n_targets,)
+    uses_time: bool              # the lags read ``time`` when it is given
+    provenance: dict = field(default_factory=dict)
+
+    def to_dict(self) -> dict:
+        return asdict(self)
+
+    @classmethod
+    def from_dict(cls, d: dict) -> "StateSpace":
+        return cls(**d)
+
+    @property
+    def n_states(self) -> int:
+        n = len(self.inputs)
+        return (len(self.fir) - 1) * n + n + self.depth * n + len(self.taus) + len(self.targets)
+
+
+def _target_law(est, n: int, period: float | None):
+    """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
+    if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
+        raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
+                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)})")
+    c = float(est.intercept_)
+    if isinstance(est, (MLR, PCR)):
+        return c, np.asarray(est.coef_, float), {}, [], 0.0, period
+    if isinstance(est, ARX):
+        b0, delayed = np.zeros(n), {}
+        for (j, d), b in zip(est.terms_, est.coef_):
+            row = b0 if d == 0 else delayed.setdefault(int(d), np.zeros(n))
+            row[j] += float(b)
+        return c, b0, delayed, [], float(est.ar_coef_), period
+    coef = np.asarray(est.coef_, float)      # the lag bank
+    lags = [(float(tau), j, float(coef[n * (i + 1) + j]))
+            for i, tau in enumerate(est.taus_) for j in range(n)]
+    own = float(est.sample_period_s_)
+    if period is not None and own != period:
+        raise NotExportable(f"the lag banks of the targets assume sample periods {period} and "
+                            f"{own} s; one exported step has one period")
+    return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
+
+
+def state_space(stream: StreamingCompensator, provenance: dict | None = None) -> StateSpace:
+    """The :class:`StateSpace` of a plain deployed stream (module doc); :class:`NotExportable`
+    names what keeps it from being one."""
+    comp = stream.compensator
+    inputs = list(comp.inputs_)
+    n = len(inputs)
+    if list(stream.columns_) != inputs:
+        raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
+                            f"only the linear families ({', '.join(LINEAR_FAMILIES)}) export to C/ST")
+    if stream.envelope is not None and stream.policy == "refuse":
+        raise NotExportable("envelope policy 'refuse' stops the stream; the code clamps or passes "
+                            "the inputs (promote.envelope.policy=clamp|off)")
+    den = stream.denoiser
+    if den is None:
+        fir = np.ones((1, n))
+    elif getattr(den, "causal", None) == "fir" and hasattr(den, "fir_"):
+        fir = np.asarray(den.fir_, float).reshape(-1, n)
+    else:
+        raise NotExportable(f"denoiser {type(den).__name__} (causal={getattr(den, 'causal', None)!r}) "
+                            "is not a linear filter; the causal FIR one exports "
+                            "(denoise.denoiser.causal=fir)")
+    laws, period = {}, None
+    for t, est, idx in stream._plan:
+        cols = np.arange(n) if idx is None else np.asarray(idx)
+        c, b0, delayed, lags, a, period = _target_law(est, len(cols), period)
+        full = np.zeros(n)
+        full[cols] = b0
+        laws[t] = (c, full, {d: _spread(r, cols, n) for d, r in delayed.items()},
+                   [(tau, int(cols[j]), gain) for tau, j, gain in lags], a)
+    depth = max((d for law in laws.values() for d in law[2]), default=0)
+    keys = sorted({(tau, j) for law in laws.values() for tau, j, _ in law[3]})
+    where = {k: i for i, k in enumerate(keys)}
+    targets = list(stream.targets_)
+    g = np.zeros((len(targets), len(keys)))
+    bd = np.zeros((len(targets), depth, n))
+    for i, t in enumerate(targets):
+        for tau, j, gain in laws[t][3]:
+            g[i, where[(tau, j)]] += gain
+        for d, row in laws[t][2].items():
+            bd[i, d - 1] = row
+    env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
+    period = float(period) if period is not None else 0.0
+    return StateSpace(
+        inputs=inputs, targets=targets, fir=fir.tolist(),
+        referenced=[int(r) for r in stream._is_ref], clamp=bool(clamp),
+        lo=env.lo.tolist() if clamp else None, hi=env.hi.tolist() if clamp else None,
+        depth=int(depth), taus=[k[0] for k in keys], lag_input=[k[1] for k in keys],
+        lag_decay=[float(np.exp(-period / k[0])) for k in keys], period=period,
+        intercept=[laws[t][0] for t in targets], b0=[laws[t][1].tolist() for t in targets],
+        bd=bd.tolist(), g=g.tolist(), ar=[laws[t][4] for t in targets],
+        uses_time=bool(keys), provenance=dict(provenance or {}))
+
+
+def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
+    out = np.zeros(n)
+    out[cols] = row
+    return out
+
+
+class Simulator:
+    """The exported arithmetic in numpy (the reference the generated code is read against)."""
+
+    def __init__(self, ss: StateSpace):
+        self.ss = ss
+        self.fir = np.asarray(ss.fir, float)
+        self.lo, self.hi = (np.asarray(getattr(ss, k) or [], float) for k in ("lo", "hi"))
+        m, n = len(ss.targets), len(ss.inputs)
+        self.b0 = np.asarray(ss.b0, float).reshape(m, n)
+        self.bd = np.asarray(ss.bd, float).reshape(m, ss.depth, n)
+        self.g = np.asarray(ss.g, float).reshape(m, len(ss.taus))
+        self.taus, self.decay = np.asarray(ss.taus, float), np.asarray(ss.lag_decay, float)
+        self.lag_input = np.asarray(ss.lag_input, int)
+        self.reset()
+
+    def reset(self) -> None:
+        self.first = True
+
+    def step(self, u, time: float = float("nan")) -> np.ndarray:
+        """Correction ``C`` (µm, = -predicted error) per target for one sample."""
+        u = np.asarray(u, float)
+        ss = self.ss
+        if self.first:
+            self.buf = np.tile(u, (len(self.fir), 1))
+        else:
+            self.buf = np.vstack([u[None, :], self.buf[:-1]])
+        v = (self.buf * self.fir).sum(axis=0)
+        if self.first:
+            self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
+        x = v - self.ref
+        if ss.clamp:
+            x = np.minimum(np.maximum(x, self.lo), self.hi)
+        xl = x[self.lag_input]
+        if self.first:
+            self.hist = np.tile(x, (ss.depth, 1)).reshape(ss.depth, len(x))
+            self.z, self.y = xl.copy(), np.zeros(len(ss.targets))
+            self.t = 0.0 if np.isnan(time) else time
+        else:
+            e = self.decay if np.isnan(time) else np.exp(-(time - self.t) / self.taus)
+            self.z = e * self.z + (1.0 - e) * xl
+            self.t = self.t + ss.period if np.isnan(time) else time
+        y = (np.asarray(ss.intercept) + self.b0 @ x + np.einsum("tdi,di->t", self.bd, self.hist)
+             + self.g @ (self.z - xl) + np.asarray(ss.ar) * self.y)
+        if ss.depth:
+            self.hist = np.vstack([x[None, :], self.hist[:-1]])
+        self.y, self.first = y, False
+        return -y

@@ -1,0 +1,44 @@
+"""The lab's own column names, carried by the deployed model.
+
+A record read with ``data.columns`` (``{raw: contract}``, e.g. ``{T0: T_0, "delta L": E_L}``)
+is modelled under contract names; the machine that calls the deployed model
+still sends its logger's names.  The model keeps :func:`lab_names` and reads
+either name of a column (:func:`to_contract`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import pandas as pd
+
+from ...base.errors import ContractError
+
+
+def lab_names(cfg, ds=None) -> dict[str, str]:
+    """``{contract name: the lab's raw name}``: the one place that knows how a record's
+    headers map to contract names -- as the dataset ``ds`` was read (``data.columns`` and
+    ``data.roles``, :func:`thermocomp.core.io.roles.contract_columns`), else ``data.columns``.
+    A column read in another unit (``ch1(mm)`` -> ``E_ch1`` in µm) is left out: under the
+    lab's name it would carry the lab's unit, so the model takes it by its contract name only."""
+    columns = dict(cfg.data.get("columns") or {})
+    converted = set()
+    if ds is not None:
+        columns.update(ds.meta.get("column_map") or {})
+        converted = set(ds.meta.get("converted") or ())
+    return {str(contract): str(raw) for raw, contract in columns.items()
+            if str(raw) != str(contract) and str(contract) not in converted}
+
+
+def to_contract(frame: pd.DataFrame, names: Mapping[str, str]) -> pd.DataFrame:
+    """``frame`` with the lab's names of ``names`` (``{contract: raw}``) renamed to contract
+    names; a frame may use either name of a column, not both (two columns for one input)."""
+    if not names:
+        return frame
+    both = [f"{raw!r} and {contract!r}" for contract, raw in names.items()
+            if raw in frame.columns and contract in frame.columns]
+    if both:
+        raise ContractError(f"the input names one column twice, by the lab's name and the "
+                            f"contract's ({'; '.join(both)}): send one of them")
+    raw_to_contract = {raw: contract for contract, raw in names.items()}
+    return frame.rename(columns={c: raw_to_contract[c] for c in frame.columns if c in raw_to_contract})

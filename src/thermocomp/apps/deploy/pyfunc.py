@@ -1,0 +1,349 @@
+"""The deployable compensator as an ``mlflow.pyfunc`` model.
+
+It holds a :class:`StreamingCompensator` or, as ``promote`` registers it by
+default (``monitor.adaptive=true``), an :class:`~thermocomp.apps.deploy.AdaptiveCompensator`
+(the same stream behind sensor surveillance and a correction guard).
+
+Input: a table of sensor readings (declared ``T_``/``S_`` inputs, all float;
+an optional ``time`` column in s), one row per sample, in time order.
+Output: the correction per axis in µm, ``C_<axis> = -Ê_<axis>`` (what to add
+to the axis command to cancel the predicted thermal error ``E_<axis>``), and
+``n_clamped``, the number of inputs of that row clamped to the training envelope.
+The adaptive compensator adds, per row, ``excluded_inputs`` (the sensors it
+has excluded after that row, comma-separated, ``""`` when none) and
+``events`` (a JSON list of that row's events: ``time``, ``sensor``, ``from``,
+``to``, ``reason``, and ``target`` for a guarded correction).  A missing value
+(NaN or JSON ``null``) in a row, a missing, repeated or backward ``time`` then
+still gives a finite correction, within the guard's bound, with the event
+that says what was held, reconstructed or substituted; the plain streaming
+compensator refuses such a row (HTTP 400).
+
+State is kept between calls, one stream per ``session`` parameter
+(``params={"session": "machine-7"}``; callers that send none share the session
+``"default"``), so several machines can call one server.  A call with
+``params={"reset": true}`` starts a new campaign in its session: its first row
+becomes the reference sample (``T_`` inputs are taken relative to it) and every
+memory (AR terms, causal denoiser, sensor monitor, guard) is cleared.  A new
+session starts reset; at most :data:`MAX_SESSIONS` are kept (the least recently
+used one is dropped and starts reset if it calls again).  The state lives in
+the serving *process*: with several server workers each worker holds its own
+sessions, so serve with one worker (``thermocomp serve`` does).
+
+A model deployed with ``adapt.method`` other than ``none`` (``adapt_``, extension) learns from
+reference measurements: a row that carries a finite measured error ``E_<axis>`` (optional
+input columns; a probe touch, an artefact cycle) is one; that row's correction is given with
+what was learned before it, then the gain/bias of :mod:`thermocomp.apps.deploy.adapt` is updated,
+per session (each machine learns its own; ``reset`` keeps what the session learned, a new
+session starts from the model as promoted).
+
+A campaign that continues one the model was deployed on (a long record cut in
+two, ``data.reference=none``: the machine did not stop) starts from the state
+that campaign left, as ``run`` scores it: ``params={"continues": "<campaign>"}``
+starts the session there instead of from a reset (``promote`` saves every
+campaign's end state in the model, ``end_states_``); the session's ``time`` is
+then shifted so that its first row follows that campaign's last sample by one
+sample period (event times are given back in the caller's clock).
+
+A model that needs the campaign's ambient (ATI) but reads no ambient sensor (its
+record had the manifest's ``ambient_c``) takes it as ``params={"ambient_c": <°C>}``
+when a session starts (new or ``reset``); without it the session's rows are refused.
+
+Columns may come under the lab's own names (``data.columns`` of the record the
+model was deployed from, carried as ``lab_names_``) or contract names; a block
+naming one column by both is refused.
+
+The pickled compensator travels with its signature (:mod:`thermocomp.base.signing`),
+checked before it is unpickled: the serving machine needs the project key
+(``THERMOCOMP_SIGNING_KEY`` or the key file) of the machine that promoted the model.
+
+Depends on the core and MLflow only: no Hydra, no stages.  The model carries
+the ``thermocomp`` package source (``code_paths``), so a serving environment
+needs only its third-party requirements.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import tempfile
+import threading
+import warnings
+from collections import OrderedDict
+from pathlib import Path
+
+import mlflow
+import numpy as np
+import pandas as pd
+from mlflow.exceptions import MlflowException
+from mlflow.models import ModelSignature
+from mlflow.protos.databricks_pb2 import INVALID_PARAMETER_VALUE
+from mlflow.types import ColSpec, ParamSchema, ParamSpec, Schema
+
+import thermocomp
+
+from ...base import signing
+from ...core.context import TIME
+from .adaptive import AdaptiveCompensator
+from .naming import to_contract
+from .streaming import EndState, StreamingCompensator
+
+MODEL_NAME = "compensator"          # artifact name of the pyfunc model inside a run
+COMPENSATOR_ARTIFACT = "compensator"  # the pickled (streaming or adaptive) compensator
+SIGNATURE_ARTIFACT = "compensator_sig"  # its signature (HMAC, thermocomp.base.signing)
+DEFAULT_SESSION = "default"
+MAX_SESSIONS = 1024
+CORRECTION_PREFIX = "C_"
+DEPLOYABLE = (StreamingCompensator, AdaptiveCompensator)   # what the model may hold
+REPORT_COLUMNS = ("excluded_inputs", "events")              # the adaptive compensator's extras
+
+
+def correction_column(target: str) -> str:
+    """``E_X`` -> ``C_X``: the correction for the error ``E_X``."""
+    return CORRECTION_PREFIX + (target[2:] if target.startswith("E_") else target)
+
+
+def is_adaptive(deployed) -> bool:
+    """True for the compensator that watches its inputs (and reports exclusions and events)."""
+    return isinstance(deployed, AdaptiveCompensator)
+
+
+class CompensatorModel(mlflow.pyfunc.PythonModel):
+    """``mlflow.pyfunc`` wrapper of a :class:`StreamingCompensator` or an
+    :class:`~thermocomp.apps.deploy.AdaptiveCompensator` (see module doc).
+
+    Logged as *model from code* (``model_code.py``); the compensator itself is
+    the pickled artifact ``compensator``, loaded in :meth:`load_context`.
+
+    Parameters
+    ----------
+    streaming : StreamingCompensator or AdaptiveCompensator, optional
+        The deployed object (both have ``reset``, ``predict``, ``_snapshot``/``_restore``).
+    """
+
+    def __init__(self, streaming: StreamingCompensator | AdaptiveCompensator | None = None):
+        self.streaming = streaming
+        self._lock = threading.Lock()
+        self._sessions: OrderedDict = OrderedDict()   # session -> stream state, LRU order
+        self._learned0 = self._learned_at_promotion()
+
+    def _learned_at_promotion(self):
+        adapt = getattr(self.streaming, "adapt_", None)
+        return None if adapt is None else adapt.snapshot()
+
+    def load_context(self, context) -> None:
+        artifacts = (context.artifacts or {}) if context is not None else {}
+        if COMPENSATOR_ARTIFACT in artifacts:
+            # the signature is checked on the bytes before anything is unpickled
+            self.streaming = signing.load(artifacts[COMPENSATOR_ARTIFACT], DEPLOYABLE,
+                                          sig=artifacts.get(SIGNATURE_ARTIFACT))
+        self.streaming.reset()
+        self._sessions.clear()
+        self._learned0 = self._learned_at_promotion()
+
+    def _end_state(self, campaign: str) -> EndState:
+        ends = self.streaming.end_states_
+        if campaign not in ends:
+            have = ", ".join(sorted(ends)) or ("none: the model reads temperature changes from "
+                                               "each campaign's first sample (data.reference="
+                                               "first_sample)" if self.streaming.compensator
+                                               .reference != "none" else "none")
+            raise MlflowException(f"continues={campaign!r}: the model holds no end state of that "
+                                  f"campaign (it holds: {have})", error_code=INVALID_PARAMETER_VALUE)
+        return ends[campaign]
+
+    def _state(self, session: str, reset: bool, continues: str = "", ambient_c=None) -> list:
+        """``[stream state, time shift, learned]`` of ``session``, most recent last: a fresh one
+        when new or reset (with the campaign's ``ambient_c``, for a model that reads no ambient
+        sensor); the end state of campaign ``continues`` when given (its time shift, an
+        :class:`EndState` until the session's first row fixes it).  ``learned`` (what the
+        adaptation learned) survives a reset: the session is the same machine."""
+        learned = self._sessions[session][2] if session in self._sessions else self._learned0
+        if continues:
+            end = self._end_state(continues)
+            self._sessions[session] = [copy.deepcopy(end.state), end, learned]
+        elif reset or session not in self._sessions:
+            self.streaming.reset(float("nan") if ambient_c is None else float(ambient_c))
+            self._sessions[session] = [self.streaming._snapshot(), 0.0, learned]
+        while len(self._sessions) > MAX_SESSIONS:
+            self._sessions.popitem(last=False)
+        self._sessions.move_to_end(session)
+        return self._sessions[session]
+
+    def predict(self, context, model_input: pd.DataFrame, params: dict | None = None) -> pd.DataFrame:
+        params = params or {}
+        session = str(params.get("session") or DEFAULT_SESSION)
+        names = self.streaming.lab_names_
+        try:
+            frame = to_contract(pd.DataFrame(model_input), names)
+        except ValueError as exc:
+            raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
+        # Serving may call from several threads: one session's samples in order, one at a time.
+        with self._lock:
+            state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""),
+                                params.get("ambient_c"))
+            if isinstance(state[1], EndState):
+                # a continuing campaign's clock follows its predecessor's last sample by one
+                # period, as `run` joins them (the client's own clock may restart at 0)
+                end = state[1]
+                state[1] = (end.time + end.period - float(frame[TIME].iloc[0])
+                            if TIME in frame.columns and len(frame) else 0.0)
+            shift = state[1]
+            if shift and TIME in frame.columns:
+                frame = frame.assign(**{TIME: pd.to_numeric(frame[TIME], errors="coerce") + shift})
+            self.streaming._restore(state[0])
+            try:
+                pred = self.streaming.predict(frame)
+            except ValueError as exc:  # OutOfEnvelopeError, ContractError: the caller's input
+                raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
+            finally:  # a refused block leaves the session where it was (predict rolls back)
+                state[0] = self.streaming._snapshot()
+            adapt = getattr(self.streaming, "adapt_", None)
+            if adapt is not None:
+                targets = self.streaming.targets_
+                adapt.restore(state[2])
+                pred[targets] = adapt.correct(pred[targets].to_numpy(float), np.full(len(pred), np.nan),
+                                              references(frame, targets))
+                state[2] = adapt.snapshot()
+        out = pd.DataFrame({correction_column(t): -pred[t].to_numpy(float)
+                            for t in self.streaming.targets_})
+        out["n_clamped"] = pred["n_clamped"].to_numpy(np.int64)
+        if is_adaptive(self.streaming):
+            for c in REPORT_COLUMNS:
+                out[c] = pred[c].to_numpy(object)
+            if shift:      # event times in the caller's clock
+                out["events"] = [_shifted(e, -shift) for e in out["events"]]
+        return out
+
+
+def references(frame: pd.DataFrame, targets) -> np.ndarray | None:
+    """The measured errors a block carries (rows x targets, NaN where none), or None."""
+    if not any(t in frame.columns for t in targets):
+        return None
+    return np.column_stack([pd.to_numeric(frame[t], errors="coerce").to_numpy(float)
+                            if t in frame.columns else np.full(len(frame), np.nan) for t in targets])
+
+
+def _shifted(events: str, by: float) -> str:
+    """A row's events (JSON list) with their ``time`` moved by ``by`` s."""
+    listed = json.loads(events)
+    if not listed:
+        return events
+    return json.dumps([{**e, "time": e["time"] + by} if isinstance(e.get("time"), (int, float))
+                       else e for e in listed], ensure_ascii=False)
+
+
+def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSignature:
+    """Input/output schema (and the ``reset``, ``session``, ``continues`` parameters) of the
+    deployed compensator.  With the lab's names (``lab_names_``) every input may come under
+    either name, so none is required by the schema; the model checks that each is there."""
+    names = streaming.lab_names_
+    required = {c: not names for c in streaming.columns_}
+    required[TIME] = streaming.time_required_ and not names
+    if getattr(streaming, "adapt_", None) is not None:   # reference measurements, when taken
+        required.update({t: False for t in streaming.targets_ if t not in required})
+    inputs = Schema([ColSpec("double", c, required=r) for c, r in required.items()]
+                    + [ColSpec("double", names[c], required=False) for c in required if c in names])
+    outputs = Schema([ColSpec("double", correction_column(t)) for t in streaming.targets_]
+                     + [ColSpec("long", "n_clamped")]
+                     + ([ColSpec("string", c) for c in REPORT_COLUMNS]
+                        if is_adaptive(streaming) else []))
+    return ModelSignature(inputs=inputs, outputs=outputs,
+                          params=ParamSchema([ParamSpec("reset", "boolean", False),
+                                               ParamSpec("session", "string", DEFAULT_SESSION),
+                                               ParamSpec("continues", "string", ""),
+                                               ParamSpec("ambient_c", "double", None)]))
+
+
+# Third-party distributions the core imports when a compensator is unpickled (the package
+# source itself travels in ``code_paths``); torch only for models that hold torch objects.
+_CORE_REQUIREMENTS = ("mlflow", "numpy", "pandas", "pyarrow", "scipy", "scikit-learn",
+                      "EMD-signal", "scikit-fuzzy")
+
+
+def _requirements(pickled: bytes = b"") -> list[str]:
+    from importlib.metadata import version
+
+    names = list(_CORE_REQUIREMENTS) + (["torch"] if b"torch" in pickled else [])
+    return [f"{p}=={version(p)}" for p in names]
+
+
+def _model_kwargs(streaming, pickle_path: Path) -> dict:
+    here = Path(__file__).resolve().parent
+    return dict(python_model=str(here / "model_code.py"),
+                artifacts={COMPENSATOR_ARTIFACT: str(pickle_path),
+                           SIGNATURE_ARTIFACT: str(signing.sig_path(pickle_path))},
+                signature=signature(streaming),
+                code_paths=[str(Path(thermocomp.__file__).resolve().parent)],   # the package
+                pip_requirements=_requirements(Path(pickle_path).read_bytes()))
+
+
+def _pickled(streaming, folder: str) -> Path:
+    """``<folder>/compensator.pkl`` and its signature ``compensator.pkl.sig``."""
+    streaming.reset()
+    return signing.dump(streaming, Path(folder) / "compensator.pkl")
+
+
+def save_compensator(streaming: StreamingCompensator | AdaptiveCompensator, path,
+                     input_example=None) -> Path:
+    """Write the pyfunc model to a local folder (no tracking server): ``mlflow.pyfunc.load_model(path)``."""
+    with tempfile.TemporaryDirectory() as tmp, warnings.catch_warnings():
+        # the signature is given: MLflow's "no input example" advice says nothing to a user
+        warnings.filterwarnings("ignore", message=".*input example was not provided")
+        mlflow.pyfunc.save_model(str(path), input_example=input_example,
+                                 **_model_kwargs(streaming, _pickled(streaming, tmp)))
+    return Path(path)
+
+
+def log_compensator(streaming: StreamingCompensator | AdaptiveCompensator,
+                    input_example: pd.DataFrame | None = None,
+                    registered_model_name: str | None = None, name: str = MODEL_NAME,
+                    run_id: str | None = None, **kwargs):
+    """Log the compensator as a pyfunc model; returns the ``ModelInfo``.
+
+    Into run ``run_id`` (its experiment) without resuming it, so a finished run stays
+    FINISHED whatever happens to this process; without ``run_id``, into the active run.
+    ``registered_model_name`` also registers it (a new version) in the Model Registry.
+    """
+    with tempfile.TemporaryDirectory() as tmp:
+        model_kwargs = _model_kwargs(streaming, _pickled(streaming, tmp))
+        if run_id is None:
+            return mlflow.pyfunc.log_model(
+                name=name, input_example=input_example,
+                registered_model_name=registered_model_name, **model_kwargs, **kwargs)
+        from mlflow.models import Model
+
+        # the logged model belongs to the run's experiment (else MLflow's Default one)
+        mlflow.set_experiment(experiment_id=mlflow.get_run(run_id).info.experiment_id)
+        return Model.log(artifact_path=None, name=name, flavor=mlflow.pyfunc, run_id=run_id,
+                         input_example=input_example,
+                         registered_model_name=registered_model_name, **model_kwargs, **kwargs)
+
+
+def load_deployed(source: str, folder: str | Path | None = None):
+    """The signed compensator inside a pyfunc model, loaded by *this* installed package.
+
+    ``folder``: the model's local folder; else ``source`` (``models:/<name>@<alias>``) is
+    downloaded from the registry first.  Only the pickle is taken from the model, after its
+    HMAC signature is checked: the model's own code (``model_code.py``, ``code/``, the loader
+    ``MLmodel`` names) is never run, since any of them could be edited in a store and the
+    signature covers the pickle alone.  A ContractError (exit 2) names what is wrong.
+    """
+    import yaml
+
+    from ...base.errors import ContractError
+
+    with tempfile.TemporaryDirectory(prefix="thermocomp-model-") as tmp:
+        root = Path(folder) if folder is not None else Path(
+            mlflow.artifacts.download_artifacts(artifact_uri=source, dst_path=tmp))
+        spec = root / "MLmodel"
+        try:
+            flavor = yaml.safe_load(spec.read_text())["flavors"]["python_function"]
+            arts = flavor["artifacts"]
+            pickled, sig = (root / arts[k]["path"] for k in (COMPENSATOR_ARTIFACT, SIGNATURE_ARTIFACT))
+        except (OSError, yaml.YAMLError, KeyError, TypeError) as exc:
+            raise ContractError(f"not a thermocomp compensator model ({type(exc).__name__}: {exc})",
+                                file=spec) from None
+        inside = root.resolve()
+        if not all(inside in p.resolve().parents for p in (pickled, sig)):
+            raise ContractError("the artifacts it names lie outside the model folder", file=spec)
+        return signing.load(pickled, DEPLOYABLE, sig=sig)

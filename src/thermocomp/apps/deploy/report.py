@@ -1,0 +1,245 @@
+"""The replay report: stream campaigns row by row through a deployable compensator and check it
+(pure core; a module of its own, not `replay`, which names the streaming function).
+
+The deployed object is what ``promote`` registers inside the pyfunc model: a
+:class:`~thermocomp.apps.deploy.StreamingCompensator`, or (default) an
+:class:`~thermocomp.apps.deploy.AdaptiveCompensator` around one (sensor
+surveillance, adaptive inputs, guarded correction).  Each campaign is streamed
+from its start, one sample at a time, as a CNC loop calls it: from a reset, or,
+for a campaign that continues others (``data.reference=none``), warmed on them
+unscored (:func:`~.streaming.warm`).  Two streams per campaign:
+
+* the **plain** stream (the streaming compensator alone, envelope off, no
+  monitor), compared with the batch prediction of the same fitted
+  :class:`~thermocomp.core.compensator.Compensator` (of the campaign joined to the
+  ones it continues, as ``run`` scores it): any difference is the stream's
+  (causality, state).  Both stop at a campaign's first missing value,
+  which the plain stream refuses;
+* the **deployed** stream (as registered), whose residual gives ``rmse`` and
+  whose events and excluded sensors fill ``replay.json``.
+
+The result is the ``replay.json`` layout of CLI.md.
+"""
+
+from __future__ import annotations
+
+import time as clock
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from ...base.errors import ContractError
+from ...core.context import TIME
+from ...core.metrics import RMSE
+from .adaptive import AdaptiveCompensator
+from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
+
+
+@dataclass
+class Streamed:
+    """One campaign streamed from its start."""
+
+    y: np.ndarray                      # prediction per row and target (n, targets)
+    clamped: np.ndarray                # inputs clamped to the envelope, per row
+    seconds: float                     # time spent in the step loop
+    events: list = field(default_factory=list)     # the adaptive compensator's, in order
+    excluded: list = field(default_factory=list)   # sensors excluded after the last row
+
+
+def plain(deployed) -> StreamingCompensator:
+    """The streaming compensator inside ``deployed`` (itself when it is one)."""
+    return deployed.streaming if isinstance(deployed, AdaptiveCompensator) else deployed
+
+
+def summary(deployed) -> dict:
+    """``{"adaptive": bool, "pod": {...} | None}``: what ``promote.json`` and ``replay.json``
+    say of the deployed object (the POD of its sensor monitor, when it has one)."""
+    adaptive = isinstance(deployed, AdaptiveCompensator)
+    mon = deployed.monitor if adaptive else None
+    pod = None
+    if mon is not None:
+        p = mon.pod
+        pod = {"n_sensors": len(mon.names), "n_modes": int(p.n_modes_),
+               "captured_energy": float(p.energy_[p.n_modes_ - 1]), "sensors": list(mon.names)}
+    return {"adaptive": adaptive, "pod": pod}
+
+
+def streamed_hours(campaign: pd.DataFrame, period_s: float) -> float:
+    """Hours a campaign covers: its known time span plus one period (rows × period without
+    a time)."""
+    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.empty(0)
+    known = t[np.isfinite(t)]
+    span = known[-1] - known[0] + period_s if len(known) > 1 else len(campaign) * period_s
+    return float(span) / 3600
+
+
+def alarm_rate(events: list[dict], hours: float) -> dict:
+    """Sensor exclusions per 100 h streamed (on healthy campaigns: the false-alarm rate) and
+    the re-admissions, beside the hours they are counted over (CLI.md, ``alarms``)."""
+    excluded = [e for e in events if e.get("sensor") and e["to"] == "excluded"]
+    per_sensor: dict[str, int] = {}
+    for e in excluded:
+        per_sensor[e["sensor"]] = per_sensor.get(e["sensor"], 0) + 1
+    return {"hours": float(hours), "exclusions": len(excluded),
+            "exclusions_per_100h": 100 * len(excluded) / hours if hours > 0 else None,
+            "readmissions": sum(1 for e in events if e.get("sensor") and e["from"] == "excluded"),
+            "exclusions_by_sensor": per_sensor}
+
+
+def campaign_start(campaign: pd.DataFrame) -> float:
+    """The campaign's first known ``time`` (0 without one): event times are written in seconds
+    from it (CLI.md, ``monitor.json``), whatever clock the file keeps."""
+    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.empty(0)
+    known = t[np.isfinite(t)]
+    return float(known[0]) if len(known) else 0.0
+
+
+def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
+                lead_in: pd.DataFrame | None = None) -> Streamed:
+    """Stream one campaign from its start through ``_step`` (the body of ``step`` and ``predict``):
+    from a reset, or warmed on ``lead_in``, the campaigns it continues (:func:`~.streaming.warm`).
+
+    The adaptive compensator's events get ``campaign`` (``cid``) added, their ``time`` from the
+    campaign's start (:func:`campaign_start`).  A row the
+    plain streaming compensator refuses (a missing value, an input outside the
+    envelope with ``policy=refuse``) raises :class:`ContractError` naming the
+    campaign, its ``file``, the column and the row (1-based).
+    """
+    X = campaign[deployed.columns_].to_numpy(float)
+    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.full(len(campaign), np.nan)
+    y = np.empty((len(X), len(deployed.targets_)))
+    clamped = np.zeros(len(X), dtype=np.int64)
+    adaptive = isinstance(deployed, AdaptiveCompensator)
+    t0 = campaign_start(campaign)
+    events: list[dict] = []
+    try:
+        warm(deployed, lead_in, campaign)
+    except OutOfEnvelopeError as exc:
+        raise ContractError(f"campaign {cid}: {exc}", file=file) from None
+    step = deployed._step   # returns the clamp count too
+    start = clock.perf_counter()
+    i = 0
+    try:
+        for i in range(len(X)):
+            y[i], clamped[i] = step(X[i], t[i])
+            if adaptive and deployed.last_events_:
+                events += [{"campaign": cid, **e, "time": e["time"] - t0} for e in deployed.last_events_]
+    except OutOfEnvelopeError as exc:
+        deployed.reset()
+        gap = np.flatnonzero(~np.isfinite(X[i]))
+        if len(gap):
+            raise ContractError(f"campaign {cid}: no finite value (sensor dropout?), which the plain "
+                                "streaming compensator refuses (monitor.adaptive=true holds or "
+                                "reconstructs it)", file=file, column=deployed.columns_[gap[0]],
+                                row=i + 1) from None
+        raise ContractError(f"campaign {cid}: {exc}", file=file, row=i + 1) from None
+    seconds = clock.perf_counter() - start
+    excluded = list(deployed.excluded_inputs) if adaptive else []
+    deployed.reset()
+    return Streamed(y, clamped, seconds, events, excluded)
+
+
+def complete_rows(campaign: pd.DataFrame, columns) -> int:
+    """Rows before the campaign's first missing value in ``columns``."""
+    bad = ~np.isfinite(campaign[list(columns)].to_numpy(float)).all(axis=1)
+    return int(np.argmax(bad)) if bad.any() else len(campaign)
+
+
+def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
+                  files: Mapping[str, object] | None = None,
+                  lead_ins: Mapping[str, pd.DataFrame] | None = None, adapt=None) -> dict:
+    """Stream ``campaigns`` through ``deployed`` (see module doc); ``files`` (campaign -> file)
+    only name the file of a refused row.  A campaign with a ``lead_ins`` entry continues the
+    campaigns in it: both streams are warmed on it and the batch prediction is that of the
+    campaign joined to it, as ``run`` scores it (like with like).
+
+    Returns
+    -------
+    dict
+        ``targets`` (per target: ``n_samples``; ``max_abs_stream_minus_batch``, the
+        largest |plain stream − batch| over the complete rows, envelope off;
+        ``rmse``, of the residual the deployed correction leaves (missing
+        measurements skipped); ``rmse_batch``, the batch prediction's over the
+        complete rows; ``us_per_sample``; ``clamped_samples``; ``max_abs_correction``
+        and ``all_finite`` of the deployed stream; ``streamed_range`` [min, max] of it;
+        ``bound``, the guard's [lo, hi] or null), ``excluded_inputs`` (sensors excluded
+        at the end of any campaign, sorted) and ``events`` (every event with its
+        ``campaign``), plus :func:`summary`'s ``adaptive`` and ``pod``, and for the adaptive
+        compensator ``alarms`` (:func:`alarm_rate`).  With ``adapt``
+        (an :class:`~.adapt.Adaptation`; the campaigns in their order, what is learned carried
+        from one to the next) the deployed correction is the adapted one (``rmse``,
+        ``max_abs_correction``, ...) and each target gets ``adapt``: ``rmse_frozen`` (the same
+        stream unadapted), ``method``, ``gain``, ``bias_um`` (at the end), ``n_references``.
+    """
+    stream = plain(deployed)
+    comp = stream.compensator
+    lead_ins = lead_ins or {}
+    measured = comp.measured(campaigns)
+    targets = list(deployed.targets_)
+    diffs, residuals, batch_residuals, outputs, frozen = [], [], [], [], []
+    events, excluded = [], set()
+    clamps, seconds, n, hours = 0, 0.0, 0, 0.0
+    from ...base.progress import bar
+
+    rows = bar(total=sum(len(df) for df in campaigns.values()), desc="replay", unit="row")
+    for cid, df in campaigns.items():
+        m = measured[cid][targets].to_numpy(float)
+        k = complete_rows(df, stream.columns_)
+        if k:
+            head = df.iloc[:k]
+            lead = lead_ins.get(cid)
+            batch = batch_prediction(comp, head, lead)[targets].to_numpy()
+            with stream.envelope_off():   # the same inputs as batch: any difference is the stream's
+                free = stream_rows(stream, head, cid, lead_in=lead).y
+            diffs.append(np.abs(free - batch))
+            batch_residuals.append(m[:k] - batch)
+        run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid))
+        if adapt is not None:
+            frozen.append(m - run.y)
+            adapt.start()
+            run.y = adapt.correct(run.y, df[TIME].to_numpy(float) if TIME in df.columns
+                                  else np.full(len(df), np.nan), m)
+        residuals.append(m - run.y)
+        outputs.append(run.y)
+        events += run.events
+        excluded.update(run.excluded)
+        clamps += int((run.clamped > 0).sum())
+        seconds += run.seconds
+        n += len(df)
+        hours += streamed_hours(df, getattr(deployed, "period_s", 1.0))
+        rows.update(len(df))
+    rows.close()
+    k_targets = len(targets)
+    diff = np.concatenate(diffs) if diffs else np.empty((0, k_targets))
+    resid = np.concatenate(residuals) if residuals else np.empty((0, k_targets))
+    bres = np.concatenate(batch_residuals) if batch_residuals else np.empty((0, k_targets))
+    out = np.concatenate(outputs) if outputs else np.empty((0, k_targets))
+    guard = deployed.guard if isinstance(deployed, AdaptiveCompensator) else None
+    us = 1e6 * seconds / max(n, 1)
+
+    def rms(r):
+        ok = np.isfinite(r)
+        return float(np.sqrt(np.mean(r[ok] ** 2))) if ok.any() else None
+
+    report = {t: {"n_samples": int(n),
+                  "max_abs_stream_minus_batch": float(np.max(diff[:, j])) if len(diff) else 0.0,
+                  RMSE: rms(resid[:, j]),
+                  "us_per_sample": us,
+                  "rmse_batch": rms(bres[:, j]),
+                  "clamped_samples": clamps,
+                  "max_abs_correction": float(np.max(np.abs(out[:, j]))) if n else 0.0,
+                  "all_finite": bool(np.all(np.isfinite(out[:, j]))),
+                  "streamed_range": [float(np.min(out[:, j])), float(np.max(out[:, j]))] if n else None,
+                  "bound": None if guard is None else [float(guard.lo[j]), float(guard.hi[j])]}
+              for j, t in enumerate(targets)}
+    if adapt is not None:
+        fres = np.concatenate(frozen) if frozen else np.empty((0, k_targets))
+        for j, t in enumerate(targets):
+            report[t]["adapt"] = {"rmse_frozen": rms(fres[:, j]), **adapt.figures(j)}
+    result = {"targets": report, "excluded_inputs": sorted(excluded), "events": events,
+              **summary(deployed)}
+    if result["adaptive"]:
+        result["alarms"] = alarm_rate(events, hours)
+    return result

@@ -1,0 +1,116 @@
+"""The scoring server of ``thermocomp serve``: MLflow's, behind request limits.
+
+MLflow's scoring app reads the whole body, parses it and predicts in one worker
+thread that its timeout cannot stop: a 92 MB request of 1,000,000 rows held the
+single worker for a minute past its 504 (and every other session with it), and a
+deeply nested JSON body ended in a RecursionError (HTTP 500).  :class:`RequestLimits`
+refuses such a request before the app sees it, with one line of JSON
+(``{"error_code", "message"}``, as MLflow's errors): 413 for a body over
+``max_body_bytes`` (from its ``Content-Length`` before a byte is read, else as
+soon as the bytes read exceed it), 400 for JSON nested deeper than
+:data:`MAX_DEPTH` (counted on the raw bytes, before any parsing) and 413 for more
+than ``max_rows`` rows.  uvicorn runs :func:`scoring_app` (a factory) with the
+limits in the environment (:data:`ROWS_ENV`, :data:`BODY_ENV`).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+
+import numpy as np
+
+MAX_DEPTH = 32      # a table is nested 4 deep ({"dataframe_split": {"data": [[...]]}})
+ROWS_ENV, BODY_ENV = "THERMOCOMP_SERVE_MAX_ROWS", "THERMOCOMP_SERVE_MAX_BODY_BYTES"
+PARENT_ENV = "THERMOCOMP_SERVE_PARENT"   # `thermocomp serve`'s process: the server ends with it
+_STRING = re.compile(rb'"(?:[^"\\]|\\.)*"', re.S)
+_NOT_BRACKET = bytes(b for b in range(256) if b not in b"[]{}")
+
+
+def json_shape(body: bytes) -> tuple[int, int]:
+    """``(deepest nesting, most arrays and objects opened at one depth)`` of a JSON body, strings
+    skipped, nothing parsed (a parse is what a hostile body costs).  The second is a table's
+    rows in MLflow's row formats: the row arrays of ``dataframe_split``, the records of
+    ``dataframe_records`` and ``instances`` outnumber everything else at their depth."""
+    # a few brackets per row: the depth scan is over them alone
+    brackets = np.frombuffer(_STRING.sub(b"", body).translate(None, _NOT_BRACKET), np.uint8)
+    opens = (brackets == ord("[")) | (brackets == ord("{"))
+    depth = np.cumsum(np.where(opens, 1, -1), dtype=np.int32)
+    at = depth[opens]
+    at = at[at > 0]
+    return int(depth.max(initial=0)), int(np.bincount(at).max()) if len(at) else 0
+
+
+def count_rows(body: bytes, content_type: str) -> tuple[int, int]:
+    """``(nesting depth, rows)`` of a request body (CSV: its lines after the header)."""
+    if "csv" in content_type:
+        return 0, max(body.count(b"\n") - 1 + (not body.endswith(b"\n")), 0)
+    return json_shape(body)
+
+
+class RequestLimits:
+    """ASGI middleware around ``app``: the limits of the module doc on every POST."""
+
+    def __init__(self, app, max_body_bytes: int, max_rows: int):
+        self.app, self.max_body_bytes, self.max_rows = app, int(max_body_bytes), int(max_rows)
+
+    async def __call__(self, scope, receive, send):
+        if scope["type"] != "http" or scope["method"] != "POST":
+            return await self.app(scope, receive, send)
+        headers = dict(scope["headers"])
+        declared = headers.get(b"content-length", b"0")
+        too_big = (f"request body over serve.max_body_mb ({self.max_body_bytes / 2**20:g} MB): "
+                   "send the rows in smaller blocks")
+        if not declared.isdigit() or int(declared) > self.max_body_bytes:
+            return await _refuse(send, 413, too_big)
+        body = bytearray()
+        while True:
+            message = await receive()
+            if message["type"] != "http.request":
+                return None                     # the client went away
+            body += message.get("body", b"")
+            if len(body) > self.max_body_bytes:
+                return await _refuse(send, 413, too_big)
+            if not message.get("more_body", False):
+                break
+        body = bytes(body)
+        depth, rows = count_rows(body, headers.get(b"content-type", b"").decode("latin-1"))
+        if depth > MAX_DEPTH:
+            return await _refuse(send, 400, f"JSON nested more than {MAX_DEPTH} deep: not a table "
+                                            "of sensor readings")
+        if rows > self.max_rows:
+            return await _refuse(send, 413, f"{rows} rows over serve.max_rows ({self.max_rows}): "
+                                            "send the rows in smaller blocks")
+        replayed = False
+
+        async def replay():
+            nonlocal replayed
+            if replayed:
+                return await receive()
+            replayed = True
+            return {"type": "http.request", "body": body, "more_body": False}
+
+        return await self.app(scope, replay, send)
+
+
+async def _refuse(send, status: int, message: str) -> None:
+    content = json.dumps({"error_code": "REQUEST_LIMIT_EXCEEDED" if status == 413
+                          else "MALFORMED_REQUEST", "message": message}).encode()
+    await send({"type": "http.response.start", "status": status,
+                "headers": [(b"content-type", b"application/json"),
+                            (b"content-length", str(len(content)).encode()),
+                            (b"connection", b"close")]})
+    await send({"type": "http.response.body", "body": content})
+
+
+def scoring_app():
+    """MLflow's scoring app for the model its environment names, behind :class:`RequestLimits`."""
+    from mlflow.pyfunc import scoring_server
+
+    from ...base.lifetime import watch_parent
+
+    if os.environ.get(PARENT_ENV):     # a SIGKILLed `thermocomp serve` leaves no server behind
+        watch_parent(int(os.environ[PARENT_ENV]))
+    model = scoring_server.load_model_with_mlflow_config(os.environ[scoring_server._SERVER_MODEL_PATH])
+    return RequestLimits(scoring_server.init(model), int(os.environ[BODY_ENV]), int(os.environ[ROWS_ENV]))

@@ -1,0 +1,436 @@
+"""A fitted compensator as a causal, stateful, sample-by-sample process (pure core).
+
+:class:`StreamingCompensator` wraps a fitted :class:`~thermocomp.core.compensator.Compensator`
+for the machine side.  It sees one sample at a time (or a block of consecutive
+samples, streamed row by row), in time order, and keeps between calls
+everything it needs, in the order :meth:`Compensator.predict` applies it:
+
+1. the state of the **causal denoiser** (``denoiser_``, streamed on the raw
+   declared inputs, as the Compensator denoises before referencing);
+2. the **reference frame**: the first sample after :meth:`~StreamingCompensator.reset`
+   is the campaign's first sample; later ``T_`` inputs are taken relative to it
+   (``data.reference=first_sample``), as the machinist zeroes the error when
+   setting up a workpiece; its ambient reading is ``ambient_c0`` (ATI models);
+3. the **training envelope** check (clamp / refuse / off);
+4. the state of every **model**, through the one streaming protocol of
+   :mod:`thermocomp.core.context` (``stream_init(context)``, ``stream_step(x_row,
+   state, context)``): ARX uses its own past predictions, never a measured
+   error; wrappers forward it to the models they hold.
+
+The per-sample context is built by :func:`thermocomp.core.frame.context_record`,
+the rule :func:`thermocomp.core.frame.stack` applies to a whole batch; the columns
+it carries are what the fitted estimators declare in ``context_columns_``.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Mapping
+from contextlib import contextmanager
+from dataclasses import dataclass
+
+import numpy as np
+import pandas as pd
+
+from ...core.compensator import Compensator
+from ...core.context import AMBIENT_C0, RESERVED, TIME, context_columns, merge_columns
+from ...core.continuation import campaign_period
+from ...core.frame import ambient_c0, context_record
+from ...core.io.contract import is_ambient, manifest_ambient
+from ...core.metrics import split_scores
+
+POLICIES = ("clamp", "refuse", "off")
+STREAM_ID = "stream"
+
+
+class OutOfEnvelopeError(ValueError):
+    """An input left the training envelope under ``policy='refuse'``, or is missing."""
+
+
+class MissingValueError(OutOfEnvelopeError):
+    """An input has no finite value (a sensor dropout): the row is refused, the state untouched."""
+
+
+def has_stream_protocol(obj) -> bool:
+    """True when ``obj`` implements ``stream_init``/``stream_step``."""
+    return callable(getattr(obj, "stream_init", None)) and callable(getattr(obj, "stream_step", None))
+
+
+@dataclass(frozen=True)
+class Envelope:
+    """Per-input bounds ``[lo, hi]`` of the training data, in the frame the model sees.
+
+    Built by :meth:`from_data` from the training matrix widened by ``margin`` ×
+    range on each side (a constant column by ``margin`` × max(|value|, 1)).
+    """
+
+    columns: tuple[str, ...]
+    lo: np.ndarray
+    hi: np.ndarray
+    margin: float = 0.0
+
+    @classmethod
+    def from_data(cls, X: pd.DataFrame, margin: float = 0.1) -> "Envelope":
+        if margin < 0:
+            raise ValueError(f"envelope margin must be >= 0, got {margin}")
+        lo, hi = X.min().to_numpy(float), X.max().to_numpy(float)
+        width = np.where(hi > lo, hi - lo, np.maximum(np.abs(hi), 1.0))
+        return cls(tuple(X.columns), lo - margin * width, hi + margin * width, margin)
+
+    def outside(self, X: np.ndarray) -> np.ndarray:
+        """Boolean mask of values outside the bounds (same shape as ``X``)."""
+        return (X < self.lo) | (X > self.hi)
+
+
+class StreamingCompensator:
+    """Causal, stateful compensator for streaming use on the machine.
+
+    Parameters
+    ----------
+    compensator : fitted Compensator
+    envelope : Envelope, optional
+        Bounds of the declared inputs (order of ``compensator.inputs_``) in the
+        model's frame; ``None`` disables the check.  See :meth:`from_training`.
+    policy : {'clamp', 'refuse', 'off'}
+        An input outside the envelope is clamped to the bound (and counted in
+        ``n_clamped``), refused with :class:`OutOfEnvelopeError`, or passed as is.
+    ambient_columns : list of str, optional
+        Absolute ambient sensors whose first-sample mean is ``ambient_c0``
+        (default: the ``T_amb*`` declared inputs).  With none, a model that needs
+        ``ambient_c0`` (ATI) takes the campaign's ambient given to :meth:`reset`
+        (``ambient_given_``), as the batch takes the manifest's ``ambient_c``.
+
+    Attributes
+    ----------
+    columns_ : list of str
+        Columns every call needs (the pyfunc signature): declared inputs, extra
+        ambient sensors, raw columns the models read from their context; plus
+        ``time`` when ``time_required_``.
+    targets_ : list of str
+    n_samples_ : int
+        Samples streamed since the last reset.
+
+    lab_names_ : dict
+        ``{contract name: the lab's name}`` of the columns (``data.columns``): the served
+        model reads either (:mod:`thermocomp.apps.deploy.naming`); set by the stage that deploys.
+    end_states_ : dict
+        ``{campaign: EndState}`` of the record it was deployed on (:func:`end_states`), from
+        which a served stream may continue; set by ``promote``.
+    adapt_ : Adaptation or None
+        How the served model learns from reference measurements (:mod:`.adapt`, ``adapt.*``);
+        set by the stage that deploys.
+
+    Notes
+    -----
+    Each call continues the stream; :meth:`reset` starts a new campaign and the
+    next sample becomes its reference.  Prediction is always in simulation
+    mode: no measured error ever enters.  :meth:`predict` is the loop of
+    :meth:`step` over the block's rows.
+    """
+
+    lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
+    end_states_: dict = {}
+    ambient_given_ = False
+    adapt_ = None
+
+    def __init__(self, compensator: Compensator, envelope: Envelope | None = None,
+                 policy: str = "clamp", ambient_columns=None):
+        if not hasattr(compensator, "estimators_"):
+            raise ValueError("the compensator is not fitted; fit it before deploying")
+        if policy not in POLICIES:
+            raise ValueError(f"envelope policy must be one of {POLICIES}, got {policy!r}")
+        self.compensator, self.envelope, self.policy = compensator, envelope, policy
+        inputs = list(compensator.inputs_)
+        if envelope is not None and list(envelope.columns) != inputs:
+            raise ValueError(f"envelope columns {list(envelope.columns)} != model inputs {inputs}")
+        ests = compensator.estimators_
+        missing = [t for t, e in ests.items() if not has_stream_protocol(e)]
+        if missing:
+            raise ValueError(f"the estimator of {missing} has no streaming mode "
+                             "(stream_init/stream_step): it cannot run on a machine")
+        self.targets_ = list(compensator.targets_)
+        needs = merge_columns(*(context_columns(e) for e in ests.values()))
+        self.time_required_ = TIME in needs
+        self.ambient_columns = (list(ambient_columns) if ambient_columns is not None
+                                else [c for c in inputs if is_ambient(c)])
+        # no ambient sensor: the campaign's ambient is given at reset (its manifest ambient_c)
+        self.ambient_given_ = AMBIENT_C0 in needs and not self.ambient_columns
+        raw = [c for c in needs if c not in RESERVED]
+        extra = [c for c in self.ambient_columns if c not in inputs]
+        self.columns_ = inputs + extra + [c for c in raw if c not in inputs and c not in extra]
+        # raw context columns, as positions in the row vector (declared inputs: denoised value)
+        self._raw = [(c, self.columns_.index(c)) for c in raw]
+        self._n_inputs, self._n_checked = len(inputs), len(inputs) + len(extra)
+        self._amb_idx = [self.columns_.index(c) for c in self.ambient_columns]
+        referenced = compensator.reference == "first_sample"
+        self._is_ref = np.array([referenced and c.startswith("T_") for c in inputs])
+        idx = {t: [inputs.index(c) for c in compensator.selected_[t]] for t in self.targets_}
+        # per target: estimator, input positions (None: all inputs in order)
+        self._plan = [(t, ests[t], None if idx[t] == list(range(len(inputs))) else np.asarray(idx[t]))
+                      for t in self.targets_]
+        self.denoiser = getattr(compensator, "denoiser_", None)
+        if self.denoiser is not None:
+            if not has_stream_protocol(self.denoiser):
+                raise ValueError(f"denoiser {type(self.denoiser).__name__} has no causal streaming "
+                                 "mode (stream_init/stream_step): it cannot run on a machine")
+            if not getattr(self.denoiser, "online", True):
+                raise ValueError("the model was fitted and scored with offline denoising "
+                                 "(online=false), which needs future samples; refit with the "
+                                 "causal (online) denoiser to deploy it")
+            names = list(getattr(self.denoiser, "feature_names_in_", inputs))
+            if names != inputs:
+                raise ValueError(f"the denoiser was fitted on {names}, the model's inputs are {inputs}")
+        self.reset()
+
+    @classmethod
+    def from_training(cls, compensator: Compensator, campaigns: Mapping[str, pd.DataFrame],
+                      margin: float = 0.1, policy: str = "clamp") -> "StreamingCompensator":
+        """Envelope from the training campaigns, in the frame the model sees.
+
+        Ambient sensors that are not declared inputs are added to the input
+        columns when a model needs the initial ambient temperature (ATI).
+        """
+        m = compensator.stacked(campaigns, targets=[])
+        ambient = None
+        if AMBIENT_C0 in merge_columns(*(context_columns(e) for e in compensator.estimators_.values())):
+            cols = dict.fromkeys(c for df in campaigns.values() for c in df.columns)
+            ambient = [c for c in cols if is_ambient(c)]
+        return cls(compensator, Envelope.from_data(m.X, margin), policy, ambient)
+
+    # -- state ------------------------------------------------------------------------------
+
+    def reset(self, ambient_c: float = float("nan")) -> None:
+        """Start a new campaign: the next sample is the reference, every memory is cleared.
+        ``ambient_c``: the campaign's ambient (°C) where no ambient sensor is read (its
+        manifest ``ambient_c``); the sensors' first sample otherwise."""
+        self._ref = None
+        self._ambient_c0 = float(ambient_c)
+        self._states: dict = {}
+        self._den_state = None
+        self.n_samples_ = 0
+
+    @contextmanager
+    def envelope_off(self):
+        """Within the block the envelope is off (the inputs reach the models as batch gets them);
+        the policy is restored after, whatever happens."""
+        saved, self.policy = self.policy, "off"
+        try:
+            yield self
+        finally:
+            self.policy = saved
+
+    def _snapshot(self) -> tuple:
+        return (self._ref, self._ambient_c0, copy.deepcopy(self._states),
+                copy.deepcopy(self._den_state), self.n_samples_)
+
+    def _restore(self, snap: tuple) -> None:
+        self._ref, self._ambient_c0, self._states, self._den_state, self.n_samples_ = snap
+
+    # -- prediction -------------------------------------------------------------------------
+
+    def predict(self, frame: pd.DataFrame) -> pd.DataFrame:
+        """Predicted error (µm, one column per target) for consecutive samples of the stream,
+        and ``n_clamped`` (inputs of the row clamped to the envelope).
+
+        The rows go through :meth:`step` one by one; the state advances only
+        when the whole block is accepted.
+        """
+        need = self.columns_ + ([TIME] if self.time_required_ else [])
+        missing = [c for c in need if c not in frame.columns]
+        if missing:
+            raise OutOfEnvelopeError(f"input lacks column(s) {missing} (need {need})")
+        X = np.column_stack([frame[c].to_numpy(dtype=float) for c in self.columns_]) \
+            if self.columns_ else np.empty((len(frame), 0))
+        time = frame[TIME].to_numpy(float) if TIME in frame.columns else np.full(len(frame), np.nan)
+        y = np.empty((len(X), len(self.targets_)))
+        clamps = np.zeros(len(X), dtype=np.int64)
+        snap = self._snapshot()
+        try:
+            for i in range(len(X)):
+                y[i], clamps[i] = self._step(X[i], time[i])
+        except Exception:
+            self._restore(snap)
+            raise
+        out = pd.DataFrame(y, columns=self.targets_)
+        out["n_clamped"] = clamps
+        return out
+
+    def step(self, x_row, time: float = float("nan")) -> np.ndarray:
+        """One sample (values in the order of ``columns_``) -> predicted error per target.
+
+        The low-latency path for a CNC loop: no DataFrame, one array in, one out.
+        """
+        return self._step(np.asarray(x_row, dtype=float), time)[0]
+
+    def _step(self, x: np.ndarray, time: float) -> tuple[np.ndarray, int]:
+        checked = x[:self._n_checked]
+        if not np.isfinite(checked.sum()):          # one reduction instead of a mask
+            j = int(np.flatnonzero(~np.isfinite(checked))[0])
+            raise MissingValueError(f"input {self.columns_[j]} has no finite value at row "
+                                     f"{self.n_samples_} (sensor dropout?)")
+        first = self._ref is None
+        seen = x
+        if self.denoiser is not None:
+            den, self._den_state = self.denoiser.stream_step(
+                x[:self._n_inputs], self.denoiser.stream_init() if first else self._den_state)
+            seen = x.copy()
+            seen[:self._n_inputs] = den
+        if first:
+            self._ref = np.where(self._is_ref, seen[:self._n_inputs], 0.0)
+            if self._amb_idx:
+                self._ambient_c0 = ambient_c0(seen[self._amb_idx])
+            elif self.ambient_given_ and not np.isfinite(self._ambient_c0):
+                raise OutOfEnvelopeError(
+                    "the model needs the campaign's initial ambient temperature and reads no "
+                    "T_amb / T_amb_* sensor: give the campaign's ambient_c (the manifest column; "
+                    "served: params ambient_c)")
+            start = context_record(STREAM_ID, time, self._ambient_c0, {})
+            self._states = {t: est.stream_init(start) for t, est, _ in self._plan}
+        dx = seen[:self._n_inputs] - self._ref
+        n_clamped = 0
+        env = self.envelope
+        if env is not None and self.policy != "off":
+            out = (dx < env.lo) | (dx > env.hi)
+            if out.any():
+                if self.policy == "refuse":
+                    j = int(np.flatnonzero(out)[0])
+                    frame = " (change since the first sample)" if self._is_ref[j] else ""
+                    raise OutOfEnvelopeError(
+                        f"input {self.columns_[j]} = {dx[j]:.4g}{frame} at row {self.n_samples_} is "
+                        f"outside the training envelope [{env.lo[j]:.4g}, {env.hi[j]:.4g}]; "
+                        "refused (policy=refuse)")
+                dx = np.minimum(np.maximum(dx, env.lo), env.hi)
+                n_clamped = int(out.sum())
+        context = context_record(STREAM_ID, time, self._ambient_c0,
+                                 {c: seen[j] for c, j in self._raw})
+        y = np.empty(len(self._plan))
+        states = self._states
+        for k, (t, est, idx) in enumerate(self._plan):
+            y[k], states[t] = est.stream_step(dx if idx is None else dx[idx], states[t], context)
+        self.n_samples_ += 1
+        return y, n_clamped
+
+
+def warm(deployed, lead_in: pd.DataFrame | None = None, campaign: pd.DataFrame | None = None
+         ) -> None:
+    """Start a campaign: reset, then stream ``lead_in`` (the rows of the campaigns it continues,
+    :func:`thermocomp.core.continuation.lead_in`; predictions discarded), so that the campaign starts
+    from the state its predecessor left, as ``run`` predicts it joined to them.  ``deployed``:
+    a :class:`StreamingCompensator` or an adaptive compensator around one.  The ambient of a
+    model without an ambient sensor is the manifest's ``ambient_c`` of the chain's first
+    campaign (``lead_in``'s, else ``campaign``'s), as ``run`` reads the joined campaign.
+
+    A lead-in row with a missing value (a continued test campaign read as recorded) is passed
+    over with the state held, as the stream holds it where that campaign itself is streamed
+    (``monitor``; the adaptive compensator reconstructs or holds it on its own); any other
+    refusal (``policy=refuse``) raises naming the row."""
+    start = lead_in if lead_in is not None and len(lead_in) else campaign
+    deployed.reset(float("nan") if start is None else manifest_ambient(start))
+    if lead_in is None or not len(lead_in):
+        return
+    X = lead_in[deployed.columns_].to_numpy(float)
+    t = lead_in[TIME].to_numpy(float) if TIME in lead_in.columns else np.full(len(X), np.nan)
+    for i in range(len(X)):
+        try:
+            deployed._step(X[i], t[i])
+        except MissingValueError:
+            continue
+        except ValueError as exc:
+            deployed.reset()
+            raise OutOfEnvelopeError(f"warming the stream on the campaign(s) it continues, row "
+                                     f"{i + 1} of {len(X)}: {exc}") from None
+
+
+def batch_prediction(compensator: Compensator, campaign: pd.DataFrame,
+                     lead_in: pd.DataFrame | None = None) -> pd.DataFrame:
+    """:meth:`Compensator.predict` (simulation) of ``campaign`` joined to its ``lead_in``, sliced
+    to its own rows: what ``run`` scores, and what a warmed stream must equal."""
+    joined = campaign if lead_in is None else pd.concat([lead_in, campaign], ignore_index=True)
+    if lead_in is not None:          # the chain's start: its manifest ambient_c, as run joins it
+        joined.attrs = dict(lead_in.attrs)
+    predicted = compensator.predict({STREAM_ID: joined})[STREAM_ID]
+    return predicted.iloc[len(joined) - len(campaign):].reset_index(drop=True)
+
+
+@dataclass(frozen=True)
+class EndState:
+    """Where a campaign left a deployed stream: the state after its last sample, that sample's
+    ``time`` and the campaign's sample period (the next sample follows one period later)."""
+
+    state: tuple
+    time: float
+    period: float
+
+
+def end_states(deployed, campaigns: Mapping[str, pd.DataFrame],
+               lead_ins: Mapping[str, pd.DataFrame] | None = None) -> dict[str, EndState]:
+    """``{campaign: EndState}``: each campaign streamed to its end (warmed on its ``lead_ins``
+    entry), so that a served stream may start where it left off (``continues``).  Empty
+    unless the model reads absolute temperatures (``data.reference=none``): in the
+    first-sample frame every campaign starts from its own reference."""
+    if deployed.compensator.reference != "none":
+        return {}
+    lead_ins = lead_ins or {}
+    out = {}
+    for cid, df in campaigns.items():
+        if len(df) < 2 or TIME not in df.columns:
+            continue
+        lead = lead_ins.get(cid)
+        whole = df if lead is None else pd.concat([lead, df], ignore_index=True)
+        if lead is not None:
+            whole.attrs = dict(lead.attrs)
+        warm(deployed, whole)
+        out[cid] = EndState(deployed._snapshot(), float(df[TIME].iloc[-1]), campaign_period(df))
+    deployed.reset()
+    return out
+
+
+def replay(streaming: StreamingCompensator, campaign: pd.DataFrame, chunk: int | None = None,
+           lead_in: pd.DataFrame | None = None) -> pd.DataFrame:
+    """Stream one whole campaign from its start (:func:`warm`), in blocks of ``chunk`` samples
+    (all at once if None)."""
+    warm(streaming, lead_in, campaign)
+    step = chunk or max(len(campaign), 1)
+    parts = [streaming.predict(campaign.iloc[i:i + step]) for i in range(0, len(campaign), step)]
+    return pd.concat(parts, ignore_index=True)
+
+
+def streaming_deviation(streaming: StreamingCompensator, campaign: pd.DataFrame,
+                        chunk: int = 7, lead_in: pd.DataFrame | None = None) -> float:
+    """Largest |streamed - batch| prediction (µm) over one campaign.
+
+    Batch is :func:`batch_prediction` (the campaign joined to its ``lead_in``, as ``run``
+    scores it); the stream is warmed on the same ``lead_in`` and fed the campaign in blocks
+    of ``chunk`` samples, envelope off.  A model with memory that lacks the streaming
+    protocol, or breaks causality, shows up here; so does a stream that restarts where
+    ``run`` carries the state over.
+    """
+    try:
+        with streaming.envelope_off():
+            streamed = replay(streaming, campaign, chunk, lead_in)
+    finally:
+        streaming.reset()
+    batch = batch_prediction(streaming.compensator, campaign, lead_in)
+    diff = streamed[streaming.targets_].to_numpy() - batch[streaming.targets_].to_numpy()
+    return float(np.max(np.abs(diff))) if diff.size else 0.0
+
+
+def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame],
+                  sample_period_s: float, statistic: str = "range", points: int | None = 200,
+                  lead_ins: Mapping[str, pd.DataFrame] | None = None) -> dict:
+    """Test figures of the *deployed* predictions, in the layout of ``metrics.json``.
+
+    Each campaign is streamed from its start, as on the machine: from a reset, or warmed on
+    its ``lead_ins`` entry (the campaigns it continues); returns ``{target: {"test": {...}}}``
+    (see :func:`thermocomp.core.metrics.split_scores`).
+    """
+    lead_ins = lead_ins or {}
+    measured = streaming.compensator.measured(campaigns)
+    predicted = {c: replay(streaming, df, lead_in=lead_ins.get(c)) for c, df in campaigns.items()}
+    streaming.reset()
+    out = {}
+    for t in streaming.targets_:
+        y = {c: measured[c][t].to_numpy() for c in campaigns}
+        r = {c: y[c] - predicted[c][t].to_numpy() for c in campaigns}
+        out[t] = {"test": split_scores(y, r, sample_period_s, statistic, points)}
+    return out

@@ -1,0 +1,215 @@
+r"""The diagnosed model: any estimator plus the features of the accepted effects."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+from sklearn.base import BaseEstimator, RegressorMixin, clone
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from ...base.errors import ContractError, ParameterError
+from ...core.context import AMBIENT_C0, TIME, SideInputs, context_columns, groups_of, merge_columns, scalar
+from ...core.models.linear import MLR
+from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
+from .shrink import PartialRidgePath
+
+MODEL_NAME = "diagnosed"   # the model diagnose writes (conf/model/diagnosed.yaml, "<family>+diagnosed")
+
+
+class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
+    r"""A model family with extra regressors from diagnosed effects.
+
+    .. math:: \hat y(t) = f\big(x(t),\ \phi_1(t), \dots, \phi_m(t)\big)
+
+    where :math:`f` is ``estimator`` (any family: MLR, PCR, ARX, ARX+RF, an ATI
+    model ...) and :math:`\phi_j` are the features of the accepted effects
+    (:func:`thermocomp.apps.diagnose.features.effect_features`: lags of an undeclared
+    signal, low-pass copies of the inputs, ambient interactions, products,
+    squares), built per row from the inputs and the ``context`` (:mod:`thermocomp.core.context`).
+    The estimator sees them as extra inputs, so it fits them its own way (OLS,
+    principal components, greedy ARX selection ...).  With ``alpha`` and an
+    :class:`~thermocomp.core.models.MLR` base the effect coefficients are shrunk
+    instead (ridge on the standardised :math:`\phi_j`, the inputs unpenalised,
+    :mod:`thermocomp.apps.diagnose.shrink`): many correlated extra regressors fitted
+    on one long record otherwise extrapolate badly.  ``sensor_fault`` effects
+    build nothing: the faulty sensor is left out of ``data.inputs`` instead.
+
+    Parameters
+    ----------
+    estimator : regressor, default MLR()
+        The base model, cloned in ``fit``.
+    effects : list of effect dicts, or dict target -> list
+        :class:`~thermocomp.apps.diagnose.features.Effect` fields (``kind``,
+        ``transform``, ``column``, ``other``, ``tau_s``, ``threshold_c``).  A
+        dict gives each target its own effects: :meth:`for_target` picks them
+        (the Compensator calls it per target); a target missing from it gets none.
+    reference : {'first_sample', 'none'}
+        Frame of the context columns (``data.reference``).
+    alpha : float >= 0, dict target -> float, or None
+        Ridge penalty on the standardised effect features when the base is an
+        MLR (chosen by ``diagnose``'s cross-validation); ``None`` or 0: the
+        base estimator fits them as plain inputs.  Other bases ignore it (they
+        fit their own way: PCR truncates, ARX selects, lagbank has its ridge).
+
+    Attributes
+    ----------
+    estimator_ : fitted base estimator
+    effects_ : list of Effect used for this target
+    required_context_ : list of str
+        Raw context columns (``S_``/``T_``) the effects need at prediction time.
+    context_columns_ : list of str
+        Everything read from the context at prediction time (the effects' and
+        the base estimator's).
+    initial_weights_ : list of (ndarray or None)
+        Per effect, the initial-state directions learned from the training
+        campaigns (effects with ``initial_directions``).
+    n_features_in_ : int
+    """
+
+    def __init__(self, estimator=None, effects=(), reference: str = "first_sample", alpha=None):
+        self.estimator = estimator
+        self.effects = effects
+        self.reference = reference
+        self.alpha = alpha
+
+    def for_target(self, target: str) -> "AugmentedRegressor":
+        """An unfitted copy with the effects of ``target`` (per-target dict) as a list."""
+        effects = self.effects if self.effects is not None else ()
+        if isinstance(effects, Mapping):
+            effects = effects.get(target, ())
+        alpha = self.alpha.get(target) if isinstance(self.alpha, Mapping) else self.alpha
+        return clone(self).set_params(effects=[dict(e) if isinstance(e, Mapping) else e
+                                               for e in effects], alpha=alpha)
+
+    def _effects(self) -> list[Effect]:
+        effects = self.effects if self.effects is not None else ()
+        if isinstance(effects, Mapping):
+            raise ParameterError("AugmentedRegressor effects are given per target: fit the copy "
+                                 "for_target(target) returns (the Compensator does)")
+        return [e for e in (as_effect(e) for e in effects) if e.transform != "remove"]
+
+    def _design(self, X, context) -> np.ndarray:
+        if context is not None and len(context) != X.shape[0]:
+            raise ValueError(f"context has {len(context)} rows, X has {X.shape[0]}")
+        return design(X, self.effects_, context, groups_of(context), self.reference,
+                      self.initial_weights_)
+
+    def fit(self, X, y, context=None):
+        if self.reference not in ("first_sample", "none"):
+            raise ParameterError(f"AugmentedRegressor reference={self.reference!r} is not "
+                                 "first_sample or none")
+        alpha = self._alpha()
+        X, y = validate_data(self, X, y, y_numeric=True)
+        self.effects_ = self._effects()
+        self.required_context_ = list(dict.fromkeys(c for e in self.effects_ for c in e.context_columns))
+        g = groups_of(context)
+        self.initial_weights_ = [
+            initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
+            for e in self.effects_]
+        Z = self._design(X, context)
+        base = self.estimator if self.estimator is not None else MLR()
+        self.estimator_ = clone(base).fit(Z, y, context=context)
+        if alpha and isinstance(self.estimator_, MLR) and Z.shape[1] > X.shape[1]:
+            # the same law, its effect coefficients shrunk (streams as any MLR does)
+            path = PartialRidgePath(Z, y, X.shape[1], self.estimator_.fit_intercept)
+            self.estimator_.coef_, self.estimator_.intercept_ = path.coefficients(alpha)
+        self.context_columns_ = merge_columns([TIME, AMBIENT_C0] if self.effects_ else [],
+                                              self.required_context_,
+                                              context_columns(self.estimator_))
+        return self
+
+    def _alpha(self) -> float:
+        if isinstance(self.alpha, Mapping):
+            raise ParameterError("AugmentedRegressor alpha is given per target: fit the copy "
+                                 "for_target(target) returns (the Compensator does)")
+        alpha = 0.0 if self.alpha is None else float(self.alpha)
+        if not alpha >= 0:
+            raise ParameterError(f"AugmentedRegressor alpha={self.alpha!r} must be >= 0")
+        return alpha
+
+    def predict(self, X, context=None):
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False)
+        return self.estimator_.predict(self._design(X, context), context=context)
+
+    # -- streaming (deployment) -------------------------------------------------------------
+    def stream_init(self, context: Mapping | None = None) -> dict:
+        """State before a campaign's first sample; ``context`` may hold ``ambient_c0``."""
+        check_is_fitted(self)
+        return {"first": {}, "last": {}, "lag": {}, "t": None,
+                "ambient_c0": scalar(context, AMBIENT_C0),
+                "base": self.estimator_.stream_init(context)}
+
+    def _raw(self, column, context, state, reference: str | None = None) -> float:
+        if context is None or column not in context:
+            raise ContractError("the diagnosed model's stream_step needs this column in its context "
+                                "(raw value of the sample)", column=column)
+        value = float(context[column])
+        if np.isnan(value):   # hold the last valid value, as the batch frame does
+            value = state["last"].get(column, np.nan)
+        if not np.isnan(value):
+            state["last"][column] = value
+            state["first"].setdefault(column, value)
+        if np.isnan(value):
+            return 0.0
+        reference = self.reference if reference is None else reference
+        return value - state["first"][column] if reference == "first_sample" else value
+
+    def _lag(self, key, u: np.ndarray, tau: float, dt: float | None, state) -> np.ndarray:
+        prev = state["lag"].get(key)
+        z = u if prev is None or dt is None else np.exp(-dt / tau) * prev + (1 - np.exp(-dt / tau)) * u
+        state["lag"][key] = z
+        return z
+
+    def _initial_state(self, i: int, e: Effect, context, a0: float, t: float, state) -> np.ndarray:
+        key = ("initial", i)
+        if key not in state["first"]:   # absolute values at the first sample that has them
+            raw = np.array([float((context or {}).get(c, np.nan)) for c in e.initial_state])
+            if np.isnan(raw).all():
+                w = self.initial_weights_[i]
+                return np.zeros(len(w) if w is not None else len(raw))
+            ref = a0 if np.isfinite(a0) else float(np.nanmean(raw))
+            offsets = np.nan_to_num(raw - ref)
+            if self.initial_weights_[i] is not None:
+                offsets = self.initial_weights_[i] @ offsets
+            state["first"][key] = offsets
+        return state["first"][key] * (1.0 - np.exp(-(t - state["t0"]) / e.tau_s))
+
+    def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
+        """One sample of simulation-mode ``predict``.
+
+        ``context`` maps ``time`` (s), ``ambient_c0`` (°C, if the effects use it)
+        and every column of ``required_context_`` to this sample's raw value.
+        """
+        x = np.asarray(x_row, dtype=float).ravel()
+        t = scalar(context, TIME)
+        state.setdefault("t0", t)
+        dt = None if state["t"] is None or np.isnan(t) else t - state["t"]
+        state["t"] = t if not np.isnan(t) else state["t"]
+        a0 = scalar(context, AMBIENT_C0, state["ambient_c0"])
+        parts = [x]
+        for i, e in enumerate(self.effects_):
+            tr = e.transform
+            own, other = frames(e, self.reference)
+            if tr in ("raw", "first_order_lag", "square"):
+                c = np.array([self._raw(e.column, context, state, own)])
+                if tr == "first_order_lag":
+                    c = self._lag(i, c, e.tau_s, dt, state)
+                parts.append(c**2 if tr == "square" else c)
+                if tr == "first_order_lag" and e.initial_state:
+                    parts.append(self._initial_state(i, e, context, a0, t, state))
+            elif tr == "product":
+                parts.append(np.array([self._raw(e.column, context, state, own)
+                                       * self._raw(e.other, context, state, other)]))
+            elif tr == "lowpass_inputs":
+                parts.append(self._lag(i, x, e.tau_s, dt, state))
+                if e.initial_state:
+                    parts.append(self._initial_state(i, e, context, a0, t, state))
+            elif tr == "ambient_linear":
+                parts.append(x * (a0 - AMBIENT_CENTRE_C))
+            elif tr == "ambient_step":
+                parts.append(x * float(a0 > e.threshold_c))
+        z = np.concatenate(parts)
+        y, state["base"] = self.estimator_.stream_step(z, state["base"], context)
+        return float(y), state

@@ -1,0 +1,328 @@
+"""``diagnose``: the whole closed loop on a dataset, and its result in the layout of ``diagnosis.json``."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+from sklearn.base import clone
+from threadpoolctl import threadpool_limits
+
+from ...base.jsonsafe import json_safe
+from ...base.log import logger
+from ...core.compensator import Compensator
+from ...core.denoise import denoise_campaigns
+from ...core.frame import stack
+from ...core.io.contract import ContractError, Dataset
+from ...core.metrics import P2P_AFTER, split_scores
+from ...core.model_selection import ForwardChaining, LeaveCampaignsOut, cv_scheme, forward_gap, unit_labels
+from ...core.scoring.evaluation import require_split, sample_period, split_residuals
+from ...core.scoring.results import TEST_RMSE, TEST_RSD_MEAN, TEST_RSD_SD, Scores, TargetResult
+from .augmented import AugmentedRegressor
+from .blocks import decorrelation_length
+from .candidates import CONTROL, random_walk
+from .cv import Problem, smallest_p, units_needed
+from .features import Effect
+from .search import Search, SearchOptions, SearchResult, sensor_health
+from .sensors import self_prediction
+
+
+def augment(template: Compensator, effects: Mapping[str, list], excluded=(),
+            inputs=None, alphas: Mapping[str, float | None] | None = None) -> Compensator:
+    """An unfitted copy of ``template`` whose estimator adds ``effects`` (per target).
+
+    ``excluded`` sensors (accepted ``sensor_fault``) leave the declared inputs:
+    ``inputs`` (the resolved input columns, default ``template.inputs_``)
+    without them become the explicit input list.  ``alphas``: per target, the
+    penalty on the effect features (MLR base, chosen by the CV).
+    """
+    base_inputs = list(inputs) if inputs is not None else list(getattr(template, "inputs_", []))
+    kept = [c for c in base_inputs if c not in set(excluded)] if excluded else template.inputs
+    est = AugmentedRegressor(template.estimator,
+                             {t: [Effect.to_dict(e) if isinstance(e, Effect) else dict(e) for e in es]
+                              for t, es in effects.items()},
+                             template.reference,
+                             {t: a for t, a in (alphas or {}).items() if a} or None)
+    return clone(template).set_params(estimator=est, inputs=kept)
+
+
+@dataclass
+class TargetDiagnosis:
+    """Everything found for one target."""
+
+    target: str
+    search: SearchResult
+    original_cv_rmse: float
+    final_cv_rmse: float
+    before: dict             # test-split scores of the original model (metrics.json layout)
+    after: dict              # ... of the diagnosed model
+
+    @property
+    def accepted(self):
+        return self.search.accepted
+
+
+@dataclass
+class Diagnosis:
+    """Result of :func:`diagnose`: per target, plus the fitted models before and after."""
+
+    model: str
+    dataset: str
+    mode: str
+    targets: dict                      # target -> TargetDiagnosis
+    excluded: list
+    before_model: Compensator
+    after_model: Compensator
+    predictions: dict                  # "before"/"after" -> {campaign: (measured, predicted)}
+    options: SearchOptions
+    cv: dict
+    seconds: float = 0.0
+    test_sensors: list = field(default_factory=list)   # broken in the test split: said, not acted on
+
+    @property
+    def primary(self) -> str:
+        """The target with the largest CV RMSE before (the one the machine suffers most from)."""
+        return max(self.targets, key=lambda t: self.targets[t].original_cv_rmse)
+
+    def effects(self) -> dict[str, list[Effect]]:
+        return {t: d.search.effects for t, d in self.targets.items()}
+
+    def to_json(self, target: str | None = None) -> dict:
+        """``diagnosis.json`` of one target (CLI.md keys first, then the extras)."""
+        t = target or self.primary
+        d = self.targets[t]
+        s = d.search
+        last = s.rounds[-1] if s.rounds else None
+        # the random-walk control is no effect (CLI.md: a `signal` is a column the model did not
+        # use): it is reported apart, under `control`
+        rejected = [ev for ev in (last.evaluated if last else []) if not ev.accepted and not ev.control]
+        effects = [ev.entry() | {"step": i + 1} for i, ev in enumerate(s.accepted)]
+        effects += [ev.entry() for ev in rejected]
+        control = last.control.entry() if last and last.control else None
+        te_b, te_a = TargetResult(d.before).test, TargetResult(d.after).test
+        return json_safe({
+            "target": t,
+            "model": self.model,
+            "before": _summary(te_b, d.original_cv_rmse),
+            "effects": effects,
+            "after": _summary(te_a, d.final_cv_rmse),
+            "dataset": self.dataset,
+            "mode": self.mode,
+            "test_rmse_after_pct_of_before": (100.0 * te_a.rmse / te_b.rmse
+                                              if te_b.rmse > 0 else None),
+            "steps": [{"step": 0, "effect": None, "cv_rmse": d.original_cv_rmse}]
+                     + [dict(step=i + 1, **st) for i, st in enumerate(s.steps)],
+            "excluded_inputs": list(self.excluded),
+            "control": control,
+            "control_ever_clears_bar": any(r.control is not None and r.control.clears_bar
+                                           for r in s.rounds),
+            "bar": {"min_gain_pct": self.options.min_gain_pct, "alpha": self.options.alpha,
+                    "test": "one-sided sign flip of the test blocks' CV MSE gains (signed ranks "
+                            "of blocks finer than the CV units, else shares of each unit's MSE), "
+                            "family-wise over the round (step-down max-T); a gain where no fold "
+                            "extrapolates and, with ranks, a positive 95 % lower bound of the gain",
+                    "min_p": self.cv["min_p"],
+                    "max_effects": self.options.max_effects},
+            "cv": self.cv,
+            "test_e_p95": {"statistic": te_b.e_p95["statistic"],
+                           "window_s": te_b.e_p95["window_s"],
+                           "measured": te_b.e_p95["before"],
+                           "before": te_b.e_p95["after"],
+                           "after": te_a.e_p95["after"]},
+            "self_prediction": [
+                {"sensor": name, "cv_rmse_c": float(r["cv_rmse"]), "worst_unit": r["worst_unit"],
+                 "worst_unit_split": "test" if r["worst_unit"] in self.cv["test_campaigns"] else "train",
+                 "worst_unit_rmse_c": float(r["worst_unit_rmse"]),
+                 "cross_ratio": float(r["cross_ratio"]), "own_ratio": float(r["own_ratio"]),
+                 "jump_ratio": float(r["jump_ratio"])}
+                for name, r in s.self_prediction.iterrows()],
+            "test_sensor_warnings": self.test_sensors,
+            "rounds": [r.to_dict() for r in s.rounds],
+            "other_targets": {o: {"before_test_rmse": TargetResult(x.before).test.rmse,
+                                  "after_test_rmse": TargetResult(x.after).test.rmse,
+                                  "accepted": [f"{ev.effect.kind}:{ev.effect.column}"
+                                               for ev in x.accepted]}
+                              for o, x in self.targets.items() if o != t},
+            "seconds": self.seconds,
+        })
+
+
+def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, points
+                ) -> tuple[dict, dict]:
+    """``{target: {"test": ...}}`` as :func:`thermocomp.core.scoring.evaluation.score` computes the test split
+    (``metrics.json`` layout, without the ISO virtual test), and the predictions."""
+    ids = list(ids)
+    pred, meas, series = split_residuals(comp, ds, ids, mode)   # state carried over where it applies
+    dt = sample_period(ds, ids)
+    out = {t: {"test": split_scores(y, r, dt, statistic, points, with_before_after=True)}
+           for t, (y, r) in series.items()}
+    return out, {c: (meas[c], pred[c]) for c in ids}
+
+
+def _summary(test: Scores, cv_rmse: float) -> dict:
+    return {TEST_RMSE: test.rmse, "cv_rmse": cv_rmse,
+            TEST_RSD_MEAN: test.rsd_mean, TEST_RSD_SD: test.rsd_sd,
+            "test_rms_measured": test.rms_before, "test_p2p_residual": test.get(P2P_AFTER)}
+
+
+def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "simulation",
+             options: SearchOptions | None = None,
+             make_compensator: Callable[[dict, list, list], Compensator] | None = None,
+             e_p95_statistic: str = "range", e_p95_points: int | None = 200,
+             model_name: str = "") -> Diagnosis:
+    """Find what ``compensator`` misses on the train split, fix it, report before/after on test.
+
+    Parameters
+    ----------
+    ds : Dataset
+        Needs ``train`` and ``test`` campaigns; ``val`` campaigns are ignored.
+    compensator : Compensator
+        The configured model (unfitted template; it is not modified).
+    targets : list of str, optional
+        ``E_`` columns to diagnose (default: every target of the model), in
+        order; a sensor found faulty for one stays out for the next ones.
+    mode : {'simulation', 'one_step'}
+    options : SearchOptions
+    make_compensator : callable, optional
+        ``(effects: dict target -> list[Effect], excluded: list[str],
+        inputs: list[str], alphas: dict target -> float or None) -> Compensator``,
+        the diagnosed model, given the resolved declared inputs and the
+        penalties on the effect features (default :func:`augment` of the template;
+        the ``diagnose`` stage builds it from the config it writes, so
+        ``thermocomp run`` with that config gives the same "after").
+
+    Returns
+    -------
+    Diagnosis
+    """
+    # The matrices are ~10-40 columns wide: BLAS threads only add contention (several times
+    # slower on a busy machine), so the whole loop runs single-threaded.
+    with threadpool_limits(limits=1, user_api="blas"):
+        return _diagnose(ds, compensator, targets, mode, options or SearchOptions(),
+                         make_compensator, e_p95_statistic, e_p95_points, model_name)
+
+
+def test_sensor_warnings(search: Search, excluded, later, options: SearchOptions) -> list[dict]:
+    """Sensors whose self-prediction breaks only in the test split's temperatures (never its
+    errors): said, and left in.  Acting on them would let the test split choose the model
+    (and flatter its "after"); a deployed compensator meets such a sensor with ``monitor``,
+    which excludes it online."""
+    tol = options.candidates.fault_ratio
+    if later is None or not len(later.X):
+        return []
+    table = self_prediction(search.problem, search.inputs(excluded), later.X, later.groups, tol)
+    test_ids = set(np.asarray(later.groups, dtype=object))
+    out = [{"sensor": name, "campaign": r["worst_unit"], "rmse_c": float(r["worst_unit_rmse"]),
+            "jump_ratio": float(r["jump_ratio"]), "acted_on": False}
+           for name, r in table.iterrows() if r["jump_ratio"] >= tol and r["worst_unit"] in test_ids]
+    for w in out:
+        logger.warning(f"diagnose: sensor {w['sensor']} breaks from its neighbours in test campaign "
+                       f"{w['campaign']} (self-prediction {w['rmse_c']:.2g} °C, jump ratio "
+                       f"{w['jump_ratio']:.1f}); left in: the search never sees the test split "
+                       "(`thermocomp monitor` excludes such a sensor online)")
+    return out
+
+
+def _gap(context, groups, options: SearchOptions) -> int:
+    """Forward chaining's gap: the longest lag tried in samples, capped at half a block."""
+    t = context["time"].to_numpy(float)
+    g = np.asarray(groups, dtype=object)
+    dt = np.diff(t)[g[1:] == g[:-1]]
+    dt = float(np.median(dt[dt > 0])) if np.any(dt > 0) else 1.0
+    taus = [float(x) for x in options.candidates.taus_s] or [0.0]
+    block = ForwardChaining(options.n_blocks, min_train_fraction=options.min_train_fraction) \
+        .block_size(len(t))
+    return forward_gap(max(taus) / dt, block)
+
+
+def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_statistic,
+              e_p95_points, model_name) -> Diagnosis:
+    t0 = time.perf_counter()
+    train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
+    before = clone(compensator).fit({c: ds.campaigns[c] for c in train_ids})
+    before_scores, before_pred = test_scores(before, ds, test_ids, mode, e_p95_statistic,
+                                             e_p95_points)
+    targets = list(before.targets_) if targets is None else (
+        [targets] if isinstance(targets, str) else list(targets))
+    unknown = [t for t in targets if t not in before.targets_]
+    if unknown:
+        raise ContractError(f"diagnose.targets names no modelled target (have {before.targets_})",
+                            column=",".join(unknown))
+    train = {c: ds.campaigns[c] for c in train_ids}
+    if getattr(before, "denoiser_", None) is not None:
+        train = denoise_campaigns(before.denoiser_, train, causal=False)
+    m = stack(train, before.inputs_, before.targets_, before.reference)
+    # the test split's temperatures (never its errors): sensor health on what the model will face
+    test = {c: ds.campaigns[c] for c in test_ids}
+    if getattr(before, "denoiser_", None) is not None:
+        test = denoise_campaigns(before.denoiser_, test)
+    later = stack(test, before.inputs_, [], before.reference)   # (the test targets stay out)
+    context = m.context.copy()
+    context[CONTROL] = random_walk(m.groups, options.seed)
+    scheme, why = cv_scheme(m.groups, options.cv), None
+    need = units_needed(options.alpha)
+    if options.cv == "auto" and scheme == "campaigns" and len(train_ids) < need:
+        # too few campaigns for the test to ever pass: validation blocks of the campaigns taken
+        # as one time line instead, as for one long record
+        scheme = "forward"
+        why = (f"{len(train_ids)} train campaigns are too few for the sign-flip test to reach "
+               f"alpha={options.alpha:g} (it needs {need})")
+        logger.info(f"diagnose: {why}: forward chaining over them, {options.n_blocks} blocks")
+    units = unit_labels(m.groups, options.n_blocks) if scheme == "campaigns" else m.groups
+    gap = _gap(m.context, m.groups, options) if scheme == "forward" else 0
+    searches = {t: Search(Problem(m.X, m.Y[t].to_numpy(float), context, m.groups, units, t, mode,
+                                  before.reference, options.n_folds, scheme, options.n_blocks, gap,
+                                  options.min_train_fraction),
+                          compensator.estimator, compensator.selector, before.inputs_, options)
+                for t in targets}
+    # the test's blocks, as long as the slowest target's residual takes to decorrelate: one
+    # design (and one smallest p) for the whole diagnosis
+    start = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
+    length = max(decorrelation_length(r.residual, m.groups, searches[t].problem.validated)
+                 for t, r in start.items())
+    for t, s in searches.items():
+        s.problem.set_test_blocks(length)
+        start[t] = s.cv._result(start[t].prediction, start[t].alpha)   # scored on the blocks
+    problem = next(iter(searches.values())).problem
+    reach = smallest_p(problem.n_blocks_tested)
+    if reach > options.alpha:
+        advice = ("the record is short for its residual's memory (test blocks are as long as it "
+                  "takes to decorrelate); raise diagnose.alpha" if scheme == "forward"
+                  else "raise diagnose.n_blocks or diagnose.alpha")
+        logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}) in "
+                       f"{problem.n_blocks_tested} test blocks: the sign-flip test cannot reach "
+                       f"alpha={options.alpha:g} (min p {reach:.2g}; it needs {need} blocks), so no "
+                       f"effect can be accepted; {advice}")
+    # sensor health on the train campaigns only: the search never sees the test split
+    excluded, faults, health, original, table = sensor_health(searches, options=options, start=start)
+    test_sensors = test_sensor_warnings(next(iter(searches.values())), excluded, later, options)
+    found = {t: s.run(original[t], faults[t], health[t], table) for t, s in searches.items()}
+    effects = {t: r.effects for t, r in found.items()}
+    alphas = {t: r.alpha for t, r in found.items()}
+    build = make_compensator or (lambda eff, exc, inputs, al: augment(compensator, eff, exc, inputs, al))
+    after = build(effects, excluded, list(before.inputs_), alphas).fit(
+        {c: ds.campaigns[c] for c in train_ids})
+    after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
+    out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
+           for t, r in found.items()}
+    if scheme == "forward":
+        cv = {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
+              "folds": problem.n_units, "gap_samples": gap,
+              "min_train_fraction": options.min_train_fraction}
+        if why:
+            cv["why"] = why
+    else:
+        cv = {"scheme": "campaigns", "units": problem.n_units,
+              "unit": "campaign" if len(train_ids) > 1 else "time block",
+              "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=units)}
+    cv |= {"test_blocks": problem.n_blocks_tested, "block_samples": problem.block_samples,
+           "min_p": reach,
+           "in_range_share": float(problem.in_range[problem.validated].mean()),
+           "mode": "simulation",   # the search scores what the machine runs, whatever ``mode`` is
+           "shrink_alpha": {t: r.alpha for t, r in found.items()},
+           "train_campaigns": train_ids, "test_campaigns": test_ids}
+    return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
+                     excluded, before, after, {"before": before_pred, "after": after_pred},
+                     options, cv, time.perf_counter() - t0, test_sensors)

@@ -1,0 +1,187 @@
+"""The monitor report: campaigns streamed through the fixed and the adaptive compensator
+(pure core: fitted compensators and frames in, the ``monitor.json`` dict out).
+
+:func:`monitor_report` is what ``thermocomp monitor`` writes; :func:`summary_lines`
+what it prints.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ...core.context import TIME
+from ..deploy.adapt import Adaptation
+from ..deploy.adaptive import AdaptiveCompensator
+from ..deploy.report import alarm_rate, campaign_start, streamed_hours
+from ..deploy.streaming import warm
+from ..deploy.surveillance import STATES
+from .blind import undetected_offset_um
+from .placement import covariance_sensors, qr_sensors
+
+
+def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
+                    ) -> tuple[np.ndarray, list[dict], tuple[list, list]]:
+    """Stream one campaign from its start (a reset, or warmed on ``lead_in``, the campaigns it
+    continues: :func:`~thermocomp.apps.deploy.streaming.warm`); a step of the fixed compensator
+    that refuses its row holds the previous correction (the adaptive one gives one for every
+    row: a failure there is a defect, raised, not a held correction whose row re-reported the
+    previous row's events)."""
+    X = df[model.columns_].to_numpy(float)
+    t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
+    y = np.zeros((len(X), len(model.targets_)))
+    events, states, errors = [], [], []
+    warm(model, lead_in, df)
+    for i in range(len(X)):
+        try:
+            y[i] = model._step(X[i], t[i])[0]
+        except ValueError:                   # the fixed compensator on a missing value
+            if isinstance(model, AdaptiveCompensator):
+                raise
+            y[i] = y[i - 1] if i else np.nan
+        mon = getattr(model, "monitor", None)
+        if mon is not None:
+            events += model.last_events_
+            states.append(mon.states)
+            errors.append(mon.last_error_)
+    model.reset()
+    return y, events, (states, errors)
+
+
+def _rmse(r: np.ndarray | None, k: int) -> float | None:
+    """None: nothing to score (no errors, or no finite residual at all)."""
+    if r is None or not np.isfinite(r[:, k]).any():
+        return None
+    return float(np.sqrt(np.nanmean(r[:, k] ** 2)))
+
+
+def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
+                adapt: Adaptation | None = None) -> dict:
+    """Each campaign streamed through both compensators: events, state counts, traces; with
+    ``adapt`` the adaptive correction learns from the reference measurements."""
+    names = adaptive.monitor.names
+    out = {"counts": np.zeros((len(names), len(STATES)), dtype=np.int64), "first_alarm": {},
+           "events": [], "traces": {}, "res_f": [], "res_a": [], "res_frozen": [], "corr": [],
+           "hours": 0.0}
+    measured = comp.measured(streamed) if any(t in df.columns for df in streamed.values()
+                                              for t in comp.targets_) else None
+    for cid, df in streamed.items():
+        y_fix, _, _ = stream_campaign(fixed, df, leads.get(cid))
+        y_ad, ev, (states, errors) = stream_campaign(adaptive, df, leads.get(cid))
+        start = campaign_start(df)      # CLI.md: event times in seconds from the campaign start
+        t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
+        m = None if measured is None else measured[cid][adaptive.targets_].to_numpy()
+        if adapt is not None:           # the deployed correction learns from the references
+            if m is not None:
+                out["res_frozen"].append(m - y_ad)
+            adapt.start()
+            y_ad = adapt.correct(y_ad, t, m)
+        for e in ev:
+            e = {"campaign": cid, **e, "time": e["time"] - start}
+            out["events"].append(e)
+            if (e.get("sensor") in names and e["to"] in ("alarm", "excluded")
+                    and e["sensor"] not in out["first_alarm"]):
+                out["first_alarm"][e["sensor"]] = {"campaign": cid, "time": e["time"]}
+        out["hours"] += streamed_hours(df, adaptive.period_s)
+        S = np.asarray(states)
+        for k in range(len(STATES)):
+            out["counts"][:, k] += (S == k).sum(axis=0)
+        out["traces"][cid] = {"time": t, "states": S, "errors": np.asarray(errors),
+                              "fixed": y_fix, "adaptive": y_ad, "measured": m}
+        out["corr"].append(y_ad)
+        if m is not None:
+            out["res_f"].append(m - y_fix)
+            out["res_a"].append(m - y_ad)
+    return out
+
+
+def _targets(adaptive, run: dict) -> dict:
+    C = np.vstack(run["corr"])
+    rf = np.vstack(run["res_f"]) if run["res_f"] else None
+    ra = np.vstack(run["res_a"]) if run["res_a"] else None
+    return {t: {"rmse_fixed": _rmse(rf, k), "rmse_adaptive": _rmse(ra, k),
+                "max_abs_correction": float(np.max(np.abs(C[:, k]))) if len(C) else 0.0,
+                "all_finite": bool(np.all(np.isfinite(C[:, k]))),
+                "bound": [float(adaptive.guard.lo[k]), float(adaptive.guard.hi[k])]}
+            for k, t in enumerate(adaptive.targets_)}
+
+
+def _pod(mon, placement: str) -> dict:
+    names, pod = mon.names, mon.pod
+    rank = qr_sensors(pod.phi_) if pod.n_modes_ <= len(names) else np.arange(len(names))
+    cov = covariance_sensors(pod.phi_, pod.singular_values_, 1, None)
+    return {"n_sensors": len(names), "n_modes": int(pod.n_modes_),
+            "n_modes_energy": int(pod.n_modes_energy_),
+            "captured_energy": float(pod.energy_[pod.n_modes_ - 1]),
+            "train_self_prediction_c": float(pod.train_band_c_),
+            "sensor_rank_qr": [names[i] for i in rank],
+            "sensor_rank_covariance": [names[i] for i in cov],
+            "placement": placement,
+            "sensor_rank": [names[i] for i in (rank if placement == "qr" else cov)]}
+
+
+def monitor_report(adaptive: AdaptiveCompensator, fixed, comp, streamed: dict, train: dict,
+                   placement: str = "qr", leads: dict | None = None,
+                   adapt: Adaptation | None = None) -> tuple[dict, dict]:
+    """(the ``monitor.json`` report, per-campaign traces for the figures).
+
+    ``streamed`` campaigns go through ``fixed`` and ``adaptive`` from their start
+    (warmed on ``leads``); ``train`` prices an offset the exclusion band cannot see;
+    ``adapt`` (:mod:`~thermocomp.apps.deploy.adapt`) adapts the adaptive correction to the
+    reference measurements, each target's ``adapt`` giving the RMSE without it.
+    """
+    mon = adaptive.monitor
+    run = _stream_all(adaptive, fixed, comp, streamed, leads or {}, adapt)
+    sensors = {n: {"state_counts": dict(zip(STATES, map(int, run["counts"][j]))),
+                   "first_alarm": run["first_alarm"].get(n),
+                   "observable": bool(mon._observable[j]) if n not in mon.excluded else None}
+               for j, n in enumerate(mon.names)}
+    band = mon.warning_c if mon.exclude_at == "warning" else mon.alarm_c
+    cost = undetected_offset_um(comp, train, dict(zip(mon.names, band.tolist())))
+    for j, name in enumerate(mon.names):
+        sensors[name]["undetected_offset_c"] = float(band[j])
+        sensors[name]["undetected_offset_um"] = cost[name]
+    report = {"sensors": sensors, "events": run["events"], "targets": _targets(adaptive, run),
+              "pod": _pod(mon, placement),
+              "bands": {"warning_c": mon.warning_c.tolist(), "alarm_c": mon.alarm_c.tolist()},
+              "alarms": alarm_rate(run["events"], run["hours"]),
+              "campaigns": list(streamed)}
+    if adapt is not None:
+        rfz = np.vstack(run["res_frozen"]) if run["res_frozen"] else None
+        for k, t in enumerate(adaptive.targets_):
+            report["targets"][t]["adapt"] = {"rmse_frozen": _rmse(rfz, k), **adapt.figures(k)}
+    return report, run["traces"]
+
+
+def summary_lines(report: dict) -> list[str]:
+    """The table and lines ``thermocomp monitor`` prints."""
+    lines = [f"{'target':<8} {'RMSE fixed':>11} {'RMSE adaptive':>14} {'max|corr|':>10} {'finite':>7}"]
+    for t, r in report["targets"].items():
+        f = "-" if r["rmse_fixed"] is None else f"{r['rmse_fixed']:.3f}"
+        a = "-" if r["rmse_adaptive"] is None else f"{r['rmse_adaptive']:.3f}"
+        lines.append(f"{t:<8} {f:>11} {a:>14} {r['max_abs_correction']:>10.3g} "
+                     f"{str(r['all_finite']):>7}")
+    costs = [(max(v for v in r["undetected_offset_um"].values() if v is not None), n, r)
+             for n, r in report["sensors"].items()
+             if any(v is not None for v in r.get("undetected_offset_um", {}).values())]
+    if costs:
+        worst, name, r = max(costs, key=lambda c: c[0])
+        target = max((t for t, v in r["undetected_offset_um"].items() if v is not None),
+                     key=r["undetected_offset_um"].get)
+        lines.append(f"an offset inside the exclusion band costs up to {worst:.3g} µm ({name} "
+                     f"{r['undetected_offset_c']:g} °C, {target}; per sensor in monitor.json)")
+    adapted = [(t, r) for t, r in report["targets"].items() if "adapt" in r]
+    if adapted:
+        a = adapted[0][1]["adapt"]
+        lines.append(f"adapt ({a['method']}, {a['n_references']} references): RMSE adaptive "
+                     "without -> with "
+                     + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r['rmse_adaptive']:.3f}"
+                                 for t, r in adapted if r["rmse_adaptive"] is not None
+                                 and r["adapt"]["rmse_frozen"] is not None))
+    excl = [e for e in report["events"] if e["to"] == "excluded"]
+    rate = (report.get("alarms") or {}).get("exclusions_per_100h")   # none in older reports
+    lines.append(f"events: {len(report['events'])}, exclusions: {len(excl)}"
+                 + ("" if rate is None else f" ({rate:.3g} per 100 h)")
+                 + (f", first: {excl[0]['sensor']} ({excl[0]['campaign']}, "
+                    f"{excl[0]['time'] / 3600:.2f} h)" if excl else ""))
+    return lines

@@ -1,0 +1,70 @@
+"""Worker processes that cannot outlive the process that started them.
+
+A worker waiting on its task queue never learns that its parent was SIGKILLed (every worker
+holds the queue's write end, so no end of file comes): figure workers stayed blocked in
+``Queue.get`` for ever, joblib's (loky) in theirs, each holding its memory.
+
+- :func:`die_with_parent`: the initializer of a forked pool
+(:class:`~thermocomp.core.figures.plots.FigurePool`);
+  on Linux the kernel kills the worker (``PR_SET_PDEATHSIG``: immediate, nothing to poll; it
+  follows the forking *thread*, and such a pool forks from the caller's), elsewhere
+  :func:`end_with_parent`.
+- :func:`parallel`: ``joblib.Parallel`` whose loky workers run :func:`end_with_parent` (loky
+  may start workers from its own threads, so the kernel's signal could come while the parent
+  lives: a thread watches the parent instead, once a second).
+- :func:`watch_parent`: the same watch, armed from inside a task (a sweep job in a local
+  launcher's worker), only when the process named is this one's parent.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import signal
+import threading
+import time
+
+PR_SET_PDEATHSIG = 1     # linux/prctl.h
+_watched: set[int] = set()
+
+
+def die_with_parent(parent: int) -> None:
+    """Initializer of a forked worker of ``parent``: it is killed when ``parent`` dies."""
+    try:
+        armed = ctypes.CDLL(None, use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL) == 0
+    except (OSError, AttributeError):   # no prctl: not Linux
+        armed = False
+    if not armed:
+        end_with_parent(parent)
+    elif os.getppid() != parent:        # the parent died before the signal was armed
+        os._exit(1)
+
+
+def end_with_parent(parent: int) -> None:
+    """Initializer of a worker started by ``parent``: it exits once ``parent`` is gone."""
+    if os.getppid() != parent:          # already gone
+        os._exit(1)
+    watch_parent(parent)
+
+
+def watch_parent(parent: int) -> None:
+    """Exit this process once its parent ``parent`` is gone; nothing when ``parent`` is not its
+    parent (a task run in the parent itself, by threads, or on another node)."""
+    if parent in _watched or os.getppid() != parent:
+        return
+    _watched.add(parent)
+    threading.Thread(target=_watch, args=(parent,), daemon=True, name="watch-parent").start()
+
+
+def _watch(parent: int) -> None:
+    while os.getppid() == parent:
+        time.sleep(1.0)
+    os._exit(1)
+
+
+def parallel(n_jobs, **kwargs):
+    """``joblib.Parallel(n_jobs, **kwargs)`` whose worker processes end with this process
+    (the initializer reaches loky's workers; the sequential and thread backends ignore it)."""
+    from joblib import Parallel
+
+    return Parallel(n_jobs=n_jobs, initializer=end_with_parent, initargs=(os.getpid(),), **kwargs)

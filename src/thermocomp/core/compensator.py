@@ -1,0 +1,200 @@
+"""The compensation model as one estimator: declared inputs -> selector -> estimator, per target.
+
+Pure core: takes campaign DataFrames (contract columns), returns predictions.
+Stages pickle it to ``model.pkl``; deployment wraps it
+(:class:`thermocomp.apps.deploy.StreamingCompensator`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+from sklearn.base import BaseEstimator, clone
+
+from .context import Y_MEASURED, for_target, with_column
+from .denoise import denoise_campaigns, fit_denoiser
+from .frame import Matrices, resolve_columns, stack
+from .models.one_step import OneStepLaw
+from .select import AllInputs
+
+MODES = ("simulation", "one_step")
+OFFSETS = ("predict", "drop")
+
+
+class Compensator(BaseEstimator):
+    """Per-target thermal error model on a campaign dataset.
+
+    Parameters
+    ----------
+    estimator : regressor
+        Cloned once per target (through ``for_target`` when it has per-target
+        settings).  It gets the per-row ``context`` of the campaigns
+        (:mod:`thermocomp.core.context`): campaign, time, initial ambient, raw
+        ``S_``/``T_`` columns and, in one-step mode, the measured target.
+    selector : selector, optional
+        Chooses inputs among the declared ones, per target (default: all).
+    inputs : list of glob patterns
+        Declared inputs (``data.inputs``).
+    targets : list of str, optional
+        ``E_`` columns to model (default: all in the training data).
+    reference : {'first_sample', 'none'}
+        Frame of ``T_``/``E_`` columns (see ``DATA_FORMAT.md``).
+    denoiser : transformer, optional
+        Applied per campaign to the declared input columns before stacking
+        (so before referencing): offline on the training data, and in
+        ``predict`` causally when its ``online`` is true (see
+        :class:`thermocomp.core.denoise.EMDDenoiser`).  A fitted denoiser wrapped in
+        :class:`sklearn.frozen.FrozenEstimator` is used as fitted (the
+        ``denoise`` stage's output).
+    selection : dict target -> list of str, optional
+        Inputs chosen beforehand (the ``select`` stage's output), used
+        instead of fitting ``selector``.
+    offsets : {'predict', 'drop'}, default 'predict'
+        ``'drop'``: a linear family's intercept is fitted, so that the gains
+        are free of a constant offset of the targets, and then left out of
+        every prediction (batch, streaming, exported code: they all read
+        ``intercept_``).  For targets referenced to a noisy first sample -- the
+        identified error parameters of a volumetric dataset, whose first
+        cycle's identification error every row of the campaign shares -- the
+        intercept is that error, not a thermal effect, and a compensation
+        predicting it would apply it at every cycle.  A family without
+        ``intercept_`` (ARX+RF, LSTM, the ATI wrapper) keeps its predictions.
+
+    Attributes
+    ----------
+    inputs_ : list of str        declared input columns found in the data
+    denoiser_ : fitted denoiser or None
+    targets_ : list of str
+    selected_ : dict target -> list of str
+    estimators_ : dict target -> fitted estimator
+    one_step_ : dict target -> fitted :class:`~thermocomp.core.models.one_step.OneStepLaw`
+        The one-step law of each target, fitted on the training rows from the
+        estimator's own simulation prediction (``eval.mode=one_step``).
+    offsets_ : dict target -> float
+        The intercepts left out (``offsets='drop'``), in the targets' unit.
+    """
+
+    def __init__(self, estimator, selector=None, inputs=("T_*",), targets=None,
+                 reference: str = "first_sample", denoiser=None, selection=None,
+                 offsets: str = "predict"):
+        self.estimator = estimator
+        self.selector = selector
+        self.inputs = inputs
+        self.targets = targets
+        self.reference = reference
+        self.denoiser = denoiser
+        self.selection = selection
+        self.offsets = offsets
+
+    # -- matrices ---------------------------------------------------------------------------
+    def stacked(self, campaigns: Mapping[str, pd.DataFrame], targets=None) -> Matrices:
+        """The campaigns as the fitted model sees them: denoised (causally when online),
+        stacked in the reference frame, with their context."""
+        campaigns = denoise_campaigns(getattr(self, "denoiser_", None), campaigns)
+        return stack(campaigns, self.inputs_, self.targets_ if targets is None else targets,
+                     self.reference)
+
+    def fit(self, campaigns: Mapping[str, pd.DataFrame]) -> "Compensator":
+        """Fit the denoiser, the selector and the estimator of each target on ``campaigns``."""
+        columns = list(dict.fromkeys(c for df in campaigns.values() for c in df.columns))
+        self.inputs_, self.targets_ = resolve_columns(columns, self.inputs, self.targets)
+        self.denoiser_, campaigns = fit_denoiser(self.denoiser, campaigns, self.inputs_)
+        return self.fit_stacked(stack(campaigns, self.inputs_, self.targets_, self.reference))
+
+    def fit_stacked(self, m: Matrices) -> "Compensator":
+        """Fit selector and estimators on already stacked matrices: the rows may be any subset
+        of campaigns of one stack (its columns are the inputs and targets).  Without a fitted
+        denoiser (``fit`` sets one) the matrices are taken as they are, so a configured
+        denoiser is refused."""
+        if not hasattr(self, "denoiser_"):
+            if self.denoiser is not None:
+                raise ValueError("fit_stacked takes matrices as they are: fit() a compensator "
+                                 "with a denoiser")
+            self.denoiser_ = None
+        self.inputs_, self.targets_ = list(m.X.columns), list(m.Y.columns)
+        if self.offsets not in OFFSETS:
+            raise ValueError(f"offsets must be one of {OFFSETS}, got {self.offsets!r}")
+        selector = self.selector if self.selector is not None else AllInputs()
+        self.selected_, self.estimators_, self.one_step_, self.offsets_ = {}, {}, {}, {}
+        context = _simulation(m.context)
+        for target in self.targets_:
+            y = m.Y[target].to_numpy()
+            names = (list(self.selection[target]) if self.selection is not None
+                     else list(clone(selector).fit(m.X, y).selected_))
+            est = clone(for_target(self.estimator, target))
+            X = m.X[names].to_numpy()
+            est.fit(X, y, context=context)
+            if self.offsets == "drop" and hasattr(est, "intercept_"):
+                self.offsets_[target] = float(est.intercept_)
+                est.intercept_ = 0.0
+            # the one-step law: from the fitted model's simulation on these (training) rows only
+            s = np.asarray(est.predict(X, context=context), dtype=float).reshape(-1, 1)
+            self.one_step_[target] = OneStepLaw().fit(s, y, context=context)
+            self.selected_[target], self.estimators_[target] = names, est
+        return self
+
+    # -- prediction -------------------------------------------------------------------------
+    def predict_stacked(self, m: Matrices, mode: str = "simulation") -> np.ndarray:
+        """Predicted error ``(n_rows, n_targets)`` of stacked matrices (see :meth:`stacked`)."""
+        if mode not in MODES:
+            raise ValueError(f"eval.mode must be one of {MODES}, got {mode!r}")
+        out = np.empty((len(m.X), len(self.targets_)))
+        laws = getattr(self, "one_step_", None)   # None: a model pickled before the law existed
+        context = _simulation(m.context) if laws is not None else m.context
+        for k, (target, est) in enumerate(self.estimators_.items()):
+            X = m.X[self.selected_[target]].to_numpy()
+            if mode == "simulation":
+                out[:, k] = est.predict(X, context=context)
+                continue
+            # one-step: the measured error is a side input too (of the law, or of an old model)
+            measured = with_column(context, Y_MEASURED, m.Y[target].to_numpy(), len(m.X))
+            if laws is None:
+                out[:, k] = est.predict(X, context=measured)
+                continue
+            s = np.asarray(est.predict(X, context=context), dtype=float).reshape(-1, 1)
+            out[:, k] = laws[target].predict(s, context=measured)
+        return out
+
+    def predict(self, campaigns: Mapping[str, pd.DataFrame], mode: str = "simulation"
+                ) -> dict[str, pd.DataFrame]:
+        """Predicted error per campaign (columns = targets), in the reference frame.
+
+        ``mode='simulation'`` never uses a measured target; ``'one_step'``
+        feeds the model's simulation and the measured previous error to the
+        target's one-step law (:class:`~thermocomp.core.models.one_step.OneStepLaw`, the
+        same for every family).
+        """
+        m = self.stacked(campaigns, self.targets_ if mode == "one_step" else [])
+        out = pd.DataFrame(self.predict_stacked(m, mode), columns=self.targets_)
+        return {cid: out[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}
+
+    def measured(self, campaigns: Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
+        """Measured targets per campaign in the same reference frame as ``predict``; a target
+        a campaign did not record (a stream scored where it was measured) is NaN there."""
+        campaigns = {cid: df.assign(**{t: np.nan for t in self.targets_ if t not in df.columns})
+                     for cid, df in campaigns.items()}
+        m = stack(campaigns, [], self.targets_, self.reference)
+        return {cid: m.Y[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}
+
+
+def _simulation(context):
+    """The context without a measured target: families are fitted and run in simulation."""
+    if context is not None and Y_MEASURED in context:
+        return context.drop(columns=[Y_MEASURED])
+    return context
+
+
+def with_chosen_hyperparameters(template: Compensator, fitted: Compensator) -> Compensator:
+    """``template`` (unfitted) whose estimator takes, per target, the hyper-parameters that
+    ``fitted``'s estimator chose by its own cross-validation (``chosen_params()``), so that its
+    copies fit without one: the many small models of mutual prediction.  Families without
+    ``chosen_params`` (and targets ``fitted`` does not have) are left as they are."""
+    from .models.base import PerTarget
+
+    chosen = {t: est.chosen_params() for t, est in getattr(fitted, "estimators_", {}).items()
+              if callable(getattr(est, "chosen_params", None))}
+    if not chosen:
+        return template
+    return clone(template).set_params(estimator=PerTarget(template.estimator, chosen))

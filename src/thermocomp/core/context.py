@@ -1,0 +1,156 @@
+"""Side inputs: the one way per-row information besides ``X`` reaches an estimator.
+
+Every estimator of thermocomp (model families, the ATI / augmented / ARX+RF
+wrappers) has the signatures
+
+* ``fit(X, y, context=None)`` and ``predict(X, context=None)`` -- batch;
+* ``stream_init(context) -> state`` and ``stream_step(x_row, state, context)
+  -> (y_hat, state)`` -- one sample at a time, causal, for deployment.
+
+``context`` is a DataFrame with one row per row of ``X`` (batch) or a mapping
+for one sample (stream) with these columns, all optional:
+
+``campaign``
+    Campaign of the row: dynamics (lags, AR feedback, windows) never cross a
+    campaign start.  Missing: the rows are one campaign.
+``time``
+    Seconds since the campaign start.
+``ambient_c0``
+    The campaign's initial absolute ambient temperature (°C), the key of
+    ambient-interval models.
+``y_measured``
+    The measured target (one-step prediction only, ``eval.mode=one_step``).
+``S_*``, ``T_*``
+    Raw values of the campaign's machine states and sensors, for models that
+    read a column outside their declared inputs (ARX+RF's door signal, the
+    effects of a diagnosed model).
+
+Callers always pass the whole context; an estimator reads what it needs and
+says so after ``fit`` in ``context_columns_`` (the raw columns and the keys
+``time``/``ambient_c0`` its *predictions* need), which wrappers forward, so a
+deployment knows which columns to ask the machine for.  The context of a
+batch is built by :func:`thermocomp.core.frame.stack`; the stream's rows by
+:class:`thermocomp.core.frame.ContextBuilder`, the same rules.
+
+The ``context`` parameter is requested by default under scikit-learn's
+metadata routing (``__metadata_request__*``), so with
+``sklearn.set_config(enable_metadata_routing=True)`` scikit-learn's own
+cross-validation tools slice it per fold like ``X``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+
+from ..base.errors import ContractError
+
+CAMPAIGN = "campaign"
+TIME = "time"
+AMBIENT_C0 = "ambient_c0"
+Y_MEASURED = "y_measured"
+RESERVED = (CAMPAIGN, TIME, AMBIENT_C0, Y_MEASURED)
+
+
+def has(context, name: str) -> bool:
+    """True when ``context`` (DataFrame, mapping or None) holds ``name``."""
+    return context is not None and name in context
+
+
+def groups_of(context) -> np.ndarray | None:
+    """Campaign of each row (None: one campaign)."""
+    return np.asarray(context[CAMPAIGN], dtype=object) if has(context, CAMPAIGN) else None
+
+
+def values(context, name: str, n: int | None = None) -> np.ndarray | None:
+    """Column ``name`` as a float array (None when absent)."""
+    if not has(context, name):
+        return None
+    out = np.asarray(context[name], dtype=float)
+    if n is not None and out.shape[0] != n:
+        raise ValueError(f"context has {out.shape[0]} rows, X has {n}")
+    return out
+
+
+def require(context, name: str, who: str) -> np.ndarray:
+    """Column ``name`` or a ContractError saying who needs it."""
+    if not has(context, name):
+        raise ContractError(f"{who} needs {name!r} in its context (a column of the campaigns the "
+                            f"compensator hands to the model); it is missing", column=name)
+    return np.asarray(context[name])
+
+
+def subset(context, rows) -> pd.DataFrame | None:
+    """The context of the rows ``rows`` (boolean mask or indices), index reset."""
+    if context is None:
+        return None
+    return context.iloc[np.flatnonzero(rows) if np.asarray(rows).dtype == bool else rows] \
+        .reset_index(drop=True)
+
+
+def with_column(context, name: str, value, n: int) -> pd.DataFrame:
+    """A copy of ``context`` (or a new one of ``n`` rows) with ``name`` set to ``value``."""
+    out = pd.DataFrame(index=pd.RangeIndex(n)) if context is None else context.copy()
+    out[name] = value
+    return out
+
+
+def scalar(context: Mapping | None, name: str, default=float("nan")) -> float:
+    """One sample's value of ``name`` from a stream context mapping."""
+    if context is None or name not in context:
+        return default
+    return float(context[name])
+
+
+def context_columns(estimator) -> list[str]:
+    """``context_columns_`` of a fitted estimator (``[]`` when it reads none)."""
+    return list(getattr(estimator, "context_columns_", []))
+
+
+def merge_columns(*lists) -> list[str]:
+    """Union of column lists, first occurrence order."""
+    return list(dict.fromkeys(c for cols in lists for c in cols))
+
+
+def for_target(estimator, target: str):
+    """The estimator a model uses for ``target`` (per-target settings of a diagnosed model).
+
+    An estimator with per-target parameters implements ``for_target(target)``
+    returning an unfitted copy configured for that target; others are used as given.
+    """
+    method = getattr(estimator, "for_target", None)
+    return method(target) if callable(method) else estimator
+
+
+class SideInputs:
+    """Mixin declaring the side-input protocol for scikit-learn metadata routing.
+
+    ``context`` is requested by ``fit``, ``predict`` and ``score`` by default,
+    and static models get a default streaming pair (one row through ``predict``).
+    Put it first among the bases (its ``score`` routes the context).
+    """
+
+    __metadata_request__fit = {"context": True}
+    __metadata_request__predict = {"context": True}
+    __metadata_request__score = {"context": True}
+
+    def score(self, X, y, sample_weight=None, context=None):
+        """R² of ``predict(X, context=context)`` (scikit-learn's regressor score, routed context)."""
+        from sklearn.metrics import r2_score
+
+        return r2_score(y, self.predict(X, context=context), sample_weight=sample_weight)
+
+    def stream_init(self, context: Mapping | None = None):
+        """State before a campaign's first sample (static model: none)."""
+        from sklearn.utils.validation import check_is_fitted
+
+        check_is_fitted(self)
+        return None
+
+    def stream_step(self, x_row, state, context: Mapping | None = None):
+        """One sample: ``(y_hat, state)``, equal to ``predict`` on that row."""
+        x = np.asarray(x_row, dtype=float).reshape(1, -1)
+        ctx = None if context is None else pd.DataFrame({k: [v] for k, v in context.items()})
+        return float(np.asarray(self.predict(x, context=ctx)).ravel()[0]), state

@@ -1,0 +1,222 @@
+"""The ``data`` config keys that steer reading (:class:`ReadOptions`) and the reader's limits."""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ...base.params import MAX_COUNT
+from .contract import SPLITS, ContractError
+
+TIME_FORMATS = ("auto", "seconds", "iso8601")
+AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
+ROLE_PATTERNS = ("error", "state", "ambient", "ignore")   # data.roles.<key>: glob patterns
+SPLIT_ORDER = ("train", "val", "test")
+ROLE_ORDER = ("T", "E", "S")
+MISSING_MODES = ("repair", "keep", "keep_errors")
+
+_OTHER_DELIMITERS = (";", "\t", "|", ",")
+
+
+# ---------------------------------------------------------------------------
+# Options
+
+
+@dataclass(frozen=True)
+class ReadOptions:
+    """The ``data`` config keys that steer reading; see :func:`read_dataset`.
+
+    Build it with :meth:`from_cfg`; every field has the default a missing key
+    gets.
+    """
+
+    columns: dict = field(default_factory=dict)
+    sample_period_s: float | None = None
+    time: str = "auto"
+    split_overrides: dict = field(default_factory=dict)
+    max_gap_samples: int = 0
+    max_edge_samples: int = 0
+    resample_s: float | None = None
+    kelvin_threshold_c: float = 200.0
+    fahrenheit_threshold_c: float | None = 45.0
+    max_abs_error: float = 1e6
+    max_abs_state: float = 1e9
+    max_period_ratio: float | None = 100.0
+    max_duration_days: float | None = 366.0
+    max_resample_factor: float = 10.0
+    max_step_ratio: float | None = 5.0
+    delimiter: str = AUTO
+    decimal: str = AUTO
+    thousands: str | None = None
+    roles: dict = field(default_factory=dict)     # see io.roles; {} (or all empty): none
+    test_fraction: float | None = None
+    val_fraction: float | None = None
+    split_order: list = field(default_factory=lambda: list(SPLIT_ORDER))
+    # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
+    # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
+    missing: str = "repair"
+
+    def __post_init__(self):
+        if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's
+            raise ValueError(f"missing must be one of {MISSING_MODES}, got {self.missing!r}")
+
+    @classmethod
+    def from_cfg(cls, cfg: Mapping | None) -> "ReadOptions":
+        """Options from a mapping (dict or OmegaConf ``DictConfig``).
+
+        Raises
+        ------
+        ContractError
+            If a value has the wrong type or range.
+        """
+        cfg = {} if cfg is None else cfg
+        opts = cls(
+            columns=_str_mapping(cfg, "columns"),
+            sample_period_s=_positive_float(cfg, "sample_period_s"),
+            time=str(cfg.get("time", "auto") or "auto"),
+            split_overrides=_str_mapping(cfg, "split_overrides"),
+            max_gap_samples=_count(cfg, "max_gap_samples"),
+            max_edge_samples=_count(cfg, "max_edge_samples"),
+            resample_s=_positive_float(cfg, "resample_s"),
+            kelvin_threshold_c=_float(cfg, "kelvin_threshold_c", 200.0),
+            fahrenheit_threshold_c=_float(cfg, "fahrenheit_threshold_c", 45.0, nullable=True),
+            max_abs_error=_positive_float(cfg, "max_abs_error", 1e6),
+            max_abs_state=_positive_float(cfg, "max_abs_state", 1e9),
+            max_period_ratio=_positive_float(cfg, "max_period_ratio", 100.0, nullable=True),
+            max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
+            max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
+            max_step_ratio=_positive_float(cfg, "max_step_ratio", 5.0, nullable=True),
+            delimiter=_text(cfg, "delimiter", AUTO),
+            decimal=_text(cfg, "decimal", AUTO),
+            thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
+            roles=_roles(cfg),
+            test_fraction=_fraction(cfg, "test_fraction"),
+            val_fraction=_fraction(cfg, "val_fraction"),
+            split_order=_split_order(cfg),
+        )
+        opts._check()
+        return opts
+
+    def _check(self) -> None:
+        if self.time not in TIME_FORMATS:
+            raise ContractError(f"data.time must be one of {', '.join(TIME_FORMATS)}, "
+                                f"got {self.time!r}")
+        bad_split = {k: v for k, v in self.split_overrides.items() if v not in SPLITS}
+        if bad_split:
+            cid, split = next(iter(bad_split.items()))
+            raise ContractError(f"data.split_overrides.{cid}: split {split!r} is not one of "
+                                f"{', '.join(SPLITS)}")
+        for key in ("delimiter", "decimal"):
+            if len(getattr(self, key)) != 1 and getattr(self, key) != AUTO:
+                raise ContractError(f"data.{key} must be one character or 'auto', "
+                                    f"got {getattr(self, key)!r}")
+        if (self.test_fraction or 0.0) + (self.val_fraction or 0.0) >= 1.0:
+            raise ContractError(f"data.test_fraction + data.val_fraction must be < 1 (a train "
+                                f"part is left), got {self.test_fraction} + {self.val_fraction}")
+        # (the field separator may be it: a CSV writer quotes "6,000")
+        if self.thousands is not None and (len(self.thousands) != 1 or self.thousands
+                                           == self.decimal or re.match(r"[\w+\-\s]", self.thousands)):
+            raise ContractError(f"data.thousands must be one character other than the decimal "
+                                "mark, not a digit, letter, sign or space (',', '.', \"'\" or "
+                                f"null), got {self.thousands!r}")
+        if self.decimal == self.delimiter != AUTO:
+            raise ContractError(f"data.decimal={self.decimal!r} is the field separator too "
+                                "(data.delimiter): a lab writing decimal commas separates with ';'")
+        if self.kelvin_threshold_c <= 0.0:    # every reading above it is refused as kelvin
+            raise ContractError(f"data.kelvin_threshold_c must be > 0 (°C), got "
+                                f"{self.kelvin_threshold_c:g}")
+
+
+def _text(cfg: Mapping, key: str, default: str) -> str:
+    """``cfg[key]`` as text, ``default`` when missing or null (an empty text stays, refused)."""
+    value = cfg.get(key)
+    return default if value is None else str(value)
+
+
+def _roles(cfg: Mapping) -> dict:
+    """``data.roles`` as ``{error, state, ambient, ignore: list of patterns, time: name|auto}``."""
+    value = cfg.get("roles") or {}
+    if not hasattr(value, "items"):
+        raise ContractError(f"data.roles must be a mapping, got {value!r}")
+    unknown = [k for k in value if k not in (*ROLE_PATTERNS, "time")]
+    if unknown:
+        raise ContractError(f"data.roles.{unknown[0]}: unknown role; roles: "
+                            f"{', '.join((*ROLE_PATTERNS, 'time'))}")
+    out = {}
+    for key in ROLE_PATTERNS:
+        patterns = value.get(key) or []
+        patterns = [patterns] if isinstance(patterns, str) else patterns
+        if not all(isinstance(p, str) and p for p in patterns):
+            raise ContractError(f"data.roles.{key} must be a list of header patterns, got "
+                                f"{value.get(key)!r}")
+        out[key] = list(patterns)
+    time = value.get("time", AUTO)
+    out["time"] = AUTO if time is None else str(time)
+    return out
+
+
+def _fraction(cfg: Mapping, key: str) -> float | None:
+    number = _float(cfg, key, None)
+    if number is not None and not 0.0 < number < 1.0:
+        raise ContractError(f"data.{key} must be in (0, 1) (a share of the record), got {number:g}")
+    return number
+
+
+def _split_order(cfg: Mapping) -> tuple:
+    value = cfg.get("split_order") or SPLIT_ORDER
+    order = tuple(str(v) for v in ([value] if isinstance(value, str) else value))
+    if sorted(order) != sorted(SPLIT_ORDER):
+        raise ContractError(f"data.split_order must order train, val and test once each "
+                            f"(chronologically), got {list(order)}")
+    return list(order)
+
+
+def _str_mapping(cfg: Mapping, key: str) -> dict:
+    value = cfg.get(key, None) or {}
+    if not hasattr(value, "items"):
+        raise ContractError(f"data.{key} must be a mapping, got {value!r}")
+    return {str(k): str(v) for k, v in value.items()}
+
+
+def _float(cfg: Mapping, key: str, default: float | None, nullable: bool = False
+           ) -> float | None:
+    """``cfg[key]`` as a finite float; a missing key gives ``default``, and so does null
+    unless ``nullable`` (then null switches the check it steers off)."""
+    if key not in cfg:
+        return default
+    value = cfg.get(key)
+    if value is None:
+        return None if nullable else default
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise ContractError(f"data.{key} must be a number, got {value!r}") from None
+    if isinstance(value, bool) or not math.isfinite(number):
+        raise ContractError(f"data.{key} must be a finite number, got {value!r}")
+    return number
+
+
+def _positive_float(cfg: Mapping, key: str, default: float | None = None,
+                    nullable: bool = False) -> float | None:
+    number = _float(cfg, key, default, nullable)
+    if number is not None and number <= 0:
+        raise ContractError(f"data.{key} must be > 0, got {number:g}")
+    return number
+
+
+def _count(cfg: Mapping, key: str) -> int:
+    value = cfg.get(key, 0)
+    value = 0 if value is None else value
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not 0 <= value <= MAX_COUNT:
+        raise ContractError(f"data.{key} must be an integer >= 0, at most {MAX_COUNT:,}, got {value!r}")
+    return int(value)
+
+
+def _first_line(exc: BaseException) -> str:
+    """The first line of an exception's message (its type when it has none)."""
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__

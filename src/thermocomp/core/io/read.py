@@ -1,0 +1,547 @@
+"""Read, validate and ingest datasets in the contract of ``DATA_FORMAT.md``.
+
+A dataset folder holds a manifest ``campaigns.csv`` and one ``.csv`` or
+``.parquet`` file per campaign (or ``data.path`` is one such file, a record cut by
+:mod:`.record`).  Every campaign goes through the same steps,
+column by column on an Arrow table so that memory stays bounded by about one
+copy of the campaign:
+
+1. load (``pyarrow.csv.read_csv`` with every data column typed ``float64``, or
+   ``pyarrow.parquet.read_table``; separator and decimal mark detected by :mod:`.sniff`) and
+   rename columns through ``data.columns`` and ``data.roles`` (:mod:`.roles`, units converted);
+2. check names: only ``time``, ``T_*``, ``E_*``, ``S_*``; at least one ``E_``;
+3. build ``time`` in seconds (float seconds as given, ISO 8601 timestamps as
+   seconds since the first sample, or ``row * sample_period_s``) and require
+   it strictly increasing;
+4. check values (finite, not all missing, temperatures in °C, no unit changing part
+   way through a file) and deal with missing values (see below);
+5. optionally resample onto a uniform grid; order the columns ``time``, then
+   ``T_``, ``E_``, ``S_`` in file order.
+
+Missing values
+--------------
+Missing values are empty cells (and the usual null spellings ``NA``, ``NaN``,
+``null``, ...).  A repaired campaign never contains NaN: downstream code can
+rely on complete rows.  Nothing is invented without a config key saying so:
+
+* *interior gaps* (a run of missing values between two valid samples of a
+  column, including an isolated missing ``E_`` value) of at most
+  ``max_gap_samples`` samples are linearly interpolated in time and counted
+  per column in the report; a longer gap is a :class:`ContractError` naming
+  the column and the gap's first row.  With the default ``0`` every gap is
+  refused.
+* *edges*: rows at the start or the end of a campaign where some column is
+  missing are never filled, because the contract references ``T_`` and ``E_``
+  to the first valid sample and a back-filled value would fake that reference.
+  Up to ``max_edge_samples`` such rows (default ``0``) are dropped at each end
+  (counted in the report under ``trimmed``); more is a :class:`ContractError`.
+
+``ReadOptions.missing="keep"`` (not a data config key: the ``monitor`` stage
+passes it through ``read_dataset(..., missing="keep")`` to stream a campaign
+as the machine saw it) skips both repairs: missing values stay NaN, no row is
+trimmed, no gap is refused, and the report counts the cells kept per column
+(``missing``).  Everything else is still refused, including a column with no
+valid value and a missing ``time``.  ``missing="keep_errors"`` (a volumetric
+dataset: an empty ``E_`` cell is a distance not measured in that cycle) keeps
+the ``E_`` columns' missing values and counts them so, and repairs or refuses
+the other columns' as above.
+
+Row numbers in error messages are 1-based data rows of the source file,
+header excluded.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import asdict, replace
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from ...base.files import atomic_dir, folder_digest, write_json
+from ...base.log import logger
+from .contract import (
+    AMBIENT_C,
+    MANIFEST,
+    TIME,
+    ContractError,
+    Dataset,
+    ambient_source,
+    is_ambient,
+    role,
+)
+from .manifest import CAMPAIGN_SUFFIXES, read_manifest
+from .options import ROLE_ORDER, ReadOptions
+from .record import cut, hold_out, record_id
+from .steps import check_unit_steps
+from .tables import _load_csv, _load_parquet, _ordered, _values
+from .values import (
+    _check_periods,
+    _error_ranges,
+    _keep_missing,
+    _median_period,
+    _repair_missing,
+    _set_time_seconds,
+    _warn_error_ranges,
+)
+
+INGEST_REPORT = "ingest_report.json"
+MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
+MAX_GRID_ROWS = 5_000_000
+_READ_ATTEMPTS = 5
+
+# ---------------------------------------------------------------------------
+# Resampling and assembly
+
+
+def _check_length(rows: int, path: Path, what: str) -> None:
+    if rows < MIN_ROWS:
+        raise ContractError(f"the campaign has {rows} {what}sample(s): at least {MIN_ROWS} are "
+                            "needed (the first is the reference, the others are scored)",
+                            file=path)
+
+
+def _check_fahrenheit(columns: dict, path: Path, threshold: float | None, start: int) -> None:
+    """A lab's coldest sensor sits near ambient at a campaign's first sample: if even the
+    coldest ``T_`` is above ``threshold`` (°C) there, the file is in °F."""
+    first = {n: c[0].as_py() for n, c in columns.items() if role(n) == "T"}
+    first = {n: v for n, v in first.items() if v is not None and not math.isnan(v)}  # kept missing
+    if threshold is None or not first:
+        return
+    name = min(first, key=first.get)
+    if first[name] > threshold:
+        raise ContractError(f"the coldest temperature at the first sample is {first[name]:g} °C, "
+                            f"above data.fahrenheit_threshold_c={threshold:g}: temperatures look "
+                            "like °F, convert to °C", file=path, column=name, row=start + 1)
+
+
+def _resample(columns: dict, step: float, path: Path, max_factor: float) -> None:
+    """Linear interpolation of every column onto ``t0, t0 + step, ...``."""
+    time = _values(columns[TIME])
+    count = (time[-1] - time[0]) / step + 1
+    if not count <= min(max_factor * len(time), MAX_GRID_ROWS):  # before allocating it
+        raise ContractError(f"data.resample_s={step:g} would make {count:.4g} rows from "
+                            f"the file's {len(time)} (at most data.max_resample_factor={max_factor:g} "
+                            f"times the file's rows and {MAX_GRID_ROWS:.0e})", file=path)
+    count = int(math.floor((time[-1] - time[0]) / step + 1e-9)) + 1
+    grid = time[0] + step * np.arange(count)
+    for name in columns:
+        if name != TIME:
+            columns[name] = pa.array(np.interp(grid, time, _values(columns[name])))
+    columns[TIME] = pa.array(grid)
+
+
+def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
+                  ) -> tuple[pa.Table, dict]:
+    """Read and validate one campaign file into an Arrow table.
+
+    Parameters
+    ----------
+    path : str or Path
+        A ``.csv`` or ``.parquet`` campaign file.
+    cfg : mapping or ReadOptions, optional
+        The ``data`` config (see :func:`read_dataset`).
+
+    Returns
+    -------
+    table : pyarrow.Table
+        ``time`` (float seconds), then ``T_``, ``E_``, ``S_`` columns, all
+        float64, no missing value (``missing="keep"``: missing values stay,
+        as nulls; a resampled grid point next to one is missing too).
+    report : dict
+        ``rows``, ``source_rows``, ``time`` (``'seconds'``, ``'iso8601'`` or
+        ``'sample_period_s'``; ``time_origin`` for timestamps), ``repairs``
+        ({column: interpolated samples}), ``trimmed`` ({"start", "end"} rows),
+        ``resampled_s`` when resampled and, with ``missing="keep"``,
+        ``missing`` ({column: missing cells kept}).
+
+    Raises
+    ------
+    ContractError
+        If the file breaks the contract; see :func:`read_dataset`.
+    """
+    opts = cfg if isinstance(cfg, ReadOptions) else ReadOptions.from_cfg(cfg)
+    path = Path(path)
+    if not path.is_file():
+        raise ContractError("campaign file not found", file=path)
+    if path.stat().st_size == 0:
+        raise ContractError("empty file", file=path)
+    load = _load_parquet if path.suffix.lower() == ".parquet" else _load_csv
+    columns, renamed, rescaled = load(path, opts)
+    rows = len(next(iter(columns.values())))
+    if rows == 0:
+        raise ContractError("file has no data rows", file=path)
+    missing = _keep_missing if opts.missing == "keep" else _repair_missing
+    report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts),
+              **missing(columns, rows, path, opts)}
+    _check_length(len(columns[TIME]), path, "complete " if opts.missing != "keep" else "")
+    _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
+    check_unit_steps(columns, path, opts.max_step_ratio, report["trimmed"]["start"])
+    if opts.resample_s is not None:
+        _resample(columns, opts.resample_s, path, opts.max_resample_factor)
+        report["resampled_s"] = opts.resample_s
+        _check_length(len(columns[TIME]), path, f"(after data.resample_s={opts.resample_s:g}) ")
+    table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
+    if renamed:          # the file's own names (data.columns, data.roles): raw -> contract
+        report["columns"] = renamed
+    if rescaled:         # read in another unit (mm, K, ...): the lab's name carries other values
+        report["converted"] = rescaled
+    return table, {"rows": table.num_rows, **report}
+
+
+def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
+                    ) -> Iterator[tuple[str, pa.Table, dict]]:
+    """Every campaign, read and validated; once all are read, their sample periods are
+    compared (a campaign timed in another unit is refused)."""
+    periods, ranges = {}, {}
+    for cid, row in manifest.iterrows():
+        table, report = read_campaign(root / row["file"], opts)
+        periods[cid] = _median_period(table)
+        ranges[cid] = _error_ranges(table)
+        yield cid, table, {"file": row["file"], "split": row["split"], **report}
+        del table  # before reading the next campaign
+    _check_periods(periods, manifest["file"], root, opts.max_period_ratio)
+    _warn_error_ranges(ranges, manifest["file"], root)
+
+
+def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) -> dict:
+    def totals(key: str) -> dict[str, int]:
+        out: dict[str, int] = {}
+        for entry in entries.values():
+            for column, count in entry.get(key, {}).items():
+                out[column] = out.get(column, 0) + count
+        return out
+
+    report = {"dataset": name, "rows": sum(e["rows"] for e in entries.values()),
+              "campaigns": entries, "repairs": totals("repairs"),
+              "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
+              **_renamed(entries),
+              "settings": {k: v for k, v in asdict(opts).items() if k != "missing"}}
+    if opts.missing != "repair":
+        report["missing"] = totals("missing")
+    return report
+
+
+def _renamed(entries: dict) -> dict:
+    """``{"column_map": {raw: contract}}`` over every campaign whose headers were renamed (what
+    :func:`.roles.contract_columns` gives; a deployed model reads the lab's names through it)."""
+    out: dict[str, str] = {}
+    for entry in entries.values():
+        out.update(entry.get("columns", {}))
+    return {"column_map": out} if out else {}
+
+
+def _collect_roles(columns: dict, names: list[str]) -> None:
+    for name in names:
+        if name != TIME:
+            columns.setdefault(role(name), {}).setdefault(name, None)
+
+
+def _to_frame(table: pa.Table) -> pd.DataFrame:
+    return table.to_pandas(split_blocks=True)
+
+
+# ---------------------------------------------------------------------------
+# Public entry points
+
+
+def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str = "repair",
+                 campaigns: Sequence[str] | None = None) -> tuple[Dataset, dict]:
+    """Read, validate and repair a dataset folder.
+
+    Parameters
+    ----------
+    path : str or Path
+        Dataset folder with ``campaigns.csv`` and the campaign files, or one ``.csv`` /
+        ``.parquet`` file: one record (:mod:`.record`).
+    cfg : mapping, optional
+        The ``data`` config group (dict or ``DictConfig``); every key is
+        optional:
+
+        columns : mapping
+            Raw column name -> contract name, applied to every campaign file
+            before validation (e.g. ``{"delta L": "E_L", "Zeit": "time"}``).
+        roles : mapping
+            ``error``/``state``/``ambient``/``ignore`` header patterns and ``time``
+            (:mod:`.roles`); ``columns`` wins.
+        test_fraction, val_fraction, split_order
+            A chronological test (val) part of one record, or the last campaigns of a folder
+            without that split (:mod:`.record`).
+        sample_period_s : float
+            Files without a ``time`` column get ``time = row * sample_period_s``.
+            A file with a ``time`` column keeps its own.
+        time : {'auto', 'seconds', 'iso8601'}
+            How to read ``time``; ``'auto'`` decides from the first row.
+            Seconds are kept as given; timestamps become seconds since the
+            file's first sample (rows with zone offsets are compared as
+            instants, naive ones as written).
+        split_overrides : mapping
+            Campaign id -> split, replacing the manifest's.
+        max_gap_samples : int, default 0
+            Longest interior run of missing values that is interpolated.
+        max_edge_samples : int, default 0
+            Most incomplete rows that are dropped at each end of a campaign.
+        resample_s : float
+            If set, every campaign is linearly interpolated onto a uniform
+            grid with this step, starting at its first sample.
+        kelvin_threshold_c : float, default 200
+            A ``T_`` value above it is taken for kelvin and refused.
+        max_step_ratio : float or None, default 5
+            A unit change inside a file (a ``T_`` or ``E_`` step this many
+            times the column's typical step that a unit conversion explains
+            and that persists) is refused; see :mod:`thermocomp.core.io.steps`.
+        delimiter, decimal : str, default 'auto'
+            CSV field separator and decimal mark of the campaign files; ``'auto'``:
+            detected from each file's first lines (:mod:`.sniff`).
+        thousands : str or None, default None
+            CSV thousands separator (``','`` reads ``6,000``).
+    missing : {'repair', 'keep', 'keep_errors'}, default 'repair'
+        Not a config key: ``'keep'`` leaves missing values NaN (no trim, no
+        interpolation, no gap refused) and counts them in the report's
+        ``missing``, for a stage that must see the data as it was recorded;
+        ``'keep_errors'`` does so for the ``E_`` columns only (a volumetric
+        dataset's distances not measured) and repairs the others.
+
+    Returns
+    -------
+    dataset : Dataset
+        Manifest indexed by campaign id; one float64 frame per campaign with
+        ``time`` (s), then ``T_``, ``E_``, ``S_`` columns in file order, and
+        no missing value (unless ``missing='keep'``).
+    report : dict
+        ``{"dataset": name, "rows": total, "campaigns": {id: {"file", "split",
+        "rows", "source_rows", "time", "repairs": {column: n}, "trimmed":
+        {"start", "end"}, ...}}, "repairs": {column: total}, "columns": {"T":
+        [...], "E": [...], "S": [...]}, "settings": {...}}``.  ``repairs``
+        lists only columns with at least one interpolated sample; with
+        ``missing='keep'`` the campaigns and the report also have ``missing``
+        ({column: missing cells}, columns with at least one).
+
+    Raises
+    ------
+    ContractError
+        On input that breaks the contract, with a one-line message naming the
+        file, the column and the 1-based data row where they apply: missing
+        manifest or campaign file, invalid manifest, empty file, unknown
+        column prefix, no ``E_`` column, no time, unreadable time, duplicate
+        or decreasing times, non-numeric cells (or non-numeric Parquet
+        dtypes), infinite values, temperatures that look like kelvin, a
+        unit that changes inside a file, an
+        all-missing column, gaps or incomplete edges beyond the configured
+        limits, and invalid config values.
+
+    Notes
+    -----
+    Missing values are handled as described in the module docstring: gaps
+    are interpolated and edges trimmed only up to the configured limits, and
+    every repair is counted.
+    """
+    opts = replace(ReadOptions.from_cfg(cfg), missing=missing)
+    root, manifest, tables = _source(Path(path), opts, campaigns)
+    frames, entries, columns = {}, {}, {}
+    for cid, table, entry in tables:
+        _collect_roles(columns, table.column_names)
+        frames[cid], entries[cid] = _to_frame(table), entry
+        del table
+    report = _dataset_report(_name(path), entries, columns, opts)
+    report["ambient"] = _manifest_ambient(manifest, frames)
+    manifest = _starts_from_timestamps(manifest, entries)
+    meta = {"path": str(root), "column_map": report.get("column_map", {}),
+            "converted": sorted({c for e in entries.values() for c in e.get("converted", [])})}
+    return Dataset(manifest, frames, _name(path), meta), report
+
+
+def _name(path) -> str:
+    """The dataset's name: its folder's, or a one-file record's stem."""
+    path = Path(path)
+    return record_id(path) if path.is_file() else path.name
+
+
+def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.DataFrame, Iterator]:
+    """The folder campaign files are relative to, the manifest, and the campaigns read:
+    a dataset folder's (the last train campaigns held out as ``data.test_fraction`` asks) or
+    a one-file record's, cut chronologically (:mod:`.record`)."""
+    if path.suffix.lower() in CAMPAIGN_SUFFIXES and not path.exists():
+        raise ContractError("no such file (data.path: a dataset folder or one record's file)",
+                            file=path)
+    if path.is_file():
+        table, report = read_campaign(path, opts)
+        manifest, parts = cut(path, table, report, opts)
+        del table
+        ids = list(manifest.index if campaigns is None else campaigns)
+        return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
+    manifest = hold_out(read_manifest(path, opts), opts, path)
+    if campaigns is not None:
+        manifest = manifest.loc[list(campaigns)]
+    return path, manifest, _iter_campaigns(path, manifest, opts)
+
+
+def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:
+    """Where each campaign's ambient comes from: its ``T_amb*`` sensors, else the manifest's
+    ``ambient_c`` (handed on in the frame's ``attrs``), else nowhere; said once per dataset."""
+
+    sources = {}
+    for cid, df in frames.items():
+        value = manifest.at[cid, AMBIENT_C] if AMBIENT_C in manifest.columns else float("nan")
+        if not any(is_ambient(c) for c in df.columns) and pd.notna(value):
+            df.attrs[AMBIENT_C] = float(value)
+        sources[cid] = ambient_source(df)
+    n = sum(v == AMBIENT_C for v in sources.values())
+    if n:
+        logger.info(f"ambient: {MANIFEST} column {AMBIENT_C} for the {n} campaign(s) without a "
+                    "T_amb / T_amb_* sensor")
+    return {"source": sorted({str(v) for v in sources.values()}), "campaigns": sources}
+
+
+def _starts_from_timestamps(manifest: pd.DataFrame, entries: Mapping) -> pd.DataFrame:
+    """The manifest with ``start`` filled, where it is empty, by the campaign's first timestamp
+    (files whose ``time`` is ISO 8601): the optional ``start`` column then says when each
+    campaign began, so a record cut into consecutive files is seen as one (carry-over)."""
+    origins = {cid: e.get("time_origin") for cid, e in entries.items() if e.get("time_origin")}
+    if not origins:
+        return manifest
+    out = manifest.copy()
+    if "start" not in out.columns:
+        out["start"] = pd.Series([None] * len(out), index=out.index, dtype=object)
+    out["start"] = out["start"].astype(object)
+    for cid, origin in origins.items():
+        if cid in out.index and pd.isna(out.at[cid, "start"]):
+            out.at[cid, "start"] = pd.Timestamp(origin)
+    return out
+
+
+def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra: dict | None = None,
+           finish=None) -> dict:
+    """Validate a raw dataset and write it as Parquet to ``dest``.
+
+    Campaigns are read, validated and written one at a time as Arrow tables,
+    so peak memory is about one campaign.  ``dest`` is replaced atomically:
+    after an error nothing new appears there and a previous ``dest`` is left
+    as it was.  Files under ``src`` are only read.
+
+    Parameters
+    ----------
+    src : str or Path
+        Raw dataset folder.
+    dest : str or Path
+        Output folder; receives ``<campaign>.parquet`` files, ``campaigns.csv``
+        (splits after overrides) and ``ingest_report.json``.  It must not be
+        ``src`` or lie inside it (or contain it).
+    cfg : mapping, optional
+        The ``data`` config, as for :func:`read_dataset`.
+    extra : dict, optional
+        More keys of the report (a volumetric dataset's ``dataset`` and ``calibration``).
+    finish : callable, optional
+        ``finish(dataset) -> dict``: more keys of the report, judged on the dataset as written
+        (manifest and ``time`` columns only: a campaign at a time stays the peak memory).
+
+    Returns
+    -------
+    dict
+        The ingest report, as written to ``ingest_report.json`` (format of
+        :func:`read_dataset`).
+
+    Raises
+    ------
+    ContractError
+        As :func:`read_dataset`, or if ``dest`` overlaps ``src``.
+    """
+    opts = ReadOptions.from_cfg(cfg)
+    src, dest = Path(src), Path(dest)
+    check_separate(src, dest)
+    _, manifest, tables = _source(src, opts)
+    entries, columns = {}, {}
+    with atomic_dir(dest) as tmp:
+        for cid, table, entry in tables:
+            _collect_roles(columns, table.column_names)
+            pq.write_table(table, tmp / f"{cid}.parquet")
+            entries[cid] = entry
+            del table
+            pa.default_memory_pool().release_unused()
+        out = _starts_from_timestamps(manifest, entries).assign(
+            file=[f"{cid}.parquet" for cid in manifest.index])
+        (tmp / MANIFEST).write_text(_manifest_csv(out))
+        report = {**_dataset_report(_name(src), entries, columns, opts), **(extra or {})}
+        if finish is not None:
+            report.update(finish(_clocks(tmp, out, report["dataset"])))
+        write_json(tmp / INGEST_REPORT, report, ensure_ascii=False)
+    return report
+
+
+def _clocks(root: Path, manifest: pd.DataFrame, name: str) -> Dataset:
+    """The dataset written in ``root`` with each campaign's ``time`` column only."""
+    return Dataset(manifest, {cid: _to_frame(pq.read_table(root / f, columns=[TIME]))
+                              for cid, f in manifest["file"].items()}, name, {})
+
+
+def load_interim(path: str | Path) -> Dataset:
+    """Read back a folder written by :func:`ingest`, without re-validating it.
+
+    Parameters
+    ----------
+    path : str or Path
+        Output folder of :func:`ingest`.
+
+    Returns
+    -------
+    Dataset
+        As :func:`read_dataset` returns it; ``meta["ingest_report"]`` holds
+        the ingest report, ``meta["digest"]`` the folder's digest
+        (:func:`~thermocomp.base.files.folder_digest`) of exactly what was read.
+
+    Raises
+    ------
+    ContractError
+        If the folder has no ``ingest_report.json`` (it was not written by
+        :func:`ingest`) or its manifest is invalid.
+
+    Notes
+    -----
+    Another ``ingest`` may swap the folder while it is read: the digest is
+    taken before and after, and the read is repeated until both agree, so the
+    dataset is one ingest's, whole, and its digest says which.
+    """
+    root = Path(path)
+    for _ in range(_READ_ATTEMPTS):
+        with contextlib.suppress(FileNotFoundError, pa.ArrowInvalid):
+            before = folder_digest(root)
+            ds = _load_interim_once(root)
+            if folder_digest(root) == before:
+                ds.meta["digest"] = before
+                return ds
+    raise ContractError("the folder kept changing while it was read (another ingest writing "
+                        "it?)", file=root)
+
+
+def _load_interim_once(root: Path) -> Dataset:
+    report_path = root / INGEST_REPORT
+    if not report_path.is_file():
+        raise ContractError(f"no {INGEST_REPORT}: not an ingested dataset (run ingest first)",
+                            file=root)
+    manifest = read_manifest(root)
+    campaigns = {cid: _to_frame(pq.read_table(root / f)) for cid, f in manifest["file"].items()}
+    meta = {"path": str(root), "ingest_report": json.loads(report_path.read_text())}
+    # named after the dataset it was ingested from, as run names it (not the interim folder)
+    return Dataset(manifest, campaigns, meta["ingest_report"].get("dataset") or root.name, meta)
+
+
+def check_separate(src: Path, dest: Path) -> None:
+    a, b = src.resolve(), dest.resolve()
+    if a == b or a in b.parents or b in a.parents:
+        raise ContractError(f"ingest destination {dest} overlaps the raw dataset {src}; "
+                            "raw files are never modified")
+
+
+def _manifest_csv(manifest: pd.DataFrame) -> str:
+    out = manifest.copy()
+    if "start" in out.columns:
+        out["start"] = [t.isoformat() if pd.notna(t) else "" for t in out["start"]]
+    ordered = ["file", "split"] + [c for c in out.columns if c not in ("file", "split")]
+    return out[ordered].rename_axis("campaign").reset_index().to_csv(index=False)
+

@@ -1,0 +1,109 @@
+"""A dataset without a test split: ``data.test_fraction`` and ``data.val_fraction``.
+
+One record (``data.path`` a CSV or Parquet file, no manifest) is cut chronologically into parts,
+each a campaign that ``continues`` the one before (:mod:`thermocomp.core.continuation`), in the order
+``data.split_order`` (default train, val, test).  In a folder of campaigns without a test (or
+val) split, the chronologically last campaigns (by ``start``, else manifest order) are held out.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import pandas as pd
+import pyarrow as pa
+
+from ...base.log import logger
+from .contract import MANIFEST, ContractError
+
+MIN_PART_ROWS = 2          # as a campaign: a reference sample and one to score
+_UNSAFE_ID = re.compile(r"[^\w.\-]+")
+
+
+def shares(opts) -> dict[str, float]:
+    """``{split: share}`` of the splits a fraction asks for, ``train`` the rest."""
+    out = {"test": opts.test_fraction, "val": opts.val_fraction}
+    out = {k: v for k, v in out.items() if v is not None}
+    return {"train": 1.0 - sum(out.values()), **out} if out else {}
+
+
+def _counts(n: int, opts) -> dict[str, int]:
+    """Whole samples (campaigns) per split: val and test rounded half up (at least one), train
+    the rest."""
+    wanted = shares(opts)
+    counts = {k: max(1, math.floor(n * v + 0.5)) for k, v in wanted.items() if k != "train"}
+    counts["train"] = n - sum(counts.values())
+    return {k: counts[k] for k in opts.split_order if k in counts}
+
+
+def record_id(path: Path) -> str:
+    """The campaign id of a one-file record: its stem, in characters an id may hold."""
+    return _UNSAFE_ID.sub("_", path.stem).strip("._") or "record"
+
+
+def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, dict]:
+    """The one-file record ``path`` (read as ``table``) as campaigns.
+
+    Returns
+    -------
+    manifest : DataFrame
+        Indexed by campaign id: ``file`` (the record's name), ``split``, ``continues``.
+    parts : dict
+        Campaign id -> (table, report entry with the record's ``rows`` ``[from, to)``).
+    """
+    stem = record_id(path)
+    counts = _counts(table.num_rows, opts) or {"train": table.num_rows}
+    short = {k: v for k, v in counts.items() if v < MIN_PART_ROWS}
+    if short:
+        split, rows = next(iter(short.items()))
+        raise ContractError(f"the {split} part would have {rows} sample(s) of the record's "
+                            f"{table.num_rows}: at least {MIN_PART_ROWS} (raise data."
+                            f"{split if split != 'train' else 'test'}_fraction or lower the "
+                            "others)", file=path)
+    rows, parts, previous, start = [], {}, "", 0
+    for split, count in counts.items():
+        cid = stem if len(counts) == 1 else f"{stem}_{split}"
+        entry = {**report, "file": path.name, "split": split, "rows": count, "source_rows": count,
+                 "record_rows": [start, start + count]}
+        if start:             # the record's repairs and trimmed start are counted once, first
+            entry.update(repairs={}, trimmed={"start": 0, "end": report["trimmed"]["end"]})
+        if start + count < table.num_rows:
+            entry["trimmed"] = {**entry["trimmed"], "end": 0}
+        parts[cid] = (table.slice(start, count), entry)
+        rows.append({"campaign": cid, "file": path.name, "split": split, "continues": previous})
+        previous, start = cid, start + count
+    if len(counts) > 1:
+        logger.info(f"{path.name}: cut chronologically into "
+                    + ", ".join(f"{s} {c} rows" for s, c in counts.items()))
+    return pd.DataFrame(rows).set_index("campaign"), parts
+
+
+def hold_out(manifest: pd.DataFrame, opts, root: Path) -> pd.DataFrame:
+    """``manifest`` with the chronologically last train campaigns made test (and val) as the
+    fractions ask; refused where the manifest has that split already."""
+    wanted = shares(opts)
+    if not wanted:
+        return manifest
+    for split in ("test", "val"):
+        if split in wanted and (manifest["split"] == split).any():
+            raise ContractError(f"data.{split}_fraction is set but the manifest has {split} "
+                                "campaigns already: drop one of them", file=root / MANIFEST,
+                                column="split")
+    pool = manifest.index[manifest["split"] == "train"]
+    if "start" in manifest.columns and manifest.loc[pool, "start"].notna().all():
+        pool = manifest.loc[pool].sort_values("start", kind="stable").index
+    counts = _counts(len(pool), opts)
+    if min(counts.values()) < 1:
+        raise ContractError(f"{len(pool)} train campaign(s) cannot be split "
+                            + ", ".join(f"{s} {c}" for s, c in counts.items())
+                            + ": lower data.test_fraction / data.val_fraction", file=root / MANIFEST)
+    out, at = manifest.copy(), 0
+    for split, count in counts.items():
+        out.loc[pool[at:at + count], "split"] = split
+        at += count
+    logger.info("held out chronologically: " + ", ".join(
+        f"{s} {list(pool[sum(list(counts.values())[:i]):][:c])}" for i, (s, c) in
+        enumerate(counts.items()) if s != "train"))
+    return out

@@ -1,0 +1,215 @@
+"""``data.roles``: a lab's own headers read as contract columns, by glob patterns.
+
+``data.roles.error``/``state``/``ambient``/``ignore`` are fnmatch patterns over a file's headers
+(with or without their unit); ``data.roles.time`` names the time column (``auto``: a header such
+as ``time``, ``t(s)``, ``時間(s)``, ``Zeit``, or a column of ISO 8601 timestamps).  Every other
+numeric column is a temperature.  The contract name is the role's prefix and the header without
+its unit (``ch1(um)`` -> ``E_ch1``, ``t1(°C)`` -> ``T_t1``, ``spindle(RPM)`` -> ``S_spindle``; the
+ambient sensor ``T_amb``, or ``T_amb_<name>`` when there are several), and a unit that is not the
+contract's (mm, K, °F, ms, min) is converted.  ``data.columns`` (an explicit mapping) wins.
+Without any role set, headers are read as before: contract names, or mapped by ``data.columns``.
+"""
+
+from __future__ import annotations
+
+import fnmatch
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from ...base.errors import listed
+from .contract import TIME, ContractError, role
+from .options import AUTO, ROLE_PATTERNS, _roles
+
+_UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
+_UNSAFE = re.compile(r"[^\w.\-]+")
+_ISO = re.compile(r"\s*\d{4}-\d\d-\d\d[T ]\d\d?:\d\d")
+TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
+                          "zeitstempel", "temps", "tiempo", "elapsed", "seconds"})
+PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
+# unit (lower case, no spaces) -> (scale, offset) to the contract's unit
+UNITS = {
+    "E": {**dict.fromkeys(("µm", "μm", "um", "micron", "microns"), (1.0, 0.0)), "mm": (1e3, 0.0),
+          "m": (1e6, 0.0), "nm": (1e-3, 0.0)},
+    "T": {**dict.fromkeys(("°c", "c", "degc", "℃", "celsius", "deg.c"), (1.0, 0.0)),
+          **dict.fromkeys(("k", "kelvin"), (1.0, -273.15)),
+          **dict.fromkeys(("°f", "f", "degf", "℉", "fahrenheit"), (5 / 9, -32 * 5 / 9))},
+    "time": {**dict.fromkeys(("s", "sec", "secs", "seconds"), (1.0, 0.0)), "ms": (1e-3, 0.0),
+             "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0))},
+}
+
+
+@dataclass
+class Naming:
+    """What :func:`naming` decided for one file's headers."""
+
+    names: dict[str, str] = field(default_factory=dict)    # raw -> contract (ignored: absent)
+    scales: dict[str, tuple[float, float]] = field(default_factory=dict)  # contract -> to its unit
+    roles: dict[str, str] = field(default_factory=dict)    # raw -> why (role or "data.columns")
+
+
+def split_unit(header: str) -> tuple[str, str | None]:
+    """``('t1', '°C')`` for ``t1(°C)`` or ``t1 [°C]``; ``(header, None)`` without a unit."""
+    match = _UNIT.match(header.strip())
+    return (match.group(1).strip(), match.group(2).strip()) if match and match.group(1).strip() \
+        else (header.strip(), None)
+
+
+def active(roles: Mapping) -> bool:
+    """Any role pattern (or an explicit time column) set: headers are named by role."""
+    return any(roles.get(k) for k in ROLE_PATTERNS) or roles.get("time", AUTO) != AUTO
+
+
+def contract_columns(headers: Sequence[str], roles: Mapping | None = None,
+                     columns: Mapping | None = None, first: Mapping | None = None) -> dict[str, str]:
+    """The contract name of each of a file's ``headers`` (raw -> contract; ignored ones left out).
+
+    Parameters
+    ----------
+    headers : sequence of str
+        The file's own column names.
+    roles : mapping, optional
+        ``data.roles`` (``error``, ``state``, ``ambient``, ``ignore``: glob patterns; ``time``).
+    columns : mapping, optional
+        ``data.columns``, raw -> contract name; wins over ``roles``.
+    first : mapping, optional
+        A header's first cell as text: a non-numeric one is not a temperature, an ISO 8601
+        timestamp may be the time.
+
+    Raises
+    ------
+    ContractError
+        Listing, in one message, every column that is unmapped, not numeric or ambiguous.
+    """
+    return naming(headers, _roles({"roles": roles or {}}), dict(columns or {}), first).names
+
+
+def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapping | None = None,
+           decimal: str = ".", file: Path | None = None) -> Naming:
+    """:func:`contract_columns` with the unit conversions (``roles`` as ``ReadOptions.roles``)."""
+    first = first or {}
+    by_role = active(roles)
+    out, problems = Naming(), []
+    time_header = _time_header(headers, roles, columns, first, problems)
+    ambient = [h for h in headers if h not in columns and _hits(h, roles) == ["ambient"]]
+    for header in headers:
+        base, unit = split_unit(header)
+        if header in columns:
+            out.names[header], out.roles[header] = columns[header], "data.columns"
+            continue
+        if header == time_header:
+            out.names[header], out.roles[header] = TIME, "time"
+            _scale(out, TIME, "time", unit, header, problems, first.get(header), decimal)
+            continue
+        hits = _hits(header, roles)
+        if len(hits) > 1:
+            problems.append(f"{header!r} is matched by {' and '.join(f'data.roles.{k}' for k in hits)}")
+            continue
+        kind = hits[0] if hits else None
+        if kind == "ignore":
+            continue
+        if kind is None and by_role and unit and role(base) in ("E", "S", "T"):   # with a unit
+            kind = {"E": "error", "S": "state", "T": "temperature"}[role(base)]
+        if kind is None and (role(header) is not None or not by_role):
+            out.names[header], out.roles[header] = header, "contract"   # its own name, or unmapped
+            if role(header) is None:
+                out.roles[header] = "unmapped"
+                problems.append(f"{header!r} has no role")
+            continue
+        if kind is None:
+            if not _numeric(first.get(header), decimal):
+                problems.append(f"{header!r} is not numeric ({first.get(header)!r})")
+                continue
+            kind = "temperature"
+        name = _derived(kind, base, len(ambient) > 1)
+        if not _UNSAFE.sub("", base):
+            problems.append(f"{header!r} gives no name")
+            continue
+        out.names[header], out.roles[header] = name, kind
+        _scale(out, name, "E" if kind == "error" else "T" if kind != "state" else None, unit,
+               header, problems, None, decimal)
+    _duplicates(out.names, problems, by_role)
+    if problems:
+        raise _refusal(problems, by_role, out.names, out.roles, file)
+    return out
+
+
+def _hits(header: str, roles: Mapping) -> list[str]:
+    base = split_unit(header)[0]
+    return [k for k in ROLE_PATTERNS if any(fnmatch.fnmatchcase(header, p) or
+                                            fnmatch.fnmatchcase(base, p) for p in roles.get(k, ()))]
+
+
+def _time_header(headers, roles, columns, first, problems) -> str | None:
+    if TIME in columns.values():
+        return None
+    if roles.get("time", AUTO) != AUTO:
+        want = roles["time"]
+        found = [h for h in headers if want in (h, split_unit(h)[0])]
+        if not found:
+            problems.append(f"data.roles.time={want!r} names no header")
+        return found[0] if found else None
+    free = [h for h in headers if h not in columns and not _hits(h, roles)]
+    named = [h for h in free if split_unit(h)[0].lower() in TIME_HEADERS]
+    if len(named) > 1:
+        problems.append(f"{' and '.join(map(repr, named))} both look like the time (set "
+                        "data.roles.time)")
+    if named:
+        return named[0]
+    stamped = [h for h in free if role(h) is None and _ISO.match(str(first.get(h) or ""))]
+    return stamped[0] if stamped else None
+
+
+def _derived(kind: str, base: str, several_ambient: bool) -> str:
+    name = _UNSAFE.sub("_", base).strip("_").replace("..", ".")
+    if kind == "ambient":
+        return f"T_amb_{name}" if several_ambient else "T_amb"
+    prefix = PREFIX[kind]
+    return name if name.startswith(prefix) and len(name) > len(prefix) else prefix + name
+
+
+def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: str,
+           problems: list, cell, decimal: str) -> None:
+    if kind is None or unit is None or (kind == "time" and not _numeric(cell, decimal)):
+        return
+    known = UNITS[kind]
+    scale = known.get(unit.lower().replace(" ", ""))
+    if scale is None:
+        what = {"E": "an error's (µm, mm, m, nm)", "T": "a temperature's (°C, K, °F)",
+                "time": "a time's (s, ms, min, h)"}[kind]
+        problems.append(f"{header!r}: unit {unit!r} is not {what}")
+    elif scale != (1.0, 0.0):
+        out.scales[name] = scale
+
+
+def _duplicates(names: dict, problems: list, by_role: bool) -> None:
+    if not by_role:                      # as before: the reader names a duplicate column
+        return
+    seen: dict[str, str] = {}
+    for raw, name in names.items():
+        if name in seen:
+            problems.append(f"{seen[name]!r} and {raw!r} both give {name}")
+        seen.setdefault(name, raw)
+
+
+def _numeric(text, decimal: str) -> bool:
+    if text is None or not str(text).strip():
+        return True                      # a missing cell: the column's type is not known here
+    try:
+        float(str(text).strip().replace(decimal, ".") if decimal != "." else str(text).strip())
+    except ValueError:
+        return False
+    return True
+
+
+def _refusal(problems: list[str], by_role: bool, names: dict, roles: dict, file) -> ContractError:
+    unmapped = [raw for raw, why in roles.items() if why == "unmapped"]
+    if not by_role and len(unmapped) == 1 and len(problems) == 1:   # the reader's own words
+        raw = unmapped[0]
+        return ContractError("column name has no contract role: expected 'time' or a T_/E_/S_ "
+                             "prefix (map it with data.columns, or give roles with data.roles.*)",
+                             file=file, column=names.get(raw, raw))
+    return ContractError(f"{len(problems)} column(s) not read: {listed(problems, 12)}; give each "
+                         "a role (data.roles.error/state/ambient/time, data.roles.ignore to leave "
+                         "it out) or a name (data.columns)", file=file)

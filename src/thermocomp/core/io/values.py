@@ -1,0 +1,360 @@
+"""Time in seconds and the checks of every value: strictly increasing time, finite values,
+temperatures in °C, and the missing samples (repaired or kept, see :mod:`thermocomp.core.io.read`)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pyarrow as pa
+import pyarrow.compute as pc
+
+from ...base.log import logger
+from .contract import TIME, ContractError, role
+from .options import ReadOptions
+from .tables import _chunks, _values
+
+ABSOLUTE_ZERO_C = -273.15
+MAX_ABS_T_C = 1e4  # refused whatever data.kelvin_threshold_c says
+FAULTY_SHARE = 0.1  # at most this share of a streamed T_ column above the kelvin threshold: faults
+
+# ---------------------------------------------------------------------------
+# Time
+
+
+def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions) -> dict:
+    """Replace (or add) ``time`` by float seconds; describe its source."""
+    if TIME not in columns:
+        columns[TIME] = pa.array(np.arange(rows) * opts.sample_period_s)
+        return {"time": "sample_period_s"}
+    column = columns[TIME]
+    try:
+        if column.null_count:
+            row = int(np.argmax(column.is_null().to_numpy(zero_copy_only=False))) + 1
+            raise ContractError("missing time value", file=path, column=TIME, row=row)
+        seconds, info = _seconds(column)
+        _check_increasing(seconds, path)
+    except ContractError as exc:
+        if opts.missing != "keep":
+            raise
+        raise ContractError(f"{exc.reason} (a test record with bad times streams as on the "
+                            "machine when piped: thermocomp monitor monitor.input=- < FILE)",
+                            file=exc.file, column=exc.column, row=exc.row) from None
+    _check_duration(seconds, path, opts.max_duration_days)
+    columns[TIME] = pa.array(seconds)
+    return info
+
+
+def _seconds(column: pa.ChunkedArray) -> tuple[np.ndarray, dict]:
+    kind = column.type
+    if pa.types.is_timestamp(kind):
+        ns = pc.cast(pc.cast(column, pa.timestamp("ns", kind.tz)), pa.int64()).to_numpy()
+        origin = pd.Timestamp(ns[0], tz=kind.tz).isoformat()
+        return (ns - ns[0]) / 1e9, {"time": "iso8601", "time_origin": origin}
+    if pa.types.is_duration(kind):
+        ns = pc.cast(pc.cast(column, pa.duration("ns")), pa.int64()).to_numpy()
+        return ns / 1e9, {"time": "seconds"}
+    return pc.cast(column, pa.float64()).to_numpy(), {"time": "seconds"}
+
+
+def _check_increasing(seconds: np.ndarray, path: Path) -> None:
+    finite = np.isfinite(seconds)
+    if not finite.all():
+        row = int(np.argmin(finite)) + 1
+        raise ContractError(f"time {seconds[row - 1]} is not finite", file=path, column=TIME,
+                            row=row)
+    steps = np.diff(seconds)
+    if (steps > 0).all():
+        return
+    i = int(np.argmax(steps <= 0))
+    before, after = seconds[i], seconds[i + 1]
+    what = (f"duplicate time {after:g} s (same as row {i + 1})" if after == before else
+            f"time decreases from {before:g} s (row {i + 1}) to {after:g} s")
+    raise ContractError(what, file=path, column=TIME, row=i + 2)
+
+
+def _check_duration(seconds: np.ndarray, path: Path, max_days: float | None) -> None:
+    days = (seconds[-1] - seconds[0]) / 86400
+    if max_days is None or days <= max_days:
+        return
+    limit = f"more than data.max_duration_days={max_days:g}"
+    steps = np.diff(seconds)
+    i = int(np.argmax(steps))
+    if steps[i] > 0.5 * (seconds[-1] - seconds[0]):   # one jump, not a unit: name its row
+        row = 1 if i == 0 else i + 2      # a first time far before the rest is the odd one
+        raise ContractError(f"time jumps by {steps[i] / 86400:.4g} days from row {i + 1} to "
+                            f"row {i + 2}: the campaign would last {days:.4g} days, {limit}",
+                            file=path, column=TIME, row=row)
+    raise ContractError(f"the campaign lasts {days:.4g} days, {limit}: is time in ms? it must be "
+                        "in seconds", file=path, column=TIME, row=len(seconds))
+
+
+def _median_period(table: pa.Table) -> float | None:
+    time = table.column(TIME).to_numpy()
+    return float(np.median(np.diff(time))) if len(time) > 1 else None
+
+
+def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | None) -> None:
+    """Refuse a campaign whose median sample period is ``ratio`` times (or 1/``ratio``) the
+    median of the others': its time column is in another unit (ms, minutes) than theirs."""
+    periods = {c: p for c, p in periods.items() if p}
+    if len(periods) < 2:
+        return
+    off = {}
+    for cid, p in periods.items():
+        r = p / np.median([q for c, q in periods.items() if c != cid])
+        if ratio is not None and (r >= ratio or r <= 1 / ratio):
+            off[cid] = r
+        elif any(abs(np.log(r) - k * np.log(60)) < 0.05 for k in (-1, 1)):
+            # 60x apart may be two logging rates (1 s and 1 min): said, not refused
+            logger.warning(f"{root / files[cid]}: median sample period {p:g} s is {r:.3g}x the "
+                           "other campaigns': if its time is in minutes (or theirs), convert it "
+                           "to seconds")
+    if not off:
+        return
+    cid = max(off, key=off.get)  # two campaigns disagree: ms (a time 1000x too large) is likelier
+    r = off[cid]
+    unit = ("ms" if r < 3e4 else "µs") if r > 1 else ("minutes" if r > 1 / 600 else "hours")
+    raise ContractError(f"median sample period {periods[cid]:g} s is {r:.3g}x the other "
+                        f"campaigns' ({periods[cid] / r:g} s): is its time in {unit}? it must be "
+                        f"in seconds (data.max_period_ratio={ratio:g})",
+                        file=root / files[cid], column=TIME)
+
+
+def _error_ranges(table: pa.Table) -> dict:
+    """``{E_ column: (peak-to-peak, constant)}`` of one campaign (finite values only)."""
+    out = {}
+    for name in table.column_names:
+        if role(name) == "E":
+            v = _values(table.column(name))
+            v = v[np.isfinite(v)]
+            if len(v):
+                out[name] = (float(np.ptp(v)), len(v) >= 3 and bool(np.all(v == v[0])))
+    return out
+
+
+SCALE_FACTOR = 300.0   # a campaign's error range this far off the others' median: another unit?
+
+
+def _warn_error_ranges(ranges: dict, files: Mapping, root: Path) -> None:
+    """Say what no unit check can refuse but a measurement hardly shows: an ``E_`` column
+    constant over a whole campaign (a dead channel: not measured is an empty cell), and one
+    whose range is :data:`SCALE_FACTOR` times off the other campaigns' median (mm or nm for
+    µm).  Said on stderr, not refused: an idle campaign may drift little."""
+    columns = {c for r in ranges.values() for c in r}
+    for col in sorted(columns):
+        spans = {cid: r[col][0] for cid, r in ranges.items() if col in r and r[col][0] > 0}
+        for cid, r in ranges.items():
+            if col not in r:
+                continue
+            span, constant = r[col]
+            if constant:
+                logger.warning(f"{root / files[cid]}, column '{col}': constant over the whole "
+                               "campaign (a dead channel?); leave the cells empty where it was not "
+                               "measured")
+            elif len(spans) >= 3:
+                typical = float(np.median([v for c, v in spans.items() if c != cid]))
+                if span * SCALE_FACTOR < typical or span > SCALE_FACTOR * typical:
+                    logger.warning(f"{root / files[cid]}, column '{col}': range {span:.3g} against "
+                                   f"{typical:.3g} in the other campaigns (median): is it in "
+                                   "another unit? E_ columns are in µm (µm/m angular)")
+
+
+# ---------------------------------------------------------------------------
+# Values and missing samples
+
+
+def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) -> np.ndarray:
+    """Refuse impossible values; return the positions of missing ones."""
+    finite = np.isfinite(values)
+    missing = np.empty(0, dtype=np.intp)
+    if not finite.all():
+        missing = np.flatnonzero(~finite)
+        infinite = missing[np.isinf(values[missing])]
+        if infinite.size:
+            row = int(infinite[0]) + 1
+            raise ContractError(f"infinite value {values[row - 1]}", file=path, column=name,
+                                row=row)
+        if missing.size == values.size:
+            raise ContractError("column has no valid value (every cell is empty)",
+                                file=path, column=name)
+    limit, unit, what = {"E": (opts.max_abs_error, "µm", "error"),
+                         "S": (opts.max_abs_state, "", "state")}.get(role(name), (None,) * 3)
+    if limit is not None:
+        with np.errstate(invalid="ignore"):
+            beyond = np.abs(values) > limit
+        if beyond.any():
+            row = int(np.argmax(beyond)) + 1
+            raise ContractError(f"value {values[row - 1]:g}{' ' + unit if unit else ''} is beyond "
+                                f"data.max_abs_{what}={limit:g}: not a plausible {what} value "
+                                "(check the unit)", file=path, column=name, row=row)
+    if role(name) == "T":
+        _check_celsius(values, name, path, opts.kelvin_threshold_c, complete=not missing.size,
+                       streamed=opts.missing == "keep")
+    return missing
+
+
+def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
+                   complete: bool, streamed: bool = False) -> None:
+    """Refuse kelvin (a column above ``threshold``) and values no sensor reads.  A streamed
+    campaign (``missing="keep"``) keeps a few readings (at most :data:`FAULTY_SHARE`) above
+    ``threshold``: a failing sensor (an open circuit reads 850 °C) that the compensator's
+    range check is there to catch, as on the machine."""
+    lowest, highest = ((values.min(), values.max()) if complete
+                       else (np.nanmin(values), np.nanmax(values)))
+    if highest > min(threshold, MAX_ABS_T_C):
+        median = float(np.nanmedian(values))
+        share = float(np.mean(values[np.isfinite(values)] > threshold))
+        if streamed and share <= FAULTY_SHARE and highest <= MAX_ABS_T_C:
+            pass
+        else:
+            row = int(np.argmax(values > min(threshold, MAX_ABS_T_C))) + 1
+            why = ("temperatures look like kelvin, convert to °C" if median > threshold else
+                   f"a faulty reading (the column's median is {median:.4g} °C): a campaign "
+                   "fitted on must be clean; replay and monitor stream a test campaign with it")
+            raise ContractError(f"{values[row - 1]:g} °C is above data.kelvin_threshold_c="
+                                f"{threshold:g}: {why}", file=path, column=name, row=row)
+    if lowest < ABSOLUTE_ZERO_C:
+        row = int(np.argmax(values < ABSOLUTE_ZERO_C)) + 1
+        raise ContractError(f"{values[row - 1]:g} °C is below absolute zero",
+                            file=path, column=name, row=row)
+
+
+def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> dict:
+    """Validate every data column; trim incomplete edge rows, interpolate gaps.
+
+    Returns ``{"repairs": {column: n}, "trimmed": {"start": n, "end": n}}``; with
+    ``missing="keep_errors"`` the ``E_`` columns' missing values are left as they are (a
+    volumetric dataset's distance not measured in a cycle) and counted under ``missing``.
+    """
+    gaps = {}  # column -> sorted positions of its missing values
+    kept = {}
+    for name in columns:
+        if name != TIME:
+            missing = _check_values(_values(columns[name]), name, path, opts)
+            if missing.size and opts.missing == "keep_errors" and role(name) == "E":
+                kept[name] = missing
+            elif missing.size:
+                gaps[name] = missing
+    if not gaps:
+        return {"repairs": {}, "trimmed": {"start": 0, "end": 0}, **_kept(kept, 0, rows, opts)}
+    start, stop = _complete_span(rows, gaps, path, opts.max_edge_samples)
+    for name in columns:
+        columns[name] = columns[name].slice(start, stop - start)
+    time = _values(columns[TIME])
+    repairs = {}
+    for name, positions in gaps.items():
+        inside = positions[(positions >= start) & (positions < stop)] - start
+        if inside.size:
+            _check_gap_lengths(inside, name, start, path, opts.max_gap_samples)
+            columns[name] = _patched(columns[name], inside, _gap_values(columns[name], time, inside))
+            repairs[name] = int(inside.size)
+    return {"repairs": repairs, "trimmed": {"start": start, "end": rows - stop},
+            **_kept(kept, start, stop, opts)}
+
+
+def _kept(kept: dict, start: int, stop: int, opts: ReadOptions) -> dict:
+    """``{"missing": {column: n}}`` of the cells left missing within the rows kept (only with
+    ``missing="keep_errors"``)."""
+    if opts.missing != "keep_errors":
+        return {}
+    counts = {name: int(np.sum((p >= start) & (p < stop))) for name, p in kept.items()}
+    return {"missing": {name: n for name, n in counts.items() if n}}
+
+
+def _keep_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> dict:
+    """Validate every data column and leave its missing values as they are (``missing="keep"``).
+
+    Returns ``{"repairs": {}, "trimmed": {"start": 0, "end": 0}, "missing": {column: n}}``.
+    """
+    kept = {}
+    for name in columns:
+        if name != TIME:
+            count = _check_values(_values(columns[name]), name, path, opts).size
+            if count:
+                kept[name] = int(count)
+    return {"repairs": {}, "trimmed": {"start": 0, "end": 0}, "missing": kept}
+
+
+def _complete_span(rows: int, gaps: dict, path: Path, max_edge: int) -> tuple[int, int]:
+    """First and past-last row where every column is valid, within the trim limit."""
+    incomplete = np.zeros(rows, dtype=bool)
+    for positions in gaps.values():
+        incomplete[positions] = True
+    if incomplete.all():
+        raise ContractError("no row has every sensor valid", file=path, column=next(iter(gaps)))
+    start, stop = int(np.argmin(incomplete)), rows - int(np.argmin(incomplete[::-1]))
+    if start > max_edge:
+        name, first = _run_through(gaps, start - 1)
+        raise ContractError(f"{start} incomplete rows at the campaign start (first complete row "
+                            f"{start + 1}); data.max_edge_samples={max_edge} allows trimming "
+                            f"{max_edge}, values are never back-filled",
+                            file=path, column=name, row=first + 1)
+    if rows - stop > max_edge:
+        name, first = _run_through(gaps, stop)
+        raise ContractError(f"{rows - stop} incomplete rows at the campaign end (last complete "
+                            f"row {stop}); data.max_edge_samples={max_edge} allows trimming "
+                            f"{max_edge}, values are never forward-filled",
+                            file=path, column=name, row=first + 1)
+    return start, stop
+
+
+def _run_through(gaps: dict, position: int) -> tuple[str, int]:
+    """First column missing at ``position``, and where its run of missing values starts."""
+    for name, positions in gaps.items():
+        starts, lengths = _runs(positions)
+        k = int(np.searchsorted(starts, position, side="right")) - 1
+        if k >= 0 and position < starts[k] + lengths[k]:
+            return name, int(starts[k])
+    raise AssertionError(f"no column is missing at {position}")
+
+
+def _check_gap_lengths(positions: np.ndarray, name: str, offset: int, path: Path,
+                       max_gap: int) -> None:
+    starts, lengths = _runs(positions)
+    too_long = np.flatnonzero(lengths > max_gap)
+    if too_long.size:
+        row = offset + int(starts[too_long[0]]) + 1
+        length = int(lengths[too_long[0]])
+        where = f"row {row}" if length == 1 else f"rows {row}-{row + length - 1}"
+        raise ContractError(f"gap of {length} missing value{'s' * (length > 1)} ({where}) is "
+                            f"longer than data.max_gap_samples={max_gap}",
+                            file=path, column=name, row=row)
+
+
+def _runs(positions: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Start and length of every run of consecutive integers in sorted ``positions``."""
+    breaks = np.flatnonzero(np.diff(positions) != 1) + 1
+    first = np.concatenate(([0], breaks))
+    last = np.concatenate((breaks - 1, [len(positions) - 1]))
+    return positions[first], positions[last] - positions[first] + 1
+
+
+def _gap_values(column, time: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """Values at ``positions`` on the line between each gap's two valid neighbours."""
+    starts, lengths = _runs(positions)
+    run = np.repeat(np.arange(len(starts)), lengths)
+    before, after = (starts - 1)[run], (starts + lengths)[run]
+    v0 = pc.take(column, pa.array(before)).to_numpy()
+    v1 = pc.take(column, pa.array(after)).to_numpy()
+    weight = (time[positions] - time[before]) / (time[after] - time[before])
+    return v0 + weight * (v1 - v0)
+
+
+def _patched(column, positions: np.ndarray, values: np.ndarray) -> pa.ChunkedArray:
+    """``column`` with ``values`` written at the sorted ``positions``."""
+    chunks, offset = [], 0
+    for chunk in _chunks(column):
+        lo, hi = np.searchsorted(positions, [offset, offset + len(chunk)])
+        if lo < hi:
+            mask = np.zeros(len(chunk), dtype=bool)
+            mask[positions[lo:hi] - offset] = True
+            # Built by Arrow, so it reuses the pool memory of the chunks it replaces.
+            chunk = pc.replace_with_mask(chunk, pa.array(mask), pa.array(values[lo:hi]))
+        chunks.append(chunk)
+        offset += len(chunk)
+    return pa.chunked_array(chunks, type=pa.float64())
+
+

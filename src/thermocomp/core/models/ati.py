@@ -1,0 +1,363 @@
+r"""Ambient temperature interval (ATI) models: one model per season (paper 003, Sect. 4).
+
+A machine's thermal error law drifts with the ambient level (paper 003: the
+same spindle test gives a different error in winter and in summer).  The ATI
+model splits the ambient range into contiguous intervals, fits one model per
+interval and, on the machine, picks the model of the interval that holds the
+campaign's initial ambient temperature.
+"""
+
+from __future__ import annotations
+
+import warnings
+from functools import lru_cache
+
+import numpy as np
+import pandas as pd
+from sklearn.base import BaseEstimator, RegressorMixin, clone
+from sklearn.cluster import KMeans
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from ...base.errors import ContractError, listed
+from ...base.params import BOOLEAN, NON_NEGATIVE, check_estimator, choice, either, integer, integers, number
+from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, merge_columns, scalar, subset
+from ..metrics import rsd, sm_sd
+from ..model_selection import LeaveOneCampaignOut
+from .linear import MLR
+
+CLUSTERINGS = ("fuzzy", "hard")
+AMBIENT_CENTRE_C = 20.0   # ISO 1 reference temperature: only re-centres the interaction
+MIN_AMBIENTS = 3          # distinct ambient levels an interval needs to fit a slope in ambient
+
+
+def cluster_ambient(ambient, n_clusters: int, clustering: str = "fuzzy", fuzziness: float = 2.0,
+                    random_state: int = 0) -> np.ndarray:
+    r"""Cluster label of each campaign's initial ambient temperature (1-D C-means).
+
+    ``fuzzy``: fuzzy C-means (scikit-fuzzy; memberships :math:`u_{ck}`, fuzziness
+    :math:`m`), each campaign in its cluster of largest membership;
+    ``hard``: k-means (scikit-learn), the hard C-means of paper 003, Sect. 4.2.1.
+    Both start from centres at the quantiles :math:`(c + 1/2)/M` of the data
+    (deterministic, and a good start in one dimension).  Labels are renumbered
+    so that cluster 0 is the coldest.
+    """
+    if clustering not in CLUSTERINGS:
+        raise ValueError(f"clustering must be one of {CLUSTERINGS}, got {clustering!r}")
+    key = (tuple(np.asarray(ambient, float).round(9)), int(n_clusters), clustering,
+           float(fuzziness), int(random_state))
+    return np.array(_cluster_cached(*key))
+
+
+@lru_cache(maxsize=4096)
+def _cluster_cached(ambient: tuple, n_clusters: int, clustering: str, fuzziness: float,
+                    random_state: int) -> tuple:
+    # Cached: the elbow's folds and every target re-cluster the same campaigns.
+    a = np.array(ambient)
+    centres = np.quantile(a, (np.arange(n_clusters) + 0.5) / n_clusters)
+    if clustering == "hard":
+        labels = KMeans(n_clusters=n_clusters, init=centres[:, None], n_init=1,
+                        random_state=random_state).fit(a[:, None]).labels_
+    else:
+        import skfuzzy
+
+        dist = np.abs(a[None, :] - centres[:, None]) + 1e-9
+        u0 = dist ** (-2.0 / (fuzziness - 1.0))
+        u0 /= u0.sum(axis=0)
+        _, u, *_ = skfuzzy.cluster.cmeans(a[None, :], n_clusters, fuzziness, error=1e-7,
+                                          maxiter=1000, init=u0, seed=random_state)
+        labels = u.argmax(axis=0)
+    order = sorted(set(labels.tolist()), key=lambda c: a[labels == c].mean())
+    return tuple(order.index(c) for c in labels.tolist())
+
+
+def interval_boundaries(ambient, labels) -> np.ndarray:
+    r"""Boundaries between contiguous ambient intervals from cluster labels (sorted).
+
+    As in paper 003 (Table 5): the boundary between two neighbouring clusters is
+    the midpoint of the warmest ambient of the colder one and the coldest of
+    the warmer one, :math:`b = (\max A_c + \min A_{c+1}) / 2`; if the clusters
+    overlap (possible with fuzzy memberships) the midpoint of their means.
+    """
+    a, labels = np.asarray(ambient, float), np.asarray(labels)
+    clusters = sorted(set(labels), key=lambda c: a[labels == c].mean())
+    bounds = []
+    for lo, hi in zip(clusters[:-1], clusters[1:]):
+        top, bottom = a[labels == lo].max(), a[labels == hi].min()
+        b = (top + bottom) / 2 if top < bottom else (a[labels == lo].mean() + a[labels == hi].mean()) / 2
+        bounds.append(b)
+    return np.array(bounds, float)
+
+
+def interval_of(ambient, boundaries) -> np.ndarray:
+    """Interval index of each ambient; a value on a boundary belongs to the colder interval."""
+    return np.searchsorted(np.asarray(boundaries, float), np.asarray(ambient, float), side="left")
+
+
+class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
+    r"""One model per ambient temperature interval (ATI), chosen by initial ambient (paper 003).
+
+    Campaign :math:`k` with initial ambient :math:`A_k` is predicted by the
+    model of its interval,
+
+    .. math::
+
+        \hat y(t) = f_{m(k)}(x(t)),\quad m(k) = \#\{\,i : b_i < A_k\,\},
+
+    where :math:`b_1 < \dots < b_{M-1}` are the boundaries between C-means
+    clusters of the training campaigns' :math:`A_k` (see
+    :func:`interval_boundaries`) and :math:`f_m` is ``base_estimator`` fitted on
+    the campaigns of interval :math:`m`.  With ``n_intervals='elbow'`` the number
+    of intervals :math:`M` is chosen among ``candidates`` by the elbow of the
+    leave-one-campaign-out :math:`SM` and :math:`SD` (mean and standard
+    deviation of the held-out campaigns' :math:`R_{sd}`, paper 003 Eqs. 20-21):
+    the smallest :math:`M` beyond which more intervals improve :math:`SM + SD`
+    by less than ``elbow_tolerance`` (relative), i.e. where the curve flattens.
+    In each fold the intervals are rebuilt from the remaining campaigns, so the
+    held-out campaign never shapes its own interval.  Paper 003 uses one
+    campaign per interval (the coldest of it); here every campaign of the
+    interval trains its model.
+
+    ``fit``/``predict`` read ``campaign`` and ``ambient_c0`` from ``context``
+    (:mod:`thermocomp.core.context`) and hand each base model the context of its
+    rows.  Without ``context`` the campaigns' ambient is unknown and the model
+    is one ``base_estimator`` (one interval).
+
+    Parameters
+    ----------
+    base_estimator : regressor, default MLR()
+        Any model family; cloned per interval; gets the context of its rows.
+    n_intervals : int or 'elbow', default 'elbow'
+    candidates : sequence of int, default (2, 3, 4, 5, 6)
+        Numbers of intervals tried by the elbow (paper 003's range; add 1 to
+        let the elbow keep a single model).
+    clustering : {'fuzzy', 'hard'}, default 'fuzzy'
+        Fuzzy C-means (scikit-fuzzy) or hard C-means (k-means).
+    fuzziness : float, default 2.0
+        Exponent :math:`m` of fuzzy C-means.
+    elbow_tolerance : float, default 0.10
+        Relative tolerance of the elbow.
+    random_state : int, default 0
+    ambient_interaction : bool, default False
+        Each interval's model also gets :math:`x\,(A_k - 20\,°C)`, so the law
+        may change linearly with the ambient inside an interval
+        (:math:`\hat y = f_m(x, x (A_k - 20))`); used only for an interval whose
+        training campaigns have at least ``MIN_AMBIENTS`` (3) distinct ambient
+        levels, where that slope is identifiable.
+
+    Attributes
+    ----------
+    n_intervals_ : int
+    boundaries_ : ndarray of shape (n_intervals_ - 1,), °C
+    intervals_ : list of dict
+        Per interval: ``low``/``high`` (°C, None for the open ends),
+        ``ambient_min``/``ambient_max`` of its training campaigns, ``campaigns``.
+    estimators_ : list of fitted base estimators, coldest interval first
+    interactions_ : list of bool
+        Per interval, whether its model takes the ambient interaction.
+    elbow_ : dict or None
+        ``n_intervals``, ``sm``, ``sd`` (µm) per candidate, ``chosen``,
+        ``single_model`` (the CV SM/SD of one interval: this wrapper's, with the ambient
+        interaction when it is on, not the bare base model) and ``reason`` when no
+        candidate could be cross-validated.
+    campaign_ambient_ : dict campaign -> initial ambient (°C) of the training data
+    """
+
+    param_rules = {"n_intervals": either(choice("elbow"), integer(1)),
+                   "candidates": integers(1), "clustering": choice(*CLUSTERINGS),
+                   "fuzziness": number(1.0, open_lo=True), "elbow_tolerance": NON_NEGATIVE,
+                   "ambient_interaction": BOOLEAN, "random_state": integer(0, 2 ** 32 - 1)}
+
+    def __init__(self, base_estimator=None, n_intervals="elbow", candidates=(2, 3, 4, 5, 6),
+                 clustering: str = "fuzzy", fuzziness: float = 2.0, elbow_tolerance: float = 0.10,
+                 random_state: int = 0, ambient_interaction: bool = False):
+        self.base_estimator = base_estimator
+        self.n_intervals = n_intervals
+        self.candidates = candidates
+        self.clustering = clustering
+        self.fuzziness = fuzziness
+        self.elbow_tolerance = elbow_tolerance
+        self.random_state = random_state
+        self.ambient_interaction = ambient_interaction
+
+    # -- fitting ----------------------------------------------------------------------------
+    def _base(self):
+        return clone(self.base_estimator if self.base_estimator is not None else MLR())
+
+    def _interacts(self, context) -> bool:
+        """Whether a model fitted on these rows takes ``X·(A0 − 20 °C)`` too: only with
+        ``ambient_interaction`` and rows from at least ``MIN_AMBIENTS`` distinct ambient levels
+        (with fewer the slope in ambient is not identifiable and would only extrapolate)."""
+        if not self.ambient_interaction or context is None or AMBIENT_C0 not in context:
+            return False
+        return np.unique(np.asarray(context[AMBIENT_C0], float).round(6)).size >= MIN_AMBIENTS
+
+    @staticmethod
+    def _design(X, context, interacts: bool) -> np.ndarray:
+        """``X``, or ``[X, X·(A0 − 20 °C)]``: within an interval the law may still change
+        linearly with the ambient level."""
+        if not interacts:
+            return X
+        a0 = np.asarray(context[AMBIENT_C0], float)
+        return np.hstack([X, X * (a0 - AMBIENT_CENTRE_C)[:, None]])
+
+    def _fit_base(self, X, y, rows, context) -> tuple:
+        """``(fitted base model, whether it takes the interaction)`` on the rows ``rows``."""
+        ctx = subset(context, rows)
+        interacts = self._interacts(ctx)
+        return self._base().fit(self._design(X[rows], ctx, interacts), y[rows], context=ctx), interacts
+
+    def _predict_base(self, fitted: tuple, X, rows, context):
+        est, interacts = fitted
+        ctx = subset(context, rows)
+        return est.predict(self._design(X[rows], ctx, interacts), context=ctx)
+
+    def _intervals(self, ambient: np.ndarray, n: int) -> np.ndarray:
+        labels = cluster_ambient(ambient, n, self.clustering, self.fuzziness, self.random_state)
+        return interval_boundaries(ambient, labels)
+
+    def fit(self, X, y, context=None):
+        check_estimator(self)
+        X, y = validate_data(self, X, y, y_numeric=True)
+        self.elbow_ = None
+        if context is None or AMBIENT_C0 not in context:
+            self.campaign_ambient_ = {}
+            return self._fit_intervals(X, y, np.empty(0), np.zeros(len(y), int), context)
+        campaign = groups_of(context)
+        if campaign is None:
+            campaign = np.zeros(len(y), dtype=object)
+        a0_rows = self._ambient(context)
+        a0 = pd.Series(a0_rows).groupby(campaign, sort=False).first()
+        self.campaign_ambient_ = {str(k): float(v) for k, v in a0.items()}
+        distinct = np.unique(a0.to_numpy()).size
+        if self.n_intervals == "elbow":
+            n = self._elbow(X, y, campaign, a0, context)
+        else:
+            n = int(self.n_intervals)
+            if n > distinct:
+                warnings.warn(f"ATI n_intervals={n}: the train campaigns have {distinct} distinct "
+                              f"ambient level(s); {distinct} interval(s)", UserWarning, stacklevel=3)
+        n = min(n, distinct)
+        bounds = self._intervals(a0.to_numpy(), n) if n > 1 else np.empty(0)
+        return self._fit_intervals(X, y, bounds, interval_of(a0_rows, bounds), context, campaign)
+
+    def _fit_intervals(self, X, y, bounds, row_interval, context, campaign=None):
+        self.boundaries_ = bounds
+        self.n_intervals_ = bounds.size + 1
+        self.estimators_, self.intervals_, self.interactions_ = [], [], []
+        edges = [None, *bounds.tolist(), None]
+        for m in range(self.n_intervals_):
+            rows = row_interval == m
+            est, interacts = self._fit_base(X, y, rows, context)
+            self.estimators_.append(est)
+            self.interactions_.append(interacts)
+            members = sorted(set(campaign[rows])) if campaign is not None else []
+            amb = [self.campaign_ambient_[str(c)] for c in members]
+            self.intervals_.append({"low": edges[m], "high": edges[m + 1],
+                                    "ambient_min": min(amb) if amb else None,
+                                    "ambient_max": max(amb) if amb else None,
+                                    "campaigns": [str(c) for c in members]})
+        self.context_columns_ = merge_columns([AMBIENT_C0] if self.n_intervals_ > 1
+                                              or any(self.interactions_) else [],
+                                              *(context_columns(e) for e in self.estimators_))
+        return self
+
+    @staticmethod
+    def _ambient(context) -> np.ndarray:
+        a0 = np.asarray(context[AMBIENT_C0], float)
+        if not np.all(np.isfinite(a0)):
+            groups = groups_of(context)
+            odd = [] if groups is None else list(dict.fromkeys(map(str, groups[~np.isfinite(a0)])))
+            which = ("no campaign has a" if groups is not None and len(odd) == len(set(groups))
+                     else f"campaign {odd[0]} has no" if len(odd) == 1
+                     else f"campaigns {listed(odd)} have no" if odd else "a campaign has no")
+            raise ContractError("ATI models need each campaign's initial ambient temperature, "
+                                f"but {which} valid T_amb / T_amb_* value (nor a manifest "
+                                "ambient_c, its ambient where no sensor is)", column="T_amb")
+        return a0
+
+    def _cv_rsd(self, X, y, campaign, a0: pd.Series, n: int, context) -> np.ndarray:
+        """Held-out Rsd of each campaign with ``n`` intervals rebuilt from the others."""
+        out = []
+        for _, test in LeaveOneCampaignOut().split(X, y, groups=campaign):
+            k = campaign[test[0]]
+            others = a0.drop(k)
+            bounds = self._intervals(others.to_numpy(), n) if n > 1 else np.empty(0)
+            mine = interval_of([a0[k]], bounds)[0]
+            # train on the other campaigns of the held-out campaign's interval
+            train_campaigns = others.index[interval_of(others.to_numpy(), bounds) == mine]
+            rows_train = np.isin(campaign, train_campaigns)
+            rows_test = campaign == k
+            fitted = self._fit_base(X, y, rows_train, context)
+            out.append(rsd(y[rows_test] - self._predict_base(fitted, X, rows_test, context)))
+        return np.array(out)
+
+    def _elbow(self, X, y, campaign, a0: pd.Series, context) -> int:
+        """Choose the number of intervals; fills ``elbow_``."""
+        k = len(a0)
+        feasible = [int(n) for n in self.candidates
+                    if 1 <= int(n) <= min(k - 1, np.unique(a0.to_numpy()).size - 1)]
+        if k < 3 or not feasible:
+            self.elbow_ = {"n_intervals": [], "sm": [], "sd": [], "chosen": 1, "single_model": None,
+                           "reason": f"{k} training campaign(s) with "
+                                     f"{np.unique(a0.to_numpy()).size} distinct ambient(s): too few to "
+                                     f"cross-validate {list(self.candidates)} intervals; one model"}
+            return 1
+        sm, sd = [], []
+        for n in feasible:
+            m, s = sm_sd(self._cv_rsd(X, y, campaign, a0, n, context))
+            sm.append(m)
+            sd.append(s)
+        single = sm_sd(self._cv_rsd(X, y, campaign, a0, 1, context))
+        score = np.array(sm, dtype=float) + np.array(sd, dtype=float)
+        if not np.isfinite(score).any():    # no count could be scored (a held-out campaign
+            # whose interval had no other campaign to fit on, for every count): one model
+            self.elbow_ = {"n_intervals": feasible, "sm": sm, "sd": sd, "chosen": 1,
+                           "single_model": {"sm": single[0], "sd": single[1]},
+                           "reason": "no number of intervals could be cross-validated; one model"}
+            return 1
+        best = np.nanmin(score)
+        chosen = feasible[int(np.flatnonzero(score <= (1 + self.elbow_tolerance) * best)[0])]
+        self.elbow_ = {"n_intervals": feasible, "sm": sm, "sd": sd, "chosen": chosen,
+                       "single_model": {"sm": single[0], "sd": single[1]}, "reason": None}
+        return chosen
+
+    # -- prediction -------------------------------------------------------------------------
+    def _row_intervals(self, n_rows: int, context) -> np.ndarray:
+        if self.n_intervals_ == 1:
+            return np.zeros(n_rows, int)
+        if context is None:
+            raise ValueError("this ATI model has several intervals: predict needs `context` "
+                             "with each row's `ambient_c0`")
+        return interval_of(self._ambient(context), self.boundaries_)
+
+    def predict(self, X, context=None):
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False)
+        which = self._row_intervals(X.shape[0], context)
+        out = np.empty(X.shape[0])
+        for m in np.unique(which):
+            rows = which == m
+            out[rows] = self._predict_base((self.estimators_[m], self.interactions_[m]), X, rows,
+                                           context)
+        return out
+
+    # -- streaming (deployment) -------------------------------------------------------------
+    def stream_init(self, context=None):
+        """State for :meth:`stream_step`: the interval of the context's ``ambient_c0`` and its
+        model's state."""
+        check_is_fitted(self)
+        a0 = scalar(context, AMBIENT_C0)
+        if AMBIENT_C0 in self.context_columns_ and not np.isfinite(a0):
+            raise ContractError("this ATI model needs the campaign's initial ambient temperature "
+                                "(°C) to start a stream: no T_amb / T_amb_* value", column=AMBIENT_C0)
+        m = 0 if self.n_intervals_ == 1 else int(interval_of([a0], self.boundaries_)[0])
+        return m, a0, self.estimators_[m].stream_init(context)
+
+    def stream_step(self, x_row, state, context=None):
+        """One sample: ``(y_hat, state)``, as :meth:`predict` in simulation mode."""
+        m, a0, inner = state
+        x = np.asarray(x_row, dtype=float).ravel()
+        if self.interactions_[m]:
+            x = np.concatenate([x, x * (a0 - AMBIENT_CENTRE_C)])
+        y_hat, inner = self.estimators_[m].stream_step(x, inner, context)
+        return float(y_hat), (m, a0, inner)

@@ -1,0 +1,30 @@
+"""What every model family shares: the side-input and streaming protocol (:mod:`thermocomp.core.context`)."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+from sklearn.base import BaseEstimator, clone
+
+from ..context import SideInputs, for_target
+
+
+class LinearStreamMixin(SideInputs):
+    """Streaming of a static linear law ``y = x·coef_ + intercept_``: one dot product a sample."""
+
+    def stream_step(self, x_row, state, context: Mapping | None = None):
+        return float(np.asarray(x_row, dtype=float) @ self.coef_ + self.intercept_), state
+
+
+class PerTarget(BaseEstimator):
+    """``estimator`` with per-target parameters: ``for_target(t)`` is an unfitted copy with
+    ``params[t]`` set (the hyper-parameters a fit on more data chose, see
+    :func:`thermocomp.core.compensator.with_chosen_hyperparameters`)."""
+
+    def __init__(self, estimator, params: Mapping | None = None):
+        self.estimator = estimator
+        self.params = params
+
+    def for_target(self, target: str):
+        return clone(for_target(self.estimator, target)).set_params(**(self.params or {}).get(target, {}))

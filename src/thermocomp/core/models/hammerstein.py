@@ -1,0 +1,201 @@
+r"""Hammerstein lag bank: machine states through a static power law, then the lag bank's dynamics.
+
+.. math:: \hat y(t) = \mathrm{LagBank}\big[x(t),\; u_1(t)^{e},\, \dots,\, u_m(t)^{e}
+          \;\; (e \in E)\big], \qquad u_j = s_j / \max_{\text{train}} |s_j|
+
+A Hammerstein model is a static nonlinearity followed by linear dynamics.  The
+heat a spindle, a drive or a pump puts into the structure is not linear in its
+state: bearing friction power grows roughly as the speed to a power between 1
+and 2.  Temperatures are already the machine's response to that heat and enter
+linearly; the machine-state columns (``S_*`` of the context, not declared
+inputs) enter through powers of themselves, and every term then runs through
+the first-order lags of :class:`~thermocomp.core.models.lagbank.LagBank`, which
+turn heat input into its slow thermal response.  Which powers enter (none, each
+exponent alone, all of them) is chosen with the lag bank's own time-series
+cross-validation on the training rows only.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from itertools import combinations
+
+import numpy as np
+import pandas as pd
+from sklearn.base import BaseEstimator, RegressorMixin, clone
+from sklearn.utils.validation import check_is_fitted, validate_data
+
+from ...base.errors import ContractError
+from ...base.params import check_estimator, numbers, optional, texts
+from ..context import SideInputs, groups_of, merge_columns, require
+from ..io.contract import match_columns
+from ._dynamics import segment_bounds
+from .lagbank import LagBank
+
+
+def _unmeasured(values: np.ndarray, groups) -> list[tuple[int, int]]:
+    """``(column, first row)`` of each campaign in which a state column has no value at all."""
+    return [(j, start) for start, stop in segment_bounds(groups, len(values))
+            for j in np.flatnonzero(np.isnan(values[start:stop]).all(axis=0))]
+
+
+def _held(values: np.ndarray, groups) -> np.ndarray:
+    """State columns with a missing sample holding the previous one (0 before a campaign's first)."""
+    out = np.empty_like(values)
+    for start, stop in segment_bounds(groups, len(values)):
+        out[start:stop] = pd.DataFrame(values[start:stop]).ffill().fillna(0.0).to_numpy()
+    return out
+
+
+def _candidates(exponents) -> list[tuple[float, ...]]:
+    """Every subset of ``exponents``, the empty one (no state) first."""
+    exps = sorted({float(e) for e in exponents})
+    return [c for k in range(len(exps) + 1) for c in combinations(exps, k)]
+
+
+class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
+    r"""Lag bank on the inputs and on powers of the machine states, powers chosen by time-series CV.
+
+    .. math:: \hat y(t) = c + \sum_{i} \Big( b_{i,0}\, v_i(t) + \sum_{k=1}^{K} b_{i,k}\,
+              \big(L_{\tau_k}[v_i](t) - v_i(t)\big) \Big), \qquad
+              v = \big(x_1, \dots, x_p,\; u_j^{e}\ (j = 1..m,\ e \in E)\big)
+
+    where :math:`x` are the declared inputs, :math:`u_j = s_j / \max_{\mathrm{train}}|s_j|`
+    the machine-state columns of the context matching ``states`` (scaled on
+    the training rows; a state constant there is left out), :math:`u^e` the
+    sign-preserving power :math:`\mathrm{sign}(u)\,|u|^e` (a speed is
+    :math:`\ge 0`; a signed state keeps its sign), :math:`L_\tau` the
+    first-order lags and :math:`b, c` the ridge fit of
+    :class:`~thermocomp.core.models.lagbank.LagBank` (see there).  The set
+    :math:`E` is the subset of ``exponents`` (the empty set -- the plain lag
+    bank -- included) with the lowest free-run CV error of the lag bank on the
+    training rows: leave-campaigns-out, or forward chaining on one long record.
+    No output feedback: simulation and one-step prediction coincide.
+
+    A missing state sample holds the previous one (0 before a campaign's first).
+    A state that some training campaign never measures is left out; a campaign
+    to predict that never measures a state the model uses is refused
+    (:class:`~thermocomp.base.errors.ContractError`), as is one without its column.
+    Without a context (or without state columns) this is the plain lag bank.
+
+    Parameters
+    ----------
+    lagbank : LagBank, optional
+        The dynamics and its CV (default ``LagBank()``; ``ar`` must stay
+        ``False``), cloned in ``fit``.
+    states : list of str or None, default ``['S_*']``
+        Glob patterns of the context's machine-state columns; None: none.
+    exponents : list of float, default ``[1.0, 2.0]``
+        Candidate powers of the scaled states.
+
+    Attributes
+    ----------
+    lagbank_ : LagBank
+        Fitted on ``[x | u^e ...]``.
+    state_columns_ : list of str
+        The state columns used (those matching ``states``, not constant on
+        the training rows, the chosen set not empty).
+    state_scale_ : ndarray
+        :math:`\max_{\mathrm{train}}|s_j|` of each.
+    exponents_ : tuple of float
+        The chosen :math:`E` (empty: no state enters).
+    cv_results_ : DataFrame
+        One row per candidate ``exponents``: its lag bank's chosen free-run
+        CV MSE and penalty; ``chosen`` marks the winner.
+    context_columns_ : list of str
+        ``time`` (when fitted with it) and ``state_columns_``.
+    """
+
+    param_rules = {"states": optional(texts("glob patterns")),
+                   "exponents": numbers(0.0, open_lo=True)}
+
+    def __init__(self, lagbank=None, states=("S_*",), exponents=(1.0, 2.0)):
+        self.lagbank = lagbank
+        self.states = states
+        self.exponents = exponents
+
+    def param_relations(self) -> list[tuple[str, str]]:
+        if self.lagbank is not None and getattr(self.lagbank, "ar", False) is not False:
+            return [("lagbank", "must have ar=false (the Hammerstein model has no output feedback)")]
+        return []
+
+    def _basis(self, S: np.ndarray, exponents) -> np.ndarray:
+        U = S / self.state_scale_
+        return np.hstack([np.abs(U) ** e * np.sign(U) for e in exponents]) if exponents else U[:, :0]
+
+    @staticmethod
+    def _raw_states(context, n: int, columns) -> np.ndarray:
+        if not columns:
+            return np.zeros((n, 0))
+        S = np.column_stack([np.asarray(require(context, c, "the Hammerstein model (machine state)"),
+                                        dtype=float) for c in columns])
+        if len(S) != n:
+            raise ValueError(f"context has {len(S)} rows, X has {n}")
+        return S
+
+    def _states(self, context, n: int) -> np.ndarray:
+        """The fitted state columns, held over missing samples; a campaign that never measures one
+        is refused (holding 0 through it would read as a machine at rest)."""
+        S = self._raw_states(context, n, self.state_columns_)
+        groups = groups_of(context)
+        for j, row in _unmeasured(S, groups):
+            where = f"campaign {groups[row]!r}" if groups is not None else "the rows"
+            raise ContractError(f"{where} has no value of {self.state_columns_[j]!r}, a machine state "
+                                f"the Hammerstein model reads", column=self.state_columns_[j])
+        return _held(S, groups)
+
+    def fit(self, X, y, context=None):
+        check_estimator(self)
+        base = clone(self.lagbank) if self.lagbank is not None else LagBank()
+        X, y = validate_data(self, X, y, y_numeric=True)
+        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        found = [] if context is None or self.states is None else match_columns(
+            [str(c) for c in context.columns], list(self.states))
+        S = self._raw_states(context, len(y), found)
+        # a state some train campaign never measures, or constant, carries nothing to fit: left out
+        unmeasured = {j for j, _ in _unmeasured(S, groups_of(context))}
+        S = _held(S, groups_of(context))
+        keep = (np.ptp(S, axis=0) > 0) & ~np.isin(np.arange(S.shape[1]), list(unmeasured))
+        S, found = S[:, keep], [c for c, k in zip(found, keep) if k]
+        scale = np.max(np.abs(S), axis=0) if S.size else np.zeros(0)
+        self.state_scale_ = scale
+        records, fitted = [], {}
+        for exps in (_candidates(self.exponents) if found else [()]):
+            model = clone(base).fit(np.hstack([X, self._basis(S, exps)]), y, context=context)
+            row = model.cv_results_[model.cv_results_["chosen"]].iloc[0]
+            records.append({"exponents": list(exps), "cv_mse_free_run": float(row["cv_mse_free_run"]),
+                            "alpha": float(row["alpha"])})
+            fitted[exps] = model
+        table = pd.DataFrame(records)
+        best = int(table["cv_mse_free_run"].to_numpy().argmin())   # ties: fewer terms (listed first)
+        table["chosen"] = table.index == best
+        self.cv_results_ = table
+        self.exponents_ = tuple(table.loc[best, "exponents"])
+        self.lagbank_ = fitted[self.exponents_]
+        if not self.exponents_:
+            found, self.state_scale_ = [], scale[:0]
+        self.state_columns_ = found
+        self.context_columns_ = merge_columns(self.lagbank_.context_columns_, found)
+        return self
+
+    def predict(self, X, context=None):
+        """Predicted error (free run; ``y_measured`` in ``context`` changes nothing)."""
+        check_is_fitted(self)
+        X = np.asarray(validate_data(self, X, reset=False), dtype=float)
+        S = self._states(context, X.shape[0])
+        return self.lagbank_.predict(np.hstack([X, self._basis(S, self.exponents_)]), context=context)
+
+    # -- streaming (deployment) ---------------------------------------------------------
+    def stream_init(self, context: Mapping | None = None) -> dict:
+        check_is_fitted(self)
+        return {"lagbank": self.lagbank_.stream_init(context), "held": np.zeros(len(self.state_columns_))}
+
+    def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
+        """One sample of ``predict``: ``context`` maps ``time`` and each of ``state_columns_``
+        to this sample's values (a NaN state holds the previous sample's)."""
+        now = np.array([float(require(context, c, "Hammerstein stream_step")) for c in self.state_columns_])
+        held = np.where(np.isnan(now), state["held"], now)
+        row = np.concatenate([np.asarray(x_row, dtype=float).reshape(-1),
+                              self._basis(held[None, :], self.exponents_)[0]])
+        y_hat, lagbank = self.lagbank_.stream_step(row, state["lagbank"], context)
+        return y_hat, {"lagbank": lagbank, "held": held}

@@ -1,0 +1,525 @@
+r"""Lag bank: every input through causal first-order lags on a log grid, ridge chosen by time-series CV.
+
+.. math:: \hat y(t) = c + \sum_{i=1}^{p} \Big( b_{i,0}\, x_i(t)
+          + \sum_{k=1}^{K} b_{i,k}\, \big(L_{\tau_k}[x_i](t) - x_i(t)\big) \Big)
+          \;[+\; a\, y(t-1)]
+
+:math:`L_\tau` is the first-order lag :math:`\tau \dot z + z = x` (a thermal
+mass between a sensor and the structure that moves), discretised exactly for
+any sampling and started in steady state at each campaign's first sample
+(:func:`~thermocomp.core.models._dynamics.first_order_lags`).  A sum of first-order
+lags on a log grid of time constants approximates any stable, non-oscillating
+thermal transfer function from a sensor to the error, so one linear model
+covers what would otherwise be a search over delays and time constants; the
+ridge penalty keeps the many strongly correlated features in check.  The lags
+enter as their lead over the input, :math:`L_\tau[x] - x` (the same linear
+span as :math:`L_\tau[x]`): zero in steady state, so the penalty shrinks
+towards the static model :math:`c + b_0^\top x`, whose gain is the steady
+gain, and the dynamic terms only have to earn their transients.
+
+Its strength is chosen by time-series cross-validation on the training rows
+only: campaigns -> leave-campaigns-out, one long record -> forward chaining
+(expanding window, a gap of the longest lag between train and validation).
+See :func:`default_splitter`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+import scipy.linalg
+from sklearn.base import BaseEstimator, RegressorMixin
+from sklearn.linear_model import Ridge
+from sklearn.model_selection import GroupKFold
+from sklearn.preprocessing import StandardScaler
+from sklearn.utils.validation import check_is_fitted, validate_data
+from threadpoolctl import threadpool_limits
+
+from ...base.params import POSITIVE, check_estimator, choice, either, integer, numbers, optional
+from ..context import TIME, Y_MEASURED, SideInputs, groups_of, scalar, values
+from ..model_selection.splitters import ForwardChaining, forward_block
+from ..model_selection.splitters import forward_gap as shared_forward_gap
+from ._dynamics import first_order_lags, free_run, lag_index, previous, segment_bounds, segment_starts
+from ._memo import ArrayMemo
+
+DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
+MIN_SPLITS = 2
+
+
+# -- time-series splitters: the shared ones (thermocomp.core.model_selection.splitters) ------------------
+MIN_TRAIN_FRACTION = 0.5
+
+
+def default_splitter(groups, n: int, gap: int, n_splits: int = 5):
+    """The CV splitter of ``n`` training rows: leave-campaigns-out or forward chaining.
+
+    Two or more campaigns in ``groups``: :class:`~sklearn.model_selection.GroupKFold`
+    over campaigns (``min(n_splits, n_campaigns)`` folds), campaigns being the
+    units that are independent of each other.  One campaign (or none given):
+    :class:`ForwardChaining` with ``gap`` rows between train and validation.
+    Its ``split(X, y, groups)`` yields ``(train, validation)`` row indices.
+    """
+    if groups is not None:
+        n_campaigns = len(pd.unique(np.asarray(groups, dtype=object)))
+        if n_campaigns >= 2:
+            return GroupKFold(n_splits=min(int(n_splits), n_campaigns))
+    return ForwardChaining(n_splits=int(n_splits), gap=int(gap), min_train_fraction=MIN_TRAIN_FRACTION)
+
+
+def forward_gap(longest_lag_samples: float, n: int, n_splits: int,
+                min_train_fraction: float = MIN_TRAIN_FRACTION) -> int:
+    """Gap of forward chaining over ``n`` rows: the longest lag in samples, at most half a
+    validation block (:func:`thermocomp.core.model_selection.splitters.forward_gap`)."""
+    return shared_forward_gap(longest_lag_samples, forward_block(n, n_splits, min_train_fraction))
+
+
+# -- the ridge path over the folds ---------------------------------------------------------------
+def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = None,
+                  ar_scaling: tuple[float, float] = (0.0, 1.0), z_key: bytes | None = None) -> dict:
+    r"""Validation MSE of ridge fits of ``y`` on ``Z`` for every fold and penalty.
+
+    Each fold centres ``Z`` and ``y`` on its training rows and solves
+    :math:`(Z_c^\top Z_c + \alpha I)\,w = Z_c^\top y_c` for every ``alpha`` from
+    one eigendecomposition of the fold's Gram matrix: the numbers of
+    scikit-learn's ``RidgeCV(alphas, cv=splits, scoring='neg_mean_squared_error')``
+    (one ``Ridge`` per fold and penalty, i.e. one Gram product each) at the
+    cost of one Gram product per fold.
+
+    With ``ar_column`` (the column of ``Z`` holding :math:`(y(t-1) - \mu)/\sigma`,
+    ``ar_scaling = (mu, sigma)``) the fitted equation is also run free -- its
+    own previous prediction fed back, from 0 at each segment start of
+    ``groups`` through every row, as on a machine -- and scored on the
+    validation rows (``inf`` when unstable).
+
+    The folds' factorisations depend on ``Z`` alone and are remembered (every target of a
+    compensator shares its features): by ``z_key``, a digest standing for ``Z``, else by
+    ``Z``'s bytes.
+
+    Returns
+    -------
+    dict
+        ``one_step`` and ``free_run``: arrays (n_folds, n_alphas) of validation MSE.
+    """
+    alphas = np.asarray(alphas, dtype=float)
+    n_folds = len(splits)
+    one_step = np.empty((n_folds, alphas.size))
+    free = np.empty_like(one_step)
+    others = [j for j in range(Z.shape[1]) if j != ar_column]
+    # the folds' Gram matrices depend on Z alone: every target of a compensator shares them
+    args = (alphas[0] if alphas.size == 1 else None, *(rows for split in splits for rows in split))
+    key = _fold_spectra.key(z_key, *args) if z_key is not None else _fold_spectra.key(Z, *args)
+    spectra = _fold_spectra.lookup(key, Z, *args)
+    for f, (tr, va) in enumerate(splits):
+        (mean, lam, V), y_mean = spectra[f], y[tr].mean()
+        weights = np.zeros(len(y))
+        weights[tr] = y[tr] - y_mean
+        rhs = Z.T @ weights                  # (Z_tr - mean)^T (y_tr - y_mean): the centred y sums to 0
+        if lam is None:   # one penalty (fixed beforehand): V holds the factor of G + alpha I
+            W = scipy.linalg.cho_solve(V, rhs)[:, None]
+        else:
+            W = V @ ((V.T @ rhs)[:, None] / (np.clip(lam, 0.0, None)[:, None] + alphas[None, :]))
+        c = y_mean - mean @ W
+        one_step[f] = np.mean((Z[va] @ W + c - y[va, None]) ** 2, axis=0)
+        if ar_column is None:
+            free[f] = one_step[f]
+            continue
+        # y(t) = w (y(t-1) - mu) / sigma + u(t) = a y(t-1) + u(t) - a mu: back to the raw y(t-1)
+        mu, sigma = ar_scaling
+        a = W[ar_column] / sigma
+        u = Z[:, others] @ W[others] + c - a * mu
+        for i in range(alphas.size):
+            if not abs(a[i]) < 1.0:
+                free[f, i] = np.inf
+                continue
+            y_hat = free_run(float(a[i]), u[:, i], groups)
+            free[f, i] = np.mean((y_hat[va] - y[va]) ** 2)
+    return {"one_step": one_step, "free_run": free}
+
+
+def _training_grams(Z, splits):
+    """``(mean, centred Gram)`` of each fold's training rows.  Folds that split the rows in
+    two (leave-campaigns-out) take the whole Gram less the validation rows' (one product of
+    all rows and one of each validation block, instead of one of each training set)."""
+    n = len(Z)
+    trains, valids = splits[::2], splits[1::2]
+    if all(np.array_equal(np.bincount(np.r_[tr, va], minlength=n), np.ones(n, dtype=int))
+           for tr, va in zip(trains, valids)):
+        total, sums = Z.T @ Z, Z.sum(axis=0)
+        for tr, va in zip(trains, valids):
+            Zva = Z[va]
+            mean = (sums - Zva.sum(axis=0)) / len(tr)
+            yield mean, total - Zva.T @ Zva - len(tr) * np.outer(mean, mean)
+        return
+    for tr in trains:                  # forward chaining: the training rows are a prefix
+        Ztr = Z[tr]
+        mean = Ztr.mean(axis=0)
+        Ztr -= mean
+        yield mean, Ztr.T @ Ztr
+
+
+def _compute_fold_spectra(Z, alpha, *splits) -> tuple:
+    """Per fold ``(mean, eigenvalues, eigenvectors)`` of the centred training rows' Gram
+    matrix, or with one penalty ``alpha`` ``(mean, None, Cholesky factor of G + alpha I)``."""
+    out = []
+    for mean, gram in _training_grams(Z, splits):
+        if alpha is None:
+            out.append((mean, *np.linalg.eigh(gram)))
+        else:
+            gram[np.diag_indices_from(gram)] += alpha
+            out.append((mean, None, scipy.linalg.cho_factor(gram)))
+    return tuple(out)
+
+
+_fold_spectra = ArrayMemo(_compute_fold_spectra, size=4)
+
+
+def _summary(name: str, folds: np.ndarray) -> dict:
+    """Mean and s.d. over folds (``inf`` for an unstable model)."""
+    if not np.all(np.isfinite(folds)):
+        return {name: float("inf"), f"{name}_sd": float("inf")}
+    return {name: float(np.mean(folds)), f"{name}_sd": float(np.std(folds))}
+
+
+def _compute_features(X, time, runs, taus) -> np.ndarray:
+    lags = first_order_lags(X, time, runs, taus)
+    lags -= np.tile(X, taus.size)
+    return np.hstack([X, lags])
+
+
+# one stack of rows is featurised for every target, every fold and every single-campaign model
+_lag_bank_features = ArrayMemo(_compute_features)
+
+
+def _increments(F, groups) -> np.ndarray:
+    """``F(t) - F(t-1)`` per segment, 0 at a segment's first row (steady before it)."""
+    return F - F[lag_index(groups, len(F), 1)]
+
+
+# -- the estimator ---------------------------------------------------------------------------------
+class LagBank(SideInputs, RegressorMixin, BaseEstimator):
+    r"""Linear model of the inputs and their first-order lags on a log grid, ridge by time-series CV.
+
+    .. math:: \hat y(t) = c + \sum_i \Big( b_{i,0}\, x_i(t) + \sum_{k=1}^{K} b_{i,k}\,
+              \big(L_{\tau_k}[x_i](t) - x_i(t)\big) \Big) \;[+\; a\, y(t-1)]
+
+    :math:`L_\tau[x](t)` is the first-order lag of input :math:`x` with time
+    constant :math:`\tau` (exact discretisation, steady start at each
+    campaign's first sample; its lead over :math:`x` vanishes in steady state,
+    see the module docstring); :math:`\tau_1 < \dots < \tau_K` are
+    log-spaced from ``tau_min_s`` (default: the sample period) to
+    ``tau_max_s``.  The features are standardised on the training rows and
+    fitted by ridge regression; its penalty ``alpha`` is the one of
+    ``alphas`` with the lowest mean validation MSE over the folds of
+    :func:`default_splitter` on the *training rows* (leave-campaigns-out for
+    campaign data; for one long record forward chaining over its second half
+    with a gap of the longest lag, see :class:`ForwardChaining` and
+    :func:`forward_gap`).
+
+    The optional autoregressive term ``a y(t-1)`` is fitted on the measured
+    previous error (equation error; 0 before a campaign's first sample, the
+    reference frame's value).  Prediction runs in simulation mode (free run:
+    the model's own previous prediction fed back, from 0 at each campaign
+    start) unless the context holds ``y_measured`` (one-step mode: the measured
+    previous error).  For an AR model ``alpha`` is chosen on the free-run
+    validation error, as the model runs on a machine (the one-step error
+    instead only if no penalty gives a stable model); ``ar='auto'`` keeps the
+    term only if its best free-run CV error beats the model without it.
+    With ``ar=True`` or ``'auto'`` one-step prediction has its own model, the
+    lowest *one-step* CV error among two designs and all penalties: the AR
+    model above (a free-run penalty would shrink the measured :math:`y(t-1)`
+    along with the lags), and the increments model
+
+    .. math:: \hat y(t) = y(t-1) + c + \sum_j b_j \big(f_j(t) - f_j(t-1)\big)
+
+    over the same features :math:`f_j` -- persistence plus the effect of what
+    changed since the last sample, which the penalty shrinks towards
+    persistence (on a drifting record a fitted :math:`a < 1` pulls every
+    prediction back towards the training mean).  With ``ar=False`` both modes
+    coincide.
+
+    Lags never cross a campaign start (the context's ``campaign``); the time
+    steps come from the context's ``time`` (s), else from the row index times
+    ``sample_period_s``.  The output at ``t`` depends on earlier rows, so
+    scikit-learn's ``check_methods_sample_order_invariance`` and
+    ``check_methods_subset_invariance`` do not apply.
+
+    Parameters
+    ----------
+    n_taus : int, default 8
+        Number :math:`K` of time constants.
+    tau_min_s : float or None, default None
+        Shortest time constant (s); None: the sample period.
+    tau_max_s : float, default 172800.0
+        Longest time constant (s), 2 days.
+    alphas : array-like or None, default None
+        Ridge penalties tried (on standardised features); None:
+        ``np.logspace(-4, 6, 21)``.
+    n_splits : int, default 5
+        Folds of the CV (fewer with fewer campaigns or samples).
+    ar : {False, True, 'auto'}, default False
+        Autoregressive term; ``'auto'`` decides by the free-run CV error (one-step
+        prediction uses the AR model with either ``True`` or ``'auto'``).
+    sample_period_s : float, default 60.0
+        Time step (s) assumed when the context has no ``time``.
+
+    Attributes
+    ----------
+    taus_ : ndarray (K,)
+        Time constants (s).
+    sample_period_s_ : float
+        Median training time step (s).
+    features_ : list of str
+        Feature names, ``x`` then ``L[<tau>s](x)-x`` for each input.
+    coef_ : ndarray (p (K + 1),)
+        Coefficients of the (unstandardised) features.
+    ar_coef_ : float
+        ``a`` (0.0 without the AR term).
+    intercept_ : float
+    alpha_ : float
+        Chosen ridge penalty.
+    one_step_design_ : {'lags+ar', 'increments'} or None
+        Design of the one-step model (None with ``ar=False``).
+    coef_one_step_, ar_coef_one_step_, intercept_one_step_, alpha_one_step_ : ndarray, float or None
+        Its coefficients (``ar_coef_one_step_`` is 1 for ``increments``) and penalty.
+    splitter_ : cross-validator
+        The splitter used; ``gap_`` its gap (rows, forward chaining only).
+    cv_results_ : DataFrame
+        One row per (``design``, ``alpha``), designs ``lags``, ``lags+ar``
+        (``ar`` True) and ``increments``: mean and s.d. over folds of the
+        validation MSE in ``free_run`` (inf for ``increments``) and
+        ``one_step`` mode; ``chosen`` marks the free-run model.
+    context_columns_ : list of str
+        ``['time']`` when fitted with a ``time`` context, else ``[]``.
+    """
+
+    def __init__(self, n_taus: int = 8, tau_min_s: float | None = None,
+                 tau_max_s: float = 172800.0, alphas=None, n_splits: int = 5, ar=False,
+                 sample_period_s: float = 60.0):
+        self.n_taus = n_taus
+        self.tau_min_s = tau_min_s
+        self.tau_max_s = tau_max_s
+        self.alphas = alphas
+        self.n_splits = n_splits
+        self.ar = ar
+        self.sample_period_s = sample_period_s
+
+    # -- parameters ---------------------------------------------------------------------
+    # n_taus: a feature per input and time constant
+    param_rules = {"n_taus": integer(1, at_most=1000), "tau_min_s": optional(POSITIVE), "tau_max_s": POSITIVE,
+                   "alphas": optional(either(POSITIVE, numbers(0.0, open_lo=True))),
+                   "n_splits": integer(MIN_SPLITS), "ar": choice(False, True, "auto"),
+                   "sample_period_s": POSITIVE}
+
+    def param_relations(self) -> list[tuple[str, str]]:
+        if self.tau_min_s is not None and not self.tau_min_s <= self.tau_max_s:
+            return [("tau_min_s", f"must not exceed tau_max_s={self.tau_max_s}")]
+        return []
+
+    def _check_params(self) -> np.ndarray:
+        check_estimator(self)
+        alphas = DEFAULT_ALPHAS if self.alphas is None else np.atleast_1d(
+            np.asarray(self.alphas, dtype=float))
+        return np.sort(alphas)
+
+    # -- features -----------------------------------------------------------------------
+    def _time(self, context, groups, n: int) -> np.ndarray:
+        """Context time, or the row index in each campaign times the sample period."""
+        time = values(context, TIME, n)
+        if time is not None:
+            return time
+        out = np.empty(n)
+        period = getattr(self, "sample_period_s_", self.sample_period_s)
+        for start, stop in segment_bounds(groups, n):
+            out[start:stop] = np.arange(stop - start) * period
+        return out
+
+    def _features(self, X, context) -> np.ndarray:
+        """``[x | L_tau1[x] - x | ... | L_tauK[x] - x]``, one block of ``p`` columns per time
+        constant (read-only: remembered for the next model on the same rows)."""
+        return self._keyed_features(X, context)[1]
+
+    def _keyed_features(self, X, context) -> tuple[bytes, np.ndarray]:
+        """(digest of what the features derive from, :meth:`_features`)."""
+        groups, n = groups_of(context), X.shape[0]
+        starts = segment_starts(groups, n)    # campaigns as run numbers: a numeric memo key
+        runs = None if groups is None else np.repeat(np.arange(starts.size), np.diff(np.r_[starts, n]))
+        args = (np.asarray(X, dtype=float), self._time(context, groups, n), runs, self.taus_)
+        key = _lag_bank_features.key(*args)
+        return key, _lag_bank_features.lookup(key, *args)
+
+    @staticmethod
+    def _period(time, groups) -> float | None:
+        steps = np.concatenate([np.diff(time[a:b]) for a, b in segment_bounds(groups, len(time))])
+        steps = steps[np.isfinite(steps) & (steps > 0)]
+        return float(np.median(steps)) if steps.size else None
+
+    # -- fit ----------------------------------------------------------------------------
+    # The ridge path's matrices are a few hundred columns wide: BLAS threads only add contention
+    # (an eigendecomposition 15x slower with 2 threads on a busy 2-core machine), as in diagnose.
+    @threadpool_limits.wrap(limits=1, user_api="blas")
+    def fit(self, X, y, context=None):
+        alphas = self._check_params()
+        X, y = validate_data(self, X, y, y_numeric=True)
+        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        n, p = X.shape
+        if n < MIN_SPLITS + 1:
+            raise ValueError(f"LagBank needs at least {MIN_SPLITS + 1} samples for its time-series "
+                             f"CV, got n_samples={n}")
+        groups = groups_of(context)
+        time = values(context, TIME, n)
+        period = self._period(time, groups) if time is not None else None
+        self.sample_period_s_ = period if period is not None else float(self.sample_period_s)
+        tau_min = self.sample_period_s_ if self.tau_min_s is None else float(self.tau_min_s)
+        tau_min = min(tau_min, float(self.tau_max_s))
+        self.taus_ = np.geomspace(tau_min, float(self.tau_max_s), int(self.n_taus))
+        names = [str(c) for c in getattr(self, "feature_names_in_", [f"x{j}" for j in range(p)])]
+        self.features_ = names + [f"L[{tau:.6g}s]({c})-{c}" for tau in self.taus_ for c in names]
+
+        f_key, F = self._keyed_features(X, context)
+        k = min(int(self.n_splits), n - 1)   # tiny samples: fewer folds, blocks of >= 1 row
+        self.splitter_ = default_splitter(groups, n, forward_gap(self.taus_[-1] / self.sample_period_s_,
+                                                                 n, k), n_splits=k)
+        self.gap_ = int(getattr(self.splitter_, "gap", 0))
+        splits = list(self.splitter_.split(F, y, groups))
+
+        designs = {False: ["lags"], True: ["lags+ar"], "auto": ["lags", "lags+ar"]}[self.ar]
+        if self.ar is not False:
+            designs.append("increments")   # one-step only: persistence plus the feature changes
+        y_prev = previous(y, groups)
+        records, scalers = [], {}
+        for design in designs:
+            D, target = self._design(design, F, y, y_prev, groups)
+            scalers[design] = scaler = StandardScaler().fit(D)
+            # D is F, F with y(t-1) or F's increments, standardised: F's digest stands for it
+            z_key = ArrayMemo.key(f_key, design, scaler.mean_, scaler.scale_,
+                                  y_prev if design == "lags+ar" else None)
+            scores = ridge_path_cv(scaler.transform(D), target, splits, alphas, groups,
+                                   ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
+                                   ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]), z_key=z_key)
+            for i, alpha in enumerate(alphas):
+                free = scores["free_run"][:, i] if design != "increments" else np.array([np.inf])
+                records.append({"design": design, "ar": design == "lags+ar", "alpha": float(alpha),
+                                **_summary("cv_mse_free_run", free),
+                                **_summary("cv_mse_one_step", scores["one_step"][:, i])})
+        table = pd.DataFrame(records)
+        best = self._choose(table[table["design"] != "increments"])
+        table["chosen"] = table.index == best
+        self.cv_results_ = table
+        design, self.alpha_ = str(table.loc[best, "design"]), float(table.loc[best, "alpha"])
+        self.coef_, self.ar_coef_, self.intercept_ = self._refit(design, F, y, y_prev, groups,
+                                                                  scalers[design], self.alpha_)
+        self.one_step_design_ = self.alpha_one_step_ = self.coef_one_step_ = None
+        self.ar_coef_one_step_ = self.intercept_one_step_ = None
+        if self.ar is not False:   # the one-step model: the best one-step CV error of the AR designs
+            rows = table[table["design"] != "lags"]
+            pick = rows["cv_mse_one_step"].idxmin()
+            self.one_step_design_ = str(table.loc[pick, "design"])
+            self.alpha_one_step_ = float(table.loc[pick, "alpha"])
+            self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_ = self._refit(
+                self.one_step_design_, F, y, y_prev, groups, scalers[self.one_step_design_],
+                self.alpha_one_step_)
+        self.context_columns_ = [TIME] if time is not None else []
+        return self
+
+    def chosen_params(self) -> dict:
+        """The parameters that fix what the CV chose (one penalty, the AR term kept or not):
+        a copy fitted with them runs no choice of its own (see
+        :func:`thermocomp.core.compensator.with_chosen_hyperparameters`)."""
+        check_is_fitted(self)
+        if self.ar is not False:   # a one-step model chosen apart (its own design and penalty):
+            return {}              # fixing the free-run choice alone would lose it
+        chosen = self.cv_results_.loc[self.cv_results_["chosen"]].iloc[0]
+        return {"alphas": [self.alpha_], "ar": bool(chosen["ar"])}
+
+    @staticmethod
+    def _design(design: str, F, y, y_prev, groups):
+        """Regressors and target of a design: ``lags`` ``(F, y)``, ``lags+ar`` ``([F | y(t-1)], y)``,
+        ``increments`` ``(F(t) - F(t-1), y(t) - y(t-1))``."""
+        if design == "lags":
+            return F, y
+        if design == "lags+ar":
+            return np.column_stack([F, y_prev]), y
+        return _increments(F, groups), y - y_prev
+
+    def _refit(self, design: str, F, y, y_prev, groups, scaler, alpha: float):
+        """``(coef, a, c)`` of the ridge fit on all training rows, back in unstandardised units.
+
+        ``increments`` predicts ``y(t) = y(t-1) + (F(t) - F(t-1)) b + c``: ``a = 1``.
+        """
+        D, target = self._design(design, F, y, y_prev, groups)
+        ridge = Ridge(alpha=alpha).fit(scaler.transform(D), target)
+        coef = ridge.coef_ / scaler.scale_
+        a = {"lags": 0.0, "lags+ar": float(coef[-1]), "increments": 1.0}[design]
+        return coef[:F.shape[1]].copy(), a, float(ridge.intercept_ - scaler.mean_ @ coef)
+
+    @staticmethod
+    def _choose(table: pd.DataFrame) -> int:
+        """Row of the lowest free-run CV MSE (ties: no AR, then the larger penalty).
+
+        An AR model unstable for every penalty has no finite free-run score:
+        forced (``ar=True``) it is then chosen on its one-step score.
+        """
+        score = table["cv_mse_free_run"].to_numpy()
+        if not np.isfinite(score).any():
+            score = table["cv_mse_one_step"].to_numpy()
+        order = np.lexsort((-table["alpha"].to_numpy(), table["ar"].to_numpy(), score))
+        return int(table.index[order[0]])
+
+    # -- prediction ---------------------------------------------------------------------
+    @threadpool_limits.wrap(limits=1, user_api="blas")
+    def predict(self, X, context=None):
+        """Predicted error: free run (simulation), or one-step with ``y_measured`` in ``context``."""
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False)
+        X = np.asarray(X, dtype=float)
+        groups, y_measured = groups_of(context), values(context, Y_MEASURED, X.shape[0])
+        F = self._features(X, context)
+        if y_measured is not None and self.coef_one_step_ is not None:
+            coef, a, c = self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_
+            if self.one_step_design_ == "increments":
+                F = _increments(F, groups)
+        else:
+            coef, a, c = self.coef_, self.ar_coef_, self.intercept_
+        u = F @ coef + c
+        if a == 0.0:
+            return u
+        if y_measured is None:
+            return free_run(a, u, groups)
+        y_prev = previous(y_measured, groups)
+        missing = np.isnan(y_prev)
+        if not missing.any():
+            return a * y_prev + u
+        starts = set(segment_starts(groups, len(u)).tolist())   # a gap: carry the model's estimate
+        out = np.empty_like(u)
+        for t in range(len(u)):
+            prev = 0.0 if t in starts else (out[t - 1] if missing[t] else y_prev[t])
+            out[t] = a * prev + u[t]
+        return out
+
+    # -- streaming (deployment) ---------------------------------------------------------
+    def stream_init(self, context: Mapping | None = None) -> dict:
+        """State at a campaign start: no lag state yet (steady start on the first sample)."""
+        check_is_fitted(self)
+        return {"z": None, "t": None, "y_prev": 0.0}
+
+    def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
+        """One sample of simulation-mode ``predict``: ``(y_hat, new_state)``.
+
+        ``context`` maps ``'time'`` (s) to this sample's time; without it
+        samples are ``sample_period_s_`` apart.
+        """
+        x = np.asarray(x_row, dtype=float).reshape(-1)
+        t = scalar(context, TIME)
+        if state["z"] is None:
+            z = np.tile(x, self.taus_.size)
+        else:
+            dt = self.sample_period_s_ if np.isnan(t) or state["t"] is None else t - state["t"]
+            a = np.repeat(np.exp(-dt / self.taus_), x.size)
+            z = a * state["z"] + (1.0 - a) * np.tile(x, self.taus_.size)
+        if np.isnan(t):   # no time: count samples, as predict's fallback does
+            t = 0.0 if state["t"] is None else state["t"] + self.sample_period_s_
+        y_hat = float(np.concatenate([x, z - np.tile(x, self.taus_.size)]) @ self.coef_ + self.intercept_
+                      + self.ar_coef_ * state["y_prev"])
+        return y_hat, {"z": z, "t": t, "y_prev": y_hat}

@@ -1,0 +1,321 @@
+"""LSTM residual on a linear skip path, run over whole campaigns (PyTorch, CPU)."""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import torch
+from sklearn.base import BaseEstimator, RegressorMixin
+from sklearn.utils.validation import check_is_fitted, validate_data
+from torch import nn
+
+from ...base.params import NON_NEGATIVE, check_estimator, integer, number
+from ..context import SideInputs, groups_of
+from ..model_selection import CampaignHoldOut
+from ._dynamics import segment_bounds
+
+
+class _Net(nn.Module):
+    """``w·x + c`` plus a linear read-out of the LSTM state carried from the campaign start."""
+
+    def __init__(self, n_inputs: int, hidden_size: int, num_layers: int, dropout: float):
+        super().__init__()
+        self.skip = nn.Linear(n_inputs, 1)
+        self.lstm = nn.LSTM(n_inputs, hidden_size, num_layers=num_layers, batch_first=True,
+                            dropout=dropout if num_layers > 1 else 0.0)
+        self.head = nn.Linear(hidden_size, 1)
+        # the residual starts at zero: the untrained model is the least-squares fit
+        nn.init.zeros_(self.head.weight)
+        nn.init.zeros_(self.head.bias)
+        # forget gates open at start (bias 1): a thermal state is remembered by default
+        for name, p in self.lstm.named_parameters():
+            if name.startswith("bias_ih"):
+                with torch.no_grad():
+                    p[hidden_size:2 * hidden_size].fill_(1.0)
+
+    def forward(self, x, state=None):
+        """``(y, residual, (h, c))`` for ``x`` of shape (batch, time, inputs)."""
+        out, state = self.lstm(x, state)
+        residual = self.head(out).squeeze(-1)
+        return self.skip(x).squeeze(-1) + residual, residual, state
+
+
+class _torch_threads:
+    """Run a block with ``torch.set_num_threads(n)`` and restore the previous value."""
+
+    def __init__(self, n: int):
+        self.n = n
+
+    def __enter__(self):
+        self.previous = torch.get_num_threads()
+        torch.set_num_threads(self.n)
+
+    def __exit__(self, *exc):
+        torch.set_num_threads(self.previous)
+
+
+def _padded(values: np.ndarray, bounds, length: int, dtype) -> torch.Tensor:
+    """Rows of each campaign as one padded batch ``(n_campaigns, length, ...)`` (zeros after the end)."""
+    out = np.zeros((len(bounds), length) + values.shape[1:])
+    for b, (start, stop) in enumerate(bounds):
+        out[b, :stop - start] = values[start:stop]
+    return torch.tensor(out, dtype=dtype)
+
+
+class LSTM(SideInputs, RegressorMixin, BaseEstimator):
+    r"""Linear model plus an LSTM residual, the state carried through each campaign.
+
+    .. math:: \hat y(t) = \mu_y + \sigma_y\big(w^\top \tilde x(t) + c
+              + v^\top h_t + d\big), \qquad
+              (h_t, c_t) = \mathrm{LSTM}\big(\tilde x(t), (h_{t-1}, c_{t-1})\big),
+              \quad (h, c) = 0 \text{ before the campaign's first sample}
+
+    with :math:`\tilde x = (x - \mu_x)/\sigma_x` and :math:`\mu, \sigma` the
+    mean and standard deviation of the training rows.  The inputs are the
+    declared inputs in the reference frame (temperature changes since the
+    campaign start with the default reference), so the recurrent state, like
+    the machine's thermal state, starts every campaign from rest.
+
+    The linear skip path :math:`w, c` is the least-squares fit on the rows
+    the network trains on and stays fixed during training; the read-out
+    :math:`v, d` starts at zero, so the network learns only what the static
+    law leaves over.  Training minimises the mean squared
+    error with Adam by truncated back-propagation through time: every
+    campaign is cut into pieces of ``chunk`` samples, each piece starting from
+    the (detached) state the network reaches there when run from the campaign
+    start (recomputed every epoch), ``batch_size`` pieces per step.  Early
+    stopping on the held-out part of the training rows
+    (:class:`~thermocomp.core.model_selection.CampaignHoldOut`: whole campaigns, or
+    the tail of a single campaign, whose state is then carried in from the
+    training part) keeps the best epoch, the linear model (epoch 0) included:
+    a network that does not beat the static law on held-out rows is dropped.
+    Finally :math:`w, c` are refitted by least squares on all training rows
+    with the learned residual held fixed, so without a network the model is
+    ordinary least squares on the training data.
+
+    Seeded and deterministic on CPU (``random_state``, a forked torch RNG, a
+    fixed thread count); the global torch RNG and thread setting are left as
+    they were.  Inference runs in float64, so batch ``predict`` and the
+    streaming protocol (one LSTM step per sample, carrying ``(h, c)``) agree to
+    rounding.
+
+    The network has no error feedback: ``simulation`` and ``one_step``
+    predictions coincide.  Predictions depend on the preceding rows of the
+    campaign, so scikit-learn's sample-order and subset invariance checks do
+    not apply to it (documented exceptions of ``check_estimator``).
+
+    Parameters
+    ----------
+    hidden_size, num_layers : int, default 16, 1
+    dropout : float, default 0.0
+        Between stacked LSTM layers (``num_layers > 1``).
+    chunk : int, default 128
+        Samples per truncated back-propagation piece.
+    learning_rate : float, default 3e-3
+    weight_decay : float, default 0.0
+    batch_size : int, default 4
+        Pieces per Adam step.
+    max_epochs : int, default 100
+    patience : int, default 20
+    validation_fraction : float, default 0.2
+        0 trains ``max_epochs`` without early stopping.
+    random_state : int, default 0
+    n_threads : int, default 1
+        ``torch.set_num_threads`` during fit and predict.
+
+    Attributes
+    ----------
+    net_ : torch.nn.Module
+        Trained network (float64, eval mode); ``net_.skip`` is the linear path.
+    x_mean_, x_scale_ : ndarray (n_features,)
+    y_mean_, y_scale_ : float
+    n_epochs_ : int
+        Epochs run.
+    best_epoch_ : int
+        Epoch of the kept weights (0: the linear model, the network added nothing).
+    loss_curve_ : list of float
+        Training MSE (standardised units) per epoch.
+    validation_curve_ : list of float
+        Validation MSE before training (epoch 0) and after every epoch.
+    """
+
+    def __init__(self, hidden_size: int = 16, num_layers: int = 1, dropout: float = 0.0,
+                 chunk: int = 128, learning_rate: float = 3e-3, weight_decay: float = 0.0,
+                 batch_size: int = 4, max_epochs: int = 100, patience: int = 20,
+                 validation_fraction: float = 0.2, random_state: int = 0, n_threads: int = 1):
+        self.hidden_size = hidden_size
+        self.num_layers = num_layers
+        self.dropout = dropout
+        self.chunk = chunk
+        self.learning_rate = learning_rate
+        self.weight_decay = weight_decay
+        self.batch_size = batch_size
+        self.max_epochs = max_epochs
+        self.patience = patience
+        self.validation_fraction = validation_fraction
+        self.random_state = random_state
+        self.n_threads = n_threads
+
+    def __sklearn_tags__(self):
+        tags = super().__sklearn_tags__()
+        tags.regressor_tags.poor_score = True     # few epochs in the generic checks
+        tags.non_deterministic = False
+        return tags
+
+    # the weights grow as hidden_size² x num_layers: 4096 x 64 is ~17 GB of them already
+    param_rules = {**{name: integer(1) for name in ("chunk", "batch_size", "max_epochs", "patience")},
+                   "hidden_size": integer(1, at_most=4096), "num_layers": integer(1, at_most=64),
+                   "n_threads": integer(1, at_most=1024),
+                   "dropout": number(0.0, 1.0, open_hi=True), "learning_rate": NON_NEGATIVE,
+                   "weight_decay": NON_NEGATIVE,
+                   "validation_fraction": number(0.0, 1.0, open_hi=True),
+                   "random_state": integer(0, 2 ** 32 - 1)}
+
+    def _validation_rows(self, groups, n: int) -> np.ndarray:
+        """Boolean mask of validation rows: whole campaigns, or the tail of a single one."""
+        holdout = CampaignHoldOut(self.validation_fraction, random_state=self.random_state)
+        return holdout.test_mask(groups, np.empty((n, 0)))
+
+    # -- training ------------------------------------------------------------------------
+    def _states(self, net, xs: torch.Tensor) -> tuple[torch.Tensor, list]:
+        """Outputs over whole campaigns and the state at the start of every piece (no grad)."""
+        chunk, outs, starts, state = int(self.chunk), [], [], None
+        with torch.no_grad():
+            for k in range(0, xs.shape[1], chunk):
+                starts.append(state)
+                y, _, state = net(xs[:, k:k + chunk], state)
+                outs.append(y)
+        return torch.cat(outs, dim=1), starts
+
+    def fit(self, X, y, context=None):
+        check_estimator(self)
+        groups = groups_of(context)
+        X, y = validate_data(self, X, y, y_numeric=True)
+        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        n, p = X.shape
+        self.x_mean_ = X.mean(axis=0)
+        self.x_scale_ = np.where(X.std(axis=0) > 0, X.std(axis=0), 1.0)
+        self.y_mean_ = float(y.mean())
+        self.y_scale_ = float(y.std()) if y.std() > 0 else 1.0
+        Xs = (X - self.x_mean_) / self.x_scale_
+        ys = (y - self.y_mean_) / self.y_scale_
+        val = self._validation_rows(groups, n)
+        bounds = segment_bounds(groups, n)
+        length = max(stop - start for start, stop in bounds)
+        chunk = int(self.chunk)
+        xs = _padded(Xs, bounds, length, torch.float32)
+        yp = _padded(ys, bounds, length, torch.float32)
+        fit_w = _padded((~val).astype(float), bounds, length, torch.float32)
+        val_w = _padded(val.astype(float), bounds, length, torch.float32)
+        # pieces (campaign, start) holding training rows; pieces of a held-out tail are skipped
+        pieces = [(b, k) for b, (start, stop) in enumerate(bounds)
+                  for k in range(0, stop - start, chunk) if fit_w[b, k:k + chunk].sum() > 0]
+        with _torch_threads(int(self.n_threads)), torch.random.fork_rng(devices=[]):
+            torch.manual_seed(int(self.random_state))
+            gen = torch.Generator().manual_seed(int(self.random_state))
+            net = _Net(p, int(self.hidden_size), int(self.num_layers), float(self.dropout))
+            # the static law first, fitted on the rows the network trains on and held fixed: the
+            # network learns only what it leaves over, and epoch 0 (no network) is judged on
+            # held-out rows like every other epoch
+            self._least_squares(net, Xs[~val], ys[~val])
+            net.skip.requires_grad_(False)
+            opt = torch.optim.Adam([q for q in net.parameters() if q.requires_grad],
+                                   lr=float(self.learning_rate),
+                                   weight_decay=float(self.weight_decay))
+            best, best_state, best_epoch, waited = np.inf, None, 0, 0
+            self.loss_curve_, self.validation_curve_ = [], []
+            epoch = 0
+            from ...base.progress import bar
+            epochs = bar(total=int(self.max_epochs), desc="LSTM epochs", unit="epoch")
+            while True:
+                net.eval()
+                out, starts = self._states(net, xs)
+                if val.any():
+                    val_loss = float((val_w * (out - yp) ** 2).sum() / val_w.sum())
+                    self.validation_curve_.append(val_loss)
+                    if val_loss < best:
+                        best, best_epoch, waited = val_loss, epoch, 0
+                        best_state = copy.deepcopy(net.state_dict())
+                    else:
+                        waited += 1
+                if epoch >= int(self.max_epochs) or (val.any() and waited >= int(self.patience)):
+                    epochs.close()
+                    break
+                epoch += 1
+                epochs.update()
+                net.train()
+                total, weight = 0.0, 0.0
+                order = torch.randperm(len(pieces), generator=gen).tolist()
+                for i in range(0, len(order), int(self.batch_size)):
+                    batch = [pieces[j] for j in order[i:i + int(self.batch_size)]]
+                    rows = torch.tensor([b for b, _ in batch])
+                    window = torch.stack([torch.arange(k, k + chunk) for _, k in batch]).clamp(max=length - 1)
+                    valid = torch.stack([torch.arange(k, k + chunk) < length for _, k in batch]).float()
+                    state = None if all(k == 0 for _, k in batch) else self._batch_state(starts, batch)
+                    xb, yb = xs[rows[:, None], window], yp[rows[:, None], window]
+                    wb = fit_w[rows[:, None], window] * valid
+                    opt.zero_grad()
+                    pred, _, _ = net(xb, state)
+                    loss = (wb * (pred - yb) ** 2).sum() / wb.sum()
+                    loss.backward()
+                    nn.utils.clip_grad_norm_(net.parameters(), 1.0)
+                    opt.step()
+                    total, weight = total + loss.item() * float(wb.sum()), weight + float(wb.sum())
+                self.loss_curve_.append(total / max(weight, 1.0))
+            if best_state is not None:
+                net.load_state_dict(best_state)
+        self.n_epochs_, self.best_epoch_ = epoch, best_epoch if val.any() else epoch
+        self.net_ = net.double().eval()
+        # the linear law refitted on every training row, the learned residual held fixed
+        self._least_squares(self.net_, Xs, ys - self._outputs(Xs, groups, residual=True))
+        self.context_columns_ = []
+        return self
+
+    def _batch_state(self, starts, batch) -> tuple[torch.Tensor, torch.Tensor]:
+        """Initial (h, c) of each piece: zero at a campaign start, else the carried state."""
+        shape = (int(self.num_layers), len(batch), int(self.hidden_size))
+        h, c = torch.zeros(shape), torch.zeros(shape)
+        chunk = int(self.chunk)
+        for i, (b, k) in enumerate(batch):
+            if k:
+                h[:, i], c[:, i] = starts[k // chunk][0][:, b], starts[k // chunk][1][:, b]
+        return h, c
+
+    @staticmethod
+    def _least_squares(net, Xs, ys) -> None:
+        """Set the skip path to the least-squares fit of ``ys`` on ``Xs``."""
+        coef = np.linalg.lstsq(np.c_[Xs, np.ones(len(Xs))], ys, rcond=None)[0]
+        with torch.no_grad():
+            net.skip.weight.copy_(torch.as_tensor(coef[None, :-1]))
+            net.skip.bias.fill_(float(coef[-1]))
+
+    # -- inference -----------------------------------------------------------------------
+    def _outputs(self, Xs: np.ndarray, groups, residual: bool = False) -> np.ndarray:
+        """Prediction (or only the network's residual) of the net, standardised, per row."""
+        out = np.zeros(len(Xs))
+        with _torch_threads(int(self.n_threads)), torch.no_grad():
+            for start, stop in segment_bounds(groups, len(Xs)):
+                x = torch.tensor(Xs[None, start:stop], dtype=torch.float64)
+                out[start:stop] = self.net_(x)[1 if residual else 0][0].numpy()
+        return out
+
+    def predict(self, X, context=None):
+        """Predicted error (the same in simulation and one-step mode)."""
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False)
+        Xs = (np.asarray(X, dtype=float) - self.x_mean_) / self.x_scale_
+        return self._outputs(Xs, groups_of(context)) * self.y_scale_ + self.y_mean_
+
+    # -- streaming (deployment) ---------------------------------------------------------
+    def stream_init(self, context=None) -> dict:
+        """The network at rest: ``(h, c) = 0`` before a campaign's first sample."""
+        check_is_fitted(self)
+        return {"hc": None}
+
+    def stream_step(self, x_row, state: dict, context=None) -> tuple[float, dict]:
+        """One LSTM step from the carried ``(h, c)``."""
+        x = (np.asarray(x_row, dtype=float).reshape(-1) - self.x_mean_) / self.x_scale_
+        with _torch_threads(int(self.n_threads)), torch.no_grad():
+            y, _, hc = self.net_(torch.tensor(x[None, None, :], dtype=torch.float64), state["hc"])
+        return float(y[0, 0]) * self.y_scale_ + self.y_mean_, {"hc": hc}

@@ -1,0 +1,1 @@
+"""Scoring a fitted compensator and the figures read from the scores."""

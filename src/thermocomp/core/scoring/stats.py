@@ -1,0 +1,141 @@
+r"""Statistics across campaigns (paper 003, Sects. 3.3-3.4): one-way ANOVA, mutual prediction.
+
+Pure core: campaign arrays/DataFrames in, dicts/DataFrames out.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+
+import numpy as np
+import pandas as pd
+from scipy import stats as sps
+from sklearn.base import clone
+
+from ..frame import stack
+from ..metrics import rsd
+from ..model_selection import TrainOnEachCampaign
+
+
+def anova_oneway(samples: Mapping[str, np.ndarray], alpha: float = 0.001) -> dict:
+    r"""One-way ANOVA of a quantity (the thermal error) across campaigns (paper 003, Sect. 3.3).
+
+    With :math:`r` campaigns, :math:`n_i` samples :math:`y_{ij}` each, campaign
+    means :math:`\bar y_i` and grand mean :math:`\bar y` (:math:`N = \sum n_i`):
+
+    .. math::
+
+        S_A = \sum_i n_i (\bar y_i - \bar y)^2,\quad
+        S_E = \sum_i \sum_j (y_{ij} - \bar y_i)^2,\quad
+        F = \frac{S_A / (r-1)}{S_E / (N-r)}
+
+    :math:`p = P(F_{r-1,N-r} \ge F)` and :math:`F_{crit} = F^{-1}_{r-1,N-r}(1-\alpha)`
+    (scipy).  ``significant`` is :math:`F \ge F_{crit}`: the campaigns do not share
+    one mean, i.e. the error law differs between them (paper 003 read it as the
+    ambient level changing the law).
+
+    Returns ``{"F": None, "reason": ...}`` with fewer than two campaigns or
+    no within-campaign degrees of freedom.
+    """
+    groups = {c: np.asarray(v, float)[np.isfinite(np.asarray(v, float))] for c, v in samples.items()}
+    groups = {c: v for c, v in groups.items() if v.size}
+    r, n = len(groups), sum(v.size for v in groups.values())
+    if r < 2 or n - r < 1:
+        return {"F": None, "p_value": None, "F_crit": None, "alpha": alpha, "significant": None,
+                "campaigns": r, "reason": f"ANOVA needs two campaigns or more with samples to spare "
+                                          f"(have {r} campaigns, {n} samples)"}
+    values = list(groups.values())
+    F, p = sps.f_oneway(*values)
+    grand = np.concatenate(values).mean()
+    ss_between = float(sum(v.size * (v.mean() - grand) ** 2 for v in values))
+    ss_within = float(sum(((v - v.mean()) ** 2).sum() for v in values))
+    df_between, df_within = r - 1, n - r
+    F_crit = float(sps.f.ppf(1.0 - alpha, df_between, df_within))
+    F = float(F) if np.isfinite(F) else None
+    return {"F": F, "p_value": float(p) if np.isfinite(p) else None, "F_crit": F_crit,
+            "alpha": alpha, "significant": None if F is None else bool(F >= F_crit),
+            "df_between": df_between, "df_within": df_within,
+            "ss_between": ss_between, "ss_within": ss_within,
+            "ms_between": ss_between / df_between, "ms_within": ss_within / df_within,
+            "campaigns": r}
+
+
+def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: Callable,
+                      mode: str = "simulation") -> dict[str, pd.DataFrame]:
+    r"""Mutual prediction matrix (paper 003, Sect. 3.4, Fig. 6).
+
+    A model trained on campaign :math:`i` alone predicts every campaign
+    :math:`j`; entry :math:`(i, j)` is :math:`R_{sd}` of that prediction (paper
+    003, Eq. 17, in the target's unit).  The diagonal is the self-fit.
+
+    Each model predicts all campaigns in one call; the measured targets are
+    taken once (the reference frame does not depend on the model) and the
+    Rsd of every (model, campaign) pair comes from one residual array per target.
+
+    Parameters
+    ----------
+    campaigns : dict id -> campaign DataFrame (contract columns)
+    make_compensator : callable returning a new, unfitted
+        :class:`~thermocomp.core.compensator.Compensator` (any model config)
+    mode : 'simulation' or 'one_step'
+
+    Returns
+    -------
+    dict target -> DataFrame (index: trained on, columns: predicted), in the
+    order of ``campaigns``.
+    """
+    ids = list(campaigns)
+    first = make_compensator()
+    if first.denoiser is not None:      # denoised per training campaign: the campaign-level path
+        return _mutual_by_campaign(campaigns, make_compensator, mode)
+    # no denoiser: stack every campaign once; each model fits on its campaign's rows of the stack
+    # and predicts the whole stack (the same numbers as fit/predict on the campaign dicts)
+    probe = first.fit({ids[0]: campaigns[ids[0]]})
+    m = stack(campaigns, probe.inputs_, probe.targets_, probe.reference)
+    bounds = _bounds(m.groups, ids)
+    Y = m.Y.to_numpy()
+    residuals = {t: [] for t in probe.targets_}
+    from ...base.progress import bar
+
+    for train, _ in bar(TrainOnEachCampaign().split(ids, groups=ids), desc="mutual prediction",
+                        total=len(ids), unit="model"):
+        comp = clone(first).fit_stacked(m.subset(m.rows_of(ids[train[0]])))
+        r = Y - comp.predict_stacked(m, mode)
+        for k, t in enumerate(comp.targets_):
+            residuals[t].append(r[:, k])
+    return _rsd_matrices(residuals, ids, bounds)
+
+
+def _bounds(groups, ids) -> list[tuple[int, int]]:
+    """(start, stop) rows of each campaign of a stack, in ``ids`` order."""
+    return [(int(np.flatnonzero(groups == c)[0]), int(np.flatnonzero(groups == c)[-1]) + 1) for c in ids]
+
+
+def _rsd_matrices(residuals: dict, ids, bounds) -> dict[str, pd.DataFrame]:
+    index = pd.Index(ids, name="trained_on")
+    columns = pd.Index(ids, name="predicted")
+    return {t: pd.DataFrame([[rsd(row[a:b]) for a, b in bounds] for row in r],
+                            index=index, columns=columns)
+            for t, r in residuals.items()}
+
+
+def _mutual_by_campaign(campaigns, make_compensator, mode) -> dict[str, pd.DataFrame]:
+    ids = list(campaigns)
+    measured, residuals, bounds = None, {}, []
+    for train, _ in TrainOnEachCampaign().split(ids, groups=ids):
+        i = ids[train[0]]
+        comp = make_compensator().fit({i: campaigns[i]})
+        if measured is None:
+            frames = comp.measured(campaigns)
+            measured = _by_target(frames, ids, comp.targets_)
+            ends = np.cumsum([len(frames[c]) for c in ids])
+            bounds = list(zip(ends - np.diff(ends, prepend=0), ends))  # rows of each campaign
+        pred = _by_target(comp.predict(campaigns, mode=mode), ids, comp.targets_)
+        for t in comp.targets_:
+            residuals.setdefault(t, []).append(measured[t] - pred[t])
+    return _rsd_matrices(residuals, ids, bounds)
+
+
+def _by_target(frames: Mapping[str, pd.DataFrame], ids, targets) -> dict[str, np.ndarray]:
+    """Per target, the column of every campaign of ``frames`` end to end (in ``ids`` order)."""
+    return {t: np.concatenate([frames[c][t].to_numpy(float) for c in ids]) for t in targets}

@@ -1,7 +1,0 @@
-"""MLflow *model from code* entry point of the deployed compensator (see :mod:`.pyfunc`)."""
-
-from mlflow.models import set_model
-
-from thermocomp.deploy.pyfunc import CompensatorModel
-
-set_model(CompensatorModel())

@@ -1,0 +1,74 @@
+"""`thermocomp connect`: a deployed compensator as an OPC UA client of a machine
+(:class:`~thermocomp.apps.machine.client.Connection`); ends when the server says the campaigns are
+done and writes ``<out>/connect.json`` (its events, CLI.md).
+
+``connect.model`` is loaded as ``replay.model`` is (null: the configured model fitted on the
+train split, made deployable with the adaptive compensator of ``monitor``).  What is written is
+bounded and rate-limited by the deployed compensator's correction guard; a plain stream gets
+one fitted on the train split as ``monitor`` fits it.
+"""
+
+from __future__ import annotations
+
+import asyncio
+from pathlib import Path
+
+import numpy as np
+from omegaconf import DictConfig
+
+from ...base.errors import ConfigError
+from ...base.files import write_json
+from ...base.paths import resolve
+from .common import check_config, deployable_model, read_streamed, say
+
+
+def _guard(cfg: DictConfig, deployed, ds, train_ids):
+    guard = getattr(deployed, "guard", None)
+    if guard is not None:
+        return guard
+    if ds is None:
+        raise ConfigError(f"connect.model={cfg.connect.model}: a plain stream without a correction "
+                          "guard; register it with monitor.adaptive=true, or give a model.pkl")
+    from ...apps.deploy.adaptive import AdaptiveCompensator
+
+    train = {c: ds.campaigns[c] for c in train_ids}
+    return AdaptiveCompensator.from_training(deployed, train, guard=dict(cfg.monitor.guard)).guard
+
+
+def connect(cfg: DictConfig) -> dict:
+    """Run the compensator against ``connect.endpoint`` until the campaigns are done."""
+    check_config(cfg, inputs=("connect.model",))
+    from ...apps.machine.client import Connection, LinkLost
+    from ...apps.machine.nodes import NodeMap
+    from ...apps.machine.offsets import OffsetLimiter
+
+    c = cfg.connect
+    source = c.get("model")
+    if source is not None and not str(source).strip():
+        raise ConfigError("connect.model is empty: a model.pkl, a pyfunc folder or "
+                          "models:/<name>@<alias>")
+    registered = source is not None and (str(source).startswith("models:/")
+                                         or (resolve(str(source)) / "MLmodel").is_file())
+    ds, train_ids = (None, []) if registered else read_streamed(cfg, test=False)[:2]
+    deployed, source, name = deployable_model(cfg, ds, train_ids, source, "connect.model")
+    guard = _guard(cfg, deployed, ds, train_ids)
+    limiter = OffsetLimiter(guard.lo, guard.hi, guard.max_rate_per_s * guard.period_s,
+                            float(c.hold_s), float(c.decay_s))
+    link = Connection(deployed, NodeMap.from_config(c.nodes), str(c.endpoint), limiter,
+                      retry_s=float(c.retry_s), give_up_s=float(c.give_up_s))
+    say(f"connect: {name} ({source}) to {c.endpoint}: inputs {', '.join(deployed.columns_)}")
+    try:
+        asyncio.run(link.run())
+    except LinkLost as exc:
+        raise ConfigError(f"connect.endpoint={c.endpoint}: {exc}") from None
+    written = np.vstack(link.written) if link.written else np.empty((0, len(deployed.targets_)))
+    report = {"model": name, "source": source, "endpoint": str(c.endpoint),
+              "samples": link.samples, "samples_missed": link.missed, "writes": int(len(written)),
+              "max_abs_offset": {t: float(np.max(np.abs(written[:, j]))) if len(written) else 0.0
+                                 for j, t in enumerate(deployed.targets_)},
+              "bound": {t: [float(guard.lo[j]), float(guard.hi[j])]
+                        for j, t in enumerate(deployed.targets_)},
+              "events": link.events}
+    path = write_json(Path(resolve(cfg.out)) / "connect.json", report)
+    say(f"connect: {link.samples} samples, {len(link.events)} events: {path}")
+    return report

@@ -1,0 +1,100 @@
+"""`thermocomp export`: the deployed compensator as coefficients and code (``docs/cli.md``).
+
+``export.model``: a pyfunc folder or ``models:/<name>@<alias>`` is exported as deployed; a
+``model.pkl`` is first made deployable as ``replay`` does it (its envelope from the train split
+of ``data.path``).  Of an adaptive compensator the plain stream inside is exported (the sensor
+monitor and the correction guard stay with the served model).  The files are written into
+``out`` together, or not at all (:func:`~thermocomp.base.files.staged_outputs`).
+"""
+
+from __future__ import annotations
+
+from datetime import datetime, timezone
+from pathlib import Path
+
+from omegaconf import DictConfig
+
+from ...apps.deploy.export import NotExportable, exported_files
+from ...apps.deploy.report import plain
+from ...base.errors import ConfigError
+from ...base.files import folder_digest, staged_outputs
+from ...base.log import say
+from ...base.paths import resolve
+from ..model_store import load_model, model_family
+from ..tracking import connect
+from .common import check_config, deploy_stream, read_streamed
+
+
+def _registry_run(source: str) -> str | None:
+    """The MLflow run a registered ``models:/name@alias`` (or ``/version``) came from."""
+    from mlflow import MlflowClient
+
+    name, _, which = source[len("models:/"):].partition("@")
+    client = MlflowClient()
+    try:
+        mv = (client.get_model_version_by_alias(name, which) if which
+              else client.get_model_version(*name.split("/", 1)))
+    except Exception:
+        return None
+    return mv.run_id
+
+
+def _deployed(cfg: DictConfig, source: str) -> tuple[object, dict]:
+    """``(deployed compensator, provenance)`` of ``export.model``."""
+    path = resolve(source) if not source.startswith("models:/") else None
+    if path is None or (path / "MLmodel").is_file():
+        from ...apps.deploy.pyfunc import load_deployed
+
+        if path is None:
+            connect(cfg)
+        try:
+            deployed = load_deployed(source, path)
+        except ConfigError:
+            raise
+        except Exception as exc:
+            if type(exc).__name__ == "ContractError":
+                raise
+            raise ConfigError(f"export.model={source}: cannot load it "
+                              f"({' '.join(str(exc).split())[:200]})") from None
+        run = _registry_run(source) if path is None else None
+        return deployed, {"run_id": run, "dataset_hash": None}
+    comp = load_model(path)
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    deployed = deploy_stream(cfg, comp, train, f"export.model={source}")
+    return deployed, {"run_id": None, "dataset_hash": folder_digest(resolve(cfg.data.path))}
+
+
+def export(cfg: DictConfig) -> dict:
+    """Write the export of ``export.model`` in ``export.format`` to ``out``; ``{file: path}``."""
+    check_config(cfg, inputs=("export.model",))
+    source = cfg.export.get("model")
+    if source is None or not str(source).strip():
+        raise ConfigError("export.model is needed: a model.pkl, a pyfunc folder or "
+                          "models:/<name>@<alias>")
+    from ...base.log import version  # the installed distribution's, as --version prints it
+
+    source, fmt = str(source), str(cfg.export.format)
+    deployed, provenance = _deployed(cfg, source)
+    stream = plain(deployed)
+    if stream is not deployed:
+        say("exporting the plain stream of the adaptive compensator: its sensor monitor and "
+            "correction guard stay with the served model")
+    family = model_family(stream.compensator)
+    units = {c: "degC" if c.startswith("T_") else "" for c in stream.columns_}
+    provenance.update(model=family, source=source, version=version(), units=units,
+                      exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"))
+    try:
+        files = exported_files(stream, fmt, provenance)
+    except NotExportable as exc:
+        raise ConfigError(f"export.model={source} ({family}) cannot be exported as {fmt}: "
+                          f"{exc}") from None
+    out = Path(resolve(cfg.out))
+    with staged_outputs(out, last=("compensator.json",)) as tmp:
+        for name, text in files.items():
+            (tmp / name).write_text(text, encoding="utf-8")
+    written = {name: out / name for name in files}
+    say(f"export ({fmt}, {family}): {', '.join(str(p) for p in written.values())}")
+    if fmt == "c":
+        say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv")
+    return written

@@ -1,0 +1,49 @@
+"""`thermocomp simulate`: a dataset from the digital twin (conf/sim/<scenario>)."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+from omegaconf import DictConfig
+
+from ...apps.sim.scenario import write_scenario
+from ...base.errors import ConfigError
+from ...base.files import write_json
+from ...base.log import say
+from ...base.paths import resolve
+from ..build import build
+from ..resolvers import scenario_dataset
+from ..tracking import stage_run
+from .common import _check_writable
+
+
+def simulate(cfg: DictConfig) -> dict:
+    """Write a dataset from the digital twin to ``data.path`` and its truth next to it."""
+    t0 = time.perf_counter()
+    generator = build(cfg.sim.generator, "sim.generator")
+    say(f"simulating {cfg.sim.name} ...")
+    path = resolve(cfg.data.path)
+    _check_writable("data.path", cfg.data.path, folder=True)
+    if path.is_dir() and any(path.iterdir()) and not (path / "campaigns.csv").is_file():
+        # the dataset replaces data.path whole: never a folder of something else
+        raise ConfigError(f"data.path={cfg.data.path}: not empty and holds no dataset "
+                          "(campaigns.csv); simulate replaces it whole: give a new or empty folder")
+    if (path / "campaigns.csv").is_file() and not Path(f"{path}.truth.json").is_file():
+        # nor a dataset it did not write: an outside probe's measured one was replaced silently
+        raise ConfigError(f"data.path={cfg.data.path}: holds a dataset simulate did not write (no "
+                          f"{path.name}.truth.json next to it: measured data?); simulate replaces "
+                          "it whole: give a new or empty folder")
+    truth, n_campaigns, rows = write_scenario(generator, path)
+    truth_path = write_json(f"{path}.truth.json", truth)
+    say(f"wrote {n_campaigns} campaigns, {rows} rows to {path} "
+        f"({time.perf_counter() - t0:.1f} s); truth: {truth_path}")
+    folder = scenario_dataset(cfg)
+    if folder != cfg.sim.name and path.name == folder:     # data.path as conf/data says
+        say(f"sim.generator differs from conf/sim/{cfg.sim.name}.yaml: its dataset is kept apart "
+            f"from the scenario's ({path.with_name(str(cfg.sim.name))}); the stages given the same "
+            f"overrides read it, or data.path={path}")
+    with stage_run(cfg, "simulate", default=False) as tr:   # logged only with track=true
+        tr.log_metrics({"campaigns": n_campaigns, "rows": rows})
+        tr.log_artifact(truth_path)
+    return {"path": str(path), "truth": str(truth_path)}

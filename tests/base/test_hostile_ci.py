@@ -1,0 +1,113 @@
+"""CI cannot stay green on a broken team stack (issue 35 item 8): ``.ci/run`` stops when
+``.ci/team-server start`` fails, and the PostgreSQL test fails instead of skipping there."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import signal
+import stat
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from conftest import ROOT
+
+STUB = "#!/usr/bin/env bash\necho \"$(basename \"$0\") $*\" >> \"$CALLS\"\n"
+
+
+def _stub(path: Path, body: str = STUB) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(body)
+    path.chmod(path.stat().st_mode | stat.S_IEXEC)
+
+
+def test_ci_run_stops_when_the_team_server_does_not_start(tmp_path):
+    """A scratch checkout: the real ``.ci/run``; ``make``, python, chromium and a team server
+    whose start fails (as PostgreSQL failing to come up does) are stubs that log their calls."""
+    (tmp_path / ".ci").mkdir()
+    shutil.copy2(ROOT / ".ci" / "run", tmp_path / ".ci" / "run")
+    _stub(tmp_path / "bin" / "make")
+    _stub(tmp_path / ".venv" / "bin" / "python")
+    _stub(tmp_path / ".venv" / "bin" / "mkdocs")
+    _stub(tmp_path / ".ci" / "chromium")
+    _stub(tmp_path / ".ci" / "team-server",
+          STUB + '[ "$1" = start ] && { echo "[team-server] initdb failed" >&2; exit 1; }\nexit 0\n')
+    calls = tmp_path / "calls"
+    env = {**os.environ, "CALLS": str(calls), "PATH": f"{tmp_path / 'bin'}:{os.environ['PATH']}"}
+    proc = subprocess.run([str(tmp_path / ".ci" / "run")], env=env, capture_output=True,
+                          text=True, timeout=60, stdin=subprocess.DEVNULL)
+    log = calls.read_text().splitlines()
+    assert proc.returncode != 0, (proc.stdout, proc.stderr, log)
+    assert "team-server start" in log and "team-server stop" in log      # the trap still cleans up
+    assert not [c for c in log if c.startswith(("python", "chromium", "make test"))], log
+
+
+def test_the_postgresql_test_fails_instead_of_skipping_when_ci_requires_the_server():
+    env = {k: v for k, v in os.environ.items() if k not in ("THERMOCOMP_MLFLOW_SERVER", "CI")}
+    args = [sys.executable, "-m", "pytest", "-q", "-p", "no:randomly", "-p", "no:cacheprovider",
+            str(ROOT / "tests" / "test_team.py"), "-k", "postgresql"]
+    required = subprocess.run(args, env={**env, "THERMOCOMP_REQUIRE_SERVER": "1"},
+                              capture_output=True, text=True, timeout=300, cwd=ROOT)
+    assert required.returncode == 1 and "1 failed" in required.stdout, required.stdout[-2000:]
+
+
+# -- the README test's reading of README.md (tests/test_readme.py runs the commands; this checks
+# what it reads, without copying the venv) ----------------------------------------------------
+def test_the_readme_test_accounts_for_every_block_and_directive():
+    from test_readme import readme_blocks, unaccounted
+
+    assert unaccounted((ROOT / "README.md").read_text()) == []
+    ok = ("<!-- readme-test: expect E_Z -->\n```bash\nrun\n```\n"
+          "<!-- readme-test: output -->\n```\nE_Z 1\n```\n")
+    assert unaccounted(ok) == [] and [b["kind"] for b in readme_blocks(ok)] == ["expect", "output"]
+    detached = "<!-- readme-test: skip — slow -->\n\n```bash\nmake test\n```\n"
+    assert unaccounted(detached) == ["line 1: directive not on the line before a block"]
+    for lang in ("sh", "console"):
+        assert unaccounted(f"```{lang}\nthermocomp run\n```\n") == [
+            f"line 1: a ```{lang} block is never run: write ```bash"]
+    assert unaccounted("<!-- readme-test: output -->\n```\nE_Z 1\n```\n") == [
+        "line 1: output goes on an unlabelled block after a command block"]
+
+
+def test_the_readme_test_checks_every_row_of_a_printed_table():
+    from test_readme import missing_lines
+
+    table = "target  RMSE\nE_X     0.75\nE_Y     1.42\n"
+    printed = "[thermocomp] reading\ntarget RMSE\nE_X   0.75\nE_Y   1.42\n[thermocomp] done\n"
+    assert missing_lines(table, printed) == []
+    assert missing_lines(table, printed.replace("1.42", "1.43")) == ["E_Y     1.42"]   # not row 1
+
+
+def test_a_sigterm_swallowed_by_a_weakref_callback_is_raised_again():
+    """A signal handler runs between any two bytecodes, also inside a weakref callback, where
+    Python prints "Exception ignored" and drops the exception: the stage went on to its end
+    (tests/shell/test_tracking.py's signalled run timed out so). signals_raise raises it again."""
+    import gc
+    import weakref
+
+    from thermocomp.base.files import Terminated, signals_raise
+
+    class Thing:
+        pass
+
+    def callback(_ref):             # the signal arrives while the callback runs
+        os.kill(os.getpid(), signal.SIGTERM)
+        for _ in range(1000):
+            sum(range(10))
+
+    reached_end = False
+    with pytest.raises(Terminated):
+        with signals_raise():
+            thing = Thing()
+            ref = weakref.ref(thing, callback)
+            del thing                   # the callback runs here; its exception is ignored
+            gc.collect()
+            deadline = time.monotonic() + 5
+            while time.monotonic() < deadline:
+                sum(range(100))
+            reached_end = ref is not None
+    assert not reached_end

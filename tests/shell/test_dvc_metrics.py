@@ -1,0 +1,144 @@
+"""`dvc repro` of the default study in a scratch copy of the project, the venv not on PATH, and
+what DVC shows of it: headline metrics (narrow), a handful of `exp show` columns, data-driven
+plots, and what a changed model parameter reruns.  One full repro for the module: its tests run
+on one xdist worker (`make test` uses `--dist loadfile`), in file order, the one that changes
+the study last.  The README's `dvc repro`, `dvc repro` (nothing runs), `dvc metrics show`
+are run here, as written."""
+
+import json
+import subprocess
+
+import pandas as pd
+import pytest
+
+from conftest import copy_project, dvc
+from thermocomp.core.figures.plotdata import write_compare
+
+pytestmark = pytest.mark.slow
+STAGES = ("simulate", "ingest", "denoise", "select", "train", "evaluate", "diagnose")
+TARGETS = ("E_X", "E_Y", "E_Z")
+# The README's `dvc exp show` (a handful of columns: the test and validation RMSE per target)
+EXP_SHOW = ["exp", "show", "--drop", ".*", "--keep",
+            "Experiment|Created|.*headline/.*:(test_rmse|val_rmse)$"]
+
+
+def _ran(log: str) -> set[str]:
+    return {s for s in STAGES if f"Running stage '{s}'" in log}
+
+
+@pytest.fixture(scope="session")
+def repro(tmp_path_factory):
+    dest, env = copy_project(tmp_path_factory.mktemp("dvcm") / "proj")
+    first = dvc("repro", cwd=dest, env=env)
+    assert _ran(first.stdout + first.stderr) == set(STAGES), first.stdout + first.stderr
+    assert (dest / "reports/default/metrics.json").is_file()
+    assert (dest / "mlruns/mlflow.db").is_file()
+    again = dvc("repro", cwd=dest, env=env)          # the README's second `dvc repro`
+    assert _ran(again.stdout + again.stderr) == set() and "up to date" in again.stdout + again.stderr
+    (dest / ".gitignore").write_text("/mlruns/\n/reports/\ndvc_plots/\n.venv\n")
+    subprocess.run(["git", "add", "-A"], cwd=dest, env=env, check=True, capture_output=True)
+    subprocess.run(["git", "commit", "-qm", "study"], cwd=dest, env=env, check=True)
+    return dest, env
+
+
+def test_metrics_show_is_narrow_and_loads_everything(repro):
+    dest, env = repro
+    proc = dvc("metrics", "show", cwd=dest, env=env)
+    text = proc.stdout + proc.stderr
+    assert "failed to load" not in text            # not even for pipelines/sweep before a sweep
+    assert max(len(line) for line in proc.stdout.splitlines()) <= 200
+    for t in TARGETS:
+        assert f"reports/default/headline/{t}.json" in text
+        assert f"reports/default/diagnosis_headline/{t}.json" in text
+
+
+def test_headline_numbers_are_the_full_reports_numbers(repro):
+    dest, env = repro
+    shown = json.loads(dvc("metrics", "show", "--json", cwd=dest, env=env).stdout)[""]["data"]
+    metrics = json.loads((dest / "reports/default/metrics.json").read_text())
+    for t in TARGETS:
+        head = shown[f"reports/default/headline/{t}.json"]["data"]
+        full = metrics["targets"][t]
+        assert head["test_rmse"] == pytest.approx(full["test"]["rmse"])
+        assert head["test_rsd_sd"] == pytest.approx(full["test"]["rsd_sd"])
+        assert head["val_rmse"] == pytest.approx(full["validation"]["rmse"])
+        assert head["rms_reduction_pct"] == pytest.approx(
+            100 * (1 - full["test"]["rms_after"] / full["test"]["rms_before"]))
+        diag = json.loads((dest / f"reports/default/diagnosis/diagnosis_{t}.json").read_text())
+        dh = shown[f"reports/default/diagnosis_headline/{t}.json"]["data"]
+        assert dh == pytest.approx({"test_before": diag["before"]["test_rmse"],
+                                    "test_after": diag["after"]["test_rmse"],
+                                    "cv_before": diag["before"]["cv_rmse"],
+                                    "cv_after": diag["after"]["cv_rmse"]})
+
+
+def test_exp_show_has_a_handful_of_columns(repro):
+    dest, env = repro
+    table = pd.read_csv(pd.io.common.StringIO(dvc(*EXP_SHOW, "--csv", cwd=dest, env=env).stdout))
+    metric_cols = [c for c in table.columns if "headline" in c]
+    assert len(table.columns) <= 8 and len(metric_cols) == 2 * len(TARGETS)
+    workspace = table.iloc[0]
+    head = json.loads((dest / "reports/default/headline/E_Z.json").read_text())
+    assert workspace["reports/default/headline/E_Z.json:test_rmse"] == pytest.approx(head["test_rmse"])
+
+
+def _plots(dest, env) -> dict:
+    return json.loads(dvc("plots", "show", "--json", cwd=dest, env=env).stdout)
+
+
+def test_plots_show_draws_the_data_and_the_figures(repro):
+    dest, env = repro
+    shown = _plots(dest, env)
+    data = shown["data"]
+    for t in TARGETS:
+        (e_p95,) = data[f"reports/default/plots/e_p95/{t}.csv"]
+        spec = e_p95["content"]
+        assert spec["encoding"]["x"]["field"] == "window_h"
+        fields = {v["field"] for v in spec["data"]["values"]}
+        assert fields == {"before", "after"}
+        curve = pd.read_csv(dest / f"reports/default/plots/e_p95/{t}.csv")
+        full = json.loads((dest / "reports/default/metrics.json").read_text())["targets"][t]["test"]
+        assert curve["window_h"].to_numpy() * 3600 == pytest.approx(full["e_p95"]["window_s"], rel=1e-5)
+        assert data[f"reports/default/plots/e_p95_{t}.png"][0]["type"] == "image"
+    # the default study draws without errors; only the sweep's plot is missing before a sweep
+    assert {e["name"] for e in shown.get("errors", [])} <= {"reports/sweep_compare/compare_plot.csv"}
+
+
+def test_residual_and_sweep_plots(repro):
+    """plots=test writes one residual CSV per test campaign and target (x hours); a sweep's
+    comparison (compare_plot.csv) is drawn with the runs ranked on x."""
+    dest, env = repro
+    thermocomp = dest / "pipelines" / "thermocomp"
+    subprocess.run([str(thermocomp), "evaluate", "plots=test", "track=false",
+                    "eval.mutual_prediction=false"], cwd=dest, env=env, check=True,
+                   capture_output=True)
+    table = pd.DataFrame({"run_id": ["a" * 32, "b" * 32, "c" * 32], "model": ["mlr", "pcr", "arx"],
+                          "select": ["all", "all", "pearson"], "val_rmse": [1.0, 1.2, 1.5],
+                          "rmse": [1.1, 1.3, 1.4]})
+    write_compare(dest / "reports/sweep_compare", table)
+    shown = _plots(dest, env)
+    assert not shown.get("errors")
+    data = shown["data"]
+    test_ids = pd.read_csv(dest / "data/raw/yearround_spindle/campaigns.csv").query(
+        "split == 'test'")["campaign"]
+    for cid in test_ids:
+        (res,) = data[f"reports/default/plots/residuals/{cid}_E_Z.csv"]
+        assert res["content"]["encoding"]["x"]["field"] == "hours"
+        csv = pd.read_csv(dest / f"reports/default/plots/residuals/{cid}_E_Z.csv")
+        assert csv["residual"].to_numpy() == pytest.approx(  # 6 significant digits in the CSV
+            (csv["measured"] - csv["model"]).to_numpy(), abs=1e-4)
+    (cmp,) = data["reports/sweep_compare/compare_plot.csv"]
+    assert cmp["content"]["encoding"]["x"]["field"] == "rank"
+    assert {v["field"] for v in cmp["content"]["data"]["values"]} == {"val_rmse", "test_rmse"}
+
+
+def test_a_model_parameter_reruns_train_evaluate_and_diagnose_only(repro):
+    """Last in the module: it changes the study."""
+    dest, env = repro
+    model_conf = dest / "conf/model/mlr.yaml"
+    model_conf.write_text(model_conf.read_text().replace("fit_intercept: true",
+                                                         "fit_intercept: false"))
+    again = dvc("repro", cwd=dest, env=env)
+    assert _ran(again.stdout + again.stderr) == {"train", "evaluate", "diagnose"}, again.stdout
+    shown = dvc("metrics", "show", cwd=dest, env=env).stdout
+    assert "reports/default/headline/E_Z.json" in shown and "test_rmse" in shown

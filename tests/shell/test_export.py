@@ -1,0 +1,352 @@
+"""`thermocomp export`: the generated code is the deployed model.
+
+Every linear family x denoise x selector is fitted on a small simulated dataset, made deployable
+as `replay` does with `monitor.adaptive=false` (the plain stream, envelope clamp on), exported;
+the C is compiled with the system compiler and the test campaigns (one sensor pushed out of the
+training envelope half-way, so the clamp acts) are streamed through the binary as CSV; the
+Structured Text is parsed with blark and run by a small transpiler of the subset it uses.  Both
+must equal the stream `replay` runs to 1e-6 µm.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+import shutil
+import subprocess
+from math import exp
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+from hydra import compose, initialize_config_dir
+
+from conftest import refused
+from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.streaming import replay
+from thermocomp.base.paths import conf_dir
+from thermocomp.shell.cli import main
+from thermocomp.shell.stages.common import build_compensator, deploy_stream, read_streamed
+
+TOLERANCE_UM = 1e-6
+FAMILIES = {"mlr": [], "pcr": [], "arx": ["model.estimator.ar=false"],
+            "arx_ar": ["model.estimator.ar=true", "model.estimator.delays=[2]"],   # x(t-2) only
+            "lagbank": []}
+SELECTORS = ("all", "pearson", "greedy_residual", "cluster_grey")
+CAMPAIGNS = (("K01", "train"), ("K02", "train"), ("K03", "train"), ("K04", "train"),
+             ("K05", "test"), ("K06", "test"))
+PUSH_C = 30.0          # added to one sensor from mid-campaign: far outside the training envelope
+FAST = ["track=false", "plots=none", "eval.validation=false", "eval.mutual_prediction=false",
+        "eval.ati_baselines=false"]
+needs_cc = pytest.mark.skipif(shutil.which("gcc") is None, reason="no C compiler")
+
+
+def _compose(*overrides):
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        return compose(config_name="config", overrides=list(overrides))
+
+
+def _make_dataset(root: Path, rows: int = 40) -> Path:
+    """Six campaigns (four train, two test) of a three-sensor machine, two error axes, one sample
+    every 2 min; E_Z also follows a slow integral of T_a's rise (what lags and AR pick up)."""
+    root.mkdir(parents=True)
+    rng = np.random.default_rng(1)
+    t = np.arange(rows) * 120.0
+    for i, (cid, _) in enumerate(CAMPAIGNS):
+        amb = 16 + 2.5 * i
+        a = amb + (4 + i % 3) * (1 - np.exp(-t / 1500)) + rng.normal(0, 0.05, rows)
+        b = amb + (2 + i % 2) * (1 - np.exp(-t / 3000)) + rng.normal(0, 0.05, rows)
+        c = amb + 0.5 * np.sin(t / 2000 + i) + rng.normal(0, 0.05, rows)
+        ex = 3 * (a - a[0]) - 1.2 * (b - b[0]) + rng.normal(0, 0.2, rows)
+        ez = 2 * (b - b[0]) + 1.5 * (c - c[0]) + 0.5 * np.cumsum(np.r_[0, np.diff(a)]) \
+            + rng.normal(0, 0.2, rows)
+        door = (np.arange(rows) % 10 < 2).astype(float)      # what arx_rf reads
+        pd.DataFrame({"time": t, "T_a": a, "T_b": b, "T_amb": c, "S_door": door,
+                      "E_X": ex, "E_Z": ez}).to_csv(
+            root / f"{cid}.csv", index=False)
+    pd.DataFrame([(c, f"{c}.csv", s, "") for c, s in CAMPAIGNS],
+                 columns=["campaign", "file", "split", "notes"]).to_csv(root / "campaigns.csv", index=False)
+    return root
+
+
+@pytest.fixture(scope="module")
+def dataset(tmp_path_factory) -> Path:
+    return _make_dataset(tmp_path_factory.mktemp("export") / "data")
+
+
+_FITTED: dict = {}
+
+
+def _deployed(dataset, family, denoise, select):
+    """``(plain stream as replay deploys it, test campaigns with a sensor pushed out)``, fitted
+    once per combination."""
+    key = (str(dataset), family, denoise, select)
+    if key in _FITTED:
+        return _FITTED[key]
+    model = family.split("_")[0]
+    cfg = _compose(f"model={model}", f"denoise={denoise}", f"select={select}",
+                   f"data.path={dataset}", "track=false", "monitor.adaptive=false",
+                   *FAMILIES[family])
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    stream = deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train)
+    tests = []
+    for k, c in enumerate(test_ids):
+        df = ds.campaigns[c].reset_index(drop=True).copy()
+        df.loc[len(df) // 2:, stream.columns_[0]] += PUSH_C
+        if k == 1:   # irregular sampling: the lags step by the time actually elapsed
+            df["time"] += np.r_[0.0, np.random.default_rng(k).uniform(-30, 30, len(df) - 1)]
+        tests.append(df)
+    _FITTED[key] = stream, tests
+    return stream, tests
+
+
+def _replayed(stream, tests) -> np.ndarray:
+    """The corrections ``replay`` streams (minus the predicted error), campaigns stacked; the
+    envelope clamp acts on the pushed sensor."""
+    streamed = [replay(stream, df) for df in tests]
+    assert all(s["n_clamped"].iloc[len(s) // 2:].gt(0).all() for s in streamed)
+    return np.vstack([-s[stream.targets_].to_numpy(float) for s in streamed])
+
+
+# -- a transpiler of the Structured Text subset the export uses ------------------------------------
+
+_DECL = re.compile(r"^\s*(\w+)\s*:\s*(ARRAY\[([^\]]*)\]\s+OF\s+)?(\w+)(\s*:=\s*(.*))?;\s*$")
+_TYPES = {"LREAL": float, "INT": int, "BOOL": bool}
+
+
+def _value(text: str, kind):
+    text = text.strip()
+    if text in ("TRUE", "FALSE"):
+        return text == "TRUE"
+    return kind(float(text)) if kind is not bool else bool(float(text))
+
+
+def _declarations(block: str) -> dict:
+    names = {}
+    for line in block.splitlines():
+        m = _DECL.match(line)
+        if not m:
+            continue
+        name, dims, kind, init = m.group(1), m.group(3), _TYPES[m.group(4)], m.group(6)
+        if dims:
+            shape = tuple(int(d.split("..")[1]) + 1 for d in dims.split(","))
+            arr = np.zeros(shape, dtype=object if kind is bool else kind)
+            if init:
+                arr.flat[:] = [_value(v, kind) for v in init.strip()[1:-1].split(",")]
+            names[name] = arr
+        else:
+            names[name] = _value(init, kind) if init else kind(0)
+    return names
+
+
+def _python(body: str) -> str:
+    out, depth = [], 0
+    for raw in body.splitlines():
+        line = re.sub(r"\(\*.*?\*\)", "", raw).strip()
+        if not line:
+            continue
+        if line in ("END_FOR;", "END_IF;"):
+            depth -= 1
+            continue
+        if line == "ELSE":
+            out.append("    " * (depth - 1) + "else:")
+            continue
+        m = re.match(r"FOR (\w+) := (.+) TO (.+?)( BY -1)? DO$", line)
+        if m:
+            var, lo, hi, down = m.groups()
+            rng = f"range({_expr(lo)}, ({_expr(hi)}) - 1, -1)" if down else \
+                f"range({_expr(lo)}, ({_expr(hi)}) + 1)"
+            out.append("    " * depth + f"for {var} in {rng}:")
+            depth += 1
+            continue
+        m = re.match(r"(IF|ELSIF) (.+) THEN$", line)
+        if m:
+            if m.group(1) == "ELSIF":
+                out.append("    " * (depth - 1) + f"elif {_expr(m.group(2))}:")
+            else:
+                out.append("    " * depth + f"if {_expr(m.group(2))}:")
+                depth += 1
+            continue
+        m = re.match(r"(.+?) := (.+);$", line)
+        assert m, f"not in the subset: {line!r}"
+        out.append("    " * depth + f"{m.group(1)} = {_expr(m.group(2))}")
+    assert depth == 0
+    return "\n".join(out)
+
+
+def _expr(text: str) -> str:
+    text = text.replace("<>", "!=")
+    text = re.sub(r"(?<![<>!=:])=(?!=)", "==", text)
+    text = re.sub(r"\bAND\b", "and", text)
+    text = re.sub(r"\bOR\b", "or", text)
+    text = re.sub(r"\bNOT\b", "not", text)
+    return text.replace("EXP(", "exp(").replace("TRUE", "True").replace("FALSE", "False")
+
+
+class StructuredText:
+    """Runs the function block: every call a scan of its body over the kept variables."""
+
+    def __init__(self, source: str):
+        head, body = source.split("END_VAR\n\n", 1) if "END_VAR\n\n" in source else (None, None)
+        assert head is not None
+        self.vars = _declarations(head)
+        self.code = compile(_python(body.replace("END_FUNCTION_BLOCK", "")), "compensator.st", "exec")
+
+    def __call__(self, u, time_s, reset) -> np.ndarray:
+        v = self.vars
+        v["u"][:] = u
+        v["has_time"], v["time_s"], v["reset"] = bool(np.isfinite(time_s)), time_s, reset
+        exec(self.code, {"exp": exp}, v)
+        return np.array(v["c"], float)
+
+
+# -- proofs -------------------------------------------------------------------------------------
+
+def _stdin(stream, tests, reset_column: bool = False) -> str:
+    """The campaigns as the driver reads them: a blank row between campaigns, or a ``reset``
+    column holding 1 on each campaign's first row."""
+    cols = ["time", *stream.columns_]
+    if reset_column:
+        frames = [df[cols].assign(reset=(np.arange(len(df)) == 0).astype(int)) for df in tests]
+        return pd.concat(frames).to_csv(index=False, float_format="%.17g")
+    parts = [df[cols].to_csv(index=False, float_format="%.17g") for df in tests]
+    return parts[0] + "".join("\n" + p.split("\n", 1)[1] for p in parts[1:])
+
+
+def _compiled(stream, folder: Path) -> Path:
+    for name, text in exported_files(stream, "c").items():
+        (folder / name).write_text(text)
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True, capture_output=True)
+    return folder / "stream"
+
+
+def _streamed(binary: Path, text: str) -> pd.DataFrame:
+    run = subprocess.run([str(binary)], input=text, text=True, capture_output=True, check=True)
+    return pd.read_csv(io.StringIO(run.stdout))
+
+
+@needs_cc
+@pytest.mark.parametrize("select", SELECTORS)
+@pytest.mark.parametrize("denoise", ("none", "emd"))
+@pytest.mark.parametrize("family", FAMILIES)
+def test_the_compiled_c_and_the_structured_text_stream_as_replay(dataset, tmp_path, family,
+                                                                  denoise, select):
+    stream, tests = _deployed(dataset, family, denoise, select)
+    expected = _replayed(stream, tests)
+    ss = state_space(stream)
+    assert (family == "arx_ar") == any(a != 0 for a in ss.ar) == (ss.depth == 2)
+    assert (family == "lagbank") == bool(ss.taus) and (denoise == "emd") == (len(ss.fir) > 1)
+    binary = _compiled(stream, tmp_path)
+    for reset_column in (False, True):
+        got = _streamed(binary, _stdin(stream, tests, reset_column))
+        assert list(got.columns) == ["C_" + t[2:] for t in stream.targets_]
+        assert np.max(np.abs(got.to_numpy(float) - expected)) <= TOLERANCE_UM
+    sim = Simulator(ss)            # the numpy reading of the same arrays
+    rows = []
+    for df in tests:
+        sim.reset()
+        rows += [sim.step(r, t) for r, t in zip(df[stream.columns_].to_numpy(float), df["time"])]
+    assert np.max(np.abs(np.array(rows) - expected)) <= TOLERANCE_UM
+    fb = StructuredText(exported_files(stream, "st")["compensator.st"])
+    rows = [fb(r, t, k == 0) for df in tests
+            for k, (r, t) in enumerate(zip(df[stream.columns_].to_numpy(float), df["time"]))]
+    assert np.max(np.abs(np.array(rows) - expected)) <= TOLERANCE_UM
+
+
+@pytest.mark.parametrize("family", ("arx_ar", "lagbank"))
+def test_the_structured_text_parses_as_iec_61131_3(dataset, family):
+    """blark's grammar.  Every family's block is the same text around other constants, and blark
+    is slow on long constant lists: the largest settings only (FIR denoiser, AR, lags)."""
+    from blark import parse_source_code
+
+    stream, _ = _deployed(dataset, family, "emd", "all")
+    parsed = parse_source_code(exported_files(stream, "st")["compensator.st"], fn="compensator.st")
+    assert parsed.exception is None, parsed.exception
+    assert "FB_ThermoComp" in str(parsed.transform())
+
+
+def _trained(dataset, tmp_path, model: str, *extra: str) -> Path:
+    out = tmp_path / model
+    assert main(["run", f"data.path={dataset}", f"model={model}", f"out={out}", *FAST, *extra]) == 0
+    return out / "model.pkl"
+
+
+@needs_cc
+def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(dataset, tmp_path,
+                                                                           capsys):
+    model = _trained(dataset, tmp_path, "lagbank")
+    out = tmp_path / "code"
+    assert main(["export", f"data.path={dataset}", f"export.model={model}", "export.format=c",
+                 f"out={out}", "track=false"]) == 0
+    assert {"compensator.json", "compensator.h", "compensator.c", "stream.c"} <= {
+        p.name for p in out.iterdir()}
+    coefficients = json.loads((out / "compensator.json").read_text())
+    assert coefficients["inputs"] == ["T_a", "T_b", "T_amb"] and coefficients["clamp"]
+    assert coefficients["provenance"]["model"] == "lagbank"
+    assert len(coefficients["provenance"]["dataset_hash"]) == 64
+    header = (out / "compensator.h").read_text()
+    assert all(c in header for c in ("T_a", "lagbank", coefficients["provenance"]["dataset_hash"]))
+    subprocess.run(["cc", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=out, check=True)
+    rows = pd.read_csv(dataset / "K05.csv").drop(columns=["E_X", "E_Z", "S_door"])
+    got = _streamed(out / "stream", rows.to_csv(index=False))
+    assert list(got.columns) == ["C_X", "C_Z"] and len(got) == len(rows)
+    # bad rows: exit 2, one line naming the row or the column
+    rows.loc[3, "T_b"] = np.nan
+    for text, says in ((rows.to_csv(index=False), "row 5: input T_b has no finite value"),
+                       (rows.drop(columns=["T_a"]).to_csv(index=False), "lacks input column T_a")):
+        run = subprocess.run([str(out / "stream")], input=text, text=True, capture_output=True)
+        assert run.returncode == 2 and run.stderr.strip().endswith(says), run.stderr
+        assert len(run.stderr.strip().splitlines()) == 1
+    # the same model exported as ST and JSON carries the same arrays
+    for fmt, name in (("st", "compensator.st"), ("json", "compensator.json")):
+        assert main(["export", f"data.path={dataset}", f"export.model={model}",
+                     f"export.format={fmt}", f"out={tmp_path / fmt}", "track=false"]) == 0
+        assert (tmp_path / fmt / name).is_file()
+        again = json.loads((tmp_path / fmt / "compensator.json").read_text())
+        assert again["g"] == coefficients["g"] and again["fir"] == coefficients["fir"]
+
+
+@pytest.mark.parametrize("model,extra,says", [
+    ("arx_rf", ["model.estimator.forest.n_estimators=3"], ["mlr, pcr, arx, lagbank"]),
+    ("lstm", ["model.estimator.max_epochs=2", "model.estimator.hidden_size=4",
+              "model.estimator.chunk=16"], ["mlr, pcr, arx, lagbank"]),
+    ("hammerstein", [], ["mlr, pcr, arx, lagbank"]),
+    ("mlr", ["export.format=onnx"], ["onnx", "mlr, pcr, arx, lagbank"]),
+    ("mlr", ["denoise=emd", "denoise.denoiser.causal=window"], ["causal=fir"]),
+    ("mlr", ["promote.envelope.policy=refuse"], ["refuse", "policy=clamp"]),
+], ids=["forest", "lstm", "hammerstein", "onnx", "window-denoiser", "refuse-policy"])
+def test_what_is_not_one_linear_system_is_refused_in_one_line(dataset, tmp_path, capsys, model,
+                                                              extra, says):
+    deploy = [e for e in extra if e.startswith(("export.", "promote."))]
+    pkl = _trained(dataset, tmp_path, model, *(e for e in extra if e not in deploy))
+    out = tmp_path / "code"
+    refused(["export", f"data.path={dataset}", f"export.model={pkl}", f"out={out}",
+             "track=false", *deploy], capsys, f"export.model={pkl}", *says)
+    assert not out.exists()
+
+
+def test_export_without_a_model_is_refused(dataset, tmp_path, capsys):
+    refused(["export", f"data.path={dataset}", f"out={tmp_path / 'x'}", "track=false"], capsys,
+            "export.model is needed")
+    refused(["export", f"data.path={dataset}", "export.model=m.pkl", "export.format=pdf",
+             f"out={tmp_path / 'x'}", "track=false"], capsys, "export.format")
+    assert not (tmp_path / "x").exists()
+
+
+def test_a_saved_pyfunc_model_exports_as_deployed(dataset, tmp_path):
+    """A pyfunc folder (what promote registers) exports the stream it holds, with its envelope:
+    no data needed."""
+    from thermocomp.apps.deploy.pyfunc import save_compensator
+
+    stream, tests = _deployed(dataset, "lagbank", "none", "all")
+    folder = save_compensator(stream, tmp_path / "pyfunc")
+    assert main(["export", f"export.model={folder}", "export.format=json",
+                 f"out={tmp_path / 'json'}", "track=false"]) == 0
+    exported = json.loads((tmp_path / "json" / "compensator.json").read_text())
+    assert exported["lo"] == stream.envelope.lo.tolist() and exported["taus"]
+    assert exported["provenance"]["source"] == str(folder)
+    assert exported == {**state_space(stream).to_dict(), "provenance": exported["provenance"]}

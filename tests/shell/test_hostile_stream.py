@@ -1,0 +1,333 @@
+"""Hostile streams: a total sensor dropout, a step on every sensor, and the served model's requests.
+
+The adaptive compensator must take its sensors back once they read again (an ``excluded`` →
+``ok`` event for each), report transitions only, and give a held correction for a row without
+any temperature; the served model must refuse a request too big or too deep before it parses it.
+"""
+
+from __future__ import annotations
+
+import io as text_io
+import json
+import re
+import sys
+
+import numpy as np
+import pandas as pd
+import pytest
+from hydra.utils import instantiate
+from omegaconf import OmegaConf
+
+from conftest import ROOT, UNTRACKED
+from thermocomp.apps.deploy import StreamingCompensator
+from thermocomp.apps.deploy.pyfunc import CompensatorModel
+from thermocomp.apps.monitor import STATES, AdaptiveCompensator
+from thermocomp.base.errors import ConfigError
+from thermocomp.core import io
+from thermocomp.core.compensator import Compensator
+from thermocomp.shell.cli import _compose, main
+from thermocomp.shell.stages.monitor import _stream
+
+FAST = [*UNTRACKED, "plots=none"]
+
+
+@pytest.fixture(scope="session")
+def deployed(default_dataset):
+    """``(adaptive compensator, test campaigns)``: the default scenario's MLR behind the monitor."""
+    ds, _ = io.read_dataset(default_dataset, {})
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    est = instantiate(OmegaConf.load(ROOT / "conf/model/mlr.yaml").estimator)
+    comp = Compensator(est).fit(train)
+    adaptive = AdaptiveCompensator.from_training(StreamingCompensator.from_training(comp, train), train)
+    return adaptive, {c: ds.campaigns[c] for c in ds.ids("test")}
+
+
+def _temperatures(df: pd.DataFrame) -> list[str]:
+    return [c for c in df.columns if c.startswith("T_")]
+
+
+def _dropout(df: pd.DataFrame, first: int, rows: int = 3) -> pd.DataFrame:
+    """``df`` with every temperature missing in ``rows`` consecutive rows from ``first``."""
+    df = df.copy()
+    df.loc[df.index[first:first + rows], _temperatures(df)] = np.nan
+    return df
+
+
+def _rmse(adaptive, df: pd.DataFrame, y: np.ndarray) -> np.ndarray:
+    measured = adaptive.compensator.measured({"c": df})["c"][adaptive.targets_].to_numpy(float)
+    return np.sqrt(np.nanmean((measured - y) ** 2, axis=0))
+
+
+def _per_row(adaptive, df: pd.DataFrame) -> tuple[list[list[dict]], np.ndarray]:
+    """Each row's events and the sensor states after it, streamed from a reset."""
+    adaptive.reset()
+    X, t = df[adaptive.columns_].to_numpy(float), df["time"].to_numpy(float)
+    events, states = [], []
+    for i in range(len(X)):
+        adaptive._step(X[i], t[i])
+        events.append(adaptive.last_events_)
+        states.append(adaptive.monitor.states)
+    adaptive.reset()
+    return events, np.array(states)
+
+
+# -- a total dropout: every sensor comes back (item 3) --------------------------------------------
+
+@pytest.mark.parametrize("campaign, first, rows, near", [(0, None, 3, ("fixed", "healthy")),
+                                                         (1, 3, 6, ("fixed",))])
+def test_every_sensor_comes_back_after_a_total_dropout_and_the_error_stays_near_fixed(
+        deployed, campaign, first, rows, near):
+    """Three rows a third in; six early in the warm-up, whose change across the gap is no jump
+    (it was taken for one: four sensors re-referenced by it, three never back, 7.5x fixed; the
+    gap itself costs the fixed compensator 1.4x the healthy error there)."""
+    adaptive, test = deployed
+    fixed = adaptive.streaming
+    healthy = list(test.values())[campaign]
+    df = _dropout(healthy, len(healthy) // 3 if first is None else first, rows)
+    y_ad, events, _ = _stream(adaptive, df)
+    y_fix, _, _ = _stream(fixed, df)          # holds its last correction on the missing rows
+    y_ok, _, _ = _stream(adaptive, healthy)
+    back = {e["sensor"] for e in events if e["from"] == "excluded" and e["to"] == "ok"}
+    assert back == set(adaptive.monitor.names), events
+    last = {e["sensor"]: e["to"] for e in events if e["sensor"] in adaptive.monitor.names}
+    assert set(last.values()) == {"ok"}, last
+    assert np.isfinite(y_ad).all()
+    got = _rmse(adaptive, df, y_ad)
+    against = {"fixed": _rmse(adaptive, df, y_fix), "healthy": _rmse(adaptive, healthy, y_ok)}
+    for name in near:
+        assert (got <= 1.2 * against[name]).all(), (name, got, against)
+
+
+def test_monitor_on_stdin_takes_the_sensors_back_after_a_total_dropout(default_dataset, tmp_path,
+                                                                       monkeypatch):
+    manifest = pd.read_csv(default_dataset / "campaigns.csv")
+    df = pd.read_csv(default_dataset / manifest.query("split == 'test'")["file"].iloc[0])
+    monkeypatch.setattr(sys, "stdin", text_io.StringIO(_dropout(df, len(df) // 3).to_csv(index=False)))
+    assert main(["monitor", "monitor.input=-", f"data.path={default_dataset}", f"out={tmp_path}",
+                 *FAST]) == 0
+    report = json.loads((tmp_path / "monitor.json").read_text())
+    back = {e["sensor"] for e in report["events"] if (e["from"], e["to"]) == ("excluded", "ok")}
+    assert back == set(report["sensors"])
+    for target, r in report["targets"].items():
+        assert r["all_finite"] and r["rmse_adaptive"] <= 1.2 * r["rmse_fixed"], (target, r)
+
+
+def test_rows_without_any_temperature_get_the_held_correction_from_the_pyfunc(deployed):
+    adaptive, test = deployed
+    model = CompensatorModel(adaptive)
+    model.load_context(None)
+    frame = next(iter(test.values()))[adaptive.columns_ + ["time"]].reset_index(drop=True)
+    corrections = [c for c in model.predict(None, frame.head(1), {"reset": True}).columns
+                   if c.startswith("C_")]
+    before = model.predict(None, frame.iloc[1:20], {})
+    blank = frame.iloc[20:23].copy()
+    blank[_temperatures(blank)] = np.nan
+    answers = [model.predict(None, blank.iloc[[i]], {}) for i in range(len(blank))]  # one a request
+    for out in answers:
+        np.testing.assert_array_equal(out[corrections].to_numpy(), before[corrections].tail(1))
+    dropped = {e["sensor"] for e in json.loads(answers[0]["events"][0]) if "dropout" in e["reason"]}
+    assert dropped == set(adaptive.monitor.names)
+    after = model.predict(None, frame.iloc[23:], {})
+    assert np.isfinite(after[corrections].to_numpy()).all()
+    assert after["excluded_inputs"].iloc[-1] == ""           # every sensor back by the end
+
+
+# -- the event log: transitions only, every return logged (item 4) -------------------------------
+
+def test_a_step_on_every_sensor_logs_each_change_of_state_once_and_every_return(deployed):
+    adaptive, test = deployed
+    returns = 0
+    for cid, healthy in list(test.items())[:3]:
+        df = healthy.copy()
+        df.loc[df.index[len(df) // 2:], _temperatures(df)] += 5.0
+        events, states = _per_row(adaptive, df)
+        flat = [json.dumps(e, sort_keys=True) for row in events for e in row]
+        assert len(flat) == len(set(flat)), cid              # no event twice
+        before = np.zeros(len(adaptive.monitor.names), dtype=int)
+        for row, now in zip(events, states):
+            for j, name in enumerate(adaptive.monitor.names):
+                chain = [(e["from"], e["to"]) for e in row if e["sensor"] == name and e["to"] in STATES]
+                if before[j] == now[j]:
+                    assert chain == [], (cid, name, chain)
+                else:   # the row's events lead from the state before it to the state after it
+                    assert chain and chain[0][0] == STATES[before[j]] and chain[-1][1] == STATES[now[j]]
+                    assert all(a[1] == b[0] for a, b in zip(chain, chain[1:])), chain
+            returns += sum(e["to"] == "ok" and e["from"] == "excluded" for e in row)
+            before = now
+    assert returns > 0
+
+
+def test_a_failing_adaptive_step_is_raised_not_logged_again_with_the_last_rows_events(deployed,
+                                                                                      monkeypatch):
+    """`monitor` held the correction of an adaptive step that raised, and logged the previous
+    row's events once more for every such row (1,130 duplicates of 1,210 events)."""
+    adaptive, test = deployed
+    df = _dropout(next(iter(test.values())), 9, rows=1)     # row 9 has events, row 10 fails
+    update = adaptive.monitor.update
+
+    def failing(x, t):
+        if t >= df["time"].iloc[10]:
+            raise ValueError("a defect in the monitor")
+        return update(x, t)
+
+    monkeypatch.setattr(adaptive.monitor, "update", failing)
+    with pytest.raises(ValueError, match="a defect in the monitor"):
+        _stream(adaptive, df)
+    assert adaptive.last_events_ == []
+    monkeypatch.undo()
+    adaptive.reset()
+
+
+# -- the served model: request limits (item 10) and a warning for a public host (item 14) --------
+
+def _asgi(app, body: bytes, chunk: int = 1 << 16, content_type: str = "application/json",
+          declare: bool = True) -> tuple[int, dict, int]:
+    """``(status, JSON answer, bytes the app let the client send)`` of one POST through ``app``."""
+    import asyncio
+
+    chunks = [body[i:i + chunk] for i in range(0, len(body), chunk)] or [b""]
+    read, sent = [0], []
+
+    async def receive():
+        if read[0] >= len(chunks):
+            return {"type": "http.disconnect"}
+        read[0] += 1
+        return {"type": "http.request", "body": chunks[read[0] - 1],
+                "more_body": read[0] < len(chunks)}
+
+    async def send(message):
+        sent.append(message)
+
+    headers = [(b"content-type", content_type.encode())]
+    if declare:
+        headers.append((b"content-length", str(len(body)).encode()))
+    scope = {"type": "http", "asgi": {"version": "3.0"}, "http_version": "1.1", "method": "POST",
+             "scheme": "http", "path": "/invocations", "raw_path": b"/invocations",
+             "query_string": b"", "headers": headers, "server": ("127.0.0.1", 80),
+             "client": ("127.0.0.1", 1)}
+    asyncio.run(app(scope, receive, send))
+    answer = b"".join(m.get("body", b"") for m in sent if m["type"] == "http.response.body")
+    return sent[0]["status"], json.loads(answer), sum(len(c) for c in chunks[:read[0]])
+
+
+def _split(frame: pd.DataFrame, **params) -> bytes:
+    split = frame.astype(object).where(frame.notna(), None).to_dict(orient="split")
+    split.pop("index")
+    return json.dumps({"dataframe_split": split, "params": params}).encode()
+
+
+@pytest.fixture(scope="module")
+def scoring(deployed, tmp_path_factory):
+    """``(pyfunc folder, MLflow's scoring app for it, a block of healthy rows)``."""
+    import mlflow
+    from mlflow.pyfunc import scoring_server
+
+    from thermocomp.apps.deploy.pyfunc import save_compensator
+
+    adaptive, test = deployed
+    rows = next(iter(test.values()))[adaptive.columns_ + ["time"]].reset_index(drop=True)
+    folder = save_compensator(adaptive, tmp_path_factory.mktemp("served") / "model",
+                              input_example=rows.head(3))
+    app = scoring_server.init(mlflow.pyfunc.load_model(str(folder)))
+    return folder, app, rows
+
+
+def test_the_served_model_refuses_too_big_too_many_and_too_deep_before_it_parses(scoring, monkeypatch):
+    from thermocomp.apps.deploy.server import MAX_DEPTH, RequestLimits
+
+    _, app, rows = scoring
+    parsed = []
+    monkeypatch.setattr("mlflow.pyfunc.scoring_server.invocations",
+                        lambda *a: parsed.append(a) or pytest.fail("the app parsed it"))
+    block = _split(rows.head(20), reset=True)
+    limited = RequestLimits(app, max_body_bytes=len(block) + 100, max_rows=30)
+    too_big = _split(pd.concat([rows] * 5), reset=True)
+    status, answer, read = _asgi(limited, too_big)              # Content-Length: nothing read
+    assert (status, read) == (413, 0) and "serve.max_body_mb" in answer["message"]
+    status, answer, read = _asgi(limited, too_big, chunk=1024, declare=False)   # chunked
+    assert status == 413 and read <= len(block) + 100 + 1024 < len(too_big)
+    many = _split(pd.DataFrame(np.zeros((31, 1)), columns=["T_x"]))
+    assert len(many) < len(block)
+    status, answer, _ = _asgi(limited, many)
+    assert status == 413 and "31 rows over serve.max_rows (30)" in answer["message"]
+    for fmt in ("dataframe_records", "instances"):
+        body = json.dumps({fmt: [{"T_x": 0.0}] * 31}).encode()
+        assert _asgi(limited, body)[0] == 413, fmt
+    csv = ("T_x\n" + "0\n" * 31).encode()
+    assert _asgi(limited, csv, content_type="text/csv")[0] == 413
+    deep = b'{"dataframe_split": ' + b"[" * (MAX_DEPTH + 1) + b"]" * (MAX_DEPTH + 1) + b"}"
+    status, answer, _ = _asgi(limited, deep)
+    assert status == 400 and f"nested more than {MAX_DEPTH} deep" in answer["message"]
+    assert "[" not in answer["message"] and parsed == []
+
+
+def test_the_served_model_answers_a_block_within_the_limits_as_without_them(scoring):
+    from thermocomp.apps.deploy.server import RequestLimits
+
+    _, app, rows = scoring
+    block = _split(rows.head(20), reset=True)
+    plain = _asgi(app, block)
+    limited = _asgi(RequestLimits(app, max_body_bytes=len(block), max_rows=20), block, chunk=500,
+                    declare=False)
+    assert plain[0] == limited[0] == 200 and limited[1] == plain[1]
+    assert len(limited[1]["predictions"]) == 20
+
+
+def test_serve_runs_the_limited_app_and_warns_when_the_network_can_reach_it(scoring, tmp_path,
+                                                                            caplog):
+    from thermocomp.apps.deploy import server
+    from thermocomp.shell.stages.serve import serve_command
+
+    folder = scoring[0]
+    common = [f"serve.model={folder}", f"tracking_uri=sqlite:///{tmp_path / 'mlflow.db'}"]
+    argv, env = serve_command(_compose(common + ["serve.max_rows=7", "serve.max_body_mb=0.5"]))
+    assert argv[argv.index("--factory") + 1] == "thermocomp.apps.deploy.server:scoring_app"
+    assert argv[argv.index("--workers") + 1] == "1"
+    assert (env[server.ROWS_ENV], env[server.BODY_ENV]) == ("7", str(2**19))
+    assert not [r for r in caplog.records if r.levelname == "WARNING"]
+    for host in ("0.0.0.0", "192.168.1.5", "::", "machine.example"):
+        caplog.clear()
+        serve_command(_compose(common + [f"serve.host={host}"]))
+        [warning] = [r.getMessage() for r in caplog.records if r.levelname == "WARNING"]
+        assert f"serve.host={host}" in warning and "reachable from the network" in warning
+    for host in ("127.0.0.1", "localhost", "::1", "127.0.0.2"):
+        caplog.clear()
+        serve_command(_compose(common + [f"serve.host={host}"]))
+        assert not [r for r in caplog.records if r.levelname == "WARNING"], host
+    for override in ("serve.max_rows=0", "serve.max_body_mb=0", "serve.max_body_mb=nan"):
+        with pytest.raises(ConfigError, match=re.escape(override.split("=")[0])):
+            serve_command(_compose(common + [override]))
+
+
+@pytest.mark.slow
+def test_thermocomp_serve_answers_413_and_400_over_http_and_serves_on(scoring, tmp_path):
+    import subprocess
+
+    import requests
+
+    from conftest import BIN, free_port, stop_process_group, wait_until_up
+
+    folder, _, rows = scoring
+    port = free_port()
+    log = open(tmp_path / "serve.log", "w")
+    server = subprocess.Popen([str(BIN / "thermocomp"), "serve", f"serve.model={folder}",
+                               f"serve.port={port}", "serve.max_rows=20", "serve.max_body_mb=0.01",
+                               f"tracking_uri=sqlite:///{tmp_path / 'mlflow.db'}"], cwd=tmp_path,
+                              stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    url = f"http://127.0.0.1:{port}/invocations"
+
+    def post(body: bytes):
+        return requests.post(url, data=body, headers={"Content-Type": "application/json"}, timeout=60)
+
+    try:
+        wait_until_up(port, server, tmp_path / "serve.log")
+        assert post(b"[" * 5000 + b"]" * 5000).status_code == 400
+        many = post(_split(rows.head(21).round(2), reset=True))
+        assert many.status_code == 413 and "serve.max_rows" in many.json()["message"]
+        big = post(b" " * 20_000)
+        assert big.status_code == 413 and "serve.max_body_mb" in big.json()["message"]
+        ok = post(_split(rows.head(20), reset=True))
+        assert ok.status_code == 200 and len(ok.json()["predictions"]) == 20
+    finally:
+        stop_process_group(server)
+        log.close()

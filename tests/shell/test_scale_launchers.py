@@ -1,0 +1,92 @@
+"""Sweeps on other engines: a local Ray cluster (``hydra/launcher=ray``) and submitit's local
+executor (the SLURM launcher's code path, ``hydra/launcher=submitit_local``).  Every job is one
+MLflow child run under the sweep's parent run in a fresh SQLite store."""
+
+from __future__ import annotations
+
+import json
+import sqlite3
+
+import pytest
+
+from conftest import thermocomp
+from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
+from thermocomp.shell.tracking import SWEEP_TAG
+
+
+@pytest.fixture(scope="session")
+def dataset(tmp_path_factory):
+    return write_small_dataset(tmp_path_factory.mktemp("launchers") / "small")
+
+
+def _runs(uri: str):
+    import mlflow
+
+    mlflow.set_tracking_uri(uri)
+    runs = mlflow.search_runs(experiment_names=["thermocomp"])
+    return runs[runs[f"tags.{SWEEP_TAG}"] == "parent"], runs[runs["tags.mlflow.parentRunId"].notna()]
+
+
+def _sweep(tmp_path, dataset, *overrides: str):
+    uri = mlflow_store(tmp_path)
+    sweep_dir = tmp_path / "sweep"
+    proc = thermocomp("run", "-m", f"data.path={dataset}", f"tracking_uri={uri}", *LIGHT_EVAL,
+                      f"hydra.sweep.dir={sweep_dir}", *overrides)
+    return (uri, sweep_dir, proc, *_runs(uri))
+
+
+@pytest.mark.slow
+def test_ray_sweep_on_a_local_cluster_makes_six_children_under_one_parent(tmp_path, dataset):
+    uri, sweep_dir, proc, parents, children = _sweep(
+        tmp_path, dataset, "model=mlr,pcr", "seed=1,2,3", "hydra/launcher=ray",
+        "hydra.launcher.ray.init.num_cpus=2")
+    assert "Started a local Ray instance" in proc.stderr + proc.stdout   # no address: ray.init()
+    assert "(_run_job pid=" in proc.stderr + proc.stdout                 # jobs ran in Ray workers
+    assert len(parents) == 1 and len(children) == 6
+    parent_id = parents["run_id"].iloc[0]
+    assert parents["tags.launcher"].iloc[0] == "RayLauncher"
+    assert (children["tags.mlflow.parentRunId"] == parent_id).all()
+    assert (children["status"] == "FINISHED").all() and parents["status"].iloc[0] == "FINISHED"
+    assert sorted(zip(children["params.model.name"], children["params.seed"].astype(int))) == [
+        (m, s) for m in ("mlr", "pcr") for s in (1, 2, 3)]
+    assert children["metrics.E_Z.val.rmse"].notna().all()
+    assert parents["metrics.sweep.jobs"].iloc[0] == 6
+    assert json.loads((sweep_dir / "sweep.json").read_text())["parent_run_id"] == parent_id
+    for job in range(6):
+        assert (sweep_dir / str(job) / "metrics.json").is_file()
+    assert "database is locked" not in proc.stderr
+    with sqlite3.connect(uri[len("sqlite:///"):]) as con:
+        assert con.execute("PRAGMA integrity_check").fetchone()[0] == "ok"
+
+
+@pytest.mark.slow
+def test_submitit_local_executor_runs_a_two_job_sweep(tmp_path, dataset):
+    uri, sweep_dir, proc, parents, children = _sweep(
+        tmp_path, dataset, "model=mlr,pcr", "hydra/launcher=submitit_local")
+    assert len(parents) == 1 and len(children) == 2
+    assert parents["tags.launcher"].iloc[0] == "LocalLauncher"
+    assert (children["tags.mlflow.parentRunId"] == parents["run_id"].iloc[0]).all()
+    assert (children["status"] == "FINISHED").all() and parents["status"].iloc[0] == "FINISHED"
+    assert sorted(children["params.model.name"]) == ["mlr", "pcr"]
+    # submitit ran each job as its own process and kept its logs beside the sweep
+    logs = list((sweep_dir / ".submitit").rglob("*_log.out"))
+    assert len(logs) == 2
+
+
+def test_launcher_and_sweeper_configs_compose():
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.base.paths import conf_dir
+
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        ray = compose("config", ["hydra/launcher=ray"], return_hydra_config=True)
+        local = compose("config", ["hydra/launcher=submitit_local"], return_hydra_config=True)
+        optuna = compose("config", ["hydra/sweeper=optuna_arx"], return_hydra_config=True)
+    assert ray.hydra.launcher._target_.endswith("RayLauncher")
+    assert ray.hydra.launcher.ray.init.address is None          # local cluster unless configured
+    env = ray.hydra.launcher.ray.init.runtime_env.env_vars
+    assert "THERMOCOMP_PARENT_RUN_ID" in env                     # the parent run reaches any node
+    assert local.hydra.launcher._target_.endswith("LocalLauncher")
+    assert optuna.hydra.sweeper._target_.endswith("OptunaSweeper")
+    sweeper = optuna.hydra.sweeper
+    assert sweeper.params.model == "arx" and str(sweeper.direction).endswith("minimize")

@@ -1,0 +1,209 @@
+"""Serving the registered compensator: one stream per session, and `thermocomp serve`.
+
+The served pyfunc keeps one stream state per ``session`` parameter (callers that
+send none share ``"default"``): interleaving two machines' blocks gives each the
+answer of its own stream alone.  ``thermocomp serve`` starts MLflow's scoring
+server (behind request limits) on the project's store with the venv's ``bin`` on ``PATH``, so it works
+without an activated venv and writes no ``./mlflow.db``.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import BIN, free_port, stop_process_group, wait_until_up
+from test_deploy import LIGHT_EVAL, ARStub, campaigns, mlflow_store, write_small_dataset
+from thermocomp.apps.deploy import StreamingCompensator
+from thermocomp.apps.deploy.pyfunc import DEFAULT_SESSION, CompensatorModel
+from thermocomp.base.errors import ConfigError
+from thermocomp.core.compensator import Compensator
+from thermocomp.shell.cli import _compose, main
+
+NAME = "thermocomp-compensator"
+
+
+def _model() -> tuple[CompensatorModel, dict]:
+    camps = campaigns(0)
+    train = {c: camps[c] for c in list(camps)[:4]}
+    comp = Compensator(ARStub()).fit(train)          # a model with memory: the state matters
+    model = CompensatorModel(StreamingCompensator.from_training(comp, train))
+    model.load_context(None)
+    return model, camps
+
+
+def test_each_session_keeps_its_own_stream():
+    model, camps = _model()
+    a, b = camps["K04"], camps["K05"]
+    solo_a = model.predict(None, a, {"session": "machine-7", "reset": True})
+    solo_b = model.predict(None, b, {"session": "machine-9", "reset": True})
+    # the same two campaigns in blocks, interleaved between the sessions
+    got = {"machine-7": [], "machine-9": []}
+    for i, start in enumerate(range(0, len(a), 25)):
+        for session, df in (("machine-7", a), ("machine-9", b)):
+            got[session].append(model.predict(None, df.iloc[start:start + 25],
+                                               {"session": session, "reset": i == 0}))
+    for session, solo in (("machine-7", solo_a), ("machine-9", solo_b)):
+        np.testing.assert_allclose(pd.concat(got[session]).to_numpy(), solo.to_numpy(), atol=1e-12)
+    # one shared stream (the old behaviour) would have mixed them
+    shared = pd.concat([model.predict(None, df.iloc[:25], {"reset": i == 0})
+                        for i, df in enumerate((a, b))])
+    assert np.abs(shared["C_Z"].iloc[25:].to_numpy() - solo_b["C_Z"].iloc[:25].to_numpy()).max() > 0.1
+
+
+def test_callers_without_a_session_share_the_default_one_and_reset_only_theirs():
+    model, camps = _model()
+    a, b = camps["K04"], camps["K05"]
+    first = model.predict(None, a.iloc[:40], {"reset": True})
+    model.predict(None, b, {"session": "other", "reset": True})        # another machine meanwhile
+    rest = model.predict(None, a.iloc[40:], {"session": DEFAULT_SESSION})
+    whole = model.predict(None, a, {"session": "check", "reset": True})
+    np.testing.assert_allclose(pd.concat([first, rest]).to_numpy(), whole.to_numpy(), atol=1e-12)
+
+
+def test_a_refused_block_leaves_its_session_where_it_was():
+    from mlflow.exceptions import MlflowException
+
+    model, camps = _model()
+    a = camps["K04"]
+    first = model.predict(None, a.iloc[:30], {"session": "s", "reset": True})
+    with pytest.raises(MlflowException, match="T_amb"):
+        model.predict(None, a.iloc[30:40].drop(columns="T_amb"), {"session": "s"})
+    rest = model.predict(None, a.iloc[30:], {"session": "s"})
+    whole = model.predict(None, a, {"session": "t", "reset": True})
+    np.testing.assert_allclose(pd.concat([first, rest]).to_numpy(), whole.to_numpy(), atol=1e-12)
+
+
+# -- thermocomp serve --------------------------------------------------------------------------
+
+@pytest.fixture(scope="session")
+def promoted(tmp_path_factory):
+    root = tmp_path_factory.mktemp("serve")
+    data = write_small_dataset(root / "small")
+    uri = mlflow_store(root)
+    common = [f"data.path={data}", f"tracking_uri={uri}", *LIGHT_EVAL]
+    assert main(["run", *common, "name=served", f"out={root / 'run'}"]) == 0
+    import mlflow
+
+    mlflow.set_tracking_uri(uri)
+    run_id = mlflow.search_runs(experiment_names=["thermocomp"])["run_id"].iloc[0]
+    assert main(["promote", *common, f"promote.run_id={run_id}", f"out={root / 'p'}"]) == 0
+    return root, data, uri
+
+
+def test_serve_command_uses_the_project_store_one_worker_and_the_venv_bin(promoted):
+    from thermocomp.shell.stages.serve import serve_command
+
+    root, data, uri = promoted
+    argv, env = serve_command(_compose([f"tracking_uri={uri}", "serve.port=5123"]))
+    assert env["MLFLOW_TRACKING_URI"] == uri
+    assert env["PATH"].split(os.pathsep)[0] == str(BIN)
+    assert argv[0] == str(BIN / "uvicorn")     # MLflow's scoring app, behind request limits
+    # a folder of this package around the registered, signed pickle: the model's code never runs
+    served = Path(env["__pyfunc_model_path__"].removeprefix("file://"))
+    assert (served / "MLmodel").is_file() and (served / "artifacts" / "compensator.pkl").is_file()
+    assert argv[argv.index("--workers") + 1] == "1" and argv[argv.index("--port") + 1] == "5123"
+    with pytest.raises(ConfigError, match="no such model version"):
+        serve_command(_compose([f"tracking_uri={mlflow_store(root / 'empty')}"]))
+    # settings first, before the store is opened (`serve.port=abc` was a traceback)
+    for override, says in [("serve.port=abc", "serve.port='abc': must be an integer in [1, 65535]"),
+                           ("serve.port=0", "serve.port=0:"), ("serve.timeout_s=0", "serve.timeout_s=0:")]:
+        with pytest.raises(ConfigError, match=re.escape(says)):
+            serve_command(_compose([f"tracking_uri={uri}", override]))
+
+
+def test_a_registered_models_code_never_runs_and_its_pickle_is_checked(promoted, tmp_path, capsys):
+    """Only the pickle is signed: replay and serve take it alone, never the model's own code
+    (an edited model_code.py in the store ran before, with exit 0)."""
+    from mlflow import MlflowClient
+
+    from thermocomp.base.errors import ContractError
+    from thermocomp.shell.stages.serve import serve_command
+
+    root, data, uri = promoted
+    client = MlflowClient(uri, registry_uri=uri)
+    version = client.get_model_version_by_alias(NAME, "champion").version
+    stored = Path(client.get_model_version_download_uri(NAME, version).removeprefix("file://"))
+    code, pickled = stored / "model_code.py", stored / "artifacts" / "compensator.pkl"
+    originals = {f: f.read_bytes() for f in (code, pickled)}
+    planted = tmp_path / "PWNED"
+    replay = ["replay", f"data.path={data}", f"tracking_uri={uri}", "track=false", "plots=none",
+              f"replay.model=models:/{NAME}@champion", f"out={tmp_path / 'r'}"]
+    try:
+        code.write_text(f"open({str(planted)!r}, 'w')\n" + originals[code].decode())
+        assert main(replay) == 0 and not planted.exists()
+        serve_command(_compose([f"tracking_uri={uri}"]))
+        assert not planted.exists()
+        pickled.write_bytes(originals[pickled][:-1] + bytes([originals[pickled][-1] ^ 1]))
+        capsys.readouterr()
+        assert main([*replay[:-1], f"out={tmp_path / 'r2'}"]) == 2
+        assert "signature" in capsys.readouterr().err and not (tmp_path / "r2").exists()
+        with pytest.raises(ContractError, match="signature"):
+            serve_command(_compose([f"tracking_uri={uri}"]))
+    finally:
+        for f, b in originals.items():
+            f.write_bytes(b)
+
+
+def test_serve_without_a_promoted_model_exits_2(tmp_path, capsys):
+    assert main(["serve", f"tracking_uri={mlflow_store(tmp_path)}"]) == 2
+    assert "thermocomp promote" in capsys.readouterr().err
+
+
+def _post(port, frame: pd.DataFrame, **params):
+    import requests
+
+    body = {"dataframe_split": frame.to_dict(orient="split"), "params": params}
+    body["dataframe_split"].pop("index")
+    resp = requests.post(f"http://127.0.0.1:{port}/invocations", json=body, timeout=60)
+    assert resp.status_code == 200, resp.text
+    return pd.DataFrame(resp.json()["predictions"])
+
+
+@pytest.mark.slow
+def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promoted, tmp_path):
+    import mlflow
+
+    root, data, uri = promoted
+    port = free_port()
+    env = {k: v for k, v in os.environ.items() if k != "VIRTUAL_ENV"}
+    env["PATH"] = os.pathsep.join(p for p in os.environ.get("PATH", "").split(os.pathsep)
+                                  if Path(p) != BIN) or "/usr/bin:/bin"
+    env.pop("MLFLOW_TRACKING_URI", None)
+    log = open(tmp_path / "serve.log", "w")
+    server = subprocess.Popen([str(BIN / "thermocomp"), "serve", f"tracking_uri={uri}",
+                               f"serve.port={port}"], cwd=tmp_path, env=env, stdout=log,
+                              stderr=subprocess.STDOUT, start_new_session=True)
+    try:
+        wait_until_up(port, server, tmp_path / "serve.log", timeout_s=120)
+        k4, k5 = (pd.read_csv(data / f"{c}.csv").astype(float) for c in ("K04", "K05"))
+        cols = ["time", "T_1", "T_2", "T_amb"]
+        local = mlflow.pyfunc.load_model(f"models:/{NAME}@champion")
+        expected = {"a": local.predict(k4[cols], params={"session": "a", "reset": True}),
+                    "b": local.predict(k5[cols], params={"session": "b", "reset": True})}
+        got = {"a": [], "b": []}
+        for i, start in enumerate(range(0, len(k4), 40)):     # two machines, interleaved
+            for s, df in (("a", k4), ("b", k5)):
+                got[s].append(_post(port, df[cols].iloc[start:start + 40], session=s, reset=i == 0))
+        for s in ("a", "b"):
+            served = pd.concat(got[s], ignore_index=True)
+            np.testing.assert_allclose(served[["C_X", "C_Z"]].to_numpy(),
+                                       expected[s][["C_X", "C_Z"]].to_numpy(), rtol=0, atol=1e-9)
+        # the promoted (adaptive) compensator answers a sensor sent as JSON null with a correction
+        gap = k4[cols].iloc[:20].astype(object)
+        gap.loc[10:, "T_2"] = None
+        served = _post(port, gap, session="gap", reset=True)
+        assert np.isfinite(served[["C_X", "C_Z"]].to_numpy(float)).all()
+        assert "T_2" in served["excluded_inputs"].iloc[-1].split(",")
+        assert any(e["sensor"] == "T_2" for e in json.loads(served["events"].iloc[10]))
+    finally:
+        stop_process_group(server)
+        log.close()
+    assert not (tmp_path / "mlflow.db").exists() and not (tmp_path / "mlruns").exists()
