@@ -49,7 +49,7 @@ def test_ci_run_stops_when_the_team_server_does_not_start(tmp_path):
 def test_the_postgresql_test_fails_instead_of_skipping_when_ci_requires_the_server():
     env = {k: v for k, v in os.environ.items() if k not in ("THERMOCOMP_MLFLOW_SERVER", "CI")}
     args = [sys.executable, "-m", "pytest", "-q", "-p", "no:randomly", "-p", "no:cacheprovider",
-            str(ROOT / "tests" / "test_team.py"), "-k", "postgresql"]
+            str(ROOT / "tests" / "shell" / "test_team.py"), "-k", "postgresql"]
     required = subprocess.run(args, env={**env, "THERMOCOMP_REQUIRE_SERVER": "1"},
                               capture_output=True, text=True, timeout=300, cwd=ROOT)
     assert required.returncode == 1 and "1 failed" in required.stdout, required.stdout[-2000:]

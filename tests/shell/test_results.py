@@ -18,7 +18,7 @@ from thermocomp.core.scoring.results import SCORE_KEYS, EvaluationResult
 from thermocomp.shell.cli import main
 
 SRC = Path(__file__).resolve().parents[2] / "src" / "thermocomp"
-KEY_MODULES = {"metrics.py", "results.py"}     # where a score key may be spelled out
+KEY_MODULES = {"core/metrics.py", "core/scoring/results.py"}     # where a score key may be spelled out
 QUICK = ["track=false", "plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false",
          "eval.validation_folds=3"]
 
