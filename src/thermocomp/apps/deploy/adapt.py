@@ -128,6 +128,17 @@ class ReferenceSchedule:
         return False
 
 
+def scheduled(measured: np.ndarray, times: np.ndarray, schedule: ReferenceSchedule) -> np.ndarray:
+    """``measured`` (rows x targets) where ``schedule`` takes a reference, NaN elsewhere: the
+    reference measurements a machine publishes (``thermocomp twin``)."""
+    out = np.full(np.shape(measured), np.nan)
+    schedule.reset()
+    for i, t in enumerate(times):
+        if schedule.due(t):
+            out[i] = measured[i]
+    return out
+
+
 class Adaptation:
     """A :class:`ReferenceAdapter` and when references come: the one mechanism ``replay``,
     ``monitor`` and the served model run on a stream's corrections.

@@ -6,7 +6,10 @@ the campaign changes, steps it and writes the offsets (through :class:`~.offsets
 with ``offset_sample``.  A value that is not a number streams as NaN: the compensator handles
 it as ``monitor`` does (the adaptive one reconstructs or holds).  Without a fresh sample the
 offsets are held, then decay; a lost link or server is reconnected every ``retry_s`` until
-``give_up_s`` pass without one.  It ends when ``done`` turns true.
+``give_up_s`` pass without one.  It ends when ``done`` turns true.  With ``adapt`` (an
+:class:`~thermocomp.apps.deploy.adapt.Adaptation` without a schedule: the machine says when) the
+``reference`` nodes are read with the inputs; a finite one is a reference measurement of that
+sample, learned from after its own correction is given, as ``replay`` learns.
 """
 
 from __future__ import annotations
@@ -53,8 +56,10 @@ class Connection:
     """Run ``deployed`` (the adaptive or the plain streaming compensator) against ``endpoint``."""
 
     def __init__(self, deployed, nodes: NodeMap, endpoint: str, limiter: OffsetLimiter, *,
-                 retry_s: float = 1.0, give_up_s: float = 60.0, timeout_s: float = 4.0):
+                 retry_s: float = 1.0, give_up_s: float = 60.0, timeout_s: float = 4.0,
+                 adapt=None):
         self.deployed, self.map, self.endpoint, self.limiter = deployed, nodes, endpoint, limiter
+        self.adapt = adapt
         self.retry_s, self.give_up_s, self.timeout_s = retry_s, give_up_s, timeout_s
         self.events: list[dict] = []
         self.written: list[np.ndarray] = []      # every offset vector written
@@ -101,7 +106,8 @@ class Connection:
             get = client.get_node
             m, cols = self.map, self.deployed.columns_
             reads = cols + ([TIME] if TIME not in cols else [])
-            inputs = [get(m.input_id(c)) for c in reads]
+            refs = [m.reference_id(t) for t in self.deployed.targets_] if self.adapt else []
+            inputs = [get(n) for n in [*map(m.input_id, reads), *refs]]
             status = [get(m.campaign), get(m.campaign_sample), get(m.sample), get(m.done)]
             offsets = [get(m.offset_id(t)) for t in self.deployed.targets_]
             answered = get(m.offset_sample)
@@ -141,6 +147,8 @@ class Connection:
         d = self.deployed
         if cid != self._campaign:
             d.reset()
+            if self.adapt is not None:
+                self.adapt.start()      # what was learned is kept: the same machine
             self.limiter.new_campaign()
             self._campaign = cid
             self._event("campaign", f"campaign {cid} from its sample {i}")
@@ -151,8 +159,12 @@ class Connection:
             self._stale = False
         self._last = k
         x = np.asarray(row[:len(d.columns_)], float)
-        t = row[d.columns_.index(TIME)] if TIME in d.columns_ else row[-1]
+        reads = len(d.columns_) + (TIME not in d.columns_)
+        t = row[d.columns_.index(TIME)] if TIME in d.columns_ else row[reads - 1]
         y = d.step(x, t)
+        if self.adapt is not None:      # the correction first, then what its reference teaches
+            measured = np.asarray(row[reads:], float)[None]
+            y = self.adapt.correct(np.asarray(y, float)[None], np.array([t]), measured)[0]
         for e in getattr(d, "last_events_", []):
             self._event("compensator", e.get("reason", ""), sensor=e.get("sensor"))
         self.samples += 1

@@ -22,7 +22,8 @@ class NodeMap:
     ``sample`` (Int64): the running sample number, written last when a sample is published;
     ``campaign`` (String) and ``campaign_sample`` (Int64): where that sample is;
     ``done`` (Boolean): the campaigns are over; ``offset_sample`` (Int64, written by the client):
-    the sample the offsets it last wrote answer.
+    the sample the offsets it last wrote answer; ``reference`` (Double per target, with
+    ``{target}``): the error measured at the sample (a reference measurement), NaN on the others.
     """
 
     namespace: str
@@ -33,16 +34,22 @@ class NodeMap:
     campaign_sample: str
     done: str
     offset_sample: str
+    reference: str = "ns=2;s=Machine.Measurement.{target}"
 
     @classmethod
     def from_config(cls, nodes: Mapping) -> "NodeMap":
-        return cls(**{k: str(nodes[k]) for k in ("namespace", "input", "offset", *STATUS)})
+        keys = ("namespace", "input", "offset", *STATUS)
+        optional = {"reference": str(nodes["reference"])} if "reference" in nodes else {}
+        return cls(**{k: str(nodes[k]) for k in keys}, **optional)
 
     def input_id(self, column: str) -> str:
         return self.input.format(column=column)
 
     def offset_id(self, target: str) -> str:
         return self.offset.format(target=target)
+
+    def reference_id(self, target: str) -> str:
+        return self.reference.format(target=target)
 
 
 def quiet_asyncua() -> None:

@@ -7,6 +7,9 @@ compensated, is its measured error minus that offset; a sample whose offsets do 
 (``offset_sample``) is stale.  A campaign that continues others (``lead_ins``) is served
 after them under its own name (``campaign_sample`` < 0 there, unscored): the client's stream
 is warmed on them as ``replay`` warms it.  The first sample waits for a client (at most ``wait_s``).
+``references`` (per campaign, rows x targets, NaN where none) are the reference measurements
+of the error the machine takes (a probe touch): published on the ``reference`` nodes with the
+sample they belong to (NaN on the others), for a client that learns from them (``adapt``).
 ``drops`` stop the input nodes (the sensor link down: the client sees stale inputs) and
 ``restarts`` stop the server (its address space, the offset registers, kept), for a number of
 samples each, while the machine runs on with the offsets it holds.
@@ -54,9 +57,11 @@ class Twin:
     def __init__(self, nodes: NodeMap, campaigns: dict[str, pd.DataFrame], columns: list[str],
                  errors: dict[str, np.ndarray], targets: list[str], *, host: str = "127.0.0.1",
                  port: int = 4840, speed: float = 1.0, drops=(), restarts=(), wait_s: float = 0.0,
-                 lead_ins: dict[str, pd.DataFrame] | None = None):
+                 lead_ins: dict[str, pd.DataFrame] | None = None,
+                 references: dict[str, np.ndarray] | None = None):
         self.map, self.campaigns, self.columns = nodes, campaigns, list(columns)
         self.lead_ins = lead_ins or {}
+        self.references = references or {}
         self.errors, self.targets = errors, list(targets)
         self.endpoint = f"opc.tcp://{host}:{port}"
         self.period = 1.0 / float(speed)
@@ -83,6 +88,8 @@ class Twin:
 
         self.inputs = [await add(self.map.input_id(c), c, float("nan"), ua.VariantType.Double)
                        for c in self.columns]
+        self.reference_nodes = [await add(self.map.reference_id(t), f"reference {t}", float("nan"),
+                                          ua.VariantType.Double) for t in self.targets]
         self.offset_nodes = [await add(self.map.offset_id(t), f"offset {t}", float(v),
                                        ua.VariantType.Double, True)
                              for t, v in zip(self.targets, self.held)]
@@ -103,8 +110,11 @@ class Twin:
         self.held = np.array([float(v) if v is not None else np.nan for v in values])
         return int(await self.answered.read_value()) == k
 
-    async def serve(self) -> Served:
-        """Serve every campaign at ``speed`` samples per second; the per-sample record."""
+    async def serve(self, finished=None) -> Served:
+        """Serve every campaign at ``speed`` samples per second; the per-sample record.
+
+        ``finished(served)`` is called before ``done`` turns true: what it writes (``twin.json``)
+        is there when the client ends."""
         quiet_asyncua()
         await self._start()
         waited = clock.monotonic()
@@ -118,6 +128,8 @@ class Twin:
                 lead = self.lead_ins.get(cid)
                 first = -len(lead) if lead is not None else 0     # the lead-in: negative samples
                 X = df[self.columns].to_numpy(float)
+                refs = self.references.get(cid)
+                none = np.full(len(self.targets), np.nan)
                 if lead is not None:
                     X = np.vstack([lead[self.columns].to_numpy(float), X])
                 for i in range(first, len(df)):
@@ -133,6 +145,9 @@ class Twin:
                     if not down and not any(d.covers(k) for d in self.drops):
                         for node, v in zip(self.inputs, X[i - first]):
                             await node.write_value(ua.Variant(float(v), ua.VariantType.Double))
+                        measured = refs[i] if refs is not None and i >= 0 else none
+                        for node, v in zip(self.reference_nodes, measured):
+                            await node.write_value(ua.Variant(float(v), ua.VariantType.Double))
                         await self.campaign.write_value(ua.Variant(cid, ua.VariantType.String))
                         await self.campaign_sample.write_value(ua.Variant(i, ua.VariantType.Int64))
                         await self.sample.write_value(ua.Variant(k, ua.VariantType.Int64))
@@ -146,6 +161,8 @@ class Twin:
                 await self.stopping
                 self.stopping = None
                 await self.server.start()
+            if finished is not None:
+                finished(served)
             await self.done.write_value(ua.Variant(True, ua.VariantType.Boolean))
             await asyncio.sleep(max(0.5, 5 * self.period))      # the client reads it and leaves
         finally:

@@ -5,7 +5,9 @@ done and writes ``<out>/connect.json`` (its events, CLI.md).
 ``connect.model`` is loaded as ``replay.model`` is (null: the configured model fitted on the
 train split, made deployable with the adaptive compensator of ``monitor``).  What is written is
 bounded and rate-limited by the deployed compensator's correction guard; a plain stream gets
-one fitted on the train split as ``monitor`` fits it.
+one fitted on the train split as ``monitor`` fits it.  With ``adapt.method`` (else the
+setting a registered model was promoted with) it learns from the machine's reference
+measurements (the ``reference`` nodes) as ``replay`` learns from its simulated ones.
 """
 
 from __future__ import annotations
@@ -16,6 +18,7 @@ from pathlib import Path
 import numpy as np
 from omegaconf import DictConfig
 
+from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...base.errors import ConfigError
 from ...base.files import write_json
 from ...base.paths import resolve
@@ -54,8 +57,10 @@ def connect(cfg: DictConfig) -> dict:
     guard = _guard(cfg, deployed, ds, train_ids)
     limiter = OffsetLimiter(guard.lo, guard.hi, guard.max_rate_per_s * guard.period_s,
                             float(c.hold_s), float(c.decay_s))
+    adapt = (adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
+             or getattr(deployed, "adapt_", None))
     link = Connection(deployed, NodeMap.from_config(c.nodes), str(c.endpoint), limiter,
-                      retry_s=float(c.retry_s), give_up_s=float(c.give_up_s))
+                      retry_s=float(c.retry_s), give_up_s=float(c.give_up_s), adapt=adapt)
     say(f"connect: {name} ({source}) to {c.endpoint}: inputs {', '.join(deployed.columns_)}")
     try:
         asyncio.run(link.run())
@@ -68,6 +73,8 @@ def connect(cfg: DictConfig) -> dict:
                                  for j, t in enumerate(deployed.targets_)},
               "bound": {t: [float(guard.lo[j]), float(guard.hi[j])]
                         for j, t in enumerate(deployed.targets_)},
+              **({"adapt": {t: adapt.figures(j) for j, t in enumerate(deployed.targets_)}}
+                 if adapt is not None else {}),
               "events": link.events}
     path = write_json(Path(resolve(cfg.out)) / "connect.json", report)
     say(f"connect: {link.samples} samples, {len(link.events)} events: {path}")

@@ -83,7 +83,8 @@ OUTAGES = Rule(lambda v: all(len(p) == 2 and all(isinstance(x, int) and not isin
 TWIN_RULES = {"twin.host": text(), "twin.port": integer(1, 65535),
               "twin.speed": number(0.0, 100_000.0, open_lo=True), "twin.wait_s": NON_NEGATIVE,
               "twin.drops": OUTAGES,
-              "twin.restarts": OUTAGES}
+              "twin.restarts": OUTAGES,
+              "twin.campaigns": optional(texts("test campaign ids", unique=True))}
 CONNECT_RULES = {"connect.endpoint": Rule(lambda v: isinstance(v, str) and v.startswith("opc.tcp://"),
                                           "an opc.tcp://host:port URL"),
                  "connect.model": optional(text()), "connect.hold_s": NON_NEGATIVE,
@@ -91,7 +92,8 @@ CONNECT_RULES = {"connect.endpoint": Rule(lambda v: isinstance(v, str) and v.sta
                  "connect.give_up_s": POSITIVE,
                  **{f"connect.nodes.{k}": text() for k in ("namespace", "input", "offset",
                                                             "offset_sample", "sample", "campaign",
-                                                            "campaign_sample", "done")}}
+                                                            "campaign_sample", "done",
+                                                            "reference")}}
 
 # diagnose.* (its families are the stage's: diagnose.features.KINDS)
 DIAGNOSE_RULES = {

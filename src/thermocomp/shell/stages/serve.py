@@ -4,7 +4,8 @@ Runs MLflow's scoring server (what ``mlflow models serve -m <folder> --env-manag
 runs: uvicorn, one worker) behind the request limits of :mod:`thermocomp.apps.deploy.server`
 (``serve.max_body_mb``, ``serve.max_rows``: 413, too deep a JSON: 400, before the model
 parses anything), on a pyfunc folder this installed package writes around ``serve.model``'s
-signed pickle (its own code never runs), with
+signed pickle (its own code never runs; a run's ``model.pkl`` is made deployable on the train
+split of ``data.path`` first, as ``replay`` and ``connect`` make it), with
 
 * the project's tracking store (``tracking_uri`` resolved against the project
   root, as every stage does) in ``MLFLOW_TRACKING_URI``, so ``models:/...``
@@ -53,12 +54,13 @@ def _loopback(host: str) -> bool:
 
 
 def _check_model(model: str, uri: str) -> str:
-    """``model`` as ``mlflow models serve`` takes it; refuse one that does not exist (exit 2)."""
+    """``model`` as ``mlflow models serve`` takes it, or a run's ``model.pkl``; refuse one that
+    does not exist (exit 2)."""
     if not model.startswith("models:/"):
         path = resolve(model)
-        if not (path / "MLmodel").is_file():
-            raise ConfigError(f"serve.model={model}: neither models:/<name>@<alias> nor a pyfunc "
-                              f"model folder (no {path / 'MLmodel'})")
+        if not ((path / "MLmodel").is_file() or path.is_file()):
+            raise ConfigError(f"serve.model={model}: neither models:/<name>@<alias>, a pyfunc "
+                              f"model folder (no {path / 'MLmodel'}) nor a model.pkl")
         return str(path)
     from mlflow import MlflowClient
 
@@ -79,7 +81,20 @@ def _check_model(model: str, uri: str) -> str:
     return model
 
 
-def _trusted_copy(model: str, uri: str) -> str:
+def _deployed(cfg: DictConfig, model: str):
+    """The compensator ``model`` holds: a registered or saved one as it is (its signature checked),
+    a ``model.pkl`` made deployable on the train split of ``data.path``."""
+    from ...apps.deploy.pyfunc import load_deployed
+
+    if model.startswith("models:/") or not Path(model).is_file():
+        return load_deployed(model, None if model.startswith("models:/") else Path(model))
+    from .common import deployable_model, read_streamed
+
+    ds, train_ids = read_streamed(cfg, test=False)[:2]
+    return deployable_model(cfg, ds, train_ids, model, "serve.model")[0]
+
+
+def _trusted_copy(cfg: DictConfig, model: str, uri: str) -> str:
     """A pyfunc folder made by this installed package around the model's signed pickle, which
     is what the server loads: the registered model's own code (``model_code.py``, ``code/``,
     ``MLmodel``) is never run (the signature covers the pickle alone).  A pickle whose
@@ -88,7 +103,7 @@ def _trusted_copy(model: str, uri: str) -> str:
 
     import mlflow
 
-    from ...apps.deploy.pyfunc import load_deployed, save_compensator
+    from ...apps.deploy.pyfunc import save_compensator
 
     mlflow.set_tracking_uri(uri)    # the registry follows it (no process-wide registry URI:
                                     # it would outlive this call in a process that goes on)
@@ -98,8 +113,7 @@ def _trusted_copy(model: str, uri: str) -> str:
     folder = Path(tempfile.mkdtemp(prefix="thermocomp-serve-"))
     previous, tempfile.tempdir = tempfile.tempdir, str(folder)
     try:
-        local = None if model.startswith("models:/") else Path(model)
-        return str(save_compensator(load_deployed(model, local), folder / "model"))
+        return str(save_compensator(_deployed(cfg, model), folder / "model"))
     except BaseException:
         shutil.rmtree(folder, ignore_errors=True)
         raise
@@ -122,7 +136,7 @@ def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
     uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
     # a registered model comes down file by file: a progress line each, hundreds of them
     os.environ.setdefault(QUIET_DOWNLOADS, "false")
-    model = _trusted_copy(_check_model(str(opts.model), uri), uri)
+    model = _trusted_copy(cfg, _check_model(str(opts.model), uri), uri)
     bin_dir = str(Path(sys.executable).parent)
     env = {**os.environ, "MLFLOW_TRACKING_URI": uri, "MLFLOW_REGISTRY_URI": uri,
            "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")]),
