@@ -76,7 +76,7 @@ def test_connect_learns_from_the_twins_references_as_replay_does(aged, tmp_path)
     learned = replayed(aged, tmp_path / "learned", *adapt)
     twin, link = twin_and_connect(aged, tmp_path, *adapt)
     for t, r in twin["targets"].items():
-        assert r["stale_samples"] <= 2
+        assert r["stale_samples"] <= 0.05 * twin["n_samples"]     # the client kept up
         assert abs(r["rms_compensated"] - learned[t]["rmse"]) <= 0.05 * learned[t]["rmse"], t
         assert r["rms_compensated"] < frozen[t]["rmse"], t
         assert link["adapt"][t]["n_references"] == learned[t]["adapt"]["n_references"] > 0
