@@ -118,12 +118,13 @@ STAGE_HELP = {
                "export.model=models:/thermocomp-compensator@champion export.format=c|st|json"),
     "twin": ("a virtual machine tool over OPC UA serving the test campaigns of data.path",
              "data.path (its test campaigns)", "an OPC UA server (connect.nodes), <out>/twin.json",
-             "twin.port=4840 twin.speed=10 twin.drops=[[20,15]] twin.restarts=[[80,10]]"),
+             "twin.port=4840 twin.speed=10 twin.campaigns=[K03] twin.drops=[[20,15]] "
+             "twin.restarts=[[80,10]]"),
     "connect": ("the deployed compensator as an OPC UA client: bounded offsets to a machine",
                 "connect.model (null: fitted on data.path's train split) and connect.endpoint",
                 "offsets on the machine's nodes, <out>/connect.json",
                 "connect.endpoint=opc.tcp://127.0.0.1:4840 connect.model=models:/name@alias "
-                "connect.hold_s=5 connect.decay_s=10"),
+                "connect.hold_s=5 connect.decay_s=10 adapt.method=bias"),
     "monitor": ("sensor surveillance (POD self-prediction) + fault-tolerant compensation, streamed",
                 "data.path (or CSV rows on stdin: monitor.input=-) and a fitted model",
                 "<out>/monitor.json, <out>/monitor/ (figures)",
@@ -137,7 +138,8 @@ STAGE_HELP = {
                "<out>/design.json, <out>/design/ (figures)",
                "design.n_machines=200 design.n_jobs=-1 design.ranges.angular=6 design.machine.order=4"),
     "serve": ("the registered compensator over HTTP (MLflow's scoring server, one worker)",
-              "serve.model from the tracking store", "nothing (answers POST /invocations)",
+              "serve.model from the tracking store, a pyfunc folder, or a run's model.pkl (with data.path)",
+              "nothing (answers POST /invocations)",
               "serve.model=models:/thermocomp-compensator@champion serve.port=5001 serve.host=127.0.0.1"),
 }
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
