@@ -3,8 +3,11 @@ function block, ``FB_ThermoComp``, with the interface of the C code: one call is
 ``tc_step``; ``reset := TRUE`` is ``tc_init`` before it (the sample starts a campaign).
 
 Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: one period
-after the previous sample; ST has no NaN); outputs ``c`` (µm) and ``n_clamped``.  Only
-assignments, ``IF``, ``FOR`` and ``EXP`` are used, one statement a line.
+after the previous sample; ST has no NaN), ``ref_valid`` and ``ref_error`` (per target: a
+reference measurement of the error at this sample, which ``tc_reference`` takes after the
+step); outputs ``c`` (µm) and ``n_clamped``.  What was learned from references survives
+``reset`` (the instance's initial values are the exported ones).  Only assignments, ``IF``,
+``FOR`` and ``EXP`` are used, one statement a line.
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from .statespace import StateSpace
 from .text import banner
 
 NAME = "FB_ThermoComp"
+LREAL_MAX = 1.7976931348623157e308   # an unlimited rate (ST has no infinity)
 
 
 def literal(v: float) -> str:
@@ -56,7 +60,18 @@ def function_block(ss: StateSpace) -> str:
         _constant("TAU", ss.taus, (k,)), _constant("DECAY", ss.lag_decay, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
         _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n)),
-        _constant("BD", ss.bd, (m, d, n)), _constant("G", ss.g, (m, k)), _constant("AR", ss.ar, (m,))])
+        _constant("BD", ss.bd, (m, d, n)), _constant("G", ss.g, (m, k)), _constant("AR", ss.ar, (m,)),
+        f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
+        _constant("GUARD_LO", ss.guard_lo or [], (m,)), _constant("GUARD_HI", ss.guard_hi or [], (m,)),
+        _constant("GUARD_RATE", [LREAL_MAX if r is None else r for r in ss.guard_rate or []], (m,)),
+        f"    GUARD_PERIOD : LREAL := {literal(ss.guard_period)};",
+        f"    USE_ADAPT : BOOL := {'TRUE' if ss.adapt != 'none' else 'FALSE'};",
+        _constant("GAIN", ss.adapt_gain or [1.0] * m, (m,)),
+        f"    FORGETTING : LREAL := {literal(ss.adapt_forgetting)};",
+        f"    MAX_BIAS : LREAL := {literal(ss.adapt_max_bias)};",
+        f"    CAP_VARIANCE : LREAL := {literal(ss.adapt_var_cap)};"])
+    learned = "\n".join([_constant("bias", ss.adapt_bias or [], (m,)),
+                         _constant("variance", ss.adapt_var or [], (m,))])
     return f"""{banner(ss, "(*", "  ", "*)")}
 FUNCTION_BLOCK {NAME}
 VAR_INPUT
@@ -64,6 +79,8 @@ VAR_INPUT
     time_s : LREAL;
     has_time : BOOL;
     reset : BOOL;
+    ref_valid : ARRAY[{_dims(m)}] OF BOOL;
+    ref_error : ARRAY[{_dims(m)}] OF LREAL;
 END_VAR
 VAR_OUTPUT
     c : ARRAY[{_dims(m)}] OF LREAL;
@@ -82,6 +99,14 @@ VAR
     xl : ARRAY[{_dims(k)}] OF LREAL;
     e : LREAL;
     y : LREAL;
+    dt : LREAL;
+    lim : LREAL;
+    dy : LREAL;
+    kg : LREAL;
+    p : LREAL;
+    b : LREAL;
+    out_prev : ARRAY[{_dims(m)}] OF LREAL;
+{learned}
     i : INT;
     j : INT;
     l : INT;
@@ -140,6 +165,11 @@ FOR l := 0 TO N_LAGS - 1 DO
         z[l] := e * z[l] + (1.0 - e) * xl[l];
     END_IF;
 END_FOR;
+IF has_time AND NOT first THEN
+    dt := time_s - t_prev;
+ELSE
+    dt := 0.0;
+END_IF;
 IF first THEN
     FOR l := 0 TO DEPTH - 1 DO
         FOR j := 0 TO N_INPUTS - 1 DO
@@ -177,8 +207,55 @@ FOR i := 0 TO N_OUTPUTS - 1 DO
     END_FOR;
     y := y + AR[i] * y_prev[i];
     y_prev[i] := y;
-    c[i] := -y;
+    (* correction guard: within the rate limit of the previous output, then the bound *)
+    IF USE_GUARD THEN
+        IF NOT first THEN
+            IF dt > 0.0 THEN
+                lim := GUARD_RATE[i] * dt;
+            ELSE
+                lim := GUARD_RATE[i] * GUARD_PERIOD;
+            END_IF;
+            dy := y - out_prev[i];
+            IF dy > lim THEN
+                y := out_prev[i] + lim;
+            ELSIF dy < -lim THEN
+                y := out_prev[i] - lim;
+            END_IF;
+        END_IF;
+        IF y < GUARD_LO[i] THEN
+            y := GUARD_LO[i];
+        ELSIF y > GUARD_HI[i] THEN
+            y := GUARD_HI[i];
+        END_IF;
+    END_IF;
+    out_prev[i] := y;
+    IF USE_ADAPT THEN
+        c[i] := -(GAIN[i] * y + bias[i]);
+    ELSE
+        c[i] := -y;
+    END_IF;
 END_FOR;
+(* a reference measurement at this sample: the bias of the next corrections learns from it *)
+IF USE_ADAPT THEN
+    FOR i := 0 TO N_OUTPUTS - 1 DO
+        IF ref_valid[i] THEN
+            p := variance[i];
+            kg := p / (FORGETTING + p);
+            b := bias[i] + kg * (ref_error[i] - GAIN[i] * out_prev[i] - bias[i]);
+            p := (p - kg * p) / FORGETTING;
+            IF CAP_VARIANCE > 0.0 AND p / CAP_VARIANCE > 1.0 THEN
+                p := p / (p / CAP_VARIANCE);
+            END_IF;
+            variance[i] := p;
+            IF b < -MAX_BIAS THEN
+                b := -MAX_BIAS;
+            ELSIF b > MAX_BIAS THEN
+                b := MAX_BIAS;
+            END_IF;
+            bias[i] := b;
+        END_IF;
+    END_FOR;
+END_IF;
 FOR l := DEPTH - 1 TO 0 BY -1 DO
     FOR j := 0 TO N_INPUTS - 1 DO
         IF l = 0 THEN

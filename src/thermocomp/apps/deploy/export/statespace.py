@@ -13,7 +13,10 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    + a_t y_t(t-1)``, with the input history ``x(t-d)`` (``d = 1..depth``) and the first-order
    lags ``z_k <- e_k z_k + (1 - e_k) x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the
    time since the previous sample (``period`` when no time is given);
-5. the correction sent to the CNC is ``C_t = -y_t``.
+5. the correction guard, when the model was deployed with one (:mod:`.output`): ``y_t`` held
+   within ``guard_rate_t * dt`` of its previous value, then within ``[guard_lo_t, guard_hi_t]``;
+6. the correction sent to the CNC is ``C_t = -y_t`` (with ``adapt=bias``:
+   ``-(adapt_gain_t * y_t + bias_t)``, ``bias_t`` updated by each reference measurement).
 
 At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
 history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
@@ -27,14 +30,12 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from ....core.models import ARX, MLR, PCR, LagBank
-from ..streaming import StreamingCompensator
+from ..adaptive import AdaptiveCompensator
+from .errors import NotExportable
+from .output import Output, adapt_fields, guard_fields
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank")   # what exports to C / ST
 FORMATS = ("json", "c", "st", "onnx")
-
-
-class NotExportable(ValueError):
-    """The deployed compensator is not one linear system (a family or a setting the code lacks)."""
 
 
 @dataclass
@@ -59,6 +60,19 @@ class StateSpace:
     g: list                      # (n_targets, n_lags)
     ar: list                     # (n_targets,)
     uses_time: bool              # the lags read ``time`` when it is given
+    # what follows the system: the correction guard and the reference update (:mod:`.output`)
+    guard: bool = False
+    guard_lo: list | None = None     # (n_targets,) µm of predicted error
+    guard_hi: list | None = None
+    guard_rate: list | None = None   # (n_targets,) µm/s; null: no rate limit
+    guard_period: float = 0.0        # s: ``dt`` when no later time is given
+    adapt: str = "none"              # none | bias
+    adapt_gain: list | None = None   # (n_targets,)
+    adapt_bias: list | None = None   # (n_targets,) µm, as served (learned so far)
+    adapt_var: list | None = None    # (n_targets,) µm², the bias's variance
+    adapt_forgetting: float = 1.0
+    adapt_max_bias: float = 0.0      # µm
+    adapt_var_cap: float = 0.0       # µm², the prior variance (the variance never exceeds it)
     provenance: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
@@ -98,9 +112,11 @@ def _target_law(est, n: int, period: float | None):
     return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
 
 
-def state_space(stream: StreamingCompensator, provenance: dict | None = None) -> StateSpace:
-    """The :class:`StateSpace` of a plain deployed stream (module doc); :class:`NotExportable`
-    names what keeps it from being one."""
+def state_space(deployed, provenance: dict | None = None) -> StateSpace:
+    """The :class:`StateSpace` of a deployed stream or adaptive compensator (module doc; of the
+    latter its plain stream, guard and reference update); :class:`NotExportable` names what
+    keeps it from being one."""
+    stream = deployed.streaming if isinstance(deployed, AdaptiveCompensator) else deployed
     comp = stream.compensator
     inputs = list(comp.inputs_)
     n = len(inputs)
@@ -148,7 +164,8 @@ def state_space(stream: StreamingCompensator, provenance: dict | None = None) ->
         lag_decay=[float(np.exp(-period / k[0])) for k in keys], period=period,
         intercept=[laws[t][0] for t in targets], b0=[laws[t][1].tolist() for t in targets],
         bd=bd.tolist(), g=g.tolist(), ar=[laws[t][4] for t in targets],
-        uses_time=bool(keys), provenance=dict(provenance or {}))
+        uses_time=bool(keys), **guard_fields(deployed), **adapt_fields(deployed),
+        provenance=dict(provenance or {}))
 
 
 def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
@@ -170,10 +187,16 @@ class Simulator:
         self.g = np.asarray(ss.g, float).reshape(m, len(ss.taus))
         self.taus, self.decay = np.asarray(ss.taus, float), np.asarray(ss.lag_decay, float)
         self.lag_input = np.asarray(ss.lag_input, int)
+        self.output = Output(ss)       # guard and reference update: what is learned stays
         self.reset()
 
     def reset(self) -> None:
+        """A new campaign: the next sample is its first."""
         self.first = True
+
+    def reference(self, measured) -> None:
+        """A reference measurement of the error per target (NaN: none) at the last sample."""
+        self.output.reference(measured)
 
     def step(self, u, time: float = float("nan")) -> np.ndarray:
         """Correction ``C`` (µm, = -predicted error) per target for one sample."""
@@ -190,11 +213,13 @@ class Simulator:
         if ss.clamp:
             x = np.minimum(np.maximum(x, self.lo), self.hi)
         xl = x[self.lag_input]
+        first, dt = self.first, float("nan")
         if self.first:
             self.hist = np.tile(x, (ss.depth, 1)).reshape(ss.depth, len(x))
             self.z, self.y = xl.copy(), np.zeros(len(ss.targets))
             self.t = 0.0 if np.isnan(time) else time
         else:
+            dt = time - self.t
             e = self.decay if np.isnan(time) else np.exp(-(time - self.t) / self.taus)
             self.z = e * self.z + (1.0 - e) * xl
             self.t = self.t + ss.period if np.isnan(time) else time
@@ -203,4 +228,4 @@ class Simulator:
         if ss.depth:
             self.hist = np.vstack([x[None, :], self.hist[:-1]])
         self.y, self.first = y, False
-        return -y
+        return self.output.step(y, first, dt)

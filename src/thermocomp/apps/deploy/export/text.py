@@ -27,5 +27,14 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
                  + f"; period {ss.period:.6g} s")
     lines.append("outputs: " + ", ".join(correction_names(ss.targets))
                  + " in um (the correction: minus the predicted error)")
+    for i, t in enumerate(ss.targets if ss.guard else []):
+        rate = ss.guard_rate[i]
+        lines.append(f"guard {t}: bound [{ss.guard_lo[i]:.6g}, {ss.guard_hi[i]:.6g}] um, rate limit "
+                     + ("none" if rate is None else f"{rate:.6g} um/s"))
+    if ss.adapt != "none":
+        lines.append(f"adapt: {ss.adapt}, learned from reference measurements of "
+                     + ", ".join(ss.targets) + " (tc_reference; ST: ref_valid, ref_error)")
+    if p.get("not_in_code"):
+        lines.append("not in the code (the served model only): " + "; ".join(p["not_in_code"]))
     body = "\n".join(f"{middle} {line}".rstrip() for line in lines)
     return f"{open_}\n{body}\n{close}"
