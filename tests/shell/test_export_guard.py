@@ -13,12 +13,16 @@ from __future__ import annotations
 
 import copy
 import json
+import math
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import refused
 from test_export import (
+    CAMPAIGNS,
     TOLERANCE_UM,
     StructuredText,
     _compiled,
@@ -32,6 +36,7 @@ from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.guard import CorrectionGuard
 from thermocomp.apps.deploy.pyfunc import CompensatorModel
 from thermocomp.apps.deploy.streaming import replay
+from thermocomp.core.models._dynamics import first_order_lag
 from thermocomp.shell.cli import main
 from thermocomp.shell.stages.common import build_compensator, deploy_stream, deployable, read_streamed
 
@@ -39,6 +44,7 @@ FAMILIES = {"mlr": ["model=mlr"],
             "arx": ["model=arx", "model.estimator.ar=true", "model.estimator.delays=[2]"]}
 OFFSET_UM = 5.0        # the machine's error moved by this after training: what the bias learns
 EVERY = 6              # a reference measurement every this many rows
+PERIOD_S = 60.0
 
 
 @pytest.fixture(scope="module")
@@ -176,7 +182,56 @@ def test_the_code_learns_a_bias_from_reference_measurements_as_the_served_model(
     assert np.max(np.abs(_st(fb, tests, cols, references) - expected)) <= TOLERANCE_UM
 
 
-def test_the_guarded_learning_block_parses_as_iec_61131_3(dataset):
+def _spindle_dataset(root: Path, rows: int = 120) -> Path:
+    """Six campaigns (four train, two test) of a spindle stepping between speeds, one sample a
+    minute: the error is the hall's expansion plus a 30-min lag of friction heat growing as the
+    square of the speed, which only a power of the state ``S_spindle_rpm`` explains."""
+    root.mkdir(parents=True)
+    rng = np.random.default_rng(3)
+    t = np.arange(rows) * PERIOD_S
+    for cid, _ in CAMPAIGNS:
+        rpm = np.repeat(rng.choice([0.0, 2000.0, 4000.0, 8000.0], rows // 20 + 1), 20)[:rows]
+        hall = 20 + np.cumsum(rng.normal(0, 0.02, rows))
+        heat = first_order_lag((rpm / 8000.0) ** 2, t, None, 1800.0)
+        pd.DataFrame({"time": t, "T_hall": hall, "T_far": hall + rng.normal(0, 0.3, rows),
+                      "T_amb": 20 + 0.3 * np.sin(t / 2000) + rng.normal(0, 0.05, rows),
+                      "S_spindle_rpm": rpm,
+                      "E_X": 2.0 * (hall - hall[0]) + 6.0 * heat + rng.normal(0, 0.05, rows)}
+                     ).to_csv(root / f"{cid}.csv", index=False)
+    pd.DataFrame([(c, f"{c}.csv", s, "") for c, s in CAMPAIGNS],
+                 columns=["campaign", "file", "split", "notes"]).to_csv(root / "campaigns.csv", index=False)
+    return root
+
+
+@needs_cc
+@pytest.mark.parametrize("denoise", ("none", "emd"))
+def test_the_code_of_a_hammerstein_model_streams_as_replay(tmp_path, denoise):
+    """The state's static power (sign(w)|w|^e of the speed, read unfiltered) before the lag bank;
+    one test sensor pushed out of the envelope half-way, so the clamp acts too."""
+    data = _spindle_dataset(tmp_path / "data")
+    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false", "model=hammerstein",
+                   "model.estimator.lagbank.n_taus=3", f"denoise={denoise}")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    stream = deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train)
+    tests = [ds.campaigns[c].reset_index(drop=True).copy() for c in test_ids]
+    for df in tests:
+        df.loc[len(df) // 2:, "T_hall"] += 30.0
+    streamed = [replay(stream, df) for df in tests]
+    assert all(s["n_clamped"].iloc[len(s) // 2:].gt(0).all() for s in streamed)
+    expected = np.vstack([-s[stream.targets_].to_numpy(float) for s in streamed])
+    ss = state_space(stream)
+    assert 2.0 in [e for _, _, e in ss.powers] and ss.inputs[-1] == "S_spindle_rpm"
+    cols = stream.columns_
+    got = _streamed(_compiled(stream, tmp_path), _rows(tests, cols))
+    assert np.max(np.abs(got.to_numpy(float) - expected)) <= TOLERANCE_UM
+    assert np.max(np.abs(_simulated(ss, tests, cols) - expected)) <= TOLERANCE_UM
+    fb = StructuredText(exported_files(stream, "st")["compensator.st"])
+    fb.vars["EXPT"] = math.pow
+    assert np.max(np.abs(_st(fb, tests, cols) - expected)) <= TOLERANCE_UM
+
+
+def test_the_guarded_learning_block_parses_as_iec_61131_3(dataset, tmp_path):
     from blark import parse_source_code
 
     deployed, _ = _adaptive(dataset, "mlr", "adapt.method=bias")

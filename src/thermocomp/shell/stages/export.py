@@ -81,8 +81,7 @@ def export(cfg: DictConfig) -> dict:
     stream = plain(deployed)
     left = not_in_code(deployed)
     if left:
-        say("exporting the adaptive compensator's stream and correction guard; not in the code, "
-            f"with the served model only: {'; '.join(left)}")
+        say(f"not in the code (the served model only): {'; '.join(left)}")
     family = model_family(stream.compensator)
     units = {c: "degC" if c.startswith("T_") else "" for c in stream.columns_}
     provenance.update(model=family, source=source, version=version(), units=units,

@@ -1,6 +1,6 @@
 """The exported system (:class:`~.statespace.StateSpace`) as C99: ``compensator.h``/``.c``
 (``tc_init``/``tc_reset``/``tc_step``/``tc_reference`` on a caller-owned state struct, no
-allocation, no library beyond ``exp``) and ``stream.c``, a driver that reads CSV rows on stdin
+allocation, no library beyond ``exp`` and ``pow``) and ``stream.c``, a driver that reads CSV rows on stdin
 and prints the corrections.
 
 Build and run: ``cc compensator.c stream.c -lm -o stream && ./stream < campaign.csv``.
@@ -26,6 +26,11 @@ def _array(name: str, values, shape: tuple[int, ...]) -> str:
     return f"static const double {name}{dims} = {_braced(values, len(shape))};"
 
 
+def _ints(name: str, values) -> str:
+    items = ", ".join(str(int(v)) for v in values) or "0"
+    return f"static const int {name}[{max(len(values), 1)}] = {{{items}}};"
+
+
 def _braced(values, rank: int) -> str:
     """A nested C initialiser; an empty dimension holds one zero (C has no empty arrays)."""
     if rank == 0:
@@ -48,6 +53,7 @@ def header(ss: StateSpace) -> str:
 #define TC_TAPS {taps}
 #define TC_DEPTH {ss.depth}
 #define TC_N_LAGS {len(ss.taus)}
+#define TC_N_POWERS {len(ss.powers)}   /* powers of machine states (Hammerstein) */
 #define TC_USES_TIME {int(ss.uses_time)}
 #define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
 #define TC_ADAPT {int(ss.adapt != "none")}   /* a bias learned from reference measurements */
@@ -91,14 +97,17 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]);
 
 
 def source(ss: StateSpace) -> str:
-    n, m, taps, k = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus)
+    n, m, taps, k, p = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), len(ss.powers)
     d = ss.depth
     consts = "\n".join([
         _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
         _array("TAU", ss.taus, (k,)), _array("DECAY", ss.lag_decay, (k,)),
-        f"static const int LAG_INPUT[{max(k, 1)}] = {{{', '.join(map(str, ss.lag_input)) or '0'}}};",
-        _array("INTERCEPT", ss.intercept, (m,)), _array("B0", ss.b0, (m, n)),
+        _ints("LAG_INPUT", ss.lag_input),
+        _array("INTERCEPT", ss.intercept, (m,)), _array("B0", ss.b0, (m, n + p)),
+        _ints("POWER_SRC", [q[0] for q in ss.powers]),
+        _array("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
+        _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         _array("BD", ss.bd, (m, d, n)), _array("G", ss.g, (m, k)), _array("AR", ss.ar, (m,)),
         f"static const double PERIOD = {number(ss.period)};",
         f"static const int CLAMP = {int(ss.clamp)};",
@@ -122,7 +131,7 @@ void tc_init(tc_state *s) {{
 }}
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
-    double v[TC_N_INPUTS], x[TC_N_INPUTS], xl[{max(k, 1)}];
+    double v[TC_N_INPUTS], x[TC_N_INPUTS + TC_N_POWERS], xl[{max(k, 1)}];
     double dt = s->first ? NAN : time - s->t, step;
     int i, j, l, clamped = 0;
     /* causal FIR denoiser */
@@ -139,6 +148,11 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             x[j] = x[j] < LO[j] ? LO[j] : HI[j];
             clamped++;
         }}
+    }}
+    /* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale */
+    for (l = 0; l < TC_N_POWERS; l++) {{
+        double w = v[POWER_SRC[l]] / POWER_SCALE[l];
+        x[TC_N_INPUTS + l] = w < 0.0 ? -pow(-w, POWER_EXP[l]) : pow(w, POWER_EXP[l]);
     }}
     /* first-order lags */
     for (l = 0; l < TC_N_LAGS; l++) {{
@@ -161,7 +175,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     /* outputs: static part, input history, lags, AR feedback */
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double y = INTERCEPT[i];
-        for (j = 0; j < TC_N_INPUTS; j++) y += B0[i][j] * x[j];
+        for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) y += B0[i][j] * x[j];
         for (l = 0; l < TC_DEPTH; l++)
             for (j = 0; j < TC_N_INPUTS; j++) y += BD[i][l][j] * s->hist[l][j];
         for (l = 0; l < TC_N_LAGS; l++) y += G[i][l] * (s->z[l] - xl[l]);

@@ -12,8 +12,9 @@ update (pure core).
   ``adapt.py`` (``adapt_forgetting``, ``adapt_max_bias``, ``adapt_var_cap``).  What was learned
   survives a new campaign; the exported values are those the model was served with.
 
-The served model's sensor monitor (exclusions, reconstruction of a sensor from the others) and
-its substitution of a bad ``time`` are not in the code: :func:`not_in_code` names them.
+The served model's sensor monitor (exclusions, reconstruction of a sensor from the others), its
+substitution of a bad ``time`` and the holding of a missing machine state are not in the code:
+:func:`not_in_code` names them.
 """
 
 from __future__ import annotations
@@ -55,11 +56,14 @@ def adapt_fields(deployed) -> dict:
 
 def not_in_code(deployed) -> list[str]:
     """What the served model does that the exported code does not."""
-    if not isinstance(deployed, AdaptiveCompensator):
-        return []
-    out = ["time substitution (a missing or non-increasing time)"]
-    if deployed.monitor is not None:
-        out.insert(0, "sensor monitor (exclusion, reconstruction of a sensor from the others)")
+    out, stream = [], deployed
+    if isinstance(deployed, AdaptiveCompensator):
+        if deployed.monitor is not None:
+            out.append("sensor monitor (exclusion, reconstruction of a sensor from the others)")
+        out.append("time substitution (a missing or non-increasing time)")
+        stream = deployed.streaming
+    if any(getattr(est, "state_columns_", None) for _, est, _ in stream._plan):
+        out.append("a missing machine state held at its last value (the code needs every input)")
     return out
 
 

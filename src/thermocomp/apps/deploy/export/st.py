@@ -1,13 +1,13 @@
 """The exported system (:class:`~.statespace.StateSpace`) as an IEC 61131-3 Structured Text
 function block, ``FB_ThermoComp``, with the interface of the C code: one call is one
-``tc_step``; ``reset := TRUE`` is ``tc_init`` before it (the sample starts a campaign).
+``tc_step``; ``reset := TRUE`` is ``tc_reset`` before it (the sample starts a campaign).
 
 Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: one period
 after the previous sample; ST has no NaN), ``ref_valid`` and ``ref_error`` (per target: a
 reference measurement of the error at this sample, which ``tc_reference`` takes after the
 step); outputs ``c`` (µm) and ``n_clamped``.  What was learned from references survives
 ``reset`` (the instance's initial values are the exported ones).  Only assignments, ``IF``,
-``FOR`` and ``EXP`` are used, one statement a line.
+``FOR``, ``EXP`` and ``EXPT`` are used, one statement a line.
 """
 
 from __future__ import annotations
@@ -50,16 +50,20 @@ def _size(shape) -> int:
 
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
+    p = len(ss.powers)
     consts = "\n".join([
         f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    TAPS : INT := {taps};",
-        f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};",
+        f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};", f"    N_POWERS : INT := {p};",
         f"    PERIOD : LREAL := {literal(ss.period)};",
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
         _constant("TAU", ss.taus, (k,)), _constant("DECAY", ss.lag_decay, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
-        _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n)),
+        _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n + p)),
+        _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
+        _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
+        _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         _constant("BD", ss.bd, (m, d, n)), _constant("G", ss.g, (m, k)), _constant("AR", ss.ar, (m,)),
         f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
         _constant("GUARD_LO", ss.guard_lo or [], (m,)), _constant("GUARD_HI", ss.guard_hi or [], (m,)),
@@ -95,7 +99,8 @@ VAR
     y_prev : ARRAY[{_dims(m)}] OF LREAL;
     t_prev : LREAL;
     v : ARRAY[{_dims(n)}] OF LREAL;
-    x : ARRAY[{_dims(n)}] OF LREAL;
+    x : ARRAY[{_dims(n + p)}] OF LREAL;
+    w : LREAL;
     xl : ARRAY[{_dims(k)}] OF LREAL;
     e : LREAL;
     y : LREAL;
@@ -151,6 +156,15 @@ FOR j := 0 TO N_INPUTS - 1 DO
         n_clamped := n_clamped + 1;
     END_IF;
 END_FOR;
+(* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale *)
+FOR l := 0 TO N_POWERS - 1 DO
+    w := v[POWER_SRC[l]] / POWER_SCALE[l];
+    IF w < 0.0 THEN
+        x[N_INPUTS + l] := -EXPT(-w, POWER_EXP[l]);
+    ELSE
+        x[N_INPUTS + l] := EXPT(w, POWER_EXP[l]);
+    END_IF;
+END_FOR;
 (* first-order lags *)
 FOR l := 0 TO N_LAGS - 1 DO
     xl[l] := x[LAG_INPUT[l]];
@@ -194,7 +208,7 @@ END_IF;
 (* outputs: static part, input history, lags, AR feedback *)
 FOR i := 0 TO N_OUTPUTS - 1 DO
     y := INTERCEPT[i];
-    FOR j := 0 TO N_INPUTS - 1 DO
+    FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
         y := y + B0[i, j] * x[j];
     END_FOR;
     FOR l := 0 TO DEPTH - 1 DO

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+
 from ..pyfunc import correction_column
 
 
@@ -21,7 +23,8 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
              "first sample where starred):"]
     for j, c in enumerate(ss.inputs):
         ref = "*" if ss.referenced[j] else " "
-        env = f"[{ss.lo[j]:.6g}, {ss.hi[j]:.6g}]" if ss.clamp else "not clamped"
+        bounded = ss.clamp and ss.hi[j] < sys.float_info.max      # a machine state is not
+        env = f"[{ss.lo[j]:.6g}, {ss.hi[j]:.6g}]" if bounded else "not clamped"
         lines.append(f"  {j}: {c}{ref} {p.get('units', {}).get(c, '')}  envelope {env}")
     lines.append("time: s, " + ("read by the first-order lags" if ss.uses_time else "not read")
                  + f"; period {ss.period:.6g} s")
