@@ -54,7 +54,8 @@ def dataset(tmp_path_factory):
 
 def _adaptive(dataset, family, *extra):
     """``(adaptive compensator as replay deploys it, healthy test campaigns)``; the second
-    test campaign sampled irregularly (the rate limit scales with the time elapsed)."""
+    test campaign sampled irregularly (the rate limit scales with the time elapsed), with a
+    missing, a repeated and a backward time (taken as the previous one plus one period)."""
     cfg = _compose(f"data.path={dataset}", "track=false", "monitor.adaptive=true",
                    *FAMILIES[family], *extra)
     ds, train_ids, test_ids, _ = read_streamed(cfg)
@@ -63,16 +64,19 @@ def _adaptive(dataset, family, *extra):
                           train, ds)
     tests = [ds.campaigns[c].reset_index(drop=True).copy() for c in test_ids]
     tests[1]["time"] += np.r_[0.0, np.random.default_rng(1).uniform(-30, 30, len(tests[1]) - 1)]
+    time = tests[1]["time"].to_numpy(copy=True)
+    time[[5, 9, 13]] = np.nan, time[8], time[12] - 50.0
+    tests[1]["time"] = time
     return deployed, tests
 
 
 def _tight(deployed, tests) -> list:
     """Replace the guard by one whose bound is the middle half of the free corrections and whose
-    rate limit is half their median rate: both act.  Returns the free corrections."""
+    rate limit is half their median rate (first campaign): both act.  Returns the free corrections."""
     free = [replay(deployed.streaming, df)[deployed.targets_].to_numpy(float) for df in tests]
     y = np.vstack(free)
-    rate = np.median(np.vstack([np.abs(np.diff(f, axis=0)) / np.diff(df["time"].to_numpy())[:, None]
-                                for f, df in zip(free, tests)]), axis=0)
+    rate = np.median(np.abs(np.diff(free[0], axis=0))
+                     / np.diff(tests[0]["time"].to_numpy())[:, None], axis=0)   # regular sampling
     deployed.guard = CorrectionGuard(deployed.targets_, np.percentile(y, 25, axis=0),
                                      np.percentile(y, 75, axis=0), rate / 2, deployed.period_s)
     return free
@@ -87,7 +91,7 @@ def _guarded(deployed, tests) -> tuple[np.ndarray, list]:
         assert (got["excluded_inputs"] == "").all()
         events += [e for row in got["events"] for e in json.loads(row)]
         out.append(-got[deployed.targets_].to_numpy(float))
-    assert not [e for e in events if e.get("sensor")], events
+    assert not [e for e in events if e.get("sensor") not in (None, "time")], events
     return np.vstack(out), events
 
 
@@ -128,6 +132,7 @@ def test_the_code_of_an_adaptive_model_streams_as_its_guarded_replay(dataset, tm
     if limits == "tight":
         free = np.vstack([-f for f in _tight(deployed, tests)])
     expected, events = _guarded(deployed, tests)
+    assert {"substituted", "ok"} <= {e["to"] for e in events if e.get("sensor") == "time"}
     if limits == "tight":     # the guard acts, and its output is not the model's
         assert {"bounded", "rate_limited"} <= {e["to"] for e in events}
         assert np.max(np.abs(expected - free)) > 1.0

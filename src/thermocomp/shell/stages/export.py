@@ -3,8 +3,8 @@
 ``export.model``: a pyfunc folder or ``models:/<name>@<alias>`` is exported as deployed; a
 ``model.pkl`` is first made deployable as ``replay`` does it (its envelope, and with
 ``monitor.adaptive`` its guard, from the train split of ``data.path``; ``adapt.*``).  Of an
-adaptive compensator the plain stream and its correction guard are exported (its sensor monitor
-and time substitution stay with the served model: the message and the provenance say so);
+adaptive compensator the plain stream, its correction guard and time rule are exported (its
+sensor monitor stays with the served model: the message and the provenance say so);
 ``adapt.method=bias`` is exported with them.  The files are written into ``out`` together, or
 not at all (:func:`~thermocomp.base.files.staged_outputs`).
 """

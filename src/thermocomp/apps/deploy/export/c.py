@@ -55,6 +55,7 @@ def header(ss: StateSpace) -> str:
 #define TC_N_LAGS {len(ss.taus)}
 #define TC_N_POWERS {len(ss.powers)}   /* powers of machine states (Hammerstein) */
 #define TC_USES_TIME {int(ss.uses_time)}
+#define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
 #define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
 #define TC_ADAPT {int(ss.adapt != "none")}   /* a bias learned from reference measurements */
 
@@ -67,6 +68,7 @@ typedef struct {{
     double z[{max(len(ss.taus), 1)}];           /* first-order lags */
     double y[TC_N_OUTPUTS];                     /* previous predicted error (AR feedback) */
     double t;                                   /* previous sample time, s */
+    double t_read;                              /* last good time read, s */
     double out[TC_N_OUTPUTS];                   /* previous guarded output (guard, reference) */
     double bias[TC_N_OUTPUTS];                  /* learned from reference measurements */
     double var[TC_N_OUTPUTS];                   /* the bias's variance */
@@ -132,8 +134,17 @@ void tc_init(tc_state *s) {{
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double v[TC_N_INPUTS], x[TC_N_INPUTS + TC_N_POWERS], xl[{max(k, 1)}];
-    double dt = s->first ? NAN : time - s->t, step;
+    double dt, step;
     int i, j, l, clamped = 0;
+    if (TC_SUBSTITUTE_TIME) {{
+        /* a missing time, or one not after the last one read: the previous one + one period */
+        if (s->first) s->t_read = NAN;
+        if (!isfinite(time) || (isfinite(s->t_read) && time <= s->t_read))
+            time = s->first ? 0.0 : s->t + TIME_PERIOD;
+        else
+            s->t_read = time;
+    }}
+    dt = s->first ? NAN : time - s->t;
     /* causal FIR denoiser */
     for (l = TC_TAPS - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++)
@@ -222,10 +233,12 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]) {{
 
 
 def _output_constants(ss: StateSpace) -> list[str]:
-    """The guard's limits and the reference update's constants (zeros where there is none)."""
+    """The time rule's period, the guard's limits and the reference update's constants (zeros
+    where there is none)."""
     m = len(ss.targets)
     rate = [math.inf if r is None else r for r in ss.guard_rate or [0.0] * m]
-    return [_array("GUARD_LO", ss.guard_lo or [0.0] * m, (m,)),
+    return [f"static const double TIME_PERIOD = {number(ss.time_period)};",
+            _array("GUARD_LO", ss.guard_lo or [0.0] * m, (m,)),
             _array("GUARD_HI", ss.guard_hi or [0.0] * m, (m,)), _array("GUARD_RATE", rate, (m,)),
             f"static const double GUARD_PERIOD = {number(ss.guard_period)};",
             _array("GAIN", ss.adapt_gain or [1.0] * m, (m,)),

@@ -12,9 +12,11 @@ update (pure core).
   ``adapt.py`` (``adapt_forgetting``, ``adapt_max_bias``, ``adapt_var_cap``).  What was learned
   survives a new campaign; the exported values are those the model was served with.
 
-The served model's sensor monitor (exclusions, reconstruction of a sensor from the others), its
-substitution of a bad ``time`` and the holding of a missing machine state are not in the code:
-:func:`not_in_code` names them.
+* **time** (the adaptive compensator's): a missing time, or one not after the last time read,
+  is taken as the previous time plus ``time_period`` (``substitute_time``).
+
+The served model's sensor monitor (exclusions, reconstruction of a sensor from the others) and
+the holding of a missing machine state are not in the code: :func:`not_in_code` names them.
 """
 
 from __future__ import annotations
@@ -39,6 +41,14 @@ def guard_fields(deployed) -> dict:
             "guard_rate": rate, "guard_period": float(g.period_s)}
 
 
+def time_fields(deployed) -> dict:
+    """The adaptive compensator's rule for a bad ``time`` (missing, or not after the last one
+    read): taken as the previous time plus ``time_period`` (a campaign's first: 0)."""
+    if not isinstance(deployed, AdaptiveCompensator):
+        return {}
+    return {"substitute_time": True, "time_period": float(deployed.period_s)}
+
+
 def adapt_fields(deployed) -> dict:
     """The reference update's fields (none when the model does not learn: ``adapt.method=none``);
     :class:`NotExportable` for a method the code lacks."""
@@ -60,7 +70,6 @@ def not_in_code(deployed) -> list[str]:
     if isinstance(deployed, AdaptiveCompensator):
         if deployed.monitor is not None:
             out.append("sensor monitor (exclusion, reconstruction of a sensor from the others)")
-        out.append("time substitution (a missing or non-increasing time)")
         stream = deployed.streaming
     if any(getattr(est, "state_columns_", None) for _, est, _ in stream._plan):
         out.append("a missing machine state held at its last value (the code needs every input)")

@@ -65,6 +65,8 @@ def function_block(ss: StateSpace) -> str:
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         _constant("BD", ss.bd, (m, d, n)), _constant("G", ss.g, (m, k)), _constant("AR", ss.ar, (m,)),
+        f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
+        f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
         f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
         _constant("GUARD_LO", ss.guard_lo or [], (m,)), _constant("GUARD_HI", ss.guard_hi or [], (m,)),
         _constant("GUARD_RATE", [LREAL_MAX if r is None else r for r in ss.guard_rate or []], (m,)),
@@ -98,6 +100,10 @@ VAR
     z : ARRAY[{_dims(k)}] OF LREAL;
     y_prev : ARRAY[{_dims(m)}] OF LREAL;
     t_prev : LREAL;
+    t_read : LREAL;
+    read_valid : BOOL;
+    now : LREAL;
+    timed : BOOL;
     v : ARRAY[{_dims(n)}] OF LREAL;
     x : ARRAY[{_dims(n + p)}] OF LREAL;
     w : LREAL;
@@ -122,6 +128,25 @@ END_VAR
 
 IF reset THEN
     first := TRUE;
+END_IF;
+now := time_s;
+timed := has_time;
+(* a missing time, or one not after the last one read: the previous one plus one period *)
+IF SUBSTITUTE_TIME THEN
+    IF first THEN
+        read_valid := FALSE;
+    END_IF;
+    IF NOT timed OR (read_valid AND now <= t_read) THEN
+        IF first THEN
+            now := 0.0;
+        ELSE
+            now := t_prev + TIME_PERIOD;
+        END_IF;
+        timed := TRUE;
+    ELSE
+        t_read := now;
+        read_valid := TRUE;
+    END_IF;
 END_IF;
 n_clamped := 0;
 (* causal FIR denoiser: newest raw sample first *)
@@ -171,16 +196,16 @@ FOR l := 0 TO N_LAGS - 1 DO
     IF first THEN
         z[l] := xl[l];
     ELSE
-        IF has_time THEN
-            e := EXP(-(time_s - t_prev) / TAU[l]);
+        IF timed THEN
+            e := EXP(-(now - t_prev) / TAU[l]);
         ELSE
             e := DECAY[l];
         END_IF;
         z[l] := e * z[l] + (1.0 - e) * xl[l];
     END_IF;
 END_FOR;
-IF has_time AND NOT first THEN
-    dt := time_s - t_prev;
+IF timed AND NOT first THEN
+    dt := now - t_prev;
 ELSE
     dt := 0.0;
 END_IF;
@@ -193,14 +218,14 @@ IF first THEN
     FOR i := 0 TO N_OUTPUTS - 1 DO
         y_prev[i] := 0.0;
     END_FOR;
-    IF has_time THEN
-        t_prev := time_s;
+    IF timed THEN
+        t_prev := now;
     ELSE
         t_prev := 0.0;
     END_IF;
 ELSE
-    IF has_time THEN
-        t_prev := time_s;
+    IF timed THEN
+        t_prev := now;
     ELSE
         t_prev := t_prev + PERIOD;
     END_IF;

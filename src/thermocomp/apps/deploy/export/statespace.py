@@ -33,7 +33,7 @@ import numpy as np
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ..adaptive import AdaptiveCompensator
 from .errors import NotExportable
-from .output import Output, adapt_fields, guard_fields
+from .output import Output, adapt_fields, guard_fields, time_fields
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
 UNBOUNDED = sys.float_info.max     # the envelope of a machine state (not clamped; finite for JSON/ST)
@@ -66,6 +66,8 @@ class StateSpace:
     # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
     powers: list = field(default_factory=list)
     # what follows the system: the correction guard and the reference update (:mod:`.output`)
+    substitute_time: bool = False    # a missing or non-increasing time: previous + time_period
+    time_period: float = 0.0         # s
     guard: bool = False
     guard_lo: list | None = None     # (n_targets,) µm of predicted error
     guard_hi: list | None = None
@@ -192,7 +194,7 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         intercept=[laws[t][0] for t in targets], b0=[laws[t][1].tolist() for t in targets],
         bd=bd.tolist(), g=g.tolist(), ar=[laws[t][4] for t in targets],
         uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
-        **guard_fields(deployed), **adapt_fields(deployed),
+        **time_fields(deployed), **guard_fields(deployed), **adapt_fields(deployed),
         provenance=dict(provenance or {}))
 
 
@@ -230,6 +232,13 @@ class Simulator:
         """Correction ``C`` (µm, = -predicted error) per target for one sample."""
         u = np.asarray(u, float)
         ss = self.ss
+        if ss.substitute_time:      # as the adaptive compensator judges a time
+            if self.first:
+                self.t_read = np.nan
+            if not np.isfinite(time) or time <= self.t_read:
+                time = 0.0 if self.first else self.t + ss.time_period
+            else:
+                self.t_read = time
         if self.first:
             self.buf = np.tile(u, (len(self.fir), 1))
         else:
