@@ -236,10 +236,20 @@ def test_the_code_of_a_hammerstein_model_streams_as_replay(tmp_path, denoise):
     assert np.max(np.abs(_st(fb, tests, cols) - expected)) <= TOLERANCE_UM
 
 
-def test_the_guarded_learning_block_parses_as_iec_61131_3(dataset, tmp_path):
+def test_every_step_of_the_block_parses_as_iec_61131_3(tmp_path):
+    """Time rule, powers (EXPT), guard and reference update in one block: an adaptive Hammerstein
+    model learning a bias (blark is slow on long constant lists: one block)."""
     from blark import parse_source_code
 
-    deployed, _ = _adaptive(dataset, "mlr", "adapt.method=bias")
+    data = _spindle_dataset(tmp_path / "data")
+    cfg = _compose(f"data.path={data}", "track=false", "model=hammerstein", "adapt.method=bias",
+                   "model.estimator.lagbank.n_taus=3")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
+                          train, ds)
+    ss = state_space(deployed)
+    assert ss.powers and ss.guard and ss.substitute_time and ss.adapt == "bias"
     parsed = parse_source_code(exported_files(deployed, "st")["compensator.st"], fn="compensator.st")
     assert parsed.exception is None, parsed.exception
 
