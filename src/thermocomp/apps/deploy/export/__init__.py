@@ -6,11 +6,11 @@
 * ``c`` -- ``compensator.h``, ``compensator.c`` and the CSV driver ``stream.c`` (:mod:`.c`);
 * ``st`` -- ``compensator.st``, an IEC 61131-3 function block (:mod:`.st`).
 
-Of an adaptive compensator the correction guard is in the code, and the reference update of
-``adapt.method=bias`` (:mod:`.output`).  Every format also writes ``compensator.json``, the
-arrays the code was generated from.  Only
-the linear families export (:data:`~.statespace.LINEAR_FAMILIES`); any other model is refused
-(:class:`~.statespace.NotExportable`) with one line naming them.
+Of an adaptive compensator the time rule and the correction guard are in the code, and the
+reference update of ``adapt.method`` (:mod:`.output`); a Hammerstein model's static powers too.
+Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
+families of :data:`~.statespace.LINEAR_FAMILIES` export; any other model is refused
+(:class:`~.errors.NotExportable`) with one line naming them.
 """
 
 from __future__ import annotations

@@ -13,6 +13,8 @@ import math
 from .statespace import StateSpace
 from .text import banner, correction_names
 
+ADAPT_CODES = {"none": 0, "bias": 1, "rls": 2}
+
 
 def number(v: float) -> str:
     """A double literal that reads back to the same double."""
@@ -57,7 +59,7 @@ def header(ss: StateSpace) -> str:
 #define TC_USES_TIME {int(ss.uses_time)}
 #define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
 #define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
-#define TC_ADAPT {int(ss.adapt != "none")}   /* a bias learned from reference measurements */
+#define TC_ADAPT {ADAPT_CODES[ss.adapt]}   /* learned from reference measurements: 1 bias, 2 gain and bias */
 
 /* Everything the compensator remembers between samples; the caller owns it. */
 typedef struct {{
@@ -71,7 +73,9 @@ typedef struct {{
     double t_read;                              /* last good time read, s */
     double out[TC_N_OUTPUTS];                   /* previous guarded output (guard, reference) */
     double bias[TC_N_OUTPUTS];                  /* learned from reference measurements */
-    double var[TC_N_OUTPUTS];                   /* the bias's variance */
+    double var[TC_N_OUTPUTS];                   /* the bias's variance (TC_ADAPT 1) */
+    double gain[TC_N_OUTPUTS];                  /* learned gain (TC_ADAPT 2) */
+    double cov[TC_N_OUTPUTS][2][2];             /* covariance of (gain, bias) (TC_ADAPT 2) */
 }} tc_state;
 
 static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
@@ -90,7 +94,7 @@ void tc_reset(tc_state *s);
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]);
 
 /* A reference measurement of the error (um, order TC_ERROR_NAMES; NAN: not measured) at the
-   sample of the last tc_step: updates the bias of the next corrections (TC_ADAPT; else
+   sample of the last tc_step: updates the bias (and gain) of the next corrections (TC_ADAPT; else
    nothing).  Returns the number of targets updated. */
 int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]);
 
@@ -127,6 +131,11 @@ void tc_init(tc_state *s) {{
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         s->bias[i] = BIAS0[i];
         s->var[i] = VAR0[i];
+        s->gain[i] = GAIN0[i];
+        s->cov[i][0][0] = COV0[i][0][0];
+        s->cov[i][0][1] = COV0[i][0][1];
+        s->cov[i][1][0] = COV0[i][1][0];
+        s->cov[i][1][1] = COV0[i][1][1];
         s->out[i] = 0.0;
     }}
     tc_reset(s);
@@ -205,7 +214,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             else if (y > GUARD_HI[i]) y = GUARD_HI[i];
         }}
         s->out[i] = y;
-        c[i] = TC_ADAPT ? -(GAIN[i] * y + s->bias[i]) : -y;
+        c[i] = TC_ADAPT ? -(s->gain[i] * y + s->bias[i]) : -y;
     }}
     for (l = TC_DEPTH - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++) s->hist[l][j] = l == 0 ? x[j] : s->hist[l - 1][j];
@@ -213,15 +222,43 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     return clamped;
 }}
 
+static double clip(double v, double lo, double hi) {{ return v < lo ? lo : (v > hi ? hi : v); }}
+
+/* (gain, bias) of target i by recursive least squares on phi = (y, 1) */
+static void rls(tc_state *s, int i, double e) {{
+    double y = s->out[i], (*P)[2] = s->cov[i], trace;
+    double pp0 = P[0][0] * y + P[0][1], pp1 = P[1][0] * y + P[1][1];    /* P phi */
+    double q0 = y * P[0][0] + P[1][0], q1 = y * P[0][1] + P[1][1];      /* phi' P */
+    double den = FORGETTING + (q0 * y + q1);
+    double k0 = pp0 / den, k1 = pp1 / den, err = e - (y * s->gain[i] + s->bias[i]);
+    double g = s->gain[i] + k0 * err, b = s->bias[i] + k1 * err;
+    P[0][0] = (P[0][0] - k0 * q0) / FORGETTING;
+    P[0][1] = (P[0][1] - k0 * q1) / FORGETTING;
+    P[1][0] = (P[1][0] - k1 * q0) / FORGETTING;
+    P[1][1] = (P[1][1] - k1 * q1) / FORGETTING;
+    trace = P[0][0] + P[1][1];
+    if (VAR_CAP > 0.0 && trace / VAR_CAP > 1.0) {{
+        double by = trace / VAR_CAP;
+        P[0][0] /= by; P[0][1] /= by; P[1][0] /= by; P[1][1] /= by;
+    }}
+    s->gain[i] = clip(g, 1.0 - MAX_GAIN_CHANGE, 1.0 + MAX_GAIN_CHANGE);
+    s->bias[i] = clip(b, -MAX_BIAS, MAX_BIAS);
+}}
+
 int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]) {{
     int i, n = 0;
     if (!TC_ADAPT) return 0;
-    /* the bounded scalar filter of a bias (forgetting, variance capped at its prior) */
+    /* the bounded recursive filter (forgetting, covariance capped at its prior) */
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double p = s->var[i], k, b;
         if (!isfinite(measured_error[i])) continue;
+        if (TC_ADAPT == 2) {{
+            rls(s, i, measured_error[i]);
+            n++;
+            continue;
+        }}
         k = p / (FORGETTING + p);
-        b = s->bias[i] + k * (measured_error[i] - GAIN[i] * s->out[i] - s->bias[i]);
+        b = s->bias[i] + k * (measured_error[i] - s->gain[i] * s->out[i] - s->bias[i]);
         p = (p - k * p) / FORGETTING;
         s->var[i] = (VAR_CAP > 0.0 && p / VAR_CAP > 1.0) ? p / (p / VAR_CAP) : p;
         s->bias[i] = b < -MAX_BIAS ? -MAX_BIAS : (b > MAX_BIAS ? MAX_BIAS : b);
@@ -241,7 +278,9 @@ def _output_constants(ss: StateSpace) -> list[str]:
             _array("GUARD_LO", ss.guard_lo or [0.0] * m, (m,)),
             _array("GUARD_HI", ss.guard_hi or [0.0] * m, (m,)), _array("GUARD_RATE", rate, (m,)),
             f"static const double GUARD_PERIOD = {number(ss.guard_period)};",
-            _array("GAIN", ss.adapt_gain or [1.0] * m, (m,)),
+            _array("GAIN0", ss.adapt_gain or [1.0] * m, (m,)),
+            _array("COV0", ss.adapt_cov or [[[0.0, 0.0], [0.0, 0.0]]] * m, (m, 2, 2)),
+            f"static const double MAX_GAIN_CHANGE = {number(ss.adapt_max_gain_change)};",
             _array("BIAS0", ss.adapt_bias or [0.0] * m, (m,)),
             _array("VAR0", ss.adapt_var or [0.0] * m, (m,)),
             f"static const double FORGETTING = {number(ss.adapt_forgetting)};",

@@ -6,10 +6,11 @@ update (pure core).
   target, and one state, the previous guarded output.  A campaign's first output is bounded
   only; every later one is first held within ``guard_rate * dt`` of the previous one (``dt`` the
   time since the previous sample; ``guard_period`` when no later time is given), then bounded.
-* **adapt** (``adapt.method=bias``, :class:`~..adapt.ReferenceAdapter`): the correction is
-  ``-(adapt_gain * y + bias)``; a reference measurement ``e`` of a target, taken where the guarded
-  output was ``y``, updates ``bias`` and its variance ``var`` by the bounded scalar filter of
-  ``adapt.py`` (``adapt_forgetting``, ``adapt_max_bias``, ``adapt_var_cap``).  What was learned
+* **adapt** (``adapt.method=bias|rls``, :class:`~..adapt.ReferenceAdapter`): the correction is
+  ``-(gain * y + bias)``; a reference measurement ``e`` of a target, taken where the guarded
+  output was ``y``, updates ``bias`` and its variance (``bias``), or ``(gain, bias)`` and their
+  covariance (``rls``), by the bounded recursive filter of ``adapt.py`` (``adapt_forgetting``,
+  ``adapt_max_bias``, ``adapt_max_gain_change``, ``adapt_var_cap``).  What was learned
   survives a new campaign; the exported values are those the model was served with.
 
 * **time** (the adaptive compensator's): a missing time, or one not after the last time read,
@@ -28,7 +29,7 @@ import numpy as np
 from ..adaptive import AdaptiveCompensator
 from .errors import NotExportable
 
-EXPORTED_ADAPT = ("none", "bias")
+EXPORTED_ADAPT = ("none", "bias", "rls")
 
 
 def guard_fields(deployed) -> dict:
@@ -57,11 +58,14 @@ def adapt_fields(deployed) -> dict:
         return {}
     if adapt.method not in EXPORTED_ADAPT:
         raise NotExportable(f"adapt.method={adapt.method} is not in the code; adapt.method=bias "
-                            "exports (or none: the frozen model)")
+                            "or rls exports (or none: the frozen model)")
     a = adapt.adapter
+    rls = a.method == "rls"
     return {"adapt": a.method, "adapt_gain": a.gain_.tolist(), "adapt_bias": a.bias_.tolist(),
-            "adapt_var": [float(p[-1, -1]) for p in a._P], "adapt_forgetting": a.forgetting,
-            "adapt_max_bias": a.max_bias_um, "adapt_var_cap": float(np.trace(a._prior))}
+            "adapt_var": None if rls else [float(p[0, 0]) for p in a._P],
+            "adapt_cov": [p.tolist() for p in a._P] if rls else None,
+            "adapt_forgetting": a.forgetting, "adapt_max_bias": a.max_bias_um,
+            "adapt_max_gain_change": a.max_gain_change, "adapt_var_cap": float(np.trace(a._prior))}
 
 
 def not_in_code(deployed) -> list[str]:
@@ -89,6 +93,7 @@ class Output:
         self.gain = np.asarray(ss.adapt_gain or [1.0] * m, float)
         self.bias = np.asarray(ss.adapt_bias or [0.0] * m, float).copy()
         self.var = np.asarray(ss.adapt_var or [0.0] * m, float).copy()
+        self.cov = np.asarray(ss.adapt_cov or np.zeros((m, 2, 2)), float).copy()
         self.y = np.zeros(m)
 
     def step(self, y: np.ndarray, first: bool, dt: float) -> np.ndarray:
@@ -111,9 +116,24 @@ class Output:
         for i, e in enumerate(np.asarray(measured, float)):
             if not np.isfinite(e):
                 continue
+            if self.ss.adapt == "rls":
+                self._rls(i, e, lam, cap)
+                continue
             p = self.var[i]
             k = p / (lam + p)
             b = self.bias[i] + k * (e - self.gain[i] * self.y[i] - self.bias[i])
             p = (p - k * p) / lam
             self.var[i] = p / max(1.0, p / cap) if cap > 0 else p
             self.bias[i] = min(max(b, -self.ss.adapt_max_bias), self.ss.adapt_max_bias)
+
+    def _rls(self, i: int, e: float, lam: float, cap: float) -> None:
+        """``(gain, bias)`` of target ``i`` by recursive least squares on ``phi = (y, 1)``."""
+        y, P = self.y[i], self.cov[i]
+        phi = np.array([y, 1.0])
+        k = P @ phi / (lam + phi @ P @ phi)
+        theta = np.array([self.gain[i], self.bias[i]]) + k * (e - (y * self.gain[i] + self.bias[i]))
+        P = (P - np.outer(k, phi @ P)) / lam
+        self.cov[i] = P / max(1.0, float(np.trace(P)) / cap) if cap > 0 else P
+        g = self.ss.adapt_max_gain_change
+        self.gain[i] = min(max(theta[0], 1 - g), 1 + g)
+        self.bias[i] = min(max(theta[1], -self.ss.adapt_max_bias), self.ss.adapt_max_bias)

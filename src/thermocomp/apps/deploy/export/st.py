@@ -72,12 +72,15 @@ def function_block(ss: StateSpace) -> str:
         _constant("GUARD_RATE", [LREAL_MAX if r is None else r for r in ss.guard_rate or []], (m,)),
         f"    GUARD_PERIOD : LREAL := {literal(ss.guard_period)};",
         f"    USE_ADAPT : BOOL := {'TRUE' if ss.adapt != 'none' else 'FALSE'};",
-        _constant("GAIN", ss.adapt_gain or [1.0] * m, (m,)),
+        f"    ADAPT_RLS : BOOL := {'TRUE' if ss.adapt == 'rls' else 'FALSE'};",
+        f"    MAX_GAIN_CHANGE : LREAL := {literal(ss.adapt_max_gain_change)};",
         f"    FORGETTING : LREAL := {literal(ss.adapt_forgetting)};",
         f"    MAX_BIAS : LREAL := {literal(ss.adapt_max_bias)};",
         f"    CAP_VARIANCE : LREAL := {literal(ss.adapt_var_cap)};"])
-    learned = "\n".join([_constant("bias", ss.adapt_bias or [], (m,)),
-                         _constant("variance", ss.adapt_var or [], (m,))])
+    learned = "\n".join([_constant("gain", ss.adapt_gain or [1.0] * m, (m,)),
+                         _constant("bias", ss.adapt_bias or [], (m,)),
+                         _constant("variance", ss.adapt_var or [], (m,)),
+                         _constant("cov", ss.adapt_cov or [], (m, 2, 2))])
     return f"""{banner(ss, "(*", "  ", "*)")}
 FUNCTION_BLOCK {NAME}
 VAR_INPUT
@@ -116,6 +119,17 @@ VAR
     kg : LREAL;
     p : LREAL;
     b : LREAL;
+    g : LREAL;
+    yo : LREAL;
+    pp0 : LREAL;
+    pp1 : LREAL;
+    q0 : LREAL;
+    q1 : LREAL;
+    den : LREAL;
+    k0 : LREAL;
+    k1 : LREAL;
+    err : LREAL;
+    tr : LREAL;
     out_prev : ARRAY[{_dims(m)}] OF LREAL;
 {learned}
     i : INT;
@@ -269,23 +283,57 @@ FOR i := 0 TO N_OUTPUTS - 1 DO
     END_IF;
     out_prev[i] := y;
     IF USE_ADAPT THEN
-        c[i] := -(GAIN[i] * y + bias[i]);
+        c[i] := -(gain[i] * y + bias[i]);
     ELSE
         c[i] := -y;
     END_IF;
 END_FOR;
-(* a reference measurement at this sample: the bias of the next corrections learns from it *)
+(* a reference measurement at this sample: the next corrections learn from it *)
 IF USE_ADAPT THEN
     FOR i := 0 TO N_OUTPUTS - 1 DO
         IF ref_valid[i] THEN
-            p := variance[i];
-            kg := p / (FORGETTING + p);
-            b := bias[i] + kg * (ref_error[i] - GAIN[i] * out_prev[i] - bias[i]);
-            p := (p - kg * p) / FORGETTING;
-            IF CAP_VARIANCE > 0.0 AND p / CAP_VARIANCE > 1.0 THEN
-                p := p / (p / CAP_VARIANCE);
+            IF ADAPT_RLS THEN
+                (* (gain, bias) by recursive least squares on phi = (y, 1) *)
+                yo := out_prev[i];
+                pp0 := cov[i, 0, 0] * yo + cov[i, 0, 1];
+                pp1 := cov[i, 1, 0] * yo + cov[i, 1, 1];
+                q0 := yo * cov[i, 0, 0] + cov[i, 1, 0];
+                q1 := yo * cov[i, 0, 1] + cov[i, 1, 1];
+                den := FORGETTING + (q0 * yo + q1);
+                k0 := pp0 / den;
+                k1 := pp1 / den;
+                err := ref_error[i] - (yo * gain[i] + bias[i]);
+                g := gain[i] + k0 * err;
+                b := bias[i] + k1 * err;
+                cov[i, 0, 0] := (cov[i, 0, 0] - k0 * q0) / FORGETTING;
+                cov[i, 0, 1] := (cov[i, 0, 1] - k0 * q1) / FORGETTING;
+                cov[i, 1, 0] := (cov[i, 1, 0] - k1 * q0) / FORGETTING;
+                cov[i, 1, 1] := (cov[i, 1, 1] - k1 * q1) / FORGETTING;
+                tr := cov[i, 0, 0] + cov[i, 1, 1];
+                IF CAP_VARIANCE > 0.0 AND tr / CAP_VARIANCE > 1.0 THEN
+                    tr := tr / CAP_VARIANCE;
+                    cov[i, 0, 0] := cov[i, 0, 0] / tr;
+                    cov[i, 0, 1] := cov[i, 0, 1] / tr;
+                    cov[i, 1, 0] := cov[i, 1, 0] / tr;
+                    cov[i, 1, 1] := cov[i, 1, 1] / tr;
+                END_IF;
+                IF g < 1.0 - MAX_GAIN_CHANGE THEN
+                    g := 1.0 - MAX_GAIN_CHANGE;
+                ELSIF g > 1.0 + MAX_GAIN_CHANGE THEN
+                    g := 1.0 + MAX_GAIN_CHANGE;
+                END_IF;
+                gain[i] := g;
+            ELSE
+                (* the bias alone: a scalar filter *)
+                p := variance[i];
+                kg := p / (FORGETTING + p);
+                b := bias[i] + kg * (ref_error[i] - gain[i] * out_prev[i] - bias[i]);
+                p := (p - kg * p) / FORGETTING;
+                IF CAP_VARIANCE > 0.0 AND p / CAP_VARIANCE > 1.0 THEN
+                    p := p / (p / CAP_VARIANCE);
+                END_IF;
+                variance[i] := p;
             END_IF;
-            variance[i] := p;
             IF b < -MAX_BIAS THEN
                 b := -MAX_BIAS;
             ELSIF b > MAX_BIAS THEN

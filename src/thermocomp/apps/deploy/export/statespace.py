@@ -15,8 +15,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    time since the previous sample (``period`` when no time is given);
 5. the correction guard, when the model was deployed with one (:mod:`.output`): ``y_t`` held
    within ``guard_rate_t * dt`` of its previous value, then within ``[guard_lo_t, guard_hi_t]``;
-6. the correction sent to the CNC is ``C_t = -y_t`` (with ``adapt=bias``:
-   ``-(adapt_gain_t * y_t + bias_t)``, ``bias_t`` updated by each reference measurement).
+6. the correction sent to the CNC is ``C_t = -y_t`` (with ``adapt``: ``-(gain_t * y_t + bias_t)``,
+   updated by each reference measurement).
 
 At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
 history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
@@ -73,12 +73,14 @@ class StateSpace:
     guard_hi: list | None = None
     guard_rate: list | None = None   # (n_targets,) µm/s; null: no rate limit
     guard_period: float = 0.0        # s: ``dt`` when no later time is given
-    adapt: str = "none"              # none | bias
-    adapt_gain: list | None = None   # (n_targets,)
-    adapt_bias: list | None = None   # (n_targets,) µm, as served (learned so far)
-    adapt_var: list | None = None    # (n_targets,) µm², the bias's variance
+    adapt: str = "none"              # none | bias | rls
+    adapt_gain: list | None = None   # (n_targets,) as served (learned so far)
+    adapt_bias: list | None = None   # (n_targets,) µm, as served
+    adapt_var: list | None = None    # (n_targets,) µm², the bias's variance (bias)
+    adapt_cov: list | None = None    # (n_targets, 2, 2) covariance of (gain, bias) (rls)
     adapt_forgetting: float = 1.0
     adapt_max_bias: float = 0.0      # µm
+    adapt_max_gain_change: float = 0.0
     adapt_var_cap: float = 0.0       # µm², the prior variance (the variance never exceeds it)
     provenance: dict = field(default_factory=dict)
 
