@@ -1,6 +1,8 @@
-"""What follows the linear system in the exported code: the correction guard and the reference
-update (pure core).
+"""What surrounds the linear system in the exported code: the time rule, the correction guard and
+the reference update (pure core).
 
+* **time** (the adaptive compensator's): a missing time, or one not after the last time read,
+  is taken as the previous time plus ``time_period`` (``substitute_time``).
 * **guard** (:class:`~..guard.CorrectionGuard` of the adaptive compensator): static limits
   ``guard_lo``, ``guard_hi`` (µm of predicted error) and ``guard_rate`` (µm/s; null: none) per
   target, and one state, the previous guarded output.  A campaign's first output is bounded
@@ -12,9 +14,6 @@ update (pure core).
   covariance (``rls``), by the bounded recursive filter of ``adapt.py`` (``adapt_forgetting``,
   ``adapt_max_bias``, ``adapt_max_gain_change``, ``adapt_var_cap``).  What was learned
   survives a new campaign; the exported values are those the model was served with.
-
-* **time** (the adaptive compensator's): a missing time, or one not after the last time read,
-  is taken as the previous time plus ``time_period`` (``substitute_time``).
 
 The served model's sensor monitor (exclusions, reconstruction of a sensor from the others) and
 the holding of a missing machine state are not in the code: :func:`not_in_code` names them.
