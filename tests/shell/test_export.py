@@ -314,11 +314,10 @@ def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(datas
     ("arx_rf", ["model.estimator.forest.n_estimators=3"], ["mlr, pcr, arx, lagbank"]),
     ("lstm", ["model.estimator.max_epochs=2", "model.estimator.hidden_size=4",
               "model.estimator.chunk=16"], ["mlr, pcr, arx, lagbank"]),
-    ("hammerstein", [], ["mlr, pcr, arx, lagbank"]),
     ("mlr", ["export.format=onnx"], ["onnx", "mlr, pcr, arx, lagbank"]),
     ("mlr", ["denoise=emd", "denoise.denoiser.causal=window"], ["causal=fir"]),
     ("mlr", ["promote.envelope.policy=refuse"], ["refuse", "policy=clamp"]),
-], ids=["forest", "lstm", "hammerstein", "onnx", "window-denoiser", "refuse-policy"])
+], ids=["forest", "lstm", "onnx", "window-denoiser", "refuse-policy"])
 def test_what_is_not_one_linear_system_is_refused_in_one_line(dataset, tmp_path, capsys, model,
                                                               extra, says):
     deploy = [e for e in extra if e.startswith(("export.", "promote."))]

@@ -1,10 +1,12 @@
 """`thermocomp export`: the deployed compensator as coefficients and code (``docs/cli.md``).
 
 ``export.model``: a pyfunc folder or ``models:/<name>@<alias>`` is exported as deployed; a
-``model.pkl`` is first made deployable as ``replay`` does it (its envelope from the train split
-of ``data.path``).  Of an adaptive compensator the plain stream inside is exported (the sensor
-monitor and the correction guard stay with the served model).  The files are written into
-``out`` together, or not at all (:func:`~thermocomp.base.files.staged_outputs`).
+``model.pkl`` is first made deployable as ``replay`` does it (its envelope, and with
+``monitor.adaptive`` its guard, from the train split of ``data.path``; ``adapt.*``).  Of an
+adaptive compensator the plain stream, its correction guard and time rule are exported (its
+sensor monitor stays with the served model: the message and the provenance say so);
+``adapt.method`` (bias, rls) is exported with them.  The files are written into ``out``
+together, or not at all (:func:`~thermocomp.base.files.staged_outputs`).
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from pathlib import Path
 
 from omegaconf import DictConfig
 
-from ...apps.deploy.export import NotExportable, exported_files
+from ...apps.deploy.export import NotExportable, exported_files, not_in_code
 from ...apps.deploy.report import plain
 from ...base.errors import ConfigError
 from ...base.files import folder_digest, staged_outputs
@@ -22,7 +24,7 @@ from ...base.log import say
 from ...base.paths import resolve
 from ..model_store import load_model, model_family
 from ..tracking import connect
-from .common import check_config, deploy_stream, read_streamed
+from .common import check_config, deploy_stream, deployable, read_streamed
 
 
 def _registry_run(source: str) -> str | None:
@@ -61,7 +63,7 @@ def _deployed(cfg: DictConfig, source: str) -> tuple[object, dict]:
     comp = load_model(path)
     ds, train_ids, _, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deploy_stream(cfg, comp, train, f"export.model={source}")
+    deployed = deployable(cfg, deploy_stream(cfg, comp, train, f"export.model={source}"), train, ds)
     return deployed, {"run_id": None, "dataset_hash": folder_digest(resolve(cfg.data.path))}
 
 
@@ -77,15 +79,16 @@ def export(cfg: DictConfig) -> dict:
     source, fmt = str(source), str(cfg.export.format)
     deployed, provenance = _deployed(cfg, source)
     stream = plain(deployed)
-    if stream is not deployed:
-        say("exporting the plain stream of the adaptive compensator: its sensor monitor and "
-            "correction guard stay with the served model")
+    left = not_in_code(deployed)
+    if left:
+        say(f"not in the code (the served model only): {'; '.join(left)}")
     family = model_family(stream.compensator)
     units = {c: "degC" if c.startswith("T_") else "" for c in stream.columns_}
     provenance.update(model=family, source=source, version=version(), units=units,
-                      exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"))
+                      exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
+                      not_in_code=left)
     try:
-        files = exported_files(stream, fmt, provenance)
+        files = exported_files(deployed, fmt, provenance)
     except NotExportable as exc:
         raise ConfigError(f"export.model={source} ({family}) cannot be exported as {fmt}: "
                           f"{exc}") from None

@@ -1,6 +1,7 @@
 """The exported system (:class:`~.statespace.StateSpace`) as C99: ``compensator.h``/``.c``
-(``tc_init``/``tc_step`` on a caller-owned state struct, no allocation, no library beyond
-``exp``) and ``stream.c``, a driver that reads CSV rows on stdin and prints the corrections.
+(``tc_init``/``tc_reset``/``tc_step``/``tc_reference`` on a caller-owned state struct, no
+allocation, no library beyond ``exp`` and ``pow``) and ``stream.c``, a driver that reads CSV rows on stdin
+and prints the corrections.
 
 Build and run: ``cc compensator.c stream.c -lm -o stream && ./stream < campaign.csv``.
 """
@@ -11,6 +12,8 @@ import math
 
 from .statespace import StateSpace
 from .text import banner, correction_names
+
+ADAPT_CODES = {"none": 0, "bias": 1, "rls": 2}
 
 
 def number(v: float) -> str:
@@ -25,6 +28,11 @@ def _array(name: str, values, shape: tuple[int, ...]) -> str:
     return f"static const double {name}{dims} = {_braced(values, len(shape))};"
 
 
+def _ints(name: str, values) -> str:
+    items = ", ".join(str(int(v)) for v in values) or "0"
+    return f"static const int {name}[{max(len(values), 1)}] = {{{items}}};"
+
+
 def _braced(values, rank: int) -> str:
     """A nested C initialiser; an empty dimension holds one zero (C has no empty arrays)."""
     if rank == 0:
@@ -36,6 +44,7 @@ def _braced(values, rank: int) -> str:
 def header(ss: StateSpace) -> str:
     n, m, taps = len(ss.inputs), len(ss.targets), len(ss.fir)
     names = ", ".join(f'"{c}"' for c in ss.inputs)
+    errors = ", ".join(f'"{t}"' for t in ss.targets)
     outs = ", ".join(f'"{c}"' for c in correction_names(ss.targets))
     return f"""{banner(ss, "/*", " *", " */")}
 #ifndef THERMOCOMP_COMPENSATOR_H
@@ -46,7 +55,11 @@ def header(ss: StateSpace) -> str:
 #define TC_TAPS {taps}
 #define TC_DEPTH {ss.depth}
 #define TC_N_LAGS {len(ss.taus)}
+#define TC_N_POWERS {len(ss.powers)}   /* powers of machine states (Hammerstein) */
 #define TC_USES_TIME {int(ss.uses_time)}
+#define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
+#define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
+#define TC_ADAPT {ADAPT_CODES[ss.adapt]}   /* learned from reference measurements: 1 bias, 2 gain and bias */
 
 /* Everything the compensator remembers between samples; the caller owns it. */
 typedef struct {{
@@ -57,46 +70,90 @@ typedef struct {{
     double z[{max(len(ss.taus), 1)}];           /* first-order lags */
     double y[TC_N_OUTPUTS];                     /* previous predicted error (AR feedback) */
     double t;                                   /* previous sample time, s */
+    double t_read;                              /* last good time read, s */
+    double out[TC_N_OUTPUTS];                   /* previous guarded output (guard, reference) */
+    double bias[TC_N_OUTPUTS];                  /* learned from reference measurements */
+    double var[TC_N_OUTPUTS];                   /* the bias's variance (TC_ADAPT 1) */
+    double gain[TC_N_OUTPUTS];                  /* learned gain (TC_ADAPT 2) */
+    double cov[TC_N_OUTPUTS][2][2];             /* covariance of (gain, bias) (TC_ADAPT 2) */
 }} tc_state;
 
 static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
 static const char *const TC_OUTPUT_NAMES[TC_N_OUTPUTS] = {{{outs}}};
+static const char *const TC_ERROR_NAMES[TC_N_OUTPUTS] = {{{errors}}};  /* measured errors */
 
-/* Start a campaign: the next sample is the reference. */
+/* The compensator as exported (what was learned: as served), and a campaign starts. */
 void tc_init(tc_state *s);
+
+/* Start a campaign (the next sample is the reference); what was learned is kept. */
+void tc_reset(tc_state *s);
 
 /* One sample: raw inputs u (order TC_INPUT_NAMES), its time in s (NAN: one period after the
    previous one) -> corrections c (um, order TC_OUTPUT_NAMES).  Returns the number of inputs
    clamped to the training envelope. */
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]);
 
+/* A reference measurement of the error (um, order TC_ERROR_NAMES; NAN: not measured) at the
+   sample of the last tc_step: updates the bias (and gain) of the next corrections (TC_ADAPT; else
+   nothing).  Returns the number of targets updated. */
+int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]);
+
 #endif
 """
 
 
 def source(ss: StateSpace) -> str:
-    n, m, taps, k = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus)
+    n, m, taps, k, p = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), len(ss.powers)
     d = ss.depth
     consts = "\n".join([
         _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
         _array("TAU", ss.taus, (k,)), _array("DECAY", ss.lag_decay, (k,)),
-        f"static const int LAG_INPUT[{max(k, 1)}] = {{{', '.join(map(str, ss.lag_input)) or '0'}}};",
-        _array("INTERCEPT", ss.intercept, (m,)), _array("B0", ss.b0, (m, n)),
+        _ints("LAG_INPUT", ss.lag_input),
+        _array("INTERCEPT", ss.intercept, (m,)), _array("B0", ss.b0, (m, n + p)),
+        _ints("POWER_SRC", [q[0] for q in ss.powers]),
+        _array("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
+        _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         _array("BD", ss.bd, (m, d, n)), _array("G", ss.g, (m, k)), _array("AR", ss.ar, (m,)),
         f"static const double PERIOD = {number(ss.period)};",
-        f"static const int CLAMP = {int(ss.clamp)};"])
+        f"static const int CLAMP = {int(ss.clamp)};",
+        *_output_constants(ss)])
     return f"""{banner(ss, "/*", " *", " */")}
 #include <math.h>
 #include "compensator.h"
 
 {consts}
 
-void tc_init(tc_state *s) {{ s->first = 1; }}
+void tc_reset(tc_state *s) {{ s->first = 1; }}
+
+void tc_init(tc_state *s) {{
+    int i;
+    for (i = 0; i < TC_N_OUTPUTS; i++) {{
+        s->bias[i] = BIAS0[i];
+        s->var[i] = VAR0[i];
+        s->gain[i] = GAIN0[i];
+        s->cov[i][0][0] = COV0[i][0][0];
+        s->cov[i][0][1] = COV0[i][0][1];
+        s->cov[i][1][0] = COV0[i][1][0];
+        s->cov[i][1][1] = COV0[i][1][1];
+        s->out[i] = 0.0;
+    }}
+    tc_reset(s);
+}}
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
-    double v[TC_N_INPUTS], x[TC_N_INPUTS], xl[{max(k, 1)}];
+    double v[TC_N_INPUTS], x[TC_N_INPUTS + TC_N_POWERS], xl[{max(k, 1)}];
+    double dt, step;
     int i, j, l, clamped = 0;
+    if (TC_SUBSTITUTE_TIME) {{
+        /* a missing time, or one not after the last one read: the previous one + one period */
+        if (s->first) s->t_read = NAN;
+        if (!isfinite(time) || (isfinite(s->t_read) && time <= s->t_read))
+            time = s->first ? 0.0 : s->t + TIME_PERIOD;
+        else
+            s->t_read = time;
+    }}
+    dt = s->first ? NAN : time - s->t;
     /* causal FIR denoiser */
     for (l = TC_TAPS - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++)
@@ -111,6 +168,11 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             x[j] = x[j] < LO[j] ? LO[j] : HI[j];
             clamped++;
         }}
+    }}
+    /* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale */
+    for (l = 0; l < TC_N_POWERS; l++) {{
+        double w = v[POWER_SRC[l]] / POWER_SCALE[l];
+        x[TC_N_INPUTS + l] = w < 0.0 ? -pow(-w, POWER_EXP[l]) : pow(w, POWER_EXP[l]);
     }}
     /* first-order lags */
     for (l = 0; l < TC_N_LAGS; l++) {{
@@ -133,27 +195,106 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     /* outputs: static part, input history, lags, AR feedback */
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double y = INTERCEPT[i];
-        for (j = 0; j < TC_N_INPUTS; j++) y += B0[i][j] * x[j];
+        for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) y += B0[i][j] * x[j];
         for (l = 0; l < TC_DEPTH; l++)
             for (j = 0; j < TC_N_INPUTS; j++) y += BD[i][l][j] * s->hist[l][j];
         for (l = 0; l < TC_N_LAGS; l++) y += G[i][l] * (s->z[l] - xl[l]);
         y += AR[i] * s->y[i];
         s->y[i] = y;
-        c[i] = -y;
+        /* correction guard: within the rate limit of the previous output, then the bound */
+        if (TC_GUARD) {{
+            if (!s->first) {{
+                double lim, d = y - s->out[i];
+                step = (isfinite(dt) && dt > 0.0) ? dt : GUARD_PERIOD;
+                lim = GUARD_RATE[i] * step;
+                if (d > lim) y = s->out[i] + lim;
+                else if (d < -lim) y = s->out[i] - lim;
+            }}
+            if (y < GUARD_LO[i]) y = GUARD_LO[i];
+            else if (y > GUARD_HI[i]) y = GUARD_HI[i];
+        }}
+        s->out[i] = y;
+        c[i] = TC_ADAPT ? -(s->gain[i] * y + s->bias[i]) : -y;
     }}
     for (l = TC_DEPTH - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++) s->hist[l][j] = l == 0 ? x[j] : s->hist[l - 1][j];
     s->first = 0;
     return clamped;
 }}
+
+static double clip(double v, double lo, double hi) {{ return v < lo ? lo : (v > hi ? hi : v); }}
+
+/* (gain, bias) of target i by recursive least squares on phi = (y, 1) */
+static void rls(tc_state *s, int i, double e) {{
+    double y = s->out[i], (*P)[2] = s->cov[i], trace;
+    double pp0 = P[0][0] * y + P[0][1], pp1 = P[1][0] * y + P[1][1];    /* P phi */
+    double q0 = y * P[0][0] + P[1][0], q1 = y * P[0][1] + P[1][1];      /* phi' P */
+    double den = FORGETTING + (q0 * y + q1);
+    double k0 = pp0 / den, k1 = pp1 / den, err = e - (y * s->gain[i] + s->bias[i]);
+    double g = s->gain[i] + k0 * err, b = s->bias[i] + k1 * err;
+    P[0][0] = (P[0][0] - k0 * q0) / FORGETTING;
+    P[0][1] = (P[0][1] - k0 * q1) / FORGETTING;
+    P[1][0] = (P[1][0] - k1 * q0) / FORGETTING;
+    P[1][1] = (P[1][1] - k1 * q1) / FORGETTING;
+    trace = P[0][0] + P[1][1];
+    if (VAR_CAP > 0.0 && trace / VAR_CAP > 1.0) {{
+        double by = trace / VAR_CAP;
+        P[0][0] /= by; P[0][1] /= by; P[1][0] /= by; P[1][1] /= by;
+    }}
+    s->gain[i] = clip(g, 1.0 - MAX_GAIN_CHANGE, 1.0 + MAX_GAIN_CHANGE);
+    s->bias[i] = clip(b, -MAX_BIAS, MAX_BIAS);
+}}
+
+int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]) {{
+    int i, n = 0;
+    if (!TC_ADAPT) return 0;
+    /* the bounded recursive filter (forgetting, covariance capped at its prior) */
+    for (i = 0; i < TC_N_OUTPUTS; i++) {{
+        double p = s->var[i], k, b;
+        if (!isfinite(measured_error[i])) continue;
+        if (TC_ADAPT == 2) {{
+            rls(s, i, measured_error[i]);
+            n++;
+            continue;
+        }}
+        k = p / (FORGETTING + p);
+        b = s->bias[i] + k * (measured_error[i] - s->gain[i] * s->out[i] - s->bias[i]);
+        p = (p - k * p) / FORGETTING;
+        s->var[i] = (VAR_CAP > 0.0 && p / VAR_CAP > 1.0) ? p / (p / VAR_CAP) : p;
+        s->bias[i] = b < -MAX_BIAS ? -MAX_BIAS : (b > MAX_BIAS ? MAX_BIAS : b);
+        n++;
+    }}
+    return n;
+}}
 """
+
+
+def _output_constants(ss: StateSpace) -> list[str]:
+    """The time rule's period, the guard's limits and the reference update's constants (zeros
+    where there is none)."""
+    m = len(ss.targets)
+    rate = [math.inf if r is None else r for r in ss.guard_rate or [0.0] * m]
+    return [f"static const double TIME_PERIOD = {number(ss.time_period)};",
+            _array("GUARD_LO", ss.guard_lo or [0.0] * m, (m,)),
+            _array("GUARD_HI", ss.guard_hi or [0.0] * m, (m,)), _array("GUARD_RATE", rate, (m,)),
+            f"static const double GUARD_PERIOD = {number(ss.guard_period)};",
+            _array("GAIN0", ss.adapt_gain or [1.0] * m, (m,)),
+            _array("COV0", ss.adapt_cov or [[[0.0, 0.0], [0.0, 0.0]]] * m, (m, 2, 2)),
+            f"static const double MAX_GAIN_CHANGE = {number(ss.adapt_max_gain_change)};",
+            _array("BIAS0", ss.adapt_bias or [0.0] * m, (m,)),
+            _array("VAR0", ss.adapt_var or [0.0] * m, (m,)),
+            f"static const double FORGETTING = {number(ss.adapt_forgetting)};",
+            f"static const double MAX_BIAS = {number(ss.adapt_max_bias)};",
+            f"static const double VAR_CAP = {number(ss.adapt_var_cap)};"]
 
 
 DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis> as CSV on stdout.
  *
  * The header names the columns (any order, extra columns ignored); every input of
  * TC_INPUT_NAMES is needed, `time` (s) when the model reads it.  A blank row, or a `reset`
- * column holding 1, starts a campaign (the next row is its reference).
+ * column holding 1, starts a campaign (the next row is its reference).  With TC_ADAPT, a row
+ * carrying a measured error in a TC_ERROR_NAMES column (E_<axis>, optional; blank: none) is a
+ * reference measurement: its correction is printed, then the bias learns from it.
  * Build: cc compensator.c stream.c -lm -o stream
  */
 #include <math.h>
@@ -186,10 +327,11 @@ static double value(const char *cell) {
 int main(void) {
     static char line[MAX_LINE];
     char *cells[MAX_COLS];
-    int where[TC_N_INPUTS], time_col = -1, reset_col = -1, ncols, i, j;
+    int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, ncols, i, j;
+    int measured;
     long row = 1;
     tc_state s;
-    double u[TC_N_INPUTS], c[TC_N_OUTPUTS];
+    double u[TC_N_INPUTS], c[TC_N_OUTPUTS], e[TC_N_OUTPUTS];
 
     if (!fgets(line, sizeof line, stdin)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
     ncols = split(line, cells);
@@ -200,6 +342,11 @@ int main(void) {
             fprintf(stderr, "stream: the header lacks input column %s\n", TC_INPUT_NAMES[i]);
             return 2;
         }
+    }
+    for (i = 0; i < TC_N_OUTPUTS; i++) {
+        error_col[i] = -1;
+        for (j = 0; TC_ADAPT && j < ncols; j++)
+            if (strcmp(cells[j], TC_ERROR_NAMES[i]) == 0) error_col[i] = j;
     }
     for (j = 0; j < ncols; j++) {
         if (strcmp(cells[j], "time") == 0) time_col = j;
@@ -212,12 +359,12 @@ int main(void) {
     tc_init(&s);
     while (fgets(line, sizeof line, stdin)) {
         row++;
-        if (line[strspn(line, " \t\r\n")] == '\0') { tc_init(&s); continue; }
+        if (line[strspn(line, " \t\r\n")] == '\0') { tc_reset(&s); continue; }
         if (split(line, cells) != ncols) {
             fprintf(stderr, "stream: row %ld has not %d cells\n", row, ncols);
             return 2;
         }
-        if (reset_col >= 0 && value(cells[reset_col]) == 1.0) tc_init(&s);
+        if (reset_col >= 0 && value(cells[reset_col]) == 1.0) tc_reset(&s);
         for (i = 0; i < TC_N_INPUTS; i++) {
             u[i] = value(cells[where[i]]);
             if (!isfinite(u[i])) {
@@ -229,6 +376,11 @@ int main(void) {
         tc_step(&s, u, time_col >= 0 ? value(cells[time_col]) : NAN, c);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
         printf("\n");
+        for (i = measured = 0; i < TC_N_OUTPUTS; i++) {
+            e[i] = error_col[i] >= 0 ? value(cells[error_col[i]]) : NAN;
+            measured |= isfinite(e[i]);
+        }
+        if (measured) tc_reference(&s, e);
     }
     return 0;
 }

@@ -1,10 +1,13 @@
 """The exported system (:class:`~.statespace.StateSpace`) as an IEC 61131-3 Structured Text
 function block, ``FB_ThermoComp``, with the interface of the C code: one call is one
-``tc_step``; ``reset := TRUE`` is ``tc_init`` before it (the sample starts a campaign).
+``tc_step``; ``reset := TRUE`` is ``tc_reset`` before it (the sample starts a campaign).
 
 Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: one period
-after the previous sample; ST has no NaN); outputs ``c`` (µm) and ``n_clamped``.  Only
-assignments, ``IF``, ``FOR`` and ``EXP`` are used, one statement a line.
+after the previous sample; ST has no NaN), ``ref_valid`` and ``ref_error`` (per target: a
+reference measurement of the error at this sample, which ``tc_reference`` takes after the
+step); outputs ``c`` (µm) and ``n_clamped``.  What was learned from references survives
+``reset`` (the instance's initial values are the exported ones).  Only assignments, ``IF``,
+``FOR``, ``EXP`` and ``EXPT`` are used, one statement a line.
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from .statespace import StateSpace
 from .text import banner
 
 NAME = "FB_ThermoComp"
+LREAL_MAX = 1.7976931348623157e308   # an unlimited rate (ST has no infinity)
 
 
 def literal(v: float) -> str:
@@ -46,17 +50,37 @@ def _size(shape) -> int:
 
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
+    p = len(ss.powers)
     consts = "\n".join([
         f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    TAPS : INT := {taps};",
-        f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};",
+        f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};", f"    N_POWERS : INT := {p};",
         f"    PERIOD : LREAL := {literal(ss.period)};",
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
         _constant("TAU", ss.taus, (k,)), _constant("DECAY", ss.lag_decay, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
-        _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n)),
-        _constant("BD", ss.bd, (m, d, n)), _constant("G", ss.g, (m, k)), _constant("AR", ss.ar, (m,))])
+        _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n + p)),
+        _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
+        _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
+        _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
+        _constant("BD", ss.bd, (m, d, n)), _constant("G", ss.g, (m, k)), _constant("AR", ss.ar, (m,)),
+        f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
+        f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
+        f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
+        _constant("GUARD_LO", ss.guard_lo or [], (m,)), _constant("GUARD_HI", ss.guard_hi or [], (m,)),
+        _constant("GUARD_RATE", [LREAL_MAX if r is None else r for r in ss.guard_rate or []], (m,)),
+        f"    GUARD_PERIOD : LREAL := {literal(ss.guard_period)};",
+        f"    USE_ADAPT : BOOL := {'TRUE' if ss.adapt != 'none' else 'FALSE'};",
+        f"    ADAPT_RLS : BOOL := {'TRUE' if ss.adapt == 'rls' else 'FALSE'};",
+        f"    MAX_GAIN_CHANGE : LREAL := {literal(ss.adapt_max_gain_change)};",
+        f"    FORGETTING : LREAL := {literal(ss.adapt_forgetting)};",
+        f"    MAX_BIAS : LREAL := {literal(ss.adapt_max_bias)};",
+        f"    CAP_VARIANCE : LREAL := {literal(ss.adapt_var_cap)};"])
+    learned = "\n".join([_constant("gain", ss.adapt_gain or [1.0] * m, (m,)),
+                         _constant("bias", ss.adapt_bias or [], (m,)),
+                         _constant("variance", ss.adapt_var or [], (m,)),
+                         _constant("cov", ss.adapt_cov or [], (m, 2, 2))])
     return f"""{banner(ss, "(*", "  ", "*)")}
 FUNCTION_BLOCK {NAME}
 VAR_INPUT
@@ -64,6 +88,8 @@ VAR_INPUT
     time_s : LREAL;
     has_time : BOOL;
     reset : BOOL;
+    ref_valid : ARRAY[{_dims(m)}] OF BOOL;
+    ref_error : ARRAY[{_dims(m)}] OF LREAL;
 END_VAR
 VAR_OUTPUT
     c : ARRAY[{_dims(m)}] OF LREAL;
@@ -77,11 +103,35 @@ VAR
     z : ARRAY[{_dims(k)}] OF LREAL;
     y_prev : ARRAY[{_dims(m)}] OF LREAL;
     t_prev : LREAL;
+    t_read : LREAL;
+    read_valid : BOOL;
+    now : LREAL;
+    timed : BOOL;
     v : ARRAY[{_dims(n)}] OF LREAL;
-    x : ARRAY[{_dims(n)}] OF LREAL;
+    x : ARRAY[{_dims(n + p)}] OF LREAL;
+    w : LREAL;
     xl : ARRAY[{_dims(k)}] OF LREAL;
     e : LREAL;
     y : LREAL;
+    dt : LREAL;
+    lim : LREAL;
+    dy : LREAL;
+    kg : LREAL;
+    p : LREAL;
+    b : LREAL;
+    g : LREAL;
+    yo : LREAL;
+    pp0 : LREAL;
+    pp1 : LREAL;
+    q0 : LREAL;
+    q1 : LREAL;
+    den : LREAL;
+    k0 : LREAL;
+    k1 : LREAL;
+    err : LREAL;
+    tr : LREAL;
+    out_prev : ARRAY[{_dims(m)}] OF LREAL;
+{learned}
     i : INT;
     j : INT;
     l : INT;
@@ -92,6 +142,25 @@ END_VAR
 
 IF reset THEN
     first := TRUE;
+END_IF;
+now := time_s;
+timed := has_time;
+(* a missing time, or one not after the last one read: the previous one plus one period *)
+IF SUBSTITUTE_TIME THEN
+    IF first THEN
+        read_valid := FALSE;
+    END_IF;
+    IF NOT timed OR (read_valid AND now <= t_read) THEN
+        IF first THEN
+            now := 0.0;
+        ELSE
+            now := t_prev + TIME_PERIOD;
+        END_IF;
+        timed := TRUE;
+    ELSE
+        t_read := now;
+        read_valid := TRUE;
+    END_IF;
 END_IF;
 n_clamped := 0;
 (* causal FIR denoiser: newest raw sample first *)
@@ -126,20 +195,34 @@ FOR j := 0 TO N_INPUTS - 1 DO
         n_clamped := n_clamped + 1;
     END_IF;
 END_FOR;
+(* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale *)
+FOR l := 0 TO N_POWERS - 1 DO
+    w := v[POWER_SRC[l]] / POWER_SCALE[l];
+    IF w < 0.0 THEN
+        x[N_INPUTS + l] := -EXPT(-w, POWER_EXP[l]);
+    ELSE
+        x[N_INPUTS + l] := EXPT(w, POWER_EXP[l]);
+    END_IF;
+END_FOR;
 (* first-order lags *)
 FOR l := 0 TO N_LAGS - 1 DO
     xl[l] := x[LAG_INPUT[l]];
     IF first THEN
         z[l] := xl[l];
     ELSE
-        IF has_time THEN
-            e := EXP(-(time_s - t_prev) / TAU[l]);
+        IF timed THEN
+            e := EXP(-(now - t_prev) / TAU[l]);
         ELSE
             e := DECAY[l];
         END_IF;
         z[l] := e * z[l] + (1.0 - e) * xl[l];
     END_IF;
 END_FOR;
+IF timed AND NOT first THEN
+    dt := now - t_prev;
+ELSE
+    dt := 0.0;
+END_IF;
 IF first THEN
     FOR l := 0 TO DEPTH - 1 DO
         FOR j := 0 TO N_INPUTS - 1 DO
@@ -149,14 +232,14 @@ IF first THEN
     FOR i := 0 TO N_OUTPUTS - 1 DO
         y_prev[i] := 0.0;
     END_FOR;
-    IF has_time THEN
-        t_prev := time_s;
+    IF timed THEN
+        t_prev := now;
     ELSE
         t_prev := 0.0;
     END_IF;
 ELSE
-    IF has_time THEN
-        t_prev := time_s;
+    IF timed THEN
+        t_prev := now;
     ELSE
         t_prev := t_prev + PERIOD;
     END_IF;
@@ -164,7 +247,7 @@ END_IF;
 (* outputs: static part, input history, lags, AR feedback *)
 FOR i := 0 TO N_OUTPUTS - 1 DO
     y := INTERCEPT[i];
-    FOR j := 0 TO N_INPUTS - 1 DO
+    FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
         y := y + B0[i, j] * x[j];
     END_FOR;
     FOR l := 0 TO DEPTH - 1 DO
@@ -177,8 +260,89 @@ FOR i := 0 TO N_OUTPUTS - 1 DO
     END_FOR;
     y := y + AR[i] * y_prev[i];
     y_prev[i] := y;
-    c[i] := -y;
+    (* correction guard: within the rate limit of the previous output, then the bound *)
+    IF USE_GUARD THEN
+        IF NOT first THEN
+            IF dt > 0.0 THEN
+                lim := GUARD_RATE[i] * dt;
+            ELSE
+                lim := GUARD_RATE[i] * GUARD_PERIOD;
+            END_IF;
+            dy := y - out_prev[i];
+            IF dy > lim THEN
+                y := out_prev[i] + lim;
+            ELSIF dy < -lim THEN
+                y := out_prev[i] - lim;
+            END_IF;
+        END_IF;
+        IF y < GUARD_LO[i] THEN
+            y := GUARD_LO[i];
+        ELSIF y > GUARD_HI[i] THEN
+            y := GUARD_HI[i];
+        END_IF;
+    END_IF;
+    out_prev[i] := y;
+    IF USE_ADAPT THEN
+        c[i] := -(gain[i] * y + bias[i]);
+    ELSE
+        c[i] := -y;
+    END_IF;
 END_FOR;
+(* a reference measurement at this sample: the next corrections learn from it *)
+IF USE_ADAPT THEN
+    FOR i := 0 TO N_OUTPUTS - 1 DO
+        IF ref_valid[i] THEN
+            IF ADAPT_RLS THEN
+                (* (gain, bias) by recursive least squares on phi = (y, 1) *)
+                yo := out_prev[i];
+                pp0 := cov[i, 0, 0] * yo + cov[i, 0, 1];
+                pp1 := cov[i, 1, 0] * yo + cov[i, 1, 1];
+                q0 := yo * cov[i, 0, 0] + cov[i, 1, 0];
+                q1 := yo * cov[i, 0, 1] + cov[i, 1, 1];
+                den := FORGETTING + (q0 * yo + q1);
+                k0 := pp0 / den;
+                k1 := pp1 / den;
+                err := ref_error[i] - (yo * gain[i] + bias[i]);
+                g := gain[i] + k0 * err;
+                b := bias[i] + k1 * err;
+                cov[i, 0, 0] := (cov[i, 0, 0] - k0 * q0) / FORGETTING;
+                cov[i, 0, 1] := (cov[i, 0, 1] - k0 * q1) / FORGETTING;
+                cov[i, 1, 0] := (cov[i, 1, 0] - k1 * q0) / FORGETTING;
+                cov[i, 1, 1] := (cov[i, 1, 1] - k1 * q1) / FORGETTING;
+                tr := cov[i, 0, 0] + cov[i, 1, 1];
+                IF CAP_VARIANCE > 0.0 AND tr / CAP_VARIANCE > 1.0 THEN
+                    tr := tr / CAP_VARIANCE;
+                    cov[i, 0, 0] := cov[i, 0, 0] / tr;
+                    cov[i, 0, 1] := cov[i, 0, 1] / tr;
+                    cov[i, 1, 0] := cov[i, 1, 0] / tr;
+                    cov[i, 1, 1] := cov[i, 1, 1] / tr;
+                END_IF;
+                IF g < 1.0 - MAX_GAIN_CHANGE THEN
+                    g := 1.0 - MAX_GAIN_CHANGE;
+                ELSIF g > 1.0 + MAX_GAIN_CHANGE THEN
+                    g := 1.0 + MAX_GAIN_CHANGE;
+                END_IF;
+                gain[i] := g;
+            ELSE
+                (* the bias alone: a scalar filter *)
+                p := variance[i];
+                kg := p / (FORGETTING + p);
+                b := bias[i] + kg * (ref_error[i] - gain[i] * out_prev[i] - bias[i]);
+                p := (p - kg * p) / FORGETTING;
+                IF CAP_VARIANCE > 0.0 AND p / CAP_VARIANCE > 1.0 THEN
+                    p := p / (p / CAP_VARIANCE);
+                END_IF;
+                variance[i] := p;
+            END_IF;
+            IF b < -MAX_BIAS THEN
+                b := -MAX_BIAS;
+            ELSIF b > MAX_BIAS THEN
+                b := MAX_BIAS;
+            END_IF;
+            bias[i] := b;
+        END_IF;
+    END_FOR;
+END_IF;
 FOR l := DEPTH - 1 TO 0 BY -1 DO
     FOR j := 0 TO N_INPUTS - 1 DO
         IF l = 0 THEN

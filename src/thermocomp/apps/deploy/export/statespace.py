@@ -13,7 +13,10 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    + a_t y_t(t-1)``, with the input history ``x(t-d)`` (``d = 1..depth``) and the first-order
    lags ``z_k <- e_k z_k + (1 - e_k) x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the
    time since the previous sample (``period`` when no time is given);
-5. the correction sent to the CNC is ``C_t = -y_t``.
+5. the correction guard, when the model was deployed with one (:mod:`.output`): ``y_t`` held
+   within ``guard_rate_t * dt`` of its previous value, then within ``[guard_lo_t, guard_hi_t]``;
+6. the correction sent to the CNC is ``C_t = -y_t`` (with ``adapt``: ``-(gain_t * y_t + bias_t)``,
+   updated by each reference measurement).
 
 At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
 history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
@@ -22,26 +25,27 @@ clamp and the output the system is linear: the state is ``[buf, ref, history, z,
 
 from __future__ import annotations
 
+import sys
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from ....core.models import ARX, MLR, PCR, LagBank
-from ..streaming import StreamingCompensator
+from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
+from ..adaptive import AdaptiveCompensator
+from .errors import NotExportable
+from .output import Output, adapt_fields, guard_fields, time_fields
 
-LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank")   # what exports to C / ST
+LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
+UNBOUNDED = sys.float_info.max     # the envelope of a machine state (not clamped; finite for JSON/ST)
 FORMATS = ("json", "c", "st", "onnx")
-
-
-class NotExportable(ValueError):
-    """The deployed compensator is not one linear system (a family or a setting the code lacks)."""
 
 
 @dataclass
 class StateSpace:
     """Arrays of the exported system (module doc); lists, so that it is its own JSON."""
 
-    inputs: list                 # raw input columns, in the order of ``u``
+    inputs: list                 # raw input columns, in the order of ``u`` (the model's inputs,
+                                 # then the machine states its powers read, unfiltered)
     targets: list                # error columns; the code outputs ``C_<axis>`` = -y
     fir: list                    # (taps, n_inputs)
     referenced: list             # (n_inputs,) 1: taken relative to the first sample
@@ -50,15 +54,34 @@ class StateSpace:
     hi: list | None
     depth: int                   # input history kept (largest ARX delay)
     taus: list                   # (n_lags,) s
-    lag_input: list              # (n_lags,) input index of each lag
+    lag_input: list              # (n_lags,) index of each lag's input in ``[x, powers]``
     lag_decay: list              # (n_lags,) exp(-period / tau): the step without a time
     period: float                # s
     intercept: list              # (n_targets,)
-    b0: list                     # (n_targets, n_inputs)
+    b0: list                     # (n_targets, n_inputs + n_powers)
     bd: list                     # (n_targets, depth, n_inputs)
     g: list                      # (n_targets, n_lags)
     ar: list                     # (n_targets,)
     uses_time: bool              # the lags read ``time`` when it is given
+    # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
+    powers: list = field(default_factory=list)
+    # what follows the system: the correction guard and the reference update (:mod:`.output`)
+    substitute_time: bool = False    # a missing or non-increasing time: previous + time_period
+    time_period: float = 0.0         # s
+    guard: bool = False
+    guard_lo: list | None = None     # (n_targets,) µm of predicted error
+    guard_hi: list | None = None
+    guard_rate: list | None = None   # (n_targets,) µm/s; null: no rate limit
+    guard_period: float = 0.0        # s: ``dt`` when no later time is given
+    adapt: str = "none"              # none | bias | rls
+    adapt_gain: list | None = None   # (n_targets,) as served (learned so far)
+    adapt_bias: list | None = None   # (n_targets,) µm, as served
+    adapt_var: list | None = None    # (n_targets,) µm², the bias's variance (bias)
+    adapt_cov: list | None = None    # (n_targets, 2, 2) covariance of (gain, bias) (rls)
+    adapt_forgetting: float = 1.0
+    adapt_max_bias: float = 0.0      # µm
+    adapt_max_gain_change: float = 0.0
+    adapt_var_cap: float = 0.0       # µm², the prior variance (the variance never exceeds it)
     provenance: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
@@ -98,15 +121,25 @@ def _target_law(est, n: int, period: float | None):
     return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
 
 
-def state_space(stream: StreamingCompensator, provenance: dict | None = None) -> StateSpace:
-    """The :class:`StateSpace` of a plain deployed stream (module doc); :class:`NotExportable`
-    names what keeps it from being one."""
+def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:
+    """``(linear estimator, its power features' indices)``: a Hammerstein model is its lag bank
+    on the inputs and the powers of its states (registered in ``powers``, shared by targets)."""
+    if type(est) is not Hammerstein:
+        return est, []
+    feats = [powers.setdefault((inputs.index(col), float(est.state_scale_[s]), float(e)), len(powers))
+             for e in est.exponents_ for s, col in enumerate(est.state_columns_)]
+    return est.lagbank_, feats
+
+
+def state_space(deployed, provenance: dict | None = None) -> StateSpace:
+    """The :class:`StateSpace` of a deployed stream or adaptive compensator (module doc; of the
+    latter its plain stream, guard and reference update); :class:`NotExportable` names what
+    keeps it from being one."""
+    stream = deployed.streaming if isinstance(deployed, AdaptiveCompensator) else deployed
     comp = stream.compensator
-    inputs = list(comp.inputs_)
-    n = len(inputs)
-    if list(stream.columns_) != inputs:
-        raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
-                            f"only the linear families ({', '.join(LINEAR_FAMILIES)}) export to C/ST")
+    declared = list(comp.inputs_)
+    states = [c for c in stream.columns_ if c not in declared]   # read raw by Hammerstein powers
+    inputs, n = declared + states, len(declared)
     if stream.envelope is not None and stream.policy == "refuse":
         raise NotExportable("envelope policy 'refuse' stops the stream; the code clamps or passes "
                             "the inputs (promote.envelope.policy=clamp|off)")
@@ -119,20 +152,33 @@ def state_space(stream: StreamingCompensator, provenance: dict | None = None) ->
         raise NotExportable(f"denoiser {type(den).__name__} (causal={getattr(den, 'causal', None)!r}) "
                             "is not a linear filter; the causal FIR one exports "
                             "(denoise.denoiser.causal=fir)")
-    laws, period = {}, None
+    unfiltered = np.zeros((len(fir), len(states)))     # a state's value as read (one tap of 1)
+    unfiltered[0] = 1.0
+    fir = np.hstack([fir, unfiltered])
+    N = len(inputs)
+    laws, period, powers = {}, None, {}
     for t, est, idx in stream._plan:
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        c, b0, delayed, lags, a, period = _target_law(est, len(cols), period)
-        full = np.zeros(n)
-        full[cols] = b0
-        laws[t] = (c, full, {d: _spread(r, cols, n) for d, r in delayed.items()},
-                   [(tau, int(cols[j]), gain) for tau, j, gain in lags], a)
+        est, feats = _powered(est, inputs, powers)
+        c, b0, delayed, lags, a, period = _target_law(est, len(cols) + len(feats), period)
+        where = np.r_[cols, N + np.asarray(feats, int)].astype(int)   # into [x, powers]
+        laws[t] = (c, (where, b0), {d: _spread(r, cols, N) for d, r in delayed.items()},
+                   [(tau, int(where[j]), gain) for tau, j, gain in lags], a)
+    read = {inputs[src] for src, _, _ in powers}
+    if any(c not in read for c in states):
+        raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
+                            f"only the families {', '.join(LINEAR_FAMILIES)} export to C/ST")
+    width = N + len(powers)
+    for t, law in laws.items():
+        full = np.zeros(width)
+        full[law[1][0]] = law[1][1]
+        laws[t] = (law[0], full, *law[2:])
     depth = max((d for law in laws.values() for d in law[2]), default=0)
     keys = sorted({(tau, j) for law in laws.values() for tau, j, _ in law[3]})
     where = {k: i for i, k in enumerate(keys)}
     targets = list(stream.targets_)
     g = np.zeros((len(targets), len(keys)))
-    bd = np.zeros((len(targets), depth, n))
+    bd = np.zeros((len(targets), depth, N))
     for i, t in enumerate(targets):
         for tau, j, gain in laws[t][3]:
             g[i, where[(tau, j)]] += gain
@@ -142,13 +188,16 @@ def state_space(stream: StreamingCompensator, provenance: dict | None = None) ->
     period = float(period) if period is not None else 0.0
     return StateSpace(
         inputs=inputs, targets=targets, fir=fir.tolist(),
-        referenced=[int(r) for r in stream._is_ref], clamp=bool(clamp),
-        lo=env.lo.tolist() if clamp else None, hi=env.hi.tolist() if clamp else None,
+        referenced=[int(r) for r in stream._is_ref] + [0] * len(states), clamp=bool(clamp),
+        lo=env.lo.tolist() + [-UNBOUNDED] * len(states) if clamp else None,
+        hi=env.hi.tolist() + [UNBOUNDED] * len(states) if clamp else None,
         depth=int(depth), taus=[k[0] for k in keys], lag_input=[k[1] for k in keys],
         lag_decay=[float(np.exp(-period / k[0])) for k in keys], period=period,
         intercept=[laws[t][0] for t in targets], b0=[laws[t][1].tolist() for t in targets],
         bd=bd.tolist(), g=g.tolist(), ar=[laws[t][4] for t in targets],
-        uses_time=bool(keys), provenance=dict(provenance or {}))
+        uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
+        **time_fields(deployed), **guard_fields(deployed), **adapt_fields(deployed),
+        provenance=dict(provenance or {}))
 
 
 def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
@@ -165,20 +214,33 @@ class Simulator:
         self.fir = np.asarray(ss.fir, float)
         self.lo, self.hi = (np.asarray(getattr(ss, k) or [], float) for k in ("lo", "hi"))
         m, n = len(ss.targets), len(ss.inputs)
-        self.b0 = np.asarray(ss.b0, float).reshape(m, n)
+        self.b0 = np.asarray(ss.b0, float).reshape(m, n + len(ss.powers))
         self.bd = np.asarray(ss.bd, float).reshape(m, ss.depth, n)
         self.g = np.asarray(ss.g, float).reshape(m, len(ss.taus))
         self.taus, self.decay = np.asarray(ss.taus, float), np.asarray(ss.lag_decay, float)
         self.lag_input = np.asarray(ss.lag_input, int)
+        self.output = Output(ss)       # guard and reference update: what is learned stays
         self.reset()
 
     def reset(self) -> None:
+        """A new campaign: the next sample is its first."""
         self.first = True
+
+    def reference(self, measured) -> None:
+        """A reference measurement of the error per target (NaN: none) at the last sample."""
+        self.output.reference(measured)
 
     def step(self, u, time: float = float("nan")) -> np.ndarray:
         """Correction ``C`` (µm, = -predicted error) per target for one sample."""
         u = np.asarray(u, float)
         ss = self.ss
+        if ss.substitute_time:      # as the adaptive compensator judges a time
+            if self.first:
+                self.t_read = np.nan
+            if not np.isfinite(time) or time <= self.t_read:
+                time = 0.0 if self.first else self.t + ss.time_period
+            else:
+                self.t_read = time
         if self.first:
             self.buf = np.tile(u, (len(self.fir), 1))
         else:
@@ -189,18 +251,25 @@ class Simulator:
         x = v - self.ref
         if ss.clamp:
             x = np.minimum(np.maximum(x, self.lo), self.hi)
-        xl = x[self.lag_input]
+        xe = x                      # [x, static powers of machine states (Hammerstein basis)]
+        if ss.powers:
+            src, scale, e = (np.array(c) for c in zip(*ss.powers))
+            w = v[src.astype(int)] / scale
+            xe = np.r_[x, np.abs(w) ** e * np.sign(w)]
+        xl = xe[self.lag_input]
+        first, dt = self.first, float("nan")
         if self.first:
             self.hist = np.tile(x, (ss.depth, 1)).reshape(ss.depth, len(x))
             self.z, self.y = xl.copy(), np.zeros(len(ss.targets))
             self.t = 0.0 if np.isnan(time) else time
         else:
+            dt = time - self.t
             e = self.decay if np.isnan(time) else np.exp(-(time - self.t) / self.taus)
             self.z = e * self.z + (1.0 - e) * xl
             self.t = self.t + ss.period if np.isnan(time) else time
-        y = (np.asarray(ss.intercept) + self.b0 @ x + np.einsum("tdi,di->t", self.bd, self.hist)
+        y = (np.asarray(ss.intercept) + self.b0 @ xe + np.einsum("tdi,di->t", self.bd, self.hist)
              + self.g @ (self.z - xl) + np.asarray(ss.ar) * self.y)
         if ss.depth:
             self.hist = np.vstack([x[None, :], self.hist[:-1]])
         self.y, self.first = y, False
-        return -y
+        return self.output.step(y, first, dt)

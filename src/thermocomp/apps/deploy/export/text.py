@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import sys
+
 from ..pyfunc import correction_column
 
 
@@ -21,11 +23,21 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
              "first sample where starred):"]
     for j, c in enumerate(ss.inputs):
         ref = "*" if ss.referenced[j] else " "
-        env = f"[{ss.lo[j]:.6g}, {ss.hi[j]:.6g}]" if ss.clamp else "not clamped"
+        bounded = ss.clamp and ss.hi[j] < sys.float_info.max      # a machine state is not
+        env = f"[{ss.lo[j]:.6g}, {ss.hi[j]:.6g}]" if bounded else "not clamped"
         lines.append(f"  {j}: {c}{ref} {p.get('units', {}).get(c, '')}  envelope {env}")
     lines.append("time: s, " + ("read by the first-order lags" if ss.uses_time else "not read")
                  + f"; period {ss.period:.6g} s")
     lines.append("outputs: " + ", ".join(correction_names(ss.targets))
                  + " in um (the correction: minus the predicted error)")
+    for i, t in enumerate(ss.targets if ss.guard else []):
+        rate = ss.guard_rate[i]
+        lines.append(f"guard {t}: bound [{ss.guard_lo[i]:.6g}, {ss.guard_hi[i]:.6g}] um, rate limit "
+                     + ("none" if rate is None else f"{rate:.6g} um/s"))
+    if ss.adapt != "none":
+        lines.append(f"adapt: {ss.adapt}, learned from reference measurements of "
+                     + ", ".join(ss.targets) + " (tc_reference; ST: ref_valid, ref_error)")
+    if p.get("not_in_code"):
+        lines.append("not in the code (the served model only): " + "; ".join(p["not_in_code"]))
     body = "\n".join(f"{middle} {line}".rstrip() for line in lines)
     return f"{open_}\n{body}\n{close}"

@@ -1,0 +1,138 @@
+"""What surrounds the linear system in the exported code: the time rule, the correction guard and
+the reference update (pure core).
+
+* **time** (the adaptive compensator's): a missing time, or one not after the last time read,
+  is taken as the previous time plus ``time_period`` (``substitute_time``).
+* **guard** (:class:`~..guard.CorrectionGuard` of the adaptive compensator): static limits
+  ``guard_lo``, ``guard_hi`` (µm of predicted error) and ``guard_rate`` (µm/s; null: none) per
+  target, and one state, the previous guarded output.  A campaign's first output is bounded
+  only; every later one is first held within ``guard_rate * dt`` of the previous one (``dt`` the
+  time since the previous sample; ``guard_period`` when no later time is given), then bounded.
+* **adapt** (``adapt.method=bias|rls``, :class:`~..adapt.ReferenceAdapter`): the correction is
+  ``-(gain * y + bias)``; a reference measurement ``e`` of a target, taken where the guarded
+  output was ``y``, updates ``bias`` and its variance (``bias``), or ``(gain, bias)`` and their
+  covariance (``rls``), by the bounded recursive filter of ``adapt.py`` (``adapt_forgetting``,
+  ``adapt_max_bias``, ``adapt_max_gain_change``, ``adapt_var_cap``).  What was learned
+  survives a new campaign; the exported values are those the model was served with.
+
+The served model's sensor monitor (exclusions, reconstruction of a sensor from the others) and
+the holding of a missing machine state are not in the code: :func:`not_in_code` names them.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..adaptive import AdaptiveCompensator
+from .errors import NotExportable
+
+EXPORTED_ADAPT = ("none", "bias", "rls")
+
+
+def guard_fields(deployed) -> dict:
+    """The guard's fields of the exported system (none for a plain stream)."""
+    g = deployed.guard if isinstance(deployed, AdaptiveCompensator) else None
+    if g is None:
+        return {}
+    rate = [None if math.isinf(r) else float(r) for r in g.max_rate_per_s]
+    return {"guard": True, "guard_lo": g.lo.tolist(), "guard_hi": g.hi.tolist(),
+            "guard_rate": rate, "guard_period": float(g.period_s)}
+
+
+def time_fields(deployed) -> dict:
+    """The adaptive compensator's rule for a bad ``time`` (missing, or not after the last one
+    read): taken as the previous time plus ``time_period`` (a campaign's first: 0)."""
+    if not isinstance(deployed, AdaptiveCompensator):
+        return {}
+    return {"substitute_time": True, "time_period": float(deployed.period_s)}
+
+
+def adapt_fields(deployed) -> dict:
+    """The reference update's fields (none when the model does not learn: ``adapt.method=none``);
+    :class:`NotExportable` for a method the code lacks."""
+    adapt = getattr(deployed, "adapt_", None)
+    if adapt is None or adapt.method == "none":
+        return {}
+    if adapt.method not in EXPORTED_ADAPT:
+        raise NotExportable(f"adapt.method={adapt.method} is not in the code; adapt.method=bias "
+                            "or rls exports (or none: the frozen model)")
+    a = adapt.adapter
+    rls = a.method == "rls"
+    return {"adapt": a.method, "adapt_gain": a.gain_.tolist(), "adapt_bias": a.bias_.tolist(),
+            "adapt_var": None if rls else [float(p[0, 0]) for p in a._P],
+            "adapt_cov": [p.tolist() for p in a._P] if rls else None,
+            "adapt_forgetting": a.forgetting, "adapt_max_bias": a.max_bias_um,
+            "adapt_max_gain_change": a.max_gain_change, "adapt_var_cap": float(np.trace(a._prior))}
+
+
+def not_in_code(deployed) -> list[str]:
+    """What the served model does that the exported code does not."""
+    out, stream = [], deployed
+    if isinstance(deployed, AdaptiveCompensator):
+        if deployed.monitor is not None:
+            out.append("sensor monitor (exclusion, reconstruction of a sensor from the others)")
+        stream = deployed.streaming
+    if any(getattr(est, "state_columns_", None) for _, est, _ in stream._plan):
+        out.append("a missing machine state held at its last value (the code needs every input)")
+    return out
+
+
+class Output:
+    """The guard and the reference update in numpy (part of the reference
+    :class:`~.statespace.Simulator`)."""
+
+    def __init__(self, ss):
+        m = len(ss.targets)
+        self.ss = ss
+        if ss.guard:
+            self.lo, self.hi = np.asarray(ss.guard_lo, float), np.asarray(ss.guard_hi, float)
+            self.rate = np.array([np.inf if r is None else r for r in ss.guard_rate], float)
+        self.gain = np.asarray(ss.adapt_gain or [1.0] * m, float)
+        self.bias = np.asarray(ss.adapt_bias or [0.0] * m, float).copy()
+        self.var = np.asarray(ss.adapt_var or [0.0] * m, float).copy()
+        self.cov = np.asarray(ss.adapt_cov or np.zeros((m, 2, 2)), float).copy()
+        self.y = np.zeros(m)
+
+    def step(self, y: np.ndarray, first: bool, dt: float) -> np.ndarray:
+        """Correction (µm) of the model's predicted error ``y``; ``dt``: s since the previous
+        sample (NaN: ``guard_period``)."""
+        if self.ss.guard:
+            if not first:
+                lim = self.rate * (dt if np.isfinite(dt) and dt > 0 else self.ss.guard_period)
+                d = y - self.y
+                y = np.where(d > lim, self.y + lim, np.where(d < -lim, self.y - lim, y))
+            y = np.minimum(np.maximum(y, self.lo), self.hi)
+        self.y = y
+        return -(self.gain * y + self.bias) if self.ss.adapt != "none" else -y
+
+    def reference(self, measured) -> None:
+        """A measured error per target (NaN: none) where the last output was given."""
+        if self.ss.adapt == "none":
+            return
+        lam, cap = self.ss.adapt_forgetting, self.ss.adapt_var_cap
+        for i, e in enumerate(np.asarray(measured, float)):
+            if not np.isfinite(e):
+                continue
+            if self.ss.adapt == "rls":
+                self._rls(i, e, lam, cap)
+                continue
+            p = self.var[i]
+            k = p / (lam + p)
+            b = self.bias[i] + k * (e - self.gain[i] * self.y[i] - self.bias[i])
+            p = (p - k * p) / lam
+            self.var[i] = p / max(1.0, p / cap) if cap > 0 else p
+            self.bias[i] = min(max(b, -self.ss.adapt_max_bias), self.ss.adapt_max_bias)
+
+    def _rls(self, i: int, e: float, lam: float, cap: float) -> None:
+        """``(gain, bias)`` of target ``i`` by recursive least squares on ``phi = (y, 1)``."""
+        y, P = self.y[i], self.cov[i]
+        phi = np.array([y, 1.0])
+        k = P @ phi / (lam + phi @ P @ phi)
+        theta = np.array([self.gain[i], self.bias[i]]) + k * (e - (y * self.gain[i] + self.bias[i]))
+        P = (P - np.outer(k, phi @ P)) / lam
+        self.cov[i] = P / max(1.0, float(np.trace(P)) / cap) if cap > 0 else P
+        g = self.ss.adapt_max_gain_change
+        self.gain[i] = min(max(theta[0], 1 - g), 1 + g)
+        self.bias[i] = min(max(theta[1], -self.ss.adapt_max_bias), self.ss.adapt_max_bias)
