@@ -33,6 +33,7 @@ from hydra.utils import instantiate
 from scipy.stats import spearmanr
 from sklearn.base import clone
 
+import thermocomp.shell.cli  # noqa: F401  (registers the config's resolvers: ${sim_dataset:}, ${root:})
 from thermocomp.base.paths import conf_dir, resolve
 from thermocomp.core import io
 from thermocomp.core.metrics import rmse

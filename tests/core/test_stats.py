@@ -56,3 +56,18 @@ def test_mutual_prediction_closed_form():
             dT = camps[j]["T_1"] - camps[j]["T_1"].iloc[0]
             want = abs(ks[j] - ks[i]) * np.sqrt((dT**2).sum() / (len(dT) - 1))
             assert m.loc[i, j] == pytest.approx(want, abs=1e-8)
+
+
+def test_mutual_prediction_fits_one_model_per_campaign_and_no_more():
+    # each fit may be a blend with an LSTM member on a record's whole train part: no extra fit
+    # to find the columns (there was one on the first campaign, then that campaign again)
+    fits = []
+
+    class Counted(MLR):
+        def fit(self, X, y, context=None):
+            fits.append(len(y))
+            return super().fit(X, y, context=context)
+
+    camps = {c: _campaign(k, seed=i) for i, (c, k) in enumerate({"A": 1.0, "B": 2.0, "C": 4.0}.items())}
+    mats = mutual_prediction(camps, lambda: Compensator(Counted()))
+    assert fits == [len(camps[c]) for c in camps] and mats["E_Z"].shape == (3, 3)

@@ -367,6 +367,43 @@ def test_fold_votes_count_every_fold_alike_not_the_one_where_all_fail():
     assert w.min() > 0.1 and w.sum() == pytest.approx(1)
 
 
+class _AsRead(_OneSensor):
+    """y ~ x[:, column] as read: nothing fitted (a family whose fit no fault reaches)."""
+
+    def fit(self, X, y, context=None):
+        self.coef_ = np.array([1.0, 0.0])
+        return self
+
+
+def _faulty_sensor(n_campaigns: int, faulty: tuple, seed: int):
+    """``y = s``: sensor 0 noisy (s.d. 0.3) everywhere, sensor 1 close (0.05) but off by 3 in the
+    ``faulty`` campaigns (a condition some campaigns meet, where that family fails)."""
+    rng = np.random.default_rng(seed)
+    s = rng.uniform(-1.0, 1.0, n_campaigns * 100)
+    campaign = np.repeat(np.arange(n_campaigns), 100)
+    X = np.column_stack([s + rng.normal(0.0, 0.3, s.size),
+                         s + rng.normal(0.0, 0.05, s.size) + 3.0 * np.isin(campaign, faulty)])
+    return X, s, pd.DataFrame({"campaign": [f"K{c:02d}" for c in campaign]})
+
+
+def test_a_candidate_keeps_votes_only_as_far_as_the_folds_are_sure_it_beats_mlr():
+    from thermocomp.core.models.auto import AutoRegressor
+
+    candidates = {"mlr": _OneSensor(0), "close": _AsRead(1)}    # "mlr": the baseline
+    # five folds of two campaigns: sensor 1 beats the baseline by ~30x in three folds and fails
+    # by ~50x in two; the resamples that miss both (8 %) voted for it, its mean fold ratio ~20
+    X, y, context = _faulty_sensor(20, faulty=(11, 15), seed=1)
+    auto = AutoRegressor(candidates).fit(X, y, context=context)
+    assert auto.weights_ == {"mlr": 1.0}
+    X_new, y_new, context_new = _faulty_sensor(10, faulty=(3, 7), seed=2)    # faults come again
+    err = {n: np.sqrt(np.mean((y_new - m.predict(X_new, context=context_new)) ** 2))
+           for n, m in (("auto", auto), ("close", _AsRead(1).fit(X, y)), ("mlr", _OneSensor(0).fit(X, y)))}
+    assert err["auto"] == pytest.approx(err["mlr"]) and err["close"] > 3 * err["mlr"]
+    # never faulty: beating MLR in every fold, it keeps every vote
+    X, y, context = _faulty_sensor(20, faulty=(), seed=1)
+    assert AutoRegressor(candidates).fit(X, y, context=context).weights_ == {"close": 1.0}
+
+
 def test_a_blend_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
     data, _, _ = two_targets
     model = tmp_path / "model.pkl"

@@ -12,7 +12,7 @@ import pandas as pd
 from scipy import stats as sps
 from sklearn.base import clone
 
-from ..frame import stack
+from ..frame import resolve_columns, stack
 from ..metrics import rsd
 from ..model_selection import TrainOnEachCampaign
 
@@ -89,12 +89,14 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     if first.denoiser is not None:      # denoised per training campaign: the campaign-level path
         return _mutual_by_campaign(campaigns, make_compensator, mode)
     # no denoiser: stack every campaign once; each model fits on its campaign's rows of the stack
-    # and predicts the whole stack (the same numbers as fit/predict on the campaign dicts)
-    probe = first.fit({ids[0]: campaigns[ids[0]]})
-    m = stack(campaigns, probe.inputs_, probe.targets_, probe.reference)
+    # and predicts the whole stack (the same numbers as fit/predict on the campaign dicts).  The
+    # columns as a fit on the first campaign resolves them, without that fit (a blend with an
+    # LSTM member on a record's train part: one more model of the slowest kind)
+    inputs, targets = resolve_columns(list(campaigns[ids[0]].columns), first.inputs, first.targets)
+    m = stack(campaigns, inputs, targets, first.reference)
     bounds = _bounds(m.groups, ids)
     Y = m.Y.to_numpy()
-    residuals = {t: [] for t in probe.targets_}
+    residuals = {t: [] for t in targets}
     from ...base.progress import bar
 
     for train, _ in bar(TrainOnEachCampaign().split(ids, groups=ids), desc="mutual prediction",
