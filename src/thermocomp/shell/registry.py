@@ -180,3 +180,32 @@ def register(cfg: DictConfig, client, cand: Candidate, ds, dataset_hash: str) ->
     else:
         say(f"{name} version {version} {kept}; @{alias} stays on version {champ_version}: {why}")
     return Outcome(version, existing is None, champ_version, champ_score, moved, why)
+
+
+def check_served_model(model: str, uri: str) -> str:
+    """``serve.model`` as the server takes it: a pyfunc folder (resolved) or a registered
+    ``models:/<name>@<alias>`` / ``models:/<name>/<version>`` that exists in ``uri``."""
+    from mlflow import MlflowClient
+
+    from ..base.paths import resolve
+    from .tracking import ensure_store
+
+    if not model.startswith("models:/"):
+        path = resolve(model)
+        if not (path / "MLmodel").is_file():
+            raise ConfigError(f"serve.model={model}: neither models:/<name>@<alias> nor a pyfunc "
+                              f"model folder (no {path / 'MLmodel'})")
+        return str(path)
+    ensure_store(uri)
+    name, sep, alias = model[len("models:/"):].partition("@")
+    client = MlflowClient(uri, registry_uri=uri)
+    try:
+        if sep:
+            retry_locked(client.get_model_version_by_alias, name, alias)
+        else:
+            name, _, version = name.partition("/")
+            retry_locked(client.get_model_version, name, version)
+    except Exception:
+        raise ConfigError(f"serve.model={model}: no such model version in {uri}; run "
+                          f"`thermocomp promote` first") from None
+    return model

@@ -1,9 +1,26 @@
 """What ``thermocomp diagnose`` makes of a :class:`~.diagnosis.Diagnosis`: the search settings
 from plain values, the diagnosed model's config, the experiment that reruns it, the written
-folder and the printed table (plain values in: the shell turns its config into them)."""
+folder and the printed table (plain values in: the shell turns its config into them).
+
+Reads ``data.path``, runs :func:`thermocomp.apps.diagnose.diagnose` on the
+configured model and writes, under ``out``:
+
+* ``diagnosis.json`` -- CLI.md layout, for the primary target (the one with
+  the largest CV RMSE before);
+* ``diagnosis/``: ``diagnosis_<target>.json`` for every target, ``report.md``
+  and ``report.html`` (every target; the HTML embeds the figures), ``plots/``;
+* ``diagnosis/conf/model/diagnosed.yaml`` -- the model plus the accepted
+  effects -- and ``diagnosis/conf/experiment/diagnosed.yaml`` pinning what the
+  diagnosis ran with, so ``thermocomp run hydra.searchpath=[file://<out>/diagnosis/conf]
+  experiment=diagnosed data.path=...`` reproduces the "after" figures.
+
+The diagnosed model is built from that very config (as ``run`` builds it), so
+the figures in the report are the ones the rerun gives.
+"""
 
 from __future__ import annotations
 
+import shlex
 from collections.abc import Mapping
 from pathlib import Path
 
@@ -68,6 +85,22 @@ def experiment(name: str, with_ati: bool, groups: Mapping[str, dict | None], ref
     out["data"] = data
     out["eval"] = {"mode": eval_mode}
     return out
+
+
+def rerun_command(search_paths: list[str], data_config: str | None, overrides: list[tuple[str, str]],
+                  conf_dir: Path, data_path: Path, out: Path, pins_inputs: bool) -> str:
+    """The ``thermocomp run`` that reproduces the "after" figures: the written experiment, and
+    how this diagnosis read its data, the user's own search path, ``data=`` config and
+    ``data.*`` overrides (``(key, override)``) included (without them a lab's ';'-separated
+    files were refused)."""
+    pinned = {"data.path", "data.interim", "data.reference"} | (
+        {"data.inputs"} if pins_inputs else set())     # the experiment pins these
+    extra = [o for key, o in overrides if key.startswith("data.") and key not in pinned]
+    parts = ["thermocomp run", f"hydra.searchpath=[{','.join([*search_paths, f'file://{conf_dir}'])}]"]
+    if data_config not in (None, "default"):
+        parts.append(f"data={data_config}")
+    parts += [f"experiment={MODEL_NAME}", *extra, f"data.path={data_path}", f"out={out}"]
+    return " ".join(shlex.quote(p) if i else p for i, p in enumerate(parts))
 
 
 def _yaml(header: str, body: dict) -> str:

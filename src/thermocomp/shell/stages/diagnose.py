@@ -1,25 +1,14 @@
 """`thermocomp diagnose`: closed loop -- residual -> missing effect -> refit -> before/after.
 
-Reads ``data.path``, runs :func:`thermocomp.apps.diagnose.diagnose` on the
-configured model and writes, under ``out``:
-
-* ``diagnosis.json`` -- CLI.md layout, for the primary target (the one with
-  the largest CV RMSE before);
-* ``diagnosis/``: ``diagnosis_<target>.json`` for every target, ``report.md``
-  and ``report.html`` (every target; the HTML embeds the figures), ``plots/``;
-* ``diagnosis/conf/model/diagnosed.yaml`` -- the model plus the accepted
-  effects -- and ``diagnosis/conf/experiment/diagnosed.yaml`` pinning what the
-  diagnosis ran with, so ``thermocomp run hydra.searchpath=[file://<out>/diagnosis/conf]
-  experiment=diagnosed data.path=...`` reproduces the "after" figures.
-
-The diagnosed model is built from that very config (as ``run`` builds it), so
-the figures in the report are the ones the rerun gives.
+Reads ``data.path``, runs :func:`thermocomp.apps.diagnose.diagnose` on the configured model
+and writes ``diagnosis.json`` (the primary target's), ``diagnosis/`` (every target's JSON, the
+report, figures) and the config that reruns the diagnosed model
+(:func:`thermocomp.apps.diagnose.outputs.write_outputs`), which is built from that very config.
 """
 
 from __future__ import annotations
 
 import copy
-import shlex
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
@@ -71,9 +60,7 @@ def after_config(cfg: DictConfig, model: dict, kept_inputs: list[str] | None) ->
 
 
 def rerun_command(cfg: DictConfig, conf_dir: Path, out: Path, kept_inputs) -> str:
-    """The ``thermocomp run`` that reproduces the "after" figures: the written experiment, and
-    how this diagnosis read its data, the user's own search path, ``data=`` config and
-    ``data.*`` overrides included (without them a lab's ';'-separated files were refused)."""
+    """:func:`~thermocomp.apps.diagnose.outputs.rerun_command` of how this diagnosis ran."""
     from hydra.core.hydra_config import HydraConfig
 
     from ..tracking import _split, task_overrides
@@ -81,17 +68,10 @@ def rerun_command(cfg: DictConfig, conf_dir: Path, out: Path, kept_inputs) -> st
     paths, data_config = [], None
     if HydraConfig.initialized():
         hc = HydraConfig.get()
-        paths = [str(p) for p in (hc.searchpath or [])]
-        data_config = hc.runtime.choices.get("data")
-    pinned = {"data.path", "data.interim", "data.reference"} | (
-        {"data.inputs"} if kept_inputs is not None else set())     # the experiment pins these
-    extra = [o for o in task_overrides() or []
-             if _split(o)[0].startswith("data.") and _split(o)[0] not in pinned]
-    parts = ["thermocomp run", f"hydra.searchpath=[{','.join([*paths, f'file://{conf_dir}'])}]"]
-    if data_config not in (None, "default"):
-        parts.append(f"data={data_config}")
-    parts += [f"experiment={MODEL_NAME}", *extra, f"data.path={resolve(cfg.data.path)}", f"out={out}"]
-    return " ".join(shlex.quote(p) if i else p for i, p in enumerate(parts))
+        paths, data_config = [str(p) for p in (hc.searchpath or [])], hc.runtime.choices.get("data")
+    overrides = [(_split(o)[0], o) for o in task_overrides() or []]
+    return outputs.rerun_command(paths, data_config, overrides, conf_dir, resolve(cfg.data.path),
+                                 out, kept_inputs is not None)
 
 
 def _write(cfg: DictConfig, ds, result, written: dict, out: Path) -> tuple[Path, str, Path]:
