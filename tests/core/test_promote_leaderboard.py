@@ -10,7 +10,6 @@ from thermocomp.core.metrics import split_scores
 from thermocomp.core.scoring.leaderboard import (
     baseline_rows,
     beats,
-    e_p95_at,
     is_validation,
     persistence_summary,
     rank,
@@ -18,6 +17,7 @@ from thermocomp.core.scoring.leaderboard import (
     to_markdown,
     validation_method,
 )
+from thermocomp.core.scoring.results import e_p95_at
 
 
 def _targets(scale_x=1.0, scale_z=1.0, n=241, dt=60.0, seed=0):

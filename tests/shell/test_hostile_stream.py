@@ -22,11 +22,11 @@ from conftest import ROOT, UNTRACKED
 from thermocomp.apps.deploy import StreamingCompensator
 from thermocomp.apps.deploy.pyfunc import CompensatorModel
 from thermocomp.apps.monitor import STATES, AdaptiveCompensator
+from thermocomp.apps.monitor.report import stream_campaign as _stream
 from thermocomp.base.errors import ConfigError
 from thermocomp.core import io
 from thermocomp.core.compensator import Compensator
 from thermocomp.shell.cli import _compose, main
-from thermocomp.shell.stages.monitor import _stream
 
 FAST = [*UNTRACKED, "plots=none"]
 

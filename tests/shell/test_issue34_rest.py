@@ -95,7 +95,7 @@ def test_a_lead_in_with_a_missing_value_warms_as_the_stream_holds_it(adaptive):
     from test_deploy import _library, campaigns
     from thermocomp.apps.deploy import StreamingCompensator
     from thermocomp.apps.monitor import AdaptiveCompensator
-    from thermocomp.shell.stages.monitor import _stream
+    from thermocomp.apps.monitor.report import stream_campaign as _stream
 
     camps = campaigns(0)
     train = {c: camps[c] for c in list(camps)[:3]}

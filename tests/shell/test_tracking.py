@@ -21,11 +21,11 @@ from conftest import BIN, TEST_PATH
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.base.files import folder_digest
 from thermocomp.core.models import MLR
+from thermocomp.core.scoring.results import EvaluationResult
 from thermocomp.shell.cli import _compose, main
 from thermocomp.shell.tracking import (
     PARAM_KEYS,
     config_container,
-    headline_metrics,
     run_name,
     run_params,
     sweep_name,
@@ -99,7 +99,8 @@ def test_a_run_records_its_name_stage_dataset_headline_metrics_and_signed_model(
     assert run.data.tags["stage"] == "run"
     assert run.data.tags["dataset_hash"] == folder_digest(dataset)
     m = json.loads((out / "metrics.json").read_text())
-    assert run.data.metrics == pytest.approx({**headline_metrics(m), "fit_time_s": m["fit_time_s"]})
+    assert run.data.metrics == pytest.approx({**EvaluationResult(m).headline("mlflow"),
+                                              "fit_time_s": m["fit_time_s"]})
     for t, tm in m["targets"].items():
         mine = [k for k in run.data.metrics if k.startswith(f"{t}.")]
         assert 8 <= len(mine) <= 12

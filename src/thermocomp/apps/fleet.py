@@ -5,8 +5,8 @@ machine of each campaign (DATA_FORMAT.md allows extra manifest columns, e.g.
 ``machine``).  ``data.group_by=machine`` fits and scores one compensator per
 machine on that machine's train and test campaigns; only one machine's
 campaigns are in memory at a time per worker.  Here: the groups of a manifest
-and the fleet's figures across machines; the stage that reads, fits and
-writes is ``stages/fleet.py``.
+and the figures of one machine and the fleet's across machines, its table; the stage
+that reads, fits and writes is ``stages/fleet.py``.
 """
 
 from __future__ import annotations
@@ -15,7 +15,18 @@ import numpy as np
 import pandas as pd
 
 from ..base.errors import ContractError
-from ..core.scoring.results import HEADLINES, TEST_RMSE, TargetResult
+from ..core import continuation
+from ..core.metrics import pooled_scores, rsd, split_scores
+from ..core.models.auto import add_choices
+from ..core.scoring.evaluation import require_split, sample_period, split_residuals
+from ..core.scoring.results import (
+    HEADLINES,
+    TEST_RMS_AFTER,
+    TEST_RMS_BEFORE,
+    TEST_RMSE,
+    VAL_RMSE,
+    TargetResult,
+)
 
 # per target and machine: what the fleet table lists (µm)
 COLUMNS = tuple(name for name, _, _ in HEADLINES["fleet"])
@@ -71,3 +82,86 @@ def summary(table: pd.DataFrame) -> dict:
             entry["chosen"] = {str(k): int(n) for k, n in rows["chosen"].value_counts().items()}
         out[str(t)] = entry
     return out
+
+
+def slim(targets: dict) -> dict:
+    """The per-group figures kept in ``metrics.json`` (no curves: a fleet has hundreds of groups)."""
+    out = {}
+    for t, m in targets.items():
+        out[t] = TargetResult(m).slim()
+        if "auto" in m:      # model=auto: the group's choice, as a single run reports it
+            out[t]["auto"] = m["auto"]
+    return out
+
+
+def group_scores(comp, ds, mode: str, statistic: str, max_points: int) -> tuple[dict, dict]:
+    """``(figures, pooled)`` of one group: its train and test figures (as a single run's, with
+    model=auto's choices), and
+    what the fleet's pooled ``targets`` need of it: the test split's measured errors and
+    residuals, and of each train campaign only its row count, sum of squared residuals and Rsd
+    (the train split is most of the data; its pooled RMSE and SM/SD need no more)."""
+    carried = continuation.carry_over(comp, ds)
+    figures, pooled = {t: {} for t in comp.targets_}, {t: {} for t in comp.targets_}
+    for split in ("train", "test"):
+        ids = require_split(ds, split)
+        dt = sample_period(ds, ids)
+        for t, (y, r) in split_residuals(comp, ds, ids, mode, carried)[2].items():
+            figures[t][split] = split_scores(y, r, dt, statistic, max_points,
+                                             with_before_after=(split == "test"))
+            pooled[t][split] = ((y, r, dt) if split == "test" else
+                                {c: (len(r[c]), float(np.sum(r[c] ** 2)), rsd(r[c])) for c in ids})
+    return add_choices(comp, figures), pooled
+
+
+def fleet_targets(results: list[dict], statistic: str, max_points: int) -> dict:
+    """CLI.md's ``targets`` of ``metrics.json`` for the whole fleet: every group's campaigns, each
+    predicted by its own group's model, pooled as one split (campaign ids are unique in the
+    manifest)."""
+    out = {}
+    for t in results[0]["pooled"]:
+        train = {c: v for r in results for c, v in r["pooled"][t]["train"].items()}
+        n, ss = sum(v[0] for v in train.values()), sum(v[1] for v in train.values())
+        y = {c: a for r in results for c, a in r["pooled"][t]["test"][0].items()}
+        res = {c: a for r in results for c, a in r["pooled"][t]["test"][1].items()}
+        dt = float(np.median([r["pooled"][t]["test"][2] for r in results]))
+        out[t] = {"train": pooled_scores(n, ss, [v[2] for v in train.values()]),
+                  "test": split_scores(y, res, dt, statistic, max_points)}
+    return out
+
+
+def fleet_metrics(results: dict[str, dict], head: dict, statistic: str, max_points: int
+                  ) -> tuple[dict, pd.DataFrame]:
+    """(``metrics.json``, the per-group table ``fleet.csv``) of the groups' ``results`` (their
+    pooled parts dropped); ``head``: model, mode, select, dataset, group_by."""
+    targets = fleet_targets(list(results.values()), statistic, max_points)
+    for r in results.values():
+        del r["pooled"]
+    table = pd.DataFrame([row for g, r in results.items() for row in machine_rows(g, r["targets"])])
+    metrics = {**head, "targets": targets, "fleet": summary(table), "groups": results,
+               "fit_time_s": sum(r["fit_time_s"] for r in results.values())}
+    return metrics, table
+
+
+def tracked(metrics: dict) -> dict:
+    """The fleet's metrics for the tracker."""
+    return {"fit_time_s": metrics["fit_time_s"], "groups": len(metrics["groups"]),
+            **{f"{t}.fleet.{k}_{stat}": s[k][stat] for t, s in metrics["fleet"].items()
+               for k in (TEST_RMSE, VAL_RMSE) if s[k] for stat in ("mean", "p95", "max")}}
+
+
+def table_text(metrics: dict) -> str:
+    """Per target: groups, test RMSE mean / median / p95 / max, RMS before -> after (means)."""
+    head = (f"model={metrics['model']}  mode={metrics['mode']}  dataset={metrics['dataset']}  "
+            f"group_by={metrics['group_by']} ({len(metrics['groups'])} groups)")
+    lines = [head, f"{'target':8} {'groups':>6}  test RMSE mean  median    p95    max   "
+                   f"RMS before -> after (mean)   worst   (µm)", "-" * 96]
+    for t, s in metrics["fleet"].items():
+        rmse, before, after = s[TEST_RMSE], s[TEST_RMS_BEFORE], s[TEST_RMS_AFTER]
+        lines.append(f"{t:8} {s['groups']:>6}  {rmse['mean']:14.2f} {rmse['median']:7.2f} "
+                     f"{rmse['p95']:6.2f} {rmse['max']:6.2f}   {before['mean']:10.2f} -> "
+                     f"{after['mean']:6.2f}            {s['worst_group']}")
+    chosen = {t: s["chosen"] for t, s in metrics["fleet"].items() if s.get("chosen")}
+    if chosen:        # model=auto: the families the groups chose
+        lines.append("model=auto chose (groups): " + "; ".join(
+            f"{t} " + ", ".join(f"{f} {n}" for f, n in c.items()) for t, c in chosen.items()))
+    return "\n".join(lines)

@@ -44,3 +44,14 @@ def rooted_override(arg: str) -> str:
         if arg.startswith(key) and not os.path.isabs(os.path.expanduser(arg[len(key):])):
             return f"{key}{resolve(arg[len(key):])}"
     return arg
+
+
+def overlap(output: Path, source: Path) -> str | None:
+    """How ``output`` overlaps ``source``: ``is``, ``lies inside`` or ``holds``; None if apart."""
+    if output == source:
+        return "is"
+    if source in output.parents:
+        return "lies inside"
+    if output in source.parents:
+        return "holds"
+    return None

@@ -109,3 +109,16 @@ def build(node, key: str):
     (``key``: where ``node`` sits in the config, for the message)."""
     check_built(node, key)
     return instantiate(node)
+
+
+def load_node(path, seed, where: str):
+    """The config file at ``path``, its interpolations (``${seed}``) resolved against ``seed``;
+    one that cannot be composed is a ConfigError naming ``where``."""
+    from omegaconf import OmegaConf
+
+    root = OmegaConf.create({"seed": seed})
+    root.node = OmegaConf.load(path)
+    try:
+        return OmegaConf.create(OmegaConf.to_container(root.node, resolve=True))
+    except Exception as exc:   # an interpolation this root does not hold: say where
+        raise ConfigError(f"{where}: {path} cannot be composed ({exc})") from None

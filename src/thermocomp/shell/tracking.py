@@ -17,7 +17,8 @@ created (schema migrations) by one process at a time under a file lock
 What a run records: a name made of what differs from the defaults
 (``mlr-pearson-seed1``, :func:`run_name`), the tag ``stage``, the meaningful
 config leaves as params (:func:`run_params`; the whole config is the artifact
-``config.yaml``), the headline metrics a user compares (:func:`headline_metrics`;
+``config.yaml``), the headline metrics a user compares
+(:meth:`~thermocomp.core.scoring.results.EvaluationResult.headline`;
 the full ``metrics.json`` is an artifact).  A run ends FINISHED, FAILED on an
 exception, KILLED on SIGTERM/SIGINT (then the process exits 143/130); one whose
 process died without a word (SIGKILL, the OOM killer) is marked KILLED by the next
@@ -463,21 +464,6 @@ def run_params(container: dict, overrides: list[str] | None = None) -> dict:
 # what MLflow allows in a param name; anything else (brackets, °, µ) became an exception that
 # ended the run with a traceback
 _UNSAFE = re.compile(r"[^A-Za-z0-9_\-. :/]")
-
-
-def headline_metrics(metrics: dict) -> dict:
-    """The ~10 figures per target a user compares runs by, as ``<target>.<block>.<figure>``.
-
-    Validation RMSE and Rsd SM, test RMSE, Rsd SM/SD, RMS before/after, E_P95 of
-    the residual at 1 h and 8 h (when the campaigns are that long), the other
-    ``eval.mode``'s test RMSE (and validation RMSE: the simulation one that ranks a one_step
-    run) and the persistence baseline's; a volumetric run's own figures
-    (:meth:`thermocomp.core.scoring.results.EvaluationResult.headline`).  (``fit_time_s`` is logged by the
-    stage that fits.)
-    """
-    from ..core.scoring.results import EvaluationResult
-
-    return EvaluationResult(metrics).headline("mlflow")
 
 
 def start_parent_run(cfg: DictConfig, run_name: str, tags: dict | None = None) -> str:

@@ -192,6 +192,21 @@ class Adaptation:
                 "n_references": int(a.n_references_)}
 
 
+def finite_rms(r: np.ndarray) -> float | None:
+    """RMS over the finite values of ``r``; None when there is none."""
+    ok = np.isfinite(r)
+    return float(np.sqrt(np.mean(r[ok] ** 2))) if ok.any() else None
+
+
+def adapt_figures(adaptation: Adaptation, frozen: list[np.ndarray], targets) -> dict:
+    """Per target, what ``replay.json`` / ``monitor.json`` say of the adaptation: ``rmse_frozen``
+    (the same stream unadapted: ``frozen`` residuals, one array per campaign) and
+    :meth:`Adaptation.figures`."""
+    r = np.concatenate(frozen) if frozen else np.empty((0, len(targets)))
+    return {t: {"rmse_frozen": finite_rms(r[:, j]), **adaptation.figures(j)}
+            for j, t in enumerate(targets)}
+
+
 def from_config(adapt, n_targets: int, scheduled: bool = True) -> Adaptation | None:
     """The :class:`Adaptation` of the ``adapt`` config group (with its ``every_s`` schedule when
     ``scheduled``), or None for ``method=none``."""

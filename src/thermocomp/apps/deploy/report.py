@@ -33,6 +33,7 @@ import pandas as pd
 from ...base.errors import ContractError
 from ...core.context import TIME
 from ...core.metrics import RMSE
+from .adapt import adapt_figures, finite_rms
 from .adaptive import AdaptiveCompensator
 from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
 
@@ -219,10 +220,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
     guard = deployed.guard if isinstance(deployed, AdaptiveCompensator) else None
     us = 1e6 * seconds / max(n, 1)
 
-    def rms(r):
-        ok = np.isfinite(r)
-        return float(np.sqrt(np.mean(r[ok] ** 2))) if ok.any() else None
-
+    rms = finite_rms
     report = {t: {"n_samples": int(n),
                   "max_abs_stream_minus_batch": float(np.max(diff[:, j])) if len(diff) else 0.0,
                   RMSE: rms(resid[:, j]),
@@ -235,11 +233,58 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   "bound": None if guard is None else [float(guard.lo[j]), float(guard.hi[j])]}
               for j, t in enumerate(targets)}
     if adapt is not None:
-        fres = np.concatenate(frozen) if frozen else np.empty((0, k_targets))
-        for j, t in enumerate(targets):
-            report[t]["adapt"] = {"rmse_frozen": rms(fres[:, j]), **adapt.figures(j)}
+        for t, figures in adapt_figures(adapt, frozen, targets).items():
+            report[t]["adapt"] = figures
     result = {"targets": report, "excluded_inputs": sorted(excluded), "events": events,
               **summary(deployed)}
     if result["adaptive"]:
         result["alarms"] = alarm_rate(events, hours)
     return result
+
+
+def adapt_line(targets: Mapping, what: str, key: str) -> list[str]:
+    """``adapt (<method>, <n> references): RMSE <what> <target> <frozen> -> <adapted>, ...``
+    (``key``: the adapted RMSE's key), or nothing when no target was adapted."""
+    adapted = [(t, r) for t, r in targets.items() if "adapt" in r]
+    if not adapted:
+        return []
+    a = adapted[0][1]["adapt"]
+    return [f"adapt ({a['method']}, {a['n_references']} references): RMSE {what} "
+            + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r[key]:.3f}"
+                        for t, r in adapted if r[key] is not None
+                        and r["adapt"]["rmse_frozen"] is not None)]
+
+
+def replay_json(deployed, result: dict, *, name: str, source: str, test_ids: list[str],
+                missing: dict | None = None) -> dict:
+    """``replay.json`` (CLI.md) of :func:`replay_report`'s ``result``."""
+    stream = plain(deployed)
+    report = {"model": name, "source": source, "targets": result["targets"],
+              "excluded_inputs": result["excluded_inputs"], "events": result["events"],
+              "adaptive": result["adaptive"], "pod": result["pod"],
+              **({"alarms": result["alarms"]} if "alarms" in result else {}),
+              "columns": list(deployed.columns_), "time_required": deployed.time_required_,
+              "envelope": {"policy": stream.policy,
+                           "margin": stream.envelope.margin if stream.envelope else None},
+              "test_campaigns": test_ids}
+    if missing:
+        report["missing"] = missing     # missing cells per test campaign and column, streamed as NaN
+    return report
+
+
+def replay_lines(report: dict) -> list[str]:
+    """The table and lines ``thermocomp replay`` prints.  RMSE batch: the fitted model's own
+    prediction of the same rows (what ``run`` scores), so a deployment that streams
+    differently (the adaptive monitor's exclusions) shows beside it."""
+    targets = report["targets"]
+    lines = [f"{'target':<8} {'samples':>8} {'max|stream-batch|':>18} {'RMSE':>8} "
+             f"{'RMSE batch':>11} {'µs/sample':>10}"]
+    for t, r in targets.items():
+        rmse, batch = ("-" if r.get(k) is None else f"{r[k]:.3f}" for k in (RMSE, "rmse_batch"))
+        lines.append(f"{t:<8} {r['n_samples']:>8} {r['max_abs_stream_minus_batch']:>18.3g} "
+                     f"{rmse:>8} {batch:>11} {r['us_per_sample']:>10.1f}")
+    lines += adapt_line(targets, "frozen -> adapted", RMSE)
+    if report["adaptive"]:
+        lines.append(f"events: {len(report['events'])}, excluded at a campaign's end: "
+                     f"{', '.join(report['excluded_inputs']) or 'none'}")
+    return lines

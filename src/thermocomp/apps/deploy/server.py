@@ -11,13 +11,27 @@ soon as the bytes read exceed it), 400 for JSON nested deeper than
 :data:`MAX_DEPTH` (counted on the raw bytes, before any parsing) and 413 for more
 than ``max_rows`` rows.  uvicorn runs :func:`scoring_app` (a factory) with the
 limits in the environment (:data:`ROWS_ENV`, :data:`BODY_ENV`).
+
+The plumbing around it (:func:`trusted_copy`, :func:`server_command`, :func:`run_server`):
+the model folder the server loads, written by this installed package around the model's
+signed pickle (its own code never runs); the server's command line and environment (the
+project's store in ``MLFLOW_TRACKING_URI``, this Python's executables first on ``PATH``);
+the server as a child that ends with its parent and whose folder is removed however it ends.
+
+Request: ``POST http://<host>:<port>/invocations`` with
+``{"dataframe_split": {"columns": [...], "data": [[...]]}, "params": {"session": "machine-7",
+"reset": true}}`` (``reset`` on the first block of each campaign).
 """
 
 from __future__ import annotations
 
 import json
+import math
 import os
 import re
+import shutil
+import sys
+from pathlib import Path
 
 import numpy as np
 
@@ -114,3 +128,85 @@ def scoring_app():
         watch_parent(int(os.environ[PARENT_ENV]))
     model = scoring_server.load_model_with_mlflow_config(os.environ[scoring_server._SERVER_MODEL_PATH])
     return RequestLimits(scoring_server.init(model), int(os.environ[BODY_ENV]), int(os.environ[ROWS_ENV]))
+
+
+def is_loopback(host: str) -> bool:
+    """Whether ``host`` listens on this machine only (``localhost`` or a loopback address)."""
+    import ipaddress
+
+    try:
+        return host == "localhost" or ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False      # a name that may resolve to any interface
+
+
+def trusted_copy(load_deployed, uri: str) -> str:
+    """A pyfunc folder made by this installed package around the deployed compensator
+    ``load_deployed()`` returns (from the model's signed pickle), which
+    is what the server loads: the registered model's own code (``model_code.py``, ``code/``,
+    ``MLmodel``) is never run (the signature covers the pickle alone).  A pickle whose
+    signature does not match is refused here (exit 2), before any server starts."""
+    import tempfile
+
+    import mlflow
+
+    from .pyfunc import save_compensator
+
+    mlflow.set_tracking_uri(uri)    # the registry follows it (no process-wide registry URI:
+                                    # it would outlive this call in a process that goes on)
+    # one folder in the temp dir holds the model and whatever MLflow stages to write it (the
+    # temp dir pointed there meanwhile): run_server removes it when the server ends, this
+    # function when it cannot be written; a signal at any point leaves nothing else behind
+    folder = Path(tempfile.mkdtemp(prefix="thermocomp-serve-"))
+    previous, tempfile.tempdir = tempfile.tempdir, str(folder)
+    try:
+        return str(save_compensator(load_deployed(), folder / "model"))
+    except BaseException:
+        shutil.rmtree(folder, ignore_errors=True)
+        raise
+    finally:
+        tempfile.tempdir = previous
+
+
+def server_command(model: str, uri: str, *, host: str, port: int, timeout_s: float,
+                   max_rows: int, max_body_mb: float) -> tuple[list[str], dict]:
+    """``(argv, environment)`` of uvicorn running :func:`scoring_app` on the pyfunc folder
+    ``model``, one worker (a session's stream state lives in the serving process)."""
+    from mlflow.pyfunc.scoring_server import _SERVER_MODEL_PATH
+    from mlflow.utils.file_utils import path_to_local_file_uri
+
+    bin_dir = str(Path(sys.executable).parent)
+    env = {**os.environ, "MLFLOW_TRACKING_URI": uri, "MLFLOW_REGISTRY_URI": uri,
+           "PATH": os.pathsep.join([bin_dir, os.environ.get("PATH", "")]),
+           _SERVER_MODEL_PATH: path_to_local_file_uri(model),
+           "MLFLOW_SCORING_SERVER_REQUEST_TIMEOUT": str(math.ceil(timeout_s)),
+           ROWS_ENV: str(int(max_rows)), BODY_ENV: str(int(max_body_mb * 2**20))}
+    argv = [str(Path(bin_dir) / "uvicorn"), "--host", str(host), "--port", str(port),
+            "--workers", "1", "--factory", f"{__name__}:{scoring_app.__name__}"]
+    return argv, env
+
+
+def run_server(argv: list[str], env: dict) -> int:
+    """Run the server until it ends or this process is stopped (Ctrl-C, SIGTERM: it stops
+    cleanly); its model folder is removed either way.  Its exit status (0 when stopped)."""
+    import signal
+    import subprocess
+
+    from mlflow.pyfunc.scoring_server import _SERVER_MODEL_PATH
+    from mlflow.utils.file_utils import local_file_uri_to_path
+
+    from ...base.files import Terminated
+
+    folder = Path(local_file_uri_to_path(env[_SERVER_MODEL_PATH])).parent
+    try:
+        sys.stdout.flush()
+        sys.stderr.flush()
+        server = subprocess.Popen(argv, env={**env, PARENT_ENV: str(os.getpid())})
+        try:
+            code = server.wait()
+        except (KeyboardInterrupt, Terminated):    # Ctrl-C, SIGTERM: the server stops, cleanly
+            server.terminate()
+            code = server.wait()
+    finally:    # the model folder written for it, whatever ended the server
+        shutil.rmtree(folder, ignore_errors=True)
+    return 0 if code in (0, -signal.SIGTERM, -signal.SIGINT) else code if code > 0 else 1

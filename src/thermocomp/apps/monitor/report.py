@@ -11,9 +11,9 @@ import numpy as np
 import pandas as pd
 
 from ...core.context import TIME
-from ..deploy.adapt import Adaptation
+from ..deploy.adapt import Adaptation, adapt_figures
 from ..deploy.adaptive import AdaptiveCompensator
-from ..deploy.report import alarm_rate, campaign_start, streamed_hours
+from ..deploy.report import adapt_line, alarm_rate, campaign_start, streamed_hours
 from ..deploy.streaming import warm
 from ..deploy.surveillance import STATES
 from .blind import undetected_offset_um
@@ -147,9 +147,8 @@ def monitor_report(adaptive: AdaptiveCompensator, fixed, comp, streamed: dict, t
               "alarms": alarm_rate(run["events"], run["hours"]),
               "campaigns": list(streamed)}
     if adapt is not None:
-        rfz = np.vstack(run["res_frozen"]) if run["res_frozen"] else None
-        for k, t in enumerate(adaptive.targets_):
-            report["targets"][t]["adapt"] = {"rmse_frozen": _rmse(rfz, k), **adapt.figures(k)}
+        for t, figures in adapt_figures(adapt, run["res_frozen"], adaptive.targets_).items():
+            report["targets"][t]["adapt"] = figures
     return report, run["traces"]
 
 
@@ -170,14 +169,7 @@ def summary_lines(report: dict) -> list[str]:
                      key=r["undetected_offset_um"].get)
         lines.append(f"an offset inside the exclusion band costs up to {worst:.3g} µm ({name} "
                      f"{r['undetected_offset_c']:g} °C, {target}; per sensor in monitor.json)")
-    adapted = [(t, r) for t, r in report["targets"].items() if "adapt" in r]
-    if adapted:
-        a = adapted[0][1]["adapt"]
-        lines.append(f"adapt ({a['method']}, {a['n_references']} references): RMSE adaptive "
-                     "without -> with "
-                     + ", ".join(f"{t} {r['adapt']['rmse_frozen']:.3f} -> {r['rmse_adaptive']:.3f}"
-                                 for t, r in adapted if r["rmse_adaptive"] is not None
-                                 and r["adapt"]["rmse_frozen"] is not None))
+    lines += adapt_line(report["targets"], "adaptive without -> with", "rmse_adaptive")
     excl = [e for e in report["events"] if e["to"] == "excluded"]
     rate = (report.get("alarms") or {}).get("exclusions_per_100h")   # none in older reports
     lines.append(f"events: {len(report['events'])}, exclusions: {len(excl)}"

@@ -8,7 +8,10 @@ ball outside the travel; :func:`summary_lines` is the printed table and findings
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from ...base.errors import ConfigError
+from ...base.log import logger
 from .artefact import check_reach
 from .calibration import prior_sd
 from .design import CalibrationDesignStudy, MachineFamily
@@ -61,6 +64,61 @@ def unreachable(study: CalibrationDesignStudy, todo) -> dict[str, list[str]]:
             out.setdefault(str(err), []).append(
                 f"{strategy.n_balls} balls at {strategy.misalignment_deg:g}° ({strategy.position_set})")
     return out
+
+
+def design_setup(data, folder) -> tuple[object, str]:
+    """(the set-up studied, where it came from): that of the volumetric dataset ``folder``
+    (``data.path`` as given: ``data``, resolved: ``folder``), else the kinematic model's
+    defaults (None; a warning says why when a ``data.path`` was given)."""
+    from .artefact import SETUP_FILE
+    from .series import load_setup
+
+    setup = load_setup(folder) if data else None
+    if setup is not None:
+        return setup, f"{Path(str(data)) / SETUP_FILE}"
+    if data:
+        why = ("does not exist" if not Path(folder).exists() else
+               "holds no volumetric.json (not a volumetric dataset)")
+        logger.warning(f"design: data.path {data} {why}: the kinematic model's "
+                       "default machine and artefact are studied")
+    return None, "kinematic model defaults"
+
+
+def checked_study(d: dict, setup, prior: dict | None, seed: int
+                  ) -> tuple[CalibrationDesignStudy, list]:
+    """(the study of the settings ``d``, the strategies it runs); a bad setting is a
+    ConfigError (``design: ...``).  Strategies that put a ball outside the travel are studied
+    all the same (``reachable: false`` in ``design.json``), with a warning naming them."""
+    from .design import strategies
+
+    try:
+        study = study_from_settings(d, setup, prior, seed)
+        todo = strategies(d["studies"])[0]
+        missed = unreachable(study, todo)
+    except ConfigError:
+        raise
+    except ValueError as err:
+        raise ConfigError(f"design: {err}") from None
+    if missed:
+        n = sum(len(v) for v in missed.values())
+        logger.warning(f"design: {n} of {len(todo)} strategies put a ball outside the travel "
+                       f"({study.length_mm:g} mm bar), studied all the same (reachable: false in "
+                       "design.json): " + "; ".join(f"{', '.join(who)}: {why}"
+                                                    for why, who in missed.items()))
+    return study, todo
+
+
+def design_report(study: CalibrationDesignStudy, result: dict, source: str,
+                  prior: dict | None) -> dict:
+    """``design.json`` (CLI.md): the set-up studied and :meth:`CalibrationDesignStudy.run`'s
+    ``result``."""
+    return {"n_machines": study.n_machines, "seed": study.seed, "setup": source, "prior": prior,
+            "compensation": study.compensation.to_dict(),
+            "machine": {**study.family.model.to_dict(), "ranges_a": study.family.amplitudes,
+                        "decay": study.family.decay},
+            "artefact": {"length_mm": study.length_mm, "x_centres": list(study.x_centres),
+                         "probing_um": study.probing_um, "ball_um": study.ball_um},
+            "grid": list(study.grid), **result}
 
 
 def _pct(value) -> str:

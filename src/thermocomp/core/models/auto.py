@@ -15,7 +15,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted
 
-from ...base.errors import ParameterError
+from ...base.errors import ConfigError, ParameterError
 from ...base.params import check_estimator, choice, integer, number
 from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, subset
 from ..metrics import PERSISTENCE, rmse
@@ -25,6 +25,7 @@ from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
 BASELINE = "mlr"         # always validated beside the candidates, with persistence
+AUTO = "auto"            # the model that chooses: no candidate of its own
 
 
 class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
@@ -87,8 +88,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         tested 3.43 against 3.38).
     val_scores : dict target -> {candidate: RMSE or None}, optional
         Each candidate's free-run RMSE on the manifest's ``val`` split (fitted on the train
-        split; :func:`thermocomp.shell.stages.auto.val_split_scores`), used instead of folds, as the
-        run's validation uses the val split when there is one (None: it could not fit).
+        split; :func:`thermocomp.core.scoring.auto_validation.val_split_scores`), used instead
+        of folds, as the run's validation uses the val split when there is one (None: it could not fit).
     given_scores : dict candidate -> RMSE or None, optional
         One target's ``val_scores`` (:meth:`for_target` sets it).
     chosen : dict target -> candidate name or {candidate: weight}, optional
@@ -339,3 +340,56 @@ def _scheme(scheme: str, groups) -> str:
     if groups is None or len(set(groups)) < 2:
         return "forward-chaining (one record)"
     return "leave-campaigns-out" if scheme == "interleaved" else "blocked forward"
+
+
+def add_choices(comp, targets: dict) -> dict:
+    """``targets[t]["auto"]``: each target's choice of a model=auto compensator, as
+    ``metrics.json`` holds it (run's and each fleet group's); any other leaves ``targets`` as is."""
+    for t, est in getattr(comp, "estimators_", {}).items():
+        if hasattr(est, "family_"):
+            targets[t]["auto"] = est.report()
+    return targets
+
+
+def as_chosen(template, fitted):
+    """``template`` (an unfitted compensator) fitting, per target, the family ``fitted`` (a
+    model=auto compensator) chose: what its validation refits (the choice itself is not
+    re-validated: candidates x folds² fits).  Any other ``template`` as it is."""
+    chosen = {t: getattr(est, "chosen_", getattr(est, "family_", None))
+              for t, est in getattr(fitted, "estimators_", {}).items()}
+    if not chosen or None in chosen.values() or "chosen" not in template.estimator.get_params(deep=False):
+        return template
+    return template.set_params(estimator__chosen=chosen)
+
+
+def check_candidates(candidates, params, defaults, sequence=(list, tuple), mapping=(dict,)
+                     ) -> list:
+    """The names of ``model.candidates``, it and ``model.candidate_params`` /
+    ``model.candidate_defaults`` checked for shape (``sequence``, ``mapping``: the types a
+    config's lists and mappings have)."""
+    if not isinstance(candidates, sequence):
+        raise ConfigError(f"model.candidates={candidates}: must be a list of model families, "
+                          "e.g. [mlr,lagbank]")
+    for key, value in (("candidate_params", params), ("candidate_defaults", defaults)):
+        if not isinstance(value, mapping):
+            what = "candidate" if key == "candidate_params" else "family"
+            raise ConfigError(f"model.{key}={value}: must be a mapping {what} -> "
+                              "its keys, e.g. {lstm:{max_epochs:30}}")
+    names = list(candidates)
+    if not names:
+        raise ConfigError("model.candidates is empty: name at least one model family")
+    for name in params:
+        if name not in names:
+            raise ConfigError(f"model.candidate_params.{name}: {name} is not among model.candidates "
+                              f"{names}")
+    return names
+
+
+def candidate_family(name) -> str:
+    """The model family of a candidate: itself, or for ``ati`` / ``ati+<family>`` (the ATI
+    wrapper) MLR / that family."""
+    wrapped = str(name).split("+", 1)
+    family = BASELINE if wrapped == [ATI] else wrapped[-1]
+    if len(wrapped) == 2 and wrapped[0] != ATI or family in (AUTO, ATI) or not str(name).strip():
+        raise ConfigError(f"model.candidates: {name!r} is not a model family nor ati[+family]")
+    return family

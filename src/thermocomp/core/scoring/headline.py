@@ -12,17 +12,9 @@ from __future__ import annotations
 from pathlib import Path
 
 from ...base.files import atomic_dir, write_json
-from .results import TEST_RMSE, EvaluationResult
+from .results import TEST_RMSE
 
 HEADLINE, DIAGNOSIS_HEADLINE = "headline", "diagnosis_headline"
-
-
-def evaluation_headline(metrics: dict) -> dict:
-    """``{target: {test_rmse, test_rsd_mean, test_rsd_sd, rms_reduction_pct, val_rmse}}``
-    from a ``metrics.json`` document (``val_rmse`` null without validation), plus
-    ``volumetric`` (distance and VCE RMS, A.3 range, before/after) for a volumetric run
-    (:meth:`thermocomp.core.scoring.results.EvaluationResult.headline`)."""
-    return EvaluationResult(metrics).headline("dvc")
 
 
 def diagnosis_headline(diagnoses: dict) -> dict:

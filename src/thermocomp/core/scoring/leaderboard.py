@@ -23,7 +23,6 @@ import pandas as pd
 
 from ..metrics import PERSISTENCE, validation_block
 from .results import DEPLOYED_MODE, HEADLINES, RMS_REDUCTION, VAL_RMSE, TargetResult
-from .results import e_p95_at as e_p95_at  # noqa: PLC0414  (read from here too)
 
 FIGURES = tuple(name for name, _, _ in HEADLINES["baseline"])    # test
 VAL_FIGURES = tuple(name for name, block, _ in HEADLINES["compare"]     # what ranks and gates

@@ -16,7 +16,7 @@ from pathlib import Path
 from omegaconf import DictConfig, OmegaConf
 
 from ...base.errors import ConfigError
-from ...base.paths import resolve
+from ...base.paths import overlap, resolve
 
 RAW = "data.path"
 SQLITE = "sqlite:///"
@@ -34,17 +34,6 @@ def place(cfg: DictConfig, key: str) -> Path | None:
     return Path(os.path.realpath(resolve(str(value))))
 
 
-def relation(output: Path, source: Path) -> str | None:
-    """How ``output`` overlaps ``source``: ``is``, ``lies inside`` or ``holds``; None if apart."""
-    if output == source:
-        return "is"
-    if source in output.parents:
-        return "lies inside"
-    if output in source.parents:
-        return "holds"
-    return None
-
-
 def check_apart(cfg: DictConfig, outputs, inputs) -> None:
     """Refuse, naming both keys, an output of ``outputs`` (config keys) that is, lies inside or
     holds one of the ``inputs``; ``data.path`` is always an input."""
@@ -54,7 +43,7 @@ def check_apart(cfg: DictConfig, outputs, inputs) -> None:
         if output is None:
             continue
         for in_key, source in sources:
-            how = None if source is None or in_key == out_key else relation(output, source)
+            how = None if source is None or in_key == out_key else overlap(output, source)
             if how:
                 raise ConfigError(
                     f"{out_key}={OmegaConf.select(cfg, out_key)} {how} "

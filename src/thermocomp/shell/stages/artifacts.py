@@ -1,14 +1,7 @@
-"""Files that the ``denoise`` and ``select`` stages hand to ``train``.
-
-``denoise`` writes ``data.processed``: the ingested dataset with the declared
-inputs denoised offline (a contract folder of Parquet files that
-``io.load_interim`` reads), the fitted denoiser (``denoiser.pkl``) and
-``denoise.json``.  ``select`` writes ``selection.json`` next to the model.
-Each file records a fingerprint of the settings and data it was made from;
-``train`` uses a file only when the fingerprint matches its own config, and
-otherwise lets the Compensator denoise / select itself -- the same
-computation, so ``thermocomp run`` and ``dvc repro`` give the same model and
-nothing is done twice on the DVC path.
+"""Files that the ``denoise`` and ``select`` stages hand to ``train``: ``data.processed`` (the
+ingested dataset with the declared inputs denoised offline, ``denoiser.pkl``, ``denoise.json``)
+and ``selection.json`` next to the model, each with the fingerprint of the config it was made
+with; ``train`` uses one only when it matches (:mod:`thermocomp.core.io.handoff`).
 """
 
 from __future__ import annotations
@@ -17,21 +10,24 @@ import json
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
-from sklearn.base import BaseEstimator
 from sklearn.frozen import FrozenEstimator
 
-from ...base import signing
 from ...base.files import folder_digest
 from ...base.log import say
 from ...base.paths import resolve
-from ...core import io
 from ...core.compensator import Compensator
+from ...core.io.handoff import (
+    DENOISE_JSON,
+    DENOISER_PKL,
+    SELECTION_JSON,
+    matching_processed,
+    matching_selection,
+)
 from ...core.scoring.evaluation import require_split
 from .common import build_compensator, reference
 
-DENOISE_JSON = "denoise.json"
-DENOISER_PKL = "denoiser.pkl"
-SELECTION_JSON = "selection.json"
+__all__ = ["DENOISER_PKL", "DENOISE_JSON", "denoise_fingerprint", "fit_from_artifacts", "processed_data",
+           "selection_fingerprint", "selection_path"]   # denoise and select read these here
 
 
 def _plain(node) -> object:
@@ -58,29 +54,7 @@ def selection_path(cfg: DictConfig) -> Path:
 
 def processed_data(cfg: DictConfig):
     """``(dataset, fitted denoiser or None)`` from ``data.processed`` if it matches the config."""
-    root = resolve(cfg.data.processed)
-    report = root / DENOISE_JSON
-    if not report.is_file():
-        return None
-    if json.loads(report.read_text()).get("fingerprint") != denoise_fingerprint(cfg):
-        say(f"{root} was made with other settings or data; ignoring it")
-        return None
-    den = None
-    if (root / DENOISER_PKL).is_file():
-        den = signing.load(root / DENOISER_PKL, BaseEstimator)   # signature checked first
-    return io.load_interim(root), den
-
-
-def stored_selection(cfg: DictConfig) -> dict | None:
-    """Selected inputs per target from ``selection.json`` if it matches the config."""
-    path = selection_path(cfg)
-    if not path.is_file():
-        return None
-    stored = json.loads(path.read_text())
-    if stored.get("fingerprint") != selection_fingerprint(cfg):
-        say(f"{path} was made with other settings or data; selecting again")
-        return None
-    return {t: entry["selected"] for t, entry in stored["targets"].items()}
+    return matching_processed(resolve(cfg.data.processed), lambda: denoise_fingerprint(cfg))
 
 
 def fit_from_artifacts(cfg: DictConfig, ds) -> Compensator:
@@ -96,9 +70,7 @@ def fit_from_artifacts(cfg: DictConfig, ds) -> Compensator:
     den = processed[1] if processed is not None else None
     if den is not None:
         comp.set_params(denoiser=FrozenEstimator(den))
-    selected = stored_selection(cfg)
-    if selected is not None and comp.targets is not None and sorted(selected) != sorted(comp.targets):
-        selected = None
+    selected = matching_selection(selection_path(cfg), lambda: selection_fingerprint(cfg), comp.targets)
     comp.set_params(selection=selected)
     say(f"fitting {cfg.model.name} on {len(ids)} train campaigns "
         f"(denoiser: {'fitted by the denoise stage' if den is not None else 'as configured'}; "

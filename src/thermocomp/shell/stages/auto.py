@@ -1,10 +1,6 @@
-"""``model=auto`` in the stages: its candidates built from their own configs, its table.
-
-A candidate is named by its family's config (``conf/model/<name>.yaml``), so a new
-family becomes a candidate by a config edit (``model.candidates=[...]``);
-``ati`` / ``ati+<family>`` is the ATI wrapper (``conf/ati/cmeans.yaml``) of MLR /
-that family.
-"""
+"""``model=auto`` in the stages: its candidates built from their families' configs
+(``conf/model/<name>.yaml``; ``ati`` / ``ati+<family>``: the ATI wrapper of ``conf/ati/cmeans.yaml``
+around MLR / that family), so a new family becomes a candidate by a config edit."""
 
 from __future__ import annotations
 
@@ -14,10 +10,12 @@ from omegaconf import DictConfig, ListConfig, OmegaConf
 
 from ...base.errors import ConfigError
 from ...base.paths import conf_dir
-from ...core.models.auto import ATI, BASELINE
-from ..build import build
+from ...core.models.auto import AUTO, add_choices, as_chosen, candidate_family, check_candidates
+from ...core.scoring.auto_validation import val_split_scores
+from ..build import build, load_node
 
-AUTO = "auto"
+# common and modelling read these here
+__all__ = ["add_choices", "as_chosen", "auto_scheme", "build_candidates", "is_auto", "val_split_scores"]
 
 
 def is_auto(cfg: DictConfig) -> bool:
@@ -34,63 +32,6 @@ def auto_scheme(cfg: DictConfig, ds) -> dict:
     return {"scheme": holdout_scheme(ds)}
 
 
-def val_split_scores(comp, ds) -> dict:
-    """``{target: {candidate: free-run RMSE on the val split}}`` of a model=auto compensator's
-    candidates (and MLR, persistence), each fitted on the train split as the run's validation
-    scores a val split (:func:`~thermocomp.core.scoring.evaluation.validation_report`); None where a
-    candidate cannot fit.  The test split is not read."""
-    import numpy as np
-    from sklearn.base import clone
-
-    from ...core.metrics import PERSISTENCE, RMSE, rmse
-    from ...core.models import MLR
-    from ...core.models.one_step import persistence
-    from ...core.scoring.evaluation import validation_report
-
-    candidates = {**comp.estimator.candidates}
-    candidates.setdefault(BASELINE, MLR())
-    scores: dict = {}
-    fitted = None     # any candidate fitted on the train split: its frame gives the measured errors
-    for name, candidate in candidates.items():
-        one = clone(comp).set_params(estimator=clone(candidate))
-        try:
-            report = validation_report(lambda one=one: one, ds, "simulation")   # fits `one`
-        except (ValueError, ArithmeticError, np.linalg.LinAlgError):
-            scores.setdefault(None, {})[name] = None
-            continue
-        fitted = one
-        for t, entry in report.items():
-            scores.setdefault(t, {})[name] = entry[RMSE]
-    failed = scores.pop(None, {})
-    val = {c: ds.campaigns[c] for c in ds.ids("val")}
-    measured = fitted.measured(val) if fitted is not None else {}
-    for t in scores:
-        scores[t].update(failed)
-        y = [measured[c][t].to_numpy(float) for c in val]
-        scores[t][PERSISTENCE] = rmse(np.concatenate([v - persistence(v) for v in y]))
-    return scores
-
-
-def add_choices(comp, targets: dict) -> dict:
-    """``targets[t]["auto"]``: each target's choice of a model=auto compensator, as
-    ``metrics.json`` holds it (run's and each fleet group's); any other leaves ``targets`` as is."""
-    for t, est in getattr(comp, "estimators_", {}).items():
-        if hasattr(est, "family_"):
-            targets[t]["auto"] = est.report()
-    return targets
-
-
-def as_chosen(template, fitted):
-    """``template`` (an unfitted compensator) fitting, per target, the family ``fitted`` (a
-    model=auto compensator) chose: what its validation refits (the choice itself is not
-    re-validated: candidates x folds² fits).  Any other ``template`` as it is."""
-    chosen = {t: getattr(est, "chosen_", getattr(est, "family_", None))
-              for t, est in getattr(fitted, "estimators_", {}).items()}
-    if not chosen or None in chosen.values() or "chosen" not in template.estimator.get_params(deep=False):
-        return template
-    return template.set_params(estimator__chosen=chosen)
-
-
 def build_candidates(cfg: DictConfig) -> dict:
     """``{name: unfitted estimator}`` of ``model.candidates``, each family with its
     ``model.candidate_defaults`` (the candidate role's settings, for the families present) and
@@ -98,33 +39,16 @@ def build_candidates(cfg: DictConfig) -> dict:
     if cfg.get("ati") is not None and cfg.ati.get("estimator") is not None:
         raise ConfigError(f"model=auto with ati={cfg.ati.name}: the ATI wrapper is a candidate of its "
                           "own, name it in model.candidates (ati, or ati+<family>) with ati=none")
-    candidates, params = cfg.model.get("candidates"), cfg.model.get("candidate_params") or {}
-    if not isinstance(candidates, (list, tuple, ListConfig)):
-        raise ConfigError(f"model.candidates={candidates}: must be a list of model families, "
-                          "e.g. [mlr,lagbank]")
-    if not isinstance(params, (Mapping, DictConfig)):
-        raise ConfigError(f"model.candidate_params={params}: must be a mapping candidate -> "
-                          "its keys, e.g. {lstm:{max_epochs:30}}")
+    params = cfg.model.get("candidate_params") or {}
     defaults = cfg.model.get("candidate_defaults") or {}
-    if not isinstance(defaults, (Mapping, DictConfig)):
-        raise ConfigError(f"model.candidate_defaults={defaults}: must be a mapping family -> "
-                          "its keys, e.g. {lstm:{max_epochs:30}}")
-    names = list(candidates)
-    if not names:
-        raise ConfigError("model.candidates is empty: name at least one model family")
-    for name in params:
-        if name not in names:
-            raise ConfigError(f"model.candidate_params.{name}: {name} is not among model.candidates "
-                              f"{names}")
+    names = check_candidates(cfg.model.get("candidates"), params, defaults,
+                             (list, tuple, ListConfig), (Mapping, DictConfig))
     out = {}
     for name in names:
-        wrapped = str(name).split("+", 1)
-        family = BASELINE if wrapped == [ATI] else wrapped[-1]
-        if len(wrapped) == 2 and wrapped[0] != ATI or family in (AUTO, ATI) or not str(name).strip():
-            raise ConfigError(f"model.candidates: {name!r} is not a model family nor ati[+family]")
+        family, where = candidate_family(name), f"model.candidates: {name}"
         estimator = _family(cfg, family, defaults.get(family), params.get(name), name)
         if family != name:   # an ATI candidate
-            ati = _load(cfg, conf_dir() / "ati" / "cmeans.yaml", f"model.candidates: {name}")
+            ati = load_node(conf_dir() / "ati" / "cmeans.yaml", cfg.get("seed", 0), where)
             estimator = build(ati.estimator, f"model.candidates.{name}")(base_estimator=estimator)
         out[str(name)] = estimator
     return out
@@ -136,18 +60,8 @@ def _family(cfg: DictConfig, family: str, defaults, overrides, name: str):
         known = sorted(p.stem for p in (conf_dir() / "model").glob("*.yaml") if p.stem != AUTO)
         raise ConfigError(f"model.candidates: {name!r} is not a model family (conf/model/ has "
                           f"{', '.join(known)}; ati or ati+<family> for the ATI wrapper)")
-    node = _load(cfg, path, f"model.candidates: {name}")
+    node = load_node(path, cfg.get("seed", 0), f"model.candidates: {name}")
     node.estimator = OmegaConf.merge(node.estimator, defaults or {}, overrides or {})
     where = (f"model.candidate_params.{name}" if overrides else
              f"model.candidate_defaults.{family}" if defaults else f"model.candidates.{name}")
     return build(node.estimator, where)
-
-
-def _load(cfg: DictConfig, path, where: str) -> DictConfig:
-    """The config file at ``path``, its interpolations (``${seed}``) against ``cfg``'s root."""
-    root = OmegaConf.create({"seed": cfg.get("seed", 0)})
-    root.node = OmegaConf.load(path)
-    try:
-        return OmegaConf.create(OmegaConf.to_container(root.node, resolve=True))
-    except Exception as exc:   # an interpolation this root does not hold: say where
-        raise ConfigError(f"{where}: {path} cannot be composed ({exc})") from None

@@ -1,0 +1,36 @@
+"""Where a stream on stdin starts: from a reset, or warmed on the campaign of the dataset it
+continues (``monitor.continues``), as ``replay`` warms a continuing test campaign."""
+
+from __future__ import annotations
+
+from ...base.errors import ConfigError
+from ...core.continuation import chain, preceding
+
+
+def stdin_chain(ds, campaign: str | None, *, ambient_given: bool, reference: str,
+                data_path) -> list[str]:
+    """The campaigns the stream is warmed on (those ``campaign`` continues, and itself), or
+    none.  A model that reads the campaign's ambient from the manifest (no ambient sensor) has
+    none for a stream of its own; a model that reads changes from each campaign's first
+    sample carries no state over: refused."""
+    if campaign is None:
+        if ambient_given:
+            raise ConfigError("monitor.input=-: the model reads each campaign's ambient from the "
+                              "manifest's ambient_c (no T_amb sensor), which a stream on stdin "
+                              "lacks; record a T_amb sensor, or say the campaign it continues "
+                              "(monitor.continues)")
+        return []
+    campaign = str(campaign)
+    if campaign not in ds.ids():
+        raise ConfigError(f"monitor.continues={campaign}: no such campaign in {data_path} "
+                          f"(campaigns: {', '.join(ds.ids())})")
+    if reference != "none":
+        raise ConfigError(f"monitor.continues={campaign}: the model reads temperature changes "
+                          f"from each campaign's first sample (data.reference={reference}), "
+                          "so no state carries over; fit it with data.reference=none")
+    return chain(ds, campaign)
+
+
+def stdin_lead_in(ds, ids: list[str], first_time: float) -> dict:
+    """``{"stdin": lead-in}`` of the warming campaigns ``ids`` (:func:`stdin_chain`)."""
+    return {"stdin": preceding(ds, ids, first_time)} if ids else {}

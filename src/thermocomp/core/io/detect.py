@@ -1,0 +1,95 @@
+"""What ``thermocomp init`` detects in a lab's record: the file whose header is shown, the
+roles proposed from the units in the headers, and the data config that reads it (plain values
+in: the data keys as given, the defaults of ``conf/data/default.yaml``).
+
+Roles not given (``data.roles.*``) are proposed from the units in the headers (µm/mm: an error,
+°C/K/°F: a temperature, rpm, %, ...: a state); a text column is proposed ``ignore``.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from .manifest import read_manifest
+from .options import ROLE_PATTERNS
+from .roles import UNITS, _numeric, split_unit
+from .sniff import resolved
+from .tables import _peek_csv
+
+# units that say "a machine state" (speeds, loads, positions, on/off)
+STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
+               "on/off", "0/1", "mm/min"}
+_GLOB = re.compile(r"([*?\[])")
+_WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
+
+
+def sample_file(src: Path, opts) -> Path:
+    """The file whose header is shown: the record itself, or a folder's first campaign."""
+    if src.is_file():
+        return src
+    return src / read_manifest(src, opts)["file"].iloc[0]
+
+
+def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
+    """``(options with the separators detected, header, first row)`` of ``sample``."""
+    if sample.suffix.lower() != ".csv":
+        import pyarrow.parquet as pq
+
+        table = pq.read_table(sample).slice(0, 1)
+        return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
+    opts = resolved(sample, opts)
+    return (opts, *_peek_csv(sample, opts.delimiter))
+
+
+def proposed_roles(header: list[str], first: dict, opts) -> dict:
+    """``data.roles`` as given, else patterns proposed from the headers' units (µm/mm: an
+    error, a state unit: a state; a text column: ignore)."""
+    roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
+    roles["time"] = opts.roles.get("time", "auto")
+    if any(roles[k] for k in ROLE_PATTERNS):
+        return roles
+    for h in header:
+        base, unit = split_unit(h)
+        unit = (unit or "").lower().replace(" ", "")
+        pattern = _GLOB.sub(r"[\1]", base)
+        if unit in UNITS["E"]:
+            roles["error"].append(pattern)
+        elif unit in STATE_UNITS:
+            roles["state"].append(pattern)
+        elif not _numeric(first.get(h), opts.decimal) and not re.match(r"\d{4}-\d\d-\d\d", str(first.get(h))):
+            roles["ignore"].append(pattern)
+    return roles
+
+
+def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict) -> dict:
+    """The data config that reads ``src``: the separators, the roles, and every other key the
+    user set away from its default (``data.thousands``, ``data.time``, ...)."""
+    config = {"path": str(src), "delimiter": opts.delimiter, "decimal": opts.decimal,
+              "roles": roles}
+    for key, value in given.items():
+        if key not in config and key not in _WHERE and key in defaults and value != defaults[key]:
+            config[key] = value
+    if src.is_file() and given.get("test_fraction") is None:
+        config["test_fraction"] = 0.1        # one record: its last tenth is the test campaign
+    return config
+
+
+def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: float, path: Path,
+                    name: str) -> list[str]:
+    """What ``thermocomp init`` prints: separators, time, sample period, each column's role
+    and contract name, the campaigns, and the command to run next."""
+    times = [h for h, n in plan.names.items() if n == "time"]
+    lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}",
+             f"time: {times[0]!r}" if times else "time: none in the file, data.sample_period_s rows apart",
+             f"sample period: {period_s:g} s, {report['rows']} rows"]
+    width = max(len(h) for h in header)
+    for h in header:
+        contract = plan.names.get(h)
+        role = plan.roles.get(h, "ignore") if contract else "ignore (left out)"
+        lines.append(f"  {h:<{width}}  {role:<12} {contract or '-'}")
+    for cid in ds.ids():
+        lines.append(f"campaign {cid}: {ds.manifest.loc[cid, 'split']}, "
+                     f"{report['campaigns'][cid]['rows']} rows")
+    return lines + [f"data config written to {path}",
+                    f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"]

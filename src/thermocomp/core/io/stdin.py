@@ -1,0 +1,70 @@
+"""A campaign streamed as CSV text (``thermocomp monitor monitor.input=-``): read as a campaign
+file is (``data.delimiter``, ``data.decimal``, ``data.columns``, ``data.time``), so a lab's logger
+rows stream as they are written; empty cells stay NaN, a non-numeric one is refused with its row."""
+
+from __future__ import annotations
+
+from io import StringIO
+
+import numpy as np
+import pandas as pd
+
+from ..context import TIME
+from .contract import ContractError
+from .sniff import SNIFF_LINES, detected
+
+SOURCE = "<stdin>"
+
+
+def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict]:
+    """``(frame, missing cells per column)`` of CSV ``text`` (header first) holding ``columns``
+    (those the compensator reads).  ``time`` in seconds or as ISO 8601 timestamps (``auto``: as
+    the first row reads, like a campaign file)."""
+    text = text.lstrip("\ufeff")
+    opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
+    try:
+        df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
+                         thousands=opts.thousands)
+    except Exception as exc:    # pandas raises several kinds for a bad stream
+        raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
+                            f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
+                            file=SOURCE) from None
+    df = df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns})
+    absent = [c for c in columns if c not in df.columns]
+    if not absent and df.empty:
+        raise ContractError("stdin has a header but no data row", file=SOURCE)
+    if absent:
+        raise ContractError("stdin lacks a column the compensator reads", file=SOURCE,
+                            column=",".join(absent))
+    if TIME in df.columns:
+        df[TIME] = stream_seconds(df[TIME], opts.time)
+    # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
+    # model reads: the measured errors and the context are read from the same frame
+    numeric = list(dict.fromkeys([*columns, *(c for c in df.columns
+                                              if c == TIME or str(c)[:2] in ("T_", "E_", "S_"))]))
+    for c in numeric:
+        bad = pd.to_numeric(df[c], errors="coerce").isna() & df[c].notna()
+        if bad.any():
+            raise ContractError("non-numeric value", file=SOURCE, column=c,
+                                row=int(np.flatnonzero(bad)[0]) + 1)
+        df[c] = pd.to_numeric(df[c], errors="coerce")
+    return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}
+
+
+def stream_seconds(time: pd.Series, time_format: str) -> pd.Series:
+    """The stream's ``time`` in seconds since its first row when it holds ISO 8601 timestamps
+    (as given otherwise: the numeric check refuses what is no number).  A time that goes back
+    is no refusal here: the stream's guard judges it, as on the machine."""
+    first = time.iloc[0]
+    iso = time_format == "iso8601" or (time_format == "auto" and isinstance(first, str)
+                                       and pd.isna(pd.to_numeric(first, errors="coerce")))
+    if not iso:
+        return time
+    stamps = pd.to_datetime(time.astype(str).where(time.notna()), format="ISO8601", utc=True,
+                            errors="coerce")
+    bad = stamps.isna() & time.notna()
+    if bad.any() or pd.isna(stamps.iloc[0]):
+        row = int(np.flatnonzero(bad)[0]) + 1 if bad.any() else 1
+        raise ContractError(f"not an ISO 8601 time (data.time={time_format}: the stream's first "
+                            "row is a timestamp)", file=SOURCE, column=TIME, row=row)
+    return (stamps - stamps.iloc[0]).dt.total_seconds()

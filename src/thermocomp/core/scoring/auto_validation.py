@@ -1,0 +1,42 @@
+"""``model=auto`` scored on a val split: each candidate fitted on the train split and scored in
+free run on the val campaigns, as the run's validation scores a val split."""
+
+from __future__ import annotations
+
+import numpy as np
+from sklearn.base import clone
+
+from ..metrics import PERSISTENCE, RMSE, rmse
+from ..models import MLR
+from ..models.auto import BASELINE
+from ..models.one_step import persistence
+from .evaluation import validation_report
+
+
+def val_split_scores(comp, ds) -> dict:
+    """``{target: {candidate: free-run RMSE on the val split}}`` of a model=auto compensator's
+    candidates (and MLR, persistence), each fitted on the train split as the run's validation
+    scores a val split (:func:`~.evaluation.validation_report`); None where a candidate cannot
+    fit.  The test split is not read."""
+    candidates = {**comp.estimator.candidates}
+    candidates.setdefault(BASELINE, MLR())
+    scores: dict = {}
+    fitted = None     # any candidate fitted on the train split: its frame gives the measured errors
+    for name, candidate in candidates.items():
+        one = clone(comp).set_params(estimator=clone(candidate))
+        try:
+            report = validation_report(lambda one=one: one, ds, "simulation")   # fits `one`
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError):
+            scores.setdefault(None, {})[name] = None
+            continue
+        fitted = one
+        for t, entry in report.items():
+            scores.setdefault(t, {})[name] = entry[RMSE]
+    failed = scores.pop(None, {})
+    val = {c: ds.campaigns[c] for c in ds.ids("val")}
+    measured = fitted.measured(val) if fitted is not None else {}
+    for t in scores:
+        scores[t].update(failed)
+        y = [measured[c][t].to_numpy(float) for c in val]
+        scores[t][PERSISTENCE] = rmse(np.concatenate([v - persistence(v) for v in y]))
+    return scores

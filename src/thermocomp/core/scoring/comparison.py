@@ -1,0 +1,55 @@
+"""The table of ``thermocomp compare`` (pure: the ranked runs and the baselines in, what is
+shown and ``compare.json`` out).
+
+Columns: model, selection, ATI, the settings that vary across the sweep, the
+validation RMSE and Rsd SM/SD with their method (``val_*``: what ranks), then
+the test Rsd SM/SD, RMSE, RMS reduction, E_P95 of the residual at 1 h / 8 h
+(``null`` when the campaigns are shorter) -- reported, never used to choose --
+and the fit time.  Below the ranked runs, a ``persistence (baseline)`` row (the
+previous measured error as the prediction, read from the runs' metrics;
+``baselines`` in ``compare.json``); ``compare.csv`` holds the ranked runs only.
+Printed (Markdown), saved as
+``compare.csv``, ``compare.md`` and ``compare.json`` (a DVC metric) under
+``compare.out`` (default: the sweep's folder), and logged as artifacts of the sweep's parent run.
+"""
+
+from __future__ import annotations
+
+import pandas as pd
+
+from ...base.jsonsafe import json_safe
+from .leaderboard import FIGURES, ONLINE_NOTE, VAL_FIGURES, informative, is_validation, ranking_line
+
+
+def shown_table(table: pd.DataFrame, baselines: list[dict]) -> pd.DataFrame:
+    """The ranked runs as printed (short run ids), the persistence baseline below them (never
+    ranked itself), marked: it predicts from the measured error, which a compensator in service
+    does not have.  What holds nothing (e_p95_8h of campaigns under 8 h) is left out."""
+    shown = table.drop(columns=["run_id"]).assign(run=table["run_id"].str[:8])
+    marked = pd.DataFrame([{**b, "model": f"{b['model']}: {ONLINE_NOTE}", "run": "baseline"}
+                           for b in baselines], columns=shown.columns)
+    return informative(pd.concat([shown, marked], ignore_index=True) if baselines else shown)
+
+
+def compare_json(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
+                 baselines: list[dict], basis: dict) -> dict:
+    """``compare.json``; ``basis``: :func:`~.leaderboard.ranked_by` of the table (printed too)."""
+    records = json_safe(table.to_dict(orient="records"))
+    numeric = [c for c in (*VAL_FIGURES, *FIGURES, "fit_time_s") if c in table.columns]
+    return {"parent_run_id": parent_id, "sort_by": sort_by, "target": target,
+            "ranked_by_validation": is_validation(sort_by), "ranked_by": basis,
+            "reported_not_used_to_choose": [c for c in FIGURES if c in table.columns],
+            "n_runs": len(records),
+            "best": {k: records[0][k] for k in ("run_id", "model", "select", *numeric)} if records else {},
+            "runs": {f"{i:02d}_{r['run_id'][:8]}": {k: r[k] for k in numeric} for i, r in
+                     enumerate(records)},
+            "baselines": json_safe([{k: b[k] for k in ("model", "needs_measured_error_online", *FIGURES)}
+                                    for b in baselines])}
+
+
+def headline_line(parent_id: str, n_runs: int, sort_by: str, target: str, basis: dict) -> str:
+    """The line above the table: what sorted it (``basis``: :func:`~.leaderboard.ranked_by`)."""
+    said = (ranking_line(basis) if is_validation(sort_by)
+            else "a TEST figure, as asked: do not choose a model by it")
+    return (f"sweep {parent_id}: {n_runs} runs, sorted by {sort_by} "
+            f"(target {target}, {said}); test: columns are reported, not used to choose")
