@@ -238,7 +238,7 @@ def _check_hydra_node(args: list[str]) -> None:
             _fail(missing(exc))
         return                        # as above: Hydra's own message, nothing built
     from .build import check_built
-    from .stages.apart import check_apart
+    from .config.apart import check_apart
 
     _guarded(check_built, cfg.hydra, "hydra")     # resolved: Hydra imports them anyway
     if any(a in ("-m", "--multirun") for a in args):   # Hydra writes multirun.yaml there first

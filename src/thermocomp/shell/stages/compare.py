@@ -39,10 +39,10 @@ from ...core.scoring.leaderboard import (
     ranking_line,
     to_markdown,
 )
+from ..config.apart import check_apart
 from ..sweeps import parent_run_id, sweep_folder, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
-from .apart import check_apart
 from .common import _check_writable, check_keys
 
 NO_SWEEP_FOLDER = "reports/compare"   # a sweep whose folder is not on this machine

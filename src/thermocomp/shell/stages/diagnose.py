@@ -42,8 +42,8 @@ from ...base.paths import resolve
 from ...core import io
 from ...core.scoring.headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
 from ...core.scoring.results import TargetResult
+from ..config import rules
 from ..tracking import stage_run
-from . import rules
 from .common import build_compensator, check_config, check_declared, data_options, resolve_reference
 
 # What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are

@@ -36,8 +36,8 @@ from omegaconf import DictConfig
 from ...base.errors import ConfigError
 from ...base.log import logger, say
 from ...base.paths import resolve
+from ..config.rules import SERVE_RULES, check_keys
 from ..tracking import DEFAULT_URI, resolve_uri, retry_locked
-from .rules import SERVE_RULES, check_keys
 
 QUIET_DOWNLOADS = "MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR"
 

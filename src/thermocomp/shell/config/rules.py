@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Mapping
 
 from omegaconf import DictConfig, OmegaConf
 
@@ -26,20 +27,43 @@ from ...base.params import (
     check_values,
     choice,
     either,
+    file_name,
     integer,
     integers,
     number,
     numbers,
     optional,
+    subset,
     text,
     texts,
 )
+from ...core.compensator import MODES
+from ...core.frame import REFERENCES
 from ...core.model_selection import CV_SCHEMES
 
 MAX_WINDOW = 100_000      # monitor.window: samples kept per sensor (1e9 was OOM-killed at 24 GB)
 MAX_MACHINES = 10_000     # design.n_machines: 50x the paper's 200 (1e9 ran 211 s, then killed)
 MAX_GRID = 1_000_000      # VCE grid points: ~24 MB per machine at most, not a MemoryError
 MAX_JOBS = 1024           # worker processes
+
+AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
+PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
+
+# What the plain keys of the shared config groups may be (the components below check their own).
+CONFIG_RULES = {
+    "name": file_name(),
+    "track": optional(BOOLEAN), "plots": choice(*PLOTS),
+    "data.reference": choice(*REFERENCES, AUTO_REFERENCE),
+    "eval.mode": choice(*MODES), "eval.e_p95.statistic": choice("range", "std"),
+    "eval.e_p95.max_points": optional(integer(2)),  # 0 or 1 window lengths: an empty E_P95 curve
+    "eval.anova_alpha": number(0.0, 1.0, open_lo=True, open_hi=True),
+    "eval.mutual_prediction": BOOLEAN, "eval.ati_baselines": BOOLEAN, "eval.iso10791_a3": BOOLEAN,
+    "eval.validation": BOOLEAN, "eval.validation_folds": integer(2, at_most=1000),
+    "eval.validation_scheme": choice("auto", "forward", "interleaved"),
+    "data.group_jobs": integer(1, at_most=1024),           # processes
+    "data.inputs": texts("column names or patterns", unique=True),
+    "data.targets": optional(texts("E_ column names", unique=True)),
+}
 
 MONITOR_RULES = {f"monitor.{k}": rule for k, rule in {
     "input": choice(None, "-"), "continues": optional(either(text(), integer(0))),
@@ -199,3 +223,29 @@ def check_groups(cfg: DictConfig) -> None:
                              OmegaConf.to_container(c.design, resolve=True)))):
         if cfg.get(group) is not None:
             check(cfg)
+
+
+# calibrate.* (the stage, and `run` on a volumetric dataset)
+CALIBRATE_KINDS = ("positioning", "straightness", "angular", "cross")
+FORMATS = ("parquet", "csv")
+CALIBRATE_RULES = {
+    "outlier_z": either(POSITIVE, Rule(lambda v: v == math.inf, "inf")),  # inf: fit them as they are
+    "column_share": number(0.0, 1.0, open_lo=True), "format": choice(*FORMATS),
+    "require_seen": subset(CALIBRATE_KINDS, empty=True),
+    "prior": optional(Rule(lambda v: isinstance(v, Mapping) and len(v) > 0,
+                           "a range a per kind (as design.ranges: positioning, straightness, "
+                           "squareness, angular, cross, decay)")),
+}
+
+
+def check_calibrate(c: DictConfig) -> None:
+    """Refuse a ``calibrate.*`` value the stage cannot use, before any data is read."""
+    check_values(c, CALIBRATE_RULES, "calibrate")
+    prior = c.get("prior")
+    if prior is not None:    # a range per kind (decay: one number), or one per Legendre order
+        from ...apps.volumetric.calibration import check_prior_kinds
+
+        check_values(prior, {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0))
+                             for k in prior}, "calibrate.prior")
+        # the kinds every machine has (cross only with its cross terms: checked with the model)
+        check_prior_kinds(prior, {"positioning", "straightness", "squareness", "angular"})
