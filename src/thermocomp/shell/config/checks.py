@@ -16,7 +16,7 @@ from ..build import build
 from ..tracking import enabled, store_uri
 from .apart import check_apart
 from .candidates import build_candidates, is_auto
-from .rules import CONFIG_RULES, check_calibrate, check_groups, check_keys
+from .rules import check_schema
 
 MAX_COMPONENT = 200   # bytes of one name in a written path: 255 less the staging decoration
 # The configured estimators, denoiser and selector: each checks its ``param_rules``.
@@ -33,11 +33,8 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
     ``inputs`` are the keys of what it reads besides ``data.path``: no output (nor
     ``out``, where its log goes) is, lies inside or holds one (:mod:`.apart`).
     """
-    check_keys(cfg, CONFIG_RULES)
-    check_groups(cfg)        # every group, whatever the stage: replay streams with promote.* too
+    check_schema(cfg)        # every group, whatever the stage: replay streams with promote.* too
     io.ReadOptions.from_cfg(data_options(cfg))      # data.*: before any file is read
-    if cfg.get("calibrate") is not None:
-        check_calibrate(cfg.calibrate)
     store = ("tracking_uri",) if enabled(cfg) else ()    # a SQLite store and its artifacts
     check_apart(cfg, (*outputs, "out", *store), inputs)
     for key in COMPONENTS:

@@ -1,0 +1,59 @@
+"""The typed config (issue 35 item 5): one schema (``shell/config/schema.py``) whose rules every
+stage checks on the config as composed, and from which ``--help`` and the run's MLflow params
+and name are derived."""
+
+from __future__ import annotations
+
+import functools
+
+import pytest
+from hydra import compose, initialize_config_dir
+from omegaconf import OmegaConf
+
+import thermocomp.shell.cli  # noqa: F401  (registers the resolvers conf/ uses)
+from thermocomp.base.errors import ConfigError
+from thermocomp.base.paths import conf_dir
+from thermocomp.shell.config import rules as rule_tables
+from thermocomp.shell.config.rules import check_schema
+from thermocomp.shell.config.schema import Root, fields
+
+KEYS = [name for name, f in fields(Root) if f.metadata["rule"] is not None]
+# values no config key takes: each key is set to the first its rule refuses
+WRONG = ("§ not a value", {"not": "a value"}, -1.5, [-1.5], None)
+
+
+@functools.cache
+def _composed():
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=["track=false"])
+    OmegaConf.set_struct(cfg, False)
+    return cfg
+
+
+def test_the_composed_defaults_hold_every_schema_key_and_pass_its_rule():
+    cfg = _composed()
+    absent = [k for k, _ in fields(Root) if OmegaConf.select(cfg, k, default="<absent>") == "<absent>"]
+    assert not absent, f"schema keys conf/ does not have: {absent}"
+    check_schema(cfg)
+
+
+@pytest.mark.parametrize("key", KEYS)
+def test_a_wrong_value_of_every_schema_key_is_refused_naming_the_key(key):
+    cfg = _composed()
+    rule = dict(fields(Root))[key].metadata["rule"]
+    wrong = next(v for v in WRONG if not rule(v))
+    before = OmegaConf.select(cfg, key)
+    OmegaConf.update(cfg, key, wrong, merge=False)
+    try:
+        with pytest.raises(ConfigError, match=rf"^{key.replace('.', '[.]')}="):
+            check_schema(cfg)
+    finally:
+        OmegaConf.update(cfg, key, before, merge=False)
+
+
+def test_the_stages_rule_tables_are_the_schemas():
+    # one source: a key added to the schema is in the table its stage checks
+    assert set(rule_tables.MONITOR_RULES) == {k for k in KEYS if k.startswith("monitor.")}
+    assert set(rule_tables.DIAGNOSE_RULES) == {k[len("diagnose."):] for k in KEYS
+                                               if k.startswith("diagnose.")}
+    assert rule_tables.SERVE_RULES["serve.port"] is dict(fields(Root))["serve.port"].metadata["rule"]
