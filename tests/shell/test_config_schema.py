@@ -13,9 +13,12 @@ from omegaconf import OmegaConf
 import thermocomp.shell.cli  # noqa: F401  (registers the resolvers conf/ uses)
 from thermocomp.base.errors import ConfigError
 from thermocomp.base.paths import conf_dir
+from thermocomp.shell.cli import _compose, _group_options, main
 from thermocomp.shell.config import rules as rule_tables
+from thermocomp.shell.config.commands import COMMANDS, groups_of
 from thermocomp.shell.config.rules import check_schema
 from thermocomp.shell.config.schema import Root, fields
+from thermocomp.shell.stages import STAGES
 
 KEYS = [name for name, f in fields(Root) if f.metadata["rule"] is not None]
 # values no config key takes: each key is set to the first its rule refuses
@@ -57,3 +60,35 @@ def test_the_stages_rule_tables_are_the_schemas():
     assert set(rule_tables.DIAGNOSE_RULES) == {k[len("diagnose."):] for k in KEYS
                                                if k.startswith("diagnose.")}
     assert rule_tables.SERVE_RULES["serve.port"] is dict(fields(Root))["serve.port"].metadata["rule"]
+
+
+# -- one root config per command ---------------------------------------------------------------
+
+def test_every_stage_is_a_command_whose_root_composes_and_resolves():
+    assert set(COMMANDS) == set(STAGES)
+    for command in COMMANDS:
+        cfg = _compose(["track=false"], command)
+        groups = {k for k in cfg if _group_options(k)}
+        assert groups == set(groups_of(command)) - {"experiment"}, command
+        OmegaConf.to_container(cfg, resolve=True)     # every interpolation has its group
+
+
+def test_serve_composes_no_scenario_no_model_no_data():
+    cfg = _compose([], "serve")
+    assert not {"sim", "model", "data", "eval", "monitor"} & set(cfg)
+    assert cfg.serve.model == "models:/thermocomp-compensator@champion"
+
+
+@pytest.mark.parametrize("command, override, group", [
+    ("serve", "model=arx", "model"), ("serve", "eval.validation=false", "eval"),
+    ("compare", "monitor.window=3", "monitor"), ("calibrate", "+diagnose.alpha=0.1", "diagnose")])
+def test_a_group_the_command_does_not_read_is_refused_in_one_line(capsys, command, override, group):
+    assert main([command, override]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"does not read the {group} group" in err[0], err
+    assert ", ".join(groups_of(command)) in err[0]
+
+
+def test_a_typo_in_a_key_the_command_reads_still_gets_its_hint(capsys):
+    assert main(["serve", "serve.prot=5002"]) == 2
+    assert "did you mean 'serve.port'?" in capsys.readouterr().err
