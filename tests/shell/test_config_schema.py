@@ -16,9 +16,11 @@ from thermocomp.base.paths import conf_dir
 from thermocomp.shell.cli import _compose, _group_options, main
 from thermocomp.shell.config import rules as rule_tables
 from thermocomp.shell.config.commands import COMMANDS, groups_of
+from thermocomp.shell.config.naming import PARAM_KEYS, _entries, run_name, run_params
 from thermocomp.shell.config.rules import check_schema
 from thermocomp.shell.config.schema import Root, fields
 from thermocomp.shell.stages import STAGES
+from thermocomp.shell.tracking import config_container
 
 KEYS = [name for name, f in fields(Root) if f.metadata["rule"] is not None]
 # values no config key takes: each key is set to the first its rule refuses
@@ -92,3 +94,60 @@ def test_a_group_the_command_does_not_read_is_refused_in_one_line(capsys, comman
 def test_a_typo_in_a_key_the_command_reads_still_gets_its_hint(capsys):
     assert main(["serve", "serve.prot=5002"]) == 2
     assert "did you mean 'serve.port'?" in capsys.readouterr().err
+
+
+# -- run names, MLflow params and --help from the schema ---------------------------------------
+
+def _reporting_and_fitting_keys():
+    """Schema keys marked (or under a group marked) ``reports``; the others that name no run
+    by themselves (not ``names``)."""
+    meta = dict(_entries())
+    marked = {k for k, m in meta.items() if m["reports"]}
+    keys = [k for k, _ in fields(Root)]
+    reporting = [k for k in keys if any(k == r or k.startswith(f"{r}.") for r in marked)]
+    fitting = [k for k in keys if k not in reporting and not meta[k]["names"] and "." in k]
+    return reporting, fitting
+
+
+def test_a_key_the_schema_marks_as_reporting_never_names_a_run_any_other_does():
+    cfg = _compose([], "run")
+    reporting, fitting = _reporting_and_fitting_keys()
+    assert {"out", "data.path", "eval.validation", "promote.alias", "serve.port"} <= set(reporting)
+    for key in reporting:
+        assert run_name(cfg, [f"{key}=7"]) == "mlr", key
+    assert {"monitor.window", "data.reference", "diagnose.alpha"} <= set(fitting)
+    for key in fitting:
+        assert run_name(cfg, [f"{key}=7"]) == f"mlr-{key.rsplit('.', 1)[-1]}=7", key
+
+
+def test_the_logged_params_are_the_schemas():
+    logged = {k for k, meta in _entries() if meta.get("logged")}
+    assert set(PARAM_KEYS) == logged
+    assert {"seed", "data.path", "eval.mode", "model.name", "select.name"} <= logged
+    cfg = _compose(["seed=3"], "run")
+    assert logged <= set(run_params(config_container(cfg)))
+
+
+def test_help_keys_lists_every_key_with_its_default_type_domain_and_comment(capsys):
+    assert main(["serve", "--help", "keys"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    cfg = _compose([], "serve")
+    listed = {line.split(" = ")[0].strip(): line for line in lines}
+    for key, f in fields(Root):
+        if key.split(".")[0] in cfg:
+            assert key in listed, key
+            if f.metadata["rule"] is not None:
+                assert f": {f.metadata['rule'].says})" in listed[key], listed[key]
+    # the default as written and the comment beside it in conf/serve/default.yaml
+    assert listed["serve.host"].startswith("  serve.host = 127.0.0.1  (str: a non-empty text)")
+    assert listed["serve.host"].endswith("0.0.0.0 to listen on every interface (no authentication!)")
+    assert listed["serve.model"].startswith("  serve.model = models:/${promote.model_name}@")
+    assert not any(k.startswith(("sim.", "model.", "data.")) for k in listed)
+
+
+def test_help_keys_of_one_group_and_of_a_group_the_command_lacks(capsys):
+    assert main(["run", "--help", "keys", "eval"]) == 0
+    keys = [line.split(" = ")[0].strip() for line in capsys.readouterr().out.splitlines()]
+    assert keys and all(k.startswith("eval.") for k in keys) and "eval.validation_folds" in keys
+    assert main(["run", "--help", "keys", "monitor"]) == 2
+    assert "composes no group 'monitor'" in capsys.readouterr().err

@@ -63,8 +63,29 @@ def stage_help(stage: str) -> str:
     return (f"usage: thermocomp [-q | -v] {stage} [key=value ...]\n\n{stage}: {c.what}\n"
             f"  reads:     {c.reads}\n  writes:    {c.writes}\n  overrides: {c.overrides}\n"
             "  common:    out=<dir> name=<run> track=false tracking_uri=<uri> seed=<int> plots=...\n\n"
+            f"its keys:    thermocomp {stage} --help keys [<group>]   (default, type, what each does)\n"
             f"full config: thermocomp {stage} --cfg job   (one group: --cfg job --package model)\n"
             f"Hydra's help: thermocomp {stage} --hydra-help")
+
+
+def _print_keys(stage: str, group: str | None) -> int:
+    """``thermocomp <stage> --help keys [group]``: the keys the command composes, from the schema."""
+    from .config.describe import describe
+
+    try:
+        cfg = _compose_hydra([], stage)
+        if group is not None and cfg.get(group) is None:
+            _fail(f"--help keys {group}: thermocomp {stage} composes no group {group!r} "
+                  f"(it composes {', '.join(groups_of(stage))})")
+    except SystemExit as exc:
+        return exc.code
+    from omegaconf import open_dict
+
+    choices = dict(cfg.hydra.runtime.choices)
+    with open_dict(cfg):
+        del cfg["hydra"]
+    print(describe(cfg, choices, group))
+    return 0
 
 
 def _config_errors() -> tuple[type, ...]:
@@ -231,7 +252,6 @@ def _explain(exc: BaseException, command: str | None = None) -> str:
     import re
 
     from hydra.errors import MissingConfigException
-    from omegaconf import OmegaConf
 
     msg = " ".join(str(exc).split())
     if isinstance(exc, MissingConfigException) and exc.missing_cfg_file and exc.options:
@@ -243,18 +263,34 @@ def _explain(exc: BaseException, command: str | None = None) -> str:
         key = m.group(1)
         if _unread_group(key, command):
             return _unread_group(key, command)
-        close = _fix_key(key, OmegaConf.to_container(_compose([], command), resolve=False))
+        close = _fix_key(key, _whole_config())
         if close:
             return f"unknown config key {key!r}; did you mean {close!r}? ({msg})"
     return msg
 
 
+def _whole_config() -> dict:
+    """``conf/config.yaml`` as composed (every group, unresolved): where a typo's hint is found,
+    whatever group it is of."""
+    from omegaconf import OmegaConf, open_dict
+
+    cfg = _compose_hydra([])
+    with open_dict(cfg):
+        del cfg["hydra"]
+    return OmegaConf.to_container(cfg, resolve=False)
+
+
 def _unread_group(key: str, command: str | None) -> str | None:
-    """Why ``key`` is not in ``command``'s config when it is of a group the command does not
-    compose (its root config, :mod:`.config.commands`), else None."""
+    """Why ``key`` is not in ``command``'s config when it is a key (or the choice) of a group
+    the command does not compose (its root config, :mod:`.config.commands`), else None."""
     group = key.lstrip("+~").replace("/", ".").split(".")[0]
     if command is None or group in groups_of(command) or _group_options(group) is None:
         return None
+    node = _whole_config()
+    for part in key.lstrip("+~").split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None                  # not a key of the group either: a typo, hinted
+        node = node[part]
     return (f"{key}: thermocomp {command} does not read the {group} group (it composes "
             f"{', '.join(groups_of(command))})")
 
@@ -391,7 +427,7 @@ def _check_added_keys(added: list[str], base: list[str], command: str) -> None:
             if not isinstance(node, dict) or part not in node:
                 if _unread_group(key, command):
                     _fail(_unread_group(key, command))
-                close = _fix_key(key, config)
+                close = _fix_key(key, _whole_config())
                 hint = f"; did you mean {close!r}?" if close else ""
                 _fail(f"unknown config key {key!r} (added with '+'): thermocomp reads no such "
                       f"key{hint}")
@@ -552,11 +588,14 @@ def main(argv: list[str] | None = None) -> int:
         print(f"thermocomp: error: unknown stage {stage!r}{hint} (stages: {', '.join(STAGES)})",
               file=sys.stderr)
         return 2
-    if stage == "init":
-        args = _positional_path(args)
     if any(a in ("-h", "--help") for a in args):
+        topic = [a for a in args if a not in ("-h", "--help")]
+        if topic[:1] == ["keys"]:       # its keys: default, type and domain, what each does
+            return _print_keys(stage, topic[1] if len(topic) > 1 else None)
         print(stage_help(stage))
         return 0
+    if stage == "init":
+        args = _positional_path(args)
     try:
         args = lenient(args)
         _check_overrides(args, stage)

@@ -13,7 +13,7 @@ from ...base.params import MAX_COUNT, check_params
 from ...base.paths import resolve
 from ...core import io
 from ..build import build
-from ..tracking import enabled, store_uri
+from ..store import enabled, store_uri
 from .apart import check_apart
 from .candidates import build_candidates, is_auto
 from .rules import check_schema

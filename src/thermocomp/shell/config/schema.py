@@ -8,8 +8,6 @@ their owner's own checks (the ``_target_`` objects' ``param_rules``, ``data.*`` 
 ``io.ReadOptions``) or not checked.
 """
 
-from __future__ import annotations
-
 import dataclasses
 import math
 import re
@@ -48,17 +46,22 @@ AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns contin
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws
 
 
-def key(rule: Rule | None = None, *, names: bool = False, logged: bool = False):
+def key(rule: Rule | None = None, *, names: bool = False, logged: bool = False,
+        reports: bool = False):
     """A config key checked by ``rule`` (None: by its reader, as ``out`` where it is written).
-    ``names``: it names a run (:func:`thermocomp.shell.tracking.run_name`); ``logged``: an
-    MLflow param of every run."""
-    return field(default=None, metadata={"rule": rule, "names": names, "logged": logged})
+    How a run records it (:mod:`.naming`): ``names``, it names every run; ``logged``, an MLflow
+    param of every run; ``reports``, it says where things go or how much is reported, not what
+    is fitted, so it never names a run (any other key does when overridden)."""
+    return field(default=None, metadata={"rule": rule, "names": names, "logged": logged,
+                                         "reports": reports})
 
 
-def group(schema: type, *, unnamed: str | None = None, names: bool = False):
+def group(schema: type, *, names: bool = False, unnamed: str | None = None,
+          reports: bool = False):
     """A nested group of keys (``monitor.bands``).  ``names``: a config group whose option
-    names a run, unless it is ``unnamed`` (``select=all``)."""
-    return field(default_factory=schema, metadata={"names": names, "unnamed": unnamed})
+    names every run but ``unnamed`` (``select=all``); ``reports`` as :func:`key`'s."""
+    return field(default_factory=schema, metadata={"names": names, "unnamed": unnamed,
+                                                   "reports": reports})
 
 
 # twin.drops / twin.restarts: outages of the virtual machine, [[sample, samples], ...]
@@ -78,7 +81,9 @@ def _position_sets(v) -> bool:
 
 @dataclass
 class Data:
-    path: str = key(logged=True)
+    path: str = key(logged=True, reports=True)
+    interim: str = key(reports=True)
+    processed: str = key(reports=True)
     inputs: list = key(texts("column names or patterns", unique=True), logged=True)
     targets: Optional[list] = key(optional(texts("E_ column names", unique=True)), logged=True)
     reference: str = key(choice(*REFERENCES, AUTO_REFERENCE), logged=True)
@@ -94,14 +99,15 @@ class EP95:
 @dataclass
 class Eval:
     mode: str = key(choice(*MODES), names=True, logged=True)
-    e_p95: EP95 = group(EP95)
-    anova_alpha: float = key(number(0.0, 1.0, open_lo=True, open_hi=True))
-    mutual_prediction: bool = key(BOOLEAN)
-    ati_baselines: bool = key(BOOLEAN)
-    iso10791_a3: bool = key(BOOLEAN)
-    validation: bool = key(BOOLEAN, logged=True)
-    validation_folds: int = key(integer(2, at_most=1000))
-    validation_scheme: str = key(choice("auto", "forward", "interleaved"))
+    # the rest scores what was fitted: never a run's name
+    e_p95: EP95 = group(EP95, reports=True)
+    anova_alpha: float = key(number(0.0, 1.0, open_lo=True, open_hi=True), reports=True)
+    mutual_prediction: bool = key(BOOLEAN, reports=True)
+    ati_baselines: bool = key(BOOLEAN, reports=True)
+    iso10791_a3: bool = key(BOOLEAN, reports=True)
+    validation: bool = key(BOOLEAN, logged=True, reports=True)
+    validation_folds: int = key(integer(2, at_most=1000), reports=True)
+    validation_scheme: str = key(choice("auto", "forward", "interleaved"), reports=True)
 
 
 @dataclass
@@ -293,6 +299,16 @@ class Calibrate:     # calibrate.* (the stage, and `run` on a volumetric dataset
 
 
 @dataclass
+class Compare:       # compare.descending and compare.target: checked by the stage
+    pass
+
+
+@dataclass
+class Replay:        # replay.model: checked where it is loaded
+    pass
+
+
+@dataclass
 class Group:
     """A config group chosen by name (``model=arx``): its ``name`` names the run unless it is
     ``default`` (the model always does), and is always logged."""
@@ -302,22 +318,27 @@ class Group:
 
 @dataclass
 class Root:
-    name: str = key(file_name(), logged=True)
+    name: str = key(file_name(), logged=True, reports=True)
     seed: int = key(names=True, logged=True)      # checked first of all (cli._check_seed)
-    out: str = key(logged=True)
-    track: Optional[bool] = key(optional(BOOLEAN))
-    plots: str = key(choice(*PLOTS))
+    out: str = key(logged=True, reports=True)
+    model_path: str = key(reports=True)
+    tracking_uri: str = key(reports=True)         # checked by store.store_uri
+    experiment_name: str = key(reports=True)
+    track: Optional[bool] = key(optional(BOOLEAN), reports=True)
+    plots: str = key(choice(*PLOTS), reports=True)
     data: Data = group(Data)
     eval: Eval = group(Eval)
     model: Group = group(Group, names=True)               # every option names a run
     select: Group = group(Group, names=True, unnamed="all")   # but the default ones
     ati: Group = group(Group, names=True, unnamed="none")
     denoise: Group = group(Group, names=True, unnamed="none")
+    compare: Compare = group(Compare, reports=True)
+    promote: Promote = group(Promote, reports=True)
+    replay: Replay = group(Replay, reports=True)
+    serve: Serve = group(Serve, reports=True)
     monitor: Monitor = group(Monitor)
-    promote: Promote = group(Promote)
     export: Export = group(Export)
     adapt: Adapt = group(Adapt)
-    serve: Serve = group(Serve)
     twin: Twin = group(Twin)
     connect: Connect = group(Connect)
     diagnose: Diagnose = group(Diagnose)
