@@ -5,9 +5,11 @@ and name are derived."""
 from __future__ import annotations
 
 import functools
+import os
 
 import pytest
 from hydra import compose, initialize_config_dir
+from hydra.experimental.callback import Callback
 from omegaconf import OmegaConf
 
 import thermocomp.shell.cli  # noqa: F401  (registers the resolvers conf/ uses)
@@ -151,3 +153,23 @@ def test_help_keys_of_one_group_and_of_a_group_the_command_lacks(capsys):
     assert keys and all(k.startswith("eval.") for k in keys) and "eval.validation_folds" in keys
     assert main(["run", "--help", "keys", "monitor"]) == 2
     assert "composes no group 'monitor'" in capsys.readouterr().err
+
+
+# -- one entry point: a run goes through hydra.main as a sweep does ----------------------------
+
+class RunProbe(Callback):
+    """A Hydra callback noting the jobs it saw (its runs are Hydra's, not the compose API's)."""
+
+    seen: list = []
+
+    def on_job_start(self, config, **kwargs):
+        RunProbe.seen.append((str(config.hydra.mode), config.hydra.job.override_dirname))
+
+
+def test_a_run_goes_through_hydra_main_with_its_callbacks(tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv("THERMOCOMP_TARGETS", f"{os.environ.get('THERMOCOMP_TARGETS', '')},{__name__}.")
+    RunProbe.seen.clear()
+    probe = f"+hydra.callbacks.probe._target_={__name__}.RunProbe"
+    assert main(["ingest", f"data.path={tmp_path / 'none'}", probe, "track=false"]) == 2
+    assert "campaigns.csv" in capsys.readouterr().err          # the stage's one line, exit 2
+    assert RunProbe.seen == [("RunMode.RUN", f"data.path={tmp_path / 'none'},track=false")]

@@ -1,11 +1,12 @@
 """``thermocomp <stage> [overrides]`` (see ``docs/cli.md``).
 
-Hydra is the one source of configuration.  A single run composes ``conf/``
-with the compose API (so bad config maps to exit status 2 cleanly); ``-m`` /
-``--multirun`` and Hydra's own flags (``--cfg job`` ...) go through
-``hydra.main`` so sweeps, launchers and callbacks work unchanged.
-``-q``/``-v`` (log level) and ``-h`` (this command's help) are ours and never
-reach Hydra.
+Hydra is the one source of configuration.  A command composes its own root
+config (the groups it reads, :mod:`.config.commands`) with the compose API first,
+so that bad config is one line and exit status 2; then a run, a sweep (``-m`` /
+``--multirun``) and Hydra's own flags (``--cfg job`` ...) all go through
+``hydra.main`` (:func:`_launch`), the one entry point: launchers, sweepers and
+callbacks work unchanged.  ``-q``/``-v`` (log level) and ``-h`` (this command's
+help; ``--help keys``: its keys) are ours and never reach Hydra.
 
 Exit status: 0 success, 2 bad input or bad config (one line on stderr), 1 otherwise.
 """
@@ -141,18 +142,21 @@ CONFIG_FLAGS = ("-cp", "--config-path", "-cn", "--config-name", "-cd", "--config
 
 
 def _check_hydra_node(args: list[str], command: str) -> None:
-    """What Hydra itself builds under ``hydra.main`` (callbacks, launcher, sweeper, logging),
-    checked before it runs: ``hydra.callbacks.x._target_=builtins.open`` was called with its
-    arguments before any job.  A sweep composes its ``hydra`` node without sweep overrides."""
+    """The config composed before ``hydra.main`` runs, so that a run's bad override is one line
+    (Hydra's report of it is many, exit 1), and what Hydra itself builds (callbacks, launcher,
+    sweeper, logging) checked: ``hydra.callbacks.x._target_=builtins.open`` was called with its
+    arguments before any job.  A sweep composes its ``hydra`` node without sweep overrides (a
+    job's own errors are the job's)."""
     from hydra.core.override_parser.overrides_parser import OverridesParser
 
     flag = next((a.split("=")[0] for a in args if a.split("=")[0] in CONFIG_FLAGS), None)
     if flag:
         _fail(f"{flag}: thermocomp composes conf/ of its project; add config folders with "
               "hydra.searchpath=[file://<dir>]")
+    plain = not any(a.startswith("-") for a in args)     # a run: no sweep, no Hydra flag
     parser = OverridesParser.create()
-    fixed = []
-    for arg in args:
+    fixed = list(args) if plain else []
+    for arg in [] if plain else args:
         if arg.startswith("-"):
             continue
         try:
@@ -166,6 +170,8 @@ def _check_hydra_node(args: list[str], command: str) -> None:
     except _config_errors() as exc:
         if missing(exc):              # a launcher config its plugin (an extra) registers
             _fail(missing(exc))
+        if plain:
+            _fail(_explain(exc, command))
         return                        # as above: Hydra's own message, nothing built
     from .build import check_built
     from .config.apart import check_apart
@@ -502,7 +508,10 @@ def _job_failed(exc: BaseException) -> float:
     return float("nan")
 
 
-def _hydra_main(stage: str, args: list[str]) -> None:
+def _launch(stage: str, args: list[str]) -> None:
+    """Run ``stage`` under ``hydra.main``: the one entry point of a run and of a sweep (``-m``:
+    Hydra's launchers, sweepers and callbacks).  A run's exception is raised again past Hydra
+    (which would report it in many lines, exit 1), for :func:`main` to say as it says any."""
     import tempfile
 
     import hydra
@@ -514,6 +523,7 @@ def _hydra_main(stage: str, args: list[str]) -> None:
     from .stages import stage as lookup
 
     fn = lookup(stage)
+    raised = []
 
     @hydra.main(config_path=str(conf_dir()), config_name=_root(stage), version_base="1.3")
     def task(cfg):
@@ -522,9 +532,11 @@ def _hydra_main(stage: str, args: list[str]) -> None:
         except Terminated:
             raise
         except (SystemExit, Exception) as exc:   # one bad job of a sweep does not end the others
-            if not _multirun() or (isinstance(exc, SystemExit) and exc.code in (0, None)):
+            if _multirun() and not (isinstance(exc, SystemExit) and exc.code in (0, None)):
+                return _job_failed(exc)
+            if isinstance(exc, SystemExit):
                 raise
-            return _job_failed(exc)
+            raised.append(exc)
 
     sys.argv = [f"thermocomp-{stage}", *map(rooted_override, args)]
     with tempfile.TemporaryDirectory(prefix="thermocomp-sweep-") as notes:
@@ -538,6 +550,8 @@ def _hydra_main(stage: str, args: list[str]) -> None:
             else:
                 os.environ[FAILED_JOBS_ENV] = previous
         failed = [json.loads(f.read_text()) for f in sorted(Path(notes).glob("*.json"))]
+    if raised:
+        raise raised[0]
     if failed:
         logger.error("%d sweep job(s) failed: %s", len(failed), "; ".join(
             f"{f['job']} ({' '.join(f['overrides'])}): exit {f['exit']}" for f in failed))
@@ -580,7 +594,6 @@ def main(argv: list[str] | None = None) -> int:
     from ..base.files import Terminated
     from ..base.log import logger
     from .stages import STAGES
-    from .stages import stage as lookup
 
     if stage not in STAGES:
         close = closest(stage, STAGES)
@@ -599,11 +612,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         args = lenient(args)
         _check_overrides(args, stage)
-        if any(a.startswith("-") for a in args):
-            _check_hydra_node(args, stage)
-            _hydra_main(stage, args)
-        else:
-            _run(stage, lookup(stage), _compose_or_explain(args, stage), args)
+        _check_hydra_node(args, stage)
+        _launch(stage, args)
     except Terminated:  # the contract's statuses are 0, 2 and 1 for anything else
         logger.warning("%s terminated (SIGTERM)", stage)
         return 1
