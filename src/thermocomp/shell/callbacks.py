@@ -1,6 +1,6 @@
 """Hydra callbacks: one MLflow parent run per sweep (``thermocomp <stage> -m ...``).
 
-Registered in ``conf/config.yaml`` under ``hydra.callbacks``.  On
+Registered in ``conf/common.yaml`` under ``hydra.callbacks``.  On
 ``on_multirun_start`` a parent run is created and its id exported as
 ``THERMOCOMP_PARENT_RUN_ID`` before the launcher starts any job, so every job's
 stage run (:func:`thermocomp.shell.tracking.stage_run`) becomes its child, whether the

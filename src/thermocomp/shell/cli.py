@@ -1,11 +1,12 @@
 """``thermocomp <stage> [overrides]`` (see ``docs/cli.md``).
 
-Hydra is the one source of configuration.  A single run composes ``conf/``
-with the compose API (so bad config maps to exit status 2 cleanly); ``-m`` /
-``--multirun`` and Hydra's own flags (``--cfg job`` ...) go through
-``hydra.main`` so sweeps, launchers and callbacks work unchanged.
-``-q``/``-v`` (log level) and ``-h`` (this command's help) are ours and never
-reach Hydra.
+Hydra is the one source of configuration.  A command composes its own root
+config (the groups it reads, :mod:`.config.commands`) with the compose API first,
+so that bad config is one line and exit status 2; then a run, a sweep (``-m`` /
+``--multirun``) and Hydra's own flags (``--cfg job`` ...) all go through
+``hydra.main`` (:func:`_launch`), the one entry point: launchers, sweepers and
+callbacks work unchanged.  ``-q``/``-v`` (log level) and ``-h`` (this command's
+help; ``--help keys``: its keys) are ours and never reach Hydra.
 
 Exit status: 0 success, 2 bad input or bad config (one line on stderr), 1 otherwise.
 """
@@ -26,6 +27,7 @@ from ..base.errors import closest
 from ..base.extras import missing
 from ..base.log import version
 from ..base.paths import resolve
+from .config.commands import COMMANDS, groups_of, register, root_name
 from .resolvers import scenario_dataset
 
 # `${root:reports/x}` in the config: the path under the project root (Hydra's own folders).  At
@@ -41,107 +43,13 @@ USAGE = """usage: thermocomp [-q | -v] <stage> [key=value ...] [-m]
        thermocomp <stage> --help | --version
 
 stages:
-  simulate   write a dataset from the built-in digital twin (sim=<scenario>)
-  init       thermocomp init <file-or-folder>: what is detected, the data config that reads it
-  ingest     validate data.path, write Parquet + report to data.interim
-  denoise    denoise the declared inputs (denoise=none|emd) -> data.processed + figures
-  select     choose the inputs per target (select=...) -> models/<name>/selection.json
-  train      fit the configured model on the train split
-  evaluate   score it on train/test, write <out>/metrics.json and figures
-  diagnose   closed loop: CV residual -> missing effect -> refit -> before/after (<out>/diagnosis.json)
-  run        ingest .. evaluate in one process; -m for a sweep (one MLflow parent run)
-  compare    table of a sweep's child runs, best first (compare.sweep=, compare.sort_by=)
-  promote    register the best run's compensator; move @champion only if it is better
-  replay     stream the test campaigns row by row through the deployable compensator (replay.json)
-  export     the deployed compensator as code: json, C + stream.c, Structured Text (export.*)
-  serve      the registered compensator over HTTP (serve.model=, serve.port=; one worker)
-  twin       a virtual machine over OPC UA serving the test campaigns (twin.port=, twin.speed=)
-  connect    the deployed compensator as an OPC UA client of a machine (connect.endpoint=)
-  monitor    stream test campaigns (or stdin) through the fixed and the fault-tolerant
-             compensator: sensor events, RMSE of both (<out>/monitor.json)
-  calibrate  artefact distances of a volumetric dataset -> error parameter series (calibration.json)
-  design     Monte Carlo study of artefact calibration strategies (<out>/design.json)
+{commands}
 
 overrides: data.path=<dir> data.inputs=[T_*] data.targets=[E_Z] model=mlr select=all denoise=none
            eval.mode=simulation|one_step out=<dir> tracking_uri=<uri> seed=<int>
 options:   -q/--quiet (warnings only)  -v/--verbose (debug, progress bars off a terminal too)
-Relative paths are resolved against the project root."""
-
-# stage -> (what it does, reads, writes, main overrides)
-STAGE_HELP = {
-    "simulate": ("write a dataset from the built-in digital twin", "conf/sim/<scenario>.yaml",
-                 "data.path (default data/raw/<scenario>/; -<digest> with a changed sim.generator) "
-                 "and <data.path>.truth.json",
-                 "sim=<scenario> seed=<int> data.path=<dir> \"sim.generator.effects=[door]\""),
-    "init": ("detect a lab's file (or folder) and write the data config that reads it",
-             "<file-or-folder> (data.path)", "<out>/conf/data/<name>.yaml; the `run` command to use",
-             "thermocomp init lab.csv [data.roles.error=['ch*']] [data.sample_period_s=15] "
-             "[data.test_fraction=0.1] [out=<dir>]"),
-    "ingest": ("validate a dataset folder", "data.path",
-               "data.interim (data/interim/<name>/: Parquet + ingest_report.json)",
-               "data.path=<dir> data.delimiter=\";\" data.decimal=\",\" data.columns={T0:T_0} "
-               "data.split_overrides={K01:test}"),
-    "denoise": ("denoise the declared inputs", "data.interim",
-                "data.processed (data/processed/<name>/), <out>/denoise/", "denoise=none|emd"),
-    "select": ("choose the inputs per target", "data.interim, data.processed",
-               "models/<name>/selection.json, <out>/select/",
-               "select=all|pearson|greedy_residual|cluster_grey data.targets=[E_Z]"),
-    "train": ("fit the configured model on the train split",
-              "data.interim (+ the denoise/select outputs when they match)",
-              "model_path (models/<name>/model.pkl)", "model=mlr|pcr|arx|arx_rf|lstm|lagbank|hammerstein "
-              "select=... ati=none|cmeans denoise=none|emd"),
-    "evaluate": ("score the trained model on train/test", "data.interim, model_path",
-                 "<out>/metrics.json, <out>/headline/<target>.json, <out>/plots/ (PNG + CSV), "
-                 "<out>/volumetric/ (a volumetric dataset)",
-                 "eval.mode=simulation|one_step plots=summary|test|all|none"),
-    "diagnose": ("residual -> missing effect -> refit -> before/after", "data.path",
-                 "<out>/diagnosis.json, <out>/diagnosis_headline/<target>.json, <out>/diagnosis/",
-                 "model=... diagnose.targets=[E_Z] plots=none"),
-    "run": ("ingest .. evaluate in one process; -m for a sweep", "data.path",
-            "<out>/: model.pkl, ingest_report.json, metrics.json, headline/, plots/ "
-            "(data.group_by: metrics.json, fleet.csv, models/<group>.pkl)",
-            "data.path=<dir> model=... select=... eval.mode=... out=<dir>; "
-            "-m model=mlr,pcr select=all,pearson"),
-    "compare": ("table of a sweep's child runs, best first", "the sweep's MLflow runs",
-                "compare.out (default: the sweep's folder): compare.csv, compare.md, compare.json",
-                "compare.sweep=<dir|run id> compare.sort_by=val_rmse compare.target=E_Z"),
-    "promote": ("register the best run's compensator, move @champion if better",
-                "the sweep's MLflow runs, data.path (the stream is checked on its train campaigns)",
-                "the MLflow model registry, <out>/promote.json",
-                "promote.* (conf/promote/); monitor.adaptive=false registers the plain stream"),
-    "replay": ("stream the test campaigns row by row through the deployable compensator",
-               "data.path and a fitted or registered model", "<out>/replay.json",
-               "replay.model=<path|models:/name@alias> monitor.adaptive=false (the plain stream)"),
-    "export": ("the deployed compensator as coefficients and code a CNC runs",
-               "export.model (a model.pkl with data.path, a pyfunc folder, models:/name@alias)",
-               "<out>/compensator.json (+ compensator.h/.c, stream.c | compensator.st)",
-               "export.model=models:/thermocomp-compensator@champion export.format=c|st|json"),
-    "twin": ("a virtual machine tool over OPC UA serving the test campaigns of data.path",
-             "data.path (its test campaigns)", "an OPC UA server (connect.nodes), <out>/twin.json",
-             "twin.port=4840 twin.speed=10 twin.campaigns=[K03] twin.drops=[[20,15]] "
-             "twin.restarts=[[80,10]]"),
-    "connect": ("the deployed compensator as an OPC UA client: bounded offsets to a machine",
-                "connect.model (null: fitted on data.path's train split) and connect.endpoint",
-                "offsets on the machine's nodes, <out>/connect.json",
-                "connect.endpoint=opc.tcp://127.0.0.1:4840 connect.model=models:/name@alias "
-                "connect.hold_s=5 connect.decay_s=10 adapt.method=bias"),
-    "monitor": ("sensor surveillance (POD self-prediction) + fault-tolerant compensation, streamed",
-                "data.path (or CSV rows on stdin: monitor.input=-) and a fitted model",
-                "<out>/monitor.json, <out>/monitor/ (figures)",
-                "monitor.adaptive=true monitor.bands.warning_c=0.4 monitor.pod.energy=0.99"),
-    "calibrate": ("artefact distances -> geometric error parameters per measurement cycle",
-                  "data.path (a volumetric dataset: volumetric.json + E_<pose>_B<i>_B<j> columns)",
-                  "<out>/calibration.json, calibrate.dataset (default <out>/parameters/)",
-                  "calibrate.outlier_z=6 calibrate.column_share=0.5 calibrate.require_seen=[]"),
-    "design": ("Monte Carlo study of artefact calibration strategies (paper 001)",
-               "data.path/volumetric.json when present (else the kinematic model defaults)",
-               "<out>/design.json, <out>/design/ (figures)",
-               "design.n_machines=200 design.n_jobs=-1 design.ranges.angular=6 design.machine.order=4"),
-    "serve": ("the registered compensator over HTTP (MLflow's scoring server, one worker)",
-              "serve.model from the tracking store, a pyfunc folder, or a run's model.pkl (with data.path)",
-              "nothing (answers POST /invocations)",
-              "serve.model=models:/thermocomp-compensator@champion serve.port=5001 serve.host=127.0.0.1"),
-}
+Relative paths are resolved against the project root.""".format(
+    commands="\n".join(f"  {name:<10} {c.summary}" for name, c in COMMANDS.items()))
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
 # Objects built from `_target_`: `~key` of an argument leaves the constructor's default.
 BUILT = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector", "sim.generator")
@@ -152,12 +60,33 @@ FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_param
 
 
 def stage_help(stage: str) -> str:
-    what, reads, writes, overrides = STAGE_HELP.get(stage, (f"stage {stage}", "-", "-", "-"))
-    return (f"usage: thermocomp [-q | -v] {stage} [key=value ...]\n\n{stage}: {what}\n"
-            f"  reads:     {reads}\n  writes:    {writes}\n  overrides: {overrides}\n"
+    c = COMMANDS[stage]
+    return (f"usage: thermocomp [-q | -v] {stage} [key=value ...]\n\n{stage}: {c.what}\n"
+            f"  reads:     {c.reads}\n  writes:    {c.writes}\n  overrides: {c.overrides}\n"
             "  common:    out=<dir> name=<run> track=false tracking_uri=<uri> seed=<int> plots=...\n\n"
+            f"its keys:    thermocomp {stage} --help keys [<group>]   (default, type, what each does)\n"
             f"full config: thermocomp {stage} --cfg job   (one group: --cfg job --package model)\n"
             f"Hydra's help: thermocomp {stage} --hydra-help")
+
+
+def _print_keys(stage: str, group: str | None) -> int:
+    """``thermocomp <stage> --help keys [group]``: the keys the command composes, from the schema."""
+    from .config.describe import describe
+
+    try:
+        cfg = _compose_hydra([], stage)
+        if group is not None and cfg.get(group) is None:
+            _fail(f"--help keys {group}: thermocomp {stage} composes no group {group!r} "
+                  f"(it composes {', '.join(groups_of(stage))})")
+    except SystemExit as exc:
+        return exc.code
+    from omegaconf import open_dict
+
+    choices = dict(cfg.hydra.runtime.choices)
+    with open_dict(cfg):
+        del cfg["hydra"]
+    print(describe(cfg, choices, group))
+    return 0
 
 
 def _config_errors() -> tuple[type, ...]:
@@ -212,19 +141,22 @@ def _check_seed(cfg) -> None:
 CONFIG_FLAGS = ("-cp", "--config-path", "-cn", "--config-name", "-cd", "--config-dir")
 
 
-def _check_hydra_node(args: list[str]) -> None:
-    """What Hydra itself builds under ``hydra.main`` (callbacks, launcher, sweeper, logging),
-    checked before it runs: ``hydra.callbacks.x._target_=builtins.open`` was called with its
-    arguments before any job.  A sweep composes its ``hydra`` node without sweep overrides."""
+def _check_hydra_node(args: list[str], command: str) -> None:
+    """The config composed before ``hydra.main`` runs, so that a run's bad override is one line
+    (Hydra's report of it is many, exit 1), and what Hydra itself builds (callbacks, launcher,
+    sweeper, logging) checked: ``hydra.callbacks.x._target_=builtins.open`` was called with its
+    arguments before any job.  A sweep composes its ``hydra`` node without sweep overrides (a
+    job's own errors are the job's)."""
     from hydra.core.override_parser.overrides_parser import OverridesParser
 
     flag = next((a.split("=")[0] for a in args if a.split("=")[0] in CONFIG_FLAGS), None)
     if flag:
         _fail(f"{flag}: thermocomp composes conf/ of its project; add config folders with "
               "hydra.searchpath=[file://<dir>]")
+    plain = not any(a.startswith("-") for a in args)     # a run: no sweep, no Hydra flag
     parser = OverridesParser.create()
-    fixed = []
-    for arg in args:
+    fixed = list(args) if plain else []
+    for arg in [] if plain else args:
         if arg.startswith("-"):
             continue
         try:
@@ -234,34 +166,44 @@ def _check_hydra_node(args: list[str]) -> None:
             return                    # Hydra reports it, before building anything
         fixed.append(arg)
     try:
-        cfg = _compose_hydra(fixed)
+        cfg = _compose_hydra(fixed, command)
     except _config_errors() as exc:
         if missing(exc):              # a launcher config its plugin (an extra) registers
             _fail(missing(exc))
+        if plain:
+            _fail(_explain(exc, command))
         return                        # as above: Hydra's own message, nothing built
     from .build import check_built
-    from .stages.apart import check_apart
+    from .config.apart import check_apart
 
     _guarded(check_built, cfg.hydra, "hydra")     # resolved: Hydra imports them anyway
     if any(a in ("-m", "--multirun") for a in args):   # Hydra writes multirun.yaml there first
         _guarded(check_apart, cfg, ("hydra.sweep.dir",), ())
 
 
-def _compose_hydra(overrides: list[str]):
+def _root(command: str | None) -> str:
+    """The root config ``command`` composes (None: the whole ``conf/config.yaml``)."""
+    if command is None:
+        return "config"
+    register()
+    return root_name(command)
+
+
+def _compose_hydra(overrides: list[str], command: str | None = None):
     from hydra import compose, initialize_config_dir
 
     from ..base.paths import conf_dir
 
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3",
                                job_name="thermocomp"):
-        return compose(config_name="config", overrides=overrides, return_hydra_config=True)
+        return compose(config_name=_root(command), overrides=overrides, return_hydra_config=True)
 
 
-def _compose(overrides: list[str]):
+def _compose(overrides: list[str], command: str | None = None):
     from hydra.core.hydra_config import HydraConfig
     from omegaconf import open_dict
 
-    cfg = _compose_hydra(overrides)
+    cfg = _compose_hydra(overrides, command)
     HydraConfig.instance().set_config(cfg)   # the overrides name the MLflow run, as under hydra.main
     with open_dict(cfg):
         del cfg["hydra"]
@@ -310,12 +252,12 @@ def _fix_key(key: str, config: dict) -> str | None:
     return None
 
 
-def _explain(exc: BaseException) -> str:
-    """Hydra's message, with the closest option or key when the user made a typo."""
+def _explain(exc: BaseException, command: str | None = None) -> str:
+    """Hydra's message, with the closest option or key when the user made a typo, or the
+    groups ``command`` reads when the key is of another."""
     import re
 
     from hydra.errors import MissingConfigException
-    from omegaconf import OmegaConf
 
     msg = " ".join(str(exc).split())
     if isinstance(exc, MissingConfigException) and exc.missing_cfg_file and exc.options:
@@ -325,13 +267,41 @@ def _explain(exc: BaseException) -> str:
     m = re.match(r"Could not override '([^']+)'", msg)
     if m:
         key = m.group(1)
-        close = _fix_key(key, OmegaConf.to_container(_compose([]), resolve=False))
+        if _unread_group(key, command):
+            return _unread_group(key, command)
+        close = _fix_key(key, _whole_config())
         if close:
             return f"unknown config key {key!r}; did you mean {close!r}? ({msg})"
     return msg
 
 
-def _check_overrides(args: list[str]) -> None:
+def _whole_config() -> dict:
+    """``conf/config.yaml`` as composed (every group, unresolved): where a typo's hint is found,
+    whatever group it is of."""
+    from omegaconf import OmegaConf, open_dict
+
+    cfg = _compose_hydra([])
+    with open_dict(cfg):
+        del cfg["hydra"]
+    return OmegaConf.to_container(cfg, resolve=False)
+
+
+def _unread_group(key: str, command: str | None) -> str | None:
+    """Why ``key`` is not in ``command``'s config when it is a key (or the choice) of a group
+    the command does not compose (its root config, :mod:`.config.commands`), else None."""
+    group = key.lstrip("+~").replace("/", ".").split(".")[0]
+    if command is None or group in groups_of(command) or _group_options(group) is None:
+        return None
+    node = _whole_config()
+    for part in key.lstrip("+~").split("."):
+        if not isinstance(node, dict) or part not in node:
+            return None                  # not a key of the group either: a typo, hinted
+        node = node[part]
+    return (f"{key}: thermocomp {command} does not read the {group} group (it composes "
+            f"{', '.join(groups_of(command))})")
+
+
+def _check_overrides(args: list[str], command: str) -> None:
     """What Hydra accepts but no stage would read as meant, refused with one line (exit 2):
     a config group set to ``null`` or removed with ``~`` (Hydra's ValueError or OmegaConf's
     'not in struct' name no key), a swept group option that does not exist (many lines, exit
@@ -362,15 +332,15 @@ def _check_overrides(args: list[str]) -> None:
         elif not o.is_sweep_override():
             base.append(arg)
     if added:
-        _check_added_keys(added, base)
+        _check_added_keys(added, base, command)
     if sweeping:
-        _check_sweep_jobs([a for a in args if not a.startswith("-")])
+        _check_sweep_jobs([a for a in args if not a.startswith("-")], command)
 
 
 MAX_CHECKED_JOBS = 100   # jobs of a grid sweep composed up front (~0.1-0.3 s each)
 
 
-def _check_sweep_jobs(args: list[str]) -> None:
+def _check_sweep_jobs(args: list[str], command: str) -> None:
     """Compose the jobs of a grid sweep before any runs.  Hydra composes each job in its
     launcher, and one it cannot compose (a key that only some of the swept models have) ended
     the whole sweep with Hydra's multi-line message, exit 1, no job run; here it is one line
@@ -406,14 +376,14 @@ def _check_sweep_jobs(args: list[str]) -> None:
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3", job_name="thermocomp"):
         for job in itertools.islice(itertools.product(*groups.values()), MAX_CHECKED_JOBS):
             try:
-                compose(config_name="config", overrides=[*fixed, *job])
+                compose(config_name=_root(command), overrides=[*fixed, *job])
             except OverrideParseException:   # a value this re-spelling does not quote as typed
                 return
             except _config_errors() as exc:
                 failed = job, exc
                 break
     if failed:                             # explained outside: the explanation composes too
-        _fail(f"sweep job {' '.join(failed[0])}: {_explain(failed[1])}")
+        _fail(f"sweep job {' '.join(failed[0])}: {_explain(failed[1], command)}")
 
 
 def _group_options(key: str) -> list[str] | None:
@@ -449,30 +419,32 @@ def _check_group_or_deletion(arg: str, o, check_swept: bool) -> bool:
     return False
 
 
-def _check_added_keys(added: list[str], base: list[str]) -> None:
+def _check_added_keys(added: list[str], base: list[str], command: str) -> None:
     """Each added key exists in the config composed without them, or lies under a free-form
     map (:data:`FREE_MAPS`) or an object built by ``_target_`` (its constructor checks it)."""
     from omegaconf import OmegaConf
 
-    config = OmegaConf.to_container(_compose_or_explain(base), resolve=False)
+    config = OmegaConf.to_container(_compose_or_explain(base, command), resolve=False)
     for key in added:
         node, parts = config, key.split(".")
         for i, part in enumerate(parts):
             if ".".join(parts[:i]) in FREE_MAPS or (isinstance(node, dict) and "_target_" in node):
                 break
             if not isinstance(node, dict) or part not in node:
-                close = _fix_key(key, config)
+                if _unread_group(key, command):
+                    _fail(_unread_group(key, command))
+                close = _fix_key(key, _whole_config())
                 hint = f"; did you mean {close!r}?" if close else ""
                 _fail(f"unknown config key {key!r} (added with '+'): thermocomp reads no such "
                       f"key{hint}")
             node = node[part]
 
 
-def _compose_or_explain(args: list[str]):
+def _compose_or_explain(args: list[str], command: str):
     try:
-        return _compose(args)
+        return _compose(args, command)
     except _config_errors() as exc:
-        _fail(_explain(exc))
+        _fail(_explain(exc, command))
 
 
 def _log_folder(stage: str, cfg):
@@ -536,7 +508,10 @@ def _job_failed(exc: BaseException) -> float:
     return float("nan")
 
 
-def _hydra_main(stage: str, args: list[str]) -> None:
+def _launch(stage: str, args: list[str]) -> None:
+    """Run ``stage`` under ``hydra.main``: the one entry point of a run and of a sweep (``-m``:
+    Hydra's launchers, sweepers and callbacks).  A run's exception is raised again past Hydra
+    (which would report it in many lines, exit 1), for :func:`main` to say as it says any."""
     import tempfile
 
     import hydra
@@ -548,17 +523,20 @@ def _hydra_main(stage: str, args: list[str]) -> None:
     from .stages import stage as lookup
 
     fn = lookup(stage)
+    raised = []
 
-    @hydra.main(config_path=str(conf_dir()), config_name="config", version_base="1.3")
+    @hydra.main(config_path=str(conf_dir()), config_name=_root(stage), version_base="1.3")
     def task(cfg):
         try:
             return _run(stage, fn, _per_job(cfg), args)
         except Terminated:
             raise
         except (SystemExit, Exception) as exc:   # one bad job of a sweep does not end the others
-            if not _multirun() or (isinstance(exc, SystemExit) and exc.code in (0, None)):
+            if _multirun() and not (isinstance(exc, SystemExit) and exc.code in (0, None)):
+                return _job_failed(exc)
+            if isinstance(exc, SystemExit):
                 raise
-            return _job_failed(exc)
+            raised.append(exc)
 
     sys.argv = [f"thermocomp-{stage}", *map(rooted_override, args)]
     with tempfile.TemporaryDirectory(prefix="thermocomp-sweep-") as notes:
@@ -572,6 +550,8 @@ def _hydra_main(stage: str, args: list[str]) -> None:
             else:
                 os.environ[FAILED_JOBS_ENV] = previous
         failed = [json.loads(f.read_text()) for f in sorted(Path(notes).glob("*.json"))]
+    if raised:
+        raise raised[0]
     if failed:
         logger.error("%d sweep job(s) failed: %s", len(failed), "; ".join(
             f"{f['job']} ({' '.join(f['overrides'])}): exit {f['exit']}" for f in failed))
@@ -614,7 +594,6 @@ def main(argv: list[str] | None = None) -> int:
     from ..base.files import Terminated
     from ..base.log import logger
     from .stages import STAGES
-    from .stages import stage as lookup
 
     if stage not in STAGES:
         close = closest(stage, STAGES)
@@ -622,19 +601,19 @@ def main(argv: list[str] | None = None) -> int:
         print(f"thermocomp: error: unknown stage {stage!r}{hint} (stages: {', '.join(STAGES)})",
               file=sys.stderr)
         return 2
-    if stage == "init":
-        args = _positional_path(args)
     if any(a in ("-h", "--help") for a in args):
+        topic = [a for a in args if a not in ("-h", "--help")]
+        if topic[:1] == ["keys"]:       # its keys: default, type and domain, what each does
+            return _print_keys(stage, topic[1] if len(topic) > 1 else None)
         print(stage_help(stage))
         return 0
+    if stage == "init":
+        args = _positional_path(args)
     try:
         args = lenient(args)
-        _check_overrides(args)
-        if any(a.startswith("-") for a in args):
-            _check_hydra_node(args)
-            _hydra_main(stage, args)
-        else:
-            _run(stage, lookup(stage), _compose_or_explain(args), args)
+        _check_overrides(args, stage)
+        _check_hydra_node(args, stage)
+        _launch(stage, args)
     except Terminated:  # the contract's statuses are 0, 2 and 1 for anything else
         logger.warning("%s terminated (SIGTERM)", stage)
         return 1

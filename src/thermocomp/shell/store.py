@@ -233,3 +233,72 @@ def check_database_answers(uri: str, scheme: str) -> None:
         raise ConfigError(f"tracking_uri={shown}: no database server answers at "
                           f"{parts.hostname}:{parts.port or DB_PORTS[scheme]} "
                           f"({exc.strerror or type(exc).__name__}); is it running?") from None
+
+
+# --- the store a config names: checked before any work --------------------------------------
+
+DEFAULT_URI = "sqlite:///mlruns/mlflow.db"
+
+
+def resolve_uri(uri: str) -> str:
+    """Make a relative ``sqlite:///path`` absolute (against the project root)."""
+    prefix = "sqlite:///"
+    if uri.startswith(prefix) and not uri.startswith(prefix + "/"):
+        path = resolve(uri[len(prefix):])
+        path.parent.mkdir(parents=True, exist_ok=True)
+        return prefix + str(path)
+    return uri
+
+
+def enabled(cfg, default: bool = True) -> bool:
+    """Whether a stage logs to MLflow: ``track`` if set (true/false), else the stage's default."""
+    track = cfg.get("track")
+    return default if track is None else bool(track)
+
+
+def store_uri(cfg) -> str:
+    """``cfg.tracking_uri`` resolved, once checked that MLflow can open it (ConfigError)."""
+    raw = str(cfg.get("tracking_uri") or DEFAULT_URI)
+    check_sqlite_path(raw)
+    try:
+        uri = resolve_uri(raw)
+    except OSError as exc:
+        raise ConfigError(f"tracking_uri={raw}: cannot create its folder ({exc.strerror})") from None
+    check_reachable(uri)
+    return uri
+
+
+_REACHABLE: set[str] = set()   # stores this process has found it can open
+STORE_SCHEMES = ("sqlite", "http", "https", "postgresql", "mysql", "mssql", "databricks")
+
+
+def check_reachable(uri: str) -> None:
+    """A store MLflow can open: a known scheme, a SQLite file in a folder this process can
+    write, a server that answers within seconds (MLflow retries an unreachable one for minutes,
+    silently)."""
+    if uri in _REACHABLE:      # once per process: every connect() comes here
+        return
+    scheme = uri.partition(":")[0].partition("+")[0]
+    if scheme not in STORE_SCHEMES:
+        raise ConfigError(f"tracking_uri={uri}: not a store MLflow opens here (schemes: "
+                          f"{', '.join(STORE_SCHEMES)}; the default is {DEFAULT_URI})")
+    if scheme == "sqlite" and uri.startswith("sqlite:///"):
+        folder = Path(uri[len("sqlite:///"):]).parent
+        try:
+            folder.mkdir(parents=True, exist_ok=True)
+            tempfile.TemporaryFile(dir=folder).close()
+        except OSError as exc:
+            raise ConfigError(f"tracking_uri={uri}: cannot write in {folder} ({exc.strerror})") from None
+    elif scheme in ("http", "https"):
+        import requests
+
+        try:
+            requests.get(uri.rstrip("/") + "/health", timeout=10)
+        except requests.RequestException as exc:
+            raise ConfigError(f"tracking_uri={uri}: no server answers "
+                              f"({type(exc).__name__}); is it running?") from None
+    elif scheme == "databricks":
+        check_databricks_credentials(uri)
+    elif scheme in DB_PORTS:
+        check_database_answers(uri, scheme)
+    _REACHABLE.add(uri)

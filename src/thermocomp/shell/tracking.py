@@ -34,8 +34,6 @@ from __future__ import annotations
 import logging
 import math
 import os
-import re
-import tempfile
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -44,26 +42,20 @@ from omegaconf import DictConfig, OmegaConf
 from ..base.files import Terminated, signals_raise
 from ..base.paths import project_root, resolve
 from . import store
-from .store import _is_locked, retry_locked  # the store's lock retries, used here and re-exported
+from .config.naming import PARAM_KEYS, _split, run_name, run_params, sweep_name, task_overrides  # noqa: F401
+from .store import (  # noqa: F401  (the store's URI checks and lock retries, used here and re-exported)
+    DEFAULT_URI,
+    _is_locked,
+    check_reachable,
+    enabled,
+    resolve_uri,
+    retry_locked,
+    store_uri,
+)
 
-DEFAULT_URI = "sqlite:///mlruns/mlflow.db"
 PARENT_ENV = "THERMOCOMP_PARENT_RUN_ID"
 SWEEP_TAG = "thermocomp.sweep"          # "parent" on a sweep's parent run
 DATASET_TAG = "dataset_hash"            # folder digest of data.path a run read
-def resolve_uri(uri: str) -> str:
-    """Make a relative ``sqlite:///path`` absolute (against the project root)."""
-    prefix = "sqlite:///"
-    if uri.startswith(prefix) and not uri.startswith(prefix + "/"):
-        path = resolve(uri[len(prefix):])
-        path.parent.mkdir(parents=True, exist_ok=True)
-        return prefix + str(path)
-    return uri
-
-
-def enabled(cfg, default: bool = True) -> bool:
-    """Whether a stage logs to MLflow: ``track`` if set (true/false), else the stage's default."""
-    track = cfg.get("track")
-    return default if track is None else bool(track)
 
 
 _READY: set[str] = set()    # stores this process has made sure exist
@@ -187,58 +179,6 @@ def connect(cfg) -> str:
 _SWEPT: set[str] = set()     # stores whose orphan runs this process has marked
 
 
-def store_uri(cfg) -> str:
-    """``cfg.tracking_uri`` resolved, once checked that MLflow can open it (ConfigError)."""
-    raw = str(cfg.get("tracking_uri") or DEFAULT_URI)
-    store.check_sqlite_path(raw)
-    try:
-        uri = resolve_uri(raw)
-    except OSError as exc:
-        from ..base.errors import ConfigError
-
-        raise ConfigError(f"tracking_uri={raw}: cannot create its folder ({exc.strerror})") from None
-    check_reachable(uri)
-    return uri
-
-
-_REACHABLE: set[str] = set()   # stores this process has found it can open
-STORE_SCHEMES = ("sqlite", "http", "https", "postgresql", "mysql", "mssql", "databricks")
-
-
-def check_reachable(uri: str) -> None:
-    """A store MLflow can open: a known scheme, a SQLite file in a folder this process can
-    write, a server that answers within seconds (MLflow retries an unreachable one for minutes,
-    silently)."""
-    if uri in _REACHABLE:      # once per process: every connect() comes here
-        return
-    from ..base.errors import ConfigError
-
-    scheme = uri.partition(":")[0].partition("+")[0]
-    if scheme not in STORE_SCHEMES:
-        raise ConfigError(f"tracking_uri={uri}: not a store MLflow opens here (schemes: "
-                          f"{', '.join(STORE_SCHEMES)}; the default is {DEFAULT_URI})")
-    if scheme == "sqlite" and uri.startswith("sqlite:///"):
-        folder = Path(uri[len("sqlite:///"):]).parent
-        try:
-            folder.mkdir(parents=True, exist_ok=True)
-            tempfile.TemporaryFile(dir=folder).close()
-        except OSError as exc:
-            raise ConfigError(f"tracking_uri={uri}: cannot write in {folder} ({exc.strerror})") from None
-    elif scheme in ("http", "https"):
-        import requests
-
-        try:
-            requests.get(uri.rstrip("/") + "/health", timeout=10)
-        except requests.RequestException as exc:
-            raise ConfigError(f"tracking_uri={uri}: no server answers "
-                              f"({type(exc).__name__}); is it running?") from None
-    elif scheme == "databricks":
-        store.check_databricks_credentials(uri)
-    elif scheme in store.DB_PORTS:
-        store.check_database_answers(uri, scheme)
-    _REACHABLE.add(uri)
-
-
 def client(cfg):
     """An ``MlflowClient`` on ``cfg.tracking_uri``; stages that read runs need ``track`` on."""
     if not enabled(cfg):
@@ -356,114 +296,6 @@ def end_active_run(mlflow, status: str = "FINISHED") -> None:
             raise
 
 
-# --- what a run is called and what it records ------------------------------------------------
-
-# Config groups in the order they name a run; a group at its default is left out (not the model).
-_GROUPS = (("model", None), ("select", "all"), ("ati", "none"), ("denoise", "none"))
-# Overrides that say where things go or how much is reported, not what is fitted.
-_NOT_NAMING = re.compile(r"^(hydra|tracking_uri|experiment_name|out|model_path|name|track|plots|"
-                         r"compare|promote|replay|serve|data\.(path|interim|processed))([./]|$)"
-                         r"|^eval\.(?!mode$)")
-# Config leaves always logged as params (when present); plus every overridden key.
-PARAM_KEYS = ("name", "out", "seed", "data.path", "data.inputs", "data.targets", "data.reference",
-              "model.name", "select.name", "ati.name", "denoise.name", "eval.mode",
-              "eval.validation")
-_HYPER = ("model.estimator.", "select.selector.")    # the fitted model's own parameters
-
-
-def task_overrides() -> list[str] | None:
-    """The command line's overrides of this job (Hydra's ``overrides.task``), or None."""
-    from hydra.core.hydra_config import HydraConfig
-
-    if not HydraConfig.initialized():
-        return None
-    try:
-        return [str(o) for o in HydraConfig.get().overrides.task]
-    except Exception:  # a Hydra config without overrides (composed by hand)
-        return None
-
-
-def _split(override: str) -> tuple[str, str]:
-    key, _, value = override.partition("=")
-    return key.lstrip("+~"), value
-
-
-def _short(value: str) -> str:
-    """A value as a run-name token: no brackets, quotes, spaces, slashes."""
-    value = re.sub(r"[\[\]{}()'\" ]", "", value)
-    value = value.lower() if value in ("True", "False") else value   # a sweep writes `False`
-    return re.sub(r"[/\\:]+", "_", value).strip("_") or "none"
-
-
-def run_name(cfg: DictConfig, overrides: list[str] | None = None) -> str:
-    """A short, stable name of what ran, from what differs from the defaults.
-
-    The model, the non-default selector, ATI and denoiser, ``eval.mode``, the
-    seed when set, then every other override that changes what is fitted
-    (``leaf=value``): ``mlr-pearson-seed1``, ``arx-cmeans-one_step``,
-    ``mlr-inputs=T_1``.  A ``name`` other than ``default`` prefixes it (``weak/mlr``).
-    """
-    parts = []
-    for group, default in _GROUPS:
-        value = (cfg.get(group) or {}).get("name")
-        if value is not None and value != default:
-            parts.append(str(value))
-    mode = (cfg.get("eval") or {}).get("mode")
-    if mode not in (None, "simulation"):
-        parts.append(str(mode))
-    keys = {_split(o)[0] for o in overrides or ()}
-    if "seed" in keys or cfg.get("seed", 0) != 0:
-        parts.append(f"seed{cfg.get('seed')}")
-    named = {g for g, _ in _GROUPS} | {"seed", "eval.mode"}
-    for o in overrides or ():
-        key, value = _split(o)
-        if key in named or _NOT_NAMING.match(key):
-            continue
-        leaf = key.rsplit(".", 1)[-1]
-        if o.startswith("~"):
-            parts.append(f"no-{leaf}")
-        elif "." not in key:               # a config group (sim=..., experiment=...): its choice
-            parts.append(_short(value))
-        else:
-            parts.append(f"{leaf}={_short(value)}")
-    name = "-".join(parts) or "default"
-    if cfg.get("name") not in (None, "default"):
-        name = f"{cfg.get('name')}/{name}"
-    return name[:250]
-
-
-def sweep_name(overrides: list[str], name: str = "default") -> str:
-    """A sweep's parent run name from what it sweeps: ``sweep/model=mlr,pcr-seed=range0,3``."""
-    swept = [(k, v) for k, v in map(_split, overrides)
-             if ("," in v or v.startswith(("range(", "choice(", "glob("))) and not _NOT_NAMING.match(k)]
-    parts = [f"{k.rsplit('.', 1)[-1]}={_short(v)}" for k, v in swept]
-    prefix = "sweep" if name in (None, "default") else f"sweep/{name}"
-    return (f"{prefix}/{'-'.join(parts)}" if parts else prefix)[:250]
-
-
-def run_params(container: dict, overrides: list[str] | None = None) -> dict:
-    """The params worth comparing runs by (not all ~130 leaves; ``config.yaml`` has them):
-    :data:`PARAM_KEYS`, the model's and selector's own parameters, every overridden key."""
-    flat = {k: v for k, v in _flat_params(container).items()
-            if not k.rsplit(".", 1)[-1].startswith("_")}          # no _target_ & co
-    keys = [k for k in PARAM_KEYS if k in flat] + [k for k in flat if k.startswith(_HYPER)]
-    for o in overrides or ():
-        key = _split(o)[0]
-        if key.startswith(("hydra", "tracking_uri", "experiment_name", "track")):
-            continue
-        if f"{key}.name" in flat:           # a config group choice: its name, not its leaves
-            keys.append(f"{key}.name")
-        else:
-            keys += [k for k in flat if k == key or k.startswith(key + ".")]
-    out = {}
-    for k in dict.fromkeys(keys):      # a lab's column name as a key: 'data.columns.dZ [µm]'
-        out.setdefault(_UNSAFE.sub("_", k), flat[k])
-    return out
-
-
-# what MLflow allows in a param name; anything else (brackets, °, µ) became an exception that
-# ended the run with a traceback
-_UNSAFE = re.compile(r"[^A-Za-z0-9_\-. :/]")
 
 
 def start_parent_run(cfg: DictConfig, run_name: str, tags: dict | None = None) -> str:
@@ -513,14 +345,3 @@ def latest_sweep(client, experiment_name: str) -> str | None:
                         filter_string=f"tags.`{SWEEP_TAG}` = 'parent'",
                         order_by=["attributes.start_time DESC"], max_results=1)
     return runs[0].info.run_id if runs else None
-
-
-def _flat_params(d, prefix=""):
-    out = {}
-    for k, v in d.items():
-        key = f"{prefix}.{k}" if prefix else str(k)
-        if isinstance(v, dict):
-            out.update(_flat_params(v, key))
-        else:
-            out[key] = str(v)[:500]
-    return out

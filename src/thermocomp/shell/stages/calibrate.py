@@ -31,8 +31,8 @@ from ...base.files import staged_outputs, write_json
 from ...base.log import logger, say
 from ...base.paths import resolve
 from ...core import io
+from ..config.apart import check_apart
 from ..tracking import stage_run
-from .apart import check_apart
 from .common import _check_writable, calibrated_dataset, check_config, simulated_truth
 
 

@@ -3,150 +3,22 @@
 from __future__ import annotations
 
 import dataclasses
-import functools
 import json
-import math
-import tempfile
-from collections.abc import Mapping
-from numbers import Integral
 from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf, open_dict
 
 from ...base.errors import ConfigError
 from ...base.log import logger, say
-from ...base.params import (
-    BOOLEAN,
-    MAX_COUNT,
-    NON_NEGATIVE,
-    POSITIVE,
-    Rule,
-    check_params,
-    check_values,
-    choice,
-    either,
-    file_name,
-    integer,
-    number,
-    numbers,
-    optional,
-    subset,
-    texts,
-)
 from ...base.paths import resolve
 from ...core import io
-from ...core.compensator import MODES, Compensator
+from ...core.compensator import Compensator
 from ...core.continuation import carried_text
-from ...core.frame import REFERENCES
 from ..build import build
+from ..config.checks import _check_writable, check_component, check_config, data_options  # noqa: F401
+from ..config.rules import AUTO_REFERENCE, check_keys  # noqa: F401  (re-exported to the stages)
 from ..model_store import load_model, model_family
-from ..tracking import enabled, store_uri
-from .apart import check_apart
 from .auto import as_chosen, auto_scheme, build_candidates, is_auto, val_split_scores
-from .rules import check_groups, check_keys
-
-AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
-MAX_COMPONENT = 200   # bytes of one name in a written path: 255 less the staging decoration
-PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws (config.yaml)
-
-# What the plain keys of the shared config groups may be (the components below check their own).
-CONFIG_RULES = {
-    "name": file_name(),
-    "track": optional(BOOLEAN), "plots": choice(*PLOTS),
-    "data.reference": choice(*REFERENCES, AUTO_REFERENCE),
-    "eval.mode": choice(*MODES), "eval.e_p95.statistic": choice("range", "std"),
-    "eval.e_p95.max_points": optional(integer(2)),  # 0 or 1 window lengths: an empty E_P95 curve
-    "eval.anova_alpha": number(0.0, 1.0, open_lo=True, open_hi=True),
-    "eval.mutual_prediction": BOOLEAN, "eval.ati_baselines": BOOLEAN, "eval.iso10791_a3": BOOLEAN,
-    "eval.validation": BOOLEAN, "eval.validation_folds": integer(2, at_most=1000),
-    "eval.validation_scheme": choice("auto", "forward", "interleaved"),
-    "data.group_jobs": integer(1, at_most=1024),           # processes
-    "data.inputs": texts("column names or patterns", unique=True),
-    "data.targets": optional(texts("E_ column names", unique=True)),
-}
-# The configured estimators, denoiser and selector: each checks its ``param_rules``.
-COMPONENTS = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector")
-
-
-def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
-                 inputs: tuple[str, ...] = ()) -> None:
-    """Refuse bad choices before anything is read or written.
-
-    ``outputs`` are the config keys of what the stage writes: folders (``out``,
-    ``data.interim``) or files (``model_path``); each must be writable where it
-    is (not an existing file in a folder's place, not a read-only place).
-    ``inputs`` are the keys of what it reads besides ``data.path``: no output (nor
-    ``out``, where its log goes) is, lies inside or holds one (:mod:`.apart`).
-    """
-    check_keys(cfg, CONFIG_RULES)
-    check_groups(cfg)        # every group, whatever the stage: replay streams with promote.* too
-    io.ReadOptions.from_cfg(data_options(cfg))      # data.*: before any file is read
-    if cfg.get("calibrate") is not None:
-        check_calibrate(cfg.calibrate)
-    store = ("tracking_uri",) if enabled(cfg) else ()    # a SQLite store and its artifacts
-    check_apart(cfg, (*outputs, "out", *store), inputs)
-    for key in COMPONENTS:
-        node = OmegaConf.select(cfg, key)
-        if node is not None:
-            check_component(build(node, key), key)
-    if is_auto(cfg):
-        for name, candidate in build_candidates(cfg).items():
-            check_component(candidate, f"model.candidates.{name}")
-    for key in outputs:
-        _check_writable(key, OmegaConf.select(cfg, key), folder=key != "model_path")
-    if enabled(cfg):     # before any data is read: an unreachable server once hung a run for minutes
-        store_uri(cfg)
-
-
-def check_component(component, key: str) -> None:
-    """``component`` (instantiated from config ``key``; a ``_partial_`` one too) and the
-    estimators it holds, each against its ``param_rules``: ``model.estimator.arx.max_inputs=0:
-    must be an integer >= 1`` before any data is read."""
-    if isinstance(component, functools.partial):       # ati.estimator: the base comes later
-        component = component.func(*component.args, **component.keywords)
-    check_params(component, key)
-    # scikit-learn's own estimators (the forest of arx_rf) check their parameters in fit, after
-    # the data are read: ask them now (private API, but the one scikit-learn itself uses).
-    if not hasattr(component, "param_rules") and hasattr(component, "_parameter_constraints"):
-        try:
-            component._validate_params()
-        except ValueError as exc:
-            raise ConfigError(f"{key}: {exc}") from None
-        # their counts have no upper bound there (n_estimators=1e15 would loop for ever)
-        for name, value in component.get_params(deep=False).items():
-            if (name != "random_state" and isinstance(value, Integral) and not isinstance(value, bool)
-                    and abs(value) > MAX_COUNT):
-                raise ConfigError(f"{key}.{name}={value}: must be at most {MAX_COUNT:,}")
-    if hasattr(component, "get_params"):
-        for name, value in component.get_params(deep=False).items():
-            if hasattr(value, "get_params"):
-                check_component(value, f"{key}.{name}")
-
-
-def _check_writable(key: str, value, folder: bool) -> None:
-    """``key=value`` names a place this process can write a folder (or a file) to."""
-    if value is None or not str(value).strip():      # resolved, '' is the project root
-        raise ConfigError(f"{key} is empty: give a {'folder' if folder else 'file'}")
-    path = resolve(value)
-    long = next((p for p in path.parts if len(p.encode()) > MAX_COMPONENT), None)
-    if long is not None:      # the staging folder, .<name>.stage-<pid>-<random>, must fit too
-        raise ConfigError(f"{key}={value}: a folder or file name of {len(long.encode())} bytes "
-                          f"(at most {MAX_COMPONENT})")
-    if path.exists() and path.is_dir() != folder:
-        raise ConfigError(f"{key}={value}: exists and is {'not ' * folder}a folder")
-    probe = [path] if folder and path.is_dir() else []
-    nearest = next(p for p in path.parents if p.exists())  # where its folders get created
-    if not nearest.is_dir():
-        raise ConfigError(f"{key}={value}: {nearest} is not a folder")
-    for where in (*probe, nearest):
-        try:
-            tempfile.TemporaryFile(dir=where).close()
-        except OSError as exc:
-            raise ConfigError(f"{key}={value}: cannot write in {where} ({exc.strerror})") from None
-
-
-def data_options(cfg: DictConfig) -> dict:
-    return OmegaConf.to_container(cfg.data, resolve=True)
 
 
 def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator:
@@ -479,33 +351,6 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[
         name = model_family(comp)
         train = {c: ds.campaigns[c] for c in train_ids}
     return deployable(cfg, deploy_stream(cfg, comp, train), train, ds), source, name
-
-
-# --- calibrate (the stage and `run` on a volumetric dataset) -------------------------------
-
-KINDS = ("positioning", "straightness", "angular", "cross")
-FORMATS = ("parquet", "csv")
-CALIBRATE_RULES = {
-    "outlier_z": either(POSITIVE, Rule(lambda v: v == math.inf, "inf")),  # inf: fit them as they are
-    "column_share": number(0.0, 1.0, open_lo=True), "format": choice(*FORMATS),
-    "require_seen": subset(KINDS, empty=True),
-    "prior": optional(Rule(lambda v: isinstance(v, Mapping) and len(v) > 0,
-                           "a range a per kind (as design.ranges: positioning, straightness, "
-                           "squareness, angular, cross, decay)")),
-}
-
-
-def check_calibrate(c: DictConfig) -> None:
-    """Refuse a ``calibrate.*`` value the stage cannot use, before any data is read."""
-    check_values(c, CALIBRATE_RULES, "calibrate")
-    prior = c.get("prior")
-    if prior is not None:    # a range per kind (decay: one number), or one per Legendre order
-        from ...apps.volumetric.calibration import check_prior_kinds
-
-        check_values(prior, {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0))
-                             for k in prior}, "calibrate.prior")
-        # the kinds every machine has (cross only with its cross terms: checked with the model)
-        check_prior_kinds(prior, {"positioning", "straightness", "squareness", "angular"})
 
 
 def calibrated_dataset(cfg: DictConfig):

@@ -22,8 +22,8 @@ from ...base.log import logger, say
 from ...base.params import check_values, subset
 from ...base.paths import resolve
 from ...core import io
+from ..config import rules
 from ..tracking import stage_run
-from . import rules
 from .common import build_compensator, check_config, check_declared, data_options, resolve_reference
 
 # What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are

@@ -21,9 +21,9 @@ from omegaconf import DictConfig
 
 from ...apps.deploy import server
 from ...base.log import logger, say
+from ..config.rules import SERVE_RULES, check_keys
 from ..registry import check_served_model
 from ..tracking import DEFAULT_URI, resolve_uri
-from .rules import SERVE_RULES, check_keys
 
 QUIET_DOWNLOADS = "MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR"
 

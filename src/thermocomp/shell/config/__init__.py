@@ -1,0 +1,1 @@
+"""The configuration: its rules and the checks every stage runs before any work."""

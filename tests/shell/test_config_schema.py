@@ -1,0 +1,181 @@
+"""The typed config (issue 35 item 5): one schema (``shell/config/schema.py``) whose rules every
+stage checks on the config as composed, and from which ``--help`` and the run's MLflow params
+and name are derived."""
+
+from __future__ import annotations
+
+import functools
+import os
+
+import pytest
+from hydra import compose, initialize_config_dir
+from hydra.experimental.callback import Callback
+from omegaconf import OmegaConf
+
+import thermocomp.shell.cli  # noqa: F401  (registers the resolvers conf/ uses)
+from thermocomp.base.errors import ConfigError
+from thermocomp.base.paths import conf_dir
+from thermocomp.shell.cli import _compose, _group_options, main
+from thermocomp.shell.config import rules as rule_tables
+from thermocomp.shell.config.commands import COMMANDS, groups_of
+from thermocomp.shell.config.naming import PARAM_KEYS, _entries, run_name, run_params
+from thermocomp.shell.config.rules import check_schema
+from thermocomp.shell.config.schema import Root, fields
+from thermocomp.shell.stages import STAGES
+from thermocomp.shell.tracking import config_container
+
+KEYS = [name for name, f in fields(Root) if f.metadata["rule"] is not None]
+# values no config key takes: each key is set to the first its rule refuses
+WRONG = ("§ not a value", {"not": "a value"}, -1.5, [-1.5], None)
+
+
+@functools.cache
+def _composed():
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=["track=false"])
+    OmegaConf.set_struct(cfg, False)
+    return cfg
+
+
+def test_the_composed_defaults_hold_every_schema_key_and_pass_its_rule():
+    cfg = _composed()
+    absent = [k for k, _ in fields(Root) if OmegaConf.select(cfg, k, default="<absent>") == "<absent>"]
+    assert not absent, f"schema keys conf/ does not have: {absent}"
+    check_schema(cfg)
+
+
+@pytest.mark.parametrize("key", KEYS)
+def test_a_wrong_value_of_every_schema_key_is_refused_naming_the_key(key):
+    cfg = _composed()
+    rule = dict(fields(Root))[key].metadata["rule"]
+    wrong = next(v for v in WRONG if not rule(v))
+    before = OmegaConf.select(cfg, key)
+    OmegaConf.update(cfg, key, wrong, merge=False)
+    try:
+        with pytest.raises(ConfigError, match=rf"^{key.replace('.', '[.]')}="):
+            check_schema(cfg)
+    finally:
+        OmegaConf.update(cfg, key, before, merge=False)
+
+
+def test_the_stages_rule_tables_are_the_schemas():
+    # one source: a key added to the schema is in the table its stage checks
+    assert set(rule_tables.MONITOR_RULES) == {k for k in KEYS if k.startswith("monitor.")}
+    assert set(rule_tables.DIAGNOSE_RULES) == {k[len("diagnose."):] for k in KEYS
+                                               if k.startswith("diagnose.")}
+    assert rule_tables.SERVE_RULES["serve.port"] is dict(fields(Root))["serve.port"].metadata["rule"]
+
+
+# -- one root config per command ---------------------------------------------------------------
+
+def test_every_stage_is_a_command_whose_root_composes_and_resolves():
+    assert set(COMMANDS) == set(STAGES)
+    for command in COMMANDS:
+        cfg = _compose(["track=false"], command)
+        groups = {k for k in cfg if _group_options(k)}
+        assert groups == set(groups_of(command)) - {"experiment"}, command
+        OmegaConf.to_container(cfg, resolve=True)     # every interpolation has its group
+
+
+def test_compare_composes_no_model_no_monitor():
+    cfg = _compose([], "compare")
+    assert not {"model", "monitor", "adapt", "serve", "select"} & set(cfg)
+    assert cfg.compare.sort_by
+
+
+def test_serve_composes_what_makes_a_model_pkl_deployable():
+    cfg = _compose([], "serve")         # a run's model.pkl: deployed on data.path's train split
+    assert {"data", "monitor", "adapt", "serve"} <= set(cfg)
+    assert cfg.serve.model == "models:/thermocomp-compensator@champion"
+
+
+@pytest.mark.parametrize("command, override, group", [
+    ("compare", "model=arx", "model"), ("compare", "adapt.method=bias", "adapt"),
+    ("compare", "monitor.window=3", "monitor"), ("calibrate", "+diagnose.alpha=0.1", "diagnose")])
+def test_a_group_the_command_does_not_read_is_refused_in_one_line(capsys, command, override, group):
+    assert main([command, override]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and f"does not read the {group} group" in err[0], err
+    assert ", ".join(groups_of(command)) in err[0]
+
+
+def test_a_typo_in_a_key_the_command_reads_still_gets_its_hint(capsys):
+    assert main(["serve", "serve.prot=5002"]) == 2
+    assert "did you mean 'serve.port'?" in capsys.readouterr().err
+
+
+# -- run names, MLflow params and --help from the schema ---------------------------------------
+
+def _reporting_and_fitting_keys():
+    """Schema keys marked (or under a group marked) ``reports``; the others that name no run
+    by themselves (not ``names``)."""
+    meta = dict(_entries())
+    marked = {k for k, m in meta.items() if m["reports"]}
+    keys = [k for k, _ in fields(Root)]
+    reporting = [k for k in keys if any(k == r or k.startswith(f"{r}.") for r in marked)]
+    fitting = [k for k in keys if k not in reporting and not meta[k]["names"] and "." in k]
+    return reporting, fitting
+
+
+def test_a_key_the_schema_marks_as_reporting_never_names_a_run_any_other_does():
+    cfg = _compose([], "run")
+    reporting, fitting = _reporting_and_fitting_keys()
+    assert {"out", "data.path", "eval.validation", "promote.alias", "serve.port"} <= set(reporting)
+    for key in reporting:
+        assert run_name(cfg, [f"{key}=7"]) == "mlr", key
+    assert {"monitor.window", "data.reference", "diagnose.alpha"} <= set(fitting)
+    for key in fitting:
+        assert run_name(cfg, [f"{key}=7"]) == f"mlr-{key.rsplit('.', 1)[-1]}=7", key
+
+
+def test_the_logged_params_are_the_schemas():
+    logged = {k for k, meta in _entries() if meta.get("logged")}
+    assert set(PARAM_KEYS) == logged
+    assert {"seed", "data.path", "eval.mode", "model.name", "select.name"} <= logged
+    cfg = _compose(["seed=3"], "run")
+    assert logged <= set(run_params(config_container(cfg)))
+
+
+def test_help_keys_lists_every_key_with_its_default_type_domain_and_comment(capsys):
+    assert main(["serve", "--help", "keys"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    cfg = _compose([], "serve")
+    listed = {line.split(" = ")[0].strip(): line for line in lines}
+    for key, f in fields(Root):
+        if key.split(".")[0] in cfg:
+            assert key in listed, key
+            if f.metadata["rule"] is not None:
+                assert f": {f.metadata['rule'].says})" in listed[key], listed[key]
+    # the default as written and the comment beside it in conf/serve/default.yaml
+    assert listed["serve.host"].startswith("  serve.host = 127.0.0.1  (str: a non-empty text)")
+    assert listed["serve.host"].endswith("0.0.0.0 to listen on every interface (no authentication!)")
+    assert listed["serve.model"].startswith("  serve.model = models:/${promote.model_name}@")
+    assert not any(k.startswith(("sim.", "model.", "data.")) for k in listed)
+
+
+def test_help_keys_of_one_group_and_of_a_group_the_command_lacks(capsys):
+    assert main(["run", "--help", "keys", "eval"]) == 0
+    keys = [line.split(" = ")[0].strip() for line in capsys.readouterr().out.splitlines()]
+    assert keys and all(k.startswith("eval.") for k in keys) and "eval.validation_folds" in keys
+    assert main(["run", "--help", "keys", "monitor"]) == 2
+    assert "composes no group 'monitor'" in capsys.readouterr().err
+
+
+# -- one entry point: a run goes through hydra.main as a sweep does ----------------------------
+
+class RunProbe(Callback):
+    """A Hydra callback noting the jobs it saw (its runs are Hydra's, not the compose API's)."""
+
+    seen: list = []
+
+    def on_job_start(self, config, **kwargs):
+        RunProbe.seen.append((str(config.hydra.mode), config.hydra.job.override_dirname))
+
+
+def test_a_run_goes_through_hydra_main_with_its_callbacks(tmp_path, monkeypatch, capsys):
+    monkeypatch.setenv("THERMOCOMP_TARGETS", f"{os.environ.get('THERMOCOMP_TARGETS', '')},{__name__}.")
+    RunProbe.seen.clear()
+    probe = f"+hydra.callbacks.probe._target_={__name__}.RunProbe"
+    assert main(["ingest", f"data.path={tmp_path / 'none'}", probe, "track=false"]) == 2
+    assert "campaigns.csv" in capsys.readouterr().err          # the stage's one line, exit 2
+    assert RunProbe.seen == [("RunMode.RUN", f"data.path={tmp_path / 'none'},track=false")]
