@@ -27,7 +27,8 @@ from ...base.paths import resolve
 from ...core import io
 from ...core.compensator import Compensator
 from ...core.scoring.evaluation import require_split
-from .common import build_compensator, reference
+from ..source import reference
+from .builders import build_compensator
 
 DENOISE_JSON = "denoise.json"
 DENOISER_PKL = "denoiser.pkl"

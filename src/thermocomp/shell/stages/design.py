@@ -20,8 +20,9 @@ from ...base.errors import ConfigError
 from ...base.files import staged_outputs, write_json
 from ...base.log import logger, say
 from ...base.paths import resolve
+from ..source import calibration_prior
 from ..tracking import stage_run
-from .common import calibration_prior, check_config
+from .common import check_config
 
 
 def build_study(cfg: DictConfig) -> tuple[CalibrationDesignStudy, dict, str]:

@@ -42,9 +42,11 @@ from ...base.paths import resolve
 from ...core import io
 from ...core.scoring.headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
 from ...core.scoring.results import TargetResult
+from ..source import check_declared, resolve_reference
 from ..tracking import stage_run
 from . import rules
-from .common import build_compensator, check_config, check_declared, data_options, resolve_reference
+from .builders import build_compensator
+from .common import check_config, data_options
 
 # What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are
 # this stage's (``targets`` is also checked against the modelled targets).

@@ -38,9 +38,11 @@ from ...core.scoring.evaluation import (
 )
 from ...core.scoring.results import TEST_RMS_AFTER, TEST_RMS_BEFORE, TEST_RMSE, VAL_RMSE, TargetResult
 from ..model_store import save_model
+from ..source import resolve_reference
 from ..tracking import stage_run
 from .auto import add_choices
-from .common import build_compensator, check_config, data_options, resolve_reference, validation_template
+from .builders import build_compensator, validation_template
+from .common import check_config, data_options
 
 
 def _slim(targets: dict) -> dict:

@@ -33,23 +33,14 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core import io
 from ...core.context import TIME
-from ...core.continuation import chain, preceding
+from ...core.continuation import carried_text, chain, lead_ins, preceding
 from ...core.io.sniff import SNIFF_LINES, detected
+from ...core.io.source import check_streamed_columns
 from ..model_store import load_model
+from ..source import check_volumetric_targets, read_streamed
 from ..tracking import stage_run
-from .common import (
-    build_adaptive,
-    build_compensator,
-    carried_text,
-    check_config,
-    check_streamed_columns,
-    check_volumetric_targets,
-    data_options,
-    deploy_stream,
-    lead_ins,
-    read_streamed,
-    warn_stream_mode,
-)
+from .builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
+from .common import check_config, data_options
 
 
 def _stdin_campaign(columns: list[str], opts: io.ReadOptions) -> tuple[dict, dict]:

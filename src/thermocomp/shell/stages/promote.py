@@ -59,6 +59,7 @@ from ...base.params import choice
 from ...base.paths import project_root, resolve
 from ...core import io
 from ...core.compensator import Compensator
+from ...core.continuation import lead_ins
 from ...core.scoring.champion import (
     champion_validation,
     check_criterion,
@@ -84,7 +85,8 @@ from ..store import registry_lock
 from ..sweeps import parent_run_id, run_metrics, sweep_rows
 from ..tracking import DATASET_TAG, child_runs, connect, retry_locked
 from ..tracking import client as mlflow_client
-from .common import check_config, check_keys, data_options, deploy_stream, deployable, lead_ins
+from .builders import deploy_stream, deployable
+from .common import check_config, check_keys, data_options
 
 # The plain promote.* keys are checked by every stage (rules.PROMOTE_RULES); the envelope's
 # policies are the deployment's own.

@@ -28,17 +28,13 @@ from ...base.errors import ConfigError
 from ...base.files import write_json
 from ...base.log import say
 from ...base.paths import resolve
+from ...core.continuation import lead_ins
+from ...core.io.source import check_streamed_columns
 from ...core.metrics import RMSE
+from ..source import check_volumetric_targets, read_streamed
 from ..tracking import stage_run
-from .common import (
-    check_config,
-    check_streamed_columns,
-    check_volumetric_targets,
-    deployable_model,
-    lead_ins,
-    read_streamed,
-    warn_stream_mode,
-)
+from .builders import deployable_model, warn_stream_mode
+from .common import check_config
 
 
 def replay(cfg: DictConfig) -> dict:
