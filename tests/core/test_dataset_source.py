@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from conftest import FAST, simulated
+from conftest import FAST, refused, simulated
 from test_hostile import edit_csv, make_dataset
 from thermocomp.base.files import folder_digest
 from thermocomp.core.io import ContractError
@@ -104,3 +104,19 @@ def test_run_and_replay_read_the_data_path_through_the_one_source(tmp_path, monk
     assert main(["replay", *args, f"replay.model={tmp_path / 'out' / 'model.pkl'}",
                  f"out={tmp_path / 'replay'}"]) == 0
     assert opened == [False, True]      # once each: a batch for run, a stream for replay
+
+
+@pytest.mark.parametrize("stage", ["train", "evaluate"])
+def test_a_stage_refuses_an_ingest_of_data_that_changed_since(paths, tmp_path, capsys, stage):
+    # before, ingest recorded data.path's name and options only: a corrected file in the same
+    # folder was trained and scored from the stale ingest, exit 0 and no word of it
+    from thermocomp.shell.cli import main
+
+    args = [*paths["args"], f"data.processed={tmp_path / 'processed'}"]
+    assert main(["ingest", *args]) == 0 and main(["train", *args]) == 0
+    edit_csv(paths["ds"] / "K02.csv", lambda df: df.__setitem__("E_X", df["E_X"] * 2))
+    refused([stage, *args], capsys, "ingest_report.json", "changed since it was ingested",
+            "run `thermocomp ingest` with this config first")
+    assert main(["ingest", *args]) == 0     # ingested again: read (by a model trained on it)
+    assert stage == "train" or main(["train", *args]) == 0
+    assert main([stage, *args]) == 0

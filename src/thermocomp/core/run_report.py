@@ -9,7 +9,7 @@ staging folder (``metrics.json`` and ``headline/`` last); the shell moves it in.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from functools import partial
 
@@ -20,7 +20,7 @@ from ..base.log import Clock, logger, say
 from .compensator import Compensator, with_chosen_hyperparameters
 from .continuation import carry_over
 from .figures import run_figures as fig
-from .metrics import VALIDATION, validation_block
+from .metrics import ISO_A3, VALIDATION, validation_block
 from .scoring.evaluation import (
     VAL_FOLDS,
     ambient_by_campaign,
@@ -54,6 +54,19 @@ class ReportSettings:
     anova_alpha: float = 0.001
     ati_baselines: bool = True
     mutual_prediction: bool = True
+
+    @classmethod
+    def from_eval(cls, ev: Mapping, **names) -> ReportSettings:
+        """From the ``eval`` group (a mapping; absent keys keep their defaults) and ``names``
+        (``model``, ``select``, ``ati``, ``plots``)."""
+        keys = ("mode", "validation", "validation_folds", "validation_scheme", "anova_alpha",
+                "ati_baselines", "mutual_prediction")
+        e_p95 = ev.get("e_p95") or {}
+        given = {"e_p95_statistic": e_p95.get("statistic"),
+                 "e_p95_max_points": e_p95.get("max_points", 200), "iso_a3": ev.get(ISO_A3),
+                 **{k: ev.get(k) for k in keys}}
+        return cls(**{k: v for k, v in given.items() if v is not None or k == "e_p95_max_points"},
+                   **names)
 
 
 @dataclass(frozen=True)

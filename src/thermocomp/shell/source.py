@@ -20,12 +20,14 @@ from omegaconf import DictConfig, OmegaConf, open_dict
 from ..apps.volumetric.source import SETTINGS
 from ..apps.volumetric.source import is_volumetric as _volumetric_folder
 from ..base.errors import ConfigError
+from ..base.files import folder_digest
 from ..base.log import logger, say
 from ..base.paths import resolve
 from ..core import io
 from ..core.io.source import open_dataset
 
 AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
+DIGEST = "digest"         # the dataset digest of data.path in ``ingested_with``
 
 
 def data_options(cfg: DictConfig) -> dict:
@@ -71,6 +73,23 @@ def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False
         ds = open_dataset(root, data_options(cfg), stream=stream)
     resolve_reference(cfg, ds)
     return ds
+
+
+def calibration_of(ds: io.Dataset):
+    """``(distance dataset, calibration, its report)`` of a source opened from a volumetric
+    folder, else None."""
+    cal = ds.meta.get("calibrator")
+    return None if cal is None else (ds.meta["distances"], cal, ds.meta["calibration"])
+
+
+def source_report(cfg: DictConfig, ds: io.Dataset) -> dict:
+    """What was read, as ``ingest_report.json`` records it (``run`` writes it into ``out``): the
+    reader's report (of a volumetric folder: the distances' name and the calibration) and the
+    resolved ``data.reference``."""
+    volumetric = calibration_of(ds)
+    report = (dict(ds.meta["read_report"]) if volumetric is None else
+              {"dataset": volumetric[0].name, "calibration": volumetric[2]})
+    return {**report, "reference": str(cfg.data.reference)}
 
 
 def volumetric_distances(cfg: DictConfig):
@@ -127,9 +146,14 @@ def read_streamed(cfg: DictConfig, test: bool = True):
     return ds, train, require_split(ds, "test") if test else [], ds.meta.get("missing", {})
 
 
+# keys of ``ingested_with`` recorded since a later version: an earlier ingest is read as it is
+LATER = ("calibrate.", DIGEST)
+
+
 def ingest_settings(cfg: DictConfig) -> dict:
-    """What an ingest of ``data.path`` depends on: the folder and every reading option (as JSON
-    holds them).  ``ingest`` records it; the stages reading ``data.interim`` compare."""
+    """What an ingest of ``data.path`` depends on: the folder, every reading option (as JSON
+    holds them) and the folder's digest (its files as they are now: the dataset digest).
+    ``ingest`` records it; the stages reading ``data.interim`` compare."""
     opts = dataclasses.asdict(io.ReadOptions.from_cfg(data_options(cfg)))
     opts.pop("missing")      # internal: no data config key
     made = {"path": str(resolve(cfg.data.path)), **opts}
@@ -137,6 +161,8 @@ def ingest_settings(cfg: DictConfig) -> dict:
         # a volumetric dataset's parameter series depend on its calibration too (an outside
         # probe's ingest with a prior was evaluated without one: 33 targets, 25 rows, exit 0)
         made.update({f"calibrate.{k}": v for k, v in calibrate_settings(cfg).items()})
+    if resolve(cfg.data.path).exists():   # gone since: data.interim is read as it is
+        made[DIGEST] = folder_digest(resolve(cfg.data.path))   # last: a folder or option first
     return json.loads(json.dumps(made, default=str))
 
 
@@ -149,15 +175,15 @@ def load_ingested(cfg: DictConfig):
     made = ds.meta["ingest_report"].get("ingested_with")
     if made is not None:
         want = ingest_settings(cfg)
-        # calibrate.*: recorded since a later version; an earlier ingest is read as it is
         key = next((k for k in want if made.get(k) != want[k]
-                    and (k in made or not k.startswith("calibrate."))), None)
+                    and (k in made or not k.startswith(LATER))), None)
         if key is not None:
             name = key if key.startswith("calibrate.") else f"data.{key}"
-            raise io.ContractError(
-                f"it was ingested with {name}={made.get(key)!r}, not {want[key]!r}: run "
-                "`thermocomp ingest` with this config first (or give another name= to keep both)",
-                file=root / io.INGEST_REPORT)
+            what = (f"data.path={cfg.data.path} changed since it was ingested (its files differ)"
+                    if key == DIGEST else
+                    f"it was ingested with {name}={made.get(key)!r}, not {want[key]!r}")
+            raise io.ContractError(f"{what}: run `thermocomp ingest` with this config first (or "
+                                   "give another name= to keep both)", file=root / io.INGEST_REPORT)
     resolve_reference(cfg, ds)
     return ds
 

@@ -94,3 +94,19 @@ def open_distances(root: str | Path, options: Mapping | None, outlier_z: float,
     check_columns(raw, setup)
     return raw, ArtefactCalibration(setup, outlier_z=float(outlier_z),
                                     prior_sd=prior_sd(setup.model, prior)).fit()
+
+
+def ingest_series(params: io.Dataset, dest, extra: dict, finish=None) -> dict:
+    """:func:`~thermocomp.core.io.ingest` of the parameter series ``params`` (opened by
+    :func:`open_volumetric`) into ``dest``: written, then read back through the one validating
+    reader (its splits and names are already the configured ones: no data option applies
+    twice); the report holds the calibration, and the repairs made reading the distances."""
+    import tempfile
+
+    calibration = params.meta["calibration"]
+    with tempfile.TemporaryDirectory(prefix="thermocomp-params-") as tmp:
+        name = params.meta["distances"].name or "parameters"
+        folder = io.write_dataset(params, f"{tmp}/{name}", "parquet")
+        return io.ingest(folder, dest, extra={"calibration": calibration,
+                                              "repairs": calibration["repairs"], **extra},
+                         finish=finish)

@@ -10,10 +10,9 @@ campaign at a time (:func:`thermocomp.core.io.ingest`: peak memory one campaign)
 
 from __future__ import annotations
 
-import tempfile
-
 from omegaconf import DictConfig
 
+from ...apps.volumetric.source import ingest_series
 from ...base.files import check_replaceable
 from ...base.log import say
 from ...base.paths import resolve
@@ -35,7 +34,7 @@ def ingest(cfg: DictConfig) -> dict:
         return {"reference": resolve_reference(cfg, ds)}
 
     if is_volumetric(cfg):
-        report = _parameters(open_source(cfg), dest, made, finish)
+        report = ingest_series(open_source(cfg), dest, made, finish)
     else:
         report = io.ingest(src, dest, data_options(cfg), extra=made, finish=finish)
     say(f"{report['rows']} rows in {len(report['campaigns'])} campaigns; "
@@ -45,16 +44,3 @@ def ingest(cfg: DictConfig) -> dict:
         tr.log_artifact(dest / "ingest_report.json")
     return report
 
-
-def _parameters(params, dest, made: dict, finish) -> dict:
-    """The parameter series of a calibrated volumetric dataset, ingested as a dataset of its own
-    (written, then read back through the one validating reader: the splits and names are
-    already the configured ones, so no data.* option applies twice)."""
-    calibration = params.meta["calibration"]
-    with tempfile.TemporaryDirectory(prefix="thermocomp-params-") as tmp:
-        folder = io.write_dataset(params, f"{tmp}/{params.meta['distances'].name or 'parameters'}",
-                                  "parquet")
-        # the temperatures' repairs were made reading the distances' dataset, not this one
-        return io.ingest(folder, dest, extra={"calibration": calibration,
-                                              "repairs": calibration["repairs"], **made},
-                         finish=finish)

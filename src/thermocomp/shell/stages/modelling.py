@@ -21,12 +21,18 @@ from ...base.files import staged_outputs, write_json
 from ...base.log import Clock, say
 from ...base.paths import resolve
 from ...core import io
-from ...core.metrics import ISO_A3
 from ...core.run_report import Refits, ReportSettings, report_run
 from ...core.scoring.evaluation import require_split
 from ...core.scoring.results import EvaluationResult
 from ..model_store import load_model, model_family, save_model
-from ..source import check_declared, open_source, simulated_truth, volumetric_distances
+from ..source import (
+    calibration_of,
+    check_declared,
+    open_source,
+    simulated_truth,
+    source_report,
+    volumetric_distances,
+)
 from ..tracking import stage_run
 from .artifacts import fit_from_artifacts
 from .auto import add_choices, as_chosen
@@ -85,11 +91,7 @@ def run(cfg: DictConfig) -> dict:
     check_config(cfg)
     clock = Clock()
     ds = open_source(cfg)
-    cal = ds.meta.get("calibrator")
-    volumetric = None if cal is None else (ds.meta["distances"], cal, ds.meta["calibration"])
-    report = ({**ds.meta["read_report"]} if cal is None else
-              {"dataset": ds.meta["distances"].name, "calibration": ds.meta["calibration"]})
-    report["reference"] = str(cfg.data.reference)
+    volumetric = calibration_of(ds)
     clock.lap("read")
     with stage_run(cfg, "run") as tr:     # a run refused from here on is recorded FAILED
         if volumetric is None:
@@ -104,7 +106,7 @@ def run(cfg: DictConfig) -> dict:
 
         def stage_files(stage):  # committed with metrics.json, or not at all
             save_model(comp, stage / "model.pkl")
-            write_json(stage / "ingest_report.json", report)
+            write_json(stage / "ingest_report.json", source_report(cfg, ds))
 
         metrics = _report(cfg, comp, ds, tr, clock, {"fit_time_s": fit_s}, stage_files, volumetric)
         tr.log_metrics({"fit_time_s": fit_s})
@@ -141,14 +143,9 @@ def _report(cfg: DictConfig, comp, ds, tracker, clock: Clock | None = None,
 
 
 def _settings(cfg: DictConfig) -> ReportSettings:
-    ev = cfg.eval
-    return ReportSettings(
-        model=cfg.model.name, select=cfg.select.name, plots=str(cfg.plots), mode=ev.mode,
-        ati=cfg.ati.name if cfg.get("ati") is not None else "none",
-        e_p95_statistic=ev.e_p95.statistic, e_p95_max_points=ev.e_p95.max_points,
-        iso_a3=ev.get(ISO_A3, True), **{k: ev[k] for k in (
-            "validation", "validation_folds", "validation_scheme", "anova_alpha",
-            "ati_baselines", "mutual_prediction") if ev.get(k) is not None})
+    ati = cfg.ati.name if cfg.get("ati") is not None else "none"
+    return ReportSettings.from_eval(cfg.eval, model=cfg.model.name, select=cfg.select.name,
+                                    plots=str(cfg.plots), ati=ati)
 
 
 def _publish(cfg: DictConfig, metrics: dict, out, tracker, clock: Clock) -> None:
