@@ -92,16 +92,23 @@ def source_report(cfg: DictConfig, ds: io.Dataset) -> dict:
     return {**report, "reference": str(cfg.data.reference)}
 
 
-def volumetric_distances(cfg: DictConfig):
-    """``(distance dataset, calibration)`` when ``data.path`` is a volumetric dataset, else None:
-    what ``evaluate`` validates the parameter models against (``ingest`` calibrated the same
-    folder into ``data.interim``; the calibration's model is fitted again, not its cycles)."""
+def volumetric_distances(cfg: DictConfig, ds: io.Dataset):
+    """``(distance dataset, calibration, its report)`` when ``data.path`` is a volumetric dataset,
+    else None: what ``evaluate`` validates the parameter models of ``ds`` (``data.interim``, which
+    ``ingest`` calibrated from the same folder) against; the calibration's model is fitted again,
+    not its cycles.  An ingest without this calibration's parameter series is refused."""
     from ..apps.volumetric.source import open_distances
 
     if not is_volumetric(cfg):
         return None
-    return open_distances(resolve(cfg.data.path), data_options(cfg), cfg.calibrate.outlier_z,
-                          calibration_prior(cfg.calibrate))
+    raw, cal = open_distances(resolve(cfg.data.path), data_options(cfg), cfg.calibrate.outlier_z,
+                              calibration_prior(cfg.calibrate))
+    lacking = [n for n in cal.names_ if n not in ds.columns]
+    if lacking:
+        raise io.ContractError(f"it does not hold the parameter series of the volumetric dataset "
+                               f"{resolve(cfg.data.path)} (no {lacking[0]}); rerun ingest",
+                               file=resolve(cfg.data.interim))
+    return raw, cal, ds.meta["ingest_report"].get("calibration") or {}
 
 
 def reference(cfg: DictConfig) -> str:

@@ -66,14 +66,7 @@ def evaluate(cfg: DictConfig) -> dict:
     ds = open_source(cfg, ingested=True)
     comp = load_model(cfg.model_path)
     _check_trained_on(cfg, comp, ds)
-    volumetric = volumetric_distances(cfg)
-    if volumetric is not None:
-        lacking = [n for n in volumetric[1].names_ if n not in ds.columns]
-        if lacking:
-            raise io.ContractError(f"it does not hold the parameter series of the volumetric dataset "
-                                   f"{resolve(cfg.data.path)} (no {lacking[0]}); rerun ingest",
-                                   file=resolve(cfg.data.interim))
-        volumetric = (*volumetric, ds.meta["ingest_report"].get("calibration") or {})
+    volumetric = volumetric_distances(cfg, ds)
     clock.lap("read")
     with stage_run(cfg, "evaluate") as tr:
         return _report(cfg, comp, ds, tr, clock, volumetric=volumetric)
