@@ -4,12 +4,16 @@ through one shell function (issue 35, item 2)."""
 
 from __future__ import annotations
 
+import logging
+
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import FAST, refused, simulated
 from test_hostile import edit_csv, make_dataset
 from thermocomp.base.files import folder_digest
+from thermocomp.base.log import logger
 from thermocomp.core.io import ContractError
 from thermocomp.core.io.source import open_dataset
 
@@ -84,10 +88,26 @@ def test_a_volumetric_folder_is_calibrated_once_per_digest_and_keeps_its_calibra
     assert len(source.open_volumetric(volumetric, {}, SETTINGS).campaigns) == len(first.campaigns)
     # other settings or other bytes: calibrated again
     source.open_volumetric(volumetric, {}, {**SETTINGS, "outlier_z": 4.0})
+    assert len(calls) == 2
+    # a ball off its certificate in every cycle: left out, and said each time it is opened
     copy = shutil.copytree(volumetric, tmp_path / "raw")
-    edit_csv(copy / "campaigns.csv", lambda df: df.__setitem__("notes", "moved"))
-    source.open_volumetric(copy, {}, SETTINGS)
-    assert len(calls) == 3
+    column = sorted(cal.design_.columns)[0]
+    for f in pd.read_csv(copy / "campaigns.csv")["file"]:
+        df = pd.read_parquet(copy / f)
+        df[column] += 1000.0
+        df.to_parquet(copy / f, index=False)
+    said = []
+    handler = logging.Handler()
+    handler.emit = lambda r: said.append(r.getMessage())
+    logger.addHandler(handler)
+    try:
+        excluded = [[e["column"] for e in source.open_volumetric(copy, {}, SETTINGS)
+                     .meta["calibration"]["excluded"]] for _ in range(2)]
+    finally:
+        logger.removeHandler(handler)
+    assert len(calls) == 3 and excluded == [[column], [column]]
+    warned = [m for m in said if "flagged in more than" in m]
+    assert len(warned) == 2 and column in warned[0] and warned[0] == warned[1]
 
 
 def test_run_and_replay_read_the_data_path_through_the_one_source(tmp_path, monkeypatch):

@@ -11,12 +11,15 @@ folder's digest and the settings, so a process opening it again does not calibra
 
 from __future__ import annotations
 
+import dataclasses
 import json
+import logging
 import math
 from collections.abc import Mapping
 from pathlib import Path
 
 from ...base.files import folder_digest
+from ...base.log import logger
 from ...base.params import (
     NON_NEGATIVE,
     POSITIVE,
@@ -47,7 +50,7 @@ CALIBRATE_RULES = {
                            "a range a per kind (as design.ranges: positioning, straightness, "
                            "squareness, angular, cross, decay)")),
 }
-_CACHE: dict[tuple, io.Dataset] = {}
+_CACHE: dict[tuple, tuple[io.Dataset, list]] = {}   # and the log records it made
 _CACHED = 2      # datasets kept: a fleet's or a test's, not every folder a process ever read
 
 
@@ -71,17 +74,29 @@ def open_volumetric(root: str | Path, options: Mapping | None, settings: Mapping
     """The parameter series of the volumetric dataset in ``root`` (``options``: the ``data``
     options; ``settings``: the ``calibrate.*`` keys of :data:`SETTINGS`)."""
     digest = folder_digest(root)
-    key = (digest, json.dumps(options, sort_keys=True, default=str),
+    read = dataclasses.asdict(io.ReadOptions.from_cfg(options))    # not where the stages write
+    key = (digest, json.dumps(read, sort_keys=True, default=str),
            json.dumps({k: settings.get(k) for k in SETTINGS}, sort_keys=True, default=str))
-    if key not in _CACHE:
-        params, cal, report, raw = calibrate_folder(
-            Path(root), options, settings["outlier_z"], settings["column_share"],
-            settings.get("require_seen"), settings.get("prior"))
-        params.meta.update(digest=digest, calibration=report, calibrator=cal, distances=raw)
+    if key in _CACHE:
+        ds, said = _CACHE[key]
+        for record in said:      # what the calibration said (its warnings) is said again
+            logger.handle(record)
+    else:
+        said = []
+        keep = logging.Handler()
+        keep.emit = said.append
+        logger.addHandler(keep)
+        try:
+            ds, cal, report, raw = calibrate_folder(
+                Path(root), options, settings["outlier_z"], settings["column_share"],
+                settings.get("require_seen"), settings.get("prior"))
+        finally:
+            logger.removeHandler(keep)
+        ds.meta.update(digest=digest, calibration=report, calibrator=cal, distances=raw)
         while len(_CACHE) >= _CACHED:
             _CACHE.pop(next(iter(_CACHE)))
-        _CACHE[key] = params
-    ds = _CACHE[key]      # a copy a caller may change (campaigns, meta) without touching the cache
+        _CACHE[key] = ds, said
+    # a copy a caller may change (campaigns, meta) without touching the cache
     return io.Dataset(ds.manifest.copy(), dict(ds.campaigns), ds.name, dict(ds.meta))
 
 
