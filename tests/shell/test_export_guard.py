@@ -37,7 +37,8 @@ from thermocomp.apps.deploy.pyfunc import CompensatorModel
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.core.models._dynamics import first_order_lag
 from thermocomp.shell.cli import main
-from thermocomp.shell.stages.common import build_compensator, deploy_stream, deployable, read_streamed
+from thermocomp.shell.source import read_streamed
+from thermocomp.shell.stages.builders import build_compensator, deploy_stream, deployable
 
 FAMILIES = {"mlr": ["model=mlr"],
             "arx": ["model=arx", "model.estimator.ar=true", "model.estimator.delays=[2]"]}

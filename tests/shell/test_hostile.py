@@ -415,7 +415,7 @@ def test_a_refused_run_keeps_the_previous_run_of_the_same_out(paths, capsys):
 @pytest.mark.parametrize("signum, said", [(signal.SIGTERM, "run terminated (SIGTERM)"),
                                           (signal.SIGINT, "run interrupted (Ctrl-C)")])
 def test_a_killed_run_removes_its_temp_files(paths, capsys, monkeypatch, signum, said):
-    from thermocomp.shell.stages import modelling
+    from thermocomp.core import run_report
 
     def killed(*args, **kwargs):
         # to this thread, its handler run before returning (os.kill may hand it to a figure
@@ -425,7 +425,7 @@ def test_a_killed_run_removes_its_temp_files(paths, capsys, monkeypatch, signum,
 
     assert main(["run", *paths["args"], "plots=summary"]) == 0
     before, handler = snapshot(paths["out"]), signal.getsignal(signal.SIGTERM)
-    monkeypatch.setattr(modelling, "anova", killed)  # after the figures were queued
+    monkeypatch.setattr(run_report, "anova", killed)  # after the figures were queued
     # Ctrl-C as in a terminal: an earlier test or library in this worker may have left SIGINT
     # ignored or handled otherwise (the run then goes on, as it should: a flaky test)
     interrupt = signal.signal(signal.SIGINT, signal.default_int_handler)
@@ -464,9 +464,9 @@ def test_sigterm_while_reading_ends_the_stage_with_status_1_and_says_so(paths, c
 def test_a_library_warning_is_one_log_line(paths, capsys, monkeypatch):
     import warnings
 
-    from thermocomp.shell.stages import modelling
+    from thermocomp.core import run_report
 
-    fit = modelling.anova
+    fit = run_report.anova
 
     def warns(*args, **kwargs):
         for _ in range(3):          # a library resetting the filters in between: once all the same
@@ -475,7 +475,7 @@ def test_a_library_warning_is_one_log_line(paths, capsys, monkeypatch):
             warnings.warn("the solver did not converge\n  within 100 steps", UserWarning)
         return fit(*args, **kwargs)
 
-    monkeypatch.setattr(modelling, "anova", warns)
+    monkeypatch.setattr(run_report, "anova", warns)
     assert main(["run", *paths["args"]]) == 0
     err = capsys.readouterr().err
     said = [ln for ln in err.splitlines() if "did not converge" in ln]

@@ -92,7 +92,7 @@ def _accepted(overrides: tuple[str, ...], key: str, value) -> bool:
 
 def _check(cfg, key: str) -> None:
     from thermocomp.shell.cli import _check_seed
-    from thermocomp.shell.stages.common import check_config
+    from thermocomp.shell.config.checks import check_config
 
     if not key.startswith("sim."):
         _check_seed(cfg)

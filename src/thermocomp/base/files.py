@@ -27,6 +27,7 @@ import threading
 from contextlib import contextmanager
 from pathlib import Path
 
+from .errors import ConfigError
 from .jsonsafe import json_safe
 
 FILE_MODE, DIR_MODE = 0o644, 0o755
@@ -314,3 +315,14 @@ def folder_digest(folder: str | os.PathLike) -> str:
         with open(f, "rb") as fh:
             h.update(hashlib.file_digest(fh, "sha256").digest())
     return h.hexdigest()
+
+
+def check_replaceable(folder: str | os.PathLike, marker: str, key: str) -> None:
+    """``folder`` (the value of config ``key``) is replaced whole by a stage: a non-empty one that
+    no earlier run of it wrote (no ``marker`` in it) is refused before any work.  An ingest once
+    deleted a folder of the user's given as ``data.interim``, and with ``name=`` (empty) all of
+    ``data/interim/``."""
+    folder = Path(folder)
+    if folder.is_dir() and any(folder.iterdir()) and not (folder / marker).is_file():
+        raise ConfigError(f"{key}: {folder} is not empty and holds no {marker}, so this stage did "
+                          "not write it; it would be replaced whole: give an empty or new folder")

@@ -26,6 +26,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
+from ..base.log import say
 from .io.contract import TIME, Dataset
 
 CONTINUES = "continues"
@@ -188,3 +189,14 @@ def persistence(comp, ds: Dataset, ids, carried: Mapping | None = None) -> dict[
 def carried_text(carried: dict) -> str:
     """``A continues B + C; ...`` of ``{campaign: chain}`` (:func:`carry_over`)."""
     return "; ".join(f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items())
+
+
+def lead_ins(comp, ds: Dataset, ids) -> dict:
+    """``{campaign: lead-in}`` for the campaigns of ``ids`` that continue others: their stream
+    is warmed on their predecessors (unscored) so that it predicts what ``run`` scores
+    (:func:`carry_over`, :func:`lead_in`); says which."""
+    carried = {c: chain for c, chain in carry_over(comp, ds).items() if c in ids}
+    if carried:
+        say("stream warmed on the campaigns it continues (state carried over, unscored): "
+            + carried_text(carried))
+    return {c: lead_in(ds, chain) for c, chain in carried.items()}

@@ -65,3 +65,20 @@ def volumetric_section(comp, series: dict, cal, truth_changes: dict | None = Non
     out["offsets"] = {"mode": getattr(comp, "offsets", "predict"),
                       "dropped": dict(getattr(comp, "offsets_", {}))}
     return out, curves
+
+
+def validate(comp, ds, raw, cal, calibration: dict, mode: str, truth: dict | None = None,
+             truth_path=None) -> tuple[dict, dict]:
+    """(the ``volumetric`` section, its figures' curves) of ``comp`` fitted on the parameter
+    series ``ds`` identified from the distances ``raw`` by ``cal`` (``calibration``: its report,
+    whose outliers the distance errors leave out); VCE against a simulation's ``truth`` where
+    it holds every test campaign's series (said where it does not)."""
+    from ...base.log import say
+
+    say("volumetric validation: distances, VE/VCE, trajectories, ISO 10791-10 A.3")
+    series = split_series(comp, raw, ds, cal, calibration, mode)
+    changes, missing = (None, None) if truth is None else true_changes(truth, cal, series["times"])
+    if missing is not None:
+        say(f"{truth_path} does not hold campaign {missing}'s parameter series: VCE against the "
+            "identified parameters")
+    return volumetric_section(comp, series, cal, changes)

@@ -5,6 +5,7 @@ from __future__ import annotations
 from sklearn.base import clone
 
 from ...base.jsonsafe import json_safe
+from ..frame import stack
 from .pearson import abs_correlation
 
 CORRELATION_LABEL = "|r| with the error"
@@ -38,3 +39,11 @@ def select_per_target(selector, X, Y, name: str) -> tuple[dict, dict, dict]:
         scores[t] = entry.get("scores") or dict(zip(X.columns, abs_correlation(X.to_numpy(), y)))
         labels.setdefault(t, CORRELATION_LABEL)
     return result, scores, labels
+
+
+def select_on_campaigns(selector, campaigns: dict, inputs: list, targets: list, reference: str,
+                        name: str) -> tuple[dict, dict, dict]:
+    """:func:`select_per_target` on ``campaigns`` stacked in the ``reference`` frame, as the
+    :class:`~thermocomp.core.compensator.Compensator` stacks what it selects on."""
+    m = stack(campaigns, inputs, targets, reference)
+    return select_per_target(selector, m.X[inputs], m.Y[targets], name)

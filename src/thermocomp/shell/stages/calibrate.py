@@ -2,9 +2,9 @@
 
 Reads ``data.path`` (a volumetric dataset: ``volumetric.json`` + the distance columns
 ``E_<pose>_B<i>_B<j>``, one row per measurement cycle; a folder without the set-up is
-refused), identifies the kinematic model's parameters of every cycle
-(:class:`~thermocomp.apps.volumetric.ArtefactCalibration`: GLS, outliers flagged and left out of
-their cycle) and writes, staged and atomically:
+refused) through :func:`~thermocomp.shell.source.open_source`, which identifies the kinematic
+model's parameters of every cycle (:class:`~thermocomp.apps.volumetric.ArtefactCalibration`:
+GLS, outliers flagged and left out of their cycle), and writes, staged and atomically:
 
 * the parameter series dataset (``calibrate.dataset``, default ``<out>/parameters``): the same
   campaigns with ``time``, ``T_``/``S_`` columns and one ``E_`` column per identified parameter;
@@ -21,45 +21,34 @@ label) -> left out of every cycle and named in ``excluded``.
 
 from __future__ import annotations
 
-from pathlib import Path
-
 from omegaconf import DictConfig
 
-from ...apps.volumetric.calibration import roundtrip
-from ...base.errors import ConfigError
+from ...apps.volumetric.outputs import check_replaceable, summary, with_roundtrip
 from ...base.files import staged_outputs, write_json
-from ...base.log import logger, say
+from ...base.log import say
 from ...base.paths import resolve
 from ...core import io
 from ..config.apart import check_apart
+from ..config.checks import _check_writable, check_config
+from ..source import open_source, simulated_truth
 from ..tracking import stage_run
-from .common import _check_writable, calibrated_dataset, check_config, simulated_truth
 
 
 def calibrate(cfg: DictConfig) -> dict:
     """Identify the error parameters of every measurement cycle of ``data.path``."""
     check_config(cfg)
-    c = cfg.calibrate
-    out = resolve(cfg.out)
+    c, out = cfg.calibrate, resolve(cfg.out)
     target = resolve(c.dataset) if c.get("dataset") else out / "parameters"
-    root = resolve(cfg.data.path)
     if c.get("dataset"):
         check_apart(cfg, ("calibrate.dataset",), ())   # the default, <out>/parameters: as out
         _check_writable("calibrate.dataset", c.dataset, folder=True)
-    _check_replaceable(target, root, f"calibrate.dataset={c.dataset}" if c.get("dataset") else
-                       f"out={cfg.out}")
-    say(f"reading {root}")
+    check_replaceable(target, resolve(cfg.data.path),
+                      f"calibrate.dataset={c.dataset}" if c.get("dataset") else f"out={cfg.out}")
     with stage_run(cfg, "calibrate") as tr:
-        params, cal, report, _ = calibrated_dataset(cfg)
-        truth_path, truth = simulated_truth(cfg)
-        if truth is not None:
-            result = {cid: (params.campaigns[cid][cal.names_].to_numpy(), None) for cid in params.campaigns}
-            rt = roundtrip(cal, result, truth)
-            if rt is None:
-                logger.warning("calibrate: %s does not hold this dataset's parameter series; no "
-                               "round trip", truth_path)
-            else:
-                report = {"parameters": report.pop("parameters"), "roundtrip": rt, **report}
+        params = open_source(cfg, volumetric=True)
+        cal = params.meta["calibrator"]
+        report = with_roundtrip(params, cal, dict(params.meta["calibration"]),
+                                *reversed(simulated_truth(cfg)))
         report["dataset"] = str(target)
         inside = target.parent == out
         with staged_outputs(out, last=("calibration.json",)) as stage:
@@ -70,44 +59,6 @@ def calibrate(cfg: DictConfig) -> dict:
                         "residual_rms_um": report["residual_rms_um"],
                         **({"roundtrip": report["roundtrip"]} if "roundtrip" in report else {})})
         tr.log_artifact(out / "calibration.json")
-    print(_summary(cal, report))
+    print(summary(cal, report))
     say(f"calibrate: {out / 'calibration.json'}, parameters: {target}")
     return report
-
-
-def _check_replaceable(target: Path, root: Path, key: str) -> None:
-    """The parameter series replace ``target`` whole: refuse a non-empty folder that is not this
-    dataset's parameter series from an earlier calibrate (same campaigns): it once deleted a
-    dataset given there by mistake (one inside ``data.path``: :mod:`.apart`)."""
-    import pandas as pd
-
-    t, r = target.resolve(), root.resolve()
-    if not t.is_dir() or not any(t.iterdir()):
-        return
-    manifest = t / "campaigns.csv"
-    try:
-        ids = set(pd.read_csv(manifest)["campaign"].astype(str))
-        mine = set(pd.read_csv(r / "campaigns.csv")["campaign"].astype(str))
-    except Exception:
-        ids, mine = None, set()
-    if ids != mine:
-        raise ConfigError(f"{key}: {t} is not empty and does not hold this dataset's parameter "
-                          "series (written by an earlier calibrate); it would be replaced whole: "
-                          "give an empty or new folder")
-
-
-def _summary(cal, report) -> str:
-    seen = f"{len(report['unidentifiable'])} not seen by the {len(report['poses'])} poses"
-    if report.get("prior") is None:
-        n = len(cal.setup.model.names)
-        line = f"calibrate: {len(cal.names_)} of {n} parameters identified ({seen}), "
-    else:
-        line = f"calibrate: all {len(cal.names_)} parameters estimated with calibrate.prior ({seen}), "
-    line += (f"{report['n_cycles']} cycles, {len(report['outliers'])} outlier(s), "
-             f"{len(report['excluded'])} column(s) excluded, residual RMS "
-             f"{report['residual_rms_um'] or float('nan'):.3f} µm")
-    rt = report.get("roundtrip")
-    if rt:
-        line += (f"; round trip: {100 * rt['share_within_2u']:.1f} % within 2u "
-                 f"(max |z| {rt['max_abs_z']:.2f})")
-    return line

@@ -21,10 +21,11 @@ from ...core.figures.plotdata import write_compare
 from ...core.scoring.comparison import compare_json, headline_line, shown_table
 from ...core.scoring.leaderboard import baseline_rows, fit_width, rank, ranked_by, to_markdown
 from ..config.apart import check_apart
+from ..config.checks import _check_writable
+from ..config.rules import check_keys
 from ..sweeps import parent_run_id, sweep_folder, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
-from .common import _check_writable, check_keys
 
 NO_SWEEP_FOLDER = "reports/compare"   # a sweep whose folder is not on this machine
 

@@ -21,8 +21,11 @@ from omegaconf import DictConfig
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...base.errors import ConfigError
 from ...base.files import write_json
+from ...base.log import say
 from ...base.paths import resolve
-from .common import check_config, deployable_model, read_streamed, say
+from ..config.checks import check_config
+from ..source import read_streamed
+from .builders import deployable_model
 
 
 def _guard(cfg: DictConfig, deployed, ds, train_ids):

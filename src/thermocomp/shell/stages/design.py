@@ -17,8 +17,9 @@ from ...apps.volumetric.design_study import checked_study, design_report, design
 from ...base.files import staged_outputs, write_json
 from ...base.log import say
 from ...base.paths import resolve
+from ..config.checks import check_config
+from ..source import calibration_prior
 from ..tracking import stage_run
-from .common import calibration_prior, check_config
 
 
 def build_study(cfg: DictConfig) -> tuple:

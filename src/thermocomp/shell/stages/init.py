@@ -17,7 +17,7 @@ from ...core import io
 from ...core.continuation import campaign_period
 from ...core.io.detect import data_config, detection_lines, head, proposed_roles, sample_file
 from ...core.io.roles import naming
-from .common import check_config, data_options
+from ..config.checks import check_config, data_options
 
 
 def init(cfg: DictConfig) -> dict:

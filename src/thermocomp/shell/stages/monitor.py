@@ -24,10 +24,14 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core import io
 from ...core.context import TIME
+from ...core.continuation import carried_text, lead_ins
+from ...core.io.source import check_streamed_columns
 from ...core.io.stdin import read_stream
+from ..config.checks import check_config, data_options
 from ..model_store import load_model
+from ..source import check_volumetric_targets, read_streamed
 from ..tracking import stage_run
-from . import common
+from .builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
 
 
 def _stdin_lead_in(cfg: DictConfig, fixed, ds, stream) -> dict:
@@ -36,46 +40,46 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, stream) -> dict:
                       reference=fixed.compensator.reference, data_path=cfg.data.path)
     if ids:
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
-            + common.carried_text({"stdin": [*ids, "stdin"]}))
+            + carried_text({"stdin": [*ids, "stdin"]}))
     return stdin_lead_in(ds, ids, float(stream[TIME].iloc[0]) if TIME in stream.columns else 0.0)
 
 
 def _fitted(cfg: DictConfig, ds, train: dict):
     """The compensator fitted on ``train``, or ``monitor.model``'s."""
     path = cfg.monitor.get("model")
-    comp = common.build_compensator(cfg, ds=ds).fit(train) if path is None else load_model(resolve(str(path)))
-    common.check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
+    comp = build_compensator(cfg, ds=ds).fit(train) if path is None else load_model(resolve(str(path)))
+    check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
     return comp
 
 
 def monitor(cfg: DictConfig) -> dict:
     """Stream the test campaigns (or stdin) through the fixed and the adaptive compensator."""
-    common.check_config(cfg, inputs=("monitor.model",))
-    common.warn_stream_mode(cfg, "monitor")
+    check_config(cfg, inputs=("monitor.model",))
+    warn_stream_mode(cfg, "monitor")
     model = cfg.monitor.get("model")
     if model is not None and (not str(model).strip() or str(model).startswith("models:/")):
         raise ConfigError(f"monitor.model={model}: a model.pkl file (run's or train's); a "
                           "registered model replays through replay.model=models:/<name>@<alias>")
     stdin = cfg.monitor.get("input") == "-"
-    ds, train_ids, test_ids, missing = common.read_streamed(cfg, test=not stdin)
+    ds, train_ids, test_ids, missing = read_streamed(cfg, test=not stdin)
     streamed, train = {c: ds.campaigns[c] for c in test_ids}, {c: ds.campaigns[c] for c in train_ids}
     with stage_run(cfg, "monitor") as tr:
         comp = _fitted(cfg, ds, train)
         # one plain stream serves both: the fixed run and the adaptive one are each streamed
         # from a reset, one after the other
-        fixed = common.deploy_stream(cfg, comp, train)
-        adaptive = common.build_adaptive(cfg, fixed, train)
+        fixed = deploy_stream(cfg, comp, train)
+        adaptive = build_adaptive(cfg, fixed, train)
         if adaptive.monitor is None:
             raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")
         if stdin:
             df, counts = read_stream(sys.stdin.read(), adaptive.columns_,
-                                     io.ReadOptions.from_cfg(common.data_options(cfg)))
+                                     io.ReadOptions.from_cfg(data_options(cfg)))
             streamed, missing = {"stdin": df}, ({"stdin": counts} if counts else {})
         else:
-            common.check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
+            check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
-        leads = _stdin_lead_in(cfg, fixed, ds, streamed["stdin"]) if stdin else common.lead_ins(
+        leads = _stdin_lead_in(cfg, fixed, ds, streamed["stdin"]) if stdin else lead_ins(
             comp, ds, list(streamed))
         report, traces = monitor_report(adaptive, fixed, comp, streamed, train,
                                         str(cfg.monitor.pod.placement), leads,

@@ -18,12 +18,15 @@ from ...base.files import folder_digest, write_json
 from ...base.params import choice
 from ...base.paths import resolve
 from ...core import io
+from ...core.continuation import lead_ins
 from ...core.scoring.champion import check_criterion, outcome_line
 from .. import registry
+from ..config.checks import check_config, data_options
+from ..config.rules import check_keys
 from ..store import registry_lock
 from ..tracking import client as mlflow_client
 from ..tracking import connect
-from .common import check_config, check_keys, data_options, deploy_stream, deployable, lead_ins
+from .builders import deploy_stream, deployable
 
 # The plain promote.* keys are checked by every stage (rules.PROMOTE_RULES); the envelope's
 # policies are the deployment's own.

@@ -19,29 +19,33 @@ from ...base.errors import ConfigError
 from ...base.files import write_json
 from ...base.log import say
 from ...base.paths import resolve
+from ...core.continuation import lead_ins
+from ...core.io.source import check_streamed_columns
+from ..config.checks import check_config
+from ..source import check_volumetric_targets, read_streamed
 from ..tracking import stage_run
-from . import common
+from .builders import deployable_model, warn_stream_mode
 
 
 def replay(cfg: DictConfig) -> dict:
     """Stream the test campaigns of ``data.path``; write ``<out>/replay.json``."""
-    common.check_config(cfg, inputs=("replay.model",))
-    common.warn_stream_mode(cfg, "replay")
+    check_config(cfg, inputs=("replay.model",))
+    warn_stream_mode(cfg, "replay")
     model = cfg.replay.get("model")
     if model is not None and not str(model).strip():     # resolved, '' is the project root
         raise ConfigError("replay.model is empty: a model.pkl, a pyfunc folder or models:/<name>@<alias>")
-    ds, train_ids, test_ids, gaps = common.read_streamed(cfg)
+    ds, train_ids, test_ids, gaps = read_streamed(cfg)
     root = resolve(cfg.data.path)
     with stage_run(cfg, "replay") as tr:
-        deployed, source, name = common.deployable_model(cfg, ds, train_ids, model, "replay.model")
-        common.check_volumetric_targets(cfg, ds, deployed.targets_, f"replay.model={source}")
-        common.check_streamed_columns(ds, test_ids, deployed.columns_, "the deployed model")
+        deployed, source, name = deployable_model(cfg, ds, train_ids, model, "replay.model")
+        check_volumetric_targets(cfg, ds, deployed.targets_, f"replay.model={source}")
+        check_streamed_columns(ds, test_ids, deployed.columns_, "the deployed model")
         kind = "adaptive" if deployed is not plain(deployed) else "streaming"
         say(f"streaming {len(test_ids)} test campaigns row by row through the {kind} compensator "
             f"({', '.join(deployed.columns_)})")
         result = replay_report(deployed, {c: ds.campaigns[c] for c in test_ids},
                                {c: root / str(ds.manifest.loc[c, "file"]) for c in test_ids},
-                               common.lead_ins(plain(deployed).compensator, ds, test_ids),
+                               lead_ins(plain(deployed).compensator, ds, test_ids),
                                adapt_from_config(cfg.get("adapt"), len(deployed.targets_)))
         report = replay_json(deployed, result, name=name, source=source, test_ids=test_ids,
                              missing=gaps)

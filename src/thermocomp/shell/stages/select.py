@@ -1,18 +1,16 @@
 """`thermocomp select`: choose the inputs (TSPs) per target -> models/<name>/selection.json.
 
-Reads the training data as ``train`` will see it (``data.processed`` when it
-matches the config, i.e. already denoised; else the ingested data, denoised
-here if ``denoise`` asks for it), stacks the train split in the reference
-frame and fits the configured selector per target.  ``selection.json`` holds,
-per target, the selected sensors (in order), every candidate's score and the
-information criterion per size, plus a fingerprint of the settings;
-``train`` uses it when the fingerprint matches, so both stages agree and
-selection runs once.  Figure: ``<out>/select/selection.png``.
+Reads the training data as ``train`` will see it (``data.processed`` when it matches the
+config, i.e. already denoised; else the ingested data, denoised here if ``denoise`` asks for
+it) and fits the configured selector per target on the train split in the reference frame
+(:func:`thermocomp.core.select.per_target.select_on_campaigns`).  ``selection.json`` holds, per
+target, the selected sensors (in order), every candidate's score and the information
+criterion per size, plus a fingerprint of the settings; ``train`` uses it when the fingerprint
+matches, so both stages agree and selection runs once.  Figure: ``<out>/select/selection.png``.
 """
 
 from __future__ import annotations
 
-import numpy as np
 from omegaconf import DictConfig
 
 from ...base.errors import ConfigError
@@ -20,13 +18,15 @@ from ...base.files import atomic_dir, write_json
 from ...base.log import say
 from ...base.paths import resolve
 from ...core.denoise import fit_denoiser
-from ...core.frame import resolve_columns, stack
+from ...core.frame import resolve_columns
 from ...core.scoring.evaluation import require_split
-from ...core.select.per_target import select_per_target
+from ...core.select.per_target import select_on_campaigns
 from ..build import build
+from ..config.checks import check_config
+from ..source import open_source, reference
 from ..tracking import stage_run
 from .artifacts import processed_data, selection_fingerprint, selection_path
-from .common import build_denoiser, check_config, load_ingested, reference
+from .builders import build_denoiser
 
 
 def select(cfg: DictConfig) -> dict:
@@ -38,18 +38,15 @@ def select(cfg: DictConfig) -> dict:
             selector.check_params()
     except ValueError as exc:
         raise ConfigError(f"select.selector: {exc}") from exc
-    ds = load_ingested(cfg)
+    ds = open_source(cfg, ingested=True)
     ids = require_split(ds, "train")
     inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
                                       None if cfg.data.targets is None else list(cfg.data.targets))
     processed = processed_data(cfg)
-    if processed is not None:
-        campaigns = {c: processed[0].campaigns[c] for c in ids}
-    else:
-        _, campaigns = fit_denoiser(build_denoiser(cfg), {c: ds.campaigns[c] for c in ids}, inputs)
-    m = stack(campaigns, inputs, targets, reference(cfg))
-    result, scores, names = select_per_target(selector, m.X[inputs], m.Y[targets],
-                                              str(cfg.select.name))
+    campaigns = ({c: processed[0].campaigns[c] for c in ids} if processed is not None else
+                 fit_denoiser(build_denoiser(cfg), {c: ds.campaigns[c] for c in ids}, inputs)[1])
+    result, scores, names = select_on_campaigns(selector, campaigns, inputs, targets,
+                                                reference(cfg), str(cfg.select.name))
     for t, entry in result.items():
         say(f"{t}: {cfg.select.name} -> {', '.join(entry['selected'])}")
     doc = {"select": cfg.select.name, "fingerprint": selection_fingerprint(cfg),
@@ -57,10 +54,10 @@ def select(cfg: DictConfig) -> dict:
     path = write_json(selection_path(cfg), doc)
     figures = resolve(cfg.out) / "select"
     with atomic_dir(figures) as tmp:      # plots=none: emptied, not an earlier run's figures
-        from ...core.figures.plots import selection_plot
-
         if cfg.plots != "none":
-            selection_plot({t: {k: (np.nan if v is None else v) for k, v in s.items()}
+            from ...core.figures.plots import selection_plot
+
+            selection_plot({t: {k: (float("nan") if v is None else v) for k, v in s.items()}
                             for t, s in scores.items()},
                            {t: e["selected"] for t, e in result.items()}, names,
                            tmp / "selection.png")

@@ -13,9 +13,9 @@ from ...base.files import write_json
 from ...base.log import say
 from ...base.paths import resolve
 from ..build import build
+from ..config.checks import _check_writable
 from ..resolvers import scenario_dataset
 from ..tracking import stage_run
-from .common import _check_writable
 
 
 def simulate(cfg: DictConfig) -> dict:

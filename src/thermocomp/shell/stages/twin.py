@@ -20,11 +20,13 @@ from omegaconf import DictConfig
 from ...apps.deploy.adapt import ReferenceSchedule, scheduled
 from ...base.errors import ConfigError
 from ...base.files import write_json
+from ...base.log import say
 from ...base.paths import resolve
 from ...core.context import TIME
 from ...core.continuation import chain, lead_in, predecessors
 from ...core.frame import stack
-from .common import check_config, read_streamed, reference, say
+from ..config.checks import check_config
+from ..source import read_streamed, reference
 
 
 def served_campaigns(chosen, test_ids: list[str]) -> list[str]:

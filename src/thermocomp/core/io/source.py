@@ -1,0 +1,61 @@
+"""A dataset opened for a batch or a stream, with its digest: the one door data come in by.
+
+``open_dataset(root, options)`` reads a folder as a batch sees it (every gap repaired within
+``data.max_gap_samples``/``max_edge_samples``, else refused); ``stream=True`` as a deployed
+compensator sees it: test (and val) campaigns as recorded (a dropout streams as NaN), train
+campaigns repaired or refused, since models and the sensor monitor are fitted on complete
+records.  ``meta["digest"]`` is :func:`~thermocomp.base.files.folder_digest` of ``root`` (the
+``dataset_hash`` a run is tagged with, the digest ``load_interim`` records of ``data.interim``),
+``meta["read_report"]`` the reader's report and, for a stream, ``meta["missing"]`` the cells
+kept missing per test campaign.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from pathlib import Path
+
+from ...base.files import folder_digest
+from .contract import ContractError, Dataset
+from .options import ReadOptions
+from .read import read_campaign, read_dataset
+
+
+def open_dataset(root: str | Path, options: Mapping | None = None, *,
+                 stream: bool = False) -> Dataset:
+    """The dataset in ``root`` read with the ``data`` options, for a batch or a ``stream``."""
+    root = Path(root)
+    ds, report = read_dataset(root, options, missing="keep" if stream else "repair")
+    if stream:
+        _repair_train(ds, root, report, options)
+        ds.meta["missing"] = {c: report["campaigns"][c]["missing"] for c in ds.ids("test")
+                              if report["campaigns"][c].get("missing")}
+    ds.meta.update(digest=folder_digest(root), read_report=report)
+    return ds
+
+
+def _repair_train(ds: Dataset, root: Path, report: dict, options: Mapping | None) -> None:
+    """The train campaigns of a stream read as a batch reads them where they lack a value or
+    look like kelvin (what ``missing="keep"`` lets through)."""
+    hot = ReadOptions.from_cfg(options).kelvin_threshold_c
+    for cid in ds.ids("train"):
+        df = ds.campaigns[cid]
+        faulty = any(df[c].max() > hot for c in df.columns if c.startswith("T_"))
+        if report["campaigns"][cid].get("missing") or faulty:
+            try:
+                table, _ = read_campaign(root / ds.manifest.loc[cid, "file"], options)
+            except ContractError as exc:
+                raise ContractError(f"train campaign {cid}: {exc.reason} (models and the sensor "
+                                    "monitor are fitted on complete train records)",
+                                    file=exc.file, column=exc.column, row=exc.row) from None
+            ds.campaigns[cid] = table.to_pandas(split_blocks=True)
+
+
+def check_streamed_columns(ds: Dataset, ids, columns, what: str) -> None:
+    """Every campaign ``ids`` of ``ds`` holds every column ``what`` reads: else a ContractError
+    naming the first campaign's file and column that lack."""
+    for cid in ids:
+        absent = [c for c in columns if c not in ds.campaigns[cid].columns]
+        if absent:
+            raise ContractError(f"test campaign {cid} lacks a column {what} reads",
+                                file=ds.file_path(cid), column=",".join(absent))

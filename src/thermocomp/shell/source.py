@@ -1,0 +1,238 @@
+"""Where every stage gets its data: ``open_source(cfg)`` and what is judged of a dataset by the config.
+
+``data.path`` is opened once per stage through :func:`thermocomp.core.io.source.open_dataset`
+(a batch, or a stream: test campaigns as recorded) or, for a volumetric folder, through its
+adapter (:func:`thermocomp.apps.volumetric.source.open_volumetric`: calibrated into the
+parameter series, the calibration in ``meta``); ``data.reference=auto`` is resolved on what
+was read.  The DVC stages after ``ingest`` read ``data.interim`` (:func:`load_ingested`), refused
+when it was ingested from another source or with other options.  ``meta["digest"]`` is the one
+dataset digest (:func:`~thermocomp.base.files.folder_digest`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import json
+from pathlib import Path
+
+from omegaconf import DictConfig, OmegaConf, open_dict
+
+from ..apps.volumetric.source import SETTINGS
+from ..apps.volumetric.source import is_volumetric as _volumetric_folder
+from ..base.errors import ConfigError
+from ..base.files import folder_digest
+from ..base.log import logger, say
+from ..base.paths import resolve
+from ..core import io
+from ..core.io.source import open_dataset
+
+AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
+DIGEST = "digest"         # the dataset digest of data.path in ``ingested_with``
+
+
+def data_options(cfg: DictConfig) -> dict:
+    """The ``data`` group as the reader takes it."""
+    return OmegaConf.to_container(cfg.data, resolve=True)
+
+
+def is_volumetric(cfg: DictConfig) -> bool:
+    """``data.path`` is a volumetric dataset (``volumetric.json`` in it)."""
+    return _volumetric_folder(resolve(cfg.data.path))
+
+
+def calibration_prior(c: DictConfig) -> dict | None:
+    """``calibrate.prior`` as a plain mapping (its interpolations resolved), or None."""
+    return None if c.get("prior") is None else OmegaConf.to_container(c.prior, resolve=True)
+
+
+def calibrate_settings(cfg: DictConfig) -> dict:
+    """The ``calibrate.*`` keys a parameter series depends on, plain."""
+    c = OmegaConf.to_container(cfg.calibrate, resolve=True)
+    return {k: c.get(k) for k in SETTINGS}
+
+
+def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False,
+                volumetric: bool | None = None) -> io.Dataset:
+    """``data.path`` as a batch (``stream=False``) or a stream sees it, ``data.reference``
+    resolved on it; a volumetric folder calibrated into its parameter series (``calibrate.*``
+    checked by ``check_config``).  ``volumetric=True``: only a volumetric folder (``calibrate``;
+    another is refused naming the missing set-up).  ``ingested=True``: ``data.interim`` as
+    ``ingest`` wrote it from this source (the DVC stages after it: :func:`load_ingested`)."""
+    from ..apps.sim.scenario import single_threaded_blas
+    from ..apps.volumetric.source import open_volumetric
+
+    if ingested:
+        return load_ingested(cfg)
+    root = resolve(cfg.data.path)
+    say(f"reading {root}")
+    if volumetric or (volumetric is None and _volumetric_folder(root)):
+        say("volumetric dataset: calibrating the artefact distances into the error parameters")
+        with single_threaded_blas():   # 1430-wide matrices: threads on 2 busy cores only thrash
+            ds = open_volumetric(root, data_options(cfg), calibrate_settings(cfg))
+    else:
+        ds = open_dataset(root, data_options(cfg), stream=stream)
+    resolve_reference(cfg, ds)
+    return ds
+
+
+def calibration_of(ds: io.Dataset):
+    """``(distance dataset, calibration, its report)`` of a source opened from a volumetric
+    folder, else None."""
+    cal = ds.meta.get("calibrator")
+    return None if cal is None else (ds.meta["distances"], cal, ds.meta["calibration"])
+
+
+def source_report(cfg: DictConfig, ds: io.Dataset) -> dict:
+    """What was read, as ``ingest_report.json`` records it (``run`` writes it into ``out``): the
+    reader's report (of a volumetric folder: the distances' name and the calibration) and the
+    resolved ``data.reference``."""
+    volumetric = calibration_of(ds)
+    report = (dict(ds.meta["read_report"]) if volumetric is None else
+              {"dataset": volumetric[0].name, "calibration": volumetric[2]})
+    return {**report, "reference": str(cfg.data.reference)}
+
+
+def volumetric_distances(cfg: DictConfig, ds: io.Dataset):
+    """``(distance dataset, calibration, its report)`` when ``data.path`` is a volumetric dataset,
+    else None: what ``evaluate`` validates the parameter models of ``ds`` (``data.interim``, which
+    ``ingest`` calibrated from the same folder) against; the calibration's model is fitted again,
+    not its cycles.  An ingest without this calibration's parameter series is refused."""
+    from ..apps.volumetric.source import open_distances
+
+    if not is_volumetric(cfg):
+        return None
+    raw, cal = open_distances(resolve(cfg.data.path), data_options(cfg), cfg.calibrate.outlier_z,
+                              calibration_prior(cfg.calibrate))
+    lacking = [n for n in cal.names_ if n not in ds.columns]
+    if lacking:
+        raise io.ContractError(f"it does not hold the parameter series of the volumetric dataset "
+                               f"{resolve(cfg.data.path)} (no {lacking[0]}); rerun ingest",
+                               file=resolve(cfg.data.interim))
+    return raw, cal, ds.meta["ingest_report"].get("calibration") or {}
+
+
+def reference(cfg: DictConfig) -> str:
+    """``data.reference`` as resolved by :func:`resolve_reference`; ``auto`` before the data are
+    read (a library caller building from the config alone) is the contract's ``first_sample``."""
+    given = str(cfg.data.reference)
+    return "first_sample" if given == AUTO_REFERENCE else given
+
+
+def resolve_reference(cfg: DictConfig, ds) -> str:
+    """``data.reference=auto`` made ``none`` where a test or val campaign of ``ds`` continues
+    another (its state is carried over, :mod:`thermocomp.core.continuation`), else ``first_sample``;
+    said in one line.  An explicit ``first_sample`` there is warned about: each part restarts."""
+    from ..core.continuation import predecessors
+
+    links = predecessors(ds)
+    scored = [c for c in ds.ids() if c in links and ds.manifest.loc[c, "split"] in ("test", "val")]
+    given = cfg.data.reference
+    if given == AUTO_REFERENCE:
+        resolved = "none" if scored else "first_sample"
+        why = (f"{scored[0]} continues {links[scored[0]]}: its state is carried over" if scored
+               else "no test or val campaign continues another")
+        say(f"data.reference=auto: {resolved} ({why})")
+        with open_dict(cfg):
+            cfg.data.reference = resolved
+    elif given == "first_sample" and scored:
+        logger.warning(f"data.reference=first_sample: {scored[0]} continues {links[scored[0]]}, "
+                       "but each campaign restarts at its own first sample, no state carried "
+                       "over (data.reference=none or auto carries it)")
+    return cfg.data.reference
+
+
+def read_streamed(cfg: DictConfig, test: bool = True):
+    """``(dataset, train ids, test ids, missing cells per test campaign)`` of ``data.path`` as a
+    stream sees it (:func:`open_source` with ``stream=True``); ``test=False``: no test split
+    needed (the stream comes from elsewhere).  A volumetric dataset streams its error
+    parameters, every cycle identified, as ``run`` models them."""
+    from ..core.scoring.evaluation import require_split
+
+    ds = open_source(cfg, stream=True)
+    train = require_split(ds, "train")
+    return ds, train, require_split(ds, "test") if test else [], ds.meta.get("missing", {})
+
+
+# keys of ``ingested_with`` recorded since a later version: an earlier ingest is read as it is
+LATER = ("calibrate.", DIGEST)
+
+
+def ingest_settings(cfg: DictConfig) -> dict:
+    """What an ingest of ``data.path`` depends on: the folder, every reading option (as JSON
+    holds them) and the folder's digest (its files as they are now: the dataset digest).
+    ``ingest`` records it; the stages reading ``data.interim`` compare."""
+    opts = dataclasses.asdict(io.ReadOptions.from_cfg(data_options(cfg)))
+    opts.pop("missing")      # internal: no data config key
+    made = {"path": str(resolve(cfg.data.path)), **opts}
+    if is_volumetric(cfg) and cfg.get("calibrate") is not None:
+        # a volumetric dataset's parameter series depend on its calibration too (an outside
+        # probe's ingest with a prior was evaluated without one: 33 targets, 25 rows, exit 0)
+        made.update({f"calibrate.{k}": v for k, v in calibrate_settings(cfg).items()})
+    if resolve(cfg.data.path).exists():   # gone since: data.interim is read as it is
+        made[DIGEST] = folder_digest(resolve(cfg.data.path))   # last: a folder or option first
+    return json.loads(json.dumps(made, default=str))
+
+
+def load_ingested(cfg: DictConfig):
+    """``data.interim`` as ``ingest`` left it, refused when it was ingested from another
+    ``data.path`` or with other ``data.*`` reading options: a stage would otherwise score a
+    stale dataset under this config's name (an ingest predating the record is read as it is)."""
+    root = resolve(cfg.data.interim)
+    ds = io.load_interim(root)
+    made = ds.meta["ingest_report"].get("ingested_with")
+    if made is not None:
+        want = ingest_settings(cfg)
+        key = next((k for k in want if made.get(k) != want[k]
+                    and (k in made or not k.startswith(LATER))), None)
+        if key is not None:
+            name = key if key.startswith("calibrate.") else f"data.{key}"
+            what = (f"data.path={cfg.data.path} changed since it was ingested (its files differ)"
+                    if key == DIGEST else
+                    f"it was ingested with {name}={made.get(key)!r}, not {want[key]!r}")
+            raise io.ContractError(f"{what}: run `thermocomp ingest` with this config first (or "
+                                   "give another name= to keep both)", file=root / io.INGEST_REPORT)
+    resolve_reference(cfg, ds)
+    return ds
+
+
+def check_declared(cfg: DictConfig, ds) -> None:
+    """Every campaign of ``ds`` holds every column ``data.inputs``/``data.targets`` declare
+    (before anything is fitted): the error names the odd campaign's file."""
+    from ..core.frame import check_common_columns, resolve_columns
+
+    targets = cfg.data.get("targets")
+    inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
+                                      None if targets is None else list(targets))
+    check_common_columns(ds.campaigns, inputs + targets, {cid: ds.file_path(cid) for cid in ds.ids()})
+
+
+def check_volumetric_targets(cfg: DictConfig, ds, targets, what: str) -> None:
+    """On a volumetric dataset, every parameter ``what`` predicts is one this calibration
+    identifies: a model trained with another ``calibrate.*`` (a prior estimates all 33, GLS the
+    25 seen) streamed 8 targets as NaN with exit 0 (an outside probe)."""
+    if not is_volumetric(cfg):
+        return
+    missing = [t for t in targets if t not in ds.columns]
+    if missing:
+        raise ConfigError(f"{what} predicts {', '.join(missing[:5])}"
+                          f"{f' and {len(missing) - 5} more' if len(missing) > 5 else ''}, which "
+                          f"this calibration of {cfg.data.path} does not identify: calibrate with "
+                          "the calibrate.* settings it was trained with (calibrate.prior?)")
+
+
+def simulated_truth(cfg: DictConfig) -> tuple[Path, dict | None]:
+    """``(<data.path>.truth.json, its content)``: None when there is none, or one that is no JSON
+    object (said; the truth only adds figures, so a bad one costs them, not the run)."""
+    path = Path(f"{resolve(cfg.data.path)}.truth.json")
+    if not path.is_file():
+        return path, None
+    try:
+        truth = json.loads(path.read_text())
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        logger.warning("%s is not readable JSON (%s): no comparison with the truth",
+                       path, " ".join(str(exc).split()))
+        return path, None
+    if not isinstance(truth, dict):
+        logger.warning("%s is no JSON object: no comparison with the truth", path)
+        return path, None
+    return path, truth

@@ -1,0 +1,163 @@
+"""What the stages build from the config: the compensator, its denoiser, what is deployed.
+
+(Beside :mod:`.auto`, whose ``model=auto`` candidates the compensator is built with: in
+``shell/build.py`` they would make ``shell.build`` and ``shell.stages`` a package cycle.)
+"""
+
+from __future__ import annotations
+
+from omegaconf import DictConfig, OmegaConf
+
+from ...base.errors import ConfigError
+from ...base.log import logger, say
+from ...base.params import check_params
+from ...base.paths import resolve
+from ...core import io
+from ...core.compensator import Compensator
+from ..build import build
+from ..model_store import load_model, model_family
+from ..source import is_volumetric, reference
+from .auto import as_chosen, auto_scheme, build_candidates, is_auto, val_split_scores
+
+
+def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator:
+    """The configured compensator; ``ati=False`` leaves out the ATI wrapper (``ati=cmeans``).
+    ``ds``: the dataset it will be fitted on, whose split ``model=auto`` validates like."""
+    estimator = build(cfg.model.estimator, "model.estimator")
+    if is_auto(cfg):           # model=auto: the families it chooses among, from their configs
+        estimator = estimator(candidates=build_candidates(cfg), **auto_scheme(cfg, ds))
+    if ati and cfg.get("ati") is not None and cfg.ati.estimator is not None:
+        estimator = build(cfg.ati.estimator, "ati.estimator")(base_estimator=estimator)
+    comp = Compensator(
+        estimator=estimator,
+        selector=build(cfg.select.selector, "select.selector"),
+        inputs=list(cfg.data.inputs),
+        targets=None if cfg.data.targets is None else list(cfg.data.targets),
+        reference=reference(cfg),
+        denoiser=build_denoiser(cfg),
+        offsets="drop" if identified_targets(cfg) else "predict",
+    )
+    if is_auto(cfg) and ds is not None and ds.ids("val"):   # chosen on the val split, as validated
+        comp.estimator.set_params(val_scores=val_split_scores(comp, ds))
+    return comp
+
+
+def validation_template(cfg: DictConfig, fitted: Compensator, ds) -> Compensator:
+    """What a run's validation refits per fold: the configured compensator, with the family
+    model=auto chose per target in ``fitted`` (:func:`~.auto.as_chosen`); validated like the
+    test split of ``ds`` unless a val split scores ``fitted`` itself."""
+    return as_chosen(build_compensator(cfg, ds=None if ds.ids("val") else ds), fitted)
+
+
+def identified_targets(cfg: DictConfig) -> bool:
+    """The targets are error parameters identified from a volumetric dataset, each referenced to
+    its first cycle: that cycle's identification error is on every row of the campaign, and a
+    fitted intercept learns it (:class:`~thermocomp.core.compensator.Compensator`, ``offsets``).
+    On probe data (an aligned 7-ball bar, E_XX1 u = 13.4 µm) predicting it raised the VCE from
+    11.0 to 44.1 µm; with the intercept left out, 4.5 µm."""
+    return reference(cfg) == "first_sample" and is_volumetric(cfg)
+
+
+def build_denoiser(cfg: DictConfig):
+    """The configured input denoiser (``denoise=emd``), or None (``denoise=none``)."""
+    den = cfg.get("denoise")
+    if den is None or den.get("denoiser") is None:
+        return None
+    denoiser = build(den.denoiser, "denoise.denoiser")
+    check_params(denoiser, "denoise.denoiser")
+    return denoiser
+
+
+def warn_stream_mode(cfg: DictConfig, stage: str) -> None:
+    """A deployed compensator predicts from the inputs alone (simulation): ``eval.mode`` is
+    said not to apply, rather than silently dropped."""
+    if str(cfg.eval.mode) != "simulation":
+        logger.warning("%s: eval.mode=%s is not used: the deployed compensator streams its "
+                       "correction from the inputs alone (simulation mode, no measured error)",
+                       stage, cfg.eval.mode)
+
+
+def deploy_stream(cfg: DictConfig, comp: Compensator, train: dict, what: str = "the model"):
+    """:meth:`StreamingCompensator.from_training` with ``promote.envelope`` (the plain stream
+    every deployment starts from); a model that cannot stream is a ConfigError naming ``what``."""
+    from ...apps.deploy import StreamingCompensator
+
+    env = cfg.promote.envelope
+    try:
+        return StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy))
+    except ValueError as exc:
+        raise ConfigError(f"{what} cannot be deployed: {exc}") from None
+
+
+def build_adaptive(cfg: DictConfig, streaming, train: dict):
+    """The :class:`~thermocomp.apps.deploy.AdaptiveCompensator` of the ``monitor`` group around
+    ``streaming``: POD, detector limits and correction guard fitted on ``train``."""
+    from ...apps.deploy.adaptive import AdaptiveCompensator  # loaded by the stages that deploy, only
+
+    m = cfg.monitor
+    share = m.pod.fit_share
+    pod = {"energy": float(m.pod.energy), "modes": m.pod.modes,
+           "fit_band_c": None if share is None else float(share) * float(m.bands.warning_c),
+           "window": int(m.window), "max_leverage": float(m.pod.max_leverage)}
+    options = {"warning_c": float(m.bands.warning_c), "alarm_c": float(m.bands.alarm_c),
+               "window": int(m.window), "confirm": int(m.confirm), "adaptive": bool(m.adaptive),
+               "exclude_at": str(m.exclude_at), "spread_factor": float(m.bands.spread_factor),
+               **OmegaConf.to_container(m.detectors)}
+    try:
+        return AdaptiveCompensator.from_training(
+            streaming, train, monitor=options, pod=pod,
+            guard=OmegaConf.to_container(m.guard), learned_bands=bool(m.bands.learned))
+    except ValueError as exc:
+        raise ConfigError(f"monitor: {exc}") from None
+
+
+def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
+    """What ``promote`` registers and ``replay`` streams: the adaptive compensator around
+    ``streaming`` when ``monitor.adaptive`` (default), else ``streaming`` itself; it reads
+    the lab's column names too (:func:`~thermocomp.apps.deploy.naming.lab_names`) and learns from
+    reference measurements as ``adapt.*`` says (``adapt_``)."""
+    from ...apps.deploy.adapt import from_config as adapt_from_config
+    from ...apps.deploy.naming import lab_names
+
+    deployed = build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
+    deployed.lab_names_ = lab_names(cfg, ds)
+    # served: every row that carries a measured error is a reference (no schedule)
+    deployed.adapt_ = adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
+    return deployed
+
+
+def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[object, str, str]:
+    """``(deployed compensator, source, model name)`` of ``source`` (the value of ``key``): the
+    configured model fitted on ``train_ids`` (``None``), a model.pkl made deployable, or a pyfunc
+    folder / ``models:/name@alias`` as registered (``replay``, ``connect``)."""
+    if source is None:
+        say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
+        train = {c: ds.campaigns[c] for c in train_ids}
+        comp, name, source = build_compensator(cfg, ds=ds).fit(train), str(cfg.model.name), "fitted"
+    else:
+        source = str(source)
+        path = resolve(source) if not source.startswith("models:/") else None
+        if path is None or (path / "MLmodel").is_file():
+            return _registered(cfg, source, path, key)
+        comp = load_model(path)
+        name = model_family(comp)
+        train = {c: ds.campaigns[c] for c in train_ids}
+    return deployable(cfg, deploy_stream(cfg, comp, train), train, ds), source, name
+
+
+def _registered(cfg: DictConfig, source: str, path, key: str) -> tuple[object, str, str]:
+    """A pyfunc folder or ``models:/name@alias`` loaded as registered."""
+    from ...apps.deploy.pyfunc import load_deployed
+    from ...apps.deploy.report import plain
+    from ..tracking import connect
+
+    if path is None:
+        connect(cfg)     # only a registry model needs the store (track=false writes none)
+    try:
+        deployed = load_deployed(source, path)      # replayed as registered
+    except io.ContractError:
+        raise
+    except Exception as exc:
+        raise ConfigError(f"{key}={source}: cannot load it "
+                          f"({' '.join(str(exc).split())[:200]})") from None
+    return deployed, source, model_family(plain(deployed).compensator)
