@@ -161,6 +161,40 @@ def poisoned_copy(src: Path, dest: Path, scale: float = -50.0, offset: float = 1
     return dest
 
 
+# -- how `make test`'s two xdist workers (`--dist loadfile`) share the tests --------------------
+# A module's tests go to one worker (its module fixtures are built once), except these: long
+# tests that share nothing costly, each a unit of its own (the README test, one per page).
+ALONE = ("tests/test_readme.py::test_page_commands_as_written",)
+
+
+def _unit(nodeid: str) -> str:
+    return nodeid if nodeid.startswith(ALONE) else nodeid.split("::")[0]
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadfile`` with the :data:`ALONE` tests as units of their own, handed out in
+    the order of :func:`pytest_collection_modifyitems` (not by number of tests)."""
+    if config.getvalue("dist") != "loadfile":
+        return None
+    from xdist.scheduler import LoadFileScheduling
+
+    class ModulesLongFirst(LoadFileScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return _unit(nodeid)
+
+    config.option.loadscopereorder = False
+    return ModulesLongFirst(config, log)
+
+
+def pytest_collection_modifyitems(items):
+    """The longest first, so that none starts when the other worker is nearly done: the
+    :data:`ALONE` tests, then the modules with a ``slow`` test, then the rest (a stable sort: a
+    module's own order is kept)."""
+    slow = {_unit(item.nodeid) for item in items if item.get_closest_marker("slow")}
+    items.sort(key=lambda item: (not item.nodeid.startswith(ALONE), _unit(item.nodeid) not in slow))
+
+
 @pytest.fixture
 def paths(tmp_path):
     """The hostile matrix's small dataset (``test_hostile.make_dataset``) and where a run writes
