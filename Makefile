@@ -34,7 +34,7 @@ run: $(CORE)
 	$(BIN)/thermocomp run
 
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n 2 --dist loadfile   # 2 workers (pytest-xdist), a module's tests on one: its fixtures built once
+	$(BIN)/python -m pytest -q -n 2 --dist loadfile   # 2 workers (pytest-xdist), a module's tests on one: its fixtures built once (tests/conftest.py: the long ones first)
 
 docs: $(STAMP)
 	$(BIN)/mkdocs build --strict   # the docs site -> site/ (`$(BIN)/mkdocs serve` to browse)

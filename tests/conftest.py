@@ -42,6 +42,25 @@ def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.Complet
     return proc
 
 
+def cli(*args: str, check=True) -> subprocess.CompletedProcess:
+    """``thermocomp <args>`` in this process (:func:`thermocomp.shell.cli.main`), its exit status
+    and output as :func:`thermocomp` gives them, without a new interpreter's ~2.5 s of CPU for
+    the imports: for a test about what a command does, not about the process boundary."""
+    import contextlib
+    import io
+
+    from thermocomp.shell.cli import main
+
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        code = main(list(args))
+    proc = subprocess.CompletedProcess(["thermocomp", *args], code, out.getvalue(), err.getvalue())
+    if check and code != 0:
+        raise AssertionError(f"thermocomp {' '.join(args)} -> {code}\n"
+                             f"stdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
+    return proc
+
+
 def influence(comp, test: dict) -> dict[str, float]:
     """Per input of the fitted ``comp``: the largest change of its test predictions when that
     reading is raised by 1 °C after the first sample (a constant offset is removed by the
@@ -161,6 +180,40 @@ def poisoned_copy(src: Path, dest: Path, scale: float = -50.0, offset: float = 1
     return dest
 
 
+# -- how `make test`'s two xdist workers (`--dist loadfile`) share the tests --------------------
+# A module's tests go to one worker (its module fixtures are built once), except these: long
+# tests that share nothing costly, each a unit of its own (the README test, one per page).
+ALONE = ("tests/test_readme.py::test_page_commands_as_written",)
+
+
+def _unit(nodeid: str) -> str:
+    return nodeid if nodeid.startswith(ALONE) else nodeid.split("::")[0]
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_make_scheduler(config, log):
+    """``--dist loadfile`` with the :data:`ALONE` tests as units of their own, handed out in
+    the order of :func:`pytest_collection_modifyitems` (not by number of tests)."""
+    if config.getvalue("dist") != "loadfile":
+        return None
+    from xdist.scheduler import LoadFileScheduling
+
+    class ModulesLongFirst(LoadFileScheduling):
+        def _split_scope(self, nodeid: str) -> str:
+            return _unit(nodeid)
+
+    config.option.loadscopereorder = False
+    return ModulesLongFirst(config, log)
+
+
+def pytest_collection_modifyitems(items):
+    """The longest first, so that none starts when the other worker is nearly done: the
+    :data:`ALONE` tests, then the modules with a ``slow`` test, then the rest (a stable sort: a
+    module's own order is kept)."""
+    slow = {_unit(item.nodeid) for item in items if item.get_closest_marker("slow")}
+    items.sort(key=lambda item: (not item.nodeid.startswith(ALONE), _unit(item.nodeid) not in slow))
+
+
 @pytest.fixture
 def paths(tmp_path):
     """The hostile matrix's small dataset (``test_hostile.make_dataset``) and where a run writes
@@ -182,7 +235,7 @@ SHORT = ("sim.generator.n_campaigns=9", "sim.generator.duration_h=[2.0,3.0]")  #
 
 def _simulate(tmp_path_factory, name: str, *overrides: str) -> Path:
     path = tmp_path_factory.mktemp("catalogue") / name
-    thermocomp("simulate", f"data.path={path}", *UNTRACKED, *overrides)
+    cli("simulate", f"data.path={path}", *UNTRACKED, *overrides)
     return path
 
 

@@ -1,11 +1,12 @@
 """The commands of the README and the docs pages, run exactly as written, in a fresh copy of the
 project.
 
-Every fenced ``bash`` block of README.md, then of each page of the docs site in the order of
-``mkdocs.yml``'s ``nav`` (:func:`pages`; a page may use what an earlier one made), is run, in
-order, by ``bash -euo pipefail`` from the
-root of a scratch clone whose ``.venv`` is NOT activated (``PATH`` has no venv in it), unless an
-HTML comment on the line before it says otherwise:
+Every fenced ``bash`` block of README.md and of each page of the docs site (:func:`pages`, in
+the order of ``mkdocs.yml``'s ``nav``) is run, in order, by ``bash -euo pipefail`` from the root
+of a scratch clone whose ``.venv`` is NOT activated (``PATH`` has no venv in it), unless an HTML
+comment on the line before it says otherwise.  Each page runs in a clone of its own (one test per
+page, so that xdist spreads them); a docs page's clone first gets what the README's ``make run``
+leaves for the pages, the default dataset (:data:`PREPARE`).  The directives:
 
 - ``<!-- readme-test: skip — <reason> -->``: not run (a synopsis, the test suite itself, ...);
 - ``<!-- readme-test: background <host>:<port> -->``: started in the background (a server);
@@ -187,14 +188,22 @@ def test_readme_blocks_are_all_accounted_for():
     assert not unlisted, f"docs pages with commands but not in mkdocs.yml's nav: {unlisted}"
 
 
-def test_readme_commands_as_written(tmp_path):
-    clone = fresh_clone(tmp_path / "clone")
-    home = tmp_path / "home"
-    home.mkdir()
-    env = _user_env(home)
-    background, log, output = [], [], ""
+# What the README's `make run` leaves that the pages' commands read (the default dataset): made
+# in each page's copy before its commands, so the pages run apart (xdist spreads them).
+PREPARE = ".venv/bin/thermocomp simulate"
+
+
+def runnable_pages() -> list[Path]:
+    """The pages of :func:`pages` with a block to run or to write."""
+    return [page for page in pages()
+            if any(b["kind"] not in ("skip", "text") for b in readme_blocks(page.read_text()))]
+
+
+def run_blocks(blocks: list[dict], clone: Path, env: dict, log: list[str]) -> None:
+    """Run ``blocks`` (one page's, in order) in ``clone`` as their directives say."""
+    background, output = [], ""
     try:
-        for b in all_blocks():
+        for b in blocks:
             where = f"{b['page']} line {b['line']}"
             if b["kind"] == "output":
                 missing = missing_lines(b["body"], output)
@@ -226,5 +235,23 @@ def test_readme_commands_as_written(tmp_path):
         for proc in background:
             os.killpg(proc.pid, signal.SIGTERM)
             proc.wait(timeout=30)
+
+
+@pytest.mark.parametrize("page", runnable_pages(), ids=lambda page: str(page.relative_to(ROOT)))
+def test_page_commands_as_written(page, tmp_path):
+    """One page's commands in a fresh copy of their own; a docs page's copy holds the default
+    dataset first (:data:`PREPARE`), as the README's `make run` leaves it."""
+    clone = fresh_clone(tmp_path / "clone")
+    home = tmp_path / "home"
+    home.mkdir()
+    env = _user_env(home)
+    log = []
+    blocks = [{**b, "page": page.relative_to(ROOT)} for b in readme_blocks(page.read_text())]
+    if page != ROOT / "README.md":
+        blocks.insert(0, {"kind": "run", "lang": "bash", "body": PREPARE + "\n", "arg": "",
+                          "line": 0, "page": "(prepared)"})
+    try:
+        run_blocks(blocks, clone, env, log)
+    finally:
         (tmp_path / "readme_run.log").write_text("\n".join(log))
     assert not (clone / "mlflow.db").exists(), "a command left a stray ./mlflow.db"

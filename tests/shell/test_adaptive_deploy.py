@@ -16,7 +16,7 @@ import pandas as pd
 import pytest
 from hydra import compose, initialize_config_dir
 
-from conftest import thermocomp
+from conftest import cli
 from thermocomp.apps.deploy import StreamingCompensator
 from thermocomp.apps.deploy.report import plain, replay_report
 from thermocomp.apps.monitor import AdaptiveCompensator
@@ -135,12 +135,12 @@ def test_replay_cli_plain_stream_refuses_a_dropout_and_an_incomplete_train_split
     path, clean, faults = faulty
     common = ["track=false", "model=mlr"]
     # monitor.adaptive=false: the plain stream, as today; a clean dataset replays without events
-    thermocomp("replay", *common, f"data.path={clean}", f"out={tmp_path / 'clean'}", "monitor.adaptive=false")
+    cli("replay", *common, f"data.path={clean}", f"out={tmp_path / 'clean'}", "monitor.adaptive=false")
     report = json.loads((tmp_path / "clean" / "replay.json").read_text())
     assert report["adaptive"] is False and report["pod"] is None and report["events"] == []
     # ... and refuses the dropout (exit 2, one line naming campaign and sensor, nothing written)
-    bad = thermocomp("replay", *common, f"data.path={path}", f"out={tmp_path / 'plain'}",
-                     "monitor.adaptive=false", check=False)
+    bad = cli("replay", *common, f"data.path={path}", f"out={tmp_path / 'plain'}",
+              "monitor.adaptive=false", check=False)
     cid, sensor, k = faults["dropout"]
     line = bad.stderr.strip().splitlines()[-1]
     assert bad.returncode == 2 and f"{cid}.csv" in line and f"'{sensor}'" in line, bad.stderr
@@ -155,11 +155,11 @@ def test_replay_cli_plain_stream_refuses_a_dropout_and_an_incomplete_train_split
     df.loc[4, "T_nose"] = np.nan
     df.to_csv(broken / train_file, index=False)
     df = pd.read_csv(broken / manifest.set_index("campaign").loc[cid, "file"])   # the dropout
-    bad = thermocomp("replay", *common, f"data.path={broken}", f"out={tmp_path / 'b'}", check=False)
+    bad = cli("replay", *common, f"data.path={broken}", f"out={tmp_path / 'b'}", check=False)
     assert bad.returncode == 2 and train_file in bad.stderr and "'T_nose'" in bad.stderr
     assert "row 5" in bad.stderr and not (tmp_path / "b").exists()
     # ... unless the data config repairs it, as `run` would; the test dropout still streams as NaN
-    thermocomp("replay", *common, f"data.path={broken}", f"out={tmp_path / 'r'}", "data.max_gap_samples=1")
+    cli("replay", *common, f"data.path={broken}", f"out={tmp_path / 'r'}", "data.max_gap_samples=1")
     report = json.loads((tmp_path / "r" / "replay.json").read_text())
     n_gap = len(df) - k
     assert report["missing"] == {cid: {sensor: n_gap}}
@@ -281,8 +281,8 @@ def test_replay_of_a_saved_pyfunc_replays_what_it_holds(served, faulty, tmp_path
     """`replay.model=<pyfunc folder>` streams the adaptive compensator inside it, not a refit."""
     _, adaptive, _, folder = served
     path, _, faults = faulty
-    thermocomp("replay", f"data.path={path}", f"out={tmp_path}", "track=false", "model=mlr",
-               f"replay.model={folder}")
+    cli("replay", f"data.path={path}", f"out={tmp_path}", "track=false", "model=mlr",
+        f"replay.model={folder}")
     report = json.loads((tmp_path / "replay.json").read_text())
     assert report["source"] == str(folder) and report["model"] == "arx" and report["adaptive"]
     assert report["pod"]["n_modes"] == adaptive.monitor.pod.n_modes_

@@ -13,7 +13,7 @@ from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
 from sklearn.utils.estimator_checks import check_estimator
 
-from conftest import poisoned_copy, stream_context, thermocomp
+from conftest import FAST, poisoned_copy, stream_context, thermocomp
 from thermocomp.base.errors import ParameterError
 from thermocomp.core.models import MLR, LagBank
 from thermocomp.core.models._dynamics import first_order_lags
@@ -204,8 +204,7 @@ def test_the_test_split_does_not_choose_the_penalty_through_the_cli(small_data):
     root, clean, poisoned = small_data
     fitted = {}
     for name, path in (("clean", clean), ("poisoned", poisoned)):
-        thermocomp("run", f"data.path={path}", "track=false", f"out={root / 'out' / name}", "model=lagbank",
-                   "eval.mutual_prediction=false", "eval.ati_baselines=false")
+        thermocomp("run", f"data.path={path}", f"out={root / 'out' / name}", "model=lagbank", *FAST)
         with open(root / "out" / name / "model.pkl", "rb") as fh:
             fitted[name] = pickle.load(fh)
     clean_est, poisoned_est = fitted["clean"].estimators_, fitted["poisoned"].estimators_

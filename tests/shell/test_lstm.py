@@ -7,7 +7,7 @@ import pytest
 import torch
 from sklearn.utils.estimator_checks import check_estimator
 
-from conftest import ctx, poisoned_copy, stream_predictions, thermocomp
+from conftest import FAST, ctx, poisoned_copy, stream_predictions, thermocomp
 from thermocomp.base.errors import ParameterError
 from thermocomp.core.models import LSTM, MLR
 from thermocomp.core.models._dynamics import free_run
@@ -132,10 +132,9 @@ def test_poisoned_test_campaigns_do_not_change_the_fitted_network(tmp_path):
     poisoned = poisoned_copy(clean, tmp_path / "poisoned")
     fitted = {}
     for name, path in (("clean", clean), ("poisoned", poisoned)):
-        thermocomp("run", f"data.path={path}", "track=false", f"out={tmp_path / 'out' / name}", "model=lstm",
-                   "model.estimator.hidden_size=4", "model.estimator.max_epochs=3", "plots=none",
-                   "data.targets=[E_X]",
-                   "eval.mutual_prediction=false", "eval.ati_baselines=false")
+        thermocomp("run", f"data.path={path}", f"out={tmp_path / 'out' / name}", "model=lstm",
+                   "model.estimator.hidden_size=4", "model.estimator.max_epochs=3",
+                   "data.targets=[E_X]", *FAST)
         with open(tmp_path / "out" / name / "model.pkl", "rb") as fh:
             fitted[name] = pickle.load(fh).estimators_
     assert fitted["clean"].keys() == fitted["poisoned"].keys()

@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import thermocomp
+from conftest import FAST, cli
 from thermocomp.core import continuation
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.io.contract import Dataset
@@ -141,14 +141,13 @@ def test_one_step_law_is_least_squares_on_the_training_increments():
 @pytest.fixture(scope="session")
 def long_record(tmp_path_factory):
     path = tmp_path_factory.mktemp("lr") / "lr"
-    thermocomp("simulate", "sim=long_record", f"data.path={path}", "sim.generator.duration_days=8",
-               "track=false")
+    cli("simulate", "sim=long_record", f"data.path={path}", "sim.generator.duration_days=8",
+        "track=false")
     return path
 
 
 def _run(data, out, *overrides):
-    thermocomp("run", "sim=long_record", f"data.path={data}", f"out={out}", "track=false",
-               "plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false", *overrides)
+    cli("run", "sim=long_record", f"data.path={data}", f"out={out}", *FAST, *overrides)
     return json.loads((out / "metrics.json").read_text())
 
 
@@ -165,12 +164,12 @@ def test_one_step_beats_persistence_on_the_long_record(long_record, tmp_path, mo
 def test_lag_bank_beats_mlr_and_diagnose_finds_the_dynamics_on_the_long_record(long_record, tmp_path):
     """Issue 12 on `sim=long_record`: the lag bank beats static regression free-run by >= 20 %, and
     the closed loop accepts a dynamic effect first and lowers the test error."""
-    rmse = {m: _run(long_record, tmp_path / m, f"model={m}", "eval.validation=false")
+    rmse = {m: _run(long_record, tmp_path / m, f"model={m}")
             ["targets"]["E_Z"]["test"]["rmse"] for m in ("mlr", "lagbank")}
     assert rmse["lagbank"] <= 0.8 * rmse["mlr"]
     out = tmp_path / "diag"
-    thermocomp("diagnose", "sim=long_record", f"data.path={long_record}", f"out={out}",
-               "track=false", "plots=none")
+    cli("diagnose", "sim=long_record", f"data.path={long_record}", f"out={out}",
+        "track=false", "plots=none")
     d = json.loads((out / "diagnosis.json").read_text())
     accepted = [e for e in d["effects"] if e["accepted"]]
     assert accepted and accepted[0]["kind"] == "dynamics"

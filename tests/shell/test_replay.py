@@ -9,7 +9,7 @@ from functools import lru_cache
 import pytest
 from hydra import compose, initialize_config_dir
 
-from conftest import thermocomp
+from conftest import cli
 from thermocomp.apps.deploy import StreamingCompensator
 from thermocomp.apps.deploy.report import replay_report
 from thermocomp.apps.diagnose.augmented import AugmentedRegressor
@@ -79,8 +79,8 @@ def test_every_configuration_streams_exactly_as_it_predicts(door_data, model, at
 @pytest.mark.slow
 def test_replay_command_fits_or_loads_and_writes_replay_json(door_data, tmp_path):
     common = [f"data.path={door_data}", "track=false"]
-    thermocomp("replay", *common, f"out={tmp_path / 'fit'}", "model=arx_rf", "ati=cmeans",
-               "model.estimator.forest.n_estimators=5")
+    cli("replay", *common, f"out={tmp_path / 'fit'}", "model=arx_rf", "ati=cmeans",
+        "model.estimator.forest.n_estimators=5")
     report = json.loads((tmp_path / "fit" / "replay.json").read_text())
     assert report["source"] == "fitted" and report["model"] == "arx_rf"
     assert set(report) >= {"model", "source", "targets", "excluded_inputs", "events"}
@@ -88,19 +88,19 @@ def test_replay_command_fits_or_loads_and_writes_replay_json(door_data, tmp_path
         assert set(r) >= {"n_samples", "max_abs_stream_minus_batch", "rmse", "us_per_sample"}
         assert r["max_abs_stream_minus_batch"] <= TOLERANCE_UM and r["us_per_sample"] > 0
     # a model written by `run` is loaded, not refitted: same streamed figures
-    thermocomp("run", *common, f"out={tmp_path / 'run'}", "model=arx", "eval.mutual_prediction=false",
-               "eval.ati_baselines=false", "plots=none")
-    thermocomp("replay", *common, f"out={tmp_path / 'load'}",
-               f"replay.model={tmp_path / 'run' / 'model.pkl'}")
-    thermocomp("replay", *common, f"out={tmp_path / 'refit'}", "model=arx")
+    cli("run", *common, f"out={tmp_path / 'run'}", "model=arx", "eval.mutual_prediction=false",
+        "eval.ati_baselines=false", "plots=none")
+    cli("replay", *common, f"out={tmp_path / 'load'}",
+        f"replay.model={tmp_path / 'run' / 'model.pkl'}")
+    cli("replay", *common, f"out={tmp_path / 'refit'}", "model=arx")
     loaded = json.loads((tmp_path / "load" / "replay.json").read_text())
     refit = json.loads((tmp_path / "refit" / "replay.json").read_text())
     assert loaded["source"].endswith("model.pkl")
     assert loaded["model"] == refit["model"] == "arx"        # named alike, fitted or loaded
     for t, r in loaded["targets"].items():
         assert r["rmse"] == pytest.approx(refit["targets"][t]["rmse"], rel=1e-12)
-    bad = thermocomp("replay", *common, f"out={tmp_path / 'bad'}",
-                     f"replay.model={tmp_path / 'nothing.pkl'}", check=False)
+    bad = cli("replay", *common, f"out={tmp_path / 'bad'}",
+              f"replay.model={tmp_path / 'nothing.pkl'}", check=False)
     assert bad.returncode == 2 and not (tmp_path / "bad" / "replay.json").exists()
 
 
@@ -109,11 +109,11 @@ def test_diagnosed_ati_model_replays(door_data, tmp_path):
     """The model diagnose builds around an ATI model (augmented ∘ ATI) starts a stream and streams
     exactly as it predicts."""
     out = tmp_path / "diag"
-    thermocomp("diagnose", f"data.path={door_data}", f"out={out}", "track=false", "ati=cmeans",
-               "diagnose.max_effects=2")
-    thermocomp("replay", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]",
-               "experiment=diagnosed", f"data.path={door_data}", f"out={tmp_path / 'replay'}",
-               "track=false")
+    cli("diagnose", f"data.path={door_data}", f"out={out}", "track=false", "ati=cmeans",
+        "diagnose.max_effects=2")
+    cli("replay", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]",
+        "experiment=diagnosed", f"data.path={door_data}", f"out={tmp_path / 'replay'}",
+        "track=false")
     report = json.loads((tmp_path / "replay" / "replay.json").read_text())
     assert report["model"].endswith("diagnosed") and report["source"] == "fitted"
     for r in report["targets"].values():
@@ -145,7 +145,7 @@ def test_a_test_campaign_without_a_target_streams_and_is_scored_where_measured(d
     for stage, name in (("replay", "replay.json"), ("monitor", "monitor.json")):
         for label, path in (("full", door_data), ("lacking", lacking), ("without", without)):
             out = tmp_path / f"{stage}_{label}"
-            thermocomp(stage, f"data.path={path}", f"out={out}", "track=false", "plots=none")
+            cli(stage, f"data.path={path}", f"out={out}", "track=false", "plots=none")
             reports[stage, label] = json.loads((out / name).read_text())["targets"]
     key = {"replay": "rmse", "monitor": "rmse_fixed"}
     for stage in ("replay", "monitor"):
