@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import FAST, refused
+from conftest import FAST, refused, thermocomp
 from thermocomp.base import files
 from thermocomp.core.io import load_interim, read_dataset
 from thermocomp.shell.cli import main
@@ -578,8 +578,8 @@ def test_interleaved_ingests_leave_one_whole_dataset(paths, tmp_path, monkeypatc
     def interleaved(*args, **kwargs):
         if not nested:
             nested.append(True)
-            assert main(["ingest", f"data.path={other}", f"data.interim={paths['interim']}",
-                         "track=false"]) == 0
+            thermocomp("ingest", f"data.path={other}", f"data.interim={paths['interim']}",
+                       "track=false")          # another process: truly concurrent
             assert load_interim(paths["interim"]).campaigns["K01"].shape[0] == 20
         return write_table(*args, **kwargs)
 

@@ -71,7 +71,7 @@ def test_monitor_continues_without_stdin_or_carried_state_is_refused(record, tmp
                                              ("first_sample", "first_sample")])
 def test_ingest_reports_the_resolved_reference_as_run_does(record, tmp_path, given, resolved):
     # B continues A: auto resolves to none; run's ingest_report.json has said so, ingest's not
-    args = [f"data.path={record}", *PLAIN[:2], PLAIN[3], f"data.reference={given}", *FAST]
+    args = [f"data.path={record}", PLAIN[1], PLAIN[3], f"data.reference={given}", *FAST]
     assert main(["ingest", *args, f"data.interim={tmp_path / 'interim'}"]) == 0
     assert main(["run", *args, f"out={tmp_path / 'run'}"]) == 0
     ingested = json.loads((tmp_path / "interim" / "ingest_report.json").read_text())

@@ -20,7 +20,7 @@ from ..base.log import Clock, logger, say
 from .compensator import Compensator, with_chosen_hyperparameters
 from .continuation import carry_over
 from .figures import run_figures as fig
-from .metrics import ISO_A3, VALIDATION, validation_block
+from .metrics import E_P95, ISO_A3, VALIDATION, validation_block
 from .scoring.evaluation import (
     VAL_FOLDS,
     ambient_by_campaign,
@@ -61,7 +61,7 @@ class ReportSettings:
         (``model``, ``select``, ``ati``, ``plots``)."""
         keys = ("mode", "validation", "validation_folds", "validation_scheme", "anova_alpha",
                 "ati_baselines", "mutual_prediction")
-        e_p95 = ev.get("e_p95") or {}
+        e_p95 = ev.get(E_P95) or {}     # eval.e_p95: the settings of that figure
         given = {"e_p95_statistic": e_p95.get("statistic"),
                  "e_p95_max_points": e_p95.get("max_points", 200), "iso_a3": ev.get(ISO_A3),
                  **{k: ev.get(k) for k in keys}}
