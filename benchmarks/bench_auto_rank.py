@@ -39,9 +39,9 @@ from thermocomp.core import io
 from thermocomp.core.metrics import rmse
 from thermocomp.core.models.auto import BASELINE
 from thermocomp.core.scoring.evaluation import split_residuals
+from thermocomp.shell.builders import build_compensator
 from thermocomp.shell.config.checks import data_options
 from thermocomp.shell.source import resolve_reference
-from thermocomp.shell.stages.builders import build_compensator
 
 LIGHT = ["track=false", "plots=none", "model=auto"]
 

@@ -32,7 +32,7 @@ from hydra.utils import instantiate
 from thermocomp.apps.diagnose import diagnose
 from thermocomp.base.paths import conf_dir
 from thermocomp.core.io.contract import write_dataset
-from thermocomp.shell.stages.builders import build_compensator
+from thermocomp.shell.builders import build_compensator
 
 
 def load() -> str:

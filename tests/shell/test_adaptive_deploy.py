@@ -22,7 +22,7 @@ from thermocomp.apps.deploy.report import plain, replay_report
 from thermocomp.apps.monitor import AdaptiveCompensator
 from thermocomp.base.paths import conf_dir
 from thermocomp.core import io
-from thermocomp.shell.stages.builders import build_compensator, deployable
+from thermocomp.shell.builders import build_compensator, deployable
 from thermocomp.shell.stages.replay import replay
 
 MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm", "lagbank")

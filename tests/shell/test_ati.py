@@ -134,8 +134,8 @@ def test_without_context_is_one_model_and_passes_sklearn_checks():
 
 
 def test_config_wraps_any_model_in_ati():
+    from thermocomp.shell.builders import build_compensator
     from thermocomp.shell.cli import _compose
-    from thermocomp.shell.stages.builders import build_compensator
 
     cfg = _compose(["ati=cmeans", "ati.estimator.clustering=hard"])
     comp = build_compensator(cfg)

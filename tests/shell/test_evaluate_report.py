@@ -93,8 +93,8 @@ def small_year():
 
 @pytest.mark.parametrize("ati, level", [("none", "all"), ("cmeans", "test")])
 def test_report_has_every_key_and_figure(small_year, tmp_path, ati, level, capsys):
+    from thermocomp.shell.builders import build_compensator
     from thermocomp.shell.cli import _compose
-    from thermocomp.shell.stages.builders import build_compensator
     from thermocomp.shell.stages.modelling import _report
     from thermocomp.shell.tracking import _Null
 
@@ -114,8 +114,8 @@ def test_report_has_every_key_and_figure(small_year, tmp_path, ati, level, capsy
 
 def test_plots_none_writes_no_figure_and_the_same_numbers(small_year, tmp_path):
     """``plots=none``: no plots folder at all; metrics.json as with the default figures."""
+    from thermocomp.shell.builders import build_compensator
     from thermocomp.shell.cli import _compose
-    from thermocomp.shell.stages.builders import build_compensator
     from thermocomp.shell.stages.modelling import _report
     from thermocomp.shell.tracking import _Null
 

@@ -10,7 +10,7 @@ from conftest import thermocomp
 from thermocomp.base.paths import conf_dir
 from thermocomp.core.models import ARX, ARXRF
 from thermocomp.core.scoring.evaluation import score
-from thermocomp.shell.stages.builders import build_compensator
+from thermocomp.shell.builders import build_compensator
 
 EXPERIMENTS = {
     # name: (scenario, model, select, denoise)

@@ -27,9 +27,9 @@ from conftest import refused
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.base.paths import conf_dir
+from thermocomp.shell.builders import build_compensator, deploy_stream
 from thermocomp.shell.cli import main
 from thermocomp.shell.source import read_streamed
-from thermocomp.shell.stages.builders import build_compensator, deploy_stream
 
 TOLERANCE_UM = 1e-6
 FAMILIES = {"mlr": [], "pcr": [], "arx": ["model.estimator.ar=false"],

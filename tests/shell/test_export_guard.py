@@ -36,9 +36,9 @@ from thermocomp.apps.deploy.guard import CorrectionGuard
 from thermocomp.apps.deploy.pyfunc import CompensatorModel
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.core.models._dynamics import first_order_lag
+from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
 from thermocomp.shell.cli import main
 from thermocomp.shell.source import read_streamed
-from thermocomp.shell.stages.builders import build_compensator, deploy_stream, deployable
 
 FAMILIES = {"mlr": ["model=mlr"],
             "arx": ["model=arx", "model.estimator.ar=true", "model.estimator.delays=[2]"]}

@@ -89,7 +89,7 @@ def test_connect_learns_from_the_twins_references_as_replay_does(aged, tmp_path)
 
 
 def test_twin_campaigns_chooses_among_the_test_campaigns(tmp_path, capsys):
-    from thermocomp.shell.stages.twin import served_campaigns
+    from thermocomp.apps.machine.record import served_campaigns
 
     tests = ["K03", "K06", "K09"]
     assert served_campaigns(None, tests) == tests

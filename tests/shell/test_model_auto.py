@@ -214,8 +214,7 @@ def test_the_run_refits_the_chosen_families_not_the_whole_choice(two_targets):
     from thermocomp.core.compensator import Compensator
     from thermocomp.core.io import read_dataset
     from thermocomp.core.models import MLR, LagBank
-    from thermocomp.core.models.auto import AutoRegressor
-    from thermocomp.shell.stages.auto import as_chosen
+    from thermocomp.core.models.auto import AutoRegressor, as_chosen
 
     ds, _ = read_dataset(two_targets[0])
     train = {c: ds.campaigns[c] for c in ds.ids("train")}
@@ -275,8 +274,7 @@ def test_mutual_prediction_fits_each_targets_chosen_family_with_its_chosen_penal
     from thermocomp.core.compensator import Compensator, with_chosen_hyperparameters
     from thermocomp.core.io import read_dataset
     from thermocomp.core.models import MLR, LagBank
-    from thermocomp.core.models.auto import AutoRegressor
-    from thermocomp.shell.stages.auto import as_chosen
+    from thermocomp.core.models.auto import AutoRegressor, as_chosen
 
     ds, _ = read_dataset(two_targets[0])
     train = {c: ds.campaigns[c] for c in ds.ids("train")}
@@ -440,9 +438,8 @@ def test_mutual_prediction_fits_a_blend_as_blended_with_its_members_penalties(tw
     from thermocomp.core.compensator import Compensator, with_chosen_hyperparameters
     from thermocomp.core.io import read_dataset
     from thermocomp.core.models import ARX, MLR, LagBank
-    from thermocomp.core.models.auto import AutoRegressor
+    from thermocomp.core.models.auto import AutoRegressor, as_chosen
     from thermocomp.core.models.blend import Blend
-    from thermocomp.shell.stages.auto import as_chosen
 
     ds, _ = read_dataset(two_targets[0])
     train = {c: ds.campaigns[c] for c in ds.ids("train")}
@@ -510,7 +507,7 @@ def test_the_run_validation_scores_the_choice_without_refitting_it(two_targets, 
     fits = []
     original = LagBank.fit
     monkeypatch.setattr(LagBank, "fit", lambda self, *a, **k: fits.append(1) or original(self, *a, **k))
-    from thermocomp.shell.stages.auto import as_chosen
+    from thermocomp.core.models.auto import as_chosen
 
     chosen = partial(clone, as_chosen(clone(template), fitted))
     stored = validation_reports(chosen, ds, fitted=fitted)["simulation"]
@@ -527,7 +524,7 @@ def test_candidate_defaults_set_a_family_in_the_candidate_role_under_candidate_p
     from hydra import compose, initialize_config_dir
 
     from thermocomp.base.paths import conf_dir
-    from thermocomp.shell.stages.auto import build_candidates
+    from thermocomp.shell.config.candidates import build_candidates
 
     def built(*overrides):
         with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):

@@ -18,8 +18,8 @@ from thermocomp.core import io
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.models.ati import ATIRegressor
 from thermocomp.core.models.pcr import PCR
+from thermocomp.shell.builders import build_compensator
 from thermocomp.shell.model_store import model_family
-from thermocomp.shell.stages.builders import build_compensator
 
 MODELS = ("mlr", "pcr", "arx", "arx_rf", "lstm", "lagbank", "hammerstein")
 ATIS = ("none", "cmeans")

@@ -24,8 +24,8 @@ from ...core.io.handoff import (
     matching_selection,
 )
 from ...core.scoring.evaluation import require_split
+from ..builders import build_compensator
 from ..source import reference
-from .builders import build_compensator
 
 __all__ = ["DENOISER_PKL", "DENOISE_JSON", "denoise_fingerprint", "fit_from_artifacts", "processed_data",
            "selection_fingerprint", "selection_path"]   # denoise and select read these here

@@ -23,9 +23,9 @@ from ...base.errors import ConfigError
 from ...base.files import write_json
 from ...base.log import say
 from ...base.paths import resolve
+from ..builders import deployable_model
 from ..config.checks import check_config
 from ..source import read_streamed
-from .builders import deployable_model
 
 
 def _guard(cfg: DictConfig, deployed, ds, train_ids):

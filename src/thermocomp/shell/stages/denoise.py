@@ -23,11 +23,11 @@ from ...core.frame import resolve_columns
 from ...core.io.contract import MANIFEST
 from ...core.io.read import INGEST_REPORT
 from ...core.scoring.evaluation import require_split
+from ..builders import build_denoiser
 from ..config.checks import check_config
 from ..source import open_source
 from ..tracking import stage_run
 from .artifacts import DENOISE_JSON, DENOISER_PKL, denoise_fingerprint
-from .builders import build_denoiser
 
 
 def denoise(cfg: DictConfig) -> dict:

@@ -22,11 +22,11 @@ from ...base.log import logger, say
 from ...base.params import check_values, subset
 from ...base.paths import resolve
 from ...core import io
+from ..builders import build_compensator
 from ..config import rules
 from ..config.checks import check_config, data_options
 from ..source import check_declared, resolve_reference
 from ..tracking import stage_run
-from .builders import build_compensator
 
 # What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are
 # this stage's (``targets`` is also checked against the modelled targets).

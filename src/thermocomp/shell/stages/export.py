@@ -22,11 +22,11 @@ from ...base.errors import ConfigError
 from ...base.files import folder_digest, staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
+from ..builders import deploy_stream, deployable
 from ..config.checks import check_config
 from ..model_store import load_model, model_family
 from ..source import read_streamed
 from ..tracking import connect
-from .builders import deploy_stream, deployable
 
 
 def _registry_run(source: str) -> str | None:

@@ -24,11 +24,11 @@ from ...core import io
 from ...core.metrics import VALIDATION
 from ...core.scoring.evaluation import VAL_FOLDS, require_split, validation_report
 from ...core.scoring.results import TargetResult
+from ..builders import build_compensator, validation_template
 from ..config.checks import check_config, data_options
 from ..model_store import save_model
 from ..source import resolve_reference
 from ..tracking import stage_run
-from .builders import build_compensator, validation_template
 
 
 def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:

@@ -21,9 +21,11 @@ from ...base.files import staged_outputs, write_json
 from ...base.log import Clock, say
 from ...base.paths import resolve
 from ...core import io
+from ...core.models.auto import add_choices, as_chosen
 from ...core.run_report import Refits, ReportSettings, report_run
 from ...core.scoring.evaluation import require_split
 from ...core.scoring.results import EvaluationResult
+from ..builders import build_compensator, validation_template
 from ..config.checks import check_config
 from ..model_store import load_model, model_family, save_model
 from ..source import (
@@ -36,8 +38,6 @@ from ..source import (
 )
 from ..tracking import stage_run
 from .artifacts import fit_from_artifacts
-from .auto import add_choices, as_chosen
-from .builders import build_compensator, validation_template
 
 
 def train(cfg: DictConfig):

@@ -27,11 +27,11 @@ from ...core.context import TIME
 from ...core.continuation import carried_text, lead_ins
 from ...core.io.source import check_streamed_columns
 from ...core.io.stdin import read_stream
+from ..builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
 from ..config.checks import check_config, data_options
 from ..model_store import load_model
 from ..source import check_volumetric_targets, read_streamed
 from ..tracking import stage_run
-from .builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
 
 
 def _stdin_lead_in(cfg: DictConfig, fixed, ds, stream) -> dict:

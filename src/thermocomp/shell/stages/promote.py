@@ -21,12 +21,12 @@ from ...core import io
 from ...core.continuation import lead_ins
 from ...core.scoring.champion import check_criterion, outcome_line
 from .. import registry
+from ..builders import deploy_stream, deployable
 from ..config.checks import check_config, data_options
 from ..config.rules import check_keys
 from ..store import registry_lock
 from ..tracking import client as mlflow_client
 from ..tracking import connect
-from .builders import deploy_stream, deployable
 
 # The plain promote.* keys are checked by every stage (rules.PROMOTE_RULES); the envelope's
 # policies are the deployment's own.

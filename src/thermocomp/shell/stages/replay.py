@@ -21,10 +21,10 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core.continuation import lead_ins
 from ...core.io.source import check_streamed_columns
+from ..builders import deployable_model, warn_stream_mode
 from ..config.checks import check_config
 from ..source import check_volumetric_targets, read_streamed
 from ..tracking import stage_run
-from .builders import deployable_model, warn_stream_mode
 
 
 def replay(cfg: DictConfig) -> dict:

@@ -22,11 +22,11 @@ from ...core.frame import resolve_columns
 from ...core.scoring.evaluation import require_split
 from ...core.select.per_target import select_on_campaigns
 from ..build import build
+from ..builders import build_denoiser
 from ..config.checks import check_config
 from ..source import open_source, reference
 from ..tracking import stage_run
 from .artifacts import processed_data, selection_fingerprint, selection_path
-from .builders import build_denoiser
 
 
 def select(cfg: DictConfig) -> dict:

@@ -35,8 +35,8 @@ def _deployed(cfg: DictConfig, model: str):
 
     if model.startswith("models:/") or not Path(model).is_file():
         return load_deployed(model, None if model.startswith("models:/") else Path(model))
+    from ..builders import deployable_model
     from ..source import read_streamed
-    from .builders import deployable_model
 
     ds, train_ids = read_streamed(cfg, test=False)[:2]
     return deployable_model(cfg, ds, train_ids, model, "serve.model")[0]

@@ -14,30 +14,16 @@ from __future__ import annotations
 import asyncio
 from pathlib import Path
 
-import numpy as np
 from omegaconf import DictConfig
 
-from ...apps.deploy.adapt import ReferenceSchedule, scheduled
+from ...apps.machine.record import served_campaigns, served_record
 from ...base.errors import ConfigError
 from ...base.files import write_json
 from ...base.log import say
 from ...base.paths import resolve
-from ...core.context import TIME
-from ...core.continuation import chain, lead_in, predecessors
-from ...core.frame import stack
+from ...core.continuation import chain, predecessors
 from ..config.checks import check_config
 from ..source import read_streamed, reference
-
-
-def served_campaigns(chosen, test_ids: list[str]) -> list[str]:
-    """``twin.campaigns`` (null: every test campaign), in the test split's order."""
-    if chosen is None:
-        return test_ids
-    unknown = [c for c in chosen if c not in test_ids]
-    if unknown:
-        raise ConfigError(f"twin.campaigns={list(chosen)}: {', '.join(unknown)} not a test campaign "
-                          f"of the data (test: {', '.join(test_ids)})")
-    return [c for c in test_ids if c in set(chosen)]
 
 
 def twin(cfg: DictConfig) -> dict:
@@ -48,41 +34,26 @@ def twin(cfg: DictConfig) -> dict:
 
     ds, _, test_ids, _ = read_streamed(cfg)
     test_ids = served_campaigns(cfg.twin.get("campaigns"), test_ids)
-    campaigns = {c: ds.campaigns[c] for c in test_ids}
-    first = campaigns[test_ids[0]]
-    common = [c for c in first.columns if all(c in df.columns for df in campaigns.values())]
-    targets = [c for c in common if c.startswith("E_")]
-    columns = [c for c in common if not c.startswith("E_")]
-    if not targets:
-        raise ConfigError(f"data.path={cfg.data.path}: the test campaigns have no E_ error "
-                          "column in common: the twin has no error to compensate")
-    lead_ins = {}
-    if reference(cfg) == "none":      # state carried over: served after the campaigns it continues
+    rec = served_record(ds, test_ids, reference(cfg), cfg.adapt.every_s, f"data.path={cfg.data.path}")
+    if rec.lead_ins:
         links = predecessors(ds)
-        lead_ins = {c: lead_in(ds, chain(ds, c, links)) for c in test_ids if c in links}
-        if lead_ins:
-            say("served after the campaigns they continue (unscored): "
-                + ", ".join(f"{c} after {' + '.join(chain(ds, c, links)[:-1])}" for c in lead_ins))
-    m = stack(campaigns, [], targets, reference(cfg))
-    errors = {c: m.Y[m.rows_of(c)].to_numpy(float) for c in campaigns}
-    references = {c: scheduled(errors[c], df[TIME].to_numpy(float),   # the reader made `time`
-                               ReferenceSchedule(float(cfg.adapt.every_s)))
-                  for c, df in campaigns.items()}
+        say("served after the campaigns they continue (unscored): "
+            + ", ".join(f"{c} after {' + '.join(chain(ds, c, links)[:-1])}" for c in rec.lead_ins))
     t = cfg.twin
-    machine = Twin(NodeMap.from_config(cfg.connect.nodes), campaigns, columns, errors, targets,
+    machine = Twin(NodeMap.from_config(cfg.connect.nodes), rec.campaigns, rec.columns, rec.errors,
+                   rec.targets,
                    host=str(t.host), port=int(t.port), speed=float(t.speed),
                    drops=[Outage(*p) for p in t.drops], restarts=[Outage(*p) for p in t.restarts],
-                   wait_s=float(t.wait_s), lead_ins=lead_ins, references=references)
-    n = sum(len(df) for df in campaigns.values())
-    say(f"twin at {machine.endpoint}: {len(campaigns)} test campaigns, {n} samples at "
-        f"{float(t.speed):g} per second; offsets of {', '.join(targets)}")
+                   wait_s=float(t.wait_s), lead_ins=rec.lead_ins, references=rec.references)
+    n = sum(len(df) for df in rec.campaigns.values())
+    say(f"twin at {machine.endpoint}: {len(rec.campaigns)} test campaigns, {n} samples at "
+        f"{float(t.speed):g} per second; offsets of {', '.join(rec.targets)}")
     report, path = {}, Path(resolve(cfg.out)) / "twin.json"
 
     def finished(served) -> None:     # before `done`: the record is there when the client ends
-        report.update(twin_report(served, errors, targets), endpoint=machine.endpoint,
-                      speed=float(t.speed), test_campaigns=test_ids, columns=columns,
-                      reference=reference(cfg), references=int(sum(
-                          np.isfinite(r).any(axis=1).sum() for r in references.values())))
+        report.update(twin_report(served, rec.errors, rec.targets), endpoint=machine.endpoint,
+                      speed=float(t.speed), test_campaigns=test_ids, columns=rec.columns,
+                      reference=reference(cfg), references=rec.n_references)
         write_json(path, report)
 
     try:

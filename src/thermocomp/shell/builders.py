@@ -1,23 +1,32 @@
-"""What the stages build from the config: the compensator, its denoiser, what is deployed.
-
-(Beside :mod:`.auto`, whose ``model=auto`` candidates the compensator is built with: in
-``shell/build.py`` they would make ``shell.build`` and ``shell.stages`` a package cycle.)
-"""
+"""What the stages build from the config: the compensator, its denoiser, what is deployed
+(``model=auto``'s candidates from :mod:`thermocomp.shell.config.candidates`)."""
 
 from __future__ import annotations
 
 from omegaconf import DictConfig, OmegaConf
 
-from ...base.errors import ConfigError
-from ...base.log import logger, say
-from ...base.params import check_params
-from ...base.paths import resolve
-from ...core import io
-from ...core.compensator import Compensator
-from ..build import build
-from ..model_store import load_model, model_family
-from ..source import is_volumetric, reference
-from .auto import as_chosen, auto_scheme, build_candidates, is_auto, val_split_scores
+from ..base.errors import ConfigError
+from ..base.log import logger, say
+from ..base.params import check_params
+from ..base.paths import resolve
+from ..core import io
+from ..core.compensator import Compensator
+from ..core.models.auto import as_chosen
+from ..core.scoring.auto_validation import val_split_scores
+from .build import build
+from .config.candidates import build_candidates, is_auto
+from .model_store import load_model, model_family
+from .source import is_volumetric, reference
+
+
+def auto_scheme(cfg: DictConfig, ds) -> dict:
+    """``{"scheme": ...}``: validate as the test split of ``ds`` is held out, unless
+    ``model.estimator.scheme`` names one (``{}`` without a dataset)."""
+    if ds is None or cfg.model.estimator.get("scheme", "auto") != "auto":
+        return {}
+    from ..core.scoring.evaluation import holdout_scheme
+
+    return {"scheme": holdout_scheme(ds)}
 
 
 def build_compensator(cfg: DictConfig, ati: bool = True, ds=None) -> Compensator:
@@ -80,7 +89,7 @@ def warn_stream_mode(cfg: DictConfig, stage: str) -> None:
 def deploy_stream(cfg: DictConfig, comp: Compensator, train: dict, what: str = "the model"):
     """:meth:`StreamingCompensator.from_training` with ``promote.envelope`` (the plain stream
     every deployment starts from); a model that cannot stream is a ConfigError naming ``what``."""
-    from ...apps.deploy import StreamingCompensator
+    from ..apps.deploy import StreamingCompensator
 
     env = cfg.promote.envelope
     try:
@@ -92,7 +101,7 @@ def deploy_stream(cfg: DictConfig, comp: Compensator, train: dict, what: str = "
 def build_adaptive(cfg: DictConfig, streaming, train: dict):
     """The :class:`~thermocomp.apps.deploy.AdaptiveCompensator` of the ``monitor`` group around
     ``streaming``: POD, detector limits and correction guard fitted on ``train``."""
-    from ...apps.deploy.adaptive import AdaptiveCompensator  # loaded by the stages that deploy, only
+    from ..apps.deploy.adaptive import AdaptiveCompensator  # loaded by the stages that deploy, only
 
     m = cfg.monitor
     share = m.pod.fit_share
@@ -116,8 +125,8 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     ``streaming`` when ``monitor.adaptive`` (default), else ``streaming`` itself; it reads
     the lab's column names too (:func:`~thermocomp.apps.deploy.naming.lab_names`) and learns from
     reference measurements as ``adapt.*`` says (``adapt_``)."""
-    from ...apps.deploy.adapt import from_config as adapt_from_config
-    from ...apps.deploy.naming import lab_names
+    from ..apps.deploy.adapt import from_config as adapt_from_config
+    from ..apps.deploy.naming import lab_names
 
     deployed = build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
     deployed.lab_names_ = lab_names(cfg, ds)
@@ -147,9 +156,9 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[
 
 def _registered(cfg: DictConfig, source: str, path, key: str) -> tuple[object, str, str]:
     """A pyfunc folder or ``models:/name@alias`` loaded as registered."""
-    from ...apps.deploy.pyfunc import load_deployed
-    from ...apps.deploy.report import plain
-    from ..tracking import connect
+    from ..apps.deploy.pyfunc import load_deployed
+    from ..apps.deploy.report import plain
+    from .tracking import connect
 
     if path is None:
         connect(cfg)     # only a registry model needs the store (track=false writes none)
