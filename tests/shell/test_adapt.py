@@ -192,3 +192,29 @@ def test_monitor_streams_the_adapted_correction(tmp_path):
     target = json.loads((out / "monitor.json").read_text())["targets"]["E_X"]
     assert target["adapt"]["n_references"] == 3 * 3
     assert target["rmse_adaptive"] < 0.7 * target["adapt"]["rmse_frozen"]
+
+
+def test_rls_with_a_short_memory_is_warned_and_bias_is_not():
+    """rls below forgetting 0.9 swings its gain to the bound between references (measured:
+    E_X 1.30 -> 15.3 µm at 0.5): the user is told; bias, or rls with a long memory, is quiet."""
+    import logging
+
+    from omegaconf import OmegaConf
+
+    from thermocomp.apps.deploy.adapt import from_config
+    from thermocomp.base.log import logger
+    from thermocomp.base.paths import conf_dir
+
+    defaults = OmegaConf.load(conf_dir() / "adapt" / "default.yaml")
+    records: list = []
+    handler = logging.Handler()
+    handler.emit = records.append
+    logger.addHandler(handler)
+    try:
+        for method, forgetting in (("rls", 0.5), ("rls", 0.95), ("bias", 0.5)):
+            given = OmegaConf.merge(defaults, {"method": method, "forgetting": forgetting})
+            assert from_config(given, 2) is not None
+    finally:
+        logger.removeHandler(handler)
+    warned = [r.getMessage() for r in records if r.levelno == logging.WARNING]
+    assert len(warned) == 1 and "adapt.forgetting=0.5" in warned[0], warned
