@@ -25,14 +25,10 @@ from ..base.log import logger, say
 from ..base.paths import resolve
 from ..core import io
 from ..core.io.source import open_dataset
+from .config.checks import data_options
 
 AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
 DIGEST = "digest"         # the dataset digest of data.path in ``ingested_with``
-
-
-def data_options(cfg: DictConfig) -> dict:
-    """The ``data`` group as the reader takes it."""
-    return OmegaConf.to_container(cfg.data, resolve=True)
 
 
 def is_volumetric(cfg: DictConfig) -> bool:
