@@ -82,6 +82,54 @@ def test_yaml_matches_the_generator(name):
         assert params[effect] == {**cls.defaults, **defaults.get(effect, {})}, effect
 
 
+# every conf/sim scenario, written small (the fleet and the volumetric one too)
+WRITTEN = {
+    "column_moving_source": dict(train_hours=4.0, test_hours=4.0, sample_period_s=300.0),
+    "fleet": dict(n_machines=2, days=2, test_days=1, n_jobs=1, sample_period_s=1800.0, n_sensors=6),
+    "large_mill_volumetric": dict(train_hours=6.0, test_hours=6.0, cycle_min=60.0, n_balls=3, sets=["S1"]),
+    "large_mill_week": dict(train_hours=6.0, test_hours=6.0, sample_period_s=600.0),
+    "long_record": dict(duration_days=1.0, sample_period_s=600.0),
+    "swiss_lathe_door": dict(calibration_hours=6.0, production_hours=4.0),
+    "yearround_spindle": dict(n_campaigns=4, sample_period_s=600.0),
+}
+
+
+def test_every_configured_scenario_is_written_small():
+    assert set(WRITTEN) == {p.stem for p in CONF.glob("*.yaml")}
+
+
+@pytest.mark.parametrize("name", sorted(WRITTEN))
+def test_a_seed_writes_the_same_bytes_and_a_truth_that_matches_the_manifest(name, tmp_path):
+    """What `simulate` writes (campaign files, manifest, truth) is byte-identical for one seed, and
+    the truth's campaigns are the manifest's, in its order with its split and start."""
+    omegaconf = pytest.importorskip("omegaconf")
+    from hydra.utils import instantiate
+
+    from thermocomp.apps.sim.scenario import write_scenario
+    from thermocomp.base.files import folder_digest, write_json
+
+    cfg = omegaconf.OmegaConf.load(CONF / f"{name}.yaml")
+    generator = (cfg.sim if "sim" in cfg else cfg).generator
+
+    def written(seed, run):     # as `simulate` writes data.path=<run>/data (digests name the files)
+        gen = instantiate(omegaconf.OmegaConf.merge(generator, {**WRITTEN[name], "seed": seed}),
+                          _convert_="all")
+        truth = write_scenario(gen, tmp_path / run / "data")[0]
+        path = write_json(tmp_path / run / "data.truth.json", truth)
+        return truth, (folder_digest(tmp_path / run / "data"), folder_digest(path))
+
+    truth, digests = written(3, "a")
+    assert written(3, "b")[1] == digests
+    assert written(4, "c")[1][0] != digests[0]
+    manifest = pd.read_csv(tmp_path / "a" / "data" / "campaigns.csv", index_col="campaign")
+    if name == "fleet":     # streamed: the truth counts the campaigns, per machine
+        assert truth["campaigns"] == len(manifest) and set(truth["machines"]) == set(manifest["machine"])
+        return
+    assert list(truth["campaigns"]) == list(manifest.index) == list(truth["initial_ambient_c"])
+    for cid, campaign in truth["campaigns"].items():
+        assert (campaign["split"], campaign["start"]) == tuple(manifest.loc[cid, ["split", "start"]])
+
+
 @pytest.mark.parametrize("name", list(SCENARIOS))
 def test_clean_variant_is_linear_in_the_sensors(name):
     """clean=true: the errors are a linear map of the measured rises plus white noise, nothing else."""

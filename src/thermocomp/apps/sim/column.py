@@ -203,14 +203,8 @@ class ColumnMovingSource(Scenario):
         self.ambient_mean_c = ambient_mean_c
         self.ambient_amplitude_c = ambient_amplitude_c
         self.q3 = q3
-        self.temp_noise_c = temp_noise_c
-        self.temp_quantum_c = temp_quantum_c
-        self.error_noise_um = error_noise_um
-        self.error_quantum_um = error_quantum_um
-        self.effects = effects
-        self.effect_params = effect_params
-        self.clean = clean
-        self.seed = seed
+        super().__init__(temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects,
+                         effect_params, clean, seed)
 
     def machine(self):
         return machine_column()

@@ -219,23 +219,27 @@ class Fleet:
         rows = [r for i in range(self.n_machines) for r in self._rows(i)]
         atomic_write_text(root / MANIFEST, pd.DataFrame(rows).to_csv(index=False))
         per_day = int(round(DAY_S / self.sample_period_s))
-        return {"scenario": "fleet", "params": self.get_params(), "campaigns": len(rows),
-                "rows": len(rows) * per_day, "machines": {t["machine"]: t for t in truths}}
+        return self._truth(truths, campaigns=len(rows), rows=len(rows) * per_day)
 
     def generate(self):
         """The fleet in memory (small fleets: tests); :meth:`write` streams a big one to disk."""
         from thermocomp.core.io.contract import Dataset
 
         check_params(self)
-        campaigns, rows, truths = {}, [], {}
+        campaigns, rows, truths = {}, [], []
         for i in range(self.n_machines):
-            days, truths[machine_id(i)] = self.machine(i)
+            days, truth = self.machine(i)
+            truths.append(truth)
             for row, frame in zip(self._rows(i), days.values()):
                 campaigns[row["campaign"]] = frame
                 rows.append(row)
         manifest = pd.DataFrame(rows).set_index("campaign").drop(columns="file")
-        return Dataset(manifest, campaigns, "fleet"), {"scenario": "fleet", "params": self.get_params(),
-                                                      "machines": truths}
+        return Dataset(manifest, campaigns, "fleet"), self._truth(truths)
+
+    def _truth(self, machines: list[dict], **counts) -> dict:
+        """The fleet's truth: its parameters, ``counts`` (written: campaigns, rows), each machine's."""
+        return {"scenario": "fleet", "params": self.get_params(), **counts,
+                "machines": {t["machine"]: t for t in machines}}
 
 
 def _simulate(net: ThermalNetwork, step_s: float, air: np.ndarray, heat: np.ndarray) -> np.ndarray:

@@ -201,14 +201,8 @@ class LargeMillWeek(Scenario):
         self.test_hours = test_hours
         self.sample_period_s = sample_period_s
         self.heater_power_W = heater_power_W
-        self.temp_noise_c = temp_noise_c
-        self.temp_quantum_c = temp_quantum_c
-        self.error_noise_um = error_noise_um
-        self.error_quantum_um = error_quantum_um
-        self.effects = effects
-        self.effect_params = effect_params
-        self.clean = clean
-        self.seed = seed
+        super().__init__(temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects,
+                         effect_params, clean, seed)
 
     def machine(self):
         machine = moving_column_mill()

@@ -131,7 +131,7 @@ import pandas as pd
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel, room_response
 from thermocomp.apps.sim.campaign import Machine, Programme
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork
-from thermocomp.apps.sim.scenario import CampaignPlan, Scenario, initial_air, plain
+from thermocomp.apps.sim.scenario import CampaignPlan, Scenario, assemble, campaign_entry, plain
 from thermocomp.apps.sim.sensors import AMBIENT, TemperatureSensor, quantise
 from thermocomp.apps.sim.sources import (
     SPINDLE,
@@ -143,7 +143,6 @@ from thermocomp.apps.sim.sources import (
 from thermocomp.apps.sim.thermoelastic import ThermoelasticMap
 from thermocomp.base.errors import ConfigError
 from thermocomp.base.params import FRACTION, POSITIVE, integer, number, numbers, overrides, span
-from thermocomp.core.io.contract import Dataset
 
 SCENARIO = "long_record"
 AXES = "_axes_moving"
@@ -433,14 +432,8 @@ class LongRecord(Scenario):
         self.climate = climate
         self.n_temperature_outliers = n_temperature_outliers
         self.n_error_outliers = n_error_outliers
-        self.temp_noise_c = temp_noise_c
-        self.temp_quantum_c = temp_quantum_c
-        self.error_noise_um = error_noise_um
-        self.error_quantum_um = error_quantum_um
-        self.effects = effects
-        self.effect_params = effect_params
-        self.clean = clean
-        self.seed = seed
+        super().__init__(temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects,
+                         effect_params, clean, seed)
 
     def machine(self):
         return long_record_machine()
@@ -523,25 +516,22 @@ class LongRecord(Scenario):
         start = pd.Timestamp(row["start"])
         parts = {f"{RECORD}a": ("train", frame.iloc[:cut].reset_index(drop=True), 0.0, 0),
                  f"{RECORD}b": ("test", frame.iloc[cut:].reset_index(drop=True), cut_s, cut)}
-        frames, rows, campaigns = {}, [], {}
+        simulated = []
         record_truth = {k: v for k, v in truth["campaigns"][RECORD].items() if k != "split"}
         air = self.node_temperatures_[RECORD]["ambient"]
         previous = ""
         for cid, (split, part, offset, first) in parts.items():
             part = part.assign(time=part["time"] - offset)
-            frames[cid] = part
             share = "first" if split == "train" else "last"
-            rows.append({"campaign": cid, "file": f"{cid}.csv", "split": split,
-                         "start": (start + pd.Timedelta(seconds=offset)).isoformat(timespec="minutes"),
-                         "notes": f"{share} {len(part) / n:.0%} of the one record {RECORD} ({split})",
-                         "ambient_c": round(initial_air(part), 2), "record": RECORD,
-                         "record_offset_s": offset, "continues": previous,
-                         "duration_h": float(part["time"].iloc[-1]) / HOUR})
-            campaigns[cid] = {"start": rows[-1]["start"], "split": split, "record": RECORD,
-                              "record_offset_s": offset, "rows": [first, first + len(part)],
-                              "duration_s": float(part["time"].iloc[-1]),
-                              "continues": previous or None,
-                              "ambient_start_c": float(air.iloc[first])}
+            duration_s = float(part["time"].iloc[-1])
+            simulated.append(campaign_entry(
+                cid, split, start + pd.Timedelta(seconds=offset),
+                f"{share} {len(part) / n:.0%} of the one record {RECORD} ({split})", part,
+                {"record": RECORD, "record_offset_s": offset, "continues": previous,
+                 "duration_h": duration_s / HOUR},
+                {"record": RECORD, "record_offset_s": offset, "rows": [first, first + len(part)],
+                 "duration_s": duration_s, "continues": previous or None,
+                 "ambient_start_c": float(air.iloc[first])}))
             previous = cid
         nodes = self.node_temperatures_.pop(RECORD)
         for cid, (_, part, _, first) in parts.items():
@@ -549,9 +539,8 @@ class LongRecord(Scenario):
         for o in outliers:
             cid = f"{RECORD}a" if o["row"] < cut else f"{RECORD}b"
             o.update(campaign=cid, time_s=o["record_time_s"] - parts[cid][2])
-        manifest = pd.DataFrame(rows).set_index("campaign")
-        truth = {**truth, "campaigns": campaigns,
-                 "initial_ambient_c": {cid: c["ambient_start_c"] for cid, c in campaigns.items()},
+        cut_dataset, campaigns = assemble(self.name, dataset.meta, simulated)
+        truth = {**truth, **campaigns,
                  "record": {"campaign": RECORD, **record_truth, "n_samples": n,
                             "sample_period_s": float(self.sample_period_s)},
                  "split": {"method": "one record cut in time: train = the first samples, test = the last "
@@ -560,7 +549,7 @@ class LongRecord(Scenario):
                            "cut_record_time_s": cut_s, "train": f"{RECORD}a", "test": f"{RECORD}b",
                            "recommended_reference": "none"},
                  "outliers": outliers}
-        return Dataset(manifest, frames, name=self.name, meta=dataset.meta), plain(truth)
+        return cut_dataset, plain(truth)
 
 
 __all__ = ["LongRecord", "WorkshopClimate", "long_record_machine", "workload"]

@@ -130,6 +130,19 @@ class Scenario:
                                    "error_noise_um": NON_NEGATIVE, "error_quantum_um": NON_NEGATIVE,
                                    "clean": BOOLEAN}
 
+    def __init__(self, temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects=(),
+                 effect_params=None, clean=False, seed=0):
+        """Store what every scenario takes: the measurement chain, the planted effects, the seed
+        (a subclass names them in its own ``__init__`` too: :meth:`get_params` reads its signature)."""
+        self.temp_noise_c = temp_noise_c
+        self.temp_quantum_c = temp_quantum_c
+        self.error_noise_um = error_noise_um
+        self.error_quantum_um = error_quantum_um
+        self.effects = effects
+        self.effect_params = effect_params
+        self.clean = clean
+        self.seed = seed
+
     # --- to be provided by scenarios ------------------------------------------------------
     def machine(self):
         raise NotImplementedError
@@ -190,7 +203,7 @@ class Scenario:
         plans = self.plans(rng)
         check_size(sum(plan.duration_s / plan.sample_period_s for plan in plans), len(plans))
         measurement = self.measurement()
-        rows, frames, truth_campaigns, measured = [], {}, {}, {}
+        simulated, frames, measured = [], {}, {}
         self.node_temperatures_ = {}
         from ...base.progress import bar
 
@@ -210,16 +223,12 @@ class Scenario:
             measured[plan.cid] = (measured_rows(frame["time"].to_numpy(), plan.error_period_s)
                                   if plan.error_period_s else np.ones(len(frame), dtype=bool))
             start = datetime(int(self.year), 1, 1) + timedelta(seconds=plan.start_s)
-            rows.append({"campaign": plan.cid, "file": f"{plan.cid}.csv", "split": plan.split,
-                         "start": start.isoformat(timespec="minutes"), "notes": plan.notes,
-                         "ambient_c": round(initial_air(frame), 2), **plan.manifest})
-            truth_campaigns[plan.cid] = {"start": rows[-1]["start"], "split": plan.split,
-                                         "duration_s": plan.duration_s, **plan.truth, **info}
+            simulated.append(campaign_entry(plan.cid, plan.split, start, plan.notes, frame, plan.manifest,
+                                            {"duration_s": plan.duration_s, **plan.truth, **info}))
         clean = None
         if self.clean:
             clean = self._make_clean(frames, measured, machine)
-        manifest = pd.DataFrame(rows).set_index("campaign")
-        dataset = Dataset(manifest, frames, name=self.name, meta={"scenario": self.name, "seed": self.seed})
+        dataset, campaigns = assemble(self.name, {"scenario": self.name, "seed": self.seed}, simulated)
         truth = {
             "scenario": self.name,
             "seed": plain(self.seed),
@@ -232,8 +241,7 @@ class Scenario:
             "unmeasured_nodes": [n for n in machine.network.names
                                  if n not in {s.main_node for s in machine.sensors}],
             **self.truth_extra(),
-            "initial_ambient_c": {cid: c["ambient_start_c"] for cid, c in truth_campaigns.items()},
-            "campaigns": truth_campaigns,
+            **campaigns,
             "undeclared_effects": [] if self.clean else [e.record() for e in effects],
         }
         if clean is not None:
@@ -260,6 +268,29 @@ class Scenario:
         return {"formula": "E = (T - T(0)) @ coefficients + N(0, error_um^2), quantised",
                 "coefficients_um_per_K": {t: dict(zip(sensors, map(float, coef[:, i])))
                                           for i, t in enumerate(targets)}}
+
+
+def campaign_entry(cid: str, split: str, start, notes: str, frame: pd.DataFrame, columns: Mapping,
+                   truth: Mapping) -> tuple[dict, pd.DataFrame, dict]:
+    """One simulated campaign as :func:`assemble` takes it: its manifest row (the contract's
+    columns, then the scenario's ``columns``), its frame, its truth (``start``, ``split``, then
+    ``truth``).  ``start``: a datetime."""
+    row = {"campaign": cid, "file": f"{cid}.csv", "split": split,
+           "start": start.isoformat(timespec="minutes"), "notes": notes,
+           "ambient_c": round(initial_air(frame), 2), **columns}
+    return row, frame, {"start": row["start"], "split": split, **truth}
+
+
+def assemble(name: str, meta: dict, simulated: list[tuple[dict, pd.DataFrame, dict]]
+             ) -> tuple[Dataset, dict]:
+    """``(dataset, truth of its campaigns)`` of :func:`campaign_entry` results, in their order;
+    the truth part holds ``initial_ambient_c`` and ``campaigns``."""
+    manifest = pd.DataFrame([row for row, _, _ in simulated]).set_index("campaign")
+    frames = {row["campaign"]: frame for row, frame, _ in simulated}
+    campaigns = {row["campaign"]: truth for row, _, truth in simulated}
+    return Dataset(manifest, frames, name=name, meta=meta), {
+        "initial_ambient_c": {cid: c["ambient_start_c"] for cid, c in campaigns.items()},
+        "campaigns": campaigns}
 
 
 def initial_air(frame: pd.DataFrame) -> float:

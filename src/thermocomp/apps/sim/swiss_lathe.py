@@ -195,14 +195,8 @@ class SwissLatheDoor(Scenario):
         self.tool_rpm = tool_rpm
         self.segment_h = segment_h
         self.production_rpm = production_rpm
-        self.temp_noise_c = temp_noise_c
-        self.temp_quantum_c = temp_quantum_c
-        self.error_noise_um = error_noise_um
-        self.error_quantum_um = error_quantum_um
-        self.effects = effects
-        self.effect_params = effect_params
-        self.clean = clean
-        self.seed = seed
+        super().__init__(temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects,
+                         effect_params, clean, seed)
 
     def machine(self):
         return swiss_lathe()

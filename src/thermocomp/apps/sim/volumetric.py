@@ -46,7 +46,7 @@ import numpy as np
 import pandas as pd
 
 from thermocomp.apps.sim.large_mill import LargeMillWeek, moving_column_mill
-from thermocomp.apps.sim.scenario import plain, single_threaded_blas
+from thermocomp.apps.sim.scenario import Scenario, plain, single_threaded_blas
 from thermocomp.apps.sim.thermoelastic import ThermoelasticMap
 from thermocomp.apps.volumetric import SETUP_FILE, BallArray, KinematicModel, Setup, position_set
 from thermocomp.apps.volumetric.artefact import MAX_BALLS, POSITION_SETS
@@ -176,8 +176,6 @@ class LargeMillVolumetric(LargeMillWeek):
         self.test_hours = test_hours
         self.cycle_min = cycle_min
         self.heater_power_W = heater_power_W
-        self.temp_noise_c = temp_noise_c
-        self.temp_quantum_c = temp_quantum_c
         self.probing_um = probing_um
         self.ball_um = ball_um
         self.cold_ve_um = cold_ve_um
@@ -189,11 +187,9 @@ class LargeMillVolumetric(LargeMillWeek):
         self.misalignment_deg = misalignment_deg
         self.sets = sets
         self.x_centres = x_centres
-        self.seed = seed
         # what the thermal twin of large_mill_week needs: the row is the cycle, no planted effect,
         # no TCP probe (the parameters are computed from the node temperatures)
-        self.effects, self.effect_params, self.clean = (), None, False
-        self.error_noise_um, self.error_quantum_um = 0.0, 0.0
+        Scenario.__init__(self, temp_noise_c, temp_quantum_c, 0.0, 0.0, seed=seed)
 
     @property
     def sample_period_s(self) -> float:

@@ -88,20 +88,14 @@ class YearRoundSpindle(Scenario):
         self.duration_h = duration_h
         self.speeds_rpm = speeds_rpm
         self.step_fraction = step_fraction
-        self.temp_noise_c = temp_noise_c
-        self.temp_quantum_c = temp_quantum_c
-        self.error_noise_um = error_noise_um
-        self.error_quantum_um = error_quantum_um
         self.test_every = test_every
         self.year = year
         self.start_hours = start_hours
         self.ambient = ambient
         self.summer_air_gain = summer_air_gain
         self.air_movement_sd = air_movement_sd
-        self.effects = effects
-        self.effect_params = effect_params
-        self.clean = clean
-        self.seed = seed
+        super().__init__(temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects,
+                         effect_params, clean, seed)
 
     def effect_defaults(self) -> dict:
         return VMC_EFFECTS
