@@ -217,3 +217,23 @@ def test_a_continuing_campaign_is_served_after_the_one_it_continues(tmp_path):
     assert twin["n_samples"] == 2 * ROWS            # K04 scored once, not again as K05's lead-in
     assert link["samples"] == 3 * ROWS              # ... but streamed before K05
     assert abs(r["rms_compensated"] - replay["rmse"]) <= 0.05 * replay["rmse"]
+
+
+@pytest.mark.parametrize("reference", ["none", "first_sample"])
+def test_the_served_record_carries_the_chains_it_serves_lead_ins_for(tmp_path, reference):
+    """One definition of what a campaign continues: the record's chains, whose lead-ins the twin
+    serves first (state carried over only with data.reference=none)."""
+    from thermocomp.apps.machine.record import served_record
+    from thermocomp.core.io import read_dataset
+
+    ds = read_dataset(make_machine(tmp_path / "data", continued=True))[0]
+    rec = served_record(ds, ["K04", "K05"], reference, 600.0, "data.path")
+    if reference != "none":
+        assert rec.chains == rec.lead_ins == {}
+        return
+    assert list(rec.chains) == list(rec.lead_ins) == ["K05"]
+    (before, k05), = rec.chains.values()     # K05's clock picks up where a 60-row campaign ends
+    assert k05 == "K05" and before in ds.ids()
+    lead = rec.lead_ins["K05"]
+    np.testing.assert_array_equal(lead["E_X"], ds.campaigns[before]["E_X"])
+    assert lead["time"].iloc[-1] + 60.0 == ds.campaigns["K05"]["time"].iloc[0]

@@ -96,6 +96,13 @@ def chain(ds: Dataset, cid: str, links: Mapping[str, str] | None = None) -> list
     return out
 
 
+def chains(ds: Dataset, ids=None) -> dict[str, list[str]]:
+    """``{campaign: its chain}`` (:func:`chain`) for the campaigns of ``ids`` (default: all, in
+    the manifest's order) that continue others."""
+    links = predecessors(ds)
+    return {c: chain(ds, c, links) for c in (ds.ids() if ids is None else ids) if c in links}
+
+
 def joined(ds: Dataset, ids: list[str]) -> pd.DataFrame:
     """The campaigns ``ids`` end to end as one campaign, ``time`` continuous.
 
@@ -136,8 +143,7 @@ def carry_over(comp, ds: Dataset) -> dict[str, list[str]]:
     """
     if getattr(comp, "reference", "first_sample") != "none":
         return {}
-    links = predecessors(ds)
-    return {c: chain(ds, c, links) for c in ds.ids() if c in links}
+    return chains(ds)
 
 
 def predict(comp, ds: Dataset, ids, mode: str = "simulation", carried: Mapping | None = None

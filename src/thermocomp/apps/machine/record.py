@@ -9,7 +9,7 @@ import numpy as np
 
 from ...base.errors import ConfigError
 from ...core.context import TIME
-from ...core.continuation import chain, lead_in, predecessors
+from ...core.continuation import chains, lead_in
 from ...core.frame import stack
 from ..deploy.adapt import ReferenceSchedule, scheduled
 
@@ -32,7 +32,8 @@ class Record:
     targets: list[str]         # the E_ errors compensated
     errors: dict               # id -> (n, targets) the machine's error in the models' frame
     references: dict           # id -> (n, targets) a reference measurement or NaN
-    lead_ins: dict             # id -> the campaigns it continues, served before it (unscored)
+    chains: dict               # id -> the campaigns it continues, oldest first, then itself
+    lead_ins: dict             # id -> those it continues joined, served before it (unscored)
 
     @property
     def n_references(self) -> int:
@@ -49,14 +50,11 @@ def served_record(ds, test_ids: list[str], reference: str, every_s: float, where
     if not targets:
         raise ConfigError(f"{where}: the test campaigns have no E_ error column in common: the "
                           "twin has no error to compensate")
-    lead_ins = {}
-    if reference == "none":
-        links = predecessors(ds)
-        lead_ins = {c: lead_in(ds, chain(ds, c, links)) for c in test_ids if c in links}
+    continued = chains(ds, test_ids) if reference == "none" else {}
     m = stack(campaigns, [], targets, reference)
     errors = {c: m.Y[m.rows_of(c)].to_numpy(float) for c in campaigns}
     references = {c: scheduled(errors[c], df[TIME].to_numpy(float),   # the reader made `time`
                                ReferenceSchedule(float(every_s)))
                   for c, df in campaigns.items()}
     return Record(campaigns, [c for c in common if not c.startswith("E_")], targets, errors,
-                  references, lead_ins)
+                  references, continued, {c: lead_in(ds, ids) for c, ids in continued.items()})

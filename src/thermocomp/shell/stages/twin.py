@@ -21,7 +21,6 @@ from ...base.errors import ConfigError
 from ...base.files import write_json
 from ...base.log import say
 from ...base.paths import resolve
-from ...core.continuation import chain, predecessors
 from ..config.checks import check_config
 from ..source import read_streamed, reference
 
@@ -35,10 +34,9 @@ def twin(cfg: DictConfig) -> dict:
     ds, _, test_ids, _ = read_streamed(cfg)
     test_ids = served_campaigns(cfg.twin.get("campaigns"), test_ids)
     rec = served_record(ds, test_ids, reference(cfg), cfg.adapt.every_s, f"data.path={cfg.data.path}")
-    if rec.lead_ins:
-        links = predecessors(ds)
+    if rec.chains:
         say("served after the campaigns they continue (unscored): "
-            + ", ".join(f"{c} after {' + '.join(chain(ds, c, links)[:-1])}" for c in rec.lead_ins))
+            + ", ".join(f"{c} after {' + '.join(ids[:-1])}" for c, ids in rec.chains.items()))
     t = cfg.twin
     machine = Twin(NodeMap.from_config(cfg.connect.nodes), rec.campaigns, rec.columns, rec.errors,
                    rec.targets,
