@@ -207,3 +207,33 @@ def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promot
         stop_process_group(server)
         log.close()
     assert not (tmp_path / "mlflow.db").exists() and not (tmp_path / "mlruns").exists()
+
+
+def test_serve_replay_connect_and_export_tell_a_registered_model_from_a_pickle_alike(tmp_path):
+    """One definition (builders.is_registered) of what is loaded as registered, without data."""
+    from thermocomp.shell.builders import is_registered
+
+    folder, pickled = tmp_path / "pyfunc", tmp_path / "run" / "model.pkl"
+    folder.mkdir()
+    (folder / "MLmodel").write_text("flavors: {}\n")
+    pickled.parent.mkdir()
+    pickled.write_bytes(b"")
+    assert is_registered(f"models:/{NAME}@champion") and is_registered(f"models:/{NAME}/1")
+    assert is_registered(str(folder))
+    assert not is_registered(str(pickled)) and not is_registered(None)
+    assert not is_registered(str(tmp_path))          # a folder without MLmodel is no pyfunc model
+
+
+@pytest.mark.parametrize("which", ["@champion", "/1"])
+def test_an_exported_registered_model_names_the_run_serve_finds_it_by(promoted, tmp_path, which):
+    """export and serve read `models:/<name>@<alias>` and `/<version>` alike (registry.registered_version):
+    the export's provenance names the run the registered version came from."""
+    from mlflow import MlflowClient
+
+    root, data, uri = promoted
+    source = f"models:/{NAME}{which}"
+    assert main(["export", f"export.model={source}", "export.format=json", f"tracking_uri={uri}",
+                 f"data.path={data}", f"out={tmp_path / 'x'}", "track=false"]) == 0
+    provenance = json.loads((tmp_path / "x" / "compensator.json").read_text())["provenance"]
+    run = MlflowClient(uri, registry_uri=uri).get_model_version(NAME, "1").run_id
+    assert run and provenance["run_id"] == run and provenance["dataset_hash"] is None

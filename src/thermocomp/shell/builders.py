@@ -5,11 +5,10 @@ from __future__ import annotations
 
 from omegaconf import DictConfig, OmegaConf
 
-from ..base.errors import ConfigError
+from ..base.errors import ConfigError, ThermocompError
 from ..base.log import logger, say
 from ..base.params import check_params
 from ..base.paths import resolve
-from ..core import io
 from ..core.compensator import Compensator
 from ..core.models.auto import as_chosen
 from ..core.scoring.auto_validation import val_split_scores
@@ -135,23 +134,32 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     return deployed
 
 
+def is_registered(source) -> bool:
+    """Whether a model source (``replay.model``, ``serve.model`` ...) is loaded as registered, a
+    pyfunc folder or ``models:/name@alias``, with no data; else it is a model.pkl made deployable
+    on the train split (or, ``None``, the configured model fitted there)."""
+    return source is not None and (str(source).startswith("models:/")
+                                   or (resolve(str(source)) / "MLmodel").is_file())
+
+
 def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[object, str, str]:
     """``(deployed compensator, source, model name)`` of ``source`` (the value of ``key``): the
     configured model fitted on ``train_ids`` (``None``), a model.pkl made deployable, or a pyfunc
-    folder / ``models:/name@alias`` as registered (``replay``, ``connect``)."""
+    folder / ``models:/name@alias`` as registered (:func:`is_registered`: ``ds`` is not read)."""
     if source is None:
         say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
         train = {c: ds.campaigns[c] for c in train_ids}
         comp, name, source = build_compensator(cfg, ds=ds).fit(train), str(cfg.model.name), "fitted"
+        what = "the model"
     else:
         source = str(source)
-        path = resolve(source) if not source.startswith("models:/") else None
-        if path is None or (path / "MLmodel").is_file():
-            return _registered(cfg, source, path, key)
-        comp = load_model(path)
-        name = model_family(comp)
+        if is_registered(source):
+            return _registered(cfg, source, None if source.startswith("models:/") else resolve(source),
+                               key)
+        comp = load_model(resolve(source))
+        name, what = model_family(comp), f"{key}={source}"
         train = {c: ds.campaigns[c] for c in train_ids}
-    return deployable(cfg, deploy_stream(cfg, comp, train), train, ds), source, name
+    return deployable(cfg, deploy_stream(cfg, comp, train, what), train, ds), source, name
 
 
 def _registered(cfg: DictConfig, source: str, path, key: str) -> tuple[object, str, str]:
@@ -164,7 +172,7 @@ def _registered(cfg: DictConfig, source: str, path, key: str) -> tuple[object, s
         connect(cfg)     # only a registry model needs the store (track=false writes none)
     try:
         deployed = load_deployed(source, path)      # replayed as registered
-    except io.ContractError:
+    except ThermocompError:
         raise
     except Exception as exc:
         raise ConfigError(f"{key}={source}: cannot load it "

@@ -182,6 +182,16 @@ def register(cfg: DictConfig, client, cand: Candidate, ds, dataset_hash: str) ->
     return Outcome(version, existing is None, champ_version, champ_score, moved, why)
 
 
+def registered_version(client, model: str):
+    """The model version ``models:/<name>@<alias>`` or ``models:/<name>/<version>`` names
+    (MLflow's exception when there is none)."""
+    name, sep, alias = model[len("models:/"):].partition("@")
+    if sep:
+        return retry_locked(client.get_model_version_by_alias, name, alias)
+    name, _, version = name.partition("/")
+    return retry_locked(client.get_model_version, name, version)
+
+
 def check_served_model(model: str, uri: str) -> str:
     """``serve.model`` as the server takes it: a pyfunc folder or a run's ``model.pkl`` (resolved),
     or a registered
@@ -198,14 +208,8 @@ def check_served_model(model: str, uri: str) -> str:
                               f"model folder (no {path / 'MLmodel'}) nor a model.pkl")
         return str(path)
     ensure_store(uri)
-    name, sep, alias = model[len("models:/"):].partition("@")
-    client = MlflowClient(uri, registry_uri=uri)
     try:
-        if sep:
-            retry_locked(client.get_model_version_by_alias, name, alias)
-        else:
-            name, _, version = name.partition("/")
-            retry_locked(client.get_model_version, name, version)
+        registered_version(MlflowClient(uri, registry_uri=uri), model)
     except Exception:
         raise ConfigError(f"serve.model={model}: no such model version in {uri}; run "
                           f"`thermocomp promote` first") from None

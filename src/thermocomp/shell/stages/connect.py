@@ -23,7 +23,7 @@ from ...base.errors import ConfigError
 from ...base.files import write_json
 from ...base.log import say
 from ...base.paths import resolve
-from ..builders import deployable_model
+from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
 from ..source import read_streamed
 
@@ -53,9 +53,7 @@ def connect(cfg: DictConfig) -> dict:
     if source is not None and not str(source).strip():
         raise ConfigError("connect.model is empty: a model.pkl, a pyfunc folder or "
                           "models:/<name>@<alias>")
-    registered = source is not None and (str(source).startswith("models:/")
-                                         or (resolve(str(source)) / "MLmodel").is_file())
-    ds, train_ids = (None, []) if registered else read_streamed(cfg, test=False)[:2]
+    ds, train_ids = (None, []) if is_registered(source) else read_streamed(cfg, test=False)[:2]
     deployed, source, name = deployable_model(cfg, ds, train_ids, source, "connect.model")
     guard = _guard(cfg, deployed, ds, train_ids)
     limiter = OffsetLimiter(guard.lo, guard.hi, guard.max_rate_per_s * guard.period_s,

@@ -22,50 +22,31 @@ from ...base.errors import ConfigError
 from ...base.files import folder_digest, staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
-from ..builders import deploy_stream, deployable
+from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
-from ..model_store import load_model, model_family
+from ..model_store import model_family
+from ..registry import registered_version
 from ..source import read_streamed
-from ..tracking import connect
 
 
 def _registry_run(source: str) -> str | None:
     """The MLflow run a registered ``models:/name@alias`` (or ``/version``) came from."""
     from mlflow import MlflowClient
 
-    name, _, which = source[len("models:/"):].partition("@")
-    client = MlflowClient()
     try:
-        mv = (client.get_model_version_by_alias(name, which) if which
-              else client.get_model_version(*name.split("/", 1)))
+        return registered_version(MlflowClient(), source).run_id
     except Exception:
         return None
-    return mv.run_id
 
 
 def _deployed(cfg: DictConfig, source: str) -> tuple[object, dict]:
     """``(deployed compensator, provenance)`` of ``export.model``."""
-    path = resolve(source) if not source.startswith("models:/") else None
-    if path is None or (path / "MLmodel").is_file():
-        from ...apps.deploy.pyfunc import load_deployed
-
-        if path is None:
-            connect(cfg)
-        try:
-            deployed = load_deployed(source, path)
-        except ConfigError:
-            raise
-        except Exception as exc:
-            if type(exc).__name__ == "ContractError":
-                raise
-            raise ConfigError(f"export.model={source}: cannot load it "
-                              f"({' '.join(str(exc).split())[:200]})") from None
-        run = _registry_run(source) if path is None else None
+    registered = is_registered(source)
+    ds, train_ids = (None, []) if registered else read_streamed(cfg)[:2]
+    deployed = deployable_model(cfg, ds, train_ids, source, "export.model")[0]
+    if registered:
+        run = _registry_run(source) if source.startswith("models:/") else None
         return deployed, {"run_id": run, "dataset_hash": None}
-    comp = load_model(path)
-    ds, train_ids, _, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    deployed = deployable(cfg, deploy_stream(cfg, comp, train, f"export.model={source}"), train, ds)
     return deployed, {"run_id": None, "dataset_hash": folder_digest(resolve(cfg.data.path))}
 
 

@@ -15,7 +15,6 @@ Ctrl-C or SIGTERM; either way the model folder written for it is removed.  Reque
 from __future__ import annotations
 
 import os
-from pathlib import Path
 
 from omegaconf import DictConfig
 
@@ -31,14 +30,10 @@ QUIET_DOWNLOADS = "MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR"
 def _deployed(cfg: DictConfig, model: str):
     """The compensator ``model`` holds: a registered or saved one as it is (its signature checked),
     a ``model.pkl`` made deployable on the train split of ``data.path``."""
-    from ...apps.deploy.pyfunc import load_deployed
-
-    if model.startswith("models:/") or not Path(model).is_file():
-        return load_deployed(model, None if model.startswith("models:/") else Path(model))
-    from ..builders import deployable_model
+    from ..builders import deployable_model, is_registered
     from ..source import read_streamed
 
-    ds, train_ids = read_streamed(cfg, test=False)[:2]
+    ds, train_ids = (None, []) if is_registered(model) else read_streamed(cfg, test=False)[:2]
     return deployable_model(cfg, ds, train_ids, model, "serve.model")[0]
 
 
