@@ -26,7 +26,7 @@ import pandas as pd
 from ...core.context import TIME
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
-from .streaming import OutOfEnvelopeError, StreamingCompensator
+from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
 from .surveillance import SensorMonitor
 
 
@@ -256,18 +256,13 @@ class AdaptiveCompensator:
                              for c in self.columns_]) if self.columns_ else np.empty((len(frame), 0))
         time = (pd.to_numeric(frame[TIME], errors="coerce").to_numpy(float) if TIME in frame.columns
                 else np.full(len(frame), np.nan))
-        y = np.empty((len(X), len(self.targets_)))
-        clamps = np.zeros(len(X), dtype=np.int64)
         excluded, events = [], []
-        snap = self._snapshot()
-        try:
-            for i in range(len(X)):
-                y[i], clamps[i] = self._step(X[i], time[i])
-                excluded.append(",".join(self.excluded_inputs))
-                events.append(json.dumps(self.last_events_, ensure_ascii=False))
-        except Exception:
-            self._restore(snap)
-            raise
+
+        def record_row():
+            excluded.append(",".join(self.excluded_inputs))
+            events.append(json.dumps(self.last_events_, ensure_ascii=False))
+
+        y, clamps = step_block(self, X, time, record_row)
         out = pd.DataFrame(y, columns=self.targets_)
         out["n_clamped"] = clamps
         out["excluded_inputs"] = excluded

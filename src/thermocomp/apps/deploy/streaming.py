@@ -82,6 +82,24 @@ class Envelope:
         return (X < self.lo) | (X > self.hi)
 
 
+def step_block(deployed, X: np.ndarray, time: np.ndarray, after_row=None) -> tuple[np.ndarray, np.ndarray]:
+    """``(predictions, n_clamped)`` of ``deployed._step`` over the rows of ``X``, all or nothing:
+    a row that raises restores the state the block found (a refused block leaves a stream where
+    it was); ``after_row()`` runs after each accepted row."""
+    y = np.empty((len(X), len(deployed.targets_)))
+    clamps = np.zeros(len(X), dtype=np.int64)
+    snap = deployed._snapshot()
+    try:
+        for i in range(len(X)):
+            y[i], clamps[i] = deployed._step(X[i], time[i])
+            if after_row is not None:
+                after_row()
+    except Exception:
+        deployed._restore(snap)
+        raise
+    return y, clamps
+
+
 class StreamingCompensator:
     """Causal, stateful compensator for streaming use on the machine.
 
@@ -242,15 +260,7 @@ class StreamingCompensator:
         X = np.column_stack([frame[c].to_numpy(dtype=float) for c in self.columns_]) \
             if self.columns_ else np.empty((len(frame), 0))
         time = frame[TIME].to_numpy(float) if TIME in frame.columns else np.full(len(frame), np.nan)
-        y = np.empty((len(X), len(self.targets_)))
-        clamps = np.zeros(len(X), dtype=np.int64)
-        snap = self._snapshot()
-        try:
-            for i in range(len(X)):
-                y[i], clamps[i] = self._step(X[i], time[i])
-        except Exception:
-            self._restore(snap)
-            raise
+        y, clamps = step_block(self, X, time)
         out = pd.DataFrame(y, columns=self.targets_)
         out["n_clamped"] = clamps
         return out
