@@ -2,11 +2,15 @@
 
 from __future__ import annotations
 
+import contextlib
+import io
 import os
 import shutil
 import subprocess
 import sys
 from pathlib import Path
+from subprocess import CompletedProcess
+from subprocess import run as run_process
 
 import numpy as np
 import pandas as pd
@@ -31,34 +35,90 @@ LIGHT = ("plots=none", "eval.mutual_prediction=false", "eval.ati_baselines=false
 FAST = (*UNTRACKED, *LIGHT, "eval.validation=false")
 
 
-def thermocomp(*args: str, cwd=None, env=None, check=True) -> subprocess.CompletedProcess:
-    """Run the installed console command (the real entry point, real exit status)."""
-    full_env = {**os.environ, **(env or {})}
-    proc = subprocess.run([str(BIN / "thermocomp"), *args], cwd=cwd or ROOT, env=full_env,
-                          capture_output=True, text=True, timeout=600)
+def thermocomp(*args: str, cwd=None, env=None, check=True,
+               subprocess: bool = False) -> CompletedProcess:
+    """``thermocomp <args>`` run from ``cwd`` (the project root) with ``env`` added to the
+    environment: its exit status, stdout and stderr.
+
+    In this process (:func:`thermocomp.shell.cli.main`, what the console script calls), without
+    a new interpreter's ~2.5 s of CPU for the imports: for a test about what a command does
+    (scores, files, messages, exit statuses).  ``subprocess=True`` runs the installed console
+    script, for a test about the process boundary itself: signals, servers, stdin, concurrent
+    processes, a command another one runs (``hydra.main`` holds one Hydra per process, so a
+    command cannot run inside another in the same process)."""
+    run = _console if subprocess else _in_process
+    proc = run(args, Path(cwd or ROOT), env or {})
     if check and proc.returncode != 0:
         raise AssertionError(f"thermocomp {' '.join(args)} -> {proc.returncode}\n"
                              f"stdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
     return proc
 
 
-def cli(*args: str, check=True) -> subprocess.CompletedProcess:
-    """``thermocomp <args>`` in this process (:func:`thermocomp.shell.cli.main`), its exit status
-    and output as :func:`thermocomp` gives them, without a new interpreter's ~2.5 s of CPU for
-    the imports: for a test about what a command does, not about the process boundary."""
-    import contextlib
-    import io
+cli = thermocomp     # the name the first in-process callers use
 
+
+def _console(args, cwd: Path, env: dict) -> CompletedProcess:
+    return run_process([str(BIN / "thermocomp"), *args], cwd=cwd, env={**os.environ, **env},
+                       capture_output=True, text=True, timeout=600)
+
+
+def _in_process(args, cwd: Path, env: dict) -> CompletedProcess:
     from thermocomp.shell.cli import main
 
     out, err = io.StringIO(), io.StringIO()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+    with process_state(cwd, env), contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
         code = main(list(args))
-    proc = subprocess.CompletedProcess(["thermocomp", *args], code, out.getvalue(), err.getvalue())
-    if check and code != 0:
-        raise AssertionError(f"thermocomp {' '.join(args)} -> {code}\n"
-                             f"stdout:\n{proc.stdout}\nstderr:\n{proc.stderr}")
-    return proc
+    return CompletedProcess(["thermocomp", *args], code, out.getvalue(), err.getvalue())
+
+
+@contextlib.contextmanager
+def process_state(cwd: Path, env: dict):
+    """Run a block in ``cwd`` with ``env`` added, and put back after it what a command changes
+    in its process, so that the next test finds the process as it was: the current folder,
+    ``sys.argv``, the environment (``THERMOCOMP_LOG_LEVEL``, ...), the loggers' handlers and
+    levels (Hydra's job logging replaces the root's, pytest's capture among them), the
+    warning filters, Hydra's global state and MLflow's (its tracking URI, a run left active)."""
+    import logging
+    import warnings
+
+    from hydra.core.global_hydra import GlobalHydra
+    from hydra.core.hydra_config import HydraConfig
+
+    argv, environ, folder = sys.argv[:], dict(os.environ), os.getcwd()
+    loggers = [logging.getLogger(), *(lg for lg in logging.Logger.manager.loggerDict.values()
+                                      if isinstance(lg, logging.Logger))]
+    logs = [(lg, lg.handlers[:], lg.level, lg.propagate, lg.disabled) for lg in loggers]
+    hydra_was_up, hydra_config = GlobalHydra.instance().is_initialized(), HydraConfig.instance().cfg
+    os.environ.update(env)
+    os.chdir(cwd)
+    try:
+        with warnings.catch_warnings():
+            yield
+    finally:
+        os.chdir(folder)
+        sys.argv[:] = argv
+        os.environ.clear()
+        os.environ.update(environ)
+        for lg, handlers, level, propagate, disabled in logs:
+            lg.handlers[:] = handlers
+            lg.setLevel(level)
+            lg.propagate, lg.disabled = propagate, disabled
+        if not hydra_was_up:
+            GlobalHydra.instance().clear()
+        HydraConfig.instance().cfg = hydra_config
+        _restore_mlflow()
+
+
+def _restore_mlflow() -> None:
+    """MLflow's tracking URI as the environment just put back says (``set_tracking_uri``
+    mirrors it there), no run left active by a command that failed inside it."""
+    if "mlflow" not in sys.modules:
+        return
+    import mlflow
+
+    while mlflow.active_run() is not None:
+        mlflow.end_run("FAILED")
+    mlflow.set_tracking_uri(os.environ.get("MLFLOW_TRACKING_URI"))
 
 
 def influence(comp, test: dict) -> dict[str, float]:

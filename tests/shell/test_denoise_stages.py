@@ -1,4 +1,4 @@
-"""The denoise -> select -> train -> evaluate chain through the real console command.
+"""The denoise -> select -> train -> evaluate chain through the command line (in process).
 
 The staged path (files under data/processed and models/) and `thermocomp run` (all in one
 process) must give the same model, and train must not reuse files made for other settings.

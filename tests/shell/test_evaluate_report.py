@@ -138,7 +138,7 @@ def test_plots_none_writes_no_figure_and_the_same_numbers(small_year, tmp_path):
 
 @pytest.mark.slow
 def test_cli_evaluate_then_dvc_plots_show(tmp_path):
-    """simulate -> ingest -> train (ati=cmeans) -> evaluate through the console command in a
+    """simulate -> ingest -> train (ati=cmeans) -> evaluate through the command line in a
     scratch project; figures logged to MLflow; `dvc plots show` renders them."""
     proj = tmp_path / "proj"
     proj.mkdir()

@@ -6,10 +6,11 @@ import pytest
 from hydra import compose, initialize_config_dir
 from hydra.utils import instantiate
 
-from conftest import thermocomp
+from conftest import LIGHT, UNTRACKED, thermocomp
 from thermocomp.base.paths import conf_dir
 from thermocomp.core.models import ARX, ARXRF
 from thermocomp.core.scoring.evaluation import score
+from thermocomp.shell import cli  # noqa: F401  (its import registers ${sim_dataset:}, ${root:})
 from thermocomp.shell.builders import build_compensator
 
 EXPERIMENTS = {
@@ -70,8 +71,7 @@ def test_paper_settings_reach_the_estimators():
 def test_arx_runs_in_both_modes_through_the_cli(default_dataset, tmp_path, mode):
     out = tmp_path / mode
     thermocomp("run", "model=arx", f"eval.mode={mode}", f"data.path={default_dataset}", f"out={out}",
-               "track=false", "plots=none", "eval.mutual_prediction=false",
-               "eval.ati_baselines=false")
+               *UNTRACKED, *LIGHT)
     m = json.loads((out / "metrics.json").read_text())
     assert m["model"] == "arx" and m["mode"] == mode
     for t in ("E_X", "E_Y", "E_Z"):
@@ -82,17 +82,15 @@ def test_arx_runs_in_both_modes_through_the_cli(default_dataset, tmp_path, mode)
 @pytest.mark.slow
 def test_lstm_experiment_and_arx_rf_without_door_run_on_the_default_data(default_dataset, tmp_path):
     thermocomp("run", "experiment=lstm_yearround", "model.estimator.max_epochs=5",
-               f"data.path={default_dataset}", f"out={tmp_path / 'lstm'}", "track=false",
-               "plots=none")
+               f"data.path={default_dataset}", f"out={tmp_path / 'lstm'}", *UNTRACKED, *LIGHT)
     assert json.loads((tmp_path / "lstm" / "metrics.json").read_text())["model"] == "lstm"
     # the default data have no door: a named state column that is missing is a clean exit 2 ...
     proc = thermocomp("run", "model=arx_rf", f"data.path={default_dataset}", f"out={tmp_path / 'rf'}",
-                      "track=false", "plots=none", "eval.mutual_prediction=false", check=False)
+                      *UNTRACKED, *LIGHT, check=False)
     assert proc.returncode == 2 and "S_door" in proc.stderr
     # ... and another state signal can stand in (spindle on/off)
     thermocomp("run", "model=arx_rf", "model.estimator.state_column=S_spindle_rpm",
-               f"data.path={default_dataset}", f"out={tmp_path / 'rf'}", "track=false",
-               "plots=none", "eval.mutual_prediction=false")
+               f"data.path={default_dataset}", f"out={tmp_path / 'rf'}", *UNTRACKED, *LIGHT)
     assert json.loads((tmp_path / "rf" / "metrics.json").read_text())["model"] == "arx_rf"
 
 

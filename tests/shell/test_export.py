@@ -23,7 +23,7 @@ import pandas as pd
 import pytest
 from hydra import compose, initialize_config_dir
 
-from conftest import refused
+from conftest import FAST, refused
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.base.paths import conf_dir
@@ -39,8 +39,6 @@ SELECTORS = ("all", "pearson", "greedy_residual", "cluster_grey")
 CAMPAIGNS = (("K01", "train"), ("K02", "train"), ("K03", "train"), ("K04", "train"),
              ("K05", "test"), ("K06", "test"))
 PUSH_C = 30.0          # added to one sensor from mid-campaign: far outside the training envelope
-FAST = ["track=false", "plots=none", "eval.validation=false", "eval.mutual_prediction=false",
-        "eval.ati_baselines=false"]
 needs_cc = pytest.mark.skipif(shutil.which("gcc") is None, reason="no C compiler")
 
 

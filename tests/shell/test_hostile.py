@@ -579,7 +579,7 @@ def test_interleaved_ingests_leave_one_whole_dataset(paths, tmp_path, monkeypatc
         if not nested:
             nested.append(True)
             thermocomp("ingest", f"data.path={other}", f"data.interim={paths['interim']}",
-                       "track=false")          # another process: truly concurrent
+                       "track=false", subprocess=True)   # another process: truly concurrent
             assert load_interim(paths["interim"]).campaigns["K01"].shape[0] == 20
         return write_table(*args, **kwargs)
 

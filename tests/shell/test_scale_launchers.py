@@ -31,7 +31,8 @@ def _sweep(tmp_path, dataset, *overrides: str):
     uri = mlflow_store(tmp_path)
     sweep_dir = tmp_path / "sweep"
     proc = thermocomp("run", "-m", f"data.path={dataset}", f"tracking_uri={uri}", *LIGHT_EVAL,
-                      f"hydra.sweep.dir={sweep_dir}", *overrides)
+                      f"hydra.sweep.dir={sweep_dir}", *overrides,
+                      subprocess=True)     # the launchers start processes and clusters of their own
     return (uri, sweep_dir, proc, *_runs(uri))
 
 

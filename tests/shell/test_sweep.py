@@ -6,12 +6,11 @@ from __future__ import annotations
 import json
 import shutil
 import sqlite3
-import subprocess
 
 import pandas as pd
 import pytest
 
-from conftest import BIN, copy_project, thermocomp
+from conftest import copy_project, thermocomp
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from thermocomp.base.files import folder_digest
 from thermocomp.shell.cli import main
@@ -192,10 +191,8 @@ def test_a_sweep_started_elsewhere_writes_every_job_under_the_project_root(tmp_p
     elsewhere = tmp_path / "elsewhere"
     elsewhere.mkdir()
     for sweep_dir in ([], ["hydra.sweep.dir=reports/mine"]):
-        proc = subprocess.run([str(BIN / "thermocomp"), "run", "-m", "model=mlr,pcr",
-                               f"data.path={dataset}", "track=false", *LIGHT_EVAL, *sweep_dir],
-                              cwd=elsewhere, env=env, capture_output=True, text=True)
-        assert proc.returncode == 0, proc.stderr
+        thermocomp("run", "-m", "model=mlr,pcr", f"data.path={dataset}", "track=false",
+                   *LIGHT_EVAL, *sweep_dir, cwd=elsewhere, env=env)
         assert list(elsewhere.iterdir()) == []
     jobs = sorted(p.relative_to(dest / "reports") for p in (dest / "reports").rglob("metrics.json"))
     assert len(jobs) == 4 and [j.parts[0] for j in jobs].count("mine") == 2, jobs
