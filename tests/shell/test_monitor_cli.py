@@ -1,6 +1,7 @@
 """`thermocomp monitor` end to end: simulated sensor faults through the CLI, and hostile input.
 
-The fault tests run the real commands: ``simulate`` with the ``sensor_faults``
+The fault tests run the real commands (in process: ``conftest.cli``, the process boundary is
+not their point): ``simulate`` with the ``sensor_faults``
 effect on the most influential sensor of the default MLR model, then ``monitor``,
 and compare ``monitor.json`` with the simulation's truth and with the monitor of
 the same simulation without the fault (the same seed: the healthy reading is
@@ -20,7 +21,7 @@ import pytest
 from hydra.utils import instantiate
 from omegaconf import OmegaConf
 
-from conftest import ROOT, influence, refused, thermocomp
+from conftest import ROOT, cli, influence, refused
 from thermocomp.core import io as tio
 from thermocomp.core.compensator import Compensator
 from thermocomp.shell.cli import main
@@ -45,13 +46,13 @@ def most_influential(path: Path) -> str:
 
 
 def run_monitor(path: Path, out: Path, *extra: str) -> dict:
-    thermocomp("monitor", f"data.path={path}", f"out={out}", "track=false", *extra)
+    cli("monitor", f"data.path={path}", f"out={out}", "track=false", *extra)
     return json.loads((out / "monitor.json").read_text())
 
 
 def simulate_fault(path: Path, kind: str, column: str, *extra: str) -> dict:
     """Simulate with the fault; its truth per affected campaign."""
-    thermocomp("simulate", f"data.path={path}", "track=false", "sim.generator.effects=[sensor_faults]",
+    cli("simulate", f"data.path={path}", "track=false", "sim.generator.effects=[sensor_faults]",
                f"{FAULT}.kind={kind}", f"{FAULT}.column={column}", *extra)
     truth = json.loads(path.with_name(path.name + ".truth.json").read_text())
     return {c: t["effects"]["sensor_faults"] for c, t in truth["campaigns"].items()
@@ -151,7 +152,7 @@ SWISS_GAPS: dict[str, str] = {}   # measured gaps, as strict xfails (none left)
 @pytest.fixture(scope="session")
 def swiss(tmp_path_factory):
     root = tmp_path_factory.mktemp("swiss")
-    thermocomp("simulate", f"data.path={root / 'healthy'}", "track=false", *SWISS)
+    cli("simulate", f"data.path={root / 'healthy'}", "track=false", *SWISS)
     report = run_monitor(root / "healthy", root / "mon", "plots=none", *SWISS)
     return root / "healthy", report, most_influential(root / "healthy")
 
@@ -448,7 +449,7 @@ def test_event_times_are_seconds_from_the_campaign_start_whatever_the_file_clock
         df["time"] = t + shift
         df.to_csv(path / file, index=False)
         report = run_monitor(path, tmp_path / f"mon{shift:g}", "plots=none")
-        thermocomp("replay", f"data.path={path}", f"out={tmp_path / f'rep{shift:g}'}", "track=false",
+        cli("replay", f"data.path={path}", f"out={tmp_path / f'rep{shift:g}'}", "track=false",
                    "monitor.adaptive=true")
         replayed = json.loads((tmp_path / f"rep{shift:g}" / "replay.json").read_text())["events"]
         times[shift] = ([e["time"] for e in report["events"] if e["campaign"] == cid],
