@@ -71,7 +71,8 @@ def test_lenient_rewrites_only_what_hydra_rejects():
 def test_a_plus_on_a_plain_key_is_dropped_so_a_key_the_config_lacks_is_refused():
     # `+` adds keys only where thermocomp reads new ones: a free map, an object's arguments,
     # the defaults list, Hydra's node; elsewhere Hydra itself says a key is unknown
-    kept = ["+model.estimator.foo=1", "++data.columns.T0=T_0", "+hydra.callbacks.p._target_=x",
+    kept = ["+model.estimator.foo=1", "++data.columns.T0=T_0", "++data.columns={T0:T_0}",
+            "+hydra.callbacks.p._target_=x",
             "+experiment=fl", "~model.estimator.alpha"]
     assert lenient(["+eval.foo=1", "++eval.mode=one_step", *kept]) == [
         "eval.foo=1", "eval.mode=one_step", *kept]

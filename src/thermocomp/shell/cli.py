@@ -248,6 +248,7 @@ def _run_job(stage: str, args: list[str], cfg) -> None:
                   job_subdir_key=None,     # run_job reads only the callbacks of its context
                   hydra_context=HydraContext(config_loader=None, callbacks=callbacks))
     callbacks.on_run_end(config=cfg, config_name=root_name(stage), job_return=ret)
+    _ = ret.return_value     # an exception that escaped the task: raised again, as Hydra's run does
     if raised:
         raise raised[0]
 

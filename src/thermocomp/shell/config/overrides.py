@@ -68,8 +68,9 @@ def group_options(key: str) -> list[str] | None:
     return sorted(f.stem for f in folder.glob("*.yaml")) if folder.is_dir() else None
 
 
-def _under(key: str, nodes) -> bool:
-    return any(key.startswith(f"{n}.") for n in nodes)
+def _under(key: str, nodes, itself: bool = False) -> bool:
+    """Whether ``key`` lies under one of ``nodes`` (``itself``: or is one)."""
+    return any(key.startswith(f"{n}.") or itself and key == n for n in nodes)
 
 
 @functools.cache
@@ -114,7 +115,7 @@ def lenient(args: list[str]) -> list[str]:
             plain = not any(c in value for c in "[]{}()'\"") and not value.endswith("\\")
             out.append(f"{key}='{value}'" if plain else arg)
         elif (o.type in (OverrideType.ADD, OverrideType.FORCE_ADD) and group_options(o.key_or_group)
-              is None and not _under(o.key_or_group, ("hydra", *FREE_MAPS, *BUILT))):
+              is None and not _under(o.key_or_group, ("hydra", *FREE_MAPS, *BUILT), itself=True)):
             out.append(arg.lstrip("+"))
         else:
             out.append(arg)
