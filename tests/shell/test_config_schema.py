@@ -230,3 +230,24 @@ def test_a_typo_in_a_sweep_is_one_line_before_any_job(tmp_path, capsys, composes
                    "did you mean 'eval.mode'?")
     assert "+eval.mdoe" not in line             # never Hydra's advice to add the key
     assert not sweep.exists()
+
+
+class NestedCommand(Callback):
+    """A Hydra callback running a command in-process inside a run (as a test's ``cli()`` may)."""
+
+    codes: list = []
+
+    def on_job_start(self, config, **kwargs):
+        NestedCommand.codes.append(main(["ingest", "data.path=/nonexistent/inner", "track=false"]))
+
+
+def test_a_command_runs_in_process_inside_a_run(monkeypatch, capsys):
+    # hydra.main held Hydra's one global instance for the whole run: a command inside it could
+    # not compose (exit 1, a traceback); a run composes before it runs, and lets go
+    monkeypatch.setenv("THERMOCOMP_TARGETS", f"{os.environ.get('THERMOCOMP_TARGETS', '')},{__name__}.")
+    NestedCommand.codes.clear()
+    nested = f"+hydra.callbacks.nested._target_={__name__}.NestedCommand"
+    assert main(["ingest", "data.path=/nonexistent/outer", nested, "track=false"]) == 2
+    assert NestedCommand.codes == [2]
+    err = capsys.readouterr().err
+    assert "/nonexistent/inner/campaigns.csv" in err and "/nonexistent/outer/campaigns.csv" in err
