@@ -236,10 +236,14 @@ def _fix_key(key: str, config: dict) -> str | None:
     return None
 
 
-@functools.cache
 def _whole_config() -> dict:
     """``conf/config.yaml`` as composed (every group, unresolved): where a typo's hint is found,
     whatever group it is of."""
+    return _composed_whole(str(conf_dir()))
+
+
+@functools.cache
+def _composed_whole(conf: str) -> dict:     # once per process and project
     from omegaconf import OmegaConf
 
     whole = OmegaConf.to_container(compose([]), resolve=False)
