@@ -16,7 +16,7 @@ from conftest import FAST, ROOT
 from thermocomp.base import log
 from thermocomp.base.progress import bar
 from thermocomp.shell.callbacks import sweep_size
-from thermocomp.shell.cli import lenient, main
+from thermocomp.shell.cli import _compose, lenient, main
 
 
 def _errors(capsys) -> list[str]:
@@ -66,6 +66,17 @@ def test_lenient_rewrites_only_what_hydra_rejects():
     untouched = ["data.inputs=[T_1", "model=mlr", "-m", "data.split_overides={K01:test}",
                  "sim.generator.effects=[door]"]
     assert lenient(untouched) == untouched
+
+
+def test_a_plus_on_a_plain_key_is_dropped_so_a_key_the_config_lacks_is_refused():
+    # `+` adds keys only where thermocomp reads new ones: a free map, an object's arguments,
+    # the defaults list, Hydra's node; elsewhere Hydra itself says a key is unknown
+    kept = ["+model.estimator.foo=1", "++data.columns.T0=T_0", "++data.columns={T0:T_0}",
+            "+hydra.callbacks.p._target_=x",
+            "+experiment=fl", "~model.estimator.alpha"]
+    assert lenient(["+eval.foo=1", "++eval.mode=one_step", *kept]) == [
+        "eval.foo=1", "eval.mode=one_step", *kept]
+    assert _compose(lenient(["+eval.mode=one_step"]), "run").eval.mode == "one_step"
 
 
 def _run(capsys, dataset, out, *extra):

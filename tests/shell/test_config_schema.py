@@ -4,8 +4,10 @@ and name are derived."""
 
 from __future__ import annotations
 
+import ast
 import functools
 import os
+from pathlib import Path
 
 import pytest
 from hydra import compose, initialize_config_dir
@@ -13,12 +15,14 @@ from hydra.experimental.callback import Callback
 from omegaconf import OmegaConf
 
 import thermocomp.shell.cli  # noqa: F401  (registers the resolvers conf/ uses)
+import thermocomp.shell.stages
 from thermocomp.base.errors import ConfigError
 from thermocomp.base.paths import conf_dir
-from thermocomp.shell.cli import _compose, _group_options, main
+from thermocomp.shell.cli import _compose, main
 from thermocomp.shell.config import rules as rule_tables
 from thermocomp.shell.config.commands import COMMANDS, groups_of
 from thermocomp.shell.config.naming import PARAM_KEYS, _entries, run_name, run_params
+from thermocomp.shell.config.overrides import group_options as _group_options
 from thermocomp.shell.config.rules import check_schema
 from thermocomp.shell.config.schema import Root, fields
 from thermocomp.shell.stages import STAGES
@@ -68,8 +72,13 @@ def test_the_stages_rule_tables_are_the_schemas():
 
 # -- one root config per command ---------------------------------------------------------------
 
-def test_every_stage_is_a_command_whose_root_composes_and_resolves():
-    assert set(COMMANDS) == set(STAGES)
+def test_every_command_names_a_stage_function_and_its_root_composes_and_resolves():
+    # one table: the stage a command runs is a field of its entry (imported only when it runs)
+    assert STAGES == {name: c.stage for name, c in COMMANDS.items()}
+    for command in COMMANDS:
+        module, function = COMMANDS[command].stage.split(":")
+        source = (Path(thermocomp.shell.stages.__file__).parent / f"{module}.py").read_text()
+        assert function in {n.name for n in ast.parse(source).body if isinstance(n, ast.FunctionDef)}
     for command in COMMANDS:
         cfg = _compose(["track=false"], command)
         groups = {k for k in cfg if _group_options(k)}
@@ -163,10 +172,10 @@ def test_help_keys_of_one_group_and_of_a_group_the_command_lacks(capsys):
     assert "composes no group 'monitor'" in capsys.readouterr().err
 
 
-# -- one entry point: a run goes through hydra.main as a sweep does ----------------------------
+# -- a run: its config composed once, its job run by Hydra with its callbacks --------------------
 
 class RunProbe(Callback):
-    """A Hydra callback noting the jobs it saw (its runs are Hydra's, not the compose API's)."""
+    """A Hydra callback noting the jobs it saw (a run's are Hydra's, as a sweep's)."""
 
     seen: list = []
 
@@ -174,10 +183,71 @@ class RunProbe(Callback):
         RunProbe.seen.append((str(config.hydra.mode), config.hydra.job.override_dirname))
 
 
-def test_a_run_goes_through_hydra_main_with_its_callbacks(tmp_path, monkeypatch, capsys):
+@pytest.fixture
+def composes(monkeypatch) -> list:
+    """The configs Hydra composes from now on (their root names), counted where Hydra loads one."""
+    from hydra._internal.config_loader_impl import ConfigLoaderImpl
+
+    seen, load = [], ConfigLoaderImpl.load_configuration
+
+    def counted(self, config_name, *args, **kwargs):
+        seen.append(config_name)
+        return load(self, config_name, *args, **kwargs)
+
+    monkeypatch.setattr(ConfigLoaderImpl, "load_configuration", counted)
+    return seen
+
+
+def test_a_run_composes_once_and_runs_its_hydra_callbacks(tmp_path, monkeypatch, capsys, composes):
+    # under hydra.main a run was composed three times (our check, Hydra's mode, Hydra's run):
+    # half the CPU of a small in-process run
+    from conftest import FAST
+    from test_hostile import make_dataset
+
     monkeypatch.setenv("THERMOCOMP_TARGETS", f"{os.environ.get('THERMOCOMP_TARGETS', '')},{__name__}.")
     RunProbe.seen.clear()
     probe = f"+hydra.callbacks.probe._target_={__name__}.RunProbe"
+    data, out = make_dataset(tmp_path / "data"), tmp_path / "out"
+    assert main(["run", f"data.path={data}", probe, f"out={out}", f"model_path={out}/m.pkl", *FAST]) == 0
+    assert composes == ["thermocomp_run"]
+    assert RunProbe.seen == [("RunMode.RUN", ",".join(sorted(
+        [f"data.path={data}", f"out={out}", f"model_path={out}/m.pkl", *FAST])))]
+    assert (out / "metrics.json").is_file() and (out / "thermocomp.log").is_file()
+    # a stage's own refusal: one line, exit 2, its job seen by the callbacks all the same
     assert main(["ingest", f"data.path={tmp_path / 'none'}", probe, "track=false"]) == 2
-    assert "campaigns.csv" in capsys.readouterr().err          # the stage's one line, exit 2
-    assert RunProbe.seen == [("RunMode.RUN", f"data.path={tmp_path / 'none'},track=false")]
+    assert "campaigns.csv" in capsys.readouterr().err
+    assert RunProbe.seen[1:] == [("RunMode.RUN", f"data.path={tmp_path / 'none'},track=false")]
+    assert composes == ["thermocomp_run", "thermocomp_ingest"]
+
+
+def test_a_typo_in_a_sweep_is_one_line_before_any_job(tmp_path, capsys, composes):
+    # a key no job has: Hydra's many lines, exit 1, after the sweep folder was made
+    from conftest import refused
+
+    sweep = tmp_path / "sweep"
+    line = refused(["run", "-m", "model=mlr,pcr", "eval.mdoe=one_step", "track=false",
+                    f"hydra.sweep.dir={sweep}"], capsys, "unknown config key 'eval.mdoe'",
+                   "did you mean 'eval.mode'?")
+    assert "+eval.mdoe" not in line             # never Hydra's advice to add the key
+    assert not sweep.exists()
+
+
+class NestedCommand(Callback):
+    """A Hydra callback running a command in-process inside a run (as a test's ``cli()`` may)."""
+
+    codes: list = []
+
+    def on_job_start(self, config, **kwargs):
+        NestedCommand.codes.append(main(["ingest", "data.path=/nonexistent/inner", "track=false"]))
+
+
+def test_a_command_runs_in_process_inside_a_run(monkeypatch, capsys):
+    # hydra.main held Hydra's one global instance for the whole run: a command inside it could
+    # not compose (exit 1, a traceback); a run composes before it runs, and lets go
+    monkeypatch.setenv("THERMOCOMP_TARGETS", f"{os.environ.get('THERMOCOMP_TARGETS', '')},{__name__}.")
+    NestedCommand.codes.clear()
+    nested = f"+hydra.callbacks.nested._target_={__name__}.NestedCommand"
+    assert main(["ingest", "data.path=/nonexistent/outer", nested, "track=false"]) == 2
+    assert NestedCommand.codes == [2]
+    err = capsys.readouterr().err
+    assert "/nonexistent/inner/campaigns.csv" in err and "/nonexistent/outer/campaigns.csv" in err

@@ -1,19 +1,19 @@
 """``thermocomp <stage> [overrides]`` (see ``docs/cli.md``).
 
-Hydra is the one source of configuration.  A command composes its own root
-config (the groups it reads, :mod:`.config.commands`) with the compose API first,
-so that bad config is one line and exit status 2; then a run, a sweep (``-m`` /
-``--multirun``) and Hydra's own flags (``--cfg job`` ...) all go through
-``hydra.main`` (:func:`_launch`), the one entry point: launchers, sweepers and
-callbacks work unchanged.  ``-q``/``-v`` (log level) and ``-h`` (this command's
-help; ``--help keys``: its keys) are ours and never reach Hydra.
+Hydra is the one source of configuration.  A command composes its own root config (the groups
+it reads, :mod:`.config.commands`) once, with the compose API, so that bad config is one line
+and exit status 2 (:mod:`.config.overrides`); a run then goes through Hydra's own job runner
+with that config (:func:`_run_job`: its callbacks, job logging and run folder, as under
+``hydra.main``, which would compose it twice more), while a sweep (``-m`` / ``--multirun``,
+its jobs composed first) and Hydra's own flags (``--cfg job`` ...) go through ``hydra.main``
+(:func:`_launch`): launchers, sweepers and callbacks work unchanged.  ``-q``/``-v`` (log level)
+and ``-h`` (this command's help; ``--help keys``: its keys) are ours and never reach Hydra.
 
 Exit status: 0 success, 2 bad input or bad config (one line on stderr), 1 otherwise.
 """
 
 from __future__ import annotations
 
-import difflib
 import json
 import os
 import sys
@@ -26,8 +26,11 @@ from omegaconf import OmegaConf
 from ..base.errors import closest
 from ..base.extras import missing
 from ..base.log import version
-from ..base.paths import resolve
+from ..base.paths import resolve, rooted_override
+from .config import overrides
 from .config.commands import COMMANDS, groups_of, register, root_name
+from .config.overrides import config_errors as _config_errors
+from .config.overrides import lenient
 from .resolvers import scenario_dataset
 
 # `${root:reports/x}` in the config: the path under the project root (Hydra's own folders).  At
@@ -51,12 +54,6 @@ options:   -q/--quiet (warnings only)  -v/--verbose (debug, progress bars off a 
 Relative paths are resolved against the project root.""".format(
     commands="\n".join(f"  {name:<10} {c.summary}" for name, c in COMMANDS.items()))
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
-# Objects built from `_target_`: `~key` of an argument leaves the constructor's default.
-BUILT = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector", "sim.generator")
-# Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
-FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params", "design.studies",
-             "model.candidate_defaults")
-
 
 
 def stage_help(stage: str) -> str:
@@ -74,7 +71,7 @@ def _print_keys(stage: str, group: str | None) -> int:
     from .config.describe import describe
 
     try:
-        cfg = _compose_hydra([], stage)
+        cfg = overrides.compose([], stage)
         if group is not None and cfg.get(group) is None:
             _fail(f"--help keys {group}: thermocomp {stage} composes no group {group!r} "
                   f"(it composes {', '.join(groups_of(stage))})")
@@ -87,15 +84,6 @@ def _print_keys(stage: str, group: str | None) -> int:
         del cfg["hydra"]
     print(describe(cfg, choices, group))
     return 0
-
-
-def _config_errors() -> tuple[type, ...]:
-    from hydra.errors import HydraException
-    from omegaconf.errors import OmegaConfBaseException
-
-    from ..base.errors import ThermocompError
-
-    return (ThermocompError, HydraException, OmegaConfBaseException)
 
 
 def _fail(msg: str):
@@ -137,314 +125,28 @@ def _check_seed(cfg) -> None:
         raise ConfigError(f"seed={seed!r} is not an integer in [0, 2**32 - 1]")
 
 
-# Another primary config or config folder would escape the check of what Hydra builds.
-CONFIG_FLAGS = ("-cp", "--config-path", "-cn", "--config-name", "-cd", "--config-dir")
-
-
-def _check_hydra_node(args: list[str], command: str) -> None:
-    """The config composed before ``hydra.main`` runs, so that a run's bad override is one line
-    (Hydra's report of it is many, exit 1), and what Hydra itself builds (callbacks, launcher,
-    sweeper, logging) checked: ``hydra.callbacks.x._target_=builtins.open`` was called with its
-    arguments before any job.  A sweep composes its ``hydra`` node without sweep overrides (a
-    job's own errors are the job's)."""
-    from hydra.core.override_parser.overrides_parser import OverridesParser
-
-    flag = next((a.split("=")[0] for a in args if a.split("=")[0] in CONFIG_FLAGS), None)
-    if flag:
-        _fail(f"{flag}: thermocomp composes conf/ of its project; add config folders with "
-              "hydra.searchpath=[file://<dir>]")
-    plain = not any(a.startswith("-") for a in args)     # a run: no sweep, no Hydra flag
-    parser = OverridesParser.create()
-    fixed = list(args) if plain else []
-    for arg in [] if plain else args:
-        if arg.startswith("-"):
-            continue
-        try:
-            if parser.parse_override(arg).is_sweep_override():
-                continue
-        except Exception:
-            return                    # Hydra reports it, before building anything
-        fixed.append(arg)
-    try:
-        cfg = _compose_hydra(fixed, command)
-    except _config_errors() as exc:
-        if missing(exc):              # a launcher config its plugin (an extra) registers
-            _fail(missing(exc))
-        if plain:
-            _fail(_explain(exc, command))
-        return                        # as above: Hydra's own message, nothing built
-    from .build import check_built
-    from .config.apart import check_apart
-
-    _guarded(check_built, cfg.hydra, "hydra")     # resolved: Hydra imports them anyway
-    if any(a in ("-m", "--multirun") for a in args):   # Hydra writes multirun.yaml there first
-        _guarded(check_apart, cfg, ("hydra.sweep.dir",), ())
-
-
-def _root(command: str | None) -> str:
-    """The root config ``command`` composes (None: the whole ``conf/config.yaml``)."""
-    if command is None:
-        return "config"
-    register()
-    return root_name(command)
-
-
-def _compose_hydra(overrides: list[str], command: str | None = None):
-    from hydra import compose, initialize_config_dir
-
-    from ..base.paths import conf_dir
-
-    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3",
-                               job_name="thermocomp"):
-        return compose(config_name=_root(command), overrides=overrides, return_hydra_config=True)
-
-
-def _compose(overrides: list[str], command: str | None = None):
+def _compose(args: list[str], command: str | None = None):
+    """The config a stage gets (no ``hydra`` node), composed as a run composes it; its overrides
+    name the MLflow run (a library caller's or a test's way to a command's config)."""
     from hydra.core.hydra_config import HydraConfig
     from omegaconf import open_dict
 
-    cfg = _compose_hydra(overrides, command)
-    HydraConfig.instance().set_config(cfg)   # the overrides name the MLflow run, as under hydra.main
+    cfg = overrides.compose(args, command)
+    HydraConfig.instance().set_config(cfg)
     with open_dict(cfg):
         del cfg["hydra"]
     return cfg
 
 
-def lenient(args: list[str]) -> list[str]:
-    """The overrides as Hydra wants them, for the values the README writes.
+def _check_hydra_node(cfg, sweeping: bool) -> None:
+    """What Hydra itself builds (callbacks, launcher, sweeper, logging), checked before it does:
+    ``hydra.callbacks.x._target_=builtins.open`` was called with its arguments before any job."""
+    from .build import check_built
+    from .config.apart import check_apart
 
-    ``key=value`` that Hydra's grammar rejects (``data.delimiter=;``, ``data.decimal=,``
-    as bash passes ``";"`` and ``","``) is retried with the value quoted; ``key={...}``
-    on a free-form map (:data:`FREE_MAPS`) becomes ``++key={...}`` (add keys).  Nothing
-    else is rewritten, so a typo still fails.
-    """
-    from hydra.core.override_parser.overrides_parser import OverridesParser
-
-    parser = OverridesParser.create()
-    out = []
-    for arg in args:
-        key, eq, value = arg.partition("=")
-        if arg.startswith("-") or not eq:
-            out.append(arg)
-        elif key in FREE_MAPS and value.startswith("{"):
-            out.append(f"++{arg}")
-        else:
-            try:
-                parser.parse_override(arg)
-                out.append(arg)
-            except Exception:
-                plain = not any(c in value for c in "[]{}()'\"") and not value.endswith("\\")
-                out.append(f"{key}='{value}'" if plain else arg)
-    return out
-
-
-def _fix_key(key: str, config: dict) -> str | None:
-    """``key`` with its first unknown segment replaced by the closest existing one, or None."""
-    node, done = config, []
-    parts = key.split(".")
-    for i, part in enumerate(parts):
-        if not isinstance(node, dict):
-            return None
-        if part not in node:
-            close = closest(part, [str(k) for k in node])
-            return ".".join([*done, close[0], *parts[i + 1:]]) if close else None
-        node, done = node[part], [*done, part]
-    return None
-
-
-def _explain(exc: BaseException, command: str | None = None) -> str:
-    """Hydra's message, with the closest option or key when the user made a typo, or the
-    groups ``command`` reads when the key is of another."""
-    import re
-
-    from hydra.errors import MissingConfigException
-
-    msg = " ".join(str(exc).split())
-    if isinstance(exc, MissingConfigException) and exc.missing_cfg_file and exc.options:
-        group, _, option = exc.missing_cfg_file.rpartition("/")
-        ranked = sorted(exc.options, key=lambda o: -difflib.SequenceMatcher(None, option, o).ratio())
-        return f"unknown {group} {option!r}; options, closest first: {', '.join(ranked)}"
-    m = re.match(r"Could not override '([^']+)'", msg)
-    if m:
-        key = m.group(1)
-        if _unread_group(key, command):
-            return _unread_group(key, command)
-        close = _fix_key(key, _whole_config())
-        if close:
-            return f"unknown config key {key!r}; did you mean {close!r}? ({msg})"
-    return msg
-
-
-def _whole_config() -> dict:
-    """``conf/config.yaml`` as composed (every group, unresolved): where a typo's hint is found,
-    whatever group it is of."""
-    from omegaconf import OmegaConf, open_dict
-
-    cfg = _compose_hydra([])
-    with open_dict(cfg):
-        del cfg["hydra"]
-    return OmegaConf.to_container(cfg, resolve=False)
-
-
-def _unread_group(key: str, command: str | None) -> str | None:
-    """Why ``key`` is not in ``command``'s config when it is a key (or the choice) of a group
-    the command does not compose (its root config, :mod:`.config.commands`), else None."""
-    group = key.lstrip("+~").replace("/", ".").split(".")[0]
-    if command is None or group in groups_of(command) or _group_options(group) is None:
-        return None
-    node = _whole_config()
-    for part in key.lstrip("+~").split("."):
-        if not isinstance(node, dict) or part not in node:
-            return None                  # not a key of the group either: a typo, hinted
-        node = node[part]
-    return (f"{key}: thermocomp {command} does not read the {group} group (it composes "
-            f"{', '.join(groups_of(command))})")
-
-
-def _check_overrides(args: list[str], command: str) -> None:
-    """What Hydra accepts but no stage would read as meant, refused with one line (exit 2):
-    a config group set to ``null`` or removed with ``~`` (Hydra's ValueError or OmegaConf's
-    'not in struct' name no key), a swept group option that does not exist (many lines, exit
-    1), and a key added with ``+``/``++`` that the config does not have (``+diagnose.alpah``
-    was silently ignored)."""
-    from hydra.core.override_parser.overrides_parser import OverridesParser
-
-    parser = OverridesParser.create()
-    parsed, base = [], []
-    for arg in args:
-        if arg.startswith("-"):
-            continue
-        try:
-            parsed.append((arg, parser.parse_override(arg)))
-        except Exception:
-            base.append(arg)         # composing reports it with Hydra's message
-    sweeping = any(a in ("-m", "--multirun") for a in args)
-    if sweeping and any(a.startswith("out=") for a in args):
-        from ..base.log import logger
-
-        logger.warning("in a sweep every job writes to <hydra.sweep.dir>/<job number>: out= is "
-                       "not used (set hydra.sweep.dir=...)")
-    added = []
-    for arg, o in parsed:
-        if _check_group_or_deletion(arg, o, sweeping and not any(
-                a.startswith("hydra.searchpath") for a in args)):    # options from elsewhere
-            added.append(o.key_or_group)
-        elif not o.is_sweep_override():
-            base.append(arg)
-    if added:
-        _check_added_keys(added, base, command)
-    if sweeping:
-        _check_sweep_jobs([a for a in args if not a.startswith("-")], command)
-
-
-MAX_CHECKED_JOBS = 100   # jobs of a grid sweep composed up front (~0.1-0.3 s each)
-
-
-def _check_sweep_jobs(args: list[str], command: str) -> None:
-    """Compose the jobs of a grid sweep before any runs.  Hydra composes each job in its
-    launcher, and one it cannot compose (a key that only some of the swept models have) ended
-    the whole sweep with Hydra's multi-line message, exit 1, no job run; here it is one line
-    naming the job, exit 2.  A search sweeper's intervals are not enumerated."""
-    import itertools
-
-    from hydra import compose, initialize_config_dir
-    from hydra.core.override_parser.overrides_parser import OverridesParser
-    from hydra.errors import OverrideParseException
-
-    from ..base.paths import conf_dir
-
-    parser = OverridesParser.create()
-    fixed, groups, keys = [], {}, []
-    try:
-        for arg in args:
-            o = parser.parse_override(arg)
-            if not o.is_sweep_override():
-                fixed.append(arg)
-            elif _group_options(o.key_or_group) is not None:
-                groups[o.key_or_group] = [f"{o.get_key_element()}={v}" for v in o.sweep_string_iterator()]
-            else:
-                keys.append(o)
-    except Exception:     # an interval, a sweeper's own syntax, a parse error: Hydra says it
-        return
-    # what can fail is a key set inside a swept group that some of its options lack: one job
-    # per combination of the swept groups, a swept key at its first value
-    inside = [a.lstrip("+~").split("=", 1)[0] for a in fixed] + [o.key_or_group for o in keys]
-    if not any(k.startswith(f"{g.replace('/', '.')}.") for k in inside for g in groups):
-        return
-    fixed += [f"{o.get_key_element()}={next(iter(o.sweep_string_iterator()))}" for o in keys]
-    failed = None
-    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3", job_name="thermocomp"):
-        for job in itertools.islice(itertools.product(*groups.values()), MAX_CHECKED_JOBS):
-            try:
-                compose(config_name=_root(command), overrides=[*fixed, *job])
-            except OverrideParseException:   # a value this re-spelling does not quote as typed
-                return
-            except _config_errors() as exc:
-                failed = job, exc
-                break
-    if failed:                             # explained outside: the explanation composes too
-        _fail(f"sweep job {' '.join(failed[0])}: {_explain(failed[1], command)}")
-
-
-def _group_options(key: str) -> list[str] | None:
-    """The options of config group ``key`` (``conf/<key>/*.yaml``), None if it is no group."""
-    from ..base.paths import conf_dir
-
-    folder = conf_dir() / key.replace(".", "/")
-    return sorted(f.stem for f in folder.glob("*.yaml")) if folder.is_dir() else None
-
-
-def _check_group_or_deletion(arg: str, o, check_swept: bool) -> bool:
-    """Refuse a deletion outside an object's arguments or a free map, a group set to null, a
-    swept group option that does not exist; True when ``o`` adds a key (checked later)."""
-    from hydra.core.override_parser.types import OverrideType
-
-    key = o.key_or_group
-    if o.type == OverrideType.DEL and not any(key.startswith(f"{m}.") for m in (*FREE_MAPS, *BUILT)):
-        _fail(f"~{key}: thermocomp reads every key and group of its config; set it instead "
-              f"({key}=...)")
-    options = _group_options(key)
-    if options is None:
-        return o.type in (OverrideType.ADD, OverrideType.FORCE_ADD) and not key.startswith("hydra.")
-    if not o.is_sweep_override() and o.value() is None:
-        _fail(f"{key}=null: the config group {key!r} needs one of its options ({', '.join(options)})")
-    if check_swept and o.is_sweep_override():
-        try:
-            values = list(o.sweep_string_iterator())
-        except Exception:            # a search dimension (interval, glob): the sweeper reports it
-            values = []
-        for value in values:
-            if value not in options:
-                _fail(f"unknown {key} {value!r} in the sweep {arg}; options: {', '.join(options)}")
-    return False
-
-
-def _check_added_keys(added: list[str], base: list[str], command: str) -> None:
-    """Each added key exists in the config composed without them, or lies under a free-form
-    map (:data:`FREE_MAPS`) or an object built by ``_target_`` (its constructor checks it)."""
-    from omegaconf import OmegaConf
-
-    config = OmegaConf.to_container(_compose_or_explain(base, command), resolve=False)
-    for key in added:
-        node, parts = config, key.split(".")
-        for i, part in enumerate(parts):
-            if ".".join(parts[:i]) in FREE_MAPS or (isinstance(node, dict) and "_target_" in node):
-                break
-            if not isinstance(node, dict) or part not in node:
-                if _unread_group(key, command):
-                    _fail(_unread_group(key, command))
-                close = _fix_key(key, _whole_config())
-                hint = f"; did you mean {close!r}?" if close else ""
-                _fail(f"unknown config key {key!r} (added with '+'): thermocomp reads no such "
-                      f"key{hint}")
-            node = node[part]
-
-
-def _compose_or_explain(args: list[str], command: str):
-    try:
-        return _compose(args, command)
-    except _config_errors() as exc:
-        _fail(_explain(exc, command))
+    _guarded(check_built, cfg.hydra, "hydra")     # resolved: Hydra imports them anyway
+    if sweeping:                                  # Hydra writes multirun.yaml there first
+        _guarded(check_apart, cfg, ("hydra.sweep.dir",), ())
 
 
 def _log_folder(stage: str, cfg):
@@ -508,24 +210,15 @@ def _job_failed(exc: BaseException) -> float:
     return float("nan")
 
 
-def _launch(stage: str, args: list[str]) -> None:
-    """Run ``stage`` under ``hydra.main``: the one entry point of a run and of a sweep (``-m``:
-    Hydra's launchers, sweepers and callbacks).  A run's exception is raised again past Hydra
-    (which would report it in many lines, exit 1), for :func:`main` to say as it says any."""
-    import tempfile
-
-    import hydra
-
+def _task(stage: str, args: list[str], raised: list):
+    """The function Hydra runs as a job: the stage on the job's config.  A run's exception is
+    kept in ``raised`` (Hydra would report it in many lines, exit 1), for :func:`main` to say as
+    it says any; a sweep job's failure is noted and the sweep goes on."""
     from ..base.files import Terminated
-    from ..base.log import logger
-    from ..base.paths import conf_dir, rooted_override
-    from .callbacks import FAILED_JOBS_ENV
     from .stages import stage as lookup
 
     fn = lookup(stage)
-    raised = []
 
-    @hydra.main(config_path=str(conf_dir()), config_name=_root(stage), version_base="1.3")
     def task(cfg):
         try:
             return _run(stage, fn, _per_job(cfg), args)
@@ -537,8 +230,45 @@ def _launch(stage: str, args: list[str]) -> None:
             if isinstance(exc, SystemExit):
                 raise
             raised.append(exc)
+    return task
 
-    sys.argv = [f"thermocomp-{stage}", *map(rooted_override, args)]
+
+def _run_job(stage: str, args: list[str], cfg) -> None:
+    """A run: Hydra's own job runner on the config composed once (what ``hydra.main`` does for a
+    run after composing it twice more): its callbacks, job logging and run folder."""
+    from hydra._internal.callbacks import Callbacks
+    from hydra.core.utils import run_job
+    from hydra.types import HydraContext, RunMode
+
+    raised = []
+    cfg.hydra.mode = RunMode.RUN
+    callbacks = Callbacks(cfg)
+    callbacks.on_run_start(config=cfg, config_name=root_name(stage))
+    ret = run_job(task_function=_task(stage, args, raised), config=cfg, job_dir_key="hydra.run.dir",
+                  job_subdir_key=None,     # run_job reads only the callbacks of its context
+                  hydra_context=HydraContext(config_loader=None, callbacks=callbacks))
+    callbacks.on_run_end(config=cfg, config_name=root_name(stage), job_return=ret)
+    _ = ret.return_value     # an exception that escaped the task: raised again, as Hydra's run does
+    if raised:
+        raise raised[0]
+
+
+def _launch(stage: str, args: list[str]) -> None:
+    """Run ``stage`` under ``hydra.main``: a sweep (``-m``: Hydra's launchers, sweepers and
+    callbacks) and Hydra's own flags (``--cfg job`` ...)."""
+    import tempfile
+
+    import hydra
+
+    from ..base.log import logger
+    from ..base.paths import conf_dir
+    from .callbacks import FAILED_JOBS_ENV
+
+    register()
+    raised = []
+    task = hydra.main(config_path=str(conf_dir()), config_name=root_name(stage),
+                      version_base="1.3")(_task(stage, args, raised))
+    sys.argv = [f"thermocomp-{stage}", *args]
     with tempfile.TemporaryDirectory(prefix="thermocomp-sweep-") as notes:
         previous = os.environ.get(FAILED_JOBS_ENV)
         os.environ[FAILED_JOBS_ENV] = notes
@@ -610,10 +340,21 @@ def main(argv: list[str] | None = None) -> int:
     if stage == "init":
         args = _positional_path(args)
     try:
-        args = lenient(args)
-        _check_overrides(args, stage)
-        _check_hydra_node(args, stage)
-        _launch(stage, args)
+        args = [rooted_override(a) for a in lenient(args)]
+        _guarded(overrides.refuse, args)
+        if not any(a.startswith("-") for a in args):       # a run: composed once
+            cfg = _guarded(overrides.compose_checked, args, stage)
+            _check_hydra_node(cfg, sweeping=False)
+            _run_job(stage, args, cfg)
+            return 0
+        if any(a in ("-m", "--multirun") for a in args):  # a sweep: its jobs composed first
+            if any(a.startswith("out=") for a in args):
+                logger.warning("in a sweep every job writes to <hydra.sweep.dir>/<job number>: "
+                               "out= is not used (set hydra.sweep.dir=...)")
+            cfg = _guarded(overrides.check_jobs, args, stage)
+            if cfg is not None:
+                _check_hydra_node(cfg, sweeping=True)
+        _launch(stage, args)                               # a sweep, a Hydra flag: hydra.main
     except Terminated:  # the contract's statuses are 0, 2 and 1 for anything else
         logger.warning("%s terminated (SIGTERM)", stage)
         return 1

@@ -7,21 +7,17 @@ never reaches into another stage's internals: they meet at files.
 Stages are looked up by name and imported on first use (:func:`stage`), so a
 command imports only what it runs: ``thermocomp run`` never imports MLflow's
 registry code of ``promote`` or the diagnosis of ``diagnose``, and ``--help``
-imports nothing.
+imports nothing.  Each command's function is a field of its entry in the one command table
+(:data:`..config.commands.COMMANDS`).
 """
 
 from __future__ import annotations
 
 from importlib import import_module
 
-STAGES = {"simulate": "simulate:simulate", "init": "init:init",
-          "ingest": "ingest:ingest", "denoise": "denoise:denoise",
-          "select": "select:select", "train": "modelling:train", "evaluate": "modelling:evaluate",
-          "diagnose": "diagnose:diagnose", "run": "modelling:run", "compare": "compare:compare",
-          "promote": "promote:promote", "replay": "replay:replay", "export": "export:export",
-          "serve": "serve:serve", "twin": "twin:twin", "connect": "connect:connect",
-          "monitor": "monitor:monitor",
-          "calibrate": "calibrate:calibrate", "design": "design:design"}
+from ..config.commands import COMMANDS
+
+STAGES = {name: command.stage for name, command in COMMANDS.items()}   # name -> module:function
 
 
 def stage(name: str):
