@@ -19,7 +19,7 @@ from omegaconf import DictConfig
 from ...apps.deploy.export import NotExportable, exported_files, not_in_code
 from ...apps.deploy.report import plain
 from ...base.errors import ConfigError
-from ...base.files import folder_digest, staged_outputs
+from ...base.files import staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
 from ..builders import deploy_stream, deployable
@@ -66,7 +66,7 @@ def _deployed(cfg: DictConfig, source: str) -> tuple[object, dict]:
     ds, train_ids, _, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
     deployed = deployable(cfg, deploy_stream(cfg, comp, train, f"export.model={source}"), train, ds)
-    return deployed, {"run_id": None, "dataset_hash": folder_digest(resolve(cfg.data.path))}
+    return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}
 
 
 def export(cfg: DictConfig) -> dict:
