@@ -96,3 +96,17 @@ def test_no_stage_reads_data_but_through_the_source():
                 if name in doors:
                     found.append(f"{path.relative_to(root)}:{node.lineno} {name}")
     assert not found, found
+
+
+def test_an_ingest_recorded_before_the_config_hash_is_refused_saying_so(paths, capsys):
+    from conftest import refused
+    from thermocomp.shell.cli import main
+
+    assert main(["ingest", *paths["args"]]) == 0
+    report = paths["interim"] / "ingest_report.json"
+    doc = json.loads(report.read_text())
+    settings = doc["ingested_with"]["settings"]
+    doc["ingested_with"] = {"path": settings["data.path"], "digest": doc["ingested_with"]["digest"]}
+    report.write_text(json.dumps(doc))
+    refused(["train", *paths["args"]], capsys, "ingest_report.json", "earlier version",
+            "run `thermocomp ingest` with this config first")

@@ -203,6 +203,8 @@ def load_ingested(cfg: DictConfig):
 
 def _changed(cfg: DictConfig, made: dict, want: dict) -> str:
     """What differs between the ingest ``made`` and the one ``want``ed, said."""
+    if CONFIG not in made:
+        return "it was ingested by an earlier version (no digest and config hash in ingested_with)"
     was, now = made.get(SETTINGS_KEY) or {}, want[SETTINGS_KEY]
     key = next((k for k in now if was.get(k) != now[k]), None)
     if key is None:
