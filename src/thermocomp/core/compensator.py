@@ -96,11 +96,12 @@ class Compensator(BaseEstimator):
         return stack(campaigns, self.inputs_, self.targets_ if targets is None else targets,
                      self.reference)
 
-    def fit(self, campaigns: Mapping[str, pd.DataFrame]) -> "Compensator":
-        """Fit the denoiser, the selector and the estimator of each target on ``campaigns``."""
+    def fit(self, campaigns: Mapping[str, pd.DataFrame], denoised: bool = False) -> "Compensator":
+        """Fit the denoiser, the selector and the estimator of each target on ``campaigns``;
+        ``denoised``: the campaigns are denoised already, by ``denoiser`` (fitted, frozen)."""
         columns = list(dict.fromkeys(c for df in campaigns.values() for c in df.columns))
         self.inputs_, self.targets_ = resolve_columns(columns, self.inputs, self.targets)
-        self.denoiser_, campaigns = fit_denoiser(self.denoiser, campaigns, self.inputs_)
+        self.denoiser_, campaigns = fit_denoiser(self.denoiser, campaigns, self.inputs_, denoised)
         return self.fit_stacked(stack(campaigns, self.inputs_, self.targets_, self.reference))
 
     def fit_stacked(self, m: Matrices) -> "Compensator":

@@ -26,9 +26,10 @@ from ..base.paths import resolve
 from ..core import io
 from ..core.io.source import open_dataset
 from .config.checks import data_options
+from .fingerprint import CONFIG, DIGEST, json_hash, matches, plain
 
 AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns continue others
-DIGEST = "digest"         # the dataset digest of data.path in ``ingested_with``
+SETTINGS_KEY = "settings"  # in ``ingested_with``: what the config hash was taken of
 
 
 def is_volumetric(cfg: DictConfig) -> bool:
@@ -48,25 +49,32 @@ def calibrate_settings(cfg: DictConfig) -> dict:
 
 
 def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False,
-                volumetric: bool | None = None) -> io.Dataset:
+                volumetric: bool | None = None, campaigns=None, digest: str | None = None,
+                detected: dict | None = None) -> io.Dataset:
     """``data.path`` as a batch (``stream=False``) or a stream sees it, ``data.reference``
     resolved on it; a volumetric folder calibrated into its parameter series (``calibrate.*``
     checked by ``check_config``).  ``volumetric=True``: only a volumetric folder (``calibrate``;
     another is refused naming the missing set-up).  ``ingested=True``: ``data.interim`` as
-    ``ingest`` wrote it from this source (the DVC stages after it: :func:`load_ingested`)."""
+    ``ingest`` wrote it from this source (the DVC stages after it: :func:`load_ingested`).
+    ``campaigns``: only those (a fleet's group; ``digest``: the folder's, digested once).
+    ``detected``: read with this data config instead (``init``: what it detected), as it is."""
     from ..apps.sim.scenario import single_threaded_blas
     from ..apps.volumetric.source import open_volumetric
 
     if ingested:
         return load_ingested(cfg)
     root = resolve(cfg.data.path)
-    say(f"reading {root}")
-    if volumetric or (volumetric is None and _volumetric_folder(root)):
+    if detected is not None:
+        return open_dataset(root, detected)
+    if campaigns is None:       # a fleet says its folder once, not per group
+        say(f"reading {root}")
+    if volumetric or (volumetric is None and campaigns is None and _volumetric_folder(root)):
         say("volumetric dataset: calibrating the artefact distances into the error parameters")
         with single_threaded_blas():   # 1430-wide matrices: threads on 2 busy cores only thrash
             ds = open_volumetric(root, data_options(cfg), calibrate_settings(cfg))
     else:
-        ds = open_dataset(root, data_options(cfg), stream=stream)
+        ds = open_dataset(root, data_options(cfg), stream=stream, campaigns=campaigns,
+                          digest=digest)
     resolve_reference(cfg, ds)
     return ds
 
@@ -149,46 +157,59 @@ def read_streamed(cfg: DictConfig, test: bool = True):
     return ds, train, require_split(ds, "test") if test else [], ds.meta.get("missing", {})
 
 
-# keys of ``ingested_with`` recorded since a later version: an earlier ingest is read as it is
-LATER = ("calibrate.", DIGEST)
+def dataset_digest(cfg: DictConfig) -> str | None:
+    """The digest of ``data.path`` (what :func:`open_source` records in ``meta["digest"]``), None
+    when it is gone."""
+    root = resolve(cfg.data.path)
+    return folder_digest(root) if root.exists() else None
 
 
-def ingest_settings(cfg: DictConfig) -> dict:
-    """What an ingest of ``data.path`` depends on: the folder, every reading option (as JSON
-    holds them) and the folder's digest (its files as they are now: the dataset digest).
-    ``ingest`` records it; the stages reading ``data.interim`` compare."""
+def ingest_fingerprint(cfg: DictConfig) -> dict:
+    """What an ingest of ``data.path`` depends on (``ingested_with``): the folder's digest and the
+    hash of its reading settings (every ``data.*`` reading option as read, the ``calibrate.*``
+    keys of a volumetric dataset's parameter series), which are kept beside (``settings``, with
+    the folder) to name what changed.  ``ingest`` records it; the stages reading
+    ``data.interim`` compare."""
     opts = dataclasses.asdict(io.ReadOptions.from_cfg(data_options(cfg)))
     opts.pop("missing")      # internal: no data config key
-    made = {"path": str(resolve(cfg.data.path)), **opts}
+    settings = {f"data.{k}": v for k, v in opts.items()}
     if is_volumetric(cfg) and cfg.get("calibrate") is not None:
         # a volumetric dataset's parameter series depend on its calibration too (an outside
         # probe's ingest with a prior was evaluated without one: 33 targets, 25 rows, exit 0)
-        made.update({f"calibrate.{k}": v for k, v in calibrate_settings(cfg).items()})
-    if resolve(cfg.data.path).exists():   # gone since: data.interim is read as it is
-        made[DIGEST] = folder_digest(resolve(cfg.data.path))   # last: a folder or option first
-    return json.loads(json.dumps(made, default=str))
+        settings.update({f"calibrate.{k}": v for k, v in calibrate_settings(cfg).items()})
+    return {DIGEST: dataset_digest(cfg), CONFIG: json_hash(settings),
+            SETTINGS_KEY: plain({"data.path": str(resolve(cfg.data.path)), **settings})}
 
 
 def load_ingested(cfg: DictConfig):
-    """``data.interim`` as ``ingest`` left it, refused when it was ingested from another
-    ``data.path`` or with other ``data.*`` reading options: a stage would otherwise score a
-    stale dataset under this config's name (an ingest predating the record is read as it is)."""
+    """``data.interim`` as ``ingest`` left it, refused when it was ingested from other data (the
+    digest of ``data.path``) or with other ``data.*`` reading options: a stage would otherwise
+    score a stale dataset under this config's name (an ingest predating the record is read as it
+    is, and so is one whose ``data.path`` is gone)."""
     root = resolve(cfg.data.interim)
     ds = io.load_interim(root)
     made = ds.meta["ingest_report"].get("ingested_with")
     if made is not None:
-        want = ingest_settings(cfg)
-        key = next((k for k in want if made.get(k) != want[k]
-                    and (k in made or not k.startswith(LATER))), None)
-        if key is not None:
-            name = key if key.startswith("calibrate.") else f"data.{key}"
-            what = (f"data.path={cfg.data.path} changed since it was ingested (its files differ)"
-                    if key == DIGEST else
-                    f"it was ingested with {name}={made.get(key)!r}, not {want[key]!r}")
-            raise io.ContractError(f"{what}: run `thermocomp ingest` with this config first (or "
-                                   "give another name= to keep both)", file=root / io.INGEST_REPORT)
+        want = ingest_fingerprint(cfg)
+        if want[DIGEST] is None:
+            want[DIGEST] = made.get(DIGEST)
+        if not matches(made, want):
+            raise io.ContractError(f"{_changed(cfg, made, want)}: run `thermocomp ingest` with "
+                                   "this config first (or give another name= to keep both)",
+                                   file=root / io.INGEST_REPORT)
     resolve_reference(cfg, ds)
     return ds
+
+
+def _changed(cfg: DictConfig, made: dict, want: dict) -> str:
+    """What differs between the ingest ``made`` and the one ``want``ed, said."""
+    if CONFIG not in made:
+        return "it was ingested by an earlier version (no digest and config hash in ingested_with)"
+    was, now = made.get(SETTINGS_KEY) or {}, want[SETTINGS_KEY]
+    key = next((k for k in now if was.get(k) != now[k]), None)
+    if key is None:
+        return f"data.path={cfg.data.path} changed since it was ingested (its files differ)"
+    return f"it was ingested with {key}={was.get(key)!r}, not {now[key]!r}"
 
 
 def check_declared(cfg: DictConfig, ds) -> None:

@@ -241,9 +241,9 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
     data = (cfg.get("data") or {}).get("path")
     data = resolve(str(data)) if data else None
     if stage != "simulate" and data is not None and data.is_dir():   # what promote checks
-        from ..base.files import folder_digest
+        from .source import dataset_digest
 
-        tags[DATASET_TAG] = folder_digest(data)
+        tags[DATASET_TAG] = dataset_digest(cfg)
     parent = os.environ.get(PARENT_ENV) or None
     with signals_raise(sigint=True) as signals:
         # A signal while the run is being created or closed waits for the end of that step:

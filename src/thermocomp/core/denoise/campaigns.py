@@ -20,31 +20,40 @@ def _replaced(campaigns: Mapping[str, pd.DataFrame], columns, values: dict) -> d
     return out
 
 
-def fit_denoiser(denoiser, campaigns: Mapping[str, pd.DataFrame], columns):
+def fit_denoiser(denoiser, campaigns: Mapping[str, pd.DataFrame], columns, denoised: bool = False):
     """Fit ``denoiser`` on ``columns`` of the campaigns; return it and the denoised campaigns.
 
     Every campaign is one time series (groups).  A denoiser fitted elsewhere
     (the ``denoise`` stage) comes wrapped in :class:`sklearn.frozen.FrozenEstimator`:
-    it is checked against ``columns`` and only applies its offline transform.
-    ``denoiser=None`` passes through.
+    it is checked against ``columns`` and only applies its offline transform, or none when the
+    campaigns are ``denoised`` by it already.  ``denoiser=None`` passes through.
     """
     columns = list(columns)
     if denoiser is None:
         return None, dict(campaigns)
     den = clone(denoiser)               # a FrozenEstimator clones to itself
+    if denoised:
+        if not isinstance(den, FrozenEstimator):
+            raise ValueError("denoised campaigns need the denoiser that denoised them, frozen")
+        return _prefitted(den.estimator, columns), dict(campaigns)
     X = pd.concat([df[columns] for df in campaigns.values()], ignore_index=True)
     groups = np.concatenate([np.full(len(df), cid, dtype=object) for cid, df in campaigns.items()])
     if isinstance(den, FrozenEstimator):
-        den = den.estimator
-        check_is_fitted(den)
-        fitted = list(getattr(den, "feature_names_in_", []))
-        if fitted != columns:
-            raise ValueError(f"the prefitted denoiser was fitted on {fitted}, the model's inputs "
-                             f"are {columns}")
+        den = _prefitted(den.estimator, columns)
         out = den.transform(X, groups=groups).to_numpy()
     else:
         out = den.fit_transform(X, groups=groups).to_numpy()
     return den, _replaced(campaigns, columns, {c: out[groups == c] for c in campaigns})
+
+
+def _prefitted(den, columns: list):
+    """``den`` (fitted elsewhere), checked to denoise ``columns``."""
+    check_is_fitted(den)
+    fitted = list(getattr(den, "feature_names_in_", []))
+    if fitted != columns:
+        raise ValueError(f"the prefitted denoiser was fitted on {fitted}, the model's inputs "
+                         f"are {columns}")
+    return den
 
 
 def denoise_campaigns(denoiser, campaigns: Mapping[str, pd.DataFrame], causal: bool | None = None

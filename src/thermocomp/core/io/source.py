@@ -12,7 +12,7 @@ kept missing per test campaign.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from ...base.files import folder_digest
@@ -21,16 +21,19 @@ from .options import ReadOptions
 from .read import read_campaign, read_dataset
 
 
-def open_dataset(root: str | Path, options: Mapping | None = None, *,
-                 stream: bool = False) -> Dataset:
-    """The dataset in ``root`` read with the ``data`` options, for a batch or a ``stream``."""
+def open_dataset(root: str | Path, options: Mapping | None = None, *, stream: bool = False,
+                 campaigns: Sequence[str] | None = None, digest: str | None = None) -> Dataset:
+    """The dataset in ``root`` read with the ``data`` options, for a batch or a ``stream``;
+    ``campaigns``: only those (a fleet's group), ``digest``: ``root``'s, when known (a fleet
+    reads its folder a group at a time, digested once)."""
     root = Path(root)
-    ds, report = read_dataset(root, options, missing="keep" if stream else "repair")
+    ds, report = read_dataset(root, options, missing="keep" if stream else "repair",
+                              campaigns=campaigns)
     if stream:
         _repair_train(ds, root, report, options)
         ds.meta["missing"] = {c: report["campaigns"][c]["missing"] for c in ds.ids("test")
                               if report["campaigns"][c].get("missing")}
-    ds.meta.update(digest=folder_digest(root), read_report=report)
+    ds.meta.update(digest=digest or folder_digest(root), read_report=report)
     return ds
 
 

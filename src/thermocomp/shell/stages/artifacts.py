@@ -6,13 +6,10 @@ with; ``train`` uses one only when it matches (:mod:`thermocomp.core.io.handoff`
 
 from __future__ import annotations
 
-import json
 from pathlib import Path
 
-from omegaconf import DictConfig, OmegaConf
-from sklearn.frozen import FrozenEstimator
+from omegaconf import DictConfig
 
-from ...base.files import folder_digest
 from ...base.log import say
 from ...base.paths import resolve
 from ...core.compensator import Compensator
@@ -24,28 +21,21 @@ from ...core.io.handoff import (
     matching_selection,
 )
 from ...core.scoring.evaluation import require_split
-from ..builders import build_compensator
-from ..source import reference
+from ..chain import columns, fit_chain, handed_denoised
+from ..fingerprint import DENOISE_KEYS, SELECT_KEYS, fingerprint
 
 __all__ = ["DENOISER_PKL", "DENOISE_JSON", "denoise_fingerprint", "fit_from_artifacts", "processed_data",
            "selection_fingerprint", "selection_path"]   # denoise and select read these here
 
 
-def _plain(node) -> object:
-    """Config node -> JSON-comparable plain data."""
-    data = OmegaConf.to_container(node, resolve=True) if isinstance(node, DictConfig) else node
-    return json.loads(json.dumps(data))
+def denoise_fingerprint(cfg: DictConfig, ds) -> dict:
+    """What ``data.processed`` is made from: the ingest ``ds`` and the denoise settings."""
+    return fingerprint(ds.meta["digest"], cfg, DENOISE_KEYS)
 
 
-def denoise_fingerprint(cfg: DictConfig) -> dict:
-    return {"denoise": _plain(cfg.denoise), "inputs": _plain(list(cfg.data.inputs)),
-            "interim": folder_digest(resolve(cfg.data.interim))}
-
-
-def selection_fingerprint(cfg: DictConfig) -> dict:
-    targets = None if cfg.data.targets is None else _plain(list(cfg.data.targets))
-    return {"select": _plain(cfg.select), "targets": targets, "reference": reference(cfg),
-            **denoise_fingerprint(cfg)}
+def selection_fingerprint(cfg: DictConfig, ds) -> dict:
+    """What ``selection.json`` is made from: the ingest ``ds``, the denoise and select settings."""
+    return fingerprint(ds.meta["digest"], cfg, SELECT_KEYS)
 
 
 def selection_path(cfg: DictConfig) -> Path:
@@ -53,27 +43,25 @@ def selection_path(cfg: DictConfig) -> Path:
     return resolve(cfg.model_path).parent / SELECTION_JSON
 
 
-def processed_data(cfg: DictConfig):
-    """``(dataset, fitted denoiser or None)`` from ``data.processed`` if it matches the config."""
-    return matching_processed(resolve(cfg.data.processed), lambda: denoise_fingerprint(cfg))
+def processed_data(cfg: DictConfig, ds):
+    """``(dataset, fitted denoiser or None)`` from ``data.processed`` if it was made from the
+    ingest ``ds`` with this config."""
+    return matching_processed(resolve(cfg.data.processed), lambda: denoise_fingerprint(cfg, ds))
 
 
 def fit_from_artifacts(cfg: DictConfig, ds) -> Compensator:
-    """Fit the configured compensator on the train split, reusing ``denoise``/``select`` outputs.
+    """Fit the configured compensator on the train split (:func:`~.chain.fit_chain`), reusing
+    ``denoise``/``select`` outputs.
 
     ``ds`` is the ingested dataset (``data.interim``).  With a matching
     ``data.processed`` the fitted denoiser is used as fitted (frozen); with a
     matching ``selection.json`` the stored inputs.
     """
-    comp = build_compensator(cfg, ds=ds)
-    ids = require_split(ds, "train")
-    processed = processed_data(cfg)
-    den = processed[1] if processed is not None else None
-    if den is not None:
-        comp.set_params(denoiser=FrozenEstimator(den))
-    selected = matching_selection(selection_path(cfg), lambda: selection_fingerprint(cfg), comp.targets)
-    comp.set_params(selection=selected)
-    say(f"fitting {cfg.model.name} on {len(ids)} train campaigns "
-        f"(denoiser: {'fitted by the denoise stage' if den is not None else 'as configured'}; "
+    processed = processed_data(cfg, ds)
+    selected = matching_selection(selection_path(cfg), lambda: selection_fingerprint(cfg, ds),
+                                  columns(cfg, ds)[1])
+    say(f"fitting {cfg.model.name} on {len(require_split(ds, 'train'))} train campaigns "
+        f"(denoiser: {'fitted by the denoise stage' if processed is not None else 'as configured'}; "
         f"selection: {'selection.json' if selected is not None else cfg.select.name})")
-    return comp.fit({c: ds.campaigns[c] for c in ids})
+    return fit_chain(cfg, ds, None if processed is None else handed_denoised(cfg, ds, processed),
+                     selected)

@@ -18,12 +18,9 @@ from ...base import signing
 from ...base.files import atomic_dir, check_replaceable, write_json
 from ...base.log import say
 from ...base.paths import resolve
-from ...core.denoise.split import denoise_split
-from ...core.frame import resolve_columns
 from ...core.io.contract import MANIFEST
 from ...core.io.read import INGEST_REPORT
-from ...core.scoring.evaluation import require_split
-from ..builders import build_denoiser
+from ..chain import denoise_step
 from ..config.checks import check_config
 from ..source import open_source
 from ..tracking import stage_run
@@ -36,10 +33,9 @@ def denoise(cfg: DictConfig) -> dict:
     src, dest = resolve(cfg.data.interim), resolve(cfg.data.processed)
     check_replaceable(dest, DENOISE_JSON, "data.processed")
     ds = open_source(cfg, ingested=True)
-    inputs, _ = resolve_columns(ds.columns, list(cfg.data.inputs), None)
-    ids = require_split(ds, "train")
-    fitted, out, made = denoise_split(build_denoiser(cfg), ds.campaigns, ids, inputs)
-    report = {"denoiser": cfg.denoise.name, "fingerprint": denoise_fingerprint(cfg),
+    step = denoise_step(cfg, ds, every=True)
+    fitted, out, made, inputs = step.fitted, step.campaigns, step.report, step.inputs
+    report = {"denoiser": cfg.denoise.name, "fingerprint": denoise_fingerprint(cfg, ds),
               "inputs": inputs, **made}
     say(f"{cfg.denoise.name}: {len(made['denoised'])} sensors x {len(ds.campaigns)} campaigns "
         f"denoised in {made['seconds']:.1f} s" if fitted is not None else
@@ -57,7 +53,7 @@ def denoise(cfg: DictConfig) -> dict:
         if cfg.plots != "none":
             from ...core.figures.denoising import denoise_figures
 
-            denoise_figures({c: ds.campaigns[c] for c in ids}, fitted, inputs, tmp)
+            denoise_figures({c: ds.campaigns[c] for c in ds.ids("train")}, fitted, inputs, tmp)
     with stage_run(cfg, "denoise") as tr:
         tr.log_metrics({"denoise_seconds": made["seconds"],
                         **{k: made.get(k, {}) for k in ("removed_rms_c", "causal_vs_offline_rms_c")}})

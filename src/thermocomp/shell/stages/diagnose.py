@@ -1,8 +1,9 @@
 """`thermocomp diagnose`: closed loop -- residual -> missing effect -> refit -> before/after.
 
-Reads ``data.path``, runs :func:`thermocomp.apps.diagnose.diagnose` on the configured model
-and writes ``diagnosis.json`` (the primary target's), ``diagnosis/`` (every target's JSON, the
-report, figures) and the config that reruns the diagnosed model
+Reads ``data.path`` (:func:`~thermocomp.shell.source.open_source`), runs
+:func:`thermocomp.apps.diagnose.diagnose` on the configured model and writes
+``diagnosis.json`` (the primary target's), ``diagnosis/`` (every target's JSON, the report,
+figures) and the config that reruns the diagnosed model
 (:func:`thermocomp.apps.diagnose.outputs.write_outputs`), which is built from that very config.
 """
 
@@ -21,11 +22,10 @@ from ...base.errors import ConfigError
 from ...base.log import logger, say
 from ...base.params import check_values, subset
 from ...base.paths import resolve
-from ...core import io
 from ..builders import build_compensator
 from ..config import rules
-from ..config.checks import check_config, data_options
-from ..source import check_declared, resolve_reference
+from ..config.checks import check_config
+from ..source import check_declared, open_source
 from ..tracking import stage_run
 
 # What each ``diagnose.*`` key may be: every stage checks rules.DIAGNOSE_RULES; the families are
@@ -97,9 +97,7 @@ def diagnose(cfg: DictConfig) -> dict:
     options = search_options(dcfg)
     targets = None if dcfg.targets is None else (
         [str(dcfg.targets)] if isinstance(dcfg.targets, str) else [str(t) for t in dcfg.targets])
-    say(f"reading {resolve(cfg.data.path)}")
-    ds, _ = io.read_dataset(resolve(cfg.data.path), data_options(cfg))
-    resolve_reference(cfg, ds)
+    ds = open_source(cfg)
     template = build_compensator(cfg)
     check_declared(cfg, ds)
     written: dict = {}

@@ -19,7 +19,7 @@ from omegaconf import DictConfig
 from ...apps.deploy.export import NotExportable, exported_files, not_in_code
 from ...apps.deploy.report import plain
 from ...base.errors import ConfigError
-from ...base.files import folder_digest, staged_outputs
+from ...base.files import staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
 from ..builders import deployable_model, is_registered
@@ -47,7 +47,7 @@ def _deployed(cfg: DictConfig, source: str) -> tuple[object, dict]:
     if registered:
         run = _registry_run(source) if source.startswith("models:/") else None
         return deployed, {"run_id": run, "dataset_hash": None}
-    return deployed, {"run_id": None, "dataset_hash": folder_digest(resolve(cfg.data.path))}
+    return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}
 
 
 def export(cfg: DictConfig) -> dict:

@@ -24,24 +24,25 @@ from ...core import io
 from ...core.metrics import VALIDATION
 from ...core.scoring.evaluation import VAL_FOLDS, require_split, validation_report
 from ...core.scoring.results import TargetResult
-from ..builders import build_compensator, validation_template
+from ..builders import validation_template
+from ..chain import fit_chain
 from ..config.checks import check_config, data_options
 from ..model_store import save_model
-from ..source import resolve_reference
+from ..source import dataset_digest, open_source
 from ..tracking import stage_run
 
 
-def _group(cfg: DictConfig, root, group: str, ids: list[str], stage) -> dict:
+def _group(cfg: DictConfig, digest: str, group: str, ids: list[str], stage) -> dict:
     """Read, fit, score and save one group; returns its figures (nothing of its data)."""
     # its own copy: data.reference=auto is resolved per group, and the groups of one process
     # (data.group_jobs=1) share the caller's config
     cfg = copy.deepcopy(cfg)
-    ds, report = io.read_dataset(root, data_options(cfg), campaigns=ids)
-    report["reference"] = resolve_reference(cfg, ds)
-    train = require_split(ds, "train")
+    ds = open_source(cfg, campaigns=ids, digest=digest)
+    report = ds.meta["read_report"]
+    require_split(ds, "train")
     require_split(ds, "test")
     t0 = time.perf_counter()
-    comp = build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train})
+    comp = fit_chain(cfg, ds)       # as run fits one model
     fit_s = time.perf_counter() - t0
     ev = cfg.eval
     targets, pooled = fleet.group_scores(comp, ds, ev.mode, ev.e_p95.statistic, ev.e_p95.max_points)
@@ -75,12 +76,13 @@ def run_grouped(cfg: DictConfig) -> dict:
     manifest = io.read_manifest(root, io.ReadOptions.from_cfg(data_options(cfg)))
     members = fleet.groups(manifest, column, root / "campaigns.csv")
     say(f"reading {root}: {len(members)} groups by {column!r}, {jobs} at a time")
+    digest = dataset_digest(cfg)        # each group's: the folder digested once
     out, t0 = resolve(cfg.out), time.perf_counter()
     head = {"model": cfg.model.name, "mode": cfg.eval.mode, "select": cfg.select.name,
             "dataset": root.name, "group_by": column}
     with stage_run(cfg, "run") as tr:
         with staged_outputs(out) as stage:
-            results = parallel(jobs)(delayed(_group)(cfg, root, g, ids, stage)
+            results = parallel(jobs)(delayed(_group)(cfg, digest, g, ids, stage)
                                      for g, ids in members.items())
             metrics, table = fleet.fleet_metrics(dict(zip(members, results)), head,
                                                  cfg.eval.e_p95.statistic, cfg.eval.e_p95.max_points)

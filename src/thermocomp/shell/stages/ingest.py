@@ -18,7 +18,7 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core import io
 from ..config.checks import check_config
-from ..source import data_options, ingest_settings, is_volumetric, open_source, resolve_reference
+from ..source import data_options, ingest_fingerprint, is_volumetric, open_source, resolve_reference
 from ..tracking import stage_run
 
 
@@ -28,7 +28,7 @@ def ingest(cfg: DictConfig) -> dict:
     src, dest = resolve(cfg.data.path), resolve(cfg.data.interim)
     check_replaceable(dest, io.INGEST_REPORT, "data.interim")
     say(f"ingesting {src} -> {dest}")
-    made = {"ingested_with": ingest_settings(cfg)}     # what train .. evaluate check
+    made = {"ingested_with": ingest_fingerprint(cfg)}     # what train .. evaluate check
 
     def finish(ds) -> dict:     # as run's ingest_report.json records it
         return {"reference": resolve_reference(cfg, ds)}

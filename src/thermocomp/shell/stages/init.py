@@ -18,6 +18,7 @@ from ...core.continuation import campaign_period
 from ...core.io.detect import data_config, detection_lines, head, proposed_roles, sample_file
 from ...core.io.roles import naming
 from ..config.checks import check_config, data_options
+from ..source import open_source
 
 
 def init(cfg: DictConfig) -> dict:
@@ -32,7 +33,8 @@ def init(cfg: DictConfig) -> dict:
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample)
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     config = data_config(src, given, opts, roles, defaults)
-    ds, report = io.read_dataset(src, config)           # refused here as `run` would refuse it
+    ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
+    report = ds.meta["read_report"]
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")

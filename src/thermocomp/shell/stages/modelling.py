@@ -26,6 +26,7 @@ from ...core.run_report import Refits, ReportSettings, report_run
 from ...core.scoring.evaluation import require_split
 from ...core.scoring.results import EvaluationResult
 from ..builders import build_compensator, validation_template
+from ..chain import fit_chain
 from ..config.checks import check_config
 from ..model_store import load_model, model_family, save_model
 from ..source import (
@@ -73,7 +74,8 @@ def evaluate(cfg: DictConfig) -> dict:
 
 
 def run(cfg: DictConfig) -> dict:
-    """ingest .. evaluate in one process (nothing written under data/); with ``data.group_by``
+    """ingest .. evaluate in one process, the stages' functions chained in memory (nothing
+    written under data/); with ``data.group_by``
     one model per group of campaigns (a fleet's machines, ``stages/fleet.py``).  On a
     volumetric dataset the source is its parameter series, and ``metrics.json`` gains the
     ``volumetric`` section (:mod:`thermocomp.apps.volumetric.validation`)."""
@@ -93,7 +95,7 @@ def run(cfg: DictConfig) -> dict:
         t0 = time.perf_counter()
         ids = require_split(ds, "train")
         say(f"fitting {cfg.model.name} ({cfg.select.name} inputs) on {len(ids)} train campaigns")
-        comp = build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in ids})
+        comp = fit_chain(cfg, ds)     # what denoise -> select -> train compute, in memory
         fit_s = time.perf_counter() - t0
         clock.lap("fit")
 

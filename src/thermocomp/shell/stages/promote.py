@@ -14,16 +14,16 @@ from omegaconf import DictConfig, OmegaConf
 
 from ...apps.deploy import POLICIES
 from ...apps.deploy.promotion import deploy, deploy_key, promote_report
-from ...base.files import folder_digest, write_json
+from ...base.files import write_json
 from ...base.params import choice
 from ...base.paths import resolve
-from ...core import io
 from ...core.continuation import lead_ins
 from ...core.scoring.champion import check_criterion, outcome_line
 from .. import registry
 from ..builders import deploy_stream, deployable
-from ..config.checks import check_config, data_options
+from ..config.checks import check_config
 from ..config.rules import check_keys
+from ..source import open_source
 from ..store import registry_lock
 from ..tracking import client as mlflow_client
 from ..tracking import connect
@@ -40,8 +40,8 @@ def promote(cfg: DictConfig) -> dict:
     check_criterion(str(cfg.promote.criterion))
     client, uri = mlflow_client(cfg), connect(cfg)
     data_path = resolve(cfg.data.path)
-    ds, _ = io.read_dataset(data_path, data_options(cfg))
-    dataset_hash = folder_digest(data_path)
+    ds = open_source(cfg)
+    dataset_hash = ds.meta["digest"]      # the digest every run of data.path is tagged with
     comp, cand = registry.candidate(cfg, client, uri, data_path, dataset_hash)
     deploy(cand, comp, ds, leads=lead_ins(comp, ds, ds.ids("train") + ds.ids("test")),
            stream_of=lambda train: deploy_stream(cfg, comp, train, f"run {cand.run_id}"),

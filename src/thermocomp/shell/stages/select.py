@@ -13,18 +13,12 @@ from __future__ import annotations
 
 from omegaconf import DictConfig
 
-from ...base.errors import ConfigError
 from ...base.files import atomic_dir, write_json
 from ...base.log import say
 from ...base.paths import resolve
-from ...core.denoise import fit_denoiser
-from ...core.frame import resolve_columns
-from ...core.scoring.evaluation import require_split
-from ...core.select.per_target import select_on_campaigns
-from ..build import build
-from ..builders import build_denoiser
+from ..chain import denoise_step, handed_denoised, select_step
 from ..config.checks import check_config
-from ..source import open_source, reference
+from ..source import open_source
 from ..tracking import stage_run
 from .artifacts import processed_data, selection_fingerprint, selection_path
 
@@ -32,25 +26,15 @@ from .artifacts import processed_data, selection_fingerprint, selection_path
 def select(cfg: DictConfig) -> dict:
     """Fit the selector per target on the train split and write ``selection.json``."""
     check_config(cfg, outputs=("out", "model_path"), inputs=("data.interim", "data.processed"))
-    selector = build(cfg.select.selector, "select.selector")
-    try:
-        if hasattr(selector, "check_params"):
-            selector.check_params()
-    except ValueError as exc:
-        raise ConfigError(f"select.selector: {exc}") from exc
     ds = open_source(cfg, ingested=True)
-    ids = require_split(ds, "train")
-    inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
-                                      None if cfg.data.targets is None else list(cfg.data.targets))
-    processed = processed_data(cfg)
-    campaigns = ({c: processed[0].campaigns[c] for c in ids} if processed is not None else
-                 fit_denoiser(build_denoiser(cfg), {c: ds.campaigns[c] for c in ids}, inputs)[1])
-    result, scores, names = select_on_campaigns(selector, campaigns, inputs, targets,
-                                                reference(cfg), str(cfg.select.name))
+    processed = processed_data(cfg, ds)     # the denoise stage's output, where it matches
+    denoised = (handed_denoised(cfg, ds, processed) if processed is not None else
+                denoise_step(cfg, ds))
+    result, scores, names = select_step(cfg, ds, denoised)
     for t, entry in result.items():
         say(f"{t}: {cfg.select.name} -> {', '.join(entry['selected'])}")
-    doc = {"select": cfg.select.name, "fingerprint": selection_fingerprint(cfg),
-           "train_campaigns": ids, "targets": result}
+    doc = {"select": cfg.select.name, "fingerprint": selection_fingerprint(cfg, ds),
+           "train_campaigns": ds.ids("train"), "targets": result}
     path = write_json(selection_path(cfg), doc)
     figures = resolve(cfg.out) / "select"
     with atomic_dir(figures) as tmp:      # plots=none: emptied, not an earlier run's figures
