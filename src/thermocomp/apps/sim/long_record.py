@@ -131,7 +131,7 @@ import pandas as pd
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel, room_response
 from thermocomp.apps.sim.campaign import Machine, Programme
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork
-from thermocomp.apps.sim.scenario import CampaignPlan, Scenario, assemble, campaign_entry, plain
+from thermocomp.apps.sim.scenario import CampaignPlan, Scenario, assemble, campaign_entry, check_size, plain
 from thermocomp.apps.sim.sensors import AMBIENT, TemperatureSensor, quantise
 from thermocomp.apps.sim.sources import (
     SPINDLE,
@@ -452,6 +452,8 @@ class LongRecord(Scenario):
         (child,) = rng.spawn(1)
         start = DAY_S * float(self.start_day) + HOUR * float(self.start_hour)
         duration = self._duration_s()
+        # refused before the workload is planned (a day at a time: 15 s for 1e5 days)
+        check_size(duration / float(self.sample_period_s), 1)
         climate = self._climate()
         programme, jobs, shifts = workload(
             child, start, duration, float(self.sample_period_s), self.speeds_rpm, tuple(self.utilisation),
