@@ -44,8 +44,7 @@ def thermocomp(*args: str, cwd=None, env=None, check=True,
     a new interpreter's ~2.5 s of CPU for the imports: for a test about what a command does
     (scores, files, messages, exit statuses).  ``subprocess=True`` runs the installed console
     script, for a test about the process boundary itself: signals, servers, stdin, concurrent
-    processes, a command another one runs (``hydra.main`` holds one Hydra per process, so a
-    command cannot run inside another in the same process)."""
+    processes (a command another one runs while it works)."""
     run = _console if subprocess else _in_process
     proc = run(args, Path(cwd or ROOT), env or {})
     if check and proc.returncode != 0:

@@ -16,12 +16,11 @@ from ..base.errors import ConfigError
 from ..core.compensator import Compensator
 from ..core.denoise import fit_denoiser
 from ..core.denoise.split import denoise_split
-from ..core.frame import resolve_columns
 from ..core.scoring.evaluation import require_split
 from ..core.select.per_target import select_on_campaigns
 from .build import build
 from .builders import build_compensator, build_denoiser
-from .source import reference
+from .source import declared_columns, reference
 
 
 @dataclass(frozen=True)
@@ -35,17 +34,11 @@ class Denoised:
     report: dict
 
 
-def columns(cfg: DictConfig, ds) -> tuple[list, list]:
-    """``(inputs, targets)`` of ``ds`` as ``data.inputs``/``data.targets`` declare them."""
-    targets = None if cfg.data.targets is None else list(cfg.data.targets)
-    return resolve_columns(ds.columns, list(cfg.data.inputs), targets)
-
-
 def denoise_step(cfg: DictConfig, ds, every: bool = False) -> Denoised:
     """The configured denoiser fitted on the train split of ``ds``, the train campaigns denoised
     offline; ``every``: every campaign, and the report (the ``denoise`` stage's output)."""
     ids = require_split(ds, "train")
-    inputs, _ = columns(cfg, ds)
+    inputs, _ = declared_columns(cfg, ds)
     if every:
         fitted, out, report = denoise_split(build_denoiser(cfg), ds.campaigns, ids, inputs)
         return Denoised(fitted, inputs, out, report)
@@ -57,7 +50,7 @@ def handed_denoised(cfg: DictConfig, ds, processed) -> Denoised:
     """The denoise step with the denoiser the ``denoise`` stage fitted (``processed``: its
     ``(dataset, fitted denoiser)``): the train campaigns of ``ds`` denoised by it, as read (the
     frames keep what the reader gave them)."""
-    inputs, ids = columns(cfg, ds)[0], require_split(ds, "train")
+    inputs, ids = declared_columns(cfg, ds)[0], require_split(ds, "train")
     fitted = processed[1]
     frozen = None if fitted is None else FrozenEstimator(fitted)
     return Denoised(fitted, inputs, fit_denoiser(frozen, {c: ds.campaigns[c] for c in ids}, inputs)[1],
@@ -74,7 +67,7 @@ def select_step(cfg: DictConfig, ds, denoised: Denoised) -> tuple[dict, dict, di
     except ValueError as exc:
         raise ConfigError(f"select.selector: {exc}") from exc
     ids = require_split(ds, "train")
-    _, targets = columns(cfg, ds)
+    _, targets = declared_columns(cfg, ds)
     return select_on_campaigns(selector, {c: denoised.campaigns[c] for c in ids},
                                denoised.inputs, targets, reference(cfg), str(cfg.select.name))
 

@@ -212,14 +212,21 @@ def _changed(cfg: DictConfig, made: dict, want: dict) -> str:
     return f"it was ingested with {key}={was.get(key)!r}, not {now[key]!r}"
 
 
+def declared_columns(cfg: DictConfig, ds) -> tuple[list, list]:
+    """``(inputs, targets)`` of ``ds`` as ``data.inputs``/``data.targets`` declare them."""
+    from ..core.frame import resolve_columns
+
+    targets = cfg.data.get("targets")
+    return resolve_columns(ds.columns, list(cfg.data.inputs),
+                           None if targets is None else list(targets))
+
+
 def check_declared(cfg: DictConfig, ds) -> None:
     """Every campaign of ``ds`` holds every column ``data.inputs``/``data.targets`` declare
     (before anything is fitted): the error names the odd campaign's file."""
-    from ..core.frame import check_common_columns, resolve_columns
+    from ..core.frame import check_common_columns
 
-    targets = cfg.data.get("targets")
-    inputs, targets = resolve_columns(ds.columns, list(cfg.data.inputs),
-                                      None if targets is None else list(targets))
+    inputs, targets = declared_columns(cfg, ds)
     check_common_columns(ds.campaigns, inputs + targets, {cid: ds.file_path(cid) for cid in ds.ids()})
 
 

@@ -21,8 +21,9 @@ from ...core.io.handoff import (
     matching_selection,
 )
 from ...core.scoring.evaluation import require_split
-from ..chain import columns, fit_chain, handed_denoised
+from ..chain import fit_chain, handed_denoised
 from ..fingerprint import DENOISE_KEYS, SELECT_KEYS, fingerprint
+from ..source import declared_columns
 
 __all__ = ["DENOISER_PKL", "DENOISE_JSON", "denoise_fingerprint", "fit_from_artifacts", "processed_data",
            "selection_fingerprint", "selection_path"]   # denoise and select read these here
@@ -59,7 +60,7 @@ def fit_from_artifacts(cfg: DictConfig, ds) -> Compensator:
     """
     processed = processed_data(cfg, ds)
     selected = matching_selection(selection_path(cfg), lambda: selection_fingerprint(cfg, ds),
-                                  columns(cfg, ds)[1])
+                                  declared_columns(cfg, ds)[1])
     say(f"fitting {cfg.model.name} on {len(require_split(ds, 'train'))} train campaigns "
         f"(denoiser: {'fitted by the denoise stage' if processed is not None else 'as configured'}; "
         f"selection: {'selection.json' if selected is not None else cfg.select.name})")
