@@ -218,12 +218,13 @@ def config_container(cfg: DictConfig) -> dict:
 
 
 @contextmanager
-def stage_run(cfg: DictConfig, stage: str, default: bool = True):
+def stage_run(cfg: DictConfig, stage: str, default: bool = True, digest: str | None = None):
     """An MLflow run for one stage, with the meaningful config logged; yields a tracker.
 
     Inside a sweep (``THERMOCOMP_PARENT_RUN_ID`` set) the run is a child of the
     sweep's parent run.  ``default`` is whether the stage is tracked when
-    ``track`` is null.  The run ends FINISHED, FAILED (an exception), or KILLED
+    ``track`` is null.  ``digest``: the ``data.path`` digest its caller already read
+    (``meta["digest"]``), else it is digested here.  The run ends FINISHED, FAILED (an exception), or KILLED
     (SIGTERM -> exit 143, SIGINT -> exit 130).
     """
     if not enabled(cfg, default):
@@ -243,7 +244,7 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True):
     if stage != "simulate" and data is not None and data.is_dir():   # what promote checks
         from .source import dataset_digest
 
-        tags[DATASET_TAG] = dataset_digest(cfg)
+        tags[DATASET_TAG] = digest or dataset_digest(cfg)
     parent = os.environ.get(PARENT_ENV) or None
     with signals_raise(sigint=True) as signals:
         # A signal while the run is being created or closed waits for the end of that step:

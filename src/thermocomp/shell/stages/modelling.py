@@ -88,7 +88,8 @@ def run(cfg: DictConfig) -> dict:
     ds = open_source(cfg)
     volumetric = calibration_of(ds)
     clock.lap("read")
-    with stage_run(cfg, "run") as tr:     # a run refused from here on is recorded FAILED
+    # a run refused from here on is recorded FAILED; its dataset tag is the digest just read
+    with stage_run(cfg, "run", digest=ds.meta["digest"]) as tr:
         if volumetric is None:
             check_declared(cfg, ds)
         clock.lap("log")
