@@ -40,7 +40,8 @@ a family-wise p of 0.025-0.039 > 0.01; the shorter blocks elsewhere let clean se
 (pooled: 626 test error +81 %, 303 +6 %) and planted seeds get worse (6: +19 % / +17 %;
 101 with gain_max: +16 %).  The residual-based length itself already accepts on clean seed 11
 (the residual decorrelates at lag 1: 609 one-sample blocks; a lag of 5.4 % CV gain at p 0.00045,
-test +8 %) and lets the control clear on 303.
+test +8 %) and lets the control clear on 303.  (Seed 11 is now refused by the bar's margin:
+``bench_diagnose_few.py``.)
 """
 
 from __future__ import annotations

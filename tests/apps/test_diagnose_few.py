@@ -3,7 +3,9 @@
 With 8 train campaigns a sign-flip test over campaigns has 256 outcomes (smallest p 1/256) and,
 family-wise over a round, no effect could clear alpha = 0.01 however strong.  The gains are now
 tested on time blocks within the held-out campaigns, as long as the residual takes to decorrelate
-(thermocomp.apps.diagnose.blocks), and a change must also gain where no fold extrapolates.
+(thermocomp.apps.diagnose.blocks), and a change must also gain where no fold extrapolates and,
+on blocks finer than the campaigns, reach min_gain_pct in its 1 - alpha lower bound
+(benchmarks/bench_diagnose_few.py).
 """
 
 from __future__ import annotations
@@ -75,6 +77,27 @@ def test_a_planted_position_effect_is_accepted_with_8_train_campaigns():
 def test_nothing_is_accepted_on_clean_data_nor_the_control(seed):
     j = diagnosis(None, seed)
     assert _accepted(j) == [] and j["after"]["test_rmse"] == j["before"]["test_rmse"]
+    _control_never_clears(j)
+
+
+def test_a_gain_barely_over_the_bar_on_many_short_blocks_is_not_accepted():
+    # clean seed 11: the residual is at the noise floor and decorrelates at lag 1, so 609
+    # one-sample blocks; a lag of the inputs gains 5.4 % in CV (bar 5 %) at a family-wise p far
+    # below alpha, but 2 of 8 campaigns lose and the test error rose 8 % when it was accepted.
+    # The gain must reach the bar with confidence (its 1 - alpha lower bound), not in the
+    # point estimate
+    j = diagnosis(None, 11)
+    assert _accepted(j) == [] and j["after"]["test_rmse"] == j["before"]["test_rmse"]
+    bar = j["bar"]
+    assert j["cv"]["test_blocks"] > 10 * j["cv"]["units"]           # ranked blocks
+    first = next(r for r in j["rounds"] if r["step"] == 1)
+    top = max((e for e in first["evaluated"] if not e.get("control")),
+              key=lambda e: e["evidence"]["cv_rmse_gain"])
+    ev = top["evidence"]
+    assert ev["cv_rmse_gain_pct"] >= bar["min_gain_pct"] and ev["p_value_family"] <= bar["alpha"]
+    assert 0 < ev["cv_rmse_gain_lcb_alpha"] < ev["cv_rmse_gain_lcb"] < ev["cv_rmse_gain"]
+    assert 100 * ev["cv_rmse_gain_lcb_alpha"] / first["cv_rmse"] < bar["min_gain_pct"]
+    assert not ev["clears_bar"]
     _control_never_clears(j)
 
 
