@@ -16,6 +16,8 @@ import pytest
 
 from conftest import ROOT
 
+pytest_plugins = ("pytester",)   # the CI-required test runs in a session of its own
+
 STUB = "#!/usr/bin/env bash\necho \"$(basename \"$0\") $*\" >> \"$CALLS\"\n"
 
 
@@ -46,13 +48,19 @@ def test_ci_run_stops_when_the_team_server_does_not_start(tmp_path):
     assert not [c for c in log if c.startswith(("python", "chromium", "make test"))], log
 
 
-def test_the_postgresql_test_fails_instead_of_skipping_when_ci_requires_the_server():
-    env = {k: v for k, v in os.environ.items() if k not in ("THERMOCOMP_MLFLOW_SERVER", "CI")}
-    args = [sys.executable, "-m", "pytest", "-q", "-p", "no:randomly", "-p", "no:cacheprovider",
-            str(ROOT / "tests" / "shell" / "test_team.py"), "-k", "postgresql"]
-    required = subprocess.run(args, env={**env, "THERMOCOMP_REQUIRE_SERVER": "1"},
-                              capture_output=True, text=True, timeout=300, cwd=ROOT)
-    assert required.returncode == 1 and "1 failed" in required.stdout, required.stdout[-2000:]
+def test_the_postgresql_test_fails_instead_of_skipping_when_ci_requires_the_server(
+        pytester, monkeypatch):
+    """A pytest session of its own, in this process (pytester): a child interpreter re-imported
+    pytest, conftest, sklearn and MLflow (~3 s CPU) to see one test fail."""
+    for name in ("THERMOCOMP_MLFLOW_SERVER", "CI"):
+        monkeypatch.delenv(name, raising=False)
+    monkeypatch.setenv("THERMOCOMP_REQUIRE_SERVER", "1")
+    monkeypatch.delitem(sys.modules, "test_team", raising=False)   # it reads the server at import
+    required = pytester.runpytest_inprocess(
+        str(ROOT / "tests" / "shell" / "test_team.py"), "-k", "postgresql",
+        "-p", "no:randomly", "-p", "no:cacheprovider", "-p", "no:xdist")
+    assert required.ret == 1 and required.parseoutcomes().get("failed") == 1, \
+        "\n".join(required.outlines[-40:])
 
 
 # -- the README test's reading of README.md (tests/test_readme.py runs the commands; this checks

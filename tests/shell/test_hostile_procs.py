@@ -25,6 +25,7 @@ import pytest
 import thermocomp
 from conftest import LIGHT, refused
 from conftest import thermocomp as tc
+from test_deploy import mlflow_store
 from test_hostile import FAST, make_dataset, snapshot
 from thermocomp.shell.cli import main
 
@@ -55,7 +56,7 @@ def sweep(tmp_path_factory):
     """A store with a two-run sweep on a small dataset; the runs' validation RMSE differ."""
     root = tmp_path_factory.mktemp("promote_race")
     ds = make_dataset(root / "ds", rows=60)
-    uri = f"sqlite:///{root / 'mlruns' / 'mlflow.db'}"
+    uri = mlflow_store(root)               # a copy of a migrated store: its creation is not the point
     tc("run", "-m", f"data.path={ds}", f"tracking_uri={uri}", *LIGHT, f"out={root / 'out'}",
        "data.inputs=[T_0],[T_0,T_amb]", f"hydra.sweep.dir={root / 'sweep'}", cwd=root)
     client = _client(uri)
@@ -201,7 +202,7 @@ def test_figure_workers_die_with_a_sigkilled_parent():
 @pytest.mark.skipif(len(os.sched_getaffinity(0)) < 2, reason="figures are drawn in workers on 2+ CPUs")
 def test_a_run_sigkilled_during_its_figures_leaves_no_worker_and_ends_killed(tmp_path):
     ds = make_dataset(tmp_path / "ds", rows=60)
-    uri = f"sqlite:///{tmp_path / 'mlruns' / 'mlflow.db'}"
+    uri = mlflow_store(tmp_path)           # migrated already: the child spends its time drawing
     common = [f"data.path={ds}", f"tracking_uri={uri}", "eval.mutual_prediction=false",
               "eval.ati_baselines=false"]
     env = {**os.environ, "PYTHONPATH": str(SRC)}
@@ -277,7 +278,7 @@ def test_joblib_sweep_jobs_die_with_a_sigkilled_sweep(tmp_path):
 def test_a_run_of_a_live_process_is_not_marked_killed(tmp_path):
     from thermocomp.shell.store import mark_orphan_runs, process_tags
 
-    uri = f"sqlite:///{tmp_path / 'mlflow.db'}"
+    uri = mlflow_store(tmp_path)
     client = _client(uri)
     exp = client.create_experiment("e", artifact_location=(tmp_path / "e").as_uri())
     mine = client.create_run(exp, tags=process_tags()).info.run_id

@@ -94,7 +94,7 @@ def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_pa
     assert main(["compare", f"tracking_uri={uri}", "compare.descending=maybe"]) == 2  # was: truthy
     assert "compare.descending='maybe': must be null or true or false" in capsys.readouterr().err
     # tracebacks before: the sweep read through another store, a file in compare.out's place
-    other_store = f"sqlite:///{tmp_path / 'other_store' / 'mlflow.db'}"
+    other_store = mlflow_store(tmp_path / "other_store")   # empty, migrated: not this sweep's
     assert main(["compare", f"tracking_uri={other_store}", f"compare.sweep={sweep_dir}"]) == 2
     assert "tracked in another store" in capsys.readouterr().err
     afile = tmp_path / "afile"
