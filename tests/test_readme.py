@@ -27,6 +27,7 @@ from __future__ import annotations
 
 import os
 import re
+import resource
 import shutil
 import signal
 import socket
@@ -130,14 +131,19 @@ def fresh_clone(dest: Path) -> Path:
         shutil.copy2(ROOT / rel, dest / rel)
     venv = Path(sys.prefix)
     subprocess.run(["cp", "-al", str(venv), str(dest / ".venv")], check=True)
-    old, new = f"{ROOT}/", f"{dest}/"
+    # the scripts name the venv they were installed in (a worktree's venv may be another
+    # checkout's): point them at the copy's, so its python, and so its src, runs
+    moves = [(f"{venv}/".encode(), f"{dest}/.venv/".encode()),
+             (f"{ROOT}/".encode(), f"{dest}/".encode())]
     for script in (dest / ".venv/bin").iterdir():
         if script.is_symlink() or not script.is_file():
             continue
         data = script.read_bytes()
-        if old.encode() in data[:4096]:
+        if any(old in data[:4096] for old, _ in moves):
+            for old, new in moves:
+                data = data.replace(old, new)
             script.unlink()  # hard link: write a new file, never the original's inode
-            script.write_bytes(data.replace(old.encode(), new.encode()))
+            script.write_bytes(data)
             script.chmod(0o755)
     for pth in (dest / ".venv/lib").glob("python*/site-packages/__editable__.thermocomp-*.pth"):
         pth.unlink()
@@ -158,8 +164,9 @@ def _user_env(home: Path) -> dict:
     """A shell as a new user has it: no venv on PATH, no project variables."""
     path = os.pathsep.join(p for p in os.environ["PATH"].split(os.pathsep)
                            if not p.startswith(sys.prefix))
+    # PYTHONPATH too: one pointed at a checkout's src would run (and write to) that checkout
     env = {k: v for k, v in os.environ.items()
-           if not k.startswith(("THERMOCOMP_", "MLFLOW_", "VIRTUAL_ENV", "PYTEST", "DVC_"))}
+           if not k.startswith(("THERMOCOMP_", "MLFLOW_", "VIRTUAL_ENV", "PYTEST", "DVC_", "PYTHONPATH"))}
     return {**env, "PATH": path, "HOME": str(home)}
 
 
@@ -188,8 +195,10 @@ def test_readme_blocks_are_all_accounted_for():
     assert not unlisted, f"docs pages with commands but not in mkdocs.yml's nav: {unlisted}"
 
 
-# What the README's `make run` leaves that the pages' commands read (the default dataset): made
-# in each page's copy before its commands, so the pages run apart (xdist spreads them).
+# What the README's `make run` leaves that the pages' commands read (the default dataset): in
+# each page's copy before its commands, so the pages run apart (xdist spreads them).  Made by
+# the first page of a test process; the next ones get a copy of what it wrote (the simulator is
+# deterministic: the same files, byte for byte, in every copy).
 PREPARE = ".venv/bin/thermocomp simulate"
 
 
@@ -197,6 +206,47 @@ def runnable_pages() -> list[Path]:
     """The pages of :func:`pages` with a block to run or to write."""
     return [page for page in pages()
             if any(b["kind"] not in ("skip", "text") for b in readme_blocks(page.read_text()))]
+
+
+def _children_cpu() -> float:
+    """CPU seconds (user + system) of the ended child processes: a block's cost on a loaded
+    machine, where its wall time says little."""
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _files(clone: Path) -> dict[Path, tuple[int, int]]:
+    """Size and time of every file of ``clone`` but its venv, git and byte code: what a command
+    wrote is the difference before/after."""
+    found = {}
+    for folder, dirs, names in os.walk(clone):
+        dirs[:] = [d for d in dirs if d not in (".venv", ".git", "__pycache__")]
+        for name in names:
+            st = (Path(folder) / name).stat()
+            found[(Path(folder) / name).relative_to(clone)] = (st.st_size, st.st_mtime_ns)
+    return found
+
+
+@pytest.fixture(scope="module")
+def prepared(tmp_path_factory) -> Path:
+    """The files :data:`PREPARE` wrote in the first page's copy, for the next pages' copies."""
+    return tmp_path_factory.mktemp("prepared")
+
+
+def prepare(clone: Path, env: dict, log: list[str], kept: Path) -> None:
+    """:data:`PREPARE` in ``clone``: run there if ``kept`` is empty (then what it wrote is kept),
+    else a copy of what it wrote (file times kept, as a copy of the first clone's)."""
+    if any(kept.iterdir()):
+        shutil.copytree(kept, clone, dirs_exist_ok=True)
+        log.append(f"--- (prepared) {PREPARE}: a copy of what it wrote in the first page's copy")
+        return
+    before = _files(clone)
+    run_blocks([{"kind": "run", "lang": "bash", "body": PREPARE + "\n", "arg": "", "line": 0,
+                 "page": "(prepared)"}], clone, env, log)
+    for rel, stamp in _files(clone).items():
+        if before.get(rel) != stamp:
+            (kept / rel).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(clone / rel, kept / rel)
 
 
 def run_blocks(blocks: list[dict], clone: Path, env: dict, log: list[str]) -> None:
@@ -224,10 +274,12 @@ def run_blocks(blocks: list[dict], clone: Path, env: dict, log: list[str]) -> No
                 background.append(proc)
                 _wait_port(host, int(port), proc)
                 continue
+            start, cpu = time.monotonic(), _children_cpu()
             proc = subprocess.run(["bash", "-euo", "pipefail", "-c", b["body"]], cwd=clone,
                                   env=env, capture_output=True, text=True, timeout=1200)
             output = proc.stdout + proc.stderr
-            log.append(f"--- {where}\n{b['body']}{output[-3000:]}")
+            log.append(f"--- {where} ({time.monotonic() - start:.1f} s wall, "
+                       f"{_children_cpu() - cpu:.1f} s CPU)\n{b['body']}{output[-3000:]}")
             assert proc.returncode == 0, f"{where} failed ({proc.returncode}):\n{b['body']}\n{output}"
             if b["kind"] == "expect":
                 assert re.search(b["arg"], output), f"{where}: no match for {b['arg']!r}\n{output}"
@@ -238,19 +290,20 @@ def run_blocks(blocks: list[dict], clone: Path, env: dict, log: list[str]) -> No
 
 
 @pytest.mark.parametrize("page", runnable_pages(), ids=lambda page: str(page.relative_to(ROOT)))
-def test_page_commands_as_written(page, tmp_path):
+def test_page_commands_as_written(page, tmp_path, prepared):
     """One page's commands in a fresh copy of their own; a docs page's copy holds the default
     dataset first (:data:`PREPARE`), as the README's `make run` leaves it."""
+    start, cpu = time.monotonic(), _children_cpu()
     clone = fresh_clone(tmp_path / "clone")
+    log = [f"--- (fresh clone) ({time.monotonic() - start:.1f} s wall, {_children_cpu() - cpu:.1f} s CPU "
+           "of its commands)"]
     home = tmp_path / "home"
     home.mkdir()
     env = _user_env(home)
-    log = []
     blocks = [{**b, "page": page.relative_to(ROOT)} for b in readme_blocks(page.read_text())]
-    if page != ROOT / "README.md":
-        blocks.insert(0, {"kind": "run", "lang": "bash", "body": PREPARE + "\n", "arg": "",
-                          "line": 0, "page": "(prepared)"})
     try:
+        if page != ROOT / "README.md":
+            prepare(clone, env, log, prepared)
         run_blocks(blocks, clone, env, log)
     finally:
         (tmp_path / "readme_run.log").write_text("\n".join(log))
