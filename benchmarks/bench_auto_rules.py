@@ -20,6 +20,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+from scipy.optimize import nnls
 
 from thermocomp.core.models.blend import N_RESAMPLES, vote_weights
 
@@ -73,7 +74,104 @@ def recent_folds(P, y, fold, base, ib):
     return _doubted(votes, (M < 0).mean(0), ib)
 
 
-RULES = {"kept": kept, "geometric_doubt": geometric_doubt, "recent_folds": recent_folds}
+# Rules of other kinds (issue 34, session 42): each fitted on the folds, with MLR as a floor
+# (MLR alone where the rule's leave-one-fold-out ratio to MLR is not below 1).
+
+
+def _folds(fold):
+    return [fold == f for f in np.unique(fold)]
+
+
+def _held_out_ratio(P, y, fold, base, w):
+    """Per fold: the MSE of the blend ``P @ w`` over MLR's there."""
+    return np.array([np.mean((y[m] - P[m] @ w) ** 2) / max(float(np.mean((y[m] - base[m]) ** 2)), 1e-300)
+                     for m in _folds(fold)])
+
+
+def _leave_one_fold_out(weigh, P, y, fold, base):
+    """Mean over folds of the held-out ratio to MLR of ``weigh(P, y, fold, base)`` fitted on the others."""
+    out = []
+    for m in _folds(fold):
+        w = weigh(P[~m], y[~m], fold[~m], base[~m])
+        out.append(_held_out_ratio(P[m], y[m], fold[m], base[m], w)[0])
+    return float(np.mean(out))
+
+
+def _tuned(weigh_at, grid, P, y, fold, base, ib):
+    """``weigh_at(setting)`` at the grid setting with the best leave-one-fold-out ratio, MLR as a floor."""
+    scores = {g: _leave_one_fold_out(lambda *a, g=g: weigh_at(g)(*a), P, y, fold, base) for g in grid}
+    best = min(scores, key=scores.get)
+    if scores[best] >= 1.0:
+        return np.eye(P.shape[1])[ib]
+    w = weigh_at(best)(P, y, fold, base)
+    w[w < 0.01] = 0.0
+    return w / w.sum()
+
+
+def _equal_top(R, k):
+    w = np.zeros(R.shape[1])
+    w[np.argsort(R.mean(0))[:k]] = 1.0 / k
+    return w
+
+
+def _stack_at(lam, top=3):
+    """Breiman's stacking: NNLS weights summing to 1 on the out-of-fold predictions, every fold's
+    squared error over MLR's there, pulled toward equal weights of the ``top`` best by ``lam``."""
+    def weigh(P, y, fold, base):
+        masks = _folds(fold)
+        scale = [np.sqrt(m.sum() * max(float(np.mean((y[m] - base[m]) ** 2)), 1e-300)) for m in masks]
+        k = P.shape[1]
+        prior = _equal_top(fold_ratios(P, y, fold, base), min(top, k))
+        A = np.vstack([*(P[m] / s for m, s in zip(masks, scale)), np.sqrt(lam * len(masks)) * np.eye(k)])
+        b = np.concatenate([*(y[m] / s for m, s in zip(masks, scale)), np.sqrt(lam * len(masks)) * prior])
+        heavy = np.sqrt(1e3 * (1.0 + float((A ** 2).sum())))        # sum(w) = 1 as a heavy row
+        w = nnls(np.vstack([A, heavy * np.ones((1, k))]), np.append(b, heavy), maxiter=50 * k)[0]
+        return w / w.sum()
+    return weigh
+
+
+def _top_k_at(k):
+    return lambda P, y, fold, base: _equal_top(fold_ratios(P, y, fold, base), min(k, P.shape[1]))
+
+
+def _softmax_at(temperature):
+    """BMA-like: weights exp(-mean log fold ratio / temperature)."""
+    def weigh(P, y, fold, base):
+        s = np.log(np.maximum(fold_ratios(P, y, fold, base), 1e-300)).mean(0)
+        w = np.exp(-(s - s.min()) / temperature)
+        return w / w.sum()
+    return weigh
+
+
+STACK_PULL = (0.0, 0.03, 0.1, 0.3, 1.0, 3.0, 1e9)
+TEMPERATURES = (0.01, 0.03, 0.1, 0.3, 1.0, 3.0, 10.0)
+
+
+def stacked(P, y, fold, base, ib):
+    """Stacked generalisation, the pull toward the top 3 chosen by leave-one-fold-out."""
+    return _tuned(_stack_at, STACK_PULL, P, y, fold, base, ib)
+
+
+def top_k(P, y, fold, base, ib):
+    """Equal weights of the k best by mean fold ratio, k chosen by leave-one-fold-out."""
+    return _tuned(_top_k_at, range(1, P.shape[1] + 1), P, y, fold, base, ib)
+
+
+def softmax(P, y, fold, base, ib):
+    """Softmax of the mean log fold ratios, the temperature chosen by leave-one-fold-out."""
+    return _tuned(_softmax_at, TEMPERATURES, P, y, fold, base, ib)
+
+
+def select(P, y, fold, base, ib):
+    """The rule (kept, stacked, top_k, softmax) with the lowest leave-one-fold-out ratio to MLR
+    (nested: each rule tunes itself within the folds it is given)."""
+    rules = (kept, stacked, top_k, softmax)
+    scores = [_leave_one_fold_out(lambda *a, r=r: r(*a, ib), P, y, fold, base) for r in rules]
+    return rules[int(np.argmin(scores))](P, y, fold, base, ib)
+
+
+RULES = {"kept": kept, "geometric_doubt": geometric_doubt, "recent_folds": recent_folds,
+         "stacked": stacked, "top_k": top_k, "softmax": softmax, "select": select}
 
 
 def score(directory: Path) -> dict:
