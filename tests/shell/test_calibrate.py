@@ -93,6 +93,37 @@ def test_the_outlier_search_equals_refitting_without_the_distances_it_leaves_out
     assert np.max(np.abs(z)) <= cal.outlier_z
 
 
+def test_cycles_with_the_same_gaps_share_one_factorisation(monkeypatch):
+    """A column left out of every cycle (excluded, or never measured) gives every cycle the same
+    gaps: the noise covariance on them is factorised once, however many cycles are searched
+    (it was once per cycle searched: 1 s each for 1430 distances)."""
+    from thermocomp.apps.volumetric import identify
+
+    model = KinematicModel()
+    setup = Setup(model, BallArray(9, 1500.0, 8.0), position_set(["S2", "S3"], model.ranges, (0.25, 0.75),
+                                                                               model.tool))
+    factorised, cholesky = [], identify.linalg.cholesky
+
+    def counted(a, **kw):
+        factorised.append(a.shape)
+        return cholesky(a, **kw)
+
+    monkeypatch.setattr(identify.linalg, "cholesky", counted)
+    rng = np.random.default_rng(4)
+    D = simulate_distances(setup, rng.normal(0.0, 5.0, (3, len(model.names))), rng,
+                           setup.ball_um * rng.standard_normal((9, 3)))
+    D[:, 0] = np.nan                                   # never measured
+    D[:, 7] += 1000.0                                  # a gross error in every cycle: searched
+    counts = []
+    for cycles in (1, 3):
+        cal = ArtefactCalibration(setup).fit()
+        factorised.clear()
+        _, flagged = cal.identify(D[:cycles])
+        assert [f["cycle"] for f in flagged] == list(range(cycles))
+        counts.append(len(factorised))
+    assert counts[0] == counts[1]
+
+
 @pytest.mark.parametrize("prior", [False, True])
 def test_many_lone_gross_errors_are_found_by_the_closure_test_when_they_swamp_the_fit(prior):
     """A 9-ball bar in 20 poses (720 distances), 39 of them 1 mm off: the studentised search

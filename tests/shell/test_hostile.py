@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import signal
 import subprocess
 import sys
@@ -218,15 +219,23 @@ READ_CASES = {
 MONITOR_SAYS = {"single-row campaign": ["K04.csv", "1 sample(s)", "at least 2"]}
 
 
+@pytest.fixture(scope="module")
+def previous_ingest(tmp_path_factory) -> Path:
+    """A good ingest of another dataset, made once: each case gets a copy of it as the
+    ``data.interim`` that must stay as it was."""
+    root = tmp_path_factory.mktemp("previous")
+    data = make_dataset(root / "previous")
+    assert main(["ingest", f"data.path={data}", f"data.interim={root / 'interim'}", "track=false"]) == 0
+    return root / "interim"
+
+
 @pytest.mark.parametrize("case", READ_CASES)
 @pytest.mark.parametrize("command", ["run", "ingest", "monitor"])
-def test_bad_data_is_refused_and_leaves_nothing(paths, capsys, case, command):
+def test_bad_data_is_refused_and_leaves_nothing(paths, capsys, previous_ingest, case, command):
     mutate, extra, says = READ_CASES[case]
     says = MONITOR_SAYS.get(case, says) if command == "monitor" else says
     mutate(paths["ds"])
-    make_dataset(paths["interim"].parent / "previous")  # an earlier good ingest stays as it was
-    assert main(["ingest", f"data.path={paths['interim'].parent / 'previous'}",
-                 f"data.interim={paths['interim']}", "track=false"]) == 0
+    shutil.copytree(previous_ingest, paths["interim"])  # an earlier good ingest stays as it was
     capsys.readouterr()
     before = snapshot(paths["out"], paths["interim"], paths["model"], paths["ds"])
 
