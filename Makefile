@@ -33,8 +33,14 @@ run: $(CORE)
 	$(BIN)/thermocomp simulate
 	$(BIN)/thermocomp run
 
+# 2 workers (pytest-xdist), a module's tests on one: its fixtures built once (tests/conftest.py:
+# the long ones first).  One BLAS/OpenMP thread per process: two workers each running a BLAS pool
+# of one thread per core oversubscribe the cores and spin (test_calibrate + test_volumetric_run on
+# 2 workers: 153 -> 119 s user CPU, 223 -> 101 s wall on a machine with other load).
+TEST_THREADS := OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1
+
 test: $(STAMP)
-	$(BIN)/python -m pytest -q -n 2 --dist loadfile   # 2 workers (pytest-xdist), a module's tests on one: its fixtures built once (tests/conftest.py: the long ones first)
+	$(TEST_THREADS) $(BIN)/python -m pytest -q -n 2 --dist loadfile
 
 docs: $(STAMP)
 	$(BIN)/mkdocs build --strict   # the docs site -> site/ (`$(BIN)/mkdocs serve` to browse)
