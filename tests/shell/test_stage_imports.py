@@ -6,6 +6,8 @@ The config schema (read by the Hydra callbacks of every command) needs no scikit
 import subprocess
 import sys
 
+from conftest import FAST
+
 
 def _loaded(code: str) -> set[str]:
     """Top-level packages loaded by ``code`` in a fresh interpreter."""
@@ -24,4 +26,13 @@ def test_simulate_imports_no_scikit_learn(tmp_path):
                      f"assert main(['simulate', 'data.path={tmp_path / 'ds'}', 'track=false', "
                      "'sim.generator.n_campaigns=3', 'sim.generator.duration_h=[1.0,1.0]']) == 0")
     assert (tmp_path / "ds").is_dir()
+    assert "sklearn" not in loaded
+
+
+def test_a_sweep_parent_imports_no_model_library(default_dataset, tmp_path):
+    """With a process launcher the jobs run the stage; the parent only launches them."""
+    args = ["run", "-m", "model=mlr", "hydra/launcher=joblib", f"hydra.sweep.dir={tmp_path / 'sweep'}",
+            f"data.path={default_dataset}", *FAST]
+    loaded = _loaded(f"from thermocomp.shell.cli import main\nassert main({args!r}) == 0")
+    assert (tmp_path / "sweep/0/metrics.json").is_file()     # the job ran, in a worker
     assert "sklearn" not in loaded
