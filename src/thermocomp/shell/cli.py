@@ -217,9 +217,10 @@ def _task(stage: str, args: list[str], raised: list):
     from ..base.files import Terminated
     from .stages import stage as lookup
 
-    fn = lookup(stage)
-
     def task(cfg):
+        # the stage's module is imported by the process that runs it: a sweep's parent only
+        # launches its jobs (joblib, Ray, SLURM) and never needs the models' libraries
+        fn = lookup(stage)
         try:
             return _run(stage, fn, _per_job(cfg), args)
         except Terminated:

@@ -74,7 +74,7 @@ def prior_sd(model, prior: dict | None):
 
 def check_prior_kinds(prior, needed) -> None:
     """``calibrate.prior`` gives a range for each kind in ``needed`` and no other kind."""
-    from .design import KINDS
+    from .kinematics import KINDS
 
     missing = [k for k in KINDS if k in needed and k not in prior]
     unknown = sorted(set(prior) - set(KINDS) - {"decay"})

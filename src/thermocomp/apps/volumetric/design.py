@@ -42,10 +42,9 @@ from ...base.progress import bar
 from ...core.metrics import reduction_pct
 from .artefact import BallArray, Setup, check_reach, position_set
 from .identify import ArtefactCalibration
-from .kinematics import KinematicModel, Parameter, workspace_grid
+from .kinematics import KINDS, KinematicModel, Parameter, workspace_grid
 from .measure import artefact_distances
 
-KINDS = ("positioning", "straightness", "squareness", "angular", "cross")
 DEFAULT_AMPLITUDES = {"positioning": 10.0, "straightness": 8.0, "squareness": 8.0, "angular": 6.0,
                       "cross": 8.0}
 DEFAULT_STUDIES = {

@@ -46,6 +46,8 @@ COMPONENTS = "XYZABC"          # three translations, three rotations (about X, Y
 MICRO = 1e-3                   # µm/m (µrad) × mm -> µm
 DEFAULT_CHAIN = "tool-Y-Z-X-bed-workpiece"
 DEFAULT_RANGES = {"X": (0.0, 4000.0), "Y": (0.0, 1600.0), "Z": (0.0, 1600.0)}
+# the kinds of parameter a design study perturbs (Parameter.kind, and the axes' squareness)
+KINDS = ("positioning", "straightness", "squareness", "angular", "cross")
 CROSS_TERMS = (("Y", "Z", "Y", (1, 2)), ("A", "Z", "Y", (1,)))   # paper 001: column-ram bending
 
 

@@ -17,6 +17,7 @@ from sklearn.model_selection import BaseCrossValidator, TimeSeriesSplit
 from sklearn.utils import indexable
 
 from ...base.errors import ParameterError
+from .schemes import CV_SCHEMES
 
 
 def unit_labels(groups, n_blocks: int) -> np.ndarray:
@@ -272,9 +273,6 @@ def forward_gap(longest_lag_samples: float, block_samples: int) -> int:
     training rows).
     """
     return int(max(0, min(np.ceil(longest_lag_samples), block_samples // 2)))
-
-
-CV_SCHEMES = ("auto", "campaigns", "forward")
 
 
 def cv_scheme(groups, cv: str = "auto") -> str:

@@ -14,7 +14,6 @@ from omegaconf import DictConfig, ListConfig, OmegaConf
 
 from ...base.errors import ConfigError
 from ...base.paths import conf_dir
-from ...core.models.auto import candidate_family, check_candidates
 from ..build import build, load_node
 
 AUTO = "auto"
@@ -28,6 +27,9 @@ def build_candidates(cfg: DictConfig) -> dict:
     """``{name: unfitted estimator}`` of ``model.candidates``, each family with its
     ``model.candidate_defaults`` (the candidate role's settings, for the families present) and
     the candidate's ``model.candidate_params`` over them."""
+    # here, not at the top: every stage checks its config, and only model=auto needs the models
+    from ...core.models.auto import candidate_family, check_candidates
+
     if cfg.get("ati") is not None and cfg.ati.get("estimator") is not None:
         raise ConfigError(f"model=auto with ati={cfg.ati.name}: the ATI wrapper is a candidate of its "
                           "own, name it in model.candidates (ati, or ati+<family>) with ati=none")

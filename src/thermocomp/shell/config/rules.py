@@ -16,7 +16,7 @@ from collections.abc import Mapping
 
 from omegaconf import DictConfig, OmegaConf
 
-from ...apps.volumetric.design import KINDS
+from ...apps.volumetric.kinematics import KINDS
 from ...base.errors import ConfigError
 from ...base.params import NON_NEGATIVE, check_values, either, numbers
 from .schema import AUTO_REFERENCE, PLOTS, Root, Study, part, rules  # noqa: F401  (re-exported)

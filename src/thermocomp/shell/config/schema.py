@@ -33,9 +33,9 @@ from ...base.params import (
     text,
     texts,
 )
-from ...core.compensator import MODES
+from ...core.context import MODES
 from ...core.frame import REFERENCES
-from ...core.model_selection import CV_SCHEMES
+from ...core.model_selection.schemes import CV_SCHEMES
 
 MAX_WINDOW = 100_000      # monitor.window: samples kept per sensor (1e9 was OOM-killed at 24 GB)
 MAX_MACHINES = 10_000     # design.n_machines: 50x the paper's 200 (1e9 ran 211 s, then killed)
