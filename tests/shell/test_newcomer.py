@@ -8,9 +8,9 @@ import re
 import pandas as pd
 import pytest
 
-from conftest import thermocomp
+from conftest import refused, thermocomp
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
-from test_hostile import FAST
+from test_hostile import FAST, make_dataset
 from test_serve import promoted  # noqa: F401  (a fixture)
 from thermocomp.shell.cli import main
 
@@ -248,3 +248,18 @@ def test_metrics_json_marks_persistence_as_needing_the_measured_error_online(tmp
     for figures in targets.values():
         assert figures["persistence"]["needs_measured_error_online"] is True
         assert "needs_measured_error_online" not in figures["test"]        # the model's own: no
+
+
+@pytest.mark.parametrize("command", [["compare"], ["promote", "promote.run_id=0123abcd"],
+                                     ["serve", "serve.model=models:/m@champion"],
+                                     ["export", "export.model=models:/m@champion"]],
+                         ids=lambda c: c[0])
+def test_a_command_that_reads_the_store_refuses_a_missing_one_and_creates_none(command, tmp_path,
+                                                                                 capsys):
+    # compare created and migrated a new mlflow.db (about 1 s) only to find no sweep in it,
+    # and left the store (and its folder) behind
+    data = make_dataset(tmp_path / "d")
+    db = tmp_path / "store" / "mlflow.db"
+    refused([*command, f"data.path={data}", f"tracking_uri=sqlite:///{db}",
+             f"out={tmp_path / 'out'}", "plots=none"], capsys, "no store at", str(db))
+    assert not db.parent.exists()

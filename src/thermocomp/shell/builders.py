@@ -169,7 +169,7 @@ def _registered(cfg: DictConfig, source: str, path, key: str) -> tuple[object, s
     from .tracking import connect
 
     if path is None:
-        connect(cfg)     # only a registry model needs the store (track=false writes none)
+        connect(cfg, existing=True)   # only a registry model needs the store, read (none created)
     try:
         deployed = load_deployed(source, path)      # replayed as registered
     except ThermocompError:

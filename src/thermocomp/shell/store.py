@@ -199,6 +199,18 @@ def check_sqlite_path(raw: str) -> None:
                           f"(sqlite:///mlruns/mlflow.db, sqlite:////abs/path/mlflow.db)")
 
 
+def check_existing(raw: str) -> None:
+    """Refuse a SQLite store that is not there, for a command that reads runs or models from it:
+    opening it created and migrated a new ``mlflow.db`` (about 1 s) only to find it empty, and
+    left it (and its folder) behind."""
+    if not raw.startswith("sqlite:///"):
+        return
+    db = resolve(raw[len("sqlite:///"):])
+    if not db.is_file() or db.stat().st_size == 0:     # an empty file is a store yet to create
+        raise ConfigError(f"tracking_uri={raw}: no store at {db}; this command reads one and "
+                          f"creates none (run `thermocomp run` first, or name the store)")
+
+
 def check_databricks_credentials(uri: str) -> None:
     """MLflow's own credential lookup, once: without credentials MLflow ends in a long
     exception at the first call."""
@@ -256,10 +268,13 @@ def enabled(cfg, default: bool = True) -> bool:
     return default if track is None else bool(track)
 
 
-def store_uri(cfg) -> str:
-    """``cfg.tracking_uri`` resolved, once checked that MLflow can open it (ConfigError)."""
+def store_uri(cfg, existing: bool = False) -> str:
+    """``cfg.tracking_uri`` resolved, once checked that MLflow can open it (ConfigError);
+    with ``existing`` (a command that only reads the store) a SQLite store must be there."""
     raw = str(cfg.get("tracking_uri") or DEFAULT_URI)
     check_sqlite_path(raw)
+    if existing:
+        check_existing(raw)
     try:
         uri = resolve_uri(raw)
     except OSError as exc:

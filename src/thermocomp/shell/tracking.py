@@ -151,8 +151,9 @@ def _quiet_mlflow() -> None:
         logging.getLogger(name).setLevel(logging.WARNING)
 
 
-def connect(cfg) -> str:
-    """Point MLflow at ``cfg.tracking_uri`` (resolved); returns the URI.
+def connect(cfg, existing: bool = False) -> str:
+    """Point MLflow at ``cfg.tracking_uri`` (resolved); returns the URI.  ``existing``: the
+    command only reads the store, which must be there (:func:`~thermocomp.shell.store.check_existing`).
 
     The first time in a process, runs left RUNNING by processes of this machine that are
     gone are marked KILLED (:func:`~thermocomp.shell.store.mark_orphan_runs`).
@@ -161,7 +162,7 @@ def connect(cfg) -> str:
     import mlflow
 
     _quiet_mlflow()
-    uri = store_uri(cfg)
+    uri = store_uri(cfg, existing)
     mlflow.set_tracking_uri(uri)
     ensure_store(uri)
     if uri not in _SWEPT:
@@ -179,8 +180,9 @@ def connect(cfg) -> str:
 _SWEPT: set[str] = set()     # stores whose orphan runs this process has marked
 
 
-def client(cfg):
-    """An ``MlflowClient`` on ``cfg.tracking_uri``; stages that read runs need ``track`` on."""
+def client(cfg, existing: bool = False):
+    """An ``MlflowClient`` on ``cfg.tracking_uri``; stages that read runs need ``track`` on
+    (``existing``: as :func:`connect`)."""
     if not enabled(cfg):
         from ..base.errors import ConfigError
 
@@ -188,7 +190,7 @@ def client(cfg):
                           "(track=null, the default, or track=true)")
     from mlflow import MlflowClient
 
-    return MlflowClient(connect(cfg))
+    return MlflowClient(connect(cfg, existing))
 
 
 def experiment_id(uri: str, name: str) -> str:

@@ -24,7 +24,7 @@ COMPONENTS = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.se
 
 
 def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
-                 inputs: tuple[str, ...] = ()) -> None:
+                 inputs: tuple[str, ...] = (), existing_store: bool = False) -> None:
     """Refuse bad choices before anything is read or written.
 
     ``outputs`` are the config keys of what the stage writes: folders (``out``,
@@ -32,6 +32,7 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
     is (not an existing file in a folder's place, not a read-only place).
     ``inputs`` are the keys of what it reads besides ``data.path``: no output (nor
     ``out``, where its log goes) is, lies inside or holds one (:mod:`.apart`).
+    ``existing_store``: the stage reads runs from the store, which must be there.
     """
     check_schema(cfg)        # every group, whatever the stage: replay streams with promote.* too
     io.ReadOptions.from_cfg(data_options(cfg))      # data.*: before any file is read
@@ -47,7 +48,7 @@ def check_config(cfg: DictConfig, outputs: tuple[str, ...] = ("out",),
     for key in outputs:
         _check_writable(key, OmegaConf.select(cfg, key), folder=key != "model_path")
     if enabled(cfg):     # before any data is read: an unreachable server once hung a run for minutes
-        store_uri(cfg)
+        store_uri(cfg, existing_store)
 
 
 def check_component(component, key: str) -> None:

@@ -33,7 +33,7 @@ NO_SWEEP_FOLDER = "reports/compare"   # a sweep whose folder is not on this mach
 def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     """Rank the children of ``parent_id``; print, save and log the table."""
     check_keys(cfg, {"compare.descending": optional(BOOLEAN), "compare.target": text()})
-    client, uri, opts = mlflow_client(cfg), connect(cfg), cfg.compare
+    client, uri, opts = mlflow_client(cfg, existing=True), connect(cfg, existing=True), cfg.compare
     found: list = []
     rows = sweep_rows(client, uri, parent_id, str(opts.target), found)
     if not rows:
@@ -66,7 +66,7 @@ def compare(cfg: DictConfig) -> pd.DataFrame:
     if cfg.compare.get("out") is not None:
         check_apart(cfg, ("compare.out",), ())
         _check_writable("compare.out", cfg.compare.out, folder=True)
-    client = mlflow_client(cfg)
+    client = mlflow_client(cfg, existing=True)     # it reads the store: never creates one
     parent_id = parent_run_id(cfg, client)
     if cfg.compare.get("out") is None:
         folder = sweep_folder(cfg, client, parent_id)

@@ -52,7 +52,9 @@ def _deployed(cfg: DictConfig, source: str) -> tuple[object, dict]:
 
 def export(cfg: DictConfig) -> dict:
     """Write the export of ``export.model`` in ``export.format`` to ``out``; ``{file: path}``."""
-    check_config(cfg, inputs=("export.model",))
+    # a registered model is read from the store: none created (export logs no run)
+    check_config(cfg, inputs=("export.model",),
+                 existing_store=str(cfg.export.get("model") or "").startswith("models:/"))
     source = cfg.export.get("model")
     if source is None or not str(source).strip():
         raise ConfigError("export.model is needed: a model.pkl, a pyfunc folder or "

@@ -35,10 +35,10 @@ POLICY_RULE = {"promote.envelope.policy": choice(*POLICIES)}
 
 def promote(cfg: DictConfig) -> dict:
     """Register the candidate's compensator; move the alias if it beats the champion."""
-    check_config(cfg)
+    check_config(cfg, existing_store=True)     # it reads a run there: creates no store
     check_keys(cfg, POLICY_RULE)
     check_criterion(str(cfg.promote.criterion))
-    client, uri = mlflow_client(cfg), connect(cfg)
+    client, uri = mlflow_client(cfg, existing=True), connect(cfg, existing=True)
     data_path = resolve(cfg.data.path)
     ds = open_source(cfg)
     dataset_hash = ds.meta["digest"]      # the digest every run of data.path is tagged with

@@ -22,6 +22,7 @@ from ...apps.deploy import server
 from ...base.log import logger, say
 from ..config.rules import SERVE_RULES, check_keys
 from ..registry import check_served_model
+from ..store import check_existing
 from ..tracking import DEFAULT_URI, resolve_uri
 
 QUIET_DOWNLOADS = "MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR"
@@ -44,7 +45,10 @@ def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
     if not server.is_loopback(str(opts.host)):
         logger.warning("serve.host=%s is not a loopback address: the model is reachable from the "
                        "network, without authentication", opts.host)
-    uri = resolve_uri(str(cfg.get("tracking_uri") or DEFAULT_URI))
+    raw = str(cfg.get("tracking_uri") or DEFAULT_URI)
+    if str(opts.model).startswith("models:/"):
+        check_existing(raw)         # a registered model is read: no store created to find none
+    uri = resolve_uri(raw)
     # a registered model comes down file by file: a progress line each, hundreds of them
     os.environ.setdefault(QUIET_DOWNLOADS, "false")
     model = check_served_model(str(opts.model), uri)
