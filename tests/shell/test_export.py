@@ -256,6 +256,9 @@ def test_the_compiled_c_and_the_structured_text_stream_as_replay(dataset, tmp_pa
     assert np.max(np.abs(np.array(rows) - expected)) <= TOLERANCE_UM
 
 
+PARSED_BLOCK = ("arx_ar", "none", "all")    # family, denoise, select of the block blark parses
+
+
 def _construct(st: str) -> str:
     """The block with every number and boolean literal one placeholder and every initializer list
     one item, banner (a comment) left out: what is left is what the grammar sees of it."""
@@ -272,7 +275,7 @@ def test_the_structured_text_parses_as_iec_61131_3(dataset):
     literal values and list lengths: the same declarations and statements, all parsed here."""
     from blark import parse_source_code
 
-    text = exported_files(_deployed(dataset, "arx_ar", "none", "all")[0], "st")["compensator.st"]
+    text = exported_files(_deployed(dataset, *PARSED_BLOCK)[0], "st")["compensator.st"]
     parsed = parse_source_code(text, fn="compensator.st")
     assert parsed.exception is None, parsed.exception
     assert "FB_ThermoComp" in str(parsed.transform())
