@@ -25,7 +25,7 @@ from test_twin import make_machine
 from thermocomp.shell.cli import _compose, main
 
 FAST = ["track=false", "plots=none"]
-SPEED = 25               # samples per second: 40 ms for the client to answer one
+SPEED = 25               # samples per second: 40 ms for the client to answer one (lockstep)
 AGED = ("K21", "K24")    # the last test campaigns: the machine aged most
 
 
@@ -53,7 +53,7 @@ def twin_and_connect(data: Path, tmp: Path, *connect_args: str) -> tuple[dict, d
     port = free_port()
     server = subprocess.Popen(
         [sys.executable, "-m", "thermocomp", "twin", f"data.path={data}", f"out={tmp / 'twin'}",
-         f"twin.port={port}", f"twin.speed={SPEED}", *FAST],
+         f"twin.port={port}", f"twin.speed={SPEED}", "twin.lockstep=true", *FAST],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         code = main(["connect", f"data.path={data}", f"out={tmp / 'connect'}", *FAST,

@@ -28,7 +28,8 @@ FAST = ["track=false", "plots=none"]
 CAMPAIGNS = (("K01", "train"), ("K02", "train"), ("K03", "train"), ("K04", "test"),
              ("K05", "test"))
 ROWS = 60
-SPEED = 20          # samples per second: 50 ms for the client to answer one
+SPEED = 20          # samples per second: 50 ms for the client to answer one (lockstep: the
+                    # next one as soon as it did)
 
 
 def make_machine(root: Path, fault=None, continued: bool = False) -> Path:
@@ -75,7 +76,7 @@ def twin_and_connect(data: Path, tmp: Path, *twin_args: str, connect_args=()) ->
     port = free_port()
     server = subprocess.Popen(
         [sys.executable, "-m", "thermocomp", "twin", f"data.path={data}", f"out={tmp / 'twin'}",
-         f"twin.port={port}", f"twin.speed={SPEED}", *FAST, *twin_args],
+         f"twin.port={port}", f"twin.speed={SPEED}", "twin.lockstep=true", *FAST, *twin_args],
         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     try:
         code = main(["connect", f"data.path={data}", f"out={tmp / 'connect'}",
@@ -196,6 +197,7 @@ def test_twin_on_a_port_in_use_is_refused_in_one_line(tmp_path, capsys):
 @pytest.mark.parametrize("stage, key, says", [
     ("twin", "twin.drops=[[3]]", "twin.drops"),
     ("twin", "twin.speed=0", "twin.speed"),
+    ("twin", "twin.lockstep=2", "twin.lockstep"),
     ("connect", "connect.endpoint=http://127.0.0.1:4840", "connect.endpoint"),
     ("connect", "connect.hold_s=-1", "connect.hold_s"),
     ("connect", "connect.model=' '", "connect.model is empty"),

@@ -13,6 +13,8 @@ sample they belong to (NaN on the others), for a client that learns from them (`
 ``drops`` stop the input nodes (the sensor link down: the client sees stale inputs) and
 ``restarts`` stop the server (its address space, the offset registers, kept), for a number of
 samples each, while the machine runs on with the offsets it holds.
+``lockstep``: the next sample comes as soon as the client answered this one (at most one period
+later, stale then as without it): a bench that runs at the client's pace, not the clock's.
 """
 
 from __future__ import annotations
@@ -30,6 +32,7 @@ from .nodes import NodeMap, quiet_asyncua
 
 log = logging.getLogger(__name__)
 NO_CLIENT = -2      # offset_sample until a client writes (it writes -1 when it connects)
+POLL_S = 0.002      # lockstep: how often the twin looks for the client's answer
 
 
 @dataclass
@@ -58,7 +61,7 @@ class Twin:
                  errors: dict[str, np.ndarray], targets: list[str], *, host: str = "127.0.0.1",
                  port: int = 4840, speed: float = 1.0, drops=(), restarts=(), wait_s: float = 0.0,
                  lead_ins: dict[str, pd.DataFrame] | None = None,
-                 references: dict[str, np.ndarray] | None = None):
+                 references: dict[str, np.ndarray] | None = None, lockstep: bool = False):
         self.map, self.campaigns, self.columns = nodes, campaigns, list(columns)
         self.lead_ins = lead_ins or {}
         self.references = references or {}
@@ -67,6 +70,7 @@ class Twin:
         self.period = 1.0 / float(speed)
         self.drops, self.restarts = list(drops), list(restarts)
         self.wait_s = float(wait_s)
+        self.lockstep = bool(lockstep)
         self.held = np.zeros(len(self.targets))     # the machine's offset registers
         self.stopping = None                         # the task stopping the server, while down
         self.server = None
@@ -110,6 +114,14 @@ class Twin:
         self.held = np.array([float(v) if v is not None else np.nan for v in values])
         return int(await self.answered.read_value()) == k
 
+    async def _wait_answer(self, k: int, deadline: float, down: bool) -> None:
+        """Until ``deadline``; in lockstep only until the client answered sample ``k``."""
+        while self.lockstep and not down and clock.monotonic() < deadline:
+            if int(await self.answered.read_value()) == k:
+                return
+            await asyncio.sleep(POLL_S)
+        await asyncio.sleep(max(0.0, deadline - clock.monotonic()))
+
     async def serve(self, finished=None) -> Served:
         """Serve every campaign at ``speed`` samples per second; the per-sample record.
 
@@ -151,7 +163,9 @@ class Twin:
                         await self.campaign.write_value(ua.Variant(cid, ua.VariantType.String))
                         await self.campaign_sample.write_value(ua.Variant(i, ua.VariantType.Int64))
                         await self.sample.write_value(ua.Variant(k, ua.VariantType.Int64))
-                    await asyncio.sleep(max(0.0, start + (k + 1) * self.period - clock.monotonic()))
+                    await self._wait_answer(k, start + (k + 1) * self.period, down)
+                    if self.lockstep:            # the next period from now, not from the schedule
+                        start = clock.monotonic() - (k + 1) * self.period
                     answered = await self._read_offsets(k) and not down
                     if i >= 0:                   # the lead-in warms the client, unscored
                         served.offsets.append(self.held.copy())

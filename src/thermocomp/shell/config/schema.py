@@ -206,6 +206,7 @@ class Twin:
     port: int = key(integer(1, 65535))
     speed: float = key(number(0.0, 100_000.0, open_lo=True))
     wait_s: float = key(NON_NEGATIVE)
+    lockstep: bool = key(BOOLEAN)
     drops: list = key(OUTAGES)
     restarts: list = key(OUTAGES)
     campaigns: Optional[list] = key(optional(texts("test campaign ids", unique=True)))

@@ -42,7 +42,8 @@ def twin(cfg: DictConfig) -> dict:
                    rec.targets,
                    host=str(t.host), port=int(t.port), speed=float(t.speed),
                    drops=[Outage(*p) for p in t.drops], restarts=[Outage(*p) for p in t.restarts],
-                   wait_s=float(t.wait_s), lead_ins=rec.lead_ins, references=rec.references)
+                   wait_s=float(t.wait_s), lead_ins=rec.lead_ins, references=rec.references,
+                   lockstep=bool(t.lockstep))
     n = sum(len(df) for df in rec.campaigns.values())
     say(f"twin at {machine.endpoint}: {len(rec.campaigns)} test campaigns, {n} samples at "
         f"{float(t.speed):g} per second; offsets of {', '.join(rec.targets)}")
@@ -50,7 +51,8 @@ def twin(cfg: DictConfig) -> dict:
 
     def finished(served) -> None:     # before `done`: the record is there when the client ends
         report.update(twin_report(served, rec.errors, rec.targets), endpoint=machine.endpoint,
-                      speed=float(t.speed), test_campaigns=test_ids, columns=rec.columns,
+                      speed=float(t.speed), lockstep=bool(t.lockstep), test_campaigns=test_ids,
+                      columns=rec.columns,
                       reference=reference(cfg), references=rec.n_references)
         write_json(path, report)
 
