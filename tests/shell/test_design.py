@@ -309,3 +309,25 @@ def test_misalignment_hardly_matters_for_s2_s3_where_the_aligned_poses_see_the_m
     assert default["S2+S3"]["gain_pts"] > 20
     free, noise = default["S2+S3"]["noise_free"], default["S2+S3"]["noise_only"]
     assert free[0] > free[1] and noise[0] > 2 * noise[1]
+
+
+def test_a_study_in_this_process_runs_its_small_products_on_one_blas_thread(monkeypatch):
+    """n_jobs=1: a per-core BLAS pool costs more CPU than it saves on a pose's small products
+    (whatever the caller's limit: here 2 threads around the run)."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    import thermocomp.apps.volumetric.design as design
+
+    seen, truth = [], design._truth
+
+    def spy(*args):
+        seen.append(max(p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas"))
+        return truth(*args)
+
+    monkeypatch.setattr(design, "_truth", spy)
+    fam = MachineFamily(KinematicModel(order=3))
+    spec = {"s": {"n_balls": [5], "misalignment_deg": [0.0], "position_sets": ["S1"]}}
+    with threadpool_limits(limits=2, user_api="blas"):
+        CalibrationDesignStudy(KinematicModel(), fam, **{**SMALL, "n_machines": 2}).run(spec)
+        after = max(p["num_threads"] for p in threadpool_info() if p["user_api"] == "blas")
+    assert seen == [1] and after == 2
