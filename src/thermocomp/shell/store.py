@@ -121,7 +121,7 @@ def registry_lock(uri: str):
     from filelock import FileLock, Timeout
 
     if uri.startswith("sqlite:///"):
-        path = Path(f"{uri[len('sqlite:///'):]}.registry.lock")
+        path = Path(f"{sqlite_file(uri)}.registry.lock")
     else:
         digest = hashlib.sha256(uri.encode()).hexdigest()[:16]
         path = Path(tempfile.gettempdir()) / f"thermocomp-registry-{digest}.lock"
@@ -188,12 +188,17 @@ def mark_orphan_runs(uri: str) -> list[str]:
     return [r.info.run_id for r in gone]
 
 
+def sqlite_file(uri: str) -> str:
+    """The file a ``sqlite:///<path>`` URI names (``""`` for any other URI)."""
+    return uri[len("sqlite:///"):] if uri.startswith("sqlite:///") else ""
+
+
 def check_sqlite_path(raw: str) -> None:
     """A SQLite store is a file: ``sqlite:///`` alone named the project folder (MLflow then
     retried for minutes), ``sqlite://`` an in-memory store that forgets every run."""
     if raw.partition(":")[0].partition("+")[0] != "sqlite":
         return
-    path = raw[len("sqlite:///"):] if raw.startswith("sqlite:///") else ""
+    path = sqlite_file(raw)
     if not path or path == ":memory:" or path.endswith("/") or resolve(path).is_dir():
         raise ConfigError(f"tracking_uri={raw}: a SQLite store needs a file path "
                           f"(sqlite:///mlruns/mlflow.db, sqlite:////abs/path/mlflow.db)")
@@ -205,7 +210,7 @@ def check_existing(raw: str) -> None:
     left it (and its folder) behind."""
     if not raw.startswith("sqlite:///"):
         return
-    db = resolve(raw[len("sqlite:///"):])
+    db = resolve(sqlite_file(raw))
     if not db.is_file() or db.stat().st_size == 0:     # an empty file is a store yet to create
         raise ConfigError(f"tracking_uri={raw}: no store at {db}; this command reads one and "
                           f"creates none (run `thermocomp run` first, or name the store)")
@@ -298,7 +303,7 @@ def check_reachable(uri: str) -> None:
         raise ConfigError(f"tracking_uri={uri}: not a store MLflow opens here (schemes: "
                           f"{', '.join(STORE_SCHEMES)}; the default is {DEFAULT_URI})")
     if scheme == "sqlite" and uri.startswith("sqlite:///"):
-        folder = Path(uri[len("sqlite:///"):]).parent
+        folder = Path(sqlite_file(uri)).parent
         try:
             folder.mkdir(parents=True, exist_ok=True)
             tempfile.TemporaryFile(dir=folder).close()
