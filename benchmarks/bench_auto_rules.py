@@ -40,6 +40,67 @@ mlr**; swiss737 0.875 / 0.893 / 0.891 / 1.47 / 0.873 hammerstein; swiss848 1.18 
 1.11 / 2.81 / 1.16 ati.  Every rule loses mill848 to MLR (+18 % to +35 %): on E_Y lagbank
 validated 6.93 against MLR's 7.97 and took 0.98 of the kept rule's weight, then tested 1.71
 against 1.18; on E_X the LSTM (0.69) validated 6.65 against 7.46 and tested 2.52 against 1.64.
+
+Why the folds disagree with the test there (session 43; the 37 saved records, fresh now looked at
+too).  col, mill and swiss train on ONE record and are tested on a separate campaign from its own
+first sample; the folds are forward blocks of the train record's last half (5 x 10 % of it), each
+predicted from the record's start by a model fitted on the rows up to half a block before it.
+Distance of a fold from its fit rows: per row the largest excess of a sensor over the fit rows'
+range, in units of that range, averaged (the test: over all train rows; read for this analysis,
+never by a rule).  mill848 (train week 234 h at 21.7 °C, test week 169 h at 24.3 °C): folds 0.15 /
+0.14 / 0.30 / 2.62 / 0.53 (76-100 % of rows out of range), test 0.00 (none); every mill record
+alike (fold 3 2.6-4.1, test 0.00).  The folds grade the extrapolation of a drifting week, the test
+interpolates: MLR's fold RMSE on mill848 E_Y 16.4 / 1.5 / 1.3 / 6.4 / 2.2 against 1.18 on test.
+col848 (two 40 h cycles; the test's ambient swings 25 % more and an unmeasured source Q3 never
+seen in training heats its second half): folds 0.59 / 0.34 / 0.20 / 0.004 / 0.000, test 0.24;
+MLR's median fold RMSE over MLR's test RMSE is 0.28 on col (0.96-1.00 on mill, swiss, year), and
+col848 E_Y's LSTM loses where Q3 heats (test tenths 6-9: RMSE 23-38 against MLR's 12-21).  swiss
+and year folds and tests lie in range (<= 0.11, test <= 0.03).
+Per fold, candidate / MLR MSE ratio, (wins of 5; mean; mean without the best one, two folds), test:
+mill848 E_Y lagbank 0.87 1.13 0.64 0.024 0.60 (4; 0.65; 0.81, 0.88), test 2.10 (its test error
+drifts along the week: RMSE 1.4 -> 3.2, bias -1.3 -> -3.1 µm; MLR flat 1.0-1.3); mill848 E_X lstm
+1.34 0.41 0.92 0.64 0.94 (4; 0.85; 0.96, 1.07), test 2.38; col848 E_Y lstm 0.35 0.76 1.03 1.00 0.98
+(3; 0.82; 0.94, 1.00: carried by the two farthest folds), test 2.46; col626 E_Y lagbank 0.06 0.14
+0.71 0.37 0.33 (5; 0.32), test 1.79; col626 E_Z_mid lagbank (5; 0.32), test 6.65; swiss303 E_X
+hammerstein 0.47 0.50 0.24 0.29 0.31 (5; 0.36; folds in range), test 1.32.  So most losses are
+wins in every fold: no rule on these ratios can see them.  Extrapolation signal: Spearman over the
+folds of (distance, log ratio to MLR), mean over candidate x target: col -0.10..+0.08, mill
+lagbank -0.34 (it wins MORE where MLR extrapolates), pcr +0.41, fl_thermal -0.04..+0.64 (5
+targets); the test log ratio (Spearman over candidate x target) follows all folds 0.31 / 0.36 /
+0.45 (col / mill / fl), the nearer half 0.34 / 0.37 / 0.31, the farther half 0.26 / 0.30 / 0.54.
+Remedies in the validation, scored as the table (better than MLR / within 10 % / geometric mean):
+
+| rule | tuning (21) | second look (8) | fresh (8) |
+|---|---|---|---|
+| kept | 20 / 12 / 1.088 | 7 / 3 / 1.144 | 6 / 6 / 1.019 |
+| folds weighted exp(-distance / 0.1) | 19 / 13 / 1.079 | 7 / 3 / 1.157 | 6 / 8 / 0.986 |
+| ... / 0.3 | 19 / 13 / 1.092 | 7 / 3 / 1.155 | 6 / 7 / 1.001 |
+| ... / 1 | 19 / 12 / 1.092 | 6 / 3 / 1.149 | 6 / 6 / 1.009 |
+| in-range rows only (>= 20 per fold) | 17 / 13 / 1.100 | 5 / 3 / 1.178 | 5 / 7 / 1.038 |
+| mean + 0.5 sd of log ratios | 20 / 12 / 1.095 | 6 / 3 / 1.147 | 6 / 7 / 1.007 |
+| mean + 1 sd | 16 / 11 / 1.144 | 6 / 3 / 1.167 | 6 / 8 / 1.002 |
+| beats MLR in >= 60 % of folds | 18 / 12 / 1.092 | 6 / 3 / 1.161 | 6 / 6 / 1.028 |
+| ... >= 80 % | 14 / 11 / 1.124 | 4 / 3 / 1.166 | 4 / 7 / 1.039 |
+| median fold ratio | 18 / 17 / 1.024 | 7 / 3 / 1.107 | 5 / 7 / 1.017 |
+
+None is not worse on every count and better on one: distance weighting (0.1) wins col848 (5.01
+against MLR's 5.76) but loses mill101 and col737; only mean + 1 sd wins mill848 (1.198 against
+1.211) and it loses 4 more tuning records; none wins col626 or swiss303.  Folds held out as the
+test is (a fresh start): block k of the record's FIRST half predicted from its start by a model
+fitted on the rows after it (less half a block) scored lagbank and hammerstein 1.4-514x MLR (9
+candidate x targets), rightly chosen ones too (swiss101 E_X hammerstein 20.9 at the start block,
+test 0.18; col202 E_Z_mid 306, test 0.57): a lag model fitted on a segment starting warm (each
+family assumes a steady start there) is broken, so such folds need a burn-in (fit rows scored
+only after the lag states settle) in every family first.  That burn-in, emulated for lagbank
+(its lag features computed on the whole record from the inputs, its ridge at its own penalty
+refitted on the rows outside each of 10 blocks +- half a block; MLR likewise): lagbank / MLR on 15
+candidate x targets (chosen for their failures, so not a count of the design's worth) agreed in
+sign with the test on 7 (geometric mean of the block ratios), the forward folds on 8: it too
+gives lagbank every block of col626 E_Y (geometric 0.19, test 1.79), col303 / col737 E_Z_mid (0.30,
+0.26; test 8.9, 3.9) and 9 of 10 of mill848 E_Y (0.53, test 2.10), and the fresh-start block alone
+(block 0) was wrong on 10 of 15 (swiss0 E_X 2.4 against a test 0.72, col626 E_Y 0.03 against 1.79).
+On col the test holds a source (Q3) and an ambient swing the train cycle never had; on mill a
+season: no split of the one train record shows either.  Nothing kept; ``model=auto`` unchanged.
 """
 
 from __future__ import annotations
