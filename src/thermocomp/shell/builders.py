@@ -16,6 +16,7 @@ from .build import build
 from .config.candidates import build_candidates, is_auto
 from .model_store import load_model, model_family
 from .source import is_volumetric, reference
+from .store import is_registered_model
 
 
 def auto_scheme(cfg: DictConfig, ds) -> dict:
@@ -138,7 +139,7 @@ def is_registered(source) -> bool:
     """Whether a model source (``replay.model``, ``serve.model`` ...) is loaded as registered, a
     pyfunc folder or ``models:/name@alias``, with no data; else it is a model.pkl made deployable
     on the train split (or, ``None``, the configured model fitted there)."""
-    return source is not None and (str(source).startswith("models:/")
+    return source is not None and (is_registered_model(source)
                                    or (resolve(str(source)) / "MLmodel").is_file())
 
 
@@ -154,7 +155,7 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[
     else:
         source = str(source)
         if is_registered(source):
-            return _registered(cfg, source, None if source.startswith("models:/") else resolve(source),
+            return _registered(cfg, source, None if is_registered_model(source) else resolve(source),
                                key)
         comp = load_model(resolve(source))
         name, what = model_family(comp), f"{key}={source}"

@@ -27,6 +27,7 @@ from ..core.compensator import Compensator
 from ..core.scoring.champion import champion_validation, decide, fmt
 from ..core.scoring.evaluation import require_split
 from ..core.scoring.leaderboard import DEPLOYED_MODE, rank, ranked_by, ranking_line, validation_mode
+from .store import REGISTERED, is_registered_model
 from .sweeps import parent_run_id, run_metrics, sweep_rows
 from .tracking import DATASET_TAG, child_runs, retry_locked
 
@@ -185,7 +186,7 @@ def register(cfg: DictConfig, client, cand: Candidate, ds, dataset_hash: str) ->
 def registered_version(client, model: str):
     """The model version ``models:/<name>@<alias>`` or ``models:/<name>/<version>`` names
     (MLflow's exception when there is none)."""
-    name, sep, alias = model[len("models:/"):].partition("@")
+    name, sep, alias = model[len(REGISTERED):].partition("@")
     if sep:
         return retry_locked(client.get_model_version_by_alias, name, alias)
     name, _, version = name.partition("/")
@@ -201,7 +202,7 @@ def check_served_model(model: str, uri: str) -> str:
     from ..base.paths import resolve
     from .tracking import ensure_store
 
-    if not model.startswith("models:/"):
+    if not is_registered_model(model):
         path = resolve(model)
         if not ((path / "MLmodel").is_file() or path.is_file()):
             raise ConfigError(f"serve.model={model}: neither models:/<name>@<alias>, a pyfunc "

@@ -188,6 +188,15 @@ def mark_orphan_runs(uri: str) -> list[str]:
     return [r.info.run_id for r in gone]
 
 
+REGISTERED = "models:/"
+
+
+def is_registered_model(source) -> bool:
+    """Whether a model source names a version in the store's registry (``models:/<name>@<alias>``
+    or ``models:/<name>/<version>``) rather than a file or folder: such a source reads the store."""
+    return str(source).startswith(REGISTERED)
+
+
 def sqlite_file(uri: str) -> str:
     """The file a ``sqlite:///<path>`` URI names (``""`` for any other URI)."""
     return uri[len("sqlite:///"):] if uri.startswith("sqlite:///") else ""

@@ -17,6 +17,7 @@ from omegaconf import DictConfig, OmegaConf
 
 from ...base.errors import ConfigError
 from ...base.paths import overlap, resolve
+from ..store import is_registered_model
 
 RAW = "data.path"
 SQLITE = "sqlite:///"
@@ -29,7 +30,7 @@ def place(cfg: DictConfig, key: str) -> Path | None:
     value = OmegaConf.select(cfg, key)
     if str(value).startswith(SQLITE):
         value = str(value)[len(SQLITE):]
-    if value is None or not str(value).strip() or "://" in str(value) or str(value).startswith("models:/"):
+    if value is None or not str(value).strip() or "://" in str(value) or is_registered_model(value):
         return None
     return Path(os.path.realpath(resolve(str(value))))
 

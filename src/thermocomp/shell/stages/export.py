@@ -27,6 +27,7 @@ from ..config.checks import check_config
 from ..model_store import model_family
 from ..registry import registered_version
 from ..source import read_streamed
+from ..store import is_registered_model
 
 
 def _registry_run(source: str) -> str | None:
@@ -45,7 +46,7 @@ def _deployed(cfg: DictConfig, source: str) -> tuple[object, dict]:
     ds, train_ids = (None, []) if registered else read_streamed(cfg)[:2]
     deployed = deployable_model(cfg, ds, train_ids, source, "export.model")[0]
     if registered:
-        run = _registry_run(source) if source.startswith("models:/") else None
+        run = _registry_run(source) if is_registered_model(source) else None
         return deployed, {"run_id": run, "dataset_hash": None}
     return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}
 
@@ -54,7 +55,7 @@ def export(cfg: DictConfig) -> dict:
     """Write the export of ``export.model`` in ``export.format`` to ``out``; ``{file: path}``."""
     # a registered model is read from the store: none created (export logs no run)
     check_config(cfg, inputs=("export.model",),
-                 existing_store=str(cfg.export.get("model") or "").startswith("models:/"))
+                 existing_store=is_registered_model(cfg.export.get("model") or ""))
     source = cfg.export.get("model")
     if source is None or not str(source).strip():
         raise ConfigError("export.model is needed: a model.pkl, a pyfunc folder or "

@@ -31,6 +31,7 @@ from ..builders import build_adaptive, build_compensator, deploy_stream, warn_st
 from ..config.checks import check_config, data_options
 from ..model_store import load_model
 from ..source import check_volumetric_targets, read_streamed
+from ..store import is_registered_model
 from ..tracking import stage_run
 
 
@@ -57,7 +58,7 @@ def monitor(cfg: DictConfig) -> dict:
     check_config(cfg, inputs=("monitor.model",))
     warn_stream_mode(cfg, "monitor")
     model = cfg.monitor.get("model")
-    if model is not None and (not str(model).strip() or str(model).startswith("models:/")):
+    if model is not None and (not str(model).strip() or is_registered_model(model)):
         raise ConfigError(f"monitor.model={model}: a model.pkl file (run's or train's); a "
                           "registered model replays through replay.model=models:/<name>@<alias>")
     stdin = cfg.monitor.get("input") == "-"

@@ -22,7 +22,7 @@ from ...apps.deploy import server
 from ...base.log import logger, say
 from ..config.rules import SERVE_RULES, check_keys
 from ..registry import check_served_model
-from ..store import check_existing
+from ..store import check_existing, is_registered_model
 from ..tracking import DEFAULT_URI, resolve_uri
 
 QUIET_DOWNLOADS = "MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR"
@@ -46,7 +46,7 @@ def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
         logger.warning("serve.host=%s is not a loopback address: the model is reachable from the "
                        "network, without authentication", opts.host)
     raw = str(cfg.get("tracking_uri") or DEFAULT_URI)
-    if str(opts.model).startswith("models:/"):
+    if is_registered_model(opts.model):
         check_existing(raw)         # a registered model is read: no store created to find none
     uri = resolve_uri(raw)
     # a registered model comes down file by file: a progress line each, hundreds of them
