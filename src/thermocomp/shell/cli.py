@@ -265,7 +265,7 @@ def _launch(stage: str, args: list[str]) -> None:
     from ..base.paths import conf_dir
     from .callbacks import FAILED_JOBS_ENV
 
-    register()
+    register(stage)
     raised = []
     task = hydra.main(config_path=str(conf_dir()), config_name=root_name(stage),
                       version_base="1.3")(_task(stage, args, raised))

@@ -46,7 +46,7 @@ def compose(overrides: list[str], command: str | None = None):
     from hydra import compose as hydra_compose
     from hydra import initialize_config_dir
 
-    register()
+    register(command)
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3",
                                job_name="thermocomp"):
         return hydra_compose(config_name=root_name(command) if command else "config",
