@@ -13,6 +13,7 @@ import pandas as pd
 import pytest
 
 from conftest import FAST, ROOT
+from test_deploy import mlflow_store
 from thermocomp.base import log
 from thermocomp.base.progress import bar
 from thermocomp.shell.callbacks import sweep_size
@@ -108,13 +109,13 @@ def test_refused_run_leaves_no_log_file(tmp_path, capsys):
 
 
 def test_log_file_is_an_mlflow_artifact(default_dataset, tmp_path, capsys):
-    db = tmp_path / "mlruns" / "mlflow.db"
+    uri = mlflow_store(tmp_path)     # an empty store (the session's migrated copy)
     args = [a for a in FAST if a != "track=false"]
     assert main(["run", f"data.path={default_dataset}", f"out={tmp_path / 'o'}",
-                 f"tracking_uri=sqlite:///{db}", *args]) == 0
+                 f"tracking_uri={uri}", *args]) == 0
     import mlflow
 
-    client = mlflow.MlflowClient(f"sqlite:///{db}")
+    client = mlflow.MlflowClient(uri)
     (run,) = client.search_runs([client.get_experiment_by_name("thermocomp").experiment_id])
     local = client.download_artifacts(run.info.run_id, "thermocomp.log", str(tmp_path / "dl"))
     assert "fitting mlr" in Path(local).read_text()

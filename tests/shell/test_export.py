@@ -29,6 +29,7 @@ from thermocomp.apps.deploy.streaming import replay
 from thermocomp.base.paths import conf_dir
 from thermocomp.shell.builders import build_compensator, deploy_stream
 from thermocomp.shell.cli import main
+from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
 TOLERANCE_UM = 1e-6
@@ -286,6 +287,14 @@ def test_the_structured_text_parses_as_iec_61131_3(dataset):
                 (family, denoise)
 
 
+def _fitted(dataset, tmp_path, model: str, *extra: str) -> Path:
+    """``model.pkl`` of ``model`` fitted on the train split, not scored (what a refusal reads)."""
+    cfg = _compose(f"model={model}", f"data.path={dataset}", "track=false", *extra)
+    ds, train_ids, _, _ = read_streamed(cfg)
+    comp = build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids})
+    return save_model(comp, tmp_path / model / "model.pkl")
+
+
 def _trained(dataset, tmp_path, model: str, *extra: str) -> Path:
     out = tmp_path / model
     assert main(["run", f"data.path={dataset}", f"model={model}", f"out={out}", *FAST, *extra]) == 0
@@ -338,7 +347,7 @@ def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(datas
 def test_what_is_not_one_linear_system_is_refused_in_one_line(dataset, tmp_path, capsys, model,
                                                               extra, says):
     deploy = [e for e in extra if e.startswith(("export.", "promote."))]
-    pkl = _trained(dataset, tmp_path, model, *(e for e in extra if e not in deploy))
+    pkl = _fitted(dataset, tmp_path, model, *(e for e in extra if e not in deploy))
     out = tmp_path / "code"
     refused(["export", f"data.path={dataset}", f"export.model={pkl}", f"out={out}",
              "track=false", *deploy], capsys, f"export.model={pkl}", *says)

@@ -131,8 +131,8 @@ def test_diagnosed_ati_model_replays(door_data, tmp_path):
     out = tmp_path / "diag"
     # two ambient intervals, fixed: the elbow search refits the ATI model ~30 times in each of
     # diagnose's ~600 CV fits (62 s of CPU), and the point is the composed model, not its choice
-    cli("diagnose", f"data.path={door_data}", f"out={out}", "track=false", "ati=cmeans",
-        "ati.estimator.n_intervals=2", "diagnose.max_effects=2")
+    cli("diagnose", f"data.path={door_data}", f"out={out}", "track=false", "plots=none",
+        "ati=cmeans", "ati.estimator.n_intervals=2", "diagnose.max_effects=2")
     cli("replay", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]",
         "experiment=diagnosed", f"data.path={door_data}", f"out={tmp_path / 'replay'}",
         "track=false")

@@ -149,31 +149,34 @@ def register(cfg: DictConfig, client, cand: Candidate, ds, dataset_hash: str) ->
     if champion is not None:
         champ_score, champ_note = champion_validation(
             champion.tags, str(opts.criterion), str(opts.target), dataset_hash, cand.val_mode)
+    champ_version = None if champion is None else str(champion.version)
+    how = dict(criterion=str(opts.criterion), min_improvement=float(opts.min_improvement),
+               force=bool(opts.get("force", False)), mode=cand.val_mode)
     if existing is not None:
         version = str(existing.version)
+        moved, why = decide(version, cand.score, champ_version, champ_score, champ_note, **how)
+        tags = {"decision": why, **({"promoted": True} if moved else {})}
+        for k, v in tags.items():
+            retry_locked(client.set_model_version_tag, name, version, k, str(v))
     else:
+        # A new version is never the champion, so it is decided before it exists and created
+        # with its tags in one write: no version without them (find_registered reads them),
+        # and one commit instead of one per tag.
+        moved, why = decide(None, cand.score, champ_version, champ_score, champ_note, **how)
+        outputs = ([pyfunc.correction_column(t) for t in cand.streaming.targets_] + ["n_clamped"]
+                   + (list(pyfunc.REPORT_COLUMNS) if cand.kind["adaptive"] else []))
+        tags = {"decision": why,
+                **version_tags(cand, ds, dataset_hash=dataset_hash, commit=git_commit(),
+                               criterion=str(opts.criterion), target=str(opts.target),
+                               policy=str(opts.envelope.policy), outputs=outputs),
+                "promoted": moved}
         test = ds.campaigns[require_split(ds, "test")[0]]
         example = test[cand.streaming.columns_ + ["time"]].head(5)
         # into the run without resuming it: a killed promote leaves its status alone
         info = pyfunc.log_compensator(cand.deployed, input_example=example,
-                                      registered_model_name=name, run_id=cand.run_id)
+                                      registered_model_name=name, run_id=cand.run_id,
+                                      tags={k: str(v) for k, v in tags.items()})
         version = str(info.registered_model_version)
-    champ_version = None if champion is None else str(champion.version)
-    moved, why = decide(version, cand.score, champ_version, champ_score, champ_note,
-                        criterion=str(opts.criterion), min_improvement=float(opts.min_improvement),
-                        force=bool(opts.get("force", False)), mode=cand.val_mode)
-    tags = {"decision": why}
-    if existing is None:
-        outputs = ([pyfunc.correction_column(t) for t in cand.streaming.targets_] + ["n_clamped"]
-                   + (list(pyfunc.REPORT_COLUMNS) if cand.kind["adaptive"] else []))
-        tags.update({**version_tags(cand, ds, dataset_hash=dataset_hash, commit=git_commit(),
-                                    criterion=str(opts.criterion), target=str(opts.target),
-                                    policy=str(opts.envelope.policy), outputs=outputs),
-                     "promoted": moved})
-    elif moved:
-        tags["promoted"] = True
-    for k, v in tags.items():
-        retry_locked(client.set_model_version_tag, name, version, k, str(v))
     kept = "already registered, no new version" if existing is not None else "registered"
     if moved:
         retry_locked(client.set_registered_model_alias, name, alias, version)

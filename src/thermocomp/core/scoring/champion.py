@@ -70,15 +70,15 @@ def same_deployment(tags: Mapping | None, dataset_hash: str, deployed: str) -> b
     return tags.get("dataset_hash") == dataset_hash and tags.get("deploy_config") == deployed
 
 
-def decide(version: str, score: float | None, champion_version: str | None,
+def decide(version: str | None, score: float | None, champion_version: str | None,
            champion_score: float | None, champion_note: str | None, *, criterion: str,
            min_improvement: float, force: bool = False, mode: str = "simulation"
            ) -> tuple[bool, str]:
     """(whether the alias moves to ``version``, why).
 
-    No champion: it moves.  The champion itself: it stays.  A champion with no
-    comparable score (``champion_note`` says why) is replaced only when
-    ``force``.  Otherwise the candidate must beat it by more than
+    ``version`` None: one not registered yet (never the champion).  No champion: it moves.
+    The champion itself: it stays.  A champion with no comparable score (``champion_note``
+    says why) is replaced only when ``force``.  Otherwise the candidate must beat it by more than
     ``min_improvement``, compared at the precision of a tag so that the same
     model (e.g. deployed another way) ties instead of "beating" itself.
     """

@@ -16,7 +16,7 @@ from pathlib import Path
 
 from omegaconf import DictConfig
 
-from ...apps.deploy.export import NotExportable, exported_files, not_in_code
+from ...apps.deploy.export import NotExportable, check_exportable, exported_files, not_in_code
 from ...apps.deploy.report import plain
 from ...base.errors import ConfigError
 from ...base.files import staged_outputs
@@ -40,11 +40,21 @@ def _registry_run(source: str) -> str | None:
         return None
 
 
-def _deployed(cfg: DictConfig, source: str) -> tuple[object, dict]:
+def _refused(source: str, family: str, fmt: str, exc: NotExportable) -> ConfigError:
+    return ConfigError(f"export.model={source} ({family}) cannot be exported as {fmt}: {exc}")
+
+
+def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict]:
     """``(deployed compensator, provenance)`` of ``export.model``."""
+    def exportable(comp):     # before its envelope and guard are derived from the train split
+        try:
+            check_exportable(comp, fmt)
+        except NotExportable as exc:
+            raise _refused(source, model_family(comp), fmt, exc) from None
+
     registered = is_registered(source)
     ds, train_ids = (None, []) if registered else read_streamed(cfg)[:2]
-    deployed = deployable_model(cfg, ds, train_ids, source, "export.model")[0]
+    deployed = deployable_model(cfg, ds, train_ids, source, "export.model", check=exportable)[0]
     if registered:
         run = _registry_run(source) if is_registered_model(source) else None
         return deployed, {"run_id": run, "dataset_hash": None}
@@ -63,7 +73,7 @@ def export(cfg: DictConfig) -> dict:
     from ...base.log import version  # the installed distribution's, as --version prints it
 
     source, fmt = str(source), str(cfg.export.format)
-    deployed, provenance = _deployed(cfg, source)
+    deployed, provenance = _deployed(cfg, source, fmt)
     stream = plain(deployed)
     left = not_in_code(deployed)
     if left:
@@ -76,8 +86,7 @@ def export(cfg: DictConfig) -> dict:
     try:
         files = exported_files(deployed, fmt, provenance)
     except NotExportable as exc:
-        raise ConfigError(f"export.model={source} ({family}) cannot be exported as {fmt}: "
-                          f"{exc}") from None
+        raise _refused(source, family, fmt, exc) from None
     out = Path(resolve(cfg.out))
     with staged_outputs(out, last=("compensator.json",)) as tmp:
         for name, text in files.items():

@@ -21,18 +21,38 @@ from .errors import NotExportable
 from .output import not_in_code
 from .statespace import FORMATS, LINEAR_FAMILIES, Simulator, StateSpace, state_space
 
-__all__ = ["FORMATS", "LINEAR_FAMILIES", "NotExportable", "Simulator", "StateSpace", "exported_files",
-           "not_in_code", "state_space"]
+__all__ = ["FORMATS", "LINEAR_FAMILIES", "NotExportable", "Simulator", "StateSpace", "check_exportable",
+           "exported_files", "not_in_code", "state_space"]
 
 
-def exported_files(deployed, fmt: str, provenance: dict | None = None) -> dict[str, str]:
-    """``{file name: text}`` of format ``fmt`` for the ``deployed`` stream or adaptive
-    compensator (its plain stream, correction guard and reference update)."""
+def _check_format(fmt: str) -> None:
     if fmt not in FORMATS:
         raise NotExportable(f"export.format={fmt!r}: one of {', '.join(FORMATS)}")
     if fmt == "onnx":
         raise NotExportable("export.format=onnx: no ONNX export is implemented yet; the linear "
                             f"families ({', '.join(LINEAR_FAMILIES)}) export to json, c and st")
+
+
+def check_exportable(compensator, fmt: str) -> None:
+    """:class:`NotExportable` for what keeps a fitted ``compensator`` from exporting as ``fmt``
+    however it is deployed (the format, the family, the denoiser, the columns it reads): the
+    checks of :func:`exported_files` on its plain stream without an envelope, so that a model
+    is refused before its envelope and guard are derived from data.  One that cannot stream at
+    all is left to its deployment, which says so."""
+    from ..streaming import StreamingCompensator
+
+    _check_format(fmt)
+    try:
+        stream = StreamingCompensator(compensator)
+    except ValueError:
+        return
+    state_space(stream)
+
+
+def exported_files(deployed, fmt: str, provenance: dict | None = None) -> dict[str, str]:
+    """``{file name: text}`` of format ``fmt`` for the ``deployed`` stream or adaptive
+    compensator (its plain stream, correction guard and reference update)."""
+    _check_format(fmt)
     ss = state_space(deployed, provenance)
     files = {"compensator.json": json.dumps(ss.to_dict(), indent=1) + "\n"}
     if fmt == "c":

@@ -1,0 +1,31 @@
+"""`thermocomp export` refuses a model.pkl that cannot be exported before it derives the model's
+deployment (envelope, guard) from the train split: for a causal EMD window that is one EMD per
+training sample, minutes on a real record, all for a refusal."""
+
+from __future__ import annotations
+
+from conftest import refused
+from test_export import _compose, _make_dataset
+from thermocomp.apps.deploy import StreamingCompensator
+from thermocomp.shell.builders import build_compensator
+from thermocomp.shell.model_store import save_model
+from thermocomp.shell.source import read_streamed
+
+
+def test_a_window_denoised_model_is_refused_before_its_deployment_is_derived(tmp_path, capsys,
+                                                                             monkeypatch):
+    data = _make_dataset(tmp_path / "data")
+    cfg = _compose("model=mlr", "denoise=emd", "denoise.denoiser.causal=window",
+                   f"data.path={data}", "track=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    comp = build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids})
+    pkl = save_model(comp, tmp_path / "model.pkl")
+
+    def derived(*args, **kwargs):
+        raise AssertionError("the deployment was derived from the train split before the refusal")
+
+    monkeypatch.setattr(StreamingCompensator, "from_training", derived)
+    out = tmp_path / "code"
+    refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={out}", "track=false"],
+            capsys, f"export.model={pkl}", "(mlr) cannot be exported as c", "causal=fir")
+    assert not out.exists()
