@@ -1,7 +1,9 @@
 """`dvc repro pipelines/sweep/dvc.yaml` (the README's DVC sweep) in a scratch copy of the project,
 the venv not on PATH: the default study's simulate, the sweep's jobs as committed and the
 comparison, then nothing to rerun.  (An arx_rf job in its grid failed on this dataset, which has
-no door signal, and with it every `dvc repro` of this pipeline.)"""
+no door signal, and with it every `dvc repro` of this pipeline.)  The default MLflow store starts
+as a copy of a migrated one: its creation (Alembic migrations, seconds of CPU) is tested where it
+is the point (test_tracking, test_hostile_procs)."""
 
 import json
 
@@ -9,6 +11,7 @@ import pandas as pd
 import pytest
 
 from conftest import copy_project, dvc
+from test_deploy import mlflow_store
 
 pytestmark = pytest.mark.slow
 PIPELINE = "pipelines/sweep/dvc.yaml"
@@ -16,6 +19,7 @@ PIPELINE = "pipelines/sweep/dvc.yaml"
 
 def test_the_sweep_pipeline_runs_every_job_and_the_comparison_then_nothing(tmp_path):
     dest, env = copy_project(tmp_path / "proj")
+    mlflow_store(dest)
     proc = dvc("repro", PIPELINE, cwd=dest, env=env)
     log = proc.stdout + proc.stderr
     for stage in ("sweep", "compare"):

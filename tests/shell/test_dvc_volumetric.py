@@ -1,8 +1,11 @@
 """`dvc repro pipelines/volumetric/dvc.yaml` (the README's volumetric pipeline) in a scratch copy
 of the project, the venv not on PATH: its four stage commands as committed, on shorter weeks and
-a smaller Monte Carlo, without figures (the scratch copy's params files), then nothing to rerun.
-The figures cost 60 % of the run stage (two per error parameter) and are checked where they
-are drawn (test_volumetric_run, test_newcomer's design figures), not DVC's concern."""
+a smaller Monte Carlo in one process, without figures (the scratch copy's params files), then
+nothing to rerun.  The figures cost 60 % of the run stage (two per error parameter) and are
+checked where they are drawn (test_volumetric_run, test_newcomer's design figures), not DVC's
+concern; nor are the design's worker processes (each imports the stack again; the result does not
+depend on them: test_design) or the creation of the MLflow store (Alembic migrations, seconds of
+CPU: test_tracking, test_hostile_procs), which starts here as a copy of a migrated one."""
 
 import json
 from pathlib import Path
@@ -10,6 +13,7 @@ from pathlib import Path
 import pytest
 
 from conftest import copy_project, dvc
+from test_deploy import mlflow_store
 
 pytestmark = pytest.mark.slow
 STAGES = ("simulate", "calibrate", "run", "design")
@@ -28,8 +32,9 @@ def _shrink(path: Path, **values) -> None:
 def test_the_volumetric_pipeline_runs_its_four_stages_then_nothing(tmp_path):
     dest, env = copy_project(tmp_path / "proj")
     _shrink(dest / "conf/sim/large_mill_volumetric.yaml", train_hours=30.0, test_hours=20.0)
-    _shrink(dest / "conf/design/default.yaml", n_machines=4, grid="[6, 4, 4]")
+    _shrink(dest / "conf/design/default.yaml", n_machines=4, grid="[6, 4, 4]", n_jobs=1)
     _shrink(dest / "conf/common.yaml", plots="none")
+    mlflow_store(dest)                                  # the default store, sqlite:///mlruns/mlflow.db
     proc = dvc("repro", PIPELINE, cwd=dest, env=env)
     log = proc.stdout + proc.stderr
     assert {s for s in STAGES if f"Running stage '{PIPELINE}:{s}'" in log} == set(STAGES), log

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from conftest import ROOT, thermocomp
+from test_deploy import mlflow_store
 
 TEST_KEYS = {"rmse", "rsd_mean", "rsd_sd", "rms_before", "rms_after", "p2p_before", "p2p_after",
              "per_campaign", "e_p95",  # CLI.md
@@ -150,6 +151,7 @@ def test_cli_evaluate_then_dvc_plots_show(tmp_path):
             shutil.copy2(src, proj / item)
     env = {"THERMOCOMP_ROOT": str(proj),
            "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
+    mlflow_store(proj)        # the default store, migrated: its creation is tested in test_tracking
     small = ["sim.generator.n_campaigns=9", "ati=cmeans"]
     thermocomp("simulate", *small, "track=false", env=env)
     thermocomp("ingest", *small, "track=false", env=env)
