@@ -88,14 +88,15 @@ def setup_path(cal) -> str:
     return getattr(cal, "source_", SETUP_FILE)
 
 
-def _identify(cal, ds, skipped, excluded=()):
-    """Per campaign ``(P, flagged)``, the columns in ``excluded`` left out of every cycle
-    (``skipped``: campaign -> rows trimmed at its start, for the rows named)."""
+def _identify(cal, ds, distances, skipped, excluded=()):
+    """Per campaign ``(P, flagged)`` of its ``distances``, the columns in ``excluded`` left out of
+    every cycle (``skipped``: campaign -> rows trimmed at its start, for the rows named)."""
     cols = cal.design_.columns
     out = {}
-    for cid, df in ds.campaigns.items():
-        D = distance_matrix(df, cal)
+    for cid in ds.campaigns:
+        D = distances[cid]
         if excluded:
+            D = D.copy()
             D[:, [cols.index(c) for c in excluded]] = np.nan
         try:
             out[cid] = cal.identify(D)
@@ -110,7 +111,7 @@ def _identify(cal, ds, skipped, excluded=()):
     return out
 
 
-def _check_fits(cal: ArtefactCalibration, ds, skipped) -> None:
+def _check_fits(cal: ArtefactCalibration, ds, distances, skipped) -> None:
     """Refuse distances that do not fit the set-up at all, before identifying every cycle.
 
     The first, middle and last cycles are screened; when two of them (or every one, with fewer)
@@ -127,7 +128,7 @@ def _check_fits(cal: ArtefactCalibration, ds, skipped) -> None:
     for i in picks:
         cid, k = rows[i]
         try:
-            out, capped = cal.screen(distance_matrix(ds.campaigns[cid].iloc[[k]], cal)[0])
+            out, capped = cal.screen(distances[cid][k])
         except ValueError:          # too few distances measured: identifying it names the row
             continue
         if capped:
@@ -189,8 +190,9 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
     cal.source_ = str(root / SETUP_FILE)
     _require_seen(cal, setup, list(require_seen or []))
     n_cycles = sum(len(df) for df in ds.campaigns.values())
-    _check_fits(cal, ds, skipped)
-    result = _identify(cal, ds, skipped)
+    distances = {cid: distance_matrix(df, cal) for cid, df in ds.campaigns.items()}   # once each
+    _check_fits(cal, ds, distances, skipped)
+    result = _identify(cal, ds, distances, skipped)
     counts: dict[str, int] = {}
     for _, flagged in result.values():
         for f in flagged:
@@ -200,8 +202,8 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
         logger.warning("calibrate: %d distance column(s) flagged in more than %.0f %% of the cycles, "
                        "left out of every cycle: %s", len(excluded), 100 * float(column_share),
                        ", ".join(excluded[:5]))
-        result = _identify(cal, ds, skipped, excluded)
-    report = _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped)
+        result = _identify(cal, ds, distances, skipped, excluded)
+    report = _report(cal, setup, ds, distances, result, excluded, counts, n_cycles, skipped)
     report["prior"] = prior
     report["suspect_poses"] = _suspect_poses(report["outliers"], n_cycles)
     report["repairs"] = read["repairs"]          # T_/S_ gaps interpolated (data.max_gap_samples)
@@ -238,13 +240,13 @@ def _suspect_poses(outliers: list[dict], n_cycles: int) -> list[dict]:
     return out
 
 
-def _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped) -> dict:
+def _report(cal, setup, ds, distances, result, excluded, counts, n_cycles, skipped) -> dict:
     params = _kinds(setup)
     cols = cal.design_.columns
     outliers, sq, n, expected = [], 0.0, 0, 0.0
     for cid, (P, flagged) in result.items():
         df = ds.campaigns[cid]
-        R = distance_matrix(df, cal) - cal.predict(P)
+        R = distances[cid] - cal.predict(P)
         skip = np.zeros_like(R, dtype=bool)
         for col in excluded:
             skip[:, cols.index(col)] = True

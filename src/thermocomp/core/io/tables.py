@@ -41,6 +41,7 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
     unit conversions (:mod:`.roles`), checked against the contract's vocabulary."""
     plan = naming(raw_names, opts.roles, opts.columns, first, opts.decimal, file)
     names: list[str | None] = []
+    seen: set[str] = set()
     for raw in raw_names:
         name = plan.names.get(raw)
         if name is None:
@@ -56,10 +57,11 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                                 "(letters, digits, '_', '-', '.'; no path separator, '..', space "
                                 "or control character): map it with data.columns",
                                 file=file, column=name)
-        if name in names:
+        if name in seen:
             raise ContractError("duplicate column (after data.columns mapping)",
                                 file=file, column=name)
         names.append(name)
+        seen.add(name)
     if not any(role(n) == "E" for n in names if n):
         raise ContractError("no E_ column: a campaign needs at least one measured error",
                             file=file)
