@@ -70,3 +70,29 @@ def test_only_columns_with_a_step_that_fits_a_unit_are_judged_one_by_one(clean, 
     suspects = steps._suspects(values, steps.UNITS["E"])
     every = [name for name, (_, v) in values.items() if steps.unit_change(v, 5.0, steps.UNITS["E"])[0] >= 0]
     assert every == ["E_S1x1d1_B01_B02"] and set(every) <= set(suspects)
+
+
+def test_a_set_up_is_fitted_once_per_process(clean, monkeypatch, tmp_path):
+    """`run` fits the set-up's calibration to identify the cycles, and again to evaluate against
+    the distances; calibrating one set-up again gives the same fit without fitting it, another
+    set-up or outlier_z is fitted anew."""
+    import json
+    import shutil
+
+    monkeypatch.setattr(calibration, "_FITTED", {}, raising=False)
+    fits = counted(monkeypatch, identify.ArtefactCalibration, "fit")
+    first, cal, _, _ = calibration.calibrate_folder(clean, None)
+    again, cal2, _, _ = calibration.calibrate_folder(clean, None)
+    assert len(fits) == 1 and cal2 is not cal and cal2._whiteners is not cal._whiteners
+    for cid in first.campaigns:
+        np.testing.assert_array_equal(first.campaigns[cid][cal.names_], again.campaigns[cid][cal.names_])
+    calibration.calibrate_folder(clean, None, outlier_z=5.0)
+    assert len(fits) == 2
+    other = shutil.copytree(clean, tmp_path / "raw")
+    setup = json.loads((other / "volumetric.json").read_text())
+    setup["uncertainty_um"]["ball"] = 1.0
+    (other / "volumetric.json").write_text(json.dumps(setup))
+    _, wider, _, _ = calibration.calibrate_folder(other, None)
+    assert len(fits) == 3         # the artefact known worse: no parameter known better, some worse
+    assert np.all(wider.uncertainty_ >= cal.uncertainty_ * (1 - 1e-9))
+    assert np.any(wider.uncertainty_ > 1.05 * cal.uncertainty_)

@@ -33,6 +33,7 @@ them.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -193,6 +194,12 @@ class ArtefactCalibration:
         V = self.design_.cov - A @ self.param_cov_ @ A.T            # the residuals' covariance
         self.residual_dof_ = float(np.trace(V) ** 2 / np.sum(V ** 2))   # Satterthwaite
         return self
+
+    def copy(self) -> ArtefactCalibration:
+        """This fitted calibration, to be used apart: the same fit, caches of its own."""
+        new = copy.copy(self)
+        new._solvers, new._whiteners = dict(self._solvers), dict(self._whiteners)
+        return new
 
     def full(self, estimates: np.ndarray) -> np.ndarray:
         """Identified parameters ``(..., k)`` -> the model's full vector (unseen ones at 0)."""
