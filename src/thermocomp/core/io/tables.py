@@ -347,8 +347,8 @@ def _parquet_numbers(column: pa.ChunkedArray, name: str, path: Path) -> pa.Chunk
     kind = column.type
     numeric = (pa.types.is_floating(kind) or pa.types.is_integer(kind)
                or pa.types.is_decimal(kind) or (pa.types.is_boolean(kind) and role(name) == "S"))
-    if numeric:
-        return pc.cast(column, pa.float64())
+    if numeric:      # (a float64 column as it is: a cast per column of 1430 costs 40 ms a file)
+        return column if pa.types.is_float64(kind) else pc.cast(column, pa.float64())
     found = _first_cast_failure(column, pa.float64()) or _first_valid(column)
     row = None if found is None else found[0] + 1
     raise ContractError(f"Parquet dtype {kind} where numbers are expected",
