@@ -86,7 +86,7 @@ def check_prior_kinds(prior, needed) -> None:
 
 
 _FITTED: dict[tuple, ArtefactCalibration] = {}
-_KEPT = 4        # set-ups: a process calibrates a folder or a fleet of one set-up, not hundreds
+_KEPT = 2        # set-ups (33 MB each at 1430 distances): a process calibrates one or two
 
 
 def fitted(setup, outlier_z: float, prior_sd=None) -> ArtefactCalibration:
