@@ -44,6 +44,9 @@ def test_clean_cycles_are_screened_without_inverting_the_noise_covariance(clean,
     built = counted(monkeypatch, identify.ArtefactCalibration, "_whitener")
     _, cal, report, raw = calibration.calibrate_folder(clean, None)
     assert built == [] and report["outliers"] == []
+    gaps = calibration.distance_matrix(raw.campaigns["train_week"], cal)[2]
+    gaps[[3, 700]] = np.nan                         # two distances not measured in the cycle
+    assert cal.screen(gaps) == ([], False) and built == []
     # a cycle with a gross error is searched, and found as before
     d = calibration.distance_matrix(raw.campaigns["train_week"], cal)[4]
     d[17] += 1000.0

@@ -244,10 +244,15 @@ class ArtefactCalibration:
         (an artefact or a machine described wrongly), which no outlier rule can mend."""
         d = np.asarray(distances, float)
         mask = np.isfinite(d)
-        if mask.all():              # where the search stops at its first fit, without its whitener
-            z = (d - self.predict(self._solve @ d)) / self.residual_sd_
-            if np.max(np.abs(z)) <= self.outlier_z:
-                return [], False
+        # where the search would stop at its first fit, without its whitener (the fit of a cycle
+        # with gaps is cached for identify); a cycle that fit refuses is the search's to judge
+        try:
+            z = ((d - self.predict(self._solve @ d)) / self.residual_sd_ if mask.all()
+                 else self._masked(d, mask)[2])
+        except ValueError:
+            z = None
+        if z is not None and np.max(np.abs(z)) <= self.outlier_z:
+            return [], False
         _, out, capped = self._robust_cycle(d, mask)
         return out, capped
 
