@@ -154,7 +154,7 @@ def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_pa
     common = ["experiment=volumetric_large_mill", f"data.path={raw}", f"data.interim={tmp_path / 'interim'}",
               f"model_path={tmp_path / 'model.pkl'}", "track=false", "eval.mutual_prediction=false",
               "eval.ati_baselines=false", "plots=none", "data.targets=[E_ZZ1,E_XZ1]",
-              f"calibrate.prior={prior}"]
+              f"calibrate.prior={prior}", "eval.validation=false"]   # (the volumetric section's)
     assert main(["ingest", *common]) == 0
     report = json.loads((tmp_path / "interim" / "ingest_report.json").read_text())
     assert report["dataset"] == raw.name and "E_ZZ1" in report["calibration"]["parameters"]
@@ -163,7 +163,7 @@ def test_the_separate_stages_give_the_volumetric_section_as_run_does(raw, tmp_pa
     assert main(["evaluate", *common, f"out={tmp_path / 'staged'}"]) == 0
     staged = json.loads((tmp_path / "staged" / "metrics.json").read_text())
     whole, _ = _run(raw, tmp_path / "run", "plots=none", "data.targets=[E_ZZ1,E_XZ1]",
-                    f"calibrate.prior={prior}")
+                    f"calibrate.prior={prior}", "eval.validation=false")
     for block in ("distance_error", "vce", "vce_identified"):
         for k in ("rms_before", "rms_after"):
             assert staged["volumetric"][block][k] == pytest.approx(whole["volumetric"][block][k], rel=1e-9)
@@ -212,14 +212,15 @@ def test_a_distance_the_calibration_left_out_is_no_distance_error(raw, run, tmp_
         column = next(c for c in df.columns if c.startswith("E_S2x1d1_"))
         df.loc[row - 1, column] += 1000.0
         df.to_parquet(f, index=False)
-        got, _ = _run(data, tmp_path / f"row{row}" / "run", "plots=none")
+        got, _ = _run(data, tmp_path / f"row{row}" / "run", "plots=none", "eval.validation=false")
         err = got["volumetric"]["distance_error"]
         assert err["p2p_after"] < 5 * clean["p2p_after"] and err["p2p_after"] < 100
         assert err["rms_after"] == pytest.approx(clean["rms_after"], rel=0.02)
         assert err["rms_before"] == pytest.approx(clean["rms_before"], rel=0.02)
     common = ["experiment=volumetric_large_mill", f"data.path={data}",
               f"data.interim={tmp_path / 'interim'}", f"model_path={tmp_path / 'model.pkl'}",
-              "track=false", "eval.mutual_prediction=false", "eval.ati_baselines=false", "plots=none"]
+              "track=false", "eval.mutual_prediction=false", "eval.ati_baselines=false", "plots=none",
+              "eval.validation=false"]
     assert main(["ingest", *common]) == 0 and main(["train", *common]) == 0
     assert main(["evaluate", *common, f"out={tmp_path / 'staged'}"]) == 0
     staged = json.loads((tmp_path / "staged" / "metrics.json").read_text())["volumetric"]
@@ -233,7 +234,7 @@ def test_a_model_of_another_calibration_is_refused_by_the_stages_and_the_stream(
     prior = "calibrate.prior=${design.ranges}"
     common = ["experiment=volumetric_large_mill", f"data.path={raw}", f"data.interim={tmp_path / 'i'}",
               f"model_path={tmp_path / 'model.pkl'}", "track=false", "plots=none",
-              "eval.mutual_prediction=false", "eval.ati_baselines=false"]
+              "eval.mutual_prediction=false", "eval.ati_baselines=false", "eval.validation=false"]
     assert main(["ingest", *common, prior]) == 0 and main(["train", *common, prior]) == 0
     capsys.readouterr()
     refused(["evaluate", *common, f"out={tmp_path / 'e'}"], capsys,

@@ -9,6 +9,7 @@ flagged in most cycles, and gives the parameter series as a dataset with the rep
 
 from __future__ import annotations
 
+import json
 import math
 from pathlib import Path
 
@@ -84,18 +85,37 @@ def check_prior_kinds(prior, needed) -> None:
                           f"(kinds {list(KINDS)}, and decay)")
 
 
+_FITTED: dict[tuple, ArtefactCalibration] = {}
+_KEPT = 2        # set-ups (33 MB each at 1430 distances): a process calibrates one or two
+
+
+def fitted(setup, outlier_z: float, prior_sd=None) -> ArtefactCalibration:
+    """``ArtefactCalibration(setup, outlier_z, prior_sd).fit()``, fitted once per set-up in a
+    process (its design, factor and identifiability: 0.1 s for 1430 distances): ``run`` fits
+    it to identify the cycles and again to evaluate against the distances."""
+    key = (json.dumps(setup.to_dict(), sort_keys=True), float(outlier_z),
+           None if prior_sd is None else tuple(np.asarray(prior_sd, float).ravel()))
+    if key not in _FITTED:
+        cal = ArtefactCalibration(setup, outlier_z=float(outlier_z), prior_sd=prior_sd).fit()
+        while len(_FITTED) >= _KEPT:
+            _FITTED.pop(next(iter(_FITTED)))
+        _FITTED[key] = cal
+    return _FITTED[key].copy()
+
+
 def setup_path(cal) -> str:
     return getattr(cal, "source_", SETUP_FILE)
 
 
-def _identify(cal, ds, skipped, excluded=()):
-    """Per campaign ``(P, flagged)``, the columns in ``excluded`` left out of every cycle
-    (``skipped``: campaign -> rows trimmed at its start, for the rows named)."""
+def _identify(cal, ds, distances, skipped, excluded=()):
+    """Per campaign ``(P, flagged)`` of its ``distances``, the columns in ``excluded`` left out of
+    every cycle (``skipped``: campaign -> rows trimmed at its start, for the rows named)."""
     cols = cal.design_.columns
     out = {}
-    for cid, df in ds.campaigns.items():
-        D = distance_matrix(df, cal)
+    for cid in ds.campaigns:
+        D = distances[cid]
         if excluded:
+            D = D.copy()
             D[:, [cols.index(c) for c in excluded]] = np.nan
         try:
             out[cid] = cal.identify(D)
@@ -110,7 +130,7 @@ def _identify(cal, ds, skipped, excluded=()):
     return out
 
 
-def _check_fits(cal: ArtefactCalibration, ds, skipped) -> None:
+def _check_fits(cal: ArtefactCalibration, ds, distances, skipped) -> None:
     """Refuse distances that do not fit the set-up at all, before identifying every cycle.
 
     The first, middle and last cycles are screened; when two of them (or every one, with fewer)
@@ -127,7 +147,7 @@ def _check_fits(cal: ArtefactCalibration, ds, skipped) -> None:
     for i in picks:
         cid, k = rows[i]
         try:
-            out, capped = cal.screen(distance_matrix(ds.campaigns[cid].iloc[[k]], cal)[0])
+            out, capped = cal.screen(distances[cid][k])
         except ValueError:          # too few distances measured: identifying it names the row
             continue
         if capped:
@@ -185,12 +205,13 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
     ds, read = io.read_dataset(root, data_cfg, missing="keep_errors")
     skipped = {cid: e["trimmed"]["start"] for cid, e in read["campaigns"].items()}
     check_columns(ds, setup)
-    cal = ArtefactCalibration(setup, outlier_z=float(outlier_z), prior_sd=prior_sd(setup.model, prior)).fit()
+    cal = fitted(setup, outlier_z, prior_sd(setup.model, prior))
     cal.source_ = str(root / SETUP_FILE)
     _require_seen(cal, setup, list(require_seen or []))
     n_cycles = sum(len(df) for df in ds.campaigns.values())
-    _check_fits(cal, ds, skipped)
-    result = _identify(cal, ds, skipped)
+    distances = {cid: distance_matrix(df, cal) for cid, df in ds.campaigns.items()}   # once each
+    _check_fits(cal, ds, distances, skipped)
+    result = _identify(cal, ds, distances, skipped)
     counts: dict[str, int] = {}
     for _, flagged in result.values():
         for f in flagged:
@@ -200,8 +221,8 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
         logger.warning("calibrate: %d distance column(s) flagged in more than %.0f %% of the cycles, "
                        "left out of every cycle: %s", len(excluded), 100 * float(column_share),
                        ", ".join(excluded[:5]))
-        result = _identify(cal, ds, skipped, excluded)
-    report = _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped)
+        result = _identify(cal, ds, distances, skipped, excluded)
+    report = _report(cal, setup, ds, distances, result, excluded, counts, n_cycles, skipped)
     report["prior"] = prior
     report["suspect_poses"] = _suspect_poses(report["outliers"], n_cycles)
     report["repairs"] = read["repairs"]          # T_/S_ gaps interpolated (data.max_gap_samples)
@@ -238,13 +259,13 @@ def _suspect_poses(outliers: list[dict], n_cycles: int) -> list[dict]:
     return out
 
 
-def _report(cal, setup, ds, result, excluded, counts, n_cycles, skipped) -> dict:
+def _report(cal, setup, ds, distances, result, excluded, counts, n_cycles, skipped) -> dict:
     params = _kinds(setup)
     cols = cal.design_.columns
     outliers, sq, n, expected = [], 0.0, 0, 0.0
     for cid, (P, flagged) in result.items():
         df = ds.campaigns[cid]
-        R = distance_matrix(df, cal) - cal.predict(P)
+        R = distances[cid] - cal.predict(P)
         skip = np.zeros_like(R, dtype=bool)
         for col in excluded:
             skip[:, cols.index(col)] = True

@@ -33,6 +33,7 @@ them.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -69,30 +70,33 @@ def design(setup: Setup, floor_um: float = FLOOR_UM) -> Design:
     model, array = setup.model, setup.array
     nb = array.n_balls
     ball_pairs = pairs(nb)
-    local = array.centres()
-    rows, blocks, probing, artefact = [], [], [], []
+    i, j = (np.array(b) - 1 for b in zip(*ball_pairs))          # 0-based, every pair at once
+    n = np.arange(len(ball_pairs))
+
+    def signed(vectors):
+        """``(pairs, 3 * nb)``: each pair's unit vector at ball j, its opposite at ball i."""
+        out = np.zeros((len(ball_pairs), nb, 3))
+        out[n, j], out[n, i] = vectors, -vectors
+        return out.reshape(len(ball_pairs), -1)
+
+    w = array.centres()[j] - array.centres()[i]
+    h = signed(w / np.linalg.norm(w, axis=1, keepdims=True))  # the artefact's frame: every pose alike
+    rows, blocks, probing = [], [], []
     for pose in setup.poses:
         balls = pose.balls(array)
         basis = model.basis(balls - model.tool)               # commands that put the TCP on a ball
-        g = np.zeros((len(ball_pairs), nb, 3))                # this pose's probed centres
-        for n, (i, j) in enumerate(ball_pairs):
-            d = balls[j - 1] - balls[i - 1]
-            u = d / np.linalg.norm(d)
-            rows.append((pose.name, i, j))
-            blocks.append(-u @ (basis[j - 1] - basis[i - 1]))   # reading = centre - error
-            g[n, j - 1], g[n, i - 1] = u, -u
-            w = local[j - 1] - local[i - 1]
-            h = np.zeros((nb, 3))
-            h[j - 1], h[i - 1] = w / np.linalg.norm(w), -w / np.linalg.norm(w)
-            artefact.append(h.ravel())
-        g = g.reshape(len(ball_pairs), -1)
+        d = balls[j] - balls[i]
+        u = d / np.linalg.norm(d, axis=1, keepdims=True)
+        rows += [(pose.name, a, b) for a, b in ball_pairs]
+        blocks.append(-np.einsum("nc,ncp->np", u, basis[j] - basis[i]))   # reading = centre - error
+        g = signed(u)                                          # this pose's probed centres
         probing.append(g @ g.T)
-    H = np.array(artefact)
+    H = np.tile(h, (len(setup.poses), 1))
     # poses share no probed centre: the probing part is block diagonal (one product per pose,
     # not of all the poses' centres at once: 1.7 GFlop for 26 poses of 11 balls)
     cov = (setup.probing_um ** 2) * linalg.block_diag(*probing) + (setup.ball_um ** 2) * H @ H.T
     cov[np.diag_indices_from(cov)] += floor_um ** 2
-    return Design([column(*r) for r in rows], rows, np.array(blocks), cov)
+    return Design([column(*r) for r in rows], rows, np.vstack(blocks), cov)
 
 
 @dataclass
@@ -191,6 +195,12 @@ class ArtefactCalibration:
         self.residual_dof_ = float(np.trace(V) ** 2 / np.sum(V ** 2))   # Satterthwaite
         return self
 
+    def copy(self) -> ArtefactCalibration:
+        """This fitted calibration, to be used apart: the same fit, caches of its own."""
+        new = copy.copy(self)
+        new._solvers, new._whiteners = dict(self._solvers), dict(self._whiteners)
+        return new
+
     def full(self, estimates: np.ndarray) -> np.ndarray:
         """Identified parameters ``(..., k)`` -> the model's full vector (unseen ones at 0)."""
         out = np.zeros(estimates.shape[:-1] + (len(self.setup.model.names),))
@@ -234,6 +244,15 @@ class ArtefactCalibration:
         (an artefact or a machine described wrongly), which no outlier rule can mend."""
         d = np.asarray(distances, float)
         mask = np.isfinite(d)
+        # where the search would stop at its first fit, without its whitener (the fit of a cycle
+        # with gaps is cached for identify); a cycle that fit refuses is the search's to judge
+        try:
+            z = ((d - self.predict(self._solve @ d)) / self.residual_sd_ if mask.all()
+                 else self._masked(d, mask)[2])
+        except ValueError:
+            z = None
+        if z is not None and np.max(np.abs(z)) <= self.outlier_z:
+            return [], False
         _, out, capped = self._robust_cycle(d, mask)
         return out, capped
 

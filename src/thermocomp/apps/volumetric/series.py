@@ -81,4 +81,10 @@ def _stray(m, poses: set, n_balls: int) -> str:
 
 def distance_matrix(df: pd.DataFrame, cal: ArtefactCalibration) -> np.ndarray:
     """A campaign's distance deviations in the calibration's column order."""
-    return df[cal.design_.columns].to_numpy(float)
+    where = df.columns.get_indexer(cal.design_.columns)
+    if (where < 0).any():
+        return df[cal.design_.columns].to_numpy(float)     # the KeyError that names them
+    try:   # the reader keeps a block per column: one array of all, not a take over 1400 blocks
+        return df.to_numpy(float)[:, where]
+    except (TypeError, ValueError):                        # a column that is no number
+        return df[cal.design_.columns].to_numpy(float)

@@ -34,7 +34,7 @@ from ...base.params import (
 )
 from ...core import io
 from .artefact import SETUP_FILE
-from .calibration import calibrate_folder, check_prior_kinds, prior_sd
+from .calibration import calibrate_folder, check_prior_kinds, fitted, prior_sd
 from .identify import ArtefactCalibration
 from .series import check_columns, load_setup
 
@@ -107,8 +107,7 @@ def open_distances(root: str | Path, options: Mapping | None, outlier_z: float,
     setup = load_setup(Path(root))
     raw, _ = io.read_dataset(root, options, missing="keep_errors")   # as calibrate reads it
     check_columns(raw, setup)
-    return raw, ArtefactCalibration(setup, outlier_z=float(outlier_z),
-                                    prior_sd=prior_sd(setup.model, prior)).fit()
+    return raw, fitted(setup, outlier_z, prior_sd(setup.model, prior))
 
 
 def ingest_series(params: io.Dataset, dest, extra: dict, finish=None) -> dict:

@@ -72,16 +72,7 @@ def unit_change(x: np.ndarray, ratio: float, units) -> tuple[int, int]:
     tolerance = FIT * np.abs(steps)
     found = []
     for i, (_, forward, back) in enumerate(units):
-        with np.errstate(over="ignore", invalid="ignore"):
-            explained = (np.abs(x[1:] - forward(x[:-1])) <= tolerance) & (steps != 0)
-            if not explained.any():
-                continue
-            undone = back(x)
-            # step k with the rows after it converted back, and the PERSIST steps after it
-            at = np.abs(undone[1:] - x[:-1])
-            moves = np.concatenate((np.abs(np.diff(undone)), np.full(PERSIST, -np.inf)))
-            after = sliding_window_view(moves[1:], PERSIST).max(axis=1)
-            fits = explained & (at <= tolerance) & (after > -np.inf) & (after <= tolerance)
+        fits, undone = _fitting(x, forward, back)
         for k in np.flatnonzero(fits)[:CANDIDATES]:
             # the column as if the unit had been kept: its history judges the step
             scale = robust_step_scale(np.concatenate((x[:k + 1], undone[k + 1:])))
@@ -102,6 +93,38 @@ def unit_change(x: np.ndarray, ratio: float, units) -> tuple[int, int]:
                 found.append((int(k), i))
                 break
     return min(found, default=(-1, -1))
+
+
+def _fitting(x: np.ndarray, forward, back) -> tuple[np.ndarray, np.ndarray]:
+    """Where a step of ``x`` (along axis 0: a column, or columns side by side) fits a change of
+    unit (``forward``, ``back``: the conversion and its inverse): explained by the conversion,
+    converted back within a fifth of the step, and persisting; and ``x`` converted back."""
+    steps = np.diff(x, axis=0)
+    tolerance = FIT * np.abs(steps)
+    with np.errstate(over="ignore", invalid="ignore"):
+        explained = (np.abs(x[1:] - forward(x[:-1])) <= tolerance) & (steps != 0)
+        undone = back(x)
+        # step k with the rows after it converted back, and the PERSIST steps after it
+        at = np.abs(undone[1:] - x[:-1])
+        moves = np.concatenate((np.abs(np.diff(undone, axis=0)), np.full((PERSIST,) + x.shape[1:], -np.inf)))
+        after = sliding_window_view(moves[1:], PERSIST, axis=0).max(axis=-1)
+        return explained & (at <= tolerance) & (after > -np.inf) & (after <= tolerance), undone
+
+
+def _suspects(values: dict[str, tuple[np.ndarray, np.ndarray]], units) -> list[str]:
+    """The columns (name -> rows, finite values) with a step that fits a change of unit, which
+    :func:`unit_change` then judges against the column's history: the columns measured in every
+    row are screened side by side (a volumetric dataset's 1430 distances one by one: 60 ms)."""
+    n = max((rows.size for rows, _ in values.values()), default=0)
+    full = [name for name, (rows, _) in values.items() if rows.size == n]
+    if n < MIN_SAMPLES or not full:
+        return list(values)
+    X = np.column_stack([values[name][1] for name in full])
+    hit = np.zeros(len(full), bool)
+    for _, forward, back in units:
+        hit |= _fitting(X, forward, back)[0].any(axis=0)
+    cleared = {name for name, h in zip(full, hit) if not h}
+    return [name for name in values if name not in cleared]
 
 
 def _finite(column) -> tuple[np.ndarray, np.ndarray]:
@@ -134,9 +157,10 @@ def check_unit_steps(columns: dict, path: Path, ratio: float | None, offset: int
         return
     for kind, units in UNITS.items():
         names = [n for n in columns if role(n) == kind]
+        values = {name: _finite(columns[name]) for name in names}
         found = []
-        for name in names:
-            rows, x = _finite(columns[name])
+        for name in _suspects(values, units):
+            rows, x = values[name]
             k, unit = unit_change(x, ratio, units) if rows.size >= MIN_SAMPLES else (-1, -1)
             if k >= 0:
                 found.append((int(rows[k + 1]), name, x[k], x[k + 1], units[unit][0]))

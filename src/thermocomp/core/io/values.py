@@ -125,14 +125,17 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
 
 def _error_ranges(table: pa.Table) -> dict:
     """``{E_ column: (peak-to-peak, constant)}`` of one campaign (finite values only)."""
-    out = {}
-    for name in table.column_names:
-        if role(name) == "E":
-            v = _values(table.column(name))
-            v = v[np.isfinite(v)]
-            if len(v):
-                out[name] = (float(np.ptp(v)), len(v) >= 3 and bool(np.all(v == v[0])))
-    return out
+    names = [name for name in table.column_names if role(name) == "E"]
+    if not names:
+        return {}
+    # every column at once (a volumetric campaign's 1430 one by one: 30 ms)
+    values = np.column_stack([_values(table.column(name)) for name in names])
+    finite = np.isfinite(values)
+    count = finite.sum(axis=0)
+    highest = np.where(finite, values, -np.inf).max(axis=0, initial=-np.inf)
+    lowest = np.where(finite, values, np.inf).min(axis=0, initial=np.inf)
+    return {name: (float(hi - lo), bool(n >= 3 and hi == lo))
+            for name, n, hi, lo in zip(names, count, highest, lowest) if n}
 
 
 SCALE_FACTOR = 300.0   # a campaign's error range this far off the others' median: another unit?
