@@ -1,16 +1,22 @@
 """What a stage process imports before it does anything: every `dvc repro` stage is a fresh
 `thermocomp <stage>` process, so an import the stage does not use costs every stage, every time.
 The config schema (read by the Hydra callbacks of every command) needs no scikit-learn or SciPy;
-`simulate` builds no model."""
+`simulate` builds no model; a model.pkl exports without MLflow; a CSV dataset is read without
+Parquet's reader."""
 
 import subprocess
 import sys
 
+from conftest import FAST, thermocomp
+from test_hostile import make_dataset
 
-def _loaded(code: str) -> set[str]:
-    """Top-level packages loaded by ``code`` in a fresh interpreter."""
-    code += "\nimport sys\nprint(' '.join(sorted({m.split('.')[0] for m in sys.modules})))"
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+
+def _loaded(code: str, env: dict | None = None) -> set[str]:
+    """Modules (``pyarrow.parquet``) and top-level packages (``sklearn``) loaded by ``code`` in a
+    fresh interpreter (``env``: its environment)."""
+    code += "\nimport sys\nprint(' '.join(sorted({*sys.modules, *(m.split('.')[0] for m in sys.modules)})))"
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert proc.returncode == 0, proc.stderr
     return set(proc.stdout.split())
 
 
@@ -32,3 +38,18 @@ def test_a_sweep_parent_imports_no_model_library():
     stage when a job calls it, not when the parent makes it."""
     loaded = _loaded("from thermocomp.shell.cli import _task\nassert callable(_task('run', [], []))")
     assert not {"sklearn", "scipy"} & loaded
+
+
+def test_exporting_a_model_pkl_imports_no_mlflow_and_reads_its_csv_dataset_without_parquet(tmp_path):
+    """MLflow (~1.8 s of CPU) is for a pyfunc folder or a registered model, not a model.pkl made
+    deployable on a CSV dataset's train split; Parquet's reader (and the ``ssl`` it pulls in) is
+    for Parquet files."""
+    data = make_dataset(tmp_path / "ds")
+    thermocomp("run", f"data.path={data}", f"out={tmp_path / 'run'}", *FAST)
+    loaded = _loaded("from thermocomp.shell.cli import main\n"
+                     f"assert main(['export', 'data.path={data}', 'track=false', "
+                     f"'export.model={tmp_path / 'run' / 'model.pkl'}', 'out={tmp_path / 'c'}']) == 0")
+    assert (tmp_path / "c" / "compensator.json").is_file()
+    assert "mlflow" not in loaded
+    assert "pyarrow.parquet" not in loaded
+
