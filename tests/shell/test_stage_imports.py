@@ -4,6 +4,7 @@ The config schema (read by the Hydra callbacks of every command) needs no scikit
 `simulate` builds no model; a model.pkl exports without MLflow; a CSV dataset is read without
 Parquet's reader."""
 
+import os
 import subprocess
 import sys
 
@@ -53,3 +54,19 @@ def test_exporting_a_model_pkl_imports_no_mlflow_and_reads_its_csv_dataset_witho
     assert "mlflow" not in loaded
     assert "pyarrow.parquet" not in loaded
 
+
+def test_mlflow_telemetry_is_off_in_a_thermocomp_process_unless_the_user_turns_it_on(tmp_path):
+    """MLflow 3 sends usage events from any process that imports it outside a CI or a test (no
+    PYTEST_CURRENT_TEST here: it would switch them off by itself) and keeps an installation id
+    in the user's config folder."""
+    env = {k: v for k, v in os.environ.items() if k in ("PATH", "PYTHONPATH", "HOME", "LANG")}
+    env["XDG_CONFIG_HOME"] = str(tmp_path)         # where MLflow keeps its installation id
+    code = ("from thermocomp.shell.cli import main\nassert main(['--version']) == 0\n"
+            "from mlflow.telemetry import get_telemetry_client\n"
+            "assert get_telemetry_client() is None, 'telemetry on'")
+    _loaded(code, env)
+    assert not (tmp_path / "mlflow").exists()      # nothing written for it either
+    # a user's own setting stands (false: MLflow's telemetry on)
+    code = ("import os\nfrom thermocomp.shell.cli import main\nassert main(['--version']) == 0\n"
+            "assert os.environ['MLFLOW_DISABLE_TELEMETRY'] == 'false'")
+    _loaded(code, {**env, "MLFLOW_DISABLE_TELEMETRY": "false"})

@@ -54,6 +54,10 @@ options:   -q/--quiet (warnings only)  -v/--verbose (debug, progress bars off a 
 Relative paths are resolved against the project root.""".format(
     commands="\n".join(f"  {name:<10} {c.summary}" for name, c in COMMANDS.items()))
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
+# MLflow 3 fetches a config and sends usage events from background threads, and writes an
+# installation id under ~/.config/mlflow: a lab's tool sends nothing unasked.  Off in this
+# process and those it starts (sweep jobs, the server) unless the user set it (false: on).
+TELEMETRY_ENV = "MLFLOW_DISABLE_TELEMETRY"
 
 
 def stage_help(stage: str) -> str:
@@ -311,6 +315,7 @@ def _positional_path(args: list[str]) -> list[str]:
 def main(argv: list[str] | None = None) -> int:
     from ..base import log
 
+    os.environ.setdefault(TELEMETRY_ENV, "true")     # before anything imports MLflow
     argv = list(sys.argv[1:] if argv is None else argv)
     levels = [LOG_FLAGS[a] for a in argv if a in LOG_FLAGS]
     argv = [a for a in argv if a not in LOG_FLAGS]
