@@ -32,6 +32,7 @@ def test_simulate_imports_no_scikit_learn(tmp_path):
                      "'sim.generator.n_campaigns=3', 'sim.generator.duration_h=[1.0,1.0]']) == 0")
     assert (tmp_path / "ds").is_dir()
     assert "sklearn" not in loaded
+    assert "scipy.signal" not in loaded      # its sensor lags: SciPy's linear algebra (~0.6 s less)
 
 
 def test_a_sweep_parent_imports_no_model_library():
