@@ -26,6 +26,16 @@ def test_the_config_schema_imports_no_scikit_learn_nor_scipy():
     assert not {"sklearn", "scipy"} & loaded
 
 
+def test_printing_a_commands_config_imports_no_pandas():
+    """``--cfg job`` (Hydra's callbacks -> tracking -> the run name's schema) reads no data: the
+    core's choices the schema names (``eval.mode``, ``data.reference``) come without pandas."""
+    loaded = _loaded("import contextlib, io\nfrom thermocomp.shell.cli import main\n"
+                     "with contextlib.redirect_stdout(io.StringIO()):\n"
+                     "    assert main(['run', '--cfg', 'job']) == 0")
+    assert "thermocomp.shell.tracking" in loaded     # the edge that dragged pandas in
+    assert not {"pandas", "pyarrow"} & loaded
+
+
 def test_simulate_imports_no_scikit_learn(tmp_path):
     loaded = _loaded("from thermocomp.shell.cli import main\n"
                      f"assert main(['simulate', 'data.path={tmp_path / 'ds'}', 'track=false', "
