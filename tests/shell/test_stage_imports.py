@@ -52,10 +52,11 @@ def test_a_sweep_parent_imports_no_model_library():
     assert not {"sklearn", "scipy"} & loaded
 
 
-def test_exporting_a_model_pkl_imports_no_mlflow_and_reads_its_csv_dataset_without_parquet(tmp_path):
+def test_exporting_a_model_pkl_imports_no_mlflow_no_parquet_no_simulator(tmp_path):
     """MLflow (~1.8 s of CPU) is for a pyfunc folder or a registered model, not a model.pkl made
     deployable on a CSV dataset's train split; Parquet's reader (and the ``ssl`` it pulls in) is
-    for Parquet files."""
+    for Parquet files; the simulator's package (``open_source``'s BLAS helper) for a volumetric
+    dataset."""
     data = make_dataset(tmp_path / "ds")
     thermocomp("run", f"data.path={data}", f"out={tmp_path / 'run'}", *FAST)
     loaded = _loaded("from thermocomp.shell.cli import main\n"
@@ -64,6 +65,7 @@ def test_exporting_a_model_pkl_imports_no_mlflow_and_reads_its_csv_dataset_witho
     assert (tmp_path / "c" / "compensator.json").is_file()
     assert "mlflow" not in loaded
     assert "pyarrow.parquet" not in loaded
+    assert "thermocomp.apps.sim" not in loaded
 
 
 def test_mlflow_telemetry_is_off_in_a_thermocomp_process_unless_the_user_turns_it_on(tmp_path):
