@@ -95,6 +95,15 @@ MIN_ROWS = 2  # the first sample is the reference: one more is needed to have an
 MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
 
+
+def __getattr__(name: str):
+    """``read.pq``: ``pyarrow.parquet``, loaded on first use (:func:`.tables.parquet`), as the
+    name this module once imported it under."""
+    if name == "pq":
+        return parquet()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 # ---------------------------------------------------------------------------
 # Resampling and assembly
 
