@@ -36,6 +36,17 @@ def test_printing_a_commands_config_imports_no_pandas():
     assert not {"pandas", "pyarrow"} & loaded
 
 
+def test_a_value_out_of_its_domain_is_refused_before_the_stage_loads_its_libraries(tmp_path):
+    """A mistyped value is exit 2 in one line without the stage's module, which for ``run``
+    loads scikit-learn and SciPy (~1.5 s of CPU)."""
+    loaded = _loaded("from thermocomp.shell.cli import main\n"
+                     f"assert main(['run', 'track=false', 'out={tmp_path / 'out'}', "
+                     "'eval.mode=simulaton']) == 2")
+    assert "thermocomp.shell.stages.modelling" not in loaded
+    assert not {"sklearn", "scipy"} & loaded
+    assert not (tmp_path / "out").exists()
+
+
 def test_simulate_imports_no_scikit_learn(tmp_path):
     loaded = _loaded("from thermocomp.shell.cli import main\n"
                      f"assert main(['simulate', 'data.path={tmp_path / 'ds'}', 'track=false', "
