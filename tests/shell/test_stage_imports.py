@@ -1,16 +1,23 @@
 """What a stage process imports before it does anything: every `dvc repro` stage is a fresh
 `thermocomp <stage>` process, so an import the stage does not use costs every stage, every time.
 The config schema (read by the Hydra callbacks of every command) needs no scikit-learn or SciPy;
-`simulate` builds no model."""
+`simulate` builds no model; a model.pkl exports without MLflow; a CSV dataset is read without
+Parquet's reader."""
 
+import os
 import subprocess
 import sys
 
+from conftest import FAST, thermocomp
+from test_hostile import make_dataset
 
-def _loaded(code: str) -> set[str]:
-    """Top-level packages loaded by ``code`` in a fresh interpreter."""
-    code += "\nimport sys\nprint(' '.join(sorted({m.split('.')[0] for m in sys.modules})))"
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+
+def _loaded(code: str, env: dict | None = None) -> set[str]:
+    """Modules (``pyarrow.parquet``) and top-level packages (``sklearn``) loaded by ``code`` in a
+    fresh interpreter (``env``: its environment)."""
+    code += "\nimport sys\nprint(' '.join(sorted({*sys.modules, *(m.split('.')[0] for m in sys.modules)})))"
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    assert proc.returncode == 0, proc.stderr
     return set(proc.stdout.split())
 
 
@@ -19,12 +26,34 @@ def test_the_config_schema_imports_no_scikit_learn_nor_scipy():
     assert not {"sklearn", "scipy"} & loaded
 
 
+def test_printing_a_commands_config_imports_no_pandas():
+    """``--cfg job`` (Hydra's callbacks -> tracking -> the run name's schema) reads no data: the
+    core's choices the schema names (``eval.mode``, ``data.reference``) come without pandas."""
+    loaded = _loaded("import contextlib, io\nfrom thermocomp.shell.cli import main\n"
+                     "with contextlib.redirect_stdout(io.StringIO()):\n"
+                     "    assert main(['run', '--cfg', 'job']) == 0")
+    assert "thermocomp.shell.tracking" in loaded     # the edge that dragged pandas in
+    assert not {"pandas", "pyarrow"} & loaded
+
+
+def test_a_value_out_of_its_domain_is_refused_before_the_stage_loads_its_libraries(tmp_path):
+    """A mistyped value is exit 2 in one line without the stage's module, which for ``run``
+    loads scikit-learn and SciPy (~1.5 s of CPU)."""
+    loaded = _loaded("from thermocomp.shell.cli import main\n"
+                     f"assert main(['run', 'track=false', 'out={tmp_path / 'out'}', "
+                     "'eval.mode=simulaton']) == 2")
+    assert "thermocomp.shell.stages.modelling" not in loaded
+    assert not {"sklearn", "scipy"} & loaded
+    assert not (tmp_path / "out").exists()
+
+
 def test_simulate_imports_no_scikit_learn(tmp_path):
     loaded = _loaded("from thermocomp.shell.cli import main\n"
                      f"assert main(['simulate', 'data.path={tmp_path / 'ds'}', 'track=false', "
                      "'sim.generator.n_campaigns=3', 'sim.generator.duration_h=[1.0,1.0]']) == 0")
     assert (tmp_path / "ds").is_dir()
     assert "sklearn" not in loaded
+    assert "scipy.signal" not in loaded      # its sensor lags: SciPy's linear algebra (~0.6 s less)
 
 
 def test_a_sweep_parent_imports_no_model_library():
@@ -32,3 +61,36 @@ def test_a_sweep_parent_imports_no_model_library():
     stage when a job calls it, not when the parent makes it."""
     loaded = _loaded("from thermocomp.shell.cli import _task\nassert callable(_task('run', [], []))")
     assert not {"sklearn", "scipy"} & loaded
+
+
+def test_exporting_a_model_pkl_imports_no_mlflow_no_parquet_no_simulator(tmp_path):
+    """MLflow (~1.8 s of CPU) is for a pyfunc folder or a registered model, not a model.pkl made
+    deployable on a CSV dataset's train split; Parquet's reader (and the ``ssl`` it pulls in) is
+    for Parquet files; the simulator's package (``open_source``'s BLAS helper) for a volumetric
+    dataset."""
+    data = make_dataset(tmp_path / "ds")
+    thermocomp("run", f"data.path={data}", f"out={tmp_path / 'run'}", *FAST)
+    loaded = _loaded("from thermocomp.shell.cli import main\n"
+                     f"assert main(['export', 'data.path={data}', 'track=false', "
+                     f"'export.model={tmp_path / 'run' / 'model.pkl'}', 'out={tmp_path / 'c'}']) == 0")
+    assert (tmp_path / "c" / "compensator.json").is_file()
+    assert "mlflow" not in loaded
+    assert "pyarrow.parquet" not in loaded
+    assert "thermocomp.apps.sim" not in loaded
+
+
+def test_mlflow_telemetry_is_off_in_a_thermocomp_process_unless_the_user_turns_it_on(tmp_path):
+    """MLflow 3 sends usage events from any process that imports it outside a CI or a test (no
+    PYTEST_CURRENT_TEST here: it would switch them off by itself) and keeps an installation id
+    in the user's config folder."""
+    env = {k: v for k, v in os.environ.items() if k in ("PATH", "PYTHONPATH", "HOME", "LANG")}
+    env["XDG_CONFIG_HOME"] = str(tmp_path)         # where MLflow keeps its installation id
+    code = ("from thermocomp.shell.cli import main\nassert main(['--version']) == 0\n"
+            "from mlflow.telemetry import get_telemetry_client\n"
+            "assert get_telemetry_client() is None, 'telemetry on'")
+    _loaded(code, env)
+    assert not (tmp_path / "mlflow").exists()      # nothing written for it either
+    # a user's own setting stands (false: MLflow's telemetry on)
+    code = ("import os\nfrom thermocomp.shell.cli import main\nassert main(['--version']) == 0\n"
+            "assert os.environ['MLFLOW_DISABLE_TELEMETRY'] == 'false'")
+    _loaded(code, {**env, "MLFLOW_DISABLE_TELEMETRY": "false"})

@@ -13,7 +13,8 @@ import numpy as np
 import pandas as pd
 from sklearn.base import BaseEstimator, clone
 
-from .context import MODES, Y_MEASURED, for_target, with_column
+from .choices import MODES
+from .context import Y_MEASURED, for_target, with_column
 from .denoise import denoise_campaigns, fit_denoiser
 from .frame import Matrices, resolve_columns, stack
 from .models.one_step import OneStepLaw

@@ -51,7 +51,6 @@ CAMPAIGN = "campaign"
 TIME = "time"
 AMBIENT_C0 = "ambient_c0"
 Y_MEASURED = "y_measured"
-MODES = ("simulation", "one_step")   # eval.mode: free run, or one step ahead on y_measured
 RESERVED = (CAMPAIGN, TIME, AMBIENT_C0, Y_MEASURED)
 
 

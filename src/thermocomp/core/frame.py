@@ -20,10 +20,10 @@ import numpy as np
 import pandas as pd
 
 from ..base.errors import ContractError, listed
+from .choices import REFERENCES
 from .context import AMBIENT_C0, CAMPAIGN, TIME
 from .io.contract import is_ambient, manifest_ambient, match_columns
 
-REFERENCES = ("first_sample", "none")
 REFERENCED_PREFIXES = ("T_", "E_")   # taken relative to the first sample; S_ keep their values
 RAW_PREFIXES = ("S_", "T_")          # ride along raw in the context
 

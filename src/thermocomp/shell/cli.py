@@ -55,6 +55,10 @@ options:   -q/--quiet (warnings only)  -v/--verbose (debug, progress bars off a 
 Relative paths are resolved against the project root.""".format(
     commands="\n".join(f"  {name:<10} {c.summary}" for name, c in COMMANDS.items()))
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
+# MLflow 3 fetches a config and sends usage events from background threads, and writes an
+# installation id under ~/.config/mlflow: a lab's tool sends nothing unasked.  Off in this
+# process and those it starts (sweep jobs, the server) unless the user set it (false: on).
+TELEMETRY_ENV = "MLFLOW_DISABLE_TELEMETRY"
 
 
 def stage_help(stage: str) -> str:
@@ -173,14 +177,20 @@ def _per_job(cfg):
     return cfg
 
 
-def _run(stage: str, fn, cfg, args: list[str]):
-    """Run stage ``fn`` on ``cfg`` with its log file (``<out>/thermocomp.log`` on success)."""
+def _run(stage: str, cfg, args: list[str]):
+    """Run ``stage`` on ``cfg`` with its log file (``<out>/thermocomp.log`` on success)."""
     from ..base import log
     from ..base.files import signals_raise
     from .build import check_targets
+    from .config.rules import check_schema
+    from .stages import stage as lookup
 
     _guarded(_check_seed, cfg)   # before anything is written, the log file included
     _guarded(check_targets, cfg)     # a _target_ of the project's, named anywhere in it
+    # every value within its domain (what check_config starts with) before the stage's module
+    # loads its libraries: a mistyped value is refused in a second, not after SciPy and sklearn
+    _guarded(check_schema, cfg)
+    fn = lookup(stage)
     # SIGTERM anywhere in the stage (reading, fitting) ends it with status 1 and a message,
     # as the contract's statuses say, not 143; a library's warnings go to the log, one line each
     with signals_raise(), log.warnings_logged(), log.run_log(_log_folder(stage, cfg)):
@@ -216,14 +226,12 @@ def _task(stage: str, args: list[str], raised: list):
     kept in ``raised`` (Hydra would report it in many lines, exit 1), for :func:`main` to say as
     it says any; a sweep job's failure is noted and the sweep goes on."""
     from ..base.files import Terminated
-    from .stages import stage as lookup
 
     def task(cfg):
-        # the stage's module is imported by the process that runs it: a sweep's parent only
-        # launches its jobs (joblib, Ray, SLURM) and never needs the models' libraries
-        fn = lookup(stage)
+        # the stage's module is imported by the process that runs it (in _run): a sweep's parent
+        # only launches its jobs (joblib, Ray, SLURM) and never needs the models' libraries
         try:
-            return _run(stage, fn, _per_job(cfg), args)
+            return _run(stage, _per_job(cfg), args)
         except Terminated:
             raise
         except (SystemExit, Exception) as exc:   # one bad job of a sweep does not end the others
@@ -324,6 +332,7 @@ def main(argv: list[str] | None = None) -> int:
 def _command(argv: list[str]) -> int:
     from ..base import log
 
+    os.environ.setdefault(TELEMETRY_ENV, "true")     # before anything imports MLflow
     levels = [LOG_FLAGS[a] for a in argv if a in LOG_FLAGS]
     argv = [a for a in argv if a not in LOG_FLAGS]
     log.configure(levels[-1] if levels else "INFO")

@@ -58,9 +58,6 @@ def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False
     ``ingest`` wrote it from this source (the DVC stages after it: :func:`load_ingested`).
     ``campaigns``: only those (a fleet's group; ``digest``: the folder's, digested once).
     ``detected``: read with this data config instead (``init``: what it detected), as it is."""
-    from ..apps.sim.scenario import single_threaded_blas
-    from ..apps.volumetric.source import open_volumetric
-
     if ingested:
         return load_ingested(cfg)
     root = resolve(cfg.data.path)
@@ -69,6 +66,10 @@ def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False
     if campaigns is None:       # a fleet says its folder once, not per group
         say(f"reading {root}")
     if volumetric or (volumetric is None and campaigns is None and _volumetric_folder(root)):
+        # here: the simulator's package (its BLAS helper) is a volumetric dataset's, not every run's
+        from ..apps.sim.scenario import single_threaded_blas
+        from ..apps.volumetric.source import open_volumetric
+
         say("volumetric dataset: calibrating the artefact distances into the error parameters")
         with single_threaded_blas():   # 1430-wide matrices: threads on 2 busy cores only thrash
             ds = open_volumetric(root, data_options(cfg), calibrate_settings(cfg))

@@ -1,4 +1,4 @@
-"""The lab's own column names, carried by the deployed model.
+"""Column names of the deployed model: the lab's own, and the corrections it gives.
 
 A record read with ``data.columns`` (``{raw: contract}``, e.g. ``{T0: T_0, "delta L": E_L}``)
 is modelled under contract names; the machine that calls the deployed model
@@ -13,6 +13,13 @@ from collections.abc import Mapping
 import pandas as pd
 
 from ...base.errors import ContractError
+
+CORRECTION_PREFIX = "C_"
+
+
+def correction_column(target: str) -> str:
+    """``E_X`` -> ``C_X``: the correction for the error ``E_X``."""
+    return CORRECTION_PREFIX + (target[2:] if target.startswith("E_") else target)
 
 
 def lab_names(cfg, ds=None) -> dict[str, str]:

@@ -84,7 +84,7 @@ import thermocomp
 from ...base import signing
 from ...core.context import TIME
 from .adaptive import AdaptiveCompensator
-from .naming import to_contract
+from .naming import correction_column, to_contract
 from .streaming import EndState, StreamingCompensator
 
 MODEL_NAME = "compensator"          # artifact name of the pyfunc model inside a run
@@ -92,14 +92,8 @@ COMPENSATOR_ARTIFACT = "compensator"  # the pickled (streaming or adaptive) comp
 SIGNATURE_ARTIFACT = "compensator_sig"  # its signature (HMAC, thermocomp.base.signing)
 DEFAULT_SESSION = "default"
 MAX_SESSIONS = 1024
-CORRECTION_PREFIX = "C_"
 DEPLOYABLE = (StreamingCompensator, AdaptiveCompensator)   # what the model may hold
 REPORT_COLUMNS = ("excluded_inputs", "events")              # the adaptive compensator's extras
-
-
-def correction_column(target: str) -> str:
-    """``E_X`` -> ``C_X``: the correction for the error ``E_X``."""
-    return CORRECTION_PREFIX + (target[2:] if target.startswith("E_") else target)
 
 
 def is_adaptive(deployed) -> bool:

@@ -15,7 +15,7 @@ from .manifest import read_manifest
 from .options import ROLE_PATTERNS
 from .roles import UNITS, _numeric, split_unit
 from .sniff import resolved
-from .tables import _peek_csv
+from .tables import _peek_csv, parquet
 
 # units that say "a machine state" (speeds, loads, positions, on/off)
 STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
@@ -34,9 +34,7 @@ def sample_file(src: Path, opts) -> Path:
 def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
     """``(options with the separators detected, header, first row)`` of ``sample``."""
     if sample.suffix.lower() != ".csv":
-        import pyarrow.parquet as pq
-
-        table = pq.read_table(sample).slice(0, 1)
+        table = parquet().read_table(sample).slice(0, 1)
         return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
     opts = resolved(sample, opts)
     return (opts, *_peek_csv(sample, opts.delimiter))

@@ -62,7 +62,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pyarrow as pa
-import pyarrow.parquet as pq
 
 from ...base.files import atomic_dir, folder_digest, write_json
 from ...base.log import logger
@@ -80,7 +79,7 @@ from .manifest import CAMPAIGN_SUFFIXES, read_manifest
 from .options import ROLE_ORDER, ReadOptions
 from .record import cut, hold_out, record_id
 from .steps import check_unit_steps
-from .tables import _load_csv, _load_parquet, _ordered, _values
+from .tables import _load_csv, _load_parquet, _ordered, _values, parquet
 from .values import (
     _check_periods,
     _error_ranges,
@@ -95,6 +94,15 @@ INGEST_REPORT = "ingest_report.json"
 MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
 MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
+
+
+def __getattr__(name: str):
+    """``read.pq``: ``pyarrow.parquet``, loaded on first use (:func:`.tables.parquet`), as the
+    name this module once imported it under."""
+    if name == "pq":
+        return parquet()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
 
 # ---------------------------------------------------------------------------
 # Resampling and assembly
@@ -460,7 +468,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
     with atomic_dir(dest) as tmp:
         for cid, table, entry in tables:
             _collect_roles(columns, table.column_names)
-            pq.write_table(table, tmp / f"{cid}.parquet")
+            parquet().write_table(table, tmp / f"{cid}.parquet")
             entries[cid] = entry
             del table
             pa.default_memory_pool().release_unused()
@@ -476,7 +484,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
 
 def _clocks(root: Path, manifest: pd.DataFrame, name: str) -> Dataset:
     """The dataset written in ``root`` with each campaign's ``time`` column only."""
-    return Dataset(manifest, {cid: _to_frame(pq.read_table(root / f, columns=[TIME]))
+    return Dataset(manifest, {cid: _to_frame(parquet().read_table(root / f, columns=[TIME]))
                               for cid, f in manifest["file"].items()}, name, {})
 
 
@@ -525,7 +533,7 @@ def _load_interim_once(root: Path) -> Dataset:
         raise ContractError(f"no {INGEST_REPORT}: not an ingested dataset (run ingest first)",
                             file=root)
     manifest = read_manifest(root)
-    campaigns = {cid: _to_frame(pq.read_table(root / f)) for cid, f in manifest["file"].items()}
+    campaigns = {cid: _to_frame(parquet().read_table(root / f)) for cid, f in manifest["file"].items()}
     meta = {"path": str(root), "ingest_report": json.loads(report_path.read_text())}
     # named after the dataset it was ingested from, as run names it (not the interim folder)
     return Dataset(manifest, campaigns, meta["ingest_report"].get("dataset") or root.name, meta)

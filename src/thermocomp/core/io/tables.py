@@ -12,7 +12,6 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.compute as pc
 import pyarrow.csv as pacsv
-import pyarrow.parquet as pq
 
 from .contract import TIME, ContractError, role
 from .manifest import _not_utf8, _utf8_failure
@@ -302,9 +301,17 @@ def _describe(target: pa.DataType) -> str:
 # Loading Parquet
 
 
+def parquet():
+    """``pyarrow.parquet``, imported by the first Parquet file read or written: a command on a
+    CSV dataset (``run``, ``simulate``, ``monitor``...) never loads it, nor the ``ssl`` it pulls in."""
+    import pyarrow.parquet
+
+    return pyarrow.parquet
+
+
 def _load_parquet(path: Path, opts: ReadOptions) -> dict:
     try:
-        table = pq.read_table(path)
+        table = parquet().read_table(path)
     except (pa.ArrowInvalid, OSError) as exc:
         reason = _ARROW_SOURCE.sub("", _first_line(exc))
         raise ContractError(f"unreadable Parquet file ({reason})", file=path) from None

@@ -33,8 +33,7 @@ from ...base.params import (
     text,
     texts,
 )
-from ...core.context import MODES
-from ...core.frame import REFERENCES
+from ...core.choices import MODES, REFERENCES
 from ...core.model_selection.schemes import CV_SCHEMES
 
 MAX_WINDOW = 100_000      # monitor.window: samples kept per sensor (1e9 was OOM-killed at 24 GB)

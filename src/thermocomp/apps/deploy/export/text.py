@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import sys
 
-from ..pyfunc import correction_column
+from ..naming import correction_column
 
 
 def correction_names(targets) -> list[str]:
