@@ -579,10 +579,10 @@ def test_a_clean_dataset_is_ingested_without_a_warning(paths, capsys):
 def test_interleaved_ingests_leave_one_whole_dataset(paths, tmp_path, monkeypatch):
     """A second ingest starts and ends while the first is writing: the folder then holds the
     first one's dataset, whole (the last to finish wins), and no temp folder is left."""
-    from thermocomp.core.io import read as io_read
+    import pyarrow.parquet as pq  # what ingest writes each campaign with
 
     other = make_dataset(tmp_path / "other", rows=20, gain=6.0)
-    write_table, nested = io_read.pq.write_table, []
+    write_table, nested = pq.write_table, []
 
     def interleaved(*args, **kwargs):
         if not nested:
@@ -592,9 +592,10 @@ def test_interleaved_ingests_leave_one_whole_dataset(paths, tmp_path, monkeypatc
             assert load_interim(paths["interim"]).campaigns["K01"].shape[0] == 20
         return write_table(*args, **kwargs)
 
-    monkeypatch.setattr(io_read.pq, "write_table", interleaved)
+    monkeypatch.setattr(pq, "write_table", interleaved)
     assert main(["ingest", f"data.path={paths['ds']}", f"data.interim={paths['interim']}",
                  "track=false"]) == 0
+    assert nested, "the second ingest never ran while the first was writing"
 
     got, want = load_interim(paths["interim"]), read_dataset(paths["ds"])[0]
     for cid in want.ids():

@@ -96,14 +96,6 @@ MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
 
 
-def __getattr__(name: str):
-    """``read.pq``: ``pyarrow.parquet``, loaded on first use (:func:`.tables.parquet`), as the
-    name this module once imported it under."""
-    if name == "pq":
-        return parquet()
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
 # ---------------------------------------------------------------------------
 # Resampling and assembly
 
