@@ -211,18 +211,26 @@ def test_a_run_sigkilled_during_its_figures_leaves_no_worker_and_ends_killed(tmp
                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     parent = psutil.Process(run.pid)
 
-    def forked():          # the figure workers (not MLflow's git helper)
+    client = _client(uri)
+
+    def forked():          # children with the run's own command line
         try:
             return [c for c in parent.children() if c.cmdline() == parent.cmdline()]
         except psutil.Error:
             return []
-    _wait_for(forked, [run])
+
+    def tracked():         # the run's row, committed before any figure is drawn
+        exp = client.get_experiment_by_name("thermocomp")
+        return exp and client.search_runs([exp.experiment_id], "tags.run_name = 'killed'")
+
+    # Such a child is a figure worker only once the run is in the store: MLflow's git helper,
+    # spawned inside start_run, shows the parent's command line until it execs git (under load
+    # the kill once landed in that window, before the run existed).
+    _wait_for(lambda: forked() and tracked(), [run])
     workers = forked()
-    assert workers, "the run ended before drawing its figures"
+    assert workers and tracked(), "the run ended before drawing its figures"
     assert _orphans_after_kill(run, workers) == []
-    client = _client(uri)
-    killed = client.search_runs([client.get_experiment_by_name("thermocomp").experiment_id],
-                                filter_string="tags.run_name = 'killed'")[0]
+    killed = tracked()[0]
     assert killed.info.status == "RUNNING", "the run ended before the kill"  # SIGKILL: no word
     assert main(["run", *common, "plots=none", f"out={tmp_path / 'next'}", "name=next"]) == 0
     assert client.get_run(killed.info.run_id).info.status == "KILLED"
