@@ -108,6 +108,21 @@ def test_forward_chaining_on_one_record_never_looks_ahead():
     assert late["per_unit"][units[-1]] > 10 * entry["per_unit"][units[-1]]
 
 
+def test_forward_chaining_ignores_groups_without_a_warning():
+    import warnings
+
+    from thermocomp.core.model_selection import ForwardChaining
+
+    X, groups = np.zeros((60, 1)), np.repeat(["a", "b"], 30)
+    for splitter in (ForwardChaining(3), ForwardChaining(3, gap=2, min_train_fraction=0.5)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error")        # scikit-learn warns when handed groups
+            grouped = list(splitter.split(X, groups=groups))
+        plain = list(splitter.split(X))
+        assert len(grouped) == 3 and all(np.array_equal(a[i], b[i]) for a, b in zip(grouped, plain)
+                                         for i in (0, 1))
+
+
 def test_shared_forward_chaining_validates_the_second_half_like_lagbank():
     from thermocomp.core.model_selection import ForwardChaining
     from thermocomp.core.models import lagbank

@@ -249,13 +249,14 @@ class ForwardChaining(TimeSeriesSplit):
         """Yield ``(train, test)`` row indices, train strictly before test."""
         if int(self.gap) < 0:
             raise ParameterError(f"gap={self.gap!r} must be >= 0 samples")
+        # groups are ignored (rows in time order); scikit-learn warns when it is handed them
         if self.min_train_fraction is None:
-            yield from super().split(X, y, groups)
+            yield from super().split(X, y)
             return
-        X, y, groups = indexable(X, y, groups)
+        X, y = indexable(X, y)
         inner = TimeSeriesSplit(n_splits=self.n_splits, gap=self.gap,
                                 test_size=self.block_size(len(X)))
-        yield from inner.split(X, y, groups)
+        yield from inner.split(X, y)
 
 
 def forward_block(n: int, n_splits: int, min_train_fraction: float = 0.5) -> int:
