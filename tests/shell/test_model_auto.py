@@ -124,6 +124,9 @@ def test_an_ati_candidate_applies_only_where_the_train_campaigns_span_ambient_le
     one = _with_ambient(data, tmp_path / "one", lambda i: 20.0)
     for m in _run(one, tmp_path / "one_out", *ati)["targets"].values():
         assert "span 1 ambient level(s)" in m["auto"]["skipped"]["ati"]
+    with_val = _with_val_split(data, tmp_path / "val")       # scored on the val split: the same why
+    for m in _run(with_val, tmp_path / "val_out", *ati)["targets"].values():
+        assert m["auto"]["scheme"] == "val split" and "T_amb" in m["auto"]["skipped"]["ati"]
     seasons = _with_ambient(data, tmp_path / "seasons", lambda i: 12.0 + 2.0 * i)
     for m in _run(seasons, tmp_path / "seasons_out", *ati)["targets"].values():
         assert "ati" in m["auto"]["candidates"] and not m["auto"]["skipped"]
@@ -248,13 +251,18 @@ def test_candidate_params_reach_their_candidate(two_targets, tmp_path):
     assert chosen.candidates["mlr"].get_params() == {"fit_intercept": True}
 
 
+def _with_val_split(data: Path, to: Path) -> Path:
+    """A copy of ``data`` whose K06 (after the train campaigns, before the test) is a val split."""
+    shutil.copytree(data, to)
+    manifest = pd.read_csv(to / "campaigns.csv")
+    manifest.loc[5, "split"] = "val"
+    manifest.to_csv(to / "campaigns.csv", index=False)
+    return to
+
+
 def test_with_a_val_split_auto_chooses_on_it_as_the_run_validates(two_targets, tmp_path):
     data, _, _ = two_targets
-    with_val = tmp_path / "val"
-    shutil.copytree(data, with_val)
-    manifest = pd.read_csv(with_val / "campaigns.csv")
-    manifest.loc[5, "split"] = "val"                     # K06: after the train, before the test
-    manifest.to_csv(with_val / "campaigns.csv", index=False)
+    with_val = _with_val_split(data, tmp_path / "val")
     auto = _run(with_val, tmp_path / "auto", "model=auto", PAIR, "eval.validation=true")
     for family in ("mlr", "lagbank"):
         alone = _run(with_val, tmp_path / family, f"model={family}", "eval.validation=true")

@@ -86,11 +86,11 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         by more than this share: a tie goes to the simplest family (on ``swiss_lathe_door``
         E_X the LSTM, whose early stopping kept the linear law, validated 2.16 as MLR and
         tested 3.43 against 3.38).
-    val_scores : dict target -> {candidate: RMSE or None}, optional
+    val_scores : dict target -> {candidate: RMSE or the reason it could not fit}, optional
         Each candidate's free-run RMSE on the manifest's ``val`` split (fitted on the train
         split; :func:`thermocomp.core.scoring.auto_validation.val_split_scores`), used instead
-        of folds, as the run's validation uses the val split when there is one (None: it could not fit).
-    given_scores : dict candidate -> RMSE or None, optional
+        of folds, as the run's validation uses the val split when there is one.
+    given_scores : dict candidate -> RMSE or the reason it could not fit, optional
         One target's ``val_scores`` (:meth:`for_target` sets it).
     chosen : dict target -> candidate name or {candidate: weight}, optional
         The choice already made (:meth:`for_target` then gives that candidate or blend): the
@@ -208,9 +208,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         """Choose among the validated candidates (``given``: scores from elsewhere) and refit."""
         if given is not None:
             self.fit_seconds_ = {}
-            self.skipped_ = {n: "cannot fit these data" for n, v in given.items() if v is None}
+            self.skipped_ = {n: v or "cannot fit these data" for n, v in given.items()
+                             if v is None or isinstance(v, str)}
             self.skipped_.update({n: "not validated" for n in self.candidates if n not in given})
-            self.validation_ = {n: float(v) for n, v in given.items() if v is not None}
+            self.validation_ = {n: float(v) for n, v in given.items() if n not in self.skipped_}
         ranked = sorted((v, n) for n, v in self.validation_.items() if n in self.candidates)
         if not ranked:
             raise ParameterError("model=auto: no candidate could be validated on these data ("

@@ -16,8 +16,8 @@ from .evaluation import validation_report
 def val_split_scores(comp, ds) -> dict:
     """``{target: {candidate: free-run RMSE on the val split}}`` of a model=auto compensator's
     candidates (and MLR, persistence), each fitted on the train split as the run's validation
-    scores a val split (:func:`~.evaluation.validation_report`); None where a candidate cannot
-    fit.  The test split is not read."""
+    scores a val split (:func:`~.evaluation.validation_report`); where a candidate cannot fit,
+    the reason (a str, as the folds' path gives it).  The test split is not read."""
     candidates = {**comp.estimator.candidates}
     candidates.setdefault(BASELINE, MLR())
     scores: dict = {}
@@ -26,8 +26,8 @@ def val_split_scores(comp, ds) -> dict:
         one = clone(comp).set_params(estimator=clone(candidate))
         try:
             report = validation_report(lambda one=one: one, ds, "simulation")   # fits `one`
-        except (ValueError, ArithmeticError, np.linalg.LinAlgError):
-            scores.setdefault(None, {})[name] = None
+        except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
+            scores.setdefault(None, {})[name] = f"cannot fit: {' '.join(str(exc).split())}"
             continue
         fitted = one
         for t, entry in report.items():
