@@ -27,6 +27,16 @@ family: col737 5.79 -> 4.71; 5.25; mlr 5.25 | col848 7.03 -> 6.42; 5.76; mlr 5.7
 3.09; ati 1.23 | year848 1.10 -> 1.11; 2.81; ati 1.16.  Auto better than MLR 6/8 (col848
 +11 %, mill848 +29 %), within 10 % of the best family 6/8.  CPU per record (``auto`` fit
 + every family alone, user s): col 29-36, swiss 17-21, year 54-71, mill 150-162.
+
+Fresh records, run once (2026-11-29, seeds 1403/1514, nothing tuned on them), same columns:
+col1403 5.81 -> 9.47; 7.40; mlr 7.40 | col1514 10.8 -> 10.5; 10.4; arx 9.46 | mill1403 1.45 ->
+1.44; 1.45; lstm 1.45 | mill1514 2.24 -> 2.22; 2.21; arx 2.19 | swiss1403 0.778 -> 0.774; 1.42;
+hammerstein 0.778 | swiss1514 0.749 -> 0.774; 2.23; hammerstein 0.749 | year1403 0.872 -> 0.881;
+2.43; ati 0.888 | year1514 0.804 -> 0.804; 1.80; ati 0.832.  Auto better than MLR 5/8 (col1403
+-28 %: on E_Z the blend puts 0.98 on lstm, validation 1.74, test 15.6 against MLR's 15.3 and
+hammerstein's 5.09; on E_Y 0.84 on lagbank, test 26.2 against MLR's 12.7; col1514 -1 %, mill1514
+-0.7 %; mill1403 +0.7 %), within 10 % of the best family 6/8 (col1403 +28 %, col1514 +11 %).
+CPU per record (user s): col 28, swiss 17, year 23-59, mill 107-119.
 """
 
 from __future__ import annotations

@@ -73,6 +73,21 @@ clean nothing 12/12 -> 12/12, control never clearing 18/19 -> 18/19, test never 
   Fresh (3 + 3): planted right 3/3, clean nothing 3/3, control never clearing 6/6, test never
   > 2 % worse 6/6, under both rules.
 
+Fresh seeds, run once (2026-11-29, nothing tuned on them), the shipped rule::
+
+  case          blocks  top (round 1)              gain  p_fam   bound  accepted, E_Y test RMSE
+  planted 1403  10/58   S_pos_Y x T_box1           39.6  .0068    8.6   2 (+ S_pos_Y raw): 4.29->2.35
+  planted 1514  55/8    S_pos_Y x T_nose           53.0  .16     (8 u)  none: 3.78->3.78 (c)
+  planted 1625   9/66   S_pos_Y x T_box1           32.7  .0024   11.0   2 (S_pos_Y x T_box2 + ambient
+                                                                       interval): 3.60->2.14
+  clean 1403    80/8    inputs x (A0 - 20 °C)       4.7  .62     (8 u)  none
+  clean 1514    94/8    inputs x [A0 > 27.0 °C]     2.2  .97     (8 u)  none
+  clean 1625    95/8    lag 14400 s of the inputs   6.0  .73     (8 u)  none
+
+  (c) the right effect, refused as seed 515: one block per campaign, raw p 5/256 (.020), .16
+  family-wise.  Planted right 2/3, clean nothing 3/3, control never clearing 6/6, test never
+  > 2 % worse 6/6.
+
 Why not the other rules (measured on the same cases, round 1):
 
 - campaign-level evidence (t or sign flips of the 8 campaigns' gains, raw or as shares): the
