@@ -12,6 +12,7 @@ import math
 import re
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pyarrow as pa
 
@@ -71,13 +72,22 @@ def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, 
             entry.update(repairs={}, trimmed={"start": 0, "end": report["trimmed"]["end"]})
         if start + count < table.num_rows:
             entry["trimmed"] = {**entry["trimmed"], "end": 0}
-        parts[cid] = (table.slice(start, count), entry)
+        part = table.slice(start, count)
+        if "missing" in report:   # kept missing cells are each part's own, not the record's
+            entry["missing"] = _missing_cells(part, report["missing"])
+        parts[cid] = (part, entry)
         rows.append({"campaign": cid, "file": path.name, "split": split, "continues": previous})
         previous, start = cid, start + count
     if len(counts) > 1:
         logger.info(f"{path.name}: cut chronologically into "
                     + ", ".join(f"{s} {c} rows" for s, c in counts.items()))
     return pd.DataFrame(rows).set_index("campaign"), parts
+
+
+def _missing_cells(part: pa.Table, columns) -> dict[str, int]:
+    """``{column: missing cells}`` of ``part`` among ``columns``, those with at least one."""
+    counts = {c: int(np.isnan(part.column(c).to_numpy(zero_copy_only=False)).sum()) for c in columns}
+    return {c: n for c, n in counts.items() if n}
 
 
 def hold_out(manifest: pd.DataFrame, opts, root: Path) -> pd.DataFrame:

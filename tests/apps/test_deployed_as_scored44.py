@@ -1,0 +1,176 @@
+"""What is deployed equals what was scored: `run` writes model.pkl and its test RMSE, `replay`
+loads that model.pkl and streams the same test rows; the exported C streams them too.
+
+For every family x wrapper, on (a) separate test campaigns (the year-round scenario, short: its
+ambient levels span 6-31 °C, so ATI has intervals) and (b) one record cut in two with
+``data.test_fraction`` (a small ``long_record``, the test part continuing the train part,
+``data.reference=none``).  On (a) the deployed compensator is the default one (adaptive, the
+envelope clamps): nothing leaves the envelope or trips the monitor there, so its RMSE is run's.
+On (b) the test part is colder than any training sample and the clamp acts (a deployment
+choice, reported as ``clamped_samples``): the stream compared is the plain one, envelope off.
+ATI on one record has one ambient level, one interval: (b) runs without the wrapper.
+
+Then faults on the cut record, where a test part of one file is streamed as recorded.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import FAST, UNTRACKED, thermocomp
+
+REL = 1e-9
+SMALL = {  # the point is the plumbing, not the accuracy
+    "lstm": ("model.estimator.max_epochs=2", "model.estimator.hidden_size=4", "model.estimator.chunk=16"),
+    "arx_rf": ("model.estimator.forest.n_estimators=5", "model.estimator.state_column=S_spindle_rpm"),
+    "auto": ("model.candidates=[mlr,arx,lagbank]", "model.estimator.n_folds=2"),
+}
+# model=auto takes ATI as a candidate of its own (ati=cmeans with it is refused)
+AUTO_ATI = ("model.candidates=[mlr,ati]", "model.estimator.n_folds=2")
+FAMILIES = ("mlr", "pcr", "arx", "arx_rf", "lagbank", "hammerstein", "lstm", "auto")
+CELLS = ([(m, w, "campaigns") for m in FAMILIES for w in ("none", "cmeans")]
+         + [(m, "none", "record") for m in FAMILIES])
+PLAIN = ("monitor.adaptive=false", "promote.envelope.policy=off")
+# the elbow refits the lag bank on every campaign left out for each number of intervals (6 s):
+# Hammerstein's ATI gets two intervals, fixed, as in test_replay
+SMALL_ATI = {"hammerstein": ("ati.estimator.n_intervals=2",)}
+
+
+@pytest.fixture(scope="module")
+def record(tmp_path_factory) -> Path:
+    """A 3-day long_record at 5 min (865 samples) as one file: its train and test files joined
+    on the record's clock."""
+    root = tmp_path_factory.mktemp("record")
+    thermocomp("simulate", "sim=long_record", f"data.path={root / 'sim'}", *UNTRACKED,
+               "sim.generator.duration_days=3", "sim.generator.sample_period_s=300")
+    manifest = pd.read_csv(root / "sim" / "campaigns.csv").set_index("campaign")
+    parts = [pd.read_csv(root / "sim" / f"{c}.csv").assign(
+        time=lambda d, c=c: d["time"] + manifest.loc[c, "record_offset_s"]) for c in ("R1a", "R1b")]
+    path = root / "rec.csv"
+    pd.concat(parts).to_csv(path, index=False)
+    return path
+
+
+@pytest.fixture(scope="module")
+def data(short_dataset, record) -> dict:
+    return {"campaigns": (f"data.path={short_dataset}",),
+            "record": (f"data.path={record}", "data.test_fraction=0.1")}
+
+
+@pytest.fixture(scope="module")
+def runs(tmp_path_factory):
+    """``run`` once per cell, shared by the tests of this module: cell -> its out folder."""
+    return {"root": tmp_path_factory.mktemp("runs")}
+
+
+def _run(runs, data, model, ati, where) -> Path:
+    key = (model, ati, where)
+    if key not in runs:
+        out = runs["root"] / "-".join(key)
+        extra = AUTO_ATI if (model, ati) == ("auto", "cmeans") else SMALL.get(model, ())
+        if ati == "cmeans":
+            extra += SMALL_ATI.get(model, ())
+        wrapper = () if (model, ati) == ("auto", "cmeans") else (f"ati={ati}",)
+        thermocomp("run", *data[where], f"model={model}", *wrapper, *extra, f"out={out}", *FAST)
+        runs[key] = out
+    return runs[key]
+
+
+def _test_rmse(out: Path) -> dict[str, float]:
+    metrics = json.loads((out / "metrics.json").read_text())
+    return {t: m["test"]["rmse"] for t, m in metrics["targets"].items()}
+
+
+@pytest.mark.parametrize("model, ati, where", CELLS)
+def test_replay_of_runs_model_pkl_streams_runs_test_rmse(runs, data, tmp_path, model, ati, where):
+    out = _run(runs, data, model, ati, where)
+    plain = PLAIN if where == "record" else ()
+    thermocomp("replay", *data[where], f"replay.model={out / 'model.pkl'}", f"out={tmp_path}",
+               *plain, *UNTRACKED)
+    replay = json.loads((tmp_path / "replay.json").read_text())
+    assert replay["adaptive"] is (where == "campaigns")
+    assert replay["events"] == [] and replay["excluded_inputs"] == []
+    for target, rmse in _test_rmse(out).items():
+        r = replay["targets"][target]
+        assert r["clamped_samples"] == 0, r
+        assert r["rmse"] == pytest.approx(rmse, rel=REL), (target, r)
+        assert r["rmse_batch"] == pytest.approx(rmse, rel=REL), (target, r)
+        assert r["max_abs_stream_minus_batch"] < 1e-9, (target, r)
+
+
+# -- the exported code of the cut record ------------------------------------------------------
+
+EXPORTABLE = ("mlr", "pcr", "arx", "lagbank", "hammerstein")
+
+
+@pytest.mark.skipif(shutil.which("cc") is None, reason="no C compiler")
+@pytest.mark.parametrize("model", EXPORTABLE)
+def test_the_exported_c_streams_the_record_as_run_scores_its_test_part(runs, data, record, tmp_path,
+                                                                         model):
+    """The compiled C reads the whole record (the train rows warm it, as replay warms the stream
+    of a continuing part) and its corrections on the test rows leave run's test RMSE."""
+    out = _run(runs, data, model, "none", "record")
+    code = tmp_path / "code"
+    thermocomp("export", f"export.model={out / 'model.pkl'}", *data["record"], "export.format=c",
+               *PLAIN, f"out={code}", *UNTRACKED)
+    subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=code,
+                   check=True)
+    with record.open() as rows:
+        streamed = subprocess.run([str(code / "stream")], stdin=rows, capture_output=True, text=True,
+                                  check=True).stdout
+    corrections = pd.read_csv(__import__("io").StringIO(streamed))
+    measured = pd.read_csv(record)
+    test_rows = json.loads((out / "ingest_report.json").read_text())["campaigns"]["rec_test"]["record_rows"]
+    for target, rmse in _test_rmse(out).items():
+        left = (measured[target] + corrections["C_" + target[2:]]).to_numpy()[slice(*test_rows)]
+        assert np.sqrt(np.mean(left ** 2)) == pytest.approx(rmse, rel=REL), target
+
+
+# -- faults in the test part of one record ------------------------------------------------------
+
+SENSOR = "T_bed_left"
+
+
+def _faulty_record(record: Path, folder: Path, test_first: int) -> Path:
+    """The record with ``SENSOR`` missing for 5 samples 10 samples into its test part, and
+    ``T_motor`` for 2 samples in its train part (rows 101-102 of the file)."""
+    df = pd.read_csv(record)
+    df.loc[test_first + 10:test_first + 14, SENSOR] = np.nan
+    df.loc[100:101, "T_motor"] = np.nan
+    folder.mkdir()
+    df.to_csv(folder / "faulty.csv", index=False)
+    return folder / "faulty.csv"
+
+
+@pytest.mark.parametrize("stage", ["replay", "monitor"])
+def test_a_dropout_in_the_test_part_of_a_record_streams_and_is_named_with_its_time(
+        runs, data, record, tmp_path, capsys, stage):
+    """The test part of one record is streamed as recorded, its dropout held or reconstructed
+    and named (sensor, campaign, seconds from the part's start); the train part, repaired as
+    run repairs it.  Before: the record's missing cells were counted in every part, so the
+    train part was re-read as a campaign file of its own (`<record>/<record>: campaign file not
+    found`, exit 2), and replay.json's `missing` gave the test part the train part's cells."""
+    model = _run(runs, data, "mlr", "none", "record") / "model.pkl"
+    test_first = json.loads((model.parent / "ingest_report.json").read_text()
+                            )["campaigns"]["rec_test"]["record_rows"][0]
+    path = _faulty_record(record, tmp_path / "data", test_first)
+    args = [f"data.path={path}", "data.test_fraction=0.1", f"{stage}.model={model}", *FAST]
+    refused = thermocomp(stage, *args, f"out={tmp_path / 'refused'}", check=False)
+    # the train part's gap is refused as run refuses it, naming the record's row
+    assert refused.returncode == 2, refused.stderr
+    assert "faulty.csv, column 'T_motor', row 101: train campaign faulty_train: gap of 2" in refused.stderr
+
+    out = tmp_path / "out"
+    thermocomp(stage, *args, "data.max_gap_samples=2", f"out={out}")
+    report = json.loads((out / f"{stage}.json").read_text())
+    first = [e for e in report["events"] if e["sensor"] == SENSOR][0]
+    assert first["campaign"] == "faulty_test" and first["to"] == "excluded"
+    assert "dropout" in first["reason"] and first["time"] == 10 * 300.0
+    assert report["missing"] == {"faulty_test": {SENSOR: 5}}
