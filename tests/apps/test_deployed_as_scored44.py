@@ -174,3 +174,23 @@ def test_a_dropout_in_the_test_part_of_a_record_streams_and_is_named_with_its_ti
     assert first["campaign"] == "faulty_test" and first["to"] == "excluded"
     assert "dropout" in first["reason"] and first["time"] == 10 * 300.0
     assert report["missing"] == {"faulty_test": {SENSOR: 5}}
+
+
+def test_a_record_with_a_trimmed_first_row_is_cut_for_the_stream_where_run_cut_it(record, tmp_path):
+    """`run` trims an incomplete first row (data.max_edge_samples=1) and cuts the rest; the
+    stream reads the record as recorded and cut it before the trim, one row earlier: replay
+    scored 87 rows, run 86, and their RMSEs differed (1.547 vs 1.556 µm on this record)."""
+    df = pd.read_csv(record)
+    df.loc[0, "T_motor"] = np.nan
+    (tmp_path / "data").mkdir()
+    df.to_csv(tmp_path / "data" / "edge.csv", index=False)
+    args = (f"data.path={tmp_path / 'data' / 'edge.csv'}", "data.test_fraction=0.1",
+            "data.max_edge_samples=1")
+    thermocomp("run", *args, "model=lagbank", f"out={tmp_path / 'run'}", *FAST)
+    thermocomp("replay", *args, f"replay.model={tmp_path / 'run' / 'model.pkl'}", *PLAIN,
+               f"out={tmp_path / 'replay'}", *UNTRACKED)
+    metrics = json.loads((tmp_path / "run" / "metrics.json").read_text())["targets"]["E_Z"]["test"]
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"]["E_Z"]
+    scored = json.loads((tmp_path / "run" / "ingest_report.json").read_text())["campaigns"]
+    assert replay["n_samples"] == scored["edge_test"]["rows"] == round(0.1 * (len(df) - 1))
+    assert replay["rmse"] == pytest.approx(metrics["rmse"], rel=REL)
