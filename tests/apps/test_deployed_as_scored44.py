@@ -168,12 +168,27 @@ def test_a_dropout_in_the_test_part_of_a_record_streams_and_is_named_with_its_ti
     assert "faulty.csv, column 'T_motor', row 101: train campaign faulty_train: gap of 2" in refused.stderr
 
     out = tmp_path / "out"
-    thermocomp(stage, *args, "data.max_gap_samples=2", f"out={out}")
+    printed = thermocomp(stage, *args, "data.max_gap_samples=2", f"out={out}").stdout
     report = json.loads((out / f"{stage}.json").read_text())
     first = [e for e in report["events"] if e["sensor"] == SENSOR][0]
     assert first["campaign"] == "faulty_test" and first["to"] == "excluded"
     assert "dropout" in first["reason"] and first["time"] == 10 * 300.0
     assert report["missing"] == {"faulty_test": {SENSOR: 5}}
+    # the printed summary says which sensor and when, as monitor's does
+    assert f"first: {SENSOR} (faulty_test, 0.83 h)" in printed.splitlines()[-1]
+
+
+def test_replay_says_when_the_envelope_clamp_makes_its_rmse(runs, data, record, tmp_path):
+    """The record's test part is colder than its train part: the deployed stream clamps, and
+    its RMSE leaves run's.  The printed table said nothing of why (only replay.json's
+    clamped_samples did)."""
+    out = _run(runs, data, "mlr", "none", "record")
+    printed = thermocomp("replay", *data["record"], f"replay.model={out / 'model.pkl'}",
+                         f"out={tmp_path}", *UNTRACKED).stdout
+    r = json.loads((tmp_path / "replay.json").read_text())["targets"]["E_Z"]
+    assert r["clamped_samples"] > 0 and r["rmse"] != pytest.approx(r["rmse_batch"], rel=0.01)
+    assert (f"clamped: {r['clamped_samples']} of {r['n_samples']} samples had an input outside the "
+            "training envelope (promote.envelope.policy=clamp)") in printed
 
 
 def test_a_record_with_a_trimmed_first_row_is_cut_for_the_stream_where_run_cut_it(record, tmp_path):
