@@ -209,3 +209,73 @@ def test_a_record_with_a_trimmed_first_row_is_cut_for_the_stream_where_run_cut_i
     scored = json.loads((tmp_path / "run" / "ingest_report.json").read_text())["campaigns"]
     assert replay["n_samples"] == scored["edge_test"]["rows"] == round(0.1 * (len(df) - 1))
     assert replay["rmse"] == pytest.approx(metrics["rmse"], rel=REL)
+
+
+# -- faults sent to the served model ------------------------------------------------------------
+
+@pytest.fixture(scope="module")
+def served(short_dataset, tmp_path_factory):
+    """``(MLflow's scoring app behind thermocomp's limits, the adaptive compensator, a healthy
+    test campaign)``: MLR on the short year-round data, deployed as promote deploys it."""
+    import mlflow
+    from hydra import compose, initialize_config_dir
+    from mlflow.pyfunc import scoring_server
+
+    from thermocomp.apps.deploy import StreamingCompensator
+    from thermocomp.apps.deploy.pyfunc import save_compensator
+    from thermocomp.apps.deploy.server import RequestLimits
+    from thermocomp.base.paths import conf_dir
+    from thermocomp.core import io
+    from thermocomp.shell.builders import build_compensator, deployable
+
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=["model=mlr", f"data.path={short_dataset}"])
+    ds, _ = io.read_dataset(short_dataset, {}, missing="keep")
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    streaming = StreamingCompensator.from_training(build_compensator(cfg).fit(train), train)
+    adaptive = deployable(cfg, streaming, train)
+    folder = save_compensator(adaptive, tmp_path_factory.mktemp("served") / "model")
+    app = RequestLimits(scoring_server.init(mlflow.pyfunc.load_model(str(folder))), 1 << 24, 10_000)
+    healthy = ds.campaigns[ds.ids("test")[0]][adaptive.columns_ + ["time"]].reset_index(drop=True)
+    return app, adaptive, healthy
+
+
+FAULTS = {   # what the machine sends from row k on, and the detector that must name it
+    "stuck": (lambda v, k: v.where(v.index < k, v[k]), ("freeze", "drift")),
+    "NaN burst": (lambda v, k: v.mask((v.index >= k) & (v.index < k + 5)), ("dropout",)),
+    "spike": (lambda v, k: v + 20.0 * (v.index == k), ("jump", "out of range")),
+    "unit step °C -> K": (lambda v, k: v + 273.15 * (v.index >= k), ("out of range",)),
+}
+
+
+@pytest.mark.parametrize("fault", FAULTS)
+def test_the_served_model_names_the_faulty_sensor_and_when_and_stays_in_bounds(served, fault):
+    from test_hostile_stream import _asgi, _split
+
+    app, adaptive, healthy = served
+    sensor, k = "T_motor2", len(healthy) // 2
+    change, detectors = FAULTS[fault]
+    frame = healthy.assign(**{sensor: change(healthy[sensor], k)})
+    status, answer, _ = _asgi(app, _split(frame, reset=True, session=fault))
+    assert status == 200, answer
+    out = pd.DataFrame(answer["predictions"])
+    y = -out[["C_" + t[2:] for t in adaptive.targets_]].to_numpy(float)
+    assert np.isfinite(y).all()
+    assert (y >= adaptive.guard.lo - 1e-9).all() and (y <= adaptive.guard.hi + 1e-9).all()
+    events = [dict(e, row=i) for i, cell in enumerate(out["events"]) for e in json.loads(cell)]
+    first = [e for e in events if e["sensor"] == sensor][0]
+    assert first["to"] == "excluded" and first["reason"].startswith(detectors), first
+    assert k <= first["row"] <= k + 10 and first["time"] == healthy["time"][first["row"]]
+    assert not [e for e in events if e["row"] < k]          # nothing before the fault
+
+
+def test_the_served_model_refuses_a_dropped_column_in_one_line_naming_it(served):
+    """MLflow's app quotes the whole block before the reason of a refusal (here 3 KB on 37
+    lines, the column named last): thermocomp's server answers the reason alone."""
+    from test_hostile_stream import _asgi, _split
+
+    app, _, healthy = served
+    status, answer, _ = _asgi(app, _split(healthy.drop(columns="T_motor2"), reset=True))
+    assert status == 400
+    assert answer["message"] == "Model is missing inputs ['T_motor2']."
+    assert answer["error_code"] == "INVALID_PARAMETER_VALUE"
