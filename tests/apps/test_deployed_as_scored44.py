@@ -211,6 +211,35 @@ def test_a_record_with_a_trimmed_first_row_is_cut_for_the_stream_where_run_cut_i
     assert replay["rmse"] == pytest.approx(metrics["rmse"], rel=REL)
 
 
+
+def test_monitor_is_silent_on_the_healthy_test_part_and_names_a_planted_drift(runs, data, record,
+                                                                              tmp_path):
+    """The same machine's test part: no event; with 1 K/h of drift on one sensor from 10 samples
+    in, that sensor is excluded, for drift, once its drift is past the warning band (0.4 °C: 24
+    min) and within 10 samples of it."""
+    model = _run(runs, data, "mlr", "none", "record") / "model.pkl"
+    args = ("data.test_fraction=0.1", f"monitor.model={model}", *FAST)
+    thermocomp("monitor", f"data.path={record}", *args, f"out={tmp_path / 'healthy'}")
+    healthy = json.loads((tmp_path / "healthy" / "monitor.json").read_text())
+    assert healthy["events"] == []
+    assert all(s["state_counts"]["alarm"] == s["state_counts"]["excluded"] == 0
+               for s in healthy["sensors"].values())
+    test_first = json.loads((model.parent / "ingest_report.json").read_text()
+                            )["campaigns"]["rec_test"]["record_rows"][0]
+    df = pd.read_csv(record)
+    onset = df["time"][test_first + 10]
+    df[SENSOR] += np.clip(df["time"] - onset, 0, None) / 3600 * 1.0
+    (tmp_path / "data").mkdir()
+    df.round(2).to_csv(tmp_path / "data" / "drift.csv", index=False)
+    thermocomp("monitor", f"data.path={tmp_path / 'data' / 'drift.csv'}", *args,
+               f"out={tmp_path / 'drift'}")
+    drift = json.loads((tmp_path / "drift" / "monitor.json").read_text())
+    first = [e for e in drift["events"] if e["to"] == "excluded"][0]
+    assert first["sensor"] == SENSOR and first["reason"].startswith("drift"), first
+    observable = 10 * 300.0 + 0.4 * 3600          # from the test part's start
+    assert observable <= first["time"] <= observable + 10 * 300.0, first
+
+
 # -- faults sent to the served model ------------------------------------------------------------
 
 @pytest.fixture(scope="module")
