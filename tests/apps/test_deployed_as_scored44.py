@@ -24,7 +24,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import FAST, UNTRACKED, thermocomp
+from conftest import FAST, UNTRACKED, refused, thermocomp
 
 REL = 1e-9
 SMALL = {  # the point is the plumbing, not the accuracy
@@ -238,6 +238,21 @@ def test_monitor_is_silent_on_the_healthy_test_part_and_names_a_planted_drift(ru
     assert first["sensor"] == SENSOR and first["reason"].startswith("drift"), first
     observable = 10 * 300.0 + 0.4 * 3600          # from the test part's start
     assert observable <= first["time"] <= observable + 10 * 300.0, first
+
+
+
+def test_replay_refuses_a_test_campaign_that_dropped_a_column_naming_file_and_column(
+        runs, data, short_dataset, tmp_path, capsys):
+    model = _run(runs, data, "mlr", "none", "campaigns") / "model.pkl"
+    copy = tmp_path / "data"
+    shutil.copytree(short_dataset, copy)
+    manifest = pd.read_csv(copy / "campaigns.csv")
+    test_file = manifest.loc[manifest["split"] == "test", "file"].iloc[0]
+    pd.read_csv(copy / test_file).drop(columns="T_motor2").to_csv(copy / test_file, index=False)
+    refused(["replay", f"data.path={copy}", f"replay.model={model}", f"out={tmp_path / 'out'}",
+             *UNTRACKED], capsys, f"{test_file}, column 'T_motor2'",
+            "lacks a column the deployed model reads")
+    assert not (tmp_path / "out" / "replay.json").exists()
 
 
 # -- faults sent to the served model ------------------------------------------------------------
