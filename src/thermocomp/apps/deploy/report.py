@@ -255,6 +255,17 @@ def adapt_line(targets: Mapping, what: str, key: str) -> list[str]:
                         and r["adapt"]["rmse_frozen"] is not None)]
 
 
+def first_exclusion(events: list[dict]) -> str:
+    """``, first: <sensor> (<campaign>, <h> h)``: the first sensor excluded and when (hours
+    from its campaign's start), or nothing; the end of the events line `replay` and `monitor`
+    print."""
+    excluded = [e for e in events if e.get("sensor") and e["to"] == "excluded"]
+    if not excluded:
+        return ""
+    e = excluded[0]
+    return f", first: {e['sensor']} ({e['campaign']}, {e['time'] / 3600:.2f} h)"
+
+
 def replay_json(deployed, result: dict, *, name: str, source: str, test_ids: list[str],
                 missing: dict | None = None) -> dict:
     """``replay.json`` (CLI.md) of :func:`replay_report`'s ``result``."""
@@ -284,7 +295,15 @@ def replay_lines(report: dict) -> list[str]:
         lines.append(f"{t:<8} {r['n_samples']:>8} {r['max_abs_stream_minus_batch']:>18.3g} "
                      f"{rmse:>8} {batch:>11} {r['us_per_sample']:>10.1f}")
     lines += adapt_line(targets, "frozen -> adapted", RMSE)
+    clamped = max((r.get("clamped_samples") or 0 for r in targets.values()), default=0)
+    if clamped:     # why RMSE leaves RMSE batch where no sensor was excluded
+        n = next(iter(targets.values()))["n_samples"]
+        policy = (report.get("envelope") or {}).get("policy", "clamp")
+        lines.append(f"clamped: {clamped} of {n} samples had an input outside the training "
+                     f"envelope (promote.envelope.policy={policy}); RMSE is the clamped "
+                     "stream's, RMSE batch the model's own")
     if report["adaptive"]:
         lines.append(f"events: {len(report['events'])}, excluded at a campaign's end: "
-                     f"{', '.join(report['excluded_inputs']) or 'none'}")
+                     f"{', '.join(report['excluded_inputs']) or 'none'}"
+                     + first_exclusion(report["events"]))
     return lines

@@ -13,7 +13,7 @@ import pandas as pd
 from ...core.context import TIME
 from ..deploy.adapt import Adaptation, adapt_figures
 from ..deploy.adaptive import AdaptiveCompensator
-from ..deploy.report import adapt_line, alarm_rate, campaign_start, streamed_hours
+from ..deploy.report import adapt_line, alarm_rate, campaign_start, first_exclusion, streamed_hours
 from ..deploy.streaming import warm
 from ..deploy.surveillance import STATES
 from .blind import undetected_offset_um
@@ -174,6 +174,5 @@ def summary_lines(report: dict) -> list[str]:
     rate = (report.get("alarms") or {}).get("exclusions_per_100h")   # none in older reports
     lines.append(f"events: {len(report['events'])}, exclusions: {len(excl)}"
                  + ("" if rate is None else f" ({rate:.3g} per 100 h)")
-                 + (f", first: {excl[0]['sensor']} ({excl[0]['campaign']}, "
-                    f"{excl[0]['time'] / 3600:.2f} h)" if excl else ""))
+                 + first_exclusion(report["events"]))
     return lines

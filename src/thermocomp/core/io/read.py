@@ -195,6 +195,20 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     return table, {"rows": table.num_rows, **report}
 
 
+def repaired_part(frame: pd.DataFrame, path: Path, cfg: Mapping | None, first_row: int) -> pa.Table:
+    """A part of one record read as kept (``missing="keep"``), repaired as a batch repairs a
+    campaign (gaps, edges, kelvin refused); ``first_row``: its first row in the record ``path``
+    (0-based), so that an error names the record's row."""
+    opts = replace(ReadOptions.from_cfg(cfg), missing="repair")
+    columns = {c: pa.chunked_array([pa.array(frame[c].to_numpy(float))]) for c in frame.columns}
+    try:
+        _repair_missing(columns, len(frame), path, opts)
+    except ContractError as exc:
+        raise ContractError(exc.reason, file=exc.file, column=exc.column,
+                            row=None if exc.row is None else exc.row + first_row) from None
+    return pa.table(columns)
+
+
 def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
                     ) -> Iterator[tuple[str, pa.Table, dict]]:
     """Every campaign, read and validated; once all are read, their sample periods are

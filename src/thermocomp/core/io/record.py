@@ -12,6 +12,7 @@ import math
 import re
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pyarrow as pa
 
@@ -54,7 +55,8 @@ def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, 
         Campaign id -> (table, report entry with the record's ``rows`` ``[from, to)``).
     """
     stem = record_id(path)
-    counts = _counts(table.num_rows, opts) or {"train": table.num_rows}
+    lead, trail = _batch_edges(table, report, opts)
+    counts = _counts(table.num_rows - lead - trail, opts) or {"train": table.num_rows - lead - trail}
     short = {k: v for k, v in counts.items() if v < MIN_PART_ROWS}
     if short:
         split, rows = next(iter(short.items()))
@@ -62,6 +64,15 @@ def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, 
                             f"{table.num_rows}: at least {MIN_PART_ROWS} (raise data."
                             f"{split if split != 'train' else 'test'}_fraction or lower the "
                             "others)", file=path)
+    if len(counts) > 1:
+        logger.info(f"{path.name}: cut chronologically into "
+                    + ", ".join(f"{s} {c} rows" for s, c in counts.items()))
+    # a stream keeps the incomplete edge rows a batch trims: in the first and last parts, so
+    # that every part starts where the batch's does (what is streamed is what `run` scored)
+    counts = dict(counts)
+    first, last = next(iter(counts)), list(counts)[-1]
+    counts[first] += lead
+    counts[last] += trail
     rows, parts, previous, start = [], {}, "", 0
     for split, count in counts.items():
         cid = stem if len(counts) == 1 else f"{stem}_{split}"
@@ -71,13 +82,34 @@ def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, 
             entry.update(repairs={}, trimmed={"start": 0, "end": report["trimmed"]["end"]})
         if start + count < table.num_rows:
             entry["trimmed"] = {**entry["trimmed"], "end": 0}
-        parts[cid] = (table.slice(start, count), entry)
+        part = table.slice(start, count)
+        if "missing" in report:   # kept missing cells are each part's own, not the record's
+            entry["missing"] = _missing_cells(part, report["missing"])
+        parts[cid] = (part, entry)
         rows.append({"campaign": cid, "file": path.name, "split": split, "continues": previous})
         previous, start = cid, start + count
-    if len(counts) > 1:
-        logger.info(f"{path.name}: cut chronologically into "
-                    + ", ".join(f"{s} {c} rows" for s, c in counts.items()))
     return pd.DataFrame(rows).set_index("campaign"), parts
+
+
+def _batch_edges(table: pa.Table, report: dict, opts) -> tuple[int, int]:
+    """Incomplete rows a batch read trims at the record's start and end (within
+    ``max_edge_samples``), in a record read as kept (``missing="keep"``); (0, 0) otherwise."""
+    if opts.missing != "keep" or not report.get("missing"):
+        return 0, 0
+    incomplete = np.zeros(table.num_rows, dtype=bool)
+    for c in report["missing"]:
+        incomplete |= np.isnan(table.column(c).to_numpy(zero_copy_only=False))
+    if incomplete.all():
+        return 0, 0
+    lead, trail = int(np.argmin(incomplete)), int(np.argmin(incomplete[::-1]))
+    edge = opts.max_edge_samples
+    return (lead if lead <= edge else 0), (trail if trail <= edge else 0)
+
+
+def _missing_cells(part: pa.Table, columns) -> dict[str, int]:
+    """``{column: missing cells}`` of ``part`` among ``columns``, those with at least one."""
+    counts = {c: int(np.isnan(part.column(c).to_numpy(zero_copy_only=False)).sum()) for c in columns}
+    return {c: n for c, n in counts.items() if n}
 
 
 def hold_out(manifest: pd.DataFrame, opts, root: Path) -> pd.DataFrame:

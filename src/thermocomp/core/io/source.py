@@ -18,7 +18,7 @@ from pathlib import Path
 from ...base.files import folder_digest
 from .contract import ContractError, Dataset
 from .options import ReadOptions
-from .read import read_campaign, read_dataset
+from .read import read_campaign, read_dataset, repaired_part
 
 
 def open_dataset(root: str | Path, options: Mapping | None = None, *, stream: bool = False,
@@ -30,23 +30,27 @@ def open_dataset(root: str | Path, options: Mapping | None = None, *, stream: bo
     ds, report = read_dataset(root, options, missing="keep" if stream else "repair",
                               campaigns=campaigns)
     if stream:
-        _repair_train(ds, root, report, options)
+        _repair_train(ds, report, options)
         ds.meta["missing"] = {c: report["campaigns"][c]["missing"] for c in ds.ids("test")
                               if report["campaigns"][c].get("missing")}
     ds.meta.update(digest=digest or folder_digest(root), read_report=report)
     return ds
 
 
-def _repair_train(ds: Dataset, root: Path, report: dict, options: Mapping | None) -> None:
+def _repair_train(ds: Dataset, report: dict, options: Mapping | None) -> None:
     """The train campaigns of a stream read as a batch reads them where they lack a value or
     look like kelvin (what ``missing="keep"`` lets through)."""
     hot = ReadOptions.from_cfg(options).kelvin_threshold_c
     for cid in ds.ids("train"):
         df = ds.campaigns[cid]
         faulty = any(df[c].max() > hot for c in df.columns if c.startswith("T_"))
-        if report["campaigns"][cid].get("missing") or faulty:
+        entry = report["campaigns"][cid]
+        if entry.get("missing") or faulty:
             try:
-                table, _ = read_campaign(root / ds.manifest.loc[cid, "file"], options)
+                if "record_rows" in entry:    # a part of one record: that part repaired
+                    table = repaired_part(df, ds.file_path(cid), options, entry["record_rows"][0])
+                else:
+                    table, _ = read_campaign(ds.file_path(cid), options)
             except ContractError as exc:
                 raise ContractError(f"train campaign {cid}: {exc.reason} (models and the sensor "
                                     "monitor are fitted on complete train records)",
