@@ -23,6 +23,9 @@ from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, _roles
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
+# ISO 80000's "quantity / unit" (``delta L / um``, ``Zeit / s``); without spaces round the slash
+# (``dX/um``) only a unit of :data:`UNITS`, so that ``Datum/Zeit`` or ``on/off`` stay names
+_SLASHED = re.compile(r"^(.*?\S)(\s*)/(\s*)(\S+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
 _ISO = re.compile(r"\s*\d{4}-\d\d-\d\d[T ]\d\d?:\d\d")
 TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
@@ -50,10 +53,19 @@ class Naming:
 
 
 def split_unit(header: str) -> tuple[str, str | None]:
-    """``('t1', '°C')`` for ``t1(°C)`` or ``t1 [°C]``; ``(header, None)`` without a unit."""
+    """``('t1', '°C')`` for ``t1(°C)``, ``t1 [°C]`` or ``t1 / °C``; ``(header, None)`` without
+    a unit."""
     match = _UNIT.match(header.strip())
-    return (match.group(1).strip(), match.group(2).strip()) if match and match.group(1).strip() \
-        else (header.strip(), None)
+    if match and match.group(1).strip():
+        return match.group(1).strip(), match.group(2).strip()
+    match = _SLASHED.match(header.strip())
+    if match and ((match.group(2) and match.group(3)) or _known_unit(match.group(4))):
+        return match.group(1).strip(), match.group(4)
+    return header.strip(), None
+
+
+def _known_unit(unit: str) -> bool:
+    return any(unit.lower() in known for known in UNITS.values())
 
 
 def active(roles: Mapping) -> bool:
