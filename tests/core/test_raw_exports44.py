@@ -9,9 +9,11 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from conftest import refused
 from thermocomp.core.io import read_dataset
 from thermocomp.core.io.detect import proposed_roles
 from thermocomp.core.io.options import ReadOptions
+from thermocomp.shell.cli import main
 
 ROWS = 30
 
@@ -59,3 +61,34 @@ def test_a_slash_inside_a_name_is_no_unit(header):
     from thermocomp.core.io.roles import split_unit
 
     assert split_unit(header) == (header, None)
+
+
+def _excel(path: Path, cells: list[str] | None = None) -> Path:
+    """``;``-separated, decimal commas, a separator closing every line (Excel's empty last
+    column); ``cells``: what that column holds row by row (empty by default)."""
+    t, t1, t2, e = _record()
+    _write(path, ["Zeit [s]", "T1 [°C]", "T2 [°C]", "dX [µm]"], [t, t1, t2, e], sep=";", end=";")
+    lines = path.read_text(encoding="utf-8").replace(".", ",").splitlines()
+    lines[1:] = [ln + cell for ln, cell in zip(lines[1:], cells or [""] * ROWS)]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def test_an_empty_last_column_without_header_is_left_out(tmp_path, capsys):
+    # before: refused ("'' gives no name"), and no data.roles pattern could name it
+    path = _excel(tmp_path / "excel.csv")
+    t, t1, t2, e = _record()
+    frame = _read(path, roles={"error": ["dX"]})
+    assert list(frame.columns) == ["time", "T_T1", "T_T2", "E_dX"]
+    np.testing.assert_allclose(frame[["T_T1", "T_T2"]], np.c_[t1, t2], atol=1e-3)
+    out = tmp_path / "init"
+    assert main(["init", str(path), f"out={out}"]) == 0
+    assert "(no header)" in capsys.readouterr().out
+
+
+def test_a_column_without_header_that_holds_values_is_refused_naming_its_row(tmp_path, capsys):
+    path = _excel(tmp_path / "excel.csv", [""] * 6 + ["Müller"] + [""] * (ROWS - 7))
+    out = tmp_path / "init"
+    refused(["init", str(path), f"out={out}"], capsys, str(path), "row 7", "column 5",
+            "'Müller'")
+    assert not out.exists()

@@ -47,7 +47,7 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
     roles["time"] = opts.roles.get("time", "auto")
     if any(roles[k] for k in ROLE_PATTERNS):
         return roles
-    for h in header:
+    for h in filter(str.strip, header):       # (no header: left out if empty, else refused)
         base, unit = split_unit(h)
         unit = (unit or "").lower().replace(" ", "")
         pattern = _GLOB.sub(r"[\1]", base)
@@ -81,10 +81,12 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
     lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}",
              f"time: {times[0]!r}" if times else "time: none in the file, data.sample_period_s rows apart",
              f"sample period: {period_s:g} s, {report['rows']} rows"]
-    width = max(len(h) for h in header)
+    width = max(len(h or "(no header)") for h in header)
     for h in header:
         contract = plan.names.get(h)
         role = plan.roles.get(h, "ignore") if contract else "ignore (left out)"
+        if plan.roles.get(h) == "empty":
+            h, role = "(no header)", "empty (left out)"
         lines.append(f"  {h:<{width}}  {role:<12} {contract or '-'}")
     for cid in ds.ids():
         lines.append(f"campaign {cid}: {ds.manifest.loc[cid, 'split']}, "

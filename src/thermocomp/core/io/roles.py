@@ -107,6 +107,9 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     ambient = [h for h in headers if h not in columns and _hits(h, roles) == ["ambient"]]
     for header in headers:
         base, unit = split_unit(header)
+        if not header.strip() and header not in columns:
+            out.roles[header] = "empty"      # Excel's trailing separator: the reader checks it is
+            continue
         if header in columns:
             out.names[header], out.roles[header] = columns[header], "data.columns"
             continue

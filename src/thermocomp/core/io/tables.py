@@ -107,9 +107,23 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     types = {n: pa.float64() for n in named if n is not None and n != TIME}
     if TIME in names:
         types[TIME] = _csv_time_type(path, first_row, names.index(TIME), opts)
-    table = _read_csv_typed(path, names, types, opts)
+    # a column without a header (Excel's trailing separator) is left out if it holds nothing
+    unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
+    table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
+    _check_unnamed_empty(table, header, names, unnamed, path)
     return (_converted(_columns(table.select(list(types))), scales), _renames(header, named),
             _rescaled(scales))
+
+
+def _check_unnamed_empty(table: pa.Table, header: list[str], names: list[str], unnamed: dict,
+                         path: Path) -> None:
+    for name in unnamed:
+        column = table.column(name)
+        if column.null_count < len(column):
+            row = int(np.argmax(column.is_valid().to_numpy(zero_copy_only=False)))
+            raise ContractError(f"column {names.index(name) + 1} has no header but holds "
+                                f"{column[row].as_py()!r}: give it a header",
+                                file=path, row=row + 1)
 
 
 def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> None:
