@@ -7,12 +7,14 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import refused
-from thermocomp.core.io import read_dataset
+from thermocomp.core.io import ContractError, read_dataset
 from thermocomp.core.io.detect import proposed_roles
 from thermocomp.core.io.options import ReadOptions
+from thermocomp.core.io.stdin import stream_seconds
 from thermocomp.shell.cli import main
 
 ROWS = 30
@@ -92,3 +94,53 @@ def test_a_column_without_header_that_holds_values_is_refused_naming_its_row(tmp
     refused(["init", str(path), f"out={out}"], capsys, str(path), "row 7", "column 5",
             "'Müller'")
     assert not out.exists()
+
+
+def _stamped(path: Path, header: str, fmt: str, start: str = "2026-10-31 23:45:00",
+             sep: str = ";") -> Path:
+    """The record with its time as timestamps written in ``fmt`` (crossing a day and a month)."""
+    t, t1, t2, e = _record()
+    stamps = (pd.Timestamp(start) + pd.to_timedelta(t, unit="s")).strftime(fmt)
+    _write(path, ["T1 [°C]", "T2 [°C]", "dX [µm]"], [t1, t2, e], sep=sep)
+    lines = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\n".join(f"{s}{sep}{ln}" for s, ln in zip([header, *stamps], lines)) + "\n",
+                    encoding="utf-8")
+    return path
+
+
+def test_day_first_timestamps_are_the_time_read_day_first(tmp_path):
+    # before: 'Datum/Zeit' holding 31.10.2026 23:45:00 was no time column ("set
+    # data.sample_period_s"), and data.roles.time could not read it
+    path = _stamped(tmp_path / "logger.csv", "Datum/Zeit", "%d.%m.%Y %H:%M:%S")
+    ds, report = read_dataset(path, {"roles": {"error": ["dX"]}})
+    (cid,) = ds.ids()
+    np.testing.assert_allclose(ds.campaigns[cid]["time"], _record()[0])
+    assert report["campaigns"][cid]["time_origin"] == "2026-10-31T23:45:00"
+
+
+def test_timestamps_with_slashes_are_refused_naming_data_time_and_read_with_its_format(
+        tmp_path, capsys):
+    path = _stamped(tmp_path / "us.csv", "Date Time", "%m/%d/%Y %H:%M:%S", sep=",")
+    out = tmp_path / "init"
+    refused(["init", str(path), f"out={out}"], capsys, str(path), "row 1", "data.time=")
+    assert not out.exists()
+    ds, report = read_dataset(path, {"roles": {"error": ["dX"]}, "time": "%m/%d/%Y %H:%M:%S"})
+    (cid,) = ds.ids()
+    np.testing.assert_allclose(ds.campaigns[cid]["time"], _record()[0])
+    assert report["campaigns"][cid]["time_origin"] == "2026-10-31T23:45:00"
+
+
+def test_a_cell_out_of_the_time_format_is_refused_naming_its_row(tmp_path):
+    path = _stamped(tmp_path / "logger.csv", "Datum/Zeit", "%d.%m.%Y %H:%M:%S")
+    lines = path.read_text(encoding="utf-8").splitlines()
+    lines[7] = "2026-11-01 00:51:00" + lines[7][len("01.11.2026 00:51:00"):]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    with pytest.raises(ContractError) as refusal:
+        read_dataset(path, {"roles": {"error": ["dX"]}})
+    assert (refusal.value.row, refusal.value.column) == (7, "time")
+    assert "'%d.%m.%Y %H:%M:%S'" in str(refusal.value)
+
+
+def test_a_streamed_record_reads_day_first_timestamps_as_a_file_does():
+    stamps = pd.Series(["31.10.2026 23:59:00", "01.11.2026 00:01:00"])
+    assert list(stream_seconds(stamps, "auto")) == [0.0, 120.0]

@@ -16,6 +16,7 @@ from .options import ROLE_PATTERNS
 from .roles import UNITS, _numeric, split_unit
 from .sniff import resolved
 from .tables import _peek_csv, parquet
+from .timestamps import looks_like_timestamp
 
 # units that say "a machine state" (speeds, loads, positions, on/off)
 STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
@@ -55,7 +56,7 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
             roles["error"].append(pattern)
         elif unit in STATE_UNITS:
             roles["state"].append(pattern)
-        elif not _numeric(first.get(h), opts.decimal) and not re.match(r"\d{4}-\d\d-\d\d", str(first.get(h))):
+        elif not _numeric(first.get(h), opts.decimal) and not looks_like_timestamp(first.get(h)):
             roles["ignore"].append(pattern)
     return roles
 
@@ -78,8 +79,11 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
     """What ``thermocomp init`` prints: separators, time, sample period, each column's role
     and contract name, the campaigns, and the command to run next."""
     times = [h for h, n in plan.names.items() if n == "time"]
-    lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}",
-             f"time: {times[0]!r}" if times else "time: none in the file, data.sample_period_s rows apart",
+    # timestamps: the first as read, so that a day read as the month shows
+    origin = report["campaigns"][ds.ids()[0]].get("time_origin")
+    time = (f"time: {times[0]!r}" + (f", timestamps from {origin}" if origin else "") if times
+            else "time: none in the file, data.sample_period_s rows apart")
+    lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}", time,
              f"sample period: {period_s:g} s, {report['rows']} rows"]
     width = max(len(h or "(no header)") for h in header)
     for h in header:

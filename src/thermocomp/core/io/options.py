@@ -102,9 +102,9 @@ class ReadOptions:
         return opts
 
     def _check(self) -> None:
-        if self.time not in TIME_FORMATS:
-            raise ContractError(f"data.time must be one of {', '.join(TIME_FORMATS)}, "
-                                f"got {self.time!r}")
+        if self.time not in TIME_FORMATS and "%" not in self.time:
+            raise ContractError(f"data.time must be one of {', '.join(TIME_FORMATS)} or a "
+                                f"strptime format ('%d/%m/%Y %H:%M:%S'), got {self.time!r}")
         bad_split = {k: v for k, v in self.split_overrides.items() if v not in SPLITS}
         if bad_split:
             cid, split = next(iter(bad_split.items()))

@@ -21,13 +21,13 @@ from pathlib import Path
 from ...base.errors import listed
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, _roles
+from .timestamps import looks_like_timestamp
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # ISO 80000's "quantity / unit" (``delta L / um``, ``Zeit / s``); without spaces round the slash
 # (``dX/um``) only a unit of :data:`UNITS`, so that ``Datum/Zeit`` or ``on/off`` stay names
 _SLASHED = re.compile(r"^(.*?\S)(\s*)/(\s*)(\S+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
-_ISO = re.compile(r"\s*\d{4}-\d\d-\d\d[T ]\d\d?:\d\d")
 TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "elapsed", "seconds"})
 PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
@@ -172,7 +172,7 @@ def _time_header(headers, roles, columns, first, problems) -> str | None:
                         "data.roles.time)")
     if named:
         return named[0]
-    stamped = [h for h in free if role(h) is None and _ISO.match(str(first.get(h) or ""))]
+    stamped = [h for h in free if role(h) is None and looks_like_timestamp(first.get(h))]
     return stamped[0] if stamped else None
 
 

@@ -6,6 +6,7 @@ from __future__ import annotations
 import contextlib
 import csv
 import re
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -19,11 +20,11 @@ from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import naming
 from .separators import misgrouped, thousands_hint, ungrouped
 from .sniff import resolved
+from .timestamps import described, is_format, parsed, time_kind, time_type
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
 _CSV_BLOCK_BYTES = 16 << 20
 _PANDAS_INDEX = re.compile(r"__index_level_\d+__")
-_ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
 _CONVERSION_ERROR = re.compile(r"In CSV column #(\d+)")
 _ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
 # A contract name: prefix + identifier-like name (it becomes part of file names: no path
@@ -106,7 +107,8 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     names = [n if n is not None else f" ignored {i}" for i, n in enumerate(named)]
     types = {n: pa.float64() for n in named if n is not None and n != TIME}
     if TIME in names:
-        types[TIME] = _csv_time_type(path, first_row, names.index(TIME), opts)
+        opts = _timed(path, first_row[names.index(TIME)].strip(), opts)
+        types[TIME] = time_type(opts.time, first_row[names.index(TIME)].strip())
     # a column without a header (Excel's trailing separator) is left out if it holds nothing
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
     table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
@@ -159,17 +161,12 @@ def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
     return [name.strip() for name in header], first
 
 
-def _csv_time_type(path: Path, first_row: list[str], index: int,
-                   opts: ReadOptions) -> pa.DataType:
-    value = first_row[index].strip()
+def _timed(path: Path, value: str, opts: ReadOptions) -> ReadOptions:
+    """``opts`` with ``time`` the way this file's time column is read (:mod:`.timestamps`)."""
     if not value:
         raise ContractError("missing time value", file=path, column=TIME, row=1)
-    kind = opts.time
-    if kind == "auto":
-        kind = "seconds" if _is_number(value, opts.decimal, opts.thousands) else "iso8601"
-    if kind == "seconds":
-        return pa.float64()
-    return pa.timestamp("ns", tz="UTC" if _ZONE_OFFSET.search(value) else None)
+    number = _is_number(value, opts.decimal, opts.thousands)
+    return replace(opts, time=time_kind(value, opts.time, number, path))
 
 
 def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
@@ -189,7 +186,8 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
     parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
     convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
                                    decimal_point=opts.decimal, strings_can_be_null=True,
-                                   null_values=list(MISSING_TOKENS))
+                                   null_values=list(MISSING_TOKENS),
+                                   timestamp_parsers=[opts.time] if is_format(opts.time) else None)
     return dict(read_options=read, parse_options=parse, convert_options=convert)
 
 
@@ -247,7 +245,7 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
                                                types={column: pa.string()})).column(column)
     number = pa.types.is_floating(target)
     text = ungrouped(raw, opts.thousands, opts.decimal) if number else raw
-    found = _first_cast_failure(text, target)
+    found = _first_cast_failure(text, target, opts.time)
     if found is None:
         return ContractError(f"cannot convert to {target}", file=path, column=column)
     row, value = found[0], raw[found[0]].as_py()
@@ -256,7 +254,7 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
     if hint is None:
         hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
                 and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
-    return ContractError(f"value {value!r} is not {_describe(target)}{hint}",
+    return ContractError(f"value {value!r} is not {_describe(target, opts.time)}{hint}",
                          file=path, column=column, row=row + 1)
 
 
@@ -278,7 +276,8 @@ def _malformed_row_error(path, names, opts, message) -> ContractError:
                          file=path, row=None if row.number is None else row.number - 1)
 
 
-def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType) -> tuple[int, object] | None:
+def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType,
+                        kind: str = "seconds") -> tuple[int, object] | None:
     """Position and value of the first element that does not cast to ``target``.
 
     Bisects inside the first failing chunk, so the cost is a few casts of
@@ -286,29 +285,26 @@ def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType) -> tuple[i
     """
     offset = 0
     for chunk in values.chunks:
-        if not _casts(chunk, target):
+        if not _casts(chunk, target, kind):
             ok, fails = 0, len(chunk)  # chunk[:ok] casts, chunk[:fails] does not
             while fails - ok > 1:
                 mid = (ok + fails) // 2
-                ok, fails = (mid, fails) if _casts(chunk[:mid], target) else (ok, mid)
+                ok, fails = (mid, fails) if _casts(chunk[:mid], target, kind) else (ok, mid)
             return offset + fails - 1, chunk[fails - 1].as_py()
         offset += len(chunk)
     return None
 
 
-def _casts(values, target: pa.DataType) -> bool:
+def _casts(values, target: pa.DataType, kind: str = "seconds") -> bool:
     try:
-        pc.cast(values, target)
+        parsed(values, target, kind)
     except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
         return False
     return True
 
 
-def _describe(target: pa.DataType) -> str:
-    if pa.types.is_timestamp(target):
-        zone = "with" if target.tz else "without"
-        return f"an ISO 8601 timestamp {zone} zone offset (like the first row)"
-    return "a number"
+def _describe(target: pa.DataType, kind: str = "seconds") -> str:
+    return described(target, kind) if pa.types.is_timestamp(target) else "a number"
 
 
 # ---------------------------------------------------------------------------
@@ -380,12 +376,14 @@ def _parquet_time(column: pa.ChunkedArray, path: Path, opts: ReadOptions) -> pa.
     kind = column.type
     if pa.types.is_string(kind) or pa.types.is_large_string(kind):
         first = _first_valid(column)
-        target = _csv_time_type(path, [first[1] if first else ""], 0, opts)
-        found = _first_cast_failure(column, target)
+        value = str(first[1]).strip() if first else ""
+        kind = _timed(path, value, opts).time
+        target = time_type(kind, value)
+        found = _first_cast_failure(column, target, kind)
         if found is not None:
-            raise ContractError(f"value {found[1]!r} is not {_describe(target)}",
+            raise ContractError(f"value {found[1]!r} is not {_describe(target, kind)}",
                                 file=path, column=TIME, row=found[0] + 1)
-        return pc.cast(column, target)
+        return parsed(column, target, kind)
     if (pa.types.is_floating(kind) or pa.types.is_integer(kind) or pa.types.is_timestamp(kind)
             or pa.types.is_duration(kind)):
         return column
