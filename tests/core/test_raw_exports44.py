@@ -144,3 +144,31 @@ def test_a_cell_out_of_the_time_format_is_refused_naming_its_row(tmp_path):
 def test_a_streamed_record_reads_day_first_timestamps_as_a_file_does():
     stamps = pd.Series(["31.10.2026 23:59:00", "01.11.2026 00:01:00"])
     assert list(stream_seconds(stamps, "auto")) == [0.0, 120.0]
+
+
+def test_a_time_in_ms_without_unit_is_said_and_read_with_data_units(tmp_path, capsys):
+    # before: read as seconds without a word, and no setting could say its unit short of
+    # editing the lab's file
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "ms.csv", ["time", "T1", "dX [µm]"], [t * 1000, t1, e])
+    assert main(["init", str(path), f"out={tmp_path / 'guess'}"]) == 0
+    said = capsys.readouterr()
+    assert "time: 'time', in seconds: no unit in the header" in said.out
+    assert f"{path}, column 'time'" in said.err and "milliseconds?" in said.err
+    frame = _read(path, roles={"error": ["dX"]}, units={"time": "ms"})
+    np.testing.assert_allclose(frame["time"], t)
+    assert main(["init", str(path), "data.units={time: ms}", f"out={tmp_path / 'ms'}"]) == 0
+    said = capsys.readouterr()
+    assert "time: 'time', in ms" in said.out and "milliseconds?" not in said.err
+
+
+def test_data_units_converts_an_error_whose_header_says_no_unit(tmp_path, capsys):
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "mm.csv", ["t", "T1", "T2", "dX"], [t, t1, t2, e / 1000])
+    frame = _read(path, roles={"error": ["dX"]}, units={"dX": "mm"})
+    np.testing.assert_allclose(frame["E_dX"], e, atol=1e-3)
+    out = tmp_path / "init"
+    refused(["init", str(path), "data.roles.error=[dX]", "data.units={dx: mm, T2: furlong}",
+             f"out={out}"], capsys, str(path), "data.units names 'dx', no header",
+            "'T2': unit 'furlong' is not a temperature's")
+    assert not out.exists()

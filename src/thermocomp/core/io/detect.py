@@ -50,7 +50,7 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
         return roles
     for h in filter(str.strip, header):       # (no header: left out if empty, else refused)
         base, unit = split_unit(h)
-        unit = (unit or "").lower().replace(" ", "")
+        unit = (opts.units.get(h, unit) or "").lower().replace(" ", "")
         pattern = _GLOB.sub(r"[\1]", base)
         if unit in UNITS["E"]:
             roles["error"].append(pattern)
@@ -81,7 +81,8 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
     times = [h for h, n in plan.names.items() if n == "time"]
     # timestamps: the first as read, so that a day read as the month shows
     origin = report["campaigns"][ds.ids()[0]].get("time_origin")
-    time = (f"time: {times[0]!r}" + (f", timestamps from {origin}" if origin else "") if times
+    time = (f"time: {times[0]!r}" + (f", timestamps from {origin}" if origin else
+                                     _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
     lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}", time,
              f"sample period: {period_s:g} s, {report['rows']} rows"]
@@ -97,3 +98,11 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
                      f"{report['campaigns'][cid]['rows']} rows")
     return lines + [f"data config written to {path}",
                     f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"]
+
+
+def _seconds_unit(header: str, opts) -> str:
+    """The unit a numeric time column is read in, said where the header does not give it."""
+    unit = opts.units.get(header, split_unit(header)[1])
+    if unit:
+        return f", in {unit}"
+    return f", in seconds: no unit in the header (data.units={{{header!r}: ms}} if not seconds)"

@@ -53,6 +53,7 @@ class ReadOptions:
     decimal: str = AUTO
     thousands: str | None = None
     roles: dict = field(default_factory=dict)     # see io.roles; {} (or all empty): none
+    units: dict = field(default_factory=dict)     # header -> unit where the header has none
     test_fraction: float | None = None
     val_fraction: float | None = None
     split_order: list = field(default_factory=lambda: list(SPLIT_ORDER))
@@ -94,6 +95,7 @@ class ReadOptions:
             decimal=_text(cfg, "decimal", AUTO),
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
             roles=_roles(cfg),
+            units=_str_mapping(cfg, "units"),
             test_fraction=_fraction(cfg, "test_fraction"),
             val_fraction=_fraction(cfg, "val_fraction"),
             split_order=_split_order(cfg),

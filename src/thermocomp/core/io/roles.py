@@ -98,15 +98,18 @@ def contract_columns(headers: Sequence[str], roles: Mapping | None = None,
 
 
 def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapping | None = None,
-           decimal: str = ".", file: Path | None = None) -> Naming:
-    """:func:`contract_columns` with the unit conversions (``roles`` as ``ReadOptions.roles``)."""
-    first = first or {}
+           decimal: str = ".", file: Path | None = None, units: Mapping | None = None) -> Naming:
+    """:func:`contract_columns` with the unit conversions (``roles`` as ``ReadOptions.roles``;
+    ``units``: ``data.units``, header -> unit, for a header that does not say it)."""
+    first, units = first or {}, units or {}
     by_role = active(roles)
     out, problems = Naming(), []
+    problems += [f"data.units names {h!r}, no header" for h in units if h not in headers]
     time_header = _time_header(headers, roles, columns, first, problems)
     ambient = [h for h in headers if h not in columns and _hits(h, roles) == ["ambient"]]
     for header in headers:
         base, unit = split_unit(header)
+        unit = units.get(header, unit)
         if not header.strip() and header not in columns:
             out.roles[header] = "empty"      # Excel's trailing separator: the reader checks it is
             continue
@@ -131,6 +134,9 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             if role(header) is None:
                 out.roles[header] = "unmapped"
                 problems.append(f"{header!r} has no role")
+            elif header in units:
+                _scale(out, header, role(header) if role(header) != "S" else None, unit, header,
+                       problems, None, decimal)
             continue
         if kind is None:
             if not _numeric(first.get(header), decimal):
@@ -194,7 +200,7 @@ def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: s
         what = {"E": "an error's (µm, mm, m, nm)", "T": "a temperature's (°C, K, °F)",
                 "time": "a time's (s, ms, min, h)"}[kind]
         problems.append(f"{header!r}: unit {unit!r} is not {what}")
-    elif scale != (1.0, 0.0):
+    elif scale != (1.0, 0.0) or kind == "time":   # (a time's unit stated: no ms to suspect)
         out.scales[name] = scale
 
 

@@ -20,7 +20,7 @@ from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import naming
 from .separators import misgrouped, thousands_hint, ungrouped
 from .sniff import resolved
-from .timestamps import described, is_format, parsed, time_kind, time_type
+from .timestamps import described, is_format, parsed, said_if_milliseconds, time_kind, time_type
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
 _CSV_BLOCK_BYTES = 16 << 20
@@ -39,7 +39,7 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                     first: dict | None = None) -> tuple[list[str | None], dict]:
     """Contract names of the file's columns (None: left out by ``data.roles.ignore``) and the
     unit conversions (:mod:`.roles`), checked against the contract's vocabulary."""
-    plan = naming(raw_names, opts.roles, opts.columns, first, opts.decimal, file)
+    plan = naming(raw_names, opts.roles, opts.columns, first, opts.decimal, file, opts.units)
     names: list[str | None] = []
     seen: set[str] = set()
     for raw in raw_names:
@@ -113,6 +113,8 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
     table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
     _check_unnamed_empty(table, header, names, unnamed, path)
+    if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
+        said_if_milliseconds(_values(table.column(TIME)), path, header[names.index(TIME)])
     return (_converted(_columns(table.select(list(types))), scales), _renames(header, named),
             _rescaled(scales))
 

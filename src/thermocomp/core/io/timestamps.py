@@ -8,9 +8,11 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import numpy as np
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from ...base.log import logger
 from .contract import TIME, ContractError
 
 # a first cell that is a date and a time of day (the time column when no header says so)
@@ -71,3 +73,17 @@ def described(target: pa.DataType, kind: str) -> str:
     zone = "with" if target.tz else "without"
     return (f"an ISO 8601 timestamp {zone} zone offset (like the first row; another format: "
             f"set data.time to it, e.g. data.time={EXAMPLE})")
+
+
+def said_if_milliseconds(time: np.ndarray, file: Path, header: str) -> None:
+    """Say (not refuse: a slow logger may count seconds) a time column without a unit whose
+    samples are 1000 s or more apart, every step whole thousands: whole seconds in ms, likely
+    (a volumetric cycle of 1200 s is no such step)."""
+    if len(time) < 2 or not np.all(np.isfinite(time)):
+        return
+    steps = np.diff(time)
+    period = float(np.median(steps))
+    if period >= 1000 and np.all(steps % 1000 == 0):
+        logger.warning(f"{file}, column {header!r}: samples {period:g} s apart, in whole thousands: "
+                       f"milliseconds? say so with data.units={{{header!r}: ms}} (or a unit in "
+                       "the header, 'time [ms]')")
