@@ -172,3 +172,26 @@ def test_data_units_converts_an_error_whose_header_says_no_unit(tmp_path, capsys
              f"out={out}"], capsys, str(path), "data.units names 'dx', no header",
             "'T2': unit 'furlong' is not a temperature's")
     assert not out.exists()
+
+
+def test_a_footer_under_the_data_is_left_out_and_said(tmp_path, capsys):
+    # before: refused, "row 31: expected 4 fields, got 1"
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "footer.csv", ["time", "T1", "T2", "dX [µm]"], [t, t1, t2, e])
+    text = path.read_text(encoding="utf-8") + "End of data\n\nRows: 30\n"
+    path.write_bytes(text.replace("\n", "\r\n").encode("utf-8"))
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    assert f"{path}: footer left out (2 line(s) under the data: 'End of data')" in \
+        capsys.readouterr().err
+    frame = _read(path, roles={"error": ["dX"]})
+    np.testing.assert_allclose(frame[["time", "T_T1"]], np.c_[t, t1], atol=1e-3)
+
+
+@pytest.mark.parametrize("tail, row", [("1740,25.1\n", 31), ("Pause\n" + "1740,25.1,21.0,3.5\n", 31)])
+def test_a_row_cut_short_or_text_above_data_is_no_footer(tmp_path, tail, row):
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "cut.csv", ["time", "T1", "T2", "dX [µm]"], [t, t1, t2, e])
+    path.write_text(path.read_text(encoding="utf-8") + tail, encoding="utf-8")
+    with pytest.raises(ContractError) as refusal:
+        read_dataset(path, {"roles": {"error": ["dX"]}})
+    assert refusal.value.row == row

@@ -14,7 +14,9 @@ import pyarrow as pa
 import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
+from ...base.log import logger
 from .contract import TIME, ContractError, role
+from .footer import footer, source
 from .manifest import _not_utf8, _utf8_failure
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import naming
@@ -101,6 +103,9 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
+    said = footer(path, opts.delimiter, len(header))[0]
+    if said:
+        logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: {said[0]!r})")
     if len(first_row) != len(named):
         raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
     # a column left out (data.roles.ignore) is read under a name no contract column can have
@@ -193,13 +198,18 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
     return dict(read_options=read, parse_options=parse, convert_options=convert)
 
 
+def _input(path: Path, opts: ReadOptions, names: list[str]):
+    """The CSV text Arrow reads: ``path`` without its footer (:mod:`.footer`)."""
+    return source(path, footer(path, opts.delimiter, len(names))[1])
+
+
 def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions) -> pa.Table:
     # Arrow's reader knows no thousands separator: with one, numbers are read as text first
     read_as = types if opts.thousands is None else {
         n: pa.string() if pa.types.is_floating(t) else t for n, t in types.items()}
     try:
-        table = pacsv.read_csv(path, **_csv_options(names, opts, types=read_as,
-                                                    include=[n for n in names if n in types]))
+        table = pacsv.read_csv(_input(path, opts, names), **_csv_options(
+            names, opts, types=read_as, include=[n for n in names if n in types]))
     except pa.ArrowInvalid as exc:
         raise _locate_csv_error(path, names, types, opts, exc) from None
     return table if opts.thousands is None else _ungroup(table, types, path, opts)
@@ -243,8 +253,8 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
 
 
 def _bad_cell_error(path, names, column, target, opts) -> ContractError:
-    raw = pacsv.read_csv(path, **_csv_options(names, opts, include=[column],
-                                               types={column: pa.string()})).column(column)
+    raw = pacsv.read_csv(_input(path, opts, names), **_csv_options(
+        names, opts, include=[column], types={column: pa.string()})).column(column)
     number = pa.types.is_floating(target)
     text = ungrouped(raw, opts.thousands, opts.decimal) if number else raw
     found = _first_cast_failure(text, target, opts.time)
@@ -268,9 +278,9 @@ def _malformed_row_error(path, names, opts, message) -> ContractError:
         return "error"
 
     with contextlib.suppress(pa.ArrowInvalid):
-        pacsv.read_csv(path, **_csv_options(names, opts, include=[names[0]],
-                                            types={names[0]: pa.string()}, use_threads=False,
-                                            invalid_row_handler=remember))
+        pacsv.read_csv(_input(path, opts, names), **_csv_options(
+            names, opts, include=[names[0]], types={names[0]: pa.string()}, use_threads=False,
+            invalid_row_handler=remember))
     if not bad:
         return ContractError(f"unreadable CSV ({message})", file=path)
     row = bad[0]
