@@ -195,3 +195,14 @@ def test_a_row_cut_short_or_text_above_data_is_no_footer(tmp_path, tail, row):
     with pytest.raises(ContractError) as refusal:
         read_dataset(path, {"roles": {"error": ["dX"]}})
     assert refusal.value.row == row
+
+
+def test_a_unit_written_quantity_in_unit_is_read_as_the_unit(tmp_path):
+    # before: 'dX in mm' was a temperature T_dX_in_mm, in mm, and 'Zeit in s' no time
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "lab.csv", ["Zeit in s", "T1 in °C", "dX in mm"], [t, t1, e / 1000])
+    header = path.read_text(encoding="utf-8").splitlines()[0].split(",")
+    roles = proposed_roles(header, {h: "1" for h in header}, ReadOptions())
+    frame = _read(path, roles=roles)
+    assert list(frame.columns) == ["time", "T_T1", "E_dX"]
+    np.testing.assert_allclose(frame[["time", "E_dX"]], np.c_[t, e], atol=1e-3)

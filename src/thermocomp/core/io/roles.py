@@ -27,6 +27,7 @@ _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # ISO 80000's "quantity / unit" (``delta L / um``, ``Zeit / s``); without spaces round the slash
 # (``dX/um``) only a unit of :data:`UNITS`, so that ``Datum/Zeit`` or ``on/off`` stay names
 _SLASHED = re.compile(r"^(.*?\S)(\s*)/(\s*)(\S+)$")
+_IN_UNIT = re.compile(r"^(.*?\S)\s+(?:in|en)\s+(\S+)$", re.IGNORECASE)   # 'dX in µm' (a known unit)
 _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "elapsed", "seconds"})
@@ -53,14 +54,17 @@ class Naming:
 
 
 def split_unit(header: str) -> tuple[str, str | None]:
-    """``('t1', '°C')`` for ``t1(°C)``, ``t1 [°C]`` or ``t1 / °C``; ``(header, None)`` without
-    a unit."""
+    """``('t1', '°C')`` for ``t1(°C)``, ``t1 [°C]``, ``t1 / °C`` or ``t1 in °C``; ``(header,
+    None)`` without a unit."""
     match = _UNIT.match(header.strip())
     if match and match.group(1).strip():
         return match.group(1).strip(), match.group(2).strip()
     match = _SLASHED.match(header.strip())
     if match and ((match.group(2) and match.group(3)) or _known_unit(match.group(4))):
         return match.group(1).strip(), match.group(4)
+    match = _IN_UNIT.match(header.strip())
+    if match and _known_unit(match.group(2)):
+        return match.group(1).strip(), match.group(2)
     return header.strip(), None
 
 
