@@ -206,3 +206,21 @@ def test_a_unit_written_quantity_in_unit_is_read_as_the_unit(tmp_path):
     frame = _read(path, roles=roles)
     assert list(frame.columns) == ["time", "T_T1", "E_dX"]
     np.testing.assert_allclose(frame[["time", "E_dX"]], np.c_[t, e], atol=1e-3)
+
+
+def test_a_labs_mark_for_a_value_not_measured_is_named_and_read_as_missing(tmp_path, capsys):
+    # before: '-' and 'n/a' were refused as text and no setting read them as missing
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "marks.csv", ["time", "T1", "T2", "dX [µm]"], [t, t1, t2, e])
+    lines = path.read_text(encoding="utf-8").splitlines()
+    lines[9] = ",".join([*lines[9].split(",")[:2], "-", lines[9].split(",")[3]])
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, str(path), "'T_T2'",
+            "row 9", "value '-'", "data.missing_values")
+    lines[20] = ",".join([*lines[20].split(",")[:1], "n/a", *lines[20].split(",")[2:]])
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    ds, report = read_dataset(path, {"roles": {"error": ["dX"]}, "max_gap_samples": 1,
+                                     "missing_values": ["-", "n/a"]})
+    (frame,) = ds.campaigns.values()
+    assert report["repairs"] == {"T_T1": 1, "T_T2": 1}
+    np.testing.assert_allclose(frame["T_T2"][8], (t2[7] + t2[9]) / 2, atol=1e-3)

@@ -54,6 +54,7 @@ class ReadOptions:
     thousands: str | None = None
     roles: dict = field(default_factory=dict)     # see io.roles; {} (or all empty): none
     units: dict = field(default_factory=dict)     # header -> unit where the header has none
+    missing_values: list = field(default_factory=list)  # read as missing besides empty, nan
     test_fraction: float | None = None
     val_fraction: float | None = None
     split_order: list = field(default_factory=lambda: list(SPLIT_ORDER))
@@ -96,6 +97,7 @@ class ReadOptions:
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
             roles=_roles(cfg),
             units=_str_mapping(cfg, "units"),
+            missing_values=_missing_values(cfg),
             test_fraction=_fraction(cfg, "test_fraction"),
             val_fraction=_fraction(cfg, "val_fraction"),
             split_order=_split_order(cfg),
@@ -159,6 +161,16 @@ def _roles(cfg: Mapping) -> dict:
     time = value.get("time", AUTO)
     out["time"] = AUTO if time is None else str(time)
     return out
+
+
+def _missing_values(cfg: Mapping) -> list:
+    """``data.missing_values``: what a lab writes for a value not measured (``-``, ``n/a``)."""
+    value = cfg.get("missing_values") or []
+    value = [value] if isinstance(value, str) else value
+    if not all(isinstance(v, str) and v.strip() and not re.search(r"\d", v) for v in value):
+        raise ContractError(f"data.missing_values must be a list of marks without digits (e.g. "
+                            f"['-', 'n/a']), got {cfg.get('missing_values')!r}")
+    return [str(v) for v in value]
 
 
 def _fraction(cfg: Mapping, key: str) -> float | None:

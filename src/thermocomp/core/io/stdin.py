@@ -25,7 +25,7 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     try:
         df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
-                         thousands=opts.thousands)
+                         thousands=opts.thousands, na_values=list(opts.missing_values))
     except Exception as exc:    # pandas raises several kinds for a bad stream
         raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                             f"{opts.delimiter!r} ({' '.join(str(exc).split())})",

@@ -193,7 +193,7 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
     parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
     convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
                                    decimal_point=opts.decimal, strings_can_be_null=True,
-                                   null_values=list(MISSING_TOKENS),
+                                   null_values=[*MISSING_TOKENS, *opts.missing_values],
                                    timestamp_parsers=[opts.time] if is_format(opts.time) else None)
     return dict(read_options=read, parse_options=parse, convert_options=convert)
 
@@ -266,6 +266,8 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
     if hint is None:
         hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
                 and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
+    if number and not hint and not re.search(r"\d", str(value)):
+        hint = f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
     return ContractError(f"value {value!r} is not {_describe(target, opts.time)}{hint}",
                          file=path, column=column, row=row + 1)
 
