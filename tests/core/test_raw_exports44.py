@@ -14,6 +14,7 @@ from conftest import refused
 from thermocomp.core.io import ContractError, read_dataset
 from thermocomp.core.io.detect import proposed_roles
 from thermocomp.core.io.options import ReadOptions
+from thermocomp.core.io.source import open_dataset
 from thermocomp.core.io.stdin import stream_seconds
 from thermocomp.shell.cli import main
 
@@ -224,3 +225,18 @@ def test_a_labs_mark_for_a_value_not_measured_is_named_and_read_as_missing(tmp_p
     (frame,) = ds.campaigns.values()
     assert report["repairs"] == {"T_T1": 1, "T_T2": 1}
     np.testing.assert_allclose(frame["T_T2"][8], (t2[7] + t2[9]) / 2, atol=1e-3)
+
+
+def test_a_record_streamed_has_its_train_part_repaired_as_a_batch_reads_it(tmp_path):
+    # replay / monitor of a one-file record with a gap in its train part: before, refused
+    # with "<record>/<record>: campaign file not found" (the part has no file of its own)
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "gap.csv", ["time", "T1", "T2", "dX [µm]"], [t, t1, t2, e])
+    lines = path.read_text(encoding="utf-8").splitlines()
+    lines[5] = ",".join(["240", "", *lines[5].split(",")[2:]])
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    cfg = {"roles": {"error": ["dX"]}, "test_fraction": 0.2, "max_gap_samples": 1}
+    streamed = open_dataset(path, cfg, stream=True)
+    batch, _ = read_dataset(path, cfg)
+    pd.testing.assert_frame_equal(streamed.campaigns["gap_train"], batch.campaigns["gap_train"])
+    assert streamed.campaigns["gap_train"]["T_T1"].notna().all()

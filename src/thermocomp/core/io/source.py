@@ -39,19 +39,22 @@ def open_dataset(root: str | Path, options: Mapping | None = None, *, stream: bo
 
 def _repair_train(ds: Dataset, root: Path, report: dict, options: Mapping | None) -> None:
     """The train campaigns of a stream read as a batch reads them where they lack a value or
-    look like kelvin (what ``missing="keep"`` lets through)."""
+    look like kelvin (what ``missing="keep"`` lets through); of a one-file record, its train
+    part as a batch cuts the record (there is no file of the part alone)."""
     hot = ReadOptions.from_cfg(options).kelvin_threshold_c
-    for cid in ds.ids("train"):
-        df = ds.campaigns[cid]
-        faulty = any(df[c].max() > hot for c in df.columns if c.startswith("T_"))
-        if report["campaigns"][cid].get("missing") or faulty:
-            try:
+    redo = [cid for cid in ds.ids("train") if report["campaigns"][cid].get("missing") or any(
+        ds.campaigns[cid][c].max() > hot for c in ds.campaigns[cid].columns if c.startswith("T_"))]
+    for cid in redo:
+        try:
+            if root.is_file():
+                ds.campaigns[cid] = read_dataset(root, options, campaigns=[cid])[0].campaigns[cid]
+            else:
                 table, _ = read_campaign(root / ds.manifest.loc[cid, "file"], options)
-            except ContractError as exc:
-                raise ContractError(f"train campaign {cid}: {exc.reason} (models and the sensor "
-                                    "monitor are fitted on complete train records)",
-                                    file=exc.file, column=exc.column, row=exc.row) from None
-            ds.campaigns[cid] = table.to_pandas(split_blocks=True)
+                ds.campaigns[cid] = table.to_pandas(split_blocks=True)
+        except ContractError as exc:
+            raise ContractError(f"train campaign {cid}: {exc.reason} (models and the sensor "
+                                "monitor are fitted on complete train records)",
+                                file=exc.file, column=exc.column, row=exc.row) from None
 
 
 def check_streamed_columns(ds: Dataset, ids, columns, what: str) -> None:
