@@ -240,3 +240,16 @@ def test_a_record_streamed_has_its_train_part_repaired_as_a_batch_reads_it(tmp_p
     batch, _ = read_dataset(path, cfg)
     pd.testing.assert_frame_equal(streamed.campaigns["gap_train"], batch.campaigns["gap_train"])
     assert streamed.campaigns["gap_train"]["T_T1"].notna().all()
+
+
+@pytest.mark.parametrize("dead", ["T2", "dX [µm]"])
+def test_a_dead_channel_of_a_record_is_said(tmp_path, capsys, dead):
+    # before: a one-file record's constant error column was not said (only a folder's
+    # campaigns were looked at), nor a constant temperature anywhere
+    t, t1, t2, e = _record()
+    columns = {"time": t, "T1": t1, "T2": t2, "dX [µm]": e, "dZ [µm]": -e}
+    columns[dead] = np.full(ROWS, 21.5)
+    path = _write(tmp_path / "dead.csv", list(columns), list(columns.values()))
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    name = {"T2": "T_T2", "dX [µm]": "E_dX"}[dead]
+    assert f"{path}, column '{name}': constant over the whole campaign" in capsys.readouterr().err
