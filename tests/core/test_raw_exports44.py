@@ -253,3 +253,49 @@ def test_a_dead_channel_of_a_record_is_said(tmp_path, capsys, dead):
     assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
     name = {"T2": "T_T2", "dX [µm]": "E_dX"}[dead]
     assert f"{path}, column '{name}': constant over the whole campaign" in capsys.readouterr().err
+
+
+def _logger_export(path: Path, preamble: list[str], units: list[str] | None) -> Path:
+    """``;``-separated, decimal commas, under a logger's preamble, with a unit row or not."""
+    t, t1, t2, e = _record()
+    _write(path, ["Zeit", "T1", "T2", "dX"], [t, t1, t2, e], sep=";")
+    lines = path.read_text(encoding="utf-8").replace(".", ",").splitlines()
+    lines[1:1] = [";".join(units)] if units else []
+    path.write_text("\n".join([*preamble, *lines]) + "\n", encoding="utf-8")
+    return path
+
+
+def test_a_unit_row_under_the_header_gives_the_units(tmp_path, capsys):
+    # before: refused, "no E_ column" (the units were read as the first row)
+    path = _logger_export(tmp_path / "units.csv", [], ["s", "°C", "K", "mm"])
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().out
+    assert "units from line 2; rows counted from line 3" in said and "E_dX" in said
+    t, t1, t2, e = _record()
+    frame = _read(path, roles={"error": ["dX"]})
+    np.testing.assert_allclose(frame[["time", "T_T1", "T_T2"]], np.c_[t, t1, t2 - 273.15],
+                               atol=1e-3)
+    np.testing.assert_allclose(frame["E_dX"], e * 1000, rtol=1e-5, atol=1e-3)  # mm -> µm
+
+
+def test_a_loggers_preamble_above_the_header_is_left_out_and_rows_count_from_the_data(tmp_path):
+    # before: the preamble broke the separator's detection and was read as the header
+    preamble = ["Logger: XY-200", "Datum: 28.11.2026", ""]
+    path = _logger_export(tmp_path / "log.csv", preamble, ["s", "°C", "°C", "µm"])
+    t, t1, t2, e = _record()
+    frame = _read(path, roles={"error": ["dX"]})
+    np.testing.assert_allclose(frame[["time", "T_T1", "E_dX"]], np.c_[t, t1, e], atol=1e-3)
+    lines = path.read_text(encoding="utf-8").splitlines()
+    lines[len(preamble) + 2 + 6] = lines[len(preamble) + 2 + 6].replace(";", ";x", 1)
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    with pytest.raises(ContractError) as refusal:
+        read_dataset(path, {"roles": {"error": ["dX"]}})
+    assert (refusal.value.row, refusal.value.column) == (7, "T_T1")
+
+
+def test_a_header_short_of_a_field_is_never_a_data_row_taken_for_the_header(tmp_path):
+    path = _excel(tmp_path / "short.csv")
+    lines = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\n".join([lines[0][:-1], *lines[1:]]) + "\n", encoding="utf-8")
+    with pytest.raises(ContractError):
+        read_dataset(path, {"roles": {"error": ["dX"]}})

@@ -9,18 +9,17 @@ Roles not given (``data.roles.*``) are proposed from the units in the headers (Â
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from pathlib import Path
 
+from .layout import header_line
 from .manifest import read_manifest
 from .options import ROLE_PATTERNS
-from .roles import UNITS, _numeric, split_unit
-from .sniff import resolved
+from .roles import STATE_UNITS, UNITS, _numeric, split_unit
+from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
 from .timestamps import looks_like_timestamp
 
-# units that say "a machine state" (speeds, loads, positions, on/off)
-STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
-               "on/off", "0/1", "mm/min"}
 _GLOB = re.compile(r"([*?\[])")
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
@@ -38,7 +37,8 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
         table = parquet().read_table(sample).slice(0, 1)
         return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
     opts = resolved(sample, opts)
-    return (opts, *_peek_csv(sample, opts.delimiter))
+    header, first, skip = _peek_csv(sample, opts.delimiter)
+    return replace(opts, skip_rows=skip), header, first
 
 
 def proposed_roles(header: list[str], first: dict, opts) -> dict:
@@ -84,7 +84,8 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
     time = (f"time: {times[0]!r}" + (f", timestamps from {origin}" if origin else
                                      _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
-    lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}", time,
+    lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
+             + _table_start(sample, opts), time,
              f"sample period: {period_s:g} s, {report['rows']} rows"]
     width = max(len(h or "(no header)") for h in header)
     for h in header:
@@ -98,6 +99,16 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
                      f"{report['campaigns'][cid]['rows']} rows")
     return lines + [f"data config written to {path}",
                     f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"]
+
+
+def _table_start(sample: Path, opts) -> str:
+    """Where the table starts, said when not on the first line (a preamble, a unit row)."""
+    if opts.skip_rows == 1 or sample.suffix.lower() != ".csv":
+        return ""
+    preamble = header_line(head_lines(sample), opts.delimiter) or 0
+    units = f", units from line {preamble + 2}" if opts.skip_rows > preamble + 1 else ""
+    left = f" ({preamble} line(s) above it left out)" if preamble else ""
+    return f", header on line {preamble + 1}{left}{units}; rows counted from line {opts.skip_rows + 1}"
 
 
 def _seconds_unit(header: str, opts) -> str:

@@ -61,6 +61,7 @@ class ReadOptions:
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
+    skip_rows: int = 1        # internal: lines above a CSV's first data row (preamble, header, units)
 
     def __post_init__(self):
         if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's

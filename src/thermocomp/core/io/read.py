@@ -94,6 +94,7 @@ INGEST_REPORT = "ingest_report.json"
 MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
 MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
+INTERNAL = ("missing", "skip_rows")   # ReadOptions fields that are no data config key
 DEAD_ROLES = ("E", "T")   # columns said when constant over a whole campaign (a dead channel)
 
 
@@ -223,7 +224,7 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
               "campaigns": entries, "repairs": totals("repairs"),
               "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
               **_renamed(entries),
-              "settings": {k: v for k, v in asdict(opts).items() if k != "missing"}}
+              "settings": {k: v for k, v in asdict(opts).items() if k not in INTERNAL}}
     if opts.missing != "repair":
         report["missing"] = totals("missing")
     return report

@@ -43,6 +43,10 @@ UNITS = {
              "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0))},
 }
 
+# units that say "a machine state" (speeds, loads, positions, on/off)
+STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
+               "on/off", "0/1", "mm/min"}
+
 
 @dataclass
 class Naming:

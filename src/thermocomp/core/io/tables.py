@@ -17,11 +17,12 @@ import pyarrow.csv as pacsv
 from ...base.log import logger
 from .contract import TIME, ContractError, role
 from .footer import footer, source
+from .layout import header_line, is_unit_row, with_units
 from .manifest import _not_utf8, _utf8_failure
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import naming
 from .separators import misgrouped, thousands_hint, ungrouped
-from .sniff import resolved
+from .sniff import head_lines, resolved
 from .timestamps import described, is_format, parsed, said_if_milliseconds, time_kind, time_type
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
@@ -99,7 +100,8 @@ MISSING_TOKENS = ("", "nan", "NaN", "NAN", "-nan", "-NaN")
 
 def _load_csv(path: Path, opts: ReadOptions) -> dict:
     opts = resolved(path, opts)
-    header, first_row = _peek_csv(path, opts.delimiter)
+    header, first_row, skip = _peek_csv(path, opts.delimiter)
+    opts = replace(opts, skip_rows=skip)
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
@@ -149,13 +151,20 @@ def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> 
                                 f"set data.delimiter={sep!r}{hint}", file=path)
 
 
-def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
-    """Header (stripped names) and first data row, without reading the file."""
+def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str], int]:
+    """Header (stripped names; a unit row's units joined), first data row and the lines above
+    it (a logger's preamble, the header, a unit row: :mod:`.layout`), without reading the file."""
+    preamble = header_line(head_lines(path), delimiter) or 0
     try:
         with open(path, newline="", encoding="utf-8-sig") as f:
+            for _ in range(preamble):
+                f.readline()
             rows = csv.reader(f, delimiter=delimiter)
             header = next(rows, None)
             first = next((r for r in rows if r), None)
+            units = first is not None and header is not None and is_unit_row(first)
+            if units:
+                header, first = with_units(header, first), next((r for r in rows if r), None)
     except UnicodeDecodeError:
         raise _not_utf8(path, delimiter) from None
     except csv.Error as exc:       # binary content (a gzip named .csv): no CSV text
@@ -165,7 +174,7 @@ def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
         raise ContractError("empty file", file=path)
     if first is None:
         raise ContractError("file has a header but no data rows", file=path)
-    return [name.strip() for name in header], first
+    return [name.strip() for name in header], first, preamble + 1 + units
 
 
 def _timed(path: Path, value: str, opts: ReadOptions) -> ReadOptions:
@@ -188,7 +197,7 @@ def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
 
 def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=None,
                  use_threads=True, invalid_row_handler=None):
-    read = pacsv.ReadOptions(column_names=names, skip_rows=1, use_threads=use_threads,
+    read = pacsv.ReadOptions(column_names=names, skip_rows=opts.skip_rows, use_threads=use_threads,
                              block_size=_CSV_BLOCK_BYTES)
     parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
     convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
@@ -287,7 +296,7 @@ def _malformed_row_error(path, names, opts, message) -> ContractError:
         return ContractError(f"unreadable CSV ({message})", file=path)
     row = bad[0]
     return ContractError(f"expected {row.expected_columns} fields, got {row.actual_columns}",
-                         file=path, row=None if row.number is None else row.number - 1)
+                         file=path, row=None if row.number is None else row.number - opts.skip_rows)
 
 
 def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType,
