@@ -299,3 +299,16 @@ def test_a_header_short_of_a_field_is_never_a_data_row_taken_for_the_header(tmp_
     path.write_text("\n".join([lines[0][:-1], *lines[1:]]) + "\n", encoding="utf-8")
     with pytest.raises(ContractError):
         read_dataset(path, {"roles": {"error": ["dX"]}})
+
+
+def test_an_error_column_never_measured_is_refused_naming_the_setting_that_leaves_it_out(
+        tmp_path, capsys):
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "dy.csv", ["time", "T1", "dX [µm]", "dY [µm]"],
+                  [t, t1, e, np.full(ROWS, np.nan)])
+    out = tmp_path / "init"
+    refused(["init", str(path), f"out={out}"], capsys, str(path), "column 'E_dY'",
+            "data.roles.ignore")
+    assert not out.exists()
+    assert main(["init", str(path), "data.roles.error=[dX]", "data.roles.ignore=[dY]",
+                 f"out={out}"]) == 0

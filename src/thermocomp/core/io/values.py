@@ -183,8 +183,8 @@ def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) 
             raise ContractError(f"infinite value {values[row - 1]}", file=path, column=name,
                                 row=row)
         if missing.size == values.size:
-            raise ContractError("column has no valid value (every cell is empty)",
-                                file=path, column=name)
+            raise ContractError("column has no valid value (every cell is empty): not measured? "
+                                "leave it out (data.roles.ignore)", file=path, column=name)
     limit, unit, what = {"E": (opts.max_abs_error, "µm", "error"),
                          "S": (opts.max_abs_state, "", "state")}.get(role(name), (None,) * 3)
     if limit is not None:
