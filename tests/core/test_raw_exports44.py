@@ -312,3 +312,15 @@ def test_an_error_column_never_measured_is_refused_naming_the_setting_that_leave
     assert not out.exists()
     assert main(["init", str(path), "data.roles.error=[dX]", "data.roles.ignore=[dY]",
                  f"out={out}"]) == 0
+
+
+def test_init_proposes_the_air_sensor_as_the_ambient(tmp_path):
+    # before: 'Raumtemperatur [°C]' was a temperature T_Raumtemperatur, not the ambient T_amb
+    # the ATI models and the diagnosis read
+    header = ["time [s]", "Raumtemperatur [°C]", "Luftlager [°C]", "T_amb_x", "dX [µm]"]
+    roles = proposed_roles(header, {h: "1" for h in header}, ReadOptions())
+    assert roles["ambient"] == ["Raumtemperatur"]
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "hall.csv", header, [t, t1, t2, t2, e])
+    assert list(_read(path, roles=roles).columns) == ["time", "T_amb", "T_Luftlager", "T_amb_x",
+                                                      "E_dX"]

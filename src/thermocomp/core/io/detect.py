@@ -12,6 +12,7 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
+from .contract import role
 from .layout import header_line
 from .manifest import read_manifest
 from .options import ROLE_PATTERNS
@@ -21,6 +22,10 @@ from .tables import _peek_csv, parquet
 from .timestamps import looks_like_timestamp
 
 _GLOB = re.compile(r"([*?\[])")
+_WORDS = re.compile(r"[\s_.\-]+")
+# a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing)
+AMBIENT_WORDS = {"amb", "ambient", "umgebung", "umgebungstemperatur", "raum", "raumtemperatur",
+                 "room", "hall", "halle", "hallentemperatur"}
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
@@ -43,7 +48,8 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
 
 def proposed_roles(header: list[str], first: dict, opts) -> dict:
     """``data.roles`` as given, else patterns proposed from the headers' units (µm/mm: an
-    error, a state unit: a state; a text column: ignore)."""
+    error, a state unit: a state; a text column: ignore) and words (the air's temperature:
+    ambient)."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
     if any(roles[k] for k in ROLE_PATTERNS):
@@ -56,6 +62,9 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
             roles["error"].append(pattern)
         elif unit in STATE_UNITS:
             roles["state"].append(pattern)
+        elif role(base) is None and AMBIENT_WORDS & set(_WORDS.split(base.lower())) and (
+                not unit or unit in UNITS["T"]):
+            roles["ambient"].append(pattern)
         elif not _numeric(first.get(h), opts.decimal) and not looks_like_timestamp(first.get(h)):
             roles["ignore"].append(pattern)
     return roles
