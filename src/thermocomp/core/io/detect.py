@@ -9,18 +9,23 @@ Roles not given (``data.roles.*``) are proposed from the units in the headers (Â
 from __future__ import annotations
 
 import re
+from dataclasses import replace
 from pathlib import Path
 
+from .contract import role
+from .layout import header_line
 from .manifest import read_manifest
 from .options import ROLE_PATTERNS
-from .roles import UNITS, _numeric, split_unit
-from .sniff import resolved
+from .roles import STATE_UNITS, UNITS, _numeric, split_unit
+from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
+from .timestamps import looks_like_timestamp
 
-# units that say "a machine state" (speeds, loads, positions, on/off)
-STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
-               "on/off", "0/1", "mm/min"}
 _GLOB = re.compile(r"([*?\[])")
+_WORDS = re.compile(r"[\s_.\-]+")
+# a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing)
+AMBIENT_WORDS = {"amb", "ambient", "umgebung", "umgebungstemperatur", "raum", "raumtemperatur",
+                 "room", "hall", "halle", "hallentemperatur"}
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
@@ -37,25 +42,30 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
         table = parquet().read_table(sample).slice(0, 1)
         return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
     opts = resolved(sample, opts)
-    return (opts, *_peek_csv(sample, opts.delimiter))
+    header, first, skip = _peek_csv(sample, opts.delimiter)
+    return replace(opts, skip_rows=skip), header, first
 
 
 def proposed_roles(header: list[str], first: dict, opts) -> dict:
     """``data.roles`` as given, else patterns proposed from the headers' units (Âµm/mm: an
-    error, a state unit: a state; a text column: ignore)."""
+    error, a state unit: a state; a text column: ignore) and words (the air's temperature:
+    ambient)."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
     if any(roles[k] for k in ROLE_PATTERNS):
         return roles
-    for h in header:
+    for h in filter(str.strip, header):       # (no header: left out if empty, else refused)
         base, unit = split_unit(h)
-        unit = (unit or "").lower().replace(" ", "")
+        unit = (opts.units.get(h, unit) or "").lower().replace(" ", "")
         pattern = _GLOB.sub(r"[\1]", base)
         if unit in UNITS["E"]:
             roles["error"].append(pattern)
         elif unit in STATE_UNITS:
             roles["state"].append(pattern)
-        elif not _numeric(first.get(h), opts.decimal) and not re.match(r"\d{4}-\d\d-\d\d", str(first.get(h))):
+        elif role(base) is None and AMBIENT_WORDS & set(_WORDS.split(base.lower())) and (
+                not unit or unit in UNITS["T"]):
+            roles["ambient"].append(pattern)
+        elif not _numeric(first.get(h), opts.decimal) and not looks_like_timestamp(first.get(h)):
             roles["ignore"].append(pattern)
     return roles
 
@@ -78,16 +88,41 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
     """What ``thermocomp init`` prints: separators, time, sample period, each column's role
     and contract name, the campaigns, and the command to run next."""
     times = [h for h, n in plan.names.items() if n == "time"]
-    lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}",
-             f"time: {times[0]!r}" if times else "time: none in the file, data.sample_period_s rows apart",
+    # timestamps: the first as read, so that a day read as the month shows
+    origin = report["campaigns"][ds.ids()[0]].get("time_origin")
+    time = (f"time: {times[0]!r}" + (f", timestamps from {origin}" if origin else
+                                     _seconds_unit(times[0], opts)) if times
+            else "time: none in the file, data.sample_period_s rows apart")
+    lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
+             + _table_start(sample, opts), time,
              f"sample period: {period_s:g} s, {report['rows']} rows"]
-    width = max(len(h) for h in header)
+    width = max(len(h or "(no header)") for h in header)
     for h in header:
         contract = plan.names.get(h)
         role = plan.roles.get(h, "ignore") if contract else "ignore (left out)"
+        if plan.roles.get(h) == "empty":
+            h, role = "(no header)", "empty (left out)"
         lines.append(f"  {h:<{width}}  {role:<12} {contract or '-'}")
     for cid in ds.ids():
         lines.append(f"campaign {cid}: {ds.manifest.loc[cid, 'split']}, "
                      f"{report['campaigns'][cid]['rows']} rows")
     return lines + [f"data config written to {path}",
                     f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"]
+
+
+def _table_start(sample: Path, opts) -> str:
+    """Where the table starts, said when not on the first line (a preamble, a unit row)."""
+    if opts.skip_rows == 1 or sample.suffix.lower() != ".csv":
+        return ""
+    preamble = header_line(head_lines(sample), opts.delimiter) or 0
+    units = f", units from line {preamble + 2}" if opts.skip_rows > preamble + 1 else ""
+    left = f" ({preamble} line(s) above it left out)" if preamble else ""
+    return f", header on line {preamble + 1}{left}{units}; rows counted from line {opts.skip_rows + 1}"
+
+
+def _seconds_unit(header: str, opts) -> str:
+    """The unit a numeric time column is read in, said where the header does not give it."""
+    unit = opts.units.get(header, split_unit(header)[1])
+    if unit:
+        return f", in {unit}"
+    return f", in seconds: no unit in the header (data.units={{{header!r}: ms}} if not seconds)"

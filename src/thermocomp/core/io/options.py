@@ -53,12 +53,15 @@ class ReadOptions:
     decimal: str = AUTO
     thousands: str | None = None
     roles: dict = field(default_factory=dict)     # see io.roles; {} (or all empty): none
+    units: dict = field(default_factory=dict)     # header -> unit where the header has none
+    missing_values: list = field(default_factory=list)  # read as missing besides empty, nan
     test_fraction: float | None = None
     val_fraction: float | None = None
     split_order: list = field(default_factory=lambda: list(SPLIT_ORDER))
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
+    skip_rows: int = 1        # internal: lines above a CSV's first data row (preamble, header, units)
 
     def __post_init__(self):
         if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's
@@ -94,6 +97,8 @@ class ReadOptions:
             decimal=_text(cfg, "decimal", AUTO),
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
             roles=_roles(cfg),
+            units=_str_mapping(cfg, "units"),
+            missing_values=_missing_values(cfg),
             test_fraction=_fraction(cfg, "test_fraction"),
             val_fraction=_fraction(cfg, "val_fraction"),
             split_order=_split_order(cfg),
@@ -102,9 +107,9 @@ class ReadOptions:
         return opts
 
     def _check(self) -> None:
-        if self.time not in TIME_FORMATS:
-            raise ContractError(f"data.time must be one of {', '.join(TIME_FORMATS)}, "
-                                f"got {self.time!r}")
+        if self.time not in TIME_FORMATS and "%" not in self.time:
+            raise ContractError(f"data.time must be one of {', '.join(TIME_FORMATS)} or a "
+                                f"strptime format ('%d/%m/%Y %H:%M:%S'), got {self.time!r}")
         bad_split = {k: v for k, v in self.split_overrides.items() if v not in SPLITS}
         if bad_split:
             cid, split = next(iter(bad_split.items()))
@@ -157,6 +162,16 @@ def _roles(cfg: Mapping) -> dict:
     time = value.get("time", AUTO)
     out["time"] = AUTO if time is None else str(time)
     return out
+
+
+def _missing_values(cfg: Mapping) -> list:
+    """``data.missing_values``: what a lab writes for a value not measured (``-``, ``n/a``)."""
+    value = cfg.get("missing_values") or []
+    value = [value] if isinstance(value, str) else value
+    if not all(isinstance(v, str) and v.strip() and not re.search(r"\d", v) for v in value):
+        raise ContractError(f"data.missing_values must be a list of marks without digits (e.g. "
+                            f"['-', 'n/a']), got {cfg.get('missing_values')!r}")
+    return [str(v) for v in value]
 
 
 def _fraction(cfg: Mapping, key: str) -> float | None:

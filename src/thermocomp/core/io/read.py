@@ -94,6 +94,8 @@ INGEST_REPORT = "ingest_report.json"
 MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
 MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
+INTERNAL = ("missing", "skip_rows")   # ReadOptions fields that are no data config key
+DEAD_ROLES = ("E", "T")   # columns said when constant over a whole campaign (a dead channel)
 
 
 # ---------------------------------------------------------------------------
@@ -217,7 +219,7 @@ def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
     for cid, row in manifest.iterrows():
         table, report = read_campaign(root / row["file"], opts)
         periods[cid] = _median_period(table)
-        ranges[cid] = _error_ranges(table)
+        ranges[cid] = _error_ranges(table, DEAD_ROLES)
         yield cid, table, {"file": row["file"], "split": row["split"], **report}
         del table  # before reading the next campaign
     _check_periods(periods, manifest["file"], root, opts.max_period_ratio)
@@ -236,7 +238,7 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
               "campaigns": entries, "repairs": totals("repairs"),
               "columns": {r: list(columns.get(r, {})) for r in ROLE_ORDER},
               **_renamed(entries),
-              "settings": {k: v for k, v in asdict(opts).items() if k != "missing"}}
+              "settings": {k: v for k, v in asdict(opts).items() if k not in INTERNAL}}
     if opts.missing != "repair":
         report["missing"] = totals("missing")
     return report
@@ -386,6 +388,8 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
                             file=path)
     if path.is_file():
         table, report = read_campaign(path, opts)
+        _warn_error_ranges({path.stem: _error_ranges(table, DEAD_ROLES)}, {path.stem: path.name},
+                           path.parent)
         manifest, parts = cut(path, table, report, opts)
         del table
         ids = list(manifest.index if campaigns is None else campaigns)

@@ -21,10 +21,14 @@ from pathlib import Path
 from ...base.errors import listed
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, _roles
+from .timestamps import looks_like_timestamp
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
+# ISO 80000's "quantity / unit" (``delta L / um``, ``Zeit / s``); without spaces round the slash
+# (``dX/um``) only a unit of :data:`UNITS`, so that ``Datum/Zeit`` or ``on/off`` stay names
+_SLASHED = re.compile(r"^(.*?\S)(\s*)/(\s*)(\S+)$")
+_IN_UNIT = re.compile(r"^(.*?\S)\s+(?:in|en)\s+(\S+)$", re.IGNORECASE)   # 'dX in µm' (a known unit)
 _UNSAFE = re.compile(r"[^\w.\-]+")
-_ISO = re.compile(r"\s*\d{4}-\d\d-\d\d[T ]\d\d?:\d\d")
 TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "elapsed", "seconds"})
 PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
@@ -39,6 +43,10 @@ UNITS = {
              "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0))},
 }
 
+# units that say "a machine state" (speeds, loads, positions, on/off)
+STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
+               "on/off", "0/1", "mm/min"}
+
 
 @dataclass
 class Naming:
@@ -50,10 +58,22 @@ class Naming:
 
 
 def split_unit(header: str) -> tuple[str, str | None]:
-    """``('t1', '°C')`` for ``t1(°C)`` or ``t1 [°C]``; ``(header, None)`` without a unit."""
+    """``('t1', '°C')`` for ``t1(°C)``, ``t1 [°C]``, ``t1 / °C`` or ``t1 in °C``; ``(header,
+    None)`` without a unit."""
     match = _UNIT.match(header.strip())
-    return (match.group(1).strip(), match.group(2).strip()) if match and match.group(1).strip() \
-        else (header.strip(), None)
+    if match and match.group(1).strip():
+        return match.group(1).strip(), match.group(2).strip()
+    match = _SLASHED.match(header.strip())
+    if match and ((match.group(2) and match.group(3)) or _known_unit(match.group(4))):
+        return match.group(1).strip(), match.group(4)
+    match = _IN_UNIT.match(header.strip())
+    if match and _known_unit(match.group(2)):
+        return match.group(1).strip(), match.group(2)
+    return header.strip(), None
+
+
+def _known_unit(unit: str) -> bool:
+    return any(unit.lower() in known for known in UNITS.values())
 
 
 def active(roles: Mapping) -> bool:
@@ -86,15 +106,21 @@ def contract_columns(headers: Sequence[str], roles: Mapping | None = None,
 
 
 def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapping | None = None,
-           decimal: str = ".", file: Path | None = None) -> Naming:
-    """:func:`contract_columns` with the unit conversions (``roles`` as ``ReadOptions.roles``)."""
-    first = first or {}
+           decimal: str = ".", file: Path | None = None, units: Mapping | None = None) -> Naming:
+    """:func:`contract_columns` with the unit conversions (``roles`` as ``ReadOptions.roles``;
+    ``units``: ``data.units``, header -> unit, for a header that does not say it)."""
+    first, units = first or {}, units or {}
     by_role = active(roles)
     out, problems = Naming(), []
+    problems += [f"data.units names {h!r}, no header" for h in units if h not in headers]
     time_header = _time_header(headers, roles, columns, first, problems)
     ambient = [h for h in headers if h not in columns and _hits(h, roles) == ["ambient"]]
     for header in headers:
         base, unit = split_unit(header)
+        unit = units.get(header, unit)
+        if not header.strip() and header not in columns:
+            out.roles[header] = "empty"      # Excel's trailing separator: the reader checks it is
+            continue
         if header in columns:
             out.names[header], out.roles[header] = columns[header], "data.columns"
             continue
@@ -116,6 +142,9 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             if role(header) is None:
                 out.roles[header] = "unmapped"
                 problems.append(f"{header!r} has no role")
+            elif header in units:
+                _scale(out, header, role(header) if role(header) != "S" else None, unit, header,
+                       problems, None, decimal)
             continue
         if kind is None:
             if not _numeric(first.get(header), decimal):
@@ -157,7 +186,7 @@ def _time_header(headers, roles, columns, first, problems) -> str | None:
                         "data.roles.time)")
     if named:
         return named[0]
-    stamped = [h for h in free if role(h) is None and _ISO.match(str(first.get(h) or ""))]
+    stamped = [h for h in free if role(h) is None and looks_like_timestamp(first.get(h))]
     return stamped[0] if stamped else None
 
 
@@ -179,7 +208,7 @@ def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: s
         what = {"E": "an error's (µm, mm, m, nm)", "T": "a temperature's (°C, K, °F)",
                 "time": "a time's (s, ms, min, h)"}[kind]
         problems.append(f"{header!r}: unit {unit!r} is not {what}")
-    elif scale != (1.0, 0.0):
+    elif scale != (1.0, 0.0) or kind == "time":   # (a time's unit stated: no ms to suspect)
         out.scales[name] = scale
 
 

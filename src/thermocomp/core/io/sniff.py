@@ -9,6 +9,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from .contract import ContractError
+from .layout import header_line
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions
 
 SNIFF_LINES = 50
@@ -28,37 +29,33 @@ def resolved(path: Path, opts: ReadOptions) -> ReadOptions:
     """
     if AUTO not in (opts.delimiter, opts.decimal):
         return opts
-    return detected(_head(path), opts, path)
+    return detected(head_lines(path), opts, path)
 
 
 def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
     """:func:`resolved` on the first (non-empty) lines of a CSV text; ``where`` names it."""
     lines = [ln for ln in lines if ln.strip()][:SNIFF_LINES]
     delimiter = _delimiter(lines, where) if opts.delimiter == AUTO else opts.delimiter
-    decimal = _decimal(lines, delimiter, where) if opts.decimal == AUTO else opts.decimal
+    body = lines[(header_line(lines, delimiter) or 0):]       # below a logger's preamble
+    decimal = _decimal(body, delimiter, where) if opts.decimal == AUTO else opts.decimal
     return replace(opts, delimiter=delimiter, decimal=decimal)
 
 
-def _head(path: Path) -> list[str]:
+def head_lines(path: Path) -> list[str]:
+    """The first lines of a file (its first 64 KiB; undecodable bytes replaced)."""
     with open(path, "rb") as f:
         return f.read(_SNIFF_BYTES).decode("utf-8-sig", "replace").splitlines()
 
 
-def _fields(line: str, sep: str) -> int:
-    try:
-        return len(next(csv.reader([line], delimiter=sep), []))
-    except csv.Error:
-        return 0
-
-
 def _delimiter(lines: list[str], path: Path) -> str:
-    """The separator splitting every sampled line into the same number (> 1) of fields; ``,``
-    (the contract's) for a file of one column."""
-    body = lines[:-1] if len(lines) > 2 else lines       # the last line may be cut short
-    if not body:
+    """The separator splitting every sampled line into the same number (> 1) of fields, below
+    the fewest lines of a logger's preamble (:mod:`.layout`); ``,`` (the contract's) for a file
+    of one column."""
+    if not lines:
         return ","
-    fits = [sep for sep in dict.fromkeys((",", *_OTHER_DELIMITERS))
-            if len({_fields(ln, sep) for ln in body}) == 1 and _fields(body[0], sep) > 1]
+    starts = {sep: header_line(lines, sep) for sep in dict.fromkeys((",", *_OTHER_DELIMITERS))}
+    starts = {sep: k for sep, k in starts.items() if k is not None}
+    fits = [sep for sep, k in starts.items() if k == min(starts.values())]
     if len(fits) > 1:
         raise ContractError(f"the field separator is ambiguous ({' or '.join(map(repr, fits))} "
                             "both split every line alike): set data.delimiter", file=path)

@@ -39,7 +39,8 @@ def open_dataset(root: str | Path, options: Mapping | None = None, *, stream: bo
 
 def _repair_train(ds: Dataset, report: dict, options: Mapping | None) -> None:
     """The train campaigns of a stream read as a batch reads them where they lack a value or
-    look like kelvin (what ``missing="keep"`` lets through)."""
+    look like kelvin (what ``missing="keep"`` lets through); of a one-file record, its train
+    part as a batch cuts the record (there is no file of the part alone)."""
     hot = ReadOptions.from_cfg(options).kelvin_threshold_c
     for cid in ds.ids("train"):
         df = ds.campaigns[cid]

@@ -12,6 +12,7 @@ import pandas as pd
 from ..context import TIME
 from .contract import ContractError
 from .sniff import SNIFF_LINES, detected
+from .timestamps import time_kind
 
 SOURCE = "<stdin>"
 
@@ -24,7 +25,7 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     try:
         df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
-                         thousands=opts.thousands)
+                         thousands=opts.thousands, na_values=list(opts.missing_values))
     except Exception as exc:    # pandas raises several kinds for a bad stream
         raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                             f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
@@ -55,16 +56,18 @@ def stream_seconds(time: pd.Series, time_format: str) -> pd.Series:
     """The stream's ``time`` in seconds since its first row when it holds ISO 8601 timestamps
     (as given otherwise: the numeric check refuses what is no number).  A time that goes back
     is no refusal here: the stream's guard judges it, as on the machine."""
-    first = time.iloc[0]
-    iso = time_format == "iso8601" or (time_format == "auto" and isinstance(first, str)
-                                       and pd.isna(pd.to_numeric(first, errors="coerce")))
-    if not iso:
+    first, kind = time.iloc[0], time_format
+    if kind == "auto" and isinstance(first, str):      # read as a campaign file's
+        kind = time_kind(first.strip(), kind, not pd.isna(pd.to_numeric(first, errors="coerce")),
+                         SOURCE)
+    if kind in ("auto", "seconds"):
         return time
-    stamps = pd.to_datetime(time.astype(str).where(time.notna()), format="ISO8601", utc=True,
-                            errors="coerce")
+    stamps = pd.to_datetime(time.astype(str).where(time.notna()), utc=True, errors="coerce",
+                            format="ISO8601" if kind == "iso8601" else kind)
     bad = stamps.isna() & time.notna()
     if bad.any() or pd.isna(stamps.iloc[0]):
         row = int(np.flatnonzero(bad)[0]) + 1 if bad.any() else 1
-        raise ContractError(f"not an ISO 8601 time (data.time={time_format}: the stream's first "
-                            "row is a timestamp)", file=SOURCE, column=TIME, row=row)
+        what = "an ISO 8601 time" if kind == "iso8601" else f"a time in the format {kind!r}"
+        raise ContractError(f"not {what} (data.time={time_format}: the stream's first row is a "
+                            "timestamp)", file=SOURCE, column=TIME, row=row)
     return (stamps - stamps.iloc[0]).dt.total_seconds()

@@ -6,6 +6,7 @@ from __future__ import annotations
 import contextlib
 import csv
 import re
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -13,17 +14,20 @@ import pyarrow as pa
 import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
+from ...base.log import logger
 from .contract import TIME, ContractError, role
+from .footer import footer, source
+from .layout import header_line, is_unit_row, with_units
 from .manifest import _not_utf8, _utf8_failure
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import naming
 from .separators import misgrouped, thousands_hint, ungrouped
-from .sniff import resolved
+from .sniff import head_lines, resolved
+from .timestamps import described, is_format, parsed, said_if_milliseconds, time_kind, time_type
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
 _CSV_BLOCK_BYTES = 16 << 20
 _PANDAS_INDEX = re.compile(r"__index_level_\d+__")
-_ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
 _CONVERSION_ERROR = re.compile(r"In CSV column #(\d+)")
 _ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
 # A contract name: prefix + identifier-like name (it becomes part of file names: no path
@@ -38,7 +42,7 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                     first: dict | None = None) -> tuple[list[str | None], dict]:
     """Contract names of the file's columns (None: left out by ``data.roles.ignore``) and the
     unit conversions (:mod:`.roles`), checked against the contract's vocabulary."""
-    plan = naming(raw_names, opts.roles, opts.columns, first, opts.decimal, file)
+    plan = naming(raw_names, opts.roles, opts.columns, first, opts.decimal, file, opts.units)
     names: list[str | None] = []
     seen: set[str] = set()
     for raw in raw_names:
@@ -96,20 +100,41 @@ MISSING_TOKENS = ("", "nan", "NaN", "NAN", "-nan", "-NaN")
 
 def _load_csv(path: Path, opts: ReadOptions) -> dict:
     opts = resolved(path, opts)
-    header, first_row = _peek_csv(path, opts.delimiter)
+    header, first_row, skip = _peek_csv(path, opts.delimiter)
+    opts = replace(opts, skip_rows=skip)
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
+    said = footer(path, opts.delimiter, len(header))[0]
+    if said:
+        logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: {said[0]!r})")
     if len(first_row) != len(named):
         raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
     # a column left out (data.roles.ignore) is read under a name no contract column can have
     names = [n if n is not None else f" ignored {i}" for i, n in enumerate(named)]
     types = {n: pa.float64() for n in named if n is not None and n != TIME}
     if TIME in names:
-        types[TIME] = _csv_time_type(path, first_row, names.index(TIME), opts)
-    table = _read_csv_typed(path, names, types, opts)
+        opts = _timed(path, first_row[names.index(TIME)].strip(), opts)
+        types[TIME] = time_type(opts.time, first_row[names.index(TIME)].strip())
+    # a column without a header (Excel's trailing separator) is left out if it holds nothing
+    unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
+    table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
+    _check_unnamed_empty(table, header, names, unnamed, path)
+    if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
+        said_if_milliseconds(_values(table.column(TIME)), path, header[names.index(TIME)])
     return (_converted(_columns(table.select(list(types))), scales), _renames(header, named),
             _rescaled(scales))
+
+
+def _check_unnamed_empty(table: pa.Table, header: list[str], names: list[str], unnamed: dict,
+                         path: Path) -> None:
+    for name in unnamed:
+        column = table.column(name)
+        if column.null_count < len(column):
+            row = int(np.argmax(column.is_valid().to_numpy(zero_copy_only=False)))
+            raise ContractError(f"column {names.index(name) + 1} has no header but holds "
+                                f"{column[row].as_py()!r}: give it a header",
+                                file=path, row=row + 1)
 
 
 def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> None:
@@ -126,13 +151,20 @@ def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> 
                                 f"set data.delimiter={sep!r}{hint}", file=path)
 
 
-def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
-    """Header (stripped names) and first data row, without reading the file."""
+def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str], int]:
+    """Header (stripped names; a unit row's units joined), first data row and the lines above
+    it (a logger's preamble, the header, a unit row: :mod:`.layout`), without reading the file."""
+    preamble = header_line(head_lines(path), delimiter) or 0
     try:
         with open(path, newline="", encoding="utf-8-sig") as f:
+            for _ in range(preamble):
+                f.readline()
             rows = csv.reader(f, delimiter=delimiter)
             header = next(rows, None)
             first = next((r for r in rows if r), None)
+            units = first is not None and header is not None and is_unit_row(first)
+            if units:
+                header, first = with_units(header, first), next((r for r in rows if r), None)
     except UnicodeDecodeError:
         raise _not_utf8(path, delimiter) from None
     except csv.Error as exc:       # binary content (a gzip named .csv): no CSV text
@@ -142,20 +174,15 @@ def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str]]:
         raise ContractError("empty file", file=path)
     if first is None:
         raise ContractError("file has a header but no data rows", file=path)
-    return [name.strip() for name in header], first
+    return [name.strip() for name in header], first, preamble + 1 + units
 
 
-def _csv_time_type(path: Path, first_row: list[str], index: int,
-                   opts: ReadOptions) -> pa.DataType:
-    value = first_row[index].strip()
+def _timed(path: Path, value: str, opts: ReadOptions) -> ReadOptions:
+    """``opts`` with ``time`` the way this file's time column is read (:mod:`.timestamps`)."""
     if not value:
         raise ContractError("missing time value", file=path, column=TIME, row=1)
-    kind = opts.time
-    if kind == "auto":
-        kind = "seconds" if _is_number(value, opts.decimal, opts.thousands) else "iso8601"
-    if kind == "seconds":
-        return pa.float64()
-    return pa.timestamp("ns", tz="UTC" if _ZONE_OFFSET.search(value) else None)
+    number = _is_number(value, opts.decimal, opts.thousands)
+    return replace(opts, time=time_kind(value, opts.time, number, path))
 
 
 def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
@@ -170,13 +197,19 @@ def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
 
 def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=None,
                  use_threads=True, invalid_row_handler=None):
-    read = pacsv.ReadOptions(column_names=names, skip_rows=1, use_threads=use_threads,
+    read = pacsv.ReadOptions(column_names=names, skip_rows=opts.skip_rows, use_threads=use_threads,
                              block_size=_CSV_BLOCK_BYTES)
     parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
     convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
                                    decimal_point=opts.decimal, strings_can_be_null=True,
-                                   null_values=list(MISSING_TOKENS))
+                                   null_values=[*MISSING_TOKENS, *opts.missing_values],
+                                   timestamp_parsers=[opts.time] if is_format(opts.time) else None)
     return dict(read_options=read, parse_options=parse, convert_options=convert)
+
+
+def _input(path: Path, opts: ReadOptions, names: list[str]):
+    """The CSV text Arrow reads: ``path`` without its footer (:mod:`.footer`)."""
+    return source(path, footer(path, opts.delimiter, len(names))[1])
 
 
 def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions) -> pa.Table:
@@ -184,8 +217,8 @@ def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions
     read_as = types if opts.thousands is None else {
         n: pa.string() if pa.types.is_floating(t) else t for n, t in types.items()}
     try:
-        table = pacsv.read_csv(path, **_csv_options(names, opts, types=read_as,
-                                                    include=[n for n in names if n in types]))
+        table = pacsv.read_csv(_input(path, opts, names), **_csv_options(
+            names, opts, types=read_as, include=[n for n in names if n in types]))
     except pa.ArrowInvalid as exc:
         raise _locate_csv_error(path, names, types, opts, exc) from None
     return table if opts.thousands is None else _ungroup(table, types, path, opts)
@@ -229,11 +262,11 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
 
 
 def _bad_cell_error(path, names, column, target, opts) -> ContractError:
-    raw = pacsv.read_csv(path, **_csv_options(names, opts, include=[column],
-                                               types={column: pa.string()})).column(column)
+    raw = pacsv.read_csv(_input(path, opts, names), **_csv_options(
+        names, opts, include=[column], types={column: pa.string()})).column(column)
     number = pa.types.is_floating(target)
     text = ungrouped(raw, opts.thousands, opts.decimal) if number else raw
-    found = _first_cast_failure(text, target)
+    found = _first_cast_failure(text, target, opts.time)
     if found is None:
         return ContractError(f"cannot convert to {target}", file=path, column=column)
     row, value = found[0], raw[found[0]].as_py()
@@ -242,7 +275,9 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
     if hint is None:
         hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
                 and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
-    return ContractError(f"value {value!r} is not {_describe(target)}{hint}",
+    if number and not hint and not re.search(r"\d", str(value)):
+        hint = f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
+    return ContractError(f"value {value!r} is not {_describe(target, opts.time)}{hint}",
                          file=path, column=column, row=row + 1)
 
 
@@ -254,17 +289,18 @@ def _malformed_row_error(path, names, opts, message) -> ContractError:
         return "error"
 
     with contextlib.suppress(pa.ArrowInvalid):
-        pacsv.read_csv(path, **_csv_options(names, opts, include=[names[0]],
-                                            types={names[0]: pa.string()}, use_threads=False,
-                                            invalid_row_handler=remember))
+        pacsv.read_csv(_input(path, opts, names), **_csv_options(
+            names, opts, include=[names[0]], types={names[0]: pa.string()}, use_threads=False,
+            invalid_row_handler=remember))
     if not bad:
         return ContractError(f"unreadable CSV ({message})", file=path)
     row = bad[0]
     return ContractError(f"expected {row.expected_columns} fields, got {row.actual_columns}",
-                         file=path, row=None if row.number is None else row.number - 1)
+                         file=path, row=None if row.number is None else row.number - opts.skip_rows)
 
 
-def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType) -> tuple[int, object] | None:
+def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType,
+                        kind: str = "seconds") -> tuple[int, object] | None:
     """Position and value of the first element that does not cast to ``target``.
 
     Bisects inside the first failing chunk, so the cost is a few casts of
@@ -272,29 +308,26 @@ def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType) -> tuple[i
     """
     offset = 0
     for chunk in values.chunks:
-        if not _casts(chunk, target):
+        if not _casts(chunk, target, kind):
             ok, fails = 0, len(chunk)  # chunk[:ok] casts, chunk[:fails] does not
             while fails - ok > 1:
                 mid = (ok + fails) // 2
-                ok, fails = (mid, fails) if _casts(chunk[:mid], target) else (ok, mid)
+                ok, fails = (mid, fails) if _casts(chunk[:mid], target, kind) else (ok, mid)
             return offset + fails - 1, chunk[fails - 1].as_py()
         offset += len(chunk)
     return None
 
 
-def _casts(values, target: pa.DataType) -> bool:
+def _casts(values, target: pa.DataType, kind: str = "seconds") -> bool:
     try:
-        pc.cast(values, target)
+        parsed(values, target, kind)
     except (pa.ArrowInvalid, pa.ArrowNotImplementedError):
         return False
     return True
 
 
-def _describe(target: pa.DataType) -> str:
-    if pa.types.is_timestamp(target):
-        zone = "with" if target.tz else "without"
-        return f"an ISO 8601 timestamp {zone} zone offset (like the first row)"
-    return "a number"
+def _describe(target: pa.DataType, kind: str = "seconds") -> str:
+    return described(target, kind) if pa.types.is_timestamp(target) else "a number"
 
 
 # ---------------------------------------------------------------------------
@@ -366,12 +399,14 @@ def _parquet_time(column: pa.ChunkedArray, path: Path, opts: ReadOptions) -> pa.
     kind = column.type
     if pa.types.is_string(kind) or pa.types.is_large_string(kind):
         first = _first_valid(column)
-        target = _csv_time_type(path, [first[1] if first else ""], 0, opts)
-        found = _first_cast_failure(column, target)
+        value = str(first[1]).strip() if first else ""
+        kind = _timed(path, value, opts).time
+        target = time_type(kind, value)
+        found = _first_cast_failure(column, target, kind)
         if found is not None:
-            raise ContractError(f"value {found[1]!r} is not {_describe(target)}",
+            raise ContractError(f"value {found[1]!r} is not {_describe(target, kind)}",
                                 file=path, column=TIME, row=found[0] + 1)
-        return pc.cast(column, target)
+        return parsed(column, target, kind)
     if (pa.types.is_floating(kind) or pa.types.is_integer(kind) or pa.types.is_timestamp(kind)
             or pa.types.is_duration(kind)):
         return column

@@ -123,9 +123,10 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
                         file=root / files[cid], column=TIME)
 
 
-def _error_ranges(table: pa.Table) -> dict:
-    """``{E_ column: (peak-to-peak, constant)}`` of one campaign (finite values only)."""
-    names = [name for name in table.column_names if role(name) == "E"]
+def _error_ranges(table: pa.Table, roles: tuple = ("E",)) -> dict:
+    """``{E_ column: (peak-to-peak, constant)}`` of one campaign (finite values only; the
+    columns of ``roles``)."""
+    names = [name for name in table.column_names if role(name) in roles]
     if not names:
         return {}
     # every column at once (a volumetric campaign's 1430 one by one: 30 ms)
@@ -142,8 +143,8 @@ SCALE_FACTOR = 300.0   # a campaign's error range this far off the others' media
 
 
 def _warn_error_ranges(ranges: dict, files: Mapping, root: Path) -> None:
-    """Say what no unit check can refuse but a measurement hardly shows: an ``E_`` column
-    constant over a whole campaign (a dead channel: not measured is an empty cell), and one
+    """Say what no unit check can refuse but a measurement hardly shows: an ``E_`` (or ``T_``)
+    column constant over a whole campaign (a dead channel: not measured is an empty cell), and one
     whose range is :data:`SCALE_FACTOR` times off the other campaigns' median (mm or nm for
     µm).  Said on stderr, not refused: an idle campaign may drift little."""
     columns = {c for r in ranges.values() for c in r}
@@ -156,8 +157,9 @@ def _warn_error_ranges(ranges: dict, files: Mapping, root: Path) -> None:
             if constant:
                 logger.warning(f"{root / files[cid]}, column '{col}': constant over the whole "
                                "campaign (a dead channel?); leave the cells empty where it was not "
-                               "measured")
-            elif len(spans) >= 3:
+                               "measured" + ("" if role(col) == "E" else ", or leave the column "
+                                             "out (data.roles.ignore, data.inputs)"))
+            elif len(spans) >= 3 and role(col) == "E":
                 typical = float(np.median([v for c, v in spans.items() if c != cid]))
                 if span * SCALE_FACTOR < typical or span > SCALE_FACTOR * typical:
                     logger.warning(f"{root / files[cid]}, column '{col}': range {span:.3g} against "
@@ -181,8 +183,8 @@ def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) 
             raise ContractError(f"infinite value {values[row - 1]}", file=path, column=name,
                                 row=row)
         if missing.size == values.size:
-            raise ContractError("column has no valid value (every cell is empty)",
-                                file=path, column=name)
+            raise ContractError("column has no valid value (every cell is empty): not measured? "
+                                "leave it out (data.roles.ignore)", file=path, column=name)
     limit, unit, what = {"E": (opts.max_abs_error, "µm", "error"),
                          "S": (opts.max_abs_state, "", "state")}.get(role(name), (None,) * 3)
     if limit is not None:

@@ -24,8 +24,8 @@ from .commands import groups_of, register, root_name
 # Objects built from `_target_`: `~key` of an argument leaves the constructor's default.
 BUILT = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector", "sim.generator")
 # Config nodes that are free-form maps: `key={...}` adds keys there (Hydra wants `++key={...}`).
-FREE_MAPS = ("data.columns", "data.split_overrides", "sim.generator.effect_params", "design.studies",
-             "model.candidate_defaults")
+FREE_MAPS = ("data.columns", "data.units", "data.split_overrides", "sim.generator.effect_params",
+             "design.studies", "model.candidate_defaults")
 # Another primary config or config folder would escape the check of what Hydra builds.
 CONFIG_FLAGS = ("-cp", "--config-path", "-cn", "--config-name", "-cd", "--config-dir")
 MAX_CHECKED_JOBS = 100   # jobs of a grid sweep composed up front (~0.1-0.3 s each)

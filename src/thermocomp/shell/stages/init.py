@@ -30,7 +30,8 @@ def init(cfg: DictConfig) -> dict:
     sample = sample_file(src, io.ReadOptions.from_cfg(given))
     opts, header, first = head(sample, io.ReadOptions.from_cfg(given))
     roles = proposed_roles(header, dict(zip(header, first)), opts)
-    plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample)
+    plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
+                  opts.units)
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     config = data_config(src, given, opts, roles, defaults)
     ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it

@@ -1,0 +1,74 @@
+"""Where a lab's CSV table starts: lines a logger writes above the header (``Logger: XY-200``,
+``Date: 28.11.2026``) and a row of units under it (``s;°C;°C;µm``).
+
+The header is the first line from which every sampled line splits into the same number (> 1)
+of fields; below a preamble it must hold no number (a data row is never taken for it).  A
+unit row is the line under the header whose every cell is a unit the reader knows (or empty):
+its units join the headers (``T1`` over ``°C`` is ``T1 [°C]``).
+"""
+
+from __future__ import annotations
+
+import csv
+
+from .roles import STATE_UNITS, UNITS, split_unit
+
+MAX_PREAMBLE = 20
+
+
+def cells(line: str, sep: str) -> list[str]:
+    try:
+        return next(csv.reader([line], delimiter=sep), [])
+    except csv.Error:
+        return []
+
+
+def header_line(lines: list[str], sep: str) -> int | None:
+    """Index of the header among ``lines`` (the file's first, physical), None when no line
+    starts a table of ``sep``-separated fields."""
+    widths = [len(cells(ln, sep)) if ln.strip() else None for ln in lines]
+    for k, width in enumerate(widths[:MAX_PREAMBLE + 1]):
+        if width is None or width < 2:
+            continue
+        if k and not _preamble(lines[:k + 1], lines[k + 1:], sep):
+            if not _text(lines[k]):        # bytes that are no text (a gzip file): no preamble
+                return None
+            continue
+        body = [w for w in widths[k + 1:] if w is not None]
+        body = body[:-1] if len(body) > 1 else body        # the last may be cut short
+        if all(w == width for w in body):
+            return k
+    return None
+
+
+def _preamble(above: list[str], below: list[str], sep: str) -> bool:
+    """Lines of text, the last a header (no number in it) over a row holding a number (under
+    a unit row, maybe)."""
+    rows = [ln for ln in below if ln.strip()][:2]
+    return (all(map(_text, above)) and not any(_number(c) for c in cells(above[-1], sep))
+            and any(_number(c) for row in rows for c in cells(row, sep)))
+
+
+def _text(line: str) -> bool:
+    return line.replace("\t", " ").isprintable()
+
+
+def is_unit_row(row: list[str]) -> bool:
+    """Every cell a unit (or empty), at least one."""
+    units = [c.strip().lower().replace(" ", "") for c in row if c.strip()]
+    known = {u for table in UNITS.values() for u in table} | STATE_UNITS | {"-"}
+    return bool(units) and all(u.strip("[]()") in known for u in units)
+
+
+def with_units(header: list[str], units: list[str]) -> list[str]:
+    """``header`` with the unit row's units, where a header says none itself."""
+    return [f"{h} [{u.strip().strip('[]()')}]" if u.strip() and split_unit(h)[1] is None else h
+            for h, u in zip(header, [*units, *[""] * len(header)])]
+
+
+def _number(text: str) -> bool:
+    try:
+        float(text.strip().replace(",", "."))
+    except ValueError:
+        return False
+    return True

@@ -1,0 +1,89 @@
+"""How a ``time`` column of text is read: ISO 8601, a lab's day-first ``28.11.2026 13:05:00``
+(dots: the European order, never month first), or the strptime format ``data.time`` names.
+A date with slashes (``03/11/2026``) is day-first in Europe and month-first in the US: never
+guessed, refused naming ``data.time``."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.compute as pc
+
+from ...base.log import logger
+from .contract import TIME, ContractError
+
+# a first cell that is a date and a time of day (the time column when no header says so)
+_STAMP = re.compile(r"\s*\d{1,4}[-./]\d{1,2}[-./]\d{2,4}[T ]\d\d?:\d\d")
+_DAY_FIRST = re.compile(r"\s*\d{1,2}\.\d{1,2}\.\d{4}[ T]\d{1,2}:\d\d(:\d\d)?\s*")
+_SLASHED = re.compile(r"\s*\d{1,2}/\d{1,2}/\d{2,4}\b")
+_ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
+EXAMPLE = "'%d/%m/%Y %H:%M:%S'"
+
+
+def looks_like_timestamp(text) -> bool:
+    """A date followed by a time of day, in any of the orders :func:`time_kind` knows of."""
+    return bool(_STAMP.match(str(text or "")))
+
+
+def is_format(kind: str) -> bool:
+    """``data.time`` is a strptime format (not ``auto``, ``seconds``, ``iso8601``)."""
+    return "%" in kind
+
+
+def time_kind(value: str, kind: str, number: bool, path: Path) -> str:
+    """``'seconds'``, ``'iso8601'`` or a strptime format for a time column whose first cell is
+    ``value`` (``number``: it reads as one), ``kind`` being ``data.time``."""
+    if kind != "auto":
+        return kind
+    if number:
+        return "seconds"
+    day_first = _DAY_FIRST.fullmatch(value)
+    if day_first:
+        return "%d.%m.%Y %H:%M:%S" if day_first.group(1) else "%d.%m.%Y %H:%M"
+    if _SLASHED.match(value):
+        raise ContractError(f"value {value!r} is a date with slashes, day or month first? set "
+                            f"data.time to its format, e.g. data.time={EXAMPLE} (or "
+                            "'%m/%d/%Y %H:%M:%S')", file=path, column=TIME, row=1)
+    return "iso8601"
+
+
+def time_type(kind: str, value: str) -> pa.DataType:
+    """The Arrow type a time column of ``kind`` is read as (``value``: its first cell)."""
+    if kind == "seconds":
+        return pa.float64()
+    zoned = "%z" in kind if is_format(kind) else bool(_ZONE_OFFSET.search(value))
+    return pa.timestamp("ns", tz="UTC" if zoned else None)
+
+
+def parsed(values, target: pa.DataType, kind: str):
+    """``values`` (text) as ``target``; raises ``pa.ArrowInvalid`` on a cell that is not."""
+    if is_format(kind) and pa.types.is_timestamp(target):
+        stamps = pc.strptime(values, format=kind, unit="ns", error_is_null=False)
+        return stamps if target.tz is None else pc.cast(stamps, target)
+    return pc.cast(values, target)
+
+
+def described(target: pa.DataType, kind: str) -> str:
+    """What a cell of a time column should have been."""
+    if is_format(kind):
+        return f"a time in data.time's format {kind!r}"
+    zone = "with" if target.tz else "without"
+    return (f"an ISO 8601 timestamp {zone} zone offset (like the first row; another format: "
+            f"set data.time to it, e.g. data.time={EXAMPLE})")
+
+
+def said_if_milliseconds(time: np.ndarray, file: Path, header: str) -> None:
+    """Say (not refuse: a slow logger may count seconds) a time column without a unit whose
+    samples are 1000 s or more apart, every step whole thousands: whole seconds in ms, likely
+    (a volumetric cycle of 1200 s is no such step)."""
+    if len(time) < 2 or not np.all(np.isfinite(time)):
+        return
+    steps = np.diff(time)
+    period = float(np.median(steps))
+    if period >= 1000 and np.all(steps % 1000 == 0):
+        logger.warning(f"{file}, column {header!r}: samples {period:g} s apart, in whole thousands: "
+                       f"milliseconds? say so with data.units={{{header!r}: ms}} (or a unit in "
+                       "the header, 'time [ms]')")
