@@ -32,7 +32,9 @@ a one-sample step blames the largest standardised step, always the faulty
 sensor for a single fault) is excluded and the operator recomputed, while more than
 ``r + 1`` sensors remain active (the first at ``exclude_at``, any further one while
 a sensor is out by its error only beyond the alarm band:
-:meth:`SensorMonitor._field_level`); an excluded sensor whose reading returns
+:meth:`SensorMonitor._field_level`); before it, a sensor no other predicts whose drift has
+leaked onto the judged ones is excluded when it explains them
+(:meth:`SensorMonitor._explaining`); an excluded sensor whose reading returns
 within the warning band for a whole window is re-admitted, the sensors due back
 at once judged together (:meth:`SensorMonitor._returning`: after a total dropout
 none could pass alone).  While too few sensors are in to rebuild the field, a
@@ -188,7 +190,8 @@ class SensorMonitor:
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
-              "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell", "_outs")
+              "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
+              "_outs", "_explains")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -211,6 +214,7 @@ class SensorMonitor:
         self._prev_other = np.full(n, np.nan)       # each sensor as the others predict it
         self._last_good = np.zeros(n)               # last reading while the sensor was in
         self._by_field = np.zeros(n, dtype=bool)     # excluded by its self-prediction error
+        self._explains = np.zeros(n, dtype=bool)     # excluded as explaining the others' errors
         self._dropped = np.zeros(n, dtype=bool)      # its last detector to fire was a dropout
         # samples the next step spans (1 + missing ones since the last reading): the jump limit
         # is per sample (a warm-up across 6 missing rows read as a 4 °C jump, re-referenced away)
@@ -513,6 +517,16 @@ class SensorMonitor:
         level, err = self._judge()
         while (self.adaptive and (self._judged & (level >= self._field_level())).any()
                and self._active.sum() > self.min_active_):
+            u = self._explaining(level)
+            if u is not None:
+                out = np.flatnonzero(self._judged & (level >= self._field_level()))
+                named = ", ".join(f"{self.names[i]} {err[i]:+.2g} °C" for i in out)
+                self._exclude(u, f"drift: its reading explains the others' self-prediction errors "
+                                 f"({named} over the last {self.confirm} samples)", time, events,
+                              by_field=True)
+                self._explains[u] = True
+                level, err = self._judge()
+                continue
             # the culprit is the largest self-prediction error of paper 002 (Eq. 7: the sensor
             # against the field fitted to all active sensors, itself included: |E|(1-h) of the
             # leave-one-out error E), among all judged sensors, in alarm or not.  Not the
@@ -534,6 +548,41 @@ class SensorMonitor:
                                   by_field=True)
             level, err = self._judge()
         return level, err
+
+    def _explaining(self, level: np.ndarray) -> int | None:
+        """An active sensor no other predicts whose reading explains the judged sensors out of
+        band: with it out of the fit, every judged sensor within the band and those out of it
+        still judged.  Such a sensor still weighs a little in the others' predictions (its
+        leverage is below 1: T_table at 0.998 weighs 0.054 in T_xdrive's), so its drift, unseen
+        by itself, leaks onto them; the culprit rule below, blind to it, then took out a healthy
+        sensor (T_bed_right, which only hid T_xdrive's error).  Of several, the best
+        single-fault explanation: the largest standardised residual.  ``None`` if none does."""
+        out = self._judged & (level >= self._field_level())
+        band = self.warning_c if self._field_level() == WARNING else self.alarm_c
+        rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
+        X = np.where(np.isfinite(rows), rows, 0.0)
+        # every active sensor's residual in the current fit, standardised: the likelihood ratio
+        # of a fault on it alone; a sensor no other predicts is blamed only as the best of all
+        r = (X - X[:, self._active] @ self._M.T).mean(axis=0)
+        z = np.where(self._active, np.abs(r) / np.sqrt(np.maximum(1 - self._lev, 1e-12)), -1.0)
+        n, best, best_z = len(self.names), None, float(np.max(np.where(self._judged, z, -1.0)))
+        for u in np.flatnonzero(self._active & ~self._observable & (z > best_z)):
+            trial = self._active.copy()
+            trial[u] = False
+            if trial.sum() < self.min_active_:
+                continue
+            M, h = self.pod.operator(trial)
+            lev = np.ones(n)
+            lev[trial] = h
+            judged = trial & (lev < self.pod.max_leverage)
+            if (out & ~judged).any():
+                continue
+            E = (X[:, judged] - X[:, trial] @ M[judged].T) / (1 - lev[judged])
+            if (np.abs(E).min(axis=0) >= band[judged]).any():
+                continue
+            if z[u] > best_z:
+                best, best_z = int(u), float(z[u])
+        return best
 
     def _readmit(self, d, finite, instant, time, events) -> bool:
         """Re-admission: back within the warning band for a whole window, no detector firing
@@ -562,6 +611,7 @@ class SensorMonitor:
             self._jumps[j] = 0
             self._active[j] = True
             self._by_field[j] = False
+            self._explains[j] = False
             self._set_operator()
         return bool(back.any())
 
@@ -595,6 +645,12 @@ class SensorMonitor:
             worst = np.abs((H - H[:, trial] @ M.T) / (1 - lev)).max(axis=0)
         worst[blind] = np.inf
         ok = np.where(blind, ~self._predictable, worst < READMIT * self.warning_c) & trial
+        # one out for explaining the others' errors is vouched for by them: back only if they
+        # stay within the warning band with it in (calm alone let a drifting T_table flap)
+        explains = trial & blind & self._explains
+        if explains.any():
+            judged = trial & ~blind
+            ok[explains] = bool((worst[judged] < self.warning_c[judged]).all())
         return ok, worst
 
     def _set_states(self, level, err, instant, time, events) -> None:
