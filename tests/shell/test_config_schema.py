@@ -108,6 +108,30 @@ def test_a_group_the_command_does_not_read_is_refused_in_one_line(capsys, comman
     assert ", ".join(groups_of(command)) in err[0]
 
 
+@pytest.mark.parametrize("command", ["replay", "monitor", "export", "connect", "serve"])
+def test_model_path_given_to_a_command_with_a_model_key_of_its_own_is_said_to_be_ignored(
+        capsys, command):
+    # replay model_path=<pkl> streamed a model fitted anew on the train split, without a word
+    main([command, "model_path=/nowhere/model.pkl", "data.path=/nowhere"])
+    err = capsys.readouterr().err
+    assert f"model_path is not read by thermocomp {command}" in err
+    assert f"{command}.model=<path> names the model" in err
+
+
+def test_the_commands_with_a_model_key_of_their_own_are_those_named():
+    from thermocomp.shell.config.commands import COMMANDS, MODEL_KEYS
+
+    composed = {c: _compose([], c) for c in COMMANDS}
+    have = {c for c, cfg in composed.items() if "model" in (cfg.get(c) or {})}
+    assert have == set(MODEL_KEYS)
+
+
+@pytest.mark.parametrize("command", ["train", "ingest", "run"])
+def test_model_path_is_not_questioned_where_read_or_in_a_chain(capsys, command):
+    main([command, "model_path=/nowhere/model.pkl", "data.path=/nowhere"])
+    assert "is not read by" not in capsys.readouterr().err
+
+
 def test_a_typo_in_a_key_the_command_reads_still_gets_its_hint(capsys):
     assert main(["serve", "serve.prot=5002"]) == 2
     assert "did you mean 'serve.port'?" in capsys.readouterr().err

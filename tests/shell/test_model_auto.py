@@ -93,11 +93,10 @@ def test_the_test_split_chooses_nothing(two_targets, tmp_path):
 
 def test_the_composite_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
     data, _, _ = two_targets
-    model = tmp_path / "model.pkl"
-    common = [f"data.path={data}", "track=false", f"model_path={model}", "model=auto", PAIR]
+    common = [f"data.path={data}", "track=false", "model=auto", PAIR]
     assert main(["run", *common, *FAST[1:], f"out={tmp_path / 'run'}"]) == 0
-    shutil.copy(tmp_path / "run" / "model.pkl", model)
-    assert main(["replay", *common, f"out={tmp_path / 'replay'}"]) == 0
+    assert main(["replay", *common, f"replay.model={tmp_path / 'run' / 'model.pkl'}",
+                 f"out={tmp_path / 'replay'}"]) == 0     # the run's model, not a refit
     replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
     run = json.loads((tmp_path / "run" / "metrics.json").read_text())
     for t in ("E_A", "E_B"):
@@ -412,17 +411,16 @@ def test_a_candidate_keeps_votes_only_as_far_as_the_folds_are_sure_it_beats_mlr(
 
 def test_a_blend_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
     data, _, _ = two_targets
-    model = tmp_path / "model.pkl"
     three = "model.candidates=[mlr,arx,lagbank]"      # E_B: arx and lagbank validate alike
-    common = [f"data.path={data}", "track=false", f"model_path={model}", "model=auto", three]
+    common = [f"data.path={data}", "track=false", "model=auto", three]
     assert main(["run", *common, *FAST[1:], f"out={tmp_path / 'run'}"]) == 0
     run = json.loads((tmp_path / "run" / "metrics.json").read_text())
     blend = run["targets"]["E_B"]["auto"]
     assert blend["combine"] == "vote" and len(blend["weights"]) == 2
     assert sum(blend["weights"].values()) == pytest.approx(1, abs=1e-3)
     assert blend["chosen"] == max(blend["weights"], key=blend["weights"].get)
-    shutil.copy(tmp_path / "run" / "model.pkl", model)
-    assert main(["replay", *common, f"out={tmp_path / 'replay'}"]) == 0
+    assert main(["replay", *common, f"replay.model={tmp_path / 'run' / 'model.pkl'}",
+                 f"out={tmp_path / 'replay'}"]) == 0
     replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
     for t in ("E_A", "E_B"):
         assert replay["targets"][t]["max_abs_stream_minus_batch"] < 1e-6

@@ -364,6 +364,8 @@ def _command(argv: list[str]) -> int:
     try:
         args = [rooted_override(a) for a in lenient(args)]
         _guarded(overrides.refuse, args)
+        for why in overrides.unread(args, stage):
+            logger.warning(why)
         if not any(a.startswith("-") for a in args):       # a run: composed once
             cfg = _guarded(overrides.compose_checked, args, stage)
             _check_hydra_node(cfg, sweeping=False)

@@ -30,6 +30,13 @@ MODELLING = ("data", "sim", "denoise", "select", "model", "ati", "eval", "calibr
              "compare", "promote", "experiment")
 DEPLOYING = (*MODELLING, "monitor", "adapt")    # the deployed (adaptive) compensator, streamed
 
+# Keys every root config holds (conf/common.yaml) that only these commands read.  Given to a
+# command with a model key of its own (`replay.model`, ...) it is said to be ignored
+# (`replay model_path=<pkl>` streamed a model fitted anew without a word); not refused, as a
+# script may hand every command one list of overrides.
+READ_ONLY_BY = {"model_path": ("select", "train", "evaluate")}
+MODEL_KEYS = {c: f"{c}.model" for c in ("replay", "monitor", "export", "connect", "serve")}
+
 COMMANDS = {
     "simulate": Command(
         "simulate:simulate",

@@ -19,7 +19,7 @@ import re
 from ...base.errors import ConfigError, closest
 from ...base.extras import missing
 from ...base.paths import conf_dir
-from .commands import groups_of, register, root_name
+from .commands import MODEL_KEYS, READ_ONLY_BY, groups_of, register, root_name
 
 # Objects built from `_target_`: `~key` of an argument leaves the constructor's default.
 BUILT = ("model.estimator", "ati.estimator", "denoise.denoiser", "select.selector", "sim.generator")
@@ -150,6 +150,18 @@ def refuse(args: list[str]) -> None:
         if unknown:
             raise ConfigError(f"unknown {key} {unknown[0]!r} in the sweep {arg}; options: "
                               f"{', '.join(options)}")
+
+
+def unread(args: list[str], command: str) -> list[str]:
+    """Why each override of ``args`` that ``command`` ignores is ignored, where the command has a
+    key of its own for what the user likely meant (:data:`~.commands.READ_ONLY_BY`)."""
+    out = []
+    for o in filter(None, map(parse, args)):
+        readers = READ_ONLY_BY.get(o.key_or_group)
+        if readers and command not in readers and command in MODEL_KEYS:
+            out.append(f"{o.key_or_group} is not read by thermocomp {command} (only by "
+                       f"{', '.join(readers)}): {MODEL_KEYS[command]}=<path> names the model it uses")
+    return out
 
 
 def _swept(o) -> list[str] | None:
