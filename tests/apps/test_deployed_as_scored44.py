@@ -212,6 +212,19 @@ def test_a_record_with_a_trimmed_first_row_is_cut_for_the_stream_where_run_cut_i
 
 
 
+def drifted(record: Path, run_out: Path, sensor: str, folder: Path) -> Path:
+    """``folder/drift.csv``: ``record`` with 1 K/h of drift on ``sensor`` from 10 samples into
+    the test part that the run in ``run_out`` cut (its ingest report's row)."""
+    test_first = json.loads((run_out / "ingest_report.json").read_text()
+                            )["campaigns"]["rec_test"]["record_rows"][0]
+    df = pd.read_csv(record)
+    onset = df["time"][test_first + 10]
+    df[sensor] += np.clip(df["time"] - onset, 0, None) / 3600 * 1.0
+    folder.mkdir()
+    df.round(2).to_csv(folder / "drift.csv", index=False)
+    return folder / "drift.csv"
+
+
 def test_monitor_is_silent_on_the_healthy_test_part_and_names_a_planted_drift(runs, data, record,
                                                                               tmp_path):
     """The same machine's test part: no event; with 1 K/h of drift on one sensor from 10 samples
@@ -224,15 +237,8 @@ def test_monitor_is_silent_on_the_healthy_test_part_and_names_a_planted_drift(ru
     assert healthy["events"] == []
     assert all(s["state_counts"]["alarm"] == s["state_counts"]["excluded"] == 0
                for s in healthy["sensors"].values())
-    test_first = json.loads((model.parent / "ingest_report.json").read_text()
-                            )["campaigns"]["rec_test"]["record_rows"][0]
-    df = pd.read_csv(record)
-    onset = df["time"][test_first + 10]
-    df[SENSOR] += np.clip(df["time"] - onset, 0, None) / 3600 * 1.0
-    (tmp_path / "data").mkdir()
-    df.round(2).to_csv(tmp_path / "data" / "drift.csv", index=False)
-    thermocomp("monitor", f"data.path={tmp_path / 'data' / 'drift.csv'}", *args,
-               f"out={tmp_path / 'drift'}")
+    drifting = drifted(record, model.parent, SENSOR, tmp_path / "data")
+    thermocomp("monitor", f"data.path={drifting}", *args, f"out={tmp_path / 'drift'}")
     drift = json.loads((tmp_path / "drift" / "monitor.json").read_text())
     first = [e for e in drift["events"] if e["to"] == "excluded"][0]
     assert first["sensor"] == SENSOR and first["reason"].startswith("drift"), first

@@ -5,11 +5,8 @@ from __future__ import annotations
 
 import json
 
-import numpy as np
-import pandas as pd
-
 from conftest import FAST, thermocomp
-from test_deployed_as_scored44 import record  # noqa: F401  (the module's fixture)
+from test_deployed_as_scored44 import drifted, record  # noqa: F401  (record: the module's fixture)
 
 UNSEEN = "T_table"     # its own mode: observable false, yet it weighs a little in the others' fits
 
@@ -22,14 +19,8 @@ def test_a_drift_no_other_sensor_predicts_is_not_blamed_on_a_healthy_sensor(reco
     stays out while it drifts (calm alone had re-admitted it 10 samples later)."""
     cut = ("data.test_fraction=0.1", *FAST)
     thermocomp("run", f"data.path={record}", *cut, "model=mlr", f"out={tmp_path / 'run'}")
-    test_first = json.loads((tmp_path / "run" / "ingest_report.json").read_text()
-                            )["campaigns"]["rec_test"]["record_rows"][0]
-    df = pd.read_csv(record)
-    onset = df["time"][test_first + 10]
-    df[UNSEEN] += np.clip(df["time"] - onset, 0, None) / 3600 * 1.0
-    (tmp_path / "data").mkdir()
-    df.round(2).to_csv(tmp_path / "data" / "drift.csv", index=False)
-    thermocomp("monitor", f"data.path={tmp_path / 'data' / 'drift.csv'}", *cut,
+    drifting = drifted(record, tmp_path / "run", UNSEEN, tmp_path / "data")
+    thermocomp("monitor", f"data.path={drifting}", *cut,
                f"monitor.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'mon'}")
     report = json.loads((tmp_path / "mon" / "monitor.json").read_text())
     assert report["sensors"][UNSEEN]["observable"] is False
