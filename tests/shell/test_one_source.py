@@ -110,3 +110,20 @@ def test_an_ingest_recorded_before_the_config_hash_is_refused_saying_so(paths, c
     report.write_text(json.dumps(doc))
     refused(["train", *paths["args"]], capsys, "ingest_report.json", "earlier version",
             "run `thermocomp ingest` with this config first")
+
+
+def test_an_ingest_recorded_before_a_reading_option_existed_is_refused_naming_it(paths, capsys):
+    from conftest import refused
+    from thermocomp.shell.cli import main
+    from thermocomp.shell.fingerprint import CONFIG, json_hash
+
+    assert main(["ingest", *paths["args"]]) == 0
+    report = paths["interim"] / "ingest_report.json"
+    doc = json.loads(report.read_text())
+    made = doc["ingested_with"]
+    del made["settings"]["data.missing_values"]     # as the code before that option wrote it
+    made[CONFIG] = json_hash({k: v for k, v in made["settings"].items() if k != "data.path"})
+    report.write_text(json.dumps(doc))
+    refused(["train", *paths["args"]], capsys, "ingest_report.json",
+            "ingested by an earlier version, which had no data.missing_values",
+            "run `thermocomp ingest` with this config first")

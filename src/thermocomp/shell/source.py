@@ -210,6 +210,8 @@ def _changed(cfg: DictConfig, made: dict, want: dict) -> str:
     key = next((k for k in now if was.get(k) != now[k]), None)
     if key is None:
         return f"data.path={cfg.data.path} changed since it was ingested (its files differ)"
+    if key not in was:       # a reading option added since: the ingest's code never read it
+        return f"it was ingested by an earlier version, which had no {key}"
     return f"it was ingested with {key}={was.get(key)!r}, not {now[key]!r}"
 
 
