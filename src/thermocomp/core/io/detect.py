@@ -12,7 +12,8 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
-from .contract import role
+from .contract import MANIFEST, role
+from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
 from .manifest import read_manifest
 from .options import ROLE_PATTERNS
@@ -36,13 +37,26 @@ def sample_file(src: Path, opts) -> Path:
     return src / read_manifest(src, opts)["file"].iloc[0]
 
 
+def encoding(src: Path, opts) -> str:
+    """``data.encoding`` as given, or, given none (UTF-8), ``cp1252`` where the record, or a
+    folder's manifest or first campaign, is not UTF-8 text (a Windows export)."""
+    if opts.encoding != UTF8:
+        return opts.encoding
+    manifest = src / MANIFEST
+    files = [src] if src.is_file() else [manifest] if manifest.is_file() else []
+    if src.is_dir() and files:
+        files.append(sample_file(src, replace(opts, encoding=detect(manifest))))
+    found = [detect(f) for f in files if f.suffix.lower() == ".csv"]
+    return WINDOWS if WINDOWS in found else UTF8
+
+
 def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
     """``(options with the separators detected, header, first row)`` of ``sample``."""
     if sample.suffix.lower() != ".csv":
         table = parquet().read_table(sample).slice(0, 1)
         return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
     opts = resolved(sample, opts)
-    header, first, skip = _peek_csv(sample, opts.delimiter)
+    header, first, skip = _peek_csv(sample, opts.delimiter, opts.encoding)
     return replace(opts, skip_rows=skip), header, first
 
 
@@ -93,7 +107,8 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
     time = (f"time: {times[0]!r}" + (f", timestamps from {origin}" if origin else
                                      _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
-    lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
+    charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
+    lines = [f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
              + _table_start(sample, opts), time,
              f"sample period: {period_s:g} s, {report['rows']} rows"]
     width = max(len(h or "(no header)") for h in header)
@@ -114,7 +129,7 @@ def _table_start(sample: Path, opts) -> str:
     """Where the table starts, said when not on the first line (a preamble, a unit row)."""
     if opts.skip_rows == 1 or sample.suffix.lower() != ".csv":
         return ""
-    preamble = header_line(head_lines(sample), opts.delimiter) or 0
+    preamble = header_line(head_lines(sample, opts.encoding), opts.delimiter) or 0
     units = f", units from line {preamble + 2}" if opts.skip_rows > preamble + 1 else ""
     left = f" ({preamble} line(s) above it left out)" if preamble else ""
     return f", header on line {preamble + 1}{left}{units}; rows counted from line {opts.skip_rows + 1}"

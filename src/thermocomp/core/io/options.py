@@ -11,6 +11,7 @@ import numpy as np
 
 from ...base.params import MAX_COUNT
 from .contract import SPLITS, ContractError
+from .encoding import UTF8, codec
 
 TIME_FORMATS = ("auto", "seconds", "iso8601")
 AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
@@ -52,6 +53,7 @@ class ReadOptions:
     delimiter: str = AUTO
     decimal: str = AUTO
     thousands: str | None = None
+    encoding: str = UTF8          # the CSV files' character set (Python's codec name)
     roles: dict = field(default_factory=dict)     # see io.roles; {} (or all empty): none
     units: dict = field(default_factory=dict)     # header -> unit where the header has none
     missing_values: list = field(default_factory=list)  # read as missing besides empty, nan
@@ -96,6 +98,7 @@ class ReadOptions:
             delimiter=_text(cfg, "delimiter", AUTO),
             decimal=_text(cfg, "decimal", AUTO),
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
+            encoding=codec(_text(cfg, "encoding", UTF8)),
             roles=_roles(cfg),
             units=_str_mapping(cfg, "units"),
             missing_values=_missing_values(cfg),

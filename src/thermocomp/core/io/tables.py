@@ -16,9 +16,9 @@ import pyarrow.csv as pacsv
 
 from ...base.log import logger
 from .contract import TIME, ContractError, role
+from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
 from .footer import footer, source
 from .layout import header_line, is_unit_row, with_units
-from .manifest import _not_utf8, _utf8_failure
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import naming
 from .separators import misgrouped, thousands_hint, ungrouped
@@ -100,12 +100,12 @@ MISSING_TOKENS = ("", "nan", "NaN", "NAN", "-nan", "-NaN")
 
 def _load_csv(path: Path, opts: ReadOptions) -> dict:
     opts = resolved(path, opts)
-    header, first_row, skip = _peek_csv(path, opts.delimiter)
+    header, first_row, skip = _peek_csv(path, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
-    said = footer(path, opts.delimiter, len(header))[0]
+    said = footer(path, opts.delimiter, len(header), opts.encoding)[0]
     if said:
         logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: {said[0]!r})")
     if len(first_row) != len(named):
@@ -151,12 +151,12 @@ def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> 
                                 f"set data.delimiter={sep!r}{hint}", file=path)
 
 
-def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str], int]:
+def _peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list[str], int]:
     """Header (stripped names; a unit row's units joined), first data row and the lines above
     it (a logger's preamble, the header, a unit row: :mod:`.layout`), without reading the file."""
-    preamble = header_line(head_lines(path), delimiter) or 0
+    preamble = header_line(head_lines(path, encoding), delimiter) or 0
     try:
-        with open(path, newline="", encoding="utf-8-sig") as f:
+        with open(path, newline="", encoding=text_codec(encoding)) as f:
             for _ in range(preamble):
                 f.readline()
             rows = csv.reader(f, delimiter=delimiter)
@@ -166,7 +166,7 @@ def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str], int]:
             if units:
                 header, first = with_units(header, first), next((r for r in rows if r), None)
     except UnicodeDecodeError:
-        raise _not_utf8(path, delimiter) from None
+        raise undecodable(path, delimiter, encoding=encoding) from None
     except csv.Error as exc:       # binary content (a gzip named .csv): no CSV text
         raise ContractError(f"not a CSV text file ({exc}); a compressed or binary file "
                             "must be unpacked or saved as .parquet", file=path) from None
@@ -198,7 +198,7 @@ def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
 def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=None,
                  use_threads=True, invalid_row_handler=None):
     read = pacsv.ReadOptions(column_names=names, skip_rows=opts.skip_rows, use_threads=use_threads,
-                             block_size=_CSV_BLOCK_BYTES)
+                             block_size=_CSV_BLOCK_BYTES, encoding=arrow_encoding(opts.encoding))
     parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
     convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
                                    decimal_point=opts.decimal, strings_can_be_null=True,
@@ -209,7 +209,7 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
 
 def _input(path: Path, opts: ReadOptions, names: list[str]):
     """The CSV text Arrow reads: ``path`` without its footer (:mod:`.footer`)."""
-    return source(path, footer(path, opts.delimiter, len(names))[1])
+    return source(path, footer(path, opts.delimiter, len(names), opts.encoding)[1])
 
 
 def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions) -> pa.Table:
@@ -217,10 +217,13 @@ def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions
     read_as = types if opts.thousands is None else {
         n: pa.string() if pa.types.is_floating(t) else t for n, t in types.items()}
     try:
-        table = pacsv.read_csv(_input(path, opts, names), **_csv_options(
-            names, opts, types=read_as, include=[n for n in names if n in types]))
-    except pa.ArrowInvalid as exc:
-        raise _locate_csv_error(path, names, types, opts, exc) from None
+        try:
+            table = pacsv.read_csv(_input(path, opts, names), **_csv_options(
+                names, opts, types=read_as, include=[n for n in names if n in types]))
+        except pa.ArrowInvalid as exc:
+            raise _locate_csv_error(path, names, types, opts, exc) from None
+    except UnicodeDecodeError:     # Arrow transcoding data.encoding: a byte it does not read
+        raise undecodable(path, opts.delimiter, names, opts.encoding) from None
     return table if opts.thousands is None else _ungroup(table, types, path, opts)
 
 
@@ -249,7 +252,7 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
     message = _first_line(exc)
     if "UTF8" in message or _CONVERSION_ERROR.search(message):
         # a cell that is not UTF-8 cannot be read back as text to locate it
-        bad_bytes = _utf8_failure(path, opts.delimiter, names)
+        bad_bytes = first_undecodable(path, opts.delimiter, names, opts.encoding)
         if bad_bytes is not None:
             return bad_bytes
     match = _CONVERSION_ERROR.search(message)

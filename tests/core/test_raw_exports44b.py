@@ -1,0 +1,95 @@
+"""Two more shapes of a lab's raw export: a Windows (cp1252 / Latin-1) file, and the date and the
+time of day in two columns.  Each is read to the values it holds, or refused in one line naming
+the file, the row and the setting that reads it."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from conftest import refused
+from test_raw_exports44 import _record
+from thermocomp.core.io import ContractError, read_dataset
+from thermocomp.shell.cli import main
+
+
+def _windows(path: Path, encoding: str = "cp1252", header=("Zeit [s]", "T1 [°C]", "dX [µm]"),
+             cells: dict | None = None) -> Path:
+    """A Windows export: ``;``-separated, decimal commas, CRLF, in ``encoding`` (° is 0xB0,
+    µ 0xB5); ``cells``: {row: text} replacing T1's cell in that data row."""
+    t, t1, _, e = _record()
+    rows = [f"{a:g};{b:.4f};{c:.4f}".replace(".", ",") for a, b, c in zip(t, t1, e)]
+    for row, text in (cells or {}).items():
+        first, _, last = rows[row - 1].split(";")
+        rows[row - 1] = f"{first};{text};{last}"
+    path.write_bytes(("\r\n".join([";".join(header), *rows]) + "\r\n").encode(encoding))
+    return path
+
+
+@pytest.mark.parametrize("encoding", ["cp1252", "latin-1"])
+def test_a_windows_export_is_refused_naming_data_encoding_and_init_writes_it(tmp_path, capsys,
+                                                                             encoding):
+    # before: refused "byte 0xb0 is not UTF-8 text (save the file as UTF-8)", no setting read it
+    path = _windows(tmp_path / "win.csv", encoding)
+    with pytest.raises(ContractError) as refusal:
+        read_dataset(path, {"roles": {"error": ["dX"]}})
+    assert "byte 0xb0" in str(refusal.value) and "data.encoding=cp1252" in str(refusal.value)
+    assert refusal.value.file == path
+    out = tmp_path / "init"
+    assert main(["init", str(path), f"out={out}"]) == 0
+    assert "win.csv: encoding cp1252 (not UTF-8)" in capsys.readouterr().out
+    config = yaml.safe_load((out / "conf" / "data" / "win.yaml").read_text(encoding="utf-8"))
+    assert config["encoding"] == "cp1252" and config["roles"]["error"] == ["dX"]
+    ds, _ = read_dataset(path, {k: v for k, v in config.items() if k != "defaults"})
+    t, t1, _, e = _record()
+    frame = ds.campaigns["win_train"]
+    assert list(frame.columns) == ["time", "T_T1", "E_dX"]       # '°C' and 'µm' read as units
+    n = len(frame)
+    np.testing.assert_allclose(frame[["time", "T_T1", "E_dX"]], np.c_[t, t1, e][:n], atol=1e-4)
+
+
+def test_a_utf8_file_stays_utf8_in_the_config_init_writes(tmp_path):
+    t, t1, _, e = _record()
+    path = _windows(tmp_path / "utf8.csv", "utf-8")
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    config = yaml.safe_load((tmp_path / "init/conf/data/utf8.yaml").read_text(encoding="utf-8"))
+    assert "encoding" not in config                              # the default: UTF-8
+
+
+def test_a_byte_the_encoding_does_not_read_is_refused_with_its_row_and_column(tmp_path, capsys):
+    path = _windows(tmp_path / "odd.csv", cells={7: "21,55555"})
+    path.write_bytes(path.read_bytes().replace(b"21,55555", b"21\x8155555"))  # 0x81: no cp1252 character
+    out = tmp_path / "init"
+    refused(["init", str(path), "data.encoding=cp1252", f"out={out}"], capsys, str(path),
+            "row 7", "'T1 [°C]'", "byte 0x81 is not cp1252")
+    assert not out.exists()
+
+
+def test_a_folder_written_in_cp1252_reads_its_manifest_with_the_same_encoding(tmp_path):
+    root = tmp_path / "lab"
+    root.mkdir()
+    for cid in ("c1", "c2"):
+        _windows(root / f"{cid}.csv")
+    (root / "campaigns.csv").write_bytes(
+        "campaign;file;split;notes\r\nc1;c1.csv;train;Halle 20 °C\r\nc2;c2.csv;test;µ-Abgleich\r\n"
+        .encode("cp1252"))
+    cfg = {"roles": {"error": ["dX"]}, "encoding": "cp1252"}
+    ds, _ = read_dataset(root, cfg)
+    assert list(ds.manifest["notes"]) == ["Halle 20 °C", "µ-Abgleich"]
+    with pytest.raises(ContractError) as refusal:
+        read_dataset(root, {"roles": {"error": ["dX"]}})
+    assert refusal.value.file == root / "campaigns.csv" and "data.encoding=cp1252" in str(
+        refusal.value)
+    assert main(["init", str(root), f"out={tmp_path / 'init'}"]) == 0
+    config = yaml.safe_load((tmp_path / "init/conf/data/lab.yaml").read_text(encoding="utf-8"))
+    assert config["encoding"] == "cp1252"
+
+
+@pytest.mark.parametrize("value", ["utf-16", "klingon"])
+def test_an_encoding_that_cannot_be_read_is_refused_naming_the_key(tmp_path, capsys, value):
+    path = _windows(tmp_path / "win.csv")
+    refused(["init", str(path), f"data.encoding={value}", f"out={tmp_path / 'init'}"], capsys,
+            "data.encoding", repr(value))
