@@ -7,6 +7,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
 import yaml
 
@@ -93,3 +94,80 @@ def test_an_encoding_that_cannot_be_read_is_refused_naming_the_key(tmp_path, cap
     path = _windows(tmp_path / "win.csv")
     refused(["init", str(path), f"data.encoding={value}", f"out={tmp_path / 'init'}"], capsys,
             "data.encoding", repr(value))
+
+
+def _date_and_time(path: Path, header=("Datum", "Uhrzeit"), formats=("%d.%m.%Y", "%H:%M:%S"),
+                   start: str = "2026-10-31 23:45:00") -> Path:
+    """A German logger's export: the date and the time of day in two columns (crossing a
+    midnight and a month), then the record."""
+    t, t1, _, e = _record()
+    stamps = pd.Timestamp(start) + pd.to_timedelta(t, unit="s")
+    rows = [f"{s.strftime(formats[0])};{s.strftime(formats[1])};" + f"{b:.4f};{c:.4f}".replace(
+        ".", ",") for s, b, c in zip(stamps, t1, e)]
+    path.write_text("\n".join([";".join([*header, "T1 [°C]", "dX [µm]"]), *rows]) + "\n",
+                    encoding="utf-8")
+    return path
+
+
+def test_a_date_and_a_time_of_day_in_two_columns_are_one_time_proposed_by_init(tmp_path, capsys):
+    # before: both proposed 'ignore', and the run refused "no 'time' column ... set
+    # data.sample_period_s"
+    path = _date_and_time(tmp_path / "logger.csv")
+    out = tmp_path / "init"
+    assert main(["init", str(path), f"out={out}"]) == 0
+    assert "time: 'Datum' + 'Uhrzeit', timestamps from 2026-10-31T23:45:00" in \
+        capsys.readouterr().out
+    config = yaml.safe_load((out / "conf/data/logger.yaml").read_text(encoding="utf-8"))
+    assert config["roles"]["time"] == ["Datum", "Uhrzeit"]
+    ds, report = read_dataset(path, {"roles": config["roles"]})
+    (cid,) = ds.ids()
+    assert list(ds.campaigns[cid].columns) == ["time", "T_T1", "E_dX"]
+    np.testing.assert_allclose(ds.campaigns[cid]["time"], _record()[0])   # past midnight
+    assert report["campaigns"][cid]["time_origin"] == "2026-10-31T23:45:00"
+
+
+def test_data_time_reads_the_joined_date_and_time_of_day(tmp_path, capsys):
+    path = _date_and_time(tmp_path / "us.csv", ("Date", "Time"), ("%m/%d/%Y", "%I:%M:%S %p"))
+    roles = {"error": ["dX"], "time": ["Date", "Time"]}
+    with pytest.raises(ContractError) as refusal:        # day or month first: never guessed
+        read_dataset(path, {"roles": roles})
+    assert "data.time=" in str(refusal.value)
+    ds, report = read_dataset(path, {"roles": roles, "time": "%m/%d/%Y %I:%M:%S %p"})
+    np.testing.assert_allclose(ds.campaigns["us"]["time"], _record()[0])
+    assert report["campaigns"]["us"]["time_origin"] == "2026-10-31T23:45:00"
+
+
+def test_a_time_of_day_cell_out_of_format_is_refused_naming_its_row(tmp_path, capsys):
+    path = _date_and_time(tmp_path / "logger.csv")
+    lines = path.read_text(encoding="utf-8").splitlines()
+    lines[9] = lines[9].replace(":", ".", 1)               # '00.33:00'
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    out = tmp_path / "init"
+    refused(["init", str(path), f"out={out}"], capsys, str(path), "column 'time'", "row 9",
+            "date and the time of day joined")
+    assert not out.exists()
+
+
+@pytest.mark.parametrize("time, says", [("Uhrzeit", "time of day without its date"),
+                                        ("Datum", "date without a time of day")])
+def test_a_time_of_day_or_a_date_alone_is_refused_not_read_wrapped(tmp_path, capsys, time, says):
+    # a time of day alone goes back at midnight; a date alone repeats over a day
+    path = _date_and_time(tmp_path / "logger.csv")
+    other = {"Uhrzeit": "Datum", "Datum": "Uhrzeit"}[time]
+    out = tmp_path / "init"
+    refused(["init", str(path), f"data.roles.time={time}", f"data.roles.ignore=[{other}]",
+             "data.roles.error=[dX]", f"out={out}"], capsys, str(path), says, "data.roles.time=[")
+    assert not out.exists()
+    path = _date_and_time(tmp_path / "zeit.csv", ("Datum", "Zeit"))   # 'Zeit' reads as a time
+    ds, _ = read_dataset(path, {"roles": {"error": ["dX"]}})          # joined to its date
+    np.testing.assert_allclose(ds.campaigns["zeit"]["time"], _record()[0])
+
+
+def test_a_parquet_record_joins_its_date_and_time_of_day_too(tmp_path):
+    t, t1, _, e = _record()
+    stamps = pd.Timestamp("2026-10-31 23:45:00") + pd.to_timedelta(t, unit="s")
+    path = tmp_path / "logger.parquet"
+    pd.DataFrame({"Datum": stamps.strftime("%d.%m.%Y"), "Uhrzeit": stamps.strftime("%H:%M:%S"),
+                  "T1": t1, "dX": e}).to_parquet(path)
+    ds, _ = read_dataset(path, {"roles": {"error": ["dX"], "time": ["Datum", "Uhrzeit"]}})
+    np.testing.assert_allclose(ds.campaigns["logger"][["time", "T_T1"]], np.c_[t, t1])

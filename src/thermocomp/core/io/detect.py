@@ -17,10 +17,10 @@ from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
 from .manifest import read_manifest
 from .options import ROLE_PATTERNS
-from .roles import STATE_UNITS, UNITS, _numeric, split_unit
+from .roles import STATE_UNITS, UNITS, _numeric, date_and_time_of_day, split_unit
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
-from .timestamps import looks_like_timestamp
+from .timestamps import CLOCK, looks_like_timestamp
 
 _GLOB = re.compile(r"([*?\[])")
 _WORDS = re.compile(r"[\s_.\-]+")
@@ -63,12 +63,16 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
 def proposed_roles(header: list[str], first: dict, opts) -> dict:
     """``data.roles`` as given, else patterns proposed from the headers' units (µm/mm: an
     error, a state unit: a state; a text column: ignore) and words (the air's temperature:
-    ambient)."""
+    ambient); a date column followed by a time of day: the time, ``[date, time of day]``."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
+    if roles["time"] == "auto":               # a date and a time of day: said, as one time
+        roles["time"] = date_and_time_of_day(header, first) or "auto"
     if any(roles[k] for k in ROLE_PATTERNS):
         return roles
     for h in filter(str.strip, header):       # (no header: left out if empty, else refused)
+        if isinstance(roles["time"], list) and h in roles["time"]:
+            continue
         base, unit = split_unit(h)
         unit = (opts.units.get(h, unit) or "").lower().replace(" ", "")
         pattern = _GLOB.sub(r"[\1]", base)
@@ -101,10 +105,10 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
                     name: str) -> list[str]:
     """What ``thermocomp init`` prints: separators, time, sample period, each column's role
     and contract name, the campaigns, and the command to run next."""
-    times = [h for h, n in plan.names.items() if n == "time"]
+    times = [h for h, n in plan.names.items() if n in ("time", CLOCK)]
     # timestamps: the first as read, so that a day read as the month shows
     origin = report["campaigns"][ds.ids()[0]].get("time_origin")
-    time = (f"time: {times[0]!r}" + (f", timestamps from {origin}" if origin else
+    time = (f"time: {' + '.join(map(repr, times))}" + (f", timestamps from {origin}" if origin else
                                      _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
     charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
@@ -117,7 +121,7 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
         role = plan.roles.get(h, "ignore") if contract else "ignore (left out)"
         if plan.roles.get(h) == "empty":
             h, role = "(no header)", "empty (left out)"
-        lines.append(f"  {h:<{width}}  {role:<12} {contract or '-'}")
+        lines.append(f"  {h:<{width}}  {role:<12} {'time' if contract == CLOCK else contract or '-'}")
     for cid in ds.ids():
         lines.append(f"campaign {cid}: {ds.manifest.loc[cid, 'split']}, "
                      f"{report['campaigns'][cid]['rows']} rows")

@@ -146,7 +146,8 @@ def _text(cfg: Mapping, key: str, default: str) -> str:
 
 
 def _roles(cfg: Mapping) -> dict:
-    """``data.roles`` as ``{error, state, ambient, ignore: list of patterns, time: name|auto}``."""
+    """``data.roles`` as ``{error, state, ambient, ignore: list of patterns, time: name|auto
+    or [date, time of day] (two headers joined into one timestamp)}``."""
     value = cfg.get("roles") or {}
     if not hasattr(value, "items"):
         raise ContractError(f"data.roles must be a mapping, got {value!r}")
@@ -163,7 +164,14 @@ def _roles(cfg: Mapping) -> dict:
                                 f"{value.get(key)!r}")
         out[key] = list(patterns)
     time = value.get("time", AUTO)
-    out["time"] = AUTO if time is None else str(time)
+    if time is not None and not isinstance(time, str) and hasattr(time, "__iter__"):
+        time = list(time)
+        if len(time) != 2 or not all(isinstance(h, str) and h for h in time):
+            raise ContractError(f"data.roles.time must be a header, or two: [date, time of day] "
+                                f"(e.g. [Datum, Uhrzeit]), got {time!r}")
+        out["time"] = time
+    else:
+        out["time"] = AUTO if time is None else str(time)
     return out
 
 

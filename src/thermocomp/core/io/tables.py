@@ -23,7 +23,15 @@ from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import naming
 from .separators import misgrouped, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
-from .timestamps import described, is_format, parsed, said_if_milliseconds, time_kind, time_type
+from .timestamps import (
+    CLOCK,
+    described,
+    is_format,
+    parsed,
+    said_if_milliseconds,
+    time_kind,
+    time_type,
+)
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
 _CSV_BLOCK_BYTES = 16 << 20
@@ -51,11 +59,11 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
             names.append(None)
             continue
         alias = f" (raw name {raw!r})" if name != raw else ""
-        if role(name) is None:
+        if role(name) is None and name != CLOCK:
             raise ContractError(f"column name{alias} has no contract role: expected 'time' or "
                                 "a T_/E_/S_ prefix (map it with data.columns)",
                                 file=file, column=name)
-        if name != TIME and (not _NAME.fullmatch(name) or ".." in name):
+        if name not in (TIME, CLOCK) and (not _NAME.fullmatch(name) or ".." in name):
             raise ContractError(f"column name{alias} is not a prefix plus an identifier-like name "
                                 "(letters, digits, '_', '-', '.'; no path separator, '..', space "
                                 "or control character): map it with data.columns",
@@ -112,9 +120,11 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
         raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
     # a column left out (data.roles.ignore) is read under a name no contract column can have
     names = [n if n is not None else f" ignored {i}" for i, n in enumerate(named)]
-    types = {n: pa.float64() for n in named if n is not None and n != TIME}
-    if TIME in names:
-        opts = _timed(path, first_row[names.index(TIME)].strip(), opts)
+    types = {n: pa.float64() for n in named if n is not None and n not in (TIME, CLOCK)}
+    if CLOCK in names:         # a date and a time of day: read as text, joined, then parsed
+        types.update({TIME: pa.string(), CLOCK: pa.string()})
+    elif TIME in names:
+        opts = _timed(path, first_row[names.index(TIME)].strip(), opts, header[names.index(TIME)])
         types[TIME] = time_type(opts.time, first_row[names.index(TIME)].strip())
     # a column without a header (Excel's trailing separator) is left out if it holds nothing
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
@@ -122,8 +132,10 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     _check_unnamed_empty(table, header, names, unnamed, path)
     if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
         said_if_milliseconds(_values(table.column(TIME)), path, header[names.index(TIME)])
-    return (_converted(_columns(table.select(list(types))), scales), _renames(header, named),
-            _rescaled(scales))
+    columns = _columns(table.select(list(types)))
+    if CLOCK in columns:
+        columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
+    return _converted(columns, scales), _renames(header, named), _rescaled(scales)
 
 
 def _check_unnamed_empty(table: pa.Table, header: list[str], names: list[str], unnamed: dict,
@@ -177,12 +189,27 @@ def _peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], lis
     return [name.strip() for name in header], first, preamble + 1 + units
 
 
-def _timed(path: Path, value: str, opts: ReadOptions) -> ReadOptions:
+def _timed(path: Path, value: str, opts: ReadOptions, header: str | None = None) -> ReadOptions:
     """``opts`` with ``time`` the way this file's time column is read (:mod:`.timestamps`)."""
     if not value:
         raise ContractError("missing time value", file=path, column=TIME, row=1)
     number = _is_number(value, opts.decimal, opts.thousands)
-    return replace(opts, time=time_kind(value, opts.time, number, path))
+    return replace(opts, time=time_kind(value, opts.time, number, path, header))
+
+
+def _joined_time(date, clock, path: Path, opts: ReadOptions):
+    """``data.roles.time=[date, time of day]``: the two columns joined (``'28.11.2026
+    13:05:00'``) and read as one time column is, ``data.time`` applying to the joined text."""
+    text = pc.binary_join_element_wise(pc.utf8_trim_whitespace(pc.cast(date, pa.string())),
+                                       pc.utf8_trim_whitespace(pc.cast(clock, pa.string())), " ")
+    first = _first_valid(text)
+    kind = _timed(path, "" if first is None else first[1], opts).time
+    target = time_type(kind, first[1])
+    found = _first_cast_failure(text, target, kind)
+    if found is not None:
+        raise ContractError(f"value {found[1]!r} (the date and the time of day joined) is not "
+                            f"{_describe(target, kind)}", file=path, column=TIME, row=found[0] + 1)
+    return parsed(text, target, kind)
 
 
 def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
@@ -358,8 +385,11 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
     names = [n for n in named if n is not None]
     # column by column into a dict: Table.set_column copies the schema each time (quadratic in
     # the columns: 2 s for a volumetric campaign's 1483)
-    columns = {name: _parquet_time(col, path, opts) if name == TIME else _parquet_numbers(col, name, path)
-               for name, col in zip(names, table.columns)}
+    raw = (TIME, CLOCK) if CLOCK in names else ()      # a date and a time of day: joined below
+    columns = {name: col if name in raw else _parquet_time(col, path, opts) if name == TIME
+               else _parquet_numbers(col, name, path) for name, col in zip(names, table.columns)}
+    if CLOCK in columns:
+        columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
     return _converted(columns, scales), _renames(list(first), named), _rescaled(scales)
 
 
@@ -369,7 +399,7 @@ def _rescaled(scales: dict) -> list[str]:
 
 
 def _renames(raw: list[str], named: list[str | None]) -> dict[str, str]:
-    return {r: n for r, n in zip(raw, named) if n is not None and n != r}
+    return {r: n for r, n in zip(raw, named) if n not in (None, CLOCK, r)}   # (joined to time)
 
 
 def _first_text(column: pa.ChunkedArray) -> str | None:
