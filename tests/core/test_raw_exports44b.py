@@ -87,6 +87,10 @@ def test_a_folder_written_in_cp1252_reads_its_manifest_with_the_same_encoding(tm
     assert main(["init", str(root), f"out={tmp_path / 'init'}"]) == 0
     config = yaml.safe_load((tmp_path / "init/conf/data/lab.yaml").read_text(encoding="utf-8"))
     assert config["encoding"] == "cp1252"
+    _windows(root / "c2.csv", "utf-8")     # saved again as UTF-8: never read '°C' as 'Â°C'
+    with pytest.raises(ContractError) as refusal:
+        read_dataset(root, cfg)
+    assert refusal.value.file == root / "c2.csv" and "data.encoding=cp1252" in str(refusal.value)
 
 
 @pytest.mark.parametrize("value", ["utf-16", "klingon"])

@@ -62,6 +62,25 @@ def detect(path: Path) -> str:
     return UTF8
 
 
+def check_not_utf8(head: bytes, encoding: str, path: Path) -> None:
+    """Refuse a UTF-8 file (its first bytes ``head``, holding more than ASCII) read with another
+    ``data.encoding``: ``°C`` would be read ``Â°C`` (a folder of a Windows export and a file
+    saved again as UTF-8)."""
+    if encoding == UTF8 or head.isascii():
+        return
+    try:
+        text = head.decode(UTF8)
+    except UnicodeDecodeError as exc:
+        if exc.start < len(head) - 3:      # (not a character cut at the end of ``head``)
+            return
+        text = head[:exc.start].decode(UTF8)
+    word = next((w for w in text.split() if not w.isascii()), None)
+    if word is None:
+        return
+    raise ContractError(f"file is UTF-8 text ({word!r}), not data.encoding={encoding}: save it "
+                        "as the others, or read it with data.encoding=utf-8", file=path)
+
+
 def undecodable(path: Path, delimiter: str, names: list[str] | None = None,
                 encoding: str = UTF8) -> ContractError:
     """The error naming the line (data row, or the header) and field of the first byte

@@ -9,7 +9,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from .contract import ContractError
-from .encoding import UTF8, text_codec
+from .encoding import UTF8, check_not_utf8, text_codec
 from .layout import header_line
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions
 
@@ -45,7 +45,9 @@ def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
 def head_lines(path: Path, encoding: str = UTF8) -> list[str]:
     """The first lines of a file (its first 64 KiB; undecodable bytes replaced)."""
     with open(path, "rb") as f:
-        return f.read(_SNIFF_BYTES).decode(text_codec(encoding), "replace").splitlines()
+        head = f.read(_SNIFF_BYTES)
+    check_not_utf8(head, encoding, path)
+    return head.decode(text_codec(encoding), "replace").splitlines()
 
 
 def _delimiter(lines: list[str], path: Path) -> str:
