@@ -175,3 +175,17 @@ def test_a_parquet_record_joins_its_date_and_time_of_day_too(tmp_path):
                   "T1": t1, "dX": e}).to_parquet(path)
     ds, _ = read_dataset(path, {"roles": {"error": ["dX"], "time": ["Datum", "Uhrzeit"]}})
     np.testing.assert_allclose(ds.campaigns["logger"][["time", "T_T1"]], np.c_[t, t1])
+
+
+def test_a_stream_on_stdin_is_decoded_with_data_encoding():
+    # before: monitor.input=- decoded stdin with the locale's encoding (UTF-8): a Windows
+    # logger's '°' failed to decode, whatever the data config said
+    from io import BytesIO, TextIOWrapper
+
+    from thermocomp.core.io.stdin import stdin_text
+
+    rows = "time;T_1 [°C]\n0;20,5\n"
+    assert stdin_text(TextIOWrapper(BytesIO(rows.encode("cp1252"))), "cp1252") == rows
+    with pytest.raises(ContractError) as refusal:
+        stdin_text(TextIOWrapper(BytesIO(rows.encode("cp1252"))))
+    assert "byte 0xb0" in str(refusal.value) and "data.encoding" in str(refusal.value)
