@@ -12,14 +12,15 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
-from .contract import role
+from .contract import MANIFEST, role
+from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
 from .manifest import read_manifest
 from .options import ROLE_PATTERNS
-from .roles import STATE_UNITS, UNITS, _numeric, split_unit
+from .roles import STATE_UNITS, UNITS, _numeric, date_and_time_of_day, split_unit
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
-from .timestamps import looks_like_timestamp
+from .timestamps import CLOCK, looks_like_timestamp
 
 _GLOB = re.compile(r"([*?\[])")
 _WORDS = re.compile(r"[\s_.\-]+")
@@ -36,25 +37,42 @@ def sample_file(src: Path, opts) -> Path:
     return src / read_manifest(src, opts)["file"].iloc[0]
 
 
+def encoding(src: Path, opts) -> str:
+    """``data.encoding`` as given, or, given none (UTF-8), ``cp1252`` where the record, or a
+    folder's manifest or first campaign, is not UTF-8 text (a Windows export)."""
+    if opts.encoding != UTF8:
+        return opts.encoding
+    manifest = src / MANIFEST
+    files = [src] if src.is_file() else [manifest] if manifest.is_file() else []
+    if src.is_dir() and files:
+        files.append(sample_file(src, replace(opts, encoding=detect(manifest))))
+    found = [detect(f) for f in files if f.suffix.lower() == ".csv"]
+    return WINDOWS if WINDOWS in found else UTF8
+
+
 def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
     """``(options with the separators detected, header, first row)`` of ``sample``."""
     if sample.suffix.lower() != ".csv":
         table = parquet().read_table(sample).slice(0, 1)
         return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
     opts = resolved(sample, opts)
-    header, first, skip = _peek_csv(sample, opts.delimiter)
+    header, first, skip = _peek_csv(sample, opts.delimiter, opts.encoding)
     return replace(opts, skip_rows=skip), header, first
 
 
 def proposed_roles(header: list[str], first: dict, opts) -> dict:
     """``data.roles`` as given, else patterns proposed from the headers' units (µm/mm: an
     error, a state unit: a state; a text column: ignore) and words (the air's temperature:
-    ambient)."""
+    ambient); a date column followed by a time of day: the time, ``[date, time of day]``."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
+    if roles["time"] == "auto":               # a date and a time of day: said, as one time
+        roles["time"] = date_and_time_of_day(header, first) or "auto"
     if any(roles[k] for k in ROLE_PATTERNS):
         return roles
     for h in filter(str.strip, header):       # (no header: left out if empty, else refused)
+        if isinstance(roles["time"], list) and h in roles["time"]:
+            continue
         base, unit = split_unit(h)
         unit = (opts.units.get(h, unit) or "").lower().replace(" ", "")
         pattern = _GLOB.sub(r"[\1]", base)
@@ -87,13 +105,14 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
                     name: str) -> list[str]:
     """What ``thermocomp init`` prints: separators, time, sample period, each column's role
     and contract name, the campaigns, and the command to run next."""
-    times = [h for h, n in plan.names.items() if n == "time"]
+    times = [h for h, n in plan.names.items() if n in ("time", CLOCK)]
     # timestamps: the first as read, so that a day read as the month shows
     origin = report["campaigns"][ds.ids()[0]].get("time_origin")
-    time = (f"time: {times[0]!r}" + (f", timestamps from {origin}" if origin else
+    time = (f"time: {' + '.join(map(repr, times))}" + (f", timestamps from {origin}" if origin else
                                      _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
-    lines = [f"{sample.name}: delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
+    charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
+    lines = [f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
              + _table_start(sample, opts), time,
              f"sample period: {period_s:g} s, {report['rows']} rows"]
     width = max(len(h or "(no header)") for h in header)
@@ -102,7 +121,7 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
         role = plan.roles.get(h, "ignore") if contract else "ignore (left out)"
         if plan.roles.get(h) == "empty":
             h, role = "(no header)", "empty (left out)"
-        lines.append(f"  {h:<{width}}  {role:<12} {contract or '-'}")
+        lines.append(f"  {h:<{width}}  {role:<12} {'time' if contract == CLOCK else contract or '-'}")
     for cid in ds.ids():
         lines.append(f"campaign {cid}: {ds.manifest.loc[cid, 'split']}, "
                      f"{report['campaigns'][cid]['rows']} rows")
@@ -114,7 +133,7 @@ def _table_start(sample: Path, opts) -> str:
     """Where the table starts, said when not on the first line (a preamble, a unit row)."""
     if opts.skip_rows == 1 or sample.suffix.lower() != ".csv":
         return ""
-    preamble = header_line(head_lines(sample), opts.delimiter) or 0
+    preamble = header_line(head_lines(sample, opts.encoding), opts.delimiter) or 0
     units = f", units from line {preamble + 2}" if opts.skip_rows > preamble + 1 else ""
     left = f" ({preamble} line(s) above it left out)" if preamble else ""
     return f", header on line {preamble + 1}{left}{units}; rows counted from line {opts.skip_rows + 1}"

@@ -9,11 +9,14 @@ from pathlib import Path
 
 import pyarrow as pa
 
+from .encoding import UTF8
+
 _TAIL_BYTES = 1 << 14
 MAX_LINES = 5
 
 
-def footer(path: Path, delimiter: str, fields: int) -> tuple[list[str], int]:
+def footer(path: Path, delimiter: str, fields: int, encoding: str = UTF8
+           ) -> tuple[list[str], int]:
     """``(the footer's lines, the bytes before it)``; ``([], size)`` without one."""
     size = path.stat().st_size
     if fields < 2:                         # one column: every line is one field
@@ -24,7 +27,7 @@ def footer(path: Path, delimiter: str, fields: int) -> tuple[list[str], int]:
     lines = tail.splitlines(keepends=True)
     found, cut = [], size
     for raw in reversed(lines[1:] if size > _TAIL_BYTES else lines):
-        text = raw.decode("utf-8", "replace").strip()
+        text = raw.decode(encoding, "replace").strip()
         if text and not _footer_line(text, delimiter):
             break
         if len(found) == MAX_LINES:

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import csv
 import io
 import os
 import re
@@ -12,6 +11,7 @@ import numpy as np
 import pandas as pd
 
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
+from .encoding import UTF8, check_not_utf8, fields, text_codec, undecodable
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
 
 CAMPAIGN_SUFFIXES = (".csv", ".parquet")
@@ -29,7 +29,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     root : str or Path
         Dataset folder.
     opts : ReadOptions, optional
-        Only ``split_overrides`` is used.
+        Its ``split_overrides``, ``delimiter``, ``decimal`` and ``encoding`` are used.
 
     Returns
     -------
@@ -49,7 +49,8 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     root = Path(root)
     path = root / MANIFEST
     held_out = opts.test_fraction is not None or opts.val_fraction is not None
-    raw = _load_manifest(path, opts.delimiter, optional=("split",) if held_out else ())
+    raw = _load_manifest(path, opts.delimiter, optional=("split",) if held_out else (),
+                         encoding=opts.encoding)
     if "split" not in raw.columns:    # every campaign train: data.test_fraction holds some out
         raw.insert(2, "split", "train")
     _check_manifest_rows(raw, path, root)
@@ -61,10 +62,11 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     return manifest
 
 
-def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = ()) -> pd.DataFrame:
+def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
+                   encoding: str = UTF8) -> pd.DataFrame:
     if not path.is_file():
         raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})", file=path)
-    text = _utf8_text(path, "," if delimiter == AUTO else delimiter)
+    text = _text(path, "," if delimiter == AUTO else delimiter, encoding)
     header = text.splitlines()[0] if text.strip() else ""
     try:
         raw = pd.read_csv(io.StringIO(text), sep=_manifest_delimiter(header, delimiter, path,
@@ -83,19 +85,12 @@ def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = ()) -> pd
     return raw.fillna("").apply(lambda s: s.str.strip())
 
 
-def _header_cells(line: str, delimiter: str) -> list[str]:
-    try:
-        return [c.strip() for c in next(csv.reader([line], delimiter=delimiter), [])]
-    except csv.Error:              # binary bytes (a stray carriage return): no CSV header
-        return [c.strip() for c in line.split(delimiter)]
-
-
 def _manifest_delimiter(header: str, delimiter: str, path: Path, optional: tuple = ()) -> str:
     """``data.delimiter``, or ``,`` (the contract's own format) when the manifest's header
     only parses with it; a header that only parses with another separator is refused with
     the setting that reads it (instead of a misleading "column 'campaign' missing")."""
     def parses(sep):
-        return set(MANIFEST_REQUIRED) - set(optional) <= set(_header_cells(header, sep))
+        return set(MANIFEST_REQUIRED) - set(optional) <= set(fields(header, sep))
 
     if delimiter == AUTO:      # detected: the first separator whose header names the columns
         return next((sep for sep in (",", *_OTHER_DELIMITERS) if parses(sep)), ",")
@@ -109,44 +104,15 @@ def _manifest_delimiter(header: str, delimiter: str, path: Path, optional: tuple
     return delimiter
 
 
-def _utf8_text(path: Path, delimiter: str) -> str:
-    """The whole (small) file as text; bytes that are not UTF-8 are refused where they are."""
+def _text(path: Path, delimiter: str, encoding: str) -> str:
+    """The whole (small) file as text; bytes ``data.encoding`` does not read are refused where
+    they are."""
     data = path.read_bytes()
+    check_not_utf8(data, encoding, path)
     try:
-        return data.decode("utf-8-sig")
+        return data.decode(text_codec(encoding))
     except UnicodeDecodeError:
-        raise _not_utf8(path, delimiter) from None
-
-
-def _not_utf8(path: Path, delimiter: str, names: list[str] | None = None) -> ContractError:
-    """The error naming the line (data row, or the header) and field of the first byte that
-    is not UTF-8."""
-    with open(path, "rb") as f:
-        if f.read(2) == b"\x1f\x8b":
-            return ContractError("a gzip-compressed file, not CSV text: unpack it first",
-                                 file=path)
-    return (_utf8_failure(path, delimiter, names)
-            or ContractError("file is not UTF-8 text", file=path))
-
-
-def _utf8_failure(path: Path, delimiter: str, names: list[str] | None) -> ContractError | None:
-    """:func:`_not_utf8`'s error, or None if every line is UTF-8 (read line by line, so a
-    large file is never held whole)."""
-    with open(path, "rb") as f:
-        header = names
-        for line_no, line in enumerate(f):
-            if header is None:  # the file's own header names the fields
-                header = _header_cells(line.decode("utf-8", "replace").lstrip("\ufeff"),
-                                       delimiter)
-            try:
-                line.decode("utf-8")
-            except UnicodeDecodeError as exc:
-                field = line[:exc.start].count(delimiter.encode())
-                column = header[field] if header and field < len(header) else None
-                return ContractError(f"byte 0x{line[exc.start]:02x} is not UTF-8 text "
-                                     "(save the file as UTF-8)", file=path, column=column,
-                                     row=line_no or None)
-    return None
+        raise undecodable(path, delimiter, encoding=encoding) from None
 
 
 def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:

@@ -11,6 +11,7 @@ import numpy as np
 
 from ...base.params import MAX_COUNT
 from .contract import SPLITS, ContractError
+from .encoding import UTF8, codec
 
 TIME_FORMATS = ("auto", "seconds", "iso8601")
 AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
@@ -52,6 +53,7 @@ class ReadOptions:
     delimiter: str = AUTO
     decimal: str = AUTO
     thousands: str | None = None
+    encoding: str = UTF8          # the CSV files' character set (Python's codec name)
     roles: dict = field(default_factory=dict)     # see io.roles; {} (or all empty): none
     units: dict = field(default_factory=dict)     # header -> unit where the header has none
     missing_values: list = field(default_factory=list)  # read as missing besides empty, nan
@@ -96,6 +98,7 @@ class ReadOptions:
             delimiter=_text(cfg, "delimiter", AUTO),
             decimal=_text(cfg, "decimal", AUTO),
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
+            encoding=codec(_text(cfg, "encoding", UTF8)),
             roles=_roles(cfg),
             units=_str_mapping(cfg, "units"),
             missing_values=_missing_values(cfg),
@@ -143,7 +146,8 @@ def _text(cfg: Mapping, key: str, default: str) -> str:
 
 
 def _roles(cfg: Mapping) -> dict:
-    """``data.roles`` as ``{error, state, ambient, ignore: list of patterns, time: name|auto}``."""
+    """``data.roles`` as ``{error, state, ambient, ignore: list of patterns, time: name|auto
+    or [date, time of day] (two headers joined into one timestamp)}``."""
     value = cfg.get("roles") or {}
     if not hasattr(value, "items"):
         raise ContractError(f"data.roles must be a mapping, got {value!r}")
@@ -160,7 +164,14 @@ def _roles(cfg: Mapping) -> dict:
                                 f"{value.get(key)!r}")
         out[key] = list(patterns)
     time = value.get("time", AUTO)
-    out["time"] = AUTO if time is None else str(time)
+    if time is not None and not isinstance(time, str) and hasattr(time, "__iter__"):
+        time = list(time)
+        if len(time) != 2 or not all(isinstance(h, str) and h for h in time):
+            raise ContractError(f"data.roles.time must be a header, or two: [date, time of day] "
+                                f"(e.g. [Datum, Uhrzeit]), got {time!r}")
+        out["time"] = time
+    else:
+        out["time"] = AUTO if time is None else str(time)
     return out
 
 

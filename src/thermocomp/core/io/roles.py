@@ -21,7 +21,7 @@ from pathlib import Path
 from ...base.errors import listed
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, _roles
-from .timestamps import looks_like_timestamp
+from .timestamps import CLOCK, DATE, TIME_OF_DAY, looks_like_timestamp
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # ISO 80000's "quantity / unit" (``delta L / um``, ``Zeit / s``); without spaces round the slash
@@ -113,7 +113,8 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     by_role = active(roles)
     out, problems = Naming(), []
     problems += [f"data.units names {h!r}, no header" for h in units if h not in headers]
-    time_header = _time_header(headers, roles, columns, first, problems)
+    time_header, clock_header = (_time_header(headers, roles, columns, first, problems)
+                                 + [None, None])[:2]
     ambient = [h for h in headers if h not in columns and _hits(h, roles) == ["ambient"]]
     for header in headers:
         base, unit = split_unit(header)
@@ -125,8 +126,11 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             out.names[header], out.roles[header] = columns[header], "data.columns"
             continue
         if header == time_header:
-            out.names[header], out.roles[header] = TIME, "time"
+            out.names[header], out.roles[header] = TIME, "time" if clock_header is None else "date"
             _scale(out, TIME, "time", unit, header, problems, first.get(header), decimal)
+            continue
+        if header == clock_header:             # joined to the date into one timestamp
+            out.names[header], out.roles[header] = CLOCK, "time of day"
             continue
         hits = _hits(header, roles)
         if len(hits) > 1:
@@ -170,24 +174,40 @@ def _hits(header: str, roles: Mapping) -> list[str]:
                                             fnmatch.fnmatchcase(base, p) for p in roles.get(k, ()))]
 
 
-def _time_header(headers, roles, columns, first, problems) -> str | None:
+def _time_header(headers, roles, columns, first, problems) -> list[str]:
+    """The time column's header, or the date's and the time of day's (``data.roles.time``)."""
     if TIME in columns.values():
-        return None
+        return []
     if roles.get("time", AUTO) != AUTO:
-        want = roles["time"]
-        found = [h for h in headers if want in (h, split_unit(h)[0])]
-        if not found:
-            problems.append(f"data.roles.time={want!r} names no header")
-        return found[0] if found else None
+        wanted = roles["time"] if isinstance(roles["time"], list) else [roles["time"]]
+        found = [next((h for h in headers if want in (h, split_unit(h)[0])), None)
+                 for want in wanted]
+        for want, header in zip(wanted, found):
+            if header is None:
+                problems.append(f"data.roles.time={want!r} names no header")
+        return found if None not in found else []
     free = [h for h in headers if h not in columns and not _hits(h, roles)]
-    named = [h for h in free if split_unit(h)[0].lower() in TIME_HEADERS]
+    pair = date_and_time_of_day(free, first)
+    named = [h for h in free if split_unit(h)[0].lower() in TIME_HEADERS and h not in pair]
+    if pair and not named:
+        return pair
     if len(named) > 1:
         problems.append(f"{' and '.join(map(repr, named))} both look like the time (set "
                         "data.roles.time)")
     if named:
-        return named[0]
+        return named[:1]
     stamped = [h for h in free if role(h) is None and looks_like_timestamp(first.get(h))]
-    return stamped[0] if stamped else None
+    return stamped[:1]
+
+
+def date_and_time_of_day(headers: Sequence[str], first: Mapping) -> list[str]:
+    """``[date, time of day]``: the first header whose first cell is a date (``28.11.2026``)
+    followed by one whose first cell is a time of day (``13:05:00``), else ``[]``."""
+    for date, clock in zip(headers, headers[1:]):
+        if DATE.fullmatch(str(first.get(date) or "")) and TIME_OF_DAY.fullmatch(
+                str(first.get(clock) or "")):
+            return [date, clock]
+    return []
 
 
 def _derived(kind: str, base: str, several_ambient: bool) -> str:

@@ -9,6 +9,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from .contract import ContractError
+from .encoding import UTF8, check_not_utf8, text_codec
 from .layout import header_line
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions
 
@@ -29,7 +30,7 @@ def resolved(path: Path, opts: ReadOptions) -> ReadOptions:
     """
     if AUTO not in (opts.delimiter, opts.decimal):
         return opts
-    return detected(head_lines(path), opts, path)
+    return detected(head_lines(path, opts.encoding), opts, path)
 
 
 def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
@@ -41,10 +42,12 @@ def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
     return replace(opts, delimiter=delimiter, decimal=decimal)
 
 
-def head_lines(path: Path) -> list[str]:
+def head_lines(path: Path, encoding: str = UTF8) -> list[str]:
     """The first lines of a file (its first 64 KiB; undecodable bytes replaced)."""
     with open(path, "rb") as f:
-        return f.read(_SNIFF_BYTES).decode("utf-8-sig", "replace").splitlines()
+        head = f.read(_SNIFF_BYTES)
+    check_not_utf8(head, encoding, path)
+    return head.decode(text_codec(encoding), "replace").splitlines()
 
 
 def _delimiter(lines: list[str], path: Path) -> str:

@@ -11,10 +11,27 @@ import pandas as pd
 
 from ..context import TIME
 from .contract import ContractError
+from .encoding import UTF8, text_codec
 from .sniff import SNIFF_LINES, detected
 from .timestamps import time_kind
 
 SOURCE = "<stdin>"
+
+
+def stdin_text(stream, encoding: str = UTF8) -> str:
+    """What ``stream`` (``sys.stdin``) holds, decoded with ``data.encoding`` (a Windows
+    logger's rows: cp1252) rather than the locale's; a byte it does not read is refused."""
+    raw = getattr(stream, "buffer", None)
+    if raw is None:                   # already text (a caller's StringIO)
+        return stream.read()
+    data = raw.read()
+    try:
+        return data.decode(text_codec(encoding))
+    except UnicodeDecodeError as exc:
+        row = data[:exc.start].count(b"\n")
+        raise ContractError(f"byte 0x{data[exc.start]:02x} is not {encoding} text (set "
+                            "data.encoding to the stream's character set, e.g. cp1252)",
+                            file=SOURCE, row=row or None) from None
 
 
 def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict]:

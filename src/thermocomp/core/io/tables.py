@@ -16,14 +16,22 @@ import pyarrow.csv as pacsv
 
 from ...base.log import logger
 from .contract import TIME, ContractError, role
+from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
 from .footer import footer, source
 from .layout import header_line, is_unit_row, with_units
-from .manifest import _not_utf8, _utf8_failure
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import naming
 from .separators import misgrouped, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
-from .timestamps import described, is_format, parsed, said_if_milliseconds, time_kind, time_type
+from .timestamps import (
+    CLOCK,
+    described,
+    is_format,
+    parsed,
+    said_if_milliseconds,
+    time_kind,
+    time_type,
+)
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
 _CSV_BLOCK_BYTES = 16 << 20
@@ -51,11 +59,11 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
             names.append(None)
             continue
         alias = f" (raw name {raw!r})" if name != raw else ""
-        if role(name) is None:
+        if role(name) is None and name != CLOCK:
             raise ContractError(f"column name{alias} has no contract role: expected 'time' or "
                                 "a T_/E_/S_ prefix (map it with data.columns)",
                                 file=file, column=name)
-        if name != TIME and (not _NAME.fullmatch(name) or ".." in name):
+        if name not in (TIME, CLOCK) and (not _NAME.fullmatch(name) or ".." in name):
             raise ContractError(f"column name{alias} is not a prefix plus an identifier-like name "
                                 "(letters, digits, '_', '-', '.'; no path separator, '..', space "
                                 "or control character): map it with data.columns",
@@ -100,21 +108,23 @@ MISSING_TOKENS = ("", "nan", "NaN", "NAN", "-nan", "-NaN")
 
 def _load_csv(path: Path, opts: ReadOptions) -> dict:
     opts = resolved(path, opts)
-    header, first_row, skip = _peek_csv(path, opts.delimiter)
+    header, first_row, skip = _peek_csv(path, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
-    said = footer(path, opts.delimiter, len(header))[0]
+    said = footer(path, opts.delimiter, len(header), opts.encoding)[0]
     if said:
         logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: {said[0]!r})")
     if len(first_row) != len(named):
         raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
     # a column left out (data.roles.ignore) is read under a name no contract column can have
     names = [n if n is not None else f" ignored {i}" for i, n in enumerate(named)]
-    types = {n: pa.float64() for n in named if n is not None and n != TIME}
-    if TIME in names:
-        opts = _timed(path, first_row[names.index(TIME)].strip(), opts)
+    types = {n: pa.float64() for n in named if n is not None and n not in (TIME, CLOCK)}
+    if CLOCK in names:         # a date and a time of day: read as text, joined, then parsed
+        types.update({TIME: pa.string(), CLOCK: pa.string()})
+    elif TIME in names:
+        opts = _timed(path, first_row[names.index(TIME)].strip(), opts, header[names.index(TIME)])
         types[TIME] = time_type(opts.time, first_row[names.index(TIME)].strip())
     # a column without a header (Excel's trailing separator) is left out if it holds nothing
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
@@ -122,8 +132,10 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     _check_unnamed_empty(table, header, names, unnamed, path)
     if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
         said_if_milliseconds(_values(table.column(TIME)), path, header[names.index(TIME)])
-    return (_converted(_columns(table.select(list(types))), scales), _renames(header, named),
-            _rescaled(scales))
+    columns = _columns(table.select(list(types)))
+    if CLOCK in columns:
+        columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
+    return _converted(columns, scales), _renames(header, named), _rescaled(scales)
 
 
 def _check_unnamed_empty(table: pa.Table, header: list[str], names: list[str], unnamed: dict,
@@ -151,12 +163,12 @@ def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> 
                                 f"set data.delimiter={sep!r}{hint}", file=path)
 
 
-def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str], int]:
+def _peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list[str], int]:
     """Header (stripped names; a unit row's units joined), first data row and the lines above
     it (a logger's preamble, the header, a unit row: :mod:`.layout`), without reading the file."""
-    preamble = header_line(head_lines(path), delimiter) or 0
+    preamble = header_line(head_lines(path, encoding), delimiter) or 0
     try:
-        with open(path, newline="", encoding="utf-8-sig") as f:
+        with open(path, newline="", encoding=text_codec(encoding)) as f:
             for _ in range(preamble):
                 f.readline()
             rows = csv.reader(f, delimiter=delimiter)
@@ -166,7 +178,7 @@ def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str], int]:
             if units:
                 header, first = with_units(header, first), next((r for r in rows if r), None)
     except UnicodeDecodeError:
-        raise _not_utf8(path, delimiter) from None
+        raise undecodable(path, delimiter, encoding=encoding) from None
     except csv.Error as exc:       # binary content (a gzip named .csv): no CSV text
         raise ContractError(f"not a CSV text file ({exc}); a compressed or binary file "
                             "must be unpacked or saved as .parquet", file=path) from None
@@ -177,12 +189,27 @@ def _peek_csv(path: Path, delimiter: str) -> tuple[list[str], list[str], int]:
     return [name.strip() for name in header], first, preamble + 1 + units
 
 
-def _timed(path: Path, value: str, opts: ReadOptions) -> ReadOptions:
+def _timed(path: Path, value: str, opts: ReadOptions, header: str | None = None) -> ReadOptions:
     """``opts`` with ``time`` the way this file's time column is read (:mod:`.timestamps`)."""
     if not value:
         raise ContractError("missing time value", file=path, column=TIME, row=1)
     number = _is_number(value, opts.decimal, opts.thousands)
-    return replace(opts, time=time_kind(value, opts.time, number, path))
+    return replace(opts, time=time_kind(value, opts.time, number, path, header))
+
+
+def _joined_time(date, clock, path: Path, opts: ReadOptions):
+    """``data.roles.time=[date, time of day]``: the two columns joined (``'28.11.2026
+    13:05:00'``) and read as one time column is, ``data.time`` applying to the joined text."""
+    text = pc.binary_join_element_wise(pc.utf8_trim_whitespace(pc.cast(date, pa.string())),
+                                       pc.utf8_trim_whitespace(pc.cast(clock, pa.string())), " ")
+    first = _first_valid(text)
+    kind = _timed(path, "" if first is None else first[1], opts).time
+    target = time_type(kind, first[1])
+    found = _first_cast_failure(text, target, kind)
+    if found is not None:
+        raise ContractError(f"value {found[1]!r} (the date and the time of day joined) is not "
+                            f"{_describe(target, kind)}", file=path, column=TIME, row=found[0] + 1)
+    return parsed(text, target, kind)
 
 
 def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
@@ -198,7 +225,7 @@ def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
 def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=None,
                  use_threads=True, invalid_row_handler=None):
     read = pacsv.ReadOptions(column_names=names, skip_rows=opts.skip_rows, use_threads=use_threads,
-                             block_size=_CSV_BLOCK_BYTES)
+                             block_size=_CSV_BLOCK_BYTES, encoding=arrow_encoding(opts.encoding))
     parse = pacsv.ParseOptions(delimiter=opts.delimiter, invalid_row_handler=invalid_row_handler)
     convert = pacsv.ConvertOptions(column_types=types or {}, include_columns=include or [],
                                    decimal_point=opts.decimal, strings_can_be_null=True,
@@ -209,7 +236,7 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
 
 def _input(path: Path, opts: ReadOptions, names: list[str]):
     """The CSV text Arrow reads: ``path`` without its footer (:mod:`.footer`)."""
-    return source(path, footer(path, opts.delimiter, len(names))[1])
+    return source(path, footer(path, opts.delimiter, len(names), opts.encoding)[1])
 
 
 def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions) -> pa.Table:
@@ -217,10 +244,13 @@ def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions
     read_as = types if opts.thousands is None else {
         n: pa.string() if pa.types.is_floating(t) else t for n, t in types.items()}
     try:
-        table = pacsv.read_csv(_input(path, opts, names), **_csv_options(
-            names, opts, types=read_as, include=[n for n in names if n in types]))
-    except pa.ArrowInvalid as exc:
-        raise _locate_csv_error(path, names, types, opts, exc) from None
+        try:
+            table = pacsv.read_csv(_input(path, opts, names), **_csv_options(
+                names, opts, types=read_as, include=[n for n in names if n in types]))
+        except pa.ArrowInvalid as exc:
+            raise _locate_csv_error(path, names, types, opts, exc) from None
+    except UnicodeDecodeError:     # Arrow transcoding data.encoding: a byte it does not read
+        raise undecodable(path, opts.delimiter, names, opts.encoding) from None
     return table if opts.thousands is None else _ungroup(table, types, path, opts)
 
 
@@ -249,7 +279,7 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
     message = _first_line(exc)
     if "UTF8" in message or _CONVERSION_ERROR.search(message):
         # a cell that is not UTF-8 cannot be read back as text to locate it
-        bad_bytes = _utf8_failure(path, opts.delimiter, names)
+        bad_bytes = first_undecodable(path, opts.delimiter, names, opts.encoding)
         if bad_bytes is not None:
             return bad_bytes
     match = _CONVERSION_ERROR.search(message)
@@ -355,8 +385,11 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
     names = [n for n in named if n is not None]
     # column by column into a dict: Table.set_column copies the schema each time (quadratic in
     # the columns: 2 s for a volumetric campaign's 1483)
-    columns = {name: _parquet_time(col, path, opts) if name == TIME else _parquet_numbers(col, name, path)
-               for name, col in zip(names, table.columns)}
+    raw = (TIME, CLOCK) if CLOCK in names else ()      # a date and a time of day: joined below
+    columns = {name: col if name in raw else _parquet_time(col, path, opts) if name == TIME
+               else _parquet_numbers(col, name, path) for name, col in zip(names, table.columns)}
+    if CLOCK in columns:
+        columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
     return _converted(columns, scales), _renames(list(first), named), _rescaled(scales)
 
 
@@ -366,7 +399,7 @@ def _rescaled(scales: dict) -> list[str]:
 
 
 def _renames(raw: list[str], named: list[str | None]) -> dict[str, str]:
-    return {r: n for r, n in zip(raw, named) if n is not None and n != r}
+    return {r: n for r, n in zip(raw, named) if n not in (None, CLOCK, r)}   # (joined to time)
 
 
 def _first_text(column: pa.ChunkedArray) -> str | None:

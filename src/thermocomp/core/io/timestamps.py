@@ -19,8 +19,12 @@ from .contract import TIME, ContractError
 _STAMP = re.compile(r"\s*\d{1,4}[-./]\d{1,2}[-./]\d{2,4}[T ]\d\d?:\d\d")
 _DAY_FIRST = re.compile(r"\s*\d{1,2}\.\d{1,2}\.\d{4}[ T]\d{1,2}:\d\d(:\d\d)?\s*")
 _SLASHED = re.compile(r"\s*\d{1,2}/\d{1,2}/\d{2,4}\b")
+DATE = re.compile(r"\s*(\d{1,2}\.\d{1,2}\.\d{4}|\d{4}-\d\d-\d\d|\d{1,2}/\d{1,2}/\d{2,4})\s*")
+TIME_OF_DAY = re.compile(r"\s*\d{1,2}:\d\d(:\d\d([.,]\d+)?)?\s*")
 _ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
 EXAMPLE = "'%d/%m/%Y %H:%M:%S'"
+CLOCK = " time of day"       # the column joined to the date (data.roles.time: [date, time]); no
+# contract name has a space
 
 
 def looks_like_timestamp(text) -> bool:
@@ -33,13 +37,25 @@ def is_format(kind: str) -> bool:
     return "%" in kind
 
 
-def time_kind(value: str, kind: str, number: bool, path: Path) -> str:
+def time_kind(value: str, kind: str, number: bool, path: Path, header: str | None = None) -> str:
     """``'seconds'``, ``'iso8601'`` or a strptime format for a time column whose first cell is
-    ``value`` (``number``: it reads as one), ``kind`` being ``data.time``."""
+    ``value`` (``number``: it reads as one), ``kind`` being ``data.time``.  A date alone or a
+    time of day alone (``header``: its column's) is refused naming ``data.roles.time``: the
+    one repeats every sample of a day, the other wraps past midnight."""
     if kind != "auto":
         return kind
     if number:
         return "seconds"
+    name = repr(header) if header else "<this column>"
+    if TIME_OF_DAY.fullmatch(value):
+        raise ContractError(f"value {value!r} is a time of day without its date (it would go back "
+                            "at midnight): name the date column with it, data.roles.time=[<date "
+                            f"column>, {name}], or set data.sample_period_s", file=path,
+                            column=TIME, row=1)
+    if DATE.fullmatch(value):
+        raise ContractError(f"value {value!r} is a date without a time of day: name the time-of-"
+                            f"day column with it, data.roles.time=[{name}, <time column>], or set "
+                            "data.sample_period_s", file=path, column=TIME, row=1)
     day_first = _DAY_FIRST.fullmatch(value)
     if day_first:
         return "%d.%m.%Y %H:%M:%S" if day_first.group(1) else "%d.%m.%Y %H:%M"

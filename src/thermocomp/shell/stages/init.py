@@ -15,7 +15,14 @@ from ...base.files import atomic_write_text
 from ...base.paths import conf_dir, resolve
 from ...core import io
 from ...core.continuation import campaign_period
-from ...core.io.detect import data_config, detection_lines, head, proposed_roles, sample_file
+from ...core.io.detect import (
+    data_config,
+    detection_lines,
+    encoding,
+    head,
+    proposed_roles,
+    sample_file,
+)
 from ...core.io.roles import naming
 from ..config.checks import check_config, data_options
 from ..source import open_source
@@ -27,6 +34,7 @@ def init(cfg: DictConfig) -> dict:
     check_config(cfg)         # out never holds data.path: the lab's record is never written beside
     src = resolve(cfg.data.path)
     given = data_options(cfg)
+    given["encoding"] = encoding(src, io.ReadOptions.from_cfg(given))   # a Windows export's
     sample = sample_file(src, io.ReadOptions.from_cfg(given))
     opts, header, first = head(sample, io.ReadOptions.from_cfg(given))
     roles = proposed_roles(header, dict(zip(header, first)), opts)

@@ -26,7 +26,7 @@ from ...core import io
 from ...core.context import TIME
 from ...core.continuation import carried_text, lead_ins
 from ...core.io.source import check_streamed_columns
-from ...core.io.stdin import read_stream
+from ...core.io.stdin import read_stream, stdin_text
 from ..builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
 from ..config.checks import check_config, data_options
 from ..model_store import load_model
@@ -74,8 +74,8 @@ def monitor(cfg: DictConfig) -> dict:
             raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")
         if stdin:
-            df, counts = read_stream(sys.stdin.read(), adaptive.columns_,
-                                     io.ReadOptions.from_cfg(data_options(cfg)))
+            opts = io.ReadOptions.from_cfg(data_options(cfg))
+            df, counts = read_stream(stdin_text(sys.stdin, opts.encoding), adaptive.columns_, opts)
             streamed, missing = {"stdin": df}, ({"stdin": counts} if counts else {})
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")

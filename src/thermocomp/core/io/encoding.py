@@ -1,0 +1,137 @@
+"""``data.encoding``: the character set a lab's CSV file is written in (UTF-8, the contract's;
+a Windows export or logger: cp1252 / Latin-1, where ``°`` is byte 0xB0 and ``µ`` 0xB5).
+
+Arrow transcodes the file itself (``pyarrow.csv.ReadOptions.encoding``); the few lines read
+here (header, preamble, footer, manifest) are decoded with the same codec.  A byte the codec
+does not read is refused where it is (row, column) naming the setting that reads it.
+"""
+
+from __future__ import annotations
+
+import codecs
+import csv
+from pathlib import Path
+
+from .contract import ContractError
+
+UTF8 = "utf-8"
+WINDOWS = "cp1252"       # a Windows export; reads Latin-1's printable range alike
+_CHUNK = 1 << 20
+
+
+def codec(name: str) -> str:
+    """``data.encoding`` as Python names the codec (``latin-1`` -> ``iso8859-1``).
+
+    Raises
+    ------
+    ContractError
+        An unknown codec, or one that does not write ``,;\\n`` as ASCII does (UTF-16: the
+        lines and fields are found in the bytes).
+    """
+    try:
+        found = codecs.lookup(str(name)).name
+    except LookupError:
+        found = None
+    if found is None or "\n,;\t|0.".encode(found) != b"\n,;\t|0.":
+        raise ContractError(f"data.encoding must be a character set that writes ASCII as ASCII "
+                            f"(utf-8, cp1252, latin-1, ...), got {name!r}")
+    return found
+
+
+def text_codec(encoding: str) -> str:
+    """The codec decoding a file's text here: UTF-8 drops a BOM."""
+    return "utf-8-sig" if encoding == UTF8 else encoding
+
+
+def arrow_encoding(encoding: str) -> str:
+    """What ``pyarrow.csv.ReadOptions(encoding=)`` takes: ``utf8`` reads without transcoding."""
+    return "utf8" if encoding == UTF8 else encoding
+
+
+def detect(path: Path) -> str:
+    """``utf-8`` when the whole file reads as UTF-8, else ``cp1252`` (``thermocomp init``; a
+    byte cp1252 does not read either is refused when the file is read with it)."""
+    decoder = codecs.getincrementaldecoder(UTF8)()
+    with open(path, "rb") as f:
+        try:
+            while chunk := f.read(_CHUNK):
+                decoder.decode(chunk)
+            decoder.decode(b"", final=True)
+        except UnicodeDecodeError:
+            return WINDOWS
+    return UTF8
+
+
+def check_not_utf8(head: bytes, encoding: str, path: Path) -> None:
+    """Refuse a UTF-8 file (its first bytes ``head``, holding more than ASCII) read with another
+    ``data.encoding``: ``°C`` would be read ``Â°C`` (a folder of a Windows export and a file
+    saved again as UTF-8)."""
+    if encoding == UTF8 or head.isascii():
+        return
+    try:
+        text = head.decode(UTF8)
+    except UnicodeDecodeError as exc:
+        if exc.start < len(head) - 3:      # (not a character cut at the end of ``head``)
+            return
+        text = head[:exc.start].decode(UTF8)
+    word = next((w for w in text.split() if not w.isascii()), None)
+    if word is None:
+        return
+    raise ContractError(f"file is UTF-8 text ({word!r}), not data.encoding={encoding}: save it "
+                        "as the others, or read it with data.encoding=utf-8", file=path)
+
+
+def undecodable(path: Path, delimiter: str, names: list[str] | None = None,
+                encoding: str = UTF8) -> ContractError:
+    """The error naming the line (data row, or the header) and field of the first byte
+    ``encoding`` does not read, and the ``data.encoding`` that reads it."""
+    with open(path, "rb") as f:
+        if f.read(2) == b"\x1f\x8b":
+            return ContractError("a gzip-compressed file, not CSV text: unpack it first",
+                                 file=path)
+    return (first_undecodable(path, delimiter, names, encoding)
+            or ContractError(f"file is not {encoding} text (set data.encoding)", file=path))
+
+
+def first_undecodable(path: Path, delimiter: str, names: list[str] | None,
+                      encoding: str = UTF8) -> ContractError | None:
+    """:func:`undecodable`'s error, or None if every line reads (line by line, so a large file
+    is never held whole)."""
+    with open(path, "rb") as f:
+        header = names
+        for line_no, line in enumerate(f):
+            if header is None:  # the file's own header names the fields
+                header = fields(line.decode(text_codec(encoding), "replace").lstrip("\ufeff"),
+                               delimiter)
+            try:
+                line.decode(encoding)
+            except UnicodeDecodeError as exc:
+                field = line[:exc.start].count(delimiter.encode())
+                column = header[field] if header and field < len(header) else None
+                return ContractError(f"byte 0x{line[exc.start]:02x} is not {_said(encoding)} "
+                                     f"text{_remedy(line, encoding)}", file=path, column=column,
+                                     row=line_no or None)
+    return None
+
+
+def fields(line: str, delimiter: str) -> list[str]:
+    """A header line's fields, stripped."""
+    try:
+        return [c.strip() for c in next(csv.reader([line], delimiter=delimiter), [])]
+    except csv.Error:              # binary bytes (a stray carriage return): no CSV header
+        return [c.strip() for c in line.split(delimiter)]
+
+
+def _said(encoding: str) -> str:
+    return "UTF-8" if encoding == UTF8 else encoding
+
+
+def _remedy(line: bytes, encoding: str) -> str:
+    """The setting that reads ``line``: a Windows export's ``data.encoding=cp1252``."""
+    if encoding != WINDOWS:
+        try:
+            line.decode(WINDOWS)
+            return f" (a Windows export? set data.encoding={WINDOWS}, or save the file as UTF-8)"
+        except UnicodeDecodeError:
+            pass
+    return " (set data.encoding to the file's character set, or save the file as UTF-8)"
