@@ -189,3 +189,18 @@ def test_a_stream_on_stdin_is_decoded_with_data_encoding():
     with pytest.raises(ContractError) as refusal:
         stdin_text(TextIOWrapper(BytesIO(rows.encode("cp1252"))))
     assert "byte 0xb0" in str(refusal.value) and "data.encoding" in str(refusal.value)
+
+
+@pytest.mark.parametrize("first", ["13:05:00", "28.11.2026"])
+def test_a_stream_whose_time_lacks_its_date_or_time_of_day_is_told_what_a_stream_needs(first):
+    # a stream reads no data.roles: the refusal of a file (name both columns) would send its
+    # user to a setting it does not read
+    import pandas as pd
+
+    from thermocomp.base.errors import ContractError
+    from thermocomp.core.io.stdin import stream_seconds
+
+    with pytest.raises(ContractError) as refused:
+        stream_seconds(pd.Series([first, first]), "auto")
+    assert "a stream's time is one column" in str(refused.value)
+    assert "data.roles" not in str(refused.value)

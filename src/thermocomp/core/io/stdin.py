@@ -76,7 +76,7 @@ def stream_seconds(time: pd.Series, time_format: str) -> pd.Series:
     first, kind = time.iloc[0], time_format
     if kind == "auto" and isinstance(first, str):      # read as a campaign file's
         kind = time_kind(first.strip(), kind, not pd.isna(pd.to_numeric(first, errors="coerce")),
-                         SOURCE)
+                         SOURCE, stream=True)
     if kind in ("auto", "seconds"):
         return time
     stamps = pd.to_datetime(time.astype(str).where(time.notna()), utc=True, errors="coerce",

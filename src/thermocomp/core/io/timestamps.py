@@ -37,25 +37,31 @@ def is_format(kind: str) -> bool:
     return "%" in kind
 
 
-def time_kind(value: str, kind: str, number: bool, path: Path, header: str | None = None) -> str:
+STREAMED = "a stream's time is one column: seconds, or a timestamp with its date"
+
+
+def time_kind(value: str, kind: str, number: bool, path: Path, header: str | None = None,
+              stream: bool = False) -> str:
     """``'seconds'``, ``'iso8601'`` or a strptime format for a time column whose first cell is
     ``value`` (``number``: it reads as one), ``kind`` being ``data.time``.  A date alone or a
-    time of day alone (``header``: its column's) is refused naming ``data.roles.time``: the
-    one repeats every sample of a day, the other wraps past midnight."""
+    time of day alone (``header``: its column's) is refused naming ``data.roles.time`` (a
+    ``stream``'s: what its time must be): the one repeats every sample of a day, the other
+    wraps past midnight."""
     if kind != "auto":
         return kind
     if number:
         return "seconds"
     name = repr(header) if header else "<this column>"
     if TIME_OF_DAY.fullmatch(value):
+        way = STREAMED if stream else (f"name the date column with it, data.roles.time=[<date "
+                                       f"column>, {name}], or set data.sample_period_s")
         raise ContractError(f"value {value!r} is a time of day without its date (it would go back "
-                            "at midnight): name the date column with it, data.roles.time=[<date "
-                            f"column>, {name}], or set data.sample_period_s", file=path,
-                            column=TIME, row=1)
+                            f"at midnight): {way}", file=path, column=TIME, row=1)
     if DATE.fullmatch(value):
-        raise ContractError(f"value {value!r} is a date without a time of day: name the time-of-"
-                            f"day column with it, data.roles.time=[{name}, <time column>], or set "
-                            "data.sample_period_s", file=path, column=TIME, row=1)
+        way = STREAMED if stream else (f"name the time-of-day column with it, data.roles.time="
+                                       f"[{name}, <time column>], or set data.sample_period_s")
+        raise ContractError(f"value {value!r} is a date without a time of day: {way}", file=path,
+                            column=TIME, row=1)
     day_first = _DAY_FIRST.fullmatch(value)
     if day_first:
         return "%d.%m.%Y %H:%M:%S" if day_first.group(1) else "%d.%m.%Y %H:%M"
