@@ -293,6 +293,15 @@ def test_a_loggers_preamble_above_the_header_is_left_out_and_rows_count_from_the
     assert (refusal.value.row, refusal.value.column) == (7, "T_T1")
 
 
+def test_a_title_line_excel_padded_to_the_tables_width_is_no_header(tmp_path):
+    # before: 'Messprotokoll Spindel 3;;;' split into the table's 4 fields and was taken for the
+    # header ("no E_ column"): Excel pads every row of a sheet to its widest
+    path = _logger_export(tmp_path / "titled.csv", ["Messprotokoll Spindel 3;;;"], None)
+    t, t1, t2, e = _record()
+    frame = _read(path, roles={"error": ["dX"]})
+    np.testing.assert_allclose(frame[["time", "T_T1", "E_dX"]], np.c_[t, t1, e], atol=1e-3)
+
+
 def test_a_header_short_of_a_field_is_never_a_data_row_taken_for_the_header(tmp_path):
     path = _excel(tmp_path / "short.csv")
     lines = path.read_text(encoding="utf-8").splitlines()

@@ -1,8 +1,9 @@
 """Where a lab's CSV table starts: lines a logger writes above the header (``Logger: XY-200``,
 ``Date: 28.11.2026``) and a row of units under it (``s;°C;°C;µm``).
 
-The header is the first line from which every sampled line splits into the same number (> 1)
-of fields; below a preamble it must hold no number (a data row is never taken for it).  A
+The header is the first line, most of its fields named, from which every sampled line splits
+into the same number (> 1) of fields; below a preamble it must hold no number (a data row is
+never taken for it).  A
 unit row is the line under the header whose every cell is a unit the reader knows (or empty):
 its units join the headers (``T1`` over ``°C`` is ``T1 [°C]``).
 """
@@ -28,7 +29,7 @@ def header_line(lines: list[str], sep: str) -> int | None:
     starts a table of ``sep``-separated fields."""
     widths = [len(cells(ln, sep)) if ln.strip() else None for ln in lines]
     for k, width in enumerate(widths[:MAX_PREAMBLE + 1]):
-        if width is None or width < 2:
+        if width is None or width < 2 or not _named(cells(lines[k], sep)):
             continue
         if k and not _preamble(lines[:k + 1], lines[k + 1:], sep):
             if not _text(lines[k]):        # bytes that are no text (a gzip file): no preamble
@@ -47,6 +48,13 @@ def _preamble(above: list[str], below: list[str], sep: str) -> bool:
     rows = [ln for ln in below if ln.strip()][:2]
     return (all(map(_text, above)) and not any(_number(c) for c in cells(above[-1], sep))
             and any(_number(c) for row in rows for c in cells(row, sep)))
+
+
+def _named(fields: list[str]) -> bool:
+    """Fields a header could be: most of them named (Excel pads a title line ``Run 3;;;;;``
+    to the table's width, and that line is no header)."""
+    named = sum(1 for f in fields if f.strip())
+    return named >= 2 and 2 * named > len(fields)
 
 
 def _text(line: str) -> bool:
