@@ -333,3 +333,25 @@ def test_init_proposes_the_air_sensor_as_the_ambient(tmp_path):
     path = _write(tmp_path / "hall.csv", header, [t, t1, t2, t2, e])
     assert list(_read(path, roles=roles).columns) == ["time", "T_amb", "T_Luftlager", "T_amb_x",
                                                       "E_dX"]
+
+
+def test_a_loggers_text_export_goes_through_init_as_csv_does(tmp_path, capsys):
+    # before: init read a .txt record as Parquet (a traceback); run read it as CSV
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "log.txt", ["time", "T1", "T2", "dX [um]"], [t, t1, t2, e], sep="\t")
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    assert "E_dX" in capsys.readouterr().out
+    frame = _read(path, roles={"error": ["dX*"]})
+    np.testing.assert_allclose(frame[["time", "T_T1", "E_dX"]], np.c_[t, t1, e], atol=1e-3)
+
+
+@pytest.mark.parametrize("command", ["init", "run"])
+def test_an_excel_workbook_is_refused_in_one_line_saying_to_save_it_as_csv(tmp_path, capsys,
+                                                                           command):
+    # before: init crashed in the Parquet reader; run said "file has a header but no data rows"
+    book = tmp_path / "campaign.xlsx"
+    book.write_bytes(b"PK\x03\x04" + bytes(60))
+    args = [str(book)] if command == "init" else [f"data.path={book}", "track=false"]
+    refused([command, *args, f"out={tmp_path / 'out'}"], capsys, "campaign.xlsx",
+            "save its sheet as CSV")
+    assert not (tmp_path / "out").exists()

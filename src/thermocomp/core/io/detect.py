@@ -15,8 +15,9 @@ from pathlib import Path
 from .contract import MANIFEST, role
 from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
-from .manifest import read_manifest
+from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS
+from .record import check_record_file
 from .roles import STATE_UNITS, UNITS, _numeric, date_and_time_of_day, split_unit
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
@@ -33,6 +34,7 @@ _WHERE = ("interim", "processed")     # where stages write: the project's, not t
 def sample_file(src: Path, opts) -> Path:
     """The file whose header is shown: the record itself, or a folder's first campaign."""
     if src.is_file():
+        check_record_file(src)
         return src
     return src / read_manifest(src, opts)["file"].iloc[0]
 
@@ -46,13 +48,13 @@ def encoding(src: Path, opts) -> str:
     files = [src] if src.is_file() else [manifest] if manifest.is_file() else []
     if src.is_dir() and files:
         files.append(sample_file(src, replace(opts, encoding=detect(manifest))))
-    found = [detect(f) for f in files if f.suffix.lower() == ".csv"]
+    found = [detect(f) for f in files if is_text(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
 
 def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
     """``(options with the separators detected, header, first row)`` of ``sample``."""
-    if sample.suffix.lower() != ".csv":
+    if not is_text(sample):
         table = parquet().read_table(sample).slice(0, 1)
         return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
     opts = resolved(sample, opts)
@@ -131,7 +133,7 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
 
 def _table_start(sample: Path, opts) -> str:
     """Where the table starts, said when not on the first line (a preamble, a unit row)."""
-    if opts.skip_rows == 1 or sample.suffix.lower() != ".csv":
+    if opts.skip_rows == 1 or not is_text(sample):
         return ""
     preamble = header_line(head_lines(sample, opts.encoding), opts.delimiter) or 0
     units = f", units from line {preamble + 2}" if opts.skip_rows > preamble + 1 else ""

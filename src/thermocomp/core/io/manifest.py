@@ -15,6 +15,14 @@ from .encoding import UTF8, check_not_utf8, fields, text_codec, undecodable
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
 
 CAMPAIGN_SUFFIXES = (".csv", ".parquet")
+# a one-file record may also carry a logger's text suffix: read as CSV is (delimiter detected)
+TEXT_SUFFIXES = (".csv", ".txt", ".tsv", ".dat")
+RECORD_SUFFIXES = (*TEXT_SUFFIXES, ".parquet")
+
+
+def is_text(path) -> bool:
+    """Read as delimited text (else Parquet)."""
+    return Path(path).suffix.lower() in TEXT_SUFFIXES
 _UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
 
 # ---------------------------------------------------------------------------

@@ -77,7 +77,7 @@ from .contract import (
 )
 from .manifest import CAMPAIGN_SUFFIXES, read_manifest
 from .options import ROLE_ORDER, ReadOptions
-from .record import cut, hold_out, record_id
+from .record import check_record_file, cut, hold_out, record_id
 from .steps import check_unit_steps
 from .tables import _load_csv, _load_parquet, _ordered, _values, parquet
 from .values import (
@@ -387,6 +387,7 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
         raise ContractError("no such file (data.path: a dataset folder or one record's file)",
                             file=path)
     if path.is_file():
+        check_record_file(path)
         table, report = read_campaign(path, opts)
         _warn_error_ranges({path.stem: _error_ranges(table, DEAD_ROLES)}, {path.stem: path.name},
                            path.parent)

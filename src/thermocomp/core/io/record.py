@@ -18,6 +18,7 @@ import pyarrow as pa
 
 from ...base.log import logger
 from .contract import MANIFEST, ContractError
+from .manifest import RECORD_SUFFIXES
 
 MIN_PART_ROWS = 2          # as a campaign: a reference sample and one to score
 _UNSAFE_ID = re.compile(r"[^\w.\-]+")
@@ -37,6 +38,16 @@ def _counts(n: int, opts) -> dict[str, int]:
     counts = {k: max(1, math.floor(n * v + 0.5)) for k, v in wanted.items() if k != "train"}
     counts["train"] = n - sum(counts.values())
     return {k: counts[k] for k in opts.split_order if k in counts}
+
+
+def check_record_file(path: Path) -> None:
+    """A one-file record is delimited text or Parquet, told by its suffix (an Excel workbook was
+    read as Parquet and crashed in the reader)."""
+    if path.suffix.lower() not in RECORD_SUFFIXES:
+        kind = " (an Excel workbook: save its sheet as CSV)" if path.suffix.lower() in (
+            ".xlsx", ".xls", ".xlsm", ".ods") else ""
+        raise ContractError(f"a record's file is {', '.join(RECORD_SUFFIXES)}, not "
+                            f"{path.suffix or 'a file without a suffix'}{kind}", file=path)
 
 
 def record_id(path: Path) -> str:
