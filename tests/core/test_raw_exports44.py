@@ -355,3 +355,26 @@ def test_an_excel_workbook_is_refused_in_one_line_saying_to_save_it_as_csv(tmp_p
     refused([command, *args, f"out={tmp_path / 'out'}"], capsys, "campaign.xlsx",
             "save its sheet as CSV")
     assert not (tmp_path / "out").exists()
+
+
+def test_a_folder_of_runs_without_a_manifest_is_read_file_by_file_in_natural_order(tmp_path,
+                                                                                  capsys):
+    # before: refused, "manifest not found (a dataset folder needs campaigns.csv)": a lab with
+    # dozens of runs had to write the manifest by hand
+    t, t1, t2, e = _record()
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    for k in (1, 2, 10):        # run_10 is the last run, though it sorts before run_2 as text
+        _write(runs / f"run_{k}.csv", ["time [s]", "T1 [°C]", "T2 [°C]", "dX [um]"],
+               [t, t1 + k, t2 + k, e * k])
+    ds, _ = read_dataset(runs, {"test_fraction": 0.2, "roles": {"error": ["dX*"]}})
+    assert list(ds.manifest.index) == ["run_1", "run_2", "run_10"]
+    assert list(ds.manifest["split"]) == ["train", "train", "test"]
+    np.testing.assert_allclose(ds.campaigns["run_10"]["E_dX"], 10 * e, atol=1e-3)
+    assert main(["init", str(runs), "data.test_fraction=0.2", f"out={tmp_path / 'init'}"]) == 0
+    assert "campaign run_10: test" in capsys.readouterr().out
+    assert sorted(p.name for p in runs.iterdir()) == ["run_1.csv", "run_10.csv", "run_2.csv"]
+    empty = tmp_path / "empty"
+    empty.mkdir()
+    with pytest.raises(ContractError, match="manifest not found"):
+        read_dataset(empty)

@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ...base.log import logger
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
 from .encoding import UTF8, check_not_utf8, fields, text_codec, undecodable
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
@@ -57,8 +58,14 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     root = Path(root)
     path = root / MANIFEST
     held_out = opts.test_fraction is not None or opts.val_fraction is not None
-    raw = _load_manifest(path, opts.delimiter, optional=("split",) if held_out else (),
-                         encoding=opts.encoding)
+    files = [] if path.is_file() else campaign_files(root)
+    if files:    # a lab's folder of runs: every file a train campaign, in natural name order
+        logger.info(f"{root.name}: no {MANIFEST}; its {len(files)} campaign files read as "
+                    "train campaigns in name order (data.test_fraction holds the last out)")
+        raw = pd.DataFrame({"campaign": [f.stem for f in files], "file": [f.name for f in files]})
+    else:
+        raw = _load_manifest(path, opts.delimiter, optional=("split",) if held_out else (),
+                             encoding=opts.encoding)
     if "split" not in raw.columns:    # every campaign train: data.test_fraction holds some out
         raw.insert(2, "split", "train")
     _check_manifest_rows(raw, path, root)
@@ -68,6 +75,18 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     for column in manifest.columns.drop(["file", "split"]):
         manifest[column] = _metadata_column(manifest[column], path, column, opts.decimal)
     return manifest
+
+
+def campaign_files(folder: Path) -> list[Path]:
+    """The campaign files of a folder without a manifest, in natural order (``run_2`` before
+    ``run_10``): a lab's export of one file per run."""
+    def natural(p: Path):
+        return [(0, int(t), "") if t.isdigit() else (1, 0, t.lower())
+                for t in re.split(r"(\d+)", p.name)]
+    if not folder.is_dir():
+        return []
+    return sorted((p for p in folder.iterdir() if p.is_file() and not p.name.startswith(".")
+                   and p.suffix.lower() in CAMPAIGN_SUFFIXES), key=natural)
 
 
 def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
