@@ -378,3 +378,15 @@ def test_a_folder_of_runs_without_a_manifest_is_read_file_by_file_in_natural_ord
     empty.mkdir()
     with pytest.raises(ContractError, match="manifest not found"):
         read_dataset(empty)
+
+
+def test_init_detects_a_windows_encoding_in_a_folder_of_runs_without_a_manifest(tmp_path):
+    t, t1, t2, e = _record()
+    runs = tmp_path / "runs"
+    runs.mkdir()
+    for k in (1, 2, 3):
+        text = _write(tmp_path / "tmp.csv", ["time [s]", "T1 [°C]", "T2 [°C]", "dX [µm]"],
+                      [t, t1, t2, e]).read_text(encoding="utf-8")
+        (runs / f"run_{k}.csv").write_bytes(text.encode("cp1252"))
+    assert main(["init", str(runs), "data.test_fraction=0.3", f"out={tmp_path / 'init'}"]) == 0
+    assert "encoding: cp1252" in (tmp_path / "init" / "conf" / "data" / "runs.yaml").read_text()

@@ -15,7 +15,7 @@ from pathlib import Path
 from .contract import MANIFEST, role
 from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
-from .manifest import is_text, read_manifest
+from .manifest import campaign_files, is_text, read_manifest
 from .options import ROLE_PATTERNS
 from .record import check_record_file
 from .roles import STATE_UNITS, UNITS, _numeric, date_and_time_of_day, split_unit
@@ -45,8 +45,8 @@ def encoding(src: Path, opts) -> str:
     if opts.encoding != UTF8:
         return opts.encoding
     manifest = src / MANIFEST
-    files = [src] if src.is_file() else [manifest] if manifest.is_file() else []
-    if src.is_dir() and files:
+    files = [src] if src.is_file() else [manifest] if manifest.is_file() else campaign_files(src)[:1]
+    if src.is_dir() and manifest.is_file():
         files.append(sample_file(src, replace(opts, encoding=detect(manifest))))
     found = [detect(f) for f in files if is_text(f)]
     return WINDOWS if WINDOWS in found else UTF8
