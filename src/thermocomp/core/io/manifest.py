@@ -10,7 +10,6 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ...base.log import logger
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
 from .encoding import UTF8, check_not_utf8, fields, text_codec, undecodable
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
@@ -19,12 +18,13 @@ CAMPAIGN_SUFFIXES = (".csv", ".parquet")
 # a one-file record may also carry a logger's text suffix: read as CSV is (delimiter detected)
 TEXT_SUFFIXES = (".csv", ".txt", ".tsv", ".dat")
 RECORD_SUFFIXES = (*TEXT_SUFFIXES, ".parquet")
+_UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
 
 
 def is_text(path) -> bool:
     """Read as delimited text (else Parquet)."""
     return Path(path).suffix.lower() in TEXT_SUFFIXES
-_UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
+
 
 # ---------------------------------------------------------------------------
 # Manifest
@@ -60,8 +60,6 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     held_out = opts.test_fraction is not None or opts.val_fraction is not None
     files = [] if path.is_file() else campaign_files(root)
     if files:    # a lab's folder of runs: every file a train campaign, in natural name order
-        logger.info(f"{root.name}: no {MANIFEST}; its {len(files)} campaign files read as "
-                    "train campaigns in name order (data.test_fraction holds the last out)")
         raw = pd.DataFrame({"campaign": [f.stem for f in files], "file": [f.name for f in files]})
     else:
         raw = _load_manifest(path, opts.delimiter, optional=("split",) if held_out else (),

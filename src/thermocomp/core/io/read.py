@@ -75,7 +75,7 @@ from .contract import (
     is_ambient,
     role,
 )
-from .manifest import CAMPAIGN_SUFFIXES, read_manifest
+from .manifest import RECORD_SUFFIXES, read_manifest
 from .options import ROLE_ORDER, ReadOptions
 from .record import check_record_file, cut, hold_out, record_id
 from .steps import check_unit_steps
@@ -383,7 +383,7 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     """The folder campaign files are relative to, the manifest, and the campaigns read:
     a dataset folder's (the last train campaigns held out as ``data.test_fraction`` asks) or
     a one-file record's, cut chronologically (:mod:`.record`)."""
-    if path.suffix.lower() in CAMPAIGN_SUFFIXES and not path.exists():
+    if path.suffix.lower() in RECORD_SUFFIXES and not path.exists():
         raise ContractError("no such file (data.path: a dataset folder or one record's file)",
                             file=path)
     if path.is_file():
@@ -396,6 +396,9 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
         ids = list(manifest.index if campaigns is None else campaigns)
         return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
     manifest = hold_out(read_manifest(path, opts), opts, path)
+    if not (path / MANIFEST).is_file():      # said once per read, not per look at the folder
+        logger.info(f"{path.name}: no {MANIFEST}; its {len(manifest)} campaign files read as "
+                    "train campaigns in name order (data.test_fraction holds the last out)")
     if campaigns is not None:
         manifest = manifest.loc[list(campaigns)]
     return path, manifest, _iter_campaigns(path, manifest, opts)
