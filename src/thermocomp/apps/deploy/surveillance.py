@@ -227,15 +227,20 @@ class SensorMonitor:
         self._quiet = False          # every sensor active and ok: the fast path may run
         self._set_operator()
 
+    def _operator(self, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The POD operator of the sensors ``subset`` and every sensor's leverage in it (1, no
+        prediction, outside it)."""
+        M, h = self.pod.operator(subset)
+        lev = np.ones(len(self.names))
+        lev[subset] = h
+        return M, lev
+
     def _set_operator(self) -> None:
         """Operator, leverages and error scale of the active set; the window's errors redone."""
         active = self._active
         self._all_active = bool(active.all())
-        M, h = self.pod.operator(active) if active.any() else (None, None)
+        M, lev = self._operator(active) if active.any() else (None, np.ones(len(self.names)))
         self._M = M
-        lev = np.ones(len(self.names))
-        if h is not None:
-            lev[active] = h
         self._lev = lev
         self._observable = lev < self.pod.max_leverage
         # enough sensors in to rebuild the others (a total dropout leaves none)
@@ -565,15 +570,13 @@ class SensorMonitor:
         # of a fault on it alone; a sensor no other predicts is blamed only as the best of all
         r = (X - X[:, self._active] @ self._M.T).mean(axis=0)
         z = np.where(self._active, np.abs(r) / np.sqrt(np.maximum(1 - self._lev, 1e-12)), -1.0)
-        n, best, best_z = len(self.names), None, float(np.max(np.where(self._judged, z, -1.0)))
+        best, best_z = None, float(np.max(np.where(self._judged, z, -1.0)))
         for u in np.flatnonzero(self._active & ~self._observable & (z > best_z)):
             trial = self._active.copy()
             trial[u] = False
             if trial.sum() < self.min_active_:
                 continue
-            M, h = self.pod.operator(trial)
-            lev = np.ones(n)
-            lev[trial] = h
+            M, lev = self._operator(trial)
             judged = trial & (lev < self.pod.max_leverage)
             if (out & ~judged).any():
                 continue
@@ -636,9 +639,7 @@ class SensorMonitor:
         n = len(self.names)
         if trial.sum() < self.min_active_:
             return np.zeros(n, dtype=bool), np.full(n, np.inf)
-        M, h = self.pod.operator(trial)
-        lev = np.ones(n)
-        lev[trial] = h
+        M, lev = self._operator(trial)
         blind = lev >= self.pod.max_leverage
         H = np.where(np.isfinite(self._hist), self._hist, 0.0)
         with np.errstate(divide="ignore", invalid="ignore"):
