@@ -89,3 +89,30 @@ def test_a_signal_inside_a_deferred_block_is_raised_at_its_end_not_inside():
             signal.raise_signal(signal.SIGTERM)
             reached.append("never")
     assert reached == ["after the signal"]
+
+
+def test_the_retried_signal_does_not_cut_the_deferred_close_of_a_run():
+    """CI, stop 44: a SIGINT'd run stayed RUNNING.  The signal raised KeyboardInterrupt; 0.5 s
+    later, while the run was being closed in a deferred block, the retry timer raised it again
+    inside an ``except`` of the store's own code (where the propagating interrupt is not the
+    exception being handled) and cut the close in two."""
+    import signal
+    import time
+
+    from thermocomp.base.files import signals_raise
+
+    closed = []
+    with pytest.raises(KeyboardInterrupt):
+        with signals_raise(sigint=True) as signals:
+            try:
+                signal.raise_signal(signal.SIGINT)
+            finally:
+                with signals.deferred():
+                    end = time.monotonic() + 1.5          # three retry periods
+                    while time.monotonic() < end:
+                        try:
+                            raise ValueError("the store's own, handled")
+                        except ValueError:
+                            time.sleep(0.01)
+                    closed.append(True)
+    assert closed == [True]
