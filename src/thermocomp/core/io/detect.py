@@ -76,6 +76,8 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
         if isinstance(roles["time"], list) and h in roles["time"]:
             continue
         base, unit = split_unit(h)
+        if not base:                          # a unit alone ('[°C]'): the reader refuses it
+            continue
         unit = (opts.units.get(h, unit) or "").lower().replace(" ", "")
         pattern = _GLOB.sub(r"[\1]", base)
         if unit in UNITS["E"]:

@@ -179,10 +179,19 @@ def _missing_values(cfg: Mapping) -> list:
     """``data.missing_values``: what a lab writes for a value not measured (``-``, ``n/a``)."""
     value = cfg.get("missing_values") or []
     value = [value] if isinstance(value, str) else value
-    if not all(isinstance(v, str) and v.strip() and not re.search(r"\d", v) for v in value):
-        raise ContractError(f"data.missing_values must be a list of marks without digits (e.g. "
-                            f"['-', 'n/a']), got {cfg.get('missing_values')!r}")
+    if not all(isinstance(v, str) and v.strip() and not _number(v) for v in value):
+        raise ContractError(f"data.missing_values must be a list of marks that are no number "
+                            f"(e.g. ['-', 'n/a', '#DIV/0!']), got {cfg.get('missing_values')!r}")
     return [str(v) for v in value]
+
+
+def _number(text: str) -> bool:
+    """``text`` reads as a number with either decimal mark (never a mark for a missing value)."""
+    try:
+        float(text.strip().replace(",", "."))
+    except ValueError:
+        return False
+    return True
 
 
 def _fraction(cfg: Mapping, key: str) -> float | None:

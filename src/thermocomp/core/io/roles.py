@@ -21,6 +21,7 @@ from pathlib import Path
 from ...base.errors import listed
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, _roles
+from .separators import reads_as_number
 from .timestamps import CLOCK, DATE, TIME_OF_DAY, looks_like_timestamp
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
@@ -28,6 +29,11 @@ _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # (``dX/um``) only a unit of :data:`UNITS`, so that ``Datum/Zeit`` or ``on/off`` stay names
 _SLASHED = re.compile(r"^(.*?\S)(\s*)/(\s*)(\S+)$")
 _IN_UNIT = re.compile(r"^(.*?\S)\s+(?:in|en)\s+(\S+)$", re.IGNORECASE)   # 'dX in µm' (a known unit)
+# a unit as the header's last word or '_' suffix ('dZ um', 'Spindel °C', 'dX_um', 'time_s'):
+# only a unit of two or more characters or a symbol (a single letter is a name as often: 'Zone
+# C', 'Sensor K'), a time's only after a time header ('T_min' is no temperature in minutes)
+_LAST_WORD = re.compile(r"^(.*?\S)\s+(\S+)$")
+_SUFFIX = re.compile(r"^(.*?[^\s_])_([^\s_]+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "elapsed", "seconds"})
@@ -69,7 +75,28 @@ def split_unit(header: str) -> tuple[str, str | None]:
     match = _IN_UNIT.match(header.strip())
     if match and _known_unit(match.group(2)):
         return match.group(1).strip(), match.group(2)
+    match = _bare_unit(header.strip())
+    if match:
+        return match
     return header.strip(), None
+
+
+def _bare_unit(header: str) -> tuple[str, str] | None:
+    """``('dZ', 'um')`` for a unit written as the last word (``dZ um``) or, in a header that is
+    no contract name (``T_spindle_degC`` keeps its name), as an ``_`` suffix (``dZ_um``)."""
+    if _UNIT.fullmatch(header) and not _UNIT.match(header).group(1).strip():
+        return "", _UNIT.match(header).group(2).strip()     # a unit alone ('[°C]'): no name
+    for pattern in (_LAST_WORD, _SUFFIX):
+        match = pattern.match(header)
+        if match is None or (pattern is _SUFFIX and role(header) is not None):
+            continue
+        base, unit = match.group(1).strip(), match.group(2)
+        known = unit.lower()
+        if ((len(known) > 1 or not known.isalpha())
+                and (any(known in UNITS[k] for k in ("E", "T")) or known in STATE_UNITS)
+                or base.lower() in TIME_HEADERS and known in UNITS["time"]):
+            return base, unit
+    return None
 
 
 def _known_unit(unit: str) -> bool:
@@ -157,7 +184,8 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             kind = "temperature"
         name = _derived(kind, base, len(ambient) > 1)
         if not _UNSAFE.sub("", base):
-            problems.append(f"{header!r} gives no name")
+            problems.append(f"{header!r} gives no name" + ("" if base else " (a unit alone: name "
+                                                           "it with data.columns)"))
             continue
         out.names[header], out.roles[header] = name, kind
         _scale(out, name, "E" if kind == "error" else "T" if kind != "state" else None, unit,
@@ -243,13 +271,7 @@ def _duplicates(names: dict, problems: list, by_role: bool) -> None:
 
 
 def _numeric(text, decimal: str) -> bool:
-    if text is None or not str(text).strip():
-        return True                      # a missing cell: the column's type is not known here
-    try:
-        float(str(text).strip().replace(decimal, ".") if decimal != "." else str(text).strip())
-    except ValueError:
-        return False
-    return True
+    return reads_as_number(text, decimal)        # (a missing cell: the type is not known here)
 
 
 def _refusal(problems: list[str], by_role: bool, names: dict, roles: dict, file) -> ContractError:

@@ -12,6 +12,22 @@ import pyarrow.compute as pc
 # marks a lab may group digits with (6,000  6.000  6'000); a space is never one in a CSV cell
 # that Arrow reads, it would be a field of its own or trimmed
 GROUP_MARKS = (",", ".", "'")
+UNICODE_MINUS = "\u2212"      # '−1,5': a minus sign, read as '-'
+
+
+def reads_as_number(text, decimal: str = ".", thousands: str | None = None) -> bool:
+    """A cell's text reads as a number (with ``decimal``, ``thousands`` and a Unicode minus as
+    the reader takes them); a missing cell (None, empty) counts as one."""
+    if text is None or not str(text).strip():
+        return True
+    text = str(text).strip().replace(UNICODE_MINUS, "-")
+    if thousands is not None:
+        text = text.replace(thousands, "")
+    try:
+        float(text.replace(decimal, ".") if decimal != "." else text)
+    except ValueError:
+        return False
+    return True
 
 
 def grouped(mark: str, decimal: str) -> str:
@@ -48,10 +64,12 @@ def misgrouped(column: pa.ChunkedArray, mark: str, decimal: str) -> int | None:
 
 
 def ungrouped(column: pa.ChunkedArray, mark: str | None, decimal: str) -> pa.ChunkedArray:
-    """The text of ``column`` as Arrow casts it to float: no ``mark`` (none when ``None``),
+    """The text of ``column`` as Arrow casts it to float: no ``mark`` (none when ``None``), a
+    Unicode minus as ``-``,
     ``.`` as the decimal mark (a ``.`` where ``decimal`` is another mark stays invalid, as
     Arrow's reader has it)."""
     text = column if mark is None else pc.replace_substring(column, mark, "")
+    text = pc.replace_substring(text, UNICODE_MINUS, "-")
     if decimal != ".":
         text = pc.replace_substring(pc.replace_substring(text, ".", "!"), decimal, ".")
     return text

@@ -15,8 +15,8 @@ from .options import _OTHER_DELIMITERS, AUTO, ReadOptions
 
 SNIFF_LINES = 50
 _SNIFF_BYTES = 1 << 16
-_DECIMAL_COMMA = re.compile(r"\s*[+-]?\d*,\d+(?:[eE][+-]?\d+)?\s*")
-_DECIMAL_POINT = re.compile(r"\s*[+-]?\d*\.\d+(?:[eE][+-]?\d+)?\s*")
+_DECIMAL_COMMA = re.compile(r"\s*[+\-\u2212]?\d*,\d+(?:[eE][+-]?\d+)?\s*")   # (U+2212: a minus)
+_DECIMAL_POINT = re.compile(r"\s*[+\-\u2212]?\d*\.\d+(?:[eE][+-]?\d+)?\s*")
 
 
 def resolved(path: Path, opts: ReadOptions) -> ReadOptions:

@@ -1,0 +1,143 @@
+"""A lab's raw export, round 2 (issue 34, item 1): more hand-written files off the happy path,
+and the same export streamed on stdin.  Each is read to the values it holds, or refused in one
+line naming the file and the column (and row), never read silently wrong."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import refused
+from test_raw_exports44 import ROWS, _read, _record, _write
+from thermocomp.core.io import ContractError, read_dataset
+from thermocomp.core.io.detect import proposed_roles
+from thermocomp.core.io.options import ReadOptions
+from thermocomp.core.io.roles import split_unit
+from thermocomp.shell.cli import main
+
+
+def _roles_of(path: Path, sep: str = ",") -> dict:
+    """What ``thermocomp init`` proposes for the file's header."""
+    header = path.read_text(encoding="utf-8").splitlines()[0].split(sep)
+    return proposed_roles(header, {h: "1" for h in header}, ReadOptions())
+
+
+def test_a_unit_as_the_headers_last_word_or_suffix_is_read_and_converted(tmp_path):
+    # before: 'dZ mm' was no error for init (a temperature 'dZ mm' refused for its space) and,
+    # named by data.roles.error, E_dZ_mm: millimetres read as µm without a word
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "lab.csv", ["time s", "T_spindle degC", "Spindel °C", "dX_um",
+                                         "dZ mm"], [t, t1, t2, e, -e / 1000])
+    roles = _roles_of(path)
+    assert roles["error"] == ["dX", "dZ"]
+    frame = _read(path, roles=roles)
+    assert list(frame.columns) == ["time", "T_spindle", "T_Spindel", "E_dX", "E_dZ"]
+    np.testing.assert_allclose(frame[["time", "T_Spindel", "E_dX"]], np.c_[t, t2, e], atol=1e-3)
+    np.testing.assert_allclose(frame["E_dZ"], -e, atol=1e-3)                 # mm -> µm
+    frame = _read(path, roles={"error": ["d*"]})          # the lab's own pattern, as before
+    np.testing.assert_allclose(frame["E_dZ"], -e, atol=1e-3)
+
+
+@pytest.mark.parametrize("header, split", [
+    ("dZ um", ("dZ", "um")), ("Load %", ("Load", "%")), ("Zeit_s", ("Zeit", "s")),
+    ("Zone C", ("Zone C", None)),                 # a single letter: a name as often as a unit
+    ("T_spindle_degC", ("T_spindle_degC", None)),   # a contract name keeps its name
+    ("T_min", ("T_min", None)),                     # a time's unit only after a time header
+    ("dZ_mm", ("dZ", "mm")), ("[°C]", ("", "°C"))])
+def test_which_last_words_are_units(header, split):
+    assert split_unit(header) == split
+
+
+def test_a_header_that_is_only_a_unit_is_refused_not_named_after_it(tmp_path, capsys):
+    # before: '[°C]' became a temperature T_C
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "nameless.csv", ["time", "[°C]", "T2 [°C]", "dX [µm]"], [t, t1, t2, e])
+    out = tmp_path / "init"
+    refused(["init", str(path), f"out={out}"], capsys, str(path), "'[°C]' gives no name",
+            "data.columns")
+    assert not out.exists()
+
+
+def test_two_columns_under_one_header_are_refused_naming_both(tmp_path, capsys):
+    # before: "duplicate column (after data.columns mapping)", which no mapping had made
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "twice.csv", ["time", "T1", "T1", "dX [µm]"], [t, t1, t2, e], sep=";")
+    refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, str(path),
+            "columns 2 and 3 have the same header 'T1'")
+
+
+def test_a_time_of_day_alone_under_any_header_is_refused_saying_so(tmp_path, capsys):
+    # before: init proposed 'ignore' for it and the run said only "no 'time' column ... set
+    # data.sample_period_s": the lab's clock column, which wraps at midnight, not named
+    t, t1, t2, e = _record()
+    clock = (pd.Timestamp("2026-11-28 23:45") + pd.to_timedelta(t, unit="s")).strftime("%H:%M:%S")
+    path = _write(tmp_path / "clock.csv", ["time", "T1", "dX [µm]"], [t, t1, e])
+    lines = path.read_text(encoding="utf-8").splitlines()
+    rows = [f"{c},{ln.split(',', 1)[1]}" for c, ln in zip(clock, lines[1:])]
+    path.write_text("\n".join(["Uhrzeit,T1,dX [µm]", *rows]) + "\n", encoding="utf-8")
+    out = tmp_path / "init"
+    refused(["init", str(path), f"out={out}"], capsys, str(path), "time of day without its date",
+            "'Uhrzeit'", "data.sample_period_s")
+    assert not out.exists()
+    assert main(["init", str(path), "data.sample_period_s=60", f"out={out}"]) == 0
+
+
+@pytest.mark.parametrize("step_ms, jitter", [(500, 0), (2500, 0), (1000, 3)])
+def test_a_time_in_ms_off_whole_seconds_is_said(tmp_path, capsys, step_ms, jitter):
+    # before: said only for steps of whole thousands >= 1000; 500 ms, 2500 ms or a logger's
+    # 998-1003 ms were read as seconds without a word
+    t, t1, t2, e = _record()
+    ms = np.arange(ROWS) * step_ms + np.random.default_rng(1).integers(-jitter, jitter + 1, ROWS)
+    path = _write(tmp_path / "ms.csv", ["time", "T1", "dX [µm]"], [np.sort(ms), t1, e])
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    said = capsys.readouterr().err
+    assert f"{path}, column 'time'" in said and "milliseconds?" in said
+    assert main(["init", str(path), "data.units={time: s}", f"out={tmp_path / 's'}"]) == 0
+    assert "milliseconds?" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("period", [60.0, 120.0, 1200.0, 0.5])
+def test_a_time_in_seconds_at_a_loggers_period_is_not_suspected(tmp_path, capsys, period):
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "s.csv", ["time", "T1", "dX [µm]"], [t / 60 * period, t1, e])
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    assert "milliseconds?" not in capsys.readouterr().err
+
+
+def test_a_unicode_minus_is_read_as_a_minus(tmp_path):
+    # before: refused, "value '−0,249' is not a number": a word processor's or a localised
+    # export's minus sign (U+2212) is no other number than '-'
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "minus.csv", ["Zeit [s]", "T1 [°C]", "dX [µm]"], [t, t1 - 30, e],
+                  sep=";")
+    path.write_text(path.read_text(encoding="utf-8").replace("-", "\u2212").replace(".", ","),
+                    encoding="utf-8")
+    frame = _read(path, roles={"error": ["dX"]})
+    np.testing.assert_allclose(frame[["T_T1", "E_dX"]], np.c_[t1 - 30, e], atol=1e-3)
+    lines = path.read_text(encoding="utf-8").splitlines()
+    lines[5] = lines[5].replace("\u2212", "\u2212\u2212", 1)          # '−−8,3' is no number
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    with pytest.raises(ContractError) as refusal:
+        _read(path, roles={"error": ["dX"]})
+    assert (refusal.value.row, refusal.value.column) == (5, "T_T1")
+
+
+def test_an_excel_error_cell_is_named_and_can_be_read_as_missing(tmp_path, capsys):
+    # before: '#DIV/0!' was refused without a hint, and data.missing_values refused it (a mark
+    # with a digit)
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "excel.csv", ["time", "T1", "T2", "dX [µm]"], [t, t1, t2, e])
+    lines = path.read_text(encoding="utf-8").splitlines()
+    cells = lines[9].split(",")
+    lines[9] = ",".join([*cells[:2], "#DIV/0!", cells[3]])
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, str(path), "'T_T2'",
+            "row 9", "data.missing_values (['#DIV/0!'])")
+    ds, report = read_dataset(path, {"roles": {"error": ["dX"]}, "max_gap_samples": 1,
+                                     "missing_values": ["#DIV/0!"]})
+    assert report["repairs"] == {"T_T2": 1}
+    with pytest.raises(ContractError, match="data.missing_values"):
+        read_dataset(path, {"missing_values": ["1,5"]})           # a number is no mark
