@@ -1,9 +1,11 @@
 """A campaign streamed as CSV text (``thermocomp monitor monitor.input=-``): read as a campaign
-file is (``data.delimiter``, ``data.decimal``, ``data.columns``, ``data.time``), so a lab's logger
-rows stream as they are written; empty cells stay NaN, a non-numeric one is refused with its row."""
+file is (``data.delimiter``, ``data.decimal``, ``data.columns``, ``data.roles``, ``data.units``,
+``data.time``), so a lab's logger rows stream as they are written; empty cells stay NaN, a
+non-numeric one is refused with its row."""
 
 from __future__ import annotations
 
+import re
 from io import StringIO
 
 import numpy as np
@@ -12,10 +14,13 @@ import pandas as pd
 from ..context import TIME
 from .contract import ContractError
 from .encoding import UTF8, text_codec
+from .roles import active, naming
+from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
-from .timestamps import time_kind
+from .timestamps import CLOCK, time_kind
 
 SOURCE = "<stdin>"
+_UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
 
 
 def stdin_text(stream, encoding: str = UTF8) -> str:
@@ -37,8 +42,9 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
 def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict]:
     """``(frame, missing cells per column)`` of CSV ``text`` (header first) holding ``columns``
     (those the compensator reads).  ``time`` in seconds or as ISO 8601 timestamps (``auto``: as
-    the first row reads, like a campaign file)."""
-    text = text.lstrip("\ufeff")
+    the first row reads, like a campaign file); the headers named as a campaign file's are
+    (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``)."""
+    text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     try:
         df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
@@ -47,7 +53,7 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
         raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                             f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
                             file=SOURCE) from None
-    df = df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns})
+    df, scales = _named(df, opts)
     absent = [c for c in columns if c not in df.columns]
     if not absent and df.empty:
         raise ContractError("stdin has a header but no data row", file=SOURCE)
@@ -66,7 +72,29 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
             raise ContractError("non-numeric value", file=SOURCE, column=c,
                                 row=int(np.flatnonzero(bad)[0]) + 1)
         df[c] = pd.to_numeric(df[c], errors="coerce")
+        if c in scales:            # a unit in the header (or data.units): the contract's
+            scale, offset = scales[c]
+            df[c] = df[c] * scale + offset
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}
+
+
+def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict]:
+    """``df`` under contract names and the unit conversions: ``data.columns`` alone as before,
+    or, with ``data.roles`` or ``data.units`` set, as :func:`.roles.naming` names a campaign
+    file's headers (a date and a time of day joined into one time)."""
+    if not (active(opts.roles) or opts.units):
+        return df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns}), {}
+    # Excel's trailing separator: a column without a header ('Unnamed: 4') that holds nothing
+    df = df.drop(columns=[c for c in df.columns if _UNNAMED.fullmatch(str(c))
+                          and df[c].isna().all()])
+    first = {c: None if df.empty or pd.isna(df[c].iloc[0]) else str(df[c].iloc[0])
+             for c in df.columns}
+    plan = naming(list(df.columns), opts.roles, opts.columns, first, ".", SOURCE, opts.units)
+    df = df[[c for c in df.columns if c in plan.names]].rename(columns=plan.names)
+    if CLOCK in df.columns:
+        date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
+        df = df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
+    return df, plan.scales
 
 
 def stream_seconds(time: pd.Series, time_format: str) -> pd.Series:

@@ -37,7 +37,8 @@ def is_format(kind: str) -> bool:
     return "%" in kind
 
 
-STREAMED = "a stream's time is one column: seconds, or a timestamp with its date"
+STREAMED = ("a stream's time is one column, seconds or a timestamp with its date, or two joined "
+            "as a file's are, data.roles.time=[<date column>, <time column>]")
 
 
 def time_kind(value: str, kind: str, number: bool, path: Path, header: str | None = None,
