@@ -197,3 +197,59 @@ def test_monitor_streams_a_labs_export_from_stdin_with_the_config_it_was_fitted_
                  "plots=none"]) == 0, capsys.readouterr().err
     report = json.loads((out / "monitor.json").read_text())
     assert report["campaigns"] == ["stdin"] and set(report["targets"]) == {"E_dX", "E_dZ"}
+
+
+def _local_clock(path: Path, start_utc: str, zone: str = "Europe/Berlin") -> Path:
+    """The record with its time as a local clock's timestamps without an offset (a lab's PC)."""
+    t, t1, t2, e = _record()
+    utc = pd.Timestamp(start_utc, tz="UTC") + pd.to_timedelta(t * 4, unit="s")   # 2 hours
+    stamps = utc.tz_convert(zone).strftime("%Y-%m-%d %H:%M:%S")
+    _write(path, ["T1 [°C]", "dX [µm]"], [t1, e])
+    lines = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\n".join(f"{s},{ln}" for s, ln in zip(["time", *stamps], lines)) + "\n",
+                    encoding="utf-8")
+    return path
+
+
+def test_a_local_clock_set_back_an_hour_is_refused_naming_data_timezone_which_reads_it(
+        tmp_path, capsys):
+    # before: refused "time decreases from 7140 s (row 31) to 3600 s", and no setting read it
+    path = _local_clock(tmp_path / "autumn.csv", "2026-10-24T23:30:00")   # 01:30 CEST
+    out = tmp_path / "init"
+    refused(["init", str(path), f"out={out}"], capsys, str(path), "column 'time'",
+            "daylight saving time ending?", "data.timezone=")
+    assert not out.exists()
+    ds, report = read_dataset(path, {"roles": {"error": ["dX"]}, "timezone": "Europe/Berlin"})
+    np.testing.assert_allclose(ds.campaigns["autumn"]["time"], _record()[0] * 4)
+    assert report["campaigns"]["autumn"]["time_origin"] == "2026-10-25T01:30:00+02:00"
+
+
+def test_a_local_clock_that_skips_an_hour_is_said_and_read_with_data_timezone(tmp_path, capsys):
+    # before: read as an hour without samples, without a word
+    path = _local_clock(tmp_path / "spring.csv", "2026-03-29T00:30:00")   # 01:30 CET
+    frame = _read(path, roles={"error": ["dX"]})
+    assert np.diff(frame["time"]).max() == 3600 + 240
+    said = capsys.readouterr().err
+    assert f"{path}, column 'time', row " in said and "data.timezone" in said
+    frame = _read(path, roles={"error": ["dX"]}, timezone="Europe/Berlin")
+    np.testing.assert_allclose(frame["time"], _record()[0] * 4)
+    assert "data.timezone" not in capsys.readouterr().err
+
+
+def test_a_time_the_zones_clock_never_showed_or_an_unknown_zone_is_refused(tmp_path, capsys):
+    path = _local_clock(tmp_path / "spring.csv", "2026-03-29T00:30:00", zone="UTC")  # 02:xx
+    with pytest.raises(ContractError) as refusal:
+        _read(path, roles={"error": ["dX"]}, timezone="Europe/Berlin")
+    first_skipped = int(np.argmax(_record()[0] * 4 >= 90 * 60)) + 1     # 02:00 or later
+    assert (refusal.value.column, refusal.value.row) == ("time", first_skipped)
+    assert "never shown by data.timezone=Europe/Berlin's clock" in str(refusal.value)
+    refused(["init", str(path), "data.timezone=Europe/Berln", f"out={tmp_path / 'init'}"],
+            capsys, "data.timezone", "'Europe/Berln'")
+
+
+def test_a_stream_on_a_local_clock_is_read_with_data_timezone():
+    from thermocomp.core.io.stdin import stream_seconds
+
+    utc = pd.Timestamp("2026-10-25 00:00", tz="UTC") + pd.to_timedelta(np.arange(12) * 900, "s")
+    local = pd.Series(list(utc.tz_convert("Europe/Berlin").strftime("%Y-%m-%d %H:%M:%S")))
+    np.testing.assert_allclose(stream_seconds(local, "auto", "Europe/Berlin"), np.arange(12) * 900)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+import zoneinfo
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -54,6 +55,7 @@ class ReadOptions:
     decimal: str = AUTO
     thousands: str | None = None
     encoding: str = UTF8          # the CSV files' character set (Python's codec name)
+    timezone: str | None = None   # the zone of timestamps written without an offset (local)
     roles: dict = field(default_factory=dict)     # see io.roles; {} (or all empty): none
     units: dict = field(default_factory=dict)     # header -> unit where the header has none
     missing_values: list = field(default_factory=list)  # read as missing besides empty, nan
@@ -99,6 +101,7 @@ class ReadOptions:
             decimal=_text(cfg, "decimal", AUTO),
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
             encoding=codec(_text(cfg, "encoding", UTF8)),
+            timezone=_timezone(cfg),
             roles=_roles(cfg),
             units=_str_mapping(cfg, "units"),
             missing_values=_missing_values(cfg),
@@ -143,6 +146,19 @@ def _text(cfg: Mapping, key: str, default: str) -> str:
     """``cfg[key]`` as text, ``default`` when missing or null (an empty text stays, refused)."""
     value = cfg.get(key)
     return default if value is None else str(value)
+
+
+def _timezone(cfg: Mapping) -> str | None:
+    """``data.timezone``: an IANA zone (``Europe/Berlin``), or null."""
+    value = cfg.get("timezone")
+    if value is None:
+        return None
+    try:
+        zoneinfo.ZoneInfo(str(value))
+    except (zoneinfo.ZoneInfoNotFoundError, ValueError):
+        raise ContractError(f"data.timezone must be a time zone such as Europe/Berlin or UTC (or "
+                            f"null), got {value!r}") from None
+    return str(value)
 
 
 def _roles(cfg: Mapping) -> dict:

@@ -17,7 +17,7 @@ from .encoding import UTF8, text_codec
 from .roles import active, naming
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
-from .timestamps import CLOCK, time_kind
+from .timestamps import CLOCK, on_local_clock, time_kind, time_type
 
 SOURCE = "<stdin>"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
@@ -61,7 +61,7 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
         raise ContractError("stdin lacks a column the compensator reads", file=SOURCE,
                             column=",".join(absent))
     if TIME in df.columns:
-        df[TIME] = stream_seconds(df[TIME], opts.time)
+        df[TIME] = stream_seconds(df[TIME], opts.time, opts.timezone)
     # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
     # model reads: the measured errors and the context are read from the same frame
     numeric = list(dict.fromkeys([*columns, *(c for c in df.columns
@@ -97,9 +97,10 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict]:
     return df, plan.scales
 
 
-def stream_seconds(time: pd.Series, time_format: str) -> pd.Series:
+def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -> pd.Series:
     """The stream's ``time`` in seconds since its first row when it holds ISO 8601 timestamps
-    (as given otherwise: the numeric check refuses what is no number).  A time that goes back
+    (as given otherwise: the numeric check refuses what is no number; ``zone``:
+    ``data.timezone``, the local clock of timestamps without an offset).  A time that goes back
     is no refusal here: the stream's guard judges it, as on the machine."""
     first, kind = time.iloc[0], time_format
     if kind == "auto" and isinstance(first, str):      # read as a campaign file's
@@ -115,4 +116,9 @@ def stream_seconds(time: pd.Series, time_format: str) -> pd.Series:
         what = "an ISO 8601 time" if kind == "iso8601" else f"a time in the format {kind!r}"
         raise ContractError(f"not {what} (data.time={time_format}: the stream's first row is a "
                             "timestamp)", file=SOURCE, column=TIME, row=row)
+    if zone is not None and time_type(kind, str(time.iloc[0]).strip()).tz is None:
+        valid = stamps.notna()
+        wall = stamps[valid].dt.tz_localize(None).to_numpy("datetime64[ns]").astype(np.int64)
+        stamps = stamps.copy()
+        stamps[valid] = pd.to_datetime(on_local_clock(wall, zone, SOURCE), utc=True)
     return (stamps - stamps.iloc[0]).dt.total_seconds()

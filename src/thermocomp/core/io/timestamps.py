@@ -9,6 +9,7 @@ import re
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
@@ -116,3 +117,51 @@ def said_if_milliseconds(time: np.ndarray, file: Path, header: str) -> None:
         logger.warning(f"{file}, column {header!r}: samples {period:g} s apart, {why}: "
                        f"milliseconds? say so with data.units={{{header!r}: ms}} (or a unit in "
                        f"the header, 'time [ms]'; seconds: data.units={{{header!r}: s}})")
+
+
+HOUR_S = 3600.0
+
+
+def on_local_clock(ns: np.ndarray, zone: str, file, column: str = TIME) -> np.ndarray:
+    """Timestamps without an offset (``ns``, int64) written on ``zone``'s local clock, as UTC
+    (int64 ns): the hour repeated when daylight saving time ends told apart by the order of the
+    rows, the hour skipped when it begins not counted (``data.timezone``).  A time the clock
+    never showed, or a repeated hour whose rows do not run through it in order, is refused
+    with its row."""
+    index = pd.DatetimeIndex(ns.astype("datetime64[ns]"))
+    try:
+        return index.tz_localize(zone, ambiguous="infer", nonexistent="raise").as_unit("ns").asi8
+    except ValueError:
+        pass
+    skipped = index.tz_localize(zone, ambiguous=np.ones(len(index), bool), nonexistent="NaT")
+    unsure = index.tz_localize(zone, ambiguous="NaT", nonexistent="shift_forward")
+    row = int(np.argmax(pd.isna(skipped) | pd.isna(unsure)))
+    what = (f"never shown by data.timezone={zone}'s clock (the hour skipped when daylight saving "
+            "time begins): another zone?" if pd.isna(skipped[row]) else
+            f"in the hour data.timezone={zone}'s clock repeats when daylight saving time ends, "
+            "and the rows do not run through it in order to tell which")
+    raise ContractError(f"time {index[row]} is {what}", file=file, column=column, row=row + 1)
+
+
+def clock_set_back(before: float, after: float) -> str:
+    """What to say of a local clock going back by up to an hour (daylight saving time ends)."""
+    if not 0 < before - after <= HOUR_S:
+        return ""
+    return (": the clock set back by up to an hour, daylight saving time ending? set data.timezone "
+            "to the zone it was written in (e.g. data.timezone=Europe/Berlin)")
+
+
+def said_if_clock_skips(seconds: np.ndarray, file, header: str = TIME) -> None:
+    """Say (not refuse: a logger may pause an hour) timestamps without an offset that jump one
+    hour plus a sample period forward once: daylight saving time beginning, read as an hour
+    without samples unless ``data.timezone`` says the zone."""
+    steps = np.diff(seconds)
+    if steps.size < 2:
+        return
+    period = float(np.median(steps))
+    jumps = np.flatnonzero(np.abs(steps - HOUR_S - period) <= period / 2)
+    if 0 < period < HOUR_S and jumps.size:
+        logger.warning(f"{file}, column {header!r}, row {jumps[0] + 2}: the clock jumps an hour "
+                       "forward (daylight saving time beginning?): read as an hour without "
+                       "samples; set data.timezone to the zone it was written in (e.g. "
+                       "data.timezone=Europe/Berlin)")
