@@ -253,3 +253,20 @@ def test_a_stream_on_a_local_clock_is_read_with_data_timezone():
     utc = pd.Timestamp("2026-10-25 00:00", tz="UTC") + pd.to_timedelta(np.arange(12) * 900, "s")
     local = pd.Series(list(utc.tz_convert("Europe/Berlin").strftime("%Y-%m-%d %H:%M:%S")))
     np.testing.assert_allclose(stream_seconds(local, "auto", "Europe/Berlin"), np.arange(12) * 900)
+
+
+def test_a_blank_line_inside_a_record_without_a_time_column_is_said(tmp_path, capsys):
+    # before: left out without a word, every row after it a sample period earlier (a sample
+    # not taken?), where the rows' positions are the time
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "blank.csv", ["T1", "dX [µm]"], [t1, e], sep=";")
+    lines = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\r\n".join([*lines[:13], "", *lines[13:]]) + "\r\n", encoding="utf-8")
+    frame = _read(path, roles={"error": ["dX"]}, sample_period_s=60)
+    np.testing.assert_allclose(frame["T_T1"], t1, atol=1e-3)
+    assert f"{path}, row 12: a blank line under it" in capsys.readouterr().err
+    timed = _write(tmp_path / "timed.csv", ["time", "T1", "dX [µm]"], [t, t1, e])
+    lines = timed.read_text(encoding="utf-8").splitlines()
+    timed.write_text("\n".join([*lines[:13], "", *lines[13:], "", ""]) + "\n", encoding="utf-8")
+    np.testing.assert_allclose(_read(timed, roles={"error": ["dX"]})["time"], t)
+    assert "blank line" not in capsys.readouterr().err        # its time says where it is

@@ -18,7 +18,7 @@ import pyarrow.csv as pacsv
 from ...base.log import logger
 from .contract import TIME, ContractError, role
 from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
-from .footer import footer, source
+from .footer import blank_inside, footer, source
 from .layout import header_line, is_unit_row, with_units
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import naming
@@ -124,9 +124,14 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
-    said = footer(path, opts.delimiter, len(header), opts.encoding)[0]
+    said, cut = footer(path, opts.delimiter, len(header), opts.encoding)
     if said:
         logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: {said[0]!r})")
+    blank = None if TIME in named else blank_inside(path, skip, cut)
+    if blank is not None:
+        logger.warning(f"{path}, row {blank}: a blank line under it is left out, and the rows "
+                       f"after it read data.sample_period_s earlier: if it is a sample not "
+                       "taken, leave its cells empty instead (a gap, data.max_gap_samples)")
     if len(first_row) != len(named):
         raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
     # a column left out (data.roles.ignore) is read under a name no contract column can have
