@@ -270,3 +270,17 @@ def test_a_blank_line_inside_a_record_without_a_time_column_is_said(tmp_path, ca
     timed.write_text("\n".join([*lines[:13], "", *lines[13:], "", ""]) + "\n", encoding="utf-8")
     np.testing.assert_allclose(_read(timed, roles={"error": ["dX"]})["time"], t)
     assert "blank line" not in capsys.readouterr().err        # its time says where it is
+
+
+def test_a_line_the_csv_module_cannot_split_never_escapes_as_a_traceback(tmp_path):
+    # before: a one-column header over a row holding a carriage return inside quotes raised
+    # csv.Error out of the separator check ("new-line character seen in unquoted field")
+    from thermocomp.core.io.csvline import EMPTY, SPLIT, split_line
+
+    path = tmp_path / "cr.csv"
+    path.write_bytes(b'time;T1;dX\r\n"0\r1";20,5;1,0\r\n60;20,6;1,1\r\n')
+    with pytest.raises(ContractError, match="set data.delimiter=';'"):
+        read_dataset(path, {"delimiter": ","})
+    assert split_line('a;"b\rc";d', ";") == ["a", "b\rc", "d"]
+    assert split_line("a;b\rc", ";", EMPTY) == [] and split_line("a;b\rc", ";", SPLIT) == [
+        "a", "b\rc"]

@@ -4,13 +4,13 @@ line of numbers cut short stays a malformed row, refused with its row."""
 
 from __future__ import annotations
 
-import csv
 import mmap
 import re
 from pathlib import Path
 
 import pyarrow as pa
 
+from .csvline import EMPTY, split_line
 from .encoding import UTF8
 
 _TAIL_BYTES = 1 << 14
@@ -48,7 +48,7 @@ def source(path: Path, cut: int):
 
 
 def _footer_line(text: str, delimiter: str) -> bool:
-    cells = next(csv.reader([text], delimiter=delimiter), [])
+    cells = split_line(text, delimiter, EMPTY)          # (no CSV text: no footer)
     if len([c for c in cells if c.strip()]) != 1 or len(cells) > 1 and cells[0].strip() == "":
         return False
     try:

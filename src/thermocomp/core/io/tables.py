@@ -17,6 +17,7 @@ import pyarrow.csv as pacsv
 
 from ...base.log import logger
 from .contract import TIME, ContractError, role
+from .csvline import SPLIT, split_line
 from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
 from .footer import blank_inside, footer, source
 from .layout import header_line, is_unit_row, with_units
@@ -170,7 +171,7 @@ def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> 
     ``data.delimiter`` (say which one reads it, rather than a misleading name error)."""
     for sep in _OTHER_DELIMITERS:
         if sep != opts.delimiter and sep in header:
-            cells = next(csv.reader([first], delimiter=sep), [])
+            cells = split_line(first, sep, SPLIT)
             comma = sep != "," and opts.decimal != "," and any(
                 re.fullmatch(r"[+-]?\d+,\d+", c.strip()) for c in cells)
             hint = " data.decimal=','" if comma else ""
