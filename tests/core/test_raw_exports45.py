@@ -284,3 +284,11 @@ def test_a_line_the_csv_module_cannot_split_never_escapes_as_a_traceback(tmp_pat
     assert split_line('a;"b\rc";d', ";") == ["a", "b\rc", "d"]
     assert split_line("a;b\rc", ";", EMPTY) == [] and split_line("a;b\rc", ";", SPLIT) == [
         "a", "b\rc"]
+
+
+def test_a_contract_files_time_every_100_s_is_seconds_by_the_contract(tmp_path, capsys):
+    # the simulator's column_moving_source samples every 100 s: a contract file says seconds
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "sim.csv", ["time", "T_1", "E_X"], [t / 60 * 100, t1, e])
+    assert _read(path)["time"].iloc[-1] == (ROWS - 1) * 100
+    assert "milliseconds?" not in capsys.readouterr().err

@@ -22,7 +22,7 @@ from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
 from .footer import blank_inside, footer, source
 from .layout import header_line, is_unit_row, with_units
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
-from .roles import naming
+from .roles import active, naming
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
 from .timestamps import (
@@ -148,7 +148,8 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
     _check_unnamed_empty(table, header, names, unnamed, path)
     if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
-        said_if_milliseconds(_values(table.column(TIME)), path, header[names.index(TIME)])
+        said_if_milliseconds(_values(table.column(TIME)), path, header[names.index(TIME)],
+                             own=active(opts.roles))
     columns = _columns(table.select(list(types)))
     if CLOCK in columns:
         columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)

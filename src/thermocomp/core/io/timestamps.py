@@ -99,19 +99,21 @@ def described(target: pa.DataType, kind: str) -> str:
             f"set data.time to it, e.g. data.time={EXAMPLE})")
 
 
-def said_if_milliseconds(time: np.ndarray, file: Path, header: str) -> None:
+def said_if_milliseconds(time: np.ndarray, file: Path, header: str, own: bool = False) -> None:
     """Say (not refuse: no rule on the values alone tells a slow logger's seconds from ms) a
-    time column without a unit that reads like milliseconds: whole numbers 100 or more apart
-    (a median step) that are no whole number of minutes (500, 2500, 998-1003: a logger's
-    seconds come every 1, 10, 60, 300 s ...), or steps of whole thousands (1000, 60000).  A
-    volumetric cycle of 1200 s or a logger every 120 s is no such step; one every 100 s or
-    500 s in seconds is said and quietened with ``data.units={time: s}``."""
+    time column without a unit that reads like milliseconds: steps of whole thousands (1000,
+    60000), or, in a lab's ``own`` export (headers read by ``data.roles``: a contract file's
+    ``time`` is seconds by the contract, the simulator's every 100 s), whole numbers 100 or
+    more apart (a median step) that are no whole number of minutes (500, 2500, 998-1003: a
+    logger's seconds come every 1, 10, 60, 300 s ...).  A volumetric cycle of 1200 s or a
+    logger every 120 s is no such step; a lab's every 100 s or 500 s in seconds is said and
+    quietened with ``data.units={time: s}``."""
     if len(time) < 2 or not np.all(np.isfinite(time)):
         return
     steps = np.diff(time)
     period = float(np.median(steps))
     thousands = period >= 1000 and np.all(steps % 1000 == 0)
-    odd = period >= 100 and period % 60 != 0 and np.all(time == np.round(time))
+    odd = own and period >= 100 and period % 60 != 0 and np.all(time == np.round(time))
     if thousands or odd:
         why = "in whole thousands" if thousands else "whole numbers, no whole minutes"
         logger.warning(f"{file}, column {header!r}: samples {period:g} s apart, {why}: "
