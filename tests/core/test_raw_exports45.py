@@ -292,3 +292,16 @@ def test_a_contract_files_time_every_100_s_is_seconds_by_the_contract(tmp_path, 
     path = _write(tmp_path / "sim.csv", ["time", "T_1", "E_X"], [t / 60 * 100, t1, e])
     assert _read(path)["time"].iloc[-1] == (ROWS - 1) * 100
     assert "milliseconds?" not in capsys.readouterr().err
+
+
+def test_a_loggers_preamble_and_unit_row_stream_as_its_file_reads(tmp_path):
+    # before: the preamble was read as the stream's header, the unit row as its first row
+    from test_raw_exports44 import _logger_export
+    from thermocomp.core.io.stdin import read_stream
+
+    path = _logger_export(tmp_path / "log.csv", ["Logger: XY-200", ""], ["s", "°C", "K", "mm"])
+    cfg = {"roles": {"error": ["dX"]}}
+    frame = _read(path, **cfg)
+    df, _ = read_stream(path.read_text(encoding="utf-8"), ["T_T1", "T_T2"],
+                        ReadOptions.from_cfg(cfg))
+    np.testing.assert_allclose(df[list(frame.columns)], frame, rtol=1e-9)

@@ -1,10 +1,11 @@
 """A campaign streamed as CSV text (``thermocomp monitor monitor.input=-``): read as a campaign
 file is (``data.delimiter``, ``data.decimal``, ``data.columns``, ``data.roles``, ``data.units``,
-``data.time``), so a lab's logger rows stream as they are written; empty cells stay NaN, a
-non-numeric one is refused with its row."""
+``data.time``; a logger's preamble and unit row), so a lab's logger rows stream as they are
+written; empty cells stay NaN, a non-numeric one is refused with its row."""
 
 from __future__ import annotations
 
+import csv
 import re
 from io import StringIO
 
@@ -13,7 +14,9 @@ import pandas as pd
 
 from ..context import TIME
 from .contract import ContractError
+from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, text_codec
+from .layout import header_line, is_unit_row, with_units
 from .roles import active, naming
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
@@ -46,6 +49,7 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
     (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``)."""
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
+    text = _table(text, opts.delimiter)
     try:
         df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
                          thousands=opts.thousands, na_values=list(opts.missing_values))
@@ -76,6 +80,23 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}
+
+
+def _table(text: str, sep: str) -> str:
+    """``text`` from its header on, a unit row's units joined to the headers (``T1`` over
+    ``°C``: ``T1 [°C]``), as a campaign file's table is found (:mod:`.layout`): a logger's
+    preamble and unit row stream as they are written."""
+    lines = text.splitlines()
+    start = header_line(lines[:SNIFF_LINES], sep) or 0
+    units = len(lines) > start + 1 and is_unit_row(split_line(lines[start + 1], sep, EMPTY))
+    if not start and not units:
+        return text
+    header = split_line(lines[start], sep, SPLIT)
+    if units:
+        header = with_units(header, split_line(lines[start + 1], sep, EMPTY))
+    out = StringIO()
+    csv.writer(out, delimiter=sep, lineterminator="\n").writerow(header)
+    return out.getvalue() + "\n".join(lines[start + 1 + units:]) + "\n"
 
 
 def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict]:
