@@ -305,3 +305,16 @@ def test_a_loggers_preamble_and_unit_row_stream_as_its_file_reads(tmp_path):
     df, _ = read_stream(path.read_text(encoding="utf-8"), ["T_T1", "T_T2"],
                         ReadOptions.from_cfg(cfg))
     np.testing.assert_allclose(df[list(frame.columns)], frame, rtol=1e-9)
+
+
+def test_a_time_in_excels_serial_days_is_said_and_read_with_data_units(tmp_path, capsys):
+    # before: read as seconds without a word (200 samples in a tenth of a second)
+    t, t1, t2, e = _record()
+    path = tmp_path / "serial.csv"            # 28.12.2025 12:00 as Excel counts days
+    lines = [f"{46000.5 + s / 86400:.8f},{a:.4f},{b:.4f}" for s, a, b in zip(t, t1, e)]
+    path.write_text("\n".join(["Zeit,T1,dX [µm]", *lines]) + "\n", encoding="utf-8")
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    assert f"{path}, column 'Zeit'" in capsys.readouterr().err
+    frame = _read(path, roles={"error": ["dX"]}, units={"Zeit": "d"})
+    np.testing.assert_allclose(frame["time"] - frame["time"].iloc[0], t, atol=1e-3)
+    assert "Excel" not in capsys.readouterr().err

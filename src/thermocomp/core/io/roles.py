@@ -46,7 +46,8 @@ UNITS = {
           **dict.fromkeys(("k", "kelvin"), (1.0, -273.15)),
           **dict.fromkeys(("°f", "f", "degf", "℉", "fahrenheit"), (5 / 9, -32 * 5 / 9))},
     "time": {**dict.fromkeys(("s", "sec", "secs", "seconds"), (1.0, 0.0)), "ms": (1e-3, 0.0),
-             "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0))},
+             "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0)),
+             **dict.fromkeys(("d", "day", "days"), (86400.0, 0.0))},     # (Excel's serial days)
 }
 
 # units that say "a machine state" (speeds, loads, positions, on/off)
@@ -254,7 +255,7 @@ def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: s
     scale = known.get(unit.lower().replace(" ", ""))
     if scale is None:
         what = {"E": "an error's (µm, mm, m, nm)", "T": "a temperature's (°C, K, °F)",
-                "time": "a time's (s, ms, min, h)"}[kind]
+                "time": "a time's (s, ms, min, h, d)"}[kind]
         problems.append(f"{header!r}: unit {unit!r} is not {what}")
     elif scale != (1.0, 0.0) or kind == "time":   # (a time's unit stated: no ms to suspect)
         out.scales[name] = scale

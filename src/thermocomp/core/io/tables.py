@@ -32,7 +32,7 @@ from .timestamps import (
     described,
     is_format,
     parsed,
-    said_if_milliseconds,
+    said_if_not_seconds,
     time_kind,
     time_type,
 )
@@ -148,7 +148,7 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
     _check_unnamed_empty(table, header, names, unnamed, path)
     if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
-        said_if_milliseconds(_values(table.column(TIME)), path, header[names.index(TIME)],
+        said_if_not_seconds(_values(table.column(TIME)), path, header[names.index(TIME)],
                              own=active(opts.roles))
     columns = _columns(table.select(list(types)))
     if CLOCK in columns:

@@ -99,7 +99,7 @@ def described(target: pa.DataType, kind: str) -> str:
             f"set data.time to it, e.g. data.time={EXAMPLE})")
 
 
-def said_if_milliseconds(time: np.ndarray, file: Path, header: str, own: bool = False) -> None:
+def said_if_not_seconds(time: np.ndarray, file: Path, header: str, own: bool = False) -> None:
     """Say (not refuse: no rule on the values alone tells a slow logger's seconds from ms) a
     time column without a unit that reads like milliseconds: steps of whole thousands (1000,
     60000), or, in a lab's ``own`` export (headers read by ``data.roles``: a contract file's
@@ -107,7 +107,8 @@ def said_if_milliseconds(time: np.ndarray, file: Path, header: str, own: bool = 
     more apart (a median step) that are no whole number of minutes (500, 2500, 998-1003: a
     logger's seconds come every 1, 10, 60, 300 s ...).  A volumetric cycle of 1200 s or a
     logger every 120 s is no such step; a lab's every 100 s or 500 s in seconds is said and
-    quietened with ``data.units={time: s}``."""
+    quietened with ``data.units={time: s}``.  Also said: Excel's serial day numbers (a date
+    shown as a number, :func:`_excel_days`), ``data.units={time: d}``."""
     if len(time) < 2 or not np.all(np.isfinite(time)):
         return
     steps = np.diff(time)
@@ -119,6 +120,22 @@ def said_if_milliseconds(time: np.ndarray, file: Path, header: str, own: bool = 
         logger.warning(f"{file}, column {header!r}: samples {period:g} s apart, {why}: "
                        f"milliseconds? say so with data.units={{{header!r}: ms}} (or a unit in "
                        f"the header, 'time [ms]'; seconds: data.units={{{header!r}: s}})")
+    elif _excel_days(time[0], period):
+        logger.warning(f"{file}, column {header!r}: from {time[0]:g}, samples {period:g} s = "
+                       f"{period * 86400:.4g} s / 86400 apart: Excel's serial days (a date shown "
+                       f"as a number)? say so with data.units={{{header!r}: d}}, or save the "
+                       "column formatted as a date")
+
+
+EXCEL_DAYS = (20000.0, 80000.0)   # Excel's serial day numbers 1954 .. 2119
+
+
+def _excel_days(first: float, period: float) -> bool:
+    """A time from an Excel serial day number, sampled at whole seconds: not a second apart as
+    seconds, whole seconds as days (a 1440 Hz record starting 46000 s in is no thermal test)."""
+    seconds = period * 86400
+    return (EXCEL_DAYS[0] <= first <= EXCEL_DAYS[1] and 0 < period < 1 and seconds >= 0.5
+            and abs(seconds - round(seconds)) <= 0.01 * seconds)
 
 
 HOUR_S = 3600.0
