@@ -4,6 +4,7 @@ line naming the file and the column (and row), never read silently wrong."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -318,3 +319,21 @@ def test_a_time_in_excels_serial_days_is_said_and_read_with_data_units(tmp_path,
     frame = _read(path, roles={"error": ["dX"]}, units={"Zeit": "d"})
     np.testing.assert_allclose(frame["time"] - frame["time"].iloc[0], t, atol=1e-3)
     assert "Excel" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("space", ["\u00a0", "\u202f"])
+def test_digits_grouped_by_a_no_break_space_are_named_and_read_with_data_thousands(
+        tmp_path, space):
+    # before: refused without a hint, and data.thousands refused a no-break space: a French
+    # (or SI) export's '1 234,5' could not be read at all
+    t, t1, t2, e = _record()
+    path = tmp_path / "fr.csv"
+    group = lambda v: f"{v:,.3f}".replace(",", space).replace(".", ",")   # noqa: E731
+    lines = [";".join(map(group, row)) for row in zip(t, t1, 1000 * e)]
+    path.write_text("\n".join(["Temps [s]", *lines]).replace("Temps [s]", "Temps [s];T1;dX [µm]")
+                    + "\n", encoding="utf-8")
+    with pytest.raises(ContractError, match=re.escape(f"set data.thousands={space!r}")) as refusal:
+        _read(path, roles={"error": ["dX"]})
+    assert refusal.value.row == 18                          # 1 020 s, the first grouped cell
+    frame = _read(path, roles={"error": ["dX"]}, thousands=space)
+    np.testing.assert_allclose(frame[["time", "T_T1", "E_dX"]], np.c_[t, t1, 1000 * e], atol=1e-3)

@@ -13,6 +13,7 @@ import numpy as np
 from ...base.params import MAX_COUNT
 from .contract import SPLITS, ContractError
 from .encoding import UTF8, codec
+from .separators import NO_BREAK_SPACES
 
 TIME_FORMATS = ("auto", "seconds", "iso8601")
 AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
@@ -130,10 +131,12 @@ class ReadOptions:
                                 f"part is left), got {self.test_fraction} + {self.val_fraction}")
         # (the field separator may be it: a CSV writer quotes "6,000")
         if self.thousands is not None and (len(self.thousands) != 1 or self.thousands
-                                           == self.decimal or re.match(r"[\w+\-\s]", self.thousands)):
+                                           == self.decimal or re.match(r"[\w+\-]", self.thousands)
+                                           or self.thousands.isspace() and self.thousands
+                                           not in NO_BREAK_SPACES):
             raise ContractError(f"data.thousands must be one character other than the decimal "
-                                "mark, not a digit, letter, sign or space (',', '.', \"'\" or "
-                                f"null), got {self.thousands!r}")
+                                "mark, not a digit, letter, sign or plain space (',', '.', \"'\", "
+                                f"a no-break space or null), got {self.thousands!r}")
         if self.decimal == self.delimiter != AUTO:
             raise ContractError(f"data.decimal={self.decimal!r} is the field separator too "
                                 "(data.delimiter): a lab writing decimal commas separates with ';'")

@@ -9,9 +9,11 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.compute as pc
 
-# marks a lab may group digits with (6,000  6.000  6'000); a space is never one in a CSV cell
+# marks a lab may group digits with (6,000  6.000  6'000, and a French or SI export's 6 000 with
+# a no-break space, U+00A0, or a narrow one, U+202F); a plain space is never one in a CSV cell
 # that Arrow reads, it would be a field of its own or trimmed
-GROUP_MARKS = (",", ".", "'")
+NO_BREAK_SPACES = ("\u00a0", "\u202f")
+GROUP_MARKS = (",", ".", "'", *NO_BREAK_SPACES)
 UNICODE_MINUS = "\u2212"      # '−1,5': a minus sign, read as '-'
 
 
@@ -50,7 +52,8 @@ def thousands_hint(value: str, column: pa.ChunkedArray, decimal: str) -> str | N
                 column, rf"^\s*[+-]?\d*{m}(?:\d{{1,2}}|\d{{4,}})(?:[eE][+-]?\d+)?\s*$")
             if pc.any(as_decimal).as_py():
                 return None
-        return f": a thousands separator? set data.thousands={mark!r}"
+        said = " (a no-break space)" if mark in NO_BREAK_SPACES else ""
+        return f": a thousands separator{said}? set data.thousands={mark!r}"
     return None
 
 
