@@ -17,6 +17,7 @@ from thermocomp.core.io import ContractError, read_dataset
 from thermocomp.core.io.detect import proposed_roles
 from thermocomp.core.io.options import ReadOptions
 from thermocomp.core.io.roles import split_unit
+from thermocomp.core.io.stdin import read_stream, stream_seconds
 from thermocomp.shell.cli import main
 
 
@@ -68,6 +69,9 @@ def test_two_columns_under_one_header_are_refused_naming_both(tmp_path, capsys):
     path = _write(tmp_path / "twice.csv", ["time", "T1", "T1", "dX [µm]"], [t, t1, t2, e], sep=";")
     refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, str(path),
             "columns 2 and 3 have the same header 'T1'")
+    with pytest.raises(ContractError, match="columns 2 and 3 have the same header 'T1'"):
+        read_stream(path.read_text(encoding="utf-8"), ["T_T1"],
+                    ReadOptions.from_cfg({"roles": {"error": ["dX"]}}))
 
 
 def test_a_time_of_day_alone_under_any_header_is_refused_saying_so(tmp_path, capsys):
@@ -168,8 +172,6 @@ LAB_ROLES = {"error": ["d*"], "ambient": ["Raum"], "time": ["Datum", "Uhrzeit"]}
 def test_a_labs_export_on_stdin_is_named_joined_and_converted_as_its_file_is(tmp_path):
     # before: a stream read no data.roles, joined no date and time of day and converted no
     # unit: 'stdin lacks a column the compensator reads' for the lab's own headers
-    from thermocomp.core.io.stdin import read_stream
-
     path = _lab_export(tmp_path / "lab.csv")
     cfg = {"roles": LAB_ROLES, "test_fraction": 0.2}
     ds, _ = read_dataset(path, cfg)
@@ -249,8 +251,6 @@ def test_a_time_the_zones_clock_never_showed_or_an_unknown_zone_is_refused(tmp_p
 
 
 def test_a_stream_on_a_local_clock_is_read_with_data_timezone():
-    from thermocomp.core.io.stdin import stream_seconds
-
     utc = pd.Timestamp("2026-10-25 00:00", tz="UTC") + pd.to_timedelta(np.arange(12) * 900, "s")
     local = pd.Series(list(utc.tz_convert("Europe/Berlin").strftime("%Y-%m-%d %H:%M:%S")))
     np.testing.assert_allclose(stream_seconds(local, "auto", "Europe/Berlin"), np.arange(12) * 900)
@@ -298,8 +298,6 @@ def test_a_contract_files_time_every_100_s_is_seconds_by_the_contract(tmp_path, 
 def test_a_loggers_preamble_and_unit_row_stream_as_its_file_reads(tmp_path):
     # before: the preamble was read as the stream's header, the unit row as its first row
     from test_raw_exports44 import _logger_export
-    from thermocomp.core.io.stdin import read_stream
-
     path = _logger_export(tmp_path / "log.csv", ["Logger: XY-200", ""], ["s", "°C", "K", "mm"])
     cfg = {"roles": {"error": ["dX"]}}
     frame = _read(path, **cfg)

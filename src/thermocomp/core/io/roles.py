@@ -104,6 +104,18 @@ def _known_unit(unit: str) -> bool:
     return any(unit.lower() in known for known in UNITS.values())
 
 
+def same_header(headers: Sequence[str]) -> ContractError | None:
+    """The refusal of two columns under one header (``T1;T1``): no setting tells them apart."""
+    seen: dict[str, int] = {}
+    for i, header in enumerate(h.strip() for h in headers):
+        if header and header in seen:
+            return ContractError(f"columns {seen[header] + 1} and {i + 1} have the same header "
+                                 f"{header!r}: no setting tells them apart, give each its own "
+                                 "header", column=header)
+        seen.setdefault(header, i)
+    return None
+
+
 def active(roles: Mapping) -> bool:
     """Any role pattern (or an explicit time column) set: headers are named by role."""
     return any(roles.get(k) for k in ROLE_PATTERNS) or roles.get("time", AUTO) != AUTO

@@ -17,7 +17,7 @@ from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, text_codec
 from .layout import header_line, is_unit_row, with_units
-from .roles import active, naming
+from .roles import active, naming, same_header
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
 from .timestamps import CLOCK, on_local_clock, time_kind, time_type
@@ -50,6 +50,9 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)
+    twice = same_header(split_line(text.split("\n", 1)[0], opts.delimiter, SPLIT))
+    if twice is not None:                 # (pandas would read them as 'T1' and 'T1.1')
+        raise ContractError(twice.reason, file=SOURCE, column=twice.column)
     try:
         df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
                          thousands=opts.thousands, na_values=list(opts.missing_values))

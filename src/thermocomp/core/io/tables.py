@@ -22,7 +22,7 @@ from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
 from .footer import blank_inside, footer, source
 from .layout import header_line, is_unit_row, with_units
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
-from .roles import active, naming
+from .roles import active, naming, same_header
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
 from .timestamps import (
@@ -74,10 +74,8 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                                 "or control character): map it with data.columns",
                                 file=file, column=name)
         if name in seen:
-            twice = [i + 1 for i, r in enumerate(raw_names) if r == raw]
-            raise ContractError(f"columns {twice[0]} and {twice[1]} have the same header {raw!r}: "
-                                "no setting tells them apart, give each its own header"
-                                if len(twice) > 1 else "duplicate column (after data.columns "
+            twice = same_header(raw_names)
+            raise ContractError(twice.reason if twice else "duplicate column (after data.columns "
                                 "mapping)", file=file, column=name)
         names.append(name)
         seen.add(name)
