@@ -335,3 +335,19 @@ def test_digits_grouped_by_a_no_break_space_are_named_and_read_with_data_thousan
     assert refusal.value.row == 18                          # 1 020 s, the first grouped cell
     frame = _read(path, roles={"error": ["dX"]}, thousands=space)
     np.testing.assert_allclose(frame[["time", "T_T1", "E_dX"]], np.c_[t, t1, 1000 * e], atol=1e-3)
+
+
+def test_an_excel_row_of_empty_cells_under_a_time_column_is_left_out_and_said(tmp_path, capsys):
+    # before: refused, "missing time value" (';;;' is how Excel writes an empty row)
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "excel.csv", ["Zeit [s]", "T1", "dX [µm]"], [t, t1, e], sep=";")
+    lines = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\n".join([*lines[:11], ";;", *lines[11:]]) + "\n", encoding="utf-8")
+    frame = _read(path, roles={"error": ["dX"]})
+    np.testing.assert_allclose(frame[["time", "T_T1", "E_dX"]], np.c_[t, t1, e], atol=1e-3)
+    assert f"{path}, row 11: 1 row(s) of empty cells left out" in capsys.readouterr().err
+    lines[5] = ";" + lines[5].split(";", 1)[1]           # a time missing from a row of values
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    with pytest.raises(ContractError, match="missing time value") as refusal:
+        _read(path, roles={"error": ["dX"]})
+    assert refusal.value.row == 5

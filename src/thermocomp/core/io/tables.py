@@ -145,6 +145,8 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
     table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
     _check_unnamed_empty(table, header, names, unnamed, path)
+    if TIME in types:
+        table = _without_empty_rows(table, path)
     if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
         said_if_not_seconds(_values(table.column(TIME)), path, header[names.index(TIME)],
                              own=active(opts.roles))
@@ -152,6 +154,23 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     if CLOCK in columns:
         columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
     return _converted(columns, scales), _renames(header, named), _rescaled(scales)
+
+
+def _without_empty_rows(table: pa.Table, path: Path) -> pa.Table:
+    """``table`` without its rows of empty cells (Excel's empty row, ``;;;``), left out as a
+    blank line is, and said: with a time column each row carries its own time, so nothing
+    moves (without one, such a row is a sample not taken: a gap)."""
+    if not table.column(TIME).null_count:
+        return table
+    empty = pa.chunked_array([pa.array(np.ones(table.num_rows, bool))])
+    for column in table.columns:
+        empty = pc.and_(empty, column.is_null())
+    flags = empty.to_numpy()
+    if not flags.any():
+        return table
+    logger.warning(f"{path}, row {int(np.argmax(flags)) + 1}: {int(flags.sum())} row(s) of "
+                   "empty cells left out, as blank lines are (rows after it counted without)")
+    return table.filter(pc.invert(empty))
 
 
 def _check_unnamed_empty(table: pa.Table, header: list[str], names: list[str], unnamed: dict,
