@@ -351,3 +351,10 @@ def test_an_excel_row_of_empty_cells_under_a_time_column_is_left_out_and_said(tm
     with pytest.raises(ContractError, match="missing time value") as refusal:
         _read(path, roles={"error": ["dX"]})
     assert refusal.value.row == 5
+
+
+def test_init_proposes_a_torque_in_newton_metres_as_a_state_not_an_error_in_nanometres():
+    # before: 'Spindel [Nm]' (or 'Spindel Nm') was proposed an error, read in nm
+    header = ["time", "Spindel [Nm]", "Motor Nm", "dX nm", "T1"]
+    roles = proposed_roles(header, {h: "1" for h in header}, ReadOptions())
+    assert (roles["state"], roles["error"]) == (["Spindel", "Motor"], ["dX"])
