@@ -193,8 +193,7 @@ def test_a_stream_on_stdin_is_decoded_with_data_encoding():
 
 @pytest.mark.parametrize("first", ["13:05:00", "28.11.2026"])
 def test_a_stream_whose_time_lacks_its_date_or_time_of_day_is_told_what_a_stream_needs(first):
-    # a stream reads no data.roles: the refusal of a file (name both columns) would send its
-    # user to a setting it does not read
+    # (round 45: a stream reads data.roles too, and the refusal says how to join the two)
     import pandas as pd
 
     from thermocomp.base.errors import ContractError
@@ -203,4 +202,4 @@ def test_a_stream_whose_time_lacks_its_date_or_time_of_day_is_told_what_a_stream
     with pytest.raises(ContractError) as refused:
         stream_seconds(pd.Series([first, first]), "auto")
     assert "a stream's time is one column" in str(refused.value)
-    assert "data.roles" not in str(refused.value)
+    assert "data.roles.time=[<date column>, <time column>]" in str(refused.value)

@@ -28,6 +28,7 @@ _WORDS = re.compile(r"[\s_.\-]+")
 # a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing)
 AMBIENT_WORDS = {"amb", "ambient", "umgebung", "umgebungstemperatur", "raum", "raumtemperatur",
                  "room", "hall", "halle", "hallentemperatur"}
+NEWTON_METRES = ("Nm", "N.m", "N·m")   # a torque, a state: not nanometres (nm)
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
@@ -76,9 +77,12 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
         if isinstance(roles["time"], list) and h in roles["time"]:
             continue
         base, unit = split_unit(h)
-        unit = (opts.units.get(h, unit) or "").lower().replace(" ", "")
+        if not base:                          # a unit alone ('[°C]'): the reader refuses it
+            continue
+        written = (opts.units.get(h, unit) or "").replace(" ", "")
+        unit = written.lower()
         pattern = _GLOB.sub(r"[\1]", base)
-        if unit in UNITS["E"]:
+        if unit in UNITS["E"] and written not in NEWTON_METRES:   # (nm: nanometres)
             roles["error"].append(pattern)
         elif unit in STATE_UNITS:
             roles["state"].append(pattern)

@@ -9,10 +9,10 @@ does not read is refused where it is (row, column) naming the setting that reads
 from __future__ import annotations
 
 import codecs
-import csv
 from pathlib import Path
 
 from .contract import ContractError
+from .csvline import SPLIT, split_line
 
 UTF8 = "utf-8"
 WINDOWS = "cp1252"       # a Windows export; reads Latin-1's printable range alike
@@ -115,11 +115,8 @@ def first_undecodable(path: Path, delimiter: str, names: list[str] | None,
 
 
 def fields(line: str, delimiter: str) -> list[str]:
-    """A header line's fields, stripped."""
-    try:
-        return [c.strip() for c in next(csv.reader([line], delimiter=delimiter), [])]
-    except csv.Error:              # binary bytes (a stray carriage return): no CSV header
-        return [c.strip() for c in line.split(delimiter)]
+    """A header line's fields, stripped (bytes that are no CSV text: split at each separator)."""
+    return [c.strip() for c in split_line(line, delimiter, SPLIT)]
 
 
 def _said(encoding: str) -> str:

@@ -4,11 +4,13 @@ line of numbers cut short stays a malformed row, refused with its row."""
 
 from __future__ import annotations
 
-import csv
+import mmap
+import re
 from pathlib import Path
 
 import pyarrow as pa
 
+from .csvline import EMPTY, split_line
 from .encoding import UTF8
 
 _TAIL_BYTES = 1 << 14
@@ -46,7 +48,7 @@ def source(path: Path, cut: int):
 
 
 def _footer_line(text: str, delimiter: str) -> bool:
-    cells = next(csv.reader([text], delimiter=delimiter), [])
+    cells = split_line(text, delimiter, EMPTY)          # (no CSV text: no footer)
     if len([c for c in cells if c.strip()]) != 1 or len(cells) > 1 and cells[0].strip() == "":
         return False
     try:
@@ -54,3 +56,19 @@ def _footer_line(text: str, delimiter: str) -> bool:
     except ValueError:
         return True
     return False
+
+
+def blank_inside(path: Path, skip: int, cut: int) -> int | None:
+    """The data row under which the first blank line among the data rows stands (``skip``:
+    the lines above the first data row; ``cut``: the bytes before a footer), or None.  Arrow
+    skips a blank line: where the rows' positions are the time (``data.sample_period_s``) it
+    is a sample not taken, or nothing."""
+    with open(path, "rb") as f, mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) as m:
+        start = 0
+        for _ in range(skip):                       # past the preamble, header, units
+            start = m.find(b"\n", start) + 1
+            if start == 0:
+                return None
+        body = m[start:cut].rstrip(b"\r\n\t ")       # (blank lines at the end: no row follows)
+    found = re.search(rb"\n[ \t\r]*\n", body)
+    return None if found is None else body[:found.start()].count(b"\n") + 1

@@ -10,18 +10,14 @@ its units join the headers (``T1`` over ``°C`` is ``T1 [°C]``).
 
 from __future__ import annotations
 
-import csv
-
+from .csvline import EMPTY, split_line
 from .roles import STATE_UNITS, UNITS, split_unit
 
 MAX_PREAMBLE = 20
 
 
 def cells(line: str, sep: str) -> list[str]:
-    try:
-        return next(csv.reader([line], delimiter=sep), [])
-    except csv.Error:
-        return []
+    return split_line(line, sep, EMPTY)          # (no CSV text: no table starts there)
 
 
 def header_line(lines: list[str], sep: str) -> int | None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+import zoneinfo
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -12,6 +13,7 @@ import numpy as np
 from ...base.params import MAX_COUNT
 from .contract import SPLITS, ContractError
 from .encoding import UTF8, codec
+from .separators import NO_BREAK_SPACES
 
 TIME_FORMATS = ("auto", "seconds", "iso8601")
 AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
@@ -54,6 +56,7 @@ class ReadOptions:
     decimal: str = AUTO
     thousands: str | None = None
     encoding: str = UTF8          # the CSV files' character set (Python's codec name)
+    timezone: str | None = None   # the zone of timestamps written without an offset (local)
     roles: dict = field(default_factory=dict)     # see io.roles; {} (or all empty): none
     units: dict = field(default_factory=dict)     # header -> unit where the header has none
     missing_values: list = field(default_factory=list)  # read as missing besides empty, nan
@@ -99,6 +102,7 @@ class ReadOptions:
             decimal=_text(cfg, "decimal", AUTO),
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
             encoding=codec(_text(cfg, "encoding", UTF8)),
+            timezone=_timezone(cfg),
             roles=_roles(cfg),
             units=_str_mapping(cfg, "units"),
             missing_values=_missing_values(cfg),
@@ -127,10 +131,12 @@ class ReadOptions:
                                 f"part is left), got {self.test_fraction} + {self.val_fraction}")
         # (the field separator may be it: a CSV writer quotes "6,000")
         if self.thousands is not None and (len(self.thousands) != 1 or self.thousands
-                                           == self.decimal or re.match(r"[\w+\-\s]", self.thousands)):
+                                           == self.decimal or re.match(r"[\w+\-]", self.thousands)
+                                           or self.thousands.isspace() and self.thousands
+                                           not in NO_BREAK_SPACES):
             raise ContractError(f"data.thousands must be one character other than the decimal "
-                                "mark, not a digit, letter, sign or space (',', '.', \"'\" or "
-                                f"null), got {self.thousands!r}")
+                                "mark, not a digit, letter, sign or plain space (',', '.', \"'\", "
+                                f"a no-break space or null), got {self.thousands!r}")
         if self.decimal == self.delimiter != AUTO:
             raise ContractError(f"data.decimal={self.decimal!r} is the field separator too "
                                 "(data.delimiter): a lab writing decimal commas separates with ';'")
@@ -143,6 +149,19 @@ def _text(cfg: Mapping, key: str, default: str) -> str:
     """``cfg[key]`` as text, ``default`` when missing or null (an empty text stays, refused)."""
     value = cfg.get(key)
     return default if value is None else str(value)
+
+
+def _timezone(cfg: Mapping) -> str | None:
+    """``data.timezone``: an IANA zone (``Europe/Berlin``), or null."""
+    value = cfg.get("timezone")
+    if value is None:
+        return None
+    try:
+        zoneinfo.ZoneInfo(str(value))
+    except (zoneinfo.ZoneInfoNotFoundError, ValueError):
+        raise ContractError(f"data.timezone must be a time zone such as Europe/Berlin or UTC (or "
+                            f"null), got {value!r}") from None
+    return str(value)
 
 
 def _roles(cfg: Mapping) -> dict:
@@ -179,10 +198,19 @@ def _missing_values(cfg: Mapping) -> list:
     """``data.missing_values``: what a lab writes for a value not measured (``-``, ``n/a``)."""
     value = cfg.get("missing_values") or []
     value = [value] if isinstance(value, str) else value
-    if not all(isinstance(v, str) and v.strip() and not re.search(r"\d", v) for v in value):
-        raise ContractError(f"data.missing_values must be a list of marks without digits (e.g. "
-                            f"['-', 'n/a']), got {cfg.get('missing_values')!r}")
+    if not all(isinstance(v, str) and v.strip() and not _number(v) for v in value):
+        raise ContractError(f"data.missing_values must be a list of marks that are no number "
+                            f"(e.g. ['-', 'n/a', '#DIV/0!']), got {cfg.get('missing_values')!r}")
     return [str(v) for v in value]
+
+
+def _number(text: str) -> bool:
+    """``text`` reads as a number with either decimal mark (never a mark for a missing value)."""
+    try:
+        float(text.strip().replace(",", "."))
+    except ValueError:
+        return False
+    return True
 
 
 def _fraction(cfg: Mapping, key: str) -> float | None:

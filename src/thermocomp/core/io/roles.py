@@ -21,6 +21,7 @@ from pathlib import Path
 from ...base.errors import listed
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, _roles
+from .separators import reads_as_number
 from .timestamps import CLOCK, DATE, TIME_OF_DAY, looks_like_timestamp
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
@@ -28,6 +29,11 @@ _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # (``dX/um``) only a unit of :data:`UNITS`, so that ``Datum/Zeit`` or ``on/off`` stay names
 _SLASHED = re.compile(r"^(.*?\S)(\s*)/(\s*)(\S+)$")
 _IN_UNIT = re.compile(r"^(.*?\S)\s+(?:in|en)\s+(\S+)$", re.IGNORECASE)   # 'dX in µm' (a known unit)
+# a unit as the header's last word or '_' suffix ('dZ um', 'Spindel °C', 'dX_um', 'time_s'):
+# only a unit of two or more characters or a symbol (a single letter is a name as often: 'Zone
+# C', 'Sensor K'), a time's only after a time header ('T_min' is no temperature in minutes)
+_LAST_WORD = re.compile(r"^(.*?\S)\s+(\S+)$")
+_SUFFIX = re.compile(r"^(.*?[^\s_])_([^\s_]+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "elapsed", "seconds"})
@@ -40,7 +46,8 @@ UNITS = {
           **dict.fromkeys(("k", "kelvin"), (1.0, -273.15)),
           **dict.fromkeys(("°f", "f", "degf", "℉", "fahrenheit"), (5 / 9, -32 * 5 / 9))},
     "time": {**dict.fromkeys(("s", "sec", "secs", "seconds"), (1.0, 0.0)), "ms": (1e-3, 0.0),
-             "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0))},
+             "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0)),
+             **dict.fromkeys(("d", "day", "days"), (86400.0, 0.0))},     # (Excel's serial days)
 }
 
 # units that say "a machine state" (speeds, loads, positions, on/off)
@@ -69,11 +76,44 @@ def split_unit(header: str) -> tuple[str, str | None]:
     match = _IN_UNIT.match(header.strip())
     if match and _known_unit(match.group(2)):
         return match.group(1).strip(), match.group(2)
+    match = _bare_unit(header.strip())
+    if match:
+        return match
     return header.strip(), None
+
+
+def _bare_unit(header: str) -> tuple[str, str] | None:
+    """``('dZ', 'um')`` for a unit written as the last word (``dZ um``) or, in a header that is
+    no contract name (``T_spindle_degC`` keeps its name), as an ``_`` suffix (``dZ_um``)."""
+    if _UNIT.fullmatch(header) and not _UNIT.match(header).group(1).strip():
+        return "", _UNIT.match(header).group(2).strip()     # a unit alone ('[°C]'): no name
+    for pattern in (_LAST_WORD, _SUFFIX):
+        match = pattern.match(header)
+        if match is None or (pattern is _SUFFIX and role(header) is not None):
+            continue
+        base, unit = match.group(1).strip(), match.group(2)
+        known = unit.lower()
+        if ((len(known) > 1 or not known.isalpha())
+                and (any(known in UNITS[k] for k in ("E", "T")) or known in STATE_UNITS)
+                or base.lower() in TIME_HEADERS and known in UNITS["time"]):
+            return base, unit
+    return None
 
 
 def _known_unit(unit: str) -> bool:
     return any(unit.lower() in known for known in UNITS.values())
+
+
+def same_header(headers: Sequence[str]) -> ContractError | None:
+    """The refusal of two columns under one header (``T1;T1``): no setting tells them apart."""
+    seen: dict[str, int] = {}
+    for i, header in enumerate(h.strip() for h in headers):
+        if header and header in seen:
+            return ContractError(f"columns {seen[header] + 1} and {i + 1} have the same header "
+                                 f"{header!r}: no setting tells them apart, give each its own "
+                                 "header", column=header)
+        seen.setdefault(header, i)
+    return None
 
 
 def active(roles: Mapping) -> bool:
@@ -157,7 +197,8 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             kind = "temperature"
         name = _derived(kind, base, len(ambient) > 1)
         if not _UNSAFE.sub("", base):
-            problems.append(f"{header!r} gives no name")
+            problems.append(f"{header!r} gives no name" + ("" if base else " (a unit alone: name "
+                                                           "it with data.columns)"))
             continue
         out.names[header], out.roles[header] = name, kind
         _scale(out, name, "E" if kind == "error" else "T" if kind != "state" else None, unit,
@@ -226,7 +267,7 @@ def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: s
     scale = known.get(unit.lower().replace(" ", ""))
     if scale is None:
         what = {"E": "an error's (µm, mm, m, nm)", "T": "a temperature's (°C, K, °F)",
-                "time": "a time's (s, ms, min, h)"}[kind]
+                "time": "a time's (s, ms, min, h, d)"}[kind]
         problems.append(f"{header!r}: unit {unit!r} is not {what}")
     elif scale != (1.0, 0.0) or kind == "time":   # (a time's unit stated: no ms to suspect)
         out.scales[name] = scale
@@ -243,13 +284,7 @@ def _duplicates(names: dict, problems: list, by_role: bool) -> None:
 
 
 def _numeric(text, decimal: str) -> bool:
-    if text is None or not str(text).strip():
-        return True                      # a missing cell: the column's type is not known here
-    try:
-        float(str(text).strip().replace(decimal, ".") if decimal != "." else str(text).strip())
-    except ValueError:
-        return False
-    return True
+    return reads_as_number(text, decimal)        # (a missing cell: the type is not known here)
 
 
 def _refusal(problems: list[str], by_role: bool, names: dict, roles: dict, file) -> ContractError:

@@ -9,9 +9,27 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.compute as pc
 
-# marks a lab may group digits with (6,000  6.000  6'000); a space is never one in a CSV cell
+# marks a lab may group digits with (6,000  6.000  6'000, and a French or SI export's 6 000 with
+# a no-break space, U+00A0, or a narrow one, U+202F); a plain space is never one in a CSV cell
 # that Arrow reads, it would be a field of its own or trimmed
-GROUP_MARKS = (",", ".", "'")
+NO_BREAK_SPACES = ("\u00a0", "\u202f")
+GROUP_MARKS = (",", ".", "'", *NO_BREAK_SPACES)
+UNICODE_MINUS = "\u2212"      # '−1,5': a minus sign, read as '-'
+
+
+def reads_as_number(text, decimal: str = ".", thousands: str | None = None) -> bool:
+    """A cell's text reads as a number (with ``decimal``, ``thousands`` and a Unicode minus as
+    the reader takes them); a missing cell (None, empty) counts as one."""
+    if text is None or not str(text).strip():
+        return True
+    text = str(text).strip().replace(UNICODE_MINUS, "-")
+    if thousands is not None:
+        text = text.replace(thousands, "")
+    try:
+        float(text.replace(decimal, ".") if decimal != "." else text)
+    except ValueError:
+        return False
+    return True
 
 
 def grouped(mark: str, decimal: str) -> str:
@@ -34,7 +52,8 @@ def thousands_hint(value: str, column: pa.ChunkedArray, decimal: str) -> str | N
                 column, rf"^\s*[+-]?\d*{m}(?:\d{{1,2}}|\d{{4,}})(?:[eE][+-]?\d+)?\s*$")
             if pc.any(as_decimal).as_py():
                 return None
-        return f": a thousands separator? set data.thousands={mark!r}"
+        said = " (a no-break space)" if mark in NO_BREAK_SPACES else ""
+        return f": a thousands separator{said}? set data.thousands={mark!r}"
     return None
 
 
@@ -48,10 +67,12 @@ def misgrouped(column: pa.ChunkedArray, mark: str, decimal: str) -> int | None:
 
 
 def ungrouped(column: pa.ChunkedArray, mark: str | None, decimal: str) -> pa.ChunkedArray:
-    """The text of ``column`` as Arrow casts it to float: no ``mark`` (none when ``None``),
+    """The text of ``column`` as Arrow casts it to float: no ``mark`` (none when ``None``), a
+    Unicode minus as ``-``,
     ``.`` as the decimal mark (a ``.`` where ``decimal`` is another mark stays invalid, as
     Arrow's reader has it)."""
     text = column if mark is None else pc.replace_substring(column, mark, "")
+    text = pc.replace_substring(text, UNICODE_MINUS, "-")
     if decimal != ".":
         text = pc.replace_substring(pc.replace_substring(text, ".", "!"), decimal, ".")
     return text

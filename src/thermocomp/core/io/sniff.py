@@ -3,20 +3,20 @@ is written with, read from its first lines (a lab's export: ``;`` and decimal co
 
 from __future__ import annotations
 
-import csv
 import re
 from dataclasses import replace
 from pathlib import Path
 
 from .contract import ContractError
+from .csvline import SPLIT, split_line
 from .encoding import UTF8, check_not_utf8, text_codec
 from .layout import header_line
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions
 
 SNIFF_LINES = 50
 _SNIFF_BYTES = 1 << 16
-_DECIMAL_COMMA = re.compile(r"\s*[+-]?\d*,\d+(?:[eE][+-]?\d+)?\s*")
-_DECIMAL_POINT = re.compile(r"\s*[+-]?\d*\.\d+(?:[eE][+-]?\d+)?\s*")
+_DECIMAL_COMMA = re.compile(r"\s*[+\-\u2212]?\d*,\d+(?:[eE][+-]?\d+)?\s*")   # (U+2212: a minus)
+_DECIMAL_POINT = re.compile(r"\s*[+\-\u2212]?\d*\.\d+(?:[eE][+-]?\d+)?\s*")
 
 
 def resolved(path: Path, opts: ReadOptions) -> ReadOptions:
@@ -70,7 +70,7 @@ def _decimal(lines: list[str], delimiter: str, path: Path) -> str:
     separating the fields), else ``.``."""
     if delimiter == ",":
         return "."
-    cells = [c for ln in lines[1:] for c in next(csv.reader([ln], delimiter=delimiter), [])]
+    cells = [c for ln in lines[1:] for c in split_line(ln, delimiter, SPLIT)]
     comma = any(_DECIMAL_COMMA.fullmatch(c) for c in cells)
     point = any(_DECIMAL_POINT.fullmatch(c) for c in cells)
     if comma and point:

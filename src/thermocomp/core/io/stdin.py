@@ -1,9 +1,12 @@
 """A campaign streamed as CSV text (``thermocomp monitor monitor.input=-``): read as a campaign
-file is (``data.delimiter``, ``data.decimal``, ``data.columns``, ``data.time``), so a lab's logger
-rows stream as they are written; empty cells stay NaN, a non-numeric one is refused with its row."""
+file is (``data.delimiter``, ``data.decimal``, ``data.columns``, ``data.roles``, ``data.units``,
+``data.time``; a logger's preamble and unit row), so a lab's logger rows stream as they are
+written; empty cells stay NaN, a non-numeric one is refused with its row."""
 
 from __future__ import annotations
 
+import csv
+import re
 from io import StringIO
 
 import numpy as np
@@ -11,11 +14,16 @@ import pandas as pd
 
 from ..context import TIME
 from .contract import ContractError
+from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, text_codec
+from .layout import header_line, is_unit_row, with_units
+from .roles import active, naming, same_header
+from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
-from .timestamps import time_kind
+from .timestamps import CLOCK, on_local_clock, time_kind, time_type
 
 SOURCE = "<stdin>"
+_UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
 
 
 def stdin_text(stream, encoding: str = UTF8) -> str:
@@ -37,9 +45,14 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
 def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict]:
     """``(frame, missing cells per column)`` of CSV ``text`` (header first) holding ``columns``
     (those the compensator reads).  ``time`` in seconds or as ISO 8601 timestamps (``auto``: as
-    the first row reads, like a campaign file)."""
-    text = text.lstrip("\ufeff")
+    the first row reads, like a campaign file); the headers named as a campaign file's are
+    (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``)."""
+    text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
+    text = _table(text, opts.delimiter)
+    twice = same_header(split_line(text.split("\n", 1)[0], opts.delimiter, SPLIT))
+    if twice is not None:                 # (pandas would read them as 'T1' and 'T1.1')
+        raise ContractError(twice.reason, file=SOURCE, column=twice.column)
     try:
         df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
                          thousands=opts.thousands, na_values=list(opts.missing_values))
@@ -47,7 +60,7 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
         raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                             f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
                             file=SOURCE) from None
-    df = df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns})
+    df, scales = _named(df, opts)
     absent = [c for c in columns if c not in df.columns]
     if not absent and df.empty:
         raise ContractError("stdin has a header but no data row", file=SOURCE)
@@ -55,7 +68,7 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
         raise ContractError("stdin lacks a column the compensator reads", file=SOURCE,
                             column=",".join(absent))
     if TIME in df.columns:
-        df[TIME] = stream_seconds(df[TIME], opts.time)
+        df[TIME] = stream_seconds(df[TIME], opts.time, opts.timezone)
     # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
     # model reads: the measured errors and the context are read from the same frame
     numeric = list(dict.fromkeys([*columns, *(c for c in df.columns
@@ -66,12 +79,52 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
             raise ContractError("non-numeric value", file=SOURCE, column=c,
                                 row=int(np.flatnonzero(bad)[0]) + 1)
         df[c] = pd.to_numeric(df[c], errors="coerce")
+        if c in scales:            # a unit in the header (or data.units): the contract's
+            scale, offset = scales[c]
+            df[c] = df[c] * scale + offset
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}
 
 
-def stream_seconds(time: pd.Series, time_format: str) -> pd.Series:
+def _table(text: str, sep: str) -> str:
+    """``text`` from its header on, a unit row's units joined to the headers (``T1`` over
+    ``°C``: ``T1 [°C]``), as a campaign file's table is found (:mod:`.layout`): a logger's
+    preamble and unit row stream as they are written."""
+    lines = text.splitlines()
+    start = header_line(lines[:SNIFF_LINES], sep) or 0
+    units = len(lines) > start + 1 and is_unit_row(split_line(lines[start + 1], sep, EMPTY))
+    if not start and not units:
+        return text
+    header = split_line(lines[start], sep, SPLIT)
+    if units:
+        header = with_units(header, split_line(lines[start + 1], sep, EMPTY))
+    out = StringIO()
+    csv.writer(out, delimiter=sep, lineterminator="\n").writerow(header)
+    return out.getvalue() + "\n".join(lines[start + 1 + units:]) + "\n"
+
+
+def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict]:
+    """``df`` under contract names and the unit conversions: ``data.columns`` alone as before,
+    or, with ``data.roles`` or ``data.units`` set, as :func:`.roles.naming` names a campaign
+    file's headers (a date and a time of day joined into one time)."""
+    if not (active(opts.roles) or opts.units):
+        return df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns}), {}
+    # Excel's trailing separator: a column without a header ('Unnamed: 4') that holds nothing
+    df = df.drop(columns=[c for c in df.columns if _UNNAMED.fullmatch(str(c))
+                          and df[c].isna().all()])
+    first = {c: None if df.empty or pd.isna(df[c].iloc[0]) else str(df[c].iloc[0])
+             for c in df.columns}
+    plan = naming(list(df.columns), opts.roles, opts.columns, first, ".", SOURCE, opts.units)
+    df = df[[c for c in df.columns if c in plan.names]].rename(columns=plan.names)
+    if CLOCK in df.columns:
+        date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
+        df = df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
+    return df, plan.scales
+
+
+def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -> pd.Series:
     """The stream's ``time`` in seconds since its first row when it holds ISO 8601 timestamps
-    (as given otherwise: the numeric check refuses what is no number).  A time that goes back
+    (as given otherwise: the numeric check refuses what is no number; ``zone``:
+    ``data.timezone``, the local clock of timestamps without an offset).  A time that goes back
     is no refusal here: the stream's guard judges it, as on the machine."""
     first, kind = time.iloc[0], time_format
     if kind == "auto" and isinstance(first, str):      # read as a campaign file's
@@ -87,4 +140,9 @@ def stream_seconds(time: pd.Series, time_format: str) -> pd.Series:
         what = "an ISO 8601 time" if kind == "iso8601" else f"a time in the format {kind!r}"
         raise ContractError(f"not {what} (data.time={time_format}: the stream's first row is a "
                             "timestamp)", file=SOURCE, column=TIME, row=row)
+    if zone is not None and time_type(kind, str(time.iloc[0]).strip()).tz is None:
+        valid = stamps.notna()
+        wall = stamps[valid].dt.tz_localize(None).to_numpy("datetime64[ns]").astype(np.int64)
+        stamps = stamps.copy()
+        stamps[valid] = pd.to_datetime(on_local_clock(wall, zone, SOURCE), utc=True)
     return (stamps - stamps.iloc[0]).dt.total_seconds()

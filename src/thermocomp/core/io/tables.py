@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import contextlib
 import csv
+import mmap
 import re
 from dataclasses import replace
 from pathlib import Path
@@ -16,19 +17,22 @@ import pyarrow.csv as pacsv
 
 from ...base.log import logger
 from .contract import TIME, ContractError, role
+from .csvline import SPLIT, split_line
 from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
-from .footer import footer, source
+from .footer import blank_inside, footer, source
 from .layout import header_line, is_unit_row, with_units
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
-from .roles import naming
-from .separators import misgrouped, thousands_hint, ungrouped
+from .roles import active, naming, same_header
+from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
 from .timestamps import (
     CLOCK,
+    DATE,
+    TIME_OF_DAY,
     described,
     is_format,
     parsed,
-    said_if_milliseconds,
+    said_if_not_seconds,
     time_kind,
     time_type,
 )
@@ -37,6 +41,7 @@ from .timestamps import (
 _CSV_BLOCK_BYTES = 16 << 20
 _PANDAS_INDEX = re.compile(r"__index_level_\d+__")
 _CONVERSION_ERROR = re.compile(r"In CSV column #(\d+)")
+_EXCEL_ERROR = re.compile(r"#[A-Z0-9/]+[!?]")    # a formula's error, '#DIV/0!', '#WERT!'
 _ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
 # A contract name: prefix + identifier-like name (it becomes part of file names: no path
 # separators, '..', spaces or control characters).
@@ -69,14 +74,19 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                                 "or control character): map it with data.columns",
                                 file=file, column=name)
         if name in seen:
-            raise ContractError("duplicate column (after data.columns mapping)",
-                                file=file, column=name)
+            twice = same_header(raw_names)
+            raise ContractError(twice.reason if twice else "duplicate column (after data.columns "
+                                "mapping)", file=file, column=name)
         names.append(name)
         seen.add(name)
     if not any(role(n) == "E" for n in names if n):
         raise ContractError("no E_ column: a campaign needs at least one measured error",
                             file=file)
     if TIME not in names and opts.sample_period_s is None:
+        for raw in raw_names:      # a time of day or a date alone: refused saying so
+            cell = str((first or {}).get(raw) or "")
+            if TIME_OF_DAY.fullmatch(cell) or DATE.fullmatch(cell):
+                time_kind(cell.strip(), "auto", False, file, raw)
         raise ContractError("no 'time' column (none named like 'time', 't(s)', 'Zeit', no ISO "
                             "8601 timestamps, no data.roles.time): set data.sample_period_s "
                             "(the seconds between rows)", file=file)
@@ -113,9 +123,14 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
-    said = footer(path, opts.delimiter, len(header), opts.encoding)[0]
+    said, cut = footer(path, opts.delimiter, len(header), opts.encoding)
     if said:
         logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: {said[0]!r})")
+    blank = None if TIME in named else blank_inside(path, skip, cut)
+    if blank is not None:
+        logger.warning(f"{path}, row {blank}: a blank line under it is left out, and the rows "
+                       f"after it read data.sample_period_s earlier: if it is a sample not "
+                       "taken, leave its cells empty instead (a gap, data.max_gap_samples)")
     if len(first_row) != len(named):
         raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
     # a column left out (data.roles.ignore) is read under a name no contract column can have
@@ -130,12 +145,32 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
     table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
     _check_unnamed_empty(table, header, names, unnamed, path)
+    if TIME in types:
+        table = _without_empty_rows(table, path)
     if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
-        said_if_milliseconds(_values(table.column(TIME)), path, header[names.index(TIME)])
+        said_if_not_seconds(_values(table.column(TIME)), path, header[names.index(TIME)],
+                             own=active(opts.roles))
     columns = _columns(table.select(list(types)))
     if CLOCK in columns:
         columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
     return _converted(columns, scales), _renames(header, named), _rescaled(scales)
+
+
+def _without_empty_rows(table: pa.Table, path: Path) -> pa.Table:
+    """``table`` without its rows of empty cells (Excel's empty row, ``;;;``), left out as a
+    blank line is, and said: with a time column each row carries its own time, so nothing
+    moves (without one, such a row is a sample not taken: a gap)."""
+    if not table.column(TIME).null_count:
+        return table
+    empty = pa.chunked_array([pa.array(np.ones(table.num_rows, bool))])
+    for column in table.columns:
+        empty = pc.and_(empty, column.is_null())
+    flags = empty.to_numpy()
+    if not flags.any():
+        return table
+    logger.warning(f"{path}, row {int(np.argmax(flags)) + 1}: {int(flags.sum())} row(s) of "
+                   "empty cells left out, as blank lines are (rows after it counted without)")
+    return table.filter(pc.invert(empty))
 
 
 def _check_unnamed_empty(table: pa.Table, header: list[str], names: list[str], unnamed: dict,
@@ -154,7 +189,7 @@ def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> 
     ``data.delimiter`` (say which one reads it, rather than a misleading name error)."""
     for sep in _OTHER_DELIMITERS:
         if sep != opts.delimiter and sep in header:
-            cells = next(csv.reader([first], delimiter=sep), [])
+            cells = split_line(first, sep, SPLIT)
             comma = sep != "," and opts.decimal != "," and any(
                 re.fullmatch(r"[+-]?\d+,\d+", c.strip()) for c in cells)
             hint = " data.decimal=','" if comma else ""
@@ -193,7 +228,7 @@ def _timed(path: Path, value: str, opts: ReadOptions, header: str | None = None)
     """``opts`` with ``time`` the way this file's time column is read (:mod:`.timestamps`)."""
     if not value:
         raise ContractError("missing time value", file=path, column=TIME, row=1)
-    number = _is_number(value, opts.decimal, opts.thousands)
+    number = reads_as_number(value, opts.decimal, opts.thousands)
     return replace(opts, time=time_kind(value, opts.time, number, path, header))
 
 
@@ -210,16 +245,6 @@ def _joined_time(date, clock, path: Path, opts: ReadOptions):
         raise ContractError(f"value {found[1]!r} (the date and the time of day joined) is not "
                             f"{_describe(target, kind)}", file=path, column=TIME, row=found[0] + 1)
     return parsed(text, target, kind)
-
-
-def _is_number(text: str, decimal: str, thousands: str | None = None) -> bool:
-    if thousands is not None:
-        text = text.replace(thousands, "")
-    try:
-        float(text.replace(decimal, "."))
-    except ValueError:
-        return False
-    return True
 
 
 def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=None,
@@ -240,27 +265,44 @@ def _input(path: Path, opts: ReadOptions, names: list[str]):
 
 
 def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions) -> pa.Table:
-    # Arrow's reader knows no thousands separator: with one, numbers are read as text first
-    read_as = types if opts.thousands is None else {
-        n: pa.string() if pa.types.is_floating(t) else t for n, t in types.items()}
+    # Arrow's reader knows no thousands separator nor a Unicode minus ('−1,5', U+2212, as a
+    # word processor or a localised Excel writes it): with one, numbers are read as text first
+    as_text = opts.thousands is not None
     try:
         try:
-            table = pacsv.read_csv(_input(path, opts, names), **_csv_options(
-                names, opts, types=read_as, include=[n for n in names if n in types]))
+            table = _read_as(path, names, types, opts, as_text)
         except pa.ArrowInvalid as exc:
-            raise _locate_csv_error(path, names, types, opts, exc) from None
+            if as_text or not _CONVERSION_ERROR.search(_first_line(exc)) or not _signed(path):
+                raise _locate_csv_error(path, names, types, opts, exc) from None
+            as_text, table = True, _read_as(path, names, types, opts, True)
     except UnicodeDecodeError:     # Arrow transcoding data.encoding: a byte it does not read
         raise undecodable(path, opts.delimiter, names, opts.encoding) from None
-    return table if opts.thousands is None else _ungroup(table, types, path, opts)
+    return _ungroup(table, names, types, path, opts) if as_text else table
 
 
-def _ungroup(table: pa.Table, types: dict, path: Path, opts: ReadOptions) -> pa.Table:
+def _read_as(path: Path, names: list[str], types: dict, opts: ReadOptions, as_text: bool):
+    read_as = {n: pa.string() if as_text and pa.types.is_floating(t) else t
+               for n, t in types.items()}
+    return pacsv.read_csv(_input(path, opts, names), **_csv_options(
+        names, opts, types=read_as, include=[n for n in names if n in types]))
+
+
+def _signed(path: Path) -> bool:
+    """The file holds a Unicode minus (U+2212, in UTF-8; cp1252 has none)."""
+    with open(path, "rb") as f, contextlib.suppress(ValueError):   # (an empty file)
+        with mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) as m:
+            return m.find(UNICODE_MINUS.encode()) >= 0
+    return False
+
+
+def _ungroup(table: pa.Table, names: list[str], types: dict, path: Path, opts: ReadOptions
+             ) -> pa.Table:
     """The number columns read as text, cast to float without ``data.thousands``."""
     for name, kind in types.items():
         if not pa.types.is_floating(kind):
             continue
         raw = table.column(name)
-        at = misgrouped(raw, opts.thousands, opts.decimal)
+        at = None if opts.thousands is None else misgrouped(raw, opts.thousands, opts.decimal)
         if at is not None:
             raise ContractError(f"value {raw[at].as_py()!r} does not group its digits by three "
                                 f"with data.thousands={opts.thousands!r}",
@@ -268,8 +310,7 @@ def _ungroup(table: pa.Table, types: dict, path: Path, opts: ReadOptions) -> pa.
         text = ungrouped(raw, opts.thousands, opts.decimal)
         found = _first_cast_failure(text, kind)
         if found is not None:
-            raise ContractError(f"value {raw[found[0]].as_py()!r} is not a number",
-                                file=path, column=name, row=found[0] + 1)
+            raise _bad_cell_error(path, names, name, kind, opts)
         table = table.set_column(table.column_names.index(name), name, pc.cast(text, kind))
     return table
 
@@ -305,7 +346,8 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
     if hint is None:
         hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
                 and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
-    if number and not hint and not re.search(r"\d", str(value)):
+    if number and not hint and (not re.search(r"\d", str(value)) or _EXCEL_ERROR.fullmatch(
+            str(value).strip())):
         hint = f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
     return ContractError(f"value {value!r} is not {_describe(target, opts.time)}{hint}",
                          file=path, column=column, row=row + 1)

@@ -9,6 +9,7 @@ import re
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
@@ -37,7 +38,8 @@ def is_format(kind: str) -> bool:
     return "%" in kind
 
 
-STREAMED = "a stream's time is one column: seconds, or a timestamp with its date"
+STREAMED = ("a stream's time is one column, seconds or a timestamp with its date, or two joined "
+            "as a file's are, data.roles.time=[<date column>, <time column>]")
 
 
 def time_kind(value: str, kind: str, number: bool, path: Path, header: str | None = None,
@@ -97,15 +99,88 @@ def described(target: pa.DataType, kind: str) -> str:
             f"set data.time to it, e.g. data.time={EXAMPLE})")
 
 
-def said_if_milliseconds(time: np.ndarray, file: Path, header: str) -> None:
-    """Say (not refuse: a slow logger may count seconds) a time column without a unit whose
-    samples are 1000 s or more apart, every step whole thousands: whole seconds in ms, likely
-    (a volumetric cycle of 1200 s is no such step)."""
+def said_if_not_seconds(time: np.ndarray, file: Path, header: str, own: bool = False) -> None:
+    """Say (not refuse: no rule on the values alone tells a slow logger's seconds from ms) a
+    time column without a unit that reads like milliseconds: steps of whole thousands (1000,
+    60000), or, in a lab's ``own`` export (headers read by ``data.roles``: a contract file's
+    ``time`` is seconds by the contract, the simulator's every 100 s), whole numbers 100 or
+    more apart (a median step) that are no whole number of minutes (500, 2500, 998-1003: a
+    logger's seconds come every 1, 10, 60, 300 s ...).  A volumetric cycle of 1200 s or a
+    logger every 120 s is no such step; a lab's every 100 s or 500 s in seconds is said and
+    quietened with ``data.units={time: s}``.  Also said: Excel's serial day numbers (a date
+    shown as a number, :func:`_excel_days`), ``data.units={time: d}``."""
     if len(time) < 2 or not np.all(np.isfinite(time)):
         return
     steps = np.diff(time)
     period = float(np.median(steps))
-    if period >= 1000 and np.all(steps % 1000 == 0):
-        logger.warning(f"{file}, column {header!r}: samples {period:g} s apart, in whole thousands: "
+    thousands = period >= 1000 and np.all(steps % 1000 == 0)
+    odd = own and period >= 100 and period % 60 != 0 and np.all(time == np.round(time))
+    if thousands or odd:
+        why = "in whole thousands" if thousands else "whole numbers, no whole minutes"
+        logger.warning(f"{file}, column {header!r}: samples {period:g} s apart, {why}: "
                        f"milliseconds? say so with data.units={{{header!r}: ms}} (or a unit in "
-                       "the header, 'time [ms]')")
+                       f"the header, 'time [ms]'; seconds: data.units={{{header!r}: s}})")
+    elif _excel_days(time[0], period):
+        logger.warning(f"{file}, column {header!r}: from {time[0]:g}, samples {period:g} s = "
+                       f"{period * 86400:.4g} s / 86400 apart: Excel's serial days (a date shown "
+                       f"as a number)? say so with data.units={{{header!r}: d}}, or save the "
+                       "column formatted as a date")
+
+
+EXCEL_DAYS = (20000.0, 80000.0)   # Excel's serial day numbers 1954 .. 2119
+
+
+def _excel_days(first: float, period: float) -> bool:
+    """A time from an Excel serial day number, sampled at whole seconds: not a second apart as
+    seconds, whole seconds as days (a 1440 Hz record starting 46000 s in is no thermal test)."""
+    seconds = period * 86400
+    return (EXCEL_DAYS[0] <= first <= EXCEL_DAYS[1] and 0 < period < 1 and seconds >= 0.5
+            and abs(seconds - round(seconds)) <= 0.01 * seconds)
+
+
+HOUR_S = 3600.0
+
+
+def on_local_clock(ns: np.ndarray, zone: str, file, column: str = TIME) -> np.ndarray:
+    """Timestamps without an offset (``ns``, int64) written on ``zone``'s local clock, as UTC
+    (int64 ns): the hour repeated when daylight saving time ends told apart by the order of the
+    rows, the hour skipped when it begins not counted (``data.timezone``).  A time the clock
+    never showed, or a repeated hour whose rows do not run through it in order, is refused
+    with its row."""
+    index = pd.DatetimeIndex(ns.astype("datetime64[ns]"))
+    try:
+        return index.tz_localize(zone, ambiguous="infer", nonexistent="raise").as_unit("ns").asi8
+    except ValueError:
+        pass
+    skipped = index.tz_localize(zone, ambiguous=np.ones(len(index), bool), nonexistent="NaT")
+    unsure = index.tz_localize(zone, ambiguous="NaT", nonexistent="shift_forward")
+    row = int(np.argmax(pd.isna(skipped) | pd.isna(unsure)))
+    what = (f"never shown by data.timezone={zone}'s clock (the hour skipped when daylight saving "
+            "time begins): another zone?" if pd.isna(skipped[row]) else
+            f"in the hour data.timezone={zone}'s clock repeats when daylight saving time ends, "
+            "and the rows do not run through it in order to tell which")
+    raise ContractError(f"time {index[row]} is {what}", file=file, column=column, row=row + 1)
+
+
+def clock_set_back(before: float, after: float) -> str:
+    """What to say of a local clock going back by up to an hour (daylight saving time ends)."""
+    if not 0 < before - after <= HOUR_S:
+        return ""
+    return (": the clock set back by up to an hour, daylight saving time ending? set data.timezone "
+            "to the zone it was written in (e.g. data.timezone=Europe/Berlin)")
+
+
+def said_if_clock_skips(seconds: np.ndarray, file, header: str = TIME) -> None:
+    """Say (not refuse: a logger may pause an hour) timestamps without an offset that jump one
+    hour plus a sample period forward once: daylight saving time beginning, read as an hour
+    without samples unless ``data.timezone`` says the zone."""
+    steps = np.diff(seconds)
+    if steps.size < 2:
+        return
+    period = float(np.median(steps))
+    jumps = np.flatnonzero(np.abs(steps - HOUR_S - period) <= period / 2)
+    if 0 < period < HOUR_S and jumps.size:
+        logger.warning(f"{file}, column {header!r}, row {jumps[0] + 2}: the clock jumps an hour "
+                       "forward (daylight saving time beginning?): read as an hour without "
+                       "samples; set data.timezone to the zone it was written in (e.g. "
+                       "data.timezone=Europe/Berlin)")

@@ -15,6 +15,7 @@ from ...base.log import logger
 from .contract import TIME, ContractError, role
 from .options import ReadOptions
 from .tables import _chunks, _values
+from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
 ABSOLUTE_ZERO_C = -273.15
 MAX_ABS_T_C = 1e4  # refused whatever data.kelvin_threshold_c says
@@ -34,8 +35,13 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions) -
         if column.null_count:
             row = int(np.argmax(column.is_null().to_numpy(zero_copy_only=False))) + 1
             raise ContractError("missing time value", file=path, column=TIME, row=row)
-        seconds, info = _seconds(column)
-        _check_increasing(seconds, path)
+        seconds, info = _seconds(column, path, opts.timezone)
+        # timestamps on a local clock without an offset, and no data.timezone to read it
+        local = (pa.types.is_timestamp(column.type) and column.type.tz is None
+                 and opts.timezone is None)
+        _check_increasing(seconds, path, local)
+        if local:
+            said_if_clock_skips(seconds, path)
     except ContractError as exc:
         if opts.missing != "keep":
             raise
@@ -47,11 +53,16 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions) -
     return info
 
 
-def _seconds(column: pa.ChunkedArray) -> tuple[np.ndarray, dict]:
+def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None
+             ) -> tuple[np.ndarray, dict]:
     kind = column.type
     if pa.types.is_timestamp(kind):
         ns = pc.cast(pc.cast(column, pa.timestamp("ns", kind.tz)), pa.int64()).to_numpy()
-        origin = pd.Timestamp(ns[0], tz=kind.tz).isoformat()
+        if kind.tz is not None or zone is None:
+            origin = pd.Timestamp(ns[0], tz=kind.tz).isoformat()
+            return (ns - ns[0]) / 1e9, {"time": "iso8601", "time_origin": origin}
+        ns = on_local_clock(ns, zone, path)           # a local clock: data.timezone
+        origin = pd.Timestamp(ns[0], tz="UTC").tz_convert(zone).isoformat()
         return (ns - ns[0]) / 1e9, {"time": "iso8601", "time_origin": origin}
     if pa.types.is_duration(kind):
         ns = pc.cast(pc.cast(column, pa.duration("ns")), pa.int64()).to_numpy()
@@ -59,7 +70,9 @@ def _seconds(column: pa.ChunkedArray) -> tuple[np.ndarray, dict]:
     return pc.cast(column, pa.float64()).to_numpy(), {"time": "seconds"}
 
 
-def _check_increasing(seconds: np.ndarray, path: Path) -> None:
+def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False) -> None:
+    """Refuse a time that does not increase (``local``: timestamps on a local clock without an
+    offset, where an hour set back is daylight saving time ending, said so)."""
     finite = np.isfinite(seconds)
     if not finite.all():
         row = int(np.argmin(finite)) + 1
@@ -71,7 +84,8 @@ def _check_increasing(seconds: np.ndarray, path: Path) -> None:
     i = int(np.argmax(steps <= 0))
     before, after = seconds[i], seconds[i + 1]
     what = (f"duplicate time {after:g} s (same as row {i + 1})" if after == before else
-            f"time decreases from {before:g} s (row {i + 1}) to {after:g} s")
+            f"time decreases from {before:g} s (row {i + 1}) to {after:g} s"
+            + (clock_set_back(before, after) if local else ""))
     raise ContractError(what, file=path, column=TIME, row=i + 2)
 
 
