@@ -10,6 +10,18 @@ late_blocks``); every candidate it validates is fitted alone on the train split 
 predictions, shared by the schemes).  Each scheme's out-of-fold predictions are saved with those
 under ``$OUT/<scheme>/`` (default ``OUT=/tmp/bench_auto_folds``) as ``bench_auto_rank.py`` saves
 them, so ``bench_auto_rules.py`` scores each scheme's rules.  The test split only scores.
+
+Measured (session 45; the counts and the analysis in ``bench_auto_rules.py``), mean test RMSE of
+``auto`` over the targets (µm), forward / blocks / late_blocks | MLR | best family: col0 7.50 /
+7.49 / 6.23 | 7.67 | 6.48; col101 5.26 / 5.16 / 4.75 | 5.29 | 5.24; col202 5.87 / 6.29 / 5.39 |
+6.65 | 4.00; col303 12.4 / 13.9 / 15.7 | 14.9 | 7.43; col404 12.6 / 12.0 / 11.9 | 13.4 | 9.56;
+col11 7.14 / 6.53 / 6.37 | 6.54 | 5.93; swiss0 0.908 / 1.24 / 0.822 | 1.37 | 0.822; swiss101
+0.972 / 2.22 / 0.972 | 2.44 | 0.972; swiss202 0.786 / 1.41 / 0.786 | 1.72 | 0.786; swiss303 1.41
+/ 1.28 / 1.41 | 1.37 | 0.835; swiss404 1.13 / 1.26 / 0.975 | 1.34 | 0.986; swiss11 1.19 / 0.924
+/ 0.696 | 1.34 | 0.696; mill0 1.95 / 2.01 / 1.86 | 2.01 | 2.01; mill101 1.78 / 1.86 / 1.75 | 1.79
+| 1.79; mill202 2.50 / 2.87 / 2.71 | 2.41 | 2.41; mill303 1.91 / 1.92 / 1.88 | 1.94 | 1.66;
+mill404 1.87 / 1.86 / 1.81 | 1.90 | 1.88; mill11 1.25 / 1.17 / 1.20 | 1.29 | 1.28; fl9010 2.475
+/ 3.99 / 3.92 | 4.06 | 2.95.
 """
 
 from __future__ import annotations
