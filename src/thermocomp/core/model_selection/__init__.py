@@ -12,7 +12,7 @@ from .criteria import CRITERIA, ic_path, information_criteria, information_crite
 from .greedy import GreedyPath, greedy_path, scaled_gram
 from .schemes import CV_SCHEMES
 
-_SPLITTERS = ("BlockedForward", "CampaignHoldOut", "ForwardChaining", "LeaveCampaignsOut",
+_SPLITTERS = ("BlockedForward", "CampaignHoldOut", "ForwardChaining", "LeaveBlockOut", "LeaveCampaignsOut",
               "LeaveOneCampaignOut", "TrainOnEachCampaign", "cv_scheme", "forward_gap", "unit_labels")
 
 __all__ = ["CRITERIA", "GreedyPath", "greedy_path", "ic_path", "information_criteria",

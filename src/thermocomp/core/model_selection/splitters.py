@@ -345,3 +345,48 @@ class BlockedForward:
             a, b = int(held[0]), int(held[-1]) + 1
             out.append((rows <= fit[-1], rows < b, (rows >= a) & (rows < b)))
         return out
+
+
+class LeaveBlockOut:
+    """One record: each of ``n_folds`` blocks held out in turn, the model fitted on the rest.
+
+    The blocks tile the record's rows from ``start_fraction`` of it to its end.  Fold ``k``
+    fits on every row outside block ``k`` less a gap of ``gap_blocks`` blocks on BOTH sides
+    (the block's slow states reach neither the rows before nor those after it), predicts the
+    record free-run from its start to the block's end (through fit rows too: a free run never
+    reads the measured error) and is scored on the block.  Where the test is a separate
+    campaign inside the train record's range, these folds interpolate as it does; forward
+    chaining (:class:`BlockedForward`) grades the extrapolation of a drifting record.  The
+    fit rows on both sides of the hole stay one record: a lag runs across the hole as the
+    ``time`` column says (the first input after it held over it).
+
+    Parameters
+    ----------
+    n_folds : int, default 5
+    start_fraction : float in [0, 1), default 0.0
+    gap_blocks : float >= 0, default 0.5
+    """
+
+    def __init__(self, n_folds: int = 5, start_fraction: float = 0.0, gap_blocks: float = 0.5):
+        self.n_folds = n_folds
+        self.start_fraction = start_fraction
+        self.gap_blocks = gap_blocks
+
+    def folds(self, n: int) -> list[tuple[np.ndarray, np.ndarray, np.ndarray]]:
+        """``(fit, predict, score)`` boolean row masks of each fold over ``n`` rows."""
+        f = float(self.start_fraction)
+        if not 0 <= f < 1:
+            raise ParameterError(f"start_fraction={self.start_fraction!r} must be in [0, 1)")
+        rows = np.arange(n)
+        first = int(np.ceil(f * n))
+        k = max(1, min(int(self.n_folds), n - first))
+        edges = first + (np.arange(k + 1) * (n - first)) // k
+        gap = int((n - first) // k * float(self.gap_blocks))
+        out = []
+        for a, b in zip(edges[:-1], edges[1:]):
+            fit = (rows < a - gap) | (rows >= b + gap)
+            if not fit.any():
+                raise ParameterError(f"n_folds={self.n_folds!r}, gap_blocks={self.gap_blocks!r}: "
+                                     f"holding out rows {a}..{b - 1} of {n} leaves none to fit on")
+            out.append((fit, rows < b, (rows >= a) & (rows < b)))
+        return out

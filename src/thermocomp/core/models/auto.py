@@ -19,13 +19,15 @@ from ...base.errors import ConfigError, ParameterError
 from ...base.params import check_estimator, choice, integer, number
 from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, subset
 from ..metrics import PERSISTENCE, rmse
-from ..model_selection import BlockedForward, LeaveCampaignsOut
+from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from .blend import Blend, vote_weights
 from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
 BASELINE = "mlr"         # always validated beside the candidates, with persistence
 AUTO = "auto"            # the model that chooses: no candidate of its own
+FORWARD_ONE = "forward-chaining (one record)"
+BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
 
 
 class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
@@ -72,6 +74,14 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         Validate on the last ``1 - min_train_fraction`` of the training units.
     gap_blocks : float, default 0.5
         One record: rows left out before each validation block, in blocks.
+    one_record : {'forward', 'blocks', 'late_blocks'}, default 'forward'
+        The folds of one record: ``forward`` chaining over its last ``1 - min_train_fraction``
+        (:class:`~thermocomp.core.model_selection.BlockedForward`); ``blocks``: each of
+        ``n_folds`` blocks of the whole record held out, the fit on the rest less ``gap_blocks``
+        on both sides, the record predicted from its start
+        (:class:`~thermocomp.core.model_selection.LeaveBlockOut`: interpolation, as a separate
+        test campaign inside the record's range is); ``late_blocks``: those blocks over its last
+        ``1 - min_train_fraction`` only.
     max_seconds : float or None
         A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
@@ -109,19 +119,23 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     skipped_ : dict name -> why it was not validated
     reason_ : str
     scheme_ : str
-        The folds used: ``blocked forward``, ``leave-campaigns-out`` or ``forward-chaining (one record)``.
+        The folds used: ``blocked forward``, ``leave-campaigns-out``, ``forward-chaining (one record)``
+        or (``one_record``) ``leave-block-out (one record)`` / ``leave-late-block-out (one record)``.
     fit_seconds_ : dict name -> seconds of its validation folds
     """
 
     param_rules = {"scheme": choice("auto", "forward", "interleaved"), "n_folds": integer(1, at_most=100),
                    "min_train_fraction": number(0.0, 1.0, open_lo=True, open_hi=True),
-                   "gap_blocks": number(0.0, 10.0), "min_gain_pct": number(0.0, 100.0),
+                   "gap_blocks": number(0.0, 10.0), "one_record": choice("forward", "blocks", "late_blocks"),
+                   "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False)}
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
-                 val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False):
+                 val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
+                 one_record: str = "forward"):
+        self.one_record = one_record
         self.combine = combine
         self.keep_oof = keep_oof
         self.candidates = candidates
@@ -145,6 +159,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             self.scheme_ = "val split"
             return self._keep_best(X, y, context, dict(self.given_scores), "the val split")
         self.scheme_ = _scheme(self.scheme, groups)
+        if self.scheme_ == FORWARD_ONE:
+            self.scheme_ = BLOCKS_ONE.get(self.one_record, FORWARD_ONE)
         folds = self._folds(groups, len(y))
         self.validation_, self.skipped_, self.fit_seconds_, self.oof_ = {}, {}, {}, {}
         runs = dict(self.candidates)
@@ -273,6 +289,9 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             return [(~held, held, held) for held in
                     (np.isin(np.arange(n), rows) for _, rows in
                      LeaveCampaignsOut(n_folds=self.n_folds).split(np.zeros(n), groups=groups))]
+        if self.scheme_ in BLOCKS_ONE.values():
+            start = self.min_train_fraction if self.one_record == "late_blocks" else 0.0
+            return LeaveBlockOut(self.n_folds, start, self.gap_blocks).folds(n)
         return BlockedForward(self.n_folds, self.min_train_fraction, self.gap_blocks).folds(groups, n)
 
     def _validate(self, name, est, X, y, context, folds) -> str | None:
@@ -339,7 +358,7 @@ def _not_applicable(name: str, context, groups) -> str | None:
 def _scheme(scheme: str, groups) -> str:
     """What the folds were: over campaigns (as ``scheme`` holds them out) or one record."""
     if groups is None or len(set(groups)) < 2:
-        return "forward-chaining (one record)"
+        return FORWARD_ONE
     return "leave-campaigns-out" if scheme == "interleaved" else "blocked forward"
 
 
