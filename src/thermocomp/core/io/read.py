@@ -369,7 +369,10 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     report["ambient"] = _manifest_ambient(manifest, frames)
     manifest = _starts_from_timestamps(manifest, entries)
     meta = {"path": str(root), "column_map": report.get("column_map", {}),
-            "converted": sorted({c for e in entries.values() for c in e.get("converted", [])})}
+            "converted": sorted({c for e in entries.values() for c in e.get("converted", [])}),
+            # None: the splits came from no file (a record, a folder of runs): data.*_fraction
+            "manifest": str(root / MANIFEST) if Path(path).is_dir() and (root / MANIFEST).is_file()
+            else None}
     return Dataset(manifest, frames, _name(path), meta), report
 
 

@@ -1,0 +1,70 @@
+"""A machine that is not ours, run as a stranger would (issue 34; benchmarks/bench_other_machine.py):
+a lab's folder of run files without a manifest through `init` and `run`, a model config naming a
+column this machine has not, BLAS threads on a shared machine."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import yaml
+
+from conftest import FAST, refused, thermocomp
+from test_hostile import make_dataset
+
+
+def runs_folder(root: Path) -> Path:
+    """make_dataset's four campaigns as a lab leaves them: ``run_1.csv`` .. ``run_4.csv``, no
+    manifest."""
+    ds = make_dataset(root)
+    (ds / "campaigns.csv").unlink()
+    for k, cid in enumerate(("K01", "K02", "K03", "K04")):
+        (ds / f"{cid}.csv").rename(ds / f"run_{k + 1}.csv")
+    return ds
+
+
+def test_init_on_a_folder_of_runs_writes_a_config_that_run_takes(tmp_path):
+    ds = runs_folder(tmp_path / "lab")
+    proc = thermocomp("init", str(ds), f"out={tmp_path / 'init'}")
+    config = tmp_path / "init" / "conf" / "data" / "lab.yaml"
+    assert yaml.safe_load(config.read_text())["test_fraction"] == 0.1
+    assert "campaign run_4: test" in proc.stdout        # the last run held out, said
+    thermocomp("run", f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=lab", *FAST,
+               f"out={tmp_path / 'out'}")
+    metrics = json.loads((tmp_path / "out" / "metrics.json").read_text())
+    assert list(metrics["targets"]["E_X"]["test"]["per_campaign"]) == ["run_4"]
+
+
+def test_no_test_split_without_a_manifest_names_the_fraction_not_a_missing_file(tmp_path, capsys):
+    ds = runs_folder(tmp_path / "lab")
+    line = refused(["run", f"data.path={ds}", *FAST, f"out={tmp_path / 'out'}"], capsys,
+                   "data.test_fraction")
+    assert "campaigns.csv" not in line, line            # there is none to set a split in
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_state_column_the_machine_has_not_is_refused_naming_the_key(tmp_path, capsys):
+    ds = make_dataset(tmp_path / "ds")      # no S_ column: ARX+RF's default S_door is not there
+    refused(["run", f"data.path={ds}", "model=arx_rf", *FAST, f"out={tmp_path / 'out'}"], capsys,
+            "model.estimator.state_column='S_door'", "null")
+    assert not (tmp_path / "out").exists()
+
+
+def _blas_threads(env: dict) -> set[int]:
+    code = ("import thermocomp.shell.cli, numpy, scipy.linalg; from threadpoolctl import "
+            "threadpool_info; print(sorted({i['num_threads'] for i in threadpool_info() "
+            "if i['internal_api'] == 'openblas'}))")
+    keep = {k: v for k, v in os.environ.items() if k not in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS")}
+    out = subprocess.run([sys.executable, "-c", code], env={**keep, **env}, capture_output=True,
+                         text=True, check=True).stdout
+    return set(json.loads(out))
+
+
+def test_a_command_runs_blas_on_one_thread_unless_the_user_says_otherwise():
+    # a second OpenBLAS thread on matrices tens of columns wide made an MLR run on 43 lathe
+    # runs cost 7.6 s of CPU instead of 2.8 s on a shared 2-core machine
+    assert _blas_threads({}) == {1}
+    assert _blas_threads({"OPENBLAS_NUM_THREADS": "2"}) == {2}
