@@ -11,7 +11,7 @@ The records are built here, not from the shipped scenarios, and nothing was tune
   20 -> 30 °C in a run; ``dX [mm]``, ``dZ [µm]``, ``Drehzahl [1/min]``, ``Raumtemperatur [°C]``;
   a few one-sample dropouts; a folder ``run_1.csv .. run_43.csv`` without a manifest (the runs
   numbered in the order they were made).
-* ``lathe43m``: the same runs with a manifest (``campaign,file,split,ambient_c``; every 5th run
+* ``lathe43m``: the same runs with a manifest (``campaign,file,split,ambient_c``; every 6th run
   ``test``) and no room sensor in the files (the room's level only in ``ambient_c``).
 * ``rig40``: a spindle rig, 40 sensors, 120 s, 9 runs of 6 .. 40 h (manifest, last 3 test).
 * ``vendor5``: a CNC vendor's example runs, 4 train + 1 test, 24 sensors, 10 s, ISO time stamps.
@@ -159,7 +159,7 @@ def write(root: Path, seed: int = 0) -> dict:
         lab_names(dropped, 24).to_csv(lab / f"{cid}.csv", sep=";", decimal=",", index=False,
                                        float_format="%.6g")
         frame.drop(columns="T_amb").to_csv(man / f"{cid}.csv", index=False, float_format="%.6g")
-        rows.append({"campaign": cid, "file": f"{cid}.csv", "split": "test" if i % 5 == 4 else "train",
+        rows.append({"campaign": cid, "file": f"{cid}.csv", "split": "test" if i % 6 == 5 else "train",
                      "ambient_c": round(levels[cid], 1)})
     pd.DataFrame(rows).to_csv(man / "campaigns.csv", index=False)
     rig, _ = machine_runs(seed + 2, 9, 120.0, (180, 1200), 40, ramp_every=4)

@@ -10,6 +10,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pandas as pd
 import yaml
 
 from conftest import FAST, refused, thermocomp
@@ -68,3 +69,22 @@ def test_a_command_runs_blas_on_one_thread_unless_the_user_says_otherwise():
     # runs cost 7.6 s of CPU instead of 2.8 s on a shared 2-core machine
     assert _blas_threads({}) == {1}
     assert _blas_threads({"OPENBLAS_NUM_THREADS": "2"}) == {2}
+
+
+def test_runs_named_otherwise_than_in_time_are_held_out_by_their_timestamps(tmp_path):
+    # a lab names its runs by operator; their files' ISO times say which came last
+    ds = runs_folder(tmp_path / "lab")
+    names = {"run_1": "mueller", "run_2": "abel", "run_3": "zander", "run_4": "klein"}
+    for day, (run, name) in enumerate(names.items()):
+        frame = pd.read_csv(ds / f"{run}.csv")
+        stamps = pd.Timestamp("2026-03-02 07:00") + pd.to_timedelta(day, unit="D") \
+            + pd.to_timedelta(frame["time"], unit="s")
+        frame.assign(time=stamps.dt.strftime("%Y-%m-%dT%H:%M:%S")).to_csv(ds / f"{name}.csv",
+                                                                          index=False)
+        (ds / f"{run}.csv").unlink()
+    thermocomp("run", f"data.path={ds}", "data.test_fraction=0.25", *FAST, f"out={tmp_path / 'out'}")
+    metrics = json.loads((tmp_path / "out" / "metrics.json").read_text())
+    assert list(metrics["targets"]["E_X"]["test"]["per_campaign"]) == ["klein"]   # not zander
+    report = json.loads((tmp_path / "out" / "ingest_report.json").read_text())
+    assert report["campaigns"]["klein"]["split"] == "test"
+    assert report["campaigns"]["zander"]["split"] == "train"
