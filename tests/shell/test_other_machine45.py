@@ -10,6 +10,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import yaml
 
@@ -88,3 +89,32 @@ def test_runs_named_otherwise_than_in_time_are_held_out_by_their_timestamps(tmp_
     report = json.loads((tmp_path / "out" / "ingest_report.json").read_text())
     assert report["campaigns"]["klein"]["split"] == "test"
     assert report["campaigns"]["zander"]["split"] == "train"
+
+
+def test_a_stream_refused_for_want_of_the_ambient_says_so_at_every_row(tmp_path):
+    # a climate-room model whose ambient is the manifest's ambient_c (no air sensor): served
+    # without `ambient_c`, the first row was refused clearly but left the stream half started,
+    # and every later row was a KeyError naming the target (MLflow's input-example check: 'E_X')
+    from test_ambient_manifest import make_dataset as climate_room
+    from thermocomp.apps.deploy.streaming import OutOfEnvelopeError, StreamingCompensator
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.io import read_dataset
+    from thermocomp.core.models.ati import ATIRegressor
+    from thermocomp.core.models.linear import MLR
+
+    ds, _ = read_dataset(climate_room(tmp_path / "ds"))
+    comp = Compensator(ATIRegressor(MLR(), n_intervals=2), inputs=["T_spindle"]).fit(
+        {c: ds.campaigns[c] for c in ds.ids("train")})
+    stream = StreamingCompensator(comp)
+    assert stream.ambient_given_
+    row = ds.campaigns[ds.ids("test")[0]][["time", *stream.columns_]]
+    stream.reset()                                     # no ambient_c given
+    for k in range(2):
+        try:
+            stream.step(row[stream.columns_].iloc[k].to_numpy(), row["time"].iloc[k])
+        except OutOfEnvelopeError as exc:
+            assert "ambient_c" in str(exc), exc
+        else:
+            raise AssertionError(f"row {k} streamed without the campaign's ambient")
+    stream.reset(float(ds.manifest.loc[ds.ids("test")[0], "ambient_c"]))   # given: it runs
+    assert np.isfinite(stream.step(row[stream.columns_].iloc[0].to_numpy(), 0.0)).all()
