@@ -118,3 +118,24 @@ def test_a_stream_refused_for_want_of_the_ambient_says_so_at_every_row(tmp_path)
             raise AssertionError(f"row {k} streamed without the campaign's ambient")
     stream.reset(float(ds.manifest.loc[ds.ids("test")[0], "ambient_c"]))   # given: it runs
     assert np.isfinite(stream.step(row[stream.columns_].iloc[0].to_numpy(), 0.0)).all()
+
+
+def test_the_ati_elbow_cross_validates_one_model_once(tmp_path, monkeypatch):
+    # on 39 climate-room runs the elbow's leave-one-campaign-out fits were most of an ATI fit
+    # (35 s; in `auto` 173 s): the one-model figures are the count 1's, not a second round
+    from test_ambient_manifest import make_dataset as climate_room
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.io import read_dataset
+    from thermocomp.core.models import ati
+    from thermocomp.core.models.linear import MLR
+
+    ds, _ = read_dataset(climate_room(tmp_path / "ds"))
+    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    fits = []
+    fit = MLR.fit
+    monkeypatch.setattr(MLR, "fit", lambda self, *a, **k: fits.append(1) or fit(self, *a, **k))
+    model = Compensator(ati.ATIRegressor(MLR(), candidates=[1, 2]), inputs=["T_spindle"]).fit(train)
+    elbow = model.estimators_["E_X"].elbow_
+    assert elbow["single_model"] == {"sm": elbow["sm"][0], "sd": elbow["sd"][0]}
+    # one leave-one-out round per count, then the chosen intervals' fits
+    assert len(fits) == 2 * len(train) + model.estimators_["E_X"].n_intervals_
