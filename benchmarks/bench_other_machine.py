@@ -243,8 +243,7 @@ def diagnose(root: Path, name: str) -> dict:
     if status == 0:
         d = json.loads((out / "diagnosis.json").read_text())
         row["targets"] = {d["target"]: (d["before"]["test_rmse"], d["after"]["test_rmse"],
-                                        [f"{e['kind']}:{e['column'] or e['transform']}"
-                                         for e in d["effects"]]),
+                                        [s["effect"] for s in d["steps"] if s["effect"]]),
                           **{t: (o["before_test_rmse"], o["after_test_rmse"], o["accepted"])
                              for t, o in d["other_targets"].items()}}
     else:

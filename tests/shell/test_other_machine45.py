@@ -139,3 +139,14 @@ def test_the_ati_elbow_cross_validates_one_model_once(tmp_path, monkeypatch):
     assert elbow["single_model"] == {"sm": elbow["sm"][0], "sd": elbow["sd"][0]}
     # one leave-one-out round per count, then the chosen intervals' fits
     assert len(fits) == 2 * len(train) + model.estimators_["E_X"].n_intervals_
+
+
+def test_an_accepted_effect_of_all_inputs_is_named_not_none():
+    # the vendor's runs: E_X accepted a lag of the model inputs, listed in diagnosis.json's
+    # other_targets as 'dynamics:None'; the stage's table, steps and other_targets share one name
+    from thermocomp.apps.diagnose.features import Effect
+
+    lag = Effect(kind="dynamics", transform="lowpass_inputs", tau_s=900.0)
+    assert lag.title == "dynamics:- first_order_lag(tau=900s) of the model inputs"
+    door = Effect(kind="signal", transform="first_order_lag", column="S_door", tau_s=3600.0)
+    assert door.title == "signal:S_door first_order_lag(tau=3600s)"
