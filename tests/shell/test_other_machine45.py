@@ -150,3 +150,15 @@ def test_an_accepted_effect_of_all_inputs_is_named_not_none():
     assert lag.title == "dynamics:- first_order_lag(tau=900s) of the model inputs"
     door = Effect(kind="signal", transform="first_order_lag", column="S_door", tau_s=3600.0)
     assert door.title == "signal:S_door first_order_lag(tau=3600s)"
+
+
+def test_a_labs_headers_without_roles_point_to_init(tmp_path, capsys):
+    # `run` straight on a lab's folder: 28 headers with units and no role; init proposes them all
+    ds = runs_folder(tmp_path / "lab")
+    for k in range(1, 5):
+        frame = pd.read_csv(ds / f"run_{k}.csv")
+        frame.rename(columns={"time": "Zeit [s]", "T_0": "Pt01 [°C]", "T_amb": "Raum [°C]",
+                              "E_X": "dX [µm]"}).to_csv(ds / f"run_{k}.csv", index=False)
+    refused(["run", f"data.path={ds}", "data.test_fraction=0.25", *FAST, f"out={tmp_path / 'o'}"],
+            capsys, "not read", "thermocomp init")
+    thermocomp("init", str(ds), f"out={tmp_path / 'init'}")          # and it does
