@@ -162,3 +162,22 @@ def test_a_labs_headers_without_roles_point_to_init(tmp_path, capsys):
     refused(["run", f"data.path={ds}", "data.test_fraction=0.25", *FAST, f"out={tmp_path / 'o'}"],
             capsys, "not read", "thermocomp init")
     thermocomp("init", str(ds), f"out={tmp_path / 'init'}")          # and it does
+
+
+def test_the_exported_code_says_the_labs_name_of_each_input(tmp_path):
+    # the code reads contract names (T_Pt01); the lab's logger calls the signal 'Pt01 [°C]'
+    ds = runs_folder(tmp_path / "lab")
+    for k in range(1, 5):
+        frame = pd.read_csv(ds / f"run_{k}.csv")
+        frame.rename(columns={"time": "Zeit [s]", "T_0": "Pt01 [°C]", "T_amb": "Raum [°C]",
+                              "E_X": "dX [µm]"}).to_csv(ds / f"run_{k}.csv", index=False)
+    thermocomp("init", str(ds), f"out={tmp_path / 'init'}")
+    data = (f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]", "data=lab")
+    thermocomp("run", *data, *FAST, f"out={tmp_path / 'run'}")
+    thermocomp("export", *data, f"export.model={tmp_path / 'run' / 'model.pkl'}", "export.format=c",
+               "track=false", f"out={tmp_path / 'code'}")
+    exported = json.loads((tmp_path / "code" / "compensator.json").read_text())
+    assert exported["provenance"]["lab_names"] == {"T_Pt01": "Pt01 [°C]", "T_amb": "Raum [°C]"}
+    header = (tmp_path / "code" / "compensator.h").read_text()
+    assert "T_Pt01* degC" in header and "(the lab's 'Pt01 [\\xb0C]')" in header
+    assert header.isascii()
