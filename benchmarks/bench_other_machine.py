@@ -73,6 +73,11 @@ for scale::
       auto             0.51 / 0.81   1.04 / 0.58   13.9
       persistence      0.41 / 0.43   0.82 / 0.31
 
+Before this branch's fixes (OpenBLAS on two threads, the ATI elbow's second one-model round),
+the same commands back to back at load 2-3.5: ``auto`` on lathe43 696 s CPU (682 s wall) -> 68 s
+(68 s), the same choice and test RMSE; MLR 13.2 / 12.4 -> 3.3 / 3.4 s; ``ati=cmeans`` (no
+validation, no mutual prediction) 17.6 / 17.1 -> 10.8 / 11.6 s.
+
 ``auto`` vs the best single family: lathe43 E_dZ 0.76 vs 0.95 (lagbank), lathe43m E_Z 0.55 vs 0.93;
 vendor5 E_Z 0.81 vs 0.68 (arx); rig40 (6 train runs) E_X 0.71 vs MLR 0.56: its validation
 picked ATI (0.42 against MLR's 0.86 over 5 forward folds of 6 runs), which did not hold on the
