@@ -57,6 +57,10 @@ def test_the_data_config_keeps_what_differs_from_the_defaults(tmp_path):
     config = data_config(record, given, ReadOptions(delimiter=";"), {"error": []}, defaults)
     assert config["thousands"] == "." and "time" not in config and "interim" not in config
     assert config["test_fraction"] == 0.1        # one record: its last tenth is the test split
+    assert data_config(tmp_path, given, ReadOptions(), {}, defaults)["test_fraction"] == 0.1
+    (tmp_path / "campaigns.csv").write_text("campaign,file,split\nK1,r.csv,train\n")  # all train
+    assert data_config(tmp_path, given, ReadOptions(), {}, defaults)["test_fraction"] == 0.1
+    (tmp_path / "campaigns.csv").write_text("campaign,file,split\nK1,r.csv,test\n")  # its own test
     assert "test_fraction" not in data_config(tmp_path, given, ReadOptions(), {}, defaults)
 
 

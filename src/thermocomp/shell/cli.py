@@ -55,6 +55,13 @@ options:   -q/--quiet (warnings only)  -v/--verbose (debug, progress bars off a 
 Relative paths are resolved against the project root.""".format(
     commands="\n".join(f"  {name:<10} {c.summary}" for name, c in COMMANDS.items()))
 LOG_FLAGS = {"-q": "WARNING", "--quiet": "WARNING", "-v": "DEBUG", "--verbose": "DEBUG"}
+# BLAS on one thread unless the user says otherwise: this project's matrices are tens of columns
+# wide, where a second BLAS thread on a shared 2-core machine spins against the other processes
+# (an MLR run on 43 lathe runs: 7.6 s CPU with OpenBLAS's 2 threads, 2.8 s with one). Set before
+# numpy loads OpenBLAS (it reads the variable then); sweep jobs and servers inherit it.
+BLAS_THREADS_ENV = "OPENBLAS_NUM_THREADS"
+if not any(os.environ.get(k) for k in (BLAS_THREADS_ENV, "OMP_NUM_THREADS")):
+    os.environ[BLAS_THREADS_ENV] = "1"
 # MLflow 3 fetches a config and sends usage events from background threads, and writes an
 # installation id under ~/.config/mlflow: a lab's tool sends nothing unasked.  Off in this
 # process and those it starts (sweep jobs, the server) unless the user set it (false: on).

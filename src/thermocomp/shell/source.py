@@ -231,6 +231,25 @@ def check_declared(cfg: DictConfig, ds) -> None:
 
     inputs, targets = declared_columns(cfg, ds)
     check_common_columns(ds.campaigns, inputs + targets, {cid: ds.file_path(cid) for cid in ds.ids()})
+    check_model_columns(cfg, ds)
+
+
+# model keys that name one column of the data (ARX+RF's machine state, S_door by default)
+COLUMN_KEYS = ("state_column",)
+
+
+def check_model_columns(cfg: DictConfig, ds) -> None:
+    """A column the model's config names is one of the data's, before anything is fitted (a
+    machine without a door: ARX+RF's default ``S_door`` was refused after the ARX fit, naming
+    the column but not the key)."""
+    estimator = cfg.model.get("estimator") or {}
+    for key in COLUMN_KEYS:
+        column = estimator.get(key)
+        if column is not None and column not in ds.columns:
+            states = [c for c in ds.columns if c.startswith("S_")]
+            raise ConfigError(f"model.estimator.{key}={column!r} is no column of {cfg.data.path} "
+                              f"(its S_ columns: {', '.join(states) or 'none'}): name one, or "
+                              "null for none")
 
 
 def check_volumetric_targets(cfg: DictConfig, ds, targets, what: str) -> None:

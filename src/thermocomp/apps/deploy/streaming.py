@@ -286,14 +286,16 @@ class StreamingCompensator:
             seen = x.copy()
             seen[:self._n_inputs] = den
         if first:
-            self._ref = np.where(self._is_ref, seen[:self._n_inputs], 0.0)
-            if self._amb_idx:
-                self._ambient_c0 = ambient_c0(seen[self._amb_idx])
-            elif self.ambient_given_ and not np.isfinite(self._ambient_c0):
+            # refused before the stream starts: a half-started one (its reference set, no
+            # model state) failed at the next row on a KeyError naming a target
+            if not self._amb_idx and self.ambient_given_ and not np.isfinite(self._ambient_c0):
                 raise OutOfEnvelopeError(
                     "the model needs the campaign's initial ambient temperature and reads no "
                     "T_amb / T_amb_* sensor: give the campaign's ambient_c (the manifest column; "
                     "served: params ambient_c)")
+            self._ref = np.where(self._is_ref, seen[:self._n_inputs], 0.0)
+            if self._amb_idx:
+                self._ambient_c0 = ambient_c0(seen[self._amb_idx])
             start = context_record(STREAM_ID, time, self._ambient_c0, {})
             self._states = {t: est.stream_init(start) for t, est, _ in self._plan}
         dx = seen[:self._n_inputs] - self._ref

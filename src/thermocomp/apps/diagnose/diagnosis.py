@@ -142,8 +142,7 @@ class Diagnosis:
             "rounds": [r.to_dict() for r in s.rounds],
             "other_targets": {o: {"before_test_rmse": TargetResult(x.before).test.rmse,
                                   "after_test_rmse": TargetResult(x.after).test.rmse,
-                                  "accepted": [f"{ev.effect.kind}:{ev.effect.column}"
-                                               for ev in x.accepted]}
+                                  "accepted": [ev.effect.title for ev in x.accepted]}
                               for o, x in self.targets.items() if o != t},
             "seconds": self.seconds,
         })

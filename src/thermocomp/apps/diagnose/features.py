@@ -152,6 +152,13 @@ class Effect:
             raise ParameterError("effect initial_directions must be 1 .. the number of initial_state sensors")
 
     @property
+    def title(self) -> str:
+        """``kind:column label`` (``-`` for no column): the one name of an accepted effect in the
+        stage's table and in ``diagnosis.json`` (``steps``, ``other_targets``; there it was
+        ``dynamics:None`` for a lag of the model inputs)."""
+        return f"{self.kind}:{self.column or '-'} {self.label}".rstrip()
+
+    @property
     def label(self) -> str:
         """The ``transform`` string of ``diagnosis.json``, e.g. ``first_order_lag(tau=240s)``."""
         tau = f"tau={self.tau_s:g}s" if self.tau_s is not None else ""

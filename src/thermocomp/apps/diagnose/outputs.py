@@ -159,8 +159,7 @@ def summary_table(result) -> str:
              f"{'target':<8} {'test RMSE before':>16} -> {'after':>6}   {'CV before':>9} -> {'after':>6}"
              "   accepted effects", "-" * 96]
     for t, d in result.targets.items():
-        acc = ", ".join(f"{ev.effect.kind}:{ev.effect.column or '-'} {ev.effect.label}"
-                        for ev in d.accepted) or "none"
+        acc = ", ".join(ev.effect.title for ev in d.accepted) or "none"
         before, after = TargetResult(d.before).test.rmse, TargetResult(d.after).test.rmse
         lines.append(f"{t:<8} {before:>16.2f} -> {after:>6.2f}   "
                      f"{d.original_cv_rmse:>9.2f} -> {d.final_cv_rmse:>6.2f}   {acc}")

@@ -366,8 +366,7 @@ class Search:
         current = self.cv.run(self.inputs(), []) if self.excluded else original
         accepted = list(faults or [])
         rounds = [health] if health is not None else []
-        steps = [{"effect": f"sensor_fault: {ev.effect.column} {ev.effect.label}",
-                  "cv_rmse": ev.cv_rmse} for ev in accepted]
+        steps = [{"effect": ev.effect.title, "cv_rmse": ev.cv_rmse} for ev in accepted]
         from ...base.progress import bar
 
         used = self._read_columns()
@@ -405,9 +404,7 @@ class Search:
             accepted.append(best)
             self.effects.append(best.effect)
             current = best.result
-            steps.append({"effect": f"{best.effect.kind}: {best.effect.column or ''} "
-                                    f"{best.effect.label}".replace("  ", " "),
-                          "cv_rmse": current.rmse})
+            steps.append({"effect": best.effect.title, "cv_rmse": current.rmse})
         return SearchResult(p.target, original, current, accepted, list(self.excluded), rounds,
                             self_prediction_table, steps)
 

@@ -102,8 +102,11 @@ def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict) -> di
     for key, value in given.items():
         if key not in config and key not in _WHERE and key in defaults and value != defaults[key]:
             config[key] = value
-    if src.is_file() and given.get("test_fraction") is None:
-        config["test_fraction"] = 0.1        # one record: its last tenth is the test campaign
+    # one record, or a folder without test campaigns (no manifest, or one without `split`:
+    # every run train): nothing is held out unless a fraction says so, and `run` needs a test
+    unsplit = src.is_file() or not (read_manifest(src, opts)["split"] == "test").any()
+    if unsplit and given.get("test_fraction") is None:
+        config["test_fraction"] = 0.1        # its last tenth (of samples; of runs) is the test
     return config
 
 

@@ -359,17 +359,20 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     every repair is counted.
     """
     opts = replace(ReadOptions.from_cfg(cfg), missing=missing)
-    root, manifest, tables = _source(Path(path), opts, campaigns)
+    root, manifest, tables, held = _source(Path(path), opts, campaigns)
     frames, entries, columns = {}, {}, {}
     for cid, table, entry in tables:
         _collect_roles(columns, table.column_names)
         frames[cid], entries[cid] = _to_frame(table), entry
         del table
+    manifest = _timed(manifest, entries, opts, root, held)
     report = _dataset_report(_name(path), entries, columns, opts)
     report["ambient"] = _manifest_ambient(manifest, frames)
-    manifest = _starts_from_timestamps(manifest, entries)
     meta = {"path": str(root), "column_map": report.get("column_map", {}),
-            "converted": sorted({c for e in entries.values() for c in e.get("converted", [])})}
+            "converted": sorted({c for e in entries.values() for c in e.get("converted", [])}),
+            # None: the splits came from no file (a record, a folder of runs): data.*_fraction
+            "manifest": str(root / MANIFEST) if Path(path).is_dir() and (root / MANIFEST).is_file()
+            else None}
     return Dataset(manifest, frames, _name(path), meta), report
 
 
@@ -379,10 +382,13 @@ def _name(path) -> str:
     return record_id(path) if path.is_file() else path.name
 
 
-def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.DataFrame, Iterator]:
-    """The folder campaign files are relative to, the manifest, and the campaigns read:
-    a dataset folder's (the last train campaigns held out as ``data.test_fraction`` asks) or
-    a one-file record's, cut chronologically (:mod:`.record`)."""
+def _source(path: Path, opts: ReadOptions, campaigns=None
+            ) -> tuple[Path, pd.DataFrame, Iterator, bool]:
+    """The folder campaign files are relative to, the manifest, the campaigns read, and whether
+    the splits are final: a one-file record's, cut chronologically (:mod:`.record`), or a
+    dataset folder's, whose last train campaigns ``data.test_fraction`` holds out once they are
+    read (:func:`_timed`: their files' timestamps may order them), or at once for ``campaigns``,
+    a group of the folder (they are not all read)."""
     if path.suffix.lower() in RECORD_SUFFIXES and not path.exists():
         raise ContractError("no such file (data.path: a dataset folder or one record's file)",
                             file=path)
@@ -394,14 +400,31 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
         manifest, parts = cut(path, table, report, opts)
         del table
         ids = list(manifest.index if campaigns is None else campaigns)
-        return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
-    manifest = hold_out(read_manifest(path, opts), opts, path)
+        return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids), True
+    manifest = read_manifest(path, opts)
+    held = campaigns is not None
+    if held:
+        manifest = hold_out(manifest, opts, path)
     if not (path / MANIFEST).is_file():      # said once per read, not per look at the folder
         logger.info(f"{path.name}: no {MANIFEST}; its {len(manifest)} campaign files read as "
                     "train campaigns in name order (data.test_fraction holds the last out)")
     if campaigns is not None:
         manifest = manifest.loc[list(campaigns)]
-    return path, manifest, _iter_campaigns(path, manifest, opts)
+    return path, manifest, _iter_campaigns(path, manifest, opts), held
+
+
+def _timed(manifest: pd.DataFrame, entries: dict, opts: ReadOptions, root: Path,
+           held: bool) -> pd.DataFrame:
+    """The manifest with ``start`` from the files' timestamps where it has none, then, unless
+    ``held`` already, the last campaigns held out in that order (a lab's files named otherwise
+    than in time: ``zander.csv`` tested though ``klein.csv`` came later); each entry's split
+    as held out."""
+    manifest = _starts_from_timestamps(manifest, entries)
+    if not held:
+        manifest = hold_out(manifest, opts, root)
+        for cid, entry in entries.items():
+            entry["split"] = manifest.at[cid, "split"]
+    return manifest
 
 
 def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:
@@ -477,7 +500,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
     opts = ReadOptions.from_cfg(cfg)
     src, dest = Path(src), Path(dest)
     check_separate(src, dest)
-    _, manifest, tables = _source(src, opts)
+    root, manifest, tables, held = _source(src, opts)
     entries, columns = {}, {}
     with atomic_dir(dest) as tmp:
         for cid, table, entry in tables:
@@ -486,7 +509,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
             entries[cid] = entry
             del table
             pa.default_memory_pool().release_unused()
-        out = _starts_from_timestamps(manifest, entries).assign(
+        out = _timed(manifest, entries, opts, root, held).assign(
             file=[f"{cid}.parquet" for cid in manifest.index])
         (tmp / MANIFEST).write_text(_manifest_csv(out))
         report = {**_dataset_report(_name(src), entries, columns, opts), **(extra or {})}

@@ -135,8 +135,12 @@ def hold_out(manifest: pd.DataFrame, opts, root: Path) -> pd.DataFrame:
                                 "campaigns already: drop one of them", file=root / MANIFEST,
                                 column="split")
     pool = manifest.index[manifest["split"] == "train"]
-    if "start" in manifest.columns and manifest.loc[pool, "start"].notna().all():
-        pool = manifest.loc[pool].sort_values("start", kind="stable").index
+    order = "in the order listed (no start time for each)"
+    if "start" in manifest.columns:     # ISO text, or a file's first timestamp (pd.Timestamp)
+        starts = pd.to_datetime(manifest.loc[pool, "start"].astype(str), errors="coerce",
+                                utc=True, format="ISO8601")
+        if starts.notna().all():
+            pool, order = starts.sort_values(kind="stable").index, "by start time"
     counts = _counts(len(pool), opts)
     if min(counts.values()) < 1:
         raise ContractError(f"{len(pool)} train campaign(s) cannot be split "
@@ -146,7 +150,7 @@ def hold_out(manifest: pd.DataFrame, opts, root: Path) -> pd.DataFrame:
     for split, count in counts.items():
         out.loc[pool[at:at + count], "split"] = split
         at += count
-    logger.info("held out chronologically: " + ", ".join(
+    logger.info(f"held out {order}: " + ", ".join(
         f"{s} {list(pool[sum(list(counts.values())[:i]):][:c])}" for i, (s, c) in
         enumerate(counts.items()) if s != "train"))
     return out

@@ -294,6 +294,8 @@ def _refusal(problems: list[str], by_role: bool, names: dict, roles: dict, file)
         return ContractError("column name has no contract role: expected 'time' or a T_/E_/S_ "
                              "prefix (map it with data.columns, or give roles with data.roles.*)",
                              file=file, column=names.get(raw, raw))
+    # a lab's own headers with no role given: `init` proposes every role from the units
+    hint = "; `thermocomp init <data.path>` proposes them" if not by_role else ""
     return ContractError(f"{len(problems)} column(s) not read: {listed(problems, 12)}; give each "
                          "a role (data.roles.error/state/ambient/time, data.roles.ignore to leave "
-                         "it out) or a name (data.columns)", file=file)
+                         f"it out) or a name (data.columns){hint}", file=file)

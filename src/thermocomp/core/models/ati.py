@@ -278,6 +278,8 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def _cv_rsd(self, X, y, campaign, a0: pd.Series, n: int, context) -> np.ndarray:
         """Held-out Rsd of each campaign with ``n`` intervals rebuilt from the others."""
         out = []
+        codes, ids = pd.factorize(campaign)     # rows by integer code: np.isin on the ids (objects)
+        code = {c: i for i, c in enumerate(ids)}   # cost 15 % of the elbow on 39 lathe runs
         for _, test in LeaveOneCampaignOut().split(X, y, groups=campaign):
             k = campaign[test[0]]
             others = a0.drop(k)
@@ -285,8 +287,8 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             mine = interval_of([a0[k]], bounds)[0]
             # train on the other campaigns of the held-out campaign's interval
             train_campaigns = others.index[interval_of(others.to_numpy(), bounds) == mine]
-            rows_train = np.isin(campaign, train_campaigns)
-            rows_test = campaign == k
+            rows_train = np.isin(codes, [code[c] for c in train_campaigns])
+            rows_test = codes == code[k]
             fitted = self._fit_base(X, y, rows_train, context)
             out.append(rsd(y[rows_test] - self._predict_base(fitted, X, rows_test, context)))
         return np.array(out)
@@ -307,7 +309,10 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             m, s = sm_sd(self._cv_rsd(X, y, campaign, a0, n, context))
             sm.append(m)
             sd.append(s)
-        single = sm_sd(self._cv_rsd(X, y, campaign, a0, 1, context))
+        # one model: the first count's figures when 1 is among them (the same folds, refitted)
+        one = feasible.index(1) if 1 in feasible else None
+        single = (sm[one], sd[one]) if one is not None else sm_sd(
+            self._cv_rsd(X, y, campaign, a0, 1, context))
         score = np.array(sm, dtype=float) + np.array(sd, dtype=float)
         if not np.isfinite(score).any():    # no count could be scored (a held-out campaign
             # whose interval had no other campaign to fit on, for every count): one model

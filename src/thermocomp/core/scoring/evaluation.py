@@ -46,9 +46,13 @@ def require_split(ds: Dataset, split: str) -> list[str]:
     ids = ds.ids(split)
     if not ids:
         root = ds.meta.get("path")
-        raise ContractError(f"the dataset has no {split!r} campaign (set `split` in the manifest "
-                            f"or data.split_overrides)", column="split",
-                            file=f"{root}/campaigns.csv" if root else "campaigns.csv")
+        manifest = ds.meta.get("manifest", f"{root}/campaigns.csv" if root else "campaigns.csv")
+        fraction = f"data.{split}_fraction=0.1 (the last share held out) or " if split != "train" else ""
+        if manifest is None:      # a record or a folder of runs: no manifest to set it in
+            raise ContractError(f"the dataset has no {split!r} campaign and no manifest: set "
+                                f"{fraction}data.split_overrides", file=root)
+        raise ContractError(f"the dataset has no {split!r} campaign (set `split` in the manifest, "
+                            f"{fraction}data.split_overrides)", column="split", file=manifest)
     return ids
 
 

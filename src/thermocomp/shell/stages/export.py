@@ -80,7 +80,11 @@ def export(cfg: DictConfig) -> dict:
         say(f"not in the code (the served model only): {'; '.join(left)}")
     family = model_family(stream.compensator)
     units = {c: "degC" if c.startswith("T_") else "" for c in stream.columns_}
-    provenance.update(model=family, source=source, version=version(), units=units,
+    # the lab's headers of the inputs (`Pt01 [°C]` for T_Pt01): what the machine's signals are
+    # called where the model was made; the code reads the contract names
+    named = getattr(deployed, "lab_names_", {}) or {}
+    lab = {c: named[c] for c in stream.columns_ if named.get(c, c) != c}
+    provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
                       not_in_code=left)
     try:

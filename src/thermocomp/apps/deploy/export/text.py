@@ -25,7 +25,9 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
         ref = "*" if ss.referenced[j] else " "
         bounded = ss.clamp and ss.hi[j] < sys.float_info.max      # a machine state is not
         env = f"[{ss.lo[j]:.6g}, {ss.hi[j]:.6g}]" if bounded else "not clamped"
-        lines.append(f"  {j}: {c}{ref} {p.get('units', {}).get(c, '')}  envelope {env}")
+        lab = p.get("lab_names", {}).get(c)
+        lines.append(f"  {j}: {c}{ref} {p.get('units', {}).get(c, '')}  envelope {env}"
+                     + (f"  (the lab's {lab!a})" if lab else ""))   # ASCII: a PLC's source
     lines.append("time: s, " + ("read by the first-order lags" if ss.uses_time else "not read")
                  + f"; period {ss.period:.6g} s")
     lines.append("outputs: " + ", ".join(correction_names(ss.targets))
