@@ -124,12 +124,16 @@ mends swiss (swiss11 1.19 -> 0.70, swiss404 1.13 -> 0.98) and col (col0 7.50 -> 
 5.87 -> 5.39; col303 12.4 -> 15.7) but not mill (mill202 2.50 -> 2.71 against MLR's 2.41), and
 both lose ``fl_thermal`` 90/10, whose test CONTINUES the train record (forward is its stand-in:
 2.475 against 3.92-3.99, the 25 % bar over MLR missed).  Refused as the default (the bar: not worse
-on ``fl_thermal``); kept as ``model.estimator.one_record``.  Not tried: ``late_blocks`` only where
-the test campaign is separate from the train record (both 90/10 and the sims are ``forward`` to
-``holdout_scheme``; a test starting where the train record ends would say so), which would need
-fresh seeds (1736, 1847) before it is believed.  CPU per record, all three schemes and every
-family alone (user s): col 64-81, swiss 36-39, fl 167, mill 328-349; each scheme's ``auto`` fit
-about as long as forward's.
+on ``fl_thermal``); kept as ``model.estimator.one_record``.  Then ``late_blocks`` only where the
+test campaigns are separate from the train record (forward where one continues it: ``fl_thermal``
+unchanged), run once on fresh seeds 1736/1847 x col/swiss/mill: forward 5 / 5 / 1.043,
+late_blocks 5 / 4 / 1.129 (``bench_auto_folds.py``): the tuning gain did not hold, not adopted.
+Also scored from the same saved fits (session 45): ``kept``, then a member whose pooled
+out-of-fold MSE is not below MLR's gives its weight to MLR (rig40 of ``bench_other_machine.py``
+kept 6 % of an ATI member validated at 136 µm): tuning 13 / 9 / 1.171 against kept's
+16 / 9 / 1.155, fresh 5 / 5 / 1.044 against 5 / 5 / 1.043: refused.  CPU per record, all three
+schemes and every family alone (user s): col 64-81, swiss 36-39, fl 167, mill 328-349; each
+scheme's ``auto`` fit about as long as forward's.
 """
 
 from __future__ import annotations
