@@ -12,6 +12,7 @@ from __future__ import annotations
 
 from .csvline import EMPTY, split_line
 from .roles import STATE_UNITS, UNITS, split_unit
+from .separators import any_number
 
 MAX_PREAMBLE = 20
 
@@ -42,8 +43,8 @@ def _preamble(above: list[str], below: list[str], sep: str) -> bool:
     """Lines of text, the last a header (no number in it) over a row holding a number (under
     a unit row, maybe)."""
     rows = [ln for ln in below if ln.strip()][:2]
-    return (all(map(_text, above)) and not any(_number(c) for c in cells(above[-1], sep))
-            and any(_number(c) for row in rows for c in cells(row, sep)))
+    return (all(map(_text, above)) and not any(any_number(c) for c in cells(above[-1], sep))
+            and any(any_number(c) for row in rows for c in cells(row, sep)))
 
 
 def _named(fields: list[str]) -> bool:
@@ -70,9 +71,3 @@ def with_units(header: list[str], units: list[str]) -> list[str]:
             for h, u in zip(header, [*units, *[""] * len(header)])]
 
 
-def _number(text: str) -> bool:
-    try:
-        float(text.strip().replace(",", "."))
-    except ValueError:
-        return False
-    return True

@@ -13,7 +13,7 @@ import numpy as np
 from ...base.params import MAX_COUNT
 from .contract import SPLITS, ContractError
 from .encoding import UTF8, codec
-from .separators import NO_BREAK_SPACES
+from .separators import NO_BREAK_SPACES, any_number
 
 TIME_FORMATS = ("auto", "seconds", "iso8601")
 AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
@@ -198,19 +198,10 @@ def _missing_values(cfg: Mapping) -> list:
     """``data.missing_values``: what a lab writes for a value not measured (``-``, ``n/a``)."""
     value = cfg.get("missing_values") or []
     value = [value] if isinstance(value, str) else value
-    if not all(isinstance(v, str) and v.strip() and not _number(v) for v in value):
+    if not all(isinstance(v, str) and v.strip() and not any_number(v) for v in value):
         raise ContractError(f"data.missing_values must be a list of marks that are no number "
                             f"(e.g. ['-', 'n/a', '#DIV/0!']), got {cfg.get('missing_values')!r}")
     return [str(v) for v in value]
-
-
-def _number(text: str) -> bool:
-    """``text`` reads as a number with either decimal mark (never a mark for a missing value)."""
-    try:
-        float(text.strip().replace(",", "."))
-    except ValueError:
-        return False
-    return True
 
 
 def _fraction(cfg: Mapping, key: str) -> float | None:

@@ -17,6 +17,12 @@ GROUP_MARKS = (",", ".", "'", *NO_BREAK_SPACES)
 UNICODE_MINUS = "\u2212"      # '−1,5': a minus sign, read as '-'
 
 
+def any_number(text: str) -> bool:
+    """``text`` is a number with either decimal mark (a header line, a unit row or a mark for a
+    missing value is none; an empty cell is none either)."""
+    return bool(str(text).strip()) and reads_as_number(str(text).replace(",", "."))
+
+
 def reads_as_number(text, decimal: str = ".", thousands: str | None = None) -> bool:
     """A cell's text reads as a number (with ``decimal``, ``thousands`` and a Unicode minus as
     the reader takes them); a missing cell (None, empty) counts as one."""
