@@ -115,7 +115,13 @@ def run_log(folder=None):
         try:
             dest = folder() if (ok and folder is not None) else None
             if dest is not None and Path(dest).is_dir():
-                atomic_write_bytes(Path(dest) / LOG_FILE, path.read_bytes())
+                try:
+                    text = path.read_bytes()
+                except FileNotFoundError:   # a temp cleaner took it: the run's work stands
+                    logger.warning(f"the run's log {path} was removed while the run went on "
+                                   f"(a temp cleaner?): {Path(dest) / LOG_FILE} not written")
+                else:
+                    atomic_write_bytes(Path(dest) / LOG_FILE, text)
         finally:
             shutil.rmtree(tmp, ignore_errors=True)
 
