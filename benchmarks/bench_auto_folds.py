@@ -43,22 +43,15 @@ import time
 from pathlib import Path
 
 import numpy as np
-from bench_auto_rank import LIGHT, _dataset, _mlr, _test
-from hydra import compose, initialize_config_dir
+from bench_auto_rank import _mlr, _test, setup
 from sklearn.base import clone
 
-from thermocomp.base.paths import conf_dir
 from thermocomp.core.metrics import rmse
 from thermocomp.shell.builders import build_compensator
-from thermocomp.shell.source import resolve_reference
 
 
 def main(name: str, overrides: list[str]) -> None:
-    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
-        cfg = compose(config_name="config", overrides=[*LIGHT, *overrides])
-    ds = _dataset(cfg)
-    resolve_reference(cfg, ds)
-    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    cfg, ds, train = setup(overrides)
     template = build_compensator(cfg, ds=ds)
     meas, preds, walls = None, {}, {}
     for scheme in os.environ.get("SCHEMES", "forward blocks late_blocks").split():

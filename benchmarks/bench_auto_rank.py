@@ -80,12 +80,17 @@ def _test(comp, ds) -> tuple[dict, dict]:
     return meas, {t: meas[t] - np.concatenate([r[c] for c in ids]) for t, (_, r) in series.items()}
 
 
-def main(name: str, overrides: list[str]) -> dict:
+def setup(overrides: list[str]):
+    """``(cfg, dataset, train campaigns)`` of a record named by ``overrides`` (model=auto)."""
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
         cfg = compose(config_name="config", overrides=[*LIGHT, *overrides])
     ds = _dataset(cfg)
     resolve_reference(cfg, ds)
-    train = {c: ds.campaigns[c] for c in ds.ids("train")}
+    return cfg, ds, {c: ds.campaigns[c] for c in ds.ids("train")}
+
+
+def main(name: str, overrides: list[str]) -> dict:
+    cfg, ds, train = setup(overrides)
     t0 = time.perf_counter()
     auto = build_compensator(cfg, ds=ds).fit(train)
     walls = {"auto": time.perf_counter() - t0}

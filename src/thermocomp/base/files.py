@@ -231,13 +231,12 @@ class _Signals:
             return
         if isinstance(sys.exc_info()[1], (Terminated, KeyboardInterrupt)):
             return                        # propagating: cleanup runs, leave it alone
+        _arm(RETRY_S)
         if self._depth:
             # a deferred block (closing the run) is never cut, not even by the retry: inside an
             # ``except`` of the store's own code the propagating signal is not sys.exc_info()
-            # (CI, stop 44: a SIGINT'd run left RUNNING); try again once the block is done
-            _arm(RETRY_S)
+            # (CI, stop 44: a SIGINT'd run left RUNNING); again once the block is done
             return
-        _arm(RETRY_S)
         _raise_for(self._raised)
 
     @contextmanager

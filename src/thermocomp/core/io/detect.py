@@ -18,7 +18,8 @@ from .layout import header_line
 from .manifest import campaign_files, is_text, read_manifest
 from .options import ROLE_PATTERNS
 from .record import check_record_file
-from .roles import STATE_UNITS, UNITS, _numeric, date_and_time_of_day, split_unit
+from .roles import STATE_UNITS, UNITS, date_and_time_of_day, split_unit
+from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
 from .timestamps import CLOCK, looks_like_timestamp
@@ -89,7 +90,7 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
         elif role(base) is None and AMBIENT_WORDS & set(_WORDS.split(base.lower())) and (
                 not unit or unit in UNITS["T"]):
             roles["ambient"].append(pattern)
-        elif not _numeric(first.get(h), opts.decimal) and not looks_like_timestamp(first.get(h)):
+        elif not reads_as_number(first.get(h), opts.decimal) and not looks_like_timestamp(first.get(h)):
             roles["ignore"].append(pattern)
     return roles
 

@@ -85,8 +85,9 @@ def split_unit(header: str) -> tuple[str, str | None]:
 def _bare_unit(header: str) -> tuple[str, str] | None:
     """``('dZ', 'um')`` for a unit written as the last word (``dZ um``) or, in a header that is
     no contract name (``T_spindle_degC`` keeps its name), as an ``_`` suffix (``dZ_um``)."""
-    if _UNIT.fullmatch(header) and not _UNIT.match(header).group(1).strip():
-        return "", _UNIT.match(header).group(2).strip()     # a unit alone ('[°C]'): no name
+    alone = _UNIT.fullmatch(header)
+    if alone and not alone.group(1).strip():
+        return "", alone.group(2).strip()     # a unit alone ('[°C]'): no name
     for pattern in (_LAST_WORD, _SUFFIX):
         match = pattern.match(header)
         if match is None or (pattern is _SUFFIX and role(header) is not None):
@@ -191,7 +192,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
                        problems, None, decimal)
             continue
         if kind is None:
-            if not _numeric(first.get(header), decimal):
+            if not reads_as_number(first.get(header), decimal):
                 problems.append(f"{header!r} is not numeric ({first.get(header)!r})")
                 continue
             kind = "temperature"
@@ -261,7 +262,7 @@ def _derived(kind: str, base: str, several_ambient: bool) -> str:
 
 def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: str,
            problems: list, cell, decimal: str) -> None:
-    if kind is None or unit is None or (kind == "time" and not _numeric(cell, decimal)):
+    if kind is None or unit is None or (kind == "time" and not reads_as_number(cell, decimal)):
         return
     known = UNITS[kind]
     scale = known.get(unit.lower().replace(" ", ""))
@@ -281,10 +282,6 @@ def _duplicates(names: dict, problems: list, by_role: bool) -> None:
         if name in seen:
             problems.append(f"{seen[name]!r} and {raw!r} both give {name}")
         seen.setdefault(name, raw)
-
-
-def _numeric(text, decimal: str) -> bool:
-    return reads_as_number(text, decimal)        # (a missing cell: the type is not known here)
 
 
 def _refusal(problems: list[str], by_role: bool, names: dict, roles: dict, file) -> ContractError:

@@ -58,11 +58,11 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None
     kind = column.type
     if pa.types.is_timestamp(kind):
         ns = pc.cast(pc.cast(column, pa.timestamp("ns", kind.tz)), pa.int64()).to_numpy()
-        if kind.tz is not None or zone is None:
+        if kind.tz is None and zone is not None:      # a local clock: data.timezone
+            ns = on_local_clock(ns, zone, path)
+            origin = pd.Timestamp(ns[0], tz="UTC").tz_convert(zone).isoformat()
+        else:
             origin = pd.Timestamp(ns[0], tz=kind.tz).isoformat()
-            return (ns - ns[0]) / 1e9, {"time": "iso8601", "time_origin": origin}
-        ns = on_local_clock(ns, zone, path)           # a local clock: data.timezone
-        origin = pd.Timestamp(ns[0], tz="UTC").tz_convert(zone).isoformat()
         return (ns - ns[0]) / 1e9, {"time": "iso8601", "time_origin": origin}
     if pa.types.is_duration(kind):
         ns = pc.cast(pc.cast(column, pa.duration("ns")), pa.int64()).to_numpy()

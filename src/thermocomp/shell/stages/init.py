@@ -35,8 +35,9 @@ def init(cfg: DictConfig) -> dict:
     src = resolve(cfg.data.path)
     given = data_options(cfg)
     given["encoding"] = encoding(src, io.ReadOptions.from_cfg(given))   # a Windows export's
-    sample = sample_file(src, io.ReadOptions.from_cfg(given))
-    opts, header, first = head(sample, io.ReadOptions.from_cfg(given))
+    read = io.ReadOptions.from_cfg(given)
+    sample = sample_file(src, read)
+    opts, header, first = head(sample, read)
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
                   opts.units)
