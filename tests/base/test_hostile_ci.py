@@ -48,8 +48,28 @@ def test_ci_run_stops_when_the_team_server_does_not_start(tmp_path):
     assert not [c for c in log if c.startswith(("python", "chromium", "make test"))], log
 
 
+class _KeepImports:
+    """The library modules an in-process session imported, put back after it: pytester restores
+    ``sys.modules`` as it was, and an extension module cannot load twice in one process (the
+    next test file to import numpy.fft, through scipy, failed: "cannot load module more than
+    once per process", 16 of tests/core/test_raw_exports44.py run after this file)."""
+
+    def pytest_sessionfinish(self):
+        self.modules = dict(sys.modules)
+
+
+@pytest.fixture
+def kept_imports():
+    """Set up before ``pytester``, so torn down after it has restored ``sys.modules``."""
+    keep = _KeepImports()
+    yield keep
+    for name, module in getattr(keep, "modules", {}).items():
+        if not name.startswith("test_") and name != "conftest":   # the session's own
+            sys.modules.setdefault(name, module)
+
+
 def test_the_postgresql_test_fails_instead_of_skipping_when_ci_requires_the_server(
-        pytester, monkeypatch):
+        kept_imports, pytester, monkeypatch):
     """A pytest session of its own, in this process (pytester): a child interpreter re-imported
     pytest, conftest, sklearn and MLflow (~3 s CPU) to see one test fail."""
     for name in ("THERMOCOMP_MLFLOW_SERVER", "CI"):
@@ -58,7 +78,7 @@ def test_the_postgresql_test_fails_instead_of_skipping_when_ci_requires_the_serv
     monkeypatch.delitem(sys.modules, "test_team", raising=False)   # it reads the server at import
     required = pytester.runpytest_inprocess(
         str(ROOT / "tests" / "shell" / "test_team.py"), "-k", "postgresql",
-        "-p", "no:randomly", "-p", "no:cacheprovider", "-p", "no:xdist")
+        "-p", "no:randomly", "-p", "no:cacheprovider", "-p", "no:xdist", plugins=[kept_imports])
     assert required.ret == 1 and required.parseoutcomes().get("failed") == 1, \
         "\n".join(required.outlines[-40:])
 
