@@ -165,7 +165,8 @@ def test_a_dropout_in_the_test_part_of_a_record_streams_and_is_named_with_its_ti
     refused = thermocomp(stage, *args, f"out={tmp_path / 'refused'}", check=False)
     # the train part's gap is refused as run refuses it, naming the record's row
     assert refused.returncode == 2, refused.stderr
-    assert "faulty.csv, column 'T_motor', row 101: train campaign faulty_train: gap of 2" in refused.stderr
+    assert ("faulty.csv, column 'T_motor', data row 101: train campaign faulty_train: gap of 2"
+            in refused.stderr)
 
     out = tmp_path / "out"
     printed = thermocomp(stage, *args, "data.max_gap_samples=2", f"out={out}").stdout

@@ -65,7 +65,7 @@ def test_a_byte_the_encoding_does_not_read_is_refused_with_its_row_and_column(tm
     path.write_bytes(path.read_bytes().replace(b"21,55555", b"21\x8155555"))  # 0x81: no cp1252 character
     out = tmp_path / "init"
     refused(["init", str(path), "data.encoding=cp1252", f"out={out}"], capsys, str(path),
-            "row 7", "'T1 [°C]'", "byte 0x81 is not cp1252")
+            "line 8:", "'T1 [°C]'", "byte 0x81 is not cp1252")
     assert not out.exists()
 
 

@@ -233,7 +233,7 @@ def test_a_local_clock_that_skips_an_hour_is_said_and_read_with_data_timezone(tm
     frame = _read(path, roles={"error": ["dX"]})
     assert np.diff(frame["time"]).max() == 3600 + 240
     said = capsys.readouterr().err
-    assert f"{path}, column 'time', row " in said and "data.timezone" in said
+    assert f"{path}, column 'time', line " in said and "data.timezone" in said
     frame = _read(path, roles={"error": ["dX"]}, timezone="Europe/Berlin")
     np.testing.assert_allclose(frame["time"], _record()[0] * 4)
     assert "data.timezone" not in capsys.readouterr().err
@@ -265,7 +265,7 @@ def test_a_blank_line_inside_a_record_without_a_time_column_is_said(tmp_path, ca
     path.write_text("\r\n".join([*lines[:13], "", *lines[13:]]) + "\r\n", encoding="utf-8")
     frame = _read(path, roles={"error": ["dX"]}, sample_period_s=60)
     np.testing.assert_allclose(frame["T_T1"], t1, atol=1e-3)
-    assert f"{path}, row 12: a blank line under it" in capsys.readouterr().err
+    assert f"{path}, line 13 (data row 12): a blank line under it" in capsys.readouterr().err
     timed = _write(tmp_path / "timed.csv", ["time", "T1", "dX [µm]"], [t, t1, e])
     lines = timed.read_text(encoding="utf-8").splitlines()
     timed.write_text("\n".join([*lines[:13], "", *lines[13:], "", ""]) + "\n", encoding="utf-8")
@@ -345,7 +345,8 @@ def test_an_excel_row_of_empty_cells_under_a_time_column_is_left_out_and_said(tm
     path.write_text("\n".join([*lines[:11], ";;", *lines[11:]]) + "\n", encoding="utf-8")
     frame = _read(path, roles={"error": ["dX"]})
     np.testing.assert_allclose(frame[["time", "T_T1", "E_dX"]], np.c_[t, t1, e], atol=1e-3)
-    assert f"{path}, row 11: 1 row(s) of empty cells left out" in capsys.readouterr().err
+    assert f"{path}, line 12 (data row 11): 1 row(s) of empty cells left out" in (
+        capsys.readouterr().err)
     lines[5] = ";" + lines[5].split(";", 1)[1]           # a time missing from a row of values
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     with pytest.raises(ContractError, match="missing time value") as refusal:

@@ -165,8 +165,8 @@ def _wide_semicolons(ds):
 
 READ_CASES = {
     "non-UTF-8 manifest": (_non_utf8_manifest, [],
-                           ["campaigns.csv", "column 'notes'", "row 2", "0xe9 is not UTF-8"]),
-    "non-UTF-8 cell": (_non_utf8_cell, [], ["K02.csv", "column 'T_0'", "row 5", "0xb0 is not UTF-8"]),
+                           ["campaigns.csv", "column 'notes'", "line 3:", "0xe9 is not UTF-8"]),
+    "non-UTF-8 cell": (_non_utf8_cell, [], ["K02.csv", "column 'T_0'", "line 6:", "0xb0 is not UTF-8"]),
     "1e300 error": (_cell("K03", "E_X", 7, 1e300), [],
                     ["K03.csv", "column 'E_X'", "row 7", "data.max_abs_error"]),
     "1e300 temperature": (_cell("K02", "T_amb", 3, 1e300), [],

@@ -129,7 +129,7 @@ def test_a_unit_fit_while_other_sensors_step_is_warned_not_refused(paths, caplog
     edit_csv(paths["ds"] / "K02.csv", mutate)
     with caplog.at_level(logging.WARNING):
         read_dataset(paths["ds"])
-    assert "K02.csv, column 'T_0', row 15" in caplog.text and "real event" in caplog.text
+    assert "K02.csv, column 'T_0', line 16 (data row 15)" in caplog.text and "real event" in caplog.text
 
 
 # Each scenario of conf/sim at a small size, with every undeclared effect that it plants
@@ -218,7 +218,7 @@ def test_a_european_export_reads_with_a_point_for_thousands(paths):
         df = pd.read_csv(path).assign(S_rpm=lambda d: np.where(d.index % 2, "6.000", "1.500"))
         df.to_csv(path, index=False, sep=";", decimal=",")
     cfg = {"delimiter": ";", "decimal": ","}
-    with pytest.raises(ContractError, match="row 1: value '1.500' .*data.thousands='.'"):
+    with pytest.raises(ContractError, match=r"line 2 \(data row 1\): value '1.500' .*data.thousands='.'"):
         read_dataset(paths["ds"], cfg)
     ds, _ = read_dataset(paths["ds"], {**cfg, "thousands": "."})
     assert ds.campaigns["K01"]["S_rpm"].tolist()[:2] == [1500.0, 6000.0]
@@ -231,7 +231,7 @@ def test_a_decimal_comma_is_still_named_when_the_column_has_one(paths):
         df["T_0"] = df["T_0"].map(lambda v: f"{v:.2f}")
         df.loc[2, "T_0"], df.loc[5, "T_0"] = "21,000", "21,35"
     edit_csv(paths["ds"] / "K02.csv", mutate)
-    with pytest.raises(ContractError, match="row 3: value '21,000' .*decimal comma"):
+    with pytest.raises(ContractError, match=r"line 4 \(data row 3\): value '21,000' .*decimal comma"):
         read_dataset(paths["ds"])
 
 
@@ -240,7 +240,7 @@ def test_a_cell_not_grouped_by_three_is_refused(paths):
         _grouped_speeds(df)
         df.loc[6, "S_rpm"] = "6,00"
     edit_csv(paths["ds"] / "K02.csv", mutate)
-    with pytest.raises(ContractError, match="K02.csv, column 'S_rpm', row 7: .*by three"):
+    with pytest.raises(ContractError, match=r"K02.csv, column 'S_rpm', line 8 \(data row 7\): .*by three"):
         read_dataset(paths["ds"], {"thousands": ","})
 
 

@@ -174,7 +174,7 @@ def test_a_job_failing_on_its_data_before_its_run_starts_is_counted_by_the_paren
     uri = mlflow_store(tmp_path)
     proc = thermocomp("run", "-m", f"data.path={dataset},{bad}", f"tracking_uri={uri}", *LIGHT_EVAL,
                       f"hydra.sweep.dir={tmp_path / 'sweep'}", check=False)
-    assert proc.returncode == 2 and "column 'T_1', row 4" in proc.stderr, proc.stderr
+    assert proc.returncode == 2 and "column 'T_1', line 5 (data row 4)" in proc.stderr, proc.stderr
     import mlflow
 
     mlflow.set_tracking_uri(uri)

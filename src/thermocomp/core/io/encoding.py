@@ -83,7 +83,7 @@ def check_not_utf8(head: bytes, encoding: str, path: Path) -> None:
 
 def undecodable(path: Path, delimiter: str, names: list[str] | None = None,
                 encoding: str = UTF8) -> ContractError:
-    """The error naming the line (data row, or the header) and field of the first byte
+    """The error naming the line (1-based, of the file) and field of the first byte
     ``encoding`` does not read, and the ``data.encoding`` that reads it."""
     with open(path, "rb") as f:
         if f.read(2) == b"\x1f\x8b":
@@ -110,7 +110,7 @@ def first_undecodable(path: Path, delimiter: str, names: list[str] | None,
                 column = header[field] if header and field < len(header) else None
                 return ContractError(f"byte 0x{line[exc.start]:02x} is not {_said(encoding)} "
                                      f"text{_remedy(line, encoding)}", file=path, column=column,
-                                     row=line_no or None)
+                                     line=line_no + 1)
     return None
 
 

@@ -47,7 +47,7 @@ the ``E_`` columns' missing values and counts them so, and repairs or refuses
 the other columns' as above.
 
 Row numbers in error messages are 1-based data rows of the source file,
-header excluded.
+header excluded; a CSV file's message names the row's line in the file too (:mod:`.lines`).
 """
 
 from __future__ import annotations
@@ -75,6 +75,7 @@ from .contract import (
     is_ambient,
     role,
 )
+from .lines import Lines
 from .manifest import RECORD_SUFFIXES, read_manifest
 from .options import ROLE_ORDER, ReadOptions
 from .record import check_record_file, cut, hold_out, record_id
@@ -175,26 +176,36 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     if path.stat().st_size == 0:
         raise ContractError("empty file", file=path)
     load = _load_parquet if path.suffix.lower() == ".parquet" else _load_csv
-    columns, renamed, rescaled = load(path, opts)
-    rows = len(next(iter(columns.values())))
-    if rows == 0:
-        raise ContractError("file has no data rows", file=path)
-    missing = _keep_missing if opts.missing == "keep" else _repair_missing
-    report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts),
-              **missing(columns, rows, path, opts)}
-    _check_length(len(columns[TIME]), path, "complete " if opts.missing != "keep" else "")
-    _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
-    check_unit_steps(columns, path, opts.max_step_ratio, report["trimmed"]["start"])
-    if opts.resample_s is not None:
-        _resample(columns, opts.resample_s, path, opts.max_resample_factor)
-        report["resampled_s"] = opts.resample_s
-        _check_length(len(columns[TIME]), path, f"(after data.resample_s={opts.resample_s:g}) ")
+    columns, renamed, rescaled, lines = load(path, opts)
+    try:
+        report = _checked(columns, path, opts, lines)
+    except ContractError as exc:        # a CSV file's row: its line too
+        raise (exc if lines is None else lines.located(exc)) from None
     table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
     if renamed:          # the file's own names (data.columns, data.roles): raw -> contract
         report["columns"] = renamed
     if rescaled:         # read in another unit (mm, K, ...): the lab's name carries other values
         report["converted"] = rescaled
     return table, {"rows": table.num_rows, **report}
+
+
+def _checked(columns: dict, path: Path, opts: ReadOptions, lines: Lines | None) -> dict:
+    """A campaign's columns made the contract's (time in seconds, values checked, missing
+    ones repaired or kept, resampled), in place; its report."""
+    rows = len(next(iter(columns.values())))
+    if rows == 0:
+        raise ContractError("file has no data rows", file=path)
+    missing = _keep_missing if opts.missing == "keep" else _repair_missing
+    report = {"source_rows": rows, **_set_time_seconds(columns, rows, path, opts, lines),
+              **missing(columns, rows, path, opts)}
+    _check_length(len(columns[TIME]), path, "complete " if opts.missing != "keep" else "")
+    _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
+    check_unit_steps(columns, path, opts.max_step_ratio, report["trimmed"]["start"], lines)
+    if opts.resample_s is not None:
+        _resample(columns, opts.resample_s, path, opts.max_resample_factor)
+        report["resampled_s"] = opts.resample_s
+        _check_length(len(columns[TIME]), path, f"(after data.resample_s={opts.resample_s:g}) ")
+    return report
 
 
 def repaired_part(frame: pd.DataFrame, path: Path, cfg: Mapping | None, first_row: int) -> pa.Table:

@@ -36,6 +36,7 @@ from numpy.lib.stride_tricks import sliding_window_view
 
 from ...base.log import logger
 from .contract import ContractError, role
+from .lines import Lines, at
 from .tables import _values
 
 FIT = 0.2         # a conversion must leave at most this share of the step, there and after
@@ -149,10 +150,11 @@ def _steps_without_a_unit(columns: dict, names: list[str], row: int, ratio: floa
     return False
 
 
-def check_unit_steps(columns: dict, path: Path, ratio: float | None, offset: int) -> None:
+def check_unit_steps(columns: dict, path: Path, ratio: float | None, offset: int,
+                     lines: Lines | None = None) -> None:
     """Refuse a ``T_`` or ``E_`` column whose unit changes inside the file (see the module
     docstring), naming the first row in the new unit (1-based data row of the source file:
-    ``offset`` rows were trimmed before ``columns``' first)."""
+    ``offset`` rows were trimmed before ``columns``' first; ``lines``: its line, in a warning)."""
     if ratio is None:
         return
     for kind, units in UNITS.items():
@@ -170,7 +172,7 @@ def check_unit_steps(columns: dict, path: Path, ratio: float | None, offset: int
                     f"(data.max_step_ratio={ratio:g})")
             others = [n for n in names if n != name]
             if _steps_without_a_unit(columns, others, row, ratio, units):
-                logger.warning(f"{path}, column '{name}', row {row + offset + 1}: {says}; other "
+                logger.warning(f"{path}, column '{name}', {at(lines)(row + offset + 1)}: {says}; other "
                                "sensors step at the same row, so it may be a real event")
                 continue
             raise ContractError(says, file=path, column=name, row=row + offset + 1)

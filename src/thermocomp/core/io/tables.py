@@ -21,6 +21,7 @@ from .csvline import SPLIT, split_line
 from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
 from .footer import blank_inside, footer, source
 from .layout import header_line, is_unit_row, with_units
+from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .roles import active, naming, same_header
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
@@ -116,20 +117,31 @@ def _ordered(names: list[str]) -> list[str]:
 MISSING_TOKENS = ("", "nan", "NaN", "NAN", "-nan", "-NaN")
 
 
-def _load_csv(path: Path, opts: ReadOptions) -> dict:
+def _load_csv(path: Path, opts: ReadOptions) -> tuple:
+    """The file's columns (contract names, units converted), its renames and conversions, and
+    its :class:`.Lines` (a message's row located in the file, counted as the columns' rows)."""
     opts = resolved(path, opts)
     header, first_row, skip = _peek_csv(path, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
+    lines = Lines(path, opts.delimiter, opts.encoding, skip)
+    try:
+        return _typed_columns(path, header, first_row, opts, lines)
+    except ContractError as exc:
+        raise lines.located(exc) from None
+
+
+def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: ReadOptions,
+                   lines: Lines) -> tuple:
     if len(header) == 1:
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
     said, cut = footer(path, opts.delimiter, len(header), opts.encoding)
     if said:
         logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: {said[0]!r})")
-    blank = None if TIME in named else blank_inside(path, skip, cut)
+    blank = None if TIME in named else blank_inside(path, opts.skip_rows, cut)
     if blank is not None:
-        logger.warning(f"{path}, row {blank}: a blank line under it is left out, and the rows "
-                       f"after it read data.sample_period_s earlier: if it is a sample not "
+        logger.warning(f"{path}, {lines.at(blank)}: a blank line under it is left out, and the "
+                       "rows after it read data.sample_period_s earlier: if it is a sample not "
                        "taken, leave its cells empty instead (a gap, data.max_gap_samples)")
     if len(first_row) != len(named):
         raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
@@ -145,18 +157,22 @@ def _load_csv(path: Path, opts: ReadOptions) -> dict:
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
     table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
     _check_unnamed_empty(table, header, names, unnamed, path)
-    if TIME in types:
-        table = _without_empty_rows(table, path)
+    if TIME in types:          # and from here on rows are counted without them
+        table = _without_empty_rows(table, path, lines)
+        lines = replace(lines, empty_left_out=True)
     if TIME in types and pa.types.is_floating(types[TIME]) and TIME not in scales:
         said_if_not_seconds(_values(table.column(TIME)), path, header[names.index(TIME)],
-                             own=active(opts.roles))
+                            own=active(opts.roles))
     columns = _columns(table.select(list(types)))
     if CLOCK in columns:
-        columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
-    return _converted(columns, scales), _renames(header, named), _rescaled(scales)
+        try:
+            columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
+        except ContractError as exc:
+            raise lines.located(exc) from None
+    return _converted(columns, scales), _renames(header, named), _rescaled(scales), lines
 
 
-def _without_empty_rows(table: pa.Table, path: Path) -> pa.Table:
+def _without_empty_rows(table: pa.Table, path: Path, lines: Lines) -> pa.Table:
     """``table`` without its rows of empty cells (Excel's empty row, ``;;;``), left out as a
     blank line is, and said: with a time column each row carries its own time, so nothing
     moves (without one, such a row is a sample not taken: a gap)."""
@@ -168,7 +184,7 @@ def _without_empty_rows(table: pa.Table, path: Path) -> pa.Table:
     flags = empty.to_numpy()
     if not flags.any():
         return table
-    logger.warning(f"{path}, row {int(np.argmax(flags)) + 1}: {int(flags.sum())} row(s) of "
+    logger.warning(f"{path}, {lines.at(int(np.argmax(flags)) + 1)}: {int(flags.sum())} row(s) of "
                    "empty cells left out, as blank lines are (rows after it counted without)")
     return table.filter(pc.invert(empty))
 
@@ -432,7 +448,7 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
                else _parquet_numbers(col, name, path) for name, col in zip(names, table.columns)}
     if CLOCK in columns:
         columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
-    return _converted(columns, scales), _renames(list(first), named), _rescaled(scales)
+    return _converted(columns, scales), _renames(list(first), named), _rescaled(scales), None
 
 
 def _rescaled(scales: dict) -> list[str]:

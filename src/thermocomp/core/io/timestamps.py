@@ -13,6 +13,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from ...base.errors import position
 from ...base.log import logger
 from .contract import TIME, ContractError
 
@@ -170,17 +171,17 @@ def clock_set_back(before: float, after: float) -> str:
             "to the zone it was written in (e.g. data.timezone=Europe/Berlin)")
 
 
-def said_if_clock_skips(seconds: np.ndarray, file, header: str = TIME) -> None:
+def said_if_clock_skips(seconds: np.ndarray, file, header: str = TIME, at=position) -> None:
     """Say (not refuse: a logger may pause an hour) timestamps without an offset that jump one
     hour plus a sample period forward once: daylight saving time beginning, read as an hour
-    without samples unless ``data.timezone`` says the zone."""
+    without samples unless ``data.timezone`` says the zone (``at``: names a data row)."""
     steps = np.diff(seconds)
     if steps.size < 2:
         return
     period = float(np.median(steps))
     jumps = np.flatnonzero(np.abs(steps - HOUR_S - period) <= period / 2)
     if 0 < period < HOUR_S and jumps.size:
-        logger.warning(f"{file}, column {header!r}, row {jumps[0] + 2}: the clock jumps an hour "
+        logger.warning(f"{file}, column {header!r}, {at(int(jumps[0]) + 2)}: the clock jumps an hour "
                        "forward (daylight saving time beginning?): read as an hour without "
                        "samples; set data.timezone to the zone it was written in (e.g. "
                        "data.timezone=Europe/Berlin)")

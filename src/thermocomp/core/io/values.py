@@ -13,6 +13,7 @@ import pyarrow.compute as pc
 
 from ...base.log import logger
 from .contract import TIME, ContractError, role
+from .lines import Lines, at
 from .options import ReadOptions
 from .tables import _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
@@ -25,8 +26,10 @@ FAULTY_SHARE = 0.1  # at most this share of a streamed T_ column above the kelvi
 # Time
 
 
-def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions) -> dict:
-    """Replace (or add) ``time`` by float seconds; describe its source."""
+def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
+                      lines: Lines | None = None) -> dict:
+    """Replace (or add) ``time`` by float seconds; describe its source (``lines``: where a
+    row stands in the file, for a warning)."""
     if TIME not in columns:
         columns[TIME] = pa.array(np.arange(rows) * opts.sample_period_s)
         return {"time": "sample_period_s"}
@@ -41,13 +44,13 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions) -
                  and opts.timezone is None)
         _check_increasing(seconds, path, local)
         if local:
-            said_if_clock_skips(seconds, path)
+            said_if_clock_skips(seconds, path, at=at(lines))
     except ContractError as exc:
         if opts.missing != "keep":
             raise
         raise ContractError(f"{exc.reason} (a test record with bad times streams as on the "
                             "machine when piped: thermocomp monitor monitor.input=- < FILE)",
-                            file=exc.file, column=exc.column, row=exc.row) from None
+                            file=exc.file, column=exc.column, row=exc.row, line=exc.line) from None
     _check_duration(seconds, path, opts.max_duration_days)
     columns[TIME] = pa.array(seconds)
     return info

@@ -1,0 +1,111 @@
+"""A lab's raw export, round 3 (issue 34, item 1; the guide's "bad input" rule): a message's row
+is the line the lab opens in its editor, an elapsed time over 24 h reads, and a folder's runs are
+held out alike read whole or in groups."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from test_raw_exports44 import ROWS, _record
+from thermocomp.core.io import ContractError, read_dataset
+
+ROLES = {"error": ["dX"]}
+SEPARATORS = {"delimiter": ";", "decimal": ","}     # (a row cut short: no separator detected)
+
+
+def _messy(path: Path, edit, *, time: bool = True, preamble: bool = True) -> tuple[Path, int]:
+    """The record as a logger writes it: a BOM, CRLF, a preamble with a blank line, a unit row,
+    blank lines among the rows, an Excel row of empty cells (``;;``, with a time column); and
+    ``edit(cells, k)`` on the cells of data row ``k`` (0-based, a row of values) that it edits,
+    returning ``k``.  Returns the file and the 1-based line of that row."""
+    t, t1, t2, e = _record()
+    rows = [[f"{v:.4f}".replace(".", ",") for v in values] for values in zip(t, t1, e)]
+    k = edit(rows)
+    head = ["Logger: XY-200", "", "Start: 28.11.2026"] * preamble + [
+        ("Zeit;" if time else "") + "T1;dX", ("s;" if time else "") + "°C;µm"]
+    lines, target = list(head), None
+    for i, cells in enumerate(rows):
+        if i in (4, 9):
+            lines.append("")
+        if i == 7 and time:
+            lines.append(";;")
+        if i == k:
+            target = len(lines) + 1
+        lines.append(";".join(cells if time else cells[1:]))
+    path.write_bytes(b"\xef\xbb\xbf" + ("\r\n".join(lines) + "\r\n").encode())
+    return path, target
+
+
+def _cell(column: int, value: str, k: int = 20):
+    def edit(rows):
+        rows[k][column] = value
+        return k
+    return edit
+
+
+def _short(rows):
+    rows[20] = rows[20][:2]
+    return 20
+
+
+def _gap(rows):
+    rows[20][1] = ""
+    return 20
+
+
+def _fahrenheit(rows):      # T1 in °F from data row 20 on
+    for cells in rows[20:]:
+        cells[1] = f"{float(cells[1].replace(',', '.')) * 1.8 + 32:.4f}".replace(".", ",")
+    return 20
+
+
+CASES = {   # what is wrong at data row 20 (0-based), what the message says of it, its line
+    "a cell no number": (_cell(1, "oops"), "'oops' is not a number", 29),
+    # (a row cut short under a preamble: no table found there, the lines differ in width)
+    "a row cut short": (_short, "expected 3 fields, got 2", 26),
+    "a time going back": (_cell(0, "60"), "time decreases", 29),
+    "an error beyond its limit": (_cell(2, "2e6"), "data.max_abs_error", 29),
+    "a gap": (_gap, "data.max_gap_samples=0", 29),
+    "a unit changing": (_fahrenheit, "the unit changes inside the file", 29),
+}
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_a_refused_row_is_named_by_its_line_in_the_file(tmp_path, case):
+    # before: 'row 21' (or 20, without the row of empty cells), the data rows counted without
+    # the preamble, header, unit row, blank lines: line 29 in the lab's editor
+    edit, says, line = CASES[case]
+    path, edited = _messy(tmp_path / "lab.csv", edit, preamble=line == 29)
+    with pytest.raises(ContractError, match=re.escape(says)) as refusal:
+        read_dataset(path, {"roles": ROLES, **SEPARATORS})
+    assert refusal.value.line == edited == line
+    assert f"line {line} (data row {refusal.value.row})" in str(refusal.value)
+
+
+def test_a_row_without_a_time_column_or_a_joined_time_is_named_by_its_line(tmp_path):
+    path, line = _messy(tmp_path / "untimed.csv", _cell(1, "oops"), time=False)
+    with pytest.raises(ContractError) as refusal:
+        read_dataset(path, {"roles": ROLES, "sample_period_s": 60})
+    assert (refusal.value.line, refusal.value.row) == (line, 21)
+    # a date and a time of day joined, read after the row of empty cells is left out
+    path = tmp_path / "joined.csv"
+    lines = ["Datum;Uhrzeit;T1;dX"] + [f"28.11.2026;10:{i:02d}:00;20,{i};{i}" for i in range(30)]
+    lines[20] = "28.11.2026;10:99:00;20,5;1"
+    path.write_text("\n".join([lines[0], ";;;", "", *lines[1:]]) + "\n", encoding="utf-8")
+    with pytest.raises(ContractError, match="the date and the time of day joined") as refusal:
+        read_dataset(path, {"roles": {**ROLES, "time": ["Datum", "Uhrzeit"]}})
+    assert (refusal.value.line, refusal.value.row) == (23, 20)
+
+
+def test_a_said_row_is_named_by_its_line_too(tmp_path, caplog):
+    path, _ = _messy(tmp_path / "lab.csv", lambda rows: None)
+    read_dataset(path, {"roles": ROLES})
+    assert f"{path}, line 14 (data row 8): 1 row(s) of empty cells" in caplog.text
+    path, _ = _messy(tmp_path / "untimed.csv", lambda rows: None, time=False)
+    read_dataset(path, {"roles": ROLES, "sample_period_s": 60})
+    assert f"{path}, line 9 (data row 4): a blank line under it" in caplog.text
+    assert len(read_dataset(path, {"roles": ROLES, "sample_period_s": 60})[0].campaigns[
+        "untimed"]) == ROWS
