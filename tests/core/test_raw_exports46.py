@@ -7,10 +7,15 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import numpy as np
+import pandas as pd
 import pytest
 
+from conftest import refused
 from test_raw_exports44 import ROWS, _record
 from thermocomp.core.io import ContractError, read_dataset
+from thermocomp.core.io.stdin import stream_seconds
+from thermocomp.shell.cli import main
 
 ROLES = {"error": ["dX"]}
 SEPARATORS = {"delimiter": ";", "decimal": ","}     # (a row cut short: no separator detected)
@@ -109,3 +114,55 @@ def test_a_said_row_is_named_by_its_line_too(tmp_path, caplog):
     assert f"{path}, line 9 (data row 4): a blank line under it" in caplog.text
     assert len(read_dataset(path, {"roles": ROLES, "sample_period_s": 60})[0].campaigns[
         "untimed"]) == ROWS
+
+
+def _elapsed(path: Path, header: str, hours: float = 25.5, fraction: str = "") -> Path:
+    """A logger's elapsed time ``h:mm:ss`` every 30 min up to ``hours``, the record's values."""
+    t = np.arange(0, hours * 3600 + 1, 1800.0)
+    t1 = 20 + 5 * (1 - np.exp(-t / 20000))
+    clock = [f"{int(s // 3600)}:{int(s % 3600 // 60):02d}:{int(s % 60):02d}{fraction}" for s in t]
+    rows = [f"{c};{a:.4f};{4 * (a - 20):.4f}" for c, a in zip(clock, t1)]
+    path.write_text("\n".join([f"{header};T1 [°C];dX [µm]", *rows]) + "\n", encoding="utf-8")
+    return path
+
+
+def test_an_elapsed_time_past_24_hours_is_read_as_seconds(tmp_path, capsys):
+    # before: refused, "value '0:00:00' is a time of day without its date"
+    path = _elapsed(tmp_path / "run.csv", "Zeit")
+    ds, report = read_dataset(path, {"roles": ROLES})
+    frame = ds.campaigns["run"]
+    np.testing.assert_array_equal(frame["time"], np.arange(52) * 1800.0)     # 25:30:00 last
+    np.testing.assert_allclose(frame["T_T1"], 20 + 5 * (1 - np.exp(-frame["time"] / 20000)),
+                               atol=1e-4)
+    assert report["campaigns"]["run"]["time"] == "elapsed"
+    out = tmp_path / "init"
+    assert main(["init", str(path), f"out={out}"]) == 0                      # roles proposed
+    assert "time: 'Zeit', elapsed h:mm:ss" in capsys.readouterr().out
+
+
+def test_an_elapsed_time_within_a_day_reads_where_its_header_or_data_time_says_so(
+        tmp_path, capsys):
+    # a header saying so (init proposed 'ignore' for it), or data.time=elapsed
+    path = _elapsed(tmp_path / "dauer.csv", "Dauer", hours=20, fraction=",5")
+    frame = read_dataset(path, {"roles": ROLES})[0].campaigns["dauer"]
+    np.testing.assert_array_equal(frame["time"], np.arange(41) * 1800.0 + 0.5)
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
+    path = _elapsed(tmp_path / "zeit.csv", "Zeit", hours=5)        # a time of day? never guessed
+    out = tmp_path / "refused"
+    refused(["init", str(path), f"out={out}"], capsys, str(path), "line 2 (data row 1)",
+            "time of day without its date", "data.time=elapsed")
+    assert not out.exists()
+    frame = read_dataset(path, {"roles": ROLES, "time": "elapsed"})[0].campaigns["zeit"]
+    np.testing.assert_array_equal(frame["time"], np.arange(11) * 1800.0)
+    df = stream_seconds(pd.Series(["0:00:00", "0:30:00", "26:00:00"]), "elapsed")
+    np.testing.assert_array_equal(df, [0.0, 1800.0, 93600.0])
+
+
+def test_a_cell_of_an_elapsed_time_that_is_no_h_mm_ss_is_refused_with_its_line(tmp_path):
+    path = _elapsed(tmp_path / "run.csv", "Zeit")
+    lines = path.read_text(encoding="utf-8").splitlines()
+    lines[7] = lines[7].replace(":00:00", ":0:00", 1)
+    path.write_text("\n".join([lines[0], "", *lines[1:]]) + "\n", encoding="utf-8")
+    with pytest.raises(ContractError, match="is not an elapsed time h:mm:ss") as refusal:
+        read_dataset(path, {"roles": ROLES})
+    assert (refusal.value.line, refusal.value.row) == (9, 7)

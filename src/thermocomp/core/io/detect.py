@@ -18,7 +18,7 @@ from .layout import header_line
 from .manifest import campaign_files, is_text, read_manifest
 from .options import ROLE_PATTERNS
 from .record import check_record_file
-from .roles import STATE_UNITS, UNITS, date_and_time_of_day, split_unit
+from .roles import STATE_UNITS, TIME_HEADERS, UNITS, date_and_time_of_day, split_unit
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
@@ -90,7 +90,8 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
         elif role(base) is None and AMBIENT_WORDS & set(_WORDS.split(base.lower())) and (
                 not unit or unit in UNITS["T"]):
             roles["ambient"].append(pattern)
-        elif not reads_as_number(first.get(h), opts.decimal) and not looks_like_timestamp(first.get(h)):
+        elif not (reads_as_number(first.get(h), opts.decimal) or looks_like_timestamp(first.get(h))
+                  or base.lower() in TIME_HEADERS):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return roles
 
@@ -118,8 +119,10 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
     times = [h for h, n in plan.names.items() if n in ("time", CLOCK)]
     # timestamps: the first as read, so that a day read as the month shows
     origin = report["campaigns"][ds.ids()[0]].get("time_origin")
-    time = (f"time: {' + '.join(map(repr, times))}" + (f", timestamps from {origin}" if origin else
-                                     _seconds_unit(times[0], opts)) if times
+    elapsed = report["campaigns"][ds.ids()[0]].get("time") == "elapsed"
+    time = (f"time: {' + '.join(map(repr, times))}" + (
+        f", timestamps from {origin}" if origin else ", elapsed h:mm:ss" if elapsed
+        else _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
     charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
     lines = [f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"

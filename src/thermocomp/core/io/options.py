@@ -15,7 +15,7 @@ from .contract import SPLITS, ContractError
 from .encoding import UTF8, codec
 from .separators import NO_BREAK_SPACES, any_number
 
-TIME_FORMATS = ("auto", "seconds", "iso8601")
+TIME_FORMATS = ("auto", "seconds", "iso8601", "elapsed")
 AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
 ROLE_PATTERNS = ("error", "state", "ambient", "ignore")   # data.roles.<key>: glob patterns
 SPLIT_ORDER = ("train", "val", "test")

@@ -158,8 +158,8 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
         float64, no missing value (``missing="keep"``: missing values stay,
         as nulls; a resampled grid point next to one is missing too).
     report : dict
-        ``rows``, ``source_rows``, ``time`` (``'seconds'``, ``'iso8601'`` or
-        ``'sample_period_s'``; ``time_origin`` for timestamps), ``repairs``
+        ``rows``, ``source_rows``, ``time`` (``'seconds'``, ``'iso8601'``, ``'elapsed'``
+        or ``'sample_period_s'``; ``time_origin`` for timestamps), ``repairs``
         ({column: interpolated samples}), ``trimmed`` ({"start", "end"} rows),
         ``resampled_s`` when resampled and, with ``missing="keep"``,
         ``missing`` ({column: missing cells kept}).
@@ -303,8 +303,9 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
         sample_period_s : float
             Files without a ``time`` column get ``time = row * sample_period_s``.
             A file with a ``time`` column keeps its own.
-        time : {'auto', 'seconds', 'iso8601'}
-            How to read ``time``; ``'auto'`` decides from the first row.
+        time : {'auto', 'seconds', 'iso8601', 'elapsed'} or a strptime format
+            How to read ``time``; ``'auto'`` decides from the first row (an ``h:mm:ss``
+            one, from the column: :func:`.timestamps.elapsed_seconds`).
             Seconds are kept as given; timestamps become seconds since the
             file's first sample (rows with zone offsets are compared as
             instants, naive ones as written).

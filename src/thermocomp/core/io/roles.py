@@ -22,7 +22,7 @@ from ...base.errors import listed
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, _roles
 from .separators import reads_as_number
-from .timestamps import CLOCK, DATE, TIME_OF_DAY, looks_like_timestamp
+from .timestamps import CLOCK, DATE, ELAPSED_HEADERS, TIME_OF_DAY, looks_like_timestamp
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # ISO 80000's "quantity / unit" (``delta L / um``, ``Zeit / s``); without spaces round the slash
@@ -36,7 +36,7 @@ _LAST_WORD = re.compile(r"^(.*?\S)\s+(\S+)$")
 _SUFFIX = re.compile(r"^(.*?[^\s_])_([^\s_]+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
-                          "zeitstempel", "temps", "tiempo", "elapsed", "seconds"})
+                          "zeitstempel", "temps", "tiempo", "seconds", *ELAPSED_HEADERS})
 PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
 # unit (lower case, no spaces) -> (scale, offset) to the contract's unit
 UNITS = {

@@ -11,6 +11,7 @@ from io import StringIO
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
 
 from ..context import TIME
 from .contract import ContractError
@@ -20,7 +21,7 @@ from .layout import header_line, is_unit_row, with_units
 from .roles import active, naming, same_header
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
-from .timestamps import CLOCK, on_local_clock, time_kind, time_type
+from .timestamps import CLOCK, ELAPSED, elapsed_seconds, on_local_clock, time_kind, time_type
 
 SOURCE = "<stdin>"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
@@ -130,6 +131,10 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     if kind == "auto" and isinstance(first, str):      # read as a campaign file's
         kind = time_kind(first.strip(), kind, not pd.isna(pd.to_numeric(first, errors="coerce")),
                          SOURCE, stream=True)
+    if kind == ELAPSED:        # h:mm:ss since the start (a stream says so: data.time=elapsed)
+        text = pa.chunked_array([pa.array(time.astype("string"), type=pa.string())])
+        ns = elapsed_seconds(text, kind, SOURCE).cast(pa.int64()).to_numpy(zero_copy_only=False)
+        return pd.Series(ns / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
         return time
     stamps = pd.to_datetime(time.astype(str).where(time.notna()), utc=True, errors="coerce",

@@ -31,7 +31,9 @@ from .timestamps import (
     DATE,
     TIME_OF_DAY,
     described,
+    elapsed_seconds,
     is_format,
+    maybe_elapsed,
     parsed,
     said_if_not_seconds,
     time_kind,
@@ -151,8 +153,12 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
     if CLOCK in names:         # a date and a time of day: read as text, joined, then parsed
         types.update({TIME: pa.string(), CLOCK: pa.string()})
     elif TIME in names:
-        opts = _timed(path, first_row[names.index(TIME)].strip(), opts, header[names.index(TIME)])
-        types[TIME] = time_type(opts.time, first_row[names.index(TIME)].strip())
+        first = first_row[names.index(TIME)].strip()
+        if maybe_elapsed(first, opts.time):      # h:mm:ss: read as text, the column tells
+            types[TIME] = pa.string()
+        else:
+            opts = _timed(path, first, opts, header[names.index(TIME)])
+            types[TIME] = time_type(opts.time, first)
     # a column without a header (Excel's trailing separator) is left out if it holds nothing
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
     table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
@@ -164,11 +170,14 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
         said_if_not_seconds(_values(table.column(TIME)), path, header[names.index(TIME)],
                             own=active(opts.roles))
     columns = _columns(table.select(list(types)))
-    if CLOCK in columns:
-        try:
+    try:
+        if CLOCK in columns:
             columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
-        except ContractError as exc:
-            raise lines.located(exc) from None
+        elif TIME in types and pa.types.is_string(types[TIME]):
+            columns[TIME] = elapsed_seconds(columns[TIME], opts.time, path,
+                                            header[names.index(TIME)])
+    except ContractError as exc:
+        raise lines.located(exc) from None
     return _converted(columns, scales), _renames(header, named), _rescaled(scales), lines
 
 
@@ -491,6 +500,8 @@ def _parquet_time(column: pa.ChunkedArray, path: Path, opts: ReadOptions) -> pa.
     if pa.types.is_string(kind) or pa.types.is_large_string(kind):
         first = _first_valid(column)
         value = str(first[1]).strip() if first else ""
+        if maybe_elapsed(value, opts.time):
+            return elapsed_seconds(column, opts.time, path)
         kind = _timed(path, value, opts).time
         target = time_type(kind, value)
         found = _first_cast_failure(column, target, kind)

@@ -1,5 +1,6 @@
 """How a ``time`` column of text is read: ISO 8601, a lab's day-first ``28.11.2026 13:05:00``
-(dots: the European order, never month first), or the strptime format ``data.time`` names.
+(dots: the European order, never month first), the strptime format ``data.time`` names, or a
+logger's elapsed time ``25:30:00`` (``h:mm:ss``, hours past 24: :func:`elapsed_seconds`).
 A date with slashes (``03/11/2026``) is day-first in Europe and month-first in the US: never
 guessed, refused naming ``data.time``."""
 
@@ -27,11 +28,52 @@ _ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d
 EXAMPLE = "'%d/%m/%Y %H:%M:%S'"
 CLOCK = " time of day"       # the column joined to the date (data.roles.time: [date, time]); no
 # contract name has a space
+ELAPSED = "elapsed"          # data.time: h:mm:ss since the start, the hours past 24
+_ELAPSED = re.compile(r"\s*(?P<h>\d+):(?P<m>[0-5]\d):(?P<s>[0-5]\d(?:[.,]\d+)?)\s*")
+# a time column's header that says it holds an elapsed time (the word, or a unit after it)
+ELAPSED_HEADERS = frozenset({"elapsed", "elapsed time", "elapsed_time", "duration", "dauer",
+                             "laufzeit", "verstrichene zeit"})
 
 
 def looks_like_timestamp(text) -> bool:
     """A date followed by a time of day, in any of the orders :func:`time_kind` knows of."""
     return bool(_STAMP.match(str(text or "")))
+
+
+def maybe_elapsed(value: str, kind: str) -> bool:
+    """The time column's first cell may start an elapsed time (``h:mm:ss``): ``data.time``
+    ``elapsed``, or ``auto``, the whole column telling it from a time of day
+    (:func:`elapsed_seconds`)."""
+    return kind == ELAPSED or kind == "auto" and bool(_ELAPSED.fullmatch(value))
+
+
+def elapsed_seconds(text, kind: str, path: Path, header: str | None = None):
+    """A time column of text (``h:mm:ss``, a fraction of a second after ``.`` or ``,``) as a
+    duration (ns: the report says ``elapsed``), read so where it cannot be a time of day:
+    ``data.time=elapsed``, a header saying so (:data:`ELAPSED_HEADERS`: ``Dauer``, ``elapsed
+    time``), or an hour past 23 in the column.  Else refused as a time of day
+    (:func:`time_kind`) naming ``data.time``; a cell that is no ``h:mm:ss`` is refused with its
+    row."""
+    parts = pc.extract_regex(text, f"^{_ELAPSED.pattern}$")
+    hours = pc.cast(pc.struct_field(parts, "h"), pa.float64())
+    said = kind == ELAPSED or (header is not None and _bare(header) in ELAPSED_HEADERS)
+    if not said and not (pc.max(hours).as_py() or 0) >= 24:
+        first = text.filter(text.is_valid())
+        time_kind(first[0].as_py().strip() if len(first) else "", "auto", False, path, header)
+    bad = pc.and_(text.is_valid(), parts.is_null()).to_numpy(zero_copy_only=False)
+    if bad.any():
+        row = int(np.argmax(bad))
+        raise ContractError(f"value {text[row].as_py()!r} is not an elapsed time h:mm:ss (hours "
+                            "may pass 24)", file=path, column=TIME, row=row + 1)
+    seconds = pc.cast(pc.replace_substring(pc.struct_field(parts, "s"), ",", "."), pa.float64())
+    minutes = pc.cast(pc.struct_field(parts, "m"), pa.float64())
+    total = pc.add(pc.add(pc.multiply(hours, 3600.0), pc.multiply(minutes, 60.0)), seconds)
+    return pc.cast(pc.round(pc.multiply(total, 1e9)), pa.int64()).cast(pa.duration("ns"))
+
+
+def _bare(header: str) -> str:
+    """A header without a bracketed unit, lower case (``Dauer [h:mm:ss]``: ``dauer``)."""
+    return re.sub(r"\s*[\[(].*$", "", header).strip().lower()
 
 
 def is_format(kind: str) -> bool:
@@ -59,7 +101,9 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
         way = STREAMED if stream else (f"name the date column with it, data.roles.time=[<date "
                                        f"column>, {name}], or set data.sample_period_s")
         raise ContractError(f"value {value!r} is a time of day without its date (it would go back "
-                            f"at midnight): {way}", file=path, column=TIME, row=1)
+                            f"at midnight): {way}; or, the time elapsed since the start (h:mm:ss), "
+                            f"data.time={ELAPSED} (and data.roles.time={name} if it is not the time "
+                            "column)", file=path, column=TIME, row=1)
     if DATE.fullmatch(value):
         way = STREAMED if stream else (f"name the time-of-day column with it, data.roles.time="
                                        f"[{name}, <time column>], or set data.sample_period_s")
@@ -77,7 +121,7 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
 
 def time_type(kind: str, value: str) -> pa.DataType:
     """The Arrow type a time column of ``kind`` is read as (``value``: its first cell)."""
-    if kind == "seconds":
+    if kind in ("seconds", ELAPSED):
         return pa.float64()
     zoned = "%z" in kind if is_format(kind) else bool(_ZONE_OFFSET.search(value))
     return pa.timestamp("ns", tz="UTC" if zoned else None)

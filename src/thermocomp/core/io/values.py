@@ -67,9 +67,9 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None
         else:
             origin = pd.Timestamp(ns[0], tz=kind.tz).isoformat()
         return (ns - ns[0]) / 1e9, {"time": "iso8601", "time_origin": origin}
-    if pa.types.is_duration(kind):
+    if pa.types.is_duration(kind):     # an elapsed time (h:mm:ss, a Parquet timedelta)
         ns = pc.cast(pc.cast(column, pa.duration("ns")), pa.int64()).to_numpy()
-        return ns / 1e9, {"time": "seconds"}
+        return ns / 1e9, {"time": "elapsed"}
     return pc.cast(column, pa.float64()).to_numpy(), {"time": "seconds"}
 
 
