@@ -166,3 +166,36 @@ def test_a_cell_of_an_elapsed_time_that_is_no_h_mm_ss_is_refused_with_its_line(t
     with pytest.raises(ContractError, match="is not an elapsed time h:mm:ss") as refusal:
         read_dataset(path, {"roles": ROLES})
     assert (refusal.value.line, refusal.value.row) == (9, 7)
+
+
+def _fleet(root: Path, stamp: str = "%Y-%m-%dT%H:%M:%S") -> Path:
+    """Two machines' runs named by operator (name order is not time order), a manifest with
+    the machine and no start: the files' first timestamps (``stamp``) say which came last."""
+    root.mkdir()
+    t, t1, t2, e = _record()
+    days = {"mueller": 0, "abel": 1, "zander": 2, "klein": 5, "berg": 3, "adler": 4}
+    rows = []
+    for k, (name, day) in enumerate(days.items()):
+        stamps = (pd.Timestamp("2026-03-02 07:00") + pd.to_timedelta(day, unit="D")
+                  + pd.to_timedelta(t, unit="s")).strftime(stamp)
+        pd.DataFrame({"time": stamps, "T_1": t1 + day, "E_X": e}).to_csv(root / f"{name}.csv",
+                                                                         index=False)
+        rows.append((name, f"{name}.csv", "train", "A" if k < 3 or name == "klein" else "B"))
+    pd.DataFrame(rows, columns=["campaign", "file", "split", "machine"]).to_csv(
+        root / "campaigns.csv", index=False)
+    return root
+
+
+@pytest.mark.parametrize("stamp, cfg", [("%Y-%m-%dT%H:%M:%S", {}),
+                                        ("%d.%m.%Y %H:%M:%S", {"timezone": "Europe/Berlin"})])
+def test_a_group_of_a_folder_holds_out_the_runs_a_whole_read_holds_out(tmp_path, stamp, cfg):
+    # before: a whole read held out by the files' first timestamps (klein, the last run), a
+    # group read (a fleet's machine) by manifest order (zander of machine A, adler of B)
+    root = _fleet(tmp_path / "fleet", stamp)
+    cfg = {**cfg, "test_fraction": 0.34}
+    whole, _ = read_dataset(root, cfg)
+    assert set(whole.ids("test")) == {"adler", "klein"}          # days 4 and 5 of six
+    for machine, ids in (("A", ["mueller", "abel", "zander", "klein"]),
+                         ("B", ["berg", "adler"])):
+        group, _ = read_dataset(root, cfg, campaigns=ids)
+        assert dict(group.manifest["split"]) == dict(whole.manifest.loc[ids, "split"]), machine

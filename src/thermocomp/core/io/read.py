@@ -78,7 +78,8 @@ from .contract import (
 from .lines import Lines
 from .manifest import RECORD_SUFFIXES, read_manifest
 from .options import ROLE_ORDER, ReadOptions
-from .record import check_record_file, cut, hold_out, record_id
+from .record import check_record_file, cut, hold_out, record_id, shares
+from .starts import campaign_starts
 from .steps import check_unit_steps
 from .tables import _load_csv, _load_parquet, _ordered, _values, parquet
 from .values import (
@@ -371,13 +372,13 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     every repair is counted.
     """
     opts = replace(ReadOptions.from_cfg(cfg), missing=missing)
-    root, manifest, tables, held = _source(Path(path), opts, campaigns)
+    root, manifest, tables = _source(Path(path), opts, campaigns)
     frames, entries, columns = {}, {}, {}
     for cid, table, entry in tables:
         _collect_roles(columns, table.column_names)
         frames[cid], entries[cid] = _to_frame(table), entry
         del table
-    manifest = _timed(manifest, entries, opts, root, held)
+    manifest = _starts_from_timestamps(manifest, entries)
     report = _dataset_report(_name(path), entries, columns, opts)
     report["ambient"] = _manifest_ambient(manifest, frames)
     meta = {"path": str(root), "column_map": report.get("column_map", {}),
@@ -394,13 +395,13 @@ def _name(path) -> str:
     return record_id(path) if path.is_file() else path.name
 
 
-def _source(path: Path, opts: ReadOptions, campaigns=None
-            ) -> tuple[Path, pd.DataFrame, Iterator, bool]:
-    """The folder campaign files are relative to, the manifest, the campaigns read, and whether
-    the splits are final: a one-file record's, cut chronologically (:mod:`.record`), or a
-    dataset folder's, whose last train campaigns ``data.test_fraction`` holds out once they are
-    read (:func:`_timed`: their files' timestamps may order them), or at once for ``campaigns``,
-    a group of the folder (they are not all read)."""
+def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.DataFrame, Iterator]:
+    """The folder campaign files are relative to, the manifest and the campaigns read: a
+    one-file record's, cut chronologically (:mod:`.record`), or a dataset folder's (or of
+    ``campaigns``, a group of it), whose last train campaigns ``data.test_fraction`` holds out
+    by their starts (:mod:`.starts`: the files' first timestamps where the manifest gives
+    none; a lab's files named otherwise than in time, ``zander.csv`` tested though
+    ``klein.csv`` came later)."""
     if path.suffix.lower() in RECORD_SUFFIXES and not path.exists():
         raise ContractError("no such file (data.path: a dataset folder or one record's file)",
                             file=path)
@@ -412,31 +413,16 @@ def _source(path: Path, opts: ReadOptions, campaigns=None
         manifest, parts = cut(path, table, report, opts)
         del table
         ids = list(manifest.index if campaigns is None else campaigns)
-        return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids), True
+        return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
     manifest = read_manifest(path, opts)
-    held = campaigns is not None
-    if held:
-        manifest = hold_out(manifest, opts, path)
+    if shares(opts):       # before any is read: a group of the folder holds out as the whole
+        manifest = hold_out(manifest, opts, path, campaign_starts(path, manifest, opts))
     if not (path / MANIFEST).is_file():      # said once per read, not per look at the folder
         logger.info(f"{path.name}: no {MANIFEST}; its {len(manifest)} campaign files read as "
                     "train campaigns in name order (data.test_fraction holds the last out)")
     if campaigns is not None:
         manifest = manifest.loc[list(campaigns)]
-    return path, manifest, _iter_campaigns(path, manifest, opts), held
-
-
-def _timed(manifest: pd.DataFrame, entries: dict, opts: ReadOptions, root: Path,
-           held: bool) -> pd.DataFrame:
-    """The manifest with ``start`` from the files' timestamps where it has none, then, unless
-    ``held`` already, the last campaigns held out in that order (a lab's files named otherwise
-    than in time: ``zander.csv`` tested though ``klein.csv`` came later); each entry's split
-    as held out."""
-    manifest = _starts_from_timestamps(manifest, entries)
-    if not held:
-        manifest = hold_out(manifest, opts, root)
-        for cid, entry in entries.items():
-            entry["split"] = manifest.at[cid, "split"]
-    return manifest
+    return path, manifest, _iter_campaigns(path, manifest, opts)
 
 
 def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:
@@ -512,7 +498,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
     opts = ReadOptions.from_cfg(cfg)
     src, dest = Path(src), Path(dest)
     check_separate(src, dest)
-    root, manifest, tables, held = _source(src, opts)
+    root, manifest, tables = _source(src, opts)
     entries, columns = {}, {}
     with atomic_dir(dest) as tmp:
         for cid, table, entry in tables:
@@ -521,7 +507,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
             entries[cid] = entry
             del table
             pa.default_memory_pool().release_unused()
-        out = _timed(manifest, entries, opts, root, held).assign(
+        out = _starts_from_timestamps(manifest, entries).assign(
             file=[f"{cid}.parquet" for cid in manifest.index])
         (tmp / MANIFEST).write_text(_manifest_csv(out))
         report = {**_dataset_report(_name(src), entries, columns, opts), **(extra or {})}

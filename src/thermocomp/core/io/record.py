@@ -123,9 +123,11 @@ def _missing_cells(part: pa.Table, columns) -> dict[str, int]:
     return {c: n for c, n in counts.items() if n}
 
 
-def hold_out(manifest: pd.DataFrame, opts, root: Path) -> pd.DataFrame:
+def hold_out(manifest: pd.DataFrame, opts, root: Path, starts: pd.Series | None = None
+             ) -> pd.DataFrame:
     """``manifest`` with the chronologically last train campaigns made test (and val) as the
-    fractions ask; refused where the manifest has that split already."""
+    fractions ask, by ``starts`` (:func:`.starts.campaign_starts`) where every train campaign
+    has one, else in manifest order; refused where the manifest has that split already."""
     wanted = shares(opts)
     if not wanted:
         return manifest
@@ -136,11 +138,8 @@ def hold_out(manifest: pd.DataFrame, opts, root: Path) -> pd.DataFrame:
                                 column="split")
     pool = manifest.index[manifest["split"] == "train"]
     order = "in the order listed (no start time for each)"
-    if "start" in manifest.columns:     # ISO text, or a file's first timestamp (pd.Timestamp)
-        starts = pd.to_datetime(manifest.loc[pool, "start"].astype(str), errors="coerce",
-                                utc=True, format="ISO8601")
-        if starts.notna().all():
-            pool, order = starts.sort_values(kind="stable").index, "by start time"
+    if starts is not None and starts[pool].notna().all():
+        pool, order = starts[pool].sort_values(kind="stable").index, "by start time"
     counts = _counts(len(pool), opts)
     if min(counts.values()) < 1:
         raise ContractError(f"{len(pool)} train campaign(s) cannot be split "

@@ -1,0 +1,88 @@
+"""When each campaign of a folder began: the order its last campaigns are held out in
+(:func:`.record.hold_out`, ``data.test_fraction``).
+
+The manifest's ``start`` where it gives one, else the file's first timestamp, read from its
+first row alone (the header named, the time column read as the whole file's is), so that a
+read of the whole folder and a read of a group of it (a fleet's machine) hold out the same
+campaigns: a group is read without the others' files.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pandas as pd
+import pyarrow as pa
+
+from .contract import TIME, ContractError
+from .manifest import is_text
+from .options import ReadOptions
+from .sniff import resolved
+from .tables import _contract_names, _first_text, _peek_csv, _timed, parquet
+from .timestamps import CLOCK, maybe_elapsed, parsed, time_type
+
+
+def campaign_starts(root: Path, manifest: pd.DataFrame, opts: ReadOptions) -> pd.Series:
+    """Per campaign of ``manifest`` (a folder ``root``'s): its start, NaT where none is known
+    (no ``start``, a file timed in seconds)."""
+    given = (pd.to_datetime(manifest["start"].astype(str), errors="coerce", utc=True,
+                            format="ISO8601") if "start" in manifest.columns
+             else pd.Series(pd.NaT, index=manifest.index, dtype="datetime64[ns, UTC]"))
+    return pd.Series({cid: given[cid] if pd.notna(given[cid]) else
+                      first_timestamp(root / manifest.at[cid, "file"], opts)
+                      for cid in manifest.index}, dtype="datetime64[ns, UTC]")
+
+
+def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
+    """The first timestamp of a campaign file (UTC; a time without an offset as written, or on
+    ``data.timezone``'s clock); NaT when its time is no timestamp or the row does not read (the
+    read of the file says why)."""
+    try:
+        header, first = _first_row(path, opts)
+        names, _ = _contract_names(header, opts, path, first=first)
+    except ContractError:
+        return pd.NaT
+    cells = {n: first[h] for h, n in zip(header, names) if n in (TIME, CLOCK)}
+    value = cells.get(TIME)
+    if isinstance(value, pd.Timestamp) or value is None:
+        return _utc(value, opts)
+    text = f"{value.strip()} {cells[CLOCK].strip()}" if CLOCK in cells else value.strip()
+    if maybe_elapsed(text, opts.time):
+        return pd.NaT
+    try:
+        kind = _timed(path, text, opts).time
+        target = time_type(kind, text)
+        if not pa.types.is_timestamp(target):
+            return pd.NaT
+        stamp = parsed(pa.array([text]), target, kind)[0].as_py()
+    except (ContractError, pa.ArrowInvalid):
+        return pd.NaT
+    return _utc(pd.Timestamp(stamp), opts)
+
+
+def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict]:
+    """A file's header and its first row (cells as text; a Parquet timestamp as it is)."""
+    if is_text(path):
+        opts = resolved(path, opts)
+        header, row, _ = _peek_csv(path, opts.delimiter, opts.encoding)
+        return header, dict(zip(header, row))
+    batch = next(parquet().ParquetFile(path).iter_batches(batch_size=1), None)
+    if batch is None:
+        raise ContractError("no rows", file=path)
+    first = {}
+    for name, column in zip(batch.schema.names, batch.columns):
+        first[name] = (pd.Timestamp(column[0].as_py()) if pa.types.is_timestamp(column.type)
+                       and column[0].is_valid else _first_text(pa.chunked_array([column])) or "")
+    return batch.schema.names, first
+
+
+def _utc(stamp, opts: ReadOptions) -> pd.Timestamp:
+    """``stamp`` as an instant: one without an offset on ``data.timezone``'s clock (as
+    written without it: ordered as the whole read orders them)."""
+    if stamp is None or pd.isna(stamp):
+        return pd.NaT
+    if stamp.tzinfo is None:
+        zone = opts.timezone or "UTC"
+        stamp = stamp.tz_localize(zone, ambiguous=True, nonexistent="shift_forward")
+    return stamp.tz_convert("UTC")
+
