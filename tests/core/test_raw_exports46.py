@@ -199,3 +199,27 @@ def test_a_group_of_a_folder_holds_out_the_runs_a_whole_read_holds_out(tmp_path,
                          ("B", ["berg", "adler"])):
         group, _ = read_dataset(root, cfg, campaigns=ids)
         assert dict(group.manifest["split"]) == dict(whole.manifest.loc[ids, "split"]), machine
+
+
+def test_a_files_footer_and_inits_manifest_are_read_once(tmp_path, monkeypatch, capsys):
+    # before: the 16 KB tail read twice a file (the footer looked for, then again for Arrow);
+    # init read a folder's manifest three times before the read that checks its config
+    import thermocomp.core.io.manifest as manifest
+    import thermocomp.core.io.tables as tables
+
+    reads = {"footer": 0, "manifest": 0}
+
+    def counted(name, function):
+        def call(*args, **kwargs):
+            reads[name] += 1
+            return function(*args, **kwargs)
+        return call
+
+    monkeypatch.setattr(tables, "footer", counted("footer", tables.footer))
+    monkeypatch.setattr(manifest, "_load_manifest", counted("manifest", manifest._load_manifest))
+    root = _fleet(tmp_path / "lab")
+    path = root / "klein.csv"
+    path.write_text(path.read_text() + "End of data\n")
+    assert main(["init", str(root), f"out={tmp_path / 'init'}"]) == 0
+    assert "footer left out" in capsys.readouterr().err
+    assert reads == {"footer": 6, "manifest": 2}       # one a file; init's, and the read's

@@ -12,10 +12,12 @@ import re
 from dataclasses import replace
 from pathlib import Path
 
+import pandas as pd
+
 from .contract import MANIFEST, role
 from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
-from .manifest import campaign_files, is_text, read_manifest
+from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS
 from .record import check_record_file
 from .roles import STATE_UNITS, TIME_HEADERS, UNITS, date_and_time_of_day, split_unit
@@ -33,23 +35,32 @@ NEWTON_METRES = ("Nm", "N.m", "N·m")   # a torque, a state: not nanometres (nm)
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
-def sample_file(src: Path, opts) -> Path:
-    """The file whose header is shown: the record itself, or a folder's first campaign."""
+def folder_manifest(src: Path, opts) -> pd.DataFrame | None:
+    """A folder's manifest, read once for all ``init`` asks of it (in its own encoding where
+    ``data.encoding`` is not given); None for a record."""
     if src.is_file():
         check_record_file(src)
-        return src
-    return src / read_manifest(src, opts)["file"].iloc[0]
+        return None
+    listed = src / MANIFEST
+    if opts.encoding == UTF8 and listed.is_file():
+        opts = replace(opts, encoding=detect(listed))
+    return read_manifest(src, opts)
 
 
-def encoding(src: Path, opts) -> str:
+def sample_file(src: Path, manifest: pd.DataFrame | None) -> Path:
+    """The file whose header is shown: the record itself, or a folder's first campaign
+    (``manifest``: :func:`folder_manifest`)."""
+    return src if manifest is None else src / manifest["file"].iloc[0]
+
+
+def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     """``data.encoding`` as given, or, given none (UTF-8), ``cp1252`` where the record, or a
     folder's manifest or first campaign, is not UTF-8 text (a Windows export)."""
     if opts.encoding != UTF8:
         return opts.encoding
-    manifest = src / MANIFEST
-    files = [src] if src.is_file() else [manifest] if manifest.is_file() else campaign_files(src)[:1]
-    if src.is_dir() and manifest.is_file():
-        files.append(sample_file(src, replace(opts, encoding=detect(manifest))))
+    files = [sample_file(src, manifest)]
+    if (src / MANIFEST).is_file():
+        files.append(src / MANIFEST)
     found = [detect(f) for f in files if is_text(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
@@ -96,9 +107,11 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
     return roles
 
 
-def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict) -> dict:
+def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,
+                manifest: pd.DataFrame | None = None) -> dict:
     """The data config that reads ``src``: the separators, the roles, and every other key the
-    user set away from its default (``data.thousands``, ``data.time``, ...)."""
+    user set away from its default (``data.thousands``, ``data.time``, ...); ``manifest``: a
+    folder's, as read (:func:`folder_manifest`; read here if not given)."""
     config = {"path": str(src), "delimiter": opts.delimiter, "decimal": opts.decimal,
               "roles": roles}
     for key, value in given.items():
@@ -106,7 +119,9 @@ def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict) -> di
             config[key] = value
     # one record, or a folder without test campaigns (no manifest, or one without `split`:
     # every run train): nothing is held out unless a fraction says so, and `run` needs a test
-    unsplit = src.is_file() or not (read_manifest(src, opts)["split"] == "test").any()
+    if manifest is None and src.is_dir():
+        manifest = read_manifest(src, opts)
+    unsplit = manifest is None or not (manifest["split"] == "test").any()
     if unsplit and given.get("test_fraction") is None:
         config["test_fraction"] = 0.1        # its last tenth (of samples; of runs) is the test
     return config

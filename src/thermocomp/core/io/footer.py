@@ -40,9 +40,10 @@ def footer(path: Path, delimiter: str, fields: int, encoding: str = UTF8
     return (found, cut) if found else ([], size)
 
 
-def source(path: Path, cut: int):
-    """What Arrow reads: the file, or its first ``cut`` bytes (memory-mapped, not copied)."""
-    if cut >= path.stat().st_size:
+def source(path: Path, cut: int | None):
+    """What Arrow reads: the file (``cut`` None), or its first ``cut`` bytes (memory-mapped,
+    not copied)."""
+    if cut is None or cut >= path.stat().st_size:
         return path
     return pa.BufferReader(pa.memory_map(str(path)).read_buffer(cut))
 

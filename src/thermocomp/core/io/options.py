@@ -67,6 +67,7 @@ class ReadOptions:
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
     skip_rows: int = 1        # internal: lines above a CSV's first data row (preamble, header, units)
+    data_bytes: int | None = None   # internal: the bytes of a CSV above its footer (None: unknown)
 
     def __post_init__(self):
         if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's

@@ -138,6 +138,7 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
     said, cut = footer(path, opts.delimiter, len(header), opts.encoding)
+    opts = replace(opts, data_bytes=cut)        # (the tail read once: every read of the data)
     if said:
         logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: {said[0]!r})")
     blank = None if TIME in named else blank_inside(path, opts.skip_rows, cut)
@@ -284,9 +285,9 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
     return dict(read_options=read, parse_options=parse, convert_options=convert)
 
 
-def _input(path: Path, opts: ReadOptions, names: list[str]):
-    """The CSV text Arrow reads: ``path`` without its footer (:mod:`.footer`)."""
-    return source(path, footer(path, opts.delimiter, len(names), opts.encoding)[1])
+def _input(path: Path, opts: ReadOptions):
+    """The CSV text Arrow reads: ``path`` without its footer (:mod:`.footer`, found once)."""
+    return source(path, opts.data_bytes)
 
 
 def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions) -> pa.Table:
@@ -308,7 +309,7 @@ def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions
 def _read_as(path: Path, names: list[str], types: dict, opts: ReadOptions, as_text: bool):
     read_as = {n: pa.string() if as_text and pa.types.is_floating(t) else t
                for n, t in types.items()}
-    return pacsv.read_csv(_input(path, opts, names), **_csv_options(
+    return pacsv.read_csv(_input(path, opts), **_csv_options(
         names, opts, types=read_as, include=[n for n in names if n in types]))
 
 
@@ -358,7 +359,7 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
 
 
 def _bad_cell_error(path, names, column, target, opts) -> ContractError:
-    raw = pacsv.read_csv(_input(path, opts, names), **_csv_options(
+    raw = pacsv.read_csv(_input(path, opts), **_csv_options(
         names, opts, include=[column], types={column: pa.string()})).column(column)
     number = pa.types.is_floating(target)
     text = ungrouped(raw, opts.thousands, opts.decimal) if number else raw
@@ -386,7 +387,7 @@ def _malformed_row_error(path, names, opts, message) -> ContractError:
         return "error"
 
     with contextlib.suppress(pa.ArrowInvalid):
-        pacsv.read_csv(_input(path, opts, names), **_csv_options(
+        pacsv.read_csv(_input(path, opts), **_csv_options(
             names, opts, include=[names[0]], types={names[0]: pa.string()}, use_threads=False,
             invalid_row_handler=remember))
     if not bad:

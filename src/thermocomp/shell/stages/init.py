@@ -19,6 +19,7 @@ from ...core.io.detect import (
     data_config,
     detection_lines,
     encoding,
+    folder_manifest,
     head,
     proposed_roles,
     sample_file,
@@ -34,15 +35,16 @@ def init(cfg: DictConfig) -> dict:
     check_config(cfg)         # out never holds data.path: the lab's record is never written beside
     src = resolve(cfg.data.path)
     given = data_options(cfg)
-    given["encoding"] = encoding(src, io.ReadOptions.from_cfg(given))   # a Windows export's
-    read = io.ReadOptions.from_cfg(given)
-    sample = sample_file(src, read)
-    opts, header, first = head(sample, read)
+    asked = io.ReadOptions.from_cfg(given)
+    manifest = folder_manifest(src, asked)                  # a folder's, read once
+    given["encoding"] = encoding(src, asked, manifest)      # a Windows export's
+    sample = sample_file(src, manifest)
+    opts, header, first = head(sample, io.ReadOptions.from_cfg(given))
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
                   opts.units)
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
-    config = data_config(src, given, opts, roles, defaults)
+    config = data_config(src, given, opts, roles, defaults, manifest)
     ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
     report = ds.meta["read_report"]
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"
