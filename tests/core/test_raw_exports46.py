@@ -223,3 +223,22 @@ def test_a_files_footer_and_inits_manifest_are_read_once(tmp_path, monkeypatch, 
     assert main(["init", str(root), f"out={tmp_path / 'init'}"]) == 0
     assert "footer left out" in capsys.readouterr().err
     assert reads == {"footer": 6, "manifest": 2}       # one a file; init's, and the read's
+
+
+def test_a_temperatures_one_letter_unit_is_read_where_its_first_value_is_in_it(tmp_path):
+    # before: 'T1 K' named T_T1_K (under data.roles the name part is taken whole) and refused
+    # as kelvin, 'Probe F' refused as °F; a name's last letter ('Sensor K' at 20 °C, 'T K',
+    # 'Zone C', an error 'T m') is still a name
+    t, t1, t2, e = _record()
+    path = tmp_path / "lab.csv"
+    pd.DataFrame({"time": t, "T1 K": t1 + 273.15, "Probe F": t2 * 1.8 + 32, "Sensor K": t1,
+                  "Zone C": t2, "dX": e, "T m": e}).to_csv(path, index=False, float_format="%.6f")
+    frame = read_dataset(path, {"roles": {"error": ["dX", "T m"]}})[0].campaigns["lab"]
+    assert list(frame.columns) == ["time", "T_T1", "T_Probe", "T_Sensor_K", "T_Zone_C", "E_dX",
+                                   "E_T_m"]
+    np.testing.assert_allclose(frame[["T_T1", "T_Probe", "T_Sensor_K", "T_Zone_C"]],
+                               np.c_[t1, t2, t1, t2], atol=1e-4)
+    np.testing.assert_allclose(frame["E_T_m"], e, atol=1e-5)
+    pd.DataFrame({"time": t, "T K": t1 + 273.15, "dX": e}).to_csv(path, index=False)
+    with pytest.raises(ContractError, match="kelvin"):            # 'T K': a name, in kelvin
+        read_dataset(path, {"roles": {"error": ["dX"]}})

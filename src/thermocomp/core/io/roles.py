@@ -21,7 +21,7 @@ from pathlib import Path
 from ...base.errors import listed
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, _roles
-from .separators import reads_as_number
+from .separators import number, reads_as_number
 from .timestamps import CLOCK, DATE, ELAPSED_HEADERS, TIME_OF_DAY, looks_like_timestamp
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
@@ -49,6 +49,10 @@ UNITS = {
              "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0)),
              **dict.fromkeys(("d", "day", "days"), (86400.0, 0.0))},     # (Excel's serial days)
 }
+
+# a temperature's unit as one letter after a space ('T1 K', 'Probe F'), read as the unit where
+# the first value is one in it, from this value (a °C reading below: 'Sensor K' is a name)
+LETTER_UNITS = {"k": 150.0, "f": 45.0}
 
 # units that say "a machine state" (speeds, loads, positions, on/off)
 STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
@@ -99,6 +103,18 @@ def _bare_unit(header: str) -> tuple[str, str] | None:
                 or base.lower() in TIME_HEADERS and known in UNITS["time"]):
             return base, unit
     return None
+
+
+def _letter_unit(header: str, cell, decimal: str) -> tuple[str, str] | None:
+    """``('T1', 'K')`` for a temperature's ``T1 K`` under ``data.roles`` where its first value
+    ``cell`` reads in the letter's unit (:data:`LETTER_UNITS`: 293 is kelvin, 20 is not), the
+    name before it two characters or more (``T K`` reads as a name as often); else None."""
+    match = _LAST_WORD.match(header.strip())
+    if match is None or len(match.group(1)) < 2:
+        return None
+    lowest, value = LETTER_UNITS.get(match.group(2).lower()), number(cell or "", decimal)
+    return None if lowest is None or value is None or value < lowest else (
+        match.group(1).strip(), match.group(2))
 
 
 def _known_unit(unit: str) -> bool:
@@ -196,6 +212,8 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
                 problems.append(f"{header!r} is not numeric ({first.get(header)!r})")
                 continue
             kind = "temperature"
+        if unit is None and kind in ("temperature", "ambient"):
+            base, unit = _letter_unit(header, first.get(header), decimal) or (base, unit)
         name = _derived(kind, base, len(ambient) > 1)
         if not _UNSAFE.sub("", base):
             problems.append(f"{header!r} gives no name" + ("" if base else " (a unit alone: name "

@@ -26,16 +26,18 @@ def any_number(text: str) -> bool:
 def reads_as_number(text, decimal: str = ".", thousands: str | None = None) -> bool:
     """A cell's text reads as a number (with ``decimal``, ``thousands`` and a Unicode minus as
     the reader takes them); a missing cell (None, empty) counts as one."""
-    if text is None or not str(text).strip():
-        return True
+    return text is None or not str(text).strip() or number(text, decimal, thousands) is not None
+
+
+def number(text, decimal: str = ".", thousands: str | None = None) -> float | None:
+    """The number a cell's text reads as (:func:`reads_as_number`), None if none."""
     text = str(text).strip().replace(UNICODE_MINUS, "-")
     if thousands is not None:
         text = text.replace(thousands, "")
     try:
-        float(text.replace(decimal, ".") if decimal != "." else text)
+        return float(text.replace(decimal, ".") if decimal != "." else text)
     except ValueError:
-        return False
-    return True
+        return None
 
 
 def grouped(mark: str, decimal: str) -> str:
