@@ -1,0 +1,17 @@
+"""Run as a stranger would, off the happy path (session 46): commands typed in a folder of one's
+own, a model and a stream of another seed than the project's."""
+
+from __future__ import annotations
+
+from conftest import FAST, thermocomp
+from test_hostile import make_dataset
+
+
+def test_a_relative_path_typed_in_another_folder_names_the_one_meant(tmp_path):
+    make_dataset(tmp_path / "ds")          # ./ds here; relative paths are the project root's
+    proc = thermocomp("replay", "data.path=ds", *FAST, f"out={tmp_path / 'out'}",
+                      cwd=tmp_path, check=False)
+    line = proc.stderr.strip().splitlines()[-1]
+    assert proc.returncode == 2, proc.stderr
+    assert "project root" in line and f"{tmp_path / 'ds'}" in line, line
+    assert not (tmp_path / "out").exists()
