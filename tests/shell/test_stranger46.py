@@ -3,7 +3,7 @@ own, a model and a stream of another seed than the project's."""
 
 from __future__ import annotations
 
-from conftest import FAST, thermocomp
+from conftest import FAST, refused, thermocomp
 from test_hostile import make_dataset
 
 
@@ -15,3 +15,10 @@ def test_a_relative_path_typed_in_another_folder_names_the_one_meant(tmp_path):
     assert proc.returncode == 2, proc.stderr
     assert "project root" in line and f"{tmp_path / 'ds'}" in line, line
     assert not (tmp_path / "out").exists()
+
+
+def test_a_record_without_a_test_share_is_named_by_its_file_not_its_folder(tmp_path, capsys):
+    ds = make_dataset(tmp_path / "ds")     # one campaign file of a dataset folder, read as a record
+    line = refused(["run", f"data.path={ds / 'K01.csv'}", *FAST, f"out={tmp_path / 'out'}"],
+                   capsys, "data.test_fraction")
+    assert f"file {ds / 'K01.csv'}:" in line, line
