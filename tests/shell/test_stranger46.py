@@ -22,3 +22,11 @@ def test_a_record_without_a_test_share_is_named_by_its_file_not_its_folder(tmp_p
     line = refused(["run", f"data.path={ds / 'K01.csv'}", *FAST, f"out={tmp_path / 'out'}"],
                    capsys, "data.test_fraction")
     assert f"file {ds / 'K01.csv'}:" in line, line
+
+
+def test_ati_on_one_train_campaign_says_it_fits_the_one_model(tmp_path):
+    ds = make_dataset(tmp_path / "ds")     # K01 the only train campaign: no interval to choose
+    proc = thermocomp("run", f"data.path={ds}", "ati=cmeans", "data.split_overrides={K02:test,K03:test}",
+                      *FAST, f"out={tmp_path / 'out'}")
+    assert "ATI: 1 training campaign(s) with 1 distinct ambient(s)" in proc.stderr, proc.stderr
+    assert "the model ati=none fits" in proc.stderr, proc.stderr
