@@ -32,6 +32,24 @@ def resolve(path: str | os.PathLike) -> Path:
     return p if p.is_absolute() else project_root() / p
 
 
+def elsewhere_hint(path: str | os.PathLike | None) -> str:
+    """What to say of a missing ``path`` under the project root that exists relative to the
+    current directory: a user who typed ``data.path=data/lathe`` in another folder meant
+    that one (relative paths are the root's), and the bare "not found" would not tell why."""
+    if path is None:
+        return ""
+    root, here, p = project_root(), Path.cwd().resolve(), Path(path)
+    if here == root or p.exists() or root not in p.parents:
+        return ""
+    rel = p.relative_to(root)
+    meant = next((part for part in (rel, *list(rel.parents)[:-1])
+                  if (here / part).exists() and not (root / part).exists()), None)
+    if meant is None:
+        return ""
+    return (f" (a relative path is read from the project root {root}, not the current folder; "
+            f"{here / meant} exists: give it as an absolute path)")
+
+
 def conf_dir() -> Path:
     return project_root() / "conf"
 

@@ -27,7 +27,7 @@ from omegaconf import OmegaConf
 from ..base.errors import closest
 from ..base.extras import missing
 from ..base.log import version
-from ..base.paths import resolve, rooted_override
+from ..base.paths import elsewhere_hint, resolve, rooted_override
 from .config import overrides
 from .config.commands import COMMANDS, groups_of, register, root_name
 from .config.overrides import config_errors as _config_errors
@@ -118,7 +118,8 @@ def _guarded(fn, *args):
         # a generator's own check in its __init__ comes wrapped by Hydra's instantiate: its line
         # (our own errors keep theirs: they name the file of the cause they wrap)
         wrapped = not isinstance(exc, _config_errors()[0]) and isinstance(exc.__cause__, _config_errors()[0])
-        _fail(exc.__cause__ if wrapped else exc)
+        err = exc.__cause__ if wrapped else exc
+        _fail(f"{err}{elsewhere_hint(getattr(err, 'file', None))}")
     except PermissionError as exc:
         _fail(f"file {exc.filename}: cannot be read or written here ({exc.strerror})")
     except RuntimeError as exc:

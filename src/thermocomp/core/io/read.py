@@ -381,7 +381,8 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     manifest = _starts_from_timestamps(manifest, entries)
     report = _dataset_report(_name(path), entries, columns, opts)
     report["ambient"] = _manifest_ambient(manifest, frames)
-    meta = {"path": str(root), "column_map": report.get("column_map", {}),
+    # the path as given: a one-file record's file, which an error about its splits names
+    meta = {"path": str(path), "column_map": report.get("column_map", {}),
             "converted": sorted({c for e in entries.values() for c in e.get("converted", [])}),
             # None: the splits came from no file (a record, a folder of runs): data.*_fraction
             "manifest": str(root / MANIFEST) if Path(path).is_dir() and (root / MANIFEST).is_file()

@@ -303,6 +303,9 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                            "reason": f"{k} training campaign(s) with "
                                      f"{np.unique(a0.to_numpy()).size} distinct ambient(s): too few to "
                                      f"cross-validate {list(self.candidates)} intervals; one model"}
+            # said, not only written into metrics.json: ati=cmeans then scores as ati=none does
+            warnings.warn(f"ATI: {self.elbow_['reason']} (the model ati=none fits)", UserWarning,
+                          stacklevel=3)
             return 1
         sm, sd = [], []
         for n in feasible:
