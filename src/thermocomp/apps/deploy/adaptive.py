@@ -80,9 +80,11 @@ class AdaptiveCompensator:
         measured = comp.measured(campaigns)
         times = [df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
                  for df in campaigns.values()]
+        predicted = comp.predict(campaigns, mode="simulation")
         g = CorrectionGuard.from_training(
             streaming.targets_, [measured[c][streaming.targets_].to_numpy(float) for c in campaigns],
-            times, **(guard or {}))
+            times, **(guard or {}),
+            predicted=[predicted[c][streaming.targets_].to_numpy(float) for c in campaigns])
         return cls(streaming, mon, g, g.period_s)
 
     # -- the streaming-compensator interface ---------------------------------------------------

@@ -2,8 +2,10 @@
 
 Whatever the inputs do, the correction stays finite, inside the training error
 range widened by ``margin`` × its width, and changes by at most
-``(1 + rate_margin)`` × the fastest change of the measured error in training
-per second.  Each target's state (``free``, ``bounded``, ``rate_limited``,
+``(1 + rate_margin)`` × the fastest change in training, per second, of the measured error or of
+the model's own correction (a model fed noisy sensors moves faster than the error it follows: a
+rate taken from the error alone clips a healthy stream, a measured spindle record 226 times in
+4.6 h).  Each target's state (``free``, ``bounded``, ``rate_limited``,
 ``held``) changes with an event; it is reported ``free`` again only after
 :data:`CALM` samples within bound and rate, so a jumpy episode is one event pair.
 """
@@ -30,16 +32,17 @@ class CorrectionGuard:
 
     @classmethod
     def from_training(cls, targets: Sequence[str], measured: Sequence[np.ndarray],
-                      times: Sequence[np.ndarray], margin: float = 0.2, rate_margin: float = 1.0
-                      ) -> "CorrectionGuard":
-        """``measured``: referenced training errors per campaign (n, k); ``times`` in s."""
+                      times: Sequence[np.ndarray], margin: float = 0.2, rate_margin: float = 1.0,
+                      predicted: Sequence[np.ndarray] | None = None) -> "CorrectionGuard":
+        """``measured``: referenced training errors per campaign (n, k); ``times`` in s;
+        ``predicted``: the model's corrections on the same campaigns (its rate counts too)."""
         if margin < 0 or rate_margin < 0:
             raise ValueError("guard margins must be >= 0")
         Y = np.vstack(measured)
         lo, hi = np.nanmin(Y, axis=0), np.nanmax(Y, axis=0)
         width = np.maximum(hi - lo, 1e-9)
         rates, periods = [], []
-        for y, t in zip(measured, times):
+        for y, t in zip([*measured, *(predicted or [])], [*times, *(times if predicted else [])]):
             if len(y) > 1:
                 dt = np.diff(np.asarray(t, float))
                 rates.append(np.nanmax(np.abs(np.diff(y, axis=0)) / dt[:, None], axis=0))
