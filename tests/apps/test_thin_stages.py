@@ -194,3 +194,24 @@ def test_the_monitor_summary_names_the_costliest_blind_offset_and_the_first_excl
     assert lines[1].split() == ["E_x", "1.500", "-", "12", "True"]
     assert "costs up to 3 µm (T_b 0.8 °C, E_x;" in lines[2]
     assert lines[3] == "events: 2, exclusions: 1, first: T_b (K2, 1.50 h)"
+
+
+def test_the_monitor_summary_prices_a_sensor_no_other_predicts_per_degree_not_inside_a_band():
+    """A lathe's spindle motor, predicted by no other sensor, has a 60.5 °C 'band' that never
+    applies: the summary printed 'an offset inside the exclusion band costs up to 19.3 µm
+    (T_nc_spindle_motor 60.4626 °C)'; the bound is now the worst observable sensor's, and the
+    unobservable ones are listed apart with their cost per °C."""
+    from thermocomp.apps.monitor.report import summary_lines
+    report = {
+        "targets": {"E_x": {"rmse_fixed": 1.5, "rmse_adaptive": 1.5, "max_abs_correction": 12.0,
+                            "all_finite": True}},
+        "sensors": {"T_guide": {"observable": True, "undetected_offset_c": 0.94,
+                                "undetected_offset_um": {"E_x": 10.4}},
+                    "T_motor": {"observable": False, "undetected_offset_c": 60.5,
+                                "undetected_offset_um": {"E_x": 19.3}}},
+        "events": [],
+    }
+    lines = summary_lines(report)
+    assert "costs up to 10.4 µm (T_guide 0.94 °C, E_x;" in lines[2]
+    assert lines[3].startswith("no other sensor predicts T_motor: no band bounds a drift")
+    assert lines[3].endswith("T_motor 0.319 µm/°C")

@@ -160,19 +160,42 @@ def summary_lines(report: dict) -> list[str]:
         a = "-" if r["rmse_adaptive"] is None else f"{r['rmse_adaptive']:.3f}"
         lines.append(f"{t:<8} {f:>11} {a:>14} {r['max_abs_correction']:>10.3g} "
                      f"{str(r['all_finite']):>7}")
-    costs = [(max(v for v in r["undetected_offset_um"].values() if v is not None), n, r)
-             for n, r in report["sensors"].items()
-             if any(v is not None for v in r.get("undetected_offset_um", {}).values())]
-    if costs:
-        worst, name, r = max(costs, key=lambda c: c[0])
-        target = max((t for t, v in r["undetected_offset_um"].items() if v is not None),
-                     key=r["undetected_offset_um"].get)
-        lines.append(f"an offset inside the exclusion band costs up to {worst:.3g} µm ({name} "
-                     f"{r['undetected_offset_c']:g} °C, {target}; per sensor in monitor.json)")
+    lines += _offset_lines(report["sensors"])
     lines += adapt_line(report["targets"], "adaptive without -> with", "rmse_adaptive")
     excl = [e for e in report["events"] if e["to"] == "excluded"]
     rate = (report.get("alarms") or {}).get("exclusions_per_100h")   # none in older reports
     lines.append(f"events: {len(report['events'])}, exclusions: {len(excl)}"
                  + ("" if rate is None else f" ({rate:.3g} per 100 h)")
                  + first_exclusion(report["events"]))
+    return lines
+
+
+def _offset_lines(sensors: dict) -> list[str]:
+    """What an offset the monitor cannot see costs: the worst sensor whose band bounds it (the
+    others predict it), and apart, per °C, those no other sensor predicts: no band bounds their
+    drift (only their range, jump and freeze detectors judge them), so a band-sized figure would
+    read as a bound it is not (a lathe's spindle motor: '60.5 °C inside the band')."""
+    costs = {n: r for n, r in sensors.items()
+             if any(v is not None for v in r.get("undetected_offset_um", {}).values())}
+
+    def worst(r):
+        return max(((v, t) for t, v in r["undetected_offset_um"].items() if v is not None))
+
+    bounded = {n: r for n, r in costs.items() if r.get("observable") is not False}
+    blind = {n: r for n, r in costs.items() if r.get("observable") is False}
+    lines = []
+    if bounded:
+        name = max(bounded, key=lambda n: worst(bounded[n]))
+        um, target = worst(bounded[name])
+        lines.append(f"an offset inside the exclusion band costs up to {um:.3g} µm ({name} "
+                     f"{bounded[name]['undetected_offset_c']:g} °C, {target}; per sensor in "
+                     "monitor.json)")
+    if blind:
+        per_c = {n: worst(r)[0] / r["undetected_offset_c"] for n, r in blind.items()
+                 if r["undetected_offset_c"] > 0}
+        slopes = ", ".join(f"{n} {v:.3g} µm/°C" for n, v in sorted(per_c.items(),
+                                                                    key=lambda kv: -kv[1]))
+        lines.append(f"no other sensor predicts {', '.join(blind)}: no band bounds a drift of "
+                     f"theirs (their range, jump and freeze detectors judge them){'; ' if slopes else ''}"
+                     f"{slopes}")
     return lines
