@@ -1,0 +1,53 @@
+"""The report extras of ``run`` on many campaigns (issue 34, item 5; the CPU table is
+benchmarks/bench_extras.py, never a test): mutual prediction fits at most
+``eval.mutual_prediction_max_models`` single-campaign models, on campaigns spread over its
+ambient order, and says so."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+
+from test_hostile import make_dataset
+from test_stats import _campaign
+from thermocomp.core.compensator import Compensator
+from thermocomp.core.models import MLR
+from thermocomp.core.scoring.evaluation import spread_campaigns
+from thermocomp.core.scoring.stats import mutual_prediction
+from thermocomp.shell.cli import main
+
+RUN = ["track=false", "eval.ati_baselines=false", "eval.iso10791_a3=false", "eval.validation=false"]
+
+
+def test_a_capped_matrix_is_the_full_ones_rows_of_the_campaigns_spread_over_its_order():
+    camps = {f"K{i}": _campaign(1.0 + 0.5 * i, seed=i) for i in range(7)}
+    rows = spread_campaigns(list(camps), 3)
+    assert rows == ["K0", "K3", "K6"]            # the first, the middle, the last
+    assert spread_campaigns(list(camps), 7) == spread_campaigns(list(camps), None) == list(camps)
+    full = mutual_prediction(camps, lambda: Compensator(MLR()))["E_Z"]
+    capped = mutual_prediction(camps, lambda: Compensator(MLR()), trained_on=rows)["E_Z"]
+    assert list(capped.index) == rows and list(capped.columns) == list(camps)
+    pd.testing.assert_frame_equal(capped, full.loc[rows])
+
+
+def _run(tmp_path, name, *args) -> dict:
+    out = tmp_path / name
+    assert main(["run", f"data.path={tmp_path / 'ds'}", f"out={out}", *RUN, *args]) == 0
+    return json.loads((out / "metrics.json").read_text())["mutual_prediction"]["E_X"]
+
+
+def test_run_caps_the_models_says_so_and_leaves_a_small_study_as_it_was(tmp_path, capsys):
+    make_dataset(tmp_path / "ds")                 # four campaigns
+    full = _run(tmp_path, "full", "plots=none")   # the default cap (24) is above four campaigns
+    assert "mutual prediction: 4 single-campaign models\n" in capsys.readouterr().err
+    assert full["trained_on"] == full["campaigns"] and np.shape(full["rsd"]) == (4, 4)
+    capped = _run(tmp_path, "capped", "plots=test", "eval.mutual_prediction_max_models=2")
+    assert "2 single-campaign models of 4 campaigns (eval.mutual_prediction_max_models=2" \
+        in capsys.readouterr().err
+    ids = full["campaigns"]
+    assert capped["campaigns"] == ids and capped["trained_on"] == [ids[0], ids[-1]]
+    assert capped["max_models"] == 2 and np.shape(capped["rsd"]) == (2, 4)
+    assert capped["rsd"] == [full["rsd"][0], full["rsd"][-1]]
+    assert (tmp_path / "capped" / "plots" / "mutual_prediction_E_X.png").stat().st_size > 10_000
