@@ -1,7 +1,8 @@
 """The report extras of ``run`` on many campaigns (issue 34, item 5; the CPU table is
 benchmarks/bench_extras.py, never a test): mutual prediction fits at most
 ``eval.mutual_prediction_max_models`` single-campaign models, on campaigns spread over its
-ambient order, and says so."""
+ambient order, and says so; a Hammerstein's single-campaign models keep the powers and the
+penalty it chose on all train campaigns (one lag bank each, no choice of their own)."""
 
 from __future__ import annotations
 
@@ -9,11 +10,15 @@ import json
 
 import numpy as np
 import pandas as pd
+import pytest
+from sklearn.base import clone
 
+from test_hammerstein import _spindle_problem
 from test_hostile import make_dataset
 from test_stats import _campaign
-from thermocomp.core.compensator import Compensator
-from thermocomp.core.models import MLR
+from thermocomp.core.compensator import Compensator, with_chosen_hyperparameters
+from thermocomp.core.metrics import rsd
+from thermocomp.core.models import MLR, Hammerstein, LagBank
 from thermocomp.core.scoring.evaluation import spread_campaigns
 from thermocomp.core.scoring.stats import mutual_prediction
 from thermocomp.shell.cli import main
@@ -51,3 +56,33 @@ def test_run_caps_the_models_says_so_and_leaves_a_small_study_as_it_was(tmp_path
     assert capped["max_models"] == 2 and np.shape(capped["rsd"]) == (2, 4)
     assert capped["rsd"] == [full["rsd"][0], full["rsd"][-1]]
     assert (tmp_path / "capped" / "plots" / "mutual_prediction_E_X.png").stat().st_size > 10_000
+
+
+def _spindle_campaigns(seed: int) -> dict[str, pd.DataFrame]:
+    X, y, context = _spindle_problem(seed=seed, n_campaigns=5, n=120)
+    frame = pd.DataFrame({"time": context["time"], "T_hall": X[:, 0], "T_far": X[:, 1],
+                          "S_spindle_rpm": context["S_spindle_rpm"], "E_X": y})
+    return {c: part.reset_index(drop=True) for c, part in frame.groupby(context["campaign"])}
+
+
+def test_a_hammersteins_single_campaign_models_fit_one_lag_bank_as_chosen(monkeypatch):
+    camps = _spindle_campaigns(seed=0)
+    template = Compensator(Hammerstein(lagbank=LagBank(n_taus=3)))
+    fitted = clone(template).fit({c: camps[c] for c in list(camps)[:4]})
+    ham = fitted.estimators_["E_X"]
+    assert ham.exponents_ and len(ham.cv_results_) == 4    # the main fit chose among four sets
+    single = with_chosen_hyperparameters(clone(template), fitted)
+    fits = []
+    real_fit = LagBank.fit
+    monkeypatch.setattr(LagBank, "fit", lambda self, *a, **k: fits.append(1) or real_fit(self, *a, **k))
+    got = mutual_prediction(camps, lambda: clone(single))["E_X"]
+    assert len(fits) == len(camps)                # one lag bank per campaign, not one per power set
+    monkeypatch.undo()
+    ids = list(camps)
+    for i in ids:                                 # the same as a model fixed by hand
+        by_hand = Compensator(Hammerstein(lagbank=LagBank(n_taus=3, alphas=[ham.lagbank_.alpha_]),
+                                          exponents=list(ham.exponents_), choose_exponents=False))
+        by_hand.fit({i: camps[i]})
+        pred, meas = by_hand.predict(camps), by_hand.measured(camps)
+        want = [rsd(meas[c]["E_X"].to_numpy() - pred[c]["E_X"].to_numpy()) for c in ids]
+        assert got.loc[i].to_list() == pytest.approx(want, rel=1e-9)
