@@ -2,7 +2,8 @@
 benchmarks/bench_extras.py, never a test): mutual prediction fits at most
 ``eval.mutual_prediction_max_models`` single-campaign models, on campaigns spread over its
 ambient order, and says so; a Hammerstein's single-campaign models keep the powers and the
-penalty it chose on all train campaigns (one lag bank each, no choice of their own)."""
+penalty it chose on all train campaigns (one lag bank each, no choice of their own); an ARX+RF's
+forest predicts each distinct state once."""
 
 from __future__ import annotations
 
@@ -12,13 +13,15 @@ import numpy as np
 import pandas as pd
 import pytest
 from sklearn.base import clone
+from sklearn.ensemble import RandomForestRegressor
 
+from test_arx_rf import door_campaign, small_forest
 from test_hammerstein import _spindle_problem
 from test_hostile import make_dataset
 from test_stats import _campaign
 from thermocomp.core.compensator import Compensator, with_chosen_hyperparameters
 from thermocomp.core.metrics import rsd
-from thermocomp.core.models import MLR, Hammerstein, LagBank
+from thermocomp.core.models import ARXRF, MLR, Hammerstein, LagBank
 from thermocomp.core.scoring.evaluation import spread_campaigns
 from thermocomp.core.scoring.stats import mutual_prediction
 from thermocomp.shell.cli import main
@@ -86,3 +89,22 @@ def test_a_hammersteins_single_campaign_models_fit_one_lag_bank_as_chosen(monkey
         pred, meas = by_hand.predict(camps), by_hand.measured(camps)
         want = [rsd(meas[c]["E_X"].to_numpy() - pred[c]["E_X"].to_numpy()) for c in ids]
         assert got.loc[i].to_list() == pytest.approx(want, rel=1e-9)
+
+
+def test_an_arx_rf_forest_predicts_each_distinct_state_once_with_the_same_numbers():
+    rng = np.random.default_rng(0)
+    camps = {f"K{i}": door_campaign(rng) for i in range(3)}
+    seen = []
+
+    class Counted(RandomForestRegressor):
+        def predict(self, X):
+            seen.append(len(X))
+            return super().predict(X)
+
+    comp = Compensator(ARXRF(forest=Counted(**small_forest().get_params()))).fit(camps)
+    est, m = comp.estimators_["E_X"], comp.stacked(camps, [])
+    X = m.X[comp.selected_["E_X"]].to_numpy()
+    got = est.predict(X, context=m.context)
+    assert 0 < seen[-1] < len(X) / 5          # the door is shut most of the time: a few states
+    every_row = RandomForestRegressor.predict(est.forest_, est._state_features(len(X), m.context))
+    np.testing.assert_array_equal(got, est.arx_.predict(X, context=m.context) + every_row)
