@@ -3,7 +3,7 @@ benchmarks/bench_extras.py, never a test): mutual prediction fits at most
 ``eval.mutual_prediction_max_models`` single-campaign models, on campaigns spread over its
 ambient order, and says so; a Hammerstein's single-campaign models keep the powers and the
 penalty it chose on all train campaigns (one lag bank each, no choice of their own); an ARX+RF's
-forest predicts each distinct state once."""
+forest predicts each distinct state once; an LSTM predicts campaigns of like length in one batch."""
 
 from __future__ import annotations
 
@@ -21,7 +21,8 @@ from test_hostile import make_dataset
 from test_stats import _campaign
 from thermocomp.core.compensator import Compensator, with_chosen_hyperparameters
 from thermocomp.core.metrics import rsd
-from thermocomp.core.models import ARXRF, MLR, Hammerstein, LagBank
+from thermocomp.core.models import ARXRF, LSTM, MLR, Hammerstein, LagBank
+from thermocomp.core.models.lstm import _like_lengths, _Net
 from thermocomp.core.scoring.evaluation import spread_campaigns
 from thermocomp.core.scoring.stats import mutual_prediction
 from thermocomp.shell.cli import main
@@ -108,3 +109,24 @@ def test_an_arx_rf_forest_predicts_each_distinct_state_once_with_the_same_number
     assert 0 < seen[-1] < len(X) / 5          # the door is shut most of the time: a few states
     every_row = RandomForestRegressor.predict(est.forest_, est._state_features(len(X), m.context))
     np.testing.assert_array_equal(got, est.arx_.predict(X, context=m.context) + every_row)
+
+
+def test_an_lstm_predicts_campaigns_of_like_length_in_one_pass_with_the_same_numbers(monkeypatch):
+    rng = np.random.default_rng(1)
+    camps = {f"K{i}": door_campaign(rng, n=n) for i, n in enumerate((200, 300, 480))}
+    comp = Compensator(LSTM(hidden_size=4, max_epochs=3, chunk=64)).fit(camps)
+    alone = {c: comp.predict({c: camps[c]})[c] for c in camps}     # a batch of one campaign
+    passes = []
+    forward = _Net.forward
+    monkeypatch.setattr(_Net, "forward", lambda self, *a: passes.append(1) or forward(self, *a))
+    together = comp.predict(camps)
+    assert len(passes) == 1                       # all three campaigns in one pass, not three
+    for c in camps:
+        np.testing.assert_allclose(together[c]["E_X"], alone[c]["E_X"], rtol=1e-12, atol=1e-12)
+
+
+def test_like_lengths_batches_every_campaign_once_shortest_first_within_the_budget():
+    bounds = [(0, 10), (10, 15), (15, 40)]
+    assert _like_lengths(bounds, width=1, cells=30) == [[(10, 15), (0, 10)], [(15, 40)]]
+    assert _like_lengths(bounds, width=1, cells=10) == [[(10, 15)], [(0, 10)], [(15, 40)]]
+    assert _like_lengths(bounds, width=1) == [[(10, 15), (0, 10), (15, 40)]]
