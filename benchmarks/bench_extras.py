@@ -9,6 +9,31 @@ is run in a fresh process at the defaults (``plots=summary``, MLflow on, in a te
 the run's phase clock (``time (s): ...`` on stderr) counting CPU seconds of the process and its
 reaped children (user + sys: the figure workers are counted when the run ends) instead of
 wall seconds; the table is those phases, the total CPU and the wall time.
+
+Measured 2026-11-29 (seed 0; 2 cores shared with three other sessions, load 3-13: the wall
+column is mostly waiting; CPU s are user + sys).  ``other`` is scoring, ANOVA and the ATI
+baselines; ``io`` reading, MLflow and writing; the rest of the total (~5 s) is start-up.
+Before: main at 1193592; after: this branch (mutual prediction at most 24 single-campaign
+models, ``eval.mutual_prediction_max_models``; a Hammerstein's single-campaign models fixed to
+its choice; an ARX+RF forest predicting each distinct state once; an LSTM predicting campaigns
+of like length in one batch), ``before / after``::
+
+                          fit  validation       mutual     other   figures        io          CPU s     wall s
+    mlr             0.2 / 0.3   0.2 / 0.4    1.0 / 0.7 0.6 / 0.7 3.0 / 3.2 4.1 / 4.7    14.4 / 16.4    23 / 57
+    pcr             0.3 / 0.3   0.4 / 0.5    1.4 / 1.0 0.6 / 0.7 3.1 / 3.3 4.1 / 4.2    15.2 / 16.0    23 / 32
+    arx             0.6 / 0.3   0.6 / 0.6    2.6 / 1.4 0.9 / 0.8 3.9 / 3.2 5.1 / 4.7    19.2 / 16.6    31 / 44
+    arx_rf          3.9 / 3.7 12.7 / 13.7  33.1 / 18.0 2.4 / 2.7 3.1 / 3.4 4.5 / 4.7    66.0 / 52.1   130 / 78
+    lagbank         1.7 / 1.5   3.5 / 3.7    4.7 / 3.1 1.0 / 1.0 3.1 / 3.2 4.9 / 4.2    24.7 / 22.4    53 / 76
+    hammerstein     4.3 / 4.3 11.8 / 13.5   24.5 / 3.8 1.6 / 1.5 3.2 / 3.2 4.7 / 4.6    55.7 / 37.0   94 / 116
+    lstm          17.5 / 12.8 65.4 / 51.5 101.1 / 22.8 3.8 / 1.8 3.2 / 2.4 4.9 / 4.6  206.4 / 105.6  657 / 162
+    auto        124.3 / 113.8   0.0 / 0.0    5.8 / 2.4 9.0 / 8.9 2.9 / 2.4 6.3 / 4.4  159.6 / 141.4  325 / 388
+
+``auto``'s validation reuses its candidates' out-of-fold predictions; its fit holds its LSTM
+candidate's folds.  Phases this branch does not touch moved by the load alone (mlr's wall).
+``run`` of ``lagbank`` over ``mlr`` (CPU): 1.72 / 1.37.  What is left is the validation score
+(5 folds, each the whole fit with its own choices: ``model=auto``, ``compare`` and ``promote``
+choose by it, so it is not cut) and, for ``arx_rf``, scikit-learn's per-tree cost of 100-tree
+forests fitted on one smoothed state (24 models x 2 targets x 1-2 forests).
 """
 
 from __future__ import annotations
