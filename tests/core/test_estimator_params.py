@@ -39,7 +39,8 @@ HOSTILE = {
     "ambient_interaction": "yes", "n_imfs": 0, "sensors": "T_*", "stopping": "never",
     "max_siftings": 0, "s_number": 0, "sd_threshold": 0, "end_effect": "none", "pad": -1,
     "spline": "quintic", "causal": "foo", "causal_taps": 0, "causal_window": 3, "online": "no",
-    "states": [], "exponents": [0.0], "k": 0, "k_max": 0, "m": 1.0, "rho": 1.5, "random_state": float("nan"),
+    "states": [], "exponents": [0.0], "choose_exponents": "sometimes", "k": 0, "k_max": 0, "m": 1.0,
+    "rho": 1.5, "random_state": float("nan"),
 }
 
 

@@ -22,6 +22,7 @@ from .continuation import carry_over
 from .figures import run_figures as fig
 from .metrics import E_P95, ISO_A3, VALIDATION, validation_block
 from .scoring.evaluation import (
+    MUTUAL_MAX_MODELS,
     VAL_FOLDS,
     ambient_by_campaign,
     anova,
@@ -54,19 +55,20 @@ class ReportSettings:
     anova_alpha: float = 0.001
     ati_baselines: bool = True
     mutual_prediction: bool = True
+    mutual_prediction_max_models: int | None = MUTUAL_MAX_MODELS
 
     @classmethod
     def from_eval(cls, ev: Mapping, **names) -> ReportSettings:
         """From the ``eval`` group (a mapping; absent keys keep their defaults) and ``names``
         (``model``, ``select``, ``ati``, ``plots``)."""
         keys = ("mode", "validation", "validation_folds", "validation_scheme", "anova_alpha",
-                "ati_baselines", "mutual_prediction")
+                "ati_baselines", "mutual_prediction", "mutual_prediction_max_models")
         e_p95 = ev.get(E_P95) or {}     # eval.e_p95: the settings of that figure
         given = {"e_p95_statistic": e_p95.get("statistic"),
                  "e_p95_max_points": e_p95.get("max_points", 200), "iso_a3": ev.get(ISO_A3),
                  **{k: ev.get(k) for k in keys}}
-        return cls(**{k: v for k, v in given.items() if v is not None or k == "e_p95_max_points"},
-                   **names)
+        nullable = ("e_p95_max_points", "mutual_prediction_max_models")  # None: no limit
+        return cls(**{k: v for k, v in given.items() if v is not None or k in nullable}, **names)
 
 
 @dataclass(frozen=True)
@@ -128,12 +130,16 @@ def _model_reports(s: ReportSettings, comp: Compensator, ds, predictions: dict, 
         fig.rsd_figures(*figures, metrics, ambient_by_campaign(ds, list(predictions)))
         clock.lap("figures")
     if s.mutual_prediction:
-        say(f"mutual prediction: {len(ds.ids())} single-campaign models")
+        n, cap = len(ds.ids()), s.mutual_prediction_max_models
+        say(f"mutual prediction: {n} single-campaign models" if cap is None or n <= cap else
+            f"mutual prediction: {cap} single-campaign models of {n} campaigns "
+            f"(eval.mutual_prediction_max_models={cap}: on campaigns evenly spread over the "
+            "ambient order; every campaign predicted)")
         # its single-campaign models keep the hyper-parameters the model chose on all train
         # campaigns: one CV per campaign cost 43 x 43 lag banks on a lathe record (model=auto:
         # each target's chosen family, not the whole choice again per campaign)
         make_single = partial(clone, with_chosen_hyperparameters(clone(refits.single), comp))
-        metrics["mutual_prediction"] = mutual_prediction_report(make_single, ds, s.mode)
+        metrics["mutual_prediction"] = mutual_prediction_report(make_single, ds, s.mode, cap)
         clock.lap("mutual_prediction")
         if s.plots in ("test", "all"):
             fig.mutual_figures(*figures, metrics["mutual_prediction"])

@@ -136,23 +136,27 @@ def rsd_plot(per_campaign: dict, target: str, path, ambient: dict | None = None,
     return save_figure(fig, path)
 
 
-def mutual_prediction_plot(campaigns, rsd_matrix, target: str, path, ambient=None) -> Path:
-    """Heat map of Rsd (µm, log colour scale): row = trained on, column = predicted campaign."""
+def mutual_prediction_plot(campaigns, rsd_matrix, target: str, path, ambient=None,
+                           trained_on=None) -> Path:
+    """Heat map of Rsd (µm, log colour scale): row = trained on (``trained_on``, default every
+    campaign), column = predicted campaign."""
     from matplotlib.colors import LogNorm
 
     m = np.array([[np.nan if v is None else v for v in row] for row in rsd_matrix], float)
     labels = [f"{c} ({a:.0f} °C)" if a is not None and np.isfinite(a) else str(c)
               for c, a in zip(campaigns, ambient if ambient is not None else [None] * len(campaigns))]
-    n = len(campaigns)
+    rows = list(campaigns) if trained_on is None else list(trained_on)
+    n, k = len(campaigns), len(rows)
     size = min(11, 3 + 0.3 * n)
-    fig, ax = plt.subplots(figsize=(size + 1.2, size))
+    fig, ax = plt.subplots(figsize=(size + 1.2, min(11, 3 + 0.3 * k) if k < n else size))
     pos = m[np.isfinite(m) & (m > 0)]
     norm = LogNorm(vmin=pos.min(), vmax=pos.max()) if pos.size and pos.max() > pos.min() else None
     im = ax.imshow(m, cmap="viridis_r", norm=norm, aspect="equal")
     ax.set_xticks(range(n), labels, rotation=90, fontsize=7)
-    ax.set_yticks(range(n), labels, fontsize=7)
+    ax.set_yticks(range(k), [labels[list(campaigns).index(c)] for c in rows], fontsize=7)
     ax.set_xlabel("predicted campaign (initial ambient)")
-    ax.set_ylabel("model trained on campaign (initial ambient)")
+    ax.set_ylabel("model trained on campaign (initial ambient)"
+                  + (f"\n{k} of {n}: eval.mutual_prediction_max_models" if k < n else ""))
     ax.set_title(f"{target}: mutual prediction, Rsd ({unit(target)})")
     fig.colorbar(im, ax=ax, shrink=0.8, label=f"{target} Rsd ({unit(target)})")
     fig.tight_layout()

@@ -95,4 +95,4 @@ def mutual_figures(draw, folder, mutual: dict) -> None:
 
     for t, mp in mutual.items():
         draw(mutual_prediction_plot, mp["campaigns"], mp[RSD], t,
-             figure_path(folder, "mutual_prediction", t), mp["ambient_c0"])
+             figure_path(folder, "mutual_prediction", t), mp["ambient_c0"], mp.get("trained_on"))

@@ -26,7 +26,7 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ContractError
-from ...base.params import check_estimator, numbers, optional, texts
+from ...base.params import BOOLEAN, check_estimator, numbers, optional, texts
 from ..context import SideInputs, groups_of, merge_columns, require
 from ..io.contract import match_columns
 from ._dynamics import segment_bounds
@@ -87,6 +87,9 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         Glob patterns of the context's machine-state columns; None: none.
     exponents : list of float, default ``[1.0, 2.0]``
         Candidate powers of the scaled states.
+    choose_exponents : bool, default True
+        False: every power of ``exponents`` enters, no CV between subsets (a
+        copy fixed to a fit's choice, see :meth:`chosen_params`).
 
     Attributes
     ----------
@@ -107,12 +110,13 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
     """
 
     param_rules = {"states": optional(texts("glob patterns")),
-                   "exponents": numbers(0.0, open_lo=True)}
+                   "exponents": numbers(0.0, open_lo=True), "choose_exponents": BOOLEAN}
 
-    def __init__(self, lagbank=None, states=("S_*",), exponents=(1.0, 2.0)):
+    def __init__(self, lagbank=None, states=("S_*",), exponents=(1.0, 2.0), choose_exponents=True):
         self.lagbank = lagbank
         self.states = states
         self.exponents = exponents
+        self.choose_exponents = choose_exponents
 
     def param_relations(self) -> list[tuple[str, str]]:
         if self.lagbank is not None and getattr(self.lagbank, "ar", False) is not False:
@@ -160,7 +164,9 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         scale = np.max(np.abs(S), axis=0) if S.size else np.zeros(0)
         self.state_scale_ = scale
         records, fitted = [], {}
-        for exps in (_candidates(self.exponents) if found else [()]):
+        fixed = [tuple(sorted({float(e) for e in self.exponents}))]
+        for exps in ([()] if not found else _candidates(self.exponents) if self.choose_exponents
+                     else fixed):
             model = clone(base).fit(np.hstack([X, self._basis(S, exps)]), y, context=context)
             row = model.cv_results_[model.cv_results_["chosen"]].iloc[0]
             records.append({"exponents": list(exps), "cv_mse_free_run": float(row["cv_mse_free_run"]),
@@ -177,6 +183,17 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         self.state_columns_ = found
         self.context_columns_ = merge_columns(self.lagbank_.context_columns_, found)
         return self
+
+    def chosen_params(self) -> dict:
+        """The parameters that fix what the CV chose (the powers, the lag bank's penalty): a copy
+        fitted with them runs one lag bank, with no choice of its own (see
+        :func:`thermocomp.core.compensator.with_chosen_hyperparameters`)."""
+        check_is_fitted(self)
+        lagbank = clone(self.lagbank if self.lagbank is not None else LagBank())
+        lagbank.set_params(**self.lagbank_.chosen_params())
+        if not self.exponents_:         # no state entered: the plain lag bank
+            return {"states": None, "lagbank": lagbank}
+        return {"exponents": list(self.exponents_), "choose_exponents": False, "lagbank": lagbank}
 
     def predict(self, X, context=None):
         """Predicted error (free run; ``y_measured`` in ``context`` changes nothing)."""

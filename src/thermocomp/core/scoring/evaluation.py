@@ -163,19 +163,35 @@ def anova(comp: Compensator, ds: Dataset, alpha: float = 0.001,
     return out
 
 
+MUTUAL_MAX_MODELS = 24  # eval.mutual_prediction_max_models: the default data's 24 campaigns all get one
+
+
 def mutual_prediction_report(make_compensator: Callable[[], Compensator], ds: Dataset,
-                             mode: str = "simulation") -> dict:
+                             mode: str = "simulation", max_models: int | None = None) -> dict:
     """Mutual prediction matrices over all campaigns, ordered by initial ambient.
 
-    ``{target: {"campaigns": [...], "ambient_c0": [...], "rsd": [[...]]}}``, row
-    ``i`` trained on campaign ``i`` alone, column ``j`` predicted (paper 003, Fig. 6).
+    ``{target: {"campaigns": [...], "ambient_c0": [...], "trained_on": [...], "rsd": [[...]],
+    "max_models": ...}}``: row ``i`` trained on campaign ``trained_on[i]`` alone, column ``j``
+    predicted (paper 003, Fig. 6).  ``max_models`` (None: no limit): at most that many
+    single-campaign models, on :func:`spread_campaigns` of the ambient order; every campaign
+    is still predicted.
     """
     amb = ambient_by_campaign(ds)
     ids = sorted(ds.ids(), key=lambda c: (np.nan_to_num(amb[c], nan=np.inf), c))
-    mats = mutual_prediction({c: ds.campaigns[c] for c in ids}, make_compensator, mode)
+    rows = spread_campaigns(ids, max_models)
+    mats = mutual_prediction({c: ds.campaigns[c] for c in ids}, make_compensator, mode, rows)
     return {t: {"campaigns": ids, "ambient_c0": json_safe([amb[c] for c in ids]),
-                RSD: json_safe(m.to_numpy())}
+                "trained_on": rows, RSD: json_safe(m.to_numpy()), "max_models": max_models}
             for t, m in mats.items()}
+
+
+def spread_campaigns(ids: list, at_most: int | None) -> list:
+    """``ids`` when there are no more than ``at_most`` (or None), else ``at_most`` of them evenly
+    spread over their order, the first and the last included: by position alone (no score)."""
+    if at_most is None or len(ids) <= at_most:
+        return list(ids)
+    # the step is >= 1 when at_most <= len(ids): the rounded positions are distinct
+    return [ids[i] for i in np.round(np.linspace(0, len(ids) - 1, at_most)).astype(int)]
 
 
 def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensator],

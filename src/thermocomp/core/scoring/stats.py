@@ -5,7 +5,7 @@ Pure core: campaign arrays/DataFrames in, dicts/DataFrames out.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
 import pandas as pd
@@ -61,7 +61,8 @@ def anova_oneway(samples: Mapping[str, np.ndarray], alpha: float = 0.001) -> dic
 
 
 def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: Callable,
-                      mode: str = "simulation") -> dict[str, pd.DataFrame]:
+                      mode: str = "simulation", trained_on: Sequence[str] | None = None
+                      ) -> dict[str, pd.DataFrame]:
     r"""Mutual prediction matrix (paper 003, Sect. 3.4, Fig. 6).
 
     A model trained on campaign :math:`i` alone predicts every campaign
@@ -78,6 +79,8 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     make_compensator : callable returning a new, unfitted
         :class:`~thermocomp.core.compensator.Compensator` (any model config)
     mode : 'simulation' or 'one_step'
+    trained_on : the campaigns that get a model (the rows), in the order of
+        ``campaigns``; None: every campaign
 
     Returns
     -------
@@ -85,9 +88,10 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     order of ``campaigns``.
     """
     ids = list(campaigns)
+    rows = _rows(ids, trained_on)
     first = make_compensator()
     if first.denoiser is not None:      # denoised per training campaign: the campaign-level path
-        return _mutual_by_campaign(campaigns, make_compensator, mode)
+        return _mutual_by_campaign(campaigns, make_compensator, mode, rows)
     # no denoiser: stack every campaign once; each model fits on its campaign's rows of the stack
     # and predicts the whole stack (the same numbers as fit/predict on the campaign dicts).  The
     # columns as a fit on the first campaign resolves them, without that fit (a blend with an
@@ -99,13 +103,23 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     residuals = {t: [] for t in targets}
     from ...base.progress import bar
 
-    for train, _ in bar(TrainOnEachCampaign().split(ids, groups=ids), desc="mutual prediction",
-                        total=len(ids), unit="model"):
-        comp = clone(first).fit_stacked(m.subset(m.rows_of(ids[train[0]])))
+    for i in bar(rows, desc="mutual prediction", total=len(rows), unit="model"):
+        comp = clone(first).fit_stacked(m.subset(m.rows_of(i)))
         r = Y - comp.predict_stacked(m, mode)
         for k, t in enumerate(comp.targets_):
             residuals[t].append(r[:, k])
-    return _rsd_matrices(residuals, ids, bounds)
+    return _rsd_matrices(residuals, rows, ids, bounds)
+
+
+def _rows(ids: list, trained_on) -> list:
+    """The campaigns of ``ids`` that get a model (:class:`TrainOnEachCampaign`'s order)."""
+    every = [ids[train[0]] for train, _ in TrainOnEachCampaign().split(ids, groups=ids)]
+    if trained_on is None:
+        return every
+    unknown = set(trained_on) - set(ids)
+    if unknown:
+        raise ValueError(f"trained_on names campaigns not given: {sorted(unknown)}")
+    return [c for c in every if c in set(trained_on)]
 
 
 def _bounds(groups, ids) -> list[tuple[int, int]]:
@@ -113,19 +127,18 @@ def _bounds(groups, ids) -> list[tuple[int, int]]:
     return [(int(np.flatnonzero(groups == c)[0]), int(np.flatnonzero(groups == c)[-1]) + 1) for c in ids]
 
 
-def _rsd_matrices(residuals: dict, ids, bounds) -> dict[str, pd.DataFrame]:
-    index = pd.Index(ids, name="trained_on")
+def _rsd_matrices(residuals: dict, rows, ids, bounds) -> dict[str, pd.DataFrame]:
+    index = pd.Index(rows, name="trained_on")
     columns = pd.Index(ids, name="predicted")
     return {t: pd.DataFrame([[rsd(row[a:b]) for a, b in bounds] for row in r],
                             index=index, columns=columns)
             for t, r in residuals.items()}
 
 
-def _mutual_by_campaign(campaigns, make_compensator, mode) -> dict[str, pd.DataFrame]:
+def _mutual_by_campaign(campaigns, make_compensator, mode, rows) -> dict[str, pd.DataFrame]:
     ids = list(campaigns)
     measured, residuals, bounds = None, {}, []
-    for train, _ in TrainOnEachCampaign().split(ids, groups=ids):
-        i = ids[train[0]]
+    for i in rows:
         comp = make_compensator().fit({i: campaigns[i]})
         if measured is None:
             frames = comp.measured(campaigns)
@@ -135,7 +148,7 @@ def _mutual_by_campaign(campaigns, make_compensator, mode) -> dict[str, pd.DataF
         pred = _by_target(comp.predict(campaigns, mode=mode), ids, comp.targets_)
         for t in comp.targets_:
             residuals.setdefault(t, []).append(measured[t] - pred[t])
-    return _rsd_matrices(residuals, ids, bounds)
+    return _rsd_matrices(residuals, rows, ids, bounds)
 
 
 def _by_target(frames: Mapping[str, pd.DataFrame], ids, targets) -> dict[str, np.ndarray]:

@@ -102,6 +102,7 @@ class Eval:
     e_p95: EP95 = group(EP95, reports=True)
     anova_alpha: float = key(number(0.0, 1.0, open_lo=True, open_hi=True), reports=True)
     mutual_prediction: bool = key(BOOLEAN, reports=True)
+    mutual_prediction_max_models: Optional[int] = key(optional(integer(1)), reports=True)
     ati_baselines: bool = key(BOOLEAN, reports=True)
     iso10791_a3: bool = key(BOOLEAN, reports=True)
     validation: bool = key(BOOLEAN, logged=True, reports=True)
