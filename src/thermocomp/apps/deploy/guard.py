@@ -42,11 +42,12 @@ class CorrectionGuard:
         lo, hi = np.nanmin(Y, axis=0), np.nanmax(Y, axis=0)
         width = np.maximum(hi - lo, 1e-9)
         rates, periods = [], []
-        for y, t in zip([*measured, *(predicted or [])], [*times, *(times if predicted else [])]):
-            if len(y) > 1:
-                dt = np.diff(np.asarray(t, float))
-                rates.append(np.nanmax(np.abs(np.diff(y, axis=0)) / dt[:, None], axis=0))
+        for k, t in enumerate(times):
+            dt = np.diff(np.asarray(t, float))
+            if dt.size:
                 periods.append(np.median(dt))
+                for y in (measured[k], *([predicted[k]] if predicted is not None else [])):
+                    rates.append(np.nanmax(np.abs(np.diff(y, axis=0)) / dt[:, None], axis=0))
         rate = np.max(rates, axis=0) if rates else np.full(Y.shape[1], np.inf)
         return cls(targets, lo - margin * width, hi + margin * width, (1 + rate_margin) * rate,
                    float(np.median(periods)) if periods else 1.0)
