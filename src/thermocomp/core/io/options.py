@@ -99,7 +99,7 @@ class ReadOptions:
             max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
             max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
             max_step_ratio=_positive_float(cfg, "max_step_ratio", 5.0, nullable=True),
-            delimiter=_text(cfg, "delimiter", AUTO),
+            delimiter=_delimiter(cfg),
             decimal=_text(cfg, "decimal", AUTO),
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
             encoding=codec(_text(cfg, "encoding", UTF8)),
@@ -150,6 +150,13 @@ def _text(cfg: Mapping, key: str, default: str) -> str:
     """``cfg[key]`` as text, ``default`` when missing or null (an empty text stays, refused)."""
     value = cfg.get(key)
     return default if value is None else str(value)
+
+
+def _delimiter(cfg: Mapping) -> str:
+    """``data.delimiter``; a tab also as the shell types it (``data.delimiter='\\t'`` reaches here
+    as a backslash and a ``t``: no command line passes a tab character) or as ``tab``."""
+    value = _text(cfg, "delimiter", AUTO)
+    return "\t" if value in ("\\t", "tab", "TAB") else value
 
 
 def _timezone(cfg: Mapping) -> str | None:

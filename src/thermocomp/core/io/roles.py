@@ -105,6 +105,13 @@ def _bare_unit(header: str) -> tuple[str, str] | None:
     return None
 
 
+def named_as_time(header: str) -> bool:
+    """A header naming the time (:data:`TIME_HEADERS`) with a time's unit or none: ``T [°C]``
+    is a temperature, not the time."""
+    base, unit = split_unit(header)
+    return base.lower() in TIME_HEADERS and (unit is None or unit.lower() in UNITS["time"])
+
+
 def _letter_unit(header: str, cell, decimal: str) -> tuple[str, str] | None:
     """``('T1', 'K')`` for a temperature's ``T1 K`` under ``data.roles`` where its first value
     ``cell`` reads in the letter's unit (:data:`LETTER_UNITS`: 293 is kelvin, 20 is not), the
@@ -248,7 +255,7 @@ def _time_header(headers, roles, columns, first, problems) -> list[str]:
         return found if None not in found else []
     free = [h for h in headers if h not in columns and not _hits(h, roles)]
     pair = date_and_time_of_day(free, first)
-    named = [h for h in free if split_unit(h)[0].lower() in TIME_HEADERS and h not in pair]
+    named = [h for h in free if named_as_time(h) and h not in pair]
     if pair and not named:
         return pair
     if len(named) > 1:

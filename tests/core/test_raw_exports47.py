@@ -1,0 +1,66 @@
+"""A lab's raw export, round 4 (session 47, a stranger's pass): Excel's 'Unicode Text' export
+(UTF-16, tab-separated), a tab typed on the command line, a temperature headed ``T [°C]``."""
+
+from __future__ import annotations
+
+import codecs
+
+import numpy as np
+import pytest
+
+from conftest import FAST, refused
+from test_raw_exports44 import _read, _record, _write
+from thermocomp.shell.cli import main
+
+HEADER = ["time [s]", "T [°C]", "T2 [°C]", "dX [µm]"]
+
+
+def _table(sep: str) -> str:
+    t, t1, t2, e = _record()
+    rows = [sep.join(f"{v:.6g}" for v in row) for row in zip(t, t1, t2, e)]
+    return "\r\n".join([sep.join(HEADER), *rows]) + "\r\n"
+
+
+@pytest.mark.parametrize("command", ["init", "run"])
+@pytest.mark.parametrize("bom, codec, said", [(codecs.BOM_UTF16_LE, "utf-16-le", "UTF-16"),
+                                              (codecs.BOM_UTF32_LE, "utf-32-le", "UTF-32")])
+def test_excels_unicode_text_export_is_refused_saying_how_to_save_it(tmp_path, capsys, command,
+                                                                    bom, codec, said):
+    # before: 'file looks '\t'-separated (one column 'ÿþt\x00i\x00m...'): set data.delimiter='\t''
+    # (init), or a column named by the NUL-riddled header (run): no setting reads it
+    path = tmp_path / "Messung.txt"
+    path.write_bytes(bom + _table("\t").encode(codec))
+    args = ([str(path)] if command == "init" else
+            [f"data.path={path}", "data.roles.error=[dX]", "data.test_fraction=0.2", *FAST])
+    line = refused([command, *args, f"out={tmp_path / 'out'}"], capsys,
+                   f"file {path}:", f"{said} text", "CSV UTF-8", f"iconv -f {said} -t UTF-8")
+    assert "\\x00" not in line, line
+    assert not (tmp_path / "out").exists()
+
+
+@pytest.mark.parametrize("typed", ["\\t", "tab"])
+def test_a_tab_separator_is_typed_as_the_refusal_says_it(tmp_path, capsys, typed):
+    # a tab-separated file that auto detection cannot settle is refused with "set
+    # data.delimiter='\t'"; the shell passes that as a backslash and a 't' (no command line
+    # passes a tab): before, 'data.delimiter must be one character or 'auto', got '\\t''
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "log.tsv", ["time", "T1", "T2", "dX [um]"], [t, t1, t2, e], sep="\t")
+    frame = _read(path, delimiter=typed, roles={"error": ["dX*"]})
+    np.testing.assert_allclose(frame[["time", "T_T1", "E_dX"]], np.c_[t, t1, e], atol=1e-3)
+    assert main(["run", f"data.path={path}", f"data.delimiter={typed}", "data.roles.error=[dX]",
+                 "data.test_fraction=0.2", *FAST, f"out={tmp_path / 'out'}"]) == 0, \
+        capsys.readouterr().err
+
+
+def test_a_temperature_headed_t_with_its_unit_is_no_time(tmp_path, capsys):
+    # 'T [°C]' beside 'time [s]': before, "'time [s]' and 'T [°C]' both look like the time (set
+    # data.roles.time)", refused by init and run; a header 'T' in °C is a temperature
+    path = tmp_path / "spindel.csv"
+    path.write_text(_table(","), encoding="utf-8")
+    t, t1, t2, e = _record()
+    frame = _read(path, roles={"error": ["dX"]})
+    assert list(frame.columns) == ["time", "T_T", "T_T2", "E_dX"]
+    np.testing.assert_allclose(frame.to_numpy(), np.c_[t, t1, t2, e], atol=1e-3)
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
+    out = capsys.readouterr().out
+    assert "time: 'time [s]', in s" in out and "T_T\n" in out, out
