@@ -64,3 +64,19 @@ def test_a_temperature_headed_t_with_its_unit_is_no_time(tmp_path, capsys):
     assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
     out = capsys.readouterr().out
     assert "time: 'time [s]', in s" in out and "T_T\n" in out, out
+
+
+def test_quoted_decimal_commas_in_a_comma_separated_file_read_as_the_refusal_says(tmp_path,
+                                                                                 capsys):
+    # "0,38" quoted in a ','-separated export: refused 'a decimal comma? set data.decimal=','',
+    # and that setting was refused in turn ('the field separator too'): no setting read it
+    t, t1, t2, e = _record()
+    rows = [",".join(f'"{v:.6g}"'.replace(".", ",") for v in row) for row in zip(t, t1, t2, e)]
+    path = tmp_path / "export.csv"
+    path.write_text("\n".join(['"time","T1","T2","dX [um]"', *rows]) + "\n", encoding="utf-8")
+    refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, "set data.decimal=','")
+    frame = _read(path, decimal=",", roles={"error": ["dX*"]})
+    np.testing.assert_allclose(frame[["time", "T_T1", "T_T2", "E_dX"]], np.c_[t, t1, t2, e],
+                               rtol=1e-5)
+    assert main(["init", str(path), "data.decimal=,", f"out={tmp_path / 'init'}"]) == 0, \
+        capsys.readouterr().err

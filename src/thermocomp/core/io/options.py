@@ -138,7 +138,8 @@ class ReadOptions:
             raise ContractError(f"data.thousands must be one character other than the decimal "
                                 "mark, not a digit, letter, sign or plain space (',', '.', \"'\", "
                                 f"a no-break space or null), got {self.thousands!r}")
-        if self.decimal == self.delimiter != AUTO:
+        # (',' and ',': a comma-separated file quoting its decimal-comma cells, "0,38", reads)
+        if self.decimal == self.delimiter != AUTO and self.delimiter != ",":
             raise ContractError(f"data.decimal={self.decimal!r} is the field separator too "
                                 "(data.delimiter): a lab writing decimal commas separates with ';'")
         if self.kelvin_threshold_c <= 0.0:    # every reading above it is refused as kelvin
