@@ -4,12 +4,15 @@
 from __future__ import annotations
 
 import codecs
+from io import BytesIO, TextIOWrapper
 
 import numpy as np
 import pytest
 
 from conftest import FAST, refused
 from test_raw_exports44 import _read, _record, _write
+from thermocomp.core.io import ContractError
+from thermocomp.core.io.stdin import stdin_text
 from thermocomp.shell.cli import main
 
 HEADER = ["time [s]", "T [°C]", "T2 [°C]", "dX [µm]"]
@@ -36,6 +39,15 @@ def test_excels_unicode_text_export_is_refused_saying_how_to_save_it(tmp_path, c
                    f"file {path}:", f"{said} text", "CSV UTF-8", f"iconv -f {said} -t UTF-8")
     assert "\\x00" not in line, line
     assert not (tmp_path / "out").exists()
+
+
+def test_excels_unicode_text_export_on_stdin_is_refused_saying_how_to_convert_it():
+    # before: 'byte 0xff is not utf-8 text (set data.encoding to the stream's character set,
+    # e.g. cp1252)': cp1252 reads it as NUL-riddled text
+    stream = TextIOWrapper(BytesIO(codecs.BOM_UTF16_LE + _table("\t").encode("utf-16-le")))
+    with pytest.raises(ContractError, match="stream is UTF-16 text.*pipe it through iconv -f "
+                                            "UTF-16 -t UTF-8"):
+        stdin_text(stream)
 
 
 @pytest.mark.parametrize("typed", ["\\t", "tab"])

@@ -106,10 +106,12 @@ def _bare_unit(header: str) -> tuple[str, str] | None:
 
 
 def named_as_time(header: str) -> bool:
-    """A header naming the time (:data:`TIME_HEADERS`) with a time's unit or none: ``T [°C]``
-    is a temperature, not the time."""
+    """A header naming the time (:data:`TIME_HEADERS`) without another quantity's unit: ``T
+    [°C]`` is a temperature, not the time (``Zeit [hh:mm:ss]``, ``timestamp (UTC)`` are times)."""
     base, unit = split_unit(header)
-    return base.lower() in TIME_HEADERS and (unit is None or unit.lower() in UNITS["time"])
+    other = unit is not None and unit.lower().replace(" ", "") not in UNITS["time"] and (
+        any(unit.lower() in UNITS[k] for k in ("E", "T")) or unit.lower() in STATE_UNITS)
+    return base.lower() in TIME_HEADERS and not other
 
 
 def _letter_unit(header: str, cell, decimal: str) -> tuple[str, str] | None:

@@ -16,7 +16,7 @@ import pyarrow as pa
 from ..context import TIME
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
-from .encoding import UTF8, text_codec
+from .encoding import UTF8, check_text, text_codec
 from .layout import header_line, is_unit_row, with_units
 from .roles import active, naming, same_header
 from .separators import UNICODE_MINUS
@@ -34,6 +34,7 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
     if raw is None:                   # already text (a caller's StringIO)
         return stream.read()
     data = raw.read()
+    check_text(data[:4], encoding, SOURCE)
     try:
         return data.decode(text_codec(encoding))
     except UnicodeDecodeError as exc:
