@@ -92,3 +92,21 @@ def test_quoted_decimal_commas_in_a_comma_separated_file_read_as_the_refusal_say
                                rtol=1e-5)
     assert main(["init", str(path), "data.decimal=,", f"out={tmp_path / 'init'}"]) == 0, \
         capsys.readouterr().err
+
+
+@pytest.mark.parametrize("celsius, fahrenheit", [("ºC", "ºF"), ("˚C", "˚F")])
+def test_a_degree_sign_typed_as_the_ordinal_or_the_ring_is_the_degree(tmp_path, celsius,
+                                                                      fahrenheit):
+    # 'T1 [ºC]' (U+00BA, a Spanish or Italian keyboard's º) was refused "unit 'ºC' is not a
+    # temperature's (°C, K, °F)": two signs that look alike in the header and in the message
+    t, t1, t2, e = _record()
+    path = _write(tmp_path / "ensayo.csv", ["time", f"T1 [{celsius}]", f"T2 [{fahrenheit}]",
+                                             "dX [µm]"], [t, t1, t2 * 1.8 + 32, e])
+    frame = _read(path, roles={"error": ["dX"]})
+    np.testing.assert_allclose(frame[["T_T1", "T_T2"]], np.c_[t1, t2], atol=1e-3)
+    unit_row = tmp_path / "unit_row.csv"
+    unit_row.write_text(path.read_text(encoding="utf-8").replace(
+        f"T1 [{celsius}],T2 [{fahrenheit}]", "T1,T2").replace(
+        "\n", f"\ns,{celsius},{fahrenheit},µm\n", 1), encoding="utf-8")
+    frame = _read(unit_row, roles={"error": ["dX"]})
+    np.testing.assert_allclose(frame[["T_T1", "T_T2"]], np.c_[t1, t2], atol=1e-3)

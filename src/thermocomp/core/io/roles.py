@@ -42,9 +42,12 @@ PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
 UNITS = {
     "E": {**dict.fromkeys(("µm", "μm", "um", "micron", "microns"), (1.0, 0.0)), "mm": (1e3, 0.0),
           "m": (1e6, 0.0), "nm": (1e-3, 0.0)},
-    "T": {**dict.fromkeys(("°c", "c", "degc", "℃", "celsius", "deg.c"), (1.0, 0.0)),
+    # (the degree sign as a lab's keyboard gives it: º, U+00BA on a Spanish or Italian one, and
+    # ˚, U+02DA, look like ° in a header and in the message refusing them)
+    "T": {**dict.fromkeys(("°c", "ºc", "˚c", "c", "degc", "℃", "celsius", "deg.c"), (1.0, 0.0)),
           **dict.fromkeys(("k", "kelvin"), (1.0, -273.15)),
-          **dict.fromkeys(("°f", "f", "degf", "℉", "fahrenheit"), (5 / 9, -32 * 5 / 9))},
+          **dict.fromkeys(("°f", "ºf", "˚f", "f", "degf", "℉", "fahrenheit"),
+                          (5 / 9, -32 * 5 / 9))},
     "time": {**dict.fromkeys(("s", "sec", "secs", "seconds"), (1.0, 0.0)), "ms": (1e-3, 0.0),
              "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0)),
              **dict.fromkeys(("d", "day", "days"), (86400.0, 0.0))},     # (Excel's serial days)
