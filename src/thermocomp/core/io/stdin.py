@@ -21,7 +21,7 @@ from .layout import header_line, is_unit_row, with_units
 from .roles import active, naming, same_header
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
-from .timestamps import CLOCK, ELAPSED, elapsed_seconds, on_local_clock, time_kind, time_type
+from .timestamps import CLOCK, COMMA_FRACTION, ELAPSED, elapsed_seconds, on_local_clock, time_kind, time_type
 
 SOURCE = "<stdin>"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
@@ -138,7 +138,10 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
         return pd.Series(ns / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
         return time
-    stamps = pd.to_datetime(time.astype(str).where(time.notna()), utc=True, errors="coerce",
+    text = time.astype(str).where(time.notna())
+    if kind == "iso8601":    # ISO 8601's decimal comma (13:05:00,500), as a file's is read
+        text = text.str.replace(COMMA_FRACTION, r"\1.\2", regex=True)
+    stamps = pd.to_datetime(text, utc=True, errors="coerce",
                             format="ISO8601" if kind == "iso8601" else kind)
     bad = stamps.isna() & time.notna()
     if bad.any() or pd.isna(stamps.iloc[0]):

@@ -25,6 +25,7 @@ _SLASHED = re.compile(r"\s*\d{1,2}/\d{1,2}/\d{2,4}\b")
 DATE = re.compile(r"\s*(\d{1,2}\.\d{1,2}\.\d{4}|\d{4}-\d\d-\d\d|\d{1,2}/\d{1,2}/\d{2,4})\s*")
 TIME_OF_DAY = re.compile(r"\s*\d{1,2}:\d\d(:\d\d([.,]\d+)?)?\s*")
 _ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
+COMMA_FRACTION = r"(\d:\d\d:\d\d),(\d)"     # a second's fraction after a comma
 EXAMPLE = "'%d/%m/%Y %H:%M:%S'"
 CLOCK = " time of day"       # the column joined to the date (data.roles.time: [date, time]); no
 # contract name has a space
@@ -127,11 +128,19 @@ def time_type(kind: str, value: str) -> pa.DataType:
     return pa.timestamp("ns", tz="UTC" if zoned else None)
 
 
+def comma_fraction(value: str, kind: str) -> bool:
+    """An ISO 8601 timestamp (``kind``) with its second's fraction after a comma, as ISO 8601
+    allows and a European logger writes (``13:05:00,500``), which Arrow's parser refuses."""
+    return kind == "iso8601" and re.search(COMMA_FRACTION, value) is not None
+
+
 def parsed(values, target: pa.DataType, kind: str):
     """``values`` (text) as ``target``; raises ``pa.ArrowInvalid`` on a cell that is not."""
     if is_format(kind) and pa.types.is_timestamp(target):
         stamps = pc.strptime(values, format=kind, unit="ns", error_is_null=False)
         return stamps if target.tz is None else pc.cast(stamps, target)
+    if kind == "iso8601":    # ISO 8601's decimal comma, a European logger's 13:05:00,500
+        values = pc.replace_substring_regex(values, COMMA_FRACTION, r"\1.\2")
     return pc.cast(values, target)
 
 
