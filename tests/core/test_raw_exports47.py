@@ -113,21 +113,25 @@ def test_a_degree_sign_typed_as_the_ordinal_or_the_ring_is_the_degree(tmp_path, 
     np.testing.assert_allclose(frame[["T_T1", "T_T2"]], np.c_[t1, t2], atol=1e-3)
 
 
-def test_an_iso_timestamp_with_a_decimal_comma_reads_in_a_file_and_a_stream(tmp_path):
+@pytest.mark.parametrize("written", ["%Y-%m-%d %H:%M:%S,%f", "%d.%m.%Y %H:%M:%S,%f"])
+def test_a_timestamp_with_a_seconds_fraction_after_a_comma_reads_in_a_file_and_a_stream(
+        tmp_path, written):
     # '2026-03-29 00:59:59,500' (ISO 8601 allows the comma; a European logger writes it) was
-    # refused "is not an ISO 8601 timestamp without zone offset (like the first row ...)"
+    # refused "is not an ISO 8601 timestamp without zone offset (like the first row ...)", and
+    # a day-first '29.03.2026 00:59:59,500' too, also with data.time='%d.%m.%Y %H:%M:%S,%f'
     t, t1, t2, e = _record()
     stamps = pd.Timestamp("2026-03-29 00:59:59.5") + pd.to_timedelta(t + 0.25, unit="s")
-    cells = [s.strftime("%Y-%m-%d %H:%M:%S,%f")[:-3] for s in stamps]
-    rows = [f"{c};{a:.6g};{b:.6g}".replace(".", ",") for c, a, b in zip(cells, t1, e)]
+    cells = [s.strftime(written)[:-3] for s in stamps]
+    rows = [f"{c};" + f"{a:.6g};{b:.6g}".replace(".", ",") for c, a, b in zip(cells, t1, e)]
     path = tmp_path / "logger.csv"
     path.write_text("\n".join(["Zeitstempel;T1 [°C];dX [µm]", *rows]) + "\n", encoding="utf-8")
-    frame = _read(path, roles={"error": ["dX"]})
-    np.testing.assert_allclose(frame["time"], t, atol=1e-9)
-    np.testing.assert_allclose(frame[["T_T1", "E_dX"]], np.c_[t1, e], atol=1e-3)
-    np.testing.assert_allclose(stream_seconds(pd.Series(cells), "auto"), t, atol=1e-9)
+    for time in ("auto", written):
+        frame = _read(path, roles={"error": ["dX"]}, time=time)
+        np.testing.assert_allclose(frame["time"], t, atol=1e-9)
+        np.testing.assert_allclose(frame[["T_T1", "E_dX"]], np.c_[t1, e], atol=1e-3)
+        np.testing.assert_allclose(stream_seconds(pd.Series(cells), time), t, atol=1e-9)
     path.write_text(path.read_text(encoding="utf-8").replace(cells[20], "2026-03-29 nachts"),
                     encoding="utf-8")
     with pytest.raises(ContractError, match="line 22 \\(data row 21\\).*'2026-03-29 nachts' is "
-                                            "not an ISO 8601 timestamp"):
+                                            "not an? (ISO 8601 timestamp|time in data.time)"):
         _read(path, roles={"error": ["dX"]})

@@ -138,11 +138,12 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
         return pd.Series(ns / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
         return time
-    text = time.astype(str).where(time.notna())
-    if kind == "iso8601":    # ISO 8601's decimal comma (13:05:00,500), as a file's is read
-        text = text.str.replace(COMMA_FRACTION, r"\1.\2", regex=True)
-    stamps = pd.to_datetime(text, utc=True, errors="coerce",
-                            format="ISO8601" if kind == "iso8601" else kind)
+    # a second's fraction after a comma (13:05:00,500) or in a format: read as a file's is
+    text = time.astype(str).where(time.notna()).str.replace(COMMA_FRACTION, r"\1.\2", regex=True)
+    fmt = "ISO8601" if kind == "iso8601" else re.sub(r"[.,]%f", "", kind)
+    if fmt != "ISO8601" and text.str.contains(r"\d:\d\d:\d\d\.\d", regex=True).any():
+        fmt = fmt.replace("%S", "%S.%f")
+    stamps = pd.to_datetime(text, utc=True, errors="coerce", format=fmt)
     bad = stamps.isna() & time.notna()
     if bad.any() or pd.isna(stamps.iloc[0]):
         row = int(np.flatnonzero(bad)[0]) + 1 if bad.any() else 1

@@ -30,7 +30,6 @@ from .timestamps import (
     CLOCK,
     DATE,
     TIME_OF_DAY,
-    comma_fraction,
     described,
     elapsed_seconds,
     is_format,
@@ -39,6 +38,7 @@ from .timestamps import (
     said_if_not_seconds,
     time_kind,
     time_type,
+    unread_fraction,
 )
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
@@ -160,8 +160,8 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
             types[TIME] = pa.string()
         else:
             opts = _timed(path, first, opts, header[names.index(TIME)])
-            # (ISO 8601's decimal comma, 13:05:00,500: read as text, parsed here)
-            types[TIME] = pa.string() if comma_fraction(first, opts.time) else time_type(
+            # (a second's fraction Arrow does not read, 13:05:00,500: read as text, parsed here)
+            types[TIME] = pa.string() if unread_fraction(first, opts.time) else time_type(
                 opts.time, first)
     # a column without a header (Excel's trailing separator) is left out if it holds nothing
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
@@ -177,7 +177,8 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
     try:
         if CLOCK in columns:
             columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
-        elif TIME in types and pa.types.is_string(types[TIME]) and opts.time == "iso8601":
+        elif TIME in types and pa.types.is_string(types[TIME]) and (
+                opts.time == "iso8601" or is_format(opts.time)):
             columns[TIME] = _stamps(columns[TIME], path, opts)
         elif TIME in types and pa.types.is_string(types[TIME]):
             columns[TIME] = elapsed_seconds(columns[TIME], opts.time, path,
