@@ -224,14 +224,16 @@ def declared_columns(cfg: DictConfig, ds) -> tuple[list, list]:
                            None if targets is None else list(targets))
 
 
-def check_declared(cfg: DictConfig, ds) -> None:
+def check_declared(cfg: DictConfig, ds, model: bool = True) -> None:
     """Every campaign of ``ds`` holds every column ``data.inputs``/``data.targets`` declare
-    (before anything is fitted): the error names the odd campaign's file."""
+    (before anything is fitted): the error names the odd campaign's file; ``model``: and the
+    columns the model's config reads (``init`` has none)."""
     from ..core.frame import check_common_columns
 
     inputs, targets = declared_columns(cfg, ds)
     check_common_columns(ds.campaigns, inputs + targets, {cid: ds.file_path(cid) for cid in ds.ids()})
-    check_model_columns(cfg, ds)
+    if model:
+        check_model_columns(cfg, ds)
 
 
 # model keys that name one column of the data (ARX+RF's machine state, S_door by default)

@@ -20,7 +20,7 @@ from .layout import header_line
 from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS
 from .record import check_record_file
-from .roles import STATE_UNITS, TIME_HEADERS, UNITS, date_and_time_of_day, split_unit
+from .roles import STATE_UNITS, UNITS, date_and_time_of_day, named_as_time, split_unit
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
@@ -102,7 +102,7 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
                 not unit or unit in UNITS["T"]):
             roles["ambient"].append(pattern)
         elif not (reads_as_number(first.get(h), opts.decimal) or looks_like_timestamp(first.get(h))
-                  or base.lower() in TIME_HEADERS):      # (the reader reads 'Dauer' 25:30:00)
+                  or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return roles
 

@@ -62,6 +62,28 @@ def detect(path: Path) -> str:
     return UTF8
 
 
+# a byte-order mark of a text written two or four bytes a character (UTF-32's before UTF-16's:
+# UTF-32-LE's begins with UTF-16-LE's)
+_WIDE_BOMS = ((codecs.BOM_UTF32_LE, "UTF-32"), (codecs.BOM_UTF32_BE, "UTF-32"),
+              (codecs.BOM_UTF16_LE, "UTF-16"), (codecs.BOM_UTF16_BE, "UTF-16"))
+
+
+def check_text(head: bytes, encoding: str, path: Path | str) -> None:
+    """Refuse a file (its first bytes ``head``; a ``str`` path: a stream) that
+    ``data.encoding`` cannot read as the text of its lines: UTF-16 or UTF-32 (Excel's 'Unicode
+    Text' export, which writes a byte-order mark), or UTF-8 read with another encoding
+    (:func:`check_not_utf8`)."""
+    wide = next((name for bom, name in _WIDE_BOMS if head.startswith(bom)), None)
+    if wide is not None:
+        convert = (f"iconv -f {wide} -t UTF-8 {path.name} > {path.stem}-utf8.csv"
+                   if isinstance(path, Path) else f"pipe it through iconv -f {wide} -t UTF-8")
+        raise ContractError(f"{'file' if isinstance(path, Path) else 'stream'} is {wide} text "
+                            "(Excel's 'Unicode Text' export?), which no data.encoding reads: "
+                            f"save it as 'CSV UTF-8', or convert it ({convert})", file=path)
+    if isinstance(path, Path):
+        check_not_utf8(head, encoding, path)
+
+
 def check_not_utf8(head: bytes, encoding: str, path: Path) -> None:
     """Refuse a UTF-8 file (its first bytes ``head``, holding more than ASCII) read with another
     ``data.encoding``: ``°C`` would be read ``Â°C`` (a folder of a Windows export and a file

@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
-from .encoding import UTF8, check_not_utf8, fields, text_codec, undecodable
+from .encoding import UTF8, check_text, fields, text_codec, undecodable
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
 
 CAMPAIGN_SUFFIXES = (".csv", ".parquet")
@@ -133,7 +133,7 @@ def _text(path: Path, delimiter: str, encoding: str) -> str:
     """The whole (small) file as text; bytes ``data.encoding`` does not read are refused where
     they are."""
     data = path.read_bytes()
-    check_not_utf8(data, encoding, path)
+    check_text(data, encoding, path)
     try:
         return data.decode(text_codec(encoding))
     except UnicodeDecodeError:

@@ -99,7 +99,7 @@ class ReadOptions:
             max_duration_days=_positive_float(cfg, "max_duration_days", 366.0, nullable=True),
             max_resample_factor=_positive_float(cfg, "max_resample_factor", 10.0),
             max_step_ratio=_positive_float(cfg, "max_step_ratio", 5.0, nullable=True),
-            delimiter=_text(cfg, "delimiter", AUTO),
+            delimiter=_delimiter(cfg),
             decimal=_text(cfg, "decimal", AUTO),
             thousands=None if cfg.get("thousands") is None else str(cfg.get("thousands")),
             encoding=codec(_text(cfg, "encoding", UTF8)),
@@ -138,7 +138,8 @@ class ReadOptions:
             raise ContractError(f"data.thousands must be one character other than the decimal "
                                 "mark, not a digit, letter, sign or plain space (',', '.', \"'\", "
                                 f"a no-break space or null), got {self.thousands!r}")
-        if self.decimal == self.delimiter != AUTO:
+        # (',' and ',': a comma-separated file quoting its decimal-comma cells, "0,38", reads)
+        if self.decimal == self.delimiter != AUTO and self.delimiter != ",":
             raise ContractError(f"data.decimal={self.decimal!r} is the field separator too "
                                 "(data.delimiter): a lab writing decimal commas separates with ';'")
         if self.kelvin_threshold_c <= 0.0:    # every reading above it is refused as kelvin
@@ -150,6 +151,13 @@ def _text(cfg: Mapping, key: str, default: str) -> str:
     """``cfg[key]`` as text, ``default`` when missing or null (an empty text stays, refused)."""
     value = cfg.get(key)
     return default if value is None else str(value)
+
+
+def _delimiter(cfg: Mapping) -> str:
+    """``data.delimiter``; a tab also as the shell types it (``data.delimiter='\\t'`` reaches here
+    as a backslash and a ``t``: no command line passes a tab character) or as ``tab``."""
+    value = _text(cfg, "delimiter", AUTO)
+    return "\t" if value in ("\\t", "tab", "TAB") else value
 
 
 def _timezone(cfg: Mapping) -> str | None:

@@ -42,9 +42,12 @@ PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
 UNITS = {
     "E": {**dict.fromkeys(("µm", "μm", "um", "micron", "microns"), (1.0, 0.0)), "mm": (1e3, 0.0),
           "m": (1e6, 0.0), "nm": (1e-3, 0.0)},
-    "T": {**dict.fromkeys(("°c", "c", "degc", "℃", "celsius", "deg.c"), (1.0, 0.0)),
+    # (the degree sign as a lab's keyboard gives it: º, U+00BA on a Spanish or Italian one, and
+    # ˚, U+02DA, look like ° in a header and in the message refusing them)
+    "T": {**dict.fromkeys(("°c", "ºc", "˚c", "c", "degc", "℃", "celsius", "deg.c"), (1.0, 0.0)),
           **dict.fromkeys(("k", "kelvin"), (1.0, -273.15)),
-          **dict.fromkeys(("°f", "f", "degf", "℉", "fahrenheit"), (5 / 9, -32 * 5 / 9))},
+          **dict.fromkeys(("°f", "ºf", "˚f", "f", "degf", "℉", "fahrenheit"),
+                          (5 / 9, -32 * 5 / 9))},
     "time": {**dict.fromkeys(("s", "sec", "secs", "seconds"), (1.0, 0.0)), "ms": (1e-3, 0.0),
              "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0)),
              **dict.fromkeys(("d", "day", "days"), (86400.0, 0.0))},     # (Excel's serial days)
@@ -103,6 +106,15 @@ def _bare_unit(header: str) -> tuple[str, str] | None:
                 or base.lower() in TIME_HEADERS and known in UNITS["time"]):
             return base, unit
     return None
+
+
+def named_as_time(header: str) -> bool:
+    """A header naming the time (:data:`TIME_HEADERS`) without another quantity's unit: ``T
+    [°C]`` is a temperature, not the time (``Zeit [hh:mm:ss]``, ``timestamp (UTC)`` are times)."""
+    base, unit = split_unit(header)
+    other = unit is not None and unit.lower().replace(" ", "") not in UNITS["time"] and (
+        any(unit.lower() in UNITS[k] for k in ("E", "T")) or unit.lower() in STATE_UNITS)
+    return base.lower() in TIME_HEADERS and not other
 
 
 def _letter_unit(header: str, cell, decimal: str) -> tuple[str, str] | None:
@@ -248,7 +260,7 @@ def _time_header(headers, roles, columns, first, problems) -> list[str]:
         return found if None not in found else []
     free = [h for h in headers if h not in columns and not _hits(h, roles)]
     pair = date_and_time_of_day(free, first)
-    named = [h for h in free if split_unit(h)[0].lower() in TIME_HEADERS and h not in pair]
+    named = [h for h in free if named_as_time(h) and h not in pair]
     if pair and not named:
         return pair
     if len(named) > 1:

@@ -9,7 +9,7 @@ from pathlib import Path
 
 from .contract import ContractError
 from .csvline import SPLIT, split_line
-from .encoding import UTF8, check_not_utf8, text_codec
+from .encoding import UTF8, check_text, text_codec
 from .layout import header_line
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions
 
@@ -46,7 +46,7 @@ def head_lines(path: Path, encoding: str = UTF8) -> list[str]:
     """The first lines of a file (its first 64 KiB; undecodable bytes replaced)."""
     with open(path, "rb") as f:
         head = f.read(_SNIFF_BYTES)
-    check_not_utf8(head, encoding, path)
+    check_text(head, encoding, path)
     return head.decode(text_codec(encoding), "replace").splitlines()
 
 

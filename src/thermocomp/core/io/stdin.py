@@ -16,12 +16,12 @@ import pyarrow as pa
 from ..context import TIME
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
-from .encoding import UTF8, text_codec
+from .encoding import UTF8, check_text, text_codec
 from .layout import header_line, is_unit_row, with_units
 from .roles import active, naming, same_header
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
-from .timestamps import CLOCK, ELAPSED, elapsed_seconds, on_local_clock, time_kind, time_type
+from .timestamps import CLOCK, COMMA_FRACTION, ELAPSED, elapsed_seconds, on_local_clock, time_kind, time_type
 
 SOURCE = "<stdin>"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
@@ -34,6 +34,7 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
     if raw is None:                   # already text (a caller's StringIO)
         return stream.read()
     data = raw.read()
+    check_text(data[:4], encoding, SOURCE)
     try:
         return data.decode(text_codec(encoding))
     except UnicodeDecodeError as exc:
@@ -137,8 +138,12 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
         return pd.Series(ns / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
         return time
-    stamps = pd.to_datetime(time.astype(str).where(time.notna()), utc=True, errors="coerce",
-                            format="ISO8601" if kind == "iso8601" else kind)
+    # a second's fraction after a comma (13:05:00,500) or in a format: read as a file's is
+    text = time.astype(str).where(time.notna()).str.replace(COMMA_FRACTION, r"\1.\2", regex=True)
+    fmt = "ISO8601" if kind == "iso8601" else re.sub(r"[.,]%f", "", kind)
+    if fmt != "ISO8601" and text.str.contains(r"\d:\d\d:\d\d\.\d", regex=True).any():
+        fmt = fmt.replace("%S", "%S.%f")
+    stamps = pd.to_datetime(text, utc=True, errors="coerce", format=fmt)
     bad = stamps.isna() & time.notna()
     if bad.any() or pd.isna(stamps.iloc[0]):
         row = int(np.flatnonzero(bad)[0]) + 1 if bad.any() else 1

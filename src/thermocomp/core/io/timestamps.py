@@ -20,11 +20,13 @@ from .contract import TIME, ContractError
 
 # a first cell that is a date and a time of day (the time column when no header says so)
 _STAMP = re.compile(r"\s*\d{1,4}[-./]\d{1,2}[-./]\d{2,4}[T ]\d\d?:\d\d")
-_DAY_FIRST = re.compile(r"\s*\d{1,2}\.\d{1,2}\.\d{4}[ T]\d{1,2}:\d\d(:\d\d)?\s*")
+_DAY_FIRST = re.compile(r"\s*\d{1,2}\.\d{1,2}\.\d{4}[ T]\d{1,2}:\d\d(:\d\d([.,]\d+)?)?\s*")
 _SLASHED = re.compile(r"\s*\d{1,2}/\d{1,2}/\d{2,4}\b")
 DATE = re.compile(r"\s*(\d{1,2}\.\d{1,2}\.\d{4}|\d{4}-\d\d-\d\d|\d{1,2}/\d{1,2}/\d{2,4})\s*")
 TIME_OF_DAY = re.compile(r"\s*\d{1,2}:\d\d(:\d\d([.,]\d+)?)?\s*")
 _ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
+COMMA_FRACTION = r"(\d:\d\d:\d\d),(\d)"     # a second's fraction after a comma
+FRACTION = r"\d:\d\d:\d\d[.,](?P<f>\d{1,9})"   # a second's fraction
 EXAMPLE = "'%d/%m/%Y %H:%M:%S'"
 CLOCK = " time of day"       # the column joined to the date (data.roles.time: [date, time]); no
 # contract name has a space
@@ -127,11 +129,33 @@ def time_type(kind: str, value: str) -> pa.DataType:
     return pa.timestamp("ns", tz="UTC" if zoned else None)
 
 
+def _strptime(values, kind: str):
+    """``values`` read with the strptime format ``kind``, a second's fraction after the
+    seconds (``29.03.2026 00:59:59,500``; ``,%f`` or ``.%f`` in ``kind`` says it, or nothing)
+    added to them: Arrow's strptime reads none."""
+    fraction = pc.struct_field(pc.extract_regex(values, FRACTION), "f")
+    whole = pc.replace_substring_regex(values, r"(\d:\d\d:\d\d)[.,]\d{1,9}", r"\1")
+    stamps = pc.strptime(whole, format=re.sub(r"[.,]%f", "", kind), unit="ns",
+                         error_is_null=False)
+    ns = pc.fill_null(pc.cast(pc.utf8_rpad(fraction, 9, "0"), pa.int64()), 0)
+    return pc.add(stamps, pc.cast(ns, pa.duration("ns")))
+
+
+def unread_fraction(value: str, kind: str) -> bool:
+    """A timestamp whose second's fraction Arrow's CSV reader does not read: after a comma in
+    ISO 8601 (``kind``), as it allows and a European logger writes (``13:05:00,500``), or in a
+    strptime format (``29.03.2026 00:59:59,500``)."""
+    return (kind == "iso8601" and re.search(COMMA_FRACTION, value) is not None
+            or is_format(kind) and re.search(FRACTION, value) is not None)
+
+
 def parsed(values, target: pa.DataType, kind: str):
     """``values`` (text) as ``target``; raises ``pa.ArrowInvalid`` on a cell that is not."""
     if is_format(kind) and pa.types.is_timestamp(target):
-        stamps = pc.strptime(values, format=kind, unit="ns", error_is_null=False)
+        stamps = _strptime(values, kind)
         return stamps if target.tz is None else pc.cast(stamps, target)
+    if kind == "iso8601":    # ISO 8601's decimal comma, a European logger's 13:05:00,500
+        values = pc.replace_substring_regex(values, COMMA_FRACTION, r"\1.\2")
     return pc.cast(values, target)
 
 

@@ -26,7 +26,7 @@ from ...core.io.detect import (
 )
 from ...core.io.roles import naming
 from ..config.checks import check_config, data_options
-from ..source import open_source
+from ..source import check_declared, open_source
 
 
 def init(cfg: DictConfig) -> dict:
@@ -46,6 +46,7 @@ def init(cfg: DictConfig) -> dict:
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     config = data_config(src, given, opts, roles, defaults, manifest)
     ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
+    check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
     report = ds.meta["read_report"]
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
