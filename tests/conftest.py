@@ -322,6 +322,22 @@ def short_door_dataset(tmp_path_factory) -> Path:
     return _simulate(tmp_path_factory, "door", *SHORT, "sim.generator.effects=[door]")
 
 
+def set_keys(path: Path, **values) -> None:
+    """Set ``key: value`` on the first line of the YAML file ``path`` that holds ``key:`` (its
+    indent and any other line kept): a scratch copy's config made smaller, as a user edits it."""
+    text = path.read_text()
+    for key, value in values.items():
+        old = next(line for line in text.splitlines() if line.strip().startswith(f"{key}:"))
+        indent = old[:len(old) - len(old.lstrip())]
+        text = text.replace(old, f"{indent}{key}: {value}")
+    path.write_text(text)
+
+
+# SHORT as keys of conf/sim/<scenario>.yaml's generator, for a scratch copy of the project whose
+# pipeline simulates the default study: a test of which stages DVC runs and what it shows.
+SHORT_KEYS = dict(o.removeprefix("sim.generator.").split("=") for o in SHORT)
+
+
 def dvc(*args: str, cwd, env) -> subprocess.CompletedProcess:
     """The venv's ``dvc <args>`` in ``cwd``; it must succeed."""
     proc = subprocess.run([str(Path(sys.executable).parent / "dvc"), *args], cwd=cwd, env=env,

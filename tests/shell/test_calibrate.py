@@ -348,8 +348,8 @@ def test_the_residual_scatter_is_checked_against_the_declared_uncertainties(raw,
     lo, hi = fit["accepted"]
     assert lo == pytest.approx(0.5, abs=0.05) and hi == 2.0      # the factor 2 decides here
     data = copy(raw, tmp_path, truth=False)
-    for cid in ("train_week", "validation_week"):
-        edit(data, cid, lambda df: df.update(df.filter(like="E_S") / 1e3))
+    for cid in ("train_week", "validation_week"):   # (not df.update: 1.5 s on 1483 columns)
+        edit(data, cid, lambda df: df.__setitem__(cols := list(df.filter(like="E_S")), df[cols] / 1e3))
     capsys.readouterr()
     fit = calibrate(data, tmp_path / "mm")["fit"]
     assert not fit["consistent"] and fit["rms_ratio"] < 0.01

@@ -18,15 +18,16 @@ FAST = [*UNTRACKED, *LIGHT]   # validation kept
 
 
 @pytest.fixture(scope="session")
-def interim(default_dataset, tmp_path_factory):
-    """The default dataset, ingested once for this module."""
+def interim(short_dataset, tmp_path_factory):
+    """The short dataset (EMD costs with the length of the records), ingested once for this
+    module."""
     path = tmp_path_factory.mktemp("ingested") / "interim"
-    thermocomp("ingest", f"data.path={default_dataset}", f"data.interim={path}", "track=false")
+    thermocomp("ingest", f"data.path={short_dataset}", f"data.interim={path}", "track=false")
     return path
 
 
-def _common(default_dataset, interim, tmp_path):
-    return [f"data.path={default_dataset}", f"data.interim={interim}",
+def _common(short_dataset, interim, tmp_path):
+    return [f"data.path={short_dataset}", f"data.interim={interim}",
             f"data.processed={tmp_path / 'processed'}", f"model_path={tmp_path / 'm/model.pkl'}",
             f"out={tmp_path / 'rep'}", *FAST]
 
@@ -36,8 +37,8 @@ def _load(path):
         return pickle.load(f)
 
 
-def test_staged_chain_and_run_give_the_same_model(default_dataset, interim, tmp_path):
-    common = [*_common(default_dataset, interim, tmp_path), "denoise=emd", "select=pearson",
+def test_staged_chain_and_run_give_the_same_model(short_dataset, interim, tmp_path):
+    common = [*_common(short_dataset, interim, tmp_path), "denoise=emd", "select=pearson",
               "model=pcr"]
     for stage in ("denoise", "select"):       # plots=none draws nothing, in every stage
         thermocomp(stage, *common)
@@ -68,7 +69,7 @@ def test_staged_chain_and_run_give_the_same_model(default_dataset, interim, tmp_
     np.testing.assert_array_equal(staged.denoiser_.fir_, direct.denoiser_.fir_)
     m_staged = json.loads((tmp_path / "rep/metrics.json").read_text())
     m_run = json.loads((tmp_path / "run/metrics.json").read_text())
-    assert m_staged["dataset"] == m_run["dataset"] == default_dataset.name  # not the interim's
+    assert m_staged["dataset"] == m_run["dataset"] == short_dataset.name  # not the interim's
     for t in staged.targets_:
         assert m_staged["targets"][t]["test"]["rsd_mean"] == m_run["targets"][t]["test"]["rsd_mean"]
         assert m_run["targets"][t]["test"]["rms_after"] < 0.5 * m_run["targets"][t]["test"]["rms_before"]
@@ -81,8 +82,8 @@ def test_staged_chain_and_run_give_the_same_model(default_dataset, interim, tmp_
     assert any(len(v) != 2 for v in fresh.selected_.values())
 
 
-def test_select_stage_without_denoise_stage_and_bad_config(default_dataset, interim, tmp_path):
-    common = _common(default_dataset, interim, tmp_path)
+def test_select_stage_without_denoise_stage_and_bad_config(short_dataset, interim, tmp_path):
+    common = _common(short_dataset, interim, tmp_path)
     thermocomp("select", *common, "select=cluster_grey", "denoise=emd")
     sel = json.loads((tmp_path / "m/selection.json").read_text())
     for entry in sel["targets"].values():

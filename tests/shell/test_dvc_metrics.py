@@ -12,7 +12,7 @@ import subprocess
 import pandas as pd
 import pytest
 
-from conftest import copy_project, dvc, thermocomp
+from conftest import SHORT_KEYS, copy_project, dvc, set_keys, thermocomp
 from test_deploy import mlflow_store
 from thermocomp.core.figures.plotdata import write_compare
 
@@ -41,6 +41,8 @@ def _tracked(uri: str) -> list[tuple[str, str]]:
 @pytest.fixture(scope="session")
 def repro(tmp_path_factory):
     dest, env = copy_project(tmp_path_factory.mktemp("dvcm") / "proj")
+    # the default study shortened (SHORT): what DVC runs and shows does not depend on its size
+    set_keys(dest / "conf/sim/yearround_spindle.yaml", **SHORT_KEYS)
     # One stage tracked by default shows the study tracks under `dvc repro`; tracking every stage
     # costs ~3 s of MLflow start-up per process and is not what the rest of the module checks,
     # nor are diagnose's figures (tested where they are drawn; evaluate's are DVC plots here).

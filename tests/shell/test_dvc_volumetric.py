@@ -8,11 +8,10 @@ depend on them: test_design) or the creation of the MLflow store (Alembic migrat
 CPU: test_tracking, test_hostile_procs), which starts here as a copy of a migrated one."""
 
 import json
-from pathlib import Path
 
 import pytest
 
-from conftest import copy_project, dvc
+from conftest import copy_project, dvc, set_keys
 from test_deploy import mlflow_store
 
 pytestmark = pytest.mark.slow
@@ -20,20 +19,11 @@ STAGES = ("simulate", "calibrate", "run", "design")
 PIPELINE = "pipelines/volumetric/dvc.yaml"
 
 
-def _shrink(path: Path, **values) -> None:
-    text = path.read_text()
-    for key, value in values.items():
-        old = next(line for line in text.splitlines() if line.strip().startswith(f"{key}:"))
-        indent = old[:len(old) - len(old.lstrip())]
-        text = text.replace(old, f"{indent}{key}: {value}")
-    path.write_text(text)
-
-
 def test_the_volumetric_pipeline_runs_its_four_stages_then_nothing(tmp_path):
     dest, env = copy_project(tmp_path / "proj")
-    _shrink(dest / "conf/sim/large_mill_volumetric.yaml", train_hours=30.0, test_hours=20.0)
-    _shrink(dest / "conf/design/default.yaml", n_machines=4, grid="[6, 4, 4]", n_jobs=1)
-    _shrink(dest / "conf/common.yaml", plots="none")
+    set_keys(dest / "conf/sim/large_mill_volumetric.yaml", train_hours=30.0, test_hours=20.0)
+    set_keys(dest / "conf/design/default.yaml", n_machines=4, grid="[6, 4, 4]", n_jobs=1)
+    set_keys(dest / "conf/common.yaml", plots="none")
     mlflow_store(dest)                                  # the default store, sqlite:///mlruns/mlflow.db
     proc = dvc("repro", PIPELINE, cwd=dest, env=env)
     log = proc.stdout + proc.stderr

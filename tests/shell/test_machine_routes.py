@@ -51,6 +51,8 @@ def twin_and_connect(data: Path, tmp: Path, *connect_args: str) -> tuple[dict, d
     """The twin in a subprocess, the client in this one; ``(twin.json, connect.json)``, the
     first read as soon as the client ends (before the twin's process has)."""
     port = free_port()
+    # connect.give_up_s=120: the twin's process imports the stack first, which took over
+    # 30 s of wall time on a loaded 2-core machine (connect gave up: exit 2, no defect)
     server = subprocess.Popen(
         [sys.executable, "-m", "thermocomp", "twin", f"data.path={data}", f"out={tmp / 'twin'}",
          f"twin.port={port}", f"twin.speed={SPEED}", "twin.lockstep=true", *FAST],
@@ -58,7 +60,7 @@ def twin_and_connect(data: Path, tmp: Path, *connect_args: str) -> tuple[dict, d
     try:
         code = main(["connect", f"data.path={data}", f"out={tmp / 'connect'}", *FAST,
                      f"connect.endpoint=opc.tcp://127.0.0.1:{port}", "connect.retry_s=0.2",
-                     "connect.give_up_s=30", *connect_args])
+                     "connect.give_up_s=120", *connect_args])
         twin_json = tmp / "twin" / "twin.json"
         there = twin_json.is_file()         # what a user reads right after connect
         _, err = server.communicate(timeout=120)

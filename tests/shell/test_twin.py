@@ -74,6 +74,8 @@ def replayed(data: Path, out: Path) -> dict:
 def twin_and_connect(data: Path, tmp: Path, *twin_args: str, connect_args=()) -> tuple[dict, dict]:
     """The twin in a subprocess, the client in this one; ``(twin.json, connect.json)``."""
     port = free_port()
+    # connect.give_up_s=120: the twin's process imports the stack first, which took over
+    # 30 s of wall time on a loaded 2-core machine (connect gave up: exit 2, no defect)
     server = subprocess.Popen(
         [sys.executable, "-m", "thermocomp", "twin", f"data.path={data}", f"out={tmp / 'twin'}",
          f"twin.port={port}", f"twin.speed={SPEED}", "twin.lockstep=true", *FAST, *twin_args],
@@ -81,7 +83,7 @@ def twin_and_connect(data: Path, tmp: Path, *twin_args: str, connect_args=()) ->
     try:
         code = main(["connect", f"data.path={data}", f"out={tmp / 'connect'}",
                      f"connect.endpoint=opc.tcp://127.0.0.1:{port}", "connect.retry_s=0.2",
-                     "connect.give_up_s=30", *FAST, *connect_args])
+                     "connect.give_up_s=120", *FAST, *connect_args])
         _, err = server.communicate(timeout=120)
     finally:
         if server.poll() is None:
