@@ -2,7 +2,7 @@
 
 Usage::
 
-    python benchmarks/bench_auto_rules.py DIR [--tuning NAME ...]
+    [RULES="kept in_range"] python benchmarks/bench_auto_rules.py DIR [--tuning NAME ...]
 
 ``DIR`` holds ``NAME.json`` and ``NAME.<target>.npz`` (every candidate's out-of-fold free-run
 predictions and its test predictions).  Each rule weighs the candidates from the out-of-fold
@@ -139,12 +139,14 @@ scheme's ``auto`` fit about as long as forward's.
 from __future__ import annotations
 
 import json
+import os
 import sys
 from pathlib import Path
 
 import numpy as np
 from scipy.optimize import nnls
 
+from thermocomp.core.models.auto import in_range_rows
 from thermocomp.core.models.blend import N_RESAMPLES, vote_weights
 
 WITHIN = 1.10    # "within 10 % of the best single family"
@@ -293,41 +295,68 @@ def select(P, y, fold, base, ib):
     return rules[int(np.argmin(scores))](P, y, fold, base, ib)
 
 
+def _on_rows(rule, **how):
+    """``rule`` scored on the out-of-fold rows where the fold does not extrapolate
+    (:func:`~thermocomp.core.models.auto.in_range_rows` with ``how``)."""
+    def on_rows(P, y, fold, base, ib, in_range):
+        m = in_range_rows(in_range, fold, **how)
+        return rule(P[m], y[m], fold[m], base[m], ib)
+    return on_rows
+
+
+# Rules that read each out-of-fold row's ``in_range`` flag (records saved since session 47).
+IN_RANGE_RULES = {"in_range": _on_rows(kept, thin="drop"), "in_range_all": _on_rows(kept, thin="all")}
+
 RULES = {"kept": kept, "geometric_doubt": geometric_doubt, "recent_folds": recent_folds,
-         "stacked": stacked, "top_k": top_k, "softmax": softmax, "select": select}
+         "stacked": stacked, "top_k": top_k, "softmax": softmax, "select": select, **IN_RANGE_RULES}
+
+
+def _chosen_rules() -> dict:
+    """``RULES``, or those ``$RULES`` names (space-separated)."""
+    names = os.environ.get("RULES", "").split()
+    return {r: RULES[r] for r in names} if names else RULES
 
 
 def score(directory: Path) -> dict:
     """``{record: {rule: mean test RMSE, 'mlr': ..., 'best_family': ...}}``."""
-    rows = {}
+    rules, rows = _chosen_rules(), {}
     for js in sorted(directory.glob("*.json")):
         report = json.loads(js.read_text())
-        res, family = {r: [] for r in [*RULES, "mlr"]}, {}
+        res, family, share = {r: [] for r in [*rules, "mlr"]}, {}, []
         for t, row in report["targets"].items():
             a = np.load(directory / f"{report['record']}.{t}.npz")
             cands = [c for c in row["validation"] if f"oof_{c}" in a.files]
             P = np.column_stack([a[f"oof_{c}"] for c in cands])
             T = np.column_stack([a[f"test_{c}"] for c in cands])
-            for r, rule in RULES.items():
-                w = rule(P, a["oof_y"], a["oof_fold"], a["oof_mlr"], cands.index("mlr"))
+            for r, rule in rules.items():
+                args = (P, a["oof_y"], a["oof_fold"], a["oof_mlr"], cands.index("mlr"))
+                if r in IN_RANGE_RULES:
+                    args = (*args, a["oof_in_range"]) if "oof_in_range" in a.files else None
+                w = rule(*args) if args is not None else np.full(len(cands), np.nan)
                 res[r].append(np.sqrt(np.mean((a["test_y"] - T @ w) ** 2)))
             res["mlr"].append(np.sqrt(np.mean((a["test_y"] - a["test_mlr"]) ** 2)))
             for i, c in enumerate(cands):
                 family.setdefault(c, []).append(np.sqrt(np.mean((a["test_y"] - T[:, i]) ** 2)))
+            if "oof_in_range" in a.files:
+                share.append([a["oof_in_range"][a["oof_fold"] == f].mean() for f in np.unique(a["oof_fold"])])
+        shares = np.mean(share, axis=0).round(2).tolist() if share else []
         means = {k: float(np.mean(v)) for k, v in res.items()}
         means["best_family"] = min(float(np.mean(v)) for v in family.values())
+        means["family"] = min(family, key=lambda c: np.mean(family[c]))
+        means["in_range_share"] = shares   # per fold, mean over the targets
         rows[report["record"]] = means
     return rows
 
 
 def main(directory: str, tuning: list[str]) -> None:
     rows = score(Path(directory))
-    keys = [*RULES, "mlr", "best_family"]
+    keys = [*_chosen_rules(), "mlr", "best_family"]
     print(f"{'record':10s} " + " ".join(f"{k[:15]:>15s}" for k in keys))
     for name, m in rows.items():
-        print(f"{name:10s} " + " ".join(f"{m[k]:15.4g}" for k in keys))
+        print(f"{name:10s} " + " ".join(f"{m[k]:15.4g}" for k in keys)
+              + f" {m['family']:>12s}  in range per fold {m['in_range_share']}")
     groups = {"tuning": [n for n in rows if n in tuning], "other": [n for n in rows if n not in tuning]}
-    for rule in RULES:
+    for rule in _chosen_rules():
         parts = []
         for group, names in groups.items():
             if names:
