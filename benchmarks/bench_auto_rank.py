@@ -17,7 +17,8 @@ RMSE, the Spearman correlation of the two rankings, and the test RMSE of
 
 against MLR and the best single family (known only after the fact: the test split is read
 here, never by the choice).  ``$OUT`` (default ``/tmp/bench_auto_rank``) gets NAME.json
-and NAME.<target>.npz (``bench_auto_rules.py`` scores other weight rules from them).
+and NAME.<target>.npz (``bench_auto_rules.py`` scores other weight rules from them; since
+session 47 with ``oof_in_range``, each out-of-fold row where its fold does not extrapolate).
 
 Fresh records, run once (session 42, seeds 737/848, nothing tuned on them), mean test RMSE over
 the targets (µm), ``best`` (one family by validation) -> auto (``combine=vote``); MLR; best

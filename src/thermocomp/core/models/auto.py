@@ -84,14 +84,21 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         (:class:`~thermocomp.core.model_selection.LeaveBlockOut`: interpolation, as a separate
         test campaign inside the record's range is); ``late_blocks``: those blocks over its last
         ``1 - min_train_fraction`` only.
+    validation_rows : {'all', 'in_range'}, default 'all'
+        The out-of-fold rows ``combine='vote'`` scores: all, or only those where the fold does not
+        extrapolate (:func:`~thermocomp.core.model_selection.extrapolation.within_range` of its fit
+        rows, ``oof_in_range_``; :func:`in_range_rows`).  On 12 tuning and 10 fresh simulated
+        records it moved one record per group within 10 % of the best family and changed no
+        record's side against MLR; ``fl_thermal`` 90/10 went 2.483 -> 2.551 µm
+        (``benchmarks/bench_auto_rules.py``): not the default.
     max_seconds : float or None
         A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
     combine : {'vote', 'best'}, default 'vote'
     keep_oof : bool, default False
         Pickle the candidates' out-of-fold predictions with the model (``oof_``, ``oof_y_``,
-        ``oof_fold_``, ``oof_folds_``; 1.4 MB on ``fl_thermal``).  The fitted model holds them
-        either way: the run's validation scores the choice from them (:meth:`out_of_fold`).
+        ``oof_fold_``, ``oof_folds_``, ``oof_in_range_``; 1.4 MB on ``fl_thermal``).  The fitted
+        model holds them either way: the run's validation scores the choice from them (:meth:`out_of_fold`).
     min_gain_pct : float, default 1.0
         ``combine='best'``: MLR, when a candidate, is kept unless the best candidate's validation
         RMSE is lower
