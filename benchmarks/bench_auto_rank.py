@@ -17,7 +17,8 @@ RMSE, the Spearman correlation of the two rankings, and the test RMSE of
 
 against MLR and the best single family (known only after the fact: the test split is read
 here, never by the choice).  ``$OUT`` (default ``/tmp/bench_auto_rank``) gets NAME.json
-and NAME.<target>.npz (``bench_auto_rules.py`` scores other weight rules from them).
+and NAME.<target>.npz (``bench_auto_rules.py`` scores other weight rules from them; since
+session 47 with ``oof_in_range``, each out-of-fold row where its fold does not extrapolate).
 
 Fresh records, run once (session 42, seeds 737/848, nothing tuned on them), mean test RMSE over
 the targets (µm), ``best`` (one family by validation) -> auto (``combine=vote``); MLR; best
@@ -125,11 +126,13 @@ def main(name: str, overrides: list[str]) -> dict:
                "validation_s": est.fit_seconds_, "alternatives": alternatives}
         report["targets"][t] = row
         arrays[t] = {"oof_y": est.oof_y_, "oof_fold": est.oof_fold_, "test_y": meas[t],
+                     "oof_in_range": est.oof_in_range_,
                      **{f"oof_{n}": est.oof_[n] for n in est.oof_},
                      **{f"test_{n}": preds[n][t] for n in names}}
         print(f"{name} {t}: test " + " ".join(f"{n} {v:.3g}" for n, v in test.items()))
         print("  validation " + " ".join(f"{n} {v:.3g}" for n, v in val.items())
-              + f"; spearman {row['spearman']:+.2f}")
+              + f"; spearman {row['spearman']:+.2f}; in range per fold " + " ".join(
+                  f"{est.oof_in_range_[est.oof_fold_ == f].mean():.2f}" for f in np.unique(est.oof_fold_)))
         print(f"  best: {best} {test[best]:.3g} | auto {row['auto']['rmse']:.3g} ("
               + ", ".join(f"{n} {w:.2f}" for n, w in est.weights_.items())
               + f") | mlr {test[BASELINE]:.3g} | best single {row['best_single']:.3g} | "

@@ -20,13 +20,14 @@ from hydra import compose, initialize_config_dir
 from hydra.utils import instantiate
 
 from thermocomp.apps.diagnose import SearchOptions, diagnose
-from thermocomp.apps.diagnose.blocks import DECORRELATED, cut_blocks, decorrelation_length, within_range
+from thermocomp.apps.diagnose.blocks import DECORRELATED, cut_blocks, decorrelation_length
 from thermocomp.apps.diagnose.cv import CVResult, sign_flip_maxt, smallest_p
 from thermocomp.apps.diagnose.features import Effect
 from thermocomp.apps.diagnose.search import Evaluation, choose
 from thermocomp.base.paths import conf_dir
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.io.contract import Dataset
+from thermocomp.core.model_selection.extrapolation import within_range
 from thermocomp.core.models import MLR
 
 

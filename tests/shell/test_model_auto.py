@@ -141,6 +141,7 @@ def test_an_ati_candidate_applies_only_where_the_train_campaigns_span_ambient_le
     (["model.candidate_defaults={lagbank:{n_taus:-1}}"], "model.candidates.lagbank.n_taus=-1"),
     (["ati=cmeans"], "model=auto with ati=cmeans"),
     (["model.estimator.one_record=middle"], "one_record"),
+    (["model.estimator.validation_rows=some"], "validation_rows"),
 ])
 def test_a_bad_auto_config_is_refused_before_any_work(two_targets, tmp_path, capsys, overrides, says):
     data, _, _ = two_targets

@@ -32,7 +32,8 @@ within range when its leverage in the fold's training design (centred inputs)
 is at most the largest leverage of a training row -- inside the ellipsoid
 that holds the training data, the classical check for hidden extrapolation
 (Montgomery, Peck & Vining, *Introduction to Linear Regression Analysis*,
-3.8).  The bar asks a change's gain to hold on those rows too.
+3.8; :func:`~thermocomp.core.model_selection.extrapolation.within_range`, which
+``model=auto`` shares).  The bar asks a change's gain to hold on those rows too.
 """
 
 from __future__ import annotations
@@ -92,21 +93,4 @@ def cut_blocks(unit_index: np.ndarray, campaigns, length: int, timeline: bool = 
         for part in np.array_split(run, k):
             out[part] = n
             n += 1
-    return out
-
-
-def within_range(X: np.ndarray, train: np.ndarray, scored: np.ndarray) -> np.ndarray:
-    """Rows of ``scored`` whose leverage in the design of the ``train`` rows is at most the
-    largest leverage of a training row (the fold does not extrapolate there)."""
-    Z = X[train]
-    mean = Z.mean(axis=0)
-    U, s, Vt = np.linalg.svd(Z - mean, full_matrices=False)
-    keep = s > (s[0] * 1e-8 if s.size else 0.0)
-    if not keep.any():
-        return scored.copy()
-    W = Vt[keep].T / s[keep]                   # whitening: leverage = |(x - mean) W|^2
-    limit = float(np.max(np.sum((U[:, keep]) ** 2, axis=1)))
-    lev = np.sum(((X[scored] - mean) @ W) ** 2, axis=1)
-    out = np.zeros(len(X), bool)
-    out[np.flatnonzero(scored)] = lev <= limit * (1.0 + 1e-9)
     return out

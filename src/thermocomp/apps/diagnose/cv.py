@@ -43,9 +43,10 @@ from sklearn.base import clone
 
 from ...core.context import CAMPAIGN, Y_MEASURED, for_target
 from ...core.model_selection import ForwardChaining, LeaveCampaignsOut
+from ...core.model_selection.extrapolation import within_range
 from ...core.models.linear import MLR
 from ...core.select import AllInputs
-from .blocks import cut_blocks, within_range
+from .blocks import cut_blocks
 from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
 from .shrink import ALPHAS, PartialRidgePath
 
@@ -120,7 +121,7 @@ class Problem:
     @property
     def in_range(self) -> np.ndarray:
         """Scored rows where the fold that scores them does not extrapolate in the declared
-        inputs (:func:`.blocks.within_range`)."""
+        inputs (:func:`~thermocomp.core.model_selection.extrapolation.within_range`)."""
         if "_in_range" not in self.__dict__:
             X = self.X.to_numpy(float)
             out = np.zeros(len(self.y), bool)
