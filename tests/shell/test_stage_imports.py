@@ -56,6 +56,27 @@ def test_simulate_imports_no_scikit_learn(tmp_path):
     assert "scipy.signal" not in loaded      # its sensor lags: SciPy's linear algebra (~0.6 s less)
 
 
+def test_an_mlr_run_imports_no_other_familys_library(tmp_path):
+    """``thermocomp.core.models`` imports a family on first use: an MLR run (and ``init``, which
+    builds the configured MLR to check it) loads neither arx_rf's forest (``sklearn.ensemble``,
+    ~0.2 s of CPU) nor SciPy's ``signal`` (the dynamic families' filter), while the names of
+    the package (``from thermocomp.core.models import ARXRF``) and Hydra's targets resolve."""
+    data = make_dataset(tmp_path / "ds")
+    argv = ["run", f"data.path={data}", f"out={tmp_path / 'run'}", "model=mlr", *FAST]
+    loaded = _loaded("import contextlib, io\nfrom thermocomp.shell.cli import main\n"
+                     "with contextlib.redirect_stdout(io.StringIO()):\n"
+                     f"    assert main({argv!r}) == 0\n"
+                     f"    assert main(['init', '{data / 'K01.csv'}', 'out={tmp_path / 'init'}']) == 0")
+    assert (tmp_path / "run" / "metrics.json").is_file() and (tmp_path / "init" / "conf").is_dir()
+    assert "sklearn.linear_model" in loaded           # it did fit the MLR
+    assert not {"sklearn.ensemble", "scipy.signal", "thermocomp.core.models.arx_rf",
+                "thermocomp.core.models.arx", "thermocomp.core.models.lstm"} & loaded
+    loaded = _loaded("from hydra.utils import get_class\nfrom thermocomp.core.models import ARXRF\n"
+                     "assert get_class('thermocomp.core.models.ARX').__name__ == 'ARX'\n"
+                     "import thermocomp.core.models as m\nassert {'MLR', 'LSTM'} <= set(dir(m))")
+    assert {"sklearn.ensemble", "thermocomp.core.models.arx"} <= loaded
+
+
 def test_a_sweep_parent_imports_no_model_library():
     """The task a launcher hands its jobs (joblib, Ray, SLURM: other processes) imports the
     stage when a job calls it, not when the parent makes it."""

@@ -9,18 +9,22 @@ prediction (``eval.mode=one_step``).  Without it they run in simulation
 (free-run) mode, as on a machine.
 """
 
-from .arx import ARX
-from .arx_rf import ARXRF
-from .hammerstein import Hammerstein
-from .lagbank import LagBank
-from .linear import MLR
-from .pcr import PCR
+from importlib import import_module
 
-__all__ = ["MLR", "PCR", "ARX", "ARXRF", "LagBank", "Hammerstein", "LSTM"]
+# family -> its module, imported on first use: a process pays only for the families it builds
+# (arx_rf's forest loads sklearn.ensemble, arx SciPy's signal, lstm torch: seconds an MLR run
+# does not need).  ``from thermocomp.core.models import ARX`` and Hydra's targets work as before.
+_FAMILIES = {"MLR": "linear", "PCR": "pcr", "ARX": "arx", "ARXRF": "arx_rf", "LagBank": "lagbank",
+             "Hammerstein": "hammerstein", "LSTM": "lstm"}
+
+__all__ = list(_FAMILIES)
 
 
-def __getattr__(name):  # LSTM lazily: importing torch costs seconds the other models don't need
-    if name == "LSTM":
-        from .lstm import LSTM
-        return LSTM
+def __getattr__(name):
+    if name in _FAMILIES:
+        return getattr(import_module(f".{_FAMILIES[name]}", __name__), name)
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted({*globals(), *_FAMILIES})
