@@ -1,6 +1,7 @@
-"""The cost of a compose (issue 35 item 7): Hydra deep-copies its whole ConfigStore at each
-compose, so the store holds the root config of the command being composed and no other; and it
-reads every config file again, so a file of the project's conf/ is parsed once per text."""
+"""The cost of a compose (issue 35 item 7, compose47): Hydra deep-copied its whole ConfigStore at
+each compose, so the store holds the root config of the command being composed and no other, and
+the copy shares it; it reads every config file again, so a file of the project's conf/ is parsed
+once per text; a command reads its overrides three times, so each is parsed once per text."""
 
 from __future__ import annotations
 
@@ -78,3 +79,52 @@ def test_a_file_of_conf_is_parsed_once_per_text_and_an_edit_is_seen(tmp_path, mo
     for sample_period in (15, 30):
         lab.write_text(f"defaults:\n  - default\n  - _self_\nsample_period_s: {sample_period}\n")
         assert compose(searched, "run").data.sample_period_s == sample_period
+
+
+def test_a_compose_shares_the_config_store_and_composes_the_same_config(monkeypatch):
+    # each compose deep-copied the whole ConfigStore with Hydra's sources: ~11 ms of ~150
+    from hydra._internal import config_repository
+    from hydra._internal.sources_registry import SourcesRegistry
+    from omegaconf import OmegaConf
+
+    from thermocomp.shell.config import overrides
+
+    copies, make = [], config_repository.CachingConfigRepository.__init__
+
+    def kept(self, delegate):
+        make(self, delegate)
+        copies.append(self.delegate)
+
+    monkeypatch.setattr(config_repository.CachingConfigRepository, "__init__", kept)
+    calls = [(["track=false"], "run"), (["model=arx", "model.estimator.max_inputs=3", "seed=3"], "run"),
+             (["compare.sort_by=val_rmse"], "compare"), (["monitor.adaptive=false"], "replay"),
+             (["track=false"], None)]
+    shared = [OmegaConf.to_container(compose(*c), resolve=False) for c in calls]
+    assert copies and all(r.get_schema_source().store is ConfigStore.instance() for r in copies)
+    # the configs are those composed with the store copied, as Hydra does
+    monkeypatch.setattr(overrides, "_share_config_store", lambda: None)
+    monkeypatch.delattr(SourcesRegistry.instance().resolve("structured"), "__deepcopy__")
+    del copies[:]
+    copied = [OmegaConf.to_container(compose(*c), resolve=False) for c in calls]
+    assert copies and all(r.get_schema_source().store is not ConfigStore.instance() for r in copies)
+    assert copied == shared
+
+
+def test_a_command_parses_each_override_once(tmp_path, monkeypatch):
+    # lenient, refuse and unread each parsed every override again with Hydra's grammar
+    from conftest import thermocomp
+    from thermocomp.shell.config import overrides
+
+    parser, seen = overrides._parser(), []
+    parse = parser.parse_override
+    monkeypatch.setattr(parser, "parse_override", lambda arg: seen.append(arg) or parse(arg))
+    args = ("run", f"data.path={tmp_path}/lab", f"out={tmp_path}/out", "eval.mode=sometimes",
+            f"name=once-{tmp_path.name}", "track=false")
+    parses = []
+    for _ in range(2):
+        proc = thermocomp(*args, check=False)
+        assert proc.returncode == 2 and "eval.mode='sometimes'" in proc.stderr
+        parses.append(len(seen))
+        seen.clear()
+    # each override once at most (some were parsed by other tests), then none: 15 and 15 before
+    assert parses[0] <= len(args) - 1 and parses[1] == 0
