@@ -1,6 +1,7 @@
 """The cost of a compose (issue 35 item 7): Hydra deep-copies its whole ConfigStore at each
-compose, so the store holds the root config of the command being composed and no other; and it
-reads every config file again, so a file of the project's conf/ is parsed once per text."""
+compose, so the store holds the root config of the command being composed and no other; it reads
+every config file again, so a file of the project's conf/ is parsed once per text; a command reads
+its overrides three times, so each is parsed once per text."""
 
 from __future__ import annotations
 
@@ -78,3 +79,23 @@ def test_a_file_of_conf_is_parsed_once_per_text_and_an_edit_is_seen(tmp_path, mo
     for sample_period in (15, 30):
         lab.write_text(f"defaults:\n  - default\n  - _self_\nsample_period_s: {sample_period}\n")
         assert compose(searched, "run").data.sample_period_s == sample_period
+
+
+def test_a_command_parses_each_override_once(tmp_path, monkeypatch):
+    # lenient, refuse and unread each parsed every override again with Hydra's grammar
+    from conftest import thermocomp
+    from thermocomp.shell.config import overrides
+
+    parser, seen = overrides._parser(), []
+    parse = parser.parse_override
+    monkeypatch.setattr(parser, "parse_override", lambda arg: seen.append(arg) or parse(arg))
+    args = ("run", f"data.path={tmp_path}/lab", f"out={tmp_path}/out", "eval.mode=sometimes",
+            f"name=once-{tmp_path.name}", "track=false")
+    parses = []
+    for _ in range(2):
+        proc = thermocomp(*args, check=False)
+        assert proc.returncode == 2 and "eval.mode='sometimes'" in proc.stderr
+        parses.append(len(seen))
+        seen.clear()
+    # each override once at most (some were parsed by other tests), then none: 15 and 15 before
+    assert parses[0] <= len(args) - 1 and parses[1] == 0
