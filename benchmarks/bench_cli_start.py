@@ -32,12 +32,12 @@ of its cProfile) is Hydra's defaults tree and merges, an OmegaConf.create/merge 
 which no cache outside Hydra can skip: Hydra pops and reparents the loaded nodes into its
 result, so a loaded config cannot be handed to two composes.  A run also pays Hydra's job runner
 (``run_job`` deep-copies the config and the hydra node: about a quarter of a compose), kept.
-What went: three ANTLR parses of each override per call (``overrides.parse`` cached per
-text; 10 overrides ~11 ms -> ~3.5 ms the first time, 0 once seen).  The figures above include a second cut that was measured
-and NOT merged: Hydra's per-compose deep copy of the whole ConfigStore (~11 ms of a compose),
-avoided only by patching a private Hydra class (``hydra._internal``'s structured config source):
-too fragile across Hydra releases for ~3 % of a call.  With the parse cache alone, expect roughly
-half of the gains in the table.
+What went: three ANTLR parses of each override per call (``overrides.parse`` cached per text; 10
+overrides ~11 ms -> ~3.5 ms the first time, 0 once seen). The figures above include a second cut
+that was measured and NOT merged: Hydra's per-compose deep copy of the whole ConfigStore (~11 ms
+of a compose), avoided only by patching a private Hydra class (``hydra._internal``'s structured
+config source): too fragile across Hydra releases for ~3 % of a call. With the parse cache
+alone, expect roughly half of the gains in the table.
 """
 
 from __future__ import annotations
