@@ -116,10 +116,11 @@ def _rows(ids: list, trained_on) -> list:
     every = [ids[train[0]] for train, _ in TrainOnEachCampaign().split(ids, groups=ids)]
     if trained_on is None:
         return every
-    unknown = set(trained_on) - set(ids)
+    wanted = set(trained_on)
+    unknown = wanted - set(ids)
     if unknown:
         raise ValueError(f"trained_on names campaigns not given: {sorted(unknown)}")
-    return [c for c in every if c in set(trained_on)]
+    return [c for c in every if c in wanted]
 
 
 def _bounds(groups, ids) -> list[tuple[int, int]]:
