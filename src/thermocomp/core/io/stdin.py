@@ -12,6 +12,7 @@ from io import StringIO
 import numpy as np
 import pandas as pd
 import pyarrow as pa
+import pyarrow.compute as pc
 
 from ..context import TIME
 from .contract import ContractError
@@ -21,7 +22,17 @@ from .layout import header_line, is_unit_row, with_units
 from .roles import active, naming, same_header
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
-from .timestamps import CLOCK, COMMA_FRACTION, ELAPSED, elapsed_seconds, on_local_clock, time_kind, time_type
+from .tables import first_cast_failure
+from .timestamps import (
+    CLOCK,
+    ELAPSED,
+    described,
+    elapsed_seconds,
+    on_local_clock,
+    parsed,
+    time_kind,
+    time_type,
+)
 
 SOURCE = "<stdin>"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
@@ -124,35 +135,34 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict]:
 
 
 def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -> pd.Series:
-    """The stream's ``time`` in seconds since its first row when it holds ISO 8601 timestamps
-    (as given otherwise: the numeric check refuses what is no number; ``zone``:
-    ``data.timezone``, the local clock of timestamps without an offset).  A time that goes back
-    is no refusal here: the stream's guard judges it, as on the machine."""
+    """The stream's ``time`` in seconds since its first row when it holds timestamps, read as a
+    campaign file's are (:func:`.timestamps.parsed`: ISO 8601 with or without its offset, a
+    decimal comma, ``data.time``'s format; as given otherwise: the numeric check refuses what
+    is no number; ``zone``: ``data.timezone``, the local clock of timestamps without an
+    offset).  A missing time or one that goes back is no refusal here: the stream's guard
+    judges it, as on the machine."""
     first, kind = time.iloc[0], time_format
     if kind == "auto" and isinstance(first, str):      # read as a campaign file's
         kind = time_kind(first.strip(), kind, not pd.isna(pd.to_numeric(first, errors="coerce")),
                          SOURCE, stream=True)
+    text = pa.chunked_array([pa.array(time.astype("string"), type=pa.string())])
     if kind == ELAPSED:        # h:mm:ss since the start (a stream says so: data.time=elapsed)
-        text = pa.chunked_array([pa.array(time.astype("string"), type=pa.string())])
         ns = elapsed_seconds(text, kind, SOURCE).cast(pa.int64()).to_numpy(zero_copy_only=False)
         return pd.Series(ns / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
         return time
-    # a second's fraction after a comma (13:05:00,500) or in a format: read as a file's is
-    text = time.astype(str).where(time.notna()).str.replace(COMMA_FRACTION, r"\1.\2", regex=True)
-    fmt = "ISO8601" if kind == "iso8601" else re.sub(r"[.,]%f", "", kind)
-    if fmt != "ISO8601" and text.str.contains(r"\d:\d\d:\d\d\.\d", regex=True).any():
-        fmt = fmt.replace("%S", "%S.%f")
-    stamps = pd.to_datetime(text, utc=True, errors="coerce", format=fmt)
-    bad = stamps.isna() & time.notna()
-    if bad.any() or pd.isna(stamps.iloc[0]):
-        row = int(np.flatnonzero(bad)[0]) + 1 if bad.any() else 1
-        what = "an ISO 8601 time" if kind == "iso8601" else f"a time in the format {kind!r}"
-        raise ContractError(f"not {what} (data.time={time_format}: the stream's first row is a "
-                            "timestamp)", file=SOURCE, column=TIME, row=row)
-    if zone is not None and time_type(kind, str(time.iloc[0]).strip()).tz is None:
-        valid = stamps.notna()
-        wall = stamps[valid].dt.tz_localize(None).to_numpy("datetime64[ns]").astype(np.int64)
-        stamps = stamps.copy()
-        stamps[valid] = pd.to_datetime(on_local_clock(wall, zone, SOURCE), utc=True)
-    return (stamps - stamps.iloc[0]).dt.total_seconds()
+    target = time_type(kind, str(first).strip())
+    found = first_cast_failure(text, target, kind)
+    if found is not None or not text[0].is_valid:
+        row, value = found if found is not None else (0, first)
+        raise ContractError(f"value {value!r} is not {described(target, kind)} (data.time="
+                            f"{time_format}: the stream's first row is a timestamp)",
+                            file=SOURCE, column=TIME, row=row + 1)
+    stamps = pc.cast(parsed(text, target, kind), pa.int64())
+    valid = stamps.is_valid().to_numpy(zero_copy_only=False)    # a missing time stays NaN
+    ns = pc.fill_null(stamps, 0).to_numpy(zero_copy_only=False).copy()
+    if zone is not None and target.tz is None:
+        ns[valid] = on_local_clock(ns[valid], zone, SOURCE)
+    # int64 nanoseconds subtracted before the float: a float64 epoch in ns keeps ~256 ns
+    seconds = np.where(valid, (ns - ns[0]) / 1e9, np.nan)
+    return pd.Series(seconds, index=time.index)

@@ -165,7 +165,11 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
                 opts.time, first)
     # a column without a header (Excel's trailing separator) is left out if it holds nothing
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
-    table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
+    try:
+        table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
+    except _TimeAsText:        # a cell Arrow's reader does not read (a fraction after row 1):
+        types[TIME] = pa.string()     # the column as text, read and located by _stamps
+        table = _read_csv_typed(path, names, {**types, **unnamed}, opts)
     _check_unnamed_empty(table, header, names, unnamed, path)
     if TIME in types:          # and from here on rows are counted without them
         table = _without_empty_rows(table, path, lines)
@@ -279,7 +283,7 @@ def _stamps(text, path: Path, opts: ReadOptions, what: str = ""):
     first = _first_valid(text)
     kind = _timed(path, "" if first is None else first[1], opts).time
     target = time_type(kind, first[1])
-    found = _first_cast_failure(text, target, kind)
+    found = first_cast_failure(text, target, kind)
     if found is not None:
         raise ContractError(f"value {found[1]!r}{what} is not {_describe(target, kind)}",
                             file=path, column=TIME, row=found[0] + 1)
@@ -347,11 +351,15 @@ def _ungroup(table: pa.Table, names: list[str], types: dict, path: Path, opts: R
                                 f"with data.thousands={opts.thousands!r}",
                                 file=path, column=name, row=at + 1)
         text = ungrouped(raw, opts.thousands, opts.decimal)
-        found = _first_cast_failure(text, kind)
+        found = first_cast_failure(text, kind)
         if found is not None:
             raise _bad_cell_error(path, names, name, kind, opts)
         table = table.set_column(table.column_names.index(name), name, pc.cast(text, kind))
     return table
+
+
+class _TimeAsText(Exception):
+    """A timestamp cell Arrow's typed reader refused: read the time column as text instead."""
 
 
 def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
@@ -365,6 +373,8 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
     match = _CONVERSION_ERROR.search(message)
     if match:
         column = names[int(match.group(1))]
+        if column == TIME and pa.types.is_timestamp(types[column]):
+            raise _TimeAsText
         return _bad_cell_error(path, names, column, types[column], opts)
     if "CSV parse error" in message:
         return _malformed_row_error(path, names, opts, message)
@@ -376,7 +386,7 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
         names, opts, include=[column], types={column: pa.string()})).column(column)
     number = pa.types.is_floating(target)
     text = ungrouped(raw, opts.thousands, opts.decimal) if number else raw
-    found = _first_cast_failure(text, target, opts.time)
+    found = first_cast_failure(text, target, opts.time)
     if found is None:
         return ContractError(f"cannot convert to {target}", file=path, column=column)
     row, value = found[0], raw[found[0]].as_py()
@@ -410,7 +420,7 @@ def _malformed_row_error(path, names, opts, message) -> ContractError:
                          file=path, row=None if row.number is None else row.number - opts.skip_rows)
 
 
-def _first_cast_failure(values: pa.ChunkedArray, target: pa.DataType,
+def first_cast_failure(values: pa.ChunkedArray, target: pa.DataType,
                         kind: str = "seconds") -> tuple[int, object] | None:
     """Position and value of the first element that does not cast to ``target``.
 
@@ -503,7 +513,7 @@ def _parquet_numbers(column: pa.ChunkedArray, name: str, path: Path) -> pa.Chunk
                or pa.types.is_decimal(kind) or (pa.types.is_boolean(kind) and role(name) == "S"))
     if numeric:      # (a float64 column as it is: a cast per column of 1430 costs 40 ms a file)
         return column if pa.types.is_float64(kind) else pc.cast(column, pa.float64())
-    found = _first_cast_failure(column, pa.float64()) or _first_valid(column)
+    found = first_cast_failure(column, pa.float64()) or _first_valid(column)
     row = None if found is None else found[0] + 1
     raise ContractError(f"Parquet dtype {kind} where numbers are expected",
                         file=path, column=name, row=row)
@@ -518,7 +528,7 @@ def _parquet_time(column: pa.ChunkedArray, path: Path, opts: ReadOptions) -> pa.
             return elapsed_seconds(column, opts.time, path)
         kind = _timed(path, value, opts).time
         target = time_type(kind, value)
-        found = _first_cast_failure(column, target, kind)
+        found = first_cast_failure(column, target, kind)
         if found is not None:
             raise ContractError(f"value {found[1]!r} is not {_describe(target, kind)}",
                                 file=path, column=TIME, row=found[0] + 1)

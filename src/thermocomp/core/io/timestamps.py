@@ -150,7 +150,9 @@ def unread_fraction(value: str, kind: str) -> bool:
 
 
 def parsed(values, target: pa.DataType, kind: str):
-    """``values`` (text) as ``target``; raises ``pa.ArrowInvalid`` on a cell that is not."""
+    """``values`` (text) as ``target``; raises ``pa.ArrowInvalid`` on a cell that is not.
+    Spaces around a cell are no part of it (``T_a; time``: numbers are read so too)."""
+    values = pc.utf8_trim_whitespace(values)
     if is_format(kind) and pa.types.is_timestamp(target):
         stamps = _strptime(values, kind)
         return stamps if target.tz is None else pc.cast(stamps, target)
