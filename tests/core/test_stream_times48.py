@@ -64,3 +64,30 @@ def test_a_bad_time_after_a_fraction_the_reader_skips_is_refused_with_its_row(tm
                     "29.03.2026 01:0x:29;22;1\n")
     with pytest.raises(ContractError, match=r"line 4 \(data row 3\).*01:0x:29"):
         read_campaign(path)
+
+
+def _unnamed_error(tmp_path):
+    path = tmp_path / "lab.csv"
+    path.write_text("timestamp_ms,Spindle,Ambient,dX\n" + "".join(
+        f"{1774742399000 + 15000 * i},{20 + 0.1 * i},20,{0.5 * i}\n" for i in range(20)))
+    return path
+
+
+def test_init_without_an_error_column_names_the_setting_and_the_columns(tmp_path, capsys):
+    # before: "no E_ column: a campaign needs at least one measured error" (an ambient word in a
+    # header), or, without one, "'dX' has no role ... `thermocomp init <data.path>` proposes them"
+    # from init itself
+    from conftest import refused
+    path = _unnamed_error(tmp_path)
+    refused(["init", str(path), f"out={tmp_path / 'out'}"], capsys, "no column reads as a measured",
+            "data.roles.error=[<header>]", "'Spindle', 'Ambient', 'dX'")
+    path.write_text(path.read_text().replace("Ambient", "Column"))
+    refused(["init", str(path), f"out={tmp_path / 'out'}"], capsys, "data.roles.error=[<header>]")
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_run_whose_roles_name_no_error_says_which_setting_and_columns(tmp_path, capsys):
+    from conftest import refused
+    path = _unnamed_error(tmp_path)
+    refused(["run", f"data.path={path}", "data.roles.ambient=[Ambient]", f"out={tmp_path / 'o'}"],
+            capsys, "no E_ column", "data.roles.error=[<header>]", "'Spindle', 'Ambient', 'dX'")

@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from .contract import MANIFEST, role
+from .contract import MANIFEST, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
 from .manifest import is_text, read_manifest
@@ -105,6 +105,21 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return roles
+
+
+def check_an_error_is_named(header: list[str], first: dict, roles: dict, opts, file: Path) -> None:
+    """Refuse, naming the setting and the numeric columns, a file where no column is a measured
+    error: none has a length unit in its header, an ``E_`` name, ``data.roles.error`` or
+    ``data.columns`` to one.  Which of ``dX``, ``Spindle`` ... is the error is never guessed."""
+    named = [*header, *opts.columns.values()]
+    if roles["error"] or any(role(h) == "E" for h in named):
+        return
+    numeric = [h for h in header if h.strip() and reads_as_number(first.get(h), opts.decimal)
+               and not named_as_time(h)]
+    raise ContractError("no column reads as a measured error (no length unit in a header, µm or "
+                        "mm, no E_ name): name it, data.roles.error=[<header>], or give its unit "
+                        f"in the header ('dX [µm]'); the numeric columns: "
+                        f"{', '.join(map(repr, numeric)) or 'none'}", file=file)
 
 
 def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,

@@ -84,7 +84,11 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
         names.append(name)
         seen.add(name)
     if not any(role(n) == "E" for n in names if n):
-        raise ContractError("no E_ column: a campaign needs at least one measured error",
+        read_as = [raw for raw, n in zip(raw_names, names) if n and role(n) in ("T", "S")]
+        hint = (f"; name it, data.roles.error=[<header>], or give its unit in the header ('dX "
+                f"[µm]'): read as temperatures or states here: {', '.join(map(repr, read_as))}"
+                if read_as and active(opts.roles) else "")
+        raise ContractError(f"no E_ column: a campaign needs at least one measured error{hint}",
                             file=file)
     if TIME not in names and opts.sample_period_s is None:
         for raw in raw_names:      # a time of day or a date alone: refused saying so

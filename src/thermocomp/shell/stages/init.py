@@ -16,6 +16,7 @@ from ...base.paths import conf_dir, resolve
 from ...core import io
 from ...core.continuation import campaign_period
 from ...core.io.detect import (
+    check_an_error_is_named,
     data_config,
     detection_lines,
     encoding,
@@ -41,6 +42,7 @@ def init(cfg: DictConfig) -> dict:
     sample = sample_file(src, manifest)
     opts, header, first = head(sample, io.ReadOptions.from_cfg(given))
     roles = proposed_roles(header, dict(zip(header, first)), opts)
+    check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
                   opts.units)
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
