@@ -112,6 +112,9 @@ Seed 515 (planted) stays refused under every rule tried (the rivals rule only re
 cannot help it): one of its 8 campaigns loses 37 % with
 the right effect, the exact campaign-level p is 2/256 alone and .039 family-wise, a t on the
 shares .011 alone; only blocks shorter than the residual's memory (67 samples) reach below .01.
+Blocks from the residual or the gain left once a candidate is fitted, campaign-level t and
+bootstrap-t, and fresh seeds (planted 4001-4012, clean 4001-4006; shipped rule: 9 of 12
+planted right, clean 4004 accepted with the test error +39 %): ``bench_diagnose_memory.py``.
 """
 
 from __future__ import annotations
