@@ -1,5 +1,9 @@
 """Can the sensor monitor tell a new thermal state from a faulty sensor? (issue monitor47)
 
+Session 48 made rule c the monitor's default (``monitor.new_state``, measured on records that did
+not design it in ``bench_new_thermal_state.py``); this prototype replays with
+``monitor.new_state.enabled=false`` so that ``shipped`` stays the monitor it was measured against.
+
 Measured (2026-11-29, model=mlr, replay with ``promote.envelope.policy=off``, the monitor's
 guard at its defaults; RMSE µm deployed / batch = the plain model; ``ex`` sensor exclusions,
 ``nv`` "new thermal state" events, ``ra`` rule-(b) re-admissions; first: first exclusion, of
@@ -267,7 +271,8 @@ def replay(data: Path, model: Path, rule: str) -> dict:
     out = ROOT / "out" / f"{data.name}-{rule}"
     with contextlib.redirect_stdout(io.StringIO()):
         thermocomp_main(["-q", "replay", f"data.path={data}", f"replay.model={model}",
-                         "promote.envelope.policy=off", "track=false", f"out={out}"])
+                         "promote.envelope.policy=off", "monitor.new_state.enabled=false",
+                         "track=false", f"out={out}"])
     return json.loads((out / "replay.json").read_text())
 
 
