@@ -88,7 +88,7 @@ def alarm_rate(events: list[dict], hours: float) -> dict:
             "exclusions_per_100h": 100 * len(excluded) / hours if hours > 0 else None,
             "readmissions": sum(1 for e in events if e.get("sensor") and e["from"] == "excluded"),
             "exclusions_by_sensor": per_sensor,
-            "new_thermal_states": sum(1 for e in events if e["to"] == NEW_STATE)}
+            "new_thermal_states": sum(1 for e in events if e.get("to") == NEW_STATE)}
 
 
 def campaign_start(campaign: pd.DataFrame) -> float:
@@ -271,7 +271,7 @@ def first_exclusion(events: list[dict]) -> str:
 def new_states(events: list[dict]) -> str:
     """``; new thermal state: <n> (first <campaign>, <h> h: <sensors>)`` (the monitor's
     :data:`~.surveillance.NEW_STATE` events), or nothing; the end of the events line."""
-    novel = [e for e in events if e["to"] == NEW_STATE]
+    novel = [e for e in events if e.get("to") == NEW_STATE]
     if not novel:
         return ""
     e = novel[0]
