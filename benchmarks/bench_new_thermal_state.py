@@ -30,9 +30,10 @@ Measured (2026-11-29; Σ² the sum over the six targets of the squared RMSE, µm
 
 Exclusions / new states before → after: 4-8 / 0 → 1-2 / 1 on every cms record and model.
 ``wide100`` = ``wide1`` to the printed digits.  Healthy (yearround seed 5003, swiss4253,
-cms2718q3off; three models): 0 exclusions and 0 new states under every configuration, RMSE
-identical.  Planted faults on yearround (T_bearing_f1) and cms2718q3off (T_right3): the same
-first exclusion (jump +0, drift +35, freeze +40 / +65 min) and RMSE under every configuration.
+cms2718q3off; three models; mill4253, mlr): 0 exclusions and 0 new states under every
+configuration, RMSE identical.  Planted faults on yearround (T_bearing_f1) and cms2718q3off
+(T_right3): the same first exclusion (jump +0, drift +35, freeze +40 / +65 min) and RMSE under
+every configuration.
 cms5003 T_left2 from 24 h (during the new state): jump +0 → +0 min, freeze +5 → +7 min, drift
 +633 → +633 min; Σ² (mlr) 10467 → 5640, 20824 → 6181, 10461 → 5637.
 Read in docs/monitoring.md ("A new thermal state").
@@ -63,6 +64,7 @@ RECORDS = {
     "yearround": ["sim=yearround_spindle", "seed=5003"],
     "swiss4253": ["sim=swiss_lathe_door", "seed=4253"],
     "cms2718q3off": ["sim=column_moving_source", "seed=2718", "sim.generator.q3=false"],
+    "mill4253": ["sim=large_mill_week", "seed=4253"],     # its June test outside March's envelope
 }
 # record -> (faulty sensor, onset as a share of each test campaign); cms5003: during the new state
 FAULTS = {"cms2718q3off": ("T_right3", 0.5), "yearround": ("T_bearing_f1", 0.5),
