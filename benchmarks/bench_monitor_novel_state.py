@@ -1,5 +1,13 @@
 """Can the sensor monitor tell a new thermal state from a faulty sensor? (issue monitor47)
 
+Session 48 made rule c the monitor's default (``monitor.new_state``, measured on records that did
+not design it in ``bench_new_thermal_state.py``); this prototype replays with
+``monitor.new_state.enabled=false`` so that ``shipped`` stays the monitor it was measured against.
+One difference since: the monitor leaves its fast path while a new state is declared (``_novel``,
+the attribute these rules set too), so the calm samples that end it are counted; rule c's state
+on cms3141 then ends at 33.2 h and one more exclusion follows (T_left5, re-admitted 0.9 h later):
+``c`` excl 2, E_Z 14.79 (the rest as below).
+
 Measured (2026-11-29, model=mlr, replay with ``promote.envelope.policy=off``, the monitor's
 guard at its defaults; RMSE µm deployed / batch = the plain model; ``ex`` sensor exclusions,
 ``nv`` "new thermal state" events, ``ra`` rule-(b) re-admissions; first: first exclusion, of
@@ -113,7 +121,6 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 
 import thermocomp.apps.deploy.adaptive as adaptive_module
@@ -165,15 +172,8 @@ class NovelStateMonitor(SensorMonitor):
 
     def _others_resolved(self, j: int) -> bool:
         """With ``j`` out of the fit, every other judged sensor within its warning band over the
-        last ``confirm`` samples."""
-        trial = self._active.copy()
-        trial[j] = False
-        M, lev = self._operator(trial)
-        judged = trial & (lev < self.pod.max_leverage)
-        rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
-        X = np.where(np.isfinite(rows), rows, 0.0)
-        E = ((X[:, judged] - X[:, trial] @ M[judged].T) / (1 - lev[judged])).mean(axis=0)
-        return bool((np.abs(E) < self.warning_c[judged]).all())
+        last ``confirm`` samples (the check src took over: :meth:`SensorMonitor._resolves`)."""
+        return self._resolves(j)
 
     def _out_of_band(self, but: int = -1) -> int:
         level, _ = self._judge()
@@ -267,7 +267,8 @@ def replay(data: Path, model: Path, rule: str) -> dict:
     out = ROOT / "out" / f"{data.name}-{rule}"
     with contextlib.redirect_stdout(io.StringIO()):
         thermocomp_main(["-q", "replay", f"data.path={data}", f"replay.model={model}",
-                         "promote.envelope.policy=off", "track=false", f"out={out}"])
+                         "promote.envelope.policy=off", "monitor.new_state.enabled=false",
+                         "track=false", f"out={out}"])
     return json.loads((out / "replay.json").read_text())
 
 

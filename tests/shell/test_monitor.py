@@ -12,6 +12,7 @@ from omegaconf import OmegaConf
 
 from conftest import ROOT, influence, thermocomp
 from thermocomp.apps.deploy import StreamingCompensator
+from thermocomp.apps.deploy.surveillance import NEW_STATE
 from thermocomp.apps.monitor import (
     AdaptiveCompensator,
     ThermalPOD,
@@ -412,22 +413,23 @@ def test_column_monitor_alarms_only_once_the_new_source_is_on_nearest_sensor_fir
                                                              "compensation.png"}
 
 
-def test_column_adaptive_beats_fixed_away_from_the_new_source_and_lets_its_sensors_back(column):
+def test_column_new_source_is_a_new_thermal_state_and_the_deployed_correction_as_scored(column):
     report, truth, _ = column
     on, off = truth["campaigns"]["test_cycle"]["q3_on_s"][0]
-    # the guideways' mid-height point is two levels below Q3 (paper 002, Fig. 11: EX, EY improved
-    # away from Q3, worsened near it)
-    away = [t for t in report["targets"] if t.endswith("_mid")]
-    assert away
-    for t in away:
-        assert report["targets"][t]["rmse_adaptive"] < report["targets"][t]["rmse_fixed"], t
-    # no cascade to the faces away from Q3 (it heats the right face): the front and left sensors
-    # stay in while the field is out of its trained subspace, and every one out comes back
+    # Q3 moves the sensors either side of it and a far one together: one new thermal state while
+    # it is on, not a chain of sensors blamed for it (before: T_right3, T_right4, T_right5,
+    # T_edge5, T_right2 excluded, E_X 21.5 -> 29.9 µm, the mid-height point better, paper 002's
+    # Fig. 11); whatever went out meanwhile is back before Q3 switches off
+    novel = [e for e in report["events"] if e["to"] == NEW_STATE]
+    assert len(novel) == 1 and on < novel[0]["time"] < off
+    nearest = truth["novel_sources"][0]["nearest_sensors"]
+    assert set(nearest) & set(novel[0]["sensors"])
     out = [e for e in report["events"] if e["to"] == "excluded" and e["sensor"] in report["sensors"]]
-    assert out and all(e["reason"].startswith("drift") for e in out)
-    assert not [e["sensor"] for e in out if e["sensor"].startswith(("T_front", "T_left"))]
-    back = {e["sensor"] for e in report["events"] if e["from"] == "excluded" and e["time"] > off}
+    back = {e["sensor"] for e in report["events"] if e["from"] == "excluded" and e["time"] < off}
     assert back == {e["sensor"] for e in out}
+    # so the deployed correction is the model's: within 5 % of the plain stream on every target
+    for t, r in report["targets"].items():
+        assert abs(r["rmse_adaptive"] - r["rmse_fixed"]) <= 0.05 * r["rmse_fixed"], t
 
 
 def test_monitor_reads_csv_rows_from_stdin(default_dataset, tmp_path):

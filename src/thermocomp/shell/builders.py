@@ -113,6 +113,7 @@ def build_adaptive(cfg: DictConfig, streaming, train: dict):
     options = {"warning_c": float(m.bands.warning_c), "alarm_c": float(m.bands.alarm_c),
                "window": int(m.window), "confirm": int(m.confirm), "adaptive": bool(m.adaptive),
                "exclude_at": str(m.exclude_at), "spread_factor": float(m.bands.spread_factor),
+               "new_state": bool(m.new_state.enabled), "new_state_others": int(m.new_state.others),
                **OmegaConf.to_container(m.detectors)}
     try:
         return AdaptiveCompensator.from_training(

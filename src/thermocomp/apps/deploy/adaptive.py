@@ -199,7 +199,7 @@ class AdaptiveCompensator:
             events.append({"time": t, "sensor": None, "from": "running", "to": "held",
                            "reason": f"correction held: {exc}"})
         if self.guard is not None:
-            y, ev = self.guard.step(y, dt, t)
+            y, ev = self.guard.step(y, dt, t, self.monitor is not None and self.monitor.new_state_)
             events += ev
         elif not np.all(np.isfinite(y)):
             y = np.where(np.isfinite(y), y, 0.0 if self._y is None else self._y)

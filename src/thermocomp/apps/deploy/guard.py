@@ -8,6 +8,8 @@ rate taken from the error alone clips a healthy stream, a measured spindle recor
 4.6 h).  Each target's state (``free``, ``bounded``, ``rate_limited``,
 ``held``) changes with an event; it is reported ``free`` again only after
 :data:`CALM` samples within bound and rate, so a jumpy episode is one event pair.
+While the sensor monitor declares a new thermal state (a source training never saw), the bound
+is the training range widened by ``new_state_margin`` instead (``None``: the same bound).
 """
 
 from __future__ import annotations
@@ -23,9 +25,14 @@ CALM = 5   # samples within bound and rate before a target is reported free agai
 class CorrectionGuard:
     """Bound (``lo``, ``hi``, µm) and rate limit (µm/s) per target."""
 
-    def __init__(self, targets: Sequence[str], lo, hi, max_rate_per_s, period_s: float):
+    lo_new = hi_new = None   # bound in a new thermal state (None: lo, hi; older pickles)
+
+    def __init__(self, targets: Sequence[str], lo, hi, max_rate_per_s, period_s: float,
+                 lo_new=None, hi_new=None):
         self.targets = list(targets)
         self.lo, self.hi = np.asarray(lo, float), np.asarray(hi, float)
+        if lo_new is not None:
+            self.lo_new, self.hi_new = np.asarray(lo_new, float), np.asarray(hi_new, float)
         self.max_rate_per_s = np.asarray(max_rate_per_s, float)
         self.period_s = float(period_s)
         self.reset()
@@ -33,10 +40,12 @@ class CorrectionGuard:
     @classmethod
     def from_training(cls, targets: Sequence[str], measured: Sequence[np.ndarray],
                       times: Sequence[np.ndarray], margin: float = 0.2, rate_margin: float = 1.0,
-                      predicted: Sequence[np.ndarray] | None = None) -> "CorrectionGuard":
+                      predicted: Sequence[np.ndarray] | None = None,
+                      new_state_margin: float | None = None) -> "CorrectionGuard":
         """``measured``: referenced training errors per campaign (n, k); ``times`` in s;
-        ``predicted``: the model's corrections on the same campaigns (its rate counts too)."""
-        if margin < 0 or rate_margin < 0:
+        ``predicted``: the model's corrections on the same campaigns (its rate counts too);
+        ``new_state_margin``: the bound's margin in a new thermal state (``None``: ``margin``)."""
+        if margin < 0 or rate_margin < 0 or (new_state_margin or 0) < 0:
             raise ValueError("guard margins must be >= 0")
         Y = np.vstack(measured)
         lo, hi = np.nanmin(Y, axis=0), np.nanmax(Y, axis=0)
@@ -49,8 +58,10 @@ class CorrectionGuard:
                 for y in (measured[k], *([predicted[k]] if predicted is not None else [])):
                     rates.append(np.nanmax(np.abs(np.diff(y, axis=0)) / dt[:, None], axis=0))
         rate = np.max(rates, axis=0) if rates else np.full(Y.shape[1], np.inf)
+        wide = margin if new_state_margin is None else float(new_state_margin)
         return cls(targets, lo - margin * width, hi + margin * width, (1 + rate_margin) * rate,
-                   float(np.median(periods)) if periods else 1.0)
+                   float(np.median(periods)) if periods else 1.0,
+                   lo - wide * width, hi + wide * width)
 
     def reset(self) -> None:
         self._prev = None
@@ -67,13 +78,17 @@ class CorrectionGuard:
         self._calm = snap[2].copy()
         self._free = all(s == FREE for s in self._state)
 
-    def step(self, y: np.ndarray, dt: float, time: float) -> tuple[np.ndarray, list[dict]]:
-        """Guarded correction for the model's ``y`` (NaN: held at the previous one)."""
+    def step(self, y: np.ndarray, dt: float, time: float,
+             new_state: bool = False) -> tuple[np.ndarray, list[dict]]:
+        """Guarded correction for the model's ``y`` (NaN: held at the previous one);
+        ``new_state``: the monitor declares a new thermal state (the bound ``lo_new``, ``hi_new``)."""
         y = np.asarray(y, dtype=float)
         prev = self._prev
+        lo, hi = (self.lo_new, self.hi_new) if new_state and self.lo_new is not None else (
+            self.lo, self.hi)
         if self._free and prev is not None and np.isfinite(y.sum()):   # the usual case, fast
             lim = self.max_rate_per_s * (dt if dt > 0 else self.period_s)
-            if (np.abs(y - prev) <= lim).all() and (y >= self.lo).all() and (y <= self.hi).all():
+            if (np.abs(y - prev) <= lim).all() and (y >= lo).all() and (y <= hi).all():
                 self._prev = y
                 return y, []
         held = ~np.isfinite(y)
@@ -85,8 +100,8 @@ class CorrectionGuard:
             fast = np.abs(out - prev) > lim
             out = np.where(fast, prev + np.sign(out - prev) * lim, out)
             state[fast & ~held] = RATE
-        outside = (out < self.lo) | (out > self.hi)
-        out = np.minimum(np.maximum(out, self.lo), self.hi)
+        outside = (out < lo) | (out > hi)
+        out = np.minimum(np.maximum(out, lo), hi)
         state[outside & ~held] = BOUNDED
         events = []
         self._calm = np.where(state == FREE, self._calm + 1, 0)
@@ -96,7 +111,7 @@ class CorrectionGuard:
             if new != self._state[k]:
                 events.append({"time": float(time), "sensor": None, "target": self.targets[k],
                                "from": self._state[k], "to": str(new),
-                               "reason": _reason(str(new), y[k], self.lo[k], self.hi[k])})
+                               "reason": _reason(str(new), y[k], lo[k], hi[k])})
                 self._state[k] = str(new)
         self._free = all(s == FREE for s in self._state)
         self._prev = out

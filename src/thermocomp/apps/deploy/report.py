@@ -36,6 +36,7 @@ from ...core.metrics import RMSE
 from .adapt import adapt_figures, finite_rms
 from .adaptive import AdaptiveCompensator
 from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
+from .surveillance import NEW_STATE
 
 
 @dataclass
@@ -86,7 +87,8 @@ def alarm_rate(events: list[dict], hours: float) -> dict:
     return {"hours": float(hours), "exclusions": len(excluded),
             "exclusions_per_100h": 100 * len(excluded) / hours if hours > 0 else None,
             "readmissions": sum(1 for e in events if e.get("sensor") and e["from"] == "excluded"),
-            "exclusions_by_sensor": per_sensor}
+            "exclusions_by_sensor": per_sensor,
+            "new_thermal_states": sum(1 for e in events if e.get("to") == NEW_STATE)}
 
 
 def campaign_start(campaign: pd.DataFrame) -> float:
@@ -266,6 +268,17 @@ def first_exclusion(events: list[dict]) -> str:
     return f", first: {e['sensor']} ({e['campaign']}, {e['time'] / 3600:.2f} h)"
 
 
+def new_states(events: list[dict]) -> str:
+    """``; new thermal state: <n> (first <campaign>, <h> h: <sensors>)`` (the monitor's
+    :data:`~.surveillance.NEW_STATE` events), or nothing; the end of the events line."""
+    novel = [e for e in events if e.get("to") == NEW_STATE]
+    if not novel:
+        return ""
+    e = novel[0]
+    return (f"; new thermal state: {len(novel)} (first {e['campaign']}, {e['time'] / 3600:.2f} h: "
+            f"{', '.join(e.get('sensors') or []) or '-'} out of band together, not excluded)")
+
+
 def replay_json(deployed, result: dict, *, name: str, source: str, test_ids: list[str],
                 missing: dict | None = None) -> dict:
     """``replay.json`` (CLI.md) of :func:`replay_report`'s ``result``."""
@@ -305,5 +318,5 @@ def replay_lines(report: dict) -> list[str]:
     if report["adaptive"]:
         lines.append(f"events: {len(report['events'])}, excluded at a campaign's end: "
                      f"{', '.join(report['excluded_inputs']) or 'none'}"
-                     + first_exclusion(report["events"]))
+                     + first_exclusion(report["events"]) + new_states(report["events"]))
     return lines

@@ -40,6 +40,19 @@ at once judged together (:meth:`SensorMonitor._returning`: after a total dropout
 none could pass alone).  While too few sensors are in to rebuild the field, a
 sensor out only for a dropout gives its reading as it waits.  Every change of
 state is an event ``{"time", "sensor", "from", "to", "reason"}``.
+
+A new thermal state (``new_state``, :meth:`SensorMonitor._drift_vetoed`): a
+source training never saw moves several sensors away from the field at once,
+which self-prediction cannot pin on one of them.  A sensor is excluded for drift
+only if, with it out of the fit, every other judged sensor is within its warning
+band; otherwise no exclusion and an event ``"to": "new thermal state"`` (sensor
+``None``, the sensors out of band in ``sensors``).  A drift-excluded sensor is
+re-admitted when, within ``window`` samples of its exclusion, ``new_state_others``
+other judged sensors leave their warning band (the field followed it), which
+calls the new state too; while it lasts no sensor is excluded for drift (the
+fault signatures -- dropout, range, jump, freeze -- still exclude), and it ends,
+with an event ``"to": "trained"``, once every judged sensor has been within its
+warning band for a whole window.
 """
 
 from __future__ import annotations
@@ -55,6 +68,7 @@ SPREAD_FACTOR = 3.0   # bands never within this × a sensor's training spread (f
 MAX_BACKOFF = 10      # a sensor excluded again waits at most window × 2**MAX_BACKOFF to return
 READMIT = 0.5   # hysteresis: back in when within this share of the warning band for a window
 STATES = ("ok", "warning", "alarm", "excluded")
+NEW_STATE, TRAINED = "new thermal state", "trained"   # the field's states (events, sensor None)
 
 
 class SensorMonitor:
@@ -88,13 +102,28 @@ class SensorMonitor:
         Mean first-sample reading in training (a stand-in reference for a sensor
         missing at the campaign's start).
     jump_factor, freeze_factor, range_margin_c : float
+    new_state : bool
+        Tell a new thermal state from a drifting sensor (module doc); ``False``: every drift
+        beyond the band excludes its culprit.
+    new_state_others : int
+        Other judged sensors out of their warning band, soon after a drift exclusion, that
+        re-admit it and call a new thermal state.
     """
+
+    new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
+
+    def __setstate__(self, state: dict) -> None:
+        self.__dict__.update(state)
+        if "_since" not in state:      # pickled before the new-state rule: its state, idle
+            self._novel, self._calm_field = False, 0
+            self._since = np.full(len(self.names), -1, dtype=np.int64)
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
                  exclude_at: str = "warning", max_step_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
-                 freeze_factor: float = 2.0, range_margin_c: float = 10.0):
+                 freeze_factor: float = 2.0, range_margin_c: float = 10.0,
+                 new_state: bool = True, new_state_others: int = 2):
         n = len(names)
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
@@ -122,6 +151,9 @@ class SensorMonitor:
         self.first_c = arr(first_c, 0.0)
         self.jump_factor, self.freeze_factor = float(jump_factor), float(freeze_factor)
         self.range_margin_c = float(range_margin_c)
+        if int(new_state_others) < 1:
+            raise ValueError(f"new_state_others must be >= 1, got {new_state_others}")
+        self.new_state, self.new_state_others = bool(new_state), int(new_state_others)
         self._lo_lim = self.lo_c - self.range_margin_c
         self._hi_lim = self.hi_c + self.range_margin_c
         self._jump_lim = self.jump_factor * self.max_step_c
@@ -191,7 +223,7 @@ class SensorMonitor:
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
-              "_outs", "_explains")
+              "_outs", "_explains", "_novel", "_calm_field", "_since")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -225,6 +257,9 @@ class SensorMonitor:
         self._run_pred = np.full(n, np.nan)
         self._clean = np.zeros(n)
         self._quiet = False          # every sensor active and ok: the fast path may run
+        self._novel = False          # a new thermal state is declared (module doc)
+        self._calm_field = 0         # samples since a judged sensor was last out of band
+        self._since = np.full(n, -1, dtype=np.int64)   # sample count at its drift exclusion
         self._set_operator()
 
     def _operator(self, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -253,6 +288,11 @@ class SensorMonitor:
             H = np.where(np.isfinite(self._hist), self._hist, 0.0)
             pred = H[:, active] @ M.T if M is not None else np.full_like(H, np.nan)
             self._err = (self._hist - pred) * self._scale
+
+    @property
+    def new_state_(self) -> bool:
+        """A new thermal state is declared (module doc)."""
+        return self._novel
 
     @property
     def excluded(self) -> list[str]:
@@ -306,7 +346,8 @@ class SensorMonitor:
                 if clean is not None:
                     return clean, []
             out = self._update(x, time)
-        self._quiet = self._rebuilds and not self._state[self._active].any()
+        # a new thermal state counts its calm samples on the full path
+        self._quiet = self._rebuilds and not self._novel and not self._state[self._active].any()
         return out
 
     @property
@@ -541,18 +582,106 @@ class SensorMonitor:
             # column with more nodes than sensors: the far T_left1 went out first on 3 of 5 runs)
             z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
             j = int(np.argmax(z))
+            if self._drift_vetoed(j, level, err, time, events):
+                break
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
+            self._since[j] = self._count
             # a sensor out of band that no other can predict once j is out cannot be
             # vouched for (two coupled sensors look alike to self-prediction): out too
             blind = self._active & ~self._observable & (z >= 0.7 * z[j])
             for i in np.flatnonzero(blind):
                 if self._active.sum() > self.min_active_:
+                    if self._drift_vetoed(i, *self._judge(), time, events):
+                        break
                     self._exclude(i, f"drift: self-prediction error {err[i]:+.2g} °C and no other "
                                      f"sensor predicts it once {self.names[j]} is out", time, events,
                                   by_field=True)
-            level, err = self._judge()
+                    self._since[i] = self._count
+            else:
+                level, err = self._judge()
+                continue
+            break
+        level, err = self._judge()
+        if self.new_state and self.adaptive:
+            level, err = self._follow_field(level, err, time, events)
         return level, err
+
+    # -- a new thermal state (module doc) ------------------------------------------------------
+    def _drift_vetoed(self, j: int, level, err, time, events) -> bool:
+        """Whether the drift exclusion of ``j`` is refused as a new thermal state: one is
+        declared, or with ``j`` out the other judged sensors are not all within their warning
+        band (declared then), or ``new_state_others`` of them are out of it with ``j`` in."""
+        if not self.new_state:
+            return False
+        if self._novel:
+            return True
+        others = self._judged & (level >= WARNING)
+        others[j] = False
+        if not self._resolves(j):
+            self._declare(f"with {self.names[j]} out the others stay out of band",
+                          others | (np.arange(len(others)) == j), err, time, events)
+            return True
+        return int(others.sum()) >= self.new_state_others
+
+    def _resolves(self, j: int) -> bool:
+        """With ``j`` out of the fit, every other judged sensor's leave-one-out error over the
+        last ``confirm`` samples (their mean) within its warning band."""
+        trial = self._active.copy()
+        trial[j] = False
+        if trial.sum() < self.min_active_:
+            return True
+        M, lev = self._operator(trial)
+        judged = trial & (lev < self.pod.max_leverage)
+        rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
+        X = np.where(np.isfinite(rows), rows, 0.0)
+        E = ((X[:, judged] - X[:, trial] @ M[judged].T) / (1 - lev[judged])).mean(axis=0)
+        return bool((np.abs(E) < self.warning_c[judged]).all())
+
+    def _follow_field(self, level, err, time, events) -> tuple[np.ndarray, np.ndarray]:
+        """A drift-excluded sensor whose exclusion the field followed (``new_state_others``
+        other judged sensors out of band within a window of it) comes back, as a new state;
+        the new state ends after a window with every judged sensor within band.
+        ``(level, error)`` after it."""
+        leaving = self._judged & (level >= WARNING)
+        out = int(leaving.sum())
+        for j in np.flatnonzero(self._since >= 0):
+            if self._active[j] or self._count - self._since[j] > self.window:
+                self._since[j] = -1
+            elif out >= self.new_state_others:
+                self._since[j] = -1
+                self._active[j], self._by_field[j], self._dwell[j] = True, False, self.window
+                self._set_state(j, OK, time, f"re-admitted: {out} other sensors left the band "
+                                "after its exclusion (the field followed it: a new thermal state)",
+                                events)
+                self._set_operator()
+                leaving[j] = True
+                self._declare(f"the field followed {self.names[j]}", leaving, err, time, events)
+                level, err = self._judge()
+                leaving = self._judged & (level >= WARNING)
+                out = int(leaving.sum())
+        self._calm_field = 0 if out else self._calm_field + 1
+        if self._novel and self._calm_field >= self.window:
+            self._novel = False
+            events.append({"time": float(time), "sensor": None, "from": NEW_STATE,
+                           "to": TRAINED, "sensors": [],
+                           "reason": f"every judged sensor within its warning band for "
+                                     f"{self.window} samples: drift exclusions again"})
+        return level, err
+
+    def _declare(self, why: str, involved: np.ndarray, err, time, events) -> None:
+        """A new thermal state (one event while it lasts), ``involved`` the sensors out of band
+        and the one whose exclusion did not explain them."""
+        self._calm_field = 0
+        if self._novel:
+            return
+        self._novel = True
+        out = np.flatnonzero(involved)
+        named = ", ".join(f"{self.names[i]} {err[i]:+.2g} °C" for i in out)
+        events.append({"time": float(time), "sensor": None, "from": TRAINED, "to": NEW_STATE,
+                       "sensors": [self.names[i] for i in out],
+                       "reason": f"new thermal state: several sensors leave the field together "
+                                 f"({why}: {named}); no exclusion for drift until they are back"})
 
     def _explaining(self, level: np.ndarray) -> int | None:
         """An active sensor no other predicts whose reading explains the judged sensors out of

@@ -13,7 +13,14 @@ import pandas as pd
 from ...core.context import TIME
 from ..deploy.adapt import Adaptation, adapt_figures
 from ..deploy.adaptive import AdaptiveCompensator
-from ..deploy.report import adapt_line, alarm_rate, campaign_start, first_exclusion, streamed_hours
+from ..deploy.report import (
+    adapt_line,
+    alarm_rate,
+    campaign_start,
+    first_exclusion,
+    new_states,
+    streamed_hours,
+)
 from ..deploy.streaming import warm
 from ..deploy.surveillance import STATES
 from .blind import undetected_offset_um
@@ -166,7 +173,7 @@ def summary_lines(report: dict) -> list[str]:
     rate = (report.get("alarms") or {}).get("exclusions_per_100h")   # none in older reports
     lines.append(f"events: {len(report['events'])}, exclusions: {len(excl)}"
                  + ("" if rate is None else f" ({rate:.3g} per 100 h)")
-                 + first_exclusion(report["events"]))
+                 + first_exclusion(report["events"]) + new_states(report["events"]))
     return lines
 
 

@@ -135,9 +135,16 @@ class Detectors:
 
 
 @dataclass
+class NewState:
+    enabled: bool = key(BOOLEAN)
+    others: int = key(integer(1, at_most=MAX_WINDOW))
+
+
+@dataclass
 class Guard:
     margin: float = key(NON_NEGATIVE)
     rate_margin: float = key(NON_NEGATIVE)
+    new_state_margin: Optional[float] = key(optional(NON_NEGATIVE))
 
 
 @dataclass
@@ -151,6 +158,7 @@ class Monitor:
     bands: Bands = group(Bands)
     pod: Pod = group(Pod)
     detectors: Detectors = group(Detectors)
+    new_state: NewState = group(NewState)
     guard: Guard = group(Guard)
     map_time_h: Optional[float] = key(optional(NON_NEGATIVE))
 

@@ -1,0 +1,115 @@
+"""A new thermal state is no faulty sensor (monitor48): several sensors leaving the field together
+are reported as a new thermal state and none is excluded for drift; one drifting sensor still is.
+
+A small line of 10 sensors: trained on a warm-up plus a swinging gradient (two modes), streamed
+with a source training never saw (a bump between T_6 and T_7, warming from sample 100 to 200,
+cooling for 60 more) or with one sensor drifting."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from thermocomp.apps.deploy.guard import CorrectionGuard
+from thermocomp.apps.deploy.report import alarm_rate
+from thermocomp.apps.deploy.surveillance import NEW_STATE, TRAINED, SensorMonitor
+
+NAMES = [f"T_{k}" for k in range(10)]
+ON, OFF = 100, 200
+
+
+def _field(m: int, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    t = np.arange(m)
+    warm = 3 * (1 - np.exp(-t / 80)) + 0.5 * np.sin(t / 37)
+    gradient = 1.5 * np.sin(t / 53 + seed)
+    x = np.linspace(-0.5, 0.5, len(NAMES))
+    return 20 + warm[:, None] + gradient[:, None] * x + rng.normal(scale=0.02, size=(m, len(NAMES)))
+
+
+def _stream(record: np.ndarray, **options) -> list[dict]:
+    mon = SensorMonitor.from_training(None, NAMES, {"a": _field(400, 0), "b": _field(400, 1)},
+                                      **options)
+    events = []
+    for i, row in enumerate(record):
+        events += mon.update(row, float(i))[1]
+    return events
+
+
+def _new_source() -> np.ndarray:
+    t = np.arange(400)
+    power = np.interp(t, [ON, OFF, OFF + 60], [0.0, 3.0, 0.0])   # warms while on, cools after
+    bump = np.exp(-((np.arange(len(NAMES)) - 6.5) / 1.5) ** 2)
+    return _field(400, 2) + power[:, None] * bump
+
+
+def _changes(events: list[dict]) -> list[tuple]:
+    return [(e["sensor"], e["to"]) for e in events
+            if e["to"] in ("excluded", NEW_STATE, TRAINED) or e["from"] == "excluded"]
+
+
+def test_several_sensors_leaving_the_band_together_are_a_new_thermal_state_not_a_drift():
+    events = _stream(_new_source())
+    # one new state while the source is on, over once the field is trained again; nobody out
+    assert _changes(events) == [(None, NEW_STATE), (None, TRAINED)]
+    start, end = (e for e in events if e["to"] in (NEW_STATE, TRAINED))
+    assert ON < start["time"] < OFF < end["time"]
+    # the sensors either side of the source, the far end of the line still within band
+    assert len(start["sensors"]) >= 2 and set(start["sensors"]) <= {f"T_{k}" for k in range(4, 10)}
+    assert "new thermal state" in start["reason"]
+    assert alarm_rate([{"campaign": "c", **e} for e in events], 1.0)["new_thermal_states"] == 1
+    # the monitor of before (new_state off) blamed the source's sensors one after the other
+    before = _changes(_stream(_new_source(), new_state=False))
+    assert len([s for s, to in before if to == "excluded"]) >= 2
+    assert all(s is not None for s, _ in before)
+
+
+@pytest.mark.parametrize("new_state", [True, False])
+def test_one_drifting_sensor_is_still_excluded(new_state):
+    drifting = _field(400, 2)
+    drifting[ON:, 3] += np.arange(400 - ON) * 0.02              # 0.02 °C per sample on T_3
+    events = _stream(drifting, new_state=new_state)
+    out = [e for e in events if e["to"] == "excluded"]
+    assert out and out[0]["sensor"] == "T_3" and out[0]["reason"].startswith("drift")
+    assert ON < out[0]["time"] < ON + 30
+    assert not [e for e in events if e["to"] == NEW_STATE]
+
+
+def test_a_fault_during_the_new_state_is_still_caught_by_its_own_signature():
+    jumping = _new_source()
+    jumping[150:, 1] += 3.0                                     # T_1 jumps while the source is on
+    events = _stream(jumping)
+    assert (None, NEW_STATE) in _changes(events)
+    out = [e for e in events if e["to"] == "excluded"]
+    assert [(e["time"], e["sensor"]) for e in out] == [(150.0, "T_1")]
+    assert out[0]["reason"].startswith("jump")
+
+
+def test_the_guard_bound_widens_only_while_a_new_state_is_declared():
+    y = [np.array([[0.0], [10.0]])]
+    t = [np.array([0.0, 1.0])]
+    guard = CorrectionGuard.from_training(["E_X"], y, t, margin=0.2, rate_margin=1e6,
+                                          new_state_margin=1.0)
+    assert guard.step(np.array([0.0]), 1.0, 0.0)[0] == 0.0
+    assert guard.step(np.array([15.0]), 1.0, 1.0)[0] == pytest.approx(12.0)    # 10 + 20 %
+    assert guard.step(np.array([15.0]), 1.0, 2.0, new_state=True)[0] == pytest.approx(15.0)
+    assert guard.step(np.array([25.0]), 1.0, 3.0, new_state=True)[0] == pytest.approx(20.0)
+    plain = CorrectionGuard.from_training(["E_X"], y, t, margin=0.2, rate_margin=1e6)
+    plain.step(np.array([0.0]), 1.0, 0.0)
+    assert plain.step(np.array([15.0]), 1.0, 1.0, new_state=True)[0] == pytest.approx(12.0)
+
+
+def test_a_monitor_pickled_before_the_rule_judges_as_it_did():
+    import pickle
+
+    mon = SensorMonitor.from_training(None, NAMES, {"a": _field(400, 0), "b": _field(400, 1)})
+    state = dict(mon.__dict__)
+    for key in ("new_state", "new_state_others", "_novel", "_calm_field", "_since"):
+        del state[key]
+    old = SensorMonitor.__new__(SensorMonitor)
+    old.__setstate__(pickle.loads(pickle.dumps(state)))
+    events = []
+    for i, row in enumerate(_new_source()):
+        events += old.update(row, float(i))[1]
+    assert old.new_state is False and not [e for e in events if e["to"] == NEW_STATE]
+    assert [s for s, to in _changes(events) if to == "excluded"]
