@@ -80,7 +80,6 @@ RMSE 1.58 -> 2.02, 2.99 -> 3.64; still below the original model's).
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
@@ -89,7 +88,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "apps"))
 
-from bench_diagnose_memory import CLEAN, PLANTED, dataset  # noqa: E402
+from bench_diagnose_memory import CLEAN, PLANTED, dataset, held_out, outcome, print_rows  # noqa: E402
 
 import thermocomp.apps.diagnose.cv as cv_module  # noqa: E402
 from test_diagnose_few import few  # noqa: E402
@@ -127,16 +126,7 @@ def row(case: str, variant: str) -> dict:
                      options=SearchOptions(max_effects=1 if variant == "after1" else 2))
     finally:
         Search.saturates = shipped
-    out = {"case": case, "variant": variant, "targets": {}}
-    for t in d.targets:
-        j = d.to_json(t)
-        accepted = [e for e in j["effects"] if e["accepted"]]
-        out["targets"][t] = {
-            "accepted": [f'{e["kind"]} {e["column"]} {e["transform"]}' for e in accepted],
-            "test_rmse": [round(j["before"]["test_rmse"], 3), round(j["after"]["test_rmse"], 3)]}
-        if planted:
-            out["targets"][t]["right_first"] = bool(accepted) and accepted[0]["column"] == planted
-    return out
+    return {"case": case, "variant": variant, "targets": outcome(d, planted)}
 
 
 # -- the cause ------------------------------------------------------------------------------
@@ -158,12 +148,7 @@ def _problems(m, groups, y, train, test, reference):
     tr = np.isin(groups, train)
     cv = Problem(m.X[tr].reset_index(drop=True), y[tr], m.context[tr].reset_index(drop=True),
                  groups[tr], groups[tr], "E_Y", reference=reference)
-    held = Problem(m.X, y, m.context, groups, groups, "E_Y", reference=reference, n_folds=2)
-    scored = np.isin(groups, test)
-    held.folds, held.validated, held.unit_names = np.where(scored, 0, -1), scored, list(test)
-    held.unit_index = held.block_index = np.array([test.index(c) if ok else -1
-                                                   for c, ok in zip(groups, scored)])
-    return cv, held
+    return cv, held_out(m, y, test, reference)
 
 
 def _run(problem, inputs, effects, alpha=None):
@@ -306,12 +291,7 @@ def main(argv: list[str]) -> None:
         return
     if argv and argv[0].startswith("null:"):
         return null(int(argv[0].split(":")[1]), *(int(a) for a in argv[1:2]))
-    variants, cases = ["before", "after"], argv
-    if argv and ":" not in argv[0] and argv[0] not in CASES:
-        variants, cases = argv[0].split(","), argv[1:]
-    for case in cases or CASES:
-        for variant in variants:
-            print(json.dumps(row(case, variant), default=float), flush=True)
+    print_rows(argv, ["before", "after"], CASES, row)
 
 
 if __name__ == "__main__":
