@@ -34,6 +34,13 @@ own gain takes to forget accepted 8 of 24 clean records (test error up to 80 % w
 or more of 8 campaigns against a real effect (seeds 515, 737, 1514), no campaign-level statistic
 (exact sign flips, t, bootstrap-t) reaches ``alpha`` even before the family-wise correction.
 
+One block per campaign is also what a residual made of campaign offsets gives: with
+``reference=first_sample`` the probe noise of a campaign's first sample shifts its whole error
+(clean 8-campaign data: over half the CV error in the campaigns' means).  The campaigns' gains
+are then the whole evidence, and a candidate with as many regressors as a fold has training
+campaigns can match their offsets by chance in every fold alike; it is refused
+(:meth:`~.search.Search.saturates`, ``benchmarks/bench_diagnose_saturated.py``).
+
 **Rows within the train range.**  A held-out campaign whose inputs leave the
 range of the campaigns the fold trained on is an extrapolation: there a
 model with fewer sensors can look far better (a measured lathe: four healthy

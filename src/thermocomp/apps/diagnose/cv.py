@@ -148,6 +148,15 @@ class Problem:
         return len(self.unit_names)
 
     @property
+    def units_trained(self) -> int | None:
+        """Fewest CV units a fold trains on (``campaigns`` scheme; None for ``forward``, whose
+        units are blocks of one time line, not campaigns each with an offset of its own)."""
+        if self.forward:
+            return None
+        units = np.asarray(self.units, dtype=object)
+        return min(len(set(units[self.train_rows(k)].tolist())) for k in self.fold_ids)
+
+    @property
     def fold_ids(self) -> list[int]:
         return sorted(set(self.folds[self.validated].tolist()))
 
