@@ -36,6 +36,10 @@ configuration, RMSE identical.  Planted faults on yearround (T_bearing_f1) and c
 every configuration.
 cms5003 T_left2 from 24 h (during the new state): jump +0 → +0 min, freeze +5 → +7 min, drift
 +633 → +633 min; Σ² (mlr) 10467 → 5640, 20824 → 6181, 10461 → 5637.
+long9191, mill9191 (stranger48, seeds never used; mlr): healthy 0 exclusions, 0 new states, RMSE
+identical (E_Z 0.80; 1.81/1.20/2.02); T_col_front_low / T_col_05 jump +0 / +0 min, drift +29 / +26
+min, freeze +37 / +57 min under before and after alike, same RMSE.  The measured fl_thermal:
+bench_new_state_measured.py.
 Read in docs/monitoring.md ("A new thermal state").
 """
 
@@ -65,10 +69,13 @@ RECORDS = {
     "swiss4253": ["sim=swiss_lathe_door", "seed=4253"],
     "cms2718q3off": ["sim=column_moving_source", "seed=2718", "sim.generator.q3=false"],
     "mill4253": ["sim=large_mill_week", "seed=4253"],     # its June test outside March's envelope
+    "long9191": ["sim=long_record", "seed=9191"],         # 21 days at 1 min, test continues train
+    "mill9191": ["sim=large_mill_week", "seed=9191"],
 }
 # record -> (faulty sensor, onset as a share of each test campaign); cms5003: during the new state
 FAULTS = {"cms2718q3off": ("T_right3", 0.5), "yearround": ("T_bearing_f1", 0.5),
-          "cms5003": ("T_left2", 0.6)}
+          "cms5003": ("T_left2", 0.6), "long9191": ("T_col_front_low", 0.5),
+          "mill9191": ("T_col_05", 0.5)}
 KINDS = {"jump": {"kind": "jump", "magnitude_c": 3.0}, "drift": {"kind": "drift"},
          "freeze": {"kind": "freeze"}}
 CONFIGS = {"before": ["monitor.new_state.enabled=false"], "after": [],

@@ -113,3 +113,34 @@ def test_a_monitor_pickled_before_the_rule_judges_as_it_did():
         events += old.update(row, float(i))[1]
     assert old.new_state is False and not [e for e in events if e["to"] == NEW_STATE]
     assert [s for s, to in _changes(events) if to == "excluded"]
+
+
+@pytest.mark.xfail(strict=True, reason="design question (stranger48): on fl_thermal a drifting "
+                   "t12 is declared a new thermal state; benchmarks/bench_new_state_measured.py")
+def test_one_drifting_sensor_of_a_measured_record_is_excluded_not_called_a_new_state():
+    """fl_thermal (measured spindle) streamed from its start, trained on its first 90 %, t12
+    drifting 1 K/h from 1 h into the last 10 % (the monitor of `thermocomp monitor`, warmed on
+    the train part): the culprit pick takes its coupled neighbour T_t14 (+765 s, as with
+    new_state off), then T_t15, whose exclusion leaves T_t12 out of band, which the rule reads as
+    a new thermal state; the drifting T_t12 keeps it from ending, so no drift is excluded for
+    the rest of the record and T_t12 never.  Kept as a strict xfail: it passes (and fails the
+    suite) once a rule tells this single fault from a new source."""
+    import pandas as pd
+
+    from conftest import ROOT
+
+    record = pd.read_csv(ROOT / "datasets" / "fl_thermal" / "spindle_test.csv")
+    names = [f"T_t{k}" for k in range(1, 17)]
+    x = record[[f"t{k}(°C)" for k in range(1, 17)]].to_numpy(float)
+    cut, onset = 10003, 10003 + 240
+    mon = SensorMonitor.from_training(None, names, {"train": x[:cut]})
+    x[onset:, names.index("T_t12")] += np.arange(len(x) - onset) * 15 / 3600
+    events = []
+    for i, row in enumerate(x):                    # warmed on the train part, as deployed
+        got = mon.update(row, 15.0 * i)[1]
+        events += got if i >= cut else []
+    changes = [(e["sensor"], e["to"]) for e in events if e["to"] in ("excluded", NEW_STATE)]
+    assert (None, NEW_STATE) not in changes
+    out = [e for e in events if e["sensor"] == "T_t12" and e["to"] == "excluded"]
+    assert out and out[0]["reason"].startswith("drift")
+    assert out[0]["time"] - 15.0 * onset < 2 * 3600      # < 2 K of drift

@@ -4,8 +4,9 @@ import pandas as pd
 import pytest
 
 from thermocomp.core.io.contract import ContractError
+from thermocomp.core.io.options import ReadOptions
 from thermocomp.core.io.read import read_campaign
-from thermocomp.core.io.stdin import stream_seconds
+from thermocomp.core.io.stdin import read_stream, stream_seconds
 
 FORMS = {
     "iso": ["2026-03-29T00:59:59", "2026-03-29T01:00:14.5", "2026-03-29T01:00:29"],
@@ -48,6 +49,22 @@ def test_a_missing_time_stays_missing_for_the_guard():
     times = pd.Series(["2026-03-29T00:59:59", None, " 2026-03-29T01:00:29 "])
     seconds = stream_seconds(times, "auto").tolist()
     assert seconds[0] == 0.0 and pd.isna(seconds[1]) and seconds[2] == 30.0
+
+
+@pytest.mark.parametrize("fmt", ["auto", "%d.%m.%Y %H:%M:%S"])
+def test_a_stream_whose_first_time_is_missing_reads_the_times_after_it(fmt):
+    # a logger's first row without its time: was refused as 'data row 2: non-numeric value'
+    # (auto: the form taken from row 1's missing cell) or 'value nan is not ...' at row 1
+    times = pd.Series([None, "29.03.2026 01:00:14,5", "29.03.2026 01:00:29"])
+    seconds = stream_seconds(times, fmt).tolist()
+    assert pd.isna(seconds[0]) and seconds[1:] == [0.0, 14.5]
+
+
+def test_a_stream_of_logger_rows_without_a_first_time_streams_its_rows():
+    text = "time;T_a;E_X\n;20,5;1\n29.03.2026 01:00:14,5;20,6;2\n29.03.2026 01:00:29;20,7;3\n"
+    frame, missing = read_stream(text, ["T_a"], ReadOptions.from_cfg({"delimiter": ";", "decimal": ","}))
+    assert frame["T_a"].tolist() == [20.5, 20.6, 20.7] and missing == {"time": 1}
+    assert frame["time"].tolist()[1:] == [0.0, 14.5]
 
 
 def test_a_file_reads_a_time_padded_after_its_delimiter(tmp_path):

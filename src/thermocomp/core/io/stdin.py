@@ -140,8 +140,12 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     decimal comma, ``data.time``'s format; as given otherwise: the numeric check refuses what
     is no number; ``zone``: ``data.timezone``, the local clock of timestamps without an
     offset).  A missing time or one that goes back is no refusal here: the stream's guard
-    judges it, as on the machine."""
-    first, kind = time.iloc[0], time_format
+    judges it, as on the machine; the first time read (not row 1's, which may be missing)
+    tells the form and is the origin."""
+    read = time.dropna()
+    if read.empty:                 # no time at all: every row's for the guard to substitute
+        return time
+    first, kind = read.iloc[0], time_format
     if kind == "auto" and isinstance(first, str):      # read as a campaign file's
         kind = time_kind(first.strip(), kind, not pd.isna(pd.to_numeric(first, errors="coerce")),
                          SOURCE, stream=True)
@@ -153,8 +157,8 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
         return time
     target = time_type(kind, str(first).strip())
     found = first_cast_failure(text, target, kind)
-    if found is not None or not text[0].is_valid:
-        row, value = found if found is not None else (0, first)
+    if found is not None:
+        row, value = found
         raise ContractError(f"value {value!r} is not {described(target, kind)} (data.time="
                             f"{time_format}: the stream's first row is a timestamp)",
                             file=SOURCE, column=TIME, row=row + 1)
@@ -164,5 +168,5 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     if zone is not None and target.tz is None:
         ns[valid] = on_local_clock(ns[valid], zone, SOURCE)
     # int64 nanoseconds subtracted before the float: a float64 epoch in ns keeps ~256 ns
-    seconds = np.where(valid, (ns - ns[0]) / 1e9, np.nan)
+    seconds = np.where(valid, (ns - ns[np.argmax(valid)]) / 1e9, np.nan)
     return pd.Series(seconds, index=time.index)
