@@ -581,7 +581,7 @@ class SensorMonitor:
             # pull the fit, and a well-predicted sensor far away then looks worst (measured on a
             # column with more nodes than sensors: the far T_left1 went out first on 3 of 5 runs)
             z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
-            j = int(np.argmax(z))
+            j = self._lone_fault(int(np.argmax(z)), z, level, err)
             if self._drift_vetoed(j, level, err, time, events):
                 break
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
@@ -624,7 +624,24 @@ class SensorMonitor:
             return True
         return int(others.sum()) >= self.new_state_others
 
-    def _resolves(self, j: int) -> bool:
+    def _lone_fault(self, j: int, z: np.ndarray, level: np.ndarray, err: np.ndarray) -> int:
+        """``j``, or, when with ``j`` out the others stay out of band, the sensor out of band
+        (largest error first) that one fault explains: with it out every other judged sensor
+        is within band and it is off the field the others make by more than any sensor's
+        self-prediction error now (a fault's own deviation is the largest one).  The largest error
+        is paper 002's pick, but a drifting sensor's coupled neighbour can show the largest
+        (measured: fl_thermal's t12 drifting, T_t14 then T_t15 picked, and the drift read as
+        a new thermal state that never ended)."""
+        if not self.new_state or self._novel or self._resolves(j):
+            return j
+        largest = float(np.nanmax(np.abs(np.where(self._judged, err, np.nan))))
+        for k in np.argsort(-z):
+            if (k != j and z[k] >= 0 and level[k] >= WARNING
+                    and self._resolves(int(k), alone=largest)):
+                return int(k)
+        return j
+
+    def _resolves(self, j: int, alone: float | None = None) -> bool:
         """With ``j`` out of the fit, every other judged sensor's leave-one-out error over the
         last ``confirm`` samples (their mean) within its warning band."""
         trial = self._active.copy()
@@ -636,7 +653,10 @@ class SensorMonitor:
         rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
         X = np.where(np.isfinite(rows), rows, 0.0)
         E = ((X[:, judged] - X[:, trial] @ M[judged].T) / (1 - lev[judged])).mean(axis=0)
-        return bool((np.abs(E) < self.warning_c[judged]).all())
+        if not (np.abs(E) < self.warning_c[judged]).all():
+            return False
+        # (alone: and j itself off the others' field by that much at least, as a fault is)
+        return alone is None or bool(abs((X[:, j] - X[:, trial] @ M[j]).mean()) >= alone)
 
     def _follow_field(self, level, err, time, events) -> tuple[np.ndarray, np.ndarray]:
         """A drift-excluded sensor whose exclusion the field followed (``new_state_others``
