@@ -81,6 +81,7 @@ def _position_sets(v) -> bool:
 @dataclass
 class Data:
     path: str = key(logged=True, reports=True)
+    sheet: Optional[str] = key(optional(text()), logged=True, reports=True)   # a workbook's
     interim: str = key(reports=True)
     processed: str = key(reports=True)
     inputs: list = key(texts("column names or patterns", unique=True), logged=True)
