@@ -41,8 +41,9 @@ def write(folder: Path, rows: int) -> tuple[Path, Path]:
 
     with open(RECORD, encoding="utf-8", newline="") as f:
         lines = list(csv.reader(f))[:rows + 1]
-    book = openpyxl.Workbook(write_only=True)
-    sheet = book.create_sheet("Messung")
+    book = openpyxl.Workbook()       # (not write_only: that writes no <dimension>, which Excel
+    sheet = book.active              # always writes, and openpyxl then scans the sheet for it)
+    sheet.title = "Messung"
     sheet.append(lines[0])
     for line in lines[1:]:
         sheet.append([float(v) for v in line])

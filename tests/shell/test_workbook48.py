@@ -187,6 +187,9 @@ def test_a_folder_of_workbooks_holds_out_its_last_run_by_time(tmp_path):
                  *FAST, f"out={tmp_path / 'out'}"]) == 0
     report = json.loads((tmp_path / "out" / "ingest_report.json").read_text())
     assert {c: e["split"] for c, e in report["campaigns"].items()} == {"a": "test", "b": "train"}
+    assert main(["init", str(folder), *ROLES, f"out={tmp_path / 'init'}"]) == 0
+    written = yaml.safe_load((tmp_path / "init" / "conf" / "data" / "runs.yaml").read_text())
+    assert "delimiter" not in written and written["test_fraction"] == 0.1
 
 
 @pytest.mark.parametrize("name, content, says", [
