@@ -81,8 +81,8 @@ def sheet_as_csv(path: Path, sheet: str | None, rows: int | None = None) -> Iter
     A :class:`ContractError` about it, and a warning logged naming it, name the workbook, the
     sheet and the sheet's row."""
     with tempfile.TemporaryDirectory(prefix="thermocomp-sheet-") as tmp:
-        out = Sheet(path, "", Path(tmp) / f"{path.stem}.csv")
-        out = replace(out, name=_write(path, sheet, out.csv, rows))
+        text = Path(tmp) / f"{path.stem}.csv"
+        out = Sheet(path, _write(path, sheet, text, rows), text)
         renamed = _Renamed(out)
         logger.addFilter(renamed)
         try:
