@@ -167,6 +167,9 @@ def test_a_sheet_the_workbook_lacks_is_refused_naming_its_sheets(tmp_path, capsy
     refused(["init", str(book), "data.sheet=Messdaten", f"out={tmp_path / 'init'}"], capsys,
             f"file {book}: data.sheet='Messdaten' is no sheet of it: its sheets are 'Info', "
             "'Messung'")
+    # a name that reads as a number: quoted (2 would say the second sheet? no: names only)
+    refused(["init", str(book), "data.sheet=2", f"out={tmp_path / 'init'}"], capsys,
+            "data.sheet=2: must be null or a sheet's name", "data.sheet=\"'2024'\"")
     # the first sheet, a page of notes, is read when none is named: refused as such a CSV is
     refused(["init", str(book), f"out={tmp_path / 'init'}"], capsys, f"file {book}, sheet 'Info'")
     assert not (tmp_path / "init").exists()
