@@ -349,11 +349,12 @@ def test_a_loggers_text_export_goes_through_init_as_csv_does(tmp_path, capsys):
 def test_an_excel_workbook_is_refused_in_one_line_saying_to_save_it_as_csv(tmp_path, capsys,
                                                                            command):
     # before: init crashed in the Parquet reader; run said "file has a header but no data rows"
+    # (session 48: a workbook is read, tests/shell/test_workbook48.py; one that is not: refused)
     book = tmp_path / "campaign.xlsx"
     book.write_bytes(b"PK\x03\x04" + bytes(60))
     args = [str(book)] if command == "init" else [f"data.path={book}", "track=false"]
     refused([command, *args, f"out={tmp_path / 'out'}"], capsys, "campaign.xlsx",
-            "save its sheet as CSV")
+            "save it as an Excel workbook (.xlsx), or its sheet as CSV")
     assert not (tmp_path / "out").exists()
 
 

@@ -37,22 +37,28 @@ class ContractError(ThermocompError):
     The message is one line naming the file, the column and the row (1-based
     data row, header excluded) wherever they are known, and the row's ``line`` in a CSV
     file (1-based, what a lab's editor shows: above it a preamble, the header, a unit row,
-    blank lines) where it is known: ``line 13 (data row 9)``.
+    blank lines) where it is known: ``line 13 (data row 9)``.  In a workbook's ``sheet`` the
+    ``line`` is the sheet's row, as Excel numbers it: ``sheet 'Messung', row 13 (data row 9)``.
     """
 
     def __init__(self, message: str, file: str | os.PathLike | None = None,
-                 column: str | None = None, row: int | None = None, line: int | None = None):
+                 column: str | None = None, row: int | None = None, line: int | None = None,
+                 sheet: str | None = None):
         self.reason, self.file, self.column, self.row, self.line = message, file, column, row, line
+        self.sheet = sheet
         where = [f"file {file}" if file is not None else None,
-                 f"column {column!r}" if column is not None else None, position(row, line)]
+                 f"sheet {sheet!r}" if sheet is not None else None,
+                 f"column {column!r}" if column is not None else None,
+                 position(row, line, "line" if sheet is None else "row")]
         where = ", ".join(w for w in where if w)
         super().__init__(f"{where}: {message}" if where else message)
 
 
-def position(row: int | None, line: int | None = None) -> str | None:
-    """``line 13 (data row 9)``, ``data row 9`` or ``line 13``: where a message points in a file."""
+def position(row: int | None, line: int | None = None, unit: str = "line") -> str | None:
+    """``line 13 (data row 9)``, ``data row 9`` or ``line 13``: where a message points in a file
+    (``unit="row"``: a sheet's row, ``row 13 (data row 9)``)."""
     if line is not None:
-        return f"line {line}" + (f" (data row {row})" if row is not None else "")
+        return f"{unit} {line}" + (f" (data row {row})" if row is not None else "")
     return None if row is None else f"data row {row}"
 
 

@@ -20,6 +20,7 @@ MODULES = {
     "hydra_plugins.hydra_submitit_launcher": ("scale", "hydra/launcher=slurm"),
     "submitit": ("scale", "hydra/launcher=slurm"),
     "psycopg2": ("team", "a PostgreSQL tracking store"),
+    "openpyxl": ("excel", "an Excel workbook (data.path=<file>.xlsx)"),
 }
 # Hydra configs that a plugin of an extra registers (conf/ extends them)
 CONFIGS = {"hydra/launcher/submitit_slurm": "hydra_plugins.hydra_submitit_launcher",

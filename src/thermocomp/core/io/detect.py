@@ -25,6 +25,7 @@ from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
 from .timestamps import CLOCK, looks_like_timestamp
+from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
 _GLOB = re.compile(r"([*?\[])")
 _WORDS = re.compile(r"[\s_.\-]+")
@@ -66,7 +67,11 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
 
 
 def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
-    """``(options with the separators detected, header, first row)`` of ``sample``."""
+    """``(options with the separators detected, header, first row)`` of ``sample`` (a
+    workbook's: of its sheet's first rows written as CSV)."""
+    if is_workbook(sample):
+        with sheet_as_csv(sample, opts.sheet, rows=HEAD_ROWS) as sheet:
+            return head(sheet.csv, csv_options(opts))
     if not is_text(sample):
         table = parquet().read_table(sample).slice(0, 1)
         return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
@@ -127,15 +132,17 @@ def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,
     """The data config that reads ``src``: the separators, the roles, and every other key the
     user set away from its default (``data.thousands``, ``data.time``, ...); ``manifest``: a
     folder's, as read (:func:`folder_manifest`; read here if not given)."""
-    config = {"path": str(src), "delimiter": opts.delimiter, "decimal": opts.decimal,
-              "roles": roles}
+    if manifest is None and src.is_dir():
+        manifest = read_manifest(src, opts)
+    # a sheet has no separators (a CSV file beside workbooks: detected, data.delimiter=auto)
+    separators = {} if is_workbook(sample_file(src, manifest)) else {
+        "delimiter": opts.delimiter, "decimal": opts.decimal}
+    config = {"path": str(src), **separators, "roles": roles}
     for key, value in given.items():
         if key not in config and key not in _WHERE and key in defaults and value != defaults[key]:
             config[key] = value
     # one record, or a folder without test campaigns (no manifest, or one without `split`:
     # every run train): nothing is held out unless a fraction says so, and `run` needs a test
-    if manifest is None and src.is_dir():
-        manifest = read_manifest(src, opts)
     unsplit = manifest is None or not (manifest["split"] == "test").any()
     if unsplit and given.get("test_fraction") is None:
         config["test_fraction"] = 0.1        # its last tenth (of samples; of runs) is the test
@@ -154,9 +161,7 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
         f", timestamps from {origin}" if origin else ", elapsed h:mm:ss" if elapsed
         else _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
-    charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
-    lines = [f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
-             + _table_start(sample, opts), time,
+    lines = [_layout(sample, opts), time,
              f"sample period: {period_s:g} s, {report['rows']} rows"]
     width = max(len(h or "(no header)") for h in header)
     for h in header:
@@ -172,14 +177,25 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
                     f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"]
 
 
-def _table_start(sample: Path, opts) -> str:
+def _layout(sample: Path, opts) -> str:
+    """How ``sample`` is read: its separators (a workbook: its sheet) and where its table starts."""
+    if is_workbook(sample):
+        with sheet_as_csv(sample, opts.sheet, rows=HEAD_ROWS) as sheet:
+            return f"{sample.name}: sheet {sheet.name!r}" + _table_start(sheet.csv, opts, "row")
+    charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
+    return (f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
+            + _table_start(sample, opts))
+
+
+def _table_start(sample: Path, opts, unit: str = "line") -> str:
     """Where the table starts, said when not on the first line (a preamble, a unit row)."""
     if opts.skip_rows == 1 or not is_text(sample):
         return ""
     preamble = header_line(head_lines(sample, opts.encoding), opts.delimiter) or 0
-    units = f", units from line {preamble + 2}" if opts.skip_rows > preamble + 1 else ""
-    left = f" ({preamble} line(s) above it left out)" if preamble else ""
-    return f", header on line {preamble + 1}{left}{units}; rows counted from line {opts.skip_rows + 1}"
+    units = f", units from {unit} {preamble + 2}" if opts.skip_rows > preamble + 1 else ""
+    left = f" ({preamble} {unit}(s) above it left out)" if preamble else ""
+    return (f", header on {unit} {preamble + 1}{left}{units}; rows counted from {unit} "
+            f"{opts.skip_rows + 1}")
 
 
 def _seconds_unit(header: str, opts) -> str:

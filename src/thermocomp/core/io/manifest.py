@@ -13,11 +13,14 @@ import pandas as pd
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
 from .encoding import UTF8, check_text, fields, text_codec, undecodable
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
+from .workbook import WORKBOOK_SUFFIXES
 
-CAMPAIGN_SUFFIXES = (".csv", ".parquet")
+# an Excel workbook is read as its CSV export (:mod:`.workbook`)
+CAMPAIGN_SUFFIXES = (".csv", ".parquet", *WORKBOOK_SUFFIXES)
 # a one-file record may also carry a logger's text suffix: read as CSV is (delimiter detected)
 TEXT_SUFFIXES = (".csv", ".txt", ".tsv", ".dat")
-RECORD_SUFFIXES = (*TEXT_SUFFIXES, ".parquet")
+RECORD_SUFFIXES = (*TEXT_SUFFIXES, ".parquet", *WORKBOOK_SUFFIXES)
+EXCEL_OWNER = "~$"     # the lock file Excel leaves beside a workbook it has open
 _UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
 
 
@@ -83,7 +86,8 @@ def campaign_files(folder: Path) -> list[Path]:
                 for t in re.split(r"(\d+)", p.name)]
     if not folder.is_dir():
         return []
-    return sorted((p for p in folder.iterdir() if p.is_file() and not p.name.startswith(".")
+    return sorted((p for p in folder.iterdir() if p.is_file()
+                   and not p.name.startswith((".", EXCEL_OWNER))
                    and p.suffix.lower() in CAMPAIGN_SUFFIXES), key=natural)
 
 
@@ -156,7 +160,8 @@ def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
             problem = "file", (f"campaign file {fname!r} lies outside the dataset folder: "
                                "files are paths relative to it, without '..'")
         elif Path(fname).suffix.lower() not in CAMPAIGN_SUFFIXES:
-            problem = "file", f"campaign file {fname!r} is neither .csv nor .parquet"
+            problem = "file", (f"campaign file {fname!r} is not "
+                               f"{', '.join(CAMPAIGN_SUFFIXES[:-1])} nor {CAMPAIGN_SUFFIXES[-1]}")
         elif not (root / fname).is_file():
             problem = "file", f"campaign file {fname!r} not found in {root}"
         elif (root / fname).resolve() in files:

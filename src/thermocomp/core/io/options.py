@@ -63,6 +63,7 @@ class ReadOptions:
     test_fraction: float | None = None
     val_fraction: float | None = None
     split_order: list = field(default_factory=lambda: list(SPLIT_ORDER))
+    sheet: str | None = None      # a workbook's sheet (None: the first)
     # internal (no data config key): "keep" leaves missing values NaN; "keep_errors" only the
     # E_ columns' (a volumetric dataset's distances not measured), the rest repaired
     missing: str = "repair"
@@ -110,6 +111,7 @@ class ReadOptions:
             test_fraction=_fraction(cfg, "test_fraction"),
             val_fraction=_fraction(cfg, "val_fraction"),
             split_order=_split_order(cfg),
+            sheet=None if cfg.get("sheet") is None else str(cfg.get("sheet")),
         )
         opts._check()
         return opts

@@ -91,6 +91,7 @@ from .values import (
     _set_time_seconds,
     _warn_error_ranges,
 )
+from .workbook import csv_options, is_workbook, sheet_as_csv
 
 INGEST_REPORT = "ingest_report.json"
 MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
@@ -148,7 +149,8 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     Parameters
     ----------
     path : str or Path
-        A ``.csv`` or ``.parquet`` campaign file.
+        A ``.csv`` or ``.parquet`` campaign file, or an Excel workbook (``.xlsx``, ``.xlsm``):
+        its sheet ``data.sheet`` (the first) read as its CSV export (:mod:`.workbook`).
     cfg : mapping or ReadOptions, optional
         The ``data`` config (see :func:`read_dataset`).
 
@@ -176,6 +178,14 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
         raise ContractError("campaign file not found", file=path)
     if path.stat().st_size == 0:
         raise ContractError("empty file", file=path)
+    if is_workbook(path):       # read as its CSV export is (:mod:`.workbook`)
+        with sheet_as_csv(path, opts.sheet) as sheet:
+            return _read_file(sheet.csv, csv_options(opts))
+    return _read_file(path, opts)
+
+
+def _read_file(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:
+    """:func:`read_campaign` of a CSV or Parquet file."""
     load = _load_parquet if path.suffix.lower() == ".parquet" else _load_csv
     columns, renamed, rescaled, lines = load(path, opts)
     try:

@@ -1,9 +1,10 @@
 """A dataset without a test split: ``data.test_fraction`` and ``data.val_fraction``.
 
-One record (``data.path`` a CSV or Parquet file, no manifest) is cut chronologically into parts,
-each a campaign that ``continues`` the one before (:mod:`thermocomp.core.continuation`), in the order
-``data.split_order`` (default train, val, test).  In a folder of campaigns without a test (or
-val) split, the chronologically last campaigns (by ``start``, else manifest order) are held out.
+One record (``data.path`` a CSV or Parquet file or an Excel workbook, no manifest) is cut
+chronologically into parts, each a campaign that ``continues`` the one before
+(:mod:`thermocomp.core.continuation`), in the order ``data.split_order`` (default train, val,
+test).  In a folder of campaigns without a test (or val) split, the chronologically last
+campaigns (by ``start``, else manifest order) are held out.
 """
 
 from __future__ import annotations
@@ -19,6 +20,7 @@ import pyarrow as pa
 from ...base.log import logger
 from .contract import MANIFEST, ContractError
 from .manifest import RECORD_SUFFIXES
+from .workbook import not_read
 
 MIN_PART_ROWS = 2          # as a campaign: a reference sample and one to score
 _UNSAFE_ID = re.compile(r"[^\w.\-]+")
@@ -41,13 +43,12 @@ def _counts(n: int, opts) -> dict[str, int]:
 
 
 def check_record_file(path: Path) -> None:
-    """A one-file record is delimited text or Parquet, told by its suffix (an Excel workbook was
-    read as Parquet and crashed in the reader)."""
+    """A one-file record is delimited text, Parquet or an Excel workbook, told by its suffix
+    (an Excel workbook was read as Parquet and crashed in the reader)."""
     if path.suffix.lower() not in RECORD_SUFFIXES:
-        kind = " (an Excel workbook: save its sheet as CSV)" if path.suffix.lower() in (
-            ".xlsx", ".xls", ".xlsm", ".ods") else ""
-        raise ContractError(f"a record's file is {', '.join(RECORD_SUFFIXES)}, not "
-                            f"{path.suffix or 'a file without a suffix'}{kind}", file=path)
+        kind = not_read(path)
+        raise ContractError(kind or f"a record's file is {', '.join(RECORD_SUFFIXES)}, not "
+                            f"{path.suffix or 'a file without a suffix'}", file=path)
 
 
 def record_id(path: Path) -> str:

@@ -56,7 +56,7 @@ def _repair_train(ds: Dataset, report: dict, options: Mapping | None) -> None:
                 raise ContractError(f"train campaign {cid}: {exc.reason} (models and the sensor "
                                     "monitor are fitted on complete train records)",
                                     file=exc.file, column=exc.column, row=exc.row,
-                                    line=exc.line) from None
+                                    line=exc.line, sheet=exc.sheet) from None
             ds.campaigns[cid] = table.to_pandas(split_blocks=True)
 
 

@@ -20,6 +20,7 @@ from .options import ReadOptions
 from .sniff import resolved
 from .tables import _contract_names, _first_text, _peek_csv, _timed, parquet
 from .timestamps import CLOCK, maybe_elapsed, parsed, time_type
+from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
 
 def campaign_starts(root: Path, manifest: pd.DataFrame, opts: ReadOptions) -> pd.Series:
@@ -37,6 +38,12 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
     """The first timestamp of a campaign file (UTC; a time without an offset as written, or on
     ``data.timezone``'s clock); NaT when its time is no timestamp or the row does not read (the
     read of the file says why)."""
+    if is_workbook(path):      # its sheet's first rows, as CSV (:mod:`.workbook`)
+        try:
+            with sheet_as_csv(path, opts.sheet, rows=HEAD_ROWS) as sheet:
+                return first_timestamp(sheet.csv, csv_options(opts))
+        except ContractError:
+            return pd.NaT
     try:
         header, first = _first_row(path, opts)
         names, _ = _contract_names(header, opts, path, first=first)

@@ -45,6 +45,11 @@ AUTO_REFERENCE = "auto"   # data.reference: none where test/val campaigns contin
 PLOTS = ("summary", "test", "all", "none")  # `plots=`: which figures a stage draws
 
 
+# data.sheet: a workbook's sheet by its name (not its number: 2 would be ambiguous)
+SHEET = Rule(lambda v: v is None or isinstance(v, str) and v != "",
+             "null or a sheet's name (one that reads as a number quoted: data.sheet=\"'2024'\")")
+
+
 def key(rule: Rule | None = None, *, names: bool = False, logged: bool = False,
         reports: bool = False):
     """A config key checked by ``rule`` (None: by its reader, as ``out`` where it is written).
@@ -81,6 +86,7 @@ def _position_sets(v) -> bool:
 @dataclass
 class Data:
     path: str = key(logged=True, reports=True)
+    sheet: Optional[str] = key(SHEET, logged=True, reports=True)
     interim: str = key(reports=True)
     processed: str = key(reports=True)
     inputs: list = key(texts("column names or patterns", unique=True), logged=True)

@@ -1,0 +1,173 @@
+"""A lab's Excel workbook (``.xlsx``, ``.xlsm``) read as its CSV export is.
+
+The sheet (the first, or ``data.sheet``) is written, as openpyxl reads it (the values a formula
+had when Excel last saved it), into a temporary UTF-8 CSV file, ``,``-separated with ``.`` as the
+decimal mark, one line per sheet row from row 1: the CSV reader then reads it, so a preamble, a
+unit row, roles, units and every check work as on the lab's CSV export.  A date cell is written
+as ISO 8601, a duration (``[h]:mm:ss``) as ``h:mm:ss``, a number as Python's ``repr`` (every
+digit kept), a boolean as 1/0, an empty cell empty, a line break inside a cell as a space (so that
+the CSV file's line is the sheet's row).  A message about the CSV file names the workbook, the
+sheet and the sheet's row instead (:func:`sheet_as_csv`).
+"""
+
+from __future__ import annotations
+
+import csv
+import datetime as dt
+import logging
+import re
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, replace
+from pathlib import Path
+
+from ...base.errors import listed
+from ...base.extras import require
+from ...base.log import logger
+from .contract import ContractError
+from .encoding import UTF8
+from .sniff import SNIFF_LINES
+
+WORKBOOK_SUFFIXES = (".xlsx", ".xlsm")
+# spreadsheets openpyxl does not read: refused with the remedy
+NOT_READ = {".xls": "an Excel 97-2003 workbook", ".xlsb": "a binary Excel workbook",
+            ".ods": "an OpenDocument spreadsheet"}
+SAVE_AS = "save it as an Excel workbook (.xlsx), or its sheet as CSV"
+HEAD_ROWS = SNIFF_LINES         # the rows a look at the header reads (a preamble, a unit row)
+_OLE = b"\xd0\xcf\x11\xe0"        # a compound file: an encrypted .xlsx, or an .xls renamed
+_LINE = re.compile(r"\bline (\d+)")
+_BREAK = re.compile(r"\r\n|[\r\n]")
+
+
+@dataclass(frozen=True)
+class Sheet:
+    """A workbook's sheet written as CSV: the ``workbook``, the sheet's ``name``, the ``csv``."""
+
+    workbook: Path
+    name: str
+    csv: Path
+
+    def where(self) -> str:
+        return f"{self.workbook}, sheet {self.name!r}"
+
+    def located(self, exc: ContractError) -> ContractError:
+        """``exc`` about the CSV file as about the sheet (its line is the sheet's row)."""
+        if exc.file is None or Path(exc.file) != self.csv:
+            return exc
+        return ContractError(exc.reason.replace(str(self.csv), self.where()), file=self.workbook,
+                             column=exc.column, row=exc.row, line=exc.line, sheet=self.name)
+
+
+def is_workbook(path) -> bool:
+    return Path(path).suffix.lower() in WORKBOOK_SUFFIXES
+
+
+def not_read(path) -> str | None:
+    """What a spreadsheet openpyxl does not read is, with the remedy (None: not one)."""
+    kind = NOT_READ.get(Path(path).suffix.lower())
+    return None if kind is None else f"{kind}, which is not read: {SAVE_AS}"
+
+
+def csv_options(opts):
+    """The read options of the CSV file a sheet is written to (separators, encoding: ours)."""
+    return replace(opts, delimiter=",", decimal=".", thousands=None, encoding=UTF8)
+
+
+@contextmanager
+def sheet_as_csv(path: Path, sheet: str | None, rows: int | None = None) -> Iterator[Sheet]:
+    """The sheet ``sheet`` of the workbook ``path`` (None: the first) as a temporary CSV file
+    (its first ``rows`` only, where given: what a look at the header needs), removed after.
+    A :class:`ContractError` about it, and a warning logged naming it, name the workbook, the
+    sheet and the sheet's row."""
+    with tempfile.TemporaryDirectory(prefix="thermocomp-sheet-") as tmp:
+        text = Path(tmp) / f"{path.stem}.csv"
+        out = Sheet(path, _write(path, sheet, text, rows), text)
+        renamed = _Renamed(out)
+        logger.addFilter(renamed)
+        try:
+            yield out
+        except ContractError as exc:
+            raise out.located(exc) from None
+        finally:
+            logger.removeFilter(renamed)
+
+
+class _Renamed(logging.Filter):
+    """A log record naming the sheet's CSV file names the sheet and its row instead."""
+
+    def __init__(self, sheet: Sheet):
+        super().__init__()
+        self.sheet = sheet
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        text = record.getMessage()
+        if str(self.sheet.csv) in text:
+            record.msg = _LINE.sub(r"row \1", text.replace(str(self.sheet.csv), self.sheet.where()))
+            record.args = ()
+        return True
+
+
+def _write(path: Path, sheet: str | None, out: Path, rows: int | None) -> str:
+    """Write the sheet into ``out`` as CSV; the sheet's name."""
+    require("openpyxl")
+    import openpyxl
+
+    try:
+        book = openpyxl.load_workbook(path, read_only=True, data_only=True)
+    except Exception as exc:   # zipfile, XML and openpyxl errors of a file it does not read
+        raise ContractError(_unread(path, exc), file=path) from None
+    try:
+        found = _sheet(book, sheet, path)
+        try:
+            with open(out, "w", newline="", encoding=UTF8) as f:
+                writer = csv.writer(f, lineterminator="\n")
+                for cells in found.iter_rows(max_row=rows, values_only=True):
+                    writer.writerow([_text(v) for v in cells])
+        except Exception as exc:     # a damaged sheet (its XML)
+            raise ContractError(f"sheet {found.title!r} is not read ({type(exc).__name__}: "
+                                f"{exc}): {SAVE_AS}", file=path) from None
+        return found.title
+    finally:
+        book.close()
+
+
+def _unread(path: Path, exc: Exception) -> str:
+    """Why the workbook ``path`` is not read (``exc``: what openpyxl raised), and the remedy."""
+    with open(path, "rb") as f:
+        ole = f.read(4) == _OLE       # what Excel writes when a password encrypts a workbook
+    if ole:
+        return ("an encrypted workbook (or an Excel 97-2003 file named .xlsx), which is not "
+                "read: save it as .xlsx without a password, or its sheet as CSV")
+    return f"not a workbook that is read ({type(exc).__name__}: {exc}): {SAVE_AS}"
+
+
+def _sheet(book, name: str | None, path: Path):
+    sheets = book.worksheets          # (not a chart sheet)
+    if not sheets:
+        raise ContractError("the workbook has no worksheet", file=path)
+    if name is None:
+        return sheets[0]
+    found = [s for s in sheets if s.title == name]
+    if not found:
+        raise ContractError(f"data.sheet={name!r} is no sheet of it: its sheets are "
+                            + listed([repr(s.title) for s in sheets], most=20), file=path)
+    return found[0]
+
+
+def _text(value) -> str:
+    """A cell as its CSV export writes it (ours: ISO 8601 dates, every digit)."""
+    if value is None:
+        return ""
+    if isinstance(value, bool):
+        return str(int(value))
+    if isinstance(value, float):
+        return repr(value)
+    if isinstance(value, (dt.datetime, dt.date, dt.time)):
+        return value.isoformat()
+    if isinstance(value, dt.timedelta):
+        seconds = value.total_seconds()
+        hours, rest = divmod(abs(seconds), 3600)
+        text = f"{'-' if seconds < 0 else ''}{int(hours)}:{int(rest // 60):02d}:{rest % 60:06.3f}"
+        return text.rstrip("0").rstrip(".")
+    return _BREAK.sub(" ", str(value))
