@@ -239,6 +239,12 @@ def poisoned_copy(src: Path, dest: Path, scale: float = -50.0, offset: float = 1
     return dest
 
 
+def pytest_configure(config):
+    # here, not in pyproject.toml's markers: the Makefile reinstalls the package when that changes
+    config.addinivalue_line("markers", "full: an end-to-end run of what cheaper tests cover "
+                                       "(named in its docstring): `make test-all`, not `make test` (CI)")
+
+
 # -- how `make test`'s two xdist workers (`--dist loadfile`) share the tests --------------------
 # A module's tests go to one worker (its module fixtures are built once), except these: long
 # tests that share nothing costly, each a unit of its own (the README test, one per page).
