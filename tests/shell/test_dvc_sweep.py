@@ -3,13 +3,9 @@ the venv not on PATH: the default study's simulate, the sweep's jobs as committe
 comparison, then nothing to rerun.  (An arx_rf job in its grid failed on this dataset, which has
 no door signal, and with it every `dvc repro` of this pipeline.)  The default MLflow store starts
 as a copy of a migrated one: its creation (Alembic migrations, seconds of CPU) is tested where it
-is the point (test_tracking, test_hostile_procs).
-
-Marked ``full`` (`make test-all`, not CI's `make test`: ~40 s of CPU, six jobs in processes of
-their own): in `make test` the pipeline's commands compose job by job (test_pipeline_commands),
-a joblib sweep makes its parent, children and table and `compare` ranks them (test_sweep), and
-DVC runs a study then nothing (test_dvc_metrics).  What only this test sees: a job of the
-committed grid failing on the default data (arx_rf once did)."""
+is the point (test_tracking, test_hostile_procs).  Not marked ``full``: the only test that
+runs every job of the committed grid on the default data (test_pipeline_commands only composes
+them)."""
 
 import json
 
@@ -19,7 +15,7 @@ import pytest
 from conftest import SHORT_KEYS, copy_project, dvc, set_keys
 from test_deploy import mlflow_store
 
-pytestmark = [pytest.mark.slow, pytest.mark.full]
+pytestmark = pytest.mark.slow
 PIPELINE = "pipelines/sweep/dvc.yaml"
 
 

@@ -8,10 +8,10 @@ depend on them: test_design) or the creation of the MLflow store (Alembic migrat
 CPU: test_tracking, test_hostile_procs), which starts here as a copy of a migrated one.
 
 Marked ``full`` (`make test-all`, not CI's `make test`: ~31 s of CPU): in `make test` the
-pipeline's four commands compose and pass the stage checks (test_pipeline_commands), `calibrate`
-writes its calibration (test_calibrate), `run` its volumetric section, as the separate stages do
-(test_volumetric_run), `design` its study (test_design), and DVC runs a study then nothing
-(test_dvc_metrics)."""
+pipeline's four commands compose and pass the stage checks (test_pipeline_commands), `simulate`
+writes the volumetric dataset (test_volumetric_sim), `calibrate` its calibration
+(test_calibrate), `run` its volumetric section, as the separate stages do (test_volumetric_run),
+`design` its study (test_design), and DVC runs a study then nothing (test_dvc_metrics)."""
 
 import json
 
