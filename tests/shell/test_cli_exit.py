@@ -41,5 +41,7 @@ def test_a_command_line_ends_with_its_objects_frozen_and_its_status(args, code, 
 def test_a_command_in_this_process_leaves_the_collector_as_it_was(capsys):
     before = gc.get_freeze_count()
     assert main(["--version"]) == 0
-    assert gc.get_freeze_count() == before
+    # nothing more frozen (conftest froze what collection imported: one of those objects may
+    # be freed meanwhile, the count then drops)
+    assert gc.get_freeze_count() <= before
     assert capsys.readouterr().out.startswith("thermocomp ")

@@ -3,7 +3,9 @@ the venv not on PATH: the default study's simulate, the sweep's jobs as committe
 comparison, then nothing to rerun.  (An arx_rf job in its grid failed on this dataset, which has
 no door signal, and with it every `dvc repro` of this pipeline.)  The default MLflow store starts
 as a copy of a migrated one: its creation (Alembic migrations, seconds of CPU) is tested where it
-is the point (test_tracking, test_hostile_procs)."""
+is the point (test_tracking, test_hostile_procs).  Not marked ``full``: the only test that
+runs every job of the committed grid on the default data (test_pipeline_commands only composes
+them)."""
 
 import json
 

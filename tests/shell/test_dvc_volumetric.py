@@ -5,7 +5,13 @@ nothing to rerun.  The figures cost 60 % of the run stage (two per error paramet
 checked where they are drawn (test_volumetric_run, test_newcomer's design figures), not DVC's
 concern; nor are the design's worker processes (each imports the stack again; the result does not
 depend on them: test_design) or the creation of the MLflow store (Alembic migrations, seconds of
-CPU: test_tracking, test_hostile_procs), which starts here as a copy of a migrated one."""
+CPU: test_tracking, test_hostile_procs), which starts here as a copy of a migrated one.
+
+Marked ``full`` (`make test-all`, not CI's `make test`: ~31 s of CPU): in `make test` the
+pipeline's four commands compose and pass the stage checks (test_pipeline_commands), `simulate`
+writes the volumetric dataset (test_volumetric_sim), `calibrate` its calibration
+(test_calibrate), `run` its volumetric section, as the separate stages do (test_volumetric_run),
+`design` its study (test_design), and DVC runs a study then nothing (test_dvc_metrics)."""
 
 import json
 
@@ -14,7 +20,7 @@ import pytest
 from conftest import copy_project, dvc, set_keys
 from test_deploy import mlflow_store
 
-pytestmark = pytest.mark.slow
+pytestmark = [pytest.mark.slow, pytest.mark.full]
 STAGES = ("simulate", "calibrate", "run", "design")
 PIPELINE = "pipelines/volumetric/dvc.yaml"
 

@@ -1,5 +1,5 @@
 """Sweeps: `thermocomp run -m` with the joblib launcher -> one MLflow parent run, one child per job,
-a comparison table.  (Eight parallel runs on one fresh SQLite store: test_tracking.)"""
+a comparison table.  (Parallel runs on one fresh SQLite store: test_tracking.)"""
 
 from __future__ import annotations
 
