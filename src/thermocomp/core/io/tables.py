@@ -377,8 +377,6 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
     match = _CONVERSION_ERROR.search(message)
     if match:
         column = names[int(match.group(1))]
-        if column == TIME and pa.types.is_timestamp(types[column]):
-            raise _TimeAsText
         return _bad_cell_error(path, names, column, types[column], opts)
     if "CSV parse error" in message:
         return _malformed_row_error(path, names, opts, message)
@@ -392,6 +390,8 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
     text = ungrouped(raw, opts.thousands, opts.decimal) if number else raw
     found = first_cast_failure(text, target, opts.time)
     if found is None:
+        if column == TIME and pa.types.is_timestamp(target):
+            raise _TimeAsText      # every cell parses (a fraction Arrow's reader skips)
         return ContractError(f"cannot convert to {target}", file=path, column=column)
     row, value = found[0], raw[found[0]].as_py()
     # a thousands separator or a decimal comma the settings do not read: name the setting
