@@ -45,8 +45,12 @@ A new thermal state (``new_state``, :meth:`SensorMonitor._drift_vetoed`): a
 source training never saw moves several sensors away from the field at once,
 which self-prediction cannot pin on one of them.  A sensor is excluded for drift
 only if, with it out of the fit, every other judged sensor is within its warning
-band; otherwise no exclusion and an event ``"to": "new thermal state"`` (sensor
-``None``, the sensors out of band in ``sensors``).  A drift-excluded sensor is
+band (when the largest error's sensor does not explain the others, another sensor out
+of band that does, and is itself off the others' field by more than any error now, is
+excluded as a lone fault: :meth:`SensorMonitor._lone_fault`, a drifting sensor behind
+its coupled neighbour's larger error); otherwise no exclusion and an event
+``"to": "new thermal state"`` (sensor ``None``, the sensors out of band in ``sensors``).
+A drift-excluded sensor is
 re-admitted when, within ``window`` samples of its exclusion, ``new_state_others``
 other judged sensors leave their warning band (the field followed it), which
 calls the new state too; while it lasts no sensor is excluded for drift (the
