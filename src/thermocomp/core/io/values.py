@@ -233,7 +233,13 @@ def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
             pass
         else:
             row = int(np.argmax(values > min(threshold, MAX_ABS_T_C))) + 1
-            why = ("temperatures look like kelvin, convert to °C" if median > threshold else
+            # kelvin only where the values in °C would pass: a spindle speed (3000, a column
+            # 'S' read as a temperature by default) is no temperature in any unit
+            why = ("temperatures look like kelvin, convert to °C"
+                   if threshold < median <= threshold - ABSOLUTE_ZERO_C else
+                   f"no temperature, in °C or kelvin (the column's median is {median:.4g}): "
+                   "another quantity? give its column a role, data.roles.state=[<header>] or "
+                   "data.roles.ignore=[<header>]" if median > threshold else
                    f"a faulty reading (the column's median is {median:.4g} °C): a campaign "
                    "fitted on must be clean; replay and monitor stream a test campaign with it")
             raise ContractError(f"{values[row - 1]:g} °C is above data.kelvin_threshold_c="
