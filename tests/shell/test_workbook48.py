@@ -213,3 +213,30 @@ def test_a_workbook_without_openpyxl_names_the_extra(tmp_path, capsys, monkeypat
     monkeypatch.setitem(sys.modules, "openpyxl", None)       # as if not installed
     refused(["init", str(book), f"out={tmp_path / 'init'}"], capsys,
             "an Excel workbook (data.path=<file>.xlsx) needs openpyxl", "pip install -e '.[excel]'")
+
+
+def test_numbers_typed_as_text_with_a_decimal_comma_are_read_as_numbers(tmp_path, capsys):
+    # pasted from a European export, '0,38' stays text in the sheet: refused ("not numeric", or
+    # "set data.decimal=','", which had no effect on a sheet: its CSV is written with '.')
+    header, units, rows = _rows()
+    book, plain = openpyxl.Workbook(), openpyxl.Workbook()
+    for wb, as_text in ((book, True), (plain, False)):
+        sheet = wb.active
+        sheet.append(header)
+        sheet.append(units)
+        for row in rows:
+            sheet.append([f"{v!r}".replace(".", ",") if as_text and isinstance(v, float) else v
+                          for v in row])
+    book.save(tmp_path / "text.xlsx")
+    plain.save(tmp_path / "plain.xlsx")
+    args = [*ROLES, "data.test_fraction=0.1", *FAST]
+    refused(["run", f"data.path={tmp_path / 'text.xlsx'}", "data.decimal=.", *args,
+             f"out={tmp_path / 'o'}"], capsys, "sheet 'Sheet'", "is not numeric ('26,19")
+    got = {}
+    for name, decimal in (("text", "auto"), ("text_set", ","), ("plain", "auto")):
+        book = tmp_path / f"{name.split('_')[0]}.xlsx"
+        assert main(["run", f"data.path={book}", f"data.decimal={decimal}", *args, "model=mlr",
+                     f"out={tmp_path / name}"]) == 0
+        got[name] = {t: (m["test"]["rmse"], m["test"]["mae"]) for t, m in json.loads(
+            (tmp_path / name / "metrics.json").read_text())["targets"].items()}
+    assert got["text"] == got["text_set"] == got["plain"]

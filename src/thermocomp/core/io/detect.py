@@ -70,7 +70,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
     """``(options with the separators detected, header, first row)`` of ``sample`` (a
     workbook's: of its sheet's first rows written as CSV)."""
     if is_workbook(sample):
-        with sheet_as_csv(sample, opts.sheet, rows=HEAD_ROWS) as sheet:
+        with sheet_as_csv(sample, opts.sheet, rows=HEAD_ROWS, decimal=opts.decimal) as sheet:
             return head(sheet.csv, csv_options(opts))
     if not is_text(sample):
         table = parquet().read_table(sample).slice(0, 1)

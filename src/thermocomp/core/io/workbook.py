@@ -38,6 +38,7 @@ HEAD_ROWS = SNIFF_LINES         # the rows a look at the header reads (a preambl
 _OLE = b"\xd0\xcf\x11\xe0"        # a compound file: an encrypted .xlsx, or an .xls renamed
 _LINE = re.compile(r"\bline (\d+)")
 _BREAK = re.compile(r"\r\n|[\r\n]")
+_COMMA_NUMBER = re.compile(r"\s*[+-]?\d*,\d+(?:[eE][+-]?\d+)?\s*")   # '0,38' typed as text
 
 
 @dataclass(frozen=True)
@@ -75,14 +76,18 @@ def csv_options(opts):
 
 
 @contextmanager
-def sheet_as_csv(path: Path, sheet: str | None, rows: int | None = None) -> Iterator[Sheet]:
+def sheet_as_csv(path: Path, sheet: str | None, rows: int | None = None,
+                 decimal: str | None = None) -> Iterator[Sheet]:
     """The sheet ``sheet`` of the workbook ``path`` (None: the first) as a temporary CSV file
     (its first ``rows`` only, where given: what a look at the header needs), removed after.
+    ``decimal``: ``data.decimal``; ``','`` or ``auto`` reads a number typed as text with a
+    decimal comma (``'0,38'``, pasted from a European export) as the number, as a CSV file's
+    are read (a number Excel holds is a number whatever its locale shows; ``'.'``: text).
     A :class:`ContractError` about it, and a warning logged naming it, name the workbook, the
     sheet and the sheet's row."""
     with tempfile.TemporaryDirectory(prefix="thermocomp-sheet-") as tmp:
         text = Path(tmp) / f"{path.stem}.csv"
-        out = Sheet(path, _write(path, sheet, text, rows), text)
+        out = Sheet(path, _write(path, sheet, text, rows, decimal in (",", "auto")), text)
         renamed = _Renamed(out)
         logger.addFilter(renamed)
         try:
@@ -108,8 +113,9 @@ class _Renamed(logging.Filter):
         return True
 
 
-def _write(path: Path, sheet: str | None, out: Path, rows: int | None) -> str:
-    """Write the sheet into ``out`` as CSV; the sheet's name."""
+def _write(path: Path, sheet: str | None, out: Path, rows: int | None, comma: bool) -> str:
+    """Write the sheet into ``out`` as CSV (``comma``: text cells with a decimal comma as
+    numbers); the sheet's name."""
     require("openpyxl")
     import openpyxl
 
@@ -123,7 +129,7 @@ def _write(path: Path, sheet: str | None, out: Path, rows: int | None) -> str:
             with open(out, "w", newline="", encoding=UTF8) as f:
                 writer = csv.writer(f, lineterminator="\n")
                 for cells in found.iter_rows(max_row=rows, values_only=True):
-                    writer.writerow([_text(v) for v in cells])
+                    writer.writerow([_text(v, comma) for v in cells])
         except Exception as exc:     # a damaged sheet (its XML)
             raise ContractError(f"sheet {found.title!r} is not read ({type(exc).__name__}: "
                                 f"{exc}): {SAVE_AS}", file=path) from None
@@ -155,8 +161,11 @@ def _sheet(book, name: str | None, path: Path):
     return found[0]
 
 
-def _text(value) -> str:
-    """A cell as its CSV export writes it (ours: ISO 8601 dates, every digit)."""
+def _text(value, comma: bool = False) -> str:
+    """A cell as its CSV export writes it (ours: ISO 8601 dates, every digit; ``comma``: a
+    text cell with a decimal comma as its number)."""
+    if comma and isinstance(value, str) and _COMMA_NUMBER.fullmatch(value):
+        return value.strip().replace(",", ".")
     if value is None:
         return ""
     if isinstance(value, bool):
