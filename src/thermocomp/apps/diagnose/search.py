@@ -343,7 +343,7 @@ class Search:
         ranked = self.problem.n_blocks_tested > self.problem.n_units
         return bool(gain_pct >= self.options.min_gain_pct and p <= self.options.alpha
                     and in_range_pct > 0.0 and (margin_pct >= self.options.min_gain_pct or not ranked)
-                    and not (not ranked and self.saturates(n_features)))
+                    and (ranked or not self.saturates(n_features)))
 
     def saturates(self, n_features: int) -> bool:
         """True when ``n_features`` extra regressors and the intercept can take one value per
