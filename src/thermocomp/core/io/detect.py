@@ -70,7 +70,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
     """``(options with the separators detected, header, first row)`` of ``sample`` (a
     workbook's: of its sheet's first rows written as CSV)."""
     if is_workbook(sample):
-        with sheet_as_csv(sample, opts.sheet, rows=HEAD_ROWS, decimal=opts.decimal) as sheet:
+        with sheet_as_csv(sample, opts, rows=HEAD_ROWS) as sheet:
             return head(sheet.csv, csv_options(opts))
     if not is_text(sample):
         table = parquet().read_table(sample).slice(0, 1)
@@ -180,7 +180,7 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
 def _layout(sample: Path, opts) -> str:
     """How ``sample`` is read: its separators (a workbook: its sheet) and where its table starts."""
     if is_workbook(sample):
-        with sheet_as_csv(sample, opts.sheet, rows=HEAD_ROWS) as sheet:
+        with sheet_as_csv(sample, opts, rows=HEAD_ROWS) as sheet:
             return f"{sample.name}: sheet {sheet.name!r}" + _table_start(sheet.csv, opts, "row")
     charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
     return (f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"

@@ -179,7 +179,7 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     if path.stat().st_size == 0:
         raise ContractError("empty file", file=path)
     if is_workbook(path):       # read as its CSV export is (:mod:`.workbook`)
-        with sheet_as_csv(path, opts.sheet, decimal=opts.decimal) as sheet:
+        with sheet_as_csv(path, opts) as sheet:
             return _read_file(sheet.csv, csv_options(opts))
     return _read_file(path, opts)
 

@@ -40,7 +40,7 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
     read of the file says why)."""
     if is_workbook(path):      # its sheet's first rows, as CSV (:mod:`.workbook`)
         try:
-            with sheet_as_csv(path, opts.sheet, rows=HEAD_ROWS) as sheet:
+            with sheet_as_csv(path, opts, rows=HEAD_ROWS) as sheet:
                 return first_timestamp(sheet.csv, csv_options(opts))
         except ContractError:
             return pd.NaT

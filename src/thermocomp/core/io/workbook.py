@@ -76,18 +76,19 @@ def csv_options(opts):
 
 
 @contextmanager
-def sheet_as_csv(path: Path, sheet: str | None, rows: int | None = None,
-                 decimal: str | None = None) -> Iterator[Sheet]:
-    """The sheet ``sheet`` of the workbook ``path`` (None: the first) as a temporary CSV file
-    (its first ``rows`` only, where given: what a look at the header needs), removed after.
-    ``decimal``: ``data.decimal``; ``','`` or ``auto`` reads a number typed as text with a
-    decimal comma (``'0,38'``, pasted from a European export) as the number, as a CSV file's
-    are read (a number Excel holds is a number whatever its locale shows; ``'.'``: text).
-    A :class:`ContractError` about it, and a warning logged naming it, name the workbook, the
-    sheet and the sheet's row."""
+def sheet_as_csv(path: Path, opts, rows: int | None = None) -> Iterator[Sheet]:
+    """The sheet ``opts.sheet`` (``data.sheet``; None: the first) of the workbook ``path`` as a
+    temporary CSV file (its first ``rows`` only, where given: what a look at the header needs),
+    removed after.  ``opts.decimal`` (``data.decimal``) ``','`` or ``auto`` reads a number
+    typed as text with a decimal comma (``'0,38'``, pasted from a European export) as the
+    number, as a CSV file's are read (a number Excel holds is a number whatever its locale
+    shows; ``'.'``: text).  Every look at a sheet (its header, its first time, its rows) goes
+    through here with the same options, so each sees the same CSV.  A :class:`ContractError`
+    about it, and a warning logged naming it, name the workbook, the sheet and the sheet's row."""
     with tempfile.TemporaryDirectory(prefix="thermocomp-sheet-") as tmp:
         text = Path(tmp) / f"{path.stem}.csv"
-        out = Sheet(path, _write(path, sheet, text, rows, decimal in (",", "auto")), text)
+        out = Sheet(path, _write(path, opts.sheet, text, rows, opts.decimal in (",", "auto")),
+                    text)
         renamed = _Renamed(out)
         logger.addFilter(renamed)
         try:
