@@ -585,8 +585,8 @@ class SensorMonitor:
             # pull the fit, and a well-predicted sensor far away then looks worst (measured on a
             # column with more nodes than sensors: the far T_left1 went out first on 3 of 5 runs)
             z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
-            j = self._lone_fault(int(np.argmax(z)), z, level, err)
-            if self._drift_vetoed(j, level, err, time, events):
+            j, resolves = self._lone_fault(int(np.argmax(z)), z, level, err)
+            if self._drift_vetoed(j, level, err, time, events, resolves):
                 break
             self._exclude(j, f"drift: self-prediction error {err[j]:+.2g} °C over the last "
                              f"{self.confirm} samples", time, events, by_field=True)
@@ -612,42 +612,48 @@ class SensorMonitor:
         return level, err
 
     # -- a new thermal state (module doc) ------------------------------------------------------
-    def _drift_vetoed(self, j: int, level, err, time, events) -> bool:
+    def _drift_vetoed(self, j: int, level, err, time, events, resolves: bool | None = None) -> bool:
         """Whether the drift exclusion of ``j`` is refused as a new thermal state: one is
         declared, or with ``j`` out the other judged sensors are not all within their warning
-        band (declared then), or ``new_state_others`` of them are out of it with ``j`` in."""
+        band (declared then; ``resolves``: :meth:`_resolves` of ``j``, where already known), or
+        ``new_state_others`` of them are out of it with ``j`` in."""
         if not self.new_state:
             return False
         if self._novel:
             return True
         others = self._judged & (level >= WARNING)
         others[j] = False
-        if not self._resolves(j):
+        if not (self._resolves(j) if resolves is None else resolves):
             self._declare(f"with {self.names[j]} out the others stay out of band",
                           others | (np.arange(len(others)) == j), err, time, events)
             return True
         return int(others.sum()) >= self.new_state_others
 
-    def _lone_fault(self, j: int, z: np.ndarray, level: np.ndarray, err: np.ndarray) -> int:
-        """``j``, or, when with ``j`` out the others stay out of band, the sensor out of band
+    def _lone_fault(self, j: int, z: np.ndarray, level: np.ndarray,
+                    err: np.ndarray) -> tuple[int, bool | None]:
+        """``(sensor, whether with it out the others are within band)`` (None: not asked):
+        ``j``, or, when with ``j`` out the others stay out of band, the sensor out of band
         (largest error first) that one fault explains: with it out every other judged sensor
         is within band and it is off the field the others make by more than any sensor's
         self-prediction error now (a fault's own deviation is the largest one).  The largest error
         is paper 002's pick, but a drifting sensor's coupled neighbour can show the largest
         (measured: fl_thermal's t12 drifting, T_t14 then T_t15 picked, and the drift read as
         a new thermal state that never ended)."""
-        if not self.new_state or self._novel or self._resolves(j):
-            return j
+        if not self.new_state or self._novel:
+            return j, None
+        if self._resolves(j):
+            return j, True
         largest = float(np.nanmax(np.abs(np.where(self._judged, err, np.nan))))
         for k in np.argsort(-z):
             if (k != j and z[k] >= 0 and level[k] >= WARNING
                     and self._resolves(int(k), alone=largest)):
-                return int(k)
-        return j
+                return int(k), True
+        return j, False
 
     def _resolves(self, j: int, alone: float | None = None) -> bool:
         """With ``j`` out of the fit, every other judged sensor's leave-one-out error over the
-        last ``confirm`` samples (their mean) within its warning band."""
+        last ``confirm`` samples (their mean) within its warning band (``alone``: and ``j``'s
+        own error against the others' field at least that, as a lone fault's)."""
         trial = self._active.copy()
         trial[j] = False
         if trial.sum() < self.min_active_:
