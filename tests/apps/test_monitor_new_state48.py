@@ -147,3 +147,21 @@ def test_one_drifting_sensor_of_a_measured_record_is_excluded_not_called_a_new_s
     out = [e for e in events if e["sensor"] == "T_t12" and e["to"] == "excluded"]
     assert out and out[0]["reason"].startswith("drift")
     assert out[0]["time"] - 15.0 * onset < 2 * 3600      # < 2 K of drift
+
+
+def test_judge_only_names_the_new_state_and_excludes_nothing():
+    """monitor.adaptive=false: the same new thermal state is declared (and ends), no sensor is
+    excluded; a lone drifting sensor is judged in alarm, no new state."""
+    events = _stream(_new_source(), adaptive=False)
+    states = [e for e in events if e["to"] in (NEW_STATE, TRAINED)]
+    assert [e["to"] for e in states] == [NEW_STATE, TRAINED]
+    assert ON < states[0]["time"] < OFF < states[1]["time"]
+    assert "drift judged again" in states[1]["reason"]
+    assert not [e for e in events if e["to"] == "excluded"]
+    assert [e for e in events if e["to"] == "alarm"]           # judged, as before
+    drifting = _field(400, 2)
+    drifting[ON:, 3] += np.arange(400 - ON) * 0.02
+    events = _stream(drifting, adaptive=False)
+    assert not [e for e in events if e["to"] in (NEW_STATE, "excluded")]
+    assert [e["sensor"] for e in events if e["to"] == "alarm"][0] == "T_3"
+    assert not [e for e in _stream(_field(400, 2), adaptive=False) if e["sensor"] is None]

@@ -609,6 +609,8 @@ class SensorMonitor:
         level, err = self._judge()
         if self.new_state and self.adaptive:
             level, err = self._follow_field(level, err, time, events)
+        elif self.new_state:
+            self._name_state(level, err, time, events)
         return level, err
 
     # -- a new thermal state (module doc) ------------------------------------------------------
@@ -690,14 +692,32 @@ class SensorMonitor:
                 level, err = self._judge()
                 leaving = self._judged & (level >= WARNING)
                 out = int(leaving.sum())
+        self._end_when_calm(out, time, events)
+        return level, err
+
+    def _name_state(self, level, err, time, events) -> None:
+        """Judge only (``adaptive=False``): the new thermal state the adaptive monitor would
+        declare where it would exclude a sensor for drift (with the largest error's sensor, or
+        a lone fault, out, the others stay out of band), and its end; nothing is excluded
+        either way.  Without it, a source training never saw read as several sensors in
+        alarm with no word of why."""
+        if not self._novel and (self._judged & (level >= self._field_level())).any():
+            z = np.where(self._judged, np.abs(np.nan_to_num(err)) * self._std ** 2, -1)
+            j, resolves = self._lone_fault(int(np.argmax(z)), z, level, err)
+            self._drift_vetoed(j, level, err, time, events, resolves)
+        self._end_when_calm(int((self._judged & (level >= WARNING)).sum()), time, events)
+
+    def _end_when_calm(self, out: int, time, events) -> None:
+        """Count the samples with no judged sensor out of band (``out``: how many are); the
+        new state ends after a window of them."""
         self._calm_field = 0 if out else self._calm_field + 1
         if self._novel and self._calm_field >= self.window:
             self._novel = False
+            again = "drift exclusions again" if self.adaptive else "drift judged again"
             events.append({"time": float(time), "sensor": None, "from": NEW_STATE,
                            "to": TRAINED, "sensors": [],
                            "reason": f"every judged sensor within its warning band for "
-                                     f"{self.window} samples: drift exclusions again"})
-        return level, err
+                                     f"{self.window} samples: {again}"})
 
     def _declare(self, why: str, involved: np.ndarray, err, time, events) -> None:
         """A new thermal state (one event while it lasts), ``involved`` the sensors out of band
