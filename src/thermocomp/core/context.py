@@ -5,7 +5,12 @@ wrappers) has the signatures
 
 * ``fit(X, y, context=None)`` and ``predict(X, context=None)`` -- batch;
 * ``stream_init(context) -> state`` and ``stream_step(x_row, state, context)
-  -> (y_hat, state)`` -- one sample at a time, causal, for deployment.
+  -> (y_hat, state)`` -- one sample at a time, causal, for deployment;
+* optionally ``step_gain(state, horizon_s) -> ndarray``: per input, the change of the
+  prediction a unit step of that input held for ``horizon_s`` seconds makes (see
+  :func:`step_gain`), for a model whose prediction is linear in its inputs; the training
+  envelope takes the response to an input's excess over its bound out of the correction
+  with it.
 
 ``context`` is a DataFrame with one row per row of ``X`` (batch) or a mapping
 for one sample (stream) with these columns, all optional:
@@ -112,6 +117,24 @@ def context_columns(estimator) -> list[str]:
 def merge_columns(*lists) -> list[str]:
     """Union of column lists, first occurrence order."""
     return list(dict.fromkeys(c for cols in lists for c in cols))
+
+
+def step_gain(estimator, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
+    """Step-response gain per input of ``estimator`` in stream ``state``: an input change
+    ``dx`` held for ``horizon_s`` seconds (``inf``: until the steady state) has changed the
+    prediction by ``gain @ dx``.  ``None`` when the estimator has none (not linear in its
+    inputs, or an AR term without a steady state)."""
+    method = getattr(estimator, "step_gain", None)
+    if not callable(method):
+        return None
+    gain = method(state, horizon_s)
+    return None if gain is None or not np.isfinite(gain).all() else np.asarray(gain, float)
+
+
+def feedback_gain(gain: np.ndarray, ar_coef: float) -> np.ndarray | None:
+    """Steady-state gain of ``y(t) = a y(t-1) + gain . x``: ``gain / (1 - a)``, ``None`` when the
+    feedback has no steady state (``|a| >= 1``)."""
+    return np.asarray(gain, float) / (1.0 - ar_coef) if abs(ar_coef) < 1.0 else None
 
 
 def for_target(estimator, target: str):

@@ -17,6 +17,22 @@ everything it needs, in the order :meth:`Compensator.predict` applies it:
    state, context)``): ARX uses its own past predictions, never a measured
    error; wrappers forward it to the models they hold.
 
+The clamp takes out of the prediction the model's response to the excess ``e`` of an input
+over its bound, ``y(x) - y(clamp(x))``, but never more than the response to that excess held
+for the longest training campaign, ``|gain @ e|`` (:func:`thermocomp.core.context.step_gain` at
+``Envelope.horizon_s``): from the campaign's first excess on, each model is streamed on the
+inputs as measured and on the clamped ones.  For a static model, or an input far out, this is
+the prediction on the clamped inputs; a lag model's dynamics run on the measured signal, so
+that the transients a flattened input injects into its lags are not passed on beyond what
+the excess itself is worth (a lag bank's opposed weights on several time constants no longer
+cancel on a flattened input: a spindle record whose ambient left its range by 0.1 °C was
+deployed at 1.44 µm against 0.218 scored).  The horizon, not the steady state: no training
+record shows a lag longer than itself, and a lag bank's level coefficients alone are then a
+split the ridge made at will.  Taking the held response out alone (no clamped stream)
+reversed the correction for hours after a sudden far excursion (-145 µm after a +40 K step
+where the model's own response had barely begun).  A model without a step gain (LSTM,
+ARX+RF, a blend holding one) is streamed on the clamped inputs alone.
+
 The per-sample context is built by :func:`thermocomp.core.frame.context_record`,
 the rule :func:`thermocomp.core.frame.stack` applies to a whole batch; the columns
 it carries are what the fitted estimators declare in ``context_columns_``.
@@ -33,7 +49,7 @@ import numpy as np
 import pandas as pd
 
 from ...core.compensator import Compensator
-from ...core.context import AMBIENT_C0, RESERVED, TIME, context_columns, merge_columns
+from ...core.context import AMBIENT_C0, RESERVED, TIME, context_columns, merge_columns, step_gain
 from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
 from ...core.io.contract import is_ambient, manifest_ambient
@@ -58,7 +74,9 @@ def has_stream_protocol(obj) -> bool:
 
 @dataclass(frozen=True)
 class Envelope:
-    """Per-input bounds ``[lo, hi]`` of the training data, in the frame the model sees.
+    """Per-input bounds ``[lo, hi]`` of the training data, in the frame the model sees, and
+    its ``horizon_s``: the longest training campaign (s; ``inf`` when unknown), for how long
+    the clamp takes an excess over a bound to have been held (module doc).
 
     Built by :meth:`from_data` from the training matrix widened by ``margin`` ×
     range on each side (a constant column by ``margin`` × max(|value|, 1)).
@@ -68,14 +86,17 @@ class Envelope:
     lo: np.ndarray
     hi: np.ndarray
     margin: float = 0.0
+    horizon_s: float = float("inf")      # older pickles have none: the steady state
 
     @classmethod
-    def from_data(cls, X: pd.DataFrame, margin: float = 0.1) -> "Envelope":
+    def from_data(cls, X: pd.DataFrame, margin: float = 0.1,
+                  horizon_s: float = float("inf")) -> "Envelope":
         if margin < 0:
             raise ValueError(f"envelope margin must be >= 0, got {margin}")
         lo, hi = X.min().to_numpy(float), X.max().to_numpy(float)
         width = np.where(hi > lo, hi - lo, np.maximum(np.abs(hi), 1.0))
-        return cls(tuple(X.columns), lo - margin * width, hi + margin * width, margin)
+        return cls(tuple(X.columns), lo - margin * width, hi + margin * width, margin,
+                   float(horizon_s))
 
     def outside(self, X: np.ndarray) -> np.ndarray:
         """Boolean mask of values outside the bounds (same shape as ``X``)."""
@@ -110,8 +131,10 @@ class StreamingCompensator:
         Bounds of the declared inputs (order of ``compensator.inputs_``) in the
         model's frame; ``None`` disables the check.  See :meth:`from_training`.
     policy : {'clamp', 'refuse', 'off'}
-        An input outside the envelope is clamped to the bound (and counted in
-        ``n_clamped``), refused with :class:`OutOfEnvelopeError`, or passed as is.
+        An input outside the envelope is clamped (counted in ``n_clamped``; the models'
+        response to its excess over the bound is taken out of the prediction, within the
+        response to the excess held, see the module doc), refused with
+        :class:`OutOfEnvelopeError`, or passed as is.
     ambient_columns : list of str, optional
         Absolute ambient sensors whose first-sample mean is ``ambient_c0``
         (default: the ``T_amb*`` declared inputs).  With none, a model that needs
@@ -150,6 +173,8 @@ class StreamingCompensator:
     end_states_: dict = {}
     ambient_given_ = False
     adapt_ = None
+    _held = None               # older pickles: no stream on the clamped inputs yet
+    _gains: dict = {}
 
     def __init__(self, compensator: Compensator, envelope: Envelope | None = None,
                  policy: str = "clamp", ambient_columns=None):
@@ -203,7 +228,8 @@ class StreamingCompensator:
     @classmethod
     def from_training(cls, compensator: Compensator, campaigns: Mapping[str, pd.DataFrame],
                       margin: float = 0.1, policy: str = "clamp") -> "StreamingCompensator":
-        """Envelope from the training campaigns, in the frame the model sees.
+        """Envelope from the training campaigns, in the frame the model sees (its horizon: the
+        longest campaign's ``time`` span).
 
         Ambient sensors that are not declared inputs are added to the input
         columns when a model needs the initial ambient temperature (ATI).
@@ -213,7 +239,11 @@ class StreamingCompensator:
         if AMBIENT_C0 in merge_columns(*(context_columns(e) for e in compensator.estimators_.values())):
             cols = dict.fromkeys(c for df in campaigns.values() for c in df.columns)
             ambient = [c for c in cols if is_ambient(c)]
-        return cls(compensator, Envelope.from_data(m.X, margin), policy, ambient)
+        spans = [float(np.nanmax(t) - np.nanmin(t)) for t in
+                 (df[TIME].to_numpy(float) for df in campaigns.values() if TIME in df.columns)
+                 if np.isfinite(t).any()]
+        horizon = max(spans) if spans else float("inf")
+        return cls(compensator, Envelope.from_data(m.X, margin, horizon), policy, ambient)
 
     # -- state ------------------------------------------------------------------------------
 
@@ -224,6 +254,8 @@ class StreamingCompensator:
         self._ref = None
         self._ambient_c0 = float(ambient_c)
         self._states: dict = {}
+        self._held: dict | None = None    # states streamed on the clamped inputs (first excess on)
+        self._gains: dict = {}
         self._den_state = None
         self.n_samples_ = 0
 
@@ -239,10 +271,12 @@ class StreamingCompensator:
 
     def _snapshot(self) -> tuple:
         return (self._ref, self._ambient_c0, copy.deepcopy(self._states),
-                copy.deepcopy(self._den_state), self.n_samples_)
+                copy.deepcopy(self._den_state), self.n_samples_, copy.deepcopy(self._held),
+                self._gains)
 
     def _restore(self, snap: tuple) -> None:
-        self._ref, self._ambient_c0, self._states, self._den_state, self.n_samples_ = snap
+        (self._ref, self._ambient_c0, self._states, self._den_state, self.n_samples_, self._held,
+         self._gains) = snap
 
     # -- prediction -------------------------------------------------------------------------
 
@@ -299,7 +333,7 @@ class StreamingCompensator:
             start = context_record(STREAM_ID, time, self._ambient_c0, {})
             self._states = {t: est.stream_init(start) for t, est, _ in self._plan}
         dx = seen[:self._n_inputs] - self._ref
-        n_clamped = 0
+        n_clamped, excess = 0, None
         env = self.envelope
         if env is not None and self.policy != "off":
             out = (dx < env.lo) | (dx > env.hi)
@@ -311,14 +345,29 @@ class StreamingCompensator:
                         f"input {self.columns_[j]} = {dx[j]:.4g}{frame} at row {self.n_samples_} is "
                         f"outside the training envelope [{env.lo[j]:.4g}, {env.hi[j]:.4g}]; "
                         "refused (policy=refuse)")
-                dx = np.minimum(np.maximum(dx, env.lo), env.hi)
+                excess = dx - np.minimum(np.maximum(dx, env.lo), env.hi)
                 n_clamped = int(out.sum())
         context = context_record(STREAM_ID, time, self._ambient_c0,
                                  {c: seen[j] for c, j in self._raw})
         y = np.empty(len(self._plan))
         states = self._states
+        if n_clamped and self._held is None:        # the campaign's first excess: fork
+            self._gains = {t: step_gain(est, states[t], env.horizon_s) for t, est, _ in self._plan}
+            self._held = {t: copy.deepcopy(states[t]) for t, g in self._gains.items() if g is not None}
+        held = self._held
         for k, (t, est, idx) in enumerate(self._plan):
-            y[k], states[t] = est.stream_step(dx if idx is None else dx[idx], states[t], context)
+            x = dx if idx is None else dx[idx]
+            e = None if excess is None else excess if idx is None else excess[idx]
+            if held is None or t not in held:     # in range so far, or no step gain: the clamp
+                y[k], states[t] = est.stream_step(x if e is None else x - e, states[t], context)
+                continue
+            y[k], states[t] = est.stream_step(x, states[t], context)
+            if e is None:                         # in range: nothing to take out
+                held[t] = est.stream_step(x, held[t], context)[1]
+                continue
+            clamped, held[t] = est.stream_step(x - e, held[t], context)
+            bound = abs(self._gains[t] @ e)
+            y[k] -= min(max(y[k] - clamped, -bound), bound)
         self.n_samples_ += 1
         return y, n_clamped
 

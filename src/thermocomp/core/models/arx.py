@@ -10,7 +10,7 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ParameterError
 from ...base.params import BOOLEAN, check_estimator, choice, either, integer, integers
-from ..context import Y_MEASURED, SideInputs, groups_of, values
+from ..context import Y_MEASURED, SideInputs, feedback_gain, groups_of, values
 from ..model_selection.criteria import CRITERIA, LABELS, information_criteria
 from ..model_selection.greedy import SEARCHES, greedy_path, scaled_gram
 from ._dynamics import free_run, lag_index, previous, segment_bounds, segment_starts
@@ -312,3 +312,13 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
             u += b * history[depth - 1 - d, j]
         y_hat = float(self.ar_coef_ * state["y_prev"] + u)
         return y_hat, {"y_prev": y_hat, "history": history}
+
+    def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
+        """Gain per input (:func:`thermocomp.core.context.step_gain`): each input's
+        coefficients summed over its delays, through the AR term at its steady state (ARX
+        counts samples, not seconds: ``horizon_s`` is not read)."""
+        check_is_fitted(self)
+        gain = np.zeros(self.n_features_in_)
+        for (j, _), b in zip(self.terms_, self.coef_):
+            gain[j] += b
+        return feedback_gain(gain, self.ar_coef_)

@@ -20,7 +20,16 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ContractError, listed
 from ...base.params import BOOLEAN, NON_NEGATIVE, check_estimator, choice, either, integer, integers, number
-from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, merge_columns, scalar, subset
+from ..context import (
+    AMBIENT_C0,
+    SideInputs,
+    context_columns,
+    groups_of,
+    merge_columns,
+    scalar,
+    step_gain,
+    subset,
+)
 from ..metrics import rsd, sm_sd
 from ..model_selection import LeaveOneCampaignOut
 from .linear import MLR
@@ -369,3 +378,16 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             x = np.concatenate([x, x * (a0 - AMBIENT_CENTRE_C)])
         y_hat, inner = self.estimators_[m].stream_step(x, inner, context)
         return float(y_hat), (m, a0, inner)
+
+    def step_gain(self, state=None, horizon_s: float = np.inf):
+        """Gain per input of the stream's interval model (:func:`thermocomp.core.context.step_gain`),
+        its ambient interactions at the campaign's ``ambient_c0``; ``None`` before a stream starts
+        when there are several intervals."""
+        if state is None and self.n_intervals_ > 1:
+            return None
+        m, a0, inner = state if state is not None else (0, float("nan"), None)
+        gain = step_gain(self.estimators_[m], inner, horizon_s)
+        if gain is None or not self.interactions_[m]:
+            return gain
+        n = gain.size // 2
+        return gain[:n] + gain[n:] * (a0 - AMBIENT_CENTRE_C)

@@ -16,6 +16,10 @@ class LinearStreamMixin(SideInputs):
     def stream_step(self, x_row, state, context: Mapping | None = None):
         return float(np.asarray(x_row, dtype=float) @ self.coef_ + self.intercept_), state
 
+    def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray:
+        """Gain per input (:func:`thermocomp.core.context.step_gain`): the coefficients."""
+        return np.asarray(self.coef_, float)
+
 
 class PerTarget(BaseEstimator):
     """``estimator`` with per-target parameters: ``for_target(t)`` is an unfitted copy with

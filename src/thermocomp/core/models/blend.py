@@ -14,7 +14,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted
 
-from ..context import SideInputs, context_columns, merge_columns
+from ..context import SideInputs, context_columns, merge_columns, step_gain
 
 MIN_WEIGHT = 0.01   # a member weighted less is dropped (refitting it would buy nothing)
 N_RESAMPLES = 500   # bootstrap resamples of the folds: weights to 0.002, fixed seed (reproducible)
@@ -60,6 +60,14 @@ class Blend(SideInputs, RegressorMixin, BaseEstimator):
     def stream_step(self, x_row, state, context=None):
         steps = [e.stream_step(x_row, s, context) for e, s in zip(self.estimators_.values(), state)]
         return float(np.dot(self.weights_, [y for y, _ in steps])), tuple(s for _, s in steps)
+
+    def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
+        """The members' gains, weighted (:func:`thermocomp.core.context.step_gain`); ``None``
+        when a member has none."""
+        check_is_fitted(self, "estimators_")
+        states = state if state is not None else (None,) * len(self.estimators_)
+        gains = [step_gain(e, s, horizon_s) for e, s in zip(self.estimators_.values(), states)]
+        return None if any(g is None for g in gains) else self.weights_ @ np.vstack(gains)
 
     def chosen_params(self) -> dict:
         """Each member's own choice (``member_params``): a copy fits the members as chosen."""

@@ -27,7 +27,7 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ContractError
 from ...base.params import BOOLEAN, check_estimator, numbers, optional, texts
-from ..context import SideInputs, groups_of, merge_columns, require
+from ..context import SideInputs, groups_of, merge_columns, require, step_gain
 from ..io.contract import match_columns
 from ._dynamics import segment_bounds
 from .lagbank import LagBank
@@ -216,3 +216,10 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
                               self._basis(held[None, :], self.exponents_)[0]])
         y_hat, lagbank = self.lagbank_.stream_step(row, state["lagbank"], context)
         return y_hat, {"lagbank": lagbank, "held": held}
+
+    def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
+        """Gain per input (:func:`thermocomp.core.context.step_gain`): the lag bank's on the
+        temperatures (the powers of the states are no inputs)."""
+        check_is_fitted(self)
+        gain = step_gain(self.lagbank_, None if state is None else state["lagbank"], horizon_s)
+        return None if gain is None else gain[:self.n_features_in_]

@@ -38,7 +38,7 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 from threadpoolctl import threadpool_limits
 
 from ...base.params import POSITIVE, check_estimator, choice, either, integer, numbers, optional
-from ..context import TIME, Y_MEASURED, SideInputs, groups_of, scalar, values
+from ..context import TIME, Y_MEASURED, SideInputs, feedback_gain, groups_of, scalar, values
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
 from ._dynamics import first_order_lags, free_run, lag_index, previous, segment_bounds, segment_starts
@@ -523,3 +523,16 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         y_hat = float(np.concatenate([x, z - np.tile(x, self.taus_.size)]) @ self.coef_ + self.intercept_
                       + self.ar_coef_ * state["y_prev"])
         return y_hat, {"z": z, "t": t, "y_prev": y_hat}
+
+    def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
+        """Gain per input (:func:`thermocomp.core.context.step_gain`) of a step held for
+        ``horizon_s``: the level coefficient plus each lag's, times ``L_tau[x] - x = -exp(-h/tau)``
+        (through the AR term at its steady state).  At ``inf`` the level coefficients alone: no
+        record shows them when the longest lag outlasts it, the ridge splits a slow input
+        between ``x`` and ``L_tau[x] - x`` as it likes (a synthetic band-pass response, nothing
+        at steady state, got -58 µm/K)."""
+        check_is_fitted(self)
+        n = self.coef_.size // (self.taus_.size + 1)
+        lags = self.coef_[n:].reshape(self.taus_.size, n)
+        held = np.exp(-horizon_s / self.taus_) if np.isfinite(horizon_s) else np.zeros(self.taus_.size)
+        return feedback_gain(self.coef_[:n] - held @ lags, self.ar_coef_)

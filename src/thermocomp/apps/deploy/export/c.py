@@ -66,9 +66,10 @@ typedef struct {{
     int first;                                  /* 1: the next sample starts a campaign */
     double buf[TC_TAPS][TC_N_INPUTS];           /* raw inputs, newest first (FIR denoiser) */
     double ref[TC_N_INPUTS];                    /* first-sample reference */
-    double hist[{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
-    double z[{max(len(ss.taus), 1)}];           /* first-order lags */
-    double y[TC_N_OUTPUTS];                     /* previous predicted error (AR feedback) */
+    /* per channel: [0] the measured inputs, [1] their excess over the envelope */
+    double hist[2][{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
+    double z[2][{max(len(ss.taus), 1)}];        /* first-order lags */
+    double y[2][TC_N_OUTPUTS];                  /* previous output (AR feedback) */
     double t;                                   /* previous sample time, s */
     double t_read;                              /* last good time read, s */
     double out[TC_N_OUTPUTS];                   /* previous guarded output (guard, reference) */
@@ -115,6 +116,7 @@ def source(ss: StateSpace) -> str:
         _array("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         _array("BD", ss.bd, (m, d, n)), _array("G", ss.g, (m, k)), _array("AR", ss.ar, (m,)),
+        _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * m, (m, n)),
         f"static const double PERIOD = {number(ss.period)};",
         f"static const int CLAMP = {int(ss.clamp)};",
         *_output_constants(ss)])
@@ -142,9 +144,9 @@ void tc_init(tc_state *s) {{
 }}
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
-    double v[TC_N_INPUTS], x[TC_N_INPUTS + TC_N_POWERS], xl[{max(k, 1)}];
+    double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS], xl[2][{max(k, 1)}], ych[2];
     double dt, step;
-    int i, j, l, clamped = 0;
+    int i, j, l, h, clamped = 0;
     if (TC_SUBSTITUTE_TIME) {{
         /* a missing time, or one not after the last one read: the previous one + one period */
         if (s->first) s->t_read = NAN;
@@ -162,45 +164,57 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         v[j] = 0.0;
         for (l = 0; l < TC_TAPS; l++) v[j] += s->buf[l][j] * FIR[l][j];
         if (s->first) s->ref[j] = REFERENCED[j] != 0.0 ? v[j] : 0.0;
-        x[j] = v[j] - s->ref[j];
-        /* envelope clamp (static limit) */
-        if (CLAMP && (x[j] < LO[j] || x[j] > HI[j])) {{
-            x[j] = x[j] < LO[j] ? LO[j] : HI[j];
+        x[0][j] = v[j] - s->ref[j];
+        /* envelope (static limit): channel 1 is the excess over the bound */
+        x[1][j] = 0.0;
+        if (CLAMP && (x[0][j] < LO[j] || x[0][j] > HI[j])) {{
+            x[1][j] = x[0][j] - (x[0][j] < LO[j] ? LO[j] : HI[j]);
             clamped++;
         }}
     }}
     /* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale */
     for (l = 0; l < TC_N_POWERS; l++) {{
         double w = v[POWER_SRC[l]] / POWER_SCALE[l];
-        x[TC_N_INPUTS + l] = w < 0.0 ? -pow(-w, POWER_EXP[l]) : pow(w, POWER_EXP[l]);
+        x[0][TC_N_INPUTS + l] = w < 0.0 ? -pow(-w, POWER_EXP[l]) : pow(w, POWER_EXP[l]);
+        x[1][TC_N_INPUTS + l] = 0.0;
     }}
     /* first-order lags */
-    for (l = 0; l < TC_N_LAGS; l++) {{
-        xl[l] = x[LAG_INPUT[l]];
-        if (s->first) {{
-            s->z[l] = xl[l];
-        }} else {{
-            double e = isnan(time) ? DECAY[l] : exp(-(time - s->t) / TAU[l]);
-            s->z[l] = e * s->z[l] + (1.0 - e) * xl[l];
+    for (h = 0; h < 2; h++)
+        for (l = 0; l < TC_N_LAGS; l++) {{
+            xl[h][l] = x[h][LAG_INPUT[l]];
+            if (s->first) {{
+                s->z[h][l] = xl[h][l];
+            }} else {{
+                double e = isnan(time) ? DECAY[l] : exp(-(time - s->t) / TAU[l]);
+                s->z[h][l] = e * s->z[h][l] + (1.0 - e) * xl[h][l];
+            }}
         }}
-    }}
     if (s->first) {{
-        for (l = 0; l < TC_DEPTH; l++)
-            for (j = 0; j < TC_N_INPUTS; j++) s->hist[l][j] = x[j];
-        for (i = 0; i < TC_N_OUTPUTS; i++) s->y[i] = 0.0;
+        for (h = 0; h < 2; h++) {{
+            for (l = 0; l < TC_DEPTH; l++)
+                for (j = 0; j < TC_N_INPUTS; j++) s->hist[h][l][j] = x[h][j];
+            for (i = 0; i < TC_N_OUTPUTS; i++) s->y[h][i] = 0.0;
+        }}
         s->t = isnan(time) ? 0.0 : time;
     }} else {{
         s->t = isnan(time) ? s->t + PERIOD : time;
     }}
-    /* outputs: static part, input history, lags, AR feedback */
+    /* outputs: static part, input history, lags, AR feedback; the response to the excess is
+       taken out up to the response to it held for the envelope's horizon */
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
-        double y = INTERCEPT[i];
-        for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) y += B0[i][j] * x[j];
-        for (l = 0; l < TC_DEPTH; l++)
-            for (j = 0; j < TC_N_INPUTS; j++) y += BD[i][l][j] * s->hist[l][j];
-        for (l = 0; l < TC_N_LAGS; l++) y += G[i][l] * (s->z[l] - xl[l]);
-        y += AR[i] * s->y[i];
-        s->y[i] = y;
+        double y, bound = 0.0;
+        for (h = 0; h < 2; h++) {{
+            ych[h] = h == 0 ? INTERCEPT[i] : 0.0;
+            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) ych[h] += B0[i][j] * x[h][j];
+            for (l = 0; l < TC_DEPTH; l++)
+                for (j = 0; j < TC_N_INPUTS; j++) ych[h] += BD[i][l][j] * s->hist[h][l][j];
+            for (l = 0; l < TC_N_LAGS; l++) ych[h] += G[i][l] * (s->z[h][l] - xl[h][l]);
+            ych[h] += AR[i] * s->y[h][i];
+            s->y[h][i] = ych[h];
+        }}
+        for (j = 0; j < TC_N_INPUTS; j++) bound += CLAMP_GAIN[i][j] * x[1][j];
+        bound = fabs(bound);
+        y = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
         /* correction guard: within the rate limit of the previous output, then the bound */
         if (TC_GUARD) {{
             if (!s->first) {{
@@ -216,8 +230,10 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         s->out[i] = y;
         c[i] = TC_ADAPT ? -(s->gain[i] * y + s->bias[i]) : -y;
     }}
-    for (l = TC_DEPTH - 1; l >= 0; l--)
-        for (j = 0; j < TC_N_INPUTS; j++) s->hist[l][j] = l == 0 ? x[j] : s->hist[l - 1][j];
+    for (h = 0; h < 2; h++)
+        for (l = TC_DEPTH - 1; l >= 0; l--)
+            for (j = 0; j < TC_N_INPUTS; j++)
+                s->hist[h][l][j] = l == 0 ? x[h][j] : s->hist[h][l - 1][j];
     s->first = 0;
     return clamped;
 }}

@@ -58,6 +58,7 @@ def function_block(ss: StateSpace) -> str:
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
+        _constant("CLAMP_GAIN", ss.clamp_gain or [], (m, n)),
         _constant("TAU", ss.taus, (k,)), _constant("DECAY", ss.lag_decay, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
         _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n + p)),
@@ -99,18 +100,20 @@ VAR
     first : BOOL := TRUE;
     buf : ARRAY[{_dims(taps, n)}] OF LREAL;
     ref : ARRAY[{_dims(n)}] OF LREAL;
-    hist : ARRAY[{_dims(d, n)}] OF LREAL;
-    z : ARRAY[{_dims(k)}] OF LREAL;
-    y_prev : ARRAY[{_dims(m)}] OF LREAL;
+    hist : ARRAY[{_dims(2, d, n)}] OF LREAL;
+    z : ARRAY[{_dims(2, k)}] OF LREAL;
+    y_prev : ARRAY[{_dims(2, m)}] OF LREAL;
     t_prev : LREAL;
     t_read : LREAL;
     read_valid : BOOL;
     now : LREAL;
     timed : BOOL;
     v : ARRAY[{_dims(n)}] OF LREAL;
-    x : ARRAY[{_dims(n + p)}] OF LREAL;
+    x : ARRAY[{_dims(2, n + p)}] OF LREAL;
+    ych : ARRAY[{_dims(2)}] OF LREAL;
+    bound : LREAL;
     w : LREAL;
-    xl : ARRAY[{_dims(k)}] OF LREAL;
+    xl : ARRAY[{_dims(2, k)}] OF LREAL;
     e : LREAL;
     y : LREAL;
     dt : LREAL;
@@ -135,6 +138,7 @@ VAR
     i : INT;
     j : INT;
     l : INT;
+    h : INT;
 END_VAR
 VAR CONSTANT
 {consts}
@@ -185,13 +189,14 @@ FOR j := 0 TO N_INPUTS - 1 DO
             ref[j] := 0.0;
         END_IF;
     END_IF;
-    x[j] := v[j] - ref[j];
-    (* envelope clamp (static limit) *)
-    IF CLAMP AND x[j] < LO[j] THEN
-        x[j] := LO[j];
+    x[0, j] := v[j] - ref[j];
+    (* envelope (static limit): channel 1 is the excess over the bound *)
+    x[1, j] := 0.0;
+    IF CLAMP AND x[0, j] < LO[j] THEN
+        x[1, j] := x[0, j] - LO[j];
         n_clamped := n_clamped + 1;
-    ELSIF CLAMP AND x[j] > HI[j] THEN
-        x[j] := HI[j];
+    ELSIF CLAMP AND x[0, j] > HI[j] THEN
+        x[1, j] := x[0, j] - HI[j];
         n_clamped := n_clamped + 1;
     END_IF;
 END_FOR;
@@ -199,24 +204,27 @@ END_FOR;
 FOR l := 0 TO N_POWERS - 1 DO
     w := v[POWER_SRC[l]] / POWER_SCALE[l];
     IF w < 0.0 THEN
-        x[N_INPUTS + l] := -EXPT(-w, POWER_EXP[l]);
+        x[0, N_INPUTS + l] := -EXPT(-w, POWER_EXP[l]);
     ELSE
-        x[N_INPUTS + l] := EXPT(w, POWER_EXP[l]);
+        x[0, N_INPUTS + l] := EXPT(w, POWER_EXP[l]);
     END_IF;
+    x[1, N_INPUTS + l] := 0.0;
 END_FOR;
 (* first-order lags *)
-FOR l := 0 TO N_LAGS - 1 DO
-    xl[l] := x[LAG_INPUT[l]];
-    IF first THEN
-        z[l] := xl[l];
-    ELSE
-        IF timed THEN
-            e := EXP(-(now - t_prev) / TAU[l]);
+FOR h := 0 TO 1 DO
+    FOR l := 0 TO N_LAGS - 1 DO
+        xl[h, l] := x[h, LAG_INPUT[l]];
+        IF first THEN
+            z[h, l] := xl[h, l];
         ELSE
-            e := DECAY[l];
+            IF timed THEN
+                e := EXP(-(now - t_prev) / TAU[l]);
+            ELSE
+                e := DECAY[l];
+            END_IF;
+            z[h, l] := e * z[h, l] + (1.0 - e) * xl[h, l];
         END_IF;
-        z[l] := e * z[l] + (1.0 - e) * xl[l];
-    END_IF;
+    END_FOR;
 END_FOR;
 IF timed AND NOT first THEN
     dt := now - t_prev;
@@ -224,13 +232,15 @@ ELSE
     dt := 0.0;
 END_IF;
 IF first THEN
-    FOR l := 0 TO DEPTH - 1 DO
-        FOR j := 0 TO N_INPUTS - 1 DO
-            hist[l, j] := x[j];
+    FOR h := 0 TO 1 DO
+        FOR l := 0 TO DEPTH - 1 DO
+            FOR j := 0 TO N_INPUTS - 1 DO
+                hist[h, l, j] := x[h, j];
+            END_FOR;
         END_FOR;
-    END_FOR;
-    FOR i := 0 TO N_OUTPUTS - 1 DO
-        y_prev[i] := 0.0;
+        FOR i := 0 TO N_OUTPUTS - 1 DO
+            y_prev[h, i] := 0.0;
+        END_FOR;
     END_FOR;
     IF timed THEN
         t_prev := now;
@@ -244,22 +254,42 @@ ELSE
         t_prev := t_prev + PERIOD;
     END_IF;
 END_IF;
-(* outputs: static part, input history, lags, AR feedback *)
+(* outputs: static part, input history, lags, AR feedback; the excess's response out, within the held one *)
 FOR i := 0 TO N_OUTPUTS - 1 DO
-    y := INTERCEPT[i];
-    FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
-        y := y + B0[i, j] * x[j];
-    END_FOR;
-    FOR l := 0 TO DEPTH - 1 DO
-        FOR j := 0 TO N_INPUTS - 1 DO
-            y := y + BD[i, l, j] * hist[l, j];
+    FOR h := 0 TO 1 DO
+        IF h = 0 THEN
+            ych[h] := INTERCEPT[i];
+        ELSE
+            ych[h] := 0.0;
+        END_IF;
+        FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
+            ych[h] := ych[h] + B0[i, j] * x[h, j];
         END_FOR;
+        FOR l := 0 TO DEPTH - 1 DO
+            FOR j := 0 TO N_INPUTS - 1 DO
+                ych[h] := ych[h] + BD[i, l, j] * hist[h, l, j];
+            END_FOR;
+        END_FOR;
+        FOR l := 0 TO N_LAGS - 1 DO
+            ych[h] := ych[h] + G[i, l] * (z[h, l] - xl[h, l]);
+        END_FOR;
+        ych[h] := ych[h] + AR[i] * y_prev[h, i];
+        y_prev[h, i] := ych[h];
     END_FOR;
-    FOR l := 0 TO N_LAGS - 1 DO
-        y := y + G[i, l] * (z[l] - xl[l]);
+    bound := 0.0;
+    FOR j := 0 TO N_INPUTS - 1 DO
+        bound := bound + CLAMP_GAIN[i, j] * x[1, j];
     END_FOR;
-    y := y + AR[i] * y_prev[i];
-    y_prev[i] := y;
+    IF bound < 0.0 THEN
+        bound := -bound;
+    END_IF;
+    IF ych[1] > bound THEN
+        y := ych[0] - bound;
+    ELSIF ych[1] < -bound THEN
+        y := ych[0] + bound;
+    ELSE
+        y := ych[0] - ych[1];
+    END_IF;
     (* correction guard: within the rate limit of the previous output, then the bound *)
     IF USE_GUARD THEN
         IF NOT first THEN
@@ -343,13 +373,15 @@ IF USE_ADAPT THEN
         END_IF;
     END_FOR;
 END_IF;
-FOR l := DEPTH - 1 TO 0 BY -1 DO
-    FOR j := 0 TO N_INPUTS - 1 DO
-        IF l = 0 THEN
-            hist[l, j] := x[j];
-        ELSE
-            hist[l, j] := hist[l - 1, j];
-        END_IF;
+FOR h := 0 TO 1 DO
+    FOR l := DEPTH - 1 TO 0 BY -1 DO
+        FOR j := 0 TO N_INPUTS - 1 DO
+            IF l = 0 THEN
+                hist[h, l, j] := x[h, j];
+            ELSE
+                hist[h, l, j] := hist[h, l - 1, j];
+            END_IF;
+        END_FOR;
     END_FOR;
 END_FOR;
 first := FALSE;

@@ -8,11 +8,15 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
 1. causal FIR denoiser: ``buf <- [u, buf[:-1]]``, ``v = sum_k fir[k] * buf[k]`` (no denoiser:
    one tap of 1);
 2. reference: ``ref = referenced * v`` at a campaign's first sample, ``x = v - ref``;
-3. envelope clamp (static limit): ``x <- min(max(x, lo), hi)`` when ``clamp``;
+3. envelope (static limit), when ``clamp``: the excess over the bounds ``ex = x - min(max(x, lo), hi)``
+   (else 0);
 4. per target ``t``: ``y_t = c_t + b0_t . x + sum_d bd_t[d] . x(t-d) + sum_k g_t[k] (z_k - x[lag_input_k])
    + a_t y_t(t-1)``, with the input history ``x(t-d)`` (``d = 1..depth``) and the first-order
    lags ``z_k <- e_k z_k + (1 - e_k) x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the
-   time since the previous sample (``period`` when no time is given);
+   time since the previous sample (``period`` when no time is given); the same system, without
+   intercept and powers, runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
+   response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)``, ``b_t = |clamp_gain_t . ex|``
+   the response to the excess held for the envelope's horizon (as the stream does);
 5. the correction guard, when the model was deployed with one (:mod:`.output`): ``y_t`` held
    within ``guard_rate_t * dt`` of its previous value, then within ``[guard_lo_t, guard_hi_t]``;
 6. the correction sent to the CNC is ``C_t = -y_t`` (with ``adapt``: ``-(gain_t * y_t + bias_t)``,
@@ -20,7 +24,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
 
 At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
 history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
-clamp and the output the system is linear: the state is ``[buf, ref, history, z, y_prev]``.
+reference and the limit the system is linear: the state is ``[buf, ref, history, z, y_prev]``, the
+last three for each channel.
 """
 
 from __future__ import annotations
@@ -30,6 +35,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ..adaptive import AdaptiveCompensator
 from .errors import NotExportable
@@ -65,6 +71,7 @@ class StateSpace:
     uses_time: bool              # the lags read ``time`` when it is given
     # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
     powers: list = field(default_factory=list)
+    clamp_gain: list | None = None   # (n_targets, n_inputs) step gain at the horizon (clamp only)
     # what follows the system: the correction guard and the reference update (:mod:`.output`)
     substitute_time: bool = False    # a missing or non-increasing time: previous + time_period
     time_period: float = 0.0         # s
@@ -94,7 +101,7 @@ class StateSpace:
     @property
     def n_states(self) -> int:
         n = len(self.inputs)
-        return (len(self.fir) - 1) * n + n + self.depth * n + len(self.taus) + len(self.targets)
+        return (len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.targets))
 
 
 def _target_law(est, n: int, period: float | None):
@@ -129,6 +136,17 @@ def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:
     feats = [powers.setdefault((inputs.index(col), float(est.state_scale_[s]), float(e)), len(powers))
              for e in est.exponents_ for s, col in enumerate(est.state_columns_)]
     return est.lagbank_, feats
+
+
+def _clamp_gain(target: str, est, idx, horizon_s: float, width: int) -> list:
+    """Step gain of ``target``'s law at the envelope's horizon over the code's inputs (a
+    state's: 0, never clamped)."""
+    gain = step_gain(est, None, horizon_s)
+    if gain is None:
+        raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
+                            f"{getattr(est, 'ar_coef_', float('nan')):.3g}): the envelope clamp needs "
+                            "one; export it with promote.envelope.policy=off")
+    return _spread(gain, np.arange(gain.size) if idx is None else np.asarray(idx), width).tolist()
 
 
 def state_space(deployed, provenance: dict | None = None) -> StateSpace:
@@ -186,6 +204,7 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
             bd[i, d - 1] = row
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     period = float(period) if period is not None else 0.0
+    gains = [_clamp_gain(t, est, idx, env.horizon_s, N) for t, est, idx in stream._plan] if clamp else None
     return StateSpace(
         inputs=inputs, targets=targets, fir=fir.tolist(),
         referenced=[int(r) for r in stream._is_ref] + [0] * len(states), clamp=bool(clamp),
@@ -196,6 +215,7 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         intercept=[laws[t][0] for t in targets], b0=[laws[t][1].tolist() for t in targets],
         bd=bd.tolist(), g=g.tolist(), ar=[laws[t][4] for t in targets],
         uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
+        clamp_gain=gains,
         **time_fields(deployed), **guard_fields(deployed), **adapt_fields(deployed),
         provenance=dict(provenance or {}))
 
@@ -214,6 +234,7 @@ class Simulator:
         self.fir = np.asarray(ss.fir, float)
         self.lo, self.hi = (np.asarray(getattr(ss, k) or [], float) for k in ("lo", "hi"))
         m, n = len(ss.targets), len(ss.inputs)
+        self.clamp_gain = np.asarray(ss.clamp_gain or np.zeros((m, n)), float).reshape(m, n)
         self.b0 = np.asarray(ss.b0, float).reshape(m, n + len(ss.powers))
         self.bd = np.asarray(ss.bd, float).reshape(m, ss.depth, n)
         self.g = np.asarray(ss.g, float).reshape(m, len(ss.taus))
@@ -249,27 +270,30 @@ class Simulator:
         if self.first:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
         x = v - self.ref
-        if ss.clamp:
-            x = np.minimum(np.maximum(x, self.lo), self.hi)
+        excess = x - np.minimum(np.maximum(x, self.lo), self.hi) if ss.clamp else np.zeros_like(x)
         xe = x                      # [x, static powers of machine states (Hammerstein basis)]
         if ss.powers:
             src, scale, e = (np.array(c) for c in zip(*ss.powers))
             w = v[src.astype(int)] / scale
             xe = np.r_[x, np.abs(w) ** e * np.sign(w)]
-        xl = xe[self.lag_input]
+        # two channels of one system: the measured inputs, and their excess (no powers, no intercept)
+        xs = np.vstack([xe, np.r_[excess, np.zeros(len(xe) - len(x))]])
+        xl = xs[:, self.lag_input]
         first, dt = self.first, float("nan")
         if self.first:
-            self.hist = np.tile(x, (ss.depth, 1)).reshape(ss.depth, len(x))
-            self.z, self.y = xl.copy(), np.zeros(len(ss.targets))
+            self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
+            self.z, self.y = xl.copy(), np.zeros((2, len(ss.targets)))
             self.t = 0.0 if np.isnan(time) else time
         else:
             dt = time - self.t
             e = self.decay if np.isnan(time) else np.exp(-(time - self.t) / self.taus)
             self.z = e * self.z + (1.0 - e) * xl
             self.t = self.t + ss.period if np.isnan(time) else time
-        y = (np.asarray(ss.intercept) + self.b0 @ xe + np.einsum("tdi,di->t", self.bd, self.hist)
-             + self.g @ (self.z - xl) + np.asarray(ss.ar) * self.y)
+        y = (np.outer([1.0, 0.0], ss.intercept) + xs @ self.b0.T
+             + np.einsum("tdi,sdi->st", self.bd, self.hist) + (self.z - xl) @ self.g.T
+             + np.asarray(ss.ar) * self.y)
         if ss.depth:
-            self.hist = np.vstack([x[None, :], self.hist[:-1]])
+            self.hist = np.concatenate([xs[:, None, :len(x)], self.hist[:, :-1]], axis=1)
         self.y, self.first = y, False
-        return self.output.step(y, first, dt)
+        bound = np.abs(self.clamp_gain @ excess)
+        return self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt)
