@@ -331,3 +331,26 @@ def test_thermocomp_serve_answers_413_and_400_over_http_and_serves_on(scoring, t
     finally:
         stop_process_group(server)
         log.close()
+
+
+def test_a_stream_on_a_loggers_clock_without_its_first_time_keeps_its_events_in_its_clock(
+        deployed):
+    """A stream in seconds on a logger's clock (150100 s, ...) whose first time is missing: the
+    guard took the first time as 0.0, so the row lay 150100 s before the next (its event at
+    -150100 s from the stream's start in monitor.json); read from the first time read, as a
+    timestamp stream is, the substitute is the stream's start."""
+    from thermocomp.core.io.options import ReadOptions
+    from thermocomp.core.io.stdin import read_stream
+    adaptive, test = deployed
+    healthy = list(test.values())[0].iloc[:200]
+    logged = healthy.assign(time=healthy["time"] + 150100.0).astype({"time": object})
+    logged.loc[logged.index[0], "time"] = None
+    frame, missing = read_stream(logged.to_csv(index=False), adaptive.columns_,
+                                 ReadOptions.from_cfg({}))
+    assert missing.get("time") == 1
+    _, events, _ = _stream(adaptive, frame)
+    known = frame["time"].dropna()
+    period = known.iloc[1] - known.iloc[0]
+    substituted = [e for e in events if e["sensor"] == "time" and e["to"] == "substituted"]
+    assert len(substituted) == 1 and known.iloc[0] - period <= substituted[0]["time"] <= known.iloc[0]
+    assert all(known.iloc[0] - period <= e["time"] <= known.iloc[-1] for e in events), events
