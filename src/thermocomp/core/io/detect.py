@@ -66,18 +66,28 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     return WINDOWS if WINDOWS in found else UTF8
 
 
-def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
-    """``(options with the separators detected, header, first row)`` of ``sample`` (a
-    workbook's: of its sheet's first rows written as CSV)."""
+def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
+    """``(options with the separators detected, header, first row, layout)`` of ``sample`` (a
+    workbook's: of its sheet's first rows written as CSV, once for all four); ``layout`` says
+    how it is read (:func:`detection_lines`' first line)."""
     if is_workbook(sample):
         with sheet_as_csv(sample, opts, rows=HEAD_ROWS) as sheet:
-            return head(sheet.csv, csv_options(opts))
+            opts, header, first, _ = head(sheet.csv, csv_options(opts))
+            return (opts, header, first,
+                    f"{sample.name}: sheet {sheet.name!r}" + _table_start(sheet.csv, opts, "row"))
     if not is_text(sample):
         table = parquet().read_table(sample).slice(0, 1)
-        return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
+        return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],
+                _separators(sample, opts))
     opts = resolved(sample, opts)
     header, first, skip = _peek_csv(sample, opts.delimiter, opts.encoding)
-    return replace(opts, skip_rows=skip), header, first
+    opts = replace(opts, skip_rows=skip)
+    return opts, header, first, _separators(sample, opts) + _table_start(sample, opts)
+
+
+def _separators(sample: Path, opts) -> str:
+    charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
+    return f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
 
 
 def proposed_roles(header: list[str], first: dict, opts) -> dict:
@@ -149,7 +159,7 @@ def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,
     return config
 
 
-def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: float, path: Path,
+def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float, path: Path,
                     name: str) -> list[str]:
     """What ``thermocomp init`` prints: separators, time, sample period, each column's role
     and contract name, the campaigns, and the command to run next."""
@@ -161,7 +171,7 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
         f", timestamps from {origin}" if origin else ", elapsed h:mm:ss" if elapsed
         else _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
-    lines = [_layout(sample, opts), time,
+    lines = [layout, time,
              f"sample period: {period_s:g} s, {report['rows']} rows"]
     width = max(len(h or "(no header)") for h in header)
     for h in header:
@@ -175,16 +185,6 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
                      f"{report['campaigns'][cid]['rows']} rows")
     return lines + [f"data config written to {path}",
                     f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"]
-
-
-def _layout(sample: Path, opts) -> str:
-    """How ``sample`` is read: its separators (a workbook: its sheet) and where its table starts."""
-    if is_workbook(sample):
-        with sheet_as_csv(sample, opts, rows=HEAD_ROWS) as sheet:
-            return f"{sample.name}: sheet {sheet.name!r}" + _table_start(sheet.csv, opts, "row")
-    charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
-    return (f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
-            + _table_start(sample, opts))
 
 
 def _table_start(sample: Path, opts, unit: str = "line") -> str:
