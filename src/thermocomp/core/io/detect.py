@@ -25,6 +25,7 @@ from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
 from .timestamps import CLOCK, looks_like_timestamp
+from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
 _GLOB = re.compile(r"([*?\[])")
@@ -62,7 +63,7 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     files = [sample_file(src, manifest)]
     if (src / MANIFEST).is_file():
         files.append(src / MANIFEST)
-    found = [detect(f) for f in files if is_text(f)]
+    found = [detect(f) for f in files if is_text(f) and not is_utf16(f)]   # (UTF-16: its mark)
     return WINDOWS if WINDOWS in found else UTF8
 
 
@@ -75,6 +76,11 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
             opts, header, first, _ = head(sheet.csv, csv_options(opts))
             return (opts, header, first,
                     f"{sample.name}: sheet {sheet.name!r}" + _table_start(sheet.csv, opts, "row"))
+    if is_utf16(sample):
+        with utf16_as_utf8(sample) as text:
+            opts, header, first, layout = head(text, utf8_options(opts))
+            return opts, header, first, layout.replace(
+                f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
     if not is_text(sample):
         table = parquet().read_table(sample).slice(0, 1)
         return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],

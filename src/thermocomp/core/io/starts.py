@@ -20,6 +20,7 @@ from .options import ReadOptions
 from .sniff import resolved
 from .tables import _contract_names, _first_text, _peek_csv, _timed, parquet
 from .timestamps import CLOCK, maybe_elapsed, parsed, time_type
+from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
 
@@ -42,6 +43,12 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
         try:
             with sheet_as_csv(path, opts, rows=HEAD_ROWS) as sheet:
                 return first_timestamp(sheet.csv, csv_options(opts))
+        except ContractError:
+            return pd.NaT
+    if is_utf16(path):
+        try:
+            with utf16_as_utf8(path) as text:
+                return first_timestamp(text, utf8_options(opts))
         except ContractError:
             return pd.NaT
     try:

@@ -33,6 +33,7 @@ from .timestamps import (
     time_kind,
     time_type,
 )
+from .utf16 import has_utf16_mark
 
 SOURCE = "<stdin>"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
@@ -40,16 +41,20 @@ _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without 
 
 def stdin_text(stream, encoding: str = UTF8) -> str:
     """What ``stream`` (``sys.stdin``) holds, decoded with ``data.encoding`` (a Windows
-    logger's rows: cp1252) rather than the locale's; a byte it does not read is refused."""
+    logger's rows: cp1252) rather than the locale's, or as UTF-16 where it begins with its
+    byte-order mark (as a file is, :mod:`.utf16`); a byte it does not read is refused."""
     raw = getattr(stream, "buffer", None)
     if raw is None:                   # already text (a caller's StringIO)
         return stream.read()
     data = raw.read()
-    check_text(data[:4], encoding, SOURCE)
+    if has_utf16_mark(data[:4]):           # Excel's 'Unicode Text'
+        encoding = "utf-16"
+    else:
+        check_text(data[:4], encoding, SOURCE)
     try:
         return data.decode(text_codec(encoding))
     except UnicodeDecodeError as exc:
-        row = data[:exc.start].count(b"\n")
+        row = data[:exc.start].decode(encoding, "replace").count("\n")
         raise ContractError(f"byte 0x{data[exc.start]:02x} is not {encoding} text (set "
                             "data.encoding to the stream's character set, e.g. cp1252)",
                             file=SOURCE, row=row or None) from None
