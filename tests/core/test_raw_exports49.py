@@ -2,9 +2,12 @@
 
 from __future__ import annotations
 
+import codecs
 import csv
 import datetime as dt
 import json
+
+import pytest
 
 from conftest import FAST, ROOT
 from thermocomp.shell.cli import main
@@ -25,16 +28,23 @@ def stamped_runs(folder, write) -> None:
         write([["Zeit", *lines[0][1:]], *part], folder / f"{name}.csv")
 
 
-def _german(lines, path) -> None:
-    path.write_text("".join(";".join(c.replace(".", ",") if i else c for c in line) + "\n"
-                            for i, line in enumerate(lines)), encoding="utf-8")
+def _german(sep: str, mark: bytes, codec: str):
+    """A writer of the rows as a German locale's export: ``sep``, decimal commas, ``mark``."""
+    def write(lines, path) -> None:
+        path.write_bytes(mark + "".join(sep.join(c.replace(".", ",") if i else c for c in line)
+                                        + "\r\n" for i, line in enumerate(lines)).encode(codec))
+    return write
 
 
-def test_a_folder_of_decimal_comma_runs_holds_out_its_last_run_by_time(tmp_path):
+@pytest.mark.parametrize("write", [_german(";", b"", "utf-8"),
+                                   _german("\t", codecs.BOM_UTF16_LE, "utf-16-le")],
+                         ids=["csv", "unicode text"])
+def test_a_folder_of_decimal_comma_runs_holds_out_its_last_run_by_time(tmp_path, write):
     # the first timestamp was looked for with data.decimal=auto unresolved: the temperatures
     # '26,21' read as text, the look failed, and the runs were ordered by name ('a' held out
-    # as train, 'b', which ran first, as test)
-    stamped_runs(tmp_path / "runs", _german)
+    # as train, 'b', which ran first, as test); a UTF-16 run (Excel's 'Unicode Text') was
+    # refused before session 49
+    stamped_runs(tmp_path / "runs", write)
     assert main(["run", f"data.path={tmp_path / 'runs'}", "data.test_fraction=0.5", *ROLES,
                  "model=mlr", *FAST, f"out={tmp_path / 'out'}"]) == 0
     report = json.loads((tmp_path / "out" / "ingest_report.json").read_text())

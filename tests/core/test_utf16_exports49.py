@@ -14,7 +14,6 @@ import pytest
 import yaml
 
 from conftest import FAST, ROOT, refused
-from test_raw_exports49 import stamped_runs
 from thermocomp.shell.cli import main
 
 RECORD = ROOT / "datasets" / "fl_thermal" / "spindle_test.csv"
@@ -111,10 +110,3 @@ def test_a_stream_of_unicode_text_on_stdin_is_read(monkeypatch):
     monkeypatch.setattr(sys, "stdin", stream)
     assert stdin_text(sys.stdin) == text
 
-
-def test_a_folder_of_unicode_text_runs_holds_out_its_last_run_by_its_first_timestamp(tmp_path):
-    stamped_runs(tmp_path / "runs", _unicode_text)
-    assert main(["run", f"data.path={tmp_path / 'runs'}", "data.test_fraction=0.5", *ROLES,
-                 "model=mlr", *FAST, f"out={tmp_path / 'out'}"]) == 0
-    report = json.loads((tmp_path / "out" / "ingest_report.json").read_text())
-    assert {c: e["split"] for c, e in report["campaigns"].items()} == {"a": "test", "b": "train"}
