@@ -204,3 +204,24 @@ def test_ambient_interaction_follows_a_law_linear_in_the_ambient_and_streams():
         y, state = est.stream_step(row, state, {})
         streamed.append(y)
     np.testing.assert_allclose(streamed, linear.predict({"B17": df})["B17"]["E_Z"], atol=1e-10)
+
+
+def test_one_train_campaign_is_fitted_once_as_the_coldest_and_the_warmest(tmp_path):
+    # a record cut in two has one train campaign, both baselines: it was fitted twice
+    # (model=auto on large_mill_week seed 7717: 1551 s of a 2447 s run in the ATI report)
+    from conftest import ROOT
+    from thermocomp.core import io
+    from thermocomp.core.scoring.evaluation import ati_report
+
+    lines = (ROOT / "datasets" / "fl_thermal" / "spindle_test.csv").read_text("utf-8").splitlines()
+    (tmp_path / "r.csv").write_text("\n".join(lines[:301]) + "\n", encoding="utf-8")
+    ds, _ = io.read_dataset(tmp_path / "r.csv", {"roles": {"error": ["ch*"], "state": ["spindle*"],
+                                                            "ambient": ["t16*"]},
+                                                  "test_fraction": 0.1})
+    comp = Compensator(MLR()).fit({c: ds.campaigns[c] for c in ds.ids("train")})
+    made = []
+    rep = ati_report(comp, ds, lambda: made.append(1) or Compensator(MLR()))
+    assert rep["baseline_campaigns"]["coldest"] == rep["baseline_campaigns"]["warmest"]
+    assert len(made) == 1
+    for entry in rep["targets"].values():
+        assert entry["test"]["coldest"] == entry["test"]["warmest"]

@@ -221,3 +221,19 @@ def test_monitor_refuses_a_stdin_stream_for_a_model_on_the_manifest_ambient(
     refused(["monitor", f"data.path={ds}", f"out={out}", "ati=cmeans", *FAST, "monitor.input=-"],
             capsys, "monitor.input=-", "ambient_c")
     assert not out.exists()
+
+
+def test_a_stdin_stream_that_continues_a_campaign_without_its_first_time_streams_alike(
+        record, tmp_path, monkeypatch):
+    # the lead-in was moved to end one period before the stream's first time, NaN: every
+    # lead-in time was lost, the guard ran it from 0 s and the stream's second row came
+    # (lead-in rows x period) before its first (stranger48, session 49)
+    args = [f"data.path={record}"]
+    from_file = _monitor(args, tmp_path / "file", None, monkeypatch)
+    lines = (record / "B.csv").read_text().splitlines(keepends=True)
+    lines[1] = "," + lines[1].split(",", 1)[1]          # row 1 without its time
+    piped = _monitor([*args, "monitor.input=-", "monitor.continues=A"], tmp_path / "piped",
+                     "".join(lines), monkeypatch)
+    for t, r in from_file.items():
+        assert piped[t]["rmse_fixed"] == pytest.approx(r["rmse_fixed"], rel=1e-6)
+        assert piped[t]["rmse_adaptive"] == pytest.approx(r["rmse_adaptive"], rel=1e-6)

@@ -240,3 +240,16 @@ def test_numbers_typed_as_text_with_a_decimal_comma_are_read_as_numbers(tmp_path
         got[name] = {t: (m["test"]["rmse"], m["test"]["mae"]) for t, m in json.loads(
             (tmp_path / name / "metrics.json").read_text())["targets"].items()}
     assert got["text"] == got["text_set"] == got["plain"]
+
+
+def test_init_writes_the_head_of_a_sheet_once(tmp_path, capsys, monkeypatch):
+    # the header look and the layout line each wrote the sheet's first rows as CSV (session 49)
+    from thermocomp.core.io import workbook
+    written = []
+    real = workbook._write
+    monkeypatch.setattr(workbook, "_write", lambda path, sheet, out, rows, comma:
+                        written.append(rows) or real(path, sheet, out, rows, comma))
+    book = _workbook(tmp_path / "lab.xlsx")
+    _init(tmp_path, "init", book)
+    assert written.count(workbook.HEAD_ROWS) == 1, written
+    assert "lab.xlsx: sheet 'Messung', header on row 3" in capsys.readouterr().out

@@ -27,25 +27,30 @@ from .blind import undetected_offset_um
 from .placement import covariance_sensors, qr_sensors
 
 
-def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
+def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None,
+                    clamped: list | None = None
                     ) -> tuple[np.ndarray, list[dict], tuple[list, list]]:
     """Stream one campaign from its start (a reset, or warmed on ``lead_in``, the campaigns it
     continues: :func:`~thermocomp.apps.deploy.streaming.warm`); a step of the fixed compensator
     that refuses its row holds the previous correction (the adaptive one gives one for every
     row: a failure there is a defect, raised, not a held correction whose row re-reported the
-    previous row's events)."""
+    previous row's events).  ``clamped``: a list given gets each row's count of inputs clamped
+    to the training envelope."""
     X = df[model.columns_].to_numpy(float)
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
     y = np.zeros((len(X), len(model.targets_)))
     events, states, errors = [], [], []
     warm(model, lead_in, df)
     for i in range(len(X)):
+        n = 0
         try:
-            y[i] = model._step(X[i], t[i])[0]
+            y[i], n = model._step(X[i], t[i])
         except ValueError:                   # the fixed compensator on a missing value
             if isinstance(model, AdaptiveCompensator):
                 raise
             y[i] = y[i - 1] if i else np.nan
+        if clamped is not None:
+            clamped.append(n)
         mon = getattr(model, "monitor", None)
         if mon is not None:
             events += model.last_events_
@@ -69,11 +74,14 @@ def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
     names = adaptive.monitor.names
     out = {"counts": np.zeros((len(names), len(STATES)), dtype=np.int64), "first_alarm": {},
            "events": [], "traces": {}, "res_f": [], "res_a": [], "res_frozen": [], "corr": [],
-           "hours": 0.0}
+           "hours": 0.0, "clamped": 0, "samples": 0}
     measured = comp.measured(streamed) if any(t in df.columns for df in streamed.values()
                                               for t in comp.targets_) else None
     for cid, df in streamed.items():
-        y_fix, _, _ = stream_campaign(fixed, df, leads.get(cid))
+        clamped: list[int] = []
+        y_fix, _, _ = stream_campaign(fixed, df, leads.get(cid), clamped)
+        out["clamped"] += int(np.count_nonzero(clamped))
+        out["samples"] += len(df)
         y_ad, ev, (states, errors) = stream_campaign(adaptive, df, leads.get(cid))
         start = campaign_start(df)      # CLI.md: event times in seconds from the campaign start
         t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
@@ -109,7 +117,8 @@ def _targets(adaptive, run: dict) -> dict:
     return {t: {"rmse_fixed": _rmse(rf, k), "rmse_adaptive": _rmse(ra, k),
                 "max_abs_correction": float(np.max(np.abs(C[:, k]))) if len(C) else 0.0,
                 "all_finite": bool(np.all(np.isfinite(C[:, k]))),
-                "bound": [float(adaptive.guard.lo[k]), float(adaptive.guard.hi[k])]}
+                "bound": [float(adaptive.guard.lo[k]), float(adaptive.guard.hi[k])],
+                "clamped_samples": run["clamped"], "n_samples": run["samples"]}
             for k, t in enumerate(adaptive.targets_)}
 
 
@@ -167,6 +176,11 @@ def summary_lines(report: dict) -> list[str]:
         a = "-" if r["rmse_adaptive"] is None else f"{r['rmse_adaptive']:.3f}"
         lines.append(f"{t:<8} {f:>11} {a:>14} {r['max_abs_correction']:>10.3g} "
                      f"{str(r['all_finite']):>7}")
+    first = next(iter(report["targets"].values()), {})
+    if first.get("clamped_samples"):     # why RMSE fixed leaves what `run` scored
+        lines.append(f"clamped: {first['clamped_samples']} of {first['n_samples']} samples had an "
+                     "input outside the training envelope (promote.envelope.policy); both RMSEs "
+                     "are the clamped streams'")
     lines += _offset_lines(report["sensors"])
     lines += adapt_line(report["targets"], "adaptive without -> with", "rmse_adaptive")
     excl = [e for e in report["events"] if e["to"] == "excluded"]

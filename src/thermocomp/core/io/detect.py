@@ -25,6 +25,7 @@ from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
 from .timestamps import CLOCK, looks_like_timestamp
+from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
 _GLOB = re.compile(r"([*?\[])")
@@ -62,22 +63,37 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     files = [sample_file(src, manifest)]
     if (src / MANIFEST).is_file():
         files.append(src / MANIFEST)
-    found = [detect(f) for f in files if is_text(f)]
+    found = [detect(f) for f in files if is_text(f) and not is_utf16(f)]   # (UTF-16: its mark)
     return WINDOWS if WINDOWS in found else UTF8
 
 
-def head(sample: Path, opts) -> tuple[object, list[str], list[str]]:
-    """``(options with the separators detected, header, first row)`` of ``sample`` (a
-    workbook's: of its sheet's first rows written as CSV)."""
+def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
+    """``(options with the separators detected, header, first row, layout)`` of ``sample`` (a
+    workbook's: of its sheet's first rows written as CSV, once for all four); ``layout`` says
+    how it is read (:func:`detection_lines`' first line)."""
     if is_workbook(sample):
         with sheet_as_csv(sample, opts, rows=HEAD_ROWS) as sheet:
-            return head(sheet.csv, csv_options(opts))
+            opts, header, first, _ = head(sheet.csv, csv_options(opts))
+            return (opts, header, first,
+                    f"{sample.name}: sheet {sheet.name!r}" + _table_start(sheet.csv, opts, "row"))
+    if is_utf16(sample):
+        with utf16_as_utf8(sample) as text:
+            opts, header, first, layout = head(text, utf8_options(opts))
+            return opts, header, first, layout.replace(
+                f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
     if not is_text(sample):
         table = parquet().read_table(sample).slice(0, 1)
-        return opts, table.column_names, [str(v[0].as_py()) for v in table.columns]
+        return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],
+                _separators(sample, opts))
     opts = resolved(sample, opts)
     header, first, skip = _peek_csv(sample, opts.delimiter, opts.encoding)
-    return replace(opts, skip_rows=skip), header, first
+    opts = replace(opts, skip_rows=skip)
+    return opts, header, first, _separators(sample, opts) + _table_start(sample, opts)
+
+
+def _separators(sample: Path, opts) -> str:
+    charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
+    return f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
 
 
 def proposed_roles(header: list[str], first: dict, opts) -> dict:
@@ -149,7 +165,7 @@ def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,
     return config
 
 
-def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: float, path: Path,
+def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float, path: Path,
                     name: str) -> list[str]:
     """What ``thermocomp init`` prints: separators, time, sample period, each column's role
     and contract name, the campaigns, and the command to run next."""
@@ -161,7 +177,7 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
         f", timestamps from {origin}" if origin else ", elapsed h:mm:ss" if elapsed
         else _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
-    lines = [_layout(sample, opts), time,
+    lines = [layout, time,
              f"sample period: {period_s:g} s, {report['rows']} rows"]
     width = max(len(h or "(no header)") for h in header)
     for h in header:
@@ -175,16 +191,6 @@ def detection_lines(sample: Path, opts, header, plan, ds, report, period_s: floa
                      f"{report['campaigns'][cid]['rows']} rows")
     return lines + [f"data config written to {path}",
                     f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"]
-
-
-def _layout(sample: Path, opts) -> str:
-    """How ``sample`` is read: its separators (a workbook: its sheet) and where its table starts."""
-    if is_workbook(sample):
-        with sheet_as_csv(sample, opts, rows=HEAD_ROWS) as sheet:
-            return f"{sample.name}: sheet {sheet.name!r}" + _table_start(sheet.csv, opts, "row")
-    charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
-    return (f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
-            + _table_start(sample, opts))
 
 
 def _table_start(sample: Path, opts, unit: str = "line") -> str:

@@ -82,6 +82,7 @@ from .record import check_record_file, cut, hold_out, record_id, shares
 from .starts import campaign_starts
 from .steps import check_unit_steps
 from .tables import _load_csv, _load_parquet, _ordered, _values, parquet
+from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import (
     _check_periods,
     _error_ranges,
@@ -181,6 +182,9 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
     if is_workbook(path):       # read as its CSV export is (:mod:`.workbook`)
         with sheet_as_csv(path, opts) as sheet:
             return _read_file(sheet.csv, csv_options(opts))
+    if is_utf16(path):          # Excel's 'Unicode Text': read as its UTF-8 text (:mod:`.utf16`)
+        with utf16_as_utf8(path) as text:
+            return _read_file(text, utf8_options(opts))
     return _read_file(path, opts)
 
 

@@ -20,6 +20,7 @@ from .options import ReadOptions
 from .sniff import resolved
 from .tables import _contract_names, _first_text, _peek_csv, _timed, parquet
 from .timestamps import CLOCK, maybe_elapsed, parsed, time_type
+from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
 
@@ -44,8 +45,14 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
                 return first_timestamp(sheet.csv, csv_options(opts))
         except ContractError:
             return pd.NaT
+    if is_utf16(path):
+        try:
+            with utf16_as_utf8(path) as text:
+                return first_timestamp(text, utf8_options(opts))
+        except ContractError:
+            return pd.NaT
     try:
-        header, first = _first_row(path, opts)
+        header, first, opts = _first_row(path, opts)
         names, _ = _contract_names(header, opts, path, first=first)
     except ContractError:
         return pd.NaT
@@ -67,12 +74,14 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
     return _utc(pd.Timestamp(stamp), opts)
 
 
-def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict]:
-    """A file's header and its first row (cells as text; a Parquet timestamp as it is)."""
+def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict, ReadOptions]:
+    """A file's header, its first row (cells as text; a Parquet timestamp as it is) and the
+    options with its separators detected (a decimal comma's cells are numbers to the naming:
+    with ``auto`` they read as text, every temperature refused and the file's start lost)."""
     if is_text(path):
         opts = resolved(path, opts)
         header, row, _ = _peek_csv(path, opts.delimiter, opts.encoding)
-        return header, dict(zip(header, row))
+        return header, dict(zip(header, row)), opts
     batch = next(parquet().ParquetFile(path).iter_batches(batch_size=1), None)
     if batch is None:
         raise ContractError("no rows", file=path)
@@ -80,7 +89,7 @@ def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict]:
     for name, column in zip(batch.schema.names, batch.columns):
         first[name] = (pd.Timestamp(column[0].as_py()) if pa.types.is_timestamp(column.type)
                        and column[0].is_valid else _first_text(pa.chunked_array([column])) or "")
-    return batch.schema.names, first
+    return batch.schema.names, first, opts
 
 
 def _utc(stamp, opts: ReadOptions) -> pd.Timestamp:

@@ -33,6 +33,7 @@ from .timestamps import (
     time_kind,
     time_type,
 )
+from .utf16 import has_utf16_mark
 
 SOURCE = "<stdin>"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
@@ -40,16 +41,20 @@ _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without 
 
 def stdin_text(stream, encoding: str = UTF8) -> str:
     """What ``stream`` (``sys.stdin``) holds, decoded with ``data.encoding`` (a Windows
-    logger's rows: cp1252) rather than the locale's; a byte it does not read is refused."""
+    logger's rows: cp1252) rather than the locale's, or as UTF-16 where it begins with its
+    byte-order mark (as a file is, :mod:`.utf16`); a byte it does not read is refused."""
     raw = getattr(stream, "buffer", None)
     if raw is None:                   # already text (a caller's StringIO)
         return stream.read()
     data = raw.read()
-    check_text(data[:4], encoding, SOURCE)
+    if has_utf16_mark(data[:4]):           # Excel's 'Unicode Text'
+        encoding = "utf-16"
+    else:
+        check_text(data[:4], encoding, SOURCE)
     try:
         return data.decode(text_codec(encoding))
     except UnicodeDecodeError as exc:
-        row = data[:exc.start].count(b"\n")
+        row = data[:exc.start].decode(encoding, "replace").count("\n")
         raise ContractError(f"byte 0x{data[exc.start]:02x} is not {encoding} text (set "
                             "data.encoding to the stream's character set, e.g. cp1252)",
                             file=SOURCE, row=row or None) from None
@@ -141,7 +146,7 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     is no number; ``zone``: ``data.timezone``, the local clock of timestamps without an
     offset).  A missing time or one that goes back is no refusal here: the stream's guard
     judges it, as on the machine; the first time read (not row 1's, which may be missing)
-    tells the form and is the origin."""
+    tells the form and is the origin (of seconds too, where row 1's is missing)."""
     read = time.dropna()
     if read.empty:                 # no time at all: every row's for the guard to substitute
         return time
@@ -154,7 +159,7 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
         ns = elapsed_seconds(text, kind, SOURCE).cast(pa.int64()).to_numpy(zero_copy_only=False)
         return pd.Series(ns / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
-        return time
+        return _from_first_read(time) if pd.isna(time.iloc[0]) else time
     target = time_type(kind, str(first).strip())
     found = first_cast_failure(text, target, kind)
     if found is not None:
@@ -170,3 +175,17 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     # int64 nanoseconds subtracted before the float: a float64 epoch in ns keeps ~256 ns
     seconds = np.where(valid, (ns - ns[np.argmax(valid)]) / 1e9, np.nan)
     return pd.Series(seconds, index=time.index)
+
+
+def _from_first_read(time: pd.Series) -> pd.Series:
+    """Seconds whose first row is missing, from the first one read, as timestamps are: the
+    stream's guard takes a first time it lacks as 0.0, which on a logger's clock
+    (150100 s, ...) put the row 150100 s before the next and the lag filters a day ahead.
+    A cell that is no number is left as it is, for the numeric check to refuse with its row."""
+    seconds = pd.to_numeric(time, errors="coerce")
+    read = seconds.dropna()
+    if read.empty:
+        return time
+    out = time.astype(object)
+    out[seconds.notna()] = seconds[seconds.notna()] - read.iloc[0]
+    return out

@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import csv
 import datetime as dt
-import logging
 import re
 import tempfile
 from collections.abc import Iterator
@@ -24,8 +23,8 @@ from pathlib import Path
 
 from ...base.errors import listed
 from ...base.extras import require
-from ...base.log import logger
 from .contract import ContractError
+from .converted import named_as
 from .encoding import UTF8
 from .sniff import SNIFF_LINES
 
@@ -36,7 +35,6 @@ NOT_READ = {".xls": "an Excel 97-2003 workbook", ".xlsb": "a binary Excel workbo
 SAVE_AS = "save it as an Excel workbook (.xlsx), or its sheet as CSV"
 HEAD_ROWS = SNIFF_LINES         # the rows a look at the header reads (a preamble, a unit row)
 _OLE = b"\xd0\xcf\x11\xe0"        # a compound file: an encrypted .xlsx, or an .xls renamed
-_LINE = re.compile(r"\bline (\d+)")
 _BREAK = re.compile(r"\r\n|[\r\n]")
 _COMMA_NUMBER = re.compile(r"\s*[+-]?\d*,\d+(?:[eE][+-]?\d+)?\s*")   # '0,38' typed as text
 
@@ -89,29 +87,8 @@ def sheet_as_csv(path: Path, opts, rows: int | None = None) -> Iterator[Sheet]:
         text = Path(tmp) / f"{path.stem}.csv"
         out = Sheet(path, _write(path, opts.sheet, text, rows, opts.decimal in (",", "auto")),
                     text)
-        renamed = _Renamed(out)
-        logger.addFilter(renamed)
-        try:
+        with named_as(text, out.where(), out.located, "row"):
             yield out
-        except ContractError as exc:
-            raise out.located(exc) from None
-        finally:
-            logger.removeFilter(renamed)
-
-
-class _Renamed(logging.Filter):
-    """A log record naming the sheet's CSV file names the sheet and its row instead."""
-
-    def __init__(self, sheet: Sheet):
-        super().__init__()
-        self.sheet = sheet
-
-    def filter(self, record: logging.LogRecord) -> bool:
-        text = record.getMessage()
-        if str(self.sheet.csv) in text:
-            record.msg = _LINE.sub(r"row \1", text.replace(str(self.sheet.csv), self.sheet.where()))
-            record.args = ()
-        return True
 
 
 def _write(path: Path, sheet: str | None, out: Path, rows: int | None, comma: bool) -> str:

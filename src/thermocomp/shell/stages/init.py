@@ -40,7 +40,7 @@ def init(cfg: DictConfig) -> dict:
     manifest = folder_manifest(src, asked)                  # a folder's, read once
     given["encoding"] = encoding(src, asked, manifest)      # a Windows export's
     sample = sample_file(src, manifest)
-    opts, header, first = head(sample, io.ReadOptions.from_cfg(given))
+    opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
@@ -54,5 +54,5 @@ def init(cfg: DictConfig) -> dict:
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")
     period = np.median([campaign_period(df) for df in ds.campaigns.values() if len(df) > 1])
-    print("\n".join(detection_lines(sample, opts, header, plan, ds, report, period, path, ds.name)))
+    print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, ds.name)))
     return {"config": str(path), "columns": plan.names}

@@ -42,7 +42,7 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, stream) -> dict:
     if ids:
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
             + carried_text({"stdin": [*ids, "stdin"]}))
-    return stdin_lead_in(ds, ids, float(stream[TIME].iloc[0]) if TIME in stream.columns else 0.0)
+    return stdin_lead_in(ds, ids, stream[TIME] if TIME in stream.columns else None)
 
 
 def _fitted(cfg: DictConfig, ds, train: dict):

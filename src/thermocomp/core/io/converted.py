@@ -1,0 +1,44 @@
+"""A file read through the temporary UTF-8 CSV file it is converted to (a workbook's sheet:
+:mod:`.workbook`; a UTF-16 text: :mod:`.utf16`): a message or a warning about the temporary file
+names the file the lab gave instead."""
+
+from __future__ import annotations
+
+import logging
+import re
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from ...base.log import logger
+from .contract import ContractError
+
+_LINE = re.compile(r"\bline (\d+)")
+
+
+@contextmanager
+def named_as(temp: Path, where: str, located: Callable[[ContractError], ContractError],
+             unit: str = "line") -> Iterator[None]:
+    """Within the block, a :class:`ContractError` raised is ``located(exc)``, and a log record
+    naming ``temp`` names ``where`` instead, its ``line N`` as ``<unit> N`` (a sheet's row)."""
+    renamed = _Renamed(temp, where, unit)
+    logger.addFilter(renamed)
+    try:
+        yield
+    except ContractError as exc:
+        raise located(exc) from None
+    finally:
+        logger.removeFilter(renamed)
+
+
+class _Renamed(logging.Filter):
+    def __init__(self, temp: Path, where: str, unit: str):
+        super().__init__()
+        self.temp, self.where, self.unit = str(temp), where, unit
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        text = record.getMessage()
+        if self.temp in text:
+            record.msg = _LINE.sub(rf"{self.unit} \1", text.replace(self.temp, self.where))
+            record.args = ()
+        return True
