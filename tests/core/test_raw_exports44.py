@@ -14,6 +14,7 @@ from conftest import refused
 from thermocomp.core.io import ContractError, read_dataset
 from thermocomp.core.io.detect import proposed_roles
 from thermocomp.core.io.options import ReadOptions
+from thermocomp.core.io.roles import contract_columns
 from thermocomp.core.io.source import open_dataset
 from thermocomp.core.io.stdin import stream_seconds
 from thermocomp.shell.cli import main
@@ -391,3 +392,11 @@ def test_init_detects_a_windows_encoding_in_a_folder_of_runs_without_a_manifest(
         (runs / f"run_{k}.csv").write_bytes(text.encode("cp1252"))
     assert main(["init", str(runs), "data.test_fraction=0.3", f"out={tmp_path / 'init'}"]) == 0
     assert "encoding: cp1252" in (tmp_path / "init" / "conf" / "data" / "runs.yaml").read_text()
+
+
+def test_several_ambient_sensors_keep_their_own_names_once(tmp_path):
+    # before: 'amb left' became T_amb_amb_left (the header's own 'amb' prefixed again)
+    header = ["time [s]", "amb left [°C]", "Ambient_right [°C]", "Halle [°C]", "T1 [°C]", "dX [µm]"]
+    names = contract_columns(header, {"ambient": ["amb*", "Ambient*", "Halle"], "error": ["dX"]},
+                             first={h: "1" for h in header})
+    assert [names[h] for h in header[1:4]] == ["T_amb_left", "T_amb_right", "T_amb_Halle"]

@@ -282,10 +282,14 @@ def date_and_time_of_day(headers: Sequence[str], first: Mapping) -> list[str]:
     return []
 
 
+_AMB = re.compile(r"^(T_)?amb(ient)?_", re.I)
+
+
 def _derived(kind: str, base: str, several_ambient: bool) -> str:
     name = _UNSAFE.sub("_", base).strip("_").replace("..", ".")
     if kind == "ambient":
-        return f"T_amb_{name}" if several_ambient else "T_amb"
+        # 'amb left' is T_amb_left, not T_amb_amb_left: the header's own 'amb' is the prefix
+        return f"T_amb_{_AMB.sub('', name) or name}" if several_ambient else "T_amb"
     prefix = PREFIX[kind]
     return name if name.startswith(prefix) and len(name) > len(prefix) else prefix + name
 
