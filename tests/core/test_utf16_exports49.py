@@ -66,8 +66,9 @@ def test_a_measured_records_unicode_text_export_scores_as_its_csv(tmp_path, caps
     assert from_wide == from_csv
 
 
+@pytest.mark.parametrize("suffix", [".csv", ".txt"])     # .txt: Excel's own name for it
 def test_a_folder_of_simulated_campaigns_exported_as_unicode_text_scores_as_its_csv(
-        tmp_path, short_dataset):
+        tmp_path, short_dataset, suffix):
     manifest = list(csv.DictReader(open(short_dataset / "campaigns.csv", encoding="utf-8")))
     for kind in ("c", "u"):
         (tmp_path / kind).mkdir()
@@ -76,7 +77,7 @@ def test_a_folder_of_simulated_campaigns_exported_as_unicode_text_scores_as_its_
             lines = list(csv.reader(f))
         name = f"run_{len(list((tmp_path / 'c').iterdir())) + 1}.csv"
         _utf8_csv(lines, tmp_path / "c" / name)
-        _unicode_text(lines, tmp_path / "u" / name)
+        _unicode_text(lines, tmp_path / "u" / Path(name).with_suffix(suffix))
     held_out = "data.test_fraction=0.34"
     assert _targets(tmp_path, "w", f"data.path={tmp_path / 'u'}", held_out) == \
         _targets(tmp_path, "p", f"data.path={tmp_path / 'c'}", held_out)

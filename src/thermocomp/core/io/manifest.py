@@ -15,7 +15,7 @@ from .encoding import UTF8, check_text, fields, text_codec, undecodable
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
 from .workbook import WORKBOOK_SUFFIXES
 
-# an Excel workbook is read as its CSV export (:mod:`.workbook`)
+# a folder's runs without a manifest (a workbook is read as its CSV export, :mod:`.workbook`)
 CAMPAIGN_SUFFIXES = (".csv", ".parquet", *WORKBOOK_SUFFIXES)
 # a one-file record may also carry a logger's text suffix: read as CSV is (delimiter detected)
 TEXT_SUFFIXES = (".csv", ".txt", ".tsv", ".dat")
@@ -86,9 +86,11 @@ def campaign_files(folder: Path) -> list[Path]:
                 for t in re.split(r"(\d+)", p.name)]
     if not folder.is_dir():
         return []
-    return sorted((p for p in folder.iterdir() if p.is_file()
-                   and not p.name.startswith((".", EXCEL_OWNER))
-                   and p.suffix.lower() in CAMPAIGN_SUFFIXES), key=natural)
+    files = [p for p in folder.iterdir() if p.is_file() and not p.name.startswith((".", EXCEL_OWNER))]
+    runs = [p for p in files if p.suffix.lower() in CAMPAIGN_SUFFIXES]
+    # a folder of text exports alone (a logger's .dat, Excel's 'Unicode Text' .txt): those are
+    # its runs; beside CSV, Parquet or workbooks a .txt is a note, not a run
+    return sorted(runs or [p for p in files if p.suffix.lower() in TEXT_SUFFIXES], key=natural)
 
 
 def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
@@ -159,9 +161,9 @@ def _check_manifest_rows(raw: pd.DataFrame, path: Path, root: Path) -> None:
         elif os.path.isabs(fname) or os.path.normpath(fname).split(os.sep)[0] == "..":
             problem = "file", (f"campaign file {fname!r} lies outside the dataset folder: "
                                "files are paths relative to it, without '..'")
-        elif Path(fname).suffix.lower() not in CAMPAIGN_SUFFIXES:
+        elif Path(fname).suffix.lower() not in RECORD_SUFFIXES:
             problem = "file", (f"campaign file {fname!r} is not "
-                               f"{', '.join(CAMPAIGN_SUFFIXES[:-1])} nor {CAMPAIGN_SUFFIXES[-1]}")
+                               f"{', '.join(RECORD_SUFFIXES[:-1])} nor {RECORD_SUFFIXES[-1]}")
         elif not (root / fname).is_file():
             problem = "file", f"campaign file {fname!r} not found in {root}"
         elif (root / fname).resolve() in files:
