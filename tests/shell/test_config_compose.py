@@ -14,6 +14,7 @@ from thermocomp.base.paths import conf_dir
 from thermocomp.shell.config.commands import groups_of, root_name
 from thermocomp.shell.config.overrides import compose
 
+pytestmark = pytest.mark.usefixtures("plain_hydra")   # Hydra's own work is what is measured here
 
 def _roots() -> list[str]:
     return sorted(name for name in ConfigStore.instance().repo if name.startswith(root_name("")))

@@ -1,0 +1,154 @@
+"""The suite's cache of Hydra's composition (tests/hydra_cache.py): the configs and errors plain
+Hydra gives, a config file or a ConfigStore node changed is read again, and Hydra is left as it is
+for a release the cache was not written against."""
+
+from __future__ import annotations
+
+import os
+import shutil
+
+import hydra
+import pytest
+from hydra import compose, initialize_config_dir
+from hydra.core.config_store import ConfigStore
+from hydra.core.global_hydra import GlobalHydra
+from hydra.types import RunMode
+from omegaconf import OmegaConf
+
+import hydra_cache
+from thermocomp.base.paths import conf_dir
+from thermocomp.shell.config import commands, overrides
+
+# (command, overrides): roots, group and value overrides together, Hydra's own, and errors
+CASES = [
+    *[(command, []) for command in ("simulate", "run", "compare", "replay", "design", "calibrate")],
+    ("run", ["model=arx", "data.path=/x", "model.estimator.fit_intercept=false"]),
+    ("run", ["data.path=/y", "model=arx"]),                         # same groups, other values
+    ("run", ["model=arx_rf", "ati=cmeans", "denoise=emd", "select=pearson"]),
+    ("run", ["hydra/launcher=joblib", "hydra.sweep.dir=/tmp/s", "hydra.job.chdir=false"]),
+    ("run", ["data.columns={a: b}", "~model.estimator.fit_intercept", "+extra=1"]),
+    ("simulate", ["sim=swiss_lathe_door", "sim.generator.seed=3"]),
+    ("run", ["model=no_such_model"]),                               # errors: a group option,
+    ("run", ["model.estimator.no_such_key=1"]),                     # a key,
+    ("run", ["model=arx", "data.path=[1,2"]),                       # a parse error
+    ("run", ["+model=mlr"]),
+]
+
+
+def _outcome(command: str, args: list[str]):
+    """The composed config as yaml with its flags, or the error Hydra raised (type and text)."""
+    try:
+        cfg = overrides.compose(args, command)
+    except Exception as exc:                      # noqa: BLE001 - the error is the outcome
+        return type(exc).__name__, str(exc)
+    return (OmegaConf.to_yaml(cfg), OmegaConf.is_struct(cfg), OmegaConf.is_readonly(cfg.hydra),
+            OmegaConf.to_yaml(cfg.hydra.runtime.choices))
+
+
+def test_the_cache_is_on_in_this_suite():
+    assert hydra_cache.supported() and hydra_cache.install()
+
+
+def _plain(outcomes):
+    """``outcomes()`` with plain Hydra; the cache is on (and empty) again after it."""
+    hydra_cache.uninstall()
+    try:
+        return outcomes()
+    finally:
+        assert hydra_cache.install()
+
+
+def test_cached_compositions_are_plain_hydras_configs_and_errors():
+    expected = _plain(lambda: [_outcome(c, a) for c, a in CASES])
+    first = [_outcome(c, a) for c, a in CASES]          # misses, kept
+    kept = len(hydra_cache._entries)
+    again = [_outcome(c, a) for c, a in CASES]          # from the cache
+    assert kept >= 6                                    # it did keep them
+    for case, want, miss, hit in zip(CASES, expected, first, again):
+        assert miss == want, case
+        assert hit == want, case
+
+
+def test_a_sweeps_master_config_is_plain_hydras():
+    """A multirun composes with skip_missing and its sweep overrides (``model=mlr,pcr``)."""
+    def master():
+        commands.register("run")
+        with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+            cfg = GlobalHydra.instance().hydra.compose_config(
+                commands.root_name("run"), ["model=mlr,pcr", "data.path=/z", "seed=1,2"],
+                run_mode=RunMode.MULTIRUN)
+        return OmegaConf.to_yaml(cfg)
+
+    want = _plain(master)
+    assert master() == want and master() == want
+
+
+def _config_value(conf, key: str):
+    with initialize_config_dir(config_dir=str(conf), version_base="1.3"):
+        return OmegaConf.select(compose(config_name="config", overrides=["track=false"]), key)
+
+
+def test_an_edited_conf_file_is_read_again_even_with_its_size_and_time_kept(tmp_path):
+    """A test edits a copy of conf/ (conftest.set_keys) within a clock tick of composing it."""
+    conf = tmp_path / "conf"
+    shutil.copytree(conf_dir(), conf)
+    mlr = conf / "model" / "mlr.yaml"
+    text = mlr.read_text()
+    assert "fit_intercept: true" in text
+    assert _config_value(conf, "model.estimator.fit_intercept") is True
+    stat = mlr.stat()
+    mlr.write_text(text.replace("fit_intercept: true", "fit_intercept: null"))   # 4 letters each
+    os.utime(mlr, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    assert mlr.stat().st_size == stat.st_size and mlr.stat().st_mtime_ns == stat.st_mtime_ns
+    assert _config_value(conf, "model.estimator.fit_intercept") is None
+
+
+def test_a_new_option_file_is_found_and_a_removed_one_is_gone(tmp_path):
+    conf = tmp_path / "conf"
+    shutil.copytree(conf_dir(), conf)
+
+    def model(option: str):
+        with initialize_config_dir(config_dir=str(conf), version_base="1.3"):
+            return compose(config_name="config", overrides=[f"model={option}"]).model
+
+    shutil.copy2(conf / "model" / "mlr.yaml", conf / "model" / "mlr2.yaml")
+    assert model("mlr2") == model("mlr")
+    (conf / "model" / "mlr2.yaml").unlink()
+    with pytest.raises(hydra.errors.MissingConfigException):
+        model("mlr2")
+
+
+def test_a_configstore_node_stored_again_is_read_again():
+    store = ConfigStore.instance()
+
+    def value():
+        with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+            return compose(config_name="hydra_cache_probe").probe
+
+    try:
+        store.store(name="hydra_cache_probe", node={"probe": 1})
+        assert value() == 1
+        store.store(name="hydra_cache_probe", node={"probe": 2})
+        assert value() == 2
+    finally:
+        del store.repo["hydra_cache_probe.yaml"]
+
+
+@pytest.mark.parametrize("change", ["version", "source"])
+def test_another_hydra_release_is_left_as_it_is(monkeypatch, change):
+    from hydra._internal import config_loader_impl
+
+    hydra_cache.uninstall()
+    try:
+        plain = config_loader_impl.create_defaults_list
+        if change == "version":
+            monkeypatch.setattr(hydra, "__version__", "1.4.0")
+        else:
+            monkeypatch.setitem(hydra_cache.SOURCES, "create_defaults_list", "0" * 64)
+        assert not hydra_cache.supported()
+        assert not hydra_cache.install()
+        assert config_loader_impl.create_defaults_list is plain
+        assert overrides.compose(["model=arx"], "run").model.name == "arx"
+    finally:
+        monkeypatch.undo()
+        assert hydra_cache.install()
