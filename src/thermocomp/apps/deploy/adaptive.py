@@ -6,7 +6,7 @@ temperature the model reads is judged; an excluded or missing one is replaced
 by its POD reconstruction from the healthy ones), and behind it a
 :class:`~.guard.CorrectionGuard` (bounded, rate-limited correction).  It also
 checks ``time`` (NaN, repeated or backwards: taken as the previous time plus
-the sampling period) and holds a missing non-temperature input (``S_`` signal)
+the sampling period, :mod:`.timerule`) and holds a missing non-temperature input (``S_`` signal)
 at its last value.  A correction is produced for every sample.
 
 It has the interface of the streaming compensator (``columns_``, ``targets_``,
