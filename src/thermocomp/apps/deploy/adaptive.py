@@ -149,6 +149,13 @@ class AdaptiveCompensator:
         self.last_events_: list[dict] = []
         self.n_samples_ = 0
 
+    def __setstate__(self, state: dict) -> None:
+        if "_clock" not in state:     # pickled before the time rule (timerule.py)
+            state["_clock"] = SampleClock(state["period_s"])
+            state["_clock"].restore(_clock_of(state.pop("_last_time", float("nan")),
+                                              state.pop("_last_read", float("nan"))))
+        self.__dict__.update(state)
+
     def _snapshot(self) -> tuple:
         return (self.streaming._snapshot(), self.monitor.snapshot() if self.monitor else None,
                 self.guard.snapshot() if self.guard else None,
@@ -158,6 +165,8 @@ class AdaptiveCompensator:
                 None if self._y is None else self._y.copy(), self.n_samples_)
 
     def _restore(self, snap: tuple) -> None:
+        if len(snap) == 12:     # taken before the time rule (an older model's end states)
+            snap = (*snap[:5], _clock_of(snap[5], snap[6]), *snap[7:])
         (s, m, g, self._base, self._late, clock, self._held,
          self._held_state, self._time_bad, self._y, self.n_samples_) = snap
         self._clock.restore(clock)
@@ -267,3 +276,10 @@ class AdaptiveCompensator:
         out["excluded_inputs"] = excluded
         out["events"] = events
         return out
+
+
+def _clock_of(last_time: float, last_read: float) -> tuple:
+    """The clock's snapshot (:meth:`.timerule.SampleClock.snapshot`) of a stream saved before the
+    time rule, which kept its last time used and its last time read (on one clock)."""
+    return (not np.isfinite(last_time), last_time, last_read,
+            0.0 if np.isfinite(last_read) else float("nan"))

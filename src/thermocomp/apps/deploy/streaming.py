@@ -291,9 +291,12 @@ class StreamingCompensator:
 
     def _restore(self, snap: tuple) -> None:
         (self._ref, self._ambient_c0, self._states, self._den_state, self.n_samples_, self._held,
-         self._gains, clock) = snap
+         self._gains, *clock) = snap      # (an older model's end states have no clock)
         if self._clock is not None:
-            self._clock.restore(clock)
+            if clock and clock[0] is not None:
+                self._clock.restore(clock[0])
+            else:                # the models' own times: a time read passes as it is
+                self._clock.reset()
 
     # -- prediction -------------------------------------------------------------------------
 
