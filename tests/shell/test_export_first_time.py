@@ -73,3 +73,26 @@ def test_the_events_of_such_a_stream_count_from_its_first_row(dataset):
     assert [e["time"] for e in substituted] == [0.0], events
     back = [e for e in events if e["sensor"] == "time" and e["to"] == "ok"]
     assert [e["time"] for e in back] == [complete["time"][1] - complete["time"][0]], events
+
+
+def test_a_stream_saved_before_the_time_rule_resumes_as_it_ran(dataset):
+    """End states of an older model (promote's snapshots kept the last time used and read, no
+    clock) and an adaptive compensator pickled then restore onto the stream's clock."""
+    deployed, df = _deployed(dataset, True)
+    X, t = df[deployed.columns_].to_numpy(float), df["time"].to_numpy(float)
+    deployed.reset()
+    ran = [deployed.step(x, s) for x, s in zip(X, t)][11:]
+    deployed.reset()
+    for x, s in zip(X[:11], t[:11]):
+        deployed.step(x, s)
+    snap = list(deployed._snapshot())
+    _, last, read, _ = snap[5]
+    stream = snap[0][:7]               # the plain stream's, without its clock
+    old = (stream, *snap[1:5], last, read, *snap[6:])
+    deployed.reset()
+    deployed._restore(old)
+    assert np.array_equal(ran, [deployed.step(x, s) for x, s in zip(X[11:], t[11:])])
+    state = {k: v for k, v in deployed.__dict__.items() if k != "_clock"}
+    pickled = object.__new__(type(deployed))
+    pickled.__setstate__({**state, "_last_time": last, "_last_read": read})
+    assert pickled._clock.snapshot() == (False, last, read, 0.0)
