@@ -337,8 +337,8 @@ def test_a_stream_on_a_loggers_clock_without_its_first_time_keeps_its_events_in_
         deployed):
     """A stream in seconds on a logger's clock (150100 s, ...) whose first time is missing: the
     guard took the first time as 0.0, so the row lay 150100 s before the next (its event at
-    -150100 s from the stream's start in monitor.json); read from the first time read, as a
-    timestamp stream is, the substitute is the stream's start."""
+    -150100 s from the stream's start in monitor.json); by the time rule (deploy/timerule.py) the
+    substitute is the stream's start, the next row one period after it."""
     from thermocomp.core.io.options import ReadOptions
     from thermocomp.core.io.stdin import read_stream
     adaptive, test = deployed
@@ -352,8 +352,12 @@ def test_a_stream_on_a_loggers_clock_without_its_first_time_keeps_its_events_in_
     known = frame["time"].dropna()
     period = known.iloc[1] - known.iloc[0]
     substituted = [e for e in events if e["sensor"] == "time" and e["to"] == "substituted"]
-    assert len(substituted) == 1 and known.iloc[0] - period <= substituted[0]["time"] <= known.iloc[0]
-    assert all(known.iloc[0] - period <= e["time"] <= known.iloc[-1] for e in events), events
+    assert len(substituted) == 1 and substituted[0]["time"] == 0.0
+    # the next row one period on (it was at 0 too: a step of 0 s, one filter step lost)
+    back = [e for e in events if e["sensor"] == "time" and e["to"] == "ok"]
+    assert [e["time"] for e in back] == [period], events
+    span = known.iloc[-1] - known.iloc[0] + period
+    assert all(0.0 <= e["time"] <= span for e in events), events
 
 
 def test_monitor_says_how_many_samples_were_clamped_as_replay_does(default_dataset, tmp_path,

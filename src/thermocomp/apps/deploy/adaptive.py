@@ -6,7 +6,7 @@ temperature the model reads is judged; an excluded or missing one is replaced
 by its POD reconstruction from the healthy ones), and behind it a
 :class:`~.guard.CorrectionGuard` (bounded, rate-limited correction).  It also
 checks ``time`` (NaN, repeated or backwards: taken as the previous time plus
-the sampling period) and holds a missing non-temperature input (``S_`` signal)
+the sampling period, :mod:`.timerule`) and holds a missing non-temperature input (``S_`` signal)
 at its last value.  A correction is produced for every sample.
 
 It has the interface of the streaming compensator (``columns_``, ``targets_``,
@@ -28,6 +28,7 @@ from .guard import CorrectionGuard
 from .pod import ThermalPOD
 from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
 from .surveillance import SensorMonitor
+from .timerule import SampleClock
 
 
 class AdaptiveCompensator:
@@ -123,6 +124,11 @@ class AdaptiveCompensator:
         return self.streaming.compensator.reference != "first_sample"
 
     @property
+    def clock_time_(self) -> float:
+        """The last sample's time on the stream's clock (:mod:`.timerule`): event times are on it."""
+        return self._clock.t
+
+    @property
     def excluded_inputs(self) -> list[str]:
         return self.monitor.excluded if self.monitor is not None else []
 
@@ -135,8 +141,7 @@ class AdaptiveCompensator:
             self.guard.reset()
         self._base = None
         self._late = None
-        self._last_time = float("nan")
-        self._last_read = float("nan")
+        self._clock = SampleClock(self.period_s)
         self._held = np.full(len(self._other), np.nan)
         self._held_state = np.zeros(len(self._other), dtype=bool)
         self._time_bad = False
@@ -144,17 +149,27 @@ class AdaptiveCompensator:
         self.last_events_: list[dict] = []
         self.n_samples_ = 0
 
+    def __setstate__(self, state: dict) -> None:
+        if "_clock" not in state:     # pickled before the time rule (timerule.py)
+            state["_clock"] = SampleClock(state["period_s"])
+            state["_clock"].restore(_clock_of(state.pop("_last_time", float("nan")),
+                                              state.pop("_last_read", float("nan"))))
+        self.__dict__.update(state)
+
     def _snapshot(self) -> tuple:
         return (self.streaming._snapshot(), self.monitor.snapshot() if self.monitor else None,
                 self.guard.snapshot() if self.guard else None,
                 None if self._base is None else self._base.copy(),
-                None if self._late is None else self._late.copy(), self._last_time,
-                self._last_read, self._held.copy(), self._held_state.copy(), self._time_bad,
+                None if self._late is None else self._late.copy(), self._clock.snapshot(),
+                self._held.copy(), self._held_state.copy(), self._time_bad,
                 None if self._y is None else self._y.copy(), self.n_samples_)
 
     def _restore(self, snap: tuple) -> None:
-        (s, m, g, self._base, self._late, self._last_time, self._last_read, self._held,
+        if len(snap) == 12:     # taken before the time rule (an older model's end states)
+            snap = (*snap[:5], _clock_of(snap[5], snap[6]), *snap[7:])
+        (s, m, g, self._base, self._late, clock, self._held,
          self._held_state, self._time_bad, self._y, self.n_samples_) = snap
+        self._clock.restore(clock)
         self.streaming._restore(s)
         if self.monitor is not None:
             self.monitor.restore(m)
@@ -209,19 +224,12 @@ class AdaptiveCompensator:
         return y, clamped
 
     def _check_time(self, t: float, events: list) -> tuple[float, float]:
-        # judged against the last time *read*, not the last one used: after a swapped pair of
-        # rows the substitutes run one period ahead of the record, and judging against them
-        # kept every later time 'substituted' to the end of the stream
-        last, read = self._last_time, self._last_read
-        bad = None
-        if not np.isfinite(t):
-            bad = "time has no finite value"
-        elif np.isfinite(read) and t <= read:
-            bad = f"time {t:.6g} s does not increase (previous {read:.6g} s)"
-        else:
-            self._last_read = t
+        # the time rule of every deployed form (timerule.py); a bad time is judged against the
+        # last time *read*, not the last one used: after a swapped pair of rows the substitutes
+        # run one period ahead of the record, and judging against them kept every later time
+        # 'substituted' to the end of the stream
+        t, dt, bad = self._clock.step(t)
         if bad is not None:
-            t = (last + self.period_s) if np.isfinite(last) else 0.0
             if not self._time_bad:
                 events.append({"time": t, "sensor": TIME, "from": "ok", "to": "substituted",
                                "reason": f"{bad}: taken as previous + {self.period_s:g} s"})
@@ -230,9 +238,7 @@ class AdaptiveCompensator:
             events.append({"time": t, "sensor": TIME, "from": "substituted", "to": "ok",
                            "reason": "time increases again"})
             self._time_bad = False
-        dt = t - last if np.isfinite(last) else self.period_s
-        self._last_time = t
-        return t, dt
+        return t, dt if np.isfinite(dt) else self.period_s
 
     def _hold(self, v: np.ndarray, t: float, events: list) -> np.ndarray:
         missing = ~np.isfinite(v)
@@ -270,3 +276,10 @@ class AdaptiveCompensator:
         out["excluded_inputs"] = excluded
         out["events"] = events
         return out
+
+
+def _clock_of(last_time: float, last_read: float) -> tuple:
+    """The clock's snapshot (:meth:`.timerule.SampleClock.snapshot`) of a stream saved before the
+    time rule, which kept its last time used and its last time read (on one clock)."""
+    return (not np.isfinite(last_time), last_time, last_read,
+            0.0 if np.isfinite(last_read) else float("nan"))

@@ -37,6 +37,7 @@ from .adapt import adapt_figures, finite_rms
 from .adaptive import AdaptiveCompensator
 from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
 from .surveillance import NEW_STATE
+from .timerule import stream_start
 
 
 @dataclass
@@ -91,12 +92,12 @@ def alarm_rate(events: list[dict], hours: float) -> dict:
             "new_thermal_states": sum(1 for e in events if e.get("to") == NEW_STATE)}
 
 
-def campaign_start(campaign: pd.DataFrame) -> float:
-    """The campaign's first known ``time`` (0 without one): event times are written in seconds
-    from it (CLI.md, ``monitor.json``), whatever clock the file keeps."""
-    t = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.empty(0)
-    known = t[np.isfinite(t)]
-    return float(known[0]) if len(known) else 0.0
+def campaign_start(campaign: pd.DataFrame, period_s: float) -> float:
+    """Where the campaign starts on the clock of its ``time`` (0 without one): its first time, or,
+    where that is missing, the first time read less a period per row before it, as the stream
+    steps (:func:`.timerule.stream_start`); times are written in seconds from it (CLI.md)."""
+    return stream_start(campaign[TIME].to_numpy(float) if TIME in campaign.columns else [],
+                        period_s)
 
 
 def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
@@ -105,7 +106,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     from a reset, or warmed on ``lead_in``, the campaigns it continues (:func:`~.streaming.warm`).
 
     The adaptive compensator's events get ``campaign`` (``cid``) added, their ``time`` from the
-    campaign's start (:func:`campaign_start`).  A row the
+    campaign's first row on the stream's clock (:mod:`.timerule`).  A row the
     plain streaming compensator refuses (a missing value, an input outside the
     envelope with ``policy=refuse``) raises :class:`ContractError` naming the
     campaign, its ``file``, the column and the row (1-based).
@@ -115,7 +116,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     y = np.empty((len(X), len(deployed.targets_)))
     clamped = np.zeros(len(X), dtype=np.int64)
     adaptive = isinstance(deployed, AdaptiveCompensator)
-    t0 = campaign_start(campaign)
+    t0 = float("nan")      # the first row's time on the stream's clock: events count from it
     events: list[dict] = []
     try:
         warm(deployed, lead_in, campaign)
@@ -127,6 +128,8 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     try:
         for i in range(len(X)):
             y[i], clamped[i] = step(X[i], t[i])
+            if adaptive and not i:
+                t0 = deployed.clock_time_
             if adaptive and deployed.last_events_:
                 events += [{"campaign": cid, **e, "time": e["time"] - t0} for e in deployed.last_events_]
     except OutOfEnvelopeError as exc:

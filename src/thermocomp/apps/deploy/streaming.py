@@ -54,6 +54,7 @@ from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
 from ...core.io.contract import is_ambient, manifest_ambient
 from ...core.metrics import split_scores
+from .timerule import SampleClock
 
 POLICIES = ("clamp", "refuse", "off")
 STREAM_ID = "stream"
@@ -121,6 +122,16 @@ def step_block(deployed, X: np.ndarray, time: np.ndarray, after_row=None) -> tup
     return y, clamps
 
 
+def lag_period(estimators) -> float | None:
+    """The sample period of the models' lag banks (a Hammerstein model's is its lag bank's):
+    a sample without time is one period after the previous one; None without a lag bank."""
+    for est in estimators:
+        period = getattr(getattr(est, "lagbank_", est), "sample_period_s_", None)
+        if period:
+            return float(period)
+    return None
+
+
 class StreamingCompensator:
     """Causal, stateful compensator for streaming use on the machine.
 
@@ -175,6 +186,7 @@ class StreamingCompensator:
     adapt_ = None
     _held = None               # older pickles: no stream on the clamped inputs yet
     _gains: dict = {}
+    _clock = None              # older pickles: the models' own rule for a missing time
 
     def __init__(self, compensator: Compensator, envelope: Envelope | None = None,
                  policy: str = "clamp", ambient_columns=None):
@@ -258,6 +270,9 @@ class StreamingCompensator:
         self._gains: dict = {}
         self._den_state = None
         self.n_samples_ = 0
+        period = lag_period(est for _, est, _ in self._plan)
+        # the time rule of every deployed form (timerule.py): the models see the stream's clock
+        self._clock = SampleClock(period, judge=False) if period else None
 
     @contextmanager
     def envelope_off(self):
@@ -272,11 +287,16 @@ class StreamingCompensator:
     def _snapshot(self) -> tuple:
         return (self._ref, self._ambient_c0, copy.deepcopy(self._states),
                 copy.deepcopy(self._den_state), self.n_samples_, copy.deepcopy(self._held),
-                self._gains)
+                self._gains, self._clock and self._clock.snapshot())
 
     def _restore(self, snap: tuple) -> None:
         (self._ref, self._ambient_c0, self._states, self._den_state, self.n_samples_, self._held,
-         self._gains) = snap
+         self._gains, *clock) = snap      # (an older model's end states have no clock)
+        if self._clock is not None:
+            if clock and clock[0] is not None:
+                self._clock.restore(clock[0])
+            else:                # the models' own times: a time read passes as it is
+                self._clock.reset()
 
     # -- prediction -------------------------------------------------------------------------
 
@@ -312,6 +332,8 @@ class StreamingCompensator:
             j = int(np.flatnonzero(~np.isfinite(checked))[0])
             raise MissingValueError(f"input {self.columns_[j]} has no finite value at row "
                                      f"{self.n_samples_} (sensor dropout?)")
+        if self._clock is not None:
+            time = self._clock.step(float(time))[0]
         first = self._ref is None
         seen = x
         if self.denoiser is not None:

@@ -34,17 +34,21 @@ def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
     continues: :func:`~thermocomp.apps.deploy.streaming.warm`); a step of the fixed compensator
     that refuses its row holds the previous correction (the adaptive one gives one for every
     row: a failure there is a defect, raised, not a held correction whose row re-reported the
-    previous row's events).  ``clamped``: a list given gets each row's count of inputs clamped
-    to the training envelope."""
+    previous row's events; their times from the campaign's first row on the stream's
+    clock, :mod:`~thermocomp.apps.deploy.timerule`).  ``clamped``: a list given gets each
+    row's count of inputs clamped to the training envelope."""
     X = df[model.columns_].to_numpy(float)
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
     y = np.zeros((len(X), len(model.targets_)))
     events, states, errors = [], [], []
     warm(model, lead_in, df)
+    t0 = 0.0
     for i in range(len(X)):
         n = 0
         try:
             y[i], n = model._step(X[i], t[i])
+            if not i and isinstance(model, AdaptiveCompensator):
+                t0 = model.clock_time_
         except ValueError:                   # the fixed compensator on a missing value
             if isinstance(model, AdaptiveCompensator):
                 raise
@@ -53,7 +57,7 @@ def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
             clamped.append(n)
         mon = getattr(model, "monitor", None)
         if mon is not None:
-            events += model.last_events_
+            events += [{**e, "time": e["time"] - t0} for e in model.last_events_]
             states.append(mon.states)
             errors.append(mon.last_error_)
     model.reset()
@@ -83,7 +87,7 @@ def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
         out["clamped"] += int(np.count_nonzero(clamped))
         out["samples"] += len(df)
         y_ad, ev, (states, errors) = stream_campaign(adaptive, df, leads.get(cid))
-        start = campaign_start(df)      # CLI.md: event times in seconds from the campaign start
+        start = campaign_start(df, adaptive.period_s)   # CLI.md: times in s from the campaign start
         t = (df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)) - start
         m = None if measured is None else measured[cid][adaptive.targets_].to_numpy()
         if adapt is not None:           # the deployed correction learns from the references
@@ -92,7 +96,7 @@ def _stream_all(adaptive, fixed, comp, streamed: dict, leads: dict,
             adapt.start()
             y_ad = adapt.correct(y_ad, t, m)
         for e in ev:
-            e = {"campaign": cid, **e, "time": e["time"] - start}
+            e = {"campaign": cid, **e}
             out["events"].append(e)
             if (e.get("sensor") in names and e["to"] in ("alarm", "excluded")
                     and e["sensor"] not in out["first_alarm"]):

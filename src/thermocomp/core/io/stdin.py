@@ -146,7 +146,8 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     is no number; ``zone``: ``data.timezone``, the local clock of timestamps without an
     offset).  A missing time or one that goes back is no refusal here: the stream's guard
     judges it, as on the machine; the first time read (not row 1's, which may be missing)
-    tells the form and is the origin (of seconds too, where row 1's is missing)."""
+    tells the form and is the origin of timestamps (seconds are kept: a missing first one is
+    the stream's time rule's, :mod:`thermocomp.apps.deploy.timerule`)."""
     read = time.dropna()
     if read.empty:                 # no time at all: every row's for the guard to substitute
         return time
@@ -159,7 +160,7 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
         ns = elapsed_seconds(text, kind, SOURCE).cast(pa.int64()).to_numpy(zero_copy_only=False)
         return pd.Series(ns / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
-        return _from_first_read(time) if pd.isna(time.iloc[0]) else time
+        return time         # a missing first one: the stream's time rule (deploy/timerule.py)
     target = time_type(kind, str(first).strip())
     found = first_cast_failure(text, target, kind)
     if found is not None:
@@ -176,16 +177,3 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     seconds = np.where(valid, (ns - ns[np.argmax(valid)]) / 1e9, np.nan)
     return pd.Series(seconds, index=time.index)
 
-
-def _from_first_read(time: pd.Series) -> pd.Series:
-    """Seconds whose first row is missing, from the first one read, as timestamps are: the
-    stream's guard takes a first time it lacks as 0.0, which on a logger's clock
-    (150100 s, ...) put the row 150100 s before the next and the lag filters a day ahead.
-    A cell that is no number is left as it is, for the numeric check to refuse with its row."""
-    seconds = pd.to_numeric(time, errors="coerce")
-    read = seconds.dropna()
-    if read.empty:
-        return time
-    out = time.astype(object)
-    out[seconds.notna()] = seconds[seconds.notna()] - read.iloc[0]
-    return out

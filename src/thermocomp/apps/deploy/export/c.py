@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 
+from ..timerule import C_TIME_RULE
 from .statespace import StateSpace
 from .text import banner, correction_names
 
@@ -72,6 +73,7 @@ typedef struct {{
     double y[2][TC_N_OUTPUTS];                  /* previous output (AR feedback) */
     double t;                                   /* previous sample time, s */
     double t_read;                              /* last good time read, s */
+    double shift;                               /* time read - the stream's clock, s */
     double out[TC_N_OUTPUTS];                   /* previous guarded output (guard, reference) */
     double bias[TC_N_OUTPUTS];                  /* learned from reference measurements */
     double var[TC_N_OUTPUTS];                   /* the bias's variance (TC_ADAPT 1) */
@@ -109,7 +111,7 @@ def source(ss: StateSpace) -> str:
     consts = "\n".join([
         _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
-        _array("TAU", ss.taus, (k,)), _array("DECAY", ss.lag_decay, (k,)),
+        _array("TAU", ss.taus, (k,)),
         _ints("LAG_INPUT", ss.lag_input),
         _array("INTERCEPT", ss.intercept, (m,)), _array("B0", ss.b0, (m, n + p)),
         _ints("POWER_SRC", [q[0] for q in ss.powers]),
@@ -117,7 +119,6 @@ def source(ss: StateSpace) -> str:
         _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         _array("BD", ss.bd, (m, d, n)), _array("G", ss.g, (m, k)), _array("AR", ss.ar, (m,)),
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * m, (m, n)),
-        f"static const double PERIOD = {number(ss.period)};",
         f"static const int CLAMP = {int(ss.clamp)};",
         *_output_constants(ss)])
     return f"""{banner(ss, "/*", " *", " */")}
@@ -145,18 +146,9 @@ void tc_init(tc_state *s) {{
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS], xl[2][{max(k, 1)}], ych[2];
-    double dt, step;
+    double dt, now, step;
     int i, j, l, h, clamped = 0;
-    if (TC_SUBSTITUTE_TIME) {{
-        /* a missing time, or one not after the last one read: the previous one + one period */
-        if (s->first) s->t_read = NAN;
-        if (!isfinite(time) || (isfinite(s->t_read) && time <= s->t_read))
-            time = s->first ? 0.0 : s->t + TIME_PERIOD;
-        else
-            s->t_read = time;
-    }}
-    dt = s->first ? NAN : time - s->t;
-    /* causal FIR denoiser */
+{C_TIME_RULE}    /* causal FIR denoiser */
     for (l = TC_TAPS - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++)
             s->buf[l][j] = (s->first || l == 0) ? u[j] : s->buf[l - 1][j];
@@ -185,7 +177,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             if (s->first) {{
                 s->z[h][l] = xl[h][l];
             }} else {{
-                double e = isnan(time) ? DECAY[l] : exp(-(time - s->t) / TAU[l]);
+                double e = exp(-dt / TAU[l]);
                 s->z[h][l] = e * s->z[h][l] + (1.0 - e) * xl[h][l];
             }}
         }}
@@ -195,10 +187,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
                 for (j = 0; j < TC_N_INPUTS; j++) s->hist[h][l][j] = x[h][j];
             for (i = 0; i < TC_N_OUTPUTS; i++) s->y[h][i] = 0.0;
         }}
-        s->t = isnan(time) ? 0.0 : time;
-    }} else {{
-        s->t = isnan(time) ? s->t + PERIOD : time;
     }}
+    s->t = now;
     /* outputs: static part, input history, lags, AR feedback; the response to the excess is
        taken out up to the response to it held for the envelope's horizon */
     for (i = 0; i < TC_N_OUTPUTS; i++) {{

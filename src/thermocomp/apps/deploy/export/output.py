@@ -1,8 +1,9 @@
 """What surrounds the linear system in the exported code: the time rule, the correction guard and
 the reference update (pure core).
 
-* **time** (the adaptive compensator's): a missing time, or one not after the last time read,
-  is taken as the previous time plus ``time_period`` (``substitute_time``).
+* **time** (:mod:`..timerule`, every form's): a missing time (the adaptive compensator's,
+  ``substitute_time``: or one not after the last time read) is the previous time plus
+  ``time_period``; a campaign's first, 0 of the stream's clock, the first time read counting from it.
 * **guard** (:class:`~..guard.CorrectionGuard` of the adaptive compensator): static limits
   ``guard_lo``, ``guard_hi`` (µm of predicted error) and ``guard_rate`` (µm/s; null: none) per
   target, and one state, the previous guarded output.  A campaign's first output is bounded
@@ -43,7 +44,7 @@ def guard_fields(deployed) -> dict:
 
 def time_fields(deployed) -> dict:
     """The adaptive compensator's rule for a bad ``time`` (missing, or not after the last one
-    read): taken as the previous time plus ``time_period`` (a campaign's first: 0)."""
+    read): taken as the previous time plus ``time_period`` (:mod:`..timerule`)."""
     if not isinstance(deployed, AdaptiveCompensator):
         return {}
     return {"substitute_time": True, "time_period": float(deployed.period_s)}

@@ -2,8 +2,8 @@
 function block, ``FB_ThermoComp``, with the interface of the C code: one call is one
 ``tc_step``; ``reset := TRUE`` is ``tc_reset`` before it (the sample starts a campaign).
 
-Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: one period
-after the previous sample; ST has no NaN), ``ref_valid`` and ``ref_error`` (per target: a
+Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: no time,
+:mod:`..timerule`; ST has no NaN), ``ref_valid`` and ``ref_error`` (per target: a
 reference measurement of the error at this sample, which ``tc_reference`` takes after the
 step); outputs ``c`` (µm) and ``n_clamped``.  What was learned from references survives
 ``reset`` (the instance's initial values are the exported ones).  Only assignments, ``IF``,
@@ -12,6 +12,7 @@ step); outputs ``c`` (µm) and ``n_clamped``.  What was learned from references 
 
 from __future__ import annotations
 
+from ..timerule import ST_TIME_RULE
 from .statespace import StateSpace
 from .text import banner
 
@@ -54,12 +55,11 @@ def function_block(ss: StateSpace) -> str:
     consts = "\n".join([
         f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    TAPS : INT := {taps};",
         f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};", f"    N_POWERS : INT := {p};",
-        f"    PERIOD : LREAL := {literal(ss.period)};",
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
         _constant("CLAMP_GAIN", ss.clamp_gain or [], (m, n)),
-        _constant("TAU", ss.taus, (k,)), _constant("DECAY", ss.lag_decay, (k,)),
+        _constant("TAU", ss.taus, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
         _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n + p)),
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
@@ -106,8 +106,9 @@ VAR
     t_prev : LREAL;
     t_read : LREAL;
     read_valid : BOOL;
+    shift : LREAL;
+    shift_valid : BOOL;
     now : LREAL;
-    timed : BOOL;
     v : ARRAY[{_dims(n)}] OF LREAL;
     x : ARRAY[{_dims(2, n + p)}] OF LREAL;
     ych : ARRAY[{_dims(2)}] OF LREAL;
@@ -147,26 +148,7 @@ END_VAR
 IF reset THEN
     first := TRUE;
 END_IF;
-now := time_s;
-timed := has_time;
-(* a missing time, or one not after the last one read: the previous one plus one period *)
-IF SUBSTITUTE_TIME THEN
-    IF first THEN
-        read_valid := FALSE;
-    END_IF;
-    IF NOT timed OR (read_valid AND now <= t_read) THEN
-        IF first THEN
-            now := 0.0;
-        ELSE
-            now := t_prev + TIME_PERIOD;
-        END_IF;
-        timed := TRUE;
-    ELSE
-        t_read := now;
-        read_valid := TRUE;
-    END_IF;
-END_IF;
-n_clamped := 0;
+{ST_TIME_RULE}n_clamped := 0;
 (* causal FIR denoiser: newest raw sample first *)
 FOR l := TAPS - 1 TO 0 BY -1 DO
     FOR j := 0 TO N_INPUTS - 1 DO
@@ -217,20 +199,11 @@ FOR h := 0 TO 1 DO
         IF first THEN
             z[h, l] := xl[h, l];
         ELSE
-            IF timed THEN
-                e := EXP(-(now - t_prev) / TAU[l]);
-            ELSE
-                e := DECAY[l];
-            END_IF;
+            e := EXP(-dt / TAU[l]);
             z[h, l] := e * z[h, l] + (1.0 - e) * xl[h, l];
         END_IF;
     END_FOR;
 END_FOR;
-IF timed AND NOT first THEN
-    dt := now - t_prev;
-ELSE
-    dt := 0.0;
-END_IF;
 IF first THEN
     FOR h := 0 TO 1 DO
         FOR l := 0 TO DEPTH - 1 DO
@@ -242,18 +215,8 @@ IF first THEN
             y_prev[h, i] := 0.0;
         END_FOR;
     END_FOR;
-    IF timed THEN
-        t_prev := now;
-    ELSE
-        t_prev := 0.0;
-    END_IF;
-ELSE
-    IF timed THEN
-        t_prev := now;
-    ELSE
-        t_prev := t_prev + PERIOD;
-    END_IF;
 END_IF;
+t_prev := now;
 (* outputs: static part, input history, lags, AR feedback; the excess's response out, within the held one *)
 FOR i := 0 TO N_OUTPUTS - 1 DO
     FOR h := 0 TO 1 DO

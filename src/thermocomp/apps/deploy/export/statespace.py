@@ -13,7 +13,7 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
 4. per target ``t``: ``y_t = c_t + b0_t . x + sum_d bd_t[d] . x(t-d) + sum_k g_t[k] (z_k - x[lag_input_k])
    + a_t y_t(t-1)``, with the input history ``x(t-d)`` (``d = 1..depth``) and the first-order
    lags ``z_k <- e_k z_k + (1 - e_k) x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the
-   time since the previous sample (``period`` when no time is given); the same system, without
+   time since the previous sample (``time_period`` without one, timerule.py); the same system, without
    intercept and powers, runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
    response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)``, ``b_t = |clamp_gain_t . ex|``
    the response to the excess held for the envelope's horizon (as the stream does);
@@ -38,6 +38,7 @@ import numpy as np
 from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ..adaptive import AdaptiveCompensator
+from ..timerule import SampleClock
 from .errors import NotExportable
 from .output import Output, adapt_fields, guard_fields, time_fields
 
@@ -73,8 +74,8 @@ class StateSpace:
     powers: list = field(default_factory=list)
     clamp_gain: list | None = None   # (n_targets, n_inputs) step gain at the horizon (clamp only)
     # what follows the system: the correction guard and the reference update (:mod:`.output`)
-    substitute_time: bool = False    # a missing or non-increasing time: previous + time_period
-    time_period: float = 0.0         # s
+    substitute_time: bool = False    # a non-increasing time too is substituted (timerule.py)
+    time_period: float = 0.0         # s: a sample without time is this after the previous
     guard: bool = False
     guard_lo: list | None = None     # (n_targets,) µm of predicted error
     guard_hi: list | None = None
@@ -216,7 +217,9 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         bd=bd.tolist(), g=g.tolist(), ar=[laws[t][4] for t in targets],
         uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
         clamp_gain=gains,
-        **time_fields(deployed), **guard_fields(deployed), **adapt_fields(deployed),
+        # a sample without time: one period later (timerule.py); a plain stream's: the lags'
+        **(time_fields(deployed) or {"time_period": period}), **guard_fields(deployed),
+        **adapt_fields(deployed),
         provenance=dict(provenance or {}))
 
 
@@ -241,6 +244,7 @@ class Simulator:
         self.taus, self.decay = np.asarray(ss.taus, float), np.asarray(ss.lag_decay, float)
         self.lag_input = np.asarray(ss.lag_input, int)
         self.output = Output(ss)       # guard and reference update: what is learned stays
+        self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
         self.reset()
 
     def reset(self) -> None:
@@ -255,13 +259,9 @@ class Simulator:
         """Correction ``C`` (µm, = -predicted error) per target for one sample."""
         u = np.asarray(u, float)
         ss = self.ss
-        if ss.substitute_time:      # as the adaptive compensator judges a time
-            if self.first:
-                self.t_read = np.nan
-            if not np.isfinite(time) or time <= self.t_read:
-                time = 0.0 if self.first else self.t + ss.time_period
-            else:
-                self.t_read = time
+        if self.first:
+            self.clock.reset()
+        _, dt, _ = self.clock.step(float(time))
         if self.first:
             self.buf = np.tile(u, (len(self.fir), 1))
         else:
@@ -279,16 +279,13 @@ class Simulator:
         # two channels of one system: the measured inputs, and their excess (no powers, no intercept)
         xs = np.vstack([xe, np.r_[excess, np.zeros(len(xe) - len(x))]])
         xl = xs[:, self.lag_input]
-        first, dt = self.first, float("nan")
+        first = self.first
         if self.first:
             self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
             self.z, self.y = xl.copy(), np.zeros((2, len(ss.targets)))
-            self.t = 0.0 if np.isnan(time) else time
         else:
-            dt = time - self.t
-            e = self.decay if np.isnan(time) else np.exp(-(time - self.t) / self.taus)
+            e = np.exp(-dt / self.taus)
             self.z = e * self.z + (1.0 - e) * xl
-            self.t = self.t + ss.period if np.isnan(time) else time
         y = (np.outer([1.0, 0.0], ss.intercept) + xs @ self.b0.T
              + np.einsum("tdi,sdi->st", self.bd, self.hist) + (self.z - xl) @ self.g.T
              + np.asarray(ss.ar) * self.y)

@@ -1,0 +1,118 @@
+"""The rule for a sample's time, one definition for every deployed form: the adaptive
+compensator (:class:`SampleClock`), the exported Simulator (same class), and the C and
+Structured Text code (:data:`C_TIME_RULE`, :data:`ST_TIME_RULE`, the same steps in those
+languages, rendered into ``compensator.c`` and ``compensator.st``; the export tests run every
+form against the others).
+
+* A sample with no time (``judge``: or one not after the last time read) is one ``period``
+  (the training sample period, saved with the model) after the previous sample.
+* A campaign's first sample with no time is at 0 of the stream's clock, and the steps count
+  from it: the first time read after it lies one period per sample after it, and every later
+  time keeps that offset.  On a logger's clock (150030 s, ...) the stream then steps as the
+  complete record does (its first time 150000 s); taking the first time as 0.0 had put
+  150030 s between the first two samples and thrown every lag state a day ahead.
+
+A reader that has the whole record takes such a first time as the next time read less one
+period per sample: the same steps (:func:`stream_start` says where the stream's clock starts).
+"""
+
+from __future__ import annotations
+
+import math
+
+
+class SampleClock:
+    """The stream's clock: ``step(time)`` -> ``(t, dt, why)``, ``t`` the sample's time on the
+    stream's clock, ``dt`` the step from the previous sample (NaN at a campaign's first), ``why``
+    the reason the time read was not used (None when it was)."""
+
+    def __init__(self, period_s: float, judge: bool = True):
+        self.period_s, self.judge = float(period_s), bool(judge)
+        self.reset()
+
+    def reset(self) -> None:
+        """A new campaign: the next sample is its first."""
+        self.first, self.t = True, math.nan
+        self.t_read = self.shift = math.nan
+
+    def snapshot(self) -> tuple:
+        return self.first, self.t, self.t_read, self.shift
+
+    def restore(self, snap: tuple) -> None:
+        self.first, self.t, self.t_read, self.shift = snap
+
+    def step(self, time: float) -> tuple[float, float, str | None]:
+        first, why = self.first, None
+        if not math.isfinite(time):
+            why = "time has no finite value"
+        elif self.judge and math.isfinite(self.t_read) and time <= self.t_read:
+            why = f"time {time:.6g} s does not increase (previous {self.t_read:.6g} s)"
+        if why is None:
+            self.t_read = time
+            if not math.isfinite(self.shift):      # the first time read sets the clock
+                self.shift = 0.0 if first else time - (self.t + self.period_s)
+            now = time - self.shift
+        else:
+            now = 0.0 if first else self.t + self.period_s
+        dt = math.nan if first else now - self.t
+        self.t, self.first = now, False
+        return now, dt, why
+
+
+def stream_start(time, period_s: float) -> float:
+    """Where the stream's clock puts a campaign's first sample, on the clock of its ``time``
+    column (NaN where missing): its own time, else the first time read less one period per
+    sample before it (0 without any time)."""
+    for i, t in enumerate(time):
+        if math.isfinite(t):
+            return float(t) - i * period_s
+    return 0.0
+
+
+# The same steps in C (tc_step: ``time`` NAN when missing; state s->t, s->t_read, s->shift).
+C_TIME_RULE = """\
+    /* the time rule (timerule.py): a missing time (TC_SUBSTITUTE_TIME: or one not after the
+       last one read) is one TIME_PERIOD after the previous sample; a first one, 0, and the
+       first time read then counts from it */
+    if (s->first) { s->t_read = NAN; s->shift = NAN; }
+    if (isfinite(time) && !(TC_SUBSTITUTE_TIME && isfinite(s->t_read) && time <= s->t_read)) {
+        s->t_read = time;
+        if (!isfinite(s->shift)) s->shift = s->first ? 0.0 : time - (s->t + TIME_PERIOD);
+        now = time - s->shift;
+    } else {
+        now = s->first ? 0.0 : s->t + TIME_PERIOD;
+    }
+    dt = s->first ? NAN : now - s->t;
+"""
+
+# The same steps in Structured Text (no NaN: ``has_time``, ``read_valid``, ``shift_valid``).
+ST_TIME_RULE = """\
+(* the time rule (timerule.py): a missing time (SUBSTITUTE_TIME: or one not after the last read) *)
+(* is one TIME_PERIOD after the previous sample; a first one, 0: the first time read counts from it *)
+IF first THEN
+    read_valid := FALSE;
+    shift_valid := FALSE;
+END_IF;
+IF has_time AND NOT (SUBSTITUTE_TIME AND read_valid AND time_s <= t_read) THEN
+    t_read := time_s;
+    read_valid := TRUE;
+    IF NOT shift_valid THEN
+        IF first THEN
+            shift := 0.0;
+        ELSE
+            shift := time_s - (t_prev + TIME_PERIOD);
+        END_IF;
+        shift_valid := TRUE;
+    END_IF;
+    now := time_s - shift;
+ELSIF first THEN
+    now := 0.0;
+ELSE
+    now := t_prev + TIME_PERIOD;
+END_IF;
+IF first THEN
+    dt := 0.0;
+ELSE
+    dt := now - t_prev;
+END_IF;
+"""
