@@ -4,6 +4,11 @@ The clamp takes the model's response to an input's excess over its bound out of 
 prediction, never more than the response to that excess held for the longest training
 campaign (:mod:`thermocomp.apps.deploy.streaming`): a lag model's dynamics are not distorted
 by an input a little out of range, and an input far out is still clamped.
+
+These machines read one or two inputs that training moved independently: their training
+pattern spans every input and the default gate (``promote.envelope.pattern``) would pass every
+excursion, so the clamp's arithmetic is checked with ``pattern=False`` (every excursion
+clamped); the gate itself: tests/shell/test_envelope_pattern.py.
 """
 
 from __future__ import annotations
@@ -74,7 +79,7 @@ def test_a_lag_bank_a_little_out_of_range_streams_as_scored():
     0.07 scored)."""
     train = {f"K{k}": _band_pass(k, 1.0) for k in range(3)}
     comp = Compensator(LagBank(n_taus=6)).fit(train)
-    stream = StreamingCompensator.from_training(comp, train)
+    stream = StreamingCompensator.from_training(comp, train, pattern=False)
     test = _band_pass(9, 1.5)
     out = replay(stream, test)
     assert (out["n_clamped"] > 0).sum() > 100                 # the envelope acts
@@ -100,7 +105,7 @@ def test_an_input_far_out_is_still_clamped():
     clamped stream, reversed it by 145 µm after the step)."""
     train = {f"K{k}": _heated(k) for k in range(4)}
     comp = Compensator(LagBank(n_taus=6)).fit(train)
-    stream = StreamingCompensator.from_training(comp, train)
+    stream = StreamingCompensator.from_training(comp, train, pattern=False)
     hot = _heated(9)
     hot.loc[ROWS // 2:, "T_1"] += 40.0
     deployed = replay(stream, hot)["E_X"].to_numpy()
@@ -118,7 +123,7 @@ def test_every_family_streams_out_of_range(model):
     other stays within its held response of its own prediction, and as scored back in range."""
     train = {f"K{k}": _heated(k) for k in range(4)}
     comp = Compensator(model).fit(train)
-    stream = StreamingCompensator.from_training(comp, train)
+    stream = StreamingCompensator.from_training(comp, train, pattern=False)
     hot = _heated(9)
     hot.loc[200:300, "T_1"] += 8.0
     out = replay(stream, hot)

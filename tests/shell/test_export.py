@@ -40,6 +40,10 @@ SELECTORS = ("all", "pearson", "greedy_residual", "cluster_grey")
 CAMPAIGNS = (("K01", "train"), ("K02", "train"), ("K03", "train"), ("K04", "train"),
              ("K05", "test"), ("K06", "test"))
 PUSH_C = 30.0          # added to one sensor from mid-campaign: far outside the training envelope
+# the sensors here move independently, a pattern spanning every input that the default gate
+# never clamps: the clamp's arithmetic is proved on every excursion (the gate:
+# test_envelope_pattern.py)
+EVERY_EXCURSION = "promote.envelope.pattern=false"
 needs_cc = pytest.mark.skipif(shutil.which("gcc") is None, reason="no C compiler")
 
 
@@ -88,7 +92,7 @@ def _deployed(dataset, family, denoise, select):
     model = family.split("_")[0]
     cfg = _compose(f"model={model}", f"denoise={denoise}", f"select={select}",
                    f"data.path={dataset}", "track=false", "monitor.adaptive=false",
-                   *FAMILIES[family])
+                   EVERY_EXCURSION, *FAMILIES[family])
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
     stream = deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train)
@@ -307,7 +311,7 @@ def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(datas
     model = _trained(dataset, tmp_path, "lagbank")
     out = tmp_path / "code"
     assert main(["export", f"data.path={dataset}", f"export.model={model}", "export.format=c",
-                 f"out={out}", "track=false"]) == 0
+                 f"out={out}", "track=false", EVERY_EXCURSION]) == 0
     assert {"compensator.json", "compensator.h", "compensator.c", "stream.c"} <= {
         p.name for p in out.iterdir()}
     coefficients = json.loads((out / "compensator.json").read_text())

@@ -172,6 +172,7 @@ class Monitor:
 @dataclass
 class Envelope:
     margin: float = key(NON_NEGATIVE)
+    pattern: bool = key(BOOLEAN)
 
 
 @dataclass

@@ -42,6 +42,19 @@ def _braced(values, rank: int) -> str:
     return "{" + ", ".join(items) + "}"
 
 
+def _pattern_constants(ss: StateSpace) -> list:
+    """The training pattern (:mod:`.statespace`); without one: scale 1, never consulted."""
+    n = len(ss.inputs)
+    basis = ss.pattern_basis or [[0.0] for _ in range(n)]
+    rank = len(basis[0]) if ss.pattern else 0
+    return [_array("PATTERN_MEAN", ss.pattern_mean or [0.0] * n, (n,)),
+            _array("PATTERN_SCALE", ss.pattern_scale or [1.0] * n, (n,)),
+            _array("PATTERN_BASIS", basis, (n, max(rank, 1))),
+            f"static const double PATTERN_TOL = {number(ss.pattern_tol)};",
+            f"static const int PATTERN_RANK = {rank};",
+            f"static const int PATTERN = {int(ss.pattern)};"]
+
+
 def header(ss: StateSpace) -> str:
     n, m, taps = len(ss.inputs), len(ss.targets), len(ss.fir)
     names = ", ".join(f'"{c}"' for c in ss.inputs)
@@ -119,6 +132,7 @@ def source(ss: StateSpace) -> str:
         _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         _array("BD", ss.bd, (m, d, n)), _array("G", ss.g, (m, k)), _array("AR", ss.ar, (m,)),
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * m, (m, n)),
+        *_pattern_constants(ss),
         f"static const int CLAMP = {int(ss.clamp)};",
         *_output_constants(ss)])
     return f"""{banner(ss, "/*", " *", " */")}
@@ -144,6 +158,21 @@ void tc_init(tc_state *s) {{
     tc_reset(s);
 }}
 
+/* 1 when the referenced inputs x leave the training pattern: their scaled, centred residual off
+   the pattern's basis exceeds the largest of a training sample */
+static int off_pattern(const double x[]) {{
+    double z[TC_N_INPUTS], r[TC_N_INPUTS], p, r2 = 0.0;
+    int j, k;
+    for (j = 0; j < TC_N_INPUTS; j++) r[j] = z[j] = (x[j] - PATTERN_MEAN[j]) / PATTERN_SCALE[j];
+    for (k = 0; k < PATTERN_RANK; k++) {{
+        p = 0.0;
+        for (j = 0; j < TC_N_INPUTS; j++) p += PATTERN_BASIS[j][k] * z[j];
+        for (j = 0; j < TC_N_INPUTS; j++) r[j] -= p * PATTERN_BASIS[j][k];
+    }}
+    for (j = 0; j < TC_N_INPUTS; j++) r2 += r[j] * r[j];
+    return r2 > PATTERN_TOL * PATTERN_TOL;
+}}
+
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS], xl[2][{max(k, 1)}], ych[2];
     double dt, now, step;
@@ -163,6 +192,10 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             x[1][j] = x[0][j] - (x[0][j] < LO[j] ? LO[j] : HI[j]);
             clamped++;
         }}
+    }}
+    if (clamped && PATTERN && !off_pattern(x[0])) {{   /* along the training pattern: passed */
+        for (j = 0; j < TC_N_INPUTS; j++) x[1][j] = 0.0;
+        clamped = 0;
     }}
     /* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale */
     for (l = 0; l < TC_N_POWERS; l++) {{

@@ -59,6 +59,13 @@ def function_block(ss: StateSpace) -> str:
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
         _constant("CLAMP_GAIN", ss.clamp_gain or [], (m, n)),
+        f"    PATTERN : BOOL := {'TRUE' if ss.pattern else 'FALSE'};",
+        f"    PATTERN_RANK : INT := {len(ss.pattern_basis[0]) if ss.pattern else 0};",
+        f"    PATTERN_TOL : LREAL := {literal(ss.pattern_tol)};",
+        _constant("PATTERN_MEAN", ss.pattern_mean or [], (n,)),
+        _constant("PATTERN_SCALE", ss.pattern_scale or [1.0] * n, (n,)),
+        _constant("PATTERN_BASIS", ss.pattern_basis or [],
+                  (n, len(ss.pattern_basis[0]) if ss.pattern else 1)),
         _constant("TAU", ss.taus, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
         _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n + p)),
@@ -113,6 +120,10 @@ VAR
     x : ARRAY[{_dims(2, n + p)}] OF LREAL;
     ych : ARRAY[{_dims(2)}] OF LREAL;
     bound : LREAL;
+    pat_z : ARRAY[{_dims(n)}] OF LREAL;
+    pat_r : ARRAY[{_dims(n)}] OF LREAL;
+    pat_p : LREAL;
+    pat_r2 : LREAL;
     w : LREAL;
     xl : ARRAY[{_dims(2, k)}] OF LREAL;
     e : LREAL;
@@ -182,6 +193,32 @@ FOR j := 0 TO N_INPUTS - 1 DO
         n_clamped := n_clamped + 1;
     END_IF;
 END_FOR;
+(* along the training pattern (residual off its basis within the training one's): passed *)
+IF PATTERN AND n_clamped > 0 THEN
+    FOR j := 0 TO N_INPUTS - 1 DO
+        pat_z[j] := (x[0, j] - PATTERN_MEAN[j]) / PATTERN_SCALE[j];
+        pat_r[j] := pat_z[j];
+    END_FOR;
+    FOR l := 0 TO PATTERN_RANK - 1 DO
+        pat_p := 0.0;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            pat_p := pat_p + PATTERN_BASIS[j, l] * pat_z[j];
+        END_FOR;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            pat_r[j] := pat_r[j] - pat_p * PATTERN_BASIS[j, l];
+        END_FOR;
+    END_FOR;
+    pat_r2 := 0.0;
+    FOR j := 0 TO N_INPUTS - 1 DO
+        pat_r2 := pat_r2 + pat_r[j] * pat_r[j];
+    END_FOR;
+    IF pat_r2 <= PATTERN_TOL * PATTERN_TOL THEN
+        n_clamped := 0;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            x[1, j] := 0.0;
+        END_FOR;
+    END_IF;
+END_IF;
 (* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale *)
 FOR l := 0 TO N_POWERS - 1 DO
     w := v[POWER_SRC[l]] / POWER_SCALE[l];

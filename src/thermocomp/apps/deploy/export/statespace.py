@@ -9,7 +9,9 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    one tap of 1);
 2. reference: ``ref = referenced * v`` at a campaign's first sample, ``x = v - ref``;
 3. envelope (static limit), when ``clamp``: the excess over the bounds ``ex = x - min(max(x, lo), hi)``
-   (else 0);
+   (else 0); with ``pattern``, ``ex = 0`` for a sample on the training pattern: ``z = (x -
+   pattern_mean) / pattern_scale``, ``|z - B B' z|² <= pattern_tol²`` with ``B =
+   pattern_basis`` (the stream's gate, :class:`~thermocomp.apps.deploy.streaming.Envelope`);
 4. per target ``t``: ``y_t = c_t + b0_t . x + sum_d bd_t[d] . x(t-d) + sum_k g_t[k] (z_k - x[lag_input_k])
    + a_t y_t(t-1)``, with the input history ``x(t-d)`` (``d = 1..depth``) and the first-order
    lags ``z_k <- e_k z_k + (1 - e_k) x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the
@@ -38,6 +40,7 @@ import numpy as np
 from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ..adaptive import AdaptiveCompensator
+from ..streaming import Envelope
 from ..timerule import SampleClock
 from .errors import NotExportable
 from .output import Output, adapt_fields, guard_fields, time_fields
@@ -73,6 +76,12 @@ class StateSpace:
     # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
     powers: list = field(default_factory=list)
     clamp_gain: list | None = None   # (n_targets, n_inputs) step gain at the horizon (clamp only)
+    # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
+    pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
+    pattern_mean: list | None = None     # (n_inputs,)
+    pattern_scale: list | None = None    # (n_inputs,)
+    pattern_basis: list | None = None    # (n_inputs, rank)
+    pattern_tol: float = 0.0
     # what follows the system: the correction guard and the reference update (:mod:`.output`)
     substitute_time: bool = False    # a non-increasing time too is substituted (timerule.py)
     time_period: float = 0.0         # s: a sample without time is this after the previous
@@ -216,11 +225,22 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         intercept=[laws[t][0] for t in targets], b0=[laws[t][1].tolist() for t in targets],
         bd=bd.tolist(), g=g.tolist(), ar=[laws[t][4] for t in targets],
         uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
-        clamp_gain=gains,
+        clamp_gain=gains, **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
         **(time_fields(deployed) or {"time_period": period}), **guard_fields(deployed),
         **adapt_fields(deployed),
         provenance=dict(provenance or {}))
+
+
+def _pattern_fields(env, n_states: int) -> dict:
+    """The training pattern of the envelope ``env`` (None: no clamp) over the code's inputs: a
+    machine state read by a power is scaled away (never off the pattern)."""
+    if env is None or env.basis is None:
+        return {}
+    pad = np.zeros((n_states, env.basis.shape[1]))
+    return {"pattern": True, "pattern_mean": env.mean.tolist() + [0.0] * n_states,
+            "pattern_scale": env.scale.tolist() + [UNBOUNDED] * n_states,
+            "pattern_basis": np.vstack([env.basis, pad]).tolist(), "pattern_tol": float(env.tol)}
 
 
 def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
@@ -238,6 +258,10 @@ class Simulator:
         self.lo, self.hi = (np.asarray(getattr(ss, k) or [], float) for k in ("lo", "hi"))
         m, n = len(ss.targets), len(ss.inputs)
         self.clamp_gain = np.asarray(ss.clamp_gain or np.zeros((m, n)), float).reshape(m, n)
+        self.pattern = Envelope(tuple(ss.inputs), self.lo, self.hi) if not ss.pattern else Envelope(
+            tuple(ss.inputs), self.lo, self.hi, mean=np.asarray(ss.pattern_mean, float),
+            scale=np.asarray(ss.pattern_scale, float), tol=ss.pattern_tol,
+            basis=np.asarray(ss.pattern_basis, float).reshape(n, -1))
         self.b0 = np.asarray(ss.b0, float).reshape(m, n + len(ss.powers))
         self.bd = np.asarray(ss.bd, float).reshape(m, ss.depth, n)
         self.g = np.asarray(ss.g, float).reshape(m, len(ss.taus))
@@ -271,6 +295,8 @@ class Simulator:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
         x = v - self.ref
         excess = x - np.minimum(np.maximum(x, self.lo), self.hi) if ss.clamp else np.zeros_like(x)
+        if excess.any() and not self.pattern.leaves_pattern(x):    # along the pattern: passed
+            excess = np.zeros_like(x)
         xe = x                      # [x, static powers of machine states (Hammerstein basis)]
         if ss.powers:
             src, scale, e = (np.array(c) for c in zip(*ss.powers))
