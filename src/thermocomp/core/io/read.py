@@ -78,11 +78,11 @@ from .contract import (
 from .lines import Lines
 from .manifest import RECORD_SUFFIXES, read_manifest
 from .options import ROLE_ORDER, ReadOptions
+from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .starts import campaign_starts
 from .steps import check_unit_steps
 from .tables import _load_csv, _load_parquet, _ordered, _values, parquet
-from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .values import (
     _check_periods,
     _error_ranges,
@@ -92,7 +92,6 @@ from .values import (
     _set_time_seconds,
     _warn_error_ranges,
 )
-from .workbook import csv_options, is_workbook, sheet_as_csv
 
 INGEST_REPORT = "ingest_report.json"
 MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
@@ -179,13 +178,8 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
         raise ContractError("campaign file not found", file=path)
     if path.stat().st_size == 0:
         raise ContractError("empty file", file=path)
-    if is_workbook(path):       # read as its CSV export is (:mod:`.workbook`)
-        with sheet_as_csv(path, opts) as sheet:
-            return _read_file(sheet.csv, csv_options(opts))
-    if is_utf16(path):          # Excel's 'Unicode Text': read as its UTF-8 text (:mod:`.utf16`)
-        with utf16_as_utf8(path) as text:
-            return _read_file(text, utf8_options(opts))
-    return _read_file(path, opts)
+    with as_read(path, opts) as (source, source_opts):   # a workbook, UTF-16: as CSV
+        return _read_file(source, source_opts)
 
 
 def _read_file(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:

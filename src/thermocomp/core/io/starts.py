@@ -17,11 +17,11 @@ import pyarrow as pa
 from .contract import TIME, ContractError
 from .manifest import is_text
 from .options import ReadOptions
+from .plain import as_read, is_converted
 from .sniff import resolved
 from .tables import _contract_names, _first_text, _peek_csv, _timed, parquet
 from .timestamps import CLOCK, maybe_elapsed, parsed, time_type
-from .utf16 import is_utf16, utf8_options, utf16_as_utf8
-from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
+from .workbook import HEAD_ROWS
 
 
 def campaign_starts(root: Path, manifest: pd.DataFrame, opts: ReadOptions) -> pd.Series:
@@ -39,16 +39,10 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
     """The first timestamp of a campaign file (UTC; a time without an offset as written, or on
     ``data.timezone``'s clock); NaT when its time is no timestamp or the row does not read (the
     read of the file says why)."""
-    if is_workbook(path):      # its sheet's first rows, as CSV (:mod:`.workbook`)
+    if is_converted(path):      # its first rows as the reader reads them (:mod:`.plain`)
         try:
-            with sheet_as_csv(path, opts, rows=HEAD_ROWS) as sheet:
-                return first_timestamp(sheet.csv, csv_options(opts))
-        except ContractError:
-            return pd.NaT
-    if is_utf16(path):
-        try:
-            with utf16_as_utf8(path) as text:
-                return first_timestamp(text, utf8_options(opts))
+            with as_read(path, opts, rows=HEAD_ROWS) as (source, source_opts):
+                return first_timestamp(source, source_opts)
         except ContractError:
             return pd.NaT
     try:

@@ -1,0 +1,32 @@
+"""A campaign file as the CSV reader reads it: a workbook's sheet (:mod:`.workbook`) or a UTF-16
+text (:mod:`.utf16`) through the temporary UTF-8 CSV it is converted to, any other file as it
+is.  One place for the choice, so that every look at a file (its rows, its first time) reads it
+the same way."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from pathlib import Path
+
+from .utf16 import is_utf16, utf8_options, utf16_as_utf8
+from .workbook import csv_options, is_workbook, sheet_as_csv
+
+
+def is_converted(path) -> bool:
+    """``path`` is read through a converted copy (a workbook, a UTF-16 text)."""
+    return is_workbook(path) or is_utf16(path)
+
+
+@contextmanager
+def as_read(path: Path, opts, rows: int | None = None) -> Iterator[tuple[Path, object]]:
+    """``(file, options)`` the CSV or Parquet reader reads for ``path`` (``rows``: a workbook's
+    first rows only, what a look at its head needs)."""
+    if is_workbook(path):
+        with sheet_as_csv(path, opts, rows=rows) as sheet:
+            yield sheet.csv, csv_options(opts)
+    elif is_utf16(path):            # Excel's 'Unicode Text': its UTF-8 text
+        with utf16_as_utf8(path) as text:
+            yield text, utf8_options(opts)
+    else:
+        yield path, opts
