@@ -13,8 +13,10 @@ sample they belong to (NaN on the others), for a client that learns from them (`
 ``drops`` stop the input nodes (the sensor link down: the client sees stale inputs) and
 ``restarts`` stop the server (its address space, the offset registers, kept), for a number of
 samples each, while the machine runs on with the offsets it holds.
-``lockstep``: the next sample comes as soon as the client answered this one (at most one period
-later, stale then as without it): a bench that runs at the client's pace, not the clock's.
+``lockstep``: the next sample comes as soon as the client answered this one: a bench that runs at
+the client's pace, not the clock's.  A sample waits at most ``wait_s`` for its answer while the
+client keeps answering (a loaded machine's client may take longer than a period); after a sample
+it left unanswered, at most one period (a client gone does not stall the bench), stale as without it.
 """
 
 from __future__ import annotations
@@ -114,12 +116,15 @@ class Twin:
         self.held = np.array([float(v) if v is not None else np.nan for v in values])
         return int(await self.answered.read_value()) == k
 
-    async def _wait_answer(self, k: int, deadline: float, down: bool) -> None:
-        """Until ``deadline``; in lockstep only until the client answered sample ``k``."""
-        while self.lockstep and not down and clock.monotonic() < deadline:
-            if int(await self.answered.read_value()) == k:
-                return
-            await asyncio.sleep(POLL_S)
+    async def _wait_answer(self, k: int, deadline: float, written: bool, patient: bool) -> None:
+        """Until ``deadline``; in lockstep (sample ``k`` written) until the client answered it, at
+        most ``wait_s`` when ``patient`` (it answered the sample before), else until ``deadline``."""
+        if self.lockstep and written:
+            limit = max(deadline, clock.monotonic() + self.wait_s) if patient else deadline
+            while clock.monotonic() < limit:
+                if int(await self.answered.read_value()) == k:
+                    return
+                await asyncio.sleep(POLL_S)
         await asyncio.sleep(max(0.0, deadline - clock.monotonic()))
 
     async def serve(self, finished=None) -> Served:
@@ -133,7 +138,7 @@ class Twin:
         while (clock.monotonic() - waited < self.wait_s
                and await self.answered.read_value() == NO_CLIENT):
             await asyncio.sleep(0.05)      # the first sample for the client, not before it came
-        served, k = Served(), 0
+        served, k, answered = Served(), 0, True
         start = clock.monotonic()
         try:
             for cid, df in self.campaigns.items():
@@ -154,7 +159,8 @@ class Twin:
                         await self.stopping
                         self.stopping = None
                         await self.server.start()    # the address space (registers) kept
-                    if not down and not any(d.covers(k) for d in self.drops):
+                    written = not down and not any(d.covers(k) for d in self.drops)
+                    if written:
                         for node, v in zip(self.inputs, X[i - first]):
                             await node.write_value(ua.Variant(float(v), ua.VariantType.Double))
                         measured = refs[i] if refs is not None and i >= 0 else none
@@ -163,7 +169,7 @@ class Twin:
                         await self.campaign.write_value(ua.Variant(cid, ua.VariantType.String))
                         await self.campaign_sample.write_value(ua.Variant(i, ua.VariantType.Int64))
                         await self.sample.write_value(ua.Variant(k, ua.VariantType.Int64))
-                    await self._wait_answer(k, start + (k + 1) * self.period, down)
+                    await self._wait_answer(k, start + (k + 1) * self.period, written, answered)
                     if self.lockstep:            # the next period from now, not from the schedule
                         start = clock.monotonic() - (k + 1) * self.period
                     answered = await self._read_offsets(k) and not down
