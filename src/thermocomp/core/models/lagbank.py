@@ -13,9 +13,12 @@ thermal transfer function from a sensor to the error, so one linear model
 covers what would otherwise be a search over delays and time constants; the
 ridge penalty keeps the many strongly correlated features in check.  The lags
 enter as their lead over the input, :math:`L_\tau[x] - x` (the same linear
-span as :math:`L_\tau[x]`): zero in steady state, so the penalty shrinks
-towards the static model :math:`c + b_0^\top x`, whose gain is the steady
-gain, and the dynamic terms only have to earn their transients.
+span as :math:`L_\tau[x]`): zero in steady state, so the penalty on them
+shrinks towards the static model :math:`c + b_0^\top x`, whose gain is the
+steady gain, and the dynamic terms only have to earn their transients.  The
+levels :math:`b_0` carry ``level_penalty`` times the penalty: by default (1)
+the same, so the strongest penalty leaves a constant; with 0 they are free
+and it leaves the static least-squares model (MLR).
 
 Its strength is chosen by time-series cross-validation on the training rows
 only: campaigns -> leave-campaigns-out, one long record -> forward chaining
@@ -31,13 +34,12 @@ import numpy as np
 import pandas as pd
 import scipy.linalg
 from sklearn.base import BaseEstimator, RegressorMixin
-from sklearn.linear_model import Ridge
 from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
 from sklearn.utils.validation import check_is_fitted, validate_data
 from threadpoolctl import threadpool_limits
 
-from ...base.params import POSITIVE, check_estimator, choice, either, integer, numbers, optional
+from ...base.params import NON_NEGATIVE, POSITIVE, check_estimator, choice, either, integer, numbers, optional
 from ..context import TIME, Y_MEASURED, SideInputs, feedback_gain, groups_of, scalar, values
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
@@ -77,15 +79,17 @@ def forward_gap(longest_lag_samples: float, n: int, n_splits: int,
 
 # -- the ridge path over the folds ---------------------------------------------------------------
 def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = None,
-                  ar_scaling: tuple[float, float] = (0.0, 1.0), z_key: bytes | None = None) -> dict:
+                  ar_scaling: tuple[float, float] = (0.0, 1.0), z_key: bytes | None = None,
+                  free_columns: int = 0) -> dict:
     r"""Validation MSE of ridge fits of ``y`` on ``Z`` for every fold and penalty.
 
     Each fold centres ``Z`` and ``y`` on its training rows and solves
-    :math:`(Z_c^\top Z_c + \alpha I)\,w = Z_c^\top y_c` for every ``alpha`` from
-    one eigendecomposition of the fold's Gram matrix: the numbers of
-    scikit-learn's ``RidgeCV(alphas, cv=splits, scoring='neg_mean_squared_error')``
-    (one ``Ridge`` per fold and penalty, i.e. one Gram product each) at the
-    cost of one Gram product per fold.
+    :math:`(Z_c^\top Z_c + \alpha D)\,w = Z_c^\top y_c` for every ``alpha`` from
+    one eigendecomposition of the fold's Gram matrix, :math:`D` the identity
+    but for the first ``free_columns`` columns, which are not penalised (:func:`fold_weights`).
+    With ``free_columns=0`` these are the numbers of scikit-learn's ``RidgeCV(alphas, cv=splits,
+    scoring='neg_mean_squared_error')`` (one ``Ridge`` per fold and penalty, i.e. one
+    Gram product each) at the cost of one Gram product per fold.
 
     With ``ar_column`` (the column of ``Z`` holding :math:`(y(t-1) - \mu)/\sigma`,
     ``ar_scaling = (mu, sigma)``) the fitted equation is also run free -- its
@@ -108,19 +112,9 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     free = np.empty_like(one_step)
     others = [j for j in range(Z.shape[1]) if j != ar_column]
     # the folds' Gram matrices depend on Z alone: every target of a compensator shares them
-    args = (alphas[0] if alphas.size == 1 else None, *(rows for split in splits for rows in split))
-    key = _fold_spectra.key(z_key, *args) if z_key is not None else _fold_spectra.key(Z, *args)
-    spectra = _fold_spectra.lookup(key, Z, *args)
+    spectra = fold_spectra(Z, splits, alphas, free_columns, z_key)
     for f, (tr, va) in enumerate(splits):
-        (mean, lam, V), y_mean = spectra[f], y[tr].mean()
-        weights = np.zeros(len(y))
-        weights[tr] = y[tr] - y_mean
-        rhs = Z.T @ weights                  # (Z_tr - mean)^T (y_tr - y_mean): the centred y sums to 0
-        if lam is None:   # one penalty (fixed beforehand): V holds the factor of G + alpha I
-            W = scipy.linalg.cho_solve(V, rhs)[:, None]
-        else:
-            W = V @ ((V.T @ rhs)[:, None] / (np.clip(lam, 0.0, None)[:, None] + alphas[None, :]))
-        c = y_mean - mean @ W
+        W, c = fold_weights(spectra[f], Z, y, tr, alphas)
         one_step[f] = np.mean((Z[va] @ W + c - y[va, None]) ** 2, axis=0)
         if ar_column is None:
             free[f] = one_step[f]
@@ -159,20 +153,65 @@ def _training_grams(Z, splits):
         yield mean, Ztr.T @ Ztr
 
 
-def _compute_fold_spectra(Z, alpha, *splits) -> tuple:
-    """Per fold ``(mean, eigenvalues, eigenvectors)`` of the centred training rows' Gram
-    matrix, or with one penalty ``alpha`` ``(mean, None, Cholesky factor of G + alpha I)``."""
+def _compute_fold_spectra(Z, alpha, free, *splits) -> tuple:
+    """Per fold ``(mean, eigenvalues, eigenvectors, B, S)`` of the centred training rows' Gram
+    matrix, or with one penalty ``alpha`` ``(mean, None, Cholesky factor of G + alpha I, B, S)``.
+
+    With ``free`` unpenalised leading columns ``s`` the spectrum is that of the penalised
+    columns' Gram with ``s`` projected out, :math:`G_{pp} - G_{ps} G_{ss}^{+} G_{sp}`
+    (Frisch-Waugh-Lovell), ``S`` :math:`G_{ss}^{+}` and ``B`` :math:`G_{ss}^{+} G_{sp}`
+    (both None without free columns).
+    """
     out = []
     for mean, gram in _training_grams(Z, splits):
+        S = B = None
+        if free:
+            # pinvh: a constant or duplicated sensor leaves G_ss singular; OLS takes the minimum norm
+            S = scipy.linalg.pinvh(gram[:free, :free])
+            B = S @ gram[:free, free:]
+            gram = gram[free:, free:] - gram[free:, :free] @ B
         if alpha is None:
-            out.append((mean, *np.linalg.eigh(gram)))
+            out.append((mean, *np.linalg.eigh(gram), B, S))
         else:
             gram[np.diag_indices_from(gram)] += alpha
-            out.append((mean, None, scipy.linalg.cho_factor(gram)))
+            out.append((mean, None, scipy.linalg.cho_factor(gram), B, S))
     return tuple(out)
 
 
 _fold_spectra = ArrayMemo(_compute_fold_spectra, size=4)
+
+
+def fold_spectra(Z, splits, alphas, free: int = 0, z_key: bytes | None = None) -> tuple:
+    """The factorisations of each fold's training Gram matrix (:func:`_compute_fold_spectra`),
+    remembered by ``z_key`` (a digest standing for ``Z``), else by ``Z``'s bytes."""
+    alphas = np.atleast_1d(np.asarray(alphas, dtype=float))
+    args = (alphas[0] if alphas.size == 1 else None, int(free),
+            *(rows for split in splits for rows in split))
+    key = _fold_spectra.key(z_key, *args) if z_key is not None else _fold_spectra.key(Z, *args)
+    return _fold_spectra.lookup(key, Z, *args)
+
+
+def fold_weights(spectrum, Z, y, tr, alphas) -> tuple[np.ndarray, np.ndarray]:
+    r"""``(W, c)``: ridge coefficients (one column per penalty) and intercepts on the rows ``tr``.
+
+    Solves :math:`(G + \alpha D) w = Z_c^\top y_c` from the fold's ``spectrum``
+    (:func:`fold_spectra`); the free columns' part follows the penalised one,
+    :math:`w_s = G_{ss}^{+} r_s - B\, w_p`.
+    """
+    mean, lam, V, B, S = spectrum
+    y_mean = y[tr].mean()
+    weights = np.zeros(len(y))
+    weights[tr] = y[tr] - y_mean
+    rhs = Z.T @ weights                  # (Z_tr - mean)^T (y_tr - y_mean): the centred y sums to 0
+    free = 0 if S is None else S.shape[0]
+    r = rhs[free:] - (B.T @ rhs[:free] if free else 0.0)
+    if lam is None:   # one penalty (fixed beforehand): V holds the factor of G + alpha I
+        W = scipy.linalg.cho_solve(V, r)[:, None]
+    else:
+        W = V @ ((V.T @ r)[:, None] / (np.clip(lam, 0.0, None)[:, None] + alphas[None, :]))
+    if free:
+        W = np.vstack([(S @ rhs[:free])[:, None] - B @ W, W])
+    return W, y_mean - mean @ W
 
 
 def _summary(name: str, folds: np.ndarray) -> dict:
@@ -195,6 +234,23 @@ _lag_bank_features = ArrayMemo(_compute_features)
 def _increments(F, groups) -> np.ndarray:
     """``F(t) - F(t-1)`` per segment, 0 at a segment's first row (steady before it)."""
     return F - F[lag_index(groups, len(F), 1)]
+
+
+def _level_scale(n_columns: int, p: int, ratio: float) -> np.ndarray:
+    """Column factors that turn a penalty ``ratio * alpha`` on the ``p`` leading columns into
+    ``alpha``: ridge on ``Z / sqrt(ratio)`` is ridge on ``Z`` with that penalty (1 for ``ratio=0``,
+    whose columns are left free instead)."""
+    scale = np.ones(n_columns)
+    if ratio > 0:
+        scale[:p] = 1.0 / np.sqrt(ratio)
+    return scale
+
+
+def _levels_weighted(Z, p: int, ratio: float) -> tuple[np.ndarray, int]:
+    """``(Z with its p levels scaled, number of free columns)`` of the level penalty ``ratio``."""
+    if ratio == 0:
+        return Z, p
+    return (Z * _level_scale(Z.shape[1], p, ratio) if ratio != 1 else Z), 0
 
 
 # -- the estimator ---------------------------------------------------------------------------------
@@ -263,6 +319,13 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         prediction uses the AR model with either ``True`` or ``'auto'``).
     sample_period_s : float, default 60.0
         Time step (s) assumed when the context has no ``time``.
+    level_penalty : float >= 0 or list of them, default 1.0
+        The levels' penalty as a share of ``alpha`` (the lags carry ``alpha``): 1 shrinks
+        all coefficients alike, 0 leaves the levels free (least squares given the lags);
+        several values: the CV chooses among them and ``alphas``.  On ``large_mill_week``
+        (one training week, every forward fold extrapolating) the CV picks the strongest
+        penalty and E_X gets 7.5 µm against MLR's 2.0; 0 gives 1.6-2.5 but doubles the
+        error on records where MLR extrapolates badly (``benchmarks/bench_lagbank_records.py``).
 
     Attributes
     ----------
@@ -279,6 +342,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     intercept_ : float
     alpha_ : float
         Chosen ridge penalty.
+    level_penalty_ : float
+        Chosen share of it on the levels.
     one_step_design_ : {'lags+ar', 'increments'} or None
         Design of the one-step model (None with ``ar=False``).
     coef_one_step_, ar_coef_one_step_, intercept_one_step_, alpha_one_step_ : ndarray, float or None
@@ -286,7 +351,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     splitter_ : cross-validator
         The splitter used; ``gap_`` its gap (rows, forward chaining only).
     cv_results_ : DataFrame
-        One row per (``design``, ``alpha``), designs ``lags``, ``lags+ar``
+        One row per (``design``, ``level_penalty``, ``alpha``), designs ``lags``, ``lags+ar``
         (``ar`` True) and ``increments``: mean and s.d. over folds of the
         validation MSE in ``free_run`` (inf for ``increments``) and
         ``one_step`` mode; ``chosen`` marks the free-run model.
@@ -296,7 +361,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, n_taus: int = 8, tau_min_s: float | None = None,
                  tau_max_s: float = 172800.0, alphas=None, n_splits: int = 5, ar=False,
-                 sample_period_s: float = 60.0):
+                 sample_period_s: float = 60.0, level_penalty=1.0):
         self.n_taus = n_taus
         self.tau_min_s = tau_min_s
         self.tau_max_s = tau_max_s
@@ -304,24 +369,27 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.n_splits = n_splits
         self.ar = ar
         self.sample_period_s = sample_period_s
+        self.level_penalty = level_penalty
 
     # -- parameters ---------------------------------------------------------------------
     # n_taus: a feature per input and time constant
     param_rules = {"n_taus": integer(1, at_most=1000), "tau_min_s": optional(POSITIVE), "tau_max_s": POSITIVE,
                    "alphas": optional(either(POSITIVE, numbers(0.0, open_lo=True))),
                    "n_splits": integer(MIN_SPLITS), "ar": choice(False, True, "auto"),
-                   "sample_period_s": POSITIVE}
+                   "sample_period_s": POSITIVE, "level_penalty": either(numbers(0.0), NON_NEGATIVE)}
 
     def param_relations(self) -> list[tuple[str, str]]:
         if self.tau_min_s is not None and not self.tau_min_s <= self.tau_max_s:
             return [("tau_min_s", f"must not exceed tau_max_s={self.tau_max_s}")]
         return []
 
-    def _check_params(self) -> np.ndarray:
+    def _check_params(self) -> tuple[np.ndarray, list[float]]:
+        """``(alphas, level penalty ratios)``, sorted (the ratios from 1 down)."""
         check_estimator(self)
         alphas = DEFAULT_ALPHAS if self.alphas is None else np.atleast_1d(
             np.asarray(self.alphas, dtype=float))
-        return np.sort(alphas)
+        ratios = sorted({float(r) for r in np.atleast_1d(self.level_penalty)}, reverse=True)
+        return np.sort(alphas), ratios
 
     # -- features -----------------------------------------------------------------------
     def _time(self, context, groups, n: int) -> np.ndarray:
@@ -360,7 +428,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     # (an eigendecomposition 15x slower with 2 threads on a busy 2-core machine), as in diagnose.
     @threadpool_limits.wrap(limits=1, user_api="blas")
     def fit(self, X, y, context=None):
-        alphas = self._check_params()
+        alphas, ratios = self._check_params()
         X, y = validate_data(self, X, y, y_numeric=True)
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         n, p = X.shape
@@ -392,24 +460,30 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         for design in designs:
             D, target = self._design(design, F, y, y_prev, groups)
             scalers[design] = scaler = StandardScaler().fit(D)
-            # D is F, F with y(t-1) or F's increments, standardised: F's digest stands for it
-            z_key = ArrayMemo.key(f_key, design, scaler.mean_, scaler.scale_,
-                                  y_prev if design == "lags+ar" else None)
-            scores = ridge_path_cv(scaler.transform(D), target, splits, alphas, groups,
-                                   ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
-                                   ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]), z_key=z_key)
-            for i, alpha in enumerate(alphas):
-                free = scores["free_run"][:, i] if design != "increments" else np.array([np.inf])
-                records.append({"design": design, "ar": design == "lags+ar", "alpha": float(alpha),
-                                **_summary("cv_mse_free_run", free),
-                                **_summary("cv_mse_one_step", scores["one_step"][:, i])})
+            Z = scaler.transform(D)
+            for ratio in ratios:
+                # D is F, F with y(t-1) or F's increments, standardised: F's digest stands for it
+                z_key = ArrayMemo.key(f_key, design, scaler.mean_, scaler.scale_, ratio,
+                                      y_prev if design == "lags+ar" else None)
+                Zw, n_free = _levels_weighted(Z, p, ratio)
+                scores = ridge_path_cv(Zw, target, splits, alphas, groups,
+                                       ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
+                                       ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]), z_key=z_key,
+                                       free_columns=n_free)
+                for i, alpha in enumerate(alphas):
+                    free = scores["free_run"][:, i] if design != "increments" else np.array([np.inf])
+                    records.append({"design": design, "ar": design == "lags+ar", "alpha": float(alpha),
+                                    "level_penalty": ratio,
+                                    **_summary("cv_mse_free_run", free),
+                                    **_summary("cv_mse_one_step", scores["one_step"][:, i])})
         table = pd.DataFrame(records)
         best = self._choose(table[table["design"] != "increments"])
         table["chosen"] = table.index == best
         self.cv_results_ = table
         design, self.alpha_ = str(table.loc[best, "design"]), float(table.loc[best, "alpha"])
-        self.coef_, self.ar_coef_, self.intercept_ = self._refit(design, F, y, y_prev, groups,
-                                                                  scalers[design], self.alpha_)
+        self.level_penalty_ = float(table.loc[best, "level_penalty"])
+        self.coef_, self.ar_coef_, self.intercept_ = self._refit(
+            design, F, y, y_prev, groups, scalers[design], self.alpha_, p, self.level_penalty_)
         self.one_step_design_ = self.alpha_one_step_ = self.coef_one_step_ = None
         self.ar_coef_one_step_ = self.intercept_one_step_ = None
         if self.ar is not False:   # the one-step model: the best one-step CV error of the AR designs
@@ -419,7 +493,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
             self.alpha_one_step_ = float(table.loc[pick, "alpha"])
             self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_ = self._refit(
                 self.one_step_design_, F, y, y_prev, groups, scalers[self.one_step_design_],
-                self.alpha_one_step_)
+                self.alpha_one_step_, p, float(table.loc[pick, "level_penalty"]))
         self.context_columns_ = [TIME] if time is not None else []
         return self
 
@@ -431,7 +505,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         if self.ar is not False:   # a one-step model chosen apart (its own design and penalty):
             return {}              # fixing the free-run choice alone would lose it
         chosen = self.cv_results_.loc[self.cv_results_["chosen"]].iloc[0]
-        return {"alphas": [self.alpha_], "ar": bool(chosen["ar"])}
+        return {"alphas": [self.alpha_], "ar": bool(chosen["ar"]), "level_penalty": [self.level_penalty_]}
 
     @staticmethod
     def _design(design: str, F, y, y_prev, groups):
@@ -443,20 +517,27 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
             return np.column_stack([F, y_prev]), y
         return _increments(F, groups), y - y_prev
 
-    def _refit(self, design: str, F, y, y_prev, groups, scaler, alpha: float):
-        """``(coef, a, c)`` of the ridge fit on all training rows, back in unstandardised units.
+    def _refit(self, design: str, F, y, y_prev, groups, scaler, alpha: float, p: int,
+               ratio: float):
+        """``(coef, a, c)`` of the ridge fit on all training rows, back in unstandardised units,
+        the ``p`` levels penalised by ``ratio * alpha``.
 
         ``increments`` predicts ``y(t) = y(t-1) + (F(t) - F(t-1)) b + c``: ``a = 1``.
         """
         D, target = self._design(design, F, y, y_prev, groups)
-        ridge = Ridge(alpha=alpha).fit(scaler.transform(D), target)
-        coef = ridge.coef_ / scaler.scale_
+        Z, n_free = _levels_weighted(scaler.transform(D), p, ratio)
+        rows = np.arange(len(D))
+        # one fit, not remembered: its factor is of no use to another target's penalty
+        spectrum = _compute_fold_spectra(Z, float(alpha), n_free, rows, rows[:0])[0]
+        W, c = fold_weights(spectrum, Z, target, rows, np.array([float(alpha)]))
+        coef = W[:, 0] * _level_scale(D.shape[1], p, ratio) / scaler.scale_
         a = {"lags": 0.0, "lags+ar": float(coef[-1]), "increments": 1.0}[design]
-        return coef[:F.shape[1]].copy(), a, float(ridge.intercept_ - scaler.mean_ @ coef)
+        return coef[:F.shape[1]].copy(), a, float(c[0] - scaler.mean_ @ coef)
 
     @staticmethod
     def _choose(table: pd.DataFrame) -> int:
-        """Row of the lowest free-run CV MSE (ties: no AR, then the larger penalty).
+        """Row of the lowest free-run CV MSE (ties: no AR, then the larger share of the penalty on
+        the levels, then the larger penalty).
 
         An AR model unstable for every penalty has no finite free-run score:
         forced (``ar=True``) it is then chosen on its one-step score.
@@ -464,7 +545,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         score = table["cv_mse_free_run"].to_numpy()
         if not np.isfinite(score).any():
             score = table["cv_mse_one_step"].to_numpy()
-        order = np.lexsort((-table["alpha"].to_numpy(), table["ar"].to_numpy(), score))
+        order = np.lexsort((-table["alpha"].to_numpy(), -table["level_penalty"].to_numpy(),
+                            table["ar"].to_numpy(), score))
         return int(table.index[order[0]])
 
     # -- prediction ---------------------------------------------------------------------
