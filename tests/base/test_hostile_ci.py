@@ -27,9 +27,9 @@ def _stub(path: Path, body: str = STUB) -> None:
     path.chmod(path.stat().st_mode | stat.S_IEXEC)
 
 
-def test_ci_run_stops_when_the_team_server_does_not_start(tmp_path):
+def _ci_run(tmp_path: Path, failing: str) -> tuple[subprocess.CompletedProcess, list[str]]:
     """A scratch checkout: the real ``.ci/run``; ``make``, python, chromium and a team server
-    whose start fails (as PostgreSQL failing to come up does) are stubs that log their calls."""
+    whose ``failing`` subcommand fails are stubs that log their calls."""
     (tmp_path / ".ci").mkdir()
     shutil.copy2(ROOT / ".ci" / "run", tmp_path / ".ci" / "run")
     _stub(tmp_path / "bin" / "make")
@@ -37,15 +37,31 @@ def test_ci_run_stops_when_the_team_server_does_not_start(tmp_path):
     _stub(tmp_path / ".venv" / "bin" / "mkdocs")
     _stub(tmp_path / ".ci" / "chromium")
     _stub(tmp_path / ".ci" / "team-server",
-          STUB + '[ "$1" = start ] && { echo "[team-server] initdb failed" >&2; exit 1; }\nexit 0\n')
+          STUB + f'[ "$1" = {failing} ] && {{ echo "[team-server] {failing} failed" >&2; exit 1; }}'
+          + '\nexit 0\n')
     calls = tmp_path / "calls"
     env = {**os.environ, "CALLS": str(calls), "PATH": f"{tmp_path / 'bin'}:{os.environ['PATH']}"}
     proc = subprocess.run([str(tmp_path / ".ci" / "run")], env=env, capture_output=True,
                           text=True, timeout=60, stdin=subprocess.DEVNULL)
-    log = calls.read_text().splitlines()
+    return proc, calls.read_text().splitlines()
+
+
+def test_ci_run_stops_when_the_team_server_does_not_start(tmp_path):
+    """As PostgreSQL failing to come up does: no test runs, the trap still cleans up."""
+    proc, log = _ci_run(tmp_path, "start")
     assert proc.returncode != 0, (proc.stdout, proc.stderr, log)
-    assert "team-server start" in log and "team-server stop" in log      # the trap still cleans up
-    assert not [c for c in log if c.startswith(("python", "chromium", "make test"))], log
+    assert "team-server start" in log and "team-server stop" in log
+    assert not [c for c in log if c.startswith(("python", "make test"))], log
+
+
+def test_ci_run_stops_when_the_packages_beside_the_install_fail(tmp_path):
+    """The Debian packages install beside ``make install``: their failure stops CI after it,
+    with their output, before any server or test."""
+    proc, log = _ci_run(tmp_path, "packages")
+    assert proc.returncode != 0, (proc.stdout, proc.stderr, log)
+    assert "make install" in log and "team-server packages" in log
+    assert "packages failed" in proc.stderr
+    assert not [c for c in log if c.startswith(("team-server start", "chromium", "make test"))], log
 
 
 class _KeepImports:
