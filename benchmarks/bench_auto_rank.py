@@ -64,7 +64,8 @@ from thermocomp.shell.builders import build_compensator
 from thermocomp.shell.config.checks import data_options
 from thermocomp.shell.source import resolve_reference
 
-LIGHT = ["track=false", "plots=none", "model=auto"]
+LIGHT = ["track=false", "plots=none", "model=auto",
+         "model.estimator.keep_oof=true"]    # the record bench_auto_rules reads: oof_in_range_
 
 
 def _dataset(cfg):

@@ -346,6 +346,35 @@ def test_envelope_margin_and_constant_columns():
         Envelope.from_data(X, margin=-1)
 
 
+def test_envelope_excess_is_the_part_over_the_bounds_off_the_pattern():
+    # the one excess the stream and the exported Simulator clamp (Envelope.excess)
+    rng = np.random.default_rng(0)
+    a = rng.uniform(0.0, 10.0, 200)
+    X = pd.DataFrame({"a": a, "b": 2.0 * a + rng.normal(0.0, 0.01, a.size)})
+    env = Envelope.from_data(X, margin=0.0)
+    assert env.basis is not None
+    np.testing.assert_array_equal(env.excess(np.array([5.0, 10.0])), [0.0, 0.0])   # within
+    np.testing.assert_array_equal(env.excess(np.array([12.0, 24.0])), [0.0, 0.0])  # on the pattern
+    np.testing.assert_allclose(env.excess(np.array([12.0, 5.0])), [12.0 - env.hi[0], 0.0])
+    np.testing.assert_allclose(env.excess(np.array([-1.0, 15.0])), [-1.0 - env.lo[0], 0.0])
+    plain = Envelope(env.columns, env.lo, env.hi)          # no pattern: every excursion
+    np.testing.assert_allclose(plain.excess(np.array([12.0, 24.0])), [12.0 - env.hi[0], 24.0 - env.hi[1]])
+
+
+def test_envelope_pattern_gate_does_not_depend_on_the_margin():
+    # the margin widens the bounds, not the pattern: its scale is the training widths, the ones
+    # the margin is a fraction of (a constant input's deviation had weighed 1 at margin 0 and
+    # 1 / (2 margin |value|) above: the gate's verdict changed with the margin)
+    rng = np.random.default_rng(1)
+    a = rng.uniform(0.0, 10.0, 200)
+    X = pd.DataFrame({"a": a, "b": 2.0 * a + rng.normal(0.0, 0.05, a.size), "c": 50.0})
+    envs = [Envelope.from_data(X, margin=m) for m in (0.0, 0.1, 0.5)]
+    np.testing.assert_allclose(envs[0].scale, [np.ptp(a), np.ptp(X["b"]), 50.0])
+    for d in (0.01, 0.1, 0.3, 1.0, 3.0, 10.0):
+        x = np.array([5.0, 10.0, 50.0 + d])
+        assert len({env.leaves_pattern(x) for env in envs}) == 1, d
+
+
 def test_pyfunc_round_trip_signature_state_and_errors(data, tmp_path):
     import mlflow
     from mlflow.exceptions import MlflowException

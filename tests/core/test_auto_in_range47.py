@@ -41,7 +41,8 @@ def _record(n: int = 1000, wide_from: float = 0.9):
 
 def test_a_fold_swinging_beyond_its_fit_rows_is_flagged_where_it_extrapolates():
     X, y, context = _record()
-    auto = AutoRegressor({"mlr": MLR(), "lucky": Lucky()}).fit(X, y, context=context)
+    auto = AutoRegressor({"mlr": MLR(), "lucky": Lucky()}, validation_rows="in_range").fit(
+        X, y, context=context)
     share = [auto.oof_in_range_[auto.oof_fold_ == f].mean() for f in range(5)]
     assert share[:4] == [1.0] * 4 and 0.2 < share[4] < 0.5     # the wide swings: a third in range
     n, folds = auto.oof_folds_
@@ -49,6 +50,15 @@ def test_a_fold_swinging_beyond_its_fit_rows_is_flagged_where_it_extrapolates():
     fitted, scored = np.isin(np.arange(n), fit), np.isin(np.arange(n), score)
     np.testing.assert_array_equal(auto.oof_in_range_[auto.oof_fold_ == 4],
                                   within_range(X, fitted, scored)[score])
+
+
+def test_the_rows_in_range_are_found_only_where_they_choose():
+    # an SVD per fold per target, spent on every fit when only validation_rows='in_range' reads it
+    X, y, context = _record()
+    auto = AutoRegressor({"mlr": MLR(), "lucky": Lucky()})
+    assert auto.fit(X, y, context=context).oof_in_range_ is None
+    kept = auto.set_params(keep_oof=True).fit(X, y, context=context).oof_in_range_    # for later rules
+    assert kept.shape == auto.oof_y_.shape and 0 < kept.mean() < 1
 
 
 def test_a_family_lucky_where_the_folds_extrapolate_wins_no_votes_on_the_rows_in_range():

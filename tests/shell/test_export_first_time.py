@@ -1,6 +1,6 @@
 """A stream on a logger's clock (150000 s, ...) whose first time is missing, in every deployed form:
 the Python stream (plain and adaptive), the exported Simulator, the compiled C and the Structured
-Text step as the complete record does (:mod:`thermocomp.apps.deploy.timerule`).  The first time
+Text step as the complete record does (:mod:`thermocomp.core.timerule`).  The first time
 taken as 0.0 put 150120 s between the first two samples and threw the lag states a day ahead (the
 exported C of a lag bank on large_mill_week: up to 1.06 µm off, decaying)."""
 

@@ -337,7 +337,7 @@ def test_a_stream_on_a_loggers_clock_without_its_first_time_keeps_its_events_in_
         deployed):
     """A stream in seconds on a logger's clock (150100 s, ...) whose first time is missing: the
     guard took the first time as 0.0, so the row lay 150100 s before the next (its event at
-    -150100 s from the stream's start in monitor.json); by the time rule (deploy/timerule.py) the
+    -150100 s from the stream's start in monitor.json); by the time rule (core/timerule.py) the
     substitute is the stream's start, the next row one period after it."""
     from thermocomp.core.io.options import ReadOptions
     from thermocomp.core.io.stdin import read_stream

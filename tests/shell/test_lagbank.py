@@ -86,6 +86,34 @@ def test_without_time_samples_are_sample_period_apart_in_batch_andstream_context
     np.testing.assert_allclose(stream_context(est, X, groups), est.predict(X, context=groups), atol=1e-9)
 
 
+def test_stream_with_its_first_time_missing_steps_as_the_complete_record():
+    # the stream's time rule (core/timerule.py) in the estimator's own streaming: a logger's
+    # first cell blank and its clock at 150000 s; the lag bank's own rule had taken the first
+    # sample as 0 s and thrown every lag state 150000 s ahead at the second
+    X, y, context = _lagged_system(seed=4, n_campaigns=3, jitter=0.0)
+    est = LagBank(ar=True).fit(X, y, context=context)
+    one = context[context["campaign"] == "C2"].reset_index(drop=True)
+    rows = np.flatnonzero(context["campaign"] == "C2")
+    logger = one.assign(time=one["time"] + 150000.0)
+    complete = stream_context(est, X[rows], logger)
+    logger.loc[0, "time"] = np.nan
+    np.testing.assert_allclose(stream_context(est, X[rows], logger), complete, rtol=0, atol=1e-9)
+
+
+def test_a_stream_state_saved_before_the_time_rule_goes_on():
+    # an end state pickled with its last time ('t', no clock) streams on as it did
+    X, y, context = _lagged_system(seed=5, n_campaigns=2, jitter=0.0)
+    est = LagBank().fit(X, y, context=context)
+    state = est.stream_init()
+    for i in range(3):
+        state = est.stream_step(X[i], state, {"time": 60.0 * i})[1]
+    old = {"z": state["z"], "t": 120.0, "y_prev": state["y_prev"]}
+    for i in range(3, 6):
+        y_new, state = est.stream_step(X[i], state, {"time": 60.0 * i})
+        y_old, old = est.stream_step(X[i], old, {"time": 60.0 * i})
+        assert y_old == y_new
+
+
 @pytest.mark.parametrize("ar", [False, True])
 def test_predictions_are_causal(ar):
     X, y, context = _lagged_system(seed=3, n_campaigns=4)

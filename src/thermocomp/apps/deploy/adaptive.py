@@ -6,8 +6,8 @@ temperature the model reads is judged; an excluded or missing one is replaced
 by its POD reconstruction from the healthy ones), and behind it a
 :class:`~.guard.CorrectionGuard` (bounded, rate-limited correction).  It also
 checks ``time`` (NaN, repeated or backwards: taken as the previous time plus
-the sampling period, :mod:`.timerule`) and holds a missing non-temperature input (``S_`` signal)
-at its last value.  A correction is produced for every sample.
+the sampling period, :mod:`thermocomp.core.timerule`) and holds a missing non-temperature
+input (``S_`` signal) at its last value.  A correction is produced for every sample.
 
 It has the interface of the streaming compensator (``columns_``, ``targets_``,
 ``reset``, ``step``, ``predict``), so ``replay``, ``promote`` and the pyfunc use
@@ -24,11 +24,11 @@ import numpy as np
 import pandas as pd
 
 from ...core.context import TIME
+from ...core.timerule import SampleClock
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
 from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
 from .surveillance import SensorMonitor
-from .timerule import SampleClock
 
 
 class AdaptiveCompensator:
@@ -125,7 +125,8 @@ class AdaptiveCompensator:
 
     @property
     def clock_time_(self) -> float:
-        """The last sample's time on the stream's clock (:mod:`.timerule`): event times are on it."""
+        """The last sample's time on the stream's clock (:mod:`thermocomp.core.timerule`): event
+        times are on it."""
         return self._clock.t
 
     @property
@@ -208,7 +209,7 @@ class AdaptiveCompensator:
                 x = x.copy()
             x[self._other] = self._hold(x[self._other], t, events)
         try:
-            y, clamped = self.streaming._step(x, t)
+            y, clamped = self.streaming._step(x, t, clocked=True)
         except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
             y, clamped = np.full(len(self.targets_), np.nan), 0
             events.append({"time": t, "sensor": None, "from": "running", "to": "held",
@@ -279,7 +280,7 @@ class AdaptiveCompensator:
 
 
 def _clock_of(last_time: float, last_read: float) -> tuple:
-    """The clock's snapshot (:meth:`.timerule.SampleClock.snapshot`) of a stream saved before the
-    time rule, which kept its last time used and its last time read (on one clock)."""
+    """The clock's snapshot (:meth:`thermocomp.core.timerule.SampleClock.snapshot`) of a stream
+    saved before the time rule, which kept its last time used and its last time read (on one clock)."""
     return (not np.isfinite(last_time), last_time, last_read,
             0.0 if np.isfinite(last_read) else float("nan"))

@@ -33,11 +33,11 @@ import pandas as pd
 from ...base.errors import ContractError
 from ...core.context import TIME
 from ...core.metrics import RMSE
+from ...core.timerule import stream_start
 from .adapt import adapt_figures, finite_rms
 from .adaptive import AdaptiveCompensator
 from .streaming import OutOfEnvelopeError, StreamingCompensator, batch_prediction, warm
 from .surveillance import NEW_STATE
-from .timerule import stream_start
 
 
 @dataclass
@@ -95,7 +95,7 @@ def alarm_rate(events: list[dict], hours: float) -> dict:
 def campaign_start(campaign: pd.DataFrame, period_s: float) -> float:
     """Where the campaign starts on the clock of its ``time`` (0 without one): its first time, or,
     where that is missing, the first time read less a period per row before it, as the stream
-    steps (:func:`.timerule.stream_start`); times are written in seconds from it (CLI.md)."""
+    steps (:func:`thermocomp.core.timerule.stream_start`); times are written in seconds from it (CLI.md)."""
     return stream_start(campaign[TIME].to_numpy(float) if TIME in campaign.columns else [],
                         period_s)
 
@@ -106,7 +106,7 @@ def stream_rows(deployed, campaign: pd.DataFrame, cid: str = "", file=None,
     from a reset, or warmed on ``lead_in``, the campaigns it continues (:func:`~.streaming.warm`).
 
     The adaptive compensator's events get ``campaign`` (``cid``) added, their ``time`` from the
-    campaign's first row on the stream's clock (:mod:`.timerule`).  A row the
+    campaign's first row on the stream's clock (:mod:`thermocomp.core.timerule`).  A row the
     plain streaming compensator refuses (a missing value, an input outside the
     envelope with ``policy=refuse``) raises :class:`ContractError` naming the
     campaign, its ``file``, the column and the row (1-based).

@@ -54,7 +54,7 @@ from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
 from ...core.io.contract import is_ambient, manifest_ambient
 from ...core.metrics import split_scores
-from .timerule import SampleClock
+from ...core.timerule import SampleClock
 
 POLICIES = ("clamp", "refuse", "off")
 STREAM_ID = "stream"
@@ -87,10 +87,11 @@ class Envelope:
     together in training is streamed as ``run`` scores it, while an unseen heat source that
     moves them apart is clamped (benchmarks/bench_envelope_policy.py: Σ² pooled 905 against
     1300 with every excursion clamped on hotter tests, 13168 against 13156 on unseen sources).
-    ``mean`` (training mean), ``scale`` (the envelope widths ``hi - lo``, 1 for a constant
-    input), ``basis`` (orthonormal columns: the principal subspace of the scaled, centred
-    training inputs holding ``PATTERN_ENERGY`` of their variance) and ``tol`` (the largest
-    residual of a training sample off it).  ``basis`` is None (every excursion clamped) when
+    ``mean`` (training mean), ``scale`` (the training widths, before the margin: max(|value|, 1)
+    for a constant input; the gate does not depend on the margin), ``basis`` (orthonormal
+    columns: the principal subspace of the scaled, centred training inputs holding
+    ``PATTERN_ENERGY`` of their variance) and ``tol`` (the largest residual of a training
+    sample off it).  ``basis`` is None (every excursion clamped) when
     the pattern is off, in older pickles, and where the subspace is the whole input space (one
     input; inputs that training moved independently): no sample could leave it, so the gate
     would pass a sensor 30 K out as readily as a hotter machine; there the clamp acts on every
@@ -114,14 +115,22 @@ class Envelope:
         if margin < 0:
             raise ValueError(f"envelope margin must be >= 0, got {margin}")
         lo, hi = X.min().to_numpy(float), X.max().to_numpy(float)
+        # the training widths: what the margin is a fraction of, and the pattern's scale
         width = np.where(hi > lo, hi - lo, np.maximum(np.abs(hi), 1.0))
         lo, hi = lo - margin * width, hi + margin * width
-        shape = _pattern(X.to_numpy(float), np.where(hi > lo, hi - lo, 1.0)) if pattern else {}
+        shape = _pattern(X.to_numpy(float), width) if pattern else {}
         return cls(tuple(X.columns), lo, hi, margin, float(horizon_s), **shape)
 
     def outside(self, X: np.ndarray) -> np.ndarray:
         """Boolean mask of values outside the bounds (same shape as ``X``)."""
         return (X < self.lo) | (X > self.hi)
+
+    def excess(self, x: np.ndarray) -> np.ndarray:
+        """The excess of the sample ``x`` (model frame) over the bounds, ``x - clip(x, lo, hi)``:
+        the part the clamp acts on, zero within them and everywhere when ``x`` stays on the
+        training pattern (:meth:`leaves_pattern`); the stream's and the exported code's."""
+        e = x - np.minimum(np.maximum(x, self.lo), self.hi)
+        return e if e.any() and self.leaves_pattern(x) else np.zeros_like(e)
 
     def leaves_pattern(self, x: np.ndarray) -> bool:
         """True when the sample ``x`` (model frame) is off the training pattern: its scaled,
@@ -378,13 +387,15 @@ class StreamingCompensator:
         """
         return self._step(np.asarray(x_row, dtype=float), time)[0]
 
-    def _step(self, x: np.ndarray, time: float) -> tuple[np.ndarray, int]:
+    def _step(self, x: np.ndarray, time: float, clocked: bool = False) -> tuple[np.ndarray, int]:
+        """``(prediction, n_clamped)`` of one sample; ``clocked``: ``time`` is on the stream's
+        clock already (an adaptive compensator's, stepped by its own clock: one clock)."""
         checked = x[:self._n_checked]
         if not np.isfinite(checked.sum()):          # one reduction instead of a mask
             j = int(np.flatnonzero(~np.isfinite(checked))[0])
             raise MissingValueError(f"input {self.columns_[j]} has no finite value at row "
                                      f"{self.n_samples_} (sensor dropout?)")
-        if self._clock is not None:
+        if self._clock is not None and not clocked:
             time = self._clock.step(float(time))[0]
         first = self._ref is None
         seen = x
@@ -419,9 +430,9 @@ class StreamingCompensator:
                         f"input {self.columns_[j]} = {dx[j]:.4g}{frame} at row {self.n_samples_} is "
                         f"outside the training envelope [{env.lo[j]:.4g}, {env.hi[j]:.4g}]; "
                         "refused (policy=refuse)")
-                if env.leaves_pattern(dx):      # along the training pattern: passed as is
-                    excess = dx - np.minimum(np.maximum(dx, env.lo), env.hi)
-                    n_clamped = int(out.sum())
+                e = env.excess(dx)
+                if e.any():                     # along the training pattern: passed as is
+                    excess, n_clamped = e, int(out.sum())
         context = context_record(STREAM_ID, time, self._ambient_c0,
                                  {c: seen[j] for c, j in self._raw})
         y = np.empty(len(self._plan))

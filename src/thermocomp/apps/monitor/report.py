@@ -35,7 +35,7 @@ def stream_campaign(model, df: pd.DataFrame, lead_in: pd.DataFrame | None = None
     that refuses its row holds the previous correction (the adaptive one gives one for every
     row: a failure there is a defect, raised, not a held correction whose row re-reported the
     previous row's events; their times from the campaign's first row on the stream's
-    clock, :mod:`~thermocomp.apps.deploy.timerule`).  ``clamped``: a list given gets each
+    clock, :mod:`~thermocomp.core.timerule`).  ``clamped``: a list given gets each
     row's count of inputs clamped to the training envelope."""
     X = df[model.columns_].to_numpy(float)
     t = df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)

@@ -147,7 +147,7 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     offset).  A missing time or one that goes back is no refusal here: the stream's guard
     judges it, as on the machine; the first time read (not row 1's, which may be missing)
     tells the form and is the origin of timestamps (seconds are kept: a missing first one is
-    the stream's time rule's, :mod:`thermocomp.apps.deploy.timerule`)."""
+    the stream's time rule's, :mod:`thermocomp.core.timerule`)."""
     read = time.dropna()
     if read.empty:                 # no time at all: every row's for the guard to substitute
         return time
@@ -160,7 +160,7 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
         ns = elapsed_seconds(text, kind, SOURCE).cast(pa.int64()).to_numpy(zero_copy_only=False)
         return pd.Series(ns / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
-        return time         # a missing first one: the stream's time rule (deploy/timerule.py)
+        return time         # a missing first one: the stream's time rule (core/timerule.py)
     target = time_type(kind, str(first).strip())
     found = first_cast_failure(text, target, kind)
     if found is not None:

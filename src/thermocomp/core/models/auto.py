@@ -87,10 +87,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     validation_rows : {'all', 'in_range'}, default 'all'
         The out-of-fold rows ``combine='vote'`` scores: all, or only those where the fold does not
         extrapolate (:func:`~thermocomp.core.model_selection.extrapolation.within_range` of its fit
-        rows, ``oof_in_range_``; :func:`in_range_rows`).  On 12 tuning and 10 fresh simulated
-        records it moved one record per group within 10 % of the best family and changed no
-        record's side against MLR; ``fl_thermal`` 90/10 went 2.483 -> 2.551 µm
-        (``benchmarks/bench_auto_rules.py``): not the default.
+        rows, ``oof_in_range_``: None under ``'all'`` unless ``keep_oof``; :func:`in_range_rows`).
+        On 12 tuning and 10 fresh simulated records it moved one record per group within 10 % of
+        the best family and changed no record's side against MLR; ``fl_thermal`` 90/10 went
+        2.483 -> 2.551 µm (``benchmarks/bench_auto_rules.py``): not the default.
     max_seconds : float or None
         A candidate whose folds take longer than this is not validated further
         (skipped, its time recorded): a time budget for the slow families.
@@ -192,7 +192,10 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.oof_y_ = np.concatenate([y[score] for *_, score in folds])
         self.oof_fold_ = np.concatenate([np.full(score.sum(), k) for k, (*_, score) in enumerate(folds)])
         self.oof_folds_ = (len(y), [(np.flatnonzero(fit), np.flatnonzero(score)) for fit, _, score in folds])
-        self.oof_in_range_ = np.concatenate([within_range(X, fit, score)[score] for fit, _, score in folds])
+        self.oof_in_range_ = None   # an SVD per fold: where it chooses the rows, or is kept
+        if self.validation_rows == "in_range" or self.keep_oof:
+            self.oof_in_range_ = np.concatenate([within_range(X, fit, score)[score]
+                                                 for fit, _, score in folds])
         members = [n for n in self.candidates if n in self.oof_]
         if self.combine == "vote" and len(members) > 1 and BASELINE in self.oof_:
             return self._blend(X, y, context, members, how)

@@ -43,6 +43,7 @@ from ...base.params import NON_NEGATIVE, POSITIVE, check_estimator, choice, eith
 from ..context import TIME, Y_MEASURED, SideInputs, feedback_gain, groups_of, scalar, values
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
+from ..timerule import CLOCK_START, step_time
 from ._dynamics import first_order_lags, free_run, lag_index, previous, segment_bounds, segment_starts
 from ._memo import ArrayMemo
 
@@ -229,6 +230,12 @@ def _compute_features(X, time, runs, taus) -> np.ndarray:
 
 # one stack of rows is featurised for every target, every fold and every single-campaign model
 _lag_bank_features = ArrayMemo(_compute_features)
+
+
+def _clock_of(t: float | None) -> tuple:
+    """The time rule's clock of a stream state saved before it (its last time ``t``, None at a
+    start): a time read goes on being taken as it is, as that state's rule took it."""
+    return CLOCK_START if t is None else (False, float(t), float("nan"), 0.0)
 
 
 def _increments(F, groups) -> np.ndarray:
@@ -584,27 +591,27 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     def stream_init(self, context: Mapping | None = None) -> dict:
         """State at a campaign start: no lag state yet (steady start on the first sample)."""
         check_is_fitted(self)
-        return {"z": None, "t": None, "y_prev": 0.0}
+        return {"z": None, "clock": CLOCK_START, "y_prev": 0.0}
 
     def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
         """One sample of simulation-mode ``predict``: ``(y_hat, new_state)``.
 
-        ``context`` maps ``'time'`` (s) to this sample's time; without it
-        samples are ``sample_period_s_`` apart.
+        ``context`` maps ``'time'`` (s) to this sample's time; a sample without it is
+        ``sample_period_s_`` after the previous one, by the stream's time rule
+        (:mod:`thermocomp.core.timerule`: a first one is at 0 and the first time read counts on
+        from it).
         """
         x = np.asarray(x_row, dtype=float).reshape(-1)
-        t = scalar(context, TIME)
+        clock = state.get("clock") or _clock_of(state["t"])
+        clock, _, dt, _ = step_time(clock, scalar(context, TIME), self.sample_period_s_)
         if state["z"] is None:
             z = np.tile(x, self.taus_.size)
         else:
-            dt = self.sample_period_s_ if np.isnan(t) or state["t"] is None else t - state["t"]
             a = np.repeat(np.exp(-dt / self.taus_), x.size)
             z = a * state["z"] + (1.0 - a) * np.tile(x, self.taus_.size)
-        if np.isnan(t):   # no time: count samples, as predict's fallback does
-            t = 0.0 if state["t"] is None else state["t"] + self.sample_period_s_
         y_hat = float(np.concatenate([x, z - np.tile(x, self.taus_.size)]) @ self.coef_ + self.intercept_
                       + self.ar_coef_ * state["y_prev"])
-        return y_hat, {"z": z, "t": t, "y_prev": y_hat}
+        return y_hat, {"z": z, "clock": clock, "y_prev": y_hat}
 
     def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
         """Gain per input (:func:`thermocomp.core.context.step_gain`) of a step held for

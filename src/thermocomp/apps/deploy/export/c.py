@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 
-from ..timerule import C_TIME_RULE
+from ....core.timerule import C_TIME_RULE
 from .statespace import StateSpace
 from .text import banner, correction_names
 

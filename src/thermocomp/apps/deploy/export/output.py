@@ -1,7 +1,7 @@
 """What surrounds the linear system in the exported code: the time rule, the correction guard and
 the reference update (pure core).
 
-* **time** (:mod:`..timerule`, every form's): a missing time (the adaptive compensator's,
+* **time** (:mod:`thermocomp.core.timerule`, every form's): a missing time (the adaptive compensator's,
   ``substitute_time``: or one not after the last time read) is the previous time plus
   ``time_period``; a campaign's first, 0 of the stream's clock, the first time read counting from it.
 * **guard** (:class:`~..guard.CorrectionGuard` of the adaptive compensator): static limits
@@ -44,7 +44,7 @@ def guard_fields(deployed) -> dict:
 
 def time_fields(deployed) -> dict:
     """The adaptive compensator's rule for a bad ``time`` (missing, or not after the last one
-    read): taken as the previous time plus ``time_period`` (:mod:`..timerule`)."""
+    read): taken as the previous time plus ``time_period`` (:mod:`thermocomp.core.timerule`)."""
     if not isinstance(deployed, AdaptiveCompensator):
         return {}
     return {"substitute_time": True, "time_period": float(deployed.period_s)}

@@ -3,7 +3,7 @@ function block, ``FB_ThermoComp``, with the interface of the C code: one call is
 ``tc_step``; ``reset := TRUE`` is ``tc_reset`` before it (the sample starts a campaign).
 
 Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: no time,
-:mod:`..timerule`; ST has no NaN), ``ref_valid`` and ``ref_error`` (per target: a
+:mod:`thermocomp.core.timerule`; ST has no NaN), ``ref_valid`` and ``ref_error`` (per target: a
 reference measurement of the error at this sample, which ``tc_reference`` takes after the
 step); outputs ``c`` (µm) and ``n_clamped``.  What was learned from references survives
 ``reset`` (the instance's initial values are the exported ones).  Only assignments, ``IF``,
@@ -12,7 +12,7 @@ step); outputs ``c`` (µm) and ``n_clamped``.  What was learned from references 
 
 from __future__ import annotations
 
-from ..timerule import ST_TIME_RULE
+from ....core.timerule import ST_TIME_RULE
 from .statespace import StateSpace
 from .text import banner
 

@@ -39,9 +39,9 @@ import numpy as np
 
 from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
+from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
-from ..timerule import SampleClock
 from .errors import NotExportable
 from .output import Output, adapt_fields, guard_fields, time_fields
 
@@ -255,11 +255,11 @@ class Simulator:
     def __init__(self, ss: StateSpace):
         self.ss = ss
         self.fir = np.asarray(ss.fir, float)
-        self.lo, self.hi = (np.asarray(getattr(ss, k) or [], float) for k in ("lo", "hi"))
+        lo, hi = (np.asarray(getattr(ss, k) or [], float) for k in ("lo", "hi"))
         m, n = len(ss.targets), len(ss.inputs)
         self.clamp_gain = np.asarray(ss.clamp_gain or np.zeros((m, n)), float).reshape(m, n)
-        self.pattern = Envelope(tuple(ss.inputs), self.lo, self.hi) if not ss.pattern else Envelope(
-            tuple(ss.inputs), self.lo, self.hi, mean=np.asarray(ss.pattern_mean, float),
+        self.envelope = Envelope(tuple(ss.inputs), lo, hi) if not ss.pattern else Envelope(
+            tuple(ss.inputs), lo, hi, mean=np.asarray(ss.pattern_mean, float),
             scale=np.asarray(ss.pattern_scale, float), tol=ss.pattern_tol,
             basis=np.asarray(ss.pattern_basis, float).reshape(n, -1))
         self.b0 = np.asarray(ss.b0, float).reshape(m, n + len(ss.powers))
@@ -294,9 +294,7 @@ class Simulator:
         if self.first:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
         x = v - self.ref
-        excess = x - np.minimum(np.maximum(x, self.lo), self.hi) if ss.clamp else np.zeros_like(x)
-        if excess.any() and not self.pattern.leaves_pattern(x):    # along the pattern: passed
-            excess = np.zeros_like(x)
+        excess = self.envelope.excess(x) if ss.clamp else np.zeros_like(x)
         xe = x                      # [x, static powers of machine states (Hammerstein basis)]
         if ss.powers:
             src, scale, e = (np.array(c) for c in zip(*ss.powers))

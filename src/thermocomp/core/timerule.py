@@ -1,4 +1,5 @@
-"""The rule for a sample's time, one definition for every deployed form: the adaptive
+"""The rule for a sample's time, one definition for every streamed form: an estimator's own
+``stream_step`` (:func:`step_time`, e.g. the lag bank's), the plain and the adaptive
 compensator (:class:`SampleClock`), the exported Simulator (same class), and the C and
 Structured Text code (:data:`C_TIME_RULE`, :data:`ST_TIME_RULE`, the same steps in those
 languages, rendered into ``compensator.c`` and ``compensator.st``; the export tests run every
@@ -20,6 +21,29 @@ from __future__ import annotations
 
 import math
 
+CLOCK_START = (True, math.nan, math.nan, math.nan)    # a campaign's start, as SampleClock.snapshot
+
+
+def step_time(clock: tuple, time: float, period_s: float, judge: bool = False
+              ) -> tuple[tuple, float, float, str | None]:
+    """One sample of the rule on a clock's state ``(first, t, t_read, shift)`` (:data:`CLOCK_START`
+    at a campaign's start): ``(new clock, t, dt, why)`` as :meth:`SampleClock.step` returns them."""
+    first, t_prev, t_read, shift = clock
+    why = None
+    if not math.isfinite(time):
+        why = "time has no finite value"
+    elif judge and math.isfinite(t_read) and time <= t_read:
+        why = f"time {time:.6g} s does not increase (previous {t_read:.6g} s)"
+    if why is None:
+        t_read = time
+        if not math.isfinite(shift):      # the first time read sets the clock
+            shift = 0.0 if first else time - (t_prev + period_s)
+        now = time - shift
+    else:
+        now = 0.0 if first else t_prev + period_s
+    dt = math.nan if first else now - t_prev
+    return (False, now, t_read, shift), now, dt, why
+
 
 class SampleClock:
     """The stream's clock: ``step(time)`` -> ``(t, dt, why)``, ``t`` the sample's time on the
@@ -32,8 +56,7 @@ class SampleClock:
 
     def reset(self) -> None:
         """A new campaign: the next sample is its first."""
-        self.first, self.t = True, math.nan
-        self.t_read = self.shift = math.nan
+        self.restore(CLOCK_START)
 
     def snapshot(self) -> tuple:
         return self.first, self.t, self.t_read, self.shift
@@ -42,20 +65,8 @@ class SampleClock:
         self.first, self.t, self.t_read, self.shift = snap
 
     def step(self, time: float) -> tuple[float, float, str | None]:
-        first, why = self.first, None
-        if not math.isfinite(time):
-            why = "time has no finite value"
-        elif self.judge and math.isfinite(self.t_read) and time <= self.t_read:
-            why = f"time {time:.6g} s does not increase (previous {self.t_read:.6g} s)"
-        if why is None:
-            self.t_read = time
-            if not math.isfinite(self.shift):      # the first time read sets the clock
-                self.shift = 0.0 if first else time - (self.t + self.period_s)
-            now = time - self.shift
-        else:
-            now = 0.0 if first else self.t + self.period_s
-        dt = math.nan if first else now - self.t
-        self.t, self.first = now, False
+        clock, now, dt, why = step_time(self.snapshot(), time, self.period_s, self.judge)
+        self.restore(clock)
         return now, dt, why
 
 
