@@ -185,6 +185,33 @@ def test_streaming_reproduces_predict_sample_by_sample(reference, alpha):
     np.testing.assert_allclose(streamed, batch, atol=1e-8)
 
 
+def test_stream_without_some_times_steps_as_the_complete_record():
+    # the stream's time rule (core/timerule.py) in the diagnosed model's own streaming: a
+    # logger's clock (150000 s ...), its first cell and one later cell blank.  Its own rule had
+    # restarted every lag at a missing time and made the step after a blank first one 150000 s.
+    ds = _dataset(door_gain=2.0, n_campaigns=6, test_every=100)
+    effects = [Effect("signal", "first_order_lag", "S_door", tau_s=1800),
+               Effect("dynamics", "lowpass_inputs", tau_s=3600, initial_state=["T_a", "T_b"])]
+    comp = Compensator(AugmentedRegressor(MLR(), [e.to_dict() for e in effects]),
+                       inputs=["T_a", "T_b", "T_amb"]).fit(ds.campaigns)
+    est = comp.estimators_["E_Z"]
+    df = ds.campaigns["C02"].assign(time=lambda d: d["time"] + 150000.0)
+    x = (df[["T_a", "T_b", "T_amb"]] - df[["T_a", "T_b", "T_amb"]].iloc[0]).to_numpy()
+    a0 = float(df.iloc[0]["T_amb"])
+
+    def streamed(frame):
+        state, out = est.stream_init(context={"ambient_c0": a0}), []
+        for i, row in enumerate(frame.to_dict("records")):
+            y, state = est.stream_step(x[i], state, context={**row, "ambient_c0": a0})
+            out.append(y)
+        return np.array(out)
+
+    complete = streamed(df)
+    gaps = df.copy()
+    gaps.loc[[0, 20], "time"] = np.nan
+    np.testing.assert_allclose(streamed(gaps), complete, rtol=0, atol=1e-9)
+
+
 def test_state_frames_give_absolute_referenced_and_rise_products():
     g = np.array(["a"] * 3 + ["b"] * 3)
     ctx = pd.DataFrame({"campaign": g, "time": np.tile([0.0, 60, 120], 2),

@@ -10,7 +10,9 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ContractError, ParameterError
 from ...core.context import AMBIENT_C0, TIME, SideInputs, context_columns, groups_of, merge_columns, scalar
+from ...core.models._dynamics import median_period
 from ...core.models.linear import MLR
+from ...core.timerule import CLOCK_START, step_time
 from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
 from .shrink import PartialRidgePath
 
@@ -104,6 +106,10 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.effects_ = self._effects()
         self.required_context_ = list(dict.fromkeys(c for e in self.effects_ for c in e.context_columns))
         g = groups_of(context)
+        # the stream's step for a sample without a time (the time rule); rows without a time
+        # column are 1 apart, as the design counts them
+        time = context[TIME].to_numpy(float) if context is not None and TIME in context else None
+        self.sample_period_s_ = (median_period(time, g) if time is not None else None) or 1.0
         self.initial_weights_ = [
             initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
             for e in self.effects_]
@@ -137,7 +143,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def stream_init(self, context: Mapping | None = None) -> dict:
         """State before a campaign's first sample; ``context`` may hold ``ambient_c0``."""
         check_is_fitted(self)
-        return {"first": {}, "last": {}, "lag": {}, "t": None,
+        return {"first": {}, "last": {}, "lag": {}, "t": None, "clock": CLOCK_START,
                 "ambient_c0": scalar(context, AMBIENT_C0),
                 "base": self.estimator_.stream_init(context)}
 
@@ -184,8 +190,13 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         """
         x = np.asarray(x_row, dtype=float).ravel()
         t = scalar(context, TIME)
+        period = getattr(self, "sample_period_s_", None)
+        if period is not None and "clock" in state:      # the stream's time rule (core.timerule)
+            state["clock"], t, dt, _ = step_time(state["clock"], t, period)
+            dt = None if np.isnan(dt) else dt
+        else:   # fitted or started before the rule: a missing time restarts the lags, as it did
+            dt = None if state["t"] is None or np.isnan(t) else t - state["t"]
         state.setdefault("t0", t)
-        dt = None if state["t"] is None or np.isnan(t) else t - state["t"]
         state["t"] = t if not np.isnan(t) else state["t"]
         a0 = scalar(context, AMBIENT_C0, state["ambient_c0"])
         parts = [x]

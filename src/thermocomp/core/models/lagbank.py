@@ -44,7 +44,15 @@ from ..context import TIME, Y_MEASURED, SideInputs, feedback_gain, groups_of, sc
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
 from ..timerule import CLOCK_START, step_time
-from ._dynamics import first_order_lags, free_run, lag_index, previous, segment_bounds, segment_starts
+from ._dynamics import (
+    first_order_lags,
+    free_run,
+    lag_index,
+    median_period,
+    previous,
+    segment_bounds,
+    segment_starts,
+)
 from ._memo import ArrayMemo
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
@@ -424,12 +432,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         key = _lag_bank_features.key(*args)
         return key, _lag_bank_features.lookup(key, *args)
 
-    @staticmethod
-    def _period(time, groups) -> float | None:
-        steps = np.concatenate([np.diff(time[a:b]) for a, b in segment_bounds(groups, len(time))])
-        steps = steps[np.isfinite(steps) & (steps > 0)]
-        return float(np.median(steps)) if steps.size else None
-
     # -- fit ----------------------------------------------------------------------------
     # The ridge path's matrices are a few hundred columns wide: BLAS threads only add contention
     # (an eigendecomposition 15x slower with 2 threads on a busy 2-core machine), as in diagnose.
@@ -444,7 +446,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                              f"CV, got n_samples={n}")
         groups = groups_of(context)
         time = values(context, TIME, n)
-        period = self._period(time, groups) if time is not None else None
+        period = median_period(time, groups) if time is not None else None
         self.sample_period_s_ = period if period is not None else float(self.sample_period_s)
         tau_min = self.sample_period_s_ if self.tau_min_s is None else float(self.tau_min_s)
         tau_min = min(tau_min, float(self.tau_max_s))
