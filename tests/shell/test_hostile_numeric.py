@@ -60,8 +60,12 @@ def _composed(overrides: tuple[str, ...]):
         return compose(config_name="config", overrides=[*overrides, "track=false"])
 
 
+@functools.cache
 def _knobs() -> dict[str, tuple[tuple[str, ...], object]]:
-    """Every numeric config key -> (the overrides composing a config that has it, its value)."""
+    """Every numeric config key -> (the overrides composing a config that has it, its value).
+
+    Composed when a test first asks (~44 compositions, ~12 s of CPU), not when the module is
+    collected: every xdist worker collects every module, and only one runs these tests."""
     knobs = {}
     for overrides in _options():
         tree = OmegaConf.to_container(_composed(tuple(overrides)))
@@ -69,9 +73,6 @@ def _knobs() -> dict[str, tuple[tuple[str, ...], object]]:
         for key, value in _numbers(tree):
             knobs.setdefault(key, (tuple(overrides), value))
     return knobs
-
-
-KNOBS = _knobs()
 
 
 def _accepted(overrides: tuple[str, ...], key: str, value) -> bool:
@@ -126,22 +127,35 @@ def _hostile(value) -> list:
     return [math.nan, math.inf, -math.inf]
 
 
-@pytest.mark.parametrize("key", sorted(KNOBS))
-def test_every_numeric_knob_refuses_non_finite_values_and_huge_counts(key):
+@pytest.mark.parametrize("option", _options(), ids=lambda o: o[0] if o else "defaults")
+def test_every_numeric_knob_refuses_non_finite_values_and_huge_counts(option):
     """Each number of conf/ refuses NaN and ±inf (an integer knob refuses them as not integers),
     and a count (a knob that refuses a half) refuses a size no machine holds.  Before, replay
-    took ``promote.envelope.margin=nan`` and streamed with the clamp off."""
-    overrides, value = KNOBS[key]
-    first = value[0] if isinstance(value, list) else value
+    took ``promote.envelope.margin=nan`` and streamed with the clamp off.  One test per config
+    group option (its defaults accepted), for the knobs that option's composition is the first to
+    have: every value let through is named."""
+    overrides = tuple(option)
+    mine = {key: value for key, (found_in, value) in _knobs().items() if found_in == overrides}
     assert _default_accepted(overrides), f"{overrides}: the defaults are refused"
+    accepted = [f"{key}={bad} is accepted" for key, value in sorted(mine.items())
+                for bad in _let_through(overrides, key, value)]
+    assert not accepted, "\n".join(accepted)
+
+
+def _let_through(overrides: tuple[str, ...], key: str, value) -> list:
+    """The hostile values of ``key`` the checks accept (none, as it should be)."""
+    first = value[0] if isinstance(value, list) else value
     if value is None and _accepted(overrides, key, "x"):
-        return          # null, and takes a text: not a number (replay.model, data.targets, ...)
+        return []       # null, and takes a text: not a number (replay.model, data.targets, ...)
+    through = []
     for bad in _hostile(value):
         shown = bad[0] if isinstance(bad, list) else bad
-        if (key, shown) not in OFF_VALUES:
-            assert not _accepted(overrides, key, bad), f"{key}={bad} is accepted"
-    if isinstance(first, int) and not _accepted(overrides, key, _with(value, first + 0.5)):
-        assert not _accepted(overrides, key, _with(value, HUGE)), f"{key}={HUGE} is accepted"
+        if (key, shown) not in OFF_VALUES and _accepted(overrides, key, bad):
+            through.append(bad)
+    if isinstance(first, int) and not _accepted(overrides, key, _with(value, first + 0.5)) \
+            and _accepted(overrides, key, _with(value, HUGE)):
+        through.append(HUGE)
+    return through
 
 
 def _with(value, first):

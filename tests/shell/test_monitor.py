@@ -432,22 +432,28 @@ def test_column_new_source_is_a_new_thermal_state_and_the_deployed_correction_as
         assert abs(r["rmse_adaptive"] - r["rmse_fixed"]) <= 0.05 * r["rmse_fixed"], t
 
 
-def test_monitor_reads_csv_rows_from_stdin(default_dataset, tmp_path):
-    import subprocess
-    import sys
-    from pathlib import Path
+def _bytes_stdin(text: str):
+    """A process's stdin holding ``text``: bytes under a text layer, as ``sys.stdin`` is (the
+    monitor decodes ``sys.stdin.buffer`` itself)."""
+    import io as text_io
 
+    return text_io.TextIOWrapper(text_io.BytesIO(text.encode()), encoding="utf-8")
+
+
+def test_monitor_reads_csv_rows_from_stdin(default_dataset, tmp_path, monkeypatch):
+    """In this process (a real pipe into a fresh ``thermocomp monitor``: test_docs'
+    test_every_key_of_a_real_monitor_json_is_in_the_cli_reference)."""
     test = pd.read_csv(default_dataset / "campaigns.csv").query("split == 'test'")["file"].iloc[0]
     df = pd.read_csv(default_dataset / test)
     df.loc[40:, "T_motor2"] += 50.0
-    proc = subprocess.run([str(Path(sys.executable).parent / "thermocomp"), "monitor", "monitor.input=-",
-                           f"data.path={default_dataset}", f"out={tmp_path}", "track=false", "plots=none"],
-                          input=df.to_csv(index=False), capture_output=True, text=True, cwd=ROOT)
+    monkeypatch.setattr("sys.stdin", _bytes_stdin(df.to_csv(index=False)))
+    proc = thermocomp("monitor", "monitor.input=-", f"data.path={default_dataset}", f"out={tmp_path}",
+                      "track=false", "plots=none", check=False)
     assert proc.returncode == 0, proc.stderr
     report = json.loads((tmp_path / "monitor.json").read_text())
     assert report["campaigns"] == ["stdin"]
     assert report["sensors"]["T_motor2"]["first_alarm"]["campaign"] == "stdin"
-    proc = subprocess.run([str(Path(sys.executable).parent / "thermocomp"), "monitor", "monitor.input=-",
-                           f"data.path={default_dataset}", f"out={tmp_path / 'x'}", "track=false"],
-                          input="a,b\n1,2\n", capture_output=True, text=True, cwd=ROOT)
+    monkeypatch.setattr("sys.stdin", _bytes_stdin("a,b\n1,2\n"))
+    proc = thermocomp("monitor", "monitor.input=-", f"data.path={default_dataset}",
+                      f"out={tmp_path / 'x'}", "track=false", check=False)
     assert proc.returncode == 2 and "stdin" in proc.stderr and not (tmp_path / "x").exists()

@@ -8,40 +8,78 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from conftest import FAST, thermocomp
 from test_hostile import make_dataset
+
+SHOW = "import sys\nprint(' '.join(sorted({*sys.modules, *(m.split('.')[0] for m in sys.modules)})))"
 
 
 def _loaded(code: str, env: dict | None = None) -> set[str]:
     """Modules (``pyarrow.parquet``) and top-level packages (``sklearn``) loaded by ``code`` in a
     fresh interpreter (``env``: its environment)."""
-    code += "\nimport sys\nprint(' '.join(sorted({*sys.modules, *(m.split('.')[0] for m in sys.modules)})))"
-    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env)
+    proc = subprocess.run([sys.executable, "-c", f"{code}\n{SHOW}"], capture_output=True, text=True,
+                          env=env)
     assert proc.returncode == 0, proc.stderr
     return set(proc.stdout.split())
 
 
-def test_the_config_schema_imports_no_scikit_learn_nor_scipy():
-    loaded = _loaded("import thermocomp.shell.config.schema, thermocomp.shell.config.checks")
+def _loaded_after_each(steps: dict[str, str]) -> dict[str, set[str]]:
+    """What :func:`_loaded` says after each of ``steps`` (name -> code), run one after the other
+    in one fresh interpreter (one start, ~1 s of CPU, instead of one each).  A step's set holds
+    what the steps before it loaded too: a module it must not load is absent from its own
+    imports as well; one it must load is checked where no step before loads it."""
+    code = "\n".join(f"{body}\nprint('=== {name}')\n{SHOW}" for name, body in steps.items())
+    proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True)
+    assert proc.returncode == 0, proc.stderr
+    found = {}
+    for block in proc.stdout.split("=== ")[1:]:
+        name, _, modules = block.partition("\n")
+        found[name] = set(modules.split())
+    assert list(found) == list(steps), proc.stdout[-2000:]
+    return found
+
+
+@pytest.fixture(scope="module")
+def chained(tmp_path_factory):
+    """The light steps of this module in one interpreter: ``(loaded after each, a scratch
+    folder)``.  The order keeps each check exact: ``--cfg job`` first (it must load the
+    tracking module), the model classes last (they must load what no step before loads)."""
+    tmp = tmp_path_factory.mktemp("stage_imports")
+    steps = {
+        "cfg job": "import contextlib, io\nfrom thermocomp.shell.cli import main\n"
+                   "with contextlib.redirect_stdout(io.StringIO()):\n"
+                   "    assert main(['run', '--cfg', 'job']) == 0",
+        "schema": "import thermocomp.shell.config.schema, thermocomp.shell.config.checks",
+        "sweep task": "from thermocomp.shell.cli import _task\nassert callable(_task('run', [], []))",
+        "out of domain": "from thermocomp.shell.cli import main\n"
+                         f"assert main(['run', 'track=false', 'out={tmp / 'out'}', "
+                         "'eval.mode=simulaton']) == 2",
+        "model classes": "from hydra.utils import get_class\nfrom thermocomp.core.models import ARXRF\n"
+                         "assert get_class('thermocomp.core.models.ARX').__name__ == 'ARX'\n"
+                         "import thermocomp.core.models as m\nassert {'MLR', 'LSTM'} <= set(dir(m))",
+    }
+    return _loaded_after_each(steps), tmp
+
+
+def test_the_config_schema_imports_no_scikit_learn_nor_scipy(chained):
+    loaded = chained[0]["schema"]
     assert not {"sklearn", "scipy"} & loaded
 
 
-def test_printing_a_commands_config_imports_no_pandas():
+def test_printing_a_commands_config_imports_no_pandas(chained):
     """``--cfg job`` (Hydra's callbacks -> tracking -> the run name's schema) reads no data: the
     core's choices the schema names (``eval.mode``, ``data.reference``) come without pandas."""
-    loaded = _loaded("import contextlib, io\nfrom thermocomp.shell.cli import main\n"
-                     "with contextlib.redirect_stdout(io.StringIO()):\n"
-                     "    assert main(['run', '--cfg', 'job']) == 0")
+    loaded = chained[0]["cfg job"]
     assert "thermocomp.shell.tracking" in loaded     # the edge that dragged pandas in
     assert not {"pandas", "pyarrow"} & loaded
 
 
-def test_a_value_out_of_its_domain_is_refused_before_the_stage_loads_its_libraries(tmp_path):
+def test_a_value_out_of_its_domain_is_refused_before_the_stage_loads_its_libraries(chained):
     """A mistyped value is exit 2 in one line without the stage's module, which for ``run``
     loads scikit-learn and SciPy (~1.5 s of CPU)."""
-    loaded = _loaded("from thermocomp.shell.cli import main\n"
-                     f"assert main(['run', 'track=false', 'out={tmp_path / 'out'}', "
-                     "'eval.mode=simulaton']) == 2")
+    loaded, tmp_path = chained[0]["out of domain"], chained[1]
     assert "thermocomp.shell.stages.modelling" not in loaded
     assert not {"sklearn", "scipy"} & loaded
     assert not (tmp_path / "out").exists()
@@ -59,8 +97,8 @@ def test_simulate_imports_no_scikit_learn(tmp_path):
 def test_an_mlr_run_imports_no_other_familys_library(tmp_path):
     """``thermocomp.core.models`` imports a family on first use: an MLR run (and ``init``, which
     builds the configured MLR to check it) loads neither arx_rf's forest (``sklearn.ensemble``,
-    ~0.2 s of CPU) nor SciPy's ``signal`` (the dynamic families' filter), while the names of
-    the package (``from thermocomp.core.models import ARXRF``) and Hydra's targets resolve."""
+    ~0.2 s of CPU) nor SciPy's ``signal`` (the dynamic families' filter); the names of the
+    package resolve all the same (the next test)."""
     data = make_dataset(tmp_path / "ds")
     argv = ["run", f"data.path={data}", f"out={tmp_path / 'run'}", "model=mlr", *FAST]
     loaded = _loaded("import contextlib, io\nfrom thermocomp.shell.cli import main\n"
@@ -71,16 +109,20 @@ def test_an_mlr_run_imports_no_other_familys_library(tmp_path):
     assert "sklearn.linear_model" in loaded           # it did fit the MLR
     assert not {"sklearn.ensemble", "scipy.signal", "thermocomp.core.models.arx_rf",
                 "thermocomp.core.models.arx", "thermocomp.core.models.lstm"} & loaded
-    loaded = _loaded("from hydra.utils import get_class\nfrom thermocomp.core.models import ARXRF\n"
-                     "assert get_class('thermocomp.core.models.ARX').__name__ == 'ARX'\n"
-                     "import thermocomp.core.models as m\nassert {'MLR', 'LSTM'} <= set(dir(m))")
+
+
+def test_the_model_classes_resolve_by_name_and_load_their_family_then(chained):
+    """The names of ``thermocomp.core.models`` (a package import, Hydra's targets) load a
+    family's module when asked for it, not before."""
+    before, loaded = chained[0]["out of domain"], chained[0]["model classes"]
+    assert not {"sklearn.ensemble", "thermocomp.core.models.arx"} & before
     assert {"sklearn.ensemble", "thermocomp.core.models.arx"} <= loaded
 
 
-def test_a_sweep_parent_imports_no_model_library():
+def test_a_sweep_parent_imports_no_model_library(chained):
     """The task a launcher hands its jobs (joblib, Ray, SLURM: other processes) imports the
     stage when a job calls it, not when the parent makes it."""
-    loaded = _loaded("from thermocomp.shell.cli import _task\nassert callable(_task('run', [], []))")
+    loaded = chained[0]["sweep task"]
     assert not {"sklearn", "scipy"} & loaded
 
 
