@@ -5,8 +5,8 @@ no door signal, and with it every `dvc repro` of this pipeline.)  The default ML
 as a copy of a migrated one: its creation (Alembic migrations, seconds of CPU) is tested where it
 is the point (test_tracking, test_hostile_procs).  The jobs run as on a one-CPU machine
 (``LOKY_MAX_CPU_COUNT=1``: the launcher's ``n_jobs=-1`` is one job at a time, in the stage's
-process): two loky workers each importing the stack and opening the store cost 15 of the test's
-50 s of CPU, and a joblib sweep on two workers is test_sweep's (one parent, four children, the
+process): two loky workers each importing the stack and opening the store cost ~19 of the test's
+52 s of CPU, and a joblib sweep on two workers is test_sweep's (one parent, four children, the
 table).  Not marked ``full``: the only test that runs every job of the committed grid on the
 default data (test_pipeline_commands only composes them)."""
 
