@@ -45,13 +45,16 @@ def repro(tmp_path_factory):
     set_keys(dest / "conf/sim/yearround_spindle.yaml", **SHORT_KEYS)
     # One stage tracked by default shows the study tracks under `dvc repro`; tracking every stage
     # costs ~3 s of MLflow start-up per process and is not what the rest of the module checks,
-    # nor are diagnose's figures (tested where they are drawn; evaluate's are DVC plots here).
+    # nor are the figures of denoise, select and diagnose (~2 s of CPU each in their workers;
+    # tested where they are drawn; evaluate's are the DVC plots asserted here).  With plots=none
+    # denoise and select still make their (DVC plots) folders, empty.
     pipeline = dest / "dvc.yaml"
     untracked = "|".join(s for s in STAGES if s not in ("simulate", TRACKED))
     text, n = re.subn(rf"(cmd: pipelines/thermocomp (?:{untracked}))$", r"\1 track=false",
                       pipeline.read_text(), flags=re.M)
-    text, m = re.subn(r"(cmd: pipelines/thermocomp diagnose .*)$", r"\1 plots=none", text, flags=re.M)
-    assert n == len(STAGES) - 2 and m == 1
+    text, m = re.subn(r"(cmd: pipelines/thermocomp (?:denoise|select|diagnose) .*)$", r"\1 plots=none",
+                      text, flags=re.M)
+    assert n == len(STAGES) - 2 and m == 3
     pipeline.write_text(text)
     # The default store as a copy of a migrated one: creating it (Alembic migrations, seconds of
     # CPU) is tested where it is the point (test_tracking, test_hostile_procs), not under DVC.

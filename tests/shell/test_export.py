@@ -15,6 +15,7 @@ import json
 import re
 import shutil
 import subprocess
+from itertools import combinations
 from math import exp
 from pathlib import Path
 
@@ -37,6 +38,13 @@ FAMILIES = {"mlr": [], "pcr": [], "arx": ["model.estimator.ar=false"],
             "arx_ar": ["model.estimator.ar=true", "model.estimator.delays=[2]"],   # x(t-2) only
             "lagbank": []}
 SELECTORS = ("all", "pearson", "greedy_residual", "cluster_grey")
+DENOISERS = ("none", "emd")
+# An all-pairs (pairwise) covering design instead of the 40-case product, as test_replay's: each
+# family streams once with each selector, the denoiser turning with family and selector, so every
+# pair of values of any two axes is met (20 cases; checked below).  The family's law, the FIR
+# taps and the inputs a selector keeps per target are separate arrays of the export.
+CASES = [(family, DENOISERS[(f + s) % len(DENOISERS)], select)
+         for f, family in enumerate(FAMILIES) for s, select in enumerate(SELECTORS)]
 CAMPAIGNS = (("K01", "train"), ("K02", "train"), ("K03", "train"), ("K04", "train"),
              ("K05", "test"), ("K06", "test"))
 PUSH_C = 30.0          # added to one sensor from mid-campaign: far outside the training envelope
@@ -233,10 +241,15 @@ def _streamed(binary: Path, text: str) -> pd.DataFrame:
     return pd.read_csv(io.StringIO(run.stdout))
 
 
+def test_the_cases_cover_every_pair_of_values():
+    axes = (list(FAMILIES), DENOISERS, SELECTORS)
+    pairs = {(i, a, j, b) for i, j in combinations(range(3), 2) for a in axes[i] for b in axes[j]}
+    met = {(i, case[i], j, case[j]) for case in CASES for i, j in combinations(range(3), 2)}
+    assert met == pairs and len(set(CASES)) == len(CASES) == len(FAMILIES) * len(SELECTORS)
+
+
 @needs_cc
-@pytest.mark.parametrize("select", SELECTORS)
-@pytest.mark.parametrize("denoise", ("none", "emd"))
-@pytest.mark.parametrize("family", FAMILIES)
+@pytest.mark.parametrize("family, denoise, select", CASES)
 def test_the_compiled_c_and_the_structured_text_stream_as_replay(dataset, tmp_path, family,
                                                                   denoise, select):
     stream, tests = _deployed(dataset, family, denoise, select)
@@ -285,7 +298,7 @@ def test_the_structured_text_parses_as_iec_61131_3(dataset):
     assert parsed.exception is None, parsed.exception
     assert "FB_ThermoComp" in str(parsed.transform())
     for family in FAMILIES:
-        for denoise in ("none", "emd"):
+        for denoise in DENOISERS:
             stream, _ = _deployed(dataset, family, denoise, "all")
             assert _construct(exported_files(stream, "st")["compensator.st"]) == _construct(text), \
                 (family, denoise)
@@ -342,8 +355,11 @@ def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(datas
 
 @pytest.mark.parametrize("model,extra,says", [
     ("arx_rf", ["model.estimator.forest.n_estimators=3"], ["mlr, pcr, arx, lagbank"]),
-    ("lstm", ["model.estimator.max_epochs=2", "model.estimator.hidden_size=4",
-              "model.estimator.chunk=16"], ["mlr, pcr, arx, lagbank"]),
+    pytest.param("lstm", ["model.estimator.max_epochs=2", "model.estimator.hidden_size=4",
+                          "model.estimator.chunk=16"], ["mlr, pcr, arx, lagbank"],
+                 marks=pytest.mark.full(reason="the family check (statespace._target_law) that "
+                                        "refuses [forest] in make test; here torch's import and "
+                                        "an LSTM fit on top, ~4 s of CPU")),
     ("mlr", ["export.format=onnx"], ["onnx", "mlr, pcr, arx, lagbank"]),
     ("mlr", ["denoise=emd", "denoise.denoiser.causal=window"], ["causal=fir"]),
     ("mlr", ["promote.envelope.policy=refuse"], ["refuse", "policy=clamp"]),

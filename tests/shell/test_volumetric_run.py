@@ -91,7 +91,8 @@ def test_the_first_cycles_identification_error_is_not_compensated_at_every_cycle
     df = pd.read_parquet(train)
     df.loc[0, cal.design_.columns] += cal.predict(delta)
     df.to_parquet(train)
-    metrics, _ = _run(bad, tmp_path / "out", "plots=none")
+    # (no validation folds: ~2 s of CPU, and the volumetric section does not read them)
+    metrics, _ = _run(bad, tmp_path / "out", "plots=none", "eval.validation=false")
     vol = metrics["volumetric"]
     assert vol["offsets"]["mode"] == "drop"
     static = [n for n, row in vol["parameters"].items() if not row["ar"]]
@@ -118,7 +119,8 @@ def test_trajectories_and_the_a3_test_before_and_after(run):
 def test_figures_headline_and_every_key_documented(raw, run, tmp_path):
     assert not (run[1] / "volumetric").exists()                     # plots=none: no figure
     # two parameters modelled: the others count uncompensated in every figure
-    metrics, out = _run(raw, tmp_path, "plots=summary", "data.targets=[E_ZZ1,E_XZ1]")
+    metrics, out = _run(raw, tmp_path, "plots=summary", "data.targets=[E_ZZ1,E_XZ1]",
+                        "eval.validation=false")
     table = metrics["volumetric"]["parameters"]
     assert set(table) == set(run[0]["volumetric"]["parameters"])     # every identified one
     assert {n for n, row in table.items() if row["n_inputs"]} == {"E_ZZ1", "E_XZ1"}
