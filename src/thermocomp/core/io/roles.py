@@ -13,6 +13,7 @@ Without any role set, headers are read as before: contract names, or mapped by `
 from __future__ import annotations
 
 import fnmatch
+import functools
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -71,6 +72,7 @@ class Naming:
     roles: dict[str, str] = field(default_factory=dict)    # raw -> why (role or "data.columns")
 
 
+@functools.lru_cache(maxsize=8192)     # pure; a wide record asks it ~5 times per header per read
 def split_unit(header: str) -> tuple[str, str | None]:
     """``('t1', '°C')`` for ``t1(°C)``, ``t1 [°C]``, ``t1 / °C`` or ``t1 in °C``; ``(header,
     None)`` without a unit."""
