@@ -1,0 +1,65 @@
+"""A stranger's pass with a lab's folder of runs from a climate room (issue 34, items 1 and 2):
+the served model reads every name the lab gave a column, a stdin stream takes the climate room's
+set point for a model on the manifest's ``ambient_c``, and a lab's manifest without ``split``."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+from omegaconf import OmegaConf
+
+from conftest import FAST
+from thermocomp.shell.cli import main
+
+
+def _lab_folder(root, runs: int = 6):
+    """Runs from two loggers: the first half write ``Zeit [s]``, the others ``Zeit`` (both in
+    s); the error follows the heating through a lag, so a lag model reads the time."""
+    root.mkdir()
+    rng = np.random.default_rng(50)
+    for k in range(runs):
+        t = np.arange(60) * 60.0
+        heat = 20 + (3 + k) * (1 - np.exp(-t / 1500)) + rng.normal(0, 0.02, t.size)
+        other = 20 + 0.5 * np.sin(t / 900 + k) + rng.normal(0, 0.02, t.size)
+        lagged = 20 + (3 + k) * (1 - np.exp(-t / 4000))
+        error = 4 * (lagged - 20) + 0.5 * (heat - 20) + rng.normal(0, 0.05, t.size)
+        pd.DataFrame({"Zeit [s]" if k < runs // 2 else "Zeit": t, "T0 [°C]": heat,
+                      "T1 [°C]": other, "dX [µm]": error}).to_csv(
+            root / f"Lauf_{k + 1:02d}.csv", sep=";", decimal=",", index=False)
+    return root
+
+
+def test_the_served_model_reads_the_time_under_each_name_the_labs_runs_gave_it(tmp_path):
+    from thermocomp.apps.deploy import StreamingCompensator
+    from thermocomp.apps.deploy.naming import lab_names
+    from thermocomp.apps.deploy.pyfunc import CompensatorModel
+    from thermocomp.core.io import read_dataset
+    from thermocomp.shell.model_store import load_model
+
+    folder = _lab_folder(tmp_path / "lab")
+    roles = ["data.roles.error=[dX]", "data.test_fraction=0.34"]
+    assert main(["run", f"data.path={folder}", "model=lagbank", f"out={tmp_path / 'run'}",
+                 *roles, *FAST]) == 0
+    ds, _ = read_dataset(folder, {"roles": {"error": ["dX"]}, "test_fraction": 0.34})
+    names = lab_names(OmegaConf.create({"data": {"columns": {}}}), ds)
+    comp = load_model(tmp_path / "run" / "model.pkl")
+    streaming = StreamingCompensator.from_training(comp, {c: ds.campaigns[c] for c in
+                                                          ds.ids("train")}, policy="off")
+    streaming.lab_names_ = names
+    served = CompensatorModel(streaming)
+    raw = pd.read_csv(folder / "Lauf_01.csv", sep=";", decimal=",")
+    raw["Zeit [s]"] *= np.where(np.arange(len(raw)) > 20, 3.0, 1.0)   # a slower logger later
+    contract = raw.rename(columns={"Zeit [s]": "time", "T0 [°C]": "T_T0", "T1 [°C]": "T_T1"})
+    cols = ["time", "T_T0", "T_T1"]
+    want = served.predict(None, contract[cols], params={"session": "contract"})["C_dX"]
+    for header in ("Zeit [s]", "Zeit"):    # each logger's name of the time
+        lab = raw[["Zeit [s]", "T0 [°C]", "T1 [°C]"]].rename(columns={"Zeit [s]": header})
+        got = served.predict(None, lab, params={"session": header})["C_dX"]
+        np.testing.assert_allclose(got, want, atol=1e-12)
+    assert names["time"] == ["Zeit [s]", "Zeit"]
+    # the two names of one column in one block are refused, as a lab name beside a contract one
+    both = raw[["Zeit [s]", "T0 [°C]", "T1 [°C]"]].assign(Zeit=raw["Zeit [s]"])
+    with pytest.raises(Exception, match="'Zeit \\[s\\]' and 'Zeit'"):
+        served.predict(None, both, params={"session": "both"})
+
