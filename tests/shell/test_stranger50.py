@@ -4,12 +4,15 @@ set point for a model on the manifest's ``ambient_c``, and a lab's manifest with
 
 from __future__ import annotations
 
+import io
+import json
+
 import numpy as np
 import pandas as pd
 import pytest
 from omegaconf import OmegaConf
 
-from conftest import FAST
+from conftest import FAST, refused
 from thermocomp.shell.cli import main
 
 
@@ -62,4 +65,42 @@ def test_the_served_model_reads_the_time_under_each_name_the_labs_runs_gave_it(t
     both = raw[["Zeit [s]", "T0 [°C]", "T1 [°C]"]].assign(Zeit=raw["Zeit [s]"])
     with pytest.raises(Exception, match="'Zeit \\[s\\]' and 'Zeit'"):
         served.predict(None, both, params={"session": "both"})
+
+
+def _climate_room(root):
+    """test_ambient_manifest's climate room (ambient from the manifest's ``ambient_c`` alone)
+    with a third sensor, so that the monitor watches three."""
+    from test_ambient_manifest import make_dataset
+
+    ds = make_dataset(root)
+    for f in ds.glob("R*.csv"):
+        df = pd.read_csv(f)
+        df.assign(T_column=0.5 * (df["T_spindle"] + df["T_air"]) + np.sin(df["time"] / 700)
+                  ).to_csv(f, index=False)
+    return ds
+
+
+def test_a_stdin_stream_takes_the_climate_rooms_set_point_as_its_campaign_would(
+        tmp_path, monkeypatch, capsys):
+    ds = _climate_room(tmp_path / "ds")
+    # R03 (18 °C) the one test campaign; its file streamed from data.path, then on stdin
+    common = [f"data.path={ds}", "ati=cmeans", "data.split_overrides={R06: train}", *FAST]
+    assert main(["monitor", f"out={tmp_path / 'file'}", *common]) == 0
+    want = json.loads((tmp_path / "file" / "monitor.json").read_text())["targets"]["E_X"]
+    stdin = (ds / "R03.csv").read_text()
+    monkeypatch.setattr("sys.stdin", io.StringIO(stdin))
+    assert main(["monitor", f"out={tmp_path / 'stdin'}", *common, "monitor.input=-",
+                 "monitor.ambient_c=18.0"]) == 0
+    got = json.loads((tmp_path / "stdin" / "monitor.json").read_text())["targets"]["E_X"]
+    assert got["rmse_fixed"] == pytest.approx(want["rmse_fixed"], rel=1e-9)
+    # another set point corrects otherwise: the value is what ATI reads
+    monkeypatch.setattr("sys.stdin", io.StringIO(stdin))
+    assert main(["monitor", f"out={tmp_path / 'warm'}", *common, "monitor.input=-",
+                 "monitor.ambient_c=30.0"]) == 0
+    other = json.loads((tmp_path / "warm" / "monitor.json").read_text())["targets"]["E_X"]
+    assert other["rmse_fixed"] != pytest.approx(want["rmse_fixed"], rel=1e-3)
+    # a campaign of data.path has its manifest's: the key is refused there, before any work
+    refused(["monitor", f"out={tmp_path / 'no'}", *common, "monitor.ambient_c=18.0"], capsys,
+            "monitor.ambient_c=18.0", "stdin")
+    assert not (tmp_path / "no").exists()
 
