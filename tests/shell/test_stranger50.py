@@ -104,3 +104,34 @@ def test_a_stdin_stream_takes_the_climate_rooms_set_point_as_its_campaign_would(
             "monitor.ambient_c=18.0", "stdin")
     assert not (tmp_path / "no").exists()
 
+
+def test_a_labs_manifest_without_split_is_read_by_init_and_its_lack_named_by_run(
+        tmp_path, capsys):
+    # the lab wrote its manifest as its runs: ';', decimal commas, the climate room's set point
+    folder = _lab_folder(tmp_path / "lab")
+    pd.DataFrame({"campaign": [f"L{k}" for k in range(1, 7)],
+                  "file": [f"Lauf_{k:02d}.csv" for k in range(1, 7)],
+                  "ambient_c": 15 + 2.5 * np.arange(6)}).to_csv(
+        folder / "campaigns.csv", sep=";", decimal=",", index=False)
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]"]) == 0
+    config = (tmp_path / "init" / "conf" / "data" / "lab.yaml").read_text()
+    assert "test_fraction: 0.1" in config
+    assert "campaign L6: test" in capsys.readouterr().out
+    # run without a fraction: the column it lacks is named, not 'campaign' (the header read
+    # with ',' named none of them)
+    refused(["run", f"data.path={folder}", f"out={tmp_path / 'run'}", "data.roles.error=[dX]",
+             *FAST], capsys, "campaigns.csv", "column 'split'", "data.test_fraction")
+    refused(["run", f"data.path={folder}", f"out={tmp_path / 'run'}", "data.roles.error=[dX]",
+             "data.delimiter=;", *FAST], capsys, "column 'split'")
+    assert not (tmp_path / "run").exists()
+
+
+def test_a_manifest_saved_under_another_name_is_named_as_one_not_read_as_a_run(tmp_path, capsys):
+    folder = _lab_folder(tmp_path / "lab")
+    pd.DataFrame({"campaign": ["L1", "L2"], "file": ["Lauf_01.csv", "Lauf_02.csv"],
+                  "ambient_c": [15.0, 17.5]}).to_csv(folder / "Versuchsplan.csv", sep=";",
+                                                      decimal=",", index=False)
+    refused(["run", f"data.path={folder}", f"out={tmp_path / 'run'}", "data.roles.error=[dX]",
+             "data.test_fraction=0.34", *FAST], capsys, "Versuchsplan.csv",
+            "rename it campaigns.csv")
+    assert not (tmp_path / "run").exists()
