@@ -135,3 +135,24 @@ def test_a_manifest_saved_under_another_name_is_named_as_one_not_read_as_a_run(t
              "data.test_fraction=0.34", *FAST], capsys, "Versuchsplan.csv",
             "rename it campaigns.csv")
     assert not (tmp_path / "run").exists()
+
+
+def test_runs_joined_in_one_file_are_said_to_pause_where_they_were_joined(tmp_path, capsys):
+    # the lab's other export: every run in one file, wall-clock times, days between runs
+    runs = [pd.read_csv(f, sep=";", decimal=",") for f in sorted(_lab_folder(tmp_path / "lab")
+                                                                  .glob("Lauf_*.csv"))]
+    start = pd.Timestamp("2023-03-01 08:00")
+    joined = pd.concat([pd.DataFrame({"Zeit": (start + pd.Timedelta(days=7 * k) + pd.to_timedelta(
+        r.iloc[:, 0], unit="s")).dt.strftime("%d.%m.%Y %H:%M:%S")}).join(r.iloc[:, 1:])
+        for k, r in enumerate(runs)])
+    joined.to_csv(tmp_path / "alle.csv", sep=";", decimal=",", index=False)
+    assert main(["run", f"data.path={tmp_path / 'alle.csv'}", "data.roles.error=[dX]",
+                 "data.test_fraction=0.2", f"out={tmp_path / 'run'}", *FAST]) == 0
+    err = capsys.readouterr().err
+    assert "alle.csv: one record, yet it pauses 5 time(s)" in err
+    assert "after data row 60)" in err and "One file per run in a folder" in err
+    # a record sampled without such pauses is read without a word about them
+    runs[0].to_csv(tmp_path / "eins.csv", sep=";", decimal=",", index=False)
+    assert main(["run", f"data.path={tmp_path / 'eins.csv'}", "data.roles.error=[dX]",
+                 "data.test_fraction=0.2", f"out={tmp_path / 'one'}", *FAST]) == 0
+    assert "pauses" not in capsys.readouterr().err
