@@ -329,7 +329,7 @@ def test_the_deployed_model_takes_the_labs_names_of_columns_it_did_not_convert(t
     ds, _ = read_dataset(tmp_path / "r.csv", {"roles": {"error": ["X", "Y"]}})
     names = lab_names(OmegaConf.create({"data": {"columns": {}}}), ds)
     # renamed only: the lab's name carries the contract's values; converted ones do not
-    assert names == {"time": "t(s)", "E_Y": "Y(um)", "T_a": "a(°C)"}
+    assert names == {"time": ["t(s)"], "E_Y": ["Y(um)"], "T_a": ["a(°C)"]}
 
 
 def test_init_keeps_every_reading_key_given_and_reads_a_manifest_as_run_does(tmp_path, capsys):

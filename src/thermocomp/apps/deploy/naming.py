@@ -3,7 +3,8 @@
 A record read with ``data.columns`` (``{raw: contract}``, e.g. ``{T0: T_0, "delta L": E_L}``)
 is modelled under contract names; the machine that calls the deployed model
 still sends its logger's names.  The model keeps :func:`lab_names` and reads
-either name of a column (:func:`to_contract`).
+any name of a column (:func:`to_contract`): a record whose runs came from two loggers may
+name one column two ways (``Zeit [s]`` and ``Zeit``), and each is that column.
 """
 
 from __future__ import annotations
@@ -22,30 +23,45 @@ def correction_column(target: str) -> str:
     return CORRECTION_PREFIX + (target[2:] if target.startswith("E_") else target)
 
 
-def lab_names(cfg, ds=None) -> dict[str, str]:
-    """``{contract name: the lab's raw name}``: the one place that knows how a record's
+def lab_names(cfg, ds=None) -> dict[str, list[str]]:
+    """``{contract name: the lab's raw names}``: the one place that knows how a record's
     headers map to contract names -- as the dataset ``ds`` was read (``data.columns`` and
-    ``data.roles``, :func:`thermocomp.core.io.roles.contract_columns`), else ``data.columns``.
-    A column read in another unit (``ch1(mm)`` -> ``E_ch1`` in µm) is left out: under the
-    lab's name it would carry the lab's unit, so the model takes it by its contract name only."""
+    ``data.roles``, :func:`thermocomp.core.io.roles.contract_columns`, every campaign's
+    headers), else ``data.columns``.  A column read in another unit (``ch1(mm)`` -> ``E_ch1``
+    in µm) is left out: under the lab's name it would carry the lab's unit, so the model takes
+    it by its contract name only."""
     columns = dict(cfg.data.get("columns") or {})
     converted = set()
     if ds is not None:
         columns.update(ds.meta.get("column_map") or {})
         converted = set(ds.meta.get("converted") or ())
-    return {str(contract): str(raw) for raw, contract in columns.items()
-            if str(raw) != str(contract) and str(contract) not in converted}
+    names: dict[str, list[str]] = {}
+    for raw, contract in columns.items():
+        if str(raw) != str(contract) and str(contract) not in converted:
+            names.setdefault(str(contract), []).append(str(raw))
+    return names
 
 
-def to_contract(frame: pd.DataFrame, names: Mapping[str, str]) -> pd.DataFrame:
-    """``frame`` with the lab's names of ``names`` (``{contract: raw}``) renamed to contract
-    names; a frame may use either name of a column, not both (two columns for one input)."""
+def raw_names(names: Mapping, contract: str) -> list[str]:
+    """The lab's names of ``contract`` in ``names`` (:func:`lab_names`; a model pickled before
+    a column could have several holds one name as a string)."""
+    raws = names.get(contract, [])
+    return [raws] if isinstance(raws, str) else list(raws)
+
+
+def to_contract(frame: pd.DataFrame, names: Mapping) -> pd.DataFrame:
+    """``frame`` with the lab's names of ``names`` (:func:`lab_names`) renamed to contract
+    names; a frame may use one name of a column, not two (two columns for one input)."""
     if not names:
         return frame
-    both = [f"{raw!r} and {contract!r}" for contract, raw in names.items()
-            if raw in frame.columns and contract in frame.columns]
+    both = []
+    for contract in names:
+        given = [n for n in (*raw_names(names, contract), contract) if n in frame.columns]
+        if len(given) > 1:
+            both.append(" and ".join(map(repr, given)))
     if both:
         raise ContractError(f"the input names one column twice, by the lab's name and the "
-                            f"contract's ({'; '.join(both)}): send one of them")
-    raw_to_contract = {raw: contract for contract, raw in names.items()}
+                            f"contract's or by two of the lab's ({'; '.join(both)}): send one "
+                            "of them")
+    raw_to_contract = {raw: contract for contract in names for raw in raw_names(names, contract)}
     return frame.rename(columns={c: raw_to_contract[c] for c in frame.columns if c in raw_to_contract})

@@ -84,7 +84,7 @@ import thermocomp
 from ...base import signing
 from ...core.context import TIME
 from .adaptive import AdaptiveCompensator
-from .naming import correction_column, to_contract
+from .naming import correction_column, raw_names, to_contract
 from .streaming import EndState, StreamingCompensator
 
 MODEL_NAME = "compensator"          # artifact name of the pyfunc model inside a run
@@ -236,7 +236,8 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     if getattr(streaming, "adapt_", None) is not None:   # reference measurements, when taken
         required.update({t: False for t in streaming.targets_ if t not in required})
     inputs = Schema([ColSpec("double", c, required=r) for c, r in required.items()]
-                    + [ColSpec("double", names[c], required=False) for c in required if c in names])
+                    + [ColSpec("double", raw, required=False) for c in required
+                       for raw in raw_names(names, c)])
     outputs = Schema([ColSpec("double", correction_column(t)) for t in streaming.targets_]
                      + [ColSpec("long", "n_clamped")]
                      + ([ColSpec("string", c) for c in REPORT_COLUMNS]

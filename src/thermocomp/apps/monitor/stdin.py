@@ -11,17 +11,17 @@ from ...core.continuation import campaign_period, chain, preceding
 
 
 def stdin_chain(ds, campaign: str | None, *, ambient_given: bool, reference: str,
-                data_path) -> list[str]:
+                data_path, ambient_c: float | None = None) -> list[str]:
     """The campaigns the stream is warmed on (those ``campaign`` continues, and itself), or
-    none.  A model that reads the campaign's ambient from the manifest (no ambient sensor) has
-    none for a stream of its own; a model that reads changes from each campaign's first
-    sample carries no state over: refused."""
+    none.  A model that reads the campaign's ambient from the manifest (no ambient sensor)
+    needs it given (``ambient_c``, ``monitor.ambient_c``) for a stream of its own; a model that
+    reads changes from each campaign's first sample carries no state over: refused."""
     if campaign is None:
-        if ambient_given:
+        if ambient_given and ambient_c is None:
             raise ConfigError("monitor.input=-: the model reads each campaign's ambient from the "
                               "manifest's ambient_c (no T_amb sensor), which a stream on stdin "
-                              "lacks; record a T_amb sensor, or say the campaign it continues "
-                              "(monitor.continues)")
+                              "lacks; give it (monitor.ambient_c=<°C>), record a T_amb sensor, "
+                              "or say the campaign it continues (monitor.continues)")
         return []
     campaign = str(campaign)
     if campaign not in ds.ids():

@@ -28,6 +28,8 @@ from .timestamps import CLOCK, looks_like_timestamp
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
+HELD_OUT = 0.1    # the test share init writes for a record or runs without test campaigns
+
 _GLOB = re.compile(r"([*?\[])")
 _WORDS = re.compile(r"[\s_.\-]+")
 # a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing)
@@ -46,6 +48,10 @@ def folder_manifest(src: Path, opts) -> pd.DataFrame | None:
     listed = src / MANIFEST
     if opts.encoding == UTF8 and listed.is_file():
         opts = replace(opts, encoding=detect(listed))
+    if opts.test_fraction is None and opts.val_fraction is None:
+        # a lab's manifest without `split` lists train runs: the config holds a tenth out
+        # (data_config), so `split` is as optional here as to a run given that fraction
+        opts = replace(opts, test_fraction=HELD_OUT)
     return read_manifest(src, opts)
 
 
@@ -161,7 +167,7 @@ def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,
     # every run train): nothing is held out unless a fraction says so, and `run` needs a test
     unsplit = manifest is None or not (manifest["split"] == "test").any()
     if unsplit and given.get("test_fraction") is None:
-        config["test_fraction"] = 0.1        # its last tenth (of samples; of runs) is the test
+        config["test_fraction"] = HELD_OUT   # its last tenth (of samples; of runs) is the test
     return config
 
 

@@ -63,6 +63,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     held_out = opts.test_fraction is not None or opts.val_fraction is not None
     files = [] if path.is_file() else campaign_files(root)
     if files:    # a lab's folder of runs: every file a train campaign, in natural name order
+        _check_no_manifest_among(files)
         raw = pd.DataFrame({"campaign": [f.stem for f in files], "file": [f.name for f in files]})
     else:
         raw = _load_manifest(path, opts.delimiter, optional=("split",) if held_out else (),
@@ -93,6 +94,20 @@ def campaign_files(folder: Path) -> list[Path]:
     return sorted(runs or [p for p in files if p.suffix.lower() in TEXT_SUFFIXES], key=natural)
 
 
+def _check_no_manifest_among(files: list[Path]) -> None:
+    """A lab's list of its runs saved under another name (``Versuchsplan.csv``) is no run: its
+    header names ``campaign`` and ``file`` (read otherwise, its ids are "not numeric")."""
+    for f in files:
+        if not is_text(f):
+            continue
+        with open(f, encoding="utf-8", errors="replace") as handle:
+            header = handle.readline().lstrip("\ufeff")
+        if any({"campaign", "file"} <= set(fields(header, sep)) for sep in _OTHER_DELIMITERS):
+            raise ContractError(f"a manifest under another name (its header names campaign and "
+                                f"file): rename it {MANIFEST} to read the folder through it",
+                                file=f)
+
+
 def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
                    encoding: str = UTF8) -> pd.DataFrame:
     if not path.is_file():
@@ -110,7 +125,10 @@ def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
     raw.columns = [c.strip() for c in raw.columns]
     for column in MANIFEST_REQUIRED:
         if column not in raw.columns and column not in optional:
-            raise ContractError("required manifest column missing", file=path, column=column)
+            hint = (" (or data.test_fraction=F: every campaign train, the last F held out)"
+                    if column == "split" else "")
+            raise ContractError(f"required manifest column missing{hint}", file=path,
+                                column=column)
     if raw.empty:
         raise ContractError("manifest lists no campaign", file=path)
     return raw.fillna("").apply(lambda s: s.str.strip())
@@ -119,20 +137,28 @@ def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
 def _manifest_delimiter(header: str, delimiter: str, path: Path, optional: tuple = ()) -> str:
     """``data.delimiter``, or ``,`` (the contract's own format) when the manifest's header
     only parses with it; a header that only parses with another separator is refused with
-    the setting that reads it (instead of a misleading "column 'campaign' missing")."""
+    the setting that reads it (instead of a misleading "column 'campaign' missing"), and one
+    that lacks a required column is split by the separator naming the most of them, so that
+    the message names the column it lacks (a lab's manifest without ``split``)."""
     def parses(sep):
         return set(MANIFEST_REQUIRED) - set(optional) <= set(fields(header, sep))
 
-    if delimiter == AUTO:      # detected: the first separator whose header names the columns
-        return next((sep for sep in (",", *_OTHER_DELIMITERS) if parses(sep)), ",")
+    def named(sep):            # how many required columns the header names with it
+        return len(set(MANIFEST_REQUIRED) & set(fields(header, sep)))
+
+    if delimiter == AUTO:      # detected: the first separator whose header names the columns,
+        # else the one naming the most of them, so that the one missing is named
+        seps = (",", *_OTHER_DELIMITERS)
+        return next((sep for sep in seps if parses(sep)), max(seps, key=named))
     for sep in dict.fromkeys((delimiter, ",")):
         if parses(sep):
             return sep
-    for sep in _OTHER_DELIMITERS:
-        if parses(sep):
-            raise ContractError(f"{MANIFEST} looks {sep!r}-separated: set data.delimiter={sep!r}",
-                                file=path)
-    return delimiter
+    given = max(dict.fromkeys((delimiter, ",")), key=named)
+    other = max(_OTHER_DELIMITERS, key=named)
+    if parses(other) or named(other) > named(given):
+        raise ContractError(f"{MANIFEST} looks {other!r}-separated: set data.delimiter={other!r}",
+                            file=path)
+    return given
 
 
 def _text(path: Path, delimiter: str, encoding: str) -> str:

@@ -23,6 +23,7 @@ from .manifest import RECORD_SUFFIXES
 from .workbook import not_read
 
 MIN_PART_ROWS = 2          # as a campaign: a reference sample and one to score
+PAUSE_PERIODS = 100        # a record silent this many sample periods: runs joined in one file?
 _UNSAFE_ID = re.compile(r"[^\w.\-]+")
 
 
@@ -67,6 +68,7 @@ def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, 
         Campaign id -> (table, report entry with the record's ``rows`` ``[from, to)``).
     """
     stem = record_id(path)
+    _warn_pauses(path, table)
     lead, trail = _batch_edges(table, report, opts)
     counts = _counts(table.num_rows - lead - trail, opts) or {"train": table.num_rows - lead - trail}
     short = {k: v for k, v in counts.items() if v < MIN_PART_ROWS}
@@ -101,6 +103,25 @@ def cut(path: Path, table: pa.Table, report: dict, opts) -> tuple[pd.DataFrame, 
         rows.append({"campaign": cid, "file": path.name, "split": split, "continues": previous})
         previous, start = cid, start + count
     return pd.DataFrame(rows).set_index("campaign"), parts
+
+
+def _warn_pauses(path: Path, table: pa.Table) -> None:
+    """Say where one record stops for hours between samples a minute apart: a lab's runs
+    exported into one file read as one campaign (absolute, every run continuing the last, one
+    ambient level for ATI) where a folder of one file per run reads each as a campaign."""
+    if "time" not in table.column_names or table.num_rows < 3:
+        return
+    steps = np.diff(table.column("time").to_numpy(zero_copy_only=False).astype(float))
+    steps = steps[np.isfinite(steps)]
+    period = float(np.median(steps)) if steps.size else 0.0
+    pauses = np.flatnonzero(steps > PAUSE_PERIODS * period) if period > 0 else []
+    if len(pauses):
+        k = int(pauses[np.argmax(steps[pauses])])
+        logger.warning(f"{path.name}: one record, yet it pauses {len(pauses)} "
+                       f"time(s) for more than {PAUSE_PERIODS} sample periods (the longest "
+                       f"{steps[k] / 3600:.3g} h, after data row {k + 1}): runs joined in one "
+                       "file? One file per run in a folder reads each as a campaign (referenced "
+                       "to its first sample, the last runs held out by data.test_fraction)")
 
 
 def _batch_edges(table: pa.Table, report: dict, opts) -> tuple[int, int]:

@@ -56,6 +56,10 @@ def check_monitor(m: DictConfig) -> None:
     if m.get("continues") is not None and m.input != "-":
         raise ConfigError(f"monitor.continues={m.continues}: applies to a stream on stdin "
                           "(monitor.input=-); a test campaign's predecessor is its manifest's")
+    if m.get("ambient_c") is not None and (m.input != "-" or m.get("continues") is not None):
+        raise ConfigError(f"monitor.ambient_c={m.ambient_c}: applies to a stream on stdin "
+                          "(monitor.input=-) that continues no campaign; a campaign of data.path "
+                          "has its manifest's ambient_c")
     if m.confirm > m.window:
         raise ConfigError(f"monitor.confirm={m.confirm}: must be <= monitor.window={m.window}")
     if m.bands.alarm_c < m.bands.warning_c:

@@ -157,6 +157,7 @@ class Guard:
 class Monitor:
     input: Optional[str] = key(choice(None, "-"))
     continues: Optional[Any] = key(optional(either(text(), integer(0))))
+    ambient_c: Optional[float] = key(optional(number()))
     adaptive: bool = key(BOOLEAN)
     window: int = key(integer(1, at_most=MAX_WINDOW))
     confirm: int = key(integer(1, at_most=MAX_WINDOW))

@@ -17,6 +17,7 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from ...apps.deploy.export import NotExportable, check_exportable, exported_files, not_in_code
+from ...apps.deploy.naming import raw_names
 from ...apps.deploy.report import plain
 from ...base.errors import ConfigError
 from ...base.files import staged_outputs
@@ -83,7 +84,8 @@ def export(cfg: DictConfig) -> dict:
     # the lab's headers of the inputs (`Pt01 [°C]` for T_Pt01): what the machine's signals are
     # called where the model was made; the code reads the contract names
     named = getattr(deployed, "lab_names_", {}) or {}
-    lab = {c: named[c] for c in stream.columns_ if named.get(c, c) != c}
+    lab = {c: raws[0] if len(raws) == 1 else raws
+           for c in stream.columns_ if (raws := raw_names(named, c))}
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
                       not_in_code=left)

@@ -25,6 +25,7 @@ from ...base.paths import resolve
 from ...core import io
 from ...core.context import TIME
 from ...core.continuation import carried_text, lead_ins
+from ...core.io.contract import AMBIENT_C
 from ...core.io.source import check_streamed_columns
 from ...core.io.stdin import read_stream, stdin_text
 from ..builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
@@ -38,7 +39,8 @@ from ..tracking import stage_run
 def _stdin_lead_in(cfg: DictConfig, fixed, ds, stream) -> dict:
     """``{"stdin": lead-in}`` when ``monitor.continues`` names the campaign the stream continues."""
     ids = stdin_chain(ds, cfg.monitor.get("continues"), ambient_given=fixed.ambient_given_,
-                      reference=fixed.compensator.reference, data_path=cfg.data.path)
+                      reference=fixed.compensator.reference, data_path=cfg.data.path,
+                      ambient_c=cfg.monitor.get("ambient_c"))
     if ids:
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
             + carried_text({"stdin": [*ids, "stdin"]}))
@@ -76,6 +78,8 @@ def monitor(cfg: DictConfig) -> dict:
         if stdin:
             opts = io.ReadOptions.from_cfg(data_options(cfg))
             df, counts = read_stream(stdin_text(sys.stdin, opts.encoding), adaptive.columns_, opts)
+            if cfg.monitor.get("ambient_c") is not None:   # as the manifest's ambient_c is carried
+                df.attrs[AMBIENT_C] = float(cfg.monitor.ambient_c)
             streamed, missing = {"stdin": df}, ({"stdin": counts} if counts else {})
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
