@@ -1,5 +1,7 @@
 """One-way ANOVA and the mutual prediction matrix against hand-computed cases."""
 
+import warnings
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -71,3 +73,19 @@ def test_mutual_prediction_fits_one_model_per_campaign_and_no_more():
     camps = {c: _campaign(k, seed=i) for i, (c, k) in enumerate({"A": 1.0, "B": 2.0, "C": 4.0}.items())}
     mats = mutual_prediction(camps, lambda: Compensator(Counted()))
     assert fits == [len(camps[c]) for c in camps] and mats["E_Z"].shape == (3, 3)
+
+
+def test_mutual_prediction_keeps_quiet_about_single_campaign_fallbacks():
+    # each model sees one campaign by design: an ATI model falling back to one model there is
+    # no news (a lab saw "1 training campaign(s)" from a run on 36); a fit on one campaign warns
+    from thermocomp.base.errors import FallbackWarning
+    from thermocomp.core.models.ati import ATIRegressor
+
+    camps = {c: _campaign(1.0 + i, seed=i).assign(T_amb=15.0 + 5 * i) for i, c in enumerate("ABCD")}
+    make = lambda: Compensator(ATIRegressor(MLR()), inputs=["T_1", "T_amb"])   # noqa: E731
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", FallbackWarning)
+        m = mutual_prediction(camps, make)["E_Z"]
+    assert m.shape == (4, 4) and np.isfinite(m.to_numpy()).all()
+    with pytest.warns(FallbackWarning, match="1 training campaign"):
+        make().fit({"A": camps["A"]})

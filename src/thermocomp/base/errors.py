@@ -31,6 +31,12 @@ class ConfigError(ThermocompError):
     """A config value outside what the pipeline accepts; the message names the key."""
 
 
+class FallbackWarning(UserWarning):
+    """A model fell back to a simpler one its data support (ATI with too few ambient levels):
+    news on a run's training data; by design where a model sees one campaign alone (the mutual
+    prediction matrix), which ignores it."""
+
+
 class ContractError(ThermocompError):
     """Input that breaks the data contract.
 

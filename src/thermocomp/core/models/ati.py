@@ -18,7 +18,7 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.cluster import KMeans
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ...base.errors import ContractError, listed
+from ...base.errors import ContractError, FallbackWarning, listed
 from ...base.params import BOOLEAN, NON_NEGATIVE, check_estimator, choice, either, integer, integers, number
 from ..context import (
     AMBIENT_C0,
@@ -313,7 +313,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                                      f"{np.unique(a0.to_numpy()).size} distinct ambient(s): too few to "
                                      f"cross-validate {list(self.candidates)} intervals; one model"}
             # said, not only written into metrics.json: ati=cmeans then scores as ati=none does
-            warnings.warn(f"ATI: {self.elbow_['reason']} (the model ati=none fits)", UserWarning,
+            warnings.warn(f"ATI: {self.elbow_['reason']} (the model ati=none fits)", FallbackWarning,
                           stacklevel=3)
             return 1
         sm, sd = [], []

@@ -5,6 +5,7 @@ Pure core: campaign arrays/DataFrames in, dicts/DataFrames out.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 
 import numpy as np
@@ -12,6 +13,7 @@ import pandas as pd
 from scipy import stats as sps
 from sklearn.base import clone
 
+from ...base.errors import FallbackWarning
 from ..frame import resolve_columns, stack
 from ..metrics import rsd
 from ..model_selection import TrainOnEachCampaign
@@ -87,6 +89,12 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     dict target -> DataFrame (index: trained on, columns: predicted), in the
     order of ``campaigns``.
     """
+    with warnings.catch_warnings():     # one campaign per model: a fallback is the design here
+        warnings.simplefilter("ignore", FallbackWarning)
+        return _mutual_prediction(campaigns, make_compensator, mode, trained_on)
+
+
+def _mutual_prediction(campaigns, make_compensator, mode, trained_on) -> dict[str, pd.DataFrame]:
     ids = list(campaigns)
     rows = _rows(ids, trained_on)
     first = make_compensator()
