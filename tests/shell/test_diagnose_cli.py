@@ -7,7 +7,6 @@ import json
 import pytest
 
 from conftest import LIGHT, thermocomp
-from test_deploy import mlflow_store
 
 pytestmark = pytest.mark.slow
 
@@ -18,7 +17,7 @@ QUIET_EVAL = LIGHT
 def door(door_dataset, tmp_path_factory):
     root, data = tmp_path_factory.mktemp("diag"), door_dataset
     out = root / "out"
-    uri = mlflow_store(root)     # a copy of an empty store: its migrations once per session
+    uri = f"sqlite:///{root / 'mlruns' / 'mlflow.db'}"
     proc = thermocomp("diagnose", f"data.path={data}", f"out={out}", f"tracking_uri={uri}",
                       "diagnose.targets=[E_Y]")
     return data, out, uri, proc
