@@ -10,6 +10,7 @@ import pandas as pd
 import pytest
 
 from conftest import thermocomp
+from test_deploy import mlflow_store
 from thermocomp.shell.cli import main
 
 pytestmark = pytest.mark.slow
@@ -35,9 +36,11 @@ def test_simulate_then_run_writes_valid_metrics(default_dataset, tmp_path):
     assert truth["seed"] == 0
     assert not any(p.suffix == ".json" for p in default_dataset.iterdir())  # truth stays outside
     out = tmp_path / "out"
+    # a copy of an empty store (its migrations once per session): test_tracking's
+    # test_parallel_runs_on_a_fresh_store_are_all_recorded has runs create one
+    uri = mlflow_store(tmp_path)
     db = tmp_path / "mlruns" / "mlflow.db"
-    proc = thermocomp("run", f"data.path={default_dataset}", f"out={out}",
-                      f"tracking_uri=sqlite:///{db}")
+    proc = thermocomp("run", f"data.path={default_dataset}", f"out={out}", f"tracking_uri={uri}")
     assert "RMS before" in proc.stdout
     m = json.loads((out / "metrics.json").read_text())  # strict JSON: no NaN
     _check_metrics_layout(m, ["E_X", "E_Y", "E_Z"])

@@ -6,7 +6,7 @@ import pytest
 from hydra import compose, initialize_config_dir
 from hydra.utils import instantiate
 
-from conftest import LIGHT, UNTRACKED, thermocomp
+from conftest import FAST, LIGHT, UNTRACKED, thermocomp
 from thermocomp.base.paths import conf_dir
 from thermocomp.core.models import ARX, ARXRF
 from thermocomp.core.scoring.evaluation import score
@@ -80,17 +80,19 @@ def test_arx_runs_in_both_modes_through_the_cli(default_dataset, tmp_path, mode)
 
 
 @pytest.mark.slow
-def test_lstm_experiment_and_arx_rf_without_door_run_on_the_default_data(default_dataset, tmp_path):
-    thermocomp("run", "experiment=lstm_yearround", "model.estimator.max_epochs=5",
-               f"data.path={default_dataset}", f"out={tmp_path / 'lstm'}", *UNTRACKED, *LIGHT)
+def test_lstm_experiment_and_arx_rf_without_door_run_on_the_year_round_data(short_dataset, tmp_path):
+    """The default scenario, short (the experiment's wiring, not its figures: one epoch, no
+    validation folds)."""
+    thermocomp("run", "experiment=lstm_yearround", "model.estimator.max_epochs=1",
+               f"data.path={short_dataset}", f"out={tmp_path / 'lstm'}", *FAST)
     assert json.loads((tmp_path / "lstm" / "metrics.json").read_text())["model"] == "lstm"
     # the default data have no door: a named state column that is missing is a clean exit 2 ...
-    proc = thermocomp("run", "model=arx_rf", f"data.path={default_dataset}", f"out={tmp_path / 'rf'}",
-                      *UNTRACKED, *LIGHT, check=False)
+    proc = thermocomp("run", "model=arx_rf", f"data.path={short_dataset}", f"out={tmp_path / 'rf'}",
+                      *FAST, check=False)
     assert proc.returncode == 2 and "S_door" in proc.stderr
     # ... and another state signal can stand in (spindle on/off)
     thermocomp("run", "model=arx_rf", "model.estimator.state_column=S_spindle_rpm",
-               f"data.path={default_dataset}", f"out={tmp_path / 'rf'}", *UNTRACKED, *LIGHT)
+               f"data.path={short_dataset}", f"out={tmp_path / 'rf'}", *FAST)
     assert json.loads((tmp_path / "rf" / "metrics.json").read_text())["model"] == "arx_rf"
 
 

@@ -300,7 +300,12 @@ def test_serve_runs_the_limited_app_and_warns_when_the_network_can_reach_it(scor
 
 
 @pytest.mark.slow
+@pytest.mark.full
 def test_thermocomp_serve_answers_413_and_400_over_http_and_serves_on(scoring, tmp_path):
+    """``full``: test_serve's test_thermocomp_serve_answers_as_in_process_without_an_activated_venv
+    posts the same refused requests (depth, rows, body) to its server started with the same
+    limits, and a block within them after (a server start is ~10 s of CPU); this one serves a
+    model folder instead of the registered champion."""
     import subprocess
 
     import requests

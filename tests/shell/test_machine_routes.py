@@ -12,19 +12,18 @@ from __future__ import annotations
 
 import json
 import shutil
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import free_port, refused
+from conftest import refused
 from test_twin import make_machine
 from thermocomp.shell.cli import _compose, main
+from twin_bench import FAST
+from twin_bench import twin_and_connect as served
 
-FAST = ["track=false", "plots=none"]
 SPEED = 25               # samples per second: 40 ms for the client to answer one (lockstep)
 AGED = ("K21", "K24")    # the last test campaigns: the machine aged most
 
@@ -48,28 +47,8 @@ def replayed(data: Path, out: Path, *args: str) -> dict:
 
 
 def twin_and_connect(data: Path, tmp: Path, *connect_args: str) -> tuple[dict, dict]:
-    """The twin in a subprocess, the client in this one; ``(twin.json, connect.json)``, the
-    first read as soon as the client ends (before the twin's process has)."""
-    port = free_port()
-    # connect.give_up_s=120: the twin's process imports the stack first, which took over
-    # 30 s of wall time on a loaded 2-core machine (connect gave up: exit 2, no defect)
-    server = subprocess.Popen(
-        [sys.executable, "-m", "thermocomp", "twin", f"data.path={data}", f"out={tmp / 'twin'}",
-         f"twin.port={port}", f"twin.speed={SPEED}", "twin.lockstep=true", *FAST],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        code = main(["connect", f"data.path={data}", f"out={tmp / 'connect'}", *FAST,
-                     f"connect.endpoint=opc.tcp://127.0.0.1:{port}", "connect.retry_s=0.2",
-                     "connect.give_up_s=120", *connect_args])
-        twin_json = tmp / "twin" / "twin.json"
-        there = twin_json.is_file()         # what a user reads right after connect
-        _, err = server.communicate(timeout=120)
-    finally:
-        if server.poll() is None:
-            server.kill()
-    assert code == 0 and server.returncode == 0, err
-    assert there, "twin.json was not written when connect ended"
-    return json.loads(twin_json.read_text()), json.loads((tmp / "connect" / "connect.json").read_text())
+    """``(twin.json, connect.json)``, the twin in a thread (test_twin serves it as a process)."""
+    return served(data, tmp, (), connect_args, speed=SPEED)
 
 
 def test_connect_learns_from_the_twins_references_as_replay_does(aged, tmp_path):

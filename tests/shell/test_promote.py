@@ -187,7 +187,13 @@ def _post(port, frame: pd.DataFrame, reset: bool):
     return requests.post(f"http://127.0.0.1:{port}/invocations", json=body, timeout=60)
 
 
+@pytest.mark.full
 def test_served_champion_answers_http_exactly_as_in_process(project, capsys):
+    """``full``: MLflow's own ``mlflow models serve`` of the champion.  test_serve's
+    test_thermocomp_serve_answers_as_in_process_without_an_activated_venv serves the champion
+    (MLflow's scoring server, the user's route) and asserts the same: the answers of blocks
+    that carry the stream on equal the in-process stream's, the same columns, a 400 naming a
+    missing column (a server start is ~10 s of CPU)."""
     root, common, uri, weak, strong = project
     import mlflow
 

@@ -169,7 +169,10 @@ def _post(port, frame: pd.DataFrame, **params):
 
 @pytest.mark.slow
 def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promoted, tmp_path):
+    """... and behind its request limits (serve.max_rows, serve.max_body_mb, the nesting depth):
+    413 / 400 over HTTP, and it serves on (one server for both: it is the costly part)."""
     import mlflow
+    import requests
 
     root, data, uri = promoted
     port = free_port()
@@ -179,7 +182,8 @@ def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promot
     env.pop("MLFLOW_TRACKING_URI", None)
     log = open(tmp_path / "serve.log", "w")
     server = subprocess.Popen([str(BIN / "thermocomp"), "serve", f"tracking_uri={uri}",
-                               f"serve.port={port}"], cwd=tmp_path, env=env, stdout=log,
+                               f"serve.port={port}", "serve.max_rows=20", "serve.max_body_mb=0.01"],
+                              cwd=tmp_path, env=env, stdout=log,
                               stderr=subprocess.STDOUT, start_new_session=True)
     try:
         wait_until_up(port, server, tmp_path / "serve.log", timeout_s=120)
@@ -189,11 +193,13 @@ def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promot
         expected = {"a": local.predict(k4[cols], params={"session": "a", "reset": True}),
                     "b": local.predict(k5[cols], params={"session": "b", "reset": True})}
         got = {"a": [], "b": []}
-        for i, start in enumerate(range(0, len(k4), 40)):     # two machines, interleaved
+        for i, start in enumerate(range(0, len(k4), 20)):     # two machines, interleaved
             for s, df in (("a", k4), ("b", k5)):
-                got[s].append(_post(port, df[cols].iloc[start:start + 40], session=s, reset=i == 0))
+                got[s].append(_post(port, df[cols].iloc[start:start + 20], session=s, reset=i == 0))
+                assert len(got[s][-1]) == len(df.iloc[start:start + 20])   # within the limits
         for s in ("a", "b"):
             served = pd.concat(got[s], ignore_index=True)
+            assert list(served.columns) == ["C_X", "C_Z", "n_clamped", "excluded_inputs", "events"]
             np.testing.assert_allclose(served[["C_X", "C_Z"]].to_numpy(),
                                        expected[s][["C_X", "C_Z"]].to_numpy(), rtol=0, atol=1e-9)
         # the promoted (adaptive) compensator answers a sensor sent as JSON null with a correction
@@ -203,6 +209,27 @@ def test_thermocomp_serve_answers_as_in_process_without_an_activated_venv(promot
         assert np.isfinite(served[["C_X", "C_Z"]].to_numpy(float)).all()
         assert "T_2" in served["excluded_inputs"].iloc[-1].split(",")
         assert any(e["sensor"] == "T_2" for e in json.loads(served["events"].iloc[10]))
+
+        # the limits: refused in a status and a message naming the key, and it serves on
+        def post(body: bytes):
+            return requests.post(f"http://127.0.0.1:{port}/invocations", data=body,
+                                 headers={"Content-Type": "application/json"}, timeout=60)
+
+        assert post(b"[" * 5000 + b"]" * 5000).status_code == 400
+        block = {"dataframe_split": k4[cols].head(21).round(2).to_dict(orient="split"),
+                 "params": {"session": "limits", "reset": True}}
+        block["dataframe_split"].pop("index")
+        many = post(json.dumps(block).encode())
+        assert many.status_code == 413 and "serve.max_rows" in many.json()["message"]
+        big = post(b" " * 20_000)
+        assert big.status_code == 413 and "serve.max_body_mb" in big.json()["message"]
+        assert len(_post(port, k4[cols].head(20), session="limits", reset=True)) == 20
+        # a block without a column the model reads: a client error naming it
+        missing = {"dataframe_split": k4[["time", "T_1", "T_2"]].head(5).to_dict(orient="split"),
+                   "params": {"session": "limits"}}
+        missing["dataframe_split"].pop("index")
+        resp = post(json.dumps(missing).encode())
+        assert resp.status_code == 400 and "T_amb" in resp.text
     finally:
         stop_process_group(server)
         log.close()

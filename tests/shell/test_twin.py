@@ -10,8 +10,6 @@ compensator handles them in ``replay``/``monitor``.
 from __future__ import annotations
 
 import json
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
@@ -23,13 +21,20 @@ pytest.importorskip("asyncua")
 from conftest import free_port, refused  # noqa: E402
 from thermocomp.apps.machine import OffsetLimiter  # noqa: E402
 from thermocomp.shell.cli import main  # noqa: E402
+from twin_bench import FAST  # noqa: E402
+from twin_bench import twin_and_connect as served
 
-FAST = ["track=false", "plots=none"]
 CAMPAIGNS = (("K01", "train"), ("K02", "train"), ("K03", "train"), ("K04", "test"),
              ("K05", "test"))
 ROWS = 60
 SPEED = 20          # samples per second: 50 ms for the client to answer one (lockstep: the
                     # next one as soon as it did)
+
+
+def twin_and_connect(data: Path, tmp: Path, *twin_args: str, connect_args=(),
+                     process: bool = False) -> tuple[dict, dict]:
+    """``(twin.json, connect.json)`` of the twin at SPEED (in a thread, ``process``: its own)."""
+    return served(data, tmp, twin_args, connect_args, speed=SPEED, process=process)
 
 
 def make_machine(root: Path, fault=None, continued: bool = False) -> Path:
@@ -71,29 +76,6 @@ def replayed(data: Path, out: Path) -> dict:
     return json.loads((out / "replay.json").read_text())
 
 
-def twin_and_connect(data: Path, tmp: Path, *twin_args: str, connect_args=()) -> tuple[dict, dict]:
-    """The twin in a subprocess, the client in this one; ``(twin.json, connect.json)``."""
-    port = free_port()
-    # connect.give_up_s=120: the twin's process imports the stack first, which took over
-    # 30 s of wall time on a loaded 2-core machine (connect gave up: exit 2, no defect)
-    server = subprocess.Popen(
-        [sys.executable, "-m", "thermocomp", "twin", f"data.path={data}", f"out={tmp / 'twin'}",
-         f"twin.port={port}", f"twin.speed={SPEED}", "twin.lockstep=true", *FAST, *twin_args],
-        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    try:
-        code = main(["connect", f"data.path={data}", f"out={tmp / 'connect'}",
-                     f"connect.endpoint=opc.tcp://127.0.0.1:{port}", "connect.retry_s=0.2",
-                     "connect.give_up_s=120", *FAST, *connect_args])
-        _, err = server.communicate(timeout=120)
-    finally:
-        if server.poll() is None:
-            server.kill()
-    assert code == 0
-    assert server.returncode == 0, err
-    return (json.loads((tmp / "twin" / "twin.json").read_text()),
-            json.loads((tmp / "connect" / "connect.json").read_text()))
-
-
 def test_twin_connect_compensates_as_replay_streams(tmp_path):
     """A saved model.pkl (connect.model), made deployable as replay makes it."""
     data = make_machine(tmp_path / "data")
@@ -103,7 +85,9 @@ def test_twin_connect_compensates_as_replay_streams(tmp_path):
     assert main(["replay", f"data.path={data}", f"out={tmp_path / 'replay'}", *FAST,
                  f"replay.model={pkl}"]) == 0
     replay = json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"]["E_X"]
-    twin, link = twin_and_connect(data, tmp_path, connect_args=(f"connect.model={pkl}",))
+    # the twin as a user serves it, its own process (the other tests serve it in a thread)
+    twin, link = twin_and_connect(data, tmp_path, connect_args=(f"connect.model={pkl}",),
+                                  process=True)
     assert link["source"] == str(pkl) and link["model"] == "mlr"
     r = twin["targets"]["E_X"]
     assert twin["n_samples"] == 2 * ROWS and link["samples"] == 2 * ROWS
