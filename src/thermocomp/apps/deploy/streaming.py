@@ -181,8 +181,9 @@ def step_block(deployed, X: np.ndarray, time: np.ndarray, after_row=None) -> tup
 
 
 def lag_period(estimators) -> float | None:
-    """The sample period of the models' lag banks (a Hammerstein model's is its lag bank's):
-    a sample without time is one period after the previous one; None without a lag bank."""
+    """The training sample period the models keep for their lags (a lag bank's, a Hammerstein
+    model's lag bank's, a diagnosed model's): a sample without time is one period after the
+    previous one; None where no model keeps one."""
     for est in estimators:
         period = getattr(getattr(est, "lagbank_", est), "sample_period_s_", None)
         if period:

@@ -265,7 +265,7 @@ class Simulator:
         self.b0 = np.asarray(ss.b0, float).reshape(m, n + len(ss.powers))
         self.bd = np.asarray(ss.bd, float).reshape(m, ss.depth, n)
         self.g = np.asarray(ss.g, float).reshape(m, len(ss.taus))
-        self.taus, self.decay = np.asarray(ss.taus, float), np.asarray(ss.lag_decay, float)
+        self.taus = np.asarray(ss.taus, float)
         self.lag_input = np.asarray(ss.lag_input, int)
         self.output = Output(ss)       # guard and reference update: what is learned stays
         self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
