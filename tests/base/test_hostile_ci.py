@@ -47,11 +47,19 @@ def _ci_run(tmp_path: Path, failing: str) -> tuple[subprocess.CompletedProcess, 
 
 
 def test_ci_run_stops_when_the_team_server_does_not_start(tmp_path):
-    """As PostgreSQL failing to come up does: no test runs, the trap still cleans up."""
+    """As PostgreSQL failing to install does: no test runs, the trap still cleans up."""
     proc, log = _ci_run(tmp_path, "start")
     assert proc.returncode != 0, (proc.stdout, proc.stderr, log)
-    assert "team-server start" in log and "team-server stop" in log
+    assert "team-server start --background" in log and "team-server stop" in log
     assert not [c for c in log if c.startswith(("python", "make test"))], log
+
+
+def test_ci_run_fails_when_the_background_start_never_came_up(tmp_path):
+    """The stack comes up beside the tests: its failure fails CI after them, whatever the team
+    test made of it (here ``make`` is a stub that passes)."""
+    proc, log = _ci_run(tmp_path, "wait")
+    assert proc.returncode != 0, (proc.stdout, proc.stderr, log)
+    assert log.index("make test") < log.index("team-server wait") < log.index("team-server stop"), log
 
 
 def test_ci_run_stops_when_the_packages_beside_the_install_fail(tmp_path):

@@ -2,9 +2,9 @@
 
 The server test runs when ``THERMOCOMP_MLFLOW_SERVER`` names a running server
 (``eval "$(.ci/team-server start)"`` starts PostgreSQL + MLflow on loopback;
-``.ci/run`` does it in CI, with ``THERMOCOMP_REQUIRE_SERVER=1``: there a missing server fails the
-test instead of skipping it).  ``THERMOCOMP_PG_URI``, when set, lets the test
-look into the PostgreSQL database itself.
+``.ci/run`` does it in CI, in the background beside the first tests (the test waits for it), with
+``THERMOCOMP_REQUIRE_SERVER=1``: there a missing server fails the test instead of skipping it).
+``THERMOCOMP_PG_URI``, when set, lets the test look into the PostgreSQL database itself.
 """
 
 from __future__ import annotations
@@ -15,6 +15,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 import uuid
 from pathlib import Path
 
@@ -34,6 +35,7 @@ def test_sweep_compare_promote_against_a_postgresql_backed_server(tmp_path):
         if os.environ.get("THERMOCOMP_REQUIRE_SERVER"):   # .ci/run: a skip would leave CI green
             pytest.fail("THERMOCOMP_MLFLOW_SERVER unset: .ci/team-server start did not run or failed")
         pytest.skip('no MLflow server: eval "$(.ci/team-server start)" first')
+    _wait_for_background_start()
     from mlflow import MlflowClient
 
     data = write_small_dataset(tmp_path / "small")
@@ -77,6 +79,23 @@ def test_sweep_compare_promote_against_a_postgresql_backed_server(tmp_path):
             assert cur.fetchone()[0] == 3
             cur.execute("SELECT count(*) FROM model_versions WHERE name = %s", (model_name,))
             assert cur.fetchone()[0] == 1
+
+
+def _wait_for_background_start(timeout_s: float = 300) -> None:
+    """``.ci/team-server start --background`` (CI) brings the stack up beside the first tests:
+    ``THERMOCOMP_TEAM_STATUS`` names the file where it says ``ready`` or ``failed``."""
+    status = os.environ.get("THERMOCOMP_TEAM_STATUS")
+    if not status:
+        return
+    status = Path(status)
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline and not (status.is_file() and status.read_text().strip()):
+        time.sleep(0.5)
+    said = status.read_text().strip() if status.is_file() else f"no word in {timeout_s:.0f} s"
+    if said != "ready":
+        log = Path(str(status).removesuffix(".status") + ".start.log")
+        pytest.fail(f"the team stack did not come up ({said}):\n"
+                    + (log.read_text()[-3000:] if log.is_file() else ""))
 
 
 def _run(*args, cwd, env):
