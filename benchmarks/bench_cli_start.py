@@ -119,8 +119,31 @@ def compose(args: list[str]) -> None:
         overrides.compose(args[1:], args[0])
 
 
+def new_store(root: Path, repeats: int) -> None:
+    """CPU of creating a new SQLite store (what the first tracked command on it pays): a copy
+    of the migrated template, and MLflow's migrations (a template folder empty every time)."""
+    from unittest import mock
+
+    from thermocomp.shell import store
+
+    made = iter(range(10**6))
+
+    def create(templates: Path | None) -> None:
+        folder = root / f"store{next(made)}"
+        folder.mkdir()
+        where = (lambda: templates / folder.name) if templates is not None else store.template_folder
+        with mock.patch.object(store, "template_folder", where):
+            store.create_store(folder / "mlflow.db")
+
+    copied = median_cpu(lambda: create(None), repeats)
+    migrated = median_cpu(lambda: create(root / "templates"), max(3, repeats // 3))
+    print(f"{'new store':<20} {copied * 1000:7.0f}ms from the template, "
+          f"{migrated * 1000:.0f}ms migrated")
+
+
 def main(repeats: int) -> None:
     with tempfile.TemporaryDirectory(prefix="bench-cli-start-") as tmp:
+        new_store(Path(tmp), repeats)
         data = Path(tmp) / "data"
         assert call(["simulate", f"data.path={data}", "track=false", *SHORT]) == 0
         calls = {
