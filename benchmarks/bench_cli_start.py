@@ -1,4 +1,4 @@
-"""CPU of an in-process ``thermocomp`` call, and of its config composition (compose47).
+"""CPU of an in-process ``thermocomp`` call, of its config composition (compose47), and of a new store.
 
 Usage::
 
@@ -38,6 +38,20 @@ that was measured and NOT merged: Hydra's per-compose deep copy of the whole Con
 of a compose), avoided only by patching a private Hydra class (``hydra._internal``'s structured
 config source): too fragile across Hydra releases for ~3 % of a call. With the parse cache
 alone, expect roughly half of the gains in the table.
+
+First, what a new SQLite store costs the command that creates it (``new store``: the first
+tracked command of a project, and every test or sweep on a store of its own), median CPU:
+MLflow's ~70 Alembic migrations, run for every new store until overhead51, against a copy of the
+migrated template (:func:`thermocomp.shell.store.schema_template`, made once per MLflow version
+and user) that MLflow then opens and gives its Default experiment.  Measured on the shared
+2-core machine (load 8-11), fix/overhead51::
+
+    new store            64-74 ms from the template, 1711-1971 ms migrated (3 runs, 3-9 repeats)
+
+As whole commands on the default dataset, each on a fresh store (/usr/bin/time user+sys, main
+9cc6076 -> fix/overhead51, alternated twice): ``run`` 17.3, 11.4 -> 12.3, 14.4 s; the sweep of
+docs/sweeps.md 59.1, 49.4 -> 45.3, 55.7 s.  The ~1.9 s saved is inside the load's noise there
+(a command's CPU varied by 3-6 s between two runs of the same tree).
 """
 
 from __future__ import annotations
@@ -119,8 +133,31 @@ def compose(args: list[str]) -> None:
         overrides.compose(args[1:], args[0])
 
 
+def new_store(root: Path, repeats: int) -> None:
+    """CPU of creating a new SQLite store (what the first tracked command on it pays): a copy
+    of the migrated template, and MLflow's migrations (a template folder empty every time)."""
+    from unittest import mock
+
+    from thermocomp.shell import store
+
+    made = iter(range(10**6))
+
+    def create(templates: Path | None) -> None:
+        folder = root / f"store{next(made)}"
+        folder.mkdir()
+        where = (lambda: templates / folder.name) if templates is not None else store.template_folder
+        with mock.patch.object(store, "template_folder", where):
+            store.create_store(folder / "mlflow.db")
+
+    copied = median_cpu(lambda: create(None), repeats)
+    migrated = median_cpu(lambda: create(root / "templates"), max(3, repeats // 3))
+    print(f"{'new store':<20} {copied * 1000:7.0f}ms from the template, "
+          f"{migrated * 1000:.0f}ms migrated")
+
+
 def main(repeats: int) -> None:
     with tempfile.TemporaryDirectory(prefix="bench-cli-start-") as tmp:
+        new_store(Path(tmp), repeats)
         data = Path(tmp) / "data"
         assert call(["simulate", f"data.path={data}", "track=false", *SHORT]) == 0
         calls = {

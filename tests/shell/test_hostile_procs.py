@@ -27,6 +27,7 @@ from conftest import LIGHT, refused
 from conftest import thermocomp as tc
 from test_deploy import mlflow_store
 from test_hostile import FAST, make_dataset, snapshot
+from thermocomp.shell import store as store_module
 from thermocomp.shell.cli import main
 
 SRC = Path(thermocomp.__file__).resolve().parents[1]
@@ -309,9 +310,12 @@ def test_a_store_creation_cut_short_leaves_no_store_and_the_next_run_creates_it(
     def disk_full(engine):       # the initial tables are there, the migrations fail
         raise sqlite3.OperationalError("database or disk is full")
 
+    templates = tmp_path / "templates"        # no migrated template yet: the migrations run
+    monkeypatch.setattr(store_module, "template_folder", lambda: templates)
     monkeypatch.setattr(db_utils, "_upgrade_db", disk_full)
     assert main(["run", *args, f"out={tmp_path / 'first'}"]) != 0
     assert sorted(p.name for p in store.iterdir() if not p.name.endswith(".lock")) == []
+    assert not list(templates.glob("*.db"))        # nor a template cut short
     monkeypatch.undo()
     capsys.readouterr()
     assert main(["run", *args, f"out={tmp_path / 'second'}"]) == 0

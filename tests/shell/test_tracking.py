@@ -258,3 +258,43 @@ def test_a_lab_column_name_with_units_is_tracked(tmp_path, dataset):
     assert run.info.status == "FINISHED"
     logged = [k for k in run.data.params if k.startswith("data.columns.")]
     assert logged and all("[" not in k and "µ" not in k and "°" not in k for k in logged)
+
+
+def _schema(db) -> dict:
+    """Each table's columns and constraints (their order aside: Alembic's batch migrations
+    write a table's CHECK constraints in an order of their own), and the schema version."""
+    with sqlite3.connect(db) as con:
+        tables = {name: sorted(line.strip().rstrip(",") for line in sql.splitlines())
+                  for name, sql in con.execute("SELECT name, sql FROM sqlite_master "
+                                               "WHERE sql IS NOT NULL")}
+        return {**tables, "version": con.execute("SELECT * FROM alembic_version").fetchall()}
+
+
+def test_a_new_store_is_the_migrated_template_copied_with_its_own_default_experiment(
+        tmp_path, monkeypatch):
+    """Every new store ran MLflow's ~70 Alembic migrations (1.6-2 s of CPU, per test store and
+    per first run of a project); they run once per MLflow version, for the template."""
+    import mlflow.store.db.utils as db_utils
+    from mlflow.store.tracking.sqlalchemy_store import SqlAlchemyStore
+
+    from thermocomp.shell import store
+
+    monkeypatch.setattr(store, "template_folder", lambda: tmp_path / "templates", raising=False)
+    (tmp_path / "first").mkdir()
+    store.create_store(tmp_path / "first" / "mlflow.db")           # makes the template
+    migrated = tmp_path / "migrated" / "mlflow.db"        # as MLflow creates a store itself
+    migrated.parent.mkdir()
+    SqlAlchemyStore(f"sqlite:///{migrated}", migrated.parent.as_uri()).engine.dispose()
+
+    def no_migrations(engine):
+        raise AssertionError("a store with the template at hand ran the migrations")
+
+    monkeypatch.setattr(db_utils, "_upgrade_db", no_migrations)
+    db = tmp_path / "second" / "mlflow.db"
+    db.parent.mkdir()
+    store.create_store(db)
+    assert _schema(db) == _schema(migrated)
+    with sqlite3.connect(db) as con:
+        assert con.execute("SELECT experiment_id, name, artifact_location FROM experiments"
+                           ).fetchall() == [(0, "Default", (db.parent / "0").as_uri())]
+    assert sorted(p.name for p in db.parent.iterdir()) == ["mlflow.db"]   # no temp file left

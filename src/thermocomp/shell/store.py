@@ -6,12 +6,15 @@ use, runs left RUNNING by dead processes, the model registry's lock.
 
 from __future__ import annotations
 
+import getpass
 import hashlib
 import logging
 import os
 import random
 import re
+import shutil
 import socket
+import sqlite3
 import tempfile
 import time
 from contextlib import closing, contextmanager
@@ -55,7 +58,6 @@ def check_schema(uri: str, db: Path, head: bool = False) -> None:
     creation cut short by a version that did not create stores whole leaves it.  With
     ``head`` (once MLflow has failed on it): a schema version other than this MLflow's.
     """
-    import sqlite3
 
     from mlflow.store.tracking.dbmodels.models import Base
 
@@ -86,23 +88,74 @@ def check_schema(uri: str, db: Path, head: bool = False) -> None:
 def create_store(db: Path) -> None:
     """Create the SQLite store ``db`` whole or not at all (called under ``<db>.lock``).
 
-    The schema is migrated in a temp file next to it, renamed into place once complete: a
+    The store is made in a temp file next to it, renamed into place once complete: a
     creation cut short (disk full, SIGKILL) left a half-migrated ``mlflow.db`` that every
-    later run failed on ("table ... already exists").
+    later run failed on ("table ... already exists").  Its schema is a copy of
+    :func:`schema_template` (MLflow's migrations, run once per MLflow version: 1.6-2 s of CPU
+    for every new store before), then MLflow adds its Default experiment as on a migrated file.
     """
-    from mlflow.store.tracking.sqlalchemy_store import SqlAlchemyStore
-
     for stale in db.parent.glob(f".{db.name}.*.creating*"):   # a creator killed outright
         stale.unlink(missing_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{db.name}.", suffix=".creating", dir=db.parent)
+    template = schema_template()
+
+    def copy(tmp: Path) -> None:
+        shutil.copyfile(template, tmp)
+        try:
+            # the Default experiment's artifacts beside the store, not in the working folder
+            _open_store(tmp, db.parent)
+        except Exception:       # a damaged template: the next creation migrates a new one
+            template.unlink(missing_ok=True)
+            raise
+
+    _made_whole(db, copy)
+
+
+def _made_whole(path: Path, make) -> None:
+    """``make(tmp)`` on a temp file beside ``path``, renamed to ``path`` once it returns."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".creating", dir=path.parent)
     os.close(fd)
     try:
-        # the Default experiment's artifacts beside the store, not in the working folder
-        SqlAlchemyStore(f"sqlite:///{tmp}", db.parent.as_uri()).engine.dispose()
-        os.replace(tmp, db)
+        make(Path(tmp))
+        os.replace(tmp, path)
     finally:
         for leftover in (tmp, f"{tmp}-journal"):
             Path(leftover).unlink(missing_ok=True)
+
+
+def _open_store(db: Path, artifacts: Path) -> None:
+    """Let MLflow open ``db`` as a store: an empty file is migrated, a schema is verified, and
+    the Default experiment (artifacts under ``artifacts``) is added if missing."""
+    from mlflow.store.tracking.sqlalchemy_store import SqlAlchemyStore
+
+    SqlAlchemyStore(f"sqlite:///{db}", artifacts.as_uri()).engine.dispose()
+
+
+def template_folder() -> Path:
+    """Where :func:`schema_template` keeps its stores (one per user: the temp folder is shared)."""
+    user = os.getuid() if hasattr(os, "getuid") else getpass.getuser()
+    return Path(tempfile.gettempdir()) / f"thermocomp-{user}-mlflow"
+
+
+def schema_template() -> Path:
+    """An empty store migrated by this MLflow (no experiment in it), made once per MLflow version
+    and user, whole or not at all, under a file lock (parallel first runs all wait for one)."""
+    import mlflow
+    from filelock import FileLock
+
+    folder = template_folder()
+    folder.mkdir(parents=True, exist_ok=True)
+    template = folder / f"store-{mlflow.__version__}.db"
+
+    def migrate(tmp: Path) -> None:
+        _open_store(tmp, folder)
+        with closing(sqlite3.connect(tmp)) as con:     # each store gets its own Default
+            con.execute("DELETE FROM experiments")
+            con.commit()
+
+    with FileLock(f"{template}.lock", timeout=600):
+        if not template.is_file():
+            _made_whole(template, migrate)
+    return template
 
 
 REGISTRY_LOCK_TIMEOUT_S = 600

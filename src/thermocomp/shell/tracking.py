@@ -11,8 +11,9 @@ per sweep and exports its id as ``THERMOCOMP_PARENT_RUN_ID``; every job's stage
 run becomes its child (jobs in other processes inherit the variable).  Parallel
 jobs on one SQLite file contend for its write lock: every MLflow call here is
 retried with exponential backoff on ``database is locked``, and a fresh store is
-created (schema migrations) by one process at a time under a file lock
-(``mlflow.db.lock`` next to it) before any other MLflow call.
+created by one process at a time under a file lock (``mlflow.db.lock`` next to it)
+before any other MLflow call, as a copy of an empty store MLflow's Alembic migrations made once
+per MLflow version and user (:func:`~thermocomp.shell.store.schema_template`).
 
 What a run records: a name made of what differs from the defaults
 (``mlr-pearson-seed1``, :func:`run_name`), the tag ``stage``, the meaningful
