@@ -126,32 +126,13 @@ def _serve(promoted, tmp_path, port):  # noqa: F811
 
 
 @pytest.mark.slow
-def test_serve_is_quiet_and_leaves_no_temp_folder_after_ctrl_c_or_sigterm(promoted, tmp_path):  # noqa: F811
-    # 156 download progress lines, a warning in raw ANSI colour codes, and a
-    # /tmp/thermocomp-serve-* folder left after every stop
-    import os
-    import signal
+def test_serve_leaves_no_temp_folder_after_a_sigterm_while_it_starts(promoted, tmp_path):  # noqa: F811
+    # a /tmp/thermocomp-serve-* folder was left after every stop (Ctrl-C, and that it is quiet:
+    # test_serve's server, which ends with one)
     import time
 
-    import requests
+    from conftest import free_port, stop_process_group
 
-    from conftest import free_port, stop_process_group, wait_until_up
-
-    port = free_port()
-    server, log = _serve(promoted, tmp_path / "ctrl_c", port)
-    try:
-        wait_until_up(port, server, tmp_path / "ctrl_c" / "serve.log", timeout_s=180)
-        body = {"dataframe_split": {"columns": ["time", "T_1", "T_2", "T_amb"],
-                                    "data": [[0, 20, 20, 20], [60, 21, 20.5, 20]]}}
-        assert requests.post(f"http://127.0.0.1:{port}/invocations", json=body, timeout=60).ok
-        os.killpg(server.pid, signal.SIGINT)                  # Ctrl-C: the whole group
-        server.wait(timeout=60)
-    finally:
-        stop_process_group(server) if server.poll() is None else None
-        log.close()
-    said = (tmp_path / "ctrl_c" / "serve.log").read_text()
-    assert "Uvicorn running" in said and "Downloading artifacts" not in said and "\x1b[" not in said
-    assert list((tmp_path / "ctrl_c" / "tmp").iterdir()) == []
     # SIGTERM to `thermocomp serve` alone, while it starts the server (the model folder written)
     server, log = _serve(promoted, tmp_path / "term", free_port())
     try:
