@@ -11,7 +11,6 @@ import pytest
 from conftest import refused, thermocomp
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from test_hostile import FAST, make_dataset
-from test_serve import promoted  # noqa: F401  (a fixture)
 from thermocomp.shell.cli import main
 
 COMPARED = ("compare.csv", "compare.md", "compare.json")
@@ -107,46 +106,6 @@ def test_run_on_a_volumetric_dataset_prints_its_headline(tmp_path, capsys):
             ("ISO 10791-10 A.3, Z on the table: mean slot range", vol["iso_a3"], "range_before",
              "range_after")]:
         assert f"{block[before]:.2f} -> {block[after]:>6.2f}" in shown[label]
-
-
-def _serve(promoted, tmp_path, port):  # noqa: F811
-    """``thermocomp serve`` as a user starts it, its temp dir ``tmp_path / "tmp"``."""
-    import os
-    import subprocess
-
-    from conftest import BIN
-
-    _, _, uri = promoted
-    (tmp_path / "tmp").mkdir(parents=True)
-    log = open(tmp_path / "serve.log", "w")
-    server = subprocess.Popen([str(BIN / "thermocomp"), "serve", f"tracking_uri={uri}",
-                               f"serve.port={port}"], cwd=tmp_path, stdout=log, stderr=subprocess.STDOUT,
-                              env={**os.environ, "TMPDIR": str(tmp_path / "tmp")}, start_new_session=True)
-    return server, log
-
-
-@pytest.mark.slow
-def test_serve_leaves_no_temp_folder_after_a_sigterm_while_it_starts(promoted, tmp_path):  # noqa: F811
-    # a /tmp/thermocomp-serve-* folder was left after every stop (Ctrl-C, and that it is quiet:
-    # test_serve's server, which ends with one)
-    import time
-
-    from conftest import free_port, stop_process_group
-
-    # SIGTERM to `thermocomp serve` alone, while it starts the server (the model folder written)
-    server, log = _serve(promoted, tmp_path / "term", free_port())
-    try:
-        deadline = time.monotonic() + 180
-        while not list((tmp_path / "term" / "tmp").glob("thermocomp-serve-*")):
-            assert server.poll() is None and time.monotonic() < deadline
-            time.sleep(0.05)
-        server.terminate()
-        server.wait(timeout=60)
-    finally:
-        stop_process_group(server) if server.poll() is None else None
-        log.close()
-    assert list((tmp_path / "term" / "tmp").iterdir()) == [], (
-        list((tmp_path / "term" / "tmp").rglob("*")), (tmp_path / "term" / "serve.log").read_text())
 
 
 def test_a_changed_generator_never_replaces_the_default_dataset(tmp_path, monkeypatch, capsys):
