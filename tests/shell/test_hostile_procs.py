@@ -205,7 +205,7 @@ def test_a_run_sigkilled_during_its_figures_leaves_no_worker_and_ends_killed(tmp
     ds = make_dataset(tmp_path / "ds", rows=60)
     uri = mlflow_store(tmp_path)           # migrated already: the child spends its time drawing
     common = [f"data.path={ds}", f"tracking_uri={uri}", "eval.mutual_prediction=false",
-              "eval.ati_baselines=false"]
+              "eval.ati_baselines=false", "eval.validation=false"]   # the figures sooner
     env = {**os.environ, "PYTHONPATH": str(SRC)}
     run = subprocess.Popen([sys.executable, "-m", "thermocomp", "run", *common, "plots=all",
                             f"out={tmp_path / 'killed'}", "name=killed"], cwd=tmp_path, env=env,
@@ -257,7 +257,31 @@ def _loky(children) -> list:
     return [c for c in children if "loky" in " ".join(c.cmdline())]
 
 
+# joblib.Parallel as the stages make it (design, the fleet's groups and simulator), its tasks
+# outliving any test
+PARALLEL = textwrap.dedent("""
+    import time
+    from joblib import delayed
+    from thermocomp.base.lifetime import parallel
+
+    parallel(2)(delayed(time.sleep)(600) for _ in range(4))
+""")
+
+
+def test_joblib_workers_of_a_sigkilled_process_die_with_it():
+    """lifetime.parallel's workers, in a process that imports nothing else (the stage itself,
+    its imports and its own workers' ~5 s of CPU: the next test, full)."""
+    proc = subprocess.Popen([sys.executable, "-c", PARALLEL], env={**os.environ, "PYTHONPATH": str(SRC)},
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    children = _children_when(proc, lambda c: len(_loky(c)) >= 2)
+    assert len(_loky(children)) >= 2, "the process ended before starting its workers"
+    assert _orphans_after_kill(proc, children) == []
+
+
 @pytest.mark.slow
+@pytest.mark.full(reason="a stage's process and its workers importing the stack; in make test: "
+                         "test_joblib_workers_of_a_sigkilled_process_die_with_it (the stages' "
+                         "lifetime.parallel)")
 def test_joblib_workers_of_a_sigkilled_stage_die_with_it(tmp_path):
     design = subprocess.Popen([sys.executable, "-m", "thermocomp", "design", "design.n_machines=2000",
                                "design.n_jobs=2", "track=false", "plots=none",

@@ -11,7 +11,6 @@ import pytest
 from conftest import refused, thermocomp
 from test_deploy import LIGHT_EVAL, mlflow_store, write_small_dataset
 from test_hostile import FAST, make_dataset
-from test_serve import promoted  # noqa: F401  (a fixture)
 from thermocomp.shell.cli import main
 
 COMPARED = ("compare.csv", "compare.md", "compare.json")
@@ -107,65 +106,6 @@ def test_run_on_a_volumetric_dataset_prints_its_headline(tmp_path, capsys):
             ("ISO 10791-10 A.3, Z on the table: mean slot range", vol["iso_a3"], "range_before",
              "range_after")]:
         assert f"{block[before]:.2f} -> {block[after]:>6.2f}" in shown[label]
-
-
-def _serve(promoted, tmp_path, port):  # noqa: F811
-    """``thermocomp serve`` as a user starts it, its temp dir ``tmp_path / "tmp"``."""
-    import os
-    import subprocess
-
-    from conftest import BIN
-
-    _, _, uri = promoted
-    (tmp_path / "tmp").mkdir(parents=True)
-    log = open(tmp_path / "serve.log", "w")
-    server = subprocess.Popen([str(BIN / "thermocomp"), "serve", f"tracking_uri={uri}",
-                               f"serve.port={port}"], cwd=tmp_path, stdout=log, stderr=subprocess.STDOUT,
-                              env={**os.environ, "TMPDIR": str(tmp_path / "tmp")}, start_new_session=True)
-    return server, log
-
-
-@pytest.mark.slow
-def test_serve_is_quiet_and_leaves_no_temp_folder_after_ctrl_c_or_sigterm(promoted, tmp_path):  # noqa: F811
-    # 156 download progress lines, a warning in raw ANSI colour codes, and a
-    # /tmp/thermocomp-serve-* folder left after every stop
-    import os
-    import signal
-    import time
-
-    import requests
-
-    from conftest import free_port, stop_process_group, wait_until_up
-
-    port = free_port()
-    server, log = _serve(promoted, tmp_path / "ctrl_c", port)
-    try:
-        wait_until_up(port, server, tmp_path / "ctrl_c" / "serve.log", timeout_s=180)
-        body = {"dataframe_split": {"columns": ["time", "T_1", "T_2", "T_amb"],
-                                    "data": [[0, 20, 20, 20], [60, 21, 20.5, 20]]}}
-        assert requests.post(f"http://127.0.0.1:{port}/invocations", json=body, timeout=60).ok
-        os.killpg(server.pid, signal.SIGINT)                  # Ctrl-C: the whole group
-        server.wait(timeout=60)
-    finally:
-        stop_process_group(server) if server.poll() is None else None
-        log.close()
-    said = (tmp_path / "ctrl_c" / "serve.log").read_text()
-    assert "Uvicorn running" in said and "Downloading artifacts" not in said and "\x1b[" not in said
-    assert list((tmp_path / "ctrl_c" / "tmp").iterdir()) == []
-    # SIGTERM to `thermocomp serve` alone, while it starts the server (the model folder written)
-    server, log = _serve(promoted, tmp_path / "term", free_port())
-    try:
-        deadline = time.monotonic() + 180
-        while not list((tmp_path / "term" / "tmp").glob("thermocomp-serve-*")):
-            assert server.poll() is None and time.monotonic() < deadline
-            time.sleep(0.05)
-        server.terminate()
-        server.wait(timeout=60)
-    finally:
-        stop_process_group(server) if server.poll() is None else None
-        log.close()
-    assert list((tmp_path / "term" / "tmp").iterdir()) == [], (
-        list((tmp_path / "term" / "tmp").rglob("*")), (tmp_path / "term" / "serve.log").read_text())
 
 
 def test_a_changed_generator_never_replaces_the_default_dataset(tmp_path, monkeypatch, capsys):

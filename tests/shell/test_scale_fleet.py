@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import refused
+from conftest import LIGHT, refused
 from thermocomp.apps.fleet import groups
 from thermocomp.apps.sim.fleet import Fleet
 from thermocomp.base.signing import load
@@ -51,7 +51,7 @@ def test_run_fits_one_model_per_machine_on_its_own_campaigns(fleet, tmp_path):
     # each day zeroed at its first sample, as the fleet scenario says (its days continue each
     # other, so data.reference=auto would read them absolute)
     assert main(["run", f"data.path={path}", "data.group_by=machine", "data.group_jobs=2",
-                 "data.reference=first_sample", "track=false", f"out={out}"]) == 0
+                 "data.reference=first_sample", "track=false", *LIGHT, f"out={out}"]) == 0
     metrics = json.loads((out / "metrics.json").read_text())
     assert sorted(metrics["groups"]) == ["M001", "M002", "M003"] and metrics["group_by"] == "machine"
     table = pd.read_csv(out / "fleet.csv")
