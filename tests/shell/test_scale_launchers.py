@@ -77,10 +77,18 @@ class _Remote:
 
     def remote(self, **kwargs):
         import cloudpickle
+        from hydra.core.plugins import Plugins
+        from hydra.core.singleton import Singleton
 
         shipped = cloudpickle.loads(cloudpickle.dumps(kwargs))
+        # A worker installs the shipped Hydra state, and Hydra then scans its plugins afresh,
+        # which executes their modules again (load_module): in a worker process the first time,
+        # here a second time, leaving this process's plugin classes stale (the next joblib sweep
+        # of the process could not pickle a job: "not the same object as
+        # hydra_plugins.thermocomp_conf.conf_source.parsed"). This process's scan stands in.
+        shipped["singleton_state"]["instances"][Plugins] = Plugins.instance()
         worker_env = self.ray.init_kwargs["runtime_env"]["env_vars"]
-        here = dict(os.environ)
+        here, hydra_here = dict(os.environ), Singleton.get_state()
         os.environ.pop(PARENT_ENV, None)
         os.environ.update(worker_env)
         try:
@@ -89,7 +97,8 @@ class _Remote:
         finally:
             os.environ.clear()
             os.environ.update(here)
-
+            hydra_here["instances"][Plugins] = Plugins.instance()
+            Singleton.set_state(hydra_here)      # the worker's state stays in the worker
 
 def test_a_ray_sweep_hands_its_jobs_the_parent_run_through_the_runtime_environment(
         tmp_path, dataset, monkeypatch):
