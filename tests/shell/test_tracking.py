@@ -281,7 +281,16 @@ def test_a_new_store_is_the_migrated_template_copied_with_its_own_default_experi
 
     monkeypatch.setattr(store, "template_folder", lambda: tmp_path / "templates", raising=False)
     (tmp_path / "first").mkdir()
+    # what creators killed outright (SIGKILL) leave, of a store and of the template
+    import mlflow
+
+    (tmp_path / "templates").mkdir()
+    killed = [tmp_path / "first" / ".mlflow.db.x1.creating",
+              tmp_path / "templates" / f".store-{mlflow.__version__}.db.x2.creating-journal"]
+    for stale in killed:
+        stale.write_bytes(b"half")
     store.create_store(tmp_path / "first" / "mlflow.db")           # makes the template
+    assert not [p for p in killed if p.exists()]
     migrated = tmp_path / "migrated" / "mlflow.db"        # as MLflow creates a store itself
     migrated.parent.mkdir()
     SqlAlchemyStore(f"sqlite:///{migrated}", migrated.parent.as_uri()).engine.dispose()

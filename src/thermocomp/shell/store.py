@@ -58,7 +58,6 @@ def check_schema(uri: str, db: Path, head: bool = False) -> None:
     creation cut short by a version that did not create stores whole leaves it.  With
     ``head`` (once MLflow has failed on it): a schema version other than this MLflow's.
     """
-
     from mlflow.store.tracking.dbmodels.models import Base
 
     try:
@@ -94,8 +93,6 @@ def create_store(db: Path) -> None:
     :func:`schema_template` (MLflow's migrations, run once per MLflow version: 1.6-2 s of CPU
     for every new store before), then MLflow adds its Default experiment as on a migrated file.
     """
-    for stale in db.parent.glob(f".{db.name}.*.creating*"):   # a creator killed outright
-        stale.unlink(missing_ok=True)
     template = schema_template()
 
     def copy(tmp: Path) -> None:
@@ -111,7 +108,10 @@ def create_store(db: Path) -> None:
 
 
 def _made_whole(path: Path, make) -> None:
-    """``make(tmp)`` on a temp file beside ``path``, renamed to ``path`` once it returns."""
+    """``make(tmp)`` on a temp file beside ``path``, renamed to ``path`` once it returns (called
+    under ``path``'s lock: a temp file found beside it is a creator's killed outright)."""
+    for stale in path.parent.glob(f".{path.name}.*.creating*"):
+        stale.unlink(missing_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".creating", dir=path.parent)
     os.close(fd)
     try:
