@@ -83,7 +83,8 @@ def test_sweep_compare_promote_against_a_postgresql_backed_server(tmp_path):
 
 def _wait_for_background_start(timeout_s: float = 300) -> None:
     """``.ci/team-server start --background`` (CI) brings the stack up beside the first tests:
-    ``THERMOCOMP_TEAM_STATUS`` names the file where it says ``ready`` or ``failed``."""
+    ``THERMOCOMP_TEAM_STATUS`` names the file where it says ``ready`` or ``failed``,
+    ``THERMOCOMP_TEAM_LOG`` the start's log (shown when it failed)."""
     status = os.environ.get("THERMOCOMP_TEAM_STATUS")
     if not status:
         return
@@ -93,7 +94,7 @@ def _wait_for_background_start(timeout_s: float = 300) -> None:
         time.sleep(0.5)
     said = status.read_text().strip() if status.is_file() else f"no word in {timeout_s:.0f} s"
     if said != "ready":
-        log = Path(str(status).removesuffix(".status") + ".start.log")
+        log = Path(os.environ.get("THERMOCOMP_TEAM_LOG", os.devnull))
         pytest.fail(f"the team stack did not come up ({said}):\n"
                     + (log.read_text()[-3000:] if log.is_file() else ""))
 
