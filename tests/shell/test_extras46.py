@@ -22,7 +22,8 @@ from test_stats import _campaign
 from thermocomp.core.compensator import Compensator, with_chosen_hyperparameters
 from thermocomp.core.metrics import rsd
 from thermocomp.core.models import ARXRF, LSTM, MLR, Hammerstein, LagBank
-from thermocomp.core.models.lstm import _like_lengths, _Net
+from thermocomp.core.models._lstm_net import _Net
+from thermocomp.core.models.lstm import _like_lengths
 from thermocomp.core.scoring.evaluation import spread_campaigns
 from thermocomp.core.scoring.stats import mutual_prediction
 from thermocomp.shell.cli import main

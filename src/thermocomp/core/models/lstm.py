@@ -3,64 +3,27 @@
 from __future__ import annotations
 
 import copy
+from typing import TYPE_CHECKING
 
 import numpy as np
-import torch
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
-from torch import nn
 
 from ...base.params import NON_NEGATIVE, check_estimator, integer, number
 from ..context import SideInputs, groups_of
 from ..model_selection import CampaignHoldOut
 from ._dynamics import segment_bounds
 
-
-class _Net(nn.Module):
-    """``w·x + c`` plus a linear read-out of the LSTM state carried from the campaign start."""
-
-    def __init__(self, n_inputs: int, hidden_size: int, num_layers: int, dropout: float):
-        super().__init__()
-        self.skip = nn.Linear(n_inputs, 1)
-        self.lstm = nn.LSTM(n_inputs, hidden_size, num_layers=num_layers, batch_first=True,
-                            dropout=dropout if num_layers > 1 else 0.0)
-        self.head = nn.Linear(hidden_size, 1)
-        # the residual starts at zero: the untrained model is the least-squares fit
-        nn.init.zeros_(self.head.weight)
-        nn.init.zeros_(self.head.bias)
-        # forget gates open at start (bias 1): a thermal state is remembered by default
-        for name, p in self.lstm.named_parameters():
-            if name.startswith("bias_ih"):
-                with torch.no_grad():
-                    p[hidden_size:2 * hidden_size].fill_(1.0)
-
-    def forward(self, x, state=None):
-        """``(y, residual, (h, c))`` for ``x`` of shape (batch, time, inputs)."""
-        out, state = self.lstm(x, state)
-        residual = self.head(out).squeeze(-1)
-        return self.skip(x).squeeze(-1) + residual, residual, state
+if TYPE_CHECKING:
+    import torch
 
 
-class _torch_threads:
-    """Run a block with ``torch.set_num_threads(n)`` and restore the previous value."""
-
-    def __init__(self, n: int):
-        self.n = n
-
-    def __enter__(self):
-        self.previous = torch.get_num_threads()
-        torch.set_num_threads(self.n)
-
-    def __exit__(self, *exc):
-        torch.set_num_threads(self.previous)
-
-
-def _padded(values: np.ndarray, bounds, length: int, dtype) -> torch.Tensor:
-    """Rows of each campaign as one padded batch ``(n_campaigns, length, ...)`` (zeros after the end)."""
-    out = np.zeros((len(bounds), length) + values.shape[1:])
-    for b, (start, stop) in enumerate(bounds):
-        out[b, :stop - start] = values[start:stop]
-    return torch.tensor(out, dtype=dtype)
+def __getattr__(name: str):
+    # pickles written before the network moved to _lstm_net name it lstm._Net
+    if name == "_Net":
+        from ._lstm_net import _Net
+        return _Net
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def _like_lengths(bounds, width: int, cells: int = 4_000_000) -> list[list[tuple[int, int]]]:
@@ -175,6 +138,7 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         tags.non_deterministic = False
         return tags
 
+    requires = ("torch",)      # checked with the config (shell.config.checks), imported at fit
     # the weights grow as hidden_size² x num_layers: 4096 x 64 is ~17 GB of them already
     param_rules = {**{name: integer(1) for name in ("chunk", "batch_size", "max_epochs", "patience")},
                    "hidden_size": integer(1, at_most=4096), "num_layers": integer(1, at_most=64),
@@ -192,6 +156,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
     # -- training ------------------------------------------------------------------------
     def _states(self, net, xs: torch.Tensor) -> tuple[torch.Tensor, list]:
         """Outputs over whole campaigns and the state at the start of every piece (no grad)."""
+        from ._lstm_net import torch
+
         chunk, outs, starts, state = int(self.chunk), [], [], None
         with torch.no_grad():
             for k in range(0, xs.shape[1], chunk):
@@ -201,6 +167,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         return torch.cat(outs, dim=1), starts
 
     def fit(self, X, y, context=None):
+        from ._lstm_net import _Net, _padded, _torch_threads, nn, torch
+
         check_estimator(self)
         groups = groups_of(context)
         X, y = validate_data(self, X, y, y_numeric=True)
@@ -286,6 +254,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
 
     def _batch_state(self, starts, batch) -> tuple[torch.Tensor, torch.Tensor]:
         """Initial (h, c) of each piece: zero at a campaign start, else the carried state."""
+        from ._lstm_net import torch
+
         shape = (int(self.num_layers), len(batch), int(self.hidden_size))
         h, c = torch.zeros(shape), torch.zeros(shape)
         chunk = int(self.chunk)
@@ -297,6 +267,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
     @staticmethod
     def _least_squares(net, Xs, ys) -> None:
         """Set the skip path to the least-squares fit of ``ys`` on ``Xs``."""
+        from ._lstm_net import torch
+
         coef = np.linalg.lstsq(np.c_[Xs, np.ones(len(Xs))], ys, rcond=None)[0]
         with torch.no_grad():
             net.skip.weight.copy_(torch.as_tensor(coef[None, :-1]))
@@ -305,6 +277,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
     # -- inference -----------------------------------------------------------------------
     def _outputs(self, Xs: np.ndarray, groups, residual: bool = False) -> np.ndarray:
         """Prediction (or only the network's residual) of the net, standardised, per row."""
+        from ._lstm_net import _padded, _torch_threads, torch
+
         out = np.zeros(len(Xs))
         with _torch_threads(int(self.n_threads)), torch.no_grad():
             # campaigns of like length in one padded batch: one pass of the recurrence for all
@@ -332,6 +306,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
 
     def stream_step(self, x_row, state: dict, context=None) -> tuple[float, dict]:
         """One LSTM step from the carried ``(h, c)``."""
+        from ._lstm_net import _torch_threads, torch
+
         x = (np.asarray(x_row, dtype=float).reshape(-1) - self.x_mean_) / self.x_scale_
         with _torch_threads(int(self.n_threads)), torch.no_grad():
             y, _, hc = self.net_(torch.tensor(x[None, None, :], dtype=torch.float64), state["hc"])

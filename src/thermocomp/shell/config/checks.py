@@ -9,6 +9,7 @@ from numbers import Integral
 from omegaconf import DictConfig, OmegaConf
 
 from ...base.errors import ConfigError
+from ...base.extras import require
 from ...base.params import MAX_COUNT, check_params
 from ...base.paths import resolve
 from ...core import io
@@ -58,6 +59,8 @@ def check_component(component, key: str) -> None:
     if isinstance(component, functools.partial):       # ati.estimator: the base comes later
         component = component.func(*component.args, **component.keywords)
     check_params(component, key)
+    for module in getattr(component, "requires", ()):    # an extra's library, once its values pass
+        require(module)
     # scikit-learn's own estimators (the forest of arx_rf) check their parameters in fit, after
     # the data are read: ask them now (private API, but the one scikit-learn itself uses).
     if not hasattr(component, "param_rules") and hasattr(component, "_parameter_constraints"):
