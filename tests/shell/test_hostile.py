@@ -421,7 +421,12 @@ def test_refused_runs_leave_no_model_or_ingest_report(paths, capsys):
     assert not paths["out"].exists() and not paths["out"].parent.exists()
 
 
-def test_a_refused_run_keeps_the_previous_run_of_the_same_out(paths, capsys):
+def test_a_refused_or_killed_run_keeps_the_previous_run_of_the_same_out(paths, capsys, monkeypatch):
+    """One previous run (with figures), kept whole by a refused run, then by a run killed by
+    SIGTERM and one interrupted by Ctrl-C after its figures were queued: each leaves the out
+    folder, and the temp entries beside it, as that previous run wrote them."""
+    from thermocomp.core import run_report
+
     assert main(["run", *paths["args"], "plots=summary"]) == 0
     mlr = snapshot(paths["out"])
     assert {"model.pkl", "ingest_report.json", "metrics.json", "plots"} <= {
@@ -429,34 +434,28 @@ def test_a_refused_run_keeps_the_previous_run_of_the_same_out(paths, capsys):
 
     refused(["run", *paths["args"], "model=pcr", "plots=summary",
              "+data.split_overrides.K04=train"], capsys, "no 'test' campaign")
-
     assert snapshot(paths["out"]) == mlr
 
+    for signum, said in ((signal.SIGTERM, "run terminated (SIGTERM)"),
+                         (signal.SIGINT, "run interrupted (Ctrl-C)")):
+        def killed(*args, signum=signum, **kwargs):
+            # to this thread, its handler run before returning (os.kill may hand it to a figure
+            # thread, and the main thread then meets it a few bytecodes later: a flaky test)
+            signal.raise_signal(signum)
+            raise AssertionError("not reached")
 
-@pytest.mark.parametrize("signum, said", [(signal.SIGTERM, "run terminated (SIGTERM)"),
-                                          (signal.SIGINT, "run interrupted (Ctrl-C)")])
-def test_a_killed_run_removes_its_temp_files(paths, capsys, monkeypatch, signum, said):
-    from thermocomp.core import run_report
-
-    def killed(*args, **kwargs):
-        # to this thread, its handler run before returning (os.kill may hand it to a figure
-        # thread, and the main thread then meets it a few bytecodes later: a flaky test)
-        signal.raise_signal(signum)
-        raise AssertionError("not reached")
-
-    assert main(["run", *paths["args"], "plots=summary"]) == 0
-    before, handler = snapshot(paths["out"]), signal.getsignal(signal.SIGTERM)
-    monkeypatch.setattr(run_report, "anova", killed)  # after the figures were queued
-    # Ctrl-C as in a terminal: an earlier test or library in this worker may have left SIGINT
-    # ignored or handled otherwise (the run then goes on, as it should: a flaky test)
-    interrupt = signal.signal(signal.SIGINT, signal.default_int_handler)
-    try:
-        assert main(["run", *paths["args"], "plots=summary", "model=pcr"]) == 1  # CLI.md: 0, 2, 1
-    finally:
-        signal.signal(signal.SIGINT, interrupt)
-    assert snapshot(paths["out"]) == before
-    assert said in capsys.readouterr().err
-    assert signal.getsignal(signal.SIGTERM) == handler
+        handler = signal.getsignal(signal.SIGTERM)
+        monkeypatch.setattr(run_report, "anova", killed)  # after the figures were queued
+        # Ctrl-C as in a terminal: an earlier test or library in this worker may have left SIGINT
+        # ignored or handled otherwise (the run then goes on, as it should: a flaky test)
+        interrupt = signal.signal(signal.SIGINT, signal.default_int_handler)
+        try:
+            assert main(["run", *paths["args"], "plots=summary", "model=pcr"]) == 1  # CLI.md: 0, 2, 1
+        finally:
+            signal.signal(signal.SIGINT, interrupt)
+        assert snapshot(paths["out"]) == mlr, said
+        assert said in capsys.readouterr().err
+        assert signal.getsignal(signal.SIGTERM) == handler, said
 
 
 def test_sigterm_while_reading_ends_the_stage_with_status_1_and_says_so(paths, capsys,
