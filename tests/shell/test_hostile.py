@@ -538,27 +538,34 @@ def test_evaluate_refuses_a_model_trained_on_another_ingest(paths, tmp_path, cap
     assert main(["evaluate", *interim, f"out={paths['out']}"]) == 0
 
 
-@pytest.mark.parametrize("stage", ["train", "evaluate", "select", "denoise"])
 @pytest.mark.parametrize("change", ["data.path", "data.split_overrides"])
-def test_a_stage_refuses_an_ingest_of_other_data_or_settings(paths, tmp_path, capsys, stage, change):
+def test_a_stage_refuses_an_ingest_of_other_data_or_settings(paths, tmp_path, capsys, change):
     # before, train and evaluate read whatever data/interim/<name> held: another data.path (or
-    # split) scored the stale dataset under this config, exit 0 and no word of it
+    # split) scored the stale dataset under this config, exit 0 and no word of it.  One ingest
+    # and train, put back as they were before each stage's case.
     interim = [f"data.interim={paths['interim']}", f"model_path={paths['model']}",
                f"data.processed={tmp_path / 'processed'}", f"out={paths['out']}", *FAST]
     ingested = [f"data.path={paths['ds']}", *interim]
     assert main(["ingest", *ingested]) == 0
     assert main(["train", *ingested]) == 0
     model = paths["model"].read_bytes()
+    kept = tmp_path / "kept_interim"
+    shutil.copytree(paths["interim"], kept)
     other = (f"data.path={make_dataset(tmp_path / 'other', gain=6.0)}" if change == "data.path"
              else "data.split_overrides={K01:test}")
-    line = refused([stage, *ingested, other], capsys, "ingest_report.json", f"ingested with {change}=",
-                   "run `thermocomp ingest` with this config first")
-    assert str(paths["ds"]) in line or change != "data.path"
-    assert paths["model"].read_bytes() == model and not paths["out"].exists()
-    assert main(["ingest", *ingested, other]) == 0        # ingested so, it is read
-    if stage == "evaluate":                                # (by a model trained on it)
-        assert main(["train", *ingested, other]) == 0
-    assert main([stage, *ingested, other]) == 0
+    for stage in ("train", "evaluate", "select", "denoise"):
+        for made in (paths["interim"], tmp_path / "processed", paths["out"]):
+            shutil.rmtree(made, ignore_errors=True)
+        shutil.copytree(kept, paths["interim"])
+        paths["model"].write_bytes(model)
+        line = refused([stage, *ingested, other], capsys, "ingest_report.json", f"ingested with {change}=",
+                       "run `thermocomp ingest` with this config first")
+        assert str(paths["ds"]) in line or change != "data.path", stage
+        assert paths["model"].read_bytes() == model and not paths["out"].exists(), stage
+        assert main(["ingest", *ingested, other]) == 0        # ingested so, it is read
+        if stage == "evaluate":                                # (by a model trained on it)
+            assert main(["train", *ingested, other]) == 0
+        assert main([stage, *ingested, other]) == 0, stage
 
 
 @pytest.mark.parametrize("fault", ["dead channel", "mm", "minutes"])
