@@ -421,7 +421,12 @@ def test_refused_runs_leave_no_model_or_ingest_report(paths, capsys):
     assert not paths["out"].exists() and not paths["out"].parent.exists()
 
 
-def test_a_refused_run_keeps_the_previous_run_of_the_same_out(paths, capsys):
+def test_a_refused_or_killed_run_keeps_the_previous_run_of_the_same_out(paths, capsys, monkeypatch):
+    """One previous run (with figures), kept whole by a refused run, then by a run killed by
+    SIGTERM and one interrupted by Ctrl-C after its figures were queued: each leaves the out
+    folder, and the temp entries beside it, as that previous run wrote them."""
+    from thermocomp.core import run_report
+
     assert main(["run", *paths["args"], "plots=summary"]) == 0
     mlr = snapshot(paths["out"])
     assert {"model.pkl", "ingest_report.json", "metrics.json", "plots"} <= {
@@ -429,34 +434,28 @@ def test_a_refused_run_keeps_the_previous_run_of_the_same_out(paths, capsys):
 
     refused(["run", *paths["args"], "model=pcr", "plots=summary",
              "+data.split_overrides.K04=train"], capsys, "no 'test' campaign")
-
     assert snapshot(paths["out"]) == mlr
 
+    for signum, said in ((signal.SIGTERM, "run terminated (SIGTERM)"),
+                         (signal.SIGINT, "run interrupted (Ctrl-C)")):
+        def killed(*args, signum=signum, **kwargs):
+            # to this thread, its handler run before returning (os.kill may hand it to a figure
+            # thread, and the main thread then meets it a few bytecodes later: a flaky test)
+            signal.raise_signal(signum)
+            raise AssertionError("not reached")
 
-@pytest.mark.parametrize("signum, said", [(signal.SIGTERM, "run terminated (SIGTERM)"),
-                                          (signal.SIGINT, "run interrupted (Ctrl-C)")])
-def test_a_killed_run_removes_its_temp_files(paths, capsys, monkeypatch, signum, said):
-    from thermocomp.core import run_report
-
-    def killed(*args, **kwargs):
-        # to this thread, its handler run before returning (os.kill may hand it to a figure
-        # thread, and the main thread then meets it a few bytecodes later: a flaky test)
-        signal.raise_signal(signum)
-        raise AssertionError("not reached")
-
-    assert main(["run", *paths["args"], "plots=summary"]) == 0
-    before, handler = snapshot(paths["out"]), signal.getsignal(signal.SIGTERM)
-    monkeypatch.setattr(run_report, "anova", killed)  # after the figures were queued
-    # Ctrl-C as in a terminal: an earlier test or library in this worker may have left SIGINT
-    # ignored or handled otherwise (the run then goes on, as it should: a flaky test)
-    interrupt = signal.signal(signal.SIGINT, signal.default_int_handler)
-    try:
-        assert main(["run", *paths["args"], "plots=summary", "model=pcr"]) == 1  # CLI.md: 0, 2, 1
-    finally:
-        signal.signal(signal.SIGINT, interrupt)
-    assert snapshot(paths["out"]) == before
-    assert said in capsys.readouterr().err
-    assert signal.getsignal(signal.SIGTERM) == handler
+        handler = signal.getsignal(signal.SIGTERM)
+        monkeypatch.setattr(run_report, "anova", killed)  # after the figures were queued
+        # Ctrl-C as in a terminal: an earlier test or library in this worker may have left SIGINT
+        # ignored or handled otherwise (the run then goes on, as it should: a flaky test)
+        interrupt = signal.signal(signal.SIGINT, signal.default_int_handler)
+        try:
+            assert main(["run", *paths["args"], "plots=summary", "model=pcr"]) == 1  # CLI.md: 0, 2, 1
+        finally:
+            signal.signal(signal.SIGINT, interrupt)
+        assert snapshot(paths["out"]) == mlr, said
+        assert said in capsys.readouterr().err
+        assert signal.getsignal(signal.SIGTERM) == handler, said
 
 
 def test_sigterm_while_reading_ends_the_stage_with_status_1_and_says_so(paths, capsys,
@@ -539,27 +538,34 @@ def test_evaluate_refuses_a_model_trained_on_another_ingest(paths, tmp_path, cap
     assert main(["evaluate", *interim, f"out={paths['out']}"]) == 0
 
 
-@pytest.mark.parametrize("stage", ["train", "evaluate", "select", "denoise"])
 @pytest.mark.parametrize("change", ["data.path", "data.split_overrides"])
-def test_a_stage_refuses_an_ingest_of_other_data_or_settings(paths, tmp_path, capsys, stage, change):
+def test_a_stage_refuses_an_ingest_of_other_data_or_settings(paths, tmp_path, capsys, change):
     # before, train and evaluate read whatever data/interim/<name> held: another data.path (or
-    # split) scored the stale dataset under this config, exit 0 and no word of it
+    # split) scored the stale dataset under this config, exit 0 and no word of it.  One ingest
+    # and train, put back as they were before each stage's case.
     interim = [f"data.interim={paths['interim']}", f"model_path={paths['model']}",
                f"data.processed={tmp_path / 'processed'}", f"out={paths['out']}", *FAST]
     ingested = [f"data.path={paths['ds']}", *interim]
     assert main(["ingest", *ingested]) == 0
     assert main(["train", *ingested]) == 0
     model = paths["model"].read_bytes()
+    kept = tmp_path / "kept_interim"
+    shutil.copytree(paths["interim"], kept)
     other = (f"data.path={make_dataset(tmp_path / 'other', gain=6.0)}" if change == "data.path"
              else "data.split_overrides={K01:test}")
-    line = refused([stage, *ingested, other], capsys, "ingest_report.json", f"ingested with {change}=",
-                   "run `thermocomp ingest` with this config first")
-    assert str(paths["ds"]) in line or change != "data.path"
-    assert paths["model"].read_bytes() == model and not paths["out"].exists()
-    assert main(["ingest", *ingested, other]) == 0        # ingested so, it is read
-    if stage == "evaluate":                                # (by a model trained on it)
-        assert main(["train", *ingested, other]) == 0
-    assert main([stage, *ingested, other]) == 0
+    for stage in ("train", "evaluate", "select", "denoise"):
+        for made in (paths["interim"], tmp_path / "processed", paths["out"]):
+            shutil.rmtree(made, ignore_errors=True)
+        shutil.copytree(kept, paths["interim"])
+        paths["model"].write_bytes(model)
+        line = refused([stage, *ingested, other], capsys, "ingest_report.json", f"ingested with {change}=",
+                       "run `thermocomp ingest` with this config first")
+        assert str(paths["ds"]) in line or change != "data.path", stage
+        assert paths["model"].read_bytes() == model and not paths["out"].exists(), stage
+        assert main(["ingest", *ingested, other]) == 0        # ingested so, it is read
+        if stage == "evaluate":                                # (by a model trained on it)
+            assert main(["train", *ingested, other]) == 0
+        assert main([stage, *ingested, other]) == 0, stage
 
 
 @pytest.mark.parametrize("fault", ["dead channel", "mm", "minutes"])
