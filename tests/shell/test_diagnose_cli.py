@@ -14,8 +14,11 @@ QUIET_EVAL = LIGHT
 
 
 @pytest.fixture(scope="session")
-def door(door_dataset, tmp_path_factory):
-    root, data = tmp_path_factory.mktemp("diag"), door_dataset
+def door(short_door_dataset, tmp_path_factory):
+    """The diagnosis of E_Y on 9 short campaigns with a door (6 train: the acceptance test
+    forward-chains over them, as the CLI says): files, MLflow and reruns do not depend on the
+    size, and the default-size dataset cost ~2x the CPU in each of this module's diagnoses."""
+    root, data = tmp_path_factory.mktemp("diag"), short_door_dataset
     out = root / "out"
     uri = f"sqlite:///{root / 'mlruns' / 'mlflow.db'}"
     proc = thermocomp("diagnose", f"data.path={data}", f"out={out}", f"tracking_uri={uri}",
