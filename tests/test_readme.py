@@ -137,8 +137,9 @@ def page_venv(dest: Path) -> Path:
     real = venv.resolve()
     subprocess.run(["cp", "-al", str(real), str(dest)], check=True)
     # the scripts name the venv they were installed in: point them at the copy's, so its python
-    # runs (and so the src its editable install names)
-    moves = [(f"{v}/".encode(), f"{dest}/".encode()) for v in dict.fromkeys((venv, real))]
+    # runs (and so the src its editable install names); `activate` quotes it whole
+    moves = [(f"{v}{end}".encode(), f"{dest}{end}".encode())
+             for v in dict.fromkeys((venv, real)) for end in ("/", '"')]
     for script in (dest / "bin").iterdir():
         if script.is_symlink() or not script.is_file():
             continue
