@@ -5,8 +5,9 @@ Every fenced ``bash`` block of README.md and of each page of the docs site (:fun
 the order of ``mkdocs.yml``'s ``nav``) is run, in order, by ``bash -euo pipefail`` from the root
 of a scratch clone whose ``.venv`` is NOT activated (``PATH`` has no venv in it), unless an HTML
 comment on the line before it says otherwise.  Each page runs in a clone of its own (one test per
-page, so that xdist spreads them); a docs page's clone first gets what the README's ``make run``
-leaves for the pages, the default dataset (:data:`PREPARE`).  The directives:
+page, so that xdist spreads them; the test process's one copy of the venv pointed at it); a docs
+page's clone first gets what the README's ``make run`` leaves for the pages, the default dataset
+(:data:`PREPARE`).  The directives:
 
 - ``<!-- readme-test: skip — <reason> -->``: not run (a synopsis, the test suite itself, ...);
 - ``<!-- readme-test: background <host>:<port> -->``: started in the background (a server);
@@ -123,19 +124,23 @@ def _project_files() -> list[Path]:
     return [Path(p) for p in out.split("\0") if p and (ROOT / p).is_file()]
 
 
-def fresh_clone(dest: Path) -> Path:
-    """A copy of the working tree with its own venv (hard links of this one, scripts and the
-    editable install pointed at the copy), so nothing of it runs from this checkout."""
-    for rel in _project_files():
-        (dest / rel).parent.mkdir(parents=True, exist_ok=True)
-        shutil.copy2(ROOT / rel, dest / rel)
+def page_venv(dest: Path) -> Path:
+    """A copy of this venv at ``dest`` (hard links of its files) whose scripts run its own python,
+    for the pages' copies of the project (:func:`fresh_clone` points it at one's ``src``).
+
+    Copied once per test process, not per page: ``cp -al`` of its ~80,000 files cost 2.3 s of CPU
+    a page.  The pages of a process run one after another; no command of theirs installs (the
+    stamps below say the install is done, as after ``make install``)."""
     venv = Path(sys.prefix)
-    subprocess.run(["cp", "-al", str(venv), str(dest / ".venv")], check=True)
-    # the scripts name the venv they were installed in (a worktree's venv may be another
-    # checkout's): point them at the copy's, so its python, and so its src, runs
-    moves = [(f"{venv}/".encode(), f"{dest}/.venv/".encode()),
-             (f"{ROOT}/".encode(), f"{dest}/".encode())]
-    for script in (dest / ".venv/bin").iterdir():
+    # the folder itself: a worktree's .venv may be a link to another checkout's venv, whose
+    # scripts and editable install `cp -al` of the link would have the rewrites below change
+    real = venv.resolve()
+    subprocess.run(["cp", "-al", str(real), str(dest)], check=True)
+    # the scripts name the venv they were installed in: point them at the copy's, so its python
+    # runs (and so the src its editable install names); `activate` quotes it whole
+    moves = [(f"{v}{end}".encode(), f"{dest}{end}".encode())
+             for v in dict.fromkeys((venv, real)) for end in ("/", '"')]
+    for script in (dest / "bin").iterdir():
         if script.is_symlink() or not script.is_file():
             continue
         data = script.read_bytes()
@@ -145,14 +150,34 @@ def fresh_clone(dest: Path) -> Path:
             script.unlink()  # hard link: write a new file, never the original's inode
             script.write_bytes(data)
             script.chmod(0o755)
-    for pth in (dest / ".venv/lib").glob("python*/site-packages/__editable__.thermocomp-*.pth"):
-        pth.unlink()
-        pth.write_text(f"{dest / 'src'}\n")
     # the copied files keep their times, so `make` sees the install as current
     for name in (".installed-core", ".installed"):     # in make's order: the core first
-        stamp = dest / ".venv" / name
+        stamp = dest / name
         stamp.unlink(missing_ok=True)
         stamp.touch()
+    return dest
+
+
+def fresh_clone(dest: Path, venv: Path) -> Path:
+    """A copy of the working tree whose ``.venv`` is ``venv`` (:func:`page_venv`), its editable
+    install pointed at the copy's ``src``, so nothing of it runs from this checkout."""
+    for rel in _project_files():
+        (dest / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(ROOT / rel, dest / rel)
+    # src's byte code, as `make install` leaves it (compileall): without it a page's first
+    # command compiled the package again (0.6 s); times kept, so a stale file is compiled anew
+    for pyc in (ROOT / "src").rglob("__pycache__/*.pyc"):
+        (dest / pyc.relative_to(ROOT)).parent.mkdir(exist_ok=True)
+        shutil.copy2(pyc, dest / pyc.relative_to(ROOT))
+    (dest / ".venv").symlink_to(venv)
+    for pth in venv.glob("lib/python*/site-packages/__editable__.thermocomp-*.pth"):
+        pth.unlink()        # a hard link the first time: a new file, never the original's inode
+        pth.write_text(f"{dest / 'src'}\n")
+    # the venv serves every page of the process: this page's commands must run this copy
+    root = subprocess.run([str(dest / ".venv/bin/python"), "-c", "from thermocomp.base.paths "
+                           "import project_root; print(project_root())"], env=_user_env(dest),
+                          capture_output=True, text=True, check=True).stdout.strip()
+    assert Path(root) == dest.resolve(), f"the copy's venv runs the project at {root}, not {dest}"
     subprocess.run(["git", "init", "-q"], cwd=dest, check=True)
     subprocess.run(["git", "add", "-A"], cwd=dest, check=True)
     subprocess.run(["git", "-c", "user.name=t", "-c", "user.email=t@t", "commit", "-qm", "clone"],
@@ -250,7 +275,13 @@ def _files(clone: Path) -> dict[Path, tuple[int, int]]:
     return found
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
+def venv(tmp_path_factory) -> Path:
+    """The pages' venv (:func:`page_venv`), one per test process."""
+    return page_venv(tmp_path_factory.mktemp("venv") / ".venv")
+
+
+@pytest.fixture(scope="session")
 def prepared(tmp_path_factory) -> Path:
     """The files :data:`PREPARE` wrote in the first page's copy, for the next pages' copies."""
     return tmp_path_factory.mktemp("prepared")
@@ -313,11 +344,11 @@ def run_blocks(blocks: list[dict], clone: Path, env: dict, log: list[str]) -> No
 
 
 @pytest.mark.parametrize("page", runnable_pages(), ids=lambda page: str(page.relative_to(ROOT)))
-def test_page_commands_as_written(page, tmp_path, prepared):
+def test_page_commands_as_written(page, tmp_path, venv, prepared):
     """One page's commands in a fresh copy of their own; a docs page's copy holds the default
     dataset first (:data:`PREPARE`), as the README's `make run` leaves it."""
     start, cpu = time.monotonic(), _children_cpu()
-    clone = fresh_clone(tmp_path / "clone")
+    clone = fresh_clone(tmp_path / "clone", venv)
     log = [f"--- (fresh clone) ({time.monotonic() - start:.1f} s wall, {_children_cpu() - cpu:.1f} s CPU "
            "of its commands)"]
     home = tmp_path / "home"

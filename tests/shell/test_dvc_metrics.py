@@ -15,6 +15,7 @@ import pytest
 from conftest import SHORT_KEYS, copy_project, dvc, set_keys, thermocomp
 from test_deploy import mlflow_store
 from thermocomp.core.figures.plotdata import write_compare
+from thermocomp.core.figures.plots import FigurePool, residual_plot
 
 pytestmark = pytest.mark.slow
 STAGES = ("simulate", "ingest", "denoise", "select", "train", "evaluate", "diagnose")
@@ -134,13 +135,18 @@ def test_plots_show_draws_the_data_and_the_figures(repro):
     assert {e["name"] for e in shown.get("errors", [])} <= {"reports/sweep_compare/compare_plot.csv"}
 
 
-def test_residual_and_sweep_plots(repro):
-    """plots=test writes one residual CSV per test campaign and target (x hours); a sweep's
-    comparison (compare_plot.csv) is drawn with the runs ranked on x."""
+def test_residual_and_sweep_plots(repro, monkeypatch):
+    """plots=test writes one residual CSV per test campaign and target (x hours) and asks for
+    its figure; a sweep's comparison (compare_plot.csv) is drawn with the runs ranked on x."""
     dest, env = repro
+    # The figures are queued, not drawn: ~20 PNGs, 10 s of CPU, none of them read here (DVC
+    # draws the CSVs; residual_plot is drawn in tests/core/test_plots.py)
+    asked = []
+    monkeypatch.setattr(FigurePool, "submit", lambda pool, plot, *args, **kw: asked.append((plot, args)))
     # in this process: what evaluate writes is the point here, not its process (DVC's are)
     thermocomp("evaluate", "plots=test", "track=false", "eval.mutual_prediction=false", cwd=dest,
                env={"THERMOCOMP_ROOT": str(dest)})
+    residual_figures = {(args[4], args[3]) for plot, args in asked if plot is residual_plot}
     table = pd.DataFrame({"run_id": ["a" * 32, "b" * 32, "c" * 32], "model": ["mlr", "pcr", "arx"],
                           "select": ["all", "all", "pearson"], "val_rmse": [1.0, 1.2, 1.5],
                           "rmse": [1.1, 1.3, 1.4]})
@@ -150,6 +156,7 @@ def test_residual_and_sweep_plots(repro):
     data = shown["data"]
     test_ids = pd.read_csv(dest / "data/raw/yearround_spindle/campaigns.csv").query(
         "split == 'test'")["campaign"]
+    assert residual_figures == {(cid, t) for cid in test_ids for t in TARGETS}
     for cid in test_ids:
         (res,) = data[f"reports/default/plots/residuals/{cid}_E_Z.csv"]
         assert res["content"]["encoding"]["x"]["field"] == "hours"
