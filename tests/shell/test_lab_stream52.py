@@ -68,3 +68,40 @@ def test_a_labs_header_is_an_ascii_c_string_of_its_bytes(text, want):
     from thermocomp.apps.deploy.export.c import c_string
 
     assert c_string(text) == want and c_string(text).isascii()
+
+
+def test_the_served_model_reads_a_labs_wall_clock_times_as_replay_does(tmp_path):
+    # before: "could not convert string to float: '01.03.2023 08:00:00'" (and MLflow's schema,
+    # a double, refused the column): the lab converted its logger's clock to seconds first
+    import mlflow
+    from mlflow.exceptions import MlflowException
+
+    from thermocomp.apps.deploy.naming import lab_names
+    from thermocomp.apps.deploy.pyfunc import save_compensator
+
+    runs = _runs(3)
+    for k, run in enumerate(runs):
+        start = pd.Timestamp("2023-03-01 08:00") + pd.Timedelta(days=7 * k)
+        run.insert(0, "Zeit", (start + pd.to_timedelta(run.pop("Zeit [s]"), unit="s"))
+                   .dt.strftime("%d.%m.%Y %H:%M:%S"))
+    path = _long(tmp_path / "alle.csv", runs)
+    common = (f"data.path={path}", "data.roles.error=[dX]", "data.roles.campaign=Lauf",
+              "data.test_fraction=0.34")
+    assert main(["run", *common, "model=lagbank", *FAST, f"out={tmp_path / 'run'}"]) == 0
+    cfg = _compose(*common, "model=lagbank", "monitor.adaptive=false", "track=false")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    stream = deploy_stream(cfg, load_model(tmp_path / "run" / "model.pkl"),
+                           {c: ds.campaigns[c] for c in train_ids})
+    assert "time" in stream.columns_ or stream.time_required_      # the lags read the clock
+    stream.lab_names_ = lab_names(cfg, ds)
+    served = mlflow.pyfunc.load_model(str(save_compensator(stream, tmp_path / "served")))
+    want = -replay(stream, ds.campaigns["Lauf_3"])[stream.targets_].to_numpy(float)
+    raw = pd.read_csv(path, sep=";", decimal=",")
+    rows = raw[raw["Lauf"] == 3].drop(columns="Lauf")
+    assert rows["Zeit"].iloc[0] == "15.03.2023 08:00:00"
+    first = served.predict(rows.iloc[:12], params={"session": "m", "reset": True})
+    rest = served.predict(rows.iloc[12:], params={"session": "m"})    # the campaign goes on
+    got = pd.concat([first, rest])[["C_dX"]].to_numpy(float)
+    assert np.abs(got - want).max() <= 1e-9
+    with pytest.raises(MlflowException, match="time of day without its date"):
+        served.predict(rows.assign(Zeit=rows["Zeit"].str[-8:]), params={"reset": True})
