@@ -501,17 +501,15 @@ def run_counter(path: Path, opts: ReadOptions) -> str | None:
 
 def _run_counter(columns: dict, renamed: dict) -> str | None:
     """The header of the first column read as a temperature that looks like a run counter (not
-    one whose header gives a unit: a temperature logged in whole degrees)."""
+    one whose header gives a unit: a temperature logged in whole degrees); a file's own names
+    only (``data.roles``, ``data.columns``: a contract-named file is not looked at)."""
     for raw, name in renamed.items():
-        if role(name) == "T" and name in columns and split_unit(raw)[1] is None and looks_like_run_counter(
-                _values_of(columns[name]), raw):
+        column = columns.get(name)
+        if role(name) != "T" or column is None or column.null_count or split_unit(raw)[1]:
+            continue
+        if looks_like_run_counter(column.to_numpy(zero_copy_only=False), raw):
             return raw
     return None
-
-
-def _values_of(column) -> np.ndarray:
-    return column.to_numpy(zero_copy_only=False).astype(float) if column.null_count == 0 else \
-        np.array([np.nan])
 
 
 def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:

@@ -86,7 +86,9 @@ def looks_like_run_counter(values: np.ndarray, header: str) -> bool:
     :data:`MIN_RUN_ROWS` rows on average, and either stepping by one or under a header that says
     so (:data:`RUN_WORDS`: ``Lauf``, ``Run``, ``Versuch``, ``run_id``, ``Messung`` ...)."""
     values = np.asarray(values, dtype=float)
-    if values.size < 2 * MIN_RUN_ROWS or not np.isfinite(values).all():
+    if values.size < 2 * MIN_RUN_ROWS or values[0] != np.round(values[0]) or values[-1] <= values[0]:
+        return False            # (the look at every value is for what passes this one)
+    if not np.isfinite(values).all():
         return False
     steps = np.diff(values)
     if not (values == np.round(values)).all() or (steps < 0).any():
