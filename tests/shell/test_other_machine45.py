@@ -177,7 +177,9 @@ def test_the_exported_code_says_the_labs_name_of_each_input(tmp_path):
     thermocomp("export", *data, f"export.model={tmp_path / 'run' / 'model.pkl'}", "export.format=c",
                "track=false", f"out={tmp_path / 'code'}")
     exported = json.loads((tmp_path / "code" / "compensator.json").read_text())
-    assert exported["provenance"]["lab_names"] == {"T_Pt01": "Pt01 [°C]", "T_amb": "Raum [°C]"}
+    # (and of the time and the error: the code reads either name, session 52)
+    assert exported["provenance"]["lab_names"] == {"T_Pt01": "Pt01 [°C]", "T_amb": "Raum [°C]",
+                                                   "time": "Zeit [s]", "E_dX": "dX [µm]"}
     header = (tmp_path / "code" / "compensator.h").read_text()
     assert "T_Pt01* degC" in header and "(the lab's 'Pt01 [\\xb0C]')" in header
     assert header.isascii()

@@ -5,7 +5,8 @@ default (``monitor.adaptive=true``), an :class:`~thermocomp.apps.deploy.Adaptive
 (the same stream behind sensor surveillance and a correction guard).
 
 Input: a table of sensor readings (declared ``T_``/``S_`` inputs, all float;
-an optional ``time`` column in s), one row per sample, in time order.
+an optional ``time`` column in s, or as wall-clock timestamps, read as seconds since the
+campaign's first), one row per sample, in time order.
 Output: the correction per axis in µm, ``C_<axis> = -Ê_<axis>`` (what to add
 to the axis command to cancel the predicted thermal error ``E_<axis>``), and
 ``n_clamped``, the number of inputs of that row clamped to the training envelope.
@@ -78,11 +79,13 @@ from mlflow.exceptions import MlflowException
 from mlflow.models import ModelSignature
 from mlflow.protos.databricks_pb2 import INVALID_PARAMETER_VALUE
 from mlflow.types import ColSpec, ParamSchema, ParamSpec, Schema
+from mlflow.types.schema import AnyType
 
 import thermocomp
 
 from ...base import signing
 from ...core.context import TIME
+from ...core.io.stdin import since, stream_stamps
 from .adaptive import AdaptiveCompensator
 from .naming import correction_column, raw_names, to_contract
 from .streaming import EndState, StreamingCompensator
@@ -146,7 +149,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         return ends[campaign]
 
     def _state(self, session: str, reset: bool, continues: str = "", ambient_c=None) -> list:
-        """``[stream state, time shift, learned]`` of ``session``, most recent last: a fresh one
+        """``[stream state, time shift, learned, clock origin]`` of ``session``, most recent last
+        (the origin: the campaign's first timestamp, ns, once a block gave one): a fresh one
         when new or reset (with the campaign's ``ambient_c``, for a model that reads no ambient
         sensor); the end state of campaign ``continues`` when given (its time shift, an
         :class:`EndState` until the session's first row fixes it).  ``learned`` (what the
@@ -154,10 +158,10 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         learned = self._sessions[session][2] if session in self._sessions else self._learned0
         if continues:
             end = self._end_state(continues)
-            self._sessions[session] = [copy.deepcopy(end.state), end, learned]
+            self._sessions[session] = [copy.deepcopy(end.state), end, learned, None]
         elif reset or session not in self._sessions:
             self.streaming.reset(float("nan") if ambient_c is None else float(ambient_c))
-            self._sessions[session] = [self.streaming._snapshot(), 0.0, learned]
+            self._sessions[session] = [self.streaming._snapshot(), 0.0, learned, None]
         while len(self._sessions) > MAX_SESSIONS:
             self._sessions.popitem(last=False)
         self._sessions.move_to_end(session)
@@ -175,6 +179,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         with self._lock:
             state = self._state(session, bool(params.get("reset")), str(params.get("continues") or ""),
                                 params.get("ambient_c"))
+            if TIME in frame.columns:
+                frame = _on_campaign_clock(frame, state)
             if isinstance(state[1], EndState):
                 # a continuing campaign's clock follows its predecessor's last sample by one
                 # period, as `run` joins them (the client's own clock may restart at 0)
@@ -209,6 +215,24 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         return out
 
 
+def _on_campaign_clock(frame: pd.DataFrame, state: list) -> pd.DataFrame:
+    """``frame`` with wall-clock times (a lab's logger: ``07.01.2023 08:45:00``, ISO 8601) as
+    seconds since its campaign's first (the session's origin, kept over its blocks until a
+    reset), as ``run`` and ``replay`` read a campaign's timestamps; seconds as they are."""
+    try:
+        stamps = stream_stamps(frame[TIME])
+    except ValueError as exc:        # ContractError: a time that is no time
+        raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
+    if stamps is None:
+        return frame
+    if isinstance(stamps, pd.Series):      # h:mm:ss elapsed since the start
+        return frame.assign(**{TIME: stamps.to_numpy(float)})
+    ns, valid = stamps
+    if state[3] is None:
+        state[3] = int(ns[np.argmax(valid)])
+    return frame.assign(**{TIME: since(ns, valid, state[3])})
+
+
 def references(frame: pd.DataFrame, targets) -> np.ndarray | None:
     """The measured errors a block carries (rows x targets, NaN where none), or None."""
     if not any(t in frame.columns for t in targets):
@@ -235,8 +259,9 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
     required[TIME] = streaming.time_required_ and not names
     if getattr(streaming, "adapt_", None) is not None:   # reference measurements, when taken
         required.update({t: False for t in streaming.targets_ if t not in required})
-    inputs = Schema([ColSpec("double", c, required=r) for c, r in required.items()]
-                    + [ColSpec("double", raw, required=False) for c in required
+    # the time in seconds or as wall-clock timestamps (a lab's logger's), under either name
+    inputs = Schema([ColSpec(_kind(c), c, required=r) for c, r in required.items()]
+                    + [ColSpec(_kind(c), raw, required=False) for c in required
                        for raw in raw_names(names, c)])
     outputs = Schema([ColSpec("double", correction_column(t)) for t in streaming.targets_]
                      + [ColSpec("long", "n_clamped")]
@@ -247,6 +272,10 @@ def signature(streaming: StreamingCompensator | AdaptiveCompensator) -> ModelSig
                                                ParamSpec("session", "string", DEFAULT_SESSION),
                                                ParamSpec("continues", "string", ""),
                                                ParamSpec("ambient_c", "double", None)]))
+
+
+def _kind(column: str):
+    return AnyType() if column == TIME else "double"
 
 
 # Third-party distributions the core imports when a compensator is unpickled (the package

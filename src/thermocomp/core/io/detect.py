@@ -3,7 +3,9 @@ roles proposed from the units in the headers, and the data config that reads it 
 in: the data keys as given, the defaults of ``conf/data/default.yaml``).
 
 Roles not given (``data.roles.*``) are proposed from the units in the headers (µm/mm: an error,
-°C/K/°F: a temperature, rpm, %, ...: a state); a text column is proposed ``ignore``.
+°C/K/°F: a temperature, rpm, %, ...: a state); a text column is proposed ``ignore``; in one file,
+a column that would be a temperature but counts runs (:mod:`.runs`) is proposed
+``data.roles.campaign``.
 """
 
 from __future__ import annotations
@@ -18,9 +20,10 @@ from .contract import MANIFEST, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
 from .manifest import is_text, read_manifest
-from .options import ROLE_PATTERNS
+from .options import ROLE_PATTERNS, RUN_ROLE
+from .read import run_counter
 from .record import check_record_file
-from .roles import STATE_UNITS, UNITS, date_and_time_of_day, named_as_time, split_unit
+from .roles import RUN, STATE_UNITS, UNITS, date_and_time_of_day, named_as_time, split_unit
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet
@@ -108,6 +111,8 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
     ambient); a date column followed by a time of day: the time, ``[date, time of day]``."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
+    if opts.roles.get(RUN_ROLE):
+        roles[RUN_ROLE] = opts.roles[RUN_ROLE]
     if roles["time"] == "auto":               # a date and a time of day: said, as one time
         roles["time"] = date_and_time_of_day(header, first) or "auto"
     if any(roles[k] for k in ROLE_PATTERNS):
@@ -132,6 +137,20 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return roles
+
+
+def proposed_campaign(src: Path, roles: dict, opts) -> dict:
+    """``roles`` with ``campaign`` proposed where ``src`` is one file (not a folder's) and, read
+    with ``roles``, a column it would make a temperature counts runs; as given otherwise (a
+    file that does not read is refused by the read that follows, naming why)."""
+    if not src.is_file() or roles.get(RUN_ROLE):
+        return roles
+    try:
+        counter = run_counter(src, replace(opts, roles=roles))
+    except ContractError:
+        return roles
+    return roles if counter is None else {**roles, RUN_ROLE: _GLOB.sub(r"[\1]",
+                                                                         split_unit(counter)[0])}
 
 
 def check_an_error_is_named(header: list[str], first: dict, roles: dict, opts, file: Path) -> None:
@@ -191,7 +210,8 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
         role = plan.roles.get(h, "ignore") if contract else "ignore (left out)"
         if plan.roles.get(h) == "empty":
             h, role = "(no header)", "empty (left out)"
-        lines.append(f"  {h:<{width}}  {role:<12} {'time' if contract == CLOCK else contract or '-'}")
+        shown = {CLOCK: "time", RUN: "(each run a campaign)"}.get(contract, contract or "-")
+        lines.append(f"  {h:<{width}}  {role:<12} {shown}")
     for cid in ds.ids():
         lines.append(f"campaign {cid}: {ds.manifest.loc[cid, 'split']}, "
                      f"{report['campaigns'][cid]['rows']} rows")

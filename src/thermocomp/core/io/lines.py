@@ -21,16 +21,19 @@ from .encoding import text_codec
 @dataclass(frozen=True)
 class Lines:
     """The data rows of one CSV file (``skip``: the lines above the first, as the reader skips
-    them; ``empty_left_out``: rows of empty cells are not counted, as after they were left out)."""
+    them; ``empty_left_out``: rows of empty cells are not counted, as after they were left out;
+    ``shift``: the data rows above the part whose rows are counted, one run of a long file)."""
 
     path: Path
     delimiter: str
     encoding: str
     skip: int
     empty_left_out: bool = False
+    shift: int = 0
 
     def line(self, row: int) -> int | None:
         """The file line of the 1-based data ``row`` (None: not in the file)."""
+        row += self.shift
         with open(self.path, newline="", encoding=text_codec(self.encoding),
                   errors="replace") as f:
             for _ in range(self.skip):
@@ -51,7 +54,7 @@ class Lines:
 
     def at(self, row: int) -> str:
         """``line 13 (data row 9)``: where a warning points."""
-        return position(row, self.line(row))
+        return position(row + self.shift, self.line(row))
 
     def located(self, exc: ContractError) -> ContractError:
         """``exc`` naming the file line of its row too (as it is when it names none, or
@@ -59,8 +62,8 @@ class Lines:
         if exc.row is None or exc.line is not None or exc.file is None or \
                 Path(exc.file) != self.path:
             return exc
-        return ContractError(exc.reason, file=exc.file, column=exc.column, row=exc.row,
-                             line=self.line(exc.row))
+        return ContractError(exc.reason, file=exc.file, column=exc.column,
+                             row=exc.row + self.shift, line=self.line(exc.row))
 
 
 def at(lines: Lines | None) -> Callable[[int], str]:

@@ -18,6 +18,7 @@ from .separators import NO_BREAK_SPACES, any_number
 TIME_FORMATS = ("auto", "seconds", "iso8601", "elapsed")
 AUTO = "auto"                     # data.delimiter / data.decimal / data.roles.time: detected
 ROLE_PATTERNS = ("error", "state", "ambient", "ignore")   # data.roles.<key>: glob patterns
+RUN_ROLE = "campaign"     # data.roles.campaign: the one column numbering a long file's runs
 SPLIT_ORDER = ("train", "val", "test")
 ROLE_ORDER = ("T", "E", "S")
 MISSING_MODES = ("repair", "keep", "keep_errors")
@@ -177,14 +178,19 @@ def _timezone(cfg: Mapping) -> str | None:
 
 def _roles(cfg: Mapping) -> dict:
     """``data.roles`` as ``{error, state, ambient, ignore: list of patterns, time: name|auto
-    or [date, time of day] (two headers joined into one timestamp)}``."""
+    or [date, time of day] (two headers joined into one timestamp), campaign: a header (or
+    pattern) whose value numbers the runs of one long file, or None}``."""
     value = cfg.get("roles") or {}
     if not hasattr(value, "items"):
         raise ContractError(f"data.roles must be a mapping, got {value!r}")
-    unknown = [k for k in value if k not in (*ROLE_PATTERNS, "time")]
+    unknown = [k for k in value if k not in (*ROLE_PATTERNS, "time", RUN_ROLE)]
     if unknown:
         raise ContractError(f"data.roles.{unknown[0]}: unknown role; roles: "
-                            f"{', '.join((*ROLE_PATTERNS, 'time'))}")
+                            f"{', '.join((*ROLE_PATTERNS, 'time', RUN_ROLE))}")
+    run = value.get(RUN_ROLE)
+    if run is not None and not (isinstance(run, str) and run.strip()):
+        raise ContractError(f"data.roles.{RUN_ROLE} must be one header (or a pattern matching "
+                            f"one), the column numbering the runs, got {run!r}")
     out = {}
     for key in ROLE_PATTERNS:
         patterns = value.get(key) or []
@@ -202,6 +208,8 @@ def _roles(cfg: Mapping) -> dict:
         out["time"] = time
     else:
         out["time"] = AUTO if time is None else str(time)
+    if run is not None:
+        out[RUN_ROLE] = run.strip()
     return out
 
 

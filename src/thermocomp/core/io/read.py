@@ -76,11 +76,13 @@ from .contract import (
     role,
 )
 from .lines import Lines
-from .manifest import RECORD_SUFFIXES, read_manifest
-from .options import ROLE_ORDER, ReadOptions
+from .manifest import RECORD_SUFFIXES, _apply_split_overrides, read_manifest
+from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
-from .starts import campaign_starts
+from .roles import RUN, split_unit
+from .runs import looks_like_run_counter, run_blocks, run_hint, run_values
+from .starts import _utc, campaign_starts
 from .steps import check_unit_steps
 from .tables import _load_csv, _load_parquet, _ordered, _values, parquet
 from .values import (
@@ -184,12 +186,33 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
 
 def _read_file(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:
     """:func:`read_campaign` of a CSV or Parquet file."""
+    columns, renamed, rescaled, lines = _loaded(path, opts)
+    if RUN in columns:       # (a folder's file, a train file repaired: no long file to split)
+        raise ContractError(f"data.roles.{RUN_ROLE} splits the one file data.path names into "
+                            "its runs; a folder's files are a campaign each", file=path)
+    return _assembled(columns, renamed, rescaled, path, opts, lines)
+
+
+def _loaded(path: Path, opts: ReadOptions) -> tuple:
+    """A CSV or Parquet file's columns (contract names), renames, conversions and lines."""
     load = _load_parquet if path.suffix.lower() == ".parquet" else _load_csv
-    columns, renamed, rescaled, lines = load(path, opts)
+    return load(path, opts)
+
+
+def _assembled(columns: dict, renamed: dict, rescaled: list, path: Path, opts: ReadOptions,
+               lines: Lines | None, first_row: int = 0) -> tuple[pa.Table, dict]:
+    """A campaign's loaded columns checked (:func:`_checked`) as a table, with its report;
+    ``first_row``: the data rows above it in ``path`` (one run of a long file), for messages."""
+    if lines is not None:
+        lines = replace(lines, shift=first_row)
     try:
         report = _checked(columns, path, opts, lines)
     except ContractError as exc:        # a CSV file's row: its line too
-        raise (exc if lines is None else lines.located(exc)) from None
+        if lines is not None:
+            raise lines.located(exc) from None
+        raise (exc if exc.row is None else ContractError(
+            exc.reason, file=exc.file, column=exc.column, row=exc.row + first_row,
+            line=exc.line, sheet=exc.sheet)) from None
     table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
     if renamed:          # the file's own names (data.columns, data.roles): raw -> contract
         report["columns"] = renamed
@@ -392,6 +415,9 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     # the path as given: a one-file record's file, which an error about its splits names
     meta = {"path": str(path), "column_map": report.get("column_map", {}),
             "converted": sorted({c for e in entries.values() for c in e.get("converted", [])}),
+            # data.roles.campaign's header, which a stream of the long file starts runs by
+            "run_column": next((e["run_column"] for e in entries.values() if "run_column" in e),
+                               None),
             # None: the splits came from no file (a record, a folder of runs): data.*_fraction
             "manifest": str(root / MANIFEST) if Path(path).is_dir() and (root / MANIFEST).is_file()
             else None}
@@ -414,9 +440,17 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if path.suffix.lower() in RECORD_SUFFIXES and not path.exists():
         raise ContractError("no such file (data.path: a dataset folder or one record's file)",
                             file=path)
+    if path.is_file() and opts.roles.get(RUN_ROLE):
+        check_record_file(path)
+        manifest, parts = _run_parts(path, opts)
+        ids = list(manifest.index if campaigns is None else campaigns)
+        return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
+    if opts.roles.get(RUN_ROLE):
+        raise ContractError(f"data.roles.{RUN_ROLE} splits one long file into its runs: data.path "
+                            "is a folder, whose files are a campaign each (leave it out)", file=path)
     if path.is_file():
         check_record_file(path)
-        table, report = read_campaign(path, opts)
+        table, report = _record(path, opts)
         _warn_error_ranges({path.stem: _error_ranges(table, DEAD_ROLES)}, {path.stem: path.name},
                            path.parent)
         manifest, parts = cut(path, table, report, opts)
@@ -432,6 +466,85 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if campaigns is not None:
         manifest = manifest.loc[list(campaigns)]
     return path, manifest, _iter_campaigns(path, manifest, opts)
+
+
+def _record(path: Path, opts: ReadOptions) -> tuple[pa.Table, dict]:
+    """One record read as one campaign; a column read as a temperature that looks like a run
+    counter (:mod:`.runs`) said, in a warning or in the refusal of the file (its time restarting
+    at each run: "time decreases")."""
+    try:
+        table, report = read_campaign(path, opts)
+    except ContractError as exc:
+        try:
+            counter = run_counter(path, opts)
+        except ContractError:
+            raise exc from None
+        if counter is None:
+            raise
+        raise ContractError(f"{exc.reason}; {run_hint(counter)}", file=exc.file, column=exc.column,
+                            row=exc.row, line=exc.line, sheet=exc.sheet) from None
+    counter = _run_counter(dict(zip(table.column_names, table.columns)), report.get("columns", {}))
+    if counter is not None:
+        logger.warning(f"{path.name}: {run_hint(counter)}; read as the temperature "
+                       f"{report['columns'][counter]} here")
+    return table, report
+
+
+def run_counter(path: Path, opts: ReadOptions) -> str | None:
+    """The header of a one-file record's first column read as a temperature that looks like a
+    run counter (:func:`.runs.looks_like_run_counter`), None where there is none; read without
+    the checks of time and values (a time restarting at each run)."""
+    with as_read(path, opts) as (source, source_opts):
+        columns, renamed = _loaded(source, source_opts)[:2]
+    return _run_counter(columns, renamed)
+
+
+def _run_counter(columns: dict, renamed: dict) -> str | None:
+    """The header of the first column read as a temperature that looks like a run counter (not
+    one whose header gives a unit: a temperature logged in whole degrees); a file's own names
+    only (``data.roles``, ``data.columns``: a contract-named file is not looked at)."""
+    for raw, name in renamed.items():
+        column = columns.get(name)
+        if role(name) != "T" or column is None or column.null_count or split_unit(raw)[1]:
+            continue
+        if looks_like_run_counter(column.to_numpy(zero_copy_only=False), raw):
+            return raw
+    return None
+
+
+def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
+    """One long file split into campaigns by ``data.roles.campaign`` (:mod:`.runs`), each read as
+    a file of that run alone; the last runs held out as a folder's are (by their first
+    timestamps, else in file order)."""
+    with as_read(path, opts) as (source, source_opts):
+        columns, renamed, rescaled, lines = _loaded(source, source_opts)
+        header = next(raw for raw, name in renamed.items() if name == RUN)
+        renamed = {raw: name for raw, name in renamed.items() if name != RUN}
+        blocks = run_blocks(run_values(columns.pop(RUN)), header, path)
+        parts, periods, ranges = {}, {}, {}
+        for cid, start, end in blocks:
+            part = {name: column.slice(start, end - start) for name, column in columns.items()}
+            table, report = _assembled(part, renamed, rescaled, source, source_opts, lines, start)
+            parts[cid] = table, {"file": path.name, "split": "train", **report,
+                                 "record_rows": [start, end], "run_column": header}
+            periods[cid], ranges[cid] = _median_period(table), _error_ranges(table, DEAD_ROLES)
+    files = dict.fromkeys(parts, path.name)
+    _check_periods(periods, files, path.parent, opts.max_period_ratio)
+    _warn_error_ranges(ranges, files, path.parent)
+    manifest = pd.DataFrame({"file": path.name, "split": "train"}, index=pd.Index(
+        list(parts), name="campaign"))
+    _apply_split_overrides(manifest, opts.split_overrides, path)
+    origins = {cid: entry.get("time_origin") for cid, (_, entry) in parts.items()}
+    starts = pd.Series({cid: _utc(pd.Timestamp(o), opts) if o else pd.NaT
+                        for cid, o in origins.items()}, dtype="datetime64[ns, UTC]")
+    try:
+        manifest = hold_out(manifest, opts, path.parent, starts)
+    except ContractError as exc:          # (about the runs, not a manifest file)
+        raise ContractError(exc.reason, file=path, column=header) from None
+    logger.info(f"{path.name}: {len(parts)} runs by {header!r} read as campaigns")
+    for cid, (_, entry) in parts.items():
+        entry["split"] = manifest.at[cid, "split"]
+    return manifest, parts
 
 
 def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:

@@ -8,6 +8,8 @@ its unit (``ch1(um)`` -> ``E_ch1``, ``t1(°C)`` -> ``T_t1``, ``spindle(RPM)`` ->
 ambient sensor ``T_amb``, or ``T_amb_<name>`` when there are several), and a unit that is not the
 contract's (mm, K, °F, ms, min) is converted.  ``data.columns`` (an explicit mapping) wins.
 Without any role set, headers are read as before: contract names, or mapped by ``data.columns``.
+``data.roles.campaign`` (extension) names the one column numbering the runs of a long file: read
+as text under :data:`RUN` and split into campaigns by :mod:`.runs`, never a temperature.
 """
 
 from __future__ import annotations
@@ -21,7 +23,7 @@ from pathlib import Path
 
 from ...base.errors import listed
 from .contract import TIME, ContractError, role
-from .options import AUTO, ROLE_PATTERNS, _roles
+from .options import AUTO, ROLE_PATTERNS, RUN_ROLE, _roles
 from .separators import number, reads_as_number
 from .timestamps import CLOCK, DATE, ELAPSED_HEADERS, TIME_OF_DAY, looks_like_timestamp
 
@@ -38,6 +40,7 @@ _SUFFIX = re.compile(r"^(.*?[^\s_])_([^\s_]+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "seconds", *ELAPSED_HEADERS})
+RUN = " campaign"     # data.roles.campaign's column as read: no contract column has this name
 PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
 # unit (lower case, no spaces) -> (scale, offset) to the contract's unit
 UNITS = {
@@ -149,7 +152,8 @@ def same_header(headers: Sequence[str]) -> ContractError | None:
 
 def active(roles: Mapping) -> bool:
     """Any role pattern (or an explicit time column) set: headers are named by role."""
-    return any(roles.get(k) for k in ROLE_PATTERNS) or roles.get("time", AUTO) != AUTO
+    return (any(roles.get(k) for k in ROLE_PATTERNS) or roles.get("time", AUTO) != AUTO
+            or bool(roles.get(RUN_ROLE)))
 
 
 def contract_columns(headers: Sequence[str], roles: Mapping | None = None,
@@ -187,6 +191,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     time_header, clock_header = (_time_header(headers, roles, columns, first, problems)
                                  + [None, None])[:2]
     ambient = [h for h in headers if h not in columns and _hits(h, roles) == ["ambient"]]
+    run = _run_header(headers, roles, columns, problems)
     for header in headers:
         base, unit = split_unit(header)
         unit = units.get(header, unit)
@@ -204,6 +209,12 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             out.names[header], out.roles[header] = CLOCK, "time of day"
             continue
         hits = _hits(header, roles)
+        if header == run:
+            if hits:
+                problems.append(f"{header!r} is matched by data.roles.{RUN_ROLE} and "
+                                + " and ".join(f"data.roles.{k}" for k in hits))
+            out.names[header], out.roles[header] = RUN, RUN_ROLE
+            continue
         if len(hits) > 1:
             problems.append(f"{header!r} is matched by {' and '.join(f'data.roles.{k}' for k in hits)}")
             continue
@@ -272,6 +283,22 @@ def _time_header(headers, roles, columns, first, problems) -> list[str]:
         return named[:1]
     stamped = [h for h in free if role(h) is None and looks_like_timestamp(first.get(h))]
     return stamped[:1]
+
+
+def _run_header(headers, roles, columns, problems) -> str | None:
+    """The header ``data.roles.campaign`` names (a glob over the headers, with or without their
+    unit): exactly one, not one ``data.columns`` maps, nor the time."""
+    pattern = roles.get(RUN_ROLE)
+    if not pattern:
+        return None
+    found = [h for h in headers if h not in columns and any(
+        fnmatch.fnmatchcase(name, pattern) for name in (h, split_unit(h)[0]))]
+    if len(found) != 1:
+        problems.append(f"data.roles.{RUN_ROLE}={pattern!r} "
+                        + (f"matches {' and '.join(map(repr, found))}: name one column" if found
+                           else "names no header"))
+        return None
+    return found[0]
 
 
 def date_and_time_of_day(headers: Sequence[str], first: Mapping) -> list[str]:

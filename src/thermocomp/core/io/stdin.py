@@ -141,16 +141,33 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict]:
 
 def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -> pd.Series:
     """The stream's ``time`` in seconds since its first row when it holds timestamps, read as a
+    campaign file's are (:func:`stream_stamps`); as given otherwise: the numeric check refuses
+    what is no number.  A missing time or one that goes back is no refusal here: the stream's
+    guard judges it, as on the machine; the first time read (not row 1's, which may be missing)
+    is the origin of timestamps (seconds are kept: a missing first one is the stream's time
+    rule's, :mod:`thermocomp.core.timerule`)."""
+    stamps = stream_stamps(time, time_format, zone)
+    if stamps is None or isinstance(stamps, pd.Series):   # seconds; h:mm:ss in seconds
+        return time if stamps is None else stamps
+    ns, valid = stamps
+    return pd.Series(since(ns, valid, ns[np.argmax(valid)]), index=time.index)
+
+
+def since(ns: np.ndarray, valid: np.ndarray, origin: int) -> np.ndarray:
+    """Seconds from ``origin`` (ns) of the timestamps ``ns`` (int64), NaN where not ``valid``
+    (int64 nanoseconds subtracted before the float: a float64 epoch in ns keeps ~256 ns)."""
+    return np.where(valid, (ns - origin) / 1e9, np.nan)
+
+
+def stream_stamps(time: pd.Series, time_format: str = "auto", zone: str | None = None):
+    """A stream's timestamps as ``(int64 nanoseconds since the epoch, valid)``, read as a
     campaign file's are (:func:`.timestamps.parsed`: ISO 8601 with or without its offset, a
-    decimal comma, ``data.time``'s format; as given otherwise: the numeric check refuses what
-    is no number; ``zone``: ``data.timezone``, the local clock of timestamps without an
-    offset).  A missing time or one that goes back is no refusal here: the stream's guard
-    judges it, as on the machine; the first time read (not row 1's, which may be missing)
-    tells the form and is the origin of timestamps (seconds are kept: a missing first one is
-    the stream's time rule's, :mod:`thermocomp.core.timerule`)."""
+    decimal comma, a day-first ``07.01.2023 08:45:00``, ``data.time``'s format; ``zone``:
+    ``data.timezone``, the local clock of timestamps without an offset); the elapsed
+    ``h:mm:ss`` as seconds (a Series); None where the time is seconds (or none is read)."""
     read = time.dropna()
     if read.empty:                 # no time at all: every row's for the guard to substitute
-        return time
+        return None
     first, kind = read.iloc[0], time_format
     if kind == "auto" and isinstance(first, str):      # read as a campaign file's
         kind = time_kind(first.strip(), kind, not pd.isna(pd.to_numeric(first, errors="coerce")),
@@ -160,7 +177,7 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
         ns = elapsed_seconds(text, kind, SOURCE).cast(pa.int64()).to_numpy(zero_copy_only=False)
         return pd.Series(ns / 1e9, index=time.index)
     if kind in ("auto", "seconds"):
-        return time         # a missing first one: the stream's time rule (core/timerule.py)
+        return None
     target = time_type(kind, str(first).strip())
     found = first_cast_failure(text, target, kind)
     if found is not None:
@@ -173,7 +190,4 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     ns = pc.fill_null(stamps, 0).to_numpy(zero_copy_only=False).copy()
     if zone is not None and target.tz is None:
         ns[valid] = on_local_clock(ns[valid], zone, SOURCE)
-    # int64 nanoseconds subtracted before the float: a float64 epoch in ns keeps ~256 ns
-    seconds = np.where(valid, (ns - ns[np.argmax(valid)]) / 1e9, np.nan)
-    return pd.Series(seconds, index=time.index)
-
+    return ns, valid

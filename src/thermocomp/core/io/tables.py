@@ -23,7 +23,7 @@ from .footer import blank_inside, footer, source
 from .layout import header_line, is_unit_row, with_units
 from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
-from .roles import active, naming, same_header
+from .roles import RUN, active, naming, same_header
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
 from .timestamps import (
@@ -68,11 +68,11 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
             names.append(None)
             continue
         alias = f" (raw name {raw!r})" if name != raw else ""
-        if role(name) is None and name != CLOCK:
+        if role(name) is None and name not in (CLOCK, RUN):
             raise ContractError(f"column name{alias} has no contract role: expected 'time' or "
                                 "a T_/E_/S_ prefix (map it with data.columns)",
                                 file=file, column=name)
-        if name not in (TIME, CLOCK) and (not _NAME.fullmatch(name) or ".." in name):
+        if name not in (TIME, CLOCK, RUN) and (not _NAME.fullmatch(name) or ".." in name):
             raise ContractError(f"column name{alias} is not a prefix plus an identifier-like name "
                                 "(letters, digits, '_', '-', '.'; no path separator, '..', space "
                                 "or control character): map it with data.columns",
@@ -155,7 +155,9 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
         raise ContractError(f"expected {len(named)} fields, got {len(first_row)}", file=path, row=1)
     # a column left out (data.roles.ignore) is read under a name no contract column can have
     names = [n if n is not None else f" ignored {i}" for i, n in enumerate(named)]
-    types = {n: pa.float64() for n in named if n is not None and n not in (TIME, CLOCK)}
+    types = {n: pa.float64() for n in named if n is not None and n not in (TIME, CLOCK, RUN)}
+    if RUN in names:           # a run's number or name, as written: split by it (.runs)
+        types[RUN] = pa.string()
     if CLOCK in names:         # a date and a time of day: read as text, joined, then parsed
         types.update({TIME: pa.string(), CLOCK: pa.string()})
     elif TIME in names:
@@ -480,7 +482,8 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
     names = [n for n in named if n is not None]
     # column by column into a dict: Table.set_column copies the schema each time (quadratic in
     # the columns: 2 s for a volumetric campaign's 1483)
-    raw = (TIME, CLOCK) if CLOCK in names else ()      # a date and a time of day: joined below
+    # a date and a time of day: joined below; a run's number or name: split by (.runs)
+    raw = ((TIME, CLOCK) if CLOCK in names else ()) + (RUN,)
     columns = {name: col if name in raw else _parquet_time(col, path, opts) if name == TIME
                else _parquet_numbers(col, name, path) for name, col in zip(names, table.columns)}
     if CLOCK in columns:

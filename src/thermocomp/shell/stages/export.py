@@ -23,6 +23,7 @@ from ...base.errors import ConfigError
 from ...base.files import staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
+from ...core.io.contract import TIME
 from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
 from ..model_store import model_family
@@ -59,7 +60,8 @@ def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict]:
     if registered:
         run = _registry_run(source) if is_registered_model(source) else None
         return deployed, {"run_id": run, "dataset_hash": None}
-    return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}
+    return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"],
+                      "run_column": ds.meta.get("run_column")}
 
 
 def export(cfg: DictConfig) -> dict:
@@ -81,11 +83,11 @@ def export(cfg: DictConfig) -> dict:
         say(f"not in the code (the served model only): {'; '.join(left)}")
     family = model_family(stream.compensator)
     units = {c: "degC" if c.startswith("T_") else "" for c in stream.columns_}
-    # the lab's headers of the inputs (`Pt01 [°C]` for T_Pt01): what the machine's signals are
-    # called where the model was made; the code reads the contract names
+    # the lab's headers of the inputs, the time and the errors (`Pt01 [°C]` for T_Pt01): what
+    # the machine's signals are called where the model was made; the code reads either name
     named = getattr(deployed, "lab_names_", {}) or {}
     lab = {c: raws[0] if len(raws) == 1 else raws
-           for c in stream.columns_ if (raws := raw_names(named, c))}
+           for c in (*stream.columns_, TIME, *stream.targets_) if (raws := raw_names(named, c))}
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
                       not_in_code=left)

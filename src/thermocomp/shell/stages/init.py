@@ -22,6 +22,7 @@ from ...core.io.detect import (
     encoding,
     folder_manifest,
     head,
+    proposed_campaign,
     proposed_roles,
     sample_file,
 )
@@ -43,6 +44,7 @@ def init(cfg: DictConfig) -> dict:
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
+    roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
                   opts.units)
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))

@@ -42,6 +42,31 @@ def _braced(values, rank: int) -> str:
     return "{" + ", ".join(items) + "}"
 
 
+def c_string(text: str) -> str:
+    """``text`` as an ASCII C string literal: a lab's ``T0 [°C]`` as its UTF-8 bytes, each
+    non-ASCII one an octal escape (a hex escape would swallow the hex digits after it)."""
+    out = []
+    for byte in str(text).encode("utf-8"):
+        char = chr(byte)
+        out.append(f"\\{byte:03o}" if byte > 126 or byte < 32 or char in '"\\?' else char)
+    return '"' + "".join(out) + '"'
+
+
+def _lab_names(ss: StateSpace) -> str:
+    """The lab's headers the stream reads as contract names (``{lab, contract}`` pairs) and its
+    run-number column (``data.roles.campaign``: a new value starts a campaign), from the
+    provenance (:func:`thermocomp.shell.stages.export.export`)."""
+    pairs = [(raw, contract) for contract, raws in ss.provenance.get("lab_names", {}).items()
+             for raw in ([raws] if isinstance(raws, str) else raws)]
+    items = ", ".join(f"{{{c_string(raw)}, {c_string(c)}}}" for raw, c in pairs) or '{"", ""}'
+    run = ss.provenance.get("run_column")
+    return (f"#define TC_N_LAB_NAMES {len(pairs)}\n"
+            f"static const char *const TC_LAB_NAMES[{max(len(pairs), 1)}][2] = {{{items}}};"
+            "  /* {the lab's header, the contract name} */\n"
+            f"static const char *const TC_RUN_COLUMN = {c_string(run or '')};"
+            "  /* a new value starts a campaign (\"\": none) */")
+
+
 def _pattern_constants(ss: StateSpace) -> list:
     """The training pattern (:mod:`.statespace`); without one: scale 1, never consulted."""
     n = len(ss.inputs)
@@ -97,6 +122,8 @@ typedef struct {{
 static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
 static const char *const TC_OUTPUT_NAMES[TC_N_OUTPUTS] = {{{outs}}};
 static const char *const TC_ERROR_NAMES[TC_N_OUTPUTS] = {{{errors}}};  /* measured errors */
+/* The headers of the data the model was made from, which a stream may use instead */
+{_lab_names(ss)}
 
 /* The compensator as exported (what was learned: as served), and a campaign starts. */
 void tc_init(tc_state *s);
@@ -329,11 +356,15 @@ def _output_constants(ss: StateSpace) -> list[str]:
 
 DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis> as CSV on stdout.
  *
- * The header names the columns (any order, extra columns ignored); every input of
- * TC_INPUT_NAMES is needed, `time` (s) when the model reads it.  A blank row, or a `reset`
- * column holding 1, starts a campaign (the next row is its reference).  With TC_ADAPT, a row
- * carrying a measured error in a TC_ERROR_NAMES column (E_<axis>, optional; blank: none) is a
- * reference measurement: its correction is printed, then the bias learns from it.
+ * The header names the columns (any order, extra columns ignored) by their contract names or
+ * by the lab's headers the model was made from (TC_LAB_NAMES: `T0 [°C]` for T_T0, `Zeit [s]`
+ * for time); every input of TC_INPUT_NAMES is needed, `time` (s) when the model reads it.  The
+ * separator is the header's: ';', a tab or '|' where it holds one, else ','; with another
+ * separator than ',' a decimal comma reads (12,5).  A cell that is no number (a clock time
+ * 08:45:00) is refused with its row.  A blank row, a `reset` column holding 1, or a new value
+ * in the run-number column TC_RUN_COLUMN starts a campaign (the row is its reference).  With
+ * TC_ADAPT, a row carrying a measured error in a TC_ERROR_NAMES column (E_<axis>, optional;
+ * blank: none) is a reference measurement: its correction is printed, then the bias learns.
  * Build: cc compensator.c stream.c -lm -o stream
  */
 #include <math.h>
@@ -344,39 +375,74 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
 
 #define MAX_LINE 65536
 #define MAX_COLS 1024
+#define MAX_CELL 256
+
+static char sep = ',';
 
 static int split(char *line, char **cells) {
     int n = 0;
     char *p = line;
     line[strcspn(line, "\r\n")] = '\0';
     cells[n++] = p;
-    while ((p = strchr(p, ',')) != NULL && n < MAX_COLS) { *p++ = '\0'; cells[n++] = p; }
+    while ((p = strchr(p, sep)) != NULL && n < MAX_COLS) { *p++ = '\0'; cells[n++] = p; }
     return n;
 }
 
-static double value(const char *cell) {
-    char *end;
+/* A header cell as named: without spaces and quotes around it, read as its contract name. */
+static const char *named(char *cell) {
+    size_t len;
+    int k;
+    while (*cell == ' ' || *cell == '"') cell++;
+    len = strlen(cell);
+    while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"')) cell[--len] = '\0';
+    for (k = 0; k < TC_N_LAB_NAMES; k++)
+        if (strcmp(cell, TC_LAB_NAMES[k][0]) == 0) return TC_LAB_NAMES[k][1];
+    return cell;
+}
+
+/* A cell's number; NAN when empty, and when it is no number as a whole (then `bad` is set). */
+static double value(const char *cell, int *bad) {
+    char text[MAX_CELL], *end, *c;
     double v;
-    while (*cell == ' ') cell++;
+    while (*cell == ' ' || *cell == '"') cell++;
     if (*cell == '\0') return NAN;
-    v = strtod(cell, &end);
-    return end == cell ? NAN : v;
+    strncpy(text, cell, MAX_CELL - 1);
+    text[MAX_CELL - 1] = '\0';
+    if (sep != ',' && (c = strchr(text, ',')) != NULL) *c = '.';   /* a decimal comma */
+    v = strtod(text, &end);
+    while (*end == ' ' || *end == '"') end++;
+    if (end == text || *end != '\0') { *bad = 1; return NAN; }
+    return v;
 }
 
 int main(void) {
-    static char line[MAX_LINE];
+    static char line[MAX_LINE], run[MAX_CELL] = "";
     char *cells[MAX_COLS];
-    int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, ncols, i, j;
-    int measured;
+    int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
+    int ncols, i, j, bad, ignored, measured;
     long row = 1;
     tc_state s;
-    double u[TC_N_INPUTS], c[TC_N_OUTPUTS], e[TC_N_OUTPUTS];
+    double u[TC_N_INPUTS], c[TC_N_OUTPUTS], e[TC_N_OUTPUTS], t;
 
     if (!fgets(line, sizeof line, stdin)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
+    if (strncmp(line, "\xEF\xBB\xBF", 3) == 0) memmove(line, line + 3, strlen(line + 3) + 1);
+    sep = strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
     ncols = split(line, cells);
+    for (j = 0; j < ncols; j++) {
+        if (TC_RUN_COLUMN[0] && strcmp(named(cells[j]), TC_RUN_COLUMN) == 0) run_col = j;
+        cells[j] = (char *)named(cells[j]);
+    }
     for (i = 0; i < TC_N_INPUTS; i++) {
         where[i] = -1;
-        for (j = 0; j < ncols; j++) if (strcmp(cells[j], TC_INPUT_NAMES[i]) == 0) where[i] = j;
+        for (j = 0; j < ncols; j++) {
+            if (strcmp(cells[j], TC_INPUT_NAMES[i]) != 0) continue;
+            if (where[i] >= 0) {
+                fprintf(stderr, "stream: the header names input %s twice (columns %d and %d)\n",
+                        TC_INPUT_NAMES[i], where[i] + 1, j + 1);
+                return 2;
+            }
+            where[i] = j;
+        }
         if (where[i] < 0) {
             fprintf(stderr, "stream: the header lacks input column %s\n", TC_INPUT_NAMES[i]);
             return 2;
@@ -403,20 +469,31 @@ int main(void) {
             fprintf(stderr, "stream: row %ld has not %d cells\n", row, ncols);
             return 2;
         }
-        if (reset_col >= 0 && value(cells[reset_col]) == 1.0) tc_reset(&s);
+        if (reset_col >= 0 && value(cells[reset_col], &ignored) == 1.0) tc_reset(&s);
+        if (run_col >= 0 && strcmp(cells[run_col], run) != 0) {    /* the next run */
+            if (row > 2) tc_reset(&s);
+            strncpy(run, cells[run_col], MAX_CELL - 1);
+        }
         for (i = 0; i < TC_N_INPUTS; i++) {
-            u[i] = value(cells[where[i]]);
+            u[i] = value(cells[where[i]], &ignored);
             if (!isfinite(u[i])) {
                 fprintf(stderr, "stream: row %ld: input %s has no finite value\n", row,
                         TC_INPUT_NAMES[i]);
                 return 2;
             }
         }
-        tc_step(&s, u, time_col >= 0 ? value(cells[time_col]) : NAN, c);
+        bad = 0;
+        t = time_col >= 0 ? value(cells[time_col], &bad) : NAN;
+        if (bad) {
+            fprintf(stderr, "stream: row %ld: the time is no number (seconds; a clock time or "
+                    "date is not read here)\n", row);
+            return 2;
+        }
+        tc_step(&s, u, t, c);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
         printf("\n");
         for (i = measured = 0; i < TC_N_OUTPUTS; i++) {
-            e[i] = error_col[i] >= 0 ? value(cells[error_col[i]]) : NAN;
+            e[i] = error_col[i] >= 0 ? value(cells[error_col[i]], &ignored) : NAN;
             measured |= isfinite(e[i]);
         }
         if (measured) tc_reference(&s, e);

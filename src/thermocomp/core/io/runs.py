@@ -1,0 +1,108 @@
+"""One long file holding many runs (extension): ``data.roles.campaign=<header>`` splits it into
+campaigns by that column's value, and a column that looks like a run counter is pointed out.
+
+Each value is one campaign, in file order, read as a file of that run alone would be (its time
+in seconds as given, restarting or not; timestamps as seconds since the run's first sample;
+gaps, edges and checks per run).  A value that comes back after another is refused naming the
+row: the rows of a run stand together, and a number used twice (``Messung`` 1, 2, 3 each day)
+needs a value of its own.  The id is the value where it holds a letter (``K07``), else the
+header's name before it (``Lauf_3``).
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.compute as pc
+
+from .contract import ContractError
+from .options import RUN_ROLE
+from .roles import split_unit
+
+MIN_RUN_ROWS = 10        # a run counter holds each value this many rows on average at least
+_UNSAFE_ID = re.compile(r"[^\w.\-]+")
+_WORDS = re.compile(r"[\s_.\-]+")
+# header words that say "the run's number" (a counter stepping by other than one is one too)
+RUN_WORDS = {"lauf", "run", "runs", "versuch", "messung", "campaign", "kampagne", "test", "trial",
+             "cycle", "zyklus", "durchlauf", "essai", "prueba", "prova", "serie", "series",
+             "batch", "charge", "job", "nr", "no", "id"}
+
+
+def run_values(column) -> list[str | None]:
+    """The run column's cells as text (a Parquet number 3.0 as ``3``), None where empty."""
+    if pa.types.is_floating(column.type):
+        numbers = column.to_numpy(zero_copy_only=False)
+        return [None if np.isnan(v) else f"{v:.0f}" if v == int(v) else repr(v) for v in numbers]
+    text = pc.utf8_trim_whitespace(pc.cast(column, pa.string())).to_pylist()
+    return [v or None for v in text]
+
+
+def run_blocks(values: Sequence[str | None], header: str, path: Path
+               ) -> list[tuple[str, int, int]]:
+    """``(campaign id, first row, end row)`` of each run in file order (0-based, end excluded).
+
+    Raises
+    ------
+    ContractError
+        A row without a value (its row), a value that comes back after another (the row where
+        it does), two values giving one id.
+    """
+    blocks: list[tuple[str, int, int]] = []
+    seen: dict[str, int] = {}
+    for row, value in enumerate(values):
+        if value is None:
+            raise ContractError(f"no run in the data.roles.{RUN_ROLE} column: every row says its "
+                                "run", file=path, column=header, row=row + 1)
+        if blocks and value == blocks[-1][0]:
+            continue
+        if value in seen:
+            raise ContractError(f"run {value!r} comes back after {blocks[-1][0]!r} (its rows "
+                                f"began at row {seen[value] + 1}): the rows of a run stand "
+                                "together; sort the file by run, or give the later rows a run "
+                                "of their own", file=path, column=header, row=row + 1)
+        seen[value] = row
+        blocks.append((value, row, row))
+    ends = [start for _, start, _ in blocks[1:]] + [len(values)]
+    ids = [campaign_id(value, header) for value, _, _ in blocks]
+    twice = next((i for i in ids if ids.count(i) > 1), None)
+    if twice is not None:
+        raise ContractError(f"two runs give the campaign id {twice!r}: give them values that "
+                            "differ in letters or digits", file=path, column=header)
+    return [(cid, start, end) for cid, (_, start, _), end in zip(ids, blocks, ends)]
+
+
+def campaign_id(value: str, header: str) -> str:
+    """``K07`` for a value with a letter, ``Lauf_3`` for the number 3 under ``Lauf [-]``."""
+    name = value if re.search(r"[^\W\d_]", value) else f"{split_unit(header)[0]}_{value}"
+    return _UNSAFE_ID.sub("_", name).strip("._") or "run"
+
+
+def looks_like_run_counter(values: np.ndarray, header: str) -> bool:
+    """A column numbering runs: whole numbers, never decreasing, at least two of them, each held
+    :data:`MIN_RUN_ROWS` rows on average, and either stepping by one or under a header that says
+    so (:data:`RUN_WORDS`: ``Lauf``, ``Run``, ``Versuch``, ``run_id``, ``Messung`` ...)."""
+    values = np.asarray(values, dtype=float)
+    if values.size < 2 * MIN_RUN_ROWS or values[0] != np.round(values[0]) or values[-1] <= values[0]:
+        return False            # (the look at every value is for what passes this one)
+    if not np.isfinite(values).all():
+        return False
+    steps = np.diff(values)
+    if not (values == np.round(values)).all() or (steps < 0).any():
+        return False
+    runs = int((steps > 0).sum()) + 1
+    if runs < 2 or values.size / runs < MIN_RUN_ROWS:
+        return False
+    words = set(_WORDS.split(split_unit(header)[0].lower()))
+    return bool(words & RUN_WORDS) or bool((steps[steps > 0] == 1).all())
+
+
+def run_hint(header: str) -> str:
+    """What a message says of a column that looks like a run counter."""
+    header = split_unit(header)[0]
+    return (f"column {header!r} looks like a run number (whole numbers, rising, each held over "
+            f"many rows): data.roles.{RUN_ROLE}={header} reads each run as a campaign "
+            f"(data.roles.ignore=[{header}] leaves it out)")

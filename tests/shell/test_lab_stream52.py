@@ -1,0 +1,107 @@
+"""The exported C stream reads the lab's own file (issue 34 item 1, "the deployed model accepts
+the lab's own names", session 52): its headers, ';' and decimal commas, and its run-number column
+starting each run, as replay streams the runs."""
+
+from __future__ import annotations
+
+import io
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import FAST
+from test_export import _compose, needs_cc
+from test_run_column52 import _long, _runs
+from thermocomp.apps.deploy.streaming import replay
+from thermocomp.shell.builders import deploy_stream
+from thermocomp.shell.cli import main
+from thermocomp.shell.model_store import load_model
+from thermocomp.shell.source import read_streamed
+
+DATA = ("data.roles.error=[dX]", "data.roles.campaign=Lauf", "data.test_fraction=0.5")
+
+
+@needs_cc
+def test_the_compiled_c_streams_the_labs_raw_long_file_as_replay(tmp_path):
+    # before: stream.c split on ',' and knew contract names only ("the header lacks input
+    # column T_T0"): the lab converted its file first, and started each run by a blank row
+    path = _long(tmp_path / "alle.csv", _runs())
+    common = (f"data.path={path}", *DATA)
+    assert main(["run", *common, "model=lagbank", *FAST, f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "monitor.adaptive=false", "export.format=c", "track=false",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    code = tmp_path / "code"
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    cfg = _compose(*common, "model=lagbank", "monitor.adaptive=false", "track=false")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    assert test_ids == ["Lauf_3", "Lauf_4"]
+    stream = deploy_stream(cfg, load_model(tmp_path / "run" / "model.pkl"),
+                           {c: ds.campaigns[c] for c in train_ids})
+    want = np.vstack([-replay(stream, ds.campaigns[c])[stream.targets_].to_numpy(float)
+                      for c in test_ids])
+    lines = path.read_text(encoding="utf-8").splitlines()
+    raw = "\n".join([lines[0], *(ln for ln in lines[1:] if ln.split(";")[0] in "34")]) + "\n"
+    assert raw.startswith("Lauf;Zeit [s];T0 [°C]") and ",0" in raw   # the lab's own file
+    run = subprocess.run([str(code / "stream")], input=raw.encode("utf-8"), capture_output=True,
+                         check=True)
+    got = pd.read_csv(io.BytesIO(run.stdout)).to_numpy(float)
+    assert got.shape == want.shape == (60, 1)
+    assert np.abs(got - want).max() <= 1e-9
+    # the run column starts each run: streamed as one run, the second differs
+    one = raw.replace("\n4;", "\n3;")
+    joined = pd.read_csv(io.BytesIO(subprocess.run([str(code / "stream")], input=one.encode(),
+                                                   capture_output=True, check=True).stdout))
+    assert np.abs(joined.to_numpy(float)[30:] - want[30:]).max() > 1e-3
+    # a clock time where the model reads seconds: refused with its row, not read as 7.01 s
+    clock = raw.replace("\n3;0,0;", "\n3;07.01.2023 08:45:00;", 1)
+    assert clock != raw
+    bad = subprocess.run([str(code / "stream")], input=clock.encode(), capture_output=True)
+    assert bad.returncode == 2 and b"row 2: the time is no number" in bad.stderr
+
+
+@pytest.mark.parametrize("text, want", [("T0 [°C]", '"T0 [\\302\\260C]"'),
+                                        ('a"b\\c', '"a\\042b\\134c"'), ("µm1", '"\\302\\265m1"')])
+def test_a_labs_header_is_an_ascii_c_string_of_its_bytes(text, want):
+    from thermocomp.apps.deploy.export.c import c_string
+
+    assert c_string(text) == want and c_string(text).isascii()
+
+
+def test_the_served_model_reads_a_labs_wall_clock_times_as_replay_does(tmp_path):
+    # before: "could not convert string to float: '01.03.2023 08:00:00'" (and MLflow's schema,
+    # a double, refused the column): the lab converted its logger's clock to seconds first
+    import mlflow
+    from mlflow.exceptions import MlflowException
+
+    from thermocomp.apps.deploy.naming import lab_names
+    from thermocomp.apps.deploy.pyfunc import save_compensator
+
+    runs = _runs(3)
+    for k, run in enumerate(runs):
+        start = pd.Timestamp("2023-03-01 08:00") + pd.Timedelta(days=7 * k)
+        run.insert(0, "Zeit", (start + pd.to_timedelta(run.pop("Zeit [s]"), unit="s"))
+                   .dt.strftime("%d.%m.%Y %H:%M:%S"))
+    path = _long(tmp_path / "alle.csv", runs)
+    common = (f"data.path={path}", "data.roles.error=[dX]", "data.roles.campaign=Lauf",
+              "data.test_fraction=0.34")
+    assert main(["run", *common, "model=lagbank", *FAST, f"out={tmp_path / 'run'}"]) == 0
+    cfg = _compose(*common, "model=lagbank", "monitor.adaptive=false", "track=false")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    stream = deploy_stream(cfg, load_model(tmp_path / "run" / "model.pkl"),
+                           {c: ds.campaigns[c] for c in train_ids})
+    assert "time" in stream.columns_ or stream.time_required_      # the lags read the clock
+    stream.lab_names_ = lab_names(cfg, ds)
+    served = mlflow.pyfunc.load_model(str(save_compensator(stream, tmp_path / "served")))
+    want = -replay(stream, ds.campaigns["Lauf_3"])[stream.targets_].to_numpy(float)
+    raw = pd.read_csv(path, sep=";", decimal=",")
+    rows = raw[raw["Lauf"] == 3].drop(columns="Lauf")
+    assert rows["Zeit"].iloc[0] == "15.03.2023 08:00:00"
+    first = served.predict(rows.iloc[:12], params={"session": "m", "reset": True})
+    rest = served.predict(rows.iloc[12:], params={"session": "m"})    # the campaign goes on
+    got = pd.concat([first, rest])[["C_dX"]].to_numpy(float)
+    assert np.abs(got - want).max() <= 1e-9
+    with pytest.raises(MlflowException, match="time of day without its date"):
+        served.predict(rows.assign(Zeit=rows["Zeit"].str[-8:]), params={"reset": True})
