@@ -81,3 +81,9 @@ def test_twins_build_the_standard_address_space_once_then_load_its_shelf(tmp_pat
     assert namespaces == ["http://opcfoundation.org/UA/", "urn:freeopcua:python:server",
                           NODES.namespace]
     assert {"Server", "Machine"} <= set(children) and offset == 1.5
+
+    # the empty <shelf> asyncua looks for, swept by a temp cleaner (never read, it ages): the
+    # shelf is made anew, whole, not rewritten in place by asyncua under the twins reading it
+    (tmp_path / version / shelf.SHELF).unlink()
+    asyncio.run(start_and_stop())
+    assert len(built) == 2 and (tmp_path / version / shelf.SHELF).is_file()

@@ -47,14 +47,20 @@ def standard_shelf() -> Path:
 
     folder = version_folder()
     shelf = folder / SHELF
-    if folder.is_dir():           # renamed in whole: complete
+    if _found(shelf):
         return shelf
     folder.parent.mkdir(parents=True, exist_ok=True)
     with FileLock(f"{folder}.lock", timeout=600):
-        if not folder.is_dir():
+        if not _found(shelf):     # none, or its empty <shelf> swept by a temp cleaner: anew
             with atomic_dir(folder) as tmp:
                 _make(tmp / SHELF)
     return shelf
+
+
+def _found(shelf: Path) -> bool:
+    """asyncua's own test: else it would build the address space and write the shelf in place,
+    under the feet of the twins reading it."""
+    return shelf.is_file() or shelf.with_suffix(".db").is_file()
 
 
 def _make(shelf: Path) -> None:
@@ -62,5 +68,5 @@ def _make(shelf: Path) -> None:
     from asyncua import Server
 
     asyncio.run(Server().init(shelf))
-    if not (shelf.is_file() or shelf.with_suffix(".db").is_file()):
+    if not _found(shelf):
         shelf.touch()             # dbm.dumb's files are <shelf>.dat/.dir: the name asyncua checks
