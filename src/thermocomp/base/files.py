@@ -14,6 +14,7 @@ and SIGINT remove them on the way out, and one left by a killed process
 
 from __future__ import annotations
 
+import getpass
 import glob
 import hashlib
 import json
@@ -166,6 +167,13 @@ def _swap_in(src: Path, dest: Path) -> None:
                 shutil.rmtree(old, ignore_errors=True)
         return
     raise OSError(f"could not replace {dest}: other processes keep writing it")
+
+
+def user_temp_folder(kind: str) -> Path:
+    """``thermocomp-<user>-<kind>`` in the temp folder, where what is made once per user is kept
+    (the temp folder is shared by the machine's users)."""
+    user = os.getuid() if hasattr(os, "getuid") else getpass.getuser()
+    return Path(tempfile.gettempdir()) / f"thermocomp-{user}-{kind}"
 
 
 def sweep_stale(dest: str | os.PathLike) -> list[Path]:

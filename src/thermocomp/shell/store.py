@@ -6,7 +6,6 @@ use, runs left RUNNING by dead processes, the model registry's lock.
 
 from __future__ import annotations
 
-import getpass
 import hashlib
 import logging
 import os
@@ -21,6 +20,7 @@ from contextlib import closing, contextmanager
 from pathlib import Path
 
 from ..base.errors import ConfigError
+from ..base.files import user_temp_folder
 from ..base.paths import resolve
 
 _LOCKED = ("database is locked", "database table is locked")
@@ -132,8 +132,7 @@ def _open_store(db: Path, artifacts: Path) -> None:
 
 def template_folder() -> Path:
     """Where :func:`schema_template` keeps its stores (one per user: the temp folder is shared)."""
-    user = os.getuid() if hasattr(os, "getuid") else getpass.getuser()
-    return Path(tempfile.gettempdir()) / f"thermocomp-{user}-mlflow"
+    return user_temp_folder("mlflow")
 
 
 def schema_template() -> Path:

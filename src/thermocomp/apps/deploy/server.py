@@ -157,13 +157,17 @@ async def _refuse(send, status: int, message: str) -> None:
 
 def scoring_app():
     """MLflow's scoring app for the model its environment names, behind :class:`RequestLimits`."""
+    import mlflow.pyfunc
     from mlflow.pyfunc import scoring_server
 
     from ...base.lifetime import watch_parent
 
     if os.environ.get(PARENT_ENV):     # a SIGKILLed `thermocomp serve` leaves no server behind
         watch_parent(int(os.environ[PARENT_ENV]))
-    model = scoring_server.load_model_with_mlflow_config(os.environ[scoring_server._SERVER_MODEL_PATH])
+    # the folder trusted_copy wrote with this environment's own pins: MLflow's check of them
+    # against every installed package (~1-1.5 s CPU at each server start) could find nothing
+    model = mlflow.pyfunc.load_model(os.environ[scoring_server._SERVER_MODEL_PATH],
+                                     suppress_warnings=True)
     return RequestLimits(scoring_server.init(model), int(os.environ[BODY_ENV]), int(os.environ[ROWS_ENV]))
 
 

@@ -1,0 +1,72 @@
+"""The OPC UA standard address space on a shelf asyncua finds: made once, read at every twin start.
+
+``Server.init()`` builds the standard address space (thousands of nodes) from asyncua's generated
+code at every start: ~2.5 s of CPU per twin (each test that starts one, each restart of the
+command).  ``Server.init(shelf)`` loads it lazily from a :mod:`shelve` instead, and makes the
+shelf when it finds none; but it looks for ``<shelf>`` or ``<shelf>.db``, and on a Python without
+gdbm or ndbm :mod:`shelve` falls back to dbm.dumb, which writes ``<shelf>.dat`` and
+``<shelf>.dir``: asyncua never found its shelf, and built (and wrote) it again at every start.
+
+Here the shelf is made by a server of its own, in a folder renamed into place once complete
+(:func:`~thermocomp.base.files.atomic_dir`: a killed maker's folder is swept), under a file lock
+(parallel twins wait for the one that makes it, none reads it half-made), with an empty
+``<shelf>`` beside dbm.dumb's files for asyncua to find.  One per asyncua and Python version
+(the nodes are pickled asyncua objects in that Python's dbm) and user; read-only after.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import sys
+from pathlib import Path
+
+from ...base.files import atomic_dir, user_temp_folder
+
+SHELF = "standard"          # no dot in it: asyncua also looks for the name with its suffix -> .db
+
+
+def shelf_folder() -> Path:
+    """Where the shelves are kept (one per user: the temp folder is shared)."""
+    return user_temp_folder("opcua")
+
+
+def version_folder() -> Path:
+    """The folder of this asyncua's and this Python's shelf."""
+    import asyncua
+
+    python = f"{sys.version_info[0]}.{sys.version_info[1]}"
+    return shelf_folder() / f"asyncua-{asyncua.__version__}-py{python}"
+
+
+def standard_shelf() -> Path:
+    """The shelf of the standard address space to hand ``Server.init``, made the first time.
+
+    Blocks (up to 10 min while another process makes it): call it off the event loop.
+    """
+    from filelock import FileLock
+
+    folder = version_folder()
+    shelf = folder / SHELF
+    if _found(shelf):
+        return shelf
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    with FileLock(f"{folder}.lock", timeout=600):
+        if not _found(shelf):     # none, or its empty <shelf> swept by a temp cleaner: anew
+            with atomic_dir(folder) as tmp:
+                _make(tmp / SHELF)
+    return shelf
+
+
+def _found(shelf: Path) -> bool:
+    """asyncua's own test: else it would build the address space and write the shelf in place,
+    under the feet of the twins reading it."""
+    return shelf.is_file() or shelf.with_suffix(".db").is_file()
+
+
+def _make(shelf: Path) -> None:
+    """The standard address space built and shelved at ``shelf`` by a server never started."""
+    from asyncua import Server
+
+    asyncio.run(Server().init(shelf))
+    if not _found(shelf):
+        shelf.touch()             # dbm.dumb's files are <shelf>.dat/.dir: the name asyncua checks
