@@ -87,3 +87,17 @@ def test_twins_build_the_standard_address_space_once_then_load_its_shelf(tmp_pat
     (tmp_path / version / shelf.SHELF).unlink()
     asyncio.run(start_and_stop())
     assert len(built) == 2 and (tmp_path / version / shelf.SHELF).is_file()
+
+
+def test_a_twin_starts_where_no_shelf_can_be_made(tmp_path, monkeypatch, caplog):
+    """A temp folder the twin cannot write (or a lock held too long): the address space is built
+    at this start, as before the shelf, with a warning; the twin serves all the same."""
+    monkeypatch.setattr(shelf, "shelf_folder", lambda: tmp_path / "not-a-folder" / "x")
+    (tmp_path / "not-a-folder").write_text("a file where the folder would be")
+    built = []
+    fill = standard_address_space.fill_address_space
+    monkeypatch.setattr(standard_address_space, "fill_address_space",
+                        lambda *a, **k: (built.append(1), fill(*a, **k))[1])
+    namespaces, children, offset = asyncio.run(start_and_read())
+    assert built == [1] and offset == 1.5 and {"Server", "Machine"} <= set(children)
+    assert "built at this start (no shelf" in caplog.text

@@ -17,11 +17,13 @@ Here the shelf is made by a server of its own, in a folder renamed into place on
 from __future__ import annotations
 
 import asyncio
+import logging
 import sys
 from pathlib import Path
 
 from ...base.files import atomic_dir, user_temp_folder
 
+log = logging.getLogger(__name__)
 SHELF = "standard"          # no dot in it: asyncua also looks for the name with its suffix -> .db
 
 
@@ -55,6 +57,16 @@ def standard_shelf() -> Path:
             with atomic_dir(folder) as tmp:
                 _make(tmp / SHELF)
     return shelf
+
+
+def standard_shelf_or_none() -> Path | None:
+    """:func:`standard_shelf`, or None (asyncua then builds the address space at this start, as
+    before the shelf) where it cannot be made: a temp folder not writable, a lock held too long."""
+    try:
+        return standard_shelf()
+    except OSError as exc:             # filelock's Timeout is one (TimeoutError)
+        log.warning("the OPC UA address space is built at this start (no shelf: %s)", exc)
+        return None
 
 
 def _found(shelf: Path) -> bool:

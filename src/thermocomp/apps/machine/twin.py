@@ -31,7 +31,7 @@ import pandas as pd
 from asyncua import Server, ua
 
 from .nodes import NodeMap, quiet_asyncua
-from .shelf import standard_shelf
+from .shelf import standard_shelf_or_none
 
 log = logging.getLogger(__name__)
 NO_CLIENT = -2      # offset_sample until a client writes (it writes -1 when it connects)
@@ -80,7 +80,7 @@ class Twin:
 
     async def _start(self) -> None:
         server = Server()
-        await server.init(await asyncio.to_thread(standard_shelf))     # not built at each start
+        await server.init(await asyncio.to_thread(standard_shelf_or_none))   # not built at each start
         server.set_endpoint(self.endpoint)
         server.set_server_name("thermocomp twin")
         idx = await server.register_namespace(self.map.namespace)
