@@ -34,14 +34,15 @@ def stdin_chain(ds, campaign: str | None, *, ambient_given: bool, reference: str
     return chain(ds, campaign)
 
 
-def stdin_lead_in(ds, ids: list[str], times: pd.Series | None) -> dict:
-    """``{"stdin": lead-in}`` of the warming campaigns ``ids`` (:func:`stdin_chain`), ending one
-    sample period before the stream's first row, whose ``times`` (None: no time column, the
-    rows from 0 s) may begin with missing ones: the first time read less a period per row
-    before it (the stream's guard substitutes the lead-in's last time plus a period there)."""
+def stdin_lead_in(ds, ids: list[str], cid: str, times: pd.Series | None) -> dict:
+    """``{cid: lead-in}`` of the warming campaigns ``ids`` (:func:`stdin_chain`) for the stream's
+    first campaign ``cid`` (a run after it starts from a reset), ending one sample period
+    before its first row, whose ``times`` (None: no time column, the rows from 0 s) may begin
+    with missing ones: the first time read less a period per row before it (the stream's
+    guard substitutes the lead-in's last time plus a period there)."""
     if not ids:
         return {}
     read = np.flatnonzero(times.notna().to_numpy()) if times is not None else []
     first = (float(times.iloc[read[0]]) - read[0] * campaign_period(ds.campaigns[ids[-1]])
              if len(read) else 0.0)
-    return {"stdin": preceding(ds, ids, first)}
+    return {cid: preceding(ds, ids, first)}

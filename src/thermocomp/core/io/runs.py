@@ -41,7 +41,7 @@ def run_values(column) -> list[str | None]:
     return [v or None for v in text]
 
 
-def run_blocks(values: Sequence[str | None], header: str, path: Path
+def run_blocks(values: Sequence[str | None], header: str, path: Path | str
                ) -> list[tuple[str, int, int]]:
     """``(campaign id, first row, end row)`` of each run in file order (0-based, end excluded).
 

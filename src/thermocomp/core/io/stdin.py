@@ -1,7 +1,8 @@
 """A campaign streamed as CSV text (``thermocomp monitor monitor.input=-``): read as a campaign
 file is (``data.delimiter``, ``data.decimal``, ``data.columns``, ``data.roles``, ``data.units``,
 ``data.time``; a logger's preamble and unit row), so a lab's logger rows stream as they are
-written; empty cells stay NaN, a non-numeric one is refused with its row."""
+written; empty cells stay NaN, a non-numeric one is refused with its row.  With
+``data.roles.campaign`` a long file's runs stream as a campaign each (:func:`stream_campaigns`)."""
 
 from __future__ import annotations
 
@@ -19,7 +20,8 @@ from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, check_text, text_codec
 from .layout import header_line, is_unit_row, with_units
-from .roles import active, naming, same_header
+from .roles import RUN, active, naming, same_header
+from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
 from .tables import first_cast_failure
@@ -36,6 +38,7 @@ from .timestamps import (
 from .utf16 import has_utf16_mark
 
 SOURCE = "<stdin>"
+STDIN = "stdin"                 # the campaign id of a stream without a run column
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
 
 
@@ -85,8 +88,10 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
     if absent:
         raise ContractError("stdin lacks a column the compensator reads", file=SOURCE,
                             column=",".join(absent))
-    if TIME in df.columns:
-        df[TIME] = stream_seconds(df[TIME], opts.time, opts.timezone)
+    if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
+        runs = [df[TIME]] if RUN not in df.columns else [t for _, t in
+                                                          df.groupby(RUN, sort=False)[TIME]]
+        df[TIME] = pd.concat([stream_seconds(t, opts.time, opts.timezone) for t in runs])
     # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
     # model reads: the measured errors and the context are read from the same frame
     numeric = list(dict.fromkeys([*columns, *(c for c in df.columns
@@ -101,6 +106,20 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
     return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}
+
+
+def stream_campaigns(text: str, columns: list[str], opts) -> tuple[dict, dict]:
+    """``({campaign id: frame}, {campaign id: missing cells per column})`` of the stream: one
+    campaign ``stdin``, or, with ``data.roles.campaign``, a campaign per run named as the long
+    file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`)."""
+    df, counts = read_stream(text, columns, opts)
+    if RUN not in df.columns:
+        return {STDIN: df}, ({STDIN: counts} if counts else {})
+    parts = {cid: part.drop(columns=RUN).reset_index(drop=True)
+             for cid, part in df.groupby(RUN, sort=False)}
+    missing = {cid: {c: int(n) for c, n in part[list(counts)].isna().sum().items() if n}
+               for cid, part in parts.items()}
+    return parts, {cid: n for cid, n in missing.items() if n}
 
 
 def _table(text: str, sep: str) -> str:
@@ -133,10 +152,23 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict]:
              for c in df.columns}
     plan = naming(list(df.columns), opts.roles, opts.columns, first, ".", SOURCE, opts.units)
     df = df[[c for c in df.columns if c in plan.names]].rename(columns=plan.names)
+    run = next((raw for raw, name in plan.names.items() if name == RUN), None)
+    if run is not None:
+        df[RUN] = _run_ids(df[RUN], run)
     if CLOCK in df.columns:
         date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
         df = df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
     return df, plan.scales
+
+
+def _run_ids(cells: pd.Series, header: str) -> pd.Series:
+    """Each row's campaign id by its run (``Lauf_3``), checked as a long file's runs are
+    (:func:`.runs.run_blocks`: every row says its run, a run's rows stand together)."""
+    ids = np.empty(len(cells), dtype=object)
+    for cid, start, end in run_blocks(run_values(pa.array(cells, from_pandas=True)), header,
+                                      SOURCE):
+        ids[start:end] = cid
+    return pd.Series(ids, index=cells.index)
 
 
 def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -> pd.Series:

@@ -27,7 +27,7 @@ from ...core.context import TIME
 from ...core.continuation import carried_text, lead_ins
 from ...core.io.contract import AMBIENT_C
 from ...core.io.source import check_streamed_columns
-from ...core.io.stdin import read_stream, stdin_text
+from ...core.io.stdin import stdin_text, stream_campaigns
 from ..builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
 from ..config.checks import check_config, data_options
 from ..model_store import load_model
@@ -36,15 +36,17 @@ from ..store import is_registered_model
 from ..tracking import stage_run
 
 
-def _stdin_lead_in(cfg: DictConfig, fixed, ds, stream) -> dict:
-    """``{"stdin": lead-in}`` when ``monitor.continues`` names the campaign the stream continues."""
+def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict) -> dict:
+    """``{first campaign: lead-in}`` when ``monitor.continues`` names the campaign the stream
+    continues (its first run, with ``data.roles.campaign``: each later run starts from a reset)."""
+    cid, stream = next(iter(streamed.items()))
     ids = stdin_chain(ds, cfg.monitor.get("continues"), ambient_given=fixed.ambient_given_,
                       reference=fixed.compensator.reference, data_path=cfg.data.path,
                       ambient_c=cfg.monitor.get("ambient_c"))
     if ids:
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
-            + carried_text({"stdin": [*ids, "stdin"]}))
-    return stdin_lead_in(ds, ids, stream[TIME] if TIME in stream.columns else None)
+            + carried_text({cid: [*ids, cid]}))
+    return stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None)
 
 
 def _fitted(cfg: DictConfig, ds, train: dict):
@@ -77,14 +79,15 @@ def monitor(cfg: DictConfig) -> dict:
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")
         if stdin:
             opts = io.ReadOptions.from_cfg(data_options(cfg))
-            df, counts = read_stream(stdin_text(sys.stdin, opts.encoding), adaptive.columns_, opts)
+            streamed, missing = stream_campaigns(stdin_text(sys.stdin, opts.encoding),
+                                                 adaptive.columns_, opts)
             if cfg.monitor.get("ambient_c") is not None:   # as the manifest's ambient_c is carried
-                df.attrs[AMBIENT_C] = float(cfg.monitor.ambient_c)
-            streamed, missing = {"stdin": df}, ({"stdin": counts} if counts else {})
+                for df in streamed.values():
+                    df.attrs[AMBIENT_C] = float(cfg.monitor.ambient_c)
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
-        leads = _stdin_lead_in(cfg, fixed, ds, streamed["stdin"]) if stdin else lead_ins(
+        leads = _stdin_lead_in(cfg, fixed, ds, streamed) if stdin else lead_ins(
             comp, ds, list(streamed))
         report, traces = monitor_report(adaptive, fixed, comp, streamed, train,
                                         str(cfg.monitor.pod.placement), leads,

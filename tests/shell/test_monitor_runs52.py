@@ -1,0 +1,80 @@
+"""A lab's long file with a run column streamed through ``monitor`` on stdin (session 52): each
+run a campaign from a reset, as ``monitor``/``replay`` read the file with ``data.roles.campaign``,
+not one campaign jumping at every run boundary."""
+
+from __future__ import annotations
+
+import io
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import FAST
+from thermocomp.core.io import ContractError, ReadOptions
+from thermocomp.core.io.stdin import stream_campaigns
+from thermocomp.shell.cli import main
+
+HEAT = (2, 5, 3, 4)      # °C each run warms by: the held-out runs 3 and 4 within the train's
+
+
+def _long(path, clock: bool):
+    """Four 30-min runs in one ``;`` file with decimal commas, ``Lauf`` numbering them; the
+    time restarting at 0 s in each, or wall-clock times a day apart."""
+    rng = np.random.default_rng(52)
+    runs = []
+    for k, heat in enumerate(HEAT, 1):
+        t = np.arange(30) * 60.0
+        fast = heat * (1 - np.exp(-t / 900)) + rng.normal(0, 0.02, t.size)
+        slow = heat * (1 - np.exp(-t / 2400))
+        run = pd.DataFrame({"Lauf": k, "Zeit [s]": t, "T0 [°C]": 20 + fast,
+                            "T1 [°C]": 20 + slow + rng.normal(0, 0.02, t.size),
+                            "T2 [°C]": 20 + 0.5 * fast + rng.normal(0, 0.02, t.size),
+                            "dX [µm]": 3 * slow + 0.5 * fast + rng.normal(0, 0.05, t.size)})
+        if clock:
+            start = pd.Timestamp("2023-03-01 08:00") + pd.Timedelta(days=k)
+            run.insert(1, "Zeit", (start + pd.to_timedelta(run.pop("Zeit [s]"), unit="s"))
+                       .dt.strftime("%d.%m.%Y %H:%M:%S"))
+        runs.append(run)
+    pd.concat(runs).to_csv(path, sep=";", decimal=",", index=False)
+    return path
+
+
+@pytest.mark.parametrize("clock", [False, True], ids=["seconds", "wall-clock"])
+def test_a_long_file_on_stdin_is_monitored_run_by_run_as_the_file_is(tmp_path, monkeypatch, clock):
+    # before: one campaign 'stdin'; at run 4's first row (30 min in) the time went back to 0 s
+    # and every sensor fell a few °C in one sample: 9 events, 3 exclusions, the fixed RMSE 1e12 µm,
+    # the adaptive 1.80 µm where the file's runs gave 0.104 and no event (wall-clock: the time
+    # jumped a day, 8 events, 3 exclusions, the adaptive 1.87 µm)
+    path = _long(tmp_path / "alle.csv", clock)
+    common = [f"data.path={path}", "data.roles.error=[dX]", "data.roles.campaign=Lauf",
+              "data.test_fraction=0.5", "model=lagbank", *FAST]
+    assert main(["monitor", f"out={tmp_path / 'file'}", *common]) == 0
+    lines = path.read_text(encoding="utf-8").splitlines()
+    monkeypatch.setattr("sys.stdin", io.StringIO("\n".join(
+        [lines[0], *(line for line in lines[1:] if line[0] in "34")]) + "\n"))
+    assert main(["monitor", f"out={tmp_path / 'stdin'}", *common, "monitor.input=-"]) == 0
+    want, got = (json.loads((tmp_path / k / "monitor.json").read_text()) for k in ("file", "stdin"))
+    assert want["campaigns"] == got["campaigns"] == ["Lauf_3", "Lauf_4"]
+    assert want["events"] == got["events"] == []            # a healthy record stays quiet
+    assert got["targets"]["E_dX"]["n_samples"] == 60
+    for key, value in want["targets"]["E_dX"].items():
+        assert got["targets"]["E_dX"][key] == pytest.approx(value, rel=1e-9, abs=1e-12), key
+    assert got["targets"]["E_dX"]["rmse_fixed"] < 0.2
+
+
+def test_a_stream_whose_run_comes_back_is_refused_naming_its_row(tmp_path):
+    text = _long(tmp_path / "alle.csv", clock=True).read_text(encoding="utf-8")
+    opts = ReadOptions.from_cfg({"roles": {"error": ["dX"], "campaign": "Lauf"}})
+    runs, missing = stream_campaigns(text, ["T_T0"], opts)
+    assert list(runs) == ["Lauf_1", "Lauf_2", "Lauf_3", "Lauf_4"] and not missing
+    assert [r["time"].iloc[0] for r in runs.values()] == [0.0] * 4     # from each run's start
+    assert runs["Lauf_2"]["time"].iloc[-1] == 29 * 60.0
+    lines = text.splitlines()
+    cells = lines[100].split(";")                  # data row 100: run 4's tenth
+    gap = "\n".join([*lines[:100], ";".join([*cells[:2], "", *cells[3:]]), *lines[101:]])
+    assert stream_campaigns(gap, ["T_T0"], opts)[1] == {"Lauf_4": {"T_T0": 1}}   # per run
+    back = "\n".join([*lines[:62], lines[1], *lines[62:]])     # a row of run 1 within run 3
+    with pytest.raises(ContractError, match=r"column 'Lauf', .*row 62.*run '1' comes back"):
+        stream_campaigns(back, ["T_T0"], opts)
