@@ -53,13 +53,35 @@ def test_a_stream_without_its_first_time_steps_as_the_complete_record_in_every_f
     # the lags matter: the first time as 0.0 (what the forms took it as) is far off
     assert np.max(np.abs(_corrections(deployed, gap.fillna({"time": 0.0})) - expected)) > 1e-3
     cols, ss = deployed.columns_, state_space(deployed)
-    assert ss.uses_time and ss.substitute_time == adaptive
+    assert ss.uses_time and ss.substitute_time
     forms = {"python stream": _corrections(deployed, gap),
              "simulator": _simulated(ss, [gap], cols),
              "c": _streamed(_compiled(deployed, tmp_path), _rows([gap], cols)).to_numpy(float),
              "st": _st(StructuredText(exported_files(deployed, "st")["compensator.st"]), [gap], cols)}
     for form, got in forms.items():
         assert np.max(np.abs(got[1:] - expected[1:])) <= AGREE_UM, form
+
+
+@needs_cc
+@pytest.mark.parametrize("adaptive", (True, False), ids=("adaptive", "plain"))
+def test_a_time_set_back_is_a_missing_time_in_every_form(dataset, tmp_path, adaptive):
+    """A logger's clock set back an hour mid-campaign: every form takes that time as missing, one
+    period after the previous sample, as a stream without it.  The plain stream took it as read:
+    the lag bank's ``exp(-dt/tau)`` of dt = -3600 s gave ~1e12 µm of correction."""
+    deployed, complete = _deployed(dataset, adaptive)
+    back, missing = complete.copy(), complete.copy()
+    k = len(complete) // 2
+    back.loc[k, "time"] = complete.loc[k - 1, "time"] - 3600.0
+    missing.loc[k, "time"] = np.nan
+    expected = _corrections(deployed, missing)
+    assert np.abs(expected).max() < 1e3
+    cols, ss = deployed.columns_, state_space(deployed)
+    forms = {"python stream": _corrections(deployed, back),
+             "simulator": _simulated(ss, [back], cols),
+             "c": _streamed(_compiled(deployed, tmp_path), _rows([back], cols)).to_numpy(float),
+             "st": _st(StructuredText(exported_files(deployed, "st")["compensator.st"]), [back], cols)}
+    for form, got in forms.items():
+        assert np.max(np.abs(got - expected)) <= AGREE_UM, form
 
 
 def test_the_events_of_such_a_stream_count_from_its_first_row(dataset):

@@ -333,8 +333,11 @@ class StreamingCompensator:
         self._den_state = None
         self.n_samples_ = 0
         period = lag_period(est for _, est, _ in self._plan)
-        # the time rule of every deployed form (timerule.py): the models see the stream's clock
-        self._clock = SampleClock(period, judge=False) if period else None
+        # the time rule of every deployed form (timerule.py): the models see the stream's clock.
+        # A time not after the last one read is taken as missing (a scored record's times always
+        # increase, so batch and stream agree): as read, the lag bank's exp(-dt/tau) of a time set
+        # back by an hour was ~1e12 µm of correction
+        self._clock = SampleClock(period) if period else None
 
     @contextmanager
     def envelope_off(self):

@@ -1,8 +1,8 @@
 """What surrounds the linear system in the exported code: the time rule, the correction guard and
 the reference update (pure core).
 
-* **time** (:mod:`thermocomp.core.timerule`, every form's): a missing time (the adaptive compensator's,
-  ``substitute_time``: or one not after the last time read) is the previous time plus
+* **time** (:mod:`thermocomp.core.timerule`, every form's): a missing time (``substitute_time``:
+  or one not after the last time read) is the previous time plus
   ``time_period``; a campaign's first, 0 of the stream's clock, the first time read counting from it.
 * **guard** (:class:`~..guard.CorrectionGuard` of the adaptive compensator): static limits
   ``guard_lo``, ``guard_hi`` (µm of predicted error) and ``guard_rate`` (µm/s; null: none) per
@@ -42,12 +42,12 @@ def guard_fields(deployed) -> dict:
             "guard_rate": rate, "guard_period": float(g.period_s)}
 
 
-def time_fields(deployed) -> dict:
-    """The adaptive compensator's rule for a bad ``time`` (missing, or not after the last one
-    read): taken as the previous time plus ``time_period`` (:mod:`thermocomp.core.timerule`)."""
-    if not isinstance(deployed, AdaptiveCompensator):
-        return {}
-    return {"substitute_time": True, "time_period": float(deployed.period_s)}
+def time_fields(deployed, lag_period: float) -> dict:
+    """Every stream's rule for a bad ``time`` (missing, or not after the last one read): taken as
+    the previous time plus ``time_period`` (:mod:`thermocomp.core.timerule`): the adaptive
+    compensator's sample period, a plain stream's its lag bank's ``lag_period``."""
+    period = deployed.period_s if isinstance(deployed, AdaptiveCompensator) else lag_period
+    return {"substitute_time": True, "time_period": float(period)}
 
 
 def adapt_fields(deployed) -> dict:

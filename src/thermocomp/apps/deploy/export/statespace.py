@@ -227,7 +227,7 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
         clamp_gain=gains, **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
-        **(time_fields(deployed) or {"time_period": period}), **guard_fields(deployed),
+        **time_fields(deployed, period), **guard_fields(deployed),
         **adapt_fields(deployed),
         provenance=dict(provenance or {}))
 
