@@ -84,9 +84,14 @@ def test_twins_build_the_standard_address_space_once_then_load_its_shelf(tmp_pat
 
     # the empty <shelf> asyncua looks for, swept by a temp cleaner (never read, it ages): the
     # shelf is made anew, whole, not rewritten in place by asyncua under the twins reading it
+    # (a stand-in maker: what is tested is when and where it is called, asyncua's part is above)
+    made = []
+    monkeypatch.setattr(shelf, "_make", lambda path: (made.append(path.parent.name),
+                                                      path.with_suffix(".dat").touch(), path.touch()))
     (tmp_path / version / shelf.SHELF).unlink()
-    asyncio.run(start_and_stop())
-    assert len(built) == 2 and (tmp_path / version / shelf.SHELF).is_file()
+    assert shelf.standard_shelf() == tmp_path / version / shelf.SHELF
+    assert made and made[0] != version          # made in a folder of its own, then renamed
+    assert (tmp_path / version / shelf.SHELF).is_file() and len(built) == 1
 
 
 def test_a_twin_starts_where_no_shelf_can_be_made(tmp_path, monkeypatch, caplog):
