@@ -5,6 +5,7 @@ counts runs is pointed out (init proposes it) instead of read as a temperature."
 from __future__ import annotations
 
 import json
+import logging
 import re
 
 import numpy as np
@@ -49,9 +50,10 @@ def _folder(root, runs):
     return root
 
 
-def test_a_long_file_split_by_its_run_column_reads_as_the_folder_of_its_runs(tmp_path):
+def test_a_long_file_split_by_its_run_column_reads_as_the_folder_of_its_runs(tmp_path, caplog):
     # before: data.roles.campaign was an unknown role; the only read was one record whose time
     # restarts at each run ("time decreases"), or, with ignore, one campaign of all the runs
+    caplog.set_level(logging.INFO)
     runs = _runs()
     long_ds, report = read_dataset(_long(tmp_path / "alle.csv", runs),
                                    {"roles": ROLES, "test_fraction": 0.25})
@@ -59,6 +61,7 @@ def test_a_long_file_split_by_its_run_column_reads_as_the_folder_of_its_runs(tmp
                                 {"roles": {"error": ["dX"]}, "test_fraction": 0.25})
     assert long_ds.ids() == folder_ds.ids() == ["Lauf_1", "Lauf_2", "Lauf_3", "Lauf_4"]
     assert long_ds.ids("test") == folder_ds.ids("test") == ["Lauf_4"]   # the last run, held out
+    assert "held out in file order (no start time for each): test ['Lauf_4']" in caplog.text
     for cid in long_ds.ids():
         pd.testing.assert_frame_equal(long_ds.campaigns[cid], folder_ds.campaigns[cid])
     assert report["campaigns"]["Lauf_2"]["record_rows"] == [30, 60]

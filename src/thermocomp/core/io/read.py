@@ -538,7 +538,7 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
     starts = pd.Series({cid: _utc(pd.Timestamp(o), opts) if o else pd.NaT
                         for cid, o in origins.items()}, dtype="datetime64[ns, UTC]")
     try:
-        manifest = hold_out(manifest, opts, path.parent, starts)
+        manifest = hold_out(manifest, opts, path.parent, starts, listed="in file order")
     except ContractError as exc:          # (about the runs, not a manifest file)
         raise ContractError(exc.reason, file=path, column=header) from None
     logger.info(f"{path.name}: {len(parts)} runs by {header!r} read as campaigns")

@@ -146,11 +146,12 @@ def _missing_cells(part: pa.Table, columns) -> dict[str, int]:
     return {c: n for c, n in counts.items() if n}
 
 
-def hold_out(manifest: pd.DataFrame, opts, root: Path, starts: pd.Series | None = None
-             ) -> pd.DataFrame:
+def hold_out(manifest: pd.DataFrame, opts, root: Path, starts: pd.Series | None = None,
+             listed: str = "in the order listed") -> pd.DataFrame:
     """``manifest`` with the chronologically last train campaigns made test (and val) as the
     fractions ask, by ``starts`` (:func:`.starts.campaign_starts`) where every train campaign
-    has one, else in manifest order; refused where the manifest has that split already."""
+    has one, else in manifest order (``listed`` says which order that is, in the log line);
+    refused where the manifest has that split already."""
     wanted = shares(opts)
     if not wanted:
         return manifest
@@ -160,7 +161,7 @@ def hold_out(manifest: pd.DataFrame, opts, root: Path, starts: pd.Series | None 
                                 "campaigns already: drop one of them", file=root / MANIFEST,
                                 column="split")
     pool = manifest.index[manifest["split"] == "train"]
-    order = "in the order listed (no start time for each)"
+    order = f"{listed} (no start time for each)"
     if starts is not None and starts[pool].notna().all():
         pool, order = starts[pool].sort_values(kind="stable").index, "by start time"
     counts = _counts(len(pool), opts)
