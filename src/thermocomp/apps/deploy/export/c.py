@@ -429,8 +429,8 @@ int main(void) {
     sep = strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
     ncols = split(line, cells);
     for (j = 0; j < ncols; j++) {
-        if (TC_RUN_COLUMN[0] && strcmp(named(cells[j]), TC_RUN_COLUMN) == 0) run_col = j;
-        cells[j] = (char *)named(cells[j]);
+        cells[j] = (char *)named(cells[j]);      /* the run column has no contract name */
+        if (TC_RUN_COLUMN[0] && strcmp(cells[j], TC_RUN_COLUMN) == 0) run_col = j;
     }
     for (i = 0; i < TC_N_INPUTS; i++) {
         where[i] = -1;
