@@ -76,13 +76,13 @@ from .contract import (
     role,
 )
 from .lines import Lines
-from .manifest import RECORD_SUFFIXES, _apply_split_overrides, read_manifest
+from .manifest import RECORD_SUFFIXES, apply_split_overrides, read_manifest
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
 from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
-from .starts import _utc, campaign_starts
+from .starts import campaign_starts, utc_instant
 from .steps import check_unit_steps
 from .tables import _load_csv, _load_parquet, _ordered, _values, parquet
 from .values import (
@@ -551,9 +551,9 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
     _warn_error_ranges(ranges, files, path.parent)
     manifest = pd.DataFrame({"file": path.name, "split": "train"}, index=pd.Index(
         list(parts), name="campaign"))
-    _apply_split_overrides(manifest, opts.split_overrides, path)
+    apply_split_overrides(manifest, opts.split_overrides, path)
     origins = {cid: entry.get("time_origin") for cid, (_, entry) in parts.items()}
-    starts = pd.Series({cid: _utc(pd.Timestamp(o), opts) if o else pd.NaT
+    starts = pd.Series({cid: utc_instant(pd.Timestamp(o), opts) if o else pd.NaT
                         for cid, o in origins.items()}, dtype="datetime64[ns, UTC]")
     try:
         manifest = hold_out(manifest, opts, path.parent, starts, listed="in file order")
