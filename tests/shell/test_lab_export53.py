@@ -13,6 +13,7 @@ import pandas as pd
 
 from conftest import FAST
 from test_export import _compose, needs_cc
+from test_lab_stream52 import DATA, compiled
 from test_run_column52 import _long, _runs
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.shell.builders import deploy_stream, deployable
@@ -20,7 +21,6 @@ from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import load_model
 from thermocomp.shell.source import read_streamed
 
-DATA = ("data.roles.error=[dX]", "data.roles.campaign=Lauf", "data.test_fraction=0.5")
 _BANNER = re.compile(r"\A/\*.*?\*/\n", re.S)      # the provenance: source, run, dataset, date
 
 
@@ -56,18 +56,6 @@ def test_a_registered_model_exports_the_code_its_run_exports(tmp_path):
     assert got == want
 
 
-def _compiled(tmp_path, path, *overrides):
-    """``stream`` compiled from the lagbank run on ``path`` exports (its lags read the time)."""
-    common = (f"data.path={path}", *DATA)
-    assert main(["run", *common, "model=lagbank", *FAST, f"out={tmp_path / 'run'}"]) == 0
-    assert main(["export", *common, "monitor.adaptive=false", "export.format=c", "track=false",
-                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    code = tmp_path / "code"
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
-    return code / "stream"
-
-
 def _streamed(binary, text: str) -> subprocess.CompletedProcess:
     return subprocess.run([str(binary)], input=text.encode("utf-8"), capture_output=True)
 
@@ -77,7 +65,7 @@ def test_the_compiled_c_reads_a_loggers_wall_clock_times_as_replay_does(tmp_path
     # before: "row 2: the time is no number (seconds; a clock time or date is not read here)":
     # the lab converted its logger's clock to seconds first, which serve and replay do not need
     path = _clock_file(tmp_path / "alle.csv")
-    binary = _compiled(tmp_path, path)
+    binary = compiled(tmp_path, path)
     cfg = _compose(f"data.path={path}", *DATA, "model=lagbank", "monitor.adaptive=false",
                    "track=false")
     ds, train_ids, test_ids, _ = read_streamed(cfg)
