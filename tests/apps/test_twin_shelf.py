@@ -2,6 +2,8 @@
 (startup52): asyncua built it at every start (~2.5 s CPU) as its own shelf was never found."""
 
 import asyncio
+import os
+import shutil
 import subprocess
 import sys
 import threading
@@ -82,16 +84,31 @@ def test_twins_build_the_standard_address_space_once_then_load_its_shelf(tmp_pat
                           NODES.namespace]
     assert {"Server", "Machine"} <= set(children) and offset == 1.5
 
+    # a file of the shelf damaged (its .dat truncated, a disk full, a copy cut short): made
+    # anew, whole, before asyncua reads it (it failed the twin's start: BadInternalError)
+    # (a stand-in maker copies the shelf as made: a second real build costs ~2.5 s of CPU)
+    nodes = tmp_path / version / shelf.NODES
+    pristine = shutil.copytree(nodes, tmp_path / "pristine")
+    made = []
+
+    def remake(path):
+        made.append(path.parent.parent.name)
+        shutil.copytree(pristine, path.parent, dirs_exist_ok=True)
+
+    monkeypatch.setattr(shelf, "_make", remake)
+    dat = nodes / f"{shelf.SHELF}.dat"
+    os.truncate(dat, dat.stat().st_size // 2)
+    namespaces, children, offset = asyncio.run(start_and_read())
+    assert len(made) == 1 and made[0] != version    # made in a folder of its own, then renamed
+    assert {"Server", "Machine"} <= set(children) and offset == 1.5 and len(built) == 1
+    assert dat.stat().st_size == (pristine / dat.name).stat().st_size
+
     # the empty <shelf> asyncua looks for, swept by a temp cleaner (never read, it ages): the
     # shelf is made anew, whole, not rewritten in place by asyncua under the twins reading it
-    # (a stand-in maker: what is tested is when and where it is called, asyncua's part is above)
-    made = []
-    monkeypatch.setattr(shelf, "_make", lambda path: (made.append(path.parent.name),
-                                                      path.with_suffix(".dat").touch(), path.touch()))
-    (tmp_path / version / shelf.SHELF).unlink()
-    assert shelf.standard_shelf() == tmp_path / version / shelf.SHELF
-    assert made and made[0] != version          # made in a folder of its own, then renamed
-    assert (tmp_path / version / shelf.SHELF).is_file() and len(built) == 1
+    (nodes / shelf.SHELF).unlink()
+    assert shelf.standard_shelf() == nodes / shelf.SHELF
+    assert len(made) == 2 and (nodes / shelf.SHELF).is_file() and len(built) == 1
+    assert shelf.standard_shelf() == nodes / shelf.SHELF and len(made) == 2   # whole: read
 
 
 def test_a_twin_starts_where_no_shelf_can_be_made(tmp_path, monkeypatch, caplog):

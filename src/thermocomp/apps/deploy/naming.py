@@ -14,6 +14,7 @@ from collections.abc import Mapping
 import pandas as pd
 
 from ...base.errors import ContractError
+from ...core.io.roles import RUN
 
 CORRECTION_PREFIX = "C_"
 
@@ -29,12 +30,17 @@ def lab_names(cfg, ds=None) -> dict[str, list[str]]:
     ``data.roles``, :func:`thermocomp.core.io.roles.contract_columns`, every campaign's
     headers), else ``data.columns``.  A column read in another unit (``ch1(mm)`` -> ``E_ch1``
     in µm) is left out: under the lab's name it would carry the lab's unit, so the model takes
-    it by its contract name only."""
+    it by its contract name only.  The run-number column of a long file
+    (``data.roles.campaign``, ``ds.meta["run_column"]``) comes under :data:`RUN`: a stream of
+    the lab's file starts a campaign at each of its values (the exported code, a model from
+    the registry too, which has no dataset to ask)."""
     columns = dict(cfg.data.get("columns") or {})
     converted = set()
     if ds is not None:
         columns.update(ds.meta.get("column_map") or {})
         converted = set(ds.meta.get("converted") or ())
+        if ds.meta.get("run_column"):
+            columns[ds.meta["run_column"]] = RUN
     names: dict[str, list[str]] = {}
     for raw, contract in columns.items():
         if str(raw) != str(contract) and str(contract) not in converted:

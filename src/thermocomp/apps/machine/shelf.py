@@ -10,8 +10,11 @@ gdbm or ndbm :mod:`shelve` falls back to dbm.dumb, which writes ``<shelf>.dat`` 
 Here the shelf is made by a server of its own, in a folder renamed into place once complete
 (:func:`~thermocomp.base.files.atomic_dir`: a killed maker's folder is swept), under a file lock
 (parallel twins wait for the one that makes it, none reads it half-made), with an empty
-``<shelf>`` beside dbm.dumb's files for asyncua to find.  One per asyncua and Python version
-(the nodes are pickled asyncua objects in that Python's dbm) and user; read-only after.
+``<shelf>`` beside dbm.dumb's files for asyncua to find and the SHA-256 of its files beside
+them: a shelf whose files are not those made (its empty ``<shelf>`` swept by a temp cleaner, a
+``.dat`` truncated: asyncua's start failed, ``BadInternalError``) is made anew, whole.  One per
+asyncua and Python version (the nodes are pickled asyncua objects in that Python's dbm) and
+user; read-only after.
 """
 
 from __future__ import annotations
@@ -21,10 +24,15 @@ import logging
 import sys
 from pathlib import Path
 
-from ...base.files import atomic_dir, user_temp_folder
+from ...base.files import atomic_dir, folder_digest, user_temp_folder
 
 log = logging.getLogger(__name__)
 SHELF = "standard"          # no dot in it: asyncua also looks for the name with its suffix -> .db
+NODES = "nodes"             # the folder of the shelf's files (dbm.dumb's .dat, .dir, .bak)
+DIGEST = "nodes.sha256"     # their SHA-256 as made (~20 ms of CPU to check, against ~2.5 s to build)
+# the folder's layout in its name: an older thermocomp's shelf (its files at the top, no digest)
+# is its own, which it would remake in its layout as this one would in this (each, in turn)
+LAYOUT = "digested"
 
 
 def shelf_folder() -> Path:
@@ -37,7 +45,7 @@ def version_folder() -> Path:
     import asyncua
 
     python = f"{sys.version_info[0]}.{sys.version_info[1]}"
-    return shelf_folder() / f"asyncua-{asyncua.__version__}-py{python}"
+    return shelf_folder() / f"asyncua-{asyncua.__version__}-py{python}-{LAYOUT}"
 
 
 def standard_shelf() -> Path:
@@ -48,14 +56,16 @@ def standard_shelf() -> Path:
     from filelock import FileLock
 
     folder = version_folder()
-    shelf = folder / SHELF
-    if _found(shelf):
+    shelf = folder / NODES / SHELF
+    if _whole(folder):
         return shelf
     folder.parent.mkdir(parents=True, exist_ok=True)
     with FileLock(f"{folder}.lock", timeout=600):
-        if not _found(shelf):     # none, or its empty <shelf> swept by a temp cleaner: anew
+        if not _whole(folder):    # none, or damaged (a file swept, truncated): anew, whole
             with atomic_dir(folder) as tmp:
-                _make(tmp / SHELF)
+                (tmp / NODES).mkdir()
+                _make(tmp / NODES / SHELF)
+                (tmp / DIGEST).write_text(folder_digest(tmp / NODES))
     return shelf
 
 
@@ -67,6 +77,16 @@ def standard_shelf_or_none() -> Path | None:
     except OSError as exc:             # filelock's Timeout is one (TimeoutError)
         log.warning("the OPC UA address space is built at this start (no shelf: %s)", exc)
         return None
+
+
+def _whole(folder: Path) -> bool:
+    """The shelf in ``folder`` is as it was made: asyncua finds it (:func:`_found`) and its
+    files have the digest written with them.  A folder swapped while it is read is not."""
+    try:
+        return (_found(folder / NODES / SHELF)
+                and (folder / DIGEST).read_text() == folder_digest(folder / NODES))
+    except OSError:
+        return False
 
 
 def _found(shelf: Path) -> bool:

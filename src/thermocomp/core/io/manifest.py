@@ -73,7 +73,7 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     _check_manifest_rows(raw, path, root)
     _check_continues(raw, path)
     manifest = raw.set_index("campaign")
-    _apply_split_overrides(manifest, opts.split_overrides, path)
+    apply_split_overrides(manifest, opts.split_overrides, path)
     for column in manifest.columns.drop(["file", "split"]):
         manifest[column] = _metadata_column(manifest[column], path, column, opts.decimal)
     return manifest
@@ -225,7 +225,9 @@ def _check_continues(raw: pd.DataFrame, path: Path) -> None:
                                 file=path, column="continues", row=rows[cid])
 
 
-def _apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path) -> None:
+def apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path) -> None:
+    """Set ``data.split_overrides`` (``{campaign: split}``) in ``manifest``, in place; a
+    campaign it does not list is refused naming ``path`` (a manifest, a long file's runs)."""
     unknown = [cid for cid in overrides if cid not in manifest.index]
     if unknown:
         raise ContractError(f"data.split_overrides names campaign {unknown[0]!r}, "

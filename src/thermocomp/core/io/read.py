@@ -76,13 +76,13 @@ from .contract import (
     role,
 )
 from .lines import Lines
-from .manifest import RECORD_SUFFIXES, _apply_split_overrides, read_manifest
+from .manifest import RECORD_SUFFIXES, apply_split_overrides, read_manifest
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
-from .runs import looks_like_run_counter, run_blocks, run_hint, run_values
-from .starts import _utc, campaign_starts
+from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
+from .starts import campaign_starts, utc_instant
 from .steps import check_unit_steps
 from .tables import _load_csv, _load_parquet, _ordered, _values, parquet
 from .values import (
@@ -507,8 +507,26 @@ def _run_counter(columns: dict, renamed: dict) -> str | None:
         column = columns.get(name)
         if role(name) != "T" or column is None or column.null_count or split_unit(raw)[1]:
             continue
-        if looks_like_run_counter(column.to_numpy(zero_copy_only=False), raw):
+
+        def ends(changes, name=name):
+            others = [v for n, c in columns.items() if n not in (name, TIME)
+                      and (v := _numbers(c)) is not None]
+            return run_ends(changes, _numbers(columns.get(TIME)), others)
+
+        if looks_like_run_counter(column.to_numpy(zero_copy_only=False), raw, ends):
             return raw
+    return None
+
+
+def _numbers(column) -> np.ndarray | None:
+    """A loaded column as floats (a timestamp as seconds since the epoch), None where it is
+    text or missing."""
+    if column is None:
+        return None
+    if pa.types.is_timestamp(column.type):
+        return column.cast(pa.int64()).to_numpy(zero_copy_only=False) / 1e9
+    if pa.types.is_integer(column.type) or pa.types.is_floating(column.type):
+        return column.to_numpy(zero_copy_only=False).astype(float)
     return None
 
 
@@ -533,9 +551,9 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
     _warn_error_ranges(ranges, files, path.parent)
     manifest = pd.DataFrame({"file": path.name, "split": "train"}, index=pd.Index(
         list(parts), name="campaign"))
-    _apply_split_overrides(manifest, opts.split_overrides, path)
+    apply_split_overrides(manifest, opts.split_overrides, path)
     origins = {cid: entry.get("time_origin") for cid, (_, entry) in parts.items()}
-    starts = pd.Series({cid: _utc(pd.Timestamp(o), opts) if o else pd.NaT
+    starts = pd.Series({cid: utc_instant(pd.Timestamp(o), opts) if o else pd.NaT
                         for cid, o in origins.items()}, dtype="datetime64[ns, UTC]")
     try:
         manifest = hold_out(manifest, opts, path.parent, starts, listed="in file order")

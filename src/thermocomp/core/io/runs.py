@@ -12,7 +12,7 @@ header's name before it (``Lauf_3``).
 from __future__ import annotations
 
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -81,10 +81,15 @@ def campaign_id(value: str, header: str) -> str:
     return _UNSAFE_ID.sub("_", name).strip("._") or "run"
 
 
-def looks_like_run_counter(values: np.ndarray, header: str) -> bool:
+def looks_like_run_counter(values: np.ndarray, header: str,
+                           ends: Callable[[np.ndarray], np.ndarray | None] | None = None) -> bool:
     """A column numbering runs: whole numbers, never decreasing, at least two of them, each held
-    :data:`MIN_RUN_ROWS` rows on average, and either stepping by one or under a header that says
-    so (:data:`RUN_WORDS`: ``Lauf``, ``Run``, ``Versuch``, ``run_id``, ``Messung`` ...)."""
+    :data:`MIN_RUN_ROWS` rows on average, and either under a header that says so
+    (:data:`RUN_WORDS`: ``Lauf``, ``Run``, ``Versuch``, ``run_id``, ``Messung`` ...) or stepping
+    by one only where a run may end: ``ends(changes)``, :func:`run_ends` of the record's time
+    and other columns at the steps where the value changes (asked of a column that passes
+    every other check: it reads the whole record).  A temperature logged in whole degrees
+    (``T5`` 20, 21, 22, rising slowly) steps by one too, but in the middle of a run."""
     values = np.asarray(values, dtype=float)
     if values.size < 2 * MIN_RUN_ROWS or values[0] != np.round(values[0]) or values[-1] <= values[0]:
         return False            # (the look at every value is for what passes this one)
@@ -96,8 +101,38 @@ def looks_like_run_counter(values: np.ndarray, header: str) -> bool:
     runs = int((steps > 0).sum()) + 1
     if runs < 2 or values.size / runs < MIN_RUN_ROWS:
         return False
-    words = set(_WORDS.split(split_unit(header)[0].lower()))
-    return bool(words & RUN_WORDS) or bool((steps[steps > 0] == 1).all())
+    if set(_WORDS.split(split_unit(header)[0].lower())) & RUN_WORDS:
+        return True
+    if not (steps[steps > 0] == 1).all():
+        return False
+    at = None if ends is None else ends(steps > 0)
+    return at is None or bool(at.all())
+
+
+JUMP = 3.0     # a step over this many times a column's largest within the runs is a run's end
+
+
+def run_ends(changes: np.ndarray, time: np.ndarray | None = None,
+             others: Sequence[np.ndarray] = ()) -> np.ndarray | None:
+    """Whether a run may end at each step between rows where ``changes`` (a candidate run
+    counter changes value): the ``time`` (s) goes back or jumps (over twice its median step),
+    or a column of ``others`` jumps (over :data:`JUMP` times its largest step elsewhere: a
+    machine warm at a run's end, cold at the next one's start).  A whole-degree sensor's step
+    is no such place.  None where nothing tells (no time, no other column moving)."""
+    ends, told = np.zeros(int(changes.sum()), bool), False
+    if time is not None and np.isfinite(time).sum() > 2:
+        dt = np.diff(np.asarray(time, float))
+        period = np.median(dt[dt > 0]) if (dt > 0).any() else np.nan
+        ends |= ((dt <= 0) | (dt > 2 * period))[changes]
+        told = True
+    for column in others:
+        step = np.abs(np.diff(np.asarray(column, float)))
+        within = step[~changes & np.isfinite(step)]
+        if within.size == 0 or not within.max() > 0:   # constant within the runs: tells nothing
+            continue
+        ends |= step[changes] > JUMP * within.max()
+        told = True
+    return ends if told else None
 
 
 def run_hint(header: str) -> str:

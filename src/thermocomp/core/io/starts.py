@@ -53,7 +53,7 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
     cells = {n: first[h] for h, n in zip(header, names) if n in (TIME, CLOCK)}
     value = cells.get(TIME)
     if isinstance(value, pd.Timestamp) or value is None:
-        return _utc(value, opts)
+        return utc_instant(value, opts)
     text = f"{value.strip()} {cells[CLOCK].strip()}" if CLOCK in cells else value.strip()
     if maybe_elapsed(text, opts.time):
         return pd.NaT
@@ -65,7 +65,7 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
         stamp = parsed(pa.array([text]), target, kind)[0].as_py()
     except (ContractError, pa.ArrowInvalid):
         return pd.NaT
-    return _utc(pd.Timestamp(stamp), opts)
+    return utc_instant(pd.Timestamp(stamp), opts)
 
 
 def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict, ReadOptions]:
@@ -86,7 +86,7 @@ def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict, ReadOpti
     return batch.schema.names, first, opts
 
 
-def _utc(stamp, opts: ReadOptions) -> pd.Timestamp:
+def utc_instant(stamp, opts: ReadOptions) -> pd.Timestamp:
     """``stamp`` as an instant: one without an offset on ``data.timezone``'s clock (as
     written without it: ordered as the whole read orders them)."""
     if stamp is None or pd.isna(stamp):

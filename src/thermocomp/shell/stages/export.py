@@ -24,6 +24,7 @@ from ...base.files import staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
 from ...core.io.contract import TIME
+from ...core.io.roles import RUN
 from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
 from ..model_store import model_family
@@ -60,8 +61,7 @@ def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict]:
     if registered:
         run = _registry_run(source) if is_registered_model(source) else None
         return deployed, {"run_id": run, "dataset_hash": None}
-    return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"],
-                      "run_column": ds.meta.get("run_column")}
+    return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}
 
 
 def export(cfg: DictConfig) -> dict:
@@ -88,7 +88,10 @@ def export(cfg: DictConfig) -> dict:
     named = getattr(deployed, "lab_names_", {}) or {}
     lab = {c: raws[0] if len(raws) == 1 else raws
            for c in (*stream.columns_, TIME, *stream.targets_) if (raws := raw_names(named, c))}
+    # the long file's run column travels with the model's names: from the registry as from a run
+    run_column = next(iter(raw_names(named, RUN)), None)
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
+                      run_column=run_column,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
                       not_in_code=left)
     try:

@@ -57,9 +57,10 @@ def exported_files(deployed, fmt: str, provenance: dict | None = None) -> dict[s
     files = {"compensator.json": json.dumps(ss.to_dict(), indent=1) + "\n"}
     if fmt == "c":
         from . import c
+        from .driver import DRIVER
 
         files.update({"compensator.h": c.header(ss), "compensator.c": c.source(ss),
-                      "stream.c": c.DRIVER})
+                      "stream.c": DRIVER})
     elif fmt == "st":
         from . import st
 

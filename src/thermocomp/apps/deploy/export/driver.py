@@ -1,0 +1,270 @@
+"""``stream.c``, the exported C code's CSV driver: rows of raw inputs on stdin, the corrections
+on stdout, the lab's own file as it is written (its headers, separator, decimal commas, run
+column and wall-clock times: ``docs/to-the-machine.md``).  The same text for every model: what
+differs (the names, the run column) is in ``compensator.h`` (:mod:`.c`)."""
+
+DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis> as CSV on stdout.
+ *
+ * The header names the columns (any order, extra columns ignored) by their contract names or
+ * by the lab's headers the model was made from (TC_LAB_NAMES: `T0 [°C]` for T_T0, `Zeit [s]`
+ * for time); every input of TC_INPUT_NAMES is needed, `time` when the model reads it.  The
+ * separator is the header's: ';', a tab or '|' where it holds one, else ','; with another
+ * separator than ',' a decimal comma reads (12,5).  The time is seconds, or a logger's
+ * wall-clock time (ISO 8601 2023-01-07T08:45:00, a zone offset or none; day-first
+ * 07.01.2023 08:45:00) read as seconds since the campaign's first, as the served model reads
+ * it; every time of a stream in the form of its first.  A cell that is no number (a time of
+ * day alone, 08:45:00) is refused with its row.  A blank row, a `reset` column holding 1, or a
+ * new value in the run-number column TC_RUN_COLUMN starts a campaign (the row is its
+ * reference).  With TC_ADAPT, a row carrying a measured error in a TC_ERROR_NAMES column
+ * (E_<axis>, optional; blank: none) is a reference measurement: its correction is printed,
+ * then the bias learns.
+ * Build: cc compensator.c stream.c -lm -o stream
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "compensator.h"
+
+#define MAX_LINE 65536
+#define MAX_COLS 1024
+#define MAX_CELL 256
+
+enum { SECONDS = 1, LOCAL_TIME, ZONED_TIME };   /* a stream's time: as its first is written */
+
+static char sep = ',';
+
+static int split(char *line, char **cells) {
+    int n = 0;
+    char *p = line;
+    line[strcspn(line, "\r\n")] = '\0';
+    cells[n++] = p;
+    while ((p = strchr(p, sep)) != NULL && n < MAX_COLS) { *p++ = '\0'; cells[n++] = p; }
+    return n;
+}
+
+/* A header cell as named: without spaces and quotes around it, read as its contract name. */
+static const char *named(char *cell) {
+    size_t len;
+    int k;
+    while (*cell == ' ' || *cell == '"') cell++;
+    len = strlen(cell);
+    while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"')) cell[--len] = '\0';
+    for (k = 0; k < TC_N_LAB_NAMES; k++)
+        if (strcmp(cell, TC_LAB_NAMES[k][0]) == 0) return TC_LAB_NAMES[k][1];
+    return cell;
+}
+
+/* A cell's number; NAN when empty, and when it is no number as a whole (then `bad` is set). */
+static double value(const char *cell, int *bad) {
+    char text[MAX_CELL], *end, *c;
+    double v;
+    while (*cell == ' ' || *cell == '"') cell++;
+    if (*cell == '\0') return NAN;
+    strncpy(text, cell, MAX_CELL - 1);
+    text[MAX_CELL - 1] = '\0';
+    if (sep != ',' && (c = strchr(text, ',')) != NULL) *c = '.';   /* a decimal comma */
+    v = strtod(text, &end);
+    while (*end == ' ' || *end == '"') end++;
+    if (end == text || *end != '\0') { *bad = 1; return NAN; }
+    return v;
+}
+
+/* Wall-clock times are parsed here by hand: standard C has no parser of dates (strptime and
+   timegm are POSIX or GNU, not on every PLC or NC toolchain) and the code takes no library.
+   Reads `least` to `most` digits at *p, no more, into *v. */
+static int digits(const char **p, int least, int most, long *v) {
+    int n = 0;
+    *v = 0;
+    while (n < most && **p >= '0' && **p <= '9') { *v = *v * 10 + (*(*p)++ - '0'); n++; }
+    return n >= least && !(**p >= '0' && **p <= '9');
+}
+
+/* Days from 1970-01-01 to a date of the Gregorian calendar (H. Hinnant's days_from_civil). */
+static long long days_from_civil(long y, long m, long d) {
+    long era, yoe, doy;
+    y -= m <= 2;
+    era = (y >= 0 ? y : y - 399) / 400;
+    yoe = y - era * 400;
+    doy = (153 * (m + (m > 2 ? -3 : 9)) + 2) / 5 + d - 1;
+    return (long long)era * 146097 + yoe * 365 + yoe / 4 - yoe / 100 + doy - 719468;
+}
+
+/* A wall-clock time as whole seconds since 1970 (a zone offset taken off: UTC) and a fraction
+   (s): ISO 8601 `2023-01-07T08:45:00` (a space for the T, seconds optional, a fraction after
+   '.' or ',', then `Z`, `+01:00`, `+0100` or `+01`) or day-first `07.01.2023 08:45:00`.
+   Returns LOCAL_TIME without an offset, ZONED_TIME with one, 0 for anything else (a date or a
+   time of day alone, an impossible date).  Without an offset it is the logger's own clock, as
+   the served model reads it (no daylight saving time). */
+static int wall_clock(const char *cell, long long *whole, double *fraction) {
+    static const int month_days[12] = {31, 29, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+    const char *p = cell;
+    long y, mo, d, h, mi, s = 0, ns = 0, oh = 0, om = 0, offset = 0, scale = 1000000000L;
+    int kind = LOCAL_TIME, iso;
+    while (*p == ' ' || *p == '"') p++;
+    cell = p;
+    iso = digits(&p, 4, 4, &y) && *p == '-';
+    if (iso) {
+        p++;
+        if (!digits(&p, 2, 2, &mo) || *p++ != '-' || !digits(&p, 2, 2, &d)) return 0;
+    } else {
+        p = cell;
+        if (!digits(&p, 1, 2, &d) || *p++ != '.' || !digits(&p, 1, 2, &mo) || *p++ != '.'
+            || !digits(&p, 4, 4, &y)) return 0;
+    }
+    if (*p != 'T' && *p != ' ') return 0;
+    p++;
+    if (!digits(&p, 1, 2, &h) || *p++ != ':' || !digits(&p, 2, 2, &mi)) return 0;
+    if (*p == ':') {
+        p++;
+        if (!digits(&p, 2, 2, &s)) return 0;
+        if (*p == '.' || *p == ',') {     /* to the nanosecond, as the served model reads it */
+            p++;
+            if (!(*p >= '0' && *p <= '9')) return 0;
+            for (; *p >= '0' && *p <= '9'; p++)
+                if (scale > 1) { scale /= 10; ns += (*p - '0') * scale; }
+        }
+    }
+    if (iso && (*p == 'Z' || *p == '+' || *p == '-')) {
+        kind = ZONED_TIME;
+        if (*p == 'Z') p++;
+        else {
+            int sign = *p++ == '-' ? -1 : 1;
+            if (!digits(&p, 2, 2, &oh)) return 0;
+            if (*p == ':') p++;
+            if (*p >= '0' && *p <= '9' && !digits(&p, 2, 2, &om)) return 0;
+            if (oh > 23 || om > 59) return 0;
+            offset = sign * (oh * 3600 + om * 60);
+        }
+    }
+    while (*p == ' ' || *p == '"') p++;
+    if (*p != '\0' || mo < 1 || mo > 12 || d < 1 || d > month_days[mo - 1] || h > 23 || mi > 59
+        || s > 59 || (mo == 2 && d == 29 && (y % 4 != 0 || (y % 100 == 0 && y % 400 != 0))))
+        return 0;
+    *whole = days_from_civil(y, mo, d) * 86400 + h * 3600 + mi * 60 + s - offset;
+    *fraction = ns / 1e9;
+    return kind;
+}
+
+/* The stream's clock: the form of its first time, and the first time of the campaign. */
+static struct { int kind, started; long long origin; double origin_fraction; } clock_;
+
+/* A row's time cell as seconds (NAN: none) into *t; wall-clock times as seconds since the
+   campaign's first.  Returns 0, or 2 after saying why the cell is refused. */
+static int time_of(const char *cell, long row, double *t) {
+    static const char *const forms[] = {"", "seconds", "a date and time without a zone offset",
+                                        "a date and time with a zone offset"};
+    long long whole = 0;
+    double fraction = 0.0;
+    int bad = 0, kind;
+    *t = value(cell, &bad);
+    kind = isfinite(*t) ? SECONDS : bad ? wall_clock(cell, &whole, &fraction) : 0;
+    if (bad && !kind) {
+        fprintf(stderr, "stream: row %ld: the time is no number of seconds nor a date and time "
+                "(2023-01-07T08:45:00, 07.01.2023 08:45:00; a time of day alone goes back at "
+                "midnight)\n", row);
+        return 2;
+    }
+    if (kind && clock_.kind && kind != clock_.kind) {
+        fprintf(stderr, "stream: row %ld: the time is %s, the stream's first %s\n", row,
+                forms[kind], forms[clock_.kind]);
+        return 2;
+    }
+    if (kind) clock_.kind = kind;
+    if (kind > SECONDS) {
+        if (!clock_.started) {
+            clock_.origin = whole;
+            clock_.origin_fraction = fraction;
+            clock_.started = 1;
+        }
+        *t = (double)(whole - clock_.origin) + (fraction - clock_.origin_fraction);
+    }
+    return 0;
+}
+
+/* A campaign starts: the compensator's (`reset`: what was learned kept) and its clock's. */
+static void restart(tc_state *s, int reset) {
+    if (reset) tc_reset(s);
+    clock_.started = 0;
+}
+
+int main(void) {
+    static char line[MAX_LINE], run[MAX_CELL] = "";
+    char *cells[MAX_COLS];
+    int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
+    int ncols, i, j, ignored, measured;
+    long row = 1;
+    tc_state s;
+    double u[TC_N_INPUTS], c[TC_N_OUTPUTS], e[TC_N_OUTPUTS], t = NAN;
+
+    if (!fgets(line, sizeof line, stdin)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
+    if (strncmp(line, "\xEF\xBB\xBF", 3) == 0) memmove(line, line + 3, strlen(line + 3) + 1);
+    sep = strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
+    ncols = split(line, cells);
+    for (j = 0; j < ncols; j++) {
+        cells[j] = (char *)named(cells[j]);      /* the run column has no contract name */
+        if (TC_RUN_COLUMN[0] && strcmp(cells[j], TC_RUN_COLUMN) == 0) run_col = j;
+    }
+    for (i = 0; i < TC_N_INPUTS; i++) {
+        where[i] = -1;
+        for (j = 0; j < ncols; j++) {
+            if (strcmp(cells[j], TC_INPUT_NAMES[i]) != 0) continue;
+            if (where[i] >= 0) {
+                fprintf(stderr, "stream: the header names input %s twice (columns %d and %d)\n",
+                        TC_INPUT_NAMES[i], where[i] + 1, j + 1);
+                return 2;
+            }
+            where[i] = j;
+        }
+        if (where[i] < 0) {
+            fprintf(stderr, "stream: the header lacks input column %s\n", TC_INPUT_NAMES[i]);
+            return 2;
+        }
+    }
+    for (i = 0; i < TC_N_OUTPUTS; i++) {
+        error_col[i] = -1;
+        for (j = 0; TC_ADAPT && j < ncols; j++)
+            if (strcmp(cells[j], TC_ERROR_NAMES[i]) == 0) error_col[i] = j;
+    }
+    for (j = 0; j < ncols; j++) {
+        if (strcmp(cells[j], "time") == 0) time_col = j;
+        if (strcmp(cells[j], "reset") == 0) reset_col = j;
+    }
+    if (TC_USES_TIME && time_col < 0)
+        fprintf(stderr, "stream: no time column: samples taken one period apart\n");
+    for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%s", i ? "," : "", TC_OUTPUT_NAMES[i]);
+    printf("\n");
+    tc_init(&s);
+    while (fgets(line, sizeof line, stdin)) {
+        row++;
+        if (line[strspn(line, " \t\r\n")] == '\0') { restart(&s, 1); continue; }
+        if (split(line, cells) != ncols) {
+            fprintf(stderr, "stream: row %ld has not %d cells\n", row, ncols);
+            return 2;
+        }
+        if (reset_col >= 0 && value(cells[reset_col], &ignored) == 1.0) restart(&s, 1);
+        if (run_col >= 0 && strcmp(cells[run_col], run) != 0) {    /* the next run */
+            restart(&s, row > 2);
+            strncpy(run, cells[run_col], MAX_CELL - 1);
+        }
+        for (i = 0; i < TC_N_INPUTS; i++) {
+            u[i] = value(cells[where[i]], &ignored);
+            if (!isfinite(u[i])) {
+                fprintf(stderr, "stream: row %ld: input %s has no finite value\n", row,
+                        TC_INPUT_NAMES[i]);
+                return 2;
+            }
+        }
+        if (time_col >= 0 && time_of(cells[time_col], row, &t) != 0) return 2;
+        tc_step(&s, u, t, c);
+        for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
+        printf("\n");
+        for (i = measured = 0; i < TC_N_OUTPUTS; i++) {
+            e[i] = error_col[i] >= 0 ? value(cells[error_col[i]], &ignored) : NAN;
+            measured |= isfinite(e[i]);
+        }
+        if (measured) tc_reference(&s, e);
+    }
+    return 0;
+}
+"""
