@@ -140,3 +140,13 @@ def test_init_proposes_the_run_column_and_run_scores_the_runs_as_the_folder(tmp_
     refused(["run", f"data.path={path}", "data.roles.campaign=Lauf", "data.roles.ignore=[Lauf]",
              f"out={tmp_path / 'no'}", *common], capsys, "'Lauf' is matched by "
             "data.roles.campaign and data.roles.ignore")
+
+
+def test_a_split_override_naming_no_run_of_a_long_file_says_what_the_runs_are(tmp_path):
+    # before: "..., which the manifest does not list": a long file has no manifest
+    path = _long(tmp_path / "alle.csv", _runs(count=3))
+    with pytest.raises(ContractError) as err:
+        read_dataset(path, {"roles": ROLES, "split_overrides": {"Lauf_9": "test"}})
+    text = str(err.value)
+    assert "'Lauf_9'" in text and "run column (data.roles.campaign)" in text, text
+    assert "Lauf_1, Lauf_2, Lauf_3" in text and "manifest" not in text, text

@@ -225,13 +225,16 @@ def _check_continues(raw: pd.DataFrame, path: Path) -> None:
                                 file=path, column="continues", row=rows[cid])
 
 
-def apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path) -> None:
+def apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path,
+                          listed_by: str = "the manifest does not list") -> None:
     """Set ``data.split_overrides`` (``{campaign: split}``) in ``manifest``, in place; a
-    campaign it does not list is refused naming ``path`` (a manifest, a long file's runs)."""
+    campaign it does not list is refused naming ``path`` (a manifest, a long file's runs) and
+    the campaigns there are (``listed_by`` says what lists them)."""
     unknown = [cid for cid in overrides if cid not in manifest.index]
     if unknown:
-        raise ContractError(f"data.split_overrides names campaign {unknown[0]!r}, "
-                            f"which the manifest does not list", file=path, column="campaign")
+        known = ", ".join(map(str, manifest.index[:8])) + (" ..." if len(manifest) > 8 else "")
+        raise ContractError(f"data.split_overrides names campaign {unknown[0]!r}, which "
+                            f"{listed_by} (campaigns: {known})", file=path, column="campaign")
     for cid, split in overrides.items():
         manifest.loc[cid, "split"] = split
 

@@ -551,7 +551,8 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
     _warn_error_ranges(ranges, files, path.parent)
     manifest = pd.DataFrame({"file": path.name, "split": "train"}, index=pd.Index(
         list(parts), name="campaign"))
-    apply_split_overrides(manifest, opts.split_overrides, path)
+    apply_split_overrides(manifest, opts.split_overrides, path,
+                          listed_by="the file's run column (data.roles.campaign) does not hold")
     origins = {cid: entry.get("time_origin") for cid, (_, entry) in parts.items()}
     starts = pd.Series({cid: utc_instant(pd.Timestamp(o), opts) if o else pd.NaT
                         for cid, o in origins.items()}, dtype="datetime64[ns, UTC]")
