@@ -16,7 +16,6 @@ from __future__ import annotations
 import subprocess
 
 import numpy as np
-import pandas as pd
 import pytest
 
 from test_export import TOLERANCE_UM, StructuredText, _make_dataset, needs_cc
@@ -38,7 +37,10 @@ int main(void) {
     tc_init(&s);
     while (scanf("%d %63s", &reset, cell) == 2) {
         t = strtod(cell, NULL);
-        for (i = 0; i < TC_N_INPUTS; i++) { if (scanf("%63s", cell) != 1) return 1; u[i] = strtod(cell, NULL); }
+        for (i = 0; i < TC_N_INPUTS; i++) {
+            if (scanf("%63s", cell) != 1) return 1;
+            u[i] = strtod(cell, NULL);
+        }
         if (reset) tc_reset(&s);
         r = tc_step(&s, u, t, c);
         printf("%d", r);

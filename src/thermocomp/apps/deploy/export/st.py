@@ -3,12 +3,12 @@ function block, ``FB_ThermoComp``, with the interface of the C code: one call is
 ``tc_step``; ``reset := TRUE`` is ``tc_reset`` before it (the sample starts a campaign).
 
 Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: no time,
-:mod:`thermocomp.core.timerule`; ST has no NaN), ``ref_valid`` and ``ref_error`` (per target: a
+:mod:`thermocomp.core.timerule`: ST has no NaN constant), ``ref_valid`` and ``ref_error`` (per target: a
 reference measurement of the error at this sample, which ``tc_reference`` takes after the
 step); outputs ``c`` (µm), ``n_clamped`` and ``refused`` (an input not finite, NaN or infinity:
-the sample and its reference are not taken and ``c`` holds, as ``tc_step`` returns -1).  What was learned from references survives
-``reset`` (the instance's initial values are the exported ones).  Only assignments, ``IF``,
-``FOR``, ``EXP`` and ``EXPT`` are used, one statement a line.
+the sample and its reference are not taken and ``c`` holds, as ``tc_step`` returns -1).  What
+was learned from references survives ``reset`` (the instance's initial values are the exported
+ones).  Only assignments, ``IF``, ``FOR``, ``EXP`` and ``EXPT`` are used, one statement a line.
 """
 
 from __future__ import annotations
@@ -273,7 +273,8 @@ IF NOT refused THEN
         END_FOR;
     END_IF;
     t_prev := now;
-    (* outputs: static part, input history, lags, AR feedback; the excess's response out, within the held one *)
+    (* outputs: static part, input history, lags, AR feedback; *)
+    (* the excess's response out, within the held one *)
     FOR i := 0 TO N_OUTPUTS - 1 DO
         FOR h := 0 TO 1 DO
             IF h = 0 THEN
