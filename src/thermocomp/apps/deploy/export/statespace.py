@@ -44,6 +44,7 @@ import numpy as np
 
 from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
+from ....core.models.ati import ATIRegressor
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
@@ -121,6 +122,11 @@ class StateSpace:
 
 def _target_law(est, n: int, period: float | None):
     """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
+    if isinstance(est, ATIRegressor):       # its family is linear: say what is not
+        raise NotExportable("ati=cmeans switches between one model per ambient interval by the "
+                            "campaign's initial ambient, not one linear system: export a model "
+                            "fitted with ati=none (the linear families export: "
+                            f"{', '.join(LINEAR_FAMILIES)})")
     if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
         raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
                             f"export to C/ST ({', '.join(LINEAR_FAMILIES)})")
