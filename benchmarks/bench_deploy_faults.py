@@ -56,6 +56,18 @@ guard, and the clamp puts a far-out reading at its envelope's edge (MLR's -36 µ
 bound ``|clamp_gain . ex|`` is 0 once the excess ends, so a dynamic model's memory of a one-row
 spike (lags, AR feedback) passes on to the campaign's end (arx, lagbank: 34 µm in the code,
 within the guard); the adaptive compensator reads such a reading as missing (0.9-4.2 µm).
+
+Deployed against scored on the same healthy record (session 53, the CLI as a stranger runs it:
+``run model=F ati=W eval.mode=M``, ``replay replay.model=<model.pkl> monitor.adaptive=true|false``,
+``export export.format=json|c|st``, the C compiled with gcc and fed the raw test files, the ST
+run by the tests' transpiler): every family (mlr, pcr, arx, lagbank, hammerstein, lstm, auto) x
+``ati=none|cmeans`` x ``eval.mode=simulation|one_step`` on ``yearround_spindle`` seed 5353, and
+mlr/arx/lagbank/hammerstein/arx_rf on ``swiss_lathe_door`` seed 5354 (24 h / 8 h): ``replay``'s
+RMSE (plain and adaptive, no event on healthy data) equals ``run``'s simulation RMSE within
+2.1e-15 relative, max|stream - batch| <= 3.3e-13 µm; the exported json (Simulator), the C and
+the ST equal the adaptive ``replay`` stream within 3.0e-13 µm (corrections up to 40 µm) for every
+family that exports (ati=none: mlr, pcr, arx, lagbank, hammerstein); ati=cmeans, lstm, arx_rf and
+auto are refused, exit 2, in one line naming what exports.
 """
 
 from __future__ import annotations
