@@ -166,6 +166,16 @@ def test_missing_time_value(tmp_path):
     refused(tmp_path / "ds", file="K01.csv", column="time", row=2, says="missing time")
 
 
+@pytest.mark.parametrize("rows", ["0,20,0\n,20,1\n2,20,2\n", ",20,0\n1,20,1\n2,20,2\n"],
+                         ids=["second", "first"])
+def test_a_test_record_read_as_recorded_says_how_to_stream_a_missing_time(tmp_path, rows):
+    # replay reads a test record as recorded (missing="keep"); a blank time in its first row
+    # was refused without the way out a blank time in a later row is told (found by deploy53)
+    write_raw(tmp_path / "ds", {"K01.csv": "time,T_0,E_X\n" + rows})
+    with pytest.raises(ContractError, match=r"missing time value \(.*monitor.input=- < FILE\)"):
+        read_dataset(tmp_path / "ds", missing="keep")
+
+
 def test_unparseable_timestamp(tmp_path):
     csv = "time,T_0,E_X\n2024-01-01T08:00:00,20,0\n2024-01-01T08:01:00,20,1\nlater,20,2\n"
     write_raw(tmp_path / "ds", {"K01.csv": csv})

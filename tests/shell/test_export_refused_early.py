@@ -29,3 +29,17 @@ def test_a_window_denoised_model_is_refused_before_its_deployment_is_derived(tmp
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={out}", "track=false"],
             capsys, f"export.model={pkl}", "(mlr) cannot be exported as c", "causal=fir")
     assert not out.exists()
+
+
+def test_an_ati_model_is_refused_naming_the_wrapper_not_its_linear_family(tmp_path, capsys):
+    # it said "(mlr) ...: model ATIRegressor is not one of the linear families ... (mlr, ...)"
+    data = _make_dataset(tmp_path / "data")
+    cfg = _compose("model=mlr", "ati=cmeans", "ati.estimator.n_intervals=2", f"data.path={data}",
+                   "track=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    pkl = save_model(build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids}),
+                     tmp_path / "model.pkl")
+    out = tmp_path / "code"
+    refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={out}", "track=false"],
+            capsys, "ati=cmeans", "not one linear system", "ati=none", "mlr, pcr, arx, lagbank")
+    assert not out.exists()

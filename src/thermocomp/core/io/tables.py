@@ -266,10 +266,16 @@ def _peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], lis
     return [name.strip() for name in header], first, preamble + 1 + units
 
 
+# what a test record read as recorded (``missing="keep"``) with a bad time is told to do instead
+PIPED_HINT = ("a test record with bad times streams as on the machine when piped: "
+              "thermocomp monitor monitor.input=- < FILE")
+
+
 def _timed(path: Path, value: str, opts: ReadOptions, header: str | None = None) -> ReadOptions:
     """``opts`` with ``time`` the way this file's time column is read (:mod:`.timestamps`)."""
     if not value:
-        raise ContractError("missing time value", file=path, column=TIME, row=1)
+        hint = f" ({PIPED_HINT})" if opts.missing == "keep" else ""    # as a later row's says
+        raise ContractError(f"missing time value{hint}", file=path, column=TIME, row=1)
     number = reads_as_number(value, opts.decimal, opts.thousands)
     return replace(opts, time=time_kind(value, opts.time, number, path, header))
 

@@ -15,7 +15,7 @@ from ...base.log import logger
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
-from .tables import _chunks, _values
+from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
 ABSOLUTE_ZERO_C = -273.15
@@ -48,8 +48,7 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
     except ContractError as exc:
         if opts.missing != "keep":
             raise
-        raise ContractError(f"{exc.reason} (a test record with bad times streams as on the "
-                            "machine when piped: thermocomp monitor monitor.input=- < FILE)",
+        raise ContractError(f"{exc.reason} ({PIPED_HINT})",
                             file=exc.file, column=exc.column, row=exc.row, line=exc.line) from None
     _check_duration(seconds, path, opts.max_duration_days)
     columns[TIME] = pa.array(seconds)

@@ -117,6 +117,8 @@ typedef struct {{
     double var[TC_N_OUTPUTS];                   /* the bias's variance (TC_ADAPT 1) */
     double gain[TC_N_OUTPUTS];                  /* learned gain (TC_ADAPT 2) */
     double cov[TC_N_OUTPUTS][2][2];             /* covariance of (gain, bias) (TC_ADAPT 2) */
+    double c[TC_N_OUTPUTS];                     /* the last corrections given (0 at a campaign's start) */
+    int refused;                                /* 1: the last sample was refused (an input not finite) */
 }} tc_state;
 
 static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
@@ -133,12 +135,14 @@ void tc_reset(tc_state *s);
 
 /* One sample: raw inputs u (order TC_INPUT_NAMES), its time in s (NAN: one period after the
    previous one) -> corrections c (um, order TC_OUTPUT_NAMES).  Returns the number of inputs
-   clamped to the training envelope. */
+   clamped to the training envelope, or -1 when an input is not finite (a sensor dropout): the
+   sample is refused, nothing remembered changes and c holds the last corrections given (0 before
+   a campaign's first sample), as the plain stream refuses such a row. */
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]);
 
 /* A reference measurement of the error (um, order TC_ERROR_NAMES; NAN: not measured) at the
-   sample of the last tc_step: updates the bias (and gain) of the next corrections (TC_ADAPT; else
-   nothing).  Returns the number of targets updated. */
+   sample of the last tc_step: updates the bias (and gain) of the next corrections (TC_ADAPT; else,
+   or after a refused sample, nothing).  Returns the number of targets updated. */
 int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]);
 
 #endif
@@ -168,7 +172,12 @@ def source(ss: StateSpace) -> str:
 
 {consts}
 
-void tc_reset(tc_state *s) {{ s->first = 1; }}
+void tc_reset(tc_state *s) {{
+    int i;
+    s->first = 1;
+    s->refused = 0;
+    for (i = 0; i < TC_N_OUTPUTS; i++) s->c[i] = 0.0;
+}}
 
 void tc_init(tc_state *s) {{
     int i;
@@ -204,6 +213,15 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS], xl[2][{max(k, 1)}], ych[2];
     double dt, now, step;
     int i, j, l, h, clamped = 0;
+    /* a non-finite input refuses the sample before anything is remembered: one NaN would
+       otherwise stay in the lags, the AR feedback and the guard to the campaign's end */
+    s->refused = 0;
+    for (j = 0; j < TC_N_INPUTS; j++)
+        if (!isfinite(u[j])) {{
+            for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
+            s->refused = 1;
+            return -1;
+        }}
 {C_TIME_RULE}    /* causal FIR denoiser */
     for (l = TC_TAPS - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++)
@@ -278,7 +296,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             else if (y > GUARD_HI[i]) y = GUARD_HI[i];
         }}
         s->out[i] = y;
-        c[i] = TC_ADAPT ? -(s->gain[i] * y + s->bias[i]) : -y;
+        c[i] = s->c[i] = TC_ADAPT ? -(s->gain[i] * y + s->bias[i]) : -y;
     }}
     for (h = 0; h < 2; h++)
         for (l = TC_DEPTH - 1; l >= 0; l--)
@@ -313,7 +331,7 @@ static void rls(tc_state *s, int i, double e) {{
 
 int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]) {{
     int i, n = 0;
-    if (!TC_ADAPT) return 0;
+    if (!TC_ADAPT || s->refused) return 0;   /* nothing was predicted at a refused sample */
     /* the bounded recursive filter (forgetting, covariance capped at its prior) */
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double p = s->var[i], k, b;

@@ -3,11 +3,12 @@ function block, ``FB_ThermoComp``, with the interface of the C code: one call is
 ``tc_step``; ``reset := TRUE`` is ``tc_reset`` before it (the sample starts a campaign).
 
 Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: no time,
-:mod:`thermocomp.core.timerule`; ST has no NaN), ``ref_valid`` and ``ref_error`` (per target: a
+:mod:`thermocomp.core.timerule`: ST has no NaN constant), ``ref_valid`` and ``ref_error`` (per target: a
 reference measurement of the error at this sample, which ``tc_reference`` takes after the
-step); outputs ``c`` (µm) and ``n_clamped``.  What was learned from references survives
-``reset`` (the instance's initial values are the exported ones).  Only assignments, ``IF``,
-``FOR``, ``EXP`` and ``EXPT`` are used, one statement a line.
+step); outputs ``c`` (µm), ``n_clamped`` and ``refused`` (an input not finite, NaN or infinity:
+the sample and its reference are not taken and ``c`` holds, as ``tc_step`` returns -1).  What
+was learned from references survives ``reset`` (the instance's initial values are the exported
+ones).  Only assignments, ``IF``, ``FOR``, ``EXP`` and ``EXPT`` are used, one statement a line.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from .statespace import StateSpace
 from .text import banner
 
 NAME = "FB_ThermoComp"
-LREAL_MAX = 1.7976931348623157e308   # an unlimited rate (ST has no infinity)
+LREAL_MAX = 1.7976931348623157e308   # an unlimited rate, the test of a finite input (ST has no infinity)
 
 
 def literal(v: float) -> str:
@@ -49,6 +50,10 @@ def _size(shape) -> int:
     return out
 
 
+def _indent(code: str) -> str:
+    return "".join("    " + line if line.strip() else line for line in code.splitlines(True))
+
+
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
     p = len(ss.powers)
@@ -56,6 +61,7 @@ def function_block(ss: StateSpace) -> str:
         f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    TAPS : INT := {taps};",
         f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};", f"    N_POWERS : INT := {p};",
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
+        f"    REAL_LIMIT : LREAL := {literal(LREAL_MAX)};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
         _constant("CLAMP_GAIN", ss.clamp_gain or [], (m, n)),
@@ -102,6 +108,7 @@ END_VAR
 VAR_OUTPUT
     c : ARRAY[{_dims(m)}] OF LREAL;
     n_clamped : INT;
+    refused : BOOL;
 END_VAR
 VAR
     first : BOOL := TRUE;
@@ -158,232 +165,246 @@ END_VAR
 
 IF reset THEN
     first := TRUE;
+    FOR i := 0 TO N_OUTPUTS - 1 DO
+        c[i] := 0.0;
+    END_FOR;
 END_IF;
-{ST_TIME_RULE}n_clamped := 0;
-(* causal FIR denoiser: newest raw sample first *)
-FOR l := TAPS - 1 TO 0 BY -1 DO
+(* an input not finite (NaN, infinity: every IEEE comparison false) refuses the sample, as tc_step: *)
+(* nothing remembered changes, c keeps the last corrections (0 before a campaign's first sample) *)
+refused := FALSE;
+FOR j := 0 TO N_INPUTS - 1 DO
+    IF NOT (u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT) THEN
+        refused := TRUE;
+    END_IF;
+END_FOR;
+IF NOT refused THEN
+{_indent(ST_TIME_RULE)}    n_clamped := 0;
+    (* causal FIR denoiser: newest raw sample first *)
+    FOR l := TAPS - 1 TO 0 BY -1 DO
+        FOR j := 0 TO N_INPUTS - 1 DO
+            IF first OR l = 0 THEN
+                buf[l, j] := u[j];
+            ELSE
+                buf[l, j] := buf[l - 1, j];
+            END_IF;
+        END_FOR;
+    END_FOR;
     FOR j := 0 TO N_INPUTS - 1 DO
-        IF first OR l = 0 THEN
-            buf[l, j] := u[j];
-        ELSE
-            buf[l, j] := buf[l - 1, j];
+        v[j] := 0.0;
+        FOR l := 0 TO TAPS - 1 DO
+            v[j] := v[j] + buf[l, j] * FIR[l, j];
+        END_FOR;
+        IF first THEN
+            IF REFERENCED[j] <> 0.0 THEN
+                ref[j] := v[j];
+            ELSE
+                ref[j] := 0.0;
+            END_IF;
+        END_IF;
+        x[0, j] := v[j] - ref[j];
+        (* envelope (static limit): channel 1 is the excess over the bound *)
+        x[1, j] := 0.0;
+        IF CLAMP AND x[0, j] < LO[j] THEN
+            x[1, j] := x[0, j] - LO[j];
+            n_clamped := n_clamped + 1;
+        ELSIF CLAMP AND x[0, j] > HI[j] THEN
+            x[1, j] := x[0, j] - HI[j];
+            n_clamped := n_clamped + 1;
         END_IF;
     END_FOR;
-END_FOR;
-FOR j := 0 TO N_INPUTS - 1 DO
-    v[j] := 0.0;
-    FOR l := 0 TO TAPS - 1 DO
-        v[j] := v[j] + buf[l, j] * FIR[l, j];
+    (* along the training pattern (residual off its basis within the training one's): passed *)
+    IF PATTERN AND n_clamped > 0 THEN
+        FOR j := 0 TO N_INPUTS - 1 DO
+            pat_z[j] := (x[0, j] - PATTERN_MEAN[j]) / PATTERN_SCALE[j];
+            pat_r[j] := pat_z[j];
+        END_FOR;
+        FOR l := 0 TO PATTERN_RANK - 1 DO
+            pat_p := 0.0;
+            FOR j := 0 TO N_INPUTS - 1 DO
+                pat_p := pat_p + PATTERN_BASIS[j, l] * pat_z[j];
+            END_FOR;
+            FOR j := 0 TO N_INPUTS - 1 DO
+                pat_r[j] := pat_r[j] - pat_p * PATTERN_BASIS[j, l];
+            END_FOR;
+        END_FOR;
+        pat_r2 := 0.0;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            pat_r2 := pat_r2 + pat_r[j] * pat_r[j];
+        END_FOR;
+        IF pat_r2 <= PATTERN_TOL * PATTERN_TOL THEN
+            n_clamped := 0;
+            FOR j := 0 TO N_INPUTS - 1 DO
+                x[1, j] := 0.0;
+            END_FOR;
+        END_IF;
+    END_IF;
+    (* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale *)
+    FOR l := 0 TO N_POWERS - 1 DO
+        w := v[POWER_SRC[l]] / POWER_SCALE[l];
+        IF w < 0.0 THEN
+            x[0, N_INPUTS + l] := -EXPT(-w, POWER_EXP[l]);
+        ELSE
+            x[0, N_INPUTS + l] := EXPT(w, POWER_EXP[l]);
+        END_IF;
+        x[1, N_INPUTS + l] := 0.0;
+    END_FOR;
+    (* first-order lags *)
+    FOR h := 0 TO 1 DO
+        FOR l := 0 TO N_LAGS - 1 DO
+            xl[h, l] := x[h, LAG_INPUT[l]];
+            IF first THEN
+                z[h, l] := xl[h, l];
+            ELSE
+                e := EXP(-dt / TAU[l]);
+                z[h, l] := e * z[h, l] + (1.0 - e) * xl[h, l];
+            END_IF;
+        END_FOR;
     END_FOR;
     IF first THEN
-        IF REFERENCED[j] <> 0.0 THEN
-            ref[j] := v[j];
-        ELSE
-            ref[j] := 0.0;
-        END_IF;
-    END_IF;
-    x[0, j] := v[j] - ref[j];
-    (* envelope (static limit): channel 1 is the excess over the bound *)
-    x[1, j] := 0.0;
-    IF CLAMP AND x[0, j] < LO[j] THEN
-        x[1, j] := x[0, j] - LO[j];
-        n_clamped := n_clamped + 1;
-    ELSIF CLAMP AND x[0, j] > HI[j] THEN
-        x[1, j] := x[0, j] - HI[j];
-        n_clamped := n_clamped + 1;
-    END_IF;
-END_FOR;
-(* along the training pattern (residual off its basis within the training one's): passed *)
-IF PATTERN AND n_clamped > 0 THEN
-    FOR j := 0 TO N_INPUTS - 1 DO
-        pat_z[j] := (x[0, j] - PATTERN_MEAN[j]) / PATTERN_SCALE[j];
-        pat_r[j] := pat_z[j];
-    END_FOR;
-    FOR l := 0 TO PATTERN_RANK - 1 DO
-        pat_p := 0.0;
-        FOR j := 0 TO N_INPUTS - 1 DO
-            pat_p := pat_p + PATTERN_BASIS[j, l] * pat_z[j];
-        END_FOR;
-        FOR j := 0 TO N_INPUTS - 1 DO
-            pat_r[j] := pat_r[j] - pat_p * PATTERN_BASIS[j, l];
-        END_FOR;
-    END_FOR;
-    pat_r2 := 0.0;
-    FOR j := 0 TO N_INPUTS - 1 DO
-        pat_r2 := pat_r2 + pat_r[j] * pat_r[j];
-    END_FOR;
-    IF pat_r2 <= PATTERN_TOL * PATTERN_TOL THEN
-        n_clamped := 0;
-        FOR j := 0 TO N_INPUTS - 1 DO
-            x[1, j] := 0.0;
-        END_FOR;
-    END_IF;
-END_IF;
-(* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale *)
-FOR l := 0 TO N_POWERS - 1 DO
-    w := v[POWER_SRC[l]] / POWER_SCALE[l];
-    IF w < 0.0 THEN
-        x[0, N_INPUTS + l] := -EXPT(-w, POWER_EXP[l]);
-    ELSE
-        x[0, N_INPUTS + l] := EXPT(w, POWER_EXP[l]);
-    END_IF;
-    x[1, N_INPUTS + l] := 0.0;
-END_FOR;
-(* first-order lags *)
-FOR h := 0 TO 1 DO
-    FOR l := 0 TO N_LAGS - 1 DO
-        xl[h, l] := x[h, LAG_INPUT[l]];
-        IF first THEN
-            z[h, l] := xl[h, l];
-        ELSE
-            e := EXP(-dt / TAU[l]);
-            z[h, l] := e * z[h, l] + (1.0 - e) * xl[h, l];
-        END_IF;
-    END_FOR;
-END_FOR;
-IF first THEN
-    FOR h := 0 TO 1 DO
-        FOR l := 0 TO DEPTH - 1 DO
-            FOR j := 0 TO N_INPUTS - 1 DO
-                hist[h, l, j] := x[h, j];
+        FOR h := 0 TO 1 DO
+            FOR l := 0 TO DEPTH - 1 DO
+                FOR j := 0 TO N_INPUTS - 1 DO
+                    hist[h, l, j] := x[h, j];
+                END_FOR;
+            END_FOR;
+            FOR i := 0 TO N_OUTPUTS - 1 DO
+                y_prev[h, i] := 0.0;
             END_FOR;
         END_FOR;
-        FOR i := 0 TO N_OUTPUTS - 1 DO
-            y_prev[h, i] := 0.0;
-        END_FOR;
-    END_FOR;
-END_IF;
-t_prev := now;
-(* outputs: static part, input history, lags, AR feedback; the excess's response out, within the held one *)
-FOR i := 0 TO N_OUTPUTS - 1 DO
-    FOR h := 0 TO 1 DO
-        IF h = 0 THEN
-            ych[h] := INTERCEPT[i];
-        ELSE
-            ych[h] := 0.0;
-        END_IF;
-        FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
-            ych[h] := ych[h] + B0[i, j] * x[h, j];
-        END_FOR;
-        FOR l := 0 TO DEPTH - 1 DO
-            FOR j := 0 TO N_INPUTS - 1 DO
-                ych[h] := ych[h] + BD[i, l, j] * hist[h, l, j];
-            END_FOR;
-        END_FOR;
-        FOR l := 0 TO N_LAGS - 1 DO
-            ych[h] := ych[h] + G[i, l] * (z[h, l] - xl[h, l]);
-        END_FOR;
-        ych[h] := ych[h] + AR[i] * y_prev[h, i];
-        y_prev[h, i] := ych[h];
-    END_FOR;
-    bound := 0.0;
-    FOR j := 0 TO N_INPUTS - 1 DO
-        bound := bound + CLAMP_GAIN[i, j] * x[1, j];
-    END_FOR;
-    IF bound < 0.0 THEN
-        bound := -bound;
     END_IF;
-    IF ych[1] > bound THEN
-        y := ych[0] - bound;
-    ELSIF ych[1] < -bound THEN
-        y := ych[0] + bound;
-    ELSE
-        y := ych[0] - ych[1];
-    END_IF;
-    (* correction guard: within the rate limit of the previous output, then the bound *)
-    IF USE_GUARD THEN
-        IF NOT first THEN
-            IF dt > 0.0 THEN
-                lim := GUARD_RATE[i] * dt;
-            ELSE
-                lim := GUARD_RATE[i] * GUARD_PERIOD;
-            END_IF;
-            dy := y - out_prev[i];
-            IF dy > lim THEN
-                y := out_prev[i] + lim;
-            ELSIF dy < -lim THEN
-                y := out_prev[i] - lim;
-            END_IF;
-        END_IF;
-        IF y < GUARD_LO[i] THEN
-            y := GUARD_LO[i];
-        ELSIF y > GUARD_HI[i] THEN
-            y := GUARD_HI[i];
-        END_IF;
-    END_IF;
-    out_prev[i] := y;
-    IF USE_ADAPT THEN
-        c[i] := -(gain[i] * y + bias[i]);
-    ELSE
-        c[i] := -y;
-    END_IF;
-END_FOR;
-(* a reference measurement at this sample: the next corrections learn from it *)
-IF USE_ADAPT THEN
+    t_prev := now;
+    (* outputs: static part, input history, lags, AR feedback; *)
+    (* the excess's response out, within the held one *)
     FOR i := 0 TO N_OUTPUTS - 1 DO
-        IF ref_valid[i] THEN
-            IF ADAPT_RLS THEN
-                (* (gain, bias) by recursive least squares on phi = (y, 1) *)
-                yo := out_prev[i];
-                pp0 := cov[i, 0, 0] * yo + cov[i, 0, 1];
-                pp1 := cov[i, 1, 0] * yo + cov[i, 1, 1];
-                q0 := yo * cov[i, 0, 0] + cov[i, 1, 0];
-                q1 := yo * cov[i, 0, 1] + cov[i, 1, 1];
-                den := FORGETTING + (q0 * yo + q1);
-                k0 := pp0 / den;
-                k1 := pp1 / den;
-                err := ref_error[i] - (yo * gain[i] + bias[i]);
-                g := gain[i] + k0 * err;
-                b := bias[i] + k1 * err;
-                cov[i, 0, 0] := (cov[i, 0, 0] - k0 * q0) / FORGETTING;
-                cov[i, 0, 1] := (cov[i, 0, 1] - k0 * q1) / FORGETTING;
-                cov[i, 1, 0] := (cov[i, 1, 0] - k1 * q0) / FORGETTING;
-                cov[i, 1, 1] := (cov[i, 1, 1] - k1 * q1) / FORGETTING;
-                tr := cov[i, 0, 0] + cov[i, 1, 1];
-                IF CAP_VARIANCE > 0.0 AND tr / CAP_VARIANCE > 1.0 THEN
-                    tr := tr / CAP_VARIANCE;
-                    cov[i, 0, 0] := cov[i, 0, 0] / tr;
-                    cov[i, 0, 1] := cov[i, 0, 1] / tr;
-                    cov[i, 1, 0] := cov[i, 1, 0] / tr;
-                    cov[i, 1, 1] := cov[i, 1, 1] / tr;
-                END_IF;
-                IF g < 1.0 - MAX_GAIN_CHANGE THEN
-                    g := 1.0 - MAX_GAIN_CHANGE;
-                ELSIF g > 1.0 + MAX_GAIN_CHANGE THEN
-                    g := 1.0 + MAX_GAIN_CHANGE;
-                END_IF;
-                gain[i] := g;
+        FOR h := 0 TO 1 DO
+            IF h = 0 THEN
+                ych[h] := INTERCEPT[i];
             ELSE
-                (* the bias alone: a scalar filter *)
-                p := variance[i];
-                kg := p / (FORGETTING + p);
-                b := bias[i] + kg * (ref_error[i] - gain[i] * out_prev[i] - bias[i]);
-                p := (p - kg * p) / FORGETTING;
-                IF CAP_VARIANCE > 0.0 AND p / CAP_VARIANCE > 1.0 THEN
-                    p := p / (p / CAP_VARIANCE);
+                ych[h] := 0.0;
+            END_IF;
+            FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
+                ych[h] := ych[h] + B0[i, j] * x[h, j];
+            END_FOR;
+            FOR l := 0 TO DEPTH - 1 DO
+                FOR j := 0 TO N_INPUTS - 1 DO
+                    ych[h] := ych[h] + BD[i, l, j] * hist[h, l, j];
+                END_FOR;
+            END_FOR;
+            FOR l := 0 TO N_LAGS - 1 DO
+                ych[h] := ych[h] + G[i, l] * (z[h, l] - xl[h, l]);
+            END_FOR;
+            ych[h] := ych[h] + AR[i] * y_prev[h, i];
+            y_prev[h, i] := ych[h];
+        END_FOR;
+        bound := 0.0;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            bound := bound + CLAMP_GAIN[i, j] * x[1, j];
+        END_FOR;
+        IF bound < 0.0 THEN
+            bound := -bound;
+        END_IF;
+        IF ych[1] > bound THEN
+            y := ych[0] - bound;
+        ELSIF ych[1] < -bound THEN
+            y := ych[0] + bound;
+        ELSE
+            y := ych[0] - ych[1];
+        END_IF;
+        (* correction guard: within the rate limit of the previous output, then the bound *)
+        IF USE_GUARD THEN
+            IF NOT first THEN
+                IF dt > 0.0 THEN
+                    lim := GUARD_RATE[i] * dt;
+                ELSE
+                    lim := GUARD_RATE[i] * GUARD_PERIOD;
                 END_IF;
-                variance[i] := p;
+                dy := y - out_prev[i];
+                IF dy > lim THEN
+                    y := out_prev[i] + lim;
+                ELSIF dy < -lim THEN
+                    y := out_prev[i] - lim;
+                END_IF;
             END_IF;
-            IF b < -MAX_BIAS THEN
-                b := -MAX_BIAS;
-            ELSIF b > MAX_BIAS THEN
-                b := MAX_BIAS;
+            IF y < GUARD_LO[i] THEN
+                y := GUARD_LO[i];
+            ELSIF y > GUARD_HI[i] THEN
+                y := GUARD_HI[i];
             END_IF;
-            bias[i] := b;
+        END_IF;
+        out_prev[i] := y;
+        IF USE_ADAPT THEN
+            c[i] := -(gain[i] * y + bias[i]);
+        ELSE
+            c[i] := -y;
         END_IF;
     END_FOR;
-END_IF;
-FOR h := 0 TO 1 DO
-    FOR l := DEPTH - 1 TO 0 BY -1 DO
-        FOR j := 0 TO N_INPUTS - 1 DO
-            IF l = 0 THEN
-                hist[h, l, j] := x[h, j];
-            ELSE
-                hist[h, l, j] := hist[h, l - 1, j];
+    (* a reference measurement at this sample: the next corrections learn from it *)
+    IF USE_ADAPT THEN
+        FOR i := 0 TO N_OUTPUTS - 1 DO
+            IF ref_valid[i] THEN
+                IF ADAPT_RLS THEN
+                    (* (gain, bias) by recursive least squares on phi = (y, 1) *)
+                    yo := out_prev[i];
+                    pp0 := cov[i, 0, 0] * yo + cov[i, 0, 1];
+                    pp1 := cov[i, 1, 0] * yo + cov[i, 1, 1];
+                    q0 := yo * cov[i, 0, 0] + cov[i, 1, 0];
+                    q1 := yo * cov[i, 0, 1] + cov[i, 1, 1];
+                    den := FORGETTING + (q0 * yo + q1);
+                    k0 := pp0 / den;
+                    k1 := pp1 / den;
+                    err := ref_error[i] - (yo * gain[i] + bias[i]);
+                    g := gain[i] + k0 * err;
+                    b := bias[i] + k1 * err;
+                    cov[i, 0, 0] := (cov[i, 0, 0] - k0 * q0) / FORGETTING;
+                    cov[i, 0, 1] := (cov[i, 0, 1] - k0 * q1) / FORGETTING;
+                    cov[i, 1, 0] := (cov[i, 1, 0] - k1 * q0) / FORGETTING;
+                    cov[i, 1, 1] := (cov[i, 1, 1] - k1 * q1) / FORGETTING;
+                    tr := cov[i, 0, 0] + cov[i, 1, 1];
+                    IF CAP_VARIANCE > 0.0 AND tr / CAP_VARIANCE > 1.0 THEN
+                        tr := tr / CAP_VARIANCE;
+                        cov[i, 0, 0] := cov[i, 0, 0] / tr;
+                        cov[i, 0, 1] := cov[i, 0, 1] / tr;
+                        cov[i, 1, 0] := cov[i, 1, 0] / tr;
+                        cov[i, 1, 1] := cov[i, 1, 1] / tr;
+                    END_IF;
+                    IF g < 1.0 - MAX_GAIN_CHANGE THEN
+                        g := 1.0 - MAX_GAIN_CHANGE;
+                    ELSIF g > 1.0 + MAX_GAIN_CHANGE THEN
+                        g := 1.0 + MAX_GAIN_CHANGE;
+                    END_IF;
+                    gain[i] := g;
+                ELSE
+                    (* the bias alone: a scalar filter *)
+                    p := variance[i];
+                    kg := p / (FORGETTING + p);
+                    b := bias[i] + kg * (ref_error[i] - gain[i] * out_prev[i] - bias[i]);
+                    p := (p - kg * p) / FORGETTING;
+                    IF CAP_VARIANCE > 0.0 AND p / CAP_VARIANCE > 1.0 THEN
+                        p := p / (p / CAP_VARIANCE);
+                    END_IF;
+                    variance[i] := p;
+                END_IF;
+                IF b < -MAX_BIAS THEN
+                    b := -MAX_BIAS;
+                ELSIF b > MAX_BIAS THEN
+                    b := MAX_BIAS;
+                END_IF;
+                bias[i] := b;
             END_IF;
         END_FOR;
+    END_IF;
+    FOR h := 0 TO 1 DO
+        FOR l := DEPTH - 1 TO 0 BY -1 DO
+            FOR j := 0 TO N_INPUTS - 1 DO
+                IF l = 0 THEN
+                    hist[h, l, j] := x[h, j];
+                ELSE
+                    hist[h, l, j] := hist[h, l - 1, j];
+                END_IF;
+            END_FOR;
+        END_FOR;
     END_FOR;
-END_FOR;
-first := FALSE;
+    first := FALSE;
+END_IF;
 END_FUNCTION_BLOCK
 """

@@ -24,6 +24,11 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
 6. the correction sent to the CNC is ``C_t = -y_t`` (with ``adapt``: ``-(gain_t * y_t + bias_t)``,
    updated by each reference measurement).
 
+A sample with an input that is not finite (a sensor dropout) is refused before any of this: the
+state is untouched and the last correction given is repeated (0 before a campaign's first
+sample), as the plain stream refuses such a row and ``monitor``'s fixed stream holds its
+correction; one NaN stepped would stay in the lags, the feedback and the guard to the campaign's end.
+
 At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
 history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
 reference and the limit the system is linear: the state is ``[buf, ref, history, z, y_prev]``, the
@@ -39,6 +44,7 @@ import numpy as np
 
 from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
+from ....core.models.ati import ATIRegressor
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
@@ -116,6 +122,11 @@ class StateSpace:
 
 def _target_law(est, n: int, period: float | None):
     """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
+    if isinstance(est, ATIRegressor):       # its family is linear: say what is not
+        raise NotExportable("ati=cmeans switches between one model per ambient interval by the "
+                            "campaign's initial ambient, not one linear system: export a model "
+                            "fitted with ati=none (the linear families export: "
+                            f"{', '.join(LINEAR_FAMILIES)})")
     if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
         raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
                             f"export to C/ST ({', '.join(LINEAR_FAMILIES)})")
@@ -274,15 +285,24 @@ class Simulator:
     def reset(self) -> None:
         """A new campaign: the next sample is its first."""
         self.first = True
+        self.c = np.zeros(len(self.ss.targets))      # the last corrections given
+        self.refused = False
 
     def reference(self, measured) -> None:
-        """A reference measurement of the error per target (NaN: none) at the last sample."""
-        self.output.reference(measured)
+        """A reference measurement of the error per target (NaN: none) at the last sample (none
+        taken at a refused one)."""
+        if not self.refused:
+            self.output.reference(measured)
 
     def step(self, u, time: float = float("nan")) -> np.ndarray:
-        """Correction ``C`` (µm, = -predicted error) per target for one sample."""
+        """Correction ``C`` (µm, = -predicted error) per target for one sample.  A sample with
+        an input that is not finite is refused (``refused`` true): nothing remembered changes and
+        the last corrections given are returned (0 before a campaign's first sample)."""
         u = np.asarray(u, float)
         ss = self.ss
+        self.refused = not np.isfinite(u).all()
+        if self.refused:
+            return self.c.copy()
         if self.first:
             self.clock.reset()
         _, dt, _ = self.clock.step(float(time))
@@ -317,4 +337,5 @@ class Simulator:
             self.hist = np.concatenate([xs[:, None, :len(x)], self.hist[:, :-1]], axis=1)
         self.y, self.first = y, False
         bound = np.abs(self.clamp_gain @ excess)
-        return self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt)
+        self.c = self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt)
+        return self.c.copy()
