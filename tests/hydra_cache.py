@@ -28,6 +28,7 @@ import dataclasses
 import hashlib
 import inspect
 import os
+import pickle
 from collections import OrderedDict
 
 HYDRA_VERSION = "1.3.8"
@@ -52,6 +53,20 @@ _original: dict = {}
 class _Entry:
     result: object                 # Hydra's DefaultsList for the key
     config: object = None          # the merged config before value overrides (a pristine copy)
+    pickled: bytes | None = None   # that config pickled at its first hit (b"": it does not pickle)
+
+
+def _copy(entry: _Entry):
+    """A fresh copy of ``entry``'s pristine config for a cache hit: unpickled (~0.010 s of CPU
+    for the default root's) rather than deep-copied (~0.036 s), on every hit of every in-process
+    command; pickled at the first hit (a miss never hit again pays nothing), deep-copied if it
+    does not pickle (a ConfigStore node whose class pickle cannot import)."""
+    if entry.pickled is None:
+        try:
+            entry.pickled = pickle.dumps(entry.config)
+        except (pickle.PicklingError, AttributeError, TypeError):
+            entry.pickled = b""
+    return pickle.loads(entry.pickled) if entry.pickled else copy.deepcopy(entry.config)
 
 
 def _functions():
@@ -206,4 +221,4 @@ def _compose(self, defaults, repo):
         config = _original["compose"](self, defaults=defaults, repo=repo)
         entry.config = copy.deepcopy(config)           # Hydra changes what it returns
         return config
-    return copy.deepcopy(entry.config)
+    return _copy(entry)
