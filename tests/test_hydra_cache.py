@@ -148,7 +148,7 @@ def test_a_hit_is_unpickled_not_deep_copied_and_owns_its_config(monkeypatch):
     first = once()                               # a miss: kept
     deep_copied = []
     monkeypatch.setattr(hydra_cache, "copy", types.SimpleNamespace(
-        deepcopy=lambda obj, *args: deep_copied.append(obj) or copy.deepcopy(obj, *args)))
+        copy=copy.copy, deepcopy=lambda obj, *args: deep_copied.append(obj) or copy.deepcopy(obj, *args)))
     first.data.path = "/changed"                 # what a command does to its own config
     hit, again = once(), once()
     assert deep_copied == []
@@ -177,6 +177,28 @@ def test_a_config_that_does_not_pickle_is_deep_copied_on_a_hit():
         assert entry.pickled == b""
     finally:
         del store.repo["hydra_cache_local.yaml"]
+
+
+def test_a_composition_copies_the_repository_not_the_config_store(monkeypatch, tmp_path):
+    """Each composition copied Hydra's whole config repository, the ConfigStore in it (half a
+    cached composition's CPU); a search path one composition adds is still not seen by the next."""
+    import copy
+    import types
+
+    from hydra._internal import config_repository
+
+    deep_copied = []
+    monkeypatch.setattr(config_repository, "copy", types.SimpleNamespace(
+        deepcopy=lambda obj, *args: deep_copied.append(type(obj).__name__) or copy.deepcopy(obj, *args)))
+    extra = tmp_path / "extra" / "model"
+    extra.mkdir(parents=True)
+    shutil.copy2(conf_dir() / "model" / "mlr.yaml", extra / "mlr_extra.yaml")
+    searched = f"hydra.searchpath=[file://{extra.parent}]"
+    assert overrides.compose([searched, "model=mlr_extra"], "run").model == \
+        overrides.compose(["model=mlr"], "run").model
+    assert deep_copied == []
+    with pytest.raises(hydra.errors.MissingConfigException):
+        overrides.compose(["model=mlr_extra"], "run")
 
 
 @pytest.mark.parametrize("change", ["version", "source"])
