@@ -4,6 +4,7 @@ for a release the cache was not written against."""
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import shutil
 
@@ -132,6 +133,72 @@ def test_a_configstore_node_stored_again_is_read_again():
         assert value() == 2
     finally:
         del store.repo["hydra_cache_probe.yaml"]
+
+
+def test_a_hit_is_unpickled_not_deep_copied_and_owns_its_config(monkeypatch):
+    """A hit copies the pristine config from its pickle (a deep copy cost ~3x the CPU on every
+    in-process command); what one command changes in its config is not seen by the next."""
+    import copy
+    import types
+
+    def once():
+        return overrides.compose(["model=arx", "data.path=/x"], "run")
+
+    want = _plain(once)
+    first = once()                               # a miss: kept
+    deep_copied = []
+    monkeypatch.setattr(hydra_cache, "copy", types.SimpleNamespace(
+        copy=copy.copy, deepcopy=lambda obj, *args: deep_copied.append(obj) or copy.deepcopy(obj, *args)))
+    first.data.path = "/changed"                 # what a command does to its own config
+    hit, again = once(), once()
+    assert deep_copied == []
+    flags = (OmegaConf.is_struct(want), OmegaConf.is_readonly(want.hydra))
+    for cfg in (hit, again):
+        assert OmegaConf.to_yaml(cfg) == OmegaConf.to_yaml(want) and cfg.data.path == "/x"
+        assert (OmegaConf.is_struct(cfg), OmegaConf.is_readonly(cfg.hydra)) == flags
+    hit.data.path = "/changed too"
+    assert again.data.path == "/x"
+
+
+def test_a_config_that_does_not_pickle_is_deep_copied_on_a_hit():
+    store = ConfigStore.instance()
+    local = dataclasses.make_dataclass("Unpicklable", [("probe", int, 3)])  # no module attribute
+
+    def value():
+        with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+            return compose(config_name="hydra_cache_local", overrides=["probe=4"]).probe, \
+                compose(config_name="hydra_cache_local").probe
+
+    try:
+        store.store(name="hydra_cache_local", node=local)
+        assert value() == (4, 3) and value() == (4, 3)       # a miss, then hits
+        entry = next(e for e in hydra_cache._entries.values()
+                     if e.config is not None and "probe" in e.config and "model" not in e.config)
+        assert entry.pickled == b""
+    finally:
+        del store.repo["hydra_cache_local.yaml"]
+
+
+def test_a_composition_copies_the_repository_not_the_config_store(monkeypatch, tmp_path):
+    """Each composition copied Hydra's whole config repository, the ConfigStore in it (half a
+    cached composition's CPU); a search path one composition adds is still not seen by the next."""
+    import copy
+    import types
+
+    from hydra._internal import config_repository
+
+    deep_copied = []
+    monkeypatch.setattr(config_repository, "copy", types.SimpleNamespace(
+        deepcopy=lambda obj, *args: deep_copied.append(type(obj).__name__) or copy.deepcopy(obj, *args)))
+    extra = tmp_path / "extra" / "model"
+    extra.mkdir(parents=True)
+    shutil.copy2(conf_dir() / "model" / "mlr.yaml", extra / "mlr_extra.yaml")
+    searched = f"hydra.searchpath=[file://{extra.parent}]"
+    assert overrides.compose([searched, "model=mlr_extra"], "run").model == \
+        overrides.compose(["model=mlr"], "run").model
+    assert deep_copied == []
+    with pytest.raises(hydra.errors.MissingConfigException):
+        overrides.compose(["model=mlr_extra"], "run")
 
 
 @pytest.mark.parametrize("change", ["version", "source"])
