@@ -38,6 +38,16 @@ hammerstein 0.778 | swiss1514 0.749 -> 0.774; 2.23; hammerstein 0.749 | year1403
 hammerstein's 5.09; on E_Y 0.84 on lagbank, test 26.2 against MLR's 12.7; col1514 -1 %, mill1514
 -0.7 %; mill1403 +0.7 %), within 10 % of the best family 6/8 (col1403 +28 %, col1514 +11 %).
 CPU per record (user s): col 28, swiss 17, year 23-59, mill 107-119.
+
+Fresh records, run once (2026-11-30, seeds 5353/5454, nothing tuned on them), same columns:
+col5353 7.43 -> 5.71; 6.27; lstm 5.32 | mill5353 1.68 -> 1.74; 1.75; arx 1.75 | swiss5353 1.22 ->
+1.21; 1.28; hammerstein 1.22 | year5353 0.829 -> 0.759; 2.46; ati 0.849 | col5454 8.37 -> 11.5;
+13.8; lstm 10.2 | mill5454 1.53 -> 1.71; 1.72; lstm 1.71 | swiss5454 1.46 -> 1.32; 1.46;
+hammerstein 0.776 | year5454 0.838 -> 0.809; 2.48; ati 0.84.  Auto better than MLR 8/8 (the
+mills by < 1 %), within 10 % of the best family 6/8 (col5454 +13 %; swiss5454 +70 %: the forward
+folds of its one calibration record rank hammerstein 5th on E_X, validation 1.70 against MLR's
+1.58, test 0.915 against 1.74).  CPU per record (user + sys s): col 38-41, swiss 33, year 37-39,
+mill 192-197.
 """
 
 from __future__ import annotations
