@@ -6,6 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from thermocomp.base.log import logger
+from thermocomp.core.io.timestamps import said_if_not_seconds
 from thermocomp.core.timerule import median_step
 
 
@@ -34,3 +36,13 @@ def test_no_step_joins_two_campaigns_as_a_list_of_columns_or_by_groups():
 def test_without_a_positive_step_there_is_no_period(time):
     assert median_step(time) is None
 
+
+def test_a_time_in_ms_repeating_its_rows_is_still_said(caplog):
+    # before: the median of every step, 0 when most rows repeat the previous time, hid a time
+    # 1000 s (ms?) apart; the steps that advance are what the period is
+    logger.addHandler(caplog.handler)
+    try:
+        said_if_not_seconds(np.repeat(np.arange(20) * 1000.0, 3), "f.csv", "t")
+    finally:
+        logger.removeHandler(caplog.handler)
+    assert "samples 1000 s apart, in whole thousands: milliseconds?" in caplog.text
