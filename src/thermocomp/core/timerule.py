@@ -15,6 +15,9 @@ form against the others).
 
 A reader that has the whole record takes such a first time as the next time read less one
 period per sample: the same steps (:func:`stream_start` says where the stream's clock starts).
+
+The period is the training's sample period, :func:`median_step` of its times: the one
+definition every reader, model and report of a time column's period uses.
 """
 
 from __future__ import annotations
