@@ -268,7 +268,7 @@ PRIVATE_IMPORTS_LEFT = {
     "core.io.detect": {"_peek_csv"},
     "core.io.manifest": {"_OTHER_DELIMITERS", "_first_line"},
     "core.io.read": {"_load_csv", "_load_parquet", "_ordered", "_values", "_check_periods",
-                     "_error_ranges", "_keep_missing", "_median_period", "_repair_missing",
+                     "_error_ranges", "_keep_missing", "_repair_missing",
                      "_set_time_seconds", "_warn_error_ranges"},
     "core.io.roles": {"_roles"},
     "core.io.sniff": {"_OTHER_DELIMITERS"},

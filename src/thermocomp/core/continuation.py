@@ -23,20 +23,20 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-import numpy as np
 import pandas as pd
 
 from ..base.log import say
 from .io.contract import TIME, Dataset
+from .timerule import median_step
 
 CONTINUES = "continues"
 START = "start"
 
 
 def campaign_period(df: pd.DataFrame) -> float:
-    """The campaign's sample period: the median step of its ``time`` (NaN with one row)."""
-    steps = np.diff(df[TIME].to_numpy(float))
-    return float(np.median(steps)) if steps.size else float("nan")
+    """The campaign's sample period (:func:`~thermocomp.core.timerule.median_step`; NaN
+    without a step)."""
+    return median_step(df[TIME].to_numpy(float)) or float("nan")
 
 
 def predecessors(ds: Dataset) -> dict[str, str]:

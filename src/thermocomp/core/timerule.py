@@ -15,11 +15,16 @@ form against the others).
 
 A reader that has the whole record takes such a first time as the next time read less one
 period per sample: the same steps (:func:`stream_start` says where the stream's clock starts).
+
+The period is the training's sample period, :func:`median_step` of its times: the one
+definition every reader, model and report of a time column's period uses.
 """
 
 from __future__ import annotations
 
 import math
+
+import numpy as np
 
 CLOCK_START = (True, math.nan, math.nan, math.nan)    # a campaign's start, as SampleClock.snapshot
 
@@ -78,6 +83,38 @@ def stream_start(time, period_s: float) -> float:
         if math.isfinite(t):
             return float(t) - i * period_s
     return 0.0
+
+
+def median_step(time, groups=None) -> float | None:
+    """The sample period of a time column: the median of its positive steps.
+
+    Parameters
+    ----------
+    time : array-like of float, or a list of them
+        Times (s); a list holds one column per campaign.
+    groups : array-like, optional
+        The campaign of each row of ``time`` (one column): no step joins two segments (runs
+        of consecutive rows with the same label), as none joins two columns of a list.
+
+    Returns
+    -------
+    float or None
+        The median of the finite positive steps within the campaigns: a time that goes back
+        (a new run), repeats, or is missing (NaN) makes no step.  None without one such step
+        (one row, a time never increasing): the caller says its fallback (``or 1.0``).
+    """
+    if isinstance(time, (list, tuple)) and time and np.ndim(time[0]):
+        steps = np.concatenate([np.diff(np.asarray(t, dtype=float)) for t in time])
+    else:
+        time = np.asarray(time, dtype=float)
+        steps = np.diff(time)
+        if groups is not None:
+            g = np.asarray(groups)
+            if len(g) != len(time):
+                raise ValueError(f"groups has {len(g)} rows, time {len(time)}")
+            steps = steps[g[1:] == g[:-1]]
+    steps = steps[np.isfinite(steps) & (steps > 0)]
+    return float(np.median(steps)) if steps.size else None
 
 
 # The same steps in C (tc_step: ``time`` NAN when missing; state s->t, s->t_read, s->shift).

@@ -18,6 +18,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ...core.timerule import median_step
+
 FREE, BOUNDED, RATE, HELD = "free", "bounded", "rate_limited", "held"
 CALM = 5   # samples within bound and rate before a target is reported free again
 
@@ -50,17 +52,16 @@ class CorrectionGuard:
         Y = np.vstack(measured)
         lo, hi = np.nanmin(Y, axis=0), np.nanmax(Y, axis=0)
         width = np.maximum(hi - lo, 1e-9)
-        rates, periods = [], []
+        rates = []
         for k, t in enumerate(times):
             dt = np.diff(np.asarray(t, float))
             if dt.size:
-                periods.append(np.median(dt))
                 for y in (measured[k], *([predicted[k]] if predicted is not None else [])):
                     rates.append(np.nanmax(np.abs(np.diff(y, axis=0)) / dt[:, None], axis=0))
         rate = np.max(rates, axis=0) if rates else np.full(Y.shape[1], np.inf)
         wide = margin if new_state_margin is None else float(new_state_margin)
         return cls(targets, lo - margin * width, hi + margin * width, (1 + rate_margin) * rate,
-                   float(np.median(periods)) if periods else 1.0,
+                   median_step(list(times)) or 1.0,
                    lo - wide * width, hi + wide * width)
 
     def reset(self) -> None:

@@ -10,9 +10,8 @@ from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ContractError, ParameterError
 from ...core.context import AMBIENT_C0, TIME, SideInputs, context_columns, groups_of, merge_columns, scalar
-from ...core.models._dynamics import median_period
 from ...core.models.linear import MLR
-from ...core.timerule import CLOCK_START, step_time
+from ...core.timerule import CLOCK_START, median_step, step_time
 from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
 from .shrink import PartialRidgePath
 
@@ -109,7 +108,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         # the stream's step for a sample without a time (the time rule); rows without a time
         # column are 1 apart, as the design counts them
         time = context[TIME].to_numpy(float) if context is not None and TIME in context else None
-        self.sample_period_s_ = (median_period(time, g) if time is not None else None) or 1.0
+        self.sample_period_s_ = (median_step(time, g) if time is not None else None) or 1.0
         self.initial_weights_ = [
             initial_weights(context, e.initial_state, g, e.initial_directions) if e.learns else None
             for e in self.effects_]

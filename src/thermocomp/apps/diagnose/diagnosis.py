@@ -20,6 +20,7 @@ from ...core.metrics import P2P_AFTER, split_scores
 from ...core.model_selection import ForwardChaining, LeaveCampaignsOut, cv_scheme, forward_gap, unit_labels
 from ...core.scoring.evaluation import require_split, sample_period, split_residuals
 from ...core.scoring.results import TEST_RMSE, TEST_RSD_MEAN, TEST_RSD_SD, Scores, TargetResult
+from ...core.timerule import median_step
 from .augmented import AugmentedRegressor
 from .blocks import decorrelation_length
 from .candidates import CONTROL, random_walk
@@ -227,9 +228,7 @@ def test_sensor_warnings(search: Search, excluded, later, options: SearchOptions
 def _gap(context, groups, options: SearchOptions) -> int:
     """Forward chaining's gap: the longest lag tried in samples, capped at half a block."""
     t = context["time"].to_numpy(float)
-    g = np.asarray(groups, dtype=object)
-    dt = np.diff(t)[g[1:] == g[:-1]]
-    dt = float(np.median(dt[dt > 0])) if np.any(dt > 0) else 1.0
+    dt = median_step(t, groups) or 1.0
     taus = [float(x) for x in options.candidates.taus_s] or [0.0]
     block = ForwardChaining(options.n_blocks, min_train_fraction=options.min_train_fraction) \
         .block_size(len(t))

@@ -38,6 +38,7 @@ from ...core.metrics import (
     window_lengths,
 )
 from ...core.scoring.iso10791 import a3_report
+from ...core.timerule import median_step
 from .identify import ArtefactCalibration
 from .kinematics import AXES, workspace_grid
 
@@ -123,7 +124,7 @@ def volumetric_report(cal: ArtefactCalibration, distances: Mapping[str, np.ndarr
 
     curves = {"trajectories": {}, "iso_a3": None}
     out["trajectories"] = {}
-    period = float(np.median(np.concatenate([np.diff(times[c]) for c in ids])))
+    period = median_step([times[c] for c in ids]) or float("nan")
     longest = max(len(times[c]) for c in ids)
     lengths = window_lengths(longest, max_points)
     for axis in AXES:

@@ -15,12 +15,12 @@ import argparse
 import sys
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 
 from ...base.files import atomic_dir
 from ...base.log import configure, logger
 from ...base.paths import resolve
+from ..timerule import median_step
 from .contract import ContractError
 from .read import read_manifest
 
@@ -51,11 +51,12 @@ def export_foreign(src: str | Path, dest: str | Path, columns: dict[str, str], *
     return dest
 
 
-def sample_period(src: str | Path) -> float:
-    """The (uniform) sample period in s of dataset ``src``'s first campaign."""
+def sample_period(src: str | Path) -> float | None:
+    """The (uniform) sample period in s of dataset ``src``'s first campaign
+    (:func:`~thermocomp.core.timerule.median_step`)."""
     src = Path(src)
     first = read_manifest(src).iloc[0]
-    return float(np.median(np.diff(pd.read_csv(src / first["file"])["time"].to_numpy())))
+    return median_step(pd.read_csv(src / first["file"])["time"].to_numpy(float))
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -79,7 +80,7 @@ def main(argv: list[str] | None = None) -> int:
     except (ContractError, ValueError) as exc:   # one line, exit 2: as the CLI says bad input
         print(f"thermocomp: error: {exc}", file=sys.stderr)
         return 2
-    logger.info("%s: sample period %g s", dest, sample_period(src))
+    logger.info("%s: sample period %g s", dest, sample_period(src) or float("nan"))
     return 0
 
 

@@ -65,6 +65,7 @@ import pyarrow as pa
 
 from ...base.files import atomic_dir, folder_digest, write_json
 from ...base.log import logger
+from ..timerule import median_step
 from .contract import (
     AMBIENT_C,
     MANIFEST,
@@ -89,7 +90,6 @@ from .values import (
     _check_periods,
     _error_ranges,
     _keep_missing,
-    _median_period,
     _repair_missing,
     _set_time_seconds,
     _warn_error_ranges,
@@ -261,7 +261,7 @@ def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
     periods, ranges = {}, {}
     for cid, row in manifest.iterrows():
         table, report = read_campaign(root / row["file"], opts)
-        periods[cid] = _median_period(table)
+        periods[cid] = median_step(table.column(TIME).to_numpy())
         ranges[cid] = _error_ranges(table, DEAD_ROLES)
         yield cid, table, {"file": row["file"], "split": row["split"], **report}
         del table  # before reading the next campaign
@@ -545,7 +545,8 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
             table, report = _assembled(part, renamed, rescaled, source, source_opts, lines, start)
             parts[cid] = table, {"file": path.name, "split": "train", **report,
                                  "record_rows": [start, end], "run_column": header}
-            periods[cid], ranges[cid] = _median_period(table), _error_ranges(table, DEAD_ROLES)
+            periods[cid] = median_step(table.column(TIME).to_numpy())
+            ranges[cid] = _error_ranges(table, DEAD_ROLES)
     files = dict.fromkeys(parts, path.name)
     _check_periods(periods, files, path.parent, opts.max_period_ratio)
     _warn_error_ranges(ranges, files, path.parent)

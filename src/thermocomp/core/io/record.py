@@ -18,6 +18,7 @@ import pandas as pd
 import pyarrow as pa
 
 from ...base.log import logger
+from ..timerule import median_step
 from .contract import MANIFEST, ContractError
 from .manifest import RECORD_SUFFIXES
 from .workbook import not_read
@@ -111,10 +112,9 @@ def _warn_pauses(path: Path, table: pa.Table) -> None:
     ambient level for ATI) where a folder of one file per run reads each as a campaign."""
     if "time" not in table.column_names or table.num_rows < 3:
         return
-    steps = np.diff(table.column("time").to_numpy(zero_copy_only=False).astype(float))
-    steps = steps[np.isfinite(steps)]
-    period = float(np.median(steps)) if steps.size else 0.0
-    pauses = np.flatnonzero(steps > PAUSE_PERIODS * period) if period > 0 else []
+    time = table.column("time").to_numpy(zero_copy_only=False).astype(float)
+    steps, period = np.diff(time), median_step(time)
+    pauses = np.flatnonzero(steps > PAUSE_PERIODS * period) if period else []
     if len(pauses):
         k = int(pauses[np.argmax(steps[pauses])])
         logger.warning(f"{path.name}: one record, yet it pauses {len(pauses)} "

@@ -19,6 +19,7 @@ import numpy as np
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from ..timerule import median_step
 from .contract import ContractError
 from .options import RUN_ROLE
 from .roles import split_unit
@@ -122,7 +123,7 @@ def run_ends(changes: np.ndarray, time: np.ndarray | None = None,
     ends, told = np.zeros(int(changes.sum()), bool), False
     if time is not None and np.isfinite(time).sum() > 2:
         dt = np.diff(np.asarray(time, float))
-        period = np.median(dt[dt > 0]) if (dt > 0).any() else np.nan
+        period = median_step(time) or np.nan
         ends |= ((dt <= 0) | (dt > 2 * period))[changes]
         told = True
     for column in others:

@@ -16,6 +16,7 @@ import pyarrow.compute as pc
 
 from ...base.errors import position
 from ...base.log import logger
+from ..timerule import median_step
 from .contract import TIME, ContractError
 
 # a first cell that is a date and a time of day (the time column when no header says so)
@@ -180,10 +181,10 @@ def said_if_not_seconds(time: np.ndarray, file: Path, header: str, own: bool = F
     logger every 120 s is no such step; a lab's every 100 s or 500 s in seconds is said and
     quietened with ``data.units={time: s}``.  Also said: Excel's serial day numbers (a date
     shown as a number, :func:`_excel_days`), ``data.units={time: d}``."""
-    if len(time) < 2 or not np.all(np.isfinite(time)):
+    period = median_step(time)
+    if period is None or not np.all(np.isfinite(time)):
         return
     steps = np.diff(time)
-    period = float(np.median(steps))
     thousands = period >= 1000 and np.all(steps % 1000 == 0)
     odd = own and period >= 100 and period % 60 != 0 and np.all(time == np.round(time))
     if thousands or odd:
@@ -245,12 +246,11 @@ def said_if_clock_skips(seconds: np.ndarray, file, header: str = TIME, at=positi
     """Say (not refuse: a logger may pause an hour) timestamps without an offset that jump one
     hour plus a sample period forward once: daylight saving time beginning, read as an hour
     without samples unless ``data.timezone`` says the zone (``at``: names a data row)."""
-    steps = np.diff(seconds)
-    if steps.size < 2:
+    period = median_step(seconds)
+    if period is None or period >= HOUR_S:
         return
-    period = float(np.median(steps))
-    jumps = np.flatnonzero(np.abs(steps - HOUR_S - period) <= period / 2)
-    if 0 < period < HOUR_S and jumps.size:
+    jumps = np.flatnonzero(np.abs(np.diff(seconds) - HOUR_S - period) <= period / 2)
+    if jumps.size:
         logger.warning(f"{file}, column {header!r}, {at(int(jumps[0]) + 2)}: the clock jumps an hour "
                        "forward (daylight saving time beginning?): read as an hour without "
                        "samples; set data.timezone to the zone it was written in (e.g. "

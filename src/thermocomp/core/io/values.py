@@ -107,11 +107,6 @@ def _check_duration(seconds: np.ndarray, path: Path, max_days: float | None) -> 
                         "in seconds", file=path, column=TIME, row=len(seconds))
 
 
-def _median_period(table: pa.Table) -> float | None:
-    time = table.column(TIME).to_numpy()
-    return float(np.median(np.diff(time))) if len(time) > 1 else None
-
-
 def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | None) -> None:
     """Refuse a campaign whose median sample period is ``ratio`` times (or 1/``ratio``) the
     median of the others': its time column is in another unit (ms, minutes) than theirs."""

@@ -31,15 +31,6 @@ def segment_bounds(groups, n: int) -> list[tuple[int, int]]:
     return list(zip(starts.tolist(), np.r_[starts[1:], n].tolist()))
 
 
-def median_period(time, groups) -> float | None:
-    """The median positive step of ``time`` inside the segments (the sample period a stream
-    takes for a sample without a time), None where no step is finite and positive."""
-    time = np.asarray(time, dtype=float)
-    steps = np.concatenate([np.diff(time[a:b]) for a, b in segment_bounds(groups, len(time))])
-    steps = steps[np.isfinite(steps) & (steps > 0)]
-    return float(np.median(steps)) if steps.size else None
-
-
 def lag_index(groups, n: int, lag: int) -> np.ndarray:
     """Row index of ``t - lag`` inside each segment, held at the segment's first row."""
     idx = np.arange(n)

@@ -43,12 +43,11 @@ from ...base.params import NON_NEGATIVE, POSITIVE, check_estimator, choice, eith
 from ..context import TIME, Y_MEASURED, SideInputs, feedback_gain, groups_of, scalar, values
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
-from ..timerule import CLOCK_START, step_time
+from ..timerule import CLOCK_START, median_step, step_time
 from ._dynamics import (
     first_order_lags,
     free_run,
     lag_index,
-    median_period,
     previous,
     segment_bounds,
     segment_starts,
@@ -446,7 +445,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                              f"CV, got n_samples={n}")
         groups = groups_of(context)
         time = values(context, TIME, n)
-        period = median_period(time, groups) if time is not None else None
+        period = median_step(time, groups) if time is not None else None
         self.sample_period_s_ = period if period is not None else float(self.sample_period_s)
         tau_min = self.sample_period_s_ if self.tau_min_s is None else float(self.tau_min_s)
         tau_min = min(tau_min, float(self.tau_max_s))

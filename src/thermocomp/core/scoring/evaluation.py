@@ -31,15 +31,15 @@ from ..metrics import (
     test_block,
     validation_scores,
 )
+from ..timerule import median_step
 from .iso10791 import a3_report
 from .stats import anova_oneway, mutual_prediction
 
 
 def sample_period(ds: Dataset, ids) -> float:
-    """Median sampling step (s) over the campaigns ``ids``."""
-    steps = [np.diff(ds.campaigns[c][TIME].to_numpy(float)) for c in ids]
-    steps = np.concatenate([s for s in steps if s.size]) if steps else np.empty(0)
-    return float(np.median(steps)) if steps.size else float("nan")
+    """The sample period (s) of the campaigns ``ids`` (:func:`~thermocomp.core.timerule.median_step`;
+    NaN without a step)."""
+    return median_step([ds.campaigns[c][TIME].to_numpy(float) for c in ids]) or float("nan")
 
 
 def require_split(ds: Dataset, split: str) -> list[str]:

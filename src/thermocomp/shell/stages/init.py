@@ -7,14 +7,13 @@ run next.  The data are read with it first: a config that would not read them is
 
 from __future__ import annotations
 
-import numpy as np
 import yaml
 from omegaconf import DictConfig, OmegaConf
 
 from ...base.files import atomic_write_text
 from ...base.paths import conf_dir, resolve
 from ...core import io
-from ...core.continuation import campaign_period
+from ...core.io.contract import TIME
 from ...core.io.detect import (
     check_an_error_is_named,
     data_config,
@@ -27,6 +26,7 @@ from ...core.io.detect import (
     sample_file,
 )
 from ...core.io.roles import naming
+from ...core.timerule import median_step
 from ..config.checks import check_config, data_options
 from ..source import check_declared, open_source
 
@@ -55,6 +55,6 @@ def init(cfg: DictConfig) -> dict:
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")
-    period = np.median([campaign_period(df) for df in ds.campaigns.values() if len(df) > 1])
+    period = median_step([df[TIME].to_numpy(float) for df in ds.campaigns.values()]) or float("nan")
     print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, ds.name)))
     return {"config": str(path), "columns": plan.names}
