@@ -16,6 +16,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
+import durations
 import hydra_cache
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -257,15 +258,24 @@ def pytest_collection_finish(session):
     gc.freeze()
 
 
+def pytest_addoption(parser):
+    parser.addoption("--store-durations", action="store_true",
+                     help="write each scheduling unit's seconds into tests/durations.json "
+                          "(the order `make test` starts them in: tests/durations.py)")
+
+
 def pytest_configure(config):
     # here, not in pyproject.toml's markers: the Makefile reinstalls the package when that changes
     config.addinivalue_line("markers", "full: an end-to-end run of what cheaper tests cover "
                                        "(named in its docstring): `make test-all`, not `make test` (CI)")
+    if config.getoption("store_durations"):
+        config.pluginmanager.register(durations.Recorder(_unit), "store-durations")
 
 
 # -- how `make test`'s two xdist workers (`--dist loadfile`) share the tests --------------------
 # A module's tests go to one worker (its module fixtures are built once), except these: long
 # tests that share nothing costly, each a unit of its own (the README test, one per page).
+# Longest first, by measured seconds (tests/durations.py; `pytest --store-durations` updates them).
 ALONE = ("tests/test_readme.py::test_page_commands_as_written",)
 
 
@@ -290,11 +300,12 @@ def pytest_xdist_make_scheduler(config, log):
 
 
 def pytest_collection_modifyitems(items):
-    """The longest first, so that none starts when the other worker is nearly done: the
-    :data:`ALONE` tests, then the modules with a ``slow`` test, then the rest (a stable sort: a
-    module's own order is kept)."""
-    slow = {_unit(item.nodeid) for item in items if item.get_closest_marker("slow")}
-    items.sort(key=lambda item: (not item.nodeid.startswith(ALONE), _unit(item.nodeid) not in slow))
+    """The longest units first, so that none starts when the other worker is nearly done: by the
+    seconds tests/durations.json holds (:func:`durations.longest_first`; a module's own order
+    is kept)."""
+    units = list(dict.fromkeys(_unit(item.nodeid) for item in items))
+    rank = {u: i for i, u in enumerate(durations.longest_first(units, durations.load()))}
+    items.sort(key=lambda item: rank[_unit(item.nodeid)])
 
 
 @pytest.fixture

@@ -13,6 +13,7 @@ own: ``from ..models import ARX`` depends on ``thermocomp.core.models`` (the ``_
 from __future__ import annotations
 
 import ast
+import functools
 from pathlib import Path
 
 import pytest
@@ -73,17 +74,17 @@ def _imports(name: str, path: Path, modules: set[str]) -> set[str]:
     return out
 
 
+@functools.cache
 def _graph() -> dict[str, set[str]]:
+    """Each module's imports: parsed by the first test that asks (1.1 s of CPU), not at
+    collection, which every xdist worker does and one of them for nothing."""
     files = {_module_name(p): p for p in sorted((SRC / ROOT).rglob("*.py"))}
     modules = set(files)
     return {name: _imports(name, path, modules) for name, path in files.items()}
 
 
-GRAPH = _graph()
-
-
 def _edges() -> dict[str, set[str]]:
-    return {m: set(deps) for m, deps in GRAPH.items()}
+    return {m: set(deps) for m, deps in _graph().items()}
 
 
 def _layer(module: str) -> str | None:
@@ -177,9 +178,9 @@ def _reaches(start: str, graph, forbidden) -> list[list[str]]:
 
 def test_the_parser_sees_function_level_and_relative_imports():
     # callbacks imports tracking only inside its methods
-    assert f"{ROOT}.shell.tracking" in GRAPH[f"{ROOT}.shell.callbacks"]
-    assert f"{ROOT}.apps.diagnose.cv" in GRAPH[f"{ROOT}.apps.diagnose.diagnosis"]
-    assert f"{ROOT}.core.models" in GRAPH  # a package's __init__ is a module
+    assert f"{ROOT}.shell.tracking" in _graph()[f"{ROOT}.shell.callbacks"]
+    assert f"{ROOT}.apps.diagnose.cv" in _graph()[f"{ROOT}.apps.diagnose.diagnosis"]
+    assert f"{ROOT}.core.models" in _graph()  # a package's __init__ is a module
     assert _cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c", "a"]]
     assert _reaches("a", {"a": {"b"}, "b": {"hydra.utils"}}, ("hydra",)) == [["a", "b", "hydra.utils"]]
 
@@ -253,7 +254,7 @@ def test_stages_do_not_import_each_other():
     # The stage modules are those ``stages/__init__`` registers (imported on use); common and
     # artifacts are the stages' shared helpers.  Stages meet at files, not at each other's functions.
     stages = _stage_modules()
-    assert len(stages) >= 5 and stages <= set(GRAPH), stages
+    assert len(stages) >= 5 and stages <= set(_graph()), stages
     graph = _edges()
     bad = sorted(f"{m} -> {d}" for m in stages for d in graph[m] if d in stages and d != m)
     assert not bad, "a stage imports another stage (move the shared code out of stages/):\n  " + \
