@@ -14,6 +14,8 @@ stream, the numpy reference, the compiled C and the Structured Text.  A real ste
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -37,6 +39,7 @@ def dataset(tmp_path_factory):
     return _make_dataset(tmp_path_factory.mktemp("spike") / "data")
 
 
+@lru_cache(maxsize=None)        # one fit per family for the module (replay resets the stream)
 def _deployed(dataset, family):
     """``(adaptive compensator as replay deploys it, a healthy test campaign)``; every excursion
     clamped (the sensors here move independently: test_export.EVERY_EXCURSION)."""
@@ -46,7 +49,7 @@ def _deployed(dataset, family):
     train = {c: ds.campaigns[c] for c in train_ids}
     deployed = deployable(cfg, deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train),
                           train, ds)
-    return deployed, ds.campaigns[test_ids[0]].reset_index(drop=True)
+    return deployed, ds.campaigns[test_ids[0]].reset_index(drop=True).copy()
 
 
 def _spiked(deployed, healthy) -> tuple[pd.DataFrame, pd.DataFrame, int]:
