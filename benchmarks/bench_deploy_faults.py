@@ -7,42 +7,51 @@ held out, 5-min samples), each model fitted by ``thermocomp run`` and made deplo
 sensor the models lean on: one empty cell (``nan_1``), 16 (``nan_16``), to the end
 (``nan_end``), its first cell (``nan_first``); stuck at its value; a one-sample +50 °C spike; the
 reading in K (+273.15) from the middle or throughout; the time +3 h from the middle
-(``gap3h``); a duplicated row, a duplicated time, two rows swapped; the first time blank.
+(``gap3h``); a duplicated row, a duplicated time, two rows swapped; the first time blank; and
+(session 54) a real +5 K step of ``T_amb`` from the middle row on (``amb_step5``: the machine
+really warms, to be followed).
 Forms: ``adaptive`` (the served model, ``replay``, ``monitor``: sensor monitor + guard),
 ``plain`` (the streaming compensator alone, ``monitor.adaptive=false``), ``code`` (the exported
 arithmetic: numpy Simulator; the compiled C's ``tc_step`` and the ST block equal it to 1e-13 µm on
 every fault, ``tests/shell/test_export_dropout53.py`` and the export tests prove them).  Per form:
-the largest |correction| (µm), the largest change from the healthy stream, or what it did.
+the largest |correction| (µm), the largest change from the healthy stream, the change at the
+campaign's last row, or what it did.
 
 Run: ``PYTHONPATH=src .venv/bin/python benchmarks/bench_deploy_faults.py [--root /tmp/df53]``
-(18 s of CPU, simulation and fits included).  Measured 2026-11-30 (session 53): max|C| over
-E_X/E_Y/E_Z / the largest change from the same form's healthy stream (µm; a repeated row's output
-left out, swapped rows' swapped back); ``refused (n)``: the
+(10 s of CPU with the fits made, 18 s with them).  Measured 2026-11-30 (session 54): max|C| over
+E_X/E_Y/E_Z / the largest change from the same form's healthy stream / the change at the last
+row (µm; a repeated row's output left out, swapped rows' swapped back); ``refused (n)``: the
 plain stream refuses data row n (``replay`` exit 2 naming file, column and row); ``code`` is the
-arithmetic exported from the adaptive deployable (its guard included, no sensor monitor)::
+arithmetic exported from the adaptive deployable (its guard included, no sensor monitor);
+``before ->`` the clamp's bound of each sample (session 53), the one line that changed::
 
-  fault             model        adaptive          plain            code
-  healthy           mlr/arx/lb   27.5/25.4/24.2 µm max|C| in every form
-  nan_1             mlr          27.5 / 4.2   refused (24)      27.5 / 2.7
-                    arx          25.5 / 0.9   refused (24)      25.4 / 0.5
-                    lagbank      24.8 / 2.2   refused (24)      24.2 / 0.6
-  nan_end           mlr          26.7 / 4.2   refused (24)      19.4 / 8.1   (last C held)
-                    lagbank      26.8 / 3.1   refused (24)      19.1 / 5.5
-  nan_first         lagbank      28.1 / 4.0   refused (1)       22.6 / 1.9   (0, then from row 2)
-  stuck             mlr          38.1 / 16.0  79.7 / 53.8       62.0 / 40.0  (guard bound)
-                    arx          26.6 / 2.7   46.1 / 20.7       46.1 / 20.7
-                    lagbank      27.8 / 6.0   72.4 / 48.2       62.0 / 38.1
-  spike50 (1 row)   mlr          27.5 / 4.2   271.4 / 288.1     27.5 / 19.1  (1 row, rate limit)
-                    arx          25.5 / 0.9   83.2 / 105.2      21.2 / 34.3  (to the end)
-                    lagbank      24.8 / 2.2   241.6 / 260.8     19.1 / 33.8  (to the end)
-  kelvin_half       mlr          26.7 / 4.2   271.4 / 288.1     19.4 / 37.8
-                    lagbank      26.8 / 3.1   1825.0 / 1849.2   19.1 / 34.6
-  kelvin_all        lagbank      26.7 / 3.2   24.2 / 0.0        24.2 / 0.0   (referenced)
-  gap3h             lagbank      32.2 / 8.0   32.2 / 8.0        32.2 / 8.0   (no event)
-  dup_row           mlr          27.5 / 0.0   27.5 / 0.0        27.5 / 0.0   (time substituted)
-                    lagbank      24.3 / 0.6   24.3 / 0.6        24.3 / 0.6
-  swap              arx          25.4 / 0.4   25.4 / 0.4        25.4 / 0.4   (time substituted)
-                    lagbank      24.3 / 0.8   24.3 / 0.8        24.3 / 0.8
+  fault             model      adaptive             plain                  code
+  healthy           mlr/arx/lb 27.5/25.4/24.2 µm max|C| in every form, no change
+  nan_1             mlr        27.5 / 4.2 / 0.0     refused (24)           27.5 / 2.7 / 0.0
+                    arx        25.5 / 0.9 / 0.1     refused (24)           25.4 / 0.5 / 0.0
+                    lagbank    24.8 / 2.2 / 0.3     refused (24)           24.2 / 0.6 / 0.0
+  nan_end           mlr        26.7 / 4.2 / 0.8     refused (24)           19.4 / 8.1 / 6.6  (last C held)
+                    lagbank    26.8 / 3.1 / 2.4     refused (24)           19.1 / 5.5 / 5.5
+  nan_first         lagbank    28.1 / 4.0 / 3.8     refused (1)            22.6 / 1.9 / 1.9
+  stuck             mlr        38.1 / 16.0 / 0.8    79.7 / 53.8 / 53.8     62.0 / 40.0 / 36.1
+                    arx        26.6 / 2.7 / 1.2     46.1 / 20.7 / 20.7     46.1 / 20.7 / 20.7
+                    lagbank    27.8 / 6.0 / 2.9     72.4 / 48.2 / 48.2     62.0 / 38.1 / 37.8
+  spike50 (1 row)   mlr        27.5 / 4.2 / 0.0     271.4 / 288.1 / 0.0    27.5 / 19.1 / 0.0
+                    arx        25.5 / 0.9 / 0.1     83.2 / 105.2 / 5.6 ->  21.2 / 34.3 / 5.6 ->
+                                                    24.5 / 19.1 / 0.9      24.5 / 18.1 / 0.9
+                    lagbank    24.8 / 2.2 / 0.3     241.6 / 260.8 / 8.9 -> 19.1 / 33.8 / 8.9 ->
+                                                    22.8 / 41.4 / 1.4      22.8 / 29.5 / 1.4
+  amb_step5         mlr        27.5 / 1.8 / 0.0     20.4 / 10.5 / 6.1      20.4 / 10.5 / 6.1
+                    arx        25.4 / 1.1 / 0.0     24.8 / 7.1 / 5.3       24.8 / 7.1 / 5.3
+                    lagbank    23.5 / 1.1 / 0.8     46.4 / 22.2 / 22.2     46.4 / 22.2 / 22.2
+  kelvin_half       mlr        26.7 / 4.2 / 0.8     271.4 / 288.1 / 234.4  19.4 / 37.8 / 36.3
+                    lagbank    26.8 / 3.1 / 2.4     1825 / 1849 / 1849     19.1 / 34.6 / 34.6
+  kelvin_all        lagbank    26.7 / 3.2 / 2.2     24.2 / 0.0 / 0.0       24.2 / 0.0 / 0.0  (referenced)
+  gap3h             lagbank    32.2 / 8.0 / 8.0     32.2 / 8.0 / 8.0       32.2 / 8.0 / 8.0  (no event)
+  dup_row           mlr        27.5 / 0.0 / 0.0     27.5 / 0.0 / 0.0       27.5 / 0.0 / 0.0 (time substituted)
+                    lagbank    24.3 / 0.6 / 0.0     24.3 / 0.6 / 0.0       24.3 / 0.6 / 0.0
+  swap              arx        25.4 / 0.4 / 0.0     25.4 / 0.4 / 0.0       25.4 / 0.4 / 0.0 (time substituted)
+                    lagbank    24.3 / 0.8 / 0.0     24.3 / 0.8 / 0.0       24.3 / 0.8 / 0.0
   dup_time, time_first_blank: every form as healthy (0.0)
 
 The compiled C (``tc_step`` in a small harness) equals the code on every fault to 2.3e-13 µm.
@@ -50,12 +59,25 @@ Every correction of every form is finite.  Before session 53 the code stepped a 
 cell gave a NaN correction on every later row of the campaign (the guard, the lags and the AR
 feedback kept it; ``nan_1``: 24 of 47 rows NaN, every family); now the sample is refused and the
 last correction repeated, as the plain stream refuses the row (``stream.c``, the C driver, still
-stops there: exit 2 naming row and input).  Left as designed, measured: the plain stream has no
-guard, and the clamp puts a far-out reading at its envelope's edge (MLR's -36 µm/K on
-``T_motor2``: -271 µm for one spiked row; a lag bank on a reading in K: 1825 µm); the clamp's
-bound ``|clamp_gain . ex|`` is 0 once the excess ends, so a dynamic model's memory of a one-row
-spike (lags, AR feedback) passes on to the campaign's end (arx, lagbank: 34 µm in the code,
-within the guard); the adaptive compensator reads such a reading as missing (0.9-4.2 µm).
+stops there: exit 2 naming row and input).
+
+The one-row spike (session 54): the clamp's bound ``|clamp_gain . ex|`` was 0 once the excess
+ended, so a dynamic model's memory of the spike (lags, AR feedback) passed on to the campaign's
+end; back in range the last excess's bound now holds (``streaming.py``, the Simulator, the C, the
+ST), and what remains is the memory of the reading the clamp gives for that row, the envelope's
+edge (7.9 K above the true reading here): the lag bank's plain stream 260.8 µm off the row after
+-> 41.4, 8.9 -> 1.4 at the end; the code (its guard spreads it) 33.8 -> 29.5 at most, 8.9 -> 1.4
+at the end.  Every other line is unchanged to the printed digit.  Measured and not chosen: the
+sensor monitor's jump limit (3 x the largest training step per sensor, per sample elapsed)
+refusing the sample in the code (a numpy prototype, last correction repeated): spike50 0.6 /
+0.5 / 2.7 µm largest change for lagbank / arx / mlr, 0 at the end, but ``amb_step5`` refused for
+9 samples (45 min; ``T_amb``'s limit 0.57 K per 5 min), and so was the same +5 K reached by a
+ramp of 1 K per sample.  Left as designed, measured: the plain stream has no guard, and the
+clamp puts a far-out reading at its envelope's edge (MLR's -36 µm/K on ``T_motor2``: -271 µm for
+one spiked row; a lag bank on a reading in K: 1825 µm); the adaptive compensator reads a spike
+as missing (0.9-4.2 µm), and a real +5 K step of ambient as a jump of the sensor (excluded,
+re-referenced by it, re-admitted after 11 samples): it follows 1.1-1.8 µm of the 7-22 µm the
+plain stream and the code follow (``amb_step5``).
 
 Deployed against scored on the same healthy record (session 53, the CLI as a stranger runs it:
 ``run model=F ati=W eval.mode=M``, ``replay replay.model=<model.pkl> monitor.adaptive=true|false``,
@@ -110,6 +132,7 @@ def faults(df: pd.DataFrame) -> dict[str, pd.DataFrame]:
     put("nan_first", [0], SENSOR, lambda v: np.nan)
     put("stuck", list(range(h, len(df))), SENSOR, lambda v: v.iloc[0])
     put("spike50", [h], SENSOR, lambda v: v + 50)
+    put("amb_step5", list(range(h, len(df))), "T_amb", lambda v: v + 5)   # real: to be followed
     put("kelvin_half", list(range(h, len(df))), SENSOR, lambda v: v + 273.15)
     put("kelvin_all", list(range(len(df))), SENSOR, lambda v: v + 273.15)
     put("gap3h", list(range(h, len(df))), "time", lambda v: v + 3 * 3600)
@@ -188,7 +211,7 @@ def main_(root: Path) -> None:
         main(["simulate", "sim=yearround_spindle", "seed=5353", "sim.generator.n_campaigns=9",
               "sim.generator.duration_h=[3.0,5.0]", f"data.path={data}", f"out={root / 'sim'}"])
     raw = pd.read_csv(data / f"{CAMPAIGN}.csv")
-    print(f"{'fault':17s} {'model':8s} {'adaptive':>22s} {'plain':>22s} {'code':>22s}")
+    print(f"{'fault':17s} {'model':8s} {'adaptive':>24s} {'plain':>24s} {'code':>24s}")
     for family in FAMILIES:
         model = root / family / "model.pkl"
         if not model.exists():
@@ -211,9 +234,10 @@ def main_(root: Path) -> None:
                     continue
                 y = _aligned(name, y, len(raw) // 2)
                 n = min(len(y), len(healthy[form]))
-                cells.append(f"{np.max(np.abs(y)):.1f} / {np.max(np.abs(y[:n] - healthy[form][:n])):.1f}"
+                change = np.abs(y[:n] - healthy[form][:n])
+                cells.append(f"{np.max(np.abs(y)):.1f} / {np.max(change):.1f} / {np.max(change[-1]):.1f}"
                              + ("" if np.isfinite(y).all() else " NaN!"))
-            print(f"{name:17s} {family:8s} " + " ".join(f"{c:>22s}" for c in cells))
+            print(f"{name:17s} {family:8s} " + " ".join(f"{c:>24s}" for c in cells))
         with tempfile.TemporaryDirectory() as tmp:
             worst = _compiled_c_agrees(forms["true"], list(cases.values()), Path(tmp))
         print(f"{'':17s} {family:8s} compiled C tc_step vs the code over every fault: {worst}")

@@ -100,6 +100,17 @@ workbook's three sensors) the gate passed every excursion, a sensor 30 K out too
 excursion is clamped now (``Envelope`` has no basis), so spindel lagbank is 0.373 again (RMSE 0.611
 µm, replayed after the change) and (c) pools as ``clamp``; the mill (52 inputs, a pattern of rank 18
 and 16) and cms (20 inputs, rank 10) lines keep their gate, checked on the deployed envelopes.
+
+Session 54 (back in range the clamp's limit is the last excess's, so that a one-row spike's memory
+is taken out as it decays: ``streaming.py``, bench_deploy_faults.py): the excursion lines re-run
+before and after on the same fits (``--root`` copies of /tmp/cd49's fits, ``monitor.adaptive=true``),
+``lagbank`` clamp / pattern: cms3141 937.5 / 942.5 -> 937.3 / 942.3, cms5003 1324 / 1320 -> 1335 /
+1332, cms4253 590.9 / 591.9 -> 590.1 / 591.1, cms6007 1145 / 1152 -> 1145 / 1151, mill7717 520.8 /
+292.1 -> 520.8 / 292.4, long7717 0.1666 / 0.1515 -> 0.1691 / 0.1515, fl_90_10 120.4 / 120.3 ->
+120.1 / 120.3, spindel 0.3734 both; ``arx`` (cms, mill7717, long7717) and ``mlr`` (static: nothing to
+remember) unchanged to the digits shown.  Pooled (a) lagbank pattern 4006 -> 4016 (+0.25 %): a real
+excursion's last excess is small, so is what its bound then takes out.  CPU: 383 s user for the
+27 lines after (fits cached).
 """
 
 from __future__ import annotations

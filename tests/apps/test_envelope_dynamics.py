@@ -73,6 +73,15 @@ def _clipped(stream: StreamingCompensator, df: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
+def _held(stream: StreamingCompensator, comp: Compensator, df: pd.DataFrame) -> np.ndarray:
+    """Per row, how far the clamp may take the prediction from the model's own: the response to
+    the row's excess held for the horizon, back in range the last out-of-range row's."""
+    m = comp.stacked({"c": df}, targets=[]).X.to_numpy()
+    excess = m - np.clip(m, stream.envelope.lo, stream.envelope.hi)
+    held = np.abs(excess @ step_gain(comp.estimators_["E_X"], None, stream.envelope.horizon_s))
+    return pd.Series(np.where(excess.any(axis=1), held, np.nan)).ffill().fillna(0.0).to_numpy()
+
+
 def test_a_lag_bank_a_little_out_of_range_streams_as_scored():
     """The ambient swings 1.5 times as far as in training: the lag bank's opposed weights on
     several time constants stay in balance (clamping the signal broke it: 0.45 µm against
@@ -87,11 +96,8 @@ def test_a_lag_bank_a_little_out_of_range_streams_as_scored():
     measured = comp.measured({"c": test})["c"]["E_X"].to_numpy()
     assert _rmse(measured - out["E_X"]) < 1.2 * _rmse(measured - batch)
     # never further from the model's own prediction than the excess held for the horizon is worth
-    m = comp.stacked({"c": test}, targets=[]).X.to_numpy()
-    excess = m - np.clip(m, stream.envelope.lo, stream.envelope.hi)
-    held = np.abs(excess @ step_gain(comp.estimators_["E_X"], None, stream.envelope.horizon_s))
     assert stream.envelope.horizon_s == pytest.approx((ROWS - 1) * DT_S)
-    assert (np.abs(out["E_X"].to_numpy() - batch) <= held + 1e-9).all()
+    assert (np.abs(out["E_X"].to_numpy() - batch) <= _held(stream, comp, test) + 1e-9).all()
     clamped = comp.predict({"c": _clipped(stream, test)})["c"]["E_X"].to_numpy()
     assert np.abs(out["E_X"].to_numpy() - clamped).max() > 0.1     # the limit is what acts
     sim = Simulator(state_space(stream))                            # and the exported code does it
@@ -120,7 +126,8 @@ def test_an_input_far_out_is_still_clamped():
                                    ARStub()], ids=["mlr", "arx-ar", "lagbank-ar", "no-step-gain"])
 def test_every_family_streams_out_of_range(model):
     """A static model, or one without a step gain, is streamed on the clamped inputs; every
-    other stays within its held response of its own prediction, and as scored back in range."""
+    other stays within its held response of its own prediction (back in range: the excess's at
+    its last sample, so that the memory of an excess that ends at once is taken out as it decays)."""
     train = {f"K{k}": _heated(k) for k in range(4)}
     comp = Compensator(model).fit(train)
     stream = StreamingCompensator.from_training(comp, train, pattern=False)
@@ -135,11 +142,13 @@ def test_every_family_streams_out_of_range(model):
     if gain is None or isinstance(model, MLR):
         np.testing.assert_allclose(deployed, clamped, atol=1e-9)
         return
-    m = comp.stacked({"c": hot}, targets=[]).X.to_numpy()
-    held = np.abs((m - np.clip(m, stream.envelope.lo, stream.envelope.hi)) @ gain)
-    assert (np.abs(deployed - batch) <= held + 1e-9).all()
-    inside = out["n_clamped"].to_numpy() == 0
-    np.testing.assert_allclose(deployed[inside], batch[inside], atol=1e-9)
+    assert (np.abs(deployed - batch) <= _held(stream, comp, hot) + 1e-9).all()
+    rows = np.arange(len(hot))
+    np.testing.assert_allclose(deployed[rows < 200], batch[rows < 200], atol=1e-9)   # as scored
+    # the 8 K end at once (a sensor's offset gone): what they left in the lags and the AR feedback
+    # is taken out as it decays, the correction the clamped inputs' (with the sample's bound, 0 in
+    # range, it had been the model's own: 29.9 µm off the healthy stream after the return, now 19.0)
+    np.testing.assert_allclose(deployed[rows > 300], clamped[rows > 300], atol=1e-9)
 
 
 def _step_response(est, j: int, n: int, rows: int, ambient_c0: float = 20.0) -> float:

@@ -30,7 +30,18 @@ deployed at 1.44 µm against 0.218 scored).  The horizon, not the steady state: 
 record shows a lag longer than itself, and a lag bank's level coefficients alone are then a
 split the ridge made at will.  Taking the held response out alone (no clamped stream)
 reversed the correction for hours after a sudden far excursion (-145 µm after a +40 K step
-where the model's own response had barely begun).  A model without a step gain (LSTM,
+where the model's own response had barely begun).  Back in range after an excess, the bound
+is the excess's last sample's (0 before the campaign's first): an excess that fades out ends
+with a bound near 0 and the correction is the model's own again, as scored; one that ends at
+once, which no temperature does (a one-row spike, a sensor's offset gone), keeps its bound,
+so that what it left in the lags and the AR feedback is taken out as it decays (with the
+sample's own bound, 0 in range, a one-row +50 °C spike on a ``yearround_spindle`` motor
+sensor stayed in a lag bank's correction to the campaign's end: 261 µm the next row, 9 at
+the end; now 41 and 1.4, the memory of the reading at the envelope's edge, which the clamp
+gives for it; benchmarks/bench_deploy_faults.py).  The pattern gate ends an excess at once too
+(a sample back on the training pattern): on the real excursions of
+benchmarks/bench_envelope_policy.py a lag bank's Σ² moved by -0.3 % to +1.5 %, MLR's and ARX's
+not at all.  A model without a step gain (LSTM,
 ARX+RF, a blend holding one) is streamed on the clamped inputs alone.
 
 The per-sample context is built by :func:`thermocomp.core.frame.context_record`,
@@ -246,6 +257,7 @@ class StreamingCompensator:
     adapt_ = None
     _held = None               # older pickles: no stream on the clamped inputs yet
     _gains: dict = {}
+    _bounds: dict = {}         # replaced, never mutated (older pickles have none)
     _clock = None              # older pickles: the models' own rule for a missing time
 
     def __init__(self, compensator: Compensator, envelope: Envelope | None = None,
@@ -330,6 +342,7 @@ class StreamingCompensator:
         self._states: dict = {}
         self._held: dict | None = None    # states streamed on the clamped inputs (first excess on)
         self._gains: dict = {}
+        self._bounds: dict = {}           # per target: |gain @ e| of the last sample out of range
         self._den_state = None
         self.n_samples_ = 0
         period = lag_period(est for _, est, _ in self._plan)
@@ -352,11 +365,12 @@ class StreamingCompensator:
     def _snapshot(self) -> tuple:
         return (self._ref, self._ambient_c0, copy.deepcopy(self._states),
                 copy.deepcopy(self._den_state), self.n_samples_, copy.deepcopy(self._held),
-                self._gains, self._clock and self._clock.snapshot())
+                self._gains, self._clock and self._clock.snapshot(), dict(self._bounds))
 
     def _restore(self, snap: tuple) -> None:
         (self._ref, self._ambient_c0, self._states, self._den_state, self.n_samples_, self._held,
-         self._gains, *clock) = snap      # (an older model's end states have no clock)
+         self._gains, *clock) = snap      # (an older model's end states have no clock, no bounds)
+        self._bounds = dict(clock[1]) if len(clock) > 1 else {}
         if self._clock is not None:
             if clock and clock[0] is not None:
                 self._clock.restore(clock[0])
@@ -452,11 +466,12 @@ class StreamingCompensator:
                 y[k], states[t] = est.stream_step(x if e is None else x - e, states[t], context)
                 continue
             y[k], states[t] = est.stream_step(x, states[t], context)
-            if e is None:                         # in range: nothing to take out
-                held[t] = est.stream_step(x, held[t], context)[1]
-                continue
-            clamped, held[t] = est.stream_step(x - e, held[t], context)
-            bound = abs(self._gains[t] @ e)
+            clamped, held[t] = est.stream_step(x if e is None else x - e, held[t], context)
+            if e is not None:
+                self._bounds = {**self._bounds, t: abs(self._gains[t] @ e)}
+            # back in range the last excess's bound holds (module doc): an excess that ends at
+            # once leaves its memory in the lags and the feedback, taken out as it decays
+            bound = self._bounds.get(t, 0.0)
             y[k] -= min(max(y[k] - clamped, -bound), bound)
         self.n_samples_ += 1
         return y, n_clamped

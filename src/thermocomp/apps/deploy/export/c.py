@@ -109,6 +109,8 @@ typedef struct {{
     double hist[2][{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
     double z[2][{max(len(ss.taus), 1)}];        /* first-order lags */
     double y[2][TC_N_OUTPUTS];                  /* previous output (AR feedback) */
+    double bound[TC_N_OUTPUTS];                 /* limit of what the clamp takes out: the last
+                                                   sample out of the envelope's */
     double t;                                   /* previous sample time, s */
     double t_read;                              /* last good time read, s */
     double shift;                               /* time read - the stream's clock, s */
@@ -268,7 +270,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     }}
     s->t = now;
     /* outputs: static part, input history, lags, AR feedback; the response to the excess is
-       taken out up to the response to it held for the envelope's horizon */
+       taken out up to the response to it held for the envelope's horizon; back in range, up to
+       the last excess's (the memory of an excess that ends at once is taken out as it decays) */
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double y, bound = 0.0;
         for (h = 0; h < 2; h++) {{
@@ -281,7 +284,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             s->y[h][i] = ych[h];
         }}
         for (j = 0; j < TC_N_INPUTS; j++) bound += CLAMP_GAIN[i][j] * x[1][j];
-        bound = fabs(bound);
+        if (s->first || clamped) s->bound[i] = fabs(bound);
+        bound = s->bound[i];
         y = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
         /* correction guard: within the rate limit of the previous output, then the bound */
         if (TC_GUARD) {{

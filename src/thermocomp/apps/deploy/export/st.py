@@ -127,6 +127,7 @@ VAR
     x : ARRAY[{_dims(2, n + p)}] OF LREAL;
     ych : ARRAY[{_dims(2)}] OF LREAL;
     bound : LREAL;
+    bound_held : ARRAY[{_dims(m)}] OF LREAL;
     pat_z : ARRAY[{_dims(n)}] OF LREAL;
     pat_r : ARRAY[{_dims(n)}] OF LREAL;
     pat_p : LREAL;
@@ -303,6 +304,11 @@ IF NOT refused THEN
         IF bound < 0.0 THEN
             bound := -bound;
         END_IF;
+        (* back in range, the bound of the excess's last sample holds *)
+        IF first OR n_clamped > 0 THEN
+            bound_held[i] := bound;
+        END_IF;
+        bound := bound_held[i];
         IF ych[1] > bound THEN
             y := ych[0] - bound;
         ELSIF ych[1] < -bound THEN

@@ -17,8 +17,14 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    lags ``z_k <- e_k z_k + (1 - e_k) x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the
    time since the previous sample (``time_period`` without one, timerule.py); the same system, without
    intercept and powers, runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
-   response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)``, ``b_t = |clamp_gain_t . ex|``
-   the response to the excess held for the envelope's horizon (as the stream does);
+   response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)``, ``b_t = |clamp_gain_t .
+   ex|`` the response to the excess held for the envelope's horizon (as the stream does); at a
+   sample within the envelope (``ex = 0``) after an excess, ``b_t`` is the last excess's (0
+   before the campaign's first): an excess that fades out ends with a bound near 0 (the model's
+   own correction, as scored), one that ends at once (a one-row spike, a sensor's offset gone)
+   keeps its bound, so that what it left in the lags and the feedback is taken out as it decays
+   (with the sample's own bound, 0 in range, a one-row +50 °C spike stayed in a lag bank's
+   correction to the campaign's end);
 5. the correction guard, when the model was deployed with one (:mod:`.output`): ``y_t`` held
    within ``guard_rate_t * dt`` of its previous value, then within ``[guard_lo_t, guard_hi_t]``;
 6. the correction sent to the CNC is ``C_t = -y_t`` (with ``adapt``: ``-(gain_t * y_t + bias_t)``,
@@ -32,7 +38,7 @@ correction; one NaN stepped would stay in the lags, the feedback and the guard t
 At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
 history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
 reference and the limit the system is linear: the state is ``[buf, ref, history, z, y_prev]``, the
-last three for each channel.
+last three for each channel, and the limit keeps one number per target, ``b_t``.
 """
 
 from __future__ import annotations
@@ -327,6 +333,7 @@ class Simulator:
         if self.first:
             self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
             self.z, self.y = xl.copy(), np.zeros((2, len(ss.targets)))
+            self.bound = np.zeros(len(ss.targets))
         else:
             e = np.exp(-dt / self.taus)
             self.z = e * self.z + (1.0 - e) * xl
@@ -336,6 +343,7 @@ class Simulator:
         if ss.depth:
             self.hist = np.concatenate([xs[:, None, :len(x)], self.hist[:, :-1]], axis=1)
         self.y, self.first = y, False
-        bound = np.abs(self.clamp_gain @ excess)
-        self.c = self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt)
+        if excess.any():            # back in range, the bound of the excess's last sample holds
+            self.bound = np.abs(self.clamp_gain @ excess)
+        self.c = self.output.step(y[0] - np.clip(y[1], -self.bound, self.bound), first, dt)
         return self.c.copy()
