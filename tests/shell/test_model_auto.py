@@ -550,3 +550,28 @@ def test_candidate_defaults_set_a_family_in_the_candidate_role_under_candidate_p
         both = compose(config_name="config", overrides=["model=auto", *lenient(
             ["model.candidate_defaults={lagbank:{n_taus:3}}"])])
     assert both.model.candidate_defaults == {"lstm": {"max_epochs": 30}, "lagbank": {"n_taus": 3}}
+
+
+def test_the_ati_baselines_fit_the_chosen_family_not_the_whole_choice(two_targets, tmp_path,
+                                                                      monkeypatch):
+    # before: the coldest and the warmest campaign each ran every candidate's validation again
+    # (a lab's 4 runs with lstm among the candidates: 93 s of a 125 s run)
+    from thermocomp.core.models.auto import AutoRegressor
+
+    data = tmp_path / "data"
+    shutil.copytree(two_targets[0], data)
+    manifest = pd.read_csv(data / "campaigns.csv")       # the climate room's set point per run
+    manifest.assign(ambient_c=20 + 0.3 * np.arange(len(manifest))).to_csv(
+        data / "campaigns.csv", index=False)
+    fits = []
+    original = AutoRegressor.fit
+    monkeypatch.setattr(AutoRegressor, "fit",
+                        lambda self, *a, **k: fits.append(1) or original(self, *a, **k))
+    plain = _run(data, tmp_path / "plain", "model=auto", PAIR)
+    n_plain = len(fits)
+    metrics = _run(data, tmp_path / "ati", "model=auto", PAIR, "eval.ati_baselines=true")
+    assert len(fits) - n_plain == n_plain                 # the run's own choice, once
+    assert metrics["ati"]["baseline_campaigns"]["coldest"]["campaign"] == "K01"
+    for t, m in metrics["targets"].items():              # the choice as without the report
+        assert m["auto"]["chosen"] == plain["targets"][t]["auto"]["chosen"]
+        assert np.isfinite(metrics["ati"]["targets"][t]["test"]["coldest"]["rsd_mean"])

@@ -130,7 +130,7 @@ def _report(cfg: DictConfig, comp, ds, tracker, clock: Clock | None = None,
 
             draw_validation(stage / "volumetric", extra["volumetric"], curves)
         base = build_compensator(cfg, ati=False)
-        refits = Refits(base, validation_template(cfg, comp, ds), as_chosen(clone(base), comp))
+        refits = Refits(validation_template(cfg, comp, ds), as_chosen(clone(base), comp))
         metrics = report_run(comp, ds, _settings(cfg), refits, stage, clock, extra, add_choices)
     if cfg.plots == "none":      # no figures of this run: none of an earlier one beside its numbers
         shutil.rmtree(out / "plots", ignore_errors=True)

@@ -82,9 +82,9 @@ def _pattern_constants(ss: StateSpace) -> list:
 
 def header(ss: StateSpace) -> str:
     n, m, taps = len(ss.inputs), len(ss.targets), len(ss.fir)
-    names = ", ".join(f'"{c}"' for c in ss.inputs)
-    errors = ", ".join(f'"{t}"' for t in ss.targets)
-    outs = ", ".join(f'"{c}"' for c in correction_names(ss.targets))
+    names = ", ".join(map(c_string, ss.inputs))
+    errors = ", ".join(map(c_string, ss.targets))
+    outs = ", ".join(map(c_string, correction_names(ss.targets)))
     return f"""{banner(ss, "/*", " *", " */")}
 #ifndef THERMOCOMP_COMPENSATOR_H
 #define THERMOCOMP_COMPENSATOR_H

@@ -6,7 +6,7 @@ differs (the names, the run column) is in ``compensator.h`` (:mod:`.c`)."""
 DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis> as CSV on stdout.
  *
  * The header names the columns (any order, extra columns ignored) by their contract names or
- * by the lab's headers the model was made from (TC_LAB_NAMES: `T0 [°C]` for T_T0, `Zeit [s]`
+ * by the lab's headers the model was made from (TC_LAB_NAMES: `T0 [degC]` for T_T0, `Zeit [s]`
  * for time); every input of TC_INPUT_NAMES is needed, `time` when the model reads it.  The
  * separator is the header's: ';', a tab or '|' where it holds one, else ','; with another
  * separator than ',' a decimal comma reads (12,5).  The time is seconds, or a logger's

@@ -12,6 +12,13 @@ def correction_names(targets) -> list[str]:
     return [correction_column(t) for t in targets]
 
 
+def ascii_name(name: str) -> str:
+    """``name`` in ASCII, each other character escaped as Python writes it (``T_S\\xe4ule``): a
+    PLC's or an old compiler's source is read as ASCII, and a contract name takes a lab's letters
+    (``Säule [°C]`` -> ``T_Säule``)."""
+    return str(name).encode("ascii", "backslashreplace").decode("ascii")
+
+
 def banner(ss, open_: str, middle: str, close: str) -> str:
     """A comment block: what the code is, where it came from, its inputs, units and bounds."""
     p = ss.provenance
@@ -26,19 +33,19 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
         bounded = ss.clamp and ss.hi[j] < sys.float_info.max      # a machine state is not
         env = f"[{ss.lo[j]:.6g}, {ss.hi[j]:.6g}]" if bounded else "not clamped"
         lab = p.get("lab_names", {}).get(c)
-        lines.append(f"  {j}: {c}{ref} {p.get('units', {}).get(c, '')}  envelope {env}"
+        lines.append(f"  {j}: {ascii_name(c)}{ref} {p.get('units', {}).get(c, '')}  envelope {env}"
                      + (f"  (the lab's {lab!a})" if lab else ""))   # ASCII: a PLC's source
     lines.append("time: s, " + ("read by the first-order lags" if ss.uses_time else "not read")
                  + f"; period {ss.period:.6g} s")
-    lines.append("outputs: " + ", ".join(correction_names(ss.targets))
+    lines.append("outputs: " + ", ".join(map(ascii_name, correction_names(ss.targets)))
                  + " in um (the correction: minus the predicted error)")
     for i, t in enumerate(ss.targets if ss.guard else []):
         rate = ss.guard_rate[i]
-        lines.append(f"guard {t}: bound [{ss.guard_lo[i]:.6g}, {ss.guard_hi[i]:.6g}] um, rate limit "
-                     + ("none" if rate is None else f"{rate:.6g} um/s"))
+        lines.append(f"guard {ascii_name(t)}: bound [{ss.guard_lo[i]:.6g}, {ss.guard_hi[i]:.6g}] um, "
+                     "rate limit " + ("none" if rate is None else f"{rate:.6g} um/s"))
     if ss.adapt != "none":
         lines.append(f"adapt: {ss.adapt}, learned from reference measurements of "
-                     + ", ".join(ss.targets) + " (tc_reference; ST: ref_valid, ref_error)")
+                     + ", ".join(map(ascii_name, ss.targets)) + " (tc_reference; ST: ref_valid, ref_error)")
     if p.get("not_in_code"):
         lines.append("not in the code (the served model only): " + "; ".join(p["not_in_code"]))
     body = "\n".join(f"{middle} {line}".rstrip() for line in lines)
