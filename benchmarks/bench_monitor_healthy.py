@@ -13,8 +13,13 @@ judged sensor whose undetected offset costs most (that model's healthy ``monitor
 1 K/h, a +3 °C step, a stuck sensor (its value at the onset), a dropout (empty cells).
 Prints the tables (and writes ``ROOT/results.json``).
 
-Measured (session 53, 2 shared cores; ~40 min of CPU for everything; docs/monitoring.md reads
-it).  Counts are events / warnings / alarms / exclusions / new thermal states / guard events;
+Measured (session 54, on session 53's records, 2 shared cores; 21 min of CPU for everything,
+user + sys; docs/monitoring.md reads it).  Against session 53's run, only the culprit rule's mend
+changed anything: the Swiss lathe's T_guidebush drift (708 -> 51 min; MLR 541 -> 5.56 µm²,
+lagbank 317 -> 3.38), yearround s5301 lagbank's T_box1 drift (35.35 -> 21.21, the same delays),
+and the column's stuck / dropped T_right2 (49.94 -> 59.00, 46.45 -> 55.50: its healthy T_left1 at
+its band goes out, with T_left3, where T_right3 had gone).
+Counts are events / warnings / alarms / exclusions / new thermal states / guard events;
 ``stdin`` streams only the first test campaign (``fl_thermal``'s without ``monitor.continues``).
 The false alarms: ``large_mill`` (48 h of March training) and ``column no Q3`` (30 h); with the
 shipped 40 h of the column, or 120 h of the mill, the same seeds are silent.  ``long_record``'s
@@ -23,142 +28,142 @@ exclusion is a spike the simulator plants::
     healthy: events/warnings/alarms/exclusions/new states/guard events per mode; exclusions
     per 100 h; sum over targets of RMSE² (µm²) fixed -> adaptive; worst adaptive/fixed
     record             model       h         file        plain        stdin /100h  ΣRMSE² fixed/adapt. worst
-    yearround s5301    lagbank  21.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00    20.43 ->    20.43 1.000
     yearround s5301    mlr      21.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00    25.69 ->    25.69 1.000
-    yearround s5302    lagbank  26.9  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00    10.95 ->    10.95 1.000
+    yearround s5301    lagbank  21.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00    20.43 ->    20.43 1.000
     yearround s5302    mlr      26.9  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00    16.88 ->    16.88 1.000
-    swiss_lathe s5304  lagbank  24.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     2.08 ->     2.08 1.000
-    swiss_lathe s5304  mlr      24.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     4.75 ->     4.75 1.000
-    large_mill s5303   lagbank  24.0  2/0/0/1/0/0 10/4/0/0/1/0  2/0/0/1/0/0  4.17    41.14 ->    43.10 1.100
+    yearround s5302    lagbank  26.9  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00    10.95 ->    10.95 1.000
     large_mill s5303   mlr      24.0  2/0/0/1/0/0 10/4/0/0/1/0  2/0/0/1/0/0  4.17    10.10 ->     9.54 1.015
-    column no Q3 s5305 lagbank  20.0  2/0/0/1/0/0  2/1/0/0/0/0  2/0/0/1/0/0  4.99  1120.17 ->  1122.58 1.006
+    large_mill s5303   lagbank  24.0  2/0/0/1/0/0 10/4/0/0/1/0  2/0/0/1/0/0  4.17    41.14 ->    43.10 1.100
+    swiss_lathe s5304  mlr      24.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     4.75 ->     4.75 1.000
+    swiss_lathe s5304  lagbank  24.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     2.08 ->     2.08 1.000
     column no Q3 s5305 mlr      20.0  2/0/0/1/0/0  2/1/0/0/0/0  2/0/0/1/0/0  4.99    43.80 ->    44.61 1.078
-    long_record s5306  lagbank  24.0  2/0/0/1/0/0  4/0/2/0/0/0  2/0/0/1/0/0  4.17     0.24 ->     0.25 1.019
+    column no Q3 s5305 lagbank  20.0  2/0/0/1/0/0  2/1/0/0/0/0  2/0/0/1/0/0  4.99  1120.17 ->  1122.58 1.006
     long_record s5306  mlr      24.0  2/0/0/1/0/0  4/0/2/0/0/0  2/0/0/1/0/0  4.17     0.35 ->     0.35 0.995
-    fl_thermal         lagbank   4.6  0/0/0/0/0/0  0/0/0/0/0/0  2/0/0/0/0/2  0.00   120.31 ->   120.31 1.000
+    long_record s5306  lagbank  24.0  2/0/0/1/0/0  4/0/2/0/0/0  2/0/0/1/0/0  4.17     0.24 ->     0.25 1.019
     fl_thermal         mlr       4.6  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00    83.90 ->    83.90 1.000
-    lathe43            lagbank   7.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     3.46 ->     3.46 1.000
+    fl_thermal         lagbank   4.6  0/0/0/0/0/0  0/0/0/0/0/0  2/0/0/0/0/2  0.00   120.31 ->   120.31 1.000
     lathe43            mlr       7.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     3.37 ->     3.37 1.000
-    lathe43m           lagbank  12.1  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     1.49 ->     1.49 1.000
+    lathe43            lagbank   7.0  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     3.46 ->     3.46 1.000
     lathe43m           mlr      12.1  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     1.84 ->     1.84 1.000
-    rig40              lagbank  77.4  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     1.53 ->     1.53 1.000
+    lathe43m           lagbank  12.1  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     1.49 ->     1.49 1.000
     rig40              mlr      77.4  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     1.61 ->     1.61 1.000
-    vendor5            lagbank   1.9  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     6.52 ->     6.52 1.000
+    rig40              lagbank  77.4  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     1.53 ->     1.53 1.000
     vendor5            mlr       1.9  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     4.01 ->     4.01 1.000
+    vendor5            lagbank   1.9  0/0/0/0/0/0  0/0/0/0/0/0  0/0/0/0/0/0  0.00     6.52 ->     6.52 1.000
 
     faulted, on the sensor named from half of each test campaign: minutes from the onset
     to its first flag, per campaign (- never); ΣRMSE² fixed -> adaptive; exclusions; other
     sensors out (healthy adaptive ΣRMSE² beside the sensor)
-    yearround s5301    lagbank T_box1  (healthy 20.43)
-        drift    40 30 30 30               54.60 ->    35.35  excl 5 others T_bearing_f1,T_box2,+1
-        step     0 0 0 0                  183.04 ->    21.33  excl 4 others -
-        stuck    30 115 35 30              28.41 ->    19.18  excl 4 others -
-        dropout  0 0 0 0                   56.35 ->    20.07  excl 4 others -
     yearround s5301    mlr     T_bearing_f2  (healthy 25.69)
         drift    30 30 35 30              963.56 ->    29.88  excl 4 others -
         step     0 0 0 0                 3822.17 ->    27.87  excl 4 others -
         stuck    30 15 30 25              898.62 ->    36.08  excl 4 others -
         dropout  0 0 0 0                   85.00 ->    26.76  excl 4 others -
-    yearround s5302    lagbank T_nose  (healthy 10.95)
-        drift    35 40 35 35              976.41 ->    13.71  excl 4 others -
-        step     0 0 0 0                 2919.43 ->     9.81  excl 4 others -
-        stuck    25 35 25 30             1056.95 ->    14.93  excl 4 others -
-        dropout  0 0 0 0                   85.02 ->    11.80  excl 4 others -
+    yearround s5301    lagbank T_box1  (healthy 20.43)
+        drift    40 30 30 30               54.60 ->    21.21  excl 5 others T_box2
+        step     0 0 0 0                  183.04 ->    21.33  excl 4 others -
+        stuck    30 115 35 30              28.41 ->    19.18  excl 4 others -
+        dropout  0 0 0 0                   56.35 ->    20.07  excl 4 others -
     yearround s5302    mlr     T_nose  (healthy 16.88)
         drift    35 40 35 35             1335.11 ->    22.68  excl 4 others -
         step     0 0 0 0                 3724.36 ->    14.58  excl 4 others -
         stuck    25 35 25 30             1533.43 ->    24.69  excl 4 others -
         dropout  0 0 0 0                   85.15 ->    17.77  excl 4 others -
-    swiss_lathe s5304  lagbank T_guidebush  (healthy 2.08)
-        drift    708                      297.07 ->   317.11  excl 2 others T_frame2,T_headstock,+4
-        step     0                         81.30 ->     2.03  excl 1 others -
-        stuck    371                       17.31 ->     4.61  excl 1 others -
-        dropout  0                         48.28 ->     2.64  excl 1 others -
-    swiss_lathe s5304  mlr     T_guidebush  (healthy 4.75)
-        drift    708                      329.83 ->   541.28  excl 2 others T_frame2,T_headstock,+4
-        step     0                        336.04 ->     4.27  excl 1 others -
-        stuck    371                       72.72 ->    10.85  excl 1 others -
-        dropout  0                         40.54 ->     4.96  excl 1 others -
-    large_mill s5303   lagbank T_col_11  (healthy 43.10)
-        drift    22                       340.98 ->    41.16  excl 2 others T_col_05
-        step     0                        115.35 ->    42.41  excl 2 others T_col_05
-        stuck    17                        52.46 ->    43.49  excl 2 others T_col_05
-        dropout  0                        167.27 ->    42.79  excl 2 others T_col_05
+    yearround s5302    lagbank T_nose  (healthy 10.95)
+        drift    35 40 35 35              976.41 ->    13.71  excl 4 others -
+        step     0 0 0 0                 2919.43 ->     9.81  excl 4 others -
+        stuck    25 35 25 30             1056.95 ->    14.93  excl 4 others -
+        dropout  0 0 0 0                   85.02 ->    11.80  excl 4 others -
     large_mill s5303   mlr     T_col_10  (healthy 9.54)
         drift    55                       994.52 ->   332.33  excl 2 others T_col_01,T_col_02,+8
         step     0                        841.03 ->     9.95  excl 2 others T_col_05
         stuck    14                        34.28 ->    20.37  excl 2 others T_col_05
         dropout  0                        146.19 ->    20.27  excl 2 others T_col_05
+    large_mill s5303   lagbank T_col_11  (healthy 43.10)
+        drift    22                       340.98 ->    41.16  excl 2 others T_col_05
+        step     0                        115.35 ->    42.41  excl 2 others T_col_05
+        stuck    17                        52.46 ->    43.49  excl 2 others T_col_05
+        dropout  0                        167.27 ->    42.79  excl 2 others T_col_05
+    swiss_lathe s5304  mlr     T_guidebush  (healthy 4.75)
+        drift    51                       329.83 ->     5.56  excl 1 others -
+        step     0                        336.04 ->     4.27  excl 1 others -
+        stuck    371                       72.72 ->    10.85  excl 1 others -
+        dropout  0                         40.54 ->     4.96  excl 1 others -
+    swiss_lathe s5304  lagbank T_guidebush  (healthy 2.08)
+        drift    51                       297.07 ->     3.38  excl 1 others -
+        step     0                         81.30 ->     2.03  excl 1 others -
+        stuck    371                       17.31 ->     4.61  excl 1 others -
+        dropout  0                         48.28 ->     2.64  excl 1 others -
+    column no Q3 s5305 mlr     T_right2  (healthy 44.61)
+        drift    32                      3686.88 ->    49.49  excl 1 others -
+        step     0                       4774.78 ->    43.54  excl 1 others -
+        stuck    150                     1701.91 ->    59.00  excl 3 others T_left1,T_left3
+        dropout  0                       3586.16 ->    55.50  excl 3 others T_left1,T_left3
     column no Q3 s5305 lagbank T_left4  (healthy 1122.58)
         drift    27                      9818.62 ->  1091.82  excl 1 others -
         step     0                       5258.67 ->  1148.28  excl 1 others -
         stuck    103                      478.77 ->  1089.04  excl 2 others T_right3
         dropout  0                       5719.69 ->  1085.75  excl 2 others T_right3
-    column no Q3 s5305 mlr     T_right2  (healthy 44.61)
-        drift    32                      3686.88 ->    49.49  excl 1 others -
-        step     0                       4774.78 ->    43.54  excl 1 others -
-        stuck    150                     1701.91 ->    49.94  excl 1 others -
-        dropout  0                       3586.16 ->    46.45  excl 1 others -
-    long_record s5306  lagbank T_spindle_rear  (healthy 0.25)
-        drift    44                       203.16 ->     0.35  excl 2 others T_col_front_top
-        step     0                         41.15 ->     0.16  excl 2 others T_col_front_top
-        stuck    269                       13.97 ->     0.39  excl 2 others T_col_front_top
-        dropout  0                         40.90 ->     0.26  excl 2 others T_col_front_top
     long_record s5306  mlr     T_bed_right  (healthy 0.35)
         drift    24                       183.26 ->     0.39  excl 2 others T_col_front_top
         step     0                        183.13 ->     0.33  excl 2 others T_col_front_top
         stuck    298                        9.13 ->     0.55  excl 2 others T_col_front_top
         dropout  0                         41.64 ->     0.34  excl 2 others T_col_front_top
-    fl_thermal         lagbank T_t8  (healthy 120.31)
-        drift    38                        94.20 ->   104.70  excl 1 others T_t11,T_t13,+2
-        step     0                        688.64 ->   123.56  excl 1 others -
-        stuck    101                      198.32 ->   172.46  excl 1 others -
-        dropout  0                        167.24 ->   134.80  excl 1 others -
+    long_record s5306  lagbank T_spindle_rear  (healthy 0.25)
+        drift    44                       203.16 ->     0.35  excl 2 others T_col_front_top
+        step     0                         41.15 ->     0.16  excl 2 others T_col_front_top
+        stuck    269                       13.97 ->     0.39  excl 2 others T_col_front_top
+        dropout  0                         40.90 ->     0.26  excl 2 others T_col_front_top
     fl_thermal         mlr     T_t11  (healthy 83.90)
         drift    58                       774.60 ->   111.03  excl 1 others -
         step     0                       1250.00 ->    78.54  excl 1 others -
         stuck    -                        119.99 ->   119.99  excl 0 others -
         dropout  0                        186.42 ->    64.76  excl 1 others -
-    lathe43            lagbank T_Pt21  (healthy 3.46)
-        drift    26 24 22 21                3.84 ->     3.36  excl 4 others -
-        step     0 0 0 0                   35.71 ->     3.39  excl 4 others -
-        stuck    - - - 21                   6.21 ->     3.79  excl 1 others -
-        dropout  0 0 0 0                   35.86 ->     3.29  excl 4 others -
+    fl_thermal         lagbank T_t8  (healthy 120.31)
+        drift    38                        94.20 ->   104.70  excl 1 others T_t11,T_t13,+2
+        step     0                        688.64 ->   123.56  excl 1 others -
+        stuck    101                      198.32 ->   172.46  excl 1 others -
+        dropout  0                        167.24 ->   134.80  excl 1 others -
     lathe43            mlr     T_Pt02  (healthy 3.37)
         drift    24 21 22 22               13.68 ->     4.00  excl 4 others -
         step     0 0 0 0                  180.56 ->     3.47  excl 4 others -
         stuck    12 15 7 6                 21.60 ->     3.45  excl 4 others -
         dropout  0 0 0 0                   36.70 ->     3.41  excl 4 others -
-    lathe43m           lagbank T_18  (healthy 1.49)
-        drift    24 24 22 23 24 21 -        3.95 ->     1.45  excl 6 others -
-        step     0 0 0 0 0 0 0             24.55 ->     1.52  excl 7 others -
-        stuck    - - - - - - -              1.51 ->     1.51  excl 0 others -
-        dropout  0 0 0 0 0 0 0             12.48 ->     1.48  excl 7 others -
+    lathe43            lagbank T_Pt21  (healthy 3.46)
+        drift    26 24 22 21                3.84 ->     3.36  excl 4 others -
+        step     0 0 0 0                   35.71 ->     3.39  excl 4 others -
+        stuck    - - - 21                   6.21 ->     3.79  excl 1 others -
+        dropout  0 0 0 0                   35.86 ->     3.29  excl 4 others -
     lathe43m           mlr     T_02  (healthy 1.84)
         drift    25 26 23 24 28 24 22       9.46 ->     1.96  excl 7 others -
         step     0 0 0 0 0 0 0            161.85 ->     2.01  excl 7 others -
         stuck    47 - 33 50 15 8 7          9.88 ->     2.56  excl 6 others -
         dropout  0 0 0 0 0 0 0             12.53 ->     1.86  excl 7 others -
-    rig40              lagbank T_29  (healthy 1.53)
-        drift    30 28 24                 533.81 ->     1.58  excl 3 others -
-        step     0 0 0                    126.46 ->     1.50  excl 3 others -
-        stuck    36 26 54                  33.91 ->     1.57  excl 3 others -
-        dropout  0 0 0                     93.45 ->     1.55  excl 3 others -
+    lathe43m           lagbank T_18  (healthy 1.49)
+        drift    24 24 22 23 24 21 -        3.95 ->     1.45  excl 6 others -
+        step     0 0 0 0 0 0 0             24.55 ->     1.52  excl 7 others -
+        stuck    - - - - - - -              1.51 ->     1.51  excl 0 others -
+        dropout  0 0 0 0 0 0 0             12.48 ->     1.48  excl 7 others -
     rig40              mlr     T_29  (healthy 1.61)
         drift    30 28 24                 500.26 ->     1.65  excl 3 others -
         step     0 0 0                    134.09 ->     1.66  excl 3 others -
         stuck    36 26 54                  36.14 ->     1.61  excl 3 others -
         dropout  0 0 0                     92.62 ->     1.59  excl 3 others -
-    vendor5            lagbank T_23  (healthy 6.52)
-        drift    27                         7.54 ->     3.87  excl 1 others -
-        step     0                        192.92 ->     6.51  excl 1 others -
-        stuck    -                          8.02 ->     8.02  excl 0 others -
-        dropout  0                         14.83 ->     4.94  excl 1 others -
+    rig40              lagbank T_29  (healthy 1.53)
+        drift    30 28 24                 533.81 ->     1.58  excl 3 others -
+        step     0 0 0                    126.46 ->     1.50  excl 3 others -
+        stuck    36 26 54                  33.91 ->     1.57  excl 3 others -
+        dropout  0 0 0                     93.45 ->     1.55  excl 3 others -
     vendor5            mlr     T_17  (healthy 4.01)
         drift    27                         2.96 ->     3.20  excl 1 others -
         step     0                         97.66 ->     4.12  excl 1 others -
         stuck    26                         4.82 ->     4.47  excl 1 others -
         dropout  0                         13.37 ->     3.76  excl 1 others -
+    vendor5            lagbank T_23  (healthy 6.52)
+        drift    27                         7.54 ->     3.87  excl 1 others -
+        step     0                        192.92 ->     6.51  excl 1 others -
+        stuck    -                          8.02 ->     8.02  excl 0 others -
+        dropout  0                         14.83 ->     4.94  excl 1 others -
 """
 
 from __future__ import annotations

@@ -48,7 +48,9 @@ only if, with it out of the fit, every other judged sensor is within its warning
 band (when the largest error's sensor does not explain the others, another sensor out
 of band that does, and is itself off the others' field by more than any error now, is
 excluded as a lone fault: :meth:`SensorMonitor._lone_fault`, a drifting sensor behind
-its coupled neighbour's larger error); otherwise no exclusion and an event
+its coupled neighbour's larger error; a sensor within its band whose exclusion leaves one out
+of band unjudged gives way to one out of band that explains the others and is the likelier
+single fault); otherwise no exclusion and an event
 ``"to": "new thermal state"`` (sensor ``None``, the sensors out of band in ``sensors``).
 A drift-excluded sensor is
 re-admitted when, within ``window`` samples of its exclusion, ``new_state_others``
@@ -634,34 +636,54 @@ class SensorMonitor:
     def _lone_fault(self, j: int, z: np.ndarray, level: np.ndarray,
                     err: np.ndarray) -> tuple[int, bool | None]:
         """``(sensor, whether with it out the others are within band)`` (None: not asked):
-        ``j``, or, when with ``j`` out the others stay out of band, the sensor out of band
-        (largest error first) that one fault explains: with it out every other judged sensor
-        is within band and it is off the field the others make by more than any sensor's
-        self-prediction error now (a fault's own deviation is the largest one).  The largest error
-        is paper 002's pick, but a drifting sensor's coupled neighbour can show the largest
-        (measured: fl_thermal's t12 drifting, T_t14 then T_t15 picked, and the drift read as
-        a new thermal state that never ended)."""
+        the single fault that explains the bands.  An exclusion explains them when, with the
+        sensor out of the fit, every other judged sensor is within its warning band and, unless
+        the sensor is out of band itself, every one out of band is still judged (a coupled pair
+        out of band goes out together; a sensor within its band that leaves one out of band
+        unjudged hides its error).  In order: ``j`` (paper 002's largest error); the
+        sensor out of band (largest error first) that one fault explains, off the field the
+        others make by more than any other sensor's error now (a fault's own deviation is the
+        largest), and, where ``j``'s exclusion explains the bands only by leaving one out of
+        them unjudged, also the largest standardised residual ``|E|·sqrt(1 - h)`` (the likelier
+        single fault, as in :meth:`_explaining`); else ``j``, if it explains them at all (a
+        coupled pair: :meth:`_exclude_by_judgement` takes the partner out too).  ``j``'s coupled
+        neighbour can show the largest error (fl_thermal's t12 drifting, T_t14 then T_t15
+        picked, and the drift read as a new thermal state that never ended); and a lathe's
+        healthy T_nc_x1_drive (-0.58 °C, 0.48 standardised), excluded for a drifting
+        T_guidebush (+0.93, 0.51) whose leverage that raised past judging (0.71 -> 0.96), had
+        hidden the drift, until a new thermal state did."""
         if not self.new_state or self._novel:
             return j, None
-        if self._resolves(j):
+        out = self._judged & (level >= WARNING)
+        # a sensor out of band itself may leave its coupled partner out of band unjudged (the
+        # partner follows it out); one within its band that does so hides, not explains
+        if self._resolves(j, out if level[j] < WARNING else None):
             return j, True
-        largest = float(np.nanmax(np.abs(np.where(self._judged, err, np.nan))))
+        hides = self._resolves(j)     # j explains the bands only by hiding a sensor out of them
+        size = np.abs(np.where(self._judged, np.nan_to_num(err), 0.0))
+        # the likelier single fault, where j is one too: the largest standardised residual
+        likelier = np.argmax(size * self._std) if hides else None
         for k in np.argsort(-z):
-            if (k != j and z[k] >= 0 and level[k] >= WARNING
-                    and self._resolves(int(k), alone=largest)):
+            if (k != j and z[k] >= 0 and level[k] >= WARNING and (likelier is None or likelier == k)
+                    and self._resolves(int(k), out,
+                                       alone=float(np.max(np.delete(size, k), initial=0.0)))):
                 return int(k), True
-        return j, False
+        return j, hides
 
-    def _resolves(self, j: int, alone: float | None = None) -> bool:
+    def _resolves(self, j: int, seen: np.ndarray | None = None,
+                  alone: float | None = None) -> bool:
         """With ``j`` out of the fit, every other judged sensor's leave-one-out error over the
-        last ``confirm`` samples (their mean) within its warning band (``alone``: and ``j``'s
-        own error against the others' field at least that, as a lone fault's)."""
+        last ``confirm`` samples (their mean) within its warning band (``seen``: and each of
+        these sensors but ``j`` still judged; ``alone``: the largest error of the others now, and
+        ``j``'s own error against the others' field at least that, as a lone fault's)."""
         trial = self._active.copy()
         trial[j] = False
         if trial.sum() < self.min_active_:
             return True
         M, lev = self._operator(trial)
         judged = trial & (lev < self.pod.max_leverage)
+        if seen is not None and (seen & trial & ~judged).any():
+            return False
         rows = self._hist[self._recent[self._pos, :min(self._count, self.confirm)]]
         X = np.where(np.isfinite(rows), rows, 0.0)
         E = ((X[:, judged] - X[:, trial] @ M[judged].T) / (1 - lev[judged])).mean(axis=0)
@@ -922,3 +944,4 @@ def _longest_runs(a: np.ndarray) -> np.ndarray:
         run = np.where(row, run + 1, 0)
         best = np.maximum(best, run)
     return best
+
