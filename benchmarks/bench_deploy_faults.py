@@ -8,8 +8,12 @@ sensor the models lean on: one empty cell (``nan_1``), 16 (``nan_16``), to the e
 (``nan_end``), its first cell (``nan_first``); stuck at its value; a one-sample +50 °C spike; the
 reading in K (+273.15) from the middle or throughout; the time +3 h from the middle
 (``gap3h``); a duplicated row, a duplicated time, two rows swapped; the first time blank; and
-(session 54) a real +5 K step of ``T_amb`` from the middle row on (``amb_step5``: the machine
-really warms, to be followed).
+(session 54) ``T_amb``'s column +5 K from the middle row on (``amb_offset5``: the column alone,
+the machine unchanged: a sensor's offset, which session 54 first took for a real step of the air).
+Then (session 54, ``ambient_cases``) the air itself stepped in the simulation (+5 K, +2 K, +5 K
+over 30 min; ``SteppedAmbient``, every other campaign identical) against ``T_amb``'s column
+offset (+5, +2 K), scored against the measured errors, and whether a model of the structure
+following the air (``air_evidence``) tells them apart.
 Forms: ``adaptive`` (the served model, ``replay``, ``monitor``: sensor monitor + guard),
 ``plain`` (the streaming compensator alone, ``monitor.adaptive=false``), ``code`` (the exported
 arithmetic: numpy Simulator; the compiled C's ``tc_step`` and the ST block equal it to 1e-13 µm on
@@ -41,7 +45,7 @@ arithmetic exported from the adaptive deployable (its guard included, no sensor 
                                                     24.5 / 19.1 / 0.9      24.5 / 18.1 / 0.9
                     lagbank    24.8 / 2.2 / 0.3     241.6 / 260.8 / 8.9 -> 19.1 / 33.8 / 8.9 ->
                                                     22.8 / 41.4 / 1.4      22.8 / 29.5 / 1.4
-  amb_step5         mlr        27.5 / 1.8 / 0.0     20.4 / 10.5 / 6.1      20.4 / 10.5 / 6.1
+  amb_offset5       mlr        27.5 / 1.8 / 0.0     20.4 / 10.5 / 6.1      20.4 / 10.5 / 6.1
                     arx        25.4 / 1.1 / 0.0     24.8 / 7.1 / 5.3       24.8 / 7.1 / 5.3
                     lagbank    23.5 / 1.1 / 0.8     46.4 / 22.2 / 22.2     46.4 / 22.2 / 22.2
   kelvin_half       mlr        26.7 / 4.2 / 0.8     271.4 / 288.1 / 234.4  19.4 / 37.8 / 36.3
@@ -70,14 +74,33 @@ edge (7.9 K above the true reading here): the lag bank's plain stream 260.8 µm 
 at the end.  Every other line is unchanged to the printed digit.  Measured and not chosen: the
 sensor monitor's jump limit (3 x the largest training step per sensor, per sample elapsed)
 refusing the sample in the code (a numpy prototype, last correction repeated): spike50 0.6 /
-0.5 / 2.7 µm largest change for lagbank / arx / mlr, 0 at the end, but ``amb_step5`` refused for
+0.5 / 2.7 µm largest change for lagbank / arx / mlr, 0 at the end, but ``amb_offset5`` refused for
 9 samples (45 min; ``T_amb``'s limit 0.57 K per 5 min), and so was the same +5 K reached by a
 ramp of 1 K per sample.  Left as designed, measured: the plain stream has no guard, and the
 clamp puts a far-out reading at its envelope's edge (MLR's -36 µm/K on ``T_motor2``: -271 µm for
 one spiked row; a lag bank on a reading in K: 1825 µm); the adaptive compensator reads a spike
-as missing (0.9-4.2 µm), and a real +5 K step of ambient as a jump of the sensor (excluded,
-re-referenced by it, re-admitted after 11 samples): it follows 1.1-1.8 µm of the 7-22 µm the
-plain stream and the code follow (``amb_step5``).
+as missing (0.9-4.2 µm), and +5 K on ``T_amb`` as a jump of the sensor (excluded, re-referenced
+by it, re-admitted after 11 samples): it moves 1.1-1.8 µm where the plain stream and the code
+move 7-22 µm (``amb_offset5``).  It does the same with a real step of the air.  RMS over
+E_X/E_Y/E_Z of measured minus predicted error from the middle row on (µm), adaptive (its
+exclusions) / plain::
+
+  K06               mlr             arx             lagbank
+  healthy            4.38 (0) / 4.38  5.77 (0) / 5.77  4.43 (0) / 4.43
+  air +5 K          10.77 (1) / 6.46 10.57 (1) / 5.61  7.20 (1) / 11.77
+  air +2 K           6.30 (1) / 3.08  6.58 (1) / 5.47  3.92 (1) / 7.80
+  air +5 K/30 min    7.92 (1) / 6.76  8.38 (1) / 5.69  5.68 (1) / 10.17
+  T_amb offset +5 K  4.70 (1) / 8.01  5.78 (1) / 8.82  3.99 (1) / 18.18
+  T_amb offset +2 K  4.70 (1) / 6.33  5.78 (1) / 7.95  3.99 (1) / 10.80
+
+The offset is held at the healthy error; the real step is re-referenced away as the offset is
+(never re-admitted as measured), and the MLR and ARX corrections lose 1.2-2.0x against the plain
+stream that follows it; the lag bank extrapolates the step worse than it ignores it.  A model of the
+structure following the air, fitted on the train campaigns (``air_evidence``; squared
+standardised residuals of the 9 structure sensors over the 10 samples from the step, the air as
+measured / re-referenced): healthy 38.7 / 38.7, air +5 K 52.4 / 53.8, +2 K 38.7 / 38.8, ramp
+46.7 / 46.5, offset +5 K 54.5 / 38.7, +2 K 41.7 / 38.7: the offsets are told, the real steps
+only by noise (the training has no step of air).  docs/monitoring.md, "A real ambient step".
 
 Deployed against scored on the same healthy record (session 53, the CLI as a stranger runs it:
 ``run model=F ati=W eval.mode=M``, ``replay replay.model=<model.pkl> monitor.adaptive=true|false``,
@@ -109,12 +132,92 @@ from hydra import compose, initialize_config_dir
 
 from thermocomp.apps.deploy.export import Simulator, state_space
 from thermocomp.apps.deploy.report import plain, stream_rows
+from thermocomp.apps.sim.ambient import step_air
+from thermocomp.apps.sim.scenario import write_scenario
+from thermocomp.apps.sim.yearround import YearRoundSpindle
 from thermocomp.base.paths import conf_dir
 from thermocomp.shell.builders import deployable_model
 from thermocomp.shell.cli import main
 from thermocomp.shell.source import read_streamed
 
 SENSOR, CAMPAIGN, FAMILIES = "T_motor2", "K06", ("mlr", "arx", "lagbank")
+TARGETS = ["E_X", "E_Y", "E_Z"]
+
+
+class _AirStepped(YearRoundSpindle):
+    """The bench's record with the air of ``CAMPAIGN`` changed from its middle row (real)."""
+
+    def __init__(self, *args, step_c=5.0, ramp_s=0.0, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.step_c, self.ramp_s = step_c, ramp_s
+
+    def plans(self, rng):
+        return step_air(super().plans(rng), CAMPAIGN, self.step_c, self.ramp_s)
+
+
+def ambient_cases(root: Path, raw: pd.DataFrame) -> dict[str, tuple[pd.DataFrame, pd.DataFrame]]:
+    """``{name: (readings, measured errors)}`` of K06: the air really stepped (+5 K, +2 K, +5 K
+    ramped over 30 min; the simulation rerun, every other campaign identical) and ``T_amb``'s
+    column offset (+5, +2 K; the machine unchanged)."""
+    out = {"healthy": (raw, raw)}
+    for name, step_c, ramp_s in (("real +5 K", 5.0, 0.0), ("real +2 K", 2.0, 0.0),
+                                 ("real +5 K/30 min", 5.0, 1800.0)):
+        path = root / f"air_{step_c:g}_{ramp_s:g}"
+        if not path.exists():
+            write_scenario(_AirStepped(n_campaigns=9, duration_h=(3.0, 5.0), seed=5353,
+                                       step_c=step_c, ramp_s=ramp_s), path)
+        df = pd.read_csv(path / f"{CAMPAIGN}.csv")
+        out[name] = (df, df)
+    for dT in (5.0, 2.0):
+        f = raw.copy()
+        f.loc[len(raw) // 2:, "T_amb"] += dT
+        out[f"offset +{dT:g} K"] = (f, raw)
+    return out
+
+
+def _air_steps(df: pd.DataFrame, air: np.ndarray, sensors: list[str]):
+    """Each structure sensor's next change, its last change and its gap to ``air`` (rows 1..)."""
+    T = df[sensors].to_numpy(float)
+    dT = np.diff(T, axis=0)
+    return dT[1:], dT[:-1], air[1:-1, None] - T[1:-1]
+
+
+def air_evidence(data: Path, cases: dict, train: list[str], window: int = 10) -> dict[str, tuple]:
+    """Would a model of the structure following the air tell a real step from an offset?  Per
+    structure sensor, its change per sample regressed on its last change and its gap to the air
+    over the ``train`` campaigns; per case, the sum over ``window`` samples from the step of the
+    squared standardised residuals, the air as measured / re-referenced by its jump."""
+    sensors = [c for c in pd.read_csv(data / f"{train[0]}.csv").columns
+               if c.startswith("T_") and c != "T_amb"]
+    rows = [_air_steps(f, f["T_amb"].to_numpy(float), sensors)
+            for f in (pd.read_csv(data / f"{c}.csv") for c in train)]
+    y, last, gap = (np.vstack(part) for part in zip(*rows))
+    fits = []
+    for i in range(len(sensors)):
+        A = np.c_[last[:, i], gap[:, i], np.ones(len(y))]
+        coef = np.linalg.lstsq(A, y[:, i], rcond=None)[0]
+        fits.append((coef, np.std(y[:, i] - A @ coef)))
+
+    def score(df, air, h):
+        y, last, gap = (v[h - 1:h - 1 + window] for v in _air_steps(df, air, sensors))
+        return sum(float(np.sum(((y[:, i] - np.c_[last[:, i], gap[:, i], np.ones(len(y))] @ c) / sd) ** 2))
+                   for i, (c, sd) in enumerate(fits))
+    out = {}
+    for name, (df, _) in cases.items():
+        air, h = df["T_amb"].to_numpy(float), len(df) // 2
+        back = air.copy()
+        back[h:] -= (air[h] - air[h - 1]) - (air[h - 1] - air[h - 2])    # re-referenced by the jump
+        out[name] = (score(df, air, h), score(df, back, h))
+    return out
+
+
+def _rms_after_onset(deployed, readings, errors) -> tuple[float, int]:
+    """RMS over targets and rows of measured minus predicted error from the middle row on, and
+    the monitor's exclusions."""
+    s = stream_rows(deployed, readings, CAMPAIGN)
+    h = len(readings) // 2
+    r = errors[TARGETS].to_numpy(float)[h:] - s.y[h:]
+    return float(np.sqrt((r ** 2).sum(axis=1).mean())), sum(e.get("to") == "excluded" for e in s.events)
 
 
 def faults(df: pd.DataFrame) -> dict[str, pd.DataFrame]:
@@ -132,7 +235,7 @@ def faults(df: pd.DataFrame) -> dict[str, pd.DataFrame]:
     put("nan_first", [0], SENSOR, lambda v: np.nan)
     put("stuck", list(range(h, len(df))), SENSOR, lambda v: v.iloc[0])
     put("spike50", [h], SENSOR, lambda v: v + 50)
-    put("amb_step5", list(range(h, len(df))), "T_amb", lambda v: v + 5)   # real: to be followed
+    put("amb_offset5", list(range(h, len(df))), "T_amb", lambda v: v + 5)   # the column only
     put("kelvin_half", list(range(h, len(df))), SENSOR, lambda v: v + 273.15)
     put("kelvin_all", list(range(len(df))), SENSOR, lambda v: v + 273.15)
     put("gap3h", list(range(h, len(df))), "time", lambda v: v + 3 * 3600)
@@ -212,6 +315,7 @@ def main_(root: Path) -> None:
               "sim.generator.duration_h=[3.0,5.0]", f"data.path={data}", f"out={root / 'sim'}"])
     raw = pd.read_csv(data / f"{CAMPAIGN}.csv")
     print(f"{'fault':17s} {'model':8s} {'adaptive':>24s} {'plain':>24s} {'code':>24s}")
+    ambient = {}
     for family in FAMILIES:
         model = root / family / "model.pkl"
         if not model.exists():
@@ -241,6 +345,21 @@ def main_(root: Path) -> None:
         with tempfile.TemporaryDirectory() as tmp:
             worst = _compiled_c_agrees(forms["true"], list(cases.values()), Path(tmp))
         print(f"{'':17s} {family:8s} compiled C tc_step vs the code over every fault: {worst}")
+        ambient[family] = forms
+    print("T_amb from K06's middle row: RMS of measured - predicted error from then on (µm), "
+          "adaptive (exclusions) / plain")
+    for name, (df, errors) in ambient_cases(root, raw).items():
+        cells = []
+        for family, forms in ambient.items():
+            a, n = _rms_after_onset(forms["true"], df, errors)
+            cells.append(f"{family} {a:5.2f} ({n}) / {_rms_after_onset(forms['false'], df, errors)[0]:5.2f}")
+        print(f"{name:17s} " + "   ".join(cells))
+    listed = pd.read_csv(root / "ys" / "campaigns.csv")
+    train = listed.loc[listed["split"] == "train", "campaign"].tolist()
+    print("the structure following the air (fitted on the train campaigns): squared standardised "
+          "residuals over 10 samples, air as measured / re-referenced")
+    for name, (measured, back) in air_evidence(root / "ys", ambient_cases(root, raw), train).items():
+        print(f"{name:17s} {measured:6.1f} / {back:6.1f}")
 
 
 if __name__ == "__main__":

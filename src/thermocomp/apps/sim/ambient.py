@@ -12,7 +12,7 @@ correlation time ``drift_tau_h``), sampled exactly on any time grid.
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 
@@ -171,3 +171,38 @@ class SinusoidalAmbient:
 
     def to_dict(self) -> dict:
         return asdict(self)
+
+
+@dataclass(frozen=True)
+class SteppedAmbient:
+    """``base``'s air plus ``step_c`` from ``on_s`` on, reached linearly over ``ramp_s`` (a door to
+    another hall, an HVAC set-point): a real change the machine follows, unlike a sensor's offset.
+    ``base`` draws the same random numbers, so only the air after ``on_s`` differs."""
+
+    base: object
+    on_s: float
+    step_c: float
+    ramp_s: float = 0.0
+
+    def sample(self, t_s, rng=None) -> np.ndarray:
+        t_s = np.asarray(t_s, dtype=float)
+        share = (np.clip((t_s - self.on_s) / self.ramp_s, 0.0, 1.0) if self.ramp_s > 0
+                 else (t_s >= self.on_s).astype(float))
+        return self.base.sample(t_s, rng) + self.step_c * share
+
+    def to_dict(self) -> dict:
+        return {"base": self.base.to_dict(), "on_s": self.on_s, "step_c": self.step_c,
+                "ramp_s": self.ramp_s}
+
+
+def step_air(plans: list, cid: str, step_c: float, ramp_s: float = 0.0) -> list:
+    """``plans`` with campaign ``cid``'s air stepped by ``step_c`` at its middle row (a real
+    ambient change, :class:`SteppedAmbient`; the other campaigns as they were)."""
+    out = []
+    for p in plans:
+        if p.cid == cid:
+            rows = int(round(p.duration_s / p.sample_period_s)) + 1
+            on = p.start_s + (rows // 2) * p.sample_period_s - 1.0      # the middle row reads it
+            p = replace(p, ambient=SteppedAmbient(p.ambient, on, step_c, ramp_s))
+        out.append(p)
+    return out
