@@ -8,8 +8,9 @@ bank: 261 µm on the next row in the plain stream, 9 at the end; the exported co
 guard, 34 at most and 9 at the end).  Back in range the bound of the excess's last sample holds: the
 spike's memory is taken out as it decays, and every later correction is the one of the same
 record read at the envelope's edge on that row (what the clamp gives for it), in the plain
-stream, the numpy reference, the compiled C and the Structured Text.  A real step in ambient
-(it stays) is followed in every form, never refused.
+stream, the numpy reference, the compiled C and the Structured Text.  A lasting step of the
+ambient reading (the column alone: the code cannot tell the air from the sensor) is followed in
+every form, never refused.
 """
 
 from __future__ import annotations
@@ -97,8 +98,8 @@ def test_a_one_row_spike_leaves_no_memory_in_the_plain_stream(dataset, family):
 
 
 @needs_cc
-def test_a_real_step_in_ambient_is_followed_not_refused(dataset, tmp_path):
-    """+5 K of ambient from mid-campaign on (beyond the monitor's jump limit and the envelope):
+def test_a_lasting_step_of_the_ambient_reading_is_followed_not_refused(dataset, tmp_path):
+    """+5 K on the T_amb reading from mid-campaign on (beyond the monitor's jump limit and the envelope):
     no form refuses a sample, and the correction moves with it as the plain stream's does."""
     deployed, healthy = _deployed(dataset, "lagbank")
     cols, ss = deployed.columns_, state_space(deployed)
