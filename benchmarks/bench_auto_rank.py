@@ -48,6 +48,12 @@ mills by < 1 %), within 10 % of the best family 6/8 (col5454 +13 %; swiss5454 +7
 folds of its one calibration record rank hammerstein 5th on E_X, validation 1.70 against MLR's
 1.58, test 0.915 against 1.74).  CPU per record (user + sys s): col 38-41, swiss 33, year 37-39,
 mill 192-197.
+
+Few train campaigns (2026-11-30, ``sim=yearround_spindle sim.generator.n_campaigns=6``, 4 train
+campaigns: 4 folds, fewer than ``n_folds``, so the votes resample each fold's blocks too; seeds
+5411/5412, nothing tuned on them), same columns: year6_5411 2.01 -> 1.72; 1.61; ati 1.30 |
+year6_5412 3.76 -> 2.63; 3.02; ati 1.33 (the folds' votes alone, scored from the saved arrays:
+1.727 and 2.628).  CPU per record (user + sys s): 13.
 """
 
 from __future__ import annotations

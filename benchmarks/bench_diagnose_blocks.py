@@ -57,10 +57,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "apps"))
 
 from test_diagnose_few import few  # noqa: E402
 from thermocomp.apps.diagnose import SearchOptions, diagnose  # noqa: E402
-from thermocomp.apps.diagnose.blocks import DECORRELATED, _runs, decorrelation_length  # noqa: E402
 from thermocomp.apps.diagnose.cv import sign_flip_pvalue  # noqa: E402
 from thermocomp.apps.diagnose.search import Search, gain_lower_bound  # noqa: E402
 from thermocomp.core.compensator import Compensator  # noqa: E402
+from thermocomp.core.model_selection.blocks import DECORRELATED, _runs, decorrelation_length  # noqa: E402
 from thermocomp.core.models import MLR  # noqa: E402
 
 CASES = ["planted:515", "clean:515", "planted:626", "clean:626", "clean:11", "clean:101",

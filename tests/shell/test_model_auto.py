@@ -411,6 +411,66 @@ def test_a_candidate_keeps_votes_only_as_far_as_the_folds_are_sure_it_beats_mlr(
     assert AutoRegressor(candidates).fit(X, y, context=context).weights_ == {"close": 1.0}
 
 
+def _one_fold(noise_sd: float, seed: int, n: int = 600):
+    """One validation fold of ``n`` rows: MLR's and a candidate's predictions, each off by its
+    own slowly drifting error (AR(1), 0.95: it takes ~30 rows to decorrelate), the candidate's
+    scaled to ``noise_sd`` of MLR's."""
+    from scipy.signal import lfilter
+
+    rng = np.random.default_rng(seed)
+    y = rng.normal(0.0, 1.0, n)
+    drift = [lfilter([1.0], [1.0, -0.95], rng.normal(0.0, 1.0, n)) for _ in range(2)]
+    return y + noise_sd * drift[1], y, np.zeros(n, int), y + drift[0]
+
+
+def test_one_fold_does_not_hand_the_model_to_a_candidate_whose_win_is_that_folds_accident():
+    from thermocomp.core.models.blend import vote_weights
+
+    # a candidate as good as MLR, ahead by 0.001 % in the one fold (a lab with 3 train runs: one
+    # forward fold; measured: such a win gave lstm the model); every resample of the fold as the
+    # unit is that fold, so it took every vote
+    kept = []
+    for seed in range(6):
+        cand, y, fold, base = _one_fold(1.0, seed)
+        tiny_win = np.sqrt(0.99999 * np.mean((y - base) ** 2) / np.mean((y - cand) ** 2))
+        cand = y + tiny_win * (cand - y)
+        kept.append(vote_weights(np.column_stack([base, cand]), y, fold, base, base_column=0)[0])
+    assert min(kept) > 0.5                              # the doubt goes to MLR
+    # two folds (a vendor's 4 train runs), ahead by a hair in both: fewer folds than asked
+    # (min_folds) are resampled by their blocks too
+    two = [_one_fold(1.0, seed, n=300) for seed in (0, 1)]
+    y, base = np.concatenate([t[1] for t in two]), np.concatenate([t[3] for t in two])
+    cand = np.concatenate([t[1] + (t[0] - t[1]) * np.sqrt(
+        0.99999 * np.mean((t[1] - t[3]) ** 2) / np.mean((t[1] - t[0]) ** 2)) for t in two])
+    fold = np.repeat([0, 1], 300)
+    assert vote_weights(np.column_stack([base, cand]), y, fold, base, base_column=0, min_folds=5)[0] > 0.5
+    # better in every stretch of the fold (error half MLR's): the blocks agree, it keeps its votes
+    cand, y, fold, base = _one_fold(0.5, seed=0)
+    w = vote_weights(np.column_stack([base, cand]), y, fold, base, base_column=0)
+    assert w[1] == 1.0
+    # so with a white error (one-row blocks), where a mean of per-block ratios gave it nothing
+    rng = np.random.default_rng(0)
+    y, fold = rng.normal(0.0, 1.0, 600), np.zeros(600, int)
+    base, cand = y + rng.normal(0.0, 1.0, 600), y + rng.normal(0.0, 0.5, 600)
+    w = vote_weights(np.column_stack([base, cand]), y, fold, base, base_column=0)
+    assert w[1] == 1.0
+
+
+def test_auto_with_three_train_campaigns_keeps_mlr_against_a_twin_that_won_its_one_fold():
+    from thermocomp.core.models.auto import AutoRegressor
+
+    candidates = {"mlr": _OneSensor(0), "twin": _OneSensor(1)}     # sensors equally noisy
+    weights = []
+    for seed in range(1, 9):
+        X, y, context = _two_sensors(3, seed=seed)      # blocked forward: one validation fold
+        auto = AutoRegressor(candidates).fit(X, y, context=context)
+        if auto.validation_["twin"] < auto.validation_["mlr"]:
+            weights.append(auto.weights_.get("mlr", 0.0))
+    # the fold as the unit gave the twin every one of these (mlr 0); now MLR keeps a share
+    # each time, the larger the closer the win (measured mean 0.46)
+    assert len(weights) >= 3 and min(weights) > 0 and np.mean(weights) > 0.4
+
+
 def test_a_blend_streams_in_replay_as_it_predicts_in_run(two_targets, tmp_path):
     data, _, _ = two_targets
     three = "model.candidates=[mlr,arx,lagbank]"      # E_B: arx and lagbank validate alike

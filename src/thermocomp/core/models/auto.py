@@ -58,7 +58,9 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     candidates weighted by bootstrap votes over the validation folds (each
     fold's error relative to MLR's there, :func:`~thermocomp.core.models.blend.vote_weights`):
     the share of fold resamples each candidate wins, MLR (a candidate) taking the part of a
-    candidate's votes that the resamples do not back by beating MLR.  ``'best'`` keeps the one
+    candidate's votes that the resamples do not back by beating MLR; with fewer folds than
+    ``n_folds`` each drawn fold is resampled by its blocks too (``vote_weights``'s ``min_folds``:
+    one fold alone gave its winner every vote).  ``'best'`` keeps the one
     candidate with the lowest pooled validation RMSE.  Picking one misranked:
     validation and test orders of the families agreed with a Spearman of 0.2
     to 0.4 on the simulated records and the spindle record.  A val split gives
@@ -211,7 +213,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         base = members.index(BASELINE) if BASELINE in members else None
         rows = self._voting_rows()
         w = vote_weights(preds[rows], self.oof_y_[rows], self.oof_fold_[rows], self.oof_[BASELINE][rows],
-                         base_column=base)
+                         base_column=base, min_folds=int(self.n_folds))
         weights = {n: float(v) for n, v in zip(members, w) if v > 0}
         blended = rmse(self.oof_y_ - preds @ w)
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
