@@ -40,6 +40,9 @@ long9191, mill9191 (stranger48, seeds never used; mlr): healthy 0 exclusions, 0 
 identical (E_Z 0.80; 1.81/1.20/2.02); T_col_front_low / T_col_05 jump +0 / +0 min, drift +29 / +26
 min, freeze +37 / +57 min under before and after alike, same RMSE.  The measured fl_thermal:
 bench_new_state_measured.py.
+Re-measured 2026-11-30 (session 54, after the culprit rule's change for a sensor it would leave
+unjudged): ``--only cms5003 --no-faults`` (the fits of /tmp/m48), every family and configuration
+as in the table (E_X and exclusions / new states to the printed digit), 21.5 s CPU.
 Read in docs/monitoring.md ("A new thermal state").
 """
 
