@@ -45,7 +45,7 @@ ALONG = {"T_hall": 1.0, "T_far": 1.5, "T_amb": 0.5}     # the pattern of the one
 @pytest.fixture(scope="module")
 def datasets(tmp_path_factory) -> dict:
     """The spindle record as made (sensors moving independently: no pattern to gate on), and with
-    ``T_far`` and ``T_amb`` following ``T_hall`` (one pattern, which the excursions leave)."""
+    ``T_far`` and ``T_amb`` following ``T_hall`` (one pattern: ``T_hall`` out alone leaves it)."""
     root = tmp_path_factory.mktemp("hammerstein")
     independent = _spindle_dataset(root / "independent")
     one_pattern = root / "one_pattern"
