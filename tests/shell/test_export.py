@@ -16,7 +16,7 @@ import re
 import shutil
 import subprocess
 from itertools import combinations
-from math import exp
+from math import exp, pow
 from pathlib import Path
 
 import numpy as np
@@ -211,7 +211,7 @@ class StructuredText:
         v = self.vars
         v["u"][:] = u
         v["has_time"], v["time_s"], v["reset"] = bool(np.isfinite(time_s)), time_s, reset
-        exec(self.code, {"exp": exp}, v)
+        exec(self.code, {"exp": exp, "EXPT": pow}, v)     # EXPT: a Hammerstein power
         return np.array(v["c"], float)
 
 
