@@ -659,7 +659,9 @@ class SensorMonitor:
         # partner follows it out); one within its band that does so hides, not explains
         if self._resolves(j, out if level[j] < WARNING else None):
             return j, True
-        hides = self._resolves(j)     # j explains the bands only by hiding a sensor out of them
+        # j explains the bands only by hiding a sensor out of them (j out of band itself: the
+        # same question as above, answered no)
+        hides = bool(level[j] < WARNING) and self._resolves(j)
         size = np.abs(np.where(self._judged, np.nan_to_num(err), 0.0))
         # the likelier single fault, where j is one too: the largest standardised residual
         likelier = np.argmax(size * self._std) if hides else None
@@ -944,4 +946,3 @@ def _longest_runs(a: np.ndarray) -> np.ndarray:
         run = np.where(row, run + 1, 0)
         best = np.maximum(best, run)
     return best
-
