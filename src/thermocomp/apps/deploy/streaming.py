@@ -369,11 +369,12 @@ class StreamingCompensator:
 
     def _restore(self, snap: tuple) -> None:
         (self._ref, self._ambient_c0, self._states, self._den_state, self.n_samples_, self._held,
-         self._gains, *clock) = snap      # (an older model's end states have no clock, no bounds)
-        self._bounds = dict(clock[1]) if len(clock) > 1 else {}
+         self._gains, *later) = snap      # (an older model's end states have no clock, no bounds)
+        clock = later[0] if later else None
+        self._bounds = dict(later[1]) if len(later) > 1 else {}
         if self._clock is not None:
-            if clock and clock[0] is not None:
-                self._clock.restore(clock[0])
+            if clock is not None:
+                self._clock.restore(clock)
             else:                # the models' own times: a time read passes as it is
                 self._clock.reset()
 
