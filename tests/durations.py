@@ -20,6 +20,8 @@ import json
 from collections import Counter
 from pathlib import Path
 
+from thermocomp.base.files import atomic_write_text
+
 FILE = Path(__file__).with_name("durations.json")
 
 
@@ -49,4 +51,5 @@ class Recorder:
         if hasattr(session.config, "workerinput") or not self.seconds:
             return   # an xdist worker: its controller writes the whole run's
         merged = {**load(self.path), **{u: round(s, 1) for u, s in self.seconds.items()}}
-        self.path.write_text(json.dumps(dict(sorted(merged.items())), indent=0) + "\n")
+        # atomically: a run killed while writing must not leave a file every later session fails to read
+        atomic_write_text(self.path, json.dumps(dict(sorted(merged.items())), indent=0) + "\n")
