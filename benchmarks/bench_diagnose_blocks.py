@@ -9,7 +9,7 @@ The scenario of ``tests/apps/test_diagnose_few.py`` (year-round machine, 12 camp
 ``max_effects=2``, three ways:
 
 - ``residual``: as shipped -- test blocks as long as the current model's CV residual takes to
-  decorrelate (:func:`thermocomp.apps.diagnose.blocks.decorrelation_length`), once per diagnosis;
+  decorrelate (:func:`thermocomp.core.model_selection.blocks.decorrelation_length`), once per diagnosis;
 - ``gain_max``: per round, as long as the slowest of the round's candidate effects' gain series
   (per-row squared error of the current model minus the candidate's) takes to decorrelate;
 - ``gain_pooled``: per round, where the gains' autocorrelation averaged over those candidates

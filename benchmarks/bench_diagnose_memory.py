@@ -14,7 +14,7 @@ clean default scenario with a random-walk column of ``tests/apps/test_diagnose_s
 ``tests/apps/test_diagnose_record.py`` (forward chaining, all five targets).  Variants:
 
 - ``shipped``: one design per diagnosis, blocks as long as the current model's CV residual takes
-  to decorrelate (:func:`thermocomp.apps.diagnose.blocks.decorrelation_length`), step-down max-T;
+  to decorrelate (:func:`thermocomp.core.model_selection.blocks.decorrelation_length`), step-down max-T;
 - ``residual_after``: each candidate tested on its own blocks, as long as *its* CV residual (the
   residual with the candidate fitted) takes to decorrelate -- the idea that the residual left
   once the slow unmodelled effect is removed forgets faster; the family made family-wise by Holm
@@ -123,10 +123,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "apps"))
 
 from test_diagnose_few import few  # noqa: E402
 from thermocomp.apps.diagnose import SearchOptions, diagnose  # noqa: E402
-from thermocomp.apps.diagnose.blocks import cut_blocks, decorrelation_length  # noqa: E402
 from thermocomp.apps.diagnose.cv import sign_flip_pvalue  # noqa: E402
 from thermocomp.apps.diagnose.search import Search, _pct, gain_lower_bound  # noqa: E402
 from thermocomp.core.compensator import Compensator  # noqa: E402
+from thermocomp.core.model_selection.blocks import cut_blocks, decorrelation_length  # noqa: E402
 from thermocomp.core.models import MLR  # noqa: E402
 
 VARIANTS = ["shipped", "residual_after", "gain_own"]

@@ -3,7 +3,7 @@
 With 8 train campaigns a sign-flip test over campaigns has 256 outcomes (smallest p 1/256) and,
 family-wise over a round, no effect could clear alpha = 0.01 however strong.  The gains are now
 tested on time blocks within the held-out campaigns, as long as the residual takes to decorrelate
-(thermocomp.apps.diagnose.blocks), and a change must also gain where no fold extrapolates and,
+(thermocomp.core.model_selection.blocks), and a change must also gain where no fold extrapolates and,
 on blocks finer than the campaigns, reach min_gain_pct in its 1 - alpha lower bound, and be
 within one standard error of the best CV error of the round, cleared or not
 (benchmarks/bench_diagnose_few.py).
@@ -20,13 +20,13 @@ from hydra import compose, initialize_config_dir
 from hydra.utils import instantiate
 
 from thermocomp.apps.diagnose import SearchOptions, diagnose
-from thermocomp.apps.diagnose.blocks import DECORRELATED, cut_blocks, decorrelation_length
 from thermocomp.apps.diagnose.cv import CVResult, sign_flip_maxt, smallest_p
 from thermocomp.apps.diagnose.features import Effect
 from thermocomp.apps.diagnose.search import Evaluation, choose
 from thermocomp.base.paths import conf_dir
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.io.contract import Dataset
+from thermocomp.core.model_selection.blocks import DECORRELATED, cut_blocks, decorrelation_length
 from thermocomp.core.model_selection.extrapolation import within_range
 from thermocomp.core.models import MLR
 

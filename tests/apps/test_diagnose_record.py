@@ -6,7 +6,7 @@ CV is forward chaining; its validation blocks (~312 samples) are far shorter tha
 residual takes to forget itself (~715 samples), so neighbouring blocks are no independent units
 of the sign-flip test.  Tested as 16 units, a lag of the inputs passed on ch3 and ch4 (CV gain
 59 %) and made their test error 33 % and 38 % worse.  Forward blocks shorter than the
-decorrelation length now share a test block (thermocomp.apps.diagnose.blocks.cut_blocks).
+decorrelation length now share a test block (thermocomp.core.model_selection.blocks.cut_blocks).
 """
 
 from __future__ import annotations
@@ -17,9 +17,9 @@ import numpy as np
 import pandas as pd
 
 from thermocomp.apps.diagnose import SearchOptions, diagnose
-from thermocomp.apps.diagnose.blocks import cut_blocks
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.io.read import read_dataset
+from thermocomp.core.model_selection.blocks import cut_blocks
 from thermocomp.core.models import MLR
 
 RECORD = Path(__file__).resolve().parents[2] / "datasets" / "fl_thermal" / "spindle_test.csv"

@@ -21,7 +21,7 @@ several train campaigns, the second for one):
   runs through the whole record up to the block (its lags and AR states carry
   over, as on the machine); only the block's rows are scored.  The units of
   the sign-flip test are then runs of validation blocks at least as long as
-  the residual takes to decorrelate (:mod:`.blocks`).
+  the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`).
 
 Everything works on the stacked train matrices: the selector and the
 estimator are refitted in every fold exactly as the
@@ -43,10 +43,10 @@ from sklearn.base import clone
 
 from ...core.context import CAMPAIGN, Y_MEASURED, for_target
 from ...core.model_selection import ForwardChaining, LeaveCampaignsOut
+from ...core.model_selection.blocks import cut_blocks
 from ...core.model_selection.extrapolation import within_range
 from ...core.models.linear import MLR
 from ...core.select import AllInputs
-from .blocks import cut_blocks
 from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
 from .shrink import ALPHAS, PartialRidgePath
 
@@ -108,7 +108,7 @@ class Problem:
 
     def set_test_blocks(self, length: int) -> None:
         """Test the gains on time blocks of ``length`` samples within the units: as long as the
-        model's CV residual takes to decorrelate (:mod:`.blocks`)."""
+        model's CV residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`)."""
         self.block_samples = int(length)
         self.block_index = cut_blocks(self.unit_index, self.campaigns, self.block_samples,
                                       timeline=self.forward)

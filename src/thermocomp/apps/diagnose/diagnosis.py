@@ -18,11 +18,11 @@ from ...core.frame import stack
 from ...core.io.contract import ContractError, Dataset
 from ...core.metrics import P2P_AFTER, split_scores
 from ...core.model_selection import ForwardChaining, LeaveCampaignsOut, cv_scheme, forward_gap, unit_labels
+from ...core.model_selection.blocks import decorrelation_length
 from ...core.scoring.evaluation import require_split, sample_period, split_residuals
 from ...core.scoring.results import TEST_RMSE, TEST_RSD_MEAN, TEST_RSD_SD, Scores, TargetResult
 from ...core.timerule import median_step
 from .augmented import AugmentedRegressor
-from .blocks import decorrelation_length
 from .candidates import CONTROL, random_walk
 from .cv import Problem, smallest_p, units_needed
 from .features import Effect

@@ -19,8 +19,8 @@ once, at the end, to report before and after):
    :math:`g = \mathrm{RMSE}_{cv} - \mathrm{RMSE}_{cv}^{+}` and the one-sided
    sign-flip p-value of the gains in mean squared error of the test blocks:
    time blocks within the held-out campaigns (validation blocks), as long as
-   the residual takes to decorrelate (:mod:`.blocks`), so that 8 campaigns
-   are not 256 outcomes.  With an MLR base the effect features are shrunk by
+   the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`), so
+   that 8 campaigns are not 256 outcomes.  With an MLR base the effect features are shrunk by
    the ridge penalty of least CV error (:mod:`.shrink`), so an effect of many
    correlated regressors competes at its best generalising strength.
 5. **Accept**, among the candidates that clear the bar (:math:`g \ge`
@@ -44,8 +44,8 @@ at least ``fault_ratio`` and the model without the sensor is not worse by
 ``min_gain_pct`` % or more, over all held-out rows *and* over those where no
 fold extrapolates (a CV that improves only where held-out campaigns leave the
 training range -- a climate room's extreme runs -- removed four healthy
-sensors of a lathe and raised its test error); a sensor fault that clears is
-taken first.
+sensors of a lathe, CV 21.8 -> 11.4 µm, and raised its test error, 12.6 -> 13.4 µm); a
+sensor fault that clears is taken first.
 
 The in-sample F-test is not used for the bar: thermal residuals are strongly
 autocorrelated, so a random walk passes it (spurious regression).  Campaigns
@@ -300,11 +300,11 @@ class Search:
     def _family_bar(self, evals: list[Evaluation], current: CVResult) -> None:
         """The bar's p-value is family-wise over the round's candidate effects (not the control,
         nor a sensor fault, which has its own bar): :func:`~.cv.sign_flip_maxt` of the test
-        blocks' MSE gains (:mod:`.blocks`).  With one block per CV unit (or per run of forward
-        validation blocks), each block's gain as a share of its own MSE, clipped to [-1, 1] (a
-        unit counts at most its whole error either
-        way: a candidate that blows one campaign up does not set the null's scale; with raw
-        MSE gains a hidden source every campaign showed was refused at 0.01).  With finer
+        blocks' MSE gains (:mod:`~thermocomp.core.model_selection.blocks`).  With one block per
+        CV unit (or per run of forward validation blocks), each block's gain as a share of its
+        own MSE, clipped to [-1, 1] (a unit counts at most its whole error either way: a
+        candidate that blows one campaign up does not set the null's scale; with raw MSE gains
+        a hidden source every campaign showed was refused at 0.01).  With finer
         blocks, their signed ranks (Wilcoxon's statistic, flipped): blocks of one campaign differ
         in error by orders of magnitude (its start against its hot end), and as shares of the
         campaign's MSE many small-error blocks outvoted the large ones (on clean data an ambient

@@ -62,10 +62,17 @@ class SpindleMotorLosses(HeatSource):
     quadratic_W_per_krpm2: float = 2.0
 
     def power(self, state, temperature_of):
-        n_k = abs(state.get(SPINDLE, 0.0)) / 1000.0
-        if n_k == 0.0:
-            return 0.0
-        return self.idle_W + self.linear_W_per_krpm * n_k + self.quadratic_W_per_krpm2 * n_k**2
+        return _speed_losses(self, state.get(SPINDLE, 0.0))
+
+
+def _speed_losses(motor, rpm: float) -> float:
+    """:math:`q_0 + a\\,n_k + b\\,n_k^2` W of ``motor``'s coefficients (``idle_W``,
+    ``linear_W_per_krpm``, ``quadratic_W_per_krpm2``) at ``rpm``, :math:`n_k = |n|/1000`; none at
+    a standstill: the law of :class:`SpindleMotorLosses` and :class:`SpeedLosses`."""
+    n_k = abs(rpm) / 1000.0
+    if n_k == 0.0:
+        return 0.0
+    return motor.idle_W + motor.linear_W_per_krpm * n_k + motor.quadratic_W_per_krpm2 * n_k**2
 
 
 @dataclass
@@ -229,10 +236,7 @@ class SpeedLosses(HeatSource):
     quadratic_W_per_krpm2: float = 1.0
 
     def power(self, state, temperature_of):
-        n_k = abs(state.get(self.signal, 0.0)) / 1000.0
-        if n_k == 0.0:
-            return 0.0
-        return self.idle_W + self.linear_W_per_krpm * n_k + self.quadratic_W_per_krpm2 * n_k**2
+        return _speed_losses(self, state.get(self.signal, 0.0))
 
 
 @dataclass

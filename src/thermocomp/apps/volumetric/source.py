@@ -14,55 +14,21 @@ from __future__ import annotations
 import dataclasses
 import json
 import logging
-import math
 from collections.abc import Mapping
 from pathlib import Path
 
 from ...base.files import folder_digest
 from ...base.log import logger
-from ...base.params import (
-    NON_NEGATIVE,
-    POSITIVE,
-    Rule,
-    check_values,
-    choice,
-    either,
-    number,
-    numbers,
-    optional,
-    subset,
-)
 from ...core import io
 from .artefact import SETUP_FILE
-from .calibration import calibrate_folder, check_prior_kinds, fitted, prior_sd
+from .calibration import calibrate_folder, fitted, prior_sd
 from .identify import ArtefactCalibration
 from .series import check_columns, load_setup
 
 # the calibrate.* settings a parameter series depends on (calibrate.format: how it is written)
 SETTINGS = ("outlier_z", "column_share", "require_seen", "prior")
-KINDS = ("positioning", "straightness", "angular", "cross")
-FORMATS = ("parquet", "csv")
-CALIBRATE_RULES = {
-    "outlier_z": either(POSITIVE, Rule(lambda v: v == math.inf, "inf")),  # inf: fit them as they are
-    "column_share": number(0.0, 1.0, open_lo=True), "format": choice(*FORMATS),
-    "require_seen": subset(KINDS, empty=True),
-    "prior": optional(Rule(lambda v: isinstance(v, Mapping) and len(v) > 0,
-                           "a range a per kind (as design.ranges: positioning, straightness, "
-                           "squareness, angular, cross, decay)")),
-}
 _CACHE: dict[tuple, tuple[io.Dataset, list]] = {}   # and the log records it made
 _CACHED = 2      # datasets kept: a fleet's or a test's, not every folder a process ever read
-
-
-def check_calibrate(c: Mapping) -> None:
-    """Refuse a ``calibrate.*`` value the stage cannot use, before any data is read."""
-    check_values(c, CALIBRATE_RULES, "calibrate")
-    prior = c.get("prior")
-    if prior is not None:    # a range per kind (decay: one number), or one per Legendre order
-        check_values(prior, {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0))
-                             for k in prior}, "calibrate.prior")
-        # the kinds every machine has (cross only with its cross terms: checked with the model)
-        check_prior_kinds(prior, {"positioning", "straightness", "squareness", "angular"})
 
 
 def is_volumetric(root: str | Path) -> bool:

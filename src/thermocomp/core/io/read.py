@@ -53,6 +53,7 @@ header excluded; a CSV file's message names the row's line in the file too (:mod
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import math
 from collections.abc import Iterator, Mapping, Sequence
@@ -503,17 +504,21 @@ def _run_counter(columns: dict, renamed: dict) -> str | None:
     """The header of the first column read as a temperature that looks like a run counter (not
     one whose header gives a unit: a temperature logged in whole degrees); a file's own names
     only (``data.roles``, ``data.columns``: a contract-named file is not looked at)."""
+    numbers = None      # every numeric column as floats: built once, when a candidate first asks
+
+    def ends(changes, name):
+        nonlocal numbers
+        if numbers is None:
+            numbers = {n: v for n, c in columns.items() if (v := _numbers(c)) is not None}
+        others = [v for n, v in numbers.items() if n not in (name, TIME)]
+        return run_ends(changes, numbers.get(TIME), others)
+
     for raw, name in renamed.items():
         column = columns.get(name)
         if role(name) != "T" or column is None or column.null_count or split_unit(raw)[1]:
             continue
-
-        def ends(changes, name=name):
-            others = [v for n, c in columns.items() if n not in (name, TIME)
-                      and (v := _numbers(c)) is not None]
-            return run_ends(changes, _numbers(columns.get(TIME)), others)
-
-        if looks_like_run_counter(column.to_numpy(zero_copy_only=False), raw, ends):
+        if looks_like_run_counter(column.to_numpy(zero_copy_only=False), raw,
+                                  functools.partial(ends, name=name)):
             return raw
     return None
 

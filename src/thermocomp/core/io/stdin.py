@@ -68,6 +68,14 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
     (those the compensator reads).  ``time`` in seconds or as ISO 8601 timestamps (``auto``: as
     the first row reads, like a campaign file); the headers named as a campaign file's are
     (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``)."""
+    df, counts, _ = _read_runs(text, columns, opts)
+    return df, counts
+
+
+def _read_runs(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict, list | None]:
+    """:func:`read_stream`'s ``(frame, missing cells per column)`` and the runs' row blocks
+    ``(campaign id, first row, end row)`` (None without a run column): the runs are found once,
+    where their ids are checked, and both the times and the campaigns are cut by them."""
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)
@@ -81,7 +89,7 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
         raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                             f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
                             file=SOURCE) from None
-    df, scales = _named(df, opts)
+    df, scales, blocks = _named(df, opts)
     absent = [c for c in columns if c not in df.columns]
     if not absent and df.empty:
         raise ContractError("stdin has a header but no data row", file=SOURCE)
@@ -89,8 +97,8 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
         raise ContractError("stdin lacks a column the compensator reads", file=SOURCE,
                             column=",".join(absent))
     if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
-        runs = [df[TIME]] if RUN not in df.columns else [t for _, t in
-                                                          df.groupby(RUN, sort=False)[TIME]]
+        runs = [df[TIME]] if blocks is None else [df[TIME].iloc[start:end]
+                                                  for _, start, end in blocks]
         df[TIME] = pd.concat([stream_seconds(t, opts.time, opts.timezone) for t in runs])
     # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
     # model reads: the measured errors and the context are read from the same frame
@@ -105,18 +113,18 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
         if c in scales:            # a unit in the header (or data.units): the contract's
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
-    return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}
+    return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks
 
 
 def stream_campaigns(text: str, columns: list[str], opts) -> tuple[dict, dict]:
     """``({campaign id: frame}, {campaign id: missing cells per column})`` of the stream: one
     campaign ``stdin``, or, with ``data.roles.campaign``, a campaign per run named as the long
     file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`)."""
-    df, counts = read_stream(text, columns, opts)
-    if RUN not in df.columns:
+    df, counts, blocks = _read_runs(text, columns, opts)
+    if blocks is None:
         return {STDIN: df}, ({STDIN: counts} if counts else {})
-    parts = {cid: part.drop(columns=RUN).reset_index(drop=True)
-             for cid, part in df.groupby(RUN, sort=False)}
+    parts = {cid: df.iloc[start:end].drop(columns=RUN).reset_index(drop=True)
+             for cid, start, end in blocks}
     missing = {cid: {c: int(n) for c, n in part[list(counts)].isna().sum().items() if n}
                for cid, part in parts.items()}
     return parts, {cid: n for cid, n in missing.items() if n}
@@ -139,12 +147,14 @@ def _table(text: str, sep: str) -> str:
     return out.getvalue() + "\n".join(lines[start + 1 + units:]) + "\n"
 
 
-def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict]:
-    """``df`` under contract names and the unit conversions: ``data.columns`` alone as before,
-    or, with ``data.roles`` or ``data.units`` set, as :func:`.roles.naming` names a campaign
-    file's headers (a date and a time of day joined into one time)."""
+def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
+    """``df`` under contract names, the unit conversions and the runs' row blocks (None without
+    ``data.roles.campaign``): ``data.columns`` alone as before, or, with ``data.roles`` or
+    ``data.units`` set, as :func:`.roles.naming` names a campaign file's headers (a date and a
+    time of day joined into one time)."""
     if not (active(opts.roles) or opts.units):
-        return df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns}), {}
+        return (df.rename(columns={k: v for k, v in opts.columns.items() if k in df.columns}), {},
+                None)
     # Excel's trailing separator: a column without a header ('Unnamed: 4') that holds nothing
     df = df.drop(columns=[c for c in df.columns if _UNNAMED.fullmatch(str(c))
                           and df[c].isna().all()])
@@ -153,22 +163,24 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict]:
     plan = naming(list(df.columns), opts.roles, opts.columns, first, ".", SOURCE, opts.units)
     df = df[[c for c in df.columns if c in plan.names]].rename(columns=plan.names)
     run = next((raw for raw, name in plan.names.items() if name == RUN), None)
+    blocks = None
     if run is not None:
-        df[RUN] = _run_ids(df[RUN], run)
+        blocks = run_blocks(run_values(pa.array(df[RUN], from_pandas=True)), run, SOURCE)
+        df[RUN] = _run_ids(blocks, df.index)
     if CLOCK in df.columns:
         date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
         df = df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
-    return df, plan.scales
+    return df, plan.scales, blocks
 
 
-def _run_ids(cells: pd.Series, header: str) -> pd.Series:
-    """Each row's campaign id by its run (``Lauf_3``), checked as a long file's runs are
-    (:func:`.runs.run_blocks`: every row says its run, a run's rows stand together)."""
-    ids = np.empty(len(cells), dtype=object)
-    for cid, start, end in run_blocks(run_values(pa.array(cells, from_pandas=True)), header,
-                                      SOURCE):
+def _run_ids(blocks: list, index: pd.Index) -> pd.Series:
+    """Each row's campaign id by its run (``Lauf_3``), from the runs' row blocks as
+    :func:`.runs.run_blocks` checks a long file's (every row says its run, a run's rows stand
+    together)."""
+    ids = np.empty(len(index), dtype=object)
+    for cid, start, end in blocks:
         ids[start:end] = cid
-    return pd.Series(ids, index=cells.index)
+    return pd.Series(ids, index=index)
 
 
 def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -> pd.Series:

@@ -6,7 +6,7 @@ seen.  A row is within range when its leverage in the fit rows' design (centred 
 at most the largest leverage of a fit row -- inside the ellipsoid that holds the fit data,
 the classical check for hidden extrapolation (Montgomery, Peck & Vining, *Introduction to
 Linear Regression Analysis*, 3.8).  ``diagnose`` asks a gain to hold on those rows
-(:mod:`thermocomp.apps.diagnose.blocks`); ``model=auto`` can score its candidates there
+(:meth:`thermocomp.apps.diagnose.search.Search._clears`); ``model=auto`` can score its candidates there
 (:class:`~thermocomp.core.models.auto.AutoRegressor`, ``validation_rows``).
 """
 

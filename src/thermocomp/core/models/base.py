@@ -6,12 +6,19 @@ from collections.abc import Mapping
 
 import numpy as np
 from sklearn.base import BaseEstimator, clone
+from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import SideInputs, for_target
 
 
 class LinearStreamMixin(SideInputs):
-    """Streaming of a static linear law ``y = x·coef_ + intercept_``: one dot product a sample."""
+    """Prediction of a static linear law ``y = x·coef_ + intercept_``, batch and streamed (one dot
+    product a sample): the law's families (MLR, PCR) differ only in how they fit it."""
+
+    def predict(self, X, context=None):
+        check_is_fitted(self)
+        X = validate_data(self, X, reset=False)
+        return X @ self.coef_ + self.intercept_
 
     def stream_step(self, x_row, state, context: Mapping | None = None):
         return float(np.asarray(x_row, dtype=float) @ self.coef_ + self.intercept_), state

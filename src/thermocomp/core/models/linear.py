@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.linear_model import LinearRegression
-from sklearn.utils.validation import check_is_fitted, validate_data
+from sklearn.utils.validation import validate_data
 
 from ...base.params import BOOLEAN, check_estimator
 from .base import LinearStreamMixin
@@ -41,8 +41,3 @@ class MLR(LinearStreamMixin, RegressorMixin, BaseEstimator):
         self.intercept_ = lr.intercept_
         self.context_columns_ = []
         return self
-
-    def predict(self, X, context=None):
-        check_is_fitted(self)
-        X = validate_data(self, X, reset=False)
-        return X @ self.coef_ + self.intercept_

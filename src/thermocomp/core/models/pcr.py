@@ -6,7 +6,7 @@ from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.decomposition import PCA
 from sklearn.linear_model import LinearRegression
 from sklearn.preprocessing import StandardScaler
-from sklearn.utils.validation import check_is_fitted, validate_data
+from sklearn.utils.validation import validate_data
 
 from ...base.params import check_estimator, number
 from .base import LinearStreamMixin
@@ -66,9 +66,3 @@ class PCR(LinearStreamMixin, RegressorMixin, BaseEstimator):
         self.explained_variance_ratio_ = pca.explained_variance_ratio_
         self.context_columns_ = []
         return self
-
-    def predict(self, X, context=None):
-        check_is_fitted(self)
-        X = validate_data(self, X, reset=False)
-        return X @ self.coef_ + self.intercept_
-

@@ -67,6 +67,12 @@ def check_monitor(m: DictConfig) -> None:
                           f"monitor.bands.warning_c={m.bands.warning_c}")
 
 
+def kind_ranges(kinds) -> dict:
+    """The rule of a range per parameter kind (``design.ranges``, ``calibrate.prior``): a number
+    >= 0, or one per Legendre order; ``decay`` one number."""
+    return {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0)) for k in kinds}
+
+
 def check_design(d: dict) -> None:
     """Refuse a ``design.*`` value the study cannot use, before any work."""
     check_part(d, part("design"), "design")
@@ -81,8 +87,7 @@ def _check_design_maps(d) -> None:
     if unknown:
         raise ConfigError(f"design.ranges.{unknown[0]}: not a parameter kind "
                           f"({', '.join(KINDS)}, decay)")
-    check_values(ranges, {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0))
-                          for k in ("decay", *ranges)}, "design.ranges")
+    check_values(ranges, kind_ranges(("decay", *ranges)), "design.ranges")
     studies = d.get("studies")
     if not isinstance(studies, dict) or not studies:
         raise ConfigError("design.studies must map study names to n_balls, misalignment_deg, position_sets")
@@ -110,8 +115,7 @@ def _check_prior(c) -> None:
     if prior is not None:    # a range per kind (decay: one number), or one per Legendre order
         from ...apps.volumetric.calibration import check_prior_kinds
 
-        check_values(prior, {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0))
-                             for k in prior}, "calibrate.prior")
+        check_values(prior, kind_ranges(prior), "calibrate.prior")
         # the kinds every machine has (cross only with its cross terms: checked with the model)
         check_prior_kinds(prior, {"positioning", "straightness", "squareness", "angular"})
 
