@@ -26,7 +26,7 @@ from .record import check_record_file
 from .roles import RUN, STATE_UNITS, UNITS, date_and_time_of_day, named_as_time, split_unit
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
-from .tables import _peek_csv, parquet
+from .tables import _peek_csv, parquet, without_pandas_index
 from .timestamps import CLOCK, looks_like_timestamp
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
@@ -91,7 +91,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
             return opts, header, first, layout.replace(
                 f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
     if not is_text(sample):
-        table = parquet().read_table(sample).slice(0, 1)
+        table = without_pandas_index(parquet().read_table(sample).slice(0, 1))
         return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],
                 _separators(sample, opts))
     opts = resolved(sample, opts)
@@ -198,7 +198,7 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     # timestamps: the first as read, so that a day read as the month shows
     origin = report["campaigns"][ds.ids()[0]].get("time_origin")
     elapsed = report["campaigns"][ds.ids()[0]].get("time") == "elapsed"
-    time = (f"time: {' + '.join(map(repr, times))}" + (
+    time = (f"time: {' + '.join(repr(h) if h else 'the column without a header' for h in times)}" + (
         f", timestamps from {origin}" if origin else ", elapsed h:mm:ss" if elapsed
         else _seconds_unit(times[0], opts)) if times
             else "time: none in the file, data.sample_period_s rows apart")
@@ -210,6 +210,7 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
         role = plan.roles.get(h, "ignore") if contract else "ignore (left out)"
         if plan.roles.get(h) == "empty":
             h, role = "(no header)", "empty (left out)"
+        h = h or "(no header)"
         shown = {CLOCK: "time", RUN: "(each run a campaign)"}.get(contract, contract or "-")
         lines.append(f"  {h:<{width}}  {role:<12} {shown}")
     for cid in ds.ids():

@@ -195,15 +195,15 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     for header in headers:
         base, unit = split_unit(header)
         unit = units.get(header, unit)
+        if header == time_header:    # (one without a header too: pandas' index of timestamps)
+            out.names[header], out.roles[header] = TIME, "time" if clock_header is None else "date"
+            _scale(out, TIME, "time", unit, header, problems, first.get(header), decimal)
+            continue
         if not header.strip() and header not in columns:
             out.roles[header] = "empty"      # Excel's trailing separator: the reader checks it is
             continue
         if header in columns:
             out.names[header], out.roles[header] = columns[header], "data.columns"
-            continue
-        if header == time_header:
-            out.names[header], out.roles[header] = TIME, "time" if clock_header is None else "date"
-            _scale(out, TIME, "time", unit, header, problems, first.get(header), decimal)
             continue
         if header == clock_header:             # joined to the date into one timestamp
             out.names[header], out.roles[header] = CLOCK, "time of day"

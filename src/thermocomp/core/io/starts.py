@@ -19,7 +19,7 @@ from .manifest import is_text
 from .options import ReadOptions
 from .plain import as_read, is_converted
 from .sniff import resolved
-from .tables import _contract_names, _first_text, _peek_csv, _timed, parquet
+from .tables import _contract_names, _first_text, _peek_csv, _timed, parquet, without_pandas_index
 from .timestamps import CLOCK, maybe_elapsed, parsed, time_type
 from .workbook import HEAD_ROWS
 
@@ -79,6 +79,7 @@ def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict, ReadOpti
     batch = next(parquet().ParquetFile(path).iter_batches(batch_size=1), None)
     if batch is None:
         raise ContractError("no rows", file=path)
+    batch = without_pandas_index(pa.Table.from_batches([batch]))
     first = {}
     for name, column in zip(batch.schema.names, batch.columns):
         first[name] = (pd.Timestamp(column[0].as_py()) if pa.types.is_timestamp(column.type)

@@ -481,7 +481,7 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
     except (pa.ArrowInvalid, OSError) as exc:
         reason = _ARROW_SOURCE.sub("", _first_line(exc))
         raise ContractError(f"unreadable Parquet file ({reason})", file=path) from None
-    table = table.drop_columns([c for c in table.column_names if _PANDAS_INDEX.fullmatch(c)])
+    table = without_pandas_index(table)
     first = {c: _first_text(table.column(c)) for c in table.column_names}
     named, scales = _contract_names(table.column_names, opts, path, first=first)
     table = table.drop_columns([c for c, n in zip(table.column_names, named) if n is None])
@@ -495,6 +495,20 @@ def _load_parquet(path: Path, opts: ReadOptions) -> dict:
     if CLOCK in columns:
         columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
     return _converted(columns, scales), _renames(list(first), named), _rescaled(scales), None
+
+
+def without_pandas_index(table: pa.Table) -> pa.Table:
+    """The table without pandas' unnamed index columns (``__index_level_0__``: row labels, not
+    data), but for one index of timestamps: ``df.to_parquet()`` of a frame indexed by its time
+    stores the time there. That one is kept as a column without a header, as ``df.to_csv()``
+    writes it, and read as the time where no other column is (else left out, as such a column
+    of a CSV file is refused)."""
+    index = [c for c in table.column_names if _PANDAS_INDEX.fullmatch(c)]
+    timed = [c for c in index if pa.types.is_timestamp(table.column(c).type)]
+    if len(timed) == 1 and "" not in table.column_names:
+        index.remove(timed[0])
+        table = table.rename_columns(["" if c == timed[0] else c for c in table.column_names])
+    return table.drop_columns(index)
 
 
 def _rescaled(scales: dict) -> list[str]:
