@@ -293,8 +293,9 @@ def _stamps(text, path: Path, opts: ReadOptions, what: str = ""):
     CSV reader does not read, ISO 8601's decimal comma); a cell that is not refused with its
     row."""
     first = _first_valid(text)
-    kind = _timed(path, "" if first is None else first[1], opts).time
-    target = time_type(kind, first[1])
+    value = "" if first is None else str(first[1]).strip()
+    kind = _timed(path, value, opts).time
+    target = time_type(kind, value)
     found = first_cast_failure(text, target, kind)
     if found is not None:
         raise ContractError(f"value {found[1]!r}{what} is not {_describe(target, kind)}",
@@ -550,16 +551,9 @@ def _parquet_time(column: pa.ChunkedArray, path: Path, opts: ReadOptions) -> pa.
     kind = column.type
     if pa.types.is_string(kind) or pa.types.is_large_string(kind):
         first = _first_valid(column)
-        value = str(first[1]).strip() if first else ""
-        if maybe_elapsed(value, opts.time):
+        if maybe_elapsed(str(first[1]).strip() if first else "", opts.time):
             return elapsed_seconds(column, opts.time, path)
-        kind = _timed(path, value, opts).time
-        target = time_type(kind, value)
-        found = first_cast_failure(column, target, kind)
-        if found is not None:
-            raise ContractError(f"value {found[1]!r} is not {_describe(target, kind)}",
-                                file=path, column=TIME, row=found[0] + 1)
-        return parsed(column, target, kind)
+        return _stamps(column, path, opts)
     if (pa.types.is_floating(kind) or pa.types.is_integer(kind) or pa.types.is_timestamp(kind)
             or pa.types.is_duration(kind)):
         return column

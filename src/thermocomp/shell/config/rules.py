@@ -28,8 +28,7 @@ CONFIG_RULES = {**{k: r for k, r in rules(Root).items() if "." not in k},
 MONITOR_RULES, PROMOTE_RULES, EXPORT_RULES, ADAPT_RULES, SERVE_RULES, TWIN_RULES, CONNECT_RULES = (
     rules(part(g), f"{g}.") for g in ("monitor", "promote", "export", "adapt", "serve", "twin",
                                       "connect"))
-DIAGNOSE_RULES, DESIGN_RULES, CALIBRATE_RULES = (rules(part(g)) for g in ("diagnose", "design",
-                                                                           "calibrate"))
+DIAGNOSE_RULES = rules(part("diagnose"))
 STUDY_RULES = rules(Study)
 
 
@@ -73,12 +72,6 @@ def kind_ranges(kinds) -> dict:
     return {k: NON_NEGATIVE if k == "decay" else either(NON_NEGATIVE, numbers(0.0)) for k in kinds}
 
 
-def check_design(d: dict) -> None:
-    """Refuse a ``design.*`` value the study cannot use, before any work."""
-    check_part(d, part("design"), "design")
-    _check_design_maps(d)
-
-
 def _check_design_maps(d) -> None:
     """``design.ranges`` and ``design.studies``: maps of names, beyond the schema's keys."""
     d = OmegaConf.to_container(d, resolve=True) if isinstance(d, DictConfig) else d
@@ -102,12 +95,6 @@ def _check_design_maps(d) -> None:
                 raise ConfigError(f"design.studies.{name}.{odd[0]}: {what} (a study gives "
                                   f"{', '.join(STUDY_RULES)})")
             check_values(study, STUDY_RULES, f"design.studies.{name}")
-
-
-def check_calibrate(c: DictConfig) -> None:
-    """Refuse a ``calibrate.*`` value the stage cannot use, before any data is read."""
-    check_part(c, part("calibrate"), "calibrate")
-    _check_prior(c)
 
 
 def _check_prior(c) -> None:

@@ -279,7 +279,7 @@ class Machine:
 
 
 @dataclass
-class Design:        # its ranges and studies are maps of names: checked by rules.check_design
+class Design:        # its ranges and studies are maps of names: checked by rules.RELATIONS
     n_machines: int = key(integer(1, at_most=MAX_MACHINES))
     n_jobs: int = key(Rule(lambda v: integer(-MAX_JOBS, MAX_JOBS)(v) and v != 0,
                            f"an integer other than 0, |n_jobs| <= {MAX_JOBS} (-1: every core)"))
