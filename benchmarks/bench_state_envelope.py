@@ -7,6 +7,10 @@ front of the model (``clamped``: to its training range widened by ``promote.enve
 its width, as ``Envelope.from_data`` derives a temperature's bounds; ``clamped_edge``: to the
 training range itself) and the deployed stream (``replay``, plain and adaptive, warmed on the
 campaigns it continues) is scored against the TRUE error, as it is today (``unclamped``).
+The clamp of a state is its clip before the powers: a power is static, so the model on the
+clipped state is what the temperatures' clamp gives a static model (the whole response to the
+excess taken out); the stream's two-channel bound (``clamp_gain``) is linear in the excess,
+which a power is not (not measured here).
 
 Run (simulates and caches under ``--root``, default ``/tmp/stateenv55-bench``)::
 
