@@ -25,6 +25,7 @@ SMALL = {
     "swiss_lathe_door": dict(calibration_hours=12.0, production_hours=6.0),
     "column_moving_source": dict(train_hours=12.0, test_hours=12.0),
     "long_record": dict(duration_days=4.0, n_temperature_outliers=0, n_error_outliers=0),
+    "climate_room": dict(n_runs=6, duration_h=(2.0, 2.5)),
 }
 
 
@@ -84,6 +85,7 @@ def test_yaml_matches_the_generator(name):
 
 # every conf/sim scenario, written small (the fleet and the volumetric one too)
 WRITTEN = {
+    "climate_room": dict(n_runs=3, duration_h=(1.0, 1.0), sample_period_s=600.0),
     "column_moving_source": dict(train_hours=4.0, test_hours=4.0, sample_period_s=300.0),
     "fleet": dict(n_machines=2, days=2, test_days=1, n_jobs=1, sample_period_s=1800.0, n_sensors=6),
     "large_mill_volumetric": dict(train_hours=6.0, test_hours=6.0, cycle_min=60.0, n_balls=3, sets=["S1"]),
@@ -257,3 +259,63 @@ def test_third_source_only_in_the_test_half():
     assert rise["test_cycle"] > rise["train_cycle"] + 2.0
     frame = ds.campaigns["test_cycle"]
     assert frame[POSITION].between(250.0, 2250.0).all() and frame[POSITION].nunique() > 20
+
+
+# --- climate_room ------------------------------------------------------------------------------
+
+def test_climate_room_is_issue_34s_layout_split_last_in_time():
+    """43 runs of 8-10 h at 1 min, 12 sensors with T_amb, E_X and E_Z; the last 4 (10 %) are test."""
+    ds, truth = SCENARIOS["climate_room"](seed=7).generate()
+    ids = ds.ids()
+    assert ids == [f"C{k:02d}" for k in range(1, 44)]
+    assert list(ds.manifest.loc[ids, "start"]) == sorted(ds.manifest["start"])
+    assert ds.ids("test") == ["C40", "C41", "C42", "C43"] and len(ds.ids("train")) == 39
+    rows = [len(f) for f in ds.campaigns.values()]
+    assert min(rows) >= 481 and max(rows) <= 601
+    frame = ds.campaigns["C01"]
+    assert np.all(np.diff(frame["time"]) == 60.0)
+    assert ds.columns_of("E_") == ["E_X", "E_Z"] and len(ds.columns_of("T_")) == 12 and "T_amb" in frame
+    assert {"S_spindle_rpm", "S_tool_rpm"} <= set(frame.columns)
+    duty = ds.manifest["duty"]
+    assert duty.min() >= 0.3 and duty.max() <= 1.0 and duty.max() - duty.min() > 0.4
+
+
+def test_climate_room_runs_start_soaked_at_their_own_held_or_ramped_level():
+    """Every node starts at the room's air (soaked); the levels span 15-35 °C; ramped runs move the
+    air by ramp_c over the run, held ones stay; the manifest's ambient_c is T_amb's first reading."""
+    gen = small("climate_room", n_runs=12, ramp_fraction=0.5)
+    ds, truth = gen.generate()
+    levels, ramps = [], []
+    for cid, frame in ds.campaigns.items():
+        run = truth["campaigns"][cid]
+        nodes = gen.node_temperatures_[cid].drop(columns=["ambient", "S_spindle_rpm", "S_tool_rpm",
+                                                          "_axes_moving"])
+        np.testing.assert_allclose(nodes.iloc[0], run["ambient_start_c"], atol=0.2)
+        assert abs(run["ambient_start_c"] - run["room_c"]) < 0.2
+        assert ds.manifest.loc[cid, "ambient_c"] == round(frame["T_amb"].iloc[0], 2)
+        assert abs(frame["T_amb"].iloc[0] - run["room_c"]) < 0.3
+        moved = gen.node_temperatures_[cid]["ambient"].iloc[-1] - run["ambient_start_c"]
+        # the room lags its setpoint (0.3 h, and a 10-min staircase): 2.5 K/h here, ~0.3 h behind
+        assert abs(moved - run["ramp_c"]) < (1.5 if run["ramp_c"] else 0.3)
+        levels.append(run["room_c"])
+        ramps.append(run["ramp_c"])
+        assert 15.0 <= run["room_c"] + run["ramp_c"] <= 35.0
+    assert min(levels) >= 15.0 and max(levels) <= 35.0 and max(levels) - min(levels) > 10.0
+    assert {abs(r) for r in ramps} == {0.0, 5.0}
+
+
+def test_climate_room_the_same_heat_moves_the_tool_less_in_a_warmer_room():
+    """Same seed, the room held at 15 or at 35 °C: the same rises (a linear network, soaked start),
+    but the errors are smaller at 35 °C by the sensitivities' fall with the level (beta)."""
+    cold, _ = small("climate_room", level_c=(15.0, 15.0), ramp_fraction=0.0).generate()
+    warm, _ = small("climate_room", level_c=(35.0, 35.0), ramp_fraction=0.0).generate()
+    for cid in cold.ids():
+        a, b = cold.campaigns[cid], warm.campaigns[cid]
+        rise_a = a.filter(like="T_") - a.filter(like="T_").iloc[0]
+        rise_b = b.filter(like="T_") - b.filter(like="T_").iloc[0]
+        np.testing.assert_allclose(rise_a, rise_b, atol=0.03)
+    errors = {room: pd.concat([ds.campaigns[c][["E_X", "E_Z"]] for c in ds.ids()]) for room, ds in
+              (("cold", cold), ("warm", warm))}
+    ratio = np.sqrt((errors["warm"] ** 2).mean() / (errors["cold"] ** 2).mean())
+    assert errors["cold"].abs().max().min() > 10.0
+    assert ratio["E_X"] < 0.8 and ratio["E_Z"] < 0.7       # 1 - 15 beta against 1 + 5 beta

@@ -141,6 +141,7 @@ SCENARIOS = {
     "swiss_lathe_door": ["sim.generator.calibration_hours=20",
                          "sim.generator.production_hours=8"],
     "long_record": ["sim.generator.duration_days=4"],
+    "climate_room": ["sim.generator.n_runs=6"],
     "fleet": ["sim.generator.n_machines=2", "sim.generator.days=3", "sim.generator.test_days=1"],
     "large_mill_volumetric": ["sim.generator.train_hours=12", "sim.generator.test_hours=6"],
 }

@@ -11,6 +11,7 @@ import inspect
 import pytest
 
 from conftest import refused
+from thermocomp.apps.sim.climate_room import ClimateRoom
 from thermocomp.apps.sim.column import ColumnMovingSource
 from thermocomp.apps.sim.effects import EFFECTS
 from thermocomp.apps.sim.fleet import Fleet
@@ -47,6 +48,11 @@ HOSTILE = [
     ("large_mill_volumetric", "n_balls=1", "integer in [2, 100]"),
     ("large_mill_volumetric", "x_centres=[1.5]", "[0, 1]"),
     ("large_mill_volumetric", "train_hours=0.2", "two samples of sim.generator.cycle_min=20"),
+    ("climate_room", "n_runs=1", "integer in [2, 1000]"),
+    ("climate_room", "level_c=[35,15]", "low <= high"),
+    ("climate_room", "duty=[0.5,2]", "<= 1"),
+    ("climate_room", "test_fraction=1", "(0, 1)"),
+    ("climate_room", "sample_period_s=36000", "two samples of sim.generator.sample_period_s"),
     ("fleet", "n_machines=0", "integer >= 1"),
     ("fleet", "test_days=30", "below sim.generator.days=30"),
     ("fleet", "n_sensors=4", "integer >= 5"),
@@ -64,7 +70,7 @@ def test_a_scenario_parameter_outside_its_domain_exits_2_naming_it(sim, override
 
 
 GENERATORS = [YearRoundSpindle, LargeMillWeek, ColumnMovingSource, SwissLatheDoor, LongRecord,
-              LargeMillVolumetric, Fleet]
+              LargeMillVolumetric, Fleet, ClimateRoom]
 UNRULED = {"self", "effects", "effect_params", "seed"}   # effects: checked by name when built
 
 

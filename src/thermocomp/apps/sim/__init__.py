@@ -11,8 +11,10 @@ planted on demand.  Scenarios (``conf/sim/<name>.yaml``):
 * :class:`~thermocomp.apps.sim.swiss_lathe.SwissLatheDoor` -- ``swiss_lathe_door``
 * :class:`~thermocomp.apps.sim.column.ColumnMovingSource` -- ``column_moving_source``
 * :class:`~thermocomp.apps.sim.long_record.LongRecord` -- ``long_record``
+* :class:`~thermocomp.apps.sim.climate_room.ClimateRoom` -- ``climate_room``
 """
 
+from thermocomp.apps.sim.climate_room import ClimateRoom
 from thermocomp.apps.sim.column import ColumnMovingSource
 from thermocomp.apps.sim.effects import EFFECTS
 from thermocomp.apps.sim.large_mill import LargeMillWeek
@@ -21,7 +23,7 @@ from thermocomp.apps.sim.swiss_lathe import SwissLatheDoor
 from thermocomp.apps.sim.yearround import YearRoundSpindle
 
 SCENARIOS = {cls.name: cls for cls in (YearRoundSpindle, LargeMillWeek, SwissLatheDoor, ColumnMovingSource,
-                                       LongRecord)}
+                                       LongRecord, ClimateRoom)}
 
-__all__ = ["EFFECTS", "SCENARIOS", "ColumnMovingSource", "LargeMillWeek", "LongRecord", "SwissLatheDoor",
-           "YearRoundSpindle"]
+__all__ = ["EFFECTS", "SCENARIOS", "ClimateRoom", "ColumnMovingSource", "LargeMillWeek", "LongRecord",
+           "SwissLatheDoor", "YearRoundSpindle"]
