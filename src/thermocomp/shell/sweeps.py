@@ -41,7 +41,9 @@ def parent_run_id(cfg: DictConfig, client) -> str:
         found = latest_sweep(client, str(cfg.experiment_name))
         if found is None:
             raise ConfigError(f"no sweep in MLflow experiment {cfg.experiment_name!r} at "
-                              f"{cfg.tracking_uri}; run `thermocomp run -m ...` first")
+                              f"{cfg.tracking_uri}; run `thermocomp run -m ...` first (runs "
+                              "made one at a time: promote one with promote.run_id=<its MLflow "
+                              "run id>)")
         return found
     path = resolve(str(sweep))
     if path.is_dir():
