@@ -118,6 +118,9 @@ def test_a_run_records_its_name_stage_dataset_headline_metrics_and_signed_model(
         assert run.data.metrics[f"{t}.persistence.rmse"] == pytest.approx(tm["persistence"]["rmse"])
     logged = {a.path for a in client.list_artifacts(run.info.run_id)}
     assert {"metrics.json", "config.yaml", "model.pkl", "model.pkl.sig"} <= logged
+    # the run names its id (what promote.run_id takes) in its log
+    assert f"MLflow run {run.info.run_id} (experiment 'thermocomp'" in (
+        out / "thermocomp.log").read_text()
 
 
 def test_simulate_is_not_tracked_unless_asked(tmp_path):

@@ -41,6 +41,7 @@ from pathlib import Path
 from omegaconf import DictConfig, OmegaConf
 
 from ..base.files import Terminated, signals_raise
+from ..base.log import logger
 from ..base.paths import project_root, resolve
 from . import store
 from .config.naming import PARAM_KEYS, _split, run_name, run_params, sweep_name, task_overrides  # noqa: F401
@@ -257,6 +258,9 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True, digest: str | N
             with signals.deferred():
                 run = retry_locked(mlflow.start_run, experiment_id=exp_id, tags=tags,
                                    parent_run_id=parent, run_name=run_name(cfg, overrides))
+            # its id is what promote.run_id / compare.sweep take, and what the MLflow UI lists
+            logger.info(f"MLflow run {run.info.run_id} (experiment "
+                        f"{cfg.get('experiment_name', 'thermocomp')!r}, {uri})")
             container = config_container(cfg)
             retry_locked(mlflow.log_dict, container, "config.yaml")
             retry_locked(mlflow.log_params, run_params(container, overrides))
