@@ -86,7 +86,13 @@ class MlflowSweepCallback(Callback):
         from ..base.lifetime import watch_parent
 
         if os.environ.get(SWEEP_PID_ENV):   # a local launcher's worker (joblib) ends with the sweep
-            watch_parent(int(os.environ[SWEEP_PID_ENV]))
+            sweep = int(os.environ[SWEEP_PID_ENV])
+            watch_parent(sweep)
+            if os.getppid() == sweep:     # a process of the sweep's own, about to import the
+                # stack (joblib sweep, 4 jobs on 2 workers: 16.1 -> 15.2 s of CPU)
+                from .cli import collect_less
+
+                collect_less()
         if config.hydra.mode != RunMode.MULTIRUN or config.hydra.output_subdir is not None:
             return
         from ..base.files import atomic_write_text
