@@ -73,3 +73,28 @@ def test_forward_chaining_and_the_ar_term_keep_the_fit_over_the_rows(monkeypatch
     assert "lags+ar" in set(LagBank(n_taus=3, ar="auto").fit(X, y, context=context).cv_results_["design"])
     one = LagBank(n_taus=3).fit(X, y, context=pd.DataFrame({"time": np.arange(len(y)) * 60.0}))
     assert type(one.splitter_).__name__ == "ForwardChaining"
+
+
+def test_a_second_targets_elbow_reuses_the_folds_factorisations(monkeypatch):
+    """They depend on the inputs alone; an ATI elbow's lag banks come back target after target."""
+    X, y, context = _campaigns(k=8)
+    a0 = np.repeat([12.0, 16.0, 20.0, 24.0, 28.0, 32.0, 14.0, 30.0],
+                   np.bincount(np.unique(context["campaign"], return_inverse=True)[1]))
+    context = context.assign(ambient_c0=a0)
+    computed = []
+    memo = _pooled.ArrayMemo(lambda *a: computed.append(1) or _pooled._compute_spectra(*a),
+                             size=_pooled._spectra.size, max_bytes=_pooled._spectra.max_bytes)
+    monkeypatch.setattr(_pooled, "_spectra", memo)
+    first = ATIRegressor(LagBank(n_taus=3), candidates=(1, 2, 3)).fit(X, y, context=context)
+    once = len(computed)
+    second = ATIRegressor(LagBank(n_taus=3), candidates=(1, 2, 3)).fit(X, -2.0 * y, context=context)
+    assert once > 8 and len(computed) == once
+    assert second.elbow_["chosen"] == first.elbow_["chosen"]
+
+
+def test_the_memo_forgets_the_oldest_beyond_its_bytes():
+    memo = _pooled.ArrayMemo(lambda n: np.zeros(int(n)), size=100, max_bytes=8 * 250)
+    for n in (100.0, 101.0, 102.0):   # about 800 bytes each: the third pushes the first out
+        memo(n)
+    assert len(memo._results) == 2
+    assert memo(1000.0).size == 1000 and len(memo._results) == 1   # the newest kept whatever its size

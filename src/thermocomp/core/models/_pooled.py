@@ -103,7 +103,7 @@ def _compute_target_moments(X, time, taus, y, mean) -> tuple[float, np.ndarray, 
 
 # a campaign's feature moments by its inputs, times and time constants: about p^2 numbers each
 # (0.4 MB for 24 inputs and 8 lags), so a few hundred campaigns' worth
-_campaign_moments = ArrayMemo(_feature_moments, size=256)
+_campaign_moments = ArrayMemo(_feature_moments, size=256, max_bytes=256e6)
 # and its target's, by the campaign's digest and the target's values (p numbers each)
 _target_moments = ArrayMemo(_compute_target_moments, size=4096)
 
@@ -138,8 +138,10 @@ def _compute_spectra(trains: list[Moments], centre, d, alpha, free) -> tuple:
     return spectra_of_grams([scaled(train, centre, d)[:2] for train in trains], alpha, free)
 
 
-# the folds' factorisations depend on the features alone: every target of a compensator shares them
-_spectra = ArrayMemo(_compute_spectra, size=4)
+# the folds' factorisations depend on the features alone: every target of a compensator shares them,
+# and an ATI wrapper fits every target's elbow (some hundred lag banks, 2 MB each with 24 inputs
+# and 8 lags) on the same sets of campaigns, one target after the other
+_spectra = ArrayMemo(_compute_spectra, size=4096, max_bytes=768e6)
 
 
 def pooled_path_cv(moments: CampaignMoments, folds, centre, d, alphas, free: int) -> np.ndarray:
