@@ -54,8 +54,9 @@ first on every target, as the test does (``ati`` E_X 0.52 / 0.53, E_Z 0.86 / 0.9
 * It is the best of the families it tries by default (= ``mlr+ati``, ratio 1.00), but not within
   10 % of ``lagbank+ati`` (not a default candidate): +34 / +53 % and +39 / +3 %.  With
   ``ati+lagbank`` added to ``model.candidates`` it picks it on every target and equals it, at
-  6x the CPU (224 / 237 s against 38 / 37 s).  The default candidates were left as they are
-  (not measured on the other scenarios).
+  6x the CPU (224 / 237 s against 38 / 37 s; since the lag bank's pooled fit 92 / 82 s, and
+  ``lagbank ati=cmeans`` 53 / 53 s).  The default candidates were left as they are: measured on
+  five more records, ``ati+lagbank`` is worse on two of them (benchmarks/bench_ati_lagbank.py).
 * The issue's reference beats each of the six plain families (by 21 / 28 % and 16 / 32 %
   against the best of them) but not the ATI wrapper, which is 2.6 / 2.5x and 1.8 / 1.8x lower:
   the initial absolute temperatures (constants per run; -31 / -30 % and -20 / -37 % against the

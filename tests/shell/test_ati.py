@@ -225,3 +225,27 @@ def test_one_train_campaign_is_fitted_once_as_the_coldest_and_the_warmest(tmp_pa
     assert len(made) == 1
     for entry in rep["targets"].values():
         assert entry["test"]["coldest"] == entry["test"]["warmest"]
+
+
+class _CountingMLR(MLR):
+    """MLR that records the rows each of its clones is fitted on."""
+
+    fitted_on: list = []
+
+    def fit(self, X, y, context=None):
+        _CountingMLR.fitted_on.append(np.asarray(X).tobytes())
+        return super().fit(X, y, context=context)
+
+
+def test_the_elbow_fits_a_held_out_campaigns_model_once_per_set_of_campaigns(data, monkeypatch):
+    """Where a count leaves a held-out campaign's interval as another count made it, its model and
+    Rsd are the ones already fitted: the same elbow, fewer fits."""
+    train, _ = data
+    monkeypatch.setattr(_CountingMLR, "fitted_on", [])
+    est = ATIRegressor(_CountingMLR(), candidates=(1, 2, 3, 4, 5, 6))
+    comp = Compensator(est).fit(train)
+    elbow = comp.estimators_["E_Z"].elbow_
+    fits = _CountingMLR.fitted_on[:-comp.estimators_["E_Z"].n_intervals_]   # the last: the final models
+    assert len(fits) == len(set(fits)) < len(elbow["n_intervals"]) * len(train)
+    plain = ATIRegressor(MLR(), candidates=(1, 2, 3, 4, 5, 6))
+    assert Compensator(plain).fit(train).estimators_["E_Z"].elbow_ == elbow

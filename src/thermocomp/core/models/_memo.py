@@ -19,12 +19,15 @@ class ArrayMemo:
 
     Arrays are keyed by dtype, shape and bytes (numeric arrays only: an object array's
     bytes are pointers), the other arguments by ``repr``.  Results (arrays, or tuples of
-    them) are returned read-only.
+    them) are returned read-only.  With ``max_bytes`` the oldest are also forgotten while the
+    results' arrays hold more (the newest is kept whatever its size).
     """
 
-    def __init__(self, fn, size: int = 4):
-        self.fn, self.size = fn, int(size)
+    def __init__(self, fn, size: int = 4, max_bytes: float | None = None):
+        self.fn, self.size, self.max_bytes = fn, int(size), max_bytes
         self._results: OrderedDict = OrderedDict()
+        self._bytes: dict = {}
+        self._total = 0
         self._lock = threading.Lock()
 
     @staticmethod
@@ -55,10 +58,22 @@ class ArrayMemo:
         out = self.fn(*args)
         _read_only(out)
         with self._lock:
+            if key not in self._results:
+                self._bytes[key] = _nbytes(out)
+                self._total += self._bytes[key]
             self._results[key] = out
-            while len(self._results) > self.size:
-                self._results.popitem(last=False)
+            while len(self._results) > self.size or (
+                    self.max_bytes is not None and len(self._results) > 1 and self._total > self.max_bytes):
+                self._total -= self._bytes.pop(self._results.popitem(last=False)[0])
         return out
+
+
+def _nbytes(out) -> int:
+    if isinstance(out, np.ndarray):
+        return out.nbytes
+    if isinstance(out, tuple):
+        return sum(_nbytes(item) for item in out)
+    return 0
 
 
 def _read_only(out) -> None:

@@ -45,7 +45,6 @@ from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
 from ..timerule import CLOCK_START, median_step, step_time
 from ._dynamics import (
-    first_order_lags,
     free_run,
     lag_index,
     previous,
@@ -53,6 +52,7 @@ from ._dynamics import (
     segment_starts,
 )
 from ._memo import ArrayMemo
+from ._pooled import CampaignMoments, lag_features, pooled_path_cv, pooled_refit, standardisation
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
 MIN_SPLITS = 2
@@ -170,8 +170,14 @@ def _compute_fold_spectra(Z, alpha, free, *splits) -> tuple:
     (Frisch-Waugh-Lovell), ``S`` :math:`G_{ss}^{+}` and ``B`` :math:`G_{ss}^{+} G_{sp}`
     (both None without free columns).
     """
+    return spectra_of_grams(_training_grams(Z, splits), alpha, free)
+
+
+def spectra_of_grams(grams, alpha, free: int) -> tuple:
+    """:func:`_compute_fold_spectra` of given ``(mean, centred Gram)`` pairs (the Gram is
+    overwritten)."""
     out = []
-    for mean, gram in _training_grams(Z, splits):
+    for mean, gram in grams:
         S = B = None
         if free:
             # pinvh: a constant or duplicated sensor leaves G_ss singular; OLS takes the minimum norm
@@ -206,11 +212,17 @@ def fold_weights(spectrum, Z, y, tr, alphas) -> tuple[np.ndarray, np.ndarray]:
     (:func:`fold_spectra`); the free columns' part follows the penalised one,
     :math:`w_s = G_{ss}^{+} r_s - B\, w_p`.
     """
-    mean, lam, V, B, S = spectrum
     y_mean = y[tr].mean()
     weights = np.zeros(len(y))
     weights[tr] = y[tr] - y_mean
     rhs = Z.T @ weights                  # (Z_tr - mean)^T (y_tr - y_mean): the centred y sums to 0
+    return weights_of_moments(spectrum, rhs, y_mean, alphas)
+
+
+def weights_of_moments(spectrum, rhs, y_mean: float, alphas) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`fold_weights` from the training rows' centred cross-products ``rhs``
+    (:math:`Z_c^\top y_c`) and mean target ``y_mean``."""
+    mean, lam, V, B, S = spectrum
     free = 0 if S is None else S.shape[0]
     r = rhs[free:] - (B.T @ rhs[:free] if free else 0.0)
     if lam is None:   # one penalty (fixed beforehand): V holds the factor of G + alpha I
@@ -229,14 +241,8 @@ def _summary(name: str, folds: np.ndarray) -> dict:
     return {name: float(np.mean(folds)), f"{name}_sd": float(np.std(folds))}
 
 
-def _compute_features(X, time, runs, taus) -> np.ndarray:
-    lags = first_order_lags(X, time, runs, taus)
-    lags -= np.tile(X, taus.size)
-    return np.hstack([X, lags])
-
-
 # one stack of rows is featurised for every target, every fold and every single-campaign model
-_lag_bank_features = ArrayMemo(_compute_features)
+_lag_bank_features = ArrayMemo(lag_features)
 
 
 def _clock_of(t: float | None) -> tuple:
@@ -453,12 +459,19 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         names = [str(c) for c in getattr(self, "feature_names_in_", [f"x{j}" for j in range(p)])]
         self.features_ = names + [f"L[{tau:.6g}s]({c})-{c}" for tau in self.taus_ for c in names]
 
-        f_key, F = self._keyed_features(X, context)
         k = min(int(self.n_splits), n - 1)   # tiny samples: fewer folds, blocks of >= 1 row
         self.splitter_ = default_splitter(groups, n, forward_gap(self.taus_[-1] / self.sample_period_s_,
                                                                  n, k), n_splits=k)
         self.gap_ = int(getattr(self.splitter_, "gap", 0))
-        splits = list(self.splitter_.split(F, y, groups))
+        labels = groups
+        if isinstance(self.splitter_, GroupKFold):   # its folds by sorted labels: the same from their
+            labels = pd.factorize(np.asarray(groups, dtype=object), sort=True)[0]   # codes, sorted
+        splits = list(self.splitter_.split(X, y, labels))   # faster than strings (a tenth of an ATI)
+        folds = self._campaign_folds(groups, n, splits) if self.ar is False else None
+        if folds is not None:
+            return self._fit_pooled(X, y, context, groups, folds, alphas, ratios, p, time)
+
+        f_key, F = self._keyed_features(X, context)
 
         designs = {False: ["lags"], True: ["lags+ar"], "auto": ["lags", "lags+ar"]}[self.ar]
         if self.ar is not False:
@@ -502,6 +515,60 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
             self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_ = self._refit(
                 self.one_step_design_, F, y, y_prev, groups, scalers[self.one_step_design_],
                 self.alpha_one_step_, p, float(table.loc[pick, "level_penalty"]))
+        self.context_columns_ = [TIME] if time is not None else []
+        return self
+
+    @staticmethod
+    def _campaign_folds(groups, n: int, splits):
+        """Each fold's ``(train, validation)`` segment indices when every fold holds whole
+        segments out (leave-campaigns-out) and the segments are those of the rows' campaigns,
+        else None (forward chaining cuts a record)."""
+        if groups is None or not isinstance(splits[0][0], np.ndarray):
+            return None
+        starts = segment_starts(groups, n)
+        if starts.size < MIN_SPLITS or pd.unique(np.asarray(groups, dtype=object)).size != starts.size:
+            return None
+        seg = np.repeat(np.arange(starts.size), np.diff(np.r_[starts, n]))
+        sizes = np.bincount(seg, minlength=starts.size)
+        folds = []
+        for tr, va in splits:
+            parts = []
+            for rows in (tr, va):
+                counts = np.bincount(seg[rows], minlength=starts.size)
+                if not np.all((counts == 0) | (counts == sizes)):
+                    return None
+                parts.append(np.flatnonzero(counts))
+            folds.append(tuple(parts))
+        return folds
+
+    def _fit_pooled(self, X, y, context, groups, folds, alphas, ratios, p: int, time):
+        """:meth:`fit` without output feedback when the CV holds whole campaigns out: its sums
+        from each campaign's moments (:mod:`thermocomp.core.models._pooled`), the same numbers
+        up to rounding, and a campaign's moments are computed once for all the fits that hold it."""
+        n = X.shape[0]
+        moments = CampaignMoments(X, self._time(context, groups, n), segment_bounds(groups, n),
+                                  self.taus_, y)
+        centre, scale = standardisation(moments.pool(np.arange(len(moments.counts))))
+        records = []
+        for ratio in ratios:
+            d = _level_scale(centre.size, p, ratio) / scale
+            scores = pooled_path_cv(moments, folds, centre, d, alphas, p if ratio == 0 else 0)
+            for i, alpha in enumerate(alphas):
+                records.append({"design": "lags", "ar": False, "alpha": float(alpha),
+                                "level_penalty": ratio, **_summary("cv_mse_free_run", scores[:, i]),
+                                **_summary("cv_mse_one_step", scores[:, i])})
+        table = pd.DataFrame(records)
+        best = self._choose(table)
+        table["chosen"] = table.index == best
+        self.cv_results_ = table
+        self.alpha_ = float(table.loc[best, "alpha"])
+        self.level_penalty_ = ratio = float(table.loc[best, "level_penalty"])
+        d = _level_scale(centre.size, p, ratio) / scale
+        W, c = pooled_refit(moments, centre, d, self.alpha_, p if ratio == 0 else 0)
+        coef = W[:, 0] * d
+        self.coef_, self.ar_coef_, self.intercept_ = coef, 0.0, float(c[0] - centre @ coef)
+        self.one_step_design_ = self.alpha_one_step_ = self.coef_one_step_ = None
+        self.ar_coef_one_step_ = self.intercept_one_step_ = None
         self.context_columns_ = [TIME] if time is not None else []
         return self
 
