@@ -19,6 +19,10 @@ to rounding (the pooled sums are ordered differently).
 from __future__ import annotations
 
 import numpy as np
+
+# StandardScaler's own rule for a constant column (private helpers): the pooled path must scale
+# exactly as the row-by-row fit's StandardScaler does, or the two paths' penalties differ;
+# tests/shell/test_lagbank_pooled.py holds them equal, so an upgrade that moves these fails there
 from sklearn.preprocessing._data import _handle_zeros_in_scale, _is_constant_feature
 
 from ._dynamics import first_order_lags
