@@ -18,7 +18,7 @@ import pytest
 
 import durations
 import hydra_cache
-from thermocomp.shell.cli import collect_less
+from thermocomp.base.lifetime import collect_less
 
 ROOT = Path(__file__).resolve().parents[1]
 BIN = Path(sys.executable).parent
@@ -34,7 +34,7 @@ os.environ.setdefault("THERMOCOMP_TARGETS", "test_deploy.,test_tracking.")
 # off for a Hydra release other than the one it was written against).
 hydra_cache.install()
 
-# The collector's thresholds of a command's process (thermocomp.shell.cli.GC_THRESHOLDS), before
+# The collector's thresholds of a command's process (thermocomp.base.lifetime.GC_THRESHOLDS), before
 # the test modules import the stack: a worker's collection of the suite spent 3.4 s of CPU in the
 # collector at Python's (1.05 s at these), a test module 5-8 % of its CPU (test_hostile: 2.0 s).
 collect_less()
@@ -98,6 +98,11 @@ def process_state(cwd: Path, env: dict):
     from hydra.core.hydra_config import HydraConfig
 
     argv, environ, folder = sys.argv[:], dict(os.environ), os.getcwd()
+    # MLflow's load_model (a served model, in process) puts the model's code folder first on
+    # sys.path for good; an in-process sweep's joblib workers get this process's sys.path and
+    # then import thermocomp from that copy (CI: a served model's code ran the sweep's jobs,
+    # which failed): a command runs without such folders, and leaves none behind.
+    sys.path[:] = _without_model_code(sys.path)
     loggers = [logging.getLogger(), *(lg for lg in logging.Logger.manager.loggerDict.values()
                                       if isinstance(lg, logging.Logger))]
     logs = [(lg, lg.handlers[:], lg.level, lg.propagate, lg.disabled) for lg in loggers]
@@ -110,6 +115,7 @@ def process_state(cwd: Path, env: dict):
     finally:
         os.chdir(folder)
         sys.argv[:] = argv
+        sys.path[:] = _without_model_code(sys.path)
         os.environ.clear()
         os.environ.update(environ)
         for lg, handlers, level, propagate, disabled in logs:
@@ -120,6 +126,11 @@ def process_state(cwd: Path, env: dict):
             GlobalHydra.instance().clear()
         HydraConfig.instance().cfg = hydra_config
         _restore_mlflow()
+
+
+def _without_model_code(paths: list[str]) -> list[str]:
+    """``paths`` without the code folders of MLflow models (``<model>/code`` beside ``MLmodel``)."""
+    return [p for p in paths if not (Path(p).name == "code" and (Path(p).parent / "MLmodel").is_file())]
 
 
 def _restore_mlflow() -> None:

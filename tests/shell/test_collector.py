@@ -1,4 +1,4 @@
-"""The cyclic garbage collector's thresholds (thermocomp.shell.cli.GC_THRESHOLDS): the console
+"""The cyclic garbage collector's thresholds (thermocomp.base.lifetime.GC_THRESHOLDS): the console
 command's process and a test process run at them, a library call of ``main`` leaves its caller's."""
 
 from __future__ import annotations
@@ -8,6 +8,7 @@ import sys
 
 import pytest
 
+from thermocomp.base.lifetime import GC_THRESHOLDS
 from thermocomp.shell import cli
 
 
@@ -26,8 +27,8 @@ def test_the_console_command_collects_at_the_projects_thresholds(python_threshol
                                                                  capsys):
     monkeypatch.setattr(sys, "argv", ["thermocomp", "--version"])
     assert cli.main() == 0 and capsys.readouterr().out.startswith("thermocomp ")
-    assert gc.get_threshold() == cli.GC_THRESHOLDS
-    assert cli.GC_THRESHOLDS[0] > 700
+    assert gc.get_threshold() == GC_THRESHOLDS
+    assert GC_THRESHOLDS[0] > 700
 
 
 def test_a_library_call_leaves_its_callers_thresholds(python_thresholds):
@@ -37,10 +38,10 @@ def test_a_library_call_leaves_its_callers_thresholds(python_thresholds):
 
 def test_a_test_process_collects_at_the_commands_thresholds():
     # set by tests/conftest.py before the test modules import the stack
-    assert gc.get_threshold() == cli.GC_THRESHOLDS
+    assert gc.get_threshold() == GC_THRESHOLDS
 
 
-@pytest.mark.parametrize("sweep_is, thresholds", [("parent", cli.GC_THRESHOLDS),
+@pytest.mark.parametrize("sweep_is, thresholds", [("parent", GC_THRESHOLDS),
                                                    ("this process", (700, 10, 10))])
 def test_a_sweep_job_in_a_worker_of_the_sweep_collects_at_the_commands_thresholds(
         python_thresholds, monkeypatch, tmp_path, sweep_is, thresholds):

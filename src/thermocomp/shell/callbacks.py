@@ -90,7 +90,7 @@ class MlflowSweepCallback(Callback):
             watch_parent(sweep)
             if os.getppid() == sweep:     # a process of the sweep's own, about to import the
                 # stack (joblib sweep, 4 jobs on 2 workers: 16.1 -> 15.2 s of CPU)
-                from .cli import collect_less
+                from ..base.lifetime import collect_less
 
                 collect_less()
         if config.hydra.mode != RunMode.MULTIRUN or config.hydra.output_subdir is not None:

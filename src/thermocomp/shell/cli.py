@@ -26,6 +26,7 @@ from omegaconf import OmegaConf
 
 from ..base.errors import closest
 from ..base.extras import missing
+from ..base.lifetime import collect_less
 from ..base.log import version
 from ..base.paths import elsewhere_hint, resolve, rooted_override
 from .config import overrides
@@ -323,21 +324,6 @@ def _positional_path(args: list[str]) -> list[str]:
             arg = f"data.path={path.resolve() if path.exists() else arg}"
         out.append(arg)
     return out
-
-
-# The cyclic garbage collector's thresholds for a command's process (Python's: 700, 10, 10).  Such
-# a process makes millions of objects it keeps (the libraries it imports: pandas, sklearn, SciPy,
-# MLflow) and few cycles it drops; at 700 allocations a young collection, and the full ones walk
-# what was kept again and again (`thermocomp run` on the short default study: 5.5 -> 4.8 s of CPU
-# tracked, 3.7 -> 3.4 untracked; a test process collecting the suite: 3.4 -> 1.05 s in the
-# collector).  Cycles still go, after 10,000 allocations instead of 700.
-GC_THRESHOLDS = (10_000, 10, 10)
-
-
-def collect_less() -> None:
-    """The collector's thresholds of :data:`GC_THRESHOLDS`, for a process of the project's own
-    (the console command, a test process): never set by a library call of :func:`main`."""
-    gc.set_threshold(*GC_THRESHOLDS)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -19,6 +19,7 @@ to rounding (the pooled sums are ordered differently).
 from __future__ import annotations
 
 import numpy as np
+import scipy.linalg
 
 # StandardScaler's own rule for a constant column (private helpers): the pooled path must scale
 # exactly as the row-by-row fit's StandardScaler does, or the two paths' penalties differ;
@@ -137,7 +138,6 @@ class CampaignMoments:
 
 
 def _compute_spectra(trains: list[Moments], centre, d, alpha, free) -> tuple:
-    from .lagbank import spectra_of_grams  # here: lagbank imports this module
 
     return spectra_of_grams([scaled(train, centre, d)[:2] for train in trains], alpha, free)
 
@@ -153,7 +153,6 @@ def pooled_path_cv(moments: CampaignMoments, folds, centre, d, alphas, free: int
     :func:`thermocomp.core.models.lagbank.ridge_path_cv` (no output feedback) on the design
     ``(f - centre) * d``, the first ``free`` columns unpenalised; ``folds``: ``(train, validation)``
     segment indices."""
-    from .lagbank import weights_of_moments
 
     alphas = np.asarray(alphas, dtype=float)
     alpha = alphas[0] if alphas.size == 1 else None
@@ -169,9 +168,45 @@ def pooled_path_cv(moments: CampaignMoments, folds, centre, d, alphas, free: int
 
 def pooled_refit(moments: CampaignMoments, centre, d, alpha: float, free: int):
     """``(W, c)`` of the ridge fit with penalty ``alpha`` on every segment's rows."""
-    from .lagbank import spectra_of_grams, weights_of_moments
 
     total = moments.pool(np.arange(len(moments.counts)))
     mean, gram, fy = scaled(total, centre, d)
     spectrum = spectra_of_grams([(mean, gram)], float(alpha), int(free))[0]
     return weights_of_moments(spectrum, fy, total.y_mean, np.array([float(alpha)]))
+
+
+# The ridge solution from a Gram matrix and cross-products, shared by the lag bank's row-by-row
+# fold path (lagbank.fold_spectra / fold_weights) and the pooled one here.
+
+def spectra_of_grams(grams, alpha, free: int) -> tuple:
+    """Each fold's factorisation from its ``(mean, centred Gram)`` (the Gram is overwritten), as
+    :func:`thermocomp.core.models.lagbank.fold_spectra` remembers them."""
+    out = []
+    for mean, gram in grams:
+        S = B = None
+        if free:
+            # pinvh: a constant or duplicated sensor leaves G_ss singular; OLS takes the minimum norm
+            S = scipy.linalg.pinvh(gram[:free, :free])
+            B = S @ gram[:free, free:]
+            gram = gram[free:, free:] - gram[free:, :free] @ B
+        if alpha is None:
+            out.append((mean, *np.linalg.eigh(gram), B, S))
+        else:
+            gram[np.diag_indices_from(gram)] += alpha
+            out.append((mean, None, scipy.linalg.cho_factor(gram), B, S))
+    return tuple(out)
+
+
+def weights_of_moments(spectrum, rhs, y_mean: float, alphas) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`fold_weights` from the training rows' centred cross-products ``rhs``
+    (:math:`Z_c^\top y_c`) and mean target ``y_mean``."""
+    mean, lam, V, B, S = spectrum
+    free = 0 if S is None else S.shape[0]
+    r = rhs[free:] - (B.T @ rhs[:free] if free else 0.0)
+    if lam is None:   # one penalty (fixed beforehand): V holds the factor of G + alpha I
+        W = scipy.linalg.cho_solve(V, r)[:, None]
+    else:
+        W = V @ ((V.T @ r)[:, None] / (np.clip(lam, 0.0, None)[:, None] + alphas[None, :]))
+    if free:
+        W = np.vstack([(S @ rhs[:free])[:, None] - B @ W, W])
+    return W, y_mean - mean @ W

@@ -32,7 +32,6 @@ from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
-import scipy.linalg
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
@@ -52,7 +51,15 @@ from ._dynamics import (
     segment_starts,
 )
 from ._memo import ArrayMemo
-from ._pooled import CampaignMoments, lag_features, pooled_path_cv, pooled_refit, standardisation
+from ._pooled import (
+    CampaignMoments,
+    lag_features,
+    pooled_path_cv,
+    pooled_refit,
+    spectra_of_grams,
+    standardisation,
+    weights_of_moments,
+)
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
 MIN_SPLITS = 2
@@ -173,25 +180,6 @@ def _compute_fold_spectra(Z, alpha, free, *splits) -> tuple:
     return spectra_of_grams(_training_grams(Z, splits), alpha, free)
 
 
-def spectra_of_grams(grams, alpha, free: int) -> tuple:
-    """:func:`_compute_fold_spectra` of given ``(mean, centred Gram)`` pairs (the Gram is
-    overwritten)."""
-    out = []
-    for mean, gram in grams:
-        S = B = None
-        if free:
-            # pinvh: a constant or duplicated sensor leaves G_ss singular; OLS takes the minimum norm
-            S = scipy.linalg.pinvh(gram[:free, :free])
-            B = S @ gram[:free, free:]
-            gram = gram[free:, free:] - gram[free:, :free] @ B
-        if alpha is None:
-            out.append((mean, *np.linalg.eigh(gram), B, S))
-        else:
-            gram[np.diag_indices_from(gram)] += alpha
-            out.append((mean, None, scipy.linalg.cho_factor(gram), B, S))
-    return tuple(out)
-
-
 _fold_spectra = ArrayMemo(_compute_fold_spectra, size=4)
 
 
@@ -217,21 +205,6 @@ def fold_weights(spectrum, Z, y, tr, alphas) -> tuple[np.ndarray, np.ndarray]:
     weights[tr] = y[tr] - y_mean
     rhs = Z.T @ weights                  # (Z_tr - mean)^T (y_tr - y_mean): the centred y sums to 0
     return weights_of_moments(spectrum, rhs, y_mean, alphas)
-
-
-def weights_of_moments(spectrum, rhs, y_mean: float, alphas) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`fold_weights` from the training rows' centred cross-products ``rhs``
-    (:math:`Z_c^\top y_c`) and mean target ``y_mean``."""
-    mean, lam, V, B, S = spectrum
-    free = 0 if S is None else S.shape[0]
-    r = rhs[free:] - (B.T @ rhs[:free] if free else 0.0)
-    if lam is None:   # one penalty (fixed beforehand): V holds the factor of G + alpha I
-        W = scipy.linalg.cho_solve(V, r)[:, None]
-    else:
-        W = V @ ((V.T @ r)[:, None] / (np.clip(lam, 0.0, None)[:, None] + alphas[None, :]))
-    if free:
-        W = np.vstack([(S @ rhs[:free])[:, None] - B @ W, W])
-    return W, y_mean - mean @ W
 
 
 def _summary(name: str, folds: np.ndarray) -> dict:
