@@ -237,3 +237,17 @@ def test_launcher_configs_compose_slurm_documented_not_run():
     assert joblib.hydra.launcher._target_.endswith("JoblibLauncher")
     callback = slurm.hydra.callbacks.mlflow_sweep
     assert callback._target_ == "thermocomp.shell.callbacks.MlflowSweepCallback"
+
+
+@pytest.mark.slow
+def test_a_second_joblib_sweep_in_one_process_attaches_its_jobs_to_its_own_parent(tmp_path, dataset):
+    # joblib's (loky) workers outlive a sweep and are reused by the next one with the environment
+    # of their start: the second sweep's jobs took the FIRST sweep's parent run id (a run of
+    # another store: "Run ... not found", no child; CI, two in-process sweeps on one pytest worker)
+    for k in (1, 2):
+        _, sweep_dir, _, parents, children = _sweep(tmp_path / f"s{k}", dataset, 2,
+                                                    "model.estimator.fit_intercept=true,false")
+        assert len(parents) == 1 and len(children) == 2, k
+        parent_id = parents["run_id"].iloc[0]
+        assert (children["tags.mlflow.parentRunId"] == parent_id).all(), k
+        assert (children["status"] == "FINISHED").all(), k
