@@ -99,9 +99,9 @@ def process_state(cwd: Path, env: dict):
 
     argv, environ, folder = sys.argv[:], dict(os.environ), os.getcwd()
     # MLflow's load_model (a served model, in process) puts the model's code folder first on
-    # sys.path for good; an in-process sweep's joblib workers get this process's sys.path and
-    # then import thermocomp from that copy (CI: a served model's code ran the sweep's jobs,
-    # which failed): a command runs without such folders, and leaves none behind.
+    # sys.path for good; an in-process sweep's joblib workers start with this process's sys.path
+    # and then import thermocomp from that copy, not from the code under test (seen in CI's
+    # tracebacks): a command runs without such folders, and leaves none behind.
     sys.path[:] = _without_model_code(sys.path)
     loggers = [logging.getLogger(), *(lg for lg in logging.Logger.manager.loggerDict.values()
                                       if isinstance(lg, logging.Logger))]
