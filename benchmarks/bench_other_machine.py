@@ -78,6 +78,11 @@ the same commands back to back at load 2-3.5: ``auto`` on lathe43 696 s CPU (682
 (68 s), the same choice and test RMSE; MLR 13.2 / 12.4 -> 3.3 / 3.4 s; ``ati=cmeans`` (no
 validation, no mutual prediction) 17.6 / 17.1 -> 10.8 / 11.6 s.
 
+Re-run 2026-11-30 (session 55: the lag bank's pooled folds, GC thresholds; 2 cores, one helper's
+load), seed 0, lathe43 / lathe43m: every test RMSE above to the printed digit; CPU s mlr 2.7 / 2.5,
+lagbank 5.0 / 4.9, auto 45.1 / 42.9, mlr ati=cmeans 27.1 / 20.4; rig40 / vendor5 (mlr, lagbank, arx,
+auto): the same figures, auto 14.4 / 8.9 s.
+
 ``auto`` vs the best single family: lathe43 E_dZ 0.76 vs 0.95 (lagbank), lathe43m E_Z 0.55 vs 0.93;
 vendor5 E_Z 0.81 vs 0.68 (arx); rig40 (6 train runs) E_X 0.71 vs MLR 0.56: its validation
 picked ATI (0.42 against MLR's 0.86 over 5 forward folds of 6 runs), which did not hold on the
