@@ -81,7 +81,8 @@ validation, no mutual prediction) 17.6 / 17.1 -> 10.8 / 11.6 s.
 Re-run 2026-11-30 (session 55: the lag bank's pooled folds, GC thresholds; 2 cores, one helper's
 load), seed 0, lathe43 / lathe43m: every test RMSE above to the printed digit; CPU s mlr 2.7 / 2.5,
 lagbank 5.0 / 4.9, auto 45.1 / 42.9, mlr ati=cmeans 27.1 / 20.4; rig40 / vendor5 (mlr, lagbank, arx,
-auto): the same figures, auto 14.4 / 8.9 s.
+auto): the same figures but vendor5's auto E_Z 0.81 -> 0.84 (4 train runs: fewer folds than n_folds,
+the votes' block resampling of session 54), auto 14.4 / 8.9 s.
 
 ``auto`` vs the best single family: lathe43 E_dZ 0.76 vs 0.95 (lagbank), lathe43m E_Z 0.55 vs 0.93;
 vendor5 E_Z 0.81 vs 0.68 (arx); rig40 (6 train runs) E_X 0.71 vs MLR 0.56: its validation
