@@ -14,6 +14,7 @@ holds the queue's write end, so no end of file comes): figure workers stayed blo
   lives: a thread watches the parent instead, once a second).
 - :func:`watch_parent`: the same watch, armed from inside a task (a sweep job in a local
   launcher's worker), only when the process named is this one's parent.
+- :func:`end_local_workers`: loky's reusable workers stopped (a sweep's, when it ends).
 - :func:`collect_less`: the garbage collector's thresholds of a process of the project's own.
 """
 
@@ -23,6 +24,7 @@ import ctypes
 import gc
 import os
 import signal
+import sys
 import threading
 import time
 
@@ -70,6 +72,19 @@ def parallel(n_jobs, **kwargs):
     from joblib import Parallel
 
     return Parallel(n_jobs=n_jobs, initializer=end_with_parent, initargs=(os.getpid(),), **kwargs)
+
+
+
+def end_local_workers() -> None:
+    """Stop loky's reusable workers (a joblib launcher's, when a sweep ends).  loky keeps them for
+    the next ``Parallel`` in this process, with the environment of their start: a second sweep in
+    the same process (a notebook, a test) ran its jobs under the first one's parent run id (a run
+    its store does not have: every job failed) and its failed-jobs folder (deleted)."""
+    loky = sys.modules.get("joblib.externals.loky.reusable_executor")
+    # (its module's private global: get_reusable_executor() would start an executor to stop)
+    executor = getattr(loky, "_executor", None)
+    if executor is not None:
+        executor.shutdown(wait=True)
 
 
 # The cyclic garbage collector's thresholds for a command's process (Python's: 700, 10, 10).  Such

@@ -26,7 +26,7 @@ from omegaconf import OmegaConf
 
 from ..base.errors import closest
 from ..base.extras import missing
-from ..base.lifetime import collect_less
+from ..base.lifetime import collect_less, end_local_workers
 from ..base.log import version
 from ..base.paths import elsewhere_hint, resolve, rooted_override
 from .config import overrides
@@ -298,7 +298,7 @@ def _launch(stage: str, args: list[str]) -> None:
                 os.environ.pop(FAILED_JOBS_ENV, None)
             else:
                 os.environ[FAILED_JOBS_ENV] = previous
-            _end_local_workers()
+            end_local_workers()
         failed = [json.loads(f.read_text()) for f in sorted(Path(notes).glob("*.json"))]
     if raised:
         raise raised[0]
@@ -325,18 +325,6 @@ def _positional_path(args: list[str]) -> list[str]:
             arg = f"data.path={path.resolve() if path.exists() else arg}"
         out.append(arg)
     return out
-
-
-def _end_local_workers() -> None:
-    """Stop the joblib launcher's workers when a sweep ends.  loky keeps them for the next
-    ``Parallel`` in this process, with the environment of their start: a second sweep in the
-    same process (a notebook, a test) ran its jobs under the first one's parent run id
-    (a run its store does not have: every job failed) and its failed-jobs folder (deleted)."""
-    loky = sys.modules.get("joblib.externals.loky.reusable_executor")
-    # (its module's private global: get_reusable_executor() would start an executor to stop)
-    executor = getattr(loky, "_executor", None)
-    if executor is not None:
-        executor.shutdown(wait=True)
 
 
 def main(argv: list[str] | None = None) -> int:
