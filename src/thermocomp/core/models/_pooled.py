@@ -138,7 +138,8 @@ class CampaignMoments:
 
 
 def _compute_spectra(trains: list[Moments], centre, d, alpha, free) -> tuple:
-
+    """Each training fold's factorisation (:func:`spectra_of_grams`) of the design
+    ``(f - centre) * d``."""
     return spectra_of_grams([scaled(train, centre, d)[:2] for train in trains], alpha, free)
 
 
@@ -153,7 +154,6 @@ def pooled_path_cv(moments: CampaignMoments, folds, centre, d, alphas, free: int
     :func:`thermocomp.core.models.lagbank.ridge_path_cv` (no output feedback) on the design
     ``(f - centre) * d``, the first ``free`` columns unpenalised; ``folds``: ``(train, validation)``
     segment indices."""
-
     alphas = np.asarray(alphas, dtype=float)
     alpha = alphas[0] if alphas.size == 1 else None
     key = ArrayMemo.key(moments.key, *(i for fold in folds for i in fold), centre, d, alpha, int(free))
@@ -168,7 +168,6 @@ def pooled_path_cv(moments: CampaignMoments, folds, centre, d, alphas, free: int
 
 def pooled_refit(moments: CampaignMoments, centre, d, alpha: float, free: int):
     """``(W, c)`` of the ridge fit with penalty ``alpha`` on every segment's rows."""
-
     total = moments.pool(np.arange(len(moments.counts)))
     mean, gram, fy = scaled(total, centre, d)
     spectrum = spectra_of_grams([(mean, gram)], float(alpha), int(free))[0]
@@ -198,8 +197,8 @@ def spectra_of_grams(grams, alpha, free: int) -> tuple:
 
 
 def weights_of_moments(spectrum, rhs, y_mean: float, alphas) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`fold_weights` from the training rows' centred cross-products ``rhs``
-    (:math:`Z_c^\top y_c`) and mean target ``y_mean``."""
+    r""":func:`thermocomp.core.models.lagbank.fold_weights` from the training rows' centred
+    cross-products ``rhs`` (:math:`Z_c^\top y_c`) and mean target ``y_mean``."""
     mean, lam, V, B, S = spectrum
     free = 0 if S is None else S.shape[0]
     r = rhs[free:] - (B.T @ rhs[:free] if free else 0.0)

@@ -471,15 +471,9 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                                     **_summary("cv_mse_free_run", free),
                                     **_summary("cv_mse_one_step", scores["one_step"][:, i])})
         table = pd.DataFrame(records)
-        best = self._choose(table[table["design"] != "increments"])
-        table["chosen"] = table.index == best
-        self.cv_results_ = table
-        design, self.alpha_ = str(table.loc[best, "design"]), float(table.loc[best, "alpha"])
-        self.level_penalty_ = float(table.loc[best, "level_penalty"])
+        design = self._keep_choice(table, self._choose(table[table["design"] != "increments"]))
         self.coef_, self.ar_coef_, self.intercept_ = self._refit(
             design, F, y, y_prev, groups, scalers[design], self.alpha_, p, self.level_penalty_)
-        self.one_step_design_ = self.alpha_one_step_ = self.coef_one_step_ = None
-        self.ar_coef_one_step_ = self.intercept_one_step_ = None
         if self.ar is not False:   # the one-step model: the best one-step CV error of the AR designs
             rows = table[table["design"] != "lags"]
             pick = rows["cv_mse_one_step"].idxmin()
@@ -531,19 +525,26 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                                 "level_penalty": ratio, **_summary("cv_mse_free_run", scores[:, i]),
                                 **_summary("cv_mse_one_step", scores[:, i])})
         table = pd.DataFrame(records)
-        best = self._choose(table)
-        table["chosen"] = table.index == best
-        self.cv_results_ = table
-        self.alpha_ = float(table.loc[best, "alpha"])
-        self.level_penalty_ = ratio = float(table.loc[best, "level_penalty"])
+        self._keep_choice(table, self._choose(table))
+        ratio = self.level_penalty_
         d = _level_scale(centre.size, p, ratio) / scale
         W, c = pooled_refit(moments, centre, d, self.alpha_, p if ratio == 0 else 0)
         coef = W[:, 0] * d
         self.coef_, self.ar_coef_, self.intercept_ = coef, 0.0, float(c[0] - centre @ coef)
-        self.one_step_design_ = self.alpha_one_step_ = self.coef_one_step_ = None
-        self.ar_coef_one_step_ = self.intercept_one_step_ = None
         self.context_columns_ = [TIME] if time is not None else []
         return self
+
+    def _keep_choice(self, table: pd.DataFrame, best: int) -> str:
+        """Keep the CV table with its ``best`` row marked chosen, that row's penalty and share of
+        it on the levels, no one-step model (:meth:`fit` adds one where an AR design may enter);
+        the chosen design's name."""
+        table["chosen"] = table.index == best
+        self.cv_results_ = table
+        self.alpha_ = float(table.loc[best, "alpha"])
+        self.level_penalty_ = float(table.loc[best, "level_penalty"])
+        self.one_step_design_ = self.alpha_one_step_ = self.coef_one_step_ = None
+        self.ar_coef_one_step_ = self.intercept_one_step_ = None
+        return str(table.loc[best, "design"])
 
     def chosen_params(self) -> dict:
         """The parameters that fix what the CV chose (one penalty, the AR term kept or not):
