@@ -45,12 +45,17 @@ def test_the_fit_from_campaign_moments_is_the_fit_over_the_rows(monkeypatch, par
     assert pooled.intercept_ == pytest.approx(rows.intercept_, rel=1e-9, abs=1e-12)
 
 
-def test_a_campaigns_moments_are_computed_once_for_every_fit_that_holds_it(monkeypatch):
-    """The ATI elbow refits the lag bank on the same campaigns in many combinations."""
+def _ambient_campaigns():
+    """8 campaigns, each at its own initial ambient (as the ATI wrapper reads it)."""
     X, y, context = _campaigns(k=8)
     a0 = np.repeat([12.0, 16.0, 20.0, 24.0, 28.0, 32.0, 14.0, 30.0],
                    np.bincount(np.unique(context["campaign"], return_inverse=True)[1]))
-    context = context.assign(ambient_c0=a0)
+    return X, y, context.assign(ambient_c0=a0)
+
+
+def test_a_campaigns_moments_are_computed_once_for_every_fit_that_holds_it(monkeypatch):
+    """The ATI elbow refits the lag bank on the same campaigns in many combinations."""
+    X, y, context = _ambient_campaigns()
     computed = []
     memo = _pooled.ArrayMemo(lambda *a: computed.append(1) or _pooled._feature_moments(*a), size=256)
     monkeypatch.setattr(_pooled, "_campaign_moments", memo)
@@ -77,10 +82,7 @@ def test_forward_chaining_and_the_ar_term_keep_the_fit_over_the_rows(monkeypatch
 
 def test_a_second_targets_elbow_reuses_the_folds_factorisations(monkeypatch):
     """They depend on the inputs alone; an ATI elbow's lag banks come back target after target."""
-    X, y, context = _campaigns(k=8)
-    a0 = np.repeat([12.0, 16.0, 20.0, 24.0, 28.0, 32.0, 14.0, 30.0],
-                   np.bincount(np.unique(context["campaign"], return_inverse=True)[1]))
-    context = context.assign(ambient_c0=a0)
+    X, y, context = _ambient_campaigns()
     computed = []
     memo = _pooled.ArrayMemo(lambda *a: computed.append(1) or _pooled._compute_spectra(*a),
                              size=_pooled._spectra.size, max_bytes=_pooled._spectra.max_bytes)
