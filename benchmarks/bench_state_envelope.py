@@ -71,7 +71,9 @@ training maximum and misses the rest.  Nothing in src changed: the exported ``lo
 state stay the largest double (docs/cli.md), the clamp stays the temperatures'.  The training
 edge without the margin (``clamped_edge``) is worse still on every line the clamp loses.
 (Aside, not this question: on the long records the adaptive compensator's Σ² is 1.2-6.8 x the
-plain stream's for every family, lagbank and mlr too: long4253 lagbank 4.40 against 0.648.)
+plain stream's for every family, lagbank and mlr too: long4253 lagbank 4.40 against 0.648.
+Stop 56, ``bench_excursion56.py``: the correction guard's bound makes 82-100 % of it (mlr
+long7717: more), not the sensor monitor.)
 """
 
 from __future__ import annotations
