@@ -88,6 +88,10 @@ the votes' block resampling of session 54), auto 14.4 / 8.9 s.
 vendor5 E_Z 0.81 vs 0.68 (arx); rig40 (6 train runs) E_X 0.71 vs MLR 0.56: its validation
 picked ATI (0.42 against MLR's 0.86 over 5 forward folds of 6 runs), which did not hold on the
 test; on E_Z it kept 6 % of ATI, whose validation RMSE was 136 µm (one fold extrapolated).
+Since session 56 (an ATI interval takes its ambient interaction only from three ambient levels
+0.5 °C apart; the 20 °C interval's runs, started within 0.02 K, had fitted a slope on that:
+``benchmarks/bench_ati_ramp.py``): rig40 auto 0.37 / 0.61 (MLR 0.56 / 0.84), lathe43 auto and
+``mlr ati=cmeans`` E_dZ 0.71; lathe43m and vendor5 as above.
 
 ``diagnose`` (MLR, primary target; test RMSE before -> after; the other target unchanged unless
 said): lathe43 E_dZ 1.23 -> 0.69 (ambient_interval: inputs x (ambient_c0 - 20 °C), the planted

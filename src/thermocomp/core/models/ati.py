@@ -37,6 +37,7 @@ from .linear import MLR
 CLUSTERINGS = ("fuzzy", "hard")
 AMBIENT_CENTRE_C = 20.0   # ISO 1 reference temperature: only re-centres the interaction
 MIN_AMBIENTS = 3          # distinct ambient levels an interval needs to fit a slope in ambient
+AMBIENT_RESOLUTION_C = 0.5  # °C: closer initial ambients are one level (ambient_levels)
 
 
 def cluster_ambient(ambient, n_clusters: int, clustering: str = "fuzzy", fuzziness: float = 2.0,
@@ -97,6 +98,25 @@ def interval_boundaries(ambient, labels) -> np.ndarray:
     return np.array(bounds, float)
 
 
+def ambient_levels(ambient, resolution: float = AMBIENT_RESOLUTION_C) -> int:
+    """Number of distinct ambient levels among initial ambients ``ambient`` (°C; NaN ignored).
+
+    From the coldest up, a value at least ``resolution`` above the first value of the current
+    level starts the next one.  Runs of a room held at one set point start within its control's
+    swing (rig40: 19.97 .. 20.08 °C) and are one level: a slope in ambient fitted on that spread
+    is noise, and extrapolated to the next run it cost rig40 E_X 0.37 -> 0.91 µm
+    (``benchmarks/bench_ati_ramp.py``).  A continuous spread counts about one level per
+    ``resolution``, and no rounding edge splits two close values.
+    """
+    a = np.asarray(ambient, float)
+    a = np.sort(a[np.isfinite(a)])
+    count, start = 0, -np.inf
+    for value in a:
+        if value - start >= resolution:
+            count, start = count + 1, value
+    return count
+
+
 def interval_of(ambient, boundaries) -> np.ndarray:
     """Interval index of each ambient; a value on a boundary belongs to the colder interval."""
     return np.searchsorted(np.asarray(boundaries, float), np.asarray(ambient, float), side="left")
@@ -151,7 +171,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         may change linearly with the ambient inside an interval
         (:math:`\hat y = f_m(x, x (A_k - 20))`); used only for an interval whose
         training campaigns have at least ``MIN_AMBIENTS`` (3) distinct ambient
-        levels, where that slope is identifiable.
+        levels (:func:`ambient_levels`: 0.5 °C apart), where that slope is identifiable.
 
     Attributes
     ----------
@@ -195,10 +215,11 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def _interacts(self, context) -> bool:
         """Whether a model fitted on these rows takes ``X·(A0 − 20 °C)`` too: only with
         ``ambient_interaction`` and rows from at least ``MIN_AMBIENTS`` distinct ambient levels
-        (with fewer the slope in ambient is not identifiable and would only extrapolate)."""
+        (:func:`ambient_levels`; with fewer the slope in ambient is not identifiable and would
+        only extrapolate)."""
         if not self.ambient_interaction or context is None or AMBIENT_C0 not in context:
             return False
-        return np.unique(np.asarray(context[AMBIENT_C0], float).round(6)).size >= MIN_AMBIENTS
+        return ambient_levels(np.unique(np.asarray(context[AMBIENT_C0], float))) >= MIN_AMBIENTS
 
     @staticmethod
     def _design(X, context, interacts: bool) -> np.ndarray:

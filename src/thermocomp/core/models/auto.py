@@ -398,12 +398,11 @@ def _not_applicable(name: str, context, groups) -> str | None:
     if a0 is None or not np.isfinite(a0).any():
         return "no campaign ambient (a T_amb sensor) to choose an interval by"
     first = np.unique(groups, return_index=True)[1] if groups is not None else [0]
-    levels = np.unique(np.round(a0[first] * 2) / 2)
-    levels = levels[np.isfinite(levels)]
-    from .ati import MIN_AMBIENTS  # here: ati's sklearn.cluster (OpenMP) kept off start-up
+    from .ati import MIN_AMBIENTS, ambient_levels  # here: ati's sklearn.cluster (OpenMP) kept off start-up
 
-    if levels.size < MIN_AMBIENTS:   # distinct initial ambients (to 0.5 °C), as ATI needs
-        return (f"the train campaigns span {levels.size} ambient level(s), fewer than "
+    levels = ambient_levels(a0[first])   # distinct initial ambients, counted as ATI counts them
+    if levels < MIN_AMBIENTS:
+        return (f"the train campaigns span {levels} ambient level(s), fewer than "
                 f"{MIN_AMBIENTS}")
     return None
 
