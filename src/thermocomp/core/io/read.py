@@ -78,6 +78,7 @@ from .contract import (
     role,
 )
 from .lines import Lines
+from .loggers import errors_elsewhere
 from .manifest import RECORD_SUFFIXES, apply_split_overrides, read_manifest
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .plain import as_read
@@ -261,7 +262,10 @@ def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
     compared (a campaign timed in another unit is refused)."""
     periods, ranges = {}, {}
     for cid, row in manifest.iterrows():
-        table, report = read_campaign(root / row["file"], opts)
+        try:
+            table, report = read_campaign(root / row["file"], opts)
+        except ContractError as exc:     # (a file of two loggers' pair: said so)
+            raise errors_elsewhere(exc, root, manifest, cid, opts) from None
         periods[cid] = median_step(table.column(TIME).to_numpy())
         ranges[cid] = _error_ranges(table, DEAD_ROLES)
         yield cid, table, {"file": row["file"], "split": row["split"], **report}
