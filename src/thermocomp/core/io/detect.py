@@ -136,7 +136,19 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
         elif not (reads_as_number(first.get(h), opts.decimal) or looks_like_timestamp(first.get(h))
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
-    return roles
+    return _by_role(roles, header, first)
+
+
+def _by_role(roles: dict, header: list[str], first: dict) -> dict:
+    """``roles`` with the ``E_`` headers named ``error`` where nothing else is proposed and a
+    header is no contract name (``Spindelkopf [°C]`` beside ``E_X``): headers are read by role
+    only where a role is set, and without one such a temperature was refused as unmapped."""
+    if any(roles[k] for k in ROLE_PATTERNS) or isinstance(roles["time"], list):
+        return roles
+    own = [h for h in filter(str.strip, header) if role(h) is None and not (
+        named_as_time(h) or looks_like_timestamp(first.get(h)))]
+    errors = [_GLOB.sub(r"[\1]", h) for h in header if role(h) == "E"]
+    return {**roles, "error": errors} if own and errors else roles
 
 
 def proposed_campaign(src: Path, roles: dict, opts) -> dict:
