@@ -42,7 +42,7 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         # timestamps on a local clock without an offset, and no data.timezone to read it
         local = (pa.types.is_timestamp(column.type) and column.type.tz is None
                  and opts.timezone is None)
-        _check_increasing(seconds, path, local)
+        _check_increasing(seconds, path, local, info.get("time_origin"))
         if local:
             said_if_clock_skips(seconds, path, at=at(lines))
     except ContractError as exc:
@@ -72,9 +72,11 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None
     return pc.cast(column, pa.float64()).to_numpy(), {"time": "seconds"}
 
 
-def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False) -> None:
-    """Refuse a time that does not increase (``local``: timestamps on a local clock without an
-    offset, where an hour set back is daylight saving time ending, said so)."""
+def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
+                      origin: str | None = None) -> None:
+    """Refuse a time that does not increase, saying the fix (``local``: timestamps on a local
+    clock without an offset, where an hour set back is daylight saving time ending, said so;
+    ``origin``: the first timestamp, so that a time is named as written, not as seconds)."""
     finite = np.isfinite(seconds)
     if not finite.all():
         row = int(np.argmin(finite)) + 1
@@ -85,10 +87,24 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False) -> N
         return
     i = int(np.argmax(steps <= 0))
     before, after = seconds[i], seconds[i + 1]
-    what = (f"duplicate time {after:g} s (same as row {i + 1})" if after == before else
-            f"time decreases from {before:g} s (row {i + 1}) to {after:g} s"
-            + (clock_set_back(before, after) if local else ""))
+    if after == before:
+        what = (f"duplicate time {_shown(after, origin)} (same as row {i + 1}): two samples at "
+                "one time; delete the row written twice, or give it its own time")
+    else:
+        dst = clock_set_back(before, after) if local else ""
+        # rows a lab exported or pasted out of order: sorting them gives one time per sample
+        unsorted = "" if dst or np.unique(seconds).size < seconds.size else (
+            ": the rows are not in time order; sort them by their time")
+        what = (f"time decreases from {_shown(before, origin)} (row {i + 1}) to "
+                f"{_shown(after, origin)}{dst}{unsorted}")
     raise ContractError(what, file=path, column=TIME, row=i + 2)
+
+
+def _shown(seconds: float, origin: str | None) -> str:
+    """A time as the file gives it: a timestamp (``origin`` + ``seconds``), else seconds."""
+    if origin is None:
+        return f"{seconds:g} s"
+    return (pd.Timestamp(origin) + pd.Timedelta(seconds=float(seconds))).isoformat()
 
 
 def _check_duration(seconds: np.ndarray, path: Path, max_days: float | None) -> None:
