@@ -15,6 +15,7 @@ from ...base.log import logger
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
+from .rates import said_if_rate_changes
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
@@ -45,6 +46,8 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         _check_increasing(seconds, path, local, info.get("time_origin"))
         if local:
             said_if_clock_skips(seconds, path, at=at(lines))
+        if opts.resample_s is None:        # (on one grid, as the warning says to put it)
+            said_if_rate_changes(seconds, path, at=at(lines))
     except ContractError as exc:
         if opts.missing != "keep":
             raise
