@@ -81,6 +81,7 @@ from .lines import Lines
 from .loggers import errors_elsewhere
 from .manifest import RECORD_SUFFIXES, apply_split_overrides, read_manifest
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
+from .own_headers import with_own_header
 from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
@@ -210,6 +211,7 @@ def _assembled(columns: dict, renamed: dict, rescaled: list, path: Path, opts: R
     try:
         report = _checked(columns, path, opts, lines)
     except ContractError as exc:        # a CSV file's row: its line too
+        exc = with_own_header(exc, renamed)
         if lines is not None:
             raise lines.located(exc) from None
         raise (exc if exc.row is None else ContractError(
