@@ -35,3 +35,15 @@ def test_a_repeated_time_is_refused_saying_what_to_do(tmp_path):
     assert refused.value.reason == ("duplicate time 2026-10-24T19:33:00 (same as row 4): two "
                                     "samples at one time; delete the row written twice, or give "
                                     "it its own time")
+
+
+def test_a_time_starting_again_is_refused_saying_the_logger_restarted(tmp_path):
+    # refused "time decreases from 240 s (row 5) to 0 s" and no more: a logger whose elapsed
+    # time starts again at 0 after a restart, one run per file the way to read it
+    record(tmp_path / "lab.csv", [60 * i for i in range(5)] + [60 * i for i in range(5)])
+    with pytest.raises(ContractError) as refused:
+        read_dataset(tmp_path / "lab.csv")
+    assert refused.value.row == 6
+    assert refused.value.reason == ("time decreases from 240 s (row 5) to 0 s: the time starts "
+                                    "again (the logger restarted, or runs joined in one file?): "
+                                    "one file per run in a folder reads each as a campaign")

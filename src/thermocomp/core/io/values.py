@@ -98,8 +98,12 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
         # rows a lab exported or pasted out of order: sorting them gives one time per sample
         unsorted = "" if dst or np.unique(seconds).size < seconds.size else (
             ": the rows are not in time order; sort them by their time")
+        # a logger's clock that starts again (restarted, or runs joined): its times repeat
+        again = "" if dst or unsorted or after > seconds[0] else (
+            ": the time starts again (the logger restarted, or runs joined in one file?): one "
+            "file per run in a folder reads each as a campaign")
         what = (f"time decreases from {_shown(before, origin)} (row {i + 1}) to "
-                f"{_shown(after, origin)}{dst}{unsorted}")
+                f"{_shown(after, origin)}{dst}{unsorted}{again}")
     raise ContractError(what, file=path, column=TIME, row=i + 2)
 
 
