@@ -11,6 +11,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from ...base.errors import listed
 from ...base.log import logger
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
@@ -205,6 +206,25 @@ def _warn_error_ranges(ranges: dict, files: Mapping, root: Path) -> None:
 # Values and missing samples
 
 
+def _refuse_empty(columns: dict, path: Path) -> None:
+    """Refuse the columns whose every cell is empty, all of them in one message (a logger's
+    unused channels: one refusal per channel, a run of the command each, before)."""
+    empty = [name for name, column in columns.items() if name != TIME and _empty(column)]
+    if not empty:
+        return
+    others = f", nor {'has' if len(empty) == 2 else 'have'} {listed(map(repr, empty[1:]))}" \
+        if len(empty) > 1 else ""
+    raise ContractError(f"column has no valid value (every cell is empty){others}: not measured? "
+                        f"leave {'it' if len(empty) == 1 else 'them'} out (data.roles.ignore)",
+                        file=path, column=empty[0])
+
+
+def _empty(column) -> bool:
+    """No cell of ``column`` holds a value (empty, or NaN)."""
+    valid = len(column) - column.null_count
+    return valid == 0 or valid == (pc.sum(pc.is_nan(column)).as_py() or 0)
+
+
 def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) -> np.ndarray:
     """Refuse impossible values; return the positions of missing ones."""
     finite = np.isfinite(values)
@@ -274,6 +294,7 @@ def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> 
     ``missing="keep_errors"`` the ``E_`` columns' missing values are left as they are (a
     volumetric dataset's distance not measured in a cycle) and counted under ``missing``.
     """
+    _refuse_empty(columns, path)
     gaps = {}  # column -> sorted positions of its missing values
     kept = {}
     for name in columns:
@@ -314,6 +335,7 @@ def _keep_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> di
 
     Returns ``{"repairs": {}, "trimmed": {"start": 0, "end": 0}, "missing": {column: n}}``.
     """
+    _refuse_empty(columns, path)
     kept = {}
     for name in columns:
         if name != TIME:
