@@ -2,8 +2,8 @@
 not refused (the contract's time need not be uniform), naming the row where the rate changes.
 
 A model whose lags and autoregressive term count samples (``arx``, ``lstm``) reads a sample as
-one span of time on one side of that row and another span on the other, with nothing to say so;
-the time-aware lag bank does not.  ``data.resample_s`` puts the record on one grid."""
+one span of time on one side of that row and another span on the other, with nothing to say so.
+``data.resample_s`` puts the record on one grid."""
 
 from __future__ import annotations
 
