@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import pytest
+
+from thermocomp.core.io import read_dataset
+from thermocomp.core.io.contract import ContractError
 from thermocomp.shell.cli import main
 
 
@@ -13,3 +17,10 @@ def test_init_of_a_mistyped_file_says_there_is_no_such_file_and_the_close_name(t
     assert capsys.readouterr().err.strip().endswith(
         f"file {tmp_path / 'Lab.CSV'}: no such file or folder: did you mean 'lab.csv'?")
     assert not (tmp_path / "init").exists()
+
+
+def test_a_dataset_folder_that_is_not_there_is_named_so(tmp_path):
+    # refused "file <dir>/runs/campaigns.csv: manifest not found": as if the folder were there
+    with pytest.raises(ContractError, match=r"runs: no such file or folder \(data.path: a dataset "
+                                            r"folder or one record's file\)$"):
+        read_dataset(tmp_path / "runs")

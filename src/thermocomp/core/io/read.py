@@ -79,7 +79,7 @@ from .contract import (
 )
 from .lines import Lines
 from .loggers import errors_elsewhere
-from .manifest import RECORD_SUFFIXES, apply_split_overrides, read_manifest
+from .manifest import apply_split_overrides, read_manifest
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
 from .plain import as_read
@@ -444,9 +444,9 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     by their starts (:mod:`.starts`: the files' first timestamps where the manifest gives
     none; a lab's files named otherwise than in time, ``zander.csv`` tested though
     ``klein.csv`` came later)."""
-    if path.suffix.lower() in RECORD_SUFFIXES and not path.exists():
-        raise ContractError("no such file (data.path: a dataset folder or one record's file)",
-                            file=path)
+    if not path.exists():     # (a folder's name mistyped was refused for its manifest)
+        raise ContractError("no such file or folder (data.path: a dataset folder or one "
+                            "record's file)", file=path)
     if path.is_file() and opts.roles.get(RUN_ROLE):
         check_record_file(path)
         manifest, parts = _run_parts(path, opts)
