@@ -12,7 +12,7 @@ def test_a_spindle_speed_read_as_a_temperature_is_not_called_kelvin(tmp_path, ca
     path.write_text("time,T1 [°C],S,dX [µm]\n" + "".join(
         f"{15 * i},{20 + 0.1 * i},{3000 if i % 7 else 0},{0.5 * i}\n" for i in range(40)))
     line = refused(["init", str(path), f"out={tmp_path / 'out'}"], capsys, "column 'T_S'",
-                   "no temperature, in °C or kelvin", "data.roles.state=[<header>]")
+                   "no temperature, in °C or kelvin", "data.roles.state=['S']")
     assert "convert to °C" not in line
 
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import replace
+from difflib import get_close_matches
 from pathlib import Path
 
 import pandas as pd
@@ -45,6 +46,8 @@ _WHERE = ("interim", "processed")     # where stages write: the project's, not t
 def folder_manifest(src: Path, opts) -> pd.DataFrame | None:
     """A folder's manifest, read once for all ``init`` asks of it (in its own encoding where
     ``data.encoding`` is not given); None for a record."""
+    if not src.exists():       # (a mistyped file was looked for as a folder's manifest)
+        raise ContractError(f"no such file or folder{_closest(src)}", file=src)
     if src.is_file():
         check_record_file(src)
         return None
@@ -56,6 +59,19 @@ def folder_manifest(src: Path, opts) -> pd.DataFrame | None:
         # (data_config), so `split` is as optional here as to a run given that fraction
         opts = replace(opts, test_fraction=HELD_OUT)
     return read_manifest(src, opts)
+
+
+def _closest(src: Path) -> str:
+    """``: did you mean 'lab.csv'?`` where the folder holds a name close to ``src``'s (a case or
+    a letter mistyped), else ''."""
+    try:
+        names = [p.name for p in src.parent.iterdir()]
+    except OSError:
+        return ""
+    lower = {n.lower(): n for n in names}
+    found = [lower[src.name.lower()]] if src.name.lower() in lower else get_close_matches(
+        src.name, names, n=1, cutoff=0.8)
+    return f": did you mean {found[0]!r}?" if found else ""
 
 
 def sample_file(src: Path, manifest: pd.DataFrame | None) -> Path:
@@ -136,7 +152,19 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
         elif not (reads_as_number(first.get(h), opts.decimal) or looks_like_timestamp(first.get(h))
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
-    return roles
+    return _by_role(roles, header, first)
+
+
+def _by_role(roles: dict, header: list[str], first: dict) -> dict:
+    """``roles`` with the ``E_`` headers named ``error`` where nothing else is proposed and a
+    header is no contract name (``Spindelkopf [°C]`` beside ``E_X``): headers are read by role
+    only where a role is set, and without one such a temperature was refused as unmapped."""
+    if any(roles[k] for k in ROLE_PATTERNS) or isinstance(roles["time"], list):
+        return roles
+    own = [h for h in filter(str.strip, header) if role(h) is None and not (
+        named_as_time(h) or looks_like_timestamp(first.get(h)))]
+    errors = [_GLOB.sub(r"[\1]", h) for h in header if role(h) == "E"]
+    return {**roles, "error": errors} if own and errors else roles
 
 
 def proposed_campaign(src: Path, roles: dict, opts) -> dict:

@@ -78,8 +78,10 @@ from .contract import (
     role,
 )
 from .lines import Lines
-from .manifest import RECORD_SUFFIXES, apply_split_overrides, read_manifest
+from .loggers import errors_elsewhere
+from .manifest import apply_split_overrides, read_manifest
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
+from .own_headers import with_own_header
 from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
@@ -209,6 +211,7 @@ def _assembled(columns: dict, renamed: dict, rescaled: list, path: Path, opts: R
     try:
         report = _checked(columns, path, opts, lines)
     except ContractError as exc:        # a CSV file's row: its line too
+        exc = with_own_header(exc, renamed)
         if lines is not None:
             raise lines.located(exc) from None
         raise (exc if exc.row is None else ContractError(
@@ -261,7 +264,10 @@ def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
     compared (a campaign timed in another unit is refused)."""
     periods, ranges = {}, {}
     for cid, row in manifest.iterrows():
-        table, report = read_campaign(root / row["file"], opts)
+        try:
+            table, report = read_campaign(root / row["file"], opts)
+        except ContractError as exc:     # (a file of two loggers' pair: said so)
+            raise errors_elsewhere(exc, root, manifest, cid, opts) from None
         periods[cid] = median_step(table.column(TIME).to_numpy())
         ranges[cid] = _error_ranges(table, DEAD_ROLES)
         yield cid, table, {"file": row["file"], "split": row["split"], **report}
@@ -438,9 +444,9 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     by their starts (:mod:`.starts`: the files' first timestamps where the manifest gives
     none; a lab's files named otherwise than in time, ``zander.csv`` tested though
     ``klein.csv`` came later)."""
-    if path.suffix.lower() in RECORD_SUFFIXES and not path.exists():
-        raise ContractError("no such file (data.path: a dataset folder or one record's file)",
-                            file=path)
+    if not path.exists():     # (a folder's name mistyped was refused for its manifest)
+        raise ContractError("no such file or folder (data.path: a dataset folder or one "
+                            "record's file)", file=path)
     if path.is_file() and opts.roles.get(RUN_ROLE):
         check_record_file(path)
         manifest, parts = _run_parts(path, opts)

@@ -28,6 +28,9 @@ from .separators import number, reads_as_number
 from .timestamps import CLOCK, DATE, ELAPSED_HEADERS, TIME_OF_DAY, looks_like_timestamp
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
+# a unit in brackets followed by a note in brackets, a sign convention ('dX [mm] (+ = Werkzeug
+# weg vom Werkstück)'): the unit is the first (the note, a last bracket, read as the unit was refused)
+_NOTED = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # ISO 80000's "quantity / unit" (``delta L / um``, ``Zeit / s``); without spaces round the slash
 # (``dX/um``) only a unit of :data:`UNITS`, so that ``Datum/Zeit`` or ``on/off`` stay names
 _SLASHED = re.compile(r"^(.*?\S)(\s*)/(\s*)(\S+)$")
@@ -77,8 +80,12 @@ class Naming:
 
 @functools.lru_cache(maxsize=8192)     # pure; a wide record asks it ~5 times per header per read
 def split_unit(header: str) -> tuple[str, str | None]:
-    """``('t1', '°C')`` for ``t1(°C)``, ``t1 [°C]``, ``t1 / °C`` or ``t1 in °C``; ``(header,
+    """``('t1', '°C')`` for ``t1(°C)``, ``t1 [°C]``, ``t1 / °C`` or ``t1 in °C`` (and ``('dX',
+    'mm')`` for ``dX [mm] (+ = away from the spindle)``, a note after the unit); ``(header,
     None)`` without a unit."""
+    match = _NOTED.match(header.strip())
+    if match and match.group(1).strip() and _a_unit(match.group(2)) and not _a_unit(match.group(3)):
+        return match.group(1).strip(), match.group(2).strip()     # (the note left out)
     match = _UNIT.match(header.strip())
     if match and match.group(1).strip():
         return match.group(1).strip(), match.group(2).strip()
@@ -136,6 +143,12 @@ def _letter_unit(header: str, cell, decimal: str) -> tuple[str, str] | None:
 
 def _known_unit(unit: str) -> bool:
     return any(unit.lower() in known for known in UNITS.values())
+
+
+def _a_unit(text: str) -> bool:
+    """``text`` (in brackets) is a unit the reader knows, a state's too (``rpm``)."""
+    unit = text.strip().lower().replace(" ", "")
+    return _known_unit(unit) or unit in STATE_UNITS
 
 
 def same_header(headers: Sequence[str]) -> ContractError | None:

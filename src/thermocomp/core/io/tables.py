@@ -23,6 +23,7 @@ from .footer import blank_inside, footer, source
 from .layout import header_line, is_unit_row, with_units
 from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
+from .own_headers import with_own_header
 from .roles import RUN, active, naming, same_header
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
@@ -134,7 +135,17 @@ def _load_csv(path: Path, opts: ReadOptions) -> tuple:
     try:
         return _typed_columns(path, header, first_row, opts, lines)
     except ContractError as exc:
-        raise lines.located(exc) from None
+        raise lines.located(with_own_header(exc, _renamed(header, first_row, opts, path))) from None
+
+
+def _renamed(header: list[str], first_row: list[str], opts: ReadOptions, path: Path) -> dict:
+    """The file's headers -> contract names where they differ ({} where they do not read): what
+    a refusal of a cell names besides the contract name."""
+    try:
+        named, _ = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
+    except ContractError:
+        return {}
+    return _renames(header, named)
 
 
 def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: ReadOptions,

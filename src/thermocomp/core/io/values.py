@@ -11,10 +11,12 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from ...base.errors import listed
 from ...base.log import logger
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
+from .rates import said_if_rate_changes
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
@@ -42,9 +44,11 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         # timestamps on a local clock without an offset, and no data.timezone to read it
         local = (pa.types.is_timestamp(column.type) and column.type.tz is None
                  and opts.timezone is None)
-        _check_increasing(seconds, path, local)
+        _check_increasing(seconds, path, local, info.get("time_origin"))
         if local:
             said_if_clock_skips(seconds, path, at=at(lines))
+        if opts.resample_s is None:        # (on one grid, as the warning says to put it)
+            said_if_rate_changes(seconds, path, at=at(lines))
     except ContractError as exc:
         if opts.missing != "keep":
             raise
@@ -72,9 +76,11 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None
     return pc.cast(column, pa.float64()).to_numpy(), {"time": "seconds"}
 
 
-def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False) -> None:
-    """Refuse a time that does not increase (``local``: timestamps on a local clock without an
-    offset, where an hour set back is daylight saving time ending, said so)."""
+def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
+                      origin: str | None = None) -> None:
+    """Refuse a time that does not increase, saying the fix (``local``: timestamps on a local
+    clock without an offset, where an hour set back is daylight saving time ending, said so;
+    ``origin``: the first timestamp, so that a time is named as written, not as seconds)."""
     finite = np.isfinite(seconds)
     if not finite.all():
         row = int(np.argmin(finite)) + 1
@@ -85,10 +91,28 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False) -> N
         return
     i = int(np.argmax(steps <= 0))
     before, after = seconds[i], seconds[i + 1]
-    what = (f"duplicate time {after:g} s (same as row {i + 1})" if after == before else
-            f"time decreases from {before:g} s (row {i + 1}) to {after:g} s"
-            + (clock_set_back(before, after) if local else ""))
+    if after == before:
+        what = (f"duplicate time {_shown(after, origin)} (same as row {i + 1}): two samples at "
+                "one time; delete the row written twice, or give it its own time")
+    else:
+        dst = clock_set_back(before, after) if local else ""
+        # rows a lab exported or pasted out of order: sorting them gives one time per sample
+        unsorted = "" if dst or np.unique(seconds).size < seconds.size else (
+            ": the rows are not in time order; sort them by their time")
+        # a logger's clock that starts again (restarted, or runs joined): its times repeat
+        again = "" if dst or unsorted or after > seconds[0] else (
+            ": the time starts again (the logger restarted, or runs joined in one file?): one "
+            "file per run in a folder reads each as a campaign")
+        what = (f"time decreases from {_shown(before, origin)} (row {i + 1}) to "
+                f"{_shown(after, origin)}{dst}{unsorted}{again}")
     raise ContractError(what, file=path, column=TIME, row=i + 2)
+
+
+def _shown(seconds: float, origin: str | None) -> str:
+    """A time as the file gives it: a timestamp (``origin`` + ``seconds``), else seconds."""
+    if origin is None:
+        return f"{seconds:g} s"
+    return (pd.Timestamp(origin) + pd.Timedelta(seconds=float(seconds))).isoformat()
 
 
 def _check_duration(seconds: np.ndarray, path: Path, max_days: float | None) -> None:
@@ -182,6 +206,25 @@ def _warn_error_ranges(ranges: dict, files: Mapping, root: Path) -> None:
 # Values and missing samples
 
 
+def _refuse_empty(columns: dict, path: Path) -> None:
+    """Refuse the columns whose every cell is empty, all of them in one message (a logger's
+    unused channels: one refusal per channel, a run of the command each, before)."""
+    empty = [name for name, column in columns.items() if name != TIME and _empty(column)]
+    if not empty:
+        return
+    others = f", nor {'has' if len(empty) == 2 else 'have'} {listed(map(repr, empty[1:]))}" \
+        if len(empty) > 1 else ""
+    raise ContractError(f"column has no valid value (every cell is empty){others}: not measured? "
+                        f"leave {'it' if len(empty) == 1 else 'them'} out (data.roles.ignore)",
+                        file=path, column=empty[0])
+
+
+def _empty(column) -> bool:
+    """No cell of ``column`` holds a value (empty, or NaN)."""
+    valid = len(column) - column.null_count
+    return valid == 0 or valid == (pc.sum(pc.is_nan(column)).as_py() or 0)
+
+
 def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) -> np.ndarray:
     """Refuse impossible values; return the positions of missing ones."""
     finite = np.isfinite(values)
@@ -251,6 +294,7 @@ def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> 
     ``missing="keep_errors"`` the ``E_`` columns' missing values are left as they are (a
     volumetric dataset's distance not measured in a cycle) and counted under ``missing``.
     """
+    _refuse_empty(columns, path)
     gaps = {}  # column -> sorted positions of its missing values
     kept = {}
     for name in columns:
@@ -291,6 +335,7 @@ def _keep_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> di
 
     Returns ``{"repairs": {}, "trimmed": {"start": 0, "end": 0}, "missing": {column: n}}``.
     """
+    _refuse_empty(columns, path)
     kept = {}
     for name in columns:
         if name != TIME:

@@ -1,0 +1,35 @@
+"""A refusal about a column the file names otherwise (a lab's ``Kanal 7 [°C]``, read as
+``T_Kanal_7``) names the file's header too, and a ``data.roles`` pattern in its fix is one that
+matches that header: ``data.roles.ignore=[T_Kanal_7]``, the contract name, matches no header of
+the file, and the same refusal came back."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping
+
+from .contract import ContractError
+from .roles import split_unit
+
+_GLOB = re.compile(r"([*?\[])")      # a header's glob characters, matched as themselves
+_QUOTED = re.compile(r"'([^']+)'")
+
+
+def with_own_header(exc: ContractError, renamed: Mapping[str, str]) -> ContractError:
+    """``exc`` as it is, or, where the column it names (and any other column its reason quotes,
+    several empty ones) is a header of the file renamed (``renamed``: raw -> contract name),
+    with those headers and the patterns matching them."""
+    raws = {name: raw for raw, name in renamed.items()}
+    if exc.column is None or exc.column not in raws:
+        return exc
+    names = [exc.column, *(n for n in _QUOTED.findall(exc.reason) if n in raws)]
+    names = list(dict.fromkeys(names))
+    headers = [raws[n] for n in names]
+    # (a role pattern matches a header without its unit: the base, its glob characters escaped)
+    patterns = ", ".join(repr(_GLOB.sub(r"[\1]", split_unit(h)[0] or h)) for h in headers)
+    reason = exc.reason.replace("=[<header>]", f"=[{patterns}]").replace(
+        "(data.roles.ignore)", f"(data.roles.ignore=[{patterns}])")
+    said = (f"its header in the file: {headers[0]!r}" if len(headers) == 1 else
+            f"their headers in the file: {', '.join(map(repr, headers))}")
+    return ContractError(f"{reason} ({said})", file=exc.file, column=exc.column, row=exc.row,
+                         line=exc.line, sheet=exc.sheet)

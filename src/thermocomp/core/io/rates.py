@@ -1,0 +1,51 @@
+"""A logger set to another sample rate inside one file (1 min, then 10 s from some row on): said,
+not refused (the contract's time need not be uniform), naming the row where the rate changes.
+
+A model whose lags and autoregressive term count samples (``arx``, ``lstm``) reads a sample as
+one span of time on one side of that row and another span on the other, with nothing to say so.
+``data.resample_s`` puts the record on one grid."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+
+from ...base.errors import position
+from ...base.log import logger
+from .contract import TIME
+
+RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
+SETTLED = 10         # steps at least on each side of a change
+
+
+def said_if_rate_changes(seconds: np.ndarray, file, at: Callable[[int], str] = position) -> None:
+    """Say where the sample period of ``seconds`` (a campaign's time, s, increasing) changes
+    once, the median steps before and after at least :data:`RATE_CHANGE` times apart (``at``:
+    names a data row)."""
+    steps = np.diff(seconds)
+    k = _change(steps)
+    if k is None:
+        return
+    before, after = float(np.median(steps[:k])), float(np.median(steps[k:]))
+    if min(before, after) <= 0 or max(before, after) / min(before, after) < RATE_CHANGE:
+        return
+    logger.warning(f"{file}, column {TIME!r}, {at(k + 2)}: the sample period changes from "
+                   f"{before:g} s to {after:g} s here (the logger set to another rate?): a model "
+                   "whose lags count samples (arx, lstm) reads a sample as "
+                   f"{before:g} s before it and {after:g} s after; data.resample_s="
+                   f"{max(before, after):g} puts the record on one grid")
+
+
+def _change(steps: np.ndarray) -> int | None:
+    """The step where the log of the steps shifts most (the largest two-sample statistic of
+    their means: one pass of cumulative sums, a year at 1 s as fast as a day), at least
+    :data:`SETTLED` steps from either end; None for a shorter record."""
+    n = steps.size
+    if n < 2 * SETTLED or not (steps > 0).all():
+        return None
+    logs = np.log(steps)
+    k = np.arange(SETTLED, n - SETTLED + 1)
+    head = np.cumsum(logs)[k - 1]
+    shift = head / k - (logs.sum() - head) / (n - k)
+    return int(k[np.argmax(np.abs(shift) * np.sqrt(k * (n - k)))])

@@ -1,0 +1,49 @@
+"""A lab's record whose rows are out of time order or repeat a time (session 56)."""
+
+from __future__ import annotations
+
+import pytest
+
+from thermocomp.core.io import read_dataset
+from thermocomp.core.io.contract import ContractError
+
+
+def record(path, stamps) -> None:
+    path.write_text("time,T_spindle,E_X\n" + "".join(
+        f"{t},{20 + 0.1 * i:.2f},{0.2 * i:.1f}\n" for i, t in enumerate(stamps)), encoding="utf-8")
+
+
+def test_rows_out_of_time_order_are_refused_saying_to_sort_them_with_the_times_as_written(tmp_path):
+    # two exports pasted in the wrong order were refused "time decreases from 4800 s (row 5) to
+    # -6000 s": seconds the file does not hold (one negative), and no fix
+    stamps = [f"2026-10-24T{19 + m // 60:02d}:{m % 60:02d}:00" for m in range(0, 200, 20)]
+    record(tmp_path / "lab.csv", stamps[5:] + stamps[:5])
+    with pytest.raises(ContractError) as refused:
+        read_dataset(tmp_path / "lab.csv")
+    assert refused.value.row == 6
+    assert refused.value.reason == ("time decreases from 2026-10-24T22:00:00 (row 5) to "
+                                    "2026-10-24T19:00:00: the rows are not in time order; sort "
+                                    "them by their time")
+
+
+def test_a_repeated_time_is_refused_saying_what_to_do(tmp_path):
+    stamps = [f"2026-10-24T19:{m:02d}:00" for m in range(30, 40)]
+    record(tmp_path / "lab.csv", stamps[:4] + stamps[3:9])
+    with pytest.raises(ContractError) as refused:
+        read_dataset(tmp_path / "lab.csv")
+    assert refused.value.row == 5
+    assert refused.value.reason == ("duplicate time 2026-10-24T19:33:00 (same as row 4): two "
+                                    "samples at one time; delete the row written twice, or give "
+                                    "it its own time")
+
+
+def test_a_time_starting_again_is_refused_saying_the_logger_restarted(tmp_path):
+    # refused "time decreases from 240 s (row 5) to 0 s" and no more: a logger whose elapsed
+    # time starts again at 0 after a restart, one run per file the way to read it
+    record(tmp_path / "lab.csv", [60 * i for i in range(5)] + [60 * i for i in range(5)])
+    with pytest.raises(ContractError) as refused:
+        read_dataset(tmp_path / "lab.csv")
+    assert refused.value.row == 6
+    assert refused.value.reason == ("time decreases from 240 s (row 5) to 0 s: the time starts "
+                                    "again (the logger restarted, or runs joined in one file?): "
+                                    "one file per run in a folder reads each as a campaign")
