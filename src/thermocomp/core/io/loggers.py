@@ -12,8 +12,7 @@ import pandas as pd
 from .contract import ContractError, role
 from .options import ReadOptions
 from .plain import as_read, is_converted
-from .starts import _first_row
-from .tables import _contract_names
+from .starts import named_head
 from .workbook import HEAD_ROWS
 
 NO_ERROR = "no E_ column"     # the refusal of a campaign file without a measured error
@@ -45,8 +44,7 @@ def _errors_only(path: Path, opts: ReadOptions) -> list[str]:
         if is_converted(path):      # a workbook's sheet, a UTF-16 text: its head as read
             with as_read(path, opts, rows=HEAD_ROWS) as (source, source_opts):
                 return _errors_only(source, source_opts)
-        header, first, opts = _first_row(path, opts)
-        names = [n for n in _contract_names(header, opts, path, first=first)[0] if n]
+        names = [n for n in named_head(path, opts)[2] if n]
     except (ContractError, OSError):
         return []
     kinds = {role(n) for n in names}

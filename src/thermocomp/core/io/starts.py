@@ -46,8 +46,7 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
         except ContractError:
             return pd.NaT
     try:
-        header, first, opts = _first_row(path, opts)
-        names, _ = _contract_names(header, opts, path, first=first)
+        header, first, names, opts = named_head(path, opts)
     except ContractError:
         return pd.NaT
     cells = {n: first[h] for h, n in zip(header, names) if n in (TIME, CLOCK)}
@@ -66,6 +65,14 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
     except (ContractError, pa.ArrowInvalid):
         return pd.NaT
     return utc_instant(pd.Timestamp(stamp), opts)
+
+
+def named_head(path: Path, opts: ReadOptions) -> tuple[list[str], dict, list[str | None],
+                                                       ReadOptions]:
+    """A text or Parquet file's header, its first row (:func:`_first_row`), the contract names
+    of its columns (None: ignored) and the options with its separators detected."""
+    header, first, opts = _first_row(path, opts)
+    return header, first, _contract_names(header, opts, path, first=first)[0], opts
 
 
 def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict, ReadOptions]:
