@@ -25,6 +25,15 @@ model's frame (the train campaigns' stacked inputs, before the envelope's margin
       Simulator) carry it as ``guard_lo``/``guard_hi`` with no code change; G1 needs the
       training ranges and the gains in the code.
 
+Added after G1 and G2 were scored (their fault lines below): both let the exported code and a
+fault the monitor misses through (a reading in K clamped at the envelope's edge is beyond
+training by the envelope's margin, and MLR leans -36 µm/K on that sensor)::
+
+  G3  G1, but only for a sample ON the training pattern (``Envelope.leaves_pattern(dx)`` false:
+      the sensors moved together as in training, a machine state the stream passes as measured);
+      a sample off it (one sensor leaving the others: the faults) gets today's bound.  Without a
+      pattern (``basis`` None) never: G0.
+
 Bars (all to adopt; the brief's): (a) long4253 / long7717 adaptive Σ² closer to plain for every
 family (hammerstein, lagbank, mlr); (b) the injected faults of ``bench_deploy_faults.py`` (its
 record, models and faults; the adaptive form and the exported code) before / after: any fault
@@ -51,6 +60,7 @@ import sys
 from pathlib import Path
 
 import numpy as np
+import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_state_envelope import SCENARIOS, _compose, simulate  # noqa: E402
@@ -63,7 +73,7 @@ from thermocomp.core.continuation import lead_ins  # noqa: E402
 from thermocomp.shell.builders import build_compensator, deploy_stream, deployable  # noqa: E402
 from thermocomp.shell.source import read_streamed  # noqa: E402
 
-RULES = ("G0", "G1", "G2")
+RULES = ("G0", "G1", "G2", "G3")
 LONG = {"long4253": ("hammerstein", "lagbank", "mlr"), "long7717": ("hammerstein", "lagbank", "mlr")}
 CMS = {"cms3141": ["sim=column_moving_source", "seed=3141"],
        "cms5003": ["sim=column_moving_source", "seed=5003"]}
@@ -114,20 +124,24 @@ def with_rule(adaptive: AdaptiveCompensator, rule: str, comp, train: dict) -> Ad
     stream, env = dep.streaming, dep.streaming.envelope
     G = np.abs(gains(stream))
     a, b = training_range(comp, train)
-    guard = copy.deepcopy(dep.guard)
-    guard.__class__ = WidenedGuard
-    dep.guard = guard
-    if rule == "G2":
-        guard.allowance = G @ np.maximum(env.hi - b, a - env.lo)
+    guard = dep.guard
+    if rule == "G2":                               # a plain guard with wider limits: it exports
+        allowance = G @ np.maximum(env.hi - b, a - env.lo)
+        guard.lo, guard.hi = guard.lo - allowance, guard.hi + allowance
+        if guard.lo_new is not None:
+            guard.lo_new, guard.hi_new = guard.lo_new - allowance, guard.hi_new + allowance
+        guard.allowance = allowance
         return dep
+    guard.__class__ = WidenedGuard
     inner = stream._step
 
     def step(x, t, clocked=False):                 # G1: the inputs as the model reads them
         y, n = inner(x, t, clocked)
         dx = x[:len(a)] - stream._ref
+        on = rule == "G1" or not env.leaves_pattern(dx)      # G3: on the training pattern only
         if stream.policy != "off":
             dx = dx - env.excess(dx)
-        guard.allowance = G @ np.maximum(np.maximum(dx - b, a - dx), 0.0)
+        guard.allowance = G @ np.maximum(np.maximum(dx - b, a - dx), 0.0) * on
         guard.widest = max(guard.widest, float(guard.allowance.max(initial=0.0)))
         return y, n
 
@@ -209,6 +223,54 @@ def cms_record(work: Path, tag: str, family: str) -> dict:
             "g2_allowance": _static_allowance(adaptive, comp, train)}
 
 
+def fault_lines(root: Path) -> list[dict]:
+    """Bar (b): ``bench_deploy_faults.py``'s record, models and faults; per rule the adaptive
+    form and (G0, G2: static bounds) the exported code: max|C|, the largest change from the same
+    form's healthy stream and the change at the last row (µm)."""
+    import bench_deploy_faults as bdf
+
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.cli import main as cli
+
+    data = root / "ys"
+    if not data.exists():
+        cli(["-q", "simulate", "sim=yearround_spindle", "seed=5353", "sim.generator.n_campaigns=9",
+             "sim.generator.duration_h=[3.0,5.0]", f"data.path={data}", f"out={root / 'sim'}"])
+    raw = pd.read_csv(data / f"{bdf.CAMPAIGN}.csv")
+    lines = []
+    for family in bdf.FAMILIES:
+        model = root / family / "model.pkl"
+        if not model.exists():
+            cli(["-q", "run", f"data.path={data}", f"model={family}", "track=false", "plots=none",
+                 f"out={root / family}"])
+        cfg = bdf._cfg(data, "monitor.adaptive=true")
+        ds, train_ids, _, _ = read_streamed(cfg)
+        adaptive = deployable_model(cfg, ds, train_ids, str(model), "replay.model")[0]
+        train = {c: ds.campaigns[c] for c in train_ids}
+        # the guard without the monitor: what guards a fault the monitor misses (and the code)
+        alone = AdaptiveCompensator(copy.deepcopy(adaptive.streaming), None,
+                                    copy.deepcopy(adaptive.guard), adaptive.period_s)
+        for rule in RULES:
+            dep = with_rule(adaptive, rule, adaptive.compensator, train)
+            bare = with_rule(alone, rule, adaptive.compensator, train)
+            forms = {"adaptive": lambda df, d=dep: bdf._streamed(d, df)[0],
+                     "no_monitor": lambda df, d=bare: bdf._streamed(d, df)[0]}
+            if rule in ("G0", "G2"):
+                forms["code"] = lambda df, d=dep: bdf._code(d, df)
+            for form, fn in forms.items():
+                healthy = fn(raw)
+                for name, df in {"healthy": raw, **bdf.faults(raw)}.items():
+                    y = bdf._aligned(name, fn(df), len(raw) // 2)
+                    n = min(len(y), len(healthy))
+                    change = np.abs(y[:n] - healthy[:n])
+                    lines.append({"family": family, "rule": rule, "form": form, "fault": name,
+                                  "max_c": float(np.max(np.abs(y))),
+                                  "max_change": float(np.max(change)),
+                                  "last_change": float(np.max(change[-1])),
+                                  "finite": bool(np.isfinite(y).all())})
+    return lines
+
+
 def main(argv=None) -> None:
     ap = argparse.ArgumentParser()
     ap.add_argument("--root", default="/tmp/stateenv55-bench")
@@ -230,6 +292,14 @@ def main(argv=None) -> None:
         print(f"{rec:9s} {fam:12s} " + "  ".join(
             f"{k} {v['s2']:.3f} ({v['bounded_events']})" for k, v in r["forms"].items())
             + f"  G2 +{np.round(r['g2_allowance'], 1).tolist()} µm", flush=True)
+    if "b" in args.parts:
+        lines = fault_lines(Path(args.work) / "df")
+        results.append({"faults": lines})
+        table = pd.DataFrame(lines)
+        table["cell"] = table.apply(lambda r: f"{r.max_c:.1f}/{r.max_change:.1f}/{r.last_change:.1f}"
+                                    + ("" if r.finite else " NaN!"), axis=1)
+        print(table.pivot_table(index=["fault", "family"], columns=["form", "rule"], values="cell",
+                                aggfunc="first", sort=False).to_string())
     usage = resource.getrusage(resource.RUSAGE_SELF)
     print("CPU s (user + sys):", round(usage.ru_utime + usage.ru_stime, 1))
     if args.out:
