@@ -94,10 +94,11 @@ class CorrectionGuard:
         without a pattern or a following bound."""
         if self.in_gain is None or envelope is None or envelope.basis is None:
             return None
-        d = np.maximum(np.maximum(x - self.in_hi, self.in_lo - x), 0.0)
-        if not d.any() or envelope.leaves_pattern(x):
+        d = x - self.in_hi
+        np.maximum(d, self.in_lo - x, out=d)
+        if not d.max() > 0.0 or envelope.leaves_pattern(x):      # (the usual case: in range)
             return None
-        return self.in_gain @ d
+        return self.in_gain @ np.maximum(d, 0.0, out=d)
 
     def reset(self) -> None:
         self._prev = None
