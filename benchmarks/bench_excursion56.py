@@ -90,6 +90,10 @@ state is declared on these records: 0 such events, the E_Z bound episodes at 27.
 long4253 and 37.2-37.9 h on long7717 are the guard's only events); (2) the "explaining"
 exclusion of an unobservable sensor whose reading the others predict beyond its range, before (3)
 any consistency rule on ``out of range``.
+
+Since then (stop 56, ``bench_guard56.py``): (1) is done, the bound widens by the model's response
+to inputs beyond their training range on the training pattern (``monitor.guard.follow_inputs``);
+the ``adaptive`` column above is the guard as it was (now it is the ``monitor`` column).
 """
 
 from __future__ import annotations

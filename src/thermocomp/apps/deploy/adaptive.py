@@ -23,7 +23,7 @@ from contextlib import contextmanager
 import numpy as np
 import pandas as pd
 
-from ...core.context import TIME
+from ...core.context import TIME, step_gain
 from ...core.timerule import SampleClock
 from .guard import CorrectionGuard
 from .pod import ThermalPOD
@@ -82,10 +82,16 @@ class AdaptiveCompensator:
         times = [df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
                  for df in campaigns.values()]
         predicted = comp.predict(campaigns, mode="simulation")
+        guard = dict(guard or {})
+        follow = bool(guard.pop("follow_inputs", True))
         g = CorrectionGuard.from_training(
             streaming.targets_, [measured[c][streaming.targets_].to_numpy(float) for c in campaigns],
-            times, **(guard or {}),
+            times, **guard,
             predicted=[predicted[c][streaming.targets_].to_numpy(float) for c in campaigns])
+        if follow and streaming.envelope is not None:
+            X = comp.stacked(campaigns, targets=[]).X     # the envelope's data, before its margin
+            g.follow_inputs(input_gains(streaming), X.min().to_numpy(float),
+                            X.max().to_numpy(float))
         return cls(streaming, mon, g, g.period_s)
 
     # -- the streaming-compensator interface ---------------------------------------------------
@@ -210,12 +216,14 @@ class AdaptiveCompensator:
             x[self._other] = self._hold(x[self._other], t, events)
         try:
             y, clamped = self.streaming._step(x, t, clocked=True)
+            stepped = True
         except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
-            y, clamped = np.full(len(self.targets_), np.nan), 0
+            y, clamped, stepped = np.full(len(self.targets_), np.nan), 0, False
             events.append({"time": t, "sensor": None, "from": "running", "to": "held",
                            "reason": f"correction held: {exc}"})
         if self.guard is not None:
-            y, ev = self.guard.step(y, dt, t, self.monitor is not None and self.monitor.new_state_)
+            y, ev = self.guard.step(y, dt, t, self.monitor is not None and self.monitor.new_state_,
+                                    self._allowance(stepped))
             events += ev
         elif not np.all(np.isfinite(y)):
             y = np.where(np.isfinite(y), y, 0.0 if self._y is None else self._y)
@@ -223,6 +231,14 @@ class AdaptiveCompensator:
         self.n_samples_ += 1
         self.last_events_ = events
         return y, clamped
+
+    def _allowance(self, stepped: bool) -> np.ndarray | None:
+        """The guard's bound widened for the inputs the model read at this sample (guard.py):
+        with the envelope's clamp, which carries the training pattern (so does the code)."""
+        s = self.streaming
+        if not stepped or s.policy != "clamp" or self.guard.in_gain is None:
+            return None
+        return self.guard.allowance(s.last_x_, s.envelope)
 
     def _check_time(self, t: float, events: list) -> tuple[float, float]:
         # the time rule of every deployed form (timerule.py); a bad time is judged against the
@@ -277,6 +293,18 @@ class AdaptiveCompensator:
         out["excluded_inputs"] = excluded
         out["events"] = events
         return out
+
+
+def input_gains(streaming: StreamingCompensator) -> np.ndarray:
+    """(targets, inputs) step gains at the envelope's horizon, as the clamp's (0: a target
+    without one)."""
+    n = len(streaming.envelope.lo)
+    out = np.zeros((len(streaming.targets_), n))
+    for k, (_, est, idx) in enumerate(streaming._plan):
+        gain = step_gain(est, None, streaming.envelope.horizon_s)
+        if gain is not None:
+            out[k, np.arange(gain.size) if idx is None else np.asarray(idx)] = gain
+    return out
 
 
 def _clock_of(last_time: float, last_read: float) -> tuple:

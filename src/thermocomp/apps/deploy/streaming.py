@@ -437,6 +437,7 @@ class StreamingCompensator:
             start = context_record(STREAM_ID, time, self._ambient_c0, {})
             self._states = {t: est.stream_init(start) for t, est, _ in self._plan}
         dx = seen[:self._n_inputs] - self._ref
+        self.last_x_ = dx                 # the inputs as the models read them (the guard's)
         n_clamped, excess = 0, None
         env = self.envelope
         if env is not None and self.policy != "off":

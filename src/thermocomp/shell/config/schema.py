@@ -151,6 +151,7 @@ class Guard:
     margin: float = key(NON_NEGATIVE)
     rate_margin: float = key(NON_NEGATIVE)
     new_state_margin: Optional[float] = key(optional(NON_NEGATIVE))
+    follow_inputs: bool = key(BOOLEAN)
 
 
 @dataclass

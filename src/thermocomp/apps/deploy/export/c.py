@@ -98,6 +98,7 @@ def header(ss: StateSpace) -> str:
 #define TC_USES_TIME {int(ss.uses_time)}
 #define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
 #define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
+#define TC_GUARD_INPUTS {int(ss.guard and ss.guard_inputs)}   /* the bound follows the inputs (pattern) */
 #define TC_ADAPT {ADAPT_CODES[ss.adapt]}   /* learned from reference measurements: 1 bias, 2 gain and bias */
 
 /* Everything the compensator remembers between samples; the caller owns it. */
@@ -213,6 +214,7 @@ static int off_pattern(const double x[]) {{
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS], xl[2][{max(k, 1)}], ych[2];
+    double allow[TC_N_OUTPUTS];
     double dt, now, step;
     int i, j, l, h, clamped = 0;
     /* a non-finite input refuses the sample before anything is remembered: one NaN would
@@ -269,6 +271,21 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         }}
     }}
     s->t = now;
+    /* the guard's bound widens by the response to the inputs beyond their training range, at a
+       sample on the training pattern (a hotter machine; one sensor leaving the others: not) */
+    for (i = 0; i < TC_N_OUTPUTS; i++) allow[i] = 0.0;
+    if (TC_GUARD_INPUTS) {{
+        double d[TC_N_INPUTS];
+        int beyond = 0;
+        for (j = 0; j < TC_N_INPUTS; j++) {{
+            d[j] = x[0][j] > GUARD_IN_HI[j] ? x[0][j] - GUARD_IN_HI[j]
+                 : (x[0][j] < GUARD_IN_LO[j] ? GUARD_IN_LO[j] - x[0][j] : 0.0);
+            if (d[j] > 0.0) beyond = 1;
+        }}
+        if (beyond && !off_pattern(x[0]))
+            for (i = 0; i < TC_N_OUTPUTS; i++)
+                for (j = 0; j < TC_N_INPUTS; j++) allow[i] += GUARD_GAIN[i][j] * d[j];
+    }}
     /* outputs: static part, input history, lags, AR feedback; the response to the excess is
        taken out up to the response to it held for the envelope's horizon; back in range, up to
        the last excess's (the memory of an excess that ends at once is taken out as it decays) */
@@ -296,8 +313,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
                 if (d > lim) y = s->out[i] + lim;
                 else if (d < -lim) y = s->out[i] - lim;
             }}
-            if (y < GUARD_LO[i]) y = GUARD_LO[i];
-            else if (y > GUARD_HI[i]) y = GUARD_HI[i];
+            if (y < GUARD_LO[i] - allow[i]) y = GUARD_LO[i] - allow[i];
+            else if (y > GUARD_HI[i] + allow[i]) y = GUARD_HI[i] + allow[i];
         }}
         s->out[i] = y;
         c[i] = s->c[i] = TC_ADAPT ? -(s->gain[i] * y + s->bias[i]) : -y;
@@ -360,12 +377,15 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]) {{
 def _output_constants(ss: StateSpace) -> list[str]:
     """The time rule's period, the guard's limits and the reference update's constants (zeros
     where there is none)."""
-    m = len(ss.targets)
+    m, n = len(ss.targets), len(ss.inputs)
     rate = [math.inf if r is None else r for r in ss.guard_rate or [0.0] * m]
     return [f"static const double TIME_PERIOD = {number(ss.time_period)};",
             _array("GUARD_LO", ss.guard_lo or [0.0] * m, (m,)),
             _array("GUARD_HI", ss.guard_hi or [0.0] * m, (m,)), _array("GUARD_RATE", rate, (m,)),
             f"static const double GUARD_PERIOD = {number(ss.guard_period)};",
+            _array("GUARD_GAIN", ss.guard_gain or [[0.0] * n] * m, (m, n)),
+            _array("GUARD_IN_LO", ss.guard_in_lo or [0.0] * n, (n,)),
+            _array("GUARD_IN_HI", ss.guard_in_hi or [0.0] * n, (n,)),
             _array("GAIN0", ss.adapt_gain or [1.0] * m, (m,)),
             _array("COV0", ss.adapt_cov or [[[0.0, 0.0], [0.0, 0.0]]] * m, (m, 2, 2)),
             f"static const double MAX_GAIN_CHANGE = {number(ss.adapt_max_gain_change)};",

@@ -9,6 +9,9 @@ the reference update (pure core).
   target, and one state, the previous guarded output.  A campaign's first output is bounded
   only; every later one is first held within ``guard_rate * dt`` of the previous one (``dt`` the
   time since the previous sample; ``guard_period`` when no later time is given), then bounded.
+  With ``guard_inputs`` (the clamp's training pattern in the code) the bound widens on each side
+  by ``guard_gain . d`` at a sample on the pattern whose referenced inputs lie beyond their
+  training range ``[guard_in_lo, guard_in_hi]`` by ``d`` (the guard's own rule, guard.py).
 * **adapt** (``adapt.method=bias|rls``, :class:`~..adapt.ReferenceAdapter`): the correction is
   ``-(gain * y + bias)``; a reference measurement ``e`` of a target, taken where the guarded
   output was ``y``, updates ``bias`` and its variance (``bias``), or ``(gain, bias)`` and their
@@ -23,23 +26,35 @@ the holding of a missing machine state are not in the code: :func:`not_in_code` 
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 
 from ..adaptive import AdaptiveCompensator
 from .errors import NotExportable
 
+UNBOUNDED = sys.float_info.max   # a machine state's range: never beyond it
+
 EXPORTED_ADAPT = ("none", "bias", "rls")
 
 
-def guard_fields(deployed) -> dict:
-    """The guard's fields of the exported system (none for a plain stream)."""
+def guard_fields(deployed, n_states: int = 0, pattern: bool = False) -> dict:
+    """The guard's fields of the exported system (none for a plain stream); its bound follows
+    the inputs (``guard_inputs``) where the code has the training ``pattern`` (the clamp's), as
+    the adaptive compensator's does with the clamp; ``n_states``: machine states after the
+    inputs (never beyond a range)."""
     g = deployed.guard if isinstance(deployed, AdaptiveCompensator) else None
     if g is None:
         return {}
     rate = [None if math.isinf(r) else float(r) for r in g.max_rate_per_s]
-    return {"guard": True, "guard_lo": g.lo.tolist(), "guard_hi": g.hi.tolist(),
-            "guard_rate": rate, "guard_period": float(g.period_s)}
+    out = {"guard": True, "guard_lo": g.lo.tolist(), "guard_hi": g.hi.tolist(),
+           "guard_rate": rate, "guard_period": float(g.period_s)}
+    if pattern and g.in_gain is not None:
+        pad = [UNBOUNDED] * n_states
+        out.update(guard_inputs=True,
+                   guard_gain=np.hstack([g.in_gain, np.zeros((len(g.in_gain), n_states))]).tolist(),
+                   guard_in_lo=g.in_lo.tolist() + [-u for u in pad], guard_in_hi=g.in_hi.tolist() + pad)
+    return out
 
 
 def time_fields(deployed, lag_period: float) -> dict:
@@ -90,21 +105,37 @@ class Output:
         if ss.guard:
             self.lo, self.hi = np.asarray(ss.guard_lo, float), np.asarray(ss.guard_hi, float)
             self.rate = np.array([np.inf if r is None else r for r in ss.guard_rate], float)
+        if ss.guard and ss.guard_inputs:
+            self.in_gain = np.asarray(ss.guard_gain, float).reshape(m, -1)
+            self.in_lo, self.in_hi = np.asarray(ss.guard_in_lo, float), np.asarray(ss.guard_in_hi, float)
         self.gain = np.asarray(ss.adapt_gain or [1.0] * m, float)
         self.bias = np.asarray(ss.adapt_bias or [0.0] * m, float).copy()
         self.var = np.asarray(ss.adapt_var or [0.0] * m, float).copy()
         self.cov = np.asarray(ss.adapt_cov or np.zeros((m, 2, 2)), float).copy()
         self.y = np.zeros(m)
 
-    def step(self, y: np.ndarray, first: bool, dt: float) -> np.ndarray:
+    def allowance(self, x: np.ndarray, envelope) -> np.ndarray | None:
+        """How far the guard's bound widens for the referenced inputs ``x`` (``guard_inputs``):
+        ``guard_gain . d`` on the training pattern of ``envelope`` (the clamp's), else None."""
+        if not (self.ss.guard and self.ss.guard_inputs):
+            return None
+        d = np.maximum(np.maximum(x - self.in_hi, self.in_lo - x), 0.0)
+        if not d.any() or envelope.leaves_pattern(x):
+            return None
+        return self.in_gain @ d
+
+    def step(self, y: np.ndarray, first: bool, dt: float,
+             allowance: np.ndarray | None = None) -> np.ndarray:
         """Correction (µm) of the model's predicted error ``y``; ``dt``: s since the previous
-        sample (NaN: ``guard_period``)."""
+        sample (NaN: ``guard_period``); ``allowance``: the bound widened by it (:meth:`allowance`)."""
         if self.ss.guard:
             if not first:
                 lim = self.rate * (dt if np.isfinite(dt) and dt > 0 else self.ss.guard_period)
                 d = y - self.y
                 y = np.where(d > lim, self.y + lim, np.where(d < -lim, self.y - lim, y))
-            y = np.minimum(np.maximum(y, self.lo), self.hi)
+            lo, hi = (self.lo, self.hi) if allowance is None else (self.lo - allowance,
+                                                                    self.hi + allowance)
+            y = np.minimum(np.maximum(y, lo), hi)
         self.y = y
         return -(self.gain * y + self.bias) if self.ss.adapt != "none" else -y
 

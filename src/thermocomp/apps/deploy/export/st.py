@@ -85,6 +85,10 @@ def function_block(ss: StateSpace) -> str:
         _constant("GUARD_LO", ss.guard_lo or [], (m,)), _constant("GUARD_HI", ss.guard_hi or [], (m,)),
         _constant("GUARD_RATE", [LREAL_MAX if r is None else r for r in ss.guard_rate or []], (m,)),
         f"    GUARD_PERIOD : LREAL := {literal(ss.guard_period)};",
+        f"    GUARD_INPUTS : BOOL := {'TRUE' if ss.guard and ss.guard_inputs else 'FALSE'};",
+        _constant("GUARD_GAIN", ss.guard_gain or [], (m, n)),
+        _constant("GUARD_IN_LO", ss.guard_in_lo or [], (n,)),
+        _constant("GUARD_IN_HI", ss.guard_in_hi or [], (n,)),
         f"    USE_ADAPT : BOOL := {'TRUE' if ss.adapt != 'none' else 'FALSE'};",
         f"    ADAPT_RLS : BOOL := {'TRUE' if ss.adapt == 'rls' else 'FALSE'};",
         f"    MAX_GAIN_CHANGE : LREAL := {literal(ss.adapt_max_gain_change)};",
@@ -132,6 +136,9 @@ VAR
     pat_r : ARRAY[{_dims(n)}] OF LREAL;
     pat_p : LREAL;
     pat_r2 : LREAL;
+    allow : ARRAY[{_dims(m)}] OF LREAL;
+    gd : ARRAY[{_dims(n)}] OF LREAL;
+    beyond : BOOL;
     w : LREAL;
     xl : ARRAY[{_dims(2, k)}] OF LREAL;
     e : LREAL;
@@ -239,6 +246,51 @@ IF NOT refused THEN
             END_FOR;
         END_IF;
     END_IF;
+    (* the guard's bound widens by the response to the inputs beyond their training range, at a *)
+    (* sample on the training pattern (a hotter machine; one sensor leaving the others: not) *)
+    FOR i := 0 TO N_OUTPUTS - 1 DO
+        allow[i] := 0.0;
+    END_FOR;
+    IF GUARD_INPUTS THEN
+        beyond := FALSE;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            IF x[0, j] > GUARD_IN_HI[j] THEN
+                gd[j] := x[0, j] - GUARD_IN_HI[j];
+                beyond := TRUE;
+            ELSIF x[0, j] < GUARD_IN_LO[j] THEN
+                gd[j] := GUARD_IN_LO[j] - x[0, j];
+                beyond := TRUE;
+            ELSE
+                gd[j] := 0.0;
+            END_IF;
+        END_FOR;
+        IF beyond THEN
+            FOR j := 0 TO N_INPUTS - 1 DO
+                pat_z[j] := (x[0, j] - PATTERN_MEAN[j]) / PATTERN_SCALE[j];
+                pat_r[j] := pat_z[j];
+            END_FOR;
+            FOR l := 0 TO PATTERN_RANK - 1 DO
+                pat_p := 0.0;
+                FOR j := 0 TO N_INPUTS - 1 DO
+                    pat_p := pat_p + PATTERN_BASIS[j, l] * pat_z[j];
+                END_FOR;
+                FOR j := 0 TO N_INPUTS - 1 DO
+                    pat_r[j] := pat_r[j] - pat_p * PATTERN_BASIS[j, l];
+                END_FOR;
+            END_FOR;
+            pat_r2 := 0.0;
+            FOR j := 0 TO N_INPUTS - 1 DO
+                pat_r2 := pat_r2 + pat_r[j] * pat_r[j];
+            END_FOR;
+            IF pat_r2 <= PATTERN_TOL * PATTERN_TOL THEN
+                FOR i := 0 TO N_OUTPUTS - 1 DO
+                    FOR j := 0 TO N_INPUTS - 1 DO
+                        allow[i] := allow[i] + GUARD_GAIN[i, j] * gd[j];
+                    END_FOR;
+                END_FOR;
+            END_IF;
+        END_IF;
+    END_IF;
     (* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale *)
     FOR l := 0 TO N_POWERS - 1 DO
         w := v[POWER_SRC[l]] / POWER_SCALE[l];
@@ -331,10 +383,10 @@ IF NOT refused THEN
                     y := out_prev[i] - lim;
                 END_IF;
             END_IF;
-            IF y < GUARD_LO[i] THEN
-                y := GUARD_LO[i];
-            ELSIF y > GUARD_HI[i] THEN
-                y := GUARD_HI[i];
+            IF y < GUARD_LO[i] - allow[i] THEN
+                y := GUARD_LO[i] - allow[i];
+            ELSIF y > GUARD_HI[i] + allow[i] THEN
+                y := GUARD_HI[i] + allow[i];
             END_IF;
         END_IF;
         out_prev[i] := y;

@@ -26,7 +26,9 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    (with the sample's own bound, 0 in range, a one-row +50 °C spike stayed in a lag bank's
    correction to the campaign's end);
 5. the correction guard, when the model was deployed with one (:mod:`.output`): ``y_t`` held
-   within ``guard_rate_t * dt`` of its previous value, then within ``[guard_lo_t, guard_hi_t]``;
+   within ``guard_rate_t * dt`` of its previous value, then within ``[guard_lo_t - a_t, guard_hi_t
+   + a_t]``; ``a_t = guard_gain_t . d`` with ``guard_inputs`` at a sample on the training pattern,
+   ``d`` the distance of ``x`` beyond ``[guard_in_lo, guard_in_hi]`` (else 0);
 6. the correction sent to the CNC is ``C_t = -y_t`` (with ``adapt``: ``-(gain_t * y_t + bias_t)``,
    updated by each reference measurement).
 
@@ -102,6 +104,11 @@ class StateSpace:
     guard_hi: list | None = None
     guard_rate: list | None = None   # (n_targets,) µm/s; null: no rate limit
     guard_period: float = 0.0        # s: ``dt`` when no later time is given
+    # the bound following the inputs on the training pattern (pattern only; :mod:`.output`)
+    guard_inputs: bool = False
+    guard_gain: list | None = None   # (n_targets, n_inputs) |step gain| (a state's: 0)
+    guard_in_lo: list | None = None  # (n_inputs,) the training range (a state's: unbounded)
+    guard_in_hi: list | None = None
     adapt: str = "none"              # none | bias | rls
     adapt_gain: list | None = None   # (n_targets,) as served (learned so far)
     adapt_bias: list | None = None   # (n_targets,) µm, as served
@@ -244,7 +251,8 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
         clamp_gain=gains, **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
-        **time_fields(deployed, period), **guard_fields(deployed),
+        **time_fields(deployed, period),
+        **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
         provenance=dict(provenance or {}))
 
@@ -345,5 +353,6 @@ class Simulator:
         self.y, self.first = y, False
         if excess.any():            # back in range, the bound of the excess's last sample holds
             self.bound = np.abs(self.clamp_gain @ excess)
-        self.c = self.output.step(y[0] - np.clip(y[1], -self.bound, self.bound), first, dt)
+        self.c = self.output.step(y[0] - np.clip(y[1], -self.bound, self.bound), first, dt,
+                                  self.output.allowance(x, self.envelope))
         return self.c.copy()

@@ -43,6 +43,9 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
         rate = ss.guard_rate[i]
         lines.append(f"guard {ascii_name(t)}: bound [{ss.guard_lo[i]:.6g}, {ss.guard_hi[i]:.6g}] um, "
                      "rate limit " + ("none" if rate is None else f"{rate:.6g} um/s"))
+    if ss.guard and ss.guard_inputs:
+        lines.append("guard bound widens by guard_gain . d on the training pattern, d the inputs' "
+                     "distance beyond their training range [guard_in_lo, guard_in_hi]")
     if ss.adapt != "none":
         lines.append(f"adapt: {ss.adapt}, learned from reference measurements of "
                      + ", ".join(map(ascii_name, ss.targets)) + " (tc_reference; ST: ref_valid, ref_error)")

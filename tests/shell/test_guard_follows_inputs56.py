@@ -1,0 +1,102 @@
+"""The correction guard's bound follows a real excursion on the training pattern (stop 56).
+
+A machine whose sensors share one heat source runs hotter in test than in training (the source
+at 1.8 x its largest training power): every sensor beyond its training range, together as in
+training.  The model's correction then leaves the training error range widened by the guard's
+margin; the fixed bound clipped it (``long_record`` overspeeds: 1.2-6.8 x the plain stream's
+Σ² vs truth, benchmarks/bench_guard56.py).  The bound now widens by the model's response to the
+inputs' excess over their training range, on the pattern only: a sample where one sensor does
+not follow the others (a fault) keeps the bound as trained.  The exported code does the same.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from test_export import TOLERANCE_UM, StructuredText, _compiled, _compose, _streamed, needs_cc
+from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.streaming import replay
+from thermocomp.shell.builders import build_compensator, deploy_stream, deployable
+from thermocomp.shell.source import read_streamed
+
+ROWS, STEP_S = 60, 120.0
+SPLITS = ["train"] * 5 + ["test"]
+
+
+def _campaign(power: float, amb: float, rng) -> pd.DataFrame:
+    """Four sensors heated by one source of ``power`` (each with its own share and lag), the
+    air, and the error they explain."""
+    t = np.arange(ROWS) * STEP_S
+    rise = power * (1 - np.exp(-t / 2400))
+    late = power * (1 - np.exp(-t / 4800))
+    noise = lambda: rng.normal(0, 0.03, ROWS)          # noqa: E731
+    frame = pd.DataFrame({"time": t, "T_amb": amb + 0.2 * np.sin(t / 3000) + noise(),
+                          "T_a": amb + rise + noise(), "T_b": amb + 0.6 * rise + noise(),
+                          "T_c": amb + 0.8 * late + noise(), "T_d": amb + 0.4 * late + noise()})
+    d = frame - frame.iloc[0]
+    frame["E_X"] = 3.0 * d["T_a"] - 1.0 * d["T_b"] + 2.0 * d["T_c"] + rng.normal(0, 0.1, ROWS)
+    return frame
+
+
+@pytest.fixture(scope="module")
+def hotter(tmp_path_factory):
+    """``(adaptive compensator as replay deploys it (MLR), the hotter test campaign)``."""
+    root = tmp_path_factory.mktemp("guard56") / "data"
+    root.mkdir()
+    rng = np.random.default_rng(56)
+    for i, split in enumerate(SPLITS):
+        power = 9.0 if split == "test" else 3.0 + 0.5 * i      # training at most 5.0
+        _campaign(power, 18.0 + 0.5 * i, rng).to_csv(root / f"K{i}.csv", index=False)
+    pd.DataFrame({"campaign": [f"K{i}" for i in range(len(SPLITS))],
+                  "file": [f"K{i}.csv" for i in range(len(SPLITS))], "split": SPLITS,
+                  "notes": ""}).to_csv(root / "campaigns.csv", index=False)
+    cfg = _compose(f"data.path={root}", "track=false", "monitor.adaptive=true", "model=mlr")
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    stream = deploy_stream(cfg, build_compensator(cfg, ds=ds).fit(train), train)
+    return deployable(cfg, stream, train, ds), ds.campaigns[test_ids[0]].reset_index(drop=True)
+
+
+def test_the_bound_follows_a_hotter_machine_and_not_one_sensor(hotter):
+    deployed, df = hotter
+    assert deployed.streaming.envelope.basis is not None        # the sensors moved together
+    free = replay(deployed.streaming, df)[deployed.targets_].to_numpy(float)
+    got = replay(deployed, df)
+    assert (got["excluded_inputs"] == "").all()                 # nothing read as a fault
+    y = got[deployed.targets_].to_numpy(float)
+    hi = deployed.guard.hi
+    # the model's correction goes beyond the trained bound, and reaches the CNC as it is
+    assert free.max() > hi.max() + 5.0
+    np.testing.assert_allclose(y, free, rtol=0, atol=1e-9)
+    # the bound widened by the response to the excess over the training range; a sample off
+    # the pattern (one sensor not following the others, as a fault) keeps the trained bound
+    env, guard, cols = deployed.streaming.envelope, deployed.guard, deployed.columns_
+    x = (df[cols] - df[cols].iloc[0]).to_numpy(float)[-1]
+    excess = np.maximum(x - guard.in_hi, guard.in_lo - x).clip(0)
+    np.testing.assert_allclose(guard.allowance(x, env), np.abs(guard.in_gain) @ excess)
+    assert free[-1] > hi.max() and not env.leaves_pattern(x)
+    lone = x.copy()
+    lone[cols.index("T_b")] *= 0.5
+    assert env.leaves_pattern(lone) and guard.allowance(lone, env) is None
+    assert guard.allowance(np.clip(x, guard.in_lo, guard.in_hi), env) is None    # in range
+
+
+@needs_cc
+def test_the_code_follows_the_hotter_machine_as_replay_does(hotter, tmp_path):
+    deployed, df = hotter
+    expected = -replay(deployed, df)[deployed.targets_].to_numpy(float)
+    assert -expected.min() > deployed.guard.hi.max() + 5.0
+    ss, cols = state_space(deployed), deployed.columns_
+    assert ss.guard_inputs
+    sim = Simulator(ss)
+    got = np.array([sim.step(u, t) for u, t in zip(df[cols].to_numpy(float), df["time"])])
+    assert np.max(np.abs(got - expected)) <= TOLERANCE_UM
+    rows = df[["time", *cols]].to_csv(index=False, float_format="%.17g")
+    assert np.max(np.abs(_streamed(_compiled(deployed, tmp_path), rows).to_numpy(float)
+                         - expected)) <= TOLERANCE_UM
+    fb = StructuredText(exported_files(deployed, "st")["compensator.st"])
+    st = np.array([fb(u, t, k == 0) for k, (u, t) in enumerate(zip(df[cols].to_numpy(float),
+                                                                    df["time"]))])
+    assert np.max(np.abs(st - expected)) <= TOLERANCE_UM
