@@ -100,3 +100,23 @@ def test_the_code_follows_the_hotter_machine_as_replay_does(hotter, tmp_path):
     st = np.array([fb(u, t, k == 0) for k, (u, t) in enumerate(zip(df[cols].to_numpy(float),
                                                                     df["time"]))])
     assert np.max(np.abs(st - expected)) <= TOLERANCE_UM
+
+
+def test_the_machine_gets_the_correction_the_compensator_computed(hotter):
+    """``connect`` writes through an offset limiter bounded as the guard: it widens with it (it
+    kept the trained bound and cut the hotter machine's correction there), and a stale offset
+    decays from what was written, not cut to the trained bound first."""
+    from thermocomp.shell.stages.connect import offset_limiter
+
+    deployed, df = hotter
+    limiter = offset_limiter(deployed, deployed.guard, hold_s=60.0, decay_s=600.0)
+    deployed.reset()
+    computed, written = [], []
+    for u, t in zip(df[deployed.columns_].to_numpy(float), df["time"]):
+        computed.append(np.asarray(deployed.step(u, t), float))     # as connect's client steps it
+        written.append(limiter.fresh(computed[-1], now=t).copy())
+    computed, written = np.array(computed), np.array(written)
+    assert computed.max() > deployed.guard.hi.max() + 5.0
+    np.testing.assert_allclose(written, computed, rtol=0, atol=1e-9)
+    late = df["time"].iloc[-1] + 60.0 + 600.0        # held 60 s, then one time constant
+    np.testing.assert_allclose(limiter.stale(now=late), written[-1] * np.exp(-1.0), rtol=1e-12)

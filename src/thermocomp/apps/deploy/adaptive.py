@@ -233,12 +233,7 @@ class AdaptiveCompensator:
         return y, clamped
 
     def _allowance(self, stepped: bool) -> np.ndarray | None:
-        """The guard's bound widened for the inputs the model read at this sample (guard.py):
-        with the envelope's clamp, which carries the training pattern (so does the code)."""
-        s = self.streaming
-        if not stepped or s.policy != "clamp" or self.guard.in_gain is None:
-            return None
-        return self.guard.allowance(s.last_x_, s.envelope)
+        return stream_allowance(self.guard, self.streaming) if stepped else None
 
     def _check_time(self, t: float, events: list) -> tuple[float, float]:
         # the time rule of every deployed form (timerule.py); a bad time is judged against the
@@ -293,6 +288,16 @@ class AdaptiveCompensator:
         out["excluded_inputs"] = excluded
         out["events"] = events
         return out
+
+
+def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator) -> np.ndarray | None:
+    """How far ``guard``'s bound widens for the inputs ``streaming``'s model read at its last
+    sample (:meth:`~.guard.CorrectionGuard.allowance`): with the envelope's clamp, which carries
+    the training pattern (so does the code); ``None`` before a sample or without a following bound."""
+    x = getattr(streaming, "last_x_", None)
+    if x is None or getattr(streaming, "policy", None) != "clamp" or guard.in_gain is None:
+        return None
+    return guard.allowance(x, streaming.envelope)
 
 
 def input_gains(streaming: StreamingCompensator) -> np.ndarray:

@@ -5,10 +5,16 @@ The compensator's own guard (the adaptive one's) bounds and rate-limits each cor
 computes; this limiter keeps the same promise for what reaches the machine's registers, also
 when no correction is computed: a missing one (NaN) holds the last offset, and without a
 fresh sample for ``hold_s`` the offset decays with time constant ``decay_s``; the first fresh
-ones after that come back at the rate limit, not in one jump.
+ones after that come back at the rate limit, not in one jump.  With ``widen`` the bound of a
+fresh offset widens as the compensator's guard widens it for a machine hotter than training
+(``widen()``: µm per target, or None; :func:`thermocomp.apps.deploy.adaptive.stream_allowance`),
+so that what reaches the machine is what the compensator computed; a stale offset decays inside
+the bound of its last fresh one.
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
 
 import numpy as np
 
@@ -16,8 +22,11 @@ import numpy as np
 class OffsetLimiter:
     """Per target: bound ``[lo, hi]`` µm and a largest change ``max_step`` µm per sample."""
 
-    def __init__(self, lo, hi, max_step, hold_s: float, decay_s: float):
+    def __init__(self, lo, hi, max_step, hold_s: float, decay_s: float,
+                 widen: Callable[[], np.ndarray | None] | None = None):
         self.lo, self.hi = np.asarray(lo, float), np.asarray(hi, float)
+        self.widen = widen
+        self._lo_now, self._hi_now = self.lo, self.hi     # the bound of the last fresh offset
         self.max_step = np.asarray(max_step, float)
         self.hold_s, self.decay_s = float(hold_s), float(decay_s)
         self.offset = np.zeros_like(self.lo)
@@ -34,7 +43,10 @@ class OffsetLimiter:
         y = np.where(np.isfinite(y), np.asarray(y, float), self.offset)
         step = y - self.offset if self._free else np.clip(y - self.offset, -self.max_step,
                                                                   self.max_step)
-        self.offset = np.clip(self.offset + step, self.lo, self.hi)
+        extra = self.widen() if self.widen is not None else None
+        self._lo_now, self._hi_now = ((self.lo, self.hi) if extra is None
+                                      else (self.lo - extra, self.hi + extra))
+        self.offset = np.clip(self.offset + step, self._lo_now, self._hi_now)
         self._free = False
         self._fresh_at = now
         return self.offset
@@ -46,7 +58,7 @@ class OffsetLimiter:
         late = now - self._fresh_at - self.hold_s
         if late > 0:
             factor = np.exp(-late / self.decay_s) if self.decay_s > 0 else 0.0
-            self.offset = np.clip(self.offset * factor, self.lo, self.hi)
+            self.offset = np.clip(self.offset * factor, self._lo_now, self._hi_now)
             self._fresh_at = now - self.hold_s     # decay from here on, not twice over the same span
         return self.offset
 

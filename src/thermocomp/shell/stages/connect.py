@@ -41,12 +41,25 @@ def _guard(cfg: DictConfig, deployed, ds, train_ids):
     return AdaptiveCompensator.from_training(deployed, train, guard=dict(cfg.monitor.guard)).guard
 
 
+def offset_limiter(deployed, guard, hold_s: float, decay_s: float):
+    """What may reach the machine: ``guard``'s bound (widened as the guard widens it for the
+    inputs the model read: :func:`~thermocomp.apps.deploy.adaptive.stream_allowance`) and rate,
+    held ``hold_s`` and decaying over ``decay_s`` while stale."""
+    from functools import partial
+
+    from ...apps.deploy.adaptive import stream_allowance
+    from ...apps.machine.offsets import OffsetLimiter
+
+    return OffsetLimiter(guard.lo, guard.hi, guard.max_rate_per_s * guard.period_s, hold_s,
+                         decay_s, widen=partial(stream_allowance, guard,
+                                                getattr(deployed, "streaming", deployed)))
+
+
 def connect(cfg: DictConfig) -> dict:
     """Run the compensator against ``connect.endpoint`` until the campaigns are done."""
     check_config(cfg, inputs=("connect.model",))
     from ...apps.machine.client import Connection, LinkLost
     from ...apps.machine.nodes import NodeMap
-    from ...apps.machine.offsets import OffsetLimiter
 
     c = cfg.connect
     source = c.get("model")
@@ -56,8 +69,7 @@ def connect(cfg: DictConfig) -> dict:
     ds, train_ids = (None, []) if is_registered(source) else read_streamed(cfg, test=False)[:2]
     deployed, source, name = deployable_model(cfg, ds, train_ids, source, "connect.model")
     guard = _guard(cfg, deployed, ds, train_ids)
-    limiter = OffsetLimiter(guard.lo, guard.hi, guard.max_rate_per_s * guard.period_s,
-                            float(c.hold_s), float(c.decay_s))
+    limiter = offset_limiter(deployed, guard, float(c.hold_s), float(c.decay_s))
     adapt = (adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
              or getattr(deployed, "adapt_", None))
     link = Connection(deployed, NodeMap.from_config(c.nodes), str(c.endpoint), limiter,
