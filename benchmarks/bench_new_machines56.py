@@ -66,7 +66,68 @@ What the ``left out`` variants withhold (diagnose only): ``grinder-nocoolant`` i
 the coolant return and ``S_coolant`` (``data.roles.ignore``): the dominant source's only direct
 measurements; ``gantry-noY`` ignores ``S_Y``: nothing then measures the yaw's lever.
 
-Results: the table and forensics follow below (filled in after the single run).
+Measured (2026-11-30, one run, 2 shared cores at load ~4.8; ``run`` then ``table``).  Test RMSE
+(µm) per target, ratio to MLR's, CPU s (user + sys of one ``thermocomp run``, ~2 s of it start-up),
+simulation mode, the defaults, ``init``'s config::
+
+    grinder (E_Zustellung_dY / E_Querachse_dZ)      gantry (E_X_error / E_Z_error)
+      mlr            0.63 / 0.35  1.00 / 1.00   2.3     27.33 / 0.38  1.00 / 1.00    2.5
+      pcr            1.89 / 0.90  3.02 / 2.55   2.5     30.36 / 5.31  1.11 / 13.83   2.6
+      arx            0.61 / 0.35  0.97 / 0.98   2.7     28.16 / 1.30  1.03 / 3.39    2.7
+      lagbank        0.78 / 0.33  1.24 / 0.94   3.3     27.22 / 0.38  1.00 / 0.98    5.4
+      hammerstein    0.78 / 0.35  1.24 / 0.99   4.6     13.95 / 0.52  0.51 / 1.34   11.2
+      lstm           0.64 / 0.35  1.02 / 1.00  28.0     28.87 / 0.38  1.06 / 1.00   40.7
+      auto           0.60 / 0.35  0.95 / 0.99  25.4     15.13 / 0.36  0.55 / 0.95   33.9
+      mlr ati=cmeans 0.64 / 0.40  1.03 / 1.14   4.3     (skipped: one train record, one ambient level)
+      persistence    0.43 / 0.43  0.68 / 1.22           6.30 / 0.47  0.23 / 1.23
+
+``auto`` beats MLR on both records and both targets; against the best single family: grinder
+E_Y 0.595 vs arx 0.607 (better), E_Z 0.351 vs lagbank 0.334 (+5 %), gantry E_X 15.13 vs
+hammerstein 13.95 (+8.5 %), E_Z 0.364 vs lagbank 0.378 (better): within 10 % on all four.  Its
+blends (``metrics.json`` targets.*.auto): grinder E_Y ati 0.49 / lstm 0.28 / mlr 0.19 / arx 0.04,
+E_Z mlr 0.44 / ati 0.37 / arx 0.13; gantry E_X hammerstein 0.81 / lagbank 0.19 (5 forward folds
+of the one train week; ATI skipped: 1 ambient level), E_Z lagbank 0.52 / mlr 0.42 / lstm 0.06.
+No family but Hammerstein (its state inputs) sees the yaw: E_X stays at MLR's 27 µm, persistence
+6.3.  ``mlr ati=cmeans`` on the grinder: one interval (the elbow), with the ambient interaction
+(9 runs at 9 levels 18.9-29.1 °C); the grinder has no ambient law, the interaction's CV SM looked
+better than MLR's (auto's folds: 0.405 vs 0.438 on E_Z) and the test was worse, mostly Lauf_12
+at 29.0 °C, the warm edge of the train levels (0.52 vs the single model's 0.31 Rsd): a 9-run CV
+that did not hold, no defect found; ``auto`` gave it 0.37 of E_Z and stayed at MLR's 0.35.
+
+``diagnose`` (MLR; test RMSE before -> after; CPU s):
+
+* ``grinder``: accepts nothing (E_Y 0.626, E_Z 0.354 unchanged); 5.2 s.
+* ``gantry``: E_X 27.33 -> 1.55: ``S_Y_position`` x rise of T01 (left column) and x rise of T08
+  (right column, 0.8 col_R + 0.2 bed): the planted yaw, both columns; E_Z 0.384 -> 0.343 (a 4 h
+  lag of the inputs: the unmeasured bed core).  11.8 s.
+* ``gantry-noY`` (the lever withheld): E_X unchanged (nothing to find it with; no harm), E_Z
+  the same lag, 0.384 -> 0.343.  9.2 s.
+* ``grinder-nocoolant`` (tank, return, ``S_coolant`` withheld): the coolant is not found (the
+  grinding power's lags gain < 1 %); it accepts (dT_amb)^2 on E_Y: 0.644 -> 0.674, **+4.7 %,
+  above the 2 % of issue 34**; E_Z unchanged.  5.7 s.
+
+Forensics of that harm (``forensics``: least squares on the 13 kept temperatures reproduces
+``run``'s MLR and the diagnosed model to 3 digits).  In CV every one of the 9 held-out runs
+gained, 13-46 % of its MSE (p 1/512, the smallest 9 runs allow; family-wise 0.006; in-range gain
+16 %; the 95 % bound of the gain positive).  On the test Lauf_11 / Lauf_12 gained as in CV (0.633
+-> 0.537, 0.480 -> 0.381) and Lauf_10 lost (0.739 -> 0.917): its residual mean was +0.65 and
+moved to +0.84.  The square's own term there is 0.09 µm rms; the prediction moved 0.25 µm rms,
+through the refitted temperatures (coefficients changed by up to 0.93 against 5.0): the room's
+change squared stood in, in those 9 runs, for the withheld tank, and Lauf_10 -- a heavy load
+(tank +7.1 K) with a quiet room ((dT_amb)^2 <= 0.81, inside the train range 0.94-6.35, no
+extrapolation) -- breaks the proxy.  No fold shows it; the bar's one stricter form at hand
+(asking the ``1 - alpha`` Student-t bound of the gain to reach ``min_gain_pct`` also with one
+block per unit, as with ranked blocks) would have refused it (bound -2 %) but also refuses
+vendor5's real ambient law (``bench_other_machine``: bound -16 %, test 1.39 -> 0.74), while
+lathe43 / lathe43m's pass (+17 / +11 %).  So: a proxy for a withheld dominant source that 9
+runs cannot tell from an effect, not a defect with a general mend; no src change.
+
+What a stranger met on the way in (``init``), not mended here: a ``[-]`` column (an on/off flag)
+is refused as "not a temperature's unit" (``Kühlmittel ein [-]``, ``Hydraulics on [-]``), and
+once ``data.roles.state`` names it, no role is proposed from the units any more (the errors in
+µm / mm were then "no column reads as a measured error"): every role had to be spelled out.
+``Y position [mm]`` would have been proposed as an error (mm).  A header both ignored and given a
+role is refused with a clear message.
 """
 
 from __future__ import annotations
@@ -346,10 +407,73 @@ def diagnose(root: Path, name: str) -> dict:
     return row
 
 
+def table(rows: list[dict]) -> str:
+    """Per record: each model's test RMSE per target, the ratio to MLR's, CPU s; persistence."""
+    mlr = {r["data"]: r["scores"] for r in rows if r["model"] == "mlr"}
+    lines = []
+    for name, base in mlr.items():
+        lines.append(f"{name} ({' / '.join(base)})")
+        for r in (r for r in rows if r["data"] == name):
+            got = " / ".join(f"{v[0]:.2f}" for v in r["scores"].values())
+            ratio = " / ".join(f"{v[0] / base[t][0]:.2f}" for t, v in r["scores"].items())
+            lines.append(f"  {r['model']:16s} {got:15s} {ratio:13s} {r['cpu_s']}")
+        got = " / ".join(f"{v[1]:.2f}" for v in base.values())
+        ratio = " / ".join(f"{v[1] / v[0]:.2f}" for v in base.values())
+        lines.append(f"  {'persistence':16s} {got:15s} {ratio}")
+    return "\n".join(lines)
+
+
+def proxy_forensics(root: Path) -> None:
+    """Why ``diagnose`` on ``grinder-nocoolant`` raised E_Y's test RMSE: least squares on the
+    13 temperatures it keeps (rises since the run's start; the MLR ``run`` fits, to 3 digits),
+    with and without (dT_amb)^2, left out per train run, then on the test runs."""
+    runs = {}
+    for f in sorted((root / "grinder").glob("Lauf_*.csv")):
+        d = pd.read_csv(f, sep=";", decimal=",")
+        temps = d[[c for c in d.columns if "°C" in c and not c.startswith("Kühlmittel")]]
+        room = d["Hallentemperatur [°C]"] - d["Hallentemperatur [°C]"].iloc[0]
+        y = d["Zustellung dY [µm]"] - d["Zustellung dY [µm]"].iloc[0]
+        rises = (temps - temps.iloc[0]).to_numpy()
+        runs[f.stem] = ((rises, np.column_stack([rises, room**2])), y.to_numpy())
+
+    def design(key, extra):
+        x = runs[key][0][extra]
+        return np.column_stack([x, np.ones(len(x))])
+
+    def fit(keys, extra):
+        return np.linalg.lstsq(np.vstack([design(k, extra) for k in keys]),
+                               np.concatenate([runs[k][1] for k in keys]), rcond=None)[0]
+
+    def mse(key, w, extra):
+        return float(np.mean((design(key, extra) @ w - runs[key][1]) ** 2))
+
+    ids = list(runs)
+    train, test = ids[:9], ids[9:]
+    for k in train:
+        rest = [j for j in train if j != k]
+        before, after = mse(k, fit(rest, 0), 0), mse(k, fit(rest, 1), 1)
+        print(f"CV  {k}: MSE {before:.3f} -> {after:.3f} (gain {100 * (before - after) / before:.0f} %)")
+    w0, w1 = fit(train, 0), fit(train, 1)
+    for k in test:
+        p0, p1 = design(k, 0) @ w0, design(k, 1) @ w1
+        square = w1[-2] * runs[k][0][1][:, -1]
+        print(f"test {k}: RMSE {mse(k, w0, 0) ** 0.5:.3f} -> {mse(k, w1, 1) ** 0.5:.3f}; mean residual "
+              f"{np.mean(runs[k][1] - p0):+.2f} -> {np.mean(runs[k][1] - p1):+.2f}; prediction moved "
+              f"{np.sqrt(np.mean((p1 - p0) ** 2)):.2f} rms, the square's own term "
+              f"{np.sqrt(np.mean(square**2)):.2f}")
+    print(f"coefficient of (dT_amb)^2 {w1[-2]:.2f} µm/K^2; largest change of a temperature's "
+          f"{np.abs(w1[:-2] - w0[:-1]).max():.2f} (largest coefficient {np.abs(w0[:-1]).max():.2f})")
+    for k in ids:
+        d = pd.read_csv(root / "grinder" / f"{k}.csv", sep=";", decimal=",")
+        room = d["Hallentemperatur [°C]"] - d["Hallentemperatur [°C]"].iloc[0]
+        tank = d["Kühlmitteltank [°C]"] - d["Kühlmitteltank [°C]"].iloc[0]
+        print(f"{k}: max (dT_amb)^2 {float((room**2).max()):.2f}, tank rise {tank.max():.1f} K")
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=["write", "init", "run", "diagnose"])
+    parser.add_argument("what", choices=["write", "init", "run", "diagnose", "table", "forensics"])
     parser.add_argument("root")
     parser.add_argument("--data", nargs="+", default=["grinder", "gantry"])
     parser.add_argument("--families", nargs="+", default=list(FAMILIES))
@@ -365,6 +489,13 @@ def main(argv=None) -> int:
             status, cpu, out, err = thermocomp("init", str(root / name), *INIT_ARGS[name],
                                                f"out={root}/init-{name}")
             print(out, err[-2000:], f"exit {status}", sep="\n")
+        return 0
+    if args.what == "table":
+        print(table([r for name in args.data
+                     for r in json.loads((root / f"families-{name}.json").read_text())]))
+        return 0
+    if args.what == "forensics":
+        proxy_forensics(root)
         return 0
     if args.what == "diagnose":
         rows = [diagnose(root, name) for name in args.data]
