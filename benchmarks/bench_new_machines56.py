@@ -1,7 +1,8 @@
 """Two machines nobody has tuned on, end to end as a stranger (issue 34, session 56).
 
     .venv/bin/python benchmarks/bench_new_machines56.py write DIR   # the lab's files only
-    .venv/bin/python benchmarks/bench_new_machines56.py run DIR     # + init, every family, diagnose
+    .venv/bin/python benchmarks/bench_new_machines56.py all DIR     # write, init, run, diagnose, table
+    (or one step: init | run | diagnose | table | forensics DIR, on what the steps before wrote)
 
 The physics below was written down before any model ran on these records; nothing was tuned on
 them (seeds 5671 / 5672 fixed beforehand, every command run once).  Both differ from
@@ -473,40 +474,39 @@ def proxy_forensics(root: Path) -> None:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=["write", "init", "run", "diagnose", "table", "forensics"])
+    parser.add_argument("what", choices=["write", "init", "run", "diagnose", "table", "forensics", "all"])
     parser.add_argument("root")
-    parser.add_argument("--data", nargs="+", default=["grinder", "gantry"])
+    parser.add_argument("--data", nargs="+", default=["grinder", "gantry"],
+                        help="records (families); diagnose also takes grinder-nocoolant, gantry-noY")
     parser.add_argument("--families", nargs="+", default=list(FAMILIES))
     args = parser.parse_args(argv)
     root = Path(args.root).resolve()
-    if args.what == "write":
+    every = args.what == "all"
+    if args.what == "write" or every:
         t0 = time.perf_counter()
         write(root)
         print(f"records written to {root} in {time.perf_counter() - t0:.1f} s")
-        return 0
-    if args.what == "init":
+    if args.what == "init" or every:
         for name in args.data:
-            status, cpu, out, err = thermocomp("init", str(root / name), *INIT_ARGS[name],
-                                               f"out={root}/init-{name}")
+            status, _, out, err = thermocomp("init", str(root / name), *INIT_ARGS[name],
+                                             f"out={root}/init-{name}")
             print(out, err[-2000:], f"exit {status}", sep="\n")
-        return 0
-    if args.what == "table":
-        print(table([r for name in args.data
+    if args.what == "run" or every:
+        for name in args.data:
+            rows = run_models(root, name, args.families)
+            if name == "grinder":      # the shop's seasons: a run's room level 17-29 °C
+                rows += run_models(root, name, ("mlr",), ("ati=cmeans",))
+            (root / f"families-{name}.json").write_text(json.dumps(rows, indent=1))
+    if args.what == "diagnose" or every:
+        names = [*args.data, *(v for v in LEFT_OUT if v.partition("-")[0] in args.data)] if every \
+            else args.data
+        rows = [diagnose(root, name) for name in names]
+        (root / "diagnose.json").write_text(json.dumps(rows, indent=1))
+    if args.what == "table" or every:
+        print(table([r for name in args.data if "-" not in name
                      for r in json.loads((root / f"families-{name}.json").read_text())]))
-        return 0
     if args.what == "forensics":
         proxy_forensics(root)
-        return 0
-    if args.what == "diagnose":
-        rows = [diagnose(root, name) for name in args.data]
-        (root / "diagnose.json").write_text(json.dumps(rows, indent=1))
-        return 0
-    rows = []
-    for name in args.data:
-        rows += run_models(root, name, args.families)
-        if name == "grinder":      # the shop's seasons: a run's room level 17-29 °C
-            rows += run_models(root, name, ("mlr",), ("ati=cmeans",))
-    (root / f"families-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
     return 0
 
 
