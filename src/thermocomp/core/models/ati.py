@@ -38,6 +38,7 @@ CLUSTERINGS = ("fuzzy", "hard")
 AMBIENT_CENTRE_C = 20.0   # ISO 1 reference temperature: only re-centres the interaction
 MIN_AMBIENTS = 3          # distinct ambient levels an interval needs to fit a slope in ambient
 AMBIENT_RESOLUTION_C = 0.5  # °C: closer initial ambients are one level (ambient_levels)
+MIN_CAMPAIGNS = 2         # training campaigns an interval's model is fitted on, at least
 
 
 def cluster_ambient(ambient, n_clusters: int, clustering: str = "fuzzy", fuzziness: float = 2.0,
@@ -117,6 +118,44 @@ def ambient_levels(ambient, resolution: float = AMBIENT_RESOLUTION_C) -> int:
     return count
 
 
+def merge_thin_intervals(ambient, boundaries, least: int = MIN_CAMPAIGNS) -> np.ndarray:
+    """``boundaries`` less those that leave an interval with fewer than ``least`` of the
+    campaigns ``ambient`` (one initial ambient per campaign, °C).
+
+    Such an interval is merged into its neighbour across the smaller ambient gap (the colder
+    one on a tie), until every interval holds ``least`` campaigns or one interval is left.
+    An interval of one campaign fits its model on that run alone: one programme, its sensors
+    rising together, gains no other run constrains.  With 3-4 train campaigns the elbow's
+    folds were such intervals (``yearround_spindle`` with 6 campaigns, seed 5411: E_Y's fold
+    predicting K02 by a model of K01 alone, 4.53 µm against MLR's 2.13; the refit on four kept
+    two intervals of two for E_Z, 2.32 against one with the interaction, 0.56;
+    ``benchmarks/bench_auto_losses56.py``).
+
+    Returns
+    -------
+    ndarray
+        The boundaries kept, sorted.
+    """
+    a = np.asarray(ambient, float)
+    bounds = sorted(np.asarray(boundaries, float).tolist())
+    while bounds:
+        which = interval_of(a, bounds)
+        counts = np.bincount(which, minlength=len(bounds) + 1)
+        thin = np.flatnonzero(counts < least)
+        if not thin.size:
+            break
+        m = int(thin[0])
+        if m in (0, len(bounds)):             # an end interval has one neighbour
+            drop = 0 if m == 0 else m - 1
+        else:
+            mine = a[which == m]
+            below = mine.min() - a[which == m - 1].max() if counts[m - 1] else np.inf
+            above = a[which == m + 1].min() - mine.max() if counts[m + 1] else np.inf
+            drop = m - 1 if below <= above else m
+        del bounds[drop]
+    return np.array(bounds, float)
+
+
 def interval_of(ambient, boundaries) -> np.ndarray:
     """Interval index of each ambient; a value on a boundary belongs to the colder interval."""
     return np.searchsorted(np.asarray(boundaries, float), np.asarray(ambient, float), side="left")
@@ -172,10 +211,16 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         (:math:`\hat y = f_m(x, x (A_k - 20))`); used only for an interval whose
         training campaigns have at least ``MIN_AMBIENTS`` (3) distinct ambient
         levels (:func:`ambient_levels`: 0.5 °C apart), where that slope is identifiable.
+    min_campaigns : int, default 2
+        Training campaigns an interval needs: a thinner one is merged into its nearer neighbour
+        (:func:`merge_thin_intervals`), in the final fit and in the elbow's folds alike, so
+        ``n_intervals_`` may be below the count asked or chosen; 1 keeps every interval
+        (paper 003 fits each interval's model on one campaign).
 
     Attributes
     ----------
     n_intervals_ : int
+        Intervals kept (thin ones merged: ``min_campaigns``).
     boundaries_ : ndarray of shape (n_intervals_ - 1,), °C
     intervals_ : list of dict
         Per interval: ``low``/``high`` (°C, None for the open ends),
@@ -194,11 +239,13 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
     param_rules = {"n_intervals": either(choice("elbow"), integer(1)),
                    "candidates": integers(1), "clustering": choice(*CLUSTERINGS),
                    "fuzziness": number(1.0, open_lo=True), "elbow_tolerance": NON_NEGATIVE,
-                   "ambient_interaction": BOOLEAN, "random_state": integer(0, 2 ** 32 - 1)}
+                   "ambient_interaction": BOOLEAN, "random_state": integer(0, 2 ** 32 - 1),
+                   "min_campaigns": integer(1)}
 
     def __init__(self, base_estimator=None, n_intervals="elbow", candidates=(2, 3, 4, 5, 6),
                  clustering: str = "fuzzy", fuzziness: float = 2.0, elbow_tolerance: float = 0.10,
-                 random_state: int = 0, ambient_interaction: bool = False):
+                 random_state: int = 0, ambient_interaction: bool = False,
+                 min_campaigns: int = MIN_CAMPAIGNS):
         self.base_estimator = base_estimator
         self.n_intervals = n_intervals
         self.candidates = candidates
@@ -207,6 +254,7 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.elbow_tolerance = elbow_tolerance
         self.random_state = random_state
         self.ambient_interaction = ambient_interaction
+        self.min_campaigns = min_campaigns
 
     # -- fitting ----------------------------------------------------------------------------
     def _base(self):
@@ -242,8 +290,9 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         return est.predict(self._design(X[rows], ctx, interacts), context=ctx)
 
     def _intervals(self, ambient: np.ndarray, n: int) -> np.ndarray:
+        """Boundaries of ``n`` intervals of the campaigns' initial ``ambient``, thin ones merged."""
         labels = cluster_ambient(ambient, n, self.clustering, self.fuzziness, self.random_state)
-        return interval_boundaries(ambient, labels)
+        return merge_thin_intervals(ambient, interval_boundaries(ambient, labels), int(self.min_campaigns))
 
     def fit(self, X, y, context=None):
         check_estimator(self)
@@ -268,6 +317,10 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                               f"ambient level(s); {distinct} interval(s)", UserWarning, stacklevel=3)
         n = min(n, distinct)
         bounds = self._intervals(a0.to_numpy(), n) if n > 1 else np.empty(0)
+        if self.n_intervals != "elbow" and bounds.size + 1 < n:
+            warnings.warn(f"ATI n_intervals={n}: an interval needs {self.min_campaigns} train "
+                          f"campaigns (min_campaigns); {bounds.size + 1} interval(s)", UserWarning,
+                          stacklevel=3)
         return self._fit_intervals(X, y, bounds, interval_of(a0_rows, bounds), context, campaign)
 
     def _fit_intervals(self, X, y, bounds, row_interval, context, campaign=None):
