@@ -2,14 +2,16 @@
 roles proposed from the units in the headers, and the data config that reads it (plain values
 in: the data keys as given, the defaults of ``conf/data/default.yaml``).
 
-Roles not given (``data.roles.*``) are proposed from the units in the headers (µm/mm: an error,
-°C/K/°F: a temperature, rpm, %, ...: a state); a text column is proposed ``ignore``; in one file,
+Roles not given (``data.roles.*``: for every header the patterns given do not match) are
+proposed from the units in the headers (µm/mm: an error, unless named as a position; °C/K/°F: a
+temperature; rpm, %, ``[-]`` ...: a state); a text column is proposed ``ignore``; in one file,
 a column that would be a temperature but counts runs (:mod:`.runs`) is proposed
 ``data.roles.campaign``.
 """
 
 from __future__ import annotations
 
+import fnmatch
 import re
 from dataclasses import replace
 from difflib import get_close_matches
@@ -24,11 +26,12 @@ from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS, RUN_ROLE
 from .read import run_counter
 from .record import check_record_file
-from .roles import RUN, STATE_UNITS, UNITS, date_and_time_of_day, named_as_time, split_unit
+from .roles import RUN, date_and_time_of_day, matching_roles, named_as_time, split_unit
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet, without_pandas_index
 from .timestamps import CLOCK, looks_like_timestamp
+from .units import AMBIGUOUS, UNITS, ambiguity, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
@@ -39,7 +42,6 @@ _WORDS = re.compile(r"[\s_.\-]+")
 # a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing)
 AMBIENT_WORDS = {"amb", "ambient", "umgebung", "umgebungstemperatur", "raum", "raumtemperatur",
                  "room", "hall", "halle", "hallentemperatur"}
-NEWTON_METRES = ("Nm", "N.m", "N·m")   # a torque, a state: not nanometres (nm)
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
@@ -122,37 +124,54 @@ def _separators(sample: Path, opts) -> str:
 
 
 def proposed_roles(header: list[str], first: dict, opts) -> dict:
-    """``data.roles`` as given, else patterns proposed from the headers' units (µm/mm: an
-    error, a state unit: a state; a text column: ignore) and words (the air's temperature:
-    ambient); a date column followed by a time of day: the time, ``[date, time of day]``."""
+    """``data.roles`` as given, and for every header none of its patterns (nor ``data.columns``,
+    the time, the campaign) names, a pattern proposed from its unit (:func:`.units.role_by_unit`:
+    µm/mm an error, rpm or ``[-]`` a state; ``run`` reads such a header so too), its words (the
+    air's temperature: ambient, where no ambient is given) or its cell (text: ignore); a date
+    column followed by a time of day: the time, ``[date, time of day]``.  A length named by its
+    axis alone (``X [mm]``) is proposed nothing: the reading lists it."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
     if opts.roles.get(RUN_ROLE):
         roles[RUN_ROLE] = opts.roles[RUN_ROLE]
     if roles["time"] == "auto":               # a date and a time of day: said, as one time
         roles["time"] = date_and_time_of_day(header, first) or "auto"
-    if any(roles[k] for k in ROLE_PATTERNS):
-        return roles
+    taken = [h for h in header if _named(h, roles, opts)]
+    air_given = bool(roles["ambient"])
     for h in filter(str.strip, header):       # (no header: left out if empty, else refused)
-        if isinstance(roles["time"], list) and h in roles["time"]:
+        if h in taken:
             continue
-        base, unit = split_unit(h)
+        base, unit = _unit_of(h, opts)
         if not base:                          # a unit alone ('[°C]'): the reader refuses it
             continue
-        written = (opts.units.get(h, unit) or "").replace(" ", "")
-        unit = written.lower()
         pattern = _GLOB.sub(r"[\1]", base)
-        if unit in UNITS["E"] and written not in NEWTON_METRES:   # (nm: nanometres)
-            roles["error"].append(pattern)
-        elif unit in STATE_UNITS:
-            roles["state"].append(pattern)
-        elif role(base) is None and AMBIENT_WORDS & set(_WORDS.split(base.lower())) and (
-                not unit or unit in UNITS["T"]):
+        if any(fnmatch.fnmatchcase(t, pattern) or fnmatch.fnmatchcase(split_unit(t)[0], pattern)
+               for t in taken):               # (the user's header of the same name: theirs)
+            continue
+        kind = role_by_unit(base, unit)
+        if kind in ("error", "state"):
+            roles[kind].append(pattern)
+        elif kind == AMBIGUOUS:
+            continue
+        elif not air_given and role(base) is None and AMBIENT_WORDS & set(
+                _WORDS.split(base.lower())) and (
+                not unit or unit.replace(" ", "").lower() in UNITS["T"]):
             roles["ambient"].append(pattern)
         elif not (reads_as_number(first.get(h), opts.decimal) or looks_like_timestamp(first.get(h))
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return _by_role(roles, header, first)
+
+
+def _named(header: str, roles: dict, opts) -> bool:
+    """``header`` is named by the user (a ``data.roles`` pattern, ``data.columns``, the time or
+    the campaign): nothing is proposed for it."""
+    time = roles["time"] if isinstance(roles["time"], list) else [] if roles["time"] == "auto" \
+        else [roles["time"]]
+    campaign = roles.get(RUN_ROLE)
+    return bool(header in opts.columns or header in time or split_unit(header)[0] in time
+                or matching_roles(header, roles) or campaign and any(
+                    fnmatch.fnmatchcase(n, campaign) for n in (header, split_unit(header)[0])))
 
 
 def _by_role(roles: dict, header: list[str], first: dict) -> dict:
@@ -190,10 +209,19 @@ def check_an_error_is_named(header: list[str], first: dict, roles: dict, opts, f
         return
     numeric = [h for h in header if h.strip() and reads_as_number(first.get(h), opts.decimal)
                and not named_as_time(h)]
+    either = [ambiguity(h, split_unit(h)[0]) for h in header if h.strip() and not _named(
+        h, roles, opts) and role_by_unit(*_unit_of(h, opts)) == AMBIGUOUS]
     raise ContractError("no column reads as a measured error (no length unit in a header, µm or "
                         "mm, no E_ name): name it, data.roles.error=[<header>], or give its unit "
                         f"in the header ('dX [µm]'); the numeric columns: "
-                        f"{', '.join(map(repr, numeric)) or 'none'}", file=file)
+                        f"{', '.join(map(repr, numeric)) or 'none'}"
+                        + "".join(f"; {line}" for line in either), file=file)
+
+
+def _unit_of(header: str, opts) -> tuple[str, str | None]:
+    """``(name, unit)`` of ``header``, its unit from ``data.units`` where given there."""
+    base, unit = split_unit(header)
+    return base, opts.units.get(header, unit)
 
 
 def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,

@@ -2,14 +2,16 @@
 
 ``data.roles.error``/``state``/``ambient``/``ignore`` are fnmatch patterns over a file's headers
 (with or without their unit); ``data.roles.time`` names the time column (``auto``: a header such
-as ``time``, ``t(s)``, ``時間(s)``, ``Zeit``, or a column of ISO 8601 timestamps).  Every other
-numeric column is a temperature.  The contract name is the role's prefix and the header without
-its unit (``ch1(um)`` -> ``E_ch1``, ``t1(°C)`` -> ``T_t1``, ``spindle(RPM)`` -> ``S_spindle``; the
-ambient sensor ``T_amb``, or ``T_amb_<name>`` when there are several), and a unit that is not the
-contract's (mm, K, °F, ms, min) is converted.  ``data.columns`` (an explicit mapping) wins.
-Without any role set, headers are read as before: contract names, or mapped by ``data.columns``.
-``data.roles.campaign`` (extension) names the one column numbering the runs of a long file: read
-as text under :data:`RUN` and split into campaigns by :mod:`.runs`, never a temperature.
+as ``time``, ``t(s)``, ``時間(s)``, ``Zeit``, or a column of ISO 8601 timestamps). Every other
+numeric column takes the role its unit says (:func:`.units.role_by_unit`, the rule ``init``
+proposes by: ``dY [µm]`` an error, ``Hydraulics on [-]`` a state), else is a temperature. The
+contract name is the role's prefix and the header without its unit (``ch1(um)`` -> ``E_ch1``,
+``t1(°C)`` -> ``T_t1``, ``spindle(RPM)`` -> ``S_spindle``; the ambient sensor ``T_amb``, or
+``T_amb_<name>`` when there are several), and a unit that is not the contract's (mm, K, °F, ms,
+min) is converted. ``data.columns`` (an explicit mapping) wins. Without any role set, headers
+are read as before: contract names, or mapped by ``data.columns``. ``data.roles.campaign``
+(extension) names the one column numbering the runs of a long file: read as text under
+:data:`RUN` and split into campaigns by :mod:`.runs`, never a temperature.
 """
 
 from __future__ import annotations
@@ -26,6 +28,7 @@ from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, RUN_ROLE, _roles
 from .separators import number, reads_as_number
 from .timestamps import CLOCK, DATE, ELAPSED_HEADERS, TIME_OF_DAY, looks_like_timestamp
+from .units import AMBIGUOUS, LETTER_UNITS, STATE_UNITS, UNITS, ambiguity, role_by_unit
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
 # a unit in brackets followed by a note in brackets, a sign convention ('dX [mm] (+ = Werkzeug
@@ -45,28 +48,6 @@ TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", 
                           "zeitstempel", "temps", "tiempo", "seconds", *ELAPSED_HEADERS})
 RUN = " campaign"     # data.roles.campaign's column as read: no contract column has this name
 PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
-# unit (lower case, no spaces) -> (scale, offset) to the contract's unit
-UNITS = {
-    "E": {**dict.fromkeys(("µm", "μm", "um", "micron", "microns"), (1.0, 0.0)), "mm": (1e3, 0.0),
-          "m": (1e6, 0.0), "nm": (1e-3, 0.0)},
-    # (the degree sign as a lab's keyboard gives it: º, U+00BA on a Spanish or Italian one, and
-    # ˚, U+02DA, look like ° in a header and in the message refusing them)
-    "T": {**dict.fromkeys(("°c", "ºc", "˚c", "c", "degc", "℃", "celsius", "deg.c"), (1.0, 0.0)),
-          **dict.fromkeys(("k", "kelvin"), (1.0, -273.15)),
-          **dict.fromkeys(("°f", "ºf", "˚f", "f", "degf", "℉", "fahrenheit"),
-                          (5 / 9, -32 * 5 / 9))},
-    "time": {**dict.fromkeys(("s", "sec", "secs", "seconds"), (1.0, 0.0)), "ms": (1e-3, 0.0),
-             "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0)),
-             **dict.fromkeys(("d", "day", "days"), (86400.0, 0.0))},     # (Excel's serial days)
-}
-
-# a temperature's unit as one letter after a space ('T1 K', 'Probe F'), read as the unit where
-# the first value is one in it, from this value (a °C reading below: 'Sensor K' is a name)
-LETTER_UNITS = {"k": 150.0, "f": 45.0}
-
-# units that say "a machine state" (speeds, loads, positions, on/off)
-STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
-               "on/off", "0/1", "mm/min"}
 
 
 @dataclass
@@ -203,7 +184,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     problems += [f"data.units names {h!r}, no header" for h in units if h not in headers]
     time_header, clock_header = (_time_header(headers, roles, columns, first, problems)
                                  + [None, None])[:2]
-    ambient = [h for h in headers if h not in columns and _hits(h, roles) == ["ambient"]]
+    ambient = [h for h in headers if h not in columns and matching_roles(h, roles) == ["ambient"]]
     run = _run_header(headers, roles, columns, problems)
     for header in headers:
         base, unit = split_unit(header)
@@ -221,7 +202,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
         if header == clock_header:             # joined to the date into one timestamp
             out.names[header], out.roles[header] = CLOCK, "time of day"
             continue
-        hits = _hits(header, roles)
+        hits = matching_roles(header, roles)
         if header == run:
             if hits:
                 problems.append(f"{header!r} is matched by data.roles.{RUN_ROLE} and "
@@ -249,7 +230,12 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             if not reads_as_number(first.get(header), decimal):
                 problems.append(f"{header!r} is not numeric ({first.get(header)!r})")
                 continue
-            kind = "temperature"
+            # no pattern names it: its unit's role, as `init` proposes it (µm: an error, rpm or
+            # [-]: a state; a length named by its axis alone is listed), else a temperature
+            kind = role_by_unit(base, unit) or "temperature"
+            if kind == AMBIGUOUS:
+                problems.append(ambiguity(header, base))
+                continue
         if unit is None and kind in ("temperature", "ambient"):
             base, unit = _letter_unit(header, first.get(header), decimal) or (base, unit)
         name = _derived(kind, base, len(ambient) > 1)
@@ -266,7 +252,8 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     return out
 
 
-def _hits(header: str, roles: Mapping) -> list[str]:
+def matching_roles(header: str, roles: Mapping) -> list[str]:
+    """The roles among ``data.roles``' patterns that match ``header`` (with or without its unit)."""
     base = split_unit(header)[0]
     return [k for k in ROLE_PATTERNS if any(fnmatch.fnmatchcase(header, p) or
                                             fnmatch.fnmatchcase(base, p) for p in roles.get(k, ()))]
@@ -284,7 +271,7 @@ def _time_header(headers, roles, columns, first, problems) -> list[str]:
             if header is None:
                 problems.append(f"data.roles.time={want!r} names no header")
         return found if None not in found else []
-    free = [h for h in headers if h not in columns and not _hits(h, roles)]
+    free = [h for h in headers if h not in columns and not matching_roles(h, roles)]
     pair = date_and_time_of_day(free, first)
     named = [h for h in free if named_as_time(h) and h not in pair]
     if pair and not named:

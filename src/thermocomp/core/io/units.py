@@ -1,0 +1,89 @@
+"""The units a lab writes in its headers, and the role a header's unit says.
+
+One rule for ``thermocomp init``'s proposals and for ``run``'s reading of a header that no
+``data.roles`` pattern matches (:func:`role_by_unit`): a length is an error, unless its name
+says a position (a machine state) or only an axis, over mm (``X [mm]``, ``X-Achse [mm]``: its
+position or its error, listed, never guessed); a speed, a power, a current, an on/off flag is a
+state; anything else says no role (a temperature, or, without a unit, a name).
+"""
+
+from __future__ import annotations
+
+import re
+
+from .contract import role
+
+# unit (lower case, no spaces) -> (scale, offset) to the contract's unit
+UNITS = {
+    "E": {**dict.fromkeys(("µm", "μm", "um", "micron", "microns"), (1.0, 0.0)), "mm": (1e3, 0.0),
+          "m": (1e6, 0.0), "nm": (1e-3, 0.0)},
+    # (the degree sign as a lab's keyboard gives it: º, U+00BA on a Spanish or Italian one, and
+    # ˚, U+02DA, look like ° in a header and in the message refusing them)
+    "T": {**dict.fromkeys(("°c", "ºc", "˚c", "c", "degc", "℃", "celsius", "deg.c"), (1.0, 0.0)),
+          **dict.fromkeys(("k", "kelvin"), (1.0, -273.15)),
+          **dict.fromkeys(("°f", "ºf", "˚f", "f", "degf", "℉", "fahrenheit"),
+                          (5 / 9, -32 * 5 / 9))},
+    "time": {**dict.fromkeys(("s", "sec", "secs", "seconds"), (1.0, 0.0)), "ms": (1e-3, 0.0),
+             "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0)),
+             **dict.fromkeys(("d", "day", "days"), (86400.0, 0.0))},     # (Excel's serial days)
+}
+
+# a temperature's unit as one letter after a space ('T1 K', 'Probe F'), read as the unit where
+# the first value is one in it, from this value (a °C reading below: 'Sensor K' is a name)
+LETTER_UNITS = {"k": 150.0, "f": 45.0}
+
+# units that say "a machine state" (speeds, loads, positions, on/off)
+STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
+               "on/off", "0/1", "mm/min"}
+# a dimensionless unit in brackets, '[-]' or '[1]' (DIN 1313's "no unit"): an on/off flag, a
+# ratio, a count, never a temperature, so a state (the contract's S_door, 0 closed, 1 open).
+# Not among STATE_UNITS: as a header's last word ('Sensor 1') it is part of a name
+DIMENSIONLESS = {"-", "–", "1"}
+NEWTON_METRES = ("Nm", "N.m", "N·m")   # a torque, a state: not nanometres (nm)
+
+AMBIGUOUS = "error or state"
+_WORDS = re.compile(r"[\s_.\-]+")
+# a name that says "measured displacement": dX, ΔZ, delta, error, Fehler, Abweichung ... (it
+# wins over a position word: 'Positionsfehler', 'Querachse dZ' are errors)
+_ERROR_WORD = re.compile(r"[dδ][xyzuvw]\d*|δ.*|delta.*|err|errors?|.*fehler|.*abweichung|deviation"
+                         r"|displacement|.*verlagerung|verschiebung|drift|deformation")
+# a name that says "where the axis is": position, Pos., Ypos, Istposition (a machine state)
+_POSITION_WORD = re.compile(r".*positions?|pos|[xyzuvw]pos|coordinates?|koordinaten?")
+# a name that says only "which axis": X, Y2, X-Achse, Querachse, axis (its position or, as
+# a lab names a probe by the axis it measures along, its error)
+_AXIS_WORD = re.compile(r"[xyzuvw]\d*|.*achse|axis")
+
+
+def role_by_unit(base: str, unit: str | None) -> str | None:
+    """The role a header's ``unit`` says (``base``: the header without it): ``'error'``,
+    ``'state'``, :data:`AMBIGUOUS` (a length in mm or m named by its axis alone, ``X``,
+    ``X-Achse``: its error or its position) or None (no role from the unit: a temperature's, a
+    time's, none)."""
+    written = (unit or "").replace(" ", "")
+    known = written.lower()
+    if known in UNITS["E"] and written not in NEWTON_METRES:      # (Nm: a torque)
+        return _length_role(base, known)
+    if known in STATE_UNITS or known in DIMENSIONLESS:
+        return "state"
+    return None
+
+
+def _length_role(base: str, unit: str) -> str:
+    prefix = role(base)
+    if prefix in ("E", "S"):           # a contract name says it ('S_pos [mm]' is no error)
+        return "error" if prefix == "E" else "state"
+    words = [w for w in _WORDS.split(base.lower()) if w]
+    if any(_ERROR_WORD.fullmatch(w) for w in words):
+        return "error"
+    if any(_POSITION_WORD.fullmatch(w) for w in words):
+        return "state"
+    # an axis' readout is in mm and a thermal error rarely is: 'X [mm]', 'X-Achse [mm]' could
+    # be either; in µm it is the error, as every other length is ('ch1 (um)', 'Messuhr [mm]')
+    named_by_axis = words and all(_AXIS_WORD.fullmatch(w) for w in words)
+    return AMBIGUOUS if unit in ("mm", "m") and named_by_axis else "error"
+
+
+def ambiguity(header: str, base: str) -> str:
+    """What a message says of an :data:`AMBIGUOUS` header, with the two settings to choose."""
+    return (f"{header!r} is a length named by its axis alone: the error "
+            f"(data.roles.error=[{base!r}]) or its position (data.roles.state=[{base!r}])?")
