@@ -37,7 +37,7 @@ HOSTILE = {
     "alphas": [], "n_splits": 1, "sample_period_s": float("nan"), "level_penalty": -0.5,
     "n_intervals": "knee",
     "candidates": [0], "clustering": "spectral", "fuzziness": 1.0, "elbow_tolerance": -0.1,
-    "ambient_interaction": "yes", "n_imfs": 0, "sensors": "T_*", "stopping": "never",
+    "ambient_interaction": "yes", "min_campaigns": 0, "n_imfs": 0, "sensors": "T_*", "stopping": "never",
     "max_siftings": 0, "s_number": 0, "sd_threshold": 0, "end_effect": "none", "pad": -1,
     "spline": "quintic", "causal": "foo", "causal_taps": 0, "causal_window": 3, "online": "no",
     "states": [], "exponents": [0.0], "choose_exponents": "sometimes", "k": 0, "k_max": 0, "m": 1.0,

@@ -122,7 +122,7 @@ def test_foreign_headerless_time_csv_through_mapping_config(tmp_path):
 
 @pytest.mark.parametrize("args, needle", [
     (["run", "model=nope"], "nope"),
-    (["run", "data.path=/nonexistent/dataset"], "campaigns.csv"),
+    (["run", "data.path=/nonexistent/dataset"], "/nonexistent/dataset: no such file or folder"),
     (["run", "eval.mode=sideways"], "eval.mode"),
     (["run", "plots=some"], "plots"),
     (["frobnicate"], "frobnicate"),

@@ -239,7 +239,7 @@ def test_a_run_composes_once_and_runs_its_hydra_callbacks(tmp_path, monkeypatch,
     assert (out / "metrics.json").is_file() and (out / "thermocomp.log").is_file()
     # a stage's own refusal: one line, exit 2, its job seen by the callbacks all the same
     assert main(["ingest", f"data.path={tmp_path / 'none'}", probe, "track=false"]) == 2
-    assert "campaigns.csv" in capsys.readouterr().err
+    assert f"{tmp_path / 'none'}: no such file or folder" in capsys.readouterr().err
     assert RunProbe.seen[1:] == [("RunMode.RUN", f"data.path={tmp_path / 'none'},track=false")]
     assert composes == ["thermocomp_run", "thermocomp_ingest"]
 
@@ -274,4 +274,4 @@ def test_a_command_runs_in_process_inside_a_run(monkeypatch, capsys):
     assert main(["ingest", "data.path=/nonexistent/outer", nested, "track=false"]) == 2
     assert NestedCommand.codes == [2]
     err = capsys.readouterr().err
-    assert "/nonexistent/inner/campaigns.csv" in err and "/nonexistent/outer/campaigns.csv" in err
+    assert "/nonexistent/inner: no such" in err and "/nonexistent/outer: no such" in err
