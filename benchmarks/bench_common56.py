@@ -21,7 +21,9 @@ test campaigns pooled (µm²).  Real air steps (``ys5353`` only; the simulation 
 of one test campaign stepped at its middle row, ``bench_ambient_step55.py``'s files): the same
 score against that campaign's own measured error.
 
-Run (``--work`` holds copies of the cached records; ``sld`` is simulated there)::
+Run (the records are written under ``--work`` once: ys5353 and its air steps as
+``bench_ambient_step55.py`` writes them, long4253 as ``bench_state_envelope.py`` does, ``sld`` by
+``thermocomp simulate``)::
 
     PYTHONPATH=src .venv/bin/python benchmarks/bench_common56.py [--only ys5353] [--out f.json]
 
@@ -106,6 +108,7 @@ import copy
 import json
 import os
 import resource
+import sys
 from collections import Counter
 from pathlib import Path
 
@@ -114,6 +117,8 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import numpy as np
 import pandas as pd
 from hydra import compose, initialize_config_dir
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.base.paths import conf_dir
@@ -129,9 +134,22 @@ REAL = {"+2K": "2", "+5K": "5", "-5K": "-5"}
 
 def records(work: Path) -> dict[str, list[str]]:
     """Per record, its config overrides (the data written under ``work`` if missing)."""
+    import bench_ambient_step55 as air
+    from bench_state_envelope import simulate
+
+    from thermocomp.apps.sim.scenario import write_scenario
+    from thermocomp.shell.cli import main as cli
+
+    if not (work / "ys" / "campaigns.csv").is_file():
+        write_scenario(air._scenario(5353), work / "ys")
+    for cid in pd.read_csv(work / "ys" / "campaigns.csv").query("split == 'test'")["campaign"]:
+        for step in REAL.values():
+            if not (work / f"air_{cid}_{step}_0").exists():
+                write_scenario(air._scenario(5353, cid=cid, step_c=float(step)),
+                               work / f"air_{cid}_{step}_0")
+    simulate(work, "long4253")                     # cached as long4253_noisy (and _truth)
     sld = work / "sld"
     if not (sld / "campaigns.csv").is_file():
-        from thermocomp.shell.cli import main as cli
         cli(["-q", "simulate", "sim=swiss_lathe_door", f"data.path={sld}", "track=false",
              f"out={work / 'sim'}"])
     return {"ys5353": [f"data.path={work / 'ys'}"],
