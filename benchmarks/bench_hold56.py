@@ -45,7 +45,7 @@ Rules, written down before scoring (stop 56, hold56), in order:
   of a line beyond its range had its three neighbours excluded with it, caught by the new test)
   and beyond the edge by the warning band (``SensorMonitor._hotter``).
 
-Measured 2026-11-30 (stop 56; 31 s of CPU, user + sys, for the six lines of this script).  Σ² =
+Measured 2026-11-30 (stop 56; 26.6 s of CPU, user + sys, for the six lines of this script).  Σ² =
 sum over the targets of the MSE vs truth over the test part R1b (µm²); ``before``: this script
 with the parent commit's src (969e08b) on the path::
 
