@@ -15,7 +15,9 @@ predict for it (the leave-one-out form :math:`E_s/(1-h_{ss})` of paper 002's
 Detectors, each named in the event's reason:
 
 * ``dropout`` — no finite value;
-* ``out of range`` — outside the training range widened by ``range_margin_c``;
+* ``out of range`` — outside the training range widened by ``range_margin_c``, unless the active
+  sensors within range predict it beyond the same training edge too (a machine hotter than
+  training, :meth:`SensorMonitor._hotter`);
 * ``jump`` — a one-sample step larger than ``jump_factor`` × the largest step
   seen in training (across missing samples, the step since the last reading
   against that limit times the samples it spans), or a self-prediction error
@@ -52,7 +54,7 @@ its coupled neighbour's larger error; a sensor within its band whose exclusion l
 of band unjudged gives way to one out of band that explains the others and is the likelier
 single fault); otherwise no exclusion and an event
 ``"to": "new thermal state"`` (sensor ``None``, the sensors out of band in ``sensors``).
-A drift-excluded sensor is
+A drift-excluded sensor (by the largest error, a lone fault or as explaining the others) is
 re-admitted when, within ``window`` samples of its exclusion, ``new_state_others``
 other judged sensors leave their warning band (the field followed it), which
 calls the new state too; while it lasts no sensor is excluded for drift (the
@@ -437,6 +439,8 @@ class SensorMonitor:
         if self._ref is None:       # an out-of-range reference is no reference (as if missing)
             self._ref = np.where(np.isfinite(x) & ~rng, x, np.nan)
         d = x - self._ref
+        if rng.any() and self._count:
+            rng = rng & ~self._hotter(x, d, rng)
         all_finite = bool(np.isfinite(d.sum()))
         finite = np.isfinite(d) if not all_finite else self._true
         pos = self._pos
@@ -502,6 +506,29 @@ class SensorMonitor:
             clean = np.where(np.isfinite(clean), clean, self._clean)   # nothing to rebuild from
         self._clean = clean
         return clean, events
+
+    def _hotter(self, x: np.ndarray, d: np.ndarray, rng: np.ndarray) -> np.ndarray:
+        """Of the active sensors out of range (``rng``), those whose reading is a machine hotter
+        (or colder) than training, not a fault: the active sensors within range predict it
+        beyond the same training edge by more than its warning band (the prediction's own error
+        scale), and the reading is nearer that prediction than half its distance from the edge.
+        A spike, a unit change, a stuck or drifting sensor leave the others' prediction where
+        the healthy field is: out of range.  Predicted from the sensors within range only, so
+        that one faulty reading out of range does not move the prediction of another.
+        (long4253's T_motor at twice the training speed, 10-19 °C above its training maximum,
+        the others predicting 3.5 °C off it on average, had been held 9.5 °C below the reading.)"""
+        kept = np.zeros(len(x), dtype=bool)
+        inside = self._active & ~rng & np.isfinite(d)
+        if inside.sum() < self.min_active_:
+            return kept
+        M, _ = self._operator(inside)
+        cand = self._active & rng & np.isfinite(x)
+        p = (x - d)[cand] + M[cand] @ d[inside]     # absolute °C, from the sensors within range
+        up = x[cand] > self.hi_c[cand]
+        edge = np.where(up, self.hi_c[cand], self.lo_c[cand])
+        beyond = np.where(up, p - edge, edge - p) > self.warning_c[cand]
+        kept[cand] = beyond & (np.abs(x[cand] - p) < 0.5 * np.abs(x[cand] - edge))
+        return kept
 
     def _reference_glitch(self, d, step, big, pos, time, events) -> tuple[np.ndarray, np.ndarray]:
         """A jump right after the reference sample: the reference is the glitch (or the sensor
@@ -569,7 +596,8 @@ class SensorMonitor:
         level, err = self._judge()
         while (self.adaptive and (self._judged & (level >= self._field_level())).any()
                and self._active.sum() > self.min_active_):
-            u = self._explaining(level)
+            # a drift exclusion too: none in a new thermal state, and its field may follow it
+            u = None if self.new_state and self._novel else self._explaining(level)
             if u is not None:
                 out = np.flatnonzero(self._judged & (level >= self._field_level()))
                 named = ", ".join(f"{self.names[i]} {err[i]:+.2g} °C" for i in out)
@@ -577,6 +605,7 @@ class SensorMonitor:
                                  f"({named} over the last {self.confirm} samples)", time, events,
                               by_field=True)
                 self._explains[u] = True
+                self._since[u] = self._count
                 level, err = self._judge()
                 continue
             # the culprit is the largest self-prediction error of paper 002 (Eq. 7: the sensor
@@ -707,6 +736,7 @@ class SensorMonitor:
             elif out >= self.new_state_others:
                 self._since[j] = -1
                 self._active[j], self._by_field[j], self._dwell[j] = True, False, self.window
+                self._explains[j] = False
                 self._set_state(j, OK, time, f"re-admitted: {out} other sensors left the band "
                                 "after its exclusion (the field followed it: a new thermal state)",
                                 events)
