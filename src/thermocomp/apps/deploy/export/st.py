@@ -139,6 +139,7 @@ VAR
     allow : ARRAY[{_dims(m)}] OF LREAL;
     gd : ARRAY[{_dims(n)}] OF LREAL;
     beyond : BOOL;
+    on_pat : BOOL;
     w : LREAL;
     xl : ARRAY[{_dims(2, k)}] OF LREAL;
     e : LREAL;
@@ -220,8 +221,23 @@ IF NOT refused THEN
             n_clamped := n_clamped + 1;
         END_IF;
     END_FOR;
-    (* along the training pattern (residual off its basis within the training one's): passed *)
-    IF PATTERN AND n_clamped > 0 THEN
+    (* the guard's bound widens by the response to the inputs beyond their training range, at a *)
+    (* sample on the training pattern (a hotter machine; one sensor leaving the others: not) *)
+    beyond := FALSE;
+    FOR j := 0 TO N_INPUTS - 1 DO
+        gd[j] := 0.0;
+        IF GUARD_INPUTS AND x[0, j] > GUARD_IN_HI[j] THEN
+            gd[j] := x[0, j] - GUARD_IN_HI[j];
+            beyond := TRUE;
+        ELSIF GUARD_INPUTS AND x[0, j] < GUARD_IN_LO[j] THEN
+            gd[j] := GUARD_IN_LO[j] - x[0, j];
+            beyond := TRUE;
+        END_IF;
+    END_FOR;
+    (* on the training pattern: the residual off its basis within the training one's (once, *)
+    (* for the clamp and the guard alike) *)
+    on_pat := FALSE;
+    IF PATTERN AND (n_clamped > 0 OR beyond) THEN
         FOR j := 0 TO N_INPUTS - 1 DO
             pat_z[j] := (x[0, j] - PATTERN_MEAN[j]) / PATTERN_SCALE[j];
             pat_r[j] := pat_z[j];
@@ -239,58 +255,23 @@ IF NOT refused THEN
         FOR j := 0 TO N_INPUTS - 1 DO
             pat_r2 := pat_r2 + pat_r[j] * pat_r[j];
         END_FOR;
-        IF pat_r2 <= PATTERN_TOL * PATTERN_TOL THEN
-            n_clamped := 0;
-            FOR j := 0 TO N_INPUTS - 1 DO
-                x[1, j] := 0.0;
-            END_FOR;
-        END_IF;
+        on_pat := pat_r2 <= PATTERN_TOL * PATTERN_TOL;
     END_IF;
-    (* the guard's bound widens by the response to the inputs beyond their training range, at a *)
-    (* sample on the training pattern (a hotter machine; one sensor leaving the others: not) *)
+    (* along the training pattern the clamp passes the inputs *)
+    IF on_pat AND n_clamped > 0 THEN
+        n_clamped := 0;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            x[1, j] := 0.0;
+        END_FOR;
+    END_IF;
     FOR i := 0 TO N_OUTPUTS - 1 DO
         allow[i] := 0.0;
-    END_FOR;
-    IF GUARD_INPUTS THEN
-        beyond := FALSE;
-        FOR j := 0 TO N_INPUTS - 1 DO
-            IF x[0, j] > GUARD_IN_HI[j] THEN
-                gd[j] := x[0, j] - GUARD_IN_HI[j];
-                beyond := TRUE;
-            ELSIF x[0, j] < GUARD_IN_LO[j] THEN
-                gd[j] := GUARD_IN_LO[j] - x[0, j];
-                beyond := TRUE;
-            ELSE
-                gd[j] := 0.0;
-            END_IF;
-        END_FOR;
-        IF beyond THEN
+        IF on_pat AND beyond THEN
             FOR j := 0 TO N_INPUTS - 1 DO
-                pat_z[j] := (x[0, j] - PATTERN_MEAN[j]) / PATTERN_SCALE[j];
-                pat_r[j] := pat_z[j];
+                allow[i] := allow[i] + GUARD_GAIN[i, j] * gd[j];
             END_FOR;
-            FOR l := 0 TO PATTERN_RANK - 1 DO
-                pat_p := 0.0;
-                FOR j := 0 TO N_INPUTS - 1 DO
-                    pat_p := pat_p + PATTERN_BASIS[j, l] * pat_z[j];
-                END_FOR;
-                FOR j := 0 TO N_INPUTS - 1 DO
-                    pat_r[j] := pat_r[j] - pat_p * PATTERN_BASIS[j, l];
-                END_FOR;
-            END_FOR;
-            pat_r2 := 0.0;
-            FOR j := 0 TO N_INPUTS - 1 DO
-                pat_r2 := pat_r2 + pat_r[j] * pat_r[j];
-            END_FOR;
-            IF pat_r2 <= PATTERN_TOL * PATTERN_TOL THEN
-                FOR i := 0 TO N_OUTPUTS - 1 DO
-                    FOR j := 0 TO N_INPUTS - 1 DO
-                        allow[i] := allow[i] + GUARD_GAIN[i, j] * gd[j];
-                    END_FOR;
-                END_FOR;
-            END_IF;
         END_IF;
-    END_IF;
+    END_FOR;
     (* static powers of machine states (Hammerstein): sign(w) |w|^e, w = v / scale *)
     FOR l := 0 TO N_POWERS - 1 DO
         w := v[POWER_SRC[l]] / POWER_SCALE[l];
