@@ -99,6 +99,19 @@ common drift on sld (1260 / 888 vs 61 / 41 µm/h per target), 31 x on fl9010 (1.
 where follow = fixed on the drift anyway): the cap does not bind where the drift costs.
 Neither was implemented (src unchanged): no rule on the inputs alone tells a common drift that
 spares the air from a machine that heats up, which is what follow passes by design.
+
+The rule (commonjump56, written down before it was scored).  Measured first (long4253 mlr +2 K
+all, campaign R1b): at the middle row the ``jump`` detector fires on the 11 channels whose jump
+limit (3 x the largest training step, 0.5-1.4 K) is below 2 K -- each re-referenced by its step
+less the others' predicted change, which had taken the step too (offset ~0: no re-reference) --
+and excludes them; 3 stay (``T_amb``, ``T_col_back``, ``T_zdrive``: limits 6-10 K), fewer than
+the 11 (r + 1) the field needs, so no re-admission could pass for the rest of the campaign.  Rule:
+a one-sample step that the jump detector sees on at least 3 sensors, with more than half of the
+active sensors stepping by 1/2-2 x the jumping ones' median step (same sign), is one event, the
+logger's: every active sensor that took it is re-referenced by its own step and stays in; a jump
+off it is judged as before.  Bars (the brief's): the step lines adaptive <= plain or much closer;
+the drift and real-air-step lines not worse; ``bench_deploy_faults.py`` and
+``bench_monitor_healthy.py`` unchanged.
 """
 
 from __future__ import annotations
