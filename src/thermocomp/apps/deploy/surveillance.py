@@ -22,6 +22,11 @@ Detectors, each named in the event's reason:
   seen in training (across missing samples, the step since the last reading
   against that limit times the samples it spans), or a self-prediction error
   that steps past the alarm band in one sample;
+* ``common step`` — a one-sample step on most active sensors at once (at least ``COMMON_MIN``
+  of them jumping, more than half of the active ones within ``COMMON_SPREAD`` × the median
+  jump, same sign): the logger's fault, every
+  sensor that took it re-referenced by its own step, none excluded
+  (:meth:`SensorMonitor._common_step`);
 * ``freeze`` — the reading does not change, for longer than its longest constant
   run in training (capped at ``window``), while its prediction from the other
   sensors moves by the warning band (for a sensor no other predicts: no change
@@ -76,6 +81,8 @@ SPREAD_FACTOR = 3.0   # bands never within this × a sensor's training spread (f
 MAX_BACKOFF = 10      # a sensor excluded again waits at most window × 2**MAX_BACKOFF to return
 READMIT = 0.5   # hysteresis: back in when within this share of the warning band for a window
 STATES = ("ok", "warning", "alarm", "excluded")
+COMMON_MIN = 3        # jumping sensors, at least, that a common step (a logger's fault) needs
+COMMON_SPREAD = 2.0   # ... each within this factor of their median step (about the same size)
 NEW_STATE, TRAINED = "new thermal state", "trained"   # the field's states (events, sensor None)
 
 
@@ -453,6 +460,8 @@ class SensorMonitor:
         big = np.abs(step) > self._jump_lim * self._gap
         same = step == 0
         instant: dict[int, str] = {}
+        if big.sum() >= COMMON_MIN:
+            step, big = self._common_step(d, step, big & ~rng & finite, pos, time, events)
         if self._count == 2 and big.any():
             step, big = self._reference_glitch(d, step, big & ~rng, pos, time, events)
         if not all_finite or (rng | big).any():
@@ -542,6 +551,31 @@ class SensorMonitor:
                            "at the reference sample against the next one; re-referenced"})
         step = d - self._prev
         return step, np.abs(step) > self._jump_lim
+
+    def _common_step(self, d, step, big, pos, time, events) -> tuple[np.ndarray, np.ndarray]:
+        """A one-sample step shared by most active sensors, of about the same size: a fault of
+        the logger (its reference, a shared supply), not of the machine -- a real air step
+        moves the air alone at once, the structure lags.  Every active sensor that took it is
+        re-referenced by its own step and stays in (one by one, each jump was judged against the
+        others' prediction, which had taken the step too: 11 of 14 excluded on long_record 4253 at
+        +2 K, too few left to rebuild the field, none back for 24 h).  A jump off the common step
+        is judged as before.  ``(step, big)`` after it."""
+        common = float(np.median(step[big])) if big.sum() >= COMMON_MIN else 0.0
+        ratio = step / common if common else np.zeros_like(step)
+        took = self._active & (ratio >= 1 / COMMON_SPREAD) & (ratio <= COMMON_SPREAD)
+        jumped = took & big
+        if jumped.sum() < COMMON_MIN or 2 * took.sum() <= (self._active & np.isfinite(d)).sum():
+            return step, big
+        for j in np.flatnonzero(took):
+            self._ref[j] += step[j]
+            d[j] -= step[j]
+            self._hist[pos, j] = d[j]
+            events.append({"time": float(time), "sensor": self.names[j], "from": STATES[self._state[j]],
+                           "to": "re-referenced", "reason": f"common step: {step[j]:+.3g} °C in one "
+                           f"sample on {int(took.sum())} sensors at once (median {common:+.3g} °C); "
+                           "re-referenced"})
+        step = np.where(took, 0.0, step)
+        return step, big & ~took
 
     def _reference_late(self, x, d, e, pred, finite, rng, pos) -> None:
         """The first value of a sensor missing at the start (or out of range there): referenced
