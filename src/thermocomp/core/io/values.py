@@ -226,7 +226,8 @@ def _empty(column) -> bool:
 
 
 def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) -> np.ndarray:
-    """Refuse impossible values; return the positions of missing ones."""
+    """Refuse impossible values; return the positions of missing ones (a column without any
+    value was refused before, with the others: :func:`_refuse_empty`)."""
     finite = np.isfinite(values)
     missing = np.empty(0, dtype=np.intp)
     if not finite.all():
@@ -236,9 +237,6 @@ def _check_values(values: np.ndarray, name: str, path: Path, opts: ReadOptions) 
             row = int(infinite[0]) + 1
             raise ContractError(f"infinite value {values[row - 1]}", file=path, column=name,
                                 row=row)
-        if missing.size == values.size:
-            raise ContractError("column has no valid value (every cell is empty): not measured? "
-                                "leave it out (data.roles.ignore)", file=path, column=name)
     limit, unit, what = {"E": (opts.max_abs_error, "µm", "error"),
                          "S": (opts.max_abs_state, "", "state")}.get(role(name), (None,) * 3)
     if limit is not None:
