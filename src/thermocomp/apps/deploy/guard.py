@@ -94,11 +94,7 @@ class CorrectionGuard:
         without a pattern or a following bound."""
         if self.in_gain is None or envelope is None or envelope.basis is None:
             return None
-        d = x - self.in_hi
-        np.maximum(d, self.in_lo - x, out=d)
-        if not d.max() > 0.0 or envelope.leaves_pattern(x):      # (the usual case: in range)
-            return None
-        return self.in_gain @ np.maximum(d, 0.0, out=d)
+        return widening(x, self.in_lo, self.in_hi, self.in_gain, envelope)
 
     def reset(self) -> None:
         self._prev = None
@@ -156,6 +152,18 @@ class CorrectionGuard:
         self._free = all(s == FREE for s in self._state)
         self._prev = out
         return out, events
+
+
+def widening(x: np.ndarray, lo: np.ndarray, hi: np.ndarray, gain: np.ndarray,
+             envelope) -> np.ndarray | None:
+    """``gain @ d``, ``d`` the distance of the inputs ``x`` beyond their training range ``[lo,
+    hi]``, when ``x`` is on ``envelope``'s training pattern; None within the range or off the
+    pattern.  The one rule of the guard and of the exported code's Simulator (:mod:`.export.output`)."""
+    d = x - hi
+    np.maximum(d, lo - x, out=d)
+    if not d.max() > 0.0 or envelope.leaves_pattern(x):      # (the usual case: in range)
+        return None
+    return gain @ np.maximum(d, 0.0, out=d)
 
 
 def _reason(state: str, y: float, lo: float, hi: float) -> str:

@@ -31,6 +31,7 @@ import sys
 import numpy as np
 
 from ..adaptive import AdaptiveCompensator
+from ..guard import widening
 from .errors import NotExportable
 
 UNBOUNDED = sys.float_info.max   # a machine state's range: never beyond it
@@ -119,10 +120,7 @@ class Output:
         ``guard_gain . d`` on the training pattern of ``envelope`` (the clamp's), else None."""
         if not (self.ss.guard and self.ss.guard_inputs):
             return None
-        d = np.maximum(np.maximum(x - self.in_hi, self.in_lo - x), 0.0)
-        if not d.any() or envelope.leaves_pattern(x):
-            return None
-        return self.in_gain @ d
+        return widening(x, self.in_lo, self.in_hi, self.in_gain, envelope)
 
     def step(self, y: np.ndarray, first: bool, dt: float,
              allowance: np.ndarray | None = None) -> np.ndarray:
