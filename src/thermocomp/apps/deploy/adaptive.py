@@ -295,8 +295,8 @@ def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator) ->
     sample (:meth:`~.guard.CorrectionGuard.allowance`): with the envelope's clamp, which carries
     the training pattern (so does the code); ``None`` before a sample or without a following bound."""
     x = getattr(streaming, "last_x_", None)
-    if x is None or getattr(streaming, "policy", None) != "clamp" or guard.in_gain is None:
-        return None
+    if x is None or getattr(streaming, "policy", None) != "clamp":
+        return None                           # (the guard says None without a following bound)
     return guard.allowance(x, streaming.envelope)
 
 
