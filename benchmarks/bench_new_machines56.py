@@ -147,6 +147,7 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).parent))
 from bench_other_machine import QUIET, scores, thermocomp  # noqa: E402
+from bench_other_machine import diagnose as other_diagnose  # noqa: E402
 
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork  # noqa: E402
 
@@ -390,19 +391,8 @@ def run_models(root: Path, name: str, families=FAMILIES, extra=()) -> list[dict]
 
 
 def diagnose(root: Path, name: str) -> dict:
-    out = root / "out" / f"{name}-diagnose"
-    status, cpu, _, err = thermocomp("diagnose", *data_args(root, name), *QUIET, f"out={out}")
-    row = {"data": name, "status": status, "cpu_s": round(cpu, 1)}
-    if status == 0:
-        d = json.loads((out / "diagnosis.json").read_text())
-        row["targets"] = {d["target"]: (d["before"]["test_rmse"], d["after"]["test_rmse"],
-                                        [s["effect"] for s in d["steps"] if s["effect"]]),
-                          **{t: (o["before_test_rmse"], o["after_test_rmse"], o["accepted"])
-                             for t, o in d["other_targets"].items()}}
-    else:
-        row["error"] = err.strip().splitlines()[-1] if err.strip() else "?"
-    print(row, flush=True)
-    return row
+    """``diagnose`` (MLR) of a record here, as bench_other_machine's."""
+    return other_diagnose(root, name, data_args)
 
 
 def table(rows: list[dict]) -> str:

@@ -319,10 +319,12 @@ def run_families(root: Path, name: str, families=FAMILIES, extra=()) -> list[dic
     return rows
 
 
-def diagnose(root: Path, name: str) -> dict:
-    """``diagnose`` (MLR): per target test RMSE before -> after and what it accepted."""
+def diagnose(root: Path, name: str, args_of=None) -> dict:
+    """``diagnose`` (MLR): per target test RMSE before -> after and what it accepted
+    (``args_of(root, name)``: the record's data overrides, this module's :func:`data_args`)."""
     out = root / "out" / f"{name}-diagnose"
-    status, cpu, _, err = thermocomp("diagnose", *data_args(root, name), *QUIET, f"out={out}")
+    status, cpu, _, err = thermocomp("diagnose", *(args_of or data_args)(root, name), *QUIET,
+                                     f"out={out}")
     row = {"data": name, "status": status, "cpu_s": round(cpu, 1)}
     if status == 0:
         d = json.loads((out / "diagnosis.json").read_text())
@@ -331,7 +333,7 @@ def diagnose(root: Path, name: str) -> dict:
                           **{t: (o["before_test_rmse"], o["after_test_rmse"], o["accepted"])
                              for t, o in d["other_targets"].items()}}
     else:
-        row["error"] = err.strip().splitlines()[-1]
+        row["error"] = err.strip().splitlines()[-1] if err.strip() else "?"
     print(row, flush=True)
     return row
 
