@@ -3,7 +3,8 @@
     .venv/bin/python benchmarks/bench_new_machines57.py write DIR   # the lab's files only
     .venv/bin/python benchmarks/bench_new_machines57.py all DIR     # write, init, run, diagnose,
                                                                     # monitor, table
-    (or one step: init | run | diagnose | monitor | table DIR, on what the steps before wrote)
+    (or one step: init | run | diagnose | monitor | table | forensics DIR, on what the steps
+    before wrote)
 
 The physics below was written down before any model ran on these records; nothing was tuned on
 them (seeds 5771 / 5772 fixed beforehand, every command run once).  Both differ from ``apps/sim``
@@ -82,6 +83,97 @@ hall air.  English headers with units, ``,``, a ``Date`` and a ``Time`` column; 
 What the ``left out`` variants withhold (diagnose only): ``boring_mill-noW`` ignores the ram's
 extension (the bending's lever); ``twin_lathe-noair`` ignores the hall air (the night setback's
 only direct measurement).
+
+Measured (2026-11-30, each command once, 2 shared cores at load 2-4; ``write``, ``init``, ``run``,
+``diagnose``, ``monitor``, ``table``).  Test RMSE (µm) per target, ratio to MLR's, CPU s (user +
+sys of one ``thermocomp run``, ~2 s of it start-up), simulation mode, the defaults, ``init``'s
+config::
+
+    boring_mill (E_Errore_Y / E_Errore_Z)           twin_lathe (E_Z1_error / E_Z2_error)
+      mlr            5.43 / 8.51  1.00 / 1.00   2.1     0.377 / 0.374  1.00 / 1.00   2.3
+      pcr            5.19 / 8.80  0.96 / 1.03   2.2     3.47  / 2.64   9.22 / 7.05   2.3
+      arx            5.34 / 8.30  0.99 / 0.97   2.5     0.447 / 0.410  1.19 / 1.10   2.4
+      lagbank        4.74 / 6.86  0.87 / 0.81   3.0     0.343 / 0.432  0.91 / 1.15   3.7
+      hammerstein    2.66 / 4.23  0.49 / 0.50   4.3     0.326 / 0.432  0.86 / 1.15   6.4
+      lstm           5.41 / 9.33  1.00 / 1.10  13.8     0.377 / 0.375  1.00 / 1.00  28.6
+      auto           2.63 / 4.23  0.49 / 0.50   9.4     0.339 / 0.382  0.90 / 1.02  19.3
+      mlr ati=cmeans 6.16 / 9.40  1.14 / 1.10   2.8     0.377 / 0.374  1.00 / 1.00   2.2
+      persistence    1.37 / 2.24  0.25 / 0.26           0.476 / 0.469  1.26 / 1.25
+
+``auto`` against MLR and the best single family: boring_mill E_Y 2.63 vs hammerstein 2.66, E_Z
+4.23 = hammerstein (its blend: hammerstein 0.97 / lagbank 0.01 / mlr 0.01 on E_Y, hammerstein 1.0
+on E_Z; "blocked forward" validation, hammerstein 2.50 / 4.45 against MLR's 4.31 / 8.04): better
+than MLR, the best on both.  twin_lathe E_Z1 0.339 (mlr 0.67 / hammerstein 0.33; best single
+hammerstein 0.326, +4 %); **E_Z2 0.382 against MLR's 0.374: auto loses to MLR by 2.1 %** (within
+10 % of the best single family, MLR itself).  ``mlr ati=cmeans``: boring_mill one interval (the
+elbow; 7 train runs at 15.2-25.0 °C) with the ambient interaction, worse on the test (+14 / +10 %;
+no ambient law is planted: as the grinder of ``bench_new_machines56``); twin_lathe one interval,
+MLR's figures (one train file; ``auto`` skipped ATI: "1 ambient level(s), fewer than 3").
+
+``diagnose`` (MLR; primary target = largest CV RMSE; test RMSE before -> after; CPU s):
+
+* ``boring_mill``: E_Z 8.51 -> 0.37 (``S_ram_W`` x the rise of the ram's bottom rear sensor, then x
+  its top rear one: the planted (900 + W) x mean ram rise; CV 8.36 -> 0.37, forward blocks), E_Y
+  5.43 -> 1.56 (W x the ram bottom's rise: part of the planted W^2 x gradient).  5.7 s.
+* ``boring_mill-noW`` (the lever withheld): accepts nothing, both targets unchanged.  4.9 s.
+* ``twin_lathe``: E_Z1 0.377 -> 0.319: "sensor_fault" removes T_Bed_left_rear and
+  T_Chuck_hydraulics (healthy), then a 4 h lag of the inputs (the unmeasured bed core);
+  **E_Z2 0.374 -> 0.551, +47 %** (the same exclusions and its own 4 h lag).  7.7 s.
+* ``twin_lathe-noair``: the same three steps; E_Z1 0.379 -> 0.322, E_Z2 0.377 -> 0.352.  7.6 s.
+
+``monitor`` (the model fitted on the train split, the defaults; healthy test part):
+boring_mill (24.4 h, 3 runs) mlr and lagbank: 0 events, RMSE fixed = adaptive (5.43 / 8.51,
+4.74 / 6.86).  **twin_lathe (144 h) mlr and lagbank: 36 events, 18 exclusions of T_amb**, no
+warning / alarm / new state / guard event; RMSE fixed -> adaptive mlr 0.377 -> 0.372, 0.374 ->
+0.372, lagbank 0.343 -> 0.334, 0.432 -> 0.434 (+0.4 %).
+
+Forensics.
+
+(1) The monitor's 18 exclusions are the 18 gate draughts of the November file (3 a day x 6 days,
+the air -1.5 K in one minute): "jump: -1.45 °C in one sample (largest step in training 0.29 °C);
+... held at its last good reading: no other sensor predicts it", re-admitted after 10 samples
+with the jump undone.  The train file (October) has no draught, and the night setback's own steps
+(the air following with 25 / 50 min) raise nothing.  A real air step unseen in training against an
+offset of the air sensor that nothing predicts: ``bench_ambient_step55.py`` measured the rules that
+would tell them apart from what the structure does after the jump and refused each (offsets taken
+for air at up to 10-36 % of the rows).  Not a defect with a general mend here: no src change; the
+harm is nil for MLR (adaptive better) and +0.4 % on one target of the lag bank.
+
+(2) ``diagnose``'s E_Z2 harm: the one train campaign (a week) gives forward chaining over its
+second half (16 blocks of 5.4 h); the 4 h lag of the 18 inputs gains 26 % of CV RMSE there
+(p 6e-5 family-wise 3e-4, the 95 % bound of the gain positive, in-range gain 22 %, shrink 1e-6: the
+CV asked for none), every bar cleared.  On November it fails.  Least squares on the same 18
+rises without and with their 4 h lags (``forensics``: no shrink, test 0.382 -> 0.914, against
+thermocomp's 0.374 -> 0.551) shows how: the lagged model carries large
+coefficients of opposite signs (lag of T_Sub_headstock -10.4 µm/K, lag of T_Main_headstock_top
+-7.5, lag of T_Bed_right_front +4.8, of the air +4.3), the residual's mean moves from +0.01 to
++0.86 µm on every one of the 6 test days alike (not at the draughts: near them 0.94, elsewhere
+0.91 µm rms), and the moves are those coefficients times a different operating mix (the sub
+spindle ran more: its motor's lag 1.15 K higher on average in November; the sum of the features'
+mean shifts x coefficients +2.0 µm).  A week's programme is one draw of the mix; blocks inside it
+cannot show that the lagged combination does not carry over to another month.  The same root for
+``auto``'s E_Z2: its validation (5 forward folds of the October week) had ARX 0.418 against MLR's
+0.460, the votes blended ARX 0.51 / MLR 0.46 / lagbank 0.04; on the test ARX is 0.410 against
+MLR's 0.374.  Neither is a defect with a general mend found in this session (no bar at hand tells
+a week's mix from a law without a second train campaign): no src change.
+
+(3) The "sensor_fault" exclusions on the twin lathe are healthy sensors: T_Chuck_hydraulics
+(the hydraulics alone; 150 W switched with the shift) and T_Bed_left_rear (0.9 bed + 0.1
+hydraulics), worst in the last health block of the week (Saturday afternoon: the shift ended at
+12 h, a state no earlier block had), jump ratios 4.6 and 5.5 >= 3; removal is accepted because no
+target needs them (CV gain -0.02 % and +2.7 %).  The exclusions alone on the test
+(``diagnose.families=[sensor_fault]``): E_Z1 0.377 -> 0.383 (+1.5 %), E_Z2 0.374 -> 0.382
+(+2.0 %).  A new thermal state read as two faults (the monitor's ``new_state`` rule has no
+counterpart in diagnose's health check); noted, not mended.
+
+What a stranger met on the way in (``init DIR data.test_fraction=...``): the twin lathe's English
+export gave every role (``Date`` + ``Time``, ``Hall air`` the ambient, the errors and states from
+the units).  The boring mill's Italian one was refused: ``'Tempo [s]': unit 's' is not a
+temperature's`` (``tempo`` is no time header; ``temps``, ``tiempo`` are); with
+``data.roles.time=Tempo`` init proposed ``Corsa slittone W [mm]`` (the ram's travel) as a third
+error and ``Aria capannone`` (the hall's air) as a plain temperature: the stranger gives
+``data.roles.state=['Corsa slittone*']`` and ``data.roles.ambient=['Aria capannone*']``
+(``INIT_ARGS``).
 """
 
 from __future__ import annotations
@@ -372,10 +464,57 @@ def monitor(root: Path, name: str, model: str) -> dict:
     return row
 
 
+def lag_forensics(root: Path) -> None:
+    """Why the 4 h lag ``diagnose`` accepted on the twin lathe's E_Z2 failed on the test file:
+    least squares (intercept, no shrink) on the 18 rises it keeps, without and with their 4 h
+    first-order lags, fitted on the October file, scored on November's."""
+    folder, dropped = root / "twin_lathe", ("Bed left rear [°C]", "Chuck hydraulics [°C]")
+
+    def load(file):
+        d = pd.read_csv(folder / file)
+        temps = d[[c for c in d.columns if "°C" in c and c not in dropped]]
+        y = d["Z2 error [µm]"]
+        return (temps - temps.iloc[0]).to_numpy(), (y - y.iloc[0]).to_numpy(), list(temps.columns), d
+
+    def lagged(x, tau=14400.0):
+        a, out = np.exp(-STEP / tau), np.zeros_like(x)
+        for i in range(1, len(x)):
+            out[i] = a * out[i - 1] + (1 - a) * x[i]
+        return np.hstack([x, out])
+
+    def design(x):
+        return np.column_stack([x, np.ones(len(x))])
+
+    xa, ya, cols, _ = load("2026-10_wk41.csv")
+    xb, yb, _, db = load("2026-11_wk45.csv")
+    fa, fb = lagged(xa), lagged(xb)
+    w0 = np.linalg.lstsq(design(xa), ya, rcond=None)[0]
+    w1 = np.linalg.lstsq(design(fa), ya, rcond=None)[0]
+    r0, r1 = yb - design(xb) @ w0, yb - design(fb) @ w1
+    print(f"test RMSE {np.sqrt(np.mean(r0**2)):.3f} -> {np.sqrt(np.mean(r1**2)):.3f}; mean residual "
+          f"{r0.mean():+.2f} -> {r1.mean():+.2f}")
+    names = cols + [f"lag {c}" for c in cols]
+    print("largest coefficients:", [(names[i], round(w1[i], 1)) for i in np.argsort(-np.abs(w1[:-1]))[:5]])
+    shift = (fb.mean(0) - fa.mean(0)) * w1[:-1]
+    print(f"mean shift x coefficient, sum {shift.sum():+.2f}:",
+          [(names[i], round(shift[i], 2), round(fb[:, i].mean() - fa[:, i].mean(), 2))
+           for i in np.argsort(-np.abs(shift))[:5]])
+    air = db["Hall air [°C]"].to_numpy()
+    near = np.zeros(len(air), bool)
+    for i in np.flatnonzero(np.diff(air) < -0.8) + 1:       # the draughts, 30 min after each
+        near[i:i + 30] = True
+    print(f"{near.sum()} rows near a draught: RMS {np.sqrt(np.mean(r1[near] ** 2)):.2f}, elsewhere "
+          f"{np.sqrt(np.mean(r1[~near] ** 2)):.2f}")
+    day = np.arange(len(yb)) * STEP // 86400
+    print("per day RMSE:", [(round(float(np.sqrt(np.mean(r0[day == k] ** 2))), 3),
+                             round(float(np.sqrt(np.mean(r1[day == k] ** 2))), 3)) for k in range(6)])
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=["write", "init", "run", "diagnose", "monitor", "table", "all"])
+    parser.add_argument("what", choices=["write", "init", "run", "diagnose", "monitor", "table", "forensics",
+                                             "all"])
     parser.add_argument("root")
     parser.add_argument("--data", nargs="+", default=list(SEEDS),
                         help="records (families); diagnose also takes boring_mill-noW, twin_lathe-noair")
@@ -411,6 +550,8 @@ def main(argv=None) -> int:
         for r in rows:
             if "scores" not in r:
                 print(f"{r['data']} {r['model']}: exit {r['status']}: {r['error']}")
+    if args.what == "forensics":
+        lag_forensics(root)
     return 0
 
 
