@@ -154,8 +154,11 @@ mean shifts x coefficients +2.0 µm).  A week's programme is one draw of the mix
 cannot show that the lagged combination does not carry over to another month.  The same root for
 ``auto``'s E_Z2: its validation (5 forward folds of the October week) had ARX 0.418 against MLR's
 0.460, the votes blended ARX 0.51 / MLR 0.46 / lagbank 0.04; on the test ARX is 0.410 against
-MLR's 0.374.  Neither is a defect with a general mend found in this session (no bar at hand tells
-a week's mix from a law without a second train campaign): no src change.
+MLR's 0.374.  ARX's lead is fold 5's (0.568 against 0.711: the week's last block, Saturday after
+the shift ended at noon, a state no earlier fold trained on) and fold 1's (0.433 / 0.450); MLR
+won folds 3 and 4 (``run model=mlr`` / ``arx``: validation per_unit).  Neither is a defect with
+a general mend found in this session (no bar at hand tells a week's mix from a law without a
+second train campaign): no src change.
 
 (3) The "sensor_fault" exclusions on the twin lathe are healthy sensors: T_Chuck_hydraulics
 (the hydraulics alone; 150 W switched with the shift) and T_Bed_left_rear (0.9 bed + 0.1
