@@ -103,7 +103,7 @@ config::
 ``auto`` against MLR and the best single family: boring_mill E_Y 2.63 vs hammerstein 2.66, E_Z
 4.23 = hammerstein (its blend: hammerstein 0.97 / lagbank 0.01 / mlr 0.01 on E_Y, hammerstein 1.0
 on E_Z; "blocked forward" validation, hammerstein 2.50 / 4.45 against MLR's 4.31 / 8.04): better
-than MLR, the best on both.  twin_lathe E_Z1 0.339 (mlr 0.67 / hammerstein 0.33; best single
+than MLR, the best on both.  twin_lathe E_Z1 0.339 (blend mlr 0.67 / hammerstein 0.33; best single
 hammerstein 0.326, +4 %); **E_Z2 0.382 against MLR's 0.374: auto loses to MLR by 2.1 %** (within
 10 % of the best single family, MLR itself).  ``mlr ati=cmeans``: boring_mill one interval (the
 elbow; 7 train runs at 15.2-25.0 °C) with the ambient interaction, worse on the test (+14 / +10 %;
