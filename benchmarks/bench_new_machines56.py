@@ -369,13 +369,15 @@ LEFT_OUT = {"grinder-nocoolant": ["data.roles.ignore=['Kühlmitteltank*','Kühlm
                            "data.roles.state=['Spindle speed*','Hydraulics on*']"]}
 
 
-def run_models(root: Path, name: str, families=FAMILIES, extra=()) -> list[dict]:
+def run_models(root: Path, name: str, families=FAMILIES, extra=(), args_of=None) -> list[dict]:
+    """``run`` each family on a record (``args_of(root, name)``: its data overrides, this
+    module's :func:`data_args`): test RMSE per target, CPU s, ``auto.json``'s choice."""
     rows = []
     for family in families:
         tag = f"{name}-{family}" + ("-" + "-".join(extra) if extra else "")
         out = root / "out" / tag
-        status, cpu, _, err = thermocomp("run", *data_args(root, name), f"model={family}", *QUIET,
-                                         *extra, f"out={out}")
+        status, cpu, _, err = thermocomp("run", *(args_of or data_args)(root, name), f"model={family}",
+                                         *QUIET, *extra, f"out={out}")
         row = {"data": name, "model": family + (" " + " ".join(extra) if extra else ""),
                "status": status, "cpu_s": round(cpu, 1)}
         if status == 0:

@@ -39,9 +39,10 @@ HELD_OUT = 0.1    # the test share init writes for a record or runs without test
 
 _GLOB = re.compile(r"([*?\[])")
 _WORDS = re.compile(r"[\s_.\-]+")
-# a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing)
+# a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing);
+# an Italian / French / Spanish lab's 'ambiente', 'ambiante', 'capannone' (the shop's hall)
 AMBIENT_WORDS = {"amb", "ambient", "umgebung", "umgebungstemperatur", "raum", "raumtemperatur",
-                 "room", "hall", "halle", "hallentemperatur"}
+                 "room", "hall", "halle", "hallentemperatur", "ambiente", "ambiante", "capannone"}
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 

@@ -45,7 +45,7 @@ _LAST_WORD = re.compile(r"^(.*?\S)\s+(\S+)$")
 _SUFFIX = re.compile(r"^(.*?[^\s_])_([^\s_]+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
 TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
-                          "zeitstempel", "temps", "tiempo", "seconds", *ELAPSED_HEADERS})
+                          "zeitstempel", "temps", "tiempo", "tempo", "seconds", *ELAPSED_HEADERS})
 RUN = " campaign"     # data.roles.campaign's column as read: no contract column has this name
 PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
 

@@ -47,8 +47,10 @@ _WORDS = re.compile(r"[\s_.\-]+")
 # wins over a position word: 'Positionsfehler', 'Querachse dZ' are errors)
 _ERROR_WORD = re.compile(r"[dδ][xyzuvw]\d*|δ.*|delta.*|err|errors?|.*fehler|.*abweichung|deviation"
                          r"|displacement|.*verlagerung|verschiebung|drift|deformation")
-# a name that says "where the axis is": position, Pos., Ypos, Istposition (a machine state)
-_POSITION_WORD = re.compile(r".*positions?|pos|[xyzuvw]pos|coordinates?|koordinaten?")
+# a name that says "where the axis is": position, Pos., Ypos, Istposition, an Italian or Spanish
+# lab's posizione, posición, corsa (an axis' travel) (a machine state)
+_POSITION_WORD = re.compile(r".*positions?|pos|[xyzuvw]pos|coordinates?|koordinaten?|posizion[ei]"
+                            r"|posici[oó]n|corsa")
 # a name that says only "which axis": X, Y2, X-Achse, Querachse, axis (its position or, as
 # a lab names a probe by the axis it measures along, its error)
 _AXIS_WORD = re.compile(r"[xyzuvw]\d*|.*achse|axis")
