@@ -245,7 +245,9 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True, digest: str | N
         tags["overrides"] = " ".join(overrides)[:5000]
     data = (cfg.get("data") or {}).get("path")
     data = resolve(str(data)) if data else None
-    if stage != "simulate" and data is not None and data.is_dir():   # what promote checks
+    # what promote checks; a lab's one-file record (data.path a file) is digested as a
+    # folder holding only it: untagged, a sweep on it was refused by promote
+    if stage != "simulate" and data is not None and data.exists():
         from .source import dataset_digest
 
         tags[DATASET_TAG] = digest or dataset_digest(cfg)

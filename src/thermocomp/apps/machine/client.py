@@ -151,7 +151,10 @@ class Connection:
                 self.adapt.start()      # what was learned is kept: the same machine
             self.limiter.new_campaign()
             self._campaign = cid
-            self._event("campaign", f"campaign {cid} from its sample {i}")
+            # a campaign that continues others comes after their rows (twin: its samples < 0)
+            ahead = (f" ({-i} sample(s) of the campaign(s) it continues first, unscored)"
+                     if i < 0 else "")
+            self._event("campaign", f"campaign {cid} from its sample {i}{ahead}")
         elif k > self._last + 1:
             self.missed += k - self._last - 1      # counted; an event when the inputs went stale
         if self._stale:

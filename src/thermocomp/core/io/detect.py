@@ -24,9 +24,10 @@ from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
 from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS, RUN_ROLE
-from .read import run_counter
+from .read import run_column, run_counter
 from .record import check_record_file
 from .roles import RUN, date_and_time_of_day, matching_roles, named_as_time, split_unit
+from .runs import looks_like_run_labels, says_run
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet, without_pandas_index
@@ -189,16 +190,33 @@ def _by_role(roles: dict, header: list[str], first: dict) -> dict:
 
 def proposed_campaign(src: Path, roles: dict, opts) -> dict:
     """``roles`` with ``campaign`` proposed where ``src`` is one file (not a folder's) and, read
-    with ``roles``, a column it would make a temperature counts runs; as given otherwise (a
-    file that does not read is refused by the read that follows, naming why)."""
+    with ``roles``, a column it would make a temperature counts runs, or a text column it
+    leaves out names them (:func:`_run_labels`); as given otherwise (a file that does not read
+    is refused by the read that follows, naming why)."""
     if not src.is_file() or roles.get(RUN_ROLE):
         return roles
     try:
         counter = run_counter(src, replace(opts, roles=roles))
     except ContractError:
         return roles
-    return roles if counter is None else {**roles, RUN_ROLE: _GLOB.sub(r"[\1]",
-                                                                         split_unit(counter)[0])}
+    if counter is None:
+        return _run_labels(src, roles, opts)
+    return {**roles, RUN_ROLE: _GLOB.sub(r"[\1]", split_unit(counter)[0])}
+
+
+def _run_labels(src: Path, roles: dict, opts) -> dict:
+    """``roles`` with ``campaign`` the first left-out (``ignore``) text column that names the
+    runs (:func:`.runs.looks_like_run_labels`: ``Versuch`` K01, K02 ...), taken out of
+    ``ignore``: left out, the runs were read as one record, its test part cut inside the last."""
+    for pattern in (p for p in roles["ignore"] if says_run(p)):
+        trial = {**roles, "ignore": [p for p in roles["ignore"] if p != pattern], RUN_ROLE: pattern}
+        try:
+            values, header = run_column(src, replace(opts, roles=trial))
+        except ContractError:
+            continue
+        if looks_like_run_labels(values, header):
+            return trial
+    return roles
 
 
 def check_an_error_is_named(header: list[str], first: dict, roles: dict, opts, file: Path) -> None:

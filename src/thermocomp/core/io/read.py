@@ -506,6 +506,15 @@ def run_counter(path: Path, opts: ReadOptions) -> str | None:
     return _run_counter(columns, renamed)
 
 
+def run_column(path: Path, opts: ReadOptions) -> tuple[list[str | None], str]:
+    """``(cells as text, header)`` of ``data.roles.campaign``'s column of a one-file record,
+    read without the checks of time and values."""
+    with as_read(path, opts) as (source, source_opts):
+        columns, renamed = _loaded(source, source_opts)[:2]
+    header = next(raw for raw, name in renamed.items() if name == RUN)
+    return run_values(columns[RUN]), header
+
+
 def _run_counter(columns: dict, renamed: dict) -> str | None:
     """The header of the first column read as a temperature that looks like a run counter (not
     one whose header gives a unit: a temperature logged in whole degrees); a file's own names

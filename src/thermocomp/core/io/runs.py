@@ -102,12 +102,31 @@ def looks_like_run_counter(values: np.ndarray, header: str,
     runs = int((steps > 0).sum()) + 1
     if runs < 2 or values.size / runs < MIN_RUN_ROWS:
         return False
-    if set(_WORDS.split(split_unit(header)[0].lower())) & RUN_WORDS:
+    if says_run(header):
         return True
     if not (steps[steps > 0] == 1).all():
         return False
     at = None if ends is None else ends(steps > 0)
     return at is None or bool(at.all())
+
+
+def says_run(header: str) -> bool:
+    """Whether ``header`` (its unit dropped) holds a word that names a run (:data:`RUN_WORDS`)."""
+    return bool(set(_WORDS.split(split_unit(header)[0].lower())) & RUN_WORDS)
+
+
+def looks_like_run_labels(values: Sequence[str | None], header: str) -> bool:
+    """A text column naming the runs (``Versuch`` K01, K02 ...), as a run counter numbers them:
+    under a header that says so (:func:`says_run`), every row a value holding a letter, each
+    value's rows together (none coming back after another), at least two values, each held
+    :data:`MIN_RUN_ROWS` rows on average.  A comment column, or one label for the whole file,
+    is no such column."""
+    if not says_run(header) or not values or any(
+            v is None or not re.search(r"[^\W\d_]", v) for v in values):
+        return False
+    labels = [v for i, v in enumerate(values) if i == 0 or v != values[i - 1]]
+    return (len(labels) >= 2 and len(set(labels)) == len(labels)
+            and len(values) / len(labels) >= MIN_RUN_ROWS)
 
 
 JUMP = 3.0     # a step over this many times a column's largest within the runs is a run's end

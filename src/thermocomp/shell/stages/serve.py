@@ -30,12 +30,23 @@ QUIET_DOWNLOADS = "MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR"
 
 def _deployed(cfg: DictConfig, model: str):
     """The compensator ``model`` holds: a registered or saved one as it is (its signature checked),
-    a ``model.pkl`` made deployable on the train split of ``data.path``."""
+    a ``model.pkl`` made deployable on the train split of ``data.path``, holding where each
+    campaign of ``data.path`` leaves its stream, as ``promote`` registers it: a served campaign
+    may continue one (``continues``; without them a record cut in two was refused there)."""
+    from ...apps.deploy.report import plain
+    from ...apps.deploy.streaming import end_states
+    from ...core.continuation import lead_ins
     from ..builders import deployable_model, is_registered
     from ..source import read_streamed
 
-    ds, train_ids = (None, []) if is_registered(model) else read_streamed(cfg, test=False)[:2]
-    return deployable_model(cfg, ds, train_ids, model, "serve.model")[0]
+    if is_registered(model):
+        return deployable_model(cfg, None, [], model, "serve.model")[0]
+    ds, train_ids = read_streamed(cfg, test=False)[:2]
+    deployed = deployable_model(cfg, ds, train_ids, model, "serve.model")[0]
+    ids = train_ids + ds.ids("test")
+    deployed.end_states_ = end_states(deployed, {c: ds.campaigns[c] for c in ids},
+                                      lead_ins(plain(deployed).compensator, ds, ids))
+    return deployed
 
 
 def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:

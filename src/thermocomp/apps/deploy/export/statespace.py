@@ -162,6 +162,14 @@ def _target_law(est, n: int, period: float | None):
     return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
 
 
+def _one_model(est):
+    """The one model of an ATI wrapper that kept one interval and no ambient interaction (too
+    few ambient levels in training: what ati=none fits, and streams as it does), else ``est``."""
+    if isinstance(est, ATIRegressor) and est.n_intervals_ == 1 and not est.interactions_[0]:
+        return est.estimators_[0]
+    return est
+
+
 def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:
     """``(linear estimator, its power features' indices)``: a Hammerstein model is its lag bank
     on the inputs and the powers of its states (registered in ``powers``, shared by targets)."""
@@ -211,7 +219,7 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
     laws, period, powers = {}, None, {}
     for t, est, idx in stream._plan:
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        est, feats = _powered(est, inputs, powers)
+        est, feats = _powered(_one_model(est), inputs, powers)
         c, b0, delayed, lags, a, period = _target_law(est, len(cols) + len(feats), period)
         where = np.r_[cols, N + np.asarray(feats, int)].astype(int)   # into [x, powers]
         laws[t] = (c, (where, b0), {d: _spread(r, cols, N) for d, r in delayed.items()},
@@ -238,7 +246,8 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
             bd[i, d - 1] = row
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     period = float(period) if period is not None else 0.0
-    gains = [_clamp_gain(t, est, idx, env.horizon_s, N) for t, est, idx in stream._plan] if clamp else None
+    gains = [_clamp_gain(t, _one_model(est), idx, env.horizon_s, N)
+             for t, est, idx in stream._plan] if clamp else None
     return StateSpace(
         inputs=inputs, targets=targets, fir=fir.tolist(),
         referenced=[int(r) for r in stream._is_ref] + [0] * len(states), clamp=bool(clamp),
