@@ -31,6 +31,7 @@ import numpy as np
 import pandas as pd
 
 from ...base.errors import ContractError
+from ...base.tables import name_width
 from ...core.context import TIME
 from ...core.metrics import RMSE
 from ...core.timerule import stream_start
@@ -304,11 +305,12 @@ def replay_lines(report: dict) -> list[str]:
     prediction of the same rows (what ``run`` scores), so a deployment that streams
     differently (the adaptive monitor's exclusions) shows beside it."""
     targets = report["targets"]
-    lines = [f"{'target':<8} {'samples':>8} {'max|stream-batch|':>18} {'RMSE':>8} "
+    w = name_width(targets)
+    lines = [f"{'target':<{w}} {'samples':>8} {'max|stream-batch|':>18} {'RMSE':>8} "
              f"{'RMSE batch':>11} {'µs/sample':>10}"]
     for t, r in targets.items():
         rmse, batch = ("-" if r.get(k) is None else f"{r[k]:.3f}" for k in (RMSE, "rmse_batch"))
-        lines.append(f"{t:<8} {r['n_samples']:>8} {r['max_abs_stream_minus_batch']:>18.3g} "
+        lines.append(f"{t:<{w}} {r['n_samples']:>8} {r['max_abs_stream_minus_batch']:>18.3g} "
                      f"{rmse:>8} {batch:>11} {r['us_per_sample']:>10.1f}")
     lines += adapt_line(targets, "frozen -> adapted", RMSE)
     clamped = max((r.get("clamped_samples") or 0 for r in targets.values()), default=0)

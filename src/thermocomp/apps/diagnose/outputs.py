@@ -27,6 +27,7 @@ from pathlib import Path
 import yaml
 
 from ...base.files import atomic_dir, write_json
+from ...base.tables import name_width
 from ...core.scoring.headline import DIAGNOSIS_HEADLINE, diagnosis_headline, write_headline
 from ...core.scoring.results import TargetResult
 from .augmented import MODEL_NAME
@@ -154,14 +155,15 @@ def tracked(result) -> tuple[dict, dict]:
 
 def summary_table(result) -> str:
     """What the stage prints: per target, test RMSE before -> after and the accepted effects."""
+    w = name_width(result.targets)
     lines = [f"model={result.model}  dataset={result.dataset}  mode={result.mode}"
              + ("" if result.mode == "simulation" else " (test; CV: simulation)"),
-             f"{'target':<8} {'test RMSE before':>16} -> {'after':>6}   {'CV before':>9} -> {'after':>6}"
+             f"{'target':<{w}} {'test RMSE before':>16} -> {'after':>6}   {'CV before':>9} -> {'after':>6}"
              "   accepted effects", "-" * 96]
     for t, d in result.targets.items():
         acc = ", ".join(ev.effect.title for ev in d.accepted) or "none"
         before, after = TargetResult(d.before).test.rmse, TargetResult(d.after).test.rmse
-        lines.append(f"{t:<8} {before:>16.2f} -> {after:>6.2f}   "
+        lines.append(f"{t:<{w}} {before:>16.2f} -> {after:>6.2f}   "
                      f"{d.original_cv_rmse:>9.2f} -> {d.final_cv_rmse:>6.2f}   {acc}")
     cv = result.cv
     lines.append(f"acceptance test: {cv['test_blocks']} time blocks of ~{cv['block_samples']} samples "

@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ...base.tables import name_width
 from ...core.context import TIME
 from ..deploy.adapt import Adaptation, adapt_figures
 from ..deploy.adaptive import AdaptiveCompensator
@@ -174,11 +175,12 @@ def monitor_report(adaptive: AdaptiveCompensator, fixed, comp, streamed: dict, t
 
 def summary_lines(report: dict) -> list[str]:
     """The table and lines ``thermocomp monitor`` prints."""
-    lines = [f"{'target':<8} {'RMSE fixed':>11} {'RMSE adaptive':>14} {'max|corr|':>10} {'finite':>7}"]
+    w = name_width(report["targets"])
+    lines = [f"{'target':<{w}} {'RMSE fixed':>11} {'RMSE adaptive':>14} {'max|corr|':>10} {'finite':>7}"]
     for t, r in report["targets"].items():
         f = "-" if r["rmse_fixed"] is None else f"{r['rmse_fixed']:.3f}"
         a = "-" if r["rmse_adaptive"] is None else f"{r['rmse_adaptive']:.3f}"
-        lines.append(f"{t:<8} {f:>11} {a:>14} {r['max_abs_correction']:>10.3g} "
+        lines.append(f"{t:<{w}} {f:>11} {a:>14} {r['max_abs_correction']:>10.3g} "
                      f"{str(r['all_finite']):>7}")
     first = next(iter(report["targets"].values()), {})
     if first.get("clamped_samples"):     # why RMSE fixed leaves what `run` scored

@@ -17,6 +17,7 @@ import numpy as np
 
 from ...base.errors import listed
 from ...base.jsonsafe import json_safe
+from ...base.tables import name_width
 from ..continuation import carried_text
 from ..metrics import (
     E_P95,
@@ -228,11 +229,12 @@ class EvaluationResult:
         """The table ``run`` prints per target: test Rsd SM/SD, RMS before -> after, and the
         test RMSE in simulation and one-step mode next to the persistence baseline's."""
         m = self.metrics
+        w = name_width(self.targets)
         angular = [t for t in m["targets"] if unit(t) != "µm"]
         units = "(µm)" if not angular else f"(µm; {listed(angular, 3)} in µm/m)"
         lines = [f"model={m['model']}  select={m.get('select', 'all')}  mode={m['mode']}  "
                  f"dataset={m.get('dataset', '')}",
-                 f"{'target':<8} {'test Rsd SM':>11} {'SD':>6}   {'RMS before':>10} -> {'after':>6}"
+                 f"{'target':<{w}} {'test Rsd SM':>11} {'SD':>6}   {'RMS before':>10} -> {'after':>6}"
                  f"  {'reduction':>9}   {'RMSE sim':>8} {'1-step':>6} {'persist.':>8}   {units}",
                  "-" * 96]
         for t, r in self.targets.items():
@@ -240,7 +242,7 @@ class EvaluationResult:
             # a target that does not move (a parameter no distance sees, under a prior) has none
             red = (f"{100 * (1 - te.rms_after / te.rms_before):>8.1f}%" if te.rms_before
                    else "     n/a ")
-            lines.append(f"{t:<8} {_f(te.rsd_mean):>11} {_f(te.rsd_sd):>6}   "
+            lines.append(f"{t:<{w}} {_f(te.rsd_mean):>11} {_f(te.rsd_sd):>6}   "
                          f"{te.rms_before:>10.2f} -> {te.rms_after:>6.2f}  {red}   "
                          f"{_f(r.test_in('simulation', m['mode']).rmse):>8} "
                          f"{_f(r.test_in('one_step', m['mode']).rmse):>6} "
@@ -261,15 +263,16 @@ def auto_table(metrics: dict) -> list[str]:
     if not rows:
         return []
     names = list(dict.fromkeys(n for a in rows.values() for n in a["candidates"]))
+    w = name_width(rows)
     lines = ["model=auto: free-run validation RMSE per candidate (* chosen; the test split chose "
              "nothing; persistence: the previous measured error, one-step)",
-             f"{'target':<8} {'chosen':<10} " + " ".join(f"{n[:11]:>11}" for n in names)]
+             f"{'target':<{w}} {'chosen':<10} " + " ".join(f"{n[:11]:>11}" for n in names)]
     for t, a in rows.items():
         cells = []
         for n in names:
             v = a["candidates"].get(n)
             cells.append(f"{'n/a' if v is None else f'{v:.3g}' + ('*' if n == a['chosen'] else ''):>11}")
-        lines.append(f"{t:<8} {a['chosen']:<10} " + " ".join(cells))
+        lines.append(f"{t:<{w}} {a['chosen']:<10} " + " ".join(cells))
     lines += [f"  {t} blend: " + ", ".join(f"{n} {w:.2f}" for n, w in a["weights"].items())
               for t, a in rows.items() if len(a.get("weights", {})) > 1]
     skipped = {n: w for a in rows.values() for n, w in a.get("skipped", {}).items()}
