@@ -105,9 +105,11 @@ inputs, the inputs' largest change of gain / largest gain, test before -> after)
   construction only, and still fail 5682.  Refused.
 
 What remains: with 9 train runs a chance alignment of a screened candidate with the runs' offsets
-(1 in 10-20 draws here) is accepted at p 1/512; the family-wise test covers the refitted shortlist,
-not the ~300 screened.  A test over the screened family, or offsets that the CV's units do not
-carry (a reference not taken from one noisy sample), are the directions left; neither measured.
+(1 in 10-20 draws here) is accepted at p 1/512; the family-wise test covers the refitted shortlist
+(12), not the 301 screened.  Correcting for the screened family by arithmetic alone is no mend:
+with 9 test blocks the smallest p is 1/512 = 0.002, above 0.01 / 301 (vendor5's law, 9 blocks,
+204 screened, would go too).  Offsets that the CV's units do not carry (a reference not taken
+from one noisy sample) are the direction left; not measured.
 """
 
 from __future__ import annotations
