@@ -122,6 +122,11 @@ block per unit, as with ranked blocks) would have refused it (bound -2 %) but al
 vendor5's real ambient law (``bench_other_machine``: bound -16 %, test 1.39 -> 0.74), while
 lathe43 / lathe43m's pass (+17 / +11 %).  So: a proxy for a withheld dominant source that 9
 runs cannot tell from an effect, not a defect with a general mend; no src change.
+Corrected in session 57 (``bench_diagnose_proxy57.py``): not the tank -- its true rise beyond the
+kept temperatures is -0.04..+0.03 K per run and as an input it moves the test RMSE 0.644 -> 0.639
+-- but the runs' offsets: 64 % of the CV MSE is in the held-out runs' means, which follow each
+run's first-sample probe noise (correlation -0.91); 92 % of the square's CV gain is there, and
+Lauf_10's offset (+0.65) met its shift the wrong way.  Still no general mend.
 
 What a stranger met on the way in (``init``), mended since (init56, ``core/io/units.py``): a
 ``[-]`` column (an on/off flag) was refused as "not a temperature's unit" (``Kühlmittel ein [-]``,
