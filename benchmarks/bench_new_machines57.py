@@ -158,7 +158,10 @@ MLR's 0.374.  ARX's lead is fold 5's (0.568 against 0.711: the week's last block
 the shift ended at noon, a state no earlier fold trained on) and fold 1's (0.433 / 0.450); MLR
 won folds 3 and 4 (``run model=mlr`` / ``arx``: validation per_unit).  Neither is a defect with
 a general mend found in this session (no bar at hand tells a week's mix from a law without a
-second train campaign): no src change.
+second train campaign): no src change.  Traced further in ``bench_diagnose_lag57.py``: the CV error is
+flat over the penalties 0-1e-3 (0.3098-0.3114 µm) while the test goes 0.91 -> 0.32; the lag at
+the one-standard-error penalty (1e-3) gives 0.324, but that rule harms four position products
+elsewhere and is refused.
 
 (3) The "sensor_fault" exclusions on the twin lathe are healthy sensors: T_Chuck_hydraulics
 (the hydraulics alone; 150 W switched with the shift) and T_Bed_left_rear (0.9 bed + 0.1
