@@ -57,6 +57,7 @@ from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .errors import NotExportable
+from .members import described, members, one_model
 from .output import Output, adapt_fields, guard_fields, time_fields
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
@@ -162,14 +163,6 @@ def _target_law(est, n: int, period: float | None):
     return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
 
 
-def _one_model(est):
-    """The one model of an ATI wrapper that kept one interval and no ambient interaction (too
-    few ambient levels in training: what ati=none fits, and streams as it does), else ``est``."""
-    if isinstance(est, ATIRegressor) and est.n_intervals_ == 1 and not est.interactions_[0]:
-        return est.estimators_[0]
-    return est
-
-
 def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:
     """``(linear estimator, its power features' indices)``: a Hammerstein model is its lag bank
     on the inputs and the powers of its states (registered in ``powers``, shared by targets)."""
@@ -216,14 +209,30 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
     unfiltered[0] = 1.0
     fir = np.hstack([fir, unfiltered])
     N = len(inputs)
-    laws, period, powers = {}, None, {}
+    laws, period, powers, chosen = {}, None, {}, {}
     for t, est, idx in stream._plan:
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        est, feats = _powered(_one_model(est), inputs, powers)
-        c, b0, delayed, lags, a, period = _target_law(est, len(cols) + len(feats), period)
-        where = np.r_[cols, N + np.asarray(feats, int)].astype(int)   # into [x, powers]
-        laws[t] = (c, (where, b0), {d: _spread(r, cols, N) for d, r in delayed.items()},
-                   [(tau, int(where[j]), gain) for tau, j, gain in lags], a)
+        parts = members(est)
+        if len(parts) > 1:
+            raise NotExportable(f"model=auto's {described(parts)} for {t}: a blend does not "
+                                "export yet; refit with model.estimator.combine=best")
+        c, terms, delayed, lags, ars = 0.0, [], {}, [], []
+        for name, w, member in parts:
+            try:
+                member, feats = _powered(member, inputs, powers)
+                ci, b0, dl, lg, a, period = _target_law(member, len(cols) + len(feats), period)
+            except NotExportable as exc:
+                raise NotExportable(_member_refused(t, name, w, parts, exc)) from None
+            where = np.r_[cols, N + np.asarray(feats, int)].astype(int)   # into [x, powers]
+            c += w * ci
+            terms.append((where, w * b0))
+            for d, r in dl.items():
+                delayed[d] = delayed.get(d, 0.0) + w * _spread(r, cols, N)
+            lags += [(tau, int(where[j]), w * gain) for tau, j, gain in lg]
+            ars.append(a)
+        laws[t] = (c, terms, delayed, lags, _feedback(t, parts, ars))
+        if parts[0][0] is not None:
+            chosen[t] = described(parts)
     read = {inputs[src] for src, _, _ in powers}
     if any(c not in read for c in states):
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
@@ -231,7 +240,8 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
     width = N + len(powers)
     for t, law in laws.items():
         full = np.zeros(width)
-        full[law[1][0]] = law[1][1]
+        for where, b0 in law[1]:
+            full[where] += b0
         laws[t] = (law[0], full, *law[2:])
     depth = max((d for law in laws.values() for d in law[2]), default=0)
     keys = sorted({(tau, j) for law in laws.values() for tau, j, _ in law[3]})
@@ -246,7 +256,7 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
             bd[i, d - 1] = row
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     period = float(period) if period is not None else 0.0
-    gains = [_clamp_gain(t, _one_model(est), idx, env.horizon_s, N)
+    gains = [_clamp_gain(t, one_model(est), idx, env.horizon_s, N)
              for t, est, idx in stream._plan] if clamp else None
     return StateSpace(
         inputs=inputs, targets=targets, fir=fir.tolist(),
@@ -263,7 +273,37 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         **time_fields(deployed, period),
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
-        provenance=dict(provenance or {}))
+        provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
+
+
+def _member_refused(target: str, name, weight: float, parts: list, exc: NotExportable) -> str:
+    """Why ``target``'s law does not export, naming what ``model=auto`` chose (``name``, of
+    ``parts``) when it chose."""
+    if name is None:
+        return str(exc)
+    if len(parts) == 1:
+        return f"model=auto chose {name} for {target}: {exc}"
+    return (f"model=auto's {described(parts)} for {target}: the member {name} (weight "
+            f"{weight:.4g}) does not export: {exc}")
+
+
+def _feedback(target: str, parts: list, ars: list) -> float:
+    """The AR coefficient of ``target``'s summed law.  A member's feedback is on its own output:
+    beside other members the sum has none of its own (the exported system keeps one previous
+    output per target), so such a blend is refused, naming the member and the weights."""
+    if len(ars) == 1:
+        return ars[0]
+    fed = [(name, w, a) for (name, w, _), a in zip(parts, ars) if a != 0.0]
+    if not fed:
+        return 0.0
+    name, w, a = fed[0]
+    raise NotExportable(
+        f"model=auto's {described(parts)} for {target}: the member {name} (weight {w:.4g}) feeds "
+        f"back its own output (AR coefficient {a:.4g}), not the blend's; the exported system "
+        "has one feedback per target, so a blend holding an AR member beside others does not "
+        "export (its members without an AR term do: mlr, pcr, arx with ar=false, lagbank with "
+        "ar=false, hammerstein). Refit with model.estimator.combine=best, or without the AR "
+        "term (e.g. model.candidate_params={arx:{ar:false}})")
 
 
 def _pattern_fields(env, n_states: int) -> dict:

@@ -1,0 +1,114 @@
+"""What ``model=auto`` keeps per target is exported as code (export57).
+
+``model=auto`` streams as the estimator it kept per target (``estimator_``): one family's, or a
+blend ``sum_i w_i * member_i`` of several, its members streamed side by side.  The export
+refused it ("AutoRegressor is not one of the linear families"), so the model the README
+recommends could not reach the machine.  Now a target's law is the family auto chose, or the
+weighted sum of its blend's members' laws (intercepts, gains, input histories, lag banks' taus
+side by side with weighted gains; the clamp's gain the weighted gains).  A member that feeds
+back its own output (an AR term) beside others, and a member that is no linear system, are
+refused naming it and the weights.  The compiled C, the Structured Text and the numpy
+reference equal ``replay`` (one test sensor pushed out of the envelope: the clamp acts).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from conftest import refused
+from test_export import (
+    EVERY_EXCURSION,
+    PUSH_C,
+    StructuredText,
+    _compiled,
+    _compose,
+    _make_dataset,
+    _stdin,
+    _streamed,
+    needs_cc,
+)
+from test_export_guard import _spindle_dataset
+from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.streaming import replay
+from thermocomp.core.models import ARX, MLR, PCR, Hammerstein, LagBank
+from thermocomp.core.models.auto import AutoRegressor
+from thermocomp.shell.builders import build_compensator, deploy_stream
+from thermocomp.shell.model_store import save_model
+from thermocomp.shell.source import read_streamed
+
+TOLERANCE_UM = 1e-9
+# one candidate: auto keeps that family (the spindle record for hammerstein: it reads a state)
+SINGLE = {"mlr": (MLR, []), "pcr": (PCR, []),
+          "arx": (ARX, ["model.candidate_params={arx:{ar:true,delays:[2]}}"]),
+          "lagbank": (LagBank, ["model.candidate_params={lagbank:{n_taus:3}}"]),
+          "hammerstein": (Hammerstein, ["model.candidate_params={hammerstein:{lagbank:{n_taus:3}}}"])}
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory) -> dict:
+    root = tmp_path_factory.mktemp("auto")
+    return {"machine": _make_dataset(root / "machine"), "spindle": _spindle_dataset(root / "spindle")}
+
+
+def _deployed(data, dataset: str, *overrides):
+    """``(plain stream of model=auto as replay deploys it, test campaigns with the first input
+    pushed out of the envelope half-way, the fitted compensator)``."""
+    cfg = _compose("model=auto", f"data.path={data[dataset]}", "track=false",
+                   "monitor.adaptive=false", EVERY_EXCURSION, *overrides)
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    comp = build_compensator(cfg, ds=ds).fit(train)
+    stream = deploy_stream(cfg, comp, train)
+    tests = []
+    for c in test_ids:
+        df = ds.campaigns[c].reset_index(drop=True).copy()
+        df.loc[len(df) // 2:, stream.columns_[0]] += PUSH_C
+        tests.append(df)
+    return stream, tests, comp
+
+
+def _proved(stream, tests, folder) -> float:
+    """The largest |difference| of the compiled C, the Structured Text and the numpy reference
+    from ``replay`` (µm), the clamp acting in every test campaign."""
+    streamed = [replay(stream, df) for df in tests]
+    assert all(s["n_clamped"].iloc[len(s) // 2:].gt(0).all() for s in streamed)
+    expected = np.vstack([-s[stream.targets_].to_numpy(float) for s in streamed])
+    cols = stream.columns_
+    got = [_streamed(_compiled(stream, folder), _stdin(stream, tests)).to_numpy(float)]
+    sim, rows = Simulator(state_space(stream)), []
+    fb = StructuredText(exported_files(stream, "st")["compensator.st"])
+    st = []
+    for df in tests:
+        sim.reset()
+        for k, (u, t) in enumerate(zip(df[cols].to_numpy(float), df["time"])):
+            rows.append(sim.step(u, t))
+            st.append(fb(u, t, k == 0))
+    got += [np.array(rows), np.array(st)]
+    return max(float(np.max(np.abs(g - expected))) for g in got)
+
+
+@needs_cc
+@pytest.mark.parametrize("family", SINGLE)
+def test_auto_that_kept_one_family_exports_as_that_family(data, tmp_path, family):
+    dataset = "spindle" if family == "hammerstein" else "machine"
+    kind, params = SINGLE[family]
+    stream, tests, _ = _deployed(data, dataset, f"model.candidates=[{family}]", *params)
+    for _, est, _ in stream._plan:
+        assert isinstance(est, AutoRegressor) and type(est.estimator_) is kind
+    ss = state_space(stream)                                  # refused before
+    assert ss.provenance["laws"] == {t: family for t in stream.targets_}
+    assert (family == "arx") == (ss.depth == 2) == any(a != 0 for a in ss.ar)
+    assert (family in ("lagbank", "hammerstein")) == bool(ss.taus)
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+
+
+def test_auto_that_kept_lstm_is_refused_naming_it(data, tmp_path, capsys):
+    """Not exportable families are still refused, saying auto chose them (arx_rf: lstm's path
+    without torch)."""
+    _, _, comp = _deployed(data, "machine", "model.candidates=[arx_rf]",
+                           "model.candidate_params={arx_rf:{forest:{n_estimators:3}}}")
+    pkl = save_model(comp, tmp_path / "model.pkl")
+    refused(["export", f"data.path={data['machine']}", f"export.model={pkl}",
+             f"out={tmp_path / 'code'}", "track=false"], capsys, "(auto) cannot be exported",
+            "model=auto chose arx_rf for E_X")
