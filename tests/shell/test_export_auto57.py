@@ -13,6 +13,8 @@ reference equal ``replay`` (one test sensor pushed out of the envelope: the clam
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pytest
 
@@ -29,11 +31,13 @@ from test_export import (
     needs_cc,
 )
 from test_export_guard import _spindle_dataset
-from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, not_in_code, state_space
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from thermocomp.core.models.auto import AutoRegressor
+from thermocomp.core.models.blend import Blend
 from thermocomp.shell.builders import build_compensator, deploy_stream
+from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
@@ -101,6 +105,75 @@ def test_auto_that_kept_one_family_exports_as_that_family(data, tmp_path, family
     assert (family == "arx") == (ss.depth == 2) == any(a != 0 for a in ss.ar)
     assert (family in ("lagbank", "hammerstein")) == bool(ss.taus)
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+
+
+@needs_cc
+def test_auto_that_kept_a_blend_exports_the_weighted_sum_of_its_members(data, tmp_path):
+    """The folds' votes keep a blend of MLR and the lag bank for at least one target here."""
+    stream, tests, _ = _deployed(data, "machine", "model.candidates=[mlr,lagbank]",
+                                 "model.candidate_params={lagbank:{n_taus:3}}")
+    blends = {t: est.estimator_ for t, est, _ in stream._plan if isinstance(est.estimator_, Blend)}
+    assert blends and all(len(b.estimators_) == 2 for b in blends.values())
+    ss = state_space(stream)
+    for t, b in blends.items():
+        assert ss.provenance["laws"][t] == "blend " + " + ".join(
+            f"{n} {w:.4g}" for n, w in zip(b.estimators_, b.weights_))
+        i = ss.targets.index(t)          # the intercepts and the clamp's gains, weighted
+        assert np.isclose(ss.intercept[i], sum(w * float(e.intercept_) for w, e in
+                                               zip(b.weights_, b.estimators_.values())))
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+
+
+@needs_cc
+def test_a_blend_of_every_kind_of_linear_member_streams_as_replay(data, tmp_path):
+    """A blend of the chosen weights (``model.estimator.chosen``, as a refit of auto's choice
+    fits it): an ARX without AR reading x(t-2), a lag bank, PCR; and a Hammerstein beside MLR."""
+    stream, tests, _ = _deployed(
+        data, "machine", "model.candidates=[mlr,pcr,arx,lagbank]",
+        "model.candidate_params={arx:{ar:false,delays:[2]},lagbank:{n_taus:3}}",
+        "+model.estimator.chosen={E_X:{arx:0.5,lagbank:0.3,pcr:0.2},E_Z:{mlr:0.25,lagbank:0.75}}")
+    ss = state_space(stream)
+    assert ss.depth == 2 and ss.taus and ss.provenance["laws"]["E_Z"] == "blend mlr 0.25 + lagbank 0.75"
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+    stream, tests, _ = _deployed(data, "spindle", "model.candidates=[mlr,hammerstein]",
+                                 "model.candidate_params={hammerstein:{lagbank:{n_taus:3}}}",
+                                 "+model.estimator.chosen={E_X:{mlr:0.4,hammerstein:0.6}}")
+    assert state_space(stream).powers and any("machine state" in w for w in not_in_code(stream))
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+
+
+@pytest.mark.parametrize("chosen, says", [
+    ("{E_X:{mlr:0.6,arx:0.4},E_Z:mlr}", ["blend mlr 0.6 + arx 0.4 for E_X", "member arx (weight 0.4)",
+                                          "its own output", "combine=best"]),
+    ("{E_X:mlr,E_Z:{mlr:0.7,arx_rf:0.3}}", ["blend mlr 0.7 + arx_rf 0.3 for E_Z",
+                                             "member arx_rf (weight 0.3) does not export",
+                                             "ARXRF is not one of the linear families"]),
+], ids=["ar-member", "forest-member"])
+def test_a_blend_that_is_not_one_linear_system_is_refused_naming_the_member(data, chosen, says):
+    stream, _, _ = _deployed(data, "machine", "model.candidates=[mlr,arx,arx_rf]",
+                             "model.candidate_params={arx:{ar:true},arx_rf:{forest:{n_estimators:3}}}",
+                             f"+model.estimator.chosen={chosen}")
+    with pytest.raises(NotExportable) as err:
+        state_space(stream)
+    assert all(s in str(err.value) for s in says), str(err.value)
+
+
+def test_export_says_what_auto_kept_per_target(data, tmp_path, capsys):
+    _, _, comp = _deployed(data, "machine", "model.candidates=[mlr,lagbank]",
+                           "model.candidate_params={lagbank:{n_taus:3}}")
+    pkl = save_model(comp, tmp_path / "model.pkl")
+    out = tmp_path / "plc"
+    assert main(["export", f"data.path={data['machine']}", f"export.model={pkl}",
+                 "export.format=st", f"out={out}", "track=false"]) == 0
+    said = capsys.readouterr().err
+    laws = json.loads((out / "compensator.json").read_text())["provenance"]["laws"]
+    assert set(laws) == set(comp.targets_)
+    for t, est in comp.estimators_.items():
+        weights = est.report()["weights"]
+        kept = est.family_ if len(weights) == 1 else "blend " + " + ".join(
+            f"{n} {w:.4g}" for n, w in zip(est.estimator_.estimators_, est.estimator_.weights_))
+        assert laws[t] == kept
+        assert f"{t} {kept}" in (out / "compensator.st").read_text() and f"{t} {kept}" in said
 
 
 def test_auto_that_kept_lstm_is_refused_naming_it(data, tmp_path, capsys):

@@ -213,9 +213,6 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
     for t, est, idx in stream._plan:
         cols = np.arange(n) if idx is None else np.asarray(idx)
         parts = members(est)
-        if len(parts) > 1:
-            raise NotExportable(f"model=auto's {described(parts)} for {t}: a blend does not "
-                                "export yet; refit with model.estimator.combine=best")
         c, terms, delayed, lags, ars = 0.0, [], {}, [], []
         for name, w, member in parts:
             try:
