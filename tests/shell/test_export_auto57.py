@@ -5,9 +5,9 @@ blend ``sum_i w_i * member_i`` of several, its members streamed side by side.  T
 refused it ("AutoRegressor is not one of the linear families"), so the model the README
 recommends could not reach the machine.  Now a target's law is the family auto chose, or the
 weighted sum of its blend's members' laws (intercepts, gains, input histories, lag banks' taus
-side by side with weighted gains; the clamp's gain the weighted gains).  A member that feeds
-back its own output (an AR term) beside others, and a member that is no linear system, are
-refused naming it and the weights.  The compiled C, the Structured Text and the numpy
+side by side with weighted gains; the clamp's gain the weighted gains); a member feeding back
+its own output (an AR term) is a law of its own, summed into the target.  A member that is no
+linear system is refused naming it and the weights.  The compiled C, the Structured Text and the numpy
 reference equal ``replay`` (one test sensor pushed out of the envelope: the clamp acts).
 """
 
@@ -142,19 +142,32 @@ def test_a_blend_of_every_kind_of_linear_member_streams_as_replay(data, tmp_path
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
 
 
-@pytest.mark.parametrize("chosen, says", [
-    ("{E_X:{mlr:0.6,arx:0.4},E_Z:mlr}", ["blend mlr 0.6 + arx 0.4 for E_X", "member arx (weight 0.4)",
-                                          "its own output", "combine=best"]),
-    ("{E_X:mlr,E_Z:{mlr:0.7,arx_rf:0.3}}", ["blend mlr 0.7 + arx_rf 0.3 for E_Z",
-                                             "member arx_rf (weight 0.3) does not export",
-                                             "ARXRF is not one of the linear families"]),
-], ids=["ar-member", "forest-member"])
-def test_a_blend_that_is_not_one_linear_system_is_refused_naming_the_member(data, chosen, says):
-    stream, _, _ = _deployed(data, "machine", "model.candidates=[mlr,arx,arx_rf]",
-                             "model.candidate_params={arx:{ar:true},arx_rf:{forest:{n_estimators:3}}}",
-                             f"+model.estimator.chosen={chosen}")
+@needs_cc
+def test_blend_members_that_feed_back_their_own_outputs_are_laws_of_their_own(data, tmp_path):
+    """An ARX and a lag bank with AR terms beside MLR: each member's feedback is on its own
+    output (``w a y_i(t-1)``), not on the blend's, so each is a law of its own summed into the
+    target; MLR's law carries no feedback."""
+    stream, tests, _ = _deployed(
+        data, "machine", "model.candidates=[mlr,arx,lagbank]",
+        "model.candidate_params={arx:{ar:true,delays:[2]},lagbank:{n_taus:3,ar:true}}",
+        "+model.estimator.chosen={E_X:{mlr:0.3,lagbank:0.3,arx:0.4},E_Z:{mlr:0.5,arx:0.5}}")
+    fed = {t: {n: e.ar_coef_ for n, e in est.estimators_.items() if getattr(e, "ar_coef_", 0.0)}
+           for t, est, _ in stream._plan}
+    assert set(fed["E_X"]) == {"arx", "lagbank"} and set(fed["E_Z"]) == {"arx"}
+    ss = state_space(stream)                 # refused before: one feedback per target
+    assert ss.law_target == [0, 0, 0, 1, 1] and ss.ar[0] == ss.ar[3] == 0.0
+    assert sorted(ss.ar[1:3]) == sorted(fed["E_X"].values()) and ss.ar[4] == fed["E_Z"]["arx"]
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+
+
+def test_a_blend_member_that_is_no_linear_system_is_refused_naming_it_and_the_weights(data):
+    stream, _, _ = _deployed(data, "machine", "model.candidates=[mlr,arx_rf]",
+                             "model.candidate_params={arx_rf:{forest:{n_estimators:3}}}",
+                             "+model.estimator.chosen={E_X:mlr,E_Z:{mlr:0.7,arx_rf:0.3}}")
     with pytest.raises(NotExportable) as err:
         state_space(stream)
+    says = ("blend mlr 0.7 + arx_rf 0.3 for E_Z", "member arx_rf (weight 0.3) does not export",
+            "ARXRF is not one of the linear families")
     assert all(s in str(err.value) for s in says), str(err.value)
 
 

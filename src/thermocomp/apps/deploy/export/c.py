@@ -91,6 +91,7 @@ def header(ss: StateSpace) -> str:
 
 #define TC_N_INPUTS {n}
 #define TC_N_OUTPUTS {m}
+#define TC_N_LAWS {len(ss.laws)}   /* linear laws summed into the outputs (LAW_TARGET) */
 #define TC_TAPS {taps}
 #define TC_DEPTH {ss.depth}
 #define TC_N_LAGS {len(ss.taus)}
@@ -109,7 +110,7 @@ typedef struct {{
     /* per channel: [0] the measured inputs, [1] their excess over the envelope */
     double hist[2][{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
     double z[2][{max(len(ss.taus), 1)}];        /* first-order lags */
-    double y[2][TC_N_OUTPUTS];                  /* previous output (AR feedback) */
+    double y[2][TC_N_LAWS];                     /* previous output of each law (AR feedback) */
     double bound[TC_N_OUTPUTS];                 /* limit of what the clamp takes out: the last
                                                    sample out of the envelope's */
     double t;                                   /* previous sample time, s */
@@ -154,17 +155,18 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]);
 
 def source(ss: StateSpace) -> str:
     n, m, taps, k, p = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), len(ss.powers)
-    d = ss.depth
+    d, r = ss.depth, len(ss.laws)
     consts = "\n".join([
         _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
         _array("TAU", ss.taus, (k,)),
         _ints("LAG_INPUT", ss.lag_input),
-        _array("INTERCEPT", ss.intercept, (m,)), _array("B0", ss.b0, (m, n + p)),
+        _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p)),
+        _ints("LAW_TARGET", ss.laws),
         _ints("POWER_SRC", [q[0] for q in ss.powers]),
         _array("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
-        _array("BD", ss.bd, (m, d, n)), _array("G", ss.g, (m, k)), _array("AR", ss.ar, (m,)),
+        _array("BD", ss.bd, (r, d, n)), _array("G", ss.g, (r, k)), _array("AR", ss.ar, (r,)),
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * m, (m, n)),
         *_pattern_constants(ss),
         f"static const int CLAMP = {int(ss.clamp)};",
@@ -214,9 +216,10 @@ static int off_pattern(const double x[]) {{
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS], xl[2][{max(k, 1)}], ych[2];
+    double ysum[2][TC_N_OUTPUTS];
     double allow[TC_N_OUTPUTS];
     double dt, now, step;
-    int i, j, l, h, clamped = 0;
+    int i, j, l, h, r, clamped = 0;
     /* a non-finite input refuses the sample before anything is remembered: one NaN would
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end */
     s->refused = 0;
@@ -267,7 +270,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         for (h = 0; h < 2; h++) {{
             for (l = 0; l < TC_DEPTH; l++)
                 for (j = 0; j < TC_N_INPUTS; j++) s->hist[h][l][j] = x[h][j];
-            for (i = 0; i < TC_N_OUTPUTS; i++) s->y[h][i] = 0.0;
+            for (r = 0; r < TC_N_LAWS; r++) s->y[h][r] = 0.0;
         }}
     }}
     s->t = now;
@@ -289,17 +292,22 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     /* outputs: static part, input history, lags, AR feedback; the response to the excess is
        taken out up to the response to it held for the envelope's horizon; back in range, up to
        the last excess's (the memory of an excess that ends at once is taken out as it decays) */
+    for (i = 0; i < TC_N_OUTPUTS; i++) ysum[0][i] = ysum[1][i] = 0.0;
+    for (r = 0; r < TC_N_LAWS; r++)      /* each law (its own feedback), summed into its target */
+        for (h = 0; h < 2; h++) {{
+            ych[h] = h == 0 ? INTERCEPT[r] : 0.0;
+            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) ych[h] += B0[r][j] * x[h][j];
+            for (l = 0; l < TC_DEPTH; l++)
+                for (j = 0; j < TC_N_INPUTS; j++) ych[h] += BD[r][l][j] * s->hist[h][l][j];
+            for (l = 0; l < TC_N_LAGS; l++) ych[h] += G[r][l] * (s->z[h][l] - xl[h][l]);
+            ych[h] += AR[r] * s->y[h][r];
+            s->y[h][r] = ych[h];
+            ysum[h][LAW_TARGET[r]] += ych[h];
+        }}
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double y, bound = 0.0;
-        for (h = 0; h < 2; h++) {{
-            ych[h] = h == 0 ? INTERCEPT[i] : 0.0;
-            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) ych[h] += B0[i][j] * x[h][j];
-            for (l = 0; l < TC_DEPTH; l++)
-                for (j = 0; j < TC_N_INPUTS; j++) ych[h] += BD[i][l][j] * s->hist[h][l][j];
-            for (l = 0; l < TC_N_LAGS; l++) ych[h] += G[i][l] * (s->z[h][l] - xl[h][l]);
-            ych[h] += AR[i] * s->y[h][i];
-            s->y[h][i] = ych[h];
-        }}
+        ych[0] = ysum[0][i];
+        ych[1] = ysum[1][i];
         for (j = 0; j < TC_N_INPUTS; j++) bound += CLAMP_GAIN[i][j] * x[1][j];
         if (s->first || clamped) s->bound[i] = fabs(bound);
         bound = s->bound[i];

@@ -56,9 +56,10 @@ def _indent(code: str) -> str:
 
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
-    p = len(ss.powers)
+    p, r = len(ss.powers), len(ss.laws)
     consts = "\n".join([
-        f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    TAPS : INT := {taps};",
+        f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    N_LAWS : INT := {r};",
+        f"    TAPS : INT := {taps};",
         f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};", f"    N_POWERS : INT := {p};",
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
         f"    REAL_LIMIT : LREAL := {literal(LREAL_MAX)};",
@@ -74,11 +75,12 @@ def function_block(ss: StateSpace) -> str:
                   (n, len(ss.pattern_basis[0]) if ss.pattern else 1)),
         _constant("TAU", ss.taus, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
-        _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n + p)),
+        _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p)),
+        _constant("LAW_TARGET", ss.laws, (r,), "INT"),
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
-        _constant("BD", ss.bd, (m, d, n)), _constant("G", ss.g, (m, k)), _constant("AR", ss.ar, (m,)),
+        _constant("BD", ss.bd, (r, d, n)), _constant("G", ss.g, (r, k)), _constant("AR", ss.ar, (r,)),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
         f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
         f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
@@ -120,7 +122,8 @@ VAR
     ref : ARRAY[{_dims(n)}] OF LREAL;
     hist : ARRAY[{_dims(2, d, n)}] OF LREAL;
     z : ARRAY[{_dims(2, k)}] OF LREAL;
-    y_prev : ARRAY[{_dims(2, m)}] OF LREAL;
+    y_prev : ARRAY[{_dims(2, r)}] OF LREAL;
+    ysum : ARRAY[{_dims(2, m)}] OF LREAL;
     t_prev : LREAL;
     t_read : LREAL;
     read_valid : BOOL;
@@ -167,6 +170,7 @@ VAR
     j : INT;
     l : INT;
     h : INT;
+    r : INT;
 END_VAR
 VAR CONSTANT
 {consts}
@@ -301,8 +305,8 @@ IF NOT refused THEN
                     hist[h, l, j] := x[h, j];
                 END_FOR;
             END_FOR;
-            FOR i := 0 TO N_OUTPUTS - 1 DO
-                y_prev[h, i] := 0.0;
+            FOR r := 0 TO N_LAWS - 1 DO
+                y_prev[h, r] := 0.0;
             END_FOR;
         END_FOR;
     END_IF;
@@ -310,26 +314,37 @@ IF NOT refused THEN
     (* outputs: static part, input history, lags, AR feedback; *)
     (* the excess's response out, within the held one *)
     FOR i := 0 TO N_OUTPUTS - 1 DO
+        ysum[0, i] := 0.0;
+        ysum[1, i] := 0.0;
+    END_FOR;
+    (* each law (its own feedback), summed into its target *)
+    FOR r := 0 TO N_LAWS - 1 DO
+        i := LAW_TARGET[r];
         FOR h := 0 TO 1 DO
             IF h = 0 THEN
-                ych[h] := INTERCEPT[i];
+                ych[h] := INTERCEPT[r];
             ELSE
                 ych[h] := 0.0;
             END_IF;
             FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
-                ych[h] := ych[h] + B0[i, j] * x[h, j];
+                ych[h] := ych[h] + B0[r, j] * x[h, j];
             END_FOR;
             FOR l := 0 TO DEPTH - 1 DO
                 FOR j := 0 TO N_INPUTS - 1 DO
-                    ych[h] := ych[h] + BD[i, l, j] * hist[h, l, j];
+                    ych[h] := ych[h] + BD[r, l, j] * hist[h, l, j];
                 END_FOR;
             END_FOR;
             FOR l := 0 TO N_LAGS - 1 DO
-                ych[h] := ych[h] + G[i, l] * (z[h, l] - xl[h, l]);
+                ych[h] := ych[h] + G[r, l] * (z[h, l] - xl[h, l]);
             END_FOR;
-            ych[h] := ych[h] + AR[i] * y_prev[h, i];
-            y_prev[h, i] := ych[h];
+            ych[h] := ych[h] + AR[r] * y_prev[h, r];
+            y_prev[h, r] := ych[h];
+            ysum[h, i] := ysum[h, i] + ych[h];
         END_FOR;
+    END_FOR;
+    FOR i := 0 TO N_OUTPUTS - 1 DO
+        ych[0] := ysum[0, i];
+        ych[1] := ysum[1, i];
         bound := 0.0;
         FOR j := 0 TO N_INPUTS - 1 DO
             bound := bound + CLAMP_GAIN[i, j] * x[1, j];

@@ -12,11 +12,14 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    (else 0); with ``pattern``, ``ex = 0`` for a sample on the training pattern: ``z = (x -
    pattern_mean) / pattern_scale``, ``|z - B B' z|² <= pattern_tol²`` with ``B =
    pattern_basis`` (the stream's gate, :class:`~thermocomp.apps.deploy.streaming.Envelope`);
-4. per target ``t``: ``y_t = c_t + b0_t . x + sum_d bd_t[d] . x(t-d) + sum_k g_t[k] (z_k - x[lag_input_k])
-   + a_t y_t(t-1)``, with the input history ``x(t-d)`` (``d = 1..depth``) and the first-order
-   lags ``z_k <- e_k z_k + (1 - e_k) x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the
-   time since the previous sample (``time_period`` without one, timerule.py); the same system, without
-   intercept and powers, runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
+4. per law ``r``: ``y_r = c_r + b0_r . x + sum_d bd_r[d] . x(t-d) + sum_k g_r[k] (z_k - x[lag_input_k])
+   + a_r y_r(t-1)``, and per target ``t`` the sum of its laws ``y_t = sum_{law_target[r] = t} y_r``
+   (one law per target; a ``model=auto`` blend is its members' laws weighted and summed, each
+   member feeding back its own output, an AR term, a law of its own), with the input history
+   ``x(t-d)`` (``d = 1..depth``) and the first-order lags ``z_k <- e_k z_k + (1 - e_k)
+   x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the time since the previous sample
+   (``time_period`` without one, timerule.py); the same system, without intercept and powers,
+   runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
    response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)``, ``b_t = |clamp_gain_t .
    ex|`` the response to the excess held for the envelope's horizon (as the stream does); at a
    sample within the envelope (``ex = 0``) after an excess, ``b_t`` is the last excess's (0
@@ -40,7 +43,7 @@ correction; one NaN stepped would stay in the lags, the feedback and the guard t
 At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
 history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
 reference and the limit the system is linear: the state is ``[buf, ref, history, z, y_prev]``, the
-last three for each channel, and the limit keeps one number per target, ``b_t``.
+last three for each channel (``y_prev`` per law), and the limit keeps one number per target, ``b_t``.
 """
 
 from __future__ import annotations
@@ -82,11 +85,11 @@ class StateSpace:
     lag_input: list              # (n_lags,) index of each lag's input in ``[x, powers]``
     lag_decay: list              # (n_lags,) exp(-period / tau): the step without a time
     period: float                # s
-    intercept: list              # (n_targets,)
-    b0: list                     # (n_targets, n_inputs + n_powers)
-    bd: list                     # (n_targets, depth, n_inputs)
-    g: list                      # (n_targets, n_lags)
-    ar: list                     # (n_targets,)
+    intercept: list              # (n_laws,): one law per target, or more (law_target)
+    b0: list                     # (n_laws, n_inputs + n_powers)
+    bd: list                     # (n_laws, depth, n_inputs)
+    g: list                      # (n_laws, n_lags)
+    ar: list                     # (n_laws,)
     uses_time: bool              # the lags read ``time`` when it is given
     # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
     powers: list = field(default_factory=list)
@@ -120,6 +123,9 @@ class StateSpace:
     adapt_max_gain_change: float = 0.0
     adapt_var_cap: float = 0.0       # µm², the prior variance (the variance never exceeds it)
     provenance: dict = field(default_factory=dict)
+    # the target each law adds to (a blend's member with its own feedback: a law of its own);
+    # empty (an older export): law i is target i's
+    law_target: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -129,9 +135,14 @@ class StateSpace:
         return cls(**d)
 
     @property
+    def laws(self) -> list:
+        """The target index of each law."""
+        return list(self.law_target) or list(range(len(self.targets)))
+
+    @property
     def n_states(self) -> int:
         n = len(self.inputs)
-        return (len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.targets))
+        return (len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.laws))
 
 
 def _target_law(est, n: int, period: float | None):
@@ -209,25 +220,20 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
     unfiltered[0] = 1.0
     fir = np.hstack([fir, unfiltered])
     N = len(inputs)
-    laws, period, powers, chosen = {}, None, {}, {}
-    for t, est, idx in stream._plan:
+    laws, period, powers, chosen = [], None, {}, {}      # laws: (target index, law)
+    for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        parts = members(est)
-        c, terms, delayed, lags, ars = 0.0, [], {}, [], []
+        parts, own = members(est), []
         for name, w, member in parts:
             try:
                 member, feats = _powered(member, inputs, powers)
-                ci, b0, dl, lg, a, period = _target_law(member, len(cols) + len(feats), period)
+                c, b0, dl, lg, a, period = _target_law(member, len(cols) + len(feats), period)
             except NotExportable as exc:
                 raise NotExportable(_member_refused(t, name, w, parts, exc)) from None
             where = np.r_[cols, N + np.asarray(feats, int)].astype(int)   # into [x, powers]
-            c += w * ci
-            terms.append((where, w * b0))
-            for d, r in dl.items():
-                delayed[d] = delayed.get(d, 0.0) + w * _spread(r, cols, N)
-            lags += [(tau, int(where[j]), w * gain) for tau, j, gain in lg]
-            ars.append(a)
-        laws[t] = (c, terms, delayed, lags, _feedback(t, parts, ars))
+            own.append((w * c, [(where, w * b0)], {d: w * _spread(r, cols, N) for d, r in dl.items()},
+                        [(tau, int(where[j]), w * gain) for tau, j, gain in lg], a))
+        laws += [(i, law) for law in _summed(own)]
         if parts[0][0] is not None:
             chosen[t] = described(parts)
     read = {inputs[src] for src, _, _ in powers}
@@ -235,22 +241,20 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
                             f"only the families {', '.join(LINEAR_FAMILIES)} export to C/ST")
     width = N + len(powers)
-    for t, law in laws.items():
-        full = np.zeros(width)
-        for where, b0 in law[1]:
-            full[where] += b0
-        laws[t] = (law[0], full, *law[2:])
-    depth = max((d for law in laws.values() for d in law[2]), default=0)
-    keys = sorted({(tau, j) for law in laws.values() for tau, j, _ in law[3]})
+    depth = max((d for _, law in laws for d in law[2]), default=0)
+    keys = sorted({(tau, j) for _, law in laws for tau, j, _ in law[3]})
     where = {k: i for i, k in enumerate(keys)}
     targets = list(stream.targets_)
-    g = np.zeros((len(targets), len(keys)))
-    bd = np.zeros((len(targets), depth, N))
-    for i, t in enumerate(targets):
-        for tau, j, gain in laws[t][3]:
-            g[i, where[(tau, j)]] += gain
-        for d, row in laws[t][2].items():
-            bd[i, d - 1] = row
+    b0 = np.zeros((len(laws), width))
+    g = np.zeros((len(laws), len(keys)))
+    bd = np.zeros((len(laws), depth, N))
+    for r, (_, law) in enumerate(laws):
+        for cols, row in law[1]:
+            b0[r, cols] += row
+        for tau, j, gain in law[3]:
+            g[r, where[(tau, j)]] += gain
+        for d, row in law[2].items():
+            bd[r, d - 1] = row
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     period = float(period) if period is not None else 0.0
     gains = [_clamp_gain(t, one_model(est), idx, env.horizon_s, N)
@@ -262,8 +266,9 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         hi=env.hi.tolist() + [UNBOUNDED] * len(states) if clamp else None,
         depth=int(depth), taus=[k[0] for k in keys], lag_input=[k[1] for k in keys],
         lag_decay=[float(np.exp(-period / k[0])) for k in keys], period=period,
-        intercept=[laws[t][0] for t in targets], b0=[laws[t][1].tolist() for t in targets],
-        bd=bd.tolist(), g=g.tolist(), ar=[laws[t][4] for t in targets],
+        intercept=[float(law[0]) for _, law in laws], b0=b0.tolist(),
+        bd=bd.tolist(), g=g.tolist(), ar=[float(law[4]) for _, law in laws],
+        law_target=[i for i, _ in laws],
         uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
         clamp_gain=gains, **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
@@ -284,23 +289,22 @@ def _member_refused(target: str, name, weight: float, parts: list, exc: NotExpor
             f"{weight:.4g}) does not export: {exc}")
 
 
-def _feedback(target: str, parts: list, ars: list) -> float:
-    """The AR coefficient of ``target``'s summed law.  A member's feedback is on its own output:
-    beside other members the sum has none of its own (the exported system keeps one previous
-    output per target), so such a blend is refused, naming the member and the weights."""
-    if len(ars) == 1:
-        return ars[0]
-    fed = [(name, w, a) for (name, w, _), a in zip(parts, ars) if a != 0.0]
-    if not fed:
-        return 0.0
-    name, w, a = fed[0]
-    raise NotExportable(
-        f"model=auto's {described(parts)} for {target}: the member {name} (weight {w:.4g}) feeds "
-        f"back its own output (AR coefficient {a:.4g}), not the blend's; the exported system "
-        "has one feedback per target, so a blend holding an AR member beside others does not "
-        "export (its members without an AR term do: mlr, pcr, arx with ar=false, lagbank with "
-        "ar=false, hammerstein). Refit with model.estimator.combine=best, or without the AR "
-        "term (e.g. model.candidate_params={arx:{ar:false}})")
+def _summed(own: list) -> list:
+    """The laws of one target from its members' weighted laws ``own``: the members without
+    feedback summed into one (intercepts, gains and histories added, the lags side by side), each
+    member with an AR term a law of its own, since its feedback is on its own output, not on the
+    blend's (``w a y_i(t-1)`` of the member's weighted output ``w y_i``)."""
+    fed = [law for law in own if law[4] != 0.0]
+    plain = [law for law in own if law[4] == 0.0]
+    if not plain:
+        return fed
+    delayed = {}
+    for law in plain:
+        for d, row in law[2].items():
+            delayed[d] = delayed.get(d, 0.0) + row
+    summed = (sum(law[0] for law in plain), [t for law in plain for t in law[1]], delayed,
+              [lag for law in plain for lag in law[3]], 0.0)
+    return [summed, *fed]
 
 
 def _pattern_fields(env, n_states: int) -> dict:
@@ -333,9 +337,12 @@ class Simulator:
             tuple(ss.inputs), lo, hi, mean=np.asarray(ss.pattern_mean, float),
             scale=np.asarray(ss.pattern_scale, float), tol=ss.pattern_tol,
             basis=np.asarray(ss.pattern_basis, float).reshape(n, -1))
-        self.b0 = np.asarray(ss.b0, float).reshape(m, n + len(ss.powers))
-        self.bd = np.asarray(ss.bd, float).reshape(m, ss.depth, n)
-        self.g = np.asarray(ss.g, float).reshape(m, len(ss.taus))
+        laws = len(ss.laws)
+        self.b0 = np.asarray(ss.b0, float).reshape(laws, n + len(ss.powers))
+        self.bd = np.asarray(ss.bd, float).reshape(laws, ss.depth, n)
+        self.g = np.asarray(ss.g, float).reshape(laws, len(ss.taus))
+        self.sum = np.zeros((laws, m))            # law -> the target it adds to
+        self.sum[np.arange(laws), ss.laws] = 1.0
         self.taus = np.asarray(ss.taus, float)
         self.lag_input = np.asarray(ss.lag_input, int)
         self.output = Output(ss)       # guard and reference update: what is learned stays
@@ -386,7 +393,7 @@ class Simulator:
         first = self.first
         if self.first:
             self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
-            self.z, self.y = xl.copy(), np.zeros((2, len(ss.targets)))
+            self.z, self.y = xl.copy(), np.zeros((2, len(ss.laws)))
             self.bound = np.zeros(len(ss.targets))
         else:
             e = np.exp(-dt / self.taus)
@@ -397,6 +404,7 @@ class Simulator:
         if ss.depth:
             self.hist = np.concatenate([xs[:, None, :len(x)], self.hist[:, :-1]], axis=1)
         self.y, self.first = y, False
+        y = y @ self.sum
         if excess.any():            # back in range, the bound of the excess's last sample holds
             self.bound = np.abs(self.clamp_gain @ excess)
         self.c = self.output.step(y[0] - np.clip(y[1], -self.bound, self.bound), first, dt,
