@@ -46,7 +46,7 @@ def check_exportable(compensator, fmt: str) -> None:
         stream = StreamingCompensator(compensator)
     except ValueError:
         return
-    state_space(stream)
+    state_space(stream, known_ambient=False)
 
 
 def exported_files(deployed, fmt: str, provenance: dict | None = None) -> dict[str, str]:

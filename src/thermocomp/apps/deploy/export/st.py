@@ -65,7 +65,7 @@ def function_block(ss: StateSpace) -> str:
         f"    REAL_LIMIT : LREAL := {literal(LREAL_MAX)};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
-        _constant("CLAMP_GAIN", ss.clamp_gain or [], (m, n)),
+        _constant("CLAMP_GAIN", ss.clamp_gain or [], (r, n)),
         f"    PATTERN : BOOL := {'TRUE' if ss.pattern else 'FALSE'};",
         f"    PATTERN_RANK : INT := {len(ss.pattern_basis[0]) if ss.pattern else 0};",
         f"    PATTERN_TOL : LREAL := {literal(ss.pattern_tol)};",
@@ -77,6 +77,13 @@ def function_block(ss: StateSpace) -> str:
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
         _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p)),
         _constant("LAW_TARGET", ss.laws, (r,), "INT"),
+        _constant("LAW_LO", ss.law_lo or [-LREAL_MAX] * r, (r,)),
+        _constant("LAW_HI", ss.law_hi or [LREAL_MAX] * r, (r,)),
+        _constant("LAW_AMBIENT", ss.law_ambient or [0] * r, (r,), "INT"),
+        f"    N_AMBIENT : INT := {len(ss.ambient_inputs)};",
+        _constant("AMBIENT_INPUT", ss.ambient_inputs, (len(ss.ambient_inputs),), "INT"),
+        f"    AMBIENT_CENTRE : LREAL := {literal(ss.ambient_centre)};",
+        f"    AMBIENT_COUNT : LREAL := {literal(max(len(ss.ambient_inputs), 1))};",
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
@@ -124,6 +131,10 @@ VAR
     z : ARRAY[{_dims(2, k)}] OF LREAL;
     y_prev : ARRAY[{_dims(2, r)}] OF LREAL;
     ysum : ARRAY[{_dims(2, m)}] OF LREAL;
+    excess : ARRAY[{_dims(m)}] OF LREAL;
+    factor : ARRAY[{_dims(r)}] OF LREAL;
+    a0 : LREAL;
+    pg : LREAL;
     t_prev : LREAL;
     t_read : LREAL;
     read_valid : BOOL;
@@ -225,6 +236,24 @@ IF NOT refused THEN
             n_clamped := n_clamped + 1;
         END_IF;
     END_FOR;
+    (* the campaign's laws: by its initial ambient, the mean of the ambient inputs (ATI) *)
+    IF first THEN
+        a0 := 0.0;
+        FOR l := 0 TO N_AMBIENT - 1 DO
+            a0 := a0 + v[AMBIENT_INPUT[l]];
+        END_FOR;
+        a0 := a0 / AMBIENT_COUNT;
+        FOR r := 0 TO N_LAWS - 1 DO
+            factor[r] := 0.0;
+            IF a0 > LAW_LO[r] AND a0 <= LAW_HI[r] THEN
+                IF LAW_AMBIENT[r] <> 0 THEN
+                    factor[r] := a0 - AMBIENT_CENTRE;
+                ELSE
+                    factor[r] := 1.0;
+                END_IF;
+            END_IF;
+        END_FOR;
+    END_IF;
     (* the guard's bound widens by the response to the inputs beyond their training range, at a *)
     (* sample on the training pattern (a hotter machine; one sensor leaving the others: not) *)
     beyond := FALSE;
@@ -316,10 +345,18 @@ IF NOT refused THEN
     FOR i := 0 TO N_OUTPUTS - 1 DO
         ysum[0, i] := 0.0;
         ysum[1, i] := 0.0;
+        excess[i] := 0.0;
     END_FOR;
-    (* each law (its own feedback), summed into its target *)
+    (* each law (its own feedback), times its factor, summed into its target *)
     FOR r := 0 TO N_LAWS - 1 DO
         i := LAW_TARGET[r];
+        pg := 0.0;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            pg := pg + CLAMP_GAIN[r, j] * x[1, j];
+        END_FOR;
+        IF factor[r] <> 0.0 THEN
+            excess[i] := excess[i] + factor[r] * pg;
+        END_IF;
         FOR h := 0 TO 1 DO
             IF h = 0 THEN
                 ych[h] := INTERCEPT[r];
@@ -339,16 +376,15 @@ IF NOT refused THEN
             END_FOR;
             ych[h] := ych[h] + AR[r] * y_prev[h, r];
             y_prev[h, r] := ych[h];
-            ysum[h, i] := ysum[h, i] + ych[h];
+            IF factor[r] <> 0.0 THEN
+                ysum[h, i] := ysum[h, i] + factor[r] * ych[h];
+            END_IF;
         END_FOR;
     END_FOR;
     FOR i := 0 TO N_OUTPUTS - 1 DO
         ych[0] := ysum[0, i];
         ych[1] := ysum[1, i];
-        bound := 0.0;
-        FOR j := 0 TO N_INPUTS - 1 DO
-            bound := bound + CLAMP_GAIN[i, j] * x[1, j];
-        END_FOR;
+        bound := excess[i];
         IF bound < 0.0 THEN
             bound := -bound;
         END_IF;

@@ -14,8 +14,11 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    pattern_basis`` (the stream's gate, :class:`~thermocomp.apps.deploy.streaming.Envelope`);
 4. per law ``r``: ``y_r = c_r + b0_r . x + sum_d bd_r[d] . x(t-d) + sum_k g_r[k] (z_k - x[lag_input_k])
    + a_r y_r(t-1)``, and per target ``t`` the sum of its laws ``y_t = sum_{law_target[r] = t} y_r``
-   (one law per target; a ``model=auto`` blend is its members' laws weighted and summed, each
-   member feeding back its own output, an AR term, a law of its own), with the input history
+   times the law's factor for the campaign (one law per target, factor 1; a ``model=auto``
+   blend is its members' laws weighted and summed, each member feeding back its own output, an
+   AR term, a law of its own; an ATI model's laws count in the interval of the campaign's
+   initial ambient ``A0``, the mean of ``ambient_inputs`` at its first sample, its ambient
+   interaction's times ``A0 - ambient_centre``: :mod:`.laws`), with the input history
    ``x(t-d)`` (``d = 1..depth``) and the first-order lags ``z_k <- e_k z_k + (1 - e_k)
    x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the time since the previous sample
    (``time_period`` without one, timerule.py); the same system, without intercept and powers,
@@ -48,23 +51,18 @@ last three for each channel (``y_prev`` per law), and the limit keeps one number
 
 from __future__ import annotations
 
-import sys
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from ....core.context import step_gain
-from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
-from ....core.models.ati import ATIRegressor
+from ....core.frame import ambient_c0
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .errors import NotExportable
-from .members import described, members, one_model
+from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, UNBOUNDED, target_laws
 from .output import Output, adapt_fields, guard_fields, time_fields
 
-LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
-UNBOUNDED = sys.float_info.max     # the envelope of a machine state (not clamped; finite for JSON/ST)
 FORMATS = ("json", "c", "st", "onnx")
 
 
@@ -93,7 +91,7 @@ class StateSpace:
     uses_time: bool              # the lags read ``time`` when it is given
     # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
     powers: list = field(default_factory=list)
-    clamp_gain: list | None = None   # (n_targets, n_inputs) step gain at the horizon (clamp only)
+    clamp_gain: list | None = None   # (n_laws, n_inputs) step gain at the horizon (clamp only)
     # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
     pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
     pattern_mean: list | None = None     # (n_inputs,)
@@ -126,6 +124,13 @@ class StateSpace:
     # the target each law adds to (a blend's member with its own feedback: a law of its own);
     # empty (an older export): law i is target i's
     law_target: list = field(default_factory=list)
+    # when each law counts (an ATI model's, ati=cmeans): A0, the mean of the ambient inputs at a
+    # campaign's first sample, in (law_lo, law_hi]; times A0 - ambient_centre where law_ambient
+    law_lo: list = field(default_factory=list)       # (n_laws,) °C; empty: every law always
+    law_hi: list = field(default_factory=list)
+    law_ambient: list = field(default_factory=list)  # (n_laws,) 1: the ambient interaction's law
+    ambient_inputs: list = field(default_factory=list)   # indices of the ambient inputs (A0)
+    ambient_centre: float = 20.0                     # °C
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -139,66 +144,26 @@ class StateSpace:
         """The target index of each law."""
         return list(self.law_target) or list(range(len(self.targets)))
 
+    def factors(self, a0: float) -> np.ndarray:
+        """Each law's factor in a campaign of initial ambient ``a0`` (°C; 0 without ambient
+        inputs): 1, or 0 outside its interval, times ``a0 - ambient_centre`` for an ambient law."""
+        laws = len(self.laws)
+        lo = np.asarray(self.law_lo or [-UNBOUNDED] * laws, float)
+        hi = np.asarray(self.law_hi or [UNBOUNDED] * laws, float)
+        ambient = np.asarray(self.law_ambient or [0] * laws, bool)
+        return np.where((a0 > lo) & (a0 <= hi), np.where(ambient, a0 - self.ambient_centre, 1.0), 0.0)
+
     @property
     def n_states(self) -> int:
         n = len(self.inputs)
         return (len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.laws))
 
 
-def _target_law(est, n: int, period: float | None):
-    """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
-    if isinstance(est, ATIRegressor):       # its family is linear: say what is not
-        raise NotExportable("ati=cmeans switches between one model per ambient interval by the "
-                            "campaign's initial ambient, not one linear system: export a model "
-                            "fitted with ati=none (the linear families export: "
-                            f"{', '.join(LINEAR_FAMILIES)})")
-    if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
-        raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
-                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)})")
-    c = float(est.intercept_)
-    if isinstance(est, (MLR, PCR)):
-        return c, np.asarray(est.coef_, float), {}, [], 0.0, period
-    if isinstance(est, ARX):
-        b0, delayed = np.zeros(n), {}
-        for (j, d), b in zip(est.terms_, est.coef_):
-            row = b0 if d == 0 else delayed.setdefault(int(d), np.zeros(n))
-            row[j] += float(b)
-        return c, b0, delayed, [], float(est.ar_coef_), period
-    coef = np.asarray(est.coef_, float)      # the lag bank
-    lags = [(float(tau), j, float(coef[n * (i + 1) + j]))
-            for i, tau in enumerate(est.taus_) for j in range(n)]
-    own = float(est.sample_period_s_)
-    if period is not None and own != period:
-        raise NotExportable(f"the lag banks of the targets assume sample periods {period} and "
-                            f"{own} s; one exported step has one period")
-    return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
-
-
-def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:
-    """``(linear estimator, its power features' indices)``: a Hammerstein model is its lag bank
-    on the inputs and the powers of its states (registered in ``powers``, shared by targets)."""
-    if type(est) is not Hammerstein:
-        return est, []
-    feats = [powers.setdefault((inputs.index(col), float(est.state_scale_[s]), float(e)), len(powers))
-             for e in est.exponents_ for s, col in enumerate(est.state_columns_)]
-    return est.lagbank_, feats
-
-
-def _clamp_gain(target: str, est, idx, horizon_s: float, width: int) -> list:
-    """Step gain of ``target``'s law at the envelope's horizon over the code's inputs (a
-    state's: 0, never clamped)."""
-    gain = step_gain(est, None, horizon_s)
-    if gain is None:
-        raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
-                            f"{getattr(est, 'ar_coef_', float('nan')):.3g}): the envelope clamp needs "
-                            "one; export it with promote.envelope.policy=off")
-    return _spread(gain, np.arange(gain.size) if idx is None else np.asarray(idx), width).tolist()
-
-
-def state_space(deployed, provenance: dict | None = None) -> StateSpace:
+def state_space(deployed, provenance: dict | None = None, known_ambient: bool = True) -> StateSpace:
     """The :class:`StateSpace` of a deployed stream or adaptive compensator (module doc; of the
     latter its plain stream, guard and reference update); :class:`NotExportable` names what
-    keeps it from being one."""
+    keeps it from being one.  ``known_ambient``: false for a stream made without its training
+    data (which ambient sensors an ATI model reads is not known yet: not refused for it)."""
     stream = deployed.streaming if isinstance(deployed, AdaptiveCompensator) else deployed
     comp = stream.compensator
     declared = list(comp.inputs_)
@@ -220,45 +185,37 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
     unfiltered[0] = 1.0
     fir = np.hstack([fir, unfiltered])
     N = len(inputs)
-    laws, period, powers, chosen = [], None, {}, {}      # laws: (target index, law)
+    env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
+    laws, period, powers, chosen = [], None, {}, {}      # laws: (target index, Law)
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        parts, own = members(est), []
-        for name, w, member in parts:
-            try:
-                member, feats = _powered(member, inputs, powers)
-                c, b0, dl, lg, a, period = _target_law(member, len(cols) + len(feats), period)
-            except NotExportable as exc:
-                raise NotExportable(_member_refused(t, name, w, parts, exc)) from None
-            where = np.r_[cols, N + np.asarray(feats, int)].astype(int)   # into [x, powers]
-            own.append((w * c, [(where, w * b0)], {d: w * _spread(r, cols, N) for d, r in dl.items()},
-                        [(tau, int(where[j]), w * gain) for tau, j, gain in lg], a))
-        laws += [(i, law) for law in _summed(own)]
-        if parts[0][0] is not None:
-            chosen[t] = described(parts)
-    read = {inputs[src] for src, _, _ in powers}
+        own, period, kept = target_laws(t, est, cols, inputs, powers, period,
+                                        env.horizon_s if clamp else None)
+        laws += [(i, law) for law in own]
+        if kept is not None:
+            chosen[t] = kept
+    ati = any(law.key != (-UNBOUNDED, UNBOUNDED, False) for _, law in laws)
+    ambient = _ambient_inputs(stream, inputs, ati, known_ambient)
+    read = {inputs[src] for src, _, _ in powers} | {inputs[j] for j in ambient}
     if any(c not in read for c in states):
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
                             f"only the families {', '.join(LINEAR_FAMILIES)} export to C/ST")
     width = N + len(powers)
-    depth = max((d for _, law in laws for d in law[2]), default=0)
-    keys = sorted({(tau, j) for _, law in laws for tau, j, _ in law[3]})
+    depth = max((d for _, law in laws for d in law.delayed), default=0)
+    keys = sorted({(tau, j) for _, law in laws for tau, j, _ in law.lags})
     where = {k: i for i, k in enumerate(keys)}
     targets = list(stream.targets_)
     b0 = np.zeros((len(laws), width))
     g = np.zeros((len(laws), len(keys)))
     bd = np.zeros((len(laws), depth, N))
     for r, (_, law) in enumerate(laws):
-        for cols, row in law[1]:
+        for cols, row in law.terms:
             b0[r, cols] += row
-        for tau, j, gain in law[3]:
+        for tau, j, gain in law.lags:
             g[r, where[(tau, j)]] += gain
-        for d, row in law[2].items():
+        for d, row in law.delayed.items():
             bd[r, d - 1] = row
-    env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     period = float(period) if period is not None else 0.0
-    gains = [_clamp_gain(t, one_model(est), idx, env.horizon_s, N)
-             for t, est, idx in stream._plan] if clamp else None
     return StateSpace(
         inputs=inputs, targets=targets, fir=fir.tolist(),
         referenced=[int(r) for r in stream._is_ref] + [0] * len(states), clamp=bool(clamp),
@@ -266,11 +223,14 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         hi=env.hi.tolist() + [UNBOUNDED] * len(states) if clamp else None,
         depth=int(depth), taus=[k[0] for k in keys], lag_input=[k[1] for k in keys],
         lag_decay=[float(np.exp(-period / k[0])) for k in keys], period=period,
-        intercept=[float(law[0]) for _, law in laws], b0=b0.tolist(),
-        bd=bd.tolist(), g=g.tolist(), ar=[float(law[4]) for _, law in laws],
-        law_target=[i for i, _ in laws],
+        intercept=[float(law.c) for _, law in laws], b0=b0.tolist(),
+        bd=bd.tolist(), g=g.tolist(), ar=[float(law.a) for _, law in laws],
+        law_target=[i for i, _ in laws], law_lo=[law.lo for _, law in laws],
+        law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
+        ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C,
         uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
-        clamp_gain=gains, **_pattern_fields(env if clamp else None, len(states)),
+        clamp_gain=[law.gain.tolist() for _, law in laws] if clamp else None,
+        **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
         **time_fields(deployed, period),
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
@@ -278,33 +238,20 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
 
 
-def _member_refused(target: str, name, weight: float, parts: list, exc: NotExportable) -> str:
-    """Why ``target``'s law does not export, naming what ``model=auto`` chose (``name``, of
-    ``parts``) when it chose."""
-    if name is None:
-        return str(exc)
-    if len(parts) == 1:
-        return f"model=auto chose {name} for {target}: {exc}"
-    return (f"model=auto's {described(parts)} for {target}: the member {name} (weight "
-            f"{weight:.4g}) does not export: {exc}")
-
-
-def _summed(own: list) -> list:
-    """The laws of one target from its members' weighted laws ``own``: the members without
-    feedback summed into one (intercepts, gains and histories added, the lags side by side), each
-    member with an AR term a law of its own, since its feedback is on its own output, not on the
-    blend's (``w a y_i(t-1)`` of the member's weighted output ``w y_i``)."""
-    fed = [law for law in own if law[4] != 0.0]
-    plain = [law for law in own if law[4] == 0.0]
-    if not plain:
-        return fed
-    delayed = {}
-    for law in plain:
-        for d, row in law[2].items():
-            delayed[d] = delayed.get(d, 0.0) + row
-    summed = (sum(law[0] for law in plain), [t for law in plain for t in law[1]], delayed,
-              [lag for law in plain for lag in law[3]], 0.0)
-    return [summed, *fed]
+def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> list[int]:
+    """The code's inputs whose first sample's mean is a campaign's initial ambient ``A0`` (the
+    stream's ambient sensors, read as it reads them: a declared one filtered, not referenced):
+    none without an ATI law; :class:`NotExportable` when the ambient is given at a campaign's
+    start instead (no sensor: the manifest's ``ambient_c``), which the code has no input for."""
+    if not ati:
+        return []
+    if not stream.ambient_columns:
+        if not known:
+            return []
+        raise NotExportable("the ATI model reads each campaign's initial ambient from the "
+                            "manifest's ambient_c (no T_amb sensor among the data's columns): the "
+                            "code has no input for it; a T_amb sensor exports")
+    return [inputs.index(c) for c in stream.ambient_columns]
 
 
 def _pattern_fields(env, n_states: int) -> dict:
@@ -318,12 +265,6 @@ def _pattern_fields(env, n_states: int) -> dict:
             "pattern_basis": np.vstack([env.basis, pad]).tolist(), "pattern_tol": float(env.tol)}
 
 
-def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
-    out = np.zeros(n)
-    out[cols] = row
-    return out
-
-
 class Simulator:
     """The exported arithmetic in numpy (the reference the generated code is read against)."""
 
@@ -332,12 +273,12 @@ class Simulator:
         self.fir = np.asarray(ss.fir, float)
         lo, hi = (np.asarray(getattr(ss, k) or [], float) for k in ("lo", "hi"))
         m, n = len(ss.targets), len(ss.inputs)
-        self.clamp_gain = np.asarray(ss.clamp_gain or np.zeros((m, n)), float).reshape(m, n)
+        laws = len(ss.laws)
+        self.clamp_gain = np.asarray(ss.clamp_gain or np.zeros((laws, n)), float).reshape(laws, n)
         self.envelope = Envelope(tuple(ss.inputs), lo, hi) if not ss.pattern else Envelope(
             tuple(ss.inputs), lo, hi, mean=np.asarray(ss.pattern_mean, float),
             scale=np.asarray(ss.pattern_scale, float), tol=ss.pattern_tol,
             basis=np.asarray(ss.pattern_basis, float).reshape(n, -1))
-        laws = len(ss.laws)
         self.b0 = np.asarray(ss.b0, float).reshape(laws, n + len(ss.powers))
         self.bd = np.asarray(ss.bd, float).reshape(laws, ss.depth, n)
         self.g = np.asarray(ss.g, float).reshape(laws, len(ss.taus))
@@ -380,6 +321,8 @@ class Simulator:
         v = (self.buf * self.fir).sum(axis=0)
         if self.first:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
+            a0 = ambient_c0(v[ss.ambient_inputs]) if ss.ambient_inputs else 0.0
+            self.factor = ss.factors(a0)          # the campaign's laws (ATI), fixed over it
         x = v - self.ref
         excess = self.envelope.excess(x) if ss.clamp else np.zeros_like(x)
         xe = x                      # [x, static powers of machine states (Hammerstein basis)]
@@ -404,9 +347,14 @@ class Simulator:
         if ss.depth:
             self.hist = np.concatenate([xs[:, None, :len(x)], self.hist[:, :-1]], axis=1)
         self.y, self.first = y, False
-        y = y @ self.sum
+        y = self._summed(y)
         if excess.any():            # back in range, the bound of the excess's last sample holds
-            self.bound = np.abs(self.clamp_gain @ excess)
+            self.bound = np.abs(self._summed(self.clamp_gain @ excess))
         self.c = self.output.step(y[0] - np.clip(y[1], -self.bound, self.bound), first, dt,
                                   self.output.allowance(x, self.envelope))
         return self.c.copy()
+
+    def _summed(self, per_law: np.ndarray) -> np.ndarray:
+        """Per target: its laws' values (last axis) times their factors, summed (a law out of
+        the campaign's interval adds nothing, whatever its state)."""
+        return np.where(self.factor != 0.0, per_law * self.factor, 0.0) @ self.sum
