@@ -5,7 +5,7 @@ what `ati=none` fits ("one model (the model ati=none fits)"), and streams exactl
 over `ati=none,cmeans` on such a record (a lab's one file: one campaign, one level) could then
 promote a champion that `export` refused: "ati=cmeans switches between one model per ambient
 interval ... not one linear system", which it was not.  Now such a model exports the arrays of
-its one model; one of several intervals is still refused (test_export_refused_early.py).
+its one model (one of several intervals exports too since export57: test_export_ati57.py).
 """
 
 from __future__ import annotations

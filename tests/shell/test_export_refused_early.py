@@ -4,10 +4,13 @@ training sample, minutes on a real record, all for a refusal."""
 
 from __future__ import annotations
 
+import json
+
 from conftest import refused
 from test_export import _compose, _make_dataset
 from thermocomp.apps.deploy import StreamingCompensator
 from thermocomp.shell.builders import build_compensator
+from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
@@ -31,15 +34,20 @@ def test_a_window_denoised_model_is_refused_before_its_deployment_is_derived(tmp
     assert not out.exists()
 
 
-def test_an_ati_model_is_refused_naming_the_wrapper_not_its_linear_family(tmp_path, capsys):
-    # it said "(mlr) ...: model ATIRegressor is not one of the linear families ... (mlr, ...)"
+def test_an_ati_model_of_several_intervals_exports_since_export57(tmp_path):
+    # it was refused: "ati=cmeans switches between one model per ambient interval ... not one
+    # linear system"; each interval's laws are now picked at a campaign's first sample by its
+    # initial ambient (test_export_ati57.py proves the code equal to replay)
     data = _make_dataset(tmp_path / "data")
     cfg = _compose("model=mlr", "ati=cmeans", "ati.estimator.n_intervals=2", f"data.path={data}",
                    "track=false")
     ds, train_ids, _, _ = read_streamed(cfg)
-    pkl = save_model(build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids}),
-                     tmp_path / "model.pkl")
+    comp = build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids})
+    pkl = save_model(comp, tmp_path / "model.pkl")
     out = tmp_path / "code"
-    refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={out}", "track=false"],
-            capsys, "ati=cmeans", "not one linear system", "ati=none", "mlr, pcr, arx, lagbank")
-    assert not out.exists()
+    assert main(["export", f"data.path={data}", f"export.model={pkl}", f"out={out}",
+                 "track=false", "export.format=json"]) == 0
+    exported = json.loads((out / "compensator.json").read_text())
+    assert len(exported["law_target"]) == sum(2 if i else 1 for est in comp.estimators_.values()
+                                              for i in est.interactions_)
+    assert set(exported["law_target"]) == set(range(len(comp.targets_)))

@@ -11,12 +11,14 @@ together, or not at all (:func:`~thermocomp.base.files.staged_outputs`).
 
 from __future__ import annotations
 
+import json
 from datetime import datetime, timezone
 from pathlib import Path
 
 from omegaconf import DictConfig
 
 from ...apps.deploy.export import NotExportable, check_exportable, exported_files, not_in_code
+from ...apps.deploy.export.text import per_target
 from ...apps.deploy.naming import raw_names
 from ...apps.deploy.report import plain
 from ...base.errors import ConfigError
@@ -103,7 +105,9 @@ def export(cfg: DictConfig) -> dict:
         for name, text in files.items():
             (tmp / name).write_text(text, encoding="utf-8")
     written = {name: out / name for name in files}
-    say(f"export ({fmt}, {family}): {', '.join(str(p) for p in written.values())}")
+    laws = json.loads(files["compensator.json"])["provenance"].get("laws")
+    kept = f"; per target: {per_target(laws)}" if laws else ""   # what model=auto chose
+    say(f"export ({fmt}, {family}{kept}): {', '.join(str(p) for p in written.values())}")
     if fmt == "c":
         say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv")
     return written

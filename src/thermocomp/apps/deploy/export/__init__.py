@@ -9,7 +9,8 @@
 Of an adaptive compensator the time rule and the correction guard are in the code, and the
 reference update of ``adapt.method`` (:mod:`.output`); a Hammerstein model's static powers too.
 Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
-families of :data:`~.statespace.LINEAR_FAMILIES` export; any other model is refused
+families of :data:`~.laws.LINEAR_FAMILIES` export, and what ``model=auto`` keeps of them (one, or
+a blend) and the ATI wrapper of them (:mod:`.laws`); any other model is refused
 (:class:`~.errors.NotExportable`) with one line naming them.
 """
 
@@ -46,7 +47,7 @@ def check_exportable(compensator, fmt: str) -> None:
         stream = StreamingCompensator(compensator)
     except ValueError:
         return
-    state_space(stream)
+    state_space(stream, known_ambient=False)
 
 
 def exported_files(deployed, fmt: str, provenance: dict | None = None) -> dict[str, str]:

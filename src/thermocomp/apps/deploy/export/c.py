@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 
 from ....core.timerule import C_TIME_RULE
+from .laws import UNBOUNDED
 from .statespace import StateSpace
 from .text import banner, correction_names
 
@@ -91,6 +92,8 @@ def header(ss: StateSpace) -> str:
 
 #define TC_N_INPUTS {n}
 #define TC_N_OUTPUTS {m}
+#define TC_N_LAWS {len(ss.laws)}   /* linear laws summed into the outputs (LAW_TARGET) */
+#define TC_N_AMBIENT {len(ss.ambient_inputs)}   /* inputs whose first sample is the ambient (ATI) */
 #define TC_TAPS {taps}
 #define TC_DEPTH {ss.depth}
 #define TC_N_LAGS {len(ss.taus)}
@@ -109,7 +112,8 @@ typedef struct {{
     /* per channel: [0] the measured inputs, [1] their excess over the envelope */
     double hist[2][{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
     double z[2][{max(len(ss.taus), 1)}];        /* first-order lags */
-    double y[2][TC_N_OUTPUTS];                  /* previous output (AR feedback) */
+    double y[2][TC_N_LAWS];                     /* previous output of each law (AR feedback) */
+    double factor[TC_N_LAWS];                   /* each law's factor in this campaign (ATI) */
     double bound[TC_N_OUTPUTS];                 /* limit of what the clamp takes out: the last
                                                    sample out of the envelope's */
     double t;                                   /* previous sample time, s */
@@ -153,19 +157,25 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]);
 
 
 def source(ss: StateSpace) -> str:
-    n, m, taps, k, p = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), len(ss.powers)
-    d = ss.depth
+    n, taps, k, p = len(ss.inputs), len(ss.fir), len(ss.taus), len(ss.powers)
+    d, r = ss.depth, len(ss.laws)
     consts = "\n".join([
         _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
         _array("TAU", ss.taus, (k,)),
         _ints("LAG_INPUT", ss.lag_input),
-        _array("INTERCEPT", ss.intercept, (m,)), _array("B0", ss.b0, (m, n + p)),
+        _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p)),
+        _ints("LAW_TARGET", ss.laws),
+        _array("LAW_LO", ss.law_lo or [-UNBOUNDED] * r, (r,)),
+        _array("LAW_HI", ss.law_hi or [UNBOUNDED] * r, (r,)),
+        _ints("LAW_AMBIENT", ss.law_ambient or [0] * r), _ints("AMBIENT_INPUT", ss.ambient_inputs),
+        f"static const double AMBIENT_CENTRE = {number(ss.ambient_centre)};",
+        f"static const double AMBIENT_COUNT = {number(max(len(ss.ambient_inputs), 1))};",
         _ints("POWER_SRC", [q[0] for q in ss.powers]),
         _array("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
-        _array("BD", ss.bd, (m, d, n)), _array("G", ss.g, (m, k)), _array("AR", ss.ar, (m,)),
-        _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * m, (m, n)),
+        _array("BD", ss.bd, (r, d, n)), _array("G", ss.g, (r, k)), _array("AR", ss.ar, (r,)),
+        _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * r, (r, n)),
         *_pattern_constants(ss),
         f"static const int CLAMP = {int(ss.clamp)};",
         *_output_constants(ss)])
@@ -214,9 +224,10 @@ static int off_pattern(const double x[]) {{
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS], xl[2][{max(k, 1)}], ych[2];
+    double ysum[2][TC_N_OUTPUTS], excess[TC_N_OUTPUTS];
     double allow[TC_N_OUTPUTS];
     double dt, now, step;
-    int i, j, l, h, clamped = 0;
+    int i, j, l, h, r, clamped = 0;
     /* a non-finite input refuses the sample before anything is remembered: one NaN would
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end */
     s->refused = 0;
@@ -241,6 +252,14 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             x[1][j] = x[0][j] - (x[0][j] < LO[j] ? LO[j] : HI[j]);
             clamped++;
         }}
+    }}
+    if (s->first) {{   /* the campaign's laws: by its initial ambient, the mean of the ambient inputs */
+        double a0 = 0.0;
+        for (l = 0; l < TC_N_AMBIENT; l++) a0 += v[AMBIENT_INPUT[l]];
+        a0 /= AMBIENT_COUNT;
+        for (r = 0; r < TC_N_LAWS; r++)
+            s->factor[r] = (a0 > LAW_LO[r] && a0 <= LAW_HI[r])
+                ? (LAW_AMBIENT[r] ? a0 - AMBIENT_CENTRE : 1.0) : 0.0;
     }}
     if (clamped && PATTERN && !off_pattern(x[0])) {{   /* along the training pattern: passed */
         for (j = 0; j < TC_N_INPUTS; j++) x[1][j] = 0.0;
@@ -267,7 +286,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         for (h = 0; h < 2; h++) {{
             for (l = 0; l < TC_DEPTH; l++)
                 for (j = 0; j < TC_N_INPUTS; j++) s->hist[h][l][j] = x[h][j];
-            for (i = 0; i < TC_N_OUTPUTS; i++) s->y[h][i] = 0.0;
+            for (r = 0; r < TC_N_LAWS; r++) s->y[h][r] = 0.0;
         }}
     }}
     s->t = now;
@@ -289,18 +308,27 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     /* outputs: static part, input history, lags, AR feedback; the response to the excess is
        taken out up to the response to it held for the envelope's horizon; back in range, up to
        the last excess's (the memory of an excess that ends at once is taken out as it decays) */
+    for (i = 0; i < TC_N_OUTPUTS; i++) ysum[0][i] = ysum[1][i] = excess[i] = 0.0;
+    for (r = 0; r < TC_N_LAWS; r++) {{   /* each law (its own feedback), summed into its target */
+        double p = 0.0;
+        for (j = 0; j < TC_N_INPUTS; j++) p += CLAMP_GAIN[r][j] * x[1][j];
+        if (s->factor[r] != 0.0) excess[LAW_TARGET[r]] += s->factor[r] * p;
+        for (h = 0; h < 2; h++) {{
+            ych[h] = h == 0 ? INTERCEPT[r] : 0.0;
+            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) ych[h] += B0[r][j] * x[h][j];
+            for (l = 0; l < TC_DEPTH; l++)
+                for (j = 0; j < TC_N_INPUTS; j++) ych[h] += BD[r][l][j] * s->hist[h][l][j];
+            for (l = 0; l < TC_N_LAGS; l++) ych[h] += G[r][l] * (s->z[h][l] - xl[h][l]);
+            ych[h] += AR[r] * s->y[h][r];
+            s->y[h][r] = ych[h];
+            if (s->factor[r] != 0.0) ysum[h][LAW_TARGET[r]] += s->factor[r] * ych[h];
+        }}
+    }}
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double y, bound = 0.0;
-        for (h = 0; h < 2; h++) {{
-            ych[h] = h == 0 ? INTERCEPT[i] : 0.0;
-            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) ych[h] += B0[i][j] * x[h][j];
-            for (l = 0; l < TC_DEPTH; l++)
-                for (j = 0; j < TC_N_INPUTS; j++) ych[h] += BD[i][l][j] * s->hist[h][l][j];
-            for (l = 0; l < TC_N_LAGS; l++) ych[h] += G[i][l] * (s->z[h][l] - xl[h][l]);
-            ych[h] += AR[i] * s->y[h][i];
-            s->y[h][i] = ych[h];
-        }}
-        for (j = 0; j < TC_N_INPUTS; j++) bound += CLAMP_GAIN[i][j] * x[1][j];
+        ych[0] = ysum[0][i];
+        ych[1] = ysum[1][i];
+        bound = excess[i];
         if (s->first || clamped) s->bound[i] = fabs(bound);
         bound = s->bound[i];
         y = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));

@@ -33,6 +33,7 @@ import numpy as np
 from ..adaptive import AdaptiveCompensator
 from ..guard import widening
 from .errors import NotExportable
+from .members import members
 
 UNBOUNDED = sys.float_info.max   # a machine state's range: never beyond it
 
@@ -91,7 +92,7 @@ def not_in_code(deployed) -> list[str]:
         if deployed.monitor is not None:
             out.append("sensor monitor (exclusion, reconstruction of a sensor from the others)")
         stream = deployed.streaming
-    if any(getattr(est, "state_columns_", None) for _, est, _ in stream._plan):
+    if any(getattr(m, "state_columns_", None) for _, est, _ in stream._plan for _, _, m in members(est)):
         out.append("a missing machine state held at its last value (the code needs every input)")
     return out
 

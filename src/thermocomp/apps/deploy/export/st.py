@@ -56,15 +56,16 @@ def _indent(code: str) -> str:
 
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
-    p = len(ss.powers)
+    p, r = len(ss.powers), len(ss.laws)
     consts = "\n".join([
-        f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    TAPS : INT := {taps};",
+        f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    N_LAWS : INT := {r};",
+        f"    TAPS : INT := {taps};",
         f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};", f"    N_POWERS : INT := {p};",
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
         f"    REAL_LIMIT : LREAL := {literal(LREAL_MAX)};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
-        _constant("CLAMP_GAIN", ss.clamp_gain or [], (m, n)),
+        _constant("CLAMP_GAIN", ss.clamp_gain or [], (r, n)),
         f"    PATTERN : BOOL := {'TRUE' if ss.pattern else 'FALSE'};",
         f"    PATTERN_RANK : INT := {len(ss.pattern_basis[0]) if ss.pattern else 0};",
         f"    PATTERN_TOL : LREAL := {literal(ss.pattern_tol)};",
@@ -74,11 +75,19 @@ def function_block(ss: StateSpace) -> str:
                   (n, len(ss.pattern_basis[0]) if ss.pattern else 1)),
         _constant("TAU", ss.taus, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
-        _constant("INTERCEPT", ss.intercept, (m,)), _constant("B0", ss.b0, (m, n + p)),
+        _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p)),
+        _constant("LAW_TARGET", ss.laws, (r,), "INT"),
+        _constant("LAW_LO", ss.law_lo or [-LREAL_MAX] * r, (r,)),
+        _constant("LAW_HI", ss.law_hi or [LREAL_MAX] * r, (r,)),
+        _constant("LAW_AMBIENT", ss.law_ambient or [0] * r, (r,), "INT"),
+        f"    N_AMBIENT : INT := {len(ss.ambient_inputs)};",
+        _constant("AMBIENT_INPUT", ss.ambient_inputs, (len(ss.ambient_inputs),), "INT"),
+        f"    AMBIENT_CENTRE : LREAL := {literal(ss.ambient_centre)};",
+        f"    AMBIENT_COUNT : LREAL := {literal(max(len(ss.ambient_inputs), 1))};",
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
-        _constant("BD", ss.bd, (m, d, n)), _constant("G", ss.g, (m, k)), _constant("AR", ss.ar, (m,)),
+        _constant("BD", ss.bd, (r, d, n)), _constant("G", ss.g, (r, k)), _constant("AR", ss.ar, (r,)),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
         f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
         f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
@@ -120,7 +129,12 @@ VAR
     ref : ARRAY[{_dims(n)}] OF LREAL;
     hist : ARRAY[{_dims(2, d, n)}] OF LREAL;
     z : ARRAY[{_dims(2, k)}] OF LREAL;
-    y_prev : ARRAY[{_dims(2, m)}] OF LREAL;
+    y_prev : ARRAY[{_dims(2, r)}] OF LREAL;
+    ysum : ARRAY[{_dims(2, m)}] OF LREAL;
+    excess : ARRAY[{_dims(m)}] OF LREAL;
+    factor : ARRAY[{_dims(r)}] OF LREAL;
+    a0 : LREAL;
+    pg : LREAL;
     t_prev : LREAL;
     t_read : LREAL;
     read_valid : BOOL;
@@ -167,6 +181,7 @@ VAR
     j : INT;
     l : INT;
     h : INT;
+    r : INT;
 END_VAR
 VAR CONSTANT
 {consts}
@@ -221,6 +236,24 @@ IF NOT refused THEN
             n_clamped := n_clamped + 1;
         END_IF;
     END_FOR;
+    (* the campaign's laws: by its initial ambient, the mean of the ambient inputs (ATI) *)
+    IF first THEN
+        a0 := 0.0;
+        FOR l := 0 TO N_AMBIENT - 1 DO
+            a0 := a0 + v[AMBIENT_INPUT[l]];
+        END_FOR;
+        a0 := a0 / AMBIENT_COUNT;
+        FOR r := 0 TO N_LAWS - 1 DO
+            factor[r] := 0.0;
+            IF a0 > LAW_LO[r] AND a0 <= LAW_HI[r] THEN
+                IF LAW_AMBIENT[r] <> 0 THEN
+                    factor[r] := a0 - AMBIENT_CENTRE;
+                ELSE
+                    factor[r] := 1.0;
+                END_IF;
+            END_IF;
+        END_FOR;
+    END_IF;
     (* the guard's bound widens by the response to the inputs beyond their training range, at a *)
     (* sample on the training pattern (a hotter machine; one sensor leaving the others: not) *)
     beyond := FALSE;
@@ -301,8 +334,8 @@ IF NOT refused THEN
                     hist[h, l, j] := x[h, j];
                 END_FOR;
             END_FOR;
-            FOR i := 0 TO N_OUTPUTS - 1 DO
-                y_prev[h, i] := 0.0;
+            FOR r := 0 TO N_LAWS - 1 DO
+                y_prev[h, r] := 0.0;
             END_FOR;
         END_FOR;
     END_IF;
@@ -310,30 +343,48 @@ IF NOT refused THEN
     (* outputs: static part, input history, lags, AR feedback; *)
     (* the excess's response out, within the held one *)
     FOR i := 0 TO N_OUTPUTS - 1 DO
+        ysum[0, i] := 0.0;
+        ysum[1, i] := 0.0;
+        excess[i] := 0.0;
+    END_FOR;
+    (* each law (its own feedback), times its factor, summed into its target *)
+    FOR r := 0 TO N_LAWS - 1 DO
+        i := LAW_TARGET[r];
+        pg := 0.0;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            pg := pg + CLAMP_GAIN[r, j] * x[1, j];
+        END_FOR;
+        IF factor[r] <> 0.0 THEN
+            excess[i] := excess[i] + factor[r] * pg;
+        END_IF;
         FOR h := 0 TO 1 DO
             IF h = 0 THEN
-                ych[h] := INTERCEPT[i];
+                ych[h] := INTERCEPT[r];
             ELSE
                 ych[h] := 0.0;
             END_IF;
             FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
-                ych[h] := ych[h] + B0[i, j] * x[h, j];
+                ych[h] := ych[h] + B0[r, j] * x[h, j];
             END_FOR;
             FOR l := 0 TO DEPTH - 1 DO
                 FOR j := 0 TO N_INPUTS - 1 DO
-                    ych[h] := ych[h] + BD[i, l, j] * hist[h, l, j];
+                    ych[h] := ych[h] + BD[r, l, j] * hist[h, l, j];
                 END_FOR;
             END_FOR;
             FOR l := 0 TO N_LAGS - 1 DO
-                ych[h] := ych[h] + G[i, l] * (z[h, l] - xl[h, l]);
+                ych[h] := ych[h] + G[r, l] * (z[h, l] - xl[h, l]);
             END_FOR;
-            ych[h] := ych[h] + AR[i] * y_prev[h, i];
-            y_prev[h, i] := ych[h];
+            ych[h] := ych[h] + AR[r] * y_prev[h, r];
+            y_prev[h, r] := ych[h];
+            IF factor[r] <> 0.0 THEN
+                ysum[h, i] := ysum[h, i] + factor[r] * ych[h];
+            END_IF;
         END_FOR;
-        bound := 0.0;
-        FOR j := 0 TO N_INPUTS - 1 DO
-            bound := bound + CLAMP_GAIN[i, j] * x[1, j];
-        END_FOR;
+    END_FOR;
+    FOR i := 0 TO N_OUTPUTS - 1 DO
+        ych[0] := ysum[0, i];
+        ych[1] := ysum[1, i];
+        bound := excess[i];
         IF bound < 0.0 THEN
             bound := -bound;
         END_IF;

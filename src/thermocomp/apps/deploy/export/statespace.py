@@ -12,11 +12,17 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    (else 0); with ``pattern``, ``ex = 0`` for a sample on the training pattern: ``z = (x -
    pattern_mean) / pattern_scale``, ``|z - B B' z|² <= pattern_tol²`` with ``B =
    pattern_basis`` (the stream's gate, :class:`~thermocomp.apps.deploy.streaming.Envelope`);
-4. per target ``t``: ``y_t = c_t + b0_t . x + sum_d bd_t[d] . x(t-d) + sum_k g_t[k] (z_k - x[lag_input_k])
-   + a_t y_t(t-1)``, with the input history ``x(t-d)`` (``d = 1..depth``) and the first-order
-   lags ``z_k <- e_k z_k + (1 - e_k) x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the
-   time since the previous sample (``time_period`` without one, timerule.py); the same system, without
-   intercept and powers, runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
+4. per law ``r``: ``y_r = c_r + b0_r . x + sum_d bd_r[d] . x(t-d) + sum_k g_r[k] (z_k - x[lag_input_k])
+   + a_r y_r(t-1)``, and per target ``t`` the sum of its laws ``y_t = sum_{law_target[r] = t} y_r``
+   times the law's factor for the campaign (one law per target, factor 1; a ``model=auto``
+   blend is its members' laws weighted and summed, each member feeding back its own output, an
+   AR term, a law of its own; an ATI model's laws count in the interval of the campaign's
+   initial ambient ``A0``, the mean of ``ambient_inputs`` at its first sample, its ambient
+   interaction's times ``A0 - ambient_centre``: :mod:`.laws`), with the input history
+   ``x(t-d)`` (``d = 1..depth``) and the first-order lags ``z_k <- e_k z_k + (1 - e_k)
+   x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the time since the previous sample
+   (``time_period`` without one, timerule.py); the same system, without intercept and powers,
+   runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
    response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)``, ``b_t = |clamp_gain_t .
    ex|`` the response to the excess held for the envelope's horizon (as the stream does); at a
    sample within the envelope (``ex = 0``) after an excess, ``b_t`` is the last excess's (0
@@ -40,27 +46,23 @@ correction; one NaN stepped would stay in the lags, the feedback and the guard t
 At a campaign's first sample every memory starts in steady state on it (FIR buffer and input
 history full of it, lags on it, previous outputs 0), as the stream starts.  Between the
 reference and the limit the system is linear: the state is ``[buf, ref, history, z, y_prev]``, the
-last three for each channel, and the limit keeps one number per target, ``b_t``.
+last three for each channel (``y_prev`` per law), and the limit keeps one number per target, ``b_t``.
 """
 
 from __future__ import annotations
 
-import sys
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from ....core.context import step_gain
-from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
-from ....core.models.ati import ATIRegressor
+from ....core.frame import ambient_c0
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .errors import NotExportable
+from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, UNBOUNDED, target_laws
 from .output import Output, adapt_fields, guard_fields, time_fields
 
-LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
-UNBOUNDED = sys.float_info.max     # the envelope of a machine state (not clamped; finite for JSON/ST)
 FORMATS = ("json", "c", "st", "onnx")
 
 
@@ -81,15 +83,15 @@ class StateSpace:
     lag_input: list              # (n_lags,) index of each lag's input in ``[x, powers]``
     lag_decay: list              # (n_lags,) exp(-period / tau): the step without a time
     period: float                # s
-    intercept: list              # (n_targets,)
-    b0: list                     # (n_targets, n_inputs + n_powers)
-    bd: list                     # (n_targets, depth, n_inputs)
-    g: list                      # (n_targets, n_lags)
-    ar: list                     # (n_targets,)
+    intercept: list              # (n_laws,): one law per target, or more (law_target)
+    b0: list                     # (n_laws, n_inputs + n_powers)
+    bd: list                     # (n_laws, depth, n_inputs)
+    g: list                      # (n_laws, n_lags)
+    ar: list                     # (n_laws,)
     uses_time: bool              # the lags read ``time`` when it is given
     # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
     powers: list = field(default_factory=list)
-    clamp_gain: list | None = None   # (n_targets, n_inputs) step gain at the horizon (clamp only)
+    clamp_gain: list | None = None   # (n_laws, n_inputs) step gain at the horizon (clamp only)
     # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
     pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
     pattern_mean: list | None = None     # (n_inputs,)
@@ -119,6 +121,16 @@ class StateSpace:
     adapt_max_gain_change: float = 0.0
     adapt_var_cap: float = 0.0       # µm², the prior variance (the variance never exceeds it)
     provenance: dict = field(default_factory=dict)
+    # the target each law adds to (a blend's member with its own feedback: a law of its own);
+    # empty (an older export): law i is target i's
+    law_target: list = field(default_factory=list)
+    # when each law counts (an ATI model's, ati=cmeans): A0, the mean of the ambient inputs at a
+    # campaign's first sample, in (law_lo, law_hi]; times A0 - ambient_centre where law_ambient
+    law_lo: list = field(default_factory=list)       # (n_laws,) °C; empty: every law always
+    law_hi: list = field(default_factory=list)
+    law_ambient: list = field(default_factory=list)  # (n_laws,) 1: the ambient interaction's law
+    ambient_inputs: list = field(default_factory=list)   # indices of the ambient inputs (A0)
+    ambient_centre: float = 20.0                     # °C
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -128,73 +140,30 @@ class StateSpace:
         return cls(**d)
 
     @property
+    def laws(self) -> list:
+        """The target index of each law."""
+        return list(self.law_target) or list(range(len(self.targets)))
+
+    def factors(self, a0: float) -> np.ndarray:
+        """Each law's factor in a campaign of initial ambient ``a0`` (°C; 0 without ambient
+        inputs): 1, or 0 outside its interval, times ``a0 - ambient_centre`` for an ambient law."""
+        laws = len(self.laws)
+        lo = np.asarray(self.law_lo or [-UNBOUNDED] * laws, float)
+        hi = np.asarray(self.law_hi or [UNBOUNDED] * laws, float)
+        ambient = np.asarray(self.law_ambient or [0] * laws, bool)
+        return np.where((a0 > lo) & (a0 <= hi), np.where(ambient, a0 - self.ambient_centre, 1.0), 0.0)
+
+    @property
     def n_states(self) -> int:
         n = len(self.inputs)
-        return (len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.targets))
+        return (len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.laws))
 
 
-def _target_law(est, n: int, period: float | None):
-    """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
-    if isinstance(est, ATIRegressor):       # its family is linear: say what is not
-        raise NotExportable("ati=cmeans switches between one model per ambient interval by the "
-                            "campaign's initial ambient, not one linear system: export a model "
-                            "fitted with ati=none (the linear families export: "
-                            f"{', '.join(LINEAR_FAMILIES)})")
-    if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
-        raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
-                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)})")
-    c = float(est.intercept_)
-    if isinstance(est, (MLR, PCR)):
-        return c, np.asarray(est.coef_, float), {}, [], 0.0, period
-    if isinstance(est, ARX):
-        b0, delayed = np.zeros(n), {}
-        for (j, d), b in zip(est.terms_, est.coef_):
-            row = b0 if d == 0 else delayed.setdefault(int(d), np.zeros(n))
-            row[j] += float(b)
-        return c, b0, delayed, [], float(est.ar_coef_), period
-    coef = np.asarray(est.coef_, float)      # the lag bank
-    lags = [(float(tau), j, float(coef[n * (i + 1) + j]))
-            for i, tau in enumerate(est.taus_) for j in range(n)]
-    own = float(est.sample_period_s_)
-    if period is not None and own != period:
-        raise NotExportable(f"the lag banks of the targets assume sample periods {period} and "
-                            f"{own} s; one exported step has one period")
-    return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
-
-
-def _one_model(est):
-    """The one model of an ATI wrapper that kept one interval and no ambient interaction (too
-    few ambient levels in training: what ati=none fits, and streams as it does), else ``est``."""
-    if isinstance(est, ATIRegressor) and est.n_intervals_ == 1 and not est.interactions_[0]:
-        return est.estimators_[0]
-    return est
-
-
-def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:
-    """``(linear estimator, its power features' indices)``: a Hammerstein model is its lag bank
-    on the inputs and the powers of its states (registered in ``powers``, shared by targets)."""
-    if type(est) is not Hammerstein:
-        return est, []
-    feats = [powers.setdefault((inputs.index(col), float(est.state_scale_[s]), float(e)), len(powers))
-             for e in est.exponents_ for s, col in enumerate(est.state_columns_)]
-    return est.lagbank_, feats
-
-
-def _clamp_gain(target: str, est, idx, horizon_s: float, width: int) -> list:
-    """Step gain of ``target``'s law at the envelope's horizon over the code's inputs (a
-    state's: 0, never clamped)."""
-    gain = step_gain(est, None, horizon_s)
-    if gain is None:
-        raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
-                            f"{getattr(est, 'ar_coef_', float('nan')):.3g}): the envelope clamp needs "
-                            "one; export it with promote.envelope.policy=off")
-    return _spread(gain, np.arange(gain.size) if idx is None else np.asarray(idx), width).tolist()
-
-
-def state_space(deployed, provenance: dict | None = None) -> StateSpace:
+def state_space(deployed, provenance: dict | None = None, known_ambient: bool = True) -> StateSpace:
     """The :class:`StateSpace` of a deployed stream or adaptive compensator (module doc; of the
     latter its plain stream, guard and reference update); :class:`NotExportable` names what
-    keeps it from being one."""
+    keeps it from being one.  ``known_ambient``: false for a stream made without its training
+    data (which ambient sensors an ATI model reads is not known yet: not refused for it)."""
     stream = deployed.streaming if isinstance(deployed, AdaptiveCompensator) else deployed
     comp = stream.compensator
     declared = list(comp.inputs_)
@@ -216,38 +185,37 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
     unfiltered[0] = 1.0
     fir = np.hstack([fir, unfiltered])
     N = len(inputs)
-    laws, period, powers = {}, None, {}
-    for t, est, idx in stream._plan:
+    env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
+    laws, period, powers, chosen = [], None, {}, {}      # laws: (target index, Law)
+    for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        est, feats = _powered(_one_model(est), inputs, powers)
-        c, b0, delayed, lags, a, period = _target_law(est, len(cols) + len(feats), period)
-        where = np.r_[cols, N + np.asarray(feats, int)].astype(int)   # into [x, powers]
-        laws[t] = (c, (where, b0), {d: _spread(r, cols, N) for d, r in delayed.items()},
-                   [(tau, int(where[j]), gain) for tau, j, gain in lags], a)
-    read = {inputs[src] for src, _, _ in powers}
+        own, period, kept = target_laws(t, est, cols, inputs, powers, period,
+                                        env.horizon_s if clamp else None)
+        laws += [(i, law) for law in own]
+        if kept is not None:
+            chosen[t] = kept
+    ati = any(law.key != (-UNBOUNDED, UNBOUNDED, False) for _, law in laws)
+    ambient = _ambient_inputs(stream, inputs, ati, known_ambient)
+    read = {inputs[src] for src, _, _ in powers} | {inputs[j] for j in ambient}
     if any(c not in read for c in states):
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
                             f"only the families {', '.join(LINEAR_FAMILIES)} export to C/ST")
     width = N + len(powers)
-    for t, law in laws.items():
-        full = np.zeros(width)
-        full[law[1][0]] = law[1][1]
-        laws[t] = (law[0], full, *law[2:])
-    depth = max((d for law in laws.values() for d in law[2]), default=0)
-    keys = sorted({(tau, j) for law in laws.values() for tau, j, _ in law[3]})
+    depth = max((d for _, law in laws for d in law.delayed), default=0)
+    keys = sorted({(tau, j) for _, law in laws for tau, j, _ in law.lags})
     where = {k: i for i, k in enumerate(keys)}
     targets = list(stream.targets_)
-    g = np.zeros((len(targets), len(keys)))
-    bd = np.zeros((len(targets), depth, N))
-    for i, t in enumerate(targets):
-        for tau, j, gain in laws[t][3]:
-            g[i, where[(tau, j)]] += gain
-        for d, row in laws[t][2].items():
-            bd[i, d - 1] = row
-    env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
+    b0 = np.zeros((len(laws), width))
+    g = np.zeros((len(laws), len(keys)))
+    bd = np.zeros((len(laws), depth, N))
+    for r, (_, law) in enumerate(laws):
+        for cols, row in law.terms:
+            b0[r, cols] += row
+        for tau, j, gain in law.lags:
+            g[r, where[(tau, j)]] += gain
+        for d, row in law.delayed.items():
+            bd[r, d - 1] = row
     period = float(period) if period is not None else 0.0
-    gains = [_clamp_gain(t, _one_model(est), idx, env.horizon_s, N)
-             for t, est, idx in stream._plan] if clamp else None
     return StateSpace(
         inputs=inputs, targets=targets, fir=fir.tolist(),
         referenced=[int(r) for r in stream._is_ref] + [0] * len(states), clamp=bool(clamp),
@@ -255,15 +223,35 @@ def state_space(deployed, provenance: dict | None = None) -> StateSpace:
         hi=env.hi.tolist() + [UNBOUNDED] * len(states) if clamp else None,
         depth=int(depth), taus=[k[0] for k in keys], lag_input=[k[1] for k in keys],
         lag_decay=[float(np.exp(-period / k[0])) for k in keys], period=period,
-        intercept=[laws[t][0] for t in targets], b0=[laws[t][1].tolist() for t in targets],
-        bd=bd.tolist(), g=g.tolist(), ar=[laws[t][4] for t in targets],
+        intercept=[float(law.c) for _, law in laws], b0=b0.tolist(),
+        bd=bd.tolist(), g=g.tolist(), ar=[float(law.a) for _, law in laws],
+        law_target=[i for i, _ in laws], law_lo=[law.lo for _, law in laws],
+        law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
+        ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C,
         uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
-        clamp_gain=gains, **_pattern_fields(env if clamp else None, len(states)),
+        clamp_gain=[law.gain.tolist() for _, law in laws] if clamp else None,
+        **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
         **time_fields(deployed, period),
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
-        provenance=dict(provenance or {}))
+        provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
+
+
+def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> list[int]:
+    """The code's inputs whose first sample's mean is a campaign's initial ambient ``A0`` (the
+    stream's ambient sensors, read as it reads them: a declared one filtered, not referenced):
+    none without an ATI law; :class:`NotExportable` when the ambient is given at a campaign's
+    start instead (no sensor: the manifest's ``ambient_c``), which the code has no input for."""
+    if not ati:
+        return []
+    if not stream.ambient_columns:
+        if not known:
+            return []
+        raise NotExportable("the ATI model reads each campaign's initial ambient from the "
+                            "manifest's ambient_c (no T_amb sensor among the data's columns): the "
+                            "code has no input for it; a T_amb sensor exports")
+    return [inputs.index(c) for c in stream.ambient_columns]
 
 
 def _pattern_fields(env, n_states: int) -> dict:
@@ -277,12 +265,6 @@ def _pattern_fields(env, n_states: int) -> dict:
             "pattern_basis": np.vstack([env.basis, pad]).tolist(), "pattern_tol": float(env.tol)}
 
 
-def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
-    out = np.zeros(n)
-    out[cols] = row
-    return out
-
-
 class Simulator:
     """The exported arithmetic in numpy (the reference the generated code is read against)."""
 
@@ -291,14 +273,17 @@ class Simulator:
         self.fir = np.asarray(ss.fir, float)
         lo, hi = (np.asarray(getattr(ss, k) or [], float) for k in ("lo", "hi"))
         m, n = len(ss.targets), len(ss.inputs)
-        self.clamp_gain = np.asarray(ss.clamp_gain or np.zeros((m, n)), float).reshape(m, n)
+        laws = len(ss.laws)
+        self.clamp_gain = np.asarray(ss.clamp_gain or np.zeros((laws, n)), float).reshape(laws, n)
         self.envelope = Envelope(tuple(ss.inputs), lo, hi) if not ss.pattern else Envelope(
             tuple(ss.inputs), lo, hi, mean=np.asarray(ss.pattern_mean, float),
             scale=np.asarray(ss.pattern_scale, float), tol=ss.pattern_tol,
             basis=np.asarray(ss.pattern_basis, float).reshape(n, -1))
-        self.b0 = np.asarray(ss.b0, float).reshape(m, n + len(ss.powers))
-        self.bd = np.asarray(ss.bd, float).reshape(m, ss.depth, n)
-        self.g = np.asarray(ss.g, float).reshape(m, len(ss.taus))
+        self.b0 = np.asarray(ss.b0, float).reshape(laws, n + len(ss.powers))
+        self.bd = np.asarray(ss.bd, float).reshape(laws, ss.depth, n)
+        self.g = np.asarray(ss.g, float).reshape(laws, len(ss.taus))
+        self.sum = np.zeros((laws, m))            # law -> the target it adds to
+        self.sum[np.arange(laws), ss.laws] = 1.0
         self.taus = np.asarray(ss.taus, float)
         self.lag_input = np.asarray(ss.lag_input, int)
         self.output = Output(ss)       # guard and reference update: what is learned stays
@@ -336,6 +321,8 @@ class Simulator:
         v = (self.buf * self.fir).sum(axis=0)
         if self.first:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
+            a0 = ambient_c0(v[ss.ambient_inputs]) if ss.ambient_inputs else 0.0
+            self.factor = ss.factors(a0)          # the campaign's laws (ATI), fixed over it
         x = v - self.ref
         excess = self.envelope.excess(x) if ss.clamp else np.zeros_like(x)
         xe = x                      # [x, static powers of machine states (Hammerstein basis)]
@@ -349,7 +336,7 @@ class Simulator:
         first = self.first
         if self.first:
             self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
-            self.z, self.y = xl.copy(), np.zeros((2, len(ss.targets)))
+            self.z, self.y = xl.copy(), np.zeros((2, len(ss.laws)))
             self.bound = np.zeros(len(ss.targets))
         else:
             e = np.exp(-dt / self.taus)
@@ -360,8 +347,14 @@ class Simulator:
         if ss.depth:
             self.hist = np.concatenate([xs[:, None, :len(x)], self.hist[:, :-1]], axis=1)
         self.y, self.first = y, False
+        y = self._summed(y)
         if excess.any():            # back in range, the bound of the excess's last sample holds
-            self.bound = np.abs(self.clamp_gain @ excess)
+            self.bound = np.abs(self._summed(self.clamp_gain @ excess))
         self.c = self.output.step(y[0] - np.clip(y[1], -self.bound, self.bound), first, dt,
                                   self.output.allowance(x, self.envelope))
         return self.c.copy()
+
+    def _summed(self, per_law: np.ndarray) -> np.ndarray:
+        """Per target: its laws' values (last axis) times their factors, summed (a law out of
+        the campaign's interval adds nothing, whatever its state)."""
+        return np.where(self.factor != 0.0, per_law * self.factor, 0.0) @ self.sum

@@ -1,0 +1,179 @@
+"""The linear laws of one target of the exported system (:mod:`.statespace`).
+
+A target's output is the sum of its laws, each ``c + b0 . x + sum_d bd[d] . x(t-d) + sum_k g[k]
+(z_k - x[j_k]) + a y(t-1)`` on its own previous output, times a factor the campaign's first
+sample fixes: 1 for a plain model; for an ATI model (``ati=cmeans``) 1 within the interval of
+the campaign's initial ambient ``A0`` and 0 outside it, and for its ambient interaction ``x (A0
+- 20 °C)`` the law of those coefficients times ``A0 - 20`` (``A0`` is fixed over the campaign,
+so ``b . x (A0 - 20) = (A0 - 20) b . x``, and a feedback is linear: the law with the interaction
+is the sum of the two laws, each with the model's feedback).  A ``model=auto`` blend is its
+members' laws weighted: members without feedback summed into one law per factor, a member with
+an AR term a law of its own (its feedback is on its own output, not on the blend's).
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ....core.context import step_gain
+from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
+from ....core.models.ati import AMBIENT_CENTRE_C, ATIRegressor
+from .errors import NotExportable
+from .members import described, members
+
+LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
+UNBOUNDED = sys.float_info.max      # an open interval edge (finite for JSON and ST)
+
+
+@dataclass
+class Law:
+    """One law over the code's ``[x, powers]`` (module doc), and when it counts: ``lo < A0 <=
+    hi``, times ``A0 - AMBIENT_CENTRE_C`` when ``ambient``."""
+
+    c: float = 0.0
+    terms: list = field(default_factory=list)      # [(indices into [x, powers], b0 there)]
+    delayed: dict = field(default_factory=dict)    # {delay: row over x}
+    lags: list = field(default_factory=list)       # [(tau, index into [x, powers], gain)]
+    a: float = 0.0
+    gain: np.ndarray | None = None                 # step gain over x at the clamp's horizon
+    lo: float = -UNBOUNDED
+    hi: float = UNBOUNDED
+    ambient: bool = False
+
+    @property
+    def key(self) -> tuple:
+        return self.lo, self.hi, self.ambient
+
+    def add(self, other: "Law") -> "Law":
+        """This law plus ``other`` (both without feedback, the same factor)."""
+        delayed = dict(self.delayed)
+        for d, row in other.delayed.items():
+            delayed[d] = delayed.get(d, 0.0) + row
+        gain = None if self.gain is None else self.gain + other.gain
+        return Law(self.c + other.c, self.terms + other.terms, delayed, self.lags + other.lags,
+                   0.0, gain, *self.key)
+
+
+def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, period,
+                horizon_s: float | None) -> tuple[list[Law], object, str | None]:
+    """``(laws, lag period, what model=auto kept)`` of ``target``'s estimator ``est`` reading
+    the inputs ``cols`` of the code's ``inputs``; ``powers`` registers the Hammerstein powers,
+    shared by the targets; ``horizon_s``: the clamp's (None: no clamp, no gains)."""
+    parts, own = members(est), []
+    for name, w, member in parts:
+        try:
+            for lo, hi, base, interacts in _intervals(member):
+                laws, period = _member_laws(base, interacts, w, cols, inputs, powers, period,
+                                            horizon_s, target)
+                for law in laws:
+                    law.lo, law.hi = lo, hi
+                own += laws
+        except NotExportable as exc:
+            raise NotExportable(_member_refused(target, name, w, parts, exc)) from None
+    return _summed(own), period, described(parts) if parts[0][0] is not None else None
+
+
+def _intervals(est) -> list:
+    """``[(lo, hi, model, takes the ambient interaction)]``: an ATI model's per interval of the
+    initial ambient (``lo < A0 <= hi``, as ``interval_of`` assigns one), else the model itself."""
+    if not isinstance(est, ATIRegressor):
+        return [(-UNBOUNDED, UNBOUNDED, est, False)]
+    edges = [-UNBOUNDED, *map(float, est.boundaries_), UNBOUNDED]
+    return [(edges[m], edges[m + 1], e, bool(est.interactions_[m]))
+            for m, e in enumerate(est.estimators_)]
+
+
+def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, horizon_s,
+                 target) -> tuple[list[Law], object]:
+    """The laws of one member (weight ``w``): its own, and with the ambient interaction the law
+    of its coefficients on ``x (A0 - 20)`` (its inputs ``[x, x (A0 - 20), powers]``)."""
+    linear, feats = _powered(est, inputs, powers)
+    k, n = len(cols), len(inputs)
+    width = 2 * k if interacts else k
+    c, b0, delayed, lags, a, period = _target_law(linear, width + len(feats), period)
+    gain = None
+    if horizon_s is not None:
+        gain = step_gain(est, None, horizon_s)
+        if gain is None:
+            raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
+                                f"{a:.3g}): the envelope clamp needs one; export it with "
+                                "promote.envelope.policy=off")
+    pw = n + np.asarray(feats, int)                     # the powers' places in [x, powers]
+    out = []
+    for ambient in (False, True) if interacts else (False,):
+        x = slice(k, 2 * k) if ambient else slice(0, k)
+        terms = [(cols, w * b0[x])] + ([] if ambient or not feats else [(pw, w * b0[width:])])
+        own = [(tau, int(cols[j - x.start]), w * g) for tau, j, g in lags if x.start <= j < x.stop]
+        if not ambient:
+            own += [(tau, int(pw[j - width]), w * g) for tau, j, g in lags if j >= width]
+        out.append(Law(0.0 if ambient else w * c, terms,
+                       {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
+                       None if gain is None else w * _spread(gain[x], cols, n), ambient=ambient))
+    return out, period
+
+
+def _summed(own: list[Law]) -> list[Law]:
+    """One target's laws from its members' ``own``: those without feedback summed per factor,
+    each with feedback a law of its own (``w a y_i(t-1)`` of the member's weighted output)."""
+    plain: dict = {}
+    for law in own:
+        if law.a == 0.0:
+            plain[law.key] = plain[law.key].add(law) if law.key in plain else law
+    return [*plain.values(), *(law for law in own if law.a != 0.0)]
+
+
+def _target_law(est, n: int, period: float | None):
+    """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
+    if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
+        raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
+                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)})")
+    c = float(est.intercept_)
+    if isinstance(est, (MLR, PCR)):
+        return c, np.asarray(est.coef_, float), {}, [], 0.0, period
+    if isinstance(est, ARX):
+        b0, delayed = np.zeros(n), {}
+        for (j, d), b in zip(est.terms_, est.coef_):
+            row = b0 if d == 0 else delayed.setdefault(int(d), np.zeros(n))
+            row[j] += float(b)
+        return c, b0, delayed, [], float(est.ar_coef_), period
+    coef = np.asarray(est.coef_, float)      # the lag bank
+    lags = [(float(tau), j, float(coef[n * (i + 1) + j]))
+            for i, tau in enumerate(est.taus_) for j in range(n)]
+    own = float(est.sample_period_s_)
+    if period is not None and own != period:
+        raise NotExportable(f"the lag banks of the targets assume sample periods {period} and "
+                            f"{own} s; one exported step has one period")
+    return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
+
+
+def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:
+    """``(linear estimator, its power features' indices)``: a Hammerstein model is its lag bank
+    on the inputs and the powers of its states (registered in ``powers``, shared by targets)."""
+    if type(est) is not Hammerstein:
+        return est, []
+    feats = [powers.setdefault((inputs.index(col), float(est.state_scale_[s]), float(e)), len(powers))
+             for e in est.exponents_ for s, col in enumerate(est.state_columns_)]
+    return est.lagbank_, feats
+
+
+def _member_refused(target: str, name, weight: float, parts: list, exc: NotExportable) -> str:
+    """Why ``target``'s law does not export, naming what ``model=auto`` chose (``name``, of
+    ``parts``) when it chose."""
+    if name is None:
+        return str(exc)
+    if len(parts) == 1:
+        return f"model=auto chose {name} for {target}: {exc}"
+    return (f"model=auto's {described(parts)} for {target}: the member {name} (weight "
+            f"{weight:.4g}) does not export: {exc}")
+
+
+def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
+    out = np.zeros(n)
+    out[cols] = row
+    return out
+
+
+__all__ = ["AMBIENT_CENTRE_C", "LINEAR_FAMILIES", "UNBOUNDED", "Law", "target_laws"]
