@@ -189,9 +189,7 @@ SLOW_DRIFT = pytest.mark.xfail(strict=True, reason=(
 
 @pytest.mark.parametrize("kind", ["spike", "spikes", "jump_small", "jump_down", "stuck_at_zero",
                                   "short_dropout", "frozen_from_start", "noisy", "two_dropouts",
-                                  pytest.param("two_jumps", marks=pytest.mark.xfail(strict=True, reason=(
-                                      "two sensors jumping +3 °C at once (beyond the issue's single "
-                                      "fault): 1.53x the healthy RMSE on one campaign"))),
+                                  "two_jumps",
                                   pytest.param("drift_0.5", marks=SLOW_DRIFT),
                                   pytest.param("drift_0.2", marks=SLOW_DRIFT)])
 def test_faults_of_other_shapes_stay_bounded_and_cost_at_most_1_5x_the_healthy_error(deployed, kind):

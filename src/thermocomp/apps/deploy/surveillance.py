@@ -21,7 +21,9 @@ Detectors, each named in the event's reason:
 * ``jump`` — a one-sample step larger than ``jump_factor`` × the largest step
   seen in training (across missing samples, the step since the last reading
   against that limit times the samples it spans), or a self-prediction error
-  that steps past the alarm band in one sample;
+  that steps past the alarm band in one sample; a jumping sensor is re-referenced by its step
+  less its change as the other active sensors predict it -- several jumping in one sample, as
+  the sensors that did not jump predict it (:meth:`SensorMonitor._unjumped_change`);
 * ``common step`` — a one-sample step on most active sensors at once (at least ``COMMON_MIN``
   of them jumping, more than half of the active ones within ``COMMON_SPREAD`` × the median
   jump, same sign): the logger's fault, every
@@ -943,7 +945,9 @@ class SensorMonitor:
     def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:
         """Reasons of the instant detectors that fire (dropout, out of range, jump)."""
         out: dict[int, str] = {}
-        if big.any():   # the change of a jumping sensor as the other sensors see it
+        if big.sum() > 1:      # several at once: each as the sensors that did not jump see it
+            expected = self._unjumped_change(d, finite, rng, big)
+        elif big.any():   # the change of a jumping sensor as the other sensors see it
             pred, e = self._errors(np.where(finite, d, 0.0))
             other = np.where(self._judged, d - e, np.nan)
             expected = other - self._prev_other
@@ -965,6 +969,25 @@ class SensorMonitor:
             out[j] = (f"jump: {step[j]:+.3g} °C in one sample (largest step in training "
                       f"{self.max_step_c[j]:.3g} °C); re-referenced")
         return out
+
+    def _unjumped_change(self, d, finite, rng, big) -> np.ndarray:
+        """The change since the last sample of each of the ``big`` sensors (jumping in the same
+        sample) as the active sensors that did not jump predict it, NaN where they cannot (its
+        leverage among them at the POD's limit).  Predicted from the others, each jumping sensor's
+        prediction leaned on its jumping partners: two +3 K jumps on yearround's T_motor2 and
+        T_bearing_f2 were re-referenced by 3.108 / 3.076 K, their own 0.11 / 0.09 K of true change
+        taken with the offset for good (E_3 1.53x the healthy error on K09)."""
+        expected = np.full(len(d), np.nan)
+        base = self._active & finite & ~rng & ~big & np.isfinite(self._prev)
+        if base.sum() < self.min_active_:
+            return expected
+        M, _ = self._operator(base)
+        for j in np.flatnonzero(big):
+            with_j = base.copy()
+            with_j[j] = True
+            if self._operator(with_j)[1][j] < self.pod.max_leverage:
+                expected[j] = M[j] @ (d[base] - self._prev[base])
+        return expected
 
     def _field_level(self) -> int:
         """Band whose crossing excludes a sensor by its self-prediction error: ``exclude_at``
