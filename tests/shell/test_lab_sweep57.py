@@ -31,6 +31,7 @@ from mlflow import MlflowClient
 from conftest import FAST, ROOT, thermocomp
 from test_deploy import mlflow_store
 from thermocomp.core.io.options import ReadOptions
+from thermocomp.core.scoring.leaderboard import rank
 
 RECORD = ROOT / "datasets" / "fl_thermal" / "spindle_test.csv"
 ROLES = ("data.roles.error=[ch*]", "data.roles.state=[spindle*]", "data.test_fraction=0.2",
@@ -128,3 +129,17 @@ def test_every_pickle_a_stage_outputs_has_its_signature_beside_it_in_the_cache()
             outs = [next(iter(o)) if isinstance(o, dict) else o for o in stage.get("outs", [])]
             for pkl in (o for o in outs if o.endswith(".pkl")):
                 assert f"{pkl}.sig" in outs, (path.name, name, pkl)
+
+
+def test_compare_sorts_by_a_figure_and_names_the_figures_it_sorts_by():
+    """`compare.sort_by=mae` (fl_thermal's figure) was refused listing every column, run_id and
+    model among them, as if they ranked; `sort_by=model` ranked the runs by their names."""
+    rows = [{"run_id": "a", "model": "mlr", "val_rmse": 1.0, "rmse": 2.0, "fit_time_s": 0.1},
+            {"run_id": "b", "model": "arx", "val_rmse": 0.5, "rmse": 3.0, "fit_time_s": 0.2}]
+    with pytest.raises(KeyError) as said:
+        rank(rows, "mae")
+    assert "val_rmse" in str(said.value) and "test:<name>): rmse" in str(said.value)
+    assert "run_id" not in str(said.value)
+    with pytest.raises(KeyError):
+        rank(rows, "model")
+    assert list(rank(rows, "test:rmse")["run_id"]) == ["a", "b"]

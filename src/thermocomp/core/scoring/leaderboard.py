@@ -148,8 +148,12 @@ def rank(rows: Sequence[Mapping], sort_by: str = VAL_RMSE,
         return table
     if sort_by.startswith("test:") and sort_by[5:] in FIGURES:   # as the printed table heads it
         sort_by = sort_by[5:]
-    if sort_by not in table.columns:
-        raise KeyError(f"cannot sort by {sort_by!r}; columns are {list(table.columns)}")
+    # the figures a table ranks by (not its labels: run_id, model, settings ...)
+    sortable = [f for f in (*VAL_FIGURES, *FIGURES, "fit_time_s") if f in table.columns]
+    if sort_by not in sortable:
+        raise KeyError(f"cannot sort by {sort_by!r}; validation (ranks): "
+                       f"{', '.join(f for f in sortable if is_validation(f))}; test (reported, as "
+                       f"test:<name>): {', '.join(f for f in sortable if f in FIGURES)}; or fit_time_s")
     desc = descending_for(sort_by) if descending is None else bool(descending)
     table = table.sort_values(sort_by, ascending=not desc, na_position="last", kind="stable")
     if is_validation(sort_by) and "val_mode" in table.columns:
