@@ -24,7 +24,7 @@ from ..core.scoring.leaderboard import (
     validation_mode,
 )
 from ..core.scoring.results import VAL_RMSE
-from .tracking import child_runs, latest_sweep, retry_locked
+from .tracking import DATASET_TAG, child_runs, latest_sweep, retry_locked
 
 # Written to the sweep folder by the callback: ``{"parent_run_id": ..., "overrides": [...]}``.
 SWEEP_FILE = "sweep.json"
@@ -118,6 +118,19 @@ def _varied(params: list[dict]) -> list[str]:
             and all(k in p for p in params) and len({p[k] for p in params}) > 1]
 
 
+def _datasets(children: list) -> dict[str, str]:
+    """``{run_id: dataset}`` where the runs were scored on more than one dataset (their
+    ``data.path``'s name; with the digest where two differ under one name), else ``{}``."""
+    digests = {r.info.run_id: r.data.tags.get(DATASET_TAG) for r in children}
+    if len(set(digests.values())) < 2:
+        return {}
+    names = {d: Path(str(r.data.params.get("data.path", ""))).name or "?" for r in children
+             for d in [digests[r.info.run_id]]}
+    shared = {n for n in names.values() if list(names.values()).count(n) > 1}
+    return {run: names[d] if names[d] not in shared else f"{names[d]} ({(d or 'none')[:8]})"
+            for run, d in digests.items()}
+
+
 def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
                baselines: list | None = None) -> list[dict]:
     """One row per child run of ``parent_id`` (unsorted); its ``val_*`` figures are of the
@@ -125,13 +138,17 @@ def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
 
     ``baselines``, when given, receives each run's persistence figures
     (:func:`~thermocomp.core.scoring.leaderboard.persistence_summary`, None when absent).
+    Runs of a sweep over several datasets get a ``dataset`` column, their baselines too.
     """
     children = child_runs(client, parent_id)
     varied = _varied([r.data.params for r in children])
+    datasets = _datasets(children)
     rows = []
     for r in children:
         p = r.data.params
         row = {"run_id": r.info.run_id, "status": r.info.status}
+        if datasets:
+            row["dataset"] = datasets[r.info.run_id]
         row.update({col: p.get(key, "none" if col in ("ati", "denoise") else None)
                     for key, col in _NAMED.items()})
         row["settings"] = " ".join(f"{k}={p.get(k)}" for k in varied)
@@ -147,7 +164,8 @@ def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
         row["val_mode"] = validation_mode(metrics) if metrics else None   # simulation, or a fallback
         row.update({f: figures[f] for f in FIGURES})
         if baselines is not None:
-            baselines.append(persistence_summary(metrics["targets"], target) if metrics else None)
+            base = persistence_summary(metrics["targets"], target) if metrics else None
+            baselines.append({**base, "dataset": datasets[r.info.run_id]} if base and datasets else base)
         row["fit_time_s"] = r.data.metrics.get("fit_time_s")
         rows.append(row)
     return rows

@@ -43,13 +43,21 @@ def compare_json(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
             "best": {k: records[0][k] for k in ("run_id", "model", "select", *numeric)} if records else {},
             "runs": {f"{i:02d}_{r['run_id'][:8]}": {k: r[k] for k in numeric} for i, r in
                      enumerate(records)},
-            "baselines": json_safe([{k: b[k] for k in ("model", "needs_measured_error_online", *FIGURES)}
-                                    for b in baselines])}
+            "baselines": json_safe([{k: b[k] for k in ("model", "needs_measured_error_online",
+                                                       "dataset", *FIGURES) if k in b}
+                                    for b in baselines]),
+            # a sweep over several datasets: ranked within each (``best`` is the first's)
+            **({"best_per_dataset": {d: str(g["run_id"].iloc[0]) for d, g in
+                                     table.groupby("dataset", sort=False)}}
+               if "dataset" in table.columns else {})}
 
 
-def headline_line(parent_id: str, n_runs: int, sort_by: str, target: str, basis: dict) -> str:
+def headline_line(parent_id: str, n_runs: int, sort_by: str, target: str, basis: dict,
+                  datasets: int = 1) -> str:
     """The line above the table: what sorted it (``basis``: :func:`~.leaderboard.ranked_by`)."""
     said = (ranking_line(basis) if is_validation(sort_by)
             else "a TEST figure, as asked: do not choose a model by it")
-    return (f"sweep {parent_id}: {n_runs} runs, sorted by {sort_by} "
+    within = (f" on {datasets} datasets, ranked within each (figures of different data do not "
+              f"compare)" if datasets > 1 else "")
+    return (f"sweep {parent_id}: {n_runs} runs{within}, sorted by {sort_by} "
             f"(target {target}, {said}); test: columns are reported, not used to choose")

@@ -117,7 +117,8 @@ def baseline_rows(summaries: Sequence[Mapping | None]) -> list[dict]:
     for s in summaries:
         if s is None:
             continue
-        if not any(all(_same(s[f], r[f]) for f in FIGURES) for r in rows):
+        if not any(all(_same(s[f], r[f]) for f in FIGURES) and s.get("dataset") == r.get("dataset")
+                   for r in rows):
             rows.append({"model": BASELINE, "needs_measured_error_online": True, **s})
     return rows
 
@@ -138,19 +139,28 @@ def rank(rows: Sequence[Mapping], sort_by: str = VAL_RMSE,
 
     By a validation figure, rows whose ``val_mode`` is not the deployed mode
     (old one_step runs: :func:`validation_mode`) come after every other: their
-    figure is not comparable, it ranks them only among themselves.
+    figure is not comparable, it ranks them only among themselves.  Rows of several datasets
+    (a ``dataset`` column) are ranked within each, the dataset of the best row first: figures
+    scored on different data do not compare.
     """
     table = pd.DataFrame(list(rows))
     if table.empty:
         return table
     if sort_by.startswith("test:") and sort_by[5:] in FIGURES:   # as the printed table heads it
         sort_by = sort_by[5:]
-    if sort_by not in table.columns:
-        raise KeyError(f"cannot sort by {sort_by!r}; columns are {list(table.columns)}")
+    # the figures a table ranks by (not its labels: run_id, model, settings ...)
+    sortable = [f for f in (*VAL_FIGURES, *FIGURES, "fit_time_s") if f in table.columns]
+    if sort_by not in sortable:
+        raise KeyError(f"cannot sort by {sort_by!r}; validation (ranks): "
+                       f"{', '.join(f for f in sortable if is_validation(f))}; test (reported, as "
+                       f"test:<name>): {', '.join(f for f in sortable if f in FIGURES)}; or fit_time_s")
     desc = descending_for(sort_by) if descending is None else bool(descending)
     table = table.sort_values(sort_by, ascending=not desc, na_position="last", kind="stable")
     if is_validation(sort_by) and "val_mode" in table.columns:
         table = table.sort_values("val_mode", key=lambda m: m != DEPLOYED_MODE, kind="stable")
+    if "dataset" in table.columns:
+        first = {d: i for i, d in enumerate(dict.fromkeys(table["dataset"]))}
+        table = table.sort_values("dataset", key=lambda d: d.map(first), kind="stable")
     return table.reset_index(drop=True)
 
 

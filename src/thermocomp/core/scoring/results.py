@@ -21,6 +21,7 @@ from ...base.tables import name_width
 from ..continuation import carried_text
 from ..metrics import (
     E_P95,
+    MAE,
     OTHER_BLOCKS,
     PERSISTENCE,
     RMS_AFTER,
@@ -58,8 +59,8 @@ HEADLINES = {
             (TEST_RSD_SD, "test", RSD_SD), (RMS_REDUCTION, "test", RMS_REDUCTION),
             (VAL_RMSE, VALIDATION, RMSE)),
     "mlflow": (("val.rmse", VALIDATION, RMSE), ("val.rsd_mean", VALIDATION, RSD_MEAN),
-               *((f"test.{f}", "test", f)
-                 for f in (RMSE, RSD_MEAN, RSD_SD, RMS_BEFORE, RMS_AFTER, E_P95_1H, E_P95_8H)),
+               *((f"test.{f}", "test", f)    # MAE beside RMSE: papers (fl_thermal's) report it
+                 for f in (RMSE, MAE, RSD_MEAN, RSD_SD, RMS_BEFORE, RMS_AFTER, E_P95_1H, E_P95_8H)),
                *((f"{b}.{RMSE}", b, RMSE) for b in (*OTHER_BLOCKS, PERSISTENCE))),
     "compare": ((VAL_RMSE, "deployed", RMSE), (VAL_RSD_MEAN, "deployed", RSD_MEAN),
                 (VAL_RSD_SD, "deployed", RSD_SD), *((f, "test", f) for f in _TEST_FIGURES)),
@@ -114,6 +115,7 @@ class Scores:
         return self.block.get(key)
 
     rmse = property(lambda self: self.get(RMSE))
+    mae = property(lambda self: self.get(MAE))
     rsd_mean = property(lambda self: self.get(RSD_MEAN))
     rsd_sd = property(lambda self: self.get(RSD_SD))
     e_p95 = property(lambda self: self.get(E_P95), doc="The E_P95 curves (before, after).")

@@ -54,7 +54,8 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     write_compare(out, table)  # compare_plot.csv, for `dvc plots show`
     for name in ("compare.csv", "compare.md", "compare.json"):
         retry_locked(client.log_artifact, parent_id, str(out / name), "compare")
-    print(headline_line(parent_id, len(table), str(opts.sort_by), str(opts.target), basis))
+    datasets = table["dataset"].nunique() if "dataset" in table.columns else 1
+    print(headline_line(parent_id, len(table), str(opts.sort_by), str(opts.target), basis, datasets))
     print(fit_width(shown, shutil.get_terminal_size().columns))   # a terminal's width
     say(f"comparison: {out / 'compare.md'}")
     return table
