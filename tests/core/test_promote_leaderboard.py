@@ -116,3 +116,17 @@ def test_the_markdown_table_rounds_a_column_with_a_missing_figure():
                           "n": [1, 2]})
     rows = to_markdown(table).splitlines()[2:]
     assert "| 3.02 " in rows[0] and "n/a" in rows[1] and "3.0209" not in "".join(rows)
+
+
+def test_compare_reports_the_test_mae_beside_the_rmse_and_can_sort_by_it():
+    """MAE (what fl_thermal's authors report) is a test column of compare and of the baseline
+    row, the mean over targets of each run's metrics.json ``mae``; it reports, never chooses."""
+    targets = _targets(scale_x=1.0, scale_z=3.0)
+    x, z, mean = summary(targets, "E_X"), summary(targets, "E_Z"), summary(targets)
+    assert x["mae"] == targets["E_X"]["test"]["mae"] and mean["mae"] == pytest.approx(
+        (x["mae"] + z["mae"]) / 2)
+    assert 0 < x["mae"] < x["rmse"]
+    rows = [{"run_id": "a", "val_rmse": 1.0, "mae": 2.0}, {"run_id": "b", "val_rmse": 2.0, "mae": 1.0}]
+    assert list(rank(rows, "test:mae")["run_id"]) == ["b", "a"]
+    assert "test:mae" in to_markdown(rank(rows)).splitlines()[0]
+    assert not is_validation("mae")
