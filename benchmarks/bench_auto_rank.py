@@ -54,6 +54,9 @@ campaigns: 4 folds, fewer than ``n_folds``, so the votes resample each fold's bl
 5411/5412, nothing tuned on them), same columns: year6_5411 2.01 -> 1.72; 1.61; ati 1.30 |
 year6_5412 3.76 -> 2.63; 3.02; ati 1.33 (the folds' votes alone, scored from the saved arrays:
 1.727 and 2.628).  CPU per record (user + sys s): 13.
+
+Fresh records, run once (2026-11-30, stop 57, seeds 5791/5792 chosen before running, nothing
+tuned on them), same columns: (results pending).
 """
 
 from __future__ import annotations
