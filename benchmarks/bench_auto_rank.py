@@ -54,6 +54,35 @@ campaigns: 4 folds, fewer than ``n_folds``, so the votes resample each fold's bl
 5411/5412, nothing tuned on them), same columns: year6_5411 2.01 -> 1.72; 1.61; ati 1.30 |
 year6_5412 3.76 -> 2.63; 3.02; ati 1.33 (the folds' votes alone, scored from the saved arrays:
 1.727 and 2.628).  CPU per record (user + sys s): 13.
+
+Fresh records, run once (2026-11-30, stop 57, seeds 5791/5792 chosen before running, nothing tuned
+on them), same columns: col5791 8.99 -> 9.13; 6.97; mlr 6.97 | col5792 7.67 -> 7.98; 9.54; lstm
+7.88 | mill5791 2.57 -> 2.57; 2.60; arx 2.29 | mill5792 2.07 -> 1.84; 1.85; mlr 1.85 | swiss5791
+1.01 -> 0.984; 2.27; hammerstein 0.979 | swiss5792 0.941 -> 0.941; 1.31; lagbank 0.924 | year5791
+0.961 -> 0.924; 1.97; ati 0.99 | year5792 1.03 -> 0.947; 2.47; ati 1.01. Auto better than MLR 7/8
+(the mills by 1.0 % and 0.4 %; col5791 31 % above MLR), within 10 % of the best family 6/8 (col5791
++31 %, mill5791 +12 %). col5791's loss: E_Z_mid 15.4 against MLR's 5.29 (0.82 on lagbank, its
+folds' MSE 1.04 1.14 0.13 0.11 0.92 of MLR's, its test MSE 10.9 of MLR's), E_Y 18.2 against 16.3
+(0.03 on arx, test 97); all of it in the test's second half, where the never-trained source Q3 runs
+(mean over the targets, first half auto 3.09, MLR 3.17; second half 12.2, 9.09; test rows within
+the leverage range of the train temperatures: 88 % of the first half, 24 % of the second). No fold
+holds Q3, so no weighting of the folds can see it: not a defect, no src change. CPU per record
+(user + sys s): col 36-37, swiss 21-23, year 39-43, mill 168-169.
+
+The earlier losses re-run on stop 57's code (2026-11-30, once each), auto; MLR before -> now:
+col1403 9.47; 7.40 -> 9.47; 7.40 | col1514 10.5; 10.4 -> 10.5; 10.4 | mill1514 2.22; 2.21 -> 2.22;
+2.21 | swiss303 (docs/models.md) 1.41; 1.37 -> 1.41; 1.37 | col5454 11.5; 13.8 -> 11.5; 13.8 |
+swiss5454 1.32; 1.46 -> 1.32; 1.46. The same to the digits printed: stop 56 changed ATI, a
+candidate on none of these records. Where auto stays behind MLR: col1403 E_Y (0.84 on lagbank,
+folds 0.33 0.07 1.09 0.40 0.64 of MLR's MSE, test 4.29; behind in both halves, 20.2 against 11.6
+before Q3; 80 % / 23 % of the halves' rows within range) and E_Z (0.98 on lstm, folds 0.64-1.00,
+test 1.04); col1514 E_Z_mid (hammerstein 0.41, lagbank 0.18, folds 0.08-2.01, tests 12-14x MLR's
+MSE; 6.71 against 3.09 in the Q3 half, 1.28 against 1.62 before it); mill1514 E_X (0.15 on arx,
+folds 0.37-2.69, test 1.74) and E_Y (0.11 on lstm, folds 0.12-2.41, test 1.08); swiss303 E_X (1.00
+on hammerstein, folds 0.24-0.50, test 1.32 of MLR's MSE). Validation noise, no defect found (no src
+change): the folds' votes, right on the folds, not borne out by the test (the column's test also
+extrapolates: 50-56 % of its rows within range). CPU (user + sys s): col 35-37, swiss 21-22, mill
+167.
 """
 
 from __future__ import annotations
