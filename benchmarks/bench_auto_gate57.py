@@ -34,10 +34,13 @@ record more than 2 % worse than shipped auto, no fewer within 10 % of the best f
 with the lowest mean test RMSE over the targets, known after the fact).
 
 Measured (stop 57, 2026-11-30, once, on the 14 records of ``/tmp/rank57-out``: stop 57's fresh batch
-and the earlier losses).  Checks held on every target (53): MLR's test predictions and the shipped
+and the earlier losses, six of them picked as losses, and the idea drawn from col5791: not fresh).
+Checks held on every target (53): MLR's test predictions and the shipped
 weights reproduced, the recomputed out-of-fold flags equal the saved ones on 100 % of the rows.
 Mean test RMSE over the targets (µm), auto / gated / gated_mlr / MLR / best family; share of test
-rows within range of the train rows (the same on every target of a record):
+rows within range of the train rows (the same on every target of a record; by halves of the test,
+auto's design: col5791 68 % / 21 %, col1403 73 % / 22 %, col1514 47 % / 22 %, below
+``bench_auto_rank.py``'s forensics, 88 % / 24 % and 80 % / 23 %, taken on another design):
 col1403 9.47 / 8.48 / 7.92 / 7.40 / mlr 7.40, 48 % | col1514 10.5 / 10.2 / 10.5 / 10.4 / arx 9.46,
 35 % | col5454 11.5 / **13.7** / 13.9 / 13.8 / lstm 10.2, 41 % | col5791 9.13 / 7.49 / 6.95 / 6.97 /
 mlr 6.97, 44 % | col5792 7.98 / 8.11 / 9.64 / 9.54 / lstm 7.88, 40 % | mill1514 2.220 / 2.201 /
