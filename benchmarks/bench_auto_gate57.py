@@ -40,7 +40,7 @@ weights reproduced, the recomputed out-of-fold flags equal the saved ones on 100
 Mean test RMSE over the targets (µm), auto / gated / gated_mlr / MLR / best family; share of test
 rows within range of the train rows (the same on every target of a record; by halves of the test,
 auto's design: col5791 68 % / 21 %, col1403 73 % / 22 %, col1514 47 % / 22 %, below
-``bench_auto_rank.py``'s forensics, 88 % / 24 % and 80 % / 23 %, taken on another design):
+``bench_auto_rank.py``'s forensics, 88 % / 24 % and 80 % / 23 %, computed otherwise, not traced):
 col1403 9.47 / 8.48 / 7.92 / 7.40 / mlr 7.40, 48 % | col1514 10.5 / 10.2 / 10.5 / 10.4 / arx 9.46,
 35 % | col5454 11.5 / **13.7** / 13.9 / 13.8 / lstm 10.2, 41 % | col5791 9.13 / 7.49 / 6.95 / 6.97 /
 mlr 6.97, 44 % | col5792 7.98 / 8.11 / 9.64 / 9.54 / lstm 7.88, 40 % | mill1514 2.220 / 2.201 /
