@@ -19,11 +19,11 @@ import pandas as pd
 import pytest
 
 from conftest import refused
-from test_export import EVERY_EXCURSION, _compose, needs_cc
-from test_export_auto57 import TOLERANCE_UM, _proved
+from test_export import _compose, needs_cc
+from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import state_space
 from thermocomp.core.models.ati import ATIRegressor
-from thermocomp.shell.builders import build_compensator, deploy_stream
+from thermocomp.shell.builders import build_compensator
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
@@ -32,7 +32,6 @@ CAMPAIGNS = (("K01", "train", 14.0), ("K02", "train", 16.0), ("K03", "train", 18
              ("K04", "train", 20.0), ("K05", "train", 27.0), ("K06", "train", 29.0),
              ("K07", "train", 31.0), ("K08", "train", 33.0), ("K09", "test", 15.0),
              ("K10", "test", 32.0))
-PUSH_C = 30.0
 
 
 def _levels(root, rows: int = 50, ambient_column: bool = True):
@@ -63,18 +62,7 @@ def data(tmp_path_factory):
 
 
 def _deployed(data, *overrides, ati=("ati=cmeans", "ati.estimator.n_intervals=2")):
-    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false", EVERY_EXCURSION,
-                   *ati, *overrides)
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    comp = build_compensator(cfg, ds=ds).fit(train)
-    stream = deploy_stream(cfg, comp, train)
-    tests = []
-    for c in test_ids:
-        df = ds.campaigns[c].reset_index(drop=True).copy()
-        df.loc[len(df) // 2:, "T_a"] += PUSH_C
-        tests.append(df)
-    return stream, tests, comp
+    return deployed(data, *ati, *overrides, pushed="T_a")
 
 
 def _ati(est):

@@ -55,11 +55,11 @@ def data(tmp_path_factory) -> dict:
     return {"machine": _make_dataset(root / "machine"), "spindle": _spindle_dataset(root / "spindle")}
 
 
-def _deployed(data, dataset: str, *overrides):
-    """``(plain stream of model=auto as replay deploys it, test campaigns with the first input
-    pushed out of the envelope half-way, the fitted compensator)``."""
-    cfg = _compose("model=auto", f"data.path={data[dataset]}", "track=false",
-                   "monitor.adaptive=false", EVERY_EXCURSION, *overrides)
+def deployed(path, *overrides, pushed: str | None = None):
+    """``(plain stream as replay deploys it, test campaigns with ``pushed`` (the stream's first
+    input by default) pushed out of the envelope half-way, the fitted compensator)``."""
+    cfg = _compose(f"data.path={path}", "track=false", "monitor.adaptive=false", EVERY_EXCURSION,
+                   *overrides)
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
     comp = build_compensator(cfg, ds=ds).fit(train)
@@ -67,9 +67,14 @@ def _deployed(data, dataset: str, *overrides):
     tests = []
     for c in test_ids:
         df = ds.campaigns[c].reset_index(drop=True).copy()
-        df.loc[len(df) // 2:, stream.columns_[0]] += PUSH_C
+        df.loc[len(df) // 2:, pushed or stream.columns_[0]] += PUSH_C
         tests.append(df)
     return stream, tests, comp
+
+
+def _deployed(data, dataset: str, *overrides):
+    """:func:`deployed` of ``model=auto`` on one of the module's datasets."""
+    return deployed(data[dataset], "model=auto", *overrides)
 
 
 def _proved(stream, tests, folder) -> float:
