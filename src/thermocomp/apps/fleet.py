@@ -55,6 +55,30 @@ def groups(manifest: pd.DataFrame, column: str, path=None) -> dict[str, list[str
     return out
 
 
+def require_splits(manifest: pd.DataFrame, members: dict[str, list[str]], column: str,
+                   path=None) -> None:
+    """Every group has a train and a test campaign, checked on the manifest before any group
+    is read: a machine without one was refused only when its turn came, after the others were
+    fitted, as "the dataset has no 'train' campaign" (the dataset had; the machine had not).
+
+    Raises
+    ------
+    ContractError
+        Naming the first such group, its campaigns with their splits, and the fix.
+    """
+    split = dict(zip(manifest.index.astype(str), manifest["split"].astype(str)))  # ids as groups() gives them
+    for group, ids in members.items():
+        lacking = [s for s in ("train", "test") if s not in {split[c] for c in ids}]
+        if lacking:
+            have = ", ".join(f"{c} {split[c]}" for c in ids[:5]) + (" ..." if len(ids) > 5 else "")
+            raise ContractError(
+                f"data.group_by={column}: {column} {group!r} has no {' and no '.join(map(repr, lacking))} "
+                f"campaign ({len(ids)} campaign(s): {have}); each {column} is fitted on its own "
+                f"train campaigns and scored on its own test campaigns: give it both (`split` in "
+                f"the manifest, data.split_overrides) or leave its campaigns out of the folder",
+                file=path, column="split")
+
+
 def machine_rows(group: str, targets: dict) -> list[dict]:
     """One row per target of one group from its ``metrics.json``-like ``targets`` block."""
     rows = []

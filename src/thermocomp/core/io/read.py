@@ -437,6 +437,16 @@ def _name(path) -> str:
     return record_id(path) if path.is_file() else path.name
 
 
+def folder_splits(path: Path, opts: ReadOptions) -> pd.DataFrame:
+    """A dataset folder's manifest with every campaign's split as a read of it assigns them
+    (the manifest, ``data.split_overrides``, the last train campaigns held out by
+    ``data.test_fraction``): a group of the folder holds out what the whole folder does."""
+    manifest = read_manifest(path, opts)
+    if shares(opts):       # before any is read
+        manifest = hold_out(manifest, opts, path, campaign_starts(path, manifest, opts))
+    return manifest
+
+
 def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.DataFrame, Iterator]:
     """The folder campaign files are relative to, the manifest and the campaigns read: a
     one-file record's, cut chronologically (:mod:`.record`), or a dataset folder's (or of
@@ -464,9 +474,7 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
         del table
         ids = list(manifest.index if campaigns is None else campaigns)
         return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
-    manifest = read_manifest(path, opts)
-    if shares(opts):       # before any is read: a group of the folder holds out as the whole
-        manifest = hold_out(manifest, opts, path, campaign_starts(path, manifest, opts))
+    manifest = folder_splits(path, opts)
     if not (path / MANIFEST).is_file():      # said once per read, not per look at the folder
         logger.info(f"{path.name}: no {MANIFEST}; its {len(manifest)} campaign files read as "
                     "train campaigns in name order (data.test_fraction holds the last out)")

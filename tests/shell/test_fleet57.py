@@ -1,0 +1,60 @@
+"""A fleet as a lab has it (vol57): a machine of the folder without a train (or test) campaign
+is refused before any machine is fitted, naming that machine, not "the dataset"."""
+
+from __future__ import annotations
+
+import pandas as pd
+import pytest
+
+from conftest import LIGHT, refused
+from thermocomp.apps.sim.fleet import Fleet
+
+TINY = dict(n_machines=3, days=3, test_days=1, n_sensors=5, sample_period_s=600.0, n_jobs=1, seed=5)
+
+
+@pytest.fixture(scope="module")
+def fleet(tmp_path_factory):
+    path = tmp_path_factory.mktemp("fleet57") / "fleet"
+    Fleet(**TINY).write(path)
+    return path
+
+
+def _without(path, machine: str, split: str):
+    """``path``'s manifest less ``machine``'s campaigns of ``split`` (the files stay)."""
+    manifest = pd.read_csv(path / "campaigns.csv")
+    keep = ~((manifest["machine"] == machine) & (manifest["split"] == split))
+    manifest[keep].to_csv(path / "campaigns.csv", index=False)
+
+
+@pytest.mark.parametrize("split", ["train", "test"])
+def test_a_machine_without_a_split_is_named_before_any_machine_is_fitted(fleet, tmp_path, capsys,
+                                                                       split):
+    import shutil
+
+    path = shutil.copytree(fleet, tmp_path / "fleet")
+    _without(path, "M002", split)
+    out = tmp_path / "out"
+    line = refused(["run", f"data.path={path}", "data.group_by=machine", "track=false",
+                    "eval.validation=false", *LIGHT, f"out={out}"], capsys,
+                   "machine 'M002'", f"no '{split}' campaign", "campaigns.csv")
+    assert "M002-D0" in line                       # its campaigns, with their splits
+    assert not out.exists()
+
+
+def test_a_fraction_held_out_of_the_whole_folder_is_what_each_machine_is_checked_on(fleet, tmp_path):
+    """``data.test_fraction`` on a manifest without test campaigns: the whole folder's last
+    campaigns are held out (here the last day of each machine), so every machine has both."""
+    import json
+    import shutil
+
+    from thermocomp.shell.cli import main
+
+    path = shutil.copytree(fleet, tmp_path / "fleet")
+    manifest = pd.read_csv(path / "campaigns.csv")
+    manifest["split"] = "train"
+    manifest.to_csv(path / "campaigns.csv", index=False)
+    out = tmp_path / "out"
+    assert main(["run", f"data.path={path}", "data.group_by=machine", "data.test_fraction=0.34",
+                 "data.reference=first_sample", "track=false", "eval.validation=false", *LIGHT,
+                 f"out={out}"]) == 0
+    assert sorted(json.loads((out / "metrics.json").read_text())["groups"]) == ["M001", "M002", "M003"]
