@@ -58,3 +58,22 @@ def test_a_fraction_held_out_of_the_whole_folder_is_what_each_machine_is_checked
                  "data.reference=first_sample", "track=false", "eval.validation=false", *LIGHT,
                  f"out={out}"]) == 0
     assert sorted(json.loads((out / "metrics.json").read_text())["groups"]) == ["M001", "M002", "M003"]
+
+
+def test_promote_of_a_fleets_run_says_it_is_one_and_where_its_models_are(fleet, tmp_path, capsys):
+    """A fleet's run logs no model.pkl (one model per machine, in its out): promote named an
+    MLflow download failure and told to "promote a `run` run", which it was."""
+    import mlflow
+
+    from thermocomp.shell.cli import main
+
+    uri = f"sqlite:///{tmp_path / 'mlflow.db'}"
+    out = tmp_path / "out"
+    assert main(["run", f"data.path={fleet}", "data.group_by=machine", "data.reference=first_sample",
+                 f"tracking_uri={uri}", "eval.validation=false", *LIGHT, f"out={out}"]) == 0
+    client = mlflow.tracking.MlflowClient(uri)
+    (run,) = client.search_runs([e.experiment_id for e in client.search_experiments()])
+    assert (out / "models" / "M001.pkl").is_file()
+    refused(["promote", f"data.path={fleet}", f"tracking_uri={uri}",
+             f"promote.run_id={run.info.run_id}", f"out={tmp_path / 'p'}"], capsys,
+            "is a fleet's run (data.group_by=machine)", "models/<machine>.pkl", "replay.model=")
