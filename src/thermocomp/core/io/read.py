@@ -442,6 +442,13 @@ def folder_splits(path: Path, opts: ReadOptions) -> pd.DataFrame:
     (the manifest, ``data.split_overrides``, the last train campaigns held out by
     ``data.test_fraction``): a group of the folder holds out what the whole folder does."""
     manifest = read_manifest(path, opts)
+    if shares(opts) and len(manifest) == 1 and not (path / MANIFEST).is_file():
+        # a lab's one export put in a folder: its one file is one campaign, nothing to hold out
+        # (the refusal named a campaigns.csv that is not there and said to lower the fraction)
+        only = path / str(manifest["file"].iloc[0])
+        raise ContractError(f"a folder whose one file ({only.name}) is its one campaign has none to "
+                            f"hold out for data.test_fraction / data.val_fraction: give the file, "
+                            f"data.path={only} (one record: its last share is held out)", file=path)
     if shares(opts):       # before any is read
         manifest = hold_out(manifest, opts, path, campaign_starts(path, manifest, opts))
     return manifest
