@@ -86,3 +86,28 @@ def test_the_labs_own_csv_export_calibrates_to_the_same_parameters(raw, tmp_path
     for f in (tmp_path / "clean_out" / "parameters").glob("*.parquet"):
         pd.testing.assert_frame_equal(pd.read_parquet(f),
                                       pd.read_parquet(tmp_path / "lab_out" / "parameters" / f.name))
+
+
+def test_a_pose_not_measured_in_one_campaign_is_its_columns_left_empty(raw, tmp_path, capsys):
+    """The validation week without one pose: its columns dropped are refused naming the pose
+    and the fix, empty columns (the fix) calibrate that week from the other poses; the training
+    week is identified as before.  The empty columns were refused as a logger's unused
+    channels, whose fix (data.roles.ignore) was then refused as a pose without columns."""
+    pose = json.loads((raw / "volumetric.json").read_text())["poses"][-1]["name"]
+    data = _copy(raw, tmp_path / "dropped")
+    path = data / "validation_week.parquet"
+    df = pd.read_parquet(path)
+    gone = [c for c in df.columns if c.startswith(f"E_{pose}_B")]
+    df.drop(columns=gone).to_parquet(path)
+    refused(["calibrate", f"data.path={data}", f"out={tmp_path / 'o'}", "track=false"], capsys,
+            f"pose {pose}", "keeps its columns with empty cells")
+    data = _copy(raw, tmp_path / "empty")
+    df.loc[:, gone] = np.nan
+    df.to_parquet(data / "validation_week.parquet")
+    for name, source in (("clean", raw), ("empty", data)):
+        assert main(["calibrate", f"data.path={source}", f"out={tmp_path / name}_out",
+                     "track=false"]) == 0
+    clean, empty = (tmp_path / f"{n}_out" / "parameters" for n in ("clean", "empty"))
+    pd.testing.assert_frame_equal(pd.read_parquet(clean / "train_week.parquet"),
+                                  pd.read_parquet(empty / "train_week.parquet"))
+    assert len(pd.read_parquet(empty / "validation_week.parquet")) == len(df)
