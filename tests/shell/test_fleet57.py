@@ -77,3 +77,19 @@ def test_promote_of_a_fleets_run_says_it_is_one_and_where_its_models_are(fleet, 
     refused(["promote", f"data.path={fleet}", f"tracking_uri={uri}",
              f"promote.run_id={run.info.run_id}", f"out={tmp_path / 'p'}"], capsys,
             "is a fleet's run (data.group_by=machine)", "models/<machine>.pkl", "replay.model=")
+
+
+def test_the_fleet_table_stays_aligned_under_a_labs_long_target_names():
+    """``E_Displacement_X`` (a lab's header through init) pushed every row 8 columns right of
+    the header; the first column is now as wide as the longest target."""
+    from thermocomp.apps.fleet import TEST_RMS_AFTER, TEST_RMS_BEFORE, TEST_RMSE, table_text
+
+    stats = {"mean": 1.0, "median": 1.0, "p95": 1.0, "max": 1.0}
+    row = {"groups": 3, TEST_RMSE: stats, TEST_RMS_BEFORE: stats, TEST_RMS_AFTER: stats,
+           "worst_group": "M001"}
+    metrics = {"model": "mlr", "mode": "simulation", "dataset": "lab", "group_by": "machine",
+               "groups": {"M001": {}}, "fleet": {"E_Displacement_X": row, "E_Z": row}}
+    lines = table_text(metrics).splitlines()
+    end = lines[1].index("groups") + len("groups")
+    for line in lines[3:]:
+        assert line[end - 1] == "3" and line[end] == " ", line

@@ -177,11 +177,13 @@ def table_text(metrics: dict) -> str:
     """Per target: groups, test RMSE mean / median / p95 / max, RMS before -> after (means)."""
     head = (f"model={metrics['model']}  mode={metrics['mode']}  dataset={metrics['dataset']}  "
             f"group_by={metrics['group_by']} ({len(metrics['groups'])} groups)")
-    lines = [head, f"{'target':8} {'groups':>6}  test RMSE mean  median    p95    max   "
-                   f"RMS before -> after (mean)   worst   (µm)", "-" * 96]
+    # as wide as the longest target: a lab's E_Displacement_X pushed its row off the header
+    w = max([8, *map(len, metrics["fleet"])])
+    lines = [head, f"{'target':{w}} {'groups':>6}  test RMSE mean  median    p95    max   "
+                   f"RMS before -> after (mean)   worst   (µm)", "-" * (88 + w)]
     for t, s in metrics["fleet"].items():
         rmse, before, after = s[TEST_RMSE], s[TEST_RMS_BEFORE], s[TEST_RMS_AFTER]
-        lines.append(f"{t:8} {s['groups']:>6}  {rmse['mean']:14.2f} {rmse['median']:7.2f} "
+        lines.append(f"{t:{w}} {s['groups']:>6}  {rmse['mean']:14.2f} {rmse['median']:7.2f} "
                      f"{rmse['p95']:6.2f} {rmse['max']:6.2f}   {before['mean']:10.2f} -> "
                      f"{after['mean']:6.2f}            {s['worst_group']}")
     chosen = {t: s["chosen"] for t, s in metrics["fleet"].items() if s.get("chosen")}
