@@ -93,3 +93,24 @@ def test_the_fleet_table_stays_aligned_under_a_labs_long_target_names():
     end = lines[1].index("groups") + len("groups")
     for line in lines[3:]:
         assert line[end - 1] == "3" and line[end] == " ", line
+
+
+def test_init_on_a_fleet_folder_names_the_machine_column_and_group_by(fleet, capsys, tmp_path):
+    """init wrote a config that pools every machine into one model and said nothing of the
+    manifest's machine column; a folder whose manifest groups nothing says nothing more."""
+    from thermocomp.shell.cli import main
+
+    assert main(["init", str(fleet), f"out={tmp_path / 'i1'}"]) == 0
+    out = capsys.readouterr().out
+    assert "manifest column 'machine': 3 groups of campaigns (M001, M002, M003)" in out
+    assert "data.group_by=machine" in out.strip().splitlines()[-1]
+    single = tmp_path / "one"
+    single.mkdir()
+    manifest = pd.read_csv(fleet / "campaigns.csv")
+    manifest = manifest[manifest["machine"] == "M001"]
+    manifest.to_csv(single / "campaigns.csv", index=False)
+    import shutil
+
+    shutil.copytree(fleet / "machine=M001", single / "machine=M001")
+    assert main(["init", str(single), f"out={tmp_path / 'i2'}"]) == 0
+    assert "group_by" not in capsys.readouterr().out
