@@ -55,6 +55,30 @@ def groups(manifest: pd.DataFrame, column: str, path=None) -> dict[str, list[str
     return out
 
 
+def require_splits(manifest: pd.DataFrame, members: dict[str, list[str]], column: str,
+                   path=None) -> None:
+    """Every group has a train and a test campaign, checked on the manifest before any group
+    is read: a machine without one was refused only when its turn came, after the others were
+    fitted, as "the dataset has no 'train' campaign" (the dataset had; the machine had not).
+
+    Raises
+    ------
+    ContractError
+        Naming the first such group, its campaigns with their splits, and the fix.
+    """
+    split = dict(zip(manifest.index.astype(str), manifest["split"].astype(str)))  # ids as groups() gives them
+    for group, ids in members.items():
+        lacking = [s for s in ("train", "test") if s not in {split[c] for c in ids}]
+        if lacking:
+            have = ", ".join(f"{c} {split[c]}" for c in ids[:5]) + (" ..." if len(ids) > 5 else "")
+            raise ContractError(
+                f"data.group_by={column}: {column} {group!r} has no {' and no '.join(map(repr, lacking))} "
+                f"campaign ({len(ids)} campaign(s): {have}); each {column} is fitted on its own "
+                f"train campaigns and scored on its own test campaigns: give it both (`split` in "
+                f"the manifest, data.split_overrides) or leave its campaigns out of the folder",
+                file=path, column="split")
+
+
 def machine_rows(group: str, targets: dict) -> list[dict]:
     """One row per target of one group from its ``metrics.json``-like ``targets`` block."""
     rows = []
@@ -153,11 +177,13 @@ def table_text(metrics: dict) -> str:
     """Per target: groups, test RMSE mean / median / p95 / max, RMS before -> after (means)."""
     head = (f"model={metrics['model']}  mode={metrics['mode']}  dataset={metrics['dataset']}  "
             f"group_by={metrics['group_by']} ({len(metrics['groups'])} groups)")
-    lines = [head, f"{'target':8} {'groups':>6}  test RMSE mean  median    p95    max   "
-                   f"RMS before -> after (mean)   worst   (µm)", "-" * 96]
+    # as wide as the longest target: a lab's E_Displacement_X pushed its row off the header
+    w = max([8, *map(len, metrics["fleet"])])
+    lines = [head, f"{'target':{w}} {'groups':>6}  test RMSE mean  median    p95    max   "
+                   f"RMS before -> after (mean)   worst   (µm)", "-" * (88 + w)]
     for t, s in metrics["fleet"].items():
         rmse, before, after = s[TEST_RMSE], s[TEST_RMS_BEFORE], s[TEST_RMS_AFTER]
-        lines.append(f"{t:8} {s['groups']:>6}  {rmse['mean']:14.2f} {rmse['median']:7.2f} "
+        lines.append(f"{t:{w}} {s['groups']:>6}  {rmse['mean']:14.2f} {rmse['median']:7.2f} "
                      f"{rmse['p95']:6.2f} {rmse['max']:6.2f}   {before['mean']:10.2f} -> "
                      f"{after['mean']:6.2f}            {s['worst_group']}")
     chosen = {t: s["chosen"] for t, s in metrics["fleet"].items() if s.get("chosen")}

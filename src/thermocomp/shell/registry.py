@@ -70,6 +70,26 @@ def best_run(cfg: DictConfig, client, uri: str, dataset_hash: str, data_path) ->
     return str(table["run_id"].iloc[0]), basis
 
 
+def _refuse_fleet_run(run_id: str, uri: str) -> None:
+    """A fleet's run (``data.group_by``) logs no model.pkl: its models are one per group in its
+    ``out``'s ``models/``.  Said as such, not as "promote a `run` run" (it is one)."""
+    import mlflow
+
+    try:
+        params = mlflow.tracking.MlflowClient(uri).get_run(run_id).data.params
+    except Exception:       # the run itself unreadable: the caller's message says enough
+        return
+    column = params.get("data.group_by")
+    if column in (None, "None", "null", ""):
+        return
+    raise ConfigError(
+        f"run {run_id} is a fleet's run (data.group_by={column}): it fitted one model per "
+        f"{column}, saved as models/<{column}>.pkl in its out and not logged to MLflow, so it has "
+        "no model to promote; use one of them as a file (replay.model=, export.model=, "
+        f"monitor.model=), or promote a run of that {column}'s campaigns alone (a folder of "
+        "their files and manifest rows, run without data.group_by)")
+
+
 def load_run_model(run_id: str, uri: str) -> tuple[Compensator, str]:
     """The run's compensator and the SHA-256 of its pickle; the signature is checked before
     anything is unpickled (a tracking server may not be trusted)."""
@@ -80,6 +100,7 @@ def load_run_model(run_id: str, uri: str) -> tuple[Compensator, str]:
             path = mlflow.artifacts.download_artifacts(run_id=run_id, artifact_path="model.pkl",
                                                        dst_path=tmp, tracking_uri=uri)
         except Exception as exc:
+            _refuse_fleet_run(run_id, uri)
             raise ConfigError(f"run {run_id} has no model.pkl artifact (promote a `run` or "
                               f"`train` run): {' '.join(str(exc).split())[:200]}") from None
         try:

@@ -124,9 +124,13 @@ def check_reach(model: KinematicModel, array: BallArray, poses: list[Pose],
         out = (axes < lo - margin_mm) | (axes > hi + margin_mm)
         if out.any():
             k, a = np.argwhere(out)[0]
+            # a ball hundreds of travels away is a unit, not a place: a lab's µm (or a bar in µm)
+            far = abs(axes[k, a] - 0.5 * (lo[a] + hi[a])) > 100 * max(hi - lo)
+            unit = (" (volumetric.json is in mm: the poses' centres, tool or artefact.length_mm "
+                    "in µm? divide them by 1000)") if far else ""
             raise ValueError(f"pose {pose.name}: ball {k + 1} at {AXES[a]}={balls[k, a]:.6g} mm puts the "
                              f"{AXES[a]} axis at {axes[k, a]:.6g} mm (tool offset {model.tool[a]:g}), "
-                             f"outside its travel {lo[a]:g}..{hi[a]:g} mm")
+                             f"outside its travel {lo[a]:g}..{hi[a]:g} mm{unit}")
 
 
 def pairs(n_balls: int) -> list[tuple[int, int]]:
@@ -179,8 +183,12 @@ class Setup:
 
 POINT = numbers(-math.inf, length=3)
 UNCERTAINTY = number(0.0, 1000.0)    # µm: beyond a millimetre the distances say nothing
-TRAVEL = Rule(lambda v: numbers(-math.inf, length=2)(v) and v[0] < v[1],
-              "a travel [min, max] in mm, min < max")
+# The longest machine tools travel tens of metres: a travel of kilometres is a set-up written in
+# µm, consistent within itself, so it passed and scaled every angular error by 1/1000 (µm/m)
+MAX_TRAVEL_MM = 100_000.0
+TRAVEL = Rule(lambda v: numbers(-math.inf, length=2)(v) and 0 < v[1] - v[0] <= MAX_TRAVEL_MM,
+              f"a travel [min, max] in mm, min < max, at most {MAX_TRAVEL_MM:,.0f} mm apart (100 m: "
+              "a set-up in µm? volumetric.json is in mm)")
 # A 1D ball bar: n (n - 1) / 2 distances per pose are identified at once; 100 balls is already
 # 4950 per pose (a typo of 10^9 balls exhausted the memory instead of being refused)
 MAX_BALLS = 100

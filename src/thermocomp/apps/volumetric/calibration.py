@@ -120,6 +120,11 @@ def _identify(cal, ds, distances, skipped, excluded=()):
         try:
             out[cid] = cal.identify(D)
         except CycleError as exc:
+            if exc.missing == exc.total and not excluded:      # a row of temperatures alone
+                raise ContractError(f"campaign {cid}: 0 of the {exc.total} distances measured in "
+                                    "this cycle (every E_ cell of the row empty): a cycle not "
+                                    "measured identifies nothing; drop the row", file=ds.file_path(cid),
+                                    row=skipped[cid] + exc.cycle + 1) from None
             raise ContractError(f"campaign {cid}: {exc.total - exc.missing} of the {exc.total} distances "
                                 "measured in this cycle (the others empty"
                                 f"{' or excluded' if excluded else ''}), with any outliers left out, "

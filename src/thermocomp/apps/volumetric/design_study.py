@@ -84,6 +84,21 @@ def design_setup(data, folder) -> tuple[object, str]:
     return None, "kinematic model defaults"
 
 
+def own_poses_line(setup) -> str | None:
+    """What of a dataset's set-up the study does not take: its poses (the strategies are the
+    position sets S1, S2, S3 at ``design.x_centres``) and its ball count and angle (those of
+    ``design.studies``).  A lab that brought its own pose set read its set-up's name in the
+    log and took the table for a study of its poses; ``None`` without a set-up."""
+    if setup is None:
+        return None
+    names = [p.name for p in setup.poses]
+    shown = ", ".join(names[:4]) + (", ..." if len(names) > 4 else "")
+    return (f"design: volumetric.json's own {len(names)} poses ({shown}), {setup.array.n_balls} "
+            f"balls and {setup.array.misalignment_deg:g}° are not studied: the strategies are "
+            "design.studies' (position sets S1, S2, S3 at design.x_centres); its machine, bar "
+            "length and uncertainties are")
+
+
 def checked_study(d: dict, setup, prior: dict | None, seed: int
                   ) -> tuple[CalibrationDesignStudy, list]:
     """(the study of the settings ``d``, the strategies it runs); a bad setting is a

@@ -50,6 +50,8 @@ class CycleError(ValueError):
     """A cycle whose measured distances cannot identify the parameters (``cycle`` 0-based)."""
 
     def __init__(self, cycle: int, missing: int, total: int, why: str = ""):
+        if "cannot identify the parameters" in why:     # says nothing more than the message
+            why = ""
         self.cycle, self.missing, self.total, self.why = cycle, missing, total, why
         super().__init__(f"cycle {cycle + 1}: the {total - missing} distances measured of {total} "
                          f"cannot identify the parameters{f' ({why})' if why else ''}")

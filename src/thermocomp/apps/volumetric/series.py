@@ -56,7 +56,9 @@ def check_columns(ds: Dataset, setup: Setup) -> None:
             missing = [c for c in cols if c not in have]
             if len(missing) == len(cols):
                 raise ContractError(f"pose {pose.name} (declared in {SETUP_FILE}) has no distance "
-                                    f"column (E_{pose.name}_B<i>_B<j>)", file=file)
+                                    f"column (E_{pose.name}_B<i>_B<j>): a pose not measured in "
+                                    f"this campaign keeps its columns with empty cells; one never "
+                                    f"measured is left out of {SETUP_FILE}'s poses", file=file)
             if missing:
                 m = COLUMN.match(missing[0])
                 raise ContractError(f"pose {pose.name}: the distance of balls {int(m['i'])} and "

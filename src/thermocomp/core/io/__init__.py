@@ -11,6 +11,7 @@ from .read import (
     INGEST_REPORT,
     ReadOptions,
     check_separate,
+    folder_splits,
     ingest,
     load_interim,
     read_campaign,
@@ -19,6 +20,7 @@ from .read import (
 )
 
 __all__ = [
-    "INGEST_REPORT", "ContractError", "Dataset", "ReadOptions", "check_separate", "ingest", "load_interim",
+    "INGEST_REPORT", "ContractError", "Dataset", "ReadOptions", "check_separate", "folder_splits", "ingest",
+    "load_interim",
     "match_columns", "read_campaign", "read_dataset", "read_manifest", "role", "write_dataset",
 ]

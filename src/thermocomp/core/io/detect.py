@@ -291,8 +291,33 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     for cid in ds.ids():
         lines.append(f"campaign {cid}: {ds.manifest.loc[cid, 'split']}, "
                      f"{report['campaigns'][cid]['rows']} rows")
-    return lines + [f"data config written to {path}",
-                    f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"]
+    groups = group_columns(ds.manifest)
+    said = [f"manifest column '{c}': {len(labels)} groups of campaigns ({', '.join(labels[:3])}"
+            f"{', ...' if len(labels) > 3 else ''}); `run data.group_by={c}` fits and scores one "
+            "model per value" for c, labels in groups.items()]
+    nxt = f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"
+    if groups:
+        nxt += f" (or with data.group_by={next(iter(groups))}: one model per value)"
+    return lines + [f"data config written to {path}", *said, nxt]
+
+
+# manifest columns that are the contract's or say one campaign, not a group of them
+NOT_GROUPS = {"campaign", "file", "split", "start", "notes", "continues"}
+
+
+def group_columns(manifest: pd.DataFrame) -> dict[str, list[str]]:
+    """``{column: its labels}`` of the manifest columns of text labels that group the campaigns
+    (a fleet's ``machine``: at least two labels, each on two campaigns or more): init wrote a
+    config that pools every machine into one model and said nothing of the column."""
+    out = {}
+    for column in manifest.columns:
+        values = manifest[column]
+        if str(column) in NOT_GROUPS or pd.api.types.is_numeric_dtype(values) or values.isna().any():
+            continue
+        counts = values.astype(str).value_counts(sort=False)
+        if len(counts) >= 2 and counts.min() >= 2:
+            out[str(column)] = list(counts.index)
+    return out
 
 
 def _table_start(sample: Path, opts, unit: str = "line") -> str:

@@ -437,6 +437,23 @@ def _name(path) -> str:
     return record_id(path) if path.is_file() else path.name
 
 
+def folder_splits(path: Path, opts: ReadOptions) -> pd.DataFrame:
+    """A dataset folder's manifest with every campaign's split as a read of it assigns them
+    (the manifest, ``data.split_overrides``, the last train campaigns held out by
+    ``data.test_fraction``): a group of the folder holds out what the whole folder does."""
+    manifest = read_manifest(path, opts)
+    if shares(opts) and len(manifest) == 1 and not (path / MANIFEST).is_file():
+        # a lab's one export put in a folder: its one file is one campaign, nothing to hold out
+        # (the refusal named a campaigns.csv that is not there and said to lower the fraction)
+        only = path / str(manifest["file"].iloc[0])
+        raise ContractError(f"a folder whose one file ({only.name}) is its one campaign has none to "
+                            f"hold out for data.test_fraction / data.val_fraction: give the file, "
+                            f"data.path={only} (one record: its last share is held out)", file=path)
+    if shares(opts):       # before any is read
+        manifest = hold_out(manifest, opts, path, campaign_starts(path, manifest, opts))
+    return manifest
+
+
 def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.DataFrame, Iterator]:
     """The folder campaign files are relative to, the manifest and the campaigns read: a
     one-file record's, cut chronologically (:mod:`.record`), or a dataset folder's (or of
@@ -464,9 +481,7 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
         del table
         ids = list(manifest.index if campaigns is None else campaigns)
         return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
-    manifest = read_manifest(path, opts)
-    if shares(opts):       # before any is read: a group of the folder holds out as the whole
-        manifest = hold_out(manifest, opts, path, campaign_starts(path, manifest, opts))
+    manifest = folder_splits(path, opts)
     if not (path / MANIFEST).is_file():      # said once per read, not per look at the folder
         logger.info(f"{path.name}: no {MANIFEST}; its {len(manifest)} campaign files read as "
                     "train campaigns in name order (data.test_fraction holds the last out)")

@@ -292,7 +292,11 @@ def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> 
     ``missing="keep_errors"`` the ``E_`` columns' missing values are left as they are (a
     volumetric dataset's distance not measured in a cycle) and counted under ``missing``.
     """
-    _refuse_empty(columns, path)
+    # a distance column empty over a whole campaign is a pose not measured in it: refused as a
+    # logger's unused channel, its fix (data.roles.ignore) then failed as a declared pose
+    # without columns, so a campaign could not lack a pose the others have
+    keep_errors = opts.missing == "keep_errors"
+    _refuse_empty({n: c for n, c in columns.items() if not (keep_errors and role(n) == "E")}, path)
     gaps = {}  # column -> sorted positions of its missing values
     kept = {}
     for name in columns:

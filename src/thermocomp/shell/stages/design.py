@@ -13,7 +13,13 @@ from pathlib import Path
 
 from omegaconf import DictConfig, OmegaConf
 
-from ...apps.volumetric.design_study import checked_study, design_report, design_setup, summary_lines
+from ...apps.volumetric.design_study import (
+    checked_study,
+    design_report,
+    design_setup,
+    own_poses_line,
+    summary_lines,
+)
 from ...base.files import staged_outputs, write_json
 from ...base.log import say
 from ...base.paths import resolve
@@ -29,6 +35,8 @@ def build_study(cfg: DictConfig) -> tuple:
     data = (cfg.get("data") or {}).get("path")
     setup, source = design_setup(data, resolve(str(data)) if data else None)
     study, todo = checked_study(d, setup, calibration_prior(cfg.calibrate), int(cfg.seed))
+    if (line := own_poses_line(setup)) is not None:
+        say(line)
     return study, d["studies"], todo, source
 
 

@@ -73,8 +73,9 @@ def run_grouped(cfg: DictConfig) -> dict:
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ConfigError(f"data.group_jobs must be an integer >= 1, got {jobs!r}")
     root = resolve(cfg.data.path)
-    manifest = io.read_manifest(root, io.ReadOptions.from_cfg(data_options(cfg)))
+    manifest = io.folder_splits(root, io.ReadOptions.from_cfg(data_options(cfg)))
     members = fleet.groups(manifest, column, root / "campaigns.csv")
+    fleet.require_splits(manifest, members, column, root / "campaigns.csv")
     say(f"reading {root}: {len(members)} groups by {column!r}, {jobs} at a time")
     digest = dataset_digest(cfg)        # each group's: the folder digested once
     out, t0 = resolve(cfg.out), time.perf_counter()
