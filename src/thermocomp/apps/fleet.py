@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 
 from ..base.errors import ContractError
+from ..base.tables import name_width
 from ..core import continuation
 from ..core.metrics import pooled_scores, rsd, split_scores
 from ..core.models.auto import add_choices
@@ -177,8 +178,7 @@ def table_text(metrics: dict) -> str:
     """Per target: groups, test RMSE mean / median / p95 / max, RMS before -> after (means)."""
     head = (f"model={metrics['model']}  mode={metrics['mode']}  dataset={metrics['dataset']}  "
             f"group_by={metrics['group_by']} ({len(metrics['groups'])} groups)")
-    # as wide as the longest target: a lab's E_Displacement_X pushed its row off the header
-    w = max([8, *map(len, metrics["fleet"])])
+    w = name_width(metrics["fleet"])
     lines = [head, f"{'target':{w}} {'groups':>6}  test RMSE mean  median    p95    max   "
                    f"RMS before -> after (mean)   worst   (µm)", "-" * (88 + w)]
     for t, s in metrics["fleet"].items():
