@@ -1,0 +1,246 @@
+"""diagnose fooled by the runs' first-sample offsets: CV labels re-referenced to an estimate of
+each run's start that is not one noisy sample (issue 34, item 4; session 57, refnoise57).
+
+Usage::
+
+    python benchmarks/bench_diagnose_refnoise57.py write [--root ROOT]   # the records + init
+    python benchmarks/bench_diagnose_refnoise57.py [VARIANT,...] [CASE ...] [--root ROOT]
+    python benchmarks/bench_diagnose_refnoise57.py null [DRAWS] [--variants V,..] [--root ROOT]
+    python benchmarks/bench_diagnose_refnoise57.py fresh [SEED ...] [--variants V,..] [--root ROOT]
+
+CASE: bench_diagnose_memory's (planted:SEED, clean:SEED, scenario, record) or ``machine:NAME``
+(bench_diagnose_lag57's twelve: bench_other_machine's, bench_new_machines56's and 57's, each on
+``init``'s config as ``thermocomp diagnose``).  ``null`` / ``fresh``: bench_diagnose_proxy57's
+(grinder-nocoolant, seed 5671's temperatures with the errors' noise drawn again, 20 draws; the
+grinder drawn again, seeds 5681-5690).  ROOT default /tmp/refnoise57-root.
+
+The finding (bench_diagnose_proxy57): with ``data.reference=first_sample`` every run's error is
+taken from its first sample, whose probe noise shifts the whole run; the CV's held-out runs'
+means carry those offsets, and a screened candidate that lines up with 9 runs' offsets passes
+the sign-flip test at p 1/512.
+
+The variants, written down before they were scored
+----------------------------------------------------
+Both change diagnose's CV labels only (:class:`~thermocomp.apps.diagnose.cv.Problem`'s ``y``,
+so the base CV, the candidates' fits, their screening and the bar), and only with
+``reference=first_sample``.  The contract's frame, the refitted model ("after") and every
+reported test figure are unchanged.  Each campaign's label becomes ``E - â`` where ``â``
+estimates where the campaign's error started (in the frame ``E(t0) = 0``, so ``-â`` estimates
+the first sample's noise): the offset's variance falls from one sample's noise to that of
+the estimate.
+
+* ``start_line``: ``â`` is the intercept at ``t0`` of a straight line fitted in time to the
+  campaign's error over its first ``k`` samples, ``k = 15`` -- the fewest samples at which a
+  line's intercept has at most a quarter of one sample's variance (``2(2k-1)/(k(k+1)) <= 1/4``:
+  the offset's sd halved), but only the samples within ``tau_min / 4`` of the start, where
+  ``tau_min`` is the shortest time constant the search tries (``diagnose.taus_s``): a warm-up
+  ``A (1 - exp(-t/tau))`` bends a line over ``L`` by ``A L^2 / (12 tau^2)`` at ``t0``, at most
+  ``A / 192`` there.  Fewer than 3 samples in that window: the first sample is kept.
+  Sound if the noise-free error is close to a line over the window (the run starts from a
+  settled state or warms slower than ``tau_min``) and the probe's noise is independent from
+  sample to sample.
+* ``start_resid``: the same line fitted to what the inputs leave -- the error minus the base
+  MLR's fit of the declared inputs on all train rows (intercept left in) -- over the first
+  ``k = 15`` samples, without the time cap.  Sound if what the temperatures do not explain is
+  close to a line over those samples (the inputs carry the warm-up's bend); it leans on the
+  base fit seeing the campaign, but only for the start's level, which no candidate can use.
+
+Adopt only if: no planted-right case lost, no clean acceptance added, no record's test error made
+more than 2 % worse, fewer harmful acceptances on ``null`` / ``fresh``, the known real gains kept
+(vendor5's ambient law and E_X lag, gantry's yaw and lag, boring_mill's W terms, twin_lathe).
+
+Scored
+------
+(not yet)
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from contextlib import contextmanager
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+HERE = Path(__file__).resolve().parent
+sys.path.insert(0, str(HERE))
+sys.path.insert(0, str(HERE.parent / "tests" / "apps"))
+
+import bench_diagnose_lag57 as lag57  # noqa: E402
+import bench_diagnose_memory as memory  # noqa: E402
+
+from thermocomp.apps.diagnose import SearchOptions, diagnose  # noqa: E402
+from thermocomp.apps.diagnose.cv import Problem  # noqa: E402
+from thermocomp.core.models._dynamics import segment_bounds  # noqa: E402
+
+VARIANTS = ["before", "start_line", "start_resid"]
+CASES = lag57.CASES
+K_SAMPLES = 15          # a line's intercept over 15 samples: <= 1/4 of one sample's variance
+SHIPPED_POST_INIT = Problem.__post_init__
+TAU_MIN = {"value": 900.0}   # the search's shortest time constant (set per diagnosis)
+
+
+def line_start(t: np.ndarray, v: np.ndarray) -> float:
+    """Intercept at ``t[0]`` of the least-squares line of ``v`` on ``t``."""
+    return float(np.polyfit(t - t[0], v, 1)[1])
+
+
+def start_offsets(values: np.ndarray, time: np.ndarray, groups, horizon_s: float | None) -> np.ndarray:
+    """Per row, its campaign's estimated start (``line_start`` over the first ``K_SAMPLES``,
+    within ``horizon_s`` of the start when given); 0 where fewer than 3 samples are left."""
+    out = np.zeros(len(values))
+    for start, stop in segment_bounds(groups, len(values)):
+        t, v = time[start:stop][:K_SAMPLES], values[start:stop][:K_SAMPLES]
+        keep = np.isfinite(v) & ((t - t[0] <= horizon_s) if horizon_s is not None else True)
+        if keep.sum() >= 3:
+            out[start:stop] = line_start(t[keep], v[keep])
+    return out
+
+
+def relabelled(problem: Problem, how: str) -> np.ndarray:
+    """``problem.y`` re-referenced to its campaigns' estimated starts (``how``: a variant)."""
+    y = problem.y
+    time = problem.context["time"].to_numpy(float)
+    if how == "start_line":
+        return y - start_offsets(y, time, problem.campaigns, TAU_MIN["value"] / 4.0)
+    X = np.column_stack([np.ones(len(y)), problem.X.to_numpy(float)])
+    beta = np.linalg.lstsq(X, y, rcond=None)[0]
+    left = y - X[:, 1:] @ beta[1:]        # the intercept stays in: the start's common level
+    return y - (start_offsets(left, time, problem.campaigns, None) - beta[0])
+
+
+@contextmanager
+def variant(name: str, taus_s=(900.0,)):
+    """Problem's labels re-referenced by ``name`` (``before``: as shipped)."""
+    TAU_MIN["value"] = float(min(taus_s))
+
+    def post_init(self):
+        SHIPPED_POST_INIT(self)
+        if self.reference == "first_sample":
+            self.y = relabelled(self, name)
+
+    if name != "before":
+        Problem.__post_init__ = post_init
+    try:
+        yield
+    finally:
+        Problem.__post_init__ = SHIPPED_POST_INIT
+
+
+def composed(root: Path, name: str, *extra: str):
+    """(dataset, compensator, options) of ``machine:NAME`` as ``thermocomp diagnose``."""
+    from thermocomp.shell.builders import build_compensator
+    from thermocomp.shell.config.overrides import compose
+    from thermocomp.shell.source import open_source
+    from thermocomp.shell.stages.diagnose import search_options
+
+    cfg = compose([*lag57.machine_args(root, name), *extra], "diagnose")
+    return open_source(cfg), build_compensator(cfg), search_options(cfg.diagnose)
+
+
+def targets_of(d, planted=None) -> dict:
+    out = memory.outcome(d, planted)
+    for t, v in out.items():
+        v["test_rmse"] = [round(d.to_json(t)["before"]["test_rmse"], 4),
+                          round(d.to_json(t)["after"]["test_rmse"], 4)]
+    return out
+
+
+def row(case: str, name: str, root: Path) -> dict:
+    if case.startswith("machine:"):
+        ds, comp, options = composed(root, case.split(":", 1)[1])
+        with variant(name, options.candidates.taus_s):
+            d = diagnose(ds, comp, None, "simulation", options)
+        return {"case": case, "variant": name, "targets": targets_of(d)}
+    ds, comp, targets, planted = memory.dataset(case)
+    options = SearchOptions(max_effects=2)
+    with variant(name, options.candidates.taus_s):
+        d = diagnose(ds, comp, targets=targets, options=options)
+    return {"case": case, "variant": name, "targets": targets_of(d, planted)}
+
+
+def grinder_nodes():
+    """The simulator's node temperatures of the 12 grinder runs (seed 5671), drawn again."""
+    import bench_new_machines56 as machines
+    nodes, real = [], machines.simulate
+
+    def keep(*a, **k):
+        nodes.append(real(*a, **k))
+        return nodes[-1]
+
+    machines.simulate = keep
+    try:
+        rng = np.random.default_rng(machines.SEEDS["grinder"])
+        nets = machines.grinder_networks()
+        for _ in range(12):
+            machines.grinder_run(nets, rng, int(rng.uniform(4, 10) * 120))
+    finally:
+        machines.simulate = real
+    return nets[0][0].index, nodes
+
+
+def null(root: Path, draws: int, variants: list[str]) -> None:
+    """bench_diagnose_proxy57's ``null``: seed 5671's temperatures, the errors' law plus fresh
+    probe noise (rng 57, the same draws), grinder-nocoolant's config."""
+    import bench_new_machines56 as machines
+    index, nodes = grinder_nodes()
+    files = sorted((root / "nm56" / "grinder").glob("Lauf_*.csv"))
+    rng = np.random.default_rng(57)
+    for k in range(draws):
+        folder = Path(f"/tmp/refnoise57-null{k}")
+        folder.mkdir(exist_ok=True)
+        for f, n in zip(files, nodes):
+            frame = pd.read_csv(f, sep=";", decimal=",")
+            rises = n - n[0]
+            for col, target, scale in (("Zustellung dY [µm]", "E_Y", 1.0),
+                                       ("Querachse dZ [mm]", "E_Z", 1e-3)):
+                law = sum(g * rises[:, index[node]] for node, g in machines.G_GAINS[target].items())
+                frame[col] = machines.rounded(law + rng.normal(0, 0.3, len(law)), 0.1) * scale
+            frame.to_csv(folder / f.name, sep=";", decimal=",", index=False, float_format="%.6g")
+        for name in variants:
+            ds, comp, options = composed(root, "grinder-nocoolant", f"data.path={folder}")
+            with variant(name, options.candidates.taus_s):
+                d = diagnose(ds, comp, None, "simulation", options)
+            print(json.dumps({"draw": k, "variant": name, "targets": targets_of(d)},
+                             ensure_ascii=False), flush=True)
+
+
+def fresh(root: Path, seeds: list[int], variants: list[str]) -> None:
+    """bench_diagnose_proxy57's ``fresh``: the grinder drawn again (init's config of 5671)."""
+    import bench_new_machines56 as machines
+    for seed in seeds:
+        folder = Path(f"/tmp/refnoise57-grinder{seed}")
+        if not folder.exists():
+            machines.write_grinder(folder, seed)
+        for name in variants:
+            ds, comp, options = composed(root, "grinder-nocoolant", f"data.path={folder}")
+            with variant(name, options.candidates.taus_s):
+                d = diagnose(ds, comp, None, "simulation", options)
+            print(json.dumps({"seed": seed, "variant": name, "targets": targets_of(d)},
+                             ensure_ascii=False), flush=True)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__,
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("what", nargs="*")
+    parser.add_argument("--root", type=Path, default=Path("/tmp/refnoise57-root"))
+    parser.add_argument("--variants", default=",".join(VARIANTS))
+    args = parser.parse_intermixed_args(argv)
+    what, root, variants = list(args.what), args.root.resolve(), args.variants.split(",")
+    if what[:1] == ["write"]:
+        lag57.write(root)
+    elif what[:1] == ["null"]:
+        null(root, int(what[1]) if len(what) > 1 else 20, variants)
+    elif what[:1] == ["fresh"]:
+        fresh(root, [int(s) for s in what[1:]] or list(range(5681, 5691)), variants)
+    else:
+        memory.print_rows(what, VARIANTS, CASES, lambda c, v: row(c, v, root))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
