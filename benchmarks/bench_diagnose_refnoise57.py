@@ -94,20 +94,30 @@ Test RMSE after diagnose (µm), ``=``: the same effects and figures as ``before`
                                 the initial state,
                                 0.740 -> 0.885, +20 %)
 
-**Both refused** (no src change).  ``start_line`` stops the grinder's square and 5682's lag but
-not null draw 3's square, and it makes two records more than 2 % worse: vendor5 E_X loses its
-real lag (with the relabel the residual's memory is longer: 9 test blocks of 148 samples -> 8 of
-172; the lag's gain 16.3 -> 13.7 %, p family 0.035: refused) and lathe43m E_Z gains a second
-ambient threshold (``ambient_c0 > 17.5 °C``) that the cleaner labels pass (gain 12.6 -> 13.4 %,
-p family 0.243 -> 0.00055; CV RMSE before it 0.529 -> 0.412) and the test refutes.  Cleaner
-offsets sharpen the test for every run-level feature, the false ones included.  It also leaves
-the memory bench's records untouched (300 s samples: one sample within ``tau_min / 4``; rig40 at
-120 s too), so its clean 24 and planted 15 say nothing about it.  ``start_resid`` stops every
-harmful acceptance of null / fresh but loses three planted-right seeds (4007-4009, test up to
-+149 %) and adds a clean acceptance: at 300 s its 15 samples span 70 min, over which the missing
-effect itself moves, and the "first-sample noise" it removes spreads about twice the probe's
-noise (sd 0.82-0.94 against 0.42-0.50 µm from the errors' sample differences on 4007-4009,
-``offsets``) -- it takes the missing effect's start for an offset.
+**Both refused** (no src change; ``score_start`` below).  ``start_line`` stops the grinder's
+square and 5682's lag but not null draw 3's square, and it makes two records more than 2 %
+worse: vendor5 E_X loses its real lag (with the relabel the residual's memory is longer: 9 test
+blocks of 148 samples -> 8 of 172; the lag's gain 16.3 -> 13.7 %, p family 0.035: refused) and
+lathe43m E_Z gains a second ambient threshold (``ambient_c0 > 17.5 °C``) that the cleaner labels
+pass (gain 12.6 -> 13.4 %, p family 0.243 -> 0.00055; CV RMSE before it 0.529 -> 0.412) and the
+test refutes.  Cleaner offsets sharpen the test for every run-level feature, the false ones
+included.  It also leaves the memory bench's records untouched (300 s samples: one sample within
+``tau_min / 4``; rig40 at 120 s too), so its clean 24 and planted 15 say nothing about it.
+``start_resid`` stops every harmful acceptance of null / fresh but loses three planted-right
+seeds (4007-4009, test up to +149 %) and adds a clean acceptance: at 300 s its 15 samples span
+70 min, over which the missing effect itself moves, and the "first-sample noise" it removes
+spreads about twice the probe's noise (sd 0.82-0.94 against 0.42-0.50 µm from the errors' sample
+differences on 4007-4009, ``offsets``) -- it takes the missing effect's start for an offset.
+
+``score_start`` (CPU: cases 116 + 9 s, null 52 + 2 s, fresh 34 + 15 s) is REFUSED too: the
+memory bench's 41 cases are unchanged (300 s samples: no start estimate, slope 0: planted right
+9, clean 0, control on 303 as before) and so are rig40, grinder, gantry(-noY), twin_lathe(-noair),
+boring_mill-noW, lathe43m; it stops the grinder's square (0.6744 -> 0.6439), null draw 3's
+(nothing accepted in 20 draws; the control clears there) and 5682's lag (fresh: nothing harmful;
+5688 E_Y takes a lag from the initial state, 0.4237 -> 0.4140), and lathe43 gains (E_dX 0.4161
+-> 0.3781, E_dZ 0.6901 -> 0.6831); but vendor5 loses both real gains (E_X: its lag replaced by
+a 2 h lag of the spindle speed, 0.4318 -> 0.5864, +36 %; E_Z: its ambient law, 0.7361 -> 1.3851,
++88 %) and boring_mill E_Z its second W term (0.3701 -> 0.4350, +17.5 %).
 
 How well the estimates recover the offsets where they hold (``offsets``; grinder 5671, 12 runs,
 the simulator's first-sample noise known): sd 0.352 µm of the first-sample noise, left after the
@@ -117,7 +127,8 @@ variance falls 2.8x, not to zero -- the runs keep offsets of 0.2 µm.
 What remains: with ``first_sample`` the runs' offsets are a property of the contract's frame;
 estimating them away inside diagnose only trades one source of false run-level alignments for
 another (the estimate's window: too short leaves the noise, too long takes the start of the
-missing effect) and changes the test's block design.  Neither variant meets the bar; a
+missing effect) and changes the test's block design; scoring the held-out means without
+it (``score_start``) costs vendor5 and the boring mill real gains.  No variant meets the bar; a
 window chosen between the two on these records would be chosen on them.
 """
 
