@@ -124,3 +124,15 @@ def test_the_baseline_row_is_reduced_against_the_measured_error(runs):
     assert row["rms_reduction_pct"] == pytest.approx(
         100 * (1 - entry["persistence"]["rmse"] / entry["test"]["rms_before"]))
     assert row["e_p95_1h"] is None        # not computed for the baseline
+
+
+def test_the_printed_header_names_ati_and_denoising_where_a_run_uses_them(runs):
+    """A sweep's jobs over ``denoise`` (or ``ati``) printed the same header: the run records its
+    denoising and the header names both where they are not ``none``."""
+    doc = json.loads((runs["simulation"] / "metrics.json").read_text())
+    assert doc["denoise"] == "none"
+    head = EvaluationResult(doc).summary().splitlines()[0]
+    assert "denoise=" not in head and "ati=" not in head
+    doc.update(denoise="emd", ati={**doc.get("ati", {}), "name": "cmeans"})
+    head = EvaluationResult(doc).summary().splitlines()[0]
+    assert "select=all  ati=cmeans  denoise=emd  mode=simulation" in head

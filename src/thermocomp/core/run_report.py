@@ -44,6 +44,7 @@ class ReportSettings:
     model: str
     select: str
     ati: str = "none"
+    denoise: str = "none"
     plots: str = "none"
     mode: str = "simulation"
     e_p95_statistic: str = "range"
@@ -60,7 +61,7 @@ class ReportSettings:
     @classmethod
     def from_eval(cls, ev: Mapping, **names) -> ReportSettings:
         """From the ``eval`` group (a mapping; absent keys keep their defaults) and ``names``
-        (``model``, ``select``, ``ati``, ``plots``)."""
+        (``model``, ``select``, ``ati``, ``denoise``, ``plots``)."""
         keys = ("mode", "validation", "validation_folds", "validation_scheme", "anova_alpha",
                 "ati_baselines", "mutual_prediction", "mutual_prediction_max_models")
         e_p95 = ev.get(E_P95) or {}     # eval.e_p95: the settings of that figure
@@ -95,7 +96,7 @@ def report_run(comp: Compensator, ds, s: ReportSettings, refits: Refits, stage, 
             _add_validation(s, comp, ds, targets, refits.template)
             clock.lap("validation")
         metrics = {"model": s.model, "mode": s.mode, "targets": targets,
-                   "select": s.select, "dataset": ds.name,
+                   "select": s.select, "denoise": s.denoise, "dataset": ds.name,
                    "inputs": {t: comp.selected_[t] for t in comp.targets_},
                    "reference": comp.reference, "carry_over": carry_over(comp, ds)}
         metrics.update(extra or {})

@@ -234,7 +234,10 @@ class EvaluationResult:
         w = name_width(self.targets)
         angular = [t for t in m["targets"] if unit(t) != "µm"]
         units = "(µm)" if not angular else f"(µm; {listed(angular, 3)} in µm/m)"
-        lines = [f"model={m['model']}  select={m.get('select', 'all')}  mode={m['mode']}  "
+        # ATI and denoising named where used: a sweep's jobs over them printed the same header
+        named = "".join(f"  {k}={v}" for k, v in (("ati", (m.get("ati") or {}).get("name")),
+                                                  ("denoise", m.get("denoise"))) if v and v != "none")
+        lines = [f"model={m['model']}  select={m.get('select', 'all')}{named}  mode={m['mode']}  "
                  f"dataset={m.get('dataset', '')}",
                  f"{'target':<{w}} {'test Rsd SM':>11} {'SD':>6}   {'RMS before':>10} -> {'after':>6}"
                  f"  {'reduction':>9}   {'RMSE sim':>8} {'1-step':>6} {'persist.':>8}   {units}",

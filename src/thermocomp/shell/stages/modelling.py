@@ -140,8 +140,9 @@ def _report(cfg: DictConfig, comp, ds, tracker, clock: Clock | None = None,
 
 def _settings(cfg: DictConfig) -> ReportSettings:
     ati = cfg.ati.name if cfg.get("ati") is not None else "none"
+    denoise = cfg.denoise.name if cfg.get("denoise") is not None else "none"
     return ReportSettings.from_eval(cfg.eval, model=cfg.model.name, select=cfg.select.name,
-                                    plots=str(cfg.plots), ati=ati)
+                                    plots=str(cfg.plots), ati=ati, denoise=denoise)
 
 
 def _publish(cfg: DictConfig, metrics: dict, out, tracker, clock: Clock) -> None:
