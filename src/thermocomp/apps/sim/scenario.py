@@ -199,6 +199,7 @@ class Scenario:
         self.effects_ = effects = self.effects_list()
         machine = self.machine()
         for effect in effects:
+            effect.check_targets(machine)
             machine = effect.modify_machine(machine)
         plans = self.plans(rng)
         check_size(sum(plan.duration_s / plan.sample_period_s for plan in plans), len(plans))
