@@ -19,7 +19,7 @@ import os
 
 from hydra.utils import instantiate
 
-from ..base.errors import ConfigError
+from ..base.errors import ConfigError, closest
 from ..base.extras import missing
 
 PROJECT = ("thermocomp.",)
@@ -108,7 +108,32 @@ def build(node, key: str):
     """``hydra.utils.instantiate(node)`` once :func:`check_built` allows every target in it
     (``key``: where ``node`` sits in the config, for the message)."""
     check_built(node, key)
+    _check_arguments(node, key)
     return instantiate(node)
+
+
+def _check_arguments(node, key: str) -> None:
+    """Every key of ``node`` an argument of its ``_target_``'s constructor: a typo in a user's
+    own ``conf/sim/<name>.yaml`` (or ``+sim.generator.sample_perod_s=60``) was Hydra's
+    ``Error in call to target ... TypeError(...)``, naming neither the key nor the right one."""
+    from hydra._internal.utils import _locate
+    from omegaconf import DictConfig
+
+    if not isinstance(node, (DictConfig, dict)) or "_target_" not in node:
+        return
+    params = inspect.signature(_locate(str(node["_target_"]))).parameters
+    if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values()):
+        return                                   # takes any keyword: its own check
+    names = [n for n, p in params.items() if n != "self" and p.kind in (
+        inspect.Parameter.POSITIONAL_OR_KEYWORD, inspect.Parameter.KEYWORD_ONLY)]
+    for name in node:
+        if str(name).startswith("_") and str(name).endswith("_"):   # _target_, _partial_, ...
+            continue
+        if name not in names:
+            close = closest(str(name), names)
+            hint = f"; did you mean {key}.{close[0]}?" if close else ""
+            raise ConfigError(f"{key}.{name}: not an argument of {node['_target_']}{hint} "
+                              f"(its arguments: {', '.join(names)})")
 
 
 def load_node(path, seed, where: str):

@@ -7,6 +7,7 @@ from __future__ import annotations
 import functools
 import hashlib
 import json
+from pathlib import Path
 
 from omegaconf import OmegaConf
 
@@ -34,11 +35,39 @@ def scenario_dataset(_root_) -> str:
     if sim.get("generator") is None:
         return name
     generator = OmegaConf.to_container(sim.generator, resolve=False)
-    scenario = conf_dir() / "sim" / f"{name}.yaml"
-    if not scenario.is_file():        # a scenario of another search path: nothing to compare
+    scenario = _scenario_file(_root_, name)
+    if scenario is None:              # composed from nowhere we can read: nothing to compare
         return name
     written = _written_generator(str(scenario), scenario.stat().st_mtime_ns)
     if written is None or written == generator:
         return name
     digest = hashlib.sha256(json.dumps(generator, sort_keys=True, default=str).encode()).hexdigest()
     return f"{name}-{digest[:8]}"
+
+
+def _scenario_file(root, name: str) -> Path | None:
+    """``sim/<name>.yaml`` where Hydra finds it: this repository's ``conf/`` first, then the
+    ``file://`` folders of ``hydra.searchpath``.  A user's own scenario (under a search path)
+    was never compared, so ``sim.generator.sample_period_s=60`` replaced its dataset, which
+    cli.md says a changed generator never does."""
+    shipped = conf_dir() / "sim" / f"{name}.yaml"
+    if shipped.is_file():
+        return shipped
+    for entry in _searchpath(root):
+        if entry.startswith("file://"):
+            candidate = Path(entry[len("file://"):]) / "sim" / f"{name}.yaml"
+            if candidate.is_file():
+                return candidate
+    return None
+
+
+def _searchpath(root) -> list[str]:
+    """``hydra.searchpath`` of the composed config, else of the running Hydra job."""
+    hydra = root.get("hydra") if hasattr(root, "get") else None
+    if hydra is not None and hydra.get("searchpath") is not None:
+        return [str(e) for e in hydra.searchpath]
+    from hydra.core.hydra_config import HydraConfig
+
+    if HydraConfig.initialized():
+        return [str(e) for e in HydraConfig.get().searchpath]
+    return []

@@ -193,6 +193,12 @@ class UndeclaredEffect:
                 "targets": self.targets, "description": self.description(),
                 "params": copy.deepcopy(self.params)}
 
+    def check_targets(self, machine: Machine) -> None:
+        """Every target named in ``targets`` an error of ``machine``: the truth records them as
+        what a correct diagnosis must find, so a target the data has no column of (``E_Q``) was
+        a truth no diagnosis could meet, written without a word."""
+        self._target_rows(machine)
+
     def _target_rows(self, machine: Machine) -> list[int]:
         known = machine.thermoelastic.targets
         missing = [t for t in self.targets if t not in known]
@@ -378,6 +384,11 @@ class LagNode(UndeclaredEffect):
     def modify_machine(self, machine):
         p = self.params
         self._check_nodes(machine, [p["parent"]], "parent")
+        known = machine.thermoelastic.targets
+        unknown = [t for t in p["sensitivity_um_per_K"] if t not in known]
+        if unknown:   # the key named: extend_machine's message said only "effect sensitivity"
+            raise ConfigError(f"sim.generator.effect_params.{self.name}.sensitivity_um_per_K: "
+                              f"unknown target(s) {unknown} (have {known})")
         return extend_machine(
             machine,
             nodes=[Node(self.NODE, float(p["capacity_J_per_K"]), float(p["convection_W_per_K"]))],

@@ -36,7 +36,7 @@ from thermocomp.apps.sim.campaign import (
 )
 from thermocomp.apps.sim.effects import build_effects
 from thermocomp.apps.sim.sensors import quantise
-from thermocomp.base.errors import ConfigError
+from thermocomp.base.errors import ConfigError, ThermocompError
 from thermocomp.base.params import BOOLEAN, NON_NEGATIVE, check_params
 from thermocomp.core.io.contract import Dataset, write_dataset
 
@@ -197,8 +197,15 @@ class Scenario:
     def _generate(self) -> tuple[Dataset, dict]:
         rng = np.random.default_rng(self.seed)
         self.effects_ = effects = self.effects_list()
-        machine = self.machine()
+        try:
+            machine = self.machine()
+        except ThermocompError:
+            raise
+        except ValueError as exc:   # a user's own machine (a sensor on no node...): exit 2, no traceback
+            raise ConfigError(f"sim.generator._target_={type(self).__module__}."
+                              f"{type(self).__name__}: its machine() is not valid: {exc}") from None
         for effect in effects:
+            effect.check_targets(machine)
             machine = effect.modify_machine(machine)
         plans = self.plans(rng)
         check_size(sum(plan.duration_s / plan.sample_period_s for plan in plans), len(plans))

@@ -76,6 +76,12 @@ class YearRoundSpindle(Scenario):
         if 3600.0 * float(self.duration_h[0]) < 2 * float(self.sample_period_s):
             return [("duration_h", "the shortest campaign must hold two samples of "
                                    f"sim.generator.sample_period_s={self.sample_period_s}")]
+        if not 2 <= int(self.test_every) <= int(self.n_campaigns):
+            # else a split is empty: no test campaign (run refused it, pointing at the manifest)
+            # or, with 1, no train campaign
+            return [("test_every", "must be an integer in [2, sim.generator.n_campaigns="
+                                   f"{self.n_campaigns}] (every test_every-th campaign is test: "
+                                   "both splits need one)")]
         return []
 
     def __init__(self, n_campaigns=24, sample_period_s=300.0, duration_h=(4.0, 8.0),

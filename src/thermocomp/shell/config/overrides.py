@@ -234,6 +234,9 @@ def explain(exc: BaseException, command: str | None = None) -> str:
         return unread
     close = _fix_key(key, _whole_config())
     hint = f"; did you mean {close!r}?" if close else ""
+    free = [m for m in FREE_MAPS if key.startswith(f"{m}.")]
+    if free and not close:   # an entry the scenario's own config leaves out: how to add it
+        hint = f"; {free[0]} is a free-form map: add an entry with '+{key}=...'"
     cause = " ".join(str(exc.__cause__).split("full_key")[0].split()) if exc.__cause__ else msg
     return f"unknown config key {key!r}{hint} (Could not override {key!r}: {cause})"
 
