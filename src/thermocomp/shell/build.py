@@ -116,12 +116,12 @@ def _check_arguments(node, key: str) -> None:
     """Every key of ``node`` an argument of its ``_target_``'s constructor: a typo in a user's
     own ``conf/sim/<name>.yaml`` (or ``+sim.generator.sample_perod_s=60``) was Hydra's
     ``Error in call to target ... TypeError(...)``, naming neither the key nor the right one."""
-    from hydra._internal.utils import _locate
+    from hydra.utils import get_object
     from omegaconf import DictConfig
 
     if not isinstance(node, (DictConfig, dict)) or "_target_" not in node:
         return
-    params = inspect.signature(_locate(str(node["_target_"]))).parameters
+    params = inspect.signature(get_object(str(node["_target_"]))).parameters
     if any(p.kind is inspect.Parameter.VAR_KEYWORD for p in params.values()):
         return                                   # takes any keyword: its own check
     names = [n for n, p in params.items() if n != "self" and p.kind in (
