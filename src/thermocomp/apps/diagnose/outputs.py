@@ -153,10 +153,11 @@ def tracked(result) -> tuple[dict, dict]:
     return metrics, tags
 
 
-def summary_table(result) -> str:
-    """What the stage prints: per target, test RMSE before -> after and the accepted effects."""
+def summary_table(result, named: str = "") -> str:
+    """What the stage prints: per target, test RMSE before -> after and the accepted effects;
+    ``named``: what the header says after the model (`` ati=cmeans``)."""
     w = name_width(result.targets)
-    lines = [f"model={result.model}  dataset={result.dataset}  mode={result.mode}"
+    lines = [f"model={result.model}{named}  dataset={result.dataset}  mode={result.mode}"
              + ("" if result.mode == "simulation" else " (test; CV: simulation)"),
              f"{'target':<{w}} {'test RMSE before':>16} -> {'after':>6}   {'CV before':>9} -> {'after':>6}"
              "   accepted effects", "-" * 96]

@@ -24,6 +24,7 @@ from ...base.params import check_values, subset
 from ...base.paths import resolve
 from ..builders import build_compensator
 from ..config import rules
+from ..config.candidates import is_auto
 from ..config.checks import check_config
 from ..source import check_declared, open_source
 from ..tracking import stage_run
@@ -93,6 +94,12 @@ def diagnose(cfg: DictConfig) -> dict:
     check_config(cfg)
     if cfg.get("diagnose") is None:
         raise ConfigError("no `diagnose` config group (conf/diagnose/default.yaml)")
+    if is_auto(cfg):
+        # its search ran (104 s CPU on a 24-run lab file) and then the diagnosed model, auto's
+        # unbuilt candidates inside the effects' wrapper, could not be fitted: a traceback
+        raise ConfigError("diagnose: model=auto is not diagnosed (the diagnosed model around it "
+                          "cannot be built); diagnose the family auto kept, model=<family> "
+                          "(metrics.json of `thermocomp run model=auto`)")
     dcfg = cfg.diagnose
     options = search_options(dcfg)
     targets = None if dcfg.targets is None else (
@@ -109,7 +116,9 @@ def diagnose(cfg: DictConfig) -> dict:
             f"{cfg.model.name}+{MODEL_NAME}", alphas)
         return build_compensator(after_config(cfg, written["model"], written["kept"]))
 
-    say(f"diagnosing {cfg.model.name} ({cfg.select.name} inputs) on {ds.name}: "
+    ati = _ati(cfg)
+    named = "" if ati is None else f" ati={cfg.ati.name}"   # the ATI wrapper, said where used
+    say(f"diagnosing {cfg.model.name}{named} ({cfg.select.name} inputs) on {ds.name}: "
         f"{len(ds.ids('train'))} train / {len(ds.ids('test'))} test campaigns")
     if str(cfg.eval.mode) != "simulation":
         logger.warning("diagnose: eval.mode=%s scores the test split only; the search's "
@@ -125,7 +134,7 @@ def diagnose(cfg: DictConfig) -> dict:
         tracker.set_tags(tags)
         tracker.log_artifact(main)
         tracker.log_artifacts(folder, "diagnosis")
-    print(outputs.summary_table(result))
+    print(outputs.summary_table(result, named))
     say(f"diagnosis: {main}; report: {folder / 'report.html'}")
     say(f"rerun the diagnosed model: {rerun}")
     return result.to_json(result.primary)
