@@ -7,6 +7,7 @@ written; empty cells stay NaN, a non-numeric one is refused with its row.  With
 from __future__ import annotations
 
 import csv
+import fnmatch
 import re
 from io import StringIO
 
@@ -15,12 +16,14 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from ...base.log import say
 from ..context import TIME
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, check_text, text_codec
 from .layout import header_line, is_unit_row, with_units
-from .roles import RUN, active, naming, same_header
+from .options import RUN_ROLE
+from .roles import RUN, active, naming, same_header, split_unit
 from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
@@ -160,7 +163,8 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
                           and df[c].isna().all()])
     first = {c: None if df.empty or pd.isna(df[c].iloc[0]) else str(df[c].iloc[0])
              for c in df.columns}
-    plan = naming(list(df.columns), opts.roles, opts.columns, first, ".", SOURCE, opts.units)
+    roles = _runs_if_named(list(df.columns), opts.roles)
+    plan = naming(list(df.columns), roles, opts.columns, first, ".", SOURCE, opts.units)
     df = df[[c for c in df.columns if c in plan.names]].rename(columns=plan.names)
     run = next((raw for raw, name in plan.names.items() if name == RUN), None)
     blocks = None
@@ -171,6 +175,20 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
         date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
         df = df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
     return df, plan.scales, blocks
+
+
+def _runs_if_named(headers: list[str], roles: dict) -> dict:
+    """``roles`` without ``data.roles.campaign`` where no header of the stream matches it: the
+    model was fitted on a long file of runs (its data config needs the key), and a logger's
+    file of one run, without that column, streams as one campaign (it was refused as a column
+    'not read', with no key to give)."""
+    pattern = roles.get(RUN_ROLE)
+    if not pattern or any(fnmatch.fnmatchcase(name, pattern)
+                          for h in headers for name in (str(h), split_unit(str(h))[0])):
+        return roles
+    say(f"{SOURCE}: no column matches data.roles.{RUN_ROLE}={pattern!r}: "
+        f"the rows stream as one campaign '{STDIN}'")
+    return {k: v for k, v in roles.items() if k != RUN_ROLE}
 
 
 def _run_ids(blocks: list, index: pd.Index) -> pd.Series:

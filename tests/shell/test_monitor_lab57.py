@@ -1,0 +1,67 @@
+"""``monitor`` on a lab's one-file record, as docs/monitoring.md shows it (monstr57): the lab's
+own headers with units, ``;`` and decimal commas, its runs numbered in a ``Lauf`` column."""
+
+from __future__ import annotations
+
+import io
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import FAST
+from thermocomp.shell.cli import main
+
+HEADERS = ["Spindel [°C]", "Bett [°C]", "Ständer [°C]", "Schlitten [°C]"]
+ROLES = ("data.delimiter=;", "data.decimal=,", "data.roles.error=[dX]",
+         "data.roles.campaign=Lauf", "data.test_fraction=0.5", "monitor.window=5")
+
+
+def _run(rng, rows: int) -> pd.DataFrame:
+    """One run: four temperatures driven by two sources (the POD has a field to predict), the
+    error a weighted sum of them."""
+    t = np.arange(rows) * 60.0
+    heat = 4 * (1 - np.exp(-t / 3000.0))
+    wave = 0.6 * np.sin(t / 1500.0 + rng.uniform(0, 3))
+    temps = [20 + a * heat + b * wave + rng.normal(0, 0.02, rows)
+             for a, b in ((1.0, 0.2), (0.3, 1.0), (0.6, 0.5), (0.8, 0.7))]
+    error = 3.0 * (temps[0] - 20) - 2.0 * (temps[1] - 20) + rng.normal(0, 0.1, rows)
+    df = pd.DataFrame({"Zeit [s]": t, **dict(zip(HEADERS, (x.round(3) for x in temps))),
+                       "dX [µm]": error.round(2)})
+    return df
+
+
+@pytest.fixture(scope="module")
+def lab(tmp_path_factory):
+    """``messung.csv`` (two runs, the second held out) and the second run's rows as its logger
+    writes them on their own (``lauf2.csv``, no run column)."""
+    rng = np.random.default_rng(5711)
+    runs = [_run(rng, 240), _run(rng, 180)]
+    root = tmp_path_factory.mktemp("monlab")
+    whole = pd.concat([r.assign(Lauf=i + 1) for i, r in enumerate(runs)])
+    whole.to_csv(root / "messung.csv", sep=";", decimal=",", index=False)
+    runs[1].to_csv(root / "lauf2.csv", sep=";", decimal=",", index=False)
+    return root
+
+
+def _monitor(lab, out, monkeypatch, stdin: str | None = None, *extra: str) -> dict:
+    args = ["monitor", f"data.path={lab / 'messung.csv'}", f"out={out}", *ROLES, *FAST, *extra]
+    if stdin is not None:
+        monkeypatch.setattr("sys.stdin", io.StringIO((lab / stdin).read_text()))
+        args.append("monitor.input=-")
+    assert main(args) == 0
+    return json.loads((out / "monitor.json").read_text())
+
+
+def test_a_runs_own_logger_file_streams_as_the_held_out_run(lab, tmp_path, monkeypatch, capsys):
+    """The model is fitted on the long file (its config needs ``data.roles.campaign``); the
+    logger's file of one run has no ``Lauf`` column.  It was refused ("1 column(s) not read:
+    data.roles.campaign='Lauf' names no header"), with no key the lab could give."""
+    from_file = _monitor(lab, tmp_path / "file", monkeypatch)
+    streamed = _monitor(lab, tmp_path / "stdin", monkeypatch, "lauf2.csv")
+    assert "the rows stream as one campaign 'stdin'" in capsys.readouterr().err
+    for target, scores in from_file["targets"].items():
+        assert streamed["targets"][target]["rmse_adaptive"] == pytest.approx(
+            scores["rmse_adaptive"], rel=1e-9)
+    assert list(streamed["sensors"]) == list(from_file["sensors"])
