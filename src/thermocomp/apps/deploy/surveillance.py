@@ -914,7 +914,13 @@ class SensorMonitor:
         with np.errstate(divide="ignore", invalid="ignore"):
             worst = np.abs((H - H[:, trial] @ M.T) / (1 - lev)).max(axis=0)
         worst[blind] = np.inf
-        ok = np.where(blind, ~self._predictable, worst < READMIT * self.warning_c) & trial
+        # a sensor out only for a dropout had passed its judgement until its reading went
+        # missing: back within its warning band, the band that kept it in.  The half band (the
+        # hysteresis of one out by its error) kept a healthy lathe sensor whose error sits at
+        # 0.9 of its band out for an hour after one empty logger row (adaptive 1.14x fixed)
+        lost = self._dropped & ~self._by_field & (self._jumps == 0)
+        ok = np.where(blind, ~self._predictable,
+                      worst < np.where(lost, 1.0, READMIT) * self.warning_c) & trial
         # one out for explaining the others' errors is vouched for by them: back only if they
         # stay within the warning band with it in (calm alone let a drifting T_table flap)
         explains = trial & blind & self._explains
