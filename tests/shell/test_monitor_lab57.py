@@ -10,7 +10,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import FAST
+from conftest import FAST, refused
 from thermocomp.shell.cli import main
 
 HEADERS = ["Spindel [°C]", "Bett [°C]", "Ständer [°C]", "Schlitten [°C]"]
@@ -97,3 +97,15 @@ def test_one_empty_logger_row_costs_the_adaptive_stream_next_to_nothing(lathe, t
     assert set(back) == lost and max(back.values()) - min(back.values()) <= 600.0, back
     for target, r in report["targets"].items():
         assert r["rmse_adaptive"] <= 1.02 * r["rmse_fixed"], (target, r)
+
+
+def test_a_renamed_column_in_the_stream_is_named_with_its_own_header(lab, tmp_path,
+                                                                     monkeypatch, capsys):
+    """The logger's channel renamed ('Bett2' for 'Bett'): the refusal named only the contract
+    name the model wants ('T_Bett'), not the stream's header that is likely it."""
+    rows = pd.read_csv(lab / "lauf2.csv", sep=";", decimal=",")
+    rows = rows.rename(columns={"Bett [°C]": "Bett2 [°C]"})
+    monkeypatch.setattr("sys.stdin", io.StringIO(rows.to_csv(sep=";", decimal=",", index=False)))
+    refused(["monitor", f"data.path={lab / 'messung.csv'}", f"out={tmp_path / 'o'}", *ROLES,
+             *FAST, "monitor.input=-"], capsys,
+            "'T_Bett'", "stdin lacks a column", "'Bett2 [°C]' (read as T_Bett2)", "renamed?")

@@ -42,6 +42,7 @@ from .utf16 import has_utf16_mark
 
 SOURCE = "<stdin>"
 STDIN = "stdin"                 # the campaign id of a stream without a run column
+HEADERS = "headers"             # frame attrs: contract name -> the stream's own header
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
 
 
@@ -97,8 +98,8 @@ def _read_runs(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict,
     if not absent and df.empty:
         raise ContractError("stdin has a header but no data row", file=SOURCE)
     if absent:
-        raise ContractError("stdin lacks a column the compensator reads", file=SOURCE,
-                            column=",".join(absent))
+        raise ContractError("stdin lacks a column the compensator reads" + _unread(df, columns),
+                            file=SOURCE, column=",".join(absent))
     if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
         runs = [df[TIME]] if blocks is None else [df[TIME].iloc[start:end]
                                                   for _, start, end in blocks]
@@ -166,6 +167,7 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
     roles = _runs_if_named(list(df.columns), opts.roles)
     plan = naming(list(df.columns), roles, opts.columns, first, ".", SOURCE, opts.units)
     df = df[[c for c in df.columns if c in plan.names]].rename(columns=plan.names)
+    df.attrs[HEADERS] = {name: raw for raw, name in plan.names.items() if raw != name}
     run = next((raw for raw, name in plan.names.items() if name == RUN), None)
     blocks = None
     if run is not None:
@@ -175,6 +177,20 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
         date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
         df = df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
     return df, plan.scales, blocks
+
+
+def _unread(df: pd.DataFrame, columns: list[str]) -> str:
+    """The stream's sensor columns the compensator does not read, with their own headers: a
+    lacking column is often one of them renamed ('Gestell2 [°C]' for 'Gestell 2 [°C]'), and the
+    message named only the contract name the model wants."""
+    own = df.attrs.get(HEADERS, {})
+    unread = [c for c in df.columns if str(c)[:2] == "T_" and c not in columns]
+    if not unread:
+        return ("; give the rows every column of the data the model was fitted on, under the "
+                "header it had there")
+    return ("; stdin's sensor column(s) it does not read: "
+            + ", ".join(f"{own[c]!r} (read as {c})" if c in own else repr(c) for c in unread)
+            + ": renamed? give each the header it had in the data the model was fitted on")
 
 
 def _runs_if_named(headers: list[str], roles: dict) -> dict:
