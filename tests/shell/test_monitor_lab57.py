@@ -109,3 +109,17 @@ def test_a_renamed_column_in_the_stream_is_named_with_its_own_header(lab, tmp_pa
     refused(["monitor", f"data.path={lab / 'messung.csv'}", f"out={tmp_path / 'o'}", *ROLES,
              *FAST, "monitor.input=-"], capsys,
             "'T_Bett'", "stdin lacks a column", "'Bett2 [°C]' (read as T_Bett2)", "renamed?")
+
+
+def test_a_stream_said_to_continue_a_run_it_does_not_continue_is_refused(lab, tmp_path,
+                                                                         monkeypatch, capsys):
+    """Run 2 starts cold; said to continue run 1 (which ended warm), the stream was warmed on
+    run 1 and its first row read as the logger's common step: every sensor re-referenced by it
+    for good (on the lathe: adaptive 27.4 µm against the fixed 1.85)."""
+    monkeypatch.setattr("sys.stdin", io.StringIO((lab / "lauf2.csv").read_text()))
+    out = tmp_path / "o"
+    refused(["monitor", f"data.path={lab / 'messung.csv'}", f"out={out}", *ROLES, *FAST,
+             "data.reference=none", "monitor.input=-", "monitor.continues=Lauf_1"], capsys,
+            "monitor.continues=Lauf_1", "not where Lauf_1 ended", "4 of 4 temperatures",
+            "leave monitor.continues out")
+    assert not out.exists()

@@ -46,3 +46,30 @@ def stdin_lead_in(ds, ids: list[str], cid: str, times: pd.Series | None) -> dict
     first = (float(times.iloc[read[0]]) - read[0] * campaign_period(ds.campaigns[ids[-1]])
              if len(read) else 0.0)
     return {cid: preceding(ds, ids, first)}
+
+
+JUMPS = 3.0        # a step beyond this x a sensor's largest step in the continued campaign
+
+
+def check_continued(lead: pd.DataFrame, stream: pd.DataFrame, campaign: str) -> None:
+    """Refuse a stream said to continue ``campaign`` (its lead-in ``lead``) whose first row is
+    not where that campaign ended: at least 3 and more than half of the temperatures step
+    beyond ``JUMPS`` x their largest step in the lead-in.  A later day's file so started was
+    warmed on a state it does not continue, and the monitor read the junction as the logger's
+    common step and re-referenced every sensor by it for good (a lathe's production run said
+    to continue its calibration, two weeks apart: adaptive 27.4 um against the fixed 1.85)."""
+    cols = [c for c in stream.columns if str(c).startswith("T_") and c in lead.columns]
+    last = lead[cols].ffill().iloc[-1]
+    first = stream[cols].bfill().iloc[0]
+    largest = lead[cols].diff().abs().max()
+    step = (first - last).dropna()
+    beyond = step[step.abs() > JUMPS * largest[step.index].fillna(0.0)]
+    if len(beyond) < 3 or 2 * len(beyond) <= len(step):
+        return
+    worst = beyond.abs().idxmax()
+    raise ConfigError(
+        f"monitor.continues={campaign}: stdin's first row is not where {campaign} ended: "
+        f"{len(beyond)} of {len(step)} temperatures step beyond {JUMPS:g}x their largest step "
+        f"in it (median {float(beyond.median()):+.3g} °C; {worst} {float(last[worst]):.4g} -> "
+        f"{float(first[worst]):.4g} °C); a later record, not its continuation? leave "
+        "monitor.continues out, or stream from the row after its last")

@@ -17,7 +17,7 @@ from omegaconf import DictConfig
 
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.monitor.report import monitor_report, summary_lines
-from ...apps.monitor.stdin import stdin_chain, stdin_lead_in
+from ...apps.monitor.stdin import check_continued, stdin_chain, stdin_lead_in
 from ...base.errors import ConfigError
 from ...base.files import staged_outputs, write_json
 from ...base.log import say
@@ -46,7 +46,10 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict) -> dict:
     if ids:
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
             + carried_text({cid: [*ids, cid]}))
-    return stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None)
+    leads = stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None)
+    if ids:
+        check_continued(leads[cid], stream, ids[-1])
+    return leads
 
 
 def _fitted(cfg: DictConfig, ds, train: dict):
