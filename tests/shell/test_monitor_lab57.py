@@ -123,3 +123,14 @@ def test_a_stream_said_to_continue_a_run_it_does_not_continue_is_refused(lab, tm
             "monitor.continues=Lauf_1", "not where Lauf_1 ended", "4 of 4 temperatures",
             "leave monitor.continues out")
     assert not out.exists()
+
+
+def test_a_stream_logged_at_another_period_than_training_is_said(lab, tmp_path, monkeypatch,
+                                                                 capsys):
+    """Run 2 logged every 120 s against 60 s in training: streamed without a word before."""
+    rows = pd.read_csv(lab / "lauf2.csv", sep=";", decimal=",")
+    (lab / "lauf2_120s.csv").write_text(rows.iloc[::2].to_csv(sep=";", decimal=",", index=False))
+    _monitor(lab, tmp_path / "slow", monkeypatch, "lauf2_120s.csv")
+    assert "campaign stdin: samples 120 s apart, the training's 60 s" in capsys.readouterr().err
+    _monitor(lab, tmp_path / "same", monkeypatch, "lauf2.csv")
+    assert "apart, the training's" not in capsys.readouterr().err

@@ -7,7 +7,9 @@ import numpy as np
 import pandas as pd
 
 from ...base.errors import ConfigError
+from ...base.log import logger
 from ...core.continuation import campaign_period, chain, preceding
+from ...core.io.contract import TIME
 
 
 def stdin_chain(ds, campaign: str | None, *, ambient_given: bool, reference: str,
@@ -73,3 +75,26 @@ def check_continued(lead: pd.DataFrame, stream: pd.DataFrame, campaign: str) -> 
         f"in it (median {float(beyond.median()):+.3g} °C; {worst} {float(last[worst]):.4g} -> "
         f"{float(first[worst]):.4g} °C); a later record, not its continuation? leave "
         "monitor.continues out, or stream from the row after its last")
+
+
+PERIOD_RATIO = 1.5   # a streamed campaign's period this far from training's is said
+
+
+def said_if_other_period(streamed: dict, train: dict) -> None:
+    """Say each streamed campaign whose sample period is not the training's (beyond
+    ``PERIOD_RATIO`` either way): the monitor counts samples (its window, confirm and the
+    per-sample jump limit), the guard's rate limit and a model's sample lags read another span
+    of time.  Not refused: a static model corrects such rows as well (a lathe logged at 120 s
+    against 60 s in training: MLR E_dX 1.316 against 1.291 µm), and nothing said it before."""
+    periods = [campaign_period(df) for df in train.values() if TIME in df.columns]
+    trained = float(np.nanmedian(periods)) if periods else float("nan")
+    if not np.isfinite(trained) or trained <= 0:
+        return
+    for cid, df in streamed.items():
+        period = campaign_period(df) if TIME in df.columns else float("nan")
+        if np.isfinite(period) and period > 0 and max(period / trained,
+                                                      trained / period) > PERIOD_RATIO:
+            logger.warning(f"campaign {cid}: samples {period:g} s apart, the training's "
+                           f"{trained:g} s: the monitor's window and jump limit count samples, "
+                           "and a model's lags may too; resample the rows to the training's "
+                           "period (or fit on data logged as this is)")
