@@ -134,3 +134,10 @@ def test_a_stream_logged_at_another_period_than_training_is_said(lab, tmp_path, 
     assert "campaign stdin: samples 120 s apart, the training's 60 s" in capsys.readouterr().err
     _monitor(lab, tmp_path / "same", monkeypatch, "lauf2.csv")
     assert "apart, the training's" not in capsys.readouterr().err
+
+
+def test_a_labs_header_word_beyond_ascii_in_an_override_is_shown_quoted(tmp_path, capsys):
+    """``data.roles.state=[Spindel,Tür]`` (the lathe's door, 'Tür [-]'): Hydra's lexer error
+    named only its grammar page."""
+    refused(["monitor", "data.roles.state=[Spindel,Tür]", f"out={tmp_path / 'o'}", *FAST],
+            capsys, "LexerNoViableAltException", "\"data.roles.state=[Spindel,'Tür']\"")
