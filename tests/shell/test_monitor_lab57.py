@@ -141,3 +141,29 @@ def test_a_labs_header_word_beyond_ascii_in_an_override_is_shown_quoted(tmp_path
     named only its grammar page."""
     refused(["monitor", "data.roles.state=[Spindel,Tür]", f"out={tmp_path / 'o'}", *FAST],
             capsys, "LexerNoViableAltException", "\"data.roles.state=[Spindel,'Tür']\"")
+
+
+def test_the_figures_bands_are_those_of_the_sensors_they_show(lathe, tmp_path, monkeypatch):
+    """The lathe's NC spindle motor, which no other sensor predicts (no error to show), has a
+    band of tens of °C from its loose training spread; drawn as the band of every sensor it
+    set the scale, and every self-prediction error read as a flat line at 0."""
+    import thermocomp.apps.monitor.figures as figures
+
+    drawn = {}
+
+    def keep(fig, path):
+        drawn[path.name] = [abs(line.get_ydata()[0]) for line in fig.axes[0].lines
+                            if line.get_linestyle() == "--"]
+        return path
+
+    monkeypatch.setattr(figures, "save_figure", keep)
+    monkeypatch.setattr("sys.stdin", io.StringIO((lathe / "production.csv").read_text()))
+    out = tmp_path / "out"
+    args = [a for a in FAST if not a.startswith("plots=")]
+    assert main(["monitor", f"data.path={lathe}", f"out={out}", "monitor.input=-", *args]) == 0
+    report = json.loads((out / "monitor.json").read_text())
+    shown = [j for j, s in enumerate(report["sensors"].values()) if s["observable"]]
+    blind = [j for j, s in enumerate(report["sensors"].values()) if s["observable"] is False]
+    alarm = report["bands"]["alarm_c"]
+    assert blind and max(alarm[j] for j in blind) > 10 * max(alarm[j] for j in shown)
+    assert max(drawn["self_prediction.png"]) == pytest.approx(max(alarm[j] for j in shown))
