@@ -167,3 +167,17 @@ def test_the_figures_bands_are_those_of_the_sensors_they_show(lathe, tmp_path, m
     alarm = report["bands"]["alarm_c"]
     assert blind and max(alarm[j] for j in blind) > 10 * max(alarm[j] for j in shown)
     assert max(drawn["self_prediction.png"]) == pytest.approx(max(alarm[j] for j in shown))
+
+
+def test_a_missing_training_value_of_a_one_file_record_names_the_file_and_header(
+        lab, tmp_path, capsys):
+    """The refusal named 'messung.csv/messung.csv' (the record's path joined to its own name)
+    and the contract name alone, where `run` names the file and the lab's header."""
+    whole = pd.read_csv(lab / "messung.csv", sep=";", decimal=",")
+    whole.loc[100, "Bett [°C]"] = np.nan
+    path = tmp_path / "messung.csv"
+    whole.to_csv(path, sep=";", decimal=",", index=False)
+    line = refused(["monitor", f"data.path={path}", f"out={tmp_path / 'o'}", *ROLES, *FAST],
+                   capsys, f"file {path},", "'T_Bett'", "data row 101", "train campaign Lauf_1",
+                   "its header in the file: 'Bett [°C]'")
+    assert "messung.csv/messung.csv" not in line
