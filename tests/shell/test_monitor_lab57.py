@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import io
 import json
+import re
 
 import numpy as np
 import pandas as pd
@@ -181,3 +182,27 @@ def test_a_missing_training_value_of_a_one_file_record_names_the_file_and_header
                    capsys, f"file {path},", "'T_Bett'", "data row 101", "train campaign Lauf_1",
                    "its header in the file: 'Bett [°C]'")
     assert "messung.csv/messung.csv" not in line
+
+
+def test_a_state_change_says_how_the_last_errors_stand_against_the_band(tmp_path):
+    """A mill trained on 24 h of March, tested in June: its sensors cross the warning band
+    and return hundreds of times; a return to ok said only the errors' mean, as often beyond
+    the band as not ('-0.52 °C' against 0.509), the same words as the crossing."""
+    raw = tmp_path / "raw"
+    assert main(["simulate", "sim=large_mill_week", "seed=5812", f"data.path={raw}",
+                 "sim.generator.train_hours=24", "sim.generator.test_hours=12",
+                 "track=false"]) == 0
+    assert main(["monitor", f"data.path={raw}", f"out={tmp_path / 'o'}", *FAST]) == 0
+    events = json.loads((tmp_path / "o" / "monitor.json").read_text())["events"]
+    back = [e for e in events if e["from"] == "warning" and e["to"] == "ok"]
+    out = [e for e in events if e["from"] == "ok" and e["to"] == "warning"]
+    assert back and out
+    number = r"([0-9.]+(?:e-?\d+)?)"
+    for e in back:
+        smallest, band = map(float, re.search(rf"the smallest {number} within ±{number} °C",
+                                              e["reason"]).groups())
+        assert smallest <= band, e        # (3 digits: equal where they round alike)
+    for e in out:
+        band, smallest = map(float, re.search(rf"all beyond ±{number} °C \(the smallest "
+                                              rf"{number}\)", e["reason"]).groups())
+        assert smallest >= band, e
