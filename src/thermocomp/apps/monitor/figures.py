@@ -32,13 +32,20 @@ def draw(folder: Path, adaptive, traces: dict, report: dict, map_time_h=None) ->
     # 1. self-prediction error per sensor with the bands (excluded samples dotted)
     fig, ax = plt.subplots(figsize=(10, 5))
     E, S = tr["errors"], tr["states"]
+    # the bands of the sensors with an error to show: one no other predicts has none, and its
+    # band (from its loose training spread: ±54 °C on a lathe's spindle motor) set the scale,
+    # every other error a flat line at 0
+    shown = np.isfinite(E).any(axis=0)
+    if not shown.any():
+        shown = np.ones(len(mon.names), dtype=bool)
+    warning_c, alarm_c = mon.warning_c[shown].max(), mon.alarm_c[shown].max()
     for j, name in enumerate(mon.names):
         e = E[:, j]
         if not np.isfinite(e).any():
             continue
         line, = ax.plot(hours, np.where(S[:, j] != 3, e, np.nan), lw=1, label=name)
         ax.plot(hours, np.where(S[:, j] == 3, e, np.nan), ls=":", color=line.get_color(), lw=1)
-    for band, c in ((mon.warning_c.max(), COLOURS["warning"]), (mon.alarm_c.max(), COLOURS["alarm"])):
+    for band, c in ((warning_c, COLOURS["warning"]), (alarm_c, COLOURS["alarm"])):
         ax.axhline(band, color=c, ls="--", lw=1)
         ax.axhline(-band, color=c, ls="--", lw=1)
     ax.set(xlabel="time (h)", ylabel="self-prediction error E_s (°C)",
@@ -60,7 +67,7 @@ def draw(folder: Path, adaptive, traces: dict, report: dict, map_time_h=None) ->
     vals = np.nan_to_num(E[i])
     ax.barh(y, vals, color=[COLOURS[STATES[s]] for s in S[i]])
     ax.set_yticks(y, mon.names, fontsize=7)
-    for band in (mon.warning_c.max(), mon.alarm_c.max()):
+    for band in (warning_c, alarm_c):
         ax.axvline(band, color="k", ls=":", lw=0.8)
         ax.axvline(-band, color="k", ls=":", lw=0.8)
     ax.set(xlabel="self-prediction error (°C)",

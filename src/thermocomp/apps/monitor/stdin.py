@@ -7,7 +7,9 @@ import numpy as np
 import pandas as pd
 
 from ...base.errors import ConfigError
+from ...base.log import logger
 from ...core.continuation import campaign_period, chain, preceding
+from ...core.io.contract import TIME
 
 
 def stdin_chain(ds, campaign: str | None, *, ambient_given: bool, reference: str,
@@ -46,3 +48,53 @@ def stdin_lead_in(ds, ids: list[str], cid: str, times: pd.Series | None) -> dict
     first = (float(times.iloc[read[0]]) - read[0] * campaign_period(ds.campaigns[ids[-1]])
              if len(read) else 0.0)
     return {cid: preceding(ds, ids, first)}
+
+
+JUMPS = 3.0        # a step beyond this x a sensor's largest step in the continued campaign
+
+
+def check_continued(lead: pd.DataFrame, stream: pd.DataFrame, campaign: str) -> None:
+    """Refuse a stream said to continue ``campaign`` (its lead-in ``lead``) whose first row is
+    not where that campaign ended: at least 3 and more than half of the temperatures step
+    beyond ``JUMPS`` x their largest step in the lead-in.  A later day's file so started was
+    warmed on a state it does not continue, and the monitor read the junction as the logger's
+    common step and re-referenced every sensor by it for good (a lathe's production run said
+    to continue its calibration, two weeks apart: adaptive 27.4 um against the fixed 1.85)."""
+    cols = [c for c in stream.columns if str(c).startswith("T_") and c in lead.columns]
+    last = lead[cols].ffill().iloc[-1]
+    first = stream[cols].bfill().iloc[0]
+    largest = lead[cols].diff().abs().max()
+    step = (first - last).dropna()
+    beyond = step[step.abs() > JUMPS * largest[step.index].fillna(0.0)]
+    if len(beyond) < 3 or 2 * len(beyond) <= len(step):
+        return
+    worst = beyond.abs().idxmax()
+    raise ConfigError(
+        f"monitor.continues={campaign}: stdin's first row is not where {campaign} ended: "
+        f"{len(beyond)} of {len(step)} temperatures step beyond {JUMPS:g}x their largest step "
+        f"in it (median {float(beyond.median()):+.3g} °C; {worst} {float(last[worst]):.4g} -> "
+        f"{float(first[worst]):.4g} °C); a later record, not its continuation? leave "
+        "monitor.continues out, or stream from the row after its last")
+
+
+PERIOD_RATIO = 1.5   # a streamed campaign's period this far from training's is said
+
+
+def said_if_other_period(streamed: dict, train: dict) -> None:
+    """Say each streamed campaign whose sample period is not the training's (beyond
+    ``PERIOD_RATIO`` either way): the monitor counts samples (its window, confirm and the
+    per-sample jump limit), the guard's rate limit and a model's sample lags read another span
+    of time.  Not refused: a static model corrects such rows as well (a lathe logged at 120 s
+    against 60 s in training: MLR E_dX 1.316 against 1.291 µm), and nothing said it before."""
+    periods = [campaign_period(df) for df in train.values() if TIME in df.columns]
+    trained = float(np.nanmedian(periods)) if periods else float("nan")
+    if not np.isfinite(trained) or trained <= 0:
+        return
+    for cid, df in streamed.items():
+        period = campaign_period(df) if TIME in df.columns else float("nan")
+        if np.isfinite(period) and period > 0 and max(period / trained,
+                                                      trained / period) > PERIOD_RATIO:
+            logger.warning(f"campaign {cid}: samples {period:g} s apart, the training's "
+                           f"{trained:g} s: the monitor's window and jump limit count samples, "
+                           "and a model's lags may too; resample the rows to the training's "
+                           "period (or fit on data logged as this is)")

@@ -18,6 +18,7 @@ from pathlib import Path
 from ...base.files import folder_digest
 from .contract import ContractError, Dataset
 from .options import ReadOptions
+from .own_headers import with_own_header
 from .read import read_campaign, read_dataset, repaired_part
 
 
@@ -49,10 +50,15 @@ def _repair_train(ds: Dataset, report: dict, options: Mapping | None) -> None:
         if entry.get("missing") or faulty:
             try:
                 if "record_rows" in entry:    # a part of one record: that part repaired
-                    table = repaired_part(df, ds.file_path(cid), options, entry["record_rows"][0])
+                    # (the record is the file: ds.file_path joined its name to itself,
+                    # 'messung.csv/messung.csv', in a lab's refusal)
+                    table = repaired_part(df, Path(ds.meta["path"]), options,
+                                          entry["record_rows"][0])
                 else:
                     table, _ = read_campaign(ds.file_path(cid), options)
             except ContractError as exc:
+                # the lab's own header of the column, as a batch's refusal names it
+                exc = with_own_header(exc, ds.meta.get("column_map", {}))
                 raise ContractError(f"train campaign {cid}: {exc.reason} (models and the sensor "
                                     "monitor are fitted on complete train records)",
                                     file=exc.file, column=exc.column, row=exc.row,

@@ -7,6 +7,7 @@ written; empty cells stay NaN, a non-numeric one is refused with its row.  With
 from __future__ import annotations
 
 import csv
+import fnmatch
 import re
 from io import StringIO
 
@@ -15,12 +16,14 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.compute as pc
 
+from ...base.log import say
 from ..context import TIME
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, check_text, text_codec
 from .layout import header_line, is_unit_row, with_units
-from .roles import RUN, active, naming, same_header
+from .options import RUN_ROLE
+from .roles import RUN, active, naming, same_header, split_unit
 from .runs import run_blocks, run_values
 from .separators import UNICODE_MINUS
 from .sniff import SNIFF_LINES, detected
@@ -39,6 +42,7 @@ from .utf16 import has_utf16_mark
 
 SOURCE = "<stdin>"
 STDIN = "stdin"                 # the campaign id of a stream without a run column
+HEADERS = "headers"             # frame attrs: contract name -> the stream's own header
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
 
 
@@ -94,8 +98,8 @@ def _read_runs(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict,
     if not absent and df.empty:
         raise ContractError("stdin has a header but no data row", file=SOURCE)
     if absent:
-        raise ContractError("stdin lacks a column the compensator reads", file=SOURCE,
-                            column=",".join(absent))
+        raise ContractError("stdin lacks a column the compensator reads" + _unread(df, columns),
+                            file=SOURCE, column=",".join(absent))
     if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
         runs = [df[TIME]] if blocks is None else [df[TIME].iloc[start:end]
                                                   for _, start, end in blocks]
@@ -160,8 +164,10 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
                           and df[c].isna().all()])
     first = {c: None if df.empty or pd.isna(df[c].iloc[0]) else str(df[c].iloc[0])
              for c in df.columns}
-    plan = naming(list(df.columns), opts.roles, opts.columns, first, ".", SOURCE, opts.units)
+    roles = _runs_if_named(list(df.columns), opts.roles)
+    plan = naming(list(df.columns), roles, opts.columns, first, ".", SOURCE, opts.units)
     df = df[[c for c in df.columns if c in plan.names]].rename(columns=plan.names)
+    df.attrs[HEADERS] = {name: raw for raw, name in plan.names.items() if raw != name}
     run = next((raw for raw, name in plan.names.items() if name == RUN), None)
     blocks = None
     if run is not None:
@@ -171,6 +177,34 @@ def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:
         date, clock = (df[c].astype("string").str.strip() for c in (TIME, CLOCK))
         df = df.drop(columns=CLOCK).assign(**{TIME: (date + " " + clock).astype(object)})
     return df, plan.scales, blocks
+
+
+def _unread(df: pd.DataFrame, columns: list[str]) -> str:
+    """The stream's sensor columns the compensator does not read, with their own headers: a
+    lacking column is often one of them renamed ('Gestell2 [°C]' for 'Gestell 2 [°C]'), and the
+    message named only the contract name the model wants."""
+    own = df.attrs.get(HEADERS, {})
+    unread = [c for c in df.columns if str(c)[:2] == "T_" and c not in columns]
+    if not unread:
+        return ("; give the rows every column of the data the model was fitted on, under the "
+                "header it had there")
+    return ("; stdin's sensor column(s) it does not read: "
+            + ", ".join(f"{own[c]!r} (read as {c})" if c in own else repr(c) for c in unread)
+            + ": renamed? give each the header it had in the data the model was fitted on")
+
+
+def _runs_if_named(headers: list[str], roles: dict) -> dict:
+    """``roles`` without ``data.roles.campaign`` where no header of the stream matches it: the
+    model was fitted on a long file of runs (its data config needs the key), and a logger's
+    file of one run, without that column, streams as one campaign (it was refused as a column
+    'not read', with no key to give)."""
+    pattern = roles.get(RUN_ROLE)
+    if not pattern or any(fnmatch.fnmatchcase(name, pattern)
+                          for h in headers for name in (str(h), split_unit(str(h))[0])):
+        return roles
+    say(f"{SOURCE}: no column matches data.roles.{RUN_ROLE}={pattern!r}: "
+        f"the rows stream as one campaign '{STDIN}'")
+    return {k: v for k, v in roles.items() if k != RUN_ROLE}
 
 
 def _run_ids(blocks: list, index: pd.Index) -> pd.Series:

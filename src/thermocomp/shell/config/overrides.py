@@ -227,7 +227,7 @@ def explain(exc: BaseException, command: str | None = None) -> str:
         return f"unknown {group} {option!r}; options, closest first: {', '.join(ranked)}"
     m = re.match(r"Could not override '([^']+)'", msg)
     if not m:
-        return msg
+        return _quoted_hint(msg)
     key = m.group(1)
     unread = _unread_group(key, command)
     if unread:
@@ -239,6 +239,24 @@ def explain(exc: BaseException, command: str | None = None) -> str:
         hint = f"; {free[0]} is a free-form map: add an entry with '+{key}=...'"
     cause = " ".join(str(exc.__cause__).split("full_key")[0].split()) if exc.__cause__ else msg
     return f"unknown config key {key!r}{hint} (Could not override {key!r}: {cause})"
+
+
+def _quoted_hint(msg: str) -> str:
+    """Hydra's lexer error for an override whose value holds a letter beyond ASCII (a lab's
+    header word, ``Tür``, ``Temp_Öl``), with the override quoted as Hydra reads it: its message
+    named only the grammar page."""
+    m = re.match(r"LexerNoViableAltException: (\S+?)=(\S.*?) \^", msg)
+    if not m or m.group(2).isascii():
+        return msg
+    key, value = m.groups()
+
+    def quoted(v: str) -> str:
+        return v if v.isascii() or v[:1] in "'\"" else f"'{v}'"
+
+    fixed = (f"[{','.join(quoted(v.strip()) for v in value[1:-1].split(','))}]"
+             if value.startswith("[") and value.endswith("]") else quoted(value))
+    return (f"{msg}; a value with a letter beyond ASCII is read only quoted: "
+            f"\"{key}={fixed}\" (the double quotes for the shell)")
 
 
 def _fix_key(key: str, config: dict) -> str | None:

@@ -17,7 +17,12 @@ from omegaconf import DictConfig
 
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.monitor.report import monitor_report, summary_lines
-from ...apps.monitor.stdin import stdin_chain, stdin_lead_in
+from ...apps.monitor.stdin import (
+    check_continued,
+    said_if_other_period,
+    stdin_chain,
+    stdin_lead_in,
+)
 from ...base.errors import ConfigError
 from ...base.files import staged_outputs, write_json
 from ...base.log import say
@@ -46,7 +51,10 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict) -> dict:
     if ids:
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
             + carried_text({cid: [*ids, cid]}))
-    return stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None)
+    leads = stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None)
+    if ids:
+        check_continued(leads[cid], stream, ids[-1])
+    return leads
 
 
 def _fitted(cfg: DictConfig, ds, train: dict):
@@ -86,6 +94,7 @@ def monitor(cfg: DictConfig) -> dict:
                     df.attrs[AMBIENT_C] = float(cfg.monitor.ambient_c)
         else:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
+        said_if_other_period(streamed, train)
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
         leads = _stdin_lead_in(cfg, fixed, ds, streamed) if stdin else lead_ins(
             comp, ds, list(streamed))
