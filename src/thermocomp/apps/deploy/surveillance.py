@@ -864,7 +864,7 @@ class SensorMonitor:
         due[list(instant)] = False
         back = self._returning(due) if due.any() else due
         for j in np.flatnonzero(back):
-            why = f"re-admitted: within ±{READMIT * self.warning_c[j]:g} °C for {self._calm[j]} samples"
+            why = f"re-admitted: within ±{self._readmit_c()[j]:.3g} °C for {self._calm[j]} samples"
             shift = self._ref[j] - self._ref0[j]
             if not self._predictable[j] and (self._jumps[j] > 1 or (
                     self._jumps[j] and abs(d[j] + shift - self._last_good[j])
@@ -900,6 +900,15 @@ class SensorMonitor:
                 return due & trial
             trial[int(np.argmax(np.where(failing, worst, -1.0)))] = False
 
+    def _readmit_c(self) -> np.ndarray:
+        """Each sensor's re-admission band (°C): ``READMIT`` of its warning band (the hysteresis of
+        one out by its error), its whole warning band for one out only for a dropout: it had passed
+        its judgement until its reading went missing, the band that kept it in (the half band kept a
+        healthy lathe sensor whose error sits at 0.9 of its band out for an hour after one empty
+        logger row: adaptive 1.14x fixed)."""
+        lost = self._dropped & ~self._by_field & (self._jumps == 0)
+        return np.where(lost, 1.0, READMIT) * self.warning_c
+
     def _pass_once_back(self, trial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(passes, worst error)`` of the sensors of the set ``trial``: their leave-one-out
         error in it over the whole window within the re-admission band (not their error against
@@ -914,13 +923,7 @@ class SensorMonitor:
         with np.errstate(divide="ignore", invalid="ignore"):
             worst = np.abs((H - H[:, trial] @ M.T) / (1 - lev)).max(axis=0)
         worst[blind] = np.inf
-        # a sensor out only for a dropout had passed its judgement until its reading went
-        # missing: back within its warning band, the band that kept it in.  The half band (the
-        # hysteresis of one out by its error) kept a healthy lathe sensor whose error sits at
-        # 0.9 of its band out for an hour after one empty logger row (adaptive 1.14x fixed)
-        lost = self._dropped & ~self._by_field & (self._jumps == 0)
-        ok = np.where(blind, ~self._predictable,
-                      worst < np.where(lost, 1.0, READMIT) * self.warning_c) & trial
+        ok = np.where(blind, ~self._predictable, worst < self._readmit_c()) & trial
         # one out for explaining the others' errors is vouched for by them: back only if they
         # stay within the warning band with it in (calm alone let a drifting T_table flap)
         explains = trial & blind & self._explains
