@@ -200,12 +200,15 @@ class UndeclaredEffect:
         self._target_rows(machine)
 
     def _target_rows(self, machine: Machine) -> list[int]:
+        self._check_targets(machine, self.targets, "targets")
+        return [machine.thermoelastic.targets.index(t) for t in self.targets]
+
+    def _check_targets(self, machine: Machine, targets, key: str) -> None:
         known = machine.thermoelastic.targets
-        missing = [t for t in self.targets if t not in known]
+        missing = [t for t in targets if t not in known]
         if missing:
-            raise ConfigError(f"sim.generator.effect_params.{self.name}.targets: unknown "
-                              f"{missing} (have {known})")
-        return [known.index(t) for t in self.targets]
+            raise ConfigError(f"sim.generator.effect_params.{self.name}.{key}: unknown "
+                              f"target(s) {missing} (have {known})")
 
     def _check_nodes(self, machine: Machine, nodes, key: str) -> None:
         unknown = [n for n in nodes if n not in machine.network.index]
@@ -384,11 +387,8 @@ class LagNode(UndeclaredEffect):
     def modify_machine(self, machine):
         p = self.params
         self._check_nodes(machine, [p["parent"]], "parent")
-        known = machine.thermoelastic.targets
-        unknown = [t for t in p["sensitivity_um_per_K"] if t not in known]
-        if unknown:   # the key named: extend_machine's message said only "effect sensitivity"
-            raise ConfigError(f"sim.generator.effect_params.{self.name}.sensitivity_um_per_K: "
-                              f"unknown target(s) {unknown} (have {known})")
+        # the key named: extend_machine's message said only "effect sensitivity"
+        self._check_targets(machine, p["sensitivity_um_per_K"], "sensitivity_um_per_K")
         return extend_machine(
             machine,
             nodes=[Node(self.NODE, float(p["capacity_J_per_K"]), float(p["convection_W_per_K"]))],
