@@ -10,6 +10,7 @@ from ...base.errors import ConfigError
 from ...base.log import logger
 from ...core.continuation import campaign_period, chain, preceding
 from ...core.io.contract import TIME
+from ..deploy.surveillance import COMMON_MIN
 
 
 def stdin_chain(ds, campaign: str | None, *, ambient_given: bool, reference: str,
@@ -55,8 +56,9 @@ JUMPS = 3.0        # a step beyond this x a sensor's largest step in the continu
 
 def check_continued(lead: pd.DataFrame, stream: pd.DataFrame, campaign: str) -> None:
     """Refuse a stream said to continue ``campaign`` (its lead-in ``lead``) whose first row is
-    not where that campaign ended: at least 3 and more than half of the temperatures step
-    beyond ``JUMPS`` x their largest step in the lead-in.  A later day's file so started was
+    not where that campaign ended: at least ``COMMON_MIN`` (the monitor's common step) and more
+    than half of the temperatures step beyond ``JUMPS`` x their largest step in the lead-in.  A
+    later day's file so started was
     warmed on a state it does not continue, and the monitor read the junction as the logger's
     common step and re-referenced every sensor by it for good (a lathe's production run said
     to continue its calibration, two weeks apart: adaptive 27.4 um against the fixed 1.85)."""
@@ -66,7 +68,7 @@ def check_continued(lead: pd.DataFrame, stream: pd.DataFrame, campaign: str) -> 
     largest = lead[cols].diff().abs().max()
     step = (first - last).dropna()
     beyond = step[step.abs() > JUMPS * largest[step.index].fillna(0.0)]
-    if len(beyond) < 3 or 2 * len(beyond) <= len(step):
+    if len(beyond) < COMMON_MIN or 2 * len(beyond) <= len(step):
         return
     worst = beyond.abs().idxmax()
     raise ConfigError(
