@@ -270,23 +270,10 @@ def row(case: str, name: str, root: Path) -> dict:
 
 
 def grinder_nodes():
-    """The simulator's node temperatures of the 12 grinder runs (seed 5671), drawn again."""
-    import bench_new_machines56 as machines
-    nodes, real = [], machines.simulate
-
-    def keep(*a, **k):
-        nodes.append(real(*a, **k))
-        return nodes[-1]
-
-    machines.simulate = keep
-    try:
-        rng = np.random.default_rng(machines.SEEDS["grinder"])
-        nets = machines.grinder_networks()
-        for _ in range(12):
-            machines.grinder_run(nets, rng, int(rng.uniform(4, 10) * 120))
-    finally:
-        machines.simulate = real
-    return nets[0][0].index, nodes
+    """The simulator's node temperatures of the 12 grinder runs (seed 5671), drawn again
+    (bench_diagnose_proxy57's, without the frames)."""
+    import bench_diagnose_proxy57 as proxy
+    return proxy.grinder_truth()[:2]
 
 
 def null(root: Path, draws: int, variants: list[str]) -> None:
