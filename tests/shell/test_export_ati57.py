@@ -85,6 +85,10 @@ def test_an_ati_model_of_two_intervals_with_its_interaction_streams_as_replay(da
     assert len(ss.law_target) == 4 and sum(ss.law_ambient) == 2
     assert ss.law_hi[0] == ss.law_lo[2] == float(est.boundaries_[0])
     assert [ss.inputs[j] for j in ss.ambient_inputs] == ["T_amb"]
+    # the code says what it switches on (its provenance named the inner family only)
+    edge = f"{float(est.boundaries_[0]):.4g}"
+    assert ss.provenance["laws"] == {
+        "E_X": f"ati (A0 <= {edge} +interaction | A0 > {edge} +interaction)"}
     a0 = [df["T_amb"].iloc[0] for df in tests]          # one test campaign in each interval
     assert sorted(int(np.searchsorted(est.boundaries_, a, side="left")) for a in a0) == [0, 1]
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
@@ -100,6 +104,9 @@ def test_auto_blending_an_ati_candidate_exports(data, tmp_path):
     assert ati.n_intervals_ >= 2 and all(ati.interactions_)     # the elbow's choice here
     ss = state_space(stream)
     assert len(ss.law_target) == 1 + 2 * ati.n_intervals_       # mlr's, each interval's two
+    law = ss.provenance["laws"]["E_X"]
+    assert law.startswith("blend mlr 0.4 + ati (A0 <= ") and law.endswith(" +interaction) 0.6")
+    assert law.count("+interaction") == ati.n_intervals_
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
 
 

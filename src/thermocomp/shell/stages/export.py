@@ -106,7 +106,7 @@ def export(cfg: DictConfig) -> dict:
             (tmp / name).write_text(text, encoding="utf-8")
     written = {name: out / name for name in files}
     laws = json.loads(files["compensator.json"])["provenance"].get("laws")
-    kept = f"; per target: {per_target(laws)}" if laws else ""   # what model=auto chose
+    kept = f"; per target: {per_target(laws)}" if laws else ""   # what auto / ATI kept
     say(f"export ({fmt}, {family}{kept}): {', '.join(str(p) for p in written.values())}")
     if fmt == "c":
         say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv")

@@ -59,7 +59,7 @@ class Law:
 
 def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, period,
                 horizon_s: float | None) -> tuple[list[Law], object, str | None]:
-    """``(laws, lag period, what model=auto kept)`` of ``target``'s estimator ``est`` reading
+    """``(laws, lag period, what model=auto or an ATI model kept)`` of ``target``'s estimator ``est`` reading
     the inputs ``cols`` of the code's ``inputs``; ``powers`` registers the Hammerstein powers,
     shared by the targets; ``horizon_s``: the clamp's (None: no clamp, no gains)."""
     parts, own = members(est), []
@@ -73,7 +73,7 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, 
                 own += laws
         except NotExportable as exc:
             raise NotExportable(_member_refused(target, name, w, parts, exc)) from None
-    return _summed(own), period, described(parts) if parts[0][0] is not None else None
+    return _summed(own), period, described(parts)
 
 
 def _intervals(est) -> list:

@@ -36,8 +36,27 @@ def members(est) -> list[tuple[str | None, float, object]]:
     return [(str(est.family_), 1.0, one_model(kept))]
 
 
-def described(laws: list) -> str:
-    """``'lagbank'`` or ``'blend mlr 0.62 + arx 0.38'`` of ``members``' list."""
+def described(laws: list) -> str | None:
+    """``'lagbank'``, ``'blend mlr 0.62 + ati 0.38 (A0 <= 23.5 | A0 > 23.5 +interaction)'`` of
+    ``members``' list; of a plain model ``None``, of a plain ATI model its intervals."""
+    if laws[0][0] is None:
+        est = laws[0][2]
+        return f"ati {intervals(est)}" if isinstance(est, ATIRegressor) else None
+    named = [f"{name} {intervals(e)}" if isinstance(e, ATIRegressor) else str(name)
+             for name, _, e in laws]
     if len(laws) == 1:
-        return str(laws[0][0])
-    return "blend " + " + ".join(f"{name} {w:.4g}" for name, w, _ in laws)
+        return named[0]
+    return "blend " + " + ".join(f"{n} {w:.4g}" for n, (_, w, _) in zip(named, laws))
+
+
+def intervals(est: ATIRegressor) -> str:
+    """``'(A0 <= 23.5 | A0 > 23.5 +interaction)'``: an ATI model's intervals of the initial
+    ambient (°C) and which take the ambient interaction -- what the code switches on."""
+    edges = [f"{float(b):.4g}" for b in est.boundaries_]
+    if not edges:
+        spans = ["any A0"]
+    else:
+        spans = ([f"A0 <= {edges[0]}"] + [f"{lo} < A0 <= {hi}" for lo, hi in zip(edges, edges[1:])]
+                 + [f"A0 > {edges[-1]}"])
+    return "(" + " | ".join(s + (" +interaction" if inter else "")
+                            for s, inter in zip(spans, est.interactions_)) + ")"

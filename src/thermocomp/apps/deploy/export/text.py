@@ -20,8 +20,8 @@ def ascii_name(name: str) -> str:
 
 
 def per_target(laws: dict) -> str:
-    """``'E_X lagbank; E_Z blend mlr 0.93 + lagbank 0.07'``: what ``model=auto`` kept per target
-    (``provenance.laws``)."""
+    """``'E_X lagbank; E_Z blend mlr 0.93 + lagbank 0.07'``: what ``model=auto`` kept per target,
+    or an ATI model's intervals (``provenance.laws``)."""
     return "; ".join(f"{ascii_name(t)} {law}" for t, law in laws.items())
 
 
@@ -32,7 +32,7 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
              f"model: {p.get('model', '?')}  source: {p.get('source', '?')}",
              f"run: {p.get('run_id') or '-'}  dataset sha256: {p.get('dataset_hash') or '-'}",
              f"thermocomp {p.get('version', '?')}  exported {p.get('exported', '?')}",
-             *([f"model=auto per target: {per_target(p['laws'])}"] if p.get("laws") else []),
+             *([f"per target: {per_target(p['laws'])}"] if p.get("laws") else []),
              "inputs, in order (raw values as measured; T_ in degC, taken relative to a campaign's "
              "first sample where starred):"]
     for j, c in enumerate(ss.inputs):
