@@ -31,3 +31,9 @@ def test_the_ati_wrapper_is_named_in_the_printed_header(short_door_dataset, tmp_
     said = capsys.readouterr()
     assert "model=mlr ati=cmeans  dataset=" in said.out
     assert "diagnosing mlr ati=cmeans (" in said.err
+    # and what it writes (diagnosis.json said "model": "mlr" only, as a plain MLR's)
+    import json
+    written = json.loads((tmp_path / "diagnosis.json").read_text())
+    assert (written["model"], written["ati"]) == ("mlr", "cmeans")
+    report = (tmp_path / "diagnosis" / "report.md").read_text()
+    assert report.startswith("# Residual diagnosis: mlr ati=cmeans on ")

@@ -81,6 +81,7 @@ class Diagnosis:
     cv: dict
     seconds: float = 0.0
     test_sensors: list = field(default_factory=list)   # broken in the test split: said, not acted on
+    ati: str = "none"                  # the ATI wrapper around ``model`` (``cmeans``), or none
 
     @property
     def primary(self) -> str:
@@ -111,6 +112,7 @@ class Diagnosis:
             "after": _summary(te_a, d.final_cv_rmse),
             "dataset": self.dataset,
             "mode": self.mode,
+            "ati": self.ati,
             "test_rmse_after_pct_of_before": (100.0 * te_a.rmse / te_b.rmse
                                               if te_b.rmse > 0 else None),
             "steps": [{"step": 0, "effect": None, "cv_rmse": d.original_cv_rmse}]
@@ -171,7 +173,7 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
              options: SearchOptions | None = None,
              make_compensator: Callable[[dict, list, list], Compensator] | None = None,
              e_p95_statistic: str = "range", e_p95_points: int | None = 200,
-             model_name: str = "") -> Diagnosis:
+             model_name: str = "", ati: str = "none") -> Diagnosis:
     """Find what ``compensator`` misses on the train split, fix it, report before/after on test.
 
     Parameters
@@ -192,6 +194,9 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
         penalties on the effect features (default :func:`augment` of the template;
         the ``diagnose`` stage builds it from the config it writes, so
         ``thermocomp run`` with that config gives the same "after").
+    model_name, ati : str, optional
+        What ``diagnosis.json`` names the model (``mlr``) and the ATI wrapper around it
+        (``cmeans``; ``none``).
 
     Returns
     -------
@@ -201,7 +206,7 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
     # slower on a busy machine), so the whole loop runs single-threaded.
     with threadpool_limits(limits=1, user_api="blas"):
         return _diagnose(ds, compensator, targets, mode, options or SearchOptions(),
-                         make_compensator, e_p95_statistic, e_p95_points, model_name)
+                         make_compensator, e_p95_statistic, e_p95_points, model_name, ati)
 
 
 def test_sensor_warnings(search: Search, excluded, later, options: SearchOptions) -> list[dict]:
@@ -236,7 +241,7 @@ def _gap(context, groups, options: SearchOptions) -> int:
 
 
 def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_statistic,
-              e_p95_points, model_name) -> Diagnosis:
+              e_p95_points, model_name, ati) -> Diagnosis:
     t0 = time.perf_counter()
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     before = clone(compensator).fit({c: ds.campaigns[c] for c in train_ids})
@@ -323,4 +328,4 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            "train_campaigns": train_ids, "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},
-                     options, cv, time.perf_counter() - t0, test_sensors)
+                     options, cv, time.perf_counter() - t0, test_sensors, ati)

@@ -70,6 +70,12 @@ def _link(text: str, heading: str) -> str:
     return f"[{text}](#{slug(heading)})"
 
 
+def _named(j: dict) -> str:
+    """``mlr`` or ``mlr ati=cmeans``: the model as the run's header names it."""
+    ati = j.get("ati", "none")
+    return j["model"] + ("" if ati == "none" else f" ati={ati}")
+
+
 def _intro(j: dict) -> list[str]:
     """How the search validated and what it accepts (shared by every target)."""
     cv, bar = j["cv"], j["bar"]
@@ -215,7 +221,7 @@ def markdown(jsons: dict[str, dict], figures: dict[str, list[str]] | None = None
     figures = figures or {}
     order = sorted(jsons, key=lambda t: t != primary)       # primary first, then as given
     first = jsons[order[0]]
-    lines = [f"# Residual diagnosis: {first['model']} on {first['dataset']}", ""] + _intro(first)
+    lines = [f"# Residual diagnosis: {_named(first)} on {first['dataset']}", ""] + _intro(first)
     lines += ["## Contents", ""]
     for t in order:
         b, a = jsons[t]["before"], jsons[t]["after"]
@@ -293,7 +299,7 @@ def write_report(folder, jsons: dict[str, dict], figures: dict[str, list[str]] |
     folder = Path(folder)
     md = markdown(jsons, figures, rerun, primary)
     first = jsons[primary] if primary in jsons else next(iter(jsons.values()))
-    page = to_html(md, f"Diagnosis: {first['model']} on {first['dataset']}", folder)
+    page = to_html(md, f"Diagnosis: {_named(first)} on {first['dataset']}", folder)
     (folder / "report.md").write_text(md, encoding="utf-8")
     (folder / "report.html").write_text(page, encoding="utf-8")
     return folder / "report.md", folder / "report.html"

@@ -127,7 +127,8 @@ def diagnose(cfg: DictConfig) -> dict:
     with stage_run(cfg, "diagnose") as tracker:
         result = run_diagnosis(ds, template, targets, str(cfg.eval.mode), options, make_after,
                                str(cfg.eval.e_p95.statistic), cfg.eval.e_p95.get("max_points", 200),
-                               model_name=str(cfg.model.name))
+                               model_name=str(cfg.model.name),
+                               ati="none" if ati is None else str(cfg.ati.name))
         folder, rerun, main = _write(cfg, ds, result, written, resolve(cfg.out))
         metrics, tags = outputs.tracked(result)
         tracker.log_metrics(metrics)
