@@ -210,3 +210,15 @@ def test_a_state_change_says_how_the_last_errors_stand_against_the_band(tmp_path
         band, smallest = map(float, re.search(rf"all beyond ±{number} °C \(the smallest "
                                               rf"{number}\)", e["reason"]).groups())
         assert smallest >= band, e
+
+
+@pytest.mark.parametrize("override, fixed", [
+    ("compare.target=Verlagerung X [um]", "\"compare.target='Verlagerung X [um]'\""),
+    ("data.roles.error=[Verlagerung X [um],E_Z]", "\"data.roles.error=['Verlagerung X [um]',E_Z]\""),
+])
+def test_a_labs_header_with_spaces_and_brackets_in_an_override_is_shown_quoted(tmp_path, capsys,
+                                                                                override, fixed):
+    """An ASCII header with spaces and units (``Verlagerung X [um]``) as a value: Hydra said
+    only ``mismatched input '['`` and its grammar page (lead58)."""
+    refused(["compare", override, f"out={tmp_path / 'o'}", "track=false"], capsys,
+            "is read only quoted", fixed)

@@ -227,7 +227,7 @@ def explain(exc: BaseException, command: str | None = None) -> str:
         return f"unknown {group} {option!r}; options, closest first: {', '.join(ranked)}"
     m = re.match(r"Could not override '([^']+)'", msg)
     if not m:
-        return _quoted_hint(msg)
+        return _quoted_hint(exc, msg)
     key = m.group(1)
     unread = _unread_group(key, command)
     if unread:
@@ -241,22 +241,35 @@ def explain(exc: BaseException, command: str | None = None) -> str:
     return f"unknown config key {key!r}{hint} (Could not override {key!r}: {cause})"
 
 
-def _quoted_hint(msg: str) -> str:
-    """Hydra's lexer error for an override whose value holds a letter beyond ASCII (a lab's
-    header word, ``Tür``, ``Temp_Öl``), with the override quoted as Hydra reads it: its message
-    named only the grammar page."""
-    m = re.match(r"LexerNoViableAltException: (\S+?)=(\S.*?) \^", msg)
-    if not m or m.group(2).isascii():
+def _quoted_hint(exc: BaseException, msg: str) -> str:
+    """Hydra's parse error for an override whose value a lab's header word makes unreadable
+    unquoted (a letter beyond ASCII, ``Tür``; spaces with brackets or parentheses, ``Verlagerung
+    X [um]``), with the override quoted as Hydra reads it, when that parses: Hydra's message
+    named only the grammar page (and ``mismatched input '['`` not even the override)."""
+    from hydra.core.override_parser.overrides_parser import OverridesParser
+    from hydra.errors import OverrideParseException
+
+    override = getattr(exc, "override", None)
+    if not isinstance(exc, OverrideParseException) or not override or "=" not in override:
         return msg
-    key, value = m.groups()
+    key, value = override.split("=", 1)
+    if value.isascii() and " " not in value:     # a typo (``model=mlr[``), not a header word
+        return msg
 
     def quoted(v: str) -> str:
-        return v if v.isascii() or v[:1] in "'\"" else f"'{v}'"
+        plain = v.isascii() and not any(c in v for c in " []()")
+        return v if plain or v[:1] in "'\"" else "'" + v + "'"
 
     fixed = (f"[{','.join(quoted(v.strip()) for v in value[1:-1].split(','))}]"
-             if value.startswith("[") and value.endswith("]") else quoted(value))
-    return (f"{msg}; a value with a letter beyond ASCII is read only quoted: "
-            f"\"{key}={fixed}\" (the double quotes for the shell)")
+             if value.startswith("[") and value.endswith("]") else quoted(value.strip()))
+    try:
+        OverridesParser.create().parse_overrides([f"{key}={fixed}"])
+    except OverrideParseException:
+        return msg
+    why = ("a value with a letter beyond ASCII" if not value.isascii()
+           else "a value with spaces, brackets or parentheses")
+    return (f"{msg}; {why} is read only quoted: \"{key}={fixed}\" (the double quotes for "
+            "the shell)")
 
 
 def _fix_key(key: str, config: dict) -> str | None:
