@@ -59,21 +59,19 @@ from __future__ import annotations
 import collections
 import contextlib
 import io
-import resource
 import statistics
 import sys
 import tempfile
 from pathlib import Path
+
+from cpu import cpu_seconds  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tests"))
 
 from conftest import FAST, SHORT, process_state  # noqa: E402  (the tests' own in-process state)
 
-
-def cpu() -> float:
-    r = resource.getrusage(resource.RUSAGE_SELF)
-    return r.ru_utime + r.ru_stime
+cpu = cpu_seconds
 
 
 def call(args: list[str]) -> int:

@@ -164,7 +164,6 @@ import argparse
 import copy
 import json
 import os
-import resource
 import sys
 from collections import Counter
 from pathlib import Path
@@ -176,6 +175,7 @@ import pandas as pd
 from hydra import compose, initialize_config_dir
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from cpu import print_cpu  # noqa: E402
 
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.base.paths import conf_dir
@@ -316,8 +316,7 @@ def main(argv=None) -> None:
                       f"follow {f['follow']['s2']:9.3f}  fixed {f['fixed']['s2']:9.3f}  "
                       f"| follow {_events(f['follow']['events'])} | fixed "
                       f"{_events(f['fixed']['events'])}", flush=True)
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    print("CPU s (user + sys):", round(usage.ru_utime + usage.ru_stime, 1))
+    print_cpu()
     if args.out:
         Path(args.out).write_text(json.dumps(results))
 

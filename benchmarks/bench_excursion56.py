@@ -101,7 +101,6 @@ from __future__ import annotations
 import argparse
 import copy
 import json
-import resource
 import sys
 from pathlib import Path
 
@@ -110,6 +109,7 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_state_envelope import SCENARIOS, _compose, simulate  # noqa: E402
+from cpu import print_cpu  # noqa: E402
 
 from thermocomp.apps.deploy.adaptive import AdaptiveCompensator  # noqa: E402
 from thermocomp.apps.deploy.streaming import replay  # noqa: E402
@@ -297,8 +297,7 @@ def main(argv=None) -> None:
             for name in ("adaptive", "adaptive_R1", "adaptive_R3"):
                 print(f"    {name} exclusions:", [e[:3] for e in r["events"][name]
                                                    if e[2] == "excluded" or e[3].startswith("re-admitted")])
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    print("CPU s (user + sys):", round(usage.ru_utime + usage.ru_stime, 1))
+    print_cpu()
     if args.out:
         Path(args.out).write_text(json.dumps(results))
 

@@ -41,12 +41,13 @@ from __future__ import annotations
 import argparse
 import os
 import re
-import resource
 import subprocess
 import sys
 import tempfile
 import time
 from pathlib import Path
+
+from cpu import cpu_seconds  # noqa: E402
 
 FAMILIES = ("mlr", "pcr", "arx", "arx_rf", "lagbank", "hammerstein", "lstm", "auto")
 PHASES = re.compile(r"time \(s\): [\d.]+ = (.*)$", re.M)
@@ -56,22 +57,16 @@ COLUMNS = {"fit": ("fit",), "validation": ("validation",), "mutual": ("mutual_pr
            "tracking/io": ("read", "log", "write")}
 
 
-def cpu_seconds() -> float:
-    """User + sys CPU of this process and its reaped children."""
-    own, kids = (resource.getrusage(w) for w in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN))
-    return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
-
-
 def child(argv: list[str]) -> int:
     """``thermocomp <argv>`` in this process, its phase clock counting CPU seconds."""
     from thermocomp.base import log
     from thermocomp.shell import cli
 
     def start(clock):
-        clock.seconds, clock._last = {}, cpu_seconds()
+        clock.seconds, clock._last = {}, cpu_seconds(children=True)
 
     def lap(clock, name):
-        now = cpu_seconds()
+        now = cpu_seconds(children=True)
         clock.seconds[name] = clock.seconds.get(name, 0.0) + now - clock._last
         clock._last = now
 

@@ -115,7 +115,6 @@ from __future__ import annotations
 import argparse
 import copy
 import json
-import resource
 import sys
 from pathlib import Path
 
@@ -124,6 +123,7 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_state_envelope import SCENARIOS, _compose, simulate  # noqa: E402
+from cpu import print_cpu  # noqa: E402
 
 from thermocomp.apps.deploy.adaptive import AdaptiveCompensator  # noqa: E402
 from thermocomp.apps.deploy.guard import CorrectionGuard  # noqa: E402
@@ -363,8 +363,7 @@ def main(argv=None) -> None:
                                     + ("" if r.finite else " NaN!"), axis=1)
         print(table.pivot_table(index=["fault", "family"], columns=["form", "rule"], values="cell",
                                 aggfunc="first", sort=False).to_string())
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    print("CPU s (user + sys):", round(usage.ru_utime + usage.ru_stime, 1))
+    print_cpu()
     if args.out:
         Path(args.out).write_text(json.dumps(results))
 

@@ -100,12 +100,12 @@ from __future__ import annotations
 import argparse
 import copy
 import json
-import resource
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_excursion56 import FAMILIES, RUNS, _setup, _sigma2  # noqa: E402
+from cpu import print_cpu  # noqa: E402
 
 
 def events(pred, t0: float) -> list[str]:
@@ -162,8 +162,7 @@ def main(argv=None) -> None:
                 print("   ", line)
             if args.trace:
                 trace(adaptive, df, lead, true, comp.targets_)
-    usage = resource.getrusage(resource.RUSAGE_SELF)
-    print("CPU s (user + sys):", round(usage.ru_utime + usage.ru_stime, 1))
+    print_cpu()
 
 
 if __name__ == "__main__":

@@ -60,11 +60,11 @@ from __future__ import annotations
 
 import json
 import os
-import resource
 import sys
 
 import numpy as np
 from bench_auto_rank import LIGHT, _test
+from cpu import cpu_seconds  # noqa: E402
 from hydra import compose, initialize_config_dir
 from hydra.utils import instantiate
 
@@ -88,9 +88,7 @@ RECORDS = {   # fixed before the lag bank's static gains were freed of the penal
 }
 
 
-def cpu() -> float:
-    use = resource.getrusage(resource.RUSAGE_SELF)
-    return use.ru_utime + use.ru_stime
+cpu = cpu_seconds
 
 
 def setup(overrides: list[str]):
