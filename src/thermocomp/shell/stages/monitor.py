@@ -19,6 +19,7 @@ from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.monitor.report import monitor_report, summary_lines
 from ...apps.monitor.stdin import (
     check_continued,
+    said_if_mid_campaign,
     said_if_other_period,
     stdin_chain,
     stdin_lead_in,
@@ -41,9 +42,10 @@ from ..store import is_registered_model
 from ..tracking import stage_run
 
 
-def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict) -> dict:
+def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict, train_ids: list[str]) -> dict:
     """``{first campaign: lead-in}`` when ``monitor.continues`` names the campaign the stream
-    continues (its first run, with ``data.roles.campaign``: each later run starts from a reset)."""
+    continues (its first run, with ``data.roles.campaign``: each later run starts from a reset);
+    without it, a first row that looks like the middle of a campaign is said."""
     cid, stream = next(iter(streamed.items()))
     ids = stdin_chain(ds, cfg.monitor.get("continues"), ambient_given=fixed.ambient_given_,
                       reference=fixed.compensator.reference, data_path=cfg.data.path,
@@ -54,6 +56,8 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict) -> dict:
     leads = stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None)
     if ids:
         check_continued(leads[cid], stream, ids[-1])
+    else:
+        said_if_mid_campaign(ds, train_ids, stream, cid)
     return leads
 
 
@@ -96,7 +100,7 @@ def monitor(cfg: DictConfig) -> dict:
             check_streamed_columns(ds, list(streamed), adaptive.columns_, "the model")
         said_if_other_period(streamed, train)
         say(f"streaming {len(streamed)} campaign(s) through the fixed and the adaptive compensator")
-        leads = _stdin_lead_in(cfg, fixed, ds, streamed) if stdin else lead_ins(
+        leads = _stdin_lead_in(cfg, fixed, ds, streamed, train_ids) if stdin else lead_ins(
             comp, ds, list(streamed))
         report, traces = monitor_report(adaptive, fixed, comp, streamed, train,
                                         str(cfg.monitor.pod.placement), leads,
