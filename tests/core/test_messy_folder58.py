@@ -1,0 +1,55 @@
+"""A lab's folder of many runs, messy as real loggers make them (messy58): runs sorted into
+sub-folders, a channel renamed from some run on, runs logged at other periods, a logger's clock
+reset inside a run, summary rows under the data."""
+
+from __future__ import annotations
+
+import pytest
+
+from thermocomp.base.log import logger
+from thermocomp.core.io import read_dataset
+from thermocomp.core.io.contract import ContractError
+
+
+def run_file(path, rows: int = 30, period: float = 60.0, level: float = 20.0,
+             names=("T_spindle", "T_bed"), tail: str = ""):
+    """One run, ``rows`` samples ``period`` s apart: two temperatures warming, the error
+    following the first (contract names, or ``names`` the file's own)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    lines = [f"time,{names[0]},{names[1]},E_X"]
+    for i in range(rows):
+        t = i * period
+        lines.append(f"{t:g},{level + 0.001 * t:.3f},{level + 0.0004 * t:.3f},{0.003 * t:.2f}")
+    path.write_text("\n".join(lines) + "\n" + tail, encoding="utf-8")
+    return path
+
+
+def said(caplog, path, cfg=None) -> str:
+    """What reading ``path`` logs (the thermocomp logger does not propagate to caplog)."""
+    caplog.clear()
+    logger.addHandler(caplog.handler)
+    try:
+        read_dataset(path, cfg)
+    finally:
+        logger.removeHandler(caplog.handler)
+    return caplog.text
+
+
+def test_runs_in_a_sub_folder_beside_the_folders_runs_are_said_not_read(tmp_path, caplog):
+    # half the lab's runs in a month folder were left out without a word (16 of 32 read)
+    for i in range(1, 4):
+        run_file(tmp_path / f"run_{i}.csv")
+    for i in range(4, 6):
+        run_file(tmp_path / "2023-02" / f"run_{i}.csv")
+    text = said(caplog, tmp_path)
+    assert "its sub-folders hold 2 more run files (2023-02/ (2)), not read" in text
+
+
+def test_a_folder_whose_runs_are_all_in_sub_folders_names_them(tmp_path):
+    # it was refused as "manifest not found" alone
+    for i in range(1, 3):
+        run_file(tmp_path / "2023-01" / f"run_{i}.csv")
+        run_file(tmp_path / "2023-02" / f"run_{i + 2}.csv")
+    with pytest.raises(ContractError, match=r"its sub-folders hold 4 \(2023-01/ \(2\), 2023-02/ "
+                                            r"\(2\)\), not read: .*2023-01/<run>.csv"):
+        read_dataset(tmp_path)
