@@ -1,0 +1,54 @@
+"""A lab's folder of many runs, messy as real loggers make them (messy58), through ``init``:
+a channel renamed from some run on, a sensor missing in some runs."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from conftest import refused
+from thermocomp.shell.cli import main
+
+
+def lab_folder(root, runs: int = 6, rename_from: int | None = None, drop: tuple = ()):
+    """Runs as a lab's logger writes them (``;``, decimal commas, its own headers): ``T3`` is
+    written ``T03`` from run ``rename_from`` on, ``T4`` is not logged in the runs ``drop``."""
+    root.mkdir()
+    rng = np.random.default_rng(58)
+    for k in range(1, runs + 1):
+        t = np.arange(40) * 60.0
+        heat = 20 + (2 + k) * (1 - np.exp(-t / 1500)) + rng.normal(0, 0.02, t.size)
+        frame = pd.DataFrame({"Zeit [s]": t, "Spindel [°C]": heat,
+                              "T3": 20 + 0.3 * np.sin(t / 900 + k), "T4": 20 + 0.001 * t,
+                              "dX [µm]": 3 * (heat - 20) + rng.normal(0, 0.05, t.size)})
+        if rename_from is not None and k >= rename_from:
+            frame = frame.rename(columns={"T3": "T03"})
+        if k in drop:
+            frame = frame.drop(columns=["T4"])
+        frame.to_csv(root / f"run_{k:02d}.csv", sep=";", decimal=",", index=False)
+    return root
+
+
+def test_a_channel_renamed_from_some_run_on_is_named_as_one_with_the_mapping(tmp_path, capsys):
+    # it was refused as 'T_T3': 3 of 6 campaigns lack it ... leave it out of data.inputs:
+    # a sensor every run logged, dropped, or read as two with each missing in half the runs
+    folder = lab_folder(tmp_path / "lab", rename_from=4)
+    line = refused(["init", str(folder), f"out={tmp_path / 'init'}",
+                    "data.roles.error=[dX]"], capsys, "run_04.csv", "'T_T3' is in 3 of 6",
+                   "'T_T03' (its header in the file: 'T03') in the other 3, from run_04 on",
+                   "data.columns={T03: T_T3}")
+    assert "leave it out" not in line
+    assert not (tmp_path / "init").exists()
+    # the mapping it names reads the folder
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]",
+                 "data.columns={T03: T_T3}"]) == 0
+
+
+def test_a_sensor_missing_in_some_runs_names_the_pattern_that_leaves_it_out(tmp_path, capsys):
+    # 'leave it out of data.inputs': a list of globs over contract names, none of which leaves
+    # one sensor out; a pattern over the file's own header does
+    folder = lab_folder(tmp_path / "lab", drop=(2, 5))
+    refused(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]"], capsys,
+            "run_02.csv", "'T_T4': 2 of 6 campaigns lack it", "data.roles.ignore=['T4']")
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]",
+                 "data.roles.ignore=['T4']"]) == 0
