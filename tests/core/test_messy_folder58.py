@@ -53,3 +53,45 @@ def test_a_folder_whose_runs_are_all_in_sub_folders_names_them(tmp_path):
     with pytest.raises(ContractError, match=r"its sub-folders hold 4 \(2023-01/ \(2\), 2023-02/ "
                                             r"\(2\)\), not read: .*2023-01/<run>.csv"):
         read_dataset(tmp_path)
+
+
+def stamped(path, stamps):
+    """A run whose time column holds ``stamps`` as written."""
+    path.write_text("time,T_spindle,E_X\n" + "".join(
+        f"{t},{20 + 0.1 * i:.2f},{0.2 * i:.1f}\n" for i, t in enumerate(stamps)), encoding="utf-8")
+    return path
+
+
+def minutes(start: str, first: int, count: int) -> list[str]:
+    """``count`` timestamps a minute apart from minute ``first`` after ``start``."""
+    import pandas as pd
+
+    return [(pd.Timestamp(start) + pd.Timedelta(minutes=first + k)).isoformat()
+            for k in range(count)]
+
+
+def test_a_loggers_clock_reset_to_its_default_date_is_not_said_to_be_sorted(tmp_path):
+    # was "the rows are not in time order; sort them by their time": sorted, the run would
+    # start in 2000 and last 23 years (refused then as longer than data.max_duration_days)
+    path = stamped(tmp_path / "run.csv", minutes("2023-01-27T10:00", 0, 20)
+                   + minutes("2000-01-01T00:00", 0, 20))
+    with pytest.raises(ContractError) as refused:
+        read_dataset(path)
+    assert refused.value.row == 21
+    assert "(23.1 years back): the logger's clock set back" in refused.value.reason
+    assert "cut the file at this row into two runs" in refused.value.reason
+    assert "sort them" not in refused.value.reason
+
+
+def test_a_clock_set_back_into_the_runs_own_span_is_not_said_to_be_sorted(tmp_path):
+    # set back 88.5 min into the run's own three hours (a clock set by hand, not daylight
+    # saving time): sorting would interleave the stretches before and after
+    path = stamped(tmp_path / "run.csv", minutes("2023-01-27T10:00", 0, 180)
+                   + [f"{t[:-2]}30" for t in minutes("2023-01-27T10:00", 90, 20)])
+    with pytest.raises(ContractError, match=r"\(88.5 min back\): .*would mix its stretches"):
+        read_dataset(path)
+    # two exports pasted the wrong way round are still to be sorted
+    pasted = stamped(tmp_path / "pasted.csv", minutes("2023-01-27T10:00", 90, 90)
+                     + minutes("2023-01-27T10:00", 0, 90))
+    with pytest.raises(ContractError, match="sort them by their time"):
+        read_dataset(pasted)
