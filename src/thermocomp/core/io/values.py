@@ -16,7 +16,7 @@ from ...base.log import logger
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
-from .rates import said_if_rate_changes
+from .rates import RATE_CHANGE, said_if_rate_changes
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
@@ -177,6 +177,7 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
                            "other campaigns': if its time is in minutes (or theirs), convert it "
                            "to seconds")
     if not off:
+        _said_if_periods_differ(periods, root)
         return
     cid = max(off, key=off.get)  # two campaigns disagree: ms (a time 1000x too large) is likelier
     r = off[cid]
@@ -185,6 +186,25 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
                         f"campaigns' ({periods[cid] / r:g} s): is its time in {unit}? it must be "
                         f"in seconds (data.max_period_ratio={ratio:g})",
                         file=root / files[cid], column=TIME)
+
+
+def _said_if_periods_differ(periods: dict, root: Path) -> None:
+    """Say campaigns logged at sample periods :data:`RATE_CHANGE` times apart or more (a lab's
+    runs at 10 s and at 60 s): each weighs by its rows in a fit and in the scores, and a model
+    whose lags count samples reads a sample as another span in each (said before only 60x
+    apart, as minutes for seconds); ``data.resample_s`` puts them on one grid."""
+    lo, hi = min(periods.values()), max(periods.values())
+    if lo <= 0 or hi / lo < RATE_CHANGE:
+        return
+    groups: dict[float, list] = {}
+    for cid, p in periods.items():
+        groups.setdefault(float(f"{p:.3g}"), []).append(cid)
+    said = "; ".join(f"{p:g} s: {len(ids)} ({listed(ids, 3)})" for p, ids in sorted(groups.items()))
+    logger.warning(f"{root}: its campaigns are logged at different sample periods ({said}): each "
+                   f"weighs by its rows in the fit and in the scores (a {lo:g} s run {hi / lo:.3g} "
+                   f"times a {hi:g} s run as long), and a model whose lags count samples (arx, "
+                   f"lstm) reads a sample as another span in each; data.resample_s={hi:g} puts "
+                   "them on one grid")
 
 
 def _error_ranges(table: pa.Table, roles: tuple = ("E",)) -> dict:
