@@ -110,3 +110,20 @@ def test_runs_logged_at_other_periods_than_the_others_are_said(tmp_path, caplog)
     for i in (2, 4):
         run_file(tmp_path / f"run_{i}.csv", rows=30, period=60)
     assert "different sample periods" not in said(caplog, tmp_path)
+
+
+def test_summary_rows_under_a_runs_data_are_left_out_and_said(tmp_path, caplog):
+    # refused: "column 'time' ... value 'Mittelwert' is not a number", naming no fix
+    path = run_file(tmp_path / "run.csv", tail="Mittelwert,20.9,20.4,2.6\nMax,21.7,20.7,5.2\n")
+    text = said(caplog, path)
+    assert "footer left out (2 line(s) under the data: 'Mittelwert,20.9,20.4,2.6')" in text
+    ds, report = read_dataset(path)
+    assert report["rows"] == 30
+    # a logger's status column of words: its last rows are rows like every other, not a summary
+    lines = ["Status,time,T1 [°C],dX [µm]"] + [
+        f"{'run' if i < 25 else 'cool'},{60 * i},{20 + 0.01 * i:.2f},{0.1 * i:.1f}"
+        for i in range(30)]
+    path = tmp_path / "run.csv"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    ds, report = read_dataset(path, {"roles": {"error": ["dX"], "ignore": ["Status"]}})
+    assert report["rows"] == 30
