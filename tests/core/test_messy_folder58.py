@@ -127,3 +127,14 @@ def test_summary_rows_under_a_runs_data_are_left_out_and_said(tmp_path, caplog):
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     ds, report = read_dataset(path, {"roles": {"error": ["dX"], "ignore": ["Status"]}})
     assert report["rows"] == 30
+
+
+def test_a_header_only_run_among_a_folders_runs_is_said_to_be_left_out(tmp_path):
+    # "file has a header but no data rows" alone: the file named, not what to do with it
+    for i in range(1, 4):
+        run_file(tmp_path / f"run_{i}.csv")
+    (tmp_path / "run_4.csv").write_text("time,T_spindle,T_bed,E_X\n", encoding="utf-8")
+    with pytest.raises(ContractError, match="no data rows: a run not recorded.*leave the file "
+                                            "out of the folder") as refused:
+        read_dataset(tmp_path)
+    assert refused.value.file.name == "run_4.csv"
