@@ -1,6 +1,6 @@
 """A footer under a lab's CSV export (``End of data``, ``Stop 13:45``): the last lines of one
 field of text, left out (and said), where every line above holds the header's fields; so are
-summary rows (messy58: ``Mittelwert;25,3;...``, a word without a digit then numbers) under rows
+summary rows (messy58: ``Mittelwert;25,3;...``, a statistic's word then numbers) under rows
 whose first cell holds a digit (a time, a number).  A last
 line of numbers cut short stays a malformed row, refused with its row."""
 
@@ -17,7 +17,12 @@ from .encoding import UTF8
 
 _TAIL_BYTES = 1 << 14
 MAX_LINES = 5
-_WORD = re.compile(r"[^\W\d_][^\d]*")     # letters first, no digit: Mittelwert, Std.-Abw.
+# a summary row's label (its first word, any case): a statistic a lab's export writes under
+# the data; a word else in a last row (``later``) stays a time or a value not read, refused
+_SUMMARY = re.compile(
+    r"(mittelwert|durchschnitt|mean|average|avg|moyenne|media|median|max|maximum|maximal|massimo|"
+    r"min|minimum|minimal|minimo|summe|sum|total|std|stdabw|standardabweichung|stabw|stddev|"
+    r"sigma|anzahl|count|spanne|range|ecart|écart)\b[^\d]*", re.IGNORECASE)
 _DIGIT = re.compile(r"\d")
 
 
@@ -70,9 +75,9 @@ def _footer_line(text: str, delimiter: str) -> bool:
 
 def _summary_line(text: str, delimiter: str) -> bool:
     """A summary row under the data (``Mittelwert;25,3;...``, ``Max;...``): its first cell a
-    word without a digit, every other cell a number or empty."""
+    statistic's word without a digit, every other cell a number or empty."""
     cells = split_line(text, delimiter, EMPTY)
-    if len(cells) < 2 or not _WORD.fullmatch(cells[0].strip()):
+    if len(cells) < 2 or not _SUMMARY.fullmatch(cells[0].strip()):
         return False
     return all(_number(c) for c in cells[1:] if c.strip())
 
