@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from conftest import refused
+from conftest import FAST, refused
 from thermocomp.shell.cli import main
 
 
@@ -52,3 +52,20 @@ def test_a_sensor_missing_in_some_runs_names_the_pattern_that_leaves_it_out(tmp_
             "run_02.csv", "'T_T4': 2 of 6 campaigns lack it", "data.roles.ignore=['T4']")
     assert main(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]",
                  "data.roles.ignore=['T4']"]) == 0
+
+
+def test_an_ati_model_on_runs_without_an_ambient_names_where_to_give_it(tmp_path, capsys):
+    # the runs' names held their level (run_25C_03.csv) and the message named a manifest
+    # ambient_c alone: not how to give one to a folder without a manifest
+    folder = lab_folder(tmp_path / "lab")
+    args = ["run", f"data.path={folder}", "data.roles.error=[dX]", "data.test_fraction=0.2",
+            "model=mlr", "ati=cmeans", *FAST]
+    refused([*args, f"out={tmp_path / 'run'}"], capsys, "data.roles.ambient=[<its header>]",
+            "ambient_c in campaigns.csv (columns campaign, file, ambient_c")
+    assert not (tmp_path / "run").exists()
+    # the manifest it names reads the folder (no split: data.test_fraction holds out)
+    pd.DataFrame({"campaign": [f"run_{k:02d}" for k in range(1, 7)],
+                  "file": [f"run_{k:02d}.csv" for k in range(1, 7)],
+                  "ambient_c": [15, 20, 25, 30, 18, 27]}).to_csv(folder / "campaigns.csv",
+                                                                  index=False)
+    assert main([*args, f"out={tmp_path / 'run'}"]) == 0
