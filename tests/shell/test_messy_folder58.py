@@ -69,3 +69,14 @@ def test_an_ati_model_on_runs_without_an_ambient_names_where_to_give_it(tmp_path
                   "ambient_c": [15, 20, 25, 30, 18, 27]}).to_csv(folder / "campaigns.csv",
                                                                   index=False)
     assert main([*args, f"out={tmp_path / 'run'}"]) == 0
+
+
+def test_a_map_key_beyond_ascii_on_the_command_line_names_the_config_file(tmp_path, capsys):
+    # the hint said to quote the override, "++data.columns='{Spindelkopf [°C]: T_Spindel}'",
+    # which Hydra reads as a string: refused again as "data.columns must be a mapping"
+    folder = lab_folder(tmp_path / "lab")
+    line = refused(["ingest", f"data.path={folder}", "data.columns={Spindelkopf [°C]: T_Spindel}",
+                    f"data.interim={tmp_path / 'interim'}"], capsys,
+                   "a map's key beyond ASCII is not read on the command line",
+                   "(columns: {'Spindelkopf [°C]': T_Spindel})")
+    assert "read only quoted" not in line

@@ -244,11 +244,19 @@ def explain(exc: BaseException, command: str | None = None) -> str:
 def _quoted_hint(msg: str) -> str:
     """Hydra's lexer error for an override whose value holds a letter beyond ASCII (a lab's
     header word, ``Tür``, ``Temp_Öl``), with the override quoted as Hydra reads it: its message
-    named only the grammar page."""
+    named only the grammar page.  A map's key beyond ASCII (``data.columns={Spindel [°C]: ...}``)
+    is read by no quoting (quoted, the map is a string): the config file is named instead."""
     m = re.match(r"LexerNoViableAltException: (\S+?)=(\S.*?) \^", msg)
     if not m or m.group(2).isascii():
         return msg
     key, value = m.groups()
+    if value.startswith("{"):     # quoted, a map is one string ("data.columns must be a mapping")
+        section, _, entry = key.lstrip("+").partition(".")
+        pairs = (pair.partition(":") for pair in value.strip("{}").split(","))
+        yaml = ", ".join(f"'{k.strip()}': {v.strip()}" if sep else k for k, sep, v in pairs)
+        return (f"{msg}; a map's key beyond ASCII is not read on the command line, quoted or "
+                f"not (Hydra's grammar): write the entry into a config file, e.g. the "
+                f"{section} config `thermocomp init` writes ({entry}: {{{yaml}}})")
 
     def quoted(v: str) -> str:
         return v if v.isascii() or v[:1] in "'\"" else f"'{v}'"
