@@ -1,5 +1,6 @@
-"""A lab's folder of many runs, messy as real loggers make them (messy58), through ``init``:
-a channel renamed from some run on, a sensor missing in some runs."""
+"""A lab's folder of many runs, messy as real loggers make them (messy58), through ``init``,
+``run`` and the command line: a channel renamed from some run on, a sensor missing in some runs,
+an ATI model without an ambient, a map key beyond ASCII."""
 
 from __future__ import annotations
 
