@@ -81,3 +81,19 @@ def test_a_map_key_beyond_ascii_on_the_command_line_names_the_config_file(tmp_pa
                    "a map's key beyond ASCII is not read on the command line",
                    "(columns: {'Spindelkopf [°C]': T_Spindel})")
     assert "read only quoted" not in line
+
+
+def test_init_says_each_sample_period_of_runs_logged_at_two(tmp_path, capsys):
+    # it said "sample period: 10 s" alone, the median step of every row, for 2 runs at 10 s
+    # and 4 at 60 s (a 10 s run has six times the rows)
+    folder = lab_folder(tmp_path / "lab")
+    for k in (2, 5):
+        frame = pd.read_csv(folder / f"run_{k:02d}.csv", sep=";", decimal=",")
+        fine = np.arange(0, frame["Zeit [s]"].iloc[-1] + 1, 10.0)
+        pd.DataFrame({c: np.interp(fine, frame["Zeit [s]"], frame[c]) for c in frame}).to_csv(
+            folder / f"run_{k:02d}.csv", sep=";", decimal=",", index=False)
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]"]) == 0
+    out = capsys.readouterr()
+    assert ("rows (the median step of every row; campaigns logged at 10 s: 2, 60 s: 4)"
+            in out.out)
+    assert "data.resample_s=60 puts them on one grid" in out.err
