@@ -11,9 +11,11 @@ from conftest import FAST, refused
 from thermocomp.shell.cli import main
 
 
-def lab_folder(root, runs: int = 6, rename_from: int | None = None, drop: tuple = ()):
+def lab_folder(root, runs: int = 6, rename_from: int | None = None, drop: tuple = (),
+               probe_mm_from: int | None = None):
     """Runs as a lab's logger writes them (``;``, decimal commas, its own headers): ``T3`` is
-    written ``T03`` from run ``rename_from`` on, ``T4`` is not logged in the runs ``drop``."""
+    written ``T03`` from run ``rename_from`` on, ``T4`` is not logged in the runs ``drop``, the
+    error is ``dX1 [mm]`` from run ``probe_mm_from`` on (another probe)."""
     root.mkdir()
     rng = np.random.default_rng(58)
     for k in range(1, runs + 1):
@@ -24,6 +26,9 @@ def lab_folder(root, runs: int = 6, rename_from: int | None = None, drop: tuple 
                               "dX [µm]": 3 * (heat - 20) + rng.normal(0, 0.05, t.size)})
         if rename_from is not None and k >= rename_from:
             frame = frame.rename(columns={"T3": "T03"})
+        if probe_mm_from is not None and k >= probe_mm_from:
+            frame["dX [µm]"] /= 1000.0
+            frame = frame.rename(columns={"dX [µm]": "dX1 [mm]"})
         if k in drop:
             frame = frame.drop(columns=["T4"])
         frame.to_csv(root / f"run_{k:02d}.csv", sep=";", decimal=",", index=False)
@@ -97,3 +102,13 @@ def test_init_says_each_sample_period_of_runs_logged_at_two(tmp_path, capsys):
     assert ("rows (the median step of every row; campaigns logged at 10 s: 2, 60 s: 4)"
             in out.out)
     assert "data.resample_s=60 puts them on one grid" in out.err
+
+
+def test_a_renamed_channel_in_another_unit_is_said_to_be_renamed_not_mapped(tmp_path, capsys):
+    # data.columns converts nothing: 'dX1 [mm]' mapped to E_dX would be read as µm
+    folder = lab_folder(tmp_path / "lab", probe_mm_from=4)
+    line = refused(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX*]"],
+                   capsys, "'E_dX1' (its header in the file: 'dX1 [mm]') in the other 3",
+                   "renaming 'dX1 [mm]' to 'dX [mm]' in those files (data.columns would not "
+                   "convert its mm)")
+    assert "data.columns=" not in line

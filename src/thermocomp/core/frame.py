@@ -25,6 +25,8 @@ from .choices import REFERENCES
 from .context import AMBIENT_C0, CAMPAIGN, TIME
 from .io.contract import is_ambient, manifest_ambient, match_columns
 from .io.own_headers import header_pattern
+from .io.roles import split_unit
+from .io.units import UNITS
 
 REFERENCED_PREFIXES = ("T_", "E_")   # taken relative to the first sample; S_ keep their values
 RAW_PREFIXES = ("S_", "T_")          # ride along raw in the context
@@ -198,9 +200,16 @@ def _renamed(campaigns, column: str, twin: str, files, headers) -> ContractError
     first = where(new)[0]
     raw = headers.get(new, new)
     said = "" if raw == new else f" (its header in the file: {raw!r})"
-    # (a header of brackets or beyond ASCII is no dict key on the command line: Hydra's lexer)
-    fix = (f"data.columns={{{raw}: {old}}}" if _PLAIN_KEY.fullmatch(raw) else
-           f"columns: {{{raw!r}: {old}}} in the data config")
+    unit = split_unit(raw)[1]
+    if UNITS.get(new[0], {}).get((unit or "").lower().replace(" ", ""), (1.0, 0.0)) != (1.0, 0.0):
+        # data.columns converts nothing: 'dX1 [mm]' mapped so would be read as µm
+        same = f"{split_unit(headers.get(old, old))[0]} [{unit}]"
+        fix = (f"renaming {raw!r} to {same!r} in those files (data.columns would not convert "
+               f"its {unit})")
+    elif _PLAIN_KEY.fullmatch(raw):
+        fix = f"data.columns={{{raw}: {old}}}"
+    else:   # (a header of brackets or beyond ASCII is no dict key on the command line: Hydra)
+        fix = f"columns: {{{raw!r}: {old}}} in the data config"
     return ContractError(
         f"{old!r} is in {len(where(old))} of {len(order)} campaigns ({listed(where(old))}), "
         f"{new!r}{said} in the other {len(where(new))}, from {first} on: one sensor renamed? "
