@@ -13,6 +13,7 @@ stacks the same campaigns hundreds of times (mutual prediction, ATI baselines).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -23,6 +24,9 @@ from ..base.errors import ContractError, listed
 from .choices import REFERENCES
 from .context import AMBIENT_C0, CAMPAIGN, TIME
 from .io.contract import is_ambient, manifest_ambient, match_columns
+from .io.own_headers import header_pattern
+from .io.roles import split_unit
+from .io.units import UNITS
 
 REFERENCED_PREFIXES = ("T_", "E_")   # taken relative to the first sample; S_ keep their values
 RAW_PREFIXES = ("S_", "T_")          # ride along raw in the context
@@ -135,28 +139,82 @@ def resolve_columns(columns, inputs, targets) -> tuple[list[str], list[str]]:
 
 
 def check_common_columns(campaigns: Mapping[str, pd.DataFrame], columns,
-                         files: Mapping[str, object] | None = None) -> None:
+                         files: Mapping[str, object] | None = None,
+                         headers: Mapping[str, str] | None = None) -> None:
     """Every campaign holds every column the model reads (``columns``).
 
     Otherwise a ContractError naming the odd one out: the campaign that lacks a column the
     others have, or, when only a few have it, the first of those (a sensor fitted to once
-    would be missing wherever the model runs).  ``files`` maps campaign ids to the files
-    named in the error (default: the ids, in the message).
+    would be missing wherever the model runs); where another column of its role is in exactly
+    the other campaigns, the first campaign of the later name (a sensor renamed from some run
+    on).  ``files`` maps campaign ids to the files named in the error (default: the ids, in the
+    message); ``headers`` contract names to the files' own headers where they differ (a lab's
+    ``T03``, read as ``T_T03``), named in the fix.
     """
-    n = len(campaigns)
+    n, headers = len(campaigns), headers or {}
     for column in columns:
         have = [cid for cid, df in campaigns.items() if column in df.columns]
         if len(have) == n:
             continue
         lack = [cid for cid in campaigns if cid not in have]
+        twin = _other_name(campaigns, column, lack)
+        if twin is not None:
+            raise _renamed(campaigns, column, twin, files, headers)
         if have and len(have) < len(lack):
             odd, what = have[0], f"only {len(have)} of {n} campaigns have it ({listed(have)})"
         else:
             odd, what = lack[0], f"{len(lack)} of {n} campaigns lack it ({listed(lack)})"
         where = {"file": files[odd]} if files and odd in files else {}
+        # a lab's header read by role is left out by a pattern over it (data.inputs are globs
+        # over contract names: none leaves one sensor out)
+        out = (f"(data.roles.ignore=[{header_pattern(headers[column])!r}])" if column in headers
+               else "of data.inputs")
         raise ContractError(f"{what}: the model reads every declared column (data.inputs, "
                             "data.targets) in every campaign; give it to all of them or leave "
-                            "it out of data.inputs", column=column, **where)
+                            f"it out {out}", column=column, **where)
+
+
+def _other_name(campaigns: Mapping[str, pd.DataFrame], column: str, lack: list) -> str | None:
+    """The one column of ``column``'s role that is in exactly the campaigns ``lack`` (those
+    without ``column``), else None: one sensor under two names (``T3``, then ``T03``)."""
+    prefix, lack = column.split("_", 1)[0] + "_", set(lack)
+    names = {c for cid in lack for c in campaigns[cid].columns
+             if c.startswith(prefix) and c != column}
+    twins = [c for c in sorted(names)
+             if {cid for cid, df in campaigns.items() if c in df.columns} == lack]
+    return twins[0] if len(twins) == 1 else None
+
+
+_PLAIN_KEY = re.compile(r"[A-Za-z0-9_.\- ]+")
+
+
+def _renamed(campaigns, column: str, twin: str, files, headers) -> ContractError:
+    """The refusal of ``column`` and ``twin``, each in the campaigns the other is not in, with
+    the ``data.columns`` entry that reads the later name as the earlier one."""
+    order = list(campaigns)
+
+    def where(name):
+        return [cid for cid, df in campaigns.items() if name in df.columns]
+
+    old, new = sorted((column, twin), key=lambda name: order.index(where(name)[0]))
+    first = where(new)[0]
+    raw = headers.get(new, new)
+    said = "" if raw == new else f" (its header in the file: {raw!r})"
+    unit = split_unit(raw)[1]
+    if UNITS.get(new[0], {}).get((unit or "").lower().replace(" ", ""), (1.0, 0.0)) != (1.0, 0.0):
+        # data.columns converts nothing: 'dX1 [mm]' mapped so would be read as µm
+        same = f"{split_unit(headers.get(old, old))[0]} [{unit}]"
+        fix = (f"renaming {raw!r} to {same!r} in those files (data.columns would not convert "
+               f"its {unit})")
+    elif _PLAIN_KEY.fullmatch(raw):
+        fix = f"data.columns={{{raw}: {old}}}"
+    else:   # (a header of brackets or beyond ASCII is no dict key on the command line: Hydra)
+        fix = f"columns: {{{raw!r}: {old}}} in the data config"
+    return ContractError(
+        f"{old!r} is in {len(where(old))} of {len(order)} campaigns ({listed(where(old))}), "
+        f"{new!r}{said} in the other {len(where(new))}, from {first} on: one sensor renamed? "
+        f"{fix} reads it under one name", column=new,
+        **({"file": files[first]} if files and first in files else {}))
 
 
 def _framed(A: np.ndarray, cols, reference: str) -> np.ndarray:

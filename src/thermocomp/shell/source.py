@@ -231,7 +231,9 @@ def check_declared(cfg: DictConfig, ds, model: bool = True) -> None:
     from ..core.frame import check_common_columns
 
     inputs, targets = declared_columns(cfg, ds)
-    check_common_columns(ds.campaigns, inputs + targets, {cid: ds.file_path(cid) for cid in ds.ids()})
+    headers = {name: raw for raw, name in (ds.meta.get("column_map") or {}).items()}
+    check_common_columns(ds.campaigns, inputs + targets, {cid: ds.file_path(cid) for cid in ds.ids()},
+                         headers)
     if model:
         check_model_columns(cfg, ds)
 

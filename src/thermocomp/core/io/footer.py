@@ -1,5 +1,7 @@
 """A footer under a lab's CSV export (``End of data``, ``Stop 13:45``): the last lines of one
-field of text, left out (and said), where every line above holds the header's fields.  A last
+field of text, left out (and said), where every line above holds the header's fields; so are
+summary rows (messy58: ``Mittelwert;25,3;...``, a statistic's word then numbers) under rows
+whose first cell holds a digit (a time, a number).  A last
 line of numbers cut short stays a malformed row, refused with its row."""
 
 from __future__ import annotations
@@ -15,6 +17,13 @@ from .encoding import UTF8
 
 _TAIL_BYTES = 1 << 14
 MAX_LINES = 5
+# a summary row's label (its first word, any case): a statistic a lab's export writes under
+# the data; a word else in a last row (``later``) stays a time or a value not read, refused
+_SUMMARY = re.compile(
+    r"(mittelwert|durchschnitt|mean|average|avg|moyenne|media|median|max|maximum|maximal|massimo|"
+    r"min|minimum|minimal|minimo|summe|sum|total|std|stdabw|standardabweichung|stabw|stddev|"
+    r"sigma|anzahl|count|spanne|range|ecart|écart)\b[^\d]*", re.IGNORECASE)
+_DIGIT = re.compile(r"\d")
 
 
 def footer(path: Path, delimiter: str, fields: int, encoding: str = UTF8
@@ -27,16 +36,21 @@ def footer(path: Path, delimiter: str, fields: int, encoding: str = UTF8
         f.seek(max(0, size - _TAIL_BYTES))
         tail = f.read()
     lines = tail.splitlines(keepends=True)
-    found, cut = [], size
+    found, cut, above, summary = [], size, "", False
     for raw in reversed(lines[1:] if size > _TAIL_BYTES else lines):
         text = raw.decode(encoding, "replace").strip()
         if text and not _footer_line(text, delimiter):
-            break
+            if not _summary_line(text, delimiter):
+                above = text
+                break
+            summary = True
         if len(found) == MAX_LINES:
             return [], size
         cut -= len(raw)
         if text:
             found.insert(0, text)
+    if summary and not _DIGIT.search(split_line(above, delimiter, EMPTY)[0]):
+        return [], size         # a first column of words: those are data rows, not a summary
     return (found, cut) if found else ([], size)
 
 
@@ -57,6 +71,23 @@ def _footer_line(text: str, delimiter: str) -> bool:
     except ValueError:
         return True
     return False
+
+
+def _summary_line(text: str, delimiter: str) -> bool:
+    """A summary row under the data (``Mittelwert;25,3;...``, ``Max;...``): its first cell a
+    statistic's word without a digit, every other cell a number or empty."""
+    cells = split_line(text, delimiter, EMPTY)
+    if len(cells) < 2 or not _SUMMARY.fullmatch(cells[0].strip()):
+        return False
+    return all(_number(c) for c in cells[1:] if c.strip())
+
+
+def _number(cell: str) -> bool:
+    try:
+        float(cell.strip().replace(",", "."))
+    except ValueError:
+        return False
+    return True
 
 
 def blank_inside(path: Path, skip: int, cut: int) -> int | None:

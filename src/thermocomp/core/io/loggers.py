@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from .contract import ContractError, role
+from .contract import MANIFEST, ContractError, role
 from .options import ReadOptions
 from .plain import as_read, is_converted
 from .starts import named_head
@@ -22,7 +22,14 @@ def errors_elsewhere(exc: ContractError, root: Path, manifest: pd.DataFrame, cid
                      opts: ReadOptions) -> ContractError:
     """``exc`` (campaign ``cid`` of the folder ``root`` refused) as it is, or, where it has no
     error column and another file of ``manifest`` holds errors but no temperature, a refusal
-    naming that file and saying that files are not joined."""
+    naming that file and saying that files are not joined; a file without data rows, said
+    to be left out."""
+    if exc.reason.endswith("no data rows") and exc.row is None:
+        # a run not recorded (its logger's header alone) among a lab's runs (messy58)
+        where = (f"its row out of {MANIFEST}" if (root / MANIFEST).is_file() else
+                 "the file out of the folder")
+        return ContractError(f"{exc.reason}: a run not recorded? a campaign needs samples; leave "
+                             f"{where}", file=exc.file, column=exc.column, sheet=exc.sheet)
     if not exc.reason.startswith(NO_ERROR):
         return exc
     for other, file in manifest["file"].items():

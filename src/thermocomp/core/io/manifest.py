@@ -94,6 +94,23 @@ def campaign_files(folder: Path) -> list[Path]:
     return sorted(runs or [p for p in files if p.suffix.lower() in TEXT_SUFFIXES], key=natural)
 
 
+def subfolder_runs(folder: Path) -> dict[str, int]:
+    """The campaign files below each sub-folder of ``folder`` (a lab's runs sorted into month
+    folders), by sub-folder: a folder without a manifest reads only the files directly in it."""
+    found = {}
+    for sub in sorted(p for p in folder.iterdir() if p.is_dir() and not p.name.startswith(".")):
+        n = sum(1 for p in sub.rglob("*") if p.suffix.lower() in CAMPAIGN_SUFFIXES
+                and p.is_file() and not p.name.startswith((".", EXCEL_OWNER)))
+        if n:
+            found[sub.name] = n
+    return found
+
+
+def said_subfolders(found: dict[str, int]) -> str:
+    """``found`` (:func:`subfolder_runs`) said: ``2023-01/ (16), 2023-02/ (16)``."""
+    return ", ".join(f"{name}/ ({n})" for name, n in found.items())
+
+
 def _check_no_manifest_among(files: list[Path]) -> None:
     """A lab's list of its runs saved under another name (``Versuchsplan.csv``) is no run: its
     header names ``campaign`` and ``file`` (read otherwise, its ids are "not numeric")."""
@@ -111,6 +128,14 @@ def _check_no_manifest_among(files: list[Path]) -> None:
 def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
                    encoding: str = UTF8) -> pd.DataFrame:
     if not path.is_file():
+        below = subfolder_runs(path.parent) if path.parent.is_dir() else {}
+        if below:    # a lab's runs sorted into sub-folders (it was "manifest not found" alone)
+            raise ContractError(
+                f"manifest not found, and no run file directly in the folder; its sub-folders "
+                f"hold {sum(below.values())} ({said_subfolders(below)}), not read: move them "
+                f"into one folder, give a sub-folder as data.path, or list every run in a "
+                f"{MANIFEST} (its file column a path such as {next(iter(below))}/<run>.csv)",
+                file=path)
         raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})", file=path)
     text = _text(path, "," if delimiter == AUTO else delimiter, encoding)
     header = text.splitlines()[0] if text.strip() else ""

@@ -15,6 +15,12 @@ _GLOB = re.compile(r"([*?\[])")      # a header's glob characters, matched as th
 _QUOTED = re.compile(r"'([^']+)'")
 
 
+def header_pattern(header: str) -> str:
+    """The ``data.roles`` pattern that matches ``header`` alone: a role pattern matches a header
+    without its unit, so the base, its glob characters escaped."""
+    return _GLOB.sub(r"[\1]", split_unit(header)[0] or header)
+
+
 def with_own_header(exc: ContractError, renamed: Mapping[str, str]) -> ContractError:
     """``exc`` as it is, or, where the column it names (and any other column its reason quotes,
     several empty ones) is a header of the file renamed (``renamed``: raw -> contract name),
@@ -25,8 +31,7 @@ def with_own_header(exc: ContractError, renamed: Mapping[str, str]) -> ContractE
     names = [exc.column, *(n for n in _QUOTED.findall(exc.reason) if n in raws)]
     names = list(dict.fromkeys(names))
     headers = [raws[n] for n in names]
-    # (a role pattern matches a header without its unit: the base, its glob characters escaped)
-    patterns = ", ".join(repr(_GLOB.sub(r"[\1]", split_unit(h)[0] or h)) for h in headers)
+    patterns = ", ".join(repr(header_pattern(h)) for h in headers)
     reason = exc.reason.replace("=[<header>]", f"=[{patterns}]").replace(
         "(data.roles.ignore)", f"(data.roles.ignore=[{patterns}])")
     said = (f"its header in the file: {headers[0]!r}" if len(headers) == 1 else

@@ -79,7 +79,7 @@ from .contract import (
 )
 from .lines import Lines
 from .loggers import errors_elsewhere
-from .manifest import apply_split_overrides, read_manifest
+from .manifest import apply_split_overrides, read_manifest, said_subfolders, subfolder_runs
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
 from .plain import as_read
@@ -485,6 +485,11 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if not (path / MANIFEST).is_file():      # said once per read, not per look at the folder
         logger.info(f"{path.name}: no {MANIFEST}; its {len(manifest)} campaign files read as "
                     "train campaigns in name order (data.test_fraction holds the last out)")
+        below = subfolder_runs(path)
+        if below:        # half a lab's runs in a month folder were left out without a word
+            logger.warning(f"{path}: its sub-folders hold {sum(below.values())} more run files "
+                           f"({said_subfolders(below)}), not read: a folder's runs are the files "
+                           f"directly in it (move them up, or list every run in a {MANIFEST})")
     if campaigns is not None:
         manifest = manifest.loc[list(campaigns)]
     return path, manifest, _iter_campaigns(path, manifest, opts)

@@ -56,6 +56,11 @@ _NAME = re.compile(r"[TES]_[\w.\-]+")
 # Column names
 
 
+def shortened(line: str, most: int = 60) -> str:
+    """``line`` cut to ``most`` characters (a summary row of 17 means) for a message."""
+    return line if len(line) <= most else line[:most - 3] + "..."
+
+
 def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
                     first: dict | None = None) -> tuple[list[str | None], dict]:
     """Contract names of the file's columns (None: left out by ``data.roles.ignore``) and the
@@ -156,7 +161,8 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
     said, cut = footer(path, opts.delimiter, len(header), opts.encoding)
     opts = replace(opts, data_bytes=cut)        # (the tail read once: every read of the data)
     if said:
-        logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: {said[0]!r})")
+        logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: "
+                       f"{shortened(said[0])!r})")
     blank = None if TIME in named else blank_inside(path, opts.skip_rows, cut)
     if blank is not None:
         logger.warning(f"{path}, {lines.at(blank)}: a blank line under it is left out, and the "

@@ -16,7 +16,7 @@ from ...base.log import logger
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
-from .rates import said_if_rate_changes
+from .rates import RATE_CHANGE, said_if_rate_changes
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
@@ -44,7 +44,8 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         # timestamps on a local clock without an offset, and no data.timezone to read it
         local = (pa.types.is_timestamp(column.type) and column.type.tz is None
                  and opts.timezone is None)
-        _check_increasing(seconds, path, local, info.get("time_origin"))
+        _check_increasing(seconds, path, local, info.get("time_origin"),
+                          opts.max_duration_days)
         if local:
             said_if_clock_skips(seconds, path, at=at(lines))
         if opts.resample_s is None:        # (on one grid, as the warning says to put it)
@@ -77,10 +78,11 @@ def _seconds(column: pa.ChunkedArray, path: Path, zone: str | None = None
 
 
 def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
-                      origin: str | None = None) -> None:
+                      origin: str | None = None, max_days: float | None = None) -> None:
     """Refuse a time that does not increase, saying the fix (``local``: timestamps on a local
     clock without an offset, where an hour set back is daylight saving time ending, said so;
-    ``origin``: the first timestamp, so that a time is named as written, not as seconds)."""
+    ``origin``: the first timestamp, so that a time is named as written, not as seconds;
+    ``max_days``: a longer campaign, sorted, is no run but a clock reset)."""
     finite = np.isfinite(seconds)
     if not finite.all():
         row = int(np.argmin(finite)) + 1
@@ -98,7 +100,8 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
         dst = clock_set_back(before, after) if local else ""
         # rows a lab exported or pasted out of order: sorting them gives one time per sample
         unsorted = "" if dst or np.unique(seconds).size < seconds.size else (
-            ": the rows are not in time order; sort them by their time")
+            _clock_reset(seconds, after - before, max_days)
+            or ": the rows are not in time order; sort them by their time")
         # a logger's clock that starts again (restarted, or runs joined): its times repeat
         again = "" if dst or unsorted or after > seconds[0] else (
             ": the time starts again (the logger restarted, or runs joined in one file?): one "
@@ -106,6 +109,32 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
         what = (f"time decreases from {_shown(before, origin)} (row {i + 1}) to "
                 f"{_shown(after, origin)}{dst}{unsorted}{again}")
     raise ContractError(what, file=path, column=TIME, row=i + 2)
+
+
+def _clock_reset(seconds: np.ndarray, back: float, max_days: float | None) -> str:
+    """What to say of unique times that sorting would not make a run of (``back``: the first
+    step back, s): the stretches after and before it interleave (a clock set back into the
+    run's own span), or sorted they would span more than ``max_days`` (a logger's clock reset
+    to its default date, 01.01.2000); '' where sorting mends them (exports pasted out of order)."""
+    order = np.argsort(seconds, kind="stable")
+    stretches = 1 + int(np.count_nonzero(np.diff(seconds) < 0))
+    interleaved = 1 + int(np.count_nonzero(np.diff(order) != 1)) > stretches
+    too_long = max_days is not None and np.ptp(seconds) > max_days * 86400
+    if not (interleaved or too_long):
+        return ""
+    said = ("mix its stretches before and after this row" if interleaved else
+            f"make a campaign of {np.ptp(seconds) / 86400:.4g} days")
+    return (f" ({_span(-back)} back): the logger's clock set back (reset, or set to another "
+            f"date?); sorting the rows would {said}: cut the file at this row into two runs "
+            "(a file each), or correct the times from this row on")
+
+
+def _span(seconds: float) -> str:
+    """A duration in the unit that reads it: ``90 s``, ``12 min``, ``5.5 h``, ``23.1 years``."""
+    for unit, size in (("years", 365.25 * 86400), ("days", 86400), ("h", 3600), ("min", 60)):
+        if seconds >= 2 * size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:g} s"
 
 
 def _shown(seconds: float, origin: str | None) -> str:
@@ -148,6 +177,7 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
                            "other campaigns': if its time is in minutes (or theirs), convert it "
                            "to seconds")
     if not off:
+        _said_if_periods_differ(periods, root)
         return
     cid = max(off, key=off.get)  # two campaigns disagree: ms (a time 1000x too large) is likelier
     r = off[cid]
@@ -156,6 +186,25 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
                         f"campaigns' ({periods[cid] / r:g} s): is its time in {unit}? it must be "
                         f"in seconds (data.max_period_ratio={ratio:g})",
                         file=root / files[cid], column=TIME)
+
+
+def _said_if_periods_differ(periods: dict, root: Path) -> None:
+    """Say campaigns logged at sample periods :data:`RATE_CHANGE` times apart or more (a lab's
+    runs at 10 s and at 60 s): each weighs by its rows in a fit and in the scores, and a model
+    whose lags count samples reads a sample as another span in each (said before only 60x
+    apart, as minutes for seconds); ``data.resample_s`` puts them on one grid."""
+    lo, hi = min(periods.values()), max(periods.values())
+    if lo <= 0 or hi / lo < RATE_CHANGE:
+        return
+    groups: dict[float, list] = {}
+    for cid, p in periods.items():
+        groups.setdefault(float(f"{p:.3g}"), []).append(cid)
+    said = "; ".join(f"{p:g} s: {len(ids)} ({listed(ids, 3)})" for p, ids in sorted(groups.items()))
+    logger.warning(f"{root}: its campaigns are logged at different sample periods ({said}): each "
+                   f"weighs by its rows in the fit and in the scores (a {lo:g} s run {hi / lo:.3g} "
+                   f"times a {hi:g} s run as long), and a model whose lags count samples (arx, "
+                   f"lstm) reads a sample as another span in each; data.resample_s={hi:g} puts "
+                   "them on one grid")
 
 
 def _error_ranges(table: pa.Table, roles: tuple = ("E",)) -> dict:

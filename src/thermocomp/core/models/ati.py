@@ -355,7 +355,11 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
                      else f"campaigns {listed(odd)} have no" if odd else "a campaign has no")
             raise ContractError("ATI models need each campaign's initial ambient temperature, "
                                 f"but {which} valid T_amb / T_amb_* value (nor a manifest "
-                                "ambient_c, its ambient where no sensor is)", column="T_amb")
+                                "ambient_c, its ambient where no sensor is): name the air "
+                                "sensor, data.roles.ambient=[<its header>], or give each "
+                                "campaign's ambient_c in campaigns.csv (columns campaign, file, "
+                                "ambient_c; a folder of runs without one: write it)",
+                                column="T_amb")
         return a0
 
     def _cv_rsd(self, X, y, campaign, a0: pd.Series, n: int, context, seen=None) -> np.ndarray:

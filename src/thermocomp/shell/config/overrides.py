@@ -245,7 +245,9 @@ def _quoted_hint(exc: BaseException, msg: str) -> str:
     """Hydra's parse error for an override whose value a lab's header word makes unreadable
     unquoted (a letter beyond ASCII, ``Tür``; spaces with brackets or parentheses, ``Verlagerung
     X [um]``), with the override quoted as Hydra reads it, when that parses: Hydra's message
-    named only the grammar page (and ``mismatched input '['`` not even the override)."""
+    named only the grammar page (and ``mismatched input '['`` not even the override).  A map's
+    key beyond ASCII (``data.columns={Spindel [°C]: ...}``) is read by no quoting (quoted, the
+    map is a string): the config file is named instead."""
     from hydra.core.override_parser.overrides_parser import OverridesParser
     from hydra.errors import OverrideParseException
 
@@ -255,6 +257,14 @@ def _quoted_hint(exc: BaseException, msg: str) -> str:
     key, value = override.split("=", 1)
     if value.isascii() and " " not in value:     # a typo (``model=mlr[``), not a header word
         return msg
+    if value.startswith("{"):    # quoted, a map is one string; its keys are read unquoted only
+        section, _, entry = key.lstrip("+").partition(".")
+        pairs = (pair.partition(":") for pair in value.strip("{}").split(","))
+        yaml = ", ".join(f"'{k.strip()}': {v.strip()}" if sep else k for k, sep, v in pairs)
+        letters = "beyond ASCII" if not value.isascii() else "with spaces or brackets"
+        return (f"{msg}; a map's key {letters} is not read on the command line, quoted or "
+                f"not (Hydra's grammar): write the entry into a config file, e.g. the "
+                f"{section} config `thermocomp init` writes ({entry}: {{{yaml}}})")
 
     def quoted(v: str) -> str:
         plain = v.isascii() and not any(c in v for c in " []()")
