@@ -138,3 +138,18 @@ def test_a_header_only_run_among_a_folders_runs_is_said_to_be_left_out(tmp_path)
                                             "out of the folder") as refused:
         read_dataset(tmp_path)
     assert refused.value.file.name == "run_4.csv"
+
+
+def test_a_clock_resynchronised_by_minutes_is_no_daylight_saving_time(tmp_path):
+    # set back 6.5 min (a clock resync): it was said "set back by up to an hour, daylight saving
+    # time ending? set data.timezone", which cannot read it (lead58); an hour less a period is
+    path = stamped(tmp_path / "resync.csv", minutes("2023-06-01T08:00", 0, 60)
+                   + [f"{t[:-2]}30" for t in minutes("2023-06-01T08:00", 52, 60)])
+    with pytest.raises(ContractError) as refused:
+        read_dataset(path)
+    assert "(6.5 min back): the logger's clock set back" in refused.value.reason
+    assert "daylight saving" not in refused.value.reason
+    autumn = stamped(tmp_path / "autumn.csv", minutes("2023-10-29T01:00", 0, 120)
+                     + minutes("2023-10-29T02:00", 0, 60))        # 02:59 -> 02:00
+    with pytest.raises(ContractError, match="daylight saving time ending"):
+        read_dataset(autumn)

@@ -234,11 +234,16 @@ def on_local_clock(ns: np.ndarray, zone: str, file, column: str = TIME) -> np.nd
     raise ContractError(f"time {index[row]} is {what}", file=file, column=column, row=row + 1)
 
 
-def clock_set_back(before: float, after: float) -> str:
-    """What to say of a local clock going back by up to an hour (daylight saving time ends)."""
-    if not 0 < before - after <= HOUR_S:
+def clock_set_back(before: float, after: float, period: float | None = None) -> str:
+    """What to say of a local clock going back by an hour less a sample period (daylight saving
+    time ends: 02:59 is followed by 02:00), within a period either way (``period`` None: by up to
+    an hour); a clock resynchronised by minutes is no daylight saving time."""
+    back = before - after
+    near = (abs(back + period - HOUR_S) <= period if period and period < HOUR_S
+            else 0 < back <= HOUR_S)
+    if not near:
         return ""
-    return (": the clock set back by up to an hour, daylight saving time ending? set data.timezone "
+    return (": the clock set back by an hour, daylight saving time ending? set data.timezone "
             "to the zone it was written in (e.g. data.timezone=Europe/Berlin)")
 
 
