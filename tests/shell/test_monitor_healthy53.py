@@ -13,6 +13,10 @@ The judged statistic alone, in sample (monitor54), quiets it too (T_left1's band
 silences the same leaked drift (T_xdrive 0.665 °C against a 0.692 band): not merged either.
 Excluding instead the sensor out of band whose exclusion explains the others (T_left1) costs more
 (T_left1 and its coupled T_left3 out, E_X 0.73 -> 2.93 µm).
+Bands widened by the sample's distance from training (shorttrain58,
+benchmarks/bench_monitor_shorttrain58.py) cannot quiet it: where T_left1 peaks the sample lies
+inside training's cloud (mode coefficients 0.63, the predictors' residual 0.94 of training's
+largest distance).
 
 A drifting sensor of high leverage (monitor54): the culprit rule's pick explained the bands only
 by raising the drifting sensor's leverage past judging; such an exclusion no longer counts as an
