@@ -117,6 +117,21 @@ residual Gram, ``conditioning`` on the shipped search's effects: twin_lathe's la
 gantry's 2.3e7, vendor5's 6e4 mended; the single products 1, boring_mill E_Z's pair 150), but
 not cleanly (4004's product + ambient law 2.5e5 harmed, 4008's, also 2.5e5, mended); a
 threshold on it would be chosen on these very cases: not proposed without fresh records.
+
+**split** (session 58, written down before it was scored, with the fresh records below): a
+penalty per KIND of effect-feature group.  The one-SE rule guards against the variance of many
+ill-determined directions; a single product feature is one well-determined direction, which
+the larger penalty only biases towards zero.  So the effects whose features are ONE column (a
+product, a square, one signal raw or lagged) share one penalty, the effects of SEVERAL columns
+(a lag of every input, an ambient law of every input, an initial-state transient with its lag)
+another.  The pair is chosen on the grid ``ALPHAS x ALPHAS``: the pair of least CV MSE, then the
+many-feature penalty raised to the largest whose CV MSE (the single-feature penalty held) is
+within one standard error of the least (``after``'s: that of the mean of the test blocks' MSE
+at the least-error pair).  With one kind only it is ``before`` (single features) or ``after``
+(many).  The final model is fitted with the same two penalties (:class:`GroupPenalty`).
+Acceptance as ``after``'s, and fresh records chosen before scoring: planted 4013-4024 and clean
+4007-4018 of ``bench_diagnose_memory``'s builder (never run before), and the 20 cases of
+``bench_diagnose_faults58`` (``faults``).
 """
 
 from __future__ import annotations
