@@ -164,16 +164,18 @@ import bench_diagnose_memory as memory  # noqa: E402
 from thermocomp.apps.diagnose import diagnose  # noqa: E402
 from thermocomp.apps.diagnose.augmented import AugmentedRegressor  # noqa: E402
 from thermocomp.apps.diagnose.cv import CrossValidator  # noqa: E402
+from thermocomp.apps.diagnose.search import Search  # noqa: E402
 from thermocomp.apps.diagnose.shrink import ALPHAS, PartialRidgePath  # noqa: E402
 from thermocomp.core.context import for_target  # noqa: E402
 
-VARIANTS = ["before", "after", "paired", "split"]
+VARIANTS = ["before", "after", "paired", "split", "final"]
 MACHINES = {"om": ["lathe43", "lathe43m", "rig40", "vendor5"],
             "nm56": ["grinder", "grinder-nocoolant", "gantry", "gantry-noY"],
             "nm57": ["boring_mill", "boring_mill-noW", "twin_lathe", "twin_lathe-noair"]}
 CASES = memory.CASES + [f"machine:{n}" for names in MACHINES.values() for n in names]
 SHIPPED_RUN = CrossValidator._run_closed_form
 SHIPPED_FIT = AugmentedRegressor.fit
+SHIPPED_DEPLOYED = Search._deployed
 
 
 def least_error(mse, block_mse) -> int:
@@ -252,7 +254,7 @@ def weighted_weights(path: PartialRidgePath, penalties: np.ndarray) -> np.ndarra
     return V @ np.linalg.solve(M, np.broadcast_to(path.u, (len(penalties), len(lam)))[..., None])[..., 0].T
 
 
-def split_run(self, inputs, effects):
+def split_run(self, inputs, effects, one_se=False):
     """``split``: the closed-form CV over the grid of (single-feature, many-feature) penalties."""
     if not (self.shrink and effects):
         return SHIPPED_RUN(self, inputs, effects)
@@ -323,10 +325,13 @@ def split_fit(self, X, y, context=None):
 
 
 def variant(name: str):
-    """``CrossValidator``'s closed-form CV with the penalty picked by ``PICKS[name]``
-    (``before`` is the shipped code's own; ``split``: :func:`split_run`, :func:`split_fit`)."""
+    """``CrossValidator``'s closed-form CV with the penalty picked by ``PICKS[name]`` (``before``:
+    the least-error penalty everywhere, the code before session 58; ``split``:
+    :func:`split_run`, :func:`split_fit`; ``final``: the shipped code, ``Search._deployed``)."""
     AugmentedRegressor.fit = split_fit if name == "split" else SHIPPED_FIT
-    if name == "before":
+    # the shipped code is ``final``; every other rule is scored without its deployed penalty
+    Search._deployed = SHIPPED_DEPLOYED if name == "final" else (lambda self, current: current)
+    if name in ("before", "final"):
         CrossValidator._run_closed_form = SHIPPED_RUN
         return
     if name == "split":
@@ -334,7 +339,7 @@ def variant(name: str):
         return
     pick = PICKS[name]
 
-    def run(self, inputs, effects):
+    def run(self, inputs, effects, one_se=False):
         if not (self.shrink and effects):
             return SHIPPED_RUN(self, inputs, effects)
         pred = penalty_path(self, inputs, effects)
@@ -392,7 +397,7 @@ def machine_row(root: Path, name: str, variant_name: str) -> dict:
         ds, comp, options = machine_data(root, name)
         d = diagnose(ds, comp, None, "simulation", options)
     finally:
-        variant("before")
+        variant("final")
     out = {}
     for t in d.targets:
         j = d.to_json(t)
@@ -410,7 +415,7 @@ def row(case: str, variant_name: str, root: Path) -> dict:
     try:
         return memory.row(case, "shipped") | {"variant": variant_name}
     finally:
-        variant("before")
+        variant("final")
 
 
 def forensics(root: Path, name: str = "twin_lathe") -> None:
@@ -437,7 +442,7 @@ def forensics(root: Path, name: str = "twin_lathe") -> None:
         d = diagnose(ds, comp, None, "simulation", options)
     finally:
         Search._family_bar = shipped
-        variant("before")
+        variant("final")
     before = d.before_model
     train, test = d.cv["train_campaigns"], d.cv["test_campaigns"]
     m = stack({c: ds.campaigns[c] for c in train + test}, before.inputs_, before.targets_, before.reference)
@@ -589,7 +594,7 @@ def faults(root: Path, variants: list[str], cases: list[str]) -> None:
             try:
                 out = faults58.row(case, root)
             finally:
-                variant("before")
+                variant("final")
             print(json.dumps(out | {"variant": name}), flush=True)
 
 
