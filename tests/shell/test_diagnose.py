@@ -413,6 +413,70 @@ def test_forward_folds_train_only_on_the_past_and_run_through_it():
     assert not p.validated[:100].any() and p.validated[100:].all()
 
 
+def _core_record(seed=3, n=1200):
+    """One record (5 min samples): six sensors mixing two thermal modes; ``E_Z`` follows an
+    unmeasured core 4 h behind them (a lag of every input: six nearly collinear features),
+    ``E_P`` a load x temperature product (one feature)."""
+    rng = np.random.default_rng(seed)
+    t = np.arange(n) * DT
+    duty = np.repeat(rng.random(n // 24) < 0.5, 24).astype(float)
+    m1 = 4 * first_order_lag(duty, t, None, 3600.0)
+    m2 = 3 * first_order_lag(np.roll(duty, 60), t, None, 7200.0) + 0.5 * np.sin(t / 40000)
+    T = 20 + np.column_stack([m1, m2]) @ rng.uniform(0.2, 1.0, (6, 2)).T
+    T += 0.03 * rng.standard_normal((n, 6))
+    df = pd.DataFrame(T, columns=[f"T_{i}" for i in range(1, 7)])
+    df.insert(0, "time", t)
+    df["T_amb"] = 20 + 0.02 * rng.standard_normal(n)
+    df["S_load"] = np.repeat(rng.random(n // 12) < 0.5, 12).astype(float)
+    static = T[:, :3] @ [1.0, -0.5, 0.3]
+    df["E_Z"] = static + 2 * first_order_lag(m1 + m2, t, None, 14400.0) + 0.1 * rng.standard_normal(n)
+    df["E_P"] = static + df["S_load"] * (T[:, 0] - 20) + 0.1 * rng.standard_normal(n)
+    return df
+
+
+def test_a_lag_of_many_inputs_is_deployed_at_the_one_standard_error_penalty_a_product_is_not():
+    """The CV of one record is flat over decades of penalty on a lag of every input (a twin
+    lathe's 4 h lag: test 0.55 µm at the least-error penalty, 0.32 at the one-SE one); the
+    deployed model takes the largest penalty within one standard error of the least CV MSE.
+    A one-feature product keeps its least-error penalty (the larger one biased real products)."""
+    import thermocomp.apps.diagnose.cv as cv_module
+    from thermocomp.apps.diagnose.candidates import CONTROL, random_walk
+    from thermocomp.apps.diagnose.search import Search
+    from thermocomp.apps.diagnose.shrink import ALPHAS
+    from thermocomp.core.select import AllInputs
+
+    inputs = [f"T_{i}" for i in range(1, 7)]
+    m = stack({"L": _core_record()}, inputs, ["E_Z", "E_P"], reference="none")
+    m.context[CONTROL] = random_walk(m.groups, 0)
+    found = {}
+    for target in ("E_Z", "E_P"):
+        p = Problem(m.X, m.Y[target].to_numpy(), m.context, m.groups, m.groups, target,
+                    reference="none", scheme="forward", n_blocks=16, gap=48, min_train_fraction=0.5)
+        search = Search(p, MLR(), AllInputs(), inputs, SearchOptions(max_effects=1))
+        found[target] = (search, search.run())
+    search, lag = found["E_Z"]
+    (ev,) = lag.accepted
+    assert ev.effect.transform == "lowpass_inputs" and ev.n_features == 6
+    # the CV at every penalty alone: MSE and its blocks' standard error at the least
+    runs = []
+    for alpha in ALPHAS:
+        cv_module.ALPHAS = np.array([alpha])
+        try:
+            runs.append(search.cv.run(search.inputs(), [ev.effect]))
+        finally:
+            cv_module.ALPHAS = ALPHAS
+    mse = np.array([r.rmse**2 for r in runs])
+    best = int(np.argmin(mse))
+    se = runs[best].block_mse.std(ddof=1) / np.sqrt(runs[best].block_mse.size)
+    assert ev.alpha == ALPHAS[best]                     # the evidence: at the least CV error
+    assert lag.alpha == ALPHAS[np.flatnonzero(mse <= mse[best] + se).max()] > ev.alpha
+    assert lag.final.rmse <= np.sqrt(mse[best] + se)
+    _, product = found["E_P"]
+    (ev,) = product.accepted
+    assert ev.effect.transform == "product" and ev.n_features == 1
+    assert product.alpha == ev.alpha                    # one feature: the least-error penalty
+
+
 def test_the_campaign_scheme_can_be_forced_on_one_record():
     d = diagnose(_one_record(), Compensator(MLR()),
                  options=SearchOptions(max_effects=1, n_blocks=8, cv="campaigns"))

@@ -48,7 +48,7 @@ from ...core.model_selection.extrapolation import within_range
 from ...core.models.linear import MLR
 from ...core.select import AllInputs
 from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
-from .shrink import ALPHAS, PartialRidgePath
+from .shrink import ALPHAS, PartialRidgePath, least_error, one_standard_error
 
 
 @dataclass
@@ -305,12 +305,17 @@ class CrossValidator:
         return self._ctx[key]
 
     # -- cross-validation -------------------------------------------------------------------
-    def run(self, inputs, effects=()) -> CVResult:
-        """CV prediction with declared ``inputs`` (after exclusions) and extra ``effects``."""
+    def run(self, inputs, effects=(), one_se: bool = False) -> CVResult:
+        """CV prediction with declared ``inputs`` (after exclusions) and extra ``effects``.
+
+        ``one_se``: with the closed-form MLR, the penalty on the effect features is the
+        largest within one standard error of the least CV error (the deployed model's, when
+        every effect has several features: :mod:`.shrink`), not the least-error one.
+        """
         p = self.problem
         effects = [e for e in effects if e.transform != "remove"]
         if self.closed_form:
-            return self._run_closed_form(inputs, effects)
+            return self._run_closed_form(inputs, effects, one_se)
         pred = np.full(len(p.y), np.nan)
         for k in p.fold_ids:
             tr, te, run = p.train_rows(k), p.test_rows(k), p.predict_rows(k)
@@ -321,8 +326,9 @@ class CrossValidator:
             pred[te] = out[te[run]]
         return self._result(pred)
 
-    def _run_closed_form(self, inputs, effects) -> CVResult:
-        """MLR on the design, the effect features penalised by each of the alphas; the best one."""
+    def _run_closed_form(self, inputs, effects, one_se: bool = False) -> CVResult:
+        """MLR on the design, the effect features penalised by each of the alphas; the one of
+        least CV error (``one_se``: the largest within one standard error of it)."""
         p = self.problem
         base = for_target(self.estimator, p.target)
         shrink = self.shrink and bool(effects)
@@ -334,9 +340,20 @@ class CrossValidator:
             Z = self.design(names, effects, k)
             path = PartialRidgePath(Z[tr], p.y[tr], len(names), base.fit_intercept)
             pred[te] = path.predict(Z[te], alphas)
-        mse = np.nanmean((p.y[:, None] - pred) ** 2, axis=0)
-        best = int(np.argmin(mse))           # ties: the smallest penalty (least squares first)
+        err = (p.y[:, None] - pred) ** 2
+        mse = np.nanmean(err, axis=0)
+        best = least_error(mse)              # ties: the smallest penalty (least squares first)
+        if one_se and shrink:
+            best = one_standard_error(mse, self._block_mse(err))
         return self._result(pred[:, best], float(alphas[best]) if shrink else None)
+
+    def _block_mse(self, err: np.ndarray) -> np.ndarray:
+        """Each test block's mean of ``err`` (rows x columns): blocks x columns."""
+        p, ok = self.problem, self.problem.validated
+        n = p.n_blocks_tested
+        counts = np.maximum(np.bincount(p.block_index[ok], minlength=n), 1)
+        return np.stack([np.bincount(p.block_index[ok], weights=e, minlength=n) / counts
+                         for e in err[ok].T], axis=1)
 
     def _result(self, pred: np.ndarray, alpha: float | None = None) -> CVResult:
         p = self.problem

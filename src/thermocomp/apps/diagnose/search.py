@@ -22,7 +22,9 @@ once, at the end, to report before and after):
    the residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`), so
    that 8 campaigns are not 256 outcomes.  With an MLR base the effect features are shrunk by
    the ridge penalty of least CV error (:mod:`.shrink`), so an effect of many
-   correlated regressors competes at its best generalising strength.
+   correlated regressors competes at its best generalising strength.  (The deployed model of
+   effects that all have several features takes the largest penalty within one standard error
+   of it instead: :meth:`Search._deployed`.)
 5. **Accept**, among the candidates that clear the bar (:math:`g \ge`
    ``min_gain_pct`` % of the current CV RMSE *and* :math:`p \le` ``alpha``, with
    :math:`p` family-wise over the round's candidates: :func:`~.cv.sign_flip_maxt`,
@@ -428,8 +430,20 @@ class Search:
             self.effects.append(best.effect)
             current = best.result
             steps.append({"effect": best.effect.title, "cv_rmse": current.rmse})
-        return SearchResult(p.target, original, current, accepted, list(self.excluded), rounds,
-                            self_prediction_table, steps)
+        return SearchResult(p.target, original, self._deployed(current), accepted,
+                            list(self.excluded), rounds, self_prediction_table, steps)
+
+    def _deployed(self, current: CVResult) -> CVResult:
+        """The final model's CV: with an MLR base and only effects of several features (a lag
+        of the inputs, an ambient law), at the largest penalty within one standard error of the
+        least CV error -- the evidence was weighed at the least-error one (:mod:`.shrink`)."""
+        effects = [e for e in self.effects if e.transform != "remove"]
+        if not (effects and self.cv.shrink and self.cv.closed_form):
+            return current
+        names = self.cv.selection(self.inputs(), None)
+        if any(self.cv.features(e, names).shape[1] < 2 for e in effects):
+            return current
+        return self.cv.run(self.inputs(), effects, one_se=True)
 
 
 def sensor_health(searches: dict, options: SearchOptions | None = None, start: dict | None = None):

@@ -17,6 +17,17 @@ of the residuals of :math:`y` and :math:`\Phi_s` on :math:`[1, X]`, and
 :math:`(c, b)` the least-squares fit of :math:`y - \Phi_s w` on :math:`[1, X]`.
 One eigendecomposition of the residual Gram matrix gives the whole path over
 :math:`\alpha`, which is how the cross-validation picks it.
+
+Which penalty on the path: the search weighs every candidate at its penalty of
+least CV error (:func:`least_error`).  The deployed model takes the largest
+penalty within one standard error of it (:func:`one_standard_error`) when every
+effect it carries has several features: the CV of one record can be flat over
+decades of penalty on a bank of correlated features (a lag of every input),
+whose ill-determined directions the least-error penalty leaves free for a new
+operating mix to read.  A one-feature effect (a product, a square) is one
+well-determined direction, which the larger penalty only biases towards zero;
+with one among the effects the least-error penalty stays
+(``benchmarks/bench_diagnose_lag57.py``).
 """
 
 from __future__ import annotations
@@ -25,6 +36,33 @@ import numpy as np
 
 ALPHAS = np.r_[0.0, np.logspace(-7, 1, 17)]   # penalties tried by the CV (0 = least squares)
 _RANK_TOL = 1e-10                             # relative eigenvalue floor of the residual Gram
+
+
+def least_error(mse) -> int:
+    """Index of the penalty of least CV MSE (ties: the smallest penalty)."""
+    return int(np.argmin(mse))
+
+
+def one_standard_error(mse, block_mse) -> int:
+    """Index of the largest penalty whose CV MSE is within one standard error of the least.
+
+    The simplest fit the CV cannot tell from the best (ESL 7.10, glmnet's
+    ``lambda.1se``); the standard error is that of the mean over the test
+    blocks of their MSE at the least-error penalty.
+
+    Parameters
+    ----------
+    mse : ndarray (n_alphas,)
+        CV MSE per penalty, in the order of increasing penalty.
+    block_mse : ndarray (n_blocks, n_alphas)
+        Each test block's MSE per penalty.
+    """
+    mse, block_mse = np.asarray(mse, float), np.asarray(block_mse, float)
+    best, n = least_error(mse), block_mse.shape[0]
+    if n < 2:
+        return best
+    se = block_mse[:, best].std(ddof=1) / np.sqrt(n)
+    return int(np.flatnonzero(mse <= mse[best] + se).max())
 
 
 class PartialRidgePath:
