@@ -101,9 +101,9 @@ import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).parent))
+from bench_monitor_healthy import monitor as monitor_run  # noqa: E402
 from bench_new_machines56 import rounded, simulate, table  # noqa: E402
 from bench_new_machines56 import run_models as run_models56  # noqa: E402
-from bench_monitor_healthy import monitor as monitor_run  # noqa: E402
 from bench_new_machines57 import STEP, network, probe, sensors  # noqa: E402
 from bench_other_machine import diagnose as other_diagnose  # noqa: E402
 from bench_other_machine import thermocomp  # noqa: E402
@@ -204,7 +204,8 @@ L_LINKS = (("rail_L", "bed_core", 20.0), ("rail_R", "bed_core", 20.0), ("slats",
            ("slats", "rail_R", 3.0), ("beam", "drive_L", 3.0), ("beam", "drive_R", 3.0),
            ("drive_L", "rail_L", 2.0), ("drive_R", "rail_R", 2.0), ("head", "beam", 3.0),
            ("cabinet", "rail_L", 1.5))
-L_SENSORS = [("Rail gauche avant", "rail_L", "rail_L", 1.0), ("Rail gauche arrière", "rail_L", "cabinet", 0.9),
+L_SENSORS = [("Rail gauche avant", "rail_L", "rail_L", 1.0),
+             ("Rail gauche arrière", "rail_L", "cabinet", 0.9),
              ("Rail droit avant", "rail_R", "rail_R", 1.0), ("Rail droit arrière", "rail_R", "slats", 0.9),
              ("Rail droit milieu", "rail_R", "rail_R", 1.0), ("Lattes", "slats", "rail_L", 0.8),
              ("Poutre", "beam", "beam", 1.0), ("Poutre gauche", "beam", "drive_L", 0.8),
