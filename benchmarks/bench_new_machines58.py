@@ -287,12 +287,13 @@ def write(root: Path) -> None:
 FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein", "auto")
 INIT_ARGS = {"trunnion": ("data.test_fraction=0.25",), "laser": ("data.test_fraction=0.25",)}
 FOLDERS = {"trunnion": "trunnion", "laser": "laser/releves"}
+CONFIGS = {"trunnion": "datos_ensayos", "laser": "releves"}     # the names init gives them
 MONITORED = ("mlr", "lagbank")
 
 
 def data_args(root: Path, name: str) -> list[str]:
     """``init``'s config for the lab's folder."""
-    return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={Path(FOLDERS[name]).name}"]
+    return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={CONFIGS[name]}"]
 
 
 def monitor(root: Path, name: str, model: str) -> dict:
