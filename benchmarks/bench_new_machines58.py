@@ -149,6 +149,8 @@ What a stranger met on the way in (``init DIR data.test_fraction=0.25``), each m
    ambient(s) ..." after "fitting auto on 9 train campaigns": the ATI report's coldest-campaign
    baseline (one campaign by design) refitting auto's ATI member.  Said no more
    (``tests/core/test_ati_baselines58.py``).
+7. (not met here: ``Ensayo`` numbered 1 ... 12 was found as a run counter) a run column of text
+   labels needs a header that says "run": ``Ensayo``, ``Medición``, ``Mesure`` say it now.
 """
 
 from __future__ import annotations

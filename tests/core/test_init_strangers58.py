@@ -93,3 +93,15 @@ def test_a_french_workshops_air_is_the_ambient(tmp_path):
     assert main(["init", str(path), "data.test_fraction=0.5", f"out={out}"]) == 0
     config = yaml.safe_load((out / "conf/data/releve.yaml").read_text(encoding="utf-8"))
     assert config["roles"]["ambient"] == ["Air atelier"]
+
+
+def test_a_spanish_run_column_of_labels_is_the_campaign(tmp_path):
+    # 'Ensayo' E01, E02: text labels under a header that must say "run" (it was proposed ignore)
+    path = long_file(tmp_path / "datos.csv", iso=True)
+    lines = path.read_text(encoding="utf-8").splitlines()
+    path.write_text("\n".join([lines[0], *(f"E0{ln.split(chr(9), 1)[0]}\t{ln.split(chr(9), 1)[1]}"
+                                           for ln in lines[1:])]) + "\n", encoding="utf-8")
+    out = tmp_path / "init"
+    assert main(["init", str(path), "data.test_fraction=0.5", f"out={out}"]) == 0
+    config = yaml.safe_load((out / "conf/data/datos.yaml").read_text(encoding="utf-8"))
+    assert config["roles"]["campaign"] == "Ensayo"
