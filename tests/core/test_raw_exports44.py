@@ -122,10 +122,14 @@ def test_day_first_timestamps_are_the_time_read_day_first(tmp_path):
 
 def test_timestamps_with_slashes_are_refused_naming_data_time_and_read_with_its_format(
         tmp_path, capsys):
-    path = _stamped(tmp_path / "us.csv", "Date Time", "%m/%d/%Y %H:%M:%S", sep=",")
+    # (a day past 12 says the order since newmachine58: 10/31/2026 is read month first; here
+    # every day and month is 12 or less, either order)
+    ambiguous = _stamped(tmp_path / "either.csv", "Date Time", "%m/%d/%Y %H:%M:%S",
+                         start="2026-11-01 10:00:00", sep=",")
     out = tmp_path / "init"
-    refused(["init", str(path), f"out={out}"], capsys, str(path), "row 1", "data.time=")
+    refused(["init", str(ambiguous), f"out={out}"], capsys, str(ambiguous), "row 1", "data.time=")
     assert not out.exists()
+    path = _stamped(tmp_path / "us.csv", "Date Time", "%m/%d/%Y %H:%M:%S", sep=",")
     ds, report = read_dataset(path, {"roles": {"error": ["dX"]}, "time": "%m/%d/%Y %H:%M:%S"})
     (cid,) = ds.ids()
     np.testing.assert_allclose(ds.campaigns[cid]["time"], _record()[0])

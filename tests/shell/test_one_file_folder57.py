@@ -6,8 +6,10 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+import yaml
 
 from conftest import refused
+from thermocomp.shell.cli import main
 
 
 def _one_export(folder):
@@ -19,10 +21,14 @@ def _one_export(folder):
     return folder
 
 
-def test_init_on_a_folder_of_one_file_names_the_file_to_give(tmp_path, capsys):
+def test_init_on_a_folder_of_one_file_reads_the_file(tmp_path, capsys):
+    # (refused naming the file to give until newmachine58: init reads it as the record, as a
+    # folder's one long file of runs numbered in a column is)
     folder = _one_export(tmp_path / "export")
-    line = refused(["init", str(folder)], capsys, f"data.path={folder / 'week.csv'}")
-    assert "campaigns.csv" not in line
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0
+    assert "one file and no campaigns.csv: read as the record week.csv" in capsys.readouterr().out
+    config = yaml.safe_load((tmp_path / "init" / "conf" / "data" / "week.yaml").read_text())
+    assert config["path"] == str(folder / "week.csv")
 
 
 def test_run_with_a_test_fraction_on_it_says_the_same(tmp_path, capsys):

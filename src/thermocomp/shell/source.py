@@ -61,8 +61,8 @@ def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False
     if ingested:
         return load_ingested(cfg)
     root = resolve(cfg.data.path)
-    if detected is not None:
-        return open_dataset(root, detected)
+    if detected is not None:         # (its path: a folder's lone file init reads as the record)
+        return open_dataset(resolve(detected.get("path", root)), detected)
     if campaigns is None:       # a fleet says its folder once, not per group
         say(f"reading {root}")
     if volumetric or (volumetric is None and campaigns is None and _volumetric_folder(root)):

@@ -33,7 +33,7 @@ from .runs import looks_like_run_labels, says_run
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet, without_pandas_index
-from .timestamps import CLOCK, looks_like_timestamp
+from .timestamps import CLOCK, is_slashed_stamp, looks_like_timestamp, slashed_format
 from .units import AMBIGUOUS, UNITS, ambiguity, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
@@ -43,9 +43,11 @@ HELD_OUT = 0.1    # the test share init writes for a record or runs without test
 _GLOB = re.compile(r"([*?\[])")
 _WORDS = re.compile(r"[\s_.\-]+")
 # a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing);
-# an Italian / French / Spanish lab's 'ambiente', 'ambiante', 'capannone' (the shop's hall)
+# an Italian / French / Spanish lab's 'ambiente', 'ambiante', 'capannone' (the shop's hall);
+# the place the air is in: a French 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle'
 AMBIENT_WORDS = {"amb", "ambient", "umgebung", "umgebungstemperatur", "raum", "raumtemperatur",
-                 "room", "hall", "halle", "hallentemperatur", "ambiente", "ambiante", "capannone"}
+                 "room", "hall", "halle", "hallentemperatur", "ambiente", "ambiante", "capannone",
+                 "atelier", "nave", "taller", "sala", "salle", "officina", "werkstatt", "workshop"}
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
@@ -120,6 +122,24 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     header, first, skip = _peek_csv(sample, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
     return opts, header, first, _separators(sample, opts) + _table_start(sample, opts)
+
+
+def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | None:
+    """The strptime format of a text file's time column of dates with slashes where a row says
+    their order (``13/07/2026 ...``: day first; the first, ``01/07/2026 13:22:42``, may not),
+    every row saying it agreeing: written to the config, so that each file of a folder is read
+    so (one starting ``01/07`` too); None where none says it or rows disagree (refused naming
+    ``data.time`` as before), where ``data.time`` is given, or for another column."""
+    if opts.time != "auto" or is_workbook(sample) or is_utf16(sample) or not is_text(sample):
+        return None
+    for i, h in enumerate(header):
+        if not is_slashed_stamp(str(first.get(h) or "")):
+            continue
+        column = pd.read_csv(sample, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
+                             usecols=[i], dtype=str, encoding=opts.encoding).iloc[:, 0]
+        said = {slashed_format(v.strip()) for v in column.dropna().unique()} - {None}
+        return said.pop() if len(said) == 1 else None
+    return None
 
 
 def _separators(sample: Path, opts) -> str:

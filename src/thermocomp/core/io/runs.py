@@ -28,9 +28,10 @@ MIN_RUN_ROWS = 10        # a run counter holds each value this many rows on aver
 _UNSAFE_ID = re.compile(r"[^\w.\-]+")
 _WORDS = re.compile(r"[\s_.\-]+")
 # header words that say "the run's number" (a counter stepping by other than one is one too)
+# (a Spanish lab's 'Ensayo', 'Medición', a French one's 'Mesure': newmachine58)
 RUN_WORDS = {"lauf", "run", "runs", "versuch", "messung", "campaign", "kampagne", "test", "trial",
              "cycle", "zyklus", "durchlauf", "essai", "prueba", "prova", "serie", "series",
-             "batch", "charge", "job", "nr", "no", "id"}
+             "batch", "charge", "job", "nr", "no", "id", "ensayo", "medición", "medicion", "mesure"}
 
 
 def run_values(column) -> list[str | None]:

@@ -2,7 +2,8 @@
 (dots: the European order, never month first), the strptime format ``data.time`` names, or a
 logger's elapsed time ``25:30:00`` (``h:mm:ss``, hours past 24: :func:`elapsed_seconds`).
 A date with slashes (``03/11/2026``) is day-first in Europe and month-first in the US: never
-guessed, refused naming ``data.time``."""
+guessed, refused naming ``data.time``; where a field is past 12 (``15/06/2026``) the order is no
+guess, and the date is read so (:func:`slashed_format`)."""
 
 from __future__ import annotations
 
@@ -23,6 +24,8 @@ from .contract import TIME, ContractError
 _STAMP = re.compile(r"\s*\d{1,4}[-./]\d{1,2}[-./]\d{2,4}[T ]\d\d?:\d\d")
 _DAY_FIRST = re.compile(r"\s*\d{1,2}\.\d{1,2}\.\d{4}[ T]\d{1,2}:\d\d(:\d\d([.,]\d+)?)?\s*")
 _SLASHED = re.compile(r"\s*\d{1,2}/\d{1,2}/\d{2,4}\b")
+_SLASHED_STAMP = re.compile(r"\s*(?P<a>\d{1,2})/(?P<b>\d{1,2})/(?P<y>\d{4}|\d\d)(?P<sep>[ T])"
+                            r"\d{1,2}:\d\d(?P<s>:\d\d([.,]\d+)?)?\s*")
 DATE = re.compile(r"\s*(\d{1,2}\.\d{1,2}\.\d{4}|\d{4}-\d\d-\d\d|\d{1,2}/\d{1,2}/\d{2,4})\s*")
 TIME_OF_DAY = re.compile(r"\s*\d{1,2}:\d\d(:\d\d([.,]\d+)?)?\s*")
 _ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
@@ -115,11 +118,38 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
     day_first = _DAY_FIRST.fullmatch(value)
     if day_first:
         return "%d.%m.%Y %H:%M:%S" if day_first.group(1) else "%d.%m.%Y %H:%M"
+    told = slashed_format(value)
+    if told:
+        return told
     if _SLASHED.match(value):
         raise ContractError(f"value {value!r} is a date with slashes, day or month first? set "
                             f"data.time to its format, e.g. data.time={EXAMPLE} (or "
                             "'%m/%d/%Y %H:%M:%S')", file=path, column=TIME, row=1)
     return "iso8601"
+
+
+def slashed_format(value: str) -> str | None:
+    """The strptime format of a date with slashes and a time of day whose order the date itself
+    says: a first field past 12 is the day (``15/06/2026 06:00:00``: ``%d/%m/%Y %H:%M:%S``), a
+    second past 12 the day after the month (``06/15/2026``); None for ``03/11/2026`` (either
+    order) and for anything else."""
+    match = _SLASHED_STAMP.fullmatch(value)
+    if match is None:
+        return None
+    first, second = int(match["a"]), int(match["b"])
+    if first > 12 >= second:
+        date = "%d/%m/"
+    elif second > 12 >= first:
+        date = "%m/%d/"
+    else:
+        return None
+    year = "%Y" if len(match["y"]) == 4 else "%y"
+    return f"{date}{year}{match['sep']}%H:%M" + (":%S" if match["s"] else "")
+
+
+def is_slashed_stamp(value: str) -> bool:
+    """``value`` is a date with slashes and a time of day (``01/07/2026 13:22:42``)."""
+    return bool(_SLASHED_STAMP.fullmatch(value))
 
 
 def time_type(kind: str, value: str) -> pa.DataType:

@@ -3,8 +3,9 @@
 One rule for ``thermocomp init``'s proposals and for ``run``'s reading of a header that no
 ``data.roles`` pattern matches (:func:`role_by_unit`): a length is an error, unless its name
 says a position (a machine state) or only an axis, over mm (``X [mm]``, ``X-Achse [mm]``: its
-position or its error, listed, never guessed); a speed, a power, a current, an on/off flag is a
-state; anything else says no role (a temperature, or, without a unit, a name).
+position or its error, listed, never guessed); a speed, a power, a current, an on/off flag, an
+angle (``Eje A [°]``) is a state; anything else says no role (a temperature, or, without a unit,
+a name).
 """
 
 from __future__ import annotations
@@ -40,6 +41,11 @@ STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm"
 # Not among STATE_UNITS: as a header's last word ('Sensor 1') it is part of a name
 DIMENSIONLESS = {"-", "–", "1"}
 NEWTON_METRES = ("Nm", "N.m", "N·m")   # a torque, a state: not nanometres (nm)
+# an angle (a tilt or rotary axis, 'Eje A [°]'): a state.  The degree sign alone is the angle's
+# (ISO 80000-3; a temperature's is °C), unless the name says a temperature ('Temp [°]': refused
+# as a temperature without its scale, as before)
+ANGLE_UNITS = {"°", "º", "˚", "deg", "rad"}
+_TEMPERATURE_WORD = re.compile(r"t\d*|temp.*|.*temperat.*")
 
 AMBIGUOUS = "error or state"
 _WORDS = re.compile(r"[\s_.\-]+")
@@ -67,6 +73,9 @@ def role_by_unit(base: str, unit: str | None) -> str | None:
         return _length_role(base, known)
     if known in STATE_UNITS or known in DIMENSIONLESS:
         return "state"
+    if known in ANGLE_UNITS:
+        said_hot = any(_TEMPERATURE_WORD.fullmatch(w) for w in _WORDS.split(base.lower()) if w)
+        return None if said_hot else "state"
     return None
 
 

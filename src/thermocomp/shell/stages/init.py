@@ -7,13 +7,15 @@ run next.  The data are read with it first: a config that would not read them is
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import yaml
 from omegaconf import DictConfig, OmegaConf
 
 from ...base.files import atomic_write_text
 from ...base.paths import conf_dir, resolve
 from ...core import io
-from ...core.io.contract import TIME
+from ...core.io.contract import MANIFEST, TIME
 from ...core.io.detect import (
     check_an_error_is_named,
     data_config,
@@ -24,11 +26,17 @@ from ...core.io.detect import (
     proposed_campaign,
     proposed_roles,
     sample_file,
+    slashed_order,
 )
 from ...core.io.roles import naming
 from ...core.timerule import median_step
 from ..config.checks import check_config, data_options
 from ..source import check_declared, open_source
+
+
+def lone_file(src, manifest) -> bool:
+    """``src`` is a folder without a manifest holding one data file (``manifest``: as read)."""
+    return manifest is not None and len(manifest) == 1 and not (src / MANIFEST).is_file()
 
 
 def init(cfg: DictConfig) -> dict:
@@ -39,9 +47,21 @@ def init(cfg: DictConfig) -> dict:
     given = data_options(cfg)
     asked = io.ReadOptions.from_cfg(given)
     manifest = folder_manifest(src, asked)                  # a folder's, read once
+    if lone_file(src, manifest):
+        # a lab's one export put in a folder (one long file, its runs numbered in a column):
+        # read as the record it is, which `run` would be told to give
+        src = src / str(manifest["file"].iloc[0])
+        print(f"{src.parent}: one file and no {MANIFEST}: read as the record {src.name}")
+        manifest = None
     given["encoding"] = encoding(src, asked, manifest)      # a Windows export's
     sample = sample_file(src, manifest)
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
+    order = slashed_order(sample, opts, header, dict(zip(header, first)))
+    if order:              # (13/07/2026: day first, for every file: written to the config)
+        given["time"] = order
+        opts = replace(opts, time=order)
+        print(f"{sample.name}: dates with slashes read as data.time={order!r}, the order its "
+              "rows say (a day or month past 12)")
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
