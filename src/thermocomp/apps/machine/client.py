@@ -42,6 +42,18 @@ def number(value) -> float:
         return math.nan
 
 
+def joined_mid_campaign(cid: str, i: int) -> str:
+    """What a client that first sees campaign ``cid`` at its sample ``i > 0`` is told: it was
+    started (or restarted: a new process keeps no stream) after the campaign began, and streams
+    from a reset there.  Measured (restart58): a lag bank on a Swiss lathe's 8 h run, connect
+    restarted 5 h in, E_X RMSE 27.2 um after the restart against 1.4 uninterrupted."""
+    return (f"campaign {cid} joined at its sample {i}, not its first (connect started or "
+            "restarted mid-campaign: no stream state survives a restart): the stream starts from "
+            "a reset here, so a model of changes from a campaign's first sample misses the "
+            "warm-up before it; restart the campaign from a cold machine, or serve the model "
+            "and resend the rows logged since the campaign's start (docs/to-the-machine.md)")
+
+
 class _Changes:
     """Subscription handler: queues the new values of ``sample`` / ``done``."""
 
@@ -70,11 +82,11 @@ class Connection:
         self.missed = 0              # samples the server published that this client never saw
         self._start = clock.monotonic()
 
-    def _event(self, kind: str, detail: str, **extra) -> None:
+    def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
         e = {"wall_s": round(clock.monotonic() - self._start, 3), "sample": self._last,
              "event": kind, "detail": detail, **extra}
         self.events.append(e)
-        log.info("%s: %s", kind, detail)
+        log.log(level, "%s: %s", kind, detail)
 
     async def run(self) -> None:
         """Until the server says the campaigns are done."""
@@ -155,6 +167,8 @@ class Connection:
             ahead = (f" ({-i} sample(s) of the campaign(s) it continues first, unscored)"
                      if i < 0 else "")
             self._event("campaign", f"campaign {cid} from its sample {i}{ahead}")
+            if i > 0:
+                self._event("joined_mid_campaign", joined_mid_campaign(cid, i), logging.WARNING)
         elif k > self._last + 1:
             self.missed += k - self._last - 1      # counted; an event when the inputs went stale
         if self._stale:
