@@ -109,3 +109,31 @@ def test_connect_says_it_joined_a_campaign_mid_way(first_sample, said):
     assert bool(joined) is said
     if said:
         assert "campaign B joined at its sample 1234, not its first" in lines[0]
+
+
+class _Model:
+    def __init__(self, reference: str):
+        self.reference = reference
+
+
+@pytest.mark.parametrize("reference, said", [("first_sample", True), ("none", False)])
+def test_a_cut_test_campaign_not_carried_over_is_said(reference, said):
+    """A test campaign that continues another (a logger's file rotated) streamed by a model of
+    changes from each campaign's first sample starts from a reset: ``replay``, ``monitor``,
+    ``promote`` and ``serve`` said nothing (the read had said ``its state is carried over``)."""
+    from thermocomp.core.continuation import lead_ins
+    from thermocomp.core.io.contract import Dataset
+
+    whole = campaigns(0)["K05"]
+    half = len(whole) // 2
+    parts = {"A": whole.iloc[:half].reset_index(drop=True),
+             "B": whole.iloc[half:].reset_index(drop=True)}
+    manifest = pd.DataFrame({"file": ["A.csv", "B.csv"], "split": ["test", "test"],
+                             "continues": ["", "A"]}, index=pd.Index(["A", "B"], name="campaign"))
+    with _Said("thermocomp") as lines:
+        leads = lead_ins(_Model(reference), Dataset(manifest, parts, name="cut"), ["A", "B"])
+    assert (list(leads) == ["B"]) is (not said)
+    words = [s for s in lines if "B continues A, but the model reads" in s]
+    assert bool(words) is said
+    if said:
+        assert "fit with data.reference=none" in words[0]
