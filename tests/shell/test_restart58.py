@@ -137,3 +137,26 @@ def test_a_cut_test_campaign_not_carried_over_is_said(reference, said):
     assert bool(words) is said
     if said:
         assert "fit with data.reference=none" in words[0]
+
+
+def test_connect_restarted_resumes_on_the_rows_logged_before(deployed):
+    """``connect.warm``: the rows logged since the campaign's start are stepped before the first
+    sample a restarted client joins; it then corrects as the client that never stopped."""
+    streaming, campaign = deployed
+    cols = list(streaming.columns_)
+    rows = campaign[cols + (["time"] if "time" not in cols else [])]
+    half = len(rows) // 2
+
+    def stepped(first: int, warm=None) -> np.ndarray:
+        stream = copy.deepcopy(streaming)
+        conn = Connection(stream, None, "opc.tcp://127.0.0.1:1", _Limiter(), warm=warm)
+        return np.array([conn._step("K05", list(map(float, r)), k, k)
+                         for k, r in enumerate(rows.to_numpy()) if k >= first]), conn
+
+    whole, _ = stepped(0)
+    with _Said("thermocomp.apps.machine.client") as lines:
+        resumed, conn = stepped(half, warm=campaign.iloc[:half])
+    assert lines == [] and [e["event"] for e in conn.events][-1] == "warmed"
+    np.testing.assert_allclose(resumed, whole[half:], atol=1e-12)
+    cold, _ = stepped(half)
+    assert np.abs(cold - whole[half:]).max() > 0.1
