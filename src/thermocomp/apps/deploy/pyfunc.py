@@ -66,6 +66,7 @@ from __future__ import annotations
 
 import copy
 import json
+import logging
 import tempfile
 import threading
 import warnings
@@ -95,6 +96,7 @@ COMPENSATOR_ARTIFACT = "compensator"  # the pickled (streaming or adaptive) comp
 SIGNATURE_ARTIFACT = "compensator_sig"  # its signature (HMAC, thermocomp.base.signing)
 DEFAULT_SESSION = "default"
 MAX_SESSIONS = 1024
+log = logging.getLogger(__name__)
 DEPLOYABLE = (StreamingCompensator, AdaptiveCompensator)   # what the model may hold
 REPORT_COLUMNS = ("excluded_inputs", "events")              # the adaptive compensator's extras
 
@@ -160,6 +162,8 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
             end = self._end_state(continues)
             self._sessions[session] = [copy.deepcopy(end.state), end, learned, None]
         elif reset or session not in self._sessions:
+            if not reset:
+                log.warning(unheld_session(session))
             self.streaming.reset(float("nan") if ambient_c is None else float(ambient_c))
             self._sessions[session] = [self.streaming._snapshot(), 0.0, learned, None]
         while len(self._sessions) > MAX_SESSIONS:
@@ -213,6 +217,19 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
             if shift:      # event times in the caller's clock
                 out["events"] = [_shifted(e, -shift) for e in out["events"]]
         return out
+
+
+def unheld_session(session: str) -> str:
+    """What the server says of a block for a session it does not hold, neither ``reset`` nor
+    ``continues``: the session starts from a reset at that block's first row.  Right for a new
+    campaign; wrong, silently, for a machine whose campaign went on while the server restarted
+    (a new process holds no session): measured (restart58) on a lag bank, a Swiss lathe's 8 h run
+    resumed 4 h in, E_X RMSE 26.1 um after the restart against 1.29 uninterrupted."""
+    return (f"session {session!r} is not held by this server (new, the server restarted, or "
+            f"dropped as the least recently used of {MAX_SESSIONS}): started from a reset at this "
+            "block's first row. A campaign that was already running misses its warm-up: resend "
+            "its rows since the campaign's start with reset=true (their corrections discarded) "
+            "to resume it; start a new campaign with reset=true to say so")
 
 
 def _on_campaign_clock(frame: pd.DataFrame, state: list) -> pd.DataFrame:

@@ -42,6 +42,18 @@ def number(value) -> float:
         return math.nan
 
 
+def joined_mid_campaign(cid: str, i: int) -> str:
+    """What a client that first sees campaign ``cid`` at its sample ``i > 0`` is told: it was
+    started (or restarted: a new process keeps no stream) after the campaign began, and streams
+    from a reset there.  Measured (restart58): a lag bank on a Swiss lathe's 8 h run, connect
+    restarted 5 h in, E_X RMSE 27.2 um after the restart against 1.4 uninterrupted."""
+    return (f"campaign {cid} joined at its sample {i}, not its first (connect started or "
+            "restarted mid-campaign: no stream state survives a restart): the stream starts from "
+            "a reset here, so a model of changes from a campaign's first sample misses the "
+            "warm-up before it; connect.warm=<the rows logged since the campaign's start> "
+            "resumes it (docs/to-the-machine.md)")
+
+
 class _Changes:
     """Subscription handler: queues the new values of ``sample`` / ``done``."""
 
@@ -57,9 +69,10 @@ class Connection:
 
     def __init__(self, deployed, nodes: NodeMap, endpoint: str, limiter: OffsetLimiter, *,
                  retry_s: float = 1.0, give_up_s: float = 60.0, timeout_s: float = 4.0,
-                 adapt=None):
+                 adapt=None, warm=None):
         self.deployed, self.map, self.endpoint, self.limiter = deployed, nodes, endpoint, limiter
         self.adapt = adapt
+        self.warm = warm             # rows logged since the running campaign's start (a restart)
         self.retry_s, self.give_up_s, self.timeout_s = retry_s, give_up_s, timeout_s
         self.events: list[dict] = []
         self.written: list[np.ndarray] = []      # every offset vector written
@@ -70,11 +83,11 @@ class Connection:
         self.missed = 0              # samples the server published that this client never saw
         self._start = clock.monotonic()
 
-    def _event(self, kind: str, detail: str, **extra) -> None:
+    def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
         e = {"wall_s": round(clock.monotonic() - self._start, 3), "sample": self._last,
              "event": kind, "detail": detail, **extra}
         self.events.append(e)
-        log.info("%s: %s", kind, detail)
+        log.log(level, "%s: %s", kind, detail)
 
     async def run(self) -> None:
         """Until the server says the campaigns are done."""
@@ -155,6 +168,11 @@ class Connection:
             ahead = (f" ({-i} sample(s) of the campaign(s) it continues first, unscored)"
                      if i < 0 else "")
             self._event("campaign", f"campaign {cid} from its sample {i}{ahead}")
+            if i > 0 and self.warm is not None:
+                self._warm(cid, i, row)
+            elif i > 0:
+                self._event("joined_mid_campaign", joined_mid_campaign(cid, i), logging.WARNING)
+            self.warm = None         # the rows before a restart belong to its campaign only
         elif k > self._last + 1:
             self.missed += k - self._last - 1      # counted; an event when the inputs went stale
         if self._stale:
@@ -172,6 +190,20 @@ class Connection:
             self._event("compensator", e.get("reason", ""), sensor=e.get("sensor"))
         self.samples += 1
         return y
+
+    def _warm(self, cid: str, i: int, row: list[float]) -> None:
+        """Step the rows logged before the joined sample (``connect.warm``: those with an earlier
+        time, all without one), unscored and unwritten, so that the stream goes on from the
+        state they leave, as if it had not restarted (the samples missed while no client ran
+        are spanned by the time rule's step, as after a link drop)."""
+        d, warm = self.deployed, self.warm
+        reads = len(d.columns_) + (TIME not in d.columns_)
+        t = row[d.columns_.index(TIME)] if TIME in d.columns_ else row[reads - 1]
+        if TIME in warm.columns and math.isfinite(t):
+            warm = warm[warm[TIME].to_numpy(float) < t]
+        d.predict(warm.reset_index(drop=True))
+        self._event("warmed", f"campaign {cid} joined at its sample {i}: the stream warmed on "
+                              f"{len(warm)} row(s) logged before it (connect.warm), unscored")
 
     async def _write(self, client, offsets, answered, values: np.ndarray) -> None:
         """The offsets, then (``answered``: ``(node, sample)``) the sample they answer: one Write,

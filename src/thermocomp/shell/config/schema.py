@@ -251,6 +251,7 @@ class Connect:
     decay_s: float = key(NON_NEGATIVE)
     retry_s: float = key(POSITIVE)
     give_up_s: float = key(POSITIVE)
+    warm: Optional[str] = key(optional(text()))
     nodes: Nodes = group(Nodes)
 
 

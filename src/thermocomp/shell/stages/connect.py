@@ -55,9 +55,31 @@ def offset_limiter(deployed, guard, hold_s: float, decay_s: float):
                                                 getattr(deployed, "streaming", deployed)))
 
 
+def _warm_rows(cfg: DictConfig, deployed):
+    """``connect.warm``: the rows logged since the running campaign's start, read as a stream
+    on stdin is (``data.delimiter``, ``data.columns``, a lab's headers and units), or None."""
+    warm = cfg.connect.get("warm")
+    if warm is None:
+        return None
+    from io import TextIOWrapper
+
+    from ...core import io
+    from ...core.io.stdin import read_stream, stdin_text
+    from ..config.checks import data_options
+
+    path = resolve(str(warm))
+    if not path.is_file():
+        raise ConfigError(f"connect.warm={warm}: no such file (the rows logged since the "
+                          "running campaign's start, CSV with a header)")
+    opts = io.ReadOptions.from_cfg(data_options(cfg))
+    with open(path, "rb") as raw:
+        frame, _ = read_stream(stdin_text(TextIOWrapper(raw), opts.encoding), deployed.columns_, opts)
+    return frame
+
+
 def connect(cfg: DictConfig) -> dict:
     """Run the compensator against ``connect.endpoint`` until the campaigns are done."""
-    check_config(cfg, inputs=("connect.model",))
+    check_config(cfg, inputs=("connect.model", "connect.warm"))
     from ...apps.machine.client import Connection, LinkLost
     from ...apps.machine.nodes import NodeMap
 
@@ -73,7 +95,8 @@ def connect(cfg: DictConfig) -> dict:
     adapt = (adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
              or getattr(deployed, "adapt_", None))
     link = Connection(deployed, NodeMap.from_config(c.nodes), str(c.endpoint), limiter,
-                      retry_s=float(c.retry_s), give_up_s=float(c.give_up_s), adapt=adapt)
+                      retry_s=float(c.retry_s), give_up_s=float(c.give_up_s), adapt=adapt,
+                      warm=_warm_rows(cfg, deployed))
     say(f"connect: {name} ({source}) to {c.endpoint}: inputs {', '.join(deployed.columns_)}")
     try:
         asyncio.run(link.run())

@@ -104,7 +104,11 @@ def header(ss: StateSpace) -> str:
 #define TC_GUARD_INPUTS {int(ss.guard and ss.guard_inputs)}   /* the bound follows the inputs (pattern) */
 #define TC_ADAPT {ADAPT_CODES[ss.adapt]}   /* learned from reference measurements: 1 bias, 2 gain and bias */
 
-/* Everything the compensator remembers between samples; the caller owns it. */
+/* Everything the compensator remembers between samples; the caller owns it.  Plain data, no
+   pointers: its bytes saved after a tc_step and copied back by a new process of the same build
+   resume the campaign there (a restart that calls tc_init mid-campaign starts a campaign at
+   its next sample, and a model of changes from a campaign's first sample misses the warm-up
+   before it). */
 typedef struct {{
     int first;                                  /* 1: the next sample starts a campaign */
     double buf[TC_TAPS][TC_N_INPUTS];           /* raw inputs, newest first (FIR denoiser) */

@@ -109,6 +109,10 @@ def function_block(ss: StateSpace) -> str:
                          _constant("variance", ss.adapt_var or [], (m,)),
                          _constant("cov", ss.adapt_cov or [], (m, 2, 2))])
     return f"""{banner(ss, "(*", "  ", "*)")}
+(* The block's VAR are the stream's memory: declare its instance VAR RETAIN (or PERSISTENT) so that
+   a warm restart of the PLC resumes the campaign; a cold start or a download resets them
+   (first = TRUE): the next sample starts a campaign, and a model of changes from a campaign's
+   first sample misses the warm-up before it. *)
 FUNCTION_BLOCK {NAME}
 VAR_INPUT
     u : ARRAY[{_dims(n)}] OF LREAL;
