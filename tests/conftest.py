@@ -183,6 +183,33 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
+class ZeroStream:
+    """A deployed stream of one input whose correction is always 0 (an OPC UA client's test)."""
+
+    columns_ = ["T_a"]
+
+    def reset(self):
+        pass
+
+    def step(self, x, t):
+        return np.zeros(1)
+
+
+class NoLimiter:
+    """An offset limiter that only hears of a new campaign."""
+
+    def new_campaign(self):
+        pass
+
+
+def offline_connection(stream=None, **options):
+    """A :class:`~thermocomp.apps.machine.client.Connection` to no server, stepped by hand
+    (``conn._step``): ``stream`` (default :class:`ZeroStream`) behind a :class:`NoLimiter`."""
+    from thermocomp.apps.machine.client import Connection
+
+    return Connection(stream or ZeroStream(), None, "opc.tcp://127.0.0.1:1", NoLimiter(), **options)
+
+
 def wait_until_up(port: int, server: subprocess.Popen, log_path: Path, timeout_s: float = 120):
     """Wait until the MLflow scoring server on ``port`` answers ``/ping``; fail with its log if
     it exits or is not up after ``timeout_s``."""

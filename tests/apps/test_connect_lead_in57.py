@@ -7,28 +7,11 @@ its sample -2959", a negative sample a user cannot read.  It now says what those
 
 from __future__ import annotations
 
-import numpy as np
-
-from thermocomp.apps.machine.client import Connection
-
-
-class _Stream:
-    columns_ = ["T_a"]
-
-    def reset(self):
-        pass
-
-    def step(self, x, t):
-        return np.zeros(1)
-
-
-class _Limiter:
-    def new_campaign(self):
-        pass
+from conftest import offline_connection
 
 
 def _first_event(i: int) -> str:
-    conn = Connection(_Stream(), None, "opc.tcp://127.0.0.1:1", _Limiter())
+    conn = offline_connection()
     conn._step("B", [20.0, 0.0], 0, i)
     [event] = [e for e in conn.events if e["event"] == "campaign"]
     return event["detail"]

@@ -17,10 +17,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import offline_connection
 from test_deploy import ARStub, campaigns
 from thermocomp.apps.deploy import StreamingCompensator
 from thermocomp.apps.deploy.pyfunc import CompensatorModel
-from thermocomp.apps.machine.client import Connection
 from thermocomp.core.compensator import Compensator
 
 
@@ -83,24 +83,9 @@ def test_a_restarted_server_says_it_does_not_hold_the_session(deployed):
                                atol=1e-12)
 
 
-class _Stream:
-    columns_ = ["T_a"]
-
-    def reset(self):
-        pass
-
-    def step(self, x, t):
-        return np.zeros(1)
-
-
-class _Limiter:
-    def new_campaign(self):
-        pass
-
-
 @pytest.mark.parametrize("first_sample, said", [(0, False), (-40, False), (1234, True)])
 def test_connect_says_it_joined_a_campaign_mid_way(first_sample, said):
-    conn = Connection(_Stream(), None, "opc.tcp://127.0.0.1:1", _Limiter())
+    conn = offline_connection()
     with _Said("thermocomp.apps.machine.client") as lines:
         conn._step("B", [20.0, 0.0], 0, first_sample)
         conn._step("B", [20.0, 60.0], 1, first_sample + 1)   # later samples: no more word
@@ -149,7 +134,7 @@ def test_connect_restarted_resumes_on_the_rows_logged_before(deployed):
 
     def stepped(first: int, warm=None) -> np.ndarray:
         stream = copy.deepcopy(streaming)
-        conn = Connection(stream, None, "opc.tcp://127.0.0.1:1", _Limiter(), warm=warm)
+        conn = offline_connection(stream, warm=warm)
         return np.array([conn._step("K05", list(map(float, r)), k, k)
                          for k, r in enumerate(rows.to_numpy()) if k >= first]), conn
 
