@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from thermocomp.base.log import logger
+from test_sample_rate56 import said
 from thermocomp.core.io import read_dataset
 from thermocomp.core.io.contract import ContractError
 
@@ -22,17 +22,6 @@ def run_file(path, rows: int = 30, period: float = 60.0, level: float = 20.0,
         lines.append(f"{t:g},{level + 0.001 * t:.3f},{level + 0.0004 * t:.3f},{0.003 * t:.2f}")
     path.write_text("\n".join(lines) + "\n" + tail, encoding="utf-8")
     return path
-
-
-def said(caplog, path, cfg=None) -> str:
-    """What reading ``path`` logs (the thermocomp logger does not propagate to caplog)."""
-    caplog.clear()
-    logger.addHandler(caplog.handler)
-    try:
-        read_dataset(path, cfg)
-    finally:
-        logger.removeHandler(caplog.handler)
-    return caplog.text
 
 
 def test_runs_in_a_sub_folder_beside_the_folders_runs_are_said_not_read(tmp_path, caplog):
