@@ -168,7 +168,7 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
     periods = {c: p for c, p in periods.items() if p}
     if len(periods) < 2:
         return
-    off = {}
+    off, minutes = {}, False
     for cid, p in periods.items():
         r = p / np.median([q for c, q in periods.items() if c != cid])
         if ratio is not None and (r >= ratio or r <= 1 / ratio):
@@ -178,8 +178,10 @@ def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | Non
             logger.warning(f"{root / files[cid]}: median sample period {p:g} s is {r:.3g}x the "
                            "other campaigns': if its time is in minutes (or theirs), convert it "
                            "to seconds")
+            minutes = True
     if not off:
-        _said_if_periods_differ(periods, root)
+        if not minutes:     # one word per cause: a time in minutes is said above
+            _said_if_periods_differ(periods, root)
         return
     cid = max(off, key=off.get)  # two campaigns disagree: ms (a time 1000x too large) is likelier
     r = off[cid]
