@@ -25,3 +25,38 @@ def test_written_time_keeps_every_sample_past_1e7_s(tmp_path, step):
     ds, _ = read_dataset(tmp_path / "ds")
 
     np.testing.assert_array_equal(ds.campaigns["R1"]["time"].to_numpy(), time_s)
+
+
+def test_lag_features_in_one_array_equal_the_tiled_and_stacked_ones():
+    from thermocomp.core.models._dynamics import first_order_lags
+    from thermocomp.core.models._pooled import lag_features
+
+    rng = np.random.default_rng(58)
+    X = rng.normal(20.0, 2.0, (300, 4))
+    time_s = np.cumsum(rng.choice([30.0, 60.0, 90.0], 300))     # irregular: the recursion path
+    runs = np.repeat([0, 1, 2], 100)
+    taus = np.geomspace(60.0, 7200.0, 5)
+
+    lags = first_order_lags(X, time_s, runs, taus)
+    before = np.hstack([X, lags - np.tile(X, taus.size)])   # the old code, written out
+
+    np.testing.assert_array_equal(lag_features(X, time_s, runs, taus), before)
+
+
+def test_lag_bank_features_memo_keeps_only_the_newest_past_its_byte_bound(monkeypatch):
+    # a year's stack is 1.2 GB of features: four held at once took a run to 7 GB
+    from thermocomp.core.models import lagbank
+
+    memo = lagbank._lag_bank_features
+    assert memo.max_bytes is not None and memo.max_bytes <= 1e9
+    monkeypatch.setattr(memo, "max_bytes", 20_000)   # the bound, scaled to these few rows
+    monkeypatch.setattr(memo, "_results", type(memo._results)())
+    monkeypatch.setattr(memo, "_bytes", {})
+    monkeypatch.setattr(memo, "_total", 0)
+    rng = np.random.default_rng(0)
+    taus = np.geomspace(60.0, 3600.0, 4)
+    for _ in range(3):   # 200 rows x 15 columns x 8 bytes = 24 kB each
+        X = rng.normal(size=(200, 3))
+        memo(X, 60.0 * np.arange(200), None, taus)
+
+    assert len(memo._results) == 1
