@@ -60,3 +60,23 @@ def test_lag_bank_features_memo_keeps_only_the_newest_past_its_byte_bound(monkey
         memo(X, 60.0 * np.arange(200), None, taus)
 
     assert len(memo._results) == 1
+
+
+def test_the_warm_up_says_how_many_rows_it_streams(caplog):
+    # a year's test part is warmed on 473,041 rows, minutes of silence without it (scale58)
+    import logging
+    from types import SimpleNamespace
+
+    from thermocomp.core.continuation import lead_ins
+
+    manifest = pd.DataFrame({"file": ["", ""], "split": ["train", "test"], "continues": ["", "A"]},
+                            index=pd.Index(["A", "B"], name="campaign"))
+    frames = {c: pd.DataFrame({"time": 60.0 * np.arange(n), "T_a": 20.0, "E_Z": 0.0})
+              for c, n in (("A", 120), ("B", 30))}
+    ds = Dataset(manifest, frames, "chain")
+
+    with caplog.at_level(logging.INFO, logger="thermocomp"):
+        leads = lead_ins(SimpleNamespace(reference="none"), ds, ["B"])
+
+    assert len(leads["B"]) == 120
+    assert "B continues A; 120 rows streamed row by row" in caplog.text
