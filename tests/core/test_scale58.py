@@ -80,3 +80,17 @@ def test_the_warm_up_says_how_many_rows_it_streams(caplog):
 
     assert len(leads["B"]) == 120
     assert "B continues A; 120 rows streamed row by row" in caplog.text
+
+
+def test_a_large_caller_draws_its_figures_itself(tmp_path, monkeypatch):
+    # a worker forked from a run holding 4.8 GB kept it after the run freed it (scale58)
+    from thermocomp.core.figures import plots
+
+    monkeypatch.setattr(plots, "_cpus", lambda: 2)
+    monkeypatch.setattr(plots, "FORK_MAX_RSS", 0)      # every process is "large"
+    path = tmp_path / "r.png"
+    with plots.FigurePool() as pool:
+        assert pool._pool is None                        # no worker forked
+        pool.submit(plots.residual_plot, np.arange(50.0), np.ones(50), np.zeros(50), "E_Z", "K", path)
+        assert path.exists()                             # drawn at submit, in this process
+    assert pool.paths == [path]
