@@ -73,8 +73,9 @@ def _env() -> dict:
 
 
 def run_step(args: list[str], *, stdin_path: Path | None = None, stdout_path: Path | None = None,
-             cwd: Path | None = None) -> dict:
-    """Run ``args`` as a child: CPU s (user+sys of its tree), peak RSS (MiB), exit code, wall s.
+             cwd: Path | None = None, max_cpu_s: float = 600.0) -> dict:
+    """Run ``args`` as a child: CPU s (user+sys of its tree), peak RSS (MiB), exit code, wall s;
+    stopped past ``max_cpu_s`` of CPU (its main process) or ``RSS_LIMIT``.
 
     The child is reaped by ``os.wait4`` alone (its rusage is the measurement), so nothing else
     may wait for it: output goes to files, and the memory watch stops on a flag.
@@ -91,7 +92,8 @@ def run_step(args: list[str], *, stdin_path: Path | None = None, stdout_path: Pa
                 while not done.wait(0.2):
                     # per process: a forked worker's RSS counts the pages it shares with its parent
                     rss = max(p.memory_info().rss for p in [proc, *proc.children(recursive=True)])
-                    if rss > RSS_LIMIT:
+                    times = proc.cpu_times()
+                    if rss > RSS_LIMIT or times.user + times.system > max_cpu_s:
                         killed.append(rss)
                         os.kill(child.pid, signal.SIGKILL)
                         return
@@ -238,7 +240,7 @@ def main() -> None:
     parser.add_argument("--records", nargs="*", default=list(RECORDS), choices=list(RECORDS))
     parser.add_argument("--steps", nargs="*", help="only the steps whose label holds one of these")
     parser.add_argument("--lstm", action="store_true", help="also model=lstm and auto with lstm")
-    parser.add_argument("--timeout", type=float, default=900.0, help="wall seconds per step")
+    parser.add_argument("--max-cpu", type=float, default=600.0, help="CPU seconds per step")
     args = parser.parse_args()
     work = (args.out or Path("/tmp/scale58-bench" + ("-small" if args.small else ""))).resolve()
     work.mkdir(parents=True, exist_ok=True)
@@ -250,7 +252,7 @@ def main() -> None:
             if args.steps and not any(s in label for s in args.steps):
                 continue
             stdin = test_rows(lab, work) if opt.get("stdin") else None
-            res = run_step([*PY, *cmd], stdin_path=stdin)
+            res = run_step([*PY, *cmd], stdin_path=stdin, max_cpu_s=args.max_cpu)
             target = re.search(r"out=(\S+)", " ".join(cmd))
             folder = Path(target.group(1)) if target else work / f"{name}_sweep"
             sized = opt.get("size", folder)
@@ -260,7 +262,7 @@ def main() -> None:
                 extra = (f"  (gcc {c['gcc_cpu_s']:.1f} s CPU; stream.c over the whole record: "
                          f"{c['cpu_s']:.1f} s CPU, {c['rss_mib']:.1f} MiB, rc {c['rc']})")
             if res["killed_rss"]:
-                extra += f"  STOPPED at {res['killed_rss'] / 2**30:.1f} GiB"
+                extra += f"  STOPPED (RSS {res['killed_rss'] / 2**30:.1f} GiB, or --max-cpu)"
             row = {"step": label, "cpu_s": round(res["cpu_s"], 1), "rss_mib": round(res["rss_mib"]),
                    "out_mib": round(size_mib(sized), 1), "rc": res["rc"]}
             rows.append(row)

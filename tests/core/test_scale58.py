@@ -94,3 +94,22 @@ def test_a_large_caller_draws_its_figures_itself(tmp_path, monkeypatch):
         pool.submit(plots.residual_plot, np.arange(50.0), np.ones(50), np.zeros(50), "E_Z", "K", path)
         assert path.exists()                             # drawn at submit, in this process
     assert pool.paths == [path]
+
+
+def test_auto_says_each_long_candidate_validation(caplog, monkeypatch):
+    # a year's candidates validated for 13 minutes without a line (scale58)
+    import logging
+
+    from thermocomp.core.models import auto as auto_module
+    from thermocomp.core.models.linear import MLR
+
+    monkeypatch.setattr(auto_module, "SAY_AFTER_S", 0.0)    # every candidate counts as long
+    rng = np.random.default_rng(1)
+    X = rng.normal(size=(200, 2))
+    y = X @ np.array([1.0, -0.5]) + 0.1 * rng.normal(size=200)
+
+    with caplog.at_level(logging.INFO, logger="thermocomp"):
+        auto_module.AutoRegressor({"mlr": MLR()}).fit(X, y)
+
+    said = [r for r in caplog.records if r.getMessage().startswith("auto: mlr validated in")]
+    assert said and said[0].levelno == logging.INFO and "validation RMSE" in said[0].getMessage()
