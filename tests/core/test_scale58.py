@@ -113,3 +113,20 @@ def test_auto_says_each_long_candidate_validation(caplog, monkeypatch):
 
     said = [r for r in caplog.records if r.getMessage().startswith("auto: mlr validated in")]
     assert said and said[0].levelno == logging.INFO and "validation RMSE" in said[0].getMessage()
+
+
+def test_diagnose_feature_cache_forgets_the_least_recently_used_past_its_bound():
+    # every screened candidate kept its features: past 6 GB on a year's record (scale58)
+    from thermocomp.apps.diagnose.cv import FEATURE_CACHE_BYTES, CrossValidator, FeatureCache
+
+    cache = FeatureCache(max_bytes=2 * 800)      # two arrays of 100 floats
+    for key in "abc":
+        cache[key] = np.zeros(100)
+        if key == "b":
+            cache["a"]                           # used again: "b" is now the oldest
+    assert list(cache) == ["a", "c"] and cache.nbytes == 1600
+    cache["big"] = np.zeros(1000)                # over the bound alone: kept, the rest forgotten
+    assert list(cache) == ["big"]
+
+    cv = CrossValidator(problem=None, estimator=None)
+    assert isinstance(cv._features, FeatureCache) and cv._features.max_bytes == FEATURE_CACHE_BYTES
