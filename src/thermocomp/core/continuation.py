@@ -203,10 +203,12 @@ def lead_ins(comp, ds: Dataset, ids) -> dict:
     (:func:`carry_over`, :func:`lead_in`); says which."""
     carried = {c: chain for c, chain in carry_over(comp, ds).items() if c in ids}
     said_if_not_carried(comp, ds, ids)
-    if carried:
+    leads = {c: lead_in(ds, chain) for c, chain in carried.items()}
+    if carried:   # the rows, so that a year's minutes of warming are expected (scale58)
+        rows = sum(len(df) for df in leads.values())
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
-            + carried_text(carried))
-    return {c: lead_in(ds, chain) for c, chain in carried.items()}
+            + carried_text(carried) + f"; {rows:,} rows streamed row by row before scoring")
+    return leads
 
 
 def said_if_not_carried(comp, ds: Dataset, ids) -> None:

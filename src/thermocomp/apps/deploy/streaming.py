@@ -479,6 +479,9 @@ class StreamingCompensator:
         return y, n_clamped
 
 
+WARM_BAR_ROWS = 10_000   # a shorter lead-in streams in a few seconds: no bar
+
+
 def warm(deployed, lead_in: pd.DataFrame | None = None, campaign: pd.DataFrame | None = None
          ) -> None:
     """Start a campaign: reset, then stream ``lead_in`` (the rows of the campaigns it continues,
@@ -496,9 +499,12 @@ def warm(deployed, lead_in: pd.DataFrame | None = None, campaign: pd.DataFrame |
     deployed.reset(float("nan") if start is None else manifest_ambient(start))
     if lead_in is None or not len(lead_in):
         return
+    from ...base.progress import bar
+
     X = lead_in[deployed.columns_].to_numpy(float)
     t = lead_in[TIME].to_numpy(float) if TIME in lead_in.columns else np.full(len(X), np.nan)
-    for i in range(len(X)):
+    # a year's lead-in is minutes of rows streamed one by one: a bar (a terminal, or -v) says so
+    for i in bar(range(len(X)), desc="warming", unit="row", disable=len(X) < WARM_BAR_ROWS or None):
         try:
             deployed._step(X[i], t[i])
         except MissingValueError:

@@ -347,6 +347,20 @@ def _cpus() -> int:
         return os.cpu_count() or 1
 
 
+# A forked worker keeps every page the caller held when it was forked, also those the caller
+# frees later: forked from a run holding a year's lag features (4.8 GB), the two workers held
+# them on (scale58). Above this resident size figures are drawn in the caller instead (the same
+# CPU, not beside the computing); a fork server would re-run an unguarded main script.
+FORK_MAX_RSS = 1 << 30
+
+
+def too_large_to_fork() -> bool:
+    """This process holds more than ``FORK_MAX_RSS`` resident: :class:`FigurePool` draws here."""
+    import psutil
+
+    return psutil.Process().memory_info().rss > FORK_MAX_RSS
+
+
 class FigurePool:
     """Draw figures in forked worker processes while the caller goes on computing.
 
@@ -364,7 +378,8 @@ class FigurePool:
     ----------
     workers : int, optional
         Worker processes; default one per CPU this process may use.  ``0``
-        (the default on one CPU), or no ``fork`` (Windows, macOS default):
+        (the default on one CPU, and above ``FORK_MAX_RSS`` resident: a worker would keep
+        the memory this process frees later), or no ``fork`` (Windows, macOS default):
         figures are drawn in this process at submit time.
 
     Attributes
@@ -375,7 +390,7 @@ class FigurePool:
 
     def __init__(self, workers: int | None = None):
         if workers is None:
-            workers = _cpus() if _cpus() > 1 else 0
+            workers = _cpus() if _cpus() > 1 and not too_large_to_fork() else 0
         fork = "fork" in multiprocessing.get_all_start_methods()
         self._pool = (ProcessPoolExecutor(workers, mp_context=multiprocessing.get_context("fork"),
                                           initializer=die_with_parent, initargs=(os.getpid(),))

@@ -119,6 +119,25 @@ class Dataset:
                        self.name, dict(self.meta))
 
 
+def exact_time(frame: pd.DataFrame) -> pd.DataFrame:
+    """``frame`` with its ``time`` column written in full by ``to_csv(float_format=...)``.
+
+    Six significant digits suit the measured values, not the clock: a record's time passes
+    1e7 s after 116 days, where ``%.6g`` writes 60 s steps as 100 s ones (two rows at one
+    time).  Whole seconds become integers, other times keep every digit (``repr``).
+    """
+    if "time" not in frame.columns or not pd.api.types.is_float_dtype(frame["time"]):
+        return frame
+    time_s = frame["time"].to_numpy()
+    finite = np.isfinite(time_s)
+    exact = frame.copy()
+    if finite.all() and np.array_equal(time_s, np.round(time_s)):
+        exact["time"] = time_s.astype(np.int64)
+    else:
+        exact["time"] = frame["time"].astype(object)   # str(float): the shortest exact text
+    return exact
+
+
 def write_dataset(ds: Dataset, path: str | os.PathLike, fmt: str = "csv",
                   files: dict[str, str] | None = None) -> Path:
     """Write ``ds`` as a dataset folder in the contract (atomically).
@@ -137,7 +156,7 @@ def write_dataset(ds: Dataset, path: str | os.PathLike, fmt: str = "csv",
         for cid in manifest.index:
             df = ds.campaigns[cid]
             if fmt == "csv":
-                df.to_csv(tmp / f"{cid}.csv", index=False, float_format="%.6g")
+                exact_time(df).to_csv(tmp / f"{cid}.csv", index=False, float_format="%.6g")
             else:
                 df.to_parquet(tmp / f"{cid}.parquet", index=False)
         cols = ["file", "split"] + [c for c in manifest.columns if c not in ("file", "split")]

@@ -85,9 +85,15 @@ def validation_mse(W, c, val: Moments, centre, d) -> np.ndarray:
 
 def lag_features(X, time, runs, taus) -> np.ndarray:
     """``[x | L_tau1[x] - x | ... ]`` of the lag bank (:meth:`LagBank._features`)."""
-    lags = first_order_lags(X, time, runs, taus)
-    lags -= np.tile(X, taus.size)
-    return np.hstack([X, lags])
+    n, p = X.shape
+    out = np.empty((n, p * (taus.size + 1)))
+    blocks = out.reshape(n, taus.size + 1, p)     # a view: block k holds columns k*p .. k*p+p-1
+    # into one array, each lag block less x by broadcasting: no tiled copy of X nor a stacked
+    # copy of the lags (a year at 1 min of 34 sensors: 1 GB each, scale58)
+    out[:, p:] = first_order_lags(X, time, runs, taus)
+    blocks[:, 1:, :] -= X[:, None, :]
+    blocks[:, 0, :] = X
+    return out
 
 
 def _feature_moments(X, time, taus) -> tuple[np.ndarray, np.ndarray]:

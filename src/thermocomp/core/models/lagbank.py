@@ -214,8 +214,11 @@ def _summary(name: str, folds: np.ndarray) -> dict:
     return {name: float(np.mean(folds)), f"{name}_sd": float(np.std(folds))}
 
 
-# one stack of rows is featurised for every target, every fold and every single-campaign model
-_lag_bank_features = ArrayMemo(lag_features)
+# one stack of rows is featurised for every target, every fold and every single-campaign model;
+# bounded in bytes too: a year at 1 min of 34 sensors makes 1.2 GB of features per stack, and four
+# stacks held at once took a run to 7 GB (scale58); past the bound only the newest is kept
+LAG_FEATURES_MAX_BYTES = 512e6
+_lag_bank_features = ArrayMemo(lag_features, max_bytes=LAG_FEATURES_MAX_BYTES)
 
 
 def _clock_of(t: float | None) -> tuple:
