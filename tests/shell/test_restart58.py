@@ -145,3 +145,15 @@ def test_connect_restarted_resumes_on_the_rows_logged_before(deployed):
     np.testing.assert_allclose(resumed, whole[half:], atol=1e-12)
     cold, _ = stepped(half)
     assert np.abs(cold - whole[half:]).max() > 0.1
+
+
+def test_a_serving_process_logs_its_warnings_as_thermocomp_does(deployed, monkeypatch, capsys):
+    # a fresh serving process has no thermocomp handler: the warning was a bare stderr line
+    # (Python's last resort), not "[thermocomp] warning: ..." (lead58)
+    root = logging.getLogger("thermocomp")
+    monkeypatch.setattr(root, "handlers", [])
+    monkeypatch.setattr(root, "propagate", True)
+    streaming, campaign = deployed
+    _server(streaming).predict(None, campaign.iloc[10:], {"session": "machine-9"})
+    err = capsys.readouterr().err
+    assert "[thermocomp] warning: " in err and "'machine-9' is not held by this server" in err

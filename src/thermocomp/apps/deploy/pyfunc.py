@@ -85,6 +85,8 @@ from mlflow.types.schema import AnyType
 import thermocomp
 
 from ...base import signing
+from ...base.log import NAME as LOG_NAME
+from ...base.log import configure as configure_log
 from ...core.context import TIME
 from ...core.io.stdin import since, stream_stamps
 from .adaptive import AdaptiveCompensator
@@ -130,6 +132,10 @@ class CompensatorModel(mlflow.pyfunc.PythonModel):
         return None if adapt is None else adapt.snapshot()
 
     def load_context(self, context) -> None:
+        # a serving process (MLflow's, started by `thermocomp serve`) has no thermocomp logging
+        # of its own: its warnings (a session it does not hold) came as bare stderr lines
+        if not logging.getLogger(LOG_NAME).handlers:
+            configure_log()
         artifacts = (context.artifacts or {}) if context is not None else {}
         if COMPENSATOR_ARTIFACT in artifacts:
             # the signature is checked on the bytes before anything is unpickled
