@@ -112,3 +112,17 @@ def test_a_renamed_channel_in_another_unit_is_said_to_be_renamed_not_mapped(tmp_
                    "renaming 'dX1 [mm]' to 'dX [mm]' in those files (data.columns would not "
                    "convert its mm)")
     assert "data.columns=" not in line
+
+
+def test_a_run_not_recorded_is_refused_before_any_run_is_said_held_out(tmp_path, capsys):
+    # a header-only file has no start: the folder was held out in name order, said ("held out
+    # in the order listed (no start time for each): test ['run_06']"), and then refused
+    folder = lab_folder(tmp_path / "lab")
+    header = (folder / "run_03.csv").read_text().splitlines()[0]
+    (folder / "run_03.csv").write_text(header + "\n")
+    code = main(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]"])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "run_03.csv: file has a header but no data rows: a run not recorded?" in err
+    assert "held out" not in err and "name order" not in err, err
+    assert not (tmp_path / "init").exists()
