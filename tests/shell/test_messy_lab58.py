@@ -112,3 +112,37 @@ def test_a_renamed_channel_in_another_unit_is_said_to_be_renamed_not_mapped(tmp_
                    "renaming 'dX1 [mm]' to 'dX [mm]' in those files (data.columns would not "
                    "convert its mm)")
     assert "data.columns=" not in line
+
+
+def test_a_run_not_recorded_is_refused_before_any_run_is_said_held_out(tmp_path, capsys):
+    # a header-only file has no start: the folder was held out in name order, said ("held out
+    # in the order listed (no start time for each): test ['run_06']"), and then refused
+    folder = lab_folder(tmp_path / "lab")
+    header = (folder / "run_03.csv").read_text().splitlines()[0]
+    (folder / "run_03.csv").write_text(header + "\n")
+    code = main(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]"])
+    err = capsys.readouterr().err
+    assert code == 2, err
+    assert "run_03.csv: file has a header but no data rows: a run not recorded?" in err
+    assert "held out" not in err and "name order" not in err, err
+    assert not (tmp_path / "init").exists()
+
+
+def test_a_channel_renamed_is_named_from_the_first_run_in_time_not_in_file_names(tmp_path,
+                                                                              capsys):
+    # runs timestamped, their files named otherwise than in time: 'T03' (runs 4-6, the last
+    # three days) was said to be the earlier name and 'T3' the rename "from lauf_b on"
+    folder = lab_folder(tmp_path / "lab", rename_from=4)
+    names = dict(zip(range(1, 7), "bdface"))          # run 4, the first under 'T03', is lauf_a
+    for k, name in names.items():
+        frame = pd.read_csv(folder / f"run_{k:02d}.csv", sep=";", decimal=",")
+        began = pd.Timestamp(f"2026-11-{k + 1:02d} 08:00")
+        frame["Zeit [s]"] = (began + pd.to_timedelta(frame["Zeit [s]"], unit="s")).dt.strftime(
+            "%Y-%m-%dT%H:%M:%S")
+        frame.rename(columns={"Zeit [s]": "Zeit"}).to_csv(
+            folder / f"lauf_{name}.csv", sep=";", decimal=",", index=False)
+        (folder / f"run_{k:02d}.csv").unlink()
+    refused(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]"], capsys,
+            "lauf_a.csv", "'T_T3' is in 3 of 6 campaigns (lauf_b, lauf_d, lauf_f)",
+            "'T_T03' (its header in the file: 'T03') in the other 3, from lauf_a on",
+            "data.columns={T03: T_T3}")

@@ -222,3 +222,28 @@ def test_a_labs_header_with_spaces_and_brackets_in_an_override_is_shown_quoted(t
     only ``mismatched input '['`` and its grammar page (lead58)."""
     refused(["compare", override, f"out={tmp_path / 'o'}", "track=false"], capsys,
             "is read only quoted", fixed)
+
+
+@pytest.mark.parametrize("after, said", [(85, True), (1, False), (None, False)])
+def test_a_stream_said_to_continue_a_run_from_rows_after_its_end_says_the_gap(
+        lab, tmp_path, monkeypatch, capsys, after, said):
+    """The stream's first row on run 1's clock, 85 periods after its last (84 rows missing): the
+    lead-in was moved to end one period before it and the gap bridged without a word
+    (restart58: 84 rows).  Right after its last row, or on a clock that restarts (``None``:
+    from 0 s, which tells nothing of a gap): nothing said."""
+    whole = pd.read_csv(lab / "messung.csv", sep=";", decimal=",")
+    run1 = whole[whole["Lauf"] == 1].drop(columns="Lauf")
+    period = float(run1["Zeit [s]"].diff().median())
+    end = float(run1["Zeit [s]"].iloc[-1])
+    rows = pd.concat([run1.iloc[-1:]] * 30, ignore_index=True)     # the machine as run 1 left it
+    start = end + after * period if after is not None else 0.0
+    rows["Zeit [s]"] = start + np.arange(len(rows)) * period
+    monkeypatch.setattr("sys.stdin", io.StringIO(rows.to_csv(sep=";", decimal=",", index=False)))
+    assert main(["monitor", f"data.path={lab / 'messung.csv'}", f"out={tmp_path / 'o'}", *ROLES,
+                 *FAST, "data.reference=none", "monitor.input=-",
+                 "monitor.continues=Lauf_1"]) == 0
+    err = capsys.readouterr().err
+    assert ("after Lauf_1's last" in err) is said, err
+    if said:
+        assert f"is {after - 1} sample(s) ({(after - 1) * period / 60:.3g} min) after" in err
+        assert "stream from the row after Lauf_1's last" in err

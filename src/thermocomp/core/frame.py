@@ -140,7 +140,8 @@ def resolve_columns(columns, inputs, targets) -> tuple[list[str], list[str]]:
 
 def check_common_columns(campaigns: Mapping[str, pd.DataFrame], columns,
                          files: Mapping[str, object] | None = None,
-                         headers: Mapping[str, str] | None = None) -> None:
+                         headers: Mapping[str, str] | None = None,
+                         starts: Mapping[str, object] | None = None) -> None:
     """Every campaign holds every column the model reads (``columns``).
 
     Otherwise a ContractError naming the odd one out: the campaign that lacks a column the
@@ -149,7 +150,10 @@ def check_common_columns(campaigns: Mapping[str, pd.DataFrame], columns,
     the other campaigns, the first campaign of the later name (a sensor renamed from some run
     on).  ``files`` maps campaign ids to the files named in the error (default: the ids, in the
     message); ``headers`` contract names to the files' own headers where they differ (a lab's
-    ``T03``, read as ``T_T03``), named in the fix.
+    ``T03``, read as ``T_T03``), named in the fix; ``starts`` each campaign's start (the
+    manifest's ``start``, a file's first timestamp): where every campaign has one, a renamed
+    sensor's earlier name and its first campaign under the later one are read in time order,
+    not in the campaigns' (a folder's file names).
     """
     n, headers = len(campaigns), headers or {}
     for column in columns:
@@ -159,7 +163,7 @@ def check_common_columns(campaigns: Mapping[str, pd.DataFrame], columns,
         lack = [cid for cid in campaigns if cid not in have]
         twin = _other_name(campaigns, column, lack)
         if twin is not None:
-            raise _renamed(campaigns, column, twin, files, headers)
+            raise _renamed(campaigns, column, twin, files, headers, starts)
         if have and len(have) < len(lack):
             odd, what = have[0], f"only {len(have)} of {n} campaigns have it ({listed(have)})"
         else:
@@ -188,13 +192,18 @@ def _other_name(campaigns: Mapping[str, pd.DataFrame], column: str, lack: list) 
 _PLAIN_KEY = re.compile(r"[A-Za-z0-9_.\- ]+")
 
 
-def _renamed(campaigns, column: str, twin: str, files, headers) -> ContractError:
+def _renamed(campaigns, column: str, twin: str, files, headers, starts=None) -> ContractError:
     """The refusal of ``column`` and ``twin``, each in the campaigns the other is not in, with
-    the ``data.columns`` entry that reads the later name as the earlier one."""
+    the ``data.columns`` entry that reads the later name as the earlier one: later in time where
+    every campaign has a start (``starts``), else in the campaigns' order."""
     order = list(campaigns)
+    began = pd.to_datetime(pd.Series({c: (starts or {}).get(c) for c in order}, dtype=object)
+                           .astype(str), errors="coerce", utc=True, format="ISO8601")
+    if began.notna().all():     # (a lab's files named otherwise than in time: T03 came first)
+        order = list(began.sort_values(kind="stable").index)
 
     def where(name):
-        return [cid for cid, df in campaigns.items() if name in df.columns]
+        return [cid for cid in order if name in campaigns[cid].columns]
 
     old, new = sorted((column, twin), key=lambda name: order.index(where(name)[0]))
     first = where(new)[0]

@@ -232,8 +232,9 @@ def check_declared(cfg: DictConfig, ds, model: bool = True) -> None:
 
     inputs, targets = declared_columns(cfg, ds)
     headers = {name: raw for raw, name in (ds.meta.get("column_map") or {}).items()}
+    starts = ds.manifest["start"].to_dict() if "start" in ds.manifest.columns else None
     check_common_columns(ds.campaigns, inputs + targets, {cid: ds.file_path(cid) for cid in ds.ids()},
-                         headers)
+                         headers, starts)
     if model:
         check_model_columns(cfg, ds)
 

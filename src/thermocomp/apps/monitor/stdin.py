@@ -48,7 +48,32 @@ def stdin_lead_in(ds, ids: list[str], cid: str, times: pd.Series | None) -> dict
     read = np.flatnonzero(times.notna().to_numpy()) if times is not None else []
     first = (float(times.iloc[read[0]]) - read[0] * campaign_period(ds.campaigns[ids[-1]])
              if len(read) else 0.0)
+    said_if_gap(ds.campaigns[ids[-1]], ids[-1], first)
     return {cid: preceding(ds, ids, first)}
+
+
+GAP_PERIODS = 1.5   # a stream's first time this many periods or more after the campaign's last
+
+
+def said_if_gap(campaign: pd.DataFrame, name: str, first: float) -> None:
+    """Say a stream said to continue ``campaign`` (named ``name``) whose first time ``first``
+    is on that campaign's clock (beyond its last time) but more than ``GAP_PERIODS`` sample
+    periods after it: the lead-in is moved to end one period before the stream, so the rows in
+    between are bridged as one period and the warm-up they carry is lost (restart58: a lab's
+    test part streamed from the restart, 84 rows after the train part it was said to
+    continue).  A stream whose clock restarts (``first`` at or before the last time) tells
+    nothing of a gap: not said."""
+    if TIME not in campaign.columns or len(campaign) < 2:
+        return
+    last, period = float(campaign[TIME].iloc[-1]), campaign_period(campaign)
+    if not np.isfinite(period) or period <= 0 or first <= last + GAP_PERIODS * period:
+        return
+    missing = round((first - last) / period) - 1
+    logger.warning(
+        f"monitor.continues={name}: stdin's first row (time {first:g} s) is {missing} "
+        f"sample(s) ({(first - last - period) / 60:.3g} min) after {name}'s last "
+        f"({last:g} s): the rows in between are missing and the warm-up they carry is lost "
+        f"(the stream is warmed as if it followed at once); stream from the row after {name}'s last")
 
 
 JUMPS = 3.0        # a step beyond this x a sensor's largest step in the continued campaign

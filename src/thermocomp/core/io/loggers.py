@@ -23,13 +23,9 @@ def errors_elsewhere(exc: ContractError, root: Path, manifest: pd.DataFrame, cid
     """``exc`` (campaign ``cid`` of the folder ``root`` refused) as it is, or, where it has no
     error column and another file of ``manifest`` holds errors but no temperature, a refusal
     naming that file and saying that files are not joined; a file without data rows, said
-    to be left out."""
+    to be left out (:func:`unrecorded`)."""
     if exc.reason.endswith("no data rows") and exc.row is None:
-        # a run not recorded (its logger's header alone) among a lab's runs (messy58)
-        where = (f"its row out of {MANIFEST}" if (root / MANIFEST).is_file() else
-                 "the file out of the folder")
-        return ContractError(f"{exc.reason}: a run not recorded? a campaign needs samples; leave "
-                             f"{where}", file=exc.file, column=exc.column, sheet=exc.sheet)
+        return unrecorded(exc, root)
     if not exc.reason.startswith(NO_ERROR):
         return exc
     for other, file in manifest["file"].items():
@@ -42,6 +38,15 @@ def errors_elsewhere(exc: ContractError, root: Path, manifest: pd.DataFrame, cid
                 "by time: join them into one file first, one row per time (pandas.merge_asof), "
                 "and give data.path that file", file=exc.file)
     return exc
+
+
+def unrecorded(exc: ContractError, root: Path) -> ContractError:
+    """``exc``, the refusal of a file of the folder ``root`` without data rows, saying to leave
+    it out: a run not recorded (its logger's header alone) among a lab's runs (messy58)."""
+    where = (f"its row out of {MANIFEST}" if (root / MANIFEST).is_file() else
+             "the file out of the folder")
+    return ContractError(f"{exc.reason}: a run not recorded? a campaign needs samples; leave "
+                         f"{where}", file=exc.file, column=exc.column, sheet=exc.sheet)
 
 
 def _errors_only(path: Path, opts: ReadOptions) -> list[str]:

@@ -78,7 +78,7 @@ from .contract import (
     role,
 )
 from .lines import Lines
-from .loggers import errors_elsewhere
+from .loggers import errors_elsewhere, unrecorded
 from .manifest import apply_split_overrides, read_manifest, said_subfolders, subfolder_runs
 from .options import ROLE_ORDER, RUN_ROLE, ReadOptions
 from .own_headers import with_own_header
@@ -88,7 +88,7 @@ from .roles import RUN, split_unit
 from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
 from .starts import campaign_starts, utc_instant
 from .steps import check_unit_steps
-from .tables import _load_csv, _load_parquet, _ordered, _values, parquet
+from .tables import NoRows, _load_csv, _load_parquet, _ordered, _values, parquet
 from .values import (
     _check_periods,
     _error_ranges,
@@ -450,7 +450,11 @@ def folder_splits(path: Path, opts: ReadOptions) -> pd.DataFrame:
                             f"hold out for data.test_fraction / data.val_fraction: give the file, "
                             f"data.path={only} (one record: its last share is held out)", file=path)
     if shares(opts):       # before any is read
-        manifest = hold_out(manifest, opts, path, campaign_starts(path, manifest, opts))
+        try:
+            starts = campaign_starts(path, manifest, opts)
+        except NoRows as exc:     # refused before any order is said
+            raise unrecorded(exc, path) from None
+        manifest = hold_out(manifest, opts, path, starts)
     return manifest
 
 

@@ -19,7 +19,15 @@ from .manifest import is_text
 from .options import ReadOptions
 from .plain import as_read, is_converted
 from .sniff import resolved
-from .tables import _contract_names, _first_text, _peek_csv, _timed, parquet, without_pandas_index
+from .tables import (
+    NoRows,
+    _contract_names,
+    _first_text,
+    _peek_csv,
+    _timed,
+    parquet,
+    without_pandas_index,
+)
 from .timestamps import CLOCK, maybe_elapsed, parsed, time_type
 from .workbook import HEAD_ROWS
 
@@ -38,15 +46,21 @@ def campaign_starts(root: Path, manifest: pd.DataFrame, opts: ReadOptions) -> pd
 def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
     """The first timestamp of a campaign file (UTC; a time without an offset as written, or on
     ``data.timezone``'s clock); NaT when its time is no timestamp or the row does not read (the
-    read of the file says why)."""
+    read of the file says why).  A file with no data row is refused (:class:`.tables.NoRows`):
+    read as one without a start, the folder was held out in name order, said, and then refused
+    for that file (messy58)."""
     if is_converted(path):      # its first rows as the reader reads them (:mod:`.plain`)
         try:
             with as_read(path, opts, rows=HEAD_ROWS) as (source, source_opts):
                 return first_timestamp(source, source_opts)
+        except NoRows:
+            raise
         except ContractError:
             return pd.NaT
     try:
         header, first, names, opts = named_head(path, opts)
+    except NoRows:
+        raise
     except ContractError:
         return pd.NaT
     cells = {n: first[h] for h, n in zip(header, names) if n in (TIME, CLOCK)}
@@ -85,7 +99,7 @@ def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict, ReadOpti
         return header, dict(zip(header, row)), opts
     batch = next(parquet().ParquetFile(path).iter_batches(batch_size=1), None)
     if batch is None:
-        raise ContractError("no rows", file=path)
+        raise NoRows("no rows", file=path)
     batch = without_pandas_index(pa.Table.from_batches([batch]))
     first = {}
     for name, column in zip(batch.schema.names, batch.columns):

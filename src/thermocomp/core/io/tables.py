@@ -257,6 +257,11 @@ def _check_delimiter(header: str, first: str, path: Path, opts: ReadOptions) -> 
                                 f"set data.delimiter={sep!r}{hint}", file=path)
 
 
+class NoRows(ContractError):
+    """A file with no data row (empty, or its header alone): no campaign and no start to read,
+    refused before a folder's campaigns are held out by their starts."""
+
+
 def _peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list[str], int]:
     """Header (stripped names; a unit row's units joined), first data row and the lines above
     it (a logger's preamble, the header, a unit row: :mod:`.layout`), without reading the file."""
@@ -277,9 +282,9 @@ def _peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], lis
         raise ContractError(f"not a CSV text file ({exc}); a compressed or binary file "
                             "must be unpacked or saved as .parquet", file=path) from None
     if not header:
-        raise ContractError("empty file", file=path)
+        raise NoRows("empty file", file=path)
     if first is None:
-        raise ContractError("file has a header but no data rows", file=path)
+        raise NoRows("file has a header but no data rows", file=path)
     return [name.strip() for name in header], first, preamble + 1 + units
 
 
