@@ -204,11 +204,17 @@ def lead_ins(comp, ds: Dataset, ids) -> dict:
     carried = {c: chain for c, chain in carry_over(comp, ds).items() if c in ids}
     said_if_not_carried(comp, ds, ids)
     leads = {c: lead_in(ds, chain) for c, chain in carried.items()}
-    if carried:   # the rows, so that a year's minutes of warming are expected (scale58)
+    said_warmed(carried, leads)
+    return leads
+
+
+def said_warmed(carried: dict[str, list[str]], leads: dict[str, pd.DataFrame]) -> None:
+    """Say the campaigns a stream is warmed on (``{campaign: its chain}``) and how many rows
+    their lead-ins ``leads`` hold, so that a year's minutes of warming are expected (scale58)."""
+    if carried:
         rows = sum(len(df) for df in leads.values())
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
             + carried_text(carried) + f"; {rows:,} rows streamed row by row before scoring")
-    return leads
 
 
 def said_if_not_carried(comp, ds: Dataset, ids) -> None:
@@ -222,7 +228,7 @@ def said_if_not_carried(comp, ds: Dataset, ids) -> None:
     if getattr(comp, "reference", "first_sample") == "none":
         return
     tests = set(ds.ids("test"))
-    cut = {c: chain for c, chain in chains(ds, [c for c in ids if c in tests]).items()}
+    cut = chains(ds, [c for c in ids if c in tests])
     if cut:
         logger.warning(
             f"{carried_text(cut)}, but the model reads each campaign's changes from its first "

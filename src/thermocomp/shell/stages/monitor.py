@@ -30,7 +30,7 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core import io
 from ...core.context import TIME
-from ...core.continuation import carried_text, lead_ins
+from ...core.continuation import lead_ins, said_warmed
 from ...core.io.contract import AMBIENT_C
 from ...core.io.source import check_streamed_columns
 from ...core.io.stdin import stdin_text, stream_campaigns
@@ -50,11 +50,9 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict, train_ids: list[s
     ids = stdin_chain(ds, cfg.monitor.get("continues"), ambient_given=fixed.ambient_given_,
                       reference=fixed.compensator.reference, data_path=cfg.data.path,
                       ambient_c=cfg.monitor.get("ambient_c"))
-    if ids:
-        say("stream warmed on the campaigns it continues (state carried over, unscored): "
-            + carried_text({cid: [*ids, cid]}))
     leads = stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None)
     if ids:
+        said_warmed({cid: [*ids, cid]}, leads)
         check_continued(leads[cid], stream, ids[-1])
     else:
         said_if_mid_campaign(ds, train_ids, stream, cid)
