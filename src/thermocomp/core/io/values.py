@@ -13,6 +13,7 @@ import pyarrow.compute as pc
 
 from ...base.errors import listed
 from ...base.log import logger
+from ..timerule import median_step
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
@@ -97,9 +98,7 @@ def _check_increasing(seconds: np.ndarray, path: Path, local: bool = False,
         what = (f"duplicate time {_shown(after, origin)} (same as row {i + 1}): two samples at "
                 "one time; delete the row written twice, or give it its own time")
     else:
-        forward = steps[steps > 0]
-        dst = clock_set_back(before, after, float(np.median(forward)) if forward.size else None) \
-            if local else ""
+        dst = clock_set_back(before, after, median_step(seconds)) if local else ""
         # rows a lab exported or pasted out of order: sorting them gives one time per sample
         unsorted = "" if dst or np.unique(seconds).size < seconds.size else (
             _clock_reset(seconds, after - before, max_days)
