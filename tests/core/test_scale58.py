@@ -46,13 +46,12 @@ def test_lag_features_in_one_array_equal_the_tiled_and_stacked_ones():
 def test_lag_bank_features_memo_keeps_only_the_newest_past_its_byte_bound(monkeypatch):
     # a year's stack is 1.2 GB of features: four held at once took a run to 7 GB
     from thermocomp.core.models import lagbank
+    from thermocomp.core.models._memo import BoundedCache
 
     memo = lagbank._lag_bank_features
     assert memo.max_bytes is not None and memo.max_bytes <= 1e9
-    monkeypatch.setattr(memo, "max_bytes", 20_000)   # the bound, scaled to these few rows
-    monkeypatch.setattr(memo, "_results", type(memo._results)())
-    monkeypatch.setattr(memo, "_bytes", {})
-    monkeypatch.setattr(memo, "_total", 0)
+    # the bound, scaled to these few rows
+    monkeypatch.setattr(memo, "_results", BoundedCache(memo._results.max_items, max_bytes=20_000))
     rng = np.random.default_rng(0)
     taus = np.geomspace(60.0, 3600.0, 4)
     for _ in range(3):   # 200 rows x 15 columns x 8 bytes = 24 kB each
@@ -117,7 +116,8 @@ def test_auto_says_each_long_candidate_validation(caplog, monkeypatch):
 
 def test_diagnose_feature_cache_forgets_the_least_recently_used_past_its_bound():
     # every screened candidate kept its features: past 6 GB on a year's record (scale58)
-    from thermocomp.apps.diagnose.cv import FEATURE_CACHE_BYTES, CrossValidator, FeatureCache
+    from thermocomp.apps.diagnose.cv import FEATURE_CACHE_BYTES, CrossValidator
+    from thermocomp.core.models._memo import BoundedCache as FeatureCache
 
     cache = FeatureCache(max_bytes=2 * 800)      # two arrays of 100 floats
     for key in "abc":

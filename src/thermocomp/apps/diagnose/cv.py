@@ -34,7 +34,6 @@ minimises the CV error (:mod:`.shrink`).
 
 from __future__ import annotations
 
-from collections import OrderedDict
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
 
@@ -46,6 +45,7 @@ from ...core.context import CAMPAIGN, Y_MEASURED, for_target
 from ...core.model_selection import ForwardChaining, LeaveCampaignsOut
 from ...core.model_selection.blocks import cut_blocks
 from ...core.model_selection.extrapolation import within_range
+from ...core.models._memo import BoundedCache
 from ...core.models.linear import MLR
 from ...core.select import AllInputs
 from .features import Effect, effect_features, in_frame, initial_offsets, principal_directions, transient
@@ -55,29 +55,6 @@ from .shrink import ALPHAS, PartialRidgePath, least_error, one_standard_error
 # 1 min that grew past 6 GB in diagnose (scale58). Past this bound the least recently used
 # are computed again when asked (the same numbers); a small record keeps them all.
 FEATURE_CACHE_BYTES = 1e9
-
-
-class FeatureCache(OrderedDict):
-    """A dict of arrays that forgets the least recently used past ``max_bytes`` (the newest is
-    kept whatever its size)."""
-
-    def __init__(self, max_bytes: float):
-        super().__init__()
-        self.max_bytes, self.nbytes = max_bytes, 0
-
-    def __getitem__(self, key):
-        value = super().__getitem__(key)
-        self.move_to_end(key)
-        return value
-
-    def __setitem__(self, key, value) -> None:
-        if key in self:
-            self.nbytes -= np.asarray(super().__getitem__(key)).nbytes
-        super().__setitem__(key, value)
-        self.nbytes += np.asarray(value).nbytes
-        while len(self) > 1 and self.nbytes > self.max_bytes:
-            _, old = self.popitem(last=False)
-            self.nbytes -= np.asarray(old).nbytes
 
 
 @dataclass
@@ -256,7 +233,7 @@ class CrossValidator:
         self.selector = selector if selector is not None else AllInputs()
         self.shrink = shrink
         self._selection: dict = {}
-        self._features = FeatureCache(FEATURE_CACHE_BYTES)
+        self._features = BoundedCache(max_bytes=FEATURE_CACHE_BYTES)
         self._ctx: dict = {}
 
     @property

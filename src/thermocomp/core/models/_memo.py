@@ -24,11 +24,17 @@ class ArrayMemo:
     """
 
     def __init__(self, fn, size: int = 4, max_bytes: float | None = None):
-        self.fn, self.size, self.max_bytes = fn, int(size), max_bytes
-        self._results: OrderedDict = OrderedDict()
-        self._bytes: dict = {}
-        self._total = 0
+        self.fn = fn
+        self._results = BoundedCache(int(size), max_bytes)
         self._lock = threading.Lock()
+
+    @property
+    def size(self) -> int:
+        return self._results.max_items
+
+    @property
+    def max_bytes(self) -> float | None:
+        return self._results.max_bytes
 
     @staticmethod
     def key(*args) -> bytes:
@@ -53,19 +59,38 @@ class ArrayMemo:
         (a digest of :meth:`key`, the settings) saves hashing large arrays."""
         with self._lock:
             if key in self._results:
-                self._results.move_to_end(key)
                 return self._results[key]
         out = self.fn(*args)
         _read_only(out)
         with self._lock:
-            if key not in self._results:
-                self._bytes[key] = _nbytes(out)
-                self._total += self._bytes[key]
             self._results[key] = out
-            while len(self._results) > self.size or (
-                    self.max_bytes is not None and len(self._results) > 1 and self._total > self.max_bytes):
-                self._total -= self._bytes.pop(self._results.popitem(last=False)[0])
         return out
+
+
+class BoundedCache(OrderedDict):
+    """A dict that forgets its least recently used entries while it holds more than
+    ``max_items`` of them or its values' arrays more than ``max_bytes`` (``nbytes``; the newest
+    is kept whatever its size); reading an entry makes it the most recent."""
+
+    def __init__(self, max_items: int | None = None, max_bytes: float | None = None):
+        super().__init__()
+        self.max_items, self.max_bytes, self.nbytes = max_items, max_bytes, 0
+
+    def __getitem__(self, key):
+        value = super().__getitem__(key)
+        self.move_to_end(key)
+        return value
+
+    def __setitem__(self, key, value) -> None:
+        if key in self:
+            self.nbytes -= _nbytes(super().__getitem__(key))
+        super().__setitem__(key, value)
+        self.move_to_end(key)
+        self.nbytes += _nbytes(value)
+        while len(self) > 1 and ((self.max_items is not None and len(self) > self.max_items) or
+                                 (self.max_bytes is not None and self.nbytes > self.max_bytes)):
+            _, old = self.popitem(last=False)
+            self.nbytes -= _nbytes(old)
 
 
 def _nbytes(out) -> int:
