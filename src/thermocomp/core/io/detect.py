@@ -25,7 +25,7 @@ from .encoding import UTF8, WINDOWS, detect
 from .layout import header_line
 from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS, RUN_ROLE
-from .rates import RATE_CHANGE
+from .rates import period_groups
 from .read import run_column, run_counter
 from .record import check_record_file
 from .roles import RUN, date_and_time_of_day, matching_roles, named_as_time, split_unit
@@ -291,13 +291,12 @@ def _periods(ds) -> str:
     """'', or, for campaigns logged at periods :data:`RATE_CHANGE` times apart, each period with
     its number of campaigns (the median step of every row alone said 10 s for a folder whose
     23 runs of 32 were logged at 60 s)."""
-    periods = [median_step(df[TIME].to_numpy(float)) for df in ds.campaigns.values()]
-    periods = [p for p in periods if p]
-    if not periods or max(periods) / min(periods) < RATE_CHANGE:
+    periods = {c: median_step(df[TIME].to_numpy(float)) for c, df in ds.campaigns.items()}
+    groups = period_groups({c: p for c, p in periods.items() if p})
+    if not groups:
         return ""
-    counts = pd.Series([float(f"{p:.3g}") for p in periods]).value_counts().sort_index()
     return (" (the median step of every row; campaigns logged at " +
-            ", ".join(f"{p:g} s: {n}" for p, n in counts.items()) + ")")
+            ", ".join(f"{p:g} s: {len(ids)}" for p, ids in groups.items()) + ")")
 
 
 def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float, path: Path,

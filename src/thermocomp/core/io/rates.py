@@ -7,7 +7,7 @@ one span of time on one side of that row and another span on the other, with not
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 
 import numpy as np
 
@@ -17,6 +17,18 @@ from .contract import TIME
 
 RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
 SETTLED = 10         # steps at least on each side of a change
+
+
+def period_groups(periods: Mapping[str, float]) -> dict[float, list[str]]:
+    """``{period (3 digits): its campaigns}``, shortest first, of campaigns logged at sample
+    periods (s, positive) :data:`RATE_CHANGE` times apart or more (a lab's runs at 10 s and at
+    60 s); ``{}`` where they are not."""
+    if not periods or max(periods.values()) / min(periods.values()) < RATE_CHANGE:
+        return {}
+    groups: dict[float, list[str]] = {}
+    for cid, p in periods.items():
+        groups.setdefault(float(f"{p:.3g}"), []).append(cid)
+    return dict(sorted(groups.items()))
 
 
 def said_if_rate_changes(seconds: np.ndarray, file, at: Callable[[int], str] = position) -> None:

@@ -17,7 +17,7 @@ from ..timerule import median_step
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
-from .rates import RATE_CHANGE, said_if_rate_changes
+from .rates import period_groups, said_if_rate_changes
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
@@ -196,13 +196,11 @@ def _said_if_periods_differ(periods: dict, root: Path) -> None:
     runs at 10 s and at 60 s): each weighs by its rows in a fit and in the scores, and a model
     whose lags count samples reads a sample as another span in each (said before only 60x
     apart, as minutes for seconds); ``data.resample_s`` puts them on one grid."""
-    lo, hi = min(periods.values()), max(periods.values())
-    if lo <= 0 or hi / lo < RATE_CHANGE:
+    groups = period_groups(periods)
+    if not groups:
         return
-    groups: dict[float, list] = {}
-    for cid, p in periods.items():
-        groups.setdefault(float(f"{p:.3g}"), []).append(cid)
-    said = "; ".join(f"{p:g} s: {len(ids)} ({listed(ids, 3)})" for p, ids in sorted(groups.items()))
+    lo, hi = min(periods.values()), max(periods.values())
+    said = "; ".join(f"{p:g} s: {len(ids)} ({listed(ids, 3)})" for p, ids in groups.items())
     logger.warning(f"{root}: its campaigns are logged at different sample periods ({said}): each "
                    f"weighs by its rows in the fit and in the scores (a {lo:g} s run {hi / lo:.3g} "
                    f"times a {hi:g} s run as long), and a model whose lags count samples (arx, "
