@@ -437,6 +437,22 @@ def accepted_evidence(root: Path, cases: list[str]) -> None:
                       f"{j['before']['test_rmse']:.3f} -> {j['after']['test_rmse']:.3f}", flush=True)
 
 
+def redrawn(files: list[Path], nodes, index: dict, rng, folder: Path) -> Path:
+    """The grinder's run ``files`` written into ``folder`` with their errors replaced by the
+    simulator's clean law (the node rises ``nodes``, columns ``index``) plus fresh probe noise
+    (0.3 µm, from ``rng``), rounded as the lab's export rounds them."""
+    folder.mkdir(exist_ok=True)
+    for f, n in zip(files, nodes):
+        frame = pd.read_csv(f, sep=";", decimal=",")
+        rises = n - n[0]
+        for col, target, scale in (("Zustellung dY [µm]", "E_Y", 1.0),
+                                   ("Querachse dZ [mm]", "E_Z", 1e-3)):
+            law = sum(g * rises[:, index[node]] for node, g in machines.G_GAINS[target].items())
+            frame[col] = machines.rounded(law + rng.normal(0, 0.3, len(law)), 0.1) * scale
+        frame.to_csv(folder / f.name, sep=";", decimal=",", index=False, float_format="%.6g")
+    return folder
+
+
 def null(root: Path, draws: int) -> None:
     """grinder-nocoolant with the errors' probe noise drawn afresh (``draws`` times) on the same
     temperatures (seed 5671's files): the clean law of the simulator plus new noise, so every
@@ -445,16 +461,7 @@ def null(root: Path, draws: int) -> None:
     files = sorted((root / "new" / "grinder").glob("Lauf_*.csv"))
     rng = np.random.default_rng(57)
     for k in range(draws):
-        folder = root / f"null{k}"
-        folder.mkdir(exist_ok=True)
-        for f, n in zip(files, nodes):
-            frame = pd.read_csv(f, sep=";", decimal=",")
-            rises = n - n[0]
-            for col, target, scale in (("Zustellung dY [µm]", "E_Y", 1.0),
-                                       ("Querachse dZ [mm]", "E_Z", 1e-3)):
-                law = sum(g * rises[:, index[node]] for node, g in machines.G_GAINS[target].items())
-                frame[col] = machines.rounded(law + rng.normal(0, 0.3, len(law)), 0.1) * scale
-            frame.to_csv(folder / f.name, sep=";", decimal=",", index=False, float_format="%.6g")
+        folder = redrawn(files, nodes, index, rng, root / f"null{k}")
         ds, compensator, options = composed("new:grinder-nocoolant", root, f"data.path={folder}")
         d = diagnose(ds, compensator, options=options)
         print(json.dumps({"draw": k, "targets": memory.outcome(d, None)}, ensure_ascii=False), flush=True)

@@ -279,27 +279,13 @@ def grinder_nodes():
 def null(root: Path, draws: int, variants: list[str]) -> None:
     """bench_diagnose_proxy57's ``null``: seed 5671's temperatures, the errors' law plus fresh
     probe noise (rng 57, the same draws), grinder-nocoolant's config."""
-    import bench_new_machines56 as machines
+    import bench_diagnose_proxy57 as proxy
     index, nodes = grinder_nodes()
     files = sorted((root / "nm56" / "grinder").glob("Lauf_*.csv"))
     rng = np.random.default_rng(57)
     for k in range(draws):
-        folder = Path(f"/tmp/refnoise57-null{k}")
-        folder.mkdir(exist_ok=True)
-        for f, n in zip(files, nodes):
-            frame = pd.read_csv(f, sep=";", decimal=",")
-            rises = n - n[0]
-            for col, target, scale in (("Zustellung dY [µm]", "E_Y", 1.0),
-                                       ("Querachse dZ [mm]", "E_Z", 1e-3)):
-                law = sum(g * rises[:, index[node]] for node, g in machines.G_GAINS[target].items())
-                frame[col] = machines.rounded(law + rng.normal(0, 0.3, len(law)), 0.1) * scale
-            frame.to_csv(folder / f.name, sep=";", decimal=",", index=False, float_format="%.6g")
-        for name in variants:
-            ds, comp, options = composed(root, "grinder-nocoolant", f"data.path={folder}")
-            with variant(name, options.candidates.taus_s):
-                d = diagnose(ds, comp, None, "simulation", options)
-            print(json.dumps({"draw": k, "variant": name, "targets": targets_of(d)},
-                             ensure_ascii=False), flush=True)
+        folder = proxy.redrawn(files, nodes, index, rng, Path(f"/tmp/refnoise57-null{k}"))
+        _scored(root, folder, variants, draw=k)
 
 
 def fresh(root: Path, seeds: list[int], variants: list[str]) -> None:
@@ -309,12 +295,18 @@ def fresh(root: Path, seeds: list[int], variants: list[str]) -> None:
         folder = Path(f"/tmp/refnoise57-grinder{seed}")
         if not folder.exists():
             machines.write_grinder(folder, seed)
-        for name in variants:
-            ds, comp, options = composed(root, "grinder-nocoolant", f"data.path={folder}")
-            with variant(name, options.candidates.taus_s):
-                d = diagnose(ds, comp, None, "simulation", options)
-            print(json.dumps({"seed": seed, "variant": name, "targets": targets_of(d)},
-                             ensure_ascii=False), flush=True)
+        _scored(root, folder, variants, seed=seed)
+
+
+def _scored(root: Path, folder: Path, variants: list[str], **label) -> None:
+    """grinder-nocoolant's config on the grinder files in ``folder``, diagnosed under each of
+    ``variants``: a JSON line each, ``label`` first."""
+    for name in variants:
+        ds, comp, options = composed(root, "grinder-nocoolant", f"data.path={folder}")
+        with variant(name, options.candidates.taus_s):
+            d = diagnose(ds, comp, None, "simulation", options)
+        print(json.dumps({**label, "variant": name, "targets": targets_of(d)},
+                         ensure_ascii=False), flush=True)
 
 
 def offsets(root: Path, cases: list[str]) -> None:
