@@ -141,18 +141,16 @@ A header both ignored and given a role is refused with a clear message.
 
 from __future__ import annotations
 
-import argparse
-import json
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).parent))
-from bench_other_machine import QUIET, scores, thermocomp  # noqa: E402
-from bench_other_machine import diagnose as other_diagnose  # noqa: E402
+from bench_other_machine import thermocomp  # noqa: E402, F401 (bench_diagnose_lag57 calls it here)
+from new_machine_steps import Machines  # noqa: E402
+from new_machine_steps import main as steps_main  # noqa: E402
 
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork  # noqa: E402
 
@@ -374,50 +372,6 @@ LEFT_OUT = {"grinder-nocoolant": ["data.roles.ignore=['Kühlmitteltank*','Kühlm
                            "data.roles.state=['Spindle speed*','Hydraulics on*']"]}
 
 
-def run_models(root: Path, name: str, families=FAMILIES, extra=(), args_of=None) -> list[dict]:
-    """``run`` each family on a record (``args_of(root, name)``: its data overrides, this
-    module's :func:`data_args`): test RMSE per target, CPU s, ``auto.json``'s choice."""
-    rows = []
-    for family in families:
-        tag = f"{name}-{family}" + ("-" + "-".join(extra) if extra else "")
-        out = root / "out" / tag
-        status, cpu, _, err = thermocomp("run", *(args_of or data_args)(root, name), f"model={family}",
-                                         *QUIET, *extra, f"out={out}")
-        row = {"data": name, "model": family + (" " + " ".join(extra) if extra else ""),
-               "status": status, "cpu_s": round(cpu, 1)}
-        if status == 0:
-            row["scores"] = scores(out)
-            picked = out / "auto.json"
-            if picked.exists():
-                row["auto"] = json.loads(picked.read_text())
-        else:
-            row["error"] = err.strip().splitlines()[-1] if err.strip() else "?"
-        print({k: v for k, v in row.items() if k != "auto"}, flush=True)
-        rows.append(row)
-    return rows
-
-
-def diagnose(root: Path, name: str) -> dict:
-    """``diagnose`` (MLR) of a record here, as bench_other_machine's."""
-    return other_diagnose(root, name, data_args)
-
-
-def table(rows: list[dict]) -> str:
-    """Per record: each model's test RMSE per target, the ratio to MLR's, CPU s; persistence."""
-    mlr = {r["data"]: r["scores"] for r in rows if r["model"] == "mlr"}
-    lines = []
-    for name, base in mlr.items():
-        lines.append(f"{name} ({' / '.join(base)})")
-        for r in (r for r in rows if r["data"] == name):
-            got = " / ".join(f"{v[0]:.2f}" for v in r["scores"].values())
-            ratio = " / ".join(f"{v[0] / base[t][0]:.2f}" for t, v in r["scores"].items())
-            lines.append(f"  {r['model']:16s} {got:15s} {ratio:13s} {r['cpu_s']}")
-        got = " / ".join(f"{v[1]:.2f}" for v in base.values())
-        ratio = " / ".join(f"{v[1] / v[0]:.2f}" for v in base.values())
-        lines.append(f"  {'persistence':16s} {got:15s} {ratio}")
-    return "\n".join(lines)
-
-
 def proxy_forensics(root: Path) -> None:
     """Why ``diagnose`` on ``grinder-nocoolant`` raised E_Y's test RMSE: least squares on the
     13 temperatures it keeps (rises since the run's start; the MLR ``run`` fits, to 3 digits),
@@ -465,43 +419,14 @@ def proxy_forensics(root: Path) -> None:
         print(f"{k}: max (dT_amb)^2 {float((room**2).max()):.2f}, tank rise {tank.max():.1f} K")
 
 
+MACHINES = Machines(doc=__doc__, write=write, records=list(SEEDS), families=FAMILIES,
+                    init_args=INIT_ARGS, data_args=data_args, variants=LEFT_OUT,
+                    ati_records=("grinder",),    # the shop's seasons: a run's room level 17-29 °C
+                    forensics=proxy_forensics, diagnose_file="diagnose.json")
+
+
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=["write", "init", "run", "diagnose", "table", "forensics", "all"])
-    parser.add_argument("root")
-    parser.add_argument("--data", nargs="+", default=["grinder", "gantry"],
-                        help="records (families); diagnose also takes grinder-nocoolant, gantry-noY")
-    parser.add_argument("--families", nargs="+", default=list(FAMILIES))
-    args = parser.parse_args(argv)
-    root = Path(args.root).resolve()
-    every = args.what == "all"
-    if args.what == "write" or every:
-        t0 = time.perf_counter()
-        write(root)
-        print(f"records written to {root} in {time.perf_counter() - t0:.1f} s")
-    if args.what == "init" or every:
-        for name in args.data:
-            status, _, out, err = thermocomp("init", str(root / name), *INIT_ARGS[name],
-                                             f"out={root}/init-{name}")
-            print(out, err[-2000:], f"exit {status}", sep="\n")
-    if args.what == "run" or every:
-        for name in args.data:
-            rows = run_models(root, name, args.families)
-            if name == "grinder":      # the shop's seasons: a run's room level 17-29 °C
-                rows += run_models(root, name, ("mlr",), ("ati=cmeans",))
-            (root / f"families-{name}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "diagnose" or every:
-        names = [*args.data, *(v for v in LEFT_OUT if v.partition("-")[0] in args.data)] if every \
-            else args.data
-        rows = [diagnose(root, name) for name in names]
-        (root / "diagnose.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "table" or every:
-        print(table([r for name in args.data if "-" not in name
-                     for r in json.loads((root / f"families-{name}.json").read_text())]))
-    if args.what == "forensics":
-        proxy_forensics(root)
-    return 0
+    return steps_main(MACHINES, argv)
 
 
 if __name__ == "__main__":

@@ -11,8 +11,8 @@ them (seeds 5771 / 5772 fixed beforehand, every command run once).  Both differ 
 (VMC, Swiss lathe, large mill, climate room, column, year-round spindle), ``bench_other_machine.py``
 (a lathe heated by its spindle, a room-level factor) and ``bench_new_machines56.py`` (a grinder whose
 coolant flow switches the network, a gantry yawed by its two columns x the Y position).  The
-helpers are those two modules' (the records' programmes, the pipeline, the table) and
-``bench_monitor_healthy.py``'s (the monitor's summary).
+helpers are those two modules' (the records' programmes) and ``new_machine_steps.py``'s (the
+steps, the table, ``bench_monitor_healthy.py``'s monitor summary).
 
 ``boring_mill`` -- a horizontal boring mill whose RAM bends with its own top-bottom gradient
 ---------------------------------------------------------------------------------------------
@@ -188,22 +188,17 @@ boring_mill-noW on that config: the figures above).
 
 from __future__ import annotations
 
-import argparse
-import json
-import os
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).parent))
-from bench_monitor_healthy import monitor as monitor_run  # noqa: E402
-from bench_new_machines56 import rounded, simulate, table  # noqa: E402
-from bench_new_machines56 import run_models as run_models56  # noqa: E402
-from bench_other_machine import diagnose as other_diagnose  # noqa: E402
-from bench_other_machine import thermocomp  # noqa: E402
+from bench_new_machines56 import rounded, simulate  # noqa: E402
+from bench_other_machine import thermocomp  # noqa: E402, F401 (bench_diagnose_faults58, _lag57 call it here)
+from new_machine_steps import Machines  # noqa: E402
+from new_machine_steps import main as steps_main  # noqa: E402
 
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork  # noqa: E402
 
@@ -458,19 +453,6 @@ def data_args(root: Path, name: str) -> list[str]:
             *(LEFT_OUT[name] if variant else [])]
 
 
-def monitor(root: Path, name: str, model: str) -> dict:
-    """``monitor`` on the healthy test part (the model fitted on the train split, the defaults):
-    events, exclusions, RMSE fixed / adaptive per target (``bench_monitor_healthy``'s summary)."""
-    before = os.times()
-    row = monitor_run([*data_args(root, name), f"model={model}"], root / "out" / f"{name}-monitor-{model}")
-    after = os.times()
-    row.update(data=name, model=model,
-               cpu_s=round(after.children_user - before.children_user
-                           + after.children_system - before.children_system, 1))
-    print(row, flush=True)
-    return row
-
-
 def lag_forensics(root: Path) -> None:
     """Why the 4 h lag ``diagnose`` accepted on the twin lathe's E_Z2 failed on the test file:
     least squares (intercept, no shrink) on the 18 rises it keeps, without and with their 4 h
@@ -517,49 +499,13 @@ def lag_forensics(root: Path) -> None:
                              round(float(np.sqrt(np.mean(r1[day == k] ** 2))), 3)) for k in range(6)])
 
 
+MACHINES = Machines(doc=__doc__, write=write, records=list(SEEDS), families=FAMILIES,
+                    init_args=INIT_ARGS, data_args=data_args, variants=LEFT_OUT,
+                    ati_records=list(SEEDS), monitored=MONITORED, forensics=lag_forensics)
+
+
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=["write", "init", "run", "diagnose", "monitor", "table", "forensics",
-                                             "all"])
-    parser.add_argument("root")
-    parser.add_argument("--data", nargs="+", default=list(SEEDS),
-                        help="records (families); diagnose also takes boring_mill-noW, twin_lathe-noair")
-    parser.add_argument("--families", nargs="+", default=list(FAMILIES))
-    args = parser.parse_args(argv)
-    root = Path(args.root).resolve()
-    every = args.what == "all"
-    if args.what == "write" or every:
-        t0 = time.perf_counter()
-        write(root)
-        print(f"records written to {root} in {time.perf_counter() - t0:.1f} s")
-    if args.what == "init" or every:
-        for name in args.data:
-            status, _, out, err = thermocomp("init", str(root / name), *INIT_ARGS[name],
-                                             f"out={root}/init-{name}")
-            print(out, err[-2000:], f"exit {status}", sep="\n")
-    if args.what == "run" or every:
-        for name in args.data:
-            rows = run_models56(root, name, args.families, args_of=data_args)
-            rows += run_models56(root, name, ("mlr",), ("ati=cmeans",), args_of=data_args)
-            (root / f"families-{name}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "diagnose" or every:
-        names = [*args.data, *(v for v in LEFT_OUT if v.partition("-")[0] in args.data)] if every \
-            else args.data
-        rows = [other_diagnose(root, name, data_args) for name in names]
-        (root / f"diagnose-{'-'.join(names)}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "monitor" or every:
-        rows = [monitor(root, name, model) for name in args.data for model in MONITORED]
-        (root / f"monitor-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "table" or every:
-        rows = [r for name in args.data for r in json.loads((root / f"families-{name}.json").read_text())]
-        print(table([r for r in rows if "scores" in r]))
-        for r in rows:
-            if "scores" not in r:
-                print(f"{r['data']} {r['model']}: exit {r['status']}: {r['error']}")
-    if args.what == "forensics":
-        lag_forensics(root)
-    return 0
+    return steps_main(MACHINES, argv)
 
 
 if __name__ == "__main__":

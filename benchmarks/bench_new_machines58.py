@@ -11,8 +11,8 @@ them (seeds 5881 / 5882 fixed beforehand, every command run once).  Both differ 
 (a lathe heated by its spindle), ``bench_new_machines56`` (a grinder whose coolant flow switches
 the network, a gantry yawed by its columns x Y) and ``bench_new_machines57`` (a boring mill's
 ram bent by its own gradient x extension^2, a twin-spindle lathe with a night setback and a bar
-feeder).  The helpers are those modules' (the records' network, sensors and probes, the
-pipeline, the table) and ``bench_monitor_healthy``'s (the monitor's summary).
+feeder).  The helpers are those modules' (the records' network, sensors and probes) and
+``new_machine_steps``'s (the steps, the table, ``bench_monitor_healthy``'s monitor summary).
 
 ``trunnion`` -- a 5-axis machining centre whose tilt (A) and rotary (C) axes carry a motor each
 ---------------------------------------------------------------------------------------------
@@ -155,23 +155,17 @@ What a stranger met on the way in (``init DIR data.test_fraction=0.25``), each m
 
 from __future__ import annotations
 
-import argparse
-import json
-import os
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).parent))
-from bench_monitor_healthy import monitor as monitor_run  # noqa: E402
-from bench_new_machines56 import rounded, simulate, table  # noqa: E402
-from bench_new_machines56 import run_models as run_models56  # noqa: E402
+from bench_new_machines56 import rounded, simulate  # noqa: E402
 from bench_new_machines57 import STEP, network, probe, sensors  # noqa: E402
-from bench_other_machine import diagnose as other_diagnose  # noqa: E402
-from bench_other_machine import thermocomp  # noqa: E402
+from new_machine_steps import Machines  # noqa: E402
+from new_machine_steps import main as steps_main  # noqa: E402
 
 SEEDS = {"trunnion": 5881, "laser": 5882}
 ALPHA_UM = 11.5e-3          # µm per K per mm, steel
@@ -361,55 +355,12 @@ def data_args(root: Path, name: str) -> list[str]:
     return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={CONFIGS[name]}"]
 
 
-def monitor(root: Path, name: str, model: str) -> dict:
-    """``monitor`` on the healthy test part (the model fitted on the train split, the defaults),
-    ``bench_monitor_healthy``'s summary, with this module's data overrides."""
-    before = os.times()
-    row = monitor_run([*data_args(root, name), f"model={model}"], root / "out" / f"{name}-monitor-{model}")
-    after = os.times()
-    row.update(data=name, model=model,
-               cpu_s=round(after.children_user - before.children_user
-                           + after.children_system - before.children_system, 1))
-    print(row, flush=True)
-    return row
+MACHINES = Machines(doc=__doc__, write=write, records=list(SEEDS), families=FAMILIES,
+                    init_args=INIT_ARGS, data_args=data_args, folders=FOLDERS, monitored=MONITORED)
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=["write", "init", "run", "diagnose", "monitor", "table", "all"])
-    parser.add_argument("root")
-    parser.add_argument("--data", nargs="+", default=list(SEEDS))
-    parser.add_argument("--families", nargs="+", default=list(FAMILIES))
-    args = parser.parse_args(argv)
-    root = Path(args.root).resolve()
-    every = args.what == "all"
-    if args.what == "write" or every:
-        t0 = time.perf_counter()
-        write(root)
-        print(f"records written to {root} in {time.perf_counter() - t0:.1f} s")
-    if args.what == "init" or every:
-        for name in args.data:
-            status, cpu, out, err = thermocomp("init", str(root / FOLDERS[name]), *INIT_ARGS[name],
-                                               f"out={root}/init-{name}")
-            print(out, err[-3000:], f"exit {status}, CPU {cpu:.1f} s", sep="\n")
-    if args.what == "run" or every:
-        for name in args.data:
-            rows = run_models56(root, name, args.families, args_of=data_args)
-            (root / f"families-{name}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "diagnose" or every:
-        rows = [other_diagnose(root, name, data_args) for name in args.data]
-        (root / f"diagnose-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "monitor" or every:
-        rows = [monitor(root, name, model) for name in args.data for model in MONITORED]
-        (root / f"monitor-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "table" or every:
-        rows = [r for name in args.data for r in json.loads((root / f"families-{name}.json").read_text())]
-        print(table([r for r in rows if "scores" in r]))
-        for r in rows:
-            if "scores" not in r:
-                print(f"{r['data']} {r['model']}: exit {r['status']}: {r['error']}")
-    return 0
+    return steps_main(MACHINES, argv)
 
 
 if __name__ == "__main__":

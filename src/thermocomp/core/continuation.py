@@ -27,10 +27,10 @@ import pandas as pd
 
 from ..base.log import logger, say
 from .io.contract import TIME, Dataset
+from .io.instants import START, start_instants
 from .timerule import median_step
 
 CONTINUES = "continues"
-START = "start"
 
 
 def campaign_period(df: pd.DataFrame) -> float:
@@ -66,10 +66,7 @@ def predecessors(ds: Dataset) -> dict[str, str]:
                 out[cid] = prev
                 break
     if START in man.columns:
-        try:
-            starts = pd.to_datetime(man[START], errors="coerce", format="ISO8601")
-        except (TypeError, ValueError):   # e.g. mixed time zones: no contiguity to read from
-            return out
+        starts = start_instants(man[START])   # (with and without an offset: compared in UTC)
         ends = {}
         for cid, t0 in starts.items():
             df = ds.campaigns.get(cid)

@@ -24,6 +24,7 @@ from ..base.errors import ContractError, listed
 from .choices import REFERENCES
 from .context import AMBIENT_C0, CAMPAIGN, TIME
 from .io.contract import is_ambient, manifest_ambient, match_columns
+from .io.instants import start_instants
 from .io.own_headers import header_pattern
 from .io.roles import split_unit
 from .io.units import UNITS
@@ -197,8 +198,7 @@ def _renamed(campaigns, column: str, twin: str, files, headers, starts=None) -> 
     the ``data.columns`` entry that reads the later name as the earlier one: later in time where
     every campaign has a start (``starts``), else in the campaigns' order."""
     order = list(campaigns)
-    began = pd.to_datetime(pd.Series({c: (starts or {}).get(c) for c in order}, dtype=object)
-                           .astype(str), errors="coerce", utc=True, format="ISO8601")
+    began = start_instants(pd.Series({c: (starts or {}).get(c) for c in order}, dtype=object))
     if began.notna().all():     # (a lab's files named otherwise than in time: T03 came first)
         order = list(began.sort_values(kind="stable").index)
 

@@ -10,6 +10,7 @@ from ...base.errors import ConfigError
 from ...base.log import logger
 from ...core.continuation import campaign_period, chain, preceding, predecessors
 from ...core.io.contract import TIME
+from ...core.io.instants import START, start_instants
 from ..deploy.surveillance import COMMON_MIN
 
 
@@ -37,19 +38,35 @@ def stdin_chain(ds, campaign: str | None, *, ambient_given: bool, reference: str
     return chain(ds, campaign)
 
 
-def stdin_lead_in(ds, ids: list[str], cid: str, times: pd.Series | None) -> dict:
+def stdin_lead_in(ds, ids: list[str], cid: str, times: pd.Series | None,
+                  origin: pd.Timestamp | None = None) -> dict:
     """``{cid: lead-in}`` of the warming campaigns ``ids`` (:func:`stdin_chain`) for the stream's
     first campaign ``cid`` (a run after it starts from a reset), ending one sample period
     before its first row, whose ``times`` (None: no time column, the rows from 0 s) may begin
     with missing ones: the first time read less a period per row before it (the stream's
-    guard substitutes the lead-in's last time plus a period there)."""
+    guard substitutes the lead-in's last time plus a period there).  ``origin``: the instant
+    the stream's ``times`` count from where they were timestamps (its ``time_origin``), which
+    puts its first row on the continued campaign's clock (its ``start``) for :func:`said_if_gap`."""
     if not ids:
         return {}
     read = np.flatnonzero(times.notna().to_numpy()) if times is not None else []
     first = (float(times.iloc[read[0]]) - read[0] * campaign_period(ds.campaigns[ids[-1]])
              if len(read) else 0.0)
-    said_if_gap(ds.campaigns[ids[-1]], ids[-1], first)
+    on_its_clock = first + _clock_offset(ds, ids[-1], origin)
+    if np.isfinite(on_its_clock):        # (timestamps continuing a campaign of no known start)
+        said_if_gap(ds.campaigns[ids[-1]], ids[-1], on_its_clock)
     return {cid: preceding(ds, ids, first)}
+
+
+def _clock_offset(ds, name: str, origin: pd.Timestamp | None) -> float:
+    """Seconds from campaign ``name``'s start (its time 0) to ``origin``, a stream's first
+    timestamp: 0 for a stream timed in seconds (on the campaign's clock, or restarting), NaN
+    where the campaign has no start (timed in seconds, none in the manifest)."""
+    if origin is None:
+        return 0.0
+    start = (start_instants(ds.manifest[START])[name] if START in ds.manifest.columns
+             else pd.NaT)
+    return float("nan") if pd.isna(start) else (origin - start).total_seconds()
 
 
 GAP_PERIODS = 1.5   # a stream's first time this many periods or more after the campaign's last

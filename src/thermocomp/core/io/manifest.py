@@ -12,6 +12,7 @@ import pandas as pd
 
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
 from .encoding import UTF8, check_text, fields, text_codec, undecodable
+from .instants import start_instants, start_stamp
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
 from .workbook import WORKBOOK_SUFFIXES
 
@@ -288,17 +289,10 @@ def _metadata_column(values: pd.Series, path: Path, column: str, decimal: str = 
 
 
 def _parse_start(values: pd.Series, path: Path) -> pd.Series:
-    for row, value in enumerate(values, 1):
-        if value:
-            try:
-                pd.to_datetime(value, format="ISO8601")
-            except (ValueError, TypeError):
-                raise ContractError(f"start {value!r} is not an ISO 8601 time",
-                                    file=path, column="start", row=row) from None
-    present = values.replace("", None)
-    try:
-        return pd.to_datetime(present, format="ISO8601")
-    except ValueError:  # several zone offsets: keep instants, in UTC
-        return pd.to_datetime(present, format="ISO8601", utc=True)
-
-
+    """The ``start`` column as written (one offset, or none), else as instants in UTC (several
+    offsets, or a start with one and one without: :func:`.instants.start_instants`)."""
+    instants = start_instants(values, path)     # refuses a cell that is no ISO 8601 time
+    stamps = pd.Series([start_stamp(v) for v in values], index=values.index, dtype=object)
+    if len({str(s.tzinfo) for s in stamps if pd.notna(s)}) > 1:
+        return instants
+    return pd.to_datetime(stamps)

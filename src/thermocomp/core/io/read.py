@@ -77,6 +77,7 @@ from .contract import (
     is_ambient,
     role,
 )
+from .instants import START, start_instants, start_stamp
 from .lines import Lines
 from .loggers import errors_elsewhere, unrecorded
 from .manifest import apply_split_overrides, read_manifest, said_subfolders, subfolder_runs
@@ -86,7 +87,7 @@ from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
 from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
-from .starts import campaign_starts, utc_instant
+from .starts import campaign_starts
 from .steps import check_unit_steps
 from .tables import NoRows, _load_csv, _load_parquet, _ordered, _values, parquet
 from .values import (
@@ -598,9 +599,9 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         list(parts), name="campaign"))
     apply_split_overrides(manifest, opts.split_overrides, path,
                           listed_by="the file's run column (data.roles.campaign) does not hold")
-    origins = {cid: entry.get("time_origin") for cid, (_, entry) in parts.items()}
-    starts = pd.Series({cid: utc_instant(pd.Timestamp(o), opts) if o else pd.NaT
-                        for cid, o in origins.items()}, dtype="datetime64[ns, UTC]")
+    # (a run's first timestamp has its offset, data.timezone's where it was read on that clock)
+    starts = start_instants(pd.Series({cid: entry.get("time_origin")
+                                       for cid, (_, entry) in parts.items()}, dtype=object))
     try:
         manifest = hold_out(manifest, opts, path.parent, starts, listed="in file order")
     except ContractError as exc:          # (about the runs, not a manifest file)
@@ -636,12 +637,12 @@ def _starts_from_timestamps(manifest: pd.DataFrame, entries: Mapping) -> pd.Data
     if not origins:
         return manifest
     out = manifest.copy()
-    if "start" not in out.columns:
-        out["start"] = pd.Series([None] * len(out), index=out.index, dtype=object)
-    out["start"] = out["start"].astype(object)
+    if START not in out.columns:
+        out[START] = pd.Series([None] * len(out), index=out.index, dtype=object)
+    out[START] = out[START].astype(object)
     for cid, origin in origins.items():
-        if cid in out.index and pd.isna(out.at[cid, "start"]):
-            out.at[cid, "start"] = pd.Timestamp(origin)
+        if cid in out.index and pd.isna(out.at[cid, START]):
+            out.at[cid, START] = start_stamp(origin)
     return out
 
 
@@ -769,8 +770,8 @@ def check_separate(src: Path, dest: Path) -> None:
 
 def _manifest_csv(manifest: pd.DataFrame) -> str:
     out = manifest.copy()
-    if "start" in out.columns:
-        out["start"] = [t.isoformat() if pd.notna(t) else "" for t in out["start"]]
+    if START in out.columns:
+        out[START] = [t.isoformat() if pd.notna(t) else "" for t in out[START]]
     ordered = ["file", "split"] + [c for c in out.columns if c not in ("file", "split")]
     return out[ordered].rename_axis("campaign").reset_index().to_csv(index=False)
 

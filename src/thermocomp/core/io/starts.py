@@ -15,6 +15,7 @@ import pandas as pd
 import pyarrow as pa
 
 from .contract import TIME, ContractError
+from .instants import START, start_instants
 from .manifest import is_text
 from .options import ReadOptions
 from .plain import as_read, is_converted
@@ -35,8 +36,7 @@ from .workbook import HEAD_ROWS
 def campaign_starts(root: Path, manifest: pd.DataFrame, opts: ReadOptions) -> pd.Series:
     """Per campaign of ``manifest`` (a folder ``root``'s): its start, NaT where none is known
     (no ``start``, a file timed in seconds)."""
-    given = (pd.to_datetime(manifest["start"].astype(str), errors="coerce", utc=True,
-                            format="ISO8601") if "start" in manifest.columns
+    given = (start_instants(manifest[START]) if START in manifest.columns
              else pd.Series(pd.NaT, index=manifest.index, dtype="datetime64[ns, UTC]"))
     return pd.Series({cid: given[cid] if pd.notna(given[cid]) else
                       first_timestamp(root / manifest.at[cid, "file"], opts)

@@ -43,6 +43,9 @@ from .utf16 import has_utf16_mark
 SOURCE = "<stdin>"
 STDIN = "stdin"                 # the campaign id of a stream without a run column
 HEADERS = "headers"             # frame attrs: contract name -> the stream's own header
+# frame attrs: the instant (UTC) a campaign's timestamps count from (its first read), where its
+# time is timestamps: a stream said to continue a campaign is placed on that campaign's clock
+TIME_ORIGIN = "time_origin"
 _UNNAMED = re.compile(r"Unnamed: \d+")      # pandas' name for a column without a header
 
 
@@ -72,14 +75,16 @@ def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict
     (those the compensator reads).  ``time`` in seconds or as ISO 8601 timestamps (``auto``: as
     the first row reads, like a campaign file); the headers named as a campaign file's are
     (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``)."""
-    df, counts, _ = _read_runs(text, columns, opts)
+    df, counts, _, _ = _read_runs(text, columns, opts)
     return df, counts
 
 
-def _read_runs(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict, list | None]:
-    """:func:`read_stream`'s ``(frame, missing cells per column)`` and the runs' row blocks
-    ``(campaign id, first row, end row)`` (None without a run column): the runs are found once,
-    where their ids are checked, and both the times and the campaigns are cut by them."""
+def _read_runs(text: str, columns: list[str], opts
+               ) -> tuple[pd.DataFrame, dict, list | None, list]:
+    """:func:`read_stream`'s ``(frame, missing cells per column)``, the runs' row blocks
+    ``(campaign id, first row, end row)`` (None without a run column) and each run's
+    :data:`TIME_ORIGIN` (None: its time is no timestamp): the runs are found once, where their
+    ids are checked, and both the times and the campaigns are cut by them."""
     text = text.lstrip("\ufeff").replace(UNICODE_MINUS, "-")
     opts = detected(text.splitlines()[:SNIFF_LINES], opts, SOURCE)   # data.delimiter=auto ...
     text = _table(text, opts.delimiter)
@@ -100,10 +105,13 @@ def _read_runs(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict,
     if absent:
         raise ContractError("stdin lacks a column the compensator reads" + _unread(df, columns),
                             file=SOURCE, column=",".join(absent))
+    origins = [None] * (1 if blocks is None else len(blocks))
     if TIME in df.columns:        # timestamps counted from each run's first, as a file's runs
         runs = [df[TIME]] if blocks is None else [df[TIME].iloc[start:end]
                                                   for _, start, end in blocks]
-        df[TIME] = pd.concat([stream_seconds(t, opts.time, opts.timezone) for t in runs])
+        timed = [seconds_and_origin(t, opts.time, opts.timezone) for t in runs]
+        df[TIME] = pd.concat([seconds for seconds, _ in timed])
+        origins = [origin for _, origin in timed]
     # every data column is numeric (the contract's T_, E_, S_ and time), not only those the
     # model reads: the measured errors and the context are read from the same frame
     numeric = list(dict.fromkeys([*columns, *(c for c in df.columns
@@ -117,18 +125,21 @@ def _read_runs(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict,
         if c in scales:            # a unit in the header (or data.units): the contract's
             scale, offset = scales[c]
             df[c] = df[c] * scale + offset
-    return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks
+    return df, {c: int(n) for c, n in df[numeric].isna().sum().items() if n}, blocks, origins
 
 
 def stream_campaigns(text: str, columns: list[str], opts) -> tuple[dict, dict]:
     """``({campaign id: frame}, {campaign id: missing cells per column})`` of the stream: one
     campaign ``stdin``, or, with ``data.roles.campaign``, a campaign per run named as the long
     file's are (:mod:`.runs`), so each starts from a reset as a file's run does (:func:`read_stream`)."""
-    df, counts, blocks = _read_runs(text, columns, opts)
+    df, counts, blocks, origins = _read_runs(text, columns, opts)
     if blocks is None:
+        df.attrs[TIME_ORIGIN] = origins[0]
         return {STDIN: df}, ({STDIN: counts} if counts else {})
     parts = {cid: df.iloc[start:end].drop(columns=RUN).reset_index(drop=True)
              for cid, start, end in blocks}
+    for part, origin in zip(parts.values(), origins):
+        part.attrs[TIME_ORIGIN] = origin
     missing = {cid: {c: int(n) for c, n in part[list(counts)].isna().sum().items() if n}
                for cid, part in parts.items()}
     return parts, {cid: n for cid, n in missing.items() if n}
@@ -224,11 +235,21 @@ def stream_seconds(time: pd.Series, time_format: str, zone: str | None = None) -
     guard judges it, as on the machine; the first time read (not row 1's, which may be missing)
     is the origin of timestamps (seconds are kept: a missing first one is the stream's time
     rule's, :mod:`thermocomp.core.timerule`)."""
+    return seconds_and_origin(time, time_format, zone)[0]
+
+
+def seconds_and_origin(time: pd.Series, time_format: str, zone: str | None = None
+                       ) -> tuple[pd.Series, pd.Timestamp | None]:
+    """:func:`stream_seconds` and the instant (UTC) they count from where ``time`` holds
+    timestamps (a time without an offset as written, or on ``zone``'s clock: as a file's
+    ``time_origin`` becomes its ``start``, :mod:`.instants`), else None (seconds, elapsed)."""
     stamps = stream_stamps(time, time_format, zone)
     if stamps is None or isinstance(stamps, pd.Series):   # seconds; h:mm:ss in seconds
-        return time if stamps is None else stamps
+        return (time if stamps is None else stamps), None
     ns, valid = stamps
-    return pd.Series(since(ns, valid, ns[np.argmax(valid)]), index=time.index)
+    origin = ns[np.argmax(valid)]
+    return (pd.Series(since(ns, valid, origin), index=time.index),
+            pd.Timestamp(int(origin), unit="ns", tz="UTC"))
 
 
 def since(ns: np.ndarray, valid: np.ndarray, origin: int) -> np.ndarray:

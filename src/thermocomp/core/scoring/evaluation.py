@@ -12,7 +12,6 @@ import warnings
 from collections.abc import Callable
 
 import numpy as np
-import pandas as pd
 
 from ...base.errors import FallbackWarning
 from ...base.jsonsafe import json_safe
@@ -20,6 +19,7 @@ from .. import continuation
 from ..compensator import MODES, Compensator
 from ..frame import initial_ambient
 from ..io.contract import TIME, ContractError, Dataset, ambient_source
+from ..io.instants import START, start_instants
 from ..metrics import (
     ISO_A3,
     PERSISTENCE,
@@ -263,11 +263,8 @@ def holdout_scheme(ds: Dataset) -> str:
     too), else ``'interleaved'`` (test campaigns among the train ones, e.g. every third by
     date).  Only the split's layout is read, never a test value."""
     order = ds.ids()
-    if "start" in ds.manifest.columns:
-        try:
-            starts = pd.to_datetime(ds.manifest["start"], errors="coerce", format="ISO8601")
-        except (TypeError, ValueError):    # mixed time zones: the manifest's order
-            starts = pd.Series([pd.NaT])
+    if START in ds.manifest.columns:
+        starts = start_instants(ds.manifest[START])   # (with and without an offset: in UTC)
         if starts.notna().all():
             order = list(starts.sort_values(kind="stable").index)
     train, test = set(ds.ids("train")), set(ds.ids("test"))

@@ -109,5 +109,6 @@ def export(cfg: DictConfig) -> dict:
     kept = f"; per target: {per_target(laws)}" if laws else ""   # what auto / ATI kept
     say(f"export ({fmt}, {family}{kept}): {', '.join(str(p) for p in written.values())}")
     if fmt == "c":
-        say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv")
+        say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv"
+            " (--state FILE: a restarted stream goes on from FILE)")
     return written

@@ -33,7 +33,7 @@ from ...core.context import TIME
 from ...core.continuation import lead_ins, said_warmed
 from ...core.io.contract import AMBIENT_C
 from ...core.io.source import check_streamed_columns
-from ...core.io.stdin import stdin_text, stream_campaigns
+from ...core.io.stdin import TIME_ORIGIN, stdin_text, stream_campaigns
 from ..builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
 from ..config.checks import check_config, data_options
 from ..model_store import load_model
@@ -50,7 +50,8 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict, train_ids: list[s
     ids = stdin_chain(ds, cfg.monitor.get("continues"), ambient_given=fixed.ambient_given_,
                       reference=fixed.compensator.reference, data_path=cfg.data.path,
                       ambient_c=cfg.monitor.get("ambient_c"))
-    leads = stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None)
+    leads = stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None,
+                          stream.attrs.get(TIME_ORIGIN))
     if ids:
         said_warmed({cid: [*ids, cid]}, leads)
         check_continued(leads[cid], stream, ids[-1])

@@ -18,7 +18,12 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * reference).  With TC_ADAPT, a row carrying a measured error in a TC_ERROR_NAMES column
  * (E_<axis>, optional; blank: none) is a reference measurement: its correction is printed,
  * then the bias learns.
+ * With `--state FILE` a restarted process goes on where the last one stopped: FILE, where it
+ * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
+ * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
+ * mid-write leaves the previous row's state); a FILE of another build is refused.
  * Build: cc compensator.c stream.c -lm -o stream
+ * Run:   ./stream [--state FILE] < rows.csv
  */
 #include <math.h>
 #include <stdio.h>
@@ -182,21 +187,79 @@ static int time_of(const char *cell, long row, double *t) {
     return 0;
 }
 
+/* --state FILE: what a restarted process needs to go on as if it had not stopped. The bytes
+   are this build's (the sizes and a mark are checked), as tc_state is plain data. */
+static const char STATE_MARK[8] = "tcstat1";
+
+/* 1: FILE read back into *s and the stream's clock and run; 0: no FILE (a cold start); -1: FILE
+   is no state of this build (another model, compiler or machine; truncated). */
+static int restore_state(const char *path, tc_state *s, char *run) {
+    char mark[sizeof STATE_MARK];
+    unsigned long sizes[3];
+    int ok;
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) return 0;
+    ok = fread(mark, sizeof mark, 1, f) == 1 && memcmp(mark, STATE_MARK, sizeof mark) == 0
+         && fread(sizes, sizeof sizes, 1, f) == 1 && sizes[0] == sizeof *s
+         && sizes[1] == sizeof clock_ && sizes[2] == MAX_CELL
+         && fread(s, sizeof *s, 1, f) == 1 && fread(&clock_, sizeof clock_, 1, f) == 1
+         && fread(run, MAX_CELL, 1, f) == 1 && fgetc(f) == EOF;
+    fclose(f);
+    return ok ? 1 : -1;
+}
+
+/* Writes the state to FILE.tmp (`tmp`), then renames it over FILE; 0 where it cannot. Where
+   rename does not replace a file (Windows), FILE is removed first: a stop in between leaves
+   FILE.tmp, the state, to be renamed by hand. */
+static int save_state(const char *path, char *tmp, const tc_state *s, const char *run) {
+    unsigned long sizes[3] = {sizeof *s, sizeof clock_, MAX_CELL};
+    int ok;
+    FILE *f = fopen(tmp, "wb");
+    if (f == NULL) return 0;
+    ok = fwrite(STATE_MARK, sizeof STATE_MARK, 1, f) == 1 && fwrite(sizes, sizeof sizes, 1, f) == 1
+         && fwrite(s, sizeof *s, 1, f) == 1 && fwrite(&clock_, sizeof clock_, 1, f) == 1
+         && fwrite(run, MAX_CELL, 1, f) == 1;
+    ok = fclose(f) == 0 && ok;
+    if (ok && rename(tmp, path) != 0) ok = remove(path) == 0 && rename(tmp, path) == 0;
+    return ok;
+}
+
+/* After a row: the state saved where --state names a file (1), or said that it cannot be (0). */
+static int saved(const char *path, char *tmp, const tc_state *s, const char *run) {
+    if (path == NULL || save_state(path, tmp, s, run)) return 1;
+    fprintf(stderr, "stream: cannot write the state file %s\n", path);
+    return 0;
+}
+
 /* A campaign starts: the compensator's (`reset`: what was learned kept) and its clock's. */
 static void restart(tc_state *s, int reset) {
     if (reset) tc_reset(s);
     clock_.started = 0;
 }
 
-int main(void) {
+int main(int argc, char **argv) {
     static char line[MAX_LINE], run[MAX_CELL] = "";
-    char *cells[MAX_COLS];
+    char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL;
     int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
-    int ncols, i, j, ignored, measured;
+    int ncols, i, j, ignored, measured, restored = 0;
     long row = 1;
     tc_state s;
     double u[TC_N_INPUTS], c[TC_N_OUTPUTS], e[TC_N_OUTPUTS], t = NAN;
 
+    for (i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--state") == 0 && i + 1 < argc && argv[i + 1][0]) {
+            state_path = argv[++i];
+            continue;
+        }
+        fprintf(stderr, "usage: %s [--state FILE] < rows.csv\n", argv[0]);
+        return 2;
+    }
+    if (state_path != NULL) {
+        state_tmp = malloc(strlen(state_path) + 5);
+        if (state_tmp == NULL) { fprintf(stderr, "stream: out of memory\n"); return 2; }
+        strcpy(state_tmp, state_path);
+        strcat(state_tmp, ".tmp");
+    }
     if (!fgets(line, sizeof line, stdin)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
     if (strncmp(line, "\xEF\xBB\xBF", 3) == 0) memmove(line, line + 3, strlen(line + 3) + 1);
     sep = strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
@@ -235,16 +298,25 @@ int main(void) {
     for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%s", i ? "," : "", TC_OUTPUT_NAMES[i]);
     printf("\n");
     tc_init(&s);
+    if (state_path != NULL && (restored = restore_state(state_path, &s, run)) < 0) {
+        fprintf(stderr, "stream: %s is no state this build wrote (another model or compiler?): "
+                "remove it to start cold\n", state_path);
+        return 2;
+    }
     while (fgets(line, sizeof line, stdin)) {
         row++;
-        if (line[strspn(line, " \t\r\n")] == '\0') { restart(&s, 1); continue; }
+        if (line[strspn(line, " \t\r\n")] == '\0') {
+            restart(&s, 1);
+            if (!saved(state_path, state_tmp, &s, run)) return 2;
+            continue;
+        }
         if (split(line, cells) != ncols) {
             fprintf(stderr, "stream: row %ld has not %d cells\n", row, ncols);
             return 2;
         }
         if (reset_col >= 0 && value(cells[reset_col], &ignored) == 1.0) restart(&s, 1);
         if (run_col >= 0 && strcmp(cells[run_col], run) != 0) {    /* the next run */
-            restart(&s, row > 2);
+            restart(&s, row > 2 || restored);     /* (a restored stream was in another run) */
             strncpy(run, cells[run_col], MAX_CELL - 1);
         }
         for (i = 0; i < TC_N_INPUTS; i++) {
@@ -264,6 +336,7 @@ int main(void) {
             measured |= isfinite(e[i]);
         }
         if (measured) tc_reference(&s, e);
+        if (!saved(state_path, state_tmp, &s, run)) return 2;
     }
     return 0;
 }
