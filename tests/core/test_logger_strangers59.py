@@ -1,0 +1,62 @@
+"""A lab's data logger and an IoT gateway through `init` and the reader (session 59,
+benchmarks/bench_new_machines59.py).
+
+The horizontal machining centre's logger writes an instrument preamble, a header of channel
+names, a second row of units whose time cell is the column's format (``h:mm:ss``), an elapsed
+time that rolls past 24 h and a trailing ``,``: `init` said "no column reads as a measured error
+... the numeric columns: none" (the unit row, not read as one, taken for the first data row).
+"""
+
+from __future__ import annotations
+
+import yaml
+
+from thermocomp.core.io import read_dataset
+from thermocomp.core.io.layout import is_unit_row, with_units
+from thermocomp.shell.cli import main
+
+PREAMBLE = ["Logger,TL-32 Thermal Logger,Firmware 2.14", "Serial No.,TL32-0918",
+            "Start,2026/09/07 07:44:29", "Interval,60 s", ""]
+
+
+def logger_file(path, rows=30, step_s=3600, time_unit="h:mm:ss"):
+    """A logger's file: preamble, channel names, units, ``h:mm:ss`` since the start (past 24 h
+    at the default ``step_s``), a trailing ``,``."""
+    lines = [*PREAMBLE, "Time,CH01 Spindle motor,CH02 Hall air,CH03 Disp Y,CH04 Pallet,",
+             f"{time_unit},degC,degC,um,-,"]
+    for i in range(rows):
+        s = step_s * i
+        lines.append(f"{s // 3600}:{s % 3600 // 60:02d}:{s % 60:02d},{20 + 0.05 * i:.2f},"
+                     f"{20 + 0.01 * i:.2f},{0.3 * i:.1f},{1 + i // 10 % 2},")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\r\n".join(lines) + "\r\n", encoding="utf-8")
+    return path
+
+
+def test_a_time_format_is_a_cell_of_a_unit_row_and_not_joined_to_its_header():
+    for cell in ("h:mm:ss", "hh:mm:ss", "[h]:mm:ss", "hh:mm:ss.0", "HH:MM:SS",
+                 "yyyy/mm/dd hh:mm:ss", "dd.mm.yyyy hh:mm"):
+        assert is_unit_row([cell, "degC", "um", "-", ""]), cell
+    assert not is_unit_row(["0:00:00", "degC"])            # a data row's time is no format
+    assert with_units(["Time", "T1", "Disp Y"], ["h:mm:ss", "degC", "um"]) == [
+        "Time", "T1 [degC]", "Disp Y [um]"]
+
+
+def test_a_loggers_unit_row_under_its_channel_names_is_read(tmp_path):
+    path = logger_file(tmp_path / "HMC_2026-09-07.csv")
+    ds, report = read_dataset(path, {"roles": {"error": ["CH03*"], "state": ["CH04*"]}})
+    (cid,) = ds.ids()
+    df = ds.campaigns[cid]
+    assert report["campaigns"][cid]["time"] == "elapsed"
+    assert {"E_CH03_Disp_Y", "T_CH01_Spindle_motor", "S_CH04_Pallet"} <= set(df.columns)
+    assert df["time"].iloc[-1] - df["time"].iloc[0] == 29 * 3600.0
+
+
+def test_init_reads_a_loggers_file_with_a_time_format_in_its_unit_row(tmp_path, capsys):
+    path = logger_file(tmp_path / "HMC_2026-09-07.csv")
+    out = tmp_path / "init"
+    assert main(["init", str(path), "data.test_fraction=0.5", f"out={out}"]) == 0
+    said = capsys.readouterr().out
+    assert "units from line 7" in said and "elapsed" in said
+    config = yaml.safe_load((out / "conf" / "data" / "HMC_2026-09-07.yaml").read_text())
+    assert config["roles"]["error"] == ["CH03 Disp Y"]
