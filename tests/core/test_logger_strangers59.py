@@ -60,3 +60,35 @@ def test_init_reads_a_loggers_file_with_a_time_format_in_its_unit_row(tmp_path, 
     assert "units from line 7" in said and "elapsed" in said
     config = yaml.safe_load((out / "conf" / "data" / "HMC_2026-09-07.yaml").read_text())
     assert config["roles"]["error"] == ["CH03 Disp Y"]
+
+
+# The wire EDM's IoT gateway writes its on/off tags as `true` / `false` (the chiller's
+# compressor, the flushing): `init` left both out as text, and naming them as states was refused
+# "value 'true' is not a number: a mark for a value not measured? list it in
+# data.missing_values (['true'])" -- a remedy that would have read every `true` as missing.
+
+def gateway_file(path, rows=12):
+    lines = ["timestamp,bath_temp_c,room_air_temp_c,wire_x_um,discharge_power_kw,chiller_on"]
+    for i in range(rows):
+        lines.append(f"2026-09-07T06:{i:02d}:00.{i * 20:03d}Z,{20 + 0.1 * i:.2f},22.0{i % 10},"
+                     f"{0.2 * i:.1f},0.6,{'true' if i // 3 % 2 else 'false'}")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def test_a_state_of_true_and_false_is_read_as_one_and_zero(tmp_path):
+    path = gateway_file(tmp_path / "edm01_export.csv")
+    ds, _ = read_dataset(path, {"roles": {"error": ["wire_x_um"], "state": ["chiller_on"],
+                                          "ambient": ["room_air*"]}})
+    (cid,) = ds.ids()
+    assert ds.campaigns[cid]["S_chiller_on"].tolist() == [0, 0, 0, 1, 1, 1] * 2
+
+
+def test_init_proposes_an_on_off_column_of_true_and_false_as_a_state(tmp_path, capsys):
+    path = gateway_file(tmp_path / "edm01_export.csv")
+    out = tmp_path / "init"
+    assert main(["init", str(path), "data.test_fraction=0.5", f"out={out}"]) == 0
+    config = yaml.safe_load((out / "conf" / "data" / "edm01_export.yaml").read_text())
+    assert "chiller_on" in config["roles"]["state"]
+    assert "chiller_on" not in config["roles"]["ignore"]

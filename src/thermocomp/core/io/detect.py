@@ -34,7 +34,7 @@ from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet, without_pandas_index
 from .timestamps import CLOCK, is_slashed_stamp, looks_like_timestamp, slashed_format
-from .units import AMBIGUOUS, UNITS, ambiguity, role_by_unit
+from .units import AMBIGUOUS, UNITS, ambiguity, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
@@ -151,9 +151,10 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
     """``data.roles`` as given, and for every header none of its patterns (nor ``data.columns``,
     the time, the campaign) names, a pattern proposed from its unit (:func:`.units.role_by_unit`:
     µm/mm an error, rpm or ``[-]`` a state; ``run`` reads such a header so too), its words (the
-    air's temperature: ambient, where no ambient is given) or its cell (text: ignore); a date
-    column followed by a time of day: the time, ``[date, time of day]``.  A length named by its
-    axis alone (``X [mm]``) is proposed nothing: the reading lists it."""
+    air's temperature: ambient, where no ambient is given) or its cell (``true`` / ``false``: a
+    state; other text: ignore); a date column followed by a time of day: the time, ``[date,
+    time of day]``.  A length named by its axis alone (``X [mm]``) is proposed nothing: the
+    reading lists it."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
     if opts.roles.get(RUN_ROLE):
@@ -181,6 +182,8 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
                 _WORDS.split(base.lower())) and (
                 not unit or unit.replace(" ", "").lower() in UNITS["T"]):
             roles["ambient"].append(pattern)
+        elif is_flag(first.get(h)):          # 'true' / 'false': an on/off flag, a state
+            roles["state"].append(pattern)
         elif not (reads_as_number(first.get(h), opts.decimal) or looks_like_timestamp(first.get(h))
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
