@@ -92,3 +92,18 @@ def test_init_proposes_an_on_off_column_of_true_and_false_as_a_state(tmp_path, c
     config = yaml.safe_load((out / "conf" / "data" / "edm01_export.yaml").read_text())
     assert "chiller_on" in config["roles"]["state"]
     assert "chiller_on" not in config["roles"]["ignore"]
+
+
+# The logger's folder: a run of 36 h (its time past 24:00:00, read as elapsed) beside one of
+# 20 h, whose 0:00:00 ... 19:52:00 was refused as "a time of day without its date" after init
+# had read the first file's as elapsed.
+
+def test_init_reads_every_file_of_a_folder_elapsed_where_one_runs_past_24_hours(tmp_path, capsys):
+    folder = tmp_path / "hmc"
+    logger_file(folder / "HMC_2026-09-07.csv")                  # 0:00:00 ... 29:00:00
+    logger_file(folder / "HMC_2026-09-09.csv", step_s=60)       # 0:00:00 ... 0:29:00
+    out = tmp_path / "init"
+    assert main(["init", str(folder), "data.test_fraction=0.5", f"out={out}"]) == 0
+    assert "data.time='elapsed'" in capsys.readouterr().out
+    config = yaml.safe_load((out / "conf" / "data" / "hmc.yaml").read_text())
+    assert config["time"] == "elapsed"

@@ -33,7 +33,13 @@ from .runs import looks_like_run_labels, says_run
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet, without_pandas_index
-from .timestamps import CLOCK, is_slashed_stamp, looks_like_timestamp, slashed_format
+from .timestamps import (
+    CLOCK,
+    is_slashed_stamp,
+    looks_like_timestamp,
+    maybe_elapsed,
+    slashed_format,
+)
 from .units import AMBIGUOUS, UNITS, ambiguity, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
@@ -139,6 +145,34 @@ def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | N
                              usecols=[i], dtype=str, encoding=opts.encoding).iloc[:, 0]
         said = {slashed_format(v.strip()) for v in column.dropna().unique()} - {None}
         return said.pop() if len(said) == 1 else None
+    return None
+
+
+def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[str],
+                   first: dict) -> str | None:
+    """The header of a text file's ``h:mm:ss`` time column where a file of ``src`` (the record,
+    or any file of a folder, ``manifest``) holds an hour past 23 in it: a logger's time since its
+    start, written to the config as ``data.time=elapsed`` so that each file of a folder is read
+    so (a run shorter than a day too, refused as a time of day otherwise); None where
+    ``data.time`` is given, no column's first cell is ``h:mm:ss`` or no file says it."""
+    if opts.time != "auto":
+        return None
+    files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
+    if not all(is_text(f) and not is_workbook(f) and not is_utf16(f) for f in files):
+        return None
+    for i, h in enumerate(header):
+        if not maybe_elapsed(str(first.get(h) or ""), opts.time):
+            continue
+        for file in files:
+            try:
+                column = pd.read_csv(file, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
+                                     usecols=[i], dtype=str, encoding=opts.encoding).iloc[:, 0]
+            except (ValueError, OSError, pd.errors.ParserError):
+                continue                    # (its own read says why)
+            hours = pd.to_numeric(column.str.extract(r"^\s*(\d+):", expand=False), errors="coerce")
+            if hours.max() > 23:
+                return h
+        return None
     return None
 
 
