@@ -9,9 +9,11 @@ time that rolls past 24 h and a trailing ``,``: `init` said "no column reads as 
 
 from __future__ import annotations
 
+import pytest
 import yaml
 
 from thermocomp.core.io import read_dataset
+from thermocomp.core.io.contract import ContractError
 from thermocomp.core.io.layout import is_unit_row, with_units
 from thermocomp.shell.cli import main
 
@@ -107,3 +109,24 @@ def test_init_reads_every_file_of_a_folder_elapsed_where_one_runs_past_24_hours(
     assert "data.time='elapsed'" in capsys.readouterr().out
     config = yaml.safe_load((out / "conf" / "data" / "hmc.yaml").read_text())
     assert config["time"] == "elapsed"
+
+
+# The logger's overrange mark '+OVER' (a loose thermocouple, single samples): listed in
+# data.missing_values as the first refusal said, the next refusal was its gap ("longer than
+# data.max_gap_samples=0"): the first now says both.
+
+def test_a_missing_value_mark_says_the_gap_setting_that_reads_its_runs(tmp_path):
+    path = logger_file(tmp_path / "HMC_2026-09-14.csv")
+    lines = path.read_text(encoding="utf-8").splitlines()
+    for k in (10, 14, 15):                        # one mark, then two in a row
+        cells = lines[k].split(",")
+        cells[1] = "+OVER"
+        lines[k] = ",".join(cells)
+    path.write_text("\r\n".join(lines), encoding="utf-8")
+    with pytest.raises(ContractError) as refused:
+        read_dataset(path, {"roles": {"error": ["CH03*"], "state": ["CH04*"]}})
+    assert "data.missing_values (['+OVER'])" in str(refused.value)
+    assert "data.max_gap_samples=2" in str(refused.value)
+    ds, report = read_dataset(path, {"roles": {"error": ["CH03*"], "state": ["CH04*"]},
+                                     "missing_values": ["+OVER"], "max_gap_samples": 2})
+    assert report["campaigns"][ds.ids()[0]]["repairs"] == {"T_CH01_Spindle_motor": 3}

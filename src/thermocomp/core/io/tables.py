@@ -437,9 +437,23 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
                 and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
     if number and not hint and (not re.search(r"\d", str(value)) or _EXCEL_ERROR.fullmatch(
             str(value).strip())):
-        hint = f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
+        hint = (f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
+                + _gap_hint(raw, value, opts.max_gap_samples))
     return ContractError(f"value {value!r} is not {_describe(target, opts.time)}{hint}",
                          file=path, column=column, row=row + 1)
+
+
+def _gap_hint(raw: pa.ChunkedArray, mark: str, allowed: int) -> str:
+    """Where the cells ``mark`` of a column, once missing, make a gap longer than ``allowed``
+    samples: the ``data.max_gap_samples`` that interpolates the longest run of them (said with
+    the mark, not at the next read)."""
+    marked = pc.fill_null(pc.equal(raw, mark), False).to_numpy(zero_copy_only=False)
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], marked.astype(np.int8), [0]])))
+    longest = int((edges[1::2] - edges[::2]).max(initial=0))
+    if longest <= allowed:
+        return ""
+    return (f", each then a gap: data.max_gap_samples={longest} interpolates the longest run of "
+            "them here")
 
 
 def _malformed_row_error(path, names, opts, message) -> ContractError:
