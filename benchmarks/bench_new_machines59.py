@@ -152,8 +152,9 @@ What a stranger met on the way in (``init DIR data.test_fraction=0.25``; the hmc
    joined to no header (``tests/core/test_logger_strangers59.py``).
 2. hmc: "value '+OVER' is not a number: a mark for a value not measured? list it in
    data.missing_values (['+OVER'])", then "gap of 1 missing value (row 154) is longer than
-   data.max_gap_samples=0": refusals with their fix, followed (``INIT_ARGS``); not mended.  The
-   ingest report counts the 3 + 4 interpolated cells.
+   data.max_gap_samples=0": refusals with their fix, followed (``INIT_ARGS``).  Since, the first
+   names both ("..., each then a gap: data.max_gap_samples=1 interpolates the longest run of
+   them here").  The ingest report counts the 3 + 4 interpolated cells.
 3. hmc: "value '0:00:00' is a time of day without its date ... data.time=elapsed" for
    ``HMC_2026-09-18.csv`` (a 19:52 h run) after ``init`` had read the first file's
    ``0:00:00 ... 36:32:00`` as elapsed.  Mended: ``init`` writes ``data.time: elapsed`` where a
