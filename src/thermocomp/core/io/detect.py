@@ -33,8 +33,14 @@ from .runs import looks_like_run_labels, says_run
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
 from .tables import _peek_csv, parquet, without_pandas_index
-from .timestamps import CLOCK, is_slashed_stamp, looks_like_timestamp, slashed_format
-from .units import AMBIGUOUS, UNITS, ambiguity, role_by_unit
+from .timestamps import (
+    CLOCK,
+    is_slashed_stamp,
+    looks_like_timestamp,
+    maybe_elapsed,
+    slashed_format,
+)
+from .units import AMBIGUOUS, UNITS, ambiguity, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
@@ -142,6 +148,34 @@ def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | N
     return None
 
 
+def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[str],
+                   first: dict) -> str | None:
+    """The header of a text file's ``h:mm:ss`` time column where a file of ``src`` (the record,
+    or any file of a folder, ``manifest``) holds an hour past 23 in it: a logger's time since its
+    start, written to the config as ``data.time=elapsed`` so that each file of a folder is read
+    so (a run shorter than a day too, refused as a time of day otherwise); None where
+    ``data.time`` is given, no column's first cell is ``h:mm:ss`` or no file says it."""
+    if opts.time != "auto":
+        return None
+    files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
+    if not all(is_text(f) and not is_workbook(f) and not is_utf16(f) for f in files):
+        return None
+    for i, h in enumerate(header):
+        if not maybe_elapsed(str(first.get(h) or ""), opts.time):
+            continue
+        for file in files:
+            try:
+                column = pd.read_csv(file, sep=opts.delimiter, header=None, skiprows=opts.skip_rows,
+                                     usecols=[i], dtype=str, encoding=opts.encoding).iloc[:, 0]
+            except (ValueError, OSError, pd.errors.ParserError):
+                continue                    # (its own read says why)
+            hours = pd.to_numeric(column.str.extract(r"^\s*(\d+):", expand=False), errors="coerce")
+            if hours.max() > 23:
+                return h
+        return None
+    return None
+
+
 def _separators(sample: Path, opts) -> str:
     charset = "" if opts.encoding == UTF8 else f"encoding {opts.encoding} (not UTF-8), "
     return f"{sample.name}: {charset}delimiter {opts.delimiter!r}, decimal {opts.decimal!r}"
@@ -151,9 +185,10 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
     """``data.roles`` as given, and for every header none of its patterns (nor ``data.columns``,
     the time, the campaign) names, a pattern proposed from its unit (:func:`.units.role_by_unit`:
     µm/mm an error, rpm or ``[-]`` a state; ``run`` reads such a header so too), its words (the
-    air's temperature: ambient, where no ambient is given) or its cell (text: ignore); a date
-    column followed by a time of day: the time, ``[date, time of day]``.  A length named by its
-    axis alone (``X [mm]``) is proposed nothing: the reading lists it."""
+    air's temperature: ambient, where no ambient is given) or its cell (``true`` / ``false``: a
+    state; other text: ignore); a date column followed by a time of day: the time, ``[date,
+    time of day]``.  A length named by its axis alone (``X [mm]``) is proposed nothing: the
+    reading lists it."""
     roles = {k: list(opts.roles.get(k, [])) for k in ROLE_PATTERNS}
     roles["time"] = opts.roles.get("time", "auto")
     if opts.roles.get(RUN_ROLE):
@@ -181,6 +216,8 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
                 _WORDS.split(base.lower())) and (
                 not unit or unit.replace(" ", "").lower() in UNITS["T"]):
             roles["ambient"].append(pattern)
+        elif is_flag(first.get(h)):          # 'true' / 'false': an on/off flag, a state
+            roles["state"].append(pattern)
         elif not (reads_as_number(first.get(h), opts.decimal) or looks_like_timestamp(first.get(h))
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)

@@ -5,16 +5,25 @@ The header is the first line, most of its fields named, from which every sampled
 into the same number (> 1) of fields; below a preamble it must hold no number (a data row is
 never taken for it).  A
 unit row is the line under the header whose every cell is a unit the reader knows (or empty):
-its units join the headers (``T1`` over ``°C`` is ``T1 [°C]``).
+its units join the headers (``T1`` over ``°C`` is ``T1 [°C]``).  A logger writes the time
+column's FORMAT in that row (``h:mm:ss``, ``yyyy/mm/dd hh:mm:ss``): a cell of the row, joined to
+no header (the column's cells say their time themselves).
 """
 
 from __future__ import annotations
+
+import re
 
 from .csvline import EMPTY, split_line
 from .roles import STATE_UNITS, UNITS, split_unit
 from .separators import any_number
 
 MAX_PREAMBLE = 20
+# a time column's format as a logger's unit row spells it: a date of y / m / d letters, a time
+# of h : mm (: ss, a fraction), or both ('h:mm:ss', '[h]:mm:ss', 'yyyy/mm/dd hh:mm:ss.000')
+_DATE_FORMAT = r"(?:[ymd]{1,4}[-/.]){2}[ymd]{1,4}"
+_TIME_FORMAT = r"\[?h{1,2}\]?:m{1,2}(?::s{1,2}(?:[.,](?:0+|s+))?)?"
+TIME_FORMAT = re.compile(rf"{_DATE_FORMAT}(?:\s*{_TIME_FORMAT})?|{_TIME_FORMAT}")
 
 
 def cells(line: str, sep: str) -> list[str]:
@@ -62,12 +71,19 @@ def is_unit_row(row: list[str]) -> bool:
     """Every cell a unit (or empty), at least one."""
     units = [c.strip().lower().replace(" ", "") for c in row if c.strip()]
     known = {u for table in UNITS.values() for u in table} | STATE_UNITS | {"-"}
-    return bool(units) and all(u.strip("[]()") in known for u in units)
+    return bool(units) and all(u.strip("[]()") in known or is_time_format(u) for u in units)
+
+
+def is_time_format(cell: str) -> bool:
+    """``cell`` spells a time column's format (``h:mm:ss``, ``yyyy/mm/dd hh:mm``), as a logger's
+    unit row gives it for its time column."""
+    return bool(TIME_FORMAT.fullmatch(cell.strip().lower().replace(" ", "")))
 
 
 def with_units(header: list[str], units: list[str]) -> list[str]:
     """``header`` with the unit row's units, where a header says none itself."""
-    return [f"{h} [{u.strip().strip('[]()')}]" if u.strip() and split_unit(h)[1] is None else h
+    return [f"{h} [{u.strip().strip('[]()')}]"
+            if u.strip() and not is_time_format(u) and split_unit(h)[1] is None else h
             for h, u in zip(header, [*units, *[""] * len(header)])]
 
 

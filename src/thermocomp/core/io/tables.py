@@ -41,6 +41,7 @@ from .timestamps import (
     time_type,
     unread_fraction,
 )
+from .units import is_flag
 
 # Larger blocks than Arrow's 1 MiB default: fewer chunks, faster multithreaded parsing.
 _CSV_BLOCK_BYTES = 16 << 20
@@ -186,6 +187,9 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
             # (a second's fraction Arrow does not read, 13:05:00,500: read as text, parsed here)
             types[TIME] = pa.string() if unread_fraction(first, opts.time) else time_type(
                 opts.time, first)
+    # a state written as an on/off flag ('true' / 'false'): read as such, then as 1 / 0
+    flags = [n for n in types if role(n) == "S" and is_flag(first_row[names.index(n)])]
+    types.update(dict.fromkeys(flags, pa.bool_()))
     # a column without a header (Excel's trailing separator) is left out if it holds nothing
     unnamed = {names[i]: pa.string() for i, h in enumerate(header) if not h and named[i] is None}
     try:
@@ -201,6 +205,7 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
         said_if_not_seconds(_values(table.column(TIME)), path, header[names.index(TIME)],
                             own=active(opts.roles))
     columns = _columns(table.select(list(types)))
+    columns.update({n: pc.cast(columns[n], pa.float64()) for n in flags})
     try:
         if CLOCK in columns:
             columns[TIME] = _joined_time(columns[TIME], columns.pop(CLOCK), path, opts)
@@ -432,9 +437,23 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
                 and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
     if number and not hint and (not re.search(r"\d", str(value)) or _EXCEL_ERROR.fullmatch(
             str(value).strip())):
-        hint = f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
+        hint = (f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
+                + _gap_hint(raw, value, opts.max_gap_samples))
     return ContractError(f"value {value!r} is not {_describe(target, opts.time)}{hint}",
                          file=path, column=column, row=row + 1)
+
+
+def _gap_hint(raw: pa.ChunkedArray, mark: str, allowed: int) -> str:
+    """Where the cells ``mark`` of a column, once missing, make a gap longer than ``allowed``
+    samples: the ``data.max_gap_samples`` that interpolates the longest run of them (said with
+    the mark, not at the next read)."""
+    marked = pc.fill_null(pc.equal(raw, mark), False).to_numpy(zero_copy_only=False)
+    edges = np.flatnonzero(np.diff(np.concatenate([[0], marked.astype(np.int8), [0]])))
+    longest = int((edges[1::2] - edges[::2]).max(initial=0))
+    if longest <= allowed:
+        return ""
+    return (f", each then a gap: data.max_gap_samples={longest} interpolates the longest run of "
+            "them here")
 
 
 def _malformed_row_error(path, names, opts, message) -> ContractError:

@@ -40,6 +40,9 @@ STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm"
 # ratio, a count, never a temperature, so a state (the contract's S_door, 0 closed, 1 open).
 # Not among STATE_UNITS: as a header's last word ('Sensor 1') it is part of a name
 DIMENSIONLESS = {"-", "–", "1"}
+# an on/off flag as a gateway, pandas or Excel writes it in a CSV cell ('true' / 'false'): a
+# state, read as 1 / 0 (as a workbook's boolean cell is); the words Arrow's reader reads so
+FLAG_WORDS = {"true": 1, "True": 1, "TRUE": 1, "false": 0, "False": 0, "FALSE": 0}
 NEWTON_METRES = ("Nm", "N.m", "N·m")   # a torque, a state: not nanometres (nm)
 # an angle (a tilt or rotary axis, 'Eje A [°]'): a state.  The degree sign alone is the angle's
 # (ISO 80000-3; a temperature's is °C), unless the name says a temperature ('Temp [°]': refused
@@ -60,6 +63,11 @@ _POSITION_WORD = re.compile(r".*positions?|pos|[xyzuvw]pos|coordinates?|koordina
 # a name that says only "which axis": X, Y2, X-Achse, Querachse, axis (its position or, as
 # a lab names a probe by the axis it measures along, its error)
 _AXIS_WORD = re.compile(r"[xyzuvw]\d*|.*achse|axis")
+
+
+def is_flag(cell) -> bool:
+    """``cell`` is an on/off flag's word (:data:`FLAG_WORDS`)."""
+    return str(cell).strip() in FLAG_WORDS
 
 
 def role_by_unit(base: str, unit: str | None) -> str | None:

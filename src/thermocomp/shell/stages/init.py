@@ -20,6 +20,7 @@ from ...core.io.detect import (
     check_an_error_is_named,
     data_config,
     detection_lines,
+    elapsed_column,
     encoding,
     folder_manifest,
     head,
@@ -29,6 +30,7 @@ from ...core.io.detect import (
     slashed_order,
 )
 from ...core.io.roles import naming
+from ...core.io.timestamps import ELAPSED
 from ...core.timerule import median_step
 from ..config.checks import check_config, data_options
 from ..source import check_declared, open_source
@@ -62,6 +64,12 @@ def init(cfg: DictConfig) -> dict:
         opts = replace(opts, time=order)
         print(f"{sample.name}: dates with slashes read as data.time={order!r}, the order its "
               "rows say (a day or month past 12)")
+    elapsed = elapsed_column(src, manifest, opts, header, dict(zip(header, first)))
+    if elapsed:            # (a run past 24:00:00: each file's, a shorter run's too, read so)
+        given["time"] = ELAPSED
+        opts = replace(opts, time=ELAPSED)
+        print(f"{src.name}: {elapsed!r} h:mm:ss past 24 h in a file: read as data.time="
+              f"{ELAPSED!r}, a logger's time since its start, in every file")
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
