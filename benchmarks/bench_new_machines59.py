@@ -173,23 +173,17 @@ What a stranger met on the way in (``init DIR data.test_fraction=0.25``; the hmc
 
 from __future__ import annotations
 
-import argparse
-import json
 import sys
-import time
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).parent))
-from bench_monitor_healthy import monitor as monitor_run  # noqa: E402
-from bench_new_machines56 import rounded, table  # noqa: E402
-from bench_new_machines56 import run_models as run_models56  # noqa: E402
+from bench_new_machines56 import rounded  # noqa: E402
 from bench_new_machines57 import STEP, network, probe, sensors  # noqa: E402
-from bench_other_machine import QUIET, thermocomp  # noqa: E402
-from bench_other_machine import diagnose as other_diagnose  # noqa: E402
-from cpu import cpu_seconds  # noqa: E402
+from new_machine_steps import Machines  # noqa: E402
+from new_machine_steps import main as steps_main  # noqa: E402
 
 SEEDS = {"hmc": 5991, "edm": 5992}
 ALPHA_UM = 11.5e-3          # µm per K per mm, steel
@@ -444,76 +438,13 @@ def data_args(root: Path, name: str) -> list[str]:
     return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={CONFIGS[name]}"]
 
 
-def replay(root: Path, name: str, model: str = REPLAYED) -> dict:
-    """``replay`` of the ``run``'s fitted ``model.pkl`` (the deployed form, the defaults): per
-    target the stream's RMSE, the batch's, the largest |stream - batch|, and the events."""
-    out = root / "out" / f"{name}-replay-{model}"
-    status, cpu, _, err = thermocomp("replay", *data_args(root, name), *QUIET,
-                                     f"replay.model={root / 'out' / f'{name}-{model}' / 'model.pkl'}",
-                                     f"out={out}")
-    row = {"data": name, "model": model, "status": status, "cpu_s": round(cpu, 1)}
-    if status == 0:
-        report = json.loads((out / "replay.json").read_text())
-        row["targets"] = {t: {k: r.get(k) for k in ("rmse", "rmse_batch", "max_abs_stream_minus_batch",
-                                                     "n_samples")}
-                          for t, r in report["targets"].items()}
-        row["events"] = len(report["events"])
-    else:
-        row["error"] = err.strip().splitlines()[-1] if err.strip() else "?"
-    print(row, flush=True)
-    return row
-
-
-def monitor(root: Path, name: str, model: str) -> dict:
-    """``monitor`` on the healthy test part (the model fitted on the train split, the defaults),
-    ``bench_monitor_healthy``'s summary, with this module's data overrides, and its CPU s."""
-    before = cpu_seconds(children=True)
-    row = monitor_run([*data_args(root, name), f"model={model}"], root / "out" / f"{name}-monitor-{model}")
-    row.update(data=name, model=model, cpu_s=round(cpu_seconds(children=True) - before, 1))
-    print(row, flush=True)
-    return row
+MACHINES = Machines(doc=__doc__, write=write, records=list(SEEDS), families=FAMILIES,
+                    init_args=INIT_ARGS, data_args=data_args, folders=FOLDERS, monitored=MONITORED,
+                    replayed=REPLAYED)
 
 
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__,
-                                     formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("what", choices=["write", "init", "run", "diagnose", "replay", "monitor", "table",
-                                         "all"])
-    parser.add_argument("root")
-    parser.add_argument("--data", nargs="+", default=list(SEEDS))
-    parser.add_argument("--families", nargs="+", default=list(FAMILIES))
-    args = parser.parse_args(argv)
-    root = Path(args.root).resolve()
-    every = args.what == "all"
-    if args.what == "write" or every:
-        t0 = time.process_time()
-        write(root)
-        print(f"records written to {root} in {time.process_time() - t0:.1f} s CPU")
-    if args.what == "init" or every:
-        for name in args.data:
-            status, cpu, out, err = thermocomp("init", str(root / FOLDERS[name]), *INIT_ARGS[name],
-                                               f"out={root}/init-{name}")
-            print(out, err[-3000:], f"exit {status}, CPU {cpu:.1f} s", sep="\n")
-    if args.what == "run" or every:
-        for name in args.data:
-            rows = run_models56(root, name, args.families, args_of=data_args)
-            (root / f"families-{name}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "diagnose" or every:
-        rows = [other_diagnose(root, name, data_args) for name in args.data]
-        (root / f"diagnose-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "replay" or every:
-        rows = [replay(root, name) for name in args.data]
-        (root / f"replay-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "monitor" or every:
-        rows = [monitor(root, name, model) for name in args.data for model in MONITORED]
-        (root / f"monitor-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
-    if args.what == "table" or every:
-        rows = [r for name in args.data for r in json.loads((root / f"families-{name}.json").read_text())]
-        print(table([r for r in rows if "scores" in r]))
-        for r in rows:
-            if "scores" not in r:
-                print(f"{r['data']} {r['model']}: exit {r['status']}: {r['error']}")
-    return 0
+    return steps_main(MACHINES, argv)
 
 
 if __name__ == "__main__":

@@ -1,9 +1,10 @@
 """The steps the new-machine benchmarks share (``bench_new_machines56/57/58.py``): write the
 lab's files, ``init`` them as a stranger would, ``run`` each model family, ``diagnose``,
-``monitor`` the healthy test part, print the table (or a bench's own forensics).
+``replay`` a deployed model, ``monitor`` the healthy test part, print the table (or a bench's own
+forensics).
 
 Each bench describes its machines in a :class:`Machines` and calls :func:`main` with it; the
-steps are the same code for all three (each had its own copy of the runner).
+steps are the same code for every bench (each had its own copy of the runner).
 """
 
 from __future__ import annotations
@@ -48,6 +49,8 @@ class Machines:
         Records also run with ``mlr ati=cmeans`` (a shop's seasons).
     monitored : sequence of str
         The families ``monitor`` streams (none: no monitor step).
+    replayed : str or None
+        The family whose ``run`` model ``replay`` streams (none: no replay step).
     forensics : callable or None
         ``forensics(root)``: the bench's own look at a result (step ``forensics``, not in ``all``).
     diagnose_file : str
@@ -64,6 +67,7 @@ class Machines:
     variants: Mapping[str, list] = field(default_factory=dict)
     ati_records: Collection[str] = ()
     monitored: Sequence[str] = ()
+    replayed: str | None = None
     forensics: Callable[[Path], None] | None = None
     diagnose_file: str = "diagnose-{names}.json"
 
@@ -123,8 +127,28 @@ def monitor(root: Path, name: str, model: str, args_of: ArgsOf) -> dict:
     return row
 
 
+def replay(root: Path, name: str, model: str, args_of: ArgsOf) -> dict:
+    """``replay`` of the ``run``'s fitted ``model.pkl`` (the deployed form, the defaults): per
+    target the stream's RMSE, the batch's, the largest |stream - batch|, and the events."""
+    out = root / "out" / f"{name}-replay-{model}"
+    status, cpu, _, err = thermocomp("replay", *args_of(root, name), *QUIET,
+                                     f"replay.model={root / 'out' / f'{name}-{model}' / 'model.pkl'}",
+                                     f"out={out}")
+    row = {"data": name, "model": model, "status": status, "cpu_s": round(cpu, 1)}
+    if status == 0:
+        report = json.loads((out / "replay.json").read_text())
+        keys = ("rmse", "rmse_batch", "max_abs_stream_minus_batch", "n_samples")
+        row["targets"] = {t: {k: r.get(k) for k in keys} for t, r in report["targets"].items()}
+        row["events"] = len(report["events"])
+    else:
+        row["error"] = err.strip().splitlines()[-1] if err.strip() else "?"
+    print(row, flush=True)
+    return row
+
+
 def _parser(bench: Machines) -> argparse.ArgumentParser:
-    steps = ["write", "init", "run", "diagnose", *(["monitor"] if bench.monitored else []),
+    steps = ["write", "init", "run", "diagnose", *(["replay"] if bench.replayed else []),
+             *(["monitor"] if bench.monitored else []),
              "table", *(["forensics"] if bench.forensics else []), "all"]
     parser = argparse.ArgumentParser(description=bench.doc,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -162,6 +186,9 @@ def main(bench: Machines, argv=None) -> int:
         rows = [other_diagnose(root, name, bench.data_args) for name in names]
         path = root / bench.diagnose_file.format(names="-".join(names))
         path.write_text(json.dumps(rows, indent=1))
+    if bench.replayed and (args.what == "replay" or every):
+        rows = [replay(root, name, bench.replayed, bench.data_args) for name in args.data]
+        (root / f"replay-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
     if bench.monitored and (args.what == "monitor" or every):
         rows = [monitor(root, name, model, bench.data_args) for name in args.data
                 for model in bench.monitored]
