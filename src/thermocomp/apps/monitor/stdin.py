@@ -190,3 +190,47 @@ def said_if_mid_campaign(ds, train_ids: list[str], stream: pd.DataFrame, cid: st
         "mid-campaign? The stream starts from a reset here (a model of changes from a "
         "campaign's first sample misses the warm-up before it): stream from the campaign's "
         "start, or with data.reference=none say the campaign it continues (monitor.continues)")
+
+
+MEMORY_ROWS = 60   # rows before a training row that show whether the model remembers them
+
+
+def _remembers(deployed, rows: pd.DataFrame) -> bool:
+    """Whether ``deployed``'s prediction of ``rows``' last row depends on the rows before it (a
+    lag, an ARX feedback, an LSTM's state): that row streamed from a reset against streamed
+    after them.  The stream is left as it was found."""
+    snap = deployed._snapshot()
+    try:
+        deployed.reset()
+        warmed = deployed.predict(rows).to_numpy(float)[-1, :-1]
+        deployed.reset()
+        cold = deployed.predict(rows.iloc[-1:]).to_numpy(float)[-1, :-1]
+    except ValueError:       # a row the policy refuses: not this check's to say
+        return False
+    finally:
+        deployed._restore(snap)
+    return not np.allclose(warmed, cold, rtol=1e-6, atol=1e-6)
+
+
+def said_if_cold_continuation(ds, deployed, cid: str) -> None:
+    """Say a stream not said to continue a campaign, streamed from a reset by a model that
+    remembers, where the model was scored on test campaigns that continue the record (each
+    warmed on the campaign before it, as ``run`` joins them): a machine that runs on has no
+    campaign start, so the first row's pattern (:func:`said_if_mid_campaign`) looks like any
+    other and nothing was said (newmachine59: a wire EDM's 21-day record cut 3:1, its last 300
+    rows streamed from a reset, a Hammerstein model 1.46 um against 0.31 warmed)."""
+    if deployed.compensator.reference != "none":
+        return
+    links = predecessors(ds)
+    scored = [t for t in ds.ids("test") if t in links]
+    if not scored:
+        return
+    before = ds.campaigns[links[scored[0]]]
+    if len(before) < 2 or not _remembers(deployed, before.iloc[-MEMORY_ROWS:]):
+        return
+    logger.warning(
+        f"campaign {cid}: streamed from a reset, but the model remembers the rows before a row "
+        f"(its prediction of {links[scored[0]]}'s last row differs streamed alone) and was scored "
+        f"on {scored[0]} warmed on {links[scored[0]]}, the record it continues: if this stream "
+        f"goes on from the machine's record, say the campaign it continues "
+        f"(monitor.continues=<campaign>); else its first rows are a cold start")

@@ -19,6 +19,7 @@ from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.monitor.report import monitor_report, summary_lines
 from ...apps.monitor.stdin import (
     check_continued,
+    said_if_cold_continuation,
     said_if_mid_campaign,
     said_if_other_period,
     stdin_chain,
@@ -57,6 +58,7 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict, train_ids: list[s
         check_continued(leads[cid], stream, ids[-1])
     else:
         said_if_mid_campaign(ds, train_ids, stream, cid)
+        said_if_cold_continuation(ds, fixed, cid)
     return leads
 
 
