@@ -21,7 +21,8 @@ reference (``Simulator``).  Columns (µm):
 
 Run: ``.venv/bin/python benchmarks/bench_deployed_as_scored59.py [ROOT] [FAMILY ...]``
 (ROOT default ``/tmp/deploy59-bench``, made anew).  Measured 2026-11-30 (stop 59, 166 s of CPU,
-2 shared cores; climate_room seed 5901, 12 runs of 3-4 h, test C10-C12 starting at 26.4 / 23.2 / 30.0 °C ambient)::
+2 shared cores; climate_room seed 5901, 12 runs of 3-4 h, test C10-C12 starting at 26.4 / 23.2 /
+30.0 °C ambient)::
 
     cell               run   batch  replay promoted  C rmse     C-run   C-ST    C-json
     mlr-none          1.69    1.69    1.69    1.69    1.69   1.42e-14      0  1.78e-14
