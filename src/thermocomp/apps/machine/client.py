@@ -54,6 +54,14 @@ def joined_mid_campaign(cid: str, i: int) -> str:
             "resumes it (docs/to-the-machine.md)")
 
 
+def warm_times(warm) -> str:
+    """``'<first> to <last> s'`` of a ``connect.warm`` log's times, or that it has none."""
+    if TIME not in warm.columns:
+        return "no time"
+    t = warm[TIME].to_numpy(float)
+    return f"{np.nanmin(t):g} to {np.nanmax(t):g} s"
+
+
 class _Changes:
     """Subscription handler: queues the new values of ``sample`` / ``done``."""
 
@@ -199,8 +207,17 @@ class Connection:
         d, warm = self.deployed, self.warm
         reads = len(d.columns_) + (TIME not in d.columns_)
         t = row[d.columns_.index(TIME)] if TIME in d.columns_ else row[reads - 1]
+        logged = len(warm)
         if TIME in warm.columns and math.isfinite(t):
             warm = warm[warm[TIME].to_numpy(float) < t]
+        if not len(warm):
+            # nothing to warm on (a log on another clock, another campaign's, an empty one):
+            # said as the restart it is, not as a warm-up of 0 rows
+            first = (f" (its {logged} row(s) are at times from {warm_times(self.warm)}, not "
+                     f"before this sample's {t:g} s)" if logged else " (it holds no row)")
+            self._event("joined_mid_campaign", joined_mid_campaign(cid, i) + ". connect.warm "
+                        f"has no row logged before this sample{first}", logging.WARNING)
+            return
         d.predict(warm.reset_index(drop=True))
         self._event("warmed", f"campaign {cid} joined at its sample {i}: the stream warmed on "
                               f"{len(warm)} row(s) logged before it (connect.warm), unscored")
