@@ -69,3 +69,26 @@ def test_another_diagnosed_effect_is_refused_naming_it_and_the_route_that_runs_i
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
              "track=false"], capsys, "dynamics:T_a first_order_lag", "thermocomp serve")
     assert not (tmp_path / "code").exists()
+
+
+@needs_cc
+def test_a_diagnosed_ati_model_exports_its_intervals_and_names_them(data, tmp_path):
+    """diagnose of ``ati=cmeans`` puts the effects around the ATI model: with none accepted it is
+    that model, two intervals of the initial ambient, which the code switches on."""
+    stream, tests, ati = deployed(data, "model=mlr", "ati=cmeans", "ati.estimator.n_intervals=2",
+                                  pushed="T_a")
+    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
+                   "promote.envelope.pattern=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    for effects, exports in (([], True), ([AMBIENT_LAW], False)):
+        comp = clone(ati).set_params(estimator=AugmentedRegressor(ati.estimator, effects={"E_X": effects}))
+        diagnosed = deploy_stream(cfg, comp.fit(train), train)
+        if not exports:
+            with pytest.raises(NotExportable, match="ambient_linear around an ATI model"):
+                state_space(diagnosed)
+            continue
+        ss = state_space(diagnosed)
+        assert ss.provenance["laws"] == state_space(stream).provenance["laws"]
+        assert "|" in ss.provenance["laws"]["E_X"]                  # two intervals, named
+        assert _proved(diagnosed, tests, tmp_path) <= TOLERANCE_UM

@@ -22,7 +22,7 @@ from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ....core.models.ati import AMBIENT_CENTRE_C, ATIRegressor
 from .errors import NotExportable
-from .members import described, members
+from .members import described, is_diagnosed, members
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
 UNBOUNDED = sys.float_info.max      # an open interval edge (finite for JSON and ST)
@@ -80,20 +80,13 @@ def _intervals(est) -> list:
     """``[(lo, hi, model, takes the ambient interaction)]``: an ATI model's per interval of the
     initial ambient (``lo < A0 <= hi``, as ``interval_of`` assigns one), a diagnosed model's
     (:func:`_diagnosed`), else the model itself."""
-    if _is_diagnosed(est):
+    if is_diagnosed(est):
         return _diagnosed(est)
     if not isinstance(est, ATIRegressor):
         return [(-UNBOUNDED, UNBOUNDED, est, False)]
     edges = [-UNBOUNDED, *map(float, est.boundaries_), UNBOUNDED]
     return [(edges[m], edges[m + 1], e, bool(est.interactions_[m]))
             for m, e in enumerate(est.estimators_)]
-
-
-def _is_diagnosed(est) -> bool:
-    """``est`` is ``diagnose``'s :class:`~thermocomp.apps.diagnose.AugmentedRegressor` (its module
-    is loaded when such a model was unpickled: no other model pays for importing it)."""
-    module = sys.modules.get(__name__.split(".apps.")[0] + ".apps.diagnose.augmented")
-    return module is not None and isinstance(est, module.AugmentedRegressor)
 
 
 def _diagnosed(est) -> list:
