@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import copy
 
+import numpy as np
 import pytest
 
 from conftest import offline_connection
@@ -45,3 +46,28 @@ def test_a_warm_log_with_no_row_before_the_join_is_said_as_the_restart(deployed,
         assert f"from {log['time'].min():g} to {log['time'].max():g} s" in lines[0]
     else:
         assert events[-1] == "warmed" and lines == []
+
+
+def test_a_warmed_restart_relearns_the_references_in_the_log(deployed):
+    """With ``adapt`` (a probe every few samples), what the bias had learned before the restart
+    was lost: the warm-up stepped the stream only.  The log's measured errors, the references the
+    client had taken, are relearned as a served session resent from its start relearns them."""
+    from thermocomp.apps.deploy.adapt import Adaptation, ReferenceAdapter
+
+    streaming, campaign = deployed
+    cols, targets = list(streaming.columns_), list(streaming.targets_)
+    probed = campaign.copy()
+    off = np.arange(len(probed)) % 7 != 6                     # a reference every 7th sample
+    probed.loc[off, targets] = np.nan
+    probed[targets] += 3.0                                    # an offset the bias learns
+    rows = probed[cols + ["time"] + targets].to_numpy(float)
+    half = len(rows) // 2
+
+    def stepped(first: int, warm=None) -> np.ndarray:
+        conn = offline_connection(copy.deepcopy(streaming), warm=warm,
+                                  adapt=Adaptation(ReferenceAdapter(len(targets), "bias")))
+        return np.array([conn._step("K05", list(r), k, k) for k, r in enumerate(rows) if k >= first])
+
+    whole = stepped(0)
+    resumed = stepped(half, warm=probed.iloc[:half])
+    np.testing.assert_allclose(resumed, whole[half:], atol=1e-9)

@@ -20,6 +20,7 @@ import math
 import time as clock
 
 import numpy as np
+import pandas as pd
 from asyncua import Client, ua
 
 from ...core.context import TIME
@@ -218,7 +219,18 @@ class Connection:
             self._event("joined_mid_campaign", joined_mid_campaign(cid, i) + ". connect.warm "
                         f"has no row logged before this sample{first}", logging.WARNING)
             return
-        d.predict(warm.reset_index(drop=True))
+        warm = warm.reset_index(drop=True)
+        predicted = d.predict(warm)
+        if self.adapt is not None:
+            # the log's measured errors are the references the client had learned from before
+            # the restart (as a served session resent from its start relearns them): without
+            # them what adapt had learned was lost at a restart, warmed or not
+            targets = list(d.targets_)
+            measured = np.column_stack([pd.to_numeric(warm[t], errors="coerce").to_numpy(float)
+                                        if t in warm.columns else np.full(len(warm), np.nan)
+                                        for t in targets])
+            times = warm[TIME].to_numpy(float) if TIME in warm.columns else np.full(len(warm), np.nan)
+            self.adapt.correct(predicted[targets].to_numpy(float), times, measured)
         self._event("warmed", f"campaign {cid} joined at its sample {i}: the stream warmed on "
                               f"{len(warm)} row(s) logged before it (connect.warm), unscored")
 
