@@ -152,7 +152,9 @@ def _target_law(est, n: int, period: float | None):
     """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
     if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
         raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
-                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)})")
+                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)}; their ATI models and "
+                            "model=auto's blends of them too); the served model runs it "
+                            "(thermocomp serve, connect)")
     c = float(est.intercept_)
     if isinstance(est, (MLR, PCR)):
         return c, np.asarray(est.coef_, float), {}, [], 0.0, period
