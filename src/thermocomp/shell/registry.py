@@ -192,7 +192,11 @@ def register(cfg: DictConfig, client, cand: Candidate, ds, dataset_hash: str) ->
                                policy=str(opts.envelope.policy), outputs=outputs),
                 "promoted": moved}
         test = ds.campaigns[require_split(ds, "test")[0]]
-        example = test[cand.streaming.columns_ + ["time"]].head(5)
+        # a campaign's first block, as a caller sends one (MLflow predicts it to check the
+        # signature): without ``reset`` the model warned of a session it does not hold, a
+        # restart mid-campaign, at every promote
+        rows = test[cand.streaming.columns_ + ["time"]]
+        example = (rows[rows.notna().all(axis=1)].head(5), {"reset": True})   # a dropout aside
         # into the run without resuming it: a killed promote leaves its status alone
         info = pyfunc.log_compensator(cand.deployed, input_example=example,
                                       registered_model_name=name, run_id=cand.run_id,

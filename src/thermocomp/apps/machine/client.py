@@ -20,6 +20,7 @@ import math
 import time as clock
 
 import numpy as np
+import pandas as pd
 from asyncua import Client, ua
 
 from ...core.context import TIME
@@ -52,6 +53,14 @@ def joined_mid_campaign(cid: str, i: int) -> str:
             "a reset here, so a model of changes from a campaign's first sample misses the "
             "warm-up before it; connect.warm=<the rows logged since the campaign's start> "
             "resumes it (docs/to-the-machine.md)")
+
+
+def warm_times(warm) -> str:
+    """``'<first> to <last> s'`` of a ``connect.warm`` log's times, or that it has none."""
+    if TIME not in warm.columns:
+        return "no time"
+    t = warm[TIME].to_numpy(float)
+    return f"{np.nanmin(t):g} to {np.nanmax(t):g} s"
 
 
 class _Changes:
@@ -199,9 +208,29 @@ class Connection:
         d, warm = self.deployed, self.warm
         reads = len(d.columns_) + (TIME not in d.columns_)
         t = row[d.columns_.index(TIME)] if TIME in d.columns_ else row[reads - 1]
+        logged = len(warm)
         if TIME in warm.columns and math.isfinite(t):
             warm = warm[warm[TIME].to_numpy(float) < t]
-        d.predict(warm.reset_index(drop=True))
+        if not len(warm):
+            # nothing to warm on (a log on another clock, another campaign's, an empty one):
+            # said as the restart it is, not as a warm-up of 0 rows
+            first = (f" (its {logged} row(s) are at times from {warm_times(self.warm)}, not "
+                     f"before this sample's {t:g} s)" if logged else " (it holds no row)")
+            self._event("joined_mid_campaign", joined_mid_campaign(cid, i) + ". connect.warm "
+                        f"has no row logged before this sample{first}", logging.WARNING)
+            return
+        warm = warm.reset_index(drop=True)
+        predicted = d.predict(warm)
+        if self.adapt is not None:
+            # the log's measured errors are the references the client had learned from before
+            # the restart (as a served session resent from its start relearns them): without
+            # them what adapt had learned was lost at a restart, warmed or not
+            targets = list(d.targets_)
+            measured = np.column_stack([pd.to_numeric(warm[t], errors="coerce").to_numpy(float)
+                                        if t in warm.columns else np.full(len(warm), np.nan)
+                                        for t in targets])
+            times = warm[TIME].to_numpy(float) if TIME in warm.columns else np.full(len(warm), np.nan)
+            self.adapt.correct(predicted[targets].to_numpy(float), times, measured)
         self._event("warmed", f"campaign {cid} joined at its sample {i}: the stream warmed on "
                               f"{len(warm)} row(s) logged before it (connect.warm), unscored")
 

@@ -35,14 +35,17 @@ from ..source import read_streamed
 from ..store import is_registered_model
 
 
-def _registry_run(source: str) -> str | None:
-    """The MLflow run a registered ``models:/name@alias`` (or ``/version``) came from."""
+def _registry_provenance(source: str) -> dict:
+    """The MLflow run a registered ``models:/name@alias`` (or ``/version``) came from and the
+    dataset it was promoted on (the version's ``dataset_hash`` tag, which ``promote`` writes):
+    the code of a champion names its data as the code of its run's ``model.pkl`` does."""
     from mlflow import MlflowClient
 
     try:
-        return registered_version(MlflowClient(), source).run_id
+        found = registered_version(MlflowClient(), source)
     except Exception:
-        return None
+        return {"run_id": None, "dataset_hash": None}
+    return {"run_id": found.run_id, "dataset_hash": (found.tags or {}).get("dataset_hash")}
 
 
 def _refused(source: str, family: str, fmt: str, exc: NotExportable) -> ConfigError:
@@ -61,8 +64,9 @@ def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict]:
     ds, train_ids = (None, []) if registered else read_streamed(cfg)[:2]
     deployed = deployable_model(cfg, ds, train_ids, source, "export.model", check=exportable)[0]
     if registered:
-        run = _registry_run(source) if is_registered_model(source) else None
-        return deployed, {"run_id": run, "dataset_hash": None}
+        if is_registered_model(source):
+            return deployed, _registry_provenance(source)
+        return deployed, {"run_id": None, "dataset_hash": None}
     return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}
 
 

@@ -22,7 +22,7 @@ from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ....core.models.ati import AMBIENT_CENTRE_C, ATIRegressor
 from .errors import NotExportable
-from .members import described, members
+from .members import described, is_diagnosed, members
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
 UNBOUNDED = sys.float_info.max      # an open interval edge (finite for JSON and ST)
@@ -78,12 +78,35 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, 
 
 def _intervals(est) -> list:
     """``[(lo, hi, model, takes the ambient interaction)]``: an ATI model's per interval of the
-    initial ambient (``lo < A0 <= hi``, as ``interval_of`` assigns one), else the model itself."""
+    initial ambient (``lo < A0 <= hi``, as ``interval_of`` assigns one), a diagnosed model's
+    (:func:`_diagnosed`), else the model itself."""
+    if is_diagnosed(est):
+        return _diagnosed(est)
     if not isinstance(est, ATIRegressor):
         return [(-UNBOUNDED, UNBOUNDED, est, False)]
     edges = [-UNBOUNDED, *map(float, est.boundaries_), UNBOUNDED]
     return [(edges[m], edges[m + 1], e, bool(est.interactions_[m]))
             for m, e in enumerate(est.estimators_)]
+
+
+def _diagnosed(est) -> list:
+    """A diagnosed model's intervals: its base model's, when every effect it accepted is a
+    sensor's removal (no feature: the base fitted on the inputs kept), or the base's one law and
+    its ambient law ``x (A0 - 20)`` (``ambient_linear``: the base fitted on ``[x, x (A0 - 20)]``,
+    what an ATI interval with the interaction is); any other effect is refused, naming it."""
+    effects = list(est.effects_)
+    if not effects:
+        return _intervals(est.estimator_)
+    kinds = [e.transform for e in effects]
+    if kinds == ["ambient_linear"] and not isinstance(est.estimator_, ATIRegressor):
+        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, True)]
+    others = [e.title for e in effects if e.transform != "ambient_linear"] or [
+        "ambient_linear around an ATI model"]
+    several = len(others) > 1
+    raise NotExportable(f"the diagnosed effect{'s' if several else ''} {'; '.join(others)} "
+                        f"{'do' if several else 'does'} not export (the code holds a sensor's "
+                        "removal and the inputs' ambient law x (A0 - 20) of diagnose's effects); "
+                        "the served model runs them (thermocomp serve, connect)")
 
 
 def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, horizon_s,
@@ -129,7 +152,9 @@ def _target_law(est, n: int, period: float | None):
     """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
     if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
         raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
-                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)})")
+                            f"export to C/ST ({', '.join(LINEAR_FAMILIES)}; their ATI models and "
+                            "model=auto's blends of them too); the served model runs it "
+                            "(thermocomp serve, connect)")
     c = float(est.intercept_)
     if isinstance(est, (MLR, PCR)):
         return c, np.asarray(est.coef_, float), {}, [], 0.0, period

@@ -8,6 +8,8 @@ of its members' laws, so a target's law is the list of ``(name, weight, estimato
 
 from __future__ import annotations
 
+import sys
+
 from ....core.models.ati import ATIRegressor
 from ....core.models.auto import AutoRegressor
 from ....core.models.blend import Blend
@@ -15,10 +17,21 @@ from ....core.models.blend import Blend
 
 def one_model(est):
     """The one model of an ATI wrapper that kept one interval and no ambient interaction (too
-    few ambient levels in training: what ati=none fits, and streams as it does), else ``est``."""
+    few ambient levels in training: what ati=none fits, and streams as it does), or of a
+    diagnosed model without an effect feature (none accepted, or a sensor's removal only: its
+    base model on the inputs kept), else ``est``."""
+    if is_diagnosed(est) and not est.effects_:
+        return one_model(est.estimator_)
     if isinstance(est, ATIRegressor) and est.n_intervals_ == 1 and not est.interactions_[0]:
         return est.estimators_[0]
     return est
+
+
+def is_diagnosed(est) -> bool:
+    """``est`` is ``diagnose``'s :class:`~thermocomp.apps.diagnose.AugmentedRegressor` (its module
+    is loaded when such a model was unpickled: no other model pays for importing it)."""
+    module = sys.modules.get(__name__.split(".apps.")[0] + ".apps.diagnose.augmented")
+    return module is not None and isinstance(est, module.AugmentedRegressor)
 
 
 def members(est) -> list[tuple[str | None, float, object]]:

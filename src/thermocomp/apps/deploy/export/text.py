@@ -25,6 +25,18 @@ def per_target(laws: dict) -> str:
     return "; ".join(f"{ascii_name(t)} {law}" for t, law in laws.items())
 
 
+def time_use(ss) -> str:
+    """What reads the time, and the step a bad time is replaced by (the time rule's): a model
+    without lags under an adaptive guard reads it too (its rate limit is per second); the banner
+    said "not read; period 0 s" of it, the lag period of a model without lags."""
+    readers = [who for who, reads in (("the first-order lags", ss.uses_time),
+                                      ("the guard's rate limit", ss.guard and any(
+                                          r is not None for r in ss.guard_rate or []))) if reads]
+    period = ss.time_period or ss.period         # the time rule's step (core.timerule)
+    return (f"read by {' and '.join(readers)}" if readers else "not read") + (
+        f"; a missing or backward time is the previous + {period:.6g} s" if period else "")
+
+
 def banner(ss, open_: str, middle: str, close: str) -> str:
     """A comment block: what the code is, where it came from, its inputs, units and bounds."""
     p = ss.provenance
@@ -42,8 +54,7 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
         lab = p.get("lab_names", {}).get(c)
         lines.append(f"  {j}: {ascii_name(c)}{ref} {p.get('units', {}).get(c, '')}  envelope {env}"
                      + (f"  (the lab's {lab!a})" if lab else ""))   # ASCII: a PLC's source
-    lines.append("time: s, " + ("read by the first-order lags" if ss.uses_time else "not read")
-                 + f"; period {ss.period:.6g} s")
+    lines.append(f"time: s, {time_use(ss)}")
     lines.append("outputs: " + ", ".join(map(ascii_name, correction_names(ss.targets)))
                  + " in um (the correction: minus the predicted error)")
     for i, t in enumerate(ss.targets if ss.guard else []):

@@ -1,0 +1,94 @@
+"""A diagnosed model exports where its effects are laws the code holds (deploy59).
+
+``thermocomp diagnose`` writes a model config (MLR and the effects it accepted, around
+:class:`~thermocomp.apps.diagnose.AugmentedRegressor`) that reruns, promotes and is served like
+any model; ``export`` refused every one of them, "model AugmentedRegressor is not one of the
+linear families", with no way on: a diagnosis that only removed a broken sensor, or that only
+added the inputs' ambient law ``x (A0 - 20)`` (the default scenario's planted ambient law), could
+not reach a PLC, though the first is its base model on fewer inputs and the second what an ATI
+interval with its interaction is, which the code already runs.  Now both export (the C, the ST
+and the numpy reference equal ``replay``, the clamp acting); any other effect is refused naming
+it and the route that runs it (the served model).
+"""
+
+from __future__ import annotations
+
+import pytest
+from sklearn.base import clone
+
+from conftest import refused
+from test_export import _compose, needs_cc
+from test_export_ati57 import _levels
+from test_export_auto57 import TOLERANCE_UM, _proved, deployed
+from thermocomp.apps.deploy.export import NotExportable, state_space
+from thermocomp.apps.diagnose import AugmentedRegressor
+from thermocomp.core.models import MLR
+from thermocomp.shell.builders import deploy_stream
+from thermocomp.shell.model_store import save_model
+from thermocomp.shell.source import read_streamed
+
+AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
+LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 3600.0}
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory):
+    return _levels(tmp_path_factory.mktemp("diagnosed") / "data")
+
+
+def _diagnosed(data, effects: list, alpha=None):
+    """``(stream as replay deploys it, test campaigns with T_a pushed out half-way, compensator)``
+    of MLR with ``effects`` for E_X, the way diagnose's written config builds it."""
+    _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
+    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
+                   "promote.envelope.pattern=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    comp = clone(mlr).set_params(estimator=AugmentedRegressor(
+        MLR(), effects={"E_X": effects}, alpha=None if alpha is None else {"E_X": alpha}))
+    comp.fit(train)
+    return deploy_stream(cfg, comp, train), tests, comp
+
+
+@needs_cc
+@pytest.mark.parametrize("effects, alpha", [([], None), ([AMBIENT_LAW], None), ([AMBIENT_LAW], 0.01)],
+                         ids=["none-or-removal", "ambient-law", "ambient-law-shrunk"])
+def test_a_diagnosed_model_of_laws_the_code_holds_exports_as_replay(data, tmp_path, effects, alpha):
+    stream, tests, comp = _diagnosed(data, effects, alpha)
+    law = state_space(stream).law_ambient                     # refused before
+    assert law == ([0, 1] if effects else [0])
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+
+
+def test_another_diagnosed_effect_is_refused_naming_it_and_the_route_that_runs_it(data, tmp_path,
+                                                                                  capsys):
+    stream, _, comp = _diagnosed(data, [LAG])
+    with pytest.raises(NotExportable, match=r"dynamics:T_a first_order_lag.*does not export"):
+        state_space(stream)
+    pkl = save_model(comp, tmp_path / "model.pkl")
+    refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
+             "track=false"], capsys, "dynamics:T_a first_order_lag", "thermocomp serve")
+    assert not (tmp_path / "code").exists()
+
+
+@needs_cc
+def test_a_diagnosed_ati_model_exports_its_intervals_and_names_them(data, tmp_path):
+    """diagnose of ``ati=cmeans`` puts the effects around the ATI model: with none accepted it is
+    that model, two intervals of the initial ambient, which the code switches on."""
+    stream, tests, ati = deployed(data, "model=mlr", "ati=cmeans", "ati.estimator.n_intervals=2",
+                                  pushed="T_a")
+    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
+                   "promote.envelope.pattern=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    for effects, exports in (([], True), ([AMBIENT_LAW], False)):
+        comp = clone(ati).set_params(estimator=AugmentedRegressor(ati.estimator, effects={"E_X": effects}))
+        diagnosed = deploy_stream(cfg, comp.fit(train), train)
+        if not exports:
+            with pytest.raises(NotExportable, match="ambient_linear around an ATI model"):
+                state_space(diagnosed)
+            continue
+        ss = state_space(diagnosed)
+        assert ss.provenance["laws"] == state_space(stream).provenance["laws"]
+        assert "|" in ss.provenance["laws"]["E_X"]                  # two intervals, named
+        assert _proved(diagnosed, tests, tmp_path) <= TOLERANCE_UM
