@@ -1,0 +1,98 @@
+r"""Ordinary least squares on unions of campaigns, from one QR factor per campaign.
+
+The ATI elbow (:mod:`thermocomp.core.models.ati`) fits one MLR per held-out campaign and
+number of intervals, each on a union of the other campaigns: on a climate-room record
+(14 train runs, ``diagnose ati=cmeans``) 11,644 fits of ~6,000 rows.  The union's least
+squares problem is the stack of its campaigns' triangular factors: with
+:math:`[\mathbf 1, Z_c, y_c] = Q_c R_c` per campaign :math:`c`,
+
+.. math:: \min_b \|[\mathbf 1, Z_U] b - y_U\| \text{ over } U = \cup_c
+          \iff \text{the QR of } [R_c]_{c \in U} \text{ stacked},
+
+an orthogonal change of rows, so the solution is the same up to rounding and each fit
+costs a QR of ``len(U)`` small squares instead of the rows.  The factor's block after the
+intercept column is the factor of the centred design (the Householder step on the column of
+ones centres the others), so :meth:`CampaignLeastSquares.fit` solves what
+:class:`sklearn.linear_model.LinearRegression` solves -- ``scipy.linalg.lstsq`` of the
+centred design with ``cond=tol``, the minimum-norm solution when the design is rank
+deficient -- on a matrix with the same singular values.  Not the normal equations: those
+square the condition number (a slope 1e-6 of the largest singular value, LinearRegression's
+cut-off, would lose 4 of its digits there).  Where a singular value is so close to that
+cut-off that rounding could put it on the other side, :meth:`~CampaignLeastSquares.fit` says
+so (``None``) and the caller fits the rows themselves.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from scipy.linalg import lstsq, qr
+from sklearn.linear_model import LinearRegression
+
+# LinearRegression's relative cut-off of the singular values (lstsq ``cond``)
+LSTSQ_TOL = LinearRegression().tol
+# singular values this close (relative) to the cut-off: rounding may decide their side
+CUTOFF_BAND = 1e-6
+
+
+def triangle(A: np.ndarray) -> np.ndarray:
+    """The R of ``A = QR``, its ``min(A.shape)`` rows (scipy's ``mode='r'`` keeps all of A's,
+    zeros below: stacked, they were most of the work)."""
+    return qr(A, mode="r", overwrite_a=True, check_finite=False)[0][:min(A.shape)]
+
+
+class CampaignLeastSquares:
+    """OLS fits of ``y`` on the design ``Z`` restricted to unions of campaigns.
+
+    Parameters
+    ----------
+    Z : ndarray of shape (n_rows, n_features)
+    y : ndarray of shape (n_rows,)
+    rows : sequence of index arrays
+        The rows of each campaign (campaign ``c`` is ``rows[c]``).
+    fit_intercept : bool, default True
+    tol : float
+        Relative cut-off of the singular values (``LinearRegression.tol``).
+    """
+
+    def __init__(self, Z, y, rows, fit_intercept: bool = True, tol: float = LSTSQ_TOL):
+        self.Z = np.asarray(Z, float)
+        self.y = np.asarray(y, float)
+        self.rows = list(rows)
+        self.fit_intercept = fit_intercept
+        self.tol = tol
+        self._factors: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+
+    def _factor(self, c: int) -> tuple[np.ndarray, np.ndarray]:
+        """The R of ``[1, Z_c, y_c]`` (``[Z_c, y_c]`` without intercept) and the column sums of
+        ``[Z_c, y_c]``, computed once."""
+        if c not in self._factors:
+            zy = np.hstack([self.Z[self.rows[c]], self.y[self.rows[c], None]])
+            sums = zy.sum(axis=0)
+            if self.fit_intercept:
+                zy = np.hstack([np.ones((zy.shape[0], 1)), zy])
+            self._factors[c] = triangle(zy), sums
+        return self._factors[c]
+
+    def fit(self, members) -> tuple[np.ndarray, float] | None:
+        """``(coef, intercept)`` of the OLS fit on the rows of campaigns ``members``, as
+        ``LinearRegression(fit_intercept).fit`` gives them up to rounding; ``None`` when a
+        singular value lies at the rank cut-off (then only a fit on the rows decides)."""
+        members = list(members)
+        p = self.Z.shape[1]
+        first = int(self.fit_intercept)
+        R = triangle(np.vstack([self._factor(c)[0] for c in members]))
+        if R.shape[0] <= first:         # one row: nothing left to fit after the intercept
+            return None
+        coef, _, _, s = lstsq(R[first:, first:first + p], R[first:, first + p], cond=self.tol,
+                              check_finite=False)
+        if s.size and s[0] > 0 and np.any(np.abs(s - self.tol * s[0]) <= CUTOFF_BAND * self.tol * s[0]):
+            return None
+        if not self.fit_intercept:
+            return coef, 0.0
+        mean = sum(self._factor(c)[1] for c in members) / sum(len(self.rows[c]) for c in members)
+        return coef, float(mean[-1] - mean[:-1] @ coef)
+
+    def predict(self, fitted: tuple[np.ndarray, float], c: int) -> np.ndarray:
+        """The fit ``fitted`` on campaign ``c``'s rows (``Z @ coef + intercept``, as MLR)."""
+        coef, intercept = fitted
+        return self.Z[self.rows[c]] @ coef + intercept
