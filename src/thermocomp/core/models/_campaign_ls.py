@@ -40,6 +40,18 @@ def triangle(A: np.ndarray) -> np.ndarray:
     return qr(A, mode="r", overwrite_a=True, check_finite=False)[0][:min(A.shape)]
 
 
+def at_cutoff(s: np.ndarray, rcond: float, band: float) -> bool:
+    """Whether a singular value of ``s`` (largest first) is within a factor ``1 ± band`` (or,
+    ``band >= 1``, a factor ``band``) of the cut-off ``rcond * s[0]``: which side of it the
+    value falls on is then rounding's choice."""
+    if not s.size or not s[0] > 0:
+        return False
+    cut = rcond * s[0]
+    if band >= 1:
+        return bool(np.any((s >= cut / band) & (s <= cut * band)))
+    return bool(np.any(np.abs(s - cut) <= band * cut))
+
+
 class CampaignLeastSquares:
     """OLS fits of ``y`` on the design ``Z`` restricted to unions of campaigns.
 
@@ -61,35 +73,46 @@ class CampaignLeastSquares:
         self.fit_intercept = fit_intercept
         self.tol = tol
         self._factors: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        # with an intercept the columns are factored less their means over all rows: the same
+        # least squares, and its rounding scales with the columns' spread, not their level
+        # (temperatures near 20 °C varying by tenths: 15x closer to the fits on the rows)
+        used = np.concatenate(self.rows) if self.rows else np.zeros(0, int)
+        self.shift = (np.r_[self.Z[used].mean(axis=0), self.y[used].mean()] if fit_intercept and used.size
+                      else np.zeros(self.Z.shape[1] + 1))
 
     def _factor(self, c: int) -> tuple[np.ndarray, np.ndarray]:
         """The R of ``[1, Z_c, y_c]`` (``[Z_c, y_c]`` without intercept) and the column sums of
         ``[Z_c, y_c]``, computed once."""
         if c not in self._factors:
-            zy = np.hstack([self.Z[self.rows[c]], self.y[self.rows[c], None]])
+            zy = np.hstack([self.Z[self.rows[c]], self.y[self.rows[c], None]]) - self.shift
             sums = zy.sum(axis=0)
             if self.fit_intercept:
                 zy = np.hstack([np.ones((zy.shape[0], 1)), zy])
             self._factors[c] = triangle(zy), sums
         return self._factors[c]
 
+    def union(self, members) -> tuple[np.ndarray, int, np.ndarray]:
+        """``(R, n, mean)`` of the rows of campaigns ``members``: the triangular factor of
+        ``[Z, y]`` centred on these rows (uncentred without intercept), their number and the
+        means of ``[Z, y]`` on them."""
+        members = list(members)
+        first = int(self.fit_intercept)
+        R = triangle(np.vstack([self._factor(c)[0] for c in members]))
+        n = sum(len(self.rows[c]) for c in members)
+        return R[first:, first:], n, sum(self._factor(c)[1] for c in members) / n + self.shift
+
     def fit(self, members) -> tuple[np.ndarray, float] | None:
         """``(coef, intercept)`` of the OLS fit on the rows of campaigns ``members``, as
         ``LinearRegression(fit_intercept).fit`` gives them up to rounding; ``None`` when a
         singular value lies at the rank cut-off (then only a fit on the rows decides)."""
-        members = list(members)
-        p = self.Z.shape[1]
-        first = int(self.fit_intercept)
-        R = triangle(np.vstack([self._factor(c)[0] for c in members]))
-        if R.shape[0] <= first:         # one row: nothing left to fit after the intercept
+        R, _, mean = self.union(members)
+        if not R.shape[0]:              # one row: nothing left to fit after the intercept
             return None
-        coef, _, _, s = lstsq(R[first:, first:first + p], R[first:, first + p], cond=self.tol,
-                              check_finite=False)
-        if s.size and s[0] > 0 and np.any(np.abs(s - self.tol * s[0]) <= CUTOFF_BAND * self.tol * s[0]):
+        coef, _, _, s = lstsq(R[:, :-1], R[:, -1], cond=self.tol, check_finite=False)
+        if at_cutoff(s, self.tol, CUTOFF_BAND):
             return None
         if not self.fit_intercept:
             return coef, 0.0
-        mean = sum(self._factor(c)[1] for c in members) / sum(len(self.rows[c]) for c in members)
         return coef, float(mean[-1] - mean[:-1] @ coef)
 
     def predict(self, fitted: tuple[np.ndarray, float], c: int) -> np.ndarray:
