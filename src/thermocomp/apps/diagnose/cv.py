@@ -345,11 +345,13 @@ class CrossValidator:
         for k in p.fold_ids:
             tr, te = p.train_rows(k), p.test_rows(k)
             names = self.selection(tuple(inputs), k)
-            Z = self.design(names, effects, k)
             path = None
-            if pieces is not None:
+            if pieces is not None:           # every fold's design is the pieces' (not rebuilt)
                 ls, members = pieces
+                Z = ls.Z
                 path = PartialRidgePath.from_triangle(*ls.union(members[k]), len(names))
+            else:
+                Z = self.design(names, effects, k)
             if path is None:
                 path = PartialRidgePath(Z[tr], p.y[tr], len(names), base.fit_intercept)
             pred[te] = path.predict(Z[te], alphas)

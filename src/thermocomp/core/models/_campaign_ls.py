@@ -76,18 +76,24 @@ class CampaignLeastSquares:
         # with an intercept the columns are factored less their means over all rows: the same
         # least squares, and its rounding scales with the columns' spread, not their level
         # (temperatures near 20 °C varying by tenths: 15x closer to the fits on the rows)
-        used = np.concatenate(self.rows) if self.rows else np.zeros(0, int)
-        self.shift = (np.r_[self.Z[used].mean(axis=0), self.y[used].mean()] if fit_intercept and used.size
-                      else np.zeros(self.Z.shape[1] + 1))
+        n = sum(len(r) for r in self.rows)
+        self.shift = np.zeros(self.Z.shape[1] + 1)
+        if fit_intercept and n:
+            self.shift[:-1] = sum(self.Z[r].sum(axis=0) for r in self.rows) / n
+            self.shift[-1] = sum(self.y[r].sum() for r in self.rows) / n
 
     def _factor(self, c: int) -> tuple[np.ndarray, np.ndarray]:
         """The R of ``[1, Z_c, y_c]`` (``[Z_c, y_c]`` without intercept) and the column sums of
         ``[Z_c, y_c]``, computed once."""
         if c not in self._factors:
-            zy = np.hstack([self.Z[self.rows[c]], self.y[self.rows[c], None]]) - self.shift
-            sums = zy.sum(axis=0)
-            if self.fit_intercept:
-                zy = np.hstack([np.ones((zy.shape[0], 1)), zy])
+            rows, first = self.rows[c], int(self.fit_intercept)
+            # one array, in LAPACK's column order: a piece may be half a long record
+            zy = np.empty((len(rows), first + self.Z.shape[1] + 1), order="F")
+            zy[:, :first] = 1.0
+            zy[:, first:-1] = self.Z[rows]
+            zy[:, -1] = self.y[rows]
+            zy[:, first:] -= self.shift
+            sums = zy[:, first:].sum(axis=0)     # before the QR: it overwrites zy
             self._factors[c] = triangle(zy), sums
         return self._factors[c]
 
