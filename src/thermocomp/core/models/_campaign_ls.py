@@ -2,7 +2,9 @@ r"""Ordinary least squares on unions of campaigns, from one QR factor per campai
 
 The ATI elbow (:mod:`thermocomp.core.models.ati`) fits one MLR per held-out campaign and
 number of intervals, each on a union of the other campaigns: on a climate-room record
-(14 train runs, ``diagnose ati=cmeans``) 11,644 fits of ~6,000 rows.  The union's least
+(14 train runs, ``diagnose ati=cmeans``) 11,644 fits of ~6,000 rows.  ``diagnose``'s
+closed-form CV (:mod:`thermocomp.apps.diagnose.cv`) fits each fold on a union of pieces of
+rows (forward chaining: 16 nested prefixes of one record).  The union's least
 squares problem is the stack of its campaigns' triangular factors: with
 :math:`[\mathbf 1, Z_c, y_c] = Q_c R_c` per campaign :math:`c`,
 
@@ -16,8 +18,9 @@ ones centres the others), so :meth:`CampaignLeastSquares.fit` solves what
 :class:`sklearn.linear_model.LinearRegression` solves -- ``scipy.linalg.lstsq`` of the
 centred design with ``cond=tol``, the minimum-norm solution when the design is rank
 deficient -- on a matrix with the same singular values.  Not the normal equations: those
-square the condition number (a slope 1e-6 of the largest singular value, LinearRegression's
-cut-off, would lose 4 of its digits there).  Where a singular value is so close to that
+square the condition number (a singular value 1e-6 of the largest, LinearRegression's cut-off,
+would keep 4 of its digits there; the climate-room folds of full rank had condition numbers of
+median 2.6e5, a third of them were rank deficient).  Where a singular value is so close to that
 cut-off that rounding could put it on the other side, :meth:`~CampaignLeastSquares.fit` says
 so (``None``) and the caller fits the rows themselves.
 """
