@@ -13,16 +13,17 @@ of each child (user + sys, from ``RUSAGE_CHILDREN``), the ratio, and the accepte
 import the ``thermocomp`` this checkout's ``src`` holds, after any ``PYTHONPATH`` given (so
 ``PYTHONPATH=<old checkout>/src`` measures the code before).
 
-Measured (2 shared cores, other jobs running; user + sys s; plain / ati=cmeans / ratio), the
-elbow's MLR folds fitted on their rows (before, ``PYTHONPATH=<09ad50a>/src``) and from the
-campaigns' QR factors (after, ``core/models/_campaign_ls.py``)::
+Measured (2 shared cores; user + sys s; plain / ati=cmeans / ratio), the elbow's MLR folds
+fitted on their rows (before: 09ad50a's ``src`` first on ``PYTHONPATH``) and from the campaigns'
+QR factors (after, ``core/models/_campaign_ls.py``)::
 
-    climate16   before  2.7 / 86.7 / 31.7x    after  2.9 / 15.1 / 5.3x   (at 7f5d389: 3.3 / 13.0 / 4.0x)
-    yearround   before  3.0 / 73.9 / 24.9x    after  3.2 / 13.6 / 4.3x   (at 7f5d389: 3.0 / 12.7 / 4.3x)
+    climate16   before  2.8 / 75.5 / 26.9x    after  2.7 / 13.3 / 4.9x
+    yearround   before  2.9 / 69.6 / 23.6x    after  2.9 / 12.0 / 4.2x
 
-``diagnosis.json`` of the ATI runs identical before and after (every figure), of the plain runs
-within 4.6e-11 relative (their closed-form CV from row pieces); the elbow's SM/SD of all 274 ATI
-fits of climate16 within 6.5e-11 relative, the same counts chosen.
+(an earlier pair, with other jobs running: 2.7 / 86.7 and 3.0 / 73.9 before, 2.9 / 15.1 and
+3.2 / 13.6 after.)  ``diagnosis.json`` of the ATI runs identical before and after (every
+figure), of the plain runs within 2.3e-10 relative (their closed-form CV from row pieces); the
+elbow's SM/SD of all 274 ATI fits of climate16 within 6.5e-11 relative, the same counts chosen.
 """
 
 from __future__ import annotations
