@@ -179,6 +179,7 @@ def clip_interaction() -> None:
 
     ATIRegressor._fit_base = _fit_base
     ATIRegressor._design = staticmethod(_design)
+    ATIRegressor._fast_elbow = False    # the elbow's folds through _fit_base too, clipped
 
 
 def main(argv=None) -> int:

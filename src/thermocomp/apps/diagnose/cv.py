@@ -45,6 +45,7 @@ from ...core.context import CAMPAIGN, Y_MEASURED, for_target
 from ...core.model_selection import ForwardChaining, LeaveCampaignsOut
 from ...core.model_selection.blocks import cut_blocks
 from ...core.model_selection.extrapolation import within_range
+from ...core.models._campaign_ls import CampaignLeastSquares
 from ...core.models._memo import BoundedCache
 from ...core.models.linear import MLR
 from ...core.select import AllInputs
@@ -340,11 +341,19 @@ class CrossValidator:
         shrink = self.shrink and bool(effects)
         alphas = ALPHAS if shrink else np.zeros(1)
         pred = np.full((len(p.y), alphas.size), np.nan)
+        pieces = self._pieces(inputs, effects) if base.fit_intercept else None
         for k in p.fold_ids:
             tr, te = p.train_rows(k), p.test_rows(k)
             names = self.selection(tuple(inputs), k)
-            Z = self.design(names, effects, k)
-            path = PartialRidgePath(Z[tr], p.y[tr], len(names), base.fit_intercept)
+            path = None
+            if pieces is not None:           # every fold's design is the pieces' (not rebuilt)
+                ls, members = pieces
+                Z = ls.Z
+                path = PartialRidgePath.from_triangle(*ls.union(members[k]), len(names))
+            else:
+                Z = self.design(names, effects, k)
+            if path is None:
+                path = PartialRidgePath(Z[tr], p.y[tr], len(names), base.fit_intercept)
             pred[te] = path.predict(Z[te], alphas)
         err = (p.y[:, None] - pred) ** 2
         mse = np.nanmean(err, axis=0)
@@ -352,6 +361,30 @@ class CrossValidator:
         if one_se and shrink:
             best = one_standard_error(mse, self._block_mse(err))
         return self._result(pred[:, best], float(alphas[best]) if shrink else None)
+
+    def _pieces(self, inputs, effects) -> tuple[CampaignLeastSquares, dict] | None:
+        """The rows cut where any fold's training starts or stops, each piece's QR factor of
+        ``[1, Z, y]``, and each fold's pieces -- when every fold's design is the same (all inputs
+        kept, no effect that learns from its fold): a fold's least squares is then the QR of its
+        pieces' factors, not of its rows (forward chaining's 16 nested folds refitted the record's
+        first half 16 times: 35 % of ``diagnose`` on a week at 10 s).  ``None`` otherwise."""
+        p = self.problem
+        folds = p.fold_ids
+        if not isinstance(self.selector, AllInputs) or any(e.learns for e in effects) \
+                or not folds or len(folds) > 62:
+            return None
+        # each row's set of training folds, as bits: rows of one set are one piece
+        code = np.zeros(len(p.y), np.int64)
+        for bit, k in enumerate(folds):
+            code |= p.train_rows(k).astype(np.int64) << bit
+        sets, which = np.unique(code, return_inverse=True)
+        order = np.argsort(which, kind="stable")
+        rows = np.split(order, np.cumsum(np.bincount(which, minlength=sets.size))[:-1])
+        names = self.selection(tuple(inputs), None)
+        Z = self.design(names, effects, None)
+        members = {k: [i for i, c in enumerate(sets.tolist()) if c >> bit & 1]
+                   for bit, k in enumerate(folds)}
+        return CampaignLeastSquares(Z, p.y, rows, fit_intercept=True), members
 
     def _block_mse(self, err: np.ndarray) -> np.ndarray:
         """Each test block's mean of ``err`` (rows x columns): blocks x columns."""

@@ -34,6 +34,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...core.models._campaign_ls import at_cutoff
+
 ALPHAS = np.r_[0.0, np.logspace(-7, 1, 17)]   # penalties tried by the CV (0 = least squares)
 _RANK_TOL = 1e-10                             # relative eigenvalue floor of the residual Gram
 
@@ -86,13 +88,36 @@ class PartialRidgePath:
         self.y_mean = float(y.mean()) if fit_intercept else 0.0
         Zc = Z - self.z_mean
         A, F = Zc[:, :self.n_free], Zc[:, self.n_free:]
-        sd = F.std(axis=0)
+        self._solve(A, F, F.std(axis=0), y - self.y_mean, None)
+
+    @classmethod
+    def from_triangle(cls, R, n: int, mean, n_free: int) -> "PartialRidgePath | None":
+        """The path (with intercept) from ``R``, the triangular factor of ``[Z, y]`` centred on
+        the ``n`` rows (``CampaignLeastSquares.union``: ``Q^T [Z_c, y_c]``), and their means
+        ``mean`` of ``[Z, y]``: the same least squares and Gram matrices as on the rows, so the
+        same path up to rounding.  ``None`` when a singular value of the inputs' part lies within
+        a factor 100 of lstsq's cut-off (only the rows then decide the rank)."""
+        self = cls.__new__(cls)
+        self.n_free, self.fit_intercept, self.n = int(n_free), True, int(n)
+        self.z_mean, self.y_mean = np.asarray(mean[:-1], float), float(mean[-1])
+        A, F = R[:, :self.n_free], R[:, self.n_free:-1]
+        # the rows' rcond=None: eps * max(rows, columns) of the inputs' block
+        rcond = np.finfo(float).eps * max(self.n, self.n_free)
+        sd = np.sqrt(np.sum(F ** 2, axis=0) / self.n)     # Q is orthogonal: the centred norms
+        return self if self._solve(A, F, sd, R[:, -1], rcond) else None
+
+    def _solve(self, A, F, sd, yc, rcond) -> bool:
+        """Fill the path from the centred inputs ``A``, effect features ``F`` (their standard
+        deviations ``sd``) and target ``yc`` -- on the rows, or rotated by ``Q^T`` (``rcond``
+        given: then False, nothing filled, where a singular value is at the cut-off)."""
         self.f_scale = np.where(sd > 0, sd, 1.0)
         Fs = F / self.f_scale
         # least squares of y and of every standardised feature on the inputs
-        coef, *_ = np.linalg.lstsq(A, np.column_stack([y - self.y_mean, Fs]), rcond=None)
+        coef, _, _, s = np.linalg.lstsq(A, np.column_stack([yc, Fs]), rcond=rcond)
+        if rcond is not None and at_cutoff(s, rcond, 100.0):
+            return False
         self.b_y, self.B_f = coef[:, 0], coef[:, 1:]
-        ry, RF = y - self.y_mean - A @ self.b_y, Fs - A @ self.B_f
+        ry, RF = yc - A @ self.b_y, Fs - A @ self.B_f
         if Fs.shape[1]:
             lam, V = np.linalg.eigh(RF.T @ RF)
         else:
@@ -100,6 +125,7 @@ class PartialRidgePath:
         keep = lam > _RANK_TOL * max(float(lam.max()) if lam.size else 0.0, 1e-300)
         self.lam, self.V = lam[keep], V[:, keep]
         self.u = self.V.T @ (RF.T @ ry)
+        return True
 
     def _weights(self, alphas) -> np.ndarray:
         """Standardised effect coefficients ``(q, n_alphas)``."""
