@@ -40,7 +40,7 @@ def _flat(state, labels: list | None = None) -> np.ndarray:
         return np.zeros(0)
     if isinstance(state, dict):
         state = [state[k] for k in sorted(state)]
-    if isinstance(state, (tuple, list)) or getattr(state, "dtype", None) == object:
+    if isinstance(state, (tuple, list)) or (isinstance(state, np.ndarray) and state.dtype == object):
         return np.concatenate([np.zeros(0)] + [_flat(v, labels) for v in state])
     return np.asarray(state, dtype=float).ravel()
 
@@ -64,15 +64,17 @@ def _rows(deployed, df):
     return df[deployed.columns_].to_numpy(float), df[TIME].to_numpy(float)
 
 
-def _loop(deployed, X, t) -> np.ndarray:
+def _loop(deployed, X, t, clamps: list | None = None) -> np.ndarray:
     """The row-by-row stream (warm before warm59): each row through ``_step``, a missing value
-    passed over."""
+    passed over; each row's clamp count appended to ``clamps``."""
     y = np.full((len(X), len(deployed.targets_)), np.nan)
     for i in range(len(X)):
         try:
-            y[i] = deployed._step(X[i], t[i])[0]
+            y[i], n = deployed._step(X[i], t[i])
         except MissingValueError:
             continue
+        if clamps is not None:
+            clamps.append(n)
     return y
 
 
@@ -167,14 +169,18 @@ def test_warm_refuses_an_excess_at_its_row_under_refuse(data):
     assert s.n_samples_ == 0                          # reset, as before
 
 
-def test_the_adaptive_stream_in_one_go_equals_its_row_by_row_stream(data):
+@pytest.mark.parametrize("faults", [False, True])
+def test_the_adaptive_stream_in_one_go_equals_its_row_by_row_stream(data, faults):
     camps, train = data
     comp = _family("lagbank").fit(train)
     s = StreamingCompensator.from_training(comp, train, policy="clamp")
     a = AdaptiveCompensator.from_training(s, train)
-    lead = _lead(camps)
-    lead.loc[200, "T_2"] = np.nan                     # the monitor reconstructs it
-    lead.loc[201:205, "S_rpm"] = np.nan               # held by the adaptive compensator
+    # quiet: one campaign, every sensor ok throughout (the monitor's and the guard's blocks run
+    # to its end); faults: three joined (a jump at each join), a dropout, a missing state
+    lead = _lead(camps) if faults else camps["K01"].copy()
+    if faults:
+        lead.loc[200, "T_2"] = np.nan                 # the monitor reconstructs it
+        lead.loc[201:205, "S_rpm"] = np.nan           # held by the adaptive compensator
     X, t = _rows(a, lead)
     a.reset()
     looped = np.array([a._step(X[i], t[i])[0] for i in range(len(X))])
@@ -222,3 +228,55 @@ class _NoBlock:
 def test_row_context_takes_each_rows_values_and_keeps_the_scalars():
     ctx = {"campaign": "c", "ambient_c0": 21.0, "time": np.array([0.0, 60.0])}
     assert row_context(ctx, 1, 2) == {"campaign": "c", "ambient_c0": 21.0, "time": 60.0}
+
+
+@pytest.mark.parametrize("pattern", [True, False])
+def test_a_lead_in_beyond_the_envelope_streams_as_row_by_row_under_clamp(data, pattern):
+    # three campaigns joined leave the envelope: along the training pattern a row passes as
+    # is (in one go with its neighbours), off it the clamp forks (row by row from there)
+    camps, train = data
+    comp = _family("lagbank").fit(train)
+    s = StreamingCompensator.from_training(comp, train, policy="clamp", pattern=pattern)
+    X, t = _rows(s, _lead(camps))
+    s.reset()
+    counted: list = []
+    looped = _loop(s, X, t, counted)
+    expected = s._snapshot()
+    s.reset()
+    y, clamps, _ = s.run_rows(X, t)
+    assert clamps.tolist() == counted and (not pattern or not any(counted[:240]))
+    np.testing.assert_allclose(y, looped, rtol=1e-9, atol=1e-9)
+    _same(s._states, expected[2])
+    _same(s._held, expected[5])
+    assert s._bounds == pytest.approx(expected[8])
+
+
+def _along(rng, heat: float, n: int = 240) -> pd.DataFrame:
+    """Three sensors heating together (one pattern), the error following them."""
+    t = np.arange(n) * 60.0
+    h = heat * (1 - np.exp(-t / 3000.0))
+    return pd.DataFrame({"time": t, "T_1": 20 + h + rng.normal(0, 0.01, n),
+                         "T_2": 20 + 0.5 * h + rng.normal(0, 0.01, n),
+                         "T_3": 20 + 0.8 * h + rng.normal(0, 0.01, n),
+                         "E_Z": 2 * h + rng.normal(0, 0.01, n)})
+
+
+def test_a_hotter_lead_in_along_the_training_pattern_streams_in_one_go():
+    from thermocomp.core.compensator import Compensator
+
+    rng = np.random.default_rng(5)
+    train = {f"K{i}": _along(rng, 8.0) for i in range(4)}
+    s = StreamingCompensator.from_training(Compensator(LagBank(n_taus=3)).fit(train), train,
+                                           policy="clamp")
+    X, t = _rows(s, _along(rng, 12.0))              # half as hot again: past the envelope
+    s.reset()
+    counted: list = []
+    looped = _loop(s, X, t, counted)
+    expected = s._snapshot()
+    s.reset()
+    assert _stepped_rows(s, X, t) == [0]              # passed as is, as _step passes them
+    out = ((X - X[0] < s.envelope.lo) | (X - X[0] > s.envelope.hi)).any(axis=1)
+    assert s.envelope.basis is not None and out.sum() > 100 and not any(counted)
+    _same(s._states, expected[2])
+    s.reset()
+    np.testing.assert_allclose(s.run_rows(X, t)[0], looped, rtol=1e-9, atol=1e-9)
