@@ -6,6 +6,9 @@ wrappers) has the signatures
 * ``fit(X, y, context=None)`` and ``predict(X, context=None)`` -- batch;
 * ``stream_init(context) -> state`` and ``stream_step(x_row, state, context)
   -> (y_hat, state)`` -- one sample at a time, causal, for deployment;
+* optionally ``stream_steps(X, state, context) -> (y, state)``: a block of rows at once, equal
+  to ``stream_step`` row after row to rounding (:func:`stream_steps`; a lead-in of a year is
+  then one call, not 473,041);
 * optionally ``step_gain(state, horizon_s) -> ndarray``: per input, the change of the
   prediction a unit step of that input held for ``horizon_s`` seconds makes (see
   :func:`step_gain`), for a model whose prediction is linear in its inputs; the training

@@ -44,6 +44,12 @@ benchmarks/bench_envelope_policy.py a lag bank's Σ² moved by -0.3 % to +1.5 %,
 not at all.  A model without a step gain (LSTM,
 ARX+RF, a blend holding one) is streamed on the clamped inputs alone.
 
+:meth:`StreamingCompensator.run_rows` streams a block of rows as :meth:`~StreamingCompensator._step`
+does row by row, the rows it takes as they are (in the envelope or along its pattern, finite, in
+time order, no clamped stream yet) through each model in one go
+(:func:`thermocomp.core.context.stream_steps`): :func:`warm` on a year's lead-in of 473,041 rows
+(replay 60.8 s of CPU, 29.3 s so; benchmarks/bench_scale58.py, warm59).
+
 The per-sample context is built by :func:`thermocomp.core.frame.context_record`,
 the rule :func:`thermocomp.core.frame.stack` applies to a whole batch; the columns
 it carries are what the fitted estimators declare in ``context_columns_``.
