@@ -280,3 +280,23 @@ def test_a_hotter_lead_in_along_the_training_pattern_streams_in_one_go():
     _same(s._states, expected[2])
     s.reset()
     np.testing.assert_allclose(s.run_rows(X, t)[0], looped, rtol=1e-9, atol=1e-9)
+
+
+def test_hammerstein_block_holds_a_missing_state_as_its_steps_do(data):
+    camps, train = data
+    comp = _family("hammerstein").fit(train)
+    est = comp.estimators_["E_Z"]
+    assert est.state_columns_                         # a machine state enters (S_door)
+    df = camps["K04"]
+    X = df[list(comp.selected_["E_Z"])].to_numpy(float)
+    X = X - X[0]
+    context = {"campaign": "c", "time": df["time"].to_numpy(float)}
+    for c in est.state_columns_:
+        values = df[c].to_numpy(float).copy()
+        values[100:140] = np.nan                      # a state not read: the last one held
+        context[c] = values
+    state = est.stream_init({"campaign": "c", "time": 0.0})
+    y_block, s_block = est.stream_steps(X, state, context)
+    y_loop, s_loop = stream_steps(_NoBlock(est), X, state, context)
+    np.testing.assert_allclose(y_block, y_loop, rtol=1e-9, atol=1e-12)
+    _same(s_block, s_loop)
