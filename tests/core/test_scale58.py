@@ -78,7 +78,7 @@ def test_the_warm_up_says_how_many_rows_it_streams(caplog):
         leads = lead_ins(SimpleNamespace(reference="none"), ds, ["B"])
 
     assert len(leads["B"]) == 120
-    assert "B continues A; 120 rows streamed row by row" in caplog.text
+    assert "B continues A; 120 rows streamed before scoring" in caplog.text
 
 
 def test_a_large_caller_draws_its_figures_itself(tmp_path, monkeypatch):

@@ -6,6 +6,9 @@ wrappers) has the signatures
 * ``fit(X, y, context=None)`` and ``predict(X, context=None)`` -- batch;
 * ``stream_init(context) -> state`` and ``stream_step(x_row, state, context)
   -> (y_hat, state)`` -- one sample at a time, causal, for deployment;
+* optionally ``stream_steps(X, state, context) -> (y, state)``: a block of rows at once, equal
+  to ``stream_step`` row after row to rounding (:func:`stream_steps`; a lead-in of a year is
+  then one call, not 473,041);
 * optionally ``step_gain(state, horizon_s) -> ndarray``: per input, the change of the
   prediction a unit step of that input held for ``horizon_s`` seconds makes (see
   :func:`step_gain`), for a model whose prediction is linear in its inputs; the training
@@ -129,6 +132,34 @@ def step_gain(estimator, state=None, horizon_s: float = np.inf) -> np.ndarray | 
         return None
     gain = method(state, horizon_s)
     return None if gain is None or not np.isfinite(gain).all() else np.asarray(gain, float)
+
+
+def row_context(context: Mapping | None, i: int, n: int) -> dict | None:
+    """Row ``i`` of a block's stream context (:func:`stream_steps`): an array of ``n`` values
+    gives its ``i``-th, any other value (the campaign, ``ambient_c0``) is the row's as it is."""
+    if context is None:
+        return None
+    return {k: v[i] if isinstance(v, np.ndarray) and v.ndim == 1 and len(v) == n else v
+            for k, v in context.items()}
+
+
+def stream_steps(estimator, X: np.ndarray, state, context: Mapping | None = None):
+    """``(y, state)`` of the rows of ``X`` (n, p) streamed one after the other from ``state``:
+    ``y`` (n,) the predictions ``stream_step`` gives, ``state`` the one after the last row.
+
+    ``context`` maps each column to an array of ``n`` values (``time``, raw columns) or to one
+    value for every row (``campaign``, ``ambient_c0``).  An estimator that defines
+    ``stream_steps(X, state, context)`` computes the block in one go (its lag filters by
+    :func:`scipy.signal.lfilter`, its feedback from the block's predictions), equal to the loop
+    to rounding; any other is stepped row by row here (the one definition of the result)."""
+    method = getattr(estimator, "stream_steps", None)
+    if callable(method):
+        return method(X, state, context)
+    X = np.asarray(X, dtype=float)
+    y = np.empty(len(X))
+    for i in range(len(X)):
+        y[i], state = estimator.stream_step(X[i], state, row_context(context, i, len(X)))
+    return y, state
 
 
 def feedback_gain(gain: np.ndarray, ar_coef: float) -> np.ndarray | None:

@@ -211,7 +211,7 @@ def said_warmed(carried: dict[str, list[str]], leads: dict[str, pd.DataFrame]) -
     if carried:
         rows = sum(len(df) for df in leads.values())
         say("stream warmed on the campaigns it continues (state carried over, unscored): "
-            + carried_text(carried) + f"; {rows:,} rows streamed row by row before scoring")
+            + carried_text(carried) + f"; {rows:,} rows streamed before scoring")
 
 
 def said_if_not_carried(comp, ds: Dataset, ids) -> None:

@@ -30,6 +30,8 @@ from .pod import ThermalPOD
 from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
 from .surveillance import SensorMonitor
 
+INPUT_ROWS = 4096    # rows the monitor reads in one go at most (a failed try costs little per row)
+
 
 class AdaptiveCompensator:
     """Streaming compensator + sensor monitor + correction guard (see module doc).
@@ -192,6 +194,19 @@ class AdaptiveCompensator:
         self.last_events_: list[dict] = []    # a step that fails reports none, not the last ones
         events: list[dict] = []
         t, dt = self._check_time(float(time), events)
+        x = self._inputs(x, t, events)
+        try:
+            y, clamped = self.streaming._step(x, t, clocked=True)
+            stepped = True
+        except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
+            y, clamped, stepped = np.full(len(self.targets_), np.nan), 0, False
+            events.append(_held_event(t, exc))
+        self._output(y, dt, t, self._allowance(stepped), events)
+        return self._y, clamped
+
+    def _inputs(self, x: np.ndarray, t: float, events: list) -> np.ndarray:
+        """The row the model reads: the monitored temperatures judged (an excluded one replaced),
+        a missing other input held."""
         if self.monitor is not None:
             clean, ev = self.monitor.update(x if self._mon_all else x[self._mon], t)
             events += ev
@@ -214,23 +229,149 @@ class AdaptiveCompensator:
             if self.monitor is None:
                 x = x.copy()
             x[self._other] = self._hold(x[self._other], t, events)
-        try:
-            y, clamped = self.streaming._step(x, t, clocked=True)
-            stepped = True
-        except ValueError as exc:    # OutOfEnvelopeError (policy=refuse) and its kin
-            y, clamped, stepped = np.full(len(self.targets_), np.nan), 0, False
-            events.append({"time": t, "sensor": None, "from": "running", "to": "held",
-                           "reason": f"correction held: {exc}"})
+        return x
+
+    def _output(self, y: np.ndarray, dt: float, t: float, allowance, events: list) -> None:
+        """The guarded correction of the model's ``y`` (``self._y``); the row counted, its events kept."""
         if self.guard is not None:
             y, ev = self.guard.step(y, dt, t, self.monitor is not None and self.monitor.new_state_,
-                                    self._allowance(stepped))
+                                    allowance)
             events += ev
         elif not np.all(np.isfinite(y)):
             y = np.where(np.isfinite(y), y, 0.0 if self._y is None else self._y)
         self._y = y
         self.n_samples_ += 1
         self.last_events_ = events
-        return y, clamped
+
+    def run_rows(self, X: np.ndarray, time: np.ndarray, on_refused=None
+                 ) -> tuple[np.ndarray, np.ndarray]:
+        """``(y, n_clamped)`` of the rows of ``X`` streamed one after the other, as :meth:`_step`
+        gives them, in three passes (the model reads nothing of the monitor's or the guard's
+        state, nor they of its): the time rule, the monitor and the hold; the plain stream over
+        the rows they give (:meth:`StreamingCompensator.run_rows`); the guard.  Each pass takes
+        in one go the rows its fast path takes as they are (the time read in order, every sensor
+        ok and nothing firing, no missing input, a correction within rate and bound), the others
+        row by row.  Each row's events are dropped but the last row's (``last_events_``).  A
+        ``ValueError`` of the time rule or the monitor goes to ``on_refused(i, exc)`` (raised
+        without it), as :meth:`_step` raises it."""
+        n = len(X)
+        xs = np.array(X, dtype=float, copy=True)
+        ts, dts = np.empty(n), np.empty(n)
+        novel = np.zeros(n, dtype=bool)
+        events: dict[int, list] = {}
+        done = np.ones(n, dtype=bool)
+        i = 0
+        while i < n:
+            m = self._inputs_block(X, time, i, xs, ts, dts, novel)
+            if m:
+                i += m
+                continue
+            events[i] = row_events = []
+            try:
+                ts[i], dts[i] = self._check_time(float(time[i]), row_events)
+                xs[i] = self._inputs(xs[i], ts[i], row_events)
+                novel[i] = self.monitor is not None and self.monitor.new_state_
+            except ValueError as exc:
+                if on_refused is None:
+                    raise
+                done[i] = False
+                on_refused(i, exc)
+            i += 1
+        refused = np.zeros(n, dtype=bool)
+
+        def held(k: int, exc: ValueError) -> None:
+            refused[rows[k]] = True
+            events.setdefault(rows[k], []).append(_held_event(ts[rows[k]], exc))
+
+        rows = np.flatnonzero(done)
+        y, clamps, dx = self.streaming.run_rows(xs[rows], ts[rows], clocked=True, on_refused=held)
+        out = np.full((n, len(self.targets_)), np.nan)
+        clamped = np.zeros(n, dtype=np.int64)
+        clamped[rows] = clamps
+        self._guard_rows(rows, y, dx, dts, ts, novel, refused, events, out)
+        self.last_events_ = events.get(n - 1, []) if n else []
+        return out, clamped
+
+    def _inputs_block(self, X, time, start: int, xs, ts, dts, novel) -> int:
+        """The rows from ``start`` that the time rule, the monitor and the hold take on their fast
+        paths, in one go (``xs``, ``ts``, ``dts``, ``novel`` filled in); how many (0: the next
+        row goes row by row)."""
+        mon = self.monitor
+        if self._time_bad or (mon is not None and (
+                self._base is None or (self._absolute and self._late.any()))):
+            return 0
+        if self._held_state.any():
+            return 0
+        first, t_prev, t_read, shift = self._clock.snapshot()
+        if first or not np.isfinite(shift):
+            return 0
+        block = X[start:start + INPUT_ROWS]
+        t = np.asarray(time[start:start + len(block)], dtype=float)
+        with np.errstate(invalid="ignore"):          # a missing time compares False: not read
+            ok = t > np.r_[t_read, t[:-1]]
+        if len(self._other):
+            ok &= np.isfinite(block[:, self._other]).all(axis=1)
+        m = len(block) if ok.all() else int(np.argmin(ok))
+        if not m:
+            return 0
+        block = block[:m].copy()
+        if mon is not None:
+            clean = mon.update_block(block if self._mon_all else block[:, self._mon])
+            m = len(clean)
+            if not m:
+                return 0
+            block = block[:m]
+            if self._mon_all:
+                block = self._base + clean
+            else:
+                block[:, self._mon] = self._base + clean
+        rows = slice(start, start + m)
+        now = t[:m] - shift                          # the clock's own subtraction
+        xs[rows], ts[rows], dts[rows] = block, now, np.diff(np.r_[t_prev, now])
+        novel[rows] = mon is not None and mon.new_state_
+        self._clock.restore((False, float(now[-1]), float(t[m - 1]), shift))
+        if len(self._other):
+            self._held = block[-1, self._other].copy()
+        return m
+
+    def _guard_rows(self, rows, y, dx, dts, ts, novel, refused, events, out) -> None:
+        """The guard over the plain stream's ``y`` of ``rows`` (``out`` filled in, ``events``
+        added to): in one go where its fast path takes them, else row by row as :meth:`_step`."""
+        guard = self.guard
+        # rows the guard may take in one go: stepped, no allowance (the inputs in their range)
+        plain = ~refused[rows]
+        env = self.envelope
+        if (guard is not None and guard.in_gain is not None and self.policy == "clamp"
+                and env is not None and env.basis is not None):   # a bound that follows them
+            with np.errstate(invalid="ignore"):
+                beyond = np.maximum(dx - guard.in_hi, guard.in_lo - dx).max(axis=1) > 0.0
+            plain &= ~beyond
+        nxt = np.minimum.accumulate(np.where(plain, len(rows), np.arange(len(rows)))[::-1])[::-1]
+        k = 0
+        while k < len(rows):
+            if guard is not None and plain[k]:
+                r = rows[k:nxt[k]]
+                m = guard.step_block(y[k:nxt[k]], dts[r], novel[r])
+                if m:
+                    out[rows[k:k + m]] = y[k:k + m]
+                    self._y = y[k + m - 1].copy()
+                    self.n_samples_ += m
+                    k += m
+                    continue
+            i = rows[k]
+            row_events = events.setdefault(i, [])
+            allowance = None if refused[i] or guard is None else \
+                stream_allowance(guard, self.streaming, dx[k])
+            if guard is not None:
+                y_i, ev = guard.step(y[k], dts[i], ts[i], novel[i], allowance)
+                row_events += ev
+            else:
+                y_i = y[k]
+                if not np.all(np.isfinite(y_i)):
+                    y_i = np.where(np.isfinite(y_i), y_i, 0.0 if self._y is None else self._y)
+            self._y = out[i] = y_i
+            self.n_samples_ += 1
+            k += 1
 
     def _allowance(self, stepped: bool) -> np.ndarray | None:
         return stream_allowance(self.guard, self.streaming) if stepped else None
@@ -290,11 +431,19 @@ class AdaptiveCompensator:
         return out
 
 
-def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator) -> np.ndarray | None:
+def _held_event(t: float, exc: Exception) -> dict:
+    """The event of a row the plain stream refused: the correction held."""
+    return {"time": t, "sensor": None, "from": "running", "to": "held",
+            "reason": f"correction held: {exc}"}
+
+
+def stream_allowance(guard: CorrectionGuard, streaming: StreamingCompensator,
+                     x: np.ndarray | None = None) -> np.ndarray | None:
     """How far ``guard``'s bound widens for the inputs ``streaming``'s model read at its last
-    sample (:meth:`~.guard.CorrectionGuard.allowance`): with the envelope's clamp, which carries
-    the training pattern (so does the code); ``None`` before a sample or without a following bound."""
-    x = getattr(streaming, "last_x_", None)
+    sample (or ``x``, a row's of a block; :meth:`~.guard.CorrectionGuard.allowance`): with the
+    envelope's clamp, which carries the training pattern (so does the code); ``None`` before a
+    sample or without a following bound."""
+    x = getattr(streaming, "last_x_", None) if x is None else x
     if x is None or getattr(streaming, "policy", None) != "clamp":
         return None                           # (the guard says None without a following bound)
     return guard.allowance(x, streaming.envelope)

@@ -111,6 +111,26 @@ class CorrectionGuard:
         self._calm = snap[2].copy()
         self._free = all(s == FREE for s in self._state)
 
+    def step_block(self, Y: np.ndarray, dt: np.ndarray, new_state: np.ndarray) -> int:
+        """How many of the first rows of ``Y`` (model corrections, (m, targets)) :meth:`step`
+        passes as they are on its fast path (every target free, finite, within rate and bound;
+        no allowance: the inputs within their training range), taken in one go; the rows after
+        them are for :meth:`step`."""
+        if not self._free or self._prev is None or not len(Y):
+            return 0
+        with np.errstate(invalid="ignore"):
+            lim = self.max_rate_per_s * np.where(dt > 0, dt, self.period_s)[:, None]
+            wide = (new_state & (self.lo_new is not None))[:, None]
+            lo = np.where(wide, self.lo if self.lo_new is None else self.lo_new, self.lo)
+            hi = np.where(wide, self.hi if self.hi_new is None else self.hi_new, self.hi)
+            ok = (np.isfinite(Y).all(axis=1)
+                  & (np.abs(Y - np.vstack([self._prev, Y[:-1]])) <= lim).all(axis=1)
+                  & (Y >= lo).all(axis=1) & (Y <= hi).all(axis=1))
+        m = len(Y) if ok.all() else int(np.argmin(ok))
+        if m:
+            self._prev = Y[m - 1].copy()
+        return m
+
     def step(self, y: np.ndarray, dt: float, time: float, new_state: bool = False,
              allowance: np.ndarray | None = None) -> tuple[np.ndarray, list[dict]]:
         """Guarded correction for the model's ``y`` (NaN: held at the previous one);

@@ -44,6 +44,12 @@ benchmarks/bench_envelope_policy.py a lag bank's Σ² moved by -0.3 % to +1.5 %,
 not at all.  A model without a step gain (LSTM,
 ARX+RF, a blend holding one) is streamed on the clamped inputs alone.
 
+:meth:`StreamingCompensator.run_rows` streams a block of rows as :meth:`~StreamingCompensator._step`
+does row by row, the rows it takes as they are (in the envelope or along its pattern, finite, in
+time order, no clamped stream yet) through each model in one go
+(:func:`thermocomp.core.context.stream_steps`): :func:`warm` on a year's lead-in of 473,041 rows
+(replay 60.8 s of CPU, 29.3 s so; benchmarks/bench_scale58.py, warm59).
+
 The per-sample context is built by :func:`thermocomp.core.frame.context_record`,
 the rule :func:`thermocomp.core.frame.stack` applies to a whole batch; the columns
 it carries are what the fitted estimators declare in ``context_columns_``.
@@ -60,7 +66,15 @@ import numpy as np
 import pandas as pd
 
 from ...core.compensator import Compensator
-from ...core.context import AMBIENT_C0, RESERVED, TIME, context_columns, merge_columns, step_gain
+from ...core.context import (
+    AMBIENT_C0,
+    RESERVED,
+    TIME,
+    context_columns,
+    merge_columns,
+    step_gain,
+    stream_steps,
+)
 from ...core.continuation import campaign_period
 from ...core.frame import ambient_c0, context_record
 from ...core.io.contract import is_ambient, manifest_ambient
@@ -387,6 +401,10 @@ class StreamingCompensator:
         The rows go through :meth:`step` one by one; the state advances only
         when the whole block is accepted.
         """
+        return self._frame(*step_block(self, *self._rows(frame)))
+
+    def _rows(self, frame: pd.DataFrame) -> tuple[np.ndarray, np.ndarray]:
+        """``(X, time)`` of ``frame``'s rows, the columns :meth:`predict` reads."""
         need = self.columns_ + ([TIME] if self.time_required_ else [])
         missing = [c for c in need if c not in frame.columns]
         if missing:
@@ -394,7 +412,9 @@ class StreamingCompensator:
         X = np.column_stack([frame[c].to_numpy(dtype=float) for c in self.columns_]) \
             if self.columns_ else np.empty((len(frame), 0))
         time = frame[TIME].to_numpy(float) if TIME in frame.columns else np.full(len(frame), np.nan)
-        y, clamps = step_block(self, X, time)
+        return X, time
+
+    def _frame(self, y: np.ndarray, clamps: np.ndarray) -> pd.DataFrame:
         out = pd.DataFrame(y, columns=self.targets_)
         out["n_clamped"] = clamps
         return out
@@ -478,8 +498,104 @@ class StreamingCompensator:
         self.n_samples_ += 1
         return y, n_clamped
 
+    # -- blocks of rows ---------------------------------------------------------------------
+    def run_rows(self, X: np.ndarray, time: np.ndarray, clocked: bool = False, on_refused=None
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """``(y, n_clamped, dx)`` of the rows of ``X`` streamed one after the other, as
+        :meth:`_step` gives them row by row (``dx``: each row's ``last_x_``, the inputs as the
+        models read them).
 
-WARM_BAR_ROWS = 10_000   # a shorter lead-in streams in a few seconds: no bar
+        A run of rows the stream takes as they are -- the campaign started, no excess streamed
+        yet (no clamped stream), no denoiser, every checked input finite and inside the
+        envelope (or the policy off), each time read after the last one on a set clock -- goes
+        through each model in one go (:func:`~thermocomp.core.context.stream_steps`, equal to
+        the loop to rounding); any other row through :meth:`_step`, so that a refusal, a clamp
+        or a substituted time is what it was.  A row :meth:`_step` refuses (``ValueError``)
+        leaves the state as it found it and its ``y`` NaN: ``on_refused(i, exc)`` is called,
+        or the error raised when there is none.
+        """
+        n = len(X)
+        y = np.full((n, len(self.targets_)), np.nan)
+        clamps = np.zeros(n, dtype=np.int64)
+        dx = np.full((n, self._n_inputs), np.nan)
+        i = 0
+        while i < n:
+            stop = self._run_batch(X, time, i, clocked, y, dx)
+            if stop > i:
+                i = stop
+                continue
+            try:
+                y[i], clamps[i] = self._step(X[i], time[i], clocked)
+                dx[i] = self.last_x_
+            except ValueError as exc:
+                if on_refused is None:
+                    raise
+                on_refused(i, exc)
+            i += 1
+        return y, clamps, dx
+
+    def _run_batch(self, X, time, start: int, clocked: bool, y, dx) -> int:
+        """Stream the rows from ``start`` that :meth:`run_rows` may take in one go (at most
+        ``BLOCK_ROWS``), their ``y`` and ``dx`` filled in; the row after them (``start``: none)."""
+        if self._ref is None or self._held is not None or self.denoiser is not None:
+            return start
+        if not self._clock_set(clocked):
+            return start
+        # a few rows first: a stretch the loop must take costs little per row
+        m = self._batchable(X, time, start, PROBE_ROWS, clocked)
+        if m == PROBE_ROWS:
+            m = self._batchable(X, time, start, BLOCK_ROWS, clocked)
+        if not m:
+            return start
+        block = X[start:start + m]
+        d = block[:, :self._n_inputs] - self._ref
+        t = np.asarray(time[start:start + m], dtype=float)
+        if self._clock is not None and not clocked:
+            shift = self._clock.shift
+            t = t - shift                            # the clock's own subtraction
+            self._clock.restore((False, float(t[-1]), float(time[start + m - 1]), shift))
+        context = context_record(STREAM_ID, t, self._ambient_c0,
+                                 {c: block[:, j] for c, j in self._raw})
+        rows = slice(start, start + m)
+        for k, (target, est, idx) in enumerate(self._plan):
+            y[rows, k], self._states[target] = stream_steps(
+                est, d if idx is None else d[:, idx], self._states[target], context)
+        dx[rows] = d
+        self.last_x_ = d[-1]
+        self.n_samples_ += m
+        return start + m
+
+    def _clock_set(self, clocked: bool) -> bool:
+        """The stream's clock reads a time as it is (its offset set by an earlier row)."""
+        if self._clock is None or clocked:
+            return True
+        first, _, _, shift = self._clock.snapshot()
+        return not first and bool(np.isfinite(shift))
+
+    def _batchable(self, X, time, start: int, size: int, clocked: bool) -> int:
+        """How many rows from ``start`` (at most ``size``) :meth:`_step` would take as they are:
+        every checked input finite, inside the envelope or (clamp) on its training pattern, each
+        time read after the last one."""
+        block = X[start:start + size]
+        ok = np.isfinite(block[:, :self._n_checked]).all(axis=1)
+        if self._clock is not None and not clocked:
+            t = np.asarray(time[start:start + len(block)], dtype=float)
+            with np.errstate(invalid="ignore"):      # a missing time compares False: not read
+                ok &= t > np.r_[self._clock.t_read, t[:-1]]
+        m = len(block) if ok.all() else int(np.argmin(ok))
+        env = self.envelope
+        if not m or env is None or self.policy == "off":
+            return m
+        d = block[:m, :self._n_inputs] - self._ref
+        for i in np.flatnonzero(((d < env.lo) | (d > env.hi)).any(axis=1)):
+            # passed as is along the training pattern (clamp), as _step decides it, row by row
+            if self.policy != "clamp" or env.leaves_pattern(d[i]):
+                return int(i)
+        return m
+
+
+PROBE_ROWS = 256
+BLOCK_ROWS = 1 << 15     # rows streamed in one go at most: a lag bank's filtered block stays small
 
 
 def warm(deployed, lead_in: pd.DataFrame | None = None, campaign: pd.DataFrame | None = None
@@ -499,20 +615,18 @@ def warm(deployed, lead_in: pd.DataFrame | None = None, campaign: pd.DataFrame |
     deployed.reset(float("nan") if start is None else manifest_ambient(start))
     if lead_in is None or not len(lead_in):
         return
-    from ...base.progress import bar
-
     X = lead_in[deployed.columns_].to_numpy(float)
     t = lead_in[TIME].to_numpy(float) if TIME in lead_in.columns else np.full(len(X), np.nan)
-    # a year's lead-in is minutes of rows streamed one by one: a bar (a terminal, or -v) says so
-    for i in bar(range(len(X)), desc="warming", unit="row", disable=len(X) < WARM_BAR_ROWS or None):
-        try:
-            deployed._step(X[i], t[i])
-        except MissingValueError:
-            continue
-        except ValueError as exc:
-            deployed.reset()
-            raise OutOfEnvelopeError(f"warming the stream on the campaign(s) it continues, row "
-                                     f"{i + 1} of {len(X)}: {exc}") from None
+
+    def refused(i: int, exc: ValueError) -> None:
+        if isinstance(exc, MissingValueError):
+            return                                   # passed over, the state held
+        deployed.reset()
+        raise OutOfEnvelopeError(f"warming the stream on the campaign(s) it continues, row "
+                                 f"{i + 1} of {len(X)}: {exc}") from None
+
+    # in one go where the rows allow it (run_rows): a year's lead-in was minutes row by row
+    deployed.run_rows(X, t, on_refused=refused)
 
 
 def batch_prediction(compensator: Compensator, campaign: pd.DataFrame,
@@ -565,6 +679,16 @@ def replay(streaming: StreamingCompensator, campaign: pd.DataFrame, chunk: int |
     (all at once if None)."""
     warm(streaming, lead_in, campaign)
     step = chunk or max(len(campaign), 1)
+    if isinstance(streaming, StreamingCompensator):
+        # predict's blocks on the arrays read once: a DataFrame per block of 7 rows was most of
+        # the causality gate's CPU on a year (promote), the rows still stepped one by one
+        X, time = streaming._rows(campaign)
+        blocks = [step_block(streaming, X[i:i + step], time[i:i + step])
+                  for i in range(0, len(campaign), step)]
+        return streaming._frame(np.concatenate([y for y, _ in blocks]) if blocks else
+                                np.empty((0, len(streaming.targets_))),
+                                np.concatenate([c for _, c in blocks]) if blocks else
+                                np.zeros(0, dtype=np.int64))
     parts = [streaming.predict(campaign.iloc[i:i + step]) for i in range(0, len(campaign), step)]
     return pd.concat(parts, ignore_index=True)
 

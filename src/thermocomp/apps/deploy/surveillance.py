@@ -440,6 +440,66 @@ class SensorMonitor:
         self._clean = clean
         return clean
 
+    def update_block(self, X: np.ndarray) -> np.ndarray:
+        """The referenced field of the first rows of ``X`` (absolute °C, (m, order of ``names``))
+        that :meth:`update` takes on its fast path (:meth:`_fast`: every sensor active and ok,
+        every reading there, nothing firing), in one go; the rows after them are for
+        :meth:`update`.  Returns as many rows as it took (none: the next row needs the full
+        path).  The state is the one :meth:`update` leaves row by row (the ring of readings and
+        errors, the runs of equal readings, the calm counts): a lead-in of a year is read at
+        once (warm59), each detector judged on every row as :meth:`_fast` judges it."""
+        n = len(self.names)
+        X = np.asarray(X, dtype=float)
+        if (not self._quiet or not self._all_active or self._M is None
+                or self._count < self.confirm or not len(X)):
+            return np.empty((0, n))
+        c, window = self.confirm, self.window
+        with np.errstate(invalid="ignore"):     # NaN (unobservable, a missing limit) compares False
+            d = X - self._ref
+            step = d - np.vstack([self._prev, d[:-1]])
+            lim = np.broadcast_to(self._jump_lim, d.shape).copy()
+            if self._gapped:
+                lim[0] = self._jump_lim * self._gap
+            ok = (np.isfinite(d).all(axis=1) & ~(np.abs(X - self._mid) > self._half).any(axis=1)
+                  & ~(np.abs(step) > lim).any(axis=1))
+            pred = d @ self._M.T
+            e = (d - pred) * self._scale
+            ae = np.abs(e)
+            # each row's smallest |error| over the last `confirm` samples, the ring's before it
+            before = self._recent[self._pos, :c - 1][::-1]
+            past = np.abs(np.vstack([self._err[before], e]))
+            a = past[c - 1:]
+            for o in range(c - 1):
+                a = np.minimum(a, past[o:o + len(e)])
+            ok &= ~((ae >= self.alarm_c).any(axis=1) | (a >= self.warning_c).any(axis=1))
+            # the runs of equal readings and the field at each run's start (the freeze rule)
+            same = step == 0
+            rows = np.arange(len(d))[:, None]
+            broke = np.maximum.accumulate(np.where(same, -1, rows), axis=0)
+            run = np.where(same, np.where(broke >= 0, rows - broke, self._run + rows + 1), 0)
+            run_before = np.vstack([self._run, run[:-1]])
+            other = np.where(self._judged, d - e, pred)
+            begun = np.maximum.accumulate(np.where(same & (run_before == 0), rows, -1), axis=0)
+            run_pred = np.where(begun >= 0, np.take_along_axis(other, np.maximum(begun, 0), axis=0),
+                                self._run_pred)
+            ok &= ~self._frozen(same, run, np.abs(other - run_pred)).any(axis=1)
+        m = len(d) if ok.all() else int(np.argmin(ok))
+        if not m:
+            return np.empty((0, n))
+        last = np.arange(max(0, m - window), m)
+        where = (self._pos + last) % window
+        self._hist[where], self._err[where] = d[last], e[last]
+        self._pos = (self._pos + m) % window
+        self._count += m
+        self._calm = self._calm + m
+        self._run, self._run_pred = run[m - 1].astype(np.int64), run_pred[m - 1]
+        self._prev_other = np.where(self._judged, d[m - 1] - e[m - 1], np.nan)
+        self._prev, self._prev_e = d[m - 1], e[m - 1]
+        if self._gapped:
+            self._gap, self._gapped = np.ones(n), False
+        self._last_good = self._clean = d[m - 1]
+        return d[:m]
+
     def _update(self, x: np.ndarray, time: float) -> tuple[np.ndarray, list[dict]]:
         """One sample through every check, in order: reference, instant detectors, late
         reference, freeze, a stepped error, exclusion by judgement, re-admission, states."""

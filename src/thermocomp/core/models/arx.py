@@ -313,6 +313,28 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
         y_hat = float(self.ar_coef_ * state["y_prev"] + u)
         return y_hat, {"y_prev": y_hat, "history": history}
 
+    def stream_steps(self, X, state: dict, context=None) -> tuple[np.ndarray, dict]:
+        """A block of rows at once (:func:`thermocomp.core.context.stream_steps`): the delayed
+        inputs from the history joined to the block, the feedback by ``lfilter`` from the
+        state's previous output."""
+        from scipy.signal import lfilter
+
+        X = np.asarray(X, dtype=float)
+        if not len(X):
+            return np.empty(0), state
+        depth = max((d for _, d in self.terms_), default=0) + 1
+        history = state["history"]
+        # the rows before the block's first as stream_step keeps them (a start: its first row)
+        past = np.tile(X[0], (depth - 1, 1)) if history is None else history[1:]
+        joined = np.vstack([past, X])
+        n = len(X)
+        u = np.full(n, float(self.intercept_))
+        for (j, d), b in zip(self.terms_, self.coef_):      # stream_step's order of the sum
+            u += b * joined[depth - 1 - d:depth - 1 - d + n, j]
+        a = float(self.ar_coef_)
+        y = u if a == 0.0 else lfilter([1.0], [1.0, -a], u, zi=[a * state["y_prev"]])[0]
+        return y, {"y_prev": float(y[-1]), "history": joined[-depth:].copy()}
+
     def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
         """Gain per input (:func:`thermocomp.core.context.step_gain`): each input's
         coefficients summed over its delays, through the AR term at its steady state (ARX

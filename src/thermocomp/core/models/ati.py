@@ -28,6 +28,7 @@ from ..context import (
     merge_columns,
     scalar,
     step_gain,
+    stream_steps,
     subset,
 )
 from ..metrics import rsd, sm_sd
@@ -475,6 +476,15 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
             x = np.concatenate([x, x * (a0 - AMBIENT_CENTRE_C)])
         y_hat, inner = self.estimators_[m].stream_step(x, inner, context)
         return float(y_hat), (m, a0, inner)
+
+    def stream_steps(self, X, state, context=None):
+        """A block of rows at once (:func:`thermocomp.core.context.stream_steps`)."""
+        m, a0, inner = state
+        X = np.asarray(X, dtype=float)
+        if self.interactions_[m]:
+            X = np.hstack([X, X * (a0 - AMBIENT_CENTRE_C)])
+        y, inner = stream_steps(self.estimators_[m], X, inner, context)
+        return y, (m, a0, inner)
 
     def step_gain(self, state=None, horizon_s: float = np.inf):
         """Gain per input of the stream's interval model (:func:`thermocomp.core.context.step_gain`),

@@ -19,7 +19,7 @@ from sklearn.utils.validation import check_is_fitted
 from ...base.errors import ConfigError, ParameterError
 from ...base.log import logger
 from ...base.params import check_estimator, choice, integer, number
-from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_gain, subset
+from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_gain, stream_steps, subset
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
@@ -356,6 +356,9 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def stream_step(self, x_row, state, context=None):
         return self.estimator_.stream_step(x_row, state, context)
+
+    def stream_steps(self, X, state, context=None):
+        return stream_steps(self.estimator_, X, state, context)
 
     def step_gain(self, state=None, horizon_s: float = np.inf):
         check_is_fitted(self, "estimator_")

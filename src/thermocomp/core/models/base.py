@@ -23,6 +23,10 @@ class LinearStreamMixin(SideInputs):
     def stream_step(self, x_row, state, context: Mapping | None = None):
         return float(np.asarray(x_row, dtype=float) @ self.coef_ + self.intercept_), state
 
+    def stream_steps(self, X, state, context: Mapping | None = None):
+        """A block of rows at once (:func:`thermocomp.core.context.stream_steps`): no state."""
+        return np.asarray(X, dtype=float) @ self.coef_ + self.intercept_, state
+
     def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray:
         """Gain per input (:func:`thermocomp.core.context.step_gain`): the coefficients."""
         return np.asarray(self.coef_, float)

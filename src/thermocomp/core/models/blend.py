@@ -14,7 +14,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted
 
-from ..context import SideInputs, context_columns, merge_columns, step_gain
+from ..context import SideInputs, context_columns, merge_columns, step_gain, stream_steps
 from ..model_selection.blocks import cut_blocks, decorrelation_length
 
 MIN_WEIGHT = 0.01   # a member weighted less is dropped (refitting it would buy nothing)
@@ -61,6 +61,11 @@ class Blend(SideInputs, RegressorMixin, BaseEstimator):
     def stream_step(self, x_row, state, context=None):
         steps = [e.stream_step(x_row, s, context) for e, s in zip(self.estimators_.values(), state)]
         return float(np.dot(self.weights_, [y for y, _ in steps])), tuple(s for _, s in steps)
+
+    def stream_steps(self, X, state, context=None):
+        """A block of rows at once (:func:`thermocomp.core.context.stream_steps`), member by member."""
+        steps = [stream_steps(e, X, s, context) for e, s in zip(self.estimators_.values(), state)]
+        return np.column_stack([y for y, _ in steps]) @ self.weights_, tuple(s for _, s in steps)
 
     def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
         """The members' gains, weighted (:func:`thermocomp.core.context.step_gain`); ``None``

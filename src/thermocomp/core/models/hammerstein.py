@@ -217,6 +217,18 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         y_hat, lagbank = self.lagbank_.stream_step(row, state["lagbank"], context)
         return y_hat, {"lagbank": lagbank, "held": held}
 
+    def stream_steps(self, X, state: dict, context: Mapping | None = None) -> tuple[np.ndarray, dict]:
+        """A block of rows at once (:func:`thermocomp.core.context.stream_steps`): each state
+        held over its missing values from the state's, the lag bank's block on the powers."""
+        X = np.asarray(X, dtype=float)
+        if not len(X):
+            return np.empty(0), state
+        now = self._raw_states(context, len(X), self.state_columns_)
+        held = pd.DataFrame(np.vstack([state["held"], now])).ffill().to_numpy()[1:]
+        rows = np.hstack([X, self._basis(held, self.exponents_)])
+        y, lagbank = self.lagbank_.stream_steps(rows, state["lagbank"], context)
+        return y, {"lagbank": lagbank, "held": held[-1].copy()}
+
     def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
         """Gain per input (:func:`thermocomp.core.context.step_gain`): the lag bank's on the
         temperatures (the powers of the states are no inputs)."""

@@ -227,6 +227,33 @@ def _clock_of(t: float | None) -> tuple:
     return CLOCK_START if t is None else (False, float(t), float("nan"), 0.0)
 
 
+def _block_times(context, n: int) -> np.ndarray:
+    """The ``time`` of each of a block's ``n`` rows (NaN where the context has none)."""
+    time = None if context is None else context.get(TIME)
+    if time is None:
+        return np.full(n, np.nan)
+    return np.broadcast_to(np.asarray(time, dtype=float), (n,))
+
+
+def _block_clock(clock: tuple, time: np.ndarray, period_s: float) -> tuple[tuple, np.ndarray]:
+    """``(clock after, dt of each row)`` of :func:`step_time` over a block's ``time``: in one go
+    where every time is read (after the first, the clock's offset is fixed), else row by row."""
+    n = len(time)
+    dt = np.empty(n)
+    if np.isfinite(time).all():
+        clock, now, dt[0], _ = step_time(clock, float(time[0]), period_s)
+        shift = clock[3]
+        if n > 1:
+            now_all = time - shift                # step_time's own subtraction
+            dt[1:] = np.diff(now_all)
+            now_all[0] = now
+            clock = (False, float(now_all[-1]), float(time[-1]), shift)
+        return clock, dt
+    for i in range(n):
+        clock, _, dt[i], _ = step_time(clock, float(time[i]), period_s)
+    return clock, dt
+
+
 def _increments(F, groups) -> np.ndarray:
     """``F(t) - F(t-1)`` per segment, 0 at a segment's first row (steady before it)."""
     return F - F[lag_index(groups, len(F), 1)]
@@ -657,6 +684,48 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         y_hat = float(np.concatenate([x, z - np.tile(x, self.taus_.size)]) @ self.coef_ + self.intercept_
                       + self.ar_coef_ * state["y_prev"])
         return y_hat, {"z": z, "clock": clock, "y_prev": y_hat}
+
+    def stream_steps(self, X, state: dict, context: Mapping | None = None) -> tuple[np.ndarray, dict]:
+        """A block of rows at once (:func:`thermocomp.core.context.stream_steps`): the rows'
+        times by the time rule, each lag by ``lfilter`` from the state's (one call per run of
+        equal steps), the feedback by ``lfilter`` from the state's previous output."""
+        from scipy.signal import lfilter
+
+        X = np.asarray(X, dtype=float)
+        n, p = X.shape
+        if not n:
+            return np.empty(0), state
+        clock = state.get("clock") or _clock_of(state["t"])
+        clock, dt = _block_clock(clock, _block_times(context, n), self.sample_period_s_)
+        coef, taus = self.coef_, self.taus_
+        y = X @ coef[:p] + self.intercept_
+        # a start is steady on its first row; otherwise stream_step's first update
+        z_prev = None if state["z"] is None else state["z"].reshape(taus.size, p)
+        runs = np.flatnonzero(np.r_[True, dt[2:] != dt[1:-1]]) + 1 if n > 1 else np.zeros(0, int)
+        stepwise = len(runs) > max(64, n // 64)   # irregular steps: the recursion row by row
+        z_last = np.empty((taus.size, p))
+        for k in range(taus.size):
+            Z = np.empty((n, p))
+            if z_prev is None:
+                Z[0] = X[0]
+            else:
+                a = np.exp(-dt[0] / taus)[k]
+                Z[0] = a * z_prev[k] + (1.0 - a) * X[0]
+            if stepwise:
+                a = np.exp(-dt[1:] / taus[k])
+                for i in range(1, n):
+                    Z[i] = a[i - 1] * Z[i - 1] + (1.0 - a[i - 1]) * X[i]
+            else:
+                for start, stop in zip(runs, np.r_[runs[1:], n]):
+                    a = np.exp(-dt[start] / taus)[k]    # stream_step's factor, to the bit
+                    Z[start:stop] = lfilter([1.0 - a], [1.0, -a], X[start:stop], axis=0,
+                                            zi=a * Z[start - 1:start])[0]
+            z_last[k] = Z[-1]
+            y += (Z - X) @ coef[p * (k + 1):p * (k + 2)]
+        a = float(self.ar_coef_)
+        if a != 0.0:
+            y = lfilter([1.0], [1.0, -a], y, zi=[a * state["y_prev"]])[0]
+        return y, {"z": z_last.reshape(-1), "clock": clock, "y_prev": float(y[-1])}
 
     def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
         """Gain per input (:func:`thermocomp.core.context.step_gain`) of a step held for
