@@ -113,6 +113,10 @@ Measured (2026-11-30, each step once, on the code after the mends below, 2 share
       auto         1.26 / 0.34   1.61 / 0.84   11.8        0.30 / 0.34   0.92 / 0.88   50.3
       persistence  1.27 / 0.64   1.63 / 1.56               0.43 / 0.43   1.29 / 1.13
 
+(Since autohmc59, ``hammerstein``'s states at rest start their lags at 0, ``state_start=rest``:
+hmc E_Y hammerstein / auto 1.58 / 1.58, E_Z 0.37 / 0.35, ``bench_auto_hmc59.py``; the edm, whose
+power and flags are such states, not re-run.)
+
 ``auto`` against MLR and the best single family (its blend: ``metrics.json`` targets.*.auto):
 **hmc E_Y 1.256 against MLR's 0.780 (+61 %), MLR the best single: auto loses to MLR and misses
 "within 10 %"**.  Its blend: hammerstein 1.0, validated 0.812 against MLR's 1.387 (3 blocked

@@ -41,7 +41,7 @@ HOSTILE = {
     "max_siftings": 0, "s_number": 0, "sd_threshold": 0, "end_effect": "none", "pad": -1,
     "spline": "quintic", "causal": "foo", "causal_taps": 0, "causal_window": 3, "online": "no",
     "states": [], "exponents": [0.0], "choose_exponents": "sometimes", "k": 0, "k_max": 0, "m": 1.0,
-    "rho": 1.5, "random_state": float("nan"),
+    "rho": 1.5, "random_state": float("nan"), "rest_columns": [-1], "state_start": "cold",
 }
 
 

@@ -82,16 +82,16 @@ def window_index(groups, n: int, window: int) -> np.ndarray:
 _UNIFORM_RTOL = 1e-12
 
 
-def first_order_lags(u, time, groups, taus) -> np.ndarray:
+def first_order_lags(u, time, groups, taus, rest=None) -> np.ndarray:
     r"""First-order lags of every column of ``u`` for every time constant, per segment.
 
     .. math:: z_k = a_k\, z_{k-1} + (1 - a_k)\, u_k, \quad a_k = e^{-(t_k - t_{k-1})/\tau},
-       \quad z_0 = u_0
+       \quad z_0 = u_0 \ (\text{a column of } rest\text{: } z_0 = 0)
 
     the exact discretisation of :math:`\tau \dot z + z = u` for an input held
     over each step, for any (also irregular) sampling, starting in steady
-    state at each segment's first sample.  Uniform sampling runs through
-    :func:`scipy.signal.lfilter`; irregular sampling through the recursion
+    state at each segment's first sample, or at rest (0) for the columns ``rest`` marks.
+    Uniform sampling runs through :func:`scipy.signal.lfilter`; irregular sampling through the recursion
     above, all columns and time constants at once.
 
     Parameters
@@ -103,6 +103,9 @@ def first_order_lags(u, time, groups, taus) -> np.ndarray:
         Segment labels (see :func:`segment_starts`).
     taus : sequence of float
         Time constants (s).
+    rest : array of bool (p,) or None
+        Columns whose lags start at 0 (an input that was 0 before the segment: a machine
+        state at rest), not at their first value.
 
     Returns
     -------
@@ -117,20 +120,23 @@ def first_order_lags(u, time, groups, taus) -> np.ndarray:
     time = np.asarray(time, dtype=float)
     p = u.shape[1]
     out = np.empty((len(u), taus.size * p))
+    steady = np.ones(p) if rest is None else 1.0 - np.asarray(rest, dtype=float).reshape(p)
     for start, stop in segment_bounds(groups, len(u)):
         seg, dt = u[start:stop], np.diff(time[start:stop])
+        z0 = seg[:1] * steady          # the lag state at the first sample
         if dt.size == 0:
-            out[start:stop] = np.tile(seg, taus.size)
+            out[start:stop] = np.tile(z0, taus.size)
         elif np.all(np.abs(dt - dt[0]) <= _UNIFORM_RTOL * abs(dt[0])):
             for i, tau in enumerate(taus):
                 a = float(np.exp(-dt[0] / tau))
+                # zi: the filter's state before the first sample, so that its first output is z0
                 out[start:stop, i * p:(i + 1) * p] = lfilter([1.0 - a], [1.0, -a], seg, axis=0,
-                                                             zi=a * seg[:1])[0]
+                                                             zi=a * z0 + (1.0 - a) * (z0 - seg[:1]))[0]
         else:
             a = np.exp(-dt[:, None] / np.repeat(taus, p)[None, :])
             wide = np.tile(seg, taus.size)
             z = out[start:stop]
-            z[0] = wide[0]
+            z[0] = np.tile(z0[0], taus.size)
             for k in range(1, len(seg)):
                 z[k] = a[k - 1] * z[k - 1] + (1.0 - a[k - 1]) * wide[k]
     return out

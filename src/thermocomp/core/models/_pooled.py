@@ -83,33 +83,34 @@ def validation_mse(W, c, val: Moments, centre, d) -> np.ndarray:
     return np.maximum(spread, 0.0) + (val.y_mean - c - z_mean @ W) ** 2
 
 
-def lag_features(X, time, runs, taus) -> np.ndarray:
-    """``[x | L_tau1[x] - x | ... ]`` of the lag bank (:meth:`LagBank._features`)."""
+def lag_features(X, time, runs, taus, rest=None) -> np.ndarray:
+    """``[x | L_tau1[x] - x | ... ]`` of the lag bank (:meth:`LagBank._features`); ``rest``: the
+    columns whose lags start at 0 (:func:`first_order_lags`)."""
     n, p = X.shape
     out = np.empty((n, p * (taus.size + 1)))
     blocks = out.reshape(n, taus.size + 1, p)     # a view: block k holds columns k*p .. k*p+p-1
     # into one array, each lag block less x by broadcasting: no tiled copy of X nor a stacked
     # copy of the lags (a year at 1 min of 34 sensors: 1 GB each, scale58)
-    out[:, p:] = first_order_lags(X, time, runs, taus)
+    out[:, p:] = first_order_lags(X, time, runs, taus, rest)
     blocks[:, 1:, :] -= X[:, None, :]
     blocks[:, 0, :] = X
     return out
 
 
-def _feature_moments(X, time, taus) -> tuple[np.ndarray, np.ndarray]:
+def _feature_moments(X, time, taus, rest=None) -> tuple[np.ndarray, np.ndarray]:
     """``(mean, centred Gram)`` of one campaign's lag-bank features."""
-    F = lag_features(X, time, None, taus)
+    F = lag_features(X, time, None, taus, rest)
     mean = F.mean(axis=0)
     F -= mean
     return mean, F.T @ F
 
 
-def _compute_target_moments(X, time, taus, y, mean) -> tuple[float, np.ndarray, float]:
+def _compute_target_moments(X, time, taus, y, mean, rest=None) -> tuple[float, np.ndarray, float]:
     """``(mean of y, centred cross-products with the features, centred sum of squares of y)``
     of one campaign (the features again: one filter pass over it, cheaper than keeping them)."""
     y_mean = float(y.mean())
     resid = y - y_mean
-    return y_mean, (lag_features(X, time, None, taus) - mean).T @ resid, float(resid @ resid)
+    return y_mean, (lag_features(X, time, None, taus, rest) - mean).T @ resid, float(resid @ resid)
 
 
 # a campaign's feature moments by its inputs, times and time constants: about p^2 numbers each
@@ -123,7 +124,7 @@ class CampaignMoments:
     """Each segment's feature moments (remembered: a campaign's rows recur in many fits) and
     target moments (recomputed: a target's are cheap), in the order of the fit's rows."""
 
-    def __init__(self, X, time, bounds, taus, y):
+    def __init__(self, X, time, bounds, taus, y, rest=None):
         k, p = len(bounds), X.shape[1] * (len(taus) + 1)
         self.counts = np.array([stop - start for start, stop in bounds], dtype=float)
         self.means, self.grams = np.empty((k, p)), np.empty((k, p, p))
@@ -131,11 +132,11 @@ class CampaignMoments:
         taus, self.keys = np.asarray(taus, dtype=float), []
         for i, (start, stop) in enumerate(bounds):
             x_c, t_c = np.ascontiguousarray(X[start:stop]), np.ascontiguousarray(time[start:stop])
-            self.keys.append(_campaign_moments.key(x_c, t_c, taus))
-            self.means[i], self.grams[i] = _campaign_moments.lookup(self.keys[-1], x_c, t_c, taus)
+            self.keys.append(_campaign_moments.key(x_c, t_c, taus, rest))
+            self.means[i], self.grams[i] = _campaign_moments.lookup(self.keys[-1], x_c, t_c, taus, rest)
             y_c = np.ascontiguousarray(y[start:stop])
             self.y_means[i], self.fys[i], self.yys[i] = _target_moments.lookup(
-                ArrayMemo.key(self.keys[-1], y_c), x_c, t_c, taus, y_c, self.means[i])
+                ArrayMemo.key(self.keys[-1], y_c), x_c, t_c, taus, y_c, self.means[i], rest)
         self.key = ArrayMemo.key(*self.keys)
 
     def pool(self, which) -> Moments:

@@ -26,7 +26,7 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ContractError
-from ...base.params import BOOLEAN, check_estimator, numbers, optional, texts
+from ...base.params import BOOLEAN, check_estimator, choice, numbers, optional, texts
 from ..context import SideInputs, groups_of, merge_columns, require, step_gain
 from ..io.contract import match_columns
 from ._dynamics import segment_bounds
@@ -90,6 +90,13 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
     choose_exponents : bool, default True
         False: every power of ``exponents`` enters, no CV between subsets (a
         copy fixed to a fit's choice, see :meth:`chosen_params`).
+    state_start : {'rest', 'steady'}, default 'rest'
+        The lags of a state at a campaign's first sample.  ``'steady'``: at the state's first
+        value, as the temperatures' (as if it had run so forever).  ``'rest'``: a state that is
+        never negative and 0 on some training row (a speed, a power, an on/off flag: 0 is its
+        rest) starts at 0, its heat beginning with the record; any other state (a temperature,
+        a position, a pallet number) steady.  Steady, a run started at full speed holds that
+        speed in its longest lags all run: a constant offset (``benchmarks/bench_auto_hmc59.py``).
 
     Attributes
     ----------
@@ -100,6 +107,8 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         the training rows, the chosen set not empty).
     state_scale_ : ndarray
         :math:`\max_{\mathrm{train}}|s_j|` of each.
+    rest_states_ : list of str
+        The state columns whose lags start at rest (``state_start='rest'``).
     exponents_ : tuple of float
         The chosen :math:`E` (empty: no state enters).
     cv_results_ : DataFrame
@@ -110,13 +119,16 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
     """
 
     param_rules = {"states": optional(texts("glob patterns")),
-                   "exponents": numbers(0.0, open_lo=True), "choose_exponents": BOOLEAN}
+                   "exponents": numbers(0.0, open_lo=True), "choose_exponents": BOOLEAN,
+                   "state_start": choice("rest", "steady")}
 
-    def __init__(self, lagbank=None, states=("S_*",), exponents=(1.0, 2.0), choose_exponents=True):
+    def __init__(self, lagbank=None, states=("S_*",), exponents=(1.0, 2.0), choose_exponents=True,
+                 state_start="rest"):
         self.lagbank = lagbank
         self.states = states
         self.exponents = exponents
         self.choose_exponents = choose_exponents
+        self.state_start = state_start
 
     def param_relations(self) -> list[tuple[str, str]]:
         if self.lagbank is not None and getattr(self.lagbank, "ar", False) is not False:
@@ -163,11 +175,18 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         S, found = S[:, keep], [c for c, k in zip(found, keep) if k]
         scale = np.max(np.abs(S), axis=0) if S.size else np.zeros(0)
         self.state_scale_ = scale
+        # 0 its least training value: the state's rest (a speed, a flag), where its lags start
+        rest = (S.min(axis=0) == 0) if self.state_start == "rest" and S.size else np.zeros(len(found), bool)
+        p = X.shape[1]
         records, fitted = [], {}
         fixed = [tuple(sorted({float(e) for e in self.exponents}))]
         for exps in ([()] if not found else _candidates(self.exponents) if self.choose_exponents
                      else fixed):
-            model = clone(base).fit(np.hstack([X, self._basis(S, exps)]), y, context=context)
+            model = clone(base)
+            if rest.any():      # the rest states' columns in each power's block of the basis
+                model.set_params(rest_columns=[p + b * len(found) + j for b in range(len(exps))
+                                               for j in np.flatnonzero(rest)])
+            model.fit(np.hstack([X, self._basis(S, exps)]), y, context=context)
             row = model.cv_results_[model.cv_results_["chosen"]].iloc[0]
             records.append({"exponents": list(exps), "cv_mse_free_run": float(row["cv_mse_free_run"]),
                             "alpha": float(row["alpha"])})
@@ -179,8 +198,9 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         self.exponents_ = tuple(table.loc[best, "exponents"])
         self.lagbank_ = fitted[self.exponents_]
         if not self.exponents_:
-            found, self.state_scale_ = [], scale[:0]
+            found, self.state_scale_, rest = [], scale[:0], rest[:0]
         self.state_columns_ = found
+        self.rest_states_ = [c for c, r in zip(found, rest) if r]
         self.context_columns_ = merge_columns(self.lagbank_.context_columns_, found)
         return self
 

@@ -38,7 +38,17 @@ from sklearn.preprocessing import StandardScaler
 from sklearn.utils.validation import check_is_fitted, validate_data
 from threadpoolctl import threadpool_limits
 
-from ...base.params import NON_NEGATIVE, POSITIVE, check_estimator, choice, either, integer, numbers, optional
+from ...base.params import (
+    NON_NEGATIVE,
+    POSITIVE,
+    check_estimator,
+    choice,
+    either,
+    integer,
+    integers,
+    numbers,
+    optional,
+)
 from ..context import TIME, Y_MEASURED, SideInputs, feedback_gain, groups_of, scalar, values
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
@@ -349,6 +359,10 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         (one training week, every forward fold extrapolating) the CV picks the strongest
         penalty and E_X gets 7.5 µm against MLR's 2.0; 0 gives 1.6-2.5 but doubles the
         error on records where MLR extrapolates badly (``benchmarks/bench_lagbank_records.py``).
+    rest_columns : list of int or None, default None
+        Input columns whose lags start at rest (0) at a campaign's first sample instead of
+        in steady state at their first value: an input that was 0 before the record (a machine
+        state, see :class:`~thermocomp.core.models.hammerstein.Hammerstein`).
 
     Attributes
     ----------
@@ -384,7 +398,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, n_taus: int = 8, tau_min_s: float | None = None,
                  tau_max_s: float = 172800.0, alphas=None, n_splits: int = 5, ar=False,
-                 sample_period_s: float = 60.0, level_penalty=1.0):
+                 sample_period_s: float = 60.0, level_penalty=1.0, rest_columns=None):
         self.n_taus = n_taus
         self.tau_min_s = tau_min_s
         self.tau_max_s = tau_max_s
@@ -393,13 +407,23 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.ar = ar
         self.sample_period_s = sample_period_s
         self.level_penalty = level_penalty
+        self.rest_columns = rest_columns
 
     # -- parameters ---------------------------------------------------------------------
     # n_taus: a feature per input and time constant
     param_rules = {"n_taus": integer(1, at_most=1000), "tau_min_s": optional(POSITIVE), "tau_max_s": POSITIVE,
                    "alphas": optional(either(POSITIVE, numbers(0.0, open_lo=True))),
                    "n_splits": integer(MIN_SPLITS), "ar": choice(False, True, "auto"),
-                   "sample_period_s": POSITIVE, "level_penalty": either(numbers(0.0), NON_NEGATIVE)}
+                   "sample_period_s": POSITIVE, "level_penalty": either(numbers(0.0), NON_NEGATIVE),
+                   "rest_columns": optional(integers(0, empty=True))}
+
+    def _rest(self, p: int) -> np.ndarray | None:
+        """The columns of :attr:`rest_columns` as a mask over ``p`` inputs (None: none)."""
+        if not self.rest_columns:
+            return None
+        mask = np.zeros(p, bool)
+        mask[np.asarray(list(self.rest_columns), dtype=int)] = True
+        return mask
 
     def param_relations(self) -> list[tuple[str, str]]:
         if self.tau_min_s is not None and not self.tau_min_s <= self.tau_max_s:
@@ -436,7 +460,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         groups, n = groups_of(context), X.shape[0]
         starts = segment_starts(groups, n)    # campaigns as run numbers: a numeric memo key
         runs = None if groups is None else np.repeat(np.arange(starts.size), np.diff(np.r_[starts, n]))
-        args = (np.asarray(X, dtype=float), self._time(context, groups, n), runs, self.taus_)
+        args = (np.asarray(X, dtype=float), self._time(context, groups, n), runs, self.taus_,
+                self._rest(X.shape[1]))
         key = _lag_bank_features.key(*args)
         return key, _lag_bank_features.lookup(key, *args)
 
@@ -544,7 +569,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         up to rounding, and a campaign's moments are computed once for all the fits that hold it."""
         n = X.shape[0]
         moments = CampaignMoments(X, self._time(context, groups, n), segment_bounds(groups, n),
-                                  self.taus_, y)
+                                  self.taus_, y, self._rest(X.shape[1]))
         centre, scale = standardisation(moments.pool(np.arange(len(moments.counts))))
         records = []
         for ratio in ratios:
@@ -677,7 +702,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         clock = state.get("clock") or _clock_of(state["t"])
         clock, _, dt, _ = step_time(clock, scalar(context, TIME), self.sample_period_s_)
         if state["z"] is None:
-            z = np.tile(x, self.taus_.size)
+            rest = self._rest(x.size)
+            z = np.tile(x if rest is None else np.where(rest, 0.0, x), self.taus_.size)
         else:
             a = np.repeat(np.exp(-dt / self.taus_), x.size)
             z = a * state["z"] + (1.0 - a) * np.tile(x, self.taus_.size)

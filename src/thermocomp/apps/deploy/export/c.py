@@ -167,7 +167,7 @@ def source(ss: StateSpace) -> str:
         _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
         _array("TAU", ss.taus, (k,)),
-        _ints("LAG_INPUT", ss.lag_input),
+        _ints("LAG_INPUT", ss.lag_input), _ints("LAG_REST", ss.lag_rest or [0] * k),
         _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p)),
         _ints("LAW_TARGET", ss.laws),
         _array("LAW_LO", ss.law_lo or [-UNBOUNDED] * r, (r,)),
@@ -279,8 +279,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     for (h = 0; h < 2; h++)
         for (l = 0; l < TC_N_LAGS; l++) {{
             xl[h][l] = x[h][LAG_INPUT[l]];
-            if (s->first) {{
-                s->z[h][l] = xl[h][l];
+            if (s->first) {{   /* a machine state at rest (Hammerstein) starts at 0 */
+                s->z[h][l] = LAG_REST[l] ? 0.0 : xl[h][l];
             }} else {{
                 double e = exp(-dt / TAU[l]);
                 s->z[h][l] = e * s->z[h][l] + (1.0 - e) * xl[h][l];

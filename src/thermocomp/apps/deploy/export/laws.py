@@ -181,7 +181,22 @@ def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:
         return est, []
     feats = [powers.setdefault((inputs.index(col), float(est.state_scale_[s]), float(e)), len(powers))
              for e in est.exponents_ for s, col in enumerate(est.state_columns_)]
+    rest = [col in getattr(est, "rest_states_", ()) for _ in est.exponents_ for col in est.state_columns_]
+    for f, r in zip(feats, rest):
+        if f in powers.steady if r else f in powers.rest:
+            raise NotExportable("a machine state's power starts at rest in one model and steady in "
+                                "another; one exported power has one start")
+        (powers.rest if r else powers.steady).add(f)
     return est.lagbank_, feats
+
+
+class Powers(dict):
+    """The Hammerstein powers of the exported code, ``(input, scale, exponent) -> index`` in
+    ``[x, powers]``, and which of them start their lags at rest (``rest_states_``)."""
+
+    def __init__(self):
+        super().__init__()
+        self.rest, self.steady = set(), set()
 
 
 def _member_refused(target: str, name, weight: float, parts: list, exc: NotExportable) -> str:

@@ -75,6 +75,7 @@ def function_block(ss: StateSpace) -> str:
                   (n, len(ss.pattern_basis[0]) if ss.pattern else 1)),
         _constant("TAU", ss.taus, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
+        _constant("LAG_REST", ss.lag_rest or [0] * k, (k,), "INT"),
         _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p)),
         _constant("LAW_TARGET", ss.laws, (r,), "INT"),
         _constant("LAW_LO", ss.law_lo or [-LREAL_MAX] * r, (r,)),
@@ -323,7 +324,9 @@ IF NOT refused THEN
     FOR h := 0 TO 1 DO
         FOR l := 0 TO N_LAGS - 1 DO
             xl[h, l] := x[h, LAG_INPUT[l]];
-            IF first THEN
+            IF first AND LAG_REST[l] <> 0 THEN   (* a machine state at rest (Hammerstein) *)
+                z[h, l] := 0.0;
+            ELSIF first THEN
                 z[h, l] := xl[h, l];
             ELSE
                 e := EXP(-dt / TAU[l]);

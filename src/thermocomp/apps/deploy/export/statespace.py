@@ -60,7 +60,7 @@ from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .errors import NotExportable
-from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, UNBOUNDED, target_laws
+from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, UNBOUNDED, Powers, target_laws
 from .output import Output, adapt_fields, guard_fields, time_fields
 
 FORMATS = ("json", "c", "st", "onnx")
@@ -91,6 +91,8 @@ class StateSpace:
     uses_time: bool              # the lags read ``time`` when it is given
     # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
     powers: list = field(default_factory=list)
+    lag_rest: list = field(default_factory=list)   # (n_lags,) 1: starts at 0, not at its input
+                                                   # (a Hammerstein state at rest); [] none
     clamp_gain: list | None = None   # (n_laws, n_inputs) step gain at the horizon (clamp only)
     # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
     pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
@@ -186,7 +188,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     fir = np.hstack([fir, unfiltered])
     N = len(inputs)
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
-    laws, period, powers, chosen = [], None, {}, {}      # laws: (target index, Law)
+    laws, period, powers, chosen = [], None, Powers(), {}      # laws: (target index, Law)
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
         own, period, kept = target_laws(t, est, cols, inputs, powers, period,
@@ -222,6 +224,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         lo=env.lo.tolist() + [-UNBOUNDED] * len(states) if clamp else None,
         hi=env.hi.tolist() + [UNBOUNDED] * len(states) if clamp else None,
         depth=int(depth), taus=[k[0] for k in keys], lag_input=[k[1] for k in keys],
+        lag_rest=[int(j - N in powers.rest) for _, j in keys] if powers.rest else [],
         lag_decay=[float(np.exp(-period / k[0])) for k in keys], period=period,
         intercept=[float(law.c) for _, law in laws], b0=b0.tolist(),
         bd=bd.tolist(), g=g.tolist(), ar=[float(law.a) for _, law in laws],
@@ -286,6 +289,7 @@ class Simulator:
         self.sum[np.arange(laws), ss.laws] = 1.0
         self.taus = np.asarray(ss.taus, float)
         self.lag_input = np.asarray(ss.lag_input, int)
+        self.lag_rest = np.asarray(ss.lag_rest or [0] * len(ss.taus), bool)
         self.output = Output(ss)       # guard and reference update: what is learned stays
         self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
         self.reset()
@@ -336,7 +340,7 @@ class Simulator:
         first = self.first
         if self.first:
             self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
-            self.z, self.y = xl.copy(), np.zeros((2, len(ss.laws)))
+            self.z, self.y = np.where(self.lag_rest, 0.0, xl), np.zeros((2, len(ss.laws)))
             self.bound = np.zeros(len(ss.targets))
         else:
             e = np.exp(-dt / self.taus)
