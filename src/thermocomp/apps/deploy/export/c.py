@@ -98,6 +98,7 @@ def header(ss: StateSpace) -> str:
 #define TC_DEPTH {ss.depth}
 #define TC_N_LAGS {len(ss.taus)}
 #define TC_N_POWERS {len(ss.powers)}   /* powers of machine states (Hammerstein) */
+#define TC_N_DERIVED {len(ss.derived)}   /* a diagnosed model's derived inputs (products, lags) */
 #define TC_USES_TIME {int(ss.uses_time)}
 #define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
 #define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
@@ -113,6 +114,7 @@ typedef struct {{
     int first;                                  /* 1: the next sample starts a campaign */
     double buf[TC_TAPS][TC_N_INPUTS];           /* raw inputs, newest first (FIR denoiser) */
     double ref[TC_N_INPUTS];                    /* first-sample reference */
+    double v0[TC_N_INPUTS];                     /* the first sample (derived inputs' frame) */
     /* per channel: [0] the measured inputs, [1] their excess over the envelope */
     double hist[2][{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
     double z[2][{max(len(ss.taus), 1)}];        /* first-order lags */
@@ -162,13 +164,14 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]);
 
 def source(ss: StateSpace) -> str:
     n, taps, k, p = len(ss.inputs), len(ss.fir), len(ss.taus), len(ss.powers)
+    q = len(ss.derived)
     d, r = ss.depth, len(ss.laws)
     consts = "\n".join([
         _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
         _array("TAU", ss.taus, (k,)),
         _ints("LAG_INPUT", ss.lag_input),
-        _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p)),
+        _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p + q)),
         _ints("LAW_TARGET", ss.laws),
         _array("LAW_LO", ss.law_lo or [-UNBOUNDED] * r, (r,)),
         _array("LAW_HI", ss.law_hi or [UNBOUNDED] * r, (r,)),
@@ -178,6 +181,8 @@ def source(ss: StateSpace) -> str:
         _ints("POWER_SRC", [q[0] for q in ss.powers]),
         _array("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
+        *(_ints(f"DERIVED_{name}", [f[i] for f in ss.derived])
+          for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
         _array("BD", ss.bd, (r, d, n)), _array("G", ss.g, (r, k)), _array("AR", ss.ar, (r,)),
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * r, (r, n)),
         *_pattern_constants(ss),
@@ -227,7 +232,7 @@ static int off_pattern(const double x[]) {{
 }}
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
-    double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS], xl[2][{max(k, 1)}], ych[2];
+    double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED], xl[2][{max(k, 1)}], ych[2];
     double ysum[2][TC_N_OUTPUTS], excess[TC_N_OUTPUTS];
     double allow[TC_N_OUTPUTS];
     double dt, now, step;
@@ -275,6 +280,17 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         x[0][TC_N_INPUTS + l] = w < 0.0 ? -pow(-w, POWER_EXP[l]) : pow(w, POWER_EXP[l]);
         x[1][TC_N_INPUTS + l] = 0.0;
     }}
+    /* a diagnosed model's derived inputs: r_a r_b (b < 0: r_a), r_j = v_j - its first sample's
+       value where REF (the effect's frame), as the stream's model reads its context */
+    if (s->first)
+        for (j = 0; j < TC_N_INPUTS; j++) s->v0[j] = v[j];
+    for (l = 0; l < TC_N_DERIVED; l++) {{
+        double ra = v[DERIVED_A[l]] - (DERIVED_REF_A[l] ? s->v0[DERIVED_A[l]] : 0.0);
+        double rb = DERIVED_B[l] < 0 ? 1.0
+            : v[DERIVED_B[l]] - (DERIVED_REF_B[l] ? s->v0[DERIVED_B[l]] : 0.0);
+        x[0][TC_N_INPUTS + TC_N_POWERS + l] = ra * rb;
+        x[1][TC_N_INPUTS + TC_N_POWERS + l] = 0.0;
+    }}
     /* first-order lags */
     for (h = 0; h < 2; h++)
         for (l = 0; l < TC_N_LAGS; l++) {{
@@ -319,7 +335,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         if (s->factor[r] != 0.0) excess[LAW_TARGET[r]] += s->factor[r] * p;
         for (h = 0; h < 2; h++) {{
             ych[h] = h == 0 ? INTERCEPT[r] : 0.0;
-            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) ych[h] += B0[r][j] * x[h][j];
+            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED; j++) ych[h] += B0[r][j] * x[h][j];
             for (l = 0; l < TC_DEPTH; l++)
                 for (j = 0; j < TC_N_INPUTS; j++) ych[h] += BD[r][l][j] * s->hist[h][l][j];
             for (l = 0; l < TC_N_LAGS; l++) ych[h] += G[r][l] * (s->z[h][l] - xl[h][l]);

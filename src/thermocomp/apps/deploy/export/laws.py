@@ -60,63 +60,135 @@ class Law:
 def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, period,
                 horizon_s: float | None) -> tuple[list[Law], object, str | None]:
     """``(laws, lag period, what model=auto or an ATI model kept)`` of ``target``'s estimator ``est`` reading
-    the inputs ``cols`` of the code's ``inputs``; ``powers`` registers the Hammerstein powers,
-    shared by the targets; ``horizon_s``: the clamp's (None: no clamp, no gains)."""
+    the inputs ``cols`` of the code's ``inputs``; ``powers`` registers the features the code
+    computes from its inputs (Hammerstein powers, a diagnosed model's derived inputs: :data:`DERIVED`
+    keys), shared by the targets; ``horizon_s``: the clamp's (None: no clamp, no gains)."""
     parts, own = members(est), []
     for name, w, member in parts:
         try:
-            for lo, hi, base, interacts in _intervals(member):
+            for lo, hi, base, interacts, derived in _intervals(member):
                 laws, period = _member_laws(base, interacts, w, cols, inputs, powers, period,
-                                            horizon_s, target)
+                                            horizon_s, target, derived)
                 for law in laws:
                     law.lo, law.hi = lo, hi
                 own += laws
         except NotExportable as exc:
             raise NotExportable(_member_refused(target, name, w, parts, exc)) from None
-    return _summed(own), period, described(parts)
+    return _summed(own), period, _named(described(parts), parts)
+
+
+def _named(kept: str | None, parts: list) -> str | None:
+    """What ``provenance.laws`` (and so the banner) says of a target: what ``model=auto`` or an
+    ATI model kept, and the diagnosed effects the code computes as derived inputs, by title."""
+    titles = [e.title for _, _, m in parts if is_diagnosed(m) for e in m.effects_ if _is_derived(e)]
+    if not titles:
+        return kept
+    return f"{kept + ' ' if kept else ''}with the derived inputs of {'; '.join(titles)}"
 
 
 def _intervals(est) -> list:
-    """``[(lo, hi, model, takes the ambient interaction)]``: an ATI model's per interval of the
-    initial ambient (``lo < A0 <= hi``, as ``interval_of`` assigns one), a diagnosed model's
-    (:func:`_diagnosed`), else the model itself."""
+    """``[(lo, hi, model, takes the ambient interaction, derived inputs)]``: an ATI model's per
+    interval of the initial ambient (``lo < A0 <= hi``, as ``interval_of`` assigns one), a
+    diagnosed model's (:func:`_diagnosed`), else the model itself."""
     if is_diagnosed(est):
         return _diagnosed(est)
     if not isinstance(est, ATIRegressor):
-        return [(-UNBOUNDED, UNBOUNDED, est, False)]
+        return [(-UNBOUNDED, UNBOUNDED, est, False, Derived())]
     edges = [-UNBOUNDED, *map(float, est.boundaries_), UNBOUNDED]
-    return [(edges[m], edges[m + 1], e, bool(est.interactions_[m]))
+    return [(edges[m], edges[m + 1], e, bool(est.interactions_[m]), Derived())
             for m, e in enumerate(est.estimators_)]
 
 
 def _diagnosed(est) -> list:
     """A diagnosed model's intervals: its base model's, when every effect it accepted is a
-    sensor's removal (no feature: the base fitted on the inputs kept), or the base's one law and
-    its ambient law ``x (A0 - 20)`` (``ambient_linear``: the base fitted on ``[x, x (A0 - 20)]``,
-    what an ATI interval with the interaction is); any other effect is refused, naming it."""
+    sensor's removal (no feature: the base fitted on the inputs kept); the base's one law and
+    its ambient law ``x (A0 - 20)`` (``ambient_linear`` alone: the base fitted on ``[x, x (A0 -
+    20)]``, what an ATI interval with the interaction is); or the base's law on ``[x, derived
+    inputs]`` when each effect is one the code computes from its inputs as the stream does
+    (:data:`DERIVED_TRANSFORMS`: :func:`derived_inputs`).  Any other effect is refused, naming it."""
     effects = list(est.effects_)
     if not effects:
         return _intervals(est.estimator_)
     kinds = [e.transform for e in effects]
     if kinds == ["ambient_linear"] and not isinstance(est.estimator_, ATIRegressor):
-        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, True)]
-    others = [e.title for e in effects if e.transform != "ambient_linear"] or [
-        "ambient_linear around an ATI model"]
+        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, True, Derived())]
+    derived = [e for e in effects if _is_derived(e)]
+    if len(derived) == len(effects) and not isinstance(est.estimator_, ATIRegressor):
+        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, False, Derived(
+            derived, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0)))]
+    others = [e.title for e in effects if not _is_derived(e) and e.transform != "ambient_linear"]
+    if not others and isinstance(est.estimator_, ATIRegressor):
+        others = ["ambient_linear around an ATI model" if e.transform == "ambient_linear"
+                  else f"{e.title} around an ATI model" for e in effects]
+    others = others or ["ambient_linear with other effects"]
     several = len(others) > 1
     raise NotExportable(f"the diagnosed effect{'s' if several else ''} {'; '.join(others)} "
-                        f"{'do' if several else 'does'} not export (the code holds a sensor's "
-                        "removal and the inputs' ambient law x (A0 - 20) of diagnose's effects); "
-                        "the served model runs them (thermocomp serve, connect)")
+                        f"{'do' if several else 'does'} not export (the code holds of diagnose's "
+                        f"effects: {EXPORTED_EFFECTS}); the served model runs "
+                        f"{'them' if several else 'it'} (thermocomp serve, connect)")
+
+
+# what the code holds of diagnose's effects (the refusal names them)
+DERIVED_TRANSFORMS = ("first_order_lag",)
+EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20) alone, and a "
+                    "first-order lag of a signal or input (without an initial-state transient)")
+
+
+def _is_derived(e) -> bool:
+    return e.transform in DERIVED_TRANSFORMS and not e.initial_state
+
+
+@dataclass
+class Derived:
+    """A diagnosed model's effects the code computes from its inputs (:func:`derived_inputs`):
+    ``effects`` in their feature order, the model's ``reference`` and the sample period of its
+    lags (a sample without time is one period after the previous one)."""
+
+    effects: list = field(default_factory=list)
+    reference: str = "first_sample"
+    period: float = 1.0
+
+
+def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[int, float | None]]:
+    """Per effect feature, ``(its place among the registered features, the lag's tau or None)``:
+    each effect's term, registered in ``powers`` as ``(DERIVED, a, b, ra, rb)``: the product
+    ``r_a r_b`` (``b`` = -1: ``r_a`` alone) of ``r_j = v_j - ra v_j(0)``, the input as the
+    stream's model reads it from its context (a declared input denoised, a state raw; its change
+    since the campaign's first sample where ``ra``: the effect's frame, whatever the inputs'
+    reference); a lag is its lag bank channel on ``r_a``."""
+    from ...diagnose.features import frames  # loaded: the model is a diagnosed one
+    out = []
+    for e in derived.effects:
+        own, other = (int(f == "first_sample") for f in frames(e, derived.reference))
+        a = inputs.index(e.column)
+        b = -1
+        key = (DERIVED, a, b, own, 0)
+        out.append((powers.setdefault(key, len(powers)), e.tau_s))
+    return out
+
+
+DERIVED = "derived"     # the key of a derived input among the registered features
 
 
 def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, horizon_s,
-                 target) -> tuple[list[Law], object]:
+                 target, derived: Derived) -> tuple[list[Law], object]:
     """The laws of one member (weight ``w``): its own, and with the ambient interaction the law
-    of its coefficients on ``x (A0 - 20)`` (its inputs ``[x, x (A0 - 20), powers]``)."""
+    of its coefficients on ``x (A0 - 20)`` (its inputs ``[x, x (A0 - 20), powers]``); a
+    diagnosed model's on ``[x, derived inputs, powers]``."""
+    extra = derived_inputs(derived, inputs, powers)
     linear, feats = _powered(est, inputs, powers)
     k, n = len(cols), len(inputs)
-    width = 2 * k if interacts else k
+    width = (2 * k if interacts else k) + len(extra)
     c, b0, delayed, lags, a, period = _target_law(linear, width + len(feats), period)
+    if any(tau is not None for _, tau in extra):
+        period = _one_period(period, derived.period)
+    own_x = width - len(extra)          # the inputs' (and the interaction's) columns
+    if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
+        raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
+                            "code's input history holds the inputs only")
+    if any(own_x <= j < width and extra[j - own_x][1] is not None for _, j, _ in lags):
+        raise NotExportable(f"the law of {target} lags a diagnosed effect's lag (a second-order "
+                            "lag): the code's lags are first-order")
     gain = None
     if horizon_s is not None:
         gain = step_gain(est, None, horizon_s)
@@ -125,17 +197,30 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
                                 f"{a:.3g}): the envelope clamp needs one; export it with "
                                 "promote.envelope.policy=off")
     pw = n + np.asarray(feats, int)                     # the powers' places in [x, powers]
+    dx = n + np.asarray([f for f, _ in extra], int)     # the derived inputs' places
+    places = np.r_[dx, pw]                              # of the columns after the inputs'
     out = []
     for ambient in (False, True) if interacts else (False,):
         x = slice(k, 2 * k) if ambient else slice(0, k)
-        terms = [(cols, w * b0[x])] + ([] if ambient or not feats else [(pw, w * b0[width:])])
+        terms = [(cols, w * b0[x])] + ([] if ambient or not len(places) else
+                                       [(places, w * b0[own_x:])])
         own = [(tau, int(cols[j - x.start]), w * g) for tau, j, g in lags if x.start <= j < x.stop]
         if not ambient:
-            own += [(tau, int(pw[j - width]), w * g) for tau, j, g in lags if j >= width]
+            own += [(tau, int(places[j - own_x]), w * g) for tau, j, g in lags if j >= own_x]
+            # an effect's lag L[r] = r + (L[r] - r): its coefficient on r and on the lag channel
+            own += [(tau, int(dx[i]), w * b0[own_x + i]) for i, (_, tau) in enumerate(extra)
+                    if tau is not None]
         out.append(Law(0.0 if ambient else w * c, terms,
                        {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
                        None if gain is None else w * _spread(gain[x], cols, n), ambient=ambient))
     return out, period
+
+
+def _one_period(period: float | None, own: float) -> float:
+    if period is not None and own != period:
+        raise NotExportable(f"the lags of the targets assume sample periods {period} and {own} s; "
+                            "one exported step has one period")
+    return own
 
 
 def _summed(own: list[Law]) -> list[Law]:
@@ -167,11 +252,8 @@ def _target_law(est, n: int, period: float | None):
     coef = np.asarray(est.coef_, float)      # the lag bank
     lags = [(float(tau), j, float(coef[n * (i + 1) + j]))
             for i, tau in enumerate(est.taus_) for j in range(n)]
-    own = float(est.sample_period_s_)
-    if period is not None and own != period:
-        raise NotExportable(f"the lag banks of the targets assume sample periods {period} and "
-                            f"{own} s; one exported step has one period")
-    return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
+    return (c, coef[:n].copy(), {}, lags, float(est.ar_coef_),
+            _one_period(period, float(est.sample_period_s_)))
 
 
 def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:

@@ -56,11 +56,12 @@ def _indent(code: str) -> str:
 
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
-    p, r = len(ss.powers), len(ss.laws)
+    p, r, q = len(ss.powers), len(ss.laws), len(ss.derived)
     consts = "\n".join([
         f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    N_LAWS : INT := {r};",
         f"    TAPS : INT := {taps};",
         f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};", f"    N_POWERS : INT := {p};",
+        f"    N_DERIVED : INT := {q};",
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
         f"    REAL_LIMIT : LREAL := {literal(LREAL_MAX)};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
@@ -75,7 +76,7 @@ def function_block(ss: StateSpace) -> str:
                   (n, len(ss.pattern_basis[0]) if ss.pattern else 1)),
         _constant("TAU", ss.taus, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
-        _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p)),
+        _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p + q)),
         _constant("LAW_TARGET", ss.laws, (r,), "INT"),
         _constant("LAW_LO", ss.law_lo or [-LREAL_MAX] * r, (r,)),
         _constant("LAW_HI", ss.law_hi or [LREAL_MAX] * r, (r,)),
@@ -87,6 +88,8 @@ def function_block(ss: StateSpace) -> str:
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
+        *(_constant(f"DERIVED_{name}", [f[i] for f in ss.derived], (q,), "INT")
+          for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
         _constant("BD", ss.bd, (r, d, n)), _constant("G", ss.g, (r, k)), _constant("AR", ss.ar, (r,)),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
         f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
@@ -131,6 +134,9 @@ VAR
     first : BOOL := TRUE;
     buf : ARRAY[{_dims(taps, n)}] OF LREAL;
     ref : ARRAY[{_dims(n)}] OF LREAL;
+    v0 : ARRAY[{_dims(n)}] OF LREAL;
+    ra : LREAL;
+    rb : LREAL;
     hist : ARRAY[{_dims(2, d, n)}] OF LREAL;
     z : ARRAY[{_dims(2, k)}] OF LREAL;
     y_prev : ARRAY[{_dims(2, r)}] OF LREAL;
@@ -146,7 +152,7 @@ VAR
     shift_valid : BOOL;
     now : LREAL;
     v : ARRAY[{_dims(n)}] OF LREAL;
-    x : ARRAY[{_dims(2, n + p)}] OF LREAL;
+    x : ARRAY[{_dims(2, n + p + q)}] OF LREAL;
     ych : ARRAY[{_dims(2)}] OF LREAL;
     bound : LREAL;
     bound_held : ARRAY[{_dims(m)}] OF LREAL;
@@ -319,6 +325,28 @@ IF NOT refused THEN
         END_IF;
         x[1, N_INPUTS + l] := 0.0;
     END_FOR;
+    (* a diagnosed model's derived inputs: r_a r_b (b < 0: r_a), r_j = v_j - its first *)
+    (* sample's value where REF (the effect's frame), as the stream's model reads its context *)
+    IF first THEN
+        FOR j := 0 TO N_INPUTS - 1 DO
+            v0[j] := v[j];
+        END_FOR;
+    END_IF;
+    FOR l := 0 TO N_DERIVED - 1 DO
+        ra := v[DERIVED_A[l]];
+        IF DERIVED_REF_A[l] <> 0 THEN
+            ra := ra - v0[DERIVED_A[l]];
+        END_IF;
+        rb := 1.0;
+        IF DERIVED_B[l] >= 0 THEN
+            rb := v[DERIVED_B[l]];
+            IF DERIVED_REF_B[l] <> 0 THEN
+                rb := rb - v0[DERIVED_B[l]];
+            END_IF;
+        END_IF;
+        x[0, N_INPUTS + N_POWERS + l] := ra * rb;
+        x[1, N_INPUTS + N_POWERS + l] := 0.0;
+    END_FOR;
     (* first-order lags *)
     FOR h := 0 TO 1 DO
         FOR l := 0 TO N_LAGS - 1 DO
@@ -367,7 +395,7 @@ IF NOT refused THEN
             ELSE
                 ych[h] := 0.0;
             END_IF;
-            FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
+            FOR j := 0 TO N_INPUTS + N_POWERS + N_DERIVED - 1 DO
                 ych[h] := ych[h] + B0[r, j] * x[h, j];
             END_FOR;
             FOR l := 0 TO DEPTH - 1 DO

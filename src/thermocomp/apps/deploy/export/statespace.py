@@ -60,7 +60,7 @@ from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .errors import NotExportable
-from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, UNBOUNDED, target_laws
+from .laws import AMBIENT_CENTRE_C, DERIVED, LINEAR_FAMILIES, UNBOUNDED, target_laws
 from .output import Output, adapt_fields, guard_fields, time_fields
 
 FORMATS = ("json", "c", "st", "onnx")
@@ -80,17 +80,20 @@ class StateSpace:
     hi: list | None
     depth: int                   # input history kept (largest ARX delay)
     taus: list                   # (n_lags,) s
-    lag_input: list              # (n_lags,) index of each lag's input in ``[x, powers]``
+    lag_input: list              # (n_lags,) index of each lag's input in ``[x, powers, derived]``
     lag_decay: list              # (n_lags,) exp(-period / tau): the step without a time
     period: float                # s
     intercept: list              # (n_laws,): one law per target, or more (law_target)
-    b0: list                     # (n_laws, n_inputs + n_powers)
+    b0: list                     # (n_laws, n_inputs + n_powers + n_derived)
     bd: list                     # (n_laws, depth, n_inputs)
     g: list                      # (n_laws, n_lags)
     ar: list                     # (n_laws,)
     uses_time: bool              # the lags read ``time`` when it is given
     # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
     powers: list = field(default_factory=list)
+    # a diagnosed model's derived inputs, after the powers: [a, b, ra, rb], r_a r_b (b = -1: r_a)
+    # of r_j = v_j - rj v_j(0), v(0) the campaign's first sample (:func:`.laws.derived_inputs`)
+    derived: list = field(default_factory=list)
     clamp_gain: list | None = None   # (n_laws, n_inputs) step gain at the horizon (clamp only)
     # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
     pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
@@ -194,9 +197,11 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         laws += [(i, law) for law in own]
         if kept is not None:
             chosen[t] = kept
+    _in_code_order(laws, powers, N)
     ati = any(law.key != (-UNBOUNDED, UNBOUNDED, False) for _, law in laws)
     ambient = _ambient_inputs(stream, inputs, ati, known_ambient)
-    read = {inputs[src] for src, _, _ in powers} | {inputs[j] for j in ambient}
+    read = {inputs[k[1] if k[0] == DERIVED else k[0]] for k in powers} | {
+        inputs[k[2]] for k in powers if k[0] == DERIVED and k[2] >= 0} | {inputs[j] for j in ambient}
     if any(c not in read for c in states):
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
                             f"only the families {', '.join(LINEAR_FAMILIES)} export to C/ST")
@@ -228,7 +233,9 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         law_target=[i for i, _ in laws], law_lo=[law.lo for _, law in laws],
         law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
         ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C,
-        uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
+        uses_time=bool(keys),
+        powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] != DERIVED],
+        derived=[list(k[1:]) for k in sorted(powers, key=powers.get) if k[0] == DERIVED],
         clamp_gain=[law.gain.tolist() for _, law in laws] if clamp else None,
         **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
@@ -236,6 +243,25 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
+
+
+def _in_code_order(laws: list, powers: dict, n: int) -> None:
+    """The registered features (``powers``, in the order the targets registered them) put in
+    the code's order, the powers first, then the derived inputs: the laws' places (after the
+    ``n`` inputs) and ``powers``' values renumbered in place."""
+    order = sorted(powers, key=lambda k: (k[0] == DERIVED, powers[k]))
+    new = {powers[k]: i for i, k in enumerate(order)}
+    move = np.array([new[i] for i in range(len(powers))] or [0], int)
+
+    def place(j):
+        j = np.asarray(j, int)
+        return np.where(j >= n, n + move[np.clip(j - n, 0, None)], j)
+
+    for _, law in laws:
+        law.terms = [(place(cols), row) for cols, row in law.terms]
+        law.lags = [(tau, int(place(j)), g) for tau, j, g in law.lags]
+    for k in order:
+        powers[k] = new[powers[k]]
 
 
 def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> list[int]:
@@ -279,7 +305,7 @@ class Simulator:
             tuple(ss.inputs), lo, hi, mean=np.asarray(ss.pattern_mean, float),
             scale=np.asarray(ss.pattern_scale, float), tol=ss.pattern_tol,
             basis=np.asarray(ss.pattern_basis, float).reshape(n, -1))
-        self.b0 = np.asarray(ss.b0, float).reshape(laws, n + len(ss.powers))
+        self.b0 = np.asarray(ss.b0, float).reshape(laws, n + len(ss.powers) + len(ss.derived))
         self.bd = np.asarray(ss.bd, float).reshape(laws, ss.depth, n)
         self.g = np.asarray(ss.g, float).reshape(laws, len(ss.taus))
         self.sum = np.zeros((laws, m))            # law -> the target it adds to
@@ -330,6 +356,13 @@ class Simulator:
             src, scale, e = (np.array(c) for c in zip(*ss.powers))
             w = v[src.astype(int)] / scale
             xe = np.r_[x, np.abs(w) ** e * np.sign(w)]
+        if self.first:
+            self.v0 = v.copy()
+        if ss.derived:      # a diagnosed model's derived inputs, from v as the model reads it
+            a, b, ra, rb = (np.array(c, int) for c in zip(*ss.derived))
+            ta = v[a] - ra * self.v0[a]
+            tb = np.where(b >= 0, v[b] - rb * self.v0[b], 1.0)
+            xe = np.r_[xe, ta * tb]
         # two channels of one system: the measured inputs, and their excess (no powers, no intercept)
         xs = np.vstack([xe, np.r_[excess, np.zeros(len(xe) - len(x))]])
         xl = xs[:, self.lag_input]

@@ -1,0 +1,120 @@
+"""A diagnosed model's lags, products and squares export as derived inputs (exportdiag59).
+
+``thermocomp diagnose`` accepts most often a lag of an undeclared signal (the door,
+``signal:S_door first_order_lag``), a product of two columns (``interaction:S_door
+product(T_a)``) or a square; ``export`` refused each of them by name (deploy59), so such a
+model reached the machine only through ``serve``/``connect``.  Each is a feature the code
+computes from its inputs as the stream's model computes it from its context (the declared
+input denoised, a state raw; its change since the campaign's first sample in the effect's
+frame), a lag a lag-bank channel on it.  The C, the ST and the JSON (read back into the numpy
+reference) equal ``replay`` to 1e-9 µm, the clamp acting; what still does not export is refused
+naming it.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+from sklearn.base import clone
+
+from test_export import _compose, needs_cc
+from test_export_ati57 import CAMPAIGNS
+from test_export_auto57 import TOLERANCE_UM, _proved, deployed
+from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export.statespace import StateSpace
+from thermocomp.apps.deploy.streaming import replay
+from thermocomp.apps.diagnose import AugmentedRegressor
+from thermocomp.core.models import MLR
+from thermocomp.shell.builders import deploy_stream
+from thermocomp.shell.source import read_streamed
+
+LAG = {"kind": "signal", "transform": "first_order_lag", "column": "S_door", "tau_s": 600.0}
+INPUT_LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 900.0}
+
+
+def _door(root, rows: int = 50):
+    """A machine with a door (``S_door``, not a declared input) whose opening cools the axis
+    through a lag, and a second sensor ``T_b``; every campaign starts at its own door state."""
+    root.mkdir(parents=True)
+    rng = np.random.default_rng(5959)
+    t = np.arange(rows) * 120.0
+    for i, (cid, _, a0) in enumerate(CAMPAIGNS):
+        a = a0 + (3 + i % 3) * (1 - np.exp(-t / 2000)) + rng.normal(0, 0.03, rows)
+        b = a0 + 2 * np.sin(t / 2500 + i) + rng.normal(0, 0.03, rows)
+        amb = a0 + 0.4 * np.sin(t / 3000 + i) + rng.normal(0, 0.03, rows)
+        door = ((t // (600 * (1 + i % 3)) + i) % 2).astype(float)
+        lagged = pd.Series(door).ewm(alpha=0.2).mean().to_numpy()
+        ex = (2.0 * (a - a[0]) - 1.5 * (amb - amb[0]) - 4.0 * lagged + 0.5 * door * (b - b[0])
+              + 0.3 * (a - a[0]) ** 2 + rng.normal(0, 0.05, rows))
+        pd.DataFrame({"time": t, "T_a": a, "T_b": b, "T_amb": amb, "S_door": door,
+                      "E_X": ex}).to_csv(root / f"{cid}.csv", index=False)
+    pd.DataFrame([(c, f"{c}.csv", s, a0) for c, s, a0 in CAMPAIGNS],
+                 columns=["campaign", "file", "split", "ambient_c"]).to_csv(root / "campaigns.csv",
+                                                                            index=False)
+    return root
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory):
+    return _door(tmp_path_factory.mktemp("effects") / "data")
+
+
+def _diagnosed(data, effects: list, alpha=None):
+    """``(stream as replay deploys it, test campaigns with T_a pushed out half-way)`` of MLR
+    with ``effects`` for E_X, the way diagnose's written config builds it."""
+    _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
+    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
+                   "promote.envelope.pattern=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    comp = clone(mlr).set_params(estimator=AugmentedRegressor(
+        MLR(), effects={"E_X": effects}, alpha=None if alpha is None else {"E_X": alpha}))
+    comp.fit(train)
+    return deploy_stream(cfg, comp, train), tests
+
+
+def _json_proved(stream, tests) -> float:
+    """The largest |difference| of the exported JSON, read back and stepped, from ``replay``."""
+    ss = StateSpace.from_dict(json.loads(exported_files(stream, "json")["compensator.json"]))
+    sim, rows = Simulator(ss), []
+    for df in tests:
+        sim.reset()
+        rows += [sim.step(u, t) for u, t in zip(df[stream.columns_].to_numpy(float), df["time"])]
+    expected = np.vstack([-replay(stream, df)[stream.targets_].to_numpy(float) for df in tests])
+    return float(np.max(np.abs(np.array(rows) - expected)))
+
+
+def _exports_as_replay(data, tmp_path, effects, alpha=None):
+    stream, tests = _diagnosed(data, effects, alpha)
+    ss = state_space(stream)                                  # refused before
+    for e in effects:
+        title = f"{e['kind']}:{e['column']}"
+        assert title in ss.provenance["laws"]["E_X"]          # the banner names the effect
+        assert title in exported_files(stream, "c")["compensator.c"]
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+    assert _json_proved(stream, tests) <= TOLERANCE_UM
+    return ss
+
+
+@needs_cc
+@pytest.mark.parametrize("effect, alpha", [(LAG, None), (LAG, 0.01), (INPUT_LAG, None)],
+                         ids=["signal", "signal-shrunk", "input"])
+def test_a_diagnosed_lag_exports_as_a_lag_bank_channel_and_equals_replay(data, tmp_path, effect,
+                                                                         alpha):
+    ss = _exports_as_replay(data, tmp_path, [effect], alpha)
+    column = ss.inputs.index(effect["column"])
+    assert ss.derived == [[column, -1, 1, 0]]                 # the change since the first sample
+    assert ss.taus == [effect["tau_s"]] and ss.uses_time
+
+
+def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
+    lag = {**LAG, "initial_state": ["T_a", "T_b"]}
+    step = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 23.0}
+    for effects, named in (([lag], "signal:S_door first_order_lag"), ([LAG, step], "ambient_interval")):
+        stream, _ = _diagnosed(data, effects)
+        with pytest.raises(NotExportable, match=named) as info:
+            state_space(stream)
+        assert "first-order lag of a signal or input" in str(info.value)
