@@ -33,6 +33,7 @@ from thermocomp.shell.source import read_streamed
 
 LAG = {"kind": "signal", "transform": "first_order_lag", "column": "S_door", "tau_s": 600.0}
 INPUT_LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 900.0}
+PRODUCT = {"kind": "interaction", "transform": "product", "column": "S_door", "other": "T_b"}
 
 
 def _door(root, rows: int = 50):
@@ -108,6 +109,20 @@ def test_a_diagnosed_lag_exports_as_a_lag_bank_channel_and_equals_replay(data, t
     column = ss.inputs.index(effect["column"])
     assert ss.derived == [[column, -1, 1, 0]]                 # the change since the first sample
     assert ss.taus == [effect["tau_s"]] and ss.uses_time
+
+
+@needs_cc
+@pytest.mark.parametrize("effect, frame", [(PRODUCT, [1, 1]), ({**PRODUCT, "frame": "absolute"}, [0, 1]),
+                                           ({**PRODUCT, "column": "T_a"}, [1, 1])],
+                         ids=["state-input", "absolute-door", "two-inputs"])
+def test_a_diagnosed_product_exports_as_a_derived_input_and_equals_replay(data, tmp_path, effect,
+                                                                          frame):
+    """The door (a state: raw) times the rise of T_b (a declared input: denoised), each in the
+    effect's frame (``absolute``: the door as read, the other's change since the first sample)."""
+    ss = _exports_as_replay(data, tmp_path, [effect, LAG])
+    a, b = (ss.inputs.index(effect[k]) for k in ("column", "other"))
+    assert ss.derived[0] == [a, b, *frame]
+    assert ss.taus == [LAG["tau_s"]]
 
 
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
