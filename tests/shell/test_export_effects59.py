@@ -34,6 +34,7 @@ from thermocomp.shell.source import read_streamed
 LAG = {"kind": "signal", "transform": "first_order_lag", "column": "S_door", "tau_s": 600.0}
 INPUT_LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 900.0}
 PRODUCT = {"kind": "interaction", "transform": "product", "column": "S_door", "other": "T_b"}
+SQUARE = {"kind": "nonlinear", "transform": "square", "column": "T_a"}
 
 
 def _door(root, rows: int = 50):
@@ -125,6 +126,20 @@ def test_a_diagnosed_product_exports_as_a_derived_input_and_equals_replay(data, 
     assert ss.taus == [LAG["tau_s"]]
 
 
+@needs_cc
+@pytest.mark.parametrize("effect, frame", [(SQUARE, 1), ({**SQUARE, "frame": "absolute"}, 0),
+                                           ({**SQUARE, "column": "S_door", "kind": "signal"}, 1)],
+                         ids=["input", "input-absolute", "state"])
+def test_a_diagnosed_square_exports_as_a_derived_input_and_equals_replay(data, tmp_path, effect,
+                                                                         frame):
+    """T_a's change squared (its absolute value squared with ``frame=absolute``), and a state's,
+    beside a product and a lag: each the stream's feature, in the effect's frame."""
+    ss = _exports_as_replay(data, tmp_path, [LAG, effect, PRODUCT])
+    a = ss.inputs.index(effect["column"])
+    assert ss.derived[1] == [a, a, frame, frame]
+    assert len(ss.derived) == 3 and ss.taus == [LAG["tau_s"]]
+
+
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
     lag = {**LAG, "initial_state": ["T_a", "T_b"]}
     step = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 23.0}
@@ -133,3 +148,4 @@ def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
         with pytest.raises(NotExportable, match=named) as info:
             state_space(stream)
         assert "first-order lag of a signal or input" in str(info.value)
+        assert "a square of one" in str(info.value)

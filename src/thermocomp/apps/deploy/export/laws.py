@@ -129,10 +129,10 @@ def _diagnosed(est) -> list:
 
 
 # what the code holds of diagnose's effects (the refusal names them)
-DERIVED_TRANSFORMS = ("first_order_lag", "product")
+DERIVED_TRANSFORMS = ("first_order_lag", "product", "square")
 EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20) alone, and a "
                     "first-order lag of a signal or input (without an initial-state transient) "
-                    "and a product of two columns")
+                    ", a product of two columns and a square of one")
 
 
 def _is_derived(e) -> bool:
@@ -162,8 +162,12 @@ def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[i
     for e in derived.effects:
         own, other = (int(f == "first_sample") for f in frames(e, derived.reference))
         a = inputs.index(e.column)
-        b = inputs.index(e.other) if e.transform == "product" else -1
-        key = (DERIVED, a, b, own, other if b >= 0 else 0)
+        b, rb = -1, 0                       # a lag: r_a alone
+        if e.transform == "product":
+            b, rb = inputs.index(e.other), other
+        elif e.transform == "square":
+            b, rb = a, own
+        key = (DERIVED, a, b, own, rb)
         out.append((powers.setdefault(key, len(powers)), e.tau_s))
     return out
 
