@@ -34,6 +34,7 @@ from thermocomp.shell.source import read_streamed
 LAG = {"kind": "signal", "transform": "first_order_lag", "column": "S_door", "tau_s": 600.0}
 INPUT_LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 900.0}
 PRODUCT = {"kind": "interaction", "transform": "product", "column": "S_door", "other": "T_b"}
+AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
 SQUARE = {"kind": "nonlinear", "transform": "square", "column": "T_a"}
 
 
@@ -93,6 +94,8 @@ def _exports_as_replay(data, tmp_path, effects, alpha=None):
     stream, tests = _diagnosed(data, effects, alpha)
     ss = state_space(stream)                                  # refused before
     for e in effects:
+        if e["transform"] == "ambient_linear":
+            continue
         title = f"{e['kind']}:{e['column']}"
         assert title in ss.provenance["laws"]["E_X"]          # the banner names the effect
         assert title in exported_files(stream, "c")["compensator.c"]
@@ -140,10 +143,21 @@ def test_a_diagnosed_square_exports_as_a_derived_input_and_equals_replay(data, t
     assert len(ss.derived) == 3 and ss.taus == [LAG["tau_s"]]
 
 
+@needs_cc
+@pytest.mark.parametrize("effects", [[AMBIENT_LAW, LAG], [LAG, AMBIENT_LAW, SQUARE]],
+                         ids=["ambient-first", "ambient-between"])
+def test_derived_inputs_beside_the_ambient_law_export_in_its_campaign_factor(data, tmp_path, effects):
+    """The inputs' ambient law ``x (A0 - 20)`` with derived inputs, in the effects' order
+    (the model's columns): the base's law on ``[x, derived]`` and its ambient law on ``x``."""
+    ss = _exports_as_replay(data, tmp_path, effects)
+    assert ss.law_ambient == [0, 1] and len(ss.derived) == len(effects) - 1
+
+
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
     lag = {**LAG, "initial_state": ["T_a", "T_b"]}
     step = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 23.0}
-    for effects, named in (([lag], "signal:S_door first_order_lag"), ([LAG, step], "ambient_interval")):
+    for effects, named in (([lag], "signal:S_door first_order_lag"), ([LAG, step], "ambient_interval"),
+                           ([AMBIENT_LAW, AMBIENT_LAW], "ambient_linear twice")):
         stream, _ = _diagnosed(data, effects)
         with pytest.raises(NotExportable, match=named) as info:
             state_space(stream)

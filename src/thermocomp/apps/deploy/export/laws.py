@@ -103,24 +103,25 @@ def _diagnosed(est) -> list:
     """A diagnosed model's intervals: its base model's, when every effect it accepted is a
     sensor's removal (no feature: the base fitted on the inputs kept); the base's one law and
     its ambient law ``x (A0 - 20)`` (``ambient_linear`` alone: the base fitted on ``[x, x (A0 -
-    20)]``, what an ATI interval with the interaction is); or the base's law on ``[x, derived
+    20)]``, what an ATI interval with the interaction is); the base's law on ``[x, derived
     inputs]`` when each effect is one the code computes from its inputs as the stream does
-    (:data:`DERIVED_TRANSFORMS`: :func:`derived_inputs`).  Any other effect is refused, naming it."""
+    (:data:`DERIVED_TRANSFORMS`: :func:`derived_inputs`), with the ambient law when one effect
+    is ``ambient_linear``.  Any other effect is refused, naming it."""
     effects = list(est.effects_)
     if not effects:
         return _intervals(est.estimator_)
-    kinds = [e.transform for e in effects]
-    if kinds == ["ambient_linear"] and not isinstance(est.estimator_, ATIRegressor):
-        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, True, Derived())]
     derived = [e for e in effects if _is_derived(e)]
-    if len(derived) == len(effects) and not isinstance(est.estimator_, ATIRegressor):
-        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, False, Derived(
-            derived, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0)))]
+    ambient = [e for e in effects if e.transform == "ambient_linear"]
+    if len(derived) + len(ambient) == len(effects) and len(ambient) <= 1 and not isinstance(
+            est.estimator_, ATIRegressor):
+        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, bool(ambient), Derived(
+            derived, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
+            _canonical(effects, int(est.n_features_in_))))]
     others = [e.title for e in effects if not _is_derived(e) and e.transform != "ambient_linear"]
     if not others and isinstance(est.estimator_, ATIRegressor):
         others = ["ambient_linear around an ATI model" if e.transform == "ambient_linear"
                   else f"{e.title} around an ATI model" for e in effects]
-    others = others or ["ambient_linear with other effects"]
+    others = others or ["ambient_linear twice"]
     several = len(others) > 1
     raise NotExportable(f"the diagnosed effect{'s' if several else ''} {'; '.join(others)} "
                         f"{'do' if several else 'does'} not export (the code holds of diagnose's "
@@ -130,7 +131,7 @@ def _diagnosed(est) -> list:
 
 # what the code holds of diagnose's effects (the refusal names them)
 DERIVED_TRANSFORMS = ("first_order_lag", "product", "square")
-EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20) alone, and a "
+EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20), and a "
                     "first-order lag of a signal or input (without an initial-state transient) "
                     ", a product of two columns and a square of one")
 
@@ -148,6 +149,37 @@ class Derived:
     effects: list = field(default_factory=list)
     reference: str = "first_sample"
     period: float = 1.0
+    order: list | None = None       # the model's feature columns in ``[x, x (A0 - 20), derived]``
+
+    def canonical(self, b0, delayed: dict, lags: list) -> tuple:
+        """``(b0, delayed, lags)`` of the base model fitted on the features in the effects'
+        order, its columns put in the order ``[x, x (A0 - 20), derived inputs, powers]``."""
+        if self.order is None:
+            return b0, delayed, lags
+        place = np.argsort(self._order(len(b0)))     # a model column's canonical place
+        return (self.columns(b0), {d: self.columns(r) for d, r in delayed.items()},
+                [(tau, int(place[j]), g) for tau, j, g in lags])
+
+    def columns(self, row: np.ndarray | None) -> np.ndarray | None:
+        """``row`` over the model's columns in the canonical order (:meth:`canonical`)."""
+        if self.order is None or row is None:
+            return row
+        return np.asarray(row)[self._order(len(row))]
+
+    def _order(self, n: int) -> np.ndarray:
+        return np.r_[self.order, np.arange(len(self.order), n)].astype(int)
+
+
+def _canonical(effects: list, k: int) -> list[int]:
+    """The model's feature columns (``k`` inputs, then each effect's, in the effects' order:
+    :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.stream_step`) in the order ``[x, x (A0 -
+    20), derived inputs]`` the laws are written in."""
+    at, ambient, derived = k, [], []
+    for e in effects:
+        width = k if e.transform == "ambient_linear" else 1
+        (ambient if e.transform == "ambient_linear" else derived).extend(range(at, at + width))
+        at += width
+    return [*range(k), *ambient, *derived]
 
 
 def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[int, float | None]]:
@@ -185,6 +217,7 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     k, n = len(cols), len(inputs)
     width = (2 * k if interacts else k) + len(extra)
     c, b0, delayed, lags, a, period = _target_law(linear, width + len(feats), period)
+    b0, delayed, lags = derived.canonical(b0, delayed, lags)
     if any(tau is not None for _, tau in extra):
         period = _one_period(period, derived.period)
     own_x = width - len(extra)          # the inputs' (and the interaction's) columns
@@ -196,7 +229,7 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
                             "lag): the code's lags are first-order")
     gain = None
     if horizon_s is not None:
-        gain = step_gain(est, None, horizon_s)
+        gain = derived.columns(step_gain(est, None, horizon_s))
         if gain is None:
             raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
                                 f"{a:.3g}): the envelope clamp needs one; export it with "
