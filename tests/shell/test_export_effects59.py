@@ -23,7 +23,7 @@ from sklearn.base import clone
 from test_export import _compose, needs_cc
 from test_export_ati57 import CAMPAIGNS
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
-from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, state_space
+from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, not_in_code, state_space
 from thermocomp.apps.deploy.export.statespace import StateSpace
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.apps.diagnose import AugmentedRegressor
@@ -110,6 +110,9 @@ def _exports_as_replay(data, tmp_path, effects, alpha=None):
 def test_a_diagnosed_lag_exports_as_a_lag_bank_channel_and_equals_replay(data, tmp_path, effect,
                                                                          alpha):
     ss = _exports_as_replay(data, tmp_path, [effect], alpha)
+    stream, _ = _diagnosed(data, [effect], alpha)
+    held = [w for w in not_in_code(stream) if "of a diagnosed effect held" in w]
+    assert bool(held) == (effect is LAG)          # a declared input is refused missing, as served
     column = ss.inputs.index(effect["column"])
     assert ss.derived == [[column, -1, 1, 0]]                 # the change since the first sample
     assert ss.taus == [effect["tau_s"]] and ss.uses_time
