@@ -29,6 +29,8 @@ from thermocomp.apps.deploy.streaming import replay
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.core.models import MLR
 from thermocomp.shell.builders import deploy_stream
+from thermocomp.shell.cli import main
+from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
 LAG = {"kind": "signal", "transform": "first_order_lag", "column": "S_door", "tau_s": 600.0}
@@ -65,7 +67,7 @@ def data(tmp_path_factory):
     return _door(tmp_path_factory.mktemp("effects") / "data")
 
 
-def _diagnosed(data, effects: list, alpha=None):
+def _diagnosed(data, effects: list, alpha=None, with_model: bool = False):
     """``(stream as replay deploys it, test campaigns with T_a pushed out half-way)`` of MLR
     with ``effects`` for E_X, the way diagnose's written config builds it."""
     _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
@@ -76,7 +78,7 @@ def _diagnosed(data, effects: list, alpha=None):
     comp = clone(mlr).set_params(estimator=AugmentedRegressor(
         MLR(), effects={"E_X": effects}, alpha=None if alpha is None else {"E_X": alpha}))
     comp.fit(train)
-    return deploy_stream(cfg, comp, train), tests
+    return (deploy_stream(cfg, comp, train), tests) + ((comp,) if with_model else ())
 
 
 def _json_proved(stream, tests) -> float:
@@ -154,6 +156,22 @@ def test_derived_inputs_beside_the_ambient_law_export_in_its_campaign_factor(dat
     (the model's columns): the base's law on ``[x, derived]`` and its ambient law on ``x``."""
     ss = _exports_as_replay(data, tmp_path, effects)
     assert ss.law_ambient == [0, 1] and len(ss.derived) == len(effects) - 1
+
+
+def test_the_export_command_writes_a_diagnosed_models_code_naming_its_effects(data, tmp_path,
+                                                                              capsys):
+    """``thermocomp export`` of the model.pkl (refused before): the files, the banner naming the
+    derived inputs and the served model's holding of a missing door."""
+    _, _, comp = _diagnosed(data, [LAG, PRODUCT], with_model=True)
+    out = tmp_path / "code"
+    assert main(["export", f"data.path={data}", f"export.model={save_model(comp, tmp_path / 'm.pkl')}",
+                 "export.format=st", f"out={out}", "track=false"]) == 0
+    exported = json.loads((out / "compensator.json").read_text())
+    assert "S_door" in exported["inputs"] and len(exported["derived"]) == 2
+    banner = (out / "compensator.st").read_text().split("*)")[0]
+    assert "signal:S_door first_order_lag(tau=600s)" in banner
+    assert "interaction:S_door product(T_b)" in banner
+    assert "a missing S_door of a diagnosed effect held" in banner
 
 
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
