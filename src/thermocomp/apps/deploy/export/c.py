@@ -114,7 +114,9 @@ typedef struct {{
     int first;                                  /* 1: the next sample starts a campaign */
     double buf[TC_TAPS][TC_N_INPUTS];           /* raw inputs, newest first (FIR denoiser) */
     double ref[TC_N_INPUTS];                    /* first-sample reference */
-    double v0[TC_N_INPUTS];                     /* the first sample (derived inputs' frame) */
+    double v0[TC_N_INPUTS];                     /* the first value (derived inputs' frame) */
+    double last[TC_N_INPUTS];                   /* the last finite value (a held signal's) */
+    int seen[TC_N_INPUTS];                      /* 1: a value seen in this campaign */
     /* per channel: [0] the measured inputs, [1] their excess over the envelope */
     double hist[2][{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
     double z[2][{max(len(ss.taus), 1)}];        /* first-order lags */
@@ -135,6 +137,8 @@ typedef struct {{
 }} tc_state;
 
 static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
+/* 1: a signal a diagnosed effect reads, whose missing value (NAN) tc_step holds */
+static const int TC_INPUT_HELD[TC_N_INPUTS] = {{{", ".join(str(int(h)) for h in ss.held or [0] * n)}}};
 static const char *const TC_OUTPUT_NAMES[TC_N_OUTPUTS] = {{{outs}}};
 static const char *const TC_ERROR_NAMES[TC_N_OUTPUTS] = {{{errors}}};  /* measured errors */
 /* The headers of the data the model was made from, which a stream may use instead */
@@ -232,6 +236,7 @@ static int off_pattern(const double x[]) {{
 }}
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
+    double uu[TC_N_INPUTS];                 /* u, a held signal's missing value filled */
     double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED], xl[2][{max(k, 1)}], ych[2];
     double ysum[2][TC_N_OUTPUTS], excess[TC_N_OUTPUTS];
     double allow[TC_N_OUTPUTS];
@@ -241,15 +246,22 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end */
     s->refused = 0;
     for (j = 0; j < TC_N_INPUTS; j++)
-        if (!isfinite(u[j])) {{
+        if (!TC_INPUT_HELD[j] && !isfinite(u[j])) {{
             for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
             s->refused = 1;
             return -1;
         }}
-{C_TIME_RULE}    /* causal FIR denoiser */
+{C_TIME_RULE}    /* a missing signal of derived inputs only (TC_INPUT_HELD) is held at the campaign's
+       last value, 0 before any (its derived inputs 0), as the diagnosed model holds it */
+    for (j = 0; j < TC_N_INPUTS; j++) {{
+        if (s->first) s->seen[j] = 0;
+        if (isfinite(u[j])) s->last[j] = u[j];
+        uu[j] = isfinite(u[j]) ? u[j] : (s->seen[j] ? s->last[j] : 0.0);
+    }}
+    /* causal FIR denoiser */
     for (l = TC_TAPS - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++)
-            s->buf[l][j] = (s->first || l == 0) ? u[j] : s->buf[l - 1][j];
+            s->buf[l][j] = (s->first || l == 0) ? uu[j] : s->buf[l - 1][j];
     for (j = 0; j < TC_N_INPUTS; j++) {{
         v[j] = 0.0;
         for (l = 0; l < TC_TAPS; l++) v[j] += s->buf[l][j] * FIR[l][j];
@@ -280,14 +292,17 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         x[0][TC_N_INPUTS + l] = w < 0.0 ? -pow(-w, POWER_EXP[l]) : pow(w, POWER_EXP[l]);
         x[1][TC_N_INPUTS + l] = 0.0;
     }}
-    /* a diagnosed model's derived inputs: r_a r_b (b < 0: r_a), r_j = v_j - its first sample's
-       value where REF (the effect's frame), as the stream's model reads its context */
-    if (s->first)
-        for (j = 0; j < TC_N_INPUTS; j++) s->v0[j] = v[j];
+    /* a diagnosed model's derived inputs: r_a r_b (b < 0: r_a), r_j = v_j - its first value
+       where REF (the effect's frame), 0 before any, as the stream's model reads its context */
+    for (j = 0; j < TC_N_INPUTS; j++)
+        if (!s->seen[j] && isfinite(u[j])) {{
+            s->v0[j] = v[j];
+            s->seen[j] = 1;
+        }}
     for (l = 0; l < TC_N_DERIVED; l++) {{
-        double ra = v[DERIVED_A[l]] - (DERIVED_REF_A[l] ? s->v0[DERIVED_A[l]] : 0.0);
-        double rb = DERIVED_B[l] < 0 ? 1.0
-            : v[DERIVED_B[l]] - (DERIVED_REF_B[l] ? s->v0[DERIVED_B[l]] : 0.0);
+        int a = DERIVED_A[l], b = DERIVED_B[l];
+        double ra = s->seen[a] ? v[a] - (DERIVED_REF_A[l] ? s->v0[a] : 0.0) : 0.0;
+        double rb = b < 0 ? 1.0 : (s->seen[b] ? v[b] - (DERIVED_REF_B[l] ? s->v0[b] : 0.0) : 0.0);
         x[0][TC_N_INPUTS + TC_N_POWERS + l] = ra * rb;
         x[1][TC_N_INPUTS + TC_N_POWERS + l] = 0.0;
     }}

@@ -33,7 +33,7 @@ import numpy as np
 from ..adaptive import AdaptiveCompensator
 from ..guard import widening
 from .errors import NotExportable
-from .members import is_diagnosed, members
+from .members import members
 
 UNBOUNDED = sys.float_info.max   # a machine state's range: never beyond it
 
@@ -94,12 +94,6 @@ def not_in_code(deployed) -> list[str]:
         stream = deployed.streaming
     if any(getattr(m, "state_columns_", None) for _, est, _ in stream._plan for _, _, m in members(est)):
         out.append("a missing machine state held at its last value (the code needs every input)")
-    declared = set(stream.compensator.inputs_)
-    signals = sorted({c for _, est, _ in stream._plan for _, _, m in members(est) if is_diagnosed(m)
-                      for c in m.required_context_ if c not in declared})
-    if signals:     # the stream checks the declared inputs only; the model holds the rest
-        out.append(f"a missing {', '.join(signals)} of a diagnosed effect held at its last value "
-                   "(the code needs every input)")
     return out
 
 

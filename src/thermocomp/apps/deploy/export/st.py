@@ -88,6 +88,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
+        _constant("HELD", ss.held or [], (n,), "INT"),
         *(_constant(f"DERIVED_{name}", [f[i] for f in ss.derived], (q,), "INT")
           for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
         _constant("BD", ss.bd, (r, d, n)), _constant("G", ss.g, (r, k)), _constant("AR", ss.ar, (r,)),
@@ -135,6 +136,9 @@ VAR
     buf : ARRAY[{_dims(taps, n)}] OF LREAL;
     ref : ARRAY[{_dims(n)}] OF LREAL;
     v0 : ARRAY[{_dims(n)}] OF LREAL;
+    last : ARRAY[{_dims(n)}] OF LREAL;
+    seen : ARRAY[{_dims(n)}] OF BOOL;
+    uu : ARRAY[{_dims(n)}] OF LREAL;
     ra : LREAL;
     rb : LREAL;
     hist : ARRAY[{_dims(2, d, n)}] OF LREAL;
@@ -207,17 +211,32 @@ END_IF;
 (* nothing remembered changes, c keeps the last corrections (0 before a campaign's first sample) *)
 refused := FALSE;
 FOR j := 0 TO N_INPUTS - 1 DO
-    IF NOT (u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT) THEN
+    IF HELD[j] = 0 AND NOT (u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT) THEN
         refused := TRUE;
     END_IF;
 END_FOR;
 IF NOT refused THEN
 {_indent(ST_TIME_RULE)}    n_clamped := 0;
+    (* a missing signal of derived inputs only (HELD) is held at the campaign's last value, *)
+    (* 0 before any (its derived inputs 0), as the diagnosed model holds its context *)
+    FOR j := 0 TO N_INPUTS - 1 DO
+        IF first THEN
+            seen[j] := FALSE;
+        END_IF;
+        IF u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
+            last[j] := u[j];
+            uu[j] := u[j];
+        ELSIF seen[j] THEN
+            uu[j] := last[j];
+        ELSE
+            uu[j] := 0.0;
+        END_IF;
+    END_FOR;
     (* causal FIR denoiser: newest raw sample first *)
     FOR l := TAPS - 1 TO 0 BY -1 DO
         FOR j := 0 TO N_INPUTS - 1 DO
             IF first OR l = 0 THEN
-                buf[l, j] := u[j];
+                buf[l, j] := uu[j];
             ELSE
                 buf[l, j] := buf[l - 1, j];
             END_IF;
@@ -326,22 +345,29 @@ IF NOT refused THEN
         x[1, N_INPUTS + l] := 0.0;
     END_FOR;
     (* a diagnosed model's derived inputs: r_a r_b (b < 0: r_a), r_j = v_j - its first *)
-    (* sample's value where REF (the effect's frame), as the stream's model reads its context *)
-    IF first THEN
-        FOR j := 0 TO N_INPUTS - 1 DO
+    (* value where REF (the effect's frame), 0 before any, as the stream's model reads its context *)
+    FOR j := 0 TO N_INPUTS - 1 DO
+        IF NOT seen[j] AND u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
             v0[j] := v[j];
-        END_FOR;
-    END_IF;
+            seen[j] := TRUE;
+        END_IF;
+    END_FOR;
     FOR l := 0 TO N_DERIVED - 1 DO
-        ra := v[DERIVED_A[l]];
-        IF DERIVED_REF_A[l] <> 0 THEN
-            ra := ra - v0[DERIVED_A[l]];
+        ra := 0.0;
+        IF seen[DERIVED_A[l]] THEN
+            ra := v[DERIVED_A[l]];
+            IF DERIVED_REF_A[l] <> 0 THEN
+                ra := ra - v0[DERIVED_A[l]];
+            END_IF;
         END_IF;
         rb := 1.0;
         IF DERIVED_B[l] >= 0 THEN
-            rb := v[DERIVED_B[l]];
-            IF DERIVED_REF_B[l] <> 0 THEN
-                rb := rb - v0[DERIVED_B[l]];
+            rb := 0.0;
+            IF seen[DERIVED_B[l]] THEN
+                rb := v[DERIVED_B[l]];
+                IF DERIVED_REF_B[l] <> 0 THEN
+                    rb := rb - v0[DERIVED_B[l]];
+                END_IF;
             END_IF;
         END_IF;
         x[0, N_INPUTS + N_POWERS + l] := ra * rb;

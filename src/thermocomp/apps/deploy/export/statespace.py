@@ -94,6 +94,10 @@ class StateSpace:
     # a diagnosed model's derived inputs, after the powers: [a, b, ra, rb], r_a r_b (b = -1: r_a)
     # of r_j = v_j - rj v_j(0), v(0) the campaign's first sample (:func:`.laws.derived_inputs`)
     derived: list = field(default_factory=list)
+    # (n_inputs,) 1: a signal only derived inputs read (no declared input): a missing value does
+    # not refuse the sample, it is held at the campaign's last one (0 before any: its derived
+    # inputs 0, its first value their reference), as the diagnosed model holds its context
+    held: list = field(default_factory=list)
     clamp_gain: list | None = None   # (n_laws, n_inputs) step gain at the horizon (clamp only)
     # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
     pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
@@ -236,6 +240,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         uses_time=bool(keys),
         powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] != DERIVED],
         derived=[list(k[1:]) for k in sorted(powers, key=powers.get) if k[0] == DERIVED],
+        held=_held(inputs, n, powers, ambient),
         clamp_gain=[law.gain.tolist() for _, law in laws] if clamp else None,
         **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
@@ -243,6 +248,16 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
+
+
+def _held(inputs: list, n: int, powers: dict, ambient: list) -> list[int]:
+    """Per input, 1 for a signal only derived inputs read (not one of the ``n`` declared
+    inputs, no power's, no ambient sensor): the stream checks the declared inputs and the
+    ambient sensors only, and the diagnosed model holds a missing value of its context."""
+    other = {k[0] for k in powers if k[0] != DERIVED} | set(ambient)
+    read = {j for k in powers if k[0] == DERIVED for j in (k[1], k[2]) if j >= 0}
+    held = [int(j >= n and j in read and j not in other) for j in range(len(inputs))]
+    return held if any(held) else []
 
 
 def _in_code_order(laws: list, powers: dict, n: int) -> None:
@@ -334,11 +349,16 @@ class Simulator:
         the last corrections given are returned (0 before a campaign's first sample)."""
         u = np.asarray(u, float)
         ss = self.ss
-        self.refused = not np.isfinite(u).all()
+        held = np.asarray(ss.held or [0] * len(u), bool)
+        self.refused = not np.isfinite(u[~held]).all()
         if self.refused:
             return self.c.copy()
         if self.first:
             self.clock.reset()
+            self.seen, self.last = np.zeros(len(u), bool), np.zeros(len(u))
+        measured = np.isfinite(u)
+        self.last = np.where(measured, u, self.last)
+        u = np.where(measured, u, np.where(self.seen, self.last, 0.0))     # a held signal
         _, dt, _ = self.clock.step(float(time))
         if self.first:
             self.buf = np.tile(u, (len(self.fir), 1))
@@ -358,10 +378,12 @@ class Simulator:
             xe = np.r_[x, np.abs(w) ** e * np.sign(w)]
         if self.first:
             self.v0 = v.copy()
+        self.v0 = np.where(measured & ~self.seen, v, self.v0)   # a signal's first value
+        self.seen |= measured
         if ss.derived:      # a diagnosed model's derived inputs, from v as the model reads it
             a, b, ra, rb = (np.array(c, int) for c in zip(*ss.derived))
-            ta = v[a] - ra * self.v0[a]
-            tb = np.where(b >= 0, v[b] - rb * self.v0[b], 1.0)
+            ta = np.where(self.seen[a], v[a] - ra * self.v0[a], 0.0)
+            tb = np.where(b < 0, 1.0, np.where(self.seen[b], v[b] - rb * self.v0[b], 0.0))
             xe = np.r_[xe, ta * tb]
         # two channels of one system: the measured inputs, and their excess (no powers, no intercept)
         xs = np.vstack([xe, np.r_[excess, np.zeros(len(xe) - len(x))]])
