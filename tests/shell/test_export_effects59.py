@@ -27,7 +27,7 @@ from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_fil
 from thermocomp.apps.deploy.export.statespace import StateSpace
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.apps.diagnose import AugmentedRegressor
-from thermocomp.core.models import MLR
+from thermocomp.core.models import MLR, LagBank
 from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
@@ -67,7 +67,7 @@ def data(tmp_path_factory):
     return _door(tmp_path_factory.mktemp("effects") / "data")
 
 
-def _diagnosed(data, effects: list, alpha=None, with_model: bool = False):
+def _diagnosed(data, effects: list, alpha=None, with_model: bool = False, base=None):
     """``(stream as replay deploys it, test campaigns with T_a pushed out half-way)`` of MLR
     with ``effects`` for E_X, the way diagnose's written config builds it."""
     _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
@@ -76,7 +76,8 @@ def _diagnosed(data, effects: list, alpha=None, with_model: bool = False):
     ds, train_ids, _, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
     comp = clone(mlr).set_params(estimator=AugmentedRegressor(
-        MLR(), effects={"E_X": effects}, alpha=None if alpha is None else {"E_X": alpha}))
+        base if base is not None else MLR(), effects={"E_X": effects},
+        alpha=None if alpha is None else {"E_X": alpha}))
     comp.fit(train)
     tests = [df.copy() for df in tests]        # the door missing at a start and mid-run (held)
     tests[0].loc[[0, 1], "S_door"] = np.nan
@@ -160,6 +161,19 @@ def test_derived_inputs_beside_the_ambient_law_export_in_its_campaign_factor(dat
     assert ss.law_ambient == [0, 1] and len(ss.derived) == len(effects) - 1
 
 
+@needs_cc
+@pytest.mark.parametrize("effects", [[PRODUCT, SQUARE], [AMBIENT_LAW]], ids=["derived", "ambient-law"])
+def test_a_diagnosed_lag_bank_is_clamped_outright_as_the_stream_clamps_it(data, tmp_path, effects):
+    """The stream forks a held copy for the clamp's bound only of a model with a step gain; a
+    diagnosed model has none, so its inputs' excess is taken out whole (the code bounded it by
+    the base's gain: 1.1 µm off the served lag bank's corrections, the clamp acting)."""
+    stream, tests = _diagnosed(data, effects, base=LagBank(n_taus=2))
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+    assert _json_proved(stream, tests) <= TOLERANCE_UM
+    ss = state_space(stream)
+    assert ss.clamp_outright == [1] and ss.taus
+
+
 def test_the_export_command_writes_a_diagnosed_models_code_naming_its_effects(data, tmp_path,
                                                                               capsys):
     """``thermocomp export`` of the model.pkl (refused before): the files, the banner naming the
@@ -187,3 +201,11 @@ def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
             state_space(stream)
         assert "first-order lag of a signal or input" in str(info.value)
         assert "a square of one" in str(info.value)
+
+
+def test_a_lag_bank_on_a_diagnosed_lag_is_refused_as_a_second_order_lag(data):
+    """The base lag bank lags every feature, the effect's lag too: a lag of a lag is no
+    first-order channel of the code (refused, not approximated)."""
+    stream, _ = _diagnosed(data, [LAG], base=LagBank(n_taus=2))
+    with pytest.raises(NotExportable, match="second-order lag"):
+        state_space(stream)

@@ -189,6 +189,7 @@ def source(ss: StateSpace) -> str:
           for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
         _array("BD", ss.bd, (r, d, n)), _array("G", ss.g, (r, k)), _array("AR", ss.ar, (r,)),
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * r, (r, n)),
+        _ints("CLAMP_OUTRIGHT", ss.clamp_outright or [0] * len(ss.targets)),
         *_pattern_constants(ss),
         f"static const int CLAMP = {int(ss.clamp)};",
         *_output_constants(ss)])
@@ -365,7 +366,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         ych[1] = ysum[1][i];
         bound = excess[i];
         if (s->first || clamped) s->bound[i] = fabs(bound);
-        bound = s->bound[i];
+        bound = CLAMP_OUTRIGHT[i] ? HUGE_VAL : s->bound[i];   /* outright: no step gain */
         y = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
         /* correction guard: within the rate limit of the previous output, then the bound */
         if (TC_GUARD) {{

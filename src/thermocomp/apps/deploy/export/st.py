@@ -67,6 +67,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
         _constant("CLAMP_GAIN", ss.clamp_gain or [], (r, n)),
+        _constant("CLAMP_OUTRIGHT", ss.clamp_outright or [], (m,), "INT"),
         f"    PATTERN : BOOL := {'TRUE' if ss.pattern else 'FALSE'};",
         f"    PATTERN_RANK : INT := {len(ss.pattern_basis[0]) if ss.pattern else 0};",
         f"    PATTERN_TOL : LREAL := {literal(ss.pattern_tol)};",
@@ -451,6 +452,10 @@ IF NOT refused THEN
             bound_held[i] := bound;
         END_IF;
         bound := bound_held[i];
+        IF CLAMP_OUTRIGHT[i] <> 0 THEN
+            (* a model without a step gain: the response to the excess taken out whole *)
+            bound := REAL_LIMIT;
+        END_IF;
         IF ych[1] > bound THEN
             y := ych[0] - bound;
         ELSIF ych[1] < -bound THEN

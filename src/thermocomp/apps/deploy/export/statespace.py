@@ -23,7 +23,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the time since the previous sample
    (``time_period`` without one, timerule.py); the same system, without intercept and powers,
    runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
-   response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)``, ``b_t = |clamp_gain_t .
+   response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)`` (``y_t - r_t`` where
+   ``clamp_outright_t``: the stream's clamp of a model without a step gain), ``b_t = |clamp_gain_t .
    ex|`` the response to the excess held for the envelope's horizon (as the stream does); at a
    sample within the envelope (``ex = 0``) after an excess, ``b_t`` is the last excess's (0
    before the campaign's first): an excess that fades out ends with a bound near 0 (the model's
@@ -99,6 +100,9 @@ class StateSpace:
     # inputs 0, its first value their reference), as the diagnosed model holds its context
     held: list = field(default_factory=list)
     clamp_gain: list | None = None   # (n_laws, n_inputs) step gain at the horizon (clamp only)
+    # (n_targets,) 1: the response to the excess is taken out whole (b_t infinite): the stream
+    # clamps a model without a step gain (a diagnosed one) outright; empty: none
+    clamp_outright: list = field(default_factory=list)
     # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
     pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
     pattern_mean: list | None = None     # (n_inputs,)
@@ -194,10 +198,13 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     N = len(inputs)
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     laws, period, powers, chosen = [], None, {}, {}      # laws: (target index, Law)
+    # the stream forks a held copy for the clamp's bound only of a model with a step gain
+    outright = [int(clamp and not callable(getattr(est, "step_gain", None)))
+                for _, est, _ in stream._plan]
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
         own, period, kept = target_laws(t, est, cols, inputs, powers, period,
-                                        env.horizon_s if clamp else None)
+                                        env.horizon_s if clamp and not outright[i] else None)
         laws += [(i, law) for law in own]
         if kept is not None:
             chosen[t] = kept
@@ -241,7 +248,9 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] != DERIVED],
         derived=[list(k[1:]) for k in sorted(powers, key=powers.get) if k[0] == DERIVED],
         held=_held(inputs, n, powers, ambient),
-        clamp_gain=[law.gain.tolist() for _, law in laws] if clamp else None,
+        clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
+                    for _, law in laws] if clamp else None,
+        clamp_outright=outright if any(outright) else [],
         **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
         **time_fields(deployed, period),
@@ -405,7 +414,8 @@ class Simulator:
         y = self._summed(y)
         if excess.any():            # back in range, the bound of the excess's last sample holds
             self.bound = np.abs(self._summed(self.clamp_gain @ excess))
-        self.c = self.output.step(y[0] - np.clip(y[1], -self.bound, self.bound), first, dt,
+        bound = np.where(np.asarray(ss.clamp_outright or [0] * len(y[0]), bool), np.inf, self.bound)
+        self.c = self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt,
                                   self.output.allowance(x, self.envelope))
         return self.c.copy()
 
