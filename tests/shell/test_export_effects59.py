@@ -187,6 +187,7 @@ def test_the_export_command_writes_a_diagnosed_models_code_naming_its_effects(da
     banner = (out / "compensator.st").read_text().split("*)")[0]
     assert "signal:S_door first_order_lag(tau=600s)" in banner
     assert "interaction:S_door product(T_b)" in banner
+    assert "S_door    envelope not clamped  held when missing" in banner
     assert exported["held"] == [int(c == "S_door") for c in exported["inputs"]]
     assert "S_door" not in " ".join(exported["provenance"].get("not_in_code", []))
 
