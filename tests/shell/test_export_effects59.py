@@ -192,6 +192,13 @@ def test_the_export_command_writes_a_diagnosed_models_code_naming_its_effects(da
     assert "S_door" not in " ".join(exported["provenance"].get("not_in_code", []))
 
 
+@needs_cc
+def test_a_diagnosed_signal_as_read_exports_as_a_derived_input_and_equals_replay(data, tmp_path):
+    """``signal:S_door raw``: the door's change since the first sample, no lag."""
+    ss = _exports_as_replay(data, tmp_path, [{"kind": "signal", "transform": "raw", "column": "S_door"}])
+    assert ss.derived == [[ss.inputs.index("S_door"), -1, 1, 0]] and not ss.taus
+
+
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
     lag = {**LAG, "initial_state": ["T_a", "T_b"]}
     step = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 23.0}

@@ -130,10 +130,10 @@ def _diagnosed(est) -> list:
 
 
 # what the code holds of diagnose's effects (the refusal names them)
-DERIVED_TRANSFORMS = ("first_order_lag", "product", "square")
-EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20), and a "
-                    "first-order lag of a signal or input (without an initial-state transient) "
-                    ", a product of two columns and a square of one")
+DERIVED_TRANSFORMS = ("first_order_lag", "product", "square", "raw")
+EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20), a first-order lag "
+                    "of a signal or input (without an initial-state transient), a product of two "
+                    "columns, a square of one and a signal as read (raw)")
 
 
 def _is_derived(e) -> bool:
