@@ -37,6 +37,7 @@ LAG = {"kind": "signal", "transform": "first_order_lag", "column": "S_door", "ta
 INPUT_LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 900.0}
 PRODUCT = {"kind": "interaction", "transform": "product", "column": "S_door", "other": "T_b"}
 AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
+LOWPASS = {"kind": "dynamics", "transform": "lowpass_inputs", "tau_s": 900.0}
 SQUARE = {"kind": "nonlinear", "transform": "square", "column": "T_a"}
 
 
@@ -100,7 +101,7 @@ def _exports_as_replay(data, tmp_path, effects, alpha=None):
     stream, tests = _diagnosed(data, effects, alpha)
     ss = state_space(stream)                                  # refused before
     for e in effects:
-        if e["transform"] == "ambient_linear":
+        if e["transform"] in ("ambient_linear", "lowpass_inputs"):
             continue
         title = f"{e['kind']}:{e['column']}"
         assert title in ss.provenance["laws"]["E_X"]          # the banner names the effect
@@ -197,6 +198,19 @@ def test_a_diagnosed_signal_as_read_exports_as_a_derived_input_and_equals_replay
     """``signal:S_door raw``: the door's change since the first sample, no lag."""
     ss = _exports_as_replay(data, tmp_path, [{"kind": "signal", "transform": "raw", "column": "S_door"}])
     assert ss.derived == [[ss.inputs.index("S_door"), -1, 1, 0]] and not ss.taus
+
+
+@needs_cc
+@pytest.mark.parametrize("effects", [[LOWPASS], [LOWPASS, AMBIENT_LAW, PRODUCT,
+                                                 {**LOWPASS, "tau_s": 3000.0}]],
+                         ids=["alone", "among-others"])
+def test_a_diagnosed_low_pass_of_the_inputs_exports_as_their_lag_bank_channels(data, tmp_path,
+                                                                               effects):
+    """``dynamics:- first_order_lag(tau) of the model inputs``: one lag channel per input (the
+    clamped inputs' as the stream's model reads them: both channels of the code)."""
+    ss = _exports_as_replay(data, tmp_path, effects)
+    taus = [e["tau_s"] for e in effects if e is LOWPASS or e.get("transform") == "lowpass_inputs"]
+    assert sorted(set(ss.taus)) == sorted(taus) and len(ss.taus) == 3 * len(taus)
 
 
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):

@@ -112,12 +112,14 @@ def _diagnosed(est) -> list:
         return _intervals(est.estimator_)
     derived = [e for e in effects if _is_derived(e)]
     ambient = [e for e in effects if e.transform == "ambient_linear"]
-    if len(derived) + len(ambient) == len(effects) and len(ambient) <= 1 and not isinstance(
-            est.estimator_, ATIRegressor):
+    lowpass = [e.tau_s for e in effects if e.transform == "lowpass_inputs" and not e.initial_state]
+    if len(derived) + len(ambient) + len(lowpass) == len(effects) and len(ambient) <= 1 and not \
+            isinstance(est.estimator_, ATIRegressor):
         return [(-UNBOUNDED, UNBOUNDED, est.estimator_, bool(ambient), Derived(
             derived, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
-            _canonical(effects, int(est.n_features_in_))))]
-    others = [e.title for e in effects if not _is_derived(e) and e.transform != "ambient_linear"]
+            _canonical(effects, int(est.n_features_in_)), lowpass))]
+    others = [e.title for e in effects if not _is_derived(e) and e.transform != "ambient_linear"
+              and not (e.transform == "lowpass_inputs" and not e.initial_state)]
     if not others and isinstance(est.estimator_, ATIRegressor):
         others = ["ambient_linear around an ATI model" if e.transform == "ambient_linear"
                   else f"{e.title} around an ATI model" for e in effects]
@@ -132,8 +134,9 @@ def _diagnosed(est) -> list:
 # what the code holds of diagnose's effects (the refusal names them)
 DERIVED_TRANSFORMS = ("first_order_lag", "product", "square", "raw")
 EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20), a first-order lag "
-                    "of a signal or input (without an initial-state transient), a product of two "
-                    "columns, a square of one and a signal as read (raw)")
+                    "of a signal or input and of all the inputs (without an initial-state "
+                    "transient), a product of two columns, a square of one and a signal as read "
+                    "(raw)")
 
 
 def _is_derived(e) -> bool:
@@ -149,7 +152,9 @@ class Derived:
     effects: list = field(default_factory=list)
     reference: str = "first_sample"
     period: float = 1.0
-    order: list | None = None       # the model's feature columns in ``[x, x (A0 - 20), derived]``
+    order: list | None = None       # the model's feature columns in ``[x, x (A0 - 20), derived,
+                                    # low-pass blocks]``
+    lowpass: list = field(default_factory=list)     # the taus of the inputs' low-pass copies
 
     def canonical(self, b0, delayed: dict, lags: list) -> tuple:
         """``(b0, delayed, lags)`` of the base model fitted on the features in the effects'
@@ -174,12 +179,12 @@ def _canonical(effects: list, k: int) -> list[int]:
     """The model's feature columns (``k`` inputs, then each effect's, in the effects' order:
     :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.stream_step`) in the order ``[x, x (A0 -
     20), derived inputs]`` the laws are written in."""
-    at, ambient, derived = k, [], []
+    at, groups = k, {"ambient_linear": [], "lowpass_inputs": [], None: []}
     for e in effects:
-        width = k if e.transform == "ambient_linear" else 1
-        (ambient if e.transform == "ambient_linear" else derived).extend(range(at, at + width))
-        at += width
-    return [*range(k), *ambient, *derived]
+        wide = e.transform in ("ambient_linear", "lowpass_inputs")
+        groups[e.transform if wide else None].extend(range(at, at + (k if wide else 1)))
+        at += k if wide else 1
+    return [*range(k), *groups["ambient_linear"], *groups[None], *groups["lowpass_inputs"]]
 
 
 def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[int, float | None]]:
@@ -215,16 +220,18 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     extra = derived_inputs(derived, inputs, powers)
     linear, feats = _powered(est, inputs, powers)
     k, n = len(cols), len(inputs)
-    width = (2 * k if interacts else k) + len(extra)
+    own_x = 2 * k if interacts else k           # the inputs' (and the interaction's) columns
+    end = own_x + len(extra)                    # then the derived inputs', the low-pass blocks'
+    width = end + k * len(derived.lowpass)
     c, b0, delayed, lags, a, period = _target_law(linear, width + len(feats), period)
     b0, delayed, lags = derived.canonical(b0, delayed, lags)
-    if any(tau is not None for _, tau in extra):
+    if derived.lowpass or any(tau is not None for _, tau in extra):
         period = _one_period(period, derived.period)
-    own_x = width - len(extra)          # the inputs' (and the interaction's) columns
     if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
         raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
                             "code's input history holds the inputs only")
-    if any(own_x <= j < width and extra[j - own_x][1] is not None for _, j, _ in lags):
+    if any(own_x <= j < width and (j >= end or extra[j - own_x][1] is not None)
+           for _, j, _ in lags):
         raise NotExportable(f"the law of {target} lags a diagnosed effect's lag (a second-order "
                             "lag): the code's lags are first-order")
     gain = None
@@ -236,18 +243,22 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
                                 "promote.envelope.policy=off")
     pw = n + np.asarray(feats, int)                     # the powers' places in [x, powers]
     dx = n + np.asarray([f for f, _ in extra], int)     # the derived inputs' places
-    places = np.r_[dx, pw]                              # of the columns after the inputs'
     out = []
     for ambient in (False, True) if interacts else (False,):
         x = slice(k, 2 * k) if ambient else slice(0, k)
-        terms = [(cols, w * b0[x])] + ([] if ambient or not len(places) else
-                                       [(places, w * b0[own_x:])])
+        terms = [(cols, w * b0[x])]
         own = [(tau, int(cols[j - x.start]), w * g) for tau, j, g in lags if x.start <= j < x.stop]
         if not ambient:
-            own += [(tau, int(places[j - own_x]), w * g) for tau, j, g in lags if j >= own_x]
+            terms += [(dx, w * b0[own_x:end]), (pw, w * b0[width:])]
+            own += [(tau, int(dx[j - own_x]), w * g) for tau, j, g in lags if own_x <= j < end]
+            own += [(tau, int(pw[j - width]), w * g) for tau, j, g in lags if j >= width]
             # an effect's lag L[r] = r + (L[r] - r): its coefficient on r and on the lag channel
             own += [(tau, int(dx[i]), w * b0[own_x + i]) for i, (_, tau) in enumerate(extra)
                     if tau is not None]
+            for m, tau in enumerate(derived.lowpass):     # L[x] = x + (L[x] - x), per input
+                block = w * b0[end + m * k:end + (m + 1) * k]
+                terms.append((cols, block))
+                own += [(tau, int(cols[j]), g) for j, g in enumerate(block)]
         out.append(Law(0.0 if ambient else w * c, terms,
                        {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
                        None if gain is None else w * _spread(gain[x], cols, n), ambient=ambient))
