@@ -6,9 +6,11 @@ product(T_a)``) or a square; ``export`` refused each of them by name (deploy59),
 model reached the machine only through ``serve``/``connect``.  Each is a feature the code
 computes from its inputs as the stream's model computes it from its context (the declared
 input denoised, a state raw; its change since the campaign's first sample in the effect's
-frame), a lag a lag-bank channel on it.  The C, the ST and the JSON (read back into the numpy
-reference) equal ``replay`` to 1e-9 µm, the clamp acting; what still does not export is refused
-naming it.
+frame), a lag a lag-bank channel on it (a low-pass of the inputs one per input).  The C, the ST
+and the JSON (read back into the numpy reference) equal ``replay`` to 1e-9 µm, the clamp acting
+(outright, as the stream clamps a model without a step gain) and the door missing at a
+campaign's start and mid-run (held, as the served model holds it); what still does not export
+(an initial-state transient, ``ambient_step``, a lag of a lag) is refused naming it.
 """
 
 from __future__ import annotations

@@ -12,6 +12,9 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    (else 0); with ``pattern``, ``ex = 0`` for a sample on the training pattern: ``z = (x -
    pattern_mean) / pattern_scale``, ``|z - B B' z|² <= pattern_tol²`` with ``B =
    pattern_basis`` (the stream's gate, :class:`~thermocomp.apps.deploy.streaming.Envelope`);
+3b. a diagnosed model's derived inputs after the powers (``derived``: ``r_a r_b``, ``r_j = v_j
+   - v_j(0)`` in the effect's frame, ``v(0)`` the first value; a signal only they read is
+   ``held`` when missing, as the model holds its context): :func:`.laws.derived_inputs`;
 4. per law ``r``: ``y_r = c_r + b0_r . x + sum_d bd_r[d] . x(t-d) + sum_k g_r[k] (z_k - x[lag_input_k])
    + a_r y_r(t-1)``, and per target ``t`` the sum of its laws ``y_t = sum_{law_target[r] = t} y_r``
    times the law's factor for the campaign (one law per target, factor 1; a ``model=auto``
