@@ -21,6 +21,7 @@ import numpy as np
 from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ....core.models.ati import AMBIENT_CENTRE_C, ATIRegressor
+from .derived import EXPORTED_EFFECTS, Derived, canonical_order, derived_inputs, is_derived
 from .errors import NotExportable
 from .members import described, is_diagnosed, members
 
@@ -80,7 +81,7 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, 
 def _named(kept: str | None, parts: list) -> str | None:
     """What ``provenance.laws`` (and so the banner) says of a target: what ``model=auto`` or an
     ATI model kept, and the diagnosed effects the code computes as derived inputs, by title."""
-    titles = [e.title for _, _, m in parts if is_diagnosed(m) for e in m.effects_ if _is_derived(e)]
+    titles = [e.title for _, _, m in parts if is_diagnosed(m) for e in m.effects_ if is_derived(e)]
     if not titles:
         return kept
     return f"{kept + ' ' if kept else ''}with the derived inputs of {'; '.join(titles)}"
@@ -110,15 +111,15 @@ def _diagnosed(est) -> list:
     effects = list(est.effects_)
     if not effects:
         return _intervals(est.estimator_)
-    derived = [e for e in effects if _is_derived(e)]
+    derived = [e for e in effects if is_derived(e)]
     ambient = [e for e in effects if e.transform == "ambient_linear"]
     lowpass = [e.tau_s for e in effects if e.transform == "lowpass_inputs" and not e.initial_state]
     if len(derived) + len(ambient) + len(lowpass) == len(effects) and len(ambient) <= 1 and not \
             isinstance(est.estimator_, ATIRegressor):
         return [(-UNBOUNDED, UNBOUNDED, est.estimator_, bool(ambient), Derived(
             derived, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
-            _canonical(effects, int(est.n_features_in_)), lowpass))]
-    others = [e.title for e in effects if not _is_derived(e) and e.transform != "ambient_linear"
+            canonical_order(effects, int(est.n_features_in_)), lowpass))]
+    others = [e.title for e in effects if not is_derived(e) and e.transform != "ambient_linear"
               and not (e.transform == "lowpass_inputs" and not e.initial_state)]
     if not others and isinstance(est.estimator_, ATIRegressor):
         others = ["ambient_linear around an ATI model" if e.transform == "ambient_linear"
@@ -130,86 +131,6 @@ def _diagnosed(est) -> list:
                         f"effects: {EXPORTED_EFFECTS}); the served model runs "
                         f"{'them' if several else 'it'} (thermocomp serve, connect)")
 
-
-# what the code holds of diagnose's effects (the refusal names them)
-DERIVED_TRANSFORMS = ("first_order_lag", "product", "square", "raw")
-EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20), a first-order lag "
-                    "of a signal or input and of all the inputs (without an initial-state "
-                    "transient), a product of two columns, a square of one and a signal as read "
-                    "(raw)")
-
-
-def _is_derived(e) -> bool:
-    return e.transform in DERIVED_TRANSFORMS and not e.initial_state
-
-
-@dataclass
-class Derived:
-    """A diagnosed model's effects the code computes from its inputs (:func:`derived_inputs`):
-    ``effects`` in their feature order, the model's ``reference`` and the sample period of its
-    lags (a sample without time is one period after the previous one)."""
-
-    effects: list = field(default_factory=list)
-    reference: str = "first_sample"
-    period: float = 1.0
-    order: list | None = None       # the model's feature columns in ``[x, x (A0 - 20), derived,
-                                    # low-pass blocks]``
-    lowpass: list = field(default_factory=list)     # the taus of the inputs' low-pass copies
-
-    def canonical(self, b0, delayed: dict, lags: list) -> tuple:
-        """``(b0, delayed, lags)`` of the base model fitted on the features in the effects'
-        order, its columns put in the order ``[x, x (A0 - 20), derived inputs, powers]``."""
-        if self.order is None:
-            return b0, delayed, lags
-        place = np.argsort(self._order(len(b0)))     # a model column's canonical place
-        return (self.columns(b0), {d: self.columns(r) for d, r in delayed.items()},
-                [(tau, int(place[j]), g) for tau, j, g in lags])
-
-    def columns(self, row: np.ndarray | None) -> np.ndarray | None:
-        """``row`` over the model's columns in the canonical order (:meth:`canonical`)."""
-        if self.order is None or row is None:
-            return row
-        return np.asarray(row)[self._order(len(row))]
-
-    def _order(self, n: int) -> np.ndarray:
-        return np.r_[self.order, np.arange(len(self.order), n)].astype(int)
-
-
-def _canonical(effects: list, k: int) -> list[int]:
-    """The model's feature columns (``k`` inputs, then each effect's, in the effects' order:
-    :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.stream_step`) in the order ``[x, x (A0 -
-    20), derived inputs]`` the laws are written in."""
-    at, groups = k, {"ambient_linear": [], "lowpass_inputs": [], None: []}
-    for e in effects:
-        wide = e.transform in ("ambient_linear", "lowpass_inputs")
-        groups[e.transform if wide else None].extend(range(at, at + (k if wide else 1)))
-        at += k if wide else 1
-    return [*range(k), *groups["ambient_linear"], *groups[None], *groups["lowpass_inputs"]]
-
-
-def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[int, float | None]]:
-    """Per effect feature, ``(its place among the registered features, the lag's tau or None)``:
-    each effect's term, registered in ``powers`` as ``(DERIVED, a, b, ra, rb)``: the product
-    ``r_a r_b`` (``b`` = -1: ``r_a`` alone) of ``r_j = v_j - ra v_j(0)``, the input as the
-    stream's model reads it from its context (a declared input denoised, a state raw; its change
-    since the campaign's first sample where ``ra``: the effect's frame, whatever the inputs'
-    reference); a lag is its lag bank channel on ``r_a``."""
-    from ...diagnose.features import frames  # loaded: the model is a diagnosed one
-    out = []
-    for e in derived.effects:
-        own, other = (int(f == "first_sample") for f in frames(e, derived.reference))
-        a = inputs.index(e.column)
-        b, rb = -1, 0                       # a lag: r_a alone
-        if e.transform == "product":
-            b, rb = inputs.index(e.other), other
-        elif e.transform == "square":
-            b, rb = a, own
-        key = (DERIVED, a, b, own, rb)
-        out.append((powers.setdefault(key, len(powers)), e.tau_s))
-    return out
-
-
-DERIVED = "derived"     # the key of a derived input among the registered features
 
 
 def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, horizon_s,

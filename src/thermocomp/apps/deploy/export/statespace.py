@@ -14,7 +14,7 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    pattern_basis`` (the stream's gate, :class:`~thermocomp.apps.deploy.streaming.Envelope`);
 3b. a diagnosed model's derived inputs after the powers (``derived``: ``r_a r_b``, ``r_j = v_j
    - v_j(0)`` in the effect's frame, ``v(0)`` the first value; a signal only they read is
-   ``held`` when missing, as the model holds its context): :func:`.laws.derived_inputs`;
+   ``held`` when missing, as the model holds its context): :func:`.derived.derived_inputs`;
 4. per law ``r``: ``y_r = c_r + b0_r . x + sum_d bd_r[d] . x(t-d) + sum_k g_r[k] (z_k - x[lag_input_k])
    + a_r y_r(t-1)``, and per target ``t`` the sum of its laws ``y_t = sum_{law_target[r] = t} y_r``
    times the law's factor for the campaign (one law per target, factor 1; a ``model=auto``
@@ -63,8 +63,9 @@ from ....core.frame import ambient_c0
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
+from .derived import DERIVED
 from .errors import NotExportable
-from .laws import AMBIENT_CENTRE_C, DERIVED, LINEAR_FAMILIES, UNBOUNDED, target_laws
+from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, UNBOUNDED, target_laws
 from .output import Output, adapt_fields, guard_fields, time_fields
 
 FORMATS = ("json", "c", "st", "onnx")
@@ -96,7 +97,7 @@ class StateSpace:
     # static powers (Hammerstein): [input index, scale, exponent], sign(w) |w|^e of w = v / scale
     powers: list = field(default_factory=list)
     # a diagnosed model's derived inputs, after the powers: [a, b, ra, rb], r_a r_b (b = -1: r_a)
-    # of r_j = v_j - rj v_j(0), v(0) the campaign's first sample (:func:`.laws.derived_inputs`)
+    # of r_j = v_j - rj v_j(0), v(0) the campaign's first sample (:func:`.derived.derived_inputs`)
     derived: list = field(default_factory=list)
     # (n_inputs,) 1: a signal only derived inputs read (no declared input): a missing value does
     # not refuse the sample, it is held at the campaign's last one (0 before any: its derived
