@@ -7,7 +7,8 @@
 * ``st`` -- ``compensator.st``, an IEC 61131-3 function block (:mod:`.st`).
 
 Of an adaptive compensator the time rule and the correction guard are in the code, and the
-reference update of ``adapt.method`` (:mod:`.output`); a Hammerstein model's static powers too.
+reference update of ``adapt.method`` (:mod:`.output`); a Hammerstein model's static powers too,
+and a diagnosed model's lags, products and squares as derived inputs (:func:`.derived.derived_inputs`).
 Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
 families of :data:`~.laws.LINEAR_FAMILIES` export, and what ``model=auto`` keeps of them (one, or
 a blend) and the ATI wrapper of them (:mod:`.laws`); any other model is refused

@@ -98,6 +98,7 @@ def header(ss: StateSpace) -> str:
 #define TC_DEPTH {ss.depth}
 #define TC_N_LAGS {len(ss.taus)}
 #define TC_N_POWERS {len(ss.powers)}   /* powers of machine states (Hammerstein) */
+#define TC_N_DERIVED {len(ss.derived)}   /* a diagnosed model's derived inputs (products, lags) */
 #define TC_USES_TIME {int(ss.uses_time)}
 #define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
 #define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
@@ -113,6 +114,9 @@ typedef struct {{
     int first;                                  /* 1: the next sample starts a campaign */
     double buf[TC_TAPS][TC_N_INPUTS];           /* raw inputs, newest first (FIR denoiser) */
     double ref[TC_N_INPUTS];                    /* first-sample reference */
+    double v0[TC_N_INPUTS];                     /* the first value (derived inputs' frame) */
+    double last[TC_N_INPUTS];                   /* the last finite value (a held signal's) */
+    int seen[TC_N_INPUTS];                      /* 1: a value seen in this campaign */
     /* per channel: [0] the measured inputs, [1] their excess over the envelope */
     double hist[2][{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
     double z[2][{max(len(ss.taus), 1)}];        /* first-order lags */
@@ -133,6 +137,8 @@ typedef struct {{
 }} tc_state;
 
 static const char *const TC_INPUT_NAMES[TC_N_INPUTS] = {{{names}}};
+/* 1: a signal a diagnosed effect reads, whose missing value (NAN) tc_step holds */
+static const int TC_INPUT_HELD[TC_N_INPUTS] = {{{", ".join(str(int(h)) for h in ss.held or [0] * n)}}};
 static const char *const TC_OUTPUT_NAMES[TC_N_OUTPUTS] = {{{outs}}};
 static const char *const TC_ERROR_NAMES[TC_N_OUTPUTS] = {{{errors}}};  /* measured errors */
 /* The headers of the data the model was made from, which a stream may use instead */
@@ -162,13 +168,14 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]);
 
 def source(ss: StateSpace) -> str:
     n, taps, k, p = len(ss.inputs), len(ss.fir), len(ss.taus), len(ss.powers)
+    q = len(ss.derived)
     d, r = ss.depth, len(ss.laws)
     consts = "\n".join([
         _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
         _array("TAU", ss.taus, (k,)),
         _ints("LAG_INPUT", ss.lag_input), _ints("LAG_REST", ss.lag_rest or [0] * k),
-        _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p)),
+        _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p + q)),
         _ints("LAW_TARGET", ss.laws),
         _array("LAW_LO", ss.law_lo or [-UNBOUNDED] * r, (r,)),
         _array("LAW_HI", ss.law_hi or [UNBOUNDED] * r, (r,)),
@@ -178,8 +185,11 @@ def source(ss: StateSpace) -> str:
         _ints("POWER_SRC", [q[0] for q in ss.powers]),
         _array("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
+        *(_ints(f"DERIVED_{name}", [f[i] for f in ss.derived])
+          for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
         _array("BD", ss.bd, (r, d, n)), _array("G", ss.g, (r, k)), _array("AR", ss.ar, (r,)),
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * r, (r, n)),
+        _ints("CLAMP_OUTRIGHT", ss.clamp_outright or [0] * len(ss.targets)),
         *_pattern_constants(ss),
         f"static const int CLAMP = {int(ss.clamp)};",
         *_output_constants(ss)])
@@ -227,7 +237,8 @@ static int off_pattern(const double x[]) {{
 }}
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
-    double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS], xl[2][{max(k, 1)}], ych[2];
+    double uu[TC_N_INPUTS];                 /* u, a held signal's missing value filled */
+    double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED], xl[2][{max(k, 1)}], ych[2];
     double ysum[2][TC_N_OUTPUTS], excess[TC_N_OUTPUTS];
     double allow[TC_N_OUTPUTS];
     double dt, now, step;
@@ -236,15 +247,22 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end */
     s->refused = 0;
     for (j = 0; j < TC_N_INPUTS; j++)
-        if (!isfinite(u[j])) {{
+        if (!TC_INPUT_HELD[j] && !isfinite(u[j])) {{
             for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
             s->refused = 1;
             return -1;
         }}
-{C_TIME_RULE}    /* causal FIR denoiser */
+{C_TIME_RULE}    /* a missing signal of derived inputs only (TC_INPUT_HELD) is held at the campaign's
+       last value, 0 before any (its derived inputs 0), as the diagnosed model holds it */
+    for (j = 0; j < TC_N_INPUTS; j++) {{
+        if (s->first) s->seen[j] = 0;
+        if (isfinite(u[j])) s->last[j] = u[j];
+        uu[j] = isfinite(u[j]) ? u[j] : (s->seen[j] ? s->last[j] : 0.0);
+    }}
+    /* causal FIR denoiser */
     for (l = TC_TAPS - 1; l >= 0; l--)
         for (j = 0; j < TC_N_INPUTS; j++)
-            s->buf[l][j] = (s->first || l == 0) ? u[j] : s->buf[l - 1][j];
+            s->buf[l][j] = (s->first || l == 0) ? uu[j] : s->buf[l - 1][j];
     for (j = 0; j < TC_N_INPUTS; j++) {{
         v[j] = 0.0;
         for (l = 0; l < TC_TAPS; l++) v[j] += s->buf[l][j] * FIR[l][j];
@@ -274,6 +292,20 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         double w = v[POWER_SRC[l]] / POWER_SCALE[l];
         x[0][TC_N_INPUTS + l] = w < 0.0 ? -pow(-w, POWER_EXP[l]) : pow(w, POWER_EXP[l]);
         x[1][TC_N_INPUTS + l] = 0.0;
+    }}
+    /* a diagnosed model's derived inputs: r_a r_b (b < 0: r_a), r_j = v_j - its first value
+       where REF (the effect's frame), 0 before any, as the stream's model reads its context */
+    for (j = 0; j < TC_N_INPUTS; j++)
+        if (!s->seen[j] && isfinite(u[j])) {{
+            s->v0[j] = v[j];
+            s->seen[j] = 1;
+        }}
+    for (l = 0; l < TC_N_DERIVED; l++) {{
+        int a = DERIVED_A[l], b = DERIVED_B[l];
+        double ra = s->seen[a] ? v[a] - (DERIVED_REF_A[l] ? s->v0[a] : 0.0) : 0.0;
+        double rb = b < 0 ? 1.0 : (s->seen[b] ? v[b] - (DERIVED_REF_B[l] ? s->v0[b] : 0.0) : 0.0);
+        x[0][TC_N_INPUTS + TC_N_POWERS + l] = ra * rb;
+        x[1][TC_N_INPUTS + TC_N_POWERS + l] = 0.0;
     }}
     /* first-order lags */
     for (h = 0; h < 2; h++)
@@ -319,7 +351,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         if (s->factor[r] != 0.0) excess[LAW_TARGET[r]] += s->factor[r] * p;
         for (h = 0; h < 2; h++) {{
             ych[h] = h == 0 ? INTERCEPT[r] : 0.0;
-            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS; j++) ych[h] += B0[r][j] * x[h][j];
+            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED; j++) ych[h] += B0[r][j] * x[h][j];
             for (l = 0; l < TC_DEPTH; l++)
                 for (j = 0; j < TC_N_INPUTS; j++) ych[h] += BD[r][l][j] * s->hist[h][l][j];
             for (l = 0; l < TC_N_LAGS; l++) ych[h] += G[r][l] * (s->z[h][l] - xl[h][l]);
@@ -334,7 +366,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         ych[1] = ysum[1][i];
         bound = excess[i];
         if (s->first || clamped) s->bound[i] = fabs(bound);
-        bound = s->bound[i];
+        bound = CLAMP_OUTRIGHT[i] ? HUGE_VAL : s->bound[i];   /* outright: no step gain */
         y = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
         /* correction guard: within the rate limit of the previous output, then the bound */
         if (TC_GUARD) {{

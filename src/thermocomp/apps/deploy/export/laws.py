@@ -21,6 +21,7 @@ import numpy as np
 from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ....core.models.ati import AMBIENT_CENTRE_C, ATIRegressor
+from .derived import EXPORTED_EFFECTS, Derived, canonical_order, derived_inputs, is_derived
 from .errors import NotExportable
 from .members import described, is_diagnosed, members
 
@@ -60,82 +61,136 @@ class Law:
 def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, period,
                 horizon_s: float | None) -> tuple[list[Law], object, str | None]:
     """``(laws, lag period, what model=auto or an ATI model kept)`` of ``target``'s estimator ``est`` reading
-    the inputs ``cols`` of the code's ``inputs``; ``powers`` registers the Hammerstein powers,
-    shared by the targets; ``horizon_s``: the clamp's (None: no clamp, no gains)."""
+    the inputs ``cols`` of the code's ``inputs``; ``powers`` registers the features the code
+    computes from its inputs (Hammerstein powers, a diagnosed model's derived inputs: :data:`DERIVED`
+    keys), shared by the targets; ``horizon_s``: the clamp's (None: no clamp, no gains)."""
     parts, own = members(est), []
     for name, w, member in parts:
         try:
-            for lo, hi, base, interacts in _intervals(member):
+            for lo, hi, base, interacts, derived in _intervals(member):
                 laws, period = _member_laws(base, interacts, w, cols, inputs, powers, period,
-                                            horizon_s, target)
+                                            horizon_s, target, derived)
                 for law in laws:
                     law.lo, law.hi = lo, hi
                 own += laws
         except NotExportable as exc:
             raise NotExportable(_member_refused(target, name, w, parts, exc)) from None
-    return _summed(own), period, described(parts)
+    return _summed(own), period, _named(described(parts), parts)
+
+
+def _named(kept: str | None, parts: list) -> str | None:
+    """What ``provenance.laws`` (and so the banner) says of a target: what ``model=auto`` or an
+    ATI model kept, and the diagnosed effects the code computes as derived inputs, by title."""
+    titles = [e.title for _, _, m in parts if is_diagnosed(m) for e in m.effects_ if is_derived(e)]
+    if not titles:
+        return kept
+    return f"{kept + ' ' if kept else ''}with the derived inputs of {'; '.join(titles)}"
 
 
 def _intervals(est) -> list:
-    """``[(lo, hi, model, takes the ambient interaction)]``: an ATI model's per interval of the
-    initial ambient (``lo < A0 <= hi``, as ``interval_of`` assigns one), a diagnosed model's
-    (:func:`_diagnosed`), else the model itself."""
+    """``[(lo, hi, model, takes the ambient interaction, derived inputs)]``: an ATI model's per
+    interval of the initial ambient (``lo < A0 <= hi``, as ``interval_of`` assigns one), a
+    diagnosed model's (:func:`_diagnosed`), else the model itself."""
     if is_diagnosed(est):
         return _diagnosed(est)
     if not isinstance(est, ATIRegressor):
-        return [(-UNBOUNDED, UNBOUNDED, est, False)]
+        return [(-UNBOUNDED, UNBOUNDED, est, False, Derived())]
     edges = [-UNBOUNDED, *map(float, est.boundaries_), UNBOUNDED]
-    return [(edges[m], edges[m + 1], e, bool(est.interactions_[m]))
+    return [(edges[m], edges[m + 1], e, bool(est.interactions_[m]), Derived())
             for m, e in enumerate(est.estimators_)]
 
 
 def _diagnosed(est) -> list:
     """A diagnosed model's intervals: its base model's, when every effect it accepted is a
-    sensor's removal (no feature: the base fitted on the inputs kept), or the base's one law and
-    its ambient law ``x (A0 - 20)`` (``ambient_linear``: the base fitted on ``[x, x (A0 - 20)]``,
-    what an ATI interval with the interaction is); any other effect is refused, naming it."""
+    sensor's removal (no feature: the base fitted on the inputs kept); the base's one law and
+    its ambient law ``x (A0 - 20)`` (``ambient_linear`` alone: the base fitted on ``[x, x (A0 -
+    20)]``, what an ATI interval with the interaction is); the base's law on ``[x, derived
+    inputs]`` when each effect is one the code computes from its inputs as the stream does
+    (:data:`DERIVED_TRANSFORMS`: :func:`derived_inputs`), with the ambient law when one effect
+    is ``ambient_linear``.  Any other effect is refused, naming it."""
     effects = list(est.effects_)
     if not effects:
         return _intervals(est.estimator_)
-    kinds = [e.transform for e in effects]
-    if kinds == ["ambient_linear"] and not isinstance(est.estimator_, ATIRegressor):
-        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, True)]
-    others = [e.title for e in effects if e.transform != "ambient_linear"] or [
-        "ambient_linear around an ATI model"]
+    derived = [e for e in effects if is_derived(e)]
+    ambient = [e for e in effects if e.transform == "ambient_linear"]
+    lowpass = [e.tau_s for e in effects if e.transform == "lowpass_inputs" and not e.initial_state]
+    if len(derived) + len(ambient) + len(lowpass) == len(effects) and len(ambient) <= 1 and not \
+            isinstance(est.estimator_, ATIRegressor):
+        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, bool(ambient), Derived(
+            derived, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
+            canonical_order(effects, int(est.n_features_in_)), lowpass))]
+    others = [e.title for e in effects if not is_derived(e) and e.transform != "ambient_linear"
+              and not (e.transform == "lowpass_inputs" and not e.initial_state)]
+    if not others and isinstance(est.estimator_, ATIRegressor):
+        others = ["ambient_linear around an ATI model" if e.transform == "ambient_linear"
+                  else f"{e.title} around an ATI model" for e in effects]
+    others = others or ["ambient_linear twice"]
     several = len(others) > 1
     raise NotExportable(f"the diagnosed effect{'s' if several else ''} {'; '.join(others)} "
-                        f"{'do' if several else 'does'} not export (the code holds a sensor's "
-                        "removal and the inputs' ambient law x (A0 - 20) of diagnose's effects); "
-                        "the served model runs them (thermocomp serve, connect)")
+                        f"{'do' if several else 'does'} not export (the code holds of diagnose's "
+                        f"effects: {EXPORTED_EFFECTS}); the served model runs "
+                        f"{'them' if several else 'it'} (thermocomp serve, connect)")
+
 
 
 def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, horizon_s,
-                 target) -> tuple[list[Law], object]:
+                 target, derived: Derived) -> tuple[list[Law], object]:
     """The laws of one member (weight ``w``): its own, and with the ambient interaction the law
-    of its coefficients on ``x (A0 - 20)`` (its inputs ``[x, x (A0 - 20), powers]``)."""
+    of its coefficients on ``x (A0 - 20)`` (its inputs ``[x, x (A0 - 20), powers]``); a
+    diagnosed model's on ``[x, derived inputs, powers]``."""
+    extra = derived_inputs(derived, inputs, powers)
     linear, feats = _powered(est, inputs, powers)
     k, n = len(cols), len(inputs)
-    width = 2 * k if interacts else k
+    own_x = 2 * k if interacts else k           # the inputs' (and the interaction's) columns
+    end = own_x + len(extra)                    # then the derived inputs', the low-pass blocks'
+    width = end + k * len(derived.lowpass)
     c, b0, delayed, lags, a, period = _target_law(linear, width + len(feats), period)
+    b0, delayed, lags = derived.canonical(b0, delayed, lags)
+    if derived.lowpass or any(tau is not None for _, tau in extra):
+        period = _one_period(period, derived.period)
+    if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
+        raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
+                            "code's input history holds the inputs only")
+    if any(own_x <= j < width and (j >= end or extra[j - own_x][1] is not None)
+           for _, j, _ in lags):
+        raise NotExportable(f"the law of {target} lags a diagnosed effect's lag (a second-order "
+                            "lag): the code's lags are first-order")
     gain = None
     if horizon_s is not None:
-        gain = step_gain(est, None, horizon_s)
+        gain = derived.columns(step_gain(est, None, horizon_s))
         if gain is None:
             raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
                                 f"{a:.3g}): the envelope clamp needs one; export it with "
                                 "promote.envelope.policy=off")
     pw = n + np.asarray(feats, int)                     # the powers' places in [x, powers]
+    dx = n + np.asarray([f for f, _ in extra], int)     # the derived inputs' places
     out = []
     for ambient in (False, True) if interacts else (False,):
         x = slice(k, 2 * k) if ambient else slice(0, k)
-        terms = [(cols, w * b0[x])] + ([] if ambient or not feats else [(pw, w * b0[width:])])
+        terms = [(cols, w * b0[x])]
         own = [(tau, int(cols[j - x.start]), w * g) for tau, j, g in lags if x.start <= j < x.stop]
         if not ambient:
+            terms += [(dx, w * b0[own_x:end]), (pw, w * b0[width:])]
+            own += [(tau, int(dx[j - own_x]), w * g) for tau, j, g in lags if own_x <= j < end]
             own += [(tau, int(pw[j - width]), w * g) for tau, j, g in lags if j >= width]
+            # an effect's lag L[r] = r + (L[r] - r): its coefficient on r and on the lag channel
+            own += [(tau, int(dx[i]), w * b0[own_x + i]) for i, (_, tau) in enumerate(extra)
+                    if tau is not None]
+            for m, tau in enumerate(derived.lowpass):     # L[x] = x + (L[x] - x), per input
+                block = w * b0[end + m * k:end + (m + 1) * k]
+                terms.append((cols, block))
+                own += [(tau, int(cols[j]), g) for j, g in enumerate(block)]
         out.append(Law(0.0 if ambient else w * c, terms,
                        {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
                        None if gain is None else w * _spread(gain[x], cols, n), ambient=ambient))
     return out, period
+
+
+def _one_period(period: float | None, own: float) -> float:
+    if period is not None and own != period:
+        raise NotExportable(f"the lags of the targets assume sample periods {period} and {own} s; "
+                            "one exported step has one period")
+    return own
 
 
 def _summed(own: list[Law]) -> list[Law]:
@@ -167,11 +222,8 @@ def _target_law(est, n: int, period: float | None):
     coef = np.asarray(est.coef_, float)      # the lag bank
     lags = [(float(tau), j, float(coef[n * (i + 1) + j]))
             for i, tau in enumerate(est.taus_) for j in range(n)]
-    own = float(est.sample_period_s_)
-    if period is not None and own != period:
-        raise NotExportable(f"the lag banks of the targets assume sample periods {period} and "
-                            f"{own} s; one exported step has one period")
-    return c, coef[:n].copy(), {}, lags, float(est.ar_coef_), own
+    return (c, coef[:n].copy(), {}, lags, float(est.ar_coef_),
+            _one_period(period, float(est.sample_period_s_)))
 
 
 def _powered(est, inputs: list, powers: dict) -> tuple[object, list[int]]:

@@ -56,16 +56,18 @@ def _indent(code: str) -> str:
 
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
-    p, r = len(ss.powers), len(ss.laws)
+    p, r, q = len(ss.powers), len(ss.laws), len(ss.derived)
     consts = "\n".join([
         f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    N_LAWS : INT := {r};",
         f"    TAPS : INT := {taps};",
         f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};", f"    N_POWERS : INT := {p};",
+        f"    N_DERIVED : INT := {q};",
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
         f"    REAL_LIMIT : LREAL := {literal(LREAL_MAX)};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
         _constant("LO", ss.lo or [], (n,)), _constant("HI", ss.hi or [], (n,)),
         _constant("CLAMP_GAIN", ss.clamp_gain or [], (r, n)),
+        _constant("CLAMP_OUTRIGHT", ss.clamp_outright or [], (m,), "INT"),
         f"    PATTERN : BOOL := {'TRUE' if ss.pattern else 'FALSE'};",
         f"    PATTERN_RANK : INT := {len(ss.pattern_basis[0]) if ss.pattern else 0};",
         f"    PATTERN_TOL : LREAL := {literal(ss.pattern_tol)};",
@@ -76,7 +78,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("TAU", ss.taus, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
         _constant("LAG_REST", ss.lag_rest or [0] * k, (k,), "INT"),
-        _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p)),
+        _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p + q)),
         _constant("LAW_TARGET", ss.laws, (r,), "INT"),
         _constant("LAW_LO", ss.law_lo or [-LREAL_MAX] * r, (r,)),
         _constant("LAW_HI", ss.law_hi or [LREAL_MAX] * r, (r,)),
@@ -88,6 +90,9 @@ def function_block(ss: StateSpace) -> str:
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
+        _constant("HELD", ss.held or [], (n,), "INT"),
+        *(_constant(f"DERIVED_{name}", [f[i] for f in ss.derived], (q,), "INT")
+          for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
         _constant("BD", ss.bd, (r, d, n)), _constant("G", ss.g, (r, k)), _constant("AR", ss.ar, (r,)),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
         f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
@@ -132,6 +137,12 @@ VAR
     first : BOOL := TRUE;
     buf : ARRAY[{_dims(taps, n)}] OF LREAL;
     ref : ARRAY[{_dims(n)}] OF LREAL;
+    v0 : ARRAY[{_dims(n)}] OF LREAL;
+    last : ARRAY[{_dims(n)}] OF LREAL;
+    seen : ARRAY[{_dims(n)}] OF BOOL;
+    uu : ARRAY[{_dims(n)}] OF LREAL;
+    ra : LREAL;
+    rb : LREAL;
     hist : ARRAY[{_dims(2, d, n)}] OF LREAL;
     z : ARRAY[{_dims(2, k)}] OF LREAL;
     y_prev : ARRAY[{_dims(2, r)}] OF LREAL;
@@ -147,7 +158,7 @@ VAR
     shift_valid : BOOL;
     now : LREAL;
     v : ARRAY[{_dims(n)}] OF LREAL;
-    x : ARRAY[{_dims(2, n + p)}] OF LREAL;
+    x : ARRAY[{_dims(2, n + p + q)}] OF LREAL;
     ych : ARRAY[{_dims(2)}] OF LREAL;
     bound : LREAL;
     bound_held : ARRAY[{_dims(m)}] OF LREAL;
@@ -202,17 +213,32 @@ END_IF;
 (* nothing remembered changes, c keeps the last corrections (0 before a campaign's first sample) *)
 refused := FALSE;
 FOR j := 0 TO N_INPUTS - 1 DO
-    IF NOT (u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT) THEN
+    IF HELD[j] = 0 AND NOT (u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT) THEN
         refused := TRUE;
     END_IF;
 END_FOR;
 IF NOT refused THEN
 {_indent(ST_TIME_RULE)}    n_clamped := 0;
+    (* a missing signal of derived inputs only (HELD) is held at the campaign's last value, *)
+    (* 0 before any (its derived inputs 0), as the diagnosed model holds its context *)
+    FOR j := 0 TO N_INPUTS - 1 DO
+        IF first THEN
+            seen[j] := FALSE;
+        END_IF;
+        IF u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
+            last[j] := u[j];
+            uu[j] := u[j];
+        ELSIF seen[j] THEN
+            uu[j] := last[j];
+        ELSE
+            uu[j] := 0.0;
+        END_IF;
+    END_FOR;
     (* causal FIR denoiser: newest raw sample first *)
     FOR l := TAPS - 1 TO 0 BY -1 DO
         FOR j := 0 TO N_INPUTS - 1 DO
             IF first OR l = 0 THEN
-                buf[l, j] := u[j];
+                buf[l, j] := uu[j];
             ELSE
                 buf[l, j] := buf[l - 1, j];
             END_IF;
@@ -320,6 +346,35 @@ IF NOT refused THEN
         END_IF;
         x[1, N_INPUTS + l] := 0.0;
     END_FOR;
+    (* a diagnosed model's derived inputs: r_a r_b (b < 0: r_a), r_j = v_j - its first *)
+    (* value where REF (the effect's frame), 0 before any, as the stream's model reads its context *)
+    FOR j := 0 TO N_INPUTS - 1 DO
+        IF NOT seen[j] AND u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
+            v0[j] := v[j];
+            seen[j] := TRUE;
+        END_IF;
+    END_FOR;
+    FOR l := 0 TO N_DERIVED - 1 DO
+        ra := 0.0;
+        IF seen[DERIVED_A[l]] THEN
+            ra := v[DERIVED_A[l]];
+            IF DERIVED_REF_A[l] <> 0 THEN
+                ra := ra - v0[DERIVED_A[l]];
+            END_IF;
+        END_IF;
+        rb := 1.0;
+        IF DERIVED_B[l] >= 0 THEN
+            rb := 0.0;
+            IF seen[DERIVED_B[l]] THEN
+                rb := v[DERIVED_B[l]];
+                IF DERIVED_REF_B[l] <> 0 THEN
+                    rb := rb - v0[DERIVED_B[l]];
+                END_IF;
+            END_IF;
+        END_IF;
+        x[0, N_INPUTS + N_POWERS + l] := ra * rb;
+        x[1, N_INPUTS + N_POWERS + l] := 0.0;
+    END_FOR;
     (* first-order lags *)
     FOR h := 0 TO 1 DO
         FOR l := 0 TO N_LAGS - 1 DO
@@ -370,7 +425,7 @@ IF NOT refused THEN
             ELSE
                 ych[h] := 0.0;
             END_IF;
-            FOR j := 0 TO N_INPUTS + N_POWERS - 1 DO
+            FOR j := 0 TO N_INPUTS + N_POWERS + N_DERIVED - 1 DO
                 ych[h] := ych[h] + B0[r, j] * x[h, j];
             END_FOR;
             FOR l := 0 TO DEPTH - 1 DO
@@ -400,6 +455,10 @@ IF NOT refused THEN
             bound_held[i] := bound;
         END_IF;
         bound := bound_held[i];
+        IF CLAMP_OUTRIGHT[i] <> 0 THEN
+            (* a model without a step gain: the response to the excess taken out whole *)
+            bound := REAL_LIMIT;
+        END_IF;
         IF ych[1] > bound THEN
             y := ych[0] - bound;
         ELSIF ych[1] < -bound THEN

@@ -12,6 +12,9 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    (else 0); with ``pattern``, ``ex = 0`` for a sample on the training pattern: ``z = (x -
    pattern_mean) / pattern_scale``, ``|z - B B' z|² <= pattern_tol²`` with ``B =
    pattern_basis`` (the stream's gate, :class:`~thermocomp.apps.deploy.streaming.Envelope`);
+3b. a diagnosed model's derived inputs after the powers (``derived``: ``r_a r_b``, ``r_j = v_j
+   - v_j(0)`` in the effect's frame, ``v(0)`` the first value; a signal only they read is
+   ``held`` when missing, as the model holds its context): :func:`.derived.derived_inputs`;
 4. per law ``r``: ``y_r = c_r + b0_r . x + sum_d bd_r[d] . x(t-d) + sum_k g_r[k] (z_k - x[lag_input_k])
    + a_r y_r(t-1)``, and per target ``t`` the sum of its laws ``y_t = sum_{law_target[r] = t} y_r``
    times the law's factor for the campaign (one law per target, factor 1; a ``model=auto``
@@ -23,7 +26,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the time since the previous sample
    (``time_period`` without one, timerule.py); the same system, without intercept and powers,
    runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
-   response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)``, ``b_t = |clamp_gain_t .
+   response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)`` (``y_t - r_t`` where
+   ``clamp_outright_t``: the stream's clamp of a model without a step gain), ``b_t = |clamp_gain_t .
    ex|`` the response to the excess held for the envelope's horizon (as the stream does); at a
    sample within the envelope (``ex = 0``) after an excess, ``b_t`` is the last excess's (0
    before the campaign's first): an excess that fades out ends with a bound near 0 (the model's
@@ -59,6 +63,7 @@ from ....core.frame import ambient_c0
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
+from .derived import DERIVED
 from .errors import NotExportable
 from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, UNBOUNDED, Powers, target_laws
 from .output import Output, adapt_fields, guard_fields, time_fields
@@ -80,11 +85,11 @@ class StateSpace:
     hi: list | None
     depth: int                   # input history kept (largest ARX delay)
     taus: list                   # (n_lags,) s
-    lag_input: list              # (n_lags,) index of each lag's input in ``[x, powers]``
+    lag_input: list              # (n_lags,) index of each lag's input in ``[x, powers, derived]``
     lag_decay: list              # (n_lags,) exp(-period / tau): the step without a time
     period: float                # s
     intercept: list              # (n_laws,): one law per target, or more (law_target)
-    b0: list                     # (n_laws, n_inputs + n_powers)
+    b0: list                     # (n_laws, n_inputs + n_powers + n_derived)
     bd: list                     # (n_laws, depth, n_inputs)
     g: list                      # (n_laws, n_lags)
     ar: list                     # (n_laws,)
@@ -93,7 +98,17 @@ class StateSpace:
     powers: list = field(default_factory=list)
     lag_rest: list = field(default_factory=list)   # (n_lags,) 1: starts at 0, not at its input
                                                    # (a Hammerstein state at rest); [] none
+    # a diagnosed model's derived inputs, after the powers: [a, b, ra, rb], r_a r_b (b = -1: r_a)
+    # of r_j = v_j - rj v_j(0), v(0) the campaign's first sample (:func:`.derived.derived_inputs`)
+    derived: list = field(default_factory=list)
+    # (n_inputs,) 1: a signal only derived inputs read (no declared input): a missing value does
+    # not refuse the sample, it is held at the campaign's last one (0 before any: its derived
+    # inputs 0, its first value their reference), as the diagnosed model holds its context
+    held: list = field(default_factory=list)
     clamp_gain: list | None = None   # (n_laws, n_inputs) step gain at the horizon (clamp only)
+    # (n_targets,) 1: the response to the excess is taken out whole (b_t infinite): the stream
+    # clamps a model without a step gain (a diagnosed one) outright; empty: none
+    clamp_outright: list = field(default_factory=list)
     # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
     pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
     pattern_mean: list | None = None     # (n_inputs,)
@@ -189,16 +204,21 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     N = len(inputs)
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     laws, period, powers, chosen = [], None, Powers(), {}      # laws: (target index, Law)
+    # the stream forks a held copy for the clamp's bound only of a model with a step gain
+    outright = [int(clamp and not callable(getattr(est, "step_gain", None)))
+                for _, est, _ in stream._plan]
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
         own, period, kept = target_laws(t, est, cols, inputs, powers, period,
-                                        env.horizon_s if clamp else None)
+                                        env.horizon_s if clamp and not outright[i] else None)
         laws += [(i, law) for law in own]
         if kept is not None:
             chosen[t] = kept
+    _in_code_order(laws, powers, N)
     ati = any(law.key != (-UNBOUNDED, UNBOUNDED, False) for _, law in laws)
     ambient = _ambient_inputs(stream, inputs, ati, known_ambient)
-    read = {inputs[src] for src, _, _ in powers} | {inputs[j] for j in ambient}
+    read = {inputs[k[1] if k[0] == DERIVED else k[0]] for k in powers} | {
+        inputs[k[2]] for k in powers if k[0] == DERIVED and k[2] >= 0} | {inputs[j] for j in ambient}
     if any(c not in read for c in states):
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
                             f"only the families {', '.join(LINEAR_FAMILIES)} export to C/ST")
@@ -231,14 +251,49 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         law_target=[i for i, _ in laws], law_lo=[law.lo for _, law in laws],
         law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
         ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C,
-        uses_time=bool(keys), powers=[list(k) for k in sorted(powers, key=powers.get)],
-        clamp_gain=[law.gain.tolist() for _, law in laws] if clamp else None,
+        uses_time=bool(keys),
+        powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] != DERIVED],
+        derived=[list(k[1:]) for k in sorted(powers, key=powers.get) if k[0] == DERIVED],
+        held=_held(inputs, n, powers, ambient),
+        clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
+                    for _, law in laws] if clamp else None,
+        clamp_outright=outright if any(outright) else [],
         **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
         **time_fields(deployed, period),
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
+
+
+def _held(inputs: list, n: int, powers: dict, ambient: list) -> list[int]:
+    """Per input, 1 for a signal only derived inputs read (not one of the ``n`` declared
+    inputs, no power's, no ambient sensor): the stream checks the declared inputs and the
+    ambient sensors only, and the diagnosed model holds a missing value of its context."""
+    other = {k[0] for k in powers if k[0] != DERIVED} | set(ambient)
+    read = {j for k in powers if k[0] == DERIVED for j in (k[1], k[2]) if j >= 0}
+    held = [int(j >= n and j in read and j not in other) for j in range(len(inputs))]
+    return held if any(held) else []
+
+
+def _in_code_order(laws: list, powers: Powers, n: int) -> None:
+    """The registered features (``powers``, in the order the targets registered them) put in
+    the code's order, the powers first, then the derived inputs: the laws' places (after the
+    ``n`` inputs), ``powers``' values and its powers at rest renumbered in place."""
+    order = sorted(powers, key=lambda k: (k[0] == DERIVED, powers[k]))
+    new = {powers[k]: i for i, k in enumerate(order)}
+    move = np.array([new[i] for i in range(len(powers))] or [0], int)
+
+    def place(j):
+        j = np.asarray(j, int)
+        return np.where(j >= n, n + move[np.clip(j - n, 0, None)], j)
+
+    for _, law in laws:
+        law.terms = [(place(cols), row) for cols, row in law.terms]
+        law.lags = [(tau, int(place(j)), g) for tau, j, g in law.lags]
+    for k in order:
+        powers[k] = new[powers[k]]
+    powers.rest, powers.steady = {new[i] for i in powers.rest}, {new[i] for i in powers.steady}
 
 
 def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> list[int]:
@@ -282,7 +337,7 @@ class Simulator:
             tuple(ss.inputs), lo, hi, mean=np.asarray(ss.pattern_mean, float),
             scale=np.asarray(ss.pattern_scale, float), tol=ss.pattern_tol,
             basis=np.asarray(ss.pattern_basis, float).reshape(n, -1))
-        self.b0 = np.asarray(ss.b0, float).reshape(laws, n + len(ss.powers))
+        self.b0 = np.asarray(ss.b0, float).reshape(laws, n + len(ss.powers) + len(ss.derived))
         self.bd = np.asarray(ss.bd, float).reshape(laws, ss.depth, n)
         self.g = np.asarray(ss.g, float).reshape(laws, len(ss.taus))
         self.sum = np.zeros((laws, m))            # law -> the target it adds to
@@ -312,11 +367,16 @@ class Simulator:
         the last corrections given are returned (0 before a campaign's first sample)."""
         u = np.asarray(u, float)
         ss = self.ss
-        self.refused = not np.isfinite(u).all()
+        held = np.asarray(ss.held or [0] * len(u), bool)
+        self.refused = not np.isfinite(u[~held]).all()
         if self.refused:
             return self.c.copy()
         if self.first:
             self.clock.reset()
+            self.seen, self.last = np.zeros(len(u), bool), np.zeros(len(u))
+        measured = np.isfinite(u)
+        self.last = np.where(measured, u, self.last)
+        u = np.where(measured, u, np.where(self.seen, self.last, 0.0))     # a held signal
         _, dt, _ = self.clock.step(float(time))
         if self.first:
             self.buf = np.tile(u, (len(self.fir), 1))
@@ -334,6 +394,15 @@ class Simulator:
             src, scale, e = (np.array(c) for c in zip(*ss.powers))
             w = v[src.astype(int)] / scale
             xe = np.r_[x, np.abs(w) ** e * np.sign(w)]
+        if self.first:
+            self.v0 = v.copy()
+        self.v0 = np.where(measured & ~self.seen, v, self.v0)   # a signal's first value
+        self.seen |= measured
+        if ss.derived:      # a diagnosed model's derived inputs, from v as the model reads it
+            a, b, ra, rb = (np.array(c, int) for c in zip(*ss.derived))
+            ta = np.where(self.seen[a], v[a] - ra * self.v0[a], 0.0)
+            tb = np.where(b < 0, 1.0, np.where(self.seen[b], v[b] - rb * self.v0[b], 0.0))
+            xe = np.r_[xe, ta * tb]
         # two channels of one system: the measured inputs, and their excess (no powers, no intercept)
         xs = np.vstack([xe, np.r_[excess, np.zeros(len(xe) - len(x))]])
         xl = xs[:, self.lag_input]
@@ -354,7 +423,8 @@ class Simulator:
         y = self._summed(y)
         if excess.any():            # back in range, the bound of the excess's last sample holds
             self.bound = np.abs(self._summed(self.clamp_gain @ excess))
-        self.c = self.output.step(y[0] - np.clip(y[1], -self.bound, self.bound), first, dt,
+        bound = np.where(np.asarray(ss.clamp_outright or [0] * len(y[0]), bool), np.inf, self.bound)
+        self.c = self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt,
                                   self.output.allowance(x, self.envelope))
         return self.c.copy()
 

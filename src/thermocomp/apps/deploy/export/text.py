@@ -22,7 +22,7 @@ def ascii_name(name: str) -> str:
 def per_target(laws: dict) -> str:
     """``'E_X lagbank; E_Z blend mlr 0.93 + lagbank 0.07'``: what ``model=auto`` kept per target,
     or an ATI model's intervals (``provenance.laws``)."""
-    return "; ".join(f"{ascii_name(t)} {law}" for t, law in laws.items())
+    return "; ".join(f"{ascii_name(t)} {ascii_name(law)}" for t, law in laws.items())
 
 
 def time_use(ss) -> str:
@@ -52,7 +52,8 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
         bounded = ss.clamp and ss.hi[j] < sys.float_info.max      # a machine state is not
         env = f"[{ss.lo[j]:.6g}, {ss.hi[j]:.6g}]" if bounded else "not clamped"
         lab = p.get("lab_names", {}).get(c)
-        lines.append(f"  {j}: {ascii_name(c)}{ref} {p.get('units', {}).get(c, '')}  envelope {env}"
+        held = "  held when missing (a diagnosed effect's signal)" if (ss.held or [0] * (j + 1))[j] else ""
+        lines.append(f"  {j}: {ascii_name(c)}{ref} {p.get('units', {}).get(c, '')}  envelope {env}{held}"
                      + (f"  (the lab's {lab!a})" if lab else ""))   # ASCII: a PLC's source
     lines.append(f"time: s, {time_use(ss)}")
     lines.append("outputs: " + ", ".join(map(ascii_name, correction_names(ss.targets)))
