@@ -329,5 +329,7 @@ def test_an_exported_registered_model_names_the_run_serve_finds_it_by(promoted, 
     assert main(["export", f"export.model={source}", "export.format=json", f"tracking_uri={uri}",
                  f"data.path={data}", f"out={tmp_path / 'x'}", "track=false"]) == 0
     provenance = json.loads((tmp_path / "x" / "compensator.json").read_text())["provenance"]
-    run = MlflowClient(uri, registry_uri=uri).get_model_version(NAME, "1").run_id
-    assert run and provenance["run_id"] == run and provenance["dataset_hash"] is None
+    version = MlflowClient(uri, registry_uri=uri).get_model_version(NAME, "1")
+    # the dataset it was promoted on: the version's tag (deploy59; it was null)
+    assert version.run_id and provenance["run_id"] == version.run_id
+    assert provenance["dataset_hash"] == version.tags["dataset_hash"]
