@@ -1,5 +1,6 @@
-"""A logger set to another sample rate inside one file (1 min, then 10 s from some row on): said,
-not refused (the contract's time need not be uniform), naming the row where the rate changes.
+"""A logger set to another sample rate inside one file (1 min, then 10 s from some row on), or
+writing no row for a while (a gateway's outage): said, not refused (the contract's time need not
+be uniform), naming the row where the rate changes or the rows stop.
 
 A model whose lags and autoregressive term count samples (``arx``, ``lstm``) reads a sample as
 one span of time on one side of that row and another span on the other, with nothing to say so.
@@ -13,10 +14,14 @@ import numpy as np
 
 from ...base.errors import position
 from ...base.log import logger
+from ..timerule import median_step
 from .contract import TIME
 
 RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
 SETTLED = 10         # steps at least on each side of a change
+GAP_PERIODS = 1.5    # a step this many sample periods or more: rows not logged
+PAUSE_PERIODS = 100  # a record silent this many sample periods: runs joined in one file?
+HOUR_S = 3600.0
 
 
 def period_groups(periods: Mapping[str, float]) -> dict[float, list[str]]:
@@ -31,22 +36,23 @@ def period_groups(periods: Mapping[str, float]) -> dict[float, list[str]]:
     return dict(sorted(groups.items()))
 
 
-def said_if_rate_changes(seconds: np.ndarray, file, at: Callable[[int], str] = position) -> None:
+def said_if_rate_changes(seconds: np.ndarray, file, at: Callable[[int], str] = position) -> bool:
     """Say where the sample period of ``seconds`` (a campaign's time, s, increasing) changes
     once, the median steps before and after at least :data:`RATE_CHANGE` times apart (``at``:
-    names a data row)."""
+    names a data row); whether it was said."""
     steps = np.diff(seconds)
     k = _change(steps)
     if k is None:
-        return
+        return False
     before, after = float(np.median(steps[:k])), float(np.median(steps[k:]))
     if min(before, after) <= 0 or max(before, after) / min(before, after) < RATE_CHANGE:
-        return
+        return False
     logger.warning(f"{file}, column {TIME!r}, {at(k + 2)}: the sample period changes from "
                    f"{before:g} s to {after:g} s here (the logger set to another rate?): a model "
                    "whose lags count samples (arx, lstm) reads a sample as "
                    f"{before:g} s before it and {after:g} s after; data.resample_s="
                    f"{max(before, after):g} puts the record on one grid")
+    return True
 
 
 def _change(steps: np.ndarray) -> int | None:
@@ -61,3 +67,27 @@ def _change(steps: np.ndarray) -> int | None:
     head = np.cumsum(logs)[k - 1]
     shift = head / k - (logs.sum() - head) / (n - k)
     return int(k[np.argmax(np.abs(shift) * np.sqrt(k * (n - k)))])
+
+
+def said_if_rows_missing(seconds: np.ndarray, file, at: Callable[[int], str] = position) -> None:
+    """Say the stretches of ``seconds`` (a campaign's time, s, increasing) without rows: steps of
+    :data:`GAP_PERIODS` sample periods or more (a gateway's outage, a lost buffer; newmachine59's
+    EDM lost 7 and 25 min of rows and nothing said so), up to :data:`PAUSE_PERIODS` (a record's
+    pause between runs, said where one file is read as one record) and but for an hour and a
+    period (daylight saving time, said on its own).  A model whose lags count samples reads
+    each as one period."""
+    period = median_step(seconds)
+    if period is None or period <= 0:
+        return
+    steps = np.diff(seconds)
+    dst = np.abs(steps - HOUR_S - period) <= period / 2
+    gaps = np.flatnonzero((steps >= GAP_PERIODS * period) & (steps <= PAUSE_PERIODS * period) & ~dst)
+    if not gaps.size:
+        return
+    k = int(gaps[np.argmax(steps[gaps])])
+    sizes = ", ".join(f"{steps[g] / period:.3g}" for g in gaps[:5]) + (", ..." if gaps.size > 5 else "")
+    logger.warning(f"{file}, column {TIME!r}: {gaps.size} stretch(es) without rows (steps of "
+                   f"{sizes} sample periods of {period:g} s; the longest {steps[k] / 60:.3g} min, "
+                   f"before {at(k + 2)}): a logger's outage? The lag bank and Hammerstein read "
+                   "the time; a model whose lags count samples (arx, lstm) reads each as one "
+                   f"period; data.resample_s={period:g} fills them by linear interpolation")

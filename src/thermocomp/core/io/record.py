@@ -21,10 +21,10 @@ from ...base.log import logger
 from ..timerule import median_step
 from .contract import MANIFEST, ContractError
 from .manifest import RECORD_SUFFIXES
+from .rates import PAUSE_PERIODS
 from .workbook import not_read
 
 MIN_PART_ROWS = 2          # as a campaign: a reference sample and one to score
-PAUSE_PERIODS = 100        # a record silent this many sample periods: runs joined in one file?
 _UNSAFE_ID = re.compile(r"[^\w.\-]+")
 
 

@@ -17,7 +17,7 @@ from ..timerule import median_step
 from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
-from .rates import period_groups, said_if_rate_changes
+from .rates import period_groups, said_if_rate_changes, said_if_rows_missing
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
@@ -50,7 +50,8 @@ def _set_time_seconds(columns: dict, rows: int, path: Path, opts: ReadOptions,
         if local:
             said_if_clock_skips(seconds, path, at=at(lines))
         if opts.resample_s is None:        # (on one grid, as the warning says to put it)
-            said_if_rate_changes(seconds, path, at=at(lines))
+            if not said_if_rate_changes(seconds, path, at=at(lines)):   # (its slower steps)
+                said_if_rows_missing(seconds, path, at=at(lines))
     except ContractError as exc:
         if opts.missing != "keep":
             raise
