@@ -360,7 +360,9 @@ class CrossValidator:
         best = least_error(mse)              # ties: the smallest penalty (least squares first)
         if one_se and shrink:
             best = one_standard_error(mse, self._block_mse(err))
-        return self._result(pred[:, best], float(alphas[best]) if shrink else None)
+        # a copy: as a view the column kept every penalty's predictions (18 x the rows) alive
+        # in each result the search keeps (a year's diagnose: 5.3 GiB peak RSS, now 3.7)
+        return self._result(pred[:, best].copy(), float(alphas[best]) if shrink else None)
 
     def _pieces(self, inputs, effects) -> tuple[CampaignLeastSquares, dict] | None:
         """The rows cut where any fold's training starts or stops, each piece's QR factor of
