@@ -81,10 +81,16 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, 
 def _named(kept: str | None, parts: list) -> str | None:
     """What ``provenance.laws`` (and so the banner) says of a target: what ``model=auto`` or an
     ATI model kept, and the diagnosed effects the code computes as derived inputs, by title."""
-    titles = [e.title for _, _, m in parts if is_diagnosed(m) for e in m.effects_ if is_derived(e)]
-    if not titles:
+    effects = [e for _, _, m in parts if is_diagnosed(m) for e in m.effects_]
+    titles = [e.title for e in effects if is_derived(e)]
+    # the ambient law, a low-pass of the inputs, a sensor's removal: laws of the code too, which
+    # the banner left unnamed (which target carries the ambient law was nowhere in the code)
+    others = [e.title for e in effects if not is_derived(e)]
+    said = ([f"the derived inputs of {'; '.join(titles)}"] if titles else []) + \
+        ([f"the diagnosed {'; '.join(others)}"] if others else [])
+    if not said:
         return kept
-    return f"{kept + ' ' if kept else ''}with the derived inputs of {'; '.join(titles)}"
+    return f"{kept + ' ' if kept else ''}with {' and '.join(said)}"
 
 
 def _intervals(est) -> list:
