@@ -25,5 +25,7 @@ def test_the_banner_names_each_diagnosed_effect_the_code_holds(data, effects):  
         name = {"ambient_linear": "ambient_interval:", "lowpass_inputs": "of the model inputs",
                 "first_order_lag": "signal:S_door"}[e["transform"]]
         assert name in said and name in banner
+    if AMBIENT_LAW in effects:        # the unit as the banner writes units, not escaped
+        assert "20 degC" in banner and "\\x" not in banner
     if LAG in effects:
         assert "with the derived inputs of signal:S_door first_order_lag(tau=600s)" in said
