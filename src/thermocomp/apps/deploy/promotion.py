@@ -34,7 +34,7 @@ the champion decision itself is :mod:`thermocomp.core.scoring.champion`.  The st
    and tags only.
 4. Idempotent: a candidate already registered on this dataset and deployed the
    same way (``deploy_config``: adaptive or not, the ``monitor`` group, the
-   envelope) -- the same run, the same model bytes ``model_digest``, or the
+   envelope, ``adapt`` when it learns) -- the same run, the same model bytes ``model_digest``, or the
    champion's figures -- gets no new version; promoting the champion again says
    ``already champion: version N``.
 
@@ -81,12 +81,20 @@ class Candidate:
     deploy_key: str = ""
 
 
-def deploy_key(adaptive: bool, monitor: Mapping | None, envelope: Mapping) -> str:
+def deploy_key(adaptive: bool, monitor: Mapping | None, envelope: Mapping,
+               adapt: Mapping | None = None) -> str:
     """SHA-256 (12 hex) of what makes the deployed object from a fitted model: adaptive or
-    not, the ``monitor`` settings it is built with, the envelope."""
+    not, the ``monitor`` settings it is built with, the envelope and, when it learns from
+    reference measurements (``adapt.method`` not ``none``), the ``adapt`` settings the served
+    model keeps (its ``every_s`` schedule is replay's, not the served model's).  A frozen
+    deployment hashes as before ``adapt`` was part of it, so its versions are still found."""
     kept = ({k: v for k, v in monitor.items() if k not in MONITOR_STAGE_KEYS}
             if adaptive else None)
     spec = {"adaptive": bool(adaptive), "monitor": kept, "envelope": dict(envelope)}
+    if adapt and adapt.get("method", "none") != "none":
+        # without it a run promoted frozen and then with adapt.method=bias was "already
+        # registered": the champion served and exported without the learning asked for
+        spec["adapt"] = {k: v for k, v in adapt.items() if k != "every_s"}
     return hashlib.sha256(json.dumps(spec, sort_keys=True).encode()).hexdigest()[:12]
 
 

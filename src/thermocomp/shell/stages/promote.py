@@ -68,7 +68,8 @@ def promote(cfg: DictConfig) -> dict:
            e_p95=(cfg.eval.e_p95.statistic, cfg.eval.e_p95.max_points),
            target=str(cfg.promote.target), deploy_config=deploy_key(
                bool(cfg.monitor.adaptive), OmegaConf.to_container(cfg.monitor, resolve=True),
-               OmegaConf.to_container(cfg.promote.envelope, resolve=True)))
+               OmegaConf.to_container(cfg.promote.envelope, resolve=True),
+               OmegaConf.to_container(cfg.adapt, resolve=True) if cfg.get("adapt") else None))
     with registry_lock(uri):
         outcome = registry.register(cfg, client, cand, ds, dataset_hash)
     name, alias = str(cfg.promote.model_name), str(cfg.promote.alias)

@@ -81,10 +81,16 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, 
 def _named(kept: str | None, parts: list) -> str | None:
     """What ``provenance.laws`` (and so the banner) says of a target: what ``model=auto`` or an
     ATI model kept, and the diagnosed effects the code computes as derived inputs, by title."""
-    titles = [e.title for _, _, m in parts if is_diagnosed(m) for e in m.effects_ if is_derived(e)]
-    if not titles:
+    effects = [e for _, _, m in parts if is_diagnosed(m) for e in m.effects_]
+    titles = [e.title for e in effects if is_derived(e)]
+    # the ambient law, a low-pass of the inputs, a sensor's removal: laws of the code too, which
+    # the banner left unnamed (which target carries the ambient law was nowhere in the code)
+    others = [e.title for e in effects if not is_derived(e)]
+    said = ([f"the derived inputs of {'; '.join(titles)}"] if titles else []) + \
+        ([f"the diagnosed {'; '.join(others)}"] if others else [])
+    if not said:
         return kept
-    return f"{kept + ' ' if kept else ''}with the derived inputs of {'; '.join(titles)}"
+    return f"{kept + ' ' if kept else ''}with {' and '.join(said)}"
 
 
 def _intervals(est) -> list:
@@ -151,10 +157,17 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
         raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
                             "code's input history holds the inputs only")
-    if any(own_x <= j < width and (j >= end or extra[j - own_x][1] is not None)
-           for _, j, _ in lags):
-        raise NotExportable(f"the law of {target} lags a diagnosed effect's lag (a second-order "
-                            "lag): the code's lags are first-order")
+    lagged = sorted({derived.effects[j - own_x].title if j < end else "lowpass_inputs"
+                     for _, j, _ in lags
+                     if own_x <= j < width and (j >= end or extra[j - own_x][1] is not None)})
+    if lagged:
+        # name the effect and the ways out: diagnose accepts such a lag on a lag-bank base
+        # (the stream runs it), and the bare refusal left a user with no next step
+        raise NotExportable(f"the law of {target} lags the diagnosed effect's lag "
+                            f"{'; '.join(lagged)} (a second-order lag): the code's lags are "
+                            "first-order; the served model runs it (thermocomp serve, connect), "
+                            "or diagnose with model=mlr, whose code holds that lag as a "
+                            "first-order channel")
     gain = None
     if horizon_s is not None:
         gain = derived.columns(step_gain(est, None, horizon_s))

@@ -22,7 +22,13 @@ def ascii_name(name: str) -> str:
 def per_target(laws: dict) -> str:
     """``'E_X lagbank; E_Z blend mlr 0.93 + lagbank 0.07'``: what ``model=auto`` kept per target,
     or an ATI model's intervals (``provenance.laws``)."""
-    return "; ".join(f"{ascii_name(t)} {ascii_name(law)}" for t, law in laws.items())
+    return "; ".join(f"{ascii_name(t)} {ascii_name(_in_degc(law))}" for t, law in laws.items())
+
+
+def _in_degc(text: str) -> str:
+    """A diagnosed law's ``°C`` (``x (ambient_c0 - 20°C)``) as the banner writes units,
+    ``degC``: escaped, it read ``20\\xb0C`` in the code and the export's message."""
+    return str(text).replace("°C", " degC").replace("°", " deg")
 
 
 def time_use(ss) -> str:
