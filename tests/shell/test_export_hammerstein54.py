@@ -119,3 +119,27 @@ def test_every_form_of_a_hammerstein_code_follows_its_stream_out_of_the_envelope
     assert (returned >= 0).all() and not refused.any()
     for form in (c_out, st_out, _simulated(ss, list(records.values()), cols)):
         np.testing.assert_allclose(form, expected, rtol=0, atol=TOLERANCE_UM)
+
+
+@needs_cc
+def test_a_missing_machine_state_is_held_in_the_code_as_the_stream_holds_it(datasets, tmp_path):
+    """The speed read by the powers alone, missing at the campaign's first rows (0 before any)
+    and for a stretch mid-run (its last value): the code held it as the served Hammerstein model
+    does; it refused those samples and repeated its last correction (lead59)."""
+    adaptive, healthy = _fitted(datasets["independent"], "powers_only")
+    stream, cols = adaptive.streaming, adaptive.streaming.columns_
+    ss = state_space(stream)
+    assert ss.held[ss.inputs.index(STATE)] == 1 and sum(ss.held) == 1
+    gappy = healthy.copy()
+    turning = np.flatnonzero(healthy[STATE].to_numpy() > 0)
+    assert turning.size > 20                       # a stretch where holding its value matters
+    gappy.loc[:2, STATE] = np.nan
+    gappy.loc[turning[10]:turning[10] + 5, STATE] = np.nan
+    expected = -replay(stream, gappy)[stream.targets_].to_numpy(float)
+    filled = -replay(stream, gappy.fillna({STATE: 0.0}))[stream.targets_].to_numpy(float)
+    assert np.max(np.abs(expected - filled)) > 0.05       # the holding shows in the correction
+    returned, c_out = _c(stream, tmp_path, [gappy], cols)
+    refused, st_out = _st(stream, [gappy], cols)
+    assert (returned >= 0).all() and not refused.any()
+    for form in (c_out, st_out, _simulated(ss, [gappy], cols)):
+        np.testing.assert_allclose(form, expected, rtol=0, atol=TOLERANCE_UM)

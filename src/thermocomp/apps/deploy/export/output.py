@@ -19,8 +19,9 @@ the reference update (pure core).
   ``adapt_max_bias``, ``adapt_max_gain_change``, ``adapt_var_cap``).  What was learned
   survives a new campaign; the exported values are those the model was served with.
 
-The served model's sensor monitor (exclusions, reconstruction of a sensor from the others) and
-the holding of a missing machine state are not in the code: :func:`not_in_code` names them.
+The served model's sensor monitor (exclusions, reconstruction of a sensor from the others) is
+not in the code: :func:`not_in_code` names it.  A missing machine state is held in the code as
+the served model holds it (``held``, :mod:`.statespace`).
 """
 
 from __future__ import annotations
@@ -33,7 +34,6 @@ import numpy as np
 from ..adaptive import AdaptiveCompensator
 from ..guard import widening
 from .errors import NotExportable
-from .members import members
 
 UNBOUNDED = sys.float_info.max   # a machine state's range: never beyond it
 
@@ -87,14 +87,9 @@ def adapt_fields(deployed) -> dict:
 
 def not_in_code(deployed) -> list[str]:
     """What the served model does that the exported code does not."""
-    out, stream = [], deployed
-    if isinstance(deployed, AdaptiveCompensator):
-        if deployed.monitor is not None:
-            out.append("sensor monitor (exclusion, reconstruction of a sensor from the others)")
-        stream = deployed.streaming
-    if any(getattr(m, "state_columns_", None) for _, est, _ in stream._plan for _, _, m in members(est)):
-        out.append("a missing machine state held at its last value (the code needs every input)")
-    return out
+    if isinstance(deployed, AdaptiveCompensator) and deployed.monitor is not None:
+        return ["sensor monitor (exclusion, reconstruction of a sensor from the others)"]
+    return []
 
 
 class Output:

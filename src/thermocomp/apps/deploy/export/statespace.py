@@ -267,12 +267,13 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
 
 
 def _held(inputs: list, n: int, powers: dict, ambient: list) -> list[int]:
-    """Per input, 1 for a signal only derived inputs read (not one of the ``n`` declared
-    inputs, no power's, no ambient sensor): the stream checks the declared inputs and the
-    ambient sensors only, and the diagnosed model holds a missing value of its context."""
-    other = {k[0] for k in powers if k[0] != DERIVED} | set(ambient)
-    read = {j for k in powers if k[0] == DERIVED for j in (k[1], k[2]) if j >= 0}
-    held = [int(j >= n and j in read and j not in other) for j in range(len(inputs))]
+    """Per input, 1 for a signal only powers or derived inputs read (a machine state: not one of
+    the ``n`` declared inputs, no ambient sensor): the stream checks the declared inputs and the
+    ambient sensors only, and a Hammerstein model and the diagnosed model hold a missing value of
+    their context (0 before a campaign's first); the code refused the sample (lead59)."""
+    read = {k[0] for k in powers if k[0] != DERIVED} | {
+        j for k in powers if k[0] == DERIVED for j in (k[1], k[2]) if j >= 0}
+    held = [int(j >= n and j in read and j not in ambient) for j in range(len(inputs))]
     return held if any(held) else []
 
 
