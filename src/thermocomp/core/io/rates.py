@@ -16,12 +16,12 @@ from ...base.errors import position
 from ...base.log import logger
 from ..timerule import median_step
 from .contract import TIME
+from .timestamps import skips_an_hour
 
 RATE_CHANGE = 2.0    # the median steps before and after the change this far apart
 SETTLED = 10         # steps at least on each side of a change
 GAP_PERIODS = 1.5    # a step this many sample periods or more: rows not logged
 PAUSE_PERIODS = 100  # a record silent this many sample periods: runs joined in one file?
-HOUR_S = 3600.0
 
 
 def period_groups(periods: Mapping[str, float]) -> dict[float, list[str]]:
@@ -80,8 +80,8 @@ def said_if_rows_missing(seconds: np.ndarray, file, at: Callable[[int], str] = p
     if period is None or period <= 0:
         return
     steps = np.diff(seconds)
-    dst = np.abs(steps - HOUR_S - period) <= period / 2
-    gaps = np.flatnonzero((steps >= GAP_PERIODS * period) & (steps <= PAUSE_PERIODS * period) & ~dst)
+    gaps = np.flatnonzero((steps >= GAP_PERIODS * period) & (steps <= PAUSE_PERIODS * period)
+                          & ~skips_an_hour(steps, period))
     if not gaps.size:
         return
     k = int(gaps[np.argmax(steps[gaps])])

@@ -277,6 +277,12 @@ def clock_set_back(before: float, after: float, period: float | None = None) -> 
             "to the zone it was written in (e.g. data.timezone=Europe/Berlin)")
 
 
+def skips_an_hour(steps: np.ndarray, period: float) -> np.ndarray:
+    """Per step of a clock sampled every ``period`` s: one hour and a period forward (within half
+    a period), what daylight saving time's beginning makes of one sample period."""
+    return np.abs(steps - HOUR_S - period) <= period / 2
+
+
 def said_if_clock_skips(seconds: np.ndarray, file, header: str = TIME, at=position) -> None:
     """Say (not refuse: a logger may pause an hour) timestamps without an offset that jump one
     hour plus a sample period forward once: daylight saving time beginning, read as an hour
@@ -284,7 +290,7 @@ def said_if_clock_skips(seconds: np.ndarray, file, header: str = TIME, at=positi
     period = median_step(seconds)
     if period is None or period >= HOUR_S:
         return
-    jumps = np.flatnonzero(np.abs(np.diff(seconds) - HOUR_S - period) <= period / 2)
+    jumps = np.flatnonzero(skips_an_hour(np.diff(seconds), period))
     if jumps.size:
         logger.warning(f"{file}, column {header!r}, {at(int(jumps[0]) + 2)}: the clock jumps an hour "
                        "forward (daylight saving time beginning?): read as an hour without "
