@@ -38,16 +38,17 @@ def data(tmp_path_factory):
     return _levels(tmp_path_factory.mktemp("diagnosed") / "data")
 
 
-def _diagnosed(data, effects: list, alpha=None):
+def _diagnosed(data, effects: list, alpha=None, base=None):
     """``(stream as replay deploys it, test campaigns with T_a pushed out half-way, compensator)``
-    of MLR with ``effects`` for E_X, the way diagnose's written config builds it."""
+    of ``base`` (MLR) with ``effects`` for E_X, the way diagnose's written config builds it."""
     _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
     cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
                    "promote.envelope.pattern=false")
     ds, train_ids, _, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
     comp = clone(mlr).set_params(estimator=AugmentedRegressor(
-        MLR(), effects={"E_X": effects}, alpha=None if alpha is None else {"E_X": alpha}))
+        base if base is not None else MLR(), effects={"E_X": effects},
+        alpha=None if alpha is None else {"E_X": alpha}))
     comp.fit(train)
     return deploy_stream(cfg, comp, train), tests, comp
 

@@ -20,20 +20,17 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
-from sklearn.base import clone
 
-from test_export import _compose, needs_cc
+from test_export import needs_cc
 from test_export_ati57 import CAMPAIGNS
-from test_export_auto57 import TOLERANCE_UM, _proved, deployed
+from test_export_auto57 import TOLERANCE_UM, _proved
+from test_export_diagnosed59 import _diagnosed as diagnosed
 from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, state_space
 from thermocomp.apps.deploy.export.statespace import StateSpace
 from thermocomp.apps.deploy.streaming import replay
-from thermocomp.apps.diagnose import AugmentedRegressor
-from thermocomp.core.models import MLR, LagBank
-from thermocomp.shell.builders import deploy_stream
+from thermocomp.core.models import LagBank
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
-from thermocomp.shell.source import read_streamed
 
 LAG = {"kind": "signal", "transform": "first_order_lag", "column": "S_door", "tau_s": 600.0}
 INPUT_LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 900.0}
@@ -73,19 +70,11 @@ def data(tmp_path_factory):
 def _diagnosed(data, effects: list, alpha=None, with_model: bool = False, base=None):
     """``(stream as replay deploys it, test campaigns with T_a pushed out half-way)`` of MLR
     with ``effects`` for E_X, the way diagnose's written config builds it."""
-    _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
-    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
-                   "promote.envelope.pattern=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    comp = clone(mlr).set_params(estimator=AugmentedRegressor(
-        base if base is not None else MLR(), effects={"E_X": effects},
-        alpha=None if alpha is None else {"E_X": alpha}))
-    comp.fit(train)
+    stream, tests, comp = diagnosed(data, effects, alpha, base)
     tests = [df.copy() for df in tests]        # the door missing at a start and mid-run (held)
     tests[0].loc[[0, 1], "S_door"] = np.nan
     tests[1].loc[[20, 21, 22], "S_door"] = np.nan
-    return (deploy_stream(cfg, comp, train), tests) + ((comp,) if with_model else ())
+    return (stream, tests) + ((comp,) if with_model else ())
 
 
 def _json_proved(stream, tests) -> float:

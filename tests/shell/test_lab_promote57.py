@@ -37,6 +37,19 @@ def lab_file(path, rows: int = 240, seed: int = 57):
     return path
 
 
+def lab_run(tmp_path, rows: int = 120) -> tuple[list[str], str, str]:
+    """``(common overrides, tracking URI, run id)``: :func:`lab_file` run once (MLR) into a new
+    MLflow store under ``tmp_path``."""
+    data = lab_file(tmp_path / "messung.csv", rows=rows)
+    uri = mlflow_store(tmp_path)
+    common = [f"data.path={data}", *ROLES, f"tracking_uri={uri}"]
+    assert main(["run", *common, *LIGHT, f"out={tmp_path / 'run'}"]) == 0
+    from mlflow import MlflowClient
+
+    client = MlflowClient(uri)
+    exp = client.get_experiment_by_name("thermocomp").experiment_id
+    return common, uri, client.search_runs([exp], max_results=1)[0].info.run_id
+
 def test_a_sweep_on_a_labs_one_file_record_is_promoted(tmp_path):
     data = lab_file(tmp_path / "messung.csv")
     uri = mlflow_store(tmp_path)

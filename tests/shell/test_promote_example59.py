@@ -13,22 +13,12 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from conftest import LIGHT
-from test_deploy import mlflow_store
-from test_lab_promote57 import ROLES, lab_file
+from test_lab_promote57 import lab_run
 from thermocomp.shell.cli import main
 
 
 def test_promote_warns_of_no_unheld_session_and_its_example_starts_a_campaign(tmp_path, capsys):
-    data = lab_file(tmp_path / "messung.csv", rows=120)
-    uri = mlflow_store(tmp_path)
-    common = [f"data.path={data}", *ROLES, f"tracking_uri={uri}"]
-    assert main(["run", *common, *LIGHT, f"out={tmp_path / 'run'}"]) == 0
-    from mlflow import MlflowClient
-
-    client = MlflowClient(uri)
-    exp = client.get_experiment_by_name("thermocomp").experiment_id
-    run_id = client.search_runs([exp], max_results=1)[0].info.run_id
+    common, uri, run_id = lab_run(tmp_path)
     capsys.readouterr()
     assert main(["promote", *common, f"promote.run_id={run_id}", f"out={tmp_path / 'promote'}"]) == 0
     said = capsys.readouterr()
