@@ -38,13 +38,23 @@ def start_stamp(value) -> pd.Timestamp:
     return pd.Timestamp(pd.to_datetime(text, format="ISO8601"))
 
 
-def start_instants(values: pd.Series, path: Path | None = None) -> pd.Series:
+def on_clock(stamp: pd.Timestamp, zone: str | None) -> pd.Timestamp:
+    """``stamp`` with its offset; one written without is on ``zone``'s clock (``data.timezone``;
+    UTC where None): an hour the clock repeats is read as its first (summer) pass, a skipped one
+    shifted forward, as a file's timestamps are (:func:`.starts.utc_instant`)."""
+    if pd.isna(stamp) or stamp.tzinfo is not None:
+        return stamp
+    return stamp.tz_localize(zone or "UTC", ambiguous=True, nonexistent="shift_forward")
+
+
+def start_instants(values: pd.Series, path: Path | None = None, zone: str | None = None) -> pd.Series:
     """The ``start`` cells ``values`` as instants (UTC; the index kept).
 
-    A start with an offset (``Z``, ``+01:00``) is that instant; one without is read as
-    written (as UTC, on no zone's clock), so a manifest may mix both, and a start filled from
-    a file's first timestamp (:func:`.read._starts_from_timestamps`) compares with the
-    manifest's; an empty cell is NaT (not known).
+    A start with an offset (``Z``, ``+01:00``) is that instant; one without is on ``zone``'s
+    clock (``data.timezone``; as UTC where None), as a file's timestamps without an offset are,
+    so a manifest may mix both, and a start filled from a file's first timestamp
+    (:func:`.read._starts_from_timestamps`) compares with the manifest's; an empty cell is NaT
+    (not known).
 
     Raises
     ------
@@ -58,6 +68,5 @@ def start_instants(values: pd.Series, path: Path | None = None) -> pd.Series:
         except (ValueError, TypeError):
             raise ContractError(f"start {value!r} is not an ISO 8601 time", file=path,
                                 column=START, row=row) from None
-        out.append(stamp if pd.isna(stamp) else
-                   stamp.tz_localize("UTC") if stamp.tzinfo is None else stamp.tz_convert("UTC"))
+        out.append(stamp if pd.isna(stamp) else on_clock(stamp, zone).tz_convert("UTC"))
     return pd.Series(out, index=values.index, dtype="datetime64[ns, UTC]")

@@ -12,7 +12,7 @@ import pandas as pd
 
 from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractError
 from .encoding import UTF8, check_text, fields, text_codec, undecodable
-from .instants import start_instants, start_stamp
+from .instants import on_clock, start_instants, start_stamp
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
 from .workbook import WORKBOOK_SUFFIXES
 
@@ -76,7 +76,8 @@ def read_manifest(root: str | Path, opts: ReadOptions | None = None) -> pd.DataF
     manifest = raw.set_index("campaign")
     apply_split_overrides(manifest, opts.split_overrides, path)
     for column in manifest.columns.drop(["file", "split"]):
-        manifest[column] = _metadata_column(manifest[column], path, column, opts.decimal)
+        manifest[column] = _metadata_column(manifest[column], path, column, opts.decimal,
+                                            opts.timezone)
     return manifest
 
 
@@ -265,9 +266,10 @@ def apply_split_overrides(manifest: pd.DataFrame, overrides: dict, path: Path,
         manifest.loc[cid, "split"] = split
 
 
-def _metadata_column(values: pd.Series, path: Path, column: str, decimal: str = ".") -> pd.Series:
+def _metadata_column(values: pd.Series, path: Path, column: str, decimal: str = ".",
+                     zone: str | None = None) -> pd.Series:
     if column == "start":
-        return _parse_start(values, path)
+        return _parse_start(values, path, zone)
     if column == "notes":
         return values
     if column == AMBIENT_C:      # a campaign's ambient (°C): a number or empty, never text
@@ -288,11 +290,13 @@ def _metadata_column(values: pd.Series, path: Path, column: str, decimal: str = 
     return values
 
 
-def _parse_start(values: pd.Series, path: Path) -> pd.Series:
+def _parse_start(values: pd.Series, path: Path, zone: str | None = None) -> pd.Series:
     """The ``start`` column as written (one offset, or none), else as instants in UTC (several
-    offsets, or a start with one and one without: :func:`.instants.start_instants`)."""
-    instants = start_instants(values, path)     # refuses a cell that is no ISO 8601 time
-    stamps = pd.Series([start_stamp(v) for v in values], index=values.index, dtype=object)
+    offsets, or a start with one and one without: :func:`.instants.start_instants`); with
+    ``zone`` (``data.timezone``) a start without an offset is on its clock."""
+    instants = start_instants(values, path, zone)     # refuses a cell that is no ISO 8601 time
+    stamps = pd.Series([start_stamp(v) if zone is None else on_clock(start_stamp(v), zone)
+                        for v in values], index=values.index, dtype=object)
     if len({str(s.tzinfo) for s in stamps if pd.notna(s)}) > 1:
         return instants
     return pd.to_datetime(stamps)

@@ -15,7 +15,7 @@ import pandas as pd
 import pyarrow as pa
 
 from .contract import TIME, ContractError
-from .instants import START, start_instants
+from .instants import START, on_clock, start_instants
 from .manifest import is_text
 from .options import ReadOptions
 from .plain import as_read, is_converted
@@ -36,7 +36,7 @@ from .workbook import HEAD_ROWS
 def campaign_starts(root: Path, manifest: pd.DataFrame, opts: ReadOptions) -> pd.Series:
     """Per campaign of ``manifest`` (a folder ``root``'s): its start, NaT where none is known
     (no ``start``, a file timed in seconds)."""
-    given = (start_instants(manifest[START]) if START in manifest.columns
+    given = (start_instants(manifest[START], zone=opts.timezone) if START in manifest.columns
              else pd.Series(pd.NaT, index=manifest.index, dtype="datetime64[ns, UTC]"))
     return pd.Series({cid: given[cid] if pd.notna(given[cid]) else
                       first_timestamp(root / manifest.at[cid, "file"], opts)
@@ -113,8 +113,5 @@ def utc_instant(stamp, opts: ReadOptions) -> pd.Timestamp:
     written without it: ordered as the whole read orders them)."""
     if stamp is None or pd.isna(stamp):
         return pd.NaT
-    if stamp.tzinfo is None:
-        zone = opts.timezone or "UTC"
-        stamp = stamp.tz_localize(zone, ambiguous=True, nonexistent="shift_forward")
-    return stamp.tz_convert("UTC")
+    return on_clock(stamp, opts.timezone).tz_convert("UTC")
 
