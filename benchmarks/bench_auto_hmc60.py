@@ -3,7 +3,7 @@
     .venv/bin/python benchmarks/bench_new_machines59.py write ROOT --data hmc
     .venv/bin/python benchmarks/bench_new_machines59.py init ROOT --data hmc
     .venv/bin/python benchmarks/bench_auto_hmc60.py variants ROOT     # the noise variants, ~12 s
-    .venv/bin/python benchmarks/bench_auto_hmc60.py forensics ROOT    # ~40 s CPU
+    .venv/bin/python benchmarks/bench_auto_hmc60.py forensics ROOT    # ~27 s CPU
 
 The record: ``bench_new_machines59``'s ``hmc`` (8 runs, the last two test; auto's 3 blocked forward
 folds fit runs 1-3 / 1-4 / 1-5 and score 09-16 / 09-18 / 09-21).  Test RMSE E_Y (µm): MLR 0.78,
@@ -11,7 +11,7 @@ auto = hammerstein 1.58 (1.26 before stop 59's ``state_start=rest``); reproduced
 (``bench_new_machines59.py run ROOT --data hmc --families mlr lagbank hammerstein auto``:
 0.780 / 0.925 / 1.582 / 1.582; 18.4 + 2.1 s CPU).  Nothing below chose anything on the test
 split: it is only scored.  Measured 2026-11-30: ``variants`` 10.7 + 1.6 s CPU, ``forensics``
-25.1 + 1.0 s.
+26.1 + 0.8 s (the same output from a fresh ROOT).
 
 How the runs start (``starts``): the same way, every one
 -------------------------------------------------------
