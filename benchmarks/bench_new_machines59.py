@@ -115,7 +115,8 @@ Measured (2026-11-30, each step once, on the code after the mends below, 2 share
 
 (Since autohmc59, ``hammerstein``'s states at rest start their lags at 0, ``state_start=rest``:
 hmc E_Y hammerstein / auto 1.58 / 1.58, E_Z 0.37 / 0.35, ``bench_auto_hmc59.py``; the edm, whose
-power and flags are such states, not re-run.)
+power and flags are such states, not re-run.  ``bench_auto_hmc60.py``: the E_Y loss is the
+first-sample frame's reference noise; noise-free, MLR is exact and no family needs a lag.)
 
 ``auto`` against MLR and the best single family (its blend: ``metrics.json`` targets.*.auto):
 **hmc E_Y 1.256 against MLR's 0.780 (+61 %), MLR the best single: auto loses to MLR and misses
