@@ -22,9 +22,12 @@ import pandas as pd
 from ..timerule import median_step
 from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
+from .fixedwidth import is_fixed_width
+from .jsonlines import is_json_lines
 from .layout import header_line
 from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS, RUN_ROLE
+from .plain import as_read, is_converted
 from .rates import period_groups
 from .read import run_column, run_counter
 from .record import check_record_file
@@ -50,10 +53,12 @@ _GLOB = re.compile(r"([*?\[])")
 _WORDS = re.compile(r"[\s_.\-]+")
 # a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing);
 # an Italian / French / Spanish lab's 'ambiente', 'ambiante', 'capannone' (the shop's hall);
-# the place the air is in: a French 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle'
+# the place the air is in: a French 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle',
+# a gateway's 'shop_air'
 AMBIENT_WORDS = {"amb", "ambient", "umgebung", "umgebungstemperatur", "raum", "raumtemperatur",
                  "room", "hall", "halle", "hallentemperatur", "ambiente", "ambiante", "capannone",
-                 "atelier", "nave", "taller", "sala", "salle", "officina", "werkstatt", "workshop"}
+                 "atelier", "nave", "taller", "sala", "salle", "officina", "werkstatt", "workshop",
+                 "shop"}
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
@@ -120,6 +125,12 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
             opts, header, first, layout = head(text, utf8_options(opts))
             return opts, header, first, layout.replace(
                 f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
+    if is_json_lines(sample) or is_fixed_width(sample, opts.encoding):
+        kind = "JSON Lines (nested keys joined with '.')" if is_json_lines(sample) else \
+            "a fixed-width table (its columns told by the numbers)"
+        with as_read(sample, opts, rows=HEAD_ROWS) as (text, text_opts):
+            opts, header, first, layout = head(text, text_opts)
+            return opts, header, first, layout.replace(f"{text.name}: ", f"{sample.name}: {kind}, ", 1)
     if not is_text(sample):
         table = without_pandas_index(parquet().read_table(sample).slice(0, 1))
         return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],
@@ -136,7 +147,7 @@ def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | N
     every row saying it agreeing: written to the config, so that each file of a folder is read
     so (one starting ``01/07`` too); None where none says it or rows disagree (refused naming
     ``data.time`` as before), where ``data.time`` is given, or for another column."""
-    if opts.time != "auto" or is_workbook(sample) or is_utf16(sample) or not is_text(sample):
+    if opts.time != "auto" or is_converted(sample) or not is_text(sample):
         return None
     for i, h in enumerate(header):
         if not is_slashed_stamp(str(first.get(h) or "")):
@@ -158,7 +169,7 @@ def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[
     if opts.time != "auto":
         return None
     files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
-    if not all(is_text(f) and not is_workbook(f) and not is_utf16(f) for f in files):
+    if not all(is_text(f) and not is_converted(f) for f in files):
         return None
     for i, h in enumerate(header):
         if not maybe_elapsed(str(first.get(h) or ""), opts.time):

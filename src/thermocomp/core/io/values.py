@@ -158,8 +158,14 @@ def _check_duration(seconds: np.ndarray, path: Path, max_days: float | None) -> 
         raise ContractError(f"time jumps by {steps[i] / 86400:.4g} days from row {i + 1} to "
                             f"row {i + 2}: the campaign would last {days:.4g} days, {limit}",
                             file=path, column=TIME, row=row)
-    raise ContractError(f"the campaign lasts {days:.4g} days, {limit}: is time in ms? it must be "
-                        "in seconds", file=path, column=TIME, row=len(seconds))
+    epoch = (f" (from {seconds[0]:.4g}: milliseconds since 1970, as a gateway stamps a message)"
+             if EPOCH_MS[0] <= seconds[0] <= EPOCH_MS[1] else "")
+    raise ContractError(f"the campaign lasts {days:.4g} days, {limit}: is time in ms{epoch}? it "
+                        "must be in seconds: say so with data.units={<its header>: ms}",
+                        file=path, column=TIME, row=len(seconds))
+
+
+EPOCH_MS = (9.46e11, 4.1e12)      # milliseconds since 1970: 2000 .. 2099
 
 
 def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | None) -> None:
