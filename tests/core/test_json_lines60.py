@@ -118,3 +118,15 @@ def test_a_gateways_csv_tags_say_kelvin_the_shops_air_and_epoch_milliseconds(tmp
     assert main(["init", str(path), "data.units={ts: ms}", f"out={out}"]) == 0
     config = yaml.safe_load((out / "conf" / "data" / "gw.yaml").read_text())
     assert config["roles"]["ambient"] == ["shop_air_K"]
+
+
+def test_kelvin_without_its_unit_is_refused_with_the_setting_that_reads_it(tmp_path):
+    # before: "temperatures look like kelvin, convert to °C": hand work on the lab's file
+    path = tmp_path / "gw.csv"
+    path.write_text("time,drum,dia [nm]\n" + "".join(f"{60 * i},{293.15 + 0.05 * i:.2f},{100 * i}\n"
+                                                  for i in range(20)))
+    with pytest.raises(ContractError, match=r"look like kelvin.*data\.units=\{<its header>: K\}.*"
+                                            r"its header in the file: 'drum'"):
+        read_dataset(path, {"roles": {"error": ["dia*"]}})
+    ds, _ = read_dataset(path, {"roles": {"error": ["dia*"]}, "units": {"drum": "K"}})
+    assert ds.campaigns[ds.ids()[0]]["T_drum"].iloc[0] == pytest.approx(20.0)

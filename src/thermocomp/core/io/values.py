@@ -327,7 +327,8 @@ def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
             row = int(np.argmax(values > min(threshold, MAX_ABS_T_C))) + 1
             # kelvin only where the values in °C would pass: a spindle speed (3000, a column
             # 'S' read as a temperature by default) is no temperature in any unit
-            why = ("temperatures look like kelvin, convert to °C"
+            why = ("temperatures look like kelvin, convert to °C, or say so: "
+                   "data.units={<its header>: K}"
                    if threshold < median <= threshold - ABSOLUTE_ZERO_C else
                    f"no temperature, in °C or kelvin (the column's median is {median:.4g}): "
                    "another quantity? give its column a role, data.roles.state=[<header>] or "
