@@ -130,3 +130,20 @@ def test_kelvin_without_its_unit_is_refused_with_the_setting_that_reads_it(tmp_p
         read_dataset(path, {"roles": {"error": ["dia*"]}})
     ds, _ = read_dataset(path, {"roles": {"error": ["dia*"]}, "units": {"drum": "K"}})
     assert ds.campaigns[ds.ids()[0]]["T_drum"].iloc[0] == pytest.approx(20.0)
+
+
+def test_init_reads_a_gateways_epoch_milliseconds_without_being_told(tmp_path, capsys):
+    # before: refused (no time column; then "lasts 2.1e+04 days ... is time in ms?"): the
+    # stranger added data.units={ts: ms}; init now writes it, said
+    path = bridge_file(tmp_path / "ms6.jsonl")
+    out = tmp_path / "init"
+    assert main(["init", str(path), "data.test_fraction=0.25", f"out={out}"]) == 0
+    assert "'ts' from 1791158400000: milliseconds since 1970" in capsys.readouterr().out
+    config = yaml.safe_load((out / "conf" / "data" / "ms6.yaml").read_text())
+    assert config["units"] == {"ts": "ms"}
+    seconds = tmp_path / "s.csv"           # seconds since 1970: left as they are
+    seconds.write_text("ts,drum_K,dia_nm\n" + "".join(f"{1791158400 + 60 * i},{293.15 + 0.05 * i:.2f},"
+                                                       f"{100 * i}\n" for i in range(20)))
+    assert main(["init", str(seconds), "data.test_fraction=0.25", f"out={tmp_path / 'init_s'}"]) == 0
+    config = yaml.safe_load((tmp_path / "init_s" / "conf" / "data" / "s.yaml").read_text())
+    assert "ts" not in (config.get("units") or {})

@@ -45,6 +45,7 @@ from .timestamps import (
 )
 from .units import AMBIGUOUS, UNITS, ambiguity, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
+from .values import EPOCH_MS
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
 HELD_OUT = 0.1    # the test share init writes for a record or runs without test campaigns
@@ -156,6 +157,23 @@ def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | N
                              usecols=[i], dtype=str, encoding=opts.encoding).iloc[:, 0]
         said = {slashed_format(v.strip()) for v in column.dropna().unique()} - {None}
         return said.pop() if len(said) == 1 else None
+    return None
+
+
+def epoch_ms_column(header: list[str], first: dict, opts) -> str | None:
+    """The header of a time column without a unit (none in ``data.units``) whose first value is
+    milliseconds since 1970 (:data:`~.values.EPOCH_MS`: 2000 .. 2099), as a gateway stamps its
+    messages (read as seconds: a record of 21 days lasts 21,000 years): written to the config as
+    ``data.units={<header>: ms}``; None where no such column is."""
+    for h in header:
+        if not named_as_time(h) or split_unit(h)[1] is not None or h in opts.units:
+            continue
+        try:
+            value = float(str(first.get(h) or "").strip())
+        except ValueError:
+            continue
+        if EPOCH_MS[0] <= value <= EPOCH_MS[1]:
+            return h
     return None
 
 
