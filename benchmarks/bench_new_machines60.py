@@ -157,8 +157,11 @@ each failing on the code before; found on the first ``init`` of each, then on sc
    ``data.units={<its header>: K}``.
 6. multi_spindle, silent: ``state.cycle_s`` (a cycle time) and ``probe.spindle`` (the part's
    spindle, 1-6) proposed as temperatures; ``shop_air_K`` as a plain temperature.  A group word
-   ``state`` / ``status`` says a state now, ``shop`` the air's place; **the spindle number is still
-   proposed as a temperature** (its name says nothing; hand-spelled ``data.roles.state``).
+   ``state`` / ``status`` says a state now, ``shop`` the air's place; the spindle number is still
+   proposed as a temperature (its name says nothing; hand-spelled ``data.roles.state``), but
+   since ``init`` warns of it: "'probe.spindle' is proposed as a temperature, but 41% of its
+   steps from a sample to the next are 1 K or more: a number, a count or an index (a state)?
+   data.roles.state=['probe.spindle']" (no such warning on the 8 earlier bench machines' inits).
 7. multi_spindle: an outage's warning named the line of the converted CSV (one after the file's):
    a converted file's log messages map the line back.
 8. (not wrong, said nowhere) the report's ``DATE 10/05/2026 START 07:36`` is not read: sessions

@@ -17,6 +17,7 @@ from dataclasses import replace
 from difflib import get_close_matches
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from ..timerule import median_step
@@ -397,7 +398,34 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     nxt = f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"
     if groups:
         nxt += f" (or with data.group_by={next(iter(groups))}: one model per value)"
-    return lines + [f"data config written to {path}", *said, nxt]
+    return lines + [f"data config written to {path}", *said, *jumpy_temperatures(plan, ds), nxt]
+
+
+# a healthy sensor's steps are hundredths of a kelvin, a motor's warm-up a few tenths a minute:
+# no tenth of a record's steps reach 1 K
+JUMPY_K, JUMPY_SHARE = 1.0, 0.1
+
+
+def jumpy_temperatures(plan, ds) -> list[str]:
+    """A warning for each column proposed as a temperature a tenth of whose steps from a sample
+    to the next (:data:`JUMPY_SHARE`) are :data:`JUMPY_K` or more: no mass's temperature moves
+    so (a gateway's spindle number 1-6 under ``probe.spindle``, a count, a code, read as °C:
+    silent before)."""
+    out = []
+    for header, name in plan.names.items():
+        if plan.roles.get(header) != "temperature":
+            continue
+        steps = [np.abs(np.diff(df[name].to_numpy(float))) for df in ds.campaigns.values()
+                 if name in df]
+        steps = np.concatenate(steps) if steps else np.array([])
+        finite = steps[np.isfinite(steps)]
+        share = float(np.mean(finite >= JUMPY_K)) if finite.size else 0.0
+        if share >= JUMPY_SHARE:
+            out.append(f"warning: {header!r} is proposed as a temperature, but {share:.0%} of its "
+                       f"steps from a sample to the next are {JUMPY_K:g} K or more: a number, a "
+                       f"count or an index (a state)? data.roles.state=['{header}'] (or "
+                       "data.roles.ignore)")
+    return out
 
 
 # manifest columns that are the contract's or say one campaign, not a group of them
