@@ -117,8 +117,11 @@ them all (0.90-1.34); E_Y's test residual is mostly its mean (0.90 of MLR's 0.94
 * ``jig_grinder``: **E_Y 0.944 -> 1.098 (+16.4 %, above issue 34's 2 %)**: a 1 h first-order lag
   of the inputs from the initial thermal state, CV 0.462 -> 0.339 (6 train sessions); on the test
   the residual's spread grew (sd 0.26 -> 0.68; mean 0.90 -> 0.91).  E_Z 0.464 -> 0.438 (a 15 min
-  lag of T_COL_REAR_LO).  22.9 s.  The harm is reported, not mended (no general rule found in this
-  session; the CV gain held in the folds).
+  lag of T_COL_REAR_LO).  22.9 s.  The harm is reported, not mended: its evidence
+  (``diagnosis.json``) is a forward CV of 16 validation blocks in the 6 train sessions ("6 train
+  campaigns are too few for the sign-flip test to reach alpha=0.01 (it needs 8)"), the sign flip
+  then on 2112 test blocks of 2 samples (p 5e-5, gain 26.6 %, its bound 0.11 µm): blocks within
+  6 sessions, where the hmc's 6 runs (59) accepted nothing; not traced further in this session.
 * ``multi_spindle``: E_D 1.621 -> 0.890 (a 15 min lag of the speed), E_L 0.585 -> 0.393 (15 min
   and 4 h lags of the inputs).  No spindle x temperature product found (the spindle number, a
   state 1-6, enters linearly; its effect is each unmeasured bearing's, not a slope).  16.5 s.
