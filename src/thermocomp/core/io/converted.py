@@ -18,10 +18,11 @@ _LINE = re.compile(r"\bline (\d+)")
 
 @contextmanager
 def named_as(temp: Path, where: str, located: Callable[[ContractError], ContractError],
-             unit: str = "line") -> Iterator[None]:
+             unit: str = "line", line_of: Callable[[int], int] | None = None) -> Iterator[None]:
     """Within the block, a :class:`ContractError` raised is ``located(exc)``, and a log record
-    naming ``temp`` names ``where`` instead, its ``line N`` as ``<unit> N`` (a sheet's row)."""
-    renamed = _Renamed(temp, where, unit)
+    naming ``temp`` names ``where`` instead, its ``line N`` as ``<unit> N`` (a sheet's row;
+    ``line_of(N)``: the file's line where the temporary file's lines are not its own)."""
+    renamed = _Renamed(temp, where, unit, line_of or (lambda n: n))
     logger.addFilter(renamed)
     try:
         yield
@@ -32,13 +33,14 @@ def named_as(temp: Path, where: str, located: Callable[[ContractError], Contract
 
 
 class _Renamed(logging.Filter):
-    def __init__(self, temp: Path, where: str, unit: str):
+    def __init__(self, temp: Path, where: str, unit: str, line_of: Callable[[int], int]):
         super().__init__()
-        self.temp, self.where, self.unit = str(temp), where, unit
+        self.temp, self.where, self.unit, self.line_of = str(temp), where, unit, line_of
 
     def filter(self, record: logging.LogRecord) -> bool:
         text = record.getMessage()
         if self.temp in text:
-            record.msg = _LINE.sub(rf"{self.unit} \1", text.replace(self.temp, self.where))
+            record.msg = _LINE.sub(lambda m: f"{self.unit} {self.line_of(int(m.group(1)))}",
+                                   text.replace(self.temp, self.where))
             record.args = ()
         return True

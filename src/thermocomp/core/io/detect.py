@@ -17,14 +17,18 @@ from dataclasses import replace
 from difflib import get_close_matches
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from ..timerule import median_step
 from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
+from .fixedwidth import is_fixed_width
+from .jsonlines import is_json_lines
 from .layout import header_line
 from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS, RUN_ROLE
+from .plain import as_read, is_converted
 from .rates import period_groups
 from .read import run_column, run_counter
 from .record import check_record_file
@@ -42,6 +46,7 @@ from .timestamps import (
 )
 from .units import AMBIGUOUS, UNITS, ambiguity, is_flag, role_by_unit
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
+from .values import EPOCH_MS
 from .workbook import HEAD_ROWS, csv_options, is_workbook, sheet_as_csv
 
 HELD_OUT = 0.1    # the test share init writes for a record or runs without test campaigns
@@ -50,10 +55,12 @@ _GLOB = re.compile(r"([*?\[])")
 _WORDS = re.compile(r"[\s_.\-]+")
 # a header word that says "the air around the machine" ('air' and 'Luft' not: an air bearing);
 # an Italian / French / Spanish lab's 'ambiente', 'ambiante', 'capannone' (the shop's hall);
-# the place the air is in: a French 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle'
+# the place the air is in: a French 'atelier', a Spanish 'nave' or 'taller', 'sala' / 'salle',
+# a gateway's 'shop_air'
 AMBIENT_WORDS = {"amb", "ambient", "umgebung", "umgebungstemperatur", "raum", "raumtemperatur",
                  "room", "hall", "halle", "hallentemperatur", "ambiente", "ambiante", "capannone",
-                 "atelier", "nave", "taller", "sala", "salle", "officina", "werkstatt", "workshop"}
+                 "atelier", "nave", "taller", "sala", "salle", "officina", "werkstatt", "workshop",
+                 "shop"}
 _WHERE = ("interim", "processed")     # where stages write: the project's, not the data's
 
 
@@ -120,6 +127,12 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
             opts, header, first, layout = head(text, utf8_options(opts))
             return opts, header, first, layout.replace(
                 f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
+    if is_json_lines(sample) or is_fixed_width(sample, opts.encoding):
+        kind = "JSON Lines (nested keys joined with '.')" if is_json_lines(sample) else \
+            "a fixed-width table (its columns told by the numbers)"
+        with as_read(sample, opts, rows=HEAD_ROWS) as (text, text_opts):
+            opts, header, first, layout = head(text, text_opts)
+            return opts, header, first, layout.replace(f"{text.name}: ", f"{sample.name}: {kind}, ", 1)
     if not is_text(sample):
         table = without_pandas_index(parquet().read_table(sample).slice(0, 1))
         return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],
@@ -136,7 +149,7 @@ def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | N
     every row saying it agreeing: written to the config, so that each file of a folder is read
     so (one starting ``01/07`` too); None where none says it or rows disagree (refused naming
     ``data.time`` as before), where ``data.time`` is given, or for another column."""
-    if opts.time != "auto" or is_workbook(sample) or is_utf16(sample) or not is_text(sample):
+    if opts.time != "auto" or is_converted(sample) or not is_text(sample):
         return None
     for i, h in enumerate(header):
         if not is_slashed_stamp(str(first.get(h) or "")):
@@ -145,6 +158,23 @@ def slashed_order(sample: Path, opts, header: list[str], first: dict) -> str | N
                              usecols=[i], dtype=str, encoding=opts.encoding).iloc[:, 0]
         said = {slashed_format(v.strip()) for v in column.dropna().unique()} - {None}
         return said.pop() if len(said) == 1 else None
+    return None
+
+
+def epoch_ms_column(header: list[str], first: dict, opts) -> str | None:
+    """The header of a time column without a unit (none in ``data.units``) whose first value is
+    milliseconds since 1970 (:data:`~.values.EPOCH_MS`: 2000 .. 2099), as a gateway stamps its
+    messages (read as seconds: a record of 21 days lasts 21,000 years): written to the config as
+    ``data.units={<header>: ms}``; None where no such column is."""
+    for h in header:
+        if not named_as_time(h) or split_unit(h)[1] is not None or h in opts.units:
+            continue
+        try:
+            value = float(str(first.get(h) or "").strip())
+        except ValueError:
+            continue
+        if EPOCH_MS[0] <= value <= EPOCH_MS[1]:
+            return h
     return None
 
 
@@ -158,7 +188,7 @@ def elapsed_column(src: Path, manifest: pd.DataFrame | None, opts, header: list[
     if opts.time != "auto":
         return None
     files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
-    if not all(is_text(f) and not is_workbook(f) and not is_utf16(f) for f in files):
+    if not all(is_text(f) and not is_converted(f) for f in files):
         return None
     for i, h in enumerate(header):
         if not maybe_elapsed(str(first.get(h) or ""), opts.time):
@@ -368,7 +398,34 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     nxt = f"next: thermocomp run 'hydra.searchpath=[file://{path.parent.parent}]' data={name}"
     if groups:
         nxt += f" (or with data.group_by={next(iter(groups))}: one model per value)"
-    return lines + [f"data config written to {path}", *said, nxt]
+    return lines + [f"data config written to {path}", *said, *jumpy_temperatures(plan, ds), nxt]
+
+
+# a healthy sensor's steps are hundredths of a kelvin, a motor's warm-up a few tenths a minute:
+# no tenth of a record's steps reach 1 K
+JUMPY_K, JUMPY_SHARE = 1.0, 0.1
+
+
+def jumpy_temperatures(plan, ds) -> list[str]:
+    """A warning for each column proposed as a temperature a tenth of whose steps from a sample
+    to the next (:data:`JUMPY_SHARE`) are :data:`JUMPY_K` or more: no mass's temperature moves
+    so (a gateway's spindle number 1-6 under ``probe.spindle``, a count, a code, read as °C:
+    silent before)."""
+    out = []
+    for header, name in plan.names.items():
+        if plan.roles.get(header) != "temperature":
+            continue
+        steps = [np.abs(np.diff(df[name].to_numpy(float))) for df in ds.campaigns.values()
+                 if name in df]
+        steps = np.concatenate(steps) if steps else np.array([])
+        finite = steps[np.isfinite(steps)]
+        share = float(np.mean(finite >= JUMPY_K)) if finite.size else 0.0
+        if share >= JUMPY_SHARE:
+            out.append(f"warning: {header!r} is proposed as a temperature, but {share:.0%} of its "
+                       f"steps from a sample to the next are {JUMPY_K:g} K or more: a number, a "
+                       f"count or an index (a state)? data.roles.state=['{header}'] (or "
+                       "data.roles.ignore)")
+    return out
 
 
 # manifest columns that are the contract's or say one campaign, not a group of them

@@ -1,7 +1,7 @@
-"""A campaign file as the CSV reader reads it: a workbook's sheet (:mod:`.workbook`) or a UTF-16
-text (:mod:`.utf16`) through the temporary UTF-8 CSV it is converted to, any other file as it
-is.  One place for the choice, so that every look at a file (its rows, its first time) reads it
-the same way."""
+"""A campaign file as the CSV reader reads it: a workbook's sheet (:mod:`.workbook`), a UTF-16
+text (:mod:`.utf16`), JSON Lines (:mod:`.jsonlines`) or a fixed-width text (:mod:`.fixedwidth`)
+through the temporary UTF-8 CSV it is converted to, any other file as it is.  One place for the
+choice, so that every look at a file (its rows, its first time) reads it the same way."""
 
 from __future__ import annotations
 
@@ -9,13 +9,16 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .fixedwidth import fixed_as_csv, is_fixed_width
+from .jsonlines import is_json_lines, json_lines_as_csv
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import csv_options, is_workbook, sheet_as_csv
 
 
 def is_converted(path) -> bool:
-    """``path`` is read through a converted copy (a workbook, a UTF-16 text)."""
-    return is_workbook(path) or is_utf16(path)
+    """``path`` is read through a converted copy (a workbook, a UTF-16 text, JSON Lines, a
+    fixed-width text)."""
+    return is_workbook(path) or is_utf16(path) or is_json_lines(path) or is_fixed_width(path)
 
 
 @contextmanager
@@ -27,6 +30,12 @@ def as_read(path: Path, opts, rows: int | None = None) -> Iterator[tuple[Path, o
             yield sheet.csv, csv_options(opts)
     elif is_utf16(path):            # Excel's 'Unicode Text': its UTF-8 text
         with utf16_as_utf8(path) as text:
+            yield text, utf8_options(opts)
+    elif is_json_lines(path):       # an MQTT bridge's messages: flattened
+        with json_lines_as_csv(path, rows=rows) as text:
+            yield text, utf8_options(opts)
+    elif is_fixed_width(path):      # an old program's report: its columns told by the numbers
+        with fixed_as_csv(path, opts.encoding) as text:
             yield text, utf8_options(opts)
     else:
         yield path, opts

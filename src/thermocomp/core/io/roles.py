@@ -44,7 +44,7 @@ _IN_UNIT = re.compile(r"^(.*?\S)\s+(?:in|en)\s+(\S+)$", re.IGNORECASE)   # 'dX i
 _LAST_WORD = re.compile(r"^(.*?\S)\s+(\S+)$")
 _SUFFIX = re.compile(r"^(.*?[^\s_])_([^\s_]+)$")
 _UNSAFE = re.compile(r"[^\w.\-]+")
-TIME_HEADERS = frozenset({"time", "t", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
+TIME_HEADERS = frozenset({"time", "t", "ts", "zeit", "時間", "时间", "timestamp", "datetime", "date_time",
                           "zeitstempel", "temps", "tiempo", "tempo", "seconds", *ELAPSED_HEADERS})
 RUN = " campaign"     # data.roles.campaign's column as read: no contract column has this name
 PREFIX = {"error": "E_", "state": "S_", "temperature": "T_", "ambient": "T_"}
@@ -111,10 +111,12 @@ def named_as_time(header: str) -> bool:
 
 
 def _letter_unit(header: str, cell, decimal: str) -> tuple[str, str] | None:
-    """``('T1', 'K')`` for a temperature's ``T1 K`` under ``data.roles`` where its first value
+    """``('T1', 'K')`` for a temperature's ``T1 K`` (or ``T1_K``, a gateway's tag) where its first value
     ``cell`` reads in the letter's unit (:data:`LETTER_UNITS`: 293 is kelvin, 20 is not), the
     name before it two characters or more (``T K`` reads as a name as often); else None."""
     match = _LAST_WORD.match(header.strip())
+    if match is None and role(header.strip()) is None:      # a gateway's 'drum_K' (no contract name)
+        match = _SUFFIX.match(header.strip())
     if match is None or len(match.group(1)) < 2:
         return None
     lowest, value = LETTER_UNITS.get(match.group(2).lower()), number(cell or "", decimal)

@@ -34,7 +34,7 @@ UNITS = {
 LETTER_UNITS = {"k": 150.0, "f": 45.0}
 
 # units that say "a machine state" (speeds, loads, positions, on/off)
-STATE_UNITS = {"rpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
+STATE_UNITS = {"rpm", "krpm", "1/min", "min-1", "u/min", "%", "hz", "a", "w", "kw", "nm", "bar", "v",
                "on/off", "0/1", "mm/min"}
 # a dimensionless unit in brackets, '[-]' or '[1]' (DIN 1313's "no unit"): an on/off flag, a
 # ratio, a count, never a temperature, so a state (the contract's S_door, 0 closed, 1 open).
@@ -48,6 +48,7 @@ NEWTON_METRES = ("Nm", "N.m", "N·m")   # a torque, a state: not nanometres (nm)
 # (ISO 80000-3; a temperature's is °C), unless the name says a temperature ('Temp [°]': refused
 # as a temperature without its scale, as before)
 ANGLE_UNITS = {"°", "º", "˚", "deg", "rad"}
+STATE_WORDS = {"state", "states", "status", "zustand", "estado", "stato", "etat", "état"}
 _TEMPERATURE_WORD = re.compile(r"t\d*|temp.*|.*temperat.*")
 
 AMBIGUOUS = "error or state"
@@ -81,9 +82,14 @@ def role_by_unit(base: str, unit: str | None) -> str | None:
         return _length_role(base, known)
     if known in STATE_UNITS or known in DIMENSIONLESS:
         return "state"
+    words = [w for w in _WORDS.split(base.lower()) if w]
+    said_hot = any(_TEMPERATURE_WORD.fullmatch(w) for w in words)
     if known in ANGLE_UNITS:
-        said_hot = any(_TEMPERATURE_WORD.fullmatch(w) for w in _WORDS.split(base.lower()) if w)
         return None if said_hot else "state"
+    # a gateway's group of machine states ('state.cycle_s', 'status.door'), a lab's 'Spindle
+    # state': no temperature, whatever its number looks like
+    if known not in UNITS["T"] and not said_hot and any(w in STATE_WORDS for w in words):
+        return "state"
     return None
 
 

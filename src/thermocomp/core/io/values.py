@@ -158,8 +158,14 @@ def _check_duration(seconds: np.ndarray, path: Path, max_days: float | None) -> 
         raise ContractError(f"time jumps by {steps[i] / 86400:.4g} days from row {i + 1} to "
                             f"row {i + 2}: the campaign would last {days:.4g} days, {limit}",
                             file=path, column=TIME, row=row)
-    raise ContractError(f"the campaign lasts {days:.4g} days, {limit}: is time in ms? it must be "
-                        "in seconds", file=path, column=TIME, row=len(seconds))
+    epoch = (f" (from {seconds[0]:.4g}: milliseconds since 1970, as a gateway stamps a message)"
+             if EPOCH_MS[0] <= seconds[0] <= EPOCH_MS[1] else "")
+    raise ContractError(f"the campaign lasts {days:.4g} days, {limit}: is time in ms{epoch}? it "
+                        "must be in seconds: say so with data.units={<its header>: ms}",
+                        file=path, column=TIME, row=len(seconds))
+
+
+EPOCH_MS = (9.46e11, 4.1e12)      # milliseconds since 1970: 2000 .. 2099
 
 
 def _check_periods(periods: dict, files: Mapping, root: Path, ratio: float | None) -> None:
@@ -321,7 +327,8 @@ def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
             row = int(np.argmax(values > min(threshold, MAX_ABS_T_C))) + 1
             # kelvin only where the values in °C would pass: a spindle speed (3000, a column
             # 'S' read as a temperature by default) is no temperature in any unit
-            why = ("temperatures look like kelvin, convert to °C"
+            why = ("temperatures look like kelvin, convert to °C, or say so: "
+                   "data.units={<its header>: K}"
                    if threshold < median <= threshold - ABSOLUTE_ZERO_C else
                    f"no temperature, in °C or kelvin (the column's median is {median:.4g}): "
                    "another quantity? give its column a role, data.roles.state=[<header>] or "

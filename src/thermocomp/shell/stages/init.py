@@ -22,6 +22,7 @@ from ...core.io.detect import (
     detection_lines,
     elapsed_column,
     encoding,
+    epoch_ms_column,
     folder_manifest,
     head,
     proposed_campaign,
@@ -70,6 +71,12 @@ def init(cfg: DictConfig) -> dict:
         opts = replace(opts, time=ELAPSED)
         print(f"{src.name}: {elapsed!r} h:mm:ss past 24 h in a file: read as data.time="
               f"{ELAPSED!r}, a logger's time since its start, in every file")
+    epoch = epoch_ms_column(header, dict(zip(header, first)), opts)
+    if epoch:              # (a gateway's time stamp: read as seconds, 1000 times too long)
+        given["units"] = {**(given.get("units") or {}), epoch: "ms"}
+        opts = replace(opts, units={**opts.units, epoch: "ms"})
+        print(f"{sample.name}: {epoch!r} from {dict(zip(header, first))[epoch]}: milliseconds "
+              f"since 1970, read as data.units={{{epoch}: ms}}")
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column

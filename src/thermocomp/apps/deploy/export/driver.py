@@ -280,7 +280,13 @@ int main(int argc, char **argv) {
             where[i] = j;
         }
         if (where[i] < 0) {
-            fprintf(stderr, "stream: the header lacks input column %s\n", TC_INPUT_NAMES[i]);
+            /* a lab's report or gateway file fed as it is (a title line read as the header):
+               what the stream reads, said with the missing name */
+            fprintf(stderr, "stream: the header (line 1: CSV naming the inputs as TC_INPUT_NAMES "
+                    "in compensator.h does, in degC%s; a file in another form or unit, "
+                    "fixed-width, JSON Lines, degF, K, converted first) lacks input column %s\n",
+                    TC_LAB_NAMES[0][0][0] ? ", or by a lab's header TC_LAB_NAMES lists" : "",
+                    TC_INPUT_NAMES[i]);
             return 2;
         }
     }
