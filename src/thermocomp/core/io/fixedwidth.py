@@ -10,6 +10,11 @@ columns' spans do not overlap).  A column of right-aligned numbers reaches left 
 before it (a wider number grows to the left), a left-aligned one right to the next.  A header
 line's names (split where 2 spaces part them, so that a name may hold one) go to the column they
 overlap.  A line of the title block is one cell; a rule of ``-`` or ``=`` is dropped.
+
+Written by hand, not with :func:`pandas.read_fwf`: its spans are inferred from the lines after a
+number of lines to skip that must be known, so a title block of any length, a header whose
+names hold a space, and a unit row under it would each need the table found first, which is
+this module's work; the CSV reader then does the rest.
 """
 
 from __future__ import annotations
