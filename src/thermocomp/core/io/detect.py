@@ -22,6 +22,7 @@ import pandas as pd
 from ..timerule import median_step
 from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
+from .historian import held_wide, long_as_wide, long_layout, wide_options
 from .layout import header_line
 from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS, RUN_ROLE
@@ -120,6 +121,18 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
             opts, header, first, layout = head(text, utf8_options(opts))
             return opts, header, first, layout.replace(
                 f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
+    layout = long_layout(sample, opts) if is_text(sample) else None
+    if layout is not None:    # a historian's long file: the head of the wide grid it is read as
+        with long_as_wide(sample, opts, layout, rows=HEAD_ROWS) as wide:
+            _, header, first, _ = head(wide, wide_options(opts))
+        held = held_wide(sample, opts, layout)
+        names = layout.header
+        opts = replace(opts, delimiter=layout.delimiter, decimal=layout.decimal)
+        return (opts, header, first, _separators(sample, opts) + (
+            f", a historian's long file ({names[layout.tag]!r} the tag, {names[layout.value]!r} "
+            f"the value" + (f", {names[layout.quality]!r} its quality" if layout.quality is not
+                            None else ", no quality column") + f"): {len(header) - 1} tags held "
+            f"onto a grid of data.resample_s={held.period:g} s, {len(held.frame)} rows"))
     if not is_text(sample):
         table = without_pandas_index(parquet().read_table(sample).slice(0, 1))
         return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],

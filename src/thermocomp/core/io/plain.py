@@ -9,13 +9,16 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .historian import long_as_wide, long_layout, wide_options
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import csv_options, is_workbook, sheet_as_csv
 
 
-def is_converted(path) -> bool:
-    """``path`` is read through a converted copy (a workbook, a UTF-16 text)."""
-    return is_workbook(path) or is_utf16(path)
+def is_converted(path, opts=None) -> bool:
+    """``path`` is read through a converted copy (a workbook, a UTF-16 text; with the read
+    ``opts``: a historian's long file)."""
+    return is_workbook(path) or is_utf16(path) or (
+        opts is not None and long_layout(path, opts) is not None)
 
 
 @contextmanager
@@ -28,5 +31,8 @@ def as_read(path: Path, opts, rows: int | None = None) -> Iterator[tuple[Path, o
     elif is_utf16(path):            # Excel's 'Unicode Text': its UTF-8 text
         with utf16_as_utf8(path) as text:
             yield text, utf8_options(opts)
+    elif (layout := long_layout(path, opts)) is not None:   # a historian's: its grid, wide
+        with long_as_wide(path, opts, layout, rows=rows) as wide:
+            yield wide, wide_options(opts)
     else:
         yield path, opts
