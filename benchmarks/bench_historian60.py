@@ -20,7 +20,7 @@ and ``new_machine_steps``'s (the steps, the table).
 -----------------------------------------------------------------------
 A rotary table (2.5 m) on a large TABLE BEARING, driven by the main motor through a gearbox; two
 columns carry the crossrail, on which the ram (the tool, vertical) moves in X.  Lumped network
-(C J/K, hA W/K to the hall air): main ``motor`` (6e4, 6), ``gearbox`` (4e5, 10), the table
+(C J/K, hA W/K to the hall air): main ``motor`` (6e4, 60: its fan), ``gearbox`` (4e5, 30), the table
 ``bearing`` (5e5, 3), ``table`` (2.8e6, 25), the ``part`` (460 m J/K for m t, 3 + 1.5 m W/K),
 the lube ``oil`` unit (3e5, 12), ``base`` (9e6, 60) and its unmeasured ``base_core`` (6e6, 0),
 ``col_L`` / ``col_R`` (1.6e6, 18 each), ``crossrail`` (1.3e6, 20), ``ram`` (2.2e5, 6).  Links
@@ -66,6 +66,10 @@ the hall's clock ``2026-11-02 06:00:00.137``, tags ``VTL01.Table.Bearing.Temp``,
 ``VTL01.Fixture.X_um``, ``VTL01.Table.Speed_rpm`` ...; the last quarter test
 (``data.test_fraction=0.25``).
 
+Mended before any model ran (the first ``write``'s sensor ranges only): the motor's and the
+gearbox's hA were 6 and 10 W/K, a motor at 169 °C and a gearbox at 89 °C under 25 kW (2 kW of
+motor losses without its fan); now 60 and 30.
+
 The wide check: the same simulation written twice more.  ``vtl_wide/VTL01_wide.csv``: every tag
 at every 10 s step in one row (a Bad scan an empty cell); ``vtl_exact/VTL01_exact.csv``: its long
 form, each tag logged at the exact 10 s stamp of every step where its value differs from the
@@ -93,10 +97,10 @@ SEED = 6001
 STEP = 10.0
 START = pd.Timestamp("2026-11-02 00:00:00")
 WEEKS = 3
-NODES = {"motor": (6e4, 6.0), "gearbox": (4e5, 10.0), "bearing": (5e5, 3.0), "table": (2.8e6, 25.0),
-         "part": (460.0 * 1000 * 5, 3 + 1.5 * 5),     # (each part's own mass: simulate_vtl) "oil": (3e5, 12.0), "base": (9e6, 60.0),
+NODES = {"motor": (6e4, 60.0), "gearbox": (4e5, 30.0), "bearing": (5e5, 3.0), "table": (2.8e6, 25.0),
+         "part": (460.0 * 1000 * 5, 3 + 1.5 * 5), "oil": (3e5, 12.0), "base": (9e6, 60.0),
          "base_core": (6e6, 0.0), "col_L": (1.6e6, 18.0), "col_R": (1.6e6, 18.0),
-         "crossrail": (1.3e6, 20.0), "ram": (2.2e5, 6.0)}
+         "crossrail": (1.3e6, 20.0), "ram": (2.2e5, 6.0)}    # (a part: its own mass, simulate_vtl)
 LINKS = (("motor", "gearbox", 6.0), ("gearbox", "base", 5.0), ("gearbox", "bearing", 8.0),
          ("bearing", "table", 30.0), ("bearing", "base", 15.0), ("oil", "base", 2.0),
          ("base", "base_core", 30.0), ("base", "col_L", 10.0), ("base", "col_R", 10.0),
