@@ -153,3 +153,19 @@ def test_bad_samples_are_refused_with_file_column_and_row(tmp_path, spoil, colum
         read_dataset(tmp_path / "pi.csv", CFG)
     assert exc.value.column == column and exc.value.row == at + 1, str(exc.value)
     assert says in str(exc.value) and str(exc.value).startswith(f"file {tmp_path / 'pi.csv'}")
+
+
+def test_a_gap_refused_says_the_longest_gap_of_its_column(tmp_path):
+    """A historian's Bad scans (or a wide file's empty cells) were refused one gap at a time:
+    the stranger raised data.max_gap_samples to 2, then met a gap of 3 further on."""
+    frame = samples()
+    probe = frame.index[frame["TagName"] == PROBE]
+    frame.loc[probe[[20]], "Quality"] = "Bad"                 # a gap of 1 grid row first
+    frame.loc[probe[[200, 201, 202]], "Quality"] = "Bad"      # then one of 3
+    write(frame, tmp_path / "pi.csv")
+    with pytest.raises(ContractError) as exc:
+        read_dataset(tmp_path / "pi.csv", CFG)
+    assert exc.value.row == probe[20] + 1
+    assert "its longest gap is 3 values, data.max_gap_samples=3 interpolates every one" \
+        in str(exc.value)
+    read_dataset(tmp_path / "pi.csv", {**CFG, "max_gap_samples": 3})

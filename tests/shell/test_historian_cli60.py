@@ -51,3 +51,21 @@ def test_a_repeated_stamp_with_another_value_exits_2_naming_file_column_row(tmp_
             f"file {tmp_path / 'pi.csv'}, column 'Value', data row {at + 2}",
             f"tag {BEARING!r} has two samples at")
     assert not (tmp_path / "out" / "metrics.json").exists()
+
+
+def test_init_proposes_a_column_of_0_and_1_as_a_state(tmp_path):
+    """A flag under a header that does not say so (``Part.Loaded``, ``Hall.Door``) was proposed a
+    temperature, or the hall's air by its word, and read as one (historian60's lathe)."""
+    import numpy as np
+
+    t = np.arange(200) * 60.0
+    door = (np.arange(200) // 25 % 2).astype(float)
+    frame = pd.DataFrame({"time": t, "Hall.Door": door,
+                          "Spindle.Temp": 20 + t / 3600 + 0.1 * door,
+                          "dX [um]": 2 * t / 3600 + np.sin(t / 900)})
+    frame.to_csv(tmp_path / "lab.csv", index=False)
+    out = tmp_path / "out"
+    said = thermocomp("init", f"data.path={tmp_path / 'lab.csv'}", f"out={out}").stdout
+    assert "'Hall.Door': only two values one apart (0 / 1) over the record" in said
+    config = yaml.safe_load((out / "conf" / "data" / "lab.yaml").read_text())
+    assert config["roles"]["state"] == ["Hall.Door"] and config["roles"]["ambient"] == []

@@ -17,6 +17,7 @@ from dataclasses import replace
 from difflib import get_close_matches
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from ..timerule import median_step
@@ -235,6 +236,33 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return _by_role(roles, header, first)
+
+
+def flag_headers(ds, names: dict) -> list[str]:
+    """The headers (``names``: header -> contract name) proposed as a temperature whose column
+    holds two values one apart and nothing else over the whole of ``ds`` (0 / 1, or -1 / 0 once
+    referenced to its first sample): an on/off flag the header did not say, a historian's
+    ``VTL01.Part.Loaded`` (historian60: proposed a temperature, and ``Hall.Door`` the hall's
+    air by its word)."""
+    flags = []
+    for header, name in names.items():
+        if not str(name).startswith("T_"):
+            continue
+        values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
+        seen = np.unique(np.round(values.to_numpy(float), 9))
+        if seen.size == 2 and seen[1] - seen[0] == 1.0:
+            flags.append(header)
+    return flags
+
+
+def flags_as_states(roles: dict, headers: list[str], opts) -> dict:
+    """``roles`` with each of ``headers`` a state (out of the ambient patterns)."""
+    roles = {k: (list(v) if isinstance(v, list) else v) for k, v in roles.items()}
+    for h in headers:
+        pattern = _GLOB.sub(r"[\1]", _unit_of(h, opts)[0])
+        roles["ambient"] = [p for p in roles["ambient"] if p != pattern]
+        roles["state"].append(pattern)
+    return roles
 
 
 def _named(header: str, roles: dict, opts) -> bool:

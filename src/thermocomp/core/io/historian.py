@@ -129,7 +129,8 @@ def _layout(path: str, _mtime: int, _size: int, delimiter: str, decimal: str, en
     body = [r[:len(header)] + [""] * (len(header) - len(r)) for r in rows[1:]]
     cells = [[r[i].strip() for r in body] for i in range(len(header))]
     time = next((i for i in range(len(header)) if _is_time(header[i], cells[i])), None)
-    tag = next((i for i in range(len(header)) if i != time and _is_tag(cells[i])), None)
+    tag = next((i for i in range(len(header)) if i != time and _is_tag(header[i], cells[i])),
+               None)
     if time is None or tag is None:
         return None
     rest = [i for i in range(len(header)) if i not in (time, tag)]
@@ -166,10 +167,14 @@ def _is_time(header: str, cells: list[str]) -> bool:
                              or all(looks_like_timestamp(c) for c in filled))
 
 
-def _is_tag(cells: list[str]) -> bool:
-    """Text naming a few tags that come back after one another (a run's labels do not)."""
+def _is_tag(header: str, cells: list[str]) -> bool:
+    """Text naming tags: under a tag's header (``TagName``; an archive export sorted by tag
+    shows one tag in its first lines), or a few values that come back after one another (a
+    run's labels do not)."""
     if not cells or any(not re.search(r"[^\W\d_]", c) for c in cells):
         return False
+    if _bare(header) in TAG_WORDS or "tag" in _bare(header).split():
+        return True
     seen, last = set(), None
     for c in cells:
         if c != last and c in seen:
@@ -256,7 +261,8 @@ def tag_samples(path: Path, opts, layout: Layout) -> tuple[pd.DataFrame, dict, o
 
 def proposed_period(intervals: dict, tags) -> tuple[float, str]:
     """The grid period ``init`` proposes, and the tag it is taken from: the shortest median
-    interval of ``tags`` (the error tags; none: every tag), in ms.  On the error's own rate
+    interval of ``tags`` (the error tags; none: every tag), to two digits (a collector's latency
+    and a deadband's skipped scans put it at 10.01 s for a 10 s scan).  On the error's own rate
     each of its samples lands on a grid row of its own: a shorter period only repeats held
     values (more rows, a lag in samples spanning less time), a longer one drops error samples."""
     timed = {t: v for t, v in intervals.items() if t in set(tags) and np.isfinite(v) and v > 0}
@@ -264,7 +270,7 @@ def proposed_period(intervals: dict, tags) -> tuple[float, str]:
     if not timed:
         raise ContractError("no tag has two samples: no period to hold the tags onto")
     tag = min(timed, key=timed.get)
-    return round(timed[tag], 3) or 0.001, tag
+    return float(f"{timed[tag]:.2g}"), tag
 
 
 PERIOD_COMMENT = ("# the grid a historian's tags are held onto (sample and hold): the median "
@@ -424,7 +430,9 @@ def _not_silent(grid: np.ndarray, stamps: np.ndarray, period: float, path, origi
 
 
 def _said(seconds: float, origin) -> str:
-    return f"{seconds:g} s" if origin is None else str(origin + pd.Timedelta(seconds=seconds))
+    if origin is None:
+        return f"{seconds:g} s"
+    return (origin + pd.Timedelta(seconds=round(seconds, 3))).isoformat(timespec="milliseconds")
 
 
 def _stamps(seconds: np.ndarray, origin, zone) -> list:

@@ -22,6 +22,8 @@ from ...core.io.detect import (
     detection_lines,
     elapsed_column,
     encoding,
+    flag_headers,
+    flags_as_states,
     folder_manifest,
     head,
     proposed_campaign,
@@ -109,6 +111,15 @@ def init(cfg: DictConfig) -> dict:
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     config = data_config(src, given, opts, roles, defaults, manifest)
     ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
+    flags = flag_headers(ds, plan.names)        # 0 / 1 under a header that did not say a flag
+    if flags:
+        roles = flags_as_states(roles, flags, opts)
+        plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal,
+                      sample, opts.units)
+        config = data_config(src, given, opts, roles, defaults, manifest)
+        ds = open_source(cfg, detected=config)
+        print(f"{', '.join(map(repr, flags))}: only two values one apart (0 / 1) over the "
+              "record: an on/off flag, proposed as a state (data.roles.state)")
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
     report = ds.meta["read_report"]
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"
