@@ -169,3 +169,22 @@ def test_a_gap_refused_says_the_longest_gap_of_its_column(tmp_path):
     assert "its longest gap is 3 values, data.max_gap_samples=3 interpolates every one" \
         in str(exc.value)
     read_dataset(tmp_path / "pi.csv", {**CFG, "max_gap_samples": 3})
+
+
+def test_a_silence_of_every_tag_is_left_without_rows_not_held(tmp_path, caplog):
+    """No tag logged for over 100 grid steps (the collector off): no row there, said."""
+    frame = samples()
+    seconds = (pd.to_datetime(frame["Timestamp"], format="%d.%m.%Y %H:%M:%S") - START
+               ).dt.total_seconds()
+    late = seconds > 1800
+    frame.loc[late, "Timestamp"] = (START + pd.to_timedelta(seconds[late] + 7200, unit="s")
+                                    ).dt.strftime("%d.%m.%Y %H:%M:%S")
+    write(frame, tmp_path / "pi.csv")
+    ds, report = read_dataset(tmp_path / "pi.csv", {**CFG, "reference": "none"})
+    origin = pd.Timestamp(report["campaigns"][ds.ids()[0]]["time_origin"]).tz_localize(None)
+    times = np.concatenate([origin - START + pd.to_timedelta(ds.campaigns[c]["time"], unit="s")
+                            for c in ds.ids()]) / pd.Timedelta(seconds=1)
+    last_before = seconds[~late].max()
+    assert not ((times > last_before) & (times < seconds[late].min() + 7200)).any()
+    assert any("where no tag logged for over 100 grid periods" in r.getMessage()
+               for r in caplog.records)
