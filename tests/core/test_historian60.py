@@ -188,3 +188,24 @@ def test_a_silence_of_every_tag_is_left_without_rows_not_held(tmp_path, caplog):
     assert not ((times > last_before) & (times < seconds[late].min() + 7200)).any()
     assert any("where no tag logged for over 100 grid periods" in r.getMessage()
                for r in caplog.records)
+
+
+def test_runs_of_a_historian_one_file_each_or_a_batch_tag(tmp_path):
+    """The wide files' mechanisms, unchanged: a folder's files a campaign each, a batch tag a
+    run column (``data.roles.campaign``)."""
+    folder = tmp_path / "runs"
+    folder.mkdir()
+    write(samples(1), folder / "run_1.csv")
+    write(samples(2), folder / "run_2.csv")
+    ds, _ = read_dataset(folder, {**CFG, "test_fraction": 0.5})
+    assert ds.ids() == ["run_1", "run_2"] and ds.ids("test") == ["run_2"]
+    frame = samples()
+    batch = pd.DataFrame({"Timestamp": [(START + pd.Timedelta(seconds=s)).strftime(
+        "%d.%m.%Y %H:%M:%S") for s in (1, 1800)], "TagName": "MC07.Batch.No",
+        "Value": [1.0, 2.0], "Quality": "Good"})
+    write(pd.concat([frame, batch]), tmp_path / "batch.csv")
+    ds, _ = read_dataset(tmp_path / "batch.csv", {**CFG, "test_fraction": 0.5, "roles": {
+        **CFG["roles"], "campaign": "MC07.Batch.No"}})
+    assert ds.ids() == ["MC07.Batch.No_1", "MC07.Batch.No_2"]
+    end = 7 + ds.campaigns["MC07.Batch.No_1"]["time"].iloc[-1]   # (its grid began at 7 s)
+    assert end < 1800 <= end + 10        # the first run: every grid row before batch 2's sample
