@@ -209,3 +209,18 @@ def test_runs_of_a_historian_one_file_each_or_a_batch_tag(tmp_path):
     assert ds.ids() == ["MC07.Batch.No_1", "MC07.Batch.No_2"]
     end = 7 + ds.campaigns["MC07.Batch.No_1"]["time"].iloc[-1]   # (its grid began at 7 s)
     assert end < 1800 <= end + 10        # the first run: every grid row before batch 2's sample
+
+
+def test_an_opc_quality_byte_reads_192_as_good_and_0_as_bad(tmp_path):
+    frame = samples()
+    bearing = frame.index[frame["TagName"] == BEARING]
+    frame["Quality"] = 192
+    frame.loc[bearing[5], "Quality"] = 0
+    write(frame.rename(columns={"Quality": "Status"}), tmp_path / "pi.csv")
+    ds, _ = read_dataset(tmp_path / "pi.csv", CFG, missing="keep")
+    record = pd.concat([ds.campaigns[c] for c in ds.ids()])
+    missing = int(record["T_MC07.Spindle.Bearing.Temp"].isna().sum())
+    stamps = pd.to_datetime(frame.loc[bearing[[5, 6]], "Timestamp"], format="%d.%m.%Y %H:%M:%S")
+    assert missing == len(pd.date_range(START + pd.Timedelta(seconds=7), stamps.iloc[1],
+                                        freq="10s", inclusive="left").intersection(
+        pd.date_range(stamps.iloc[0], stamps.iloc[1], freq="1s")))
