@@ -25,6 +25,7 @@ from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
 from .fixedwidth import is_fixed_width
 from .jsonlines import is_json_lines
+from .historian import held_wide, long_as_wide, long_layout, wide_options
 from .layout import header_line
 from .manifest import is_text, read_manifest
 from .options import ROLE_PATTERNS, RUN_ROLE
@@ -133,6 +134,18 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
         with as_read(sample, opts, rows=HEAD_ROWS) as (text, text_opts):
             opts, header, first, layout = head(text, text_opts)
             return opts, header, first, layout.replace(f"{text.name}: ", f"{sample.name}: {kind}, ", 1)
+    layout = long_layout(sample, opts) if is_text(sample) else None
+    if layout is not None:    # a historian's long file: the head of the wide grid it is read as
+        with long_as_wide(sample, opts, layout, rows=HEAD_ROWS) as wide:
+            _, header, first, _ = head(wide, wide_options(opts))
+        held = held_wide(sample, opts, layout)
+        names = layout.header
+        opts = replace(opts, delimiter=layout.delimiter, decimal=layout.decimal)
+        return (opts, header, first, _separators(sample, opts) + (
+            f", a historian's long file ({names[layout.tag]!r} the tag, {names[layout.value]!r} "
+            f"the value" + (f", {names[layout.quality]!r} its quality" if layout.quality is not
+                            None else ", no quality column") + f"): {len(header) - 1} tags held "
+            f"onto a grid of data.resample_s={held.period:g} s, {len(held.frame)} rows"))
     if not is_text(sample):
         table = without_pandas_index(parquet().read_table(sample).slice(0, 1))
         return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],
@@ -252,6 +265,33 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return _by_role(roles, header, first)
+
+
+def flag_headers(ds, names: dict) -> list[str]:
+    """The headers (``names``: header -> contract name) proposed as a temperature whose column
+    holds two values one apart and nothing else over the whole of ``ds`` (0 / 1, or -1 / 0 once
+    referenced to its first sample): an on/off flag the header did not say, a historian's
+    ``VTL01.Part.Loaded`` (historian60: proposed a temperature, and ``Hall.Door`` the hall's
+    air by its word)."""
+    flags = []
+    for header, name in names.items():
+        if not str(name).startswith("T_"):
+            continue
+        values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
+        seen = np.unique(np.round(values.to_numpy(float), 9))
+        if seen.size == 2 and seen[1] - seen[0] == 1.0:
+            flags.append(header)
+    return flags
+
+
+def flags_as_states(roles: dict, headers: list[str], opts) -> dict:
+    """``roles`` with each of ``headers`` a state (out of the ambient patterns)."""
+    roles = {k: (list(v) if isinstance(v, list) else v) for k, v in roles.items()}
+    for h in headers:
+        pattern = _GLOB.sub(r"[\1]", _unit_of(h, opts)[0])
+        roles["ambient"] = [p for p in roles["ambient"] if p != pattern]
+        roles["state"].append(pattern)
+    return roles
 
 
 def _named(header: str, roles: dict, opts) -> bool:

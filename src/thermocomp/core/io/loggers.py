@@ -53,7 +53,7 @@ def _errors_only(path: Path, opts: ReadOptions) -> list[str]:
     """The ``E_`` columns of the file ``path`` as its header is named, where it has no ``T_``
     column; [] otherwise, or where its header does not read (its own read says why)."""
     try:
-        if is_converted(path):      # a workbook's sheet, a UTF-16 text: its head as read
+        if is_converted(path, opts):      # a workbook's sheet, a UTF-16 text: its head as read
             with as_read(path, opts, rows=HEAD_ROWS) as (source, source_opts):
                 return _errors_only(source, source_opts)
         names = [n for n in named_head(path, opts)[2] if n]

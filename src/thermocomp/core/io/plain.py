@@ -11,14 +11,16 @@ from pathlib import Path
 
 from .fixedwidth import fixed_as_csv, is_fixed_width
 from .jsonlines import is_json_lines, json_lines_as_csv
+from .historian import long_as_wide, long_layout, wide_options
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import csv_options, is_workbook, sheet_as_csv
 
 
-def is_converted(path) -> bool:
+def is_converted(path, opts=None) -> bool:
     """``path`` is read through a converted copy (a workbook, a UTF-16 text, JSON Lines, a
-    fixed-width text)."""
-    return is_workbook(path) or is_utf16(path) or is_json_lines(path) or is_fixed_width(path)
+    fixed-width text; with the read ``opts``: a historian's long file)."""
+    return is_workbook(path) or is_utf16(path) or is_json_lines(path) or is_fixed_width(path) or (
+        opts is not None and long_layout(path, opts) is not None)
 
 
 @contextmanager
@@ -37,5 +39,8 @@ def as_read(path: Path, opts, rows: int | None = None) -> Iterator[tuple[Path, o
     elif is_fixed_width(path):      # an old program's report: its columns told by the numbers
         with fixed_as_csv(path, opts.encoding) as text:
             yield text, utf8_options(opts)
+    elif (layout := long_layout(path, opts)) is not None:   # a historian's: its grid, wide
+        with long_as_wide(path, opts, layout, rows=rows) as wide:
+            yield wide, wide_options(opts)
     else:
         yield path, opts

@@ -49,7 +49,7 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
     read of the file says why).  A file with no data row is refused (:class:`.tables.NoRows`):
     read as one without a start, the folder was held out in name order, said, and then refused
     for that file (messy58)."""
-    if is_converted(path):      # its first rows as the reader reads them (:mod:`.plain`)
+    if is_converted(path, opts):      # its first rows as the reader reads them (:mod:`.plain`)
         try:
             with as_read(path, opts, rows=HEAD_ROWS) as (source, source_opts):
                 return first_timestamp(source, source_opts)

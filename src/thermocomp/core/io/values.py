@@ -446,8 +446,11 @@ def _check_gap_lengths(positions: np.ndarray, name: str, offset: int, path: Path
         row = offset + int(starts[too_long[0]]) + 1
         length = int(lengths[too_long[0]])
         where = f"row {row}" if length == 1 else f"rows {row}-{row + length - 1}"
+        longest = int(lengths.max())     # (said: the refusals came one gap at a time)
+        most = (f"; its longest gap is {longest} values, data.max_gap_samples={longest} "
+                "interpolates every one of this column" if longest > length else "")
         raise ContractError(f"gap of {length} missing value{'s' * (length > 1)} ({where}) is "
-                            f"longer than data.max_gap_samples={max_gap}",
+                            f"longer than data.max_gap_samples={max_gap}{most}",
                             file=path, column=name, row=row)
 
 

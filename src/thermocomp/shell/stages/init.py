@@ -23,12 +23,21 @@ from ...core.io.detect import (
     elapsed_column,
     encoding,
     epoch_ms_column,
+    flag_headers,
+    flags_as_states,
     folder_manifest,
     head,
     proposed_campaign,
     proposed_roles,
     sample_file,
     slashed_order,
+)
+from ...core.io.historian import (
+    PERIOD_COMMENT,
+    intervals_said,
+    long_layout,
+    proposed_period,
+    tag_samples,
 )
 from ...core.io.roles import naming
 from ...core.io.timestamps import ELAPSED
@@ -40,6 +49,20 @@ from ..source import check_declared, open_source
 def lone_file(src, manifest) -> bool:
     """``src`` is a folder without a manifest holding one data file (``manifest``: as read)."""
     return manifest is not None and len(manifest) == 1 and not (src / MANIFEST).is_file()
+
+
+def long_period(sample, given: dict) -> dict | None:
+    """A historian's long file read without ``data.resample_s``: its tags' median intervals
+    (s), ``given`` holding the fastest tag's as the grid's period until the roles say which
+    tags are errors (:func:`.historian.proposed_period`); None for any other file, or where the
+    period is given."""
+    opts = io.ReadOptions.from_cfg(given)
+    layout = long_layout(sample, opts) if opts.resample_s is None else None
+    if layout is None:
+        return None
+    intervals = tag_samples(sample, opts, layout)[1]
+    given["resample_s"] = proposed_period(intervals, ())[0]
+    return intervals
 
 
 def init(cfg: DictConfig) -> dict:
@@ -58,6 +81,7 @@ def init(cfg: DictConfig) -> dict:
         manifest = None
     given["encoding"] = encoding(src, asked, manifest)      # a Windows export's
     sample = sample_file(src, manifest)
+    long = long_period(sample, given)        # a historian's long file: the grid it is held onto
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
     order = slashed_order(sample, opts, header, dict(zip(header, first)))
     if order:              # (13/07/2026: day first, for every file: written to the config)
@@ -82,13 +106,33 @@ def init(cfg: DictConfig) -> dict:
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
                   opts.units)
+    if long is not None:                     # the period: the fastest error tag's, said
+        period, tag = proposed_period(long, [h for h, n in plan.names.items()
+                                             if str(n).startswith("E_")])
+        given["resample_s"] = period
+        opts = replace(opts, resample_s=period)
+        print(f"{sample.name}: a historian's long file, each tag logged at its own times: held "
+              f"onto a grid of data.resample_s={period:g} s, the median interval of the fastest "
+              f"error tag {tag!r} (written into the config: check it; the tags': "
+              f"{intervals_said(long)})")
     defaults = OmegaConf.to_container(OmegaConf.load(conf_dir() / "data" / "default.yaml"))
     config = data_config(src, given, opts, roles, defaults, manifest)
     ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
+    flags = flag_headers(ds, plan.names)        # 0 / 1 under a header that did not say a flag
+    if flags:
+        roles = flags_as_states(roles, flags, opts)
+        plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal,
+                      sample, opts.units)
+        config = data_config(src, given, opts, roles, defaults, manifest)
+        ds = open_source(cfg, detected=config)
+        print(f"{', '.join(map(repr, flags))}: only two values one apart (0 / 1) over the "
+              "record: an on/off flag, proposed as a state (data.roles.state)")
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
     report = ds.meta["read_report"]
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
+    if long is not None:
+        text = text.replace("\nresample_s:", f"\n{PERIOD_COMMENT}\nresample_s:", 1)
     atomic_write_text(path, f"# written by `thermocomp init {src}`\n{text}")
     period = median_step([df[TIME].to_numpy(float) for df in ds.campaigns.values()]) or float("nan")
     print("\n".join(detection_lines(layout, opts, header, plan, ds, report, period, path, ds.name)))

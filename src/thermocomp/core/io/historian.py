@@ -1,0 +1,509 @@
+"""A process historian's LONG export (extension): one row per tag sample, ``Timestamp;TagName;
+Value;Quality`` (OSIsoft PI, Wonderware, an OPC UA historian, a SCADA trend), read as the wide
+record the rest of the reader takes.
+
+Each tag is logged on change (report by exception: its own irregular stamps), so its value
+between two of its samples is the first one's: every tag is put onto one grid, ``t0, t0 + p,
+...`` with ``p = data.resample_s`` (no default: a missing period is an error naming the key and
+the tags' median intervals, never a guess), by SAMPLE AND HOLD (``pandas.merge_asof``,
+backward): a grid point takes the tag's last sample at or before it.  ``t0`` is the first time
+every tag has a sample (the rows before it are said, not read); the grid ends at the record's
+last stamp.  A sample whose quality is not Good (``Bad``, ``Uncertain``, an OPC quality byte
+below 192) is missing from its stamp to the tag's next sample: the grid's empty cells are then
+repaired or refused as a wide file's are (``data.max_gap_samples``: interpolated over at most
+that many grid points, else refused naming the tag and the sample that began the gap).
+
+The grid is written to a temporary Parquet file (the time as ISO 8601 text, or seconds, one
+column per tag under its name) that the reader reads, as a workbook's sheet is (:mod:`.workbook`):
+roles by pattern over the TAG names, units, every check apply unchanged, and a message about
+that file names the long file, the tag and the long file's row instead.  Refused (exit 2, file,
+column, row): a tag with two samples at one stamp holding other values, a value cell of text
+where the quality says Good (unless ``data.missing_values`` lists it), a quality no rule reads,
+a time no rule reads.
+"""
+
+from __future__ import annotations
+
+import csv
+import re
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ...base.errors import listed
+from ...base.log import logger
+from .contract import ContractError
+from .converted import named_as
+from .csvline import SPLIT, split_line
+from .encoding import UTF8, text_codec
+from .layout import header_line
+from .roles import TIME_HEADERS, split_unit
+from .sniff import detected, head_lines
+from .timestamps import looks_like_timestamp
+
+PERIOD_KEY = "data.resample_s"
+TAG_WORDS = frozenset({"tag", "tagname", "tag_name", "name", "tag name", "signal", "channel",
+                       "variable", "item", "itemid", "point", "sensor", "field", "_field",
+                       "measurement", "kanal", "messstelle", "node", "nodeid", "browsename"})
+VALUE_WORDS = frozenset({"value", "val", "_value", "wert", "messwert", "valeur", "valor", "pv"})
+QUALITY_WORDS = frozenset({"quality", "qual", "q", "status", "statuscode", "flag", "qualität",
+                           "qualitaet", "qualite", "qualité", "calidad"})
+# a quality as text: its first word (OPC UA's BadCommunicationError, UncertainLastUsableValue)
+_GOOD = re.compile(r"^(good|ok|valid)(?![a-z])|^good", re.I)
+_NOT_GOOD = re.compile(r"^(bad|uncertain|invalid|questionable|substituted|error|fault|"
+                       r"no ?data|comm)", re.I)
+_GRID_ROW = re.compile(r"\b(rows? \d+(?:-\d+)?)")
+SILENCE_PERIODS = 100     # a stretch without any tag's sample this many grid periods long: said
+_DAY_FIRST = re.compile(r"^\s*\d{1,2}\.\d{1,2}\.\d{4}")
+_SLASHED = re.compile(r"^\s*\d{1,2}/\d{1,2}/\d{2,4}")
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Where a long file's columns are: ``header`` (the file's), the positions of the ``time``,
+    ``tag``, ``value`` and ``quality`` (None: none) columns, the lines above the header
+    (``skip``), the separators read."""
+
+    header: tuple[str, ...]
+    time: int
+    tag: int
+    value: int
+    quality: int | None
+    skip: int
+    delimiter: str
+    decimal: str
+
+
+@dataclass(frozen=True)
+class Wide:
+    """A long file held onto its grid: the ``frame`` (time column first, one per tag), the
+    ``period`` (s), the long file's data ``rows`` each grid cell's value came from (-1: none),
+    the ``layout`` read, the tags' median ``intervals`` (s)."""
+
+    frame: pd.DataFrame
+    period: float
+    rows: pd.DataFrame
+    layout: Layout
+    intervals: dict
+
+
+def long_layout(path, opts) -> Layout | None:
+    """The long layout of the CSV file ``path`` (None: a wide file, or no text file): three or
+    four columns, a time (its header or its cells say so), a tag column of text whose few
+    values come back after one another, a value column, and maybe a quality column (its header
+    or its cells say so); read from its first lines."""
+    path = Path(path)
+    try:
+        stat = path.stat()
+    except OSError:
+        return None
+    if not path.is_file() or path.suffix.lower() in (".parquet", ".xlsx", ".xlsm"):
+        return None
+    return _layout(str(path), stat.st_mtime_ns, stat.st_size, opts.delimiter, opts.decimal,
+                   opts.encoding)
+
+
+@lru_cache(maxsize=64)
+def _layout(path: str, _mtime: int, _size: int, delimiter: str, decimal: str, encoding: str
+            ) -> Layout | None:
+    try:
+        lines = [ln for ln in head_lines(Path(path), encoding) if ln.strip()]
+        opts = detected(lines, _Seps(delimiter, decimal), path)
+    except (ContractError, OSError, UnicodeError, LookupError):
+        return None                          # (the wide reader says what is wrong)
+    skip = header_line(lines, opts.delimiter) or 0
+    rows = [split_line(ln, opts.delimiter, SPLIT) for ln in lines[skip:]]
+    if len(rows) < 6:
+        return None
+    header = [h.strip() for h in rows[0]]
+    while header and not header[-1]:         # a trailing separator: an empty last column
+        header.pop()
+    if len(header) not in (3, 4):
+        return None
+    body = [r[:len(header)] + [""] * (len(header) - len(r)) for r in rows[1:]]
+    cells = [[r[i].strip() for r in body] for i in range(len(header))]
+    time = next((i for i in range(len(header)) if _is_time(header[i], cells[i])), None)
+    tag = next((i for i in range(len(header)) if i != time and _is_tag(header[i], cells[i])),
+               None)
+    if time is None or tag is None:
+        return None
+    rest = [i for i in range(len(header)) if i not in (time, tag)]
+    quality = next((i for i in rest if len(rest) == 2 and _is_quality(header[i], cells[i])), None)
+    values = [i for i in rest if i != quality]
+    if len(values) != 1 or not _mostly_numbers(cells[values[0]], opts.decimal):
+        return None
+    return Layout(tuple(header), time, tag, values[0], quality,
+                  _lines_above(Path(path), encoding, lines[skip]), opts.delimiter, opts.decimal)
+
+
+@dataclass(frozen=True)
+class _Seps:           # what :func:`.sniff.detected` reads of the options
+    delimiter: str
+    decimal: str
+
+
+def _lines_above(path: Path, encoding: str, header: str) -> int:
+    """The file's lines above its header line (blank ones too: pandas' ``skiprows``)."""
+    with open(path, encoding=text_codec(encoding), errors="replace", newline="") as f:
+        for k, line in enumerate(f):
+            if line.rstrip("\r\n") == header:
+                return k
+    return 0
+
+
+def _bare(header: str) -> str:
+    return split_unit(header)[0].strip().lower()
+
+
+def _is_time(header: str, cells: list[str]) -> bool:
+    filled = [c for c in cells if c]
+    return bool(filled) and (_bare(header) in TIME_HEADERS or _bare(header).endswith("time")
+                             or all(looks_like_timestamp(c) for c in filled))
+
+
+def _is_tag(header: str, cells: list[str]) -> bool:
+    """Text naming tags: under a tag's header (``TagName``; an archive export sorted by tag
+    shows one tag in its first lines), or a few values that come back after one another (a
+    run's labels do not)."""
+    if not cells or any(not re.search(r"[^\W\d_]", c) for c in cells):
+        return False
+    if _bare(header) in TAG_WORDS or "tag" in _bare(header).split():
+        return True
+    seen, last = set(), None
+    for c in cells:
+        if c != last and c in seen:
+            return 2 <= len(set(cells)) <= len(cells) // 2 + 1
+        seen.add(c)
+        last = c
+    return False
+
+
+def _is_quality(header: str, cells: list[str]) -> bool:
+    if _bare(header) in QUALITY_WORDS:
+        return True
+    filled = [c for c in cells if c]
+    return bool(filled) and all(_quality_of(c) is not None for c in filled) and any(
+        not c.isdigit() or int(c) >= 64 for c in filled)
+
+
+def _mostly_numbers(cells: list[str], decimal: str) -> bool:
+    filled = [c for c in cells if c]
+    numbers = pd.to_numeric(pd.Series(filled, dtype=object).str.replace(decimal, ".", regex=False)
+                            if decimal != "." else pd.Series(filled, dtype=object), errors="coerce")
+    return bool(filled) and numbers.notna().mean() >= 0.5
+
+
+def _quality_of(text: str) -> bool | None:
+    """True: Good, False: not Good (Bad, Uncertain), None: no rule reads it.  A number is an
+    OPC DA quality byte (192-255 Good, 64-127 Uncertain, 0-63 Bad)."""
+    text = text.strip()
+    if re.fullmatch(r"\d{1,3}", text):
+        code = int(text)
+        return None if code > 255 or 128 <= code < 192 else code >= 192
+    if _NOT_GOOD.match(text):
+        return False
+    return True if _GOOD.match(text) else None
+
+
+# --- the whole file ---------------------------------------------------------------------------
+
+
+def read_long(path: Path, opts, layout: Layout) -> Wide:
+    """The long file held onto the grid of ``data.resample_s`` (see the module)."""
+    samples, intervals, origin, zone = tag_samples(path, opts, layout)
+    names = layout.header
+    if opts.resample_s is None:
+        raise ContractError(
+            f"a historian's long file (one row per tag sample: {names[layout.tag]!r} names the "
+            f"tag): its tags are held onto a grid whose period {PERIOD_KEY} gives, and it is not "
+            f"given; the tags' median intervals: {_intervals(intervals)} (`thermocomp init` "
+            "proposes the fastest error tag's)", file=path)
+    frame, rows = _held(samples, float(opts.resample_s), path, origin)
+    frame.insert(0, names[layout.time], _stamps(frame.index.to_numpy(), origin, zone))
+    return Wide(frame.reset_index(drop=True), float(opts.resample_s), rows, layout, intervals)
+
+
+def tag_samples(path: Path, opts, layout: Layout) -> tuple[pd.DataFrame, dict, object, object]:
+    """The long file's samples (``time`` s since its first stamp, ``tag``, ``value``: NaN where
+    not Good, ``row``), sorted by tag and time, one per tag and stamp; each tag's median
+    interval (s); the first stamp (None: the time is seconds) and its zone."""
+    raw = pd.read_csv(path, sep=layout.delimiter, skiprows=layout.skip, header=0, dtype=str,
+                      keep_default_na=False, skip_blank_lines=False, encoding=opts.encoding,
+                      usecols=[i for i in (layout.time, layout.tag, layout.value, layout.quality)
+                               if i is not None], quoting=csv.QUOTE_MINIMAL)
+    raw.columns = [layout.header[i] for i in sorted(
+        i for i in (layout.time, layout.tag, layout.value, layout.quality) if i is not None)]
+    raw = raw.apply(lambda s: s.str.strip())
+    raw = raw[(raw != "").any(axis=1)]        # blank lines: left out
+    row = raw.index.to_numpy() + 1            # the data row (1-based) a message names
+    names = layout.header
+    tag = raw[names[layout.tag]]
+    if (tag == "").any():
+        at = int(np.argmax((tag == "").to_numpy()))
+        raise ContractError("a sample without its tag", file=path, column=names[layout.tag],
+                            row=int(row[at]))
+    good = _good(raw, names, layout, row, path)
+    value = _values(raw[names[layout.value]], good, tag, opts, layout, row, path)
+    seconds, origin, zone = _times(raw[names[layout.time]], opts, row, path)
+    samples = pd.DataFrame({"time": seconds, "tag": tag.to_numpy(), "value": value,
+                            "row": row}).sort_values(["tag", "time", "row"], kind="stable")
+    samples = _without_repeats(samples, path, names[layout.value], origin)
+    intervals = {t: float(np.median(np.diff(g["time"].to_numpy()))) if len(g) > 1 else np.nan
+                 for t, g in samples.groupby("tag", sort=False)}
+    return samples, intervals, origin, zone
+
+
+def proposed_period(intervals: dict, tags) -> tuple[float, str]:
+    """The grid period ``init`` proposes, and the tag it is taken from: the shortest median
+    interval of ``tags`` (the error tags; none: every tag), to two digits (a collector's latency
+    and a deadband's skipped scans put it at 10.01 s for a 10 s scan).  On the error's own rate
+    each of its samples lands on a grid row of its own: a shorter period only repeats held
+    values (more rows, a lag in samples spanning less time), a longer one drops error samples."""
+    timed = {t: v for t, v in intervals.items() if t in set(tags) and np.isfinite(v) and v > 0}
+    timed = timed or {t: v for t, v in intervals.items() if np.isfinite(v) and v > 0}
+    if not timed:
+        raise ContractError("no tag has two samples: no period to hold the tags onto")
+    tag = min(timed, key=timed.get)
+    return float(f"{timed[tag]:.2g}"), tag
+
+
+PERIOD_COMMENT = ("# the grid a historian's tags are held onto (sample and hold): the median "
+                  "interval of the\n# fastest error tag, proposed by `thermocomp init`; a "
+                  "shorter one repeats held values,\n# a longer one drops error samples")
+
+
+def intervals_said(intervals: dict) -> str:
+    """``tag 10 s, ...``: each tag's median interval, the fastest first."""
+    return _intervals(intervals)
+
+
+def _intervals(intervals: dict, most: int = 12) -> str:
+    order = sorted(intervals, key=lambda t: (np.nan_to_num(intervals[t], nan=np.inf), t))
+    return listed([f"{t} {intervals[t]:.4g} s" if np.isfinite(intervals[t]) else f"{t} (one sample)"
+                   for t in order], most=most)
+
+
+def _good(raw, names, layout, row, path) -> np.ndarray:
+    if layout.quality is None:
+        return np.ones(len(raw), bool)
+    column = raw[names[layout.quality]]
+    read = {q: _quality_of(q) if q else True for q in column.unique()}
+    unknown = [q for q, v in read.items() if v is None]
+    if unknown:
+        at = int(np.argmax(column.isin(unknown).to_numpy()))
+        raise ContractError(f"quality {column.iloc[at]!r} is read by no rule (Good, Bad, "
+                            "Uncertain and their OPC UA names, or an OPC quality byte: 192 Good, "
+                            "64 Uncertain, 0 Bad): correct the file, or leave the column out "
+                            "(every sample then Good)", file=path, column=names[layout.quality],
+                            row=int(row[at]))
+    return column.map(read).to_numpy(bool)
+
+
+def _values(column: pd.Series, good: np.ndarray, tag: pd.Series, opts, layout, row, path
+            ) -> np.ndarray:
+    text = column.str.replace("\u2212", "-", regex=False)
+    if opts.thousands:
+        text = text.str.replace(opts.thousands, "", regex=False)
+    if layout.decimal != ".":
+        text = text.str.replace(layout.decimal, ".", regex=False)
+    value = pd.to_numeric(text, errors="coerce").to_numpy(float)
+    marked = column.isin([str(m) for m in opts.missing_values]).to_numpy() | (column == "").to_numpy()
+    bad = np.isnan(value) & ~marked & good & ~column.str.lower().isin(["nan"]).to_numpy()
+    if bad.any():
+        at = int(np.argmax(bad))
+        raise ContractError(
+            f"value {column.iloc[at]!r} of tag {tag.iloc[at]!r} is not a number, and its quality "
+            "says Good: a historian's state text (a digital state, 'I/O Timeout')? list it in "
+            f"data.missing_values (['{column.iloc[at]}'])", file=path,
+            column=layout.header[layout.value], row=int(row[at]))
+    return np.where(good, value, np.nan)
+
+
+def _times(column: pd.Series, opts, row, path) -> tuple[np.ndarray, object, object]:
+    """Seconds (float, since the first stamp), the first stamp (a Timestamp; None: the file's
+    time is seconds) and its zone."""
+    header = column.name
+    numbers = pd.to_numeric(column.str.replace(",", ".", regex=False), errors="coerce")
+    if opts.time == "seconds" or (opts.time == "auto" and numbers.notna().all()):
+        _check_parsed(numbers, column, header, row, path, "a number of seconds")
+        return numbers.to_numpy(float) - float(numbers.min()), None, None
+    text = column.str.replace(r"(\d:\d\d),(\d)", r"\1.\2", regex=True)   # 13:05:00,500
+    if opts.time not in ("auto", "iso8601", "seconds", "elapsed"):
+        stamps = pd.to_datetime(text, format=opts.time.replace(",%f", ".%f"), errors="coerce")
+        what = f"the format data.time={opts.time!r}"
+    elif opts.time == "elapsed":
+        stamps = pd.Timestamp(0) + pd.to_timedelta(text, errors="coerce")
+        what = "h:mm:ss (data.time=elapsed)"
+    elif text.str.match(_DAY_FIRST).all():
+        stamps = pd.to_datetime(text, format="%d.%m.%Y %H:%M:%S.%f", errors="coerce").fillna(
+            pd.to_datetime(text, format="%d.%m.%Y %H:%M:%S", errors="coerce"))
+        what = "a day-first timestamp (28.11.2026 13:05:00)"
+    elif text.str.match(_SLASHED).any():
+        at = int(np.argmax(text.str.match(_SLASHED).to_numpy()))
+        raise ContractError(f"value {column.iloc[at]!r}: a date with slashes, day or month "
+                            "first? set data.time (e.g. '%d/%m/%Y %H:%M:%S')", file=path,
+                            column=header, row=int(row[at]))
+    else:
+        stamps = pd.to_datetime(text, format="ISO8601", errors="coerce", utc=text.str.contains(
+            r"(?:Z|[+-]\d\d:?\d\d)$", regex=True).any())
+        what = "an ISO 8601 timestamp"
+    _check_parsed(stamps, column, header, row, path, what)
+    zone = getattr(stamps.dt, "tz", None)
+    origin = stamps.min()
+    return (stamps - origin).dt.total_seconds().to_numpy(float), origin, zone
+
+
+def _check_parsed(parsed: pd.Series, column: pd.Series, header, row, path, what: str) -> None:
+    failed = parsed.isna().to_numpy()
+    if failed.any():
+        at = int(np.argmax(failed))
+        raise ContractError(f"time {column.iloc[at]!r} is not {what}", file=path, column=header,
+                            row=int(row[at]))
+
+
+def _without_repeats(samples: pd.DataFrame, path, value_header: str, origin) -> pd.DataFrame:
+    """One sample per tag and stamp: a repeat of the same value dropped, another value refused."""
+    twice = samples.duplicated(["tag", "time"], keep=False)
+    if not twice.any():
+        return samples
+    groups = samples[twice].groupby(["tag", "time"], sort=False)["value"]
+    differ = groups.transform(lambda v: v.nunique(dropna=False) > 1)
+    if differ.any():
+        clash = samples[twice][differ.to_numpy()]
+        first, second = clash.iloc[0], clash.iloc[1]
+        raise ContractError(
+            f"tag {first['tag']!r} has two samples at {_said(first['time'], origin)} with other "
+            f"values ({float(first['value']):g} in data row {int(first['row'])}, "
+            f"{float(second['value']):g} in "
+            "this one): which one the tag held is not known; delete one", file=path,
+            column=value_header, row=int(second["row"]))
+    return samples.drop_duplicates(["tag", "time"], keep="first")
+
+
+def _held(samples: pd.DataFrame, period: float, path, origin) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Every tag on the grid by sample and hold; the long rows each cell's value came from."""
+    firsts = samples.groupby("tag", sort=False)["time"].min()
+    start, end = float(firsts.max()), float(samples["time"].max())
+    if start > float(samples["time"].min()):
+        logger.warning("%s: the grid (data.resample_s=%g) starts where every tag has a sample, "
+                       "%.4g s after the first stamp (tag %r logs first at %s): the samples "
+                       "before it are not read", path, period, start - samples["time"].min(),
+                       firsts.idxmax(), _said(start, origin))
+    count = int(np.floor((end - start) / period + 1e-9)) + 1
+    grid = _not_silent(start + period * np.arange(count), np.sort(samples["time"].to_numpy()),
+                       period, path, origin)
+    count = len(grid)
+    tags = list(dict.fromkeys(samples.sort_values("row")["tag"]))
+    left = pd.DataFrame({"time": np.repeat(grid, len(tags)), "tag": np.tile(tags, count)})
+    held = pd.merge_asof(left, samples.sort_values("time", kind="stable"), on="time", by="tag",
+                         direction="backward", allow_exact_matches=True)
+    value = held.pivot(index="time", columns="tag", values="value")[tags]
+    rows = held.pivot(index="time", columns="tag", values="row")[tags].fillna(-1).astype(int)
+    value.columns.name = rows.columns.name = None
+    return value, rows.reset_index(drop=True)
+
+
+def _not_silent(grid: np.ndarray, stamps: np.ndarray, period: float, path, origin
+                ) -> np.ndarray:
+    """The grid without its points inside a silence, a stretch where no tag logged for over
+    :data:`SILENCE_PERIODS` periods (a collector or a machine off: nothing is held over it, the
+    record has no rows there, as a logger's pause), said."""
+    steps = np.diff(stamps)
+    long = np.flatnonzero(steps > SILENCE_PERIODS * period)
+    if not long.size:
+        return grid
+    inside = np.zeros(len(grid), bool)
+    for k in long:
+        inside |= (grid > stamps[k]) & (grid < stamps[k + 1])
+    k = long[np.argmax(steps[long])]
+    logger.warning("%s: %d stretch(es) where no tag logged for over %d grid periods (data."
+                   "resample_s=%g), the longest %.4g min from %s: left out, no tag held over them "
+                   "(%d grid rows)", path, long.size, SILENCE_PERIODS, period, steps[k] / 60,
+                   _said(stamps[k], origin), int(inside.sum()))
+    return grid[~inside]
+
+
+def _said(seconds: float, origin) -> str:
+    if origin is None:
+        return f"{seconds:g} s"
+    return (origin + pd.Timedelta(seconds=round(seconds, 3))).isoformat(timespec="milliseconds")
+
+
+def _stamps(seconds: np.ndarray, origin, zone) -> list:
+    """The grid's times as the wide file writes them: ISO 8601 (``Z`` for UTC), or seconds."""
+    if origin is None:
+        return [repr(float(s)) for s in seconds]
+    stamps = origin + pd.to_timedelta(np.round(seconds * 1e6).astype("int64"), unit="us")
+    if zone is not None:
+        stamps = stamps.tz_convert("UTC").tz_localize(None)
+    fraction = (stamps.microsecond != 0).any()
+    text = stamps.strftime("%Y-%m-%dT%H:%M:%S.%f" if fraction else "%Y-%m-%dT%H:%M:%S")
+    return [t + "Z" for t in text] if zone is not None else list(text)
+
+
+# --- the file the reader reads ----------------------------------------------------------------
+
+_CACHE: dict = {}
+
+
+def held_wide(path: Path, opts, layout: Layout) -> Wide:
+    """:func:`read_long`, kept for the file as it is and the options that read it (each look
+    at the file, init's and the read's, converts it once)."""
+    stat = path.stat()
+    key = (str(path), stat.st_mtime_ns, stat.st_size, opts.encoding, opts.time, opts.thousands,
+           tuple(map(str, opts.missing_values)), opts.resample_s, layout)
+    if key not in _CACHE:
+        _CACHE.clear()                        # (one record at a time: its memory only)
+        _CACHE[key] = read_long(path, opts, layout)
+    return _CACHE[key]
+
+
+def wide_options(opts):
+    """The read options of the wide (Parquet) file a long one is written to."""
+    time = opts.time if opts.time in ("auto", "seconds") else "auto"
+    # (the grid is the resampling: read as it is, a silence left without rows)
+    return replace(opts, delimiter=",", decimal=".", thousands=None, encoding=UTF8,
+                   time=time, missing_values=[], resample_s=None)
+
+
+@contextmanager
+def long_as_wide(path: Path, opts, layout: Layout, rows: int | None = None) -> Iterator[Path]:
+    """The long file ``path`` as a temporary wide Parquet file (its first ``rows`` only, where
+    given), removed after; a :class:`ContractError` or a warning about it names ``path``, the
+    tag and the long file's row the grid cell's value came from."""
+    wide = held_wide(path, opts, layout)
+    with tempfile.TemporaryDirectory(prefix="thermocomp-long-") as tmp:
+        # Parquet, not CSV: every digit kept without a text round trip (a CSV file of the
+        # lathe's 181,440 x 21 grid cost 4 s to write and 5 s to read again)
+        out = Path(tmp) / f"{path.stem}.parquet"
+        frame = wide.frame if rows is None else wide.frame.head(rows)
+        frame.to_parquet(out, index=False)
+        with named_as(out, str(path), lambda exc: _located(exc, out, path, wide)):
+            yield out
+
+
+def _located(exc: ContractError, temp: Path, path: Path, wide: Wide) -> ContractError:
+    """A message about the grid's file as about the long file: the grid row's time, and the
+    long row the tag's cell came from (the sample that began a gap)."""
+    if exc.file is None or Path(exc.file) != temp:
+        return exc
+    reason = exc.reason.replace(str(temp), str(path))
+    tag = exc.column if exc.column in wide.rows.columns else next(   # (its contract name)
+        (t for t in wide.rows.columns if repr(t) in reason), None)
+    if exc.row is None or tag is None:
+        return ContractError(reason, file=path, column=exc.column)
+    reason = _GRID_ROW.sub(r"grid \1", reason)
+    grid = min(max(exc.row - 1, 0), len(wide.frame) - 1)
+    time = wide.frame.iloc[grid, 0]
+    source = int(wide.rows[tag].iloc[grid])
+    said = (f" (the grid row at {time}, data.resample_s={wide.period:g}"
+            + (f"; the tag's sample there is data row {source} of the long file)" if source > 0
+               else "; the tag has no sample before it)"))
+    return ContractError(reason + said, file=path, column=tag,
+                         row=source if source > 0 else None)
