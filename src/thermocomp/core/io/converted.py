@@ -32,6 +32,15 @@ def named_as(temp: Path, where: str, located: Callable[[ContractError], Contract
         logger.removeFilter(renamed)
 
 
+def at_file(exc: ContractError, temp: Path, path: Path) -> ContractError:
+    """``exc`` about the temporary file ``temp`` as about the lab's ``path`` (its lines its own);
+    any other error as it is."""
+    if exc.file is None or Path(exc.file) != temp:
+        return exc
+    return ContractError(exc.reason.replace(str(temp), str(path)), file=path, column=exc.column,
+                         row=exc.row, line=exc.line, sheet=exc.sheet)
+
+
 class _Renamed(logging.Filter):
     def __init__(self, temp: Path, where: str, unit: str, line_of: Callable[[int], int]):
         super().__init__()

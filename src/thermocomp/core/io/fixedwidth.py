@@ -28,7 +28,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from .contract import ContractError
-from .converted import named_as
+from .converted import at_file, named_as
 from .encoding import UTF8
 from .sniff import SNIFF_LINES
 
@@ -156,12 +156,6 @@ def fixed_as_csv(path: Path, encoding: str = UTF8) -> Iterator[Path]:
                     writer.writerow([])
                 else:
                     writer.writerow([line.strip()])
-        with named_as(out, str(path), lambda exc: _located(exc, out, path)):
+        with named_as(out, str(path), lambda exc: at_file(exc, out, path)):
             yield out
 
-
-def _located(exc: ContractError, temp: Path, path: Path) -> ContractError:
-    if exc.file is None or Path(exc.file) != temp:
-        return exc
-    return ContractError(exc.reason.replace(str(temp), str(path)), file=path, column=exc.column,
-                         row=exc.row, line=exc.line, sheet=exc.sheet)

@@ -14,7 +14,7 @@ from dataclasses import replace
 from pathlib import Path
 
 from .contract import ContractError
-from .converted import named_as
+from .converted import at_file, named_as
 from .encoding import UTF8
 
 _BOMS = (codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)
@@ -56,12 +56,6 @@ def utf16_as_utf8(path: Path) -> Iterator[Path]:
     with tempfile.TemporaryDirectory(prefix="thermocomp-utf16-") as tmp:
         out = Path(tmp) / path.name
         out.write_text(text, encoding=UTF8, newline="")
-        with named_as(out, str(path), lambda exc: _located(exc, out, path)):
+        with named_as(out, str(path), lambda exc: at_file(exc, out, path)):
             yield out
 
-
-def _located(exc: ContractError, temp: Path, path: Path) -> ContractError:
-    if exc.file is None or Path(exc.file) != temp:
-        return exc
-    return ContractError(exc.reason.replace(str(temp), str(path)), file=path, column=exc.column,
-                         row=exc.row, line=exc.line, sheet=exc.sheet)
