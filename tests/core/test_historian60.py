@@ -59,7 +59,7 @@ def held(frame: pd.DataFrame, tag: str, grid_s: np.ndarray) -> np.ndarray:
 
 
 def test_a_long_file_is_detected_and_a_wide_one_is_not(tmp_path):
-    from thermocomp.core.io.historian import long_layout
+    from thermocomp.core.io.historian_layout import long_layout
 
     write(samples(), tmp_path / "pi.csv")
     layout = long_layout(tmp_path / "pi.csv", ReadOptions.from_cfg({}))

@@ -24,7 +24,8 @@ from ..timerule import median_step
 from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
 from .fixedwidth import is_fixed_width
-from .historian import held_wide, long_as_wide, long_layout, wide_options
+from .historian import held_wide, long_as_wide, wide_options
+from .historian_layout import long_layout
 from .jsonlines import is_json_lines
 from .layout import header_line
 from .manifest import is_text, read_manifest

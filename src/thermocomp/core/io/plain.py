@@ -10,7 +10,8 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from .fixedwidth import fixed_as_csv, is_fixed_width
-from .historian import long_as_wide, long_layout, wide_options
+from .historian import long_as_wide, wide_options
+from .historian_layout import long_layout
 from .jsonlines import is_json_lines, json_lines_as_csv
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import csv_options, is_workbook, sheet_as_csv

@@ -35,10 +35,10 @@ from ...core.io.detect import (
 from ...core.io.historian import (
     PERIOD_COMMENT,
     intervals_said,
-    long_layout,
     proposed_period,
     tag_samples,
 )
+from ...core.io.historian_layout import long_layout
 from ...core.io.roles import naming
 from ...core.io.timestamps import ELAPSED
 from ...core.timerule import median_step
