@@ -10,7 +10,8 @@ frame), a lag a lag-bank channel on it (a low-pass of the inputs one per input).
 and the JSON (read back into the numpy reference) equal ``replay`` to 1e-9 µm, the clamp acting
 (outright, as the stream clamps a model without a step gain) and the door missing at a
 campaign's start and mid-run (held, as the served model holds it); what still does not export
-(an initial-state transient, ``ambient_step``, a lag of a lag) is refused naming it.
+(a lag of a lag, an effect around an ATI model; an initial-state transient and ``ambient_step``
+export since exportrest60) is refused naming it.
 """
 
 from __future__ import annotations
@@ -28,7 +29,8 @@ from test_export_diagnosed59 import _diagnosed as diagnosed
 from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, state_space
 from thermocomp.apps.deploy.export.statespace import StateSpace
 from thermocomp.apps.deploy.streaming import replay
-from thermocomp.core.models import LagBank
+from thermocomp.core.models import MLR, LagBank
+from thermocomp.core.models.ati import ATIRegressor
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 
@@ -205,13 +207,18 @@ def test_a_diagnosed_low_pass_of_the_inputs_exports_as_their_lag_bank_channels(d
 
 
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
+    """Every effect around an ATI model (its intervals would each fit their own coefficients on
+    the effect's features; exportrest60 exports a lag's initial-state transient and an ambient
+    step around a plain base, which this refused too)."""
     lag = {**LAG, "initial_state": ["T_a", "T_b"]}
     step = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 23.0}
+    ati = ATIRegressor(MLR(), n_intervals=2)
     for effects, named in (([lag], "signal:S_door first_order_lag"), ([LAG, step], "ambient_interval"),
-                           ([AMBIENT_LAW, AMBIENT_LAW], "ambient_linear twice")):
-        stream, _ = _diagnosed(data, effects)
+                           ([AMBIENT_LAW, AMBIENT_LAW], "ambient_linear around an ATI model")):
+        stream, _ = _diagnosed(data, effects, base=ati)
         with pytest.raises(NotExportable, match=named) as info:
             state_space(stream)
+        assert "around an ATI model" in str(info.value)
         assert "first-order lag of a signal or input" in str(info.value)
         assert "a square of one" in str(info.value)
 

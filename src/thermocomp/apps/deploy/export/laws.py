@@ -21,7 +21,16 @@ import numpy as np
 from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ....core.models.ati import AMBIENT_CENTRE_C, ATIRegressor
-from .derived import EXPORTED_EFFECTS, Derived, canonical_order, derived_inputs, is_derived
+from .derived import (
+    EXPORTED_EFFECTS,
+    Derived,
+    ambient_blocks,
+    canonical_order,
+    derived_inputs,
+    exports,
+    features,
+    is_derived,
+)
 from .errors import NotExportable
 from .members import described, is_diagnosed, members
 
@@ -70,8 +79,8 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, 
             for lo, hi, base, interacts, derived in _intervals(member):
                 laws, period = _member_laws(base, interacts, w, cols, inputs, powers, period,
                                             horizon_s, target, derived)
-                for law in laws:
-                    law.lo, law.hi = lo, hi
+                for law in laws:     # an ambient step's law counts within the interval too
+                    law.lo, law.hi = max(law.lo, lo), min(law.hi, hi)
                 own += laws
         except NotExportable as exc:
             raise NotExportable(_member_refused(target, name, w, parts, exc)) from None
@@ -108,29 +117,24 @@ def _intervals(est) -> list:
 
 def _diagnosed(est) -> list:
     """A diagnosed model's intervals: its base model's, when every effect it accepted is a
-    sensor's removal (no feature: the base fitted on the inputs kept); the base's one law and
-    its ambient law ``x (A0 - 20)`` (``ambient_linear`` alone: the base fitted on ``[x, x (A0 -
-    20)]``, what an ATI interval with the interaction is); the base's law on ``[x, derived
-    inputs]`` when each effect is one the code computes from its inputs as the stream does
-    (:data:`DERIVED_TRANSFORMS`: :func:`derived_inputs`), with the ambient law when one effect
-    is ``ambient_linear``.  Any other effect is refused, naming it."""
+    sensor's removal (no feature: the base fitted on the inputs kept); else the base's law on
+    ``[x, derived inputs]``, when each effect is one the code computes from its inputs as the
+    stream does (:data:`DERIVED_TRANSFORMS`, a lag's initial-state transient:
+    :func:`derived_inputs`), with a law on ``x`` per ambient law ``x (A0 - 20)`` or ambient step
+    ``x [A0 > A_thr]`` (exportrest60: the step's law counts where ``A0 > A_thr``, what an ATI
+    interval is).  Any other effect, or any effect around an ATI model, is refused, naming it."""
     effects = list(est.effects_)
     if not effects:
         return _intervals(est.estimator_)
-    derived = [e for e in effects if is_derived(e)]
-    ambient = [e for e in effects if e.transform == "ambient_linear"]
-    lowpass = [e.tau_s for e in effects if e.transform == "lowpass_inputs" and not e.initial_state]
-    if len(derived) + len(ambient) + len(lowpass) == len(effects) and len(ambient) <= 1 and not \
-            isinstance(est.estimator_, ATIRegressor):
-        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, bool(ambient), Derived(
-            derived, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
-            canonical_order(effects, int(est.n_features_in_)), lowpass))]
-    others = [e.title for e in effects if not is_derived(e) and e.transform != "ambient_linear"
-              and not (e.transform == "lowpass_inputs" and not e.initial_state)]
-    if not others and isinstance(est.estimator_, ATIRegressor):
-        others = ["ambient_linear around an ATI model" if e.transform == "ambient_linear"
-                  else f"{e.title} around an ATI model" for e in effects]
-    others = others or ["ambient_linear twice"]
+    if all(exports(e) for e in effects) and not isinstance(est.estimator_, ATIRegressor):
+        feats, initial = features(est)
+        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, False, Derived(
+            feats, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
+            canonical_order(effects, int(est.n_features_in_), initial),
+            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects)))]
+    others = [e.title for e in effects if not exports(e)] or [
+        "ambient_linear around an ATI model" if e.transform == "ambient_linear"
+        else f"{e.title} around an ATI model" for e in effects]
     several = len(others) > 1
     raise NotExportable(f"the diagnosed effect{'s' if several else ''} {'; '.join(others)} "
                         f"{'do' if several else 'does'} not export (the code holds of diagnose's "
@@ -138,26 +142,28 @@ def _diagnosed(est) -> list:
                         f"{'them' if several else 'it'} (thermocomp serve, connect)")
 
 
-
 def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, horizon_s,
                  target, derived: Derived) -> tuple[list[Law], object]:
-    """The laws of one member (weight ``w``): its own, and with the ambient interaction the law
-    of its coefficients on ``x (A0 - 20)`` (its inputs ``[x, x (A0 - 20), powers]``); a
-    diagnosed model's on ``[x, derived inputs, powers]``."""
+    """The laws of one member (weight ``w``): its own, and per block of ``x`` the campaign's
+    initial ambient switches (the ATI interaction's, a diagnosed model's ambient laws and steps:
+    ``derived.blocks``) the law of its coefficients on that block (its inputs ``[x, blocks,
+    powers]``); a diagnosed model's on ``[x, blocks, derived inputs, powers]``."""
     extra = derived_inputs(derived, inputs, powers)
     linear, feats = _powered(est, inputs, powers)
+    blocks = derived.blocks if derived.blocks is not None else [("ambient", None)] * interacts
     k, n = len(cols), len(inputs)
-    own_x = 2 * k if interacts else k           # the inputs' (and the interaction's) columns
+    own_x = k * (1 + len(blocks))               # the inputs' (and the ambient blocks') columns
     end = own_x + len(extra)                    # then the derived inputs', the low-pass blocks'
     width = end + k * len(derived.lowpass)
     c, b0, delayed, lags, a, period = _target_law(linear, width + len(feats), period)
     b0, delayed, lags = derived.canonical(b0, delayed, lags)
-    if derived.lowpass or any(tau is not None for _, tau in extra):
+    if derived.lowpass or any(tau is not None for _, tau in extra) or any(
+            f.initial is not None for f in derived.features):     # a transient's time too
         period = _one_period(period, derived.period)
     if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
         raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
                             "code's input history holds the inputs only")
-    lagged = sorted({derived.effects[j - own_x].title if j < end else "lowpass_inputs"
+    lagged = sorted({derived.features[j - own_x].title if j < end else "lowpass_inputs"
                      for _, j, _ in lags
                      if own_x <= j < width and (j >= end or extra[j - own_x][1] is not None)})
     if lagged:
@@ -178,11 +184,11 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     pw = n + np.asarray(feats, int)                     # the powers' places in [x, powers]
     dx = n + np.asarray([f for f, _ in extra], int)     # the derived inputs' places
     out = []
-    for ambient in (False, True) if interacts else (False,):
-        x = slice(k, 2 * k) if ambient else slice(0, k)
+    for b, block in enumerate([None, *blocks]):
+        x = slice(b * k, (b + 1) * k)
         terms = [(cols, w * b0[x])]
         own = [(tau, int(cols[j - x.start]), w * g) for tau, j, g in lags if x.start <= j < x.stop]
-        if not ambient:
+        if block is None:
             terms += [(dx, w * b0[own_x:end]), (pw, w * b0[width:])]
             own += [(tau, int(dx[j - own_x]), w * g) for tau, j, g in lags if own_x <= j < end]
             own += [(tau, int(pw[j - width]), w * g) for tau, j, g in lags if j >= width]
@@ -190,12 +196,15 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
             own += [(tau, int(dx[i]), w * b0[own_x + i]) for i, (_, tau) in enumerate(extra)
                     if tau is not None]
             for m, tau in enumerate(derived.lowpass):     # L[x] = x + (L[x] - x), per input
-                block = w * b0[end + m * k:end + (m + 1) * k]
-                terms.append((cols, block))
-                own += [(tau, int(cols[j]), g) for j, g in enumerate(block)]
-        out.append(Law(0.0 if ambient else w * c, terms,
+                lowpass = w * b0[end + m * k:end + (m + 1) * k]
+                terms.append((cols, lowpass))
+                own += [(tau, int(cols[j]), g) for j, g in enumerate(lowpass)]
+        # x [A0 > A_thr] (a step) counts where A0 > A_thr: the law of its block there
+        lo = block[1] if block is not None and block[0] == "step" else -UNBOUNDED
+        out.append(Law(0.0 if block else w * c, terms,
                        {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
-                       None if gain is None else w * _spread(gain[x], cols, n), ambient=ambient))
+                       None if gain is None else w * _spread(gain[x], cols, n), lo=lo,
+                       ambient=block is not None and block[0] == "ambient"))
     return out, period
 
 

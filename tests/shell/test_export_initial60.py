@@ -1,0 +1,95 @@
+"""A diagnosed lag's initial-state transient and an ambient step export exactly (exportrest60).
+
+``thermocomp diagnose`` tries every lag also "from the initial thermal state": extra regressors
+``w_k . (c(0) - A0) (1 - exp(-(t - t0)/tau))`` (the sensors' first values less the campaign's
+initial ambient, on the directions learned over the training campaigns), and the inputs times a
+step of the initial ambient ``x [A0 > A_thr]``; ``export`` refused both by name.  Each is now a
+feature the code computes as the served model's ``stream_step`` does: the transient from the
+first sample of the campaign that has one of the sensors (one missing there: offset 0), ``A0``
+the campaign's initial ambient as an ATI law reads it, ``t - t0`` on the stream's clock, restarted
+at each campaign; the step a law on ``x`` that counts where ``A0 > A_thr``.  The C (compiled),
+the Structured Text, the numpy reference and the JSON read back equal ``replay`` to 1e-9 µm, the
+clamp acting and a sensor of the transient missing at a campaign's first rows.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from test_export import needs_cc
+from test_export_auto57 import TOLERANCE_UM, _proved
+from test_export_effects59 import LAG, LOWPASS, PRODUCT, _diagnosed, _door, _json_proved
+from thermocomp.apps.deploy.export import NotExportable, exported_files, state_space
+from thermocomp.core.models import LagBank
+
+# the door's lag from the initial distances of T_a and the door (missing at tests[0]'s first
+# two rows: T_a's offset alone there), on one learned direction or one each
+INITIAL = {**LAG, "initial_state": ["T_a", "S_door"], "initial_directions": 1}
+PER_SENSOR = {**LAG, "initial_state": ["T_a", "T_b"]}
+DOOR_ONLY = {**LAG, "initial_state": ["S_door"]}      # no sensor at tests[0]'s first rows
+INPUT_INITIAL = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a",
+                 "tau_s": 3600.0, "initial_state": ["T_a", "T_b"], "initial_directions": 2}
+LOWPASS_INITIAL = {**LOWPASS, "initial_state": ["T_a", "T_b"], "initial_directions": 1}
+STEP = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 23.0}
+AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory):
+    return _door(tmp_path_factory.mktemp("initial") / "data")
+
+
+def _exported(data, tmp_path, effects, base=None) -> object:
+    stream, tests = _diagnosed(data, effects, base=base)
+    # a missing time (one period after the previous sample) and a gap of 3 h (the served model
+    # restarts nothing at a gap: the transient runs on; only a campaign's start restarts it)
+    tests[0].loc[5, "time"] = float("nan")
+    tests[1].loc[30:, "time"] += 3 * 3600.0
+    ss = state_space(stream)                                  # refused before
+    laws = ss.provenance["laws"]["E_X"]
+    banner = exported_files(stream, "c")["compensator.c"].split("*/")[0]
+    for e in effects:
+        stream_title = next(x.title for x in stream._plan[0][1].effects_
+                            if x.transform == e["transform"] and x.tau_s == e.get("tau_s"))
+        assert stream_title in laws                               # the effect named
+        assert stream_title.replace("°C", " degC") in banner      # (the banner's units)
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+    assert _json_proved(stream, tests) <= TOLERANCE_UM
+    return ss
+
+
+@needs_cc
+@pytest.mark.parametrize("effect, directions", [(INITIAL, 1), (PER_SENSOR, 2), (DOOR_ONLY, 1),
+                                                (INPUT_INITIAL, 2), (LOWPASS_INITIAL, 1)],
+                         ids=["signal-direction", "signal-per-sensor", "door-only", "input",
+                              "lowpass"])
+def test_a_lags_initial_state_transient_exports_and_equals_replay(data, tmp_path, effect,
+                                                                  directions):
+    ss = _exported(data, tmp_path, [effect])
+    assert len(ss.initial) == directions
+    sensors = [ss.inputs.index(c) for c in effect["initial_state"]]
+    assert all(f[0] == effect["tau_s"] and f[1] == sensors for f in ss.initial)
+    assert ss.ambient_inputs == [ss.inputs.index("T_amb")]      # A0, as an ATI law reads it
+
+
+@needs_cc
+def test_transients_and_a_step_among_other_effects_equal_replay(data, tmp_path):
+    """Each effect's columns in the model's order (a step first, a low-pass's transient after
+    its block, the ambient law between, a product after a transient)."""
+    ss = _exported(data, tmp_path, [STEP, LOWPASS_INITIAL, AMBIENT_LAW, INITIAL, PRODUCT])
+    assert len(ss.initial) == 2 and len(ss.derived) == 2 and sorted(ss.law_ambient) == [0, 0, 1]
+
+
+@needs_cc
+@pytest.mark.parametrize("effects", [[STEP], [STEP, {**STEP, "threshold_c": 21.0}, AMBIENT_LAW]],
+                         ids=["one", "two-and-the-ambient-law"])
+def test_an_ambient_step_exports_as_a_law_counting_above_its_threshold(data, tmp_path, effects):
+    ss = _exported(data, tmp_path, effects)
+    steps = sorted(e["threshold_c"] for e in effects if e["transform"] == "ambient_step")
+    assert sorted(lo for lo in ss.law_lo if lo > -1e300) == steps
+
+
+def test_a_lag_of_a_lag_and_effects_around_an_ati_model_are_still_refused(data):
+    stream, _ = _diagnosed(data, [INITIAL], base=LagBank(n_taus=2))
+    with pytest.raises(NotExportable, match="second-order lag"):
+        state_space(stream)
