@@ -22,14 +22,15 @@ from test_export_ati57 import _levels
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import NotExportable, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
-from thermocomp.core.models import MLR, LagBank
+from thermocomp.core.models import MLR
+from thermocomp.core.models.ati import ATIRegressor
 from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
 AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
-# still refused on a lag-bank base: its lag of the effect's lag (a second-order lag; exportdiag59
-# exports the plain lag, exportrest60 its initial-state transient)
+# still refused around an ATI model (exportdiag59 exports the plain lag, exportrest60 its
+# initial-state transient and a lag bank's lag of it)
 LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 3600.0,
        "initial_state": ["T_a", "T_amb"]}
 
@@ -66,8 +67,8 @@ def test_a_diagnosed_model_of_laws_the_code_holds_exports_as_replay(data, tmp_pa
 
 def test_another_diagnosed_effect_is_refused_naming_it_and_the_route_that_runs_it(data, tmp_path,
                                                                                   capsys):
-    stream, _, comp = _diagnosed(data, [LAG], base=LagBank(n_taus=2))
-    with pytest.raises(NotExportable, match=r"dynamics:T_a first_order_lag.*second-order lag"):
+    stream, _, comp = _diagnosed(data, [LAG], base=ATIRegressor(MLR(), n_intervals=2))
+    with pytest.raises(NotExportable, match=r"dynamics:T_a first_order_lag.*around an ATI model"):
         state_space(stream)
     pkl = save_model(comp, tmp_path / "model.pkl")
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",

@@ -10,8 +10,8 @@ frame), a lag a lag-bank channel on it (a low-pass of the inputs one per input).
 and the JSON (read back into the numpy reference) equal ``replay`` to 1e-9 µm, the clamp acting
 (outright, as the stream clamps a model without a step gain) and the door missing at a
 campaign's start and mid-run (held, as the served model holds it); what still does not export
-(a lag of a lag, an effect around an ATI model; an initial-state transient and ``ambient_step``
-export since exportrest60) is refused naming it.
+(an effect around an ATI model; an initial-state transient, ``ambient_step`` and a lag bank's
+lag of a lag export since exportrest60: test_export_rest60.py) is refused naming it.
 """
 
 from __future__ import annotations
@@ -221,11 +221,3 @@ def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
         assert "around an ATI model" in str(info.value)
         assert "first-order lag of a signal or input" in str(info.value)
         assert "a square of one" in str(info.value)
-
-
-def test_a_lag_bank_on_a_diagnosed_lag_is_refused_as_a_second_order_lag(data):
-    """The base lag bank lags every feature, the effect's lag too: a lag of a lag is no
-    first-order channel of the code (refused, not approximated)."""
-    stream, _ = _diagnosed(data, [LAG], base=LagBank(n_taus=2))
-    with pytest.raises(NotExportable, match="second-order lag"):
-        state_space(stream)

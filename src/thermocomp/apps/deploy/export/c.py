@@ -190,6 +190,7 @@ def source(ss: StateSpace) -> str:
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
         _array("TAU", ss.taus, (k,)),
         _ints("LAG_INPUT", ss.lag_input), _ints("LAG_REST", ss.lag_rest or [0] * k),
+        _ints("LAG_OF", ss.lag_of or [-1] * k),
         _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p + q)),
         _ints("LAW_TARGET", ss.laws),
         _array("LAW_LO", ss.law_lo or [-UNBOUNDED] * r, (r,)),
@@ -346,7 +347,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     /* first-order lags */
     for (h = 0; h < 2; h++)
         for (l = 0; l < TC_N_LAGS; l++) {{
-            xl[h][l] = x[h][LAG_INPUT[l]];
+            /* a cascade (LAG_OF: a lag of a lag, after it) lags that lag's new value */
+            xl[h][l] = LAG_OF[l] >= 0 ? s->z[h][LAG_OF[l]] : x[h][LAG_INPUT[l]];
             if (s->first) {{   /* a machine state at rest (Hammerstein) starts at 0 */
                 s->z[h][l] = LAG_REST[l] ? 0.0 : xl[h][l];
             }} else {{

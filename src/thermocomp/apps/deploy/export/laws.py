@@ -36,6 +36,7 @@ from .members import described, is_diagnosed, members
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
 UNBOUNDED = sys.float_info.max      # an open interval edge (finite for JSON and ST)
+PLAIN = 0.0                         # a lag's source: its input itself (a tau is > 0)
 
 
 @dataclass
@@ -46,7 +47,9 @@ class Law:
     c: float = 0.0
     terms: list = field(default_factory=list)      # [(indices into [x, powers], b0 there)]
     delayed: dict = field(default_factory=dict)    # {delay: row over x}
-    lags: list = field(default_factory=list)       # [(tau, index into [x, powers], gain)]
+    # [(tau, index into [x, powers], gain, source)]: a lag of that input (source PLAIN), or of
+    # its lag of tau ``source`` (a cascade: a lag bank's lag of a diagnosed effect's lag)
+    lags: list = field(default_factory=list)
     a: float = 0.0
     gain: np.ndarray | None = None                 # step gain over x at the clamp's horizon
     lo: float = -UNBOUNDED
@@ -163,17 +166,6 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
         raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
                             "code's input history holds the inputs only")
-    lagged = sorted({derived.features[j - own_x].title if j < end else "lowpass_inputs"
-                     for _, j, _ in lags
-                     if own_x <= j < width and (j >= end or extra[j - own_x][1] is not None)})
-    if lagged:
-        # name the effect and the ways out: diagnose accepts such a lag on a lag-bank base
-        # (the stream runs it), and the bare refusal left a user with no next step
-        raise NotExportable(f"the law of {target} lags the diagnosed effect's lag "
-                            f"{'; '.join(lagged)} (a second-order lag): the code's lags are "
-                            "first-order; the served model runs it (thermocomp serve, connect), "
-                            "or diagnose with model=mlr, whose code holds that lag as a "
-                            "first-order channel")
     gain = None
     if horizon_s is not None:
         gain = derived.columns(step_gain(est, None, horizon_s))
@@ -187,18 +179,25 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     for b, block in enumerate([None, *blocks]):
         x = slice(b * k, (b + 1) * k)
         terms = [(cols, w * b0[x])]
-        own = [(tau, int(cols[j - x.start]), w * g) for tau, j, g in lags if x.start <= j < x.stop]
+        own = [(tau, int(cols[j - x.start]), w * g, PLAIN) for tau, j, g in lags
+               if x.start <= j < x.stop]
         if block is None:
             terms += [(dx, w * b0[own_x:end]), (pw, w * b0[width:])]
-            own += [(tau, int(dx[j - own_x]), w * g) for tau, j, g in lags if own_x <= j < end]
-            own += [(tau, int(pw[j - width]), w * g) for tau, j, g in lags if j >= width]
+            # the base's lag of a derived input: of an effect's lag L1[r], a lag of that lag's
+            # channel (a cascade, its source tau; exportrest60: the lag bank's second order)
+            own += [(tau, int(dx[j - own_x]), w * g, extra[j - own_x][1] or PLAIN)
+                    for tau, j, g in lags if own_x <= j < end]
+            own += [(tau, int(pw[j - width]), w * g, PLAIN) for tau, j, g in lags if j >= width]
             # an effect's lag L[r] = r + (L[r] - r): its coefficient on r and on the lag channel
-            own += [(tau, int(dx[i]), w * b0[own_x + i]) for i, (_, tau) in enumerate(extra)
+            own += [(tau, int(dx[i]), w * b0[own_x + i], PLAIN) for i, (_, tau) in enumerate(extra)
                     if tau is not None]
             for m, tau in enumerate(derived.lowpass):     # L[x] = x + (L[x] - x), per input
                 lowpass = w * b0[end + m * k:end + (m + 1) * k]
                 terms.append((cols, lowpass))
-                own += [(tau, int(cols[j]), g) for j, g in enumerate(lowpass)]
+                own += [(tau, int(cols[j]), g, PLAIN) for j, g in enumerate(lowpass)]
+            # the base's lag of a low-pass copy L1[x_j]: a cascade on x_j's channel
+            own += [(tau, int(cols[(j - end) % k]), w * g, derived.lowpass[(j - end) // k])
+                    for tau, j, g in lags if end <= j < width]
         # x [A0 > A_thr] (a step) counts where A0 > A_thr: the law of its block there
         lo = block[1] if block is not None and block[0] == "step" else -UNBOUNDED
         out.append(Law(0.0 if block else w * c, terms,

@@ -88,6 +88,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("TAU", ss.taus, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
         _constant("LAG_REST", ss.lag_rest or [0] * k, (k,), "INT"),
+        _constant("LAG_OF", ss.lag_of or [-1] * k, (k,), "INT"),
         _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p + q)),
         _constant("LAW_TARGET", ss.laws, (r,), "INT"),
         _constant("LAW_LO", ss.law_lo or [-LREAL_MAX] * r, (r,)),
@@ -422,7 +423,11 @@ IF NOT refused THEN
     (* first-order lags *)
     FOR h := 0 TO 1 DO
         FOR l := 0 TO N_LAGS - 1 DO
-            xl[h, l] := x[h, LAG_INPUT[l]];
+            IF LAG_OF[l] >= 0 THEN   (* a cascade: a lag of a lag (after it), on its new value *)
+                xl[h, l] := z[h, LAG_OF[l]];
+            ELSE
+                xl[h, l] := x[h, LAG_INPUT[l]];
+            END_IF;
             IF first AND LAG_REST[l] <> 0 THEN   (* a machine state at rest (Hammerstein) *)
                 z[h, l] := 0.0;
             ELSIF first THEN

@@ -26,10 +26,12 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    initial ambient ``A0``, the mean of ``ambient_inputs`` at its first sample, its ambient
    interaction's times ``A0 - ambient_centre``: :mod:`.laws`), with the input history
    ``x(t-d)`` (``d = 1..depth``) and the first-order lags ``z_k <- e_k z_k + (1 - e_k)
-   x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the time since the previous sample
-   (``time_period`` without one, timerule.py); the same system, without intercept and powers,
-   runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
-   response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)`` (``y_t - r_t`` where
+   x[lag_input_k]`` (``z[lag_of_k]``, that lag's new value, for a cascade: a lag bank's lag of a
+   diagnosed effect's lag; its term ``g (z_k - z[lag_of_k])``), ``e_k = exp(-dt / tau_k)``,
+   ``dt`` the time since the previous sample (``time_period`` without one, timerule.py); the
+   same system, without intercept and powers, runs on ``ex`` (its own history, lags and
+   feedback) to ``r_t``, the response to the excess; the output is ``y_t - clip(r_t, -b_t,
+   b_t)`` (``y_t - r_t`` where
    ``clamp_outright_t``: the stream's clamp of a model without a step gain), ``b_t = |clamp_gain_t .
    ex|`` the response to the excess held for the envelope's horizon (as the stream does); at a
    sample within the envelope (``ex = 0``) after an excess, ``b_t`` is the last excess's (0
@@ -68,7 +70,7 @@ from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .derived import DERIVED, INITIAL
 from .errors import NotExportable
-from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, UNBOUNDED, Powers, target_laws
+from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws
 from .output import Output, adapt_fields, guard_fields, time_fields
 
 FORMATS = ("json", "c", "st", "onnx")
@@ -101,6 +103,9 @@ class StateSpace:
     powers: list = field(default_factory=list)
     lag_rest: list = field(default_factory=list)   # (n_lags,) 1: starts at 0, not at its input
                                                    # (a Hammerstein state at rest); [] none
+    # (n_lags,) the lag whose output is this lag's input (-1: x[lag_input]): a lag bank's lag of
+    # a diagnosed effect's lag, a cascade after its source (exportrest60); [] none
+    lag_of: list = field(default_factory=list)
     # a diagnosed model's derived inputs, after the powers: [a, b, ra, rb], r_a r_b (b = -1: r_a)
     # of r_j = v_j - rj v_j(0), v(0) the campaign's first sample (:func:`.derived.derived_inputs`)
     derived: list = field(default_factory=list)
@@ -231,7 +236,9 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
                             f"only the families {', '.join(LINEAR_FAMILIES)} export to C/ST")
     width = N + len(powers)
     depth = max((d for _, law in laws for d in law.delayed), default=0)
-    keys = sorted({(tau, j) for _, law in laws for tau, j, _ in law.lags})
+    # (tau, input, source): the plain lags first, then the cascades on them (a lag's lag)
+    keys = sorted({(tau, j, src) for _, law in laws for tau, j, _, src in law.lags},
+                  key=lambda k: (k[2] != PLAIN, *k))
     where = {k: i for i, k in enumerate(keys)}
     targets = list(stream.targets_)
     b0 = np.zeros((len(laws), width))
@@ -240,8 +247,8 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     for r, (_, law) in enumerate(laws):
         for cols, row in law.terms:
             b0[r, cols] += row
-        for tau, j, gain in law.lags:
-            g[r, where[(tau, j)]] += gain
+        for tau, j, gain, src in law.lags:
+            g[r, where[(tau, j, src)]] += gain
         for d, row in law.delayed.items():
             bd[r, d - 1] = row
     period = float(period) if period is not None else 0.0
@@ -251,7 +258,9 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         lo=env.lo.tolist() + [-UNBOUNDED] * len(states) if clamp else None,
         hi=env.hi.tolist() + [UNBOUNDED] * len(states) if clamp else None,
         depth=int(depth), taus=[k[0] for k in keys], lag_input=[k[1] for k in keys],
-        lag_rest=[int(j - N in powers.rest) for _, j in keys] if powers.rest else [],
+        lag_rest=[int(j - N in powers.rest) for _, j, _ in keys] if powers.rest else [],
+        lag_of=[-1 if src == PLAIN else where[(src, j, PLAIN)] for _, j, src in keys]
+        if any(k[2] != PLAIN for k in keys) else [],
         lag_decay=[float(np.exp(-period / k[0])) for k in keys], period=period,
         intercept=[float(law.c) for _, law in laws], b0=b0.tolist(),
         bd=bd.tolist(), g=g.tolist(), ar=[float(law.a) for _, law in laws],
@@ -313,7 +322,7 @@ def _in_code_order(laws: list, powers: Powers, n: int) -> None:
 
     for _, law in laws:
         law.terms = [(place(cols), row) for cols, row in law.terms]
-        law.lags = [(tau, int(place(j)), g) for tau, j, g in law.lags]
+        law.lags = [(tau, int(place(j)), g, src) for tau, j, g, src in law.lags]
     for k in order:
         powers[k] = new[powers[k]]
     powers.rest, powers.steady = {new[i] for i in powers.rest}, {new[i] for i in powers.steady}
@@ -370,6 +379,7 @@ class Simulator:
         self.taus = np.asarray(ss.taus, float)
         self.lag_input = np.asarray(ss.lag_input, int)
         self.lag_rest = np.asarray(ss.lag_rest or [0] * len(ss.taus), bool)
+        self.lag_of = np.asarray(ss.lag_of or [-1] * len(ss.taus), int)
         self.output = Output(ss)       # guard and reference update: what is learned stays
         self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
         self.reset()
@@ -437,13 +447,17 @@ class Simulator:
         xs = np.vstack([xe, np.r_[excess, np.zeros(len(xe) - len(x))]])
         xl = xs[:, self.lag_input]
         first = self.first
+        e = None if self.first else np.exp(-dt / self.taus)
         if self.first:
             self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
-            self.z, self.y = np.where(self.lag_rest, 0.0, xl), np.zeros((2, len(ss.laws)))
+            z, self.y = np.where(self.lag_rest, 0.0, xl), np.zeros((2, len(ss.laws)))
             self.bound = np.zeros(len(ss.targets))
         else:
-            e = np.exp(-dt / self.taus)
-            self.z = e * self.z + (1.0 - e) * xl
+            z = e * self.z + (1.0 - e) * xl
+        for k in np.flatnonzero(self.lag_of >= 0):     # a cascade: on its source's new value
+            xl[:, k] = z[:, self.lag_of[k]]
+            z[:, k] = xl[:, k] if e is None else e[k] * self.z[:, k] + (1.0 - e[k]) * xl[:, k]
+        self.z = z
         y = (np.outer([1.0, 0.0], ss.intercept) + xs @ self.b0.T
              + np.einsum("tdi,sdi->st", self.bd, self.hist) + (self.z - xl) @ self.g.T
              + np.asarray(ss.ar) * self.y)

@@ -3,11 +3,13 @@
 ``thermocomp diagnose`` tries every lag also "from the initial thermal state": extra regressors
 ``w_k . (c(0) - A0) (1 - exp(-(t - t0)/tau))`` (the sensors' first values less the campaign's
 initial ambient, on the directions learned over the training campaigns), and the inputs times a
-step of the initial ambient ``x [A0 > A_thr]``; ``export`` refused both by name.  Each is now a
+step of the initial ambient ``x [A0 > A_thr]``; ``export`` refused both by name, and a lag-bank
+base's lag of a diagnosed lag (a second-order lag).  Each is now a
 feature the code computes as the served model's ``stream_step`` does: the transient from the
 first sample of the campaign that has one of the sensors (one missing there: offset 0), ``A0``
 the campaign's initial ambient as an ATI law reads it, ``t - t0`` on the stream's clock, restarted
-at each campaign; the step a law on ``x`` that counts where ``A0 > A_thr``.  The C (compiled),
+at each campaign; the step a law on ``x`` that counts where ``A0 > A_thr``; the lag of a lag a
+lag channel on the first lag's channel (a cascade).  The C (compiled),
 the Structured Text, the numpy reference and the JSON read back equal ``replay`` to 1e-9 µm, the
 clamp acting and a sensor of the transient missing at a campaign's first rows.
 """
@@ -20,7 +22,8 @@ from test_export import needs_cc
 from test_export_auto57 import TOLERANCE_UM, _proved
 from test_export_effects59 import LAG, LOWPASS, PRODUCT, _diagnosed, _door, _json_proved
 from thermocomp.apps.deploy.export import NotExportable, exported_files, state_space
-from thermocomp.core.models import LagBank
+from thermocomp.core.models import MLR, LagBank
+from thermocomp.core.models.ati import ATIRegressor
 
 # the door's lag from the initial distances of T_a and the door (missing at tests[0]'s first
 # two rows: T_a's offset alone there), on one learned direction or one each
@@ -89,7 +92,18 @@ def test_an_ambient_step_exports_as_a_law_counting_above_its_threshold(data, tmp
     assert sorted(lo for lo in ss.law_lo if lo > -1e300) == steps
 
 
-def test_a_lag_of_a_lag_and_effects_around_an_ati_model_are_still_refused(data):
-    stream, _ = _diagnosed(data, [INITIAL], base=LagBank(n_taus=2))
-    with pytest.raises(NotExportable, match="second-order lag"):
+@needs_cc
+@pytest.mark.parametrize("effects", [[LAG], [INITIAL, PRODUCT], [LOWPASS, LAG]],
+                         ids=["lag", "transient-and-product", "lowpass"])
+def test_a_lag_banks_lag_of_a_diagnosed_lag_exports_as_a_cascade(data, tmp_path, effects):
+    """The base lag bank lags every feature, the effect's lag too: a lag of that lag's channel
+    (``lag_of``, after it: the second-order lag the stream runs), refused before."""
+    ss = _exported(data, tmp_path, effects, base=LagBank(n_taus=2))
+    cascades = [k for k, src in enumerate(ss.lag_of) if src >= 0]
+    assert cascades and all(ss.lag_of[k] < k and ss.lag_of[ss.lag_of[k]] < 0 for k in cascades)
+
+
+def test_effects_around_an_ati_model_are_still_refused_naming_them(data):
+    stream, _ = _diagnosed(data, [INITIAL, STEP], base=ATIRegressor(MLR(), n_intervals=2))
+    with pytest.raises(NotExportable, match="from the initial thermal state.* around an ATI model"):
         state_space(stream)
