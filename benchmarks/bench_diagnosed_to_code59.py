@@ -41,6 +41,12 @@ CASES = {
     "yearround-hammerstein": (["sim=yearround_spindle", "seed=5972"], "hammerstein"),
     "mill-position-mlr": (["sim=large_mill_week", "seed=5973",
                            "sim.generator.effects=[axis_position]"], "mlr"),
+    # exportrest60: a planted ambient law, where diagnose accepts ambient_step and an
+    # initial-state transient (seed 6003, chosen before running)
+    "ambientlaw-mlr": (["sim=yearround_spindle", "seed=6003",
+                        "sim.generator.effects=[ambient_law]"], "mlr"),
+    "ambientlaw-lagbank": (["sim=yearround_spindle", "seed=6003",
+                            "sim.generator.effects=[ambient_law]"], "lagbank"),
 }
 VARIANTS = {"plain": ["monitor.adaptive=false"], "adaptive": [],
             "adapt=bias": ["adapt.method=bias"]}
