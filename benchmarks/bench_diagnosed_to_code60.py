@@ -7,7 +7,8 @@ config builds it (:class:`~thermocomp.apps.diagnose.AugmentedRegressor` around `
 lag bank, fitted on the train campaigns, deployed as ``replay`` deploys it) with the effects:
 a lag's initial-state transient (one learned direction over the field temperatures and the door,
 one per sensor), ``ambient_step`` (two thresholds, beside the ambient law) and a lag bank's lag
-of a diagnosed lag (a cascade).  Its model.pkl goes through ``thermocomp export`` (C, ST, JSON);
+of a diagnosed lag (a cascade), and effects around an ATI model (three intervals; two with the
+ambient interaction).  Its model.pkl goes through ``thermocomp export`` (C, ST, JSON);
 ``stream.c`` (``cc``) streams the test campaigns one after the other (a blank row: a campaign
 restart), whole and stopped half-way and resumed with ``--state``; the ST runs through the
 tests' transpiler and the JSON through the numpy reference.  Each is compared with ``replay`` of
@@ -55,6 +56,16 @@ CASES = {
                         {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 18.0},
                         {"kind": "interaction", "transform": "product", "column": "S_door",
                          "other": "T_nose"}], "lagbank"),
+    # around an ATI model (diagnose ati=cmeans): each interval's laws on the features, and with
+    # the ambient interaction times A0 - 20 too
+    "around-ati": ([{**DOOR_LAG, "initial_state": [*FIELD, "S_door"], "initial_directions": 1},
+                    {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 18.0},
+                    {"kind": "interaction", "transform": "product", "column": "S_door",
+                     "other": "T_nose"}], "ati"),
+    "around-ati-interaction": ([{**DOOR_LAG, "initial_state": [*FIELD, "S_door"],
+                                 "initial_directions": 1},
+                                {"kind": "dynamics", "transform": "lowpass_inputs", "tau_s": 3600.0}],
+                               "ati+interaction"),
 }
 PUSH_C = 30.0
 
@@ -102,7 +113,8 @@ def case(name: str) -> dict:
     from thermocomp.apps.deploy.streaming import replay
     from thermocomp.apps.diagnose import AugmentedRegressor
     from thermocomp.apps.diagnose.features import as_effect
-    from thermocomp.core.models import LagBank
+    from thermocomp.core.models import MLR, LagBank
+    from thermocomp.core.models.ati import ATIRegressor
     from thermocomp.shell.builders import build_compensator, deploy_stream
     from thermocomp.shell.model_store import save_model
     from thermocomp.shell.source import read_streamed
@@ -115,8 +127,10 @@ def case(name: str) -> dict:
     ds, train_ids, test_ids, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
     comp = build_compensator(cfg, ds=ds)
-    est = AugmentedRegressor(LagBank(n_taus=2) if base == "lagbank" else None,
-                             effects={t: effects for t in ("E_X", "E_Y", "E_Z")})
+    inner = {"lagbank": LagBank(n_taus=2), "mlr": None,
+             "ati": ATIRegressor(MLR(), n_intervals=3),
+             "ati+interaction": ATIRegressor(MLR(), n_intervals=2, ambient_interaction=True)}[base]
+    est = AugmentedRegressor(inner, effects={t: effects for t in ("E_X", "E_Y", "E_Z")})
     comp = clone(comp).set_params(estimator=est).fit(train)
     stream = deploy_stream(cfg, comp, train)
     folder = ROOT / "reports" / f"code60-{name}"
@@ -157,7 +171,8 @@ def case(name: str) -> dict:
     laws = banner.split("per target: ")[1].split("\n *  inputs")[0] if "per target" in banner else ""
     return {"case": name, "base": base, "rows": len(expected),
             "clamped": int(sum(int(r["n_clamped"].gt(0).sum()) for r in replayed)),
-            "initial": len(ss.initial), "step laws": sum(lo > -1e300 for lo in ss.law_lo),
+            "initial": len(ss.initial), "laws": len(ss.law_lo),
+            "ambient laws": sum(ss.law_ambient or [0]),
             "cascades": sum(k >= 0 for k in ss.lag_of),
             "C-replay": float(np.max(np.abs(got[outs].to_numpy(float) - expected))),
             "restart-replay": float(np.max(np.abs(restarted[outs].to_numpy(float) - expected))),

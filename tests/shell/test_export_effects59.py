@@ -10,8 +10,9 @@ frame), a lag a lag-bank channel on it (a low-pass of the inputs one per input).
 and the JSON (read back into the numpy reference) equal ``replay`` to 1e-9 µm, the clamp acting
 (outright, as the stream clamps a model without a step gain) and the door missing at a
 campaign's start and mid-run (held, as the served model holds it); what still does not export
-(an effect around an ATI model; an initial-state transient, ``ambient_step`` and a lag bank's
-lag of a lag export since exportrest60: test_export_rest60.py) is refused naming it.
+(the ambient law around an ATI model's ambient interaction; an initial-state transient,
+``ambient_step``, a lag bank's lag of a lag and effects around an ATI model export since
+exportrest60: test_export_rest60.py) is refused naming it.
 """
 
 from __future__ import annotations
@@ -207,17 +208,13 @@ def test_a_diagnosed_low_pass_of_the_inputs_exports_as_their_lag_bank_channels(d
 
 
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
-    """Every effect around an ATI model (its intervals would each fit their own coefficients on
-    the effect's features; exportrest60 exports a lag's initial-state transient and an ambient
-    step around a plain base, which this refused too)."""
-    lag = {**LAG, "initial_state": ["T_a", "T_b"]}
-    step = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 23.0}
-    ati = ATIRegressor(MLR(), n_intervals=2)
-    for effects, named in (([lag], "signal:S_door first_order_lag"), ([LAG, step], "ambient_interval"),
-                           ([AMBIENT_LAW, AMBIENT_LAW], "ambient_linear around an ATI model")):
+    """The ambient law around an ATI model's ambient interaction (``x (A0 - 20)^2``; exportrest60
+    exports a lag's initial-state transient, an ambient step and any effect around an ATI model,
+    which this refused too)."""
+    ati = ATIRegressor(MLR(), n_intervals=2, ambient_interaction=True)
+    for effects in ([AMBIENT_LAW], [LAG, AMBIENT_LAW, SQUARE]):
         stream, _ = _diagnosed(data, effects, base=ati)
-        with pytest.raises(NotExportable, match=named) as info:
+        with pytest.raises(NotExportable, match="ambient_linear around an ATI model") as info:
             state_space(stream)
-        assert "around an ATI model" in str(info.value)
         assert "first-order lag of a signal or input" in str(info.value)
         assert "a square of one" in str(info.value)

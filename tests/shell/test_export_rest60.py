@@ -103,7 +103,39 @@ def test_a_lag_banks_lag_of_a_diagnosed_lag_exports_as_a_cascade(data, tmp_path,
     assert cascades and all(ss.lag_of[k] < k and ss.lag_of[ss.lag_of[k]] < 0 for k in cascades)
 
 
-def test_effects_around_an_ati_model_are_still_refused_naming_them(data):
-    stream, _ = _diagnosed(data, [INITIAL, STEP], base=ATIRegressor(MLR(), n_intervals=2))
-    with pytest.raises(NotExportable, match="from the initial thermal state.* around an ATI model"):
+@needs_cc
+@pytest.mark.parametrize("interaction", [False, True], ids=["intervals", "with-interaction"])
+@pytest.mark.parametrize("effects", [[INITIAL, STEP], [PRODUCT, LOWPASS_INITIAL, DOOR_ONLY]],
+                         ids=["transient-and-step", "product-lowpass-door"])
+def test_effects_around_an_ati_model_export_per_interval(data, tmp_path, effects, interaction):
+    """``diagnose ati=cmeans`` puts the effects around the ATI model: each interval's model is
+    fitted on the features (with the interaction, on the features times ``A0 - 20`` too), so
+    its laws on them count in its interval (the interaction's times ``A0 - 20``)."""
+    ati = ATIRegressor(MLR(), n_intervals=2, ambient_interaction=interaction)
+    ss = _exported(data, tmp_path, effects, base=ati)
+    assert len({(lo, hi) for lo, hi in zip(ss.law_lo, ss.law_hi)}) >= 2 + (STEP in effects)
+    assert any(ss.law_ambient) == interaction
+    assert ss.provenance["laws"]["E_X"].startswith("ati (A0 <= ")
+
+
+def test_the_ambient_law_around_an_ati_models_interaction_is_refused_naming_it(data):
+    """The interaction times the ambient law's ``x (A0 - 20)`` is ``x (A0 - 20)^2``: no law
+    of the code (its laws count 1 or ``A0 - 20``)."""
+    ati = ATIRegressor(MLR(), n_intervals=2, ambient_interaction=True)
+    stream, _ = _diagnosed(data, [AMBIENT_LAW, INITIAL], base=ati)
+    with pytest.raises(NotExportable, match=r"ambient_linear around an ATI model's ambient "
+                                            r"interaction.*\(A0 - 20\)\^2"):
         state_space(stream)
+
+
+@needs_cc
+@pytest.mark.parametrize("base", [None, ATIRegressor(MLR(), n_intervals=1, ambient_interaction=True)],
+                         ids=["mlr", "ati-interaction"])
+def test_two_effects_on_one_signal_add_up_in_the_code(data, tmp_path, base):
+    """The door's lag and the door as read are one derived input (its change), each effect's
+    coefficient on it: both count (``diagnose ati=cmeans`` accepted that pair on a door record,
+    seed 6002, and the code kept one of them: 61.8 µm off the served corrections)."""
+    raw = {"kind": "signal", "transform": "raw", "column": "S_door"}
+    ss = _exported(data, tmp_path, [LAG, raw], base=base)
+    assert len(ss.derived) == 1
+

@@ -125,19 +125,26 @@ def _diagnosed(est) -> list:
     stream does (:data:`DERIVED_TRANSFORMS`, a lag's initial-state transient:
     :func:`derived_inputs`), with a law on ``x`` per ambient law ``x (A0 - 20)`` or ambient step
     ``x [A0 > A_thr]`` (exportrest60: the step's law counts where ``A0 > A_thr``, what an ATI
-    interval is).  Any other effect, or any effect around an ATI model, is refused, naming it."""
+    interval is).  Around an ATI model (``diagnose ati=cmeans``), the same per interval of the
+    initial ambient, each interval's model fitted on the features (and, with the ambient
+    interaction, on the features times ``A0 - 20``: :func:`_member_laws`).  Any other effect is
+    refused, naming it."""
     effects = list(est.effects_)
     if not effects:
         return _intervals(est.estimator_)
-    if all(exports(e) for e in effects) and not isinstance(est.estimator_, ATIRegressor):
+    if all(exports(e) for e in effects):
         feats, initial = features(est)
-        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, False, Derived(
+        derived = Derived(
             feats, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
             canonical_order(effects, int(est.n_features_in_), initial),
-            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects)))]
-    others = [e.title for e in effects if not exports(e)] or [
-        "ambient_linear around an ATI model" if e.transform == "ambient_linear"
-        else f"{e.title} around an ATI model" for e in effects]
+            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects))
+        base = est.estimator_
+        if not isinstance(base, ATIRegressor):
+            return [(-UNBOUNDED, UNBOUNDED, base, False, derived)]
+        edges = [-UNBOUNDED, *map(float, base.boundaries_), UNBOUNDED]
+        return [(edges[m], edges[m + 1], e, bool(base.interactions_[m]), derived)
+                for m, e in enumerate(base.estimators_)]
+    others = [e.title for e in effects if not exports(e)]
     several = len(others) > 1
     raise NotExportable(f"the diagnosed effect{'s' if several else ''} {'; '.join(others)} "
                         f"{'do' if several else 'does'} not export (the code holds of diagnose's "
@@ -150,29 +157,64 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     """The laws of one member (weight ``w``): its own, and per block of ``x`` the campaign's
     initial ambient switches (the ATI interaction's, a diagnosed model's ambient laws and steps:
     ``derived.blocks``) the law of its coefficients on that block (its inputs ``[x, blocks,
-    powers]``); a diagnosed model's on ``[x, blocks, derived inputs, powers]``."""
+    powers]``); a diagnosed model's on ``[x, blocks, derived inputs, powers]``.  An ATI interval
+    around a diagnosed model that takes the ambient interaction is fitted on ``[Z, Z (A0 -
+    20)]``, ``Z`` those features: its laws on ``Z`` and, times ``A0 - 20``, its laws on the
+    second half (each with the model's feedback: ``A0`` is fixed over the campaign)."""
     extra = derived_inputs(derived, inputs, powers)
     linear, feats = _powered(est, inputs, powers)
+    whole = interacts and derived.blocks is not None      # [Z, Z (A0 - 20)] (exportrest60)
     blocks = derived.blocks if derived.blocks is not None else [("ambient", None)] * interacts
-    k, n = len(cols), len(inputs)
+    k = len(cols)
     own_x = k * (1 + len(blocks))               # the inputs' (and the ambient blocks') columns
     end = own_x + len(extra)                    # then the derived inputs', the low-pass blocks'
     width = end + k * len(derived.lowpass)
-    c, b0, delayed, lags, a, period = _target_law(linear, width + len(feats), period)
-    b0, delayed, lags = derived.canonical(b0, delayed, lags)
+    if whole and (feats or ("ambient", None) in blocks):
+        what = ("a Hammerstein model's powers (after the interaction)" if feats else
+                "the diagnosed ambient law x (ambient_c0 - 20°C): ambient_linear")
+        raise NotExportable(f"{what} around an ATI model's ambient interaction ({target}: the "
+                            "interaction multiplies the diagnosed features by A0 - 20, and (A0 - "
+                            "20)^2 or a power after it is no law of the code) does not export (the "
+                            f"code holds of diagnose's effects: {EXPORTED_EFFECTS}, around a plain "
+                            "or an ATI model); the served model runs it (thermocomp serve, "
+                            "connect)")
+    c, b0, delayed, lags, a, period = _target_law(linear, width * (1 + whole) + len(feats), period)
     if derived.lowpass or any(tau is not None for _, tau in extra) or any(
             f.initial is not None for f in derived.features):     # a transient's time too
         period = _one_period(period, derived.period)
-    if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
-        raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
-                            "code's input history holds the inputs only")
     gain = None
     if horizon_s is not None:
-        gain = derived.columns(step_gain(est, None, horizon_s))
+        gain = step_gain(est, None, horizon_s)
         if gain is None:
             raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
                                 f"{a:.3g}): the envelope clamp needs one; export it with "
                                 "promote.envelope.policy=off")
+    out = []
+    for half in range(1 + whole):
+        cut = slice(half * width, (half + 1) * width) if whole else slice(None)
+        laws = _laws(0.0 if half else c, b0[cut], {d: r[cut] for d, r in delayed.items()},
+                     [(tau, j - half * width, g) for tau, j, g in lags
+                      if not whole or half * width <= j < (half + 1) * width],
+                     a, None if gain is None else gain[cut], w, cols, len(inputs), target,
+                     derived, blocks, extra, feats)
+        for law in laws if half else ():
+            law.ambient = True          # the interaction's: times A0 - 20 (a step's too)
+        out += laws
+    return out, period
+
+
+def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, extra, feats):
+    """:func:`_member_laws`' laws of one estimator's coefficients over ``[x, blocks, derived
+    inputs, low-pass blocks, powers]`` (in the effects' order: :meth:`Derived.canonical`)."""
+    k = len(cols)
+    own_x = k * (1 + len(blocks))
+    end = own_x + len(extra)
+    width = end + k * len(derived.lowpass)
+    b0, delayed, lags = derived.canonical(b0, delayed, lags)
+    gain = derived.columns(gain)
+    if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
+        raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
+                            "code's input history holds the inputs only")
     pw = n + np.asarray(feats, int)                     # the powers' places in [x, powers]
     dx = n + np.asarray([f for f, _ in extra], int)     # the derived inputs' places
     out = []
@@ -204,7 +246,7 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
                        {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
                        None if gain is None else w * _spread(gain[x], cols, n), lo=lo,
                        ambient=block is not None and block[0] == "ambient"))
-    return out, period
+    return out
 
 
 def _one_period(period: float | None, own: float) -> float:

@@ -245,8 +245,8 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     g = np.zeros((len(laws), len(keys)))
     bd = np.zeros((len(laws), depth, N))
     for r, (_, law) in enumerate(laws):
-        for cols, row in law.terms:
-            b0[r, cols] += row
+        for cols, row in law.terms:     # one place twice (two effects on one derived input,
+            np.add.at(b0[r], cols, row)   # a lag and the signal as read): both coefficients
         for tau, j, gain, src in law.lags:
             g[r, where[(tau, j, src)]] += gain
         for d, row in law.delayed.items():
