@@ -6,7 +6,9 @@ sample fixes: 1 for a plain model; for an ATI model (``ati=cmeans``) 1 within th
 the campaign's initial ambient ``A0`` and 0 outside it, and for its ambient interaction ``x (A0
 - 20 °C)`` the law of those coefficients times ``A0 - 20`` (``A0`` is fixed over the campaign,
 so ``b . x (A0 - 20) = (A0 - 20) b . x``, and a feedback is linear: the law with the interaction
-is the sum of the two laws, each with the model's feedback).  A ``model=auto`` blend is its
+is the sum of the two laws, each with the model's feedback); a diagnosed model's ambient step
+``x [A0 > A_thr]`` is a law on ``x`` counting where ``A0 > A_thr`` (exportrest60), within its
+ATI interval when the effects are around an ATI model.  A ``model=auto`` blend is its
 members' laws weighted: members without feedback summed into one law per factor, a member with
 an AR term a law of its own (its feedback is on its own output, not on the blend's).
 """
