@@ -1,29 +1,37 @@
-"""A diagnosed lag's initial-state transient and an ambient step export exactly (exportrest60).
+"""A diagnosed lag's initial-state transient, an ambient step, a lag bank's lag of a diagnosed lag
+and effects around an ATI model export exactly (exportrest60).
 
 ``thermocomp diagnose`` tries every lag also "from the initial thermal state": extra regressors
 ``w_k . (c(0) - A0) (1 - exp(-(t - t0)/tau))`` (the sensors' first values less the campaign's
 initial ambient, on the directions learned over the training campaigns), and the inputs times a
-step of the initial ambient ``x [A0 > A_thr]``; ``export`` refused both by name, and a lag-bank
-base's lag of a diagnosed lag (a second-order lag).  Each is now a
-feature the code computes as the served model's ``stream_step`` does: the transient from the
-first sample of the campaign that has one of the sensors (one missing there: offset 0), ``A0``
-the campaign's initial ambient as an ATI law reads it, ``t - t0`` on the stream's clock, restarted
-at each campaign; the step a law on ``x`` that counts where ``A0 > A_thr``; the lag of a lag a
-lag channel on the first lag's channel (a cascade).  The C (compiled),
-the Structured Text, the numpy reference and the JSON read back equal ``replay`` to 1e-9 µm, the
-clamp acting and a sensor of the transient missing at a campaign's first rows.
-"""
+step of the initial ambient ``x [A0 > A_thr]``; ``export`` refused both by name, a lag-bank
+base's lag of a diagnosed lag (a second-order lag), and any effect around an ATI model
+(``diagnose ati=cmeans``).  Each is now what the code computes as the served model's
+``stream_step`` does: the transient from the first sample of the campaign that has one of the
+sensors (one missing there: offset 0), ``A0`` the campaign's initial ambient as an ATI law reads
+it, ``t - t0`` on the stream's clock, restarted at each campaign only (not at a gap); the step a
+law on ``x`` that counts where ``A0 > A_thr``; the lag of a lag a lag channel on the first lag's
+channel (a cascade); around an ATI model, per interval (with its interaction, times ``A0 -
+20``).  The C (compiled), the Structured Text, the numpy reference and the JSON read back equal
+``replay`` to 1e-9 µm, the clamp acting, a sensor of the transient missing at a campaign's first
+rows, a missing time and a gap."""
 
 from __future__ import annotations
 
+import numpy as np
 import pytest
+from sklearn.base import clone
 
-from test_export import needs_cc
-from test_export_auto57 import TOLERANCE_UM, _proved
+from test_export import _compose, needs_cc
+from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import LAG, LOWPASS, PRODUCT, _diagnosed, _door, _json_proved
 from thermocomp.apps.deploy.export import NotExportable, exported_files, state_space
+from thermocomp.apps.diagnose import AugmentedRegressor
+from thermocomp.apps.diagnose.features import as_effect
 from thermocomp.core.models import MLR, LagBank
 from thermocomp.core.models.ati import ATIRegressor
+from thermocomp.shell.builders import deploy_stream
+from thermocomp.shell.source import read_streamed
 
 # the door's lag from the initial distances of T_a and the door (missing at tests[0]'s first
 # two rows: T_a's offset alone there), on one learned direction or one each
@@ -52,10 +60,9 @@ def _exported(data, tmp_path, effects, base=None) -> object:
     laws = ss.provenance["laws"]["E_X"]
     banner = exported_files(stream, "c")["compensator.c"].split("*/")[0]
     for e in effects:
-        stream_title = next(x.title for x in stream._plan[0][1].effects_
-                            if x.transform == e["transform"] and x.tau_s == e.get("tau_s"))
-        assert stream_title in laws                               # the effect named
-        assert stream_title.replace("°C", " degC") in banner      # (the banner's units)
+        title = as_effect(e).title
+        assert title in laws                                      # the effect named
+        assert title.replace("°C", " degC") in banner             # (the banner's units)
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
     assert _json_proved(stream, tests) <= TOLERANCE_UM
     return ss
@@ -138,4 +145,22 @@ def test_two_effects_on_one_signal_add_up_in_the_code(data, tmp_path, base):
     raw = {"kind": "signal", "transform": "raw", "column": "S_door"}
     ss = _exported(data, tmp_path, [LAG, raw], base=base)
     assert len(ss.derived) == 1
+
+
+@needs_cc
+def test_a_transient_of_denoised_sensors_and_a_step_equal_replay(data, tmp_path):
+    """With the causal FIR denoiser a declared sensor's ``c(0)`` is its filtered first value,
+    as the stream's model reads its context (the door, no declared input, as read)."""
+    _, tests, comp = deployed(data, "model=mlr", "denoise=emd", pushed="T_a")
+    cfg = _compose(f"data.path={data}", "denoise=emd", "track=false", "monitor.adaptive=false",
+                   "promote.envelope.pattern=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    comp = clone(comp).set_params(estimator=AugmentedRegressor(
+        MLR(), effects={"E_X": [PER_SENSOR, INITIAL, STEP]})).fit(train)
+    stream = deploy_stream(cfg, comp, train)
+    tests[0].loc[[0, 1], "S_door"] = np.nan
+    ss = state_space(stream)
+    assert len(ss.fir) > 1 and len(ss.initial) == 3
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
 
