@@ -41,6 +41,16 @@ CASES = {
     "yearround-hammerstein": (["sim=yearround_spindle", "seed=5972"], "hammerstein"),
     "mill-position-mlr": (["sim=large_mill_week", "seed=5973",
                            "sim.generator.effects=[axis_position]"], "mlr"),
+    # exportrest60: a planted ambient law, where diagnose accepts ambient_step and an
+    # initial-state transient (seed 6003, chosen before running)
+    "ambientlaw-mlr": (["sim=yearround_spindle", "seed=6003",
+                        "sim.generator.effects=[ambient_law]"], "mlr"),
+    "ambientlaw-lagbank": (["sim=yearround_spindle", "seed=6003",
+                            "sim.generator.effects=[ambient_law]"], "lagbank"),
+    "ambientlaw-ati": (["sim=yearround_spindle", "seed=6003",
+                        "sim.generator.effects=[ambient_law]"], "mlr+ati"),
+    "door-ati": (["sim=yearround_spindle", "seed=6002", "sim.generator.effects=[door]"],
+                 "mlr+ati"),
 }
 VARIANTS = {"plain": ["monitor.adaptive=false"], "adaptive": [],
             "adapt=bias": ["adapt.method=bias"]}
@@ -81,8 +91,10 @@ def case(name: str) -> list[dict]:
     if not (ROOT / data).exists():
         tc("simulate", *sim, f"data.path={data}")
     out = f"reports/{name}"
-    tc("run", f"model={base}", f"data.path={data}", f"out={out}/base", "plots=none")
-    diag = tc("diagnose", f"model={base}", f"data.path={data}", f"out={out}/diag")
+    # "<family>+ati": the family in an ATI model (ati=cmeans; diagnose puts the effects around it)
+    family = [f"model={base.split('+')[0]}"] + (["ati=cmeans"] if base.endswith("+ati") else [])
+    tc("run", *family, f"data.path={data}", f"out={out}/base", "plots=none")
+    diag = tc("diagnose", *family, f"data.path={data}", f"out={out}/diag")
     table = [ln for ln in diag.splitlines() if re.match(r"^E_\w+\s+[0-9.]+ ->", ln)]
     after = {ln.split()[0]: float(ln.split()[3]) for ln in table}
     effects = {ln.split()[0]: " ".join(ln.split()[7:]) for ln in table}

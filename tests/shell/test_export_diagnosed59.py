@@ -23,12 +23,14 @@ from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import NotExportable, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.core.models import MLR
+from thermocomp.core.models.ati import ATIRegressor
 from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
 AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
-# still refused: a lag's initial-state transient (exportdiag59 exports the plain lag)
+# exportdiag59 exports the plain lag, exportrest60 its initial-state transient, around an ATI
+# model too; still refused: the ambient law around an ATI model's ambient interaction
 LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 3600.0,
        "initial_state": ["T_a", "T_amb"]}
 
@@ -65,12 +67,13 @@ def test_a_diagnosed_model_of_laws_the_code_holds_exports_as_replay(data, tmp_pa
 
 def test_another_diagnosed_effect_is_refused_naming_it_and_the_route_that_runs_it(data, tmp_path,
                                                                                   capsys):
-    stream, _, comp = _diagnosed(data, [LAG])
-    with pytest.raises(NotExportable, match=r"dynamics:T_a first_order_lag.*does not export"):
+    ati = ATIRegressor(MLR(), n_intervals=2, ambient_interaction=True)
+    stream, _, comp = _diagnosed(data, [AMBIENT_LAW, LAG], base=ati)
+    with pytest.raises(NotExportable, match=r"ambient_linear around an ATI model.*does not export"):
         state_space(stream)
     pkl = save_model(comp, tmp_path / "model.pkl")
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
-             "track=false"], capsys, "dynamics:T_a first_order_lag", "thermocomp serve")
+             "track=false"], capsys, "ambient_linear around an ATI model", "thermocomp serve")
     assert not (tmp_path / "code").exists()
 
 

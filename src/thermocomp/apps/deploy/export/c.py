@@ -81,6 +81,14 @@ def _pattern_constants(ss: StateSpace) -> list:
             f"static const int PATTERN = {int(ss.pattern)};"]
 
 
+def _spread(columns: list, values: list, n: int) -> list:
+    """``values`` at ``columns`` of a row of ``n`` zeros."""
+    row = [0.0] * n
+    for j, v in zip(columns, values):
+        row[j] = float(v)
+    return row
+
+
 def header(ss: StateSpace) -> str:
     n, m, taps = len(ss.inputs), len(ss.targets), len(ss.fir)
     names = ", ".join(map(c_string, ss.inputs))
@@ -99,6 +107,8 @@ def header(ss: StateSpace) -> str:
 #define TC_N_LAGS {len(ss.taus)}
 #define TC_N_POWERS {len(ss.powers)}   /* powers of machine states (Hammerstein) */
 #define TC_N_DERIVED {len(ss.derived)}   /* a diagnosed model's derived inputs (products, lags) */
+#define TC_N_INITIAL {len(ss.initial)}   /* a diagnosed lag's initial-state transient (directions) */
+#define TC_WIDTH (TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED + TC_N_INITIAL)   /* a law's inputs */
 #define TC_USES_TIME {int(ss.uses_time)}
 #define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
 #define TC_GUARD {int(ss.guard)}   /* correction bound and rate limit */
@@ -117,6 +127,10 @@ typedef struct {{
     double v0[TC_N_INPUTS];                     /* the first value (derived inputs' frame) */
     double last[TC_N_INPUTS];                   /* the last finite value (a held signal's) */
     int seen[TC_N_INPUTS];                      /* 1: a value seen in this campaign */
+    double a0;                                  /* the campaign's initial ambient */
+    double t0;                                  /* the campaign's first sample time, s */
+    double start[{max(len(ss.initial), 1)}];    /* a transient's w . (c(0) - A0) (0: not yet) */
+    int started[{max(len(ss.initial), 1)}];     /* 1: a transient's sensors seen */
     /* per channel: [0] the measured inputs, [1] their excess over the envelope */
     double hist[2][{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
     double z[2][{max(len(ss.taus), 1)}];        /* first-order lags */
@@ -168,13 +182,15 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]);
 
 def source(ss: StateSpace) -> str:
     n, taps, k, p = len(ss.inputs), len(ss.fir), len(ss.taus), len(ss.powers)
-    q = len(ss.derived)
+    q = len(ss.derived) + len(ss.initial)
+    qi = len(ss.initial)
     d, r = ss.depth, len(ss.laws)
     consts = "\n".join([
         _array("FIR", ss.fir, (taps, n)), _array("REFERENCED", ss.referenced, (n,)),
         _array("LO", ss.lo or [0.0] * n, (n,)), _array("HI", ss.hi or [0.0] * n, (n,)),
         _array("TAU", ss.taus, (k,)),
         _ints("LAG_INPUT", ss.lag_input), _ints("LAG_REST", ss.lag_rest or [0] * k),
+        _ints("LAG_OF", ss.lag_of or [-1] * k),
         _array("INTERCEPT", ss.intercept, (r,)), _array("B0", ss.b0, (r, n + p + q)),
         _ints("LAW_TARGET", ss.laws),
         _array("LAW_LO", ss.law_lo or [-UNBOUNDED] * r, (r,)),
@@ -187,6 +203,9 @@ def source(ss: StateSpace) -> str:
         _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         *(_ints(f"DERIVED_{name}", [f[i] for f in ss.derived])
           for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
+        _array("INITIAL_TAU", [f[0] for f in ss.initial], (qi,)),
+        _array("INITIAL_W", [_spread(f[1], f[2], n) for f in ss.initial], (qi, n)),
+        _array("INITIAL_SENSOR", [_spread(f[1], [1.0] * len(f[1]), n) for f in ss.initial], (qi, n)),
         _array("BD", ss.bd, (r, d, n)), _array("G", ss.g, (r, k)), _array("AR", ss.ar, (r,)),
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * r, (r, n)),
         _ints("CLAMP_OUTRIGHT", ss.clamp_outright or [0] * len(ss.targets)),
@@ -238,7 +257,7 @@ static int off_pattern(const double x[]) {{
 
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double uu[TC_N_INPUTS];                 /* u, a held signal's missing value filled */
-    double v[TC_N_INPUTS], x[2][TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED], xl[2][{max(k, 1)}], ych[2];
+    double v[TC_N_INPUTS], x[2][TC_WIDTH], xl[2][{max(k, 1)}], ych[2];
     double ysum[2][TC_N_OUTPUTS], excess[TC_N_OUTPUTS];
     double allow[TC_N_OUTPUTS];
     double dt, now, step;
@@ -279,6 +298,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         double a0 = 0.0;
         for (l = 0; l < TC_N_AMBIENT; l++) a0 += v[AMBIENT_INPUT[l]];
         a0 /= AMBIENT_COUNT;
+        s->a0 = a0;
+        s->t0 = now;
         for (r = 0; r < TC_N_LAWS; r++)
             s->factor[r] = (a0 > LAW_LO[r] && a0 <= LAW_HI[r])
                 ? (LAW_AMBIENT[r] ? a0 - AMBIENT_CENTRE : 1.0) : 0.0;
@@ -307,10 +328,27 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         x[0][TC_N_INPUTS + TC_N_POWERS + l] = ra * rb;
         x[1][TC_N_INPUTS + TC_N_POWERS + l] = 0.0;
     }}
+    /* a diagnosed lag's initial-state transient: w . (c(0) - A0) (1 - exp(-(t - t0) / tau)), c(0)
+       its sensors at the campaign's first sample that has one of them (a missing one: 0, its
+       offset unknown), 0 before it, as the stream's model computes it */
+    for (l = 0; l < TC_N_INITIAL; l++) {{
+        int col = TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED + l, any = 0;
+        double start = 0.0;
+        if (s->first) s->started[l] = 0, s->start[l] = 0.0;
+        for (j = 0; j < TC_N_INPUTS && !s->started[l]; j++)
+            if (INITIAL_SENSOR[l][j] != 0.0 && isfinite(u[j])) {{
+                start += INITIAL_W[l][j] * (v[j] - s->a0);
+                any = 1;
+            }}
+        if (any) s->start[l] = start, s->started[l] = 1;
+        x[0][col] = s->start[l] * (1.0 - exp(-(now - s->t0) / INITIAL_TAU[l]));
+        x[1][col] = 0.0;
+    }}
     /* first-order lags */
     for (h = 0; h < 2; h++)
         for (l = 0; l < TC_N_LAGS; l++) {{
-            xl[h][l] = x[h][LAG_INPUT[l]];
+            /* a cascade (LAG_OF: a lag of a lag, after it) lags that lag's new value */
+            xl[h][l] = LAG_OF[l] >= 0 ? s->z[h][LAG_OF[l]] : x[h][LAG_INPUT[l]];
             if (s->first) {{   /* a machine state at rest (Hammerstein) starts at 0 */
                 s->z[h][l] = LAG_REST[l] ? 0.0 : xl[h][l];
             }} else {{
@@ -351,7 +389,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         if (s->factor[r] != 0.0) excess[LAW_TARGET[r]] += s->factor[r] * p;
         for (h = 0; h < 2; h++) {{
             ych[h] = h == 0 ? INTERCEPT[r] : 0.0;
-            for (j = 0; j < TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED; j++) ych[h] += B0[r][j] * x[h][j];
+            for (j = 0; j < TC_WIDTH; j++) ych[h] += B0[r][j] * x[h][j];
             for (l = 0; l < TC_DEPTH; l++)
                 for (j = 0; j < TC_N_INPUTS; j++) ych[h] += BD[r][l][j] * s->hist[h][l][j];
             for (l = 0; l < TC_N_LAGS; l++) ych[h] += G[r][l] * (s->z[h][l] - xl[h][l]);

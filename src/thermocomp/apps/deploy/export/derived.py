@@ -5,8 +5,14 @@
 from its context, the raw value of each column it reads (a declared input denoised, a signal as
 read; missing: held).  A lag, a product, a square or a raw signal of those columns is a feature
 the code computes the same way from its inputs (``derived`` of :class:`~.statespace.StateSpace`),
-a lag a lag-bank channel on it; a low-pass of the model inputs is a channel on each input.  The
-base model's coefficients on them are the law's (:mod:`.laws`).
+a lag a lag-bank channel on it; a low-pass of the model inputs is a channel on each input.  A
+lag's initial-state transient ``w . (c(0) - A0) (1 - exp(-(t - t0)/tau))`` is a derived input of
+its own (``initial``, exportrest60): ``c(0)`` the sensors' values at the first sample of the
+campaign that has one of them, ``A0`` the campaign's initial ambient, ``t0`` its first sample's
+time, as :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.stream_step` computes it.  The
+inputs' ambient law ``x (A0 - 20)`` and an ambient step ``x [A0 > A_thr]`` are laws on ``x`` the
+campaign's initial ambient switches (:mod:`.laws`).  The base model's coefficients on them are
+the law's.
 """
 
 from __future__ import annotations
@@ -17,32 +23,72 @@ import numpy as np
 
 # what the code holds of diagnose's effects (the refusal names them)
 DERIVED_TRANSFORMS = ("first_order_lag", "product", "square", "raw")
-EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20), a first-order lag "
-                    "of a signal or input and of all the inputs (without an initial-state "
-                    "transient), a product of two columns, a square of one and a signal as read "
-                    "(raw)")
+AMBIENT_TRANSFORMS = ("ambient_linear", "ambient_step")     # laws on x the campaign's A0 switches
+EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20) and ambient step "
+                    "x [A0 > A_thr], a first-order lag of a signal or input and of all the inputs "
+                    "(with or without its initial-state transient), a product of two columns, a "
+                    "square of one and a signal as read (raw)")
 
 
 def is_derived(e) -> bool:
-    return e.transform in DERIVED_TRANSFORMS and not e.initial_state
+    """True for an effect whose feature is a derived input of the code (its initial-state
+    transient too)."""
+    return e.transform in DERIVED_TRANSFORMS
+
+
+def exports(e) -> bool:
+    """True for an effect the code holds (:data:`EXPORTED_EFFECTS`), around a plain base."""
+    return is_derived(e) or e.transform in (*AMBIENT_TRANSFORMS, "lowpass_inputs")
+
+
+@dataclass
+class Feature:
+    """One derived input of a diagnosed model: its effect's own term (``initial`` None), or one
+    direction of its initial-state transient (``initial``: the weights over the effect's
+    ``initial_state`` sensors)."""
+
+    effect: object
+    initial: np.ndarray | None = None
+
+    @property
+    def title(self) -> str:
+        return self.effect.title
+
+
+def features(est) -> tuple[list[Feature], list[int]]:
+    """``(derived inputs, initial-state directions per effect)`` of a fitted diagnosed model
+    ``est``, in the order of its feature columns (:func:`canonical_order`): an effect's own term,
+    then its transient's directions (the learned ``initial_weights_``, else one per sensor)."""
+    out, counts = [], []
+    for e, w in zip(est.effects_, est.initial_weights_):
+        if is_derived(e):
+            out.append(Feature(e))
+        rows = [] if not e.initial_state else (
+            np.asarray(w, float) if w is not None else np.eye(len(e.initial_state)))
+        out += [Feature(e, np.asarray(row, float)) for row in rows]
+        counts.append(len(rows))
+    return out, counts
 
 
 @dataclass
 class Derived:
     """A diagnosed model's effects the code computes from its inputs (:func:`derived_inputs`):
-    ``effects`` in their feature order, the model's ``reference`` and the sample period of its
+    ``features`` in their column order, the model's ``reference`` and the sample period of its
     lags (a sample without time is one period after the previous one)."""
 
-    effects: list = field(default_factory=list)
+    features: list = field(default_factory=list)
     reference: str = "first_sample"
     period: float = 1.0
-    order: list | None = None       # the model's feature columns in ``[x, x (A0 - 20), derived,
+    order: list | None = None       # the model's feature columns in ``[x, ambient blocks, derived,
                                     # low-pass blocks]``
     lowpass: list = field(default_factory=list)     # the taus of the inputs' low-pass copies
+    # the blocks of x the campaign's A0 switches, after x: ("ambient", None) x (A0 - 20),
+    # ("step", A_thr) x [A0 > A_thr]; None: an ATI interval's (its interaction or none)
+    blocks: list | None = None
 
     def canonical(self, b0, delayed: dict, lags: list) -> tuple:
         """``(b0, delayed, lags)`` of the base model fitted on the features in the effects'
-        order, its columns put in the order ``[x, x (A0 - 20), derived inputs, powers]``."""
+        order, its columns put in the order ``[x, ambient blocks, derived inputs, powers]``."""
         if self.order is None:
             return b0, delayed, lags
         place = np.argsort(self._order(len(b0)))     # a model column's canonical place
@@ -59,29 +105,46 @@ class Derived:
         return np.r_[self.order, np.arange(len(self.order), n)].astype(int)
 
 
-def canonical_order(effects: list, k: int) -> list[int]:
+def canonical_order(effects: list, k: int, initial: list[int]) -> list[int]:
     """The model's feature columns (``k`` inputs, then each effect's, in the effects' order:
-    :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.stream_step`) in the order ``[x, x (A0 -
-    20), derived inputs]`` the laws are written in."""
-    at, groups = k, {"ambient_linear": [], "lowpass_inputs": [], None: []}
-    for e in effects:
-        wide = e.transform in ("ambient_linear", "lowpass_inputs")
-        groups[e.transform if wide else None].extend(range(at, at + (k if wide else 1)))
-        at += k if wide else 1
-    return [*range(k), *groups["ambient_linear"], *groups[None], *groups["lowpass_inputs"]]
+    :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.stream_step`; ``initial[i]`` the
+    transient's directions after effect i's own) in the order ``[x, ambient blocks, derived
+    inputs, low-pass blocks]`` the laws are written in."""
+    at, wide, derived, lowpass = k, [], [], []
+    for e, q in zip(effects, initial):
+        own = k if e.transform in (*AMBIENT_TRANSFORMS, "lowpass_inputs") else 1
+        group = wide if e.transform in AMBIENT_TRANSFORMS else (
+            lowpass if e.transform == "lowpass_inputs" else derived)
+        group.extend(range(at, at + own))
+        derived.extend(range(at + own, at + own + q))
+        at += own + q
+    return [*range(k), *wide, *derived, *lowpass]
+
+
+def ambient_blocks(effects: list) -> list[tuple]:
+    """The blocks of x the campaign's initial ambient switches, in the effects' order."""
+    return [("ambient", None) if e.transform == "ambient_linear" else ("step", float(e.threshold_c))
+            for e in effects if e.transform in AMBIENT_TRANSFORMS]
 
 
 def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[int, float | None]]:
-    """Per effect feature, ``(its place among the registered features, the lag's tau or None)``:
+    """Per derived input, ``(its place among the registered features, the lag's tau or None)``:
     each effect's term, registered in ``powers`` as ``(DERIVED, a, b, ra, rb)``: the product
     ``r_a r_b`` (``b`` = -1: ``r_a`` alone) of ``r_j = v_j - ra v_j(0)``, the input as the
     stream's model reads it from its context (a declared input denoised, a state raw; its change
     since the campaign's first sample where ``ra``: the effect's frame, whatever the inputs'
-    reference); a lag is its lag bank channel on ``r_a``."""
+    reference); a lag is its lag bank channel on ``r_a``.  A transient's direction is registered
+    as ``(INITIAL, sensors, weights, tau)`` (no lag channel: a static input of the laws)."""
     from ...diagnose.features import frames  # loaded: the model is a diagnosed one
     out = []
-    for e in derived.effects:
-        own, other = (int(f == "first_sample") for f in frames(e, derived.reference))
+    for f in derived.features:
+        e = f.effect
+        if f.initial is not None:
+            sensors = tuple(inputs.index(c) for c in e.initial_state)
+            key = (INITIAL, sensors, tuple(float(w) for w in f.initial), float(e.tau_s))
+            out.append((powers.setdefault(key, len(powers)), None))
+            continue
+        own, other = (int(fr == "first_sample") for fr in frames(e, derived.reference))
         a = inputs.index(e.column)
         b, rb = -1, 0                       # a lag: r_a alone
         if e.transform == "product":
@@ -94,4 +157,4 @@ def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[i
 
 
 DERIVED = "derived"     # the key of a derived input among the registered features
-
+INITIAL = "initial"     # the key of an initial-state transient's direction

@@ -6,7 +6,9 @@ sample fixes: 1 for a plain model; for an ATI model (``ati=cmeans``) 1 within th
 the campaign's initial ambient ``A0`` and 0 outside it, and for its ambient interaction ``x (A0
 - 20 °C)`` the law of those coefficients times ``A0 - 20`` (``A0`` is fixed over the campaign,
 so ``b . x (A0 - 20) = (A0 - 20) b . x``, and a feedback is linear: the law with the interaction
-is the sum of the two laws, each with the model's feedback).  A ``model=auto`` blend is its
+is the sum of the two laws, each with the model's feedback); a diagnosed model's ambient step
+``x [A0 > A_thr]`` is a law on ``x`` counting where ``A0 > A_thr`` (exportrest60), within its
+ATI interval when the effects are around an ATI model.  A ``model=auto`` blend is its
 members' laws weighted: members without feedback summed into one law per factor, a member with
 an AR term a law of its own (its feedback is on its own output, not on the blend's).
 """
@@ -21,12 +23,22 @@ import numpy as np
 from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ....core.models.ati import AMBIENT_CENTRE_C, ATIRegressor
-from .derived import EXPORTED_EFFECTS, Derived, canonical_order, derived_inputs, is_derived
+from .derived import (
+    EXPORTED_EFFECTS,
+    Derived,
+    ambient_blocks,
+    canonical_order,
+    derived_inputs,
+    exports,
+    features,
+    is_derived,
+)
 from .errors import NotExportable
 from .members import described, is_diagnosed, members
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
 UNBOUNDED = sys.float_info.max      # an open interval edge (finite for JSON and ST)
+PLAIN = 0.0                         # a lag's source: its input itself (a tau is > 0)
 
 
 @dataclass
@@ -37,7 +49,9 @@ class Law:
     c: float = 0.0
     terms: list = field(default_factory=list)      # [(indices into [x, powers], b0 there)]
     delayed: dict = field(default_factory=dict)    # {delay: row over x}
-    lags: list = field(default_factory=list)       # [(tau, index into [x, powers], gain)]
+    # [(tau, index into [x, powers], gain, source)]: a lag of that input (source PLAIN), or of
+    # its lag of tau ``source`` (a cascade: a lag bank's lag of a diagnosed effect's lag)
+    lags: list = field(default_factory=list)
     a: float = 0.0
     gain: np.ndarray | None = None                 # step gain over x at the clamp's horizon
     lo: float = -UNBOUNDED
@@ -70,8 +84,8 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, 
             for lo, hi, base, interacts, derived in _intervals(member):
                 laws, period = _member_laws(base, interacts, w, cols, inputs, powers, period,
                                             horizon_s, target, derived)
-                for law in laws:
-                    law.lo, law.hi = lo, hi
+                for law in laws:     # an ambient step's law counts within the interval too
+                    law.lo, law.hi = max(law.lo, lo), min(law.hi, hi)
                 own += laws
         except NotExportable as exc:
             raise NotExportable(_member_refused(target, name, w, parts, exc)) from None
@@ -108,29 +122,31 @@ def _intervals(est) -> list:
 
 def _diagnosed(est) -> list:
     """A diagnosed model's intervals: its base model's, when every effect it accepted is a
-    sensor's removal (no feature: the base fitted on the inputs kept); the base's one law and
-    its ambient law ``x (A0 - 20)`` (``ambient_linear`` alone: the base fitted on ``[x, x (A0 -
-    20)]``, what an ATI interval with the interaction is); the base's law on ``[x, derived
-    inputs]`` when each effect is one the code computes from its inputs as the stream does
-    (:data:`DERIVED_TRANSFORMS`: :func:`derived_inputs`), with the ambient law when one effect
-    is ``ambient_linear``.  Any other effect is refused, naming it."""
+    sensor's removal (no feature: the base fitted on the inputs kept); else the base's law on
+    ``[x, derived inputs]``, when each effect is one the code computes from its inputs as the
+    stream does (:data:`DERIVED_TRANSFORMS`, a lag's initial-state transient:
+    :func:`derived_inputs`), with a law on ``x`` per ambient law ``x (A0 - 20)`` or ambient step
+    ``x [A0 > A_thr]`` (exportrest60: the step's law counts where ``A0 > A_thr``, what an ATI
+    interval is).  Around an ATI model (``diagnose ati=cmeans``), the same per interval of the
+    initial ambient, each interval's model fitted on the features (and, with the ambient
+    interaction, on the features times ``A0 - 20``: :func:`_member_laws`).  Any other effect is
+    refused, naming it."""
     effects = list(est.effects_)
     if not effects:
         return _intervals(est.estimator_)
-    derived = [e for e in effects if is_derived(e)]
-    ambient = [e for e in effects if e.transform == "ambient_linear"]
-    lowpass = [e.tau_s for e in effects if e.transform == "lowpass_inputs" and not e.initial_state]
-    if len(derived) + len(ambient) + len(lowpass) == len(effects) and len(ambient) <= 1 and not \
-            isinstance(est.estimator_, ATIRegressor):
-        return [(-UNBOUNDED, UNBOUNDED, est.estimator_, bool(ambient), Derived(
-            derived, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
-            canonical_order(effects, int(est.n_features_in_)), lowpass))]
-    others = [e.title for e in effects if not is_derived(e) and e.transform != "ambient_linear"
-              and not (e.transform == "lowpass_inputs" and not e.initial_state)]
-    if not others and isinstance(est.estimator_, ATIRegressor):
-        others = ["ambient_linear around an ATI model" if e.transform == "ambient_linear"
-                  else f"{e.title} around an ATI model" for e in effects]
-    others = others or ["ambient_linear twice"]
+    if all(exports(e) for e in effects):
+        feats, initial = features(est)
+        derived = Derived(
+            feats, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
+            canonical_order(effects, int(est.n_features_in_), initial),
+            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects))
+        base = est.estimator_
+        if not isinstance(base, ATIRegressor):
+            return [(-UNBOUNDED, UNBOUNDED, base, False, derived)]
+        edges = [-UNBOUNDED, *map(float, base.boundaries_), UNBOUNDED]
+        return [(edges[m], edges[m + 1], e, bool(base.interactions_[m]), derived)
+                for m, e in enumerate(base.estimators_)]
+    others = [e.title for e in effects if not exports(e)]
     several = len(others) > 1
     raise NotExportable(f"the diagnosed effect{'s' if several else ''} {'; '.join(others)} "
                         f"{'do' if several else 'does'} not export (the code holds of diagnose's "
@@ -138,65 +154,101 @@ def _diagnosed(est) -> list:
                         f"{'them' if several else 'it'} (thermocomp serve, connect)")
 
 
-
 def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, horizon_s,
                  target, derived: Derived) -> tuple[list[Law], object]:
-    """The laws of one member (weight ``w``): its own, and with the ambient interaction the law
-    of its coefficients on ``x (A0 - 20)`` (its inputs ``[x, x (A0 - 20), powers]``); a
-    diagnosed model's on ``[x, derived inputs, powers]``."""
+    """The laws of one member (weight ``w``): its own, and per block of ``x`` the campaign's
+    initial ambient switches (the ATI interaction's, a diagnosed model's ambient laws and steps:
+    ``derived.blocks``) the law of its coefficients on that block (its inputs ``[x, blocks,
+    powers]``); a diagnosed model's on ``[x, blocks, derived inputs, powers]``.  An ATI interval
+    around a diagnosed model that takes the ambient interaction is fitted on ``[Z, Z (A0 -
+    20)]``, ``Z`` those features: its laws on ``Z`` and, times ``A0 - 20``, its laws on the
+    second half (each with the model's feedback: ``A0`` is fixed over the campaign)."""
     extra = derived_inputs(derived, inputs, powers)
     linear, feats = _powered(est, inputs, powers)
-    k, n = len(cols), len(inputs)
-    own_x = 2 * k if interacts else k           # the inputs' (and the interaction's) columns
+    whole = interacts and derived.blocks is not None      # [Z, Z (A0 - 20)] (exportrest60)
+    blocks = derived.blocks if derived.blocks is not None else [("ambient", None)] * interacts
+    k = len(cols)
+    own_x = k * (1 + len(blocks))               # the inputs' (and the ambient blocks') columns
     end = own_x + len(extra)                    # then the derived inputs', the low-pass blocks'
     width = end + k * len(derived.lowpass)
-    c, b0, delayed, lags, a, period = _target_law(linear, width + len(feats), period)
-    b0, delayed, lags = derived.canonical(b0, delayed, lags)
-    if derived.lowpass or any(tau is not None for _, tau in extra):
+    if whole and (feats or ("ambient", None) in blocks):
+        what = ("a Hammerstein model's powers (after the interaction)" if feats else
+                "the diagnosed ambient law x (ambient_c0 - 20°C): ambient_linear")
+        raise NotExportable(f"{what} around an ATI model's ambient interaction ({target}: the "
+                            "interaction multiplies the diagnosed features by A0 - 20, and (A0 - "
+                            "20)^2 or a power after it is no law of the code) does not export (the "
+                            f"code holds of diagnose's effects: {EXPORTED_EFFECTS}, around a plain "
+                            "or an ATI model); the served model runs it (thermocomp serve, "
+                            "connect)")
+    c, b0, delayed, lags, a, period = _target_law(linear, width * (1 + whole) + len(feats), period)
+    if derived.lowpass or any(tau is not None for _, tau in extra) or any(
+            f.initial is not None for f in derived.features):     # a transient's time too
         period = _one_period(period, derived.period)
-    if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
-        raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
-                            "code's input history holds the inputs only")
-    lagged = sorted({derived.effects[j - own_x].title if j < end else "lowpass_inputs"
-                     for _, j, _ in lags
-                     if own_x <= j < width and (j >= end or extra[j - own_x][1] is not None)})
-    if lagged:
-        # name the effect and the ways out: diagnose accepts such a lag on a lag-bank base
-        # (the stream runs it), and the bare refusal left a user with no next step
-        raise NotExportable(f"the law of {target} lags the diagnosed effect's lag "
-                            f"{'; '.join(lagged)} (a second-order lag): the code's lags are "
-                            "first-order; the served model runs it (thermocomp serve, connect), "
-                            "or diagnose with model=mlr, whose code holds that lag as a "
-                            "first-order channel")
     gain = None
     if horizon_s is not None:
-        gain = derived.columns(step_gain(est, None, horizon_s))
+        gain = step_gain(est, None, horizon_s)
         if gain is None:
             raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
                                 f"{a:.3g}): the envelope clamp needs one; export it with "
                                 "promote.envelope.policy=off")
+    out = []
+    for half in range(1 + whole):
+        cut = slice(half * width, (half + 1) * width) if whole else slice(None)
+        laws = _laws(0.0 if half else c, b0[cut], {d: r[cut] for d, r in delayed.items()},
+                     [(tau, j - half * width, g) for tau, j, g in lags
+                      if not whole or half * width <= j < (half + 1) * width],
+                     a, None if gain is None else gain[cut], w, cols, len(inputs), target,
+                     derived, blocks, extra, feats)
+        for law in laws if half else ():
+            law.ambient = True          # the interaction's: times A0 - 20 (a step's too)
+        out += laws
+    return out, period
+
+
+def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, extra, feats):
+    """:func:`_member_laws`' laws of one estimator's coefficients over ``[x, blocks, derived
+    inputs, low-pass blocks, powers]`` (in the effects' order: :meth:`Derived.canonical`)."""
+    k = len(cols)
+    own_x = k * (1 + len(blocks))
+    end = own_x + len(extra)
+    width = end + k * len(derived.lowpass)
+    b0, delayed, lags = derived.canonical(b0, delayed, lags)
+    gain = derived.columns(gain)
+    if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
+        raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
+                            "code's input history holds the inputs only")
     pw = n + np.asarray(feats, int)                     # the powers' places in [x, powers]
     dx = n + np.asarray([f for f, _ in extra], int)     # the derived inputs' places
     out = []
-    for ambient in (False, True) if interacts else (False,):
-        x = slice(k, 2 * k) if ambient else slice(0, k)
+    for b, block in enumerate([None, *blocks]):
+        x = slice(b * k, (b + 1) * k)
         terms = [(cols, w * b0[x])]
-        own = [(tau, int(cols[j - x.start]), w * g) for tau, j, g in lags if x.start <= j < x.stop]
-        if not ambient:
+        own = [(tau, int(cols[j - x.start]), w * g, PLAIN) for tau, j, g in lags
+               if x.start <= j < x.stop]
+        if block is None:
             terms += [(dx, w * b0[own_x:end]), (pw, w * b0[width:])]
-            own += [(tau, int(dx[j - own_x]), w * g) for tau, j, g in lags if own_x <= j < end]
-            own += [(tau, int(pw[j - width]), w * g) for tau, j, g in lags if j >= width]
+            # the base's lag of a derived input: of an effect's lag L1[r], a lag of that lag's
+            # channel (a cascade, its source tau; exportrest60: the lag bank's second order)
+            own += [(tau, int(dx[j - own_x]), w * g, extra[j - own_x][1] or PLAIN)
+                    for tau, j, g in lags if own_x <= j < end]
+            own += [(tau, int(pw[j - width]), w * g, PLAIN) for tau, j, g in lags if j >= width]
             # an effect's lag L[r] = r + (L[r] - r): its coefficient on r and on the lag channel
-            own += [(tau, int(dx[i]), w * b0[own_x + i]) for i, (_, tau) in enumerate(extra)
+            own += [(tau, int(dx[i]), w * b0[own_x + i], PLAIN) for i, (_, tau) in enumerate(extra)
                     if tau is not None]
             for m, tau in enumerate(derived.lowpass):     # L[x] = x + (L[x] - x), per input
-                block = w * b0[end + m * k:end + (m + 1) * k]
-                terms.append((cols, block))
-                own += [(tau, int(cols[j]), g) for j, g in enumerate(block)]
-        out.append(Law(0.0 if ambient else w * c, terms,
+                lowpass = w * b0[end + m * k:end + (m + 1) * k]
+                terms.append((cols, lowpass))
+                own += [(tau, int(cols[j]), g, PLAIN) for j, g in enumerate(lowpass)]
+            # the base's lag of a low-pass copy L1[x_j]: a cascade on x_j's channel
+            own += [(tau, int(cols[(j - end) % k]), w * g, derived.lowpass[(j - end) // k])
+                    for tau, j, g in lags if end <= j < width]
+        # x [A0 > A_thr] (a step) counts where A0 > A_thr: the law of its block there
+        lo = block[1] if block is not None and block[0] == "step" else -UNBOUNDED
+        out.append(Law(0.0 if block else w * c, terms,
                        {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
-                       None if gain is None else w * _spread(gain[x], cols, n), ambient=ambient))
-    return out, period
+                       None if gain is None else w * _spread(gain[x], cols, n), lo=lo,
+                       ambient=block is not None and block[0] == "ambient"))
+    return out
 
 
 def _one_period(period: float | None, own: float) -> float:

@@ -53,13 +53,20 @@ def described(laws: list) -> str | None:
     """``'lagbank'``, ``'blend mlr 0.62 + ati 0.38 (A0 <= 23.5 | A0 > 23.5 +interaction)'`` of
     ``members``' list; of a plain model ``None``, of a plain ATI model its intervals."""
     if laws[0][0] is None:
-        est = laws[0][2]
-        return f"ati {intervals(est)}" if isinstance(est, ATIRegressor) else None
-    named = [f"{name} {intervals(e)}" if isinstance(e, ATIRegressor) else str(name)
+        ati = _ati(laws[0][2])
+        return f"ati {intervals(ati)}" if ati is not None else None
+    named = [f"{name} {intervals(_ati(e))}" if _ati(e) is not None else str(name)
              for name, _, e in laws]
     if len(laws) == 1:
         return named[0]
     return "blend " + " + ".join(f"{n} {w:.4g}" for n, (_, w, _) in zip(named, laws))
+
+
+def _ati(est) -> ATIRegressor | None:
+    """The ATI model ``est`` is, or that a diagnosed model's effects are around (exportrest60);
+    None: neither."""
+    est = est.estimator_ if is_diagnosed(est) else est
+    return est if isinstance(est, ATIRegressor) else None
 
 
 def intervals(est: ATIRegressor) -> str:

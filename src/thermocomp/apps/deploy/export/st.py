@@ -54,14 +54,24 @@ def _indent(code: str) -> str:
     return "".join("    " + line if line.strip() else line for line in code.splitlines(True))
 
 
+def _spread(columns: list, values: list, n: int) -> list:
+    """``values`` at ``columns`` of a row of ``n`` zeros."""
+    row = [0.0] * n
+    for j, v in zip(columns, values):
+        row[j] = v
+    return row
+
+
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
-    p, r, q = len(ss.powers), len(ss.laws), len(ss.derived)
+    p, r, qi = len(ss.powers), len(ss.laws), len(ss.initial)
+    q = len(ss.derived) + qi       # the derived inputs, then the transients' (N_DERIVED first)
     consts = "\n".join([
         f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    N_LAWS : INT := {r};",
         f"    TAPS : INT := {taps};",
         f"    DEPTH : INT := {d};", f"    N_LAGS : INT := {k};", f"    N_POWERS : INT := {p};",
-        f"    N_DERIVED : INT := {q};",
+        f"    N_DERIVED : INT := {len(ss.derived)};",
+        f"    N_INITIAL : INT := {qi};",
         f"    CLAMP : BOOL := {'TRUE' if ss.clamp else 'FALSE'};",
         f"    REAL_LIMIT : LREAL := {literal(LREAL_MAX)};",
         _constant("FIR", ss.fir, (taps, n)), _constant("REFERENCED", ss.referenced, (n,)),
@@ -78,6 +88,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("TAU", ss.taus, (k,)),
         _constant("LAG_INPUT", ss.lag_input, (k,), "INT"),
         _constant("LAG_REST", ss.lag_rest or [0] * k, (k,), "INT"),
+        _constant("LAG_OF", ss.lag_of or [-1] * k, (k,), "INT"),
         _constant("INTERCEPT", ss.intercept, (r,)), _constant("B0", ss.b0, (r, n + p + q)),
         _constant("LAW_TARGET", ss.laws, (r,), "INT"),
         _constant("LAW_LO", ss.law_lo or [-LREAL_MAX] * r, (r,)),
@@ -91,7 +102,11 @@ def function_block(ss: StateSpace) -> str:
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         _constant("HELD", ss.held or [], (n,), "INT"),
-        *(_constant(f"DERIVED_{name}", [f[i] for f in ss.derived], (q,), "INT")
+        _constant("INITIAL_TAU", [f[0] for f in ss.initial], (qi,)),
+        _constant("INITIAL_W", [_spread(f[1], f[2], n) for f in ss.initial], (qi, n)),
+        _constant("INITIAL_SENSOR", [_spread(f[1], [1] * len(f[1]), n) for f in ss.initial],
+                  (qi, n), "INT"),
+        *(_constant(f"DERIVED_{name}", [f[i] for f in ss.derived], (len(ss.derived),), "INT")
           for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
         _constant("BD", ss.bd, (r, d, n)), _constant("G", ss.g, (r, k)), _constant("AR", ss.ar, (r,)),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
@@ -142,6 +157,10 @@ VAR
     seen : ARRAY[{_dims(n)}] OF BOOL;
     uu : ARRAY[{_dims(n)}] OF LREAL;
     ra : LREAL;
+    t0 : LREAL;
+    init_start : ARRAY[{_dims(qi)}] OF LREAL;
+    init_started : ARRAY[{_dims(qi)}] OF BOOL;
+    any_seen : BOOL;
     rb : LREAL;
     hist : ARRAY[{_dims(2, d, n)}] OF LREAL;
     z : ARRAY[{_dims(2, k)}] OF LREAL;
@@ -274,6 +293,7 @@ IF NOT refused THEN
             a0 := a0 + v[AMBIENT_INPUT[l]];
         END_FOR;
         a0 := a0 / AMBIENT_COUNT;
+        t0 := now;
         FOR r := 0 TO N_LAWS - 1 DO
             factor[r] := 0.0;
             IF a0 > LAW_LO[r] AND a0 <= LAW_HI[r] THEN
@@ -375,10 +395,39 @@ IF NOT refused THEN
         x[0, N_INPUTS + N_POWERS + l] := ra * rb;
         x[1, N_INPUTS + N_POWERS + l] := 0.0;
     END_FOR;
+    (* a diagnosed lag's initial-state transient: w . (c(0) - A0) (1 - EXP(-(t - t0) / tau)), *)
+    (* c(0) its sensors at the campaign's first sample that has one of them (a missing one: 0) *)
+    FOR l := 0 TO N_INITIAL - 1 DO
+        IF first THEN
+            init_started[l] := FALSE;
+            init_start[l] := 0.0;
+        END_IF;
+        IF NOT init_started[l] THEN
+            any_seen := FALSE;
+            w := 0.0;
+            FOR j := 0 TO N_INPUTS - 1 DO
+                IF INITIAL_SENSOR[l, j] <> 0 AND u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
+                    w := w + INITIAL_W[l, j] * (v[j] - a0);
+                    any_seen := TRUE;
+                END_IF;
+            END_FOR;
+            IF any_seen THEN
+                init_start[l] := w;
+                init_started[l] := TRUE;
+            END_IF;
+        END_IF;
+        j := N_INPUTS + N_POWERS + N_DERIVED + l;
+        x[0, j] := init_start[l] * (1.0 - EXP(-(now - t0) / INITIAL_TAU[l]));
+        x[1, j] := 0.0;
+    END_FOR;
     (* first-order lags *)
     FOR h := 0 TO 1 DO
         FOR l := 0 TO N_LAGS - 1 DO
-            xl[h, l] := x[h, LAG_INPUT[l]];
+            IF LAG_OF[l] >= 0 THEN   (* a cascade: a lag of a lag (after it), on its new value *)
+                xl[h, l] := z[h, LAG_OF[l]];
+            ELSE
+                xl[h, l] := x[h, LAG_INPUT[l]];
+            END_IF;
             IF first AND LAG_REST[l] <> 0 THEN   (* a machine state at rest (Hammerstein) *)
                 z[h, l] := 0.0;
             ELSIF first THEN
@@ -425,7 +474,7 @@ IF NOT refused THEN
             ELSE
                 ych[h] := 0.0;
             END_IF;
-            FOR j := 0 TO N_INPUTS + N_POWERS + N_DERIVED - 1 DO
+            FOR j := 0 TO N_INPUTS + N_POWERS + N_DERIVED + N_INITIAL - 1 DO
                 ych[h] := ych[h] + B0[r, j] * x[h, j];
             END_FOR;
             FOR l := 0 TO DEPTH - 1 DO

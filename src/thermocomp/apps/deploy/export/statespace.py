@@ -15,6 +15,9 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
 3b. a diagnosed model's derived inputs after the powers (``derived``: ``r_a r_b``, ``r_j = v_j
    - v_j(0)`` in the effect's frame, ``v(0)`` the first value; a signal only they read is
    ``held`` when missing, as the model holds its context): :func:`.derived.derived_inputs`;
+   then a diagnosed lag's initial-state transient (``initial``: ``w . (c(0) - A0) (1 - exp(-(t
+   - t0)/tau))``, ``c(0)`` its sensors at the first sample that has one of them, a missing one
+   0, ``A0`` the campaign's initial ambient, ``t0`` its first sample's time; exportrest60);
 4. per law ``r``: ``y_r = c_r + b0_r . x + sum_d bd_r[d] . x(t-d) + sum_k g_r[k] (z_k - x[lag_input_k])
    + a_r y_r(t-1)``, and per target ``t`` the sum of its laws ``y_t = sum_{law_target[r] = t} y_r``
    times the law's factor for the campaign (one law per target, factor 1; a ``model=auto``
@@ -23,10 +26,12 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    initial ambient ``A0``, the mean of ``ambient_inputs`` at its first sample, its ambient
    interaction's times ``A0 - ambient_centre``: :mod:`.laws`), with the input history
    ``x(t-d)`` (``d = 1..depth``) and the first-order lags ``z_k <- e_k z_k + (1 - e_k)
-   x[lag_input_k]``, ``e_k = exp(-dt / tau_k)``, ``dt`` the time since the previous sample
-   (``time_period`` without one, timerule.py); the same system, without intercept and powers,
-   runs on ``ex`` (its own history, lags and feedback) to ``r_t``, the
-   response to the excess; the output is ``y_t - clip(r_t, -b_t, b_t)`` (``y_t - r_t`` where
+   x[lag_input_k]`` (``z[lag_of_k]``, that lag's new value, for a cascade: a lag bank's lag of a
+   diagnosed effect's lag; its term ``g (z_k - z[lag_of_k])``), ``e_k = exp(-dt / tau_k)``,
+   ``dt`` the time since the previous sample (``time_period`` without one, timerule.py); the
+   same system, without intercept and powers, runs on ``ex`` (its own history, lags and
+   feedback) to ``r_t``, the response to the excess; the output is ``y_t - clip(r_t, -b_t,
+   b_t)`` (``y_t - r_t`` where
    ``clamp_outright_t``: the stream's clamp of a model without a step gain), ``b_t = |clamp_gain_t .
    ex|`` the response to the excess held for the envelope's horizon (as the stream does); at a
    sample within the envelope (``ex = 0``) after an excess, ``b_t`` is the last excess's (0
@@ -63,9 +68,9 @@ from ....core.frame import ambient_c0
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
-from .derived import DERIVED
+from .derived import DERIVED, INITIAL
 from .errors import NotExportable
-from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, UNBOUNDED, Powers, target_laws
+from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws
 from .output import Output, adapt_fields, guard_fields, time_fields
 
 FORMATS = ("json", "c", "st", "onnx")
@@ -98,6 +103,9 @@ class StateSpace:
     powers: list = field(default_factory=list)
     lag_rest: list = field(default_factory=list)   # (n_lags,) 1: starts at 0, not at its input
                                                    # (a Hammerstein state at rest); [] none
+    # (n_lags,) the lag whose output is this lag's input (-1: x[lag_input]): a lag bank's lag of
+    # a diagnosed effect's lag, a cascade after its source (exportrest60); [] none
+    lag_of: list = field(default_factory=list)
     # a diagnosed model's derived inputs, after the powers: [a, b, ra, rb], r_a r_b (b = -1: r_a)
     # of r_j = v_j - rj v_j(0), v(0) the campaign's first sample (:func:`.derived.derived_inputs`)
     derived: list = field(default_factory=list)
@@ -105,6 +113,10 @@ class StateSpace:
     # not refuse the sample, it is held at the campaign's last one (0 before any: its derived
     # inputs 0, its first value their reference), as the diagnosed model holds its context
     held: list = field(default_factory=list)
+    # a diagnosed lag's initial-state transient, after the derived inputs, one per direction:
+    # [tau, [sensor input indices], [weights]]: w . (v(0) - A0) (1 - exp(-(t - t0) / tau)),
+    # v(0) the sensors at the campaign's first sample that has one of them (a missing one: 0)
+    initial: list = field(default_factory=list)
     clamp_gain: list | None = None   # (n_laws, n_inputs) step gain at the horizon (clamp only)
     # (n_targets,) 1: the response to the excess is taken out whole (b_t infinite): the stream
     # clamps a model without a step gain (a diagnosed one) outright; empty: none
@@ -216,25 +228,27 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
             chosen[t] = kept
     _in_code_order(laws, powers, N)
     ati = any(law.key != (-UNBOUNDED, UNBOUNDED, False) for _, law in laws)
-    ambient = _ambient_inputs(stream, inputs, ati, known_ambient)
-    read = {inputs[k[1] if k[0] == DERIVED else k[0]] for k in powers} | {
-        inputs[k[2]] for k in powers if k[0] == DERIVED and k[2] >= 0} | {inputs[j] for j in ambient}
+    initial = [k for k in sorted(powers, key=powers.get) if k[0] == INITIAL]
+    ambient = _ambient_inputs(stream, inputs, ati or bool(initial), known_ambient)
+    read = {inputs[j] for j in _read(powers)} | {inputs[j] for j in ambient}
     if any(c not in read for c in states):
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
                             f"only the families {', '.join(LINEAR_FAMILIES)} export to C/ST")
     width = N + len(powers)
     depth = max((d for _, law in laws for d in law.delayed), default=0)
-    keys = sorted({(tau, j) for _, law in laws for tau, j, _ in law.lags})
+    # (tau, input, source): the plain lags first, then the cascades on them (a lag's lag)
+    keys = sorted({(tau, j, src) for _, law in laws for tau, j, _, src in law.lags},
+                  key=lambda k: (k[2] != PLAIN, *k))
     where = {k: i for i, k in enumerate(keys)}
     targets = list(stream.targets_)
     b0 = np.zeros((len(laws), width))
     g = np.zeros((len(laws), len(keys)))
     bd = np.zeros((len(laws), depth, N))
     for r, (_, law) in enumerate(laws):
-        for cols, row in law.terms:
-            b0[r, cols] += row
-        for tau, j, gain in law.lags:
-            g[r, where[(tau, j)]] += gain
+        for cols, row in law.terms:     # one place twice (two effects on one derived input,
+            np.add.at(b0[r], cols, row)   # a lag and the signal as read): both coefficients
+        for tau, j, gain, src in law.lags:
+            g[r, where[(tau, j, src)]] += gain
         for d, row in law.delayed.items():
             bd[r, d - 1] = row
     period = float(period) if period is not None else 0.0
@@ -244,16 +258,19 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         lo=env.lo.tolist() + [-UNBOUNDED] * len(states) if clamp else None,
         hi=env.hi.tolist() + [UNBOUNDED] * len(states) if clamp else None,
         depth=int(depth), taus=[k[0] for k in keys], lag_input=[k[1] for k in keys],
-        lag_rest=[int(j - N in powers.rest) for _, j in keys] if powers.rest else [],
+        lag_rest=[int(j - N in powers.rest) for _, j, _ in keys] if powers.rest else [],
+        lag_of=[-1 if src == PLAIN else where[(src, j, PLAIN)] for _, j, src in keys]
+        if any(k[2] != PLAIN for k in keys) else [],
         lag_decay=[float(np.exp(-period / k[0])) for k in keys], period=period,
         intercept=[float(law.c) for _, law in laws], b0=b0.tolist(),
         bd=bd.tolist(), g=g.tolist(), ar=[float(law.a) for _, law in laws],
         law_target=[i for i, _ in laws], law_lo=[law.lo for _, law in laws],
         law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
         ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C,
-        uses_time=bool(keys),
-        powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] != DERIVED],
+        uses_time=bool(keys) or bool(initial),
+        powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] not in (DERIVED, INITIAL)],
         derived=[list(k[1:]) for k in sorted(powers, key=powers.get) if k[0] == DERIVED],
+        initial=[[k[3], list(k[1]), list(k[2])] for k in initial],
         held=_held(inputs, n, powers, ambient),
         clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
                     for _, law in laws] if clamp else None,
@@ -271,17 +288,31 @@ def _held(inputs: list, n: int, powers: dict, ambient: list) -> list[int]:
     the ``n`` declared inputs, no ambient sensor): the stream checks the declared inputs and the
     ambient sensors only, and a Hammerstein model and the diagnosed model hold a missing value of
     their context (0 before a campaign's first); the code refused the sample (lead59)."""
-    read = {k[0] for k in powers if k[0] != DERIVED} | {
-        j for k in powers if k[0] == DERIVED for j in (k[1], k[2]) if j >= 0}
+    read = _read(powers)
     held = [int(j >= n and j in read and j not in ambient) for j in range(len(inputs))]
     return held if any(held) else []
 
 
+def _read(powers: dict) -> set:
+    """The inputs the registered features read (a power's, a derived input's, a transient's
+    sensors)."""
+    out = set()
+    for k in powers:
+        if k[0] == DERIVED:
+            out |= {j for j in k[1:3] if j >= 0}
+        elif k[0] == INITIAL:
+            out |= set(k[1])
+        else:
+            out.add(k[0])
+    return out
+
+
 def _in_code_order(laws: list, powers: Powers, n: int) -> None:
     """The registered features (``powers``, in the order the targets registered them) put in
-    the code's order, the powers first, then the derived inputs: the laws' places (after the
-    ``n`` inputs), ``powers``' values and its powers at rest renumbered in place."""
-    order = sorted(powers, key=lambda k: (k[0] == DERIVED, powers[k]))
+    the code's order, the powers first, then the derived inputs, then the transients: the laws'
+    places (after the ``n`` inputs), ``powers``' values and its powers at rest renumbered in place."""
+    rank = {DERIVED: 1, INITIAL: 2}       # powers, then derived inputs, then transients
+    order = sorted(powers, key=lambda k: (rank.get(k[0], 0), powers[k]))
     new = {powers[k]: i for i, k in enumerate(order)}
     move = np.array([new[i] for i in range(len(powers))] or [0], int)
 
@@ -291,7 +322,7 @@ def _in_code_order(laws: list, powers: Powers, n: int) -> None:
 
     for _, law in laws:
         law.terms = [(place(cols), row) for cols, row in law.terms]
-        law.lags = [(tau, int(place(j)), g) for tau, j, g in law.lags]
+        law.lags = [(tau, int(place(j)), g, src) for tau, j, g, src in law.lags]
     for k in order:
         powers[k] = new[powers[k]]
     powers.rest, powers.steady = {new[i] for i in powers.rest}, {new[i] for i in powers.steady}
@@ -307,7 +338,8 @@ def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> list[int]:
     if not stream.ambient_columns:
         if not known:
             return []
-        raise NotExportable("the ATI model reads each campaign's initial ambient from the "
+        raise NotExportable("the ATI model (a diagnosed ambient law, step or initial-state "
+                            "transient) reads each campaign's initial ambient from the "
                             "manifest's ambient_c (no T_amb sensor among the data's columns): the "
                             "code has no input for it; a T_amb sensor exports")
     return [inputs.index(c) for c in stream.ambient_columns]
@@ -338,7 +370,8 @@ class Simulator:
             tuple(ss.inputs), lo, hi, mean=np.asarray(ss.pattern_mean, float),
             scale=np.asarray(ss.pattern_scale, float), tol=ss.pattern_tol,
             basis=np.asarray(ss.pattern_basis, float).reshape(n, -1))
-        self.b0 = np.asarray(ss.b0, float).reshape(laws, n + len(ss.powers) + len(ss.derived))
+        self.b0 = np.asarray(ss.b0, float).reshape(
+            laws, n + len(ss.powers) + len(ss.derived) + len(ss.initial))
         self.bd = np.asarray(ss.bd, float).reshape(laws, ss.depth, n)
         self.g = np.asarray(ss.g, float).reshape(laws, len(ss.taus))
         self.sum = np.zeros((laws, m))            # law -> the target it adds to
@@ -346,6 +379,7 @@ class Simulator:
         self.taus = np.asarray(ss.taus, float)
         self.lag_input = np.asarray(ss.lag_input, int)
         self.lag_rest = np.asarray(ss.lag_rest or [0] * len(ss.taus), bool)
+        self.lag_of = np.asarray(ss.lag_of or [-1] * len(ss.taus), int)
         self.output = Output(ss)       # guard and reference update: what is learned stays
         self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
         self.reset()
@@ -378,7 +412,7 @@ class Simulator:
         measured = np.isfinite(u)
         self.last = np.where(measured, u, self.last)
         u = np.where(measured, u, np.where(self.seen, self.last, 0.0))     # a held signal
-        _, dt, _ = self.clock.step(float(time))
+        now, dt, _ = self.clock.step(float(time))
         if self.first:
             self.buf = np.tile(u, (len(self.fir), 1))
         else:
@@ -388,6 +422,9 @@ class Simulator:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
             a0 = ambient_c0(v[ss.ambient_inputs]) if ss.ambient_inputs else 0.0
             self.factor = ss.factors(a0)          # the campaign's laws (ATI), fixed over it
+            self.a0, self.t0 = a0, now
+            self.start = np.zeros(len(ss.initial))        # a transient's w . (v(0) - A0)
+            self.started = np.zeros(len(ss.initial), bool)
         x = v - self.ref
         excess = self.envelope.excess(x) if ss.clamp else np.zeros_like(x)
         xe = x                      # [x, static powers of machine states (Hammerstein basis)]
@@ -404,17 +441,23 @@ class Simulator:
             ta = np.where(self.seen[a], v[a] - ra * self.v0[a], 0.0)
             tb = np.where(b < 0, 1.0, np.where(self.seen[b], v[b] - rb * self.v0[b], 0.0))
             xe = np.r_[xe, ta * tb]
+        if ss.initial:      # a diagnosed lag's initial-state transient, as the model computes it
+            xe = np.r_[xe, self._transient(v, measured, now)]
         # two channels of one system: the measured inputs, and their excess (no powers, no intercept)
         xs = np.vstack([xe, np.r_[excess, np.zeros(len(xe) - len(x))]])
         xl = xs[:, self.lag_input]
         first = self.first
+        e = None if self.first else np.exp(-dt / self.taus)
         if self.first:
             self.hist = np.repeat(xs[:, None, :len(x)], ss.depth, axis=1)
-            self.z, self.y = np.where(self.lag_rest, 0.0, xl), np.zeros((2, len(ss.laws)))
+            z, self.y = np.where(self.lag_rest, 0.0, xl), np.zeros((2, len(ss.laws)))
             self.bound = np.zeros(len(ss.targets))
         else:
-            e = np.exp(-dt / self.taus)
-            self.z = e * self.z + (1.0 - e) * xl
+            z = e * self.z + (1.0 - e) * xl
+        for k in np.flatnonzero(self.lag_of >= 0):     # a cascade: on its source's new value
+            xl[:, k] = z[:, self.lag_of[k]]
+            z[:, k] = xl[:, k] if e is None else e[k] * self.z[:, k] + (1.0 - e[k]) * xl[:, k]
+        self.z = z
         y = (np.outer([1.0, 0.0], ss.intercept) + xs @ self.b0.T
              + np.einsum("tdi,sdi->st", self.bd, self.hist) + (self.z - xl) @ self.g.T
              + np.asarray(ss.ar) * self.y)
@@ -428,6 +471,16 @@ class Simulator:
         self.c = self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt,
                                   self.output.allowance(x, self.envelope))
         return self.c.copy()
+
+    def _transient(self, v: np.ndarray, measured: np.ndarray, now: float) -> np.ndarray:
+        """Each direction's ``w . (v(0) - A0) (1 - exp(-(t - t0) / tau))``: ``v(0)`` its sensors at
+        the campaign's first sample that has one of them (a missing one: 0), 0 before it."""
+        for i, (_, sensors, w) in enumerate(self.ss.initial):
+            if not self.started[i] and measured[sensors].any():
+                self.start[i] = np.asarray(w, float) @ np.where(measured[sensors], v[sensors] - self.a0, 0.0)
+                self.started[i] = True
+        taus = np.array([tau for tau, _, _ in self.ss.initial], float)
+        return self.start * (1.0 - np.exp(-(now - self.t0) / taus))
 
     def _summed(self, per_law: np.ndarray) -> np.ndarray:
         """Per target: its laws' values (last axis) times their factors, summed (a law out of
