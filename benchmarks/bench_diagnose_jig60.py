@@ -41,7 +41,10 @@ explain, they choose nothing)
    longest, through Saturday morning, which no train session reaches; train 20.7-27.4 h).  Their
    initial ceiling offsets (c(0) - A0: -2.20 / -0.84 K) lie in the train range (-2.43..+0.64).
    The MLR's test residual is mostly two session offsets, present within 15 min of the start:
-   S07 mean +0.56 µm (sd 0.43), S08 +0.99 (sd 0.44); the CV sessions' were -0.13..+0.12.
+   S07 mean +0.56 µm (sd 0.43), S08 +0.99 (sd 0.44); the CV sessions' were -0.13..+0.12.  The
+   MLR's start: it predicts its intercept, -0.43 µm, at the first sample (the inputs' rises are
+   0 there) and -0.45..-1.30 over the next 7 minutes, while the probes read -0.6..+1.1 (residual
+   over samples 1-10: +0.83 / +1.08 µm); the lagged model predicts -0.21..+0.04 there.
 4. **What the lag fits.**  Least squares on the 6 sessions with the inputs and their 1 h lags
    moves the weight onto the lags (raw coefficients 0.0-1.0 µm/K; lags: head +13.5, head top
    -17.5, column rear upper +7.7, column front lower -6.4): a low-pass of the inputs.  A 2 min
@@ -228,7 +231,9 @@ def forensics(root: Path) -> None:
             rb, ra = y - pb[c][1][TARGET].to_numpy(), y - pa[c][1][TARGET].to_numpy()
             row += (f" | test RMSE {np.sqrt(np.mean(rb ** 2)):.3f} -> {np.sqrt(np.mean(ra ** 2)):.3f}, "
                     f"mean {rb.mean():+.2f} -> {ra.mean():+.2f}, "
-                    f"residual at 5 / 15 min {rb[5]:+.2f} / {rb[15]:+.2f}")
+                    f"residual at 5 / 15 min {rb[5]:+.2f} / {rb[15]:+.2f}; first 8 samples: measured "
+                    f"{np.round(y[:8], 2)}, before {np.round(pb[c][1][TARGET].to_numpy()[:8], 2)}, "
+                    f"after {np.round(pa[c][1][TARGET].to_numpy()[:8], 2)}")
         print(row)
     # 4. what the lag fits: short lags' CV gains
     s.effects = []
