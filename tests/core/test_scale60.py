@@ -1,0 +1,61 @@
+"""A year's lag bank at small size: its fit's copies of the design, measured by tracemalloc on a
+few thousand rows, with the bounds scaled as on the year (scale60; the timing is
+benchmarks/bench_scale60.py, never a test)."""
+
+import tracemalloc
+
+import numpy as np
+import pandas as pd
+
+from thermocomp.core.model_selection.splitters import ForwardChaining
+from thermocomp.core.models import lagbank
+
+
+def _traced_peak(fn, *args, **kwargs):
+    """``(result, bytes allocated at the peak of fn above what was held before it)``."""
+    tracemalloc.start()
+    try:
+        before = tracemalloc.get_traced_memory()[0]
+        out = fn(*args, **kwargs)
+        return out, tracemalloc.get_traced_memory()[1] - before
+    finally:
+        tracemalloc.stop()
+
+
+def _record(n: int, p: int, seed: int = 60):
+    """One long record at 1 min: p drifting sensors and an error that lags them."""
+    rng = np.random.default_rng(seed)
+    X = 20.0 + np.cumsum(rng.normal(0.0, 0.02, (n, 3)), axis=0) @ rng.normal(size=(3, p))
+    X += rng.normal(0.0, 0.03, (n, p))
+    y = pd.Series(X[:, 0]).ewm(alpha=0.01).mean().to_numpy() - 0.5 * X[:, 1] + rng.normal(0, 0.1, n)
+    return X, y, pd.DataFrame({"time": 60.0 * np.arange(n)})
+
+
+def _forward_splits(n: int):
+    splitter = ForwardChaining(5, gap=10, min_train_fraction=0.5)
+    return [rows for split in splitter.split(np.zeros((n, 1))) for rows in split]
+
+
+def test_forward_chaining_grams_in_blocks_equal_each_folds_own(monkeypatch):
+    monkeypatch.setattr(lagbank, "PREFIX_BLOCK_BYTES", 8 * 7 * 50, raising=False)   # 50-row blocks
+    rng = np.random.default_rng(0)
+    Z = rng.normal(size=(1000, 7)) @ rng.normal(size=(7, 7)) + 3.0 * rng.normal(size=7)
+    splits = _forward_splits(len(Z))
+
+    for (mean, gram), tr in zip(lagbank._training_grams(Z, splits), splits[::2]):
+        centred = Z[tr] - Z[tr].mean(axis=0)
+        np.testing.assert_allclose(mean, Z[tr].mean(axis=0), rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(gram, centred.T @ centred, rtol=1e-11, atol=1e-9)
+
+
+def test_forward_chaining_grams_hold_no_copy_of_a_folds_rows(monkeypatch):
+    # a year: each fold copied its training rows (up to 0.9 of 1.2 GB) and held the last fold's
+    # while copying the next; the blocks are 64 MB there, scaled here to a twentieth of Z
+    Z = np.random.default_rng(1).normal(size=(20000, 30))
+    monkeypatch.setattr(lagbank, "PREFIX_BLOCK_BYTES", Z.nbytes / 20, raising=False)
+    splits = _forward_splits(len(Z))
+
+    grams, peak = _traced_peak(lambda: list(lagbank._training_grams(Z, splits)))
+
+    assert len(grams) == 5
+    assert peak < 0.25 * Z.nbytes, f"{peak / Z.nbytes:.2f} x the design held at once"
