@@ -59,3 +59,19 @@ def test_forward_chaining_grams_hold_no_copy_of_a_folds_rows(monkeypatch):
 
     assert len(grams) == 5
     assert peak < 0.25 * Z.nbytes, f"{peak / Z.nbytes:.2f} x the design held at once"
+
+
+def test_a_one_record_fit_holds_the_features_and_one_standardised_copy(monkeypatch):
+    # a year: the refit standardised the design again while the CV's copy was still held, three
+    # 1.2 GB arrays at once; now the features (remembered) and one copy, and the scaler's fit
+    monkeypatch.setattr(lagbank, "_lag_bank_features",
+                        lagbank.ArrayMemo(lagbank.lag_features, max_bytes=lagbank.LAG_FEATURES_MAX_BYTES))
+    lagbank.LagBank().fit(*_record(300, 2)[:2], context=_record(300, 2)[2])  # imports: not traced
+    X, y, context = _record(20000, 6)
+    features = X.nbytes * 9                                  # 8 lags and the levels
+    monkeypatch.setattr(lagbank, "PREFIX_BLOCK_BYTES", features / 20, raising=False)
+
+    model, peak = _traced_peak(lagbank.LagBank().fit, X, y, context=context)
+
+    assert model.coef_.size == 54
+    assert peak < 2.5 * features, f"{peak / features:.2f} x the features held at once"

@@ -563,6 +563,9 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                                     "level_penalty": ratio,
                                     **_summary("cv_mse_free_run", free),
                                     **_summary("cv_mse_one_step", scores["one_step"][:, i])})
+        # the refit standardises its design again: the last design's copies (a year's 1.2 GB
+        # each) are not held with it
+        del D, Z, Zw
         table = pd.DataFrame(records)
         design = self._keep_choice(table, self._choose(table[table["design"] != "increments"]))
         self.coef_, self.ar_coef_, self.intercept_ = self._refit(
