@@ -75,3 +75,18 @@ def test_a_one_record_fit_holds_the_features_and_one_standardised_copy(monkeypat
 
     assert model.coef_.size == 54
     assert peak < 2.5 * features, f"{peak / features:.2f} x the features held at once"
+
+
+def test_lag_features_are_written_once_into_their_array():
+    # a year: the lags were written apart (1 GB) and copied into the features (1.2 GB)
+    from thermocomp.core.models._pooled import lag_features
+
+    X, _, context = _record(20000, 6)
+    time_s, taus = context["time"].to_numpy(), np.geomspace(60.0, 172800.0, 8)
+    runs = np.repeat([0, 1], 10000)
+    lag_features(X[:300], time_s[:300], runs[:300], taus)                # imports: not traced
+
+    F, peak = _traced_peak(lag_features, X, time_s, runs, taus)
+
+    assert F.shape == (20000, 54)
+    assert peak < 1.3 * F.nbytes, f"{peak / F.nbytes:.2f} x the features held at once"
