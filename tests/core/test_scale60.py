@@ -50,7 +50,7 @@ def test_forward_chaining_grams_in_blocks_equal_each_folds_own(monkeypatch):
 
 def test_forward_chaining_grams_hold_no_copy_of_a_folds_rows(monkeypatch):
     # a year: each fold copied its training rows (up to 0.9 of 1.2 GB) and held the last fold's
-    # while copying the next; the blocks are 64 MB there, scaled here to a twentieth of Z
+    # while copying the next; the blocks are 16 MB there, here (larger) a twentieth of Z
     Z = np.random.default_rng(1).normal(size=(20000, 30))
     monkeypatch.setattr(lagbank, "PREFIX_BLOCK_BYTES", Z.nbytes / 20, raising=False)
     splits = _forward_splits(len(Z))
