@@ -6,6 +6,7 @@ import tracemalloc
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from thermocomp.core.model_selection.splitters import ForwardChaining
 from thermocomp.core.models import lagbank
@@ -90,3 +91,31 @@ def test_lag_features_are_written_once_into_their_array():
 
     assert F.shape == (20000, 54)
     assert peak < 1.3 * F.nbytes, f"{peak / F.nbytes:.2f} x the features held at once"
+
+
+@pytest.mark.parametrize("shape", [(1000, 7), (20000, 30), (3, 2)])
+def test_the_blocked_standardisation_is_scikit_learns_bit_for_bit(monkeypatch, shape):
+    from sklearn.preprocessing import StandardScaler
+
+    monkeypatch.setattr(lagbank, "PREFIX_BLOCK_BYTES", 8 * shape[1] * 97, raising=False)  # 97-row blocks
+    rng = np.random.default_rng(shape[0])
+    D = rng.normal(size=shape) * rng.uniform(0.1, 1e3, shape[1]) + rng.normal(0.0, 1e4, shape[1])
+    D[:, 0] = 2.5                                        # a constant column: scale 1
+    ours, theirs = lagbank.standard_scaler(D), StandardScaler().fit(D)
+
+    for name in ("mean_", "var_", "scale_"):
+        np.testing.assert_array_equal(getattr(ours, name), getattr(theirs, name))
+    assert ours.n_samples_seen_ == theirs.n_samples_seen_
+    np.testing.assert_array_equal(lagbank.standardised(D, ours), theirs.transform(D))
+
+
+def test_the_standardisation_holds_no_copy_of_the_design(monkeypatch):
+    # a year: scikit-learn's fit held D - mean and its NaN mask (1.3 of the 1.2 GB design)
+    D = np.random.default_rng(2).normal(size=(20000, 30))
+    monkeypatch.setattr(lagbank, "PREFIX_BLOCK_BYTES", D.nbytes / 20, raising=False)
+    lagbank.standard_scaler(D[:300])                                     # imports: not traced
+
+    scaler, peak = _traced_peak(lagbank.standard_scaler, D)
+
+    assert scaler.mean_.shape == (30,)
+    assert peak < 0.25 * D.nbytes, f"{peak / D.nbytes:.2f} x the design held at once"

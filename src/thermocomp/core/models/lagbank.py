@@ -35,6 +35,7 @@ import pandas as pd
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
+from sklearn.preprocessing._data import _handle_zeros_in_scale, _is_constant_feature
 from sklearn.utils.validation import check_is_fitted, validate_data
 from threadpoolctl import threadpool_limits
 
@@ -327,6 +328,58 @@ def _levels_weighted(Z, p: int, ratio: float) -> tuple[np.ndarray, int]:
     return (Z * _level_scale(Z.shape[1], p, ratio) if ratio != 1 else Z), 0
 
 
+# -- the standardisation of a design, in blocks --------------------------------------------------
+def _blocks(D):
+    """Row blocks of ``D`` of at most :data:`PREFIX_BLOCK_BYTES` (views)."""
+    rows = max(1, int(PREFIX_BLOCK_BYTES // (8 * max(D.shape[1], 1))))
+    return [D[start:start + rows] for start in range(0, len(D), rows)] or [D]
+
+
+def _column_sums(blocks) -> np.ndarray:
+    """``np.sum(D, axis=0)`` of the stacked ``blocks``, bit for bit: numpy adds a C-ordered
+    array's rows one after the other, so each block continues from the sum so far."""
+    total = None
+    for block in blocks:
+        total = block.sum(axis=0) if total is None else np.add.reduce(np.vstack([total[None], block]),
+                                                                      axis=0)
+    return total
+
+
+def standard_scaler(D) -> StandardScaler:
+    """``StandardScaler().fit(D)`` of a finite design, bit for bit, in blocks of rows.
+
+    scikit-learn's fit makes ``D - mean`` (a copy of the design: a year's 1.2 GB) and its NaN mask,
+    and checks and converts ``D`` first; this runs its numbers (Chan, Golub & LeVeque's two-pass
+    variance, ``_incremental_mean_and_var`` from nothing) over blocks of rows instead
+    (tests/core/test_scale60.py holds the two equal, so an upgrade that moves them fails there).
+    """
+    D = np.asarray(D, dtype=float)
+    total = _column_sums(_blocks(D))
+    if not np.isfinite(total).all():   # a NaN or inf: scikit-learn's own rules
+        return StandardScaler().fit(D)
+    count = np.full(D.shape[1], float(len(D)))
+    mean = total / count
+    correction = _column_sums(block - mean for block in _blocks(D))
+    squares = _column_sums((block - mean) ** 2 for block in _blocks(D))
+    var = (squares - correction ** 2 / count) / count
+    scaler = StandardScaler()
+    scaler.n_features_in_, scaler.n_samples_seen_ = D.shape[1], np.int64(len(D))
+    scaler.mean_, scaler.var_ = mean, var
+    scaler.scale_ = _handle_zeros_in_scale(np.sqrt(var), copy=False,
+                                           constant_mask=_is_constant_feature(var, mean, len(D)))
+    return scaler
+
+
+def standardised(D, scaler: StandardScaler) -> np.ndarray:
+    """``scaler.transform(D)`` (a new array), bit for bit, without scikit-learn's checks and its
+    copy of ``D`` before the one it standardises in place."""
+    out = np.empty(D.shape)
+    for block, rows in zip(_blocks(np.asarray(D, dtype=float)), _blocks(out)):
+        np.subtract(block, scaler.mean_, out=rows)
+        rows /= scaler.scale_
+    return out
+
+
 # -- the estimator ---------------------------------------------------------------------------------
 class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     r"""Linear model of the inputs and their first-order lags on a log grid, ridge by time-series CV.
@@ -549,8 +602,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         records, scalers = [], {}
         for design in designs:
             D, target = self._design(design, F, y, y_prev, groups)
-            scalers[design] = scaler = StandardScaler().fit(D)
-            Z = scaler.transform(D)
+            scalers[design] = scaler = standard_scaler(D)
+            Z = standardised(D, scaler)
             for ratio in ratios:
                 # D is F, F with y(t-1) or F's increments, standardised: F's digest stands for it
                 z_key = ArrayMemo.key(f_key, design, scaler.mean_, scaler.scale_, ratio,
@@ -673,7 +726,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         ``increments`` predicts ``y(t) = y(t-1) + (F(t) - F(t-1)) b + c``: ``a = 1``.
         """
         D, target = self._design(design, F, y, y_prev, groups)
-        Z, n_free = _levels_weighted(scaler.transform(D), p, ratio)
+        Z, n_free = _levels_weighted(standardised(D, scaler), p, ratio)
         rows = np.arange(len(D))
         # one fit, not remembered: its factor is of no use to another target's penalty
         spectrum = _compute_fold_spectra(Z, float(alpha), n_free, rows, rows[:0])[0]
