@@ -119,3 +119,41 @@ def test_the_standardisation_holds_no_copy_of_the_design(monkeypatch):
 
     assert scaler.mean_.shape == (30,)
     assert peak < 0.25 * D.nbytes, f"{peak / D.nbytes:.2f} x the design held at once"
+
+
+def _with_speed(n: int):
+    X, y, context = _record(n, 4)
+    speed = np.where(np.sin(np.arange(n) / 200.0) > 0, 3000.0, 0.0)
+    y = y + pd.Series(speed).ewm(alpha=0.005).mean().to_numpy() * 4e-4
+    return X, y, context.assign(S_speed=speed)
+
+
+def test_a_hammerstein_refits_only_its_chosen_lag_bank(monkeypatch):
+    # a year: each of the four power sets' lag banks was refitted on every row, three thrown away
+    from thermocomp.core.models.hammerstein import Hammerstein
+
+    refits = []
+    plain = lagbank.LagBank._refit
+    monkeypatch.setattr(lagbank.LagBank, "_refit",
+                        lambda self, *a, **k: refits.append(1) or plain(self, *a, **k))
+    X, y, context = _with_speed(3000)
+    model = Hammerstein(lagbank=lagbank.LagBank(n_taus=4)).fit(X, y, context=context)
+
+    assert len(model.cv_results_) == 4 and len(refits) == 1
+
+
+def test_the_chosen_lag_bank_is_the_one_fitted_alone():
+    from thermocomp.core.models.hammerstein import Hammerstein
+
+    X, y, context = _with_speed(3000)
+    model = Hammerstein(lagbank=lagbank.LagBank(n_taus=4)).fit(X, y, context=context)
+    assert model.exponents_                       # the speed enters: its powers are columns
+    alone = lagbank.LagBank(n_taus=4, rest_columns=list(range(4, 4 + len(model.exponents_)))).fit(
+        np.hstack([X, model._basis(context[["S_speed"]].to_numpy(), model.exponents_)]), y,
+        context=context)
+
+    np.testing.assert_array_equal(model.lagbank_.coef_, alone.coef_)
+    assert model.lagbank_.intercept_ == alone.intercept_
+    assert not hasattr(model.lagbank_, "_refit_later") and not hasattr(model.lagbank_, "_pending_design")
+    np.testing.assert_array_equal(model.predict(X, context), alone.predict(
+        np.hstack([X, model._basis(context[["S_speed"]].to_numpy(), model.exponents_)]), context))

@@ -624,6 +624,10 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         del D, Z, Zw
         table = pd.DataFrame(records)
         design = self._keep_choice(table, self._choose(table[table["design"] != "increments"]))
+        self.context_columns_ = [TIME] if time is not None else []
+        if self.ar is False and getattr(self, "_refit_later", False):
+            self._pending_design = design      # a caller choosing among lag banks refits its choice
+            return self
         self.coef_, self.ar_coef_, self.intercept_ = self._refit(
             design, F, y, y_prev, groups, scalers[design], self.alpha_, p, self.level_penalty_)
         if self.ar is not False:   # the one-step model: the best one-step CV error of the AR designs
@@ -634,7 +638,27 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
             self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_ = self._refit(
                 self.one_step_design_, F, y, y_prev, groups, scalers[self.one_step_design_],
                 self.alpha_one_step_, p, float(table.loc[pick, "level_penalty"]))
-        self.context_columns_ = [TIME] if time is not None else []
+        return self
+
+    @threadpool_limits.wrap(limits=1, user_api="blas")   # as fit: the same sums in the same order
+    def _refit_chosen(self, X, y, context=None) -> LagBank:
+        """The refit of the chosen penalty that :meth:`fit` left out when its ``_refit_later`` was
+        set (without output feedback), on the same ``X, y, context``: the numbers :meth:`fit`
+        would have (its features, remembered or made again, and their standardisation are the
+        same).  A caller that fits several lag banks to keep one (Hammerstein's powers: four on a
+        year, each refit a product over every row) refits only that one."""
+        self.__dict__.pop("_refit_later", None)
+        design = self.__dict__.pop("_pending_design", None)
+        if design is None:                      # fitted whole (or pooled: its refit costs nothing)
+            return self
+        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        groups = groups_of(context)
+        F = self._features(X, context)
+        y_prev = previous(y, groups)
+        D, _ = self._design(design, F, y, y_prev, groups)
+        self.coef_, self.ar_coef_, self.intercept_ = self._refit(
+            design, F, y, y_prev, groups, standard_scaler(D), self.alpha_, X.shape[1],
+            self.level_penalty_)
         return self
 
     @staticmethod
