@@ -1,6 +1,6 @@
 """CPU time of ``thermocomp run`` on a lathe-sized record, split by phase (issue 34, item 5).
 
-    .venv/bin/python benchmarks/bench_extras.py ROOT [--families mlr lagbank ...] [key=value ...]
+    .venv/bin/python benchmarks/bench_extras.py ROOT [--families mlr lagbank mlr+ati ...] [key=value ...]
 
 ``ROOT`` holds ``lathe43`` and its ``init`` config as ``benchmarks/bench_other_machine.py write
 ROOT`` and ``thermocomp init ROOT/lathe43 data.max_gap_samples=2 out=ROOT/init`` leave them
@@ -8,7 +8,24 @@ ROOT`` and ``thermocomp init ROOT/lathe43 data.max_gap_samples=2 out=ROOT/init``
 is run in a fresh process at the defaults (``plots=summary``, MLflow on, in a temp folder) with
 the run's phase clock (``time (s): ...`` on stderr) counting CPU seconds of the process and its
 reaped children (user + sys: the figure workers are counted when the run ends) instead of
-wall seconds; the table is those phases, the total CPU and the wall time.
+wall seconds; the table is those phases, the total CPU, the wall time and the peak RSS of the
+run's largest process (``ru_maxrss`` of the waited-for child).  ``mlr+ati`` is ``model=mlr
+ati=cmeans``.
+
+Measured 2026-11-30 (scale60; seed 0, load 1.3-4 on 2 shared cores), CPU s (user + sys) / peak
+RSS, and the CPU ratio to ``mlr``'s; the families' code as at 3b634e7 (scale60's changes are in
+the one-record path, which these campaigns do not take)::
+
+    mlr 7.4 s / 410 MiB (1.00), pcr 7.5 / 421 (1.01), arx 8.5 / 418 (1.15),
+    arx_rf 24.8 / 429 (3.35), lagbank 10.3 / 595 (1.39), hammerstein 13.6 / 762 (1.84),
+    lstm 43.2 / 769 (5.84), auto 35.2 / 1038 (4.76), mlr+ati 11.0 / 444 (1.49)
+
+Every family fits in seconds: 7-43 s CPU, ~5 s of it start-up, reading and the figures.  The
+largest ratios are the methods' own: ``lstm`` trains a network per target and fold (validation
+19 s of its 43), ``auto`` fits every candidate's folds, ``arx_rf`` fits 100-tree forests
+(cProfile: 67 of its run's 99 profiled s in scikit-learn's forest fit, 18 s of that building
+each tree's estimator through ``get_params``/``inspect.signature``, scikit-learn's per-tree
+overhead).
 
 Measured 2026-11-29 (seed 0; 2 cores shared with three other sessions, load 3-13: the wall
 column is mostly waiting; CPU s are user + sys).  ``other`` is scoring, ANOVA and the ATI
@@ -49,7 +66,9 @@ from pathlib import Path
 
 from cpu import cpu_seconds  # noqa: E402
 
-FAMILIES = ("mlr", "pcr", "arx", "arx_rf", "lagbank", "hammerstein", "lstm", "auto")
+FAMILIES = ("mlr", "pcr", "arx", "arx_rf", "lagbank", "hammerstein", "lstm", "auto", "mlr+ati")
+# a family name and the overrides it stands for beyond model=<name>
+EXTRA = {"arx_rf": ["model.estimator.state_column=S_Drehzahl"], "mlr+ati": ["ati=cmeans"]}
 PHASES = re.compile(r"time \(s\): [\d.]+ = (.*)$", re.M)
 # what the run's phases are counted as in the table
 COLUMNS = {"fit": ("fit",), "validation": ("validation",), "mutual": ("mutual_prediction",),
@@ -84,22 +103,25 @@ def prepare(root: Path) -> None:
 
 
 def run_family(root: Path, family: str, extra: list[str]) -> dict:
-    more = ["model.estimator.state_column=S_Drehzahl"] if family == "arx_rf" else []
-    with tempfile.TemporaryDirectory() as cwd:
+    with tempfile.TemporaryDirectory() as cwd, tempfile.TemporaryFile("w+") as err:
         args = ["run", f"hydra.searchpath=[file://{root}/init/conf]", "data=lathe43",
-                f"model={family}", *more, *extra, f"out={cwd}/out"]
-        before, t0 = os.times(), time.perf_counter()
-        proc = subprocess.run([sys.executable, __file__, "--child", *args], cwd=cwd,
-                              capture_output=True, text=True)
-        wall, after = time.perf_counter() - t0, os.times()
-    if proc.returncode != 0:
-        return {"family": family, "error": proc.stderr.strip().splitlines()[-1]}
-    cpu = (after.children_user - before.children_user) + (after.children_system - before.children_system)
+                f"model={family.split('+')[0]}", *EXTRA.get(family, []), *extra, f"out={cwd}/out"]
+        t0 = time.perf_counter()
+        child = subprocess.Popen([sys.executable, __file__, "--child", *args], cwd=cwd,
+                                 stdout=subprocess.DEVNULL, stderr=err)
+        # this child's own rusage: its CPU and the peak RSS of its largest process
+        _, status, usage = os.wait4(child.pid, 0)
+        wall = time.perf_counter() - t0
+        err.seek(0)
+        stderr = err.read()
+    if os.waitstatus_to_exitcode(status) != 0:
+        return {"family": family, "error": stderr.strip().splitlines()[-1]}
+    cpu = usage.ru_utime + usage.ru_stime
     phases: dict[str, float] = {}
-    for part in PHASES.findall(proc.stderr)[-1].split(" + "):
+    for part in PHASES.findall(stderr)[-1].split(" + "):
         name, seconds = part.rsplit(" ", 1)
         phases[name] = phases.get(name, 0.0) + float(seconds)
-    row = {"family": family, "cpu": cpu, "wall": wall}
+    row = {"family": family, "cpu": cpu, "wall": wall, "rss": usage.ru_maxrss / 1024}
     for column, names in COLUMNS.items():
         row[column] = sum(phases.pop(n, 0.0) for n in names)
     row["tracking/io"] += sum(phases.values())  # any phase not named above (none so far)
@@ -107,13 +129,13 @@ def run_family(root: Path, family: str, extra: list[str]) -> dict:
 
 
 def table(rows: list[dict]) -> str:
-    head = ["family", *COLUMNS, "CPU s", "wall s"]
+    head = ["family", *COLUMNS, "CPU s", "wall s", "peak MiB"]
     lines = ["  ".join(f"{h:>12}" for h in head)]
     for r in rows:
         if "error" in r:
             lines.append(f"{r['family']:>12}  {r['error']}")
             continue
-        values = [r[c] for c in COLUMNS] + [r["cpu"], r["wall"]]
+        values = [r[c] for c in COLUMNS] + [r["cpu"], r["wall"], r["rss"]]
         lines.append(f"{r['family']:>12}  " + "  ".join(f"{v:12.1f}" for v in values))
     return "\n".join(lines)
 

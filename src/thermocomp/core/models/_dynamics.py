@@ -82,7 +82,7 @@ def window_index(groups, n: int, window: int) -> np.ndarray:
 _UNIFORM_RTOL = 1e-12
 
 
-def first_order_lags(u, time, groups, taus, rest=None) -> np.ndarray:
+def first_order_lags(u, time, groups, taus, rest=None, out=None) -> np.ndarray:
     r"""First-order lags of every column of ``u`` for every time constant, per segment.
 
     .. math:: z_k = a_k\, z_{k-1} + (1 - a_k)\, u_k, \quad a_k = e^{-(t_k - t_{k-1})/\tau},
@@ -106,6 +106,8 @@ def first_order_lags(u, time, groups, taus, rest=None) -> np.ndarray:
     rest : array of bool (p,) or None
         Columns whose lags start at 0 (an input that was 0 before the segment: a machine
         state at rest), not at their first value.
+    out : array (n, len(taus) * p) or None
+        Where to write the lags (a view of a wider array: no second copy of them); None: a new array.
 
     Returns
     -------
@@ -119,7 +121,7 @@ def first_order_lags(u, time, groups, taus, rest=None) -> np.ndarray:
     taus = np.asarray(taus, dtype=float).ravel()
     time = np.asarray(time, dtype=float)
     p = u.shape[1]
-    out = np.empty((len(u), taus.size * p))
+    out = np.empty((len(u), taus.size * p)) if out is None else out
     steady = np.ones(p) if rest is None else 1.0 - np.asarray(rest, dtype=float).reshape(p)
     for start, stop in segment_bounds(groups, len(u)):
         seg, dt = u[start:stop], np.diff(time[start:stop])

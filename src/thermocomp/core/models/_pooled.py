@@ -90,8 +90,9 @@ def lag_features(X, time, runs, taus, rest=None) -> np.ndarray:
     out = np.empty((n, p * (taus.size + 1)))
     blocks = out.reshape(n, taus.size + 1, p)     # a view: block k holds columns k*p .. k*p+p-1
     # into one array, each lag block less x by broadcasting: no tiled copy of X nor a stacked
-    # copy of the lags (a year at 1 min of 34 sensors: 1 GB each, scale58)
-    out[:, p:] = first_order_lags(X, time, runs, taus, rest)
+    # copy of the lags (a year at 1 min of 34 sensors: 1 GB each, scale58), nor the lags written
+    # apart first and copied in (scale60)
+    first_order_lags(X, time, runs, taus, rest, out=out[:, p:])
     blocks[:, 1:, :] -= X[:, None, :]
     blocks[:, 0, :] = X
     return out

@@ -183,6 +183,7 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         for exps in ([()] if not found else _candidates(self.exponents) if self.choose_exponents
                      else fixed):
             model = clone(base)
+            model._refit_later = True   # only the chosen powers' lag bank is refitted (below)
             if rest.any():      # the rest states' columns in each power's block of the basis
                 model.set_params(rest_columns=[p + b * len(found) + j for b in range(len(exps))
                                                for j in np.flatnonzero(rest)])
@@ -196,7 +197,8 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         table["chosen"] = table.index == best
         self.cv_results_ = table
         self.exponents_ = tuple(table.loc[best, "exponents"])
-        self.lagbank_ = fitted[self.exponents_]
+        self.lagbank_ = fitted[self.exponents_]._refit_chosen(
+            np.hstack([X, self._basis(S, self.exponents_)]), y, context=context)
         if not self.exponents_:
             found, self.state_scale_, rest = [], scale[:0], rest[:0]
         self.state_columns_ = found

@@ -35,6 +35,7 @@ import pandas as pd
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.model_selection import GroupKFold
 from sklearn.preprocessing import StandardScaler
+from sklearn.preprocessing._data import _handle_zeros_in_scale, _is_constant_feature
 from sklearn.utils.validation import check_is_fitted, validate_data
 from threadpoolctl import threadpool_limits
 
@@ -171,11 +172,52 @@ def _training_grams(Z, splits):
             mean = (sums - Zva.sum(axis=0)) / len(tr)
             yield mean, total - Zva.T @ Zva - len(tr) * np.outer(mean, mean)
         return
-    for tr in trains:                  # forward chaining: the training rows are a prefix
+    lengths = [len(tr) for tr in trains]
+    if all(m and tr[0] == 0 and tr[-1] == m - 1 and np.all(np.diff(tr) == 1)
+           for tr, m in zip(trains, lengths)):
+        yield from _prefix_grams(Z, lengths)   # forward chaining: nested prefixes, one pass
+        return
+    for tr in trains:
         Ztr = Z[tr]
         mean = Ztr.mean(axis=0)
         Ztr -= mean
-        yield mean, Ztr.T @ Ztr
+        gram = Ztr.T @ Ztr
+        del Ztr                        # not held while the next fold's copy is made
+        yield mean, gram
+
+
+# rows of Z centred at a time by _prefix_grams: a copy of this many bytes, not of a fold's rows;
+# below glibc's largest mmap threshold (32 MB), so each block reuses the last one's pages
+# instead of faulting in fresh (huge) pages (64 MB blocks: 0.4-0.6 s of sys time a pass on
+# 300,000 x 306, 16 MB none)
+PREFIX_BLOCK_BYTES = 16e6
+
+
+def _prefix_grams(Z, lengths):
+    r"""``(mean, centred Gram)`` of each prefix ``Z[:m]``, ``m`` in ``lengths``, in one pass.
+
+    Forward chaining's training sets are nested prefixes: each fold's product over its own rows
+    (a copy of up to 0.9 of a year's 1.2 GB features each, and their sum 3.5 times the rows of
+    one) is the running one of blocks of rows, each block's moments pooled into it as they come
+    (Chan, Golub & LeVeque's update: no cancellation of :math:`\sum z z^\top - m \bar z \bar z^\top`).
+    """
+    p = Z.shape[1]
+    block = max(1, int(PREFIX_BLOCK_BYTES // (8 * max(p, 1))))
+    count, mean, gram = 0, np.zeros(p), np.zeros((p, p))
+    done, start = {}, 0
+    for stop in sorted(set(lengths)):
+        for lo in range(start, stop, block):
+            rows = Z[lo:min(lo + block, stop)]
+            b_mean = rows.mean(axis=0)
+            rows = rows - b_mean
+            b_count, shift = len(rows), b_mean - mean
+            total = count + b_count
+            gram = gram + rows.T @ rows + np.outer(shift, shift) * (count * b_count / total)
+            mean = mean + shift * (b_count / total)
+            count = total
+        done[stop], start = (mean, gram), stop
+    for m in lengths:
+        yield done[m][0].copy(), done[m][1].copy()   # spectra_of_grams overwrites the Gram
 
 
 def _compute_fold_spectra(Z, alpha, free, *splits) -> tuple:
@@ -284,6 +326,58 @@ def _levels_weighted(Z, p: int, ratio: float) -> tuple[np.ndarray, int]:
     if ratio == 0:
         return Z, p
     return (Z * _level_scale(Z.shape[1], p, ratio) if ratio != 1 else Z), 0
+
+
+# -- the standardisation of a design, in blocks --------------------------------------------------
+def _blocks(D):
+    """Row blocks of ``D`` of at most :data:`PREFIX_BLOCK_BYTES` (views)."""
+    rows = max(1, int(PREFIX_BLOCK_BYTES // (8 * max(D.shape[1], 1))))
+    return [D[start:start + rows] for start in range(0, len(D), rows)] or [D]
+
+
+def _column_sums(blocks) -> np.ndarray:
+    """``np.sum(D, axis=0)`` of the stacked ``blocks``, bit for bit: numpy adds a C-ordered
+    array's rows one after the other, so each block continues from the sum so far."""
+    total = None
+    for block in blocks:
+        total = block.sum(axis=0) if total is None else np.add.reduce(np.vstack([total[None], block]),
+                                                                      axis=0)
+    return total
+
+
+def standard_scaler(D) -> StandardScaler:
+    """``StandardScaler().fit(D)`` of a finite design, bit for bit, in blocks of rows.
+
+    scikit-learn's fit makes ``D - mean`` (a copy of the design: a year's 1.2 GB) and its NaN mask,
+    and checks and converts ``D`` first; this runs its numbers (Chan, Golub & LeVeque's two-pass
+    variance, ``_incremental_mean_and_var`` from nothing) over blocks of rows instead
+    (tests/core/test_scale60.py holds the two equal, so an upgrade that moves them fails there).
+    """
+    D = np.asarray(D, dtype=float)
+    total = _column_sums(_blocks(D))
+    if not np.isfinite(total).all():   # a NaN or inf: scikit-learn's own rules
+        return StandardScaler().fit(D)
+    count = np.full(D.shape[1], float(len(D)))
+    mean = total / count
+    correction = _column_sums(block - mean for block in _blocks(D))
+    squares = _column_sums((block - mean) ** 2 for block in _blocks(D))
+    var = (squares - correction ** 2 / count) / count
+    scaler = StandardScaler()
+    scaler.n_features_in_, scaler.n_samples_seen_ = D.shape[1], np.int64(len(D))
+    scaler.mean_, scaler.var_ = mean, var
+    scaler.scale_ = _handle_zeros_in_scale(np.sqrt(var), copy=False,
+                                           constant_mask=_is_constant_feature(var, mean, len(D)))
+    return scaler
+
+
+def standardised(D, scaler: StandardScaler) -> np.ndarray:
+    """``scaler.transform(D)`` (a new array), bit for bit, without scikit-learn's checks and its
+    copy of ``D`` before the one it standardises in place."""
+    out = np.empty(D.shape)
+    for block, rows in zip(_blocks(np.asarray(D, dtype=float)), _blocks(out)):
+        np.subtract(block, scaler.mean_, out=rows)
+        rows /= scaler.scale_
+    return out
 
 
 # -- the estimator ---------------------------------------------------------------------------------
@@ -508,8 +602,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         records, scalers = [], {}
         for design in designs:
             D, target = self._design(design, F, y, y_prev, groups)
-            scalers[design] = scaler = StandardScaler().fit(D)
-            Z = scaler.transform(D)
+            scalers[design] = scaler = standard_scaler(D)
+            Z = standardised(D, scaler)
             for ratio in ratios:
                 # D is F, F with y(t-1) or F's increments, standardised: F's digest stands for it
                 z_key = ArrayMemo.key(f_key, design, scaler.mean_, scaler.scale_, ratio,
@@ -525,8 +619,15 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                                     "level_penalty": ratio,
                                     **_summary("cv_mse_free_run", free),
                                     **_summary("cv_mse_one_step", scores["one_step"][:, i])})
+        # the refit standardises its design again: the last design's copies (a year's 1.2 GB
+        # each) are not held with it
+        del D, Z, Zw
         table = pd.DataFrame(records)
         design = self._keep_choice(table, self._choose(table[table["design"] != "increments"]))
+        self.context_columns_ = [TIME] if time is not None else []
+        if self.ar is False and getattr(self, "_refit_later", False):
+            self._pending_design = design      # a caller choosing among lag banks refits its choice
+            return self
         self.coef_, self.ar_coef_, self.intercept_ = self._refit(
             design, F, y, y_prev, groups, scalers[design], self.alpha_, p, self.level_penalty_)
         if self.ar is not False:   # the one-step model: the best one-step CV error of the AR designs
@@ -537,7 +638,27 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
             self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_ = self._refit(
                 self.one_step_design_, F, y, y_prev, groups, scalers[self.one_step_design_],
                 self.alpha_one_step_, p, float(table.loc[pick, "level_penalty"]))
-        self.context_columns_ = [TIME] if time is not None else []
+        return self
+
+    @threadpool_limits.wrap(limits=1, user_api="blas")   # as fit: the same sums in the same order
+    def _refit_chosen(self, X, y, context=None) -> LagBank:
+        """The refit of the chosen penalty that :meth:`fit` left out when its ``_refit_later`` was
+        set (without output feedback), on the same ``X, y, context``: the numbers :meth:`fit`
+        would have (its features, remembered or made again, and their standardisation are the
+        same).  A caller that fits several lag banks to keep one (Hammerstein's powers: four on a
+        year, each refit a product over every row) refits only that one."""
+        self.__dict__.pop("_refit_later", None)
+        design = self.__dict__.pop("_pending_design", None)
+        if design is None:                      # fitted whole (or pooled: its refit costs nothing)
+            return self
+        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        groups = groups_of(context)
+        F = self._features(X, context)
+        y_prev = previous(y, groups)
+        D, _ = self._design(design, F, y, y_prev, groups)
+        self.coef_, self.ar_coef_, self.intercept_ = self._refit(
+            design, F, y, y_prev, groups, standard_scaler(D), self.alpha_, X.shape[1],
+            self.level_penalty_)
         return self
 
     @staticmethod
@@ -629,7 +750,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         ``increments`` predicts ``y(t) = y(t-1) + (F(t) - F(t-1)) b + c``: ``a = 1``.
         """
         D, target = self._design(design, F, y, y_prev, groups)
-        Z, n_free = _levels_weighted(scaler.transform(D), p, ratio)
+        Z, n_free = _levels_weighted(standardised(D, scaler), p, ratio)
         rows = np.arange(len(D))
         # one fit, not remembered: its factor is of no use to another target's penalty
         spectrum = _compute_fold_spectra(Z, float(alpha), n_free, rows, rows[:0])[0]
