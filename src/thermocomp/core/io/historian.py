@@ -42,6 +42,7 @@ from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
 from .historian_layout import Layout, quality_of
+from .timestamps import on_local_clock
 
 PERIOD_KEY = "data.resample_s"
 _GRID_ROW = re.compile(r"\b(rows? \d+(?:-\d+)?)")
@@ -99,7 +100,7 @@ def tag_samples(path: Path, opts, layout: Layout) -> tuple[pd.DataFrame, dict, o
                             row=int(row[at]))
     good = _good(raw, names, layout, row, path)
     value = _values(raw[names[layout.value]], good, tag, opts, layout, row, path)
-    seconds, origin, zone = _times(raw[names[layout.time]], opts, row, path)
+    seconds, origin, zone = _times(raw[names[layout.time]], tag, opts, row, path)
     samples = pd.DataFrame({"time": seconds, "tag": tag.to_numpy(), "value": value,
                             "row": row}).sort_values(["tag", "time", "row"], kind="stable")
     samples = _without_repeats(samples, path, names[layout.value], origin)
@@ -174,9 +175,9 @@ def _values(column: pd.Series, good: np.ndarray, tag: pd.Series, opts, layout, r
     return np.where(good, value, np.nan)
 
 
-def _times(column: pd.Series, opts, row, path) -> tuple[np.ndarray, object, object]:
+def _times(column: pd.Series, tag: pd.Series, opts, row, path) -> tuple[np.ndarray, object, object]:
     """Seconds (float, since the first stamp), the first stamp (a Timestamp; None: the file's
-    time is seconds) and its zone."""
+    time is seconds) and its zone (stamps without an offset with ``data.timezone``: UTC)."""
     header = column.name
     numbers = pd.to_numeric(column.str.replace(",", ".", regex=False), errors="coerce")
     if opts.time == "seconds" or (opts.time == "auto" and numbers.notna().all()):
@@ -203,9 +204,27 @@ def _times(column: pd.Series, opts, row, path) -> tuple[np.ndarray, object, obje
             r"(?:Z|[+-]\d\d:?\d\d)$", regex=True).any())
         what = "an ISO 8601 timestamp"
     _check_parsed(stamps, column, header, row, path, what)
+    if opts.timezone and opts.time != "elapsed" and stamps.dt.tz is None:
+        stamps = _on_clock(stamps, tag, opts.timezone, row, path, header)
     zone = getattr(stamps.dt, "tz", None)
     origin = stamps.min()
     return (stamps - origin).dt.total_seconds().to_numpy(float), origin, zone
+
+
+def _on_clock(stamps: pd.Series, tag: pd.Series, zone: str, row, path, header) -> pd.Series:
+    """Stamps without an offset on ``zone``'s local clock, as UTC, as a wide file's are
+    (:func:`.timestamps.on_local_clock`), each tag's in its file order: a tag logs through the
+    hour the clock repeats in order, while the tags' rows interleave (a sort by stamp would
+    mix the two passes)."""
+    ns = stamps.to_numpy("datetime64[ns]").astype("int64")
+    out = np.empty_like(ns)
+    for positions in pd.Series(tag.to_numpy()).groupby(tag.to_numpy()).indices.values():
+        try:
+            out[positions] = on_local_clock(ns[positions], zone, path, header)
+        except ContractError as exc:     # its row among the tag's samples: the file's row
+            raise ContractError(exc.reason, file=path, column=header,
+                                row=int(row[positions[exc.row - 1]])) from None
+    return pd.Series(pd.to_datetime(out, utc=True), index=stamps.index)
 
 
 def _check_parsed(parsed: pd.Series, column: pd.Series, header, row, path, what: str) -> None:
