@@ -30,23 +30,22 @@ def deployed_scores(comp: Compensator, ds: Dataset, ids, measured: Mapping, stre
                     train: Mapping, statistic: str, points) -> tuple[dict, dict, int]:
     """``({target: {"test": ...}}, {campaign: predicted}, rows clamped)`` of ``comp`` deployed.
 
-    ``stream_of(comp, train)`` makes the plain stream ``promote`` starts every deployment from
-    (the envelope fitted on ``train``); each campaign of ``ids`` is replayed from its start,
-    warmed on the campaigns it continues as ``promote`` warms it, and scored against
-    ``measured`` (``{campaign: frame}``, the batch scoring's, so that only the prediction
-    differs)."""
-    from ..deploy.streaming import replay  # the deploy app, loaded only where diagnose scores it
-
+    ``stream_of(comp, train)`` gives ``replay(campaign, lead_in)``: the campaign streamed from
+    its start through the plain stream ``promote`` starts every deployment from (the envelope
+    fitted on ``train``), warmed on ``lead_in``; a frame of the targets' predictions and
+    ``n_clamped``.  (A callable, not the stream: the deploy app imports this one.)  Each
+    campaign of ``ids`` is warmed on the campaigns it continues as ``promote`` warms it, and
+    scored against ``measured`` (``{campaign: frame}``, the batch scoring's, so that only the
+    prediction differs)."""
     ids = list(ids)
-    streaming = stream_of(comp, train)
+    replay = stream_of(comp, train)
     leads = lead_ins(comp, ds, ids)
-    predicted = {c: replay(streaming, ds.campaigns[c], lead_in=leads.get(c)) for c in ids}
-    streaming.reset()
+    predicted = {c: replay(ds.campaigns[c], leads.get(c)) for c in ids}
     clamped = int(sum(int(np.count_nonzero(p[CLAMPED].to_numpy())) for p in predicted.values()
                       if CLAMPED in p))
     dt = sample_period(ds, ids)
     out = {}
-    for t in streaming.targets_:
+    for t in comp.targets_:
         y = {c: measured[c][t].to_numpy() for c in ids}
         r = {c: y[c] - predicted[c][t].to_numpy() for c in ids}
         out[t] = {"test": split_scores(y, r, dt, statistic, points, with_before_after=True)}

@@ -217,11 +217,11 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
         What ``diagnosis.json`` names the model (``mlr``) and the ATI wrapper around it
         (``cmeans``; ``none``).
     stream_of : callable, optional
-        ``(fitted compensator, train campaigns) -> StreamingCompensator``: the stream
-        ``promote`` deploys.  Given (and ``mode='simulation'``), "before" and "after" are the
-        test figures of the models so deployed, replayed with their training envelope
-        (:mod:`.deployed`), the batch ones kept as ``*_as_run``; a model that cannot be
-        streamed keeps its batch figures (said).
+        ``(fitted compensator, train campaigns) -> replay(campaign, lead_in)``: the campaign
+        streamed as ``promote`` deploys the model.  Given (and ``mode='simulation'``),
+        "before" and "after" are the test figures of the models so deployed, replayed with
+        their training envelope (:func:`.deployed.deployed_scores`), the batch ones kept as
+        ``*_as_run``; a model that cannot be streamed keeps its batch figures (said).
 
     Returns
     -------

@@ -90,13 +90,21 @@ def _write(cfg: DictConfig, ds, result, written: dict, out: Path) -> tuple[Path,
 
 
 def _stream(cfg: DictConfig, comp, train: dict):
-    """The plain stream ``promote`` deploys ``comp`` as (``promote.envelope``), so that "before" and
-    "after" are the deployed figures; a model that cannot stream raises ValueError."""
-    from ...apps.deploy import StreamingCompensator  # the deploy app, loaded only here
+    """``replay(campaign, lead_in)`` through the plain stream ``promote`` deploys ``comp`` as
+    (``promote.envelope``), so that "before" and "after" are the deployed figures; a model that
+    cannot stream raises ValueError."""
+    from ...apps.deploy.streaming import StreamingCompensator, replay  # loaded only here
 
     env = cfg.promote.envelope
-    return StreamingCompensator.from_training(comp, train, float(env.margin), str(env.policy),
-                                              bool(env.get("pattern", True)))
+    streaming = StreamingCompensator.from_training(comp, train, float(env.margin),
+                                                   str(env.policy), bool(env.get("pattern", True)))
+
+    def replayed(campaign, lead_in=None):
+        try:
+            return replay(streaming, campaign, lead_in=lead_in)
+        finally:
+            streaming.reset()
+    return replayed
 
 
 def diagnose(cfg: DictConfig) -> dict:
