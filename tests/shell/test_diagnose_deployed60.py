@@ -67,3 +67,4 @@ def test_after_is_the_deployed_error_and_the_rerun_is_after_as_run(excursion, tm
     assert j["after"]["test_rmse_as_run"] == pytest.approx(batch, rel=1e-9)
     assert j["test_scored"] == "deployed" and j["after"]["test_rows_clamped"] >= 1
     assert "clamped to the training" in proc.stdout
+    assert "clamped to the training" in (out / "diagnosis" / "report.md").read_text()
