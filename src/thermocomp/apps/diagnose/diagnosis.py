@@ -25,6 +25,7 @@ from ...core.timerule import median_step
 from .augmented import AugmentedRegressor
 from .candidates import CONTROL, random_walk
 from .cv import Problem, smallest_p, units_needed
+from .deployed import deployed_scores
 from .features import Effect
 from .search import Search, SearchOptions, SearchResult, sensor_health
 from .sensors import self_prediction
@@ -59,6 +60,10 @@ class TargetDiagnosis:
     final_cv_rmse: float
     before: dict             # test-split scores of the original model (metrics.json layout)
     after: dict              # ... of the diagnosed model
+    # the same in batch, as ``run`` scores it, where ``before``/``after`` are the deployed
+    # stream's (:mod:`.deployed`); None where they are the batch ones
+    before_as_run: dict | None = None
+    after_as_run: dict | None = None
 
     @property
     def accepted(self):
@@ -82,6 +87,9 @@ class Diagnosis:
     seconds: float = 0.0
     test_sensors: list = field(default_factory=list)   # broken in the test split: said, not acted on
     ati: str = "none"                  # the ATI wrapper around ``model`` (``cmeans``), or none
+    # how the test figures were scored: "deployed" (streamed, envelope on), else "batch" (why)
+    scored: str = "batch"
+    clamped: dict = field(default_factory=dict)        # "before"/"after" -> test rows clamped
 
     @property
     def primary(self) -> str:
@@ -109,10 +117,11 @@ class Diagnosis:
             "model": self.model,
             "before": _summary(te_b, d.original_cv_rmse),
             "effects": effects,
-            "after": _summary(te_a, d.final_cv_rmse),
+            "after": _summary(te_a, d.final_cv_rmse) | self._as_run(d.after_as_run, "after"),
             "dataset": self.dataset,
             "mode": self.mode,
             "ati": self.ati,
+            "test_scored": self.scored,
             "test_rmse_after_pct_of_before": (100.0 * te_a.rmse / te_b.rmse
                                               if te_b.rmse > 0 else None),
             "steps": [{"step": 0, "effect": None, "cv_rmse": d.original_cv_rmse}]
@@ -151,6 +160,15 @@ class Diagnosis:
         })
 
 
+    def _as_run(self, as_run: dict | None, which: str) -> dict:
+        """The batch test RMSE (``thermocomp run``'s of the written config) and the test rows
+        the deployed stream clamped, beside deployed figures."""
+        if as_run is None:
+            return {}
+        return {"test_rmse_as_run": TargetResult(as_run).test.rmse,
+                "test_rows_clamped": self.clamped.get(which, 0)}
+
+
 def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, points
                 ) -> tuple[dict, dict]:
     """``{target: {"test": ...}}`` as :func:`thermocomp.core.scoring.evaluation.score` computes the test split
@@ -173,7 +191,8 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
              options: SearchOptions | None = None,
              make_compensator: Callable[[dict, list, list], Compensator] | None = None,
              e_p95_statistic: str = "range", e_p95_points: int | None = 200,
-             model_name: str = "", ati: str = "none") -> Diagnosis:
+             model_name: str = "", ati: str = "none",
+             stream_of: Callable[[Compensator, dict], object] | None = None) -> Diagnosis:
     """Find what ``compensator`` misses on the train split, fix it, report before/after on test.
 
     Parameters
@@ -197,6 +216,12 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
     model_name, ati : str, optional
         What ``diagnosis.json`` names the model (``mlr``) and the ATI wrapper around it
         (``cmeans``; ``none``).
+    stream_of : callable, optional
+        ``(fitted compensator, train campaigns) -> replay(campaign, lead_in)``: the campaign
+        streamed as ``promote`` deploys the model.  Given (and ``mode='simulation'``),
+        "before" and "after" are the test figures of the models so deployed, replayed with
+        their training envelope (:func:`.deployed.deployed_scores`), the batch ones kept as
+        ``*_as_run``; a model that cannot be streamed keeps its batch figures (said).
 
     Returns
     -------
@@ -206,7 +231,8 @@ def diagnose(ds: Dataset, compensator: Compensator, targets=None, mode: str = "s
     # slower on a busy machine), so the whole loop runs single-threaded.
     with threadpool_limits(limits=1, user_api="blas"):
         return _diagnose(ds, compensator, targets, mode, options or SearchOptions(),
-                         make_compensator, e_p95_statistic, e_p95_points, model_name, ati)
+                         make_compensator, e_p95_statistic, e_p95_points, model_name, ati,
+                         stream_of)
 
 
 def test_sensor_warnings(search: Search, excluded, later, options: SearchOptions) -> list[dict]:
@@ -241,7 +267,7 @@ def _gap(context, groups, options: SearchOptions) -> int:
 
 
 def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_statistic,
-              e_p95_points, model_name, ati) -> Diagnosis:
+              e_p95_points, model_name, ati, stream_of=None) -> Diagnosis:
     t0 = time.perf_counter()
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     before = clone(compensator).fit({c: ds.campaigns[c] for c in train_ids})
@@ -310,6 +336,9 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
     out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
            for t, r in found.items()}
+    scored, clamped = _deployed(out, {"before": (before, before_pred), "after": (after, after_pred)},
+                                ds, train_ids, test_ids, mode, stream_of,
+                                e_p95_statistic, e_p95_points)
     if scheme == "forward":
         cv = {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
               "folds": problem.n_units, "gap_samples": gap,
@@ -328,4 +357,33 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            "train_campaigns": train_ids, "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},
-                     options, cv, time.perf_counter() - t0, test_sensors, ati)
+                     options, cv, time.perf_counter() - t0, test_sensors, ati, scored, clamped)
+
+
+def _deployed(out: dict, models: dict, ds, train_ids, test_ids, mode, stream_of, statistic,
+              points) -> tuple[str, dict]:
+    """Put the deployed test figures of ``models`` (``{"before"|"after": (fitted, predictions)}``)
+    in ``out``'s TargetDiagnosis, the batch ones kept as ``*_as_run``; ``(scored, clamped)``."""
+    if stream_of is None:
+        return "batch", {}
+    if mode != "simulation":     # the stream runs in simulation: one_step's figures stay batch
+        return f"batch (eval.mode={mode})", {}
+    train = {c: ds.campaigns[c] for c in train_ids}
+    scores, clamped = {}, {}
+    try:
+        for which, (comp, pred) in models.items():
+            measured = {c: m for c, (m, _) in pred.items()}
+            scores[which], _, clamped[which] = deployed_scores(
+                comp, ds, test_ids, measured, stream_of, train, statistic, points)
+    except ValueError as exc:    # a model without the streaming protocol: its batch figures
+        logger.warning(f"diagnose: the test figures are run's (batch), not the deployed "
+                       f"stream's: {exc}")
+        return "batch (not streamed)", {}
+    for t, d in out.items():
+        d.before_as_run, d.after_as_run = d.before, d.after
+        d.before, d.after = scores["before"][t], scores["after"][t]
+    if any(clamped.values()):
+        logger.info(f"diagnose: the deployed stream clamps {clamped['after']} test row(s) to the "
+                    "training envelope (promote.envelope); before/after are its figures, run's "
+                    "batch ones are after.test_rmse_as_run")
+    return "deployed", clamped

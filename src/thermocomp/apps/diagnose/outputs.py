@@ -12,7 +12,9 @@ configured model and writes, under ``out``:
 * ``diagnosis/conf/model/diagnosed.yaml`` -- the model plus the accepted
   effects -- and ``diagnosis/conf/experiment/diagnosed.yaml`` pinning what the
   diagnosis ran with, so ``thermocomp run hydra.searchpath=[file://<out>/diagnosis/conf]
-  experiment=diagnosed data.path=...`` reproduces the "after" figures.
+  experiment=diagnosed data.path=...`` reproduces the "after" figures (in batch: where the
+  deployed stream clamps a test row to the training envelope, "after" is the deployed figure
+  and the rerun's is ``after.test_rmse_as_run``, :mod:`.deployed`).
 
 The diagnosed model is built from that very config (as ``run`` builds it), so
 the figures in the report are the ones the rerun gives.
@@ -166,6 +168,14 @@ def summary_table(result, named: str = "") -> str:
         before, after = TargetResult(d.before).test.rmse, TargetResult(d.after).test.rmse
         lines.append(f"{t:<{w}} {before:>16.2f} -> {after:>6.2f}   "
                      f"{d.original_cv_rmse:>9.2f} -> {d.final_cv_rmse:>6.2f}   {acc}")
+    if result.clamped.get("after") or result.clamped.get("before"):
+        # the deployed stream held test inputs to the training envelope: run's batch figures differ
+        as_run = "; ".join(f"{t} {TargetResult(d.after_as_run).test.rmse:.3f}"
+                           for t, d in result.targets.items() if d.after_as_run is not None)
+        lines.append(f"test RMSE as deployed (promote/replay/export: the stream, "
+                     f"{result.clamped.get('after', 0)} test row(s) clamped to the training "
+                     f"envelope); `thermocomp run` of the written config scores it in batch: "
+                     f"after {as_run}")
     cv = result.cv
     lines.append(f"acceptance test: {cv['test_blocks']} time blocks of ~{cv['block_samples']} samples "
                  f"in {cv['units']} CV units; smallest reachable p {cv['min_p']:.2g} "

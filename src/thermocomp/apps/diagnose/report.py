@@ -246,6 +246,14 @@ def markdown(jsons: dict[str, dict], figures: dict[str, list[str]] | None = None
                   "`conf/experiment/diagnosed.yaml` pinning what the diagnosis ran with); this "
                   "reproduces the \"after\" figures and can be swept and promoted like any model:", "",
                   "```", rerun, "```", ""]
+        clamped = {t: j["after"].get("test_rows_clamped") for t, j in jsons.items()}
+        if any(clamped.values()):
+            # the deployed stream held test inputs to the training envelope: run scores in batch
+            lines += ["\"After\" is the model as deployed (promote, replay, exported code: "
+                      f"{max(clamped.values())} test row(s) clamped to the training envelope); "
+                      "this run scores it in batch: test RMSE "
+                      + ", ".join(f"{t} {j['after']['test_rmse_as_run']:.3f} µm"
+                                  for t, j in jsons.items() if clamped[t] is not None) + ".", ""]
     lines.append(f"_Diagnosis time: {first['seconds']:.1f} s._")
     return "\n".join(lines) + "\n"
 

@@ -89,6 +89,24 @@ def _write(cfg: DictConfig, ds, result, written: dict, out: Path) -> tuple[Path,
     return folder, rerun, main
 
 
+def _stream(cfg: DictConfig, comp, train: dict):
+    """``replay(campaign, lead_in)`` through the plain stream ``promote`` deploys ``comp`` as
+    (``promote.envelope``), so that "before" and "after" are the deployed figures; a model that
+    cannot stream raises ValueError."""
+    from ...apps.deploy.streaming import StreamingCompensator, replay  # loaded only here
+
+    env = cfg.promote.envelope
+    streaming = StreamingCompensator.from_training(comp, train, float(env.margin),
+                                                   str(env.policy), bool(env.get("pattern", True)))
+
+    def replayed(campaign, lead_in=None):
+        try:
+            return replay(streaming, campaign, lead_in=lead_in)
+        finally:
+            streaming.reset()
+    return replayed
+
+
 def diagnose(cfg: DictConfig) -> dict:
     """Diagnose the configured model on ``data.path``; write the report under ``out``."""
     check_config(cfg)
@@ -128,7 +146,8 @@ def diagnose(cfg: DictConfig) -> dict:
         result = run_diagnosis(ds, template, targets, str(cfg.eval.mode), options, make_after,
                                str(cfg.eval.e_p95.statistic), cfg.eval.e_p95.get("max_points", 200),
                                model_name=str(cfg.model.name),
-                               ati="none" if ati is None else str(cfg.ati.name))
+                               ati="none" if ati is None else str(cfg.ati.name),
+                               stream_of=lambda comp, train: _stream(cfg, comp, train))
         folder, rerun, main = _write(cfg, ds, result, written, resolve(cfg.out))
         metrics, tags = outputs.tracked(result)
         tracker.log_metrics(metrics)

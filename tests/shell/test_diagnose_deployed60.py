@@ -1,0 +1,70 @@
+"""diagnose's "after" is the deployed model's test error (diagafter60).
+
+The deployed stream (promote, replay, the exported code) holds an input that leaves the
+training envelope off its training pattern to the envelope; ``run`` scores in batch, without
+it.  A lag bank on a planted ambient law was diagnosed at 0.66 µm and deployed at 0.688
+(one test row clamped).  Here one test campaign's last rows take one sensor far out.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import LIGHT, SHORT, thermocomp
+
+pytestmark = pytest.mark.slow
+
+
+@pytest.fixture(scope="module")
+def excursion(tmp_path_factory):
+    """A short dataset whose first test campaign ends with one sensor 30 K above its start."""
+    data = tmp_path_factory.mktemp("diagafter") / "excursion"
+    thermocomp("simulate", f"data.path={data}", "track=false", *SHORT)
+    manifest = pd.read_csv(data / "campaigns.csv")
+    first_test = manifest.loc[manifest.split == "test", "file"].iloc[0]
+    df = pd.read_csv(data / first_test)
+    sensor = next(c for c in df if c.startswith("T_") and "amb" not in c)
+    df.loc[df.index[-3:], sensor] += 30.0        # off the pattern: the other sensors stay put
+    df.to_csv(data / first_test, index=False)
+    return data
+
+
+def deployed_rmse(model_pkl, data, target: str) -> float:
+    """The test RMSE of the run's model streamed as promote deploys it (conf/promote defaults)."""
+    from thermocomp.apps.deploy.streaming import StreamingCompensator, replay
+    from thermocomp.core.io.read import read_dataset
+    from thermocomp.core.scoring.evaluation import require_split
+    from thermocomp.shell.model_store import load_model
+
+    ds, _ = read_dataset(data)
+    comp = load_model(model_pkl)
+    train = {c: ds.campaigns[c] for c in require_split(ds, "train")}
+    stream = StreamingCompensator.from_training(comp, train, 0.1, "clamp", True)
+    test = {c: ds.campaigns[c] for c in require_split(ds, "test")}
+    measured = comp.measured(test)
+    r = np.concatenate([measured[c][target].to_numpy() - replay(stream, df)[target].to_numpy()
+                        for c, df in test.items()])
+    return float(np.sqrt(np.nanmean(r ** 2)))
+
+
+def test_after_is_the_deployed_error_and_the_rerun_is_after_as_run(excursion, tmp_path):
+    out = tmp_path / "diag"
+    proc = thermocomp("diagnose", f"data.path={excursion}", f"out={out}", "track=false",
+                      "plots=none", "diagnose.targets=[E_Y]")
+    j = json.loads((out / "diagnosis.json").read_text())
+    thermocomp("run", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]",
+               "experiment=diagnosed", f"data.path={excursion}", f"out={tmp_path / 'rerun'}",
+               "track=false", *LIGHT)
+    metrics = json.loads((tmp_path / "rerun" / "metrics.json").read_text())
+    deployed = deployed_rmse(tmp_path / "rerun" / "model.pkl", excursion, "E_Y")
+    batch = metrics["targets"]["E_Y"]["test"]["rmse"]
+    assert abs(deployed - batch) > 1e-6 * batch       # the excursion is clamped when deployed
+    assert j["after"]["test_rmse"] == pytest.approx(deployed, rel=1e-9)
+    assert j["after"]["test_rmse_as_run"] == pytest.approx(batch, rel=1e-9)
+    assert j["test_scored"] == "deployed" and j["after"]["test_rows_clamped"] >= 1
+    assert "clamped to the training" in proc.stdout
+    assert "clamped to the training" in (out / "diagnosis" / "report.md").read_text()
