@@ -10,6 +10,7 @@ import subprocess
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from conftest import FAST, refused
 from test_export import _compose, needs_cc
@@ -98,17 +99,28 @@ def test_the_compiled_c_streams_a_labs_file_in_degf_k_mm_and_minutes_as_replay(t
     assert bad.returncode == 2 and b"convert the file to CSV" in bad.stderr, bad.stderr
 
 
-def test_a_time_stream_c_cannot_read_is_refused_at_export_naming_its_column(tmp_path, capsys):
-    # before: exported, and the compiled stream refused every row ("the time is no number")
+@pytest.mark.parametrize("form, extra, says", [
+    ("%m/%d/%Y %H:%M:%S", ("data.time='%m/%d/%Y %H:%M:%S'",),
+     ("'Zeit'", "data.time=%m/%d/%Y %H:%M:%S")),
+    ("%d.%m.%Y;%H:%M:%S", ("data.roles.time=[Datum,Uhrzeit]",),
+     ("a date ('Datum') and a time of day ('Uhrzeit') in two columns",))])
+def test_a_time_stream_c_cannot_read_is_refused_at_export_naming_its_column(tmp_path, capsys,
+                                                                            form, extra, says):
+    # before: exported, and the compiled stream refused every row ("the time is no number", a
+    # date alone)
     runs = _runs()
     for k, r in enumerate(runs):
         start = pd.Timestamp("2023-03-01 08:00") + pd.Timedelta(days=7 * k)
-        r.insert(0, "Zeit", (start + pd.to_timedelta(r.pop("Zeit [s]"), unit="s"))
-                 .dt.strftime("%m/%d/%Y %H:%M:%S"))
+        stamps = (start + pd.to_timedelta(r.pop("Zeit [s]"), unit="s")).dt.strftime(form)
+        if ";" in form:        # the date and its time of day in two columns
+            r.insert(0, "Uhrzeit", stamps.str.split(";").str[1])
+            r.insert(0, "Datum", stamps.str.split(";").str[0])
+        else:
+            r.insert(0, "Zeit", stamps)
     path = _long(tmp_path / "alle.csv", runs)
-    common = (f"data.path={path}", *DATA, "data.time='%m/%d/%Y %H:%M:%S'")
+    common = (f"data.path={path}", *DATA, *extra)
     assert main(["run", *common, "model=lagbank", *FAST, f"out={tmp_path / 'run'}"]) == 0
     refused(["export", *common, "monitor.adaptive=false", "export.format=c", "track=false",
              f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"],
-            capsys, "export.format=c", "'Zeit'", "data.time=%m/%d/%Y %H:%M:%S")
+            capsys, "export.format=c", *says)
     assert not (tmp_path / "code").exists()

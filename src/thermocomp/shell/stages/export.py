@@ -28,7 +28,6 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core.io.contract import TIME
 from ...core.io.roles import RUN
-from ...core.io.timestamps import CLOCK
 from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
 from ..model_store import model_family
@@ -72,6 +71,11 @@ def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict]:
     return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}
 
 
+# data.time values whose times stream.c reads as the reader does (its own parser: driver.py)
+STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601", "%d.%m.%Y %H:%M:%S",
+                            "%Y-%m-%d %H:%M:%S", "%Y-%m-%dT%H:%M:%S"})
+
+
 def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> None:
     """Refuse a column whose unit ``stream.c`` cannot convert as the reader did: a header read
     two ways (a letter unit, 'Probe K', taken apart by its first value), a time written as
@@ -89,7 +93,7 @@ def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> 
                           f"({clock[0]!r}) in two columns, which stream.c does not join: write "
                           "one column of dates and times (2023-01-07T08:45:00) or seconds")
     written = str(cfg.data.get("time") or "auto")
-    if written not in ("auto", "seconds", "iso8601"):
+    if written not in STREAM_C_TIMES:
         raise ConfigError(f"export.format=c: the time column {shown!r} is read as data.time="
                           f"{written}, which stream.c cannot convert (it reads seconds, ISO 8601 "
                           "or day-first dates and times): convert the time, or export as json")
@@ -125,7 +129,10 @@ def export(cfg: DictConfig) -> dict:
     converted = {raw: unit for raw, unit in (getattr(deployed, "lab_units_", {}) or {}).items()
                  if unit[0] in read}
     if fmt == "c":
-        _convertible(cfg, converted, lab.get(TIME, TIME), raw_names(named, CLOCK))
+        # (the reader joins the date and its time of day and keeps no lab's name of the second)
+        joined = (cfg.data.get("roles") or {}).get("time") or ()
+        clock = [] if isinstance(joined, str) or len(joined) != 2 else list(joined)[1:]
+        _convertible(cfg, converted, lab.get(TIME, TIME), [str(c) for c in clock])
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
                       lab_units=converted, run_column=run_column,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
