@@ -130,10 +130,11 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     the lab's column names too (:func:`~thermocomp.apps.deploy.naming.lab_names`) and learns from
     reference measurements as ``adapt.*`` says (``adapt_``)."""
     from ..apps.deploy.adapt import from_config as adapt_from_config
-    from ..apps.deploy.naming import lab_names
+    from ..apps.deploy.naming import lab_names, lab_units
 
     deployed = build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
     deployed.lab_names_ = lab_names(cfg, ds)
+    deployed.lab_units_ = lab_units(ds)    # (the exported stream.c converts these headers)
     # served: every row that carries a measured error is a reference (no schedule)
     deployed.adapt_ = adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
     return deployed

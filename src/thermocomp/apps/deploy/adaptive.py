@@ -50,6 +50,7 @@ class AdaptiveCompensator:
     """
 
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
+    lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
     end_states_: dict = {}
     adapt_ = None
 

@@ -48,6 +48,15 @@ def lab_names(cfg, ds=None) -> dict[str, list[str]]:
     return names
 
 
+def lab_units(ds=None) -> dict[str, list]:
+    """``{the lab's header: [contract name, scale, offset]}`` of the columns ``ds`` was read in
+    another unit (``data.units``, a unit in the header: mm, nm, °F, K, min), which
+    :func:`lab_names` leaves out: the exported ``stream.c`` reads them as the lab wrote them
+    and converts each cell (``value * scale + offset``) as the reader did.  The served model
+    takes such a column by its contract name only."""
+    return dict((ds.meta.get("lab_units") or {}) if ds is not None else {})
+
+
 def raw_names(names: Mapping, contract: str) -> list[str]:
     """The lab's names of ``contract`` in ``names`` (:func:`lab_names`; a model pickled before
     a column could have several holds one name as a string)."""

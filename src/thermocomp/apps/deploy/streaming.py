@@ -250,6 +250,10 @@ class StreamingCompensator:
     lab_names_ : dict
         ``{contract name: the lab's name}`` of the columns (``data.columns``): the served
         model reads either (:mod:`thermocomp.apps.deploy.naming`); set by the stage that deploys.
+    lab_units_ : dict
+        ``{the lab's header: [contract name, scale, offset]}`` of the columns read in another
+        unit (:func:`~thermocomp.apps.deploy.naming.lab_units`): the exported ``stream.c``
+        converts them; set by the stage that deploys.
     end_states_ : dict
         ``{campaign: EndState}`` of the record it was deployed on (:func:`end_states`), from
         which a served stream may continue; set by ``promote``.
@@ -266,6 +270,7 @@ class StreamingCompensator:
     """
 
     lab_names_: dict = {}      # replaced, never mutated (older pickles have none)
+    lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
     end_states_: dict = {}
     ambient_given_ = False
     adapt_ = None

@@ -203,7 +203,7 @@ def _loaded(path: Path, opts: ReadOptions) -> tuple:
     return load(path, opts)
 
 
-def _assembled(columns: dict, renamed: dict, rescaled: list, path: Path, opts: ReadOptions,
+def _assembled(columns: dict, renamed: dict, rescaled: dict, path: Path, opts: ReadOptions,
                lines: Lines | None, first_row: int = 0) -> tuple[pa.Table, dict]:
     """A campaign's loaded columns checked (:func:`_checked`) as a table, with its report;
     ``first_row``: the data rows above it in ``path`` (one run of a long file), for messages."""
@@ -222,7 +222,8 @@ def _assembled(columns: dict, renamed: dict, rescaled: list, path: Path, opts: R
     if renamed:          # the file's own names (data.columns, data.roles): raw -> contract
         report["columns"] = renamed
     if rescaled:         # read in another unit (mm, K, ...): the lab's name carries other values
-        report["converted"] = rescaled
+        report["converted"] = sorted(rescaled)
+        report["scales"] = rescaled       # {contract: [scale, offset]}, as applied
     return table, {"rows": table.num_rows, **report}
 
 
@@ -293,6 +294,23 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
     if opts.missing != "repair":
         report["missing"] = totals("missing")
     return report
+
+
+def lab_units(entries: dict) -> dict[str, list]:
+    """``{the lab's header: [contract name, scale, offset]}`` of every column a campaign read in
+    another unit (``value * scale + offset`` in the contract's); a header converted two ways
+    (a letter unit read apart by its first value) holds ``None`` for the scale."""
+    out: dict[str, list] = {}
+    for entry in entries.values():
+        scales = entry.get("scales", {})
+        named = {**{c: c for c in scales}, **{c: r for r, c in entry.get("columns", {}).items()}}
+        for contract, (scale, offset) in scales.items():
+            raw = named[contract]
+            if raw in out and out[raw][1:] != [scale, offset]:
+                out[raw] = [contract, None, None]
+            else:
+                out.setdefault(raw, [contract, scale, offset])
+    return out
 
 
 def _renamed(entries: dict) -> dict:
@@ -423,6 +441,8 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     # the path as given: a one-file record's file, which an error about its splits names
     meta = {"path": str(path), "column_map": report.get("column_map", {}),
             "converted": sorted({c for e in entries.values() for c in e.get("converted", [])}),
+            # the lab's headers read in another unit, with the scale and offset applied
+            "lab_units": lab_units(entries),
             # data.roles.campaign's header, which a stream of the long file starts runs by
             "run_column": next((e["run_column"] for e in entries.values() if "run_column" in e),
                                None),

@@ -553,9 +553,11 @@ def without_pandas_index(table: pa.Table) -> pa.Table:
     return table.drop_columns(index)
 
 
-def _rescaled(scales: dict) -> list[str]:
-    """Contract names whose values were converted to the contract's unit (not only renamed)."""
-    return sorted(n for n, (scale, offset) in scales.items() if (scale, offset) != (1.0, 0.0))
+def _rescaled(scales: dict) -> dict[str, list[float]]:
+    """``{contract name: [scale, offset]}`` of the columns whose values were converted to the
+    contract's unit (not only renamed): what the exported ``stream.c`` applies to the lab's file."""
+    return {n: [float(scale), float(offset)] for n, (scale, offset) in sorted(scales.items())
+            if (scale, offset) != (1.0, 0.0)}
 
 
 def _renames(raw: list[str], named: list[str | None]) -> dict[str, str]:

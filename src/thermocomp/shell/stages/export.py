@@ -12,6 +12,7 @@ together, or not at all (:func:`~thermocomp.base.files.staged_outputs`).
 from __future__ import annotations
 
 import json
+import math
 from datetime import datetime, timezone
 from pathlib import Path
 
@@ -70,6 +71,34 @@ def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict]:
     return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}
 
 
+# data.time values whose times stream.c reads as the reader does (its own parser: driver.py)
+STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601", "%d.%m.%Y %H:%M:%S",
+                            "%Y-%m-%d %H:%M:%S", "%Y-%m-%dT%H:%M:%S"})
+
+
+def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> None:
+    """Refuse a column whose unit ``stream.c`` cannot convert as the reader did: a header read
+    two ways (a letter unit, 'Probe K', taken apart by its first value), a time written as
+    ``data.time`` says (elapsed h:mm:ss, a strptime format: stream.c reads seconds and ISO 8601
+    or day-first dates and times only), or the date and its time of day in two columns
+    (``clock``: the time-of-day column's headers)."""
+    for raw, (contract, scale, offset) in converted.items():
+        if scale is None or not all(map(math.isfinite, (scale, offset))) or scale == 0:
+            raise ConfigError(f"export.format=c: the column {raw!r} ({contract}) was read in "
+                              "two units or one stream.c cannot convert: name its unit "
+                              f"(data.units, {{{raw!r}: ...}}) or convert the file")
+    shown = time_header if isinstance(time_header, str) else time_header[0]
+    if clock:
+        raise ConfigError(f"export.format=c: the time is a date ({shown!r}) and a time of day "
+                          f"({clock[0]!r}) in two columns, which stream.c does not join: write "
+                          "one column of dates and times (2023-01-07T08:45:00) or seconds")
+    written = str(cfg.data.get("time") or "auto")
+    if written not in STREAM_C_TIMES:
+        raise ConfigError(f"export.format=c: the time column {shown!r} is read as data.time="
+                          f"{written}, which stream.c cannot convert (it reads seconds, ISO 8601 "
+                          "or day-first dates and times): convert the time, or export as json")
+
+
 def export(cfg: DictConfig) -> dict:
     """Write the export of ``export.model`` in ``export.format`` to ``out``; ``{file: path}``."""
     # a registered model is read from the store: none created (export logs no run)
@@ -96,8 +125,16 @@ def export(cfg: DictConfig) -> dict:
            for c in (*stream.columns_, TIME, *stream.targets_) if (raws := raw_names(named, c))}
     # the long file's run column travels with the model's names: from the registry as from a run
     run_column = next(iter(raw_names(named, RUN)), None)
+    read = {*stream.columns_, TIME, *stream.targets_}
+    converted = {raw: unit for raw, unit in (getattr(deployed, "lab_units_", {}) or {}).items()
+                 if unit[0] in read}
+    if fmt == "c":
+        # (the reader joins the date and its time of day and keeps no lab's name of the second)
+        joined = (cfg.data.get("roles") or {}).get("time") or ()
+        clock = [] if isinstance(joined, str) or len(joined) != 2 else list(joined)[1:]
+        _convertible(cfg, converted, lab.get(TIME, TIME), [str(c) for c in clock])
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
-                      run_column=run_column,
+                      lab_units=converted, run_column=run_column,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),
                       not_in_code=left)
     try:

@@ -54,16 +54,25 @@ def c_string(text: str) -> str:
 
 
 def _lab_names(ss: StateSpace) -> str:
-    """The lab's headers the stream reads as contract names (``{lab, contract}`` pairs) and its
-    run-number column (``data.roles.campaign``: a new value starts a campaign), from the
-    provenance (:func:`thermocomp.shell.stages.export.export`)."""
-    pairs = [(raw, contract) for contract, raws in ss.provenance.get("lab_names", {}).items()
+    """The lab's headers the stream reads as contract names (``{lab, contract}`` pairs), the
+    scale and offset it converts each one's cells by to the contract's unit (µm, °C, s: 1 and
+    0 for a header only renamed) and its run-number column (``data.roles.campaign``: a new
+    value starts a campaign), from the provenance
+    (:func:`thermocomp.shell.stages.export.export`)."""
+    pairs = [(raw, contract, 1.0, 0.0)
+             for contract, raws in ss.provenance.get("lab_names", {}).items()
              for raw in ([raws] if isinstance(raws, str) else raws)]
-    items = ", ".join(f"{{{c_string(raw)}, {c_string(c)}}}" for raw, c in pairs) or '{"", ""}'
+    pairs += [(raw, contract, scale, offset)
+              for raw, (contract, scale, offset) in ss.provenance.get("lab_units", {}).items()]
+    items = ", ".join(f"{{{c_string(raw)}, {c_string(c)}}}" for raw, c, _, _ in pairs) or '{"", ""}'
+    units = ", ".join(f"{{{number(a)}, {number(b)}}}" for _, _, a, b in pairs) or "{1.0, 0.0}"
     run = ss.provenance.get("run_column")
     return (f"#define TC_N_LAB_NAMES {len(pairs)}\n"
             f"static const char *const TC_LAB_NAMES[{max(len(pairs), 1)}][2] = {{{items}}};"
             "  /* {the lab's header, the contract name} */\n"
+            "/* {scale, offset}: a cell under the lab's header k is read as value * scale + offset\n"
+            "   in the contract's unit (um, degC, s), as the model's reader converted it */\n"
+            f"static const double TC_LAB_UNITS[{max(len(pairs), 1)}][2] = {{{units}}};\n"
             f"static const char *const TC_RUN_COLUMN = {c_string(run or '')};"
             "  /* a new value starts a campaign (\"\": none) */")
 

@@ -3,11 +3,15 @@ on stdout, the lab's own file as it is written (its headers, separator, decimal 
 column and wall-clock times: ``docs/to-the-machine.md``).  The same text for every model: what
 differs (the names, the run column) is in ``compensator.h`` (:mod:`.c`)."""
 
-DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis> as CSV on stdout.
+DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis> in um as CSV on stdout.
  *
  * The header names the columns (any order, extra columns ignored) by their contract names or
  * by the lab's headers the model was made from (TC_LAB_NAMES: `T0 [degC]` for T_T0, `Zeit [s]`
- * for time); every input of TC_INPUT_NAMES is needed, `time` when the model reads it.  The
+ * for time); every input of TC_INPUT_NAMES is needed, `time` when the model reads it.  A column
+ * under a lab's header in another unit (`T0 [degF]`, `T1 [K]`, `dX [mm]`, `Zeit [min]`, or a
+ * unit data.units gave it) is converted cell by cell as the model's reader converted it
+ * (TC_LAB_UNITS: value * scale + offset, to degC, um, s); under its contract name a column is in
+ * the contract's unit.  The corrections printed are in um.  The
  * separator is the header's: ';', a tab or '|' where it holds one, else ','; with another
  * separator than ',' a decimal comma reads (12,5).  The time is seconds, or a logger's
  * wall-clock time (ISO 8601 2023-01-07T08:45:00, a zone offset or none; day-first
@@ -22,6 +26,7 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
  * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
  * mid-write leaves the previous row's state); a FILE of another build is refused.
+ * A file in fixed-width columns or JSON Lines is refused: convert it to CSV first.
  * Build: cc compensator.c stream.c -lm -o stream
  * Run:   ./stream [--state FILE] < rows.csv
  */
@@ -48,15 +53,25 @@ static int split(char *line, char **cells) {
     return n;
 }
 
-/* A header cell as named: without spaces and quotes around it, read as its contract name. */
-static const char *named(char *cell) {
+/* Each column's conversion to the contract's unit: value * scale + offset (TC_LAB_UNITS). */
+static double scale_of[MAX_COLS], offset_of[MAX_COLS];
+
+/* A header cell as named: without spaces and quotes around it, read as its contract name;
+   column j's conversion set from the lab's header (1 and 0 under a contract name). */
+static const char *named(char *cell, int j) {
     size_t len;
     int k;
     while (*cell == ' ' || *cell == '"') cell++;
     len = strlen(cell);
     while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"')) cell[--len] = '\0';
+    scale_of[j] = 1.0;
+    offset_of[j] = 0.0;
     for (k = 0; k < TC_N_LAB_NAMES; k++)
-        if (strcmp(cell, TC_LAB_NAMES[k][0]) == 0) return TC_LAB_NAMES[k][1];
+        if (strcmp(cell, TC_LAB_NAMES[k][0]) == 0) {
+            scale_of[j] = TC_LAB_UNITS[k][0];
+            offset_of[j] = TC_LAB_UNITS[k][1];
+            return TC_LAB_NAMES[k][1];
+        }
     return cell;
 }
 
@@ -73,6 +88,13 @@ static double value(const char *cell, int *bad) {
     while (*end == ' ' || *end == '"') end++;
     if (end == text || *end != '\0') { *bad = 1; return NAN; }
     return v;
+}
+
+/* Column j's cell in the contract's unit (NAN stays NAN). */
+static double converted(char **cells, int j, int *bad) {
+    double v = value(cells[j], bad);
+    v = v * scale_of[j];       /* (two statements: the reader multiplies, then adds) */
+    return v + offset_of[j];
 }
 
 /* Wall-clock times are parsed here by hand: standard C has no parser of dates (strptime and
@@ -156,7 +178,7 @@ static struct { int kind, started; long long origin; double origin_fraction; } c
 
 /* A row's time cell as seconds (NAN: none) into *t; wall-clock times as seconds since the
    campaign's first.  Returns 0, or 2 after saying why the cell is refused. */
-static int time_of(const char *cell, long row, double *t) {
+static int time_of(const char *cell, long row, double scale, double offset, double *t) {
     static const char *const forms[] = {"", "seconds", "a date and time without a zone offset",
                                         "a date and time with a zone offset"};
     long long whole = 0;
@@ -176,6 +198,10 @@ static int time_of(const char *cell, long row, double *t) {
         return 2;
     }
     if (kind) clock_.kind = kind;
+    if (kind == SECONDS) {                /* a time in min, h, ms: in s, as the reader reads it */
+        *t = *t * scale;
+        *t = *t + offset;
+    }
     if (kind > SECONDS) {
         if (!clock_.started) {
             clock_.origin = whole;
@@ -262,10 +288,15 @@ int main(int argc, char **argv) {
     }
     if (!fgets(line, sizeof line, stdin)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
     if (strncmp(line, "\xEF\xBB\xBF", 3) == 0) memmove(line, line + 3, strlen(line + 3) + 1);
+    if (line[strspn(line, " \t")] == '{') {
+        fprintf(stderr, "stream: line 1 is a JSON object: JSON Lines is not read here; convert "
+                "the file to CSV (a header line naming the columns, then one row per sample)\n");
+        return 2;
+    }
     sep = strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
     ncols = split(line, cells);
     for (j = 0; j < ncols; j++) {
-        cells[j] = (char *)named(cells[j]);      /* the run column has no contract name */
+        cells[j] = (char *)named(cells[j], j);   /* the run column has no contract name */
         if (TC_RUN_COLUMN[0] && strcmp(cells[j], TC_RUN_COLUMN) == 0) run_col = j;
     }
     for (i = 0; i < TC_N_INPUTS; i++) {
@@ -283,10 +314,10 @@ int main(int argc, char **argv) {
             /* a lab's report or gateway file fed as it is (a title line read as the header):
                what the stream reads, said with the missing name */
             fprintf(stderr, "stream: the header (line 1: CSV naming the inputs as TC_INPUT_NAMES "
-                    "in compensator.h does, in degC%s; a file in another form or unit, "
-                    "fixed-width, JSON Lines, degF, K, converted first) lacks input column %s\n",
-                    TC_LAB_NAMES[0][0][0] ? ", or by a lab's header TC_LAB_NAMES lists" : "",
-                    TC_INPUT_NAMES[i]);
+                    "in compensator.h does, in degC%s; a file in fixed-width columns or JSON "
+                    "Lines: converted first, to CSV) lacks input column %s\n",
+                    TC_LAB_NAMES[0][0][0] ? ", or by a lab's header TC_LAB_NAMES lists, in its "
+                    "unit" : "", TC_INPUT_NAMES[i]);
             return 2;
         }
     }
@@ -326,19 +357,20 @@ int main(int argc, char **argv) {
             strncpy(run, cells[run_col], MAX_CELL - 1);
         }
         for (i = 0; i < TC_N_INPUTS; i++) {
-            u[i] = value(cells[where[i]], &ignored);
+            u[i] = converted(cells, where[i], &ignored);
             if (!isfinite(u[i]) && !TC_INPUT_HELD[i]) {    /* (a held signal: tc_step holds it) */
                 fprintf(stderr, "stream: row %ld: input %s has no finite value\n", row,
                         TC_INPUT_NAMES[i]);
                 return 2;
             }
         }
-        if (time_col >= 0 && time_of(cells[time_col], row, &t) != 0) return 2;
+        if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
+                                     offset_of[time_col], &t) != 0) return 2;
         tc_step(&s, u, t, c);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
         printf("\n");
         for (i = measured = 0; i < TC_N_OUTPUTS; i++) {
-            e[i] = error_col[i] >= 0 ? value(cells[error_col[i]], &ignored) : NAN;
+            e[i] = error_col[i] >= 0 ? converted(cells, error_col[i], &ignored) : NAN;
             measured |= isfinite(e[i]);
         }
         if (measured) tc_reference(&s, e);
