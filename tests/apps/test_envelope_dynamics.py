@@ -21,6 +21,7 @@ from test_deploy import ARStub
 from test_protocol import _door_problem
 from thermocomp.apps.deploy import StreamingCompensator, replay
 from thermocomp.apps.deploy.export import Simulator, state_space
+from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.context import step_gain
 from thermocomp.core.models import ARX, LSTM, MLR, Hammerstein, LagBank
@@ -190,4 +191,37 @@ def test_the_step_gain_is_the_held_step_response(name):
         assert gain is None
         return
     held = [_step_response(est, j, X.shape[1], rows) for j in range(X.shape[1])]
+    np.testing.assert_allclose(gain, held, rtol=1e-6, atol=1e-9)
+
+
+# clampdiag60: a diagnosed model's gain through its features (the base's on x, on its ambient
+# law's and step's blocks times the campaign's factor, on a low-pass copy over a static base)
+DOOR_LAG = {"kind": "signal", "transform": "first_order_lag", "column": "S_door", "tau_s": 600.0}
+DIAGNOSED_GAINS = {
+    "lagbank ambient law": (lambda: LagBank(n_taus=3),
+                            [{"kind": "ambient_interval", "transform": "ambient_linear"}]),
+    "lagbank ambient step": (lambda: LagBank(n_taus=3),
+                             [{"kind": "ambient_interval", "transform": "ambient_step",
+                               "threshold_c": 18.0}]),
+    "lagbank door lag, square": (lambda: LagBank(n_taus=3),
+                                 [DOOR_LAG, {"kind": "nonlinear", "transform": "square",
+                                             "column": "S_door"}]),
+    "mlr low-pass, ambient law": (MLR, [{"kind": "dynamics", "transform": "lowpass_inputs",
+                                         "tau_s": 5400.0},
+                                        {"kind": "ambient_interval", "transform": "ambient_linear"}]),
+}
+
+
+@pytest.mark.parametrize("name", sorted(DIAGNOSED_GAINS))
+def test_a_diagnosed_models_step_gain_is_its_held_step_response(name):
+    """The diagnosed model's gain (None before: clamped outright) is its streamed response to a
+    unit step held for the horizon, in a campaign whose initial ambient (24 °C) switches its
+    ambient law and step on."""
+    X, y, context = _door_problem(seed=1)
+    base, effects = DIAGNOSED_GAINS[name]
+    est = AugmentedRegressor(base(), effects=effects).fit(X, y, context=context)
+    rows, a0 = 600, 24.0
+    state = est.stream_init({"campaign": "S", "time": 0.0, "ambient_c0": a0, "S_door": 0.0})
+    gain = step_gain(est, state, rows * 60.0)
+    held = [_step_response(est, j, X.shape[1], rows, a0) for j in range(X.shape[1])]
     np.testing.assert_allclose(gain, held, rtol=1e-6, atol=1e-9)

@@ -158,15 +158,16 @@ def test_derived_inputs_beside_the_ambient_law_export_in_its_campaign_factor(dat
 
 @needs_cc
 @pytest.mark.parametrize("effects", [[PRODUCT, SQUARE], [AMBIENT_LAW]], ids=["derived", "ambient-law"])
-def test_a_diagnosed_lag_bank_is_clamped_outright_as_the_stream_clamps_it(data, tmp_path, effects):
-    """The stream forks a held copy for the clamp's bound only of a model with a step gain; a
-    diagnosed model has none, so its inputs' excess is taken out whole (the code bounded it by
-    the base's gain: 1.1 µm off the served lag bank's corrections, the clamp acting)."""
+def test_a_diagnosed_lag_bank_is_clamped_by_its_gain_as_the_stream_clamps_it(data, tmp_path, effects):
+    """The stream forks a held copy for the clamp's bound of a model with a step gain; a
+    diagnosed model's is its base's through its features (clampdiag60: the context's derived
+    inputs do not move with the inputs' excess, the ambient law scales it by A0 - 20), so the
+    code bounds it by that gain too (outright before, as the stream then clamped it)."""
     stream, tests = _diagnosed(data, effects, base=LagBank(n_taus=2))
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
     assert _json_proved(stream, tests) <= TOLERANCE_UM
     ss = state_space(stream)
-    assert ss.clamp_outright == [1] and ss.taus
+    assert not ss.clamp_outright and ss.taus and np.abs(ss.clamp_gain).max() > 0.0
 
 
 def test_the_export_command_writes_a_diagnosed_models_code_naming_its_effects(data, tmp_path,

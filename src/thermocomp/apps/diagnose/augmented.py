@@ -9,8 +9,18 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ...base.errors import ContractError, ParameterError
-from ...core.context import AMBIENT_C0, TIME, SideInputs, context_columns, groups_of, merge_columns, scalar
+from ...core.context import (
+    AMBIENT_C0,
+    TIME,
+    SideInputs,
+    context_columns,
+    groups_of,
+    merge_columns,
+    scalar,
+    step_gain,
+)
 from ...core.models.linear import MLR
+from ...core.models.pcr import PCR
 from ...core.timerule import CLOCK_START, median_step, step_time
 from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
 from .shrink import PartialRidgePath
@@ -180,6 +190,65 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 offsets = self.initial_weights_[i] @ offsets
             state["first"][key] = offsets
         return state["first"][key] * (1.0 - np.exp(-(t - state["t0"]) / e.tau_s))
+
+    # -- the envelope clamp's bound (clampdiag60) --------------------------------------------
+    def _lowpass_held(self) -> bool:
+        """A low-pass copy of the inputs has a held step's response through the base only when
+        the base is static (MLR, PCR): a lag bank's or an ARX model's dynamics on that lag's
+        ramp are no product of the two gains."""
+        lowpass = any(e.transform == "lowpass_inputs" for e in self.effects_)
+        return not lowpass or type(self.estimator_) in (MLR, PCR)
+
+    def has_step_gain(self) -> bool:
+        """Whether :meth:`step_gain` gives a gain (the base has one, a low-pass copy only over a
+        static base): the export clamps outright where it does not, as the stream does."""
+        check_is_fitted(self)
+        return callable(getattr(self.estimator_, "step_gain", None)) and self._lowpass_held()
+
+    def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
+        """Gain per input (:func:`thermocomp.core.context.step_gain`) of a step held for
+        ``horizon_s``, through the base's gain on the features the inputs make.
+
+        The stream's clamp changes the inputs ``x`` alone: a raw signal, its lag, a product or a
+        square (of the context's columns as read) and a lag's initial-state transient do not move
+        with it (gain 0, exact).  ``x (A0 - 20)`` and ``x [A0 > A_thr]`` scale ``x`` by the
+        campaign's fixed ``A0`` (``state['ambient_c0']``): exact.  A low-pass copy ``L_tau[x]``
+        of a held step is ``(1 - exp(-h / tau))`` of it: exact over a static base only, ``None``
+        over a dynamic one (the clamp then takes the clamped stream outright, as before).
+        ``None`` too when the base has no gain, or an ambient law has no ``A0``.
+        """
+        check_is_fitted(self)
+        if not self.has_step_gain():
+            return None
+        gain = step_gain(self.estimator_, None if state is None else state.get("base"), horizon_s)
+        if gain is None:
+            return None
+        a0 = scalar(state, AMBIENT_C0) if state is not None else np.nan
+        k = int(self.n_features_in_)
+        out, at = gain[:k].copy(), k
+        for i, e in enumerate(self.effects_):
+            tr = e.transform
+            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step"):
+                block = gain[at:at + k]
+                at += k
+                if tr == "lowpass_inputs":
+                    held = 1.0 - np.exp(-horizon_s / e.tau_s) if np.isfinite(horizon_s) else 1.0
+                    out += held * block
+                elif not np.isfinite(a0):
+                    return None
+                elif tr == "ambient_linear":
+                    out += (a0 - AMBIENT_CENTRE_C) * block
+                else:
+                    out += float(a0 > e.threshold_c) * block
+            else:     # one column of the context, not of x
+                at += 1
+            if tr in ("first_order_lag", "lowpass_inputs") and e.initial_state:
+                w = self.initial_weights_[i]
+                at += len(w) if w is not None else len(e.initial_state)
+        if at != gain.size:      # the features' columns as stream_step builds them
+            raise ContractError(f"the diagnosed model's features are {at} columns, its base's "
+                                f"gain {gain.size}")
+        return out
 
     def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
         """One sample of simulation-mode ``predict``.

@@ -198,14 +198,15 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
                      [(tau, j - half * width, g) for tau, j, g in lags
                       if not whole or half * width <= j < (half + 1) * width],
                      a, None if gain is None else gain[cut], w, cols, len(inputs), target,
-                     derived, blocks, extra, feats)
+                     derived, blocks, extra, feats, horizon_s)
         for law in laws if half else ():
             law.ambient = True          # the interaction's: times A0 - 20 (a step's too)
         out += laws
     return out, period
 
 
-def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, extra, feats):
+def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, extra, feats,
+          horizon_s=None):
     """:func:`_member_laws`' laws of one estimator's coefficients over ``[x, blocks, derived
     inputs, low-pass blocks, powers]`` (in the effects' order: :meth:`Derived.canonical`)."""
     k = len(cols)
@@ -214,6 +215,13 @@ def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, ex
     width = end + k * len(derived.lowpass)
     b0, delayed, lags = derived.canonical(b0, delayed, lags)
     gain = derived.columns(gain)
+    if gain is not None and derived.lowpass:
+        # the clamp's gain on x of a low-pass copy held for the horizon (a static base only:
+        # AugmentedRegressor.step_gain, clampdiag60); the derived inputs do not move with x
+        gain = np.array(gain, float)
+        for m, tau in enumerate(derived.lowpass):
+            held = 1.0 - np.exp(-horizon_s / tau) if np.isfinite(horizon_s) else 1.0
+            gain[:k] += held * gain[end + m * k:end + (m + 1) * k]
     if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
         raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
                             "code's input history holds the inputs only")

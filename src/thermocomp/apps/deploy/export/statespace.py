@@ -217,7 +217,9 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     laws, period, powers, chosen = [], None, Powers(), {}      # laws: (target index, Law)
     # the stream forks a held copy for the clamp's bound only of a model with a step gain
-    outright = [int(clamp and not callable(getattr(est, "step_gain", None)))
+    # (a diagnosed model's: where its features are linear in x, clampdiag60: has_step_gain)
+    outright = [int(clamp and not (callable(getattr(est, "step_gain", None))
+                                   and getattr(est, "has_step_gain", lambda: True)()))
                 for _, est, _ in stream._plan]
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)

@@ -1,0 +1,87 @@
+"""A diagnosed model is clamped by its step gain as a plain one is (clampdiag60).
+
+The training-envelope clamp takes out of a prediction the model's response to an input's excess,
+but never more than ``|gain @ e|`` (the excess held for the longest training campaign).  A model
+``diagnose`` writes had no step gain and was clamped outright: its lag bank streamed on the
+flattened input alone, whose opposed lag weights do not cancel there (a 0.15 K excess on one row
+moved a lag-bank base's correction 2.61 µm, bench record ``ambientlaw6003``).  Its features are
+linear in the inputs' excess (the ambient law scales ``x`` by the campaign's fixed ``A0``; a
+signal's lag, a product, a square read the context, which the clamp does not touch), so its gain
+is the base's through them: the deployed correction stays within the plain rule's bound, and the
+exported code (C, ST, numpy, JSON) clamps by that gain as replay does."""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import pytest
+
+from test_export import needs_cc
+from test_export_auto57 import PUSH_C, TOLERANCE_UM, _proved
+from test_export_diagnosed59 import _diagnosed
+from test_export_effects59 import LAG, LOWPASS, PRODUCT, SQUARE, _door, _json_proved
+from thermocomp.apps.deploy.export import state_space
+from thermocomp.apps.deploy.streaming import replay
+from thermocomp.core.context import step_gain
+from thermocomp.core.frame import ambient_c0
+from thermocomp.core.models import MLR, LagBank
+
+AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
+EXCESS_K = 0.15
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory):
+    return _door(tmp_path_factory.mktemp("clampdiag") / "data")
+
+
+def _one_row_over(stream, df):
+    """``df`` (its push undone) with T_a over its envelope bound by EXCESS_K on one row (the row)."""
+    df = df.copy()
+    df.loc[len(df) // 2:, "T_a"] -= PUSH_C
+    j = stream.columns_.index("T_a")
+    row = len(df) // 3
+    df.loc[row, "T_a"] = df.loc[0, "T_a"] + stream.envelope.hi[j] + EXCESS_K
+    return df, row
+
+
+@pytest.mark.parametrize("effects", [[AMBIENT_LAW], [AMBIENT_LAW, LAG, PRODUCT, SQUARE]],
+                         ids=["ambient-law", "with-context-features"])
+def test_a_diagnosed_lag_banks_small_excess_moves_it_within_the_plain_bound(data, effects):
+    stream, tests, _ = _diagnosed(data, effects, base=LagBank(n_taus=2))
+    df, row = _one_row_over(stream, tests[1])
+    off = copy.deepcopy(stream)
+    off.policy = "off"
+    deployed = replay(stream, df)
+    batch = replay(off, df)
+    assert deployed["n_clamped"].iloc[row] == 1 and deployed["n_clamped"].sum() == 1
+    # the plain rule's bound |gain @ e|, written out: the base lag bank's gain on T_a and, times
+    # A0 - 20 (the campaign's initial ambient, as the stream reads it), on its ambient law's T_a
+    model = stream._plan[0][1]
+    k, j = int(model.n_features_in_), stream.columns_.index("T_a")
+    base = model.estimator_.step_gain(None, stream.envelope.horizon_s)
+    a0 = ambient_c0(df[[stream.columns_[i] for i in stream._amb_idx]].to_numpy(float)[0])
+    bound = abs(base[j] + (a0 - 20.0) * base[k + j]) * EXCESS_K
+    moved = np.abs(deployed["E_X"].to_numpy() - batch["E_X"].to_numpy())
+    assert moved[row] > 0.0
+    assert moved.max() <= bound + 1e-9
+
+
+def test_a_lowpass_copy_over_a_lag_bank_stays_clamped_outright(data):
+    """The low-pass copy's lag through the lag bank's is no product of the two gains: None."""
+    stream, _, _ = _diagnosed(data, [LOWPASS], base=LagBank(n_taus=2))
+    assert step_gain(stream._plan[0][1], None) is None
+    assert state_space(stream).clamp_outright == [1]
+
+
+@needs_cc
+@pytest.mark.parametrize("effects, base", [([AMBIENT_LAW], LagBank(n_taus=2)),
+                                           ([AMBIENT_LAW, LOWPASS, LAG, PRODUCT], MLR())],
+                         ids=["lagbank-ambient-law", "mlr-lowpass-and-signals"])
+def test_the_export_clamps_a_diagnosed_model_by_its_gain_as_replay(data, tmp_path, effects, base):
+    stream, tests = _diagnosed(data, effects, base=base)[:2]
+    ss = state_space(stream)
+    assert not ss.clamp_outright and np.abs(ss.clamp_gain).max() > 0.0
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+    assert _json_proved(stream, tests) <= TOLERANCE_UM
