@@ -361,7 +361,9 @@ def wide_options(opts, layout: Layout):
     """The read options of the wide (Parquet) file a long one is written to: its time is
     seconds or ISO 8601 text (the long file's unit and format read already)."""
     time = opts.time if opts.time in ("auto", "seconds") else "auto"
-    units = {**opts.units, layout.header[layout.time]: "s"}
+    header = layout.header[layout.time]
+    # (its unit, data.units' or the header's, read into the grid's seconds already)
+    units = opts.units if _time_unit(header, opts) is None else {**opts.units, header: "s"}
     # (the grid is the resampling: read as it is, a silence left without rows)
     return replace(opts, delimiter=",", decimal=".", thousands=None, encoding=UTF8,
                    time=time, missing_values=[], resample_s=None, units=units)
