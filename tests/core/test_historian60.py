@@ -132,7 +132,7 @@ def test_a_long_file_without_a_period_is_refused_naming_the_key_and_the_tags_int
     ("repeat", "Value", "two samples at"),
     ("text", "Value", "is not a number, and its quality says Good"),
     ("quality", "Quality", "quality 'Substitute?' is read by no rule"),
-    ("time", "Timestamp", "is not a day-first timestamp"),
+    ("time", "Timestamp", "is not a time in data.time's format"),   # (the wide reader's message)
 ])
 def test_bad_samples_are_refused_with_file_column_and_row(tmp_path, spoil, column, says):
     frame = samples()

@@ -138,7 +138,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
     layout = long_layout(sample, opts) if is_text(sample) else None
     if layout is not None:    # a historian's long file: the head of the wide grid it is read as
         with long_as_wide(sample, opts, layout, rows=HEAD_ROWS) as wide:
-            _, header, first, _ = head(wide, wide_options(opts))
+            _, header, first, _ = head(wide, wide_options(opts, layout))
         held = held_wide(sample, opts, layout)
         names = layout.header
         opts = replace(opts, delimiter=layout.delimiter, decimal=layout.decimal)

@@ -19,8 +19,10 @@ roles by pattern over the TAG names, units, every check apply unchanged, and a m
 that file names the long file, the tag and the long file's row instead.  Which files are long is
 :mod:`.historian_layout`'s.  Refused (exit 2, file,
 column, row): a tag with two samples at one stamp holding other values, a value cell of text
-where the quality says Good (unless ``data.missing_values`` lists it), a quality no rule reads,
-a time no rule reads.
+where the quality says Good (unless ``data.missing_values`` lists it), a quality no rule reads.
+The time column is read as a wide file's is (:func:`.tables.time_of_text`: ISO 8601, day-first,
+slashed dates, ``data.time``, ``h:mm:ss`` past 24 h, numbers in the unit ``data.units`` gives:
+epoch ms, Excel's serial days), a time it does not read refused with its message.
 """
 
 from __future__ import annotations
@@ -35,6 +37,8 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
+import pyarrow.compute as pc
 
 from ...base.errors import listed
 from ...base.log import logger
@@ -42,13 +46,15 @@ from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
 from .historian_layout import Layout, quality_of
-from .timestamps import on_local_clock
+from .roles import split_unit
+from .separators import reads_as_number
+from .tables import time_of_text
+from .timestamps import on_local_clock, said_if_not_seconds
+from .units import UNITS
 
 PERIOD_KEY = "data.resample_s"
 _GRID_ROW = re.compile(r"\b(rows? \d+(?:-\d+)?)")
 SILENCE_PERIODS = 100     # a stretch without any tag's sample this many grid periods long: said
-_DAY_FIRST = re.compile(r"^\s*\d{1,2}\.\d{1,2}\.\d{4}")
-_SLASHED = re.compile(r"^\s*\d{1,2}/\d{1,2}/\d{2,4}")
 
 
 @dataclass(frozen=True)
@@ -100,7 +106,7 @@ def tag_samples(path: Path, opts, layout: Layout) -> tuple[pd.DataFrame, dict, o
                             row=int(row[at]))
     good = _good(raw, names, layout, row, path)
     value = _values(raw[names[layout.value]], good, tag, opts, layout, row, path)
-    seconds, origin, zone = _times(raw[names[layout.time]], tag, opts, row, path)
+    seconds, origin, zone = _times(raw[names[layout.time]], tag, opts, layout, row, path)
     samples = pd.DataFrame({"time": seconds, "tag": tag.to_numpy(), "value": value,
                             "row": row}).sort_values(["tag", "time", "row"], kind="stable")
     samples = _without_repeats(samples, path, names[layout.value], origin)
@@ -175,40 +181,66 @@ def _values(column: pd.Series, good: np.ndarray, tag: pd.Series, opts, layout, r
     return np.where(good, value, np.nan)
 
 
-def _times(column: pd.Series, tag: pd.Series, opts, row, path) -> tuple[np.ndarray, object, object]:
+def _times(column: pd.Series, tag: pd.Series, opts, layout: Layout, row, path
+           ) -> tuple[np.ndarray, object, object]:
     """Seconds (float, since the first stamp), the first stamp (a Timestamp; None: the file's
-    time is seconds) and its zone (stamps without an offset with ``data.timezone``: UTC)."""
+    time is a number or an elapsed time) and its zone (stamps without an offset with
+    ``data.timezone``: UTC), read as a wide file's time column is (:func:`.tables.time_of_text`:
+    every form, ``data.time`` and the refusals the same; a number in the unit ``data.units``
+    or the header gives, Excel's serial days with ``d``)."""
     header = column.name
-    numbers = pd.to_numeric(column.str.replace(",", ".", regex=False), errors="coerce")
-    if opts.time == "seconds" or (opts.time == "auto" and numbers.notna().all()):
-        _check_parsed(numbers, column, header, row, path, "a number of seconds")
-        return numbers.to_numpy(float) - float(numbers.min()), None, None
-    text = column.str.replace(r"(\d:\d\d),(\d)", r"\1.\2", regex=True)   # 13:05:00,500
-    if opts.time not in ("auto", "iso8601", "seconds", "elapsed"):
-        stamps = pd.to_datetime(text, format=opts.time.replace(",%f", ".%f"), errors="coerce")
-        what = f"the format data.time={opts.time!r}"
-    elif opts.time == "elapsed":
-        stamps = pd.Timestamp(0) + pd.to_timedelta(text, errors="coerce")
-        what = "h:mm:ss (data.time=elapsed)"
-    elif text.str.match(_DAY_FIRST).all():
-        stamps = pd.to_datetime(text, format="%d.%m.%Y %H:%M:%S.%f", errors="coerce").fillna(
-            pd.to_datetime(text, format="%d.%m.%Y %H:%M:%S", errors="coerce"))
-        what = "a day-first timestamp (28.11.2026 13:05:00)"
-    elif text.str.match(_SLASHED).any():
-        at = int(np.argmax(text.str.match(_SLASHED).to_numpy()))
-        raise ContractError(f"value {column.iloc[at]!r}: a date with slashes, day or month "
-                            "first? set data.time (e.g. '%d/%m/%Y %H:%M:%S')", file=path,
-                            column=header, row=int(row[at]))
-    else:
-        stamps = pd.to_datetime(text, format="ISO8601", errors="coerce", utc=text.str.contains(
-            r"(?:Z|[+-]\d\d:?\d\d)$", regex=True).any())
-        what = "an ISO 8601 timestamp"
-    _check_parsed(stamps, column, header, row, path, what)
-    if opts.timezone and opts.time != "elapsed" and stamps.dt.tz is None:
+    if (column == "").any():
+        raise ContractError("missing time value", file=path, column=header,
+                            row=int(row[int(np.argmax((column == "").to_numpy()))]))
+    text = column
+    # a number read as the wide reader's CSV reader reads one (data.decimal its point)
+    if reads_as_number(column.iloc[0], layout.decimal, opts.thousands):
+        text = text.str.replace("\u2212", "-", regex=False)
+        text = text.str.replace(opts.thousands, "", regex=False) if opts.thousands else text
+        text = text.str.replace(layout.decimal, ".", regex=False)
+    wide = replace(opts, decimal=".", thousands=None)
+    try:
+        read = time_of_text(pa.chunked_array([pa.array(text.to_numpy(str), pa.string())]), path,
+                            wide, header)
+    except ContractError as exc:     # its row among the column's cells: the long file's row
+        raise ContractError(exc.reason, file=path, column=header,
+                            row=None if exc.row is None else int(row[exc.row - 1])) from None
+    if pa.types.is_duration(read.type):           # an elapsed time, h:mm:ss
+        seconds = pc.cast(read, pa.int64()).to_numpy() / 1e9
+        return seconds - seconds.min(), None, None
+    if not pa.types.is_timestamp(read.type):      # a number: its unit's seconds
+        number = pc.cast(read, pa.float64()).to_numpy()
+        scale = _time_scale(header, opts, path)
+        if _time_unit(header, opts) is None:      # (milliseconds? Excel's days? said)
+            said_if_not_seconds(np.unique(number), path, header)
+        seconds = (number - number.min()) * scale
+        # a unit's seconds to the microsecond: 46000.5 serial days hold no finer, and a sample
+        # 1e-7 s past a grid point would miss it (the grid starts at a sample's own time)
+        return (seconds if scale == 1.0 else np.round(seconds, 6)), None, None
+    stamps = pd.Series(read.to_pandas(), index=column.index)
+    if opts.timezone and stamps.dt.tz is None:
         stamps = _on_clock(stamps, tag, opts.timezone, row, path, header)
     zone = getattr(stamps.dt, "tz", None)
     origin = stamps.min()
     return (stamps - origin).dt.total_seconds().to_numpy(float), origin, zone
+
+
+def _time_unit(header: str, opts) -> str | None:
+    """The unit of a time column of numbers, as the wide reader takes it: ``data.units``, else
+    the header's."""
+    return opts.units.get(header, split_unit(header)[1])
+
+
+def _time_scale(header: str, opts, path) -> float:
+    """The seconds one unit of the time column is (``data.units={<its header>: ms}``: 0.001)."""
+    unit = _time_unit(header, opts)
+    if unit is None:
+        return 1.0
+    scale = UNITS["time"].get(unit.lower().replace(" ", ""))
+    if scale is None:
+        raise ContractError(f"{header!r}: unit {unit!r} is not a time's (s, ms, min, h, d)",
+                            file=path, column=header)
+    return scale[0]
 
 
 def _on_clock(stamps: pd.Series, tag: pd.Series, zone: str, row, path, header) -> pd.Series:
@@ -225,14 +257,6 @@ def _on_clock(stamps: pd.Series, tag: pd.Series, zone: str, row, path, header) -
             raise ContractError(exc.reason, file=path, column=header,
                                 row=int(row[positions[exc.row - 1]])) from None
     return pd.Series(pd.to_datetime(out, utc=True), index=stamps.index)
-
-
-def _check_parsed(parsed: pd.Series, column: pd.Series, header, row, path, what: str) -> None:
-    failed = parsed.isna().to_numpy()
-    if failed.any():
-        at = int(np.argmax(failed))
-        raise ContractError(f"time {column.iloc[at]!r} is not {what}", file=path, column=header,
-                            row=int(row[at]))
 
 
 def _without_repeats(samples: pd.DataFrame, path, value_header: str, origin) -> pd.DataFrame:
@@ -325,19 +349,24 @@ def held_wide(path: Path, opts, layout: Layout) -> Wide:
     at the file, init's and the read's, converts it once)."""
     stat = path.stat()
     key = (str(path), stat.st_mtime_ns, stat.st_size, opts.encoding, opts.time, opts.thousands,
-           tuple(map(str, opts.missing_values)), opts.resample_s, layout)
+           tuple(map(str, opts.missing_values)), opts.resample_s, opts.timezone,
+           tuple(sorted(opts.units.items())), layout)
     if key not in _CACHE:
         _CACHE.clear()                        # (one record at a time: its memory only)
         _CACHE[key] = read_long(path, opts, layout)
     return _CACHE[key]
 
 
-def wide_options(opts):
-    """The read options of the wide (Parquet) file a long one is written to."""
+def wide_options(opts, layout: Layout):
+    """The read options of the wide (Parquet) file a long one is written to: its time is
+    seconds or ISO 8601 text (the long file's unit and format read already)."""
     time = opts.time if opts.time in ("auto", "seconds") else "auto"
+    header = layout.header[layout.time]
+    # (its unit, data.units' or the header's, read into the grid's seconds already)
+    units = opts.units if _time_unit(header, opts) is None else {**opts.units, header: "s"}
     # (the grid is the resampling: read as it is, a silence left without rows)
     return replace(opts, delimiter=",", decimal=".", thousands=None, encoding=UTF8,
-                   time=time, missing_values=[], resample_s=None)
+                   time=time, missing_values=[], resample_s=None, units=units)
 
 
 @contextmanager

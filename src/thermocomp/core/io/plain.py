@@ -42,6 +42,6 @@ def as_read(path: Path, opts, rows: int | None = None) -> Iterator[tuple[Path, o
             yield text, utf8_options(opts)
     elif (layout := long_layout(path, opts)) is not None:   # a historian's: its grid, wide
         with long_as_wide(path, opts, layout, rows=rows) as wide:
-            yield wide, wide_options(opts)
+            yield wide, wide_options(opts, layout)
     else:
         yield path, opts

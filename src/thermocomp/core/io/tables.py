@@ -593,15 +593,23 @@ def _parquet_numbers(column: pa.ChunkedArray, name: str, path: Path) -> pa.Chunk
 def _parquet_time(column: pa.ChunkedArray, path: Path, opts: ReadOptions) -> pa.ChunkedArray:
     kind = column.type
     if pa.types.is_string(kind) or pa.types.is_large_string(kind):
-        first = _first_valid(column)
-        if maybe_elapsed(str(first[1]).strip() if first else "", opts.time):
-            return elapsed_seconds(column, opts.time, path)
-        return _stamps(column, path, opts)
+        return time_of_text(column, path, opts)
     if (pa.types.is_floating(kind) or pa.types.is_integer(kind) or pa.types.is_timestamp(kind)
             or pa.types.is_duration(kind)):
         return column
     raise ContractError(f"Parquet dtype {kind} where seconds or timestamps are expected",
                         file=path, column=TIME)
+
+
+def time_of_text(column, path: Path, opts: ReadOptions, header: str | None = None):
+    """A time column of text (no cell missing) read as a wide file's is: an elapsed ``h:mm:ss``
+    (a duration), else as its first cell says (:func:`_stamps`: seconds, a timestamp); a cell
+    that is not refused with its row, the column :data:`.contract.TIME`.  A historian's long
+    file reads its time column so too (:mod:`.historian`)."""
+    first = _first_valid(column)
+    if maybe_elapsed(str(first[1]).strip() if first else "", opts.time):
+        return elapsed_seconds(column, opts.time, path, header)
+    return _stamps(column, path, opts)
 
 
 def _first_valid(column: pa.ChunkedArray) -> tuple[int, object] | None:
