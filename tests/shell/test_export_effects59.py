@@ -30,8 +30,7 @@ from test_export_diagnosed59 import _diagnosed as diagnosed
 from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, state_space
 from thermocomp.apps.deploy.export.statespace import StateSpace
 from thermocomp.apps.deploy.streaming import replay
-from thermocomp.core.models import MLR, LagBank
-from thermocomp.core.models.ati import ATIRegressor
+from thermocomp.core.models import ARXRF, LagBank
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 
@@ -209,13 +208,13 @@ def test_a_diagnosed_low_pass_of_the_inputs_exports_as_their_lag_bank_channels(d
 
 
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
-    """The ambient law around an ATI model's ambient interaction (``x (A0 - 20)^2``; exportrest60
-    exports a lag's initial-state transient, an ambient step and any effect around an ATI model,
-    which this refused too)."""
-    ati = ATIRegressor(MLR(), n_intervals=2, ambient_interaction=True)
+    """A diagnosed model whose base is no linear family (exportati60 exports the ambient law
+    around an ATI model's interaction, ``x (A0 - 20)^2``, the last effect this refused): refused
+    naming the family and the linear families that export."""
     for effects in ([AMBIENT_LAW], [LAG, AMBIENT_LAW, SQUARE]):
-        stream, _ = _diagnosed(data, effects, base=ati)
-        with pytest.raises(NotExportable, match="ambient_linear around an ATI model") as info:
+        stream, _ = _diagnosed(data, effects, base=ARXRF())
+        with pytest.raises(NotExportable, match="model ARXRF is not one of the linear families"
+                           ) as info:
             state_space(stream)
-        assert "first-order lag of a signal or input" in str(info.value)
-        assert "a square of one" in str(info.value)
+        assert "mlr, pcr, arx, lagbank, hammerstein" in str(info.value)
+        assert "thermocomp serve" in str(info.value)

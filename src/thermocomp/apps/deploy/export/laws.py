@@ -44,7 +44,8 @@ PLAIN = 0.0                         # a lag's source: its input itself (a tau is
 @dataclass
 class Law:
     """One law over the code's ``[x, powers]`` (module doc), and when it counts: ``lo < A0 <=
-    hi``, times ``A0 - AMBIENT_CENTRE_C`` when ``ambient``."""
+    hi``, times ``(A0 - AMBIENT_CENTRE_C) ** ambient`` (``ambient`` 0, 1 or 2: a diagnosed
+    ambient law's ``x (A0 - 20)`` around an ATI model's interaction, exportati60)."""
 
     c: float = 0.0
     terms: list = field(default_factory=list)      # [(indices into [x, powers], b0 there)]
@@ -56,7 +57,7 @@ class Law:
     gain: np.ndarray | None = None                 # step gain over x at the clamp's horizon
     lo: float = -UNBOUNDED
     hi: float = UNBOUNDED
-    ambient: bool = False
+    ambient: int = 0          # the power of A0 - 20 the law counts times
 
     @property
     def key(self) -> tuple:
@@ -171,15 +172,6 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     own_x = k * (1 + len(blocks))               # the inputs' (and the ambient blocks') columns
     end = own_x + len(extra)                    # then the derived inputs', the low-pass blocks'
     width = end + k * len(derived.lowpass)
-    if whole and (feats or ("ambient", None) in blocks):
-        what = ("a Hammerstein model's powers (after the interaction)" if feats else
-                "the diagnosed ambient law x (ambient_c0 - 20°C): ambient_linear")
-        raise NotExportable(f"{what} around an ATI model's ambient interaction ({target}: the "
-                            "interaction multiplies the diagnosed features by A0 - 20, and (A0 - "
-                            "20)^2 or a power after it is no law of the code) does not export (the "
-                            f"code holds of diagnose's effects: {EXPORTED_EFFECTS}, around a plain "
-                            "or an ATI model); the served model runs it (thermocomp serve, "
-                            "connect)")
     c, b0, delayed, lags, a, period = _target_law(linear, width * (1 + whole) + len(feats), period)
     if derived.lowpass or any(tau is not None for _, tau in extra) or any(
             f.initial is not None for f in derived.features):     # a transient's time too
@@ -194,15 +186,36 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     out = []
     for half in range(1 + whole):
         cut = slice(half * width, (half + 1) * width) if whole else slice(None)
-        laws = _laws(0.0 if half else c, b0[cut], {d: r[cut] for d, r in delayed.items()},
-                     [(tau, j - half * width, g) for tau, j, g in lags
-                      if not whole or half * width <= j < (half + 1) * width],
+        own = (lambda row: _half(row, half, width, len(feats))) if whole else (lambda row: row)
+        laws = _laws(0.0 if half else c, own(b0), {d: own(r) for d, r in delayed.items()},
+                     [(tau, _half_index(j, half, width) if whole else j, g) for tau, j, g in lags
+                      if not whole or _half_index(j, half, width) is not None],
                      a, None if gain is None else gain[cut], w, cols, len(inputs), target,
                      derived, blocks, extra, feats, horizon_s)
         for law in laws if half else ():
-            law.ambient = True          # the interaction's: times A0 - 20 (a step's too)
+            # the interaction's: times A0 - 20 (a step's too); the diagnosed ambient law's block
+            # ``x (A0 - 20)`` times it is ``x (A0 - 20)^2`` (exportati60)
+            law.ambient += 1
         out += laws
     return out, period
+
+
+def _half(row: np.ndarray, half: int, width: int, n_feats: int) -> np.ndarray:
+    """One half of an ATI interval's coefficients over ``[Z, Z (A0 - 20), powers]`` as a row
+    over ``[Z, powers]``: a Hammerstein model's powers follow the interaction (its states from
+    the context, not multiplied by ``A0 - 20``), so they belong to the first half's law."""
+    out = np.zeros(width + n_feats)
+    out[:width] = row[half * width:(half + 1) * width]
+    if half == 0:
+        out[width:] = row[2 * width:2 * width + n_feats]
+    return out
+
+
+def _half_index(j: int, half: int, width: int) -> int | None:
+    """Where column ``j`` of ``[Z, Z (A0 - 20), powers]`` is in ``half``'s ``[Z, powers]``."""
+    if half * width <= j < (half + 1) * width:
+        return j - half * width
+    return j - width if half == 0 and j >= 2 * width else None
 
 
 def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, extra, feats,
@@ -255,7 +268,7 @@ def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, ex
         out.append(Law(0.0 if block else w * c, terms,
                        {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
                        None if gain is None else w * _spread(gain[x], cols, n), lo=lo,
-                       ambient=block is not None and block[0] == "ambient"))
+                       ambient=int(block is not None and block[0] == "ambient")))
     return out
 
 

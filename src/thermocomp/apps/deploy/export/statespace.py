@@ -157,7 +157,7 @@ class StateSpace:
     # campaign's first sample, in (law_lo, law_hi]; times A0 - ambient_centre where law_ambient
     law_lo: list = field(default_factory=list)       # (n_laws,) °C; empty: every law always
     law_hi: list = field(default_factory=list)
-    law_ambient: list = field(default_factory=list)  # (n_laws,) 1: the ambient interaction's law
+    law_ambient: list = field(default_factory=list)  # (n_laws,) the power of A0 - centre: 0, 1, 2
     ambient_inputs: list = field(default_factory=list)   # indices of the ambient inputs (A0)
     ambient_centre: float = 20.0                     # °C
 
@@ -175,12 +175,16 @@ class StateSpace:
 
     def factors(self, a0: float) -> np.ndarray:
         """Each law's factor in a campaign of initial ambient ``a0`` (°C; 0 without ambient
-        inputs): 1, or 0 outside its interval, times ``a0 - ambient_centre`` for an ambient law."""
+        inputs): 1, or 0 outside its interval, times ``(a0 - ambient_centre) ** law_ambient``
+        (a product, as the C and the ST compute it)."""
         laws = len(self.laws)
         lo = np.asarray(self.law_lo or [-UNBOUNDED] * laws, float)
         hi = np.asarray(self.law_hi or [UNBOUNDED] * laws, float)
-        ambient = np.asarray(self.law_ambient or [0] * laws, bool)
-        return np.where((a0 > lo) & (a0 <= hi), np.where(ambient, a0 - self.ambient_centre, 1.0), 0.0)
+        power = np.asarray(self.law_ambient or [0] * laws, int)
+        factor = np.ones(laws)
+        for p in range(int(power.max(initial=0))):
+            factor = np.where(power > p, factor * (a0 - self.ambient_centre), factor)
+        return np.where((a0 > lo) & (a0 <= hi), factor, 0.0)
 
     @property
     def n_states(self) -> int:
