@@ -140,7 +140,8 @@ def _diagnosed(est) -> list:
         derived = Derived(
             feats, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
             canonical_order(effects, int(est.n_features_in_), initial),
-            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects))
+            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects),
+            est._lead_taus())
         base = est.estimator_
         if not isinstance(base, ATIRegressor):
             return [(-UNBOUNDED, UNBOUNDED, base, False, derived)]
@@ -177,8 +178,12 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
             f.initial is not None for f in derived.features):     # a transient's time too
         period = _one_period(period, derived.period)
     gain = None
+    # a low-pass copy of the inputs through a lag bank (a Hammerstein model's): its lags of it are
+    # cascades, in the base's gain (exportati60); through a static base the copy's held gain
+    lagged = bool(derived.lowpass) and callable(getattr(est, "lagged_step_gain", None))
     if horizon_s is not None:
-        gain = step_gain(est, None, horizon_s)
+        gain = (est.lagged_step_gain(np.tile(derived.lead, 1 + whole), horizon_s) if lagged
+                else step_gain(est, None, horizon_s))
         if gain is None:
             raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
                                 f"{a:.3g}): the envelope clamp needs one; export it with "
@@ -191,7 +196,7 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
                      [(tau, _half_index(j, half, width) if whole else j, g) for tau, j, g in lags
                       if not whole or _half_index(j, half, width) is not None],
                      a, None if gain is None else gain[cut], w, cols, len(inputs), target,
-                     derived, blocks, extra, feats, horizon_s)
+                     derived, blocks, extra, feats, horizon_s, lagged)
         for law in laws if half else ():
             # the interaction's: times A0 - 20 (a step's too); the diagnosed ambient law's block
             # ``x (A0 - 20)`` times it is ``x (A0 - 20)^2`` (exportati60)
@@ -219,7 +224,7 @@ def _half_index(j: int, half: int, width: int) -> int | None:
 
 
 def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, extra, feats,
-          horizon_s=None):
+          horizon_s=None, lagged=False):
     """:func:`_member_laws`' laws of one estimator's coefficients over ``[x, blocks, derived
     inputs, low-pass blocks, powers]`` (in the effects' order: :meth:`Derived.canonical`)."""
     k = len(cols)
@@ -229,11 +234,12 @@ def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, ex
     b0, delayed, lags = derived.canonical(b0, delayed, lags)
     gain = derived.columns(gain)
     if gain is not None and derived.lowpass:
-        # the clamp's gain on x of a low-pass copy held for the horizon (a static base only:
-        # AugmentedRegressor.step_gain, clampdiag60); the derived inputs do not move with x
+        # the clamp's gain on x of a low-pass copy held for the horizon (over a static base,
+        # clampdiag60; over a lag bank in the base's gain already, ``lagged``: exportati60); the
+        # derived inputs do not move with x
         gain = np.array(gain, float)
         for m, tau in enumerate(derived.lowpass):
-            held = 1.0 - np.exp(-horizon_s / tau) if np.isfinite(horizon_s) else 1.0
+            held = 1.0 if lagged or not np.isfinite(horizon_s) else 1.0 - np.exp(-horizon_s / tau)
             gain[:k] += held * gain[end + m * k:end + (m + 1) * k]
     if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
         raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
