@@ -10,9 +10,9 @@ frame), a lag a lag-bank channel on it (a low-pass of the inputs one per input).
 and the JSON (read back into the numpy reference) equal ``replay`` to 1e-9 µm, the clamp acting
 (outright, as the stream clamps a model without a step gain) and the door missing at a
 campaign's start and mid-run (held, as the served model holds it); what still does not export
-(the ambient law around an ATI model's ambient interaction; an initial-state transient,
-``ambient_step``, a lag bank's lag of a lag and effects around an ATI model export since
-exportrest60: test_export_rest60.py) is refused naming it.
+(a base of no linear family; an initial-state transient, ``ambient_step``, a lag bank's lag of
+a lag and effects around an ATI model export since exportrest60, the ambient law around an ATI
+model's ambient interaction since exportati60) is refused naming it.
 """
 
 from __future__ import annotations

@@ -24,7 +24,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    blend is its members' laws weighted and summed, each member feeding back its own output, an
    AR term, a law of its own; an ATI model's laws count in the interval of the campaign's
    initial ambient ``A0``, the mean of ``ambient_inputs`` at its first sample, its ambient
-   interaction's times ``A0 - ambient_centre``: :mod:`.laws`), with the input history
+   interaction's times ``A0 - ambient_centre``, a diagnosed ambient law's under it times its
+   square: ``(A0 - ambient_centre) ** law_ambient``, exportati60: :mod:`.laws`), with the input history
    ``x(t-d)`` (``d = 1..depth``) and the first-order lags ``z_k <- e_k z_k + (1 - e_k)
    x[lag_input_k]`` (``z[lag_of_k]``, that lag's new value, for a cascade: a lag bank's lag of a
    diagnosed effect's lag; its term ``g (z_k - z[lag_of_k])``), ``e_k = exp(-dt / tau_k)``,
