@@ -209,6 +209,17 @@ DIAGNOSED_GAINS = {
     "mlr low-pass, ambient law": (MLR, [{"kind": "dynamics", "transform": "lowpass_inputs",
                                          "tau_s": 5400.0},
                                         {"kind": "ambient_interval", "transform": "ambient_linear"}]),
+    # exportati60: a low-pass copy over a lag bank, its lags of it cascades (one tau the bank's
+    # own in the second: the equal-tau form), and over a Hammerstein model
+    "lagbank low-pass, ambient law": (lambda: LagBank(n_taus=3),
+                                      [{"kind": "dynamics", "transform": "lowpass_inputs",
+                                        "tau_s": 5400.0},
+                                       {"kind": "ambient_interval", "transform": "ambient_linear"}]),
+    "lagbank low-pass at its own taus": (lambda: LagBank(n_taus=2, tau_min_s=600.0, tau_max_s=3600.0),
+                                         [{"kind": "dynamics", "transform": "lowpass_inputs",
+                                           "tau_s": 3600.0}, DOOR_LAG]),
+    "hammerstein low-pass": (lambda: Hammerstein(lagbank=LagBank(n_taus=2), states=["S_door"]),
+                             [{"kind": "dynamics", "transform": "lowpass_inputs", "tau_s": 1800.0}]),
 }
 
 

@@ -25,7 +25,7 @@ from thermocomp.apps.deploy.export import state_space
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.core.context import step_gain
 from thermocomp.core.frame import ambient_c0
-from thermocomp.core.models import MLR, LagBank
+from thermocomp.core.models import ARX, MLR, LagBank
 
 AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
 EXCESS_K = 0.15
@@ -68,17 +68,21 @@ def test_a_diagnosed_lag_banks_small_excess_moves_it_within_the_plain_bound(data
     assert moved.max() <= bound + 1e-9
 
 
-def test_a_lowpass_copy_over_a_lag_bank_stays_clamped_outright(data):
-    """The low-pass copy's lag through the lag bank's is no product of the two gains: None."""
-    stream, _, _ = _diagnosed(data, [LOWPASS], base=LagBank(n_taus=2))
+def test_a_lowpass_copy_over_an_arx_base_stays_clamped_outright(data):
+    """The low-pass copy's lag through an ARX model's delays and feedback is no product of the
+    two gains: None (over a lag bank its lags of it are cascades since exportati60)."""
+    stream, _, _ = _diagnosed(data, [LOWPASS], base=ARX(ar=True))
     assert step_gain(stream._plan[0][1], None) is None
     assert state_space(stream).clamp_outright == [1]
 
 
 @needs_cc
 @pytest.mark.parametrize("effects, base", [([AMBIENT_LAW], LagBank(n_taus=2)),
-                                           ([AMBIENT_LAW, LOWPASS, LAG, PRODUCT], MLR())],
-                         ids=["lagbank-ambient-law", "mlr-lowpass-and-signals"])
+                                           ([AMBIENT_LAW, LOWPASS, LAG, PRODUCT], MLR()),
+                                           ([LOWPASS], LagBank(n_taus=2)),
+                                           ([AMBIENT_LAW, LOWPASS, LAG], LagBank(n_taus=2))],
+                         ids=["lagbank-ambient-law", "mlr-lowpass-and-signals",
+                              "lagbank-lowpass", "lagbank-lowpass-and-signals"])
 def test_the_export_clamps_a_diagnosed_model_by_its_gain_as_replay(data, tmp_path, effects, base):
     stream, tests = _diagnosed(data, effects, base=base)[:2]
     ss = state_space(stream)

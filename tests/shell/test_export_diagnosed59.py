@@ -22,15 +22,14 @@ from test_export_ati57 import _levels
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import NotExportable, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
-from thermocomp.core.models import MLR
-from thermocomp.core.models.ati import ATIRegressor
+from thermocomp.core.models import ARXRF, MLR
 from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
 AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
 # exportdiag59 exports the plain lag, exportrest60 its initial-state transient, around an ATI
-# model too; still refused: the ambient law around an ATI model's ambient interaction
+# model too; exportati60 the ambient law around an ATI model's ambient interaction
 LAG = {"kind": "dynamics", "transform": "first_order_lag", "column": "T_a", "tau_s": 3600.0,
        "initial_state": ["T_a", "T_amb"]}
 
@@ -67,13 +66,14 @@ def test_a_diagnosed_model_of_laws_the_code_holds_exports_as_replay(data, tmp_pa
 
 def test_another_diagnosed_effect_is_refused_naming_it_and_the_route_that_runs_it(data, tmp_path,
                                                                                   capsys):
-    ati = ATIRegressor(MLR(), n_intervals=2, ambient_interaction=True)
-    stream, _, comp = _diagnosed(data, [AMBIENT_LAW, LAG], base=ati)
-    with pytest.raises(NotExportable, match=r"ambient_linear around an ATI model.*does not export"):
+    # exportati60 exports the ambient law around an ATI model's interaction, the last effect
+    # refused: a base of no linear family is what a diagnosed model still refuses
+    stream, _, comp = _diagnosed(data, [AMBIENT_LAW, LAG], base=ARXRF(state_column=None))
+    with pytest.raises(NotExportable, match=r"model ARXRF is not one of the linear families"):
         state_space(stream)
     pkl = save_model(comp, tmp_path / "model.pkl")
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
-             "track=false"], capsys, "ambient_linear around an ATI model", "thermocomp serve")
+             "track=false"], capsys, "ARXRF is not one of the linear families", "thermocomp serve")
     assert not (tmp_path / "code").exists()
 
 
@@ -87,14 +87,15 @@ def test_a_diagnosed_ati_model_exports_its_intervals_and_names_them(data, tmp_pa
                    "promote.envelope.pattern=false")
     ds, train_ids, _, _ = read_streamed(cfg)
     train = {c: ds.campaigns[c] for c in train_ids}
-    for effects, exports in (([], True), ([AMBIENT_LAW], False)):
+    plain = state_space(stream)
+    for effects in ([], [AMBIENT_LAW]):
         comp = clone(ati).set_params(estimator=AugmentedRegressor(ati.estimator, effects={"E_X": effects}))
         diagnosed = deploy_stream(cfg, comp.fit(train), train)
-        if not exports:
-            with pytest.raises(NotExportable, match="ambient_linear around an ATI model"):
-                state_space(diagnosed)
-            continue
         ss = state_space(diagnosed)
-        assert ss.provenance["laws"] == state_space(stream).provenance["laws"]
+        if not effects:
+            assert ss.provenance["laws"] == plain.provenance["laws"]
+        else:   # exportati60: with the interaction, x (A0 - 20)^2 (refused before)
+            assert ss.provenance["laws"]["E_X"].startswith(plain.provenance["laws"]["E_X"])
+            assert max(ss.law_ambient) == 1 + max(plain.law_ambient)
         assert "|" in ss.provenance["laws"]["E_X"]                  # two intervals, named
         assert _proved(diagnosed, tests, tmp_path) <= TOLERANCE_UM

@@ -10,9 +10,9 @@ frame), a lag a lag-bank channel on it (a low-pass of the inputs one per input).
 and the JSON (read back into the numpy reference) equal ``replay`` to 1e-9 µm, the clamp acting
 (outright, as the stream clamps a model without a step gain) and the door missing at a
 campaign's start and mid-run (held, as the served model holds it); what still does not export
-(the ambient law around an ATI model's ambient interaction; an initial-state transient,
-``ambient_step``, a lag bank's lag of a lag and effects around an ATI model export since
-exportrest60: test_export_rest60.py) is refused naming it.
+(a base of no linear family; an initial-state transient, ``ambient_step``, a lag bank's lag of
+a lag and effects around an ATI model export since exportrest60, the ambient law around an ATI
+model's ambient interaction since exportati60) is refused naming it.
 """
 
 from __future__ import annotations
@@ -30,8 +30,7 @@ from test_export_diagnosed59 import _diagnosed as diagnosed
 from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, state_space
 from thermocomp.apps.deploy.export.statespace import StateSpace
 from thermocomp.apps.deploy.streaming import replay
-from thermocomp.core.models import MLR, LagBank
-from thermocomp.core.models.ati import ATIRegressor
+from thermocomp.core.models import ARXRF, LagBank
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 
@@ -209,13 +208,13 @@ def test_a_diagnosed_low_pass_of_the_inputs_exports_as_their_lag_bank_channels(d
 
 
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
-    """The ambient law around an ATI model's ambient interaction (``x (A0 - 20)^2``; exportrest60
-    exports a lag's initial-state transient, an ambient step and any effect around an ATI model,
-    which this refused too)."""
-    ati = ATIRegressor(MLR(), n_intervals=2, ambient_interaction=True)
+    """A diagnosed model whose base is no linear family (exportati60 exports the ambient law
+    around an ATI model's interaction, ``x (A0 - 20)^2``, the last effect this refused): refused
+    naming the family and the linear families that export."""
     for effects in ([AMBIENT_LAW], [LAG, AMBIENT_LAW, SQUARE]):
-        stream, _ = _diagnosed(data, effects, base=ati)
-        with pytest.raises(NotExportable, match="ambient_linear around an ATI model") as info:
+        stream, _ = _diagnosed(data, effects, base=ARXRF())
+        with pytest.raises(NotExportable, match="model ARXRF is not one of the linear families"
+                           ) as info:
             state_space(stream)
-        assert "first-order lag of a signal or input" in str(info.value)
-        assert "a square of one" in str(info.value)
+        assert "mlr, pcr, arx, lagbank, hammerstein" in str(info.value)
+        assert "thermocomp serve" in str(info.value)

@@ -25,7 +25,7 @@ from sklearn.base import clone
 from test_export import _compose, needs_cc
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import LAG, LOWPASS, PRODUCT, _diagnosed, _door, _json_proved
-from thermocomp.apps.deploy.export import NotExportable, exported_files, state_space
+from thermocomp.apps.deploy.export import exported_files, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.apps.diagnose.features import as_effect
 from thermocomp.core.models import MLR, LagBank
@@ -123,16 +123,6 @@ def test_effects_around_an_ati_model_export_per_interval(data, tmp_path, effects
     assert len({(lo, hi) for lo, hi in zip(ss.law_lo, ss.law_hi)}) >= 2 + (STEP in effects)
     assert any(ss.law_ambient) == interaction
     assert ss.provenance["laws"]["E_X"].startswith("ati (A0 <= ")
-
-
-def test_the_ambient_law_around_an_ati_models_interaction_is_refused_naming_it(data):
-    """The interaction times the ambient law's ``x (A0 - 20)`` is ``x (A0 - 20)^2``: no law
-    of the code (its laws count 1 or ``A0 - 20``)."""
-    ati = ATIRegressor(MLR(), n_intervals=2, ambient_interaction=True)
-    stream, _ = _diagnosed(data, [AMBIENT_LAW, INITIAL], base=ati)
-    with pytest.raises(NotExportable, match=r"ambient_linear around an ATI model's ambient "
-                                            r"interaction.*\(A0 - 20\)\^2"):
-        state_space(stream)
 
 
 @needs_cc

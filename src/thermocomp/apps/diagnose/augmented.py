@@ -193,11 +193,31 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     # -- the envelope clamp's bound (clampdiag60) --------------------------------------------
     def _lowpass_held(self) -> bool:
-        """A low-pass copy of the inputs has a held step's response through the base only when
-        the base is static (MLR, PCR): a lag bank's or an ARX model's dynamics on that lag's
-        ramp are no product of the two gains."""
-        lowpass = any(e.transform == "lowpass_inputs" for e in self.effects_)
-        return not lowpass or type(self.estimator_) in (MLR, PCR)
+        """A low-pass copy of the inputs has a held step's response through the base when the
+        base is static (MLR, PCR: the product of the two gains) or a lag bank (a Hammerstein
+        model's too: its lags of that lag a cascade, ``lagged_step_gain``, exportati60); an ARX
+        model's delays and feedback on that lag's ramp are no product of the two gains."""
+        return not self._lowpass() or type(self.estimator_) in (MLR, PCR) or callable(
+            getattr(self.estimator_, "lagged_step_gain", None))
+
+    def _lowpass(self) -> bool:
+        return any(e.transform == "lowpass_inputs" for e in self.effects_)
+
+    def _lead_taus(self) -> np.ndarray:
+        """Per column of the base, the tau of the low-pass copy it is (``nan``: none), in the
+        columns' order (:meth:`step_gain`)."""
+        k = int(self.n_features_in_)
+        lead = [np.nan] * k
+        for i, e in enumerate(self.effects_):
+            tr = e.transform
+            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step"):
+                lead += [float(e.tau_s) if tr == "lowpass_inputs" else np.nan] * k
+            else:
+                lead.append(np.nan)
+            if tr in ("first_order_lag", "lowpass_inputs") and e.initial_state:
+                w = self.initial_weights_[i]
+                lead += [np.nan] * (len(w) if w is not None else len(e.initial_state))
+        return np.asarray(lead)
 
     def has_step_gain(self) -> bool:
         """Whether :meth:`step_gain` gives a gain (the base has one, a low-pass copy only over a
@@ -213,14 +233,18 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         square (of the context's columns as read) and a lag's initial-state transient do not move
         with it (gain 0, exact).  ``x (A0 - 20)`` and ``x [A0 > A_thr]`` scale ``x`` by the
         campaign's fixed ``A0`` (``state['ambient_c0']``): exact.  A low-pass copy ``L_tau[x]``
-        of a held step is ``(1 - exp(-h / tau))`` of it: exact over a static base only, ``None``
-        over a dynamic one (the clamp then takes the clamped stream outright, as before).
+        of a held step is ``(1 - exp(-h / tau))`` of it over a static base; over a lag bank (or a
+        Hammerstein model's) the bank's lags of it are cascades (``lagged_step_gain``, exact,
+        exportati60); ``None`` over an ARX base (the clamp then takes the clamped stream outright).
         ``None`` too when the base has no gain, or an ambient law has no ``A0``.
         """
         check_is_fitted(self)
         if not self.has_step_gain():
             return None
-        gain = step_gain(self.estimator_, None if state is None else state.get("base"), horizon_s)
+        # over a lag bank, a low-pass copy's column is a lag of the step: its channels cascades
+        lagged = self._lowpass() and type(self.estimator_) not in (MLR, PCR)
+        gain = (self.estimator_.lagged_step_gain(self._lead_taus(), horizon_s) if lagged else
+                step_gain(self.estimator_, None if state is None else state.get("base"), horizon_s))
         if gain is None:
             return None
         a0 = scalar(state, AMBIENT_C0) if state is not None else np.nan
@@ -233,7 +257,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 at += k
                 if tr == "lowpass_inputs":
                     held = 1.0 - np.exp(-horizon_s / e.tau_s) if np.isfinite(horizon_s) else 1.0
-                    out += held * block
+                    out += (1.0 if lagged else held) * block     # lagged: in the base's gain
                 elif not np.isfinite(a0):
                     return None
                 elif tr == "ambient_linear":

@@ -886,3 +886,48 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         lags = self.coef_[n:].reshape(self.taus_.size, n)
         held = np.exp(-horizon_s / self.taus_) if np.isfinite(horizon_s) else np.zeros(self.taus_.size)
         return feedback_gain(self.coef_[:n] - held @ lags, self.ar_coef_)
+
+    def lagged_step_gain(self, lead_taus, horizon_s: float = np.inf) -> np.ndarray | None:
+        """:meth:`step_gain` where column ``j`` is a first-order lag of tau ``lead_taus[j]`` of
+        the held step (``nan``: the step itself), as a diagnosed low-pass copy ``L_tau[x]`` of
+        the inputs is (exportati60).
+
+        That column's response after ``m = h / dt`` samples is ``s1 = 1 - a^m``, and the bank's
+        channel ``L_tau_k[c] - c`` on it the cascade's less ``s1``: two discrete first-order lags,
+        each updated on its input's new value (``a = exp(-dt/tau)``, ``b = exp(-dt/tau_k)``, ``dt``
+        the bank's sample period), ``s2 = 1 - (a (1 - b) a^m - b (1 - a) b^m) / (a - b)``, and ``1
+        - (1 + m (1 - a)) a^m`` where ``a = b`` (exact at the samples of a regular stream; the
+        continuous cascade's ``1 - (tau e^{-h/tau} - tau_k e^{-h/tau_k}) / (tau - tau_k)`` as
+        ``dt -> 0``)."""
+        check_is_fitted(self)
+        n = self.coef_.size // (self.taus_.size + 1)
+        lags = self.coef_[n:].reshape(self.taus_.size, n)
+        lead = np.asarray(lead_taus, float)
+        gain = self.coef_[:n].copy()
+        dt = float(self.sample_period_s_)
+        m = horizon_s / dt if np.isfinite(horizon_s) else np.inf
+        for j in range(n):
+            if np.isnan(lead[j]):
+                s1, s2 = 1.0, np.array([_decayed(np.exp(-dt / tau), m) for tau in self.taus_])
+                s2 = 1.0 - s2
+            else:
+                s1 = 1.0 - _decayed(np.exp(-dt / lead[j]), m)
+                s2 = np.array([_cascade(np.exp(-dt / lead[j]), np.exp(-dt / tau), m)
+                               for tau in self.taus_])
+            gain[j] = gain[j] * s1 + lags[:, j] @ (s2 - s1)
+        return feedback_gain(gain, self.ar_coef_)
+
+
+def _decayed(a: float, m: float) -> float:
+    """``a^m`` (0 at an infinite horizon)."""
+    return a ** m if np.isfinite(m) else 0.0
+
+
+def _cascade(a: float, b: float, m: float) -> float:
+    """A unit step's response after ``m`` samples of a lag of pole ``b`` on a lag of pole ``a``
+    (both at rest, each updated on its input's new value): :meth:`LagBank.lagged_step_gain`."""
+    if not np.isfinite(m):
+        return 1.0
+    if np.isclose(a, b, rtol=1e-9, atol=0.0):
+        return 1.0 - (1.0 + m * (1.0 - a)) * a ** m
+    return 1.0 - (a * (1.0 - b) * a ** m - b * (1.0 - a) * b ** m) / (a - b)

@@ -309,9 +309,10 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         a0 /= AMBIENT_COUNT;
         s->a0 = a0;
         s->t0 = now;
-        for (r = 0; r < TC_N_LAWS; r++)
-            s->factor[r] = (a0 > LAW_LO[r] && a0 <= LAW_HI[r])
-                ? (LAW_AMBIENT[r] ? a0 - AMBIENT_CENTRE : 1.0) : 0.0;
+        for (r = 0; r < TC_N_LAWS; r++) {{   /* times (A0 - centre)^LAW_AMBIENT[r]: 0, 1 or 2 */
+            s->factor[r] = (a0 > LAW_LO[r] && a0 <= LAW_HI[r]) ? 1.0 : 0.0;
+            for (l = 0; l < LAW_AMBIENT[r]; l++) s->factor[r] *= a0 - AMBIENT_CENTRE;
+        }}
     }}
     if (clamped && PATTERN && !off_pattern(x[0])) {{   /* along the training pattern: passed */
         for (j = 0; j < TC_N_INPUTS; j++) x[1][j] = 0.0;

@@ -44,7 +44,8 @@ PLAIN = 0.0                         # a lag's source: its input itself (a tau is
 @dataclass
 class Law:
     """One law over the code's ``[x, powers]`` (module doc), and when it counts: ``lo < A0 <=
-    hi``, times ``A0 - AMBIENT_CENTRE_C`` when ``ambient``."""
+    hi``, times ``(A0 - AMBIENT_CENTRE_C) ** ambient`` (``ambient`` 0, 1 or 2: a diagnosed
+    ambient law's ``x (A0 - 20)`` around an ATI model's interaction, exportati60)."""
 
     c: float = 0.0
     terms: list = field(default_factory=list)      # [(indices into [x, powers], b0 there)]
@@ -56,7 +57,7 @@ class Law:
     gain: np.ndarray | None = None                 # step gain over x at the clamp's horizon
     lo: float = -UNBOUNDED
     hi: float = UNBOUNDED
-    ambient: bool = False
+    ambient: int = 0          # the power of A0 - 20 the law counts times
 
     @property
     def key(self) -> tuple:
@@ -139,7 +140,8 @@ def _diagnosed(est) -> list:
         derived = Derived(
             feats, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
             canonical_order(effects, int(est.n_features_in_), initial),
-            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects))
+            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects),
+            est._lead_taus())
         base = est.estimator_
         if not isinstance(base, ATIRegressor):
             return [(-UNBOUNDED, UNBOUNDED, base, False, derived)]
@@ -171,22 +173,17 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     own_x = k * (1 + len(blocks))               # the inputs' (and the ambient blocks') columns
     end = own_x + len(extra)                    # then the derived inputs', the low-pass blocks'
     width = end + k * len(derived.lowpass)
-    if whole and (feats or ("ambient", None) in blocks):
-        what = ("a Hammerstein model's powers (after the interaction)" if feats else
-                "the diagnosed ambient law x (ambient_c0 - 20°C): ambient_linear")
-        raise NotExportable(f"{what} around an ATI model's ambient interaction ({target}: the "
-                            "interaction multiplies the diagnosed features by A0 - 20, and (A0 - "
-                            "20)^2 or a power after it is no law of the code) does not export (the "
-                            f"code holds of diagnose's effects: {EXPORTED_EFFECTS}, around a plain "
-                            "or an ATI model); the served model runs it (thermocomp serve, "
-                            "connect)")
     c, b0, delayed, lags, a, period = _target_law(linear, width * (1 + whole) + len(feats), period)
     if derived.lowpass or any(tau is not None for _, tau in extra) or any(
             f.initial is not None for f in derived.features):     # a transient's time too
         period = _one_period(period, derived.period)
     gain = None
+    # a low-pass copy of the inputs through a lag bank (a Hammerstein model's): its lags of it are
+    # cascades, in the base's gain (exportati60); through a static base the copy's held gain
+    lagged = bool(derived.lowpass) and callable(getattr(est, "lagged_step_gain", None))
     if horizon_s is not None:
-        gain = step_gain(est, None, horizon_s)
+        gain = (est.lagged_step_gain(np.tile(derived.lead, 1 + whole), horizon_s) if lagged
+                else step_gain(est, None, horizon_s))
         if gain is None:
             raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
                                 f"{a:.3g}): the envelope clamp needs one; export it with "
@@ -194,19 +191,40 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     out = []
     for half in range(1 + whole):
         cut = slice(half * width, (half + 1) * width) if whole else slice(None)
-        laws = _laws(0.0 if half else c, b0[cut], {d: r[cut] for d, r in delayed.items()},
-                     [(tau, j - half * width, g) for tau, j, g in lags
-                      if not whole or half * width <= j < (half + 1) * width],
+        own = (lambda row: _half(row, half, width, len(feats))) if whole else (lambda row: row)
+        laws = _laws(0.0 if half else c, own(b0), {d: own(r) for d, r in delayed.items()},
+                     [(tau, _half_index(j, half, width) if whole else j, g) for tau, j, g in lags
+                      if not whole or _half_index(j, half, width) is not None],
                      a, None if gain is None else gain[cut], w, cols, len(inputs), target,
-                     derived, blocks, extra, feats, horizon_s)
+                     derived, blocks, extra, feats, horizon_s, lagged)
         for law in laws if half else ():
-            law.ambient = True          # the interaction's: times A0 - 20 (a step's too)
+            # the interaction's: times A0 - 20 (a step's too); the diagnosed ambient law's block
+            # ``x (A0 - 20)`` times it is ``x (A0 - 20)^2`` (exportati60)
+            law.ambient += 1
         out += laws
     return out, period
 
 
+def _half(row: np.ndarray, half: int, width: int, n_feats: int) -> np.ndarray:
+    """One half of an ATI interval's coefficients over ``[Z, Z (A0 - 20), powers]`` as a row
+    over ``[Z, powers]``: a Hammerstein model's powers follow the interaction (its states from
+    the context, not multiplied by ``A0 - 20``), so they belong to the first half's law."""
+    out = np.zeros(width + n_feats)
+    out[:width] = row[half * width:(half + 1) * width]
+    if half == 0:
+        out[width:] = row[2 * width:2 * width + n_feats]
+    return out
+
+
+def _half_index(j: int, half: int, width: int) -> int | None:
+    """Where column ``j`` of ``[Z, Z (A0 - 20), powers]`` is in ``half``'s ``[Z, powers]``."""
+    if half * width <= j < (half + 1) * width:
+        return j - half * width
+    return j - width if half == 0 and j >= 2 * width else None
+
+
 def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, extra, feats,
-          horizon_s=None):
+          horizon_s=None, lagged=False):
     """:func:`_member_laws`' laws of one estimator's coefficients over ``[x, blocks, derived
     inputs, low-pass blocks, powers]`` (in the effects' order: :meth:`Derived.canonical`)."""
     k = len(cols)
@@ -216,11 +234,12 @@ def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, ex
     b0, delayed, lags = derived.canonical(b0, delayed, lags)
     gain = derived.columns(gain)
     if gain is not None and derived.lowpass:
-        # the clamp's gain on x of a low-pass copy held for the horizon (a static base only:
-        # AugmentedRegressor.step_gain, clampdiag60); the derived inputs do not move with x
+        # the clamp's gain on x of a low-pass copy held for the horizon (over a static base,
+        # clampdiag60; over a lag bank in the base's gain already, ``lagged``: exportati60); the
+        # derived inputs do not move with x
         gain = np.array(gain, float)
         for m, tau in enumerate(derived.lowpass):
-            held = 1.0 - np.exp(-horizon_s / tau) if np.isfinite(horizon_s) else 1.0
+            held = 1.0 if lagged or not np.isfinite(horizon_s) else 1.0 - np.exp(-horizon_s / tau)
             gain[:k] += held * gain[end + m * k:end + (m + 1) * k]
     if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
         raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
@@ -255,7 +274,7 @@ def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, ex
         out.append(Law(0.0 if block else w * c, terms,
                        {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
                        None if gain is None else w * _spread(gain[x], cols, n), lo=lo,
-                       ambient=block is not None and block[0] == "ambient"))
+                       ambient=int(block is not None and block[0] == "ambient")))
     return out
 
 

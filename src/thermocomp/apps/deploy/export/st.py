@@ -297,11 +297,11 @@ IF NOT refused THEN
         FOR r := 0 TO N_LAWS - 1 DO
             factor[r] := 0.0;
             IF a0 > LAW_LO[r] AND a0 <= LAW_HI[r] THEN
-                IF LAW_AMBIENT[r] <> 0 THEN
-                    factor[r] := a0 - AMBIENT_CENTRE;
-                ELSE
-                    factor[r] := 1.0;
-                END_IF;
+                factor[r] := 1.0;
+                (* times (A0 - centre)^LAW_AMBIENT[r]: 0, 1 or 2 *)
+                FOR l := 1 TO LAW_AMBIENT[r] DO
+                    factor[r] := factor[r] * (a0 - AMBIENT_CENTRE);
+                END_FOR;
             END_IF;
         END_FOR;
     END_IF;

@@ -24,7 +24,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    blend is its members' laws weighted and summed, each member feeding back its own output, an
    AR term, a law of its own; an ATI model's laws count in the interval of the campaign's
    initial ambient ``A0``, the mean of ``ambient_inputs`` at its first sample, its ambient
-   interaction's times ``A0 - ambient_centre``: :mod:`.laws`), with the input history
+   interaction's times ``A0 - ambient_centre``, a diagnosed ambient law's under it times its
+   square: ``(A0 - ambient_centre) ** law_ambient``, exportati60: :mod:`.laws`), with the input history
    ``x(t-d)`` (``d = 1..depth``) and the first-order lags ``z_k <- e_k z_k + (1 - e_k)
    x[lag_input_k]`` (``z[lag_of_k]``, that lag's new value, for a cascade: a lag bank's lag of a
    diagnosed effect's lag; its term ``g (z_k - z[lag_of_k])``), ``e_k = exp(-dt / tau_k)``,
@@ -157,7 +158,7 @@ class StateSpace:
     # campaign's first sample, in (law_lo, law_hi]; times A0 - ambient_centre where law_ambient
     law_lo: list = field(default_factory=list)       # (n_laws,) °C; empty: every law always
     law_hi: list = field(default_factory=list)
-    law_ambient: list = field(default_factory=list)  # (n_laws,) 1: the ambient interaction's law
+    law_ambient: list = field(default_factory=list)  # (n_laws,) the power of A0 - centre: 0, 1, 2
     ambient_inputs: list = field(default_factory=list)   # indices of the ambient inputs (A0)
     ambient_centre: float = 20.0                     # °C
 
@@ -175,12 +176,16 @@ class StateSpace:
 
     def factors(self, a0: float) -> np.ndarray:
         """Each law's factor in a campaign of initial ambient ``a0`` (°C; 0 without ambient
-        inputs): 1, or 0 outside its interval, times ``a0 - ambient_centre`` for an ambient law."""
+        inputs): 1, or 0 outside its interval, times ``(a0 - ambient_centre) ** law_ambient``
+        (a product, as the C and the ST compute it)."""
         laws = len(self.laws)
         lo = np.asarray(self.law_lo or [-UNBOUNDED] * laws, float)
         hi = np.asarray(self.law_hi or [UNBOUNDED] * laws, float)
-        ambient = np.asarray(self.law_ambient or [0] * laws, bool)
-        return np.where((a0 > lo) & (a0 <= hi), np.where(ambient, a0 - self.ambient_centre, 1.0), 0.0)
+        power = np.asarray(self.law_ambient or [0] * laws, int)
+        factor = np.ones(laws)
+        for p in range(int(power.max(initial=0))):
+            factor = np.where(power > p, factor * (a0 - self.ambient_centre), factor)
+        return np.where((a0 > lo) & (a0 <= hi), factor, 0.0)
 
     @property
     def n_states(self) -> int:
