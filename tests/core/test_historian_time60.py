@@ -9,9 +9,10 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+import pytest
 
 from test_historian60 import AIR, BEARING, CFG, PROBE, held, samples, write
-from thermocomp.core.io import read_dataset
+from thermocomp.core.io import ContractError, read_dataset
 
 NAMES = ((PROBE, "E_MC07.Probe.Z"), (BEARING, "T_MC07.Spindle.Bearing.Temp"),
          (AIR, "T_MC07.Hall.Air.Temp"))
@@ -62,3 +63,15 @@ def test_a_date_with_slashes_whose_day_says_the_order_is_read(tmp_path):
     slashed = later.dt.strftime("%d/%m/%Y %H:%M:%S")
     assert slashed.iloc[0].startswith("15/11/2026")
     _read_as_written(frame, slashed, tmp_path / "pi.csv", CFG, first=later.min())
+
+
+def test_a_time_of_day_without_its_date_is_refused_with_a_long_files_way(tmp_path):
+    """The wide reader's advice (a date column beside it, data.sample_period_s) does not hold
+    for a long file, whose samples need their own times: the refusal says what does (lead60)."""
+    frame = samples()
+    write(frame.assign(Timestamp=_stamps(frame).dt.strftime("%H:%M:%S")), tmp_path / "pi.csv")
+    with pytest.raises(ContractError) as caught:
+        read_dataset(tmp_path / "pi.csv", CFG)
+    text = str(caught.value)
+    assert "column 'Timestamp', data row 1" in text and "historian's long file" in text
+    assert "data.time=elapsed" in text and "sample_period_s" not in text

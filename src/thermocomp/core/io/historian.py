@@ -49,7 +49,7 @@ from .historian_layout import Layout, quality_of
 from .roles import split_unit
 from .separators import reads_as_number
 from .tables import time_of_text
-from .timestamps import on_local_clock, said_if_not_seconds
+from .timestamps import DATE, TIME_OF_DAY, on_local_clock, said_if_not_seconds
 from .units import UNITS
 
 PERIOD_KEY = "data.resample_s"
@@ -203,8 +203,19 @@ def _times(column: pd.Series, tag: pd.Series, opts, layout: Layout, row, path
         read = time_of_text(pa.chunked_array([pa.array(text.to_numpy(str), pa.string())]), path,
                             wide, header)
     except ContractError as exc:     # its row among the column's cells: the long file's row
-        raise ContractError(exc.reason, file=path, column=header,
-                            row=None if exc.row is None else int(row[exc.row - 1])) from None
+        at = None if exc.row is None else int(row[exc.row - 1])
+        cell = str(column.iloc[exc.row - 1]) if exc.row is not None else ""
+        if TIME_OF_DAY.fullmatch(cell) or DATE.fullmatch(cell):
+            # the wide reader's way (a second column joined to it, data.sample_period_s) is no
+            # way here: every sample needs its own time
+            what = "a time of day without its date" if TIME_OF_DAY.fullmatch(cell) else \
+                "a date without a time of day"
+            raise ContractError(
+                f"value {cell!r} is {what}: a historian's long file needs each sample's date and "
+                f"time in its time column (export the timestamps whole); or, the time elapsed "
+                f"since the start (h:mm:ss), data.time=elapsed", file=path, column=header,
+                row=at) from None
+        raise ContractError(exc.reason, file=path, column=header, row=at) from None
     if pa.types.is_duration(read.type):           # an elapsed time, h:mm:ss
         seconds = pc.cast(read, pa.int64()).to_numpy() / 1e9
         return seconds - seconds.min(), None, None
