@@ -68,11 +68,20 @@ _WIDE_BOMS = ((codecs.BOM_UTF32_LE, "UTF-32"), (codecs.BOM_UTF32_BE, "UTF-32"),
               (codecs.BOM_UTF16_LE, "UTF-16"), (codecs.BOM_UTF16_BE, "UTF-16"))
 
 
+GZIP_MAGIC = b"\x1f\x8b"
+
+
+def gzipped(path: Path) -> ContractError:
+    return ContractError("a gzip-compressed file, not CSV text: unpack it first", file=path)
+
+
 def check_text(head: bytes, encoding: str, path: Path | str) -> None:
     """Refuse a file (its first bytes ``head``; a ``str`` path: a stream) that
-    ``data.encoding`` cannot read as the text of its lines: UTF-16 or UTF-32 (Excel's 'Unicode
-    Text' export, which writes a byte-order mark), or UTF-8 read with another encoding
-    (:func:`check_not_utf8`)."""
+    ``data.encoding`` cannot read as the text of its lines: a gzip-compressed file, UTF-16 or
+    UTF-32 (Excel's 'Unicode Text' export, which writes a byte-order mark), or UTF-8 read with
+    another encoding (:func:`check_not_utf8`)."""
+    if head.startswith(GZIP_MAGIC) and isinstance(path, Path):
+        raise gzipped(path)        # before any separator is sniffed in its binary head
     wide = next((name for bom, name in _WIDE_BOMS if head.startswith(bom)), None)
     if wide is not None:
         convert = (f"iconv -f {wide} -t UTF-8 {path.name} > {path.stem}-utf8.csv"
@@ -108,9 +117,8 @@ def undecodable(path: Path, delimiter: str, names: list[str] | None = None,
     """The error naming the line (1-based, of the file) and field of the first byte
     ``encoding`` does not read, and the ``data.encoding`` that reads it."""
     with open(path, "rb") as f:
-        if f.read(2) == b"\x1f\x8b":
-            return ContractError("a gzip-compressed file, not CSV text: unpack it first",
-                                 file=path)
+        if f.read(2) == GZIP_MAGIC:
+            return gzipped(path)
     return (first_undecodable(path, delimiter, names, encoding)
             or ContractError(f"file is not {encoding} text (set data.encoding)", file=path))
 
