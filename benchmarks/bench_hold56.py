@@ -82,7 +82,7 @@ The other bars, A and C (B was dropped on the tests):
   column's "one new thermal state" test (``T_front5``); B fails ``test_monitor_blame44`` (the
   healthy ``T_xdrive`` and ``T_zdrive`` excluded instead of ``T_table``).
 
-CONCLUSION.  C adopted (``apps/deploy/surveillance.py``; ``tests/apps/test_monitor_hotter56.py``;
+CONCLUSION.  C adopted (``apps/deploy/surveillance/faults.py``; ``tests/apps/test_monitor_hotter56.py``;
 docs/monitoring.md).  A field beyond training is common (another season) and must not blind the
 drift detection: the rules act only where the field disagrees with an exclusion (C's first half)
 or where the sensors within range vouch for a reading out of it (C's second half).  Left: an

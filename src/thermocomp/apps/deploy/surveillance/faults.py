@@ -1,0 +1,172 @@
+"""The instant detectors of :class:`~.monitor.SensorMonitor`: dropout, range, jump, common step, freeze."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .states import COMMON_MIN, COMMON_SPREAD, STATES
+
+
+class InstantFaults:
+    """Mixin of :class:`~.monitor.SensorMonitor` (its state): one sample's instant faults."""
+
+    def _hotter(self, x: np.ndarray, d: np.ndarray, rng: np.ndarray) -> np.ndarray:
+        """Of the active sensors out of range (``rng``), those whose reading is a machine hotter
+        (or colder) than training, not a fault: the active sensors within range predict it
+        beyond the same training edge by more than its warning band (the prediction's own error
+        scale), and the reading is nearer that prediction than half its distance from the edge.
+        A spike, a unit change, a stuck or drifting sensor leave the others' prediction where
+        the healthy field is: out of range.  Predicted from the sensors within range only, so
+        that one faulty reading out of range does not move the prediction of another.
+        (long4253's T_motor at twice the training speed, 10-19 °C above its training maximum,
+        the others predicting 3.5 °C off it on average, had been held 9.5 °C below the reading.)"""
+        kept = np.zeros(len(x), dtype=bool)
+        inside = self._active & ~rng & np.isfinite(d)
+        if inside.sum() < self.min_active_:
+            return kept
+        M, _ = self._operator(inside)
+        cand = self._active & rng & np.isfinite(x)
+        p = (x - d)[cand] + M[cand] @ d[inside]     # absolute °C, from the sensors within range
+        up = x[cand] > self.hi_c[cand]
+        edge = np.where(up, self.hi_c[cand], self.lo_c[cand])
+        beyond = np.where(up, p - edge, edge - p) > self.warning_c[cand]
+        kept[cand] = beyond & (np.abs(x[cand] - p) < 0.5 * np.abs(x[cand] - edge))
+        return kept
+
+    def _reference_glitch(self, d, step, big, pos, time, events) -> tuple[np.ndarray, np.ndarray]:
+        """A jump right after the reference sample: the reference is the glitch (or the sensor
+        took an offset at once: the same thing to a model of changes since the start), so the
+        sensor is re-referenced and stays in.  ``(step, big)`` after it."""
+        for j in np.flatnonzero(big):
+            self._ref[j] += step[j]
+            d[j] = self._hist[pos, j] = 0.0
+            events.append({"time": float(time), "sensor": self.names[j], "from": STATES[self._state[j]],
+                           "to": "re-referenced", "reason": f"reference glitch: {-step[j]:+.3g} °C "
+                           "at the reference sample against the next one; re-referenced"})
+        step = d - self._prev
+        return step, np.abs(step) > self._jump_lim
+
+    def _common_step(self, d, step, big, pos, time, events) -> tuple[np.ndarray, np.ndarray]:
+        """A one-sample step shared by most active sensors, of about the same size: a fault of
+        the logger (its reference, a shared supply), not of the machine -- a real air step
+        moves the air alone at once, the structure lags.  Every active sensor that took it is
+        re-referenced by its own step and stays in (one by one, each jump was judged against the
+        others' prediction, which had taken the step too: 11 of 14 excluded on long_record 4253 at
+        +2 K, too few left to rebuild the field, none back for 24 h).  A jump off the common step
+        is judged as before.  ``(step, big)`` after it."""
+        common = float(np.median(step[big])) if big.sum() >= COMMON_MIN else 0.0
+        ratio = step / common if common else np.zeros_like(step)
+        took = self._active & (ratio >= 1 / COMMON_SPREAD) & (ratio <= COMMON_SPREAD)
+        jumped = took & big
+        if jumped.sum() < COMMON_MIN or 2 * took.sum() <= (self._active & np.isfinite(d)).sum():
+            return step, big
+        for j in np.flatnonzero(took):
+            self._ref[j] += step[j]
+            d[j] -= step[j]
+            self._hist[pos, j] = d[j]
+            events.append({"time": float(time), "sensor": self.names[j], "from": STATES[self._state[j]],
+                           "to": "re-referenced", "reason": f"common step: {step[j]:+.3g} °C in one "
+                           f"sample on {int(took.sum())} sensors at once (median {common:+.3g} °C); "
+                           "re-referenced"})
+        step = np.where(took, 0.0, step)
+        return step, big & ~took
+
+    def _reference_late(self, x, d, e, pred, finite, rng, pos) -> None:
+        """The first value of a sensor missing at the start (or out of range there): referenced
+        to agree with the field where the others predict it, else to go on from the value the
+        model was given meanwhile (its reference was NaN, so it stayed out for good)."""
+        late = np.isfinite(x) & ~np.isfinite(self._ref) & ~rng
+        for j in np.flatnonzero(late):
+            by_field = bool(self._predictable[j] and np.isfinite(pred[j]))
+            value = pred[j] if by_field else self._clean[j]
+            self._ref[j] = x[j] - value
+            d[j] = self._hist[pos, j] = value
+            e[j] = 0.0 if by_field else np.nan
+            finite[j] = True
+
+    def _check_freeze(self, x, d, e, pred, same, instant, time, events) -> None:
+        """Freeze: constant while the field (its prediction from the others) moves."""
+        if not same.any():
+            return
+        other = d - np.where(np.isfinite(e), e, d - pred)
+        start = same & (self._run == 1)
+        self._run_pred[start] = other[start]
+        moved = np.abs(other - self._run_pred)
+        for j in np.flatnonzero(self._frozen(same, self._run, moved)):
+            if j in instant:
+                continue
+            why = (f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples while the field "
+                   f"moved {moved[j]:.2g} °C" if self._observable[j] else
+                   f"freeze: {x[j]:.4g} °C for {self._run[j] + 1} samples (longest constant "
+                   f"run in training {self.longest_run[j]:.0f})")
+            instant[j] = why
+            if self._active[j]:
+                self._exclude(j, why, time, events)
+
+    def _check_stepped(self, e, instant, time, events) -> None:
+        """A self-prediction error that steps past the alarm band in one sample."""
+        de = e - self._prev_e
+        stepped = self._judged & (np.abs(e) >= self.alarm_c) & (np.abs(de) >= self.alarm_c)
+        if not stepped.any():
+            return
+        for j in np.flatnonzero(stepped):
+            instant.setdefault(j, f"jump: self-prediction error stepped {de[j]:+.3g} °C in one sample")
+        if self.adaptive:
+            # the culprit by its standardised *step*: a step fault on j steps every other
+            # error by less (the bound below), while the errors' levels carry each sensor's
+            # own model error (a coupled partner's may exceed the faulty one's)
+            j = int(np.argmax(np.where(stepped, np.abs(de) * self._std, -1)))
+            self._exclude(j, instant[j], time, events, by_field=True)
+
+    def _frozen(self, same: np.ndarray, run: np.ndarray, moved: np.ndarray) -> np.ndarray:
+        """The freeze rule (module doc), for :meth:`_fast` and :meth:`_update` alike: ``same``
+        unchanged readings, ``run`` their constant-run lengths, ``moved`` the field's change."""
+        return same & ((self._observable & (moved >= self.warning_c) & (run >= self._seen_run))
+                       | (~self._observable & (run > self._blind_run)))
+
+    def _instant(self, x, d, step, finite, rng, big) -> dict[int, str]:
+        """Reasons of the instant detectors that fire (dropout, out of range, jump)."""
+        out: dict[int, str] = {}
+        if big.sum() > 1:      # several at once: each as the sensors that did not jump see it
+            expected = self._unjumped_change(d, finite, rng, big)
+        elif big.any():   # the change of a jumping sensor as the other sensors see it
+            pred, e = self._errors(np.where(finite, d, 0.0))
+            other = np.where(self._judged, d - e, np.nan)
+            expected = other - self._prev_other
+        for j in np.flatnonzero(~finite):
+            out[j] = "dropout: no finite value"
+        for j in np.flatnonzero(rng):
+            out[j] = (f"out of range: {x[j]:.4g} °C outside the training range "
+                      f"[{self.lo_c[j]:.3g}, {self.hi_c[j]:.3g}] ± {self.range_margin_c:g} °C")
+        for j in np.flatnonzero(big):
+            # no temperature jumps: the offset is the sensor's, so it is re-referenced at once
+            # (a model of changes since the start then sees its true changes again) and stays
+            # out until it has been calm, and agrees with the field, for a window
+            offset = step[j] - (expected[j] if np.isfinite(expected[j]) else 0.0)
+            if not self._jumps[j]:
+                self._ref0[j] = self._ref[j]
+            self._jumps[j] += 1
+            self._ref[j] += offset               # changes as the field says it changed
+            d[j] -= offset
+            out[j] = (f"jump: {step[j]:+.3g} °C in one sample (largest step in training "
+                      f"{self.max_step_c[j]:.3g} °C); re-referenced")
+        return out
+
+    def _unjumped_change(self, d, finite, rng, big) -> np.ndarray:
+        """The change since the last sample of each of the ``big`` sensors (jumping in the same
+        sample) as the active sensors that did not jump predict it, NaN where they cannot (its
+        leverage among them at the POD's limit).  Predicted from the others, each jumping sensor's
+        prediction leaned on its jumping partners: two +3 K jumps on yearround's T_motor2 and
+        T_bearing_f2 were re-referenced by 3.108 / 3.076 K, their own 0.11 / 0.09 K of true change
+        taken with the offset for good (E_3 1.53x the healthy error on K09)."""
+        expected = np.full(len(d), np.nan)
+        base = self._active & finite & ~rng & ~big & np.isfinite(self._prev)
+        if base.sum() < self.min_active_:
+            return expected
+        M, _ = self._operator(base)
+        for j in np.flatnonzero(big):
+            with_j = base.copy()
+            with_j[j] = True
+            if self._operator(with_j)[1][j] < self.pod.max_leverage:
+                expected[j] = M[j] @ (d[base] - self._prev[base])
+        return expected

@@ -1,0 +1,87 @@
+"""Re-admission of an excluded sensor in :class:`~.monitor.SensorMonitor` (hysteresis, judged together)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .states import OK, READMIT
+
+
+class Readmission:
+    """Mixin of :class:`~.monitor.SensorMonitor` (its state): who comes back."""
+
+    def _readmit(self, d, finite, instant, time, events) -> bool:
+        """Re-admission: back within the warning band for a whole window, no detector firing
+        (checked against the field where the others can predict it, else calm is enough).
+        Whether any sensor came back."""
+        due = ~self._active & finite & (self._run == 0) & (self._calm >= self._dwell)
+        due[list(instant)] = False
+        back = self._returning(due) if due.any() else due
+        for j in np.flatnonzero(back):
+            why = f"re-admitted: within ±{self._readmit_c()[j]:.3g} °C for {self._calm[j]} samples"
+            shift = self._ref[j] - self._ref0[j]
+            if not self._predictable[j] and (self._jumps[j] > 1 or (
+                    self._jumps[j] and abs(d[j] + shift - self._last_good[j])
+                    < abs(d[j] - self._last_good[j]))):
+                # a sensor no other predicts: its outage's jumps were re-referenced one by
+                # one, which is right for a step (an offset that stays) and wrong for noise
+                # (a loose contact: the reading returns, and a noisy step kept was an offset
+                # for good: 6.7x the healthy error on T_amb).  Several jumps are noise or a
+                # spike; of one, the reading (with it or without) closer to the value
+                # before the outage is taken: this temperature cannot be seen to move
+                self._ref[j] = self._ref0[j]
+                d[j] += shift
+                self._hist[:, j] += shift
+                why += f"; its {self._jumps[j]} jump(s) undone: the reading returned ({shift:+.3g} °C)"
+            self._set_state(j, OK, time, why, events)
+            self._jumps[j] = 0
+            self._active[j] = True
+            self._by_field[j] = False
+            self._explains[j] = False
+            self._set_operator()
+        return bool(back.any())
+
+    def _returning(self, due: np.ndarray) -> np.ndarray:
+        """Which of the ``due`` sensors come back: those that pass their own judgement in the
+        set of the active sensors and every due one, the worst failing one left out until the
+        rest pass.  Judged together, not one at a time: a sensor whose coupled partner is out
+        too, or any sensor after a total dropout, has no set to pass in on its own."""
+        trial = self._active | due
+        while True:
+            ok, worst = self._pass_once_back(trial)
+            failing = due & trial & ~ok
+            if not failing.any():
+                return due & trial
+            trial[int(np.argmax(np.where(failing, worst, -1.0)))] = False
+
+    def _readmit_c(self) -> np.ndarray:
+        """Each sensor's re-admission band (°C): ``READMIT`` of its warning band (the hysteresis of
+        one out by its error), its whole warning band for one out only for a dropout: it had passed
+        its judgement until its reading went missing, the band that kept it in (the half band kept a
+        healthy lathe sensor whose error sits at 0.9 of its band out for an hour after one empty
+        logger row: adaptive 1.14x fixed)."""
+        lost = self._dropped & ~self._by_field & (self._jumps == 0)
+        return np.where(lost, 1.0, READMIT) * self.warning_c
+
+    def _pass_once_back(self, trial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """``(passes, worst error)`` of the sensors of the set ``trial``: their leave-one-out
+        error in it over the whole window within the re-admission band (not their error against
+        a set that a coupled partner may have left blind to them).  A sensor the others in
+        ``trial`` cannot predict passes where no other predicts it at all (calm is enough then)."""
+        n = len(self.names)
+        if trial.sum() < self.min_active_:
+            return np.zeros(n, dtype=bool), np.full(n, np.inf)
+        M, lev = self._operator(trial)
+        blind = lev >= self.pod.max_leverage
+        H = np.where(np.isfinite(self._hist), self._hist, 0.0)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            worst = np.abs((H - H[:, trial] @ M.T) / (1 - lev)).max(axis=0)
+        worst[blind] = np.inf
+        ok = np.where(blind, ~self._predictable, worst < self._readmit_c()) & trial
+        # one out for explaining the others' errors is vouched for by them: back only if they
+        # stay within the warning band with it in (calm alone let a drifting T_table flap)
+        explains = trial & blind & self._explains
+        if explains.any():
+            judged = trial & ~blind
+            ok[explains] = bool((worst[judged] < self.warning_c[judged]).all())
+        return ok, worst
