@@ -16,7 +16,6 @@ error.  Everything in a scratch root (``THERMOCOMP_ROOT``), never the checkout's
 from __future__ import annotations
 
 import copy
-import io
 import json
 import os
 import re
@@ -26,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from compiled_stream import compile_stream, whole_and_resumed
 
 ROOT = Path(os.environ.get("BENCH_ROOT", "/tmp/diagexport59-root"))
 os.environ["MLFLOW_ENABLE_ARTIFACTS_PROGRESS_BAR"] = "false"
@@ -79,12 +79,6 @@ def deployed_version(version: str):
     return load_deployed(f"models:/thermocomp-compensator/{version}")
 
 
-def streamed(binary: Path, csv: str, state: Path | None = None) -> pd.DataFrame:
-    args = [str(binary)] + (["--state", str(state)] if state else [])
-    p = subprocess.run(args, input=csv, capture_output=True, text=True, check=True)
-    return pd.read_csv(io.StringIO(p.stdout))
-
-
 def case(name: str) -> list[dict]:
     sim, base = CASES[name]
     data = f"data/raw/{name.split('-')[0]}{sim[1].split('=')[1]}"
@@ -126,8 +120,7 @@ def case(name: str) -> list[dict]:
             rows.append(row)
             continue
         row["laws"] = re.search(r"per target: (.*?)\)", msg).group(1) if "per target" in msg else ""
-        subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
-                       cwd=folder, check=True)
+        binary = compile_stream(folder, ["-O2"])
         dep = deployed_version(version)
         from thermocomp.apps.deploy.report import plain
         from thermocomp.apps.deploy.streaming import replay
@@ -140,13 +133,7 @@ def case(name: str) -> list[dict]:
             body = df.to_csv(index=False).splitlines()
             lines += ([body[0]] if not lines else [""]) + body[1:]
         csv = "\n".join(lines) + "\n"
-        got = streamed(folder / "stream", csv)
-        half = len(lines) // 2
-        state = folder / "state.bin"
-        state.unlink(missing_ok=True)
-        first = streamed(folder / "stream", "\n".join(lines[:half]) + "\n", state)
-        second = streamed(folder / "stream", "\n".join([lines[0]] + lines[half:]) + "\n", state)
-        restarted = pd.concat([first, second], ignore_index=True)
+        got, restarted = whole_and_resumed(binary, csv)
         if variant == "adapt=bias":
             # the served model, one session, a reset per campaign, fed the same measured errors
             from thermocomp.apps.deploy.pyfunc import CompensatorModel

@@ -22,7 +22,6 @@ scratch root, never the checkout's.
 
 from __future__ import annotations
 
-import io
 import json
 import os
 import subprocess
@@ -31,6 +30,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from compiled_stream import compile_stream, whole_and_resumed
 
 ROOT = Path(os.environ.get("BENCH_ROOT", "/tmp/exportrest60-root"))
 REPO = Path(__file__).resolve().parents[1]
@@ -99,12 +99,6 @@ def edited(tests: list[pd.DataFrame], first: str) -> list[pd.DataFrame]:
     return out
 
 
-def streamed(binary: Path, text: str, state: Path | None = None) -> np.ndarray:
-    args = [str(binary)] + (["--state", str(state)] if state else [])
-    p = subprocess.run(args, input=text, capture_output=True, text=True, check=True)
-    return pd.read_csv(io.StringIO(p.stdout))
-
-
 def case(name: str) -> dict:
     from sklearn.base import clone
 
@@ -141,8 +135,7 @@ def case(name: str) -> dict:
                  f"out={folder / 'code'}", "track=false", "monitor.adaptive=false",
                  "promote.envelope.pattern=false")
     folder = folder / "code"
-    subprocess.run(["cc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=folder, check=True)
+    binary = compile_stream(folder)
     tests = edited([ds.campaigns[c] for c in test_ids], stream.columns_[0])
     cols = ["time", *stream.columns_]
     parts = [df[cols].to_csv(index=False, float_format="%.17g") for df in tests]
@@ -150,14 +143,7 @@ def case(name: str) -> dict:
     targets = list(stream.targets_)
     replayed = [replay(stream, df) for df in tests]
     expected = np.vstack([-r[targets].to_numpy(float) for r in replayed])
-    got = streamed(folder / "stream", text)
-    lines = text.splitlines()
-    half = len(lines) // 2
-    state = folder / "state.bin"
-    state.unlink(missing_ok=True)
-    first = streamed(folder / "stream", "\n".join(lines[:half]) + "\n", state)
-    second = streamed(folder / "stream", "\n".join([lines[0]] + lines[half:]) + "\n", state)
-    restarted = pd.concat([first, second], ignore_index=True)
+    got, restarted = whole_and_resumed(binary, text)
     outs = [f"C_{t[2:]}" for t in targets]
     ss = StateSpace.from_dict(json.loads((folder / "compensator.json").read_text()))
     sim, fb = Simulator(ss), StructuredText((folder / "compensator.st").read_text())
