@@ -5,8 +5,11 @@
 ``monitor.adaptive`` its guard, from the train split of ``data.path``; ``adapt.*``).  Of an
 adaptive compensator the plain stream, its correction guard and time rule are exported (its
 sensor monitor stays with the served model: the message and the provenance say so);
-``adapt.method`` (bias, rls) is exported with them.  The files are written into ``out``
-together, or not at all (:func:`~thermocomp.base.files.staged_outputs`).
+``adapt.method`` (bias, rls) is exported with them.  Beside the code, the conformance pack
+``check/`` (``export.check``, ``export.campaigns``: :mod:`~thermocomp.apps.deploy.export.pack`):
+rows of ``data.path`` as the code takes them and the corrections the served model gives for
+them, which ``stream --check`` compares.  The files are written into ``out`` together, or not
+at all (:func:`~thermocomp.base.files.staged_outputs`).
 """
 
 from __future__ import annotations

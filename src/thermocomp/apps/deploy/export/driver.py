@@ -26,7 +26,8 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
  * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
  * mid-write leaves the previous row's state); a FILE of another build is refused.
- * A file in fixed-width columns or JSON Lines is refused: convert it to CSV first.
+ * A file in fixed-width columns or JSON Lines is refused: convert it to CSV first (the export's
+ * check/<campaign>/rows.csv holds such a record's rows as this reads them).
  * With `--check FILE` (a pack's check/<campaign>/expected.csv, export writes them with the
  * rows.csv each holds) every row of corrections is compared with FILE's as it is printed:
  * the first farther than CHECK_UM + CHECK_RELATIVE * |expected| (`--tolerance UM`, `--relative
