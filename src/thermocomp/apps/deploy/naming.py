@@ -15,6 +15,7 @@ import pandas as pd
 
 from ...base.errors import ContractError
 from ...core.io.roles import RUN
+from ...core.io.timestamps import CLOCK
 
 CORRECTION_PREFIX = "C_"
 
@@ -33,7 +34,8 @@ def lab_names(cfg, ds=None) -> dict[str, list[str]]:
     it by its contract name only.  The run-number column of a long file
     (``data.roles.campaign``, ``ds.meta["run_column"]``) comes under :data:`RUN`: a stream of
     the lab's file starts a campaign at each of its values (the exported code, a model from
-    the registry too, which has no dataset to ask)."""
+    the registry too, which has no dataset to ask); a time of day joined to the date
+    (``data.roles.time: [date, time]``, found by ``auto`` too) under :data:`CLOCK`."""
     columns = dict(cfg.data.get("columns") or {})
     converted = set()
     if ds is not None:
@@ -41,6 +43,8 @@ def lab_names(cfg, ds=None) -> dict[str, list[str]]:
         converted = set(ds.meta.get("converted") or ())
         if ds.meta.get("run_column"):
             columns[ds.meta["run_column"]] = RUN
+        if ds.meta.get("time_of_day"):     # joined to the date: what export refuses by name
+            columns[ds.meta["time_of_day"]] = CLOCK
     names: dict[str, list[str]] = {}
     for raw, contract in columns.items():
         if str(raw) != str(contract) and str(contract) not in converted:

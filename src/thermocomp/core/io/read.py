@@ -90,6 +90,7 @@ from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_va
 from .starts import campaign_starts
 from .steps import check_unit_steps
 from .tables import NoRows, _load_csv, _load_parquet, _ordered, _values, parquet
+from .timestamps import CLOCK
 from .values import (
     _check_periods,
     _error_ranges,
@@ -209,6 +210,10 @@ def _assembled(columns: dict, renamed: dict, rescaled: dict, path: Path, opts: R
     ``first_row``: the data rows above it in ``path`` (one run of a long file), for messages."""
     if lines is not None:
         lines = replace(lines, shift=first_row)
+    # the time of day joined to its date: no column of its own, its header kept apart (export
+    # refuses a pair stream.c does not join, a model from the registry too: lab_names)
+    clock = [raw for raw, name in renamed.items() if name == CLOCK]
+    renamed = {raw: name for raw, name in renamed.items() if name != CLOCK}
     try:
         report = _checked(columns, path, opts, lines)
     except ContractError as exc:        # a CSV file's row: its line too
@@ -221,6 +226,8 @@ def _assembled(columns: dict, renamed: dict, rescaled: dict, path: Path, opts: R
     table = pa.table({name: columns.pop(name) for name in _ordered(list(columns))})
     if renamed:          # the file's own names (data.columns, data.roles): raw -> contract
         report["columns"] = renamed
+    if clock:
+        report["time_of_day"] = clock[0]
     if rescaled:         # read in another unit (mm, K, ...): the lab's name carries other values
         report["converted"] = sorted(rescaled)
         report["scales"] = rescaled       # {contract: [scale, offset]}, as applied
@@ -446,6 +453,9 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
             # data.roles.campaign's header, which a stream of the long file starts runs by
             "run_column": next((e["run_column"] for e in entries.values() if "run_column" in e),
                                None),
+            # the header of a time of day joined to the date (data.roles.time: [date, time])
+            "time_of_day": next((e["time_of_day"] for e in entries.values() if "time_of_day" in e),
+                                None),
             # None: the splits came from no file (a record, a folder of runs): data.*_fraction
             "manifest": str(root / MANIFEST) if Path(path).is_dir() and (root / MANIFEST).is_file()
             else None}

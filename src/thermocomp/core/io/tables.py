@@ -561,7 +561,9 @@ def _rescaled(scales: dict) -> dict[str, list[float]]:
 
 
 def _renames(raw: list[str], named: list[str | None]) -> dict[str, str]:
-    return {r: n for r, n in zip(raw, named) if n not in (None, CLOCK, r)}   # (joined to time)
+    """The file's headers -> contract names where they differ; a time of day joined to its date
+    under :data:`CLOCK` (which the reader's report keeps apart: no column of that name is read)."""
+    return {r: n for r, n in zip(raw, named) if n not in (None, r)}
 
 
 def _first_text(column: pa.ChunkedArray) -> str | None:

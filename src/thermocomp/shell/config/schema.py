@@ -194,6 +194,8 @@ class Promote:
 class Export:
     model: Optional[str] = key(optional(text()))
     format: str = key(choice("json", "c", "st", "onnx"))
+    check: Optional[bool] = key(optional(BOOLEAN), reports=True)
+    campaigns: Optional[list] = key(optional(texts("campaign ids", unique=True)), reports=True)
 
 
 @dataclass

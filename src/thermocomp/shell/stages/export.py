@@ -5,8 +5,11 @@
 ``monitor.adaptive`` its guard, from the train split of ``data.path``; ``adapt.*``).  Of an
 adaptive compensator the plain stream, its correction guard and time rule are exported (its
 sensor monitor stays with the served model: the message and the provenance say so);
-``adapt.method`` (bias, rls) is exported with them.  The files are written into ``out``
-together, or not at all (:func:`~thermocomp.base.files.staged_outputs`).
+``adapt.method`` (bias, rls) is exported with them.  Beside the code, the conformance pack
+``check/`` (``export.check``, ``export.campaigns``: :mod:`~thermocomp.apps.deploy.export.pack`):
+rows of ``data.path`` as the code takes them and the corrections the served model gives for
+them, which ``stream --check`` compares.  The files are written into ``out`` together, or not
+at all (:func:`~thermocomp.base.files.staged_outputs`).
 """
 
 from __future__ import annotations
@@ -19,6 +22,9 @@ from pathlib import Path
 from omegaconf import DictConfig
 
 from ...apps.deploy.export import NotExportable, check_exportable, exported_files, not_in_code
+from ...apps.deploy.export.pack import CHECK as PACK
+from ...apps.deploy.export.pack import conformance_pack
+from ...apps.deploy.export.statespace import StateSpace
 from ...apps.deploy.export.text import per_target
 from ...apps.deploy.naming import raw_names
 from ...apps.deploy.report import plain
@@ -26,8 +32,12 @@ from ...base.errors import ConfigError
 from ...base.files import staged_outputs
 from ...base.log import say
 from ...base.paths import resolve
+from ...core.continuation import lead_ins
 from ...core.io.contract import TIME
 from ...core.io.roles import RUN
+from ...core.io.source import check_streamed_columns
+from ...core.io.timestamps import CLOCK
+from ...core.scoring.evaluation import require_split
 from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
 from ..model_store import model_family
@@ -53,8 +63,8 @@ def _refused(source: str, family: str, fmt: str, exc: NotExportable) -> ConfigEr
     return ConfigError(f"export.model={source} ({family}) cannot be exported as {fmt}: {exc}")
 
 
-def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict]:
-    """``(deployed compensator, provenance)`` of ``export.model``."""
+def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict, object]:
+    """``(deployed compensator, provenance, dataset read or None)`` of ``export.model``."""
     def exportable(comp):     # before its envelope and guard are derived from the train split
         try:
             check_exportable(comp, fmt)
@@ -66,9 +76,51 @@ def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict]:
     deployed = deployable_model(cfg, ds, train_ids, source, "export.model", check=exportable)[0]
     if registered:
         if is_registered_model(source):
-            return deployed, _registry_provenance(source)
-        return deployed, {"run_id": None, "dataset_hash": None}
-    return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}
+            return deployed, _registry_provenance(source), None
+        return deployed, {"run_id": None, "dataset_hash": None}, None
+    return deployed, {"run_id": None, "dataset_hash": ds.meta["digest"]}, ds
+
+
+def _pack(cfg: DictConfig, deployed, ds, compensator_json: str, fmt: str
+          ) -> tuple[dict, dict] | None:
+    """The conformance pack's ``({path: text}, check.json)`` (:mod:`~...apps.deploy.export.pack`)
+    of ``export.campaigns`` (the test split of ``data.path`` by default), or None: ``export.check``
+    null writes it where the export read ``data.path`` anyway (a ``model.pkl``), true reads it
+    for a registered model too, false writes none."""
+    wanted = cfg.export.get("check")
+    if wanted is False or (wanted is None and ds is None):
+        return None
+    if ds is None:
+        ds = read_streamed(cfg)[0]
+    chosen = cfg.export.get("campaigns")
+    if chosen is None:
+        ids = require_split(ds, "test")
+    else:
+        ids = [str(c) for c in chosen]
+        unknown = [c for c in ids if c not in ds.campaigns]
+        if unknown:
+            raise ConfigError(f"export.campaigns names {', '.join(map(repr, unknown))}, no campaign "
+                              f"of data.path (it has {', '.join(map(repr, list(ds.campaigns)[:8]))}"
+                              f"{', ...' if len(ds.campaigns) > 8 else ''})")
+    check_streamed_columns(ds, ids, plain(deployed).columns_, "the deployed model")
+    root = resolve(cfg.data.path)
+    files = {c: root / str(ds.manifest.loc[c, "file"]) for c in ids}
+    ss = StateSpace.from_dict(json.loads(compensator_json))
+    return conformance_pack(deployed, ss, {c: ds.campaigns[c] for c in ids},
+                            lead_ins(plain(deployed).compensator, ds, ids), files,
+                            script=fmt == "c")
+
+
+def _said(pack: dict) -> str:
+    """One line of what the pack holds and how to run it."""
+    listed = pack["campaigns"]
+    rows = sum(e["rows"] for e in listed)
+    cut = [f"{e['campaign']} at row {e['cut']['row']} ({e['cut']['why']})" for e in listed
+           if e["cut"]]
+    return (f"check: {rows:,} rows of {sum(1 for e in listed if e['rows'])} campaign(s) and the "
+            f"corrections the code must give (|C - expected| <= {pack['tolerance_um']:g} um + "
+            f"{pack['tolerance_relative']:g} x |expected|)" + (f"; cut: {'; '.join(cut)}" if cut
+                                                               else ""))
 
 
 # data.time values whose times stream.c reads as the reader does (its own parser: driver.py)
@@ -111,7 +163,7 @@ def export(cfg: DictConfig) -> dict:
     from ...base.log import version  # the installed distribution's, as --version prints it
 
     source, fmt = str(source), str(cfg.export.format)
-    deployed, provenance = _deployed(cfg, source, fmt)
+    deployed, provenance, ds = _deployed(cfg, source, fmt)
     stream = plain(deployed)
     left = not_in_code(deployed)
     if left:
@@ -130,8 +182,10 @@ def export(cfg: DictConfig) -> dict:
                  if unit[0] in read}
     if fmt == "c":
         # (the reader joins the date and its time of day and keeps no lab's name of the second)
+        # (data.roles.time=auto found the pair: the model keeps its header under CLOCK)
         joined = (cfg.data.get("roles") or {}).get("time") or ()
-        clock = [] if isinstance(joined, str) or len(joined) != 2 else list(joined)[1:]
+        clock = raw_names(named, CLOCK) or (
+            [] if isinstance(joined, str) or len(joined) != 2 else list(joined)[1:])
         _convertible(cfg, converted, lab.get(TIME, TIME), [str(c) for c in clock])
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
                       lab_units=converted, run_column=run_column,
@@ -141,9 +195,11 @@ def export(cfg: DictConfig) -> dict:
         files = exported_files(deployed, fmt, provenance)
     except NotExportable as exc:
         raise _refused(source, family, fmt, exc) from None
+    packed = _pack(cfg, deployed, ds, files["compensator.json"], fmt)
     out = Path(resolve(cfg.out))
     with staged_outputs(out, last=("compensator.json",)) as tmp:
-        for name, text in files.items():
+        for name, text in {**files, **(packed[0] if packed else {})}.items():
+            (tmp / name).parent.mkdir(parents=True, exist_ok=True)
             (tmp / name).write_text(text, encoding="utf-8")
     written = {name: out / name for name in files}
     laws = json.loads(files["compensator.json"])["provenance"].get("laws")
@@ -152,4 +208,10 @@ def export(cfg: DictConfig) -> dict:
     if fmt == "c":
         say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv"
             " (--state FILE: a restarted stream goes on from FILE)")
+    if packed:
+        written[PACK] = out / PACK
+        say(f"{_said(packed[1])}: {out / PACK}" + (f" (after the build, in {out}: sh check/check.sh)"
+                                                  if fmt == "c" else ""))
+    elif (out / PACK / "check.json").is_file():
+        say(f"{out / PACK} is an earlier export's pack, not this code's (export.check=false)")
     return written

@@ -26,9 +26,14 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
  * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
  * mid-write leaves the previous row's state); a FILE of another build is refused.
- * A file in fixed-width columns or JSON Lines is refused: convert it to CSV first.
+ * A file in fixed-width columns or JSON Lines is refused: convert it to CSV first (the export's
+ * check/<campaign>/rows.csv holds such a record's rows as this reads them).
+ * With `--check FILE` (a pack's check/<campaign>/expected.csv, export writes them with the
+ * rows.csv each holds) every row of corrections is compared with FILE's as it is printed:
+ * the first farther than CHECK_UM + CHECK_RELATIVE * |expected| (`--tolerance UM`, `--relative
+ * R` to change them) is named on stderr, exit 1; within it, the largest difference is said.
  * Build: cc compensator.c stream.c -lm -o stream
- * Run:   ./stream [--state FILE] < rows.csv
+ * Run:   ./stream [--state FILE] [--check FILE [--tolerance UM] [--relative R]] < rows.csv
  */
 #include <math.h>
 #include <stdio.h>
@@ -39,19 +44,23 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
 #define MAX_LINE 65536
 #define MAX_COLS 1024
 #define MAX_CELL 256
+#define CHECK_UM 1e-9          /* --check: |c - expected| <= CHECK_UM + CHECK_RELATIVE * |expected| */
+#define CHECK_RELATIVE 1e-9    /* (float64 in another order: check/check.json says why) */
 
 enum { SECONDS = 1, LOCAL_TIME, ZONED_TIME };   /* a stream's time: as its first is written */
 
 static char sep = ',';
 
-static int split(char *line, char **cells) {
+static int split_by(char *line, char **cells, char by) {
     int n = 0;
     char *p = line;
     line[strcspn(line, "\r\n")] = '\0';
     cells[n++] = p;
-    while ((p = strchr(p, sep)) != NULL && n < MAX_COLS) { *p++ = '\0'; cells[n++] = p; }
+    while ((p = strchr(p, by)) != NULL && n < MAX_COLS) { *p++ = '\0'; cells[n++] = p; }
     return n;
 }
+
+static int split(char *line, char **cells) { return split_by(line, cells, sep); }
 
 /* Each column's conversion to the contract's unit: value * scale + offset (TC_LAB_UNITS). */
 static double scale_of[MAX_COLS], offset_of[MAX_COLS];
@@ -257,6 +266,99 @@ static int saved(const char *path, char *tmp, const tc_state *s, const char *run
     return 0;
 }
 
+/* --check FILE: the expected corrections (a header naming TC_OUTPUT_NAMES in order, then one
+   row of numbers per row of corrections, ',' and '.'), the tolerance and the largest difference
+   seen (|c - expected|, its output and input line). */
+static struct {
+    FILE *f;
+    const char *path;
+    double um, relative, worst;
+    long rows, worst_line, line;
+    int worst_output;
+} check_ = {NULL, NULL, CHECK_UM, CHECK_RELATIVE, 0.0, 0, 0, 1, 0};
+
+/* 1: FILE opened and its header names this build's outputs; 0 after saying why not. */
+static int check_open(void) {
+    static char text[MAX_LINE];
+    char *cells[MAX_COLS];
+    int n, i;
+    check_.f = fopen(check_.path, "r");
+    if (check_.f == NULL) {
+        fprintf(stderr, "stream: cannot read %s\n", check_.path);
+        return 0;
+    }
+    n = fgets(text, sizeof text, check_.f) ? split_by(text, cells, ',') : 0;
+    for (i = 0; n == TC_N_OUTPUTS && i < n; i++)
+        if (strcmp(cells[i], TC_OUTPUT_NAMES[i]) != 0) break;
+    if (n != TC_N_OUTPUTS || i < n) {
+        fprintf(stderr, "stream: %s does not name this build's outputs (", check_.path);
+        for (i = 0; i < TC_N_OUTPUTS; i++) fprintf(stderr, "%s%s", i ? "," : "", TC_OUTPUT_NAMES[i]);
+        fprintf(stderr, ") on its first line: another model's pack?\n");
+        return 0;
+    }
+    return 1;
+}
+
+/* The corrections c of input line `row` against FILE's next row: 0 within the tolerance, 1 (not)
+   or 2 (FILE unreadable there) after saying where. */
+static int check_row(long row, const double *c) {
+    static char text[MAX_LINE];
+    char *cells[MAX_COLS];
+    double want, diff;
+    int i, bad = 0;
+    check_.line++;
+    if (!fgets(text, sizeof text, check_.f)) {
+        fprintf(stderr, "stream: check: %s ends at line %ld, before the corrections of input "
+                "line %ld\n", check_.path, check_.line - 1, row);
+        return 1;
+    }
+    if (split_by(text, cells, ',') != TC_N_OUTPUTS) {
+        fprintf(stderr, "stream: check: %s line %ld has not %d cells\n", check_.path,
+                check_.line, TC_N_OUTPUTS);
+        return 2;
+    }
+    for (i = 0; i < TC_N_OUTPUTS; i++) {
+        want = value(cells[i], &bad);
+        if (bad || !isfinite(want)) {
+            fprintf(stderr, "stream: check: %s line %ld: %s is no number\n", check_.path,
+                    check_.line, TC_OUTPUT_NAMES[i]);
+            return 2;
+        }
+        diff = fabs(c[i] - want);
+        if (!(diff <= check_.um + check_.relative * fabs(want))) {     /* (a NaN fails too) */
+            fprintf(stderr, "stream: check failed at input line %ld (row %ld of the stream): "
+                    "%s = %.17g, expected %.17g (%s line %ld): |difference| %.3g um beyond the "
+                    "tolerance %.3g um + %.3g x |expected|\n", row, check_.rows + 1,
+                    TC_OUTPUT_NAMES[i], c[i], want, check_.path, check_.line, diff, check_.um,
+                    check_.relative);
+            return 1;
+        }
+        if (diff > check_.worst || check_.worst_line == 0) {
+            check_.worst = diff;
+            check_.worst_line = row;
+            check_.worst_output = i;
+        }
+    }
+    check_.rows++;
+    return 0;
+}
+
+/* The input ended: 0 when FILE ended too (the largest difference said), else 1. */
+static int check_end(long row) {
+    static char text[MAX_LINE];
+    while (fgets(text, sizeof text, check_.f))
+        if (text[strspn(text, " \t\r\n")] != '\0') {
+            fprintf(stderr, "stream: check: the input ended at line %ld, %s holds more rows "
+                    "(from its line %ld)\n", row, check_.path, check_.line + 1);
+            return 1;
+        }
+    fprintf(stderr, "stream: check passed: %ld rows within %.3g um + %.3g x |expected| of %s "
+            "(largest |difference| %.3g um, %s at input line %ld)\n", check_.rows, check_.um,
+            check_.relative, check_.path, check_.worst,
+            TC_OUTPUT_NAMES[check_.worst_output], check_.worst_line);
+    return 0;
+}
+
 /* A campaign starts: the compensator's (`reset`: what was learned kept) and its clock's. */
 static void restart(tc_state *s, int reset) {
     if (reset) tc_reset(s);
@@ -265,9 +367,9 @@ static void restart(tc_state *s, int reset) {
 
 int main(int argc, char **argv) {
     static char line[MAX_LINE], run[MAX_CELL] = "";
-    char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL;
+    char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL, *end;
     int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
-    int ncols, i, j, ignored, measured, restored = 0;
+    int ncols, i, j, ignored, measured, restored = 0, failed;
     long row = 1;
     tc_state s;
     double u[TC_N_INPUTS], c[TC_N_OUTPUTS], e[TC_N_OUTPUTS], t = NAN;
@@ -277,9 +379,24 @@ int main(int argc, char **argv) {
             state_path = argv[++i];
             continue;
         }
-        fprintf(stderr, "usage: %s [--state FILE] < rows.csv\n", argv[0]);
+        if (strcmp(argv[i], "--check") == 0 && i + 1 < argc && argv[i + 1][0]) {
+            check_.path = argv[++i];
+            continue;
+        }
+        if ((strcmp(argv[i], "--tolerance") == 0 || strcmp(argv[i], "--relative") == 0)
+            && i + 1 < argc) {
+            double *to = argv[i][2] == 't' ? &check_.um : &check_.relative;
+            *to = strtod(argv[i + 1], &end);
+            if (end != argv[i + 1] && *end == '\0' && *to >= 0) {
+                i++;
+                continue;
+            }
+        }
+        fprintf(stderr, "usage: %s [--state FILE] [--check FILE [--tolerance UM] [--relative R]]"
+                " < rows.csv\n", argv[0]);
         return 2;
     }
+    if (check_.path != NULL && !check_open()) return 2;
     if (state_path != NULL) {
         state_tmp = malloc(strlen(state_path) + 5);
         if (state_tmp == NULL) { fprintf(stderr, "stream: out of memory\n"); return 2; }
@@ -369,6 +486,10 @@ int main(int argc, char **argv) {
         tc_step(&s, u, t, c);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
         printf("\n");
+        if (check_.f != NULL && (failed = check_row(row, c)) != 0) {
+            fflush(stdout);
+            return failed;
+        }
         for (i = measured = 0; i < TC_N_OUTPUTS; i++) {
             e[i] = error_col[i] >= 0 ? converted(cells, error_col[i], &ignored) : NAN;
             measured |= isfinite(e[i]);
@@ -376,6 +497,6 @@ int main(int argc, char **argv) {
         if (measured) tc_reference(&s, e);
         if (!saved(state_path, state_tmp, &s, run)) return 2;
     }
-    return 0;
+    return check_.f != NULL ? check_end(row) : 0;
 }
 """

@@ -1,0 +1,189 @@
+"""The conformance pack ``export`` writes beside the code (``check/``): rows the code must take and
+the corrections it must give for them (pure core).
+
+A lab compiles the exported code with its own toolchain (another compiler, an ST runtime) and
+needs to know that the build computes what the served model computes.  :func:`conformance_pack`
+writes, per campaign, ``check/<campaign>/rows.csv`` (``time`` and the code's inputs, in the order
+``TC_INPUT_NAMES`` lists them, under their contract names, in the contract's units: degC, um, s;
+a missing cell empty) in the form ``stream.c`` reads, and ``check/<campaign>/expected.csv`` (one
+``C_<axis>`` row per row of ``rows.csv``): the served model's corrections for those rows, streamed
+row by row from the campaign's start as ``replay`` streams it (:func:`~..report.stream_rows`),
+with the reference update's gain and bias as exported.  The rows come from the dataset as
+thermocomp read it, so a record in any form it reads (fixed-width, JSON Lines, a historian's
+long export, a workbook) reaches the code as the CSV ``stream.c`` takes.
+
+* A campaign that continues others (``data.reference=none``) starts with their rows: the stream
+  the served model is warmed on, which the code must be fed too.
+* A campaign is cut before its first row with an input the code refuses (a missing value of a
+  declared input: ``stream.c`` stops there), as ``replay``'s plain stream stops.
+* Where the served model does what the code does not (its sensor monitor: :func:`~.output.
+  not_in_code`), the corrections are checked against the exported arithmetic in numpy
+  (:class:`~.statespace.Simulator`) and the campaign is cut before the first row where the two
+  part (the monitor acted): no build can reproduce that row.
+
+``check/check.json`` lists the campaigns (rows, cuts and why) and the tolerance
+(:data:`TOLERANCE_UM`, :data:`TOLERANCE_RELATIVE`); with the C, ``check/check.sh`` runs
+``stream --check`` on each.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+import re
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+
+from ..naming import correction_column
+from ..report import stream_rows
+from .output import not_in_code
+from .statespace import Simulator, StateSpace
+
+CHECK = "check"
+# |C - expected| <= TOLERANCE_UM + TOLERANCE_RELATIVE * |expected| (um).  float64 arithmetic in
+# another order, with or without fused multiply-adds, rounds each sum differently by a few ulp of
+# its largest term (a lag bank's opposed weights make terms far larger than the correction): on
+# the vendored spindle record gcc -O0, -O2 and -O3 -ffast-math parted from the Python stream by
+# 6.3e-13 um at most (benchmarks/bench_export_check61.py).  1e-9 leaves a margin of 1600 over
+# that and is still a millionth of a micrometre: a coefficient moved by a millionth of itself
+# (tests/shell/test_export_check61.py) or a float32 build (1e-2 um there) shows up.  The
+# relative part keeps the margin for corrections of thousands of um.
+TOLERANCE_UM = 1e-9
+TOLERANCE_RELATIVE = 1e-9
+WHY = ("float64 sums in another order (another compiler, optimiser, fused multiply-add) part by "
+       "a few units in the last place of their largest term: 6.3e-13 um at most on the vendored "
+       "spindle record (gcc -O0, -O2, -O3 -ffast-math; mlr, lagbank, hammerstein, auto); the "
+       "tolerance keeps a margin of 1600 over that and is still far below what a machine shows, "
+       "while a coefficient moved by a millionth fails; a float32 build parts by up to 0.017 um "
+       "there and needs a tolerance of its own (stream --tolerance)")
+
+_UNSAFE = re.compile(r"[^A-Za-z0-9._-]+")
+
+
+def folder_names(campaigns) -> dict[str, str]:
+    """``{campaign: folder}``: a campaign's id as a file name (characters other than letters,
+    digits, ``._-`` replaced by ``_``), distinct (a suffix ``~2`` where two read alike)."""
+    out, taken = {}, set()
+    for cid in campaigns:
+        base = _UNSAFE.sub("_", str(cid)).strip("._") or "campaign"
+        name, k = base, 1
+        while name.lower() in taken:      # (a file system that folds case)
+            k += 1
+            name = f"{base}~{k}"
+        taken.add(name.lower())
+        out[cid] = name
+    return out
+
+
+def _csv(frame: pd.DataFrame) -> str:
+    """CSV as ``stream.c`` reads it: ``,``, ``.``, a number to the last bit (17 digits), NaN empty."""
+    buf = io.StringIO()
+    frame.to_csv(buf, index=False, float_format="%.17g", na_rep="", lineterminator="\n")
+    return buf.getvalue()
+
+
+def _fed(campaign: pd.DataFrame, lead_in: pd.DataFrame | None) -> pd.DataFrame:
+    """The rows the code is fed for ``campaign``: its ``lead_in``'s first (the campaigns it
+    continues; its manifest ambient the chain's first's, as ``run`` joins them)."""
+    if lead_in is None or not len(lead_in):
+        return campaign.reset_index(drop=True)
+    joined = pd.concat([lead_in, campaign], ignore_index=True)
+    joined.attrs = dict(lead_in.attrs)
+    return joined
+
+
+def _refused_row(frame: pd.DataFrame, ss: StateSpace) -> tuple[int, str] | None:
+    """``(row, input)`` of the first row with an input the code refuses (not finite, not held)."""
+    held = ss.held or [0] * len(ss.inputs)
+    checked = [c for c, h in zip(ss.inputs, held) if not h]
+    bad = ~np.isfinite(frame[checked].to_numpy(float))
+    if not bad.any():
+        return None
+    i = int(np.argmax(bad.any(axis=1)))
+    return i, checked[int(np.argmax(bad[i]))]
+
+
+def corrections(ss: StateSpace, y: np.ndarray) -> np.ndarray:
+    """``C = -y``, with the reference update ``-(gain * y + bias)`` at its exported values (the
+    pack feeds no reference measurement: what was learned stays as served)."""
+    if ss.adapt == "none":
+        return -y
+    return -(np.asarray(ss.adapt_gain, float) * y + np.asarray(ss.adapt_bias, float))
+
+
+def beyond(got: np.ndarray, want: np.ndarray) -> np.ndarray:
+    """Per row and target, True where ``got`` is farther from ``want`` than the tolerance."""
+    return ~(np.abs(got - want) <= TOLERANCE_UM + TOLERANCE_RELATIVE * np.abs(want))
+
+
+def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray) -> int | None:
+    """The first row where the exported arithmetic (:class:`Simulator`) parts from ``want``."""
+    sim = Simulator(ss)
+    U = frame[ss.inputs].to_numpy(float)
+    t = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(frame), np.nan)
+    for i in range(len(frame)):
+        if beyond(sim.step(U[i], t[i]), want[i]).any():
+            return i
+    return None
+
+
+def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFrame],
+                     lead_ins: Mapping[str, pd.DataFrame] | None = None,
+                     files: Mapping[str, object] | None = None, script: bool = True
+                     ) -> tuple[dict[str, str], dict]:
+    """``({path under out: text}, check.json's dict)`` of the pack for ``campaigns`` streamed
+    through ``deployed`` (module doc); ``ss``: its exported system; ``files``: each campaign's
+    file, for a refusal's message; ``script``: ``check/check.sh`` too (the C's ``stream``)."""
+    lead_ins = lead_ins or {}
+    folders = folder_names(campaigns)
+    outputs = [correction_column(t) for t in ss.targets]
+    monitor = bool(not_in_code(deployed))
+    out, listed = {}, []
+    for cid, campaign in campaigns.items():
+        frame = _fed(campaign, lead_ins.get(cid))
+        lead = len(frame) - len(campaign)
+        columns = (["time"] if "time" in frame.columns else []) + list(ss.inputs)
+        cut = None
+        refused = _refused_row(frame, ss)
+        if refused is not None:
+            cut = {"row": refused[0] + 1, "why": f"{refused[1]} has no value there, which the "
+                   "code refuses (stream.c stops; the served model holds it)"}
+            frame = frame.iloc[:refused[0]]
+        entry = {"campaign": str(cid), "folder": f"{CHECK}/{folders[cid]}", "lead_in_rows": lead}
+        if not len(frame):
+            listed.append({**entry, "rows": 0, "cut": cut})
+            continue
+        y = stream_rows(deployed, frame, str(cid), (files or {}).get(cid)).y
+        want = corrections(ss, y)
+        if monitor and (parted := _parted(ss, frame, want)) is not None:
+            cut = {"row": parted + 1, "why": "the served model's sensor monitor acted there, "
+                   "which is not in the code"}
+            frame, want = frame.iloc[:parted], want[:parted]
+        entry.update(rows=len(frame), cut=cut)
+        listed.append(entry)
+        if len(frame):
+            out[f"{entry['folder']}/rows.csv"] = _csv(frame[columns])
+            out[f"{entry['folder']}/expected.csv"] = _csv(pd.DataFrame(want, columns=outputs))
+    written = [e for e in listed if e["rows"]]
+    summary = {"campaigns": listed, "inputs": ["time", *ss.inputs], "outputs": outputs,
+               "tolerance_um": TOLERANCE_UM, "tolerance_relative": TOLERANCE_RELATIVE,
+               "rule": "|C - expected| <= tolerance_um + tolerance_relative * |expected|",
+               "why": WHY,
+               "command": "./stream --check <folder>/expected.csv < <folder>/rows.csv",
+               "reference_measurements": "none fed: what was learned stays as exported"}
+    out[f"{CHECK}/check.json"] = json.dumps(summary, indent=1, ensure_ascii=False) + "\n"
+    if script:
+        out[f"{CHECK}/check.sh"] = _script([e["folder"] for e in written])
+    return out, summary
+
+
+def _script(folders: list[str]) -> str:
+    """``check/check.sh``: every campaign of the pack through ``./stream --check`` (run from the
+    folder ``stream`` was built in); the first that fails stops it, its message on stderr."""
+    lines = ["#!/bin/sh", "# Run from the folder of the built stream: sh check/check.sh",
+             "set -e"]
+    lines += [f"./stream --check '{f}/expected.csv' < '{f}/rows.csv' > /dev/null" for f in folders]
+    lines.append(f"echo 'check: {len(folders)} campaign(s) within tolerance'")
+    return "\n".join(lines) + "\n"
