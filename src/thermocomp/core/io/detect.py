@@ -142,11 +142,14 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
         held = held_wide(sample, opts, layout)
         names = layout.header
         opts = replace(opts, delimiter=layout.delimiter, decimal=layout.decimal)
+        kind = ("an InfluxDB annotated CSV (each table a series: its tags and _field its name, "
+                "a unit tag its unit; _time, _value its samples)" if layout.influx else
+                f"a historian's long file ({names[layout.tag]!r} the tag, {names[layout.value]!r} "
+                f"the value" + (f", {names[layout.quality]!r} its quality" if layout.quality is
+                                not None else ", no quality column") + ")")
         return (opts, header, first, _separators(sample, opts) + (
-            f", a historian's long file ({names[layout.tag]!r} the tag, {names[layout.value]!r} "
-            f"the value" + (f", {names[layout.quality]!r} its quality" if layout.quality is not
-                            None else ", no quality column") + f"): {len(header) - 1} tags held "
-            f"onto a grid of data.resample_s={held.period:g} s, {len(held.frame)} rows"))
+            f", {kind}: {len(header) - 1} tags held onto a grid of data.resample_s="
+            f"{held.period:g} s, {len(held.frame)} rows"))
     if not is_text(sample):
         table = without_pandas_index(parquet().read_table(sample).slice(0, 1))
         return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],

@@ -46,6 +46,7 @@ from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
 from .historian_layout import Layout, quality_of
+from .influx import influx_samples
 from .roles import split_unit
 from .separators import reads_as_number
 from .tables import time_of_text
@@ -89,27 +90,31 @@ def tag_samples(path: Path, opts, layout: Layout) -> tuple[pd.DataFrame, dict, o
     """The long file's samples (``time`` s since its first stamp, ``tag``, ``value``: NaN where
     not Good, ``row``), sorted by tag and time, one per tag and stamp; each tag's median
     interval (s); the first stamp (None: the time is seconds) and its zone."""
-    raw = pd.read_csv(path, sep=layout.delimiter, skiprows=layout.skip, header=0, dtype=str,
-                      keep_default_na=False, skip_blank_lines=False, encoding=opts.encoding,
-                      usecols=[i for i in (layout.time, layout.tag, layout.value, layout.quality)
-                               if i is not None], quoting=csv.QUOTE_MINIMAL)
-    raw.columns = [layout.header[i] for i in sorted(
-        i for i in (layout.time, layout.tag, layout.value, layout.quality) if i is not None)]
+    if layout.influx:                         # InfluxDB's tables: indexed by their lines
+        raw = influx_samples(path, opts.encoding)
+    else:
+        raw = pd.read_csv(path, sep=layout.delimiter, skiprows=layout.skip, header=0, dtype=str,
+                          keep_default_na=False, skip_blank_lines=False, encoding=opts.encoding,
+                          usecols=[i for i in (layout.time, layout.tag, layout.value,
+                                               layout.quality) if i is not None],
+                          quoting=csv.QUOTE_MINIMAL)
+        raw.columns = [layout.header[i] for i in sorted(
+            i for i in (layout.time, layout.tag, layout.value, layout.quality) if i is not None)]
     raw = raw.apply(lambda s: s.str.strip())
     raw = raw[(raw != "").any(axis=1)]        # blank lines: left out
-    row = raw.index.to_numpy() + 1            # the data row (1-based) a message names
+    row = raw.index.to_numpy() + 1            # the data row (1-based; InfluxDB's: the line)
     names = layout.header
     tag = raw[names[layout.tag]]
     if (tag == "").any():
         at = int(np.argmax((tag == "").to_numpy()))
         raise ContractError("a sample without its tag", file=path, column=names[layout.tag],
-                            row=int(row[at]))
+                            **_at(layout, int(row[at])))
     good = _good(raw, names, layout, row, path)
     value = _values(raw[names[layout.value]], good, tag, opts, layout, row, path)
     seconds, origin, zone = _times(raw[names[layout.time]], tag, opts, layout, row, path)
     samples = pd.DataFrame({"time": seconds, "tag": tag.to_numpy(), "value": value,
                             "row": row}).sort_values(["tag", "time", "row"], kind="stable")
-    samples = _without_repeats(samples, path, names[layout.value], origin)
+    samples = _without_repeats(samples, path, names[layout.value], origin, layout)
     intervals = {t: float(np.median(np.diff(g["time"].to_numpy()))) if len(g) > 1 else np.nan
                  for t, g in samples.groupby("tag", sort=False)}
     return samples, intervals, origin, zone
@@ -157,7 +162,7 @@ def _good(raw, names, layout, row, path) -> np.ndarray:
                             "Uncertain and their OPC UA names, or an OPC quality byte: 192 Good, "
                             "64 Uncertain, 0 Bad): correct the file, or leave the column out "
                             "(every sample then Good)", file=path, column=names[layout.quality],
-                            row=int(row[at]))
+                            **_at(layout, int(row[at])))
     return column.map(read).to_numpy(bool)
 
 
@@ -177,7 +182,7 @@ def _values(column: pd.Series, good: np.ndarray, tag: pd.Series, opts, layout, r
             f"value {column.iloc[at]!r} of tag {tag.iloc[at]!r} is not a number, and its quality "
             "says Good: a historian's state text (a digital state, 'I/O Timeout')? list it in "
             f"data.missing_values (['{column.iloc[at]}'])", file=path,
-            column=layout.header[layout.value], row=int(row[at]))
+            column=layout.header[layout.value], **_at(layout, int(row[at])))
     return np.where(good, value, np.nan)
 
 
@@ -191,7 +196,7 @@ def _times(column: pd.Series, tag: pd.Series, opts, layout: Layout, row, path
     header = column.name
     if (column == "").any():
         raise ContractError("missing time value", file=path, column=header,
-                            row=int(row[int(np.argmax((column == "").to_numpy()))]))
+                            **_at(layout, int(row[int(np.argmax((column == "").to_numpy()))])))
     text = column
     # a number read as the wide reader's CSV reader reads one (data.decimal its point)
     if reads_as_number(column.iloc[0], layout.decimal, opts.thousands):
@@ -214,8 +219,8 @@ def _times(column: pd.Series, tag: pd.Series, opts, layout: Layout, row, path
                 f"value {cell!r} is {what}: a historian's long file needs each sample's date and "
                 f"time in its time column (export the timestamps whole); or, the time elapsed "
                 f"since the start (h:mm:ss), data.time=elapsed", file=path, column=header,
-                row=at) from None
-        raise ContractError(exc.reason, file=path, column=header, row=at) from None
+                **_at(layout, at)) from None
+        raise ContractError(exc.reason, file=path, column=header, **_at(layout, at)) from None
     if pa.types.is_duration(read.type):           # an elapsed time, h:mm:ss
         seconds = pc.cast(read, pa.int64()).to_numpy() / 1e9
         return seconds - seconds.min(), None, None
@@ -228,12 +233,23 @@ def _times(column: pd.Series, tag: pd.Series, opts, layout: Layout, row, path
         # a unit's seconds to the microsecond: 46000.5 serial days hold no finer, and a sample
         # 1e-7 s past a grid point would miss it (the grid starts at a sample's own time)
         return (seconds if scale == 1.0 else np.round(seconds, 6)), None, None
-    stamps = pd.Series(read.to_pandas(), index=column.index)
+    # (by position: the rows' labels skip blank lines, a Series given would be aligned by label)
+    stamps = pd.Series(read.to_pandas().array, index=column.index)
     if opts.timezone and stamps.dt.tz is None:
-        stamps = _on_clock(stamps, tag, opts.timezone, row, path, header)
+        stamps = _on_clock(stamps, tag, opts.timezone, row, path, header, layout)
     zone = getattr(stamps.dt, "tz", None)
     origin = stamps.min()
     return (stamps - origin).dt.total_seconds().to_numpy(float), origin, zone
+
+
+def _at(layout: Layout, row: int | None) -> dict:
+    """Where a message points: a long file's data row, or InfluxDB's line (its tables' rows
+    between annotations and blank lines: the line is what an editor shows)."""
+    return {"line": row} if layout.influx else {"row": row}
+
+
+def _word(layout: Layout) -> str:
+    return "line" if layout.influx else "data row"
 
 
 def _time_unit(header: str, opts) -> str | None:
@@ -254,7 +270,8 @@ def _time_scale(header: str, opts, path) -> float:
     return scale[0]
 
 
-def _on_clock(stamps: pd.Series, tag: pd.Series, zone: str, row, path, header) -> pd.Series:
+def _on_clock(stamps: pd.Series, tag: pd.Series, zone: str, row, path, header, layout
+              ) -> pd.Series:
     """Stamps without an offset on ``zone``'s local clock, as UTC, as a wide file's are
     (:func:`.timestamps.on_local_clock`), each tag's in its file order: a tag logs through the
     hour the clock repeats in order, while the tags' rows interleave (a sort by stamp would
@@ -266,11 +283,12 @@ def _on_clock(stamps: pd.Series, tag: pd.Series, zone: str, row, path, header) -
             out[positions] = on_local_clock(ns[positions], zone, path, header)
         except ContractError as exc:     # its row among the tag's samples: the file's row
             raise ContractError(exc.reason, file=path, column=header,
-                                row=int(row[positions[exc.row - 1]])) from None
+                                **_at(layout, int(row[positions[exc.row - 1]]))) from None
     return pd.Series(pd.to_datetime(out, utc=True), index=stamps.index)
 
 
-def _without_repeats(samples: pd.DataFrame, path, value_header: str, origin) -> pd.DataFrame:
+def _without_repeats(samples: pd.DataFrame, path, value_header: str, origin, layout
+                     ) -> pd.DataFrame:
     """One sample per tag and stamp: a repeat of the same value dropped, another value refused."""
     twice = samples.duplicated(["tag", "time"], keep=False)
     if not twice.any():
@@ -282,10 +300,10 @@ def _without_repeats(samples: pd.DataFrame, path, value_header: str, origin) -> 
         first, second = clash.iloc[0], clash.iloc[1]
         raise ContractError(
             f"tag {first['tag']!r} has two samples at {_said(first['time'], origin)} with other "
-            f"values ({float(first['value']):g} in data row {int(first['row'])}, "
+            f"values ({float(first['value']):g} in {_word(layout)} {int(first['row'])}, "
             f"{float(second['value']):g} in "
             "this one): which one the tag held is not known; delete one", file=path,
-            column=value_header, row=int(second["row"]))
+            column=value_header, **_at(layout, int(second["row"])))
     return samples.drop_duplicates(["tag", "time"], keep="first")
 
 
@@ -411,7 +429,8 @@ def _located(exc: ContractError, temp: Path, path: Path, wide: Wide) -> Contract
     time = wide.frame.iloc[grid, 0]
     source = int(wide.rows[tag].iloc[grid])
     said = (f" (the grid row at {time}, data.resample_s={wide.period:g}"
-            + (f"; the tag's sample there is data row {source} of the long file)" if source > 0
+            + (f"; the tag's sample there is {_word(wide.layout)} {source} of the long file)"
+               if source > 0
                else "; the tag has no sample before it)"))
     return ContractError(reason + said, file=path, column=tag,
-                         row=source if source > 0 else None)
+                         **_at(wide.layout, source if source > 0 else None))

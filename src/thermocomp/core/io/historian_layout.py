@@ -1,6 +1,7 @@
 """Where a process historian's LONG export is told from a wide table (extension): three or four
 columns, a time, a tag column of text, one value column of numbers and maybe a quality column
-(:class:`Layout`); the reading of such a file onto the grid is :mod:`.historian`'s."""
+(:class:`Layout`), or InfluxDB's annotated CSV (:mod:`.influx`); the reading of such a file
+onto the grid is :mod:`.historian`'s."""
 
 from __future__ import annotations
 
@@ -14,6 +15,7 @@ import pandas as pd
 from .contract import ContractError
 from .csvline import SPLIT, split_line
 from .encoding import text_codec
+from .influx import SERIES, TIME, VALUE, is_influx
 from .layout import header_line
 from .roles import TIME_HEADERS, split_unit
 from .sniff import detected, head_lines
@@ -35,7 +37,8 @@ _NOT_GOOD = re.compile(r"^(bad|uncertain|invalid|questionable|substituted|error|
 class Layout:
     """Where a long file's columns are: ``header`` (the file's), the positions of the ``time``,
     ``tag``, ``value`` and ``quality`` (None: none) columns, the lines above the header
-    (``skip``), the separators read."""
+    (``skip``), the separators read; ``influx``: an InfluxDB annotated CSV (:mod:`.influx`: its
+    tables' samples, a message naming the file's line)."""
 
     header: tuple[str, ...]
     time: int
@@ -45,6 +48,10 @@ class Layout:
     skip: int
     delimiter: str
     decimal: str
+    influx: bool = False
+
+
+INFLUX = Layout((TIME, SERIES, VALUE), 0, 1, 2, None, 0, ",", ".", influx=True)
 
 
 def long_layout(path, opts) -> Layout | None:
@@ -68,6 +75,8 @@ def _layout(path: str, _mtime: int, _size: int, delimiter: str, decimal: str, en
             ) -> Layout | None:
     try:
         lines = [ln for ln in head_lines(Path(path), encoding) if ln.strip()]
+        if is_influx(lines):                 # InfluxDB's tables: their samples, one per row
+            return INFLUX
         opts = detected(lines, _Seps(delimiter, decimal), path)
     except (ContractError, OSError, UnicodeError, LookupError):
         return None                          # (the wide reader says what is wrong)
