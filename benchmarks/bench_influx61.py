@@ -133,7 +133,6 @@ What a stranger met on the way in (``init <folder> data.test_fraction=0.34``):
 from __future__ import annotations
 
 import json
-import subprocess
 import sys
 from pathlib import Path
 
@@ -143,7 +142,6 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).parent))
 from bench_new_machines56 import rounded  # noqa: E402
 from bench_new_machines57 import network, probe  # noqa: E402
-from bench_other_machine import QUIET, thermocomp  # noqa: E402
 from new_machine_steps import Machines  # noqa: E402
 from new_machine_steps import main as steps_main  # noqa: E402
 
@@ -431,40 +429,10 @@ def data_args(root: Path, name: str) -> list[str]:
     return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={name}"]
 
 
-def export_c(root: Path, name: str) -> dict:
-    """``export`` mlr's model as C, compile it with ``stream.c``, feed it a test campaign's file
-    as the lab has it (on stdin); then, where the stream refuses it, the test campaigns as
-    thermocomp reads them, against ``replay`` of the same model (``bench_new_machines60``)."""
-    import bench_new_machines60 as b60
-
-    code = root / "out" / f"{name}-code"
-    status, cpu, _, err = thermocomp("export", *data_args(root, name), *QUIET,
-                                     f"export.model={root / 'out' / f'{name}-mlr' / 'model.pkl'}",
-                                     "export.format=c", f"out={code}")
-    row = {"data": name, "export_status": status, "cpu_s": round(cpu, 1)}
-    if status != 0:
-        row["error"] = err.strip().splitlines()[-1] if err.strip() else "?"
-        print(row, flush=True)
-        return row
-    cc = subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
-                        cwd=code, capture_output=True, text=True)
-    row["cc_status"] = cc.returncode
-    if cc.returncode == 0:
-        lab = sorted((root / name).glob("*.csv"))[-1]
-        with open(lab, "rb") as f:
-            run = subprocess.run(["./stream"], cwd=code, stdin=f, capture_output=True)
-        row["stream_status"] = run.returncode
-        row["stream_stderr"] = run.stderr.decode(errors="replace").strip()[-400:]
-        b60.data_args = data_args                    # (its as_read composes this bench's config)
-        b60.CONFIGS = {n: n for n in SEEDS}
-        row.update(b60.as_read(root, name, code))
-    print(row, flush=True)
-    return row
-
-
 MACHINES = Machines(doc=__doc__, write=write, records=list(SEEDS), families=FAMILIES,
                     init_args=INIT_ARGS, data_args=data_args, monitored=MONITORED,
-                    replayed=REPLAYED)
+                    replayed=REPLAYED,
+                    lab_file=lambda root, name: sorted((root / name).glob("*.csv"))[-1])
 
 
 def replay_each(root: Path, names) -> list[dict]:
@@ -483,16 +451,7 @@ def main(argv=None) -> int:
         root = Path(argv[1]).resolve()
         replay_each(root, argv[argv.index("--data") + 1:] if "--data" in argv else list(SEEDS))
         return 0
-    if argv and argv[0] == "export":
-        root = Path(argv[1]).resolve()
-        names = argv[argv.index("--data") + 1:] if "--data" in argv else list(SEEDS)
-        rows = [export_c(root, name) for name in names]
-        (root / f"export-{'-'.join(names)}.json").write_text(json.dumps(rows, indent=1))
-        return 0
-    status = steps_main(MACHINES, argv)
-    if argv and argv[0] == "all":
-        return main(["export", *argv[1:]])
-    return status
+    return steps_main(MACHINES, argv)
 
 
 if __name__ == "__main__":

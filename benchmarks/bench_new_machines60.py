@@ -178,10 +178,7 @@ each failing on the code before; found on the first ``init`` of each, then on sc
 
 from __future__ import annotations
 
-import io
 import json
-import re
-import subprocess
 import sys
 from pathlib import Path
 
@@ -191,7 +188,6 @@ import pandas as pd
 sys.path.insert(0, str(Path(__file__).parent))
 from bench_new_machines56 import rounded  # noqa: E402
 from bench_new_machines57 import STEP, network, probe, sensors  # noqa: E402
-from bench_other_machine import QUIET, thermocomp  # noqa: E402
 from new_machine_steps import Machines  # noqa: E402
 from new_machine_steps import main as steps_main  # noqa: E402
 
@@ -470,87 +466,13 @@ def data_args(root: Path, name: str) -> list[str]:
     return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={CONFIGS[name]}"]
 
 
-def export_c(root: Path, name: str) -> dict:
-    """``export`` the MLR run's model as C, compile it with ``stream.c``, feed the lab's own file
-    (as it is) on stdin; compare with ``replay`` of the same model on that file's campaign."""
-    code = root / "out" / f"{name}-code"
-    status, cpu, _, err = thermocomp("export", *data_args(root, name), *QUIET,
-                                     f"export.model={root / 'out' / f'{name}-mlr' / 'model.pkl'}",
-                                     "export.format=c", f"out={code}")
-    row = {"data": name, "export_status": status, "cpu_s": round(cpu, 1)}
-    if status != 0:
-        row["error"] = err.strip().splitlines()[-1] if err.strip() else "?"
-        print(row, flush=True)
-        return row
-    cc = subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=code,
-                        capture_output=True, text=True)
-    row["cc_status"] = cc.returncode
-    if cc.returncode == 0:
-        lab = root / LAB_FILES[name]
-        with open(lab, "rb") as f:
-            run = subprocess.run(["./stream"], cwd=code, stdin=f, capture_output=True)
-        row["stream_status"] = run.returncode
-        row["stream_stderr"] = run.stderr.decode(errors="replace").strip()[-600:]
-        (code / "corrections.csv").write_bytes(run.stdout)
-        row["stream_rows"] = max(0, run.stdout.count(b"\n") - 1)
-        if run.returncode != 0:
-            row.update(as_read(root, name, code))
-    print(row, flush=True)
-    return row
-
-
-def as_read(root: Path, name: str, code: Path) -> dict:
-    """What a stranger does when ``stream.c`` refuses the lab's own file: the test campaigns as
-    thermocomp reads them (contract names, °C, µm, s) written as the stream's CSV (a blank row
-    between campaigns), streamed; against the served model's ``replay`` of the same campaigns."""
-    from thermocomp.apps.deploy.streaming import replay as replayed
-    from thermocomp.shell.builders import deploy_stream
-    from thermocomp.shell.config.overrides import compose
-    from thermocomp.shell.model_store import load_model
-    from thermocomp.shell.source import read_streamed
-
-    cfg = compose([*data_args(root, name), "model=mlr", "track=false"])
-    ds, train_ids, test_ids, _ = read_streamed(cfg)
-    stream = deploy_stream(cfg, load_model(root / "out" / f"{name}-mlr" / "model.pkl"),
-                           {c: ds.campaigns[c] for c in train_ids})
-    want = np.vstack([-replayed(stream, ds.campaigns[c])[stream.targets_].to_numpy(float)
-                      for c in test_ids])
-    header = (code / "compensator.h").read_text()
-    names = re.search(r"TC_INPUT_NAMES\[\w*\] = \{([^}]*)\}", header).group(1)
-    inputs = re.findall(r'"([^"]*)"', names)
-    columns = ["time", *inputs] if "time" in ds.campaigns[test_ids[0]] else inputs
-    text = "\n\n".join(ds.campaigns[c][columns].to_csv(index=False, float_format="%.17g").strip()
-                        if i == 0 else ds.campaigns[c][columns].to_csv(index=False, header=False,
-                                                                      float_format="%.17g").strip()
-                        for i, c in enumerate(test_ids)) + "\n"
-    (code / "as_read.csv").write_text(text)
-    run = subprocess.run(["./stream"], cwd=code, input=text.encode(), capture_output=True)
-    out = {"as_read_status": run.returncode, "as_read_stderr": run.stderr.decode()[-300:]}
-    if run.returncode == 0:
-        got = pd.read_csv(io.BytesIO(run.stdout)).to_numpy(float)
-        out["as_read_rows"] = len(got)
-        out["c_minus_replay_max"] = float(np.abs(got - want).max()) if got.shape == want.shape else \
-            f"shapes {got.shape} {want.shape}"
-    return out
-
-
 MACHINES = Machines(doc=__doc__, write=write, records=list(SEEDS), families=FAMILIES,
                     init_args=INIT_ARGS, data_args=data_args, folders=FOLDERS, monitored=MONITORED,
-                    replayed=REPLAYED)
+                    replayed=REPLAYED, lab_file=lambda root, name: root / LAB_FILES[name])
 
 
 def main(argv=None) -> int:
-    argv = list(sys.argv[1:] if argv is None else argv)
-    if argv and argv[0] == "export":
-        root = Path(argv[1]).resolve()
-        names = argv[argv.index("--data") + 1:] if "--data" in argv else list(SEEDS)
-        rows = [export_c(root, name) for name in names]
-        (root / f"export-{'-'.join(names)}.json").write_text(json.dumps(rows, indent=1))
-        return 0
-    status = steps_main(MACHINES, argv)
-    if argv and argv[0] == "all":
-        return main(["export", *argv[1:]])
-    return status
+    return steps_main(MACHINES, argv)
 
 
 if __name__ == "__main__":

@@ -10,8 +10,11 @@ steps are the same code for every bench (each had its own copy of the runner).
 from __future__ import annotations
 
 import argparse
+import io
 import json
 import os
+import re
+import subprocess
 import time
 from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -55,6 +58,9 @@ class Machines:
         ``forensics(root)``: the bench's own look at a result (step ``forensics``, not in ``all``).
     diagnose_file : str
         The diagnose step's JSON under the root (``{names}``: the records, joined by ``-``).
+    lab_file : callable or None
+        ``lab_file(root, record)``: a test campaign's file as the lab has it, which step
+        ``export`` feeds the compiled C (none: no export step).
     """
 
     doc: str
@@ -70,6 +76,7 @@ class Machines:
     replayed: str | None = None
     forensics: Callable[[Path], None] | None = None
     diagnose_file: str = "diagnose-{names}.json"
+    lab_file: Callable[[Path, str], Path] | None = None
 
 
 def run_models(root: Path, name: str, families, extra=(), args_of: ArgsOf | None = None
@@ -148,7 +155,7 @@ def replay(root: Path, name: str, model: str, args_of: ArgsOf) -> dict:
 
 def _parser(bench: Machines) -> argparse.ArgumentParser:
     steps = ["write", "init", "run", "diagnose", *(["replay"] if bench.replayed else []),
-             *(["monitor"] if bench.monitored else []),
+             *(["monitor"] if bench.monitored else []), *(["export"] if bench.lab_file else []),
              "table", *(["forensics"] if bench.forensics else []), "all"]
     parser = argparse.ArgumentParser(description=bench.doc,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -193,6 +200,10 @@ def main(bench: Machines, argv=None) -> int:
         rows = [monitor(root, name, model, bench.data_args) for name in args.data
                 for model in bench.monitored]
         (root / f"monitor-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
+    if bench.lab_file and (args.what == "export" or every):
+        rows = [export_c(root, name, bench.data_args, bench.lab_file(root, name))
+                for name in args.data]
+        (root / f"export-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
     if args.what == "table" or every:
         rows = [r for name in args.data
                 for r in json.loads((root / f"families-{name}.json").read_text())]
@@ -203,3 +214,68 @@ def main(bench: Machines, argv=None) -> int:
     if args.what == "forensics":
         bench.forensics(root)
     return 0
+
+
+def export_c(root: Path, name: str, args_of: ArgsOf, lab: Path) -> dict:
+    """``export`` the MLR run's model as C, compile it with ``stream.c``, feed it the lab's own
+    file ``lab`` as it is (stdin); where the stream refuses it, :func:`as_read`."""
+    code = root / "out" / f"{name}-code"
+    status, cpu, _, err = thermocomp("export", *args_of(root, name), *QUIET,
+                                     f"export.model={root / 'out' / f'{name}-mlr' / 'model.pkl'}",
+                                     "export.format=c", f"out={code}")
+    row = {"data": name, "export_status": status, "cpu_s": round(cpu, 1)}
+    if status != 0:
+        row["error"] = err.strip().splitlines()[-1] if err.strip() else "?"
+        print(row, flush=True)
+        return row
+    cc = subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=code,
+                        capture_output=True, text=True)
+    row["cc_status"] = cc.returncode
+    if cc.returncode == 0:
+        with open(lab, "rb") as f:
+            run = subprocess.run(["./stream"], cwd=code, stdin=f, capture_output=True)
+        row["stream_status"] = run.returncode
+        row["stream_stderr"] = run.stderr.decode(errors="replace").strip()[-600:]
+        (code / "corrections.csv").write_bytes(run.stdout)
+        row["stream_rows"] = max(0, run.stdout.count(b"\n") - 1)
+        if run.returncode != 0:
+            row.update(as_read(root, name, code, args_of))
+    print(row, flush=True)
+    return row
+
+
+def as_read(root: Path, name: str, code: Path, args_of: ArgsOf) -> dict:
+    """What a stranger does when ``stream.c`` refuses the lab's own file: the test campaigns as
+    thermocomp reads them (contract names, °C, µm, s) written as the stream's CSV (a blank row
+    between campaigns), streamed; against the served model's ``replay`` of the same campaigns."""
+    import numpy as np
+    import pandas as pd
+
+    from thermocomp.apps.deploy.streaming import replay as replayed
+    from thermocomp.shell.builders import deploy_stream
+    from thermocomp.shell.config.overrides import compose
+    from thermocomp.shell.model_store import load_model
+    from thermocomp.shell.source import read_streamed
+
+    cfg = compose([*args_of(root, name), "model=mlr", "track=false"])
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    stream = deploy_stream(cfg, load_model(root / "out" / f"{name}-mlr" / "model.pkl"),
+                           {c: ds.campaigns[c] for c in train_ids})
+    want = np.vstack([-replayed(stream, ds.campaigns[c])[stream.targets_].to_numpy(float)
+                      for c in test_ids])
+    header = (code / "compensator.h").read_text()
+    names = re.search(r"TC_INPUT_NAMES\[\w*\] = \{([^}]*)\}", header).group(1)
+    inputs = re.findall(r'"([^"]*)"', names)
+    columns = ["time", *inputs] if "time" in ds.campaigns[test_ids[0]] else inputs
+    text = "\n\n".join(ds.campaigns[c][columns].to_csv(index=False, header=i == 0,
+                                                        float_format="%.17g").strip()
+                        for i, c in enumerate(test_ids)) + "\n"
+    (code / "as_read.csv").write_text(text)
+    run = subprocess.run(["./stream"], cwd=code, input=text.encode(), capture_output=True)
+    out = {"as_read_status": run.returncode, "as_read_stderr": run.stderr.decode()[-300:]}
+    if run.returncode == 0:
+        got = pd.read_csv(io.BytesIO(run.stdout)).to_numpy(float)
+        out["as_read_rows"] = len(got)
+        out["c_minus_replay_max"] = float(np.abs(got - want).max()) if got.shape == want.shape else \
+            f"shapes {got.shape} {want.shape}"
+    return out
