@@ -431,8 +431,9 @@ int main(int argc, char **argv) {
             /* a lab's report or gateway file fed as it is (a title line read as the header):
                what the stream reads, said with the missing name */
             fprintf(stderr, "stream: the header (line 1: CSV naming the inputs as TC_INPUT_NAMES "
-                    "in compensator.h does, in degC%s; a file in fixed-width columns or JSON "
-                    "Lines: converted first, to CSV) lacks input column %s\n",
+                    "in compensator.h does, in degC%s; a file in fixed-width columns, JSON "
+                    "Lines or a historian's or InfluxDB export: converted first, to CSV, as the "
+                    "export's check/<campaign>/rows.csv are) lacks input column %s\n",
                     TC_LAB_NAMES[0][0][0] ? ", or by a lab's header TC_LAB_NAMES lists, in its "
                     "unit" : "", TC_INPUT_NAMES[i]);
             return 2;
