@@ -100,6 +100,8 @@ def with_gains(laws: list[Law], terms: list, cols: np.ndarray, n: int, target: s
     for law in laws:
         law.gain = np.zeros(n)
     for t in terms:
+        if t.gain is None:      # an empty interval of A0 (a step above its ATI interval)
+            continue
         key = (max(t.lo, -UNBOUNDED), min(t.hi, UNBOUNDED), t.power)
         law = next((law for law in laws if law.key == key), None)
         if law is None:
