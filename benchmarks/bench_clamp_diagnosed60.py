@@ -34,6 +34,26 @@ rule's bound (its opposed lag weights on the flattened input), now within it:
     door5971       lagbank  diagnosed   row                 0.618 (24.2)      0.201 (1.000)
     door5971       lagbank  diagnosed   slow                2.582 (88.5)      0.687 (1.000)
     door5971       mlr      diagnosed   row / slow          0.995 / 3.317 (1.000, unchanged)
+
+``lowpass`` (gain61, measured 2026-12-01, ~36 s of CPU a run): the diagnosed effect a 3600 s
+low-pass copy of the inputs, over an ARX base too (``model=arx``); the bound of a diagnosed model
+is its streamed held unit step (:func:`_held_gain`, not the code's gain).  A diagnosed ARX was
+clamped outright: on ambientlaw6003 (E_Z's feedback 0.97, E_X and E_Y static, all reading the
+copy; 93 samples to the 27,900 s horizon) it took out up to 111x that bound; now its own gain.
+The door record's ARX models are static, its horizon 80 h: the copy held whole, outright = bound.
+
+    max |deployed - batch| um (ratio to the held bound)    before            after
+    ambientlaw6003 arx      diagnosed   row                 2.062 (110.865)   2.062 (1.000)
+    ambientlaw6003 arx      diagnosed   slow                8.128 (110.865)   8.128 (1.000)
+    ambientlaw6003 lagbank  diagnosed   row / slow          1.269 / 14.740 (1.000, unchanged)
+    ambientlaw6003 mlr      diagnosed   row / slow          1.651 / 17.586 (1.000, unchanged)
+    door5971       arx      diagnosed   row / slow          2.611 / 9.750 (1.000, unchanged)
+    door5971       lagbank  diagnosed   row / slow          0.477 / 1.635 (1.000, unchanged)
+    door5971       mlr      diagnosed   row / slow          1.988 (0.370) / 13.104 (1.000, unchanged)
+    (the plain models: as above for lagbank; mlr 3.536 / 11.787 and 2.601 / 9.096, arx 2.899 /
+    9.665 and 2.602 / 9.099, ratio 1.000, unchanged)
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_clamp_diagnosed60.py lowpass
 """
 
 from __future__ import annotations
@@ -115,15 +135,42 @@ def _planted(stream, tests):
 def _plain_gain(est, a0: float, horizon_s: float) -> np.ndarray | None:
     """The plain rule's gain per input, written out (the same before and after the change): a
     plain model's step gain; a diagnosed one's base gain on x, plus A0 - 20 times its ambient
-    law's block (a lag of S_door does not move with x)."""
+    law's block (a lag of S_door does not move with x); with a low-pass copy of the inputs the
+    streamed response to a unit step held for the horizon (:func:`_held_gain`)."""
     from thermocomp.apps.diagnose import AugmentedRegressor
     from thermocomp.core.context import step_gain
     if not isinstance(est, AugmentedRegressor):
         return step_gain(est, None, horizon_s)
+    if any(e.transform == "lowpass_inputs" for e in est.effects_):
+        return _held_gain(est, a0, horizon_s)
     base = step_gain(est.estimator_, None, horizon_s)
     k = int(est.n_features_in_)
     law = any(e.transform == "ambient_linear" for e in est.effects_)
     return base[:k] + ((a0 - 20.0) * base[k:2 * k] if law else 0.0)
+
+
+_HELD: dict = {}
+
+
+def _held_gain(est, a0: float, horizon_s: float) -> np.ndarray:
+    """Per input, the change of ``est``'s streamed prediction after a unit step of it held for
+    ``horizon_s`` (one sample a period, from rest, the context's signals 0): the clamp's gain by
+    its definition, whatever the code computes."""
+    from thermocomp.core.context import RESERVED, context_columns, stream_steps
+    key = (id(est), a0, horizon_s)
+    if key not in _HELD:
+        dt = float(est.sample_period_s_)
+        rows, n = int(round(horizon_s / dt)) + 1, int(est.n_features_in_)
+        context = {c: np.zeros(rows) for c in context_columns(est) if c not in RESERVED}
+        context.update(campaign="held", time=np.arange(rows) * dt, ambient_c0=a0)
+        start = {"campaign": "held", "time": 0.0, "ambient_c0": a0}
+
+        def last(X):
+            return stream_steps(est, X, est.stream_init(start), context)[0][-1]
+        still = last(np.zeros((rows, n)))
+        _HELD[key] = np.array([last(np.where(np.arange(rows)[:, None] > 0, np.eye(n)[j], 0.0))
+                               for j in range(n)]) - still
+    return _HELD[key]
 
 
 def _case(stream, tests) -> dict:
@@ -155,11 +202,18 @@ def _case(stream, tests) -> dict:
     return {kind: (*w, n[kind]) for kind, w in worst.items()}
 
 
-def main() -> None:
+LOWPASS = {"kind": "dynamics", "transform": "lowpass_inputs", "tau_s": 3600.0}
+
+
+def main(argv: list[str]) -> None:
+    """``lowpass``: the diagnosed effect a low-pass copy of the inputs (gain61), over an ARX
+    base too; else each record's own effect."""
+    lowpass = "lowpass" in argv
     print("record          base      model      planted  cases  max|dep-batch| um  /plain bound")
-    for name, (_, effect) in RECORDS.items():
+    for name, (_, own) in RECORDS.items():
         path = _data(name)
-        for family in ("lagbank", "mlr"):
+        effect = LOWPASS if lowpass else own
+        for family in ("lagbank", "mlr", "arx") if lowpass else ("lagbank", "mlr"):
             streams, tests = _streams(path, family, effect)
             for kind, stream in streams.items():
                 for planted, (big, ratio, cases) in _case(stream, tests).items():
@@ -168,4 +222,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    main(sys.argv[1:])

@@ -13,6 +13,7 @@ exported code (C, ST, numpy, JSON) clamps by that gain as replay does."""
 from __future__ import annotations
 
 import copy
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -21,11 +22,12 @@ from test_export import needs_cc
 from test_export_auto57 import PUSH_C, TOLERANCE_UM, _proved
 from test_export_diagnosed59 import _diagnosed
 from test_export_effects59 import LAG, LOWPASS, PRODUCT, SQUARE, _door, _json_proved
-from thermocomp.apps.deploy.export import state_space
+from thermocomp.apps.deploy.export import Simulator, state_space
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.core.context import step_gain
 from thermocomp.core.frame import ambient_c0
 from thermocomp.core.models import ARX, MLR, LagBank
+from thermocomp.core.models.ati import ATIRegressor
 
 AMBIENT_LAW = {"kind": "ambient_interval", "transform": "ambient_linear"}
 EXCESS_K = 0.15
@@ -68,12 +70,34 @@ def test_a_diagnosed_lag_banks_small_excess_moves_it_within_the_plain_bound(data
     assert moved.max() <= bound + 1e-9
 
 
-def test_a_lowpass_copy_over_an_arx_base_stays_clamped_outright(data):
-    """The low-pass copy's lag through an ARX model's delays and feedback is no product of the
-    two gains: None (over a lag bank its lags of it are cascades since exportati60)."""
-    stream, _, _ = _diagnosed(data, [LOWPASS], base=ARX(ar=True))
-    assert step_gain(stream._plan[0][1], None) is None
-    assert state_space(stream).clamp_outright == [1]
+@needs_cc
+def test_a_lowpass_copy_over_an_arx_base_exports_clamped_by_its_gain(data, tmp_path):
+    """gain61: the low-pass copy's lag through an ARX model's delays and feedback had no gain
+    (clamped outright: the clamped stream's value whatever the excess); its gain is now the
+    difference equation's response to the lag at the horizon, the code's the model's own, and
+    the code = replay where the bound takes out less than the outright clamp did."""
+    stream, tests, _ = _diagnosed(data, [LOWPASS], base=ARX(ar=True))
+    model = stream._plan[0][1]
+    k = int(model.n_features_in_)
+    # the ARX model reads the copy (a column after the inputs), through its feedback
+    assert model.estimator_.ar_coef_ != 0.0 and any(j >= k for j, _ in model.estimator_.terms_)
+    ss = state_space(stream)
+    gain = step_gain(model, None, stream.envelope.horizon_s)
+    assert not ss.clamp_outright
+    np.testing.assert_array_equal(np.sum(ss.clamp_gain, axis=0)[:k], gain)
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+    assert _json_proved(stream, tests) <= TOLERANCE_UM
+    outright = _simulated(replace(ss, clamp_outright=[1]), stream, tests)
+    assert np.abs(_simulated(ss, stream, tests) - outright).max() > 1.0     # µm: the bound acts
+
+
+def _simulated(ss, stream, tests) -> np.ndarray:
+    """The numpy reference's corrections of ``ss`` over the test campaigns."""
+    sim, rows = Simulator(ss), []
+    for df in tests:
+        sim.reset()
+        rows += [sim.step(u, t) for u, t in zip(df[stream.columns_].to_numpy(float), df["time"])]
+    return np.array(rows)
 
 
 @needs_cc
@@ -87,5 +111,27 @@ def test_the_export_clamps_a_diagnosed_model_by_its_gain_as_replay(data, tmp_pat
     stream, tests = _diagnosed(data, effects, base=base)[:2]
     ss = state_space(stream)
     assert not ss.clamp_outright and np.abs(ss.clamp_gain).max() > 0.0
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+    assert _json_proved(stream, tests) <= TOLERANCE_UM
+
+
+@needs_cc
+@pytest.mark.parametrize("base", [LagBank(n_taus=2), ARX(ar=True)], ids=["lagbank", "arx"])
+def test_a_lowpass_copy_over_an_ati_model_exports_clamped_by_its_gain(data, tmp_path, base):
+    """gain61: over an ATI model (its ambient interaction on the copy too) the clamp took the
+    clamped stream outright; the gain is its intervals' (the lag passed to each), each interval's
+    laws carry theirs, and the code = replay."""
+    ati = ATIRegressor(base, n_intervals=2, ambient_interaction=True)
+    stream, tests = _diagnosed(data, [LOWPASS, AMBIENT_LAW], base=ati)[:2]
+    model = stream._plan[0][1]
+    assert model.estimator_.n_intervals_ == 2
+    ss = state_space(stream)
+    assert not ss.clamp_outright and set(ss.law_ambient) == {0, 1, 2}
+    # per campaign, the code's bound is the stream's: the laws' gains at its A0
+    for a0 in {float(a) for a in ss.law_hi if abs(a) < 1e300} | {40.0}:
+        state = {"ambient_c0": a0, "base": None}
+        np.testing.assert_allclose(ss.factors(a0) @ np.array(ss.clamp_gain),
+                                   step_gain(model, state, stream.envelope.horizon_s),
+                                   rtol=1e-12, atol=1e-12)
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
     assert _json_proved(stream, tests) <= TOLERANCE_UM

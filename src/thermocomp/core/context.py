@@ -13,7 +13,8 @@ wrappers) has the signatures
   prediction a unit step of that input held for ``horizon_s`` seconds makes (see
   :func:`step_gain`), for a model whose prediction is linear in its inputs; the training
   envelope takes the response to an input's excess over its bound out of the correction
-  with it.
+  with it; a model whose gain the campaign's initial ambient switches splits it by that
+  (``gain_terms``, :mod:`thermocomp.core.gains`), which the exported code carries per law.
 
 ``context`` is a DataFrame with one row per row of ``X`` (batch) or a mapping
 for one sample (stream) with these columns, all optional:

@@ -42,9 +42,11 @@ gives for it; benchmarks/bench_deploy_faults.py).  The pattern gate ends an exce
 (a sample back on the training pattern): on the real excursions of
 benchmarks/bench_envelope_policy.py a lag bank's Σ² moved by -0.3 % to +1.5 %, MLR's and ARX's
 not at all.  A model without a step gain (LSTM,
-ARX+RF, a blend holding one, a diagnosed model's low-pass copy of the inputs over a dynamic base)
-is streamed on the clamped inputs alone; a diagnosed model's gain is its base's through its
-features (clampdiag60: :meth:`~thermocomp.apps.diagnose.AugmentedRegressor.step_gain`).
+ARX+RF, a blend or a diagnosed model around one) is streamed on the clamped inputs alone; a
+diagnosed model's gain is its base's through its features (clampdiag60:
+:meth:`~thermocomp.apps.diagnose.AugmentedRegressor.step_gain`; a low-pass copy of the inputs
+over any linear base, gain61), split by what the campaign's initial ambient switches the way the
+exported code's laws are (:mod:`thermocomp.core.gains`: the code asks the model the same).
 
 :meth:`StreamingCompensator.run_rows` streams a block of rows as :meth:`~StreamingCompensator._step`
 does row by row, the rows it takes as they are (in the envelope or along its pattern, finite, in

@@ -17,10 +17,9 @@ from ...core.context import (
     groups_of,
     merge_columns,
     scalar,
-    step_gain,
 )
+from ...core.gains import GainTerm, gain_at, gain_terms, within
 from ...core.models.linear import MLR
-from ...core.models.pcr import PCR
 from ...core.timerule import CLOCK_START, median_step, step_time
 from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
 from .shrink import PartialRidgePath
@@ -191,21 +190,10 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             state["first"][key] = offsets
         return state["first"][key] * (1.0 - np.exp(-(t - state["t0"]) / e.tau_s))
 
-    # -- the envelope clamp's bound (clampdiag60) --------------------------------------------
-    def _lowpass_held(self) -> bool:
-        """A low-pass copy of the inputs has a held step's response through the base when the
-        base is static (MLR, PCR: the product of the two gains) or a lag bank (a Hammerstein
-        model's too: its lags of that lag a cascade, ``lagged_step_gain``, exportati60); an ARX
-        model's delays and feedback on that lag's ramp are no product of the two gains."""
-        return not self._lowpass() or type(self.estimator_) in (MLR, PCR) or callable(
-            getattr(self.estimator_, "lagged_step_gain", None))
-
-    def _lowpass(self) -> bool:
-        return any(e.transform == "lowpass_inputs" for e in self.effects_)
-
-    def _lead_taus(self) -> np.ndarray:
+    # -- the envelope clamp's bound (clampdiag60, gain61) ------------------------------------
+    def _lead_taus(self) -> np.ndarray | None:
         """Per column of the base, the tau of the low-pass copy it is (``nan``: none), in the
-        columns' order (:meth:`step_gain`)."""
+        columns' order (:meth:`gain_terms`); ``None`` without a low-pass copy."""
         k = int(self.n_features_in_)
         lead = [np.nan] * k
         for i, e in enumerate(self.effects_):
@@ -217,53 +205,44 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             if tr in ("first_order_lag", "lowpass_inputs") and e.initial_state:
                 w = self.initial_weights_[i]
                 lead += [np.nan] * (len(w) if w is not None else len(e.initial_state))
-        return np.asarray(lead)
+        return np.asarray(lead) if any(e.transform == "lowpass_inputs" for e in self.effects_) else None
 
-    def has_step_gain(self) -> bool:
-        """Whether :meth:`step_gain` gives a gain (the base has one, a low-pass copy only over a
-        static base): the export clamps outright where it does not, as the stream does."""
-        check_is_fitted(self)
-        return callable(getattr(self.estimator_, "step_gain", None)) and self._lowpass_held()
-
-    def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
-        """Gain per input (:func:`thermocomp.core.context.step_gain`) of a step held for
-        ``horizon_s``, through the base's gain on the features the inputs make.
+    def gain_terms(self, horizon_s: float = np.inf, lead=None, period_s: float = 1.0) -> list:
+        """The gain per input of a step held for ``horizon_s`` (:meth:`step_gain`), split by the
+        campaign's initial ambient (:mod:`thermocomp.core.gains`): the base's terms over the
+        features, each on ``x``, and on an ambient law's block times ``A0 - 20`` more, on an
+        ambient step's where ``A0 > A_thr`` too.
 
         The stream's clamp changes the inputs ``x`` alone: a raw signal, its lag, a product or a
         square (of the context's columns as read) and a lag's initial-state transient do not move
-        with it (gain 0, exact).  ``x (A0 - 20)`` and ``x [A0 > A_thr]`` scale ``x`` by the
-        campaign's fixed ``A0`` (``state['ambient_c0']``): exact.  A low-pass copy ``L_tau[x]``
-        of a held step is ``(1 - exp(-h / tau))`` of it over a static base; over a lag bank (or a
-        Hammerstein model's) the bank's lags of it are cascades (``lagged_step_gain``, exact,
-        exportati60); ``None`` over an ARX base (the clamp then takes the clamped stream outright).
-        ``None`` too when the base has no gain, or an ambient law has no ``A0``.
-        """
+        with it (gain 0, exact).  A low-pass copy ``L_tau[x]`` is a lag of the held step: the
+        base's gain with those columns lagged (``lagged_step_gain``: over a static base ``1 -
+        exp(-h / tau)`` of the copy's coefficients, over a lag bank cascades, over an ARX model
+        the difference equation's response to the lag; exact, gain61) on ``x``."""
         check_is_fitted(self)
-        if not self.has_step_gain():
-            return None
-        # over a lag bank, a low-pass copy's column is a lag of the step: its channels cascades
-        lagged = self._lowpass() and type(self.estimator_) not in (MLR, PCR)
-        gain = (self.estimator_.lagged_step_gain(self._lead_taus(), horizon_s) if lagged else
-                step_gain(self.estimator_, None if state is None else state.get("base"), horizon_s))
-        if gain is None:
-            return None
-        a0 = scalar(state, AMBIENT_C0) if state is not None else np.nan
-        k = int(self.n_features_in_)
-        out, at = gain[:k].copy(), k
+        if lead is not None:
+            return [GainTerm(-np.inf, np.inf, 0, None)]     # a diagnosed model in a lag: none
+        base = gain_terms(self.estimator_, horizon_s, self._lead_taus(),
+                          getattr(self, "sample_period_s_", None) or 1.0)
+        return [part for t in base for part in self._blocks(t)]
+
+    def _blocks(self, term: GainTerm) -> list:
+        """One base term over the features as terms over ``x`` (:meth:`gain_terms`)."""
+        if term.gain is None:
+            return [term]
+        gain, k = term.gain, int(self.n_features_in_)
+        x, at, out = gain[:k].copy(), k, []
         for i, e in enumerate(self.effects_):
             tr = e.transform
             if tr in ("lowpass_inputs", "ambient_linear", "ambient_step"):
                 block = gain[at:at + k]
                 at += k
-                if tr == "lowpass_inputs":
-                    held = 1.0 - np.exp(-horizon_s / e.tau_s) if np.isfinite(horizon_s) else 1.0
-                    out += (1.0 if lagged else held) * block     # lagged: in the base's gain
-                elif not np.isfinite(a0):
-                    return None
+                if tr == "lowpass_inputs":      # its lag of the held step: in the base's gain
+                    x += block
                 elif tr == "ambient_linear":
-                    out += (a0 - AMBIENT_CENTRE_C) * block
+                    out += within([term._replace(gain=block)], -np.inf, np.inf, power=1)
                 else:
-                    out += float(a0 > e.threshold_c) * block
+                    out += within([term._replace(gain=block)], float(e.threshold_c), np.inf)
             else:     # one column of the context, not of x
                 at += 1
             if tr in ("first_order_lag", "lowpass_inputs") and e.initial_state:
@@ -272,7 +251,14 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         if at != gain.size:      # the features' columns as stream_step builds them
             raise ContractError(f"the diagnosed model's features are {at} columns, its base's "
                                 f"gain {gain.size}")
-        return out
+        return [term._replace(gain=x), *out]
+
+    def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray | None:
+        """Gain per input (:func:`thermocomp.core.context.step_gain`) of a step held for
+        ``horizon_s``: :meth:`gain_terms` at the campaign's ``A0`` (``state['ambient_c0']``);
+        ``None`` when the base has no gain, or an ambient law has no ``A0``."""
+        check_is_fitted(self)
+        return gain_at(self.gain_terms(horizon_s), scalar(state, AMBIENT_C0) if state is not None else np.nan)
 
     def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
         """One sample of simulation-mode ``predict``.

@@ -68,6 +68,7 @@ import numpy as np
 import pandas as pd
 
 from ...base.errors import ParameterError
+from ...core.gains import AMBIENT_CENTRE_C  # ambient_linear's centre: the ATI interaction's
 from ...core.io.contract import ContractError
 from ...core.models._dynamics import first_order_lag, segment_bounds  # noqa: F401 (re-exported)
 
@@ -75,7 +76,6 @@ FRAMES = ("absolute", "referenced")   # frame of a state signal of its own (None
 KINDS = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear", "sensor_fault")
 TRANSFORMS = ("raw", "first_order_lag", "lowpass_inputs", "ambient_linear", "ambient_step",
               "product", "square", "remove")
-AMBIENT_CENTRE_C = 20.0   # ISO 1 reference temperature: only re-centres ambient_linear
 
 
 def _tuple(v):

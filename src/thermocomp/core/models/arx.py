@@ -344,3 +344,46 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
         for (j, _), b in zip(self.terms_, self.coef_):
             gain[j] += b
         return feedback_gain(gain, self.ar_coef_)
+
+    def lagged_step_gain(self, lead_taus, horizon_s: float = np.inf,
+                         period_s: float = 1.0) -> np.ndarray | None:
+        """:meth:`step_gain` where column ``j`` is a first-order lag of tau ``lead_taus[j]`` of
+        the held step (``nan``: the step itself), as a diagnosed low-pass copy ``L_tau[x]`` of the
+        inputs is: the difference equation's response to it ``m = horizon_s / period_s`` samples
+        into the step, exact at the stream's samples (gain61).
+
+        The lag (pole ``p = exp(-period_s / tau)``, updated on its input's new value; ``p = 0``:
+        the step) is ``1 - p^k`` ``k`` samples in; a term ``b x_j(t - d)`` on it, through the
+        feedback ``a``, is ``b sum_{k=1..M} a^(M-k) (1 - p^k)``, ``M = m - d``
+        (:func:`_lagged_response`).  At an infinite horizon :meth:`step_gain`'s steady state,
+        which the model alone gives at any (it counts samples, not seconds: no period); with a
+        period the response at the horizon, as a lag bank's lags and a static base's copy are
+        (tests/shell/test_clamp_diagnosed60's ARX, ``a = 0.986`` over a horizon of 49 samples:
+        2.14 µm/K on ``T_a``; the steady state on ``x`` and the horizon on the copy gave 21.4).
+        ``None`` without a steady state (``|a| >= 1``)."""
+        check_is_fitted(self)
+        a = float(self.ar_coef_)
+        if abs(a) >= 1.0:
+            return None
+        lead = np.asarray(lead_taus, float)
+        m = horizon_s / float(period_s)
+        gain = np.zeros(self.n_features_in_)
+        for (j, d), b in zip(self.terms_, self.coef_):
+            p = 0.0 if np.isnan(lead[j]) else float(np.exp(-period_s / lead[j]))
+            gain[j] += b * _lagged_response(a, p, m - d)
+        return gain
+
+
+def _lagged_response(a: float, p: float, M: float) -> float:
+    """``sum_{k=1..M} a^(M-k) (1 - p^k)``: the output of ``y(t) = a y(t-1) + u(t)``, at rest, ``M``
+    samples after its input ``u`` began the response ``1 - p^k`` of a lag of pole ``p`` to a unit
+    step (``p = 0``: the step): ``(1 - a^M) / (1 - a) - p (a^M - p^M) / (a - p)`` (``- M p^M``
+    where ``a = p``)."""
+    if not np.isfinite(M):
+        return 1.0 / (1.0 - a)
+    if M <= 0:
+        return 0.0
+    aM = np.sign(a) ** round(M) * abs(a) ** M      # a negative feedback: the nearest sample's sign
+    if np.isclose(a, p, rtol=1e-9, atol=0.0):
+        return (1.0 - aM) / (1.0 - a) - M * p ** M
+    return (1.0 - aM) / (1.0 - a) - p * (aM - p ** M) / (a - p)

@@ -27,16 +27,15 @@ from ..context import (
     groups_of,
     merge_columns,
     scalar,
-    step_gain,
     stream_steps,
     subset,
 )
+from ..gains import AMBIENT_CENTRE_C, gain_at, gain_terms, within
 from ..metrics import rsd, sm_sd
 from ._campaign_ls import CampaignLeastSquares
 from .linear import MLR
 
 CLUSTERINGS = ("fuzzy", "hard")
-AMBIENT_CENTRE_C = 20.0   # ISO 1 reference temperature: only re-centres the interaction
 MIN_AMBIENTS = 3          # distinct ambient levels an interval needs to fit a slope in ambient
 AMBIENT_RESOLUTION_C = 0.5  # °C: closer initial ambients are one level (ambient_levels)
 MIN_CAMPAIGNS = 2         # training campaigns an interval's model is fitted on, at least
@@ -486,18 +485,33 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
         y, inner = stream_steps(self.estimators_[m], X, inner, context)
         return y, (m, a0, inner)
 
+    def gain_terms(self, horizon_s: float = np.inf, lead=None, period_s: float = 1.0) -> list:
+        """The step gain split by the campaign's initial ambient (:mod:`thermocomp.core.gains`):
+        each interval's model's within its interval (``lo < A0 <= hi``, as :func:`interval_of`
+        assigns it), with the ambient interaction its gain on ``x (A0 - 20)`` times ``A0 - 20``
+        (``lead``, a lag of the held step per input, on both halves)."""
+        check_is_fitted(self)
+        edges = [-np.inf, *map(float, self.boundaries_), np.inf]
+        out = []
+        for m, est in enumerate(self.estimators_):
+            both = bool(self.interactions_[m])
+            lo, hi = edges[m], edges[m + 1]
+            for t in gain_terms(est, horizon_s, None if lead is None else np.tile(lead, 1 + both),
+                                period_s):
+                if not both:
+                    out += within([t], lo, hi)
+                    continue
+                n = 0 if t.gain is None else t.gain.size // 2
+                for half in range(2):
+                    part = None if t.gain is None else t.gain[half * n:(half + 1) * n]
+                    out += within([t._replace(gain=part)], lo, hi, power=half)
+        return out
+
     def step_gain(self, state=None, horizon_s: float = np.inf):
         """Gain per input of the stream's interval model (:func:`thermocomp.core.context.step_gain`),
-        its ambient interactions at the campaign's ``ambient_c0``; ``None`` before a stream starts
-        when there are several intervals."""
-        if state is None and self.n_intervals_ > 1:
-            return None
-        m, a0, inner = state if state is not None else (0, float("nan"), None)
-        gain = step_gain(self.estimators_[m], inner, horizon_s)
-        if gain is None or not self.interactions_[m]:
-            return gain
-        n = gain.size // 2
-        return gain[:n] + gain[n:] * (a0 - AMBIENT_CENTRE_C)
+        its ambient interactions at the campaign's ``ambient_c0`` (:meth:`gain_terms` there);
+        ``None`` before a stream starts when there are several intervals."""
+        return gain_at(self.gain_terms(horizon_s), state[1] if state is not None else np.nan)
 
 
 class _HeldOutFits:

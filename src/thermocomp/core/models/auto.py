@@ -20,6 +20,7 @@ from ...base.errors import ConfigError, ParameterError
 from ...base.log import logger
 from ...base.params import check_estimator, choice, integer, number
 from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_gain, stream_steps, subset
+from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
@@ -363,6 +364,11 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     def step_gain(self, state=None, horizon_s: float = np.inf):
         check_is_fitted(self, "estimator_")
         return step_gain(self.estimator_, state, horizon_s)
+
+    def gain_terms(self, horizon_s: float = np.inf, lead=None, period_s: float = 1.0) -> list:
+        """The kept estimator's (:mod:`thermocomp.core.gains`)."""
+        check_is_fitted(self, "estimator_")
+        return gain_terms(self.estimator_, horizon_s, lead, period_s)
 
     def report(self) -> dict:
         """``{candidates, chosen, weights, reason, skipped, ...}`` for ``metrics.json``

@@ -9,6 +9,7 @@ from sklearn.base import BaseEstimator, clone
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import SideInputs, for_target
+from ..gains import held
 
 
 class LinearStreamMixin(SideInputs):
@@ -30,6 +31,12 @@ class LinearStreamMixin(SideInputs):
     def step_gain(self, state=None, horizon_s: float = np.inf) -> np.ndarray:
         """Gain per input (:func:`thermocomp.core.context.step_gain`): the coefficients."""
         return np.asarray(self.coef_, float)
+
+    def lagged_step_gain(self, lead_taus, horizon_s: float = np.inf, period_s: float = 1.0) -> np.ndarray:
+        """:meth:`step_gain` where column ``j`` is a first-order lag of tau ``lead_taus[j]`` of the
+        held step (``nan``: the step itself; a diagnosed low-pass copy of the inputs): each
+        coefficient times that lag's response, ``1 - exp(-h / tau)`` (:func:`thermocomp.core.gains.held`)."""
+        return np.asarray(self.coef_, float) * held(lead_taus, horizon_s)
 
 
 class PerTarget(BaseEstimator):

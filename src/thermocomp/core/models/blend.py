@@ -15,6 +15,7 @@ from sklearn.base import BaseEstimator, RegressorMixin, clone
 from sklearn.utils.validation import check_is_fitted
 
 from ..context import SideInputs, context_columns, merge_columns, step_gain, stream_steps
+from ..gains import gain_terms, within
 from ..model_selection.blocks import cut_blocks, decorrelation_length
 
 MIN_WEIGHT = 0.01   # a member weighted less is dropped (refitting it would buy nothing)
@@ -74,6 +75,12 @@ class Blend(SideInputs, RegressorMixin, BaseEstimator):
         states = state if state is not None else (None,) * len(self.estimators_)
         gains = [step_gain(e, s, horizon_s) for e, s in zip(self.estimators_.values(), states)]
         return None if any(g is None for g in gains) else self.weights_ @ np.vstack(gains)
+
+    def gain_terms(self, horizon_s: float = np.inf, lead=None, period_s: float = 1.0) -> list:
+        """The members' gain terms (:mod:`thermocomp.core.gains`), each times its weight."""
+        check_is_fitted(self, "estimators_")
+        return [t for e, w in zip(self.estimators_.values(), self.weights_)
+                for t in within(gain_terms(e, horizon_s, lead, period_s), -np.inf, np.inf, scale=float(w))]
 
     def chosen_params(self) -> dict:
         """Each member's own choice (``member_params``): a copy fits the members as chosen."""

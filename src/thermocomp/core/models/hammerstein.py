@@ -258,12 +258,13 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         gain = step_gain(self.lagbank_, None if state is None else state["lagbank"], horizon_s)
         return None if gain is None else gain[:self.n_features_in_]
 
-    def lagged_step_gain(self, lead_taus, horizon_s: float = np.inf) -> np.ndarray | None:
+    def lagged_step_gain(self, lead_taus, horizon_s: float = np.inf,
+                         period_s: float | None = None) -> np.ndarray | None:
         """:meth:`step_gain` where input ``j`` is a first-order lag of tau ``lead_taus[j]`` of
         the held step (:meth:`LagBank.lagged_step_gain`; the states' powers do not move)."""
         check_is_fitted(self)
         width = self.lagbank_.coef_.size // (self.lagbank_.taus_.size + 1)
         lead = np.full(width, np.nan)
         lead[:self.n_features_in_] = lead_taus
-        gain = self.lagbank_.lagged_step_gain(lead, horizon_s)
+        gain = self.lagbank_.lagged_step_gain(lead, horizon_s, period_s)
         return None if gain is None else gain[:self.n_features_in_]

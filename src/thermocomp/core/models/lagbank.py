@@ -887,7 +887,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         held = np.exp(-horizon_s / self.taus_) if np.isfinite(horizon_s) else np.zeros(self.taus_.size)
         return feedback_gain(self.coef_[:n] - held @ lags, self.ar_coef_)
 
-    def lagged_step_gain(self, lead_taus, horizon_s: float = np.inf) -> np.ndarray | None:
+    def lagged_step_gain(self, lead_taus, horizon_s: float = np.inf,
+                         period_s: float | None = None) -> np.ndarray | None:
         """:meth:`step_gain` where column ``j`` is a first-order lag of tau ``lead_taus[j]`` of
         the held step (``nan``: the step itself), as a diagnosed low-pass copy ``L_tau[x]`` of
         the inputs is (exportati60).
@@ -898,7 +899,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         the bank's sample period), ``s2 = 1 - (a (1 - b) a^m - b (1 - a) b^m) / (a - b)``, and ``1
         - (1 + m (1 - a)) a^m`` where ``a = b`` (exact at the samples of a regular stream; the
         continuous cascade's ``1 - (tau e^{-h/tau} - tau_k e^{-h/tau_k}) / (tau - tau_k)`` as
-        ``dt -> 0``)."""
+        ``dt -> 0``).  ``period_s`` is not read: the lead's lag steps on the bank's clock."""
         check_is_fitted(self)
         n = self.coef_.size // (self.taus_.size + 1)
         lags = self.coef_[n:].reshape(self.taus_.size, n)

@@ -85,9 +85,6 @@ class Derived:
     # the blocks of x the campaign's A0 switches, after x: ("ambient", None) x (A0 - 20),
     # ("step", A_thr) x [A0 > A_thr]; None: an ATI interval's (its interaction or none)
     blocks: list | None = None
-    # per model column the tau of the low-pass copy it is (nan: none; the model's order): the
-    # clamp's gain through a lag bank base (lagged_step_gain, exportati60)
-    lead: np.ndarray | None = None
 
     def canonical(self, b0, delayed: dict, lags: list) -> tuple:
         """``(b0, delayed, lags)`` of the base model fitted on the features in the effects'

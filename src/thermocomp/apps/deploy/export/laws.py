@@ -20,7 +20,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ....core.context import step_gain
 from ....core.models import ARX, MLR, PCR, Hammerstein, LagBank
 from ....core.models.ati import AMBIENT_CENTRE_C, ATIRegressor
 from .derived import (
@@ -68,29 +67,49 @@ class Law:
         delayed = dict(self.delayed)
         for d, row in other.delayed.items():
             delayed[d] = delayed.get(d, 0.0) + row
-        gain = None if self.gain is None else self.gain + other.gain
         return Law(self.c + other.c, self.terms + other.terms, delayed, self.lags + other.lags,
-                   0.0, gain, *self.key)
+                   0.0, None, *self.key)
 
 
-def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict, period,
-                horizon_s: float | None) -> tuple[list[Law], object, str | None]:
+def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict,
+                period) -> tuple[list[Law], object, str | None]:
     """``(laws, lag period, what model=auto or an ATI model kept)`` of ``target``'s estimator ``est`` reading
     the inputs ``cols`` of the code's ``inputs``; ``powers`` registers the features the code
     computes from its inputs (Hammerstein powers, a diagnosed model's derived inputs: :data:`DERIVED`
-    keys), shared by the targets; ``horizon_s``: the clamp's (None: no clamp, no gains)."""
+    keys), shared by the targets.  The clamp's gains: :func:`with_gains`."""
     parts, own = members(est), []
     for name, w, member in parts:
         try:
             for lo, hi, base, interacts, derived in _intervals(member):
                 laws, period = _member_laws(base, interacts, w, cols, inputs, powers, period,
-                                            horizon_s, target, derived)
+                                            target, derived)
                 for law in laws:     # an ambient step's law counts within the interval too
                     law.lo, law.hi = max(law.lo, lo), min(law.hi, hi)
                 own += laws
         except NotExportable as exc:
             raise NotExportable(_member_refused(target, name, w, parts, exc)) from None
     return _summed(own), period, _named(described(parts), parts)
+
+
+def with_gains(laws: list[Law], terms: list, cols: np.ndarray, n: int, target: str) -> None:
+    """The clamp's gain of a target's model, its ``terms`` (:func:`~thermocomp.core.gains.gain_terms`
+    over the model's inputs ``cols`` of the code's ``n``), each added to the gain of the first
+    law that counts as it does (the same interval of ``A0`` and power of ``A0 - 20``): the code's bound,
+    ``|sum_r factor_r gain_r . ex|``, is then the model's own gain at the campaign's ``A0``, the
+    one the stream takes (gain61: no second computation of it here)."""
+    for law in laws:
+        law.gain = np.zeros(n)
+    for t in terms:
+        if t.gain is None:      # an empty interval of A0 (a step above its ATI interval)
+            continue
+        key = (max(t.lo, -UNBOUNDED), min(t.hi, UNBOUNDED), t.power)
+        law = next((law for law in laws if law.key == key), None)
+        if law is None:
+            if np.any(t.gain != 0.0):
+                raise NotExportable(f"the clamp's gain of {target} counts where no law of the code "
+                                    f"does ({key[0]:.4g} < A0 <= {key[1]:.4g}, power {key[2]})")
+            continue
+        law.gain = law.gain + _spread(t.gain, cols, n)
 
 
 def _named(kept: str | None, parts: list) -> str | None:
@@ -140,8 +159,7 @@ def _diagnosed(est) -> list:
         derived = Derived(
             feats, est.reference, float(getattr(est, "sample_period_s_", 1.0) or 1.0),
             canonical_order(effects, int(est.n_features_in_), initial),
-            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects),
-            est._lead_taus())
+            [e.tau_s for e in effects if e.transform == "lowpass_inputs"], ambient_blocks(effects))
         base = est.estimator_
         if not isinstance(base, ATIRegressor):
             return [(-UNBOUNDED, UNBOUNDED, base, False, derived)]
@@ -156,8 +174,8 @@ def _diagnosed(est) -> list:
                         f"{'them' if several else 'it'} (thermocomp serve, connect)")
 
 
-def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, horizon_s,
-                 target, derived: Derived) -> tuple[list[Law], object]:
+def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, target,
+                 derived: Derived) -> tuple[list[Law], object]:
     """The laws of one member (weight ``w``): its own, and per block of ``x`` the campaign's
     initial ambient switches (the ATI interaction's, a diagnosed model's ambient laws and steps:
     ``derived.blocks``) the law of its coefficients on that block (its inputs ``[x, blocks,
@@ -177,26 +195,13 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, h
     if derived.lowpass or any(tau is not None for _, tau in extra) or any(
             f.initial is not None for f in derived.features):     # a transient's time too
         period = _one_period(period, derived.period)
-    gain = None
-    # a low-pass copy of the inputs through a lag bank (a Hammerstein model's): its lags of it are
-    # cascades, in the base's gain (exportati60); through a static base the copy's held gain
-    lagged = bool(derived.lowpass) and callable(getattr(est, "lagged_step_gain", None))
-    if horizon_s is not None:
-        gain = (est.lagged_step_gain(np.tile(derived.lead, 1 + whole), horizon_s) if lagged
-                else step_gain(est, None, horizon_s))
-        if gain is None:
-            raise NotExportable(f"the law of {target} has no steady state (AR coefficient "
-                                f"{a:.3g}): the envelope clamp needs one; export it with "
-                                "promote.envelope.policy=off")
     out = []
     for half in range(1 + whole):
-        cut = slice(half * width, (half + 1) * width) if whole else slice(None)
         own = (lambda row: _half(row, half, width, len(feats))) if whole else (lambda row: row)
         laws = _laws(0.0 if half else c, own(b0), {d: own(r) for d, r in delayed.items()},
                      [(tau, _half_index(j, half, width) if whole else j, g) for tau, j, g in lags
                       if not whole or _half_index(j, half, width) is not None],
-                     a, None if gain is None else gain[cut], w, cols, len(inputs), target,
-                     derived, blocks, extra, feats, horizon_s, lagged)
+                     a, w, cols, len(inputs), target, derived, blocks, extra, feats)
         for law in laws if half else ():
             # the interaction's: times A0 - 20 (a step's too); the diagnosed ambient law's block
             # ``x (A0 - 20)`` times it is ``x (A0 - 20)^2`` (exportati60)
@@ -223,8 +228,7 @@ def _half_index(j: int, half: int, width: int) -> int | None:
     return j - width if half == 0 and j >= 2 * width else None
 
 
-def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, extra, feats,
-          horizon_s=None, lagged=False):
+def _laws(c, b0, delayed, lags, a, w, cols, n, target, derived, blocks, extra, feats):
     """:func:`_member_laws`' laws of one estimator's coefficients over ``[x, blocks, derived
     inputs, low-pass blocks, powers]`` (in the effects' order: :meth:`Derived.canonical`)."""
     k = len(cols)
@@ -232,15 +236,6 @@ def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, ex
     end = own_x + len(extra)
     width = end + k * len(derived.lowpass)
     b0, delayed, lags = derived.canonical(b0, delayed, lags)
-    gain = derived.columns(gain)
-    if gain is not None and derived.lowpass:
-        # the clamp's gain on x of a low-pass copy held for the horizon (over a static base,
-        # clampdiag60; over a lag bank in the base's gain already, ``lagged``: exportati60); the
-        # derived inputs do not move with x
-        gain = np.array(gain, float)
-        for m, tau in enumerate(derived.lowpass):
-            held = 1.0 if lagged or not np.isfinite(horizon_s) else 1.0 - np.exp(-horizon_s / tau)
-            gain[:k] += held * gain[end + m * k:end + (m + 1) * k]
     if any(np.any(r[own_x:width] != 0.0) for r in delayed.values()):
         raise NotExportable(f"the ARX law of {target} delays a diagnosed effect's feature: the "
                             "code's input history holds the inputs only")
@@ -272,8 +267,7 @@ def _laws(c, b0, delayed, lags, a, gain, w, cols, n, target, derived, blocks, ex
         # x [A0 > A_thr] (a step) counts where A0 > A_thr: the law of its block there
         lo = block[1] if block is not None and block[0] == "step" else -UNBOUNDED
         out.append(Law(0.0 if block else w * c, terms,
-                       {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a,
-                       None if gain is None else w * _spread(gain[x], cols, n), lo=lo,
+                       {d: w * _spread(r[x], cols, n) for d, r in delayed.items()}, own, a, lo=lo,
                        ambient=int(block is not None and block[0] == "ambient")))
     return out
 
@@ -360,4 +354,4 @@ def _spread(row: np.ndarray, cols: np.ndarray, n: int) -> np.ndarray:
     return out
 
 
-__all__ = ["AMBIENT_CENTRE_C", "LINEAR_FAMILIES", "UNBOUNDED", "Law", "target_laws"]
+__all__ = ["AMBIENT_CENTRE_C", "LINEAR_FAMILIES", "UNBOUNDED", "Law", "target_laws", "with_gains"]

@@ -66,12 +66,13 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from ....core.frame import ambient_c0
+from ....core.gains import gain_at, gain_terms
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .derived import DERIVED, INITIAL
 from .errors import NotExportable
-from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws
+from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws, with_gains
 from .output import Output, adapt_fields, guard_fields, time_fields
 
 FORMATS = ("json", "c", "st", "onnx")
@@ -118,9 +119,11 @@ class StateSpace:
     # [tau, [sensor input indices], [weights]]: w . (v(0) - A0) (1 - exp(-(t - t0) / tau)),
     # v(0) the sensors at the campaign's first sample that has one of them (a missing one: 0)
     initial: list = field(default_factory=list)
-    clamp_gain: list | None = None   # (n_laws, n_inputs) step gain at the horizon (clamp only)
+    # (n_laws, n_inputs) step gain at the horizon (clamp only): the model's gain terms, each on a
+    # law of its factor (:func:`.laws.with_gains`)
+    clamp_gain: list | None = None
     # (n_targets,) 1: the response to the excess is taken out whole (b_t infinite): the stream
-    # clamps a model without a step gain (a diagnosed one) outright; empty: none
+    # clamps a model without a step gain outright; empty: none
     clamp_outright: list = field(default_factory=list)
     # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
     pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
@@ -221,15 +224,16 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     N = len(inputs)
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     laws, period, powers, chosen = [], None, Powers(), {}      # laws: (target index, Law)
-    # the stream forks a held copy for the clamp's bound only of a model with a step gain
-    # (a diagnosed model's: where its features are linear in x, clampdiag60: has_step_gain)
-    outright = [int(clamp and not (callable(getattr(est, "step_gain", None))
-                                   and getattr(est, "has_step_gain", lambda: True)()))
-                for _, est, _ in stream._plan]
+    outright = []
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        own, period, kept = target_laws(t, est, cols, inputs, powers, period,
-                                        env.horizon_s if clamp and not outright[i] else None)
+        own, period, kept = target_laws(t, est, cols, inputs, powers, period)
+        # the clamp's gain: the deployed model's own, split as its laws count (gain61: the one
+        # computation the stream's step_gain sums at the campaign's A0); none: clamped outright
+        terms = _clamp_terms(t, est, env.horizon_s) if clamp else None
+        outright.append(int(clamp and terms is None))
+        if terms is not None:
+            with_gains(own, terms, cols, N, t)
         laws += [(i, law) for law in own]
         if kept is not None:
             chosen[t] = kept
@@ -288,6 +292,27 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
+
+
+def _clamp_terms(target: str, est, horizon_s: float) -> list | None:
+    """The gain terms of ``target``'s model at the clamp's horizon (:mod:`thermocomp.core.gains`);
+    ``None`` where it has no gain in any campaign (the stream clamps it outright, the code too).
+    A model with a gain for some campaigns' initial ambient only is refused: the code's outright
+    clamp is per target, the stream's per campaign."""
+    terms = gain_terms(est, horizon_s)
+    # each interval of A0 the terms' edges make (an edge belongs to the interval below it)
+    edges = np.array(sorted({e for t in terms for e in (t.lo, t.hi) if np.isfinite(e)}))
+    probes = np.r_[edges, (edges[1:] + edges[:-1]) / 2, edges.min(initial=0.0) - 1.0,
+                   edges.max(initial=0.0) + 1.0]
+    none = [gain_at(terms, a0) is None for a0 in probes]
+    if all(none):
+        return None
+    if any(none):
+        raise NotExportable(f"the model of {target} has a step gain for some campaigns' initial "
+                            "ambient only (an ATI interval's AR term without a steady state): the "
+                            "stream clamps the others outright, the code clamps per target; "
+                            "export it with promote.envelope.policy=off")
+    return terms
 
 
 def _held(inputs: list, n: int, powers: dict, ambient: list) -> list[int]:
