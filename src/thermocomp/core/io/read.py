@@ -87,6 +87,7 @@ from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
 from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
+from .sparse import said, sparse_totals
 from .starts import campaign_starts
 from .steps import check_unit_steps
 from .tables import NoRows, _load_csv, _load_parquet, _ordered, _values, parquet
@@ -300,6 +301,9 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
               "settings": {k: v for k, v in asdict(opts).items() if k not in INTERNAL}}
     if opts.missing != "repair":
         report["missing"] = totals("missing")
+    sparse = sparse_totals(entries)
+    if sparse:          # a target measured now and then: rows measured, per campaign too
+        report["sparse_targets"] = sparse
     return report
 
 
@@ -445,6 +449,8 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     manifest = _starts_from_timestamps(manifest, entries)
     report = _dataset_report(_name(path), entries, columns, opts)
     report["ambient"] = _manifest_ambient(manifest, frames)
+    for column, entry in report.get("sparse_targets", {}).items():
+        logger.info(said(column, entry))
     # the path as given: a one-file record's file, which an error about its splits names
     meta = {"path": str(path), "column_map": report.get("column_map", {}),
             "converted": sorted({c for e in entries.values() for c in e.get("converted", [])}),

@@ -1,0 +1,66 @@
+"""A target measured now and then (``data.sparse_targets``): a probe cycle on a dense log.
+
+A lab logs its temperatures every 10-60 s and measures the error only every N samples (a
+touch-probe or laser cycle every 5-30 min, a few times a shift), the cells in between empty.
+Such an ``E_`` column is no gap to repair: interpolating it would make the models fit (and be
+scored on) a straight line nobody measured.  It is kept as it is, NaN between the
+measurements; every model family fits and is scored on the measured rows only, its inputs'
+dynamics computed on the dense stream.
+
+``auto`` reads a column so where its measured cells are a minority of the campaign's rows and
+no two of them (as a rule) are neighbours: the median spacing between measured rows is
+:data:`MIN_SPACING` rows or more.  A dense column with one long gap (a probe that died) has its
+measured cells side by side, a median spacing of 1: a gap, repaired or refused as before.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+MIN_SPACING = 2        # median rows between two measurements: 1 is a dense column
+MAX_SHARE = 0.5        # at most this share of the rows measured (auto)
+
+
+def intermittent(missing: np.ndarray, rows: int, mode: str) -> dict | None:
+    """``{"measured": rows measured, "every": median spacing (rows)}`` when the ``E_`` column
+    whose empty cells are at the sorted positions ``missing`` is read as measured now and then
+    (``mode``: ``data.sparse_targets``), else None (its empty cells are gaps)."""
+    if mode == "false" or not missing.size:
+        return None
+    measured = np.setdiff1d(np.arange(rows), missing, assume_unique=True)
+    if measured.size < 2:
+        return None if mode == "auto" else {"measured": int(measured.size), "every": rows}
+    every = float(np.median(np.diff(measured)))
+    if mode == "auto" and (measured.size > MAX_SHARE * rows or every < MIN_SPACING):
+        return None
+    return {"measured": int(measured.size), "every": int(round(every))}
+
+
+def leading(missing: np.ndarray) -> np.ndarray:
+    """The positions of ``missing`` before the first measured row: a campaign starts where its
+    error is first measured (the reference is the first valid sample, never back-filled)."""
+    if not missing.size or missing[0] != 0:
+        return missing[:0]
+    run = np.flatnonzero(np.diff(missing) != 1)
+    return missing[: (run[0] + 1 if run.size else missing.size)]
+
+
+def said(column: str, entry: dict) -> str:
+    """What ``init`` and a run say of one such column."""
+    return (f"{column} measured on 1 row in {entry['every']} ({entry['measured']} rows): read "
+            "as a probe cycle; the models fit and are scored on the measured rows only")
+
+
+def sparse_totals(entries: dict) -> dict:
+    """``{column: {"measured": rows, "rows": rows, "every": rows, "campaigns": {id: measured}}}``
+    over the campaigns' reports (``entries``) of every column read as measured now and then."""
+    out: dict = {}
+    for cid, entry in entries.items():
+        for column, one in entry.get("sparse_targets", {}).items():
+            total = out.setdefault(column, {"measured": 0, "rows": 0, "campaigns": {}})
+            total["measured"] += one["measured"]
+            total["rows"] += entry["rows"]
+            total["campaigns"][cid] = one["measured"]
+    for total in out.values():
+        total["every"] = int(round(total["rows"] / max(total["measured"], 1)))
+    return out
