@@ -20,6 +20,7 @@ from .denoise import denoise_campaigns, fit_denoiser
 from .frame import Matrices, resolve_columns, stack
 from .models.one_step import OneStepLaw
 from .select import AllInputs
+from .select.per_target import measured
 
 OFFSETS = ("predict", "drop")
 
@@ -123,8 +124,8 @@ class Compensator(BaseEstimator):
         context = _simulation(m.context)
         for target in self.targets_:
             y = m.Y[target].to_numpy()
-            names = (list(self.selection[target]) if self.selection is not None
-                     else list(clone(selector).fit(m.X, y).selected_))
+            names = (list(self.selection[target]) if self.selection is not None  # (measured
+                     else list(clone(selector).fit(measured(m.X, y), y[np.isfinite(y)]).selected_))
             est = clone(for_target(self.estimator, target))
             X = m.X[names].to_numpy()
             est.fit(X, y, context=context)

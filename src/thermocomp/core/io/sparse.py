@@ -57,10 +57,12 @@ def sparse_totals(entries: dict) -> dict:
     out: dict = {}
     for cid, entry in entries.items():
         for column, one in entry.get("sparse_targets", {}).items():
-            total = out.setdefault(column, {"measured": 0, "rows": 0, "campaigns": {}})
+            total = out.setdefault(column, {"measured": 0, "rows": 0, "campaigns": {},
+                                            "spacings": []})
             total["measured"] += one["measured"]
             total["rows"] += entry["rows"]
             total["campaigns"][cid] = one["measured"]
-    for total in out.values():
-        total["every"] = int(round(total["rows"] / max(total["measured"], 1)))
+            total["spacings"].append(one["every"])
+    for total in out.values():      # the campaigns' median spacing (a ratio of rows rounds off)
+        total["every"] = int(round(float(np.median(total.pop("spacings")))))
     return out
