@@ -62,7 +62,7 @@ def measured_rows(est, X, y) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     states) on every row and fits on the measured ones only; never on an interpolated ``y``.
     """
     X = validate_data(est, X)
-    y = column_or_1d(np.asarray(y, dtype=float))
+    y = column_or_1d(np.asarray(y, dtype=float), warn=True)
     check_consistent_length(X, y)
     if np.isinf(y).any():
         raise ValueError("Input y contains infinity")
