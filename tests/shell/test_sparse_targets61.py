@@ -12,9 +12,9 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import FAST, UNTRACKED, thermocomp
 from sklearn.linear_model import LinearRegression
 
+from conftest import FAST, UNTRACKED, thermocomp
 from thermocomp.core.io.read import read_dataset
 from thermocomp.shell.model_store import load_model
 
