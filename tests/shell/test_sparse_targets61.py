@@ -64,6 +64,19 @@ def test_read_as_a_probe_cycle_never_interpolated(sparse):
     assert np.isfinite(ds.campaigns["calibration"]["E_X"]).all() and "E_X" in report["repairs"]
 
 
+def test_a_resampled_probe_cycle_keeps_its_measurements(sparse):
+    """data.resample_s puts each measurement on its nearest grid point, as measured; it
+    interpolates the temperatures only."""
+    raw, _ = read_dataset(sparse)
+    ds, report = read_dataset(sparse, {"resample_s": 120.0})
+    before, after = raw.campaigns["production"], ds.campaigns["production"]
+    measured = np.isfinite(after["E_X"].to_numpy())
+    assert report["campaigns"]["production"]["sparse_targets"]["E_X"] == {
+        "measured": int(measured.sum()), "every": EVERY // 2}
+    np.testing.assert_array_equal(after["E_X"][measured], before["E_X"].dropna())
+    np.testing.assert_array_equal(after["time"][measured], before["time"][before["E_X"].notna()])
+
+
 def test_the_fit_sees_the_measured_rows_only(sparse):
     """MLR's law is the least squares of the measured rows: no interpolated y entered it."""
     from thermocomp.core.compensator import Compensator

@@ -66,3 +66,25 @@ def sparse_totals(entries: dict) -> dict:
     for total in out.values():      # the campaigns' median spacing (a ratio of rows rounds off)
         total["every"] = int(round(float(np.median(total.pop("spacings")))))
     return out
+
+
+def on_grid(grid: np.ndarray, time: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """A target measured now and then moved onto a resampling ``grid`` (``data.resample_s``):
+    each measurement on the grid point nearest its time (the last where two share one), NaN
+    elsewhere; never interpolated between measurements."""
+    out = np.full(grid.size, np.nan)
+    measured = np.isfinite(values)
+    if grid.size < 2:
+        out[:] = values[measured][:1] if measured.any() else np.nan
+        return out
+    step = grid[1] - grid[0]
+    nearest = np.clip(np.rint((time[measured] - grid[0]) / step).astype(int), 0, grid.size - 1)
+    out[nearest] = values[measured]
+    return out
+
+
+def measured_on(values: np.ndarray) -> dict:
+    """``{"measured": rows, "every": median spacing}`` of a sparse column as it stands."""
+    rows = np.flatnonzero(np.isfinite(values))
+    every = float(np.median(np.diff(rows))) if rows.size > 1 else float(values.size)
+    return {"measured": int(rows.size), "every": int(round(every))}
