@@ -77,6 +77,18 @@ def test_a_resampled_probe_cycle_keeps_its_measurements(sparse):
     np.testing.assert_array_equal(after["time"][measured], before["time"][before["E_X"].notna()])
 
 
+def test_the_reference_row_is_the_first_measured_one(dense, tmp_path):
+    """The first measurement 3 rows in: those rows are incomplete edge rows (trimmed by
+    data.max_edge_samples, else refused, never back-filled), so that the error and the
+    temperatures are referenced at the same row."""
+    late = blanked(dense, tmp_path / "late", lambda rows: rows % EVERY == 3)
+    run = thermocomp("run", f"data.path={late}", f"out={tmp_path / 'a'}", *FAST, check=False)
+    assert run.returncode == 2 and "3 incomplete rows at the campaign start" in run.stderr
+    ds, report = read_dataset(late, {"max_edge_samples": 3})
+    assert report["campaigns"]["production"]["trimmed"] == {"start": 3, "end": 0}
+    assert np.isfinite(ds.campaigns["production"]["E_X"].iloc[0])
+
+
 def test_the_fit_sees_the_measured_rows_only(sparse):
     """MLR's law is the least squares of the measured rows: no interpolated y entered it."""
     from thermocomp.core.compensator import Compensator
