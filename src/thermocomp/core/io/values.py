@@ -382,7 +382,16 @@ def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> 
     for name, positions in gaps.items():
         inside = positions[(positions >= start) & (positions < stop)] - start
         if inside.size:
-            _check_gap_lengths(inside, name, start, path, opts.max_gap_samples)
+            try:
+                _check_gap_lengths(inside, name, start, path, opts.max_gap_samples)
+            except ContractError as exc:
+                if role(name) != "E":
+                    raise
+                # an error column: a gap, or a measurement not taken on every row
+                raise ContractError(f"{exc.reason} (an error measured only now and then: "
+                                    "data.sparse_targets=true leaves its empty cells empty, "
+                                    "never interpolated, the models fit on the measured rows)",
+                                    file=exc.file, column=exc.column, row=exc.row) from None
             columns[name] = _patched(columns[name], inside, _gap_values(columns[name], time, inside))
             repairs[name] = int(inside.size)
     return {"repairs": repairs, "trimmed": {"start": start, "end": rows - stop},
