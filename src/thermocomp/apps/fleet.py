@@ -134,7 +134,9 @@ def group_scores(comp, ds, mode: str, statistic: str, max_points: int) -> tuple[
             figures[t][split] = split_scores(y, r, dt, statistic, max_points,
                                              with_before_after=(split == "test"))
             pooled[t][split] = ((y, r, dt) if split == "test" else
-                                {c: (len(r[c]), float(np.sum(r[c] ** 2)), rsd(r[c])) for c in ids})
+                                {c: (int(np.count_nonzero(~np.isnan(r[c]))),     # (a sparse target:
+                                       float(np.nansum(r[c] ** 2)), rsd(r[c]))  # measured rows)
+                                 for c in ids})
     return add_choices(comp, figures), pooled
 
 

@@ -13,12 +13,14 @@ import numpy as np
 import pandas as pd
 from sklearn.base import BaseEstimator, clone
 
+from ..base.errors import ConfigError
 from .choices import MODES
 from .context import Y_MEASURED, for_target, with_column
 from .denoise import denoise_campaigns, fit_denoiser
 from .frame import Matrices, resolve_columns, stack
 from .models.one_step import OneStepLaw
 from .select import AllInputs
+from .select.per_target import measured
 
 OFFSETS = ("predict", "drop")
 
@@ -122,8 +124,8 @@ class Compensator(BaseEstimator):
         context = _simulation(m.context)
         for target in self.targets_:
             y = m.Y[target].to_numpy()
-            names = (list(self.selection[target]) if self.selection is not None
-                     else list(clone(selector).fit(m.X, y).selected_))
+            names = (list(self.selection[target]) if self.selection is not None  # (measured
+                     else list(clone(selector).fit(measured(m.X, y), y[np.isfinite(y)]).selected_))
             est = clone(for_target(self.estimator, target))
             X = m.X[names].to_numpy()
             est.fit(X, y, context=context)
@@ -149,6 +151,11 @@ class Compensator(BaseEstimator):
             if mode == "simulation":
                 out[:, k] = est.predict(X, context=context)
                 continue
+            if laws is not None and getattr(laws[target], "every_", 1) > 1:
+                raise ConfigError(
+                    f"eval.mode=one_step: {target} was measured on 1 row in "
+                    f"{laws[target].every_} in training (a probe cycle, data.sparse_targets): no "
+                    "measured previous error at most samples; score it in eval.mode=simulation")
             # one-step: the measured error is a side input too (of the law, or of an old model)
             measured = with_column(context, Y_MEASURED, m.Y[target].to_numpy(), len(m.X))
             if laws is None:

@@ -65,9 +65,12 @@ def rsd(residual) -> float:
 
     .. math:: R_{sd} = \sqrt{\frac{\sum_{j=1}^{n} (\hat y_j - y_j)^2}{n - 1}}
 
-    (not mean-centred: an offset counts as error, as on the machine).
+    (not mean-centred: an offset counts as error, as on the machine).  Over the rows where
+    the residual is defined: a target measured now and then (``data.sparse_targets``) is NaN
+    between its measurements.
     """
     r = np.asarray(residual, float)
+    r = r[~np.isnan(r)]
     if r.size < 2:
         return float("nan")
     return float(np.sqrt(np.sum(r**2) / (r.size - 1)))
@@ -292,10 +295,12 @@ def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.n
     hold the largest and the mean window statistic instead of the 95th percentile.
     """
     ids = list(measured)
+    measured, residual, sample_period_s, counted = on_measured_rows(measured, residual,
+                                                                    sample_period_s)
     y_all = np.concatenate([np.asarray(measured[c], float) for c in ids])
     r_all = np.concatenate([np.asarray(residual[c], float) for c in ids])
     sm, sd = sm_sd([rsd(residual[c]) for c in ids])
-    out = {RMSE: rmse(r_all), MAE: mae(r_all), RSD_MEAN: sm, RSD_SD: sd}
+    out = {RMSE: rmse(r_all), MAE: mae(r_all), RSD_MEAN: sm, RSD_SD: sd, **counted}
     if not with_before_after:
         return out
     out.update(before_after(y_all, r_all))
@@ -308,6 +313,27 @@ def split_scores(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.n
         out[key] = {"statistic": e_p95_statistic, "window_s": window_s,
                     "before": json_safe(before[curve]), "after": json_safe(after[curve])}
     return out
+
+
+def on_measured_rows(measured: Mapping[str, np.ndarray], residual: Mapping[str, np.ndarray],
+                     sample_period_s: float) -> tuple[dict, dict, float, dict]:
+    """The rows where the target was measured, of every campaign: a target measured now and
+    then (``data.sparse_targets``, NaN between its measurements) is scored there only.
+
+    Returns ``(measured, residual, period, counted)``: the arrays on those rows, the sample
+    period of the measured rows (``sample_period_s`` times their median spacing: a window of
+    the E_P95 curves spans measurements) and ``{"measured_rows": n, "rows": N}`` ({} where
+    every row is measured: a dense target's figures as before)."""
+    keep = {c: np.isfinite(np.asarray(measured[c], float)) for c in measured}
+    if all(k.all() for k in keep.values()):
+        return dict(measured), dict(residual), sample_period_s, {}
+    spacing = [np.diff(np.flatnonzero(k)) for k in keep.values() if k.sum() > 1]
+    spacing = np.concatenate(spacing) if spacing else np.ones(1)
+    measured = {c: np.asarray(measured[c], float)[keep[c]] for c in measured}
+    residual = {c: np.asarray(residual[c], float)[keep[c]] for c in residual}
+    counted = {"measured_rows": int(sum(k.sum() for k in keep.values())),
+               "rows": int(sum(k.size for k in keep.values()))}
+    return measured, residual, float(sample_period_s * np.median(spacing)), counted
 
 
 def before_after(measured, residual) -> dict:
@@ -343,6 +369,7 @@ def pooled_scores(n: int, sum_sq: float, rsds: Sequence[float]) -> dict:
 def validation_scores(residual: Mapping[str, np.ndarray], method: str, n_folds: int) -> dict:
     """One target's validation figures: RMSE pooled over the held-out units, SM/SD of their Rsd."""
     pooled = np.concatenate([np.asarray(r, float) for r in residual.values()])
+    pooled = pooled[~np.isnan(pooled)]      # (the measured rows of a sparse target)
     summary = rsd_summary({u: rsd(r) for u, r in residual.items()}, PER_UNIT)
     return {RMSE: float(np.sqrt(np.mean(pooled ** 2))) if pooled.size else None,
             RSD_MEAN: summary[RSD_MEAN], RSD_SD: summary[RSD_SD], "method": method,

@@ -172,13 +172,18 @@ class Adaptation:
         """Adapted corrections of consecutive rows ``Y`` (rows x targets) at ``times``;
         ``measured`` (rows x targets, NaN where none) are the reference measurements."""
         out = np.empty_like(np.asarray(Y, dtype=float))
+        waiting = False     # a reference due on a row without a measurement: the next one's
         for i, y in enumerate(np.asarray(Y, dtype=float)):
             out[i] = self.adapter.apply(y)
             if measured is None:
                 continue
             due = self.schedule.due(times[i]) if self.schedule is not None else True
-            if due and np.isfinite(measured[i]).any():
+            if not np.isfinite(measured[i]).any():
+                # (a target measured now and then, data.sparse_targets: the probe's next cycle)
+                waiting = waiting or (due and self.schedule is not None)
+            elif due or waiting:
                 self.adapter.update(y, measured[i])
+                waiting = False
         return out
 
     def snapshot(self) -> tuple:

@@ -69,11 +69,11 @@ class CorrectionGuard:
         width = np.maximum(hi - lo, 1e-9)
         rates = []
         for k, t in enumerate(times):
-            dt = np.diff(np.asarray(t, float))
-            if dt.size:
+            if len(t) > 1:
                 for y in (measured[k], *([predicted[k]] if predicted is not None else [])):
-                    rates.append(np.nanmax(np.abs(np.diff(y, axis=0)) / dt[:, None], axis=0))
-        rate = np.max(rates, axis=0) if rates else np.full(Y.shape[1], np.inf)
+                    rates.append(_fastest(np.asarray(y, float), np.asarray(t, float)))
+        rate = np.nanmax(rates, axis=0) if rates else np.full(Y.shape[1], np.inf)
+        rate = np.where(np.isnan(rate), np.inf, rate)      # (no two measurements: no limit)
         wide = margin if new_state_margin is None else float(new_state_margin)
         return cls(targets, lo - margin * width, hi + margin * width, (1 + rate_margin) * rate,
                    median_step(list(times)) or 1.0,
@@ -194,3 +194,15 @@ def _reason(state: str, y: float, lo: float, hi: float) -> str:
     if state == HELD:
         return "correction held: the model gave no finite value"
     return "correction within bound and rate again"
+
+
+def _fastest(y: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Largest rate of change of each column of ``y`` (n, k) at times ``t``, between its
+    consecutive finite values: every sample's, or a target measured now and then
+    (``data.sparse_targets``) between two measurements; NaN with fewer than two."""
+    out = np.full(y.shape[1], np.nan)
+    for j in range(y.shape[1]):
+        ok = np.isfinite(y[:, j])
+        if ok.sum() > 1:
+            out[j] = np.max(np.abs(np.diff(y[ok, j])) / np.diff(t[ok]))
+    return out

@@ -238,6 +238,10 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
                   "streamed_range": [float(np.min(out[:, j])), float(np.max(out[:, j]))] if n else None,
                   "bound": None if guard is None else [float(guard.lo[j]), float(guard.hi[j])]}
               for j, t in enumerate(targets)}
+    for j, t in enumerate(targets):     # a target measured now and then: scored where measured
+        measured = int(np.count_nonzero(np.isfinite(resid[:, j])))
+        if measured < n:
+            report[t]["measured_rows"] = measured
     if adapt is not None:
         for t, figures in adapt_figures(adapt, frozen, targets).items():
             report[t]["adapt"] = figures

@@ -22,6 +22,7 @@ RUN_ROLE = "campaign"     # data.roles.campaign: the one column numbering a long
 SPLIT_ORDER = ("train", "val", "test")
 ROLE_ORDER = ("T", "E", "S")
 MISSING_MODES = ("repair", "keep", "keep_errors")
+SPARSE_TARGETS = ("auto", "true", "false")   # data.sparse_targets: an E_ column measured now and then
 
 _OTHER_DELIMITERS = (";", "\t", "|", ",")
 
@@ -44,6 +45,7 @@ class ReadOptions:
     split_overrides: dict = field(default_factory=dict)
     max_gap_samples: int = 0
     max_edge_samples: int = 0
+    sparse_targets: str = "auto"
     resample_s: float | None = None
     kelvin_threshold_c: float = 200.0
     fahrenheit_threshold_c: float | None = 45.0
@@ -92,6 +94,7 @@ class ReadOptions:
             split_overrides=_str_mapping(cfg, "split_overrides"),
             max_gap_samples=_count(cfg, "max_gap_samples"),
             max_edge_samples=_count(cfg, "max_edge_samples"),
+            sparse_targets=_sparse_targets(cfg),
             resample_s=_positive_float(cfg, "resample_s"),
             kelvin_threshold_c=_float(cfg, "kelvin_threshold_c", 200.0),
             fahrenheit_threshold_c=_float(cfg, "fahrenheit_threshold_c", 45.0, nullable=True),
@@ -270,6 +273,16 @@ def _positive_float(cfg: Mapping, key: str, default: float | None = None,
     if number is not None and number <= 0:
         raise ContractError(f"data.{key} must be > 0, got {number:g}")
     return number
+
+
+def _sparse_targets(cfg: Mapping) -> str:
+    """``data.sparse_targets``: ``auto``, ``true`` or ``false`` (YAML's booleans read as such)."""
+    value = cfg.get("sparse_targets", "auto")
+    text = "auto" if value is None else str(value).lower()
+    if text not in SPARSE_TARGETS:
+        raise ContractError(f"data.sparse_targets must be one of {', '.join(SPARSE_TARGETS)}, "
+                            f"got {value!r}")
+    return text
 
 
 def _count(cfg: Mapping, key: str) -> int:

@@ -87,6 +87,7 @@ from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
 from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
+from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts
 from .steps import check_unit_steps
 from .tables import NoRows, _load_csv, _load_parquet, _ordered, _values, parquet
@@ -133,8 +134,11 @@ def _check_fahrenheit(columns: dict, path: Path, threshold: float | None, start:
                             "like °F, convert to °C", file=path, column=name, row=start + 1)
 
 
-def _resample(columns: dict, step: float, path: Path, max_factor: float) -> None:
-    """Linear interpolation of every column onto ``t0, t0 + step, ...``."""
+def _resample(columns: dict, step: float, path: Path, max_factor: float,
+              sparse=()) -> None:
+    """Linear interpolation of every column onto ``t0, t0 + step, ...``; a column of ``sparse``
+    (a target measured now and then) is not interpolated: each measurement is put on the grid
+    point nearest its time, the others left empty (:func:`.sparse.on_grid`)."""
     time = _values(columns[TIME])
     count = (time[-1] - time[0]) / step + 1
     if not count <= min(max_factor * len(time), MAX_GRID_ROWS):  # before allocating it
@@ -144,7 +148,9 @@ def _resample(columns: dict, step: float, path: Path, max_factor: float) -> None
     count = int(math.floor((time[-1] - time[0]) / step + 1e-9)) + 1
     grid = time[0] + step * np.arange(count)
     for name in columns:
-        if name != TIME:
+        if name in sparse:
+            columns[name] = pa.array(on_grid(grid, time, _values(columns[name])))
+        elif name != TIME:
             columns[name] = pa.array(np.interp(grid, time, _values(columns[name])))
     columns[TIME] = pa.array(grid)
 
@@ -247,8 +253,11 @@ def _checked(columns: dict, path: Path, opts: ReadOptions, lines: Lines | None) 
     _check_fahrenheit(columns, path, opts.fahrenheit_threshold_c, report["trimmed"]["start"])
     check_unit_steps(columns, path, opts.max_step_ratio, report["trimmed"]["start"], lines)
     if opts.resample_s is not None:
-        _resample(columns, opts.resample_s, path, opts.max_resample_factor)
+        sparse = report.get("sparse_targets", {})
+        _resample(columns, opts.resample_s, path, opts.max_resample_factor, sparse)
         report["resampled_s"] = opts.resample_s
+        if sparse:      # counted again on the grid
+            report["sparse_targets"] = {n: measured_on(_values(columns[n])) for n in sparse}
         _check_length(len(columns[TIME]), path, f"(after data.resample_s={opts.resample_s:g}) ")
     return report
 
@@ -300,6 +309,9 @@ def _dataset_report(name: str, entries: dict, columns: dict, opts: ReadOptions) 
               "settings": {k: v for k, v in asdict(opts).items() if k not in INTERNAL}}
     if opts.missing != "repair":
         report["missing"] = totals("missing")
+    sparse = sparse_totals(entries)
+    if sparse:          # a target measured now and then: rows measured, per campaign too
+        report["sparse_targets"] = sparse
     return report
 
 
@@ -445,6 +457,8 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
     manifest = _starts_from_timestamps(manifest, entries)
     report = _dataset_report(_name(path), entries, columns, opts)
     report["ambient"] = _manifest_ambient(manifest, frames)
+    for column, entry in report.get("sparse_targets", {}).items():
+        logger.info(said(column, entry))
     # the path as given: a one-file record's file, which an error about its splits names
     meta = {"path": str(path), "column_map": report.get("column_map", {}),
             "converted": sorted({c for e in entries.values() for c in e.get("converted", [])}),

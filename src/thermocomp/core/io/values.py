@@ -18,6 +18,7 @@ from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
 from .rates import period_groups, said_if_rate_changes, said_if_rows_missing
+from .sparse import intermittent, leading
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
@@ -356,17 +357,24 @@ def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> 
     keep_errors = opts.missing == "keep_errors"
     _refuse_empty({n: c for n, c in columns.items() if not (keep_errors and role(n) == "E")}, path)
     gaps = {}  # column -> sorted positions of its missing values
-    kept = {}
+    kept, sparse = {}, {}
     for name in columns:
         if name != TIME:
             missing = _check_values(_values(columns[name]), name, path, opts)
             if missing.size and opts.missing == "keep_errors" and role(name) == "E":
                 kept[name] = missing
+            elif missing.size and role(name) == "E" and intermittent(missing, rows,
+                                                                     opts.sparse_targets):
+                sparse[name] = missing      # measured now and then: kept, never interpolated
             elif missing.size:
                 gaps[name] = missing
-    if not gaps:
-        return {"repairs": {}, "trimmed": {"start": 0, "end": 0}, **_kept(kept, 0, rows, opts)}
-    start, stop = _complete_span(rows, gaps, path, opts.max_edge_samples)
+    # the rows before a sparse target's first measurement are incomplete edge rows (its
+    # reference is its first valid sample, the inputs' must be the same row's)
+    edges = {**gaps, **{n: leading(p) for n, p in sparse.items() if leading(p).size}}
+    if not edges:
+        return {"repairs": {}, "trimmed": {"start": 0, "end": 0}, **_kept(kept, 0, rows, opts),
+                **_sparse(sparse, 0, rows)}
+    start, stop = _complete_span(rows, edges, path, opts.max_edge_samples)
     for name in columns:
         columns[name] = columns[name].slice(start, stop - start)
     time = _values(columns[TIME])
@@ -374,11 +382,32 @@ def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> 
     for name, positions in gaps.items():
         inside = positions[(positions >= start) & (positions < stop)] - start
         if inside.size:
-            _check_gap_lengths(inside, name, start, path, opts.max_gap_samples)
+            try:
+                _check_gap_lengths(inside, name, start, path, opts.max_gap_samples)
+            except ContractError as exc:
+                if role(name) != "E":
+                    raise
+                # an error column: a gap, or a measurement not taken on every row
+                raise ContractError(f"{exc.reason} (an error measured only now and then: "
+                                    "data.sparse_targets=true leaves its empty cells empty, "
+                                    "never interpolated, the models fit on the measured rows)",
+                                    file=exc.file, column=exc.column, row=exc.row) from None
             columns[name] = _patched(columns[name], inside, _gap_values(columns[name], time, inside))
             repairs[name] = int(inside.size)
     return {"repairs": repairs, "trimmed": {"start": start, "end": rows - stop},
-            **_kept(kept, start, stop, opts)}
+            **_kept(kept, start, stop, opts), **_sparse(sparse, start, stop)}
+
+
+def _sparse(sparse: dict, start: int, stop: int) -> dict:
+    """``{"sparse_targets": {column: {"measured": rows, "every": rows}}}`` of the ``E_``
+    columns read as measured now and then, within the rows kept; {} where there is none."""
+    out = {}
+    for name, positions in sparse.items():
+        inside = positions[(positions >= start) & (positions < stop)] - start
+        entry = intermittent(inside, stop - start, "true")
+        if entry is not None:
+            out[name] = entry
+    return {"sparse_targets": out} if out else {}
 
 
 def _kept(kept: dict, start: int, stop: int, opts: ReadOptions) -> dict:

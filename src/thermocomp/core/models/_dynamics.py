@@ -50,6 +50,25 @@ def previous(y: np.ndarray, groups, fill: float = 0.0) -> np.ndarray:
     return prev
 
 
+def last_measured(y: np.ndarray, groups) -> np.ndarray:
+    """Index of the last row before ``t`` (in ``t``'s segment) where ``y`` is finite, -1 where
+    there is none: ``t - 1`` wherever ``y`` is measured at every sample; the previous probe
+    reading of a target measured now and then (``data.sparse_targets``)."""
+    y = np.asarray(y, dtype=float)
+    n = len(y)
+    index = np.where(np.isfinite(y), np.arange(n), -1)
+    seen = np.maximum.accumulate(index)
+    last = np.empty(n, dtype=int)
+    last[1:] = seen[:-1]
+    starts = segment_starts(groups, n)
+    floor = np.zeros(n, dtype=int)
+    floor[starts] = starts
+    floor = np.maximum.accumulate(floor)        # each row's segment start
+    last[last < floor] = -1
+    last[starts] = -1
+    return last
+
+
 def free_run(a: float, u: np.ndarray, groups) -> np.ndarray:
     """``y(t) = a·y(t-1) + u(t)`` per segment, ``y = 0`` before each segment start.
 

@@ -14,6 +14,7 @@ from ..context import Y_MEASURED, SideInputs, feedback_gain, groups_of, values
 from ..model_selection.criteria import CRITERIA, LABELS, information_criteria
 from ..model_selection.greedy import SEARCHES, greedy_path, scaled_gram
 from ._dynamics import free_run, lag_index, previous, segment_bounds, segment_starts
+from .base import measured_rows
 
 SELECTION_ERRORS = ("equation", "simulation")
 
@@ -140,7 +141,8 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
         A = np.empty((int(rows.sum()), p * len(delays) + 2))
         for i, d in enumerate(delays):
             A[:, i * p:(i + 1) * p] = X[lag_index(groups, n, d)[rows]]
-        A[:, -2] = previous(y, groups)[rows]
+        # (0 where unmeasured: an AR term is then never fitted, see fit; a constant column)
+        A[:, -2] = np.nan_to_num(previous(y, groups)[rows], nan=0.0)
         A[:, -1] = y[rows]
         means = A.mean(axis=0) if self.fit_intercept else np.zeros(A.shape[1])
         A -= means
@@ -155,15 +157,24 @@ class ARX(SideInputs, RegressorMixin, BaseEstimator):
     def fit(self, X, y, context=None):
         delays = self._check_params()
         groups = groups_of(context)
-        X, y = validate_data(self, X, y, y_numeric=True)
-        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        X, y, measured = measured_rows(self, X, y)
+        X = np.asarray(X, dtype=float)
         n, p = X.shape
         if n < 2:
             raise ValueError(f"ARX needs at least 2 samples, got n_samples={n}")
         self._check_delays(delays, groups, n)
         terms = [(j, d) for d in delays for j in range(p)]
         options = [False, True] if self.ar == "auto" else [bool(self.ar)]
-        rows = np.ones(n, dtype=bool)
+        rows = measured.copy()
+        if not measured.all():
+            # a target measured now and then: the equation error's y(t-1) is not measured at
+            # the measured rows, so the AR term cannot be fitted (its delays can: the inputs
+            # are dense)
+            if self.ar is True:
+                raise ParameterError("ARX.ar=true needs the error measured at every sample (the "
+                                     "AR term is fitted on y(t-1)); this target is measured now "
+                                     "and then (data.sparse_targets): ar=auto or false")
+            options = [False]
         if True in options:
             rows[segment_starts(groups, n)] = False   # y(t-1) is unknown at a campaign's first sample
             if not rows.any():

@@ -27,6 +27,7 @@ from ..context import (
 )
 from ._dynamics import segment_bounds
 from .arx import ARX
+from .base import measured_rows
 
 
 def _taus(tau_s) -> np.ndarray:
@@ -215,11 +216,13 @@ class ARXRF(SideInputs, RegressorMixin, BaseEstimator):
 
     def fit(self, X, y, context=None):
         check_estimator(self)
-        X, y = validate_data(self, X, y, y_numeric=True)
-        y = np.asarray(y, dtype=float)
+        # a target measured now and then: the ARX (no AR term then) and the forest on the
+        # measured rows, the state features on every row
+        X, y, measured = measured_rows(self, X, y)
         S = self._state_features(len(y), context)
         self.arx_ = clone(self.arx if self.arx is not None else ARX()).fit(X, y, context=context)
-        self.forest_ = self._new_forest().fit(S, y - self.arx_.predict(X, context=context))
+        residual = y - self.arx_.predict(X, context=context)
+        self.forest_ = self._new_forest().fit(S[measured], residual[measured])
         self.forest_one_step_ = None
         if self.arx_.ar_coef_ != 0.0:
             one_step = self.arx_.predict(X, context=with_column(context, Y_MEASURED, y, len(y)))

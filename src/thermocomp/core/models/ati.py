@@ -33,6 +33,7 @@ from ..context import (
 from ..gains import AMBIENT_CENTRE_C, gain_at, gain_terms, within
 from ..metrics import rsd, sm_sd
 from ._campaign_ls import CampaignLeastSquares
+from .base import measured_rows
 from .linear import MLR
 
 CLUSTERINGS = ("fuzzy", "hard")
@@ -314,7 +315,9 @@ class ATIRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
     def fit(self, X, y, context=None):
         check_estimator(self)
-        X, y = validate_data(self, X, y, y_numeric=True)
+        # a target measured now and then: NaN kept, each interval's base model fits on its
+        # measured rows, the elbow's held-out Rsd is scored on them (metrics.rsd)
+        X, y, _ = measured_rows(self, X, y)
         self.elbow_ = None
         if context is None or AMBIENT_C0 not in context:
             self.campaign_ambient_ = {}

@@ -177,7 +177,9 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.scheme_ = _scheme(self.scheme, groups)
         if self.scheme_ == FORWARD_ONE:
             self.scheme_ = BLOCKS_ONE.get(self.one_record, FORWARD_ONE)
-        folds = self._folds(groups, len(y))
+        # a target measured now and then (NaN between measurements): every fold scores its
+        # measured rows (the candidates fit on theirs, their dynamics run over every row)
+        folds = [(fit, pred, score & np.isfinite(y)) for fit, pred, score in self._folds(groups, len(y))]
         self.validation_, self.skipped_, self.fit_seconds_, self.oof_ = {}, {}, {}, {}
         runs = dict(self.candidates)
         if BASELINE not in runs:

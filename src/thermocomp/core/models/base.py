@@ -6,8 +6,9 @@ from collections.abc import Mapping
 
 import numpy as np
 from sklearn.base import BaseEstimator, clone
-from sklearn.utils.validation import check_is_fitted, validate_data
+from sklearn.utils.validation import check_consistent_length, check_is_fitted, column_or_1d, validate_data
 
+from ...base.errors import ContractError
 from ..context import SideInputs, for_target
 from ..gains import held
 
@@ -50,3 +51,22 @@ class PerTarget(BaseEstimator):
 
     def for_target(self, target: str):
         return clone(for_target(self.estimator, target)).set_params(**(self.params or {}).get(target, {}))
+
+
+def measured_rows(est, X, y) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """``X`` validated (``est``'s features set, as ``validate_data(est, X, y)`` does), ``y`` as
+    floats with its NaN kept, and the mask of the rows where ``y`` was measured.
+
+    A target measured now and then (a probe cycle on a dense log, ``data.sparse_targets``) is
+    NaN between its measurements: a family computes its inputs' dynamics (lags, filters,
+    states) on every row and fits on the measured ones only; never on an interpolated ``y``.
+    """
+    X = validate_data(est, X)
+    y = column_or_1d(np.asarray(y, dtype=float), warn=True)
+    check_consistent_length(X, y)
+    if np.isinf(y).any():
+        raise ValueError("Input y contains infinity")
+    measured = np.isfinite(y)
+    if not measured.any():
+        raise ContractError(f"{type(est).__name__}: the target is measured on no row")
+    return X, y, measured

@@ -30,6 +30,7 @@ from ...base.params import BOOLEAN, check_estimator, choice, numbers, optional, 
 from ..context import SideInputs, groups_of, merge_columns, require, step_gain
 from ..io.contract import match_columns
 from ._dynamics import segment_bounds
+from .base import measured_rows
 from .lagbank import LagBank
 
 
@@ -163,8 +164,10 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
     def fit(self, X, y, context=None):
         check_estimator(self)
         base = clone(self.lagbank) if self.lagbank is not None else LagBank()
-        X, y = validate_data(self, X, y, y_numeric=True)
-        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        # (a target measured now and then: NaN between measurements, the states and the lag
+        # bank's features on every row, the fit on the measured ones: LagBank._fit_measured)
+        X, y, _ = measured_rows(self, X, y)
+        X = np.asarray(X, dtype=float)
         found = [] if context is None or self.states is None else match_columns(
             [str(c) for c in context.columns], list(self.states))
         S = self._raw_states(context, len(y), found)

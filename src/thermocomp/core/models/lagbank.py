@@ -39,6 +39,7 @@ from sklearn.preprocessing._data import _handle_zeros_in_scale, _is_constant_fea
 from sklearn.utils.validation import check_is_fitted, validate_data
 from threadpoolctl import threadpool_limits
 
+from ...base.errors import ContractError, ParameterError
 from ...base.params import (
     NON_NEGATIVE,
     POSITIVE,
@@ -71,6 +72,7 @@ from ._pooled import (
     standardisation,
     weights_of_moments,
 )
+from .base import measured_rows
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
 MIN_SPLITS = 2
@@ -565,8 +567,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
     @threadpool_limits.wrap(limits=1, user_api="blas")
     def fit(self, X, y, context=None):
         alphas, ratios = self._check_params()
-        X, y = validate_data(self, X, y, y_numeric=True)
-        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        X, y, measured = measured_rows(self, X, y)
+        X = np.asarray(X, dtype=float)
         n, p = X.shape
         if n < MIN_SPLITS + 1:
             raise ValueError(f"LagBank needs at least {MIN_SPLITS + 1} samples for its time-series "
@@ -580,6 +582,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.taus_ = np.geomspace(tau_min, float(self.tau_max_s), int(self.n_taus))
         names = [str(c) for c in getattr(self, "feature_names_in_", [f"x{j}" for j in range(p)])]
         self.features_ = names + [f"L[{tau:.6g}s]({c})-{c}" for tau in self.taus_ for c in names]
+        if not measured.all():      # a target measured now and then: see _fit_measured
+            return self._fit_measured(X, y, measured, context, groups, alphas, ratios, p, time)
 
         k = min(int(self.n_splits), n - 1)   # tiny samples: fewer folds, blocks of >= 1 row
         self.splitter_ = default_splitter(groups, n, forward_gap(self.taus_[-1] / self.sample_period_s_,
@@ -638,6 +642,50 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
             self.coef_one_step_, self.ar_coef_one_step_, self.intercept_one_step_ = self._refit(
                 self.one_step_design_, F, y, y_prev, groups, scalers[self.one_step_design_],
                 self.alpha_one_step_, p, float(table.loc[pick, "level_penalty"]))
+        return self
+
+    def _fit_measured(self, X, y, measured, context, groups, alphas, ratios, p: int, time):
+        """:meth:`fit` of a target measured now and then (a probe cycle on a dense log,
+        ``data.sparse_targets``): the lag-bank features computed on every row (the inputs'
+        dynamics on the dense stream), the ridge path and its CV on the measured rows only.
+        Without output feedback: ``y(t-1)`` is not measured where ``y(t)`` is."""
+        if self.ar is True:
+            raise ParameterError("LagBank.ar=true needs the error measured at every sample (its AR "
+                                 "term is fitted on y(t-1)); this target is measured now and then "
+                                 "(data.sparse_targets): ar=auto or false")
+        rows = np.flatnonzero(measured)
+        m = rows.size
+        if m < MIN_SPLITS + 1:
+            raise ContractError(f"LagBank: the target is measured on {m} rows, its time-series CV "
+                                f"needs at least {MIN_SPLITS + 1}")
+        F = self._features(X, context)[rows]
+        g = None if groups is None else np.asarray(groups, dtype=object)[rows]
+        k = min(int(self.n_splits), m - 1)
+        spacing = X.shape[0] / m              # rows per measurement: the gap in measured rows
+        self.splitter_ = default_splitter(g, m, forward_gap(
+            self.taus_[-1] / self.sample_period_s_ / spacing, m, k), n_splits=k)
+        self.gap_ = int(getattr(self.splitter_, "gap", 0))
+        labels = g
+        if isinstance(self.splitter_, GroupKFold):
+            labels = pd.factorize(g, sort=True)[0]
+        splits = list(self.splitter_.split(F, y[rows], labels))
+        scaler = standard_scaler(F)
+        Z = standardised(F, scaler)
+        records = []
+        for ratio in ratios:
+            Zw, n_free = _levels_weighted(Z, p, ratio)
+            scores = ridge_path_cv(Zw, y[rows], splits, alphas, g, free_columns=n_free)
+            for i, alpha in enumerate(alphas):
+                records.append({"design": "lags", "ar": False, "alpha": float(alpha),
+                                "level_penalty": ratio,
+                                **_summary("cv_mse_free_run", scores["free_run"][:, i]),
+                                **_summary("cv_mse_one_step", scores["one_step"][:, i])})
+        table = pd.DataFrame(records)
+        self._keep_choice(table, self._choose(table))
+        self.coef_, self.ar_coef_, self.intercept_ = self._refit(
+            "lags", F, y[rows], None, g, scaler, self.alpha_, p, self.level_penalty_)
+        self.context_columns_ = [TIME] if time is not None else []
+        self.measured_rows_ = int(m)
         return self
 
     @threadpool_limits.wrap(limits=1, user_api="blas")   # as fit: the same sums in the same order

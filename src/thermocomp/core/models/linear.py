@@ -4,10 +4,9 @@ from __future__ import annotations
 
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.linear_model import LinearRegression
-from sklearn.utils.validation import validate_data
 
 from ...base.params import BOOLEAN, check_estimator
-from .base import LinearStreamMixin
+from .base import LinearStreamMixin, measured_rows
 
 
 class MLR(LinearStreamMixin, RegressorMixin, BaseEstimator):
@@ -35,8 +34,8 @@ class MLR(LinearStreamMixin, RegressorMixin, BaseEstimator):
 
     def fit(self, X, y, context=None):
         check_estimator(self)
-        X, y = validate_data(self, X, y, y_numeric=True)
-        lr = LinearRegression(fit_intercept=self.fit_intercept).fit(X, y)
+        X, y, measured = measured_rows(self, X, y)      # (a static law: the measured rows)
+        lr = LinearRegression(fit_intercept=self.fit_intercept).fit(X[measured], y[measured])
         self.coef_ = lr.coef_
         self.intercept_ = lr.intercept_
         self.context_columns_ = []

@@ -13,6 +13,7 @@ from ...base.params import NON_NEGATIVE, check_estimator, integer, number
 from ..context import SideInputs, groups_of
 from ..model_selection import CampaignHoldOut
 from ._dynamics import segment_bounds
+from .base import measured_rows
 
 if TYPE_CHECKING:
     import torch
@@ -171,22 +172,25 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
 
         check_estimator(self)
         groups = groups_of(context)
-        X, y = validate_data(self, X, y, y_numeric=True)
-        X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
+        # a target measured now and then (data.sparse_targets): the network runs over every
+        # row, its loss (training and validation) is masked to the measured ones
+        X, y, measured = measured_rows(self, X, y)
+        X = np.asarray(X, dtype=float)
         n, p = X.shape
         self.x_mean_ = X.mean(axis=0)
         self.x_scale_ = np.where(X.std(axis=0) > 0, X.std(axis=0), 1.0)
-        self.y_mean_ = float(y.mean())
-        self.y_scale_ = float(y.std()) if y.std() > 0 else 1.0
+        self.y_mean_ = float(y[measured].mean())
+        self.y_scale_ = float(y[measured].std()) if y[measured].std() > 0 else 1.0
         Xs = (X - self.x_mean_) / self.x_scale_
-        ys = (y - self.y_mean_) / self.y_scale_
-        val = self._validation_rows(groups, n)
+        ys = np.where(measured, (y - self.y_mean_) / self.y_scale_, 0.0)   # (0: weight 0 below)
+        split = self._validation_rows(groups, n)
+        val, train = split & measured, ~split & measured
         bounds = segment_bounds(groups, n)
         length = max(stop - start for start, stop in bounds)
         chunk = int(self.chunk)
         xs = _padded(Xs, bounds, length, torch.float32)
         yp = _padded(ys, bounds, length, torch.float32)
-        fit_w = _padded((~val).astype(float), bounds, length, torch.float32)
+        fit_w = _padded(train.astype(float), bounds, length, torch.float32)
         val_w = _padded(val.astype(float), bounds, length, torch.float32)
         # pieces (campaign, start) holding training rows; pieces of a held-out tail are skipped
         pieces = [(b, k) for b, (start, stop) in enumerate(bounds)
@@ -198,7 +202,7 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
             # the static law first, fitted on the rows the network trains on and held fixed: the
             # network learns only what it leaves over, and epoch 0 (no network) is judged on
             # held-out rows like every other epoch
-            self._least_squares(net, Xs[~val], ys[~val])
+            self._least_squares(net, Xs[train], ys[train])
             net.skip.requires_grad_(False)
             opt = torch.optim.Adam([q for q in net.parameters() if q.requires_grad],
                                    lr=float(self.learning_rate),
@@ -237,7 +241,7 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
                     wb = fit_w[rows[:, None], window] * valid
                     opt.zero_grad()
                     pred, _, _ = net(xb, state)
-                    loss = (wb * (pred - yb) ** 2).sum() / wb.sum()
+                    loss = (wb * (pred - yb) ** 2).sum() / wb.sum().clamp(min=1.0)
                     loss.backward()
                     nn.utils.clip_grad_norm_(net.parameters(), 1.0)
                     opt.step()
@@ -248,7 +252,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         self.n_epochs_, self.best_epoch_ = epoch, best_epoch if val.any() else epoch
         self.net_ = net.double().eval()
         # the linear law refitted on every training row, the learned residual held fixed
-        self._least_squares(self.net_, Xs, ys - self._outputs(Xs, groups, residual=True))
+        self._least_squares(self.net_, Xs[measured],
+                            (ys - self._outputs(Xs, groups, residual=True))[measured])
         self.context_columns_ = []
         return self
 

@@ -46,7 +46,8 @@ from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
 from ..context import Y_MEASURED, SideInputs, groups_of, require, values
-from ._dynamics import previous, segment_starts
+from ._dynamics import last_measured, previous, segment_starts
+from .base import measured_rows
 
 
 def persistence(y_measured, groups=None) -> np.ndarray:
@@ -98,12 +99,14 @@ class OneStepLaw(SideInputs, RegressorMixin, BaseEstimator):
     """
 
     def fit(self, X, y, context=None):
-        X, y = validate_data(self, X, y, y_numeric=True)
-        s, y = np.asarray(X, float)[:, 0], np.asarray(y, float)
+        X, y, _ = measured_rows(self, X, y)
+        s = np.asarray(X, float)[:, 0]
         groups = groups_of(context)
-        rows = np.ones(len(y), dtype=bool)
-        rows[segment_starts(groups, len(y))] = False
-        s_prev, y_prev = previous(s, groups), previous(y, groups)
+        # the increments from the last measured row (the previous sample where y is measured
+        # at every one; the previous probe reading of a target measured now and then)
+        last = last_measured(y, groups)
+        rows = last >= 0
+        s_prev, y_prev = s[np.maximum(last, 0)], y[np.maximum(last, 0)]
         A = np.c_[s - s_prev, s_prev - y_prev][rows]
         dy = (y - y_prev)[rows]
         ok = np.isfinite(dy) & np.isfinite(A).all(axis=1)
@@ -111,6 +114,9 @@ class OneStepLaw(SideInputs, RegressorMixin, BaseEstimator):
         theta = np.linalg.lstsq(A[ok], dy[ok], rcond=None)[0] if ok.any() else np.zeros(2)
         self.k_, self.g_ = float(theta[0]), float(theta[1])
         self.n_rows_ = int(ok.sum())
+        # rows between two measurements (1: every sample measured): its one-step law spans them
+        spans = (np.flatnonzero(rows) - last[rows])[ok]
+        self.every_ = int(np.median(spans)) if spans.size else 1
         self.context_columns_ = []
         return self
 

@@ -6,10 +6,9 @@ from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.decomposition import PCA
 from sklearn.linear_model import LinearRegression
 from sklearn.preprocessing import StandardScaler
-from sklearn.utils.validation import validate_data
 
 from ...base.params import check_estimator, number
-from .base import LinearStreamMixin
+from .base import LinearStreamMixin, measured_rows
 
 
 class PCR(LinearStreamMixin, RegressorMixin, BaseEstimator):
@@ -52,7 +51,8 @@ class PCR(LinearStreamMixin, RegressorMixin, BaseEstimator):
 
     def fit(self, X, y, context=None):
         check_estimator(self)
-        X, y = validate_data(self, X, y, y_numeric=True)
+        X, y, measured = measured_rows(self, X, y)      # (a static law: the measured rows)
+        X, y = X[measured], y[measured]
         scaler = StandardScaler().fit(X)
         Xs = scaler.transform(X)
         n_comp = self.variance if self.variance < 1 else min(X.shape)

@@ -97,8 +97,15 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
             predictions = {c: (meas[c], pred[c]) for c in ids}
     ids = require_split(ds, "test")
     other = next(m for m in MODES if m != mode)
-    baselines = {test_block(other): continuation.predict(comp, ds, ids, other, carried)[0],
-                 PERSISTENCE: continuation.persistence(comp, ds, ids, carried)}
+    baselines = {PERSISTENCE: continuation.persistence(comp, ds, ids, carried)}
+    sparse = probe_cycles(comp)
+    if other != "one_step" or not sparse:
+        baselines[test_block(other)] = continuation.predict(comp, ds, ids, other, carried)[0]
+    else:       # no one-step prediction where the previous error is not measured
+        for t in comp.targets_:
+            out[t][test_block(other)] = {"skipped": "a target measured now and then ("
+                                         + ", ".join(f"{c}: 1 row in {k}" for c, k in sparse.items())
+                                         + "): no measured previous error at most samples"}
     for key, pred in baselines.items():
         for t in comp.targets_:
             y = {c: predictions[c][0][t].to_numpy() for c in ids}
@@ -107,6 +114,13 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
     for t in comp.targets_:     # a reference, not a compensator: a probe must be on the machine
         out[t][PERSISTENCE]["needs_measured_error_online"] = True
     return out, predictions
+
+
+def probe_cycles(comp: Compensator) -> dict[str, int]:
+    """``{target: rows between two measurements}`` of the targets ``comp`` was trained on
+    measured now and then (``data.sparse_targets``): their one-step laws span a probe cycle."""
+    laws = getattr(comp, "one_step_", None) or {}
+    return {t: law.every_ for t, law in laws.items() if getattr(law, "every_", 1) > 1}
 
 
 def split_residuals(comp: Compensator, ds: Dataset, ids, mode: str, carried=None

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import numpy as np
 from sklearn.base import clone
 
 from ...base.jsonsafe import json_safe
@@ -15,6 +16,14 @@ def _series(s) -> dict:
     return json_safe({str(k): float(v) for k, v in s.items()})
 
 
+def measured(X, y):
+    """The rows of ``X`` where ``y`` was measured (a target measured now and then,
+    ``data.sparse_targets``: a static selector scores the inputs there), ``X`` itself where
+    every row is."""
+    rows = np.isfinite(np.asarray(y, float))
+    return X if rows.all() else X.loc[rows].reset_index(drop=True)
+
+
 def select_per_target(selector, X, Y, name: str) -> tuple[dict, dict, dict]:
     """(entry per target, scores per target for the figure, their label per target).
 
@@ -24,8 +33,11 @@ def select_per_target(selector, X, Y, name: str) -> tuple[dict, dict, dict]:
     each input's |correlation| with the target.
     """
     result, scores, labels = {}, {}, {}
+    full = X
     for t in Y.columns:
         y = Y[t].to_numpy()
+        X = measured(full, y)
+        y = y[np.isfinite(y)] if len(X) < len(y) else y
         sel = clone(selector).fit(X, y)
         entry = {"selected": list(sel.selected_)}
         if hasattr(sel, "scores_"):

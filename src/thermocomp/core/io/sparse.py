@@ -1,0 +1,90 @@
+"""A target measured now and then (``data.sparse_targets``): a probe cycle on a dense log.
+
+A lab logs its temperatures every 10-60 s and measures the error only every N samples (a
+touch-probe or laser cycle every 5-30 min, a few times a shift), the cells in between empty.
+Such an ``E_`` column is no gap to repair: interpolating it would make the models fit (and be
+scored on) a straight line nobody measured.  It is kept as it is, NaN between the
+measurements; every model family fits and is scored on the measured rows only, its inputs'
+dynamics computed on the dense stream.
+
+``auto`` reads a column so where its measured cells are a minority of the campaign's rows and
+no two of them (as a rule) are neighbours: the median spacing between measured rows is
+:data:`MIN_SPACING` rows or more.  A dense column with one long gap (a probe that died) has its
+measured cells side by side, a median spacing of 1: a gap, repaired or refused as before.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+MIN_SPACING = 2        # median rows between two measurements: 1 is a dense column
+MAX_SHARE = 0.5        # at most this share of the rows measured (auto)
+
+
+def intermittent(missing: np.ndarray, rows: int, mode: str) -> dict | None:
+    """``{"measured": rows measured, "every": median spacing (rows)}`` when the ``E_`` column
+    whose empty cells are at the sorted positions ``missing`` is read as measured now and then
+    (``mode``: ``data.sparse_targets``), else None (its empty cells are gaps)."""
+    if mode == "false" or not missing.size:
+        return None
+    measured = np.setdiff1d(np.arange(rows), missing, assume_unique=True)
+    if measured.size < 2:
+        return None if mode == "auto" else {"measured": int(measured.size), "every": rows}
+    every = float(np.median(np.diff(measured)))
+    if mode == "auto" and (measured.size > MAX_SHARE * rows or every < MIN_SPACING):
+        return None
+    return {"measured": int(measured.size), "every": int(round(every))}
+
+
+def leading(missing: np.ndarray) -> np.ndarray:
+    """The positions of ``missing`` before the first measured row: a campaign starts where its
+    error is first measured (the reference is the first valid sample, never back-filled)."""
+    if not missing.size or missing[0] != 0:
+        return missing[:0]
+    run = np.flatnonzero(np.diff(missing) != 1)
+    return missing[: (run[0] + 1 if run.size else missing.size)]
+
+
+def said(column: str, entry: dict) -> str:
+    """What ``init`` and a run say of one such column."""
+    return (f"{column} measured on 1 row in {entry['every']} ({entry['measured']} rows): read "
+            "as a probe cycle; the models fit and are scored on the measured rows only")
+
+
+def sparse_totals(entries: dict) -> dict:
+    """``{column: {"measured": rows, "rows": rows, "every": rows, "campaigns": {id: measured}}}``
+    over the campaigns' reports (``entries``) of every column read as measured now and then."""
+    out: dict = {}
+    for cid, entry in entries.items():
+        for column, one in entry.get("sparse_targets", {}).items():
+            total = out.setdefault(column, {"measured": 0, "rows": 0, "campaigns": {},
+                                            "spacings": []})
+            total["measured"] += one["measured"]
+            total["rows"] += entry["rows"]
+            total["campaigns"][cid] = one["measured"]
+            total["spacings"].append(one["every"])
+    for total in out.values():      # the campaigns' median spacing (a ratio of rows rounds off)
+        total["every"] = int(round(float(np.median(total.pop("spacings")))))
+    return out
+
+
+def on_grid(grid: np.ndarray, time: np.ndarray, values: np.ndarray) -> np.ndarray:
+    """A target measured now and then moved onto a resampling ``grid`` (``data.resample_s``):
+    each measurement on the grid point nearest its time (the last where two share one), NaN
+    elsewhere; never interpolated between measurements."""
+    out = np.full(grid.size, np.nan)
+    measured = np.isfinite(values)
+    if grid.size < 2:
+        out[:] = values[measured][:1] if measured.any() else np.nan
+        return out
+    step = grid[1] - grid[0]
+    nearest = np.clip(np.rint((time[measured] - grid[0]) / step).astype(int), 0, grid.size - 1)
+    out[nearest] = values[measured]
+    return out
+
+
+def measured_on(values: np.ndarray) -> dict:
+    """``{"measured": rows, "every": median spacing}`` of a sparse column as it stands."""
+    rows = np.flatnonzero(np.isfinite(values))
+    every = float(np.median(np.diff(rows))) if rows.size > 1 else float(values.size)
+    return {"measured": int(rows.size), "every": int(round(every))}
