@@ -210,7 +210,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         lead = [np.nan] * k
         for i, e in enumerate(self.effects_):
             tr = e.transform
-            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step"):
+            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step", "inputs_product"):
                 lead += [float(e.tau_s) if tr == "lowpass_inputs" else np.nan] * k
             else:
                 lead.append(np.nan)
@@ -232,7 +232,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         The stream's clamp changes the inputs ``x`` alone: a raw signal, its lag, a product or a
         square (of the context's columns as read) and a lag's initial-state transient do not move
         with it (gain 0, exact).  ``x (A0 - 20)`` and ``x [A0 > A_thr]`` scale ``x`` by the
-        campaign's fixed ``A0`` (``state['ambient_c0']``): exact.  A low-pass copy ``L_tau[x]``
+        campaign's fixed ``A0`` (``state['ambient_c0']``): exact; ``c (x - x(0))`` scales it by the
+        state ``c`` of the last sample (held over the horizon).  A low-pass copy ``L_tau[x]``
         of a held step is ``(1 - exp(-h / tau))`` of it over a static base; over a lag bank (or a
         Hammerstein model's) the bank's lags of it are cascades (``lagged_step_gain``, exact,
         exportati60); ``None`` over an ARX base (the clamp then takes the clamped stream outright).
@@ -252,10 +253,15 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         out, at = gain[:k].copy(), k
         for i, e in enumerate(self.effects_):
             tr = e.transform
-            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step"):
+            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step", "inputs_product"):
                 block = gain[at:at + k]
                 at += k
-                if tr == "lowpass_inputs":
+                if tr == "inputs_product":     # x's rise times the state's value held
+                    held = (state or {}).get("state_of", {}).get(i)
+                    if held is None:
+                        return None
+                    out += held * block
+                elif tr == "lowpass_inputs":
                     held = 1.0 - np.exp(-horizon_s / e.tau_s) if np.isfinite(horizon_s) else 1.0
                     out += (1.0 if lagged else held) * block     # lagged: in the base's gain
                 elif not np.isfinite(a0):
@@ -305,6 +311,11 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             elif tr == "product":
                 parts.append(np.array([self._raw(e.column, context, state, own)
                                        * self._raw(e.other, context, state, other)]))
+            elif tr == "inputs_product":
+                value = self._raw(e.column, context, state, own)
+                state.setdefault("state_of", {})[i] = value
+                x0 = state["first"].setdefault(("inputs", i), x.copy())
+                parts.append(value * (x - x0))
             elif tr == "lowpass_inputs":
                 parts.append(self._lag(i, x, e.tau_s, dt, state))
                 if e.initial_state:

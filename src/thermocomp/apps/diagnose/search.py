@@ -107,7 +107,8 @@ class Evaluation:
     result: CVResult | None = field(default=None, repr=False)
     p_family: float | None = None
     gain_pct_in_range: float = float("nan")   # the same on the rows no fold extrapolates to
-    gain_lcb_alpha: float = float("nan")      # (1 - alpha) lower bound of the gain (the bar's margin)
+    gain_lcb_alpha: float = float("nan")      # (1 - alpha) Student-t lower bound of the gain
+    p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -120,7 +121,8 @@ class Evaluation:
                             "screen_r2": self.screen_r2, "clears_bar": self.clears_bar,
                             "shrink_alpha": self.alpha, "p_value_family": self.p_family,
                             "cv_rmse_gain_pct_in_range": self.gain_pct_in_range,
-                            "cv_rmse_gain_lcb_alpha": self.gain_lcb_alpha},
+                            "cv_rmse_gain_lcb_alpha": self.gain_lcb_alpha,
+                            "p_value_margin": self.p_margin},
                "accepted": self.accepted}
         if self.control:
             out["control"] = True
@@ -194,6 +196,28 @@ def gain_lower_bound(mse_before, mse_after, level: float = 0.95) -> float:
     bound = d.mean() - student_t.ppf(level, n - 1) * d.std(ddof=1) / np.sqrt(n)
     before = float(np.mean(mse_before))
     return float(np.sqrt(before) - np.sqrt(max(before - bound, 0.0)))
+
+
+def margin_pvalue(mse_before, mse_after, margin_pct: float, seed: int = 0) -> float:
+    r"""One-sided p-value of a CV RMSE gain of at least ``margin_pct`` %, block by block.
+
+    Each test block's log ratio :math:`\log\big((1 - m)^2\,\mathrm{MSE}_i /
+    \mathrm{MSE}^{+}_i\big)` (``m = margin_pct / 100``; positive where the block's error falls
+    below its own error less the margin) is sign-flipped (:func:`~.cv.sign_flip_pvalue`): each
+    block counts by how much of *its* error the change removes.  A Student-t bound on the raw
+    MSE gains was the margin before: blocks of a few hours of one record differ in error by
+    two orders of magnitude (a gantry's rail warmed by the sun: 3-240 µm² over its 18 blocks),
+    so the spread of the hot blocks' gains set the bound, and a candidate that gained in all
+    18 blocks, 70 % of the CV RMSE, had a 99 % bound of 4 %: refused.  (Ranks of the
+    margin-shifted MSE gains weigh the blocks by their error again: 14 of 18 blocks 20 % better
+    and 4 25 % worse passed at 0.002.)"""
+    b, a = np.asarray(mse_before, float), np.asarray(mse_after, float)
+    ok = np.isfinite(b) & np.isfinite(a) & (b > 0)
+    if not ok.any():
+        return 1.0
+    floor = 1e-12 * float(b[ok].max())          # a block the change fits exactly
+    d = np.log((1.0 - margin_pct / 100.0) ** 2 * b[ok]) - np.log(np.maximum(a[ok], floor))
+    return sign_flip_pvalue(d, seed=seed)
 
 
 def _pct(gain: float, rmse: float) -> float:
@@ -278,6 +302,8 @@ class Search:
         p = sign_flip_pvalue(d, seed=self.options.seed)
         lcb = gain_lower_bound(current.block_mse, res.block_mse)
         margin = gain_lower_bound(current.block_mse, res.block_mse, 1.0 - self.options.alpha)
+        p_margin = margin_pvalue(current.block_mse, res.block_mse, self.options.min_gain_pct,
+                                 self.options.seed)
         jump = (float(faults.loc[effect.column, "jump_ratio"])
                 if effect.transform == "remove" and faults is not None and effect.column in faults.index
                 else None)
@@ -287,10 +313,10 @@ class Search:
                           and pct > -self.options.min_gain_pct
                           and inside > -self.options.min_gain_pct)   # NaN (no such row): refused
         else:   # the control's bar; an effect's p is made family-wise by _family_bar
-            clears = self._clears(pct, p, inside, _pct(margin, current.rmse), q)
+            clears = self._clears(pct, p, inside, p_margin, q)
         return Evaluation(effect, res.rmse, gain, pct, p, r2, clears, effect.column == CONTROL,
                           jump_ratio=jump, gain_lcb=lcb, n_features=q, alpha=res.alpha, result=res,
-                          gain_pct_in_range=inside, gain_lcb_alpha=margin)
+                          gain_pct_in_range=inside, gain_lcb_alpha=margin, p_margin=p_margin)
 
     def _read_columns(self) -> set:
         """Context columns the estimator is set to read (a string parameter naming one, e.g. an
@@ -326,17 +352,18 @@ class Search:
         p = sign_flip_maxt(D, seed=self.options.seed)
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
-            ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range,
-                                         _pct(ev.gain_lcb_alpha, current.rmse), ev.n_features)
+            ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
+                                         ev.n_features)
 
-    def _clears(self, gain_pct: float, p: float, in_range_pct: float, margin_pct: float,
+    def _clears(self, gain_pct: float, p: float, in_range_pct: float, p_margin: float,
                 n_features: int = 0) -> bool:
         """The bar: a gain of ``min_gain_pct`` % of the CV RMSE at least, at ``p <= alpha``, and
         a gain where no fold extrapolates too (not one the extrapolating campaigns make).  With
         blocks finer than the units (ranks: how often a change helps, not by how much) the gain
-        must reach ``min_gain_pct`` with confidence, not just in the point estimate: its
-        ``1 - alpha`` Student-t lower bound over the blocks (``margin_pct``, % of the CV RMSE)
-        at least ``min_gain_pct`` -- a test of superiority by that margin at ``alpha``.  Many
+        must reach ``min_gain_pct`` with confidence, not just in the point estimate: a test of
+        superiority by that margin at ``alpha`` (``p_margin``, :func:`margin_pvalue`: each
+        block's error against its own error less the margin, as a log ratio; it was a
+        Student-t bound on the raw MSE gains, which the hot blocks' spread set).  Many
         modest gains then neither outweigh a few large losses nor pass on a gain barely over
         the bar: on clean data (8 campaigns, a residual at the noise floor) a lag of the inputs
         gained 5.4 % (p 0.00045 over 609 one-sample blocks; its bound 2 %) and raised the test
@@ -344,7 +371,7 @@ class Search:
         overstates the evidence, and the margin asks for a gain large enough to outlive it."""
         ranked = self.problem.n_blocks_tested > self.problem.n_units
         return bool(gain_pct >= self.options.min_gain_pct and p <= self.options.alpha
-                    and in_range_pct > 0.0 and (margin_pct >= self.options.min_gain_pct or not ranked)
+                    and in_range_pct > 0.0 and (p_margin <= self.options.alpha or not ranked)
                     and (ranked or not self.saturates(n_features)))
 
     def saturates(self, n_features: int) -> bool:
