@@ -5,8 +5,9 @@ One product of the position with one sensor's rise is half such a law, and the s
 effect a round: the product alone made some test blocks worse and was refused.  A state now also
 multiplies the rises of all the inputs at once (``inputs_product``, as ``ambient_linear`` scales
 them by the initial ambient), and the bar's margin (a gain of ``min_gain_pct`` with confidence,
-on blocks finer than the CV units) is a signed-rank test of each block's gain over its own
-error less the margin, not a Student-t bound on raw MSE gains that the hot blocks' spread set.
+on blocks finer than the CV units) is Student's t of each block's error less the margin minus its
+error with the candidate, not a bound on the raw MSE gains against the margin's share of the
+mean MSE taken as exact (the hot blocks' spread set it).
 """
 
 from __future__ import annotations
@@ -131,9 +132,9 @@ def test_the_margin_is_tested_on_each_blocks_gain_not_the_hot_blocks_spread():
                       20.04, 2.52, 0.16, 0.7, 7.19, 11.19])
     assert 100 * gain_lower_bound(before, after, 0.99) / np.sqrt(before.mean()) < 5.0
     assert margin_pvalue(before, after, 5.0) <= 0.01
-    # a gain near the margin, most blocks 20 % better and a quarter 25 % worse: not superior
-    for seed in range(8):
-        mixed = before * np.where(np.random.default_rng(seed).random(before.size) < 0.75, 0.8, 1.25)
-        assert margin_pvalue(before, mixed, 5.0) > 0.01
+    # a stand-in: the colder half of the blocks 70 % better, the hotter 10 % worse -- most
+    # blocks gain far beyond the margin, the pooled error does not
+    worse = np.where(before > np.median(before), 1.1 * before, 0.3 * before)
+    assert margin_pvalue(before, worse, 5.0) > 0.5
     # nor 10 % of the MSE in every block (5.1 % RMSE) against a margin of 12 %
     assert margin_pvalue(before, before * 0.9, 12.0) > 0.5
