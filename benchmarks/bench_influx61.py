@@ -102,7 +102,10 @@ sensors' rises, S_y_pos, S_z_pos; train campaigns): test RMSE 2.06 µm (coeffici
 8.7e-6 against the law's 1.15e-2 and 9.6e-6), against MLR's 8.69: the record carries the law,
 the families do not hold it.  ``diagnose`` (MLR; before -> after): E_drift_X 0.426 -> 0.368
 (a 7200 s lag of the inputs), E_drift_Y and E_drift_Z nothing accepted (gantry, 11.2 s);
-gantry_b nothing accepted (9.2 s).  ``replay`` of every family's ``model.pkl`` (both draws):
+gantry_b nothing accepted (9.2 s).  Since diagpos61 (the saddle's position times the rises of all
+the inputs, and the bar's margin block by block: docs/diagnose.md): gantry E_drift_Y 8.69 -> 2.40
+(E_drift_X as before, E_drift_Z nothing; 12.6 s against 11.8 s); gantry_b still nothing with its 3 test blocks
+(``diagnose.targets=[E_drift_y]``: 6.76 -> 1.73).  ``replay`` of every family's ``model.pkl`` (both draws):
 |stream - batch| <= 8.5e-14 µm, 0 events, 7.3-17.2 s each.  ``monitor`` (mlr fitted on the train
 split, the healthy test part, 84 h / 88 h): **0 events** (no warning, alarm, exclusion, new
 state or guard event), RMSE fixed = adaptive; 9.1 s / 8.3 s.  ``export export.format=c`` (mlr):

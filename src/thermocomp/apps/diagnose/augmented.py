@@ -198,7 +198,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         lead = [np.nan] * k
         for i, e in enumerate(self.effects_):
             tr = e.transform
-            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step"):
+            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step", "inputs_product"):
                 lead += [float(e.tau_s) if tr == "lowpass_inputs" else np.nan] * k
             else:
                 lead.append(np.nan)
@@ -218,15 +218,23 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         with it (gain 0, exact).  A low-pass copy ``L_tau[x]`` is a lag of the held step: the
         base's gain with those columns lagged (``lagged_step_gain``: over a static base ``1 -
         exp(-h / tau)`` of the copy's coefficients, over a lag bank cascades, over an ARX model
-        the difference equation's response to the lag; exact, gain61) on ``x``."""
+        the difference equation's response to the lag; exact, gain61) on ``x``.  ``c (x - x(0))``
+        (diagpos61) scales it by the state ``c`` of the stream's last sample, held over the
+        horizon: a gain of the stream's state, not of ``A0`` (no term without ``state``: the code
+        does not export it)."""
+        return self._terms(horizon_s, lead)
+
+    def _terms(self, horizon_s: float, lead=None, state=None) -> list:
+        """:meth:`gain_terms`, a state's product with the inputs' rises (``inputs_product``) at
+        the stream ``state``'s last value of it (``None``: no gain)."""
         check_is_fitted(self)
         if lead is not None:
             return [GainTerm(-np.inf, np.inf, 0, None)]     # a diagnosed model in a lag: none
         base = gain_terms(self.estimator_, horizon_s, self._lead_taus(),
                           getattr(self, "sample_period_s_", None) or 1.0)
-        return [part for t in base for part in self._blocks(t)]
+        return [part for t in base for part in self._blocks(t, state)]
 
-    def _blocks(self, term: GainTerm) -> list:
+    def _blocks(self, term: GainTerm, state=None) -> list:
         """One base term over the features as terms over ``x`` (:meth:`gain_terms`)."""
         if term.gain is None:
             return [term]
@@ -234,11 +242,16 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         x, at, out = gain[:k].copy(), k, []
         for i, e in enumerate(self.effects_):
             tr = e.transform
-            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step"):
+            if tr in ("lowpass_inputs", "ambient_linear", "ambient_step", "inputs_product"):
                 block = gain[at:at + k]
                 at += k
                 if tr == "lowpass_inputs":      # its lag of the held step: in the base's gain
                     x += block
+                elif tr == "inputs_product":    # x's rise times the state's value held
+                    held = (state or {}).get("state_of", {}).get(i)
+                    if held is None:
+                        return [term._replace(gain=None)]
+                    x += held * block
                 elif tr == "ambient_linear":
                     out += within([term._replace(gain=block)], -np.inf, np.inf, power=1)
                 else:
@@ -258,7 +271,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         ``horizon_s``: :meth:`gain_terms` at the campaign's ``A0`` (``state['ambient_c0']``);
         ``None`` when the base has no gain, or an ambient law has no ``A0``."""
         check_is_fitted(self)
-        return gain_at(self.gain_terms(horizon_s), scalar(state, AMBIENT_C0) if state is not None else np.nan)
+        return gain_at(self._terms(horizon_s, state=state),
+                       scalar(state, AMBIENT_C0) if state is not None else np.nan)
 
     def stream_step(self, x_row, state: dict, context: Mapping | None = None) -> tuple[float, dict]:
         """One sample of simulation-mode ``predict``.
@@ -291,6 +305,11 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             elif tr == "product":
                 parts.append(np.array([self._raw(e.column, context, state, own)
                                        * self._raw(e.other, context, state, other)]))
+            elif tr == "inputs_product":
+                value = self._raw(e.column, context, state, own)
+                state.setdefault("state_of", {})[i] = value
+                x0 = state["first"].setdefault(("inputs", i), x.copy())
+                parts.append(value * (x - x0))
             elif tr == "lowpass_inputs":
                 parts.append(self._lag(i, x, e.tau_s, dt, state))
                 if e.initial_state:

@@ -7,7 +7,8 @@ inputs (unmeasured masses, delays, the AR pole), all together (optionally with
 the transient of the campaign's initial disequilibrium) or one at a time; ``ambient_interval`` -- the
 inputs times the initial ambient (linear, or a step at a threshold between
 the train campaigns' ambients); ``interaction`` -- products of a state signal
-and a temperature; ``nonlinear`` -- squares of the strongest inputs.
+and a temperature, and of a state and the rises of all the inputs; ``nonlinear`` --
+squares of the strongest inputs.
 
 A state signal (``S_`` column) is tried in both frames: absolute and as its
 change since the campaign's first sample (like the error with
@@ -145,6 +146,10 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
             frames = ([] if problem.reference == "first_sample" else ["referenced"]) + (
                 ["absolute"] if _start_varies(problem, s) else [])
             out += [Effect("interaction", "product", s, other=t, frame=f) for f in frames for t in temps]
+        # the state times the rise of every model input at once (its lever on each structure's
+        # growth): a law of two sensors' rises times a position is no single product
+        out += [Effect("interaction", "inputs_product", s, frame=f) for s in s_cols
+                for f in ["referenced"] + (["absolute"] if _start_varies(problem, s) else [])]
     if "nonlinear" in fam and options.n_squares > 0:
         X = problem.X[model_inputs].to_numpy(float)
         corr = np.abs([np.corrcoef(X[:, j], problem.y)[0, 1] if _varies(X[:, j]) else 0.0

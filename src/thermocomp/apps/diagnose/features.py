@@ -19,7 +19,12 @@ frame of its own (``frame``): ``absolute`` (its raw value) or ``referenced``
 error), whatever the data's reference; a product with a ``frame`` multiplies
 that state by the *rise* :math:`\Delta o(t) = o(t) - o(0)` of a temperature
 (an axis position acts through its lever :math:`p - p(0)` on a thermal tilt
-that grows from the campaign start).  Every transform is causal (the value at
+that grows from the campaign start).  ``inputs_product`` multiplies a state by the rise of
+*every* model input at once: where an axis stands sets the lever through which each
+structure's growth or bend reaches the tool, so a position scales the inputs' gains, as the
+initial ambient does in ``ambient_linear`` (a rail that grows and bows by two sensors' rises
+reaches the tool in proportion to where the saddle stands: one product of the position with
+one sensor is half the law, and the search takes one effect a round).  Every transform is causal (the value at
 ``t`` uses samples up to ``t`` of the same campaign), so it runs on a machine.
 
 ==================  ====================  =================================================
@@ -33,6 +38,7 @@ dynamics            ``lowpass_inputs``    :math:`L_\tau[x_i](t)` for every model
 ambient_interval    ``ambient_linear``    :math:`x_i(t)\,(A_0 - 20\,°C)` for every input
 ambient_interval    ``ambient_step``      :math:`x_i(t)\,[A_0 > A_{thr}]` for every input
 interaction         ``product``           :math:`\Delta c(t)\,\Delta o(t)`
+interaction         ``inputs_product``    :math:`c(t)\,(x_i(t) - x_i(0))` for every input
 (signal, product)   ``frame``             :math:`c` absolute or :math:`c - c(0)` (then
                                           :math:`o - o(0)` in a product)
 nonlinear           ``square``            :math:`\Delta c(t)^2`
@@ -75,7 +81,7 @@ from ...core.models._dynamics import first_order_lag, segment_bounds  # noqa: F4
 FRAMES = ("absolute", "referenced")   # frame of a state signal of its own (None: the data's)
 KINDS = ("signal", "dynamics", "ambient_interval", "interaction", "nonlinear", "sensor_fault")
 TRANSFORMS = ("raw", "first_order_lag", "lowpass_inputs", "ambient_linear", "ambient_step",
-              "product", "square", "remove")
+              "product", "inputs_product", "square", "remove")
 
 
 def _tuple(v):
@@ -135,6 +141,7 @@ class Effect:
             raise ParameterError(f"effect transform {self.transform!r} is not one of {list(TRANSFORMS)}")
         needs = {"first_order_lag": ("column", "tau_s"), "raw": ("column",), "square": ("column",),
                  "product": ("column", "other"), "lowpass_inputs": ("tau_s",),
+                 "inputs_product": ("column",),
                  "ambient_step": ("threshold_c",), "remove": ("column",)}
         missing = [k for k in needs.get(self.transform, ()) if getattr(self, k) is None]
         if missing:
@@ -144,9 +151,10 @@ class Effect:
         if self.initial_state and self.transform not in ("first_order_lag", "lowpass_inputs"):
             raise ParameterError("effect initial_state only goes with a lag")
         if self.frame is not None and (self.frame not in FRAMES or self.transform not in (
-                "raw", "first_order_lag", "square", "product") or self.kind == "dynamics"):
+                "raw", "first_order_lag", "square", "product", "inputs_product")
+                or self.kind == "dynamics"):
             raise ParameterError(f"effect frame {self.frame!r} must be one of {list(FRAMES)}, on a "
-                                 "raw, first_order_lag, square or product of a signal")
+                                 "raw, first_order_lag, square, product or inputs_product of a signal")
         if self.initial_directions is not None and not (
                 self.initial_state and 1 <= int(self.initial_directions) <= len(self.initial_state)):
             raise ParameterError("effect initial_directions must be 1 .. the number of initial_state sensors")
@@ -176,6 +184,7 @@ class Effect:
             "ambient_step": f"model inputs x [ambient_c0 > {self.threshold_c:.2f}°C]"
             if self.threshold_c is not None else "",
             "product": f"product({self.other}{' rise' if self.frame else ''}){frame}",
+            "inputs_product": f"product(model inputs' rises){frame}",
             "square": f"square{frame}",
             "remove": "remove from the inputs",
         }[self.transform]
@@ -188,14 +197,15 @@ class Effect:
     @property
     def uses_inputs(self) -> bool:
         """True when the features are built from the model inputs ``X``."""
-        return self.transform in ("lowpass_inputs", "ambient_linear", "ambient_step")
+        return self.transform in ("lowpass_inputs", "ambient_linear", "ambient_step", "inputs_product")
 
     @property
     def context_columns(self) -> list[str]:
         """Context columns the features need (besides ``time``/``campaign``/``ambient_c0``)."""
         if self.transform == "remove":
             return []
-        own = [] if self.uses_inputs else [c for c in (self.column, self.other) if c is not None]
+        own = [c for c in (self.column, self.other) if c is not None] \
+            if not self.uses_inputs or self.transform == "inputs_product" else []
         return list(dict.fromkeys(own + list(self.initial_state or ())))
 
     def to_dict(self) -> dict:
@@ -246,6 +256,16 @@ def in_frame(values, groups, reference: str = "first_sample") -> np.ndarray:
         if np.isnan(seg).all():
             continue
         out[start:stop] = seg - seg[0] if reference == "first_sample" else seg
+    return out
+
+
+def rises(X: np.ndarray, groups) -> np.ndarray:
+    """Each column of ``X`` minus its first sample, per segment: the inputs' rises whatever
+    the data's reference (with ``first_sample`` they are already)."""
+    X = np.asarray(X, dtype=float)
+    out = X.copy()
+    for start, stop in segment_bounds(groups, len(X)):
+        out[start:stop] -= X[start]
     return out
 
 
@@ -371,6 +391,8 @@ def effect_features(effect: Effect, X, context: pd.DataFrame | None = None, grou
         a = in_frame(_context_column(context, effect.column), g, own)
         b = in_frame(_context_column(context, effect.other), g, other)
         return (a * b)[:, None]
+    if tr == "inputs_product":
+        return in_frame(_context_column(context, effect.column), g, own)[:, None] * rises(X, g)
     if tr == "lowpass_inputs":
         return _with_start(first_order_lag(X, _time(context, n), g, effect.tau_s), effect, context, g,
                            weights)
