@@ -4,8 +4,8 @@ The residual, its screening, the CV errors and the acceptance test's blocks read
 rows only; the candidates' features (lags, products, ambient laws) run over every row; the test
 blocks are as long as the measured series, at its own spacing, takes to decorrelate.  The
 records: 12 year-round campaigns of 3-4 h at 1 min (8 train), one with the undeclared door
-planted, one clean; on the dense door record ``diagnose`` accepts the door's lag too (checked by
-hand: ``benchmarks/bench_diagsparse61.py``), on the dense clean one nothing.
+planted, one clean; on the dense door record ``diagnose`` accepts the door's lag too, on the dense
+clean one nothing (``benchmarks/bench_diagsparse61.py``, seed 1).
 """
 
 from __future__ import annotations
@@ -16,7 +16,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import UNTRACKED, thermocomp
+from conftest import FAST, UNTRACKED, thermocomp
+from thermocomp.core.io.read import read_dataset
 from thermocomp.core.model_selection.blocks import cut_blocks, decorrelation_length
 
 pytestmark = pytest.mark.slow
@@ -58,7 +59,8 @@ def diagnosed(data, out):
 def test_the_planted_door_is_accepted_on_a_probe_cycle(records, every, tmp_path):
     """The door's lag is accepted from 1 measurement in 10 or 30 rows (18-24 or 6-8 in each
     3-4 h campaign); the test error on the measured rows falls by half at least."""
-    j, proc = diagnosed(blanked(records["door"], tmp_path / "data", every), tmp_path / "out")
+    data = blanked(records["door"], tmp_path / "data", every)
+    j, proc = diagnosed(data, tmp_path / "out")
     accepted = [(e["kind"], e["column"]) for e in j["effects"] if e["accepted"]]
     assert ("signal", "S_door") in accepted
     assert j["after"]["test_rmse"] < 0.5 * j["before"]["test_rmse"]
@@ -66,6 +68,15 @@ def test_the_planted_door_is_accepted_on_a_probe_cycle(records, every, tmp_path)
     assert cv["min_p"] <= j["bar"]["alpha"]
     # the blocks count measured samples, and every scored row is a measured one
     assert 0 < cv["measured_rows"]["E_Y"] and "measured samples" in proc.stdout
+    # the written config, run on the same record, scores the same "after" on the measured rows
+    conf = tmp_path / "out" / "diagnosis" / "conf"
+    thermocomp("run", f"hydra.searchpath=[file://{conf}]", "experiment=diagnosed",
+               f"data.path={data}", f"out={tmp_path / 'rerun'}", *FAST)
+    metrics = json.loads((tmp_path / "rerun" / "metrics.json").read_text())["targets"]["E_Y"]["test"]
+    assert metrics["rmse"] == pytest.approx(j["after"]["test_rmse_as_run"], rel=1e-9)
+    ds, _ = read_dataset(data)
+    assert metrics["measured_rows"] == sum(int(ds.campaigns[c]["E_Y"].notna().sum())
+                                           for c in ds.ids("test")) < metrics["rows"] / 2
 
 
 def test_a_clean_probe_cycle_accepts_nothing(records, tmp_path):
