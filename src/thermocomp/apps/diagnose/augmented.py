@@ -19,6 +19,7 @@ from ...core.context import (
     scalar,
 )
 from ...core.gains import GainTerm, gain_at, gain_terms, within
+from ...core.models.base import measured_rows
 from ...core.models.linear import MLR
 from ...core.timerule import CLOCK_START, median_step, step_time
 from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initial_weights
@@ -110,7 +111,7 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             raise ParameterError(f"AugmentedRegressor reference={self.reference!r} is not "
                                  "first_sample or none")
         alpha = self._alpha()
-        X, y = validate_data(self, X, y, y_numeric=True)
+        X, y, measured = measured_rows(self, X, y)   # (NaN between a probe cycle's measurements)
         self.effects_ = self._effects()
         self.required_context_ = list(dict.fromkeys(c for e in self.effects_ for c in e.context_columns))
         g = groups_of(context)
@@ -126,7 +127,8 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.estimator_ = clone(base).fit(Z, y, context=context)
         if alpha and isinstance(self.estimator_, MLR) and Z.shape[1] > X.shape[1]:
             # the same law, its effect coefficients shrunk (streams as any MLR does)
-            path = PartialRidgePath(Z, y, X.shape[1], self.estimator_.fit_intercept)
+            # the effects' features run on every row, the law is the measured rows' least squares
+            path = PartialRidgePath(Z[measured], y[measured], X.shape[1], self.estimator_.fit_intercept)
             self.estimator_.coef_, self.estimator_.intercept_ = path.coefficients(alpha)
         self.context_columns_ = merge_columns([TIME, AMBIENT_C0] if self.effects_ else [],
                                               self.required_context_,

@@ -151,8 +151,9 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
         out += [Effect("interaction", "inputs_product", s, frame=f) for s in s_cols
                 for f in ["referenced"] + (["absolute"] if _start_varies(problem, s) else [])]
     if "nonlinear" in fam and options.n_squares > 0:
-        X = problem.X[model_inputs].to_numpy(float)
-        corr = np.abs([np.corrcoef(X[:, j], problem.y)[0, 1] if _varies(X[:, j]) else 0.0
+        X = problem.X[model_inputs].to_numpy(float)[problem.measured]
+        y = problem.y[problem.measured]
+        corr = np.abs([np.corrcoef(X[:, j], y)[0, 1] if _varies(X[:, j]) else 0.0
                        for j in range(X.shape[1])])
         strongest = [model_inputs[j] for j in np.argsort(-np.nan_to_num(corr))[:options.n_squares]]
         out += [Effect("nonlinear", "square", c) for c in strongest if c.startswith("T_")]

@@ -107,18 +107,32 @@ class Problem:
             self.folds = LeaveCampaignsOut(self.n_folds).fold_index(self.units)
         else:
             raise ValueError(f"unknown CV scheme {self.scheme!r}")
-        self.validated = self.folds >= 0
+        # an error measured on 1 row in N (a probe cycle, data.sparse_targets) is NaN between
+        # its measurements: every row runs through the model (the inputs' dynamics), only the
+        # measured ones fit and score; a unit or fold without one is no unit, no fold
+        self.measured = np.isfinite(np.asarray(self.y, float))
+        self.validated = (self.folds >= 0) & self.measured
         self.unit_names = list(dict.fromkeys(self.units[self.validated]))
         pos = {u: i for i, u in enumerate(self.unit_names)}
-        self.unit_index = np.array([pos[u] if ok else -1 for u, ok in zip(self.units, self.validated)])
-        self.block_index, self.block_samples = self.unit_index, None   # the test's units (below)
+        self.unit_index = np.array([pos.get(u, -1) if k >= 0 else -1
+                                    for u, k in zip(self.units, self.folds)])
+        self.held_out = self.unit_index >= 0     # the scored units' rows, measured or not
+        self.block_index = np.where(self.validated, self.unit_index, -1)   # the test's units
+        self.block_samples = None                                           # (below)
+
+    @property
+    def sparse(self) -> bool:
+        """True when the error is not measured at every row (a probe cycle)."""
+        return not bool(self.measured.all())
 
     def set_test_blocks(self, length: int) -> None:
         """Test the gains on time blocks of ``length`` samples within the units: as long as the
-        model's CV residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`)."""
+        model's CV residual takes to decorrelate (:mod:`~thermocomp.core.model_selection.blocks`).
+        With an error measured now and then, ``length`` counts measured samples (the residual's
+        decorrelation is measured on the measured series at its own spacing)."""
         self.block_samples = int(length)
         self.block_index = cut_blocks(self.unit_index, self.campaigns, self.block_samples,
-                                      timeline=self.forward)
+                                      timeline=self.forward, scored=self.measured)
 
     @property
     def n_blocks_tested(self) -> int:
@@ -133,8 +147,8 @@ class Problem:
             X = self.X.to_numpy(float)
             out = np.zeros(len(self.y), bool)
             for k in self.fold_ids:
-                out |= within_range(X, self.train_rows(k), self.test_rows(k))
-            self._in_range = out
+                out |= within_range(X, self.train_rows(k) & self.measured, self.test_rows(k))
+            self._in_range = out & self.validated
         return self._in_range
 
     def varies(self, column: str) -> bool:
@@ -161,7 +175,7 @@ class Problem:
         if self.forward:
             return None
         units = np.asarray(self.units, dtype=object)
-        return min(len(set(units[self.train_rows(k)].tolist())) for k in self.fold_ids)
+        return min(len(set(units[self.train_rows(k) & self.measured].tolist())) for k in self.fold_ids)
 
     @property
     def fold_ids(self) -> list[int]:
@@ -251,7 +265,7 @@ class CrossValidator:
             if isinstance(self.selector, AllInputs):
                 names = list(inputs)
             else:
-                rows = p.train_rows(fold)
+                rows = p.train_rows(fold) & p.measured     # what the selector's y scores
                 Xf = p.X.loc[rows, list(inputs)].reset_index(drop=True)
                 names = list(clone(self.selector).fit(Xf, p.y[rows]).selected_)
             self._selection[key] = names
@@ -343,7 +357,7 @@ class CrossValidator:
         pred = np.full((len(p.y), alphas.size), np.nan)
         pieces = self._pieces(inputs, effects) if base.fit_intercept else None
         for k in p.fold_ids:
-            tr, te = p.train_rows(k), p.test_rows(k)
+            tr, te = p.train_rows(k) & p.measured, p.test_rows(k)
             names = self.selection(tuple(inputs), k)
             path = None
             if pieces is not None:           # every fold's design is the pieces' (not rebuilt)
@@ -382,6 +396,7 @@ class CrossValidator:
         sets, which = np.unique(code, return_inverse=True)
         order = np.argsort(which, kind="stable")
         rows = np.split(order, np.cumsum(np.bincount(which, minlength=sets.size))[:-1])
+        rows = [r[p.measured[r]] for r in rows]     # the least squares of the measured rows
         names = self.selection(tuple(inputs), None)
         Z = self.design(names, effects, None)
         members = {k: [i for i, c in enumerate(sets.tolist()) if c >> bit & 1]

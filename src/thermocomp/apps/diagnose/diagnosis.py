@@ -309,7 +309,10 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     # the test's blocks, as long as the slowest target's residual takes to decorrelate: one
     # design (and one smallest p) for the whole diagnosis
     start = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
-    length = max(decorrelation_length(r.residual, m.groups, searches[t].problem.validated)
+    # (an error measured on 1 row in N: its measured series at its own spacing, the length in
+    # measured samples; each test block then holds that many measurements)
+    length = max(decorrelation_length(r.residual, m.groups, searches[t].problem.validated,
+                                      searches[t].problem.held_out)
                  for t, r in start.items())
     for t, s in searches.items():
         s.problem.set_test_blocks(length)
@@ -354,6 +357,10 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
            "in_range_share": float(problem.in_range[problem.validated].mean()),
            "mode": "simulation",   # the search scores what the machine runs, whatever ``mode`` is
            "shrink_alpha": {t: r.alpha for t, r in found.items()},
+           # an error measured now and then: the held-out rows scored (measured), per target;
+           # ``block_samples`` then counts measured samples
+           "measured_rows": ({t: int(s.problem.validated.sum()) for t, s in searches.items()}
+                             if any(s.problem.sparse for s in searches.values()) else None),
            "train_campaigns": train_ids, "test_campaigns": test_ids}
     return Diagnosis(model_name or type(compensator.estimator).__name__, ds.name, mode, out,
                      excluded, before, after, {"before": before_pred, "after": after_pred},

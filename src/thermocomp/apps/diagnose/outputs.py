@@ -177,7 +177,8 @@ def summary_table(result, named: str = "") -> str:
                      f"envelope); `thermocomp run` of the written config scores it in batch: "
                      f"after {as_run}")
     cv = result.cv
-    lines.append(f"acceptance test: {cv['test_blocks']} time blocks of ~{cv['block_samples']} samples "
+    samples = "measured samples" if cv.get("measured_rows") is not None else "samples"
+    lines.append(f"acceptance test: {cv['test_blocks']} time blocks of ~{cv['block_samples']} {samples} "
                  f"in {cv['units']} CV units; smallest reachable p {cv['min_p']:.2g} "
                  f"(alpha {result.options.alpha:g})")
     return "\n".join(lines)

@@ -144,7 +144,7 @@ def self_prediction(problem: Problem, inputs, later: pd.DataFrame | None = None,
             if all(apart[j] for j in judged):
                 E, per_unit, worst, cross, own = jumps(apart)
     out = pd.DataFrame({
-        "cv_rmse": np.sqrt(np.mean(E[problem.validated] ** 2, axis=0)),
+        "cv_rmse": np.sqrt(np.mean(E[problem.held_out] ** 2, axis=0)),
         "worst_unit": [names[i] for i in per_unit.argmax(axis=1)],
         "worst_unit_rmse": worst,
         "cross_ratio": cross,

@@ -56,12 +56,17 @@ import numpy as np
 DECORRELATED = 0.2        # autocorrelation at which two samples count as near-independent
 
 
-def decorrelation_length(residual, campaigns, scored) -> int:
+def decorrelation_length(residual, campaigns, scored, span=None) -> int:
     """Samples until the residual's autocorrelation within campaigns first falls to
-    :data:`DECORRELATED` (the longest scored run when it never does)."""
+    :data:`DECORRELATED` (the longest scored run when it never does).
+
+    ``span``: the rows a run stretches over (default ``scored``): an error measured on 1 row in
+    N (a probe cycle) is scored on its measured rows only, which are never contiguous; its runs
+    are the stretches of ``span`` and its lags are counted in *measured* samples, the series at
+    its own spacing (the only one whose autocorrelation can be estimated)."""
     r = np.asarray(residual, float)
     ok = np.asarray(scored, bool) & np.isfinite(r)
-    runs = _runs(np.asarray(campaigns, dtype=object), ok)
+    runs = _runs(np.asarray(campaigns, dtype=object), ok, span)
     if not runs:
         return 1
     centred = r - r[ok].mean()
@@ -81,27 +86,38 @@ def decorrelation_length(residual, campaigns, scored) -> int:
     return longest
 
 
-def _runs(campaigns: np.ndarray, ok: np.ndarray) -> list[np.ndarray]:
-    """Row indices of each contiguous scored stretch of one campaign."""
-    idx = np.flatnonzero(ok)
+def _runs(campaigns: np.ndarray, ok: np.ndarray, span=None) -> list[np.ndarray]:
+    """Row indices of each contiguous scored stretch of one campaign (``span``: the rows of
+    each contiguous stretch of ``span`` that are ``ok``; stretches without one dropped)."""
+    if span is None:
+        span = ok
+    idx = np.flatnonzero(np.asarray(span, bool) | ok)
     if idx.size == 0:
         return []
     breaks = np.flatnonzero((np.diff(idx) != 1) | (campaigns[idx[1:]] != campaigns[idx[:-1]])) + 1
-    return np.split(idx, breaks)
+    runs = (run[ok[run]] for run in np.split(idx, breaks))
+    return [run for run in runs if run.size]
 
 
-def cut_blocks(unit_index: np.ndarray, campaigns, length: int, timeline: bool = False) -> np.ndarray:
+def cut_blocks(unit_index: np.ndarray, campaigns, length: int, timeline: bool = False,
+               scored=None) -> np.ndarray:
     """Test block of each row (-1: not scored): every contiguous scored stretch of one campaign
     (``timeline``: of the campaigns taken as one time line, as forward validation blocks run
     on into the next campaign) cut into ``len // length`` near-equal blocks (at least one).
     Neighbouring units shorter than ``length`` (time blocks of one record) thus share a test
-    block: they are not independent of each other."""
+    block: they are not independent of each other.
+
+    ``scored``: the rows with an error to score (default: every row of a unit).  A stretch is
+    then one of the units' rows, and ``length`` counts its scored rows (an error measured on 1
+    row in N: :func:`decorrelation_length` with ``span``), so that no block is left without
+    one; the unscored rows get -1."""
     unit_index = np.asarray(unit_index)
     out = np.full(unit_index.shape, -1)
-    ok = unit_index >= 0
+    span = unit_index >= 0
+    ok = span if scored is None else span & np.asarray(scored, bool)
     key = np.zeros(len(unit_index)) if timeline else np.asarray(campaigns, dtype=object)
     n = 0
-    for run in _runs(key, ok):
+    for run in _runs(key, ok, span):
         k = max(1, len(run) // max(int(length), 1))
         for part in np.array_split(run, k):
             out[part] = n

@@ -125,7 +125,6 @@ def diagnose(cfg: DictConfig) -> dict:
     ds = open_source(cfg)
     template = build_compensator(cfg)
     check_declared(cfg, ds)
-    _refuse_probe_cycles(ds)
     written: dict = {}
 
     def make_after(effects, excluded, inputs, alphas=None):
@@ -160,14 +159,3 @@ def diagnose(cfg: DictConfig) -> dict:
     say(f"rerun the diagnosed model: {rerun}")
     return result.to_json(result.primary)
 
-
-def _refuse_probe_cycles(ds) -> None:
-    """A target measured now and then (``data.sparse_targets``): refused in one line, exit 2.
-    The diagnosis's residual search (its lags, its CV over the residual's samples) reads a
-    residual at every sample; ``run`` fits and scores such a target."""
-    sparse = ds.meta.get("read_report", {}).get("sparse_targets", {})
-    if sparse:
-        said = ", ".join(f"{c} on 1 row in {e['every']}" for c, e in sparse.items())
-        raise ConfigError(f"diagnose needs the error measured at every sample; measured {said} "
-                          "(a probe cycle, data.sparse_targets): `thermocomp run` fits and scores "
-                          "it on the measured rows")
