@@ -20,8 +20,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-import numpy as np
-import pandas as pd
+from thermocomp.apps.sim.probe import probe_cycle_copy
 
 EVERY = (1, 10, 30)
 RECORD = ("sim.generator.n_campaigns=12", "sim.generator.duration_h=[3.0,4.0]",
@@ -37,18 +36,6 @@ def thermocomp(*args: str) -> float:
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def blanked(dense: Path, dest: Path, every: int) -> Path:
-    """``dense`` with its ``E_`` cells empty on every row but every ``every``-th."""
-    dest.mkdir(parents=True, exist_ok=True)
-    for f in dense.glob("*.csv"):
-        df = pd.read_csv(f)
-        if f.name != "campaigns.csv":
-            errors = [c for c in df.columns if c.startswith("E_")]
-            df.loc[np.arange(len(df)) % every != 0, errors] = np.nan
-        df.to_csv(dest / f.name, index=False)
-    return dest
-
-
 def main(work: Path, seeds: list[int]) -> None:
     print("seed record  every  accepted                                  test before -> after  "
           "blocks x samples  min_p    CPU s")
@@ -59,7 +46,8 @@ def main(work: Path, seeds: list[int]) -> None:
                 thermocomp("simulate", f"data.path={dense}", "track=false", f"seed={seed}",
                            *RECORD, *extra)
             for every in EVERY:
-                data = dense if every == 1 else blanked(dense, work / f"{name}-{seed}-s{every}", every)
+                data = (dense if every == 1 else
+                        probe_cycle_copy(dense, work / f"{name}-{seed}-s{every}", every))
                 out = work / f"out-{name}-{seed}-s{every}"
                 cpu = thermocomp("diagnose", f"data.path={data}", f"out={out}", "track=false",
                                  "plots=none", "diagnose.targets=[E_Y]")

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from thermocomp.apps.sim.probe import probe_cycle_copy
 from thermocomp.core.io.read import read_dataset
 from thermocomp.shell.model_store import load_model
 
@@ -45,17 +46,6 @@ def thermocomp(*args: str) -> float:
     subprocess.run([sys.executable, "-m", "thermocomp", *args], check=True, capture_output=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-
-
-def sparse_copy(dense: Path, folder: Path, every: int) -> None:
-    """``dense`` with its ``E_`` cells blanked on every row but every ``every``-th."""
-    folder.mkdir(parents=True, exist_ok=True)
-    for f in dense.glob("*.csv"):
-        df = pd.read_csv(f)
-        if f.name != "campaigns.csv":
-            errors = [c for c in df.columns if c.startswith("E_")]
-            df.loc[np.arange(len(df)) % every != 0, errors] = np.nan
-        df.to_csv(folder / f.name, index=False)
 
 
 def rmse_on(model_path: Path, folder: Path) -> dict[str, float]:
@@ -78,7 +68,7 @@ def main(work: Path, families, seed: int = SEED) -> None:
                    "sim.generator.error_period_s=60.0", "track=false")
     for every in EVERY:
         if not (work / f"every{every}" / "campaigns.csv").is_file():
-            sparse_copy(dense, work / f"every{every}", every)
+            probe_cycle_copy(dense, work / f"every{every}", every)
     rows = []
     for family in families:
         out = work / f"out-{family}-dense"

@@ -13,10 +13,10 @@ from __future__ import annotations
 import json
 
 import numpy as np
-import pandas as pd
 import pytest
 
 from conftest import FAST, UNTRACKED, thermocomp
+from thermocomp.apps.sim.probe import probe_cycle_copy
 from thermocomp.core.io.read import read_dataset
 from thermocomp.core.model_selection.blocks import cut_blocks, decorrelation_length
 
@@ -24,18 +24,6 @@ pytestmark = pytest.mark.slow
 
 RECORD = ("seed=1", "sim.generator.n_campaigns=12", "sim.generator.duration_h=[3.0,4.0]",
           "sim.generator.sample_period_s=60.0")
-
-
-def blanked(dense, dest, every):
-    """``dense`` with its ``E_`` cells empty except on 1 row in ``every`` (a probe cycle)."""
-    dest.mkdir(parents=True)
-    for f in dense.glob("*.csv"):
-        df = pd.read_csv(f)
-        if f.name != "campaigns.csv":
-            errors = [c for c in df.columns if c.startswith("E_")]
-            df.loc[np.arange(len(df)) % every != 0, errors] = np.nan
-        df.to_csv(dest / f.name, index=False)
-    return dest
 
 
 @pytest.fixture(scope="module")
@@ -59,7 +47,7 @@ def diagnosed(data, out):
 def test_the_planted_door_is_accepted_on_a_probe_cycle(records, every, tmp_path):
     """The door's lag is accepted from 1 measurement in 10 or 30 rows (18-24 or 6-8 in each
     3-4 h campaign); the test error on the measured rows falls by half at least."""
-    data = blanked(records["door"], tmp_path / "data", every)
+    data = probe_cycle_copy(records["door"], tmp_path / "data", every)
     j, proc = diagnosed(data, tmp_path / "out")
     accepted = [(e["kind"], e["column"]) for e in j["effects"] if e["accepted"]]
     assert ("signal", "S_door") in accepted
@@ -81,7 +69,7 @@ def test_the_planted_door_is_accepted_on_a_probe_cycle(records, every, tmp_path)
 
 def test_a_clean_probe_cycle_accepts_nothing(records, tmp_path):
     """No effect on a clean record at 1 in 10, where the test could reach alpha (min_p)."""
-    j, _ = diagnosed(blanked(records["clean"], tmp_path / "data", 10), tmp_path / "out")
+    j, _ = diagnosed(probe_cycle_copy(records["clean"], tmp_path / "data", 10), tmp_path / "out")
     assert j["cv"]["min_p"] <= j["bar"]["alpha"]
     assert not [e for e in j["effects"] if e["accepted"]]
     assert j["after"]["test_rmse"] == j["before"]["test_rmse"]

@@ -10,11 +10,11 @@ from __future__ import annotations
 import json
 
 import numpy as np
-import pandas as pd
 import pytest
 from sklearn.linear_model import LinearRegression
 
 from conftest import FAST, UNTRACKED, thermocomp
+from thermocomp.apps.sim.probe import probe_cycle_copy
 from thermocomp.core.io.read import read_dataset
 from thermocomp.shell.model_store import load_model
 
@@ -31,21 +31,9 @@ def dense(tmp_path_factory):
     return path
 
 
-def blanked(dense, dest, keep):
-    """``dense`` with its ``E_`` cells empty where ``keep(rows)`` (a boolean mask) is false."""
-    dest.mkdir(parents=True)
-    for f in dense.glob("*.csv"):
-        df = pd.read_csv(f)
-        if f.name != "campaigns.csv":
-            errors = [c for c in df.columns if c.startswith("E_")]
-            df.loc[~keep(np.arange(len(df))), errors] = np.nan
-        df.to_csv(dest / f.name, index=False)
-    return dest
-
-
 @pytest.fixture(scope="module")
 def sparse(dense, tmp_path_factory):
-    return blanked(dense, tmp_path_factory.mktemp("sparse61") / "sparse",
+    return probe_cycle_copy(dense, tmp_path_factory.mktemp("sparse61") / "sparse",
                    lambda rows: rows % EVERY == 0)
 
 
@@ -81,7 +69,7 @@ def test_the_reference_row_is_the_first_measured_one(dense, tmp_path):
     """The first measurement 3 rows in: those rows are incomplete edge rows (trimmed by
     data.max_edge_samples, else refused, never back-filled), so that the error and the
     temperatures are referenced at the same row."""
-    late = blanked(dense, tmp_path / "late", lambda rows: rows % EVERY == 3)
+    late = probe_cycle_copy(dense, tmp_path / "late", lambda rows: rows % EVERY == 3)
     run = thermocomp("run", f"data.path={late}", f"out={tmp_path / 'a'}", *FAST, check=False)
     assert run.returncode == 2 and "3 incomplete rows at the campaign start" in run.stderr
     ds, report = read_dataset(late, {"max_edge_samples": 3})
@@ -135,7 +123,7 @@ def test_a_sparse_record_runs_and_scores_its_measured_rows(family, dense, sparse
 def test_a_dense_target_with_one_long_gap_is_still_refused(dense, tmp_path, capsys):
     """A probe that died for two hours is a gap, not a probe cycle: refused as before.  (A
     guard of the old behaviour: it passes without the change too.)"""
-    broken = blanked(dense, tmp_path / "broken", lambda rows: (rows < 300) | (rows >= 420))
+    broken = probe_cycle_copy(dense, tmp_path / "broken", lambda rows: (rows < 300) | (rows >= 420))
     run = thermocomp("run", f"data.path={broken}", f"out={tmp_path / 'out'}", *FAST, check=False)
     assert run.returncode == 2
     assert "gap of 120 missing values (rows 301-420) is longer than data.max_gap_samples=0" \
