@@ -417,7 +417,7 @@ def serve_once(data: Path, uri: str) -> str:
     log = open(ROOT / "serve.log", "w")
     env = dict(os.environ, PYTHONPATH=str(REPO / "src"))
     server = subprocess.Popen([sys.executable, "-m", "thermocomp", "serve", f"serve.model={uri}",
-                               f"serve.port={port}"], cwd=ROOT, env=env, stdout=log,
+                               f"serve.port={port}", f"data.path={data}"], cwd=ROOT, env=env, stdout=log,
                               stderr=subprocess.STDOUT, start_new_session=True)
     try:
         deadline = time.monotonic() + 180
@@ -445,8 +445,9 @@ def serve_once(data: Path, uri: str) -> str:
         return f"served {len(got)} rows, max|served - stream| {gap:.2e}"
     finally:
         import signal
-        os.killpg(server.pid, signal.SIGTERM)
-        server.wait(timeout=60)
+        if server.poll() is None:
+            os.killpg(server.pid, signal.SIGTERM)
+            server.wait(timeout=60)
         log.close()
 
 
