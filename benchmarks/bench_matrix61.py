@@ -136,12 +136,12 @@ def test_frames(data: Path) -> dict[str, pd.DataFrame]:
     return {r.campaign: pd.read_csv(data / r.file) for r in listed.itertuples() if r.split == "test"}
 
 
-def deployed_of(data: Path, source: str, adaptive: bool = True):
+def deployed_of(data: Path, source: str, adaptive: bool = True, *overrides: str):
     """``source`` (a model.pkl or a registered version) made deployable as replay makes it."""
     from thermocomp.shell.builders import deployable_model
     from thermocomp.shell.source import read_streamed
 
-    cfg = compose(data, f"monitor.adaptive={str(adaptive).lower()}")
+    cfg = compose(data, f"monitor.adaptive={str(adaptive).lower()}", *overrides)
     ds, train_ids, _, _ = read_streamed(cfg)
     return deployable_model(cfg, ds, train_ids, source, "replay.model")[0]
 
@@ -233,8 +233,11 @@ def faulted(df: pd.DataFrame, column: str) -> dict[str, pd.DataFrame]:
     return out
 
 
-def fault_cell(deployed, frames: dict, bound) -> str:
-    """The adaptive stream under each fault (module doc): ``max|C| / bound``."""
+def fault_cell(deployed, frames: dict, bound, fixed_bound=None) -> str:
+    """The adaptive stream under each fault (module doc): ``max|C| / bound``.  Beyond the trained
+    bound, the guard's bound may have followed inputs beyond their training range on the
+    training pattern (``monitor.guard.follow_inputs``): ``fixed_bound()`` gives the same
+    deployment without it, which must then stay within the trained bound."""
     from thermocomp.apps.deploy.report import plain, stream_rows
 
     cid, df = next(iter(frames.items()))
@@ -246,7 +249,7 @@ def fault_cell(deployed, frames: dict, bound) -> str:
         f[c] = f[c] + 1.0
         moved[c] = float(np.max(np.abs(-stream_rows(deployed, f, cid).y - base)))
     column = max(moved, key=moved.get)
-    worst, bad = 0.0, []
+    worst, bad, followed = 0.0, [], []
     lo, hi = (np.asarray(b, float) for b in zip(*bound)) if bound else (None, None)
     for kind, f in faulted(df, column).items():
         try:
@@ -257,10 +260,13 @@ def fault_cell(deployed, frames: dict, bound) -> str:
         if not np.isfinite(y).all():
             bad.append(f"{kind} NaN")
         elif lo is not None and ((y < lo - 1e-9) | (y > hi + 1e-9)).any():
-            bad.append(f"{kind} beyond the bound")
+            fixed = stream_rows(fixed_bound(), f, cid).y if fixed_bound else y
+            within = not ((fixed < lo - 1e-9) | (fixed > hi + 1e-9)).any()
+            followed.append(kind) if within else bad.append(f"{kind} beyond the bound")
         worst = max(worst, float(np.nanmax(np.abs(y))))
     edge = float(np.max(np.abs(bound))) if bound else float("nan")
-    return f"{worst:.1f}/{edge:.1f} {column}" + (" ! " + ", ".join(bad) if bad else ""), column
+    return (f"{worst:.1f}/{edge:.1f} {column}" + (" ! " + ", ".join(bad) if bad else "")
+            + (f" (bound followed the inputs: {', '.join(followed)})" if followed else "")), column
 
 
 def c_faults(folder: Path, frames: dict, inputs: list[str], column: str, bound, order) -> str:
@@ -373,8 +379,9 @@ def run_cell(record: str, family: str, wrapper: str, data: Path) -> dict:
         row["unexpl"] = unexplained(data, pkl, frames, targets)
         served = streamed(deployed_of(data, uri), frames)
         row["srv-rep"] = float(np.max(np.abs(served - replayed)))
-        row["faults"], column = fault_cell(deployed_of(data, pkl), frames,
-                                           bound if "adapt" in row else None)
+        row["faults"], column = fault_cell(
+            deployed_of(data, pkl), frames, bound if "adapt" in row else None,
+            lambda: deployed_of(data, pkl, True, "monitor.guard.follow_inputs=false"))
     except Exception as exc:                       # noqa: BLE001
         notes.append(f"in-process stream DEFECT: {type(exc).__name__}: {str(exc)[:120]}")
         replayed = column = None
