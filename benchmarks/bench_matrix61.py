@@ -44,6 +44,46 @@ rows.  Columns (µm, mean over targets of each target's RMSE over the test campa
 Run: ``PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_matrix61.py [--root /tmp/matrix61-bench]
 [--records ys sw] [--models mlr ...] [--wrappers plain ...] [--serve]`` (``--serve``: one
 request batch through a real ``thermocomp serve`` of the last promoted version per record).
+
+Measured 2026-12-01 (stop 61; the three records in three processes, 2 shared cores; CPU of the
+whole matrix with its children: ys 349.5 s, sw 513.0 s, cm 794.7 s; 1657 s in all), after the two mends of
+matrix61 (below).  Every cell that exports (mlr, pcr, arx, lagbank, hammerstein, auto; plain,
+``ati``, ``emd``, ``diag``):
+
+- ``ys`` and ``sw`` (no test input leaves the envelope): run = replay plain = replay adaptive =
+  promote "as deployed" = the compiled C's RMSE = diagnose's "after" to the printed digit
+  (ys mlr 3.47 / ati 2.32 / emd 3.29 / diag 2.40 µm; sw hammerstein 0.564 ...); max |stream -
+  batch| <= 1.3e-12 µm, |C - replay| <= 3.0e-13, the served version = the replay stream (0 in
+  process; a real ``serve``: 38 rows (ys) and 721 rows (sw), max |served - stream| 0.0); no event,
+  no clamped sample;
+- ``cm`` (a source training never saw in the test half, from 36000 s): 135 (141 with ``emd``)
+  test samples clamped, 100-108 events, the first at 37200 s in every cell (none on the healthy
+  first half); in no cell does the plain stream part from run's batch before its campaign's
+  first clamp (``unexpl`` 0); the C equals the adaptive stream to 5.0e-13 before the first
+  event, and after it differs by up to 0.79 µm (the code has the guard, not the sensor
+  monitor), its RMSE = promote's to the printed digit (mlr 10.1, arx 6.68, lagbank 9.87);
+- faults: every adaptive stream finite; within the trained bound, or (cm, emd: stuck and drift
+  of ``T_edge1``, 335-361 µm against 325.8) beyond it only where the bound followed inputs on
+  the training pattern (without ``monitor.guard.follow_inputs`` it holds 325.8); the adaptive
+  deployment's C finite and within its bound on stuck, drift, spike and a missing time;
+  ``stream.c`` stops at the 16 empty cells, exit 2 in one line (``stream: row 21: input
+  T_motor1 has no finite value``: by design, ``tc_step`` itself repeats the last correction);
+  the plain stream's C = the plain stream in process, the clamp acting, to 8.0e-13 µm.
+
+Refused, exit 2 in one line each: ``export`` of ``arx_rf``, ``lstm`` and their diagnosed models
+(``... (lstm) cannot be exported as c: model LSTM is not one of the linear families that
+export ...``); ``run model=auto ati=cmeans`` (ati is auto's candidate); ``diagnose model=auto``.
+``ati=cmeans`` on ``sw``/``cm`` (one train campaign) falls back to one model, said in a warning.
+Not mended, a diagnosis and not a deployment: on ``cm`` the diagnosed ``lstm`` is 13.1 µm where
+the plain one is 9.58 (both as deployed; ``diagnose``'s CV ran on the train cycle alone).
+
+Mended (each with a test failing before): ``diagnose`` scored "before"/"after" through the plain
+stream whatever ``monitor.adaptive`` said, while ``promote`` registers the adaptive compensator:
+on ``cm`` the diagnosed mlr / arx / lagbank were "after" 5.46 / 5.61 / 9.92 µm and promoted at
+6.20 / 6.36 / 9.87; now "after" is promote's figure in every cell
+(``tests/shell/test_diagnose_deployed60.py``); ``export`` of a model.pkl that cannot be
+exported, without ``data.path``, was refused for the missing default data folder, and only once
+given the data for its family (``tests/shell/test_export_refused_early.py``).
 """
 
 from __future__ import annotations
