@@ -52,9 +52,10 @@ def deployed_rmse(model_pkl, data, target: str) -> float:
 
 
 def test_after_is_the_deployed_error_and_the_rerun_is_after_as_run(excursion, tmp_path):
+    # the plain stream deployed (monitor.adaptive=false): the clamp alone parts it from batch
     out = tmp_path / "diag"
     proc = thermocomp("diagnose", f"data.path={excursion}", f"out={out}", "track=false",
-                      "plots=none", "diagnose.targets=[E_Y]")
+                      "plots=none", "diagnose.targets=[E_Y]", "monitor.adaptive=false")
     j = json.loads((out / "diagnosis.json").read_text())
     thermocomp("run", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]",
                "experiment=diagnosed", f"data.path={excursion}", f"out={tmp_path / 'rerun'}",
@@ -68,3 +69,25 @@ def test_after_is_the_deployed_error_and_the_rerun_is_after_as_run(excursion, tm
     assert j["test_scored"] == "deployed" and j["after"]["test_rows_clamped"] >= 1
     assert "clamped to the training" in proc.stdout
     assert "clamped to the training" in (out / "diagnosis" / "report.md").read_text()
+
+
+def test_after_is_what_promote_deploys_the_adaptive_compensator_by_default(excursion, tmp_path):
+    # matrix61: diagnose streamed the plain stream whatever monitor.adaptive said, and promote
+    # registers (and replay streams) the adaptive compensator by default: where its monitor or
+    # guard acts on the test (here the +30 K reading, excluded), "after" was not the promoted
+    # version's "as deployed" figure (a column meeting a source training never saw: 5.46 µm
+    # after, 6.20 promoted)
+    out = tmp_path / "diag"
+    thermocomp("diagnose", f"data.path={excursion}", f"out={out}", "track=false", "plots=none",
+               "diagnose.targets=[E_Y]")
+    after = json.loads((out / "diagnosis.json").read_text())["after"]["test_rmse"]
+    rerun = tmp_path / "rerun"
+    thermocomp("run", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]",
+               "experiment=diagnosed", f"data.path={excursion}", f"out={rerun}", "track=false",
+               *LIGHT)
+    thermocomp("replay", f"data.path={excursion}", f"replay.model={rerun / 'model.pkl'}",
+               f"out={tmp_path / 'replay'}", "track=false")
+    replayed = json.loads((tmp_path / "replay" / "replay.json").read_text())
+    assert replayed["adaptive"] and replayed["events"]        # the monitor acted on the test
+    assert after == pytest.approx(replayed["targets"]["E_Y"]["rmse"], rel=1e-9)
+    assert abs(after - deployed_rmse(rerun / "model.pkl", excursion, "E_Y")) > 1e-6 * after

@@ -51,3 +51,22 @@ def test_an_ati_model_of_several_intervals_exports_since_export57(tmp_path):
     assert len(exported["law_target"]) == sum(2 if i else 1 for est in comp.estimators_.values()
                                               for i in est.interactions_)
     assert set(exported["law_target"]) == set(range(len(comp.targets_)))
+
+
+def test_a_model_pkl_that_cannot_be_exported_is_refused_for_that_before_data_path_is_read(
+        tmp_path, capsys):
+    # matrix61: `export export.model=<an lstm's, arx_rf's or a window-denoised model.pkl>` without
+    # data.path said the default data.path was no folder; given the data, it then said the model
+    # does not export: the reason that holds whatever the data comes first
+    data = _make_dataset(tmp_path / "data")
+    cfg = _compose("model=mlr", f"data.path={data}", "track=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    comp = build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids})
+    pkl = save_model(comp, tmp_path / "model.pkl")
+    nowhere = tmp_path / "no-data"
+    refused(["export", f"data.path={nowhere}", f"export.model={pkl}", "export.format=onnx",
+             f"out={tmp_path / 'code'}", "track=false"],
+            capsys, f"export.model={pkl}", "(mlr) cannot be exported as onnx", "export to json, c and st")
+    # an exportable one still needs its train split, and says so
+    refused(["export", f"data.path={nowhere}", f"export.model={pkl}", "export.format=c",
+             f"out={tmp_path / 'code'}", "track=false"], capsys, str(nowhere), "data.path")

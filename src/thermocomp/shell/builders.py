@@ -3,8 +3,6 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 from omegaconf import DictConfig, OmegaConf
 
 from ..base.errors import ConfigError, ThermocompError
@@ -148,12 +146,10 @@ def is_registered(source) -> bool:
                                    or (resolve(str(source)) / "MLmodel").is_file())
 
 
-def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str,
-                     check: Callable | None = None) -> tuple[object, str, str]:
+def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[object, str, str]:
     """``(deployed compensator, source, model name)`` of ``source`` (the value of ``key``): the
     configured model fitted on ``train_ids`` (``None``), a model.pkl made deployable, or a pyfunc
-    folder / ``models:/name@alias`` as registered (:func:`is_registered`: ``ds`` is not read).
-    ``check(compensator)`` of a model.pkl: refuses it before it is made deployable."""
+    folder / ``models:/name@alias`` as registered (:func:`is_registered`: ``ds`` is not read)."""
     if source is None:
         say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
         train = {c: ds.campaigns[c] for c in train_ids}
@@ -165,8 +161,6 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str,
             return _registered(cfg, source, None if is_registered_model(source) else resolve(source),
                                key)
         comp = load_model(resolve(source))
-        if check is not None:
-            check(comp)
         name, what = model_family(comp), f"{key}={source}"
         train = {c: ds.campaigns[c] for c in train_ids}
     return deployable(cfg, deploy_stream(cfg, comp, train, what), train, ds), source, name

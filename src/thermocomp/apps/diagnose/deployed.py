@@ -1,7 +1,8 @@
 """The test figures of a diagnosed model as it is deployed, not as ``run`` scores it (diagafter60).
 
 ``run`` scores a model in batch (:meth:`Compensator.predict`); ``promote``, ``replay`` and the
-exported code run it as a stream whose inputs are held to the training envelope
+exported code run it as a stream (by default inside the adaptive compensator: its sensor monitor
+and correction guard, matrix61) whose inputs are held to the training envelope
 (``promote.envelope``: a sample that leaves the training pattern beyond the envelope is clamped,
 :class:`~thermocomp.apps.deploy.streaming.StreamingCompensator`).  Where no test sample is
 clamped the two are one computation (within rounding); where one is, they part: a lag bank
@@ -31,8 +32,9 @@ def deployed_scores(comp: Compensator, ds: Dataset, ids, measured: Mapping, stre
     """``({target: {"test": ...}}, {campaign: predicted}, rows clamped)`` of ``comp`` deployed.
 
     ``stream_of(comp, train)`` gives ``replay(campaign, lead_in)``: the campaign streamed from
-    its start through the plain stream ``promote`` starts every deployment from (the envelope
-    fitted on ``train``), warmed on ``lead_in``; a frame of the targets' predictions and
+    its start through what ``promote`` registers (the plain stream, its envelope fitted on
+    ``train``, and with ``monitor.adaptive`` the adaptive compensator around it), warmed on
+    ``lead_in``; a frame of the targets' predictions and
     ``n_clamped``.  (A callable, not the stream: the deploy app imports this one.)  Each
     campaign of ``ids`` is warmed on the campaigns it continues as ``promote`` warms it, and
     scored against ``measured`` (``{campaign: frame}``, the batch scoring's, so that only the

@@ -89,7 +89,7 @@ COMMANDS = {
         "closed loop: CV residual -> missing effect -> refit -> before/after (<out>/diagnosis.json)",
         "residual -> missing effect -> refit -> before/after", "data.path",
         "<out>/diagnosis.json, <out>/diagnosis_headline/<target>.json, <out>/diagnosis/",
-        "model=... diagnose.targets=[E_Z] plots=none", (*MODELLING, "diagnose")),
+        "model=... diagnose.targets=[E_Z] plots=none", (*DEPLOYING, "diagnose")),
     "run": Command(
         "modelling:run",
         "ingest .. evaluate in one process; -m for a sweep (one MLflow parent run)",

@@ -40,7 +40,7 @@ from ...core.io.timestamps import CLOCK
 from ...core.scoring.evaluation import require_split
 from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
-from ..model_store import model_family
+from ..model_store import load_model, model_family
 from ..registry import registered_version
 from ..source import read_streamed
 from ..store import is_registered_model
@@ -72,8 +72,10 @@ def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict, obj
             raise _refused(source, model_family(comp), fmt, exc) from None
 
     registered = is_registered(source)
+    if not registered:        # before data.path is read: its absence is no reason to give first
+        exportable(load_model(resolve(source)))
     ds, train_ids = (None, []) if registered else read_streamed(cfg)[:2]
-    deployed = deployable_model(cfg, ds, train_ids, source, "export.model", check=exportable)[0]
+    deployed = deployable_model(cfg, ds, train_ids, source, "export.model")[0]
     if registered:
         if is_registered_model(source):
             return deployed, _registry_provenance(source), None
