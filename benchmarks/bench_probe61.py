@@ -77,7 +77,11 @@ MLR then scored 4.87 / 9.95 / 4.20 µm (``grinder``).  Now the rises since the r
 from __future__ import annotations
 
 import json
+import os
+import signal
+import subprocess
 import sys
+import time
 from pathlib import Path
 
 import numpy as np
@@ -325,10 +329,169 @@ def replay_each(root: Path, names) -> list[dict]:
     return rows
 
 
+def _cpu(before) -> float:
+    after = os.times()
+    return round(after.children_user - before.children_user
+                 + after.children_system - before.children_system, 1)
+
+
+def _tc(*args, cwd=None) -> tuple[int, float, str, str]:
+    """``thermocomp *args`` in its own process: exit status, CPU s, stdout, stderr."""
+    before = os.times()
+    run = subprocess.run([sys.executable, "-m", "thermocomp", *args], capture_output=True,
+                         text=True, cwd=cwd)
+    return run.returncode, _cpu(before), run.stdout, run.stderr
+
+
+def _last(text: str) -> str:
+    return text.strip().splitlines()[-1] if text.strip() else ""
+
+
+def sweep_promote_export(root: Path, name: str) -> dict:
+    """``run -m model=mlr,lagbank`` (tracked, its comparison), ``promote`` the best, ``export``
+    the champion as C with its conformance pack, compile it, ``check/check.sh``."""
+    uri = f"sqlite:///{root}/mlflow-{name}.db"
+    common = [*data_args(root, name), f"tracking_uri={uri}", "plots=none"]
+    row = {"data": name}
+    status, cpu, out, err = _tc("run", "-m", "model=mlr,lagbank", *common, cwd=root)
+    row["sweep"] = {"status": status, "cpu_s": cpu, "said": out.strip()[-1500:],
+                    "error": _last(err) if status else ""}
+    status, cpu, out, err = _tc("promote", *common, f"out={root}/out/{name}-promote", cwd=root)
+    row["promote"] = {"status": status, "cpu_s": cpu, "error": _last(err) if status else ""}
+    if status == 0:
+        row["promote"]["json"] = json.loads((root / "out" / f"{name}-promote" /
+                                             "promote.json").read_text())
+    code = root / "out" / f"{name}-champion-c"
+    status, cpu, out, err = _tc("export", *common,
+                                "export.model=models:/thermocomp-compensator@champion",
+                                "export.format=c", f"out={code}", cwd=root)
+    row["export"] = {"status": status, "cpu_s": cpu, "error": _last(err) if status else ""}
+    if status == 0:
+        cc = subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
+                            cwd=code, capture_output=True, text=True)
+        check = subprocess.run(["sh", "check/check.sh"], cwd=code, capture_output=True, text=True)
+        row["export"].update(cc=cc.returncode, check=check.returncode,
+                             check_said=(check.stdout + check.stderr).strip()[-600:],
+                             pack=json.loads((code / "check" / "check.json").read_text()))
+    print(row, flush=True)
+    return row
+
+
+def serve_batch(root: Path, name: str, rows: int = 500) -> dict:
+    """``serve`` the MLR run's ``model.pkl`` (deployable on the train split), one request of the
+    test campaign's first ``rows`` rows as thermocomp reads them; against ``replay``'s stream."""
+    import numpy as np
+    import requests
+
+    from thermocomp.apps.deploy.streaming import replay as replayed
+    from thermocomp.shell.builders import deploy_stream
+    from thermocomp.shell.config.overrides import compose
+    from thermocomp.shell.model_store import load_model
+    from thermocomp.shell.source import read_streamed
+
+    pkl = root / "out" / f"{name}-mlr" / "model.pkl"
+    cfg = compose([*data_args(root, name), "model=mlr", "track=false"])
+    ds, train_ids, test_ids, _ = read_streamed(cfg)
+    stream = deploy_stream(cfg, load_model(pkl), {c: ds.campaigns[c] for c in train_ids})
+    test = ds.campaigns[test_ids[0]].iloc[:rows]
+    want = replayed(stream, test)[stream.targets_].to_numpy(float)
+    port = 5161 + (name != "grinder")
+    log = open(root / f"serve-{name}.log", "w")
+    before = os.times()
+    server = subprocess.Popen([sys.executable, "-m", "thermocomp", "serve", *data_args(root, name),
+                               f"serve.model={pkl}", f"serve.port={port}", "track=false"],
+                              stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    row = {"data": name, "rows": rows}
+    try:
+        for _ in range(600):
+            try:
+                requests.get(f"http://127.0.0.1:{port}/ping", timeout=2)
+                break
+            except requests.ConnectionError:
+                if server.poll() is not None:
+                    break
+                time.sleep(0.5)
+        columns = [c for c in test.columns if c.startswith(("time", "T_", "S_"))]
+        body = {"dataframe_split": test[columns].to_dict(orient="split"),
+                "params": {"session": "probe61", "reset": True}}
+        body["dataframe_split"].pop("index")
+        resp = requests.post(f"http://127.0.0.1:{port}/invocations", json=body, timeout=300)
+        row["status"] = resp.status_code
+        if resp.status_code == 200:
+            got = pd.DataFrame(resp.json()["predictions"])
+            c_cols = [c for c in got.columns if c.startswith("C_")]
+            got_c = got[c_cols].to_numpy(float)
+            row["columns"] = list(got.columns)
+            row["max_served_plus_replay"] = float(np.nanmax(np.abs(got_c + want)))
+            row["max_served_minus_replay"] = float(np.nanmax(np.abs(got_c - want)))
+        else:
+            row["error"] = resp.text[-400:]
+    finally:
+        os.killpg(server.pid, signal.SIGINT)
+        try:
+            server.wait(timeout=60)
+        except subprocess.TimeoutExpired:
+            os.killpg(server.pid, signal.SIGKILL)
+        log.close()
+    row["cpu_s"] = _cpu(before)
+    print(row, flush=True)
+    return row
+
+
+def twin_connect(root: Path, name: str, speed: float = 2000.0) -> dict:
+    """``twin`` (lockstep) of the test campaign and ``connect`` with the MLR run's model, as
+    ``tests/shell/twin_bench.py`` runs them (the twin in a thread); the offsets against replay."""
+    sys.path.insert(0, str(Path(__file__).parents[1] / "tests" / "shell"))
+    from twin_bench import twin_and_connect
+
+    data = [a for a in data_args(root, name)]
+    before_self, before = time.process_time(), os.times()
+    row = {"data": name}
+    try:
+        twin, connect = twin_and_connect_args(twin_and_connect, root, name, data, speed)
+        row["twin"] = {k: twin.get(k) for k in ("campaigns", "samples", "references") if k in twin}
+        row["connect"] = {k: v for k, v in connect.items() if not isinstance(v, (list, dict))
+                          or k in ("targets",)}
+    except BaseException as exc:                      # said, not lost
+        row["error"] = f"{type(exc).__name__}: {str(exc)[-600:]}"
+    row["cpu_s"] = round(time.process_time() - before_self + _cpu(before), 1)
+    print(json.dumps(row, default=str)[:3000], flush=True)
+    return row
+
+
+def twin_and_connect_args(served, root, name, data, speed):
+    """The twin and connect on ``data``'s config (the args twin_bench passes, and the run's
+    model)."""
+    import twin_bench
+
+    pkl = root / "out" / f"{name}-mlr" / "model.pkl"
+    tmp = root / "out" / f"{name}-twin"
+    tmp.mkdir(parents=True, exist_ok=True)
+    fast = twin_bench.FAST
+    twin_bench.FAST = [*fast, *data[:1]]            # the searchpath; data.path is the record's
+    try:
+        return served(_data_path(root, name), tmp, (data[1],), (data[1], f"connect.model={pkl}"),
+                      speed=speed)
+    finally:
+        twin_bench.FAST = fast
+
+
+def _data_path(root: Path, name: str) -> Path:
+    return root / FOLDERS[name]
+
+
 def main(argv=None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv and argv[0] == "join":
         join(Path(argv[1]).resolve())
+        return 0
+    extra = {"sweep": sweep_promote_export, "serve": serve_batch, "twin": twin_connect}
+    if argv and argv[0] in extra:
+        root = Path(argv[1]).resolve()
+        names = argv[argv.index("--data") + 1:] if "--data" in argv else list(SEEDS)
+        rows = [extra[argv[0]](root, name) for name in names]
+        (root / f"{argv[0]}-{'-'.join(names)}.json").write_text(json.dumps(rows, indent=1,
+                                                                           default=str))
         return 0
     if argv and argv[0] == "replay-each":
         root = Path(argv[1]).resolve()
