@@ -67,3 +67,45 @@ def test_rows_after_hours_unlogged_are_not_re_referenced(deployed, block):
     plain = stream_rows(stream, gapped).y
     assert not events, events                # before: 8 sensors re-referenced at the gap's end
     np.testing.assert_allclose(got, plain, atol=1e-9)
+
+
+def _chain() -> "Dataset":
+    """One record in two files whose second was trimmed where its error was first measured:
+    its rows 180-299 (2 h) not read, its time kept on its file's clock (from 10800 s)."""
+    from thermocomp.core.io.contract import Dataset
+
+    whole = _campaign(7)
+    first = whole.iloc[:180].reset_index(drop=True)
+    second = whole.iloc[300:].reset_index(drop=True).assign(time=lambda d: d["time"] - 180 * DT)
+    manifest = pd.DataFrame({"split": ["train", "test"],
+                             "start": ["2026-11-02T00:00:00", "2026-11-02T03:00:00"]},
+                            index=pd.Index(["A", "B"], name="campaign"))
+    return Dataset(manifest, {"A": first, "B": second}, name="chain")
+
+
+def test_a_chain_keeps_the_rows_it_did_not_read_as_a_gap(deployed):
+    """The chain joined on its own clock (its ``start``s): 2 h between the two rows read, not
+    one sample period; the adaptive stream warmed on it (replay's lead-in) is the plain one."""
+    from thermocomp.core.continuation import joined, lead_in
+
+    ds = _chain()
+    t = joined(ds, ["A", "B"])["time"].to_numpy(float)
+    assert t[180] - t[179] == pytest.approx(121 * DT)       # before: 60 s
+    stream, adaptive = deployed
+    lead = lead_in(ds, ["A", "B"])
+    assert ds.campaigns["B"]["time"].iloc[0] - lead["time"].iloc[-1] == pytest.approx(121 * DT)
+    run = stream_rows(adaptive, ds.campaigns["B"], "B", None, lead)
+    plain = stream_rows(stream, ds.campaigns["B"], "B", None, lead).y
+    assert not run.events and not run.excluded
+    np.testing.assert_allclose(run.y, plain, atol=1e-9)       # before: re-referenced in the lead-in
+
+
+def test_an_abutting_chain_is_joined_as_before():
+    """Files that abut on their clock (a record cut in two): one sample period between them."""
+    from thermocomp.core.continuation import joined
+
+    ds = _chain()
+    ds.campaigns["B"] = _campaign(7).iloc[180:].reset_index(drop=True).assign(
+        time=lambda d: d["time"] - 180 * DT)
+    t = joined(ds, ["A", "B"])["time"].to_numpy(float)
+    assert np.allclose(np.diff(t), DT)
