@@ -109,3 +109,24 @@ def test_an_abutting_chain_is_joined_as_before():
         time=lambda d: d["time"] - 180 * DT)
     t = joined(ds, ["A", "B"])["time"].to_numpy(float)
     assert np.allclose(np.diff(t), DT)
+
+
+def test_two_machines_weeks_in_one_folder_are_not_chained_across_machines(caplog):
+    """Two machines' weekly files (a fleet in one folder, no data.group_by): each week starts
+    where both machines' weeks before it end.  Which continues which the times cannot say: none
+    is linked, and a line says so (before: PG32's weeks continued PG31's, its state carried over
+    from another machine); one machine's weeks alone are chained as before."""
+    from thermocomp.core.continuation import predecessors
+    from thermocomp.core.io.contract import Dataset
+
+    week = 7 * 86400.0
+    frame = pd.DataFrame({"time": np.arange(0.0, week, 3600.0), "T_0": 20.0, "E_X": 0.0})
+    ids = [f"{m}_KW{w}" for m in ("PG31", "PG32") for w in (45, 46, 47)]
+    starts = [f"2026-11-{2 + 7 * k:02d}T00:00:00" for k in range(3)] * 2
+    manifest = pd.DataFrame({"split": "train", "start": starts, "machine": [i[:4] for i in ids]},
+                            index=pd.Index(ids, name="campaign"))
+    fleet = Dataset(manifest, {c: frame.copy() for c in ids}, name="fleet")
+    assert predecessors(fleet) == {}
+    assert "which campaign continues which the times cannot say" in caplog.text
+    one = Dataset(manifest.iloc[:3], {c: frame.copy() for c in ids[:3]}, name="one")
+    assert predecessors(one) == {"PG31_KW46": "PG31_KW45", "PG31_KW47": "PG31_KW46"}

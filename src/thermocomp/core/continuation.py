@@ -57,14 +57,13 @@ def predecessors(ds: Dataset) -> dict[str, str]:
     # another file's last time (a record cut in a spreadsheet keeps its time column)
     last = {c: (float(df[TIME].iloc[-1]), campaign_period(df)) for c, df in ds.campaigns.items()
             if len(df) >= 2}
+    found: dict[str, list[str]] = {}
     for cid, df in ds.campaigns.items():
         t0 = float(df[TIME].iloc[0]) if len(df) else 0.0
         if cid in out or t0 <= 0:
             continue
-        for prev, (end, period) in last.items():
-            if prev != cid and abs(t0 - (end + period)) <= period / 2:
-                out[cid] = prev
-                break
+        found[cid] = [prev for prev, (end, period) in last.items()
+                      if prev != cid and abs(t0 - (end + period)) <= period / 2]
     if START in man.columns:
         starts = start_instants(man[START])   # (with and without an offset: compared in UTC)
         ends = {}
@@ -75,12 +74,36 @@ def predecessors(ds: Dataset) -> dict[str, str]:
             period = campaign_period(df)
             ends[cid] = (t0 + pd.to_timedelta(float(df[TIME].iloc[-1]) + period, unit="s"), period)
         for cid, t0 in starts.items():
-            if cid in out or pd.isna(t0):
+            if cid in out or found.get(cid) or pd.isna(t0):
                 continue
-            for prev, (end, period) in ends.items():
-                if prev != cid and abs((t0 - end).total_seconds()) <= period / 2:
-                    out[cid] = prev
-                    break
+            found[cid] = [prev for prev, (end, period) in ends.items()
+                          if prev != cid and abs((t0 - end).total_seconds()) <= period / 2]
+    out.update(_unambiguous(found))
+    return out
+
+
+def _unambiguous(found: Mapping[str, list]) -> dict[str, str]:
+    """``{campaign: the one it continues}`` of the links found by time (``found``: campaign ->
+    the campaigns ending where it starts), where one campaign ends there and it alone starts
+    there.  Two machines' files in one folder (a fleet) end and start at the same times: which
+    continues which the times cannot say (probe61: PG32's week carried PG31's state over), so
+    neither is linked, and a line says how to say it."""
+    takers: dict[str, list[str]] = {}
+    for cid, prevs in found.items():
+        for prev in prevs:
+            takers.setdefault(prev, []).append(cid)
+    out, unsure = {}, []
+    for cid, prevs in found.items():
+        if len(prevs) == 1 and len(takers[prevs[0]]) == 1:
+            out[cid] = prevs[0]
+        elif prevs:
+            unsure.append(f"{cid} starts where {' and '.join(sorted(prevs))} end")
+    if unsure:
+        logger.warning(f"{'; '.join(unsure[:3])}{' ...' if len(unsure) > 3 else ''}: which "
+                       "campaign continues which the times cannot say (several machines' files "
+                       "in one folder?), no state carried over between them: name it in the "
+                       "manifest's 'continues' column, or fit one model per machine "
+                       "(data.group_by)")
     return out
 
 
