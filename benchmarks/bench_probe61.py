@@ -364,7 +364,7 @@ def sweep_promote_export(root: Path, name: str) -> dict:
     code = root / "out" / f"{name}-champion-c"
     status, cpu, out, err = _tc("export", *common,
                                 "export.model=models:/thermocomp-compensator@champion",
-                                "export.format=c", f"out={code}", cwd=root)
+                                "export.format=c", "export.check=true", f"out={code}", cwd=root)
     row["export"] = {"status": status, "cpu_s": cpu, "error": _last(err) if status else ""}
     if status == 0:
         cc = subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
@@ -441,7 +441,8 @@ def serve_batch(root: Path, name: str, rows: int = 500) -> dict:
 def twin_connect(root: Path, name: str, speed: float = 2000.0) -> dict:
     """``twin`` (lockstep) of the test campaign and ``connect`` with the MLR run's model, as
     ``tests/shell/twin_bench.py`` runs them (the twin in a thread); the offsets against replay."""
-    sys.path.insert(0, str(Path(__file__).parents[1] / "tests" / "shell"))
+    tests = Path(__file__).parents[1] / "tests"
+    sys.path[:0] = [str(tests), str(tests / "shell")]
     from twin_bench import twin_and_connect
 
     data = [a for a in data_args(root, name)]
