@@ -72,6 +72,27 @@ premise): the errors were the rises since EACH week's Monday 0:00 (as if the pro
 weekly, which the text said it never is), so the probe's values jumped at each week's boundary
 while ``init`` read the weekly files as one record continued (``data.reference=auto``: ``none``);
 MLR then scored 4.87 / 9.95 / 4.20 µm (``grinder``).  Now the rises since the record's start.
+
+Measured (2026-12-01, each step once, 2 shared cores; ``write`` 3.5 s; ``init`` 1.8 / 1.9 s CPU;
+after the mends of probe61, the figures before them in brackets): test RMSE (µm) E_Probe_dX /
+dY / dZ on the 275 measured rows of the test week, CPU s of one ``run``::
+
+    grinder (6131)                         grinder_b (6132, the two loggers joined)
+      mlr          0.52 / 0.52 / 1.69  2.8    0.52 / 0.55 / 1.53  2.6
+      pcr          2.17 / 0.78 / 5.13  2.8    2.48 / 0.78 / 7.45  2.6
+      arx          0.51 / 0.55 / 1.63  2.8    0.50 / 0.57 / 1.56  2.6
+      lagbank      0.56 / 0.56 / 5.04  4.6    0.64 / 1.06 / 4.23  4.4
+        (before: 0.90 / 1.14 / 7.37, the junction of two weeks read as one sample)
+      hammerstein  = lagbank (no S_ state in the record: the plain lag bank)
+      auto         0.52 / 0.51 / 1.63 12.2    0.51 / 0.55 / 1.05 76.9
+      persistence  1.72 / 2.61 / 11.03        1.64 / 2.70 / 10.89  (the last measured error)
+
+``replay`` of every family's model (12): the deployed (adaptive) stream's RMSE = the batch's
+within 8e-15 µm, |plain stream - batch| <= 1.2e-12 µm, 4.2-8.0 s CPU (auto on grinder_b 60.7)
+[before: 4.87 / 7.29 / 5.26 µm for mlr against 0.52 / 0.52 / 1.69, 290-4259 guard events per
+grinder model, 17-33 s CPU: the monitor re-referenced every sensor at the unscored junction of
+two weeks].  ``monitor`` (mlr, the healthy test week): 0 events, adaptive = fixed, 4.9 / 5.2 s
+[3390 / 22 guard events, adaptive 4.87 / 7.29 / 5.26 against fixed 0.52 / 0.52 / 1.69].
 """
 
 from __future__ import annotations
