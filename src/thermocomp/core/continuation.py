@@ -57,14 +57,13 @@ def predecessors(ds: Dataset) -> dict[str, str]:
     # another file's last time (a record cut in a spreadsheet keeps its time column)
     last = {c: (float(df[TIME].iloc[-1]), campaign_period(df)) for c, df in ds.campaigns.items()
             if len(df) >= 2}
+    found: dict[str, list[str]] = {}
     for cid, df in ds.campaigns.items():
         t0 = float(df[TIME].iloc[0]) if len(df) else 0.0
         if cid in out or t0 <= 0:
             continue
-        for prev, (end, period) in last.items():
-            if prev != cid and abs(t0 - (end + period)) <= period / 2:
-                out[cid] = prev
-                break
+        found[cid] = [prev for prev, (end, period) in last.items()
+                      if prev != cid and abs(t0 - (end + period)) <= period / 2]
     if START in man.columns:
         starts = start_instants(man[START])   # (with and without an offset: compared in UTC)
         ends = {}
@@ -75,12 +74,36 @@ def predecessors(ds: Dataset) -> dict[str, str]:
             period = campaign_period(df)
             ends[cid] = (t0 + pd.to_timedelta(float(df[TIME].iloc[-1]) + period, unit="s"), period)
         for cid, t0 in starts.items():
-            if cid in out or pd.isna(t0):
+            if cid in out or found.get(cid) or pd.isna(t0):
                 continue
-            for prev, (end, period) in ends.items():
-                if prev != cid and abs((t0 - end).total_seconds()) <= period / 2:
-                    out[cid] = prev
-                    break
+            found[cid] = [prev for prev, (end, period) in ends.items()
+                          if prev != cid and abs((t0 - end).total_seconds()) <= period / 2]
+    out.update(_unambiguous(found))
+    return out
+
+
+def _unambiguous(found: Mapping[str, list]) -> dict[str, str]:
+    """``{campaign: the one it continues}`` of the links found by time (``found``: campaign ->
+    the campaigns ending where it starts), where one campaign ends there and it alone starts
+    there.  Two machines' files in one folder (a fleet) end and start at the same times: which
+    continues which the times cannot say (probe61: PG32's week carried PG31's state over), so
+    neither is linked, and a line says how to say it."""
+    takers: dict[str, list[str]] = {}
+    for cid, prevs in found.items():
+        for prev in prevs:
+            takers.setdefault(prev, []).append(cid)
+    out, unsure = {}, []
+    for cid, prevs in found.items():
+        if len(prevs) == 1 and len(takers[prevs[0]]) == 1:
+            out[cid] = prevs[0]
+        elif prevs:
+            unsure.append(f"{cid} starts where {' and '.join(sorted(prevs))} end")
+    if unsure:
+        logger.warning(f"{'; '.join(unsure[:3])}{' ...' if len(unsure) > 3 else ''}: which "
+                       "campaign continues which the times cannot say (several machines' files "
+                       "in one folder?), no state carried over between them: name it in the "
+                       "manifest's 'continues' column, or fit one model per machine "
+                       "(data.group_by)")
     return out
 
 
@@ -100,36 +123,66 @@ def chains(ds: Dataset, ids=None) -> dict[str, list[str]]:
     return {c: chain(ds, c, links) for c in (ds.ids() if ids is None else ids) if c in links}
 
 
+# a junction whose own clock (the campaigns' ``start``) shows more than this many sample periods
+# between the rows read is kept as that gap (below)
+GAP_PERIODS = 1.5
+
+
 def joined(ds: Dataset, ids: list[str]) -> pd.DataFrame:
     """The campaigns ``ids`` end to end as one campaign, ``time`` continuous.
 
     Each file's time is shifted so that its first sample follows the previous
-    file's last one by the previous file's sample period.
+    file's last one by the previous file's sample period; or, where the campaigns' ``start``
+    (their time origins) shows a longer gap between those rows (rows not read: a campaign
+    trimmed where its error was first measured, ``data.max_edge_samples``), by that gap, as the
+    record has it (probe61: six and a half hours of a Monday's warm-up read as one sample).
     """
     frames, offset = [], 0.0
+    starts = start_instants(ds.manifest[START]) if START in ds.manifest.columns else None
     for k, cid in enumerate(ids):
         df = ds.campaigns[cid]
         t = df[TIME].to_numpy(float)
         if k:
-            offset = frames[-1][TIME].iloc[-1] + campaign_period(ds.campaigns[ids[k - 1]]) - t[0]
+            before = ds.campaigns[ids[k - 1]]
+            period = campaign_period(before)
+            gap = _clock_gap(starts, ids[k - 1], cid, float(before[TIME].iloc[-1]), float(t[0]))
+            step = gap if gap is not None and gap > GAP_PERIODS * period else period
+            offset = frames[-1][TIME].iloc[-1] + step - t[0]
         frames.append(df.assign(**{TIME: t + offset}))
     out = pd.concat(frames, ignore_index=True)
     out.attrs = dict(frames[0].attrs)      # the chain's start: its manifest ambient_c (DATA_FORMAT)
     return out
 
 
+def _clock_gap(starts, before: str, cid: str, last: float, first: float) -> float | None:
+    """Seconds from ``before``'s last sample (``last``, its time) to ``cid``'s first (``first``)
+    on their ``start`` instants' clock; None where either start is not known."""
+    if starts is None or pd.isna(starts.get(before)) or pd.isna(starts.get(cid)):
+        return None
+    return ((starts[cid] + pd.to_timedelta(first, unit="s"))
+            - (starts[before] + pd.to_timedelta(last, unit="s"))).total_seconds()
+
+
 def lead_in(ds: Dataset, ids: list[str]) -> pd.DataFrame:
     """The campaigns before the last of ``ids`` (a :func:`chain`), joined: what a stream is
     warmed on before that campaign (:func:`preceding` its first sample)."""
-    return preceding(ds, ids[:-1], float(ds.campaigns[ids[-1]][TIME].iloc[0]))
+    return preceding(ds, ids[:-1], float(ds.campaigns[ids[-1]][TIME].iloc[0]), ids[-1])
 
 
-def preceding(ds: Dataset, ids: list[str], first_time: float) -> pd.DataFrame:
+def preceding(ds: Dataset, ids: list[str], first_time: float, cid: str | None = None
+              ) -> pd.DataFrame:
     """The campaigns ``ids`` :func:`joined`, moved in time as a whole so that they end one
     sample period (the last one's) before ``first_time``: the lead-in of a campaign that starts
-    there and continues them (keeping the campaign's own clock)."""
+    there and continues them (keeping the campaign's own clock); for a campaign ``cid`` of
+    ``ds``, by the gap the ``start`` instants show instead where it is longer (as :func:`joined`)."""
     whole = joined(ds, ids)
-    shift = first_time - campaign_period(ds.campaigns[ids[-1]]) - float(whole[TIME].iloc[-1])
+    before = ds.campaigns[ids[-1]]
+    period = campaign_period(before)
+    starts = start_instants(ds.manifest[START]) if cid is not None and START in ds.manifest.columns \
+        else None
+    gap = _clock_gap(starts, ids[-1], cid, float(before[TIME].iloc[-1]), first_time)
+    step = gap if gap is not None and gap > GAP_PERIODS * period else period
+    shift = first_time - step - float(whole[TIME].iloc[-1])
     return whole.assign(**{TIME: whole[TIME] + shift})
 
 

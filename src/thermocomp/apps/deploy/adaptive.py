@@ -31,6 +31,11 @@ from .streaming import OutOfEnvelopeError, StreamingCompensator, step_block
 from .surveillance import SensorMonitor
 
 INPUT_ROWS = 4096    # rows the monitor reads in one go at most (a failed try costs little per row)
+# a sample this many sampling periods after the one before follows a gap in the record (a
+# logger stopped; a continued chain whose campaign starts rows after its predecessor ended): the
+# monitor judges its step as that many one-sample steps (probe61: the warm-up of 6.5 h between
+# two weekly files, read as the logger's common step, re-referenced every sensor by it)
+GAP_PERIODS = 1.5
 
 
 class AdaptiveCompensator:
@@ -195,7 +200,7 @@ class AdaptiveCompensator:
         self.last_events_: list[dict] = []    # a step that fails reports none, not the last ones
         events: list[dict] = []
         t, dt = self._check_time(float(time), events)
-        x = self._inputs(x, t, events)
+        x = self._inputs(x, t, events, dt)
         try:
             y, clamped = self.streaming._step(x, t, clocked=True)
             stepped = True
@@ -205,10 +210,13 @@ class AdaptiveCompensator:
         self._output(y, dt, t, self._allowance(stepped), events)
         return self._y, clamped
 
-    def _inputs(self, x: np.ndarray, t: float, events: list) -> np.ndarray:
+    def _inputs(self, x: np.ndarray, t: float, events: list, dt: float | None = None
+                ) -> np.ndarray:
         """The row the model reads: the monitored temperatures judged (an excluded one replaced),
-        a missing other input held."""
+        a missing other input held; ``dt`` (s) since the row before (a gap: :data:`GAP_PERIODS`)."""
         if self.monitor is not None:
+            if dt is not None and dt > GAP_PERIODS * self.period_s:
+                self.monitor.skipped(dt / self.period_s)
             clean, ev = self.monitor.update(x if self._mon_all else x[self._mon], t)
             events += ev
             ref = self.monitor._ref
@@ -270,7 +278,7 @@ class AdaptiveCompensator:
             events[i] = row_events = []
             try:
                 ts[i], dts[i] = self._check_time(float(time[i]), row_events)
-                xs[i] = self._inputs(xs[i], ts[i], row_events)
+                xs[i] = self._inputs(xs[i], ts[i], row_events, dts[i])
                 novel[i] = self.monitor is not None and self.monitor.new_state_
             except ValueError as exc:
                 if on_refused is None:
@@ -310,6 +318,10 @@ class AdaptiveCompensator:
         t = np.asarray(time[start:start + len(block)], dtype=float)
         with np.errstate(invalid="ignore"):          # a missing time compares False: not read
             ok = t > np.r_[t_read, t[:-1]]
+            # a row after a gap in time (GAP_PERIODS) starts a block of its own: the monitor
+            # judges its step over the gap
+            gap = np.diff(np.r_[t_read, t]) > GAP_PERIODS * self.period_s
+        ok[1:] &= ~gap[1:]
         if len(self._other):
             ok &= np.isfinite(block[:, self._other]).all(axis=1)
         m = len(block) if ok.all() else int(np.argmin(ok))
@@ -317,6 +329,8 @@ class AdaptiveCompensator:
             return 0
         block = block[:m].copy()
         if mon is not None:
+            if gap[0]:
+                mon.skipped((t[0] - t_read) / self.period_s)
             clean = mon.update_block(block if self._mon_all else block[:, self._mon])
             m = len(clean)
             if not m:

@@ -283,6 +283,15 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         a = np.abs(last).min(axis=0)          # NaN (unobservable) compares False
         return (a >= self.warning_c).view(np.int8) + (a >= self.alarm_c), err
 
+    def skipped(self, periods: float) -> None:
+        """The next sample comes ``periods`` sampling periods after the last one (a gap in the
+        record's time): each sensor may have moved by that many one-sample steps, as over its
+        own missing samples (a machine that warmed while nothing was logged is no jump, nor the
+        logger's common step)."""
+        if periods > 1:
+            self._gap = np.maximum(self._gap, float(periods))
+            self._gapped = True
+
     def update(self, reading, time: float = float("nan")) -> tuple[np.ndarray, list[dict]]:
         """One sample (absolute °C, order of ``names``) -> (referenced field for the model,
         events).  Never NaN unless every sensor has been missing since the start."""
