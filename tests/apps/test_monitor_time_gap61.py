@@ -69,7 +69,7 @@ def test_rows_after_hours_unlogged_are_not_re_referenced(deployed, block):
     np.testing.assert_allclose(got, plain, atol=1e-9)
 
 
-def _chain() -> "Dataset":
+def _chain():
     """One record in two files whose second was trimmed where its error was first measured:
     its rows 180-299 (2 h) not read, its time kept on its file's clock (from 10800 s)."""
     from thermocomp.core.io.contract import Dataset
