@@ -225,7 +225,12 @@ def test_lathe_layout_holds_five_minute_errors_and_reads_without_repair(tmp_path
     empty, _ = small("swiss_lathe_door", error_gaps="nan").generate()
     path = write_dataset(empty, tmp_path / "nan")
     assert empty.campaigns["calibration"]["E_X"].isna().sum() > 0
-    read, report = read_dataset(path, {"max_gap_samples": 4})
+    # read as the probe cycle it is (sparse61): the readings kept, nothing interpolated ...
+    read, report = read_dataset(path)
+    probe = read.campaigns["production"]["E_X"]
+    assert probe.notna().sum() * 4 < len(probe) and report["sparse_targets"]
+    # ... or, the reading told not to (data.sparse_targets=false), its gaps interpolated
+    read, report = read_dataset(path, {"max_gap_samples": 4, "sparse_targets": False})
     assert not read.campaigns["production"].isna().any().any()
 
 

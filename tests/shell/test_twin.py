@@ -40,7 +40,8 @@ def twin_and_connect(data: Path, tmp: Path, *twin_args: str, connect_args=(),
 def make_machine(root: Path, fault=None, continued: bool = False) -> Path:
     """Five campaigns (three train, two test) of a four-sensor machine whose error is linear
     in two sensors' rises, one sample a minute; ``fault(df)`` edits the first test campaign;
-    ``continued``: the last test campaign continues the first (one record, absolute values)."""
+    ``continued``: the last test campaign continues the first (one record, absolute values; said
+    in the manifest's ``continues``, as the four others end where it starts)."""
     root.mkdir(parents=True)
     rng = np.random.default_rng(0)
     t = np.arange(ROWS) * 60.0
@@ -65,9 +66,11 @@ def make_machine(root: Path, fault=None, continued: bool = False) -> Path:
         if fault is not None and cid == "K04":
             fault(df)
         df.to_csv(root / f"{cid}.csv", index=False)
-    pd.DataFrame([(c, f"{c}.csv", s, "") for c, s in CAMPAIGNS],
-                 columns=["campaign", "file", "split", "notes"]).to_csv(root / "campaigns.csv",
-                                                                       index=False)
+    manifest = pd.DataFrame([(c, f"{c}.csv", s, "") for c, s in CAMPAIGNS],
+                            columns=["campaign", "file", "split", "notes"])
+    if continued:   # every campaign's clock ends where K05's starts: the times cannot tell which
+        manifest["continues"] = ["K04" if c == "K05" else "" for c, _ in CAMPAIGNS]
+    manifest.to_csv(root / "campaigns.csv", index=False)
     return root
 
 
