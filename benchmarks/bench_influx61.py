@@ -135,7 +135,6 @@ What a stranger met on the way in (``init <folder> data.test_fraction=0.34``):
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
@@ -438,22 +437,7 @@ MACHINES = Machines(doc=__doc__, write=write, records=list(SEEDS), families=FAMI
                     lab_file=lambda root, name: sorted((root / name).glob("*.csv"))[-1])
 
 
-def replay_each(root: Path, names) -> list[dict]:
-    """``replay`` of every family's ``run`` model (the deployed form): max |stream - batch|."""
-    from new_machine_steps import replay
-
-    rows = [replay(root, name, family, data_args) for name in names for family in FAMILIES
-            if (root / "out" / f"{name}-{family}" / "model.pkl").exists()]
-    (root / f"replay-each-{'-'.join(names)}.json").write_text(json.dumps(rows, indent=1))
-    return rows
-
-
 def main(argv=None) -> int:
-    argv = list(sys.argv[1:] if argv is None else argv)
-    if argv and argv[0] == "replay-each":
-        root = Path(argv[1]).resolve()
-        replay_each(root, argv[argv.index("--data") + 1:] if "--data" in argv else list(SEEDS))
-        return 0
     return steps_main(MACHINES, argv)
 
 

@@ -340,16 +340,6 @@ MACHINES = Machines(doc=__doc__, write=write, records=list(SEEDS), families=FAMI
                     lab_file=lambda root, name: sorted((root / FOLDERS[name]).glob("*.csv"))[-1])
 
 
-def replay_each(root: Path, names) -> list[dict]:
-    """``replay`` of every family's ``run`` model: max |stream - batch|, events."""
-    from new_machine_steps import replay
-
-    rows = [replay(root, name, family, data_args) for name in names for family in FAMILIES
-            if (root / "out" / f"{name}-{family}" / "model.pkl").exists()]
-    (root / f"replay-each-{'-'.join(names)}.json").write_text(json.dumps(rows, indent=1))
-    return rows
-
-
 def _cpu(before) -> float:
     after = os.times()
     return round(after.children_user - before.children_user
@@ -514,10 +504,6 @@ def main(argv=None) -> int:
         rows = [extra[argv[0]](root, name) for name in names]
         (root / f"{argv[0]}-{'-'.join(names)}.json").write_text(json.dumps(rows, indent=1,
                                                                            default=str))
-        return 0
-    if argv and argv[0] == "replay-each":
-        root = Path(argv[1]).resolve()
-        replay_each(root, argv[argv.index("--data") + 1:] if "--data" in argv else list(SEEDS))
         return 0
     return steps_main(MACHINES, argv)
 

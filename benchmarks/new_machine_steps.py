@@ -156,6 +156,7 @@ def replay(root: Path, name: str, model: str, args_of: ArgsOf) -> dict:
 def _parser(bench: Machines) -> argparse.ArgumentParser:
     steps = ["write", "init", "run", "diagnose", *(["replay"] if bench.replayed else []),
              *(["monitor"] if bench.monitored else []), *(["export"] if bench.lab_file else []),
+             "replay-each",
              "table", *(["forensics"] if bench.forensics else []), "all"]
     parser = argparse.ArgumentParser(description=bench.doc,
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -193,6 +194,11 @@ def main(bench: Machines, argv=None) -> int:
         rows = [other_diagnose(root, name, bench.data_args) for name in names]
         path = root / bench.diagnose_file.format(names="-".join(names))
         path.write_text(json.dumps(rows, indent=1))
+    if args.what == "replay-each":     # every family's run model (not in all)
+        rows = [replay(root, name, family, bench.data_args) for name in args.data
+                for family in args.families
+                if (root / "out" / f"{name}-{family}" / "model.pkl").exists()]
+        (root / f"replay-each-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
     if bench.replayed and (args.what == "replay" or every):
         rows = [replay(root, name, bench.replayed, bench.data_args) for name in args.data]
         (root / f"replay-{'-'.join(args.data)}.json").write_text(json.dumps(rows, indent=1))
