@@ -323,6 +323,18 @@ def _level_scale(n_columns: int, p: int, ratio: float) -> np.ndarray:
     return scale
 
 
+def _records(design: str, ratio: float, alphas, scores: dict) -> list[dict]:
+    """The CV table's rows of one design and level penalty, one per ridge penalty
+    (``scores``: :func:`ridge_path_cv`'s; the increments design has no free-run error)."""
+    out = []
+    for i, alpha in enumerate(alphas):
+        free = scores["free_run"][:, i] if design != "increments" else np.array([np.inf])
+        out.append({"design": design, "ar": design == "lags+ar", "alpha": float(alpha),
+                    "level_penalty": ratio, **_summary("cv_mse_free_run", free),
+                    **_summary("cv_mse_one_step", scores["one_step"][:, i])})
+    return out
+
+
 def _levels_weighted(Z, p: int, ratio: float) -> tuple[np.ndarray, int]:
     """``(Z with its p levels scaled, number of free columns)`` of the level penalty ``ratio``."""
     if ratio == 0:
@@ -585,14 +597,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         if not measured.all():      # a target measured now and then: see _fit_measured
             return self._fit_measured(X, y, measured, context, groups, alphas, ratios, p, time)
 
-        k = min(int(self.n_splits), n - 1)   # tiny samples: fewer folds, blocks of >= 1 row
-        self.splitter_ = default_splitter(groups, n, forward_gap(self.taus_[-1] / self.sample_period_s_,
-                                                                 n, k), n_splits=k)
-        self.gap_ = int(getattr(self.splitter_, "gap", 0))
-        labels = groups
-        if isinstance(self.splitter_, GroupKFold):   # its folds by sorted labels: the same from their
-            labels = pd.factorize(np.asarray(groups, dtype=object), sort=True)[0]   # codes, sorted
-        splits = list(self.splitter_.split(X, y, labels))   # faster than strings (a tenth of an ATI)
+        splits = self._splits(X, y, groups, self.taus_[-1] / self.sample_period_s_)
         folds = self._campaign_folds(groups, n, splits) if self.ar is False else None
         if folds is not None:
             return self._fit_pooled(X, y, context, groups, folds, alphas, ratios, p, time)
@@ -617,12 +622,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                                        ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
                                        ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]), z_key=z_key,
                                        free_columns=n_free)
-                for i, alpha in enumerate(alphas):
-                    free = scores["free_run"][:, i] if design != "increments" else np.array([np.inf])
-                    records.append({"design": design, "ar": design == "lags+ar", "alpha": float(alpha),
-                                    "level_penalty": ratio,
-                                    **_summary("cv_mse_free_run", free),
-                                    **_summary("cv_mse_one_step", scores["one_step"][:, i])})
+                records += _records(design, ratio, alphas, scores)
         # the refit standardises its design again: the last design's copies (a year's 1.2 GB
         # each) are not held with it
         del D, Z, Zw
@@ -644,6 +644,18 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                 self.alpha_one_step_, p, float(table.loc[pick, "level_penalty"]))
         return self
 
+    def _splits(self, X, y, groups, longest_lag_rows: float) -> list:
+        """The CV's ``(train, validation)`` folds of the rows ``X, y`` (``groups``: their
+        campaigns), a forward gap of ``longest_lag_rows`` rows; sets ``splitter_`` and ``gap_``."""
+        n = len(y)
+        k = min(int(self.n_splits), n - 1)   # tiny samples: fewer folds, blocks of >= 1 row
+        self.splitter_ = default_splitter(groups, n, forward_gap(longest_lag_rows, n, k), n_splits=k)
+        self.gap_ = int(getattr(self.splitter_, "gap", 0))
+        labels = groups
+        if isinstance(self.splitter_, GroupKFold):   # its folds by sorted labels: the same from their
+            labels = pd.factorize(np.asarray(groups, dtype=object), sort=True)[0]   # codes, sorted
+        return list(self.splitter_.split(X, y, labels))   # faster than strings (a tenth of an ATI)
+
     def _fit_measured(self, X, y, measured, context, groups, alphas, ratios, p: int, time):
         """:meth:`fit` of a target measured now and then (a probe cycle on a dense log,
         ``data.sparse_targets``): the lag-bank features computed on every row (the inputs'
@@ -660,26 +672,15 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                                 f"needs at least {MIN_SPLITS + 1}")
         F = self._features(X, context)[rows]
         g = None if groups is None else np.asarray(groups, dtype=object)[rows]
-        k = min(int(self.n_splits), m - 1)
         spacing = X.shape[0] / m              # rows per measurement: the gap in measured rows
-        self.splitter_ = default_splitter(g, m, forward_gap(
-            self.taus_[-1] / self.sample_period_s_ / spacing, m, k), n_splits=k)
-        self.gap_ = int(getattr(self.splitter_, "gap", 0))
-        labels = g
-        if isinstance(self.splitter_, GroupKFold):
-            labels = pd.factorize(g, sort=True)[0]
-        splits = list(self.splitter_.split(F, y[rows], labels))
+        splits = self._splits(F, y[rows], g, self.taus_[-1] / self.sample_period_s_ / spacing)
         scaler = standard_scaler(F)
         Z = standardised(F, scaler)
         records = []
         for ratio in ratios:
             Zw, n_free = _levels_weighted(Z, p, ratio)
             scores = ridge_path_cv(Zw, y[rows], splits, alphas, g, free_columns=n_free)
-            for i, alpha in enumerate(alphas):
-                records.append({"design": "lags", "ar": False, "alpha": float(alpha),
-                                "level_penalty": ratio,
-                                **_summary("cv_mse_free_run", scores["free_run"][:, i]),
-                                **_summary("cv_mse_one_step", scores["one_step"][:, i])})
+            records += _records("lags", ratio, alphas, scores)
         table = pd.DataFrame(records)
         self._keep_choice(table, self._choose(table))
         self.coef_, self.ar_coef_, self.intercept_ = self._refit(
@@ -744,10 +745,8 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         for ratio in ratios:
             d = _level_scale(centre.size, p, ratio) / scale
             scores = pooled_path_cv(moments, folds, centre, d, alphas, p if ratio == 0 else 0)
-            for i, alpha in enumerate(alphas):
-                records.append({"design": "lags", "ar": False, "alpha": float(alpha),
-                                "level_penalty": ratio, **_summary("cv_mse_free_run", scores[:, i]),
-                                **_summary("cv_mse_one_step", scores[:, i])})
+            # without output feedback one step is the free run
+            records += _records("lags", ratio, alphas, {"free_run": scores, "one_step": scores})
         table = pd.DataFrame(records)
         self._keep_choice(table, self._choose(table))
         ratio = self.level_penalty_
