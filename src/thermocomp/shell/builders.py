@@ -146,10 +146,12 @@ def is_registered(source) -> bool:
                                    or (resolve(str(source)) / "MLmodel").is_file())
 
 
-def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[object, str, str]:
+def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str,
+                     loaded=None) -> tuple[object, str, str]:
     """``(deployed compensator, source, model name)`` of ``source`` (the value of ``key``): the
-    configured model fitted on ``train_ids`` (``None``), a model.pkl made deployable, or a pyfunc
-    folder / ``models:/name@alias`` as registered (:func:`is_registered`: ``ds`` is not read)."""
+    configured model fitted on ``train_ids`` (``None``), a model.pkl made deployable (``loaded``:
+    its compensator, already unpickled by the caller), or a pyfunc folder /
+    ``models:/name@alias`` as registered (:func:`is_registered`: ``ds`` is not read)."""
     if source is None:
         say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
         train = {c: ds.campaigns[c] for c in train_ids}
@@ -160,7 +162,7 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str) -> tuple[
         if is_registered(source):
             return _registered(cfg, source, None if is_registered_model(source) else resolve(source),
                                key)
-        comp = load_model(resolve(source))
+        comp = loaded if loaded is not None else load_model(resolve(source))
         name, what = model_family(comp), f"{key}={source}"
         train = {c: ds.campaigns[c] for c in train_ids}
     return deployable(cfg, deploy_stream(cfg, comp, train, what), train, ds), source, name

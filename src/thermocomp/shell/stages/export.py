@@ -72,10 +72,11 @@ def _deployed(cfg: DictConfig, source: str, fmt: str) -> tuple[object, dict, obj
             raise _refused(source, model_family(comp), fmt, exc) from None
 
     registered = is_registered(source)
-    if not registered:        # before data.path is read: its absence is no reason to give first
-        exportable(load_model(resolve(source)))
+    loaded = None if registered else load_model(resolve(source))
+    if loaded is not None:    # before data.path is read: its absence is no reason to give first
+        exportable(loaded)
     ds, train_ids = (None, []) if registered else read_streamed(cfg)[:2]
-    deployed = deployable_model(cfg, ds, train_ids, source, "export.model")[0]
+    deployed = deployable_model(cfg, ds, train_ids, source, "export.model", loaded)[0]
     if registered:
         if is_registered_model(source):
             return deployed, _registry_provenance(source), None
