@@ -28,12 +28,18 @@ def intermittent(missing: np.ndarray, rows: int, mode: str) -> dict | None:
     if mode == "false" or not missing.size:
         return None
     measured = np.setdiff1d(np.arange(rows), missing, assume_unique=True)
-    if measured.size < 2:
-        return None if mode == "auto" else {"measured": int(measured.size), "every": rows}
-    every = float(np.median(np.diff(measured)))
+    if measured.size < 2 and mode == "auto":
+        return None
+    every = _spacing(measured, rows)
     if mode == "auto" and (measured.size > MAX_SHARE * rows or every < MIN_SPACING):
         return None
     return {"measured": int(measured.size), "every": int(round(every))}
+
+
+def _spacing(measured: np.ndarray, rows: int) -> float:
+    """The median number of rows between the measured rows ``measured`` (``rows``, all of them,
+    where fewer than two are measured)."""
+    return float(np.median(np.diff(measured))) if measured.size > 1 else float(rows)
 
 
 def leading(missing: np.ndarray) -> np.ndarray:
@@ -86,5 +92,4 @@ def on_grid(grid: np.ndarray, time: np.ndarray, values: np.ndarray) -> np.ndarra
 def measured_on(values: np.ndarray) -> dict:
     """``{"measured": rows, "every": median spacing}`` of a sparse column as it stands."""
     rows = np.flatnonzero(np.isfinite(values))
-    every = float(np.median(np.diff(rows))) if rows.size > 1 else float(values.size)
-    return {"measured": int(rows.size), "every": int(round(every))}
+    return {"measured": int(rows.size), "every": int(round(_spacing(rows, values.size)))}
