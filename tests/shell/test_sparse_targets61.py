@@ -117,7 +117,7 @@ def test_a_sparse_record_runs_and_scores_its_measured_rows(family, dense, sparse
         assert figures["test"]["measured_rows"] == measured.sum() == len(residual) // EVERY + 1
         dense_rmse = float(np.sqrt(np.mean(residual[measured] ** 2)))
         assert figures["test"]["rmse"] < 1.5 * dense_rmse, (target, figures["test"]["rmse"], dense_rmse)
-        assert "skipped" in figures["test_one_step"]
+        assert figures["test_one_step"]["ahead_of_last_measured_rows"] == EVERY
 
 
 def test_a_dense_target_with_one_long_gap_is_still_refused(dense, tmp_path, capsys):
@@ -130,12 +130,33 @@ def test_a_dense_target_with_one_long_gap_is_still_refused(dense, tmp_path, caps
         in run.stderr
 
 
-def test_one_step_and_an_ar_term_are_refused_in_one_line(sparse, tmp_path):
-    """The previous error is not measured at most samples: eval.mode=one_step and ARX's forced
-    AR term are refused (exit 2, one line), not a crash."""
-    run = thermocomp("run", f"data.path={sparse}", f"out={tmp_path / 'a'}", "model=mlr",
-                     "eval.mode=one_step", *FAST, check=False)
-    assert run.returncode == 2 and "eval.mode=one_step: E_X was measured on 1 row in 30" in run.stderr
+def test_one_step_goes_from_the_last_probe_reading(sparse, tmp_path):
+    """eval.mode=one_step (sparse62; refused before): each measured test row predicted from the
+    previous probe reading by the one-step law, as the saved model recomputes it."""
+    out = tmp_path / "a"
+    thermocomp("run", f"data.path={sparse}", f"out={out}", "model=mlr", "eval.mode=one_step", *FAST)
+    figures = json.loads((out / "metrics.json").read_text())["targets"]["E_X"]
+    assert figures["test"]["ahead_of_last_measured_rows"] == EVERY
+    comp = load_model(out / "model.pkl")
+    ds, _ = read_dataset(sparse)
+    test = {c: ds.campaigns[c] for c in ds.ids("test")}
+    pred, meas = comp.predict(test, mode="one_step"), comp.measured(test)
+    simulated = comp.predict(test)["production"]["E_X"].to_numpy()
+    y, p = meas["production"]["E_X"].to_numpy(), pred["production"]["E_X"].to_numpy()
+    rows = np.flatnonzero(np.isfinite(y))
+    law = comp.one_step_["E_X"]
+    # the law from the previous measurement (the first row: the model's own simulation)
+    assert p[rows[0]] == simulated[rows[0]]
+    prev = rows[:-1]
+    expected = y[prev] + law.k_ * (simulated[rows[1:]] - simulated[prev]) \
+        - law.g_ * (y[prev] - simulated[prev])
+    assert np.allclose(p[rows[1:]], expected, rtol=0, atol=1e-9)
+    assert np.isclose(figures["test"]["rmse"], np.sqrt(np.mean((y[rows] - p[rows]) ** 2)))
+
+
+def test_an_ar_term_is_refused_in_one_line(sparse, tmp_path):
+    """The previous error is not measured at most samples: ARX's forced AR term is refused
+    (exit 2, one line), not a crash."""
     run = thermocomp("run", f"data.path={sparse}", f"out={tmp_path / 'b'}", "model=arx",
                      "model.estimator.ar=true", *FAST, check=False)
     assert run.returncode == 2 and "ARX.ar=true needs the error measured at every sample" in run.stderr

@@ -13,7 +13,6 @@ import numpy as np
 import pandas as pd
 from sklearn.base import BaseEstimator, clone
 
-from ..base.errors import ConfigError
 from .choices import MODES
 from .context import Y_MEASURED, for_target, with_column
 from .denoise import denoise_campaigns, fit_denoiser
@@ -151,11 +150,6 @@ class Compensator(BaseEstimator):
             if mode == "simulation":
                 out[:, k] = est.predict(X, context=context)
                 continue
-            if laws is not None and getattr(laws[target], "every_", 1) > 1:
-                raise ConfigError(
-                    f"eval.mode=one_step: {target} was measured on 1 row in "
-                    f"{laws[target].every_} in training (a probe cycle, data.sparse_targets): no "
-                    "measured previous error at most samples; score it in eval.mode=simulation")
             # one-step: the measured error is a side input too (of the law, or of an old model)
             measured = with_column(context, Y_MEASURED, m.Y[target].to_numpy(), len(m.X))
             if laws is None:

@@ -85,7 +85,8 @@ class OneStepLaw(SideInputs, RegressorMixin, BaseEstimator):
     protocol, :mod:`thermocomp.core.context`), as does ``campaign``.  ``fit``
     estimates :math:`(k, g)` by least squares on the increments of the rows
     that have a previous sample in their campaign.  A missing measured value
-    (NaN) is replaced by the law's own previous prediction.
+    (NaN) is bridged from the last measured one: :math:`t-1` above is the last row before
+    :math:`t` whose error was measured (a probe cycle's previous reading, ``data.sparse_targets``).
 
     Attributes
     ----------
@@ -128,13 +129,13 @@ class OneStepLaw(SideInputs, RegressorMixin, BaseEstimator):
         n = len(s)
         require(context, Y_MEASURED, "one-step prediction")
         y = values(context, Y_MEASURED, n)
-        groups = groups_of(context)
-        starts = segment_starts(groups, n)
-        s_prev = previous(s, groups)
-        out = self._law(previous(y, groups), s, s_prev)
-        out[starts] = s[starts]
-        for t in np.flatnonzero(np.isnan(out)):   # measurement gap: go on from the law's own output
-            out[t] = self._law(out[t - 1], s[t], s_prev[t])
+        # from the last measured row, as fitted: the previous sample where every sample is
+        # measured; the last probe reading of a target measured now and then (one probe
+        # cycle ahead), or the last reading before a measurement gap
+        last = last_measured(y, groups_of(context))
+        seen = last >= 0
+        out = s.copy()          # no measurement yet in the campaign: the model's own simulation
+        out[seen] = self._law(y[last[seen]], s[seen], s[last[seen]])
         return out
 
     def _law(self, y_prev, s, s_prev):

@@ -98,21 +98,19 @@ def score(comp: Compensator, ds: Dataset, mode: str = "simulation",
     ids = require_split(ds, "test")
     other = next(m for m in MODES if m != mode)
     baselines = {PERSISTENCE: continuation.persistence(comp, ds, ids, carried)}
-    sparse = probe_cycles(comp)
-    if other != "one_step" or not sparse:
-        baselines[test_block(other)] = continuation.predict(comp, ds, ids, other, carried)[0]
-    else:       # no one-step prediction where the previous error is not measured
-        for t in comp.targets_:
-            out[t][test_block(other)] = {"skipped": "a target measured now and then ("
-                                         + ", ".join(f"{c}: 1 row in {k}" for c, k in sparse.items())
-                                         + "): no measured previous error at most samples"}
+    baselines[test_block(other)] = continuation.predict(comp, ds, ids, other, carried)[0]
     for key, pred in baselines.items():
         for t in comp.targets_:
             y = {c: predictions[c][0][t].to_numpy() for c in ids}
             out[t][key] = split_scores(y, {c: y[c] - pred[c][t].to_numpy() for c in ids}, 1.0,
                                        with_before_after=False)
+    one_step = test_block(other) if other == "one_step" else "test"
     for t in comp.targets_:     # a reference, not a compensator: a probe must be on the machine
         out[t][PERSISTENCE]["needs_measured_error_online"] = True
+    for t, rows in probe_cycles(comp).items():
+        # measured now and then: "one step" is from the last probe reading, a cycle ahead
+        for key in (PERSISTENCE, one_step):
+            out[t][key]["ahead_of_last_measured_rows"] = rows
     return out, predictions
 
 
