@@ -9,11 +9,14 @@ copy reads it; the clamp's bound is the stream's gain, which grows by the state'
 the sample before the campaign's first excess (a campaign out at its first sample: the target
 clamped outright, as the stream has no value then).  The C, the Structured Text and the JSON read
 back equal ``replay`` to 1e-9 µm over MLR, ARX and lag-bank bases, plain and adaptive
-(``adapt.method=bias`` learning from reference measurements); around an ATI model it is refused
-in one line naming it.
+(``adapt.method=bias`` learning from reference measurements), and ``thermocomp export``'s check
+pack passes on the compiled ``stream --check``; around an ATI model it is refused in one line
+naming it.
 """
 
 from __future__ import annotations
+
+import subprocess
 
 import numpy as np
 import pandas as pd
@@ -30,6 +33,8 @@ from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.core.models import ARX, MLR, LagBank
 from thermocomp.core.models.ati import ATIRegressor
 from thermocomp.shell.builders import deploy_stream, deployable
+from thermocomp.shell.cli import main
+from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
 
 PRODUCT = {"kind": "interaction", "transform": "inputs_product", "column": "S_y_pos",
@@ -162,3 +167,20 @@ def test_around_an_ati_model_it_is_refused_in_one_line_naming_it(data):
     said = str(info.value)
     assert "\n" not in said and "interaction:S_y_pos product(model inputs' rises)" in said
     assert "around an ATI model" in said
+
+
+@needs_cc
+def test_the_export_commands_check_pack_passes_for_it(data, tmp_path):
+    """``thermocomp export`` of the model.pkl (refused by name before), the default deployment
+    (adaptive): the compiled ``stream --check`` gives the pack's expected corrections."""
+    _, _, comp = _diagnosed(data, [PRODUCT], LagBank(n_taus=2))
+    out = tmp_path / "code"
+    assert main(["export", f"data.path={data}", f"export.model={save_model(comp, tmp_path / 'm.pkl')}",
+                 "export.format=c", f"out={out}", "track=false"]) == 0
+    banner = (out / "compensator.c").read_text().split("*/")[0]
+    assert "interaction:S_y_pos product(model inputs' rises) (absolute)" in banner
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=out, check=True, capture_output=True)
+    script = subprocess.run(["sh", "check/check.sh"], cwd=out, capture_output=True, text=True)
+    assert script.returncode == 0, script.stderr
+    assert script.stderr.count("stream: check passed: 50 rows") == 2
