@@ -222,32 +222,45 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         exp(-h / tau)`` of the copy's coefficients, over a lag bank cascades, over an ARX model
         the difference equation's response to the lag; exact, gain61) on ``x``.  ``c (x - x(0))``
         (diagpos61) scales it by the state ``c`` of the stream's last sample, held over the
-        horizon: a gain of the stream's state, not of ``A0`` (no term without ``state``: the code
-        does not export it)."""
+        horizon: a gain of the stream's state, not of ``A0`` (no gain without ``state``; the
+        exported code holds the state's value, :meth:`held_gain_terms`, export62)."""
         return self._terms(horizon_s, lead)
 
-    def _terms(self, horizon_s: float, lead=None, state=None) -> list:
+    def held_gain_terms(self, horizon_s: float = np.inf) -> tuple[list, dict]:
+        """``(terms, {effect index: terms})``: :meth:`gain_terms` with every ``inputs_product``'s
+        state at 0, and per such effect the terms its state's held value multiplies (its block
+        alone): the stream's gain at a held value ``c_i`` is the first plus ``c_i`` times each
+        (export62: the exported code holds the state's value at the campaign's first excess)."""
+        products = [i for i, e in enumerate(self.effects_) if e.transform == "inputs_product"]
+        zero = self._terms(horizon_s, state={"state_of": dict.fromkeys(products, 0.0)})
+        return zero, {i: self._terms(horizon_s, unit=i) for i in products}
+
+    def _terms(self, horizon_s: float, lead=None, state=None, unit: int | None = None) -> list:
         """:meth:`gain_terms`, a state's product with the inputs' rises (``inputs_product``) at
-        the stream ``state``'s last value of it (``None``: no gain)."""
+        the stream ``state``'s last value of it (``None``: no gain); ``unit``: that effect's
+        block alone, at a state's value of 1 (:meth:`held_gain_terms`)."""
         check_is_fitted(self)
         if lead is not None:
             return [GainTerm(-np.inf, np.inf, 0, None)]     # a diagnosed model in a lag: none
         base = gain_terms(self.estimator_, horizon_s, self._lead_taus(),
                           getattr(self, "sample_period_s_", None) or 1.0)
-        return [part for t in base for part in self._blocks(t, state)]
+        return [part for t in base for part in self._blocks(t, state, unit)]
 
-    def _blocks(self, term: GainTerm, state=None) -> list:
-        """One base term over the features as terms over ``x`` (:meth:`gain_terms`)."""
+    def _blocks(self, term: GainTerm, state=None, unit: int | None = None) -> list:
+        """One base term over the features as terms over ``x`` (:meth:`gain_terms`); ``unit``:
+        the ``inputs_product`` effect whose block alone is kept, at a state's value of 1."""
         if term.gain is None:
             return [term]
         gain, k = term.gain, int(self.n_features_in_)
-        x, at, out = gain[:k].copy(), k, []
+        x, at, out = gain[:k].copy() if unit is None else np.zeros(k), k, []
         for i, e in enumerate(self.effects_):
             tr = e.transform
             if tr in ("lowpass_inputs", "ambient_linear", "ambient_step", "inputs_product"):
                 block = gain[at:at + k]
                 at += k
-                if tr == "lowpass_inputs":      # its lag of the held step: in the base's gain
+                if unit is not None:            # the one effect's block alone
+                    x += block if i == unit else 0.0
+                elif tr == "lowpass_inputs":      # its lag of the held step: in the base's gain
                     x += block
                 elif tr == "inputs_product":    # x's rise times the state's value held
                     held = (state or {}).get("state_of", {}).get(i)

@@ -8,8 +8,9 @@
 
 Of an adaptive compensator the time rule and the correction guard are in the code, and the
 reference update of ``adapt.method`` (:mod:`.output`); a Hammerstein model's static powers too,
-and a diagnosed model's lags, products, squares and (exportrest60) lags' initial-state transients
-as derived inputs (:func:`.derived.derived_inputs`), its ambient steps as laws of the initial
+and a diagnosed model's lags, products, squares, (exportrest60) lags' initial-state transients
+and (export62) a state times the inputs' rises as derived inputs
+(:func:`.derived.derived_inputs`), its ambient steps as laws of the initial
 ambient, a lag bank's lag of its lag as a cascade, around a plain or an ATI model.
 Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
 families of :data:`~.laws.LINEAR_FAMILIES` export, and what ``model=auto`` keeps of them (one, or

@@ -117,6 +117,7 @@ def header(ss: StateSpace) -> str:
 #define TC_N_POWERS {len(ss.powers)}   /* powers of machine states (Hammerstein) */
 #define TC_N_DERIVED {len(ss.derived)}   /* a diagnosed model's derived inputs (products, lags) */
 #define TC_N_INITIAL {len(ss.initial)}   /* a diagnosed lag's initial-state transient (directions) */
+#define TC_N_STATE_GAIN {len(ss.clamp_states)}   /* states scaling the clamp's gain (inputs_product) */
 #define TC_WIDTH (TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED + TC_N_INITIAL)   /* a law's inputs */
 #define TC_USES_TIME {int(ss.uses_time)}
 #define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
@@ -134,6 +135,11 @@ typedef struct {{
     double buf[TC_TAPS][TC_N_INPUTS];           /* raw inputs, newest first (FIR denoiser) */
     double ref[TC_N_INPUTS];                    /* first-sample reference */
     double v0[TC_N_INPUTS];                     /* the first value (derived inputs' frame) */
+    double x0[2][TC_N_INPUTS];                  /* the first sample's x and excess (inputs_product) */
+    double by_prev[{max(len(ss.clamp_states), 1)}];   /* the clamp's states at the last sample */
+    double by_held[{max(len(ss.clamp_states), 1)}];   /* ... at the one before the first excess */
+    int excessed;                               /* 1: an excess seen in this campaign */
+    int by_outright[TC_N_OUTPUTS];              /* 1: out at the campaign's first sample: outright */
     double last[TC_N_INPUTS];                   /* the last finite value (a held signal's) */
     int seen[TC_N_INPUTS];                      /* 1: a value seen in this campaign */
     double a0;                                  /* the campaign's initial ambient */
@@ -212,6 +218,12 @@ def source(ss: StateSpace) -> str:
         _array("POWER_EXP", [q[2] for q in ss.powers], (p,)),
         *(_ints(f"DERIVED_{name}", [f[i] for f in ss.derived])
           for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
+        _ints("DERIVED_CLAMPED", ss.derived_clamped or [0] * len(ss.derived)),
+        _ints("STATE_INPUT", [st[0] for st in ss.clamp_states]),
+        _ints("STATE_REF", [st[1] for st in ss.clamp_states]),
+        _array("STATE_GAIN", ss.clamp_state_gain or [[[0.0] * n]] * r,
+               (r, len(ss.clamp_states), n)),
+        _ints("STATE_FIRST", ss.clamp_state_first or [0] * len(ss.targets)),
         _array("INITIAL_TAU", [f[0] for f in ss.initial], (qi,)),
         _array("INITIAL_W", [_spread(f[1], f[2], n) for f in ss.initial], (qi, n)),
         _array("INITIAL_SENSOR", [_spread(f[1], [1.0] * len(f[1]), n) for f in ss.initial], (qi, n)),
@@ -331,12 +343,36 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             s->v0[j] = v[j];
             s->seen[j] = 1;
         }}
+    if (s->first)   /* the model's inputs and their excess at its first sample */
+        for (j = 0; j < TC_N_INPUTS; j++) s->x0[0][j] = x[0][j], s->x0[1][j] = x[1][j];
     for (l = 0; l < TC_N_DERIVED; l++) {{
         int a = DERIVED_A[l], b = DERIVED_B[l];
         double ra = s->seen[a] ? v[a] - (DERIVED_REF_A[l] ? s->v0[a] : 0.0) : 0.0;
         double rb = b < 0 ? 1.0 : (s->seen[b] ? v[b] - (DERIVED_REF_B[l] ? s->v0[b] : 0.0) : 0.0);
-        x[0][TC_N_INPUTS + TC_N_POWERS + l] = ra * rb;
-        x[1][TC_N_INPUTS + TC_N_POWERS + l] = 0.0;
+        if (DERIVED_CLAMPED[l]) {{   /* a state times the model input's rise, clamped in channel 1 */
+            x[0][TC_N_INPUTS + TC_N_POWERS + l] = ra * (x[0][b] - s->x0[0][b]);
+            x[1][TC_N_INPUTS + TC_N_POWERS + l] = ra * (x[1][b] - s->x0[1][b]);
+        }} else {{
+            x[0][TC_N_INPUTS + TC_N_POWERS + l] = ra * rb;
+            x[1][TC_N_INPUTS + TC_N_POWERS + l] = 0.0;
+        }}
+    }}
+    /* the clamp's gain grows by a state's value times its inputs_product's gain: the value of
+       the sample before the campaign's first excess, held (out at its first sample: no value,
+       the target clamped outright), as the stream forks its clamped copy then */
+    if (s->first) {{
+        s->excessed = 0;
+        for (i = 0; i < TC_N_OUTPUTS; i++) s->by_outright[i] = 0;
+        for (l = 0; l < TC_N_STATE_GAIN; l++) s->by_held[l] = 0.0;
+    }}
+    if (TC_N_STATE_GAIN && clamped && !s->excessed) {{
+        s->excessed = 1;
+        for (i = 0; i < TC_N_OUTPUTS && s->first; i++) s->by_outright[i] = STATE_FIRST[i];
+        for (l = 0; l < TC_N_STATE_GAIN && !s->first; l++) s->by_held[l] = s->by_prev[l];
+    }}
+    for (l = 0; l < TC_N_STATE_GAIN; l++) {{
+        int a = STATE_INPUT[l];
+        s->by_prev[l] = s->seen[a] ? v[a] - (STATE_REF[l] ? s->v0[a] : 0.0) : 0.0;
     }}
     /* a diagnosed lag's initial-state transient: w . (c(0) - A0) (1 - exp(-(t - t0) / tau)), c(0)
        its sensors at the campaign's first sample that has one of them (a missing one: 0, its
@@ -395,7 +431,11 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     for (i = 0; i < TC_N_OUTPUTS; i++) ysum[0][i] = ysum[1][i] = excess[i] = 0.0;
     for (r = 0; r < TC_N_LAWS; r++) {{   /* each law (its own feedback), summed into its target */
         double p = 0.0;
-        for (j = 0; j < TC_N_INPUTS; j++) p += CLAMP_GAIN[r][j] * x[1][j];
+        for (j = 0; j < TC_N_INPUTS; j++) {{
+            double gain = CLAMP_GAIN[r][j];
+            for (l = 0; l < TC_N_STATE_GAIN; l++) gain += s->by_held[l] * STATE_GAIN[r][l][j];
+            p += gain * x[1][j];
+        }}
         if (s->factor[r] != 0.0) excess[LAW_TARGET[r]] += s->factor[r] * p;
         for (h = 0; h < 2; h++) {{
             ych[h] = h == 0 ? INTERCEPT[r] : 0.0;
@@ -414,7 +454,8 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         ych[1] = ysum[1][i];
         bound = excess[i];
         if (s->first || clamped) s->bound[i] = fabs(bound);
-        bound = CLAMP_OUTRIGHT[i] ? HUGE_VAL : s->bound[i];   /* outright: no step gain */
+        /* outright: no step gain (or none yet: a state's, out at the campaign's first sample) */
+        bound = (CLAMP_OUTRIGHT[i] || s->by_outright[i]) ? HUGE_VAL : s->bound[i];
         y = ych[0] - (ych[1] > bound ? bound : (ych[1] < -bound ? -bound : ych[1]));
         /* correction guard: within the rate limit of the previous output, then the bound */
         if (TC_GUARD) {{

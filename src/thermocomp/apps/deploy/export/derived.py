@@ -6,6 +6,9 @@ from its context, the raw value of each column it reads (a declared input denois
 read; missing: held).  A lag, a product, a square or a raw signal of those columns is a feature
 the code computes the same way from its inputs (``derived`` of :class:`~.statespace.StateSpace`),
 a lag a lag-bank channel on it; a low-pass of the model inputs is a channel on each input.  A
+state times the rises of all the inputs, ``c (x_i - x_i(0))`` (``inputs_product``, diagpos61), is
+one derived input per input (export62), its second factor the model's input ``x_i`` itself, the
+clamped one in the code's excess channel as the stream's model reads it (``derived_clamped``).  A
 lag's initial-state transient ``w . (c(0) - A0) (1 - exp(-(t - t0)/tau))`` is a derived input of
 its own (``initial``, exportrest60): ``c(0)`` the sensors' values at the first sample of the
 campaign that has one of them, ``A0`` the campaign's initial ambient, ``t0`` its first sample's
@@ -22,12 +25,13 @@ from dataclasses import dataclass, field
 import numpy as np
 
 # what the code holds of diagnose's effects (the refusal names them)
-DERIVED_TRANSFORMS = ("first_order_lag", "product", "square", "raw")
+DERIVED_TRANSFORMS = ("first_order_lag", "product", "square", "raw", "inputs_product")
 AMBIENT_TRANSFORMS = ("ambient_linear", "ambient_step")     # laws on x the campaign's A0 switches
 EXPORTED_EFFECTS = ("a sensor's removal, the inputs' ambient law x (A0 - 20) and ambient step "
                     "x [A0 > A_thr], a first-order lag of a signal or input and of all the inputs "
                     "(with or without its initial-state transient), a product of two columns, a "
-                    "square of one and a signal as read (raw)")
+                    "state times the rises of all the inputs (inputs_product), a square of one "
+                    "and a signal as read (raw)")
 
 
 def is_derived(e) -> bool:
@@ -49,6 +53,7 @@ class Feature:
 
     effect: object
     initial: np.ndarray | None = None
+    input: int | None = None        # inputs_product: the model input whose rise it multiplies
 
     @property
     def title(self) -> str:
@@ -58,10 +63,13 @@ class Feature:
 def features(est) -> tuple[list[Feature], list[int]]:
     """``(derived inputs, initial-state directions per effect)`` of a fitted diagnosed model
     ``est``, in the order of its feature columns (:func:`canonical_order`): an effect's own term,
-    then its transient's directions (the learned ``initial_weights_``, else one per sensor)."""
+    then its transient's directions (the learned ``initial_weights_``, else one per sensor); an
+    ``inputs_product`` one per model input."""
     out, counts = [], []
     for e, w in zip(est.effects_, est.initial_weights_):
-        if is_derived(e):
+        if e.transform == "inputs_product":
+            out += [Feature(e, input=i) for i in range(int(est.n_features_in_))]
+        elif is_derived(e):
             out.append(Feature(e))
         rows = [] if not e.initial_state else (
             np.asarray(w, float) if w is not None else np.eye(len(e.initial_state)))
@@ -112,7 +120,7 @@ def canonical_order(effects: list, k: int, initial: list[int]) -> list[int]:
     inputs, low-pass blocks]`` the laws are written in."""
     at, wide, derived, lowpass = k, [], [], []
     for e, q in zip(effects, initial):
-        own = k if e.transform in (*AMBIENT_TRANSFORMS, "lowpass_inputs") else 1
+        own = k if e.transform in (*AMBIENT_TRANSFORMS, "lowpass_inputs", "inputs_product") else 1
         group = wide if e.transform in AMBIENT_TRANSFORMS else (
             lowpass if e.transform == "lowpass_inputs" else derived)
         group.extend(range(at, at + own))
@@ -127,13 +135,17 @@ def ambient_blocks(effects: list) -> list[tuple]:
             for e in effects if e.transform in AMBIENT_TRANSFORMS]
 
 
-def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[int, float | None]]:
+def derived_inputs(derived: Derived, inputs: list, powers: dict,
+                   cols=None) -> list[tuple[int, float | None]]:
     """Per derived input, ``(its place among the registered features, the lag's tau or None)``:
     each effect's term, registered in ``powers`` as ``(DERIVED, a, b, ra, rb)``: the product
     ``r_a r_b`` (``b`` = -1: ``r_a`` alone) of ``r_j = v_j - ra v_j(0)``, the input as the
     stream's model reads it from its context (a declared input denoised, a state raw; its change
     since the campaign's first sample where ``ra``: the effect's frame, whatever the inputs'
-    reference); a lag is its lag bank channel on ``r_a``.  A transient's direction is registered
+    reference); a lag is its lag bank channel on ``r_a``.  An ``inputs_product``'s, one per
+    model input ``i`` (the code's input ``cols[i]``), as ``(DERIVED, a, cols[i], ra, 1, CLAMPED)``:
+    ``r_b`` is the model's input's rise ``x_i - x_i(0)``, which the clamp moves (its excess
+    channel: ``r_a (e_i - e_i(0))``), not the context's value.  A transient's direction is registered
     as ``(INITIAL, sensors, weights, tau)`` (no lag channel: a static input of the laws)."""
     from ...diagnose.features import frames  # loaded: the model is a diagnosed one
     out = []
@@ -146,6 +158,10 @@ def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[i
             continue
         own, other = (int(fr == "first_sample") for fr in frames(e, derived.reference))
         a = inputs.index(e.column)
+        if f.input is not None:             # c (x_i - x_i(0)): the model's input, clamped
+            key = (DERIVED, a, int(cols[f.input]), own, 1, CLAMPED)
+            out.append((powers.setdefault(key, len(powers)), None))
+            continue
         b, rb = -1, 0                       # a lag: r_a alone
         if e.transform == "product":
             b, rb = inputs.index(e.other), other
@@ -158,3 +174,4 @@ def derived_inputs(derived: Derived, inputs: list, powers: dict) -> list[tuple[i
 
 DERIVED = "derived"     # the key of a derived input among the registered features
 INITIAL = "initial"     # the key of an initial-state transient's direction
+CLAMPED = "clamped"     # a derived input's second factor is the model's (clamped) input

@@ -57,6 +57,9 @@ class Law:
     lo: float = -UNBOUNDED
     hi: float = UNBOUNDED
     ambient: int = 0          # the power of A0 - 20 the law counts times
+    # {(state input, its frame): gain over x} the gain adds times that state's value the sample
+    # before the campaign's first excess (an ``inputs_product``'s, export62)
+    gain_by: dict = field(default_factory=dict)
 
     @property
     def key(self) -> tuple:
@@ -91,25 +94,38 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict,
     return _summed(own), period, _named(described(parts), parts)
 
 
-def with_gains(laws: list[Law], terms: list, cols: np.ndarray, n: int, target: str) -> None:
+def with_gains(laws: list[Law], terms: list, cols: np.ndarray, n: int, target: str,
+               by: dict | None = None) -> None:
     """The clamp's gain of a target's model, its ``terms`` (:func:`~thermocomp.core.gains.gain_terms`
     over the model's inputs ``cols`` of the code's ``n``), each added to the gain of the first
     law that counts as it does (the same interval of ``A0`` and power of ``A0 - 20``): the code's bound,
     ``|sum_r factor_r gain_r . ex|``, is then the model's own gain at the campaign's ``A0``, the
-    one the stream takes (gain61: no second computation of it here)."""
-    for law in laws:
-        law.gain = np.zeros(n)
+    one the stream takes (gain61: no second computation of it here).  ``by``: ``{(state input,
+    frame): terms}`` that count times a state's value (an ``inputs_product``'s, the stream's
+    ``AugmentedRegressor.held_gain_terms``), on ``gain_by`` the same way."""
+    for law, gain in zip(laws, _on_laws(laws, terms, cols, n, target)):
+        law.gain = gain
+    for key, part in (by or {}).items():
+        for law, gain in zip(laws, _on_laws(laws, part, cols, n, target)):
+            law.gain_by[key] = gain
+
+
+def _on_laws(laws: list[Law], terms: list, cols: np.ndarray, n: int, target: str) -> list:
+    """Per law the sum of the ``terms`` that count as it does (:func:`with_gains`), over the
+    code's ``n`` inputs."""
+    out = [np.zeros(n) for _ in laws]
     for t in terms:
         if t.gain is None:      # an empty interval of A0 (a step above its ATI interval)
             continue
         key = (max(t.lo, -UNBOUNDED), min(t.hi, UNBOUNDED), t.power)
-        law = next((law for law in laws if law.key == key), None)
-        if law is None:
+        r = next((r for r, law in enumerate(laws) if law.key == key), None)
+        if r is None:
             if np.any(t.gain != 0.0):
                 raise NotExportable(f"the clamp's gain of {target} counts where no law of the code "
                                     f"does ({key[0]:.4g} < A0 <= {key[1]:.4g}, power {key[2]})")
             continue
-        law.gain = law.gain + _spread(t.gain, cols, n)
+        out[r] = out[r] + _spread(t.gain, cols, n)
+    return out
 
 
 def _named(kept: str | None, parts: list) -> str | None:
@@ -163,6 +179,11 @@ def _diagnosed(est) -> list:
         base = est.estimator_
         if not isinstance(base, ATIRegressor):
             return [(-UNBOUNDED, UNBOUNDED, base, False, derived)]
+        products = [e.title for e in effects if e.transform == "inputs_product"]
+        if products:     # its clamp's gain: a state's value times an ATI interval's: not held
+            raise NotExportable(f"the diagnosed {'; '.join(products)} around an ATI model "
+                                "(diagnose ati=cmeans) does not export (around a plain base it "
+                                "does); the served model runs it (thermocomp serve, connect)")
         edges = [-UNBOUNDED, *map(float, base.boundaries_), UNBOUNDED]
         return [(edges[m], edges[m + 1], e, bool(base.interactions_[m]), derived)
                 for m, e in enumerate(base.estimators_)]
@@ -183,7 +204,7 @@ def _member_laws(est, interacts: bool, w: float, cols, inputs, powers, period, t
     around a diagnosed model that takes the ambient interaction is fitted on ``[Z, Z (A0 -
     20)]``, ``Z`` those features: its laws on ``Z`` and, times ``A0 - 20``, its laws on the
     second half (each with the model's feedback: ``A0`` is fixed over the campaign)."""
-    extra = derived_inputs(derived, inputs, powers)
+    extra = derived_inputs(derived, inputs, powers, cols)
     linear, feats = _powered(est, inputs, powers)
     whole = interacts and derived.blocks is not None      # [Z, Z (A0 - 20)] (exportrest60)
     blocks = derived.blocks if derived.blocks is not None else [("ambient", None)] * interacts

@@ -66,6 +66,7 @@ def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
     p, r, qi = len(ss.powers), len(ss.laws), len(ss.initial)
     q = len(ss.derived) + qi       # the derived inputs, then the transients' (N_DERIVED first)
+    nb = len(ss.clamp_states)      # states whose value scales the clamp's gain (inputs_product)
     consts = "\n".join([
         f"    N_INPUTS : INT := {n};", f"    N_OUTPUTS : INT := {m};", f"    N_LAWS : INT := {r};",
         f"    TAPS : INT := {taps};",
@@ -108,6 +109,12 @@ def function_block(ss: StateSpace) -> str:
                   (qi, n), "INT"),
         *(_constant(f"DERIVED_{name}", [f[i] for f in ss.derived], (len(ss.derived),), "INT")
           for i, name in enumerate(("A", "B", "REF_A", "REF_B"))),
+        _constant("DERIVED_CLAMPED", ss.derived_clamped or [], (len(ss.derived),), "INT"),
+        f"    N_STATE_GAIN : INT := {nb};",
+        _constant("STATE_INPUT", [st[0] for st in ss.clamp_states], (nb,), "INT"),
+        _constant("STATE_REF", [st[1] for st in ss.clamp_states], (nb,), "INT"),
+        _constant("STATE_GAIN", ss.clamp_state_gain or [], (r, nb, n)),
+        _constant("STATE_FIRST", ss.clamp_state_first or [], (m,), "INT"),
         _constant("BD", ss.bd, (r, d, n)), _constant("G", ss.g, (r, k)), _constant("AR", ss.ar, (r,)),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
         f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
@@ -153,6 +160,12 @@ VAR
     buf : ARRAY[{_dims(taps, n)}] OF LREAL;
     ref : ARRAY[{_dims(n)}] OF LREAL;
     v0 : ARRAY[{_dims(n)}] OF LREAL;
+    x0 : ARRAY[{_dims(2, n)}] OF LREAL;
+    by_prev : ARRAY[{_dims(nb)}] OF LREAL;
+    by_held : ARRAY[{_dims(nb)}] OF LREAL;
+    excessed : BOOL;
+    by_outright : ARRAY[{_dims(m)}] OF BOOL;
+    gsum : LREAL;
     last : ARRAY[{_dims(n)}] OF LREAL;
     seen : ARRAY[{_dims(n)}] OF BOOL;
     uu : ARRAY[{_dims(n)}] OF LREAL;
@@ -374,6 +387,13 @@ IF NOT refused THEN
             seen[j] := TRUE;
         END_IF;
     END_FOR;
+    (* the model's inputs and their excess at its first sample (a state times their rises) *)
+    IF first THEN
+        FOR j := 0 TO N_INPUTS - 1 DO
+            x0[0, j] := x[0, j];
+            x0[1, j] := x[1, j];
+        END_FOR;
+    END_IF;
     FOR l := 0 TO N_DERIVED - 1 DO
         ra := 0.0;
         IF seen[DERIVED_A[l]] THEN
@@ -392,8 +412,46 @@ IF NOT refused THEN
                 END_IF;
             END_IF;
         END_IF;
-        x[0, N_INPUTS + N_POWERS + l] := ra * rb;
-        x[1, N_INPUTS + N_POWERS + l] := 0.0;
+        IF DERIVED_CLAMPED[l] <> 0 THEN
+            (* a state times the model input's rise, the clamped one's in channel 1 *)
+            x[0, N_INPUTS + N_POWERS + l] := ra * (x[0, DERIVED_B[l]] - x0[0, DERIVED_B[l]]);
+            x[1, N_INPUTS + N_POWERS + l] := ra * (x[1, DERIVED_B[l]] - x0[1, DERIVED_B[l]]);
+        ELSE
+            x[0, N_INPUTS + N_POWERS + l] := ra * rb;
+            x[1, N_INPUTS + N_POWERS + l] := 0.0;
+        END_IF;
+    END_FOR;
+    (* the clamp's gain grows by a state's value times its gain: the value of the sample before *)
+    (* the campaign's first excess, held (out at its first sample: the target clamped outright) *)
+    IF first THEN
+        excessed := FALSE;
+        FOR i := 0 TO N_OUTPUTS - 1 DO
+            by_outright[i] := FALSE;
+        END_FOR;
+        FOR l := 0 TO N_STATE_GAIN - 1 DO
+            by_held[l] := 0.0;
+        END_FOR;
+    END_IF;
+    IF N_STATE_GAIN > 0 AND n_clamped > 0 AND NOT excessed THEN
+        excessed := TRUE;
+        IF first THEN
+            FOR i := 0 TO N_OUTPUTS - 1 DO
+                by_outright[i] := STATE_FIRST[i] <> 0;
+            END_FOR;
+        ELSE
+            FOR l := 0 TO N_STATE_GAIN - 1 DO
+                by_held[l] := by_prev[l];
+            END_FOR;
+        END_IF;
+    END_IF;
+    FOR l := 0 TO N_STATE_GAIN - 1 DO
+        by_prev[l] := 0.0;
+        IF seen[STATE_INPUT[l]] THEN
+            by_prev[l] := v[STATE_INPUT[l]];
+            IF STATE_REF[l] <> 0 THEN
+                by_prev[l] := by_prev[l] - v0[STATE_INPUT[l]];
+            END_IF;
+        END_IF;
     END_FOR;
     (* a diagnosed lag's initial-state transient: w . (c(0) - A0) (1 - EXP(-(t - t0) / tau)), *)
     (* c(0) its sensors at the campaign's first sample that has one of them (a missing one: 0) *)
@@ -463,7 +521,11 @@ IF NOT refused THEN
         i := LAW_TARGET[r];
         pg := 0.0;
         FOR j := 0 TO N_INPUTS - 1 DO
-            pg := pg + CLAMP_GAIN[r, j] * x[1, j];
+            gsum := CLAMP_GAIN[r, j];
+            FOR l := 0 TO N_STATE_GAIN - 1 DO
+                gsum := gsum + by_held[l] * STATE_GAIN[r, l, j];
+            END_FOR;
+            pg := pg + gsum * x[1, j];
         END_FOR;
         IF factor[r] <> 0.0 THEN
             excess[i] := excess[i] + factor[r] * pg;
@@ -504,7 +566,7 @@ IF NOT refused THEN
             bound_held[i] := bound;
         END_IF;
         bound := bound_held[i];
-        IF CLAMP_OUTRIGHT[i] <> 0 THEN
+        IF CLAMP_OUTRIGHT[i] <> 0 OR by_outright[i] THEN
             (* a model without a step gain: the response to the excess taken out whole *)
             bound := REAL_LIMIT;
         END_IF;

@@ -14,7 +14,9 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    pattern_basis`` (the stream's gate, :class:`~thermocomp.apps.deploy.streaming.Envelope`);
 3b. a diagnosed model's derived inputs after the powers (``derived``: ``r_a r_b``, ``r_j = v_j
    - v_j(0)`` in the effect's frame, ``v(0)`` the first value; a signal only they read is
-   ``held`` when missing, as the model holds its context): :func:`.derived.derived_inputs`;
+   ``held`` when missing, as the model holds its context): :func:`.derived.derived_inputs`; where
+   ``derived_clamped`` (a state times the inputs' rises, export62) ``r_b`` is the model's input's
+   rise ``x_b - x_b(0)``, and in the excess channel ``r_a (ex_b - ex_b(0))``;
    then a diagnosed lag's initial-state transient (``initial``: ``w . (c(0) - A0) (1 - exp(-(t
    - t0)/tau))``, ``c(0)`` its sensors at the first sample that has one of them, a missing one
    0, ``A0`` the campaign's initial ambient, ``t0`` its first sample's time; exportrest60);
@@ -34,7 +36,10 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    feedback) to ``r_t``, the response to the excess; the output is ``y_t - clip(r_t, -b_t,
    b_t)`` (``y_t - r_t`` where
    ``clamp_outright_t``: the stream's clamp of a model without a step gain), ``b_t = |clamp_gain_t .
-   ex|`` the response to the excess held for the envelope's horizon (as the stream does); at a
+   ex|`` the response to the excess held for the envelope's horizon (as the stream does; the gain
+   plus ``sum_s r_s clamp_state_gain[s]``, ``r_s`` a state's value at the sample before the
+   campaign's first excess, held: an ``inputs_product``'s, export62; ``y_t - r_t`` in a campaign
+   out at its first sample where ``clamp_state_first_t``, the stream then having no value); at a
    sample within the envelope (``ex = 0``) after an excess, ``b_t`` is the last excess's (0
    before the campaign's first): an excess that fades out ends with a bound near 0 (the model's
    own correction, as scored), one that ends at once (a one-row spike, a sensor's offset gone)
@@ -66,11 +71,11 @@ from dataclasses import asdict, dataclass, field
 import numpy as np
 
 from ....core.frame import ambient_c0
-from ....core.gains import gain_at, gain_terms
+from ....core.gains import GainTerm, gain_at, gain_terms
 from ....core.timerule import SampleClock
 from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
-from .derived import DERIVED, INITIAL
+from .derived import CLAMPED, DERIVED, INITIAL
 from .errors import NotExportable
 from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws, with_gains
 from .output import Output, adapt_fields, guard_fields, time_fields
@@ -115,6 +120,10 @@ class StateSpace:
     # not refuse the sample, it is held at the campaign's last one (0 before any: its derived
     # inputs 0, its first value their reference), as the diagnosed model holds its context
     held: list = field(default_factory=list)
+    # (n_derived,) 1: r_b is the model's input's rise x_b - x_b(0), the clamped one in the excess
+    # channel (e_b - e_b(0), e(0) the excess at the campaign's first sample): a state times the
+    # inputs' rises (inputs_product, export62); [] none
+    derived_clamped: list = field(default_factory=list)
     # a diagnosed lag's initial-state transient, after the derived inputs, one per direction:
     # [tau, [sensor input indices], [weights]]: w . (v(0) - A0) (1 - exp(-(t - t0) / tau)),
     # v(0) the sensors at the campaign's first sample that has one of them (a missing one: 0)
@@ -125,6 +134,14 @@ class StateSpace:
     # (n_targets,) 1: the response to the excess is taken out whole (b_t infinite): the stream
     # clamps a model without a step gain outright; empty: none
     clamp_outright: list = field(default_factory=list)
+    # a diagnosed state times the inputs' rises (inputs_product, export62): the gain grows by each
+    # state's value r_a (``[input, referenced]``: v_a - referenced v_a(0), as a derived input's)
+    # at the sample before the campaign's first excess, times ``clamp_state_gain`` (n_laws,
+    # n_states, n_inputs); ``clamp_state_first`` (n_targets,) 1: a target whose gain reads them,
+    # clamped outright in a campaign whose first sample is out (the stream has no value yet)
+    clamp_states: list = field(default_factory=list)
+    clamp_state_gain: list = field(default_factory=list)
+    clamp_state_first: list = field(default_factory=list)
     # the training pattern (clamp only; a machine state: scale UNBOUNDED, basis 0, never off it)
     pattern: bool = False            # clamp only a sample off the pattern (else every excursion)
     pattern_mean: list | None = None     # (n_inputs,)
@@ -224,16 +241,17 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     N = len(inputs)
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     laws, period, powers, chosen = [], None, Powers(), {}      # laws: (target index, Law)
-    outright = []
+    outright, by_state = [], []
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
         own, period, kept = target_laws(t, est, cols, inputs, powers, period)
         # the clamp's gain: the deployed model's own, split as its laws count (gain61: the one
         # computation the stream's step_gain sums at the campaign's A0); none: clamped outright
-        terms = _clamp_terms(t, est, env.horizon_s) if clamp else None
+        terms, by = _clamp_terms(t, est, env.horizon_s, inputs) if clamp else (None, {})
         outright.append(int(clamp and terms is None))
+        by_state.append(int(bool(by) and terms is not None))
         if terms is not None:
-            with_gains(own, terms, cols, N, t)
+            with_gains(own, terms, cols, N, t, by)
         laws += [(i, law) for law in own]
         if kept is not None:
             chosen[t] = kept
@@ -263,6 +281,12 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         for d, row in law.delayed.items():
             bd[r, d - 1] = row
     period = float(period) if period is not None else 0.0
+    states_by = sorted({key for _, law in laws for key in law.gain_by})
+    state_gain = np.zeros((len(laws), len(states_by), N))
+    for r, (_, law) in enumerate(laws):
+        for s, key in enumerate(states_by):
+            state_gain[r, s] = law.gain_by.get(key, 0.0)
+    derived = [k for k in sorted(powers, key=powers.get) if k[0] == DERIVED]
     return StateSpace(
         inputs=inputs, targets=targets, fir=fir.tolist(),
         referenced=[int(r) for r in stream._is_ref] + [0] * len(states), clamp=bool(clamp),
@@ -280,12 +304,16 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C,
         uses_time=bool(keys) or bool(initial),
         powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] not in (DERIVED, INITIAL)],
-        derived=[list(k[1:]) for k in sorted(powers, key=powers.get) if k[0] == DERIVED],
+        derived=[list(k[1:5]) for k in derived],
+        derived_clamped=[int(k[5:] == (CLAMPED,)) for k in derived]
+        if any(k[5:] for k in derived) else [],
         initial=[[k[3], list(k[1]), list(k[2])] for k in initial],
         held=_held(inputs, n, powers, ambient),
         clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
                     for _, law in laws] if clamp else None,
         clamp_outright=outright if any(outright) else [],
+        clamp_states=[list(k) for k in states_by], clamp_state_gain=state_gain.tolist()
+        if states_by else [], clamp_state_first=by_state if states_by else [],
         **_pattern_fields(env if clamp else None, len(states)),
         # a sample without time: one period later (timerule.py); a plain stream's: the lags'
         **time_fields(deployed, period),
@@ -294,25 +322,49 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
 
 
-def _clamp_terms(target: str, est, horizon_s: float) -> list | None:
-    """The gain terms of ``target``'s model at the clamp's horizon (:mod:`thermocomp.core.gains`);
-    ``None`` where it has no gain in any campaign (the stream clamps it outright, the code too).
-    A model with a gain for some campaigns' initial ambient only is refused: the code's outright
-    clamp is per target, the stream's per campaign."""
-    terms = gain_terms(est, horizon_s)
+def _clamp_terms(target: str, est, horizon_s: float, inputs: list) -> tuple[list | None, dict]:
+    """``(terms, by)``: the gain terms of ``target``'s model at the clamp's horizon
+    (:mod:`thermocomp.core.gains`), ``None`` where it has no gain in any campaign (the stream
+    clamps it outright, the code too); ``by``: ``{(state input, referenced): terms}`` the value of
+    a state held at the campaign's first excess multiplies, of a diagnosed ``inputs_product``
+    (:meth:`~thermocomp.apps.diagnose.AugmentedRegressor.held_gain_terms`; ``terms`` then with
+    the states at 0).  A model with a gain for some campaigns' initial ambient only is refused:
+    the code's outright clamp is per target, the stream's per campaign."""
+    terms, by = _held_terms(est, horizon_s, inputs)
+    if terms is None:
+        terms = gain_terms(est, horizon_s)
     # each interval of A0 the terms' edges make (an edge belongs to the interval below it)
     edges = np.array(sorted({e for t in terms for e in (t.lo, t.hi) if np.isfinite(e)}))
     probes = np.r_[edges, (edges[1:] + edges[:-1]) / 2, edges.min(initial=0.0) - 1.0,
                    edges.max(initial=0.0) + 1.0]
     none = [gain_at(terms, a0) is None for a0 in probes]
     if all(none):
-        return None
+        return None, {}
     if any(none):
         raise NotExportable(f"the model of {target} has a step gain for some campaigns' initial "
                             "ambient only (an ATI interval's AR term without a steady state): the "
                             "stream clamps the others outright, the code clamps per target; "
                             "export it with promote.envelope.policy=off")
-    return terms
+    return terms, by
+
+
+def _held_terms(est, horizon_s: float, inputs: list) -> tuple[list | None, dict]:
+    """A diagnosed model's gain terms with an ``inputs_product`` (the stream's gain depends on
+    its state's value, held from the sample before the campaign's first excess): ``(terms at the
+    states' value 0, {(state input, referenced): the terms its value multiplies})``; ``(None,
+    {})`` for any other model."""
+    from ...diagnose.features import frames  # a diagnosed model's: loaded with it
+    held = getattr(est, "held_gain_terms", None)
+    effects = getattr(est, "effects_", ())
+    if not callable(held) or not any(e.transform == "inputs_product" for e in effects):
+        return None, {}
+    terms, per_effect = held(horizon_s)
+    by: dict = {}
+    for i, part in per_effect.items():
+        e = effects[i]
+        key = (inputs.index(e.column), int(frames(e, est.reference)[0] == "first_sample"))
+        by[key] = by.get(key, []) + [GainTerm(*t) for t in part]
+    return terms, by
 
 
 def _held(inputs: list, n: int, powers: dict, ambient: list) -> list[int]:
@@ -398,6 +450,8 @@ class Simulator:
         m, n = len(ss.targets), len(ss.inputs)
         laws = len(ss.laws)
         self.clamp_gain = np.asarray(ss.clamp_gain or np.zeros((laws, n)), float).reshape(laws, n)
+        self.state_gain = np.asarray(ss.clamp_state_gain or np.zeros((laws, 0, n)), float).reshape(
+            laws, len(ss.clamp_states), n)
         self.envelope = Envelope(tuple(ss.inputs), lo, hi) if not ss.pattern else Envelope(
             tuple(ss.inputs), lo, hi, mean=np.asarray(ss.pattern_mean, float),
             scale=np.asarray(ss.pattern_scale, float), tol=ss.pattern_tol,
@@ -459,6 +513,11 @@ class Simulator:
             self.started = np.zeros(len(ss.initial), bool)
         x = v - self.ref
         excess = self.envelope.excess(x) if ss.clamp else np.zeros_like(x)
+        if self.first:          # the model's inputs at its first sample (an inputs_product's)
+            self.x0, self.e0 = x.copy(), excess.copy()
+            self.excessed, self.by_held = False, np.zeros(len(ss.clamp_states))
+            self.by_prev = np.zeros(len(ss.clamp_states))
+            self.by_outright = np.zeros(len(ss.targets), bool)
         xe = x                      # [x, static powers of machine states (Hammerstein basis)]
         if ss.powers:
             src, scale, e = (np.array(c) for c in zip(*ss.powers))
@@ -468,15 +527,22 @@ class Simulator:
             self.v0 = v.copy()
         self.v0 = np.where(measured & ~self.seen, v, self.v0)   # a signal's first value
         self.seen |= measured
+        of_excess = np.zeros(len(ss.derived))    # the derived inputs' excess channel
         if ss.derived:      # a diagnosed model's derived inputs, from v as the model reads it
             a, b, ra, rb = (np.array(c, int) for c in zip(*ss.derived))
             ta = np.where(self.seen[a], v[a] - ra * self.v0[a], 0.0)
             tb = np.where(b < 0, 1.0, np.where(self.seen[b], v[b] - rb * self.v0[b], 0.0))
+            # an inputs_product's: the model's input's rise, the clamped one's in channel 1
+            clamped = np.asarray(ss.derived_clamped or [0] * len(a), bool)
+            tb = np.where(clamped, x[b] - self.x0[b], tb)
+            of_excess = np.where(clamped, ta * (excess[b] - self.e0[b]), 0.0)
             xe = np.r_[xe, ta * tb]
         if ss.initial:      # a diagnosed lag's initial-state transient, as the model computes it
             xe = np.r_[xe, self._transient(v, measured, now)]
+        self._held_states(v, excess)
         # two channels of one system: the measured inputs, and their excess (no powers, no intercept)
-        xs = np.vstack([xe, np.r_[excess, np.zeros(len(xe) - len(x))]])
+        xs = np.vstack([xe, np.r_[excess, np.zeros(len(ss.powers)), of_excess,
+                                  np.zeros(len(ss.initial))]])
         xl = xs[:, self.lag_input]
         first = self.first
         e = None if self.first else np.exp(-dt / self.taus)
@@ -498,11 +564,28 @@ class Simulator:
         self.y, self.first = y, False
         y = self._summed(y)
         if excess.any():            # back in range, the bound of the excess's last sample holds
-            self.bound = np.abs(self._summed(self.clamp_gain @ excess))
-        bound = np.where(np.asarray(ss.clamp_outright or [0] * len(y[0]), bool), np.inf, self.bound)
+            gain = self.clamp_gain + np.einsum("s,rsi->ri", self.by_held, self.state_gain)
+            self.bound = np.abs(self._summed(gain @ excess))
+        outright = np.asarray(ss.clamp_outright or [0] * len(y[0]), bool) | self.by_outright
+        bound = np.where(outright, np.inf, self.bound)
         self.c = self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt,
                                   self.output.allowance(x, self.envelope))
         return self.c.copy()
+
+    def _held_states(self, v: np.ndarray, excess: np.ndarray) -> None:
+        """The states an inputs_product's gain reads, held at the campaign's first excess at
+        their value of the sample before (a first sample out: its targets clamped outright)."""
+        ss = self.ss
+        if not ss.clamp_states:
+            return
+        if excess.any() and not self.excessed:
+            self.excessed = True
+            if self.first:
+                self.by_outright = np.asarray(ss.clamp_state_first, bool)
+            else:
+                self.by_held = self.by_prev.copy()
+        a, ra = (np.array(c, int) for c in zip(*ss.clamp_states))
+        self.by_prev = np.where(self.seen[a], v[a] - ra * self.v0[a], 0.0)
 
     def _transient(self, v: np.ndarray, measured: np.ndarray, now: float) -> np.ndarray:
         """Each direction's ``w . (v(0) - A0) (1 - exp(-(t - t0) / tau))``: ``v(0)`` its sensors at
