@@ -29,8 +29,9 @@ from .historian_layout import long_layout
 from .jsonlines import is_json_lines
 from .layout import header_line
 from .manifest import is_text, read_manifest
+from .matfile import is_mat, is_v73
 from .options import ROLE_PATTERNS, RUN_ROLE
-from .plain import as_read, is_converted
+from .plain import as_read, is_converted, is_lab_file, lab_as_csv
 from .rates import period_groups
 from .read import run_column, run_counter
 from .record import check_record_file
@@ -130,6 +131,14 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
             opts, header, first, layout = head(text, utf8_options(opts))
             return opts, header, first, layout.replace(
                 f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
+    if is_lab_file(sample):         # a TDMS log, a MATLAB file: the CSV its channels are written to
+        kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
+                else "a TDMS log") + " (its channels as columns)"
+        with lab_as_csv(sample) as text:
+            opts, header, first, layout = head(text, csv_options(opts))
+            layout = layout.replace("a historian's long file (", "channels at their own rates, "
+                                    "written long (", 1)
+            return opts, header, first, layout.replace(f"{text.name}: ", f"{sample.name}: {kind}, ", 1)
     if is_json_lines(sample) or is_fixed_width(sample, opts.encoding):
         kind = "JSON Lines (nested keys joined with '.')" if is_json_lines(sample) else \
             "a fixed-width table (its columns told by the numbers)"
