@@ -269,8 +269,7 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
             roles[kind].append(pattern)
         elif kind == AMBIGUOUS:
             continue
-        elif not air_given and role(base) is None and AMBIENT_WORDS & set(
-                _WORDS.split(base.lower())) and (
+        elif not air_given and role(base) is None and AMBIENT_WORDS & air_words(base) and (
                 not unit or unit.replace(" ", "").lower() in UNITS["T"]):
             roles["ambient"].append(pattern)
         elif is_flag(first.get(h)):          # 'true' / 'false': an on/off flag, a state
@@ -279,6 +278,13 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return _by_role(roles, header, first)
+
+
+def air_words(name: str) -> set[str]:
+    """The words of a header's ``name``, and of a word that is a ``T`` before an air's word
+    (MATLAB's field ``Troom``, ``Tamb``: a name cannot hold a space) that word too."""
+    words = set(_WORDS.split(name.lower()))
+    return words | {w[1:] for w in words if w.startswith("t") and w[1:] in AMBIENT_WORDS}
 
 
 def flag_headers(ds, names: dict) -> list[str]:

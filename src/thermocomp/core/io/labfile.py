@@ -58,6 +58,7 @@ class Record:
     label: str
     channels: list[Channel]
     time_header: str = TIME_HEADER
+    utc: bool = True           # timestamps in UTC (NI's); False: on a clock not said (a datenum)
 
 
 def with_unit(name: str, unit: str | None) -> str:
@@ -102,12 +103,12 @@ def _check(records: list[Record], path: Path) -> bool:
     return True
 
 
-def _time_cells(time: np.ndarray | None, n: int) -> list[str] | None:
+def _time_cells(time: np.ndarray | None, n: int, utc: bool) -> list[str] | None:
     if time is None:
         return None
-    if np.issubdtype(time.dtype, np.datetime64):      # UTC, as NI and MATLAB's datenum give it
+    if np.issubdtype(time.dtype, np.datetime64):      # NI's are UTC; a datenum's on no clock said
         text = np.datetime_as_string(time.astype("datetime64[us]"), unit="us")
-        return [f"{s}+00:00" for s in text]
+        return [f"{s}+00:00" for s in text] if utc else list(text)
     return [repr(float(v)) for v in time[:n]]
 
 
@@ -120,11 +121,10 @@ def write_wide(records: list[Record], out: Path) -> dict[str, str]:
     first = records[0]
     headers = [c.header for c in first.channels]
     time = first.channels[0].time
-    time_header = first.time_header if time is not None and not np.issubdtype(
-        time.dtype, np.datetime64) else TIME_HEADER
-    if time is not None and time_header == TIME_HEADER and not np.issubdtype(time.dtype,
-                                                                              np.datetime64):
-        time_header = "time [s]"
+    dated = time is not None and np.issubdtype(time.dtype, np.datetime64)
+    # a time channel's own header (its unit); else ours: timestamps, or seconds
+    time_header = first.time_header if first.time_header != TIME_HEADER else (
+        TIME_HEADER if dated else f"{TIME_HEADER} [s]")
     runs = len(records) > 1
     with open(out, "w", encoding=UTF8, newline="") as f:
         writer = csv.writer(f, lineterminator="\n")
@@ -133,7 +133,7 @@ def write_wide(records: list[Record], out: Path) -> dict[str, str]:
         for record in records:
             by = {c.header: c.values for c in record.channels}
             n = record.channels[0].values.size
-            times = _time_cells(record.channels[0].time, n)
+            times = _time_cells(record.channels[0].time, n, record.utc)
             for i in range(n):
                 writer.writerow(([record.label] if runs else []) + ([times[i]] if times else [])
                                 + [_cell(by[h][i]) for h in headers])
@@ -151,7 +151,7 @@ def write_long(record: Record, out: Path) -> dict[str, str]:
         writer = csv.writer(f, lineterminator="\n")
         writer.writerow([TIME_HEADER if absolute == {True} else "time [s]", "channel", "value"])
         for c in record.channels:
-            for stamp, v in zip(_time_cells(c.time, c.values.size), c.values):
+            for stamp, v in zip(_time_cells(c.time, c.values.size, record.utc), c.values):
                 writer.writerow([stamp, c.header, _cell(v)])
     return {c.header: c.where for c in record.channels}
 

@@ -14,7 +14,9 @@ What a lab saves, each read as channels:
   field, else ``runs(k)``, names it).
 
 Names say units as a CSV header's do (``dX_um``, ``T1 [degC]``).  A time field whose values are
-MATLAB datenums (days since the year 0: 7.4e5 for 2026) is read as timestamps (UTC), and said.
+MATLAB datenums (days since the year 0: 7.4e5 for 2026) is read as timestamps, and said: on the
+clock MATLAB's ``now`` and ``datenum`` give (no zone: ``data.timezone``'s, as a CSV file's time
+without an offset), to the millisecond.
 A MATLAB ``table``, ``timetable`` or ``datetime`` saved in a ``.mat`` is an object neither SciPy
 nor h5py reads: refused, saying how to save it.
 """
@@ -210,13 +212,18 @@ def _struct(where: str, struct: dict, path: Path, label: str | None = None) -> R
         header = with_unit(f, units.get(f) if isinstance(units.get(f), str) else None)
         if time is None and named_as_time(header):
             time, time_header = _time(v, f"{where}.{f}", path), header
-            if np.issubdtype(time.dtype, np.datetime64):
-                time_header = "time"
             continue
         channels.append(Channel(header, v.astype(float), None, f"variable '{where}.{f}'"))
+    return _timed(label or where, channels, time, time_header)
+
+
+def _timed(label: str, channels: list[Channel], time, time_header: str) -> Record:
+    """A record of ``channels`` on ``time`` (timestamps: under ``time``, on no clock said)."""
     for c in channels:
         c.time = time
-    return Record(label or where, channels, time_header)
+    if time is not None and np.issubdtype(time.dtype, np.datetime64):
+        time_header = "time"
+    return Record(label, channels, time_header, utc=False)
 
 
 def _time(values: np.ndarray, where: str, path: Path) -> np.ndarray:
@@ -224,10 +231,11 @@ def _time(values: np.ndarray, where: str, path: Path) -> np.ndarray:
     v = values.astype(float)
     finite = v[np.isfinite(v)]
     if finite.size and DATENUMS[0] <= finite.min() and finite.max() <= DATENUMS[1]:
-        if (str(path), where) not in _SAID:      # (once, not at every look at the file)
-            _SAID.add((str(path), where))
-            logger.info(f"{path.name}: {where} read as MATLAB datenums (days since the year 0), "
-                        "timestamps (UTC) to the millisecond (a datenum holds about 10 µs)")
+        said = re.sub(r"\(\d+\)", "(k)", where)     # (once, not for each run, each look)
+        if (str(path), said) not in _SAID:
+            _SAID.add((str(path), said))
+            logger.info(f"{path.name}: {said} read as MATLAB datenums (days since the year 0), "
+                        "timestamps to the millisecond (a datenum holds about 10 µs)")
         milli = np.round((v - DATENUM_1970) * 86400e3).astype("int64")
         return milli.astype("datetime64[ms]")
     return v
@@ -250,10 +258,6 @@ def _matrix(name: str, matrix: np.ndarray, names: list[str], path: Path) -> Reco
         column = matrix[:, i].astype(float)
         if time is None and named_as_time(header):
             time, time_header = _time(column, f"{name}(:, {i + 1})", path), header
-            if np.issubdtype(time.dtype, np.datetime64):
-                time_header = "time"
             continue
         channels.append(Channel(header, column, None, f"variable {name!r}, column {i + 1}"))
-    for c in channels:
-        c.time = time
-    return Record(name, channels, time_header)
+    return _timed(name, channels, time, time_header)

@@ -120,7 +120,9 @@ def init(cfg: DictConfig) -> dict:
                                              if str(n).startswith("E_")])
         given["resample_s"] = period
         opts = replace(opts, resample_s=period)
-        print(f"{sample.name}: a historian's long file, each tag logged at its own times: held "
+        kind = ("its channels logged at their own rates" if is_lab_file(sample) else
+                "a historian's long file, each tag logged at its own times")
+        print(f"{sample.name}: {kind}: held "
               f"onto a grid of data.resample_s={period:g} s, the median interval of the fastest "
               f"error tag {tag!r} (written into the config: check it; the tags': "
               f"{intervals_said(long)})")
