@@ -142,7 +142,7 @@ def _v73(path: Path) -> dict:
         if isinstance(node, h5py.Group):
             if k in OBJECTS:
                 return Opaque(k)
-            fields = list(node.keys())
+            fields = _field_order(node)
             arrays = {n: node[n] for n in fields}
             if fields and all(isinstance(a, h5py.Dataset) and a.dtype == h5py.ref_dtype
                               for a in arrays.values()):     # a struct array: references
@@ -165,6 +165,16 @@ def _v73(path: Path) -> dict:
         return {n: value(f[n]) for n in f.keys() if not n.startswith("#")}
     finally:
         f.close()
+
+
+def _field_order(group) -> list[str]:
+    """A struct's fields in MATLAB's order (its ``MATLAB_fields`` attribute), else HDF5's."""
+    names = list(group.keys())
+    said = group.attrs.get("MATLAB_fields")
+    if said is None:
+        return names
+    order = [b"".join(np.asarray(f).astype("S1").tolist()).decode() for f in said]
+    return [n for n in order if n in names] + [n for n in names if n not in order]
 
 
 # --- variables as runs --------------------------------------------------------------------
