@@ -301,3 +301,4 @@ def test_matlabs_troom_is_proposed_the_ambient():
     header = ["t", "Troom [degC]", "Tspindle [degC]", "dX [um]"]
     roles = proposed_roles(header, dict.fromkeys(header, "1.0"), ReadOptions())
     assert roles["ambient"] == ["Troom"]
+
