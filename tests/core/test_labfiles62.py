@@ -302,3 +302,14 @@ def test_matlabs_troom_is_proposed_the_ambient():
     roles = proposed_roles(header, dict.fromkeys(header, "1.0"), ReadOptions())
     assert roles["ambient"] == ["Troom"]
 
+
+
+def test_a_v5_table_scipy_gives_as_an_opaque_record_is_refused_alike(tmp_path, monkeypatch):
+    # SciPy reads a table saved v5 as an opaque record (s0, s1, s2 its class, arr): as loadmat
+    # gives it (no MATLAB here to save one)
+    opaque = np.empty((1, 1), dtype=[("s0", object), ("s1", object), ("s2", object), ("arr", object)])
+    opaque[0, 0] = (b"", b"MCOS", b"table", np.zeros((6, 1), np.uint32))
+    sio.savemat(tmp_path / "t.mat", {"x": np.arange(3.0)})
+    monkeypatch.setattr(sio, "loadmat", lambda *a, **k: {"__header__": b"", "T": opaque})
+    with pytest.raises(ContractError, match=r"variable 'T' is a MATLAB table.*table2struct"):
+        read_dataset(tmp_path / "t.mat", {})

@@ -107,8 +107,7 @@ def _v5(path: Path) -> dict:
     def value(v):
         if isinstance(v, MatlabOpaque) or (isinstance(v, np.ndarray) and v.dtype.names
                                            and set(v.dtype.names) == {"s0", "s1", "s2", "arr"}):
-            kind = v["s2"].item() if isinstance(v, np.ndarray) else "object"
-            return Opaque(str(np.asarray(kind).ravel()[0]) if np.size(kind) else "object")
+            return Opaque(_class_name(v))
         if isinstance(v, np.ndarray) and v.dtype.names:          # a struct (array)
             items = [{f: value(e[f]) for f in v.dtype.names} for e in v.ravel(order="F")]
             return items[0] if v.size == 1 else items
@@ -121,6 +120,17 @@ def _v5(path: Path) -> dict:
         return np.asarray(v)
 
     return {k: value(v) for k, v in raw.items() if not k.startswith("__")}
+
+
+def _class_name(opaque) -> str:
+    """The class of a MATLAB object SciPy gives as an opaque record (its ``s2`` field:
+    ``table``, ``datetime``), ``object`` where it does not say."""
+    try:
+        name = np.asarray(opaque["s2"]).ravel()[0]
+        name = np.asarray(name).ravel()[0] if isinstance(name, np.ndarray) else name
+    except (IndexError, KeyError, ValueError, TypeError):
+        return "object"
+    return name.decode(errors="replace") if isinstance(name, bytes) else str(name) or "object"
 
 
 def _v73(path: Path) -> dict:
