@@ -106,6 +106,23 @@ def test_groups_of_the_same_channels_one_after_another_are_runs(tmp_path, capsys
     assert ds.ids() == ["Run_1", "Run_2", "Run_3"]
 
 
+def test_a_folders_file_of_several_runs_is_refused_naming_them(tmp_path, capsys):
+    # before: each file's runs read as one campaign, the days between them a pause nothing said
+    for name in ("a", "b"):
+        groups = {}
+        for k in range(2):
+            temp, air, dx = _temps(k)
+            wf = _wf(T0 + np.timedelta64(k, "D"))
+            groups[f"Run {k + 1}"] = [("Spindle nose", temp, {"unit_string": "degC", **wf}),
+                                      ("dX", dx, {"unit_string": "um", **wf})]
+        write_tdms(tmp_path / "lab" / f"{name}.tdms", groups)
+    out = tmp_path / "init"
+    assert main(["init", str(tmp_path / "lab"), "data.test_fraction=0.5", f"out={out}"]) == 2
+    said = capsys.readouterr().err
+    assert "a.tdms: 2 runs in one file ('Run 1', 'Run 2'): a folder's file is one campaign" in said
+    assert not (out / "conf").exists()
+
+
 def test_channels_at_two_rates_are_held_onto_the_error_channels_grid(tmp_path, capsys):
     temp, air, _ = _temps(0)
     fast = 3 * (np.interp(np.arange(5 * N) / 5, np.arange(N), temp) - temp[0])

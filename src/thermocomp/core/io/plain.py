@@ -10,6 +10,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .contract import ContractError
 from .fixedwidth import fixed_as_csv, is_fixed_width
 from .historian import long_as_wide, wide_options
 from .historian_layout import long_layout
@@ -34,17 +35,27 @@ def is_converted(path, opts=None) -> bool:
 
 
 @contextmanager
-def lab_as_csv(path: Path) -> Iterator[Path]:
-    """A TDMS log or a MATLAB file as the temporary CSV file its channels are written to."""
+def lab_as_csv(path: Path, one_run: bool = False) -> Iterator[Path]:
+    """A TDMS log or a MATLAB file as the temporary CSV file its channels are written to;
+    ``one_run``: a folder's file, refused where it holds several runs (its runs would be read
+    as one campaign, the days between them a pause nothing said)."""
     records = tdms_records(path) if is_tdms(path) else mat_records(path)
+    if one_run and len(records) > 1:
+        labels = ", ".join(repr(r.label) for r in records[:4]) + (", ..." if len(records) > 4 else "")
+        raise ContractError(f"{len(records)} runs in one file ({labels}): a folder's file is one "
+                            "campaign; give this file as data.path (each run a campaign, "
+                            "data.roles.campaign=run as thermocomp init proposes), or save one "
+                            "run per file", file=path)
     with records_as_csv(records, path) as text:
         yield text
 
 
 @contextmanager
-def as_read(path: Path, opts, rows: int | None = None) -> Iterator[tuple[Path, object]]:
+def as_read(path: Path, opts, rows: int | None = None, one_run: bool = False
+            ) -> Iterator[tuple[Path, object]]:
     """``(file, options)`` the CSV or Parquet reader reads for ``path`` (``rows``: a workbook's
-    first rows only, what a look at its head needs)."""
+    first rows only, what a look at its head needs; ``one_run``: a folder's campaign file, a
+    TDMS or MATLAB file of several runs refused)."""
     if is_workbook(path):
         with sheet_as_csv(path, opts, rows=rows) as sheet:
             yield sheet.csv, csv_options(opts)
@@ -55,7 +66,7 @@ def as_read(path: Path, opts, rows: int | None = None) -> Iterator[tuple[Path, o
         with json_lines_as_csv(path, rows=rows) as text:
             yield text, utf8_options(opts)
     elif is_lab_file(path):         # a DAQ's TDMS, a MATLAB file: its channels (long: a grid)
-        with lab_as_csv(path) as text, as_read(text, csv_options(opts), rows) as read:
+        with lab_as_csv(path, one_run) as text, as_read(text, csv_options(opts), rows) as read:
             yield read
     elif is_fixed_width(path):      # an old program's report: its columns told by the numbers
         with fixed_as_csv(path, opts.encoding) as text:
