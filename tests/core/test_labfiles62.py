@@ -330,3 +330,14 @@ def test_a_v5_table_scipy_gives_as_an_opaque_record_is_refused_alike(tmp_path, m
     monkeypatch.setattr(sio, "loadmat", lambda *a, **k: {"__header__": b"", "T": opaque})
     with pytest.raises(ContractError, match=r"variable 'T' is a MATLAB table.*table2struct"):
         read_dataset(tmp_path / "t.mat", {})
+
+
+def test_runs_of_one_file_timed_differently_are_refused_naming_them(tmp_path):
+    # before: the untimed run's rows were written without the time cell, under the time header
+    runs = np.empty((1, 2), dtype=[("t", object), ("T1", object), ("dX_um", object)])
+    temp, _, dx = _temps(0)
+    runs[0, 0] = (np.arange(N)[:, None] * 10.0, temp[:, None], dx[:, None])
+    runs[0, 1] = (np.array([[0.0]]), temp[:, None], dx[:, None])     # its time a scalar: none
+    sio.savemat(tmp_path / "r.mat", {"runs": runs})
+    with pytest.raises(ContractError, match=r"'runs\(1\)' in seconds, 'runs\(2\)' untimed"):
+        read_dataset(tmp_path / "r.mat", {"roles": {"campaign": "run"}})

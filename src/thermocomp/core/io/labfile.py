@@ -92,6 +92,11 @@ def _check(records: list[Record], path: Path) -> bool:
                                 f"samples): no grid reads them together; give {fix}", file=path)
         return False
     headers = [c.header for c in records[0].channels]
+    timed = {_time_kind(r) for r in records}
+    if len(timed) > 1:                  # (a row of one run would lack the time cell)
+        said = ", ".join(f"{r.label!r} {_time_kind(r)}" for r in records[:6])
+        raise ContractError(f"the runs of one file are timed alike or not at all ({said}): give "
+                            "each run the same time (timestamps, or seconds)", file=path)
     for record in records[1:]:
         other = [c.header for c in record.channels]
         if set(other) != set(headers):
@@ -101,6 +106,12 @@ def _check(records: list[Record], path: Path) -> bool:
                                 "of one file are read as one table; one file per run",
                                 file=path)
     return True
+
+
+def _time_kind(record: Record) -> str:
+    time = record.channels[0].time
+    return "untimed" if time is None else "by timestamps" if np.issubdtype(
+        time.dtype, np.datetime64) else "in seconds"
 
 
 def _time_cells(time: np.ndarray | None, n: int, utc: bool) -> list[str] | None:
