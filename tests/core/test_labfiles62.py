@@ -341,3 +341,15 @@ def test_runs_of_one_file_timed_differently_are_refused_naming_them(tmp_path):
     sio.savemat(tmp_path / "r.mat", {"runs": runs})
     with pytest.raises(ContractError, match=r"'runs\(1\)' in seconds, 'runs\(2\)' untimed"):
         read_dataset(tmp_path / "r.mat", {"roles": {"campaign": "run"}})
+
+
+def test_a_field_of_rising_datenums_is_the_time_whatever_its_name(tmp_path):
+    # before: 'dn' read as a temperature of 7.4e5 degrees
+    temp, air, dx = _temps(0)
+    sio.savemat(tmp_path / "d.mat", {"data": {"dn": DATENUM_T0 + np.arange(N) * 10 / 86400,
+                                              "T1_degC": temp, "dX_um": dx}})
+    ds, report = read_dataset(tmp_path / "d.mat", {"roles": {"error": ["dX"]}})
+    (cid,) = ds.ids()
+    assert list(ds.campaigns[cid].columns) == ["time", "T_T1", "E_dX"]
+    assert np.allclose(np.diff(ds.campaigns[cid]["time"]), 10.0, atol=1e-3)
+    assert report["campaigns"][cid]["time_origin"].startswith("2026-11-02T05:30:00")

@@ -13,8 +13,8 @@ What a lab saves, each read as channels:
 * a struct array or a cell array of such structs: one run each (a campaign each; its ``name``
   field, else ``runs(k)``, names it).
 
-Names say units as a CSV header's do (``dX_um``, ``T1 [degC]``).  A time field whose values are
-MATLAB datenums (days since the year 0: 7.4e5 for 2026) is read as timestamps, and said: on the
+Names say units as a CSV header's do (``dX_um``, ``T1 [degC]``).  A time field (named as a time, or
+of rising datenums whatever its name) whose values are MATLAB datenums (days since the year 0: 7.4e5 for 2026) is read as timestamps, and said: on the
 clock MATLAB's ``now`` and ``datenum`` give (no zone: ``data.timezone``'s, as a CSV file's time
 without an offset), to the millisecond.
 A MATLAB ``table``, ``timetable`` or ``datetime`` saved in a ``.mat`` is an object neither SciPy
@@ -230,7 +230,7 @@ def _struct(where: str, struct: dict, path: Path, label: str | None = None) -> R
     channels, time, time_header = [], None, "time"
     for f, v in fields.items():
         header = with_unit(f, units.get(f) if isinstance(units.get(f), str) else None)
-        if time is None and named_as_time(header):
+        if time is None and _is_time(header, v):
             time, time_header = _time(v, f"{where}.{f}", path), header
             continue
         channels.append(Channel(header, v.astype(float), None, f"variable '{where}.{f}'"))
@@ -244,6 +244,15 @@ def _timed(label: str, channels: list[Channel], time, time_header: str) -> Recor
     if time is not None and np.issubdtype(time.dtype, np.datetime64):
         time_header = "time"
     return Record(label, channels, time_header, utc=False)
+
+
+def _is_time(header: str, values: np.ndarray) -> bool:
+    """A field named as a time (``t``, ``time``, ``Zeit``), or of datenums rising (``date``,
+    ``dn``: no sensor reads 7.4e5)."""
+    v = np.asarray(values, float)
+    return named_as_time(header) or bool(
+        v.size > 1 and np.isfinite(v).all() and (np.diff(v) > 0).all()
+        and DATENUMS[0] <= v.min() and v.max() <= DATENUMS[1])
 
 
 def _time(values: np.ndarray, where: str, path: Path) -> np.ndarray:
@@ -276,7 +285,7 @@ def _matrix(name: str, matrix: np.ndarray, names: list[str], path: Path) -> Reco
     channels, time, time_header = [], None, "time"
     for i, header in enumerate(names):
         column = matrix[:, i].astype(float)
-        if time is None and named_as_time(header):
+        if time is None and _is_time(header, column):
             time, time_header = _time(column, f"{name}(:, {i + 1})", path), header
             continue
         channels.append(Channel(header, column, None, f"variable {name!r}, column {i + 1}"))
