@@ -13,11 +13,11 @@ What a lab saves, each read as channels:
 * a struct array or a cell array of such structs: one run each (a campaign each; its ``name``
   field, else ``runs(k)``, names it).
 
-Names say units as a CSV header's do (``dX_um``, ``T1 [degC]``).  A time field (named as a time, or
-of rising datenums whatever its name) whose values are MATLAB datenums (days since the year 0: 7.4e5 for 2026) is read as timestamps, and said: on the
-clock MATLAB's ``now`` and ``datenum`` give (no zone: ``data.timezone``'s, as a CSV file's time
-without an offset), to the millisecond.
-A MATLAB ``table``, ``timetable`` or ``datetime`` saved in a ``.mat`` is an object neither SciPy
+Names say units as a CSV header's do (``dX_um``, ``T1 [degC]``).  A time field (named as a
+time, or of rising datenums whatever its name) whose values are MATLAB datenums (days since the
+year 0: 7.4e5 for 2026) is read as timestamps, and said: on the clock MATLAB's ``now`` and
+``datenum`` give (no zone: ``data.timezone``'s, as a CSV file's time without an offset), to the
+millisecond.  A MATLAB ``table``, ``timetable`` or ``datetime`` saved in a ``.mat`` is an object neither SciPy
 nor h5py reads: refused, saying how to save it.
 """
 
