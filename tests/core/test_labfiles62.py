@@ -353,3 +353,29 @@ def test_a_field_of_rising_datenums_is_the_time_whatever_its_name(tmp_path):
     assert list(ds.campaigns[cid].columns) == ["time", "T_T1", "E_dX"]
     assert np.allclose(np.diff(ds.campaigns[cid]["time"]), 10.0, atol=1e-3)
     assert report["campaigns"][cid]["time_origin"].startswith("2026-11-02T05:30:00")
+
+
+def _staggered_long(path, before: int):
+    """A long file of two tags every 10 s, 'b' starting 8 ms after 'a', 'a' with ``before``
+    samples before it."""
+    t0 = np.datetime64("2026-11-02T05:30:00.000")
+    lines = ["time,channel,value"]
+    for i in range(-before + 1, 30):
+        lines.append(f"{t0 + np.timedelta64(10_000 * i, 'ms')}+00:00,T_a,{20 + i / 100:.2f}")
+    for i in range(30):
+        lines.append(f"{t0 + np.timedelta64(10_000 * i + 8, 'ms')}+00:00,E_b,{i / 10:.1f}")
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.mark.parametrize("before, said", [(1, False), (3, True)])
+def test_a_grid_start_is_said_only_where_samples_before_it_are_not_read(tmp_path, caplog, before,
+                                                                        said):
+    # before: said for every file where tags start apart (DAQmx tasks 4-16 ms apart: 10 warnings
+    # at every read), though each tag's last sample before the start is held there
+    path = _staggered_long(tmp_path / "long.csv", before)
+    ds, _ = read_dataset(path, {"resample_s": 10})
+    df = ds.campaigns[ds.ids()[0]]
+    assert df["T_a"].iloc[0] == pytest.approx(20.0)          # held from 8 ms before the grid
+    assert ("before it are not read" in caplog.text) is said
+    assert ("2 sample(s) before it are not read" in caplog.text) is said       # 'a''s first two
