@@ -100,8 +100,11 @@ What a stranger met on the way in (``init <folder or file> data.test_fraction=0.
 4. (said) the datenum time said once per run, 15 lines: now once per file.
 5. ``stream`` fed the lab's TDMS / .mat as it is: "the header ... lacks input column
    T_Spindle_motor" (its bytes read as a header).  Mended: refused as binary, convert to CSV.
-6. (said) each TDMS day's grid starts 4-16 ms after its first stamp (DAQmx's tasks start apart):
-   a warning per file at every read, not mended.
+6. Each TDMS day's grid starts 4-16 ms after its first stamp (DAQmx's tasks start apart): "the
+   samples before it are not read", a warning per file at every read, though each tag's sample
+   before the start is held there.  Mended: said only where samples are left out, counted.
+7. Met while mending (not in this bench's files): a folder whose files hold several runs each
+   read each file's runs as one campaign, silently; now refused naming the runs.
 """
 
 from __future__ import annotations
