@@ -278,6 +278,25 @@ def test_a_struct_array_is_runs_in_v5_and_v73_alike(tmp_path):
     assert list(read[0].campaigns["Test_1"].columns) == ["time", "T_Tspindle", "T_Tamb", "E_dX"]
 
 
+def test_a_v73_file_without_h5py_names_the_extra_and_a_v5_file_needs_none(tmp_path, monkeypatch,
+                                                                         capsys):
+    temp, air, dx = _temps(0)
+
+    def build(f):
+        g = f.create_group("data")
+        g.attrs["MATLAB_class"] = np.bytes_("struct")
+        for name, v in (("t", np.arange(N) * 10.0), ("Tspindle_degC", temp), ("dX_um", dx)):
+            g.create_dataset(name, data=v[None, :]).attrs["MATLAB_class"] = np.bytes_("double")
+
+    v73 = _v73(tmp_path / "v73.mat", build)
+    sio.savemat(tmp_path / "v5.mat", {"data": {"t": np.arange(N) * 10.0, "Tspindle_degC": temp,
+                                               "dX_um": dx}})
+    monkeypatch.setitem(sys.modules, "h5py", None)
+    assert main(["init", str(v73), f"out={tmp_path / 'a'}"]) == 2
+    assert "pip install -e '.[matlab]'" in capsys.readouterr().err
+    assert main(["init", str(tmp_path / "v5.mat"), f"out={tmp_path / 'b'}"]) == 0
+
+
 def test_a_matlab_table_is_refused_saying_how_to_save_it(tmp_path, capsys):
     def build(f):
         d = f.create_dataset("T", data=np.array([[3707764736, 2, 1, 1, 1, 1]], np.uint32))
