@@ -87,6 +87,7 @@ def test_init_reads_a_folder_of_tdms_days_a_campaign_each(tmp_path, capsys):
     assert "a TDMS log" in said and "timestamps from 2026-11-02T05:30:00+00:00" in said
     config = yaml.safe_load((out / "conf" / "data" / "lab.yaml").read_text())
     assert config["roles"]["ambient"] == ["Room"] and config["roles"]["error"] == ["Probe X"]
+    assert "delimiter" not in config and "decimal" not in config      # (no text: no separators)
 
 
 def test_groups_of_the_same_channels_one_after_another_are_runs(tmp_path, capsys):

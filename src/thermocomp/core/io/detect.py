@@ -399,8 +399,9 @@ def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,
     folder's, as read (:func:`folder_manifest`; read here if not given)."""
     if manifest is None and src.is_dir():
         manifest = read_manifest(src, opts)
-    # a sheet has no separators (a CSV file beside workbooks: detected, data.delimiter=auto)
-    separators = {} if is_workbook(sample_file(src, manifest)) else {
+    # a sheet, a TDMS or MATLAB file has no separators (a CSV file beside them: detected)
+    sample = sample_file(src, manifest)
+    separators = {} if is_workbook(sample) or is_lab_file(sample) else {
         "delimiter": opts.delimiter, "decimal": opts.decimal}
     config = {"path": str(src), **separators, "roles": roles}
     for key, value in given.items():
