@@ -29,8 +29,9 @@ from .historian_layout import long_layout
 from .jsonlines import is_json_lines
 from .layout import header_line
 from .manifest import is_text, read_manifest
+from .matfile import is_mat, is_v73
 from .options import ROLE_PATTERNS, RUN_ROLE
-from .plain import as_read, is_converted
+from .plain import as_read, is_converted, is_lab_file, lab_as_csv
 from .rates import period_groups
 from .read import run_column, run_counter
 from .record import check_record_file
@@ -130,6 +131,14 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
             opts, header, first, layout = head(text, utf8_options(opts))
             return opts, header, first, layout.replace(
                 f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
+    if is_lab_file(sample):         # a TDMS log, a MATLAB file: the CSV its channels are written to
+        kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
+                else "a TDMS log") + " (its channels as columns)"
+        with lab_as_csv(sample) as text:
+            opts, header, first, layout = head(text, csv_options(opts))
+            layout = layout.replace("a historian's long file (", "channels at their own rates, "
+                                    "written long (", 1)
+            return opts, header, first, layout.replace(f"{text.name}: ", f"{sample.name}: {kind}, ", 1)
     if is_json_lines(sample) or is_fixed_width(sample, opts.encoding):
         kind = "JSON Lines (nested keys joined with '.')" if is_json_lines(sample) else \
             "a fixed-width table (its columns told by the numbers)"
@@ -260,8 +269,7 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
             roles[kind].append(pattern)
         elif kind == AMBIGUOUS:
             continue
-        elif not air_given and role(base) is None and AMBIENT_WORDS & set(
-                _WORDS.split(base.lower())) and (
+        elif not air_given and role(base) is None and AMBIENT_WORDS & air_words(base) and (
                 not unit or unit.replace(" ", "").lower() in UNITS["T"]):
             roles["ambient"].append(pattern)
         elif is_flag(first.get(h)):          # 'true' / 'false': an on/off flag, a state
@@ -270,6 +278,13 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
                   or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return _by_role(roles, header, first)
+
+
+def air_words(name: str) -> set[str]:
+    """The words of a header's ``name``, and of a word that is a ``T`` before an air's word
+    (MATLAB's field ``Troom``, ``Tamb``: a name cannot hold a space) that word too."""
+    words = set(_WORDS.split(name.lower()))
+    return words | {w[1:] for w in words if w.startswith("t") and w[1:] in AMBIENT_WORDS}
 
 
 def flag_headers(ds, names: dict) -> list[str]:
@@ -384,8 +399,9 @@ def data_config(src: Path, given: dict, opts, roles: dict, defaults: dict,
     folder's, as read (:func:`folder_manifest`; read here if not given)."""
     if manifest is None and src.is_dir():
         manifest = read_manifest(src, opts)
-    # a sheet has no separators (a CSV file beside workbooks: detected, data.delimiter=auto)
-    separators = {} if is_workbook(sample_file(src, manifest)) else {
+    # a sheet, a TDMS or MATLAB file has no separators (a CSV file beside them: detected)
+    sample = sample_file(src, manifest)
+    separators = {} if is_workbook(sample) or is_lab_file(sample) else {
         "delimiter": opts.delimiter, "decimal": opts.decimal}
     config = {"path": str(src), **separators, "roles": roles}
     for key, value in given.items():

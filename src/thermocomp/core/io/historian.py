@@ -7,7 +7,8 @@ between two of its samples is the first one's: every tag is put onto one grid, `
 ...`` with ``p = data.resample_s`` (no default: a missing period is an error naming the key and
 the tags' median intervals, never a guess), by SAMPLE AND HOLD (``pandas.merge_asof``,
 backward): a grid point takes the tag's last sample at or before it.  ``t0`` is the first time
-every tag has a sample (the rows before it are said, not read); the grid ends at the record's
+every tag has a sample (a tag's samples before it but its last, held there, are said
+and not read); the grid ends at the record's
 last stamp.  A sample whose quality is not Good (``Bad``, ``Uncertain``, an OPC quality byte
 below 192) is missing from its stamp to the tag's next sample: the grid's empty cells are then
 repaired or refused as a wide file's are (``data.max_gap_samples``: interpolated over at most
@@ -311,11 +312,15 @@ def _held(samples: pd.DataFrame, period: float, path, origin) -> tuple[pd.DataFr
     """Every tag on the grid by sample and hold; the long rows each cell's value came from."""
     firsts = samples.groupby("tag", sort=False)["time"].min()
     start, end = float(firsts.max()), float(samples["time"].max())
-    if start > float(samples["time"].min()):
+    # each tag's last sample at or before the start is held there: only its earlier ones are
+    # not read (loggers started a few ms apart lose none: it was said for every file, labfiles62)
+    early = samples[samples["time"] <= start]
+    unread = int((early["time"] < early["tag"].map(early.groupby("tag")["time"].max())).sum())
+    if unread:
         logger.warning("%s: the grid (data.resample_s=%g) starts where every tag has a sample, "
-                       "%.4g s after the first stamp (tag %r logs first at %s): the samples "
+                       "%.4g s after the first stamp (tag %r logs first at %s): %d sample(s) "
                        "before it are not read", path, period, start - samples["time"].min(),
-                       firsts.idxmax(), _said(start, origin))
+                       firsts.idxmax(), _said(start, origin), unread)
     count = int(np.floor((end - start) / period + 1e-9)) + 1
     grid = _not_silent(start + period * np.arange(count), np.sort(samples["time"].to_numpy()),
                        period, path, origin)

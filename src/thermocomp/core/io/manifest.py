@@ -14,15 +14,19 @@ from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractEr
 from .encoding import UTF8, check_text, fields, text_codec, undecodable
 from .instants import on_clock, start_instants, start_stamp
 from .jsonlines import JSON_LINES_SUFFIXES
+from .matfile import MAT_SUFFIXES
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
+from .tdms import TDMS_SUFFIXES
 from .workbook import WORKBOOK_SUFFIXES
 
-# a folder's runs without a manifest (a workbook is read as its CSV export, :mod:`.workbook`)
-CAMPAIGN_SUFFIXES = (".csv", ".parquet", *WORKBOOK_SUFFIXES, *JSON_LINES_SUFFIXES)
+# a folder's runs without a manifest (a workbook is read as its CSV export, :mod:`.workbook`; a
+# TDMS log or a MATLAB file as its channels', :mod:`.labfile`)
+LAB_SUFFIXES = (*TDMS_SUFFIXES, *MAT_SUFFIXES)
+CAMPAIGN_SUFFIXES = (".csv", ".parquet", *WORKBOOK_SUFFIXES, *JSON_LINES_SUFFIXES, *LAB_SUFFIXES)
 # a one-file record may also carry a logger's text suffix: read as CSV is (delimiter detected)
 # (JSON Lines: read through its CSV text, :mod:`.jsonlines`)
 TEXT_SUFFIXES = (".csv", ".txt", ".tsv", ".dat", *JSON_LINES_SUFFIXES)
-RECORD_SUFFIXES = (*TEXT_SUFFIXES, ".parquet", *WORKBOOK_SUFFIXES)
+RECORD_SUFFIXES = (*TEXT_SUFFIXES, ".parquet", *WORKBOOK_SUFFIXES, *LAB_SUFFIXES)
 EXCEL_OWNER = "~$"     # the lock file Excel leaves beside a workbook it has open
 _UNSAFE_ID = re.compile(r"[/\\\x00-\x1f]|^\.")
 

@@ -1,6 +1,7 @@
 """A campaign file as the CSV reader reads it: a workbook's sheet (:mod:`.workbook`), a UTF-16
-text (:mod:`.utf16`), JSON Lines (:mod:`.jsonlines`) or a fixed-width text (:mod:`.fixedwidth`)
-through the temporary UTF-8 CSV it is converted to, any other file as it is.  One place for the
+text (:mod:`.utf16`), JSON Lines (:mod:`.jsonlines`), a fixed-width text (:mod:`.fixedwidth`), a
+TDMS log or a MATLAB file (:mod:`.labfile`) through the temporary UTF-8 CSV it is converted to,
+any other file as it is.  One place for the
 choice, so that every look at a file (its rows, its first time) reads it the same way."""
 
 from __future__ import annotations
@@ -9,25 +10,52 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .contract import ContractError
 from .fixedwidth import fixed_as_csv, is_fixed_width
 from .historian import long_as_wide, wide_options
 from .historian_layout import long_layout
 from .jsonlines import is_json_lines, json_lines_as_csv
+from .labfile import records_as_csv
+from .matfile import is_mat, mat_records
+from .tdms import is_tdms, tdms_records
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
 from .workbook import csv_options, is_workbook, sheet_as_csv
 
 
+def is_lab_file(path) -> bool:
+    """``path`` is a lab's binary record: a TDMS log or a MATLAB file (:mod:`.labfile`)."""
+    return is_tdms(path) or is_mat(path)
+
+
 def is_converted(path, opts=None) -> bool:
     """``path`` is read through a converted copy (a workbook, a UTF-16 text, JSON Lines, a
-    fixed-width text; with the read ``opts``: a historian's long file)."""
+    fixed-width text, a TDMS or MATLAB file; with the read ``opts``: a historian's long file)."""
     return is_workbook(path) or is_utf16(path) or is_json_lines(path) or is_fixed_width(path) or (
-        opts is not None and long_layout(path, opts) is not None)
+        is_lab_file(path)) or (opts is not None and long_layout(path, opts) is not None)
 
 
 @contextmanager
-def as_read(path: Path, opts, rows: int | None = None) -> Iterator[tuple[Path, object]]:
+def lab_as_csv(path: Path, one_run: bool = False) -> Iterator[Path]:
+    """A TDMS log or a MATLAB file as the temporary CSV file its channels are written to;
+    ``one_run``: a folder's file, refused where it holds several runs (its runs would be read
+    as one campaign, the days between them a pause nothing said)."""
+    records = tdms_records(path) if is_tdms(path) else mat_records(path)
+    if one_run and len(records) > 1:
+        labels = ", ".join(repr(r.label) for r in records[:4]) + (", ..." if len(records) > 4 else "")
+        raise ContractError(f"{len(records)} runs in one file ({labels}): a folder's file is one "
+                            "campaign; give this file as data.path (each run a campaign, "
+                            "data.roles.campaign=run as thermocomp init proposes), or save one "
+                            "run per file", file=path)
+    with records_as_csv(records, path) as text:
+        yield text
+
+
+@contextmanager
+def as_read(path: Path, opts, rows: int | None = None, one_run: bool = False
+            ) -> Iterator[tuple[Path, object]]:
     """``(file, options)`` the CSV or Parquet reader reads for ``path`` (``rows``: a workbook's
-    first rows only, what a look at its head needs)."""
+    first rows only, what a look at its head needs; ``one_run``: a folder's campaign file, a
+    TDMS or MATLAB file of several runs refused)."""
     if is_workbook(path):
         with sheet_as_csv(path, opts, rows=rows) as sheet:
             yield sheet.csv, csv_options(opts)
@@ -37,6 +65,9 @@ def as_read(path: Path, opts, rows: int | None = None) -> Iterator[tuple[Path, o
     elif is_json_lines(path):       # an MQTT bridge's messages: flattened
         with json_lines_as_csv(path, rows=rows) as text:
             yield text, utf8_options(opts)
+    elif is_lab_file(path):         # a DAQ's TDMS, a MATLAB file: its channels (long: a grid)
+        with lab_as_csv(path, one_run) as text, as_read(text, csv_options(opts), rows) as read:
+            yield read
     elif is_fixed_width(path):      # an old program's report: its columns told by the numbers
         with fixed_as_csv(path, opts.encoding) as text:
             yield text, utf8_options(opts)

@@ -155,8 +155,8 @@ def _resample(columns: dict, step: float, path: Path, max_factor: float,
     columns[TIME] = pa.array(grid)
 
 
-def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
-                  ) -> tuple[pa.Table, dict]:
+def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None,
+                  one_run: bool = False) -> tuple[pa.Table, dict]:
     """Read and validate one campaign file into an Arrow table.
 
     Parameters
@@ -166,6 +166,8 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
         its sheet ``data.sheet`` (the first) read as its CSV export (:mod:`.workbook`).
     cfg : mapping or ReadOptions, optional
         The ``data`` config (see :func:`read_dataset`).
+    one_run : bool
+        ``path`` is a folder's campaign file: a TDMS or MATLAB file of several runs is refused.
 
     Returns
     -------
@@ -191,7 +193,7 @@ def read_campaign(path: str | Path, cfg: Mapping | ReadOptions | None = None
         raise ContractError("campaign file not found", file=path)
     if path.stat().st_size == 0:
         raise ContractError("empty file", file=path)
-    with as_read(path, opts) as (source, source_opts):   # a workbook, UTF-16: as CSV
+    with as_read(path, opts, one_run=one_run) as (source, source_opts):   # a workbook: as CSV
         return _read_file(source, source_opts)
 
 
@@ -283,7 +285,7 @@ def _iter_campaigns(root: Path, manifest: pd.DataFrame, opts: ReadOptions
     periods, ranges = {}, {}
     for cid, row in manifest.iterrows():
         try:
-            table, report = read_campaign(root / row["file"], opts)
+            table, report = read_campaign(root / row["file"], opts, one_run=True)
         except ContractError as exc:     # (a file of two loggers' pair: said so)
             raise errors_elsewhere(exc, root, manifest, cid, opts) from None
         periods[cid] = median_step(table.column(TIME).to_numpy())

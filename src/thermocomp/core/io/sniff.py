@@ -43,11 +43,15 @@ def detected(lines: list[str], opts: ReadOptions, where) -> ReadOptions:
 
 
 def head_lines(path: Path, encoding: str = UTF8) -> list[str]:
-    """The first lines of a file (its first 64 KiB; undecodable bytes replaced)."""
+    """The first whole lines of a file (in its first 64 KiB; undecodable bytes replaced): a
+    line the window cuts is left out (a historian's long file cut inside its tag column read as
+    a row without a tag, the file then read as wide: labfiles62)."""
     with open(path, "rb") as f:
         head = f.read(_SNIFF_BYTES)
+        cut = len(head) == _SNIFF_BYTES and f.read(1) not in (b"", b"\n", b"\r")
     check_text(head, encoding, path)
-    return head.decode(text_codec(encoding), "replace").splitlines()
+    lines = head.decode(text_codec(encoding), "replace").splitlines()
+    return lines[:-1] if cut and len(lines) > 1 and not head.endswith((b"\n", b"\r")) else lines
 
 
 def _delimiter(lines: list[str], path: Path) -> str:

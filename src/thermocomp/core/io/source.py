@@ -55,7 +55,7 @@ def _repair_train(ds: Dataset, report: dict, options: Mapping | None) -> None:
                     table = repaired_part(df, Path(ds.meta["path"]), options,
                                           entry["record_rows"][0])
                 else:
-                    table, _ = read_campaign(ds.file_path(cid), options)
+                    table, _ = read_campaign(ds.file_path(cid), options, one_run=True)
             except ContractError as exc:
                 # the lab's own header of the column, as a batch's refusal names it
                 exc = with_own_header(exc, ds.meta.get("column_map", {}))

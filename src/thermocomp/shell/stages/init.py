@@ -39,8 +39,10 @@ from ...core.io.historian import (
     tag_samples,
 )
 from ...core.io.historian_layout import long_layout
+from ...core.io.plain import is_lab_file, lab_as_csv
 from ...core.io.roles import naming
 from ...core.io.timestamps import ELAPSED
+from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
 from ..config.checks import check_config, data_options
 from ..source import check_declared, open_source
@@ -57,6 +59,13 @@ def long_period(sample, given: dict) -> dict | None:
     tags are errors (:func:`.historian.proposed_period`); None for any other file, or where the
     period is given."""
     opts = io.ReadOptions.from_cfg(given)
+    if is_lab_file(sample) and opts.resample_s is None:   # a TDMS log's channels at two rates
+        with lab_as_csv(sample) as text:
+            return _long_period(text, given, csv_options(opts))
+    return _long_period(sample, given, opts)
+
+
+def _long_period(sample, given: dict, opts) -> dict | None:
     layout = long_layout(sample, opts) if opts.resample_s is None else None
     if layout is None:
         return None
@@ -111,7 +120,9 @@ def init(cfg: DictConfig) -> dict:
                                              if str(n).startswith("E_")])
         given["resample_s"] = period
         opts = replace(opts, resample_s=period)
-        print(f"{sample.name}: a historian's long file, each tag logged at its own times: held "
+        kind = ("its channels logged at their own rates" if is_lab_file(sample) else
+                "a historian's long file, each tag logged at its own times")
+        print(f"{sample.name}: {kind}: held "
               f"onto a grid of data.resample_s={period:g} s, the median interval of the fastest "
               f"error tag {tag!r} (written into the config: check it; the tags': "
               f"{intervals_said(long)})")

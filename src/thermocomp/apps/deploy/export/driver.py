@@ -26,8 +26,9 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
  * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
  * mid-write leaves the previous row's state); a FILE of another build is refused.
- * A file in fixed-width columns or JSON Lines is refused: convert it to CSV first (the export's
- * check/<campaign>/rows.csv holds such a record's rows as this reads them).
+ * A file in fixed-width columns, JSON Lines, a TDMS log or a MATLAB file is refused: convert
+ * it to CSV first (the export's check/<campaign>/rows.csv holds such a record's rows as this
+ * reads them).
  * With `--check FILE` (a pack's check/<campaign>/expected.csv, export writes them with the
  * rows.csv each holds) every row of corrections is compared with FILE's as it is printed:
  * the first farther than CHECK_UM + CHECK_RELATIVE * |expected| (`--tolerance UM`, `--relative
@@ -405,6 +406,15 @@ int main(int argc, char **argv) {
     }
     if (!fgets(line, sizeof line, stdin)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
     if (strncmp(line, "\xEF\xBB\xBF", 3) == 0) memmove(line, line + 3, strlen(line + 3) + 1);
+    if (strncmp(line, "TDSm", 4) == 0 || (strncmp(line, "MATLAB ", 7) == 0
+                                          && strstr(line, "MAT-file") != NULL)) {
+        /* a lab's binary log fed as it is: its bytes are no header to name a column of */
+        fprintf(stderr, "stream: %s is binary, not read here; convert it to CSV first, as the "
+                "export's check/<campaign>/rows.csv are (a header line naming the columns, then "
+                "one row per sample)\n", line[0] == 'T' ? "a National Instruments TDMS log"
+                : "a MATLAB .mat file");
+        return 2;
+    }
     if (line[strspn(line, " \t")] == '{') {
         fprintf(stderr, "stream: line 1 is a JSON object: JSON Lines is not read here; convert "
                 "the file to CSV (a header line naming the columns, then one row per sample)\n");

@@ -1,0 +1,192 @@
+"""A lab's binary record (a National Instruments TDMS log, :mod:`.tdms`; a MATLAB ``.mat`` file,
+:mod:`.matfile`) read as its CSV export (extension), as a workbook's sheet is (:mod:`.workbook`):
+its channels written into a temporary UTF-8 CSV file that the CSV reader reads, so that roles,
+units (in the header: ``Spindle nose [degC]``), the time and every check work as on a CSV file.
+No value is read twice: this module only lays the channels out.
+
+A record is a list of :class:`Channel` s (a name with its unit, the values, the time of each
+value where the file gives one).  One record whose channels share one time (or, none timed, one
+length) is a wide CSV, one row a sample; several records (runs: TDMS groups, a struct array)
+the same, one after the other, with a ``run`` column naming each, which ``thermocomp init``
+proposes as ``data.roles.campaign`` (:mod:`.runs`: each run a campaign).  One record whose
+channels are timed on different grids (a slow temperature module and a fast displacement
+module) is written as a long file (``time, channel, value``): the historian's path
+(:mod:`.historian`) holds every channel onto one grid of ``data.resample_s`` by sample and
+hold, the contract's one rule for channels at different rates (``init`` proposes the period).
+Channels of different lengths without a time are refused naming them.
+
+A message about the temporary file names the lab's file, the channel (and its group or
+variable) and the data row instead.
+"""
+
+from __future__ import annotations
+
+import csv
+import tempfile
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .contract import ContractError
+from .converted import named_as
+from .encoding import UTF8
+
+RUN_HEADER = "run"          # the column naming each run of a file holding several
+TIME_HEADER = "time"        # the time a file gives as timestamps (UTC) or seconds
+
+
+@dataclass
+class Channel:
+    """One channel: its ``header`` (name and unit, as the CSV header), ``values``, the
+    ``time`` of each (``datetime64`` or float seconds; None: none given) and ``where`` it is
+    in the file (``group 'Temperatures', channel 'T1'``)."""
+
+    header: str
+    values: np.ndarray
+    time: np.ndarray | None
+    where: str
+
+
+@dataclass
+class Record:
+    """One run: its ``label`` (a run column's value) and channels; ``time_header``: the header
+    of the time where the file names its time channel (else :data:`TIME_HEADER`)."""
+
+    label: str
+    channels: list[Channel]
+    time_header: str = TIME_HEADER
+    utc: bool = True           # timestamps in UTC (NI's); False: on a clock not said (a datenum)
+
+
+def with_unit(name: str, unit: str | None) -> str:
+    """``name [unit]`` where a unit is given and the name does not say one already."""
+    unit = (unit or "").strip()
+    return f"{name} [{unit}]" if unit and f"[{unit}]" not in name else name
+
+
+def _one_grid(record: Record) -> bool:
+    times = [c.time for c in record.channels]
+    if all(t is None for t in times):
+        return len({c.values.size for c in record.channels}) == 1
+    return all(t is not None and t.shape == times[0].shape and np.array_equal(t, times[0])
+               for t in times)
+
+
+def _check(records: list[Record], path: Path) -> bool:
+    """Whether the records are written wide (else long: one record, its channels timed on
+    different grids); refused: channels of different lengths without a time, runs whose
+    channels differ or are on different grids."""
+    for record in records:
+        if _one_grid(record):
+            continue
+        untimed = [c for c in record.channels if c.time is None]
+        if untimed or len(records) > 1:
+            sizes = ", ".join(f"{c.where} {c.values.size}" for c in record.channels[:8])
+            fix = ("each channel's time (NI's waveform properties wf_start_time / wf_increment, or "
+                   "a time channel), or the channels resampled to one rate before saving"
+                   if untimed else "one file per run")
+            raise ContractError(f"{record.label}: channels of different lengths or times ({sizes} "
+                                f"samples): no grid reads them together; give {fix}", file=path)
+        return False
+    headers = [c.header for c in records[0].channels]
+    timed = {_time_kind(r) for r in records}
+    if len(timed) > 1:                  # (a row of one run would lack the time cell)
+        said = ", ".join(f"{r.label!r} {_time_kind(r)}" for r in records[:6])
+        raise ContractError(f"the runs of one file are timed alike or not at all ({said}): give "
+                            "each run the same time (timestamps, or seconds)", file=path)
+    for record in records[1:]:
+        other = [c.header for c in record.channels]
+        if set(other) != set(headers):
+            odd = sorted(set(other) ^ set(headers))
+            raise ContractError(f"run {record.label!r} holds other channels than run "
+                                f"{records[0].label!r} ({', '.join(map(repr, odd[:6]))}): the runs "
+                                "of one file are read as one table; one file per run",
+                                file=path)
+    return True
+
+
+def _time_kind(record: Record) -> str:
+    time = record.channels[0].time
+    return "untimed" if time is None else "by timestamps" if np.issubdtype(
+        time.dtype, np.datetime64) else "in seconds"
+
+
+def _time_cells(time: np.ndarray | None, n: int, utc: bool) -> list[str] | None:
+    if time is None:
+        return None
+    if np.issubdtype(time.dtype, np.datetime64):      # NI's are UTC; a datenum's on no clock said
+        text = np.datetime_as_string(time.astype("datetime64[us]"), unit="us")
+        return [f"{s}+00:00" for s in text] if utc else list(text)
+    return [repr(float(v)) for v in time[:n]]
+
+
+def _cell(v) -> str:
+    return "" if not np.isfinite(v) else repr(float(v))
+
+
+def write_wide(records: list[Record], out: Path) -> dict[str, str]:
+    """The records as one CSV table (a ``run`` column where several); ``{header: where}``."""
+    first = records[0]
+    headers = [c.header for c in first.channels]
+    time = first.channels[0].time
+    dated = time is not None and np.issubdtype(time.dtype, np.datetime64)
+    # a time channel's own header (its unit); else ours: timestamps, or seconds
+    time_header = first.time_header if first.time_header != TIME_HEADER else (
+        TIME_HEADER if dated else f"{TIME_HEADER} [s]")
+    runs = len(records) > 1
+    with open(out, "w", encoding=UTF8, newline="") as f:
+        writer = csv.writer(f, lineterminator="\n")
+        writer.writerow(([RUN_HEADER] if runs else []) + ([time_header] if time is not None else [])
+                        + headers)
+        for record in records:
+            by = {c.header: c.values for c in record.channels}
+            n = record.channels[0].values.size
+            times = _time_cells(record.channels[0].time, n, record.utc)
+            for i in range(n):
+                writer.writerow(([record.label] if runs else []) + ([times[i]] if times else [])
+                                + [_cell(by[h][i]) for h in headers])
+    return {c.header: c.where for c in first.channels}
+
+
+def write_long(record: Record, out: Path) -> dict[str, str]:
+    """One record's channels, each on its own time, as a long CSV file (``time``, ``channel``,
+    ``value``: the historian's path holds them onto one grid); ``{header: where}``."""
+    absolute = {np.issubdtype(c.time.dtype, np.datetime64) for c in record.channels}
+    if len(absolute) > 1:
+        raise ContractError(f"{record.label}: some channels timed by a date, others by seconds "
+                            "only: no grid reads them together", file=out)
+    with open(out, "w", encoding=UTF8, newline="") as f:
+        writer = csv.writer(f, lineterminator="\n")
+        writer.writerow([TIME_HEADER if absolute == {True} else "time [s]", "channel", "value"])
+        for c in record.channels:
+            for stamp, v in zip(_time_cells(c.time, c.values.size, record.utc), c.values):
+                writer.writerow([stamp, c.header, _cell(v)])
+    return {c.header: c.where for c in record.channels}
+
+
+@contextmanager
+def records_as_csv(records: list[Record], path: Path) -> Iterator[Path]:
+    """``records`` (the lab's file ``path``) as a temporary CSV file, removed after; a
+    :class:`ContractError` about it names ``path``, the channel's place and the data row."""
+    wide = _check(records, path)
+    with tempfile.TemporaryDirectory(prefix="thermocomp-lab-") as tmp:
+        out = Path(tmp) / (path.stem + ".csv")
+        where = write_wide(records, out) if wide else write_long(records[0], out)
+        with named_as(out, str(path), lambda exc: _located(exc, out, path, where), "row",
+                      line_of=lambda n: n - 1):
+            yield out
+
+
+def _located(exc: ContractError, temp: Path, path: Path, where: dict[str, str]) -> ContractError:
+    """``exc`` about the temporary file as about the lab's file: its data row, the channel's
+    group or variable said."""
+    if exc.file is None or str(temp) not in str(exc.file) and str(temp) not in exc.reason:
+        return exc
+    reason = exc.reason.replace(str(temp), str(path))
+    place = where.get(exc.column) or next((w for h, w in where.items() if repr(h) in reason), None)
+    if place:
+        reason += f" ({place})"
+    return ContractError(reason, file=path, column=exc.column, row=exc.row)
