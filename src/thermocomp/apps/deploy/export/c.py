@@ -111,6 +111,7 @@ def header(ss: StateSpace) -> str:
 #define TC_N_OUTPUTS {m}
 #define TC_N_LAWS {len(ss.laws)}   /* linear laws summed into the outputs (LAW_TARGET) */
 #define TC_N_AMBIENT {len(ss.ambient_inputs)}   /* inputs whose first sample is the ambient (ATI) */
+#define TC_AMBIENT_GIVEN {int(ss.ambient_given)}   /* 1: the ambient is given per campaign (tc_set_ambient) */
 #define TC_TAPS {taps}
 #define TC_DEPTH {ss.depth}
 #define TC_N_LAGS {len(ss.taus)}
@@ -143,6 +144,7 @@ typedef struct {{
     double last[TC_N_INPUTS];                   /* the last finite value (a held signal's) */
     int seen[TC_N_INPUTS];                      /* 1: a value seen in this campaign */
     double a0;                                  /* the campaign's initial ambient */
+    double ambient_c;                           /* ... as given (tc_set_ambient; NAN: not yet) */
     double t0;                                  /* the campaign's first sample time, s */
     double start[{max(len(ss.initial), 1)}];    /* a transient's w . (c(0) - A0) (0: not yet) */
     int started[{max(len(ss.initial), 1)}];     /* 1: a transient's sensors seen */
@@ -178,6 +180,13 @@ void tc_init(tc_state *s);
 
 /* Start a campaign (the next sample is the reference); what was learned is kept. */
 void tc_reset(tc_state *s);
+
+/* The campaign's initial ambient A0 (degC: its ambient_c in the manifest campaigns.csv) where
+   the model reads no ambient sensor (TC_AMBIENT_GIVEN 1; else not read): call it after tc_init
+   or tc_reset, before the campaign's first tc_step, which refuses the sample (-1) without it.
+   A0 picks the laws of the campaign (an ATI model's interval) as the served model's reset does;
+   tc_reset forgets it. */
+void tc_set_ambient(tc_state *s, double ambient_c);
 
 /* One sample: raw inputs u (order TC_INPUT_NAMES), its time in s (NAN: one period after the
    previous one) -> corrections c (um, order TC_OUTPUT_NAMES).  Returns the number of inputs
@@ -243,8 +252,11 @@ void tc_reset(tc_state *s) {{
     int i;
     s->first = 1;
     s->refused = 0;
+    s->ambient_c = NAN;
     for (i = 0; i < TC_N_OUTPUTS; i++) s->c[i] = 0.0;
 }}
+
+void tc_set_ambient(tc_state *s, double ambient_c) {{ s->ambient_c = ambient_c; }}
 
 void tc_init(tc_state *s) {{
     int i;
@@ -284,14 +296,15 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     double dt, now, step;
     int i, j, l, h, r, clamped = 0;
     /* a non-finite input refuses the sample before anything is remembered: one NaN would
-       otherwise stay in the lags, the AR feedback and the guard to the campaign's end */
-    s->refused = 0;
+       otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
+       a campaign's first sample without its given ambient (TC_AMBIENT_GIVEN) */
+    s->refused = TC_AMBIENT_GIVEN && s->first && !isfinite(s->ambient_c);
     for (j = 0; j < TC_N_INPUTS; j++)
-        if (!TC_INPUT_HELD[j] && !isfinite(u[j])) {{
-            for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
-            s->refused = 1;
-            return -1;
-        }}
+        if (!TC_INPUT_HELD[j] && !isfinite(u[j])) s->refused = 1;
+    if (s->refused) {{
+        for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
+        return -1;
+    }}
 {C_TIME_RULE}    /* a missing signal of derived inputs only (TC_INPUT_HELD) is held at the campaign's
        last value, 0 before any (its derived inputs 0), as the diagnosed model holds it */
     for (j = 0; j < TC_N_INPUTS; j++) {{
@@ -319,6 +332,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         double a0 = 0.0;
         for (l = 0; l < TC_N_AMBIENT; l++) a0 += v[AMBIENT_INPUT[l]];
         a0 /= AMBIENT_COUNT;
+        if (TC_AMBIENT_GIVEN) a0 = s->ambient_c;   /* no sensor: the campaign's, given */
         s->a0 = a0;
         s->t0 = now;
         for (r = 0; r < TC_N_LAWS; r++) {{   /* times (A0 - centre)^LAW_AMBIENT[r]: 0, 1 or 2 */

@@ -3,7 +3,9 @@ function block, ``FB_ThermoComp``, with the interface of the C code: one call is
 ``tc_step``; ``reset := TRUE`` is ``tc_reset`` before it (the sample starts a campaign).
 
 Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: no time,
-:mod:`thermocomp.core.timerule`: ST has no NaN constant), ``ref_valid`` and ``ref_error`` (per target: a
+:mod:`thermocomp.core.timerule`: ST has no NaN constant), ``ambient_c`` (°C: a campaign's
+initial ambient, its manifest ``ambient_c``, read at its first sample where ``AMBIENT_GIVEN``,
+a model without an ambient sensor; else not read), ``ref_valid`` and ``ref_error`` (per target: a
 reference measurement of the error at this sample, which ``tc_reference`` takes after the
 step); outputs ``c`` (µm), ``n_clamped`` and ``refused`` (an input not finite, NaN or infinity:
 the sample and its reference are not taken and ``c`` holds, as ``tc_step`` returns -1).  What
@@ -99,6 +101,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("AMBIENT_INPUT", ss.ambient_inputs, (len(ss.ambient_inputs),), "INT"),
         f"    AMBIENT_CENTRE : LREAL := {literal(ss.ambient_centre)};",
         f"    AMBIENT_COUNT : LREAL := {literal(max(len(ss.ambient_inputs), 1))};",
+        f"    AMBIENT_GIVEN : BOOL := {'TRUE' if ss.ambient_given else 'FALSE'};",
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
@@ -147,6 +150,7 @@ VAR_INPUT
     time_s : LREAL;
     has_time : BOOL;
     reset : BOOL;
+    ambient_c : LREAL;
     ref_valid : ARRAY[{_dims(m)}] OF BOOL;
     ref_error : ARRAY[{_dims(m)}] OF LREAL;
 END_VAR
@@ -249,6 +253,10 @@ FOR j := 0 TO N_INPUTS - 1 DO
         refused := TRUE;
     END_IF;
 END_FOR;
+(* so does a campaign's first sample without its ambient given (AMBIENT_GIVEN: no sensor) *)
+IF AMBIENT_GIVEN AND first AND NOT (ambient_c >= -REAL_LIMIT AND ambient_c <= REAL_LIMIT) THEN
+    refused := TRUE;
+END_IF;
 IF NOT refused THEN
 {_indent(ST_TIME_RULE)}    n_clamped := 0;
     (* a missing signal of derived inputs only (HELD) is held at the campaign's last value, *)
@@ -306,6 +314,9 @@ IF NOT refused THEN
             a0 := a0 + v[AMBIENT_INPUT[l]];
         END_FOR;
         a0 := a0 / AMBIENT_COUNT;
+        IF AMBIENT_GIVEN THEN   (* no sensor: the campaign's, given at its first sample *)
+            a0 := ambient_c;
+        END_IF;
         t0 := now;
         FOR r := 0 TO N_LAWS - 1 DO
             factor[r] := 0.0;

@@ -181,6 +181,10 @@ class StateSpace:
     law_ambient: list = field(default_factory=list)  # (n_laws,) the power of A0 - centre: 0, 1, 2
     ambient_inputs: list = field(default_factory=list)   # indices of the ambient inputs (A0)
     ambient_centre: float = 20.0                     # °C
+    # A0 is given at a campaign's start, not read from an input: the model reads no ambient
+    # sensor, each campaign's ambient is its manifest's ``ambient_c`` (campaigns.csv), as the
+    # stream takes it at reset (C: tc_set_ambient; ST: the input ambient_c; exportrest62)
+    ambient_given: bool = False
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -258,7 +262,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     _in_code_order(laws, powers, N)
     ati = any(law.key != (-UNBOUNDED, UNBOUNDED, False) for _, law in laws)
     initial = [k for k in sorted(powers, key=powers.get) if k[0] == INITIAL]
-    ambient = _ambient_inputs(stream, inputs, ati or bool(initial), known_ambient)
+    ambient, given = _ambient_inputs(stream, inputs, ati or bool(initial), known_ambient)
     read = {inputs[j] for j in _read(powers)} | {inputs[j] for j in ambient}
     if any(c not in read for c in states):
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
@@ -301,7 +305,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         bd=bd.tolist(), g=g.tolist(), ar=[float(law.a) for _, law in laws],
         law_target=[i for i, _ in laws], law_lo=[law.lo for _, law in laws],
         law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
-        ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C,
+        ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C, ambient_given=given,
         uses_time=bool(keys) or bool(initial),
         powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] not in (DERIVED, INITIAL)],
         derived=[list(k[1:5]) for k in derived],
@@ -412,21 +416,18 @@ def _in_code_order(laws: list, powers: Powers, n: int) -> None:
     powers.rest, powers.steady = {new[i] for i in powers.rest}, {new[i] for i in powers.steady}
 
 
-def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> list[int]:
-    """The code's inputs whose first sample's mean is a campaign's initial ambient ``A0`` (the
-    stream's ambient sensors, read as it reads them: a declared one filtered, not referenced):
-    none without an ATI law; :class:`NotExportable` when the ambient is given at a campaign's
-    start instead (no sensor: the manifest's ``ambient_c``), which the code has no input for."""
+def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> tuple[list[int], bool]:
+    """``(the code's inputs whose first sample's mean is a campaign's initial ambient A0, A0
+    given instead)``: the stream's ambient sensors, read as it reads them (a declared one
+    filtered, not referenced); none without an ATI law.  Where the stream reads no ambient sensor
+    it takes A0 at reset, the campaign's manifest ``ambient_c`` (``ambient_given_``): so does the
+    code (exportrest62; ``known`` false: a stream made without its training data, not yet
+    knowing its sensors, reads none)."""
     if not ati:
-        return []
+        return [], False
     if not stream.ambient_columns:
-        if not known:
-            return []
-        raise NotExportable("the ATI model (a diagnosed ambient law, step or initial-state "
-                            "transient) reads each campaign's initial ambient from the "
-                            "manifest's ambient_c (no T_amb sensor among the data's columns): the "
-                            "code has no input for it; a T_amb sensor exports")
-    return [inputs.index(c) for c in stream.ambient_columns]
+        return [], bool(known and stream.ambient_given_)
+    return [inputs.index(c) for c in stream.ambient_columns], False
 
 
 def _pattern_fields(env, n_states: int) -> dict:
@@ -470,9 +471,11 @@ class Simulator:
         self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
         self.reset()
 
-    def reset(self) -> None:
-        """A new campaign: the next sample is its first."""
+    def reset(self, ambient_c: float = float("nan")) -> None:
+        """A new campaign: the next sample is its first.  ``ambient_c``: its initial ambient A0
+        (°C) where it is given (``ambient_given``: the manifest's, no ambient input)."""
         self.first = True
+        self.ambient_c = float(ambient_c)
         self.c = np.zeros(len(self.ss.targets))      # the last corrections given
         self.refused = False
 
@@ -489,7 +492,9 @@ class Simulator:
         u = np.asarray(u, float)
         ss = self.ss
         held = np.asarray(ss.held or [0] * len(u), bool)
-        self.refused = not np.isfinite(u[~held]).all()
+        # A0 not given where the code has no input for it: no campaign starts (the stream's refusal)
+        self.refused = not np.isfinite(u[~held]).all() or (
+            self.first and ss.ambient_given and not np.isfinite(self.ambient_c))
         if self.refused:
             return self.c.copy()
         if self.first:
@@ -506,7 +511,8 @@ class Simulator:
         v = (self.buf * self.fir).sum(axis=0)
         if self.first:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
-            a0 = ambient_c0(v[ss.ambient_inputs]) if ss.ambient_inputs else 0.0
+            a0 = ambient_c0(v[ss.ambient_inputs]) if ss.ambient_inputs else (
+                self.ambient_c if ss.ambient_given else 0.0)
             self.factor = ss.factors(a0)          # the campaign's laws (ATI), fixed over it
             self.a0, self.t0 = a0, now
             self.start = np.zeros(len(ss.initial))        # a transient's w . (v(0) - A0)
