@@ -29,6 +29,7 @@ from thermocomp.shell.builders import build_compensator
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
+from thermocomp.shell.stages.export import PLC_LIMIT_BYTES, _forest_said
 
 SMALL = ("model.estimator.forest.n_estimators=4",)
 
@@ -154,3 +155,13 @@ def test_an_arx_rf_within_an_ati_model_is_still_refused_naming_it(data, tmp_path
              "track=false"], capsys, "ARXRF is not one of the linear families",
             "arx_rf not within an ATI or a diagnosed model")
 
+
+
+def test_a_forest_whose_code_exceeds_a_megabyte_is_said_to_be_too_large_for_many_plcs():
+    exported = {"forest_target": [0], "node_left": [-1] * 3, "tree_root": [0], "tree_depth": 1}
+    small = {"compensator.st": "x" * PLC_LIMIT_BYTES, "compensator.json": "y" * (2 * PLC_LIMIT_BYTES)}
+    said = _forest_said(exported, small)
+    assert said.endswith("compensator.st 1,024 KB") and "beyond" not in said
+    said = _forest_said(exported, {**small, "compensator.st": "x" * (PLC_LIMIT_BYTES + 1)})
+    assert "compensator.st beyond 1 MB: more than many PLCs take" in said
+    assert "model.estimator.forest.n_estimators" in said
