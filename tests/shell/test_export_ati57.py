@@ -18,14 +18,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from conftest import refused
-from test_export import _compose, needs_cc
+from test_export import needs_cc
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import state_space
 from thermocomp.core.models.ati import ATIRegressor
-from thermocomp.shell.builders import build_compensator
-from thermocomp.shell.model_store import save_model
-from thermocomp.shell.source import read_streamed
 
 # (campaign, split, initial ambient °C): two clusters of four train levels, a test in each
 CAMPAIGNS = (("K01", "train", 14.0), ("K02", "train", 16.0), ("K03", "train", 18.0),
@@ -108,16 +104,3 @@ def test_auto_blending_an_ati_candidate_exports(data, tmp_path):
     assert law.startswith("blend mlr 0.4 + ati (A0 <= ") and law.endswith(" +interaction) 0.6")
     assert law.count("+interaction") == ati.n_intervals_
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
-
-
-def test_an_ati_model_reading_the_manifests_ambient_is_refused_naming_it(tmp_path, capsys):
-    data = _levels(tmp_path / "data", ambient_column=False)
-    cfg = _compose("model=mlr", "ati=cmeans", "ati.estimator.n_intervals=2", f"data.path={data}",
-                   "track=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    pkl = save_model(build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids}),
-                     tmp_path / "model.pkl")
-    out = tmp_path / "code"
-    refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={out}", "track=false"],
-            capsys, "manifest's ambient_c", "no T_amb sensor")
-    assert not out.exists()

@@ -21,7 +21,9 @@ def dataset(tmp_path_factory):
 
 def test_a_forest_is_refused_naming_what_exports_and_the_route_that_runs_it(dataset, tmp_path,
                                                                           capsys):
-    pkl = _fitted(dataset, tmp_path, "arx_rf", "model.estimator.forest.n_estimators=3")
+    """(exportrest62: arx_rf exports, its forest as arrays; within an ATI model it does not.)"""
+    pkl = _fitted(dataset, tmp_path, "arx_rf", "model.estimator.forest.n_estimators=3",
+                  "ati=cmeans", "ati.estimator.n_intervals=2")
     refused(["export", f"data.path={dataset}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
              "track=false"], capsys, "ARXRF is not one of the linear families",
             "their ATI models and model=auto's blends of them", "thermocomp serve, connect")

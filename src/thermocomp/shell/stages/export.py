@@ -126,6 +126,27 @@ def _said(pack: dict) -> str:
                                                                else ""))
 
 
+# the size of an exported forest's code beyond which a PLC may not take it (many controllers'
+# program memory is a few MB, and their ST compilers slow down on long initialiser lists)
+PLC_LIMIT_BYTES = 1 << 20
+
+
+def _forest_said(exported: dict, files: dict) -> str:
+    """One line of an arx_rf model's forests in the code: trees, nodes, depth, the files' size,
+    and a warning where the code exceeds :data:`PLC_LIMIT_BYTES`."""
+    nodes, trees = len(exported["node_left"]), len(exported["tree_root"])
+    sizes = {name: len(text.encode("utf-8")) for name, text in files.items()
+             if name.endswith((".c", ".st")) and name != "stream.c"}
+    said = (f"forest: {len(exported['forest_target'])} forest(s) of {trees} trees, {nodes:,} "
+            f"nodes (depth <= {exported['tree_depth']}) walked as arrays: "
+            + ", ".join(f"{name} {size / 1024:,.0f} KB" for name, size in sizes.items()))
+    big = [name for name, size in sizes.items() if size > PLC_LIMIT_BYTES]
+    if big:
+        said += (f"; {' and '.join(big)} beyond 1 MB: more than many PLCs take (fewer or shallower "
+                 "trees: model.estimator.forest.n_estimators, max_depth, min_samples_leaf)")
+    return said
+
+
 # data.time values whose times stream.c reads as the reader does (its own parser: driver.py)
 STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601", "%d.%m.%Y %H:%M:%S",
                             "%Y-%m-%d %H:%M:%S", "%Y-%m-%dT%H:%M:%S"})
@@ -205,9 +226,12 @@ def export(cfg: DictConfig) -> dict:
             (tmp / name).parent.mkdir(parents=True, exist_ok=True)
             (tmp / name).write_text(text, encoding="utf-8")
     written = {name: out / name for name in files}
-    laws = json.loads(files["compensator.json"])["provenance"].get("laws")
+    exported = json.loads(files["compensator.json"])
+    laws = exported["provenance"].get("laws")
     kept = f"; per target: {per_target(laws)}" if laws else ""   # what auto / ATI kept
     say(f"export ({fmt}, {family}{kept}): {', '.join(str(p) for p in written.values())}")
+    if exported.get("forest_target"):
+        say(_forest_said(exported, files))
     if fmt == "c":
         say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv"
             " (--state FILE: a restarted stream goes on from FILE)")

@@ -11,7 +11,9 @@ reference update of ``adapt.method`` (:mod:`.output`); a Hammerstein model's sta
 and a diagnosed model's lags, products, squares, (exportrest60) lags' initial-state transients
 and (export62) a state times the inputs' rises as derived inputs
 (:func:`.derived.derived_inputs`), its ambient steps as laws of the initial
-ambient, a lag bank's lag of its lag as a cascade, around a plain or an ATI model.
+ambient, a lag bank's lag of its lag as a cascade, around a plain or an ATI model; (exportrest62)
+an ATI model whose ambient is the manifest's (given at a campaign's start), and ``arx_rf``, its
+ARX a law and its forest flat arrays the code walks (:mod:`.forest`).
 Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
 families of :data:`~.laws.LINEAR_FAMILIES` export, and what ``model=auto`` keeps of them (one, or
 a blend) and the ATI wrapper of them (:mod:`.laws`); any other model is refused

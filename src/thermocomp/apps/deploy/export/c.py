@@ -111,6 +111,7 @@ def header(ss: StateSpace) -> str:
 #define TC_N_OUTPUTS {m}
 #define TC_N_LAWS {len(ss.laws)}   /* linear laws summed into the outputs (LAW_TARGET) */
 #define TC_N_AMBIENT {len(ss.ambient_inputs)}   /* inputs whose first sample is the ambient (ATI) */
+#define TC_AMBIENT_GIVEN {int(ss.ambient_given)}   /* 1: the ambient is given per campaign (tc_set_ambient) */
 #define TC_TAPS {taps}
 #define TC_DEPTH {ss.depth}
 #define TC_N_LAGS {len(ss.taus)}
@@ -118,6 +119,13 @@ def header(ss: StateSpace) -> str:
 #define TC_N_DERIVED {len(ss.derived)}   /* a diagnosed model's derived inputs (products, lags) */
 #define TC_N_INITIAL {len(ss.initial)}   /* a diagnosed lag's initial-state transient (directions) */
 #define TC_N_STATE_GAIN {len(ss.clamp_states)}   /* states scaling the clamp's gain (inputs_product) */
+#define TC_N_SWITCHES {len(ss.switch_input)}   /* machine states whose switching a forest reads (arx_rf) */
+#define TC_N_FEATURES {len(ss.switch_feature)}   /* the forests' features: a state's ramp per tau */
+#define TC_N_FORESTS {len(ss.forest_target)}
+#define TC_N_TREES {len(ss.tree_root)}
+#define TC_N_NODES {len(ss.node_left)}
+#define TC_TREE_DEPTH {ss.tree_depth}   /* the longest walk from a root to a leaf */
+#define TC_SWITCH_RAW_TIME {int(ss.switch_raw_time)}   /* 1: the ramp's time as read, 0: the stream's clock */
 #define TC_WIDTH (TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED + TC_N_INITIAL)   /* a law's inputs */
 #define TC_USES_TIME {int(ss.uses_time)}
 #define TC_SUBSTITUTE_TIME {int(ss.substitute_time)}   /* a bad time: previous + one period */
@@ -143,6 +151,7 @@ typedef struct {{
     double last[TC_N_INPUTS];                   /* the last finite value (a held signal's) */
     int seen[TC_N_INPUTS];                      /* 1: a value seen in this campaign */
     double a0;                                  /* the campaign's initial ambient */
+    double ambient_c;                           /* ... as given (tc_set_ambient; NAN: not yet) */
     double t0;                                  /* the campaign's first sample time, s */
     double start[{max(len(ss.initial), 1)}];    /* a transient's w . (c(0) - A0) (0: not yet) */
     int started[{max(len(ss.initial), 1)}];     /* 1: a transient's sensors seen */
@@ -150,6 +159,9 @@ typedef struct {{
     double hist[2][{max(ss.depth, 1)}][TC_N_INPUTS];  /* past referenced inputs, x(t-1) first */
     double z[2][{max(len(ss.taus), 1)}];        /* first-order lags */
     double y[2][TC_N_LAWS];                     /* previous output of each law (AR feedback) */
+    int sw_on[{max(len(ss.switch_input), 1)}];        /* a forest's machine state: on (> 0.5) */
+    int sw_changed[{max(len(ss.switch_input), 1)}];   /* 1: it changed in this campaign */
+    double sw_t0[{max(len(ss.switch_input), 1)}];     /* ... at this time, its last change */
     double factor[TC_N_LAWS];                   /* each law's factor in this campaign (ATI) */
     double bound[TC_N_OUTPUTS];                 /* limit of what the clamp takes out: the last
                                                    sample out of the envelope's */
@@ -178,6 +190,13 @@ void tc_init(tc_state *s);
 
 /* Start a campaign (the next sample is the reference); what was learned is kept. */
 void tc_reset(tc_state *s);
+
+/* The campaign's initial ambient A0 (degC: its ambient_c in the manifest campaigns.csv) where
+   the model reads no ambient sensor (TC_AMBIENT_GIVEN 1; else not read): call it after tc_init
+   or tc_reset, before the campaign's first tc_step, which refuses the sample (-1) without it.
+   A0 picks the laws of the campaign (an ATI model's interval) as the served model's reset does;
+   tc_reset forgets it. */
+void tc_set_ambient(tc_state *s, double ambient_c);
 
 /* One sample: raw inputs u (order TC_INPUT_NAMES), its time in s (NAN: one period after the
    previous one) -> corrections c (um, order TC_OUTPUT_NAMES).  Returns the number of inputs
@@ -230,6 +249,7 @@ def source(ss: StateSpace) -> str:
         _array("BD", ss.bd, (r, d, n)), _array("G", ss.g, (r, k)), _array("AR", ss.ar, (r,)),
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * r, (r, n)),
         _ints("CLAMP_OUTRIGHT", ss.clamp_outright or [0] * len(ss.targets)),
+        *_forest_constants(ss),
         *_pattern_constants(ss),
         f"static const int CLAMP = {int(ss.clamp)};",
         *_output_constants(ss)])
@@ -243,8 +263,11 @@ void tc_reset(tc_state *s) {{
     int i;
     s->first = 1;
     s->refused = 0;
+    s->ambient_c = NAN;
     for (i = 0; i < TC_N_OUTPUTS; i++) s->c[i] = 0.0;
 }}
+
+void tc_set_ambient(tc_state *s, double ambient_c) {{ s->ambient_c = ambient_c; }}
 
 void tc_init(tc_state *s) {{
     int i;
@@ -276,6 +299,39 @@ static int off_pattern(const double x[]) {{
     return r2 > PATTERN_TOL * PATTERN_TOL;
 }}
 
+/* an arx_rf model's forests on its machine states' switching, each times its weight added to its
+   target's output y: per tau a state's ramp expit(k (t - t0) / tau) from its last change t0 (k
+   +1 on, -1 off; before its first change the state, 0 or 1), cast to float as scikit-learn's
+   trees compare it with their thresholds; each tree walked from its root to a leaf (at most
+   TC_TREE_DEPTH steps), a forest the mean of its trees' leaves */
+static void forests(tc_state *s, const double v[], double t, double y[]) {{
+    float f32[{max(len(ss.switch_feature), 1)}];
+    int l, r, d, node;
+    for (l = 0; l < TC_N_SWITCHES; l++) {{
+        int on = SWITCH_INPUT[l] >= 0 && v[SWITCH_INPUT[l]] > 0.5;
+        if (s->first) s->sw_changed[l] = 0;
+        else if (on != s->sw_on[l]) s->sw_t0[l] = t, s->sw_changed[l] = 1;
+        s->sw_on[l] = on;
+    }}
+    for (l = 0; l < TC_N_FEATURES; l++) {{
+        int w = FEATURE_SWITCH[l];
+        double f = s->sw_on[w];
+        if (s->sw_changed[w]) f = 1.0 / (1.0 + exp(-((s->sw_on[w] ? 1.0 : -1.0) * (t - s->sw_t0[w])
+                                                       / FEATURE_TAU[l])));
+        f32[l] = (float)f;
+    }}
+    for (l = 0; l < TC_N_FORESTS; l++) {{
+        double sum = 0.0;
+        for (r = FOREST_TREES[l]; r < FOREST_TREES[l + 1]; r++) {{
+            node = TREE_ROOT[r];
+            for (d = 0; d < TC_TREE_DEPTH && NODE_LEFT[node] >= 0; d++)
+                node = f32[NODE_FEATURE[node]] <= NODE_THRESHOLD[node] ? NODE_LEFT[node] : NODE_RIGHT[node];
+            sum += NODE_VALUE[node];
+        }}
+        y[FOREST_TARGET[l]] += FOREST_WEIGHT[l] * (sum / (FOREST_TREES[l + 1] - FOREST_TREES[l]));
+    }}
+}}
+
 int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N_OUTPUTS]) {{
     double uu[TC_N_INPUTS];                 /* u, a held signal's missing value filled */
     double v[TC_N_INPUTS], x[2][TC_WIDTH], xl[2][{max(k, 1)}], ych[2];
@@ -284,14 +340,15 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     double dt, now, step;
     int i, j, l, h, r, clamped = 0;
     /* a non-finite input refuses the sample before anything is remembered: one NaN would
-       otherwise stay in the lags, the AR feedback and the guard to the campaign's end */
-    s->refused = 0;
+       otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
+       a campaign's first sample without its given ambient (TC_AMBIENT_GIVEN) */
+    s->refused = TC_AMBIENT_GIVEN && s->first && !isfinite(s->ambient_c);
     for (j = 0; j < TC_N_INPUTS; j++)
-        if (!TC_INPUT_HELD[j] && !isfinite(u[j])) {{
-            for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
-            s->refused = 1;
-            return -1;
-        }}
+        if (!TC_INPUT_HELD[j] && !isfinite(u[j])) s->refused = 1;
+    if (s->refused) {{
+        for (i = 0; i < TC_N_OUTPUTS; i++) c[i] = s->c[i];
+        return -1;
+    }}
 {C_TIME_RULE}    /* a missing signal of derived inputs only (TC_INPUT_HELD) is held at the campaign's
        last value, 0 before any (its derived inputs 0), as the diagnosed model holds it */
     for (j = 0; j < TC_N_INPUTS; j++) {{
@@ -319,6 +376,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         double a0 = 0.0;
         for (l = 0; l < TC_N_AMBIENT; l++) a0 += v[AMBIENT_INPUT[l]];
         a0 /= AMBIENT_COUNT;
+        if (TC_AMBIENT_GIVEN) a0 = s->ambient_c;   /* no sensor: the campaign's, given */
         s->a0 = a0;
         s->t0 = now;
         for (r = 0; r < TC_N_LAWS; r++) {{   /* times (A0 - centre)^LAW_AMBIENT[r]: 0, 1 or 2 */
@@ -448,6 +506,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
             if (s->factor[r] != 0.0) ysum[h][LAW_TARGET[r]] += s->factor[r] * ych[h];
         }}
     }}
+    if (TC_N_FORESTS) forests(s, v, TC_SWITCH_RAW_TIME ? time : now, ysum[0]);
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double y, bound = 0.0;
         ych[0] = ysum[0][i];
@@ -525,6 +584,21 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]) {{
     return n;
 }}
 """
+
+
+def _forest_constants(ss: StateSpace) -> list[str]:
+    """An arx_rf model's forests (:mod:`.forest`): the states, features, trees and nodes."""
+    nodes = len(ss.node_left)
+    return [_ints("SWITCH_INPUT", ss.switch_input),
+            _ints("FEATURE_SWITCH", [f[0] for f in ss.switch_feature]),
+            _array("FEATURE_TAU", [f[1] for f in ss.switch_feature], (len(ss.switch_feature),)),
+            _ints("FOREST_TARGET", ss.forest_target),
+            _array("FOREST_WEIGHT", ss.forest_weight, (len(ss.forest_weight),)),
+            _ints("FOREST_TREES", ss.forest_trees or [0]), _ints("TREE_ROOT", ss.tree_root),
+            _ints("NODE_FEATURE", ss.node_feature), _ints("NODE_LEFT", ss.node_left),
+            _ints("NODE_RIGHT", ss.node_right),
+            _array("NODE_THRESHOLD", ss.node_threshold, (nodes,)),
+            _array("NODE_VALUE", ss.node_value, (nodes,))]
 
 
 def _output_constants(ss: StateSpace) -> list[str]:

@@ -33,8 +33,12 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * rows.csv each holds) every row of corrections is compared with FILE's as it is printed:
  * the first farther than CHECK_UM + CHECK_RELATIVE * |expected| (`--tolerance UM`, `--relative
  * R` to change them) is named on stderr, exit 1; within it, the largest difference is said.
+ * A model that reads no ambient sensor and picks its laws by a campaign's initial ambient
+ * (TC_AMBIENT_GIVEN: the manifest's ambient_c) takes it from an `ambient_c` column (degC, its
+ * value on a campaign's first row; the pack's rows.csv carry it), else from `--ambient C`.
  * Build: cc compensator.c stream.c -lm -o stream
- * Run:   ./stream [--state FILE] [--check FILE [--tolerance UM] [--relative R]] < rows.csv
+ * Run:   ./stream [--state FILE] [--check FILE [--tolerance UM] [--relative R]]
+ *                 [--ambient C] < rows.csv
  */
 #include <math.h>
 #include <stdio.h>
@@ -370,6 +374,8 @@ int main(int argc, char **argv) {
     static char line[MAX_LINE], run[MAX_CELL] = "";
     char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL, *end;
     int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
+    int ambient_col = -1;
+    double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
     int ncols, i, j, ignored, measured, restored = 0, failed;
     long row = 1;
     tc_state s;
@@ -384,6 +390,13 @@ int main(int argc, char **argv) {
             check_.path = argv[++i];
             continue;
         }
+        if (strcmp(argv[i], "--ambient") == 0 && i + 1 < argc) {
+            ambient = strtod(argv[i + 1], &end);
+            if (end != argv[i + 1] && *end == '\0' && isfinite(ambient)) {
+                i++;
+                continue;
+            }
+        }
         if ((strcmp(argv[i], "--tolerance") == 0 || strcmp(argv[i], "--relative") == 0)
             && i + 1 < argc) {
             double *to = argv[i][2] == 't' ? &check_.um : &check_.relative;
@@ -394,7 +407,7 @@ int main(int argc, char **argv) {
             }
         }
         fprintf(stderr, "usage: %s [--state FILE] [--check FILE [--tolerance UM] [--relative R]]"
-                " < rows.csv\n", argv[0]);
+                " [--ambient C] < rows.csv\n", argv[0]);
         return 2;
     }
     if (check_.path != NULL && !check_open()) return 2;
@@ -457,6 +470,13 @@ int main(int argc, char **argv) {
     for (j = 0; j < ncols; j++) {
         if (strcmp(cells[j], "time") == 0) time_col = j;
         if (strcmp(cells[j], "reset") == 0) reset_col = j;
+        if (strcmp(cells[j], "ambient_c") == 0) ambient_col = j;
+    }
+    if (TC_AMBIENT_GIVEN && ambient_col < 0 && !isfinite(ambient)) {
+        fprintf(stderr, "stream: the model picks its laws by a campaign's initial ambient and "
+                "reads no ambient sensor: give it in an ambient_c column (degC, on a campaign's "
+                "first row: the manifest's ambient_c) or as --ambient C\n");
+        return 2;
     }
     if (TC_USES_TIME && time_col < 0)
         fprintf(stderr, "stream: no time column: samples taken one period apart\n");
@@ -494,6 +514,16 @@ int main(int argc, char **argv) {
         }
         if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
                                      offset_of[time_col], &t) != 0) return 2;
+        if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
+            double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
+            if (!isfinite(a0)) a0 = ambient;
+            if (!isfinite(a0)) {
+                fprintf(stderr, "stream: row %ld starts a campaign without its ambient_c (and no "
+                        "--ambient)\n", row);
+                return 2;
+            }
+            tc_set_ambient(&s, a0);
+        }
         tc_step(&s, u, t, c);
         for (i = 0; i < TC_N_OUTPUTS; i++) printf("%s%.17g", i ? "," : "", c[i]);
         printf("\n");

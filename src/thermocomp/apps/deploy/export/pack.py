@@ -21,6 +21,10 @@ long export, a workbook) reaches the code as the CSV ``stream.c`` takes.
   (:class:`~.statespace.Simulator`) and the campaign is cut before the first row where the two
   part (the monitor acted): no build can reproduce that row.
 
+Of a model that reads no ambient sensor and picks its laws by a campaign's initial ambient
+(``ambient_given``: the manifest's ``ambient_c``), each campaign's value is in check.json's entry
+and in an ``ambient_c`` column of its rows.csv, which ``stream.c`` reads at a campaign's first row.
+
 ``check/check.json`` lists the campaigns (rows, cuts and why) and the tolerance
 (:data:`TOLERANCE_UM`, :data:`TOLERANCE_RELATIVE`); with the C, ``check/check.sh`` runs
 ``stream --check`` on each.
@@ -36,6 +40,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
+from ....core.io.contract import AMBIENT_C, manifest_ambient
 from ..naming import correction_column
 from ..report import stream_rows
 from .output import not_in_code
@@ -58,6 +63,11 @@ WHY = ("float64 sums in another order (another compiler, optimiser, fused multip
        "tolerance keeps a margin of 1600 over that and is still far below what a machine shows, "
        "while a coefficient moved by a millionth fails; a float32 build parts by up to 0.017 um "
        "there and needs a tolerance of its own (stream --tolerance)")
+
+GIVEN = ("the model reads no ambient sensor: each campaign's initial ambient A0 (degC, its "
+         "manifest ambient_c) is its ambient_c here and the ambient_c column of its rows.csv (the "
+         "same value on every row), given before its first sample: C tc_set_ambient after "
+         "tc_reset (stream.c reads the column), ST the input ambient_c")
 
 _UNSAFE = re.compile(r"[^A-Za-z0-9._-]+")
 
@@ -121,6 +131,7 @@ def beyond(got: np.ndarray, want: np.ndarray) -> np.ndarray:
 def _parted(ss: StateSpace, frame: pd.DataFrame, want: np.ndarray) -> int | None:
     """The first row where the exported arithmetic (:class:`Simulator`) parts from ``want``."""
     sim = Simulator(ss)
+    sim.reset(manifest_ambient(frame))
     U = frame[ss.inputs].to_numpy(float)
     t = frame["time"].to_numpy(float) if "time" in frame.columns else np.full(len(frame), np.nan)
     for i in range(len(frame)):
@@ -145,6 +156,9 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
         frame = _fed(campaign, lead_ins.get(cid))
         lead = len(frame) - len(campaign)
         columns = (["time"] if "time" in frame.columns else []) + list(ss.inputs)
+        if ss.ambient_given:     # the campaign's A0 on each of its rows (stream.c: its first)
+            frame[AMBIENT_C] = a0 = manifest_ambient(frame)
+            columns.append(AMBIENT_C)
         cut = None
         refused = _refused_row(frame, ss)
         if refused is not None:
@@ -152,6 +166,8 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
                    "code refuses (stream.c stops; the served model holds it)"}
             frame = frame.iloc[:refused[0]]
         entry = {"campaign": str(cid), "folder": f"{CHECK}/{folders[cid]}", "lead_in_rows": lead}
+        if ss.ambient_given:
+            entry[AMBIENT_C] = a0
         if not len(frame):
             listed.append({**entry, "rows": 0, "cut": cut})
             continue
@@ -167,12 +183,15 @@ def conformance_pack(deployed, ss: StateSpace, campaigns: Mapping[str, pd.DataFr
             out[f"{entry['folder']}/rows.csv"] = _csv(frame[columns])
             out[f"{entry['folder']}/expected.csv"] = _csv(pd.DataFrame(want, columns=outputs))
     written = [e for e in listed if e["rows"]]
-    summary = {"campaigns": listed, "inputs": ["time", *ss.inputs], "outputs": outputs,
+    summary = {"campaigns": listed, "inputs": ["time", *ss.inputs, *[AMBIENT_C] * ss.ambient_given],
+               "outputs": outputs,
                "tolerance_um": TOLERANCE_UM, "tolerance_relative": TOLERANCE_RELATIVE,
                "rule": "|C - expected| <= tolerance_um + tolerance_relative * |expected|",
                "why": WHY,
                "command": "./stream --check <folder>/expected.csv < <folder>/rows.csv",
                "reference_measurements": "none fed: what was learned stays as exported"}
+    if ss.ambient_given:
+        summary["ambient"] = GIVEN
     out[f"{CHECK}/check.json"] = json.dumps(summary, indent=1, ensure_ascii=False) + "\n"
     if script:
         out[f"{CHECK}/check.sh"] = _script([e["folder"] for e in written])

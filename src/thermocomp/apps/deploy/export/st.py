@@ -3,12 +3,15 @@ function block, ``FB_ThermoComp``, with the interface of the C code: one call is
 ``tc_step``; ``reset := TRUE`` is ``tc_reset`` before it (the sample starts a campaign).
 
 Inputs ``u`` (raw values, order of the banner), ``time_s`` and ``has_time`` (FALSE: no time,
-:mod:`thermocomp.core.timerule`: ST has no NaN constant), ``ref_valid`` and ``ref_error`` (per target: a
+:mod:`thermocomp.core.timerule`: ST has no NaN constant), ``ambient_c`` (°C: a campaign's
+initial ambient, its manifest ``ambient_c``, read at its first sample where ``AMBIENT_GIVEN``,
+a model without an ambient sensor; else not read), ``ref_valid`` and ``ref_error`` (per target: a
 reference measurement of the error at this sample, which ``tc_reference`` takes after the
 step); outputs ``c`` (µm), ``n_clamped`` and ``refused`` (an input not finite, NaN or infinity:
 the sample and its reference are not taken and ``c`` holds, as ``tc_step`` returns -1).  What
 was learned from references survives ``reset`` (the instance's initial values are the exported
-ones).  Only assignments, ``IF``, ``FOR``, ``EXP`` and ``EXPT`` are used, one statement a line.
+ones).  Only assignments, ``IF``, ``FOR``, ``EXP``, ``EXPT`` and (an arx_rf model's forest)
+``LREAL_TO_REAL``, ``REAL_TO_LREAL`` and ``DINT_TO_LREAL`` are used, one statement a line.
 """
 
 from __future__ import annotations
@@ -62,6 +65,28 @@ def _spread(columns: list, values: list, n: int) -> list:
     return row
 
 
+def _forest_constants(ss: StateSpace) -> list[str]:
+    """An arx_rf model's forests (:mod:`.forest`): node indices DINT (a forest of a hundred trees
+    has more nodes than an INT counts)."""
+    nodes, nf = len(ss.node_left), len(ss.switch_feature)
+    return [f"    N_SWITCHES : INT := {len(ss.switch_input)};", f"    N_FEATURES : INT := {nf};",
+            f"    N_FORESTS : INT := {len(ss.forest_target)};",
+            f"    TREE_DEPTH : INT := {ss.tree_depth};",
+            f"    SWITCH_RAW_TIME : BOOL := {'TRUE' if ss.switch_raw_time else 'FALSE'};",
+            _constant("SWITCH_INPUT", ss.switch_input, (len(ss.switch_input),), "INT"),
+            _constant("FEATURE_SWITCH", [f[0] for f in ss.switch_feature], (nf,), "INT"),
+            _constant("FEATURE_TAU", [f[1] for f in ss.switch_feature], (nf,)),
+            _constant("FOREST_TARGET", ss.forest_target, (len(ss.forest_target),), "INT"),
+            _constant("FOREST_WEIGHT", ss.forest_weight, (len(ss.forest_weight),)),
+            _constant("FOREST_TREES", ss.forest_trees or [0], (len(ss.forest_trees or [0]),), "DINT"),
+            _constant("TREE_ROOT", ss.tree_root, (len(ss.tree_root),), "DINT"),
+            _constant("NODE_FEATURE", ss.node_feature, (nodes,), "INT"),
+            _constant("NODE_LEFT", ss.node_left, (nodes,), "DINT"),
+            _constant("NODE_RIGHT", ss.node_right, (nodes,), "DINT"),
+            _constant("NODE_THRESHOLD", ss.node_threshold, (nodes,)),
+            _constant("NODE_VALUE", ss.node_value, (nodes,))]
+
+
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
     p, r, qi = len(ss.powers), len(ss.laws), len(ss.initial)
@@ -99,6 +124,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("AMBIENT_INPUT", ss.ambient_inputs, (len(ss.ambient_inputs),), "INT"),
         f"    AMBIENT_CENTRE : LREAL := {literal(ss.ambient_centre)};",
         f"    AMBIENT_COUNT : LREAL := {literal(max(len(ss.ambient_inputs), 1))};",
+        f"    AMBIENT_GIVEN : BOOL := {'TRUE' if ss.ambient_given else 'FALSE'};",
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
@@ -116,6 +142,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("STATE_GAIN", ss.clamp_state_gain or [], (r, nb, n)),
         _constant("STATE_FIRST", ss.clamp_state_first or [], (m,), "INT"),
         _constant("BD", ss.bd, (r, d, n)), _constant("G", ss.g, (r, k)), _constant("AR", ss.ar, (r,)),
+        *_forest_constants(ss),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
         f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
         f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
@@ -147,6 +174,7 @@ VAR_INPUT
     time_s : LREAL;
     has_time : BOOL;
     reset : BOOL;
+    ambient_c : LREAL;
     ref_valid : ARRAY[{_dims(m)}] OF BOOL;
     ref_error : ARRAY[{_dims(m)}] OF LREAL;
 END_VAR
@@ -225,6 +253,16 @@ VAR
     tr : LREAL;
     out_prev : ARRAY[{_dims(m)}] OF LREAL;
 {learned}
+    sw_on : ARRAY[{_dims(len(ss.switch_input))}] OF BOOL;
+    sw_changed : ARRAY[{_dims(len(ss.switch_input))}] OF BOOL;
+    sw_t0 : ARRAY[{_dims(len(ss.switch_input))}] OF LREAL;
+    sw_now : BOOL;
+    f32 : ARRAY[{_dims(len(ss.switch_feature))}] OF LREAL;
+    tf : LREAL;
+    zf : LREAL;
+    fsum : LREAL;
+    node : DINT;
+    tr : DINT;
     i : INT;
     j : INT;
     l : INT;
@@ -249,6 +287,10 @@ FOR j := 0 TO N_INPUTS - 1 DO
         refused := TRUE;
     END_IF;
 END_FOR;
+(* so does a campaign's first sample without its ambient given (AMBIENT_GIVEN: no sensor) *)
+IF AMBIENT_GIVEN AND first AND NOT (ambient_c >= -REAL_LIMIT AND ambient_c <= REAL_LIMIT) THEN
+    refused := TRUE;
+END_IF;
 IF NOT refused THEN
 {_indent(ST_TIME_RULE)}    n_clamped := 0;
     (* a missing signal of derived inputs only (HELD) is held at the campaign's last value, *)
@@ -306,6 +348,9 @@ IF NOT refused THEN
             a0 := a0 + v[AMBIENT_INPUT[l]];
         END_FOR;
         a0 := a0 / AMBIENT_COUNT;
+        IF AMBIENT_GIVEN THEN   (* no sensor: the campaign's, given at its first sample *)
+            a0 := ambient_c;
+        END_IF;
         t0 := now;
         FOR r := 0 TO N_LAWS - 1 DO
             factor[r] := 0.0;
@@ -554,6 +599,63 @@ IF NOT refused THEN
             END_IF;
         END_FOR;
     END_FOR;
+    (* an arx_rf model's forests on its machine states' switching, each times its weight added to *)
+    (* its target: per tau a state's ramp 1 / (1 + EXP(-k (t - t0) / tau)) from its last change t0 *)
+    (* (k +1 on, -1 off; before its first change the state, 0 or 1), rounded to REAL as *)
+    (* scikit-learn's trees compare it; each tree walked from its root (at most TREE_DEPTH steps) *)
+    IF N_FORESTS > 0 THEN
+        tf := now;
+        IF SWITCH_RAW_TIME AND has_time THEN
+            tf := time_s;
+        END_IF;
+        FOR l := 0 TO N_SWITCHES - 1 DO
+            sw_now := FALSE;
+            IF SWITCH_INPUT[l] >= 0 THEN
+                sw_now := v[SWITCH_INPUT[l]] > 0.5;
+            END_IF;
+            IF first THEN
+                sw_changed[l] := FALSE;
+            ELSIF sw_now <> sw_on[l] THEN
+                sw_t0[l] := tf;
+                sw_changed[l] := TRUE;
+            END_IF;
+            sw_on[l] := sw_now;
+        END_FOR;
+        FOR l := 0 TO N_FEATURES - 1 DO
+            j := FEATURE_SWITCH[l];
+            IF sw_changed[j] THEN
+                zf := (tf - sw_t0[j]) / FEATURE_TAU[l];
+                IF NOT sw_on[j] THEN
+                    zf := -zf;
+                END_IF;
+                f32[l] := 1.0 / (1.0 + EXP(-zf));
+            ELSIF sw_on[j] THEN
+                f32[l] := 1.0;
+            ELSE
+                f32[l] := 0.0;
+            END_IF;
+            f32[l] := REAL_TO_LREAL(LREAL_TO_REAL(f32[l]));
+        END_FOR;
+        FOR l := 0 TO N_FORESTS - 1 DO
+            fsum := 0.0;
+            FOR tr := FOREST_TREES[l] TO FOREST_TREES[l + 1] - 1 DO
+                node := TREE_ROOT[tr];
+                FOR h := 1 TO TREE_DEPTH DO
+                    IF NODE_LEFT[node] >= 0 THEN
+                        IF f32[NODE_FEATURE[node]] <= NODE_THRESHOLD[node] THEN
+                            node := NODE_LEFT[node];
+                        ELSE
+                            node := NODE_RIGHT[node];
+                        END_IF;
+                    END_IF;
+                END_FOR;
+                fsum := fsum + NODE_VALUE[node];
+            END_FOR;
+            i := FOREST_TARGET[l];
+            fsum := fsum / DINT_TO_LREAL(FOREST_TREES[l + 1] - FOREST_TREES[l]);
+            ysum[0, i] := ysum[0, i] + FOREST_WEIGHT[l] * fsum;
+        END_FOR;
+    END_IF;
     FOR i := 0 TO N_OUTPUTS - 1 DO
         ych[0] := ysum[0, i];
         ych[1] := ysum[1, i];

@@ -25,7 +25,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    times the law's factor for the campaign (one law per target, factor 1; a ``model=auto``
    blend is its members' laws weighted and summed, each member feeding back its own output, an
    AR term, a law of its own; an ATI model's laws count in the interval of the campaign's
-   initial ambient ``A0``, the mean of ``ambient_inputs`` at its first sample, its ambient
+   initial ambient ``A0``, the mean of ``ambient_inputs`` at its first sample (``ambient_given``:
+   given at the campaign's start instead, the manifest's ``ambient_c``, exportrest62), its ambient
    interaction's times ``A0 - ambient_centre``, a diagnosed ambient law's under it times its
    square: ``(A0 - ambient_centre) ** law_ambient``, exportati60: :mod:`.laws`), with the input history
    ``x(t-d)`` (``d = 1..depth``) and the first-order lags ``z_k <- e_k z_k + (1 - e_k)
@@ -35,7 +36,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    same system, without intercept and powers, runs on ``ex`` (its own history, lags and
    feedback) to ``r_t``, the response to the excess; the output is ``y_t - clip(r_t, -b_t,
    b_t)`` (``y_t - r_t`` where
-   ``clamp_outright_t``: the stream's clamp of a model without a step gain), ``b_t = |clamp_gain_t .
+   ``clamp_outright_t``: the stream's clamp of a model without a step gain; an ``arx_rf``'s forest,
+   :mod:`.forest`, adds to ``y_t`` times its weight), ``b_t = |clamp_gain_t .
    ex|`` the response to the excess held for the envelope's horizon (as the stream does; the gain
    plus ``sum_s r_s clamp_state_gain[s]``, ``r_s`` a state's value at the sample before the
    campaign's first excess, held: an ``inputs_product``'s, export62; ``y_t - r_t`` in a campaign
@@ -77,6 +79,7 @@ from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .derived import CLAMPED, DERIVED, INITIAL
 from .errors import NotExportable
+from .forest import Forests, Switches
 from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws, with_gains
 from .output import Output, adapt_fields, guard_fields, time_fields
 
@@ -181,6 +184,27 @@ class StateSpace:
     law_ambient: list = field(default_factory=list)  # (n_laws,) the power of A0 - centre: 0, 1, 2
     ambient_inputs: list = field(default_factory=list)   # indices of the ambient inputs (A0)
     ambient_centre: float = 20.0                     # °C
+    # A0 is given at a campaign's start, not read from an input: the model reads no ambient
+    # sensor, each campaign's ambient is its manifest's ``ambient_c`` (campaigns.csv), as the
+    # stream takes it at reset (C: tc_set_ambient; ST: the input ambient_c; exportrest62)
+    ambient_given: bool = False
+    # an arx_rf model's forest on a machine state's switching (:mod:`.forest`, exportrest62):
+    # the states tracked (input index; -1: none, a constant 0), the features [switch, tau], the
+    # forests (target, blend weight, their trees forest_trees[f]..forest_trees[f + 1] - 1), the
+    # trees' roots and depth bound, and one table of nodes (a leaf: left -1); empty: none
+    switch_input: list = field(default_factory=list)
+    switch_feature: list = field(default_factory=list)
+    switch_raw_time: bool = False     # the ramp's time: as read (else the stream's clock, now)
+    forest_target: list = field(default_factory=list)
+    forest_weight: list = field(default_factory=list)
+    forest_trees: list = field(default_factory=list)
+    tree_root: list = field(default_factory=list)
+    tree_depth: int = 0
+    node_feature: list = field(default_factory=list)
+    node_threshold: list = field(default_factory=list)
+    node_left: list = field(default_factory=list)
+    node_right: list = field(default_factory=list)
+    node_value: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -241,10 +265,13 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     N = len(inputs)
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     laws, period, powers, chosen = [], None, Powers(), {}      # laws: (target index, Law)
-    outright, by_state = [], []
+    outright, by_state, forests = [], [], Forests()
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        own, period, kept = target_laws(t, est, cols, inputs, powers, period)
+        met: list = []           # an arx_rf member's forest: (weight, model)
+        own, period, kept = target_laws(t, est, cols, inputs, powers, period, met)
+        for w, model in met:
+            forests.add(i, w, model, inputs)
         # the clamp's gain: the deployed model's own, split as its laws count (gain61: the one
         # computation the stream's step_gain sums at the campaign's A0); none: clamped outright
         terms, by = _clamp_terms(t, est, env.horizon_s, inputs) if clamp else (None, {})
@@ -258,8 +285,9 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     _in_code_order(laws, powers, N)
     ati = any(law.key != (-UNBOUNDED, UNBOUNDED, False) for _, law in laws)
     initial = [k for k in sorted(powers, key=powers.get) if k[0] == INITIAL]
-    ambient = _ambient_inputs(stream, inputs, ati or bool(initial), known_ambient)
-    read = {inputs[j] for j in _read(powers)} | {inputs[j] for j in ambient}
+    ambient, given = _ambient_inputs(stream, inputs, ati or bool(initial), known_ambient)
+    switches = [j for j in forests.switch_input if j >= 0]     # a forest's state columns
+    read = {inputs[j] for j in _read(powers) | set(switches)} | {inputs[j] for j in ambient}
     if any(c not in read for c in states):
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
                             f"only the families {', '.join(LINEAR_FAMILIES)} export to C/ST")
@@ -301,14 +329,18 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         bd=bd.tolist(), g=g.tolist(), ar=[float(law.a) for _, law in laws],
         law_target=[i for i, _ in laws], law_lo=[law.lo for _, law in laws],
         law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
-        ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C,
-        uses_time=bool(keys) or bool(initial),
+        ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C, ambient_given=given,
+        uses_time=bool(keys) or bool(initial) or bool(switches),
         powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] not in (DERIVED, INITIAL)],
         derived=[list(k[1:5]) for k in derived],
         derived_clamped=[int(k[5:] == (CLAMPED,)) for k in derived]
         if any(k[5:] for k in derived) else [],
         initial=[[k[3], list(k[1]), list(k[2])] for k in initial],
-        held=_held(inputs, n, powers, ambient),
+        held=_held(inputs, n, powers, ambient, switches),
+        # a forest's state ramps over the time the model is given: the stream's clock, or (a plain
+        # stream without one: no lag's period) the time as read
+        **forests.fields(), switch_raw_time=bool(switches) and not isinstance(
+            deployed, AdaptiveCompensator) and stream._clock is None,
         clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
                     for _, law in laws] if clamp else None,
         clamp_outright=outright if any(outright) else [],
@@ -367,12 +399,13 @@ def _held_terms(est, horizon_s: float, inputs: list) -> tuple[list | None, dict]
     return terms, by
 
 
-def _held(inputs: list, n: int, powers: dict, ambient: list) -> list[int]:
-    """Per input, 1 for a signal only powers or derived inputs read (a machine state: not one of
-    the ``n`` declared inputs, no ambient sensor): the stream checks the declared inputs and the
-    ambient sensors only, and a Hammerstein model and the diagnosed model hold a missing value of
-    their context (0 before a campaign's first); the code refused the sample (lead59)."""
-    read = _read(powers)
+def _held(inputs: list, n: int, powers: dict, ambient: list, switches: list) -> list[int]:
+    """Per input, 1 for a signal only powers, derived inputs or forests (``switches``) read (a
+    machine state: not one of the ``n`` declared inputs, no ambient sensor): the stream checks
+    the declared inputs and the ambient sensors only, and a Hammerstein model, the diagnosed model
+    and arx_rf hold a missing value of their context (0 before a campaign's first); the code
+    refused the sample (lead59)."""
+    read = _read(powers) | set(switches)
     held = [int(j >= n and j in read and j not in ambient) for j in range(len(inputs))]
     return held if any(held) else []
 
@@ -412,21 +445,18 @@ def _in_code_order(laws: list, powers: Powers, n: int) -> None:
     powers.rest, powers.steady = {new[i] for i in powers.rest}, {new[i] for i in powers.steady}
 
 
-def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> list[int]:
-    """The code's inputs whose first sample's mean is a campaign's initial ambient ``A0`` (the
-    stream's ambient sensors, read as it reads them: a declared one filtered, not referenced):
-    none without an ATI law; :class:`NotExportable` when the ambient is given at a campaign's
-    start instead (no sensor: the manifest's ``ambient_c``), which the code has no input for."""
+def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> tuple[list[int], bool]:
+    """``(the code's inputs whose first sample's mean is a campaign's initial ambient A0, A0
+    given instead)``: the stream's ambient sensors, read as it reads them (a declared one
+    filtered, not referenced); none without an ATI law.  Where the stream reads no ambient sensor
+    it takes A0 at reset, the campaign's manifest ``ambient_c`` (``ambient_given_``): so does the
+    code (exportrest62; ``known`` false: a stream made without its training data, not yet
+    knowing its sensors, reads none)."""
     if not ati:
-        return []
+        return [], False
     if not stream.ambient_columns:
-        if not known:
-            return []
-        raise NotExportable("the ATI model (a diagnosed ambient law, step or initial-state "
-                            "transient) reads each campaign's initial ambient from the "
-                            "manifest's ambient_c (no T_amb sensor among the data's columns): the "
-                            "code has no input for it; a T_amb sensor exports")
-    return [inputs.index(c) for c in stream.ambient_columns]
+        return [], bool(known and stream.ambient_given_)
+    return [inputs.index(c) for c in stream.ambient_columns], False
 
 
 def _pattern_fields(env, n_states: int) -> dict:
@@ -468,11 +498,14 @@ class Simulator:
         self.lag_of = np.asarray(ss.lag_of or [-1] * len(ss.taus), int)
         self.output = Output(ss)       # guard and reference update: what is learned stays
         self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
+        self.switches = Switches(ss) if ss.forest_target else None
         self.reset()
 
-    def reset(self) -> None:
-        """A new campaign: the next sample is its first."""
+    def reset(self, ambient_c: float = float("nan")) -> None:
+        """A new campaign: the next sample is its first.  ``ambient_c``: its initial ambient A0
+        (°C) where it is given (``ambient_given``: the manifest's, no ambient input)."""
         self.first = True
+        self.ambient_c = float(ambient_c)
         self.c = np.zeros(len(self.ss.targets))      # the last corrections given
         self.refused = False
 
@@ -489,7 +522,9 @@ class Simulator:
         u = np.asarray(u, float)
         ss = self.ss
         held = np.asarray(ss.held or [0] * len(u), bool)
-        self.refused = not np.isfinite(u[~held]).all()
+        # A0 not given where the code has no input for it: no campaign starts (the stream's refusal)
+        self.refused = not np.isfinite(u[~held]).all() or (
+            self.first and ss.ambient_given and not np.isfinite(self.ambient_c))
         if self.refused:
             return self.c.copy()
         if self.first:
@@ -506,7 +541,8 @@ class Simulator:
         v = (self.buf * self.fir).sum(axis=0)
         if self.first:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
-            a0 = ambient_c0(v[ss.ambient_inputs]) if ss.ambient_inputs else 0.0
+            a0 = ambient_c0(v[ss.ambient_inputs]) if ss.ambient_inputs else (
+                self.ambient_c if ss.ambient_given else 0.0)
             self.factor = ss.factors(a0)          # the campaign's laws (ATI), fixed over it
             self.a0, self.t0 = a0, now
             self.start = np.zeros(len(ss.initial))        # a transient's w . (v(0) - A0)
@@ -563,6 +599,9 @@ class Simulator:
             self.hist = np.concatenate([xs[:, None, :len(x)], self.hist[:, :-1]], axis=1)
         self.y, self.first = y, False
         y = self._summed(y)
+        if ss.forest_target:        # an arx_rf's forest, in the measured channel (its weight)
+            value = self.switches.step(v, float(time) if ss.switch_raw_time else now, first)
+            np.add.at(y[0], np.asarray(ss.forest_target, int), np.asarray(ss.forest_weight) * value)
         if excess.any():            # back in range, the bound of the excess's last sample holds
             gain = self.clamp_gain + np.einsum("s,rsi->ri", self.by_held, self.state_gain)
             self.bound = np.abs(self._summed(gain @ excess))
