@@ -171,8 +171,6 @@ def test_blend_members_that_feed_back_their_own_outputs_are_laws_of_their_own(da
 LSTM = "model.candidate_params={lstm:{max_epochs:2,hidden_size:4,chunk:16}}"
 
 
-@pytest.mark.full(reason="the member's refusal (statespace._member_refused) of a family that "
-                  "does not export; lstm's fit ~4 s of CPU")
 def test_a_blend_member_that_is_no_linear_system_is_refused_naming_it_and_the_weights(data):
     stream, _, _ = _deployed(data, "machine", "model.candidates=[mlr,lstm]", LSTM,
                              "+model.estimator.chosen={E_X:mlr,E_Z:{mlr:0.7,lstm:0.3}}")
@@ -201,8 +199,6 @@ def test_export_says_what_auto_kept_per_target(data, tmp_path, capsys):
         assert f"{t} {kept}" in (out / "compensator.st").read_text() and f"{t} {kept}" in said
 
 
-@pytest.mark.full(reason="auto's choice named in a refusal (statespace._member_refused); lstm's "
-                  "fit ~4 s of CPU")
 def test_auto_that_kept_lstm_is_refused_naming_it(data, tmp_path, capsys):
     """Not exportable families are still refused, saying auto chose them (exportrest62: not
     arx_rf any more, which exports)."""
