@@ -154,3 +154,25 @@ def test_auto_validates_the_lag_bank_once(late, tmp_path):
     assert auto["skipped"]["hammerstein"].startswith("the same model as lagbank")
     assert set(auto["weights"]) <= {"mlr", "lagbank"}
     assert sum(auto["weights"].values()) == pytest.approx(1.0, abs=1e-3)
+
+
+def test_the_export_packs_corrections_are_what_run_scored(late, tmp_path):
+    """export's check pack feeds the code the test file after its lead-in (the train file it
+    continues): its expected corrections on the test file's rows are minus run's predictions
+    there, row for row, from the first row (before: run's test file started 13 rows later)."""
+    from thermocomp.core import continuation
+    from thermocomp.shell.model_store import load_model
+
+    thermocomp("run", f"data.path={late}", EDGE, "model=lagbank", f"out={tmp_path / 'run'}",
+               *FAST)
+    thermocomp("export", f"data.path={late}", EDGE, *UNTRACKED, "monitor.adaptive=false",
+               f"export.model={tmp_path / 'run' / 'model.pkl'}", "export.format=c",
+               f"out={tmp_path / 'code'}")
+    pack = json.loads((tmp_path / "code" / "check" / "check.json").read_text())
+    entry = next(e for e in pack["campaigns"] if e["campaign"] == "R1b")
+    expected = pd.read_csv(tmp_path / "code" / entry["folder"] / "expected.csv")
+    own = expected.iloc[entry["lead_in_rows"]:].to_numpy(float)
+    ds, _ = read_dataset(late, {"max_edge_samples": 50})
+    predicted, _ = continuation.predict(load_model(tmp_path / "run" / "model.pkl"), ds, ["R1b"])
+    assert entry["cut"] is None and own.shape == (len(predicted["R1b"]), 1)
+    assert np.abs(own[:, 0] + predicted["R1b"]["E_Z"].to_numpy()).max() < 1e-9
