@@ -65,16 +65,20 @@ def test_a_resampled_probe_cycle_keeps_its_measurements(sparse):
     np.testing.assert_array_equal(after["time"][measured], before["time"][before["E_X"].notna()])
 
 
-def test_the_reference_row_is_the_first_measured_one(dense, tmp_path):
-    """The first measurement 3 rows in: those rows are incomplete edge rows (trimmed by
-    data.max_edge_samples, else refused, never back-filled), so that the error and the
-    temperatures are referenced at the same row."""
+def test_the_rows_before_the_first_measurement_are_kept(dense, tmp_path):
+    """The first measurement 3 rows in: those rows are the campaign's own (frames62: the
+    temperatures were measured there, a stream warms on them), read without
+    data.max_edge_samples; in the first-sample frame the temperatures are referenced at the
+    first row (the deployed stream's first sample), the error at its first measurement."""
+    from thermocomp.core.frame import stack
+
     late = probe_cycle_copy(dense, tmp_path / "late", lambda rows: rows % EVERY == 3)
-    run = thermocomp("run", f"data.path={late}", f"out={tmp_path / 'a'}", *FAST, check=False)
-    assert run.returncode == 2 and "3 incomplete rows at the campaign start" in run.stderr
-    ds, report = read_dataset(late, {"max_edge_samples": 3})
-    assert report["campaigns"]["production"]["trimmed"] == {"start": 3, "end": 0}
-    assert np.isfinite(ds.campaigns["production"]["E_X"].iloc[0])
+    thermocomp("run", f"data.path={late}", f"out={tmp_path / 'a'}", *FAST)
+    ds, report = read_dataset(late)
+    assert report["campaigns"]["production"]["trimmed"] == {"start": 0, "end": 0}
+    m = stack({"production": ds.campaigns["production"]}, ["T_amb"], ["E_X"])
+    assert m.X["T_amb"].iloc[0] == 0 and np.isnan(m.Y["E_X"].iloc[:3]).all() \
+        and m.Y["E_X"].iloc[3] == 0
 
 
 def test_the_fit_sees_the_measured_rows_only(sparse):

@@ -134,8 +134,9 @@ def joined(ds: Dataset, ids: list[str]) -> pd.DataFrame:
     Each file's time is shifted so that its first sample follows the previous
     file's last one by the previous file's sample period; or, where the campaigns' ``start``
     (their time origins) shows a longer gap between those rows (rows not read: a campaign
-    trimmed where its error was first measured, ``data.max_edge_samples``), by that gap, as the
-    record has it (probe61: six and a half hours of a Monday's warm-up read as one sample).
+    trimmed at an incomplete edge, ``data.max_edge_samples``), by that gap, as the record has it
+    (probe61: six and a half hours of a Monday's warm-up, then trimmed before its first probe,
+    read as one sample; frames62 reads those rows, :mod:`.io.sparse`).
     """
     frames, offset = [], 0.0
     starts = start_instants(ds.manifest[START]) if START in ds.manifest.columns else None

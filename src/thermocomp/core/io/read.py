@@ -35,6 +35,9 @@ rely on complete rows.  Nothing is invented without a config key saying so:
   to the first valid sample and a back-filled value would fake that reference.
   Up to ``max_edge_samples`` such rows (default ``0``) are dropped at each end
   (counted in the report under ``trimmed``); more is a :class:`ContractError`.
+  An ``E_`` column measured now and then (``data.sparse_targets``) has no edge:
+  the rows before its first measurement and after its last are read, batch and
+  stream alike (:mod:`.sparse`: a stream warms on their temperatures).
 
 ``ReadOptions.missing="keep"`` (not a data config key: the ``monitor`` stage
 passes it through ``read_dataset(..., missing="keep")`` to stream a campaign

@@ -22,6 +22,7 @@ from ..timerule import median_step
 from .contract import MANIFEST, ContractError
 from .manifest import RECORD_SUFFIXES
 from .rates import PAUSE_PERIODS
+from .sparse import probe_cycle
 from .workbook import not_read
 
 MIN_PART_ROWS = 2          # as a campaign: a reference sample and one to score
@@ -132,7 +133,10 @@ def _batch_edges(table: pa.Table, report: dict, opts) -> tuple[int, int]:
         return 0, 0
     incomplete = np.zeros(table.num_rows, dtype=bool)
     for c in report["missing"]:
-        incomplete |= np.isnan(table.column(c).to_numpy(zero_copy_only=False))
+        empty = np.isnan(table.column(c).to_numpy(zero_copy_only=False))
+        # a probe cycle's empty rows are no edge: the batch keeps them too (the rule: .sparse)
+        if not probe_cycle(c, np.flatnonzero(empty), table.num_rows, opts.sparse_targets):
+            incomplete |= empty
     if incomplete.all():
         return 0, 0
     lead, trail = int(np.argmin(incomplete)), int(np.argmin(incomplete[::-1]))

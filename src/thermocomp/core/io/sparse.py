@@ -11,6 +11,20 @@ dynamics computed on the dense stream.
 no two of them (as a rule) are neighbours: the median spacing between measured rows is
 :data:`MIN_SPACING` rows or more.  A dense column with one long gap (a probe that died) has its
 measured cells side by side, a median spacing of 1: a gap, repaired or refused as before.
+
+The edges (frames62). The rows before an error's first measurement and after its last are the
+campaign's own rows, kept by every read (``run``'s batch, ``replay``, ``monitor``, ``promote``,
+``export``'s check pack, the cut of a one-file record), never trimmed as incomplete edges: the
+temperatures were measured there, so a stream warms on them (lag filters, delays, states), and
+the error, NaN there, is scored on its measured rows only. A deployed compensator starts at the
+first sample it is given (the logger's first row, the machine's power-on), not at the first
+probe cycle it never sees; a batch that trimmed those rows scored a stream that started later
+than the one deployed (probe61's grinder, lagbank E_X: run 0.563 against replay 0.672 um). In
+the first-sample frame (``data.reference=first_sample``) the temperatures are referenced at the
+campaign's first row, the deployed stream's first sample, and the error at its first
+measurement, the only value of it known: the drift before the first probe cycle is not measured
+(a record read absolute, ``data.reference=none``, has no such offset). A dense column's missing
+cells at an end are incomplete edge rows as before (``data.max_edge_samples``, else refused).
 """
 
 from __future__ import annotations
@@ -42,13 +56,11 @@ def _spacing(measured: np.ndarray, rows: int) -> float:
     return float(np.median(np.diff(measured))) if measured.size > 1 else float(rows)
 
 
-def leading(missing: np.ndarray) -> np.ndarray:
-    """The positions of ``missing`` before the first measured row: a campaign starts where its
-    error is first measured (the reference is the first valid sample, never back-filled)."""
-    if not missing.size or missing[0] != 0:
-        return missing[:0]
-    run = np.flatnonzero(np.diff(missing) != 1)
-    return missing[: (run[0] + 1 if run.size else missing.size)]
+def probe_cycle(name: str, missing: np.ndarray, rows: int, mode: str) -> dict | None:
+    """:func:`intermittent` of an ``E_`` column ``name`` (its empty cells at ``missing``), None
+    for any other column: the one test, for a batch read and a stream's cut of a record alike,
+    of a column whose empty cells are no gap and no incomplete edge (the module's rule)."""
+    return intermittent(missing, rows, mode) if name.startswith("E_") else None
 
 
 def said(column: str, entry: dict) -> str:

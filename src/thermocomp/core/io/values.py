@@ -18,7 +18,7 @@ from .contract import TIME, ContractError, role
 from .lines import Lines, at
 from .options import ReadOptions
 from .rates import period_groups, said_if_rate_changes, said_if_rows_missing
-from .sparse import intermittent, leading
+from .sparse import intermittent, probe_cycle
 from .tables import PIPED_HINT, _chunks, _values
 from .timestamps import clock_set_back, on_local_clock, said_if_clock_skips
 
@@ -363,14 +363,13 @@ def _repair_missing(columns: dict, rows: int, path: Path, opts: ReadOptions) -> 
             missing = _check_values(_values(columns[name]), name, path, opts)
             if missing.size and opts.missing == "keep_errors" and role(name) == "E":
                 kept[name] = missing
-            elif missing.size and role(name) == "E" and intermittent(missing, rows,
-                                                                     opts.sparse_targets):
+            elif missing.size and probe_cycle(name, missing, rows, opts.sparse_targets):
                 sparse[name] = missing      # measured now and then: kept, never interpolated
             elif missing.size:
                 gaps[name] = missing
-    # the rows before a sparse target's first measurement are incomplete edge rows (its
-    # reference is its first valid sample, the inputs' must be the same row's)
-    edges = {**gaps, **{n: leading(p) for n, p in sparse.items() if leading(p).size}}
+    # a sparse target's empty rows before its first measurement (and after its last) are no
+    # incomplete edge: kept, the stream warms on their temperatures (the rule: .sparse)
+    edges = gaps
     if not edges:
         return {"repairs": {}, "trimmed": {"start": 0, "end": 0}, **_kept(kept, 0, rows, opts),
                 **_sparse(sparse, 0, rows)}

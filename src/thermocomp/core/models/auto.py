@@ -187,7 +187,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
 
             runs[BASELINE] = MLR()
         for name, est in runs.items():
-            why = _not_applicable(name, context, groups)
+            why = _not_applicable(name, context, groups) or _same_as(name, est, runs, context,
+                                                                      len(y))
             if why is None:
                 why = self._validate(name, est, X, y, context, folds)
                 _said(name, self.fit_seconds_.get(name, 0.0), self.validation_.get(name), why)
@@ -431,6 +432,38 @@ def _not_applicable(name: str, context, groups) -> str | None:
         return (f"the train campaigns span {levels} ambient level(s), fewer than "
                 f"{MIN_AMBIENTS}")
     return None
+
+
+def _same_as(name: str, est, runs: dict, context, n: int) -> str | None:
+    """Why candidate ``name`` is not validated again: on these ``n`` rows it is the very model of
+    another candidate of ``runs`` (a Hammerstein model into which no machine state can enter is
+    the plain lag bank, ``lagbank``'s: validated twice, it split nothing and cost its folds
+    again); None otherwise."""
+    reduced = est.plain_lagbank(context, n) if hasattr(est, "plain_lagbank") else None
+    if reduced is None:
+        return None
+    for other, candidate in runs.items():
+        if other != name and _same_model(reduced, candidate):
+            return (f"the same model as {other} on these data ({est.why_no_state(context)}): "
+                    "validated once")
+    return None
+
+
+def _same_model(a, b) -> bool:
+    """``a`` and ``b`` are unfitted estimators of one class with equal parameters."""
+    return type(a) is type(b) and _plain(a.get_params(deep=False)) == _plain(b.get_params(deep=False))
+
+
+def _plain(value):
+    """``value`` with tuples, arrays and estimators made comparable lists and dicts (a config's
+    list and a default's tuple of the same numbers are one parameter)."""
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple, np.ndarray)):
+        return [_plain(v) for v in value]
+    if hasattr(value, "get_params"):
+        return (type(value).__name__, _plain(value.get_params(deep=False)))
+    return value
 
 
 def _scheme(scheme: str, groups) -> str:

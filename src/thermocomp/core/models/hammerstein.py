@@ -161,6 +161,36 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
                                 f"the Hammerstein model reads", column=self.state_columns_[j])
         return _held(S, groups)
 
+    def _usable_states(self, context, n: int) -> tuple[list[str], np.ndarray]:
+        """The context's state columns this model can fit on (matching ``states``, measured in
+        every campaign, not constant: a state some train campaign never measures, or constant,
+        carries nothing to fit) and their values, held over missing samples."""
+        found = [] if context is None or self.states is None else match_columns(
+            [str(c) for c in context.columns], list(self.states))
+        S = self._raw_states(context, n, found)
+        unmeasured = {j for j, _ in _unmeasured(S, groups_of(context))}
+        S = _held(S, groups_of(context))
+        keep = (np.ptp(S, axis=0) > 0) & ~np.isin(np.arange(S.shape[1]), list(unmeasured))
+        return [c for c, k in zip(found, keep) if k], S[:, keep]
+
+    def why_no_state(self, context) -> str:
+        """Why no machine state enters (:meth:`_usable_states` found none)."""
+        if self.states is None:
+            return "states=None"
+        found = [] if context is None else match_columns([str(c) for c in context.columns],
+                                                          list(self.states))
+        if not found:
+            return f"no machine-state column of the record matches states={list(self.states)}"
+        return f"its machine states {found} are constant or unmeasured in a train campaign"
+
+    def plain_lagbank(self, context, n: int) -> LagBank | None:
+        """The lag bank (unfitted) this model is on ``context``'s ``n`` rows when no machine
+        state can enter (:meth:`_usable_states` finds none): it fits and predicts exactly as that
+        lag bank (``model=auto`` validates it once); None where a state may enter."""
+        if self._usable_states(context, n)[0]:
+            return None
+        return clone(self.lagbank) if self.lagbank is not None else LagBank()
+
     def fit(self, X, y, context=None):
         check_estimator(self)
         base = clone(self.lagbank) if self.lagbank is not None else LagBank()
@@ -168,14 +198,8 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         # bank's features on every row, the fit on the measured ones: LagBank._fit_measured)
         X, y, _ = measured_rows(self, X, y)
         X = np.asarray(X, dtype=float)
-        found = [] if context is None or self.states is None else match_columns(
-            [str(c) for c in context.columns], list(self.states))
-        S = self._raw_states(context, len(y), found)
-        # a state some train campaign never measures, or constant, carries nothing to fit: left out
-        unmeasured = {j for j, _ in _unmeasured(S, groups_of(context))}
-        S = _held(S, groups_of(context))
-        keep = (np.ptp(S, axis=0) > 0) & ~np.isin(np.arange(S.shape[1]), list(unmeasured))
-        S, found = S[:, keep], [c for c, k in zip(found, keep) if k]
+        found, S = self._usable_states(context, len(y))
+        self.without_states_ = None if found else self.why_no_state(context)
         scale = np.max(np.abs(S), axis=0) if S.size else np.zeros(0)
         self.state_scale_ = scale
         # 0 its least training value: the state's rest (a speed, a flag), where its lags start
@@ -271,3 +295,15 @@ class Hammerstein(SideInputs, RegressorMixin, BaseEstimator):
         lead[:self.n_features_in_] = lead_taus
         gain = self.lagbank_.lagged_step_gain(lead, horizon_s, period_s)
         return None if gain is None else gain[:self.n_features_in_]
+
+
+def without_states_note(comp) -> str | None:
+    """One line where a fitted compensator ``comp`` holds a Hammerstein model into which no
+    machine state entered (none in the record, or each constant): it is the plain lag bank,
+    ``model=lagbank``'s very fit, which a run says rather than report it as another family."""
+    for est in getattr(comp, "estimators_", {}).values():
+        why = getattr(est, "without_states_", None) if isinstance(est, Hammerstein) else None
+        if why:
+            return (f"model=hammerstein: {why}: the plain lag bank was fitted, the same model as "
+                    "model=lagbank (its states are what it adds)")
+    return None

@@ -18,10 +18,11 @@ from sklearn.base import clone
 
 from ...base.errors import ConfigError
 from ...base.files import staged_outputs, write_json
-from ...base.log import Clock, say
+from ...base.log import Clock, logger, say
 from ...base.paths import resolve
 from ...core import io
 from ...core.models.auto import add_choices, as_chosen
+from ...core.models.hammerstein import without_states_note
 from ...core.run_report import Refits, ReportSettings, report_run
 from ...core.scoring.evaluation import require_split
 from ...core.scoring.results import EvaluationResult
@@ -118,6 +119,10 @@ def _report(cfg: DictConfig, comp, ds, tracker, clock: Clock | None = None,
     from ...apps.volumetric.section import validate
 
     out, clock, extra = resolve(cfg.out), clock or Clock(), dict(extra or {})
+    note = without_states_note(comp)
+    if note:                  # said, and kept beside the figures it explains
+        logger.warning(note)
+        extra["warnings"] = [note]
     if volumetric is not None:
         extra["volumetric"], curves = validate(comp, ds, *volumetric, str(cfg.eval.mode),
                                                *reversed(simulated_truth(cfg)))
