@@ -75,9 +75,6 @@ from ._pooled import (
 from .base import measured_rows
 
 DEFAULT_ALPHAS = np.logspace(-4, 6, 21)   # ridge penalties on standardised features, half-decade steps
-# the static candidate's penalty on the lags (levels free): on standardised features and up to
-# 1e7 rows their coefficients are below 1e-5 of their unpenalised size, the fit MLR's to that share
-STATIC_ALPHA = 1e12
 MIN_SPLITS = 2
 
 
@@ -338,19 +335,6 @@ def _records(design: str, ratio: float, alphas, scores: dict) -> list[dict]:
     return out
 
 
-def _paths(alphas, ratios, static: bool) -> list[tuple[float, np.ndarray]]:
-    """``(level penalty ratio, its penalties)`` of each ridge path the CV scores; with ``static``
-    the levels-free path (ratio 0) also holds :data:`STATIC_ALPHA` -- the static least-squares
-    model (MLR), the lag bank's own special case, which a ratio above 0 never reaches (its
-    strongest penalty leaves a constant)."""
-    paths = [(float(ratio), np.asarray(alphas, dtype=float)) for ratio in ratios]
-    if not static:
-        return paths
-    if 0.0 not in ratios:
-        return [*paths, (0.0, np.array([STATIC_ALPHA]))]
-    return [(ratio, np.union1d(path, [STATIC_ALPHA]) if ratio == 0 else path) for ratio, path in paths]
-
-
 def _levels_weighted(Z, p: int, ratio: float) -> tuple[np.ndarray, int]:
     """``(Z with its p levels scaled, number of free columns)`` of the level penalty ``ratio``."""
     if ratio == 0:
@@ -487,15 +471,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         Input columns whose lags start at rest (0) at a campaign's first sample instead of
         in steady state at their first value: an input that was 0 before the record (a machine
         state, see :class:`~thermocomp.core.models.hammerstein.Hammerstein`).
-    static_candidate : bool, default False
-        Also score the static least-squares model (the levels free, the lags' penalty
-        :data:`STATIC_ALPHA`: MLR) on the same folds, and keep it where its CV error is the lowest.
-        With ``level_penalty > 0`` the path shrinks the levels towards a constant and never
-        reaches it: on two machines whose error is a static law of the sensors the lag bank's
-        best CV MSE was 3.1x (grinder of ``bench_probe61``, E_Z) and 1.26x (lathe of
-        ``bench_labfiles62``, E_Z) MLR's on the same folds, and it tested 3.0x and 2.0x MLR's;
-        with it both test as MLR.  Not the default: ``column_moving_source`` seed 5 goes 9.42 ->
-        9.67 µm (``benchmarks/bench_lagbank_records.py``, ``docs/models.md``).
 
     Attributes
     ----------
@@ -531,8 +506,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, n_taus: int = 8, tau_min_s: float | None = None,
                  tau_max_s: float = 172800.0, alphas=None, n_splits: int = 5, ar=False,
-                 sample_period_s: float = 60.0, level_penalty=1.0, rest_columns=None,
-                 static_candidate: bool = False):
+                 sample_period_s: float = 60.0, level_penalty=1.0, rest_columns=None):
         self.n_taus = n_taus
         self.tau_min_s = tau_min_s
         self.tau_max_s = tau_max_s
@@ -542,7 +516,6 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         self.sample_period_s = sample_period_s
         self.level_penalty = level_penalty
         self.rest_columns = rest_columns
-        self.static_candidate = static_candidate
 
     # -- parameters ---------------------------------------------------------------------
     # n_taus: a feature per input and time constant
@@ -550,8 +523,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                    "alphas": optional(either(POSITIVE, numbers(0.0, open_lo=True))),
                    "n_splits": integer(MIN_SPLITS), "ar": choice(False, True, "auto"),
                    "sample_period_s": POSITIVE, "level_penalty": either(numbers(0.0), NON_NEGATIVE),
-                   "rest_columns": optional(integers(0, empty=True)),
-                   "static_candidate": choice(True, False)}
+                   "rest_columns": optional(integers(0, empty=True))}
 
     def _rest(self, p: int) -> np.ndarray | None:
         """The columns of :attr:`rest_columns` as a mask over ``p`` inputs (None: none)."""
@@ -641,16 +613,16 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
             D, target = self._design(design, F, y, y_prev, groups)
             scalers[design] = scaler = standard_scaler(D)
             Z = standardised(D, scaler)
-            for ratio, path in _paths(alphas, ratios, self.static_candidate):
+            for ratio in ratios:
                 # D is F, F with y(t-1) or F's increments, standardised: F's digest stands for it
                 z_key = ArrayMemo.key(f_key, design, scaler.mean_, scaler.scale_, ratio,
                                       y_prev if design == "lags+ar" else None)
                 Zw, n_free = _levels_weighted(Z, p, ratio)
-                scores = ridge_path_cv(Zw, target, splits, path, groups,
+                scores = ridge_path_cv(Zw, target, splits, alphas, groups,
                                        ar_column=D.shape[1] - 1 if design == "lags+ar" else None,
                                        ar_scaling=(scaler.mean_[-1], scaler.scale_[-1]), z_key=z_key,
                                        free_columns=n_free)
-                records += _records(design, ratio, path, scores)
+                records += _records(design, ratio, alphas, scores)
         # the refit standardises its design again: the last design's copies (a year's 1.2 GB
         # each) are not held with it
         del D, Z, Zw
@@ -705,10 +677,10 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         scaler = standard_scaler(F)
         Z = standardised(F, scaler)
         records = []
-        for ratio, path in _paths(alphas, ratios, self.static_candidate):
+        for ratio in ratios:
             Zw, n_free = _levels_weighted(Z, p, ratio)
-            scores = ridge_path_cv(Zw, y[rows], splits, path, g, free_columns=n_free)
-            records += _records("lags", ratio, path, scores)
+            scores = ridge_path_cv(Zw, y[rows], splits, alphas, g, free_columns=n_free)
+            records += _records("lags", ratio, alphas, scores)
         table = pd.DataFrame(records)
         self._keep_choice(table, self._choose(table))
         self.coef_, self.ar_coef_, self.intercept_ = self._refit(
@@ -770,11 +742,11 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
                                   self.taus_, y, self._rest(X.shape[1]))
         centre, scale = standardisation(moments.pool(np.arange(len(moments.counts))))
         records = []
-        for ratio, path in _paths(alphas, ratios, self.static_candidate):
+        for ratio in ratios:
             d = _level_scale(centre.size, p, ratio) / scale
-            scores = pooled_path_cv(moments, folds, centre, d, path, p if ratio == 0 else 0)
+            scores = pooled_path_cv(moments, folds, centre, d, alphas, p if ratio == 0 else 0)
             # without output feedback one step is the free run
-            records += _records("lags", ratio, path, {"free_run": scores, "one_step": scores})
+            records += _records("lags", ratio, alphas, {"free_run": scores, "one_step": scores})
         table = pd.DataFrame(records)
         self._keep_choice(table, self._choose(table))
         ratio = self.level_penalty_
@@ -805,8 +777,7 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         if self.ar is not False:   # a one-step model chosen apart (its own design and penalty):
             return {}              # fixing the free-run choice alone would lose it
         chosen = self.cv_results_.loc[self.cv_results_["chosen"]].iloc[0]
-        return {"alphas": [self.alpha_], "ar": bool(chosen["ar"]), "level_penalty": [self.level_penalty_],
-                "static_candidate": self.alpha_ == STATIC_ALPHA}
+        return {"alphas": [self.alpha_], "ar": bool(chosen["ar"]), "level_penalty": [self.level_penalty_]}
 
     @staticmethod
     def _design(design: str, F, y, y_prev, groups):
