@@ -94,7 +94,9 @@ cpu = cpu_seconds
 def setup(overrides: list[str]):
     """``(cfg, dataset, train campaigns)``: a ``sim=`` record generated in memory, else read."""
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
-        cfg = compose(config_name="config", overrides=[*LIGHT, "model=lagbank", *overrides])
+        # LIGHT's auto-only key (keep_oof) is not the lag bank's: composing it fails
+        light = [o for o in LIGHT if not o.startswith("model.estimator.")]
+        cfg = compose(config_name="config", overrides=[*light, "model=lagbank", *overrides])
     simulated = any(o.startswith("sim=") for o in overrides)
     ds = (instantiate(cfg.sim.generator).generate()[0] if simulated
           else io.read_dataset(resolve(cfg.data.path), data_options(cfg))[0])

@@ -14,6 +14,7 @@ from sklearn.frozen import FrozenEstimator
 
 from ..base.errors import ConfigError
 from ..core.compensator import Compensator
+from ..core.continuation import fit_campaigns
 from ..core.denoise import fit_denoiser
 from ..core.denoise.split import denoise_split
 from ..core.scoring.evaluation import require_split
@@ -78,7 +79,9 @@ def train_step(cfg: DictConfig, ds, denoised: Denoised, selection: dict) -> Comp
     comp = build_compensator(cfg, ds=ds)
     den = denoised.fitted
     comp.set_params(denoiser=None if den is None else FrozenEstimator(den), selection=selection)
-    return comp.fit({c: denoised.campaigns[c] for c in require_split(ds, "train")}, denoised=True)
+    # campaigns that continue one another fitted joined, as they are predicted (state carried over)
+    train = fit_campaigns(ds, denoised.campaigns, require_split(ds, "train"), reference(cfg))
+    return comp.fit(train, denoised=True)
 
 
 def fit_chain(cfg: DictConfig, ds, denoised: Denoised | None = None,
