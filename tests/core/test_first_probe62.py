@@ -8,10 +8,13 @@ model's own estimate of E(m) - E(0) (:mod:`thermocomp.core.first_probe`).
 
 from __future__ import annotations
 
+import json
+
 import numpy as np
 import pandas as pd
 import pytest
 
+from conftest import FAST, thermocomp
 from thermocomp.core import continuation
 from thermocomp.core.compensator import Compensator
 from thermocomp.core.frame import stack
@@ -19,6 +22,7 @@ from thermocomp.core.io.contract import Dataset
 from thermocomp.core.models import MLR
 from thermocomp.core.models.lagbank import LagBank
 from thermocomp.core.scoring.evaluation import score
+from thermocomp.shell.model_store import load_model
 
 GAINS = (4.0, -2.0)     # um/K of T_a, T_b: the error's law, exact (no noise)
 FIRST, EVERY = 40, 10   # the probe's first reading 40 rows in, then every 10th row
@@ -91,3 +95,29 @@ def test_a_first_probe_at_row_0_and_the_none_frame_are_unchanged(first, referenc
     for cid, frame in comp.measured(train).items():
         assert np.array_equal(frame["E_X"].to_numpy(), m.Y["E_X"].to_numpy()[m.groups == cid],
                               equal_nan=True)
+
+
+def test_run_and_replay_score_the_change_since_the_first_probe(tmp_path):
+    """The commands: run's test RMSE and replay's are both label - (y_hat(t) - y_hat(m)) of the
+    model run wrote.  (Before: both against y_hat(t).)"""
+    ds = dataset()
+    folder = tmp_path / "late"
+    folder.mkdir()
+    ds.manifest.to_csv(folder / "campaigns.csv")
+    for cid, df in ds.campaigns.items():
+        df.to_csv(folder / f"{cid}.csv", index=False)
+    thermocomp("run", f"data.path={folder}", "model=lagbank", f"out={tmp_path / 'run'}", *FAST)
+    thermocomp("replay", f"data.path={folder}", f"replay.model={tmp_path / 'run' / 'model.pkl'}",
+               f"out={tmp_path / 'replay'}", *FAST)
+    comp = load_model(tmp_path / "run" / "model.pkl")
+    test = {"c4": ds.campaigns["c4"]}
+    predicted = comp.predict(test)["c4"]["E_X"].to_numpy()
+    label = stack(test, [], ["E_X"]).Y["E_X"].to_numpy()
+    want = float(np.sqrt(np.nanmean((label - (predicted - predicted[FIRST])) ** 2)))
+    run = json.loads((tmp_path / "run" / "metrics.json").read_text())["targets"]["E_X"]["test"]
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"]["E_X"]
+    assert run["rmse"] == pytest.approx(want, rel=1e-9)
+    # (the stream's own rmse is the clamped stream's here: the test campaign walks out of the
+    # training envelope; its predictions are the batch's to 1e-9)
+    assert replay["rmse_batch"] == pytest.approx(want, rel=1e-9)
+    assert replay["max_abs_stream_minus_batch"] < 1e-9
