@@ -121,3 +121,27 @@ def test_run_and_replay_score_the_change_since_the_first_probe(tmp_path):
     # training envelope; its predictions are the batch's to 1e-9)
     assert replay["rmse_batch"] == pytest.approx(want, rel=1e-9)
     assert replay["max_abs_stream_minus_batch"] < 1e-9
+
+
+def test_mutual_prediction_completes_each_models_label_by_its_own_prediction():
+    """Each single-campaign model's row of the mutual prediction matrix: Rsd of label -
+    (y_hat(t) - y_hat(m)) with its own y_hat (the label was completed once, by the first
+    model, for all of them)."""
+    from functools import partial
+
+    from sklearn.base import clone
+
+    from thermocomp.core.metrics import rsd
+    from thermocomp.core.scoring.evaluation import mutual_prediction_report
+
+    ds = dataset()
+    report = mutual_prediction_report(partial(clone, Compensator(LagBank())), ds)["E_X"]
+    ids = report["campaigns"]
+    for i, trained in enumerate(report["trained_on"]):
+        comp = Compensator(LagBank()).fit({trained: ds.campaigns[trained]})
+        for j, cid in enumerate(ids):
+            one = {cid: ds.campaigns[cid]}
+            predicted = comp.predict(one)[cid]["E_X"].to_numpy()
+            label = stack(one, [], ["E_X"]).Y["E_X"].to_numpy()
+            want = rsd(label - (predicted - predicted[FIRST]))
+            assert report["rsd"][i][j] == pytest.approx(want, rel=1e-9), (trained, cid)
