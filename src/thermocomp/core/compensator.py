@@ -16,7 +16,7 @@ from sklearn.base import BaseEstimator, clone
 from .choices import MODES
 from .context import Y_MEASURED, for_target, with_column
 from .denoise import denoise_campaigns, fit_denoiser
-from .first_probe import REFITS, completed, late_starts
+from .first_probe import REFITS, completed, frame_loss, late_starts
 from .frame import Matrices, resolve_columns, stack
 from .models.one_step import OneStepLaw
 from .select import AllInputs
@@ -141,18 +141,24 @@ class Compensator(BaseEstimator):
     def _fit_in_frame(self, template, X, y, groups, context):
         """``template`` cloned and fitted on ``(X, y)``, and the label it was fitted on: in the
         first-sample frame, where a campaign's first measurement comes after its first row
-        (:mod:`thermocomp.core.first_probe`), refitted :data:`REFITS` times on the label
+        (:mod:`thermocomp.core.first_probe`), refitted up to :data:`REFITS` times on the label
         completed by the model's own estimate of the unmeasured ``E(m) - E(0)``, so that it is
-        fitted in the frame it is used in (the stream's, from the campaign's first row)."""
+        fitted in the frame it is used in (the stream's, from the campaign's first row); the fit
+        of the lowest :func:`~thermocomp.core.first_probe.frame_loss` on these rows is kept (a
+        refit that moves away, as a Hammerstein's on a record of short campaigns, is not)."""
         est = clone(template).fit(X, y, context=context)
         if self.reference != "first_sample" or not late_starts(y, groups):
             return est, y
-        label = y
+        s = np.asarray(est.predict(X, context=context), dtype=float)
+        best = (frame_loss(y, s, groups), est, y)
         for _ in range(REFITS):
-            s = np.asarray(est.predict(X, context=context), dtype=float)
             label = completed(y, s, groups, from_start=True)
             est = clone(template).fit(X, label, context=context)
-        return est, label
+            s = np.asarray(est.predict(X, context=context), dtype=float)
+            loss = frame_loss(y, s, groups)
+            if loss < best[0]:
+                best = (loss, est, label)
+        return best[1], best[2]
 
     # -- prediction -------------------------------------------------------------------------
     def predict_stacked(self, m: Matrices, mode: str = "simulation") -> np.ndarray:
