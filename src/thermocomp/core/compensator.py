@@ -16,6 +16,7 @@ from sklearn.base import BaseEstimator, clone
 from .choices import MODES
 from .context import Y_MEASURED, for_target, with_column
 from .denoise import denoise_campaigns, fit_denoiser
+from .first_probe import REFITS, completed, frame_loss, late_starts
 from .frame import Matrices, resolve_columns, stack
 from .models.one_step import OneStepLaw
 from .select import AllInputs
@@ -125,9 +126,9 @@ class Compensator(BaseEstimator):
             y = m.Y[target].to_numpy()
             names = (list(self.selection[target]) if self.selection is not None  # (measured
                      else list(clone(selector).fit(measured(m.X, y), y[np.isfinite(y)]).selected_))
-            est = clone(for_target(self.estimator, target))
             X = m.X[names].to_numpy()
-            est.fit(X, y, context=context)
+            est, y = self._fit_in_frame(for_target(self.estimator, target), X, y, m.groups,
+                                        context)
             if self.offsets == "drop" and hasattr(est, "intercept_"):
                 self.offsets_[target] = float(est.intercept_)
                 est.intercept_ = 0.0
@@ -136,6 +137,28 @@ class Compensator(BaseEstimator):
             self.one_step_[target] = OneStepLaw().fit(s, y, context=context)
             self.selected_[target], self.estimators_[target] = names, est
         return self
+
+    def _fit_in_frame(self, template, X, y, groups, context):
+        """``template`` cloned and fitted on ``(X, y)``, and the label it was fitted on: in the
+        first-sample frame, where a campaign's first measurement comes after its first row
+        (:mod:`thermocomp.core.first_probe`), refitted up to :data:`REFITS` times on the label
+        completed by the model's own estimate of the unmeasured ``E(m) - E(0)``, so that it is
+        fitted in the frame it is used in (the stream's, from the campaign's first row); the fit
+        of the lowest :func:`~thermocomp.core.first_probe.frame_loss` on these rows is kept (a
+        refit that moves away, as a Hammerstein's on a record of short campaigns, is not)."""
+        est = clone(template).fit(X, y, context=context)
+        if self.reference != "first_sample" or not late_starts(y, groups):
+            return est, y
+        s = np.asarray(est.predict(X, context=context), dtype=float)
+        best = (frame_loss(y, s, groups), est, y)
+        for _ in range(REFITS):
+            label = completed(y, s, groups, from_start=True)
+            est = clone(template).fit(X, label, context=context)
+            s = np.asarray(est.predict(X, context=context), dtype=float)
+            loss = frame_loss(y, s, groups)
+            if loss < best[0]:
+                best = (loss, est, label)
+        return best[1], best[2]
 
     # -- prediction -------------------------------------------------------------------------
     def predict_stacked(self, m: Matrices, mode: str = "simulation") -> np.ndarray:
@@ -172,12 +195,23 @@ class Compensator(BaseEstimator):
         out = pd.DataFrame(self.predict_stacked(m, mode), columns=self.targets_)
         return {cid: out[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}
 
-    def measured(self, campaigns: Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
+    def measured(self, campaigns: Mapping[str, pd.DataFrame], predicted: Mapping | None = None
+                 ) -> dict[str, pd.DataFrame]:
         """Measured targets per campaign in the same reference frame as ``predict``; a target
-        a campaign did not record (a stream scored where it was measured) is NaN there."""
+        a campaign did not record (a stream scored where it was measured) is NaN there.
+
+        In the first-sample frame a target first measured after its campaign's first row is
+        completed by the prediction there (:mod:`thermocomp.core.first_probe`): its residual
+        compares ``y_hat(t) - y_hat(m)`` with the label.  ``predicted``: :meth:`predict`'s
+        simulation of these campaigns when the caller has it (else predicted here, only then).
+        """
         campaigns = {cid: df.assign(**{t: np.nan for t in self.targets_ if t not in df.columns})
                      for cid, df in campaigns.items()}
         m = stack(campaigns, [], self.targets_, self.reference)
+        if self.reference == "first_sample" and late_starts(m.Y.to_numpy(), m.groups):
+            predicted = self.predict(campaigns) if predicted is None else predicted
+            P = np.concatenate([predicted[cid][self.targets_].to_numpy(float) for cid in campaigns])
+            m.Y = pd.DataFrame(completed(m.Y.to_numpy(float), P, m.groups), columns=m.Y.columns)
         return {cid: m.Y[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}
 
 

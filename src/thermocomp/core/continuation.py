@@ -252,14 +252,21 @@ def predict(comp, ds: Dataset, ids, mode: str = "simulation", carried: Mapping |
     if plain:
         camps = {c: ds.campaigns[c] for c in plain}
         pred.update(comp.predict(camps, mode=mode))
-        meas.update(comp.measured(camps))
+        meas.update(_measured(comp, camps, pred, mode))
     for c in ids:
         if c in carried:
             n = len(ds.campaigns[c])
             whole = {c: joined(ds, carried[c])}
-            pred[c] = comp.predict(whole, mode=mode)[c].iloc[-n:].reset_index(drop=True)
-            meas[c] = comp.measured(whole)[c].iloc[-n:].reset_index(drop=True)
+            predicted = comp.predict(whole, mode=mode)
+            pred[c] = predicted[c].iloc[-n:].reset_index(drop=True)
+            meas[c] = _measured(comp, whole, predicted, mode)[c].iloc[-n:].reset_index(drop=True)
     return {c: pred[c] for c in ids}, {c: meas[c] for c in ids}
+
+
+def _measured(comp, campaigns, predicted, mode: str):
+    """``comp.measured(campaigns)``, given the simulation ``predicted`` when that is what
+    ``mode`` predicted (a late first measurement is completed by it, :mod:`.first_probe`)."""
+    return comp.measured(campaigns, predicted=predicted if mode == "simulation" else None)
 
 
 def persistence(comp, ds: Dataset, ids, carried: Mapping | None = None) -> dict[str, pd.DataFrame]:

@@ -86,10 +86,10 @@ class AdaptiveCompensator:
             raw = {c: df[names].to_numpy(float) for c, df in campaigns.items()}
             mon = SensorMonitor.from_training(ThermalPOD(**pod) if pod else None, names, raw,
                                               learned_bands=learned_bands, **(monitor or {}))
-        measured = comp.measured(campaigns)
+        predicted = comp.predict(campaigns, mode="simulation")
+        measured = comp.measured(campaigns, predicted=predicted)
         times = [df[TIME].to_numpy(float) if TIME in df.columns else np.arange(len(df), dtype=float)
                  for df in campaigns.values()]
-        predicted = comp.predict(campaigns, mode="simulation")
         guard = dict(guard or {})
         follow = bool(guard.pop("follow_inputs", True))
         g = CorrectionGuard.from_training(

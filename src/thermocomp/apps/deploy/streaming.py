@@ -732,9 +732,10 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
     (see :func:`thermocomp.core.metrics.split_scores`).
     """
     lead_ins = lead_ins or {}
-    measured = streaming.compensator.measured(campaigns)
     predicted = {c: replay(streaming, df, lead_in=lead_ins.get(c)) for c, df in campaigns.items()}
     streaming.reset()
+    # (a probe's first reading after the first row: the deployed y_hat(m) completes the label)
+    measured = streaming.compensator.measured(campaigns, predicted=predicted)
     out = {}
     for t in streaming.targets_:
         y = {c: measured[c][t].to_numpy() for c in campaigns}

@@ -14,6 +14,7 @@ from ...base.jsonsafe import json_safe
 from ...base.log import logger
 from ...core.compensator import Compensator
 from ...core.denoise import denoise_campaigns
+from ...core.first_probe import completed, late_starts
 from ...core.frame import stack
 from ...core.io.contract import ContractError, Dataset
 from ...core.metrics import P2P_AFTER, split_scores
@@ -181,6 +182,17 @@ def test_scores(comp: Compensator, ds: Dataset, ids, mode: str, statistic: str, 
     return out, {c: (meas[c], pred[c]) for c in ids}
 
 
+def _in_frame(before: Compensator, m) -> dict[str, np.ndarray]:
+    """``{target: label}`` of the stacked train rows ``m`` the search's CV fits and scores: as
+    measured, but in the first-sample frame, where a campaign's first measurement comes after
+    its first row, completed by ``before``'s own estimate of the unmeasured drift before it, as
+    the compensator itself was fitted (:mod:`thermocomp.core.first_probe`)."""
+    Y = m.Y[before.targets_].to_numpy(float)
+    if before.reference == "first_sample" and late_starts(Y, m.groups):
+        Y = completed(Y, before.predict_stacked(m), m.groups, from_start=True)
+    return {t: Y[:, k] for k, t in enumerate(before.targets_)}
+
+
 def _summary(test: Scores, cv_rmse: float) -> dict:
     return {TEST_RMSE: test.rmse, "cv_rmse": cv_rmse,
             TEST_RSD_MEAN: test.rsd_mean, TEST_RSD_SD: test.rsd_sd,
@@ -301,7 +313,8 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
         logger.info(f"diagnose: {why}: forward chaining over them, {options.n_blocks} blocks")
     units = unit_labels(m.groups, options.n_blocks) if scheme == "campaigns" else m.groups
     gap = _gap(m.context, m.groups, options) if scheme == "forward" else 0
-    searches = {t: Search(Problem(m.X, m.Y[t].to_numpy(float), context, m.groups, units, t, mode,
+    labels = _in_frame(before, m)
+    searches = {t: Search(Problem(m.X, labels[t], context, m.groups, units, t, mode,
                                   before.reference, options.n_folds, scheme, options.n_blocks, gap,
                                   options.min_train_fraction),
                           compensator.estimator, compensator.selector, before.inputs_, options)

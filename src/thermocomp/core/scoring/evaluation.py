@@ -335,10 +335,11 @@ def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
         comp = fitted if fitted is not None else make_compensator().fit(
             {c: ds.campaigns[c] for c in train})
         camps = {c: ds.campaigns[c] for c in val_ids}
-        meas = comp.measured(camps)
+        preds = {mode: comp.predict(camps, mode=mode) for mode in modes}
+        meas = comp.measured(camps, predicted=preds.get("simulation"))
         out = {}
         for mode in modes:
-            pred = comp.predict(camps, mode=mode)
+            pred = preds[mode]
             residual = {t: {c: meas[c][t].to_numpy() - pred[c][t].to_numpy() for c in val_ids}
                         for t in comp.targets_}
             out[mode] = _validation_entries(residual, "val split", 1)
@@ -482,9 +483,10 @@ def _fold_residuals(template: Compensator, camps: dict, folds, modes) -> dict:
     for fit_rows, pred_rows, units, _ in folds:
         comp = clone(template).fit({c: camps[c].iloc[:n] for c, n in fit_rows.items()})
         part = {c: camps[c].iloc[:n] for c, n in pred_rows.items()}
-        meas = comp.measured(part)
+        preds = {mode: comp.predict(part, mode=mode) for mode in modes}
+        meas = comp.measured(part, predicted=preds.get("simulation"))
         for mode in modes:
-            pred = comp.predict(part, mode=mode)
+            pred = preds[mode]
             for unit, (c, a, b) in units.items():
                 for t in comp.targets_:
                     residual[mode].setdefault(t, {})[unit] = (meas[c][t].to_numpy()[a:b]

@@ -14,6 +14,7 @@ from scipy import stats as sps
 from sklearn.base import clone
 
 from ...base.errors import FallbackWarning
+from ..first_probe import completed, late_starts
 from ..frame import resolve_columns, stack
 from ..metrics import rsd
 from ..model_selection import TrainOnEachCampaign
@@ -72,7 +73,8 @@ def mutual_prediction(campaigns: Mapping[str, pd.DataFrame], make_compensator: C
     003, Eq. 17, in the target's unit).  The diagonal is the self-fit.
 
     Each model predicts all campaigns in one call; the measured targets are
-    taken once (the reference frame does not depend on the model) and the
+    taken once (the reference frame does not depend on the model, but for a first probe after a
+    campaign's first row: :mod:`thermocomp.core.first_probe`) and the
     Rsd of every (model, campaign) pair comes from one residual array per target.
 
     Parameters
@@ -113,10 +115,20 @@ def _mutual_prediction(campaigns, make_compensator, mode, trained_on) -> dict[st
 
     for i in bar(rows, desc="mutual prediction", total=len(rows), unit="model"):
         comp = clone(first).fit_stacked(m.subset(m.rows_of(i)))
-        r = Y - comp.predict_stacked(m, mode)
+        P = comp.predict_stacked(m, mode)
+        r = _completed(comp, Y, m, P if mode == "simulation" else None) - P
         for k, t in enumerate(comp.targets_):
             residuals[t].append(r[:, k])
     return _rsd_matrices(residuals, rows, ids, bounds)
+
+
+def _completed(comp, Y: np.ndarray, m, simulated: np.ndarray | None) -> np.ndarray:
+    """The stacked labels ``Y`` as ``comp`` is scored on them: in the first-sample frame a
+    campaign first measured after its first row completed by ``comp``'s own simulation there
+    (:mod:`thermocomp.core.first_probe`), else ``Y`` itself."""
+    if comp.reference != "first_sample" or not late_starts(Y, m.groups):
+        return Y
+    return completed(Y, comp.predict_stacked(m) if simulated is None else simulated, m.groups)
 
 
 def _rows(ids: list, trained_on) -> list:
@@ -146,15 +158,22 @@ def _rsd_matrices(residuals: dict, rows, ids, bounds) -> dict[str, pd.DataFrame]
 
 def _mutual_by_campaign(campaigns, make_compensator, mode, rows) -> dict[str, pd.DataFrame]:
     ids = list(campaigns)
-    measured, residuals, bounds = None, {}, []
+    measured, residuals, bounds, own = None, {}, [], False
     for i in rows:
         comp = make_compensator().fit({i: campaigns[i]})
-        if measured is None:
-            frames = comp.measured(campaigns)
+        predicted = comp.predict(campaigns, mode=mode)
+        if measured is None or own:
+            frames = comp.measured(campaigns,
+                                   predicted=predicted if mode == "simulation" else None)
             measured = _by_target(frames, ids, comp.targets_)
             ends = np.cumsum([len(frames[c]) for c in ids])
             bounds = list(zip(ends - np.diff(ends, prepend=0), ends))  # rows of each campaign
-        pred = _by_target(comp.predict(campaigns, mode=mode), ids, comp.targets_)
+            # a late first probe (first-sample frame): each model's label is completed by its
+            # own y_hat(m) (:mod:`thermocomp.core.first_probe`), so measured once per model
+            own = comp.reference == "first_sample" and bool(late_starts(
+                np.column_stack([measured[t] for t in comp.targets_]),
+                np.concatenate([np.full(b - a, c, dtype=object) for c, (a, b) in zip(ids, bounds)])))
+        pred = _by_target(predicted, ids, comp.targets_)
         for t in comp.targets_:
             residuals.setdefault(t, []).append(measured[t] - pred[t])
     return _rsd_matrices(residuals, rows, ids, bounds)
