@@ -114,3 +114,27 @@ def test_init_on_a_fleet_folder_names_the_machine_column_and_group_by(fleet, cap
     shutil.copytree(fleet / "machine=M001", single / "machine=M001")
     assert main(["init", str(single), f"out={tmp_path / 'i2'}"]) == 0
     assert "group_by" not in capsys.readouterr().out
+
+
+def test_a_hammerstein_without_states_is_said_per_machine(fleet, tmp_path):
+    """A fleet whose records have no S_ column: each machine's hammerstein is its plain lag
+    bank, said once per machine on stderr and in the group's metrics.json entry (frames62 said
+    it for a single run only)."""
+    import json
+    import shutil
+
+    from conftest import thermocomp
+
+    path = shutil.copytree(fleet, tmp_path / "fleet")
+    for f in path.glob("machine=*/*.parquet"):
+        df = pd.read_parquet(f)
+        df.drop(columns=[c for c in df.columns if c.startswith("S_")]).to_parquet(f, index=False)
+    out = tmp_path / "out"
+    run = thermocomp("run", f"data.path={path}", "data.group_by=machine", "model=hammerstein",
+                     "track=false", "eval.validation=false", *LIGHT, f"out={out}")
+    said = [line for line in run.stderr.splitlines() if "model=hammerstein:" in line]
+    machines = {line.split("warning: ")[1].split(":")[0]: line for line in said}
+    assert sorted(machines) == ["M001", "M002", "M003"] and len(said) == 3
+    groups = json.loads((out / "metrics.json").read_text())["groups"]
+    for machine, line in machines.items():
+        assert len(groups[machine]["warnings"]) == 1 and line.endswith(groups[machine]["warnings"][0])

@@ -18,10 +18,11 @@ from sklearn.base import clone
 from ...apps import fleet
 from ...base.errors import ConfigError
 from ...base.files import inside, safe_name, staged_outputs, write_json
-from ...base.log import say
+from ...base.log import logger, say
 from ...base.paths import resolve
 from ...core import io
 from ...core.metrics import VALIDATION
+from ...core.models.hammerstein import without_states_note
 from ...core.scoring.evaluation import VAL_FOLDS, require_split, validation_report
 from ...core.scoring.results import TargetResult
 from ..builders import validation_template
@@ -54,12 +55,15 @@ def _group(cfg: DictConfig, digest: str, group: str, ids: list[str], stage) -> d
         for t, entry in val.items():
             targets[t][VALIDATION] = entry
     save_model(comp, inside(stage / "models", safe_name(group) + ".pkl"))
+    note = without_states_note(comp)    # said per machine, as a single run says it
+    if note:
+        logger.warning(f"{group}: {note}")
     targets = fleet.slim(targets)
     say(f"{group}: {len(ids)} campaigns, {report['rows']} rows, fit {fit_s:.2f} s, test RMSE "
         + ", ".join(f"{t} {TargetResult(m).test.rmse:.2f}" for t, m in targets.items()))
     return {"campaigns": len(ids), "rows": int(report["rows"]), "fit_time_s": fit_s,
             "inputs": {t: comp.selected_[t] for t in comp.targets_}, "targets": targets,
-            "pooled": pooled}
+            "pooled": pooled, **({"warnings": [note]} if note else {})}
 
 
 def run_grouped(cfg: DictConfig) -> dict:
