@@ -91,3 +91,15 @@ def test_diagnose_before_is_the_runs_test_figure_and_after_its_rerun(tmp_path):
     rerun = json.loads((tmp_path / "rerun" / "metrics.json").read_text())["targets"]["E_X"]["test"]
     assert rerun["rmse"] == pytest.approx(j["after"].get("test_rmse_as_run", j["after"]["test_rmse"]),
                                           rel=1e-9)
+
+
+def test_a_denoised_fit_is_runs_fit(tmp_path):
+    """With a denoiser, the files are denoised each on its own, then joined, as run's denoise
+    step does: ``fit_joined`` (diagnose's, monitor's, deploy's fit) predicts what run's model
+    predicts."""
+    cfg = _cfg(_folder(tmp_path / "data", CUT), "denoise=emd")
+    ds = open_source(cfg)
+    ran = fit_chain(cfg, ds)
+    mine = fit_joined(build_compensator(cfg, ds=ds), ds, ds.ids("train"))
+    assert np.array_equal(predict(mine, ds, ["test"])[0]["test"].to_numpy(),
+                          predict(ran, ds, ["test"])[0]["test"].to_numpy())
