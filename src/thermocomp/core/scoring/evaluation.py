@@ -484,6 +484,8 @@ def _fold_residuals(template: Compensator, camps: dict, folds, modes) -> dict:
 
     residual: dict = {mode: {} for mode in modes}
     for fit_rows, pred_rows, units, _ in folds:
+        # (a run of files joined, :func:`continuation.fit_campaigns`, is denoised here as one
+        # campaign, not file by file as run's final fit: a fold ends inside the run)
         comp = clone(template).fit({c: camps[c].iloc[:n] for c, n in fit_rows.items()})
         part = {c: camps[c].iloc[:n] for c, n in pred_rows.items()}
         meas = comp.measured(part)
