@@ -73,13 +73,14 @@ def test_files_not_continued_are_fitted_as_before_bit_for_bit(tmp_path, parts, r
 
 
 @pytest.mark.slow
-def test_diagnose_before_is_the_runs_test_figure_and_after_its_rerun(tmp_path):
+@pytest.mark.parametrize("model", [LAGBANK, ("model=mlr",)])
+def test_diagnose_before_is_the_runs_test_figure_and_after_its_rerun(tmp_path, model):
     """On the cut record, diagnose's "before" (batch, as run scores it) is the run's test RMSE,
     and its "after" the rerun of the config it writes."""
     data = _folder(tmp_path / "data", CUT)
-    thermocomp("run", f"data.path={data}", f"out={tmp_path / 'run'}", *LAGBANK, *FAST)
+    thermocomp("run", f"data.path={data}", f"out={tmp_path / 'run'}", *model, *FAST)
     ran = json.loads((tmp_path / "run" / "metrics.json").read_text())["targets"]["E_X"]["test"]
-    proc = thermocomp("diagnose", f"data.path={data}", f"out={tmp_path / 'diag'}", *LAGBANK,
+    proc = thermocomp("diagnose", f"data.path={data}", f"out={tmp_path / 'diag'}", *model,
                       *UNTRACKED, "plots=none", check=False)
     assert proc.returncode == 0, proc.stderr[-2000:]
     j = json.loads((tmp_path / "diag" / "diagnosis.json").read_text())
