@@ -232,6 +232,41 @@ def fit_campaigns(ds: Dataset, campaigns: Mapping[str, pd.DataFrame], ids, refer
     return out
 
 
+def continue_inside(ds: Dataset, ids) -> bool:
+    """Whether a campaign of ``ids`` continues another of ``ids`` (:func:`predecessors`)."""
+    inside = set(ids)
+    return any(c in inside and before in inside for c, before in predecessors(ds).items())
+
+
+def fit_joined(comp, ds: Dataset, ids, campaigns: Mapping[str, pd.DataFrame] | None = None):
+    """``comp`` fitted on the campaigns ``ids`` (frames from ``campaigns``, default ``ds``'s) as
+    ``run`` fits it (:func:`fit_campaigns`): runs that continue one another joined, in the frame
+    :func:`predict` scores them in.  The one mechanism for every fit of train campaigns
+    (``diagnose``, validation folds, ``monitor``, ``deploy``...), so that their figures are of the
+    deployed model's frame.
+
+    A denoiser is fitted on the files and denoises each on its own (offline), before they are
+    joined, as ``run``'s denoise step does; ``comp`` then holds it fitted and frozen.
+    """
+    from sklearn.frozen import FrozenEstimator
+
+    from .denoise import fit_denoiser
+    from .frame import resolve_columns
+
+    frames = ds.campaigns if campaigns is None else campaigns
+    ids = list(ids)
+    reference = getattr(comp, "reference", "first_sample")
+    if reference != "none" or not continue_inside(ds, ids):
+        return comp.fit({c: frames[c] for c in ids})
+    if getattr(comp, "denoiser", None) is None:
+        return comp.fit(fit_campaigns(ds, frames, ids, reference))
+    columns = list(dict.fromkeys(col for c in ids for col in frames[c].columns))
+    inputs = resolve_columns(columns, comp.inputs, comp.targets)[0]
+    fitted, denoised = fit_denoiser(comp.denoiser, {c: frames[c] for c in ids}, inputs)
+    comp.set_params(denoiser=None if fitted is None else FrozenEstimator(fitted))
+    return comp.fit(fit_campaigns(ds, denoised, ids, reference), denoised=True)
+
+
 def predict(comp, ds: Dataset, ids, mode: str = "simulation", carried: Mapping | None = None
             ) -> tuple[dict[str, pd.DataFrame], dict[str, pd.DataFrame]]:
     """Predicted and measured errors of the campaigns ``ids``, state carried over where it applies.

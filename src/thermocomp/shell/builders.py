@@ -10,6 +10,7 @@ from ..base.log import logger, say
 from ..base.params import check_params
 from ..base.paths import resolve
 from ..core.compensator import Compensator
+from ..core.continuation import fit_joined
 from ..core.models.auto import as_chosen
 from ..core.scoring.auto_validation import val_split_scores
 from .build import build
@@ -155,7 +156,9 @@ def deployable_model(cfg: DictConfig, ds, train_ids, source, key: str,
     if source is None:
         say(f"fitting {cfg.model.name} on {len(train_ids)} train campaigns")
         train = {c: ds.campaigns[c] for c in train_ids}
-        comp, name, source = build_compensator(cfg, ds=ds).fit(train), str(cfg.model.name), "fitted"
+        # fitted as run fits it: train files that continue one another joined
+        comp = fit_joined(build_compensator(cfg, ds=ds), ds, train_ids)
+        name, source = str(cfg.model.name), "fitted"
         what = "the model"
     else:
         source = str(source)

@@ -13,6 +13,7 @@ from threadpoolctl import threadpool_limits
 from ...base.jsonsafe import json_safe
 from ...base.log import logger
 from ...core.compensator import Compensator
+from ...core.continuation import fit_campaigns, fit_joined
 from ...core.denoise import denoise_campaigns
 from ...core.first_probe import completed, late_starts
 from ...core.frame import stack
@@ -282,7 +283,9 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
               e_p95_points, model_name, ati, stream_of=None) -> Diagnosis:
     t0 = time.perf_counter()
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
-    before = clone(compensator).fit({c: ds.campaigns[c] for c in train_ids})
+    # fitted as run fits it (train files that continue one another joined): "before" is the
+    # run's test figure, "after" the rerun of the config written
+    before = fit_joined(clone(compensator), ds, train_ids)
     before_scores, before_pred = test_scores(before, ds, test_ids, mode, e_p95_statistic,
                                              e_p95_points)
     targets = list(before.targets_) if targets is None else (
@@ -294,6 +297,9 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     train = {c: ds.campaigns[c] for c in train_ids}
     if getattr(before, "denoiser_", None) is not None:
         train = denoise_campaigns(before.denoiser_, train, causal=False)
+    # the search's CV sees the train split in the frame it was fitted in: a run of files that
+    # continue one another is one campaign (one CV unit; one alone: forward chaining over it)
+    train = fit_campaigns(ds, train, train_ids, before.reference)
     m = stack(train, before.inputs_, before.targets_, before.reference)
     # the test split's temperatures (never its errors): sensor health on what the model will face
     test = {c: ds.campaigns[c] for c in test_ids}
@@ -304,11 +310,11 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     context[CONTROL] = random_walk(m.groups, options.seed)
     scheme, why = cv_scheme(m.groups, options.cv), None
     need = units_needed(options.alpha)
-    if options.cv == "auto" and scheme == "campaigns" and len(train_ids) < need:
+    if options.cv == "auto" and scheme == "campaigns" and len(train) < need:
         # too few campaigns for the test to ever pass: validation blocks of the campaigns taken
         # as one time line instead, as for one long record
         scheme = "forward"
-        why = (f"{len(train_ids)} train campaigns are too few for the sign-flip test to reach "
+        why = (f"{len(train)} train campaigns are too few for the sign-flip test to reach "
                f"alpha={options.alpha:g} (it needs {need})")
         logger.info(f"diagnose: {why}: forward chaining over them, {options.n_blocks} blocks")
     units = unit_labels(m.groups, options.n_blocks) if scheme == "campaigns" else m.groups
@@ -347,8 +353,7 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     effects = {t: r.effects for t, r in found.items()}
     alphas = {t: r.alpha for t, r in found.items()}
     build = make_compensator or (lambda eff, exc, inputs, al: augment(compensator, eff, exc, inputs, al))
-    after = build(effects, excluded, list(before.inputs_), alphas).fit(
-        {c: ds.campaigns[c] for c in train_ids})
+    after = fit_joined(build(effects, excluded, list(before.inputs_), alphas), ds, train_ids)
     after_scores, after_pred = test_scores(after, ds, test_ids, mode, e_p95_statistic, e_p95_points)
     out = {t: TargetDiagnosis(t, r, original[t].rmse, r.final.rmse, before_scores[t], after_scores[t])
            for t, r in found.items()}
@@ -363,7 +368,7 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
             cv["why"] = why
     else:
         cv = {"scheme": "campaigns", "units": problem.n_units,
-              "unit": "campaign" if len(train_ids) > 1 else "time block",
+              "unit": "campaign" if len(train) > 1 else "time block",
               "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=units)}
     cv |= {"test_blocks": problem.n_blocks_tested, "block_samples": problem.block_samples,
            "min_p": reach,

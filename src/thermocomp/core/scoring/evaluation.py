@@ -226,7 +226,8 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
         cold, warm = min(amb, key=amb.get), max(amb, key=amb.get)
         out["baseline_campaigns"] = {"coldest": {"campaign": cold, "ambient_c0": amb[cold]},
                                      "warmest": {"campaign": warm, "ambient_c0": amb[warm]}}
-        # one campaign per model by design (as mutual prediction's): a member's fallback on one
+        # one campaign per model by design (as mutual prediction's; a file, not the run of files
+        # it may continue: the paper's baseline is one campaign's fit): a member's fallback on one
         # campaign (model=auto blending ATI: "1 training campaign(s)") is no news of the run's
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", FallbackWarning)
@@ -240,7 +241,7 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
                          "in the train campaigns: no cold/warm baselines")
     out["ati_model"] = any(hasattr(e, "intervals_") for e in comp.estimators_.values())
     if out["ati_model"]:
-        models["single_model"] = make_base().fit({c: ds.campaigns[c] for c in train})
+        models["single_model"] = continuation.fit_joined(make_base(), ds, train)
     test = {k: _test_rsd(m, ds, mode) for k, m in models.items()}
     out["targets"] = {}
     for t in comp.targets_:
@@ -332,26 +333,28 @@ def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
     val_ids = ds.ids("val")
     train = require_split(ds, "train")
     if val_ids:
-        comp = fitted if fitted is not None else make_compensator().fit(
-            {c: ds.campaigns[c] for c in train})
-        camps = {c: ds.campaigns[c] for c in val_ids}
-        preds = {mode: comp.predict(camps, mode=mode) for mode in modes}
-        meas = comp.measured(camps, predicted=preds.get("simulation"))
+        comp = fitted if fitted is not None else continuation.fit_joined(make_compensator(), ds, train)
+        carried = continuation.carry_over(comp, ds)
         out = {}
         for mode in modes:
-            pred = preds[mode]
+            # a val file that continues others predicted with their state, as run's test split
+            pred, meas = continuation.predict(comp, ds, val_ids, mode, carried)
             residual = {t: {c: meas[c][t].to_numpy() - pred[c][t].to_numpy() for c in val_ids}
                         for t in comp.targets_}
             out[mode] = _validation_entries(residual, "val split", 1)
         return out
     template = make_compensator()
-    camps = {c: ds.campaigns[c] for c in train}
+    # the folds of the train split in the frame the run fits and predicts it in: a run of files
+    # that continue one another is one campaign (one fold unit; alone: forward chaining over it,
+    # every fold's prediction carried from the record's start, as its fit's)
+    camps = continuation.fit_campaigns(ds, ds.campaigns, train,
+                                       getattr(template, "reference", "first_sample"))
     if scheme not in ("auto", *SCHEMES):
         raise ValueError(f"scheme must be auto or one of {SCHEMES}, got {scheme!r}")
-    if len(train) >= 2 and (holdout_scheme(ds) if scheme == "auto" else scheme) == "forward":
+    if len(camps) >= 2 and (holdout_scheme(ds) if scheme == "auto" else scheme) == "forward":
         folds = _campaign_folds(camps, n_folds, blocked=True)
         method = f"blocked forward ({len(folds)} folds)"
-    elif len(train) >= 2:
+    elif len(camps) >= 2:
         folds = _campaign_folds(camps, n_folds)
         method = f"leave-campaigns-out ({len(folds)} folds)"
     else:
@@ -481,6 +484,8 @@ def _fold_residuals(template: Compensator, camps: dict, folds, modes) -> dict:
 
     residual: dict = {mode: {} for mode in modes}
     for fit_rows, pred_rows, units, _ in folds:
+        # (a run of files joined, :func:`continuation.fit_campaigns`, is denoised here as one
+        # campaign, not file by file as run's final fit: a fold ends inside the run)
         comp = clone(template).fit({c: camps[c].iloc[:n] for c, n in fit_rows.items()})
         part = {c: camps[c].iloc[:n] for c, n in pred_rows.items()}
         preds = {mode: comp.predict(part, mode=mode) for mode in modes}

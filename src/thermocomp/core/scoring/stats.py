@@ -160,6 +160,8 @@ def _mutual_by_campaign(campaigns, make_compensator, mode, rows) -> dict[str, pd
     ids = list(campaigns)
     measured, residuals, bounds, own = None, {}, [], False
     for i in rows:
+        # the unit IS the file (a matrix of file-on-file figures): fitted on one alone, and
+        # every campaign predicted on its own, from its first sample, as that fit was
         comp = make_compensator().fit({i: campaigns[i]})
         predicted = comp.predict(campaigns, mode=mode)
         if measured is None or own:

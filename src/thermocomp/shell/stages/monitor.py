@@ -31,7 +31,7 @@ from ...base.log import say
 from ...base.paths import resolve
 from ...core import io
 from ...core.context import TIME
-from ...core.continuation import lead_ins, said_warmed
+from ...core.continuation import fit_joined, lead_ins, said_warmed
 from ...core.io.contract import AMBIENT_C
 from ...core.io.source import check_streamed_columns
 from ...core.io.stdin import TIME_ORIGIN, stdin_text, stream_campaigns
@@ -65,7 +65,9 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict, train_ids: list[s
 def _fitted(cfg: DictConfig, ds, train: dict):
     """The compensator fitted on ``train``, or ``monitor.model``'s."""
     path = cfg.monitor.get("model")
-    comp = build_compensator(cfg, ds=ds).fit(train) if path is None else load_model(resolve(str(path)))
+    # fitted as run fits it: train files that continue one another joined (their state carried over)
+    comp = fit_joined(build_compensator(cfg, ds=ds), ds, list(train), train) if path is None \
+        else load_model(resolve(str(path)))
     check_volumetric_targets(cfg, ds, comp.targets_, f"monitor.model={path}")
     return comp
 
