@@ -104,3 +104,25 @@ def test_a_denoised_fit_is_runs_fit(tmp_path):
     mine = fit_joined(build_compensator(cfg, ds=ds), ds, ds.ids("train"))
     assert np.array_equal(predict(mine, ds, ["test"])[0]["test"].to_numpy(),
                           predict(ran, ds, ["test"])[0]["test"].to_numpy())
+
+
+def test_the_val_splits_persistence_starts_from_the_file_it_continues(tmp_path):
+    """model=auto on a val file that continues the train files: persistence's first val row
+    is the last train measurement (as the test split's persistence), not 0."""
+    from thermocomp.core.metrics import PERSISTENCE
+    from thermocomp.core.scoring.auto_validation import val_split_scores
+
+    root = _folder(tmp_path / "val", {"first": (slice(0, 900), "train", ""),
+                                       "train": (slice(900, 1500), "train", "first"),
+                                       "val": (slice(1500, 1800), "val", "train"),
+                                       "test": (slice(1800, None), "test", "val")})
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=[
+            "track=false", "plots=none", "model=auto", "model.candidates=[mlr]", f"data.path={root}"])
+    ds = open_source(cfg)
+    comp = fit_chain(cfg, ds)
+    got = val_split_scores(comp, ds)["E_X"][PERSISTENCE]
+    y = np.concatenate([ds.campaigns[c]["E_X"].to_numpy(float) for c in ("first", "train", "val")])
+    val = y[1500:]
+    expected = np.sqrt(np.mean((val - y[1499:-1]) ** 2))
+    assert got == pytest.approx(expected, rel=1e-12)

@@ -6,10 +6,10 @@ from __future__ import annotations
 import numpy as np
 from sklearn.base import clone
 
+from .. import continuation
 from ..metrics import PERSISTENCE, RMSE, rmse
 from ..models import MLR
 from ..models.auto import BASELINE
-from ..models.one_step import persistence
 from .evaluation import validation_report
 
 
@@ -33,10 +33,12 @@ def val_split_scores(comp, ds) -> dict:
         for t, entry in report.items():
             scores.setdefault(t, {})[name] = entry[RMSE]
     failed = scores.pop(None, {})
-    val = {c: ds.campaigns[c] for c in ds.ids("val")}
-    measured = fitted.measured(val) if fitted is not None else {}
+    val = ds.ids("val")
+    measured = fitted.measured({c: ds.campaigns[c] for c in val}) if fitted is not None else {}
+    # a val file that continues others starts from their last measured error, as the test's
+    previous = continuation.persistence(fitted, ds, val) if fitted is not None else {}
     for t in scores:
         scores[t].update(failed)
-        y = [measured[c][t].to_numpy(float) for c in val]
-        scores[t][PERSISTENCE] = rmse(np.concatenate([v - persistence(v) for v in y]))
+        scores[t][PERSISTENCE] = rmse(np.concatenate(
+            [measured[c][t].to_numpy(float) - previous[c][t].to_numpy(float) for c in val]))
     return scores
