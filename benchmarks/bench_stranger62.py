@@ -271,7 +271,9 @@ def write(root: Path) -> None:
 # --- the pipeline -------------------------------------------------------------------------
 
 FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein", "auto")
-INIT_ARGS = {"hobber": ("data.test_fraction=0.3",), "hobber_b": ("data.test_fraction=0.34",)}
+# hobber: what the stranger added after init's two refusals (a MATLAB field carries no unit)
+INIT_ARGS = {"hobber": ("data.test_fraction=0.3", "data.roles.error=[dX,dZ]", "data.roles.state=[nhob]"),
+             "hobber_b": ("data.test_fraction=0.34",)}
 FOLDERS = {"hobber": "hobber/hobber_runs.mat", "hobber_b": "hobber_b"}
 CONFIGS = {"hobber": "hobber_runs", "hobber_b": "hobber_b"}
 
@@ -290,8 +292,51 @@ MACHINES = Machines(doc=__doc__, write=write, records=list(SEEDS), families=FAMI
                     monitored=("mlr",), replayed="mlr", lab_file=lab_file)
 
 
+def one_step(root: Path, names) -> None:
+    """Every family's ``run`` with ``eval.mode=one_step`` (the last probe reading an input)."""
+    import json
+
+    from new_machine_steps import run_models
+
+    for name in names:
+        rows = run_models(root, name, FAMILIES, ("eval.mode=one_step",), args_of=data_args)
+        (root / f"families-onestep-{name}.json").write_text(json.dumps(rows, indent=1))
+
+
+def deploy(root: Path, names, families=("mlr", "arx", "lagbank", "hammerstein")) -> None:
+    """Per family: ``run`` (tracked), ``replay``, ``promote`` of that run, ``export`` of its
+    version as C with the check pack, compiled, ``check/check.sh``, the pack scored
+    (``bench_frames62``'s chain, on this bench's records)."""
+    import json
+
+    import bench_frames62
+
+    bench_frames62.data_args = data_args      # its chain reads the record through data_args
+    rows = [bench_frames62.one(root, name, family) for name in names for family in families]
+    for row in rows:
+        print(json.dumps(row, default=str)[:1500], flush=True)
+    (root / f"deploy-{'-'.join(names)}.json").write_text(json.dumps(rows, indent=1, default=str))
+
+
+def sweep(root: Path, names) -> None:
+    """``run -m model=mlr,lagbank`` (tracked, its comparison), ``promote`` the best, ``export``
+    the champion as C with its pack, ``check/check.sh`` (``bench_probe61``'s chain)."""
+    import json
+
+    import bench_probe61
+
+    bench_probe61.data_args = data_args
+    rows = [bench_probe61.sweep_promote_export(root, name) for name in names]
+    (root / f"sweep-{'-'.join(names)}.json").write_text(json.dumps(rows, indent=1, default=str))
+
+
 def main(argv=None) -> int:
-    return steps_main(MACHINES, sys.argv[1:] if argv is None else argv)
+    argv = sys.argv[1:] if argv is None else argv
+    extra = {"one_step": one_step, "deploy": deploy, "sweep": sweep}
+    if argv and argv[0] in extra:
+        extra[argv[0]](Path(argv[1]).resolve(), argv[2:] or list(SEEDS))
+        return 0
+    return steps_main(MACHINES, argv)
 
 
 if __name__ == "__main__":
