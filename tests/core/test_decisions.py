@@ -138,3 +138,18 @@ def test_as_chosen_fixes_each_targets_family_only_for_an_auto_template():
     assert as_chosen(template, fitted).set == {"estimator__chosen": {"E_X": "arx", "E_Y": "mlr"}}
     plain = Template()
     assert as_chosen(plain, object()) is plain and not hasattr(plain, "set")
+
+
+def test_two_baselines_of_one_dataset_name_their_runs():
+    """In the first-sample frame a late first probe's label is completed by each model's own
+    y_hat(m), so persistence differs per run (stranger62's hobbing bench: 1.83 and 1.86 um):
+    two rows both called 'baseline' left a reader to guess which is whose."""
+    from thermocomp.core.scoring.leaderboard import FIGURES, baseline_rows
+
+    figures = {f: None for f in FIGURES}
+    found = [{**figures, "rmse": 1.83, "run_id": "aaaaaaaaaa"},
+             {**figures, "rmse": 1.86, "run_id": "bbbbbbbbbb"}]
+    shown = shown_table(_ranked(), baseline_rows(found))
+    assert shown["run"].tolist()[-2:] == ["baseline of aaaaaaaa", "baseline of bbbbbbbb"]
+    one = baseline_rows([found[0], {**found[1], "rmse": 1.83}])
+    assert shown_table(_ranked(), one)["run"].tolist()[-1] == "baseline"

@@ -214,6 +214,17 @@ def test_temperatures_in_kelvin(tmp_path):
     refused(tmp_path / "ds", file="K01.csv", column="T_0", row=1, says="look like kelvin")
 
 
+def test_a_speed_read_as_a_temperature_is_not_called_kelvin(tmp_path):
+    """A hob's speed (0 / 400 / 1000 rpm, a MATLAB field without a unit, read as a temperature)
+    has its median in kelvin's range, but 0 K and 1000 K are no room-side readings: it is named
+    another quantity with its role's fix, not told to be kelvin (stranger62: data.units K on an
+    rpm)."""
+    write_raw(tmp_path / "ds", {"K01.csv": "time,T_n,E_X\n0,0,0\n1,400,1\n2,400,1\n3,1000,2\n"
+                                           "4,0,1\n5,400,1\n"})
+    error = refused(tmp_path / "ds", file="K01.csv", column="T_n", row=2, says="data.roles.state")
+    assert "kelvin," not in str(error) and "data.units" not in str(error)
+
+
 def test_kelvin_threshold_is_configurable(tmp_path):
     write_raw(tmp_path / "ds", {"K01.csv": "time,T_0,E_X\n0,20,0\n1,45,1\n"})
     refused(tmp_path / "ds", {"kelvin_threshold_c": 40}, file="K01.csv", column="T_0", row=2,

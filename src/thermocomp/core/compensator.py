@@ -132,9 +132,13 @@ class Compensator(BaseEstimator):
             if self.offsets == "drop" and hasattr(est, "intercept_"):
                 self.offsets_[target] = float(est.intercept_)
                 est.intercept_ = 0.0
-            # the one-step law: from the fitted model's simulation on these (training) rows only
+            # the one-step law: from the fitted model's simulation on these (training) rows only,
+            # on the label in the frame it is scored and fed in (a late first probe: completed
+            # by y_hat(m), as predict_stacked completes the measured error it is given)
             s = np.asarray(est.predict(X, context=context), dtype=float).reshape(-1, 1)
-            self.one_step_[target] = OneStepLaw().fit(s, y, context=context)
+            self.one_step_[target] = OneStepLaw().fit(
+                s, self._scored_frame(m.Y[target].to_numpy(), s[:, 0], m.groups, y),
+                context=context)
             self.selected_[target], self.estimators_[target] = names, est
         return self
 
@@ -179,8 +183,22 @@ class Compensator(BaseEstimator):
                 out[:, k] = est.predict(X, context=measured)
                 continue
             s = np.asarray(est.predict(X, context=context), dtype=float).reshape(-1, 1)
+            # the measured error in the frame of the simulation s, E(t) - E(0): a late first
+            # probe's label E(t) - E(m) completed by y_hat(m), as it is scored (Compensator.
+            # measured); fed as it is, every one-step prediction was off by E(m) - E(0)
+            y = self._scored_frame(m.Y[target].to_numpy(), s[:, 0], m.groups)
+            measured = with_column(context, Y_MEASURED, y, len(m.X))
             out[:, k] = laws[target].predict(s, context=measured)
         return out
+
+    def _scored_frame(self, label: np.ndarray, simulated: np.ndarray, groups: np.ndarray,
+                      otherwise: np.ndarray | None = None) -> np.ndarray:
+        """``label`` completed by ``simulated`` at a late first measurement, the frame every
+        scorer compares in (:meth:`measured`), in the first-sample frame; else ``otherwise``
+        (default ``label``)."""
+        if self.reference == "first_sample" and late_starts(label, groups):
+            return completed(label, simulated, groups)
+        return label if otherwise is None else otherwise
 
     def predict(self, campaigns: Mapping[str, pd.DataFrame], mode: str = "simulation"
                 ) -> dict[str, pd.DataFrame]:

@@ -165,6 +165,8 @@ def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
         row.update({f: figures[f] for f in FIGURES})
         if baselines is not None:
             base = persistence_summary(metrics["targets"], target) if metrics else None
+            if base:     # whose it is: a late first probe's label is completed per model
+                base["run_id"] = r.info.run_id
             baselines.append({**base, "dataset": datasets[r.info.run_id]} if base and datasets else base)
         row["fit_time_s"] = r.data.metrics.get("fit_time_s")
         rows.append(row)

@@ -327,10 +327,15 @@ def _check_celsius(values: np.ndarray, name: str, path: Path, threshold: float,
         else:
             row = int(np.argmax(values > min(threshold, MAX_ABS_T_C))) + 1
             # kelvin only where the values in °C would pass: a spindle speed (3000, a column
-            # 'S' read as a temperature by default) is no temperature in any unit
+            # 'S' read as a temperature by default) is no temperature in any unit, nor is one
+            # whose readings are not nearly all in kelvin's range (a hob's 0 / 400 / 1000 rpm,
+            # median 400, was told to be kelvin: 0 K)
+            finite = values[np.isfinite(values)]
+            as_kelvin = (finite > threshold) & (finite <= threshold - ABSOLUTE_ZERO_C)
             why = ("temperatures look like kelvin, convert to °C, or say so: "
                    "data.units={<its header>: K}"
-                   if threshold < median <= threshold - ABSOLUTE_ZERO_C else
+                   if threshold < median <= threshold - ABSOLUTE_ZERO_C
+                   and as_kelvin.mean() >= 1 - FAULTY_SHARE else
                    f"no temperature, in °C or kelvin (the column's median is {median:.4g}): "
                    "another quantity? give its column a role, data.roles.state=[<header>] or "
                    "data.roles.ignore=[<header>]" if median > threshold else

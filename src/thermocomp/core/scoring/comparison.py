@@ -15,6 +15,8 @@ Printed (Markdown), saved as
 
 from __future__ import annotations
 
+from collections import Counter
+
 import pandas as pd
 
 from ...base.jsonsafe import json_safe
@@ -26,7 +28,13 @@ def shown_table(table: pd.DataFrame, baselines: list[dict]) -> pd.DataFrame:
     ranked itself), marked: it predicts from the measured error, which a compensator in service
     does not have.  What holds nothing (e_p95_8h of campaigns under 8 h) is left out."""
     shown = table.drop(columns=["run_id"]).assign(run=table["run_id"].str[:8])
-    marked = pd.DataFrame([{**b, "model": f"{b['model']}: {ONLINE_NOTE}", "run": "baseline"}
+    # several baselines of one dataset (a late first probe's label completed by each model's
+    # own y_hat(m), firstprobe62): each names the runs it is the baseline of
+    per_data = Counter(b.get("dataset") for b in baselines)
+    marked = pd.DataFrame([{**b, "model": f"{b['model']}: {ONLINE_NOTE}",
+                            "run": "baseline" + (f" of {', '.join(r[:8] for r in b['runs'])}"
+                                                 if per_data[b.get("dataset")] > 1
+                                                 and b.get("runs") else "")}
                            for b in baselines], columns=shown.columns)
     return informative(pd.concat([shown, marked], ignore_index=True) if baselines else shown)
 
@@ -44,7 +52,7 @@ def compare_json(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
             "runs": {f"{i:02d}_{r['run_id'][:8]}": {k: r[k] for k in numeric} for i, r in
                      enumerate(records)},
             "baselines": json_safe([{k: b[k] for k in ("model", "needs_measured_error_online",
-                                                       "dataset", *FIGURES) if k in b}
+                                                       "dataset", "runs", *FIGURES) if k in b}
                                     for b in baselines]),
             # a sweep over several datasets: ranked within each (``best`` is the first's)
             **({"best_per_dataset": {d: str(g["run_id"].iloc[0]) for d, g in

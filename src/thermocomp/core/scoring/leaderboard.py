@@ -117,9 +117,15 @@ def baseline_rows(summaries: Sequence[Mapping | None]) -> list[dict]:
     for s in summaries:
         if s is None:
             continue
-        if not any(all(_same(s[f], r[f]) for f in FIGURES) and s.get("dataset") == r.get("dataset")
-                   for r in rows):
-            rows.append({"model": BASELINE, "needs_measured_error_online": True, **s})
+        same = next((r for r in rows if all(_same(s[f], r[f]) for f in FIGURES)
+                     and s.get("dataset") == r.get("dataset")), None)
+        run = s.get("run_id")
+        if same is None:
+            rows.append({"model": BASELINE, "needs_measured_error_online": True,
+                         **{k: v for k, v in s.items() if k != "run_id"},
+                         "runs": [run] if run else []})
+        elif run:
+            same["runs"].append(run)
     return rows
 
 
