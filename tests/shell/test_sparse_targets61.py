@@ -178,3 +178,11 @@ def test_replay_streams_the_dense_inputs_and_scores_the_measured_rows(sparse, tm
         assert r["n_samples"] == metrics["targets"][target]["test"]["rows"]
         assert r["rmse_batch"] == pytest.approx(metrics["targets"][target]["test"]["rmse"])
         assert r["adapt"]["n_references"] > 0 and np.isfinite(r["rmse"])
+
+
+def test_init_says_the_probe_cycle_once(sparse, tmp_path):
+    """init's report and the read's own line had said it twice per target (stranger62)."""
+    run = thermocomp("init", str(sparse), f"out={tmp_path / 'init'}")
+    said = (run.stdout + run.stderr).splitlines()
+    for target in ("E_X", "E_Y"):
+        assert sum(f"{target} measured on 1 row in {EVERY}" in line for line in said) == 1, target

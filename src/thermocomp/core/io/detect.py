@@ -39,7 +39,6 @@ from .roles import RUN, date_and_time_of_day, matching_roles, named_as_time, spl
 from .runs import looks_like_run_labels, says_run
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
-from .sparse import said as sparse_said
 from .tables import _peek_csv, parquet, without_pandas_index
 from .timestamps import (
     CLOCK,
@@ -452,8 +451,7 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
     for cid in ds.ids():
         lines.append(f"campaign {cid}: {ds.manifest.loc[cid, 'split']}, "
                      f"{report['campaigns'][cid]['rows']} rows")
-    # a target measured now and then: read as a probe cycle, never interpolated (io.sparse)
-    lines += [sparse_said(column, entry) for column, entry in report.get("sparse_targets", {}).items()]
+    # (a target measured now and then: the read itself says it once, io.sparse.said)
     groups = group_columns(ds.manifest)
     said = [f"manifest column '{c}': {len(labels)} groups of campaigns ({', '.join(labels[:3])}"
             f"{', ...' if len(labels) > 3 else ''}); `run data.group_by={c}` fits and scores one "
