@@ -81,9 +81,9 @@ from ..streaming import Envelope
 from .derived import CLAMPED, DERIVED, INITIAL
 from .errors import NotExportable
 from .forest import Forests, Switches
-from .recurrent import Cells, Nets, is_lstm
 from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws, with_gains
 from .output import Output, adapt_fields, guard_fields, time_fields
+from .recurrent import Cells, Nets, is_lstm
 
 FORMATS = ("json", "c", "st", "onnx")
 
