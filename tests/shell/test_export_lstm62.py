@@ -115,3 +115,17 @@ def test_an_lstm_within_an_ati_model_is_still_refused_naming_it(data, tmp_path, 
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
              "track=false"], capsys, "LSTM is not one of the linear families",
             "lstm not within an ATI or a diagnosed model")
+
+
+def test_the_structured_text_declares_each_variable_once(data):
+    """A PLC's compiler refuses a name declared twice (exportrest62 declared ``tr`` LREAL for the
+    reference update and DINT for the forests' tree loop; blark and the tests' reader took it)."""
+    import re
+
+    from thermocomp.apps.deploy.export import exported_files
+
+    stream, _, _ = deployed(data, "model=mlr")
+    text = exported_files(stream, "st")["compensator.st"]
+    head = text.split("VAR CONSTANT", 1)[0]
+    names = re.findall(r"^\s+(\w+) : ", head, flags=re.M)
+    assert names and len(names) == len(set(names)), sorted(n for n in names if names.count(n) > 1)

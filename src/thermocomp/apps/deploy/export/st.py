@@ -369,7 +369,7 @@ VAR
     nk : INT;
     nl : INT;
     nr : INT;
-    tr : DINT;
+    tree : DINT;
     i : INT;
     j : INT;
     l : INT;
@@ -745,8 +745,8 @@ IF NOT refused THEN
         END_FOR;
         FOR l := 0 TO N_FORESTS - 1 DO
             fsum := 0.0;
-            FOR tr := FOREST_TREES[l] TO FOREST_TREES[l + 1] - 1 DO
-                node := TREE_ROOT[tr];
+            FOR tree := FOREST_TREES[l] TO FOREST_TREES[l + 1] - 1 DO
+                node := TREE_ROOT[tree];
                 FOR h := 1 TO TREE_DEPTH DO
                     IF NODE_LEFT[node] >= 0 THEN
                         IF f32[NODE_FEATURE[node]] <= NODE_THRESHOLD[node] THEN
