@@ -253,7 +253,8 @@ class StateSpace:
     @property
     def n_states(self) -> int:
         n = len(self.inputs)
-        return (len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.laws))
+        return ((len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.laws))
+                + 2 * len(self.lstm_target) * self.lstm_layers * self.lstm_hidden)   # an lstm's h, c
 
 
 def state_space(deployed, provenance: dict | None = None, known_ambient: bool = True) -> StateSpace:
