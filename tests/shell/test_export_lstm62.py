@@ -129,3 +129,18 @@ def test_the_structured_text_declares_each_variable_once(data):
     head = text.split("VAR CONSTANT", 1)[0]
     names = re.findall(r"^\s+(\w+) : ", head, flags=re.M)
     assert names and len(names) == len(set(names)), sorted(n for n in names if names.count(n) > 1)
+
+
+def test_a_network_whose_code_exceeds_a_megabyte_is_said_to_be_too_large_for_many_plcs():
+    from thermocomp.shell.stages.export import PLC_LIMIT_BYTES, _lstm_said
+
+    net = {"lstm_target": [0], "lstm_layers": 1, "lstm_hidden": 1, "lstm_w_ih": [[[1.0], [2.0]]],
+           "lstm_w_hh": [[[3.0]]], "lstm_b_ih": [[[0.0]]], "lstm_b_hh": [[[0.0]]],
+           "lstm_head": [[1.0]], "lstm_head_bias": [0.5]}
+    small = {"compensator.st": "x" * PLC_LIMIT_BYTES, "compensator.json": "y" * (2 * PLC_LIMIT_BYTES)}
+    said = _lstm_said(net, small)
+    assert said == ("lstm: 1 network(s) of 1 layer(s), hidden size 1, 7 weights stepped per "
+                    "sample (double): compensator.st 1,024 KB")
+    said = _lstm_said(net, {**small, "compensator.st": "x" * (PLC_LIMIT_BYTES + 1)})
+    assert "compensator.st beyond 1 MB: more than many PLCs take" in said
+    assert "model.estimator.hidden_size" in said
