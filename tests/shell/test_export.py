@@ -360,7 +360,8 @@ def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(datas
     ("arx_rf", ["model.estimator.forest.n_estimators=3", "ati=cmeans", "ati.estimator.n_intervals=2"],
      ["mlr, pcr, arx, lagbank", "arx_rf not within an ATI"]),     # (plain: exportrest62 exports it)
     pytest.param("lstm", ["model.estimator.max_epochs=2", "model.estimator.hidden_size=4",
-                          "model.estimator.chunk=16"], ["mlr, pcr, arx, lagbank"],
+                          "model.estimator.chunk=16", "ati=cmeans", "ati.estimator.n_intervals=2"],
+                 ["mlr, pcr, arx, lagbank", "lstm not within an ATI"],     # (plain: lstmexport62)
                  marks=pytest.mark.full(reason="the family check (statespace._target_law) that "
                                         "refuses [forest] in make test; here torch's import and "
                                         "an LSTM fit on top, ~4 s of CPU")),

@@ -167,17 +167,19 @@ def test_blend_members_that_feed_back_their_own_outputs_are_laws_of_their_own(da
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
 
 
-# (exportrest62: arx_rf exports, its forest as arrays; lstm is what is left, torch's fit on top)
-LSTM = "model.candidate_params={lstm:{max_epochs:2,hidden_size:4,chunk:16}}"
+# (exportrest62: arx_rf exports, its forest as arrays; lstmexport62: lstm too, its network as
+# arrays; an lstm within the ATI wrapper is what is left, torch's fit on top)
+LSTM = "++model.candidate_defaults={lstm:{max_epochs:2,hidden_size:4,chunk:16}}"   # ati+lstm's too
 
 
-def test_a_blend_member_that_is_no_linear_system_is_refused_naming_it_and_the_weights(data):
-    stream, _, _ = _deployed(data, "machine", "model.candidates=[mlr,lstm]", LSTM,
-                             "+model.estimator.chosen={E_X:mlr,E_Z:{mlr:0.7,lstm:0.3}}")
+def test_a_blend_member_that_does_not_export_is_refused_naming_it_and_the_weights(data):
+    stream, _, _ = _deployed(data, "machine", "model.candidates=[mlr,ati+lstm]", LSTM,
+                             "+model.estimator.chosen={E_X:mlr,E_Z:{mlr:0.7,ati+lstm:0.3}}")
     with pytest.raises(NotExportable) as err:
         state_space(stream)
-    says = ("blend mlr 0.7 + lstm 0.3 for E_Z", "member lstm (weight 0.3) does not export",
-            "LSTM is not one of the linear families")
+    says = ("blend mlr 0.7 + ati+lstm (any A0 +interaction) 0.3 for E_Z",
+            "member ati+lstm (weight 0.3) does not export",
+            "LSTM is not one of the linear families", "lstm not within an ATI")
     assert all(s in str(err.value) for s in says), str(err.value)
 
 
@@ -199,11 +201,11 @@ def test_export_says_what_auto_kept_per_target(data, tmp_path, capsys):
         assert f"{t} {kept}" in (out / "compensator.st").read_text() and f"{t} {kept}" in said
 
 
-def test_auto_that_kept_lstm_is_refused_naming_it(data, tmp_path, capsys):
+def test_auto_that_kept_an_lstm_within_ati_is_refused_naming_it(data, tmp_path, capsys):
     """Not exportable families are still refused, saying auto chose them (exportrest62: not
-    arx_rf any more, which exports)."""
-    _, _, comp = _deployed(data, "machine", "model.candidates=[lstm]", LSTM)
+    arx_rf any more, which exports; lstmexport62: nor lstm, but an lstm within ATI)."""
+    _, _, comp = _deployed(data, "machine", "model.candidates=[ati+lstm]", LSTM)
     pkl = save_model(comp, tmp_path / "model.pkl")
     refused(["export", f"data.path={data['machine']}", f"export.model={pkl}",
              f"out={tmp_path / 'code'}", "track=false"], capsys, "(auto) cannot be exported",
-            "model=auto chose lstm for E_X")
+            "model=auto chose ati+lstm for E_X")

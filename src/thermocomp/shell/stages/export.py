@@ -147,6 +147,33 @@ def _forest_said(exported: dict, files: dict) -> str:
     return said
 
 
+def _lstm_said(exported: dict, files: dict) -> str:
+    """One line of an lstm model's networks in the code: their shape, weights, the files' size,
+    and a warning where the code exceeds :data:`PLC_LIMIT_BYTES`."""
+    weights = sum(_count(exported[k]) for k in (
+        "lstm_w_ih", "lstm_w_hh", "lstm_b_ih", "lstm_b_hh", "lstm_head", "lstm_head_bias"))
+    sizes = _code_sizes(files)
+    said = (f"lstm: {len(exported['lstm_target'])} network(s) of {exported['lstm_layers']} "
+            f"layer(s), hidden size {exported['lstm_hidden']}, {weights:,} weights stepped per "
+            "sample (double): " + ", ".join(f"{name} {size / 1024:,.0f} KB"
+                                            for name, size in sizes.items()))
+    big = [name for name, size in sizes.items() if size > PLC_LIMIT_BYTES]
+    if big:
+        said += (f"; {' and '.join(big)} beyond 1 MB: more than many PLCs take (a smaller "
+                 "network: model.estimator.hidden_size, num_layers)")
+    return said
+
+
+def _count(values) -> int:
+    """The numbers in a nested list (one for a number)."""
+    return sum(map(_count, values)) if isinstance(values, list) else 1
+
+
+def _code_sizes(files: dict) -> dict:
+    return {name: len(text.encode("utf-8")) for name, text in files.items()
+            if name.endswith((".c", ".st")) and name != "stream.c"}
+
+
 # data.time values whose times stream.c reads as the reader does (its own parser: driver.py)
 STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601", "%d.%m.%Y %H:%M:%S",
                             "%Y-%m-%d %H:%M:%S", "%Y-%m-%dT%H:%M:%S"})
@@ -232,6 +259,8 @@ def export(cfg: DictConfig) -> dict:
     say(f"export ({fmt}, {family}{kept}): {', '.join(str(p) for p in written.values())}")
     if exported.get("forest_target"):
         say(_forest_said(exported, files))
+    if exported.get("lstm_target"):
+        say(_lstm_said(exported, files))
     if fmt == "c":
         say(f"build: cd {out} && cc compensator.c stream.c -lm -o stream && ./stream < rows.csv"
             " (--state FILE: a restarted stream goes on from FILE)")

@@ -13,7 +13,9 @@ and (export62) a state times the inputs' rises as derived inputs
 (:func:`.derived.derived_inputs`), its ambient steps as laws of the initial
 ambient, a lag bank's lag of its lag as a cascade, around a plain or an ATI model; (exportrest62)
 an ATI model whose ambient is the manifest's (given at a campaign's start), and ``arx_rf``, its
-ARX a law and its forest flat arrays the code walks (:mod:`.forest`).
+ARX a law and its forest flat arrays the code walks (:mod:`.forest`); (lstmexport62) ``lstm``,
+its skip path a law and its network's weights arrays the code steps per sample, in double
+(:mod:`.recurrent`), plain or a ``model=auto`` blend member.
 Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
 families of :data:`~.laws.LINEAR_FAMILIES` export, and what ``model=auto`` keeps of them (one, or
 a blend) and the ATI wrapper of them (:mod:`.laws`); any other model is refused

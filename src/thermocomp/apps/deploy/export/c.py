@@ -125,6 +125,10 @@ def header(ss: StateSpace) -> str:
 #define TC_N_TREES {len(ss.tree_root)}
 #define TC_N_NODES {len(ss.node_left)}
 #define TC_TREE_DEPTH {ss.tree_depth}   /* the longest walk from a root to a leaf */
+#define TC_N_LSTM {len(ss.lstm_target)}   /* lstm networks (one per target or blend member) */
+#define TC_LSTM_HIDDEN {ss.lstm_hidden}   /* their hidden size H (gates: 4 H rows, torch's i, f, g, o) */
+#define TC_LSTM_LAYERS {ss.lstm_layers}
+#define TC_LSTM_WIDTH {ss.lstm_width}   /* a layer's input row: max(TC_N_INPUTS, H) */
 #define TC_SWITCH_RAW_TIME {int(ss.switch_raw_time)}   /* 1: the ramp's time as read, 0: the stream's clock */
 #define TC_WIDTH (TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED + TC_N_INITIAL)   /* a law's inputs */
 #define TC_USES_TIME {int(ss.uses_time)}
@@ -162,6 +166,8 @@ typedef struct {{
     int sw_on[{max(len(ss.switch_input), 1)}];        /* a forest's machine state: on (> 0.5) */
     int sw_changed[{max(len(ss.switch_input), 1)}];   /* 1: it changed in this campaign */
     double sw_t0[{max(len(ss.switch_input), 1)}];     /* ... at this time, its last change */
+    double lstm_h[{_lstm_dims(ss)}];   /* an lstm's hidden state per net and layer */
+    double lstm_c[{_lstm_dims(ss)}];   /* ... and its cell state (0 at a campaign's start) */
     double factor[TC_N_LAWS];                   /* each law's factor in this campaign (ATI) */
     double bound[TC_N_OUTPUTS];                 /* limit of what the clamp takes out: the last
                                                    sample out of the envelope's */
@@ -250,6 +256,7 @@ def source(ss: StateSpace) -> str:
         _array("CLAMP_GAIN", ss.clamp_gain or [[0.0] * n] * r, (r, n)),
         _ints("CLAMP_OUTRIGHT", ss.clamp_outright or [0] * len(ss.targets)),
         *_forest_constants(ss),
+        *_lstm_constants(ss),
         *_pattern_constants(ss),
         f"static const int CLAMP = {int(ss.clamp)};",
         *_output_constants(ss)])
@@ -329,6 +336,44 @@ static void forests(tc_state *s, const double v[], double t, double y[]) {{
             sum += NODE_VALUE[node];
         }}
         y[FOREST_TARGET[l]] += FOREST_WEIGHT[l] * (sum / (FOREST_TREES[l + 1] - FOREST_TREES[l]));
+    }}
+}}
+
+static double sigmoid(double a) {{ return 1.0 / (1.0 + exp(-a)); }}
+
+/* an lstm model's network, its residual times its weight added to its target's output y: the
+   inputs as the model reads them, clamped (x - excess: it has no step gain, the stream runs it
+   on the clamped inputs alone), standardised; per layer the gates a = W_ih in + b_ih + W_hh h +
+   b_hh (torch's rows i, f, g, o), c = f c + i g, h = o tanh(c), in double as the model infers;
+   the read-out of the last layer's h times the model's output scale */
+static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
+    double in[{max(ss.lstm_width, 1)}], a[{max(4 * ss.lstm_hidden, 1)}], out;
+    int k, l, r, j;
+    for (k = 0; k < TC_N_LSTM; k++) {{
+        for (j = 0; j < TC_LSTM_WIDTH; j++) in[j] = 0.0;
+        for (j = 0; j < TC_N_INPUTS; j++)
+            in[j] = (x[0][j] - x[1][j] - LSTM_X_MEAN[k][j]) / LSTM_X_SCALE[k][j];
+        for (l = 0; l < TC_LSTM_LAYERS; l++) {{
+            double *h = s->lstm_h[k][l], *c = s->lstm_c[k][l];
+            if (s->first)
+                for (j = 0; j < TC_LSTM_HIDDEN; j++) h[j] = c[j] = 0.0;
+            for (r = 0; r < 4 * TC_LSTM_HIDDEN; r++) {{
+                double ih = 0.0, hh = 0.0;
+                for (j = 0; j < TC_LSTM_WIDTH; j++) ih += LSTM_W_IH[k][l][r][j] * in[j];
+                for (j = 0; j < TC_LSTM_HIDDEN; j++) hh += LSTM_W_HH[k][l][r][j] * h[j];
+                a[r] = ih + LSTM_B_IH[k][l][r] + hh + LSTM_B_HH[k][l][r];
+            }}
+            for (j = 0; j < TC_LSTM_HIDDEN; j++) {{
+                int H = TC_LSTM_HIDDEN;
+                c[j] = sigmoid(a[H + j]) * c[j] + sigmoid(a[j]) * tanh(a[2 * H + j]);
+                h[j] = sigmoid(a[3 * H + j]) * tanh(c[j]);
+                in[j] = h[j];
+            }}
+            for (j = TC_LSTM_HIDDEN; j < TC_LSTM_WIDTH; j++) in[j] = 0.0;
+        }}
+        out = LSTM_HEAD_BIAS[k];
+        for (j = 0; j < TC_LSTM_HIDDEN; j++) out += LSTM_HEAD[k][j] * in[j];   /* the last layer's h */
+        y[LSTM_TARGET[k]] += LSTM_WEIGHT[k] * (LSTM_Y_SCALE[k] * out);
     }}
 }}
 
@@ -507,6 +552,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         }}
     }}
     if (TC_N_FORESTS) forests(s, v, TC_SWITCH_RAW_TIME ? time : now, ysum[0]);
+    if (TC_N_LSTM) lstms(s, (const double (*)[TC_WIDTH])x, ysum[0]);
     for (i = 0; i < TC_N_OUTPUTS; i++) {{
         double y, bound = 0.0;
         ych[0] = ysum[0][i];
@@ -599,6 +645,27 @@ def _forest_constants(ss: StateSpace) -> list[str]:
             _ints("NODE_RIGHT", ss.node_right),
             _array("NODE_THRESHOLD", ss.node_threshold, (nodes,)),
             _array("NODE_VALUE", ss.node_value, (nodes,))]
+
+
+def _lstm_dims(ss: StateSpace) -> str:
+    return "][".join(str(max(d, 1)) for d in (len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden))
+
+
+def _lstm_constants(ss: StateSpace) -> list[str]:
+    """An lstm model's networks (:mod:`.recurrent`): standardisation, gates, read-out."""
+    k, L, H, W, n = (len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden, ss.lstm_width,
+                     len(ss.inputs))
+    return [_ints("LSTM_TARGET", ss.lstm_target),
+            _array("LSTM_WEIGHT", ss.lstm_weight, (k,)),
+            _array("LSTM_X_MEAN", ss.lstm_x_mean, (k, n)),
+            _array("LSTM_X_SCALE", ss.lstm_x_scale, (k, n)),
+            _array("LSTM_W_IH", ss.lstm_w_ih, (k, L, 4 * H, W)),
+            _array("LSTM_W_HH", ss.lstm_w_hh, (k, L, 4 * H, H)),
+            _array("LSTM_B_IH", ss.lstm_b_ih, (k, L, 4 * H)),
+            _array("LSTM_B_HH", ss.lstm_b_hh, (k, L, 4 * H)),
+            _array("LSTM_HEAD", ss.lstm_head, (k, H)),
+            _array("LSTM_HEAD_BIAS", ss.lstm_head_bias, (k,)),
+            _array("LSTM_Y_SCALE", ss.lstm_y_scale, (k,))]
 
 
 def _output_constants(ss: StateSpace) -> list[str]:

@@ -35,9 +35,11 @@ from .derived import (
 from .errors import NotExportable
 from .forest import is_forest
 from .members import described, is_diagnosed, members
+from .recurrent import is_lstm, skip_law
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
-# and arx_rf: its ARX a law, its forest walked as arrays (:mod:`.forest`, exportrest62)
+# and arx_rf: its ARX a law, its forest walked as arrays (:mod:`.forest`, exportrest62); lstm:
+# its skip path a law, its cell stepped over arrays (:mod:`.recurrent`, lstmexport62)
 UNBOUNDED = sys.float_info.max      # an open interval edge (finite for JSON and ST)
 PLAIN = 0.0                         # a lag's source: its input itself (a tau is > 0)
 
@@ -82,12 +84,14 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict,
     the inputs ``cols`` of the code's ``inputs``; ``powers`` registers the features the code
     computes from its inputs (Hammerstein powers, a diagnosed model's derived inputs: :data:`DERIVED`
     keys), shared by the targets.  The clamp's gains: :func:`with_gains`.  An ``arx_rf`` member
-    is its ARX's laws, its forest appended to ``forests`` as ``(weight, model)`` (:mod:`.forest`)."""
+    is its ARX's laws, its forest appended to ``forests`` as ``(weight, model)`` (:mod:`.forest`);
+    an ``lstm`` member its skip path's law, the model appended likewise (:mod:`.recurrent`)."""
     parts, own = members(est), []
     for name, w, member in parts:
-        if is_forest(member) and forests is not None:    # the ARX a law, the forest beside it
+        if (is_forest(member) or is_lstm(member)) and forests is not None:
+            # the linear part a law, the forest or the network beside it
             forests.append((w, member))
-            member = member.arx_
+            member = member.arx_ if is_forest(member) else skip_law(member)
         try:
             for lo, hi, base, interacts, derived in _intervals(member):
                 laws, period = _member_laws(base, interacts, w, cols, inputs, powers, period,
@@ -319,10 +323,12 @@ def _summed(own: list[Law]) -> list[Law]:
 def _target_law(est, n: int, period: float | None):
     """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
     if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
-        forest = "; arx_rf not within an ATI or a diagnosed model" if is_forest(est) else ""
+        forest = (f"; {'arx_rf' if is_forest(est) else 'lstm'} not within an ATI or a diagnosed "
+                  "model" if is_forest(est) or is_lstm(est) else "")
         raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
                             f"export to C/ST ({', '.join(LINEAR_FAMILIES)}; their ATI models and "
-                            "model=auto's blends of them too; arx_rf, its forest as arrays"
+                            "model=auto's blends of them too; arx_rf, its forest as arrays; "
+                            "lstm, its network as arrays"
                             f"{forest}); the served model runs it (thermocomp serve, connect)")
     c = float(est.intercept_)
     if isinstance(est, (MLR, PCR)):

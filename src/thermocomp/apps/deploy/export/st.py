@@ -11,7 +11,10 @@ step); outputs ``c`` (µm), ``n_clamped`` and ``refused`` (an input not finite, 
 the sample and its reference are not taken and ``c`` holds, as ``tc_step`` returns -1).  What
 was learned from references survives ``reset`` (the instance's initial values are the exported
 ones).  Only assignments, ``IF``, ``FOR``, ``EXP``, ``EXPT`` and (an arx_rf model's forest)
-``LREAL_TO_REAL``, ``REAL_TO_LREAL`` and ``DINT_TO_LREAL`` are used, one statement a line.
+``LREAL_TO_REAL``, ``REAL_TO_LREAL`` and ``DINT_TO_LREAL`` are used, one statement a line (an
+lstm model's tanh is written with ``EXP``, ``tanh(z) = 1 - 2 / (EXP(2 z) + 1)``, its argument
+held within +-20, where tanh is +-1 to double precision, and a sigmoid's within +-80: an EXP
+that overflows stops many PLCs).
 """
 
 from __future__ import annotations
@@ -87,6 +90,98 @@ def _forest_constants(ss: StateSpace) -> list[str]:
             _constant("NODE_VALUE", ss.node_value, (nodes,))]
 
 
+def _lstm_constants(ss: StateSpace) -> list[str]:
+    """An lstm model's networks (:mod:`.recurrent`)."""
+    k, L, H, W, n = (len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden, ss.lstm_width,
+                     len(ss.inputs))
+    return [f"    N_LSTM : INT := {k};", f"    LSTM_HIDDEN : INT := {H};",
+            f"    LSTM_LAYERS : INT := {L};", f"    LSTM_WIDTH : INT := {W};",
+            _constant("LSTM_TARGET", ss.lstm_target, (k,), "INT"),
+            _constant("LSTM_WEIGHT", ss.lstm_weight, (k,)),
+            _constant("LSTM_X_MEAN", ss.lstm_x_mean, (k, n)),
+            _constant("LSTM_X_SCALE", ss.lstm_x_scale, (k, n)),
+            _constant("LSTM_W_IH", ss.lstm_w_ih, (k, L, 4 * H, W)),
+            _constant("LSTM_W_HH", ss.lstm_w_hh, (k, L, 4 * H, H)),
+            _constant("LSTM_B_IH", ss.lstm_b_ih, (k, L, 4 * H)),
+            _constant("LSTM_B_HH", ss.lstm_b_hh, (k, L, 4 * H)),
+            _constant("LSTM_HEAD", ss.lstm_head, (k, H)),
+            _constant("LSTM_HEAD_BIAS", ss.lstm_head_bias, (k,)),
+            _constant("LSTM_Y_SCALE", ss.lstm_y_scale, (k,))]
+
+
+LSTM_BLOCK = """\
+    (* an lstm model's network, its residual times its weight added to its target: the inputs *)
+    (* as the model reads them, clamped (x - excess: no step gain, the stream runs it on the *)
+    (* clamped inputs alone), standardised; per layer the gates a = W_ih in + b_ih + W_hh h + b_hh *)
+    (* (torch's rows i, f, g, o), c := f c + i g, h := o tanh(c); sigmoid 1 / (1 + EXP(-a)) and *)
+    (* tanh(z) = 1 - 2 / (EXP(2 z) + 1), their arguments held where EXP cannot overflow *)
+    FOR nk := 0 TO N_LSTM - 1 DO
+        FOR j := 0 TO LSTM_WIDTH - 1 DO
+            lstm_in[j] := 0.0;
+        END_FOR;
+        FOR j := 0 TO N_INPUTS - 1 DO
+            lstm_in[j] := (x[0, j] - x[1, j] - LSTM_X_MEAN[nk, j]) / LSTM_X_SCALE[nk, j];
+        END_FOR;
+        FOR nl := 0 TO LSTM_LAYERS - 1 DO
+            IF first THEN
+                FOR j := 0 TO LSTM_HIDDEN - 1 DO
+                    lstm_h[nk, nl, j] := 0.0;
+                    lstm_c[nk, nl, j] := 0.0;
+                END_FOR;
+            END_IF;
+            FOR nr := 0 TO 4 * LSTM_HIDDEN - 1 DO
+                la := 0.0;
+                lb := 0.0;
+                FOR j := 0 TO LSTM_WIDTH - 1 DO
+                    la := la + LSTM_W_IH[nk, nl, nr, j] * lstm_in[j];
+                END_FOR;
+                FOR j := 0 TO LSTM_HIDDEN - 1 DO
+                    lb := lb + LSTM_W_HH[nk, nl, nr, j] * lstm_h[nk, nl, j];
+                END_FOR;
+                la := la + LSTM_B_IH[nk, nl, nr] + lb + LSTM_B_HH[nk, nl, nr];
+                IF nr >= 2 * LSTM_HIDDEN AND nr < 3 * LSTM_HIDDEN THEN
+                    (* g: tanh *)
+                    IF la > 20.0 THEN
+                        la := 20.0;
+                    ELSIF la < -20.0 THEN
+                        la := -20.0;
+                    END_IF;
+                    lstm_a[nr] := 1.0 - 2.0 / (EXP(2.0 * la) + 1.0);
+                ELSE
+                    (* i, f, o: sigmoid *)
+                    IF la > 80.0 THEN
+                        la := 80.0;
+                    ELSIF la < -80.0 THEN
+                        la := -80.0;
+                    END_IF;
+                    lstm_a[nr] := 1.0 / (1.0 + EXP(-la));
+                END_IF;
+            END_FOR;
+            FOR j := 0 TO LSTM_HIDDEN - 1 DO
+                lg := lstm_a[LSTM_HIDDEN + j] * lstm_c[nk, nl, j] + lstm_a[j] * lstm_a[2 * LSTM_HIDDEN + j];
+                lstm_c[nk, nl, j] := lg;
+                IF lg > 20.0 THEN
+                    lg := 20.0;
+                ELSIF lg < -20.0 THEN
+                    lg := -20.0;
+                END_IF;
+                lstm_h[nk, nl, j] := lstm_a[3 * LSTM_HIDDEN + j] * (1.0 - 2.0 / (EXP(2.0 * lg) + 1.0));
+                lstm_in[j] := lstm_h[nk, nl, j];
+            END_FOR;
+            FOR j := LSTM_HIDDEN TO LSTM_WIDTH - 1 DO
+                lstm_in[j] := 0.0;
+            END_FOR;
+        END_FOR;
+        lsum := LSTM_HEAD_BIAS[nk];
+        FOR j := 0 TO LSTM_HIDDEN - 1 DO
+            lsum := lsum + LSTM_HEAD[nk, j] * lstm_in[j];
+        END_FOR;
+        i := LSTM_TARGET[nk];
+        ysum[0, i] := ysum[0, i] + LSTM_WEIGHT[nk] * (LSTM_Y_SCALE[nk] * lsum);
+    END_FOR;
+"""
+
+
 def function_block(ss: StateSpace) -> str:
     n, m, taps, k, d = len(ss.inputs), len(ss.targets), len(ss.fir), len(ss.taus), ss.depth
     p, r, qi = len(ss.powers), len(ss.laws), len(ss.initial)
@@ -143,6 +238,7 @@ def function_block(ss: StateSpace) -> str:
         _constant("STATE_FIRST", ss.clamp_state_first or [], (m,), "INT"),
         _constant("BD", ss.bd, (r, d, n)), _constant("G", ss.g, (r, k)), _constant("AR", ss.ar, (r,)),
         *_forest_constants(ss),
+        *_lstm_constants(ss),
         f"    SUBSTITUTE_TIME : BOOL := {'TRUE' if ss.substitute_time else 'FALSE'};",
         f"    TIME_PERIOD : LREAL := {literal(ss.time_period)};",
         f"    USE_GUARD : BOOL := {'TRUE' if ss.guard else 'FALSE'};",
@@ -262,7 +358,18 @@ VAR
     zf : LREAL;
     fsum : LREAL;
     node : DINT;
-    tr : DINT;
+    lstm_h : ARRAY[{_dims(len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden)}] OF LREAL;
+    lstm_c : ARRAY[{_dims(len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden)}] OF LREAL;
+    lstm_in : ARRAY[{_dims(ss.lstm_width)}] OF LREAL;
+    lstm_a : ARRAY[{_dims(4 * ss.lstm_hidden)}] OF LREAL;
+    la : LREAL;
+    lb : LREAL;
+    lg : LREAL;
+    lsum : LREAL;
+    nk : INT;
+    nl : INT;
+    nr : INT;
+    tree : DINT;
     i : INT;
     j : INT;
     l : INT;
@@ -638,8 +745,8 @@ IF NOT refused THEN
         END_FOR;
         FOR l := 0 TO N_FORESTS - 1 DO
             fsum := 0.0;
-            FOR tr := FOREST_TREES[l] TO FOREST_TREES[l + 1] - 1 DO
-                node := TREE_ROOT[tr];
+            FOR tree := FOREST_TREES[l] TO FOREST_TREES[l + 1] - 1 DO
+                node := TREE_ROOT[tree];
                 FOR h := 1 TO TREE_DEPTH DO
                     IF NODE_LEFT[node] >= 0 THEN
                         IF f32[NODE_FEATURE[node]] <= NODE_THRESHOLD[node] THEN
@@ -656,7 +763,7 @@ IF NOT refused THEN
             ysum[0, i] := ysum[0, i] + FOREST_WEIGHT[l] * fsum;
         END_FOR;
     END_IF;
-    FOR i := 0 TO N_OUTPUTS - 1 DO
+{LSTM_BLOCK}    FOR i := 0 TO N_OUTPUTS - 1 DO
         ych[0] := ysum[0, i];
         ych[1] := ysum[1, i];
         bound := excess[i];

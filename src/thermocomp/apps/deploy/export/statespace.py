@@ -37,7 +37,8 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    feedback) to ``r_t``, the response to the excess; the output is ``y_t - clip(r_t, -b_t,
    b_t)`` (``y_t - r_t`` where
    ``clamp_outright_t``: the stream's clamp of a model without a step gain; an ``arx_rf``'s forest,
-   :mod:`.forest`, adds to ``y_t`` times its weight), ``b_t = |clamp_gain_t .
+   :mod:`.forest`, adds to ``y_t`` times its weight, an ``lstm``'s residual too, its cell stepped
+   on the clamped inputs ``x - ex``: :mod:`.recurrent`), ``b_t = |clamp_gain_t .
    ex|`` the response to the excess held for the envelope's horizon (as the stream does; the gain
    plus ``sum_s r_s clamp_state_gain[s]``, ``r_s`` a state's value at the sample before the
    campaign's first excess, held: an ``inputs_product``'s, export62; ``y_t - r_t`` in a campaign
@@ -82,6 +83,7 @@ from .errors import NotExportable
 from .forest import Forests, Switches
 from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws, with_gains
 from .output import Output, adapt_fields, guard_fields, time_fields
+from .recurrent import Cells, Nets, is_lstm
 
 FORMATS = ("json", "c", "st", "onnx")
 
@@ -205,6 +207,23 @@ class StateSpace:
     node_left: list = field(default_factory=list)
     node_right: list = field(default_factory=list)
     node_value: list = field(default_factory=list)
+    # an lstm model's network (:mod:`.recurrent`, lstmexport62): per net its target, blend
+    # weight, input standardisation, per layer the gates' weights and biases (torch's order i,
+    # f, g, o), the read-out of the last layer's h and the output scale; empty: none
+    lstm_target: list = field(default_factory=list)
+    lstm_weight: list = field(default_factory=list)
+    lstm_hidden: int = 0
+    lstm_layers: int = 0
+    lstm_width: int = 0
+    lstm_x_mean: list = field(default_factory=list)
+    lstm_x_scale: list = field(default_factory=list)
+    lstm_w_ih: list = field(default_factory=list)
+    lstm_w_hh: list = field(default_factory=list)
+    lstm_b_ih: list = field(default_factory=list)
+    lstm_b_hh: list = field(default_factory=list)
+    lstm_head: list = field(default_factory=list)
+    lstm_head_bias: list = field(default_factory=list)
+    lstm_y_scale: list = field(default_factory=list)
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -234,7 +253,8 @@ class StateSpace:
     @property
     def n_states(self) -> int:
         n = len(self.inputs)
-        return (len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.laws))
+        return ((len(self.fir) - 1) * n + n + 2 * (self.depth * n + len(self.taus) + len(self.laws))
+                + 2 * len(self.lstm_target) * self.lstm_layers * self.lstm_hidden)   # an lstm's h, c
 
 
 def state_space(deployed, provenance: dict | None = None, known_ambient: bool = True) -> StateSpace:
@@ -265,13 +285,16 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     N = len(inputs)
     env, clamp = stream.envelope, stream.envelope is not None and stream.policy == "clamp"
     laws, period, powers, chosen = [], None, Powers(), {}      # laws: (target index, Law)
-    outright, by_state, forests = [], [], Forests()
+    outright, by_state, forests, nets = [], [], Forests(), Nets()
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        met: list = []           # an arx_rf member's forest: (weight, model)
+        met: list = []           # an arx_rf or lstm member: (weight, model)
         own, period, kept = target_laws(t, est, cols, inputs, powers, period, met)
         for w, model in met:
-            forests.add(i, w, model, inputs)
+            if is_lstm(model):
+                nets.add(i, w, model, cols, N)
+            else:
+                forests.add(i, w, model, inputs)
         # the clamp's gain: the deployed model's own, split as its laws count (gain61: the one
         # computation the stream's step_gain sums at the campaign's A0); none: clamped outright
         terms, by = _clamp_terms(t, est, env.horizon_s, inputs) if clamp else (None, {})
@@ -339,7 +362,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         held=_held(inputs, n, powers, ambient, switches),
         # a forest's state ramps over the time the model is given: the stream's clock, or (a plain
         # stream without one: no lag's period) the time as read
-        **forests.fields(), switch_raw_time=bool(switches) and not isinstance(
+        **forests.fields(), **nets.fields(), switch_raw_time=bool(switches) and not isinstance(
             deployed, AdaptiveCompensator) and stream._clock is None,
         clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
                     for _, law in laws] if clamp else None,
@@ -499,6 +522,7 @@ class Simulator:
         self.output = Output(ss)       # guard and reference update: what is learned stays
         self.clock = SampleClock(ss.time_period, judge=ss.substitute_time)
         self.switches = Switches(ss) if ss.forest_target else None
+        self.cells = Cells(ss) if ss.lstm_target else None
         self.reset()
 
     def reset(self, ambient_c: float = float("nan")) -> None:
@@ -602,6 +626,9 @@ class Simulator:
         if ss.forest_target:        # an arx_rf's forest, in the measured channel (its weight)
             value = self.switches.step(v, float(time) if ss.switch_raw_time else now, first)
             np.add.at(y[0], np.asarray(ss.forest_target, int), np.asarray(ss.forest_weight) * value)
+        if ss.lstm_target:          # an lstm's residual, of the clamped inputs (no step gain)
+            value = self.cells.step(x - excess, first)
+            np.add.at(y[0], np.asarray(ss.lstm_target, int), np.asarray(ss.lstm_weight) * value)
         if excess.any():            # back in range, the bound of the excess's last sample holds
             gain = self.clamp_gain + np.einsum("s,rsi->ri", self.by_held, self.state_gain)
             self.bound = np.abs(self._summed(gain @ excess))

@@ -1,0 +1,151 @@
+"""An ``lstm`` model's network as arrays the exported code steps per sample (lstmexport62).
+
+:class:`~thermocomp.core.models.lstm.LSTM` predicts ``y = mu_y + s_y (w . xs + c + v . h_L +
+d)``, ``xs = (x - mu_x) / s_x`` its standardised inputs, ``h_L`` the last layer's hidden state
+of a torch LSTM run from ``(h, c) = 0`` at the campaign's first sample, in float64.  The linear
+skip path ``w . xs + c`` is a law of the code like an MLR's (:func:`skip_law`, in the model's
+units); the residual ``s_y (v . h_L + d)`` is added beside the laws, times the member's blend
+weight, in the measured channel (as an arx_rf's forest: :mod:`.forest`).  An LSTM has no step
+gain, so the stream runs it on the clamped inputs ``x - ex`` alone: the code takes the skip
+law's response to the excess out outright (``clamp_outright``) and steps the cell on ``x - ex``.
+
+Per net ``k`` and layer ``l`` (torch's gate order i, f, g, o over rows of ``4 H``): ``a = W_ih
+in + b_ih + W_hh h + b_hh``, ``i, f, o = sigmoid(a_i, a_f, a_o)``, ``g = tanh(a_g)``, ``c <- f c
++ i g``, ``h <- o tanh(c)``; ``in`` is ``xs`` (over the code's inputs: a column the net does not
+read has weight 0, mean 0, scale 1) for layer 0 and the layer below's new ``h`` after it.  ``W_ih``
+rows are ``lstm_width = max(n_inputs, H)`` wide (zeros beyond a layer's own inputs).  Every net
+of the code has the same ``H`` and layer count (else refused, naming them).
+"""
+
+from __future__ import annotations
+
+import sys
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from .errors import NotExportable
+
+
+def is_lstm(est) -> bool:
+    """``est`` is an ``lstm`` model (its module is loaded when one was unpickled)."""
+    module = sys.modules.get(__name__.split(".apps.")[0] + ".core.models.lstm")
+    return module is not None and type(est) is module.LSTM
+
+
+def skip_law(est):
+    """An :class:`~thermocomp.core.models.MLR` equal to ``est``'s skip path in the model's units:
+    ``mu_y + s_y (w . (x - mu_x) / s_x + c)`` (the residual is :class:`Nets`')."""
+    from ....core.models import MLR
+
+    w = est.net_.skip.weight.detach().numpy().reshape(-1).astype(float)
+    c = float(est.net_.skip.bias.detach().numpy().reshape(-1)[0])
+    law = MLR()
+    law.coef_ = est.y_scale_ * w / est.x_scale_
+    law.intercept_ = est.y_mean_ + est.y_scale_ * (c - float(np.sum(w * est.x_mean_ / est.x_scale_)))
+    return law
+
+
+def _numpy(t) -> np.ndarray:
+    return t.detach().numpy().astype(float)
+
+
+@dataclass
+class Nets:
+    """The LSTMs of the exported code's targets, gathered as :func:`.laws.target_laws` meets
+    them (module doc); :meth:`fields` are the :class:`~.statespace.StateSpace`'s."""
+
+    lstm_target: list = field(default_factory=list)
+    lstm_weight: list = field(default_factory=list)
+    lstm_hidden: int = 0
+    lstm_layers: int = 0
+    lstm_width: int = 0
+    lstm_x_mean: list = field(default_factory=list)     # (nets, n_inputs)
+    lstm_x_scale: list = field(default_factory=list)    # (nets, n_inputs)
+    lstm_w_ih: list = field(default_factory=list)       # (nets, layers, 4 H, width)
+    lstm_w_hh: list = field(default_factory=list)       # (nets, layers, 4 H, H)
+    lstm_b_ih: list = field(default_factory=list)       # (nets, layers, 4 H)
+    lstm_b_hh: list = field(default_factory=list)       # (nets, layers, 4 H)
+    lstm_head: list = field(default_factory=list)       # (nets, H)
+    lstm_head_bias: list = field(default_factory=list)  # (nets,)
+    lstm_y_scale: list = field(default_factory=list)    # (nets,)
+
+    def add(self, target: int, weight: float, est, cols, n: int) -> None:
+        """The network of the fitted LSTM ``est`` (weight ``weight`` in target ``target``'s
+        blend) reading the code's inputs ``cols`` of ``n``."""
+        cell, H, L = est.net_.lstm, int(est.hidden_size), int(est.num_layers)
+        if self.lstm_target and (H, L) != (self.lstm_hidden, self.lstm_layers):
+            raise NotExportable(f"the LSTMs of the targets have hidden_size, num_layers {H}, {L} "
+                                f"and {self.lstm_hidden}, {self.lstm_layers}; the code steps one "
+                                "shape of network")
+        width = max(n, H)
+        if self.lstm_target and width != self.lstm_width:
+            raise NotExportable("the LSTMs of the targets read inputs of different widths")
+        cols = np.asarray(cols, int)
+        mean, scale = np.zeros(n), np.ones(n)
+        mean[cols], scale[cols] = est.x_mean_, est.x_scale_
+        w_ih = np.zeros((L, 4 * H, width))
+        for layer in range(L):
+            w = _numpy(getattr(cell, f"weight_ih_l{layer}"))
+            if layer == 0:
+                w_ih[0][:, cols] = w
+            else:
+                w_ih[layer][:, :H] = w
+        self.lstm_target.append(int(target))
+        self.lstm_weight.append(float(weight))
+        self.lstm_hidden, self.lstm_layers, self.lstm_width = H, L, width
+        self.lstm_x_mean.append(mean.tolist())
+        self.lstm_x_scale.append(scale.tolist())
+        self.lstm_w_ih.append(w_ih.tolist())
+        for name, out in (("weight_hh", self.lstm_w_hh), ("bias_ih", self.lstm_b_ih),
+                          ("bias_hh", self.lstm_b_hh)):
+            out.append([_numpy(getattr(cell, f"{name}_l{layer}")).tolist() for layer in range(L)])
+        self.lstm_head.append(_numpy(est.net_.head.weight).reshape(-1).tolist())
+        self.lstm_head_bias.append(float(_numpy(est.net_.head.bias).reshape(-1)[0]))
+        self.lstm_y_scale.append(float(est.y_scale_))
+
+    def fields(self) -> dict:
+        """The StateSpace's fields (all empty without an LSTM)."""
+        if not self.lstm_target:
+            return {}
+        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+
+
+def _sigmoid(a: np.ndarray) -> np.ndarray:
+    return 1.0 / (1.0 + np.exp(-a))
+
+
+class Cells:
+    """The LSTMs stepped in numpy (the :class:`~.statespace.Simulator`'s), all nets at once."""
+
+    def __init__(self, ss):
+        k, L, H, W = len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden, ss.lstm_width
+        self.mean, self.scale = (np.asarray(a, float).reshape(k, -1)
+                                 for a in (ss.lstm_x_mean, ss.lstm_x_scale))
+        self.w_ih = np.asarray(ss.lstm_w_ih, float).reshape(k, L, 4 * H, W)
+        self.w_hh = np.asarray(ss.lstm_w_hh, float).reshape(k, L, 4 * H, H)
+        self.b = (np.asarray(ss.lstm_b_ih, float).reshape(k, L, 4 * H),
+                  np.asarray(ss.lstm_b_hh, float).reshape(k, L, 4 * H))
+        self.head = np.asarray(ss.lstm_head, float).reshape(k, H)
+        self.head_bias, self.y_scale = (np.asarray(a, float) for a in (ss.lstm_head_bias, ss.lstm_y_scale))
+        self.h, self.c = np.zeros((k, L, H)), np.zeros((k, L, H))
+        self.H, self.W = H, W
+
+    def step(self, x: np.ndarray, first: bool) -> np.ndarray:
+        """Each net's residual ``s_y (v . h_L + d)`` at the sample of (clamped) inputs ``x``."""
+        if first:
+            self.h[:], self.c[:] = 0.0, 0.0
+        H = self.H
+        for k in range(len(self.mean)):
+            inp = np.zeros(self.W)
+            inp[:len(x)] = (x - self.mean[k]) / self.scale[k]
+            for layer in range(self.h.shape[1]):
+                a = (self.w_ih[k, layer] @ inp + self.b[0][k, layer]
+                     + self.w_hh[k, layer] @ self.h[k, layer] + self.b[1][k, layer])
+                i, f = _sigmoid(a[:H]), _sigmoid(a[H:2 * H])
+                g, o = np.tanh(a[2 * H:3 * H]), _sigmoid(a[3 * H:])
+                self.c[k, layer] = f * self.c[k, layer] + i * g
+                self.h[k, layer] = o * np.tanh(self.c[k, layer])
+                inp = np.zeros(self.W)
+                inp[:H] = self.h[k, layer]
+        return self.y_scale * (np.einsum("kh,kh->k", self.head, self.h[:, -1]) + self.head_bias)
