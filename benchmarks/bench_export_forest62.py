@@ -13,13 +13,13 @@ scratch root.
 
 from __future__ import annotations
 
-import json
 import os
-import re
 import resource
 import subprocess
 import sys
 from pathlib import Path
+
+from compiled_stream import checked
 
 ROOT = Path(os.environ.get("BENCH_ROOT", "/tmp/exportrest62-bench"))
 REPO = Path(__file__).resolve().parents[1]
@@ -55,14 +55,7 @@ def main(trees: str | None) -> None:
         print("   " + ", ".join(f"{k} {v / 1024:,.0f} KB" for k, v in sizes.items()))
         if fmt != "c":
             continue
-        subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                        "stream.c", "-lm", "-o", "stream"], cwd=out, check=True)
-        check = subprocess.run(["sh", "check/check.sh"], cwd=out, capture_output=True, text=True)
-        worst = [float(w) for w in re.findall(r"largest \|difference\| (\S+) um", check.stderr)]
-        rows = sum(e["rows"] for e in json.loads((out / "check" / "check.json").read_text())["campaigns"])
-        print(f"   stream built {(out / 'stream').stat().st_size / 1024:,.0f} KB; check "
-              f"{'passed' if check.returncode == 0 else 'FAILED'}: {rows:,} rows, largest "
-              f"|C - replay| {max(worst, default=float('nan')):.2g} um")
+        print("   " + checked(out))
 
 
 if __name__ == "__main__":

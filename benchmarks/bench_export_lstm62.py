@@ -12,13 +12,11 @@ Everything in a scratch root.
 
 from __future__ import annotations
 
-import json
 import os
-import re
-import subprocess
 from pathlib import Path
 
 from bench_export_forest62 import thermocomp
+from compiled_stream import checked
 
 ROOT = Path(os.environ.get("BENCH_ROOT", "/tmp/lstmexport62-bench"))
 
@@ -40,14 +38,7 @@ def main() -> None:
                                                     for k, v in sizes.items()))
         if fmt != "c":
             continue
-        subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                        "stream.c", "-lm", "-o", "stream"], cwd=out, check=True)
-        check = subprocess.run(["sh", "check/check.sh"], cwd=out, capture_output=True, text=True)
-        worst = [float(w) for w in re.findall(r"largest \|difference\| (\S+) um", check.stderr)]
-        rows = sum(e["rows"] for e in json.loads((out / "check" / "check.json").read_text())["campaigns"])
-        print(f"   stream built {(out / 'stream').stat().st_size / 1024:,.0f} KB; check "
-              f"{'passed' if check.returncode == 0 else 'FAILED'}: {rows:,} rows, largest "
-              f"|C - replay| {max(worst, default=float('nan')):.2g} um")
+        print("   " + checked(out))
 
 
 if __name__ == "__main__":

@@ -5,6 +5,8 @@ own copy of these steps)."""
 from __future__ import annotations
 
 import io
+import json
+import re
 import subprocess
 from pathlib import Path
 
@@ -37,3 +39,16 @@ def whole_and_resumed(binary: Path, text: str) -> tuple[pd.DataFrame, pd.DataFra
     first = streamed(binary, "\n".join(lines[:half]) + "\n", state)
     second = streamed(binary, "\n".join([lines[0]] + lines[half:]) + "\n", state)
     return streamed(binary, text), pd.concat([first, second], ignore_index=True)
+
+
+def checked(folder: Path) -> str:
+    """An export folder's C built (:data:`STRICT`) and run on its conformance pack
+    (``check/check.sh``): one line, the binary's size, passed or not, rows and the largest
+    |C - replay|."""
+    binary = compile_stream(folder)
+    check = subprocess.run(["sh", "check/check.sh"], cwd=folder, capture_output=True, text=True)
+    worst = [float(w) for w in re.findall(r"largest \|difference\| (\S+) um", check.stderr)]
+    rows = sum(e["rows"] for e in json.loads((folder / "check" / "check.json").read_text())["campaigns"])
+    return (f"stream built {binary.stat().st_size / 1024:,.0f} KB; check "
+            f"{'passed' if check.returncode == 0 else 'FAILED'}: {rows:,} rows, largest "
+            f"|C - replay| {max(worst, default=float('nan')):.2g} um")
