@@ -399,3 +399,16 @@ def test_a_grid_start_is_said_only_where_samples_before_it_are_not_read(tmp_path
     assert df["T_a"].iloc[0] == pytest.approx(20.0)          # held from 8 ms before the grid
     assert ("before it are not read" in caplog.text) is said
     assert ("2 sample(s) before it are not read" in caplog.text) is said       # 'a''s first two
+
+
+def test_a_fields_unit_is_asked_for_as_data_units_not_as_a_header(tmp_path, capsys):
+    """A MATLAB field has no header a lab can edit: the refusal asks for data.units (stranger62:
+    it suggested 'dX [µm]'), and that override is read."""
+    temp, air, dx = _temps(0)
+    path = tmp_path / "data.mat"
+    sio.savemat(path, {"data": {"time": np.arange(N) * 10.0, "Tspindle": temp, "Troom": air,
+                                "dX": dx[:, None]}})
+    assert main(["init", str(path), f"out={tmp_path / 'a'}"]) == 2
+    said = capsys.readouterr().err
+    assert "data.units={dX: um}" in said and "'dX [µm]'" not in said
+    assert main(["init", str(path), f"out={tmp_path / 'b'}", "data.units={dX: um}"]) == 0

@@ -378,9 +378,12 @@ def check_an_error_is_named(header: list[str], first: dict, roles: dict, opts, f
                and not named_as_time(h)]
     either = [ambiguity(h, split_unit(h)[0]) for h in header if h.strip() and not _named(
         h, roles, opts) and role_by_unit(*_unit_of(h, opts)) == AMBIGUOUS]
+    # a MATLAB field or a TDMS channel has no header a lab can edit: its unit goes in data.units
+    unit_hint = ("data.units={dX: um}" if is_lab_file(file)
+                 else "in the header ('dX [µm]') or data.units={dX: um}")
     raise ContractError("no column reads as a measured error (no length unit in a header, µm or "
-                        "mm, no E_ name): name it, data.roles.error=[<header>], or give its unit "
-                        f"in the header ('dX [µm]'); the numeric columns: "
+                        "mm, no E_ name): name it, data.roles.error=[<header>], or give its unit, "
+                        f"{unit_hint}; the numeric columns: "
                         f"{', '.join(map(repr, numeric)) or 'none'}"
                         + "".join(f"; {line}" for line in either), file=file)
 
