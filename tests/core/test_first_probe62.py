@@ -106,7 +106,13 @@ def test_run_and_replay_score_the_change_since_the_first_probe(tmp_path):
     ds.manifest.to_csv(folder / "campaigns.csv")
     for cid, df in ds.campaigns.items():
         df.to_csv(folder / f"{cid}.csv", index=False)
-    thermocomp("run", f"data.path={folder}", "model=lagbank", f"out={tmp_path / 'run'}", *FAST)
+    said = thermocomp("run", f"data.path={folder}", "model=lagbank", f"out={tmp_path / 'run'}",
+                      *FAST).stderr
+    # how these figures are read is said once, and kept in metrics.json (stranger62)
+    note = [line for line in said.splitlines() if "first measured after" in line]
+    assert len(note) == 1 and f"E_X at row {FIRST}" in note[0]
+    warnings = json.loads((tmp_path / "run" / "metrics.json").read_text())["warnings"]
+    assert any(note[0].endswith(w) for w in warnings)
     thermocomp("replay", f"data.path={folder}", f"replay.model={tmp_path / 'run' / 'model.pkl'}",
                f"out={tmp_path / 'replay'}", *FAST)
     comp = load_model(tmp_path / "run" / "model.pkl")

@@ -69,3 +69,24 @@ def frame_loss(Y: np.ndarray, predicted: np.ndarray, groups: np.ndarray) -> floa
     frame's error is 0 by definition), else ``Y - y_hat``.  What the refits are kept by."""
     residual = completed(Y, predicted, groups, from_start=True) - np.asarray(predicted, float)
     return float(np.sqrt(np.nanmean(residual ** 2)))
+
+
+def late_first_note(reference: str, targets, campaigns) -> str | None:
+    """One line where, in the first-sample frame, a target's first measurement comes after its
+    campaign's first row: how its figures are then read (a stranger sees a model-dependent RMS
+    before otherwise and cannot guess why); None where no campaign has one."""
+    if reference != "first_sample":
+        return None
+    rows = {}
+    for df in campaigns.values():
+        for t in targets:
+            measured = np.flatnonzero(np.isfinite(df[t].to_numpy(float))) if t in df else []
+            if len(measured) and measured[0] > 0:
+                rows.setdefault(t, []).append(int(measured[0]))
+    if not rows:
+        return None
+    first = ", ".join(f"{t} at row {min(r)}" + (f"-{max(r)}" if max(r) > min(r) else "")
+                      + f" of {len(r)} campaign{'s' * (len(r) > 1)}" for t, r in rows.items())
+    return (f"first measured after the campaign's first sample ({first}): scored as the change "
+            "since that first reading, y_hat(t) - y_hat(m), the model fitted so; RMS before and "
+            "persistence read the error completed by the model's estimate of the drift before it")

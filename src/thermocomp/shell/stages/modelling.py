@@ -21,6 +21,7 @@ from ...base.files import staged_outputs, write_json
 from ...base.log import Clock, logger, say
 from ...base.paths import resolve
 from ...core import io
+from ...core.first_probe import late_first_note
 from ...core.models.auto import add_choices, as_chosen
 from ...core.models.hammerstein import without_states_note
 from ...core.run_report import Refits, ReportSettings, report_run
@@ -119,10 +120,12 @@ def _report(cfg: DictConfig, comp, ds, tracker, clock: Clock | None = None,
     from ...apps.volumetric.section import validate
 
     out, clock, extra = resolve(cfg.out), clock or Clock(), dict(extra or {})
-    note = without_states_note(comp)
-    if note:                  # said, and kept beside the figures it explains
+    notes = [n for n in (without_states_note(comp),
+                         late_first_note(comp.reference, comp.targets_, ds.campaigns)) if n]
+    for note in notes:        # said, and kept beside the figures it explains
         logger.warning(note)
-        extra["warnings"] = [note]
+    if notes:
+        extra["warnings"] = notes
     if volumetric is not None:
         extra["volumetric"], curves = validate(comp, ds, *volumetric, str(cfg.eval.mode),
                                                *reversed(simulated_truth(cfg)))
