@@ -315,6 +315,16 @@ def _fitted(dataset, tmp_path, model: str, *extra: str) -> Path:
     return save_model(comp, tmp_path / model / "model.pkl")
 
 
+def _exported_code(dataset, tmp_path, fmt: str, model: str, *extra: str) -> Path:
+    """``thermocomp export`` (with its check pack) of ``model`` fitted on the train split
+    (:func:`_fitted`), written into ``tmp_path/code``."""
+    pkl = _fitted(dataset, tmp_path, model, *extra)
+    out = tmp_path / "code"
+    assert main(["export", f"data.path={dataset}", f"export.model={pkl}", f"export.format={fmt}",
+                 f"out={out}", "track=false"]) == 0
+    return out
+
+
 def _trained(dataset, tmp_path, model: str, *extra: str) -> Path:
     out = tmp_path / model
     assert main(["run", f"data.path={dataset}", f"model={model}", f"out={out}", *FAST, *extra]) == 0

@@ -20,16 +20,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from test_export import StructuredText, _compose, needs_cc
+from test_export import StructuredText, _exported_code, needs_cc
 from test_export_ati57 import _levels
 from test_export_auto57 import TOLERANCE_UM, deployed
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.core.io.contract import manifest_ambient
-from thermocomp.shell.builders import build_compensator
-from thermocomp.shell.cli import main
-from thermocomp.shell.model_store import save_model
-from thermocomp.shell.source import read_streamed
 
 ATI = ("ati=cmeans", "ati.estimator.n_intervals=2")
 
@@ -70,15 +66,7 @@ def test_the_structured_text_and_the_arrays_take_the_given_ambient_as_replay(dat
 
 
 def _exported(data, tmp_path, fmt: str = "c"):
-    cfg = _compose("model=lagbank", "model.estimator.n_taus=3", *ATI, f"data.path={data}",
-                   "track=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    pkl = save_model(build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids}),
-                     tmp_path / "model.pkl")
-    out = tmp_path / "code"
-    assert main(["export", f"data.path={data}", f"export.model={pkl}", f"export.format={fmt}",
-                 f"out={out}", "track=false"]) == 0
-    return out
+    return _exported_code(data, tmp_path, fmt, "lagbank", "model.estimator.n_taus=3", *ATI)
 
 
 @needs_cc

@@ -20,15 +20,20 @@ import subprocess
 import numpy as np
 import pytest
 
-from test_export import StructuredText, _compiled, _compose, _make_dataset, _stdin, _streamed, needs_cc
+from test_export import (
+    StructuredText,
+    _compiled,
+    _exported_code,
+    _fitted,
+    _make_dataset,
+    _stdin,
+    _streamed,
+    needs_cc,
+)
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.core.models.arx_rf import ARXRF
-from thermocomp.shell.builders import build_compensator
-from thermocomp.shell.cli import main
-from thermocomp.shell.model_store import save_model
-from thermocomp.shell.source import read_streamed
 from thermocomp.shell.stages.export import PLC_LIMIT_BYTES, _forest_said
 
 SMALL = ("model.estimator.forest.n_estimators=4",)
@@ -104,14 +109,7 @@ def test_the_code_compares_the_feature_cast_to_float32_as_the_trees_do(data, tmp
 
 
 def _exported(data, tmp_path, fmt: str, *model: str):
-    cfg = _compose("model=arx_rf", *model, f"data.path={data}", "track=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    pkl = save_model(build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids}),
-                     tmp_path / "model.pkl")
-    out = tmp_path / "code"
-    assert main(["export", f"data.path={data}", f"export.model={pkl}", f"export.format={fmt}",
-                 f"out={out}", "track=false"]) == 0
-    return out
+    return _exported_code(data, tmp_path, fmt, "arx_rf", *model)
 
 
 @needs_cc
@@ -146,11 +144,7 @@ def test_the_structured_text_of_a_forest_parses_as_iec_61131_3(data, tmp_path):
 def test_an_arx_rf_within_an_ati_model_is_still_refused_naming_it(data, tmp_path, capsys):
     from conftest import refused
 
-    cfg = _compose("model=arx_rf", *SMALL, "ati=cmeans", "ati.estimator.n_intervals=2",
-                   f"data.path={data}", "track=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    pkl = save_model(build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids}),
-                     tmp_path / "model.pkl")
+    pkl = _fitted(data, tmp_path, "arx_rf", *SMALL, "ati=cmeans", "ati.estimator.n_intervals=2")
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
              "track=false"], capsys, "ARXRF is not one of the linear families",
             "arx_rf not within an ATI or a diagnosed model")

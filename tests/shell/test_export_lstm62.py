@@ -20,14 +20,10 @@ import subprocess
 import pytest
 
 from conftest import refused
-from test_export import _compose, _make_dataset, needs_cc
+from test_export import _exported_code, _fitted, _make_dataset, needs_cc
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import state_space
 from thermocomp.core.models.lstm import LSTM
-from thermocomp.shell.builders import build_compensator
-from thermocomp.shell.cli import main
-from thermocomp.shell.model_store import save_model
-from thermocomp.shell.source import read_streamed
 
 # a tiny network (test_export_auto57's): two epochs of four hidden units, kept whatever its
 # held-out score (validation_fraction 0: early stopping would keep the bare skip law here, the
@@ -67,14 +63,7 @@ def test_a_blend_member_lstm_exports_its_network_times_its_weight(data, tmp_path
 
 
 def _exported(data, tmp_path, fmt: str, *model: str):
-    cfg = _compose("model=lstm", *TINY, *model, f"data.path={data}", "track=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    pkl = save_model(build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids}),
-                     tmp_path / "model.pkl")
-    out = tmp_path / "code"
-    assert main(["export", f"data.path={data}", f"export.model={pkl}", f"export.format={fmt}",
-                 f"out={out}", "track=false"]) == 0
-    return out
+    return _exported_code(data, tmp_path, fmt, "lstm", *TINY, *model)
 
 
 @needs_cc
@@ -107,11 +96,7 @@ def test_the_structured_text_of_an_lstm_parses_as_iec_61131_3(data, tmp_path):
 
 
 def test_an_lstm_within_an_ati_model_is_still_refused_naming_it(data, tmp_path, capsys):
-    cfg = _compose("model=lstm", *TINY, "ati=cmeans", "ati.estimator.n_intervals=2",
-                   f"data.path={data}", "track=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    pkl = save_model(build_compensator(cfg, ds=ds).fit({c: ds.campaigns[c] for c in train_ids}),
-                     tmp_path / "model.pkl")
+    pkl = _fitted(data, tmp_path, "lstm", *TINY, "ati=cmeans", "ati.estimator.n_intervals=2")
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
              "track=false"], capsys, "LSTM is not one of the linear families",
             "lstm not within an ATI or a diagnosed model")
