@@ -147,10 +147,7 @@ def joined(ds: Dataset, ids: list[str], campaigns: Mapping[str, pd.DataFrame] | 
         df = campaigns[cid]
         t = df[TIME].to_numpy(float)
         if k:
-            before = campaigns[ids[k - 1]]
-            period = campaign_period(before)
-            gap = _clock_gap(starts, ids[k - 1], cid, float(before[TIME].iloc[-1]), float(t[0]))
-            step = gap if gap is not None and gap > GAP_PERIODS * period else period
+            step = _junction(starts, ids[k - 1], campaigns[ids[k - 1]], cid, float(t[0]))
             offset = frames[-1][TIME].iloc[-1] + step - t[0]
         frames.append(df.assign(**{TIME: t + offset}))
     out = pd.concat(frames, ignore_index=True)
@@ -158,13 +155,17 @@ def joined(ds: Dataset, ids: list[str], campaigns: Mapping[str, pd.DataFrame] | 
     return out
 
 
-def _clock_gap(starts, before: str, cid: str, last: float, first: float) -> float | None:
-    """Seconds from ``before``'s last sample (``last``, its time) to ``cid``'s first (``first``)
-    on their ``start`` instants' clock; None where either start is not known."""
-    if starts is None or pd.isna(starts.get(before)) or pd.isna(starts.get(cid)):
-        return None
-    return ((starts[cid] + pd.to_timedelta(first, unit="s"))
-            - (starts[before] + pd.to_timedelta(last, unit="s"))).total_seconds()
+def _junction(starts, before: str, frame: pd.DataFrame, cid: str | None, first: float) -> float:
+    """Seconds from ``before``'s last sample (its ``frame``) to ``cid``'s first (``first``, its
+    time): one sample period of ``before``, or the gap their ``start`` instants show where that
+    is longer than :data:`GAP_PERIODS` periods (rows not read between them)."""
+    period = campaign_period(frame)
+    if starts is None or cid is None or pd.isna(starts.get(before)) or pd.isna(starts.get(cid)):
+        return period
+    last = float(frame[TIME].iloc[-1])
+    gap = ((starts[cid] + pd.to_timedelta(first, unit="s"))
+           - (starts[before] + pd.to_timedelta(last, unit="s"))).total_seconds()
+    return gap if gap > GAP_PERIODS * period else period
 
 
 def lead_in(ds: Dataset, ids: list[str]) -> pd.DataFrame:
@@ -180,12 +181,8 @@ def preceding(ds: Dataset, ids: list[str], first_time: float, cid: str | None = 
     there and continues them (keeping the campaign's own clock); for a campaign ``cid`` of
     ``ds``, by the gap the ``start`` instants show instead where it is longer (as :func:`joined`)."""
     whole = joined(ds, ids)
-    before = ds.campaigns[ids[-1]]
-    period = campaign_period(before)
-    starts = start_instants(ds.manifest[START]) if cid is not None and START in ds.manifest.columns \
-        else None
-    gap = _clock_gap(starts, ids[-1], cid, float(before[TIME].iloc[-1]), first_time)
-    step = gap if gap is not None and gap > GAP_PERIODS * period else period
+    starts = start_instants(ds.manifest[START]) if START in ds.manifest.columns else None
+    step = _junction(starts, ids[-1], ds.campaigns[ids[-1]], cid, first_time)
     shift = first_time - step - float(whole[TIME].iloc[-1])
     return whole.assign(**{TIME: whole[TIME] + shift})
 

@@ -77,12 +77,13 @@ def late_first_note(reference: str, targets, campaigns) -> str | None:
     before otherwise and cannot guess why); None where no campaign has one."""
     if reference != "first_sample":
         return None
+    targets = list(targets)
+    frames = [df.reindex(columns=targets) for df in campaigns.values()]   # (a target not recorded: NaN)
+    Y = np.concatenate([df.to_numpy(float) for df in frames]) if frames else np.empty((0, 0))
+    groups = np.repeat(np.arange(len(frames)), [len(df) for df in frames])
     rows = {}
-    for df in campaigns.values():
-        for t in targets:
-            measured = np.flatnonzero(np.isfinite(df[t].to_numpy(float))) if t in df else []
-            if len(measured) and measured[0] > 0:
-                rows.setdefault(t, []).append(int(measured[0]))
+    for k, start, m in late_starts(Y, groups):
+        rows.setdefault(targets[k], []).append(m - start)
     if not rows:
         return None
     first = ", ".join(f"{t} at row {min(r)}" + (f"-{max(r)}" if max(r) > min(r) else "")
