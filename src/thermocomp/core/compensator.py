@@ -137,8 +137,7 @@ class Compensator(BaseEstimator):
             # by y_hat(m), as predict_stacked completes the measured error it is given)
             s = np.asarray(est.predict(X, context=context), dtype=float).reshape(-1, 1)
             self.one_step_[target] = OneStepLaw().fit(
-                s, self._scored_frame(m.Y[target].to_numpy(), s[:, 0], m.groups, y),
-                context=context)
+                s, self.scored_label(m.Y[target].to_numpy(), m.groups, s[:, 0]), context=context)
             self.selected_[target], self.estimators_[target] = names, est
         return self
 
@@ -186,19 +185,20 @@ class Compensator(BaseEstimator):
             # the measured error in the frame of the simulation s, E(t) - E(0): a late first
             # probe's label E(t) - E(m) completed by y_hat(m), as it is scored (Compensator.
             # measured); fed as it is, every one-step prediction was off by E(m) - E(0)
-            y = self._scored_frame(m.Y[target].to_numpy(), s[:, 0], m.groups)
+            y = self.scored_label(m.Y[target].to_numpy(), m.groups, s[:, 0])
             measured = with_column(context, Y_MEASURED, y, len(m.X))
             out[:, k] = laws[target].predict(s, context=measured)
         return out
 
-    def _scored_frame(self, label: np.ndarray, simulated: np.ndarray, groups: np.ndarray,
-                      otherwise: np.ndarray | None = None) -> np.ndarray:
-        """``label`` completed by ``simulated`` at a late first measurement, the frame every
-        scorer compares in (:meth:`measured`), in the first-sample frame; else ``otherwise``
-        (default ``label``)."""
-        if self.reference == "first_sample" and late_starts(label, groups):
-            return completed(label, simulated, groups)
-        return label if otherwise is None else otherwise
+    def scored_label(self, label: np.ndarray, groups: np.ndarray, simulated) -> np.ndarray:
+        """The stacked ``label`` (``(n,)`` or ``(n, k)``, campaigns ``groups``) as every scorer
+        compares it with this model's prediction: in the first-sample frame, a campaign first
+        measured after its first row completed by the model's simulation there
+        (:mod:`thermocomp.core.first_probe`); else ``label`` itself.  ``simulated``: that
+        simulation, or a function giving it (called only where a first measurement is late)."""
+        if self.reference != "first_sample" or not late_starts(label, groups):
+            return label
+        return completed(label, simulated() if callable(simulated) else simulated, groups)
 
     def predict(self, campaigns: Mapping[str, pd.DataFrame], mode: str = "simulation"
                 ) -> dict[str, pd.DataFrame]:
@@ -226,10 +226,14 @@ class Compensator(BaseEstimator):
         campaigns = {cid: df.assign(**{t: np.nan for t in self.targets_ if t not in df.columns})
                      for cid, df in campaigns.items()}
         m = stack(campaigns, [], self.targets_, self.reference)
-        if self.reference == "first_sample" and late_starts(m.Y.to_numpy(), m.groups):
-            predicted = self.predict(campaigns) if predicted is None else predicted
-            P = np.concatenate([predicted[cid][self.targets_].to_numpy(float) for cid in campaigns])
-            m.Y = pd.DataFrame(completed(m.Y.to_numpy(float), P, m.groups), columns=m.Y.columns)
+        def simulated():
+            frames = self.predict(campaigns) if predicted is None else predicted
+            return np.concatenate([frames[cid][self.targets_].to_numpy(float) for cid in campaigns])
+
+        Y = m.Y.to_numpy(float)
+        label = self.scored_label(Y, m.groups, simulated)
+        if label is not Y:
+            m.Y = pd.DataFrame(label, columns=m.Y.columns)
         return {cid: m.Y[m.rows_of(cid)].reset_index(drop=True) for cid in campaigns}
 
 

@@ -17,7 +17,6 @@ from ...base.errors import FallbackWarning
 from ...base.jsonsafe import json_safe
 from .. import continuation
 from ..compensator import MODES, Compensator
-from ..first_probe import completed, late_starts
 from ..frame import initial_ambient
 from ..io.contract import TIME, ContractError, Dataset, ambient_source
 from ..io.instants import START, start_instants
@@ -439,12 +438,8 @@ def _fold_residuals_stacked(template: Compensator, camps: dict, folds, modes) ->
         # the label as every scorer reads it (Compensator.measured): a late first probe's
         # completed by the fold model's simulation there (else each held-out campaign's residual
         # carried the unmeasured E(m) - E(0): hobbing bench E_dZ validation 8.85 um, test 0.56)
-        label = sub.Y.to_numpy(float)
-        if comp.reference == "first_sample" and late_starts(label, sub.groups):
-            simulated = preds.get("simulation")
-            if simulated is None:
-                simulated = comp.predict_stacked(sub, "simulation")
-            label = completed(label, simulated, sub.groups)
+        label = comp.scored_label(sub.Y.to_numpy(float), sub.groups, preds.get("simulation")
+                                  if "simulation" in preds else lambda: comp.predict_stacked(sub))
         for mode in modes:
             pred = preds[mode]
             for unit, (c, a, b) in units.items():

@@ -14,7 +14,7 @@ from scipy import stats as sps
 from sklearn.base import clone
 
 from ...base.errors import FallbackWarning
-from ..first_probe import completed, late_starts
+from ..first_probe import late_starts
 from ..frame import resolve_columns, stack
 from ..metrics import rsd
 from ..model_selection import TrainOnEachCampaign
@@ -116,19 +116,11 @@ def _mutual_prediction(campaigns, make_compensator, mode, trained_on) -> dict[st
     for i in bar(rows, desc="mutual prediction", total=len(rows), unit="model"):
         comp = clone(first).fit_stacked(m.subset(m.rows_of(i)))
         P = comp.predict_stacked(m, mode)
-        r = _completed(comp, Y, m, P if mode == "simulation" else None) - P
+        r = comp.scored_label(Y, m.groups, P if mode == "simulation"
+                              else (lambda comp=comp: comp.predict_stacked(m))) - P
         for k, t in enumerate(comp.targets_):
             residuals[t].append(r[:, k])
     return _rsd_matrices(residuals, rows, ids, bounds)
-
-
-def _completed(comp, Y: np.ndarray, m, simulated: np.ndarray | None) -> np.ndarray:
-    """The stacked labels ``Y`` as ``comp`` is scored on them: in the first-sample frame a
-    campaign first measured after its first row completed by ``comp``'s own simulation there
-    (:mod:`thermocomp.core.first_probe`), else ``Y`` itself."""
-    if comp.reference != "first_sample" or not late_starts(Y, m.groups):
-        return Y
-    return completed(Y, comp.predict_stacked(m) if simulated is None else simulated, m.groups)
 
 
 def _rows(ids: list, trained_on) -> list:
