@@ -22,7 +22,8 @@ from test_export_ati57 import _levels
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import NotExportable, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
-from thermocomp.core.models import ARXRF, MLR
+from thermocomp.core.models import MLR
+from thermocomp.core.models.lstm import LSTM
 from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
@@ -67,13 +68,15 @@ def test_a_diagnosed_model_of_laws_the_code_holds_exports_as_replay(data, tmp_pa
 def test_another_diagnosed_effect_is_refused_naming_it_and_the_route_that_runs_it(data, tmp_path,
                                                                                   capsys):
     # exportati60 exports the ambient law around an ATI model's interaction, the last effect
-    # refused: a base of no linear family is what a diagnosed model still refuses
-    stream, _, comp = _diagnosed(data, [AMBIENT_LAW, LAG], base=ARXRF(state_column=None))
-    with pytest.raises(NotExportable, match=r"model ARXRF is not one of the linear families"):
+    # refused: a base of no linear family is what a diagnosed model still refuses (exportati63:
+    # arx_rf exports, its forest beside the effects' laws; an lstm's network reads the features)
+    base = LSTM(max_epochs=2, hidden_size=4, chunk=16, validation_fraction=0.0)
+    stream, _, comp = _diagnosed(data, [AMBIENT_LAW, LAG], base=base)
+    with pytest.raises(NotExportable, match=r"a diagnosed model on lstm .* does not export"):
         state_space(stream)
     pkl = save_model(comp, tmp_path / "model.pkl")
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
-             "track=false"], capsys, "ARXRF is not one of the linear families", "thermocomp serve")
+             "track=false"], capsys, "a diagnosed model on lstm", "thermocomp serve")
     assert not (tmp_path / "code").exists()
 
 

@@ -10,9 +10,10 @@ frame), a lag a lag-bank channel on it (a low-pass of the inputs one per input).
 and the JSON (read back into the numpy reference) equal ``replay`` to 1e-9 µm, the clamp acting
 (outright, as the stream clamps a model without a step gain) and the door missing at a
 campaign's start and mid-run (held, as the served model holds it); what still does not export
-(a base of no linear family; an initial-state transient, ``ambient_step``, a lag bank's lag of
-a lag and effects around an ATI model export since exportrest60, the ambient law around an ATI
-model's ambient interaction since exportati60) is refused naming it.
+(an lstm base, arx_rf's exporting since exportati63; an initial-state transient,
+``ambient_step``, a lag bank's lag of a lag and effects around an ATI model export since
+exportrest60, the ambient law around an ATI model's ambient interaction since exportati60) is
+refused naming it.
 """
 
 from __future__ import annotations
@@ -30,7 +31,8 @@ from test_export_diagnosed59 import _diagnosed as diagnosed
 from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, state_space
 from thermocomp.apps.deploy.export.statespace import StateSpace
 from thermocomp.apps.deploy.streaming import replay
-from thermocomp.core.models import ARXRF, LagBank
+from thermocomp.core.models import LagBank
+from thermocomp.core.models.lstm import LSTM
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 
@@ -209,12 +211,13 @@ def test_a_diagnosed_low_pass_of_the_inputs_exports_as_their_lag_bank_channels(d
 
 def test_what_still_does_not_export_is_refused_naming_it_and_what_does(data):
     """A diagnosed model whose base is no linear family (exportati60 exports the ambient law
-    around an ATI model's interaction, ``x (A0 - 20)^2``, the last effect this refused): refused
-    naming the family and the linear families that export."""
+    around an ATI model's interaction, ``x (A0 - 20)^2``, the last effect this refused;
+    exportati63 arx_rf, its forest beside the laws): an lstm, refused naming the family and the
+    linear families that export."""
     for effects in ([AMBIENT_LAW], [LAG, AMBIENT_LAW, SQUARE]):
-        stream, _ = _diagnosed(data, effects, base=ARXRF())
-        with pytest.raises(NotExportable, match="model ARXRF is not one of the linear families"
-                           ) as info:
+        stream, _ = _diagnosed(data, effects, base=LSTM(max_epochs=2, hidden_size=4, chunk=16,
+                                                        validation_fraction=0.0))
+        with pytest.raises(NotExportable, match="a diagnosed model on lstm") as info:
             state_space(stream)
         assert "mlr, pcr, arx, lagbank, hammerstein" in str(info.value)
         assert "thermocomp serve" in str(info.value)

@@ -24,7 +24,6 @@ from test_export import (
     StructuredText,
     _compiled,
     _exported_code,
-    _fitted,
     _make_dataset,
     _stdin,
     _streamed,
@@ -141,14 +140,8 @@ def test_the_structured_text_of_a_forest_parses_as_iec_61131_3(data, tmp_path):
     assert parsed.exception is None, parsed.exception
 
 
-def test_an_arx_rf_within_an_ati_model_is_still_refused_naming_it(data, tmp_path, capsys):
-    from conftest import refused
-
-    pkl = _fitted(data, tmp_path, "arx_rf", *SMALL, "ati=cmeans", "ati.estimator.n_intervals=2")
-    refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
-             "track=false"], capsys, "ARXRF is not one of the linear families",
-            "arx_rf not within an ATI or a diagnosed model")
-
+# (an arx_rf within an ATI model, refused here before, exports since exportati63:
+# test_export_ati63.py)
 
 
 def test_a_forest_whose_code_exceeds_a_megabyte_is_said_to_be_too_large_for_many_plcs():

@@ -9,7 +9,7 @@ read-out, the output scale), on the clamped inputs as the stream runs a model wi
 gain, times its blend weight.  The compiled C, the Structured Text and the numpy reading equal
 ``replay`` to 1e-9 µm (one test sensor pushed out of the envelope: the clamp acts), plain (one
 or two layers) and as a blend member, ``thermocomp export``'s check pack passes and the
-network's size is said; an lstm within an ATI model is still refused, naming it.
+network's size is said (within an ATI model: test_export_ati63.py).
 """
 
 from __future__ import annotations
@@ -19,8 +19,7 @@ import subprocess
 
 import pytest
 
-from conftest import refused
-from test_export import _exported_code, _fitted, _make_dataset, needs_cc
+from test_export import _exported_code, _make_dataset, needs_cc
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import state_space
 from thermocomp.core.models.lstm import LSTM
@@ -95,11 +94,8 @@ def test_the_structured_text_of_an_lstm_parses_as_iec_61131_3(data, tmp_path):
     assert parsed.exception is None, parsed.exception
 
 
-def test_an_lstm_within_an_ati_model_is_still_refused_naming_it(data, tmp_path, capsys):
-    pkl = _fitted(data, tmp_path, "lstm", *TINY, "ati=cmeans", "ati.estimator.n_intervals=2")
-    refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
-             "track=false"], capsys, "LSTM is not one of the linear families",
-            "lstm not within an ATI or a diagnosed model")
+# (an lstm within an ATI model, refused here before, exports since exportati63:
+# test_export_ati63.py)
 
 
 def test_the_structured_text_declares_each_variable_once(data):

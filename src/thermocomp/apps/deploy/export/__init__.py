@@ -15,7 +15,9 @@ ambient, a lag bank's lag of its lag as a cascade, around a plain or an ATI mode
 an ATI model whose ambient is the manifest's (given at a campaign's start), and ``arx_rf``, its
 ARX a law and its forest flat arrays the code walks (:mod:`.forest`); (lstmexport62) ``lstm``,
 its skip path a law and its network's weights arrays the code steps per sample, in double
-(:mod:`.recurrent`), plain or a ``model=auto`` blend member.
+(:mod:`.recurrent`), plain or a ``model=auto`` blend member; (exportati63) both within an ATI
+model, each interval's forest or network counting in its interval, and arx_rf under a diagnosed
+model's effects.
 Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
 families of :data:`~.laws.LINEAR_FAMILIES` export, and what ``model=auto`` keeps of them (one, or
 a blend) and the ATI wrapper of them (:mod:`.laws`); any other model is refused

@@ -128,7 +128,8 @@ def header(ss: StateSpace) -> str:
 #define TC_N_LSTM {len(ss.lstm_target)}   /* lstm networks (one per target or blend member) */
 #define TC_LSTM_HIDDEN {ss.lstm_hidden}   /* their hidden size H (gates: 4 H rows, torch's i, f, g, o) */
 #define TC_LSTM_LAYERS {ss.lstm_layers}
-#define TC_LSTM_WIDTH {ss.lstm_width}   /* a layer's input row: max(TC_N_INPUTS, H) */
+#define TC_LSTM_WIDTH {ss.lstm_width}   /* a layer's input row: max(TC_LSTM_INPUTS, H) */
+#define TC_LSTM_INPUTS {len(ss.inputs) * (1 + ss.lstm_ambient)}   /* layer 0's: x [, x (A0 - centre)] */
 #define TC_SWITCH_RAW_TIME {int(ss.switch_raw_time)}   /* 1: the ramp's time as read, 0: the stream's clock */
 #define TC_WIDTH (TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED + TC_N_INITIAL)   /* a law's inputs */
 #define TC_USES_TIME {int(ss.uses_time)}
@@ -306,7 +307,8 @@ static int off_pattern(const double x[]) {{
     return r2 > PATTERN_TOL * PATTERN_TOL;
 }}
 
-/* an arx_rf model's forests on its machine states' switching, each times its weight added to its
+/* an arx_rf model's forests on its machine states' switching, each times its weight and its ARX's
+   law's factor (an ATI interval's: 0 outside it, the forest not walked) added to its
    target's output y: per tau a state's ramp expit(k (t - t0) / tau) from its last change t0 (k
    +1 on, -1 off; before its first change the state, 0 or 1), cast to float as scikit-learn's
    trees compare it with their thresholds; each tree walked from its root to a leaf (at most
@@ -328,31 +330,39 @@ static void forests(tc_state *s, const double v[], double t, double y[]) {{
         f32[l] = (float)f;
     }}
     for (l = 0; l < TC_N_FORESTS; l++) {{
-        double sum = 0.0;
+        double sum = 0.0, factor = s->factor[FOREST_LAW[l]];
+        if (factor == 0.0) continue;
         for (r = FOREST_TREES[l]; r < FOREST_TREES[l + 1]; r++) {{
             node = TREE_ROOT[r];
             for (d = 0; d < TC_TREE_DEPTH && NODE_LEFT[node] >= 0; d++)
                 node = f32[NODE_FEATURE[node]] <= NODE_THRESHOLD[node] ? NODE_LEFT[node] : NODE_RIGHT[node];
             sum += NODE_VALUE[node];
         }}
-        y[FOREST_TARGET[l]] += FOREST_WEIGHT[l] * (sum / (FOREST_TREES[l + 1] - FOREST_TREES[l]));
+        y[FOREST_TARGET[l]] += FOREST_WEIGHT[l] * factor * (sum / (FOREST_TREES[l + 1] - FOREST_TREES[l]));
     }}
 }}
 
 static double sigmoid(double a) {{ return 1.0 / (1.0 + exp(-a)); }}
 
-/* an lstm model's network, its residual times its weight added to its target's output y: the
-   inputs as the model reads them, clamped (x - excess: it has no step gain, the stream runs it
-   on the clamped inputs alone), standardised; per layer the gates a = W_ih in + b_ih + W_hh h +
+/* an lstm model's network, its residual times its weight and its skip law's factor (an ATI
+   interval's: 0 outside it, the net not stepped) added to its target's output y: the inputs as
+   the model reads them, clamped (x - excess: it has no step gain, the stream runs it on the
+   clamped inputs alone; an ATI interval's with the interaction, and them times A0 - centre),
+   standardised; per layer the gates a = W_ih in + b_ih + W_hh h +
    b_hh (torch's rows i, f, g, o), c = f c + i g, h = o tanh(c), in double as the model infers;
    the read-out of the last layer's h times the model's output scale */
 static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
     double in[{max(ss.lstm_width, 1)}], a[{max(4 * ss.lstm_hidden, 1)}], out;
     int k, l, r, j;
     for (k = 0; k < TC_N_LSTM; k++) {{
+        double factor = s->factor[LSTM_LAW[k]];
+        if (factor == 0.0) continue;
         for (j = 0; j < TC_LSTM_WIDTH; j++) in[j] = 0.0;
-        for (j = 0; j < TC_N_INPUTS; j++)
-            in[j] = (x[0][j] - x[1][j] - LSTM_X_MEAN[k][j]) / LSTM_X_SCALE[k][j];
+        for (j = 0; j < TC_LSTM_INPUTS; j++) {{
+            double xj = x[0][j % TC_N_INPUTS] - x[1][j % TC_N_INPUTS];
+            if (j >= TC_N_INPUTS) xj *= s->a0 - AMBIENT_CENTRE;
+            in[j] = (xj - LSTM_X_MEAN[k][j]) / LSTM_X_SCALE[k][j];
+        }}
         for (l = 0; l < TC_LSTM_LAYERS; l++) {{
             double *h = s->lstm_h[k][l], *c = s->lstm_c[k][l];
             if (s->first)
@@ -373,7 +383,7 @@ static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
         }}
         out = LSTM_HEAD_BIAS[k];
         for (j = 0; j < TC_LSTM_HIDDEN; j++) out += LSTM_HEAD[k][j] * in[j];   /* the last layer's h */
-        y[LSTM_TARGET[k]] += LSTM_WEIGHT[k] * (LSTM_Y_SCALE[k] * out);
+        y[LSTM_TARGET[k]] += LSTM_WEIGHT[k] * factor * (LSTM_Y_SCALE[k] * out);
     }}
 }}
 
@@ -640,6 +650,7 @@ def _forest_constants(ss: StateSpace) -> list[str]:
             _array("FEATURE_TAU", [f[1] for f in ss.switch_feature], (len(ss.switch_feature),)),
             _ints("FOREST_TARGET", ss.forest_target),
             _array("FOREST_WEIGHT", ss.forest_weight, (len(ss.forest_weight),)),
+            _ints("FOREST_LAW", ss.forest_law or [0] * len(ss.forest_target)),
             _ints("FOREST_TREES", ss.forest_trees or [0]), _ints("TREE_ROOT", ss.tree_root),
             _ints("NODE_FEATURE", ss.node_feature), _ints("NODE_LEFT", ss.node_left),
             _ints("NODE_RIGHT", ss.node_right),
@@ -654,9 +665,10 @@ def _lstm_dims(ss: StateSpace) -> str:
 def _lstm_constants(ss: StateSpace) -> list[str]:
     """An lstm model's networks (:mod:`.recurrent`): standardisation, gates, read-out."""
     k, L, H, W, n = (len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden, ss.lstm_width,
-                     len(ss.inputs))
+                     len(ss.inputs) * (1 + ss.lstm_ambient))
     return [_ints("LSTM_TARGET", ss.lstm_target),
             _array("LSTM_WEIGHT", ss.lstm_weight, (k,)),
+            _ints("LSTM_LAW", ss.lstm_law or [0] * k),
             _array("LSTM_X_MEAN", ss.lstm_x_mean, (k, n)),
             _array("LSTM_X_SCALE", ss.lstm_x_scale, (k, n)),
             _array("LSTM_W_IH", ss.lstm_w_ih, (k, L, 4 * H, W)),

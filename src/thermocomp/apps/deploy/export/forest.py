@@ -13,14 +13,18 @@ feature cast to float32 with the float64 threshold (``X.astype(float32) <= thres
 the code, or a feature on a threshold's float32 neighbour would take the other branch.  A
 forest's value is the mean of its trees' leaves (``forest_trees``: forest ``f``'s trees are
 ``forest_trees[f]`` to ``forest_trees[f + 1] - 1``), added to its target's output times its
-blend weight (``forest_target``, ``forest_weight``), in the measured channel only: the excess
-over the envelope does not reach it (the stream's clamped copy reads the same state).
+blend weight (``forest_target``, ``forest_weight``) and the factor of its ARX's law
+(``forest_law``: an arx_rf within an ATI model, one per interval of the campaign's initial
+ambient, counts in its interval only, exportati63; a forest that does not count is not walked),
+in the measured channel only: the excess over the envelope does not reach it (the stream's
+clamped copy reads the same state).
 """
 
 from __future__ import annotations
 
 import sys
 from dataclasses import dataclass, field
+from dataclasses import fields as dataclass_fields
 
 import numpy as np
 from scipy.special import expit
@@ -35,26 +39,35 @@ def is_forest(est) -> bool:
 
 
 @dataclass
-class Forests:
-    """The forests of the exported code's targets, gathered as :func:`.laws.target_laws` meets
-    them (module doc); :meth:`fields` are the :class:`~.statespace.StateSpace`'s."""
+class ForestArrays:
+    """An arx_rf model's forests as fields of the exported system (module doc): declared once
+    here, :class:`~.statespace.StateSpace` is made of them; all empty: none."""
 
-    switch_input: list = field(default_factory=list)
-    switch_feature: list = field(default_factory=list)
+    switch_input: list = field(default_factory=list)    # the states tracked (input; -1: none, 0)
+    switch_feature: list = field(default_factory=list)  # [switch, tau] per feature
+    switch_raw_time: bool = False     # the ramp's time: as read (else the stream's clock, now)
     forest_target: list = field(default_factory=list)
-    forest_weight: list = field(default_factory=list)
-    forest_trees: list = field(default_factory=lambda: [0])
+    forest_weight: list = field(default_factory=list)   # its blend weight
+    # (n_forests,) the law whose factor the forest's value takes: its ARX's, whose factor is 1 in
+    # its ATI interval of the campaign's initial ambient and 0 outside it (exportati63)
+    forest_law: list = field(default_factory=list)
+    forest_trees: list = field(default_factory=list)    # forest f: trees [f] .. [f + 1] - 1
     tree_root: list = field(default_factory=list)
-    tree_depth: int = 0
+    tree_depth: int = 0                                  # the longest walk, root to leaf
     node_feature: list = field(default_factory=list)
     node_threshold: list = field(default_factory=list)
-    node_left: list = field(default_factory=list)
+    node_left: list = field(default_factory=list)       # -1: a leaf
     node_right: list = field(default_factory=list)
     node_value: list = field(default_factory=list)
 
-    def add(self, target: int, weight: float, est, inputs: list) -> None:
+
+class Forests(ForestArrays):
+    """The forests of the exported code's targets, gathered as :func:`.laws.target_laws` meets
+    them (module doc); :meth:`fields` are the :class:`~.statespace.StateSpace`'s."""
+
+    def add(self, target: int, weight: float, est, inputs: list, law: int) -> None:
         """Forest of the fitted ARXRF ``est`` (weight ``weight`` in target ``target``'s blend),
-        reading its state column among the code's ``inputs``."""
+        reading its state column among the code's ``inputs``, counting as law ``law`` does."""
         column = est.state_column
         switch = NO_SWITCH if column is None else inputs.index(column)
         if switch not in self.switch_input:
@@ -67,6 +80,8 @@ class Forests:
             if key not in self.switch_feature:
                 self.switch_feature.append(key)
             features.append(self.switch_feature.index(key))
+        if not self.forest_trees:
+            self.forest_trees.append(0)
         for tree in (e.tree_ for e in est.forest_.estimators_):
             base = len(self.node_left)
             leaf = tree.children_left < 0
@@ -79,13 +94,14 @@ class Forests:
             self.node_value += [float(v) for v in tree.value[:, 0, 0]]
         self.forest_target.append(int(target))
         self.forest_weight.append(float(weight))
+        self.forest_law.append(int(law))
         self.forest_trees.append(len(self.tree_root))
 
     def fields(self) -> dict:
-        """The StateSpace's fields (all empty without a forest)."""
+        """The StateSpace's fields (none without a forest)."""
         if not self.forest_target:
             return {}
-        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+        return {f.name: getattr(self, f.name) for f in dataclass_fields(ForestArrays)}
 
 
 class Switches:

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
@@ -39,7 +40,8 @@ from .recurrent import is_lstm, skip_law
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
 # and arx_rf: its ARX a law, its forest walked as arrays (:mod:`.forest`, exportrest62); lstm:
-# its skip path a law, its cell stepped over arrays (:mod:`.recurrent`, lstmexport62)
+# its skip path a law, its cell stepped over arrays (:mod:`.recurrent`, lstmexport62); both within
+# an ATI model too, each interval's forest or network counting in its interval (exportati63)
 UNBOUNDED = sys.float_info.max      # an open interval edge (finite for JSON and ST)
 PLAIN = 0.0                         # a lag's source: its input itself (a tau is > 0)
 
@@ -78,22 +80,43 @@ class Law:
                    0.0, None, *self.key)
 
 
+class Beside(NamedTuple):
+    """An ``arx_rf``'s forest or an ``lstm``'s network the code runs beside the laws: its blend
+    ``weight``, the fitted ``model``, and the interval ``lo < A0 <= hi`` of the campaign's
+    initial ambient where it counts (an ATI model's; else unbounded), reading ``x (A0 - 20)`` too
+    where ``interacts`` (the interval's ambient interaction: an lstm's inputs)."""
+
+    weight: float
+    model: object
+    lo: float = -UNBOUNDED
+    hi: float = UNBOUNDED
+    interacts: bool = False
+
+    @property
+    def key(self) -> tuple:
+        """The key of the law whose factor it takes (:attr:`Law.key`): its own linear part's."""
+        return self.lo, self.hi, 0
+
+
 def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict,
-                period, forests: list | None = None) -> tuple[list[Law], object, str | None]:
+                period, beside: list) -> tuple[list[Law], object, str | None]:
     """``(laws, lag period, what model=auto or an ATI model kept)`` of ``target``'s estimator ``est`` reading
     the inputs ``cols`` of the code's ``inputs``; ``powers`` registers the features the code
     computes from its inputs (Hammerstein powers, a diagnosed model's derived inputs: :data:`DERIVED`
-    keys), shared by the targets.  The clamp's gains: :func:`with_gains`.  An ``arx_rf`` member
-    is its ARX's laws, its forest appended to ``forests`` as ``(weight, model)`` (:mod:`.forest`);
-    an ``lstm`` member its skip path's law, the model appended likewise (:mod:`.recurrent`)."""
+    keys), shared by the targets.  The clamp's gains: :func:`with_gains`.  An ``arx_rf`` (a
+    member, an ATI interval's model) is its ARX's laws, its forest appended to ``beside``
+    (:class:`Beside`, :mod:`.forest`); an ``lstm`` its skip path's law, its network likewise
+    (:mod:`.recurrent`)."""
     parts, own = members(est), []
     for name, w, member in parts:
-        if (is_forest(member) or is_lstm(member)) and forests is not None:
-            # the linear part a law, the forest or the network beside it
-            forests.append((w, member))
-            member = member.arx_ if is_forest(member) else skip_law(member)
         try:
             for lo, hi, base, interacts, derived in _intervals(member):
+                if is_forest(base) or is_lstm(base):
+                    # the linear part a law, the forest or the network beside it, counting where
+                    # that law does (an ATI interval's: exportati63)
+                    _alone(base, derived)
+                    beside.append(Beside(w, base, lo, hi, interacts))
+                    base = base.arx_ if is_forest(base) else skip_law(base)
                 laws, period = _member_laws(base, interacts, w, cols, inputs, powers, period,
                                             target, derived)
                 for law in laws:     # an ambient step's law counts within the interval too
@@ -102,6 +125,18 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict,
         except NotExportable as exc:
             raise NotExportable(_member_refused(target, name, w, parts, exc)) from None
     return _summed(own), period, _named(described(parts), parts)
+
+
+def _alone(est, derived: Derived) -> None:
+    """:class:`NotExportable` for an lstm a diagnosed model's effects are around: its network
+    reads the effects' features (``[x, derived inputs]``), which the code's nets do not (an
+    arx_rf's forest reads its machine state alone, its ARX the features: a law)."""
+    if is_lstm(est) and (derived.features or derived.blocks or derived.lowpass):
+        raise NotExportable("a diagnosed model on lstm (its network reading the effects' "
+                            "features) does not export; effects around the linear families "
+                            f"({', '.join(LINEAR_FAMILIES)}) or arx_rf do, and lstm plain, a "
+                            "blend member or within an ATI model; the served model runs it "
+                            "(thermocomp serve, connect)")
 
 
 def with_gains(laws: list[Law], terms: list, cols: np.ndarray, n: int, target: str,
@@ -323,13 +358,11 @@ def _summed(own: list[Law]) -> list[Law]:
 def _target_law(est, n: int, period: float | None):
     """``(c, b0, {delay: row}, [(tau, input, gain)], a, period)`` of one fitted estimator."""
     if type(est) not in (MLR, PCR, ARX, LagBank):     # exactly: a subclass may stream otherwise
-        forest = (f"; {'arx_rf' if is_forest(est) else 'lstm'} not within an ATI or a diagnosed "
-                  "model" if is_forest(est) or is_lstm(est) else "")
         raise NotExportable(f"model {type(est).__name__} is not one of the linear families that "
                             f"export to C/ST ({', '.join(LINEAR_FAMILIES)}; their ATI models and "
                             "model=auto's blends of them too; arx_rf, its forest as arrays; "
-                            "lstm, its network as arrays"
-                            f"{forest}); the served model runs it (thermocomp serve, connect)")
+                            "lstm, its network as arrays); the served model runs it (thermocomp "
+                            "serve, connect)")
     c = float(est.intercept_)
     if isinstance(est, (MLR, PCR)):
         return c, np.asarray(est.coef_, float), {}, [], 0.0, period

@@ -5,15 +5,21 @@ d)``, ``xs = (x - mu_x) / s_x`` its standardised inputs, ``h_L`` the last layer'
 of a torch LSTM run from ``(h, c) = 0`` at the campaign's first sample, in float64.  The linear
 skip path ``w . xs + c`` is a law of the code like an MLR's (:func:`skip_law`, in the model's
 units); the residual ``s_y (v . h_L + d)`` is added beside the laws, times the member's blend
-weight, in the measured channel (as an arx_rf's forest: :mod:`.forest`).  An LSTM has no step
+weight and the factor of its skip law (``lstm_law``: an lstm within an ATI model, one per
+interval of the campaign's initial ambient ``A0``, counts in its interval only, exportati63; a
+net that does not count is not stepped), in the measured channel (as an arx_rf's forest:
+:mod:`.forest`).  An LSTM has no step
 gain, so the stream runs it on the clamped inputs ``x - ex`` alone: the code takes the skip
 law's response to the excess out outright (``clamp_outright``) and steps the cell on ``x - ex``.
 
 Per net ``k`` and layer ``l`` (torch's gate order i, f, g, o over rows of ``4 H``): ``a = W_ih
 in + b_ih + W_hh h + b_hh``, ``i, f, o = sigmoid(a_i, a_f, a_o)``, ``g = tanh(a_g)``, ``c <- f c
 + i g``, ``h <- o tanh(c)``; ``in`` is ``xs`` (over the code's inputs: a column the net does not
-read has weight 0, mean 0, scale 1) for layer 0 and the layer below's new ``h`` after it.  ``W_ih``
-rows are ``lstm_width = max(n_inputs, H)`` wide (zeros beyond a layer's own inputs).  Every net
+read has weight 0, mean 0, scale 1) for layer 0 and the layer below's new ``h`` after it.  An
+ATI interval's model with the ambient interaction reads ``[x, x (A0 - 20 °C)]``: where a net
+does (``lstm_ambient``), layer 0's ``in`` is ``xs`` over ``[x, x (A0 - ambient_centre)]``, 2
+n_inputs wide (the second half weight 0 for a net without it).  ``W_ih`` rows are
+``lstm_width = max(n_inputs [x 2], H)`` wide (zeros beyond a layer's own inputs).  Every net
 of the code has the same ``H`` and layer count (else refused, naming them).
 """
 
@@ -21,6 +27,7 @@ from __future__ import annotations
 
 import sys
 from dataclasses import dataclass, field
+from dataclasses import fields as dataclass_fields
 
 import numpy as np
 
@@ -51,17 +58,23 @@ def _numpy(t) -> np.ndarray:
 
 
 @dataclass
-class Nets:
-    """The LSTMs of the exported code's targets, gathered as :func:`.laws.target_laws` meets
-    them (module doc); :meth:`fields` are the :class:`~.statespace.StateSpace`'s."""
+class NetArrays:
+    """An lstm model's networks as fields of the exported system (module doc): declared once
+    here, :class:`~.statespace.StateSpace` is made of them; all empty: none."""
 
     lstm_target: list = field(default_factory=list)
-    lstm_weight: list = field(default_factory=list)
+    lstm_weight: list = field(default_factory=list)     # its blend weight
+    # (nets,) the law whose factor the net's residual takes: its skip path's, 1 in its ATI
+    # interval of the campaign's initial ambient and 0 outside it (exportati63)
+    lstm_law: list = field(default_factory=list)
     lstm_hidden: int = 0
     lstm_layers: int = 0
     lstm_width: int = 0
-    lstm_x_mean: list = field(default_factory=list)     # (nets, n_inputs)
-    lstm_x_scale: list = field(default_factory=list)    # (nets, n_inputs)
+    # the nets read [x, x (A0 - ambient_centre)] (an ATI interval's model with the ambient
+    # interaction, exportati63): lstm_x_mean and lstm_x_scale are 2 n_inputs wide
+    lstm_ambient: bool = False
+    lstm_x_mean: list = field(default_factory=list)     # (nets, n_inputs [x 2: lstm_ambient])
+    lstm_x_scale: list = field(default_factory=list)    # (nets, n_inputs [x 2: lstm_ambient])
     lstm_w_ih: list = field(default_factory=list)       # (nets, layers, 4 H, width)
     lstm_w_hh: list = field(default_factory=list)       # (nets, layers, 4 H, H)
     lstm_b_ih: list = field(default_factory=list)       # (nets, layers, 4 H)
@@ -70,33 +83,41 @@ class Nets:
     lstm_head_bias: list = field(default_factory=list)  # (nets,)
     lstm_y_scale: list = field(default_factory=list)    # (nets,)
 
-    def add(self, target: int, weight: float, est, cols, n: int) -> None:
+
+class Nets(NetArrays):
+    """The LSTMs of the exported code's targets, gathered as :func:`.laws.target_laws` meets
+    them (module doc); :meth:`fields` are the :class:`~.statespace.StateSpace`'s."""
+
+    def __init__(self):
+        super().__init__()
+        # per net: its input standardisation and first layer's weights over [x, x (A0 -
+        # centre)] (2 n), its upper layers' (H wide): spread to the code's width in fields()
+        self._inputs: list = []
+        self._n = 0
+
+    def add(self, target: int, weight: float, est, cols, n: int, law: int,
+            ambient: bool = False) -> None:
         """The network of the fitted LSTM ``est`` (weight ``weight`` in target ``target``'s
-        blend) reading the code's inputs ``cols`` of ``n``."""
+        blend) reading the code's inputs ``cols`` of ``n`` (``ambient``: and them times ``A0 -
+        ambient_centre``, an ATI interval's interaction), counting as law ``law`` does."""
         cell, H, L = est.net_.lstm, int(est.hidden_size), int(est.num_layers)
         if self.lstm_target and (H, L) != (self.lstm_hidden, self.lstm_layers):
             raise NotExportable(f"the LSTMs of the targets have hidden_size, num_layers {H}, {L} "
                                 f"and {self.lstm_hidden}, {self.lstm_layers}; the code steps one "
                                 "shape of network")
-        width = max(n, H)
-        if self.lstm_target and width != self.lstm_width:
-            raise NotExportable("the LSTMs of the targets read inputs of different widths")
         cols = np.asarray(cols, int)
-        mean, scale = np.zeros(n), np.ones(n)
-        mean[cols], scale[cols] = est.x_mean_, est.x_scale_
-        w_ih = np.zeros((L, 4 * H, width))
-        for layer in range(L):
-            w = _numpy(getattr(cell, f"weight_ih_l{layer}"))
-            if layer == 0:
-                w_ih[0][:, cols] = w
-            else:
-                w_ih[layer][:, :H] = w
+        reads = np.r_[cols, n + cols] if ambient else cols     # among [x, x (A0 - centre)]
+        mean, scale, first = np.zeros(2 * n), np.ones(2 * n), np.zeros((4 * H, 2 * n))
+        mean[reads], scale[reads] = est.x_mean_, est.x_scale_
+        first[:, reads] = _numpy(cell.weight_ih_l0)
+        upper = [_numpy(getattr(cell, f"weight_ih_l{layer}")) for layer in range(1, L)]
+        self._inputs.append((mean, scale, first, upper))
+        self._n = n
         self.lstm_target.append(int(target))
         self.lstm_weight.append(float(weight))
-        self.lstm_hidden, self.lstm_layers, self.lstm_width = H, L, width
-        self.lstm_x_mean.append(mean.tolist())
-        self.lstm_x_scale.append(scale.tolist())
-        self.lstm_w_ih.append(w_ih.tolist())
+        self.lstm_law.append(int(law))
+        self.lstm_hidden, self.lstm_layers = H, L
+        self.lstm_ambient = self.lstm_ambient or bool(ambient)
         for name, out in (("weight_hh", self.lstm_w_hh), ("bias_ih", self.lstm_b_ih),
                           ("bias_hh", self.lstm_b_hh)):
             out.append([_numpy(getattr(cell, f"{name}_l{layer}")).tolist() for layer in range(L)])
@@ -105,10 +126,22 @@ class Nets:
         self.lstm_y_scale.append(float(est.y_scale_))
 
     def fields(self) -> dict:
-        """The StateSpace's fields (all empty without an LSTM)."""
+        """The StateSpace's fields (none without an LSTM): the layers' input rows ``max(n_inputs,
+        H)`` wide (``2 n_inputs`` where a net reads the ambient interaction: ``lstm_ambient``)."""
         if not self.lstm_target:
             return {}
-        return {k: getattr(self, k) for k in self.__dataclass_fields__}
+        own = self._n * (1 + self.lstm_ambient)     # the first layer's inputs
+        H = self.lstm_hidden
+        self.lstm_width = max(own, H)
+        w_ih = np.zeros((len(self._inputs), self.lstm_layers, 4 * H, self.lstm_width))
+        for k, (mean, scale, first, upper) in enumerate(self._inputs):
+            w_ih[k, 0, :, :own] = first[:, :own]
+            for layer, w in enumerate(upper, start=1):
+                w_ih[k, layer, :, :H] = w
+        self.lstm_w_ih = w_ih.tolist()
+        self.lstm_x_mean = [mean[:own].tolist() for mean, _, _, _ in self._inputs]
+        self.lstm_x_scale = [scale[:own].tolist() for _, scale, _, _ in self._inputs]
+        return {f.name: getattr(self, f.name) for f in dataclass_fields(NetArrays)}
 
 
 def _sigmoid(a: np.ndarray) -> np.ndarray:
@@ -130,11 +163,15 @@ class Cells:
         self.head_bias, self.y_scale = (np.asarray(a, float) for a in (ss.lstm_head_bias, ss.lstm_y_scale))
         self.h, self.c = np.zeros((k, L, H)), np.zeros((k, L, H))
         self.H, self.W = H, W
+        self.ambient, self.centre = bool(ss.lstm_ambient), float(ss.ambient_centre)
 
-    def step(self, x: np.ndarray, first: bool) -> np.ndarray:
-        """Each net's residual ``s_y (v . h_L + d)`` at the sample of (clamped) inputs ``x``."""
+    def step(self, x: np.ndarray, first: bool, a0: float = 0.0) -> np.ndarray:
+        """Each net's residual ``s_y (v . h_L + d)`` at the sample of (clamped) inputs ``x`` in a
+        campaign of initial ambient ``a0`` (read where the nets read ``x (A0 - centre)``)."""
         if first:
             self.h[:], self.c[:] = 0.0, 0.0
+        if self.ambient:
+            x = np.r_[x, x * (a0 - self.centre)]
         H = self.H
         for k in range(len(self.mean)):
             inp = np.zeros(self.W)

@@ -81,6 +81,8 @@ def _forest_constants(ss: StateSpace) -> list[str]:
             _constant("FEATURE_TAU", [f[1] for f in ss.switch_feature], (nf,)),
             _constant("FOREST_TARGET", ss.forest_target, (len(ss.forest_target),), "INT"),
             _constant("FOREST_WEIGHT", ss.forest_weight, (len(ss.forest_weight),)),
+            _constant("FOREST_LAW", ss.forest_law or [0] * len(ss.forest_target),
+                      (len(ss.forest_target),), "INT"),
             _constant("FOREST_TREES", ss.forest_trees or [0], (len(ss.forest_trees or [0]),), "DINT"),
             _constant("TREE_ROOT", ss.tree_root, (len(ss.tree_root),), "DINT"),
             _constant("NODE_FEATURE", ss.node_feature, (nodes,), "INT"),
@@ -93,11 +95,13 @@ def _forest_constants(ss: StateSpace) -> list[str]:
 def _lstm_constants(ss: StateSpace) -> list[str]:
     """An lstm model's networks (:mod:`.recurrent`)."""
     k, L, H, W, n = (len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden, ss.lstm_width,
-                     len(ss.inputs))
+                     len(ss.inputs) * (1 + ss.lstm_ambient))     # the first layer's inputs
     return [f"    N_LSTM : INT := {k};", f"    LSTM_HIDDEN : INT := {H};",
             f"    LSTM_LAYERS : INT := {L};", f"    LSTM_WIDTH : INT := {W};",
+            f"    LSTM_INPUTS : INT := {n};",
             _constant("LSTM_TARGET", ss.lstm_target, (k,), "INT"),
             _constant("LSTM_WEIGHT", ss.lstm_weight, (k,)),
+            _constant("LSTM_LAW", ss.lstm_law or [0] * k, (k,), "INT"),
             _constant("LSTM_X_MEAN", ss.lstm_x_mean, (k, n)),
             _constant("LSTM_X_SCALE", ss.lstm_x_scale, (k, n)),
             _constant("LSTM_W_IH", ss.lstm_w_ih, (k, L, 4 * H, W)),
@@ -110,74 +114,85 @@ def _lstm_constants(ss: StateSpace) -> list[str]:
 
 
 LSTM_BLOCK = """\
-    (* an lstm model's network, its residual times its weight added to its target: the inputs *)
-    (* as the model reads them, clamped (x - excess: no step gain, the stream runs it on the *)
-    (* clamped inputs alone), standardised; per layer the gates a = W_ih in + b_ih + W_hh h + b_hh *)
+    (* an lstm model's network, its residual times its weight and its skip law's factor (an ATI *)
+    (* interval's: 0 outside it, the net not stepped) added to its target: the inputs as the *)
+    (* model reads them, clamped (x - excess: no step gain, the stream runs it on the clamped *)
+    (* inputs alone; an ATI interval's with the interaction, and them times A0 - centre), *)
+    (* standardised; per layer the gates a = W_ih in + b_ih + W_hh h + b_hh *)
     (* (torch's rows i, f, g, o), c := f c + i g, h := o tanh(c); sigmoid 1 / (1 + EXP(-a)) and *)
     (* tanh(z) = 1 - 2 / (EXP(2 z) + 1), their arguments held where EXP cannot overflow *)
     FOR nk := 0 TO N_LSTM - 1 DO
-        FOR j := 0 TO LSTM_WIDTH - 1 DO
-            lstm_in[j] := 0.0;
-        END_FOR;
-        FOR j := 0 TO N_INPUTS - 1 DO
-            lstm_in[j] := (x[0, j] - x[1, j] - LSTM_X_MEAN[nk, j]) / LSTM_X_SCALE[nk, j];
-        END_FOR;
-        FOR nl := 0 TO LSTM_LAYERS - 1 DO
-            IF first THEN
-                FOR j := 0 TO LSTM_HIDDEN - 1 DO
-                    lstm_h[nk, nl, j] := 0.0;
-                    lstm_c[nk, nl, j] := 0.0;
-                END_FOR;
-            END_IF;
-            FOR nr := 0 TO 4 * LSTM_HIDDEN - 1 DO
-                la := 0.0;
-                lb := 0.0;
-                FOR j := 0 TO LSTM_WIDTH - 1 DO
-                    la := la + LSTM_W_IH[nk, nl, nr, j] * lstm_in[j];
-                END_FOR;
-                FOR j := 0 TO LSTM_HIDDEN - 1 DO
-                    lb := lb + LSTM_W_HH[nk, nl, nr, j] * lstm_h[nk, nl, j];
-                END_FOR;
-                la := la + LSTM_B_IH[nk, nl, nr] + lb + LSTM_B_HH[nk, nl, nr];
-                IF nr >= 2 * LSTM_HIDDEN AND nr < 3 * LSTM_HIDDEN THEN
-                    (* g: tanh *)
-                    IF la > 20.0 THEN
-                        la := 20.0;
-                    ELSIF la < -20.0 THEN
-                        la := -20.0;
-                    END_IF;
-                    lstm_a[nr] := 1.0 - 2.0 / (EXP(2.0 * la) + 1.0);
-                ELSE
-                    (* i, f, o: sigmoid *)
-                    IF la > 80.0 THEN
-                        la := 80.0;
-                    ELSIF la < -80.0 THEN
-                        la := -80.0;
-                    END_IF;
-                    lstm_a[nr] := 1.0 / (1.0 + EXP(-la));
-                END_IF;
-            END_FOR;
-            FOR j := 0 TO LSTM_HIDDEN - 1 DO
-                lg := lstm_a[LSTM_HIDDEN + j] * lstm_c[nk, nl, j] + lstm_a[j] * lstm_a[2 * LSTM_HIDDEN + j];
-                lstm_c[nk, nl, j] := lg;
-                IF lg > 20.0 THEN
-                    lg := 20.0;
-                ELSIF lg < -20.0 THEN
-                    lg := -20.0;
-                END_IF;
-                lstm_h[nk, nl, j] := lstm_a[3 * LSTM_HIDDEN + j] * (1.0 - 2.0 / (EXP(2.0 * lg) + 1.0));
-                lstm_in[j] := lstm_h[nk, nl, j];
-            END_FOR;
-            FOR j := LSTM_HIDDEN TO LSTM_WIDTH - 1 DO
+        lfac := factor[LSTM_LAW[nk]];
+        IF lfac <> 0.0 THEN
+            FOR j := 0 TO LSTM_WIDTH - 1 DO
                 lstm_in[j] := 0.0;
             END_FOR;
-        END_FOR;
-        lsum := LSTM_HEAD_BIAS[nk];
-        FOR j := 0 TO LSTM_HIDDEN - 1 DO
-            lsum := lsum + LSTM_HEAD[nk, j] * lstm_in[j];
-        END_FOR;
-        i := LSTM_TARGET[nk];
-        ysum[0, i] := ysum[0, i] + LSTM_WEIGHT[nk] * (LSTM_Y_SCALE[nk] * lsum);
+            FOR j := 0 TO LSTM_INPUTS - 1 DO
+                IF j < N_INPUTS THEN
+                    lx := x[0, j] - x[1, j];
+                ELSE
+                    lx := (x[0, j - N_INPUTS] - x[1, j - N_INPUTS]) * (a0 - AMBIENT_CENTRE);
+                END_IF;
+                lstm_in[j] := (lx - LSTM_X_MEAN[nk, j]) / LSTM_X_SCALE[nk, j];
+            END_FOR;
+            FOR nl := 0 TO LSTM_LAYERS - 1 DO
+                IF first THEN
+                    FOR j := 0 TO LSTM_HIDDEN - 1 DO
+                        lstm_h[nk, nl, j] := 0.0;
+                        lstm_c[nk, nl, j] := 0.0;
+                    END_FOR;
+                END_IF;
+                FOR nr := 0 TO 4 * LSTM_HIDDEN - 1 DO
+                    la := 0.0;
+                    lb := 0.0;
+                    FOR j := 0 TO LSTM_WIDTH - 1 DO
+                        la := la + LSTM_W_IH[nk, nl, nr, j] * lstm_in[j];
+                    END_FOR;
+                    FOR j := 0 TO LSTM_HIDDEN - 1 DO
+                        lb := lb + LSTM_W_HH[nk, nl, nr, j] * lstm_h[nk, nl, j];
+                    END_FOR;
+                    la := la + LSTM_B_IH[nk, nl, nr] + lb + LSTM_B_HH[nk, nl, nr];
+                    IF nr >= 2 * LSTM_HIDDEN AND nr < 3 * LSTM_HIDDEN THEN
+                        (* g: tanh *)
+                        IF la > 20.0 THEN
+                            la := 20.0;
+                        ELSIF la < -20.0 THEN
+                            la := -20.0;
+                        END_IF;
+                        lstm_a[nr] := 1.0 - 2.0 / (EXP(2.0 * la) + 1.0);
+                    ELSE
+                        (* i, f, o: sigmoid *)
+                        IF la > 80.0 THEN
+                            la := 80.0;
+                        ELSIF la < -80.0 THEN
+                            la := -80.0;
+                        END_IF;
+                        lstm_a[nr] := 1.0 / (1.0 + EXP(-la));
+                    END_IF;
+                END_FOR;
+                FOR j := 0 TO LSTM_HIDDEN - 1 DO
+                    lg := lstm_a[LSTM_HIDDEN + j] * lstm_c[nk, nl, j];
+                    lg := lg + lstm_a[j] * lstm_a[2 * LSTM_HIDDEN + j];
+                    lstm_c[nk, nl, j] := lg;
+                    IF lg > 20.0 THEN
+                        lg := 20.0;
+                    ELSIF lg < -20.0 THEN
+                        lg := -20.0;
+                    END_IF;
+                    lstm_h[nk, nl, j] := lstm_a[3 * LSTM_HIDDEN + j] * (1.0 - 2.0 / (EXP(2.0 * lg) + 1.0));
+                    lstm_in[j] := lstm_h[nk, nl, j];
+                END_FOR;
+                FOR j := LSTM_HIDDEN TO LSTM_WIDTH - 1 DO
+                    lstm_in[j] := 0.0;
+                END_FOR;
+            END_FOR;
+            lsum := LSTM_HEAD_BIAS[nk];
+            FOR j := 0 TO LSTM_HIDDEN - 1 DO
+                lsum := lsum + LSTM_HEAD[nk, j] * lstm_in[j];
+            END_FOR;
+            i := LSTM_TARGET[nk];
+            ysum[0, i] := ysum[0, i] + LSTM_WEIGHT[nk] * lfac * (LSTM_Y_SCALE[nk] * lsum);
+        END_IF;
     END_FOR;
 """
 
@@ -366,6 +381,8 @@ VAR
     lb : LREAL;
     lg : LREAL;
     lsum : LREAL;
+    lfac : LREAL;
+    lx : LREAL;
     nk : INT;
     nl : INT;
     nr : INT;
@@ -706,8 +723,9 @@ IF NOT refused THEN
             END_IF;
         END_FOR;
     END_FOR;
-    (* an arx_rf model's forests on its machine states' switching, each times its weight added to *)
-    (* its target: per tau a state's ramp 1 / (1 + EXP(-k (t - t0) / tau)) from its last change t0 *)
+    (* an arx_rf model's forests on its machine states' switching, each times its weight and its *)
+    (* ARX's law's factor (an ATI interval's: 0 outside it, not walked) added to its target: per tau *)
+    (* a state's ramp 1 / (1 + EXP(-k (t - t0) / tau)) from its last change t0 *)
     (* (k +1 on, -1 off; before its first change the state, 0 or 1), rounded to REAL as *)
     (* scikit-learn's trees compare it; each tree walked from its root (at most TREE_DEPTH steps) *)
     IF N_FORESTS > 0 THEN
@@ -744,23 +762,26 @@ IF NOT refused THEN
             f32[l] := REAL_TO_LREAL(LREAL_TO_REAL(f32[l]));
         END_FOR;
         FOR l := 0 TO N_FORESTS - 1 DO
-            fsum := 0.0;
-            FOR tree := FOREST_TREES[l] TO FOREST_TREES[l + 1] - 1 DO
-                node := TREE_ROOT[tree];
-                FOR h := 1 TO TREE_DEPTH DO
-                    IF NODE_LEFT[node] >= 0 THEN
-                        IF f32[NODE_FEATURE[node]] <= NODE_THRESHOLD[node] THEN
-                            node := NODE_LEFT[node];
-                        ELSE
-                            node := NODE_RIGHT[node];
+            lfac := factor[FOREST_LAW[l]];
+            IF lfac <> 0.0 THEN
+                fsum := 0.0;
+                FOR tree := FOREST_TREES[l] TO FOREST_TREES[l + 1] - 1 DO
+                    node := TREE_ROOT[tree];
+                    FOR h := 1 TO TREE_DEPTH DO
+                        IF NODE_LEFT[node] >= 0 THEN
+                            IF f32[NODE_FEATURE[node]] <= NODE_THRESHOLD[node] THEN
+                                node := NODE_LEFT[node];
+                            ELSE
+                                node := NODE_RIGHT[node];
+                            END_IF;
                         END_IF;
-                    END_IF;
+                    END_FOR;
+                    fsum := fsum + NODE_VALUE[node];
                 END_FOR;
-                fsum := fsum + NODE_VALUE[node];
-            END_FOR;
-            i := FOREST_TARGET[l];
-            fsum := fsum / DINT_TO_LREAL(FOREST_TREES[l + 1] - FOREST_TREES[l]);
-            ysum[0, i] := ysum[0, i] + FOREST_WEIGHT[l] * fsum;
+                i := FOREST_TARGET[l];
+                fsum := fsum / DINT_TO_LREAL(FOREST_TREES[l + 1] - FOREST_TREES[l]);
+                ysum[0, i] := ysum[0, i] + FOREST_WEIGHT[l] * lfac * fsum;
+            END_IF;
         END_FOR;
     END_IF;
 {LSTM_BLOCK}    FOR i := 0 TO N_OUTPUTS - 1 DO

@@ -80,17 +80,17 @@ from ..adaptive import AdaptiveCompensator
 from ..streaming import Envelope
 from .derived import CLAMPED, DERIVED, INITIAL
 from .errors import NotExportable
-from .forest import Forests, Switches
+from .forest import ForestArrays, Forests, Switches
 from .laws import AMBIENT_CENTRE_C, LINEAR_FAMILIES, PLAIN, UNBOUNDED, Powers, target_laws, with_gains
 from .output import Output, adapt_fields, guard_fields, time_fields
-from .recurrent import Cells, Nets, is_lstm
+from .recurrent import Cells, NetArrays, Nets, is_lstm
 
 FORMATS = ("json", "c", "st", "onnx")
 
 
 @dataclass
-class StateSpace:
-    """Arrays of the exported system (module doc); lists, so that it is its own JSON."""
+class _System:
+    """The linear system and what follows it, :class:`StateSpace`'s first fields."""
 
     inputs: list                 # raw input columns, in the order of ``u`` (the model's inputs,
                                  # then the machine states its powers read, unfiltered)
@@ -190,40 +190,14 @@ class StateSpace:
     # sensor, each campaign's ambient is its manifest's ``ambient_c`` (campaigns.csv), as the
     # stream takes it at reset (C: tc_set_ambient; ST: the input ambient_c; exportrest62)
     ambient_given: bool = False
-    # an arx_rf model's forest on a machine state's switching (:mod:`.forest`, exportrest62):
-    # the states tracked (input index; -1: none, a constant 0), the features [switch, tau], the
-    # forests (target, blend weight, their trees forest_trees[f]..forest_trees[f + 1] - 1), the
-    # trees' roots and depth bound, and one table of nodes (a leaf: left -1); empty: none
-    switch_input: list = field(default_factory=list)
-    switch_feature: list = field(default_factory=list)
-    switch_raw_time: bool = False     # the ramp's time: as read (else the stream's clock, now)
-    forest_target: list = field(default_factory=list)
-    forest_weight: list = field(default_factory=list)
-    forest_trees: list = field(default_factory=list)
-    tree_root: list = field(default_factory=list)
-    tree_depth: int = 0
-    node_feature: list = field(default_factory=list)
-    node_threshold: list = field(default_factory=list)
-    node_left: list = field(default_factory=list)
-    node_right: list = field(default_factory=list)
-    node_value: list = field(default_factory=list)
-    # an lstm model's network (:mod:`.recurrent`, lstmexport62): per net its target, blend
-    # weight, input standardisation, per layer the gates' weights and biases (torch's order i,
-    # f, g, o), the read-out of the last layer's h and the output scale; empty: none
-    lstm_target: list = field(default_factory=list)
-    lstm_weight: list = field(default_factory=list)
-    lstm_hidden: int = 0
-    lstm_layers: int = 0
-    lstm_width: int = 0
-    lstm_x_mean: list = field(default_factory=list)
-    lstm_x_scale: list = field(default_factory=list)
-    lstm_w_ih: list = field(default_factory=list)
-    lstm_w_hh: list = field(default_factory=list)
-    lstm_b_ih: list = field(default_factory=list)
-    lstm_b_hh: list = field(default_factory=list)
-    lstm_head: list = field(default_factory=list)
-    lstm_head_bias: list = field(default_factory=list)
-    lstm_y_scale: list = field(default_factory=list)
+
+
+@dataclass
+class StateSpace(NetArrays, ForestArrays, _System):
+    """Arrays of the exported system (module doc); lists, so that it is its own JSON.  After the
+    linear system's (:class:`_System`), an arx_rf model's forests on a machine state's
+    switching (:class:`~.forest.ForestArrays`, exportrest62) and an lstm model's networks
+    (:class:`~.recurrent.NetArrays`, lstmexport62), each declared once, in its module."""
 
     def to_dict(self) -> dict:
         return asdict(self)
@@ -288,13 +262,14 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     outright, by_state, forests, nets = [], [], Forests(), Nets()
     for i, (t, est, idx) in enumerate(stream._plan):
         cols = np.arange(n) if idx is None else np.asarray(idx)
-        met: list = []           # an arx_rf or lstm member: (weight, model)
-        own, period, kept = target_laws(t, est, cols, inputs, powers, period, met)
-        for w, model in met:
-            if is_lstm(model):
-                nets.add(i, w, model, cols, N)
+        beside: list = []        # an arx_rf's forest, an lstm's network (laws.Beside)
+        own, period, kept = target_laws(t, est, cols, inputs, powers, period, beside)
+        for b in beside:         # each takes the factor of its linear part's law
+            r = len(laws) + next(k for k, mine in enumerate(own) if mine.key == b.key)
+            if is_lstm(b.model):
+                nets.add(i, b.weight, b.model, cols, N, r, b.interacts)
             else:
-                forests.add(i, w, model, inputs)
+                forests.add(i, b.weight, b.model, inputs, r)
         # the clamp's gain: the deployed model's own, split as its laws count (gain61: the one
         # computation the stream's step_gain sums at the campaign's A0); none: clamped outright
         terms, by = _clamp_terms(t, est, env.horizon_s, inputs) if clamp else (None, {})
@@ -310,6 +285,10 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     initial = [k for k in sorted(powers, key=powers.get) if k[0] == INITIAL]
     ambient, given = _ambient_inputs(stream, inputs, ati or bool(initial), known_ambient)
     switches = [j for j in forests.switch_input if j >= 0]     # a forest's state columns
+    # a forest's state ramps over the time the model is given: the stream's clock, or (a plain
+    # stream without one: no lag's period) the time as read
+    forests.switch_raw_time = bool(switches) and not isinstance(
+        deployed, AdaptiveCompensator) and stream._clock is None
     read = {inputs[j] for j in _read(powers) | set(switches)} | {inputs[j] for j in ambient}
     if any(c not in read for c in states):
         raise NotExportable(f"the model reads columns beyond its inputs ({stream.columns_}): "
@@ -360,10 +339,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         if any(k[5:] for k in derived) else [],
         initial=[[k[3], list(k[1]), list(k[2])] for k in initial],
         held=_held(inputs, n, powers, ambient, switches),
-        # a forest's state ramps over the time the model is given: the stream's clock, or (a plain
-        # stream without one: no lag's period) the time as read
-        **forests.fields(), **nets.fields(), switch_raw_time=bool(switches) and not isinstance(
-            deployed, AdaptiveCompensator) and stream._clock is None,
+        **forests.fields(), **nets.fields(),
         clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
                     for _, law in laws] if clamp else None,
         clamp_outright=outright if any(outright) else [],
@@ -625,10 +601,10 @@ class Simulator:
         y = self._summed(y)
         if ss.forest_target:        # an arx_rf's forest, in the measured channel (its weight)
             value = self.switches.step(v, float(time) if ss.switch_raw_time else now, first)
-            np.add.at(y[0], np.asarray(ss.forest_target, int), np.asarray(ss.forest_weight) * value)
+            self._beside(y[0], ss.forest_target, ss.forest_weight, ss.forest_law, value)
         if ss.lstm_target:          # an lstm's residual, of the clamped inputs (no step gain)
-            value = self.cells.step(x - excess, first)
-            np.add.at(y[0], np.asarray(ss.lstm_target, int), np.asarray(ss.lstm_weight) * value)
+            value = self.cells.step(x - excess, first, self.a0)
+            self._beside(y[0], ss.lstm_target, ss.lstm_weight, ss.lstm_law, value)
         if excess.any():            # back in range, the bound of the excess's last sample holds
             gain = self.clamp_gain + np.einsum("s,rsi->ri", self.by_held, self.state_gain)
             self.bound = np.abs(self._summed(gain @ excess))
@@ -637,6 +613,14 @@ class Simulator:
         self.c = self.output.step(y[0] - np.clip(y[1], -bound, bound), first, dt,
                                   self.output.allowance(x, self.envelope))
         return self.c.copy()
+
+    def _beside(self, y: np.ndarray, targets: list, weights: list, laws: list,
+                value: np.ndarray) -> None:
+        """A forest's or network's ``value`` added to its target's ``y`` times its weight and
+        its law's factor (empty ``laws``, an older export: 1)."""
+        factor = self.factor[np.asarray(laws, int)] if laws else np.ones(len(value))
+        added = np.where(factor != 0.0, np.asarray(weights) * factor * value, 0.0)
+        np.add.at(y, np.asarray(targets, int), added)
 
     def _held_states(self, v: np.ndarray, excess: np.ndarray) -> None:
         """The states an inputs_product's gain reads, held at the campaign's first excess at
