@@ -14,7 +14,7 @@ import pandas as pd
 from sklearn.base import BaseEstimator, clone
 
 from .choices import MODES
-from .context import FIRST_PROBE_FRAME, Y_MEASURED, for_target, with_column
+from .context import Y_MEASURED, for_target, with_column
 from .denoise import denoise_campaigns, fit_denoiser
 from .first_probe import REFITS, completed, frame_loss, late_starts
 from .frame import Matrices, resolve_columns, stack
@@ -146,17 +146,12 @@ class Compensator(BaseEstimator):
         first-sample frame, where a campaign's first measurement comes after its first row
         (:mod:`thermocomp.core.first_probe`), refitted up to :data:`REFITS` times on the label
         completed by the model's own estimate of the unmeasured ``E(m) - E(0)``, so that it is
-        fitted in the frame it is used in (the stream's, from the campaign's first row), its own
-        validation told that frame (``FIRST_PROBE_FRAME``); the fit of the lowest
-        :func:`~thermocomp.core.first_probe.frame_loss` on these rows is kept (a refit that moves
-        away, as a Hammerstein's on a record of short campaigns, is not)."""
-        late = self.reference == "first_sample" and bool(late_starts(y, groups))
-        if not late:
-            return clone(template).fit(X, y, context=context), y
-        # the estimator's own validation scores these campaigns in this frame too (first_probe.
-        # in_frame): told so in the fit's context (no estimator reads it to predict)
-        context = with_column(context, FIRST_PROBE_FRAME, 1.0, len(y))
+        fitted in the frame it is used in (the stream's, from the campaign's first row); the fit
+        of the lowest :func:`~thermocomp.core.first_probe.frame_loss` on these rows is kept (a
+        refit that moves away, as a Hammerstein's on a record of short campaigns, is not)."""
         est = clone(template).fit(X, y, context=context)
+        if self.reference != "first_sample" or not late_starts(y, groups):
+            return est, y
         s = np.asarray(est.predict(X, context=context), dtype=float)
         best = (frame_loss(y, s, groups), est, y)
         for _ in range(REFITS):

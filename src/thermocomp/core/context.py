@@ -29,12 +29,6 @@ for one sample (stream) with these columns, all optional:
     ambient-interval models.
 ``y_measured``
     The measured target (one-step prediction only, ``eval.mode=one_step``).
-``first_probe_frame``
-    Fit only, set by the compensator where the label is in the first-sample frame and a
-    campaign's first measurement comes after its first row
-    (:mod:`thermocomp.core.first_probe`): an estimator's own validation (``model=auto``'s
-    folds, the lag bank's CV) then scores such a campaign's held-out rows as the run scores
-    them, :func:`~thermocomp.core.first_probe.in_frame`.
 ``S_*``, ``T_*``
     Raw values of the campaign's machine states and sensors, for models that
     read a column outside their declared inputs (ARX+RF's door signal, the
@@ -66,8 +60,7 @@ CAMPAIGN = "campaign"
 TIME = "time"
 AMBIENT_C0 = "ambient_c0"
 Y_MEASURED = "y_measured"
-FIRST_PROBE_FRAME = "first_probe_frame"
-RESERVED = (CAMPAIGN, TIME, AMBIENT_C0, Y_MEASURED, FIRST_PROBE_FRAME)
+RESERVED = (CAMPAIGN, TIME, AMBIENT_C0, Y_MEASURED)
 
 
 def has(context, name: str) -> bool:

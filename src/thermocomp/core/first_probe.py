@@ -10,11 +10,6 @@ the label is completed by the model's own estimate of that constant.
 * Scoring compares ``y_hat(t) - y_hat(m)`` with the label (what a lab can check of the deployed
   correction ``y_hat(t)``): the label completed by ``y_hat(m)`` (:func:`completed`), the same
   residual for every command that scores (run, replay, promote, monitor, diagnose, auto's folds).
-* An estimator's own validation (``model=auto``'s folds and votes, the lag bank's CV: the
-  compensator says so in the fit's context, :data:`~thermocomp.core.context.FIRST_PROBE_FRAME`)
-  scores the same residual, :func:`in_frame`: label and prediction both referenced at row
-  ``m`` (:func:`first_measured_rows`).  Scored on the raw label, a family whose ``y_hat(m)``
-  is far from 0 paid a constant no score the user sees contains.
 * Fitting refits on the label completed by ``y_hat(m) - y_hat(0)`` (``from_start=True``): the
   model's estimate of ``E(m) - E(0)``, free of its intercept (completing by ``y_hat(m)`` alone
   would add the intercept to the labels at every refit: measured, the deployed correction's
@@ -46,37 +41,6 @@ def late_starts(Y: np.ndarray, groups: np.ndarray) -> list[tuple[int, int, int]]
         for k in range(Y.shape[1]):
             if measured[:, k].any() and not measured[0, k]:
                 out.append((k, int(start), int(start + measured[:, k].argmax())))
-    return out
-
-
-def first_measured_rows(y: np.ndarray, groups) -> np.ndarray:
-    """Per row of the labels ``y`` (``(n,)``, campaigns ``groups``; None: one campaign) the row
-    of its campaign's first measurement where that comes after the campaign's first row
-    (:func:`late_starts`), -1 where it does not."""
-    y = np.asarray(y, float)
-    groups = np.zeros(len(y), int) if groups is None else np.asarray(groups)
-    rows = np.full(len(y), -1)
-    edges = np.flatnonzero(np.r_[True, groups[1:] != groups[:-1], True]) if len(y) else [0]
-    stops = dict(zip(edges[:-1], edges[1:]))
-    for _, start, m in late_starts(y, groups):
-        rows[start:stops[start]] = m
-    return rows
-
-
-def in_frame(values: np.ndarray, rows: np.ndarray) -> np.ndarray:
-    """``values`` (``(n,)`` or ``(n, k)``: a label, a prediction, errors) less their value at
-    ``rows`` (:func:`first_measured_rows`, of the first axis) where it is >= 0; ``values``
-    itself (no copy) where no row is.
-
-    A residual of the two, ``(y(t) - y(m)) - (y_hat(t) - y_hat(m))``, is the one scoring
-    compares (:meth:`~thermocomp.core.compensator.Compensator.scored_label`: ``y(m)`` is 0 as
-    measured), and stays that on a label a refit completed (:func:`completed`: a constant per
-    campaign, taken out here).  Linear: a blend's prediction in frame is its members', weighted."""
-    late = rows >= 0
-    if not late.any():
-        return values
-    out = np.array(values, float, copy=True)
-    out[late] -= np.asarray(values, float)[rows[late]]
     return out
 
 

@@ -19,18 +19,7 @@ from sklearn.utils.validation import check_is_fitted
 from ...base.errors import ConfigError, ParameterError
 from ...base.log import logger
 from ...base.params import check_estimator, choice, integer, number
-from ..context import (
-    AMBIENT_C0,
-    FIRST_PROBE_FRAME,
-    SideInputs,
-    context_columns,
-    groups_of,
-    has,
-    step_gain,
-    stream_steps,
-    subset,
-)
-from ..first_probe import first_measured_rows, in_frame
+from ..context import AMBIENT_C0, SideInputs, context_columns, groups_of, step_gain, stream_steps, subset
 from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
@@ -66,10 +55,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     fit these data (an ATI wrapper with campaigns at one ambient level, a
     family refusing them) is skipped with its reason.  MLR is validated as the baseline even
     when it is no candidate, and persistence (the previous measured error) is
-    reported beside it.  A campaign first measured after its first row in the first-sample
-    frame (the fit's context says so, ``FIRST_PROBE_FRAME``) is scored as the run scores it,
-    its folds' labels and predictions referenced at that measurement
-    (:func:`~thermocomp.core.first_probe.in_frame`; ``oof_`` and ``oof_y_`` so referenced).
+    reported beside it.
 
     ``combine='vote'`` keeps a :class:`~thermocomp.core.models.blend.Blend` of the
     candidates weighted by bootstrap votes over the validation folds (each
@@ -194,10 +180,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         # a target measured now and then (NaN between measurements): every fold scores its
         # measured rows (the candidates fit on theirs, their dynamics run over every row)
         folds = [(fit, pred, score & np.isfinite(y)) for fit, pred, score in self._folds(groups, len(y))]
-        # a late first probe in the first-sample frame: label and predictions of each fold
-        # referenced at the campaign's first measurement, the residual the run scores
-        frames = _fold_frames(y, groups, folds, context)
-        labels = [_scored(y[pred], rows, pred, score) for (_, pred, score), rows in zip(folds, frames)]
         self.validation_, self.skipped_, self.fit_seconds_, self.oof_ = {}, {}, {}, {}
         runs = dict(self.candidates)
         if BASELINE not in runs:
@@ -208,7 +190,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             why = _not_applicable(name, context, groups) or _same_as(name, est, runs, context,
                                                                       len(y))
             if why is None:
-                why = self._validate(name, est, X, y, context, folds, frames, labels)
+                why = self._validate(name, est, X, y, context, folds)
                 _said(name, self.fit_seconds_.get(name, 0.0), self.validation_.get(name), why)
             if why is not None:
                 self.skipped_[name] = why
@@ -216,7 +198,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         last = persistence(y, groups)
         self.validation_[PERSISTENCE] = rmse(y[held] - last[held])
         how = f"{len(folds)} {self.scheme_} fold(s)"
-        self.oof_y_ = np.concatenate(labels)
+        self.oof_y_ = np.concatenate([y[score] for *_, score in folds])
         self.oof_fold_ = np.concatenate([np.full(score.sum(), k) for k, (*_, score) in enumerate(folds)])
         self.oof_folds_ = (len(y), [(np.flatnonzero(fit), np.flatnonzero(score)) for fit, _, score in folds])
         self.oof_in_range_ = None   # an SVD per fold: where it chooses the rows, or is kept
@@ -347,18 +329,17 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             return LeaveBlockOut(self.n_folds, start, self.gap_blocks).folds(n)
         return BlockedForward(self.n_folds, self.min_train_fraction, self.gap_blocks).folds(groups, n)
 
-    def _validate(self, name, est, X, y, context, folds, frames, labels) -> str | None:
-        """Record ``name``'s pooled validation RMSE; the reason when it cannot be validated.
-        ``frames``, ``labels``: per fold, :func:`_fold_frames`' rows and the scored label."""
+    def _validate(self, name, est, X, y, context, folds) -> str | None:
+        """Record ``name``'s pooled validation RMSE; the reason when it cannot be validated."""
         residual, predicted, t0 = [], [], time.perf_counter()
-        for (fit, pred, score), rows, label in zip(folds, frames, labels):
+        for fit, pred, score in folds:
             try:
                 model = clone(est).fit(X[fit], y[fit], context=subset(context, fit))
                 yhat = np.asarray(model.predict(X[pred], context=subset(context, pred)), float)
             except (ValueError, ArithmeticError, np.linalg.LinAlgError) as exc:
                 return f"cannot fit: {' '.join(str(exc).split())}"
-            predicted.append(_scored(yhat, rows, pred, score))
-            residual.append(label - predicted[-1])
+            predicted.append(yhat[score[pred]])
+            residual.append(y[score] - predicted[-1])
             spent = time.perf_counter() - t0
             over = self.max_seconds is not None and spent > float(self.max_seconds)
             if over and len(residual) < len(folds):
@@ -434,24 +415,6 @@ def in_range_rows(in_range: np.ndarray, fold: np.ndarray, min_rows: int = MIN_IN
     if np.unique(fold[keep]).size < 2:
         return np.ones(len(fold), bool)
     return keep
-
-
-def _fold_frames(y, groups, folds, context) -> list:
-    """Per fold, :func:`~thermocomp.core.first_probe.first_measured_rows` of its predicted rows
-    where the fit's context says a late first probe is scored in its frame
-    (``FIRST_PROBE_FRAME``), else None.  A fold predicts a campaign from its first row (whole
-    campaigns, or one record from its start), so its first measurement is among them."""
-    if not has(context, FIRST_PROBE_FRAME):
-        return [None] * len(folds)
-    groups = np.zeros(len(y), int) if groups is None else groups
-    return [first_measured_rows(y[pred], groups[pred]) for _, pred, _ in folds]
-
-
-def _scored(values, rows, pred, score) -> np.ndarray:
-    """A fold's ``values`` on its predicted rows ``pred`` (a label or a prediction), in the
-    frame they are scored in (:func:`~thermocomp.core.first_probe.in_frame` where ``rows`` is
-    not None), on its scored rows."""
-    return (values if rows is None else in_frame(values, rows))[score[pred]]
 
 
 def _not_applicable(name: str, context, groups) -> str | None:

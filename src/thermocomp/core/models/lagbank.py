@@ -51,18 +51,7 @@ from ...base.params import (
     numbers,
     optional,
 )
-from ..context import (
-    FIRST_PROBE_FRAME,
-    TIME,
-    Y_MEASURED,
-    SideInputs,
-    feedback_gain,
-    groups_of,
-    has,
-    scalar,
-    values,
-)
-from ..first_probe import first_measured_rows, in_frame
+from ..context import TIME, Y_MEASURED, SideInputs, feedback_gain, groups_of, scalar, values
 from ..model_selection.splitters import ForwardChaining, forward_block
 from ..model_selection.splitters import forward_gap as shared_forward_gap
 from ..timerule import CLOCK_START, median_step, step_time
@@ -119,7 +108,7 @@ def forward_gap(longest_lag_samples: float, n: int, n_splits: int,
 # -- the ridge path over the folds ---------------------------------------------------------------
 def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = None,
                   ar_scaling: tuple[float, float] = (0.0, 1.0), z_key: bytes | None = None,
-                  free_columns: int = 0, first_measured: np.ndarray | None = None) -> dict:
+                  free_columns: int = 0) -> dict:
     r"""Validation MSE of ridge fits of ``y`` on ``Z`` for every fold and penalty.
 
     Each fold centres ``Z`` and ``y`` on its training rows and solves
@@ -140,11 +129,6 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     compensator shares its features): by ``z_key``, a digest standing for ``Z``, else by
     ``Z``'s bytes.
 
-    ``first_measured``: per row, the row of its campaign's late first measurement, -1 where
-    none (:func:`~thermocomp.core.first_probe.first_measured_rows`): a late first probe in the
-    first-sample frame, each validation row's error scored as the run scores it, less the
-    error at that row (:func:`~thermocomp.core.first_probe.in_frame`).  Without output feedback.
-
     Returns
     -------
     dict
@@ -159,11 +143,7 @@ def ridge_path_cv(Z, y, splits, alphas, groups=None, ar_column: int | None = Non
     spectra = fold_spectra(Z, splits, alphas, free_columns, z_key)
     for f, (tr, va) in enumerate(splits):
         W, c = fold_weights(spectra[f], Z, y, tr, alphas)
-        if first_measured is None:
-            one_step[f] = np.mean((Z[va] @ W + c - y[va, None]) ** 2, axis=0)
-        else:   # every row's error: a campaign's first measurement may lie among the fit rows
-            error = in_frame(Z @ W + c - y[:, None], first_measured)
-            one_step[f] = np.mean(error[va] ** 2, axis=0)
+        one_step[f] = np.mean((Z[va] @ W + c - y[va, None]) ** 2, axis=0)
         if ar_column is None:
             free[f] = one_step[f]
             continue
@@ -696,17 +676,10 @@ class LagBank(SideInputs, RegressorMixin, BaseEstimator):
         splits = self._splits(F, y[rows], g, self.taus_[-1] / self.sample_period_s_ / spacing)
         scaler = standard_scaler(F)
         Z = standardised(F, scaler)
-        # a late first probe in the first-sample frame: its folds score as the run does (the
-        # compensator says so in the context); the rows of the measured rows, not of X
-        first = None
-        if has(context, FIRST_PROBE_FRAME):
-            late = first_measured_rows(y, groups)[rows]
-            first = np.where(late >= 0, np.searchsorted(rows, late), -1)
         records = []
         for ratio in ratios:
             Zw, n_free = _levels_weighted(Z, p, ratio)
-            scores = ridge_path_cv(Zw, y[rows], splits, alphas, g, free_columns=n_free,
-                                   first_measured=first)
+            scores = ridge_path_cv(Zw, y[rows], splits, alphas, g, free_columns=n_free)
             records += _records("lags", ratio, alphas, scores)
         table = pd.DataFrame(records)
         self._keep_choice(table, self._choose(table))
