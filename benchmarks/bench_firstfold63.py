@@ -2,17 +2,20 @@
 
     PYTHONPATH=src .venv/bin/python benchmarks/bench_firstfold63.py folds DIR [cases] [candidates]
     PYTHONPATH=src .venv/bin/python benchmarks/bench_firstfold63.py compare BEFORE.json AFTER.json
+    PYTHONPATH=src .venv/bin/python benchmarks/bench_firstfold63.py onestep DIR RUN/model.pkl
+    PYTHONPATH=src .venv/bin/python benchmarks/bench_firstfold63.py hobber ROOT OUT families
 
 ``folds``: on ``bench_firstprobe62``'s copies in ``DIR`` (``swiss_lathe_door`` seed 61, the error
 kept on 1 row in 30 from row 15 / 29: ``e30f15``, ``e30f29``; made there when missing), per
 target, the first fit's label as ``model=auto`` gets it (the first-sample frame: ``E(t) - E(m)``),
-each candidate's folds scored as the old code scored them (``raw``: ``y_hat(t)`` against the
-label) and as the run scores (``frame``: ``y_hat(t) - y_hat(m)``,
-:func:`thermocomp.core.first_probe.in_frame`), the folds' ``y_hat(m)``, the blend votes both ways,
-and the lag bank's own CV choice without and with the frame (its context's
-``FIRST_PROBE_FRAME``).  The candidates are fitted per fold without the frame, so only auto's
-scoring differs.  ``compare``: two ``bench_firstprobe62`` result files (the code before and after,
-by PYTHONPATH) side by side: run's test RMSE and the true error.
+each candidate's folds scored as ``model=auto`` scores them (``raw``: ``y_hat(t)`` against the
+label) and as the run scores (``frame``: ``y_hat(t) - y_hat(m)``, :func:`in_frame`), the folds'
+``y_hat(m)``, the blend votes both ways, and the lag bank's own CV choice (with the refused
+rule's code of e1e98a9 on PYTHONPATH: also with the frame in its context).  The candidates are
+fitted per fold as auto fits them, so only the scoring differs.
+``compare``: two ``bench_firstprobe62`` result files (the code before and after, by PYTHONPATH)
+side by side: run's test RMSE and the true error.  ``onestep``: :func:`one_step`.  ``hobber``:
+:func:`hobber`, a record of many runs (auto's folds hold whole runs out).
 """
 
 from __future__ import annotations
@@ -30,8 +33,7 @@ from bench_auto_rank import setup  # noqa: E402
 from bench_firstprobe62 import copies  # noqa: E402
 
 from thermocomp.core.compensator import _simulation  # noqa: E402
-from thermocomp.core.context import FIRST_PROBE_FRAME, for_target, groups_of, subset, with_column  # noqa: E402
-from thermocomp.core.first_probe import first_measured_rows, in_frame  # noqa: E402
+from thermocomp.core.context import for_target, groups_of, subset, with_column  # noqa: E402
 from thermocomp.core.frame import resolve_columns, stack  # noqa: E402
 from thermocomp.core.metrics import rmse  # noqa: E402
 from thermocomp.core.models.auto import (  # noqa: E402
@@ -58,6 +60,29 @@ def matrices(path: Path):
     inputs, targets = resolve_columns(columns, comp.inputs, comp.targets)
     m = stack(train, inputs, targets, comp.reference)
     return comp, m, _simulation(m.context)
+
+
+def first_measured_rows(y, groups) -> np.ndarray:
+    """Per row, the row of its campaign's late first measurement, -1 where none (the refused
+    rule's helper, e1e98a9, here for the diagnosis)."""
+    from thermocomp.core.first_probe import late_starts
+
+    rows = np.full(len(y), -1)
+    edges = np.flatnonzero(np.r_[True, groups[1:] != groups[:-1], True])
+    stops = dict(zip(edges[:-1], edges[1:]))
+    for _, start, m in late_starts(y, groups):
+        rows[start:stops[start]] = m
+    return rows
+
+
+def in_frame(values, rows) -> np.ndarray:
+    """``values`` less their value at ``rows`` where it is >= 0: label and prediction referenced
+    at the first measurement, their difference the residual run scores (on the label as
+    measured, whose value there is 0)."""
+    out = np.array(values, float, copy=True)
+    late = rows >= 0
+    out[late] -= np.asarray(values, float)[rows[late]]
+    return out
 
 
 def candidate_folds(auto, X, y, context, names) -> dict:
@@ -113,9 +138,16 @@ def candidate_folds(auto, X, y, context, names) -> dict:
 
 
 def lagbank_choice(lagbank, X, y, context) -> dict:
-    """The lag bank's CV choice on these rows, without and with the frame in its context."""
+    """The lag bank's CV choice on these rows, without and (the refused rule's code, e1e98a9,
+    on PYTHONPATH) with the frame in its context."""
+    from thermocomp.core import context as ctx_module
+
+    frame = getattr(ctx_module, "FIRST_PROBE_FRAME", None)
+    ways = [("raw", context)]
+    if frame is not None:
+        ways.append(("frame", with_column(context, frame, 1.0, len(y))))
     out = {}
-    for how, ctx in (("raw", context), ("frame", with_column(context, FIRST_PROBE_FRAME, 1.0, len(y)))):
+    for how, ctx in ways:
         est = clone(lagbank).fit(X, y, context=ctx)
         row = est.cv_results_.loc[est.cv_results_["chosen"]].iloc[0]
         out[how] = {"alpha": est.alpha_, "level_penalty": est.level_penalty_,
@@ -197,6 +229,44 @@ def one_step(work: Path, model: Path, case: str = "e30f15") -> dict:
     return out
 
 
+def hobber(root: Path, out: Path, families) -> list[dict]:
+    """``bench_stranger62``'s hobber (seed 6221: 15 separate runs, the first probe 10-25 min after
+    the logger, the probe zeroed at the run's start, first-sample frame; ``write`` and ``init``
+    done in ``root``): per family, ``run``'s test RMSE and the true error, the deployed
+    ``y_hat(t)`` against the probe's reading as logged (the rise since the run's start, its
+    0.3 um repeatability included) on the test runs' measured rows."""
+    from bench_firstprobe62 import FAST, tc
+    from bench_stranger62 import data_args
+    from hydra import compose, initialize_config_dir
+
+    from thermocomp.base.paths import conf_dir, resolve
+    from thermocomp.core import io
+    from thermocomp.shell.config.checks import data_options
+    from thermocomp.shell.model_store import load_model
+
+    args = data_args(root, "hobber")
+    with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
+        cfg = compose(config_name="config", overrides=args)
+    ds = io.read_dataset(resolve(cfg.data.path), data_options(cfg))[0]
+    ids = ds.ids("test")
+    rows = []
+    for family in families:
+        tc("run", *args, f"model={family}", f"out={out}/{family}", *FAST)
+        comp = load_model(out / family / "model.pkl")
+        pred = comp.predict({c: ds.campaigns[c] for c in ids})
+        run = json.loads((out / family / "metrics.json").read_text())["targets"]
+        truth = {}
+        for t in comp.targets_:
+            res = np.concatenate([ds.campaigns[c][t].to_numpy(float) - pred[c][t].to_numpy()
+                                  for c in ids])
+            truth[t] = rmse(res[np.isfinite(res)])
+        rows.append({"case": "hobber", "family": family,
+                     "run": {t: run[t]["test"]["rmse"] for t in run}, "truth": truth})
+        print(json.dumps(rows[-1]), flush=True)
+    (out / "hobber.json").write_text(json.dumps(rows, indent=1))
+    return rows
+
+
 def compare(before: Path, after: Path) -> None:
     """Print run's test RMSE and the true error, before -> after, per case, family, target."""
     old = {(r["case"], r["family"]): r for r in json.loads(before.read_text())}
@@ -210,7 +280,9 @@ def compare(before: Path, after: Path) -> None:
 
 
 if __name__ == "__main__":
-    if sys.argv[1] == "onestep":
+    if sys.argv[1] == "hobber":
+        hobber(Path(sys.argv[2]), Path(sys.argv[3]), sys.argv[4].split(","))
+    elif sys.argv[1] == "onestep":
         one_step(Path(sys.argv[2]), Path(sys.argv[3]))
     elif sys.argv[1] == "compare":
         compare(Path(sys.argv[2]), Path(sys.argv[3]))
