@@ -454,7 +454,12 @@ def _stored_residuals(fitted: Compensator | None, template: Compensator, camps: 
     """``{mode: residuals}`` from ``fitted``'s own out-of-fold free-run predictions (model=auto:
     ``out_of_fold()`` of every target's estimator) where a refit per fold would repeat them: the
     same folds of the same rows, simulation only, nothing else fitted per fold (no denoiser, no
-    selection).  None otherwise: the folds are refitted."""
+    selection, no label completed by the fold model, :mod:`thermocomp.core.first_probe`).  A
+    target measured now and then is scored by both on its measured rows only: the stored folds
+    hold those, a refit's residual is NaN on the others.  None otherwise: the folds are refitted.
+    """
+    from ..first_probe import late_starts
+    from ..frame import stack
     from ..select import AllInputs
 
     if (fitted is None or set(modes) != {"simulation"} or template.denoiser is not None
@@ -466,18 +471,29 @@ def _stored_residuals(fitted: Compensator | None, template: Compensator, camps: 
               for t, e in getattr(fitted, "estimators_", {}).items()}
     if not stored or any(s is None for s in stored.values()):
         return None
+    # the labels a refit would score, in the frame it reads them (a late first probe's would be
+    # completed by each fold model's own simulation: refitted)
+    labels = stack(camps, [], list(stored), template.reference)
+    Y = labels.Y.to_numpy(float)
+    if template.reference == "first_sample" and late_starts(Y, labels.groups):
+        return None
     lengths = [len(df) for df in camps.values()]
     start, n = dict(zip(camps, np.cumsum([0] + lengths))), sum(lengths)
     wanted = [(np.flatnonzero(_mask(start, fit_rows, n)),
                np.sort(np.concatenate([np.arange(start[c] + a, start[c] + b) for c, a, b in units.values()])))
               for fit_rows, _, units, _ in folds]
     residual: dict = {"simulation": {}}
-    for t, (rows, theirs, y, pred) in stored.items():
-        if rows != n or len(theirs) != len(wanted) or not all(
-                np.array_equal(a, b) for mine, other in zip(wanted, theirs) for a, b in zip(mine, other)):
+    for k, (t, (rows, theirs, y, pred)) in enumerate(stored.items()):
+        measured = np.isfinite(Y[:, k])
+        mine = [(fit, score[measured[score]]) for fit, score in wanted]
+        if rows != n or len(theirs) != len(mine) or not all(
+                np.array_equal(a, b) for own, other in zip(mine, theirs) for a, b in zip(own, other)):
+            return None
+        scored = np.concatenate([score for _, score in theirs])
+        if not np.array_equal(y, Y[scored, k]):     # fitted on other labels than these
             return None
         error = np.full(n, np.nan)
-        error[np.concatenate([score for _, score in theirs])] = y - pred
+        error[scored] = y - pred
         residual["simulation"][t] = {unit: error[start[c] + a:start[c] + b]
                                      for *_, units, _ in folds for unit, (c, a, b) in units.items()}
     return residual
