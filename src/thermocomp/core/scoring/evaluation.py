@@ -148,10 +148,15 @@ def ambient_by_campaign(ds: Dataset, ids=None) -> dict[str, float]:
     return {c: initial_ambient(ds.campaigns[c]) for c in (ds.ids() if ids is None else ids)}
 
 
-def _test_rsd(comp: Compensator, ds: Dataset, mode: str) -> dict[str, dict[str, float]]:
-    """Per target, the Rsd of each test campaign."""
+def _test_rsd(comp: Compensator, ds: Dataset, mode: str, predictions: dict | None = None
+              ) -> dict[str, dict[str, float]]:
+    """Per target, the Rsd of each test campaign (``predictions``: :func:`score`'s
+    ``{campaign: (measured, predicted)}`` of ``comp`` in ``mode``, else predicted here)."""
     ids = require_split(ds, "test")
-    pred, meas = continuation.predict(comp, ds, ids, mode)
+    if predictions is None:
+        pred, meas = continuation.predict(comp, ds, ids, mode)
+    else:
+        meas, pred = ({c: predictions[c][k] for c in ids} for k in (0, 1))
     return {t: {c: rsd(meas[c][t].to_numpy() - pred[c][t].to_numpy()) for c in ids}
             for t in comp.targets_}
 
@@ -209,13 +214,16 @@ def spread_campaigns(ids: list, at_most: int | None) -> list:
 
 
 def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensator],
-               mode: str = "simulation", name: str = "none") -> dict:
+               mode: str = "simulation", name: str = "none", predictions: dict | None = None
+               ) -> dict:
     """ATI intervals, elbow and the paper-003 comparison on the test split.
 
     Per target: the fitted intervals and elbow curve (when the model is an ATI
     model), and the test SM/SD of the evaluated model next to one model trained
     on the coldest train campaign alone and one on the warmest (paper 003,
     Sect. 4.3), plus -- for an ATI model -- one model on all train campaigns.
+    ``predictions``: :func:`score`'s test predictions of ``comp`` in ``mode`` when the caller
+    has them (else predicted here: model=auto's blend over the joined record again).
     """
     train = require_split(ds, "train")
     amb = ambient_by_campaign(ds, train)
@@ -242,7 +250,8 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
     out["ati_model"] = any(hasattr(e, "intervals_") for e in comp.estimators_.values())
     if out["ati_model"]:
         models["single_model"] = continuation.fit_joined(make_base(), ds, train)
-    test = {k: _test_rsd(m, ds, mode) for k, m in models.items()}
+    test = {k: _test_rsd(m, ds, mode, predictions if m is comp else None)
+            for k, m in models.items()}
     out["targets"] = {}
     for t in comp.targets_:
         est = comp.estimators_[t]
