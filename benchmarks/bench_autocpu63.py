@@ -24,18 +24,19 @@ week's joined record again (score had).  After: 23 lstm fits, 15 of them auto's 
 122 s profiled).
 
 Measured 2026-12-01 (2 shared cores; CPU s of one run, each run once; swiss_lathe_door three
-times)::
+times; ``--records grinder_b`` after ``bench_probe61.py join``)::
 
-    code                           grinder (6131)   swiss_lathe_door
-    acaa1da (before lagbank62)          35.0             12.7
-    7b75b1f (main)                     125.8             11.3 / 10.8 / 12.0
-    autocpu63                           80.6             12.1 / 11.2 / 11.8
+    code                           grinder (6131)   grinder_b (6132)   swiss_lathe_door
+    acaa1da (before lagbank62)          35.0                               12.7
+    7b75b1f (main)                     125.8             143.6             11.3 / 10.8 / 12.0
+    autocpu63                           80.6              98.4             12.1 / 11.2 / 11.8
 
-metrics.json against 7b75b1f's: swiss_lathe_door identical; the grinder identical but for its
-run's validation block (``method`` ends "model=auto: its members' out-of-fold predictions,
-weights fixed, not refitted"; its figures are auto's own fold fits', a refit's within 1.9e-14
-µm: a refit predicts from Fortran-ordered matrices, auto's folds from C-ordered copies, and BLAS
-rounds the two products apart, 1.7e-13 µm on an MLR fold's rows).  Test RMSE (µm) E_Probe_dX / dY / dZ unchanged: 0.5187 / 0.5151 / 0.6701.
+metrics.json against 7b75b1f's: swiss_lathe_door identical; each grinder identical but for its
+run's validation block: ``method`` ends "model=auto: its members' out-of-fold predictions,
+weights fixed, not refitted", and its figures are auto's own fold fits', a refit's within
+1.9e-14 µm (grinder_b 1.3e-14): a refit predicts from Fortran-ordered matrices, auto's folds from
+C-ordered copies, and BLAS rounds the two products apart (1.7e-13 µm on an MLR fold's rows).
+Test RMSE (µm) E_Probe_dX / dY / dZ unchanged: grinder 0.5187 / 0.5151 / 0.6701.
 
 Not changed (a result change, measured, not committed): the 15 lstm fold fits are the joined
 record's forward folds themselves.  Without lstm among the candidates
