@@ -5,8 +5,8 @@ Joined (lagbank62), the probe grinder's two train weeks are one record: auto val
 candidate on its forward folds, and the run's validation folds are those very folds.  It scored
 the kept blend from the members' stored out-of-fold predictions only where their scored rows were
 the folds' rows, which a target measured now and then never met (auto scores its measured rows):
-every fold was refitted, the lstm among them: 15 more lstm fits, a quarter of the run's CPU
-(``benchmarks/bench_autocpu63.py``).
+every fold was refitted, the lstm among them: 15 more lstm fits, some 27 s of the grinder's
+126 s of CPU (``benchmarks/bench_autocpu63.py``).
 """
 
 from __future__ import annotations
