@@ -21,6 +21,7 @@ from .frame import Matrices, resolve_columns, stack
 from .models.one_step import OneStepLaw
 from .select import AllInputs
 from .select.per_target import measured
+from .shared_fits import fitted
 
 OFFSETS = ("predict", "drop")
 
@@ -148,7 +149,12 @@ class Compensator(BaseEstimator):
         completed by the model's own estimate of the unmeasured ``E(m) - E(0)``, so that it is
         fitted in the frame it is used in (the stream's, from the campaign's first row); the fit
         of the lowest :func:`~thermocomp.core.first_probe.frame_loss` on these rows is kept (a
-        refit that moves away, as a Hammerstein's on a record of short campaigns, is not)."""
+        refit that moves away, as a Hammerstein's on a record of short campaigns, is not).
+        Within :func:`~thermocomp.core.shared_fits.shared_fits` a fit already made is copied."""
+        return fitted(lambda: self._fit_in_frame_now(template, X, y, groups, context),
+                      template, X, y, groups, context, self.reference)
+
+    def _fit_in_frame_now(self, template, X, y, groups, context):
         est = clone(template).fit(X, y, context=context)
         if self.reference != "first_sample" or not late_starts(y, groups):
             return est, y

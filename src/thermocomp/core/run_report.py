@@ -35,6 +35,7 @@ from .scoring.evaluation import (
 from .scoring.headline import HEADLINE, write_headline
 from .scoring.leaderboard import DEPLOYED_MODE
 from .scoring.results import EvaluationResult
+from .shared_fits import shared_fits
 
 
 @dataclass(frozen=True)
@@ -121,11 +122,19 @@ def _model_reports(s: ReportSettings, comp: Compensator, ds, predictions: dict, 
     """ANOVA, the ATI baselines and mutual prediction into ``metrics`` (and their figures)."""
     metrics["anova"] = anova(comp, ds, float(s.anova_alpha), predictions)
     clock.lap("anova")
+    with shared_fits():   # an ATI baseline's campaign is one of mutual prediction's: fitted once
+        _single_campaign_reports(s, comp, ds, predictions, metrics, refits, figures, clock)
+
+
+def _single_campaign_reports(s: ReportSettings, comp: Compensator, ds, predictions: dict,
+                             metrics: dict, refits: Refits, figures: tuple, clock: Clock) -> None:
+    """The ATI baselines and mutual prediction (models of single campaigns) into ``metrics``."""
     if s.ati_baselines:
         say("ATI report: cold/warm single-campaign baselines")
         # model=auto: each target's chosen family on the coldest / warmest campaign, not the
         # whole choice again on one campaign (93 s of a 125 s run on a lab's 4 runs)
-        metrics["ati"] = ati_report(comp, ds, partial(clone, refits.single), s.mode, s.ati)
+        metrics["ati"] = ati_report(comp, ds, partial(clone, refits.single), s.mode, s.ati,
+                                    predictions)
         clock.lap("ati")
     if s.plots != "none":
         fig.rsd_figures(*figures, metrics, ambient_by_campaign(ds, list(predictions)))

@@ -83,10 +83,13 @@ class Blend(SideInputs, RegressorMixin, BaseEstimator):
                 for t in within(gain_terms(e, horizon_s, lead, period_s), -np.inf, np.inf, scale=float(w))]
 
     def chosen_params(self) -> dict:
-        """Each member's own choice (``member_params``): a copy fits the members as chosen."""
+        """Each member's own choice (``member_params``): a copy fits the members as chosen; none
+        (no member with a choice of its own) when there is none, so that the copy is this blend's
+        template itself (a fit of it already made is shared, :mod:`thermocomp.core.shared_fits`)."""
         check_is_fitted(self, "estimators_")
         own = {n: getattr(e, "chosen_params", None) for n, e in self.estimators_.items()}
-        return {"member_params": {n: dict(f()) for n, f in own.items() if callable(f)}}
+        chosen = {n: dict(f()) for n, f in own.items() if callable(f)}
+        return {"member_params": chosen} if chosen else {}
 
 
 def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base: np.ndarray,

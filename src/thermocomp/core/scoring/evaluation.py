@@ -148,10 +148,15 @@ def ambient_by_campaign(ds: Dataset, ids=None) -> dict[str, float]:
     return {c: initial_ambient(ds.campaigns[c]) for c in (ds.ids() if ids is None else ids)}
 
 
-def _test_rsd(comp: Compensator, ds: Dataset, mode: str) -> dict[str, dict[str, float]]:
-    """Per target, the Rsd of each test campaign."""
+def _test_rsd(comp: Compensator, ds: Dataset, mode: str, predictions: dict | None = None
+              ) -> dict[str, dict[str, float]]:
+    """Per target, the Rsd of each test campaign (``predictions``: :func:`score`'s
+    ``{campaign: (measured, predicted)}`` of ``comp`` in ``mode``, else predicted here)."""
     ids = require_split(ds, "test")
-    pred, meas = continuation.predict(comp, ds, ids, mode)
+    if predictions is None:
+        pred, meas = continuation.predict(comp, ds, ids, mode)
+    else:
+        meas, pred = ({c: predictions[c][k] for c in ids} for k in (0, 1))
     return {t: {c: rsd(meas[c][t].to_numpy() - pred[c][t].to_numpy()) for c in ids}
             for t in comp.targets_}
 
@@ -209,13 +214,16 @@ def spread_campaigns(ids: list, at_most: int | None) -> list:
 
 
 def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensator],
-               mode: str = "simulation", name: str = "none") -> dict:
+               mode: str = "simulation", name: str = "none", predictions: dict | None = None
+               ) -> dict:
     """ATI intervals, elbow and the paper-003 comparison on the test split.
 
     Per target: the fitted intervals and elbow curve (when the model is an ATI
     model), and the test SM/SD of the evaluated model next to one model trained
     on the coldest train campaign alone and one on the warmest (paper 003,
     Sect. 4.3), plus -- for an ATI model -- one model on all train campaigns.
+    ``predictions``: :func:`score`'s test predictions of ``comp`` in ``mode`` when the caller
+    has them (else predicted here: model=auto's blend over the joined record again).
     """
     train = require_split(ds, "train")
     amb = ambient_by_campaign(ds, train)
@@ -242,7 +250,8 @@ def ati_report(comp: Compensator, ds: Dataset, make_base: Callable[[], Compensat
     out["ati_model"] = any(hasattr(e, "intervals_") for e in comp.estimators_.values())
     if out["ati_model"]:
         models["single_model"] = continuation.fit_joined(make_base(), ds, train)
-    test = {k: _test_rsd(m, ds, mode) for k, m in models.items()}
+    test = {k: _test_rsd(m, ds, mode, predictions if m is comp else None)
+            for k, m in models.items()}
     out["targets"] = {}
     for t in comp.targets_:
         est = comp.estimators_[t]
@@ -454,7 +463,12 @@ def _stored_residuals(fitted: Compensator | None, template: Compensator, camps: 
     """``{mode: residuals}`` from ``fitted``'s own out-of-fold free-run predictions (model=auto:
     ``out_of_fold()`` of every target's estimator) where a refit per fold would repeat them: the
     same folds of the same rows, simulation only, nothing else fitted per fold (no denoiser, no
-    selection).  None otherwise: the folds are refitted."""
+    selection, no label completed by the fold model, :mod:`thermocomp.core.first_probe`).  A
+    target measured now and then is scored by both on its measured rows only: the stored folds
+    hold those, a refit's residual is NaN on the others.  None otherwise: the folds are refitted.
+    """
+    from ..first_probe import late_starts
+    from ..frame import stack
     from ..select import AllInputs
 
     if (fitted is None or set(modes) != {"simulation"} or template.denoiser is not None
@@ -466,18 +480,29 @@ def _stored_residuals(fitted: Compensator | None, template: Compensator, camps: 
               for t, e in getattr(fitted, "estimators_", {}).items()}
     if not stored or any(s is None for s in stored.values()):
         return None
+    # the labels a refit would score, in the frame it reads them (a late first probe's would be
+    # completed by each fold model's own simulation: refitted)
+    labels = stack(camps, [], list(stored), template.reference)
+    Y = labels.Y.to_numpy(float)
+    if template.reference == "first_sample" and late_starts(Y, labels.groups):
+        return None
     lengths = [len(df) for df in camps.values()]
     start, n = dict(zip(camps, np.cumsum([0] + lengths))), sum(lengths)
     wanted = [(np.flatnonzero(_mask(start, fit_rows, n)),
                np.sort(np.concatenate([np.arange(start[c] + a, start[c] + b) for c, a, b in units.values()])))
               for fit_rows, _, units, _ in folds]
     residual: dict = {"simulation": {}}
-    for t, (rows, theirs, y, pred) in stored.items():
-        if rows != n or len(theirs) != len(wanted) or not all(
-                np.array_equal(a, b) for mine, other in zip(wanted, theirs) for a, b in zip(mine, other)):
+    for k, (t, (rows, theirs, y, pred)) in enumerate(stored.items()):
+        measured = np.isfinite(Y[:, k])
+        mine = [(fit, score[measured[score]]) for fit, score in wanted]
+        if rows != n or len(theirs) != len(mine) or not all(
+                np.array_equal(a, b) for own, other in zip(mine, theirs) for a, b in zip(own, other)):
+            return None
+        scored = np.concatenate([score for _, score in theirs])
+        if not np.array_equal(y, Y[scored, k]):     # fitted on other labels than these
             return None
         error = np.full(n, np.nan)
-        error[np.concatenate([score for _, score in theirs])] = y - pred
+        error[scored] = y - pred
         residual["simulation"][t] = {unit: error[start[c] + a:start[c] + b]
                                      for *_, units, _ in folds for unit, (c, a, b) in units.items()}
     return residual
