@@ -34,6 +34,7 @@ import numpy as np
 import pandas as pd
 
 REPO = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(REPO / "benchmarks")]
 SEEDS = {"trunnion": 6301, "trunnion_b": 6302}
 HEADERS = {"T_spindle_front": "T Spindel vorn [°C]", "T_spindle_motor": "T Spindelmotor [°C]",
            "T_coolant_return": "T Kühlmittel Rücklauf [°C]", "T_ram": "T Pinole [°C]",
@@ -91,6 +92,213 @@ def write(root: Path) -> None:
             lab.to_csv(target, sep=";", decimal=",", index=False, float_format="%.6g")
 
 
+# --- the stranger's pass: every model x wrapper, run -> replay -> promote -> export + check -----
+
+FAMILIES = {
+    "mlr": [], "pcr": [], "arx": [], "lagbank": [], "hammerstein": [],
+    "lstm": ["model.estimator.max_epochs=3", "model.estimator.hidden_size=4",
+             "model.estimator.chunk=16"],
+    "arx_rf": ["model.estimator.forest.n_estimators=10"],
+    "auto": ["model.candidates=[mlr,pcr,arx,lagbank,hammerstein,ati]"],
+}
+WRAPPERS = ("plain", "ati", "bias", "rls")
+
+
+def data_args(root: Path, name: str) -> list[str]:
+    return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={name}"]
+
+
+def stage(*args: str) -> tuple[int, str, float]:
+    """``thermocomp <args>`` in process: (exit status, its last line on stderr, CPU s)."""
+    import contextlib
+    import io
+    import traceback
+
+    from cpu import cpu_seconds
+
+    from thermocomp.shell.cli import main as cli
+
+    before = cpu_seconds(children=True)
+    err = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+        try:
+            rc = cli(list(args)) or 0
+        except SystemExit as exc:
+            rc = int(exc.code or 0)
+        except Exception:                  # noqa: BLE001  (a crash is what the bench looks for)
+            rc, err = -1, io.StringIO(traceback.format_exc())
+    lines = [x for x in err.getvalue().splitlines() if x.strip()]
+    return rc, lines[-1] if lines else "", cpu_seconds(children=True) - before
+
+
+def last_run_id(root: Path) -> str:
+    import mlflow
+
+    mlflow.set_tracking_uri(f"sqlite:///{root}/tc/mlruns/mlflow.db")
+    runs = mlflow.search_runs(experiment_names=["thermocomp"], order_by=["start_time DESC"],
+                              max_results=1, filter_string="tags.stage = 'run'")
+    return str(runs.iloc[0]["run_id"])
+
+
+def exported(data: list, model: str, code: Path, *extra: str) -> dict:
+    """``export`` as C with its check pack, compiled, ``check/check.sh``."""
+    rc, said, cpu = stage("export", *data, f"export.model={model}", "export.format=c",
+                          "export.check=true", *extra, f"out={code}")
+    if rc:
+        return {"export": f"exit {rc}: {said[:160]}"}
+    cc = subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
+                        cwd=code, capture_output=True, text=True)
+    check = subprocess.run(["sh", "check/check.sh"], cwd=code, capture_output=True, text=True)
+    return {"cc": cc.returncode, "check": check.returncode,
+            "check_said": (check.stdout + check.stderr).strip().splitlines()[-1:]}
+
+
+def replayed(data: list, model: str, out: Path, targets, *extra: str) -> dict:
+    rc, said, cpu = stage("replay", *data, f"replay.model={model}", *extra, f"out={out}")
+    if rc:
+        return {"replay": f"exit {rc}: {said[:160]}"}
+    rep = json.loads((out / "replay.json").read_text())
+    return {"replay": {t: rep["targets"][t]["rmse"] for t in targets},
+            "stream-batch": max(rep["targets"][t]["max_abs_stream_minus_batch"] for t in targets),
+            "events": len(rep["events"]), "replay_cpu": round(cpu, 1)}
+
+
+def cell(root: Path, name: str, family: str, wrapper: str) -> dict:
+    data = data_args(root, name)
+    tag = f"{name}-{family}-{'plain' if wrapper in ('bias', 'rls') else wrapper}"
+    out = root / "out" / tag
+    row: dict = {"cell": f"{name}-{family}-{wrapper}"}
+    if wrapper in ("plain", "ati"):
+        rc, said, cpu = stage("run", *data, f"model={family}", *FAMILIES[family],
+                              *(["ati=cmeans"] if wrapper == "ati" else []), "plots=none",
+                              f"out={out}")
+        row["run_cpu"] = round(cpu, 1)
+        if rc:
+            return {**row, "run": f"exit {rc}: {said[:200]}"}
+        row["run_id"] = last_run_id(root)
+    if not (out / "metrics.json").exists():
+        return {**row, "run": "no plain run"}
+    metrics = json.loads((out / "metrics.json").read_text())
+    targets = list(metrics["targets"])
+    row["run"] = {t: metrics["targets"][t]["test"]["rmse"] for t in targets}
+    adapt = [] if wrapper in ("plain", "ati") else [f"adapt.method={wrapper}"]
+    pkl = str(out / "model.pkl")
+    row.update(replayed(data, pkl, root / "out" / f"{row['cell']}-replay", targets, *adapt))
+    if isinstance(row.get("replay"), dict):
+        row["replay-run"] = max(abs(row["replay"][t] - row["run"][t]) for t in targets)
+    if wrapper in ("plain", "ati"):
+        rc, said, _ = stage("promote", *data, f"promote.run_id={row['run_id']}",
+                            "promote.force=true", f"out={root / 'out' / (row['cell'] + '-promote')}")
+        if rc:
+            row["promote"] = f"exit {rc}: {said[:160]}"
+        else:
+            promoted = json.loads((root / "out" / f"{row['cell']}-promote" / "promote.json"
+                                   ).read_text())
+            row["promote"] = promoted["candidate"]["test_reported"]["rmse"]
+            row["run_mean"] = float(np.mean(list(row["run"].values())))
+    row.update(exported(data, pkl, root / "out" / f"{row['cell']}-c", *adapt))
+    return row
+
+
+def matrix(root: Path, names, families, wrappers) -> None:
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    (root / "tc").mkdir(parents=True, exist_ok=True)
+    if not (root / "tc" / "conf").exists():
+        (root / "tc" / "conf").symlink_to(REPO / "conf")
+    path = root / f"matrix-{'-'.join(names)}.jsonl"
+    for name in names:
+        for family in families:
+            for wrapper in wrappers:
+                if family == "auto" and wrapper == "ati":
+                    continue                     # ati is one of auto's candidates
+                row = cell(root, name, family, wrapper)
+                print(json.dumps(row, default=str), flush=True)
+                with open(path, "a") as f:
+                    f.write(json.dumps(row, default=str) + "\n")
+
+
+# --- monitor: the healthy test week, then a fault on one sensor from its middle -----------------
+
+FAULTS = ("stuck", "jump", "drift")
+
+
+def planted(src: Path, dst: Path, header: str, kind: str) -> float:
+    """``dst``: the lab's folder ``src`` with ``kind`` on ``header`` of its last (test) file from
+    its middle row (stuck at the reading before; +3 K; +1 K/h); the onset in s of the week."""
+    import shutil
+
+    shutil.copytree(src, dst, dirs_exist_ok=True)
+    test = sorted(dst.glob("*.csv"))[-1]
+    df = pd.read_csv(test, sep=";", decimal=",")
+    start = len(df) // 2
+    x = df[header].to_numpy(float).copy()
+    hours = (np.arange(len(df)) - start) * 60.0 / 3600.0
+    if kind == "stuck":
+        x[start:] = x[start - 1]
+    elif kind == "jump":
+        x[start:] += 3.0
+    else:
+        x[start:] += hours[start:]
+    df[header] = x
+    df.to_csv(test, sep=";", decimal=",", index=False, float_format="%.6g")
+    return start * 60.0
+
+
+def monitored(root: Path, name: str, family: str, out: Path, *extra: str) -> dict:
+    rc, said, cpu = stage("monitor", *data_args(root, name), *extra,
+                          f"monitor.model={root / 'out' / f'{name}-{family}-plain' / 'model.pkl'}",
+                          f"out={out}")
+    if rc:
+        return {"monitor": f"exit {rc}: {said[:200]}"}
+    report = json.loads((out / "monitor.json").read_text())
+    ev = [e for e in report["events"] if e.get("sensor")]
+    return {"events": len(report["events"]),
+            "first": [(e["sensor"], e["to"], round(e["time"] / 3600, 2)) for e in ev[:3]],
+            "guard": sum(1 for e in report["events"] if e.get("target")),
+            "rmse": {t: (round(r["rmse_fixed"], 3), round(r["rmse_adaptive"], 3))
+                     for t, r in report["targets"].items()},
+            "max_corr/bound": {t: (round(r["max_abs_correction"], 1), r["bound"],
+                                   r["all_finite"]) for t, r in report["targets"].items()},
+            "cpu": round(cpu, 1)}
+
+
+def monitoring(root: Path, name: str, family: str, sensors) -> None:
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    rows = [{"case": "healthy", **monitored(root, name, family, root / "mon" / f"{name}-healthy")}]
+    print(json.dumps(rows[-1]), flush=True)
+    for header in sensors:
+        for kind in FAULTS:
+            folder = root / "faulted" / f"{name}-{kind}-{header.split(' [')[0].replace(' ', '_')}"
+            onset = planted(root / name, folder, header, kind)
+            row = monitored(root, name, family, root / "mon" / folder.name, f"data.path={folder}")
+            rows.append({"case": f"{kind} {header}", "onset_h": onset / 3600, **row})
+            print(json.dumps(rows[-1]), flush=True)
+    (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
+
+
+def table(root: Path, name: str) -> str:
+    """The matrix's last row per cell: run's test RMSE per target, replay's, the largest
+    |replay - run| and |stream - batch|, promote's mean against run's, the check pack."""
+    rows = {}
+    for line in (root / f"matrix-{name}.jsonl").read_text().splitlines():
+        row = json.loads(line)
+        rows[row["cell"]] = row
+    out = [f"{'cell':28s} {'run (µm)':20s} {'replay':20s} {'|rep-run|':>9s} {'|s-b|':>8s} "
+           f"{'promote/run':>13s} {'C check':>8s}"]
+
+    def fig(v):
+        return " / ".join(f"{x:.2f}" for x in v.values()) if isinstance(v, dict) else str(v)[:60]
+    for cell, r in rows.items():
+        prom = (f"{r['promote']:.3f}/{r['run_mean']:.3f}" if isinstance(r.get("promote"), float)
+                else str(r.get("promote", "")))
+        check = ("passed" if r.get("check") == 0 else r.get("export", f"check {r.get('check')}"))
+        rep = r.get("replay-run")
+        out.append(f"{cell:28s} {fig(r.get('run')):20s} {fig(r.get('replay')):20s} "
+                   f"{rep if rep is None else f'{rep:.1e}':>9} "
+                   f"{r.get('stream-batch', float('nan')):8.1e} {prom:>13s} {str(check)[:90]}")
+    return "\n".join(out)
+
+
 def main(argv=None) -> int:
     argv = sys.argv[1:] if argv is None else argv
     what, root = argv[0], Path(argv[1]).resolve()
@@ -98,6 +306,17 @@ def main(argv=None) -> int:
         write(root)
         print(json.dumps({p.name: sorted(x.name for x in p.iterdir())
                           for p in (root / n for n in SEEDS)}))
+    if what == "matrix":          # matrix ROOT [names] [--families ...] [--wrappers ...]
+        rest = argv[2:]
+        cut = [i for i, a in enumerate(rest) if a.startswith("--")]
+        groups = {rest[i]: rest[i + 1:(cut + [len(rest)])[k + 1]] for k, i in enumerate(cut)}
+        names = rest[:cut[0]] if cut else rest
+        matrix(root, names or list(SEEDS), groups.get("--families") or list(FAMILIES),
+               groups.get("--wrappers") or list(WRAPPERS))
+    if what == "table":           # table ROOT name
+        print(table(root, argv[2]))
+    if what == "monitor":         # monitor ROOT name family sensor-header...
+        monitoring(root, argv[2], argv[3], argv[4:])
     return 0
 
 
