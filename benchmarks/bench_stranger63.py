@@ -98,7 +98,8 @@ FAMILIES = {
     "mlr": [], "pcr": [], "arx": [], "lagbank": [], "hammerstein": [],
     "lstm": ["model.estimator.max_epochs=3", "model.estimator.hidden_size=4",
              "model.estimator.chunk=16"],
-    "arx_rf": ["model.estimator.forest.n_estimators=10"],
+    # the refusal of the default S_door names the one S_ column: the spindle speed
+    "arx_rf": ["model.estimator.forest.n_estimators=10", "model.estimator.state_column=S_Drehzahl"],
     "auto": ["model.candidates=[mlr,pcr,arx,lagbank,hammerstein,ati]"],
 }
 WRAPPERS = ("plain", "ati", "bias", "rls")
@@ -294,7 +295,7 @@ def table(root: Path, name: str) -> str:
         check = ("passed" if r.get("check") == 0 else r.get("export", f"check {r.get('check')}"))
         rep = r.get("replay-run")
         out.append(f"{cell:28s} {fig(r.get('run')):20s} {fig(r.get('replay')):20s} "
-                   f"{rep if rep is None else f'{rep:.1e}':>9} "
+                   f"{'-' if rep is None else f'{rep:.1e}':>9} "
                    f"{r.get('stream-batch', float('nan')):8.1e} {prom:>13s} {str(check)[:90]}")
     return "\n".join(out)
 
