@@ -1,6 +1,7 @@
 """How a ``time`` column of text is read: ISO 8601, a lab's day-first ``28.11.2026 13:05:00``
-(dots: the European order, never month first), the strptime format ``data.time`` names, or a
-logger's elapsed time ``25:30:00`` (``h:mm:ss``, hours past 24: :func:`elapsed_seconds`).
+(dots: the European order, never month first; Excel's two-digit year ``28.11.26 13:05`` too),
+the strptime format ``data.time`` names, or a logger's elapsed time ``25:30:00`` (``h:mm:ss``,
+hours past 24: :func:`elapsed_seconds`).
 A date with slashes (``03/11/2026``) is day-first in Europe and month-first in the US: never
 guessed, refused naming ``data.time``; where a field is past 12 (``15/06/2026``) the order is no
 guess, and the date is read so (:func:`slashed_format`)."""
@@ -22,11 +23,12 @@ from .contract import TIME, ContractError
 
 # a first cell that is a date and a time of day (the time column when no header says so)
 _STAMP = re.compile(r"\s*\d{1,4}[-./]\d{1,2}[-./]\d{2,4}[T ]\d\d?:\d\d")
-_DAY_FIRST = re.compile(r"\s*\d{1,2}\.\d{1,2}\.\d{4}[ T]\d{1,2}:\d\d(:\d\d([.,]\d+)?)?\s*")
+_DAY_FIRST = re.compile(r"\s*\d{1,2}\.\d{1,2}\.(?P<y>\d{4}|\d\d)[ T]\d{1,2}:\d\d"
+                        r"(?P<s>:\d\d([.,]\d+)?)?\s*")
 _SLASHED = re.compile(r"\s*\d{1,2}/\d{1,2}/\d{2,4}\b")
 _SLASHED_STAMP = re.compile(r"\s*(?P<a>\d{1,2})/(?P<b>\d{1,2})/(?P<y>\d{4}|\d\d)(?P<sep>[ T])"
                             r"\d{1,2}:\d\d(?P<s>:\d\d([.,]\d+)?)?\s*")
-DATE = re.compile(r"\s*(\d{1,2}\.\d{1,2}\.\d{4}|\d{4}-\d\d-\d\d|\d{1,2}/\d{1,2}/\d{2,4})\s*")
+DATE = re.compile(r"\s*(\d{1,2}\.\d{1,2}\.(\d{4}|\d\d)|\d{4}-\d\d-\d\d|\d{1,2}/\d{1,2}/\d{2,4})\s*")
 TIME_OF_DAY = re.compile(r"\s*\d{1,2}:\d\d(:\d\d([.,]\d+)?)?\s*")
 _ZONE_OFFSET = re.compile(r"\d:\d\d(?::\d\d(?:[.,]\d+)?)?\s*(?:Z|[+-]\d\d(?::?\d\d)?)$")
 COMMA_FRACTION = r"(\d:\d\d:\d\d),(\d)"     # a second's fraction after a comma
@@ -117,7 +119,8 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
                             column=TIME, row=1)
     day_first = _DAY_FIRST.fullmatch(value)
     if day_first:
-        return "%d.%m.%Y %H:%M:%S" if day_first.group(1) else "%d.%m.%Y %H:%M"
+        year = "%Y" if len(day_first["y"]) == 4 else "%y"     # %y: 69-99 the 1900s, as C's
+        return f"%d.%m.{year} %H:%M" + (":%S" if day_first["s"] else "")
     told = slashed_format(value)
     if told:
         return told

@@ -174,9 +174,13 @@ def _code_sizes(files: dict) -> dict:
             if name.endswith((".c", ".st")) and name != "stream.c"}
 
 
-# data.time values whose times stream.c reads as the reader does (its own parser: driver.py)
-STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601", "%d.%m.%Y %H:%M:%S",
-                            "%Y-%m-%d %H:%M:%S", "%Y-%m-%dT%H:%M:%S"})
+# data.time values whose times stream.c reads as the reader does (its own parser: driver.py):
+# day-first with a four- or two-digit year, ISO 8601's order, the seconds optional in each
+STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601",
+                            *(f"{date} %H:%M{seconds}" for date in ("%d.%m.%Y", "%d.%m.%y")
+                              for seconds in (":%S", "")),
+                            *(f"%Y-%m-%d{sep}%H:%M{seconds}" for sep in (" ", "T")
+                              for seconds in (":%S", ""))})
 
 
 def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> None:

@@ -15,13 +15,13 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * separator is the header's: ';', a tab or '|' where it holds one, else ','; with another
  * separator than ',' a decimal comma reads (12,5).  The time is seconds, or a logger's
  * wall-clock time (ISO 8601 2023-01-07T08:45:00, a zone offset or none; day-first
- * 07.01.2023 08:45:00) read as seconds since the campaign's first, as the served model reads
- * it; every time of a stream in the form of its first.  A cell that is no number (a time of
- * day alone, 08:45:00) is refused with its row.  A blank row, a `reset` column holding 1, or a
- * new value in the run-number column TC_RUN_COLUMN starts a campaign (the row is its
- * reference).  With TC_ADAPT, a row carrying a measured error in a TC_ERROR_NAMES column
- * (E_<axis>, optional; blank: none) is a reference measurement: its correction is printed,
- * then the bias learns.
+ * 07.01.2023 08:45:00, or 07.01.23 08:45 with a two-digit year) read as seconds since the
+ * campaign's first, as the served model reads it; every time of a stream in the form of its
+ * first.  A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
+ * A blank row, a `reset` column holding 1, or a new value in the run-number column
+ * TC_RUN_COLUMN starts a campaign (the row is its reference).  With TC_ADAPT, a row carrying
+ * a measured error in a TC_ERROR_NAMES column (E_<axis>, optional; blank: none) is a reference
+ * measurement: its correction is printed, then the bias learns.
  * With `--state FILE` a restarted process goes on where the last one stopped: FILE, where it
  * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
  * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
@@ -133,7 +133,8 @@ static long long days_from_civil(long y, long m, long d) {
 
 /* A wall-clock time as whole seconds since 1970 (a zone offset taken off: UTC) and a fraction
    (s): ISO 8601 `2023-01-07T08:45:00` (a space for the T, seconds optional, a fraction after
-   '.' or ',', then `Z`, `+01:00`, `+0100` or `+01`) or day-first `07.01.2023 08:45:00`.
+   '.' or ',', then `Z`, `+01:00`, `+0100` or `+01`) or day-first `07.01.2023 08:45:00` (or
+   `07.01.23 08:45`, a two-digit year: 69-99 the 1900s, as strptime's %y reads it).
    Returns LOCAL_TIME without an offset, ZONED_TIME with one, 0 for anything else (a date or a
    time of day alone, an impossible date).  Without an offset it is the logger's own clock, as
    the served model reads it (no daylight saving time). */
@@ -150,8 +151,12 @@ static int wall_clock(const char *cell, long long *whole, double *fraction) {
         if (!digits(&p, 2, 2, &mo) || *p++ != '-' || !digits(&p, 2, 2, &d)) return 0;
     } else {
         p = cell;
-        if (!digits(&p, 1, 2, &d) || *p++ != '.' || !digits(&p, 1, 2, &mo) || *p++ != '.'
-            || !digits(&p, 4, 4, &y)) return 0;
+        const char *year;
+        if (!digits(&p, 1, 2, &d) || *p++ != '.' || !digits(&p, 1, 2, &mo) || *p++ != '.')
+            return 0;
+        year = p;
+        if (!digits(&p, 2, 4, &y) || p - year == 3) return 0;
+        if (p - year == 2) y += y < 69 ? 2000 : 1900;   /* Excel's 07.01.23: strptime's %y */
     }
     if (*p != 'T' && *p != ' ') return 0;
     p++;
