@@ -24,3 +24,18 @@ def test_compare_and_promote_say_the_jobs_a_sweep_lost(tmp_path):
     chosen = thermocomp("promote", f"data.path={dataset}", f"tracking_uri={uri}",
                         f"compare.sweep={sweep}", f"out={tmp_path / 'promoted'}")
     assert "1 of its 2 jobs failed; the candidate is the best of the runs that finished" in chosen.stderr
+
+
+def test_a_sweep_whose_every_job_failed_is_refused_saying_so(tmp_path):
+    """Every job refused on its data: 'sweep ... has no child runs' (compare) and 'no finished
+    child run to promote' (promote), exit 2, without saying the jobs had failed."""
+    dataset = write_small_dataset(tmp_path / "small")
+    uri, sweep = mlflow_store(tmp_path), tmp_path / "sweep"
+    thermocomp("run", "-m", f"data.path={tmp_path / 'moved'}", "model=mlr,arx", f"tracking_uri={uri}",
+               *LIGHT_EVAL, f"hydra.sweep.dir={sweep}", check=False)
+    shown = thermocomp("compare", f"tracking_uri={uri}", f"compare.sweep={sweep}", check=False)
+    assert shown.returncode == 2 and "no child runs (2 of its 2 jobs failed" in shown.stderr
+    chosen = thermocomp("promote", f"data.path={dataset}", f"tracking_uri={uri}",
+                        f"compare.sweep={sweep}", f"out={tmp_path / 'promoted'}", check=False)
+    assert chosen.returncode == 2 and "to promote (2 of its 2 jobs failed)" in chosen.stderr
+    assert not (tmp_path / "promoted").exists()

@@ -60,7 +60,9 @@ def best_run(cfg: DictConfig, client, uri: str, dataset_hash: str, data_path) ->
     rows = [r for r in sweep_rows(client, uri, parent, str(cfg.promote.target))
             if r["status"] == "FINISHED" and seen.get(r["run_id"]) in (dataset_hash, None)]
     if not rows:
-        raise ConfigError(f"sweep {parent} has no finished child run to promote")
+        note = failed_note(*failed_jobs(client, parent))
+        raise ConfigError(f"sweep {parent} has no finished child run to promote"
+                          + (f" ({note})" if note else ""))
     try:
         table = rank(rows, str(cfg.promote.criterion))
     except KeyError as exc:
