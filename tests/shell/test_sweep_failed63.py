@@ -39,3 +39,4 @@ def test_a_sweep_whose_every_job_failed_is_refused_saying_so(tmp_path):
                         f"compare.sweep={sweep}", f"out={tmp_path / 'promoted'}", check=False)
     assert chosen.returncode == 2 and "to promote (2 of its 2 jobs failed)" in chosen.stderr
     assert not (tmp_path / "promoted").exists()
+
