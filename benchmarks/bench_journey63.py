@@ -54,7 +54,8 @@ Measured (2026-12-01, every step once, 2 shared cores, CPU s user + sys):
         mends: a sweep's failed jobs unsaid by compare / promote; the champion replayed on
         fl_thermal named 'spindle_test.csv/spindle_test.csv' and one column
         'T_amb,T_headstock,...'; a served text value named its column but not its row; a served
-        text time said 'file <stdin>'
+        text time said 'file <stdin>'; a sweep whose every job failed was refused as 'no child
+        runs'; a replay of the lag-bank champion was tracked as 'mlr-fl_thermal'
     `all` (this script, run again after the mends) 229.3 s CPU, the commands included; it
     printed the figures above again (the seed-6311 record digests alike wherever written)
 """
