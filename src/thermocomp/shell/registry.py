@@ -28,7 +28,7 @@ from ..core.scoring.champion import champion_validation, decide, fmt
 from ..core.scoring.evaluation import require_split
 from ..core.scoring.leaderboard import DEPLOYED_MODE, rank, ranked_by, ranking_line, validation_mode
 from .store import REGISTERED, is_registered_model
-from .sweeps import parent_run_id, run_metrics, sweep_rows
+from .sweeps import failed_jobs, failed_note, parent_run_id, run_metrics, sweep_rows
 from .tracking import DATASET_TAG, child_runs, retry_locked
 
 
@@ -60,13 +60,18 @@ def best_run(cfg: DictConfig, client, uri: str, dataset_hash: str, data_path) ->
     rows = [r for r in sweep_rows(client, uri, parent, str(cfg.promote.target))
             if r["status"] == "FINISHED" and seen.get(r["run_id"]) in (dataset_hash, None)]
     if not rows:
-        raise ConfigError(f"sweep {parent} has no finished child run to promote")
+        note = failed_note(*failed_jobs(client, parent))
+        raise ConfigError(f"sweep {parent} has no finished child run to promote"
+                          + (f" ({note})" if note else ""))
     try:
         table = rank(rows, str(cfg.promote.criterion))
     except KeyError as exc:
         raise ConfigError(f"promote.criterion: {exc.args[0]}") from None
     basis = ranked_by(table, str(cfg.promote.criterion))
     say(f"sweep {parent}: {len(table)} finished run(s) ranked by {ranking_line(basis)}")
+    if note := failed_note(*failed_jobs(client, parent)):   # the best of a grid not whole
+        logger.warning(f"sweep {parent}: {note}; the candidate is the best of the runs that "
+                       "finished")
     return str(table["run_id"].iloc[0]), basis
 
 

@@ -131,6 +131,19 @@ def _datasets(children: list) -> dict[str, str]:
             for run, d in digests.items()}
 
 
+def failed_jobs(client, parent_id: str) -> tuple[int, int]:
+    """``(failed, jobs)`` of a sweep as its parent run counted them when it ended (the metrics
+    ``sweep.failed_jobs``, ``sweep.jobs``; ``(0, 0)`` for a sweep still running or older): a job
+    refused on its data has no child run, so the table of the children alone cannot tell."""
+    metrics = retry_locked(client.get_run, parent_id).data.metrics
+    return int(metrics.get("sweep.failed_jobs", 0)), int(metrics.get("sweep.jobs", 0))
+
+
+def failed_note(failed: int, jobs: int) -> str:
+    """What a table or a choice of a sweep with failed jobs says of them ("" when none did)."""
+    return f"{failed} of its {jobs} jobs failed" if failed else ""
+
+
 def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
                baselines: list | None = None) -> list[dict]:
     """One row per child run of ``parent_id`` (unsorted); its ``val_*`` figures are of the

@@ -85,6 +85,7 @@ from mlflow.types.schema import AnyType
 import thermocomp
 
 from ...base import signing
+from ...base.errors import ContractError
 from ...base.log import NAME as LOG_NAME
 from ...base.log import configure as configure_log
 from ...core.context import TIME
@@ -244,7 +245,10 @@ def _on_campaign_clock(frame: pd.DataFrame, state: list) -> pd.DataFrame:
     reset), as ``run`` and ``replay`` read a campaign's timestamps; seconds as they are."""
     try:
         stamps = stream_stamps(frame[TIME])
-    except ValueError as exc:        # ContractError: a time that is no time
+    except ContractError as exc:     # a time that is no time: its row of the block, not of stdin
+        where = f"column {exc.column!r}, data row {exc.row} of the block: " if exc.row else ""
+        raise MlflowException(where + exc.reason, error_code=INVALID_PARAMETER_VALUE) from exc
+    except ValueError as exc:
         raise MlflowException(str(exc), error_code=INVALID_PARAMETER_VALUE) from exc
     if stamps is None:
         return frame

@@ -105,16 +105,55 @@ class RequestLimits:
             replayed = True
             return {"type": "http.request", "body": body, "more_body": False}
 
-        return await self.app(scope, replay, one_line_refusals(send))
+        return await self.app(scope, replay, one_line_refusals(send, body))
 
 
 QUOTED = "Failed to predict data '"     # MLflow's prefix of every refusal: the block, quoted
+# MLflow's refusal of a value its signature's type does not take: the column, not the row
+UNCONVERTED = re.compile(r"Failed to convert column (?P<column>.+?) to type '(?P<type>\w+)'")
 
 
-def one_line_refusals(send):
+def _number(value) -> bool:
+    """Whether MLflow's float conversion takes ``value`` (a JSON null is a missing value)."""
+    if value is None:
+        return True
+    try:
+        float(value)
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
+def unconverted_row(message: str, body: bytes) -> str | None:
+    """MLflow's "Failed to convert column X to type 'float64'" as a row's refusal: ``column 'X',
+    data row N of the block: value 'v' is not a number`` (N 1-based, as a lab's file is counted),
+    found in a ``dataframe_split`` or ``dataframe_records`` body; None for any other answer."""
+    found = UNCONVERTED.search(message)
+    if found is None:
+        return None
+    column = found["column"]
+    try:
+        table = json.loads(body)
+        if "dataframe_split" in table:
+            split = table["dataframe_split"]
+            at = list(split["columns"]).index(column)
+            values = [row[at] for row in split["data"]]
+        else:
+            values = [row.get(column) for row in table["dataframe_records"]]
+    except (ValueError, TypeError, KeyError, IndexError, AttributeError):
+        return None
+    bad = next((i for i, v in enumerate(values) if not _number(v)), None)
+    if bad is None:
+        return None
+    return (f"column {column!r}, data row {bad + 1} of the block: value {values[bad]!r} is not a "
+            f"number ({found['type']}; send numbers as JSON numbers, a missing value as null)")
+
+
+def one_line_refusals(send, body: bytes = b""):
     """``send`` with an HTTP 400 answer's ``message`` cut to its reason: MLflow's app quotes
     the whole block before it (a sensor column missing from 35 rows: 3 KB on 37 lines, the reason
-    last), which a caller's log cannot show in one line; every other answer as it is."""
+    last), which a caller's log cannot show in one line; a value that is no number said with its
+    row of the request ``body`` (MLflow names the column alone); every other answer as it is."""
     held: list = []
 
     async def cut(message):
@@ -128,19 +167,23 @@ def one_line_refusals(send):
             return None
         start, *bodies = held
         held.clear()
-        body = b"".join(m.get("body", b"") for m in bodies)
+        answered = b"".join(m.get("body", b"") for m in bodies)
         try:
-            answer = json.loads(body)
+            answer = json.loads(answered)
         except ValueError:
             answer = None
         if isinstance(answer, dict) and str(answer.get("message", "")).startswith(QUOTED):
             reason = answer["message"].rpartition("Error: ")[2]
             answer["message"] = " ".join(reason.split())
-            body = json.dumps(answer).encode()
-        headers = [(k, str(len(body)).encode() if k.lower() == b"content-length" else v)
+            answered = json.dumps(answer).encode()
+        elif isinstance(answer, dict) and (row := unconverted_row(str(answer.get("message", "")),
+                                                                  body)):
+            answer["message"] = row
+            answered = json.dumps(answer).encode()
+        headers = [(k, str(len(answered)).encode() if k.lower() == b"content-length" else v)
                    for k, v in start.get("headers", [])]
         await send({**start, "headers": headers})
-        return await send({"type": "http.response.body", "body": body})
+        return await send({"type": "http.response.body", "body": answered})
 
     return cut
 

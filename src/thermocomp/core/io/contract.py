@@ -93,7 +93,10 @@ class Dataset:
         made in memory."""
         if "file" not in self.manifest.columns:
             return Path(cid)
-        return Path(self.meta.get("path", "")) / self.manifest.loc[cid, "file"]
+        path = Path(self.meta.get("path", ""))
+        # a one-file record (its parts or runs): the path is the file ('spindle_test.csv' had been
+        # joined to itself, 'spindle_test.csv/spindle_test.csv', in every refusal naming it)
+        return path if path.is_file() else path / self.manifest.loc[cid, "file"]
 
     def ids(self, split: str | None = None) -> list[str]:
         if split is None:

@@ -68,9 +68,13 @@ def _repair_train(ds: Dataset, report: dict, options: Mapping | None) -> None:
 
 def check_streamed_columns(ds: Dataset, ids, columns, what: str) -> None:
     """Every campaign ``ids`` of ``ds`` holds every column ``what`` reads: else a ContractError
-    naming the first campaign's file and column that lack."""
+    naming the first campaign's file and the columns it lacks (one: as its ``column``; several:
+    counted and listed, not joined into one column's name)."""
     for cid in ids:
         absent = [c for c in columns if c not in ds.campaigns[cid].columns]
-        if absent:
+        if len(absent) == 1:
             raise ContractError(f"test campaign {cid} lacks a column {what} reads",
-                                file=ds.file_path(cid), column=",".join(absent))
+                                file=ds.file_path(cid), column=absent[0])
+        if absent:
+            raise ContractError(f"test campaign {cid} lacks {len(absent)} columns {what} reads: "
+                                f"{', '.join(absent)}", file=ds.file_path(cid))

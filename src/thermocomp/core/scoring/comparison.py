@@ -40,14 +40,16 @@ def shown_table(table: pd.DataFrame, baselines: list[dict]) -> pd.DataFrame:
 
 
 def compare_json(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
-                 baselines: list[dict], basis: dict) -> dict:
-    """``compare.json``; ``basis``: :func:`~.leaderboard.ranked_by` of the table (printed too)."""
+                 baselines: list[dict], basis: dict, jobs: tuple[int, int] = (0, 0)) -> dict:
+    """``compare.json``; ``basis``: :func:`~.leaderboard.ranked_by` of the table (printed too);
+    ``jobs``: the sweep's ``(failed, jobs)`` (``failed_jobs``, ``jobs``: a grid with failed jobs
+    is not whole)."""
     records = json_safe(table.to_dict(orient="records"))
     numeric = [c for c in (*VAL_FIGURES, *FIGURES, "fit_time_s") if c in table.columns]
     return {"parent_run_id": parent_id, "sort_by": sort_by, "target": target,
             "ranked_by_validation": is_validation(sort_by), "ranked_by": basis,
             "reported_not_used_to_choose": [c for c in FIGURES if c in table.columns],
-            "n_runs": len(records),
+            "n_runs": len(records), "failed_jobs": jobs[0], "jobs": jobs[1],
             "best": {k: records[0][k] for k in ("run_id", "model", "select", *numeric)} if records else {},
             "runs": {f"{i:02d}_{r['run_id'][:8]}": {k: r[k] for k in numeric} for i, r in
                      enumerate(records)},
@@ -61,11 +63,13 @@ def compare_json(table: pd.DataFrame, sort_by: str, target: str, parent_id: str,
 
 
 def headline_line(parent_id: str, n_runs: int, sort_by: str, target: str, basis: dict,
-                  datasets: int = 1) -> str:
-    """The line above the table: what sorted it (``basis``: :func:`~.leaderboard.ranked_by`)."""
+                  datasets: int = 1, failed: str = "") -> str:
+    """The line above the table: what sorted it (``basis``: :func:`~.leaderboard.ranked_by`),
+    and ``failed``, what the sweep's failed jobs left out of it."""
     said = (ranking_line(basis) if is_validation(sort_by)
             else "a TEST figure, as asked: do not choose a model by it")
     within = (f" on {datasets} datasets, ranked within each (figures of different data do not "
               f"compare)" if datasets > 1 else "")
-    return (f"sweep {parent_id}: {n_runs} runs{within}, sorted by {sort_by} "
+    failed = f" ({failed}: their errors are in the sweep's log)" if failed else ""
+    return (f"sweep {parent_id}: {n_runs} runs{failed}{within}, sorted by {sort_by} "
             f"(target {target}, {said}); test: columns are reported, not used to choose")

@@ -23,7 +23,7 @@ from ...core.scoring.leaderboard import baseline_rows, fit_width, rank, ranked_b
 from ..config.apart import check_apart
 from ..config.checks import _check_writable
 from ..config.rules import check_keys
-from ..sweeps import parent_run_id, sweep_folder, sweep_rows
+from ..sweeps import failed_jobs, failed_note, parent_run_id, sweep_folder, sweep_rows
 from ..tracking import client as mlflow_client
 from ..tracking import connect, retry_locked
 
@@ -37,7 +37,9 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     found: list = []
     rows = sweep_rows(client, uri, parent_id, str(opts.target), found)
     if not rows:
-        raise ConfigError(f"sweep {parent_id} has no child runs")
+        note = failed_note(*failed_jobs(client, parent_id))
+        raise ConfigError(f"sweep {parent_id} has no child runs" + (f" ({note}: their errors are "
+                                                                     "in the sweep's log)" if note else ""))
     try:
         table = rank(rows, str(opts.sort_by), opts.get("descending"))
     except KeyError as exc:
@@ -49,13 +51,15 @@ def compare_sweep(cfg: DictConfig, parent_id: str, out=None) -> pd.DataFrame:
     atomic_write_text(out / "compare.csv", table.to_csv(index=False))
     atomic_write_text(out / "compare.md", to_markdown(shown) + "\n")
     basis = ranked_by(table, str(opts.sort_by))
+    jobs = failed_jobs(client, parent_id)     # a job refused on its data has no row: said
     write_json(out / "compare.json", compare_json(table, str(opts.sort_by), str(opts.target),
-                                                  parent_id, baselines, basis))
+                                                  parent_id, baselines, basis, jobs))
     write_compare(out, table)  # compare_plot.csv, for `dvc plots show`
     for name in ("compare.csv", "compare.md", "compare.json"):
         retry_locked(client.log_artifact, parent_id, str(out / name), "compare")
     datasets = table["dataset"].nunique() if "dataset" in table.columns else 1
-    print(headline_line(parent_id, len(table), str(opts.sort_by), str(opts.target), basis, datasets))
+    print(headline_line(parent_id, len(table), str(opts.sort_by), str(opts.target), basis, datasets,
+                        failed_note(*jobs)))
     print(fit_width(shown, shutil.get_terminal_size().columns))   # a terminal's width
     say(f"comparison: {out / 'compare.md'}")
     return table

@@ -38,6 +38,9 @@ def replay(cfg: DictConfig) -> dict:
     root = resolve(cfg.data.path)
     with stage_run(cfg, "replay") as tr:
         deployed, source, name = deployable_model(cfg, ds, train_ids, model, "replay.model")
+        if model is not None:     # the run is of the model replayed, not of cfg.model (mlr)
+            tr.set_tags({"mlflow.runName": f"replay-{name}", "replay.model": source,
+                         "replay.model_name": name})
         check_volumetric_targets(cfg, ds, deployed.targets_, f"replay.model={source}")
         check_streamed_columns(ds, test_ids, deployed.columns_, "the deployed model")
         kind = "adaptive" if deployed is not plain(deployed) else "streaming"
