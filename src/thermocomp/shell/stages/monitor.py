@@ -37,7 +37,7 @@ from ...core.io.source import check_streamed_columns
 from ...core.io.stdin import TIME_ORIGIN, stdin_text, stream_campaigns
 from ..builders import build_adaptive, build_compensator, deploy_stream, warn_stream_mode
 from ..config.checks import check_config, data_options
-from ..model_store import load_model
+from ..model_store import load_model, model_family
 from ..source import check_volumetric_targets, read_streamed
 from ..store import is_registered_model
 from ..tracking import stage_run
@@ -85,6 +85,9 @@ def monitor(cfg: DictConfig) -> dict:
     streamed, train = {c: ds.campaigns[c] for c in test_ids}, {c: ds.campaigns[c] for c in train_ids}
     with stage_run(cfg, "monitor") as tr:
         comp = _fitted(cfg, ds, train)
+        if model is not None:     # the run is of the model monitored, not of cfg.model (mlr)
+            tr.set_tags({"mlflow.runName": f"monitor-{model_family(comp)}", "monitor.model": str(model),
+                         "monitor.model_name": model_family(comp)})
         # one plain stream serves both: the fixed run and the adaptive one are each streamed
         # from a reset, one after the other
         fixed = deploy_stream(cfg, comp, train)
