@@ -24,7 +24,7 @@ from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
-from .blend import MIN_NESTED_FOLDS, Blend, nested_rmse, vote_weights
+from .blend import Blend, vote_weights
 from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
@@ -171,7 +171,6 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
             raise ParameterError("model.candidates is empty: name at least one model family")
         X, y = np.asarray(X, dtype=float), np.asarray(y, dtype=float)
         groups = groups_of(context)
-        self.nested_ = {}        # the votes' nested check (_nested_check), where they are taken
         if self.given_scores is not None:      # the val split's, computed by the stage
             self.scheme_ = "val split"
             return self._keep_best(X, y, context, dict(self.given_scores), "the val split")
@@ -222,11 +221,9 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         rows = self._voting_rows()
         w = vote_weights(preds[rows], self.oof_y_[rows], self.oof_fold_[rows], self.oof_[BASELINE][rows],
                          base_column=base, min_folds=int(self.n_folds))
-        blended = rmse(self.oof_y_ - preds @ w)
         weights = {n: float(v) for n, v in zip(members, w) if v > 0}
+        blended = rmse(self.oof_y_ - preds @ w)
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
-        if self._nested_check(preds, base, rows) == "mlr":    # the votes' edge: the folds' accident
-            weights = {BASELINE: 1.0}
         doubt = "" if base is None else ", each kept as far as its resamples beat MLR, the rest MLR's"
         where = ("" if self.validation_rows == "all" else f", on the {rows.sum()} of {rows.size} rows "
                  f"where the fold does not extrapolate, {np.unique(self.oof_fold_[rows]).size} fold(s)")
@@ -237,34 +234,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.family_ = max(weights, key=weights.get)
         self.chosen_ = self.family_ if len(weights) == 1 else weights
         self.reason_ = (f"{lead} ({how}); MLR {self.validation_[BASELINE]:.4g}, "
-                        f"persistence {self.validation_[PERSISTENCE]:.4g}; {self.nested_['why']}")
+                        f"persistence {self.validation_[PERSISTENCE]:.4g}")
         return self._refit(X, y, context)
-
-    def _nested_check(self, preds: np.ndarray, base: int | None, rows: np.ndarray) -> str:
-        """``'mlr'`` when the vote's own error, each fold predicted by the weights the other folds
-        vote for (:func:`~thermocomp.core.models.blend.nested_rmse`), is not below MLR's pooled
-        out-of-fold RMSE: the blend's edge is then the folds' accident, MLR alone is kept;
-        ``'votes'`` otherwise, or where it cannot be judged (fewer than three folds, MLR no
-        candidate).  ``nested_`` holds both errors and why, for ``metrics.json``."""
-        mlr = rmse(self.oof_y_ - self.oof_[BASELINE])
-        nested = None if base is None else nested_rmse(
-            preds, self.oof_y_, self.oof_fold_, self.oof_[BASELINE], base_column=base,
-            min_folds=int(self.n_folds), voting=rows)
-        folds = np.unique(self.oof_fold_).size
-        if nested is None:
-            why = ("the votes kept unjudged: " + ("MLR is no candidate" if base is None else
-                   f"{folds} fold(s), fewer than {MIN_NESTED_FOLDS} to vote on all but one"))
-            decision = "votes"
-        elif nested < mlr:
-            why = (f"the votes kept: nested validation RMSE {nested:.4g} (each of {folds} folds "
-                   f"blended as the others vote) below MLR's {mlr:.4g}")
-            decision = "votes"
-        else:
-            why = (f"MLR alone kept: nested validation RMSE {nested:.4g} (each of {folds} folds "
-                   f"blended as the others vote) not below MLR's {mlr:.4g}")
-            decision = "mlr"
-        self.nested_ = {"nested_rmse": nested, "mlr_rmse": mlr, "decision": decision, "why": why}
-        return decision
 
     def _voting_rows(self) -> np.ndarray:
         """The out-of-fold rows the votes score: all, or (``validation_rows='in_range'``) those
@@ -410,8 +381,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                 "chosen": self.family_, "weights": {n: round(w, 4) for n, w in self.weights_.items()},
                 "combine": self.combine_, "reason": self.reason_, "scheme": self.scheme_,
                 "skipped": dict(self.skipped_),
-                "validation_s": {n: round(s, 3) for n, s in self.fit_seconds_.items()},
-                **{k: v for k, v in getattr(self, "nested_", {}).items() if k != "why"}}
+                "validation_s": {n: round(s, 3) for n, s in self.fit_seconds_.items()}}
 
 
 # a candidate whose folds took this long is said at INFO (else DEBUG): on a year at 1 min the

@@ -20,7 +20,6 @@ from ..model_selection.blocks import cut_blocks, decorrelation_length
 
 MIN_WEIGHT = 0.01   # a member weighted less is dropped (refitting it would buy nothing)
 N_RESAMPLES = 500   # bootstrap resamples of the folds: weights to 0.002, fixed seed (reproducible)
-MIN_NESTED_FOLDS = 3   # nested_rmse: with two folds the inner choice would see one fold alone
 
 
 class Blend(SideInputs, RegressorMixin, BaseEstimator):
@@ -145,36 +144,6 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
         w[base_column] += doubt.sum()
     w[w < MIN_WEIGHT] = 0.0
     return w / w.sum()
-
-
-def nested_rmse(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base: np.ndarray,
-                base_column: int | None = None, min_folds: int = 2, voting: np.ndarray | None = None,
-                n_resamples: int = N_RESAMPLES) -> float | None:
-    """The error of the choice itself: the pooled RMSE over the folds of the blend whose weights
-    :func:`vote_weights` chose from the other folds only (nested cross-validation, Varma & Simon
-    2006, Cawley & Talbot 2010); None with fewer than :data:`MIN_NESTED_FOLDS` folds.
-
-    The weights of all the folds are chosen on the very folds that judge them, so a blend that
-    won them by chance looks better there than it is; here fold ``k`` is predicted by the
-    columns of ``predictions`` (each candidate's out-of-fold predictions, no refit) weighted as
-    the other folds vote.  Those votes resample the same unit the call on every fold does
-    (``min_folds``: its folds, or their blocks where there are fewer folds than ``min_folds``),
-    so one fold fewer does not change how the folds are drawn.  ``voting``: the rows the votes
-    score (auto's ``validation_rows``; default every row); each held-out fold is scored whole.
-    """
-    folds = np.unique(fold)
-    if folds.size < MIN_NESTED_FOLDS:
-        return None
-    voting = np.ones(len(y), bool) if voting is None else np.asarray(voting, bool)
-    inner_min_folds = int(min_folds) - 1      # K - 1 folds drawn as K are (folds or blocks)
-    squared = []
-    for k in folds:
-        others = (fold != k) & voting
-        w = vote_weights(predictions[others], y[others], fold[others], base[others],
-                         n_resamples=n_resamples, base_column=base_column, min_folds=inner_min_folds)
-        held = fold == k
-        squared.append((y[held] - predictions[held] @ w) ** 2)
-    return float(np.sqrt(np.mean(np.concatenate(squared))))
 
 
 def _nested_resamples(predictions, y, fold, base, n_resamples, blocks: bool) -> np.ndarray:
