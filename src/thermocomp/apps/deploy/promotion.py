@@ -153,13 +153,14 @@ def find_registered(champion, versions: Callable[[], list], cand: Candidate, dat
 
 def deploy(cand: Candidate, comp, ds, *, stream_of: Callable, deployed_of: Callable,
            leads: Mapping, max_deviation_um: float, e_p95: tuple, target: str,
-           deploy_config: str) -> None:
+           deploy_config: str, adapt_of: Callable = lambda n_targets: None) -> None:
     """Wrap the model as deployed (causality gate first: the plain stream, envelope off, no
     monitor) and stream the test split through it (``cand`` filled in).
 
     ``stream_of(train)`` makes the plain stream, ``deployed_of(streaming, train)`` what is
     registered; ``leads`` warms the campaigns that continue others; ``e_p95`` is
-    ``(statistic, max_points)``."""
+    ``(statistic, max_points)``; ``adapt_of(n_targets)`` the scheduled adaptation the deployed
+    model learns with (``adapt.method``; None: frozen), in the test figures as ``replay``'s."""
     train_ids, test_ids = require_split(ds, "train"), require_split(ds, "test")
     train = {c: ds.campaigns[c] for c in train_ids}
     cand.streaming = stream_of(train)
@@ -173,7 +174,8 @@ def deploy(cand: Candidate, comp, ds, *, stream_of: Callable, deployed_of: Calla
     cand.kind, cand.deploy_key = deployed_summary(cand.deployed), deploy_config
     test = {c: ds.campaigns[c] for c in test_ids}
     # the test figures, as deployed: reported beside the validation ones, never used to decide
-    scores = stream_scores(cand.deployed, test, sample_period(ds, test_ids), *e_p95, leads)
+    scores = stream_scores(cand.deployed, test, sample_period(ds, test_ids), *e_p95, leads,
+                           adapt=adapt_of(len(cand.deployed.targets_)))
     cand.test_figures = {k: v for k, v in figures_of(scores, target).items() if not is_validation(k)}
     cand.figures = {**cand.val_figures, **cand.test_figures}
 

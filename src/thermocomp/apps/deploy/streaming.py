@@ -724,18 +724,30 @@ def streaming_deviation(streaming: StreamingCompensator, campaign: pd.DataFrame,
 
 def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.DataFrame],
                   sample_period_s: float, statistic: str = "range", points: int | None = 200,
-                  lead_ins: Mapping[str, pd.DataFrame] | None = None) -> dict:
+                  lead_ins: Mapping[str, pd.DataFrame] | None = None, adapt=None) -> dict:
     """Test figures of the *deployed* predictions, in the layout of ``metrics.json``.
 
     Each campaign is streamed from its start, as on the machine: from a reset, or warmed on
     its ``lead_ins`` entry (the campaigns it continues); returns ``{target: {"test": {...}}}``
-    (see :func:`thermocomp.core.metrics.split_scores`).
+    (see :func:`thermocomp.core.metrics.split_scores`).  With ``adapt`` (an
+    :class:`~.adapt.Adaptation` with its schedule, ``adapt.method`` not ``none``) the
+    corrections are adapted as ``replay`` adapts them: the campaigns in their order, what is
+    learned from the references carried from one to the next.
     """
     lead_ins = lead_ins or {}
     predicted = {c: replay(streaming, df, lead_in=lead_ins.get(c)) for c, df in campaigns.items()}
     streaming.reset()
     # (a probe's first reading after the first row: the deployed y_hat(m) completes the label)
     measured = streaming.compensator.measured(campaigns, predicted=predicted)
+    if adapt is not None:
+        # the model served with adapt.method learns from the probe; scored frozen, promote
+        # tagged a model that adapts with the figures of one that does not
+        targets = list(streaming.targets_)
+        for c, df in campaigns.items():
+            adapt.start()
+            time = df[TIME].to_numpy(float) if TIME in df.columns else np.full(len(df), np.nan)
+            predicted[c][targets] = adapt.correct(predicted[c][targets].to_numpy(float), time,
+                                                  measured[c][targets].to_numpy(float))
     out = {}
     for t in streaming.targets_:
         y = {c: measured[c][t].to_numpy() for c in campaigns}

@@ -13,6 +13,7 @@ from __future__ import annotations
 from omegaconf import DictConfig, OmegaConf
 
 from ...apps.deploy import POLICIES
+from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...apps.deploy.promotion import deploy, deploy_key, promote_report
 from ...base.files import write_json
 from ...base.log import logger
@@ -69,7 +70,8 @@ def promote(cfg: DictConfig) -> dict:
            target=str(cfg.promote.target), deploy_config=deploy_key(
                bool(cfg.monitor.adaptive), OmegaConf.to_container(cfg.monitor, resolve=True),
                OmegaConf.to_container(cfg.promote.envelope, resolve=True),
-               OmegaConf.to_container(cfg.adapt, resolve=True) if cfg.get("adapt") else None))
+               OmegaConf.to_container(cfg.adapt, resolve=True) if cfg.get("adapt") else None),
+           adapt_of=lambda n_targets: adapt_from_config(cfg.get("adapt"), n_targets))
     with registry_lock(uri):
         outcome = registry.register(cfg, client, cand, ds, dataset_hash)
     name, alias = str(cfg.promote.model_name), str(cfg.promote.alias)
