@@ -29,7 +29,7 @@ from ..builders import validation_template
 from ..chain import fit_chain
 from ..config.checks import check_config, data_options
 from ..model_store import save_model
-from ..source import dataset_digest, open_source
+from ..source import dataset_digest, is_volumetric, open_source
 from ..tracking import stage_run
 
 
@@ -77,6 +77,14 @@ def run_grouped(cfg: DictConfig) -> dict:
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ConfigError(f"data.group_jobs must be an integer >= 1, got {jobs!r}")
     root = resolve(cfg.data.path)
+    if is_volumetric(cfg):
+        # a group is read as a plain dataset: its ball distances would be the targets, one
+        # model per distance, never calibrated into the error parameters the twin models
+        raise ConfigError(
+            f"file {root / 'volumetric.json'}: data.group_by={column} on a volumetric dataset: "
+            "its groups would be fitted on the raw ball distances, not on the calibrated error "
+            "parameters; run each machine's folder (its files, manifest rows and volumetric.json) "
+            "without data.group_by")
     manifest = io.folder_splits(root, io.ReadOptions.from_cfg(data_options(cfg)))
     members = fleet.groups(manifest, column, root / "campaigns.csv")
     fleet.require_splits(manifest, members, column, root / "campaigns.csv")
