@@ -31,3 +31,42 @@ def test_a_volumetric_dataset_grouped_by_machine_is_refused_not_fitted_on_its_di
              "eval.validation=false", "plots=none", f"out={out}"], capsys,
             "volumetric.json", "data.group_by=machine", "without data.group_by")
     assert not out.exists()
+
+
+@pytest.fixture(scope="module")
+def fleet(tmp_path_factory):
+    from thermocomp.apps.sim.fleet import Fleet
+
+    path = tmp_path_factory.mktemp("volfleet63") / "fleet"
+    Fleet(n_machines=2, days=3, test_days=1, n_sensors=5, sample_period_s=600.0, n_jobs=1,
+          seed=6331).write(path)
+    return path
+
+
+def test_run_sim_fleet_writes_its_own_folder_not_the_main_pipelines():
+    """``thermocomp run sim=fleet`` (docs/sweeps.md) wrote into reports/default, the main
+    pipeline's DVC output: its metrics.json replaced, the year-round model.pkl and headline left
+    beside it."""
+    from thermocomp.shell.config.overrides import compose
+
+    cfg = compose(["sim=fleet"], "run")
+    assert cfg.out == "reports/fleet" and cfg.model_path == "models/fleet/model.pkl"
+    assert compose([], "run").out == "reports/default"
+
+
+def test_a_fleet_run_into_a_single_runs_folder_says_what_it_left_there(fleet, tmp_path, capsys):
+    """And the other way round: each kind of run leaves the other's files (out keeps what it
+    did not write); they were left without a word, a metrics.json beside a model it is not of."""
+    from thermocomp.shell.cli import main
+
+    out = tmp_path / "out"
+    common = [f"data.path={fleet}", "data.reference=first_sample", "track=false",
+              "eval.validation=false", "plots=none", f"out={out}"]
+    assert main(["run", *common]) == 0
+    capsys.readouterr()
+    assert main(["run", "data.group_by=machine", *common]) == 0
+    said = [ln for ln in capsys.readouterr().err.splitlines() if "not this run's" in ln]
+    assert len(said) == 1 and "model.pkl" in said[0] and "headline" in said[0], said
+    assert main(["run", *common]) == 0
+    said = [ln for ln in capsys.readouterr().err.splitlines() if "not this run's" in ln]
+    assert len(said) == 1 and "fleet.csv" in said[0] and "models" in said[0], said
