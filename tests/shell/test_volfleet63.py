@@ -70,3 +70,21 @@ def test_a_fleet_run_into_a_single_runs_folder_says_what_it_left_there(fleet, tm
     assert main(["run", *common]) == 0
     said = [ln for ln in capsys.readouterr().err.splitlines() if "not this run's" in ln]
     assert len(said) == 1 and "fleet.csv" in said[0] and "models" in said[0], said
+
+
+def test_simulate_says_when_another_seed_replaces_the_dataset(tmp_path, capsys):
+    """``simulate seed=6331`` replaces the scenario's own folder (the seed is not in its digest,
+    so ``run seed=1`` reads the same data), and a later ``calibrate`` without ``seed=`` read
+    seed 6331's distances without a word."""
+    from thermocomp.shell.cli import main
+
+    data = tmp_path / "vol"
+    small = ["sim=large_mill_volumetric", "sim.generator.train_hours=1.0",
+             "sim.generator.test_hours=1.0", f"data.path={data}", "track=false"]
+    assert main(["simulate", *small]) == 0
+    capsys.readouterr()
+    assert main(["simulate", *small, "seed=6331"]) == 0
+    err = capsys.readouterr().err
+    assert "simulated with seed 0" in err and "seed 6331" in err, err
+    assert main(["simulate", *small, "seed=6331"]) == 0
+    assert "simulated with seed" not in capsys.readouterr().err
