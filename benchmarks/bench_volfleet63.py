@@ -12,36 +12,38 @@ pack's expected corrections against the calibrated validation week).  The fleet 
 Its own MLflow store (``tracking_uri=`` into ROOT).  ``off``: in process, small data (volumetric
 4 h + 3 h at seed 6331; a fleet of 3 machines x 4 days at seed 6331): the lab's cases.
 
-Measured (2026-12-01, on a149d2c; CPU user+sys, 2 shared cores)
-----------------------------------------------------------------
-``documented``, seed 0: simulate 2.4 s, calibrate 3.5 s (22 of 33 parameters, residual 1.124 µm,
-95.4 % within 2u, max |z| 4.55: as the page says), run 13.8 s (distance errors 4.07 -> 1.35 µm,
+Measured (2026-12-01, at d8b2c45, the mends in; CPU user+sys, 2 shared cores)
+-----------------------------------------------------------------------------
+``documented``, seed 0: simulate 2.6 s, calibrate 4.3 s (22 of 33 parameters, residual 1.124 µm,
+95.4 % within 2u, max |z| 4.55: as the page says), run 14.1 s (distance errors 4.07 -> 1.35 µm,
 VCE 8.72 -> 3.12, against the identified parameters 9.33 -> 4.38, A.3 mean/max 8.89/24.59 ->
-1.74/5.34: as written), design 15.8 s; ``dvc repro pipelines/volumetric/dvc.yaml`` 39.6 s, the
-same figures, a second repro a no-op.  Seed 6331: residual 1.095 µm, 95.2 % within 2u (max |z|
-4.89), distance errors 4.78 -> 1.33 µm (72.1 %), VCE 9.89 -> 2.41, against the identified
-parameters 10.66 -> 4.24, A.3 mean 8.98 -> 1.74 µm.  ``simulate seed=6331`` writes the scenario's
-own ``data/raw/large_mill_volumetric`` (the seed is not in the folder's digest, cli.md says so),
-and a later ``calibrate`` without ``seed=`` reads it without a word (residual 1.095, not 1.124).
-Deployed = scored: ``replay`` streams = batch to 1.4e-14 µm; its RMSE = run's test RMSE on 21 of
-22 parameters, E_ZY1 2.537 against 2.597 µm (largest difference 0.060 µm: the correction guard
-bounds the model's 9.33 µm to 9.13 twice); the exported C passes its check (1.07e-14 µm) and its
-corrections give the replay's figures (E_ZY1 2.537).  Fleet (6 x 8 days): simulate 3.4 s, run
-6.2 s; test RMSE mean E_X/E_Y/E_Z 0.33/0.35/1.02 µm.
+1.74/5.34: as written), design 16.7 s; ``dvc repro pipelines/volumetric/dvc.yaml`` (by hand, in a
+clone, not in this script) 39.6 s, the same figures, a second repro a no-op. Seed 6331 (2.5 / 3.7
+/ 14.6 s): residual 1.095 µm, 95.2 % within 2u (max |z| 4.89), distance errors 4.78 -> 1.33 µm
+(72.1 %), VCE 9.89 -> 2.41, against the identified parameters 10.66 -> 4.24, A.3 mean 8.98 -> 1.74
+µm. ``simulate seed=6331`` writes the scenario's own ``data/raw/large_mill_volumetric`` (the seed
+is not in the folder's digest, cli.md says so), and a later ``calibrate`` without ``seed=`` reads
+it without a word (residual 1.095, not 1.124). Deployed = scored: ``replay`` streams = batch to
+1.4e-14 µm; its RMSE = run's test RMSE on 21 of 22 parameters to 4 decimals, E_XY1 1.5576 against
+1.5580 and E_ZY1 2.537 against 2.597 µm (largest difference 0.060 µm: the correction guard bounds
+the model's 9.33 µm to 9.13 twice); the exported C's check pack gives the replay's figures
+(largest difference 0.0; built and run by hand: passes, 1.07e-14 µm). Fleet (6 x 8 days): simulate
+3.5 s, run 5.8 s (into reports/fleet); test RMSE mean E_X/E_Y/E_Z 0.33/0.35/1.02 µm.
 
 ``off``: the lab's ``;``/decimal-comma CSV with one empty distance cell calibrates (exit 0); a
 distance column missing (``E_S1x1d1_B01_B09``) and a pose not in volumetric.json
-(``E_P99x1d1_B01_B02``) exit 2 naming file and column, nothing written.  On 4 h of training the
-3-h validation week leaves the envelope (9 of 10 cycles clamped): replay's RMSE differs from the
-run's by up to 3.21 µm (E_XX2 2.11 against 3.73), ``rmse_batch`` = the run's.  A fleet machine
-without a sensor the others have (T_amb_2 on M002) is fitted on its own 5 inputs; its model's
-``replay`` and ``export`` on its own folder = its fleet.csv row to 4 decimals (E_X/E_Y/E_Z
-0.5368/1.1559/2.8816); M001's model (which reads T_amb_2) on the whole folder exits 2 naming the
-column and M002's 3 campaigns; a machine with one campaign exits 2 naming it, nothing written.
-Defects (mended): a volumetric folder with ``data.group_by`` was fitted on its 1430 raw
+(``E_P99x1d1_B01_B02``) exit 2 naming file and column, nothing written. On 4 h of training the 3-h
+validation week leaves the envelope (9 of 10 cycles clamped): replay's RMSE differs from the run's
+by up to 3.21 µm (E_XX2 2.11 against 3.73), ``rmse_batch`` = the run's. A fleet machine without a
+sensor the others have (T_amb_2 on M002) is fitted on its own 5 inputs; its model's ``replay`` on
+its own folder = its fleet.csv row to 4 decimals (``export``'s check pack too, by hand)
+(E_X/E_Y/E_Z 0.5368/1.1559/2.8816); M001's model (which reads T_amb_2) on the whole folder exits 2
+naming the column and M002's 3 campaigns; a machine with one campaign exits 2 naming it, nothing
+written. Defects (mended): a volumetric folder with ``data.group_by`` was fitted on its 1430 raw
 distances (exit 0, no ``volumetric`` section: now exit 2); ``run sim=fleet`` wrote into the main
-pipeline's ``reports/default`` (its metrics.json beside the year-round model.pkl and headline:
-now ``reports/fleet``, and either kind of run warns of the other's files left in its out).
+pipeline's ``reports/default`` (its metrics.json beside the year-round model.pkl and headline: now
+``reports/fleet``, and either kind of run warns of the other's files left in its out);
+``simulate`` now warns when another seed replaces a simulated folder.
 """
 
 from __future__ import annotations
