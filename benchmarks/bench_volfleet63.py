@@ -23,8 +23,9 @@ clone, not in this script) 39.6 s, the same figures, a second repro a no-op. See
 (72.1 %), VCE 9.89 -> 2.41, against the identified parameters 10.66 -> 4.24, A.3 mean 8.98 -> 1.74
 µm. ``simulate seed=6331`` writes the scenario's own ``data/raw/large_mill_volumetric`` (the seed
 is not in the folder's digest, cli.md says so), and a later ``calibrate`` without ``seed=`` reads
-it without a word (residual 1.095, not 1.124). Deployed = scored: ``replay`` streams = batch to
-1.4e-14 µm; its RMSE = run's test RMSE on 21 of 22 parameters to 4 decimals, E_XY1 1.5576 against
+it without a word (residual 1.095, not 1.124; simulate now warns).
+Deployed = scored: ``replay`` streams = batch to
+1.4e-14 µm; its RMSE = run's test RMSE on 20 of 22 parameters to 4 decimals, E_XY1 1.5576 against
 1.5580 and E_ZY1 2.537 against 2.597 µm (largest difference 0.060 µm: the correction guard bounds
 the model's 9.33 µm to 9.13 twice); the exported C's check pack gives the replay's figures
 (largest difference 0.0; built and run by hand: passes, 1.07e-14 µm). Fleet (6 x 8 days): simulate
