@@ -29,7 +29,7 @@ from ..builders import validation_template
 from ..chain import fit_chain
 from ..config.checks import check_config, data_options
 from ..model_store import save_model
-from ..source import dataset_digest, open_source
+from ..source import dataset_digest, is_volumetric, open_source
 from ..tracking import stage_run
 
 
@@ -66,6 +66,22 @@ def _group(cfg: DictConfig, digest: str, group: str, ids: list[str], stage) -> d
             "pooled": pooled, **({"warnings": [note]} if note else {})}
 
 
+# what only a single run writes into ``out`` and what only a fleet's run does: ``out`` keeps
+# the files a run does not write, so one kind of run into the other's folder leaves them there
+SINGLE_RUN_OUTPUTS = ("model.pkl", "headline")
+FLEET_RUN_OUTPUTS = ("fleet.csv", "models")
+
+
+def warn_left_over(out, names: tuple[str, ...], kind: str) -> None:
+    """Warn that ``out`` still holds ``names`` of an earlier ``kind`` run: beside this run's
+    metrics.json they would read as its own (a fleet's metrics beside a single model)."""
+    left = [n for n in names if (resolve(out) / n).exists()]
+    if left:
+        logger.warning(f"{resolve(out)} still holds {', '.join(left)} of an earlier {kind} run, "
+                       "not this run's (a run leaves the files it does not write): delete them "
+                       "or give each kind of run its own out=")
+
+
 def run_grouped(cfg: DictConfig) -> dict:
     """``run`` on a fleet: one compensator per value of the manifest column ``data.group_by``."""
     from joblib import delayed
@@ -77,6 +93,14 @@ def run_grouped(cfg: DictConfig) -> dict:
     if isinstance(jobs, bool) or not isinstance(jobs, int) or jobs < 1:
         raise ConfigError(f"data.group_jobs must be an integer >= 1, got {jobs!r}")
     root = resolve(cfg.data.path)
+    if is_volumetric(cfg):
+        # a group is read as a plain dataset: its ball distances would be the targets, one
+        # model per distance, never calibrated into the error parameters the twin models
+        raise ConfigError(
+            f"file {root / 'volumetric.json'}: data.group_by={column} on a volumetric dataset: "
+            "its groups would be fitted on the raw ball distances, not on the calibrated error "
+            "parameters; run each machine's folder (its files, manifest rows and volumetric.json) "
+            "without data.group_by")
     manifest = io.folder_splits(root, io.ReadOptions.from_cfg(data_options(cfg)))
     members = fleet.groups(manifest, column, root / "campaigns.csv")
     fleet.require_splits(manifest, members, column, root / "campaigns.csv")
@@ -98,5 +122,6 @@ def run_grouped(cfg: DictConfig) -> dict:
         tr.log_artifact(out / "metrics.json")
         tr.log_artifact(out / "fleet.csv")
     print(fleet.table_text(metrics))
+    warn_left_over(out, SINGLE_RUN_OUTPUTS, "single (no data.group_by)")
     say(f"metrics: {out / 'metrics.json'}, per group: {out / 'fleet.csv'}, models: {out / 'models'}")
     return metrics

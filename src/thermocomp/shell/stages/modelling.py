@@ -41,6 +41,7 @@ from ..source import (
 )
 from ..tracking import stage_run
 from .artifacts import fit_from_artifacts
+from .fleet import FLEET_RUN_OUTPUTS, run_grouped, warn_left_over
 
 
 def train(cfg: DictConfig):
@@ -82,8 +83,6 @@ def run(cfg: DictConfig) -> dict:
     volumetric dataset the source is its parameter series, and ``metrics.json`` gains the
     ``volumetric`` section (:mod:`thermocomp.apps.volumetric.validation`)."""
     if cfg.data.get("group_by"):
-        from .fleet import run_grouped
-
         return run_grouped(cfg)
     check_config(cfg)
     clock = Clock()
@@ -109,7 +108,8 @@ def run(cfg: DictConfig) -> dict:
         metrics = _report(cfg, comp, ds, tr, clock, {"fit_time_s": fit_s}, stage_files, volumetric)
         tr.log_metrics({"fit_time_s": fit_s})
         tr.log_artifact(resolve(cfg.out) / "model.pkl")
-        return metrics
+    warn_left_over(cfg.out, FLEET_RUN_OUTPUTS, "fleet (data.group_by)")
+    return metrics
 
 
 def _report(cfg: DictConfig, comp, ds, tracker, clock: Clock | None = None,

@@ -10,7 +10,7 @@ from omegaconf import DictConfig
 from ...apps.sim.scenario import write_scenario
 from ...base.errors import ConfigError
 from ...base.files import write_json
-from ...base.log import say
+from ...base.log import logger, say
 from ...base.paths import resolve
 from ..build import build
 from ..config.checks import _check_writable
@@ -34,10 +34,17 @@ def simulate(cfg: DictConfig) -> dict:
         raise ConfigError(f"data.path={cfg.data.path}: holds a dataset simulate did not write (no "
                           f"{path.name}.truth.json next to it: measured data?); simulate replaces "
                           "it whole: give a new or empty folder")
+    before = _seed_of(Path(f"{path}.truth.json"))
     truth, n_campaigns, rows = write_scenario(generator, path)
     truth_path = write_json(f"{path}.truth.json", truth)
     say(f"wrote {n_campaigns} campaigns, {rows} rows to {path} "
         f"({time.perf_counter() - t0:.1f} s); truth: {truth_path}")
+    if before is not None and truth.get("seed") is not None and before != truth["seed"]:
+        # the seed is not in the folder's name (it seeds the models too: `run seed=1` reads the
+        # scenario's data), so a stage run later without this seed= reads these data all the same
+        logger.warning(f"{path} was simulated with seed {before}, now with seed {truth['seed']}: "
+                       "every stage reading it gets these data whatever its own seed=; give "
+                       "data.path=<new folder> to keep both")
     folder = scenario_dataset(cfg)
     if folder != cfg.sim.name and path.name == folder:     # data.path as conf/data says
         say(f"sim.generator differs from conf/sim/{cfg.sim.name}.yaml: its dataset is kept apart "
@@ -47,3 +54,13 @@ def simulate(cfg: DictConfig) -> dict:
         tr.log_metrics({"campaigns": n_campaigns, "rows": rows})
         tr.log_artifact(truth_path)
     return {"path": str(path), "truth": str(truth_path)}
+
+
+def _seed_of(truth: Path):
+    """The ``seed`` recorded in a simulated dataset's truth file (None: none, or unreadable)."""
+    import json
+
+    try:
+        return json.loads(truth.read_text()).get("seed")
+    except (OSError, ValueError, AttributeError):
+        return None
