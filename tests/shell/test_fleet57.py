@@ -138,3 +138,37 @@ def test_a_hammerstein_without_states_is_said_per_machine(fleet, tmp_path):
     groups = json.loads((out / "metrics.json").read_text())["groups"]
     for machine, line in machines.items():
         assert len(groups[machine]["warnings"]) == 1 and line.endswith(groups[machine]["warnings"][0])
+
+
+def test_a_named_input_one_machine_lacks_is_said_for_that_machine(fleet, tmp_path):
+    """``data.inputs=[<one sensor>, T_*]`` on a fleet where one machine lacks that sensor: that
+    machine was fitted without it in silence (volfleet63); now said for it alone, on stderr and
+    in its metrics.json entry. A pattern matching nothing of a machine is not said."""
+    import json
+    import shutil
+
+    from conftest import thermocomp
+
+    path = shutil.copytree(fleet, tmp_path / "fleet")
+    sensor = next(c for c in pd.read_parquet(next(path.glob("machine=M002/*.parquet"))).columns
+                  if c.startswith("T_") and not c.startswith("T_amb"))
+    for f in path.glob("machine=M002/*.parquet"):
+        pd.read_parquet(f).drop(columns=[sensor]).to_parquet(f, index=False)
+    out = tmp_path / "out"
+    run = thermocomp("run", f"data.path={path}", "data.group_by=machine",
+                     f"data.inputs=[{sensor},'T_*','X_*']", "track=false", "eval.validation=false",
+                     *LIGHT, f"out={out}")
+    said = [line for line in run.stderr.splitlines() if "data.inputs names" in line]
+    assert len(said) == 1 and "M002" in said[0] and sensor in said[0] and "X_" not in said[0]
+    groups = json.loads((out / "metrics.json").read_text())["groups"]
+    assert [m for m, g in groups.items() if g.get("warnings")] == ["M002"]
+
+
+def test_a_named_input_the_data_lack_is_said_by_a_single_run(tmp_path):
+    from conftest import thermocomp
+    from test_deploy import LIGHT_EVAL, write_small_dataset
+
+    data = write_small_dataset(tmp_path / "small")
+    run = thermocomp("run", f"data.path={data}", "data.inputs=[T_nowhere,'T_*']", "track=false",
+                     *LIGHT_EVAL, "eval.validation=false", f"out={tmp_path / 'run'}")
+    assert any("data.inputs names T_nowhere" in line for line in run.stderr.splitlines())

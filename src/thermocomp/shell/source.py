@@ -231,12 +231,26 @@ def check_declared(cfg: DictConfig, ds, model: bool = True) -> None:
     from ..core.frame import check_common_columns
 
     inputs, targets = declared_columns(cfg, ds)
+    missing = named_inputs_missing(cfg, ds)
+    if missing:
+        logger.warning(f"{ds.name}: {missing}")
     headers = {name: raw for raw, name in (ds.meta.get("column_map") or {}).items()}
     starts = ds.manifest["start"].to_dict() if "start" in ds.manifest.columns else None
     check_common_columns(ds.campaigns, inputs + targets, {cid: ds.file_path(cid) for cid in ds.ids()},
                          headers, starts)
     if model:
         check_model_columns(cfg, ds)
+
+
+def named_inputs_missing(cfg: DictConfig, ds) -> str | None:
+    """What to say where a ``data.inputs`` entry names one column (no glob) the data lack: the
+    model is fitted without it (a fleet machine without the others' second air sensor was fitted
+    on one in silence; a pattern that matches nothing, ``S_*`` on a machine without states, is
+    not said)."""
+    named = [p for p in list(cfg.data.inputs) if not any(ch in str(p) for ch in "*?[")]
+    missing = [p for p in named if p not in ds.columns]
+    return (f"data.inputs names {', '.join(missing)}, no column of these data: the model is "
+            "fitted without it") if missing else None
 
 
 # model keys that name one column of the data (ARX+RF's machine state, S_door by default)

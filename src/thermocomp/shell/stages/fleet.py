@@ -29,7 +29,7 @@ from ..builders import validation_template
 from ..chain import fit_chain
 from ..config.checks import check_config, data_options
 from ..model_store import save_model
-from ..source import dataset_digest, is_volumetric, open_source
+from ..source import dataset_digest, is_volumetric, named_inputs_missing, open_source
 from ..tracking import stage_run
 
 
@@ -55,15 +55,15 @@ def _group(cfg: DictConfig, digest: str, group: str, ids: list[str], stage) -> d
         for t, entry in val.items():
             targets[t][VALIDATION] = entry
     save_model(comp, inside(stage / "models", safe_name(group) + ".pkl"))
-    note = without_states_note(comp)    # said per machine, as a single run says it
-    if note:
+    notes = [n for n in (without_states_note(comp), named_inputs_missing(cfg, ds)) if n]
+    for note in notes:                  # said per machine, as a single run says it
         logger.warning(f"{group}: {note}")
     targets = fleet.slim(targets)
     say(f"{group}: {len(ids)} campaigns, {report['rows']} rows, fit {fit_s:.2f} s, test RMSE "
         + ", ".join(f"{t} {TargetResult(m).test.rmse:.2f}" for t, m in targets.items()))
     return {"campaigns": len(ids), "rows": int(report["rows"]), "fit_time_s": fit_s,
             "inputs": {t: comp.selected_[t] for t in comp.targets_}, "targets": targets,
-            "pooled": pooled, **({"warnings": [note]} if note else {})}
+            "pooled": pooled, **({"warnings": notes} if notes else {})}
 
 
 # what only a single run writes into ``out`` and what only a fleet's run does: ``out`` keeps
