@@ -27,6 +27,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...base.log import logger
+from ...core.context import TIME
 
 RLS_MIN_FORGETTING = 0.9
 
@@ -185,6 +186,14 @@ class Adaptation:
                 self.adapter.update(y, measured[i])
                 waiting = False
         return out
+
+    def correct_recorded(self, Y: np.ndarray, campaign, measured: np.ndarray) -> np.ndarray:
+        """One recorded campaign's corrections adapted as ``replay`` (and promote's figures as
+        deployed) adapt them: the schedule restarted, its rows at the campaign's ``time`` (NaN
+        without a time column)."""
+        self.start()
+        times = campaign[TIME].to_numpy(float) if TIME in campaign.columns else np.full(len(campaign), np.nan)
+        return self.correct(Y, times, measured)
 
     def snapshot(self) -> tuple:
         return self.adapter.snapshot(), None if self.schedule is None else self.schedule._next

@@ -205,9 +205,7 @@ def replay_report(deployed, campaigns: Mapping[str, pd.DataFrame],
         run = stream_rows(deployed, df, cid, (files or {}).get(cid), lead_ins.get(cid))
         if adapt is not None:
             frozen.append(m - run.y)
-            adapt.start()
-            run.y = adapt.correct(run.y, df[TIME].to_numpy(float) if TIME in df.columns
-                                  else np.full(len(df), np.nan), m)
+            run.y = adapt.correct_recorded(run.y, df, m)
         residuals.append(m - run.y)
         outputs.append(run.y)
         events += run.events

@@ -744,10 +744,8 @@ def stream_scores(streaming: StreamingCompensator, campaigns: Mapping[str, pd.Da
         # tagged a model that adapts with the figures of one that does not
         targets = list(streaming.targets_)
         for c, df in campaigns.items():
-            adapt.start()
-            time = df[TIME].to_numpy(float) if TIME in df.columns else np.full(len(df), np.nan)
-            predicted[c][targets] = adapt.correct(predicted[c][targets].to_numpy(float), time,
-                                                  measured[c][targets].to_numpy(float))
+            predicted[c][targets] = adapt.correct_recorded(predicted[c][targets].to_numpy(float), df,
+                                                           measured[c][targets].to_numpy(float))
     out = {}
     for t in streaming.targets_:
         y = {c: measured[c][t].to_numpy() for c in campaigns}
