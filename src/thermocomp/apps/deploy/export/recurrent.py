@@ -16,7 +16,8 @@ Per net ``k`` and layer ``l`` (torch's gate order i, f, g, o over rows of ``4 H`
 in + b_ih + W_hh h + b_hh``, ``i, f, o = sigmoid(a_i, a_f, a_o)``, ``g = tanh(a_g)``, ``c <- f c
 + i g``, ``h <- o tanh(c)``; ``in`` is ``xs`` (over the code's inputs: a column the net does not
 read has weight 0, mean 0, scale 1) for layer 0 and the layer below's new ``h`` after it.  An
-ATI interval's model with the ambient interaction reads ``[x, x (A0 - 20 °C)]``: where a net
+ATI interval's model with the ambient interaction reads ``[x, x (A0 - 20 °C)]``, and so does
+the base of a diagnosed model whose only effect is the ambient law (diaglstm63): where a net
 does (``lstm_ambient``), layer 0's ``in`` is ``xs`` over ``[x, x (A0 - ambient_centre)]``, 2
 n_inputs wide (the second half weight 0 for a net without it).  ``W_ih`` rows are
 ``lstm_width = max(n_inputs [x 2], H)`` wide (zeros beyond a layer's own inputs).  Every net

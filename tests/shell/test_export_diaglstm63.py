@@ -1,0 +1,146 @@
+"""A diagnosed lstm whose only effect is the ambient law exports (diaglstm63).
+
+``diagnose`` around an ``lstm`` base fits its network on ``[x, features]``; ``export`` refused
+every such model ("a diagnosed model on lstm"), also the one whose only accepted effect is the
+inputs' ambient law ``x (A0 - 20 °C)``: its network then reads ``[x, x (A0 - 20)]``, what an ATI
+interval's network with the ambient interaction reads, which the code already steps
+(``lstm_ambient``, exportati63).  Now that model (a sensor's removal beside it too: the base on
+the inputs kept) is the lstm emitter's network reading ``[x, x (A0 - 20)]`` and its skip law's
+ambient law: on test_export_effects59's door record (T_a pushed out half-way, the door missing
+at a start and mid-run) the compiled C, the Structured Text and the numpy reading equal
+``replay``.  Any other effect set on an lstm base is refused, naming the effect that blocks it.
+"""
+
+from __future__ import annotations
+
+import subprocess
+
+import numpy as np
+import pytest
+from sklearn.base import clone
+
+from test_export import _compose, needs_cc
+from test_export_ati63 import ATI, NET, _levels_with_a_door
+from test_export_auto57 import TOLERANCE_UM, _proved, deployed
+from test_export_effects59 import AMBIENT_LAW, LAG, SQUARE, _diagnosed, _door
+from thermocomp.apps.deploy.export import NotExportable, state_space
+from thermocomp.apps.diagnose import AugmentedRegressor
+from thermocomp.apps.diagnose.diagnosis import augment
+from thermocomp.core.models.lstm import LSTM
+from thermocomp.shell.builders import deploy_stream
+from thermocomp.shell.cli import main
+from thermocomp.shell.model_store import save_model
+from thermocomp.shell.source import read_streamed
+
+STEP = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 22.0}
+
+
+@pytest.fixture(scope="module")
+def data(tmp_path_factory):
+    """test_export_effects59's door record."""
+    return _door(tmp_path_factory.mktemp("diaglstm63") / "data")
+
+
+def _net() -> LSTM:
+    """test_export_lstm62's tiny network, kept whatever its held-out score."""
+    return LSTM(max_epochs=2, hidden_size=4, chunk=16, validation_fraction=0.0)
+
+
+def _with_removal(data, removed: str, with_model: bool = False):
+    """``(stream, test campaigns)`` of the lstm with the ambient law and ``removed`` left out of
+    the inputs, as diagnose's ``augment`` writes an accepted sensor_fault."""
+    _, tests, mlr = deployed(data, "model=mlr", pushed="T_a")
+    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
+                   "promote.envelope.pattern=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    comp = augment(clone(mlr).set_params(estimator=_net()), {"E_X": [AMBIENT_LAW]},
+                   excluded=[removed], inputs=list(mlr.inputs_))
+    comp.fit(train)
+    tests = [df.copy() for df in tests]
+    tests[0].loc[[0, 1], "S_door"] = np.nan
+    tests[1].loc[[20, 21, 22], "S_door"] = np.nan
+    return (deploy_stream(cfg, comp, train), tests) + ((comp,) if with_model else ())
+
+
+def _the_net_reads_x_and_its_ambient_law(ss, n_read: int) -> None:
+    """One network over ``[x, x (A0 - 20)]`` (2 n wide, ``n_read`` of each half read), taking
+    the factor of its skip law's own law (no ambient power); the ambient law a law of its own."""
+    n = len(ss.inputs)
+    assert ss.lstm_target == [0] and ss.lstm_ambient
+    assert len(ss.lstm_x_mean[0]) == 2 * n and ss.lstm_width == max(2 * n, 4)
+    read = np.asarray(ss.lstm_x_scale[0]) != 1.0
+    assert read[:n].sum() == read[n:].sum() == n_read
+    assert ss.law_ambient[ss.lstm_law[0]] == 0 and max(ss.law_ambient) == 1
+    assert ss.clamp_outright == [1]          # no step gain: clamped outright, as streamed
+
+
+@needs_cc
+def test_a_diagnosed_lstm_with_the_ambient_law_alone_streams_as_replay(data, tmp_path):
+    stream, tests = _diagnosed(data, [AMBIENT_LAW], base=_net())
+    [(_, est, _)] = stream._plan
+    assert isinstance(est, AugmentedRegressor) and type(est.estimator_) is LSTM
+    ss = state_space(stream)                                  # refused before
+    _the_net_reads_x_and_its_ambient_law(ss, len(stream.columns_))
+    assert "ambient_interval" in ss.provenance["laws"]["E_X"]
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+
+
+@needs_cc
+def test_and_with_a_sensors_removal_beside_it(data, tmp_path):
+    stream, tests = _with_removal(data, "T_b")
+    assert "T_b" not in stream.columns_
+    ss = state_space(stream)                                  # refused before
+    _the_net_reads_x_and_its_ambient_law(ss, len(stream.columns_))
+    assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
+
+
+@needs_cc
+def test_the_export_commands_check_pack_passes(data, tmp_path):
+    """``thermocomp export`` of the saved model (the removal and the ambient law): its pack,
+    run on the compiled ``stream``, passes."""
+    _, _, comp = _with_removal(data, "T_b", with_model=True)
+    pkl = save_model(comp, tmp_path / "model.pkl")
+    out = tmp_path / "code"
+    assert main(["export", f"data.path={data}", f"export.model={pkl}", "export.format=c",
+                 f"out={out}", "track=false"]) == 0               # refused before
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=out, check=True, capture_output=True)
+    script = subprocess.run(["sh", "check/check.sh"], cwd=out, capture_output=True, text=True)
+    assert script.returncode == 0, script.stderr
+    assert "stream: check passed" in script.stderr
+
+
+@pytest.mark.parametrize("effects, blocking", [
+    ([AMBIENT_LAW, LAG], LAG), ([SQUARE], SQUARE), ([STEP], STEP),
+    ([AMBIENT_LAW, AMBIENT_LAW], AMBIENT_LAW)], ids=["law-and-lag", "square", "step", "law-twice"])
+def test_any_other_effect_set_is_refused_naming_the_effect_that_blocks_it(data, effects, blocking):
+    stream, _ = _diagnosed(data, effects, base=_net())
+    est = stream._plan[0][1]
+    title = next(e.title for e in est.effects_ if e.transform == blocking["transform"])
+    with pytest.raises(NotExportable, match="a diagnosed model on lstm with") as info:
+        state_space(stream)
+    said = str(info.value)
+    assert title in said and "thermocomp serve" in said
+    if blocking is LAG:     # the ambient law beside it does not block: not named as blocking
+        law = next(e.title for e in est.effects_ if e.transform == "ambient_linear")
+        assert law not in said.split(" does not export")[0]
+
+
+def test_the_ambient_law_around_an_ati_lstms_interaction_is_refused_naming_it(tmp_path):
+    """``diagnose ati=cmeans`` around lstm: an interval with the interaction would read ``[x, x
+    (A0 - 20)]`` times ``[1, A0 - 20]``, which the code's nets do not."""
+    data = _levels_with_a_door(tmp_path / "data")
+    _, _, ati = deployed(data, "model=lstm", *NET, *ATI, pushed="T_a")
+    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
+                   "promote.envelope.pattern=false")
+    ds, train_ids, _, _ = read_streamed(cfg)
+    train = {c: ds.campaigns[c] for c in train_ids}
+    comp = clone(ati).set_params(estimator=AugmentedRegressor(ati.estimator,
+                                                              effects={"E_X": [AMBIENT_LAW]}))
+    stream = deploy_stream(cfg, comp.fit(train), train)
+    est = stream._plan[0][1]
+    assert all(est.estimator_.interactions_)
+    with pytest.raises(NotExportable, match="a diagnosed model on lstm with .* around an ATI "
+                                            "interval's ambient interaction does not export"):
+        state_space(stream)
