@@ -130,3 +130,15 @@ def test_diagnose_feature_cache_forgets_the_least_recently_used_past_its_bound()
 
     cv = CrossValidator(problem=None, estimator=None)
     assert isinstance(cv._features, FeatureCache) and cv._features.max_bytes == FEATURE_CACHE_BYTES
+
+
+def test_a_cleared_bounded_cache_counts_its_bytes_from_nothing():
+    """After a clear the byte count starts again (hammlags63): it kept the cleared entries'
+    bytes, so every later entry was over the bound and evicted the one before."""
+    from thermocomp.core.models._memo import BoundedCache
+
+    cache = BoundedCache(max_bytes=3 * 800)
+    cache["a"], cache["b"] = np.zeros(100), np.zeros(100)
+    cache.clear()
+    cache["c"], cache["d"] = np.zeros(100), np.zeros(100)
+    assert list(cache) == ["c", "d"] and cache.nbytes == 1600

@@ -92,6 +92,10 @@ class BoundedCache(OrderedDict):
             _, old = self.popitem(last=False)
             self.nbytes -= _nbytes(old)
 
+    def clear(self) -> None:
+        super().clear()
+        self.nbytes = 0          # or every entry after a clear would be over the bound
+
 
 def _nbytes(out) -> int:
     if isinstance(out, np.ndarray):
