@@ -20,6 +20,7 @@ def test_a_replay_of_a_given_model_is_tracked_under_that_models_name(tmp_path):
     mlflow.set_tracking_uri(uri)
     run = mlflow.search_runs(experiment_names=["thermocomp"]).iloc[0]
     assert run["tags.mlflow.runName"] == "replay-lagbank" and run["tags.replay.model_name"] == "lagbank"
+    assert run.get("params.model.name") is None          # it was 'mlr', a model never fitted here
 
 
 def test_a_monitor_of_a_given_model_is_tracked_under_that_models_name(tmp_path):
@@ -35,3 +36,4 @@ def test_a_monitor_of_a_given_model_is_tracked_under_that_models_name(tmp_path):
     mlflow.set_tracking_uri(uri)
     run = mlflow.search_runs(experiment_names=["thermocomp"]).iloc[0]
     assert run["tags.mlflow.runName"] == "monitor-lagbank" and run["tags.monitor.model_name"] == "lagbank"
+    assert run.get("params.model.name") is None

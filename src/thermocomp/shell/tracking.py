@@ -222,14 +222,16 @@ def config_container(cfg: DictConfig) -> dict:
 
 
 @contextmanager
-def stage_run(cfg: DictConfig, stage: str, default: bool = True, digest: str | None = None):
+def stage_run(cfg: DictConfig, stage: str, default: bool = True, digest: str | None = None,
+              given_model: bool = False):
     """An MLflow run for one stage, with the meaningful config logged; yields a tracker.
 
     Inside a sweep (``THERMOCOMP_PARENT_RUN_ID`` set) the run is a child of the
     sweep's parent run.  ``default`` is whether the stage is tracked when
     ``track`` is null.  ``digest``: the ``data.path`` digest its caller already read
-    (``meta["digest"]``), else it is digested here.  The run ends FINISHED, FAILED (an exception), or KILLED
-    (SIGTERM -> exit 143, SIGINT -> exit 130).
+    (``meta["digest"]``), else it is digested here; ``given_model``: a saved model is streamed,
+    the config's model params not logged (:func:`run_params`).  The run ends FINISHED, FAILED
+    (an exception), or KILLED (SIGTERM -> exit 143, SIGINT -> exit 130).
     """
     if not enabled(cfg, default):
         yield _Null()
@@ -265,7 +267,7 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True, digest: str | N
                         f"{cfg.get('experiment_name', 'thermocomp')!r}, {uri})")
             container = config_container(cfg)
             retry_locked(mlflow.log_dict, container, "config.yaml")
-            retry_locked(mlflow.log_params, run_params(container, overrides))
+            retry_locked(mlflow.log_params, run_params(container, overrides, given_model))
             yield _Tracker(mlflow, run)
             status = "FINISHED"
         except (KeyboardInterrupt, Terminated):  # SIGINT / SIGTERM (files.signals_raise)

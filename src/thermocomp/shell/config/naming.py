@@ -109,11 +109,16 @@ def sweep_name(overrides: list[str], name: str = "default") -> str:
     return (f"{prefix}/{'-'.join(parts)}" if parts else prefix)[:250]
 
 
-def run_params(container: dict, overrides: list[str] | None = None) -> dict:
+def run_params(container: dict, overrides: list[str] | None = None,
+               given_model: bool = False) -> dict:
     """The params worth comparing runs by (not all ~130 leaves; ``config.yaml`` has them):
-    :data:`PARAM_KEYS`, the model's and selector's own parameters, every overridden key."""
+    :data:`PARAM_KEYS`, the model's and selector's own parameters, every overridden key.
+    ``given_model``: a stage streaming a saved model (``replay.model``, ``monitor.model``) logs
+    none of the config's ``model.*`` / ``select.*``: it never fitted them (its tags name the model)."""
     flat = {k: v for k, v in _flat_params(container).items()
             if not k.rsplit(".", 1)[-1].startswith("_")}          # no _target_ & co
+    if given_model:
+        flat = {k: v for k, v in flat.items() if not k.startswith(("model.", "select."))}
     keys = [k for k in PARAM_KEYS if k in flat] + [k for k in flat if k.startswith(_HYPER)]
     for o in overrides or ():
         key = _split(o)[0]

@@ -83,7 +83,7 @@ def monitor(cfg: DictConfig) -> dict:
     stdin = cfg.monitor.get("input") == "-"
     ds, train_ids, test_ids, missing = read_streamed(cfg, test=not stdin)
     streamed, train = {c: ds.campaigns[c] for c in test_ids}, {c: ds.campaigns[c] for c in train_ids}
-    with stage_run(cfg, "monitor") as tr:
+    with stage_run(cfg, "monitor", given_model=model is not None) as tr:
         comp = _fitted(cfg, ds, train)
         if model is not None:     # the run is of the model monitored, not of cfg.model (mlr)
             tr.set_tags({"mlflow.runName": f"monitor-{model_family(comp)}", "monitor.model": str(model),

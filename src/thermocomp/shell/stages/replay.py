@@ -36,7 +36,7 @@ def replay(cfg: DictConfig) -> dict:
         raise ConfigError("replay.model is empty: a model.pkl, a pyfunc folder or models:/<name>@<alias>")
     ds, train_ids, test_ids, gaps = read_streamed(cfg)
     root = resolve(cfg.data.path)
-    with stage_run(cfg, "replay") as tr:
+    with stage_run(cfg, "replay", given_model=model is not None) as tr:
         deployed, source, name = deployable_model(cfg, ds, train_ids, model, "replay.model")
         if model is not None:     # the run is of the model replayed, not of cfg.model (mlr)
             tr.set_tags({"mlflow.runName": f"replay-{name}", "replay.model": source,
