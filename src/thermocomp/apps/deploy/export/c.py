@@ -11,7 +11,9 @@ from __future__ import annotations
 import math
 
 from ....core.timerule import C_TIME_RULE
+from .forest import forest_arrays
 from .laws import UNBOUNDED
+from .recurrent import net_arrays
 from .statespace import StateSpace
 from .text import banner, correction_names
 
@@ -642,20 +644,15 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]) {{
 """
 
 
+def _declared(arrays) -> list[str]:
+    """A model's constants (:func:`.forest.forest_arrays`, :func:`.recurrent.net_arrays`) in C."""
+    return [_array(name, values, shape) if kind == "real" else _ints(name, values)
+            for name, values, shape, kind in arrays]
+
+
 def _forest_constants(ss: StateSpace) -> list[str]:
     """An arx_rf model's forests (:mod:`.forest`): the states, features, trees and nodes."""
-    nodes = len(ss.node_left)
-    return [_ints("SWITCH_INPUT", ss.switch_input),
-            _ints("FEATURE_SWITCH", [f[0] for f in ss.switch_feature]),
-            _array("FEATURE_TAU", [f[1] for f in ss.switch_feature], (len(ss.switch_feature),)),
-            _ints("FOREST_TARGET", ss.forest_target),
-            _array("FOREST_WEIGHT", ss.forest_weight, (len(ss.forest_weight),)),
-            _ints("FOREST_LAW", ss.forest_law or [0] * len(ss.forest_target)),
-            _ints("FOREST_TREES", ss.forest_trees or [0]), _ints("TREE_ROOT", ss.tree_root),
-            _ints("NODE_FEATURE", ss.node_feature), _ints("NODE_LEFT", ss.node_left),
-            _ints("NODE_RIGHT", ss.node_right),
-            _array("NODE_THRESHOLD", ss.node_threshold, (nodes,)),
-            _array("NODE_VALUE", ss.node_value, (nodes,))]
+    return _declared(forest_arrays(ss))
 
 
 def _lstm_dims(ss: StateSpace) -> str:
@@ -664,20 +661,7 @@ def _lstm_dims(ss: StateSpace) -> str:
 
 def _lstm_constants(ss: StateSpace) -> list[str]:
     """An lstm model's networks (:mod:`.recurrent`): standardisation, gates, read-out."""
-    k, L, H, W, n = (len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden, ss.lstm_width,
-                     len(ss.inputs) * (1 + ss.lstm_ambient))
-    return [_ints("LSTM_TARGET", ss.lstm_target),
-            _array("LSTM_WEIGHT", ss.lstm_weight, (k,)),
-            _ints("LSTM_LAW", ss.lstm_law or [0] * k),
-            _array("LSTM_X_MEAN", ss.lstm_x_mean, (k, n)),
-            _array("LSTM_X_SCALE", ss.lstm_x_scale, (k, n)),
-            _array("LSTM_W_IH", ss.lstm_w_ih, (k, L, 4 * H, W)),
-            _array("LSTM_W_HH", ss.lstm_w_hh, (k, L, 4 * H, H)),
-            _array("LSTM_B_IH", ss.lstm_b_ih, (k, L, 4 * H)),
-            _array("LSTM_B_HH", ss.lstm_b_hh, (k, L, 4 * H)),
-            _array("LSTM_HEAD", ss.lstm_head, (k, H)),
-            _array("LSTM_HEAD_BIAS", ss.lstm_head_bias, (k,)),
-            _array("LSTM_Y_SCALE", ss.lstm_y_scale, (k,))]
+    return _declared(net_arrays(ss))
 
 
 def _output_constants(ss: StateSpace) -> list[str]:

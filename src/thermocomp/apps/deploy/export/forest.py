@@ -61,6 +61,27 @@ class ForestArrays:
     node_value: list = field(default_factory=list)
 
 
+def forest_arrays(ss) -> list[tuple[str, list, tuple, str]]:
+    """The forests' constants of the exported code, ``(name, values, shape, kind)`` in the order
+    both languages declare them (c.py, st.py: one list, each its own syntax); ``kind``: ``int``,
+    ``index`` (a node or tree number: more than an ST INT counts) or ``real``."""
+    nodes, nf, nt = len(ss.node_left), len(ss.switch_feature), len(ss.forest_target)
+    trees = ss.forest_trees or [0]
+    return [("SWITCH_INPUT", ss.switch_input, (len(ss.switch_input),), "int"),
+            ("FEATURE_SWITCH", [f[0] for f in ss.switch_feature], (nf,), "int"),
+            ("FEATURE_TAU", [f[1] for f in ss.switch_feature], (nf,), "real"),
+            ("FOREST_TARGET", ss.forest_target, (nt,), "int"),
+            ("FOREST_WEIGHT", ss.forest_weight, (len(ss.forest_weight),), "real"),
+            ("FOREST_LAW", ss.forest_law or [0] * nt, (nt,), "int"),
+            ("FOREST_TREES", trees, (len(trees),), "index"),
+            ("TREE_ROOT", ss.tree_root, (len(ss.tree_root),), "index"),
+            ("NODE_FEATURE", ss.node_feature, (nodes,), "int"),
+            ("NODE_LEFT", ss.node_left, (nodes,), "index"),
+            ("NODE_RIGHT", ss.node_right, (nodes,), "index"),
+            ("NODE_THRESHOLD", ss.node_threshold, (nodes,), "real"),
+            ("NODE_VALUE", ss.node_value, (nodes,), "real")]
+
+
 class Forests(ForestArrays):
     """The forests of the exported code's targets, gathered as :func:`.laws.target_laws` meets
     them (module doc); :meth:`fields` are the :class:`~.statespace.StateSpace`'s."""

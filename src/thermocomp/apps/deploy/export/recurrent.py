@@ -85,6 +85,31 @@ class NetArrays:
     lstm_y_scale: list = field(default_factory=list)    # (nets,)
 
 
+def net_inputs(ss) -> int:
+    """The first layer's inputs: the code's inputs, twice with the ambient interaction."""
+    return len(ss.inputs) * (1 + ss.lstm_ambient)
+
+
+def net_arrays(ss) -> list[tuple[str, list, tuple, str]]:
+    """The networks' constants of the exported code, ``(name, values, shape, kind)`` in the order
+    both languages declare them (c.py, st.py: one list, each its own syntax); ``kind``: ``int``
+    or ``real``."""
+    k, L, H, W, n = (len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden, ss.lstm_width,
+                     net_inputs(ss))
+    return [("LSTM_TARGET", ss.lstm_target, (k,), "int"),
+            ("LSTM_WEIGHT", ss.lstm_weight, (k,), "real"),
+            ("LSTM_LAW", ss.lstm_law or [0] * k, (k,), "int"),
+            ("LSTM_X_MEAN", ss.lstm_x_mean, (k, n), "real"),
+            ("LSTM_X_SCALE", ss.lstm_x_scale, (k, n), "real"),
+            ("LSTM_W_IH", ss.lstm_w_ih, (k, L, 4 * H, W), "real"),
+            ("LSTM_W_HH", ss.lstm_w_hh, (k, L, 4 * H, H), "real"),
+            ("LSTM_B_IH", ss.lstm_b_ih, (k, L, 4 * H), "real"),
+            ("LSTM_B_HH", ss.lstm_b_hh, (k, L, 4 * H), "real"),
+            ("LSTM_HEAD", ss.lstm_head, (k, H), "real"),
+            ("LSTM_HEAD_BIAS", ss.lstm_head_bias, (k,), "real"),
+            ("LSTM_Y_SCALE", ss.lstm_y_scale, (k,), "real")]
+
+
 class Nets(NetArrays):
     """The LSTMs of the exported code's targets, gathered as :func:`.laws.target_laws` meets
     them (module doc); :meth:`fields` are the :class:`~.statespace.StateSpace`'s."""

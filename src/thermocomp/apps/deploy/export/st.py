@@ -20,6 +20,8 @@ that overflows stops many PLCs).
 from __future__ import annotations
 
 from ....core.timerule import ST_TIME_RULE
+from .forest import forest_arrays
+from .recurrent import net_arrays, net_inputs
 from .statespace import StateSpace
 from .text import banner
 
@@ -68,49 +70,31 @@ def _spread(columns: list, values: list, n: int) -> list:
     return row
 
 
+ST_KINDS = {"int": "INT", "index": "DINT", "real": "LREAL"}   # an index: more than an INT counts
+
+
+def _declared(arrays) -> list[str]:
+    """A model's constants (:func:`.forest.forest_arrays`, :func:`.recurrent.net_arrays`) in ST."""
+    return [_constant(name, values, shape, ST_KINDS[kind]) for name, values, shape, kind in arrays]
+
+
 def _forest_constants(ss: StateSpace) -> list[str]:
     """An arx_rf model's forests (:mod:`.forest`): node indices DINT (a forest of a hundred trees
     has more nodes than an INT counts)."""
-    nodes, nf = len(ss.node_left), len(ss.switch_feature)
-    return [f"    N_SWITCHES : INT := {len(ss.switch_input)};", f"    N_FEATURES : INT := {nf};",
+    return [f"    N_SWITCHES : INT := {len(ss.switch_input)};",
+            f"    N_FEATURES : INT := {len(ss.switch_feature)};",
             f"    N_FORESTS : INT := {len(ss.forest_target)};",
             f"    TREE_DEPTH : INT := {ss.tree_depth};",
             f"    SWITCH_RAW_TIME : BOOL := {'TRUE' if ss.switch_raw_time else 'FALSE'};",
-            _constant("SWITCH_INPUT", ss.switch_input, (len(ss.switch_input),), "INT"),
-            _constant("FEATURE_SWITCH", [f[0] for f in ss.switch_feature], (nf,), "INT"),
-            _constant("FEATURE_TAU", [f[1] for f in ss.switch_feature], (nf,)),
-            _constant("FOREST_TARGET", ss.forest_target, (len(ss.forest_target),), "INT"),
-            _constant("FOREST_WEIGHT", ss.forest_weight, (len(ss.forest_weight),)),
-            _constant("FOREST_LAW", ss.forest_law or [0] * len(ss.forest_target),
-                      (len(ss.forest_target),), "INT"),
-            _constant("FOREST_TREES", ss.forest_trees or [0], (len(ss.forest_trees or [0]),), "DINT"),
-            _constant("TREE_ROOT", ss.tree_root, (len(ss.tree_root),), "DINT"),
-            _constant("NODE_FEATURE", ss.node_feature, (nodes,), "INT"),
-            _constant("NODE_LEFT", ss.node_left, (nodes,), "DINT"),
-            _constant("NODE_RIGHT", ss.node_right, (nodes,), "DINT"),
-            _constant("NODE_THRESHOLD", ss.node_threshold, (nodes,)),
-            _constant("NODE_VALUE", ss.node_value, (nodes,))]
+            *_declared(forest_arrays(ss))]
 
 
 def _lstm_constants(ss: StateSpace) -> list[str]:
     """An lstm model's networks (:mod:`.recurrent`)."""
-    k, L, H, W, n = (len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden, ss.lstm_width,
-                     len(ss.inputs) * (1 + ss.lstm_ambient))     # the first layer's inputs
-    return [f"    N_LSTM : INT := {k};", f"    LSTM_HIDDEN : INT := {H};",
-            f"    LSTM_LAYERS : INT := {L};", f"    LSTM_WIDTH : INT := {W};",
-            f"    LSTM_INPUTS : INT := {n};",
-            _constant("LSTM_TARGET", ss.lstm_target, (k,), "INT"),
-            _constant("LSTM_WEIGHT", ss.lstm_weight, (k,)),
-            _constant("LSTM_LAW", ss.lstm_law or [0] * k, (k,), "INT"),
-            _constant("LSTM_X_MEAN", ss.lstm_x_mean, (k, n)),
-            _constant("LSTM_X_SCALE", ss.lstm_x_scale, (k, n)),
-            _constant("LSTM_W_IH", ss.lstm_w_ih, (k, L, 4 * H, W)),
-            _constant("LSTM_W_HH", ss.lstm_w_hh, (k, L, 4 * H, H)),
-            _constant("LSTM_B_IH", ss.lstm_b_ih, (k, L, 4 * H)),
-            _constant("LSTM_B_HH", ss.lstm_b_hh, (k, L, 4 * H)),
-            _constant("LSTM_HEAD", ss.lstm_head, (k, H)),
-            _constant("LSTM_HEAD_BIAS", ss.lstm_head_bias, (k,)),
-            _constant("LSTM_Y_SCALE", ss.lstm_y_scale, (k,))]
+    return [f"    N_LSTM : INT := {len(ss.lstm_target)};", f"    LSTM_HIDDEN : INT := {ss.lstm_hidden};",
+            f"    LSTM_LAYERS : INT := {ss.lstm_layers};", f"    LSTM_WIDTH : INT := {ss.lstm_width};",
+            f"    LSTM_INPUTS : INT := {net_inputs(ss)};",
+            *_declared(net_arrays(ss))]
 
 
 LSTM_BLOCK = """\
