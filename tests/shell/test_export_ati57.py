@@ -30,6 +30,13 @@ CAMPAIGNS = (("K01", "train", 14.0), ("K02", "train", 16.0), ("K03", "train", 18
              ("K10", "test", 32.0))
 
 
+def write_manifest(root) -> None:
+    """``root/campaigns.csv`` of :data:`CAMPAIGNS`, each with its ambient level as ``ambient_c``."""
+    pd.DataFrame([(c, f"{c}.csv", s, a0) for c, s, a0 in CAMPAIGNS],
+                 columns=["campaign", "file", "split", "ambient_c"]).to_csv(root / "campaigns.csv",
+                                                                            index=False)
+
+
 def _levels(root, rows: int = 50, ambient_column: bool = True):
     """A two-sensor machine whose gain steps down between the cold and the warm levels and falls
     with the level within each (the climate room's law)."""
@@ -46,9 +53,7 @@ def _levels(root, rows: int = 50, ambient_column: bool = True):
         if not ambient_column:
             frame.pop("T_amb")
         pd.DataFrame(frame).to_csv(root / f"{cid}.csv", index=False)
-    pd.DataFrame([(c, f"{c}.csv", s, a0) for c, s, a0 in CAMPAIGNS],
-                 columns=["campaign", "file", "split", "ambient_c"]).to_csv(root / "campaigns.csv",
-                                                                            index=False)
+    write_manifest(root)
     return root
 
 

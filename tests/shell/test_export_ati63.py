@@ -28,7 +28,7 @@ from sklearn.ensemble import RandomForestRegressor
 
 from conftest import refused
 from test_export import _exported_code, _fitted, needs_cc
-from test_export_ati57 import CAMPAIGNS
+from test_export_ati57 import CAMPAIGNS, write_manifest
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import AMBIENT_LAW, LAG, SQUARE, _diagnosed
 from thermocomp.apps.deploy.export import NotExportable, state_space
@@ -61,9 +61,7 @@ def _levels_with_a_door(root, rows: int = 40):
         ex = gain * (a - a[0]) - 1.5 * (amb - amb[0]) - 2.0 * lagged + rng.normal(0, 0.05, rows)
         pd.DataFrame({"time": t, "T_a": a, "T_amb": amb, "S_door": door, "E_X": ex}).to_csv(
             root / f"{cid}.csv", index=False)
-    pd.DataFrame([(c, f"{c}.csv", s, a0) for c, s, a0 in CAMPAIGNS],
-                 columns=["campaign", "file", "split", "ambient_c"]).to_csv(root / "campaigns.csv",
-                                                                            index=False)
+    write_manifest(root)
     return root
 
 

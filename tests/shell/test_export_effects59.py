@@ -25,7 +25,7 @@ import pandas as pd
 import pytest
 
 from test_export import needs_cc
-from test_export_ati57 import CAMPAIGNS
+from test_export_ati57 import CAMPAIGNS, write_manifest
 from test_export_auto57 import TOLERANCE_UM, _proved
 from test_export_diagnosed59 import _diagnosed as diagnosed
 from thermocomp.apps.deploy.export import NotExportable, Simulator, exported_files, state_space
@@ -60,9 +60,7 @@ def _door(root, rows: int = 50):
               + 0.3 * (a - a[0]) ** 2 + rng.normal(0, 0.05, rows))
         pd.DataFrame({"time": t, "T_a": a, "T_b": b, "T_amb": amb, "S_door": door,
                       "E_X": ex}).to_csv(root / f"{cid}.csv", index=False)
-    pd.DataFrame([(c, f"{c}.csv", s, a0) for c, s, a0 in CAMPAIGNS],
-                 columns=["campaign", "file", "split", "ambient_c"]).to_csv(root / "campaigns.csv",
-                                                                            index=False)
+    write_manifest(root)
     return root
 
 

@@ -24,7 +24,7 @@ import pytest
 from sklearn.base import clone
 
 from test_export import EVERY_EXCURSION, PUSH_C, StructuredText, _compiled, _compose, _streamed, needs_cc
-from test_export_ati57 import CAMPAIGNS
+from test_export_ati57 import CAMPAIGNS, write_manifest
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import _json_proved
 from test_export_guard import EVERY, OFFSET_UM, _rows, _served, _simulated, _st
@@ -57,9 +57,7 @@ def _gantry(root, rows: int = 50):
               + rng.normal(0, 0.05, rows))
         pd.DataFrame({"time": t, "T_a": a, "T_b": b, "T_amb": amb, "S_y_pos": y,
                       "E_X": ex}).to_csv(root / f"{cid}.csv", index=False)
-    pd.DataFrame([(c, f"{c}.csv", s, a0) for c, s, a0 in CAMPAIGNS],
-                 columns=["campaign", "file", "split", "ambient_c"]).to_csv(root / "campaigns.csv",
-                                                                            index=False)
+    write_manifest(root)
     return root
 
 
