@@ -279,6 +279,14 @@ def stage_run(cfg: DictConfig, stage: str, default: bool = True, digest: str | N
                     _close(mlflow, status)
 
 
+def name_given_model(tracker, stage: str, source: str, family: str) -> None:
+    """A stage streaming a saved model (``<stage>.model``, logged with ``given_model``) names its
+    run after that model (``replay-lagbank``; tags ``<stage>.model``, ``<stage>.model_name``), not
+    after the config's ``model`` it never fitted."""
+    tracker.set_tags({"mlflow.runName": f"{stage}-{family}", f"{stage}.model": source,
+                      f"{stage}.model_name": family})
+
+
 def _close(mlflow, status: str) -> None:
     """Attach the run's log so far (thermocomp.log, failed runs too) and end it with ``status``."""
     from ..base.log import current_file

@@ -40,7 +40,7 @@ from ..config.checks import check_config, data_options
 from ..model_store import load_model, model_family
 from ..source import check_volumetric_targets, read_streamed
 from ..store import is_registered_model
-from ..tracking import stage_run
+from ..tracking import name_given_model, stage_run
 
 
 def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict, train_ids: list[str]) -> dict:
@@ -85,9 +85,8 @@ def monitor(cfg: DictConfig) -> dict:
     streamed, train = {c: ds.campaigns[c] for c in test_ids}, {c: ds.campaigns[c] for c in train_ids}
     with stage_run(cfg, "monitor", given_model=model is not None) as tr:
         comp = _fitted(cfg, ds, train)
-        if model is not None:     # the run is of the model monitored, not of cfg.model (mlr)
-            tr.set_tags({"mlflow.runName": f"monitor-{model_family(comp)}", "monitor.model": str(model),
-                         "monitor.model_name": model_family(comp)})
+        if model is not None:
+            name_given_model(tr, "monitor", str(model), model_family(comp))
         # one plain stream serves both: the fixed run and the adaptive one are each streamed
         # from a reset, one after the other
         fixed = deploy_stream(cfg, comp, train)

@@ -24,7 +24,7 @@ from ...core.io.source import check_streamed_columns
 from ..builders import deployable_model, warn_stream_mode
 from ..config.checks import check_config
 from ..source import check_volumetric_targets, read_streamed
-from ..tracking import stage_run
+from ..tracking import name_given_model, stage_run
 
 
 def replay(cfg: DictConfig) -> dict:
@@ -38,9 +38,8 @@ def replay(cfg: DictConfig) -> dict:
     root = resolve(cfg.data.path)
     with stage_run(cfg, "replay", given_model=model is not None) as tr:
         deployed, source, name = deployable_model(cfg, ds, train_ids, model, "replay.model")
-        if model is not None:     # the run is of the model replayed, not of cfg.model (mlr)
-            tr.set_tags({"mlflow.runName": f"replay-{name}", "replay.model": source,
-                         "replay.model_name": name})
+        if model is not None:
+            name_given_model(tr, "replay", source, name)
         check_volumetric_targets(cfg, ds, deployed.targets_, f"replay.model={source}")
         check_streamed_columns(ds, test_ids, deployed.columns_, "the deployed model")
         kind = "adaptive" if deployed is not plain(deployed) else "streaming"
