@@ -9,11 +9,13 @@ could not run it on the machine.  Now each interval's linear part is its laws (a
 interval's ARX or MLR), and its forest or network, emitted as a plain one's, takes the factor
 of that interval's law (``forest_law``, ``lstm_law``: 1 in the interval, 0 outside, where it is
 neither walked nor stepped); a network with the interaction reads ``[x, x (A0 - 20)]``
-standardised (``lstm_ambient``).  On a record whose train campaigns span two clusters of four
-ambient levels (test_export_ati57's, with a door), a test campaign in each interval, the compiled
-C, the Structured Text and the numpy reading equal ``replay`` (the clamp acting, the door missing
-at a start and mid-run), and ``thermocomp export``'s check pack passes.  A diagnosed model on
-lstm (its network reading the effects' features) is still refused, naming it.
+standardised (exportlstm64: ``lstm_in``, ``lstm_in_law``, the second half the interaction
+law's).  On a record whose train campaigns span two clusters of four ambient levels
+(test_export_ati57's, with a door), a test campaign in each interval, the compiled C, the
+Structured Text and the numpy reading equal ``replay`` (the clamp acting, the door missing
+at a start and mid-run), and ``thermocomp export``'s check pack passes.  (A diagnosed model on
+lstm, its network reading the effects' features, refused here, exports since exportlstm64:
+test_export_diaglstm64.)
 """
 
 from __future__ import annotations
@@ -31,7 +33,7 @@ from test_export import _exported_code, _fitted, needs_cc
 from test_export_ati57 import CAMPAIGNS, write_manifest
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import AMBIENT_LAW, LAG, SQUARE, _diagnosed
-from thermocomp.apps.deploy.export import NotExportable, state_space
+from thermocomp.apps.deploy.export import state_space
 from thermocomp.apps.deploy.export.members import intervals
 from thermocomp.core.models import ARXRF
 from thermocomp.core.models.ati import ATIRegressor
@@ -86,6 +88,16 @@ def _each_counts_in_its_interval(ss, laws: list, est: ATIRegressor) -> None:
         (ss.law_lo[laws[0]], edges[0], 0), (edges[0], ss.law_hi[laws[1]], 0)]
 
 
+def _reads_x_and_its_interaction(sources: list, laws: list, ss) -> bool:
+    """Whether a net reads ``[x, x (A0 - 20)]``: its inputs twice, the second half times its
+    interval's interaction law's ``A0 - 20`` (else ``x`` alone, its own law's factor)."""
+    read = [j for j, source in enumerate(sources) if source >= 0]     # (-1: a narrower net's pad)
+    sources, n = [sources[j] for j in read], len(read) // 2
+    powers = [ss.law_ambient[laws[j]] for j in read]
+    twice = len(sources) == 2 * n and sources[:n] == sources[n:]
+    return twice and powers == [0] * n + [1] * n and all(0 <= s < len(ss.inputs) for s in sources)
+
+
 @needs_cc
 @pytest.mark.parametrize("family", ["arx_rf", "lstm"])
 def test_an_arx_rf_or_lstm_within_an_ati_model_streams_as_replay(data, tmp_path, family):
@@ -103,9 +115,8 @@ def test_an_arx_rf_or_lstm_within_an_ati_model_streams_as_replay(data, tmp_path,
         assert ss.forest_target == [0, 0] and len(ss.tree_root) == 8
         _each_counts_in_its_interval(ss, ss.forest_law, est)
     else:
-        assert ss.lstm_target == [0, 0] and ss.lstm_ambient
-        n = len(ss.inputs)                    # the net reads [x, x (A0 - 20)]
-        assert len(ss.lstm_x_mean[0]) == 2 * n and ss.lstm_width == max(2 * n, 4)
+        assert ss.lstm_target == [0, 0] and all(map(_reads_x_and_its_interaction, ss.lstm_in,
+                                                     ss.lstm_in_law, [ss] * 2))
         _each_counts_in_its_interval(ss, ss.lstm_law, est)
     assert ss.clamp_outright == [1]          # no step gain: clamped outright, as streamed
     assert _proved(stream, _with_gaps(tests), tmp_path) <= TOLERANCE_UM
@@ -125,7 +136,9 @@ def test_auto_blending_ati_arx_rf_and_ati_lstm_members_exports(data, tmp_path):
                                             f" + ati+lstm {intervals(nets)} 0.3")
     # the elbow's intervals, one forest or net each, weighted
     assert ss.forest_weight == [0.3] * forests.n_intervals_ == [0.3] * len(ss.forest_law)
-    assert ss.lstm_weight == [0.3] * nets.n_intervals_ and ss.lstm_ambient == any(nets.interactions_)
+    assert ss.lstm_weight == [0.3] * nets.n_intervals_
+    assert [_reads_x_and_its_interaction(*net, ss) for net in zip(ss.lstm_in, ss.lstm_in_law)] \
+        == [bool(i) for i in nets.interactions_]
     assert _proved(stream, _with_gaps(tests), tmp_path) <= TOLERANCE_UM
 
 
@@ -156,11 +169,7 @@ def test_a_diagnosed_arx_rf_exports_its_forest_beside_the_effects_laws(data, tmp
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
 
 
-def test_a_diagnosed_lstm_is_refused_naming_it(data, tmp_path, capsys):
-    base = LSTM(max_epochs=2, hidden_size=4, chunk=16, validation_fraction=0.0)
-    stream, _ = _diagnosed(data, [AMBIENT_LAW, LAG], base=base)
-    with pytest.raises(NotExportable, match="a diagnosed model on lstm"):
-        state_space(stream)
+# (a diagnosed lstm, refused here, exports since exportlstm64: test_export_diaglstm64.py)
 
 
 def test_an_lstm_within_an_ati_model_without_its_data_is_not_refused_early(data, tmp_path, capsys):

@@ -8,7 +8,9 @@ interval's network with the ambient interaction reads, which the code already st
 the inputs kept) is the lstm emitter's network reading ``[x, x (A0 - 20)]`` and its skip law's
 ambient law: on test_export_effects59's door record (T_a pushed out half-way, the door missing
 at a start and mid-run) the compiled C, the Structured Text and the numpy reading equal
-``replay``.  Any other effect set on an lstm base is refused, naming the effect that blocks it.
+``replay``.  (Any other effect set on an lstm base, refused here naming the effect that blocked
+it, exports since exportlstm64: test_export_diaglstm64, the network's inputs each a feature of
+the code, ``lstm_in`` and ``lstm_in_law``.)
 """
 
 from __future__ import annotations
@@ -20,10 +22,9 @@ import pytest
 from sklearn.base import clone
 
 from test_export import _compose, needs_cc
-from test_export_ati63 import ATI, NET, _levels_with_a_door
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
-from test_export_effects59 import AMBIENT_LAW, LAG, SQUARE, _diagnosed, _door
-from thermocomp.apps.deploy.export import NotExportable, state_space
+from test_export_effects59 import AMBIENT_LAW, _diagnosed, _door
+from thermocomp.apps.deploy.export import state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.apps.diagnose.diagnosis import augment
 from thermocomp.core.models.lstm import LSTM
@@ -31,8 +32,6 @@ from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
-
-STEP = {"kind": "ambient_interval", "transform": "ambient_step", "threshold_c": 22.0}
 
 
 @pytest.fixture(scope="module")
@@ -64,14 +63,13 @@ def _with_removal(data, removed: str, with_model: bool = False):
 
 
 def _the_net_reads_x_and_its_ambient_law(ss, n_read: int) -> None:
-    """One network over ``[x, x (A0 - 20)]`` (2 n wide, ``n_read`` of each half read), taking
-    the factor of its skip law's own law (no ambient power); the ambient law a law of its own."""
-    n = len(ss.inputs)
-    assert ss.lstm_target == [0] and ss.lstm_ambient
-    assert len(ss.lstm_x_mean[0]) == 2 * n and ss.lstm_width == max(2 * n, 4)
-    read = np.asarray(ss.lstm_x_scale[0]) != 1.0
-    assert read[:n].sum() == read[n:].sum() == n_read
-    assert ss.law_ambient[ss.lstm_law[0]] == 0 and max(ss.law_ambient) == 1
+    """One network over ``[x, x (A0 - 20)]`` (``n_read`` inputs, each twice), taking the factor
+    of its skip law's own law (no ambient power), the second half the ambient law's."""
+    [sources], [laws] = ss.lstm_in, ss.lstm_in_law
+    assert ss.lstm_target == [0] and len(sources) == 2 * n_read
+    assert sources[:n_read] == sources[n_read:] and all(0 <= s < len(ss.inputs) for s in sources)
+    assert [ss.law_ambient[r] for r in laws] == [0] * n_read + [1] * n_read
+    assert laws[0] == ss.lstm_law[0] and ss.lstm_width == max(2 * n_read, 4)
     assert ss.clamp_outright == [1]          # no step gain: clamped outright, as streamed
 
 
@@ -111,36 +109,6 @@ def test_the_export_commands_check_pack_passes(data, tmp_path):
     assert "stream: check passed" in script.stderr
 
 
-@pytest.mark.parametrize("effects, blocking", [
-    ([AMBIENT_LAW, LAG], LAG), ([SQUARE], SQUARE), ([STEP], STEP),
-    ([AMBIENT_LAW, AMBIENT_LAW], AMBIENT_LAW)], ids=["law-and-lag", "square", "step", "law-twice"])
-def test_any_other_effect_set_is_refused_naming_the_effect_that_blocks_it(data, effects, blocking):
-    stream, _ = _diagnosed(data, effects, base=_net())
-    est = stream._plan[0][1]
-    title = next(e.title for e in est.effects_ if e.transform == blocking["transform"])
-    with pytest.raises(NotExportable, match="a diagnosed model on lstm with") as info:
-        state_space(stream)
-    said = str(info.value)
-    assert title in said and "thermocomp serve" in said
-    if blocking is LAG:     # the ambient law beside it does not block: not named as blocking
-        law = next(e.title for e in est.effects_ if e.transform == "ambient_linear")
-        assert law not in said.split(" does not export")[0]
-
-
-def test_the_ambient_law_around_an_ati_lstms_interaction_is_refused_naming_it(tmp_path):
-    """``diagnose ati=cmeans`` around lstm: an interval with the interaction would read ``[x, x
-    (A0 - 20)]`` times ``[1, A0 - 20]``, which the code's nets do not."""
-    data = _levels_with_a_door(tmp_path / "data")
-    _, _, ati = deployed(data, "model=lstm", *NET, *ATI, pushed="T_a")
-    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
-                   "promote.envelope.pattern=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    comp = clone(ati).set_params(estimator=AugmentedRegressor(ati.estimator,
-                                                              effects={"E_X": [AMBIENT_LAW]}))
-    stream = deploy_stream(cfg, comp.fit(train), train)
-    est = stream._plan[0][1]
-    assert all(est.estimator_.interactions_)
-    with pytest.raises(NotExportable, match="a diagnosed model on lstm with .* around an ATI "
-                                            "interval's ambient interaction does not export"):
-        state_space(stream)
+# (every other effect set on an lstm base, refused here naming the effect that blocked it, and
+# the ambient law around an ATI lstm's interaction, export since exportlstm64:
+# test_export_diaglstm64.py)

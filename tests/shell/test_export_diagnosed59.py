@@ -20,10 +20,10 @@ from conftest import refused
 from test_export import _compose, needs_cc
 from test_export_ati57 import _levels
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
+from test_export_refusal59 import OwnMLR
 from thermocomp.apps.deploy.export import NotExportable, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.core.models import MLR
-from thermocomp.core.models.lstm import LSTM
 from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.model_store import save_model
 from thermocomp.shell.source import read_streamed
@@ -68,37 +68,13 @@ def test_a_diagnosed_model_of_laws_the_code_holds_exports_as_replay(data, tmp_pa
 def test_another_diagnosed_effect_is_refused_naming_it_and_the_route_that_runs_it(data, tmp_path,
                                                                                   capsys):
     # exportati60 exports the ambient law around an ATI model's interaction, the last effect
-    # refused: a base of no linear family is what a diagnosed model still refuses (exportati63:
-    # arx_rf exports, its forest beside the effects' laws; an lstm's network reads the features)
-    base = LSTM(max_epochs=2, hidden_size=4, chunk=16, validation_fraction=0.0)
-    stream, _, comp = _diagnosed(data, [AMBIENT_LAW, LAG], base=base)
-    with pytest.raises(NotExportable, match=r"a diagnosed model on lstm .* does not export"):
+    # refused: a base of no family the code holds is what a diagnosed model still refuses
+    # (exportati63: arx_rf exports, its forest beside the effects' laws; exportlstm64: lstm, its
+    # network reading the features the code computes: test_export_diaglstm64)
+    stream, _, comp = _diagnosed(data, [AMBIENT_LAW, LAG], base=OwnMLR())
+    with pytest.raises(NotExportable, match=r"model OwnMLR is not one of the linear families"):
         state_space(stream)
     pkl = save_model(comp, tmp_path / "model.pkl")
     refused(["export", f"data.path={data}", f"export.model={pkl}", f"out={tmp_path / 'code'}",
-             "track=false"], capsys, "a diagnosed model on lstm", "thermocomp serve")
+             "track=false"], capsys, "OwnMLR is not one of the linear families", "thermocomp serve")
     assert not (tmp_path / "code").exists()
-
-
-@needs_cc
-def test_a_diagnosed_ati_model_exports_its_intervals_and_names_them(data, tmp_path):
-    """diagnose of ``ati=cmeans`` puts the effects around the ATI model: with none accepted it is
-    that model, two intervals of the initial ambient, which the code switches on."""
-    stream, tests, ati = deployed(data, "model=mlr", "ati=cmeans", "ati.estimator.n_intervals=2",
-                                  pushed="T_a")
-    cfg = _compose(f"data.path={data}", "track=false", "monitor.adaptive=false",
-                   "promote.envelope.pattern=false")
-    ds, train_ids, _, _ = read_streamed(cfg)
-    train = {c: ds.campaigns[c] for c in train_ids}
-    plain = state_space(stream)
-    for effects in ([], [AMBIENT_LAW]):
-        comp = clone(ati).set_params(estimator=AugmentedRegressor(ati.estimator, effects={"E_X": effects}))
-        diagnosed = deploy_stream(cfg, comp.fit(train), train)
-        ss = state_space(diagnosed)
-        if not effects:
-            assert ss.provenance["laws"] == plain.provenance["laws"]
-        else:   # exportati60: with the interaction, x (A0 - 20)^2 (refused before)
-            assert ss.provenance["laws"]["E_X"].startswith(plain.provenance["laws"]["E_X"])
-            assert max(ss.law_ambient) == 1 + max(plain.law_ambient)
-        assert "|" in ss.provenance["laws"]["E_X"]                  # two intervals, named
-        assert _proved(diagnosed, tests, tmp_path) <= TOLERANCE_UM

@@ -17,8 +17,8 @@ ARX a law and its forest flat arrays the code walks (:mod:`.forest`); (lstmexpor
 its skip path a law and its network's weights arrays the code steps per sample, in double
 (:mod:`.recurrent`), plain or a ``model=auto`` blend member; (exportati63) both within an ATI
 model, each interval's forest or network counting in its interval, and arx_rf under a diagnosed
-model's effects; (diaglstm63) lstm under a diagnosed model whose only effect is the ambient
-law (its network reading ``[x, x (A0 - 20)]`` as an ATI interval's does).
+model's effects; (exportlstm64) lstm under a diagnosed model with any of those effects, its
+network reading the features the code computes for them (:func:`.recurrent.net_reads`).
 Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
 families of :data:`~.laws.LINEAR_FAMILIES` export, and what ``model=auto`` keeps of them (one, or
 a blend) and the ATI wrapper of them (:mod:`.laws`); any other model is refused

@@ -13,7 +13,7 @@ import math
 from ....core.timerule import C_TIME_RULE
 from .forest import forest_arrays
 from .laws import UNBOUNDED
-from .recurrent import net_arrays
+from .recurrent import net_arrays, net_inputs
 from .statespace import StateSpace
 from .text import banner, correction_names
 
@@ -27,9 +27,10 @@ def number(v: float) -> str:
     return repr(float(v))
 
 
-def _array(name: str, values, shape: tuple[int, ...]) -> str:
+def _array(name: str, values, shape: tuple[int, ...], kind: str = "double") -> str:
     dims = "".join(f"[{max(d, 1)}]" for d in shape)
-    return f"static const double {name}{dims} = {_braced(values, len(shape))};"
+    literal = number if kind == "double" else (lambda v: str(int(v)))
+    return f"static const {kind} {name}{dims} = {_braced(values, len(shape), literal)};"
 
 
 def _ints(name: str, values) -> str:
@@ -37,11 +38,12 @@ def _ints(name: str, values) -> str:
     return f"static const int {name}[{max(len(values), 1)}] = {{{items}}};"
 
 
-def _braced(values, rank: int) -> str:
+def _braced(values, rank: int, literal=number) -> str:
     """A nested C initialiser; an empty dimension holds one zero (C has no empty arrays)."""
     if rank == 0:
-        return number(values)
-    items = [_braced(v, rank - 1) for v in values] or [_braced([] if rank > 1 else 0.0, rank - 1)]
+        return literal(values)
+    items = [_braced(v, rank - 1, literal) for v in values] or [
+        _braced([] if rank > 1 else 0.0, rank - 1, literal)]
     return "{" + ", ".join(items) + "}"
 
 
@@ -131,7 +133,7 @@ def header(ss: StateSpace) -> str:
 #define TC_LSTM_HIDDEN {ss.lstm_hidden}   /* their hidden size H (gates: 4 H rows, torch's i, f, g, o) */
 #define TC_LSTM_LAYERS {ss.lstm_layers}
 #define TC_LSTM_WIDTH {ss.lstm_width}   /* a layer's input row: max(TC_LSTM_INPUTS, H) */
-#define TC_LSTM_INPUTS {len(ss.inputs) * (1 + ss.lstm_ambient)}   /* layer 0's: x [, x (A0 - centre)] */
+#define TC_LSTM_INPUTS {net_inputs(ss)}   /* layer 0's: the model's columns, each a feature of [x, lags] */
 #define TC_SWITCH_RAW_TIME {int(ss.switch_raw_time)}   /* 1: the ramp's time as read, 0: the stream's clock */
 #define TC_WIDTH (TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED + TC_N_INITIAL)   /* a law's inputs */
 #define TC_USES_TIME {int(ss.uses_time)}
@@ -347,9 +349,10 @@ static void forests(tc_state *s, const double v[], double t, double y[]) {{
 static double sigmoid(double a) {{ return 1.0 / (1.0 + exp(-a)); }}
 
 /* an lstm model's network, its residual times its weight and its skip law's factor (an ATI
-   interval's: 0 outside it, the net not stepped) added to its target's output y: the inputs as
-   the model reads them, clamped (x - excess: it has no step gain, the stream runs it on the
-   clamped inputs alone; an ATI interval's with the interaction, and them times A0 - centre),
+   interval's: 0 outside it, the net not stepped) added to its target's output y: its inputs
+   the features the laws read (LSTM_IN: x[.][q], or the lag q - TC_WIDTH), clamped (channel 0
+   minus the excess channel 1: it has no step gain, the stream runs it on the clamped inputs
+   alone), each times its law's factor (LSTM_IN_LAW: 1, A0 - centre, [A0 > A_thr]),
    standardised; per layer the gates a = W_ih in + b_ih + W_hh h +
    b_hh (torch's rows i, f, g, o), c = f c + i g, h = o tanh(c), in double as the model infers;
    the read-out of the last layer's h times the model's output scale */
@@ -361,9 +364,10 @@ static void lstms(tc_state *s, const double x[2][TC_WIDTH], double y[]) {{
         if (factor == 0.0) continue;
         for (j = 0; j < TC_LSTM_WIDTH; j++) in[j] = 0.0;
         for (j = 0; j < TC_LSTM_INPUTS; j++) {{
-            double xj = x[0][j % TC_N_INPUTS] - x[1][j % TC_N_INPUTS];
-            if (j >= TC_N_INPUTS) xj *= s->a0 - AMBIENT_CENTRE;
-            in[j] = (xj - LSTM_X_MEAN[k][j]) / LSTM_X_SCALE[k][j];
+            int q = LSTM_IN[k][j];
+            double xj = q < 0 ? 0.0 : q < TC_WIDTH ? x[0][q] - x[1][q]
+                        : s->z[0][q - TC_WIDTH] - s->z[1][q - TC_WIDTH];
+            in[j] = (xj * s->factor[LSTM_IN_LAW[k][j]] - LSTM_X_MEAN[k][j]) / LSTM_X_SCALE[k][j];
         }}
         for (l = 0; l < TC_LSTM_LAYERS; l++) {{
             double *h = s->lstm_h[k][l], *c = s->lstm_c[k][l];
@@ -646,7 +650,8 @@ int tc_reference(tc_state *s, const double measured_error[TC_N_OUTPUTS]) {{
 
 def _declared(arrays) -> list[str]:
     """A model's constants (:func:`.forest.forest_arrays`, :func:`.recurrent.net_arrays`) in C."""
-    return [_array(name, values, shape) if kind == "real" else _ints(name, values)
+    return [_array(name, values, shape) if kind == "real" else
+            _ints(name, values) if len(shape) == 1 else _array(name, values, shape, "int")
             for name, values, shape, kind in arrays]
 
 

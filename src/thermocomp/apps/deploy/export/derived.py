@@ -110,7 +110,9 @@ class Derived:
         return np.asarray(row)[self._order(len(row))]
 
     def _order(self, n: int) -> np.ndarray:
-        return np.r_[self.order, np.arange(len(self.order), n)].astype(int)
+        """The canonical place's model column, of ``n`` (none given: the same)."""
+        order = self.order or []
+        return np.r_[order, np.arange(len(order), n)].astype(int)
 
 
 def canonical_order(effects: list, k: int, initial: list[int]) -> list[int]:

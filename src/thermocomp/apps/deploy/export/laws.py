@@ -36,14 +36,14 @@ from .derived import (
 from .errors import NotExportable
 from .forest import is_forest
 from .members import described, is_diagnosed, members
-from .recurrent import is_lstm, skip_law
+from .recurrent import is_lstm, net_reads, skip_law
 
 LINEAR_FAMILIES = ("mlr", "pcr", "arx", "lagbank", "hammerstein")   # what exports to C / ST
 # and arx_rf: its ARX a law, its forest walked as arrays (:mod:`.forest`, exportrest62); lstm:
 # its skip path a law, its cell stepped over arrays (:mod:`.recurrent`, lstmexport62); both within
 # an ATI model too, each interval's forest or network counting in its interval (exportati63);
-# a diagnosed lstm whose only effect is the ambient law, its network reading [x, x (A0 - 20)]
-# as an ATI interval's does (diaglstm63)
+# a diagnosed lstm with any effect set the linear families export, its network reading the
+# features the code computes for them (exportlstm64)
 UNBOUNDED = sys.float_info.max      # an open interval edge (finite for JSON and ST)
 PLAIN = 0.0                         # a lag's source: its input itself (a tau is > 0)
 
@@ -85,14 +85,14 @@ class Law:
 class Beside(NamedTuple):
     """An ``arx_rf``'s forest or an ``lstm``'s network the code runs beside the laws: its blend
     ``weight``, the fitted ``model``, and the interval ``lo < A0 <= hi`` of the campaign's
-    initial ambient where it counts (an ATI model's; else unbounded), reading ``x (A0 - 20)`` too
-    where ``interacts`` (the interval's ambient interaction: an lstm's inputs)."""
+    initial ambient where it counts (an ATI model's; else unbounded); a network's ``reads``, per
+    column of its inputs, the feature of the code it is (:func:`.recurrent.net_reads`)."""
 
     weight: float
     model: object
     lo: float = -UNBOUNDED
     hi: float = UNBOUNDED
-    interacts: bool = False
+    reads: tuple = ()
 
     @property
     def key(self) -> tuple:
@@ -116,8 +116,9 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict,
                 if is_forest(base) or is_lstm(base):
                     # the linear part a law, the forest or the network beside it, counting where
                     # that law does (an ATI interval's: exportati63)
-                    reads = _net_reads(base, member, interacts, derived)
-                    beside.append(Beside(w, base, lo, hi, reads))
+                    reads = net_reads(base, cols, inputs, powers, interacts, derived, lo,
+                                      hi) if is_lstm(base) else ()
+                    beside.append(Beside(w, base, lo, hi, tuple(reads)))
                     base = base.arx_ if is_forest(base) else skip_law(base)
                 laws, period = _member_laws(base, interacts, w, cols, inputs, powers, period,
                                             target, derived)
@@ -127,34 +128,6 @@ def target_laws(target: str, est, cols: np.ndarray, inputs: list, powers: dict,
         except NotExportable as exc:
             raise NotExportable(_member_refused(target, name, w, parts, exc)) from None
     return _summed(own), period, _named(described(parts), parts)
-
-
-def _net_reads(est, member, interacts: bool, derived: Derived) -> bool:
-    """Whether ``est``'s network reads ``[x, x (A0 - 20)]`` (``lstm_ambient``): an ATI interval's
-    with its ambient interaction, or an lstm whose diagnosed model's only effect is the ambient
-    law ``x (A0 - 20)`` (diaglstm63: its base fitted on ``[x, x (A0 - 20)]``, the inputs a
-    removed sensor left; not around an interval that interacts, ``[x, xa, xa, xa^2]``).  Any
-    other effect around an lstm is :class:`NotExportable`, naming it: its network reads the
-    effect's features, which the code's nets do not (an arx_rf's forest reads its machine state
-    alone, its ARX the features: a law)."""
-    if not is_lstm(est) or not is_diagnosed(member):
-        return interacts
-    effects = list(member.effects_)
-    ambient = [e for e in effects if e.transform == "ambient_linear"]
-    blocking = [e.title for e in effects if e.transform != "ambient_linear"]
-    if len(ambient) > 1:        # [x, xa, xa]: one law read twice
-        blocking.append(f"a second {ambient[1].title}")
-    if ambient and interacts:
-        blocking.append(f"{ambient[0].title} around an ATI interval's ambient interaction")
-    if blocking:
-        raise NotExportable(f"a diagnosed model on lstm with {'; '.join(blocking)} does not "
-                            "export (its network would read the effects' features, which the "
-                            "code's nets do not; with the ambient law x (A0 - 20) alone, or a "
-                            "sensor's removal, it does); effects around the linear families "
-                            f"({', '.join(LINEAR_FAMILIES)}) or arx_rf do, and lstm plain, a "
-                            "blend member or within an ATI model; the served model runs it "
-                            "(thermocomp serve, connect)")
-    return interacts or bool(ambient)
 
 
 def with_gains(laws: list[Law], terms: list, cols: np.ndarray, n: int, target: str,

@@ -14,14 +14,19 @@ law's response to the excess out outright (``clamp_outright``) and steps the cel
 
 Per net ``k`` and layer ``l`` (torch's gate order i, f, g, o over rows of ``4 H``): ``a = W_ih
 in + b_ih + W_hh h + b_hh``, ``i, f, o = sigmoid(a_i, a_f, a_o)``, ``g = tanh(a_g)``, ``c <- f c
-+ i g``, ``h <- o tanh(c)``; ``in`` is ``xs`` (over the code's inputs: a column the net does not
-read has weight 0, mean 0, scale 1) for layer 0 and the layer below's new ``h`` after it.  An
-ATI interval's model with the ambient interaction reads ``[x, x (A0 - 20 °C)]``, and so does
-the base of a diagnosed model whose only effect is the ambient law (diaglstm63): where a net
-does (``lstm_ambient``), layer 0's ``in`` is ``xs`` over ``[x, x (A0 - ambient_centre)]``, 2
-n_inputs wide (the second half weight 0 for a net without it).  ``W_ih`` rows are
-``lstm_width = max(n_inputs [x 2], H)`` wide (zeros beyond a layer's own inputs).  Every net
-of the code has the same ``H`` and layer count (else refused, naming them).
++ i g``, ``h <- o tanh(c)``; ``in`` is ``xs`` for layer 0 and the layer below's new ``h``
+after it.  Layer 0's ``xs`` is over the model's own columns, each a feature the code computes
+anyway (exportlstm64: :func:`net_reads`): ``lstm_in`` names its source in the code's ``[x,
+lags]`` (an input, a diagnosed model's derived input or initial-state transient, the lag of one
+or a low-pass copy of an input), read clamped (the first channel minus the excess channel:
+the features of ``x - ex``, as the stream's model computes them), times the factor of the law
+``lstm_in_law`` names (1; ``A0 - 20 °C`` for a diagnosed ambient law's block or an ATI
+interval's interaction, ``[A0 > A_thr]`` for an ambient step's: the laws' own factors), then
+standardised.  A plain lstm's columns are its inputs; an ATI interval's with the interaction
+``[x, x (A0 - 20)]`` (exportati63); a diagnosed lstm's ``[x, features]`` in the effects' order,
+as its skip law's are.  ``W_ih`` rows are ``lstm_width = max(inputs, H)`` wide (zeros beyond a
+layer's own inputs; a narrower net's inputs padded with source -1, weight 0).  Every net of
+the code has the same ``H`` and layer count (else refused, naming them).
 """
 
 from __future__ import annotations
@@ -58,6 +63,42 @@ def _numpy(t) -> np.ndarray:
     return t.detach().numpy().astype(float)
 
 
+def net_reads(est, cols, inputs: list, powers: dict, interacts: bool, derived, lo: float,
+              hi: float) -> list[tuple]:
+    """Per column of the inputs of the lstm ``est`` (an ATI interval's ``lo < A0 <= hi``), in
+    the model's order, the feature of the code it is: ``(place, tau, law key)``, ``place`` in
+    the code's ``[x, registered features]`` (``powers``, before :func:`.statespace._in_code_order`
+    numbers them; ``cols`` its inputs), ``tau`` not None for the lag of that place (a diagnosed
+    lag, a low-pass copy of an input), and the key (:attr:`.laws.Law.key`) of the law whose
+    factor multiplies it: the net's skip law's own, an ambient law's ``A0 - 20``, an ambient
+    step's ``[A0 > A_thr]``, an ATI interval's interaction times ``A0 - 20`` once more.  The
+    columns are the skip law's (:func:`.laws._member_laws` lays them out the same way): the
+    features the code computes for a linear base are what the network reads (exportlstm64)."""
+    from .derived import derived_inputs
+
+    extra = derived_inputs(derived, inputs, powers, cols)
+    blocks = derived.blocks if derived.blocks is not None else [("ambient", None)] * interacts
+    n, cols = len(inputs), [int(c) for c in cols]
+    # [x, ambient blocks, derived inputs, low-pass blocks]: (place, tau, (lo, hi, power of A0 - 20))
+    canonical = [(c, None, (lo, hi, 0)) for c in cols]
+    for kind, threshold in blocks:
+        key = (max(lo, threshold), hi, 0) if kind == "step" else (lo, hi, 1)
+        canonical += [(c, None, key) for c in cols]
+    canonical += [(n + f, tau, (lo, hi, 0)) for f, tau in extra]
+    canonical += [(c, tau, (lo, hi, 0)) for tau in derived.lowpass for c in cols]
+    if interacts and derived.blocks is not None:    # [Z, Z (A0 - 20)] (an ATI interval's)
+        width = len(canonical)
+        canonical += [(place, tau, (a, b, power + 1)) for place, tau, (a, b, power) in canonical]
+        model = np.r_[derived._order(width), width + derived._order(width)]
+    else:
+        model = derived._order(len(canonical))
+    if len(canonical) != len(est.x_mean_):
+        raise NotExportable(f"the lstm reads {len(est.x_mean_)} columns, its features are "
+                            f"{len(canonical)}: a diagnosed model of another layout")
+    where = np.argsort(model)           # a model column's canonical place
+    return [canonical[p] for p in where]
+
+
 @dataclass
 class NetArrays:
     """An lstm model's networks as fields of the exported system (module doc): declared once
@@ -71,11 +112,13 @@ class NetArrays:
     lstm_hidden: int = 0
     lstm_layers: int = 0
     lstm_width: int = 0
-    # the nets read [x, x (A0 - ambient_centre)] (an ATI interval's model with the ambient
-    # interaction, exportati63): lstm_x_mean and lstm_x_scale are 2 n_inputs wide
-    lstm_ambient: bool = False
-    lstm_x_mean: list = field(default_factory=list)     # (nets, n_inputs [x 2: lstm_ambient])
-    lstm_x_scale: list = field(default_factory=list)    # (nets, n_inputs [x 2: lstm_ambient])
+    # (nets, inputs) per input of the first layer (the model's columns): its source in the code's
+    # [x, lags] (< the width of x: x[source], else the lag source - width; -1: none, a narrower
+    # net's padding) and the law whose factor multiplies it (exportlstm64)
+    lstm_in: list = field(default_factory=list)
+    lstm_in_law: list = field(default_factory=list)
+    lstm_x_mean: list = field(default_factory=list)     # (nets, inputs)
+    lstm_x_scale: list = field(default_factory=list)    # (nets, inputs)
     lstm_w_ih: list = field(default_factory=list)       # (nets, layers, 4 H, width)
     lstm_w_hh: list = field(default_factory=list)       # (nets, layers, 4 H, H)
     lstm_b_ih: list = field(default_factory=list)       # (nets, layers, 4 H)
@@ -86,8 +129,8 @@ class NetArrays:
 
 
 def net_inputs(ss) -> int:
-    """The first layer's inputs: the code's inputs, twice with the ambient interaction."""
-    return len(ss.inputs) * (1 + ss.lstm_ambient)
+    """The first layer's inputs (the widest net's columns)."""
+    return len(ss.lstm_in[0]) if ss.lstm_in else 0
 
 
 def net_arrays(ss) -> list[tuple[str, list, tuple, str]]:
@@ -99,6 +142,8 @@ def net_arrays(ss) -> list[tuple[str, list, tuple, str]]:
     return [("LSTM_TARGET", ss.lstm_target, (k,), "int"),
             ("LSTM_WEIGHT", ss.lstm_weight, (k,), "real"),
             ("LSTM_LAW", ss.lstm_law or [0] * k, (k,), "int"),
+            ("LSTM_IN", ss.lstm_in, (k, n), "int"),
+            ("LSTM_IN_LAW", ss.lstm_in_law, (k, n), "int"),
             ("LSTM_X_MEAN", ss.lstm_x_mean, (k, n), "real"),
             ("LSTM_X_SCALE", ss.lstm_x_scale, (k, n), "real"),
             ("LSTM_W_IH", ss.lstm_w_ih, (k, L, 4 * H, W), "real"),
@@ -116,34 +161,26 @@ class Nets(NetArrays):
 
     def __init__(self):
         super().__init__()
-        # per net: its input standardisation and first layer's weights over [x, x (A0 -
-        # centre)] (2 n), its upper layers' (H wide): spread to the code's width in fields()
-        self._inputs: list = []
-        self._n = 0
+        # per net: its inputs [(place, tau, law)] before the code's numbering, their mean and
+        # scale, its first layer's weights (4 H, its inputs) and its upper layers' (4 H, H)
+        self._nets: list = []
 
-    def add(self, target: int, weight: float, est, cols, n: int, law: int,
-            ambient: bool = False) -> None:
+    def add(self, target: int, weight: float, est, law: int, reads: list) -> None:
         """The network of the fitted LSTM ``est`` (weight ``weight`` in target ``target``'s
-        blend) reading the code's inputs ``cols`` of ``n`` (``ambient``: and them times ``A0 -
-        ambient_centre``, an ATI interval's interaction), counting as law ``law`` does."""
+        blend), counting as law ``law`` does, its inputs ``reads`` (:func:`net_reads`, each key
+        as the index of its law)."""
         cell, H, L = est.net_.lstm, int(est.hidden_size), int(est.num_layers)
         if self.lstm_target and (H, L) != (self.lstm_hidden, self.lstm_layers):
             raise NotExportable(f"the LSTMs of the targets have hidden_size, num_layers {H}, {L} "
                                 f"and {self.lstm_hidden}, {self.lstm_layers}; the code steps one "
                                 "shape of network")
-        cols = np.asarray(cols, int)
-        reads = np.r_[cols, n + cols] if ambient else cols     # among [x, x (A0 - centre)]
-        mean, scale, first = np.zeros(2 * n), np.ones(2 * n), np.zeros((4 * H, 2 * n))
-        mean[reads], scale[reads] = est.x_mean_, est.x_scale_
-        first[:, reads] = _numpy(cell.weight_ih_l0)
-        upper = [_numpy(getattr(cell, f"weight_ih_l{layer}")) for layer in range(1, L)]
-        self._inputs.append((mean, scale, first, upper))
-        self._n = n
+        self._nets.append((list(reads), np.asarray(est.x_mean_, float), np.asarray(est.x_scale_, float),
+                           _numpy(cell.weight_ih_l0),
+                           [_numpy(getattr(cell, f"weight_ih_l{layer}")) for layer in range(1, L)]))
         self.lstm_target.append(int(target))
         self.lstm_weight.append(float(weight))
         self.lstm_law.append(int(law))
         self.lstm_hidden, self.lstm_layers = H, L
-        self.lstm_ambient = self.lstm_ambient or bool(ambient)
         for name, out in (("weight_hh", self.lstm_w_hh), ("bias_ih", self.lstm_b_ih),
                           ("bias_hh", self.lstm_b_hh)):
             out.append([_numpy(getattr(cell, f"{name}_l{layer}")).tolist() for layer in range(L)])
@@ -151,22 +188,35 @@ class Nets(NetArrays):
         self.lstm_head_bias.append(float(_numpy(est.net_.head.bias).reshape(-1)[0]))
         self.lstm_y_scale.append(float(est.y_scale_))
 
-    def fields(self) -> dict:
-        """The StateSpace's fields (none without an LSTM): the layers' input rows ``max(n_inputs,
-        H)`` wide (``2 n_inputs`` where a net reads the ambient interaction: ``lstm_ambient``)."""
+    def lags(self, place) -> set:
+        """The lags the nets read, ``(tau, place of its input)`` in the code's numbering
+        (``place``)."""
+        return {(tau, int(place(p))) for reads, *_ in self._nets for p, tau, _ in reads
+                if tau is not None}
+
+    def fields(self, place, lag_at: dict, width: int) -> dict:
+        """The StateSpace's fields (none without an LSTM): each input's source in ``[x, lags]``
+        (``place`` numbers a feature as the code does, ``lag_at`` a lag's index by ``(tau,
+        place of its input)``, ``width`` x's), the inputs of the nets padded to the widest's
+        and the layers' input rows ``max(inputs, H)`` wide."""
         if not self.lstm_target:
             return {}
-        own = self._n * (1 + self.lstm_ambient)     # the first layer's inputs
-        H = self.lstm_hidden
-        self.lstm_width = max(own, H)
-        w_ih = np.zeros((len(self._inputs), self.lstm_layers, 4 * H, self.lstm_width))
-        for k, (mean, scale, first, upper) in enumerate(self._inputs):
-            w_ih[k, 0, :, :own] = first[:, :own]
+        n, H = max(len(net[0]) for net in self._nets), self.lstm_hidden
+        self.lstm_width = W = max(n, H)
+        w_ih = np.zeros((len(self._nets), self.lstm_layers, 4 * H, W))
+        sources, laws, means, scales = [], [], [], []
+        for k, (reads, mean, scale, first, upper) in enumerate(self._nets):
+            w_ih[k, 0, :, :first.shape[1]] = first
             for layer, w in enumerate(upper, start=1):
                 w_ih[k, layer, :, :H] = w
+            pad = n - len(reads)
+            sources.append([int(place(p)) if tau is None else width + lag_at[(tau, int(place(p)))]
+                            for p, tau, _ in reads] + [-1] * pad)
+            laws.append([int(law) for _, _, law in reads] + [0] * pad)
+            means.append(mean.tolist() + [0.0] * pad)
+            scales.append(scale.tolist() + [1.0] * pad)
+        self.lstm_in, self.lstm_in_law, self.lstm_x_mean, self.lstm_x_scale = sources, laws, means, scales
         self.lstm_w_ih = w_ih.tolist()
-        self.lstm_x_mean = [mean[:own].tolist() for mean, _, _, _ in self._inputs]
-        self.lstm_x_scale = [scale[:own].tolist() for _, scale, _, _ in self._inputs]
         return {f.name: getattr(self, f.name) for f in dataclass_fields(NetArrays)}
 
 
@@ -179,6 +229,7 @@ class Cells:
 
     def __init__(self, ss):
         k, L, H, W = len(ss.lstm_target), ss.lstm_layers, ss.lstm_hidden, ss.lstm_width
+        self.source, self.law = (np.asarray(a, int).reshape(k, -1) for a in (ss.lstm_in, ss.lstm_in_law))
         self.mean, self.scale = (np.asarray(a, float).reshape(k, -1)
                                  for a in (ss.lstm_x_mean, ss.lstm_x_scale))
         self.w_ih = np.asarray(ss.lstm_w_ih, float).reshape(k, L, 4 * H, W)
@@ -189,19 +240,19 @@ class Cells:
         self.head_bias, self.y_scale = (np.asarray(a, float) for a in (ss.lstm_head_bias, ss.lstm_y_scale))
         self.h, self.c = np.zeros((k, L, H)), np.zeros((k, L, H))
         self.H, self.W = H, W
-        self.ambient, self.centre = bool(ss.lstm_ambient), float(ss.ambient_centre)
 
-    def step(self, x: np.ndarray, first: bool, a0: float = 0.0) -> np.ndarray:
-        """Each net's residual ``s_y (v . h_L + d)`` at the sample of (clamped) inputs ``x`` in a
-        campaign of initial ambient ``a0`` (read where the nets read ``x (A0 - centre)``)."""
+    def step(self, xs: np.ndarray, z: np.ndarray, factor: np.ndarray, first: bool) -> np.ndarray:
+        """Each net's residual ``s_y (v . h_L + d)`` at the sample whose features are ``xs`` and
+        lags ``z`` (both channels: the net reads the clamped ones, the first minus the second),
+        each input times its law's ``factor`` in the campaign."""
         if first:
             self.h[:], self.c[:] = 0.0, 0.0
-        if self.ambient:
-            x = np.r_[x, x * (a0 - self.centre)]
+        clamped = np.concatenate([xs[0] - xs[1], z[0] - z[1]])
+        x = np.where(self.source >= 0, clamped[np.maximum(self.source, 0)], 0.0) * factor[self.law]
         H = self.H
         for k in range(len(self.mean)):
             inp = np.zeros(self.W)
-            inp[:len(x)] = (x - self.mean[k]) / self.scale[k]
+            inp[:x.shape[1]] = (x[k] - self.mean[k]) / self.scale[k]
             for layer in range(self.h.shape[1]):
                 a = (self.w_ih[k, layer] @ inp + self.b[0][k, layer]
                      + self.w_hh[k, layer] @ self.h[k, layer] + self.b[1][k, layer])

@@ -91,17 +91,20 @@ def _forest_constants(ss: StateSpace) -> list[str]:
 
 def _lstm_constants(ss: StateSpace) -> list[str]:
     """An lstm model's networks (:mod:`.recurrent`)."""
+    x_width = len(ss.inputs) + len(ss.powers) + len(ss.derived) + len(ss.initial)
     return [f"    N_LSTM : INT := {len(ss.lstm_target)};", f"    LSTM_HIDDEN : INT := {ss.lstm_hidden};",
             f"    LSTM_LAYERS : INT := {ss.lstm_layers};", f"    LSTM_WIDTH : INT := {ss.lstm_width};",
             f"    LSTM_INPUTS : INT := {net_inputs(ss)};",
+            f"    LSTM_LAG_FROM : INT := {x_width};",     # the nets' sources: x, then the lags
             *_declared(net_arrays(ss))]
 
 
 LSTM_BLOCK = """\
     (* an lstm model's network, its residual times its weight and its skip law's factor (an ATI *)
-    (* interval's: 0 outside it, the net not stepped) added to its target: the inputs as the *)
-    (* model reads them, clamped (x - excess: no step gain, the stream runs it on the clamped *)
-    (* inputs alone; an ATI interval's with the interaction, and them times A0 - centre), *)
+    (* interval's: 0 outside it, the net not stepped) added to its target: its inputs the *)
+    (* features the laws read (LSTM_IN: x[., q], or the lag q - LSTM_LAG_FROM), clamped *)
+    (* (channel 0 minus the excess channel 1: no step gain, the stream runs it on the clamped *)
+    (* inputs alone), each times its law's factor (LSTM_IN_LAW: 1, A0 - centre, [A0 > A_thr]), *)
     (* standardised; per layer the gates a = W_ih in + b_ih + W_hh h + b_hh *)
     (* (torch's rows i, f, g, o), c := f c + i g, h := o tanh(c); sigmoid 1 / (1 + EXP(-a)) and *)
     (* tanh(z) = 1 - 2 / (EXP(2 z) + 1), their arguments held where EXP cannot overflow *)
@@ -112,12 +115,15 @@ LSTM_BLOCK = """\
                 lstm_in[j] := 0.0;
             END_FOR;
             FOR j := 0 TO LSTM_INPUTS - 1 DO
-                IF j < N_INPUTS THEN
-                    lx := x[0, j] - x[1, j];
+                lq := LSTM_IN[nk, j];
+                IF lq < 0 THEN
+                    lx := 0.0;
+                ELSIF lq < LSTM_LAG_FROM THEN
+                    lx := x[0, lq] - x[1, lq];
                 ELSE
-                    lx := (x[0, j - N_INPUTS] - x[1, j - N_INPUTS]) * (a0 - AMBIENT_CENTRE);
+                    lx := z[0, lq - LSTM_LAG_FROM] - z[1, lq - LSTM_LAG_FROM];
                 END_IF;
-                lstm_in[j] := (lx - LSTM_X_MEAN[nk, j]) / LSTM_X_SCALE[nk, j];
+                lstm_in[j] := (lx * factor[LSTM_IN_LAW[nk, j]] - LSTM_X_MEAN[nk, j]) / LSTM_X_SCALE[nk, j];
             END_FOR;
             FOR nl := 0 TO LSTM_LAYERS - 1 DO
                 IF first THEN
@@ -367,6 +373,7 @@ VAR
     lsum : LREAL;
     lfac : LREAL;
     lx : LREAL;
+    lq : INT;
     nk : INT;
     nl : INT;
     nr : INT;

@@ -38,11 +38,12 @@ everything its :meth:`~thermocomp.apps.deploy.StreamingCompensator.step` does to
    b_t)`` (``y_t - r_t`` where
    ``clamp_outright_t``: the stream's clamp of a model without a step gain; an ``arx_rf``'s forest,
    :mod:`.forest`, adds to ``y_t`` times its weight, an ``lstm``'s residual too, its cell stepped
-   on the clamped inputs ``x - ex``: :mod:`.recurrent`), ``b_t = |clamp_gain_t .
-   ex|`` the response to the excess held for the envelope's horizon (as the stream does; the gain
-   plus ``sum_s r_s clamp_state_gain[s]``, ``r_s`` a state's value at the sample before the
-   campaign's first excess, held: an ``inputs_product``'s, export62; ``y_t - r_t`` in a campaign
-   out at its first sample where ``clamp_state_first_t``, the stream then having no value); at a
+   on the clamped features, ``[x, lags]`` minus their excess channel: :mod:`.recurrent`),
+   ``b_t = |clamp_gain_t . ex|`` the response to the excess held for the envelope's horizon
+   (as the stream does; the gain plus ``sum_s r_s clamp_state_gain[s]``, ``r_s`` a state's
+   value at the sample before the campaign's first excess, held: an ``inputs_product``'s,
+   export62; ``y_t - r_t`` in a campaign out at its first sample where ``clamp_state_first_t``,
+   the stream then having no value); at a
    sample within the envelope (``ex = 0``) after an excess, ``b_t`` is the last excess's (0
    before the campaign's first): an excess that fades out ends with a bound near 0 (the model's
    own correction, as scored), one that ends at once (a one-row spike, a sensor's offset gone)
@@ -265,9 +266,10 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         beside: list = []        # an arx_rf's forest, an lstm's network (laws.Beside)
         own, period, kept = target_laws(t, est, cols, inputs, powers, period, beside)
         for b in beside:         # each takes the factor of its linear part's law
-            r = len(laws) + next(k for k, mine in enumerate(own) if mine.key == b.key)
-            if is_lstm(b.model):
-                nets.add(i, b.weight, b.model, cols, N, r, b.interacts)
+            r = len(laws) + _law_of(own, b.key, t)
+            if is_lstm(b.model):     # a network's inputs each the factor of its law too
+                nets.add(i, b.weight, b.model, r, [(p, tau, len(laws) + _law_of(own, key, t))
+                                                   for p, tau, key in b.reads])
             else:
                 forests.add(i, b.weight, b.model, inputs, r)
         # the clamp's gain: the deployed model's own, split as its laws count (gain61: the one
@@ -280,7 +282,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         laws += [(i, law) for law in own]
         if kept is not None:
             chosen[t] = kept
-    _in_code_order(laws, powers, N)
+    place = _in_code_order(laws, powers, N)
     ati = any(law.key != (-UNBOUNDED, UNBOUNDED, False) for _, law in laws)
     initial = [k for k in sorted(powers, key=powers.get) if k[0] == INITIAL]
     ambient, given = _ambient_inputs(stream, inputs, ati or bool(initial), known_ambient)
@@ -296,7 +298,8 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
     width = N + len(powers)
     depth = max((d for _, law in laws for d in law.delayed), default=0)
     # (tau, input, source): the plain lags first, then the cascades on them (a lag's lag)
-    keys = sorted({(tau, j, src) for _, law in laws for tau, j, _, src in law.lags},
+    keys = sorted({(tau, j, src) for _, law in laws for tau, j, _, src in law.lags}
+                  | {(tau, j, PLAIN) for tau, j in nets.lags(place)},     # (a network's own)
                   key=lambda k: (k[2] != PLAIN, *k))
     where = {k: i for i, k in enumerate(keys)}
     targets = list(stream.targets_)
@@ -339,7 +342,8 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         if any(k[5:] for k in derived) else [],
         initial=[[k[3], list(k[1]), list(k[2])] for k in initial],
         held=_held(inputs, n, powers, ambient, switches),
-        **forests.fields(), **nets.fields(),
+        **forests.fields(), **nets.fields(place, {(tau, j): at for (tau, j, src), at in where.items()
+                                                   if src == PLAIN}, width),
         clamp_gain=[(law.gain if law.gain is not None else np.zeros(N)).tolist()
                     for _, law in laws] if clamp else None,
         clamp_outright=outright if any(outright) else [],
@@ -351,6 +355,15 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         **guard_fields(deployed, len(states), clamp and env.basis is not None),
         **adapt_fields(deployed),
         provenance={**(provenance or {}), **({"laws": chosen} if chosen else {})})
+
+
+def _law_of(own: list, key: tuple, target: str) -> int:
+    """The index among a target's laws ``own`` of the one whose factor is ``key``'s."""
+    found = next((k for k, law in enumerate(own) if law.key == key), None)
+    if found is None:
+        raise NotExportable(f"a network of {target} reads a feature counting where no law of the "
+                            f"code does ({key[0]:.4g} < A0 <= {key[1]:.4g}, power {key[2]})")
+    return found
 
 
 def _clamp_terms(target: str, est, horizon_s: float, inputs: list) -> tuple[list | None, dict]:
@@ -423,10 +436,11 @@ def _read(powers: dict) -> set:
     return out
 
 
-def _in_code_order(laws: list, powers: Powers, n: int) -> None:
+def _in_code_order(laws: list, powers: Powers, n: int):
     """The registered features (``powers``, in the order the targets registered them) put in
     the code's order, the powers first, then the derived inputs, then the transients: the laws'
-    places (after the ``n`` inputs), ``powers``' values and its powers at rest renumbered in place."""
+    places (after the ``n`` inputs), ``powers``' values and its powers at rest renumbered in
+    place; returns the renumbering of a place (a network's inputs', :class:`.recurrent.Nets`)."""
     rank = {DERIVED: 1, INITIAL: 2}       # powers, then derived inputs, then transients
     order = sorted(powers, key=lambda k: (rank.get(k[0], 0), powers[k]))
     new = {powers[k]: i for i, k in enumerate(order)}
@@ -442,6 +456,7 @@ def _in_code_order(laws: list, powers: Powers, n: int) -> None:
     for k in order:
         powers[k] = new[powers[k]]
     powers.rest, powers.steady = {new[i] for i in powers.rest}, {new[i] for i in powers.steady}
+    return place
 
 
 def _ambient_inputs(stream, inputs: list, ati: bool, known: bool) -> tuple[list[int], bool]:
@@ -603,7 +618,7 @@ class Simulator:
             value = self.switches.step(v, float(time) if ss.switch_raw_time else now, first)
             self._beside(y[0], ss.forest_target, ss.forest_weight, ss.forest_law, value)
         if ss.lstm_target:          # an lstm's residual, of the clamped inputs (no step gain)
-            value = self.cells.step(x - excess, first, self.a0)
+            value = self.cells.step(xs, self.z, self.factor, first)
             self._beside(y[0], ss.lstm_target, ss.lstm_weight, ss.lstm_law, value)
         if excess.any():            # back in range, the bound of the excess's last sample holds
             gain = self.clamp_gain + np.einsum("s,rsi->ri", self.by_held, self.state_gain)
