@@ -17,6 +17,9 @@ Bands widened by the sample's distance from training (shorttrain58,
 benchmarks/bench_monitor_shorttrain58.py) cannot quiet it: where T_left1 peaks the sample lies
 inside training's cloud (mode coefficients 0.63, the predictors' residual 0.94 of training's
 largest distance).
+monitor64 (benchmarks/bench_monitor64.py): T_left1's smallest |E| of the last 2 is 0.4068 against
+its 0.4052 band on one row; judging the window's mean too, or the last 3 errors, quiets it but
+flags drifts later and makes a fresh short-trained mill louder (8 -> 78 / 54 events): refused.
 
 A drifting sensor of high leverage (monitor54): the culprit rule's pick explained the bands only
 by raising the drifting sensor's leverage past judging; such an exclusion no longer counts as an
