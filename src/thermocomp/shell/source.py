@@ -127,9 +127,11 @@ def resolve_reference(cfg: DictConfig, ds) -> str:
     """``data.reference=auto`` made ``none`` where a test or val campaign of ``ds`` continues
     another (its state is carried over, :mod:`thermocomp.core.continuation`), else ``first_sample``;
     said in one line.  An explicit ``first_sample`` there is warned about: each part restarts."""
-    from ..core.continuation import predecessors
+    from ..core.continuation import predecessors, said_junction_steps
 
     links = predecessors(ds)
+    if str(cfg.data.reference) != "first_sample":   # (each file restarts: no junction)
+        said_junction_steps(ds, links)
     scored = [c for c in ds.ids() if c in links and ds.manifest.loc[c, "split"] in ("test", "val")]
     given = cfg.data.reference
     if given == AUTO_REFERENCE:
