@@ -3,11 +3,14 @@ each test fails on the code before its mend.  Small files: hours, not the bench'
 
 from __future__ import annotations
 
+import subprocess
+
 import numpy as np
 import pandas as pd
 import yaml
 
 from conftest import FAST, refused
+from test_export import needs_cc
 from thermocomp.shell.cli import main
 
 EXCEL_EPOCH = pd.Timestamp("1899-12-30")
@@ -102,3 +105,43 @@ def test_files_of_one_clock_whose_readings_restart_are_said(tmp_path, capsys):
     frame.iloc[120:].to_csv(folder / "week2.csv", index=False)      # one record: not said
     assert main(common) == 0
     assert not said()
+
+
+def preamble_file(path, rows: int = 240):
+    """The PM-12 logger's weekly file: four preamble lines, TAB-separated, decimal commas, the
+    time as elapsed hours, the ram's extension a state."""
+    frame = lab_frame(rows)
+    frame.insert(0, "t [h]", (frame.pop("t [s]") / 3600.0).round(4))
+    table = frame.to_csv(sep="\t", index=False, lineterminator="\n").replace(".", ",")
+    path.write_text("Machine;PM-12\nOperator: K. Brandt\nProject: thermal drift\n"
+                    "Probe: touch probe\n" + table, encoding="utf-8")
+    return path
+
+
+@needs_cc
+def test_the_compiled_stream_skips_a_loggers_preamble_as_the_reader_does(tmp_path):
+    # before: "stream: the header (line 1 ...) lacks input column T_ram" (exit 2) for the file
+    # `run` had read as it is
+    path = preamble_file(tmp_path / "PM12_week1.txt")
+    common = [f"data.path={path}", "data.roles.error=[dZ]", "data.roles.state=[Z ram]",
+              "data.test_fraction=0.3"]
+    assert main(["run", *common, *FAST, "plots=none", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=tmp_path / "code", check=True,
+                   capture_output=True)
+    lines = path.read_text(encoding="utf-8").splitlines(keepends=True)
+    out = {}
+    for name, text in (("as written", "".join(lines)), ("without it", "".join(lines[4:]))):
+        done = subprocess.run([str(tmp_path / "code" / "stream")], input=text.encode(),
+                              capture_output=True)
+        assert done.returncode == 0, (name, done.stderr)
+        out[name] = done.stdout
+    assert out["as written"] == out["without it"]
+    assert len(out["as written"].splitlines()) == 241
+    # a file whose header lacks an input is still refused, naming its line 1
+    text = "".join(lines).replace("T ram [°C]", "T rim [°C]")
+    done = subprocess.run([str(tmp_path / "code" / "stream")], input=text.encode(),
+                          capture_output=True)
+    assert done.returncode == 2 and b"(line 1" in done.stderr and b"T_ram" in done.stderr
