@@ -11,7 +11,10 @@ fixed beforehand).
 
 The lab's files (``write``)
 ---------------------------
-``pm12`` (seed 6401, three weekly campaigns): one TAB-separated ``.txt`` per week
+``pm12`` (seed 6401, ``one_record=true`` cut at each Monday 00:00; the first pass wrote it from
+three weekly campaigns, each simulated after a 2-day rest, kept as ``pm12_restarts``: their
+readings step by up to 4.35 K at the junctions where the lab's hours continue, see below): one
+TAB-separated ``.txt`` per week
 (``PM12_week1.txt`` ...) with a metadata preamble (``Machine;PM-12``, ``Operator: ...``, four
 lines) before the header, headers with units in brackets (``T ram [°C]``, ``Z ram [mm]``,
 ``dZ [mm]``), decimal commas, the time as elapsed hours ``t [h]`` since the campaign's start
@@ -26,6 +29,8 @@ Wednesday 08:00-20:00, in the train part).
 
 from __future__ import annotations
 
+import io
+import json
 import os
 import subprocess
 import sys
@@ -85,27 +90,356 @@ def long_file(frame: pd.DataFrame, start: pd.Timestamp) -> pd.DataFrame:
 
 
 def write(root: Path) -> None:
-    for name, seed in SEEDS.items():
-        sim = root / "sim" / name
+    """The labs' files: ``pm12`` cut into weeks from one continuous record of seed 6401,
+    ``pm12_long`` the record of seed 6402, and ``pm12_restarts`` the first pass's weekly files
+    of seed 6401 simulated week by week (each after a 2-day rest: their readings restart at the
+    junctions while the lab's hours continue)."""
+    for name, seed, one in (("pm12", 6401, True), ("pm12_long", 6402, True),
+                            ("pm12_restarts", 6401, False)):
+        sim = root / "sim" / ("pm12_weekly" if name == "pm12_restarts" else name)
         if not (sim / "campaigns.csv").exists():
-            simulate(seed, sim, *(["sim.generator.one_record=true"] if name == "pm12_long" else []))
+            simulate(seed, sim, *(["sim.generator.one_record=true"] if one else []))
         listed = pd.read_csv(sim / "campaigns.csv")
         folder = root / name
         folder.mkdir(parents=True, exist_ok=True)
-        for k, row in enumerate(listed.itertuples()):
-            frame = pd.read_csv(sim / row.file)
-            if name == "pm12":
-                (folder / f"PM12_week{k + 1}.txt").write_text(weekly_file(frame, k),
-                                                              encoding="utf-8")
-            else:
-                long_file(frame, pd.Timestamp(row.start)).to_csv(
-                    folder / "PM12_march.csv", index=False, float_format="%.6g")
+        frames = [pd.read_csv(sim / f) for f in listed["file"]]
+        if name == "pm12":                   # one clock, cut at each Monday 00:00
+            week = (frames[0]["time"] // (7 * 86400)).astype(int)
+            frames = [frame.assign(time=frame["time"] - 7 * 86400 * k)
+                      for k, frame in frames[0].groupby(week)]
+        if name == "pm12_long":
+            long_file(frames[0], pd.Timestamp(listed["start"].iloc[0])).to_csv(
+                folder / "PM12_march.csv", index=False, float_format="%.6g")
+            continue
+        for k, frame in enumerate(frames):
+            (folder / f"PM12_week{k + 1}.txt").write_text(weekly_file(frame, k), encoding="utf-8")
+
+
+# --- the stranger's pass: every model x wrapper, run -> replay -> promote -> export + check -----
+
+FAMILIES = {
+    "mlr": [], "pcr": [], "arx": [], "lagbank": [], "hammerstein": [],
+    "lstm": ["model.estimator.max_epochs=3", "model.estimator.hidden_size=4",
+             "model.estimator.chunk=16"],
+    # the refusal of the default S_door names the S_ columns: the spindle speed
+    "arx_rf": ["model.estimator.forest.n_estimators=10", "model.estimator.state_column=S_Spindle"],
+    "auto": ["model.candidates=[mlr,pcr,arx,lagbank,hammerstein,ati]"],
+}
+WRAPPERS = ("plain", "ati")
+
+
+def data_args(root: Path, name: str) -> list[str]:
+    return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={name}"]
+
+
+def stage(*args: str) -> tuple[int, str, float]:
+    """``thermocomp <args>`` in process: (exit status, its last line on stderr, CPU s)."""
+    import contextlib
+    import io
+    import traceback
+
+    from cpu import cpu_seconds
+
+    from thermocomp.shell.cli import main as cli
+
+    before = cpu_seconds(children=True)
+    err = io.StringIO()
+    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
+        try:
+            rc = cli(list(args)) or 0
+        except SystemExit as exc:
+            rc = int(exc.code or 0)
+        except Exception:                  # noqa: BLE001  (a crash is what the bench looks for)
+            rc, err = -1, io.StringIO(traceback.format_exc())
+    lines = [x for x in err.getvalue().splitlines() if x.strip()]
+    return rc, lines[-1] if lines else "", cpu_seconds(children=True) - before
+
+
+def last_run_id(root: Path) -> str:
+    import mlflow
+
+    mlflow.set_tracking_uri(f"sqlite:///{root}/tc/mlruns/mlflow.db")
+    runs = mlflow.search_runs(experiment_names=["thermocomp"], order_by=["start_time DESC"],
+                              max_results=1, filter_string="tags.stage = 'run'")
+    return str(runs.iloc[0]["run_id"])
+
+
+def exported(data: list, model: str, code: Path, *extra: str) -> dict:
+    """``export`` as C with its check pack, compiled, ``check/check.sh``."""
+    rc, said, cpu = stage("export", *data, f"export.model={model}", "export.format=c",
+                          "export.check=true", *extra, f"out={code}")
+    if rc:
+        return {"export": f"exit {rc}: {said[:160]}"}
+    cc = subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
+                        cwd=code, capture_output=True, text=True)
+    check = subprocess.run(["sh", "check/check.sh"], cwd=code, capture_output=True, text=True)
+    return {"cc": cc.returncode, "check": check.returncode,
+            "check_said": (check.stdout + check.stderr).strip().splitlines()[-1:]}
+
+
+def replayed(data: list, model: str, out: Path, targets, *extra: str) -> dict:
+    rc, said, cpu = stage("replay", *data, f"replay.model={model}", *extra, f"out={out}")
+    if rc:
+        return {"replay": f"exit {rc}: {said[:160]}"}
+    rep = json.loads((out / "replay.json").read_text())
+    return {"replay": {t: rep["targets"][t]["rmse"] for t in targets},
+            "stream-batch": max(rep["targets"][t]["max_abs_stream_minus_batch"] for t in targets),
+            "events": len(rep["events"]), "replay_cpu": round(cpu, 1)}
+
+
+def cell(root: Path, name: str, family: str, wrapper: str) -> dict:
+    data = data_args(root, name)
+    tag = f"{name}-{family}-{'plain' if wrapper in ('bias', 'rls') else wrapper}"
+    out = root / "out" / tag
+    row: dict = {"cell": f"{name}-{family}-{wrapper}"}
+    if wrapper in ("plain", "ati"):
+        rc, said, cpu = stage("run", *data, f"model={family}", *FAMILIES[family],
+                              *(["ati=cmeans"] if wrapper == "ati" else []), "plots=none",
+                              f"out={out}")
+        row["run_cpu"] = round(cpu, 1)
+        if rc:
+            return {**row, "run": f"exit {rc}: {said[:200]}"}
+        row["run_id"] = last_run_id(root)
+    if not (out / "metrics.json").exists():
+        return {**row, "run": "no plain run"}
+    metrics = json.loads((out / "metrics.json").read_text())
+    targets = list(metrics["targets"])
+    row["run"] = {t: metrics["targets"][t]["test"]["rmse"] for t in targets}
+    adapt = [] if wrapper in ("plain", "ati") else [f"adapt.method={wrapper}"]
+    pkl = str(out / "model.pkl")
+    row.update(replayed(data, pkl, root / "out" / f"{row['cell']}-replay", targets, *adapt))
+    if isinstance(row.get("replay"), dict):
+        row["replay-run"] = max(abs(row["replay"][t] - row["run"][t]) for t in targets)
+    if wrapper in ("plain", "ati"):
+        rc, said, _ = stage("promote", *data, f"promote.run_id={row['run_id']}",
+                            "promote.force=true", f"out={root / 'out' / (row['cell'] + '-promote')}")
+        if rc:
+            row["promote"] = f"exit {rc}: {said[:160]}"
+        else:
+            promoted = json.loads((root / "out" / f"{row['cell']}-promote" / "promote.json"
+                                   ).read_text())
+            row["promote"] = promoted["candidate"]["test_reported"]["rmse"]
+            row["run_mean"] = float(np.mean(list(row["run"].values())))
+    row.update(exported(data, pkl, root / "out" / f"{row['cell']}-c", *adapt))
+    return row
+
+
+def matrix(root: Path, names, families, wrappers) -> None:
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    (root / "tc").mkdir(parents=True, exist_ok=True)
+    if not (root / "tc" / "conf").exists():
+        (root / "tc" / "conf").symlink_to(REPO / "conf")
+    path = root / f"matrix-{'-'.join(names)}.jsonl"
+    for name in names:
+        for family in families:
+            for wrapper in wrappers:
+                if family == "auto" and wrapper == "ati":
+                    continue                     # ati is one of auto's candidates
+                row = cell(root, name, family, wrapper)
+                print(json.dumps(row, default=str), flush=True)
+                with open(path, "a") as f:
+                    f.write(json.dumps(row, default=str) + "\n")
+
+
+# --- monitor: the healthy test week, then a fault on one sensor from its middle -----------------
+
+def planted(src: Path, dst: Path, header: str, kind: str) -> float:
+    """``dst``: the lab's folder ``src`` with ``kind`` on ``header`` of its last (test) week from
+    its middle row (stuck at the reading before; +3 K; +1 K/h), its preamble kept; the onset in
+    s of the week."""
+    import shutil
+
+    shutil.copytree(src, dst, dirs_exist_ok=True)
+    test = sorted(dst.glob("*.txt"))[-1]
+    lines = test.read_text(encoding="utf-8").splitlines(keepends=True)
+    preamble, body = "".join(lines[:4]), "".join(lines[4:])
+    df = pd.read_csv(io.StringIO(body), sep="\t", decimal=",", dtype=str)
+    x = pd.to_numeric(df[header].str.replace(",", "."))
+    start = len(df) // 2
+    hours = (np.arange(len(df)) - start) * 60.0 / 3600.0
+    if kind == "stuck":
+        x[start:] = x[start - 1]
+    elif kind == "jump":
+        x[start:] += 3.0
+    else:
+        x[start:] += hours[start:]
+    df[header] = x.round(2).map(lambda v: f"{v:g}".replace(".", ","))
+    test.write_text(preamble + df.to_csv(sep="\t", index=False, lineterminator="\n"),
+                    encoding="utf-8")
+    return start * 60.0
+
+
+def monitored(root: Path, name: str, family: str, out: Path, *extra: str) -> dict:
+    rc, said, cpu = stage("monitor", *data_args(root, name), *extra,
+                          f"monitor.model={root / 'out' / f'{name}-{family}-plain' / 'model.pkl'}",
+                          f"out={out}")
+    if rc:
+        return {"monitor": f"exit {rc}: {said[:200]}"}
+    report = json.loads((out / "monitor.json").read_text())
+    ev = [e for e in report["events"] if e.get("sensor")]
+    return {"events": len(report["events"]),
+            "first": [(e["sensor"], e["to"], round(e["time"] / 3600, 2)) for e in ev[:3]],
+            "guard": sum(1 for e in report["events"] if e.get("target")),
+            "rmse": {t: (round(r["rmse_fixed"], 3), round(r["rmse_adaptive"], 3))
+                     for t, r in report["targets"].items()},
+            "max_corr/bound": {t: (round(r["max_abs_correction"], 1), r["bound"],
+                                   r["all_finite"]) for t, r in report["targets"].items()},
+            "cpu": round(cpu, 1)}
+
+
+def monitoring(root: Path, name: str, family: str, sensors, kinds=("jump",)) -> None:
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    rows = [{"case": "healthy", **monitored(root, name, family, root / "mon" / f"{name}-healthy")}]
+    print(json.dumps(rows[-1]), flush=True)
+    for header in sensors:
+        for kind in kinds:
+            folder = root / "faulted" / f"{name}-{kind}-{header.split(' [')[0].replace(' ', '_')}"
+            onset = planted(root / name, folder, header, kind)
+            row = monitored(root, name, family, root / "mon" / folder.name, f"data.path={folder}")
+            rows.append({"case": f"{kind} {header}", "onset_h": onset / 3600, **row})
+            print(json.dumps(rows[-1]), flush=True)
+    (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
+
+
+
+# --- diagnose -> the rerun line -> replay -> C (its pack, and the lab's raw weekly files) -------
+
+def diagnosed(root: Path, name: str, family: str) -> dict:
+    """``diagnose`` as the docs say, its rerun line run, the rerun model replayed and exported
+    as C with the check pack; for ``pm12`` the lab's three weekly files as written (preambles,
+    TABs, decimal commas) piped whole into the compiled ``stream``, against the pack."""
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    data = data_args(root, name)
+    out = root / "diag" / f"{name}-{family}"
+    rc, said, cpu = stage("diagnose", *data, f"model={family}", "plots=none", f"out={out}")
+    row: dict = {"diagnose": f"{name}-{family}", "rc": rc, "cpu": round(cpu, 1)}
+    if rc:
+        return {**row, "said": said}
+    report = json.loads((out / "diagnosis.json").read_text())
+    row["targets"] = {report["target"]: (report["before"]["test_rmse"],
+                                         report["after"]["test_rmse"])}
+    row["targets"].update({t: (v["before_test_rmse"], v["after_test_rmse"])
+                           for t, v in (report.get("other_targets") or {}).items()})
+    conf = f"hydra.searchpath=[file://{root}/init-{name}/conf,file://{out}/diagnosis/conf]"
+    rc, said, cpu = stage("run", conf, f"data={name}", "experiment=diagnosed", "plots=none",
+                          f"out={out / 'diagnosed'}")
+    if rc:
+        return {**row, "rerun": f"exit {rc}: {said}"}
+    metrics = json.loads((out / "diagnosed" / "metrics.json").read_text())
+    targets = list(metrics["targets"])
+    row["rerun"] = {t: metrics["targets"][t]["test"]["rmse"] for t in targets}
+    model = str(out / "diagnosed" / "model.pkl")
+    row.update(replayed(data, model, out / "replay", targets))
+    row.update(exported(data, model, out / "c"))
+    if name == "pm12" and row.get("cc") == 0:
+        files = sorted((root / name).glob("*.txt"))
+        text = files[0].read_text(encoding="utf-8") + "".join(
+            "".join(f.read_text(encoding="utf-8").splitlines(keepends=True)[5:]) for f in files[1:])
+        run = subprocess.run(["./stream"], cwd=out / "c", input=text.encode(), capture_output=True)
+        if run.returncode:
+            row["raw files"] = run.stderr.decode()[:200]
+        else:
+            got = pd.read_csv(io.BytesIO(run.stdout)).to_numpy(float)
+            want = pd.concat(pd.read_csv(f) for f in sorted((out / "c" / "check").glob(
+                "*/expected.csv"))).to_numpy(float)
+            row["raw files - pack"] = float(np.abs(got - want).max()) if got.shape == want.shape \
+                else f"shapes {got.shape} {want.shape}"
+    return row
+
+
+# --- the long record's half-day dropout: interpolated (data.max_gap_samples) against none ------
+
+def gap(root: Path, families=("mlr", "lagbank")) -> None:
+    """The long record read with its dropout interpolated, and the same record without it."""
+    import shutil
+
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    sim = root / "sim" / "pm12_long"
+    listed = pd.read_csv(sim / "campaigns.csv")
+    full = root / "pm12_long_full"
+    full.mkdir(exist_ok=True)
+    global DROPOUT
+    kept, DROPOUT = DROPOUT, (DROPOUT[0], -1.0, -1.0)
+    long_file(pd.read_csv(sim / listed["file"].iloc[0]), pd.Timestamp(listed["start"].iloc[0])
+              ).to_csv(full / "PM12_march.csv", index=False, float_format="%.6g")
+    DROPOUT = kept
+    conf = root / "init-pm12_long_full" / "conf" / "data"
+    conf.mkdir(parents=True, exist_ok=True)
+    shutil.copy(root / "init-pm12_long" / "conf" / "data" / "pm12_long.yaml",
+                conf / "pm12_long_full.yaml")
+    text = (conf / "pm12_long_full.yaml").read_text().replace("pm12_long/", "pm12_long_full/")
+    (conf / "pm12_long_full.yaml").write_text(text)
+    for name in ("pm12_long", "pm12_long_full"):
+        for family in families:
+            out = root / "gap" / f"{name}-{family}"
+            rc, said, _ = stage("run", *data_args(root, name), f"model={family}",
+                                *FAMILIES[family], "plots=none", "track=false", f"out={out}")
+            metrics = json.loads((out / "metrics.json").read_text()) if rc == 0 else {}
+            print(json.dumps({"gap": name, "family": family, "rc": rc, "test": {
+                t: round(v["test"]["rmse"], 3) for t, v in metrics.get("targets", {}).items()}}))
+
+
+INIT = {"pm12": [], "pm12_long": ["data.max_gap_samples=720", "data.test_fraction=0.33"]}
+
+
+def initialised(root: Path) -> None:
+    """``thermocomp init`` of each lab's export, as the docs say (the long record's half-day
+    dropout needs ``data.max_gap_samples``: init refuses it naming the key)."""
+    for name, extra in INIT.items():
+        src = root / name
+        src = next(src.glob("*.csv")) if name == "pm12_long" else src
+        rc, said, cpu = stage("init", str(src), *extra, f"out={root / f'init-{name}'}")
+        conf = root / f"init-{name}" / "conf" / "data"
+        for yaml in conf.glob("*.yaml"):
+            if yaml.stem != name:
+                yaml.rename(conf / f"{name}.yaml")
+        print(json.dumps({"init": name, "rc": rc, "said": said, "cpu": round(cpu, 1)}))
+
+
+def table(root: Path, name: str) -> str:
+    """The matrix's last row per cell: run's test RMSE per target, replay's, the largest
+    |replay - run| and |stream - batch|, promote's mean against run's, the check pack."""
+    rows = {}
+    for line in (root / f"matrix-{name}.jsonl").read_text().splitlines():
+        row = json.loads(line)
+        rows[row["cell"]] = row
+    out = [f"{'cell':28s} {'run (µm)':20s} {'replay':20s} {'|rep-run|':>9s} {'|s-b|':>8s} "
+           f"{'promote/run':>13s} {'C check':>8s}"]
+
+    def fig(v):
+        return " / ".join(f"{x:.2f}" for x in v.values()) if isinstance(v, dict) else str(v)[:60]
+    for cell, r in rows.items():
+        prom = (f"{r['promote']:.3f}/{r['run_mean']:.3f}" if isinstance(r.get("promote"), float)
+                else str(r.get("promote", "")))
+        check = ("passed" if r.get("check") == 0 else r.get("export", f"check {r.get('check')}"))
+        rep = r.get("replay-run")
+        out.append(f"{cell:28s} {fig(r.get('run')):20s} {fig(r.get('replay')):20s} "
+                   f"{'-' if rep is None else f'{rep:.1e}':>9} "
+                   f"{r.get('stream-batch', float('nan')):8.1e} {prom:>13s} {str(check)[:90]}")
+    return "\n".join(out)
 
 
 def main(argv: list[str]) -> None:
     step, root = argv[0], Path(argv[1]).resolve()
     if step == "write":
         write(root)
+    elif step == "init":
+        initialised(root)
+    elif step == "matrix":        # matrix ROOT [names] [--families ...] [--wrappers ...]
+        rest = argv[2:]
+        cut = [i for i, a in enumerate(rest) if a.startswith("--")]
+        groups = {rest[i]: rest[i + 1:(cut + [len(rest)])[k + 1]] for k, i in enumerate(cut)}
+        names = rest[:cut[0]] if cut else rest
+        matrix(root, names or list(SEEDS), groups.get("--families") or list(FAMILIES),
+               groups.get("--wrappers") or list(WRAPPERS))
+    elif step == "monitor":       # monitor ROOT name family sensor-header...
+        monitoring(root, argv[2], argv[3], argv[4:])
+    elif step == "diagnose":      # diagnose ROOT name family
+        print(json.dumps(diagnosed(root, argv[2], argv[3]), default=str))
+    elif step == "gap":
+        gap(root)
+    elif step == "table":
+        print(table(root, argv[2]))
     else:
         raise SystemExit(f"unknown step {step!r}")
 
