@@ -51,6 +51,23 @@ def test_init_proposes_a_length_that_spans_an_axis_travel_as_a_state(tmp_path, c
     assert "Z ram" in _config(tmp_path / "named")["roles"]["error"]
 
 
+
+def test_run_warns_of_a_length_read_as_an_error_that_spans_an_axis_travel(tmp_path, capsys):
+    # before: `run data.roles.error=[dZ]` read 'Z ram [mm]' as the error E_Z_ram by its unit,
+    # silently, and scored a thermal error of 0.8 m beside the probe's
+    path = tmp_path / "pm12.csv"
+    lab_frame().to_csv(path, index=False)
+    common = ["run", f"data.path={path}", "data.test_fraction=0.3", *FAST, "plots=none",
+              f"out={tmp_path / 'run'}"]
+    span = np.ptp(lab_frame()["Z ram [mm]"])
+    assert main([*common, "data.roles.error=[dZ]"]) == 0
+    err = capsys.readouterr().err
+    assert (f"'Z ram [mm]' (E_Z_ram), an error by its unit, spans {span:.4g} mm" in err
+            and "data.roles.state=['Z ram']" in err)
+    for roles in ("data.roles.error=[dZ,Z ram]", "data.roles.state=[Z ram]"):
+        assert main([*common, roles]) == 0
+        assert "spans" not in capsys.readouterr().err
+
 def excel_dates(path, rows: int = 240):
     """The record saved from Excel: its time a ``Date`` of serial days, no time column."""
     frame = lab_frame(rows).drop(columns=["Z ram [mm]"])
