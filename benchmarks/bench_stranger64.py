@@ -25,6 +25,56 @@ lines) before the header, headers with units in brackets (``T ram [°C]``, ``Z r
 decimal points) with Excel serial dates (days since 1899-12-30) as the time column ``Date``,
 errors in µm, and the cross-rail's sensor dropped out (empty cells) for half a day (the second
 Wednesday 08:00-20:00, in the train part).
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_stranger64.py write ROOT
+    ... bench_stranger64.py init ROOT                 # thermocomp init of both exports
+    ... bench_stranger64.py matrix ROOT pm12          # (and pm12_long) run -> replay -> promote -> C
+    ... bench_stranger64.py table ROOT pm12
+    ... bench_stranger64.py monitor ROOT pm12 mlr "T column R [°C]"
+    ... bench_stranger64.py diagnose ROOT pm12 mlr    # -> rerun -> replay -> C, the raw files
+    ... bench_stranger64.py gap ROOT                  # the dropout interpolated against none
+
+Measured (2026-12-01, every step once, 2 shared cores, load 4-5)
+-----------------------------------------------------------------
+What the stranger met (mended, ``tests/shell/test_stranger64.py``): ``init pm12`` proposed
+``Z ram [mm]`` the error ``E_Z_ram`` (run then scored "RMS 324,300 µm"); ``init`` of the long
+record refused ``Date`` (Excel's serial days) saying to set ``data.sample_period_s``; the
+compiled ``stream.c`` refused the weekly files with their preamble; the first pass's weekly
+files (``pm12_restarts``: readings restart at each junction, the hours continue) ran silently in
+``run`` (MLR 11.60 / 9.21 / 28.11 µm) while ``replay``'s monitor excluded five sensors at the
+week-3 junction and rate-limited (32.60 / 24.24 / 27.37; promote 28.07 against the run's mean
+16.31): now a warning names the junction's steps.  Left: the 12-h dropout needs
+``data.max_gap_samples=720`` (``gap``: costs nothing here, MLR 9.668 / 1.114 / 23.413 against
+9.667 / 1.119 / 23.481 without it, lagbank 0.820 / 1.063 / 21.510 against 0.811 / 1.062 /
+21.514); elapsed hours with four decimals read as a 60.12 s period (steps 59.76 / 60.12 s).
+
+``matrix`` (test RMSE E_dX / E_dY / E_dZ, µm; RMS before 31.14 / 69.80 / 150.32 on pm12,
+33.63 / 74.70 / 161.24 on pm12_long)::
+
+    family        pm12 (weekly TAB files)   pm12_long (Excel dates, dropout)
+    mlr           9.56 / 1.31 / 22.77       9.67 / 1.11 / 23.41
+    pcr           12.89 / 4.06 / 22.36      14.76 / 4.13 / 27.14
+    arx           9.56 / 1.32 / 22.77       9.67 / 1.11 / 23.41
+    lagbank       0.81 / 1.80 / 22.44       0.82 / 1.06 / 21.51
+    hammerstein   1.22 / 1.85 / 10.00       0.82 / 1.06 / 9.84
+    lstm (3 ep.)  8.74 / 1.20 / 21.89       8.84 / 0.99 / 23.04
+    arx_rf (10)   9.64 / 1.32 / 21.65       9.69 / 1.11 / 20.63
+    auto          0.81 / 1.32 / 9.96        0.82 / 1.11 / 9.84
+
+All 30 cells (plain and ``ati=cmeans``): |replay - run| <= 2.1e-14 µm, |stream - batch| <=
+1.2e-12, 0 events, promote = the run's mean, C check pack passed; ``ati`` = plain to the digit
+(the train part is one campaign).  ``arx_rf`` on the ram's extension (``state_column=S_Z_ram``)
+9.79 / 1.32 / 21.34.  CPU of a run 0.8-10 s (lstm 50-68 s); replay 1.7-17 s.
+
+``diagnose`` (before -> after = its rerun = replay; C pack passed): mlr 9.56 / 1.31 / 22.77 ->
+1.57 / 0.39 / 1.79 (S_Z_ram x the inputs' rises on E_dY and E_dZ, a 3600 s lag on E_dX; 22 s
+CPU); hammerstein 1.22 / 1.85 / 10.00 -> 1.22 / 0.53 / 0.72 (517 s CPU).  The three weekly
+files as written piped whole into the diagnosed mlr's compiled stream: = its pack to 4.0e-13 µm.
+
+``monitor`` (mlr, the test week): healthy 0 events, fixed = adaptive = run, every correction
+within its bound (max 78 / 116 / 319 µm); the raw TAB week on stdin the same; +3 K on ``T
+column R`` from 84 h: excluded at once, re-referenced, ok at 84.17 h; E_dX fixed 19.16,
+adaptive 9.60 (healthy 9.56).
 """
 
 from __future__ import annotations
