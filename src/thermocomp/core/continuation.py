@@ -23,10 +23,11 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
+import numpy as np
 import pandas as pd
 
 from ..base.log import logger, say
-from .io.contract import TIME, Dataset
+from .io.contract import TIME, Dataset, role
 from .io.instants import START, start_instants
 from .timerule import median_step
 
@@ -80,6 +81,48 @@ def predecessors(ds: Dataset) -> dict[str, str]:
                           if prev != cid and abs((t0 - end).total_seconds()) <= period / 2]
     out.update(_unambiguous(found))
     return out
+
+
+# a step at a junction this many times the largest one-sample step inside the two campaigns
+# is no sample of one record (the sensor monitor's jump rule, jump_factor=3, reads it a fault)
+JUNCTION_FACTOR = 3.0
+
+
+def junction_steps(ds: Dataset, links: Mapping[str, str]) -> dict[str, list[tuple]]:
+    """``{campaign: [(column, step °C, largest step inside), ...]}`` for each campaign of
+    ``links`` whose first row steps a temperature from its predecessor's last by more than
+    :data:`JUNCTION_FACTOR` times the largest one-sample step of that column inside the two:
+    files whose times continue but whose readings restart (stranger64: weekly files of one
+    clock, T_column_R -2.46 °C and T_amb +2.32 °C at a junction, 0.18 °C the largest step
+    inside; run carried the state over silently, replay's monitor excluded five sensors)."""
+    out: dict[str, list[tuple]] = {}
+    for cid, prev in links.items():
+        before, after = ds.campaigns.get(prev), ds.campaigns.get(cid)
+        if before is None or after is None or not len(before) or not len(after):
+            continue
+        for col in (c for c in after.columns if role(c) == "T" and c in before.columns):
+            a, b = before[col].to_numpy(float), after[col].to_numpy(float)
+            inner = [np.abs(np.diff(x)) for x in (a, b) if len(x) > 1]
+            inner = [x[np.isfinite(x)] for x in inner]
+            largest = max((float(x.max()) for x in inner if x.size), default=0.0)
+            step = float(b[0] - a[-1])
+            if largest > 0 and np.isfinite(step) and abs(step) > JUNCTION_FACTOR * largest:
+                out.setdefault(cid, []).append((col, step, largest))
+    return out
+
+
+def said_junction_steps(ds: Dataset, links: Mapping[str, str]) -> None:
+    """Warn, once per run, of the junctions :func:`junction_steps` finds (their largest steps)."""
+    for cid, steps in junction_steps(ds, links).items():
+        steps = sorted(steps, key=lambda s: -abs(s[1]))
+        shown = ", ".join(f"{c} {d:+.3g} °C" for c, d, _ in steps[:3])
+        logger.warning(
+            f"{cid} continues {links[cid]} by its time, but its first row steps {len(steps)} "
+            f"temperature(s) more than {JUNCTION_FACTOR:g}x their largest step inside the two "
+            f"({shown}{' ...' if len(steps) > 3 else ''}; inside at most "
+            f"{max(s[2] for s in steps):.3g} °C): a restart rather than one record? The state is "
+            "carried over across it and the sensor monitor reads it as a jump; files that each "
+            "restart: data.reference=first_sample")
 
 
 def _unambiguous(found: Mapping[str, list]) -> dict[str, str]:

@@ -76,8 +76,27 @@ def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False
     else:
         ds = open_dataset(root, data_options(cfg), stream=stream, campaigns=campaigns,
                           digest=digest)
+        said_travels(cfg, ds)
     resolve_reference(cfg, ds)
     return ds
+
+
+def said_travels(cfg: DictConfig, ds) -> None:
+    """Warn of each column read as an error by its length unit alone whose values span an
+    axis' travel (:func:`~thermocomp.core.io.detect.travel_headers`; ``init`` proposes it a
+    state): stranger64's ``Z ram [mm]``, 0-800 mm, scored as a thermal error of 0.8 m."""
+    from ..core.io.detect import TRAVEL_UM, travel_headers
+
+    names = ds.meta.get("column_map") or {}
+    if not names:
+        return
+    opts = io.ReadOptions.from_cfg(data_options(cfg))
+    for header, span in travel_headers(ds, names, opts.roles, opts).items():
+        base = header.split(" [")[0].split(" (")[0]
+        logger.warning(f"{header!r} ({names[header]}), an error by its unit, spans {span:.4g} mm "
+                       f"over the record, more than a thermal error does ({TRAVEL_UM / 1000:g} "
+                       f"mm): an axis position? data.roles.state=[{base!r}] (thermocomp init "
+                       "proposes it)")
 
 
 def calibration_of(ds: io.Dataset):
@@ -127,9 +146,11 @@ def resolve_reference(cfg: DictConfig, ds) -> str:
     """``data.reference=auto`` made ``none`` where a test or val campaign of ``ds`` continues
     another (its state is carried over, :mod:`thermocomp.core.continuation`), else ``first_sample``;
     said in one line.  An explicit ``first_sample`` there is warned about: each part restarts."""
-    from ..core.continuation import predecessors
+    from ..core.continuation import predecessors, said_junction_steps
 
     links = predecessors(ds)
+    if str(cfg.data.reference) != "first_sample":   # (each file restarts: no junction)
+        said_junction_steps(ds, links)
     scored = [c for c in ds.ids() if c in links and ds.manifest.loc[c, "split"] in ("test", "val")]
     given = cfg.data.reference
     if given == AUTO_REFERENCE:

@@ -304,13 +304,39 @@ def flag_headers(ds, names: dict) -> list[str]:
 
 
 def flags_as_states(roles: dict, headers: list[str], opts) -> dict:
-    """``roles`` with each of ``headers`` a state (out of the ambient patterns)."""
+    """``roles`` with each of ``headers`` a state (out of the ambient and error patterns)."""
     roles = {k: (list(v) if isinstance(v, list) else v) for k, v in roles.items()}
     for h in headers:
         pattern = _GLOB.sub(r"[\1]", _unit_of(h, opts)[0])
         roles["ambient"] = [p for p in roles["ambient"] if p != pattern]
+        roles["error"] = [p for p in roles["error"] if p != pattern]
         roles["state"].append(pattern)
     return roles
+
+
+# A machine tool's thermal error stays within a few tenths of a millimetre (the largest portal
+# mills' reach ~0.5 mm over a day in an unheated hall); an axis travels tens to thousands
+TRAVEL_UM = 5000.0
+
+
+def travel_headers(ds, names: dict, given_roles: dict, opts) -> dict:
+    """Header -> its span (mm) for each header proposed as an error by its length unit (no
+    ``data.roles.error`` pattern of the user names it) whose values span more than
+    :data:`TRAVEL_UM` over ``ds``: an axis position, not a thermal error (stranger64: a portal
+    mill's ``Z ram [mm]``, 0-800 mm, was proposed the error ``E_Z_ram``)."""
+    given = {k: list(v) for k, v in given_roles.items() if k == "error" and isinstance(v, list)}
+    out = {}
+    for header, name in names.items():
+        if not str(name).startswith("E_") or role(header) == "E" or (
+                given and matching_roles(header, given)):
+            continue
+        if role_by_unit(*_unit_of(header, opts)) != "error":
+            continue
+        values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
+        span = float(values.max() - values.min()) if len(values) else 0.0
+        if span > TRAVEL_UM:
+            out[header] = span / 1000.0
+    return out
 
 
 def _named(header: str, roles: dict, opts) -> bool:

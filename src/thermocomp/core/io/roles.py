@@ -27,7 +27,14 @@ from ...base.errors import listed
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, RUN_ROLE, _roles
 from .separators import number, reads_as_number
-from .timestamps import CLOCK, DATE, ELAPSED_HEADERS, TIME_OF_DAY, looks_like_timestamp
+from .timestamps import (
+    CLOCK,
+    DATE,
+    ELAPSED_HEADERS,
+    EXCEL_DAYS,
+    TIME_OF_DAY,
+    looks_like_timestamp,
+)
 from .units import AMBIGUOUS, LETTER_UNITS, STATE_UNITS, UNITS, ambiguity, role_by_unit
 
 _UNIT = re.compile(r"^(.*?)\s*[\[(]([^\[\]()]*)[\])]\s*$")
@@ -108,6 +115,27 @@ def named_as_time(header: str) -> bool:
     other = unit is not None and unit.lower().replace(" ", "") not in UNITS["time"] and (
         any(unit.lower() in UNITS[k] for k in ("E", "T")) or unit.lower() in STATE_UNITS)
     return base.lower() in TIME_HEADERS and not other
+
+
+# a column of dates a spreadsheet shows as numbers: 'Date', 'Datum', 'Fecha' (or a time's name)
+DATE_HEADERS = frozenset({"date", "datum", "fecha", "date_time", "datetime", "excel date"})
+
+
+def excel_days_header(headers, first: Mapping, units: Mapping, decimal: str = ".") -> str | None:
+    """The header of a column of Excel's serial day numbers (days since 1899-12-30, a date cell
+    saved as a number): named as a date or the time (:data:`DATE_HEADERS`, :func:`named_as_time`),
+    no unit (in the header or ``units``), its first cell a number of :data:`.timestamps.EXCEL_DAYS`
+    (1954 .. 2119); None where no header is (stranger64: a lab's ``Date`` of 46447.0006944 was
+    no time at all, and the refusal said to set ``data.sample_period_s``)."""
+    for h in headers:
+        base, unit = split_unit(h)
+        if unit is not None or h in units or not (base.strip().lower() in DATE_HEADERS
+                                                   or named_as_time(h)):
+            continue
+        value = number(str(first.get(h) or ""), decimal)
+        if value is not None and EXCEL_DAYS[0] <= value <= EXCEL_DAYS[1]:
+            return h
+    return None
 
 
 def _letter_unit(header: str, cell, decimal: str) -> tuple[str, str] | None:

@@ -24,7 +24,7 @@ from .layout import header_line, is_unit_row, with_units
 from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
-from .roles import RUN, active, naming, same_header
+from .roles import RUN, active, excel_days_header, naming, same_header
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
 from .timestamps import (
@@ -102,6 +102,12 @@ def _contract_names(raw_names: list[str], opts: ReadOptions, file: Path, *,
             cell = str((first or {}).get(raw) or "")
             if TIME_OF_DAY.fullmatch(cell) or DATE.fullmatch(cell):
                 time_kind(cell.strip(), "auto", False, file, raw)
+        days = excel_days_header(raw_names, first or {}, opts.units, opts.decimal)
+        if days:                   # a date saved as a number: its rows are not a period apart
+            raise ContractError(f"no 'time' column: {days!r} from {(first or {}).get(days)} reads "
+                                "as Excel's serial days (a date saved as a number): data.roles."
+                                f"time={days!r} 'data.units={{{days}: d}}' (thermocomp init "
+                                "writes both)", file=file)
         raise ContractError("no 'time' column (none named like 'time', 't(s)', 'Zeit', no ISO "
                             "8601 timestamps, no data.roles.time): set data.sample_period_s "
                             "(the seconds between rows)", file=file)

@@ -17,6 +17,7 @@ from ...base.paths import conf_dir, resolve
 from ...core import io
 from ...core.io.contract import MANIFEST, TIME
 from ...core.io.detect import (
+    TRAVEL_UM,
     check_an_error_is_named,
     data_config,
     detection_lines,
@@ -31,6 +32,7 @@ from ...core.io.detect import (
     proposed_roles,
     sample_file,
     slashed_order,
+    travel_headers,
 )
 from ...core.io.historian import (
     PERIOD_COMMENT,
@@ -40,7 +42,7 @@ from ...core.io.historian import (
 )
 from ...core.io.historian_layout import long_layout
 from ...core.io.plain import is_lab_file, lab_as_csv
-from ...core.io.roles import naming
+from ...core.io.roles import excel_days_header, naming
 from ...core.io.timestamps import ELAPSED
 from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
@@ -110,6 +112,15 @@ def init(cfg: DictConfig) -> dict:
         opts = replace(opts, units={**opts.units, epoch: "ms"})
         print(f"{sample.name}: {epoch!r} from {dict(zip(header, first))[epoch]}: milliseconds "
               f"since 1970, read as data.units={{{epoch}: ms}}")
+    days = (excel_days_header(header, dict(zip(header, first)), opts.units, opts.decimal)
+            if opts.roles.get("time", "auto") == "auto" else None)
+    if days:               # (a date cell saved as a number: days, read as seconds otherwise)
+        given["units"] = {**(given.get("units") or {}), days: "d"}
+        opts = replace(opts, units={**opts.units, days: "d"},
+                       roles={**opts.roles, "time": days})
+        print(f"{sample.name}: {days!r} from {dict(zip(header, first))[days]}: Excel's serial "
+              f"days (since 1899-12-30), read as the time, data.roles.time={days!r} "
+              f"data.units={{{days!r}: d}}")
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
@@ -138,6 +149,17 @@ def init(cfg: DictConfig) -> dict:
         ds = open_source(cfg, detected=config)
         print(f"{', '.join(map(repr, flags))}: only two values one apart (0 / 1) over the "
               "record: an on/off flag, proposed as a state (data.roles.state)")
+    travels = travel_headers(ds, plan.names, asked.roles, opts)   # an axis' position in mm
+    if travels:
+        roles = flags_as_states(roles, list(travels), opts)
+        plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal,
+                      sample, opts.units)
+        config = data_config(src, given, opts, roles, defaults, manifest)
+        ds = open_source(cfg, detected=config)
+        print("; ".join(f"{h!r} spans {span:.4g} mm" for h, span in travels.items())
+              + f": more than a thermal error does ({TRAVEL_UM / 1000:g} mm), an axis position, "
+              "proposed as a state (data.roles.state; data.roles.error=[<header>] if it is "
+              "the error)")
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
     report = ds.meta["read_report"]
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"

@@ -26,6 +26,9 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * exists, is read back at the start (the compensator's tc_state, the stream's clock and its
  * run), and written after every row (to FILE.tmp, then renamed over FILE: a process killed
  * mid-write leaves the previous row's state); a FILE of another build is refused.
+ * A logger's preamble above the header (`Machine;PM-12`, `Operator: ...`: at most MAX_PREAMBLE
+ * lines) is skipped as the model's reader skips it: the header is the first line naming every
+ * input.
  * A file in fixed-width columns, JSON Lines, a TDMS log or a MATLAB file is refused: convert
  * it to CSV first (the export's check/<campaign>/rows.csv holds such a record's rows as this
  * reads them).
@@ -47,6 +50,7 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
 #include "compensator.h"
 
 #define MAX_LINE 65536
+#define MAX_PREAMBLE 20   /* lines above the header, as the model's reader allows */
 #define MAX_COLS 1024
 #define MAX_CELL 256
 #define CHECK_UM 1e-9          /* --check: |c - expected| <= CHECK_UM + CHECK_RELATIVE * |expected| */
@@ -87,6 +91,28 @@ static const char *named(char *cell, int j) {
             return TC_LAB_NAMES[k][1];
         }
     return cell;
+}
+
+/* The separator a header line says: ';', a tab or '|' where it holds one, else ','. */
+static char separator_of(const char *line) {
+    return strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
+}
+
+/* `line` (not changed) names every input of TC_INPUT_NAMES, as the header must: a logger's
+   preamble line above the header does not (sets `sep` to the line's). */
+static int names_every_input(const char *line) {
+    static char text[MAX_LINE];
+    char *cells[MAX_COLS];
+    int ncols, i, j, found;
+    strcpy(text, line);
+    sep = separator_of(text);
+    ncols = split(text, cells);
+    for (i = 0; i < TC_N_INPUTS; i++) {
+        for (found = 0, j = 0; j < ncols && !found; j++)
+            found = strcmp(named(cells[j], j), TC_INPUT_NAMES[i]) == 0;
+        if (!found) return 0;
+    }
+    return 1;
 }
 
 /* A cell's number; NAN when empty, and when it is no number as a whole (then `bad` is set). */
@@ -438,7 +464,16 @@ int main(int argc, char **argv) {
                 "the file to CSV (a header line naming the columns, then one row per sample)\n");
         return 2;
     }
-    sep = strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
+    if (!names_every_input(line)) {
+        /* a logger's preamble (stranger64: `Machine;PM-12`, `Operator: ...` above the header):
+           the first of the next MAX_PREAMBLE lines naming every input is the header */
+        static char first[MAX_LINE];
+        strcpy(first, line);
+        for (i = 0; i < MAX_PREAMBLE && fgets(line, sizeof line, stdin); i++)
+            if (names_every_input(line)) break;
+        if (i == MAX_PREAMBLE || !names_every_input(line)) strcpy(line, first);
+    }
+    sep = separator_of(line);
     ncols = split(line, cells);
     for (j = 0; j < ncols; j++) {
         cells[j] = (char *)named(cells[j], j);   /* the run column has no contract name */
