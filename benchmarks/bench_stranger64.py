@@ -46,7 +46,8 @@ week-3 junction and rate-limited (32.60 / 24.24 / 27.37; promote 28.07 against t
 16.31): now a warning names the junction's steps.  Left: the 12-h dropout needs
 ``data.max_gap_samples=720`` (``gap``: costs nothing here, MLR 9.668 / 1.114 / 23.413 against
 9.667 / 1.119 / 23.481 without it, lagbank 0.820 / 1.063 / 21.510 against 0.811 / 1.062 /
-21.514); elapsed hours with four decimals read as a 60.12 s period (steps 59.76 / 60.12 s).
+21.514); elapsed hours with four decimals read as a 60.12 s period (steps 59.76 / 60.12 s;
+since lead64 their mean, 60.00 s: the matrix below was measured before).
 
 ``matrix`` (test RMSE E_dX / E_dY / E_dZ, µm; RMS before 31.14 / 69.80 / 150.32 on pm12,
 33.63 / 74.70 / 161.24 on pm12_long)::

@@ -46,3 +46,25 @@ def test_a_time_in_ms_repeating_its_rows_is_still_said(caplog):
     finally:
         logger.removeHandler(caplog.handler)
     assert "samples 1000 s apart, in whole thousands: milliseconds?" in caplog.text
+
+
+def test_a_clock_written_with_few_decimals_gives_its_period_not_one_rounded_step():
+    # elapsed hours to four places (a lab's export, stranger64): a 60 s logger's steps are
+    # 59.76 and 60.12 s, the median 60.12 (0.2 % long); the mean of the steps near it is 60
+    hours = np.round(np.arange(2000) / 60.0, 4)
+    steps = set(np.round(np.diff(hours * 3600.0), 2))
+    assert steps == {59.76, 60.12}
+    assert median_step(hours * 3600.0) == pytest.approx(60.0, abs=0.01)
+    # a jittering PC clock (whole milliseconds) likewise: its mean step, not one rounded step
+    rng = np.random.default_rng(3)
+    jittered = np.round(np.arange(500) * 2.0 + rng.uniform(-0.004, 0.004, 500), 3)
+    assert median_step(jittered) == pytest.approx(2.0, abs=5e-4)
+
+
+@pytest.mark.parametrize("start", [0.0, 1.7e9])
+def test_a_float_grid_keeps_its_median_bit_for_bit(start):
+    # the rounding of a grid's float times (k * 0.1 s; epoch seconds) is no clock's resolution
+    for period in (0.1, 60.0):
+        time = start + np.arange(5000) * period
+        steps = np.diff(time)
+        assert median_step(time) == float(np.median(steps[steps > 0]))

@@ -85,6 +85,13 @@ def stream_start(time, period_s: float) -> float:
     return 0.0
 
 
+# steps within this share of the median are one period written with a clock's resolution
+NEAR_MEDIAN = 0.05
+# a spread of the steps near the median below this share of it (of 1 s for a shorter one) is
+# a float grid's rounding: epoch seconds (1.7e9 s) hold steps to ~2.4e-7 s
+GRID_ROUNDING = 1e-6
+
+
 def median_step(time, groups=None) -> float | None:
     """The sample period of a time column: the median of its positive steps.
 
@@ -99,7 +106,8 @@ def median_step(time, groups=None) -> float | None:
     Returns
     -------
     float or None
-        The median of the finite positive steps within the campaigns: a time that goes back
+        The median of the finite positive steps within the campaigns (where the steps within
+        5 % of it differ by more than rounding, a clock's resolution, their mean): a time that goes back
         (a new run), repeats, or is missing (NaN) makes no step.  None without one such step
         (one row, a time never increasing): the caller says its fallback (``or 1.0``).
     """
@@ -114,7 +122,17 @@ def median_step(time, groups=None) -> float | None:
                 raise ValueError(f"groups has {len(g)} rows, time {len(time)}")
             steps = steps[g[1:] == g[:-1]]
     steps = steps[np.isfinite(steps) & (steps > 0)]
-    return float(np.median(steps)) if steps.size else None
+    if not steps.size:
+        return None
+    middle = float(np.median(steps))
+    # A clock written with few decimals jitters around its period by its resolution (elapsed
+    # hours to 4 places: steps of 59.76 and 60.12 s for a 60 s logger, the median 60.12; a
+    # stranger64 finding): the mean of the steps near the median is the period. On a grid the
+    # steps near it are equal to rounding and the median stays, bit for bit.
+    near = steps[np.abs(steps - middle) <= NEAR_MEDIAN * middle]
+    if near.size and np.ptp(near) > GRID_ROUNDING * max(middle, 1.0):
+        return float(near.mean())
+    return middle
 
 
 # The same steps in C (tc_step: ``time`` NAN when missing; state s->t, s->t_read, s->shift).
