@@ -185,3 +185,14 @@ def test_the_contract_part_of_the_docs_is_word_for_word(doc):
         assert copy == _contract_text(spec.read_text()), f"docs/{doc} departs from {original}"
     assert hashlib.sha256(copy.encode()).hexdigest()[:len(digest)] == digest, (
         f"docs/{doc}: the contract part changed (extensions go below the rule)")
+
+
+@pytest.mark.parametrize("page", ["README.md", "docs/install.md"])
+def test_every_extra_of_pyproject_is_in_the_extras_table(page):
+    # a newcomer picks extras from these tables: one left out is a feature they never find
+    # (README's lacked excel, tdms and matlab while its `all` row said "every extra above")
+    import tomllib
+    extras = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["optional-dependencies"]
+    rows = set(re.findall(r"^\| `([\w-]+)` \|", (ROOT / page).read_text(), re.M))
+    missing = sorted(set(extras) - {"test"} - rows)
+    assert not missing, f"{page}'s extras table lacks {missing}"
