@@ -260,10 +260,12 @@ def test_a_dead_channel_of_a_record_is_said(tmp_path, capsys, dead):
     assert f"{path}, column '{name}': constant over the whole campaign" in capsys.readouterr().err
 
 
-def _logger_export(path: Path, preamble: list[str], units: list[str] | None) -> Path:
-    """``;``-separated, decimal commas, under a logger's preamble, with a unit row or not."""
+def _logger_export(path: Path, preamble: list[str], units: list[str] | None,
+                   error_scale: float = 1.0) -> Path:
+    """``;``-separated, decimal commas, under a logger's preamble, with a unit row or not; the
+    error (µm) written times ``error_scale`` (1e-3: in mm)."""
     t, t1, t2, e = _record()
-    _write(path, ["Zeit", "T1", "T2", "dX"], [t, t1, t2, e], sep=";")
+    _write(path, ["Zeit", "T1", "T2", "dX"], [t, t1, t2, e * error_scale], sep=";")
     lines = path.read_text(encoding="utf-8").replace(".", ",").splitlines()
     lines[1:1] = [";".join(units)] if units else []
     path.write_text("\n".join([*preamble, *lines]) + "\n", encoding="utf-8")
@@ -272,7 +274,9 @@ def _logger_export(path: Path, preamble: list[str], units: list[str] | None) -> 
 
 def test_a_unit_row_under_the_header_gives_the_units(tmp_path, capsys):
     # before: refused, "no E_ column" (the units were read as the first row)
-    path = _logger_export(tmp_path / "units.csv", [], ["s", "°C", "K", "mm"])
+    # the error in mm as a lab writes it (0.02 mm: a length spanning more than 5 mm is an
+    # axis' travel, proposed as a state, stranger64)
+    path = _logger_export(tmp_path / "units.csv", [], ["s", "°C", "K", "mm"], error_scale=1e-3)
     assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
     said = capsys.readouterr().out
     assert "units from line 2; rows counted from line 3" in said and "E_dX" in said
@@ -280,7 +284,7 @@ def test_a_unit_row_under_the_header_gives_the_units(tmp_path, capsys):
     frame = _read(path, roles={"error": ["dX"]})
     np.testing.assert_allclose(frame[["time", "T_T1", "T_T2"]], np.c_[t, t1, t2 - 273.15],
                                atol=1e-3)
-    np.testing.assert_allclose(frame["E_dX"], e * 1000, rtol=1e-5, atol=1e-3)  # mm -> µm
+    np.testing.assert_allclose(frame["E_dX"], e, rtol=1e-5, atol=1e-3)  # mm -> µm
 
 
 def test_a_loggers_preamble_above_the_header_is_left_out_and_rows_count_from_the_data(tmp_path):

@@ -315,7 +315,10 @@ def test_a_time_in_excels_serial_days_is_said_and_read_with_data_units(tmp_path,
     lines = [f"{46000.5 + s / 86400:.8f},{a:.4f},{b:.4f}" for s, a, b in zip(t, t1, e)]
     path.write_text("\n".join(["Zeit,T1,dX [µm]", *lines]) + "\n", encoding="utf-8")
     assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
-    assert f"{path}, column 'Zeit'" in capsys.readouterr().err
+    # said by init and written as the unit (stranger64; before: only warned of, naming the column)
+    said = capsys.readouterr().out
+    assert "'Zeit' from 46000.50000000: Excel's serial days" in said and "read as the time" in said
+    assert "Zeit: d" in next((tmp_path / "init").rglob("serial.yaml")).read_text(encoding="utf-8")
     frame = _read(path, roles={"error": ["dX"]}, units={"Zeit": "d"})
     np.testing.assert_allclose(frame["time"] - frame["time"].iloc[0], t, atol=1e-3)
     assert "Excel" not in capsys.readouterr().err
