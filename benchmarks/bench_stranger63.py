@@ -195,118 +195,7 @@ FAMILIES = {
 WRAPPERS = ("plain", "ati", "bias", "rls")
 
 
-def data_args(root: Path, name: str) -> list[str]:
-    return [f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={name}"]
-
-
-def stage(*args: str) -> tuple[int, str, float]:
-    """``thermocomp <args>`` in process: (exit status, its last line on stderr, CPU s)."""
-    import contextlib
-    import io
-    import traceback
-
-    from cpu import cpu_seconds
-
-    from thermocomp.shell.cli import main as cli
-
-    before = cpu_seconds(children=True)
-    err = io.StringIO()
-    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(err):
-        try:
-            rc = cli(list(args)) or 0
-        except SystemExit as exc:
-            rc = int(exc.code or 0)
-        except Exception:                  # noqa: BLE001  (a crash is what the bench looks for)
-            rc, err = -1, io.StringIO(traceback.format_exc())
-    lines = [x for x in err.getvalue().splitlines() if x.strip()]
-    return rc, lines[-1] if lines else "", cpu_seconds(children=True) - before
-
-
-def last_run_id(root: Path) -> str:
-    import mlflow
-
-    mlflow.set_tracking_uri(f"sqlite:///{root}/tc/mlruns/mlflow.db")
-    runs = mlflow.search_runs(experiment_names=["thermocomp"], order_by=["start_time DESC"],
-                              max_results=1, filter_string="tags.stage = 'run'")
-    return str(runs.iloc[0]["run_id"])
-
-
-def exported(data: list, model: str, code: Path, *extra: str) -> dict:
-    """``export`` as C with its check pack, compiled, ``check/check.sh``."""
-    rc, said, cpu = stage("export", *data, f"export.model={model}", "export.format=c",
-                          "export.check=true", *extra, f"out={code}")
-    if rc:
-        return {"export": f"exit {rc}: {said[:160]}"}
-    cc = subprocess.run(["cc", "-O2", "compensator.c", "stream.c", "-lm", "-o", "stream"],
-                        cwd=code, capture_output=True, text=True)
-    check = subprocess.run(["sh", "check/check.sh"], cwd=code, capture_output=True, text=True)
-    return {"cc": cc.returncode, "check": check.returncode,
-            "check_said": (check.stdout + check.stderr).strip().splitlines()[-1:]}
-
-
-def replayed(data: list, model: str, out: Path, targets, *extra: str) -> dict:
-    rc, said, cpu = stage("replay", *data, f"replay.model={model}", *extra, f"out={out}")
-    if rc:
-        return {"replay": f"exit {rc}: {said[:160]}"}
-    rep = json.loads((out / "replay.json").read_text())
-    return {"replay": {t: rep["targets"][t]["rmse"] for t in targets},
-            "stream-batch": max(rep["targets"][t]["max_abs_stream_minus_batch"] for t in targets),
-            "events": len(rep["events"]), "replay_cpu": round(cpu, 1)}
-
-
-def cell(root: Path, name: str, family: str, wrapper: str) -> dict:
-    data = data_args(root, name)
-    tag = f"{name}-{family}-{'plain' if wrapper in ('bias', 'rls') else wrapper}"
-    out = root / "out" / tag
-    row: dict = {"cell": f"{name}-{family}-{wrapper}"}
-    if wrapper in ("plain", "ati"):
-        rc, said, cpu = stage("run", *data, f"model={family}", *FAMILIES[family],
-                              *(["ati=cmeans"] if wrapper == "ati" else []), "plots=none",
-                              f"out={out}")
-        row["run_cpu"] = round(cpu, 1)
-        if rc:
-            return {**row, "run": f"exit {rc}: {said[:200]}"}
-        row["run_id"] = last_run_id(root)
-    if not (out / "metrics.json").exists():
-        return {**row, "run": "no plain run"}
-    metrics = json.loads((out / "metrics.json").read_text())
-    targets = list(metrics["targets"])
-    row["run"] = {t: metrics["targets"][t]["test"]["rmse"] for t in targets}
-    adapt = [] if wrapper in ("plain", "ati") else [f"adapt.method={wrapper}"]
-    pkl = str(out / "model.pkl")
-    row.update(replayed(data, pkl, root / "out" / f"{row['cell']}-replay", targets, *adapt))
-    if isinstance(row.get("replay"), dict):
-        row["replay-run"] = max(abs(row["replay"][t] - row["run"][t]) for t in targets)
-    if wrapper in ("plain", "ati"):
-        rc, said, _ = stage("promote", *data, f"promote.run_id={row['run_id']}",
-                            "promote.force=true", f"out={root / 'out' / (row['cell'] + '-promote')}")
-        if rc:
-            row["promote"] = f"exit {rc}: {said[:160]}"
-        else:
-            promoted = json.loads((root / "out" / f"{row['cell']}-promote" / "promote.json"
-                                   ).read_text())
-            row["promote"] = promoted["candidate"]["test_reported"]["rmse"]
-            row["run_mean"] = float(np.mean(list(row["run"].values())))
-    row.update(exported(data, pkl, root / "out" / f"{row['cell']}-c", *adapt))
-    return row
-
-
-def matrix(root: Path, names, families, wrappers) -> None:
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
-    (root / "tc").mkdir(parents=True, exist_ok=True)
-    if not (root / "tc" / "conf").exists():
-        (root / "tc" / "conf").symlink_to(REPO / "conf")
-    path = root / f"matrix-{'-'.join(names)}.jsonl"
-    for name in names:
-        for family in families:
-            for wrapper in wrappers:
-                if family == "auto" and wrapper == "ati":
-                    continue                     # ati is one of auto's candidates
-                row = cell(root, name, family, wrapper)
-                print(json.dumps(row, default=str), flush=True)
-                with open(path, "a") as f:
-                    f.write(json.dumps(row, default=str) + "\n")
-
+from lab_matrix import data_args, matrix, stage  # noqa: E402  (the benches' shared matrix)
 
 # --- monitor: the healthy test week, then a fault on one sensor from its middle -----------------
 
@@ -403,7 +292,7 @@ def main(argv=None) -> int:
         groups = {rest[i]: rest[i + 1:(cut + [len(rest)])[k + 1]] for k, i in enumerate(cut)}
         names = rest[:cut[0]] if cut else rest
         matrix(root, names or list(SEEDS), groups.get("--families") or list(FAMILIES),
-               groups.get("--wrappers") or list(WRAPPERS))
+               groups.get("--wrappers") or list(WRAPPERS), FAMILIES)
     if what == "table":           # table ROOT name
         print(table(root, argv[2]))
     if what == "monitor":         # monitor ROOT name family sensor-header...
