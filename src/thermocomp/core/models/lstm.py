@@ -27,7 +27,7 @@ def auto_batch(n_pieces: int) -> int:
     """Pieces per Adam step for ``n_pieces`` training pieces: an epoch of at least ``MIN_STEPS``
     steps where the data allow, within ``[SMALLEST_BATCH, LARGEST_BATCH]``.  One long record
     gives few pieces, and 16 a step left it 3 steps an epoch (fl_thermal 60/20/20)."""
-    return int(min(LARGEST_BATCH, max(SMALLEST_BATCH, -(-n_pieces // MIN_STEPS))))
+    return int(min(LARGEST_BATCH, max(SMALLEST_BATCH, n_pieces // MIN_STEPS)))
 
 
 def __getattr__(name: str):
