@@ -18,8 +18,7 @@ from thermocomp.core.models import lstm as lstm_module
 
 def test_the_defaults_take_16_pieces_per_step_at_a_rate_scaled_with_the_batch():
     conf = yaml.safe_load((conf_dir() / "model" / "lstm.yaml").read_text())["estimator"]
-    # 16 where an epoch keeps 10 steps (lstmbatch64: batch_size auto, test_lstmbatch64.py)
-    assert LSTM().batch_size == conf["batch_size"] == "auto"
+    assert LSTM().batch_size == conf["batch_size"] == 16
     # Adam's rate scaled by the square root of the batch ratio (3e-3 at 4 pieces before)
     assert LSTM().learning_rate == conf["learning_rate"] == 3e-3 * math.sqrt(16 / 4)
     assert LSTM().patience == conf["patience"] == 10
@@ -37,7 +36,7 @@ def test_the_default_patience_runs_the_same_epochs_as_20_and_stops_sooner():
 
 
 def test_an_epoch_is_one_adam_step_per_16_training_pieces():
-    X, y, g = lagged_data(n_campaigns=80, n=64)
+    X, y, g = lagged_data(n_campaigns=40, n=64)
     steps = []
     real = torch.optim.Adam.step
 
@@ -48,7 +47,7 @@ def test_an_epoch_is_one_adam_step_per_16_training_pieces():
     with mock.patch.object(torch.optim.Adam, "step", counted):
         est = LSTM(hidden_size=4, chunk=32, max_epochs=2, validation_fraction=0.0).fit(
             X, y, context=ctx(g))
-    pieces = 80 * 2                      # 80 campaigns of two 32-sample pieces, all trained on
+    pieces = 40 * 2                      # 40 campaigns of two 32-sample pieces, all trained on
     assert est.n_epochs_ == 2 and len(steps) == 2 * math.ceil(pieces / 16)
 
 

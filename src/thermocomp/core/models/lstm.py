@@ -9,7 +9,7 @@ import numpy as np
 from sklearn.base import BaseEstimator, RegressorMixin
 from sklearn.utils.validation import check_is_fitted, validate_data
 
-from ...base.params import NON_NEGATIVE, check_estimator, choice, either, integer, number
+from ...base.params import NON_NEGATIVE, check_estimator, integer, number
 from ..context import SideInputs, groups_of
 from ..model_selection import CampaignHoldOut
 from ._dynamics import segment_bounds
@@ -17,17 +17,6 @@ from .base import measured_rows
 
 if TYPE_CHECKING:
     import torch
-
-# batch_size="auto": pieces per Adam step such that an epoch has at least MIN_STEPS steps, between
-# SMALLEST_BATCH (the batch of the defaults before lstmspeed64) and LARGEST_BATCH (after it)
-MIN_STEPS, SMALLEST_BATCH, LARGEST_BATCH = 10, 4, 16
-
-
-def auto_batch(n_pieces: int) -> int:
-    """Pieces per Adam step for ``n_pieces`` training pieces: an epoch of at least ``MIN_STEPS``
-    steps where the data allow, within ``[SMALLEST_BATCH, LARGEST_BATCH]``.  One long record
-    gives few pieces, and 16 a step left it 3 steps an epoch (fl_thermal 60/20/20)."""
-    return int(min(LARGEST_BATCH, max(SMALLEST_BATCH, n_pieces // MIN_STEPS)))
 
 
 def __getattr__(name: str):
@@ -137,12 +126,9 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         Samples per truncated back-propagation piece.
     learning_rate : float, default 6e-3
     weight_decay : float, default 0.0
-    batch_size : int or 'auto', default 'auto'
-        Pieces per Adam step.  ``'auto'`` (lstmbatch64): :func:`auto_batch` of the number of
-        training pieces, 16 unless an epoch would have fewer than 10 steps, never below 4; the
-        ``learning_rate`` is then the rate at 16 pieces, scaled by ``sqrt(batch / 16)``.  A step
-        costs nearly the same for 4 pieces as for 16 (the recurrence is sequential in time; the
-        batch is the cheap dimension), so few large
+    batch_size : int, default 16
+        Pieces per Adam step.  A step costs nearly the same for 4 pieces as for 16 (the
+        recurrence is sequential in time; the batch is the cheap dimension), so few large
         batches are cheap; 16 at 6e-3 (4 at 3e-3 before lstmspeed64: the rate scaled by the
         square root of the batch ratio) reached the same held-out MSE on a lathe-sized set's
         fits at under half the CPU (docs/models.md).
@@ -175,7 +161,7 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
 
     def __init__(self, hidden_size: int = 16, num_layers: int = 1, dropout: float = 0.0,
                  chunk: int = 128, learning_rate: float = 6e-3, weight_decay: float = 0.0,
-                 batch_size: int | str = "auto", max_epochs: int = 100, patience: int = 10,
+                 batch_size: int = 16, max_epochs: int = 100, patience: int = 10,
                  validation_fraction: float = 0.2, random_state: int = 0, n_threads: int = 1):
         self.hidden_size = hidden_size
         self.num_layers = num_layers
@@ -198,8 +184,7 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
 
     requires = ("torch",)      # checked with the config (shell.config.checks), imported at fit
     # the weights grow as hidden_size² x num_layers: 4096 x 64 is ~17 GB of them already
-    param_rules = {**{name: integer(1) for name in ("chunk", "max_epochs", "patience")},
-                   "batch_size": either(integer(1), choice("auto")),
+    param_rules = {**{name: integer(1) for name in ("chunk", "batch_size", "max_epochs", "patience")},
                    "hidden_size": integer(1, at_most=4096), "num_layers": integer(1, at_most=64),
                    "n_threads": integer(1, at_most=1024),
                    "dropout": number(0.0, 1.0, open_hi=True), "learning_rate": NON_NEGATIVE,
@@ -254,7 +239,6 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
         pieces = [(b, k) for b, (start, stop) in enumerate(bounds)
                   for k in range(0, stop - start, chunk) if fit_w[b, k:k + chunk].sum() > 0]
         data = _Pieces(pieces, chunk, length, xs, yp, fit_w)
-        self.batch_size_, self.learning_rate_ = self._step_size(len(pieces))
         with _torch_threads(int(self.n_threads)), torch.random.fork_rng(devices=[]):
             torch.manual_seed(int(self.random_state))
             gen = torch.Generator().manual_seed(int(self.random_state))
@@ -265,7 +249,7 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
             self._least_squares(net, Xs[train], ys[train])
             net.skip.requires_grad_(False)
             opt = torch.optim.Adam([q for q in net.parameters() if q.requires_grad],
-                                   lr=self.learning_rate_,
+                                   lr=float(self.learning_rate),
                                    weight_decay=float(self.weight_decay), foreach=True)
             best, best_state, best_epoch, waited = np.inf, None, 0, 0
             self.loss_curve_, self.validation_curve_ = [], []
@@ -309,8 +293,8 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
 
         total, weight = 0.0, 0.0
         order = torch.randperm(len(data.pieces), generator=gen)
-        for i in range(0, len(order), self.batch_size_):
-            batch = order[i:i + self.batch_size_]
+        for i in range(0, len(order), int(self.batch_size)):
+            batch = order[i:i + int(self.batch_size)]
             # a batch of campaign starts runs from rest (no state given, as zeros)
             state = None if not data.carried[batch].any() else states(batch)
             xb, yb, wb = data.x[batch], data.y[batch], data.w[batch]
@@ -323,14 +307,6 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
             opt.step()
             total, weight = total + loss.item() * float(counted), weight + float(counted)
         return total / max(weight, 1.0)
-
-    def _step_size(self, n_pieces: int) -> tuple[int, float]:
-        """Pieces per Adam step and its learning rate (``batch_size='auto'``: :func:`auto_batch`,
-        the rate scaled from 16 pieces by the square root of the batch ratio)."""
-        if self.batch_size != "auto":
-            return int(self.batch_size), float(self.learning_rate)
-        batch = auto_batch(n_pieces)
-        return batch, float(self.learning_rate) * float(np.sqrt(batch / LARGEST_BATCH))
 
     @staticmethod
     def _least_squares(net, Xs, ys) -> None:
