@@ -32,6 +32,14 @@ Measured 2026-12-01 (2 shared cores, load 4-6; each run once per seed), CPU s be
 8.9 (0.901 / 0.904 / 0.913 -> 0.908 / 0.903 / 0.905), grinder 164.8 -> 101.7 (0.780 / 0.764 /
 0.758 -> 0.759 / 0.770 / 0.758); mlr 3.2 / 2.1 / 2.0 / 2.1 / 3.0 s (docs/models.md).  These
 figures were taken with an equivalent shell loop over the same commands; this script repeats it.
+
+lstmbatch64 (refused): ``--before b7fc1b0d --label lstmbatch64 --json lstmbatch64.json --no-mlr``
+from 2d8c6dcf (``batch_size: auto``, 16 pieces a step unless an epoch would have < 10 steps, never
+< 4, the rate 6e-3 x sqrt(batch/16)), fl60 fl90 in one process and lathe door in another, CPU s
+mean of seeds 0-2 today -> auto and test MAE per seed: fl60 16.6 -> 20.6 (9.073 / 9.807 / 8.705 ->
+9.070 / 9.728 / 8.217), fl90 36.6 -> 42.6 (2.649 / 3.405 / 3.063 -> 2.769 / 3.093 / 3.308), lathe
+21.9 -> 23.3 (identical fits and MAE), door 9.5 -> 10.9 (0.908 / 0.903 / 0.905 -> 0.901 / 0.904 /
+0.913); docs/models.md.
 """
 
 from __future__ import annotations
