@@ -32,6 +32,14 @@ Measured 2026-12-01 (2 shared cores, load 4-6; each run once per seed), CPU s be
 8.9 (0.901 / 0.904 / 0.913 -> 0.908 / 0.903 / 0.905), grinder 164.8 -> 101.7 (0.780 / 0.764 /
 0.758 -> 0.759 / 0.770 / 0.758); mlr 3.2 / 2.1 / 2.0 / 2.1 / 3.0 s (docs/models.md).  These
 figures were taken with an equivalent shell loop over the same commands; this script repeats it.
+
+lstmbatch64 (refused): ``--before b7fc1b0d --label lstmbatch64 --json lstmbatch64.json --no-mlr``
+from 2d8c6dcf (``batch_size: auto``, 16 pieces a step unless an epoch would have < 10 steps, never
+< 4, the rate 6e-3 x sqrt(batch/16)), fl60 fl90 in one process and lathe door in another, CPU s
+mean of seeds 0-2 today -> auto and test MAE per seed: fl60 16.6 -> 20.6 (9.073 / 9.807 / 8.705 ->
+9.070 / 9.728 / 8.217), fl90 36.6 -> 42.6 (2.649 / 3.405 / 3.063 -> 2.769 / 3.093 / 3.308), lathe
+21.9 -> 23.3 (identical fits and MAE), door 9.5 -> 10.9 (0.908 / 0.903 / 0.905 -> 0.901 / 0.904 /
+0.913); docs/models.md.
 """
 
 from __future__ import annotations
@@ -65,17 +73,19 @@ def code_of(root: Path, rev: str) -> Path:
     return dest / "src"
 
 
-def prepare(root: Path) -> None:
+def prepare(root: Path, records=RECORDS) -> None:
+    """Write the records of ``records`` that ``root`` lacks."""
     py, env = [sys.executable], dict(os.environ, PYTHONPATH=str(REPO / "src"))
     here = REPO / "benchmarks"
     steps = []
     sys.path.insert(0, str(here))
     from bench_extras import prepare as lathe  # the lathe43 files and their init config
-    lathe(root / "lathe")
-    if not (root / "init-grinder").exists():
+    if "lathe" in records:
+        lathe(root / "lathe")
+    if "grinder" in records and not (root / "init-grinder").exists():
         steps += [[*py, str(here / "bench_probe61.py"), "write", str(root)],
                   [*py, str(here / "bench_probe61.py"), "init", str(root)]]
-    if not (root / "swiss_lathe_door").exists():
+    if "door" in records and not (root / "swiss_lathe_door").exists():
         steps.append([*py, "-m", "thermocomp", "simulate", "sim=swiss_lathe_door",
                       f"data.path={root / 'swiss_lathe_door'}", "track=false"])
     root.mkdir(parents=True, exist_ok=True)
@@ -137,18 +147,22 @@ def main(argv=None) -> int:
     parser.add_argument("--before", default="e67059c3")
     parser.add_argument("--seeds", nargs="+", type=int, default=[0, 1, 2])
     parser.add_argument("--records", nargs="+", default=list(RECORDS))
+    parser.add_argument("--label", default="lstmspeed64", help="this checkout's name in the rows")
+    parser.add_argument("--json", default="lstmspeed64.json", help="file name of the rows in DIR")
+    parser.add_argument("--no-mlr", action="store_true", help="skip the mlr runs (the ratio)")
     args = parser.parse_args(argv)
     root = Path(args.root).resolve()
-    prepare(root)
-    codes = {args.before: code_of(root, args.before), "lstmspeed64": REPO / "src"}
+    prepare(root, args.records)
+    codes = {args.before: code_of(root, args.before), args.label: REPO / "src"}
     rows = []
     for record in args.records:
-        rows.append(run(root, record, REPO / "src", "lstmspeed64", 0, model="mlr"))
+        if not args.no_mlr:
+            rows.append(run(root, record, REPO / "src", args.label, 0, model="mlr"))
         for label, src in codes.items():
             for seed in args.seeds:
                 rows.append(run(root, record, src, label, seed))
                 print(json.dumps(rows[-1]), flush=True)
-    (root / "lstmspeed64.json").write_text(json.dumps(rows, indent=1))
+    (root / args.json).write_text(json.dumps(rows, indent=1))
     print(summary(rows))
     return 0
 
