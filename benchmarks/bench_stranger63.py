@@ -195,7 +195,7 @@ FAMILIES = {
 WRAPPERS = ("plain", "ati", "bias", "rls")
 
 
-from lab_matrix import data_args, matrix, stage  # noqa: E402  (the benches' shared matrix)
+from lab_matrix import matrix, monitored, table  # noqa: E402  (the benches' shared matrix)
 
 # --- monitor: the healthy test week, then a fault on one sensor from its middle -----------------
 
@@ -224,24 +224,6 @@ def planted(src: Path, dst: Path, header: str, kind: str) -> float:
     return start * 60.0
 
 
-def monitored(root: Path, name: str, family: str, out: Path, *extra: str) -> dict:
-    rc, said, cpu = stage("monitor", *data_args(root, name), *extra,
-                          f"monitor.model={root / 'out' / f'{name}-{family}-plain' / 'model.pkl'}",
-                          f"out={out}")
-    if rc:
-        return {"monitor": f"exit {rc}: {said[:200]}"}
-    report = json.loads((out / "monitor.json").read_text())
-    ev = [e for e in report["events"] if e.get("sensor")]
-    return {"events": len(report["events"]),
-            "first": [(e["sensor"], e["to"], round(e["time"] / 3600, 2)) for e in ev[:3]],
-            "guard": sum(1 for e in report["events"] if e.get("target")),
-            "rmse": {t: (round(r["rmse_fixed"], 3), round(r["rmse_adaptive"], 3))
-                     for t, r in report["targets"].items()},
-            "max_corr/bound": {t: (round(r["max_abs_correction"], 1), r["bound"],
-                                   r["all_finite"]) for t, r in report["targets"].items()},
-            "cpu": round(cpu, 1)}
-
-
 def monitoring(root: Path, name: str, family: str, sensors) -> None:
     os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
     rows = [{"case": "healthy", **monitored(root, name, family, root / "mon" / f"{name}-healthy")}]
@@ -254,29 +236,6 @@ def monitoring(root: Path, name: str, family: str, sensors) -> None:
             rows.append({"case": f"{kind} {header}", "onset_h": onset / 3600, **row})
             print(json.dumps(rows[-1]), flush=True)
     (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
-
-
-def table(root: Path, name: str) -> str:
-    """The matrix's last row per cell: run's test RMSE per target, replay's, the largest
-    |replay - run| and |stream - batch|, promote's mean against run's, the check pack."""
-    rows = {}
-    for line in (root / f"matrix-{name}.jsonl").read_text().splitlines():
-        row = json.loads(line)
-        rows[row["cell"]] = row
-    out = [f"{'cell':28s} {'run (µm)':20s} {'replay':20s} {'|rep-run|':>9s} {'|s-b|':>8s} "
-           f"{'promote/run':>13s} {'C check':>8s}"]
-
-    def fig(v):
-        return " / ".join(f"{x:.2f}" for x in v.values()) if isinstance(v, dict) else str(v)[:60]
-    for cell, r in rows.items():
-        prom = (f"{r['promote']:.3f}/{r['run_mean']:.3f}" if isinstance(r.get("promote"), float)
-                else str(r.get("promote", "")))
-        check = ("passed" if r.get("check") == 0 else r.get("export", f"check {r.get('check')}"))
-        rep = r.get("replay-run")
-        out.append(f"{cell:28s} {fig(r.get('run')):20s} {fig(r.get('replay')):20s} "
-                   f"{'-' if rep is None else f'{rep:.1e}':>9} "
-                   f"{r.get('stream-batch', float('nan')):8.1e} {prom:>13s} {str(check)[:90]}")
-    return "\n".join(out)
 
 
 def main(argv=None) -> int:

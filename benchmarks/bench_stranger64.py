@@ -179,7 +179,7 @@ FAMILIES = {
 WRAPPERS = ("plain", "ati")
 
 
-from lab_matrix import data_args, exported, matrix, replayed, stage  # noqa: E402  (the benches' shared matrix)
+from lab_matrix import data_args, exported, matrix, monitored, replayed, stage, table  # noqa: E402  (the benches' shared matrix)
 
 # --- monitor: the healthy test week, then a fault on one sensor from its middle -----------------
 
@@ -207,24 +207,6 @@ def planted(src: Path, dst: Path, header: str, kind: str) -> float:
     test.write_text(preamble + df.to_csv(sep="\t", index=False, lineterminator="\n"),
                     encoding="utf-8")
     return start * 60.0
-
-
-def monitored(root: Path, name: str, family: str, out: Path, *extra: str) -> dict:
-    rc, said, cpu = stage("monitor", *data_args(root, name), *extra,
-                          f"monitor.model={root / 'out' / f'{name}-{family}-plain' / 'model.pkl'}",
-                          f"out={out}")
-    if rc:
-        return {"monitor": f"exit {rc}: {said[:200]}"}
-    report = json.loads((out / "monitor.json").read_text())
-    ev = [e for e in report["events"] if e.get("sensor")]
-    return {"events": len(report["events"]),
-            "first": [(e["sensor"], e["to"], round(e["time"] / 3600, 2)) for e in ev[:3]],
-            "guard": sum(1 for e in report["events"] if e.get("target")),
-            "rmse": {t: (round(r["rmse_fixed"], 3), round(r["rmse_adaptive"], 3))
-                     for t, r in report["targets"].items()},
-            "max_corr/bound": {t: (round(r["max_abs_correction"], 1), r["bound"],
-                                   r["all_finite"]) for t, r in report["targets"].items()},
-            "cpu": round(cpu, 1)}
 
 
 def monitoring(root: Path, name: str, family: str, sensors, kinds=("jump",)) -> None:
@@ -334,29 +316,6 @@ def initialised(root: Path) -> None:
             if yaml.stem != name:
                 yaml.rename(conf / f"{name}.yaml")
         print(json.dumps({"init": name, "rc": rc, "said": said, "cpu": round(cpu, 1)}))
-
-
-def table(root: Path, name: str) -> str:
-    """The matrix's last row per cell: run's test RMSE per target, replay's, the largest
-    |replay - run| and |stream - batch|, promote's mean against run's, the check pack."""
-    rows = {}
-    for line in (root / f"matrix-{name}.jsonl").read_text().splitlines():
-        row = json.loads(line)
-        rows[row["cell"]] = row
-    out = [f"{'cell':28s} {'run (µm)':20s} {'replay':20s} {'|rep-run|':>9s} {'|s-b|':>8s} "
-           f"{'promote/run':>13s} {'C check':>8s}"]
-
-    def fig(v):
-        return " / ".join(f"{x:.2f}" for x in v.values()) if isinstance(v, dict) else str(v)[:60]
-    for cell, r in rows.items():
-        prom = (f"{r['promote']:.3f}/{r['run_mean']:.3f}" if isinstance(r.get("promote"), float)
-                else str(r.get("promote", "")))
-        check = ("passed" if r.get("check") == 0 else r.get("export", f"check {r.get('check')}"))
-        rep = r.get("replay-run")
-        out.append(f"{cell:28s} {fig(r.get('run')):20s} {fig(r.get('replay')):20s} "
-                   f"{'-' if rep is None else f'{rep:.1e}':>9} "
-                   f"{r.get('stream-batch', float('nan')):8.1e} {prom:>13s} {str(check)[:90]}")
-    return "\n".join(out)
 
 
 def main(argv: list[str]) -> None:
