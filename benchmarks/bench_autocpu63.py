@@ -63,7 +63,8 @@ TIMINGS = {"fit_time_s", "validation_s"}
 
 
 def code_of(root: Path, rev: str) -> Path:
-    """The ``src`` and ``conf`` of ``rev``, unpacked under ``root`` (once)."""
+    """The ``src`` and ``conf`` of ``rev``, unpacked under ``root`` (once; ``datasets`` linked:
+    fl_thermal's path is relative to the project root)."""
     dest = root / f"code-{rev}"
     if not (dest / "src").exists():
         dest.mkdir(parents=True, exist_ok=True)
@@ -73,6 +74,7 @@ def code_of(root: Path, rev: str) -> Path:
         with tarfile.open(archive) as tar:
             tar.extractall(dest, filter="data")
         archive.unlink()
+        (dest / "datasets").symlink_to(REPO / "datasets")
     return dest / "src"
 
 

@@ -50,27 +50,13 @@ import os
 import statistics
 import subprocess
 import sys
-import tarfile
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+from bench_autocpu63 import code_of  # noqa: E402  (a revision's src unpacked once)
 
 REPO = Path(__file__).resolve().parents[1]
 RECORDS = ("fl90", "fl60", "door", "lathe", "grinder")
-
-
-def code_of(root: Path, rev: str) -> Path:
-    """The ``src`` and ``conf`` of ``rev`` under ``root`` (``datasets`` linked: fl_thermal's path
-    is relative to the project root)."""
-    dest = root / f"code-{rev}"
-    if not (dest / "src").exists():
-        dest.mkdir(parents=True, exist_ok=True)
-        archive = dest / "code.tar"
-        with archive.open("wb") as out:
-            subprocess.run(["git", "archive", rev, "src", "conf"], cwd=REPO, stdout=out, check=True)
-        with tarfile.open(archive) as tar:
-            tar.extractall(dest, filter="data")
-        archive.unlink()
-        (dest / "datasets").symlink_to(REPO / "datasets")
-    return dest / "src"
 
 
 def prepare(root: Path, records=RECORDS) -> None:
