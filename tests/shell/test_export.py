@@ -55,6 +55,16 @@ EVERY_EXCURSION = "promote.envelope.pattern=false"
 needs_cc = pytest.mark.skipif(shutil.which("gcc") is None, reason="no C compiler")
 
 
+def checked_pack(out: Path) -> str:
+    """``out``'s C compiled as a control's build would (warnings as errors) and its check pack
+    (``check/check.sh``) run: the pack's messages, after asserting it passed."""
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=out, check=True, capture_output=True)
+    script = subprocess.run(["sh", "check/check.sh"], cwd=out, capture_output=True, text=True)
+    assert script.returncode == 0, script.stderr
+    return script.stderr
+
+
 def _compose(*overrides):
     with initialize_config_dir(config_dir=str(conf_dir()), version_base="1.3"):
         return compose(config_name="config", overrides=list(overrides))
