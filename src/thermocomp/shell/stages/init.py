@@ -141,21 +141,17 @@ def init(cfg: DictConfig) -> dict:
     config = data_config(src, given, opts, roles, defaults, manifest)
     ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
     flags = flag_headers(ds, plan.names)        # 0 / 1 under a header that did not say a flag
-    if flags:
-        roles = flags_as_states(roles, flags, opts)
+    travels = travel_headers(ds, plan.names, asked.roles, opts)   # an axis' position in mm
+    if flags or travels:                        # proposed as states, the record read once more
+        roles = flags_as_states(roles, [*flags, *travels], opts)
         plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal,
                       sample, opts.units)
         config = data_config(src, given, opts, roles, defaults, manifest)
         ds = open_source(cfg, detected=config)
+    if flags:
         print(f"{', '.join(map(repr, flags))}: only two values one apart (0 / 1) over the "
               "record: an on/off flag, proposed as a state (data.roles.state)")
-    travels = travel_headers(ds, plan.names, asked.roles, opts)   # an axis' position in mm
     if travels:
-        roles = flags_as_states(roles, list(travels), opts)
-        plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal,
-                      sample, opts.units)
-        config = data_config(src, given, opts, roles, defaults, manifest)
-        ds = open_source(cfg, detected=config)
         print("; ".join(f"{h!r} spans {span:.4g} mm" for h, span in travels.items())
               + f": more than a thermal error does ({TRAVEL_UM / 1000:g} mm), an axis position, "
               "proposed as a state (data.roles.state; data.roles.error=[<header>] if it is "
