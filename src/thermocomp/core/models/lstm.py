@@ -276,8 +276,6 @@ class LSTM(SideInputs, RegressorMixin, BaseEstimator):
                 self.loss_curve_.append(self._epoch(net, opt, data, data.states(starts), gen))
             if best_state is not None:
                 net.load_state_dict(best_state)
-            if best_state is not None:
-                net.load_state_dict(best_state)
         self.n_epochs_, self.best_epoch_ = epoch, best_epoch if val.any() else epoch
         self.net_ = net.double().eval()
         # the linear law refitted on every training row, the learned residual held fixed
