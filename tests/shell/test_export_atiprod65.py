@@ -47,7 +47,9 @@ FAMILIES = {
     "pcr": PCR,
     "arx": lambda: ARX(ar=True),
     "lagbank": lambda: LagBank(n_taus=2),
-    "hammerstein": lambda: Hammerstein(lagbank=LagBank(n_taus=2)),     # a power of the position
+    # the position's power entering whatever its CV (it chose none on this record: a lag bank)
+    "hammerstein": lambda: Hammerstein(lagbank=LagBank(n_taus=2), exponents=(1.0,),
+                                       choose_exponents=False),
     "arx_rf": lambda: ARXRF(state_column="S_y_pos", forest=RandomForestRegressor(
         n_estimators=4, min_samples_leaf=5, random_state=0)),
     # test_export_lstm62's tiny network, kept whatever its held-out score
@@ -99,6 +101,7 @@ def test_a_state_times_the_rises_around_an_ati_model_streams_as_replay(data, tmp
     assert ss.derived == [[state, j, 0, 1] for j in range(k)] and ss.derived_clamped == [1] * k
     assert "interaction:S_y_pos product(model inputs' rises)" in ss.provenance["laws"]["E_X"]
     assert [ss.inputs[j] for j in ss.ambient_inputs] == ["T_amb"]
+    assert bool(ss.powers) == (family == "hammerstein")       # the position's, beside
     if family in ("arx_rf", "lstm"):          # no step gain: clamped outright, as streamed
         assert ss.clamp_outright == [1]
     else:
