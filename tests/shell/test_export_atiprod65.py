@@ -15,7 +15,8 @@ rail sensor pushed 30 K out half-way (the clamp acting, its bound grown by the p
 before the first excess) and each test campaign's temperatures shifted so that its initial
 ambient lies outside the train campaigns' (the first interval's laws and the interaction's
 ``A0 - 20`` extrapolated), the compiled C, the Structured Text and the numpy reading equal
-``replay`` for every family that exports within an ATI model, with and without the interaction.
+``replay`` for every family that exports within an ATI model, with and without the interaction;
+the adaptive code (``adapt.method=bias``) learns from reference measurements as the served model.
 """
 
 from __future__ import annotations
@@ -25,10 +26,11 @@ import pytest
 from blark import parse_source_code
 from sklearn.ensemble import RandomForestRegressor
 
-from test_export import checked_pack, needs_cc
+from test_export import StructuredText, _compiled, _streamed, checked_pack, needs_cc
 from test_export_ati57 import CAMPAIGNS
 from test_export_auto57 import _proved
 from test_export_effects59 import AMBIENT_LAW, _json_proved
+from test_export_guard import EVERY, OFFSET_UM, _rows, _served, _simulated, _st
 from test_export_inputs_product62 import PRODUCT, _diagnosed, _gantry
 from test_export_lstm62 import declares_each_once
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
@@ -64,12 +66,13 @@ def data(tmp_path_factory):
 
 
 def _around_ati(data, family: str, interaction: bool, *overrides, effects=(PRODUCT,),
-                pushed_from="half"):
+                pushed_from="half", adaptive: bool = False):
     """``(stream, test campaigns, compensator)``: the diagnosed model ``diagnose ati=cmeans``
     builds (the effects around an ATI model of two intervals of ``family``), T_a pushed out
     half-way, each test campaign's temperatures shifted out of the train campaigns' ambients."""
     ati = ATIRegressor(FAMILIES[family](), n_intervals=2, ambient_interaction=interaction)
-    stream, tests, comp = _diagnosed(data, list(effects), ati, *overrides, pushed_from=pushed_from)
+    stream, tests, comp = _diagnosed(data, list(effects), ati, *overrides, pushed_from=pushed_from,
+                                     adaptive=adaptive)
     trained = [a0 for _, split, a0 in CAMPAIGNS if split == "train"]
     for df in tests:
         cold = df["T_amb"].iloc[0] < np.mean(trained)
@@ -140,6 +143,33 @@ def test_a_campaign_out_at_its_first_sample_is_clamped_outright_as_the_stream_do
     tests[1].loc[:len(tests[1]) // 2 - 1, "T_a"] -= 30.0
     assert _proved(stream, tests, tmp_path) <= TOLERANCE_UM
     assert _json_proved(stream, tests) <= TOLERANCE_UM
+
+
+@needs_cc
+def test_the_adaptive_code_learns_a_bias_around_it_as_the_served_model(data, tmp_path):
+    """Healthy test campaigns (shifted out of the trained ambients), every EVERY-th row a
+    reference measurement of a machine whose error moved by OFFSET_UM: the C, the ST and the
+    numpy reference learn the bias as the served model does."""
+    deployed_, tests, _ = _around_ati(data, "lagbank", True, "adapt.method=bias", adaptive=True,
+                                      pushed_from=None)
+    targets, cols = deployed_.targets_, deployed_.columns_
+    references = []
+    for df in tests:
+        e = df[targets].to_numpy(float) + OFFSET_UM
+        e[np.arange(len(df)) % EVERY != EVERY - 1] = np.nan
+        references.append(e)
+    expected = _served(deployed_, tests, references)
+    assert np.max(np.abs(expected - _served(deployed_, tests, [np.full_like(e, np.nan)
+                                                                for e in references]))) > OFFSET_UM / 2
+    ss = state_space(deployed_)                                # refused before
+    assert ss.adapt == "bias" and ss.clamp_states and set(ss.law_ambient) == {0, 1}
+    text = _rows([df.assign(**{t: e[:, i] for i, t in enumerate(targets)})
+                  for df, e in zip(tests, references)], [*cols, *targets])
+    got = _streamed(_compiled(deployed_, tmp_path), text)
+    assert np.max(np.abs(got.to_numpy(float) - expected)) <= TOLERANCE_UM
+    assert np.max(np.abs(_simulated(ss, tests, cols, references) - expected)) <= TOLERANCE_UM
+    fb = StructuredText(exported_files(deployed_, "st")["compensator.st"])
+    assert np.max(np.abs(_st(fb, tests, cols, references) - expected)) <= TOLERANCE_UM
 
 
 def test_its_structured_text_declares_each_variable_once_and_parses(data):
