@@ -22,6 +22,7 @@ the adaptive code (``adapt.method=bias``) learns from reference measurements as 
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 from blark import parse_source_code
 from sklearn.ensemble import RandomForestRegressor
@@ -191,4 +192,21 @@ def test_the_export_command_writes_it_and_its_check_pack_passes(data, tmp_path):
                  "export.format=c", f"out={out}", "track=false"]) == 0
     banner = (out / "compensator.c").read_text().split("*/")[0]
     assert "interaction:S_y_pos product(model inputs' rises) (absolute)" in banner
+    assert checked_pack(out).count("stream: check passed: 50 rows") == 2
+
+
+@needs_cc
+def test_with_the_ambient_given_at_a_campaigns_start_its_check_pack_passes(tmp_path):
+    """No ambient sensor: the ATI model's ``A0`` is each campaign's manifest ``ambient_c``
+    (exportrest62's ``ambient_given``), the pack carrying it per campaign."""
+    root = _gantry(tmp_path / "data")
+    for f in root.glob("K*.csv"):
+        pd.read_csv(f).drop(columns=["T_amb"]).to_csv(f, index=False)
+    stream, _, comp = _diagnosed(root, [PRODUCT], ATIRegressor(LagBank(n_taus=2), n_intervals=2,
+                                                               ambient_interaction=True))
+    ss = state_space(stream)                                   # refused before
+    assert ss.ambient_given and not ss.ambient_inputs and ss.clamp_states
+    out = tmp_path / "code"
+    assert main(["export", f"data.path={root}", f"export.model={save_model(comp, tmp_path / 'm.pkl')}",
+                 "export.format=c", f"out={out}", "track=false"]) == 0
     assert checked_pack(out).count("stream: check passed: 50 rows") == 2
