@@ -10,8 +10,8 @@ the sample before the campaign's first excess (a campaign out at its first sampl
 clamped outright, as the stream has no value then).  The C, the Structured Text and the JSON read
 back equal ``replay`` to 1e-9 µm over MLR, ARX and lag-bank bases, plain and adaptive
 (``adapt.method=bias`` learning from reference measurements), and ``thermocomp export``'s check
-pack passes on the compiled ``stream --check``; around an ATI model it is refused in one line
-naming it.
+pack passes on the compiled ``stream --check``; around an ATI model, refused by name here, it
+exports since exportprod65 (test_export_atiprod65).
 """
 
 from __future__ import annotations
@@ -35,10 +35,9 @@ from test_export_ati57 import CAMPAIGNS, write_manifest
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import _json_proved
 from test_export_guard import EVERY, OFFSET_UM, _rows, _served, _simulated, _st
-from thermocomp.apps.deploy.export import NotExportable, exported_files, state_space
+from thermocomp.apps.deploy.export import exported_files, state_space
 from thermocomp.apps.diagnose import AugmentedRegressor
 from thermocomp.core.models import ARX, MLR, LagBank
-from thermocomp.core.models.ati import ATIRegressor
 from thermocomp.shell.builders import deploy_stream, deployable
 from thermocomp.shell.cli import main
 from thermocomp.shell.model_store import save_model
@@ -165,13 +164,8 @@ def test_its_structured_text_parses_as_iec_61131_3(data):
     assert "FB_ThermoComp" in str(parsed.transform())
 
 
-def test_around_an_ati_model_it_is_refused_in_one_line_naming_it(data):
-    stream, _, comp = _diagnosed(data, [PRODUCT], ATIRegressor(MLR(), n_intervals=2))
-    with pytest.raises(NotExportable) as info:
-        state_space(stream)
-    said = str(info.value)
-    assert "\n" not in said and "interaction:S_y_pos product(model inputs' rises)" in said
-    assert "around an ATI model" in said
+# (around an ATI model, refused here before, it exports since exportprod65:
+# test_export_atiprod65.py)
 
 
 @needs_cc

@@ -93,18 +93,23 @@ def test_the_structured_text_of_an_lstm_parses_as_iec_61131_3(data, tmp_path):
 # test_export_ati63.py)
 
 
-def test_the_structured_text_declares_each_variable_once(data):
-    """A PLC's compiler refuses a name declared twice (exportrest62 declared ``tr`` LREAL for the
-    reference update and DINT for the forests' tree loop; blark and the tests' reader took it)."""
+def declares_each_once(text: str) -> None:
+    """The Structured Text ``text`` declares each variable of its function block once (a PLC's
+    compiler refuses a name declared twice)."""
     import re
 
-    from thermocomp.apps.deploy.export import exported_files
-
-    stream, _, _ = deployed(data, "model=mlr")
-    text = exported_files(stream, "st")["compensator.st"]
     head = text.split("VAR CONSTANT", 1)[0]
     names = re.findall(r"^\s+(\w+) : ", head, flags=re.M)
     assert names and len(names) == len(set(names)), sorted(n for n in names if names.count(n) > 1)
+
+
+def test_the_structured_text_declares_each_variable_once(data):
+    """A PLC's compiler refuses a name declared twice (exportrest62 declared ``tr`` LREAL for the
+    reference update and DINT for the forests' tree loop; blark and the tests' reader took it)."""
+    from thermocomp.apps.deploy.export import exported_files
+
+    stream, _, _ = deployed(data, "model=mlr")
+    declares_each_once(exported_files(stream, "st")["compensator.st"])
 
 
 def test_a_network_whose_code_exceeds_a_megabyte_is_said_to_be_too_large_for_many_plcs():

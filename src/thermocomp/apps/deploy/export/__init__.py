@@ -18,7 +18,8 @@ its skip path a law and its network's weights arrays the code steps per sample, 
 (:mod:`.recurrent`), plain or a ``model=auto`` blend member; (exportati63) both within an ATI
 model, each interval's forest or network counting in its interval, and arx_rf under a diagnosed
 model's effects; (exportlstm64) lstm under a diagnosed model with any of those effects, its
-network reading the features the code computes for them (:func:`.recurrent.net_reads`).
+network reading the features the code computes for them (:func:`.recurrent.net_reads`);
+(exportprod65) a state times the inputs' rises around an ATI model too.
 Every format also writes ``compensator.json``, the arrays the code was generated from.  Only the
 families of :data:`~.laws.LINEAR_FAMILIES` export, and what ``model=auto`` keeps of them (one, or
 a blend) and the ATI wrapper of them (:mod:`.laws`); any other model is refused

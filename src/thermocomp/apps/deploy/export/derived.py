@@ -41,7 +41,8 @@ def is_derived(e) -> bool:
 
 
 def exports(e) -> bool:
-    """True for an effect the code holds (:data:`EXPORTED_EFFECTS`), around a plain base."""
+    """True for an effect the code holds (:data:`EXPORTED_EFFECTS`), around a plain base or an
+    ATI model (an ``inputs_product`` around one too since exportprod65)."""
     return is_derived(e) or e.transform in (*AMBIENT_TRANSFORMS, "lowpass_inputs")
 
 

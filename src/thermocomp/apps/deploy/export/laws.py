@@ -201,8 +201,11 @@ def _diagnosed(est) -> list:
     ``x [A0 > A_thr]`` (exportrest60: the step's law counts where ``A0 > A_thr``, what an ATI
     interval is).  Around an ATI model (``diagnose ati=cmeans``), the same per interval of the
     initial ambient, each interval's model fitted on the features (and, with the ambient
-    interaction, on the features times ``A0 - 20``: :func:`_member_laws`).  Any other effect is
-    refused, naming it."""
+    interaction, on the features times ``A0 - 20``: :func:`_member_laws`); a state times the
+    inputs' rises (``inputs_product``) there too (exportprod65), its clamp's gain per interval a
+    law's (:func:`with_gains`' ``by``: the ATI model's gain terms, each times the state's held
+    value, on the law of their interval and power of ``A0 - 20``).  Any other effect is refused,
+    naming it."""
     effects = list(est.effects_)
     if not effects:
         return _intervals(est.estimator_)
@@ -215,11 +218,6 @@ def _diagnosed(est) -> list:
         base = est.estimator_
         if not isinstance(base, ATIRegressor):
             return [(-UNBOUNDED, UNBOUNDED, base, False, derived)]
-        products = [e.title for e in effects if e.transform == "inputs_product"]
-        if products:     # its clamp's gain: a state's value times an ATI interval's: not held
-            raise NotExportable(f"the diagnosed {'; '.join(products)} around an ATI model "
-                                "(diagnose ati=cmeans) does not export (around a plain base it "
-                                "does); the served model runs it (thermocomp serve, connect)")
         edges = [-UNBOUNDED, *map(float, base.boundaries_), UNBOUNDED]
         return [(edges[m], edges[m + 1], e, bool(base.interactions_[m]), derived)
                 for m, e in enumerate(base.estimators_)]
