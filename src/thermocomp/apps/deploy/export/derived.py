@@ -100,7 +100,7 @@ class Derived:
         order, its columns put in the order ``[x, ambient blocks, derived inputs, powers]``."""
         if self.order is None:
             return b0, delayed, lags
-        place = np.argsort(self._order(len(b0)))     # a model column's canonical place
+        place = np.argsort(self.model_columns(len(b0)))     # a model column's canonical place
         return (self.columns(b0), {d: self.columns(r) for d, r in delayed.items()},
                 [(tau, int(place[j]), g) for tau, j, g in lags])
 
@@ -108,9 +108,9 @@ class Derived:
         """``row`` over the model's columns in the canonical order (:meth:`canonical`)."""
         if self.order is None or row is None:
             return row
-        return np.asarray(row)[self._order(len(row))]
+        return np.asarray(row)[self.model_columns(len(row))]
 
-    def _order(self, n: int) -> np.ndarray:
+    def model_columns(self, n: int) -> np.ndarray:
         """The canonical place's model column, of ``n`` (none given: the same)."""
         order = self.order or []
         return np.r_[order, np.arange(len(order), n)].astype(int)

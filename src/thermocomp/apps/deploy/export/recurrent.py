@@ -89,9 +89,9 @@ def net_reads(est, cols, inputs: list, powers: dict, interacts: bool, derived, l
     if interacts and derived.blocks is not None:    # [Z, Z (A0 - 20)] (an ATI interval's)
         width = len(canonical)
         canonical += [(place, tau, (a, b, power + 1)) for place, tau, (a, b, power) in canonical]
-        model = np.r_[derived._order(width), width + derived._order(width)]
+        model = np.r_[derived.model_columns(width), width + derived.model_columns(width)]
     else:
-        model = derived._order(len(canonical))
+        model = derived.model_columns(len(canonical))
     if len(canonical) != len(est.x_mean_):
         raise NotExportable(f"the lstm reads {len(est.x_mean_)} columns, its features are "
                             f"{len(canonical)}: a diagnosed model of another layout")
