@@ -107,7 +107,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     combine : {'vote', 'best'}, default 'vote'
     keep_oof : bool, default False
         Pickle the candidates' out-of-fold predictions with the model (``oof_``, ``oof_y_``,
-        ``oof_fold_``, ``oof_folds_``, ``oof_in_range_``; 1.4 MB on ``fl_thermal``).  The fitted
+        ``oof_fold_``, ``oof_folds_``, ``oof_in_range_``, ``oof_campaign_``: the campaign code of
+        each row where the folds hold out campaigns, else None; 1.4 MB on ``fl_thermal``).  The fitted
         model holds them either way: the run's validation scores the choice from them (:meth:`out_of_fold`).
     min_gain_pct : float, default 1.0
         ``combine='best'``: MLR, when a candidate, is kept unless the best candidate's validation
