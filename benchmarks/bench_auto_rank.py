@@ -173,6 +173,9 @@ def main(name: str, overrides: list[str]) -> dict:
         report["targets"][t] = row
         arrays[t] = {"oof_y": est.oof_y_, "oof_fold": est.oof_fold_, "test_y": meas[t],
                      "oof_in_range": est.oof_in_range_,
+                     # a runner may give the estimator the campaign of each out-of-fold row
+                     # (bench_autorep65: oof_group_, an integer code per campaign)
+                     **({"oof_group": est.oof_group_} if hasattr(est, "oof_group_") else {}),
                      **{f"oof_{n}": est.oof_[n] for n in est.oof_},
                      **{f"test_{n}": preds[n][t] for n in names}}
         print(f"{name} {t}: test " + " ".join(f"{n} {v:.3g}" for n, v in test.items()))

@@ -20,6 +20,8 @@ from ..model_selection.blocks import cut_blocks, decorrelation_length
 
 MIN_WEIGHT = 0.01   # a member weighted less is dropped (refitting it would buy nothing)
 N_RESAMPLES = 500   # bootstrap resamples of the folds: weights to 0.002, fixed seed (reproducible)
+REREFERENCE_SHARE = 0.05   # rereferenced_squares: a held-out run re-referenced at the samples of
+REREFERENCE_MAX = 10       # its first 5 %, at most 10 (fixed before scoring, bench_autorep65)
 
 
 class Blend(SideInputs, RegressorMixin, BaseEstimator):
@@ -94,7 +96,7 @@ class Blend(SideInputs, RegressorMixin, BaseEstimator):
 
 def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base: np.ndarray,
                  n_resamples: int = N_RESAMPLES, base_column: int | None = None,
-                 min_folds: int = 2) -> np.ndarray:
+                 min_folds: int = 2, squared: np.ndarray | None = None) -> np.ndarray:
     """Weights of the columns of ``predictions`` (each candidate's out-of-fold free-run
     predictions): the share of bootstrap resamples of the validation folds in which the column
     has the lowest error, a fold's mean squared error taken relative to that of ``base`` (MLR's
@@ -135,10 +137,16 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
     by -0.6 to +1.5 % (``fl_thermal`` 90/10 2.483 -> 2.500), net worse: they are cut below
     ``min_folds`` only, so a record with five folds keeps the weights measured above (a candidate
     ahead by a hair in all five still takes them all).
+
+    ``squared``: each row's squared error of every column and, last, of ``base`` (default: ``(y -
+    prediction)^2``), as :func:`rereferenced_squares` gives them where the folds hold out runs
+    referenced to their first sample.
     """
     unit = np.unique(fold, return_inverse=True)[1]
     blocks = unit.max() + 1 < min_folds        # else each fold is one unit, as measured before
-    resampled = _nested_resamples(predictions, y, unit, base, n_resamples, blocks)  # resample x cand.
+    if squared is None:
+        squared = np.column_stack([(y[:, None] - predictions) ** 2, (y - base) ** 2])
+    resampled = _nested_resamples(squared, y, unit, base, n_resamples, blocks)  # resample x cand.
     w = np.bincount(np.argmin(resampled, axis=1), minlength=predictions.shape[1]) / n_resamples
     if base_column is not None:
         sure = np.mean(resampled < 1.0, axis=0)           # P(beats MLR) over the resamples
@@ -149,20 +157,19 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
     return w / w.sum()
 
 
-def _nested_resamples(predictions, y, fold, base, n_resamples, blocks: bool) -> np.ndarray:
+def _nested_resamples(squared, y, fold, base, n_resamples, blocks: bool) -> np.ndarray:
     """resample x candidate: the folds resampled, each drawn fold's ratio (its squared error
-    summed over its units relative to ``base``'s) taken on a resample of its units, the mean over
-    the drawn folds.  A fold's units are the fold itself, or with ``blocks`` contiguous stretches
-    as long as ``base``'s residual takes to decorrelate (the diagnosis's test blocks,
-    :mod:`thermocomp.core.model_selection.blocks`)."""
+    summed over its units relative to ``base``'s, the last column of ``squared``) taken on a
+    resample of its units, the mean over the drawn folds.  A fold's units are the fold itself, or
+    with ``blocks`` contiguous stretches as long as ``base``'s residual takes to decorrelate (the
+    diagnosis's test blocks, :mod:`thermocomp.core.model_selection.blocks`)."""
     n_folds = fold.max() + 1
     block = (cut_blocks(np.zeros(len(y), int), fold,
                         decorrelation_length(y - base, fold, np.ones(len(y), bool))) if blocks else fold)
-    sse = np.column_stack([(y[:, None] - predictions) ** 2, (y - base) ** 2])
-    sse = np.vstack([sse[block == b].sum(axis=0) for b in range(block.max() + 1)])
+    sse = np.vstack([squared[block == b].sum(axis=0) for b in range(block.max() + 1)])
     rng = np.random.default_rng(0)
     picks = rng.integers(0, n_folds, (n_resamples, n_folds))     # as the folds' bootstrap drew them
-    total = np.zeros((n_resamples, predictions.shape[1]))
+    total = np.zeros((n_resamples, squared.shape[1] - 1))
     for f in range(n_folds):
         own = np.unique(block[fold == f])
         draws, _ = np.nonzero(picks == f)                           # the resample of each draw of f
@@ -170,3 +177,31 @@ def _nested_resamples(predictions, y, fold, base, n_resamples, blocks: bool) -> 
         drawn = counts @ sse[own]
         np.add.at(total, draws, drawn[:, :-1] / np.maximum(drawn[:, -1:], 1e-300))
     return total / n_folds
+
+
+def rereferenced_squares(residual: np.ndarray, y: np.ndarray, campaign: np.ndarray) -> np.ndarray:
+    """Squared errors of the columns of ``residual`` (out-of-fold residuals, rows x columns), each
+    held-out run referenced to its first sample re-referenced at its first k samples: at row ``t``
+    of such a run the mean over ``j < k`` of ``(r(t) - r(t_j))^2``, ``t_j`` its j-th out-of-fold
+    (measured) row, ``k`` the samples of its first :data:`REREFERENCE_SHARE` (at least 1, at
+    most :data:`REREFERENCE_MAX`).  ``campaign``: the run of each row; a run whose first label is
+    not exactly 0 (not referenced to that sample: ``reference=none``, a late first probe) keeps
+    ``r(t)^2``.
+
+    With ``data.reference=first_sample`` a held-out run's label is ``E(t) + n(t) - E(t0) -
+    n(t0)``: the first sample's noise ``n(t0)`` is an offset of the whole run and entered every
+    candidate's fold MSE through ``2 n(t0) mean(r)``, one draw that reordered the candidates
+    (``hmc`` E_Y: auto 1.58 against MLR's 0.78, all on the Hammerstein model; 0.81 re-referenced).
+    The first samples barely move from the run's start state, so the re-referenced residual keeps
+    what each candidate gets wrong over the run while ``n(t0)`` weighs 1/k as much
+    (``benchmarks/bench_autorep65.py``).
+    """
+    squared = residual ** 2
+    for c in np.unique(campaign):
+        rows = np.flatnonzero(campaign == c)
+        if y[rows[0]] != 0.0:
+            continue
+        k = min(REREFERENCE_MAX, max(1, int(REREFERENCE_SHARE * rows.size)))
+        ref = residual[rows[:k]]
+        squared[rows] = (residual[rows] - ref.mean(axis=0)) ** 2 + ref.var(axis=0)   # mean over j
+    return squared
