@@ -13,9 +13,9 @@ alone after it; the campaign of each out-of-fold row kept where the folds hold o
 and ``score`` computes, as its ``target_row`` does, the shipped votes (``vote_weights`` without
 ``squared``) and rule A (``squared=rereferenced_squares``) from the same fit's stored arrays.  One
 fit per record.  Two changes, both found when the machinery first ran, neither choosing anything:
-(1) the fits here run today's src, which has rule A, so the weights the fitted auto kept and its
-test RMSE are asserted to be rule A's (bench_autorep65 asserted them against the shipped votes: it
-ran before the rule was in src) and shipped is the one recomputed; (2) ``measured_test_only``:
+(1) the fits here ran src with rule A (91ec8834), so the weights the fitted auto kept and its
+test RMSE were asserted to be rule A's and shipped was recomputed (since the lead's revert, the fit
+runs the shipped votes and ``target_row`` asserts those); (2) ``measured_test_only``:
 bench_auto_rank's test series on the measured rows only (trunnion63 / portal64 log a sparse probe,
 empty cells between, which broke its blend check on NaN; dense records unchanged).  The test split
 is only scored: nothing here chooses on it.
@@ -167,10 +167,11 @@ sys.path.insert(0, str(HERE))
 import bench_autorep65 as autorep  # noqa: E402
 import bench_remeasure62 as remeasure  # noqa: E402
 from cpu import cpu_seconds  # noqa: E402
+from rereference65 import rereferenced_squares  # noqa: E402
 
 from thermocomp.core.metrics import rmse  # noqa: E402
 from thermocomp.core.models.auto import BASELINE  # noqa: E402
-from thermocomp.core.models.blend import rereferenced_squares, vote_weights  # noqa: E402
+from thermocomp.core.models.blend import vote_weights  # noqa: E402
 
 LABS = {"lab6539": 6539, "lab6540": 6540}
 RECORDS = {
@@ -246,8 +247,9 @@ def run(root: Path, names: list[str]) -> None:
 def target_row(report: dict, a) -> dict:
     """One target from the fit's stored arrays: MLR, the best single, auto shipped (the votes
     without ``squared``) and rule A (``squared=rereferenced_squares`` where the folds hold out
-    whole campaigns).  The fit ran src with rule A: its kept weights and test RMSE must be A's
-    (asserted), so shipped is the one computed here."""
+    whole campaigns).  Measured with rule A in src (91ec8834: the fit's weights were A's); since
+    the revert the fit runs the shipped votes, and its kept weights and test RMSE must be those
+    (asserted)."""
     names = [k[4:] for k in a.files if k.startswith("oof_") and k not in autorep.ARRAYS]
     members = [n for n in names if n in report["validation"]]
     y, fold, base = a["oof_y"], a["oof_fold"], a["oof_" + BASELINE]
@@ -267,10 +269,10 @@ def target_row(report: dict, a) -> dict:
     wA = shipped if group is None else vote_weights(
         preds, y, fold, base, base_column=col, min_folds=autorep.N_FOLDS,
         squared=rereferenced_squares(residual, y, group))
-    assert all(abs(wA[i] - kept.get(n, 0.0)) < 1e-9 for i, n in enumerate(members)), (members, kept)
-    a_rmse = rmse(a["test_y"] - test @ wA)
-    assert abs(a_rmse - report["auto"]["rmse"]) < 1e-6 * (1 + a_rmse)
-    return {**row, "auto": rmse(a["test_y"] - test @ shipped), "A": a_rmse, "k": ks, "voted": True,
+    assert all(abs(shipped[i] - kept.get(n, 0.0)) < 1e-9 for i, n in enumerate(members)), (members, kept)
+    s_rmse, a_rmse = rmse(a["test_y"] - test @ shipped), rmse(a["test_y"] - test @ wA)
+    assert abs(s_rmse - report["auto"]["rmse"]) < 1e-6 * (1 + s_rmse)
+    return {**row, "auto": s_rmse, "A": a_rmse, "k": ks, "voted": True,
             "w": {n: round(float(v), 2) for n, v in zip(members, shipped) if v >= 0.005},
             "wA": {n: round(float(v), 2) for n, v in zip(members, wA) if v >= 0.005}}
 

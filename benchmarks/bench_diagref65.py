@@ -143,7 +143,7 @@ def squares(p, r: np.ndarray) -> np.ndarray:
     """The rule's squared CV error of each row: ``rereferenced_squares`` over the held-out,
     measured rows of each whole-campaign unit (it keeps ``r**2`` where the unit's first label is
     not 0), ``r**2`` elsewhere."""
-    from thermocomp.core.models.blend import rereferenced_squares
+    from rereference65 import rereferenced_squares
 
     if "_whole_runs" not in p.__dict__:
         p._whole_runs = whole_runs(p)

@@ -24,7 +24,7 @@ from ..gains import gain_terms
 from ..metrics import PERSISTENCE, rmse
 from ..model_selection import BlockedForward, LeaveBlockOut, LeaveCampaignsOut
 from ..model_selection.extrapolation import within_range
-from .blend import Blend, rereferenced_squares, vote_weights
+from .blend import Blend, vote_weights
 from .one_step import persistence
 
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
@@ -64,11 +64,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
     the share of fold resamples each candidate wins, MLR (a candidate) taking the part of a
     candidate's votes that the resamples do not back by beating MLR; with fewer folds than
     ``n_folds`` each drawn fold is resampled by its blocks too (``vote_weights``'s ``min_folds``:
-    one fold alone gave its winner every vote).  Where the folds hold out whole campaigns whose
-    labels are referenced to their first sample, each held-out run's residual is scored
-    re-referenced at its first samples, so that the first sample's noise, an offset of the whole
-    run, does not reorder the candidates
-    (:func:`~thermocomp.core.models.blend.rereferenced_squares`).  ``'best'`` keeps the one
+    one fold alone gave its winner every vote).  ``'best'`` keeps the one
     candidate with the lowest pooled validation RMSE.  Picking one misranked:
     validation and test orders of the families agreed with a Spearman of 0.2
     to 0.4 on the simulated records and the spindle record.  A val split gives
@@ -207,7 +203,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.oof_y_ = np.concatenate([y[score] for *_, score in folds])
         self.oof_fold_ = np.concatenate([np.full(score.sum(), k) for k, (*_, score) in enumerate(folds)])
         self.oof_folds_ = (len(y), [(np.flatnonzero(fit), np.flatnonzero(score)) for fit, _, score in folds])
-        self.oof_campaign_ = None   # folds of whole campaigns: the campaign of each row (the votes')
+        self.oof_campaign_ = None   # folds of whole campaigns: the campaign of each row (benches')
         if self.scheme_ in CAMPAIGN_FOLDS:
             codes = np.unique(np.asarray(groups, dtype=object).astype(str), return_inverse=True)[1]
             self.oof_campaign_ = np.concatenate([codes[score] for *_, score in folds])
@@ -229,22 +225,14 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         preds = np.column_stack([self.oof_[n] for n in members])
         base = members.index(BASELINE) if BASELINE in members else None
         rows = self._voting_rows()
-        residual = self.oof_y_[:, None] - np.column_stack([preds, self.oof_[BASELINE]])
-        squared = (residual ** 2 if self.oof_campaign_ is None
-                   else rereferenced_squares(residual, self.oof_y_, self.oof_campaign_))
         w = vote_weights(preds[rows], self.oof_y_[rows], self.oof_fold_[rows], self.oof_[BASELINE][rows],
-                         base_column=base, min_folds=int(self.n_folds), squared=squared[rows])
+                         base_column=base, min_folds=int(self.n_folds))
         weights = {n: float(v) for n, v in zip(members, w) if v > 0}
         blended = rmse(self.oof_y_ - preds @ w)
         mix = ", ".join(f"{n} {v:.2f}" for n, v in sorted(weights.items(), key=lambda kv: -kv[1]))
         doubt = "" if base is None else ", each kept as far as its resamples beat MLR, the rest MLR's"
         where = ("" if self.validation_rows == "all" else f", on the {rows.sum()} of {rows.size} rows "
                  f"where the fold does not extrapolate, {np.unique(self.oof_fold_[rows]).size} fold(s)")
-        if self.oof_campaign_ is not None:
-            runs = sum(self.oof_y_[np.flatnonzero(self.oof_campaign_ == c)[0]] == 0.0
-                       for c in np.unique(self.oof_campaign_))
-            where += (f", {runs} held-out run(s) referenced to their first sample re-referenced at "
-                      "their first samples" if runs else "")
         lead = (f"blend by the folds' votes (share of bootstrap resamples of the folds each "
                 f"candidate wins, mean squared errors relative to MLR's per fold{doubt}{where}): {mix}; "
                 f"blended validation RMSE {blended:.4g}")

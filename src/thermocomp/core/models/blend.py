@@ -20,8 +20,6 @@ from ..model_selection.blocks import cut_blocks, decorrelation_length
 
 MIN_WEIGHT = 0.01   # a member weighted less is dropped (refitting it would buy nothing)
 N_RESAMPLES = 500   # bootstrap resamples of the folds: weights to 0.002, fixed seed (reproducible)
-REREFERENCE_SHARE = 0.05   # rereferenced_squares: a held-out run re-referenced at the samples of
-REREFERENCE_MAX = 10       # its first 5 %, at most 10 (fixed before scoring, bench_autorep65)
 
 
 class Blend(SideInputs, RegressorMixin, BaseEstimator):
@@ -139,8 +137,8 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
     ahead by a hair in all five still takes them all).
 
     ``squared``: each row's squared error of every column and, last, of ``base`` (default: ``(y -
-    prediction)^2``), as :func:`rereferenced_squares` gives them where the folds hold out runs
-    referenced to their first sample.
+    prediction)^2``); the benches score other squares through it (``benchmarks/rereference65.py``:
+    held-out runs re-referenced at their first samples, measured and not taken).
     """
     unit = np.unique(fold, return_inverse=True)[1]
     blocks = unit.max() + 1 < min_folds        # else each fold is one unit, as measured before
@@ -177,31 +175,3 @@ def _nested_resamples(squared, y, fold, base, n_resamples, blocks: bool) -> np.n
         drawn = counts @ sse[own]
         np.add.at(total, draws, drawn[:, :-1] / np.maximum(drawn[:, -1:], 1e-300))
     return total / n_folds
-
-
-def rereferenced_squares(residual: np.ndarray, y: np.ndarray, campaign: np.ndarray) -> np.ndarray:
-    """Squared errors of the columns of ``residual`` (out-of-fold residuals, rows x columns), each
-    held-out run referenced to its first sample re-referenced at its first k samples: at row ``t``
-    of such a run the mean over ``j < k`` of ``(r(t) - r(t_j))^2``, ``t_j`` its j-th out-of-fold
-    (measured) row, ``k`` the samples of its first :data:`REREFERENCE_SHARE` (at least 1, at
-    most :data:`REREFERENCE_MAX`).  ``campaign``: the run of each row; a run whose first label is
-    not exactly 0 (not referenced to that sample: ``reference=none``, a late first probe) keeps
-    ``r(t)^2``.
-
-    With ``data.reference=first_sample`` a held-out run's label is ``E(t) + n(t) - E(t0) -
-    n(t0)``: the first sample's noise ``n(t0)`` is an offset of the whole run and entered every
-    candidate's fold MSE through ``2 n(t0) mean(r)``, one draw that reordered the candidates
-    (``hmc`` E_Y: auto 1.58 against MLR's 0.78, all on the Hammerstein model; 0.81 re-referenced).
-    The first samples barely move from the run's start state, so the re-referenced residual keeps
-    what each candidate gets wrong over the run while ``n(t0)`` weighs 1/k as much
-    (``benchmarks/bench_autorep65.py``).
-    """
-    squared = residual ** 2
-    for c in np.unique(campaign):
-        rows = np.flatnonzero(campaign == c)
-        if y[rows[0]] != 0.0:
-            continue
-        k = min(REREFERENCE_MAX, max(1, int(REREFERENCE_SHARE * rows.size)))
-        ref = residual[rows[:k]]
-        squared[rows] = (residual[rows] - ref.mean(axis=0)) ** 2 + ref.var(axis=0)   # mean over j
-    return squared
