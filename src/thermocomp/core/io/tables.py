@@ -24,7 +24,7 @@ from .layout import header_line, is_unit_row, with_units
 from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
-from .roles import RUN, active, excel_days_header, naming, same_header
+from .roles import RUN, active, excel_days_header, naming, same_header, split_unit
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
 from .timestamps import (
@@ -47,7 +47,9 @@ from .units import is_flag
 _CSV_BLOCK_BYTES = 16 << 20
 _PANDAS_INDEX = re.compile(r"__index_level_\d+__")
 _CONVERSION_ERROR = re.compile(r"In CSV column #(\d+)")
-_EXCEL_ERROR = re.compile(r"#[A-Z0-9/]+[!?]")    # a formula's error, '#DIV/0!', '#WERT!'
+# a formula's error, '#DIV/0!', '#WERT!', or LibreOffice Calc's 'Err:502' (stranger65: refused
+# without the hint, as it holds digits)
+_EXCEL_ERROR = re.compile(r"#[A-Z0-9/]+[!?]|Err:\d{3}")
 _ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
 # A contract name: prefix + identifier-like name (it becomes part of file names: no path
 # separators, '..', spaces or control characters).
@@ -441,12 +443,29 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
     if hint is None:
         hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
                 and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
+    if _is_header(path, opts, str(value)):
+        hint = (": the file's header written again under its data (a logger restarted?): delete "
+                "that line (and a unit row under it), or cut the file there into two files")
     if number and not hint and (not re.search(r"\d", str(value)) or _EXCEL_ERROR.fullmatch(
             str(value).strip())):
         hint = (f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
                 + _gap_hint(raw, value, opts.max_gap_samples))
     return ContractError(f"value {value!r} is not {_describe(target, opts.time)}{hint}",
                          file=path, column=column, row=row + 1)
+
+
+def _is_header(path: Path, opts: ReadOptions, value: str) -> bool:
+    """``value`` (a cell refused) is one of the file's headers, with or without its unit: the
+    header line repeated under the data (stranger65: it was taken for a missing-value mark, to
+    be listed in data.missing_values)."""
+    value = value.strip()
+    if not value:
+        return False
+    try:
+        header = _peek_csv(path, opts.delimiter, opts.encoding)[0]
+    except ContractError:
+        return False
+    return any(value in (h, split_unit(h)[0]) for h in header)
 
 
 def _gap_hint(raw: pa.ChunkedArray, mark: str, allowed: int) -> str:
