@@ -123,3 +123,14 @@ def test_a_libreoffice_error_cell_is_named_a_missing_value_mark(tmp_path):
     with pytest.raises(ContractError, match=r"line 8 \(data row 6\): value 'Err:502' .*"
                                             r"data.missing_values \(\['Err:502'\]\)"):
         read_dataset(folder, {"roles": {"time": ["Datum", "Uhrzeit"], "error": ["dX"]}})
+
+
+def test_a_record_of_day_files_is_said_carried_over_in_one_short_line():
+    from thermocomp.core.continuation import carried_text
+
+    days = [f"EDM_{d:03d}" for d in range(365)]
+    carried = {days[k]: days[:k + 1] for k in range(1, len(days))}   # as carry_over gives it
+    said = carried_text(carried)
+    # each day named once at most (it named each with every day before it: 66,430 names)
+    assert said == "EDM_364 continues EDM_000 + EDM_001 + ... + EDM_363 (364 campaigns)"
+    assert carried_text({"B": ["A", "B"]}) == "B continues A"
