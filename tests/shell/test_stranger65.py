@@ -12,13 +12,17 @@ day, replay 3.82 / 1.73 µm against run's 3.39 / 1.32).  The record here is that
 
 from __future__ import annotations
 
+import io
 import json
+import subprocess
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 
 from conftest import FAST
+from test_export import checked_pack, needs_cc
 from thermocomp.shell.cli import main
 
 BENCHMARKS = Path(__file__).resolve().parents[2] / "benchmarks"
@@ -134,3 +138,41 @@ def test_a_record_of_day_files_is_said_carried_over_in_one_short_line():
     # each day named once at most (it named each with every day before it: 66,430 names)
     assert said == "EDM_364 continues EDM_000 + EDM_001 + ... + EDM_363 (364 campaigns)"
     assert carried_text({"B": ["A", "B"]}) == "B continues A"
+
+
+# -- the spreadsheet's export streamed whole into the compiled stream.c -----------------------
+
+def spreadsheet(path: Path, rows: int = 240) -> Path:
+    """A lab's spreadsheet as CSV: ',' between cells, decimal points, the time in seconds and the
+    generator's power in W grouped by thousands inside quotes ("1,260", "1,200.0")."""
+    rng = np.random.default_rng(65)
+    t = np.arange(rows) * 60.0
+    heat = 20 + 3 * (1 - np.exp(-t / 3000)) + rng.normal(0, 0.02, rows)
+    hall = 19 + 0.0005 * t + rng.normal(0, 0.02, rows)
+    power = np.repeat(rng.integers(6, 19, rows // 40 + 1) * 100.0, 40)[:rows]
+    lines = ["t [s],T arm [°C],T hall [°C],Generator [W],dX [um]"]
+    lines += [f'"{s:,.0f}",{a:.2f},{b:.2f},"{p:,.1f}",{2.5 * (a - 20):.2f}'
+              for s, a, b, p in zip(t, heat, hall, power)]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+@needs_cc
+def test_the_compiled_stream_reads_quoted_cells_and_grouped_digits_as_the_reader_does(tmp_path):
+    # before: "stream: row 2 has not 5 cells" (the separator inside "1,200.0" split the row);
+    # the time "1,020" is read ungrouped by data.thousands, as the reader reads it
+    path = spreadsheet(tmp_path / "export.csv")
+    common = [f"data.path={path}", "data.roles.error=[dX]", "data.roles.state=[Generator]",
+              "data.thousands=,", "data.test_fraction=0.3", "data.reference=none"]
+    assert main(["run", *common, *FAST, "model=lagbank", "plots=none",
+                 f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    done = subprocess.run([str(tmp_path / "code" / "stream")], input=path.read_bytes(),
+                          capture_output=True)
+    assert done.returncode == 0, done.stderr
+    got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
+    want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
+    # the lab's file as written gives the pack's corrections (its rows as thermocomp read them)
+    assert got.shape == want.shape and np.abs(got - want).max() < 1e-9

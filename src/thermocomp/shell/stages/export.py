@@ -242,6 +242,8 @@ def export(cfg: DictConfig) -> dict:
         clock = raw_names(named, CLOCK) or (
             [] if isinstance(joined, str) or len(joined) != 2 else list(joined)[1:])
         _convertible(cfg, converted, lab.get(TIME, TIME), [str(c) for c in clock])
+    thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
+    provenance.update(thousands=None if thousands is None else str(thousands)[:1])
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
                       lab_units=converted, run_column=run_column,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),

@@ -60,12 +60,18 @@ enum { SECONDS = 1, LOCAL_TIME, ZONED_TIME };   /* a stream's time: as its first
 
 static char sep = ',';
 
+/* A line's cells at `by`; a separator inside double quotes is the cell's, as a CSV reader
+   reads it (stranger65: a spreadsheet's "1,200.0" in a ','-separated file split a row in two
+   cells, "row has not 14 cells", though the model reads no such column). */
 static int split_by(char *line, char **cells, char by) {
-    int n = 0;
+    int n = 0, quoted = 0;
     char *p = line;
     line[strcspn(line, "\r\n")] = '\0';
     cells[n++] = p;
-    while ((p = strchr(p, by)) != NULL && n < MAX_COLS) { *p++ = '\0'; cells[n++] = p; }
+    for (; *p && n < MAX_COLS; p++) {
+        if (*p == '"') quoted = !quoted;
+        else if (*p == by && !quoted) { *p = '\0'; cells[n++] = p + 1; }
+    }
     return n;
 }
 
@@ -115,6 +121,20 @@ static int names_every_input(const char *line) {
     return 1;
 }
 
+/* `text` without the thousands separator `mark` where it groups digits by three (data.thousands:
+   1.234,5 or 1,234.5, as the reader reads them; a date's 07.06.2027 is left as it is). */
+static void ungroup(char *text, char mark) {
+    char *p, *w;
+    for (p = text; (p = strchr(p, mark)) != NULL; p++) {
+        if (p == text || p[-1] < '0' || p[-1] > '9') return;
+        if (!(p[1] >= '0' && p[1] <= '9' && p[2] >= '0' && p[2] <= '9' && p[3] >= '0'
+              && p[3] <= '9') || (p[4] >= '0' && p[4] <= '9')) return;
+    }
+    for (p = w = text; *p; p++)
+        if (*p != mark) *w++ = *p;
+    *w = '\0';
+}
+
 /* A cell's number; NAN when empty, and when it is no number as a whole (then `bad` is set). */
 static double value(const char *cell, int *bad) {
     char text[MAX_CELL], *end, *c;
@@ -123,6 +143,7 @@ static double value(const char *cell, int *bad) {
     if (*cell == '\0') return NAN;
     strncpy(text, cell, MAX_CELL - 1);
     text[MAX_CELL - 1] = '\0';
+    if (TC_THOUSANDS[0]) ungroup(text, TC_THOUSANDS[0]);
     if (sep != ',' && (c = strchr(text, ',')) != NULL) *c = '.';   /* a decimal comma */
     v = strtod(text, &end);
     while (*end == ' ' || *end == '"') end++;
