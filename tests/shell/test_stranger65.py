@@ -176,3 +176,22 @@ def test_the_compiled_stream_reads_quoted_cells_and_grouped_digits_as_the_reader
     want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
     # the lab's file as written gives the pack's corrections (its rows as thermocomp read them)
     assert got.shape == want.shape and np.abs(got - want).max() < 1e-9
+
+
+def test_a_stream_with_grouped_digits_keeps_its_day_first_dates(tmp_path):
+    # before: pandas' thousands='.' took the points out of the date too, '14.06.2027 00:00:00'
+    # -> '14062027 00:00:00', refused as no timestamp (the lab's day file piped into monitor)
+    from thermocomp.core.io import ReadOptions
+    from thermocomp.core.io.stdin import read_stream
+
+    lines = ["Datum;Uhrzeit;T a;T b;T c;Leistung;dX", ";;°C;°C;°C;W;µm"]
+    lines += [f"14.06.2027;00:{m:02d}:00;20,{m:02d};21,{m:02d};22,5;{'1.200,0' if m % 2 else '800,0'};"
+              f"{m},5" for m in range(6)]
+    opts = ReadOptions.from_cfg({"roles": {"time": ["Datum", "Uhrzeit"], "error": ["dX"],
+                                           "state": ["Leistung"]},
+                                 "thousands": ".", "decimal": ",", "delimiter": ";"})
+    df, missing = read_stream("\n".join(lines) + "\n", ["T_a", "T_b", "T_c"], opts)
+    assert df["time"].tolist() == [0.0, 60.0, 120.0, 180.0, 240.0, 300.0]
+    assert df["S_Leistung"].tolist() == [800.0, 1200.0] * 3
+    assert df["T_a"].tolist() == pytest.approx([20.0, 20.01, 20.02, 20.03, 20.04, 20.05])
+    assert missing == {}
