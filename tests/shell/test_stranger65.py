@@ -195,3 +195,17 @@ def test_a_stream_with_grouped_digits_keeps_its_day_first_dates(tmp_path):
     assert df["S_Leistung"].tolist() == [800.0, 1200.0] * 3
     assert df["T_a"].tolist() == pytest.approx([20.0, 20.01, 20.02, 20.03, 20.04, 20.05])
     assert missing == {}
+
+
+@pytest.mark.parametrize("thousands", [None, ","])
+def test_a_refusal_names_the_earliest_bad_row_of_every_column(tmp_path, thousands):
+    # it named the first column Arrow's threads met (or, with data.thousands, the first in the
+    # header's order): row 7001 of 'T cabinet' in one run, row 592 of the power in another
+    from thermocomp.core.io import ContractError, read_dataset
+
+    rows = [f"{60 * k},{20 + k / 100:.2f},{21 + k / 100:.2f},{k / 10:.1f}" for k in range(80)]
+    rows[60] = rows[60].replace(f",{20 + 0.60:.2f},", ",Err:502,")     # T_a at data row 61
+    rows[7] = rows[7].replace(f",{21 + 0.07:.2f},", ",n.v.,")          # T_b at data row 8
+    folder = _lab(tmp_path / "lab", {"r.csv": "time,T_a,T_b,E_X\n" + "\n".join(rows) + "\n"})
+    with pytest.raises(ContractError, match=r"column 'T_b', line 9 \(data row 8\): value 'n.v.'"):
+        read_dataset(folder, {"thousands": thousands})

@@ -388,21 +388,31 @@ def _signed(path: Path) -> bool:
 
 def _ungroup(table: pa.Table, names: list[str], types: dict, path: Path, opts: ReadOptions
              ) -> pa.Table:
-    """The number columns read as text, cast to float without ``data.thousands``."""
+    """The number columns read as text, cast to float without ``data.thousands``; a cell that
+    does not read refused, the earliest row's of every column (stranger65: the first column in
+    the header's order, row 7001 of ``T cabinet`` where row 592 of another failed)."""
+    texts, first = {}, {}
     for name, kind in types.items():
         if not pa.types.is_floating(kind):
             continue
         raw = table.column(name)
         at = None if opts.thousands is None else misgrouped(raw, opts.thousands, opts.decimal)
-        if at is not None:
+        texts[name] = ungrouped(raw, opts.thousands, opts.decimal)
+        found = first_cast_failure(texts[name], kind)
+        rows = [r for r in (at, None if found is None else found[0]) if r is not None]
+        if rows:
+            first[name] = (min(rows), at)
+    if first:
+        name = min(first, key=lambda n: first[n][0])
+        row, at = first[name]
+        if at == row:
+            raw = table.column(name)
             raise ContractError(f"value {raw[at].as_py()!r} does not group its digits by three "
                                 f"with data.thousands={opts.thousands!r}",
                                 file=path, column=name, row=at + 1)
-        text = ungrouped(raw, opts.thousands, opts.decimal)
-        found = first_cast_failure(text, kind)
-        if found is not None:
-            raise _bad_cell_error(path, names, name, kind, opts)
-        table = table.set_column(table.column_names.index(name), name, pc.cast(text, kind))
+        raise _bad_cell_error(path, names, name, types[name], opts)
+    for name, text in texts.items():
+        table = table.set_column(table.column_names.index(name), name, pc.cast(text, types[name]))
     return table
 
 
@@ -420,11 +430,30 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
             return bad_bytes
     match = _CONVERSION_ERROR.search(message)
     if match:
-        column = names[int(match.group(1))]
+        column = _earliest_bad(path, names, types, opts, names[int(match.group(1))])
         return _bad_cell_error(path, names, column, types[column], opts)
     if "CSV parse error" in message:
         return _malformed_row_error(path, names, opts, message)
     return ContractError(f"unreadable CSV ({message})", file=path)
+
+
+def _earliest_bad(path, names, types, opts, column: str) -> str:
+    """Of the number columns, the one whose first cell that does not read is the earliest row
+    (``column``, the one Arrow named, on a tie or where it is no number column): Arrow names the
+    first column its threads meet (stranger65: row 7001 of one column in one run, row 592 of
+    another in the next, of the same file)."""
+    floats = [n for n, t in types.items() if pa.types.is_floating(t)]
+    if column not in floats or len(floats) < 2:
+        return column
+    raw = pacsv.read_csv(_input(path, opts), **_csv_options(
+        names, opts, include=floats, types=dict.fromkeys(floats, pa.string())))
+    rows = {}
+    for name in floats:
+        found = first_cast_failure(ungrouped(raw.column(name), opts.thousands, opts.decimal),
+                                   types[name])
+        if found is not None:
+            rows[name] = found[0]
+    return min(rows, key=lambda n: (rows[n], n != column)) if rows else column
 
 
 def _bad_cell_error(path, names, column, target, opts) -> ContractError:
