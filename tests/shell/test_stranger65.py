@@ -209,3 +209,33 @@ def test_a_refusal_names_the_earliest_bad_row_of_every_column(tmp_path, thousand
     folder = _lab(tmp_path / "lab", {"r.csv": "time,T_a,T_b,E_X\n" + "\n".join(rows) + "\n"})
     with pytest.raises(ContractError, match=r"column 'T_b', line 9 \(data row 8\): value 'n.v.'"):
         read_dataset(folder, {"thousands": thousands})
+
+
+@needs_cc
+def test_the_compiled_stream_joins_a_date_and_its_time_of_day_as_the_reader_does(tmp_path):
+    # before: export.format=c refused ("the time is a date ('Datum') and a time of day
+    # ('Uhrzeit') in two columns, which stream.c does not join")
+    rng = np.random.default_rng(651)
+    t = np.arange(240) * 60.0
+    heat = 20 + 3 * (1 - np.exp(-t / 3000)) + rng.normal(0, 0.02, t.size)
+    hall = 19 + 0.0005 * t + rng.normal(0, 0.02, t.size)
+    stamps = pd.Timestamp("2027-06-14 22:00") + pd.to_timedelta(t, unit="s")   # past midnight
+    lines = ["Datum;Uhrzeit;T Arm [°C];T Halle [°C];dX [µm]"]
+    # decimal commas, the date's two points kept ('14.06.2027;22:00:00;20,12;19,50;0,31')
+    lines += [f"{s:%d.%m.%Y};{s:%H:%M:%S};{a:.2f};{b:.2f};{2.5 * (a - 20):.2f}".replace(".", ",")
+              .replace(",", ".", 2) for s, a, b in zip(stamps, heat, hall)]
+    path = tmp_path / "tag.csv"
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    common = [f"data.path={path}", "data.roles.time=[Datum,Uhrzeit]", "data.roles.error=[dX]",
+              "data.test_fraction=0.3", "data.reference=none"]
+    assert main(["run", *common, *FAST, "model=lagbank", "plots=none",
+                 f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    done = subprocess.run([str(tmp_path / "code" / "stream")], input=path.read_bytes(),
+                          capture_output=True)
+    assert done.returncode == 0, done.stderr
+    got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
+    want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
+    assert got.shape == want.shape and np.abs(got - want).max() < 1e-9

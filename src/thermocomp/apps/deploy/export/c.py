@@ -79,6 +79,9 @@ def _lab_names(ss: StateSpace) -> str:
             f"static const double TC_LAB_UNITS[{max(len(pairs), 1)}][2] = {{{units}}};\n"
             f"static const char *const TC_RUN_COLUMN = {c_string(run or '')};"
             "  /* a new value starts a campaign (\"\": none) */\n"
+            f"static const char *const TC_CLOCK_COLUMN = "
+            f"{c_string(ss.provenance.get('clock_column') or '')};"
+            "  /* the time of day joined to the date column's cell (\"\": none) */\n"
             f"static const char *const TC_THOUSANDS = "
             f"{c_string(ss.provenance.get('thousands') or '')};"
             "  /* data.thousands: the digits' grouping mark (\"\": none) */")

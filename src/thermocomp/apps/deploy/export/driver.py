@@ -151,6 +151,15 @@ static double value(const char *cell, int *bad) {
     return v;
 }
 
+/* `cell` without the spaces and double quotes around it (in place). */
+static const char *trimmed(char *cell) {
+    size_t len;
+    while (*cell == ' ' || *cell == '"') cell++;
+    len = strlen(cell);
+    while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"')) cell[--len] = '\0';
+    return cell;
+}
+
 /* Column j's cell in the contract's unit (NAN stays NAN). */
 static double converted(char **cells, int j, int *bad) {
     double v = value(cells[j], bad);
@@ -426,6 +435,8 @@ int main(int argc, char **argv) {
     static char line[MAX_LINE], run[MAX_CELL] = "";
     char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL, *end;
     int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
+    int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
+    static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
     int ncols, i, j, ignored, measured, restored = 0, failed;
@@ -499,6 +510,7 @@ int main(int argc, char **argv) {
     for (j = 0; j < ncols; j++) {
         cells[j] = (char *)named(cells[j], j);   /* the run column has no contract name */
         if (TC_RUN_COLUMN[0] && strcmp(cells[j], TC_RUN_COLUMN) == 0) run_col = j;
+        if (TC_CLOCK_COLUMN[0] && strcmp(cells[j], TC_CLOCK_COLUMN) == 0) clock_col = j;
     }
     for (i = 0; i < TC_N_INPUTS; i++) {
         where[i] = -1;
@@ -573,8 +585,12 @@ int main(int argc, char **argv) {
                 return 2;
             }
         }
-        if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
-                                     offset_of[time_col], &t) != 0) return 2;
+        if (time_col >= 0 && clock_col >= 0) {     /* '07.06.2027' and '14:00:00': one time */
+            snprintf(stamp, sizeof stamp, "%s %s", trimmed(cells[time_col]),
+                     trimmed(cells[clock_col]));
+            if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
+        } else if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
+                                            offset_of[time_col], &t) != 0) return 2;
         if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
             double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
             if (!isfinite(a0)) a0 = ambient;
