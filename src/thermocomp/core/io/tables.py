@@ -403,7 +403,7 @@ def _ungroup(table: pa.Table, names: list[str], types: dict, path: Path, opts: R
         if rows:
             first[name] = (min(rows), at)
     if first:
-        name = min(first, key=lambda n: first[n][0])
+        name = min(first, key=lambda n: (first[n][0], names.index(n)))
         row, at = first[name]
         if at == row:
             raw = table.column(name)
@@ -439,9 +439,9 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
 
 def _earliest_bad(path, names, types, opts, column: str) -> str:
     """Of the number columns, the one whose first cell that does not read is the earliest row
-    (``column``, the one Arrow named, on a tie or where it is no number column): Arrow names the
-    first column its threads meet (stranger65: row 7001 of one column in one run, row 592 of
-    another in the next, of the same file)."""
+    (on a tie the first in the file; ``column``, the one Arrow named, where it is no number
+    column): Arrow names the first column its threads meet (stranger65: row 7001 of one
+    column in one run, row 592 of another in the next, of the same file)."""
     floats = [n for n, t in types.items() if pa.types.is_floating(t)]
     if column not in floats or len(floats) < 2:
         return column
@@ -453,7 +453,7 @@ def _earliest_bad(path, names, types, opts, column: str) -> str:
                                    types[name])
         if found is not None:
             rows[name] = found[0]
-    return min(rows, key=lambda n: (rows[n], n != column)) if rows else column
+    return min(rows, key=lambda n: (rows[n], names.index(n))) if rows else column
 
 
 def _bad_cell_error(path, names, column, target, opts) -> ContractError:
