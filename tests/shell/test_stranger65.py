@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import io
 import json
+import re
 import subprocess
 from pathlib import Path
 
@@ -239,3 +240,23 @@ def test_the_compiled_stream_joins_a_date_and_its_time_of_day_as_the_reader_does
     got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
     want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
     assert got.shape == want.shape and np.abs(got - want).max() < 1e-9
+
+
+def test_a_refusal_of_a_mark_lists_the_files_other_marks_and_their_gap(tmp_path):
+    # it listed the one mark refused; the next read refused the next column's ('#N/A', then
+    # 'Err:502': one try of init each)
+    from thermocomp.core.io import ContractError, read_dataset
+
+    rows = [f"{60 * k},{20 + k / 100:.2f},{21 + k / 100:.2f},{k / 10:.1f}" for k in range(80)]
+    for k in (20, 21):
+        rows[k] = rows[k].replace(f",{20 + k / 100:.2f},", ",---,")           # T_a, 2 rows
+    for k in (40, 41, 42):
+        rows[k] = rows[k].replace(f",{21 + k / 100:.2f},", ",#N/A,")          # T_b, 3 rows
+    folder = _lab(tmp_path / "lab", {"r.csv": "time,T_a,T_b,E_X\n" + "\n".join(rows) + "\n"})
+    with pytest.raises(ContractError, match=re.escape(
+            "line 22 (data row 21): value '---' is not a number: a mark for a value not "
+            "measured? list the file's marks in data.missing_values (['---', '#N/A']), each then "
+            "a gap: data.max_gap_samples=3")):
+        read_dataset(folder)
+    ds, report = read_dataset(folder, {"missing_values": ["---", "#N/A"], "max_gap_samples": 3})
+    assert report["repairs"] == {"T_a": 2, "T_b": 3}

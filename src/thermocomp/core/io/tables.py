@@ -410,7 +410,7 @@ def _ungroup(table: pa.Table, names: list[str], types: dict, path: Path, opts: R
             raise ContractError(f"value {raw[at].as_py()!r} does not group its digits by three "
                                 f"with data.thousands={opts.thousands!r}",
                                 file=path, column=name, row=at + 1)
-        raise _bad_cell_error(path, names, name, types[name], opts)
+        raise _bad_cell_error(path, names, name, types[name], opts, types)
     for name, text in texts.items():
         table = table.set_column(table.column_names.index(name), name, pc.cast(text, types[name]))
     return table
@@ -431,7 +431,7 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
     match = _CONVERSION_ERROR.search(message)
     if match:
         column = _earliest_bad(path, names, types, opts, names[int(match.group(1))])
-        return _bad_cell_error(path, names, column, types[column], opts)
+        return _bad_cell_error(path, names, column, types[column], opts, types)
     if "CSV parse error" in message:
         return _malformed_row_error(path, names, opts, message)
     return ContractError(f"unreadable CSV ({message})", file=path)
@@ -456,7 +456,7 @@ def _earliest_bad(path, names, types, opts, column: str) -> str:
     return min(rows, key=lambda n: (rows[n], names.index(n))) if rows else column
 
 
-def _bad_cell_error(path, names, column, target, opts) -> ContractError:
+def _bad_cell_error(path, names, column, target, opts, types=None) -> ContractError:
     raw = pacsv.read_csv(_input(path, opts), **_csv_options(
         names, opts, include=[column], types={column: pa.string()})).column(column)
     number = pa.types.is_floating(target)
@@ -477,8 +477,14 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
                 "that line (and a unit row under it), or cut the file there into two files")
     if number and not hint and (not re.search(r"\d", str(value)) or _EXCEL_ERROR.fullmatch(
             str(value).strip())):
-        hint = (f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
-                + _gap_hint(raw, value, opts.max_gap_samples))
+        marks = _other_marks(path, names, types, opts, str(value))
+        if marks:     # (stranger65: each mark of another column was refused at the next read)
+            hint = (f": a mark for a value not measured? list the file's marks in "
+                    f"data.missing_values ({[str(value), *marks]!r})"
+                    + _gap_hint(raw, value, opts.max_gap_samples, marks.values()))
+        else:
+            hint = (f": a mark for a value not measured? list it in data.missing_values "
+                    f"(['{value}'])" + _gap_hint(raw, value, opts.max_gap_samples))
     return ContractError(f"value {value!r} is not {_describe(target, opts.time)}{hint}",
                          file=path, column=column, row=row + 1)
 
@@ -497,13 +503,47 @@ def _is_header(path: Path, opts: ReadOptions, value: str) -> bool:
     return any(value in (h, split_unit(h)[0]) for h in header)
 
 
-def _gap_hint(raw: pa.ChunkedArray, mark: str, allowed: int) -> str:
-    """Where the cells ``mark`` of a column, once missing, make a gap longer than ``allowed``
-    samples: the ``data.max_gap_samples`` that interpolates the longest run of them (said with
-    the mark, not at the next read)."""
+def _is_mark(value: str) -> bool:
+    """A cell's text that is a mark for a value not measured: no digit, or a formula's error."""
+    return not re.search(r"\d", value) or bool(_EXCEL_ERROR.fullmatch(value.strip()))
+
+
+def _other_marks(path, names, types, opts, first: str) -> dict:
+    """``{mark: its longest run in a column}`` of the other marks (:func:`_is_mark`) in the
+    file's number columns besides ``first`` (none without ``types``), so that one refusal lists
+    them all (at most 5)."""
+    floats = [n for n, t in (types or {}).items() if pa.types.is_floating(t)]
+    if not floats:
+        return {}
+    raw = pacsv.read_csv(_input(path, opts), **_csv_options(
+        names, opts, include=floats, types=dict.fromkeys(floats, pa.string())))
+    runs: dict = {}
+    for name in floats:
+        cells = raw.column(name)
+        values = set(pc.unique(cells).to_pylist()) - {None}
+        for value in values:
+            if value == first or value in runs or not _is_mark(str(value)):
+                continue
+            if reads_as_number(str(value), opts.decimal, opts.thousands):
+                continue
+            runs[value] = _longest(cells, value)
+            if len(runs) >= 5:
+                return runs
+    return runs
+
+
+def _longest(raw: pa.ChunkedArray, mark: str) -> int:
     marked = pc.fill_null(pc.equal(raw, mark), False).to_numpy(zero_copy_only=False)
     edges = np.flatnonzero(np.diff(np.concatenate([[0], marked.astype(np.int8), [0]])))
-    longest = int((edges[1::2] - edges[::2]).max(initial=0))
+    return int((edges[1::2] - edges[::2]).max(initial=0))
+
+
+def _gap_hint(raw: pa.ChunkedArray, mark: str, allowed: int, others=()) -> str:
+    """Where the cells ``mark`` of a column (and ``others``, the longest runs of the file's other
+    marks), once missing, make a gap longer than ``allowed`` samples: the
+    ``data.max_gap_samples`` that interpolates the longest run of them (said with the mark, not
+    at the next read)."""
+    longest = max(_longest(raw, mark), *others, 0)
     if longest <= allowed:
         return ""
     return (f", each then a gap: data.max_gap_samples={longest} interpolates the longest run of "
