@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 
 from conftest import FAST, refused
+from thermocomp.core.io import read_dataset
 from thermocomp.shell.cli import main
 
 
@@ -104,14 +105,17 @@ def test_init_says_each_sample_period_of_runs_logged_at_two(tmp_path, capsys):
     assert "data.resample_s=60 puts them on one grid" in out.err
 
 
-def test_a_renamed_channel_in_another_unit_is_said_to_be_renamed_not_mapped(tmp_path, capsys):
-    # data.columns converts nothing: 'dX1 [mm]' mapped to E_dX would be read as µm
+def test_a_renamed_channel_in_another_unit_is_mapped_and_converted(tmp_path, capsys):
+    # stranger65: data.columns now converts a mapped header's unit as a role does, and reads
+    # the header without its unit: the refusal names the entry that reads 'dX1 [mm]' in µm
+    # (it said to rename the files: data.columns read mm as µm, 1000x too small)
     folder = lab_folder(tmp_path / "lab", probe_mm_from=4)
-    line = refused(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX*]"],
-                   capsys, "'E_dX1' (its header in the file: 'dX1 [mm]') in the other 3",
-                   "renaming 'dX1 [mm]' to 'dX [mm]' in those files (data.columns would not "
-                   "convert its mm)")
-    assert "data.columns=" not in line
+    refused(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX*]"],
+            capsys, "'E_dX1' (its header in the file: 'dX1 [mm]') in the other 3",
+            "data.columns={dX1: E_dX} reads it under one name")
+    ds, _ = read_dataset(folder, {"roles": {"error": ["dX*"]}, "columns": {"dX1": "E_dX"}})
+    spans = [np.ptp(df["E_dX"].to_numpy(float)) for df in ds.campaigns.values()]
+    assert min(spans) > 0.2 * max(spans)        # every run in µm, none 1000x smaller
 
 
 def test_a_run_not_recorded_is_refused_before_any_run_is_said_held_out(tmp_path, capsys):

@@ -101,9 +101,7 @@ def test_the_compiled_c_streams_a_labs_file_in_degf_k_mm_and_minutes_as_replay(t
 
 @pytest.mark.parametrize("form, extra, says", [
     ("%m/%d/%Y %H:%M:%S", ("data.time='%m/%d/%Y %H:%M:%S'",),
-     ("'Zeit'", "data.time=%m/%d/%Y %H:%M:%S")),
-    ("%d.%m.%Y;%H:%M:%S", ("data.roles.time=[Datum,Uhrzeit]",),
-     ("a date ('Datum') and a time of day ('Uhrzeit') in two columns",))])
+     ("'Zeit'", "data.time=%m/%d/%Y %H:%M:%S"))])
 def test_a_time_stream_c_cannot_read_is_refused_at_export_naming_its_column(tmp_path, capsys,
                                                                             form, extra, says):
     # before: exported, and the compiled stream refused every row ("the time is no number", a
@@ -124,3 +122,26 @@ def test_a_time_stream_c_cannot_read_is_refused_at_export_naming_its_column(tmp_
              f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"],
             capsys, "export.format=c", *says)
     assert not (tmp_path / "code").exists()
+
+
+@needs_cc
+def test_a_date_and_its_time_of_day_in_two_columns_are_joined_by_the_compiled_stream(tmp_path):
+    # stranger65: refused at export ("a date ('Datum') and a time of day ('Uhrzeit') in two
+    # columns, which stream.c does not join"); stream.c joins them now, as the reader does
+    from test_export import checked_pack
+
+    runs = _runs()
+    for k, r in enumerate(runs):
+        start = pd.Timestamp("2023-03-01 08:00") + pd.Timedelta(days=7 * k)
+        stamps = start + pd.to_timedelta(r.pop("Zeit [s]"), unit="s")
+        r.insert(0, "Uhrzeit", stamps.dt.strftime("%H:%M:%S"))
+        r.insert(0, "Datum", stamps.dt.strftime("%d.%m.%Y"))
+    path = _long(tmp_path / "alle.csv", runs)
+    common = (f"data.path={path}", *DATA, "data.roles.time=[Datum,Uhrzeit]")
+    assert main(["run", *common, "model=lagbank", *FAST, f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "monitor.adaptive=false", "export.format=c", "track=false",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    done = _stream(tmp_path / "code" / "stream", path.read_text(encoding="utf-8"))
+    assert done.returncode == 0, done.stderr
+    assert len(done.stdout.splitlines()) == sum(len(r) for r in runs) + 1

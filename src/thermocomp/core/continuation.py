@@ -361,8 +361,18 @@ def persistence(comp, ds: Dataset, ids, carried: Mapping | None = None) -> dict[
 
 
 def carried_text(carried: dict) -> str:
-    """``A continues B + C; ...`` of ``{campaign: chain}`` (:func:`carry_over`)."""
-    return "; ".join(f"{c} continues {' + '.join(chain[:-1])}" for c, chain in carried.items())
+    """``A continues B + C; ...`` of ``{campaign: chain}`` (:func:`carry_over`): a chain inside
+    a longer one said by the longer one alone, and a chain of more than three campaigns by its
+    ends (stranger65: a week of day files made a line of 28 names, each campaign with every one
+    before it; a year's, 66,000)."""
+    inner = {c for chain in carried.values() for c in chain[:-1]}
+    return "; ".join(f"{c} continues {_ends(chain[:-1])}" for c, chain in carried.items()
+                     if c not in inner)
+
+
+def _ends(names: list) -> str:
+    return (" + ".join(names) if len(names) <= 3 else
+            f"{names[0]} + {names[1]} + ... + {names[-1]} ({len(names)} campaigns)")
 
 
 def lead_ins(comp, ds: Dataset, ids) -> dict:

@@ -27,7 +27,6 @@ from .io.contract import is_ambient, manifest_ambient, match_columns
 from .io.instants import start_instants
 from .io.own_headers import header_pattern
 from .io.roles import split_unit
-from .io.units import UNITS
 
 REFERENCED_PREFIXES = ("T_", "E_")   # taken relative to the first sample; S_ keep their values
 RAW_PREFIXES = ("S_", "T_")          # ride along raw in the context
@@ -209,16 +208,15 @@ def _renamed(campaigns, column: str, twin: str, files, headers, starts=None) -> 
     first = where(new)[0]
     raw = headers.get(new, new)
     said = "" if raw == new else f" (its header in the file: {raw!r})"
-    unit = split_unit(raw)[1]
-    if UNITS.get(new[0], {}).get((unit or "").lower().replace(" ", ""), (1.0, 0.0)) != (1.0, 0.0):
-        # data.columns converts nothing: 'dX1 [mm]' mapped so would be read as µm
-        same = f"{split_unit(headers.get(old, old))[0]} [{unit}]"
-        fix = (f"renaming {raw!r} to {same!r} in those files (data.columns would not convert "
-               f"its {unit})")
-    elif _PLAIN_KEY.fullmatch(raw):
-        fix = f"data.columns={{{raw}: {old}}}"
-    else:   # (a header of brackets or beyond ASCII is no dict key on the command line: Hydra)
-        fix = f"columns: {{{raw!r}: {old}}} in the data config"
+    # the header without its unit is a key data.columns reads (io.roles.by_header), and the
+    # unit is converted as a role's is (stranger65: 'dX1 [mm]' was told to be renamed in the
+    # files, data.columns read it unconverted; 'T Wasser [°C]' was a key no command line reads)
+    base = split_unit(raw)[0]
+    key = base if base and _PLAIN_KEY.fullmatch(base) else raw
+    if _PLAIN_KEY.fullmatch(key):
+        fix = f"data.columns={{{key}: {old}}}"
+    else:   # (a header beyond ASCII is no dict key on the command line: Hydra)
+        fix = f"columns: {{{key!r}: {old}}} in the data config"
     return ContractError(
         f"{old!r} is in {len(where(old))} of {len(order)} campaigns ({listed(where(old))}), "
         f"{new!r}{said} in the other {len(where(new))}, from {first} on: one sensor renamed? "

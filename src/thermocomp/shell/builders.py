@@ -100,10 +100,20 @@ def deploy_stream(cfg: DictConfig, comp: Compensator, train: dict, what: str = "
         raise ConfigError(f"{what} cannot be deployed: {exc}") from None
 
 
-def build_adaptive(cfg: DictConfig, streaming, train: dict):
+def build_adaptive(cfg: DictConfig, streaming, train: dict, ds=None):
     """The :class:`~thermocomp.apps.deploy.AdaptiveCompensator` of the ``monitor`` group around
-    ``streaming``: POD, detector limits and correction guard fitted on ``train``."""
+    ``streaming``: POD, detector limits and correction guard fitted on ``train``, its files that
+    continue one another joined as the model was fitted on them (``ds`` given: stranger65, a
+    lab's day files of one record were each referenced to their own first sample in the POD and
+    the guard, while the stream, warmed on the train days, read the test day against the first
+    day's: a healthy bed sensor excluded for the whole test day, replay 3.82 / 1.73 µm against
+    run's 3.39 / 1.32)."""
     from ..apps.deploy.adaptive import AdaptiveCompensator  # loaded by the stages that deploy, only
+    from ..core.continuation import continue_inside, fit_campaigns
+
+    reference = getattr(streaming.compensator, "reference", "first_sample")
+    if ds is not None and reference == "none" and continue_inside(ds, list(train)):
+        train = fit_campaigns(ds, train, list(train), reference)
 
     m = cfg.monitor
     share = m.pod.fit_share
@@ -131,7 +141,7 @@ def deployable(cfg: DictConfig, streaming, train: dict, ds=None):
     from ..apps.deploy.adapt import from_config as adapt_from_config
     from ..apps.deploy.naming import lab_names, lab_units
 
-    deployed = build_adaptive(cfg, streaming, train) if bool(cfg.monitor.adaptive) else streaming
+    deployed = build_adaptive(cfg, streaming, train, ds) if bool(cfg.monitor.adaptive) else streaming
     deployed.lab_names_ = lab_names(cfg, ds)
     deployed.lab_units_ = lab_units(ds)    # (the exported stream.c converts these headers)
     # served: every row that carries a measured error is a reference (no schedule)

@@ -209,6 +209,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     """:func:`contract_columns` with the unit conversions (``roles`` as ``ReadOptions.roles``;
     ``units``: ``data.units``, header -> unit, for a header that does not say it)."""
     first, units = first or {}, units or {}
+    columns = by_header(headers, columns)
     by_role = active(roles)
     out, problems = Naming(), []
     problems += [f"data.units names {h!r}, no header" for h in units if h not in headers]
@@ -228,6 +229,7 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
             continue
         if header in columns:
             out.names[header], out.roles[header] = columns[header], "data.columns"
+            _mapped_scale(out, columns[header], unit)
             continue
         if header == clock_header:             # joined to the date into one timestamp
             out.names[header], out.roles[header] = CLOCK, "time of day"
@@ -280,6 +282,34 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
     if problems:
         raise _refusal(problems, by_role, out.names, out.roles, file)
     return out
+
+
+def by_header(headers: Sequence[str], columns: Mapping) -> dict:
+    """``data.columns`` keyed by the file's headers: a key that is no header but the name of
+    exactly one header without its unit (``T Wasser`` for ``T Wasser [°C]``, the unit from a
+    unit row under the names, as the file's first row shows it) is that header's, as a
+    ``data.roles`` pattern matches it (stranger65: such a key was passed over without a word)."""
+    out = dict(columns)
+    for key, name in columns.items():
+        if key in headers:
+            continue
+        found = [h for h in headers if h != key and split_unit(h)[0] == key]
+        if len(found) == 1 and found[0] not in out:
+            out[found[0]] = name
+    return out
+
+
+def _mapped_scale(out: Naming, name: str, unit: str | None) -> None:
+    """A header mapped by ``data.columns`` to an error or a temperature, in a unit of another
+    scale (``dX Sonde [mm]`` -> ``E_dX``): converted as a role's header is (stranger65: it was
+    read as written, 1000x too small beside the files whose ``dX [mm]`` a role converted); a
+    unit the reader does not know is left as before (read as written)."""
+    kind = role(name)
+    if unit is None or kind not in ("E", "T"):
+        return
+    scale = UNITS[kind].get(unit.lower().replace(" ", ""))
+    if scale is not None and scale != (1.0, 0.0):
+        out.scales[name] = scale
 
 
 def matching_roles(header: str, roles: Mapping) -> list[str]:

@@ -92,8 +92,12 @@ def _read_runs(text: str, columns: list[str], opts
     if twice is not None:                 # (pandas would read them as 'T1' and 'T1.1')
         raise ContractError(twice.reason, file=SOURCE, column=twice.column)
     try:
-        df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
-                         thousands=opts.thousands, na_values=list(opts.missing_values))
+        if opts.thousands is None:
+            df = pd.read_csv(StringIO(text), sep=opts.delimiter, decimal=opts.decimal,
+                             na_values=list(opts.missing_values))
+        else:
+            df = _grouped(pd.read_csv(StringIO(text), sep=opts.delimiter, dtype=str,
+                                      na_values=list(opts.missing_values)), opts)
     except Exception as exc:    # pandas raises several kinds for a bad stream
         raise ContractError(f"stdin is not a CSV table with a header, data.delimiter="
                             f"{opts.delimiter!r} ({' '.join(str(exc).split())})",
@@ -160,6 +164,25 @@ def _table(text: str, sep: str) -> str:
     out = StringIO()
     csv.writer(out, delimiter=sep, lineterminator="\n").writerow(header)
     return out.getvalue() + "\n".join(lines[start + 1 + units:]) + "\n"
+
+
+def _grouped(df: pd.DataFrame, opts) -> pd.DataFrame:
+    """``df`` read as text, each column whose every cell is a number (``data.decimal``, its
+    digits grouped by three with ``data.thousands`` or not) as numbers, the others as written,
+    as the file reader reads them (stranger65: pandas' ``thousands`` took the '.' out of a date
+    too, '14.06.2027' -> 14062027, and the lab's day file piped into ``monitor`` was refused)."""
+    mark, point = re.escape(opts.thousands), re.escape(opts.decimal)
+    grouped = rf"[+-]?\d{{1,3}}(?:{mark}\d{{3}})+(?:{point}\d*)?"
+    for c in df.columns:
+        text = df[c].str.strip()
+        text = text.mask(text.str.fullmatch(grouped).fillna(False).astype(bool),
+                         text.str.replace(opts.thousands, "", regex=False))
+        if opts.decimal != ".":
+            text = text.str.replace(opts.decimal, ".", regex=False)
+        number = pd.to_numeric(text, errors="coerce")
+        if number.notna().sum() == df[c].notna().sum():
+            df[c] = number
+    return df
 
 
 def _named(df: pd.DataFrame, opts) -> tuple[pd.DataFrame, dict, list | None]:

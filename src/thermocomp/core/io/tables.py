@@ -24,7 +24,7 @@ from .layout import header_line, is_unit_row, with_units
 from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
-from .roles import RUN, active, excel_days_header, naming, same_header
+from .roles import RUN, active, excel_days_header, naming, same_header, split_unit
 from .separators import UNICODE_MINUS, misgrouped, reads_as_number, thousands_hint, ungrouped
 from .sniff import head_lines, resolved
 from .timestamps import (
@@ -47,7 +47,9 @@ from .units import is_flag
 _CSV_BLOCK_BYTES = 16 << 20
 _PANDAS_INDEX = re.compile(r"__index_level_\d+__")
 _CONVERSION_ERROR = re.compile(r"In CSV column #(\d+)")
-_EXCEL_ERROR = re.compile(r"#[A-Z0-9/]+[!?]")    # a formula's error, '#DIV/0!', '#WERT!'
+# a formula's error, '#DIV/0!', '#WERT!', or LibreOffice Calc's 'Err:502' (stranger65: refused
+# without the hint, as it holds digits)
+_EXCEL_ERROR = re.compile(r"#[A-Z0-9/]+[!?]|Err:\d{3}")
 _ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
 # A contract name: prefix + identifier-like name (it becomes part of file names: no path
 # separators, '..', spaces or control characters).
@@ -386,21 +388,31 @@ def _signed(path: Path) -> bool:
 
 def _ungroup(table: pa.Table, names: list[str], types: dict, path: Path, opts: ReadOptions
              ) -> pa.Table:
-    """The number columns read as text, cast to float without ``data.thousands``."""
+    """The number columns read as text, cast to float without ``data.thousands``; a cell that
+    does not read refused, the earliest row's of every column (stranger65: the first column in
+    the header's order, row 7001 of ``T cabinet`` where row 592 of another failed)."""
+    texts, first = {}, {}
     for name, kind in types.items():
         if not pa.types.is_floating(kind):
             continue
         raw = table.column(name)
         at = None if opts.thousands is None else misgrouped(raw, opts.thousands, opts.decimal)
-        if at is not None:
+        texts[name] = ungrouped(raw, opts.thousands, opts.decimal)
+        found = first_cast_failure(texts[name], kind)
+        rows = [r for r in (at, None if found is None else found[0]) if r is not None]
+        if rows:
+            first[name] = (min(rows), at)
+    if first:
+        name = min(first, key=lambda n: (first[n][0], names.index(n)))
+        row, at = first[name]
+        if at == row:
+            raw = table.column(name)
             raise ContractError(f"value {raw[at].as_py()!r} does not group its digits by three "
                                 f"with data.thousands={opts.thousands!r}",
                                 file=path, column=name, row=at + 1)
-        text = ungrouped(raw, opts.thousands, opts.decimal)
-        found = first_cast_failure(text, kind)
-        if found is not None:
-            raise _bad_cell_error(path, names, name, kind, opts)
-        table = table.set_column(table.column_names.index(name), name, pc.cast(text, kind))
+        raise _bad_cell_error(path, names, name, types[name], opts, types)
+    for name, text in texts.items():
+        table = table.set_column(table.column_names.index(name), name, pc.cast(text, types[name]))
     return table
 
 
@@ -418,14 +430,33 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
             return bad_bytes
     match = _CONVERSION_ERROR.search(message)
     if match:
-        column = names[int(match.group(1))]
-        return _bad_cell_error(path, names, column, types[column], opts)
+        column = _earliest_bad(path, names, types, opts, names[int(match.group(1))])
+        return _bad_cell_error(path, names, column, types[column], opts, types)
     if "CSV parse error" in message:
         return _malformed_row_error(path, names, opts, message)
     return ContractError(f"unreadable CSV ({message})", file=path)
 
 
-def _bad_cell_error(path, names, column, target, opts) -> ContractError:
+def _earliest_bad(path, names, types, opts, column: str) -> str:
+    """Of the number columns, the one whose first cell that does not read is the earliest row
+    (on a tie the first in the file; ``column``, the one Arrow named, where it is no number
+    column): Arrow names the first column its threads meet (stranger65: row 7001 of one
+    column in one run, row 592 of another in the next, of the same file)."""
+    floats = [n for n, t in types.items() if pa.types.is_floating(t)]
+    if column not in floats or len(floats) < 2:
+        return column
+    raw = pacsv.read_csv(_input(path, opts), **_csv_options(
+        names, opts, include=floats, types=dict.fromkeys(floats, pa.string())))
+    rows = {}
+    for name in floats:
+        found = first_cast_failure(ungrouped(raw.column(name), opts.thousands, opts.decimal),
+                                   types[name])
+        if found is not None:
+            rows[name] = found[0]
+    return min(rows, key=lambda n: (rows[n], names.index(n))) if rows else column
+
+
+def _bad_cell_error(path, names, column, target, opts, types=None) -> ContractError:
     raw = pacsv.read_csv(_input(path, opts), **_csv_options(
         names, opts, include=[column], types={column: pa.string()})).column(column)
     number = pa.types.is_floating(target)
@@ -441,21 +472,78 @@ def _bad_cell_error(path, names, column, target, opts) -> ContractError:
     if hint is None:
         hint = (": a decimal comma? set data.decimal=','" if opts.decimal != ","
                 and re.fullmatch(r"\s*[+-]?\d*,\d+\s*", str(value)) else "")
+    if _is_header(path, opts, str(value)):
+        hint = (": the file's header written again under its data (a logger restarted?): delete "
+                "that line (and a unit row under it), or cut the file there into two files")
     if number and not hint and (not re.search(r"\d", str(value)) or _EXCEL_ERROR.fullmatch(
             str(value).strip())):
-        hint = (f": a mark for a value not measured? list it in data.missing_values (['{value}'])"
-                + _gap_hint(raw, value, opts.max_gap_samples))
+        marks = _other_marks(path, names, types, opts, str(value))
+        if marks:     # (stranger65: each mark of another column was refused at the next read)
+            hint = (f": a mark for a value not measured? list the file's marks in "
+                    f"data.missing_values ({[str(value), *marks]!r})"
+                    + _gap_hint(raw, value, opts.max_gap_samples, marks.values()))
+        else:
+            hint = (f": a mark for a value not measured? list it in data.missing_values "
+                    f"(['{value}'])" + _gap_hint(raw, value, opts.max_gap_samples))
     return ContractError(f"value {value!r} is not {_describe(target, opts.time)}{hint}",
                          file=path, column=column, row=row + 1)
 
 
-def _gap_hint(raw: pa.ChunkedArray, mark: str, allowed: int) -> str:
-    """Where the cells ``mark`` of a column, once missing, make a gap longer than ``allowed``
-    samples: the ``data.max_gap_samples`` that interpolates the longest run of them (said with
-    the mark, not at the next read)."""
+def _is_header(path: Path, opts: ReadOptions, value: str) -> bool:
+    """``value`` (a cell refused) is one of the file's headers, with or without its unit: the
+    header line repeated under the data (stranger65: it was taken for a missing-value mark, to
+    be listed in data.missing_values)."""
+    value = value.strip()
+    if not value:
+        return False
+    try:
+        header = _peek_csv(path, opts.delimiter, opts.encoding)[0]
+    except ContractError:
+        return False
+    return any(value in (h, split_unit(h)[0]) for h in header)
+
+
+def _is_mark(value: str) -> bool:
+    """A cell's text that is a mark for a value not measured: no digit, or a formula's error."""
+    return not re.search(r"\d", value) or bool(_EXCEL_ERROR.fullmatch(value.strip()))
+
+
+def _other_marks(path, names, types, opts, first: str) -> dict:
+    """``{mark: its longest run in a column}`` of the other marks (:func:`_is_mark`) in the
+    file's number columns besides ``first`` (none without ``types``), so that one refusal lists
+    them all (at most 5)."""
+    floats = [n for n, t in (types or {}).items() if pa.types.is_floating(t)]
+    if not floats:
+        return {}
+    raw = pacsv.read_csv(_input(path, opts), **_csv_options(
+        names, opts, include=floats, types=dict.fromkeys(floats, pa.string())))
+    runs: dict = {}
+    for name in floats:
+        cells = raw.column(name)
+        values = set(pc.unique(cells).to_pylist()) - {None}
+        for value in values:
+            if value == first or value in runs or not _is_mark(str(value)):
+                continue
+            if reads_as_number(str(value), opts.decimal, opts.thousands):
+                continue
+            runs[value] = _longest(cells, value)
+            if len(runs) >= 5:
+                return runs
+    return runs
+
+
+def _longest(raw: pa.ChunkedArray, mark: str) -> int:
     marked = pc.fill_null(pc.equal(raw, mark), False).to_numpy(zero_copy_only=False)
     edges = np.flatnonzero(np.diff(np.concatenate([[0], marked.astype(np.int8), [0]])))
-    longest = int((edges[1::2] - edges[::2]).max(initial=0))
+    return int((edges[1::2] - edges[::2]).max(initial=0))
+
+
+def _gap_hint(raw: pa.ChunkedArray, mark: str, allowed: int, others=()) -> str:
+    """Where the cells ``mark`` of a column (and ``others``, the longest runs of the file's other
+    marks), once missing, make a gap longer than ``allowed`` samples: the
+    ``data.max_gap_samples`` that interpolates the longest run of them (said with the mark, not
+    at the next read)."""
+    longest = max(_longest(raw, mark), *others, 0)
     if longest <= allowed:
         return ""
     return (f", each then a gap: data.max_gap_samples={longest} interpolates the longest run of "

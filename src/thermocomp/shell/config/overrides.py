@@ -260,7 +260,8 @@ def _quoted_hint(exc: BaseException, msg: str) -> str:
     if value.startswith("{"):    # quoted, a map is one string; its keys are read unquoted only
         section, _, entry = key.lstrip("+").partition(".")
         pairs = (pair.partition(":") for pair in value.strip("{}").split(","))
-        yaml = ", ".join(f"'{k.strip()}': {v.strip()}" if sep else k for k, sep, v in pairs)
+        yaml = ", ".join(f"'{k.strip().strip(chr(39) + chr(34))}': {v.strip()}" if sep else k
+                         for k, sep, v in pairs)      # (a key the user quoted: quoted once)
         letters = "beyond ASCII" if not value.isascii() else "with spaces or brackets"
         return (f"{msg}; a map's key {letters} is not read on the command line, quoted or "
                 f"not (Hydra's grammar): write the entry into a config file, e.g. the "

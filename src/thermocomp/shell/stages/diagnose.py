@@ -89,7 +89,7 @@ def _write(cfg: DictConfig, ds, result, written: dict, out: Path) -> tuple[Path,
     return folder, rerun, main
 
 
-def _stream(cfg: DictConfig, comp, train: dict):
+def _stream(cfg: DictConfig, comp, train: dict, ds=None):
     """``replay(campaign, lead_in)`` through what ``promote`` registers of ``comp``: the plain
     stream (``promote.envelope``) and, with ``monitor.adaptive`` (default), the adaptive
     compensator around it (its sensor monitor and correction guard), so that "before" and
@@ -101,7 +101,7 @@ def _stream(cfg: DictConfig, comp, train: dict):
     env = cfg.promote.envelope
     streaming = StreamingCompensator.from_training(comp, train, float(env.margin),
                                                    str(env.policy), bool(env.get("pattern", True)))
-    deployed = deployable(cfg, streaming, train)
+    deployed = deployable(cfg, streaming, train, ds)
 
     def replayed(campaign, lead_in=None):
         try:
@@ -151,7 +151,7 @@ def diagnose(cfg: DictConfig) -> dict:
                                str(cfg.eval.e_p95.statistic), cfg.eval.e_p95.get("max_points", 200),
                                model_name=str(cfg.model.name),
                                ati="none" if ati is None else str(cfg.ati.name),
-                               stream_of=lambda comp, train: _stream(cfg, comp, train))
+                               stream_of=lambda comp, train: _stream(cfg, comp, train, ds))
         folder, rerun, main = _write(cfg, ds, result, written, resolve(cfg.out))
         metrics, tags = outputs.tracked(result)
         tracker.log_metrics(metrics)

@@ -185,20 +185,16 @@ STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601",
 
 def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> None:
     """Refuse a column whose unit ``stream.c`` cannot convert as the reader did: a header read
-    two ways (a letter unit, 'Probe K', taken apart by its first value), a time written as
+    two ways (a letter unit, 'Probe K', taken apart by its first value), or a time written as
     ``data.time`` says (elapsed h:mm:ss, a strptime format: stream.c reads seconds and ISO 8601
-    or day-first dates and times only), or the date and its time of day in two columns
-    (``clock``: the time-of-day column's headers)."""
+    or day-first dates and times only; a date and its time of day in two columns, ``clock``
+    their time-of-day headers, are joined as the reader joins them)."""
     for raw, (contract, scale, offset) in converted.items():
         if scale is None or not all(map(math.isfinite, (scale, offset))) or scale == 0:
             raise ConfigError(f"export.format=c: the column {raw!r} ({contract}) was read in "
                               "two units or one stream.c cannot convert: name its unit "
                               f"(data.units, {{{raw!r}: ...}}) or convert the file")
     shown = time_header if isinstance(time_header, str) else time_header[0]
-    if clock:
-        raise ConfigError(f"export.format=c: the time is a date ({shown!r}) and a time of day "
-                          f"({clock[0]!r}) in two columns, which stream.c does not join: write "
-                          "one column of dates and times (2023-01-07T08:45:00) or seconds")
     written = str(cfg.data.get("time") or "auto")
     if written not in STREAM_C_TIMES:
         raise ConfigError(f"export.format=c: the time column {shown!r} is read as data.time="
@@ -242,6 +238,11 @@ def export(cfg: DictConfig) -> dict:
         clock = raw_names(named, CLOCK) or (
             [] if isinstance(joined, str) or len(joined) != 2 else list(joined)[1:])
         _convertible(cfg, converted, lab.get(TIME, TIME), [str(c) for c in clock])
+        # (stranger65: stream.c joins the date and its time of day, as the reader does; the
+        # export was refused)
+        provenance.update(clock_column=str(clock[0]) if clock else None)
+    thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
+    provenance.update(thousands=None if thousands is None else str(thousands)[:1])
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
                       lab_units=converted, run_column=run_column,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),

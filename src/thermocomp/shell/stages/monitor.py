@@ -90,7 +90,7 @@ def monitor(cfg: DictConfig) -> dict:
         # one plain stream serves both: the fixed run and the adaptive one are each streamed
         # from a reset, one after the other
         fixed = deploy_stream(cfg, comp, train)
-        adaptive = build_adaptive(cfg, fixed, train)
+        adaptive = build_adaptive(cfg, fixed, train, ds)
         if adaptive.monitor is None:
             raise ConfigError("monitor needs at least 3 temperature inputs (T_ columns) in the "
                               f"model, got {[c for c in adaptive.columns_ if c.startswith('T_')]}")

@@ -78,7 +78,13 @@ def _lab_names(ss: StateSpace) -> str:
             "   in the contract's unit (um, degC, s), as the model's reader converted it */\n"
             f"static const double TC_LAB_UNITS[{max(len(pairs), 1)}][2] = {{{units}}};\n"
             f"static const char *const TC_RUN_COLUMN = {c_string(run or '')};"
-            "  /* a new value starts a campaign (\"\": none) */")
+            "  /* a new value starts a campaign (\"\": none) */\n"
+            f"static const char *const TC_CLOCK_COLUMN = "
+            f"{c_string(ss.provenance.get('clock_column') or '')};"
+            "  /* the time of day joined to the date column's cell (\"\": none) */\n"
+            f"static const char *const TC_THOUSANDS = "
+            f"{c_string(ss.provenance.get('thousands') or '')};"
+            "  /* data.thousands: the digits' grouping mark (\"\": none) */")
 
 
 def _pattern_constants(ss: StateSpace) -> list:

@@ -60,12 +60,18 @@ enum { SECONDS = 1, LOCAL_TIME, ZONED_TIME };   /* a stream's time: as its first
 
 static char sep = ',';
 
+/* A line's cells at `by`; a separator inside double quotes is the cell's, as a CSV reader
+   reads it (stranger65: a spreadsheet's "1,200.0" in a ','-separated file split a row in two
+   cells, "row has not 14 cells", though the model reads no such column). */
 static int split_by(char *line, char **cells, char by) {
-    int n = 0;
+    int n = 0, quoted = 0;
     char *p = line;
     line[strcspn(line, "\r\n")] = '\0';
     cells[n++] = p;
-    while ((p = strchr(p, by)) != NULL && n < MAX_COLS) { *p++ = '\0'; cells[n++] = p; }
+    for (; *p && n < MAX_COLS; p++) {
+        if (*p == '"') quoted = !quoted;
+        else if (*p == by && !quoted) { *p = '\0'; cells[n++] = p + 1; }
+    }
     return n;
 }
 
@@ -115,6 +121,20 @@ static int names_every_input(const char *line) {
     return 1;
 }
 
+/* `text` without the thousands separator `mark` where it groups digits by three (data.thousands:
+   1.234,5 or 1,234.5, as the reader reads them; a date's 07.06.2027 is left as it is). */
+static void ungroup(char *text, char mark) {
+    char *p, *w;
+    for (p = text; (p = strchr(p, mark)) != NULL; p++) {
+        if (p == text || p[-1] < '0' || p[-1] > '9') return;
+        if (!(p[1] >= '0' && p[1] <= '9' && p[2] >= '0' && p[2] <= '9' && p[3] >= '0'
+              && p[3] <= '9') || (p[4] >= '0' && p[4] <= '9')) return;
+    }
+    for (p = w = text; *p; p++)
+        if (*p != mark) *w++ = *p;
+    *w = '\0';
+}
+
 /* A cell's number; NAN when empty, and when it is no number as a whole (then `bad` is set). */
 static double value(const char *cell, int *bad) {
     char text[MAX_CELL], *end, *c;
@@ -123,11 +143,21 @@ static double value(const char *cell, int *bad) {
     if (*cell == '\0') return NAN;
     strncpy(text, cell, MAX_CELL - 1);
     text[MAX_CELL - 1] = '\0';
+    if (TC_THOUSANDS[0]) ungroup(text, TC_THOUSANDS[0]);
     if (sep != ',' && (c = strchr(text, ',')) != NULL) *c = '.';   /* a decimal comma */
     v = strtod(text, &end);
     while (*end == ' ' || *end == '"') end++;
     if (end == text || *end != '\0') { *bad = 1; return NAN; }
     return v;
+}
+
+/* `cell` without the spaces and double quotes around it (in place). */
+static const char *trimmed(char *cell) {
+    size_t len;
+    while (*cell == ' ' || *cell == '"') cell++;
+    len = strlen(cell);
+    while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"')) cell[--len] = '\0';
+    return cell;
 }
 
 /* Column j's cell in the contract's unit (NAN stays NAN). */
@@ -405,6 +435,8 @@ int main(int argc, char **argv) {
     static char line[MAX_LINE], run[MAX_CELL] = "";
     char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL, *end;
     int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
+    int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
+    static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
     int ncols, i, j, ignored, measured, restored = 0, failed;
@@ -478,6 +510,7 @@ int main(int argc, char **argv) {
     for (j = 0; j < ncols; j++) {
         cells[j] = (char *)named(cells[j], j);   /* the run column has no contract name */
         if (TC_RUN_COLUMN[0] && strcmp(cells[j], TC_RUN_COLUMN) == 0) run_col = j;
+        if (TC_CLOCK_COLUMN[0] && strcmp(cells[j], TC_CLOCK_COLUMN) == 0) clock_col = j;
     }
     for (i = 0; i < TC_N_INPUTS; i++) {
         where[i] = -1;
@@ -552,8 +585,12 @@ int main(int argc, char **argv) {
                 return 2;
             }
         }
-        if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
-                                     offset_of[time_col], &t) != 0) return 2;
+        if (time_col >= 0 && clock_col >= 0) {     /* '07.06.2027' and '14:00:00': one time */
+            snprintf(stamp, sizeof stamp, "%s %s", trimmed(cells[time_col]),
+                     trimmed(cells[clock_col]));
+            if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
+        } else if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
+                                            offset_of[time_col], &t) != 0) return 2;
         if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
             double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
             if (!isfinite(a0)) a0 = ambient;
