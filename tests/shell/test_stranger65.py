@@ -158,13 +158,9 @@ def spreadsheet(path: Path, rows: int = 240) -> Path:
     return path
 
 
-@needs_cc
-def test_the_compiled_stream_reads_quoted_cells_and_grouped_digits_as_the_reader_does(tmp_path):
-    # before: "stream: row 2 has not 5 cells" (the separator inside "1,200.0" split the row);
-    # the time "1,020" is read ungrouped by data.thousands, as the reader reads it
-    path = spreadsheet(tmp_path / "export.csv")
-    common = [f"data.path={path}", "data.roles.error=[dX]", "data.roles.state=[Generator]",
-              "data.thousands=,", "data.test_fraction=0.3", "data.reference=none"]
+def _compiled_stream_equals_its_pack(tmp_path, path, common: list) -> None:
+    """A lag bank run and exported as C on ``common``; the compiled stream fed the lab's file as
+    written gives the check pack's corrections (its rows as thermocomp read them)."""
     assert main(["run", *common, *FAST, "model=lagbank", "plots=none",
                  f"out={tmp_path / 'run'}"]) == 0
     assert main(["export", *common, "track=false", "export.format=c",
@@ -175,8 +171,18 @@ def test_the_compiled_stream_reads_quoted_cells_and_grouped_digits_as_the_reader
     assert done.returncode == 0, done.stderr
     got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
     want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
-    # the lab's file as written gives the pack's corrections (its rows as thermocomp read them)
     assert got.shape == want.shape and np.abs(got - want).max() < 1e-9
+
+
+@needs_cc
+def test_the_compiled_stream_reads_quoted_cells_and_grouped_digits_as_the_reader_does(tmp_path):
+    # before: "stream: row 2 has not 5 cells" (the separator inside "1,200.0" split the row);
+    # the time "1,020" is read ungrouped by data.thousands, as the reader reads it
+    path = spreadsheet(tmp_path / "export.csv")
+    common = [f"data.path={path}", "data.roles.error=[dX]", "data.roles.state=[Generator]",
+              "data.thousands=,", "data.test_fraction=0.3", "data.reference=none"]
+    # the lab's file as written gives the pack's corrections (its rows as thermocomp read them)
+    _compiled_stream_equals_its_pack(tmp_path, path, common)
 
 
 def test_a_stream_with_grouped_digits_keeps_its_day_first_dates(tmp_path):
@@ -229,17 +235,7 @@ def test_the_compiled_stream_joins_a_date_and_its_time_of_day_as_the_reader_does
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     common = [f"data.path={path}", "data.roles.time=[Datum,Uhrzeit]", "data.roles.error=[dX]",
               "data.test_fraction=0.3", "data.reference=none"]
-    assert main(["run", *common, *FAST, "model=lagbank", "plots=none",
-                 f"out={tmp_path / 'run'}"]) == 0
-    assert main(["export", *common, "track=false", "export.format=c",
-                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    checked_pack(tmp_path / "code")
-    done = subprocess.run([str(tmp_path / "code" / "stream")], input=path.read_bytes(),
-                          capture_output=True)
-    assert done.returncode == 0, done.stderr
-    got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
-    want = pd.read_csv(next((tmp_path / "code" / "check").glob("*/expected.csv"))).to_numpy(float)
-    assert got.shape == want.shape and np.abs(got - want).max() < 1e-9
+    _compiled_stream_equals_its_pack(tmp_path, path, common)
 
 
 def test_a_refusal_of_a_mark_lists_the_files_other_marks_and_their_gap(tmp_path):
