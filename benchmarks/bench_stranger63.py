@@ -195,7 +195,7 @@ FAMILIES = {
 WRAPPERS = ("plain", "ati", "bias", "rls")
 
 
-from lab_matrix import matrix, monitored, table  # noqa: E402  (the benches' shared matrix)
+from lab_matrix import matrix_step, monitored, table  # noqa: E402  (the benches' shared matrix)
 
 # --- monitor: the healthy test week, then a fault on one sensor from its middle -----------------
 
@@ -246,12 +246,7 @@ def main(argv=None) -> int:
         print(json.dumps({p.name: sorted(x.name for x in p.iterdir())
                           for p in (root / n for n in SEEDS)}))
     if what == "matrix":          # matrix ROOT [names] [--families ...] [--wrappers ...]
-        rest = argv[2:]
-        cut = [i for i, a in enumerate(rest) if a.startswith("--")]
-        groups = {rest[i]: rest[i + 1:(cut + [len(rest)])[k + 1]] for k, i in enumerate(cut)}
-        names = rest[:cut[0]] if cut else rest
-        matrix(root, names or list(SEEDS), groups.get("--families") or list(FAMILIES),
-               groups.get("--wrappers") or list(WRAPPERS), FAMILIES)
+        matrix_step(root, argv[2:], SEEDS, FAMILIES, WRAPPERS, FAMILIES)
     if what == "table":           # table ROOT name
         print(table(root, argv[2]))
     if what == "monitor":         # monitor ROOT name family sensor-header...

@@ -198,7 +198,7 @@ WRAPPERS = ("plain", "ati")
 from lab_matrix import (  # noqa: E402  (the benches' shared matrix)
     data_args,
     exported,
-    matrix,
+    matrix_step,
     monitored,
     replayed,
     stage,
@@ -317,12 +317,7 @@ def main(argv: list[str]) -> None:
     elif step == "init":
         initialised(root)
     elif step == "matrix":        # matrix ROOT [names] [--families ...] [--wrappers ...]
-        rest = argv[2:]
-        cut = [i for i, a in enumerate(rest) if a.startswith("--")]
-        groups = {rest[i]: rest[i + 1:(cut + [len(rest)])[k + 1]] for k, i in enumerate(cut)}
-        names = rest[:cut[0]] if cut else rest
-        matrix(root, names or list(SEEDS), groups.get("--families") or list(FAMILIES),
-               groups.get("--wrappers") or list(WRAPPERS), FAMILIES)
+        matrix_step(root, argv[2:], SEEDS, FAMILIES, WRAPPERS, FAMILIES)
     elif step == "monitor":       # monitor ROOT name family sensor-header...
         monitoring(root, argv[2], argv[3], argv[4:])
     elif step == "diagnose":      # diagnose ROOT name family

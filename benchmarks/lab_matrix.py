@@ -134,6 +134,16 @@ def matrix(root: Path, names, families, wrappers, options: dict) -> None:
                     f.write(json.dumps(row, default=str) + "\n")
 
 
+def matrix_step(root: Path, rest: list, seeds, families, wrappers, options: dict) -> None:
+    """A bench's ``matrix ROOT [names] [--families ...] [--wrappers ...]``: :func:`matrix` of the
+    names given (default: every record of ``seeds``) and the families / wrappers given."""
+    cut = [i for i, a in enumerate(rest) if a.startswith("--")]
+    groups = {rest[i]: rest[i + 1:(cut + [len(rest)])[k + 1]] for k, i in enumerate(cut)}
+    names = rest[:cut[0]] if cut else rest
+    matrix(root, names or list(seeds), groups.get("--families") or list(families),
+           groups.get("--wrappers") or list(wrappers), options)
+
+
 def monitored(root: Path, name: str, family: str, out: Path, *extra: str) -> dict:
     rc, said, cpu = stage("monitor", *data_args(root, name), *extra,
                           f"monitor.model={root / 'out' / f'{name}-{family}-plain' / 'model.pkl'}",
