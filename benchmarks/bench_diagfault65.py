@@ -33,11 +33,19 @@ sensor's error rises in that unit, the fast, source-driven one most.  So the own
 against the field's own rise in the same unit: with ``q_k`` sensor k's lower-quartile unit RMS
 (``sensors.self_prediction``, as shipped) and ``u*`` sensor j's worst unit,
 
-    field_j = max(1, median over the other judged sensors k of r_{k,u*} / q_k)
+    field_j = max(1, median over the other judged sensors k of r^{-j}_{k,u*} / q^{-j}_k)
     J_j     = min(cross_j, own_j / field_j)
 
-(``cross_j`` and ``own_j`` as shipped; both passes; also for ``test_sensor_warnings``, which read
-the same table).  ``field_j >= 1``: the rule only ever lowers a ratio, it nominates nothing new.
+where ``r^{-j}_{k,u}`` is sensor k's self-prediction RMS in unit u with j left out of k's
+predictors (and ``q^{-j}_k`` its lower quartile over the units): a broken j would otherwise spoil
+its neighbours' predictions and raise the "field" itself.  (``cross_j`` and ``own_j`` as shipped;
+both passes; also for ``test_sensor_warnings``, which read the same table.)  ``field_j >= 1``:
+the rule only ever lowers a ratio, it nominates nothing new.
+
+Amended before any scoring: the first form (committed in 8857e015) took ``r_{k,u*} / q_k`` with
+j among k's predictors; on a synthetic field (tests/shell/test_diagnose.py's kind) a 1 K offset
+of one sensor in one campaign raised its neighbours' errors with it (field 8.5), which would hide
+every real fault that spoils its neighbours.  Nothing of the bar below had been run on either.
 
 Adoption bar (written before scoring), new against shipped:
 (1) no case x target of bench_remeasure62's diagnose set, of edm_a2 / edm_b (mlr, both targets)
@@ -61,3 +69,173 @@ import numpy as np
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
+
+import bench_remeasure62 as rm62  # noqa: E402
+
+
+def problem_of(root: Path, name: str):
+    """``(problem, inputs)`` of ``diagnose`` on stranger65's ``name`` (mlr), as its health step
+    gets them (the stage run in process up to its first self-prediction)."""
+    from thermocomp.apps.diagnose import search
+    from thermocomp.shell.cli import main as cli
+
+    class Got(Exception):
+        pass
+
+    got = {}
+    shipped = search.self_prediction
+
+    def grab(problem, inputs, *args, **kwargs):
+        got.update(problem=problem, inputs=list(inputs))
+        raise Got
+
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    search.self_prediction = grab
+    try:
+        cli(["diagnose", f"hydra.searchpath=[file://{root}/init-{name}/conf]", f"data={name}",
+             "model=mlr", "plots=none", f"out={root}/forensics-{name}"])
+    except (Got, SystemExit):
+        pass
+    finally:
+        search.self_prediction = shipped
+    return got["problem"], got["inputs"]
+
+
+def forensics(root: Path, names=("edm_a2", "edm_b")) -> None:
+    """Per record: the health units (h from the record's start, share of the machine powered) and
+    each judged sensor's self-prediction RMS there (first pass, every other sensor a predictor);
+    the cabinet's error around the Saturday power-off; the table as the health step sees it."""
+    import edm65
+
+    from thermocomp.apps.diagnose import sensors as sp
+
+    for name in names:
+        p, inputs = problem_of(root, name)
+        names_t = [c for c in inputs if c.startswith("T_")]
+        judged = [j for j, c in enumerate(names_t) if not sp.is_ambient(c)]
+        T = p.X[names_t].to_numpy(float)
+        index, n, units = sp._health_units(p)
+        E, _ = sp._errors(p, T, judged, {j: [i for i in range(len(names_t)) if i != j] for j in judged})
+        rms = sp._unit_rms(E, index, n)
+        t = p.context["time"].to_numpy(float)
+        h = (t - t.min()) / 3600
+        print(f"{name}: {len(T)} train rows, NaN in the inputs {int(np.isnan(T).sum())}")
+        print("  unit  h from-to   powered  " + " ".join(f"{names_t[j][2:12]:>10s}" for j in judged))
+        for u in range(n):
+            m = index == u
+            on = edm65.powered(t[m] - t.min()).mean()
+            print(f"  {u + 1:4d}  {h[m].min():5.1f}-{h[m].max():5.1f}  {on:5.2f}   "
+                  + " ".join(f"{rms[c, u]:10.2f}" for c in range(len(judged))))
+        cab = next(c for c, j in enumerate(judged) if "cabinet" in names_t[j] or "schrank" in names_t[j])
+        e = E[:, cab]
+        k = int(np.nanargmax(np.abs(e)))
+        print(f"  {names_t[judged[cab]]}: largest |error| {abs(e[k]):.2f} K at {h[k]:.2f} h; around the "
+              "power-off (132 h): " + ", ".join(
+                  f"{h[i]:.1f} h {T[i, judged[cab]]:.1f} °C err {e[i]:+.1f}"
+                  for i in np.searchsorted(h, [131.0, 132.2, 133.0, 134.0, 136.0, 140.0])))
+        table = sp.self_prediction(p, inputs, tolerance=3.0)
+        print(table.round(2).to_string(), flush=True)
+
+
+def faults(root: Path, out: Path) -> None:
+    """bench_diagnose_faults58's 20 cases and its 16 one-unit ones (KIND1), rows to ``out``."""
+    import bench_diagnose_faults58 as f58
+    from cpu import cpu_seconds
+
+    cases = f58.CASES + [f"{s}:{k}1" for s in f58.SCENARIOS for k in f58.KINDS]
+    for case in cases:
+        start = cpu_seconds()
+        row = f58.row(case, root / "lag")
+        row["cpu_s"] = round(cpu_seconds() - start, 1)
+        rm62._append(out, row)
+
+
+def edm(root: Path, out: Path) -> None:
+    """``diagnose`` mlr on stranger65's edm_a2 and edm_b (its ``diagnosed``), rows to ``out``."""
+    import bench_stranger65 as s65
+    from cpu import cpu_seconds
+
+    for name in ("edm_a2", "edm_b"):
+        start = cpu_seconds(children=True)
+        row = s65.diagnosed(root, name, "mlr")
+        d = json.loads((root / "diag" / f"{name}-mlr" / "diagnosis.json").read_text())
+        rm62._append(out, {"case": f"edm:{name}", "accepted": row.get("accepted"),
+                           "excluded": d["excluded_inputs"],
+                           "steps": [s["effect"] for s in d["steps"][1:]],
+                           "targets": {t: list(v) for t, v in row["targets"].items()},
+                           "jump": {s["sensor"]: round(s["jump_ratio"], 2) for s in d["self_prediction"]},
+                           "cpu_s": round(cpu_seconds(children=True) - start, 1)})
+
+
+def _worse(shipped: list[dict], new: list[dict], after) -> list[str]:
+    out = []
+    for b, a in zip(shipped, new):
+        assert b["case"] == a["case"]
+        for t in b["targets"]:
+            x, y = after(b["targets"][t]), after(a["targets"][t])
+            if y > 1.02 * x:
+                out.append(f"{b['case']} {t} {rm62._pct(y, x):+.1f} %")
+    return out
+
+
+def score(rm: Path, shipped: str, new: str) -> None:
+    """The bar: bench_remeasure62's set, faults58's cases, edm; every change printed."""
+    import bench_diagref65 as d65
+
+    set0, set1 = rm62._read(rm / f"{shipped}.jsonl"), rm62._read(rm / f"{new}.jsonl")
+    f0, f1 = rm62._read(rm / f"faults-{shipped}.jsonl"), rm62._read(rm / f"faults-{new}.jsonl")
+    e0, e1 = rm62._read(rm / f"edm-{shipped}.jsonl"), rm62._read(rm / f"edm-{new}.jsonl")
+    print(rm62._wrapped(["remeasure62 set, changed"] + ["  " + s for s in rm62.compare(set0, set1)]))
+    print(rm62._wrapped(["remeasure62 set"] + ["  " + s for s in d65.bar(set0, set1)]))
+    found = []
+    for rows in (f0, f1):
+        found.append(([r["case"] for r in rows if r["found"] and not r["case"][-1].isdigit()],
+                      [r["case"] for r in rows if r["found"] and r["case"][-1].isdigit()]))
+    print("faults58, changed:")
+    for b, a in zip(f0, f1):
+        for t in b["targets"]:
+            o, n = b["targets"][t], a["targets"][t]
+            keys = ("excluded", "accepted", "test_rmse")
+            if [o[k] for k in keys] != [n[k] for k in keys]:
+                print(f"  {b['case']} {t}: excluded {o['excluded']} -> {n['excluded']}, "
+                      f"test {o['test_rmse'][1]} -> {n['test_rmse'][1]} (before {o['test_rmse'][0]}); "
+                      f"accepted {o['accepted']} -> {n['accepted']}")
+        if b.get("planted_jump") != a.get("planted_jump"):
+            print(f"  {b['case']}: planted jump {b.get('planted_jump')} -> {a.get('planted_jump')}")
+    print("edm:")
+    for b, a in zip(e0, e1):
+        print(f"  {b['case']}: {b['steps']} {b['targets']} -> {a['steps']} {a['targets']}; jump "
+              f"{b['jump']} -> {a['jump']}")
+    worse = (_worse(set0, set1, lambda o: o["test_rmse"][1])
+             + _worse(f0, f1, lambda o: o["test_rmse"][1]) + _worse(e0, e1, lambda o: o[1]))
+    bar1 = d65.bar(set0, set1)
+    checks = [(f"(1) > 2 % worse than shipped: {len(worse)}: " + ", ".join(worse), not worse),
+              (bar1[1], bar1[1].endswith("[holds]")), (bar1[2], bar1[2].endswith("[holds]")),
+              (f"(4) faults58 found {len(found[0][0])} -> {len(found[1][0])} of 16, one-unit "
+               f"{len(found[0][1])} -> {len(found[1][1])} of 16",
+               len(found[1][0]) >= len(found[0][0]) and len(found[1][1]) >= len(found[0][1]))]
+    print(rm62._wrapped([f"{text.split(' [')[0]} [{'holds' if ok else 'FAILS'}]" for text, ok in checks]
+                        + ["bar: " + ("PASSES" if all(ok for _, ok in checks) else "FAILS")]))
+    cpu = {k: (sum(r["cpu_s"] for r in x), sum(r["cpu_s"] for r in y))
+           for k, x, y in (("set", set0, set1), ("faults", f0, f1), ("edm", e0, e1))}
+    print("CPU s shipped -> new: " + ", ".join(f"{k} {a:.0f} -> {b:.0f}" for k, (a, b) in cpu.items()))
+
+
+def main(argv: list[str]) -> int:
+    what, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
+    if what == "forensics":
+        forensics(root, rest or ("edm_a2", "edm_b"))
+    elif what == "faults":
+        faults(root, Path(rest[0]).resolve())
+    elif what == "edm":
+        edm(root, Path(rest[0]).resolve())
+    elif what == "run":               # bench_remeasure62's diagnose runner, rows to ROOT/<stem>.jsonl
+        groups = ["cases", "few", "fresh", "null", "jig"]
+        rm62.measure(root / f"{rest[0]}.jsonl", rm62.diagnose_rows(root, groups))
+    elif what == "score":
+        score(root, rest[0], rest[1])
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
