@@ -71,6 +71,8 @@ CPU of a run 0.5-3.6 s (lstm 9-11 s), replay 0.5-4.3 s.
 0.53 / 0.32 (first ``sensor_fault:T_cabinet``, CV gain 1.66 %, jump ratio 5.48 >= 3: a healthy
 sensor removed; then the planted frame, then power x T_amb); without the sensor_fault family
 0.49 / 0.25 (the frame, then the power): the removal cost 7 % / 28 %.  Left as it is.
+(diagfault65, ``bench_diagfault65.py``: physics -- the cabinet's fall at the Saturday-noon
+power-off, jump 6.58 on edm_a2 too; a rule against it refused.)
 
 ``monitor`` mlr, edm_a2's test day: healthy 0 events, fixed = adaptive = 3.394 / 1.324; the raw
 day file on stdin the same (after the stdin mend; before it refused its date); +3 K on T Tisch
