@@ -273,8 +273,10 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
             roles["ambient"].append(pattern)
         elif is_flag(first.get(h)):          # 'true' / 'false': an on/off flag, a state
             roles["state"].append(pattern)
-        elif not (reads_as_number(first.get(h), opts.decimal) or looks_like_timestamp(first.get(h))
-                  or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
+        elif not (reads_as_number(first.get(h), opts.decimal, opts.thousands)
+                  or str(first.get(h) or "").strip() in opts.missing_values     # ('---')
+                  or looks_like_timestamp(first.get(h)) or named_as_time(h)):
+            # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return _by_role(roles, header, first)
 
