@@ -297,7 +297,7 @@ TRIES = {
 def initialised(root: Path) -> None:
     """``thermocomp init`` of each export, each refusal's hint taken in the next try; ``edm_a2``
     is ``edm_a`` with the header the logger wrote again deleted, as the refusal says."""
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    _project(root)     # (initone65: it was made by `matrix` alone)
     fixed = root / "edm_a2"
     if not fixed.exists():
         import shutil
@@ -320,12 +320,17 @@ def initialised(root: Path) -> None:
                 yaml.rename(conf / f"{name}.yaml")
 
 
-def once(root: Path) -> None:
-    """``init`` once on each export as written, then the run it prints (initone65)."""
+def _project(root: Path) -> None:
+    """The project root ``<root>/tc`` the stages run in (``conf`` linked to the repository's)."""
     os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
     (root / "tc").mkdir(parents=True, exist_ok=True)
     if not (root / "tc" / "conf").exists():
         (root / "tc" / "conf").symlink_to(REPO / "conf")
+
+
+def once(root: Path) -> None:
+    """``init`` once on each export as written, then the run it prints (initone65)."""
+    _project(root)
     for name in ("edm_a", "edm_b"):
         src = root / name
         src = next(src.glob("*.csv")) if name == "edm_b" else src
