@@ -44,7 +44,7 @@ from .encoding import arrow_encoding
 from .footer import footer, source
 from .layout import header_line
 from .roles import named_as_time
-from .separators import GROUP_MARKS, NO_BREAK_SPACES, UNICODE_MINUS, grouped, number
+from .separators import GROUP_MARKS, NO_BREAK_SPACES, UNICODE_MINUS, grouped
 from .sniff import head_lines
 
 # a formula's error, '#DIV/0!', '#WERT!', LibreOffice Calc's 'Err:502' (as .tables reads them)
@@ -98,19 +98,52 @@ def _texts(column: pa.ChunkedArray) -> pa.ChunkedArray:
     return pc.replace_substring(text, UNICODE_MINUS, "-")
 
 
-def _numeric(values: list[str], decimal: str, marks=GROUP_MARKS) -> np.ndarray:
-    """Which of the distinct cell texts ``values`` read as numbers (the decimal mark, or
-    grouped by three with a mark)."""
-    patterns = [re.compile(grouped(m, decimal)) for m in marks if m != decimal]
-    return np.array([number(v, decimal) is not None or any(p.fullmatch(v) for p in patterns)
-                     for v in values], dtype=bool)
+def _plain(decimal: str) -> str:
+    d = re.escape(decimal)
+    return rf"^[+-]?(?:\d+(?:{d}\d*)?|{d}\d+)(?:[eE][+-]?\d+)?$"
+
+
+def _matches(text, pattern: str) -> np.ndarray:
+    return pc.match_substring_regex(text, pattern).to_numpy(zero_copy_only=False)
+
+
+def _holds(text, mark: str) -> np.ndarray:
+    return pc.match_substring(text, mark).to_numpy(zero_copy_only=False)
+
+
+@dataclass
+class _Column:
+    header: str
+    path: Path
+    text: pa.ChunkedArray
+    missing: np.ndarray          # read as missing already (empty, NaN)
+    plain: np.ndarray            # a number with the decimal mark
+    grouped: dict                # mark -> grouped by three with it
+
+    def first(self, mask: np.ndarray) -> str:
+        return str(self.text[int(np.argmax(mask))].as_py())
+
+
+def _column(header: str, path: Path, text, decimal: str) -> _Column | None:
+    """The column's masks, or None where it is no number column (:data:`NUMBER_SHARE`)."""
+    missing = pc.is_in(text, value_set=pa.array(list(READ_AS_MISSING))).to_numpy(
+        zero_copy_only=False)
+    filled = int((~missing).sum())
+    if not filled:
+        return None
+    plain = _matches(text, _plain(decimal))
+    marks = {m: _matches(text, f"^{grouped(m, decimal)}$") for m in GROUP_MARKS if m != decimal}
+    numeric = plain | np.logical_or.reduce([*marks.values(), np.zeros_like(plain)])
+    if int((numeric & ~missing).sum()) < NUMBER_SHARE * filled:
+        return None
+    return _Column(header, path, text, missing, plain, marks)
 
 
 def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
             thousands: str | None, missing_values: list, peek) -> Cells:
     """:class:`Cells` of the text ``files`` (``peek``: :func:`.tables._peek_csv`; the keys
     given, ``thousands`` and ``missing_values``, are kept and not said again)."""
-    columns: list[tuple[str, Path, pa.ChunkedArray]] = []     # (header, file, cells as text)
+    numbers: list[_Column] = []
     for path in files:
         try:
             header, _, skip = peek(path, delimiter, encoding)
@@ -122,18 +155,9 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
             continue
         for h, column in zip(header, table.columns):
             if h.strip() and not named_as_time(h):
-                columns.append((h, path, _texts(column)))
-    numbers = []
-    for h, path, text in columns:
-        values = [v for v in pc.unique(text).to_pylist() if v not in READ_AS_MISSING]
-        if not values:
-            continue
-        counts = pc.value_counts(text).to_pylist()
-        count = {c["values"]: c["counts"] for c in counts}
-        ok = _numeric(values, decimal)
-        total = sum(count[v] for v in values)
-        if sum(count[v] for v, k in zip(values, ok) if k) >= NUMBER_SHARE * total:
-            numbers.append((h, path, text, values, count))
+                found = _column(h, path, _texts(column), decimal)
+                if found is not None:
+                    numbers.append(found)
     found = Cells(thousands=thousands)
     if thousands is None:
         found.thousands = _thousands(numbers, decimal, found.said)
@@ -142,78 +166,91 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
     return found
 
 
-def _thousands(numbers, decimal: str, said: list) -> str | None:
-    cells = {v for *_, values, _ in numbers for v in values}
-    # the decimal mark shown as one: with other than three digits after it (21,35)
+def _thousands(numbers: list[_Column], decimal: str, said: list) -> str | None:
     d = re.escape(decimal)
-    as_decimal = [v for v in cells if re.fullmatch(rf"[+-]?\d*{d}(?:\d{{1,2}}|\d{{4,}})"
-                                                    rf"(?:[eE][+-]?\d+)?", v)]
+    # the decimal mark shown as one: with other than three digits after it (21,35)
+    shows = rf"^[+-]?\d*{d}(?:\d{{1,2}}|\d{{4,}})(?:[eE][+-]?\d+)?$"
+    as_decimal = [c for c in numbers if _matches(c.text, shows).any()]
     for mark in GROUP_MARKS:
         if mark == decimal:
             continue
-        holding = sorted(v for v in cells if mark in v)
+        holding = [(c, _holds(c.text, mark)) for c in numbers]
+        holding = [(c, h) for c, h in holding if h.any()]
         if not holding:
             continue
-        shown = repr(holding[0])
-        pattern = re.compile(grouped(mark, decimal))
-        bad = [v for v in holding if not pattern.fullmatch(v)]
+        shown = repr(holding[0][0].first(holding[0][1]))
+        bad = [(c, h & ~c.grouped[mark]) for c, h in holding if (h & ~c.grouped[mark]).any()]
         if bad:
-            if any(pattern.fullmatch(v) for v in holding):
-                said.append(f"{mark!r} groups digits by three in {shown} but not in {bad[0]!r}: "
-                            "no thousands separator guessed (data.thousands)")
+            if any((h & c.grouped[mark]).any() for c, h in holding):
+                said.append(f"{mark!r} groups digits by three in {shown} but not in "
+                            f"{bad[0][0].first(bad[0][1])!r}: no thousands separator guessed "
+                            "(data.thousands)")
             continue
         name = "a no-break space" if mark in NO_BREAK_SPACES else repr(mark)
+        m = re.escape(mark)
+        twice = [(c, h & _matches(c.text, f"{m}.*{m}")) for c, h in holding]
+        twice = [c.first(t) for c, t in twice if t.any()]
+        after = [(c, h & _holds(c.text, decimal)) for c, h in holding]
+        after = [c.first(t) for c, t in after if t.any()]
         evidence = (
             f"{name} is no decimal mark" if mark not in ",." else
-            next((f"{v!r} holds it twice" for v in holding if v.count(mark) > 1), None) or
-            next((f"{v!r} has the decimal mark {decimal!r} after its groups" for v in holding
-                  if decimal in v), None) or
-            (f"{as_decimal[0]!r} has the decimal mark {decimal!r}" if as_decimal else None))
+            f"{twice[0]!r} holds it twice" if twice else
+            f"{after[0]!r} has the decimal mark {decimal!r} after its groups" if after else
+            f"{_shown(as_decimal[0], shows)!r} has the decimal mark {decimal!r}" if as_decimal
+            else None)
         if evidence is None:
             said.append(f"{shown}: {mark!r} groups digits by three in every cell that holds it, "
                         f"but no cell shows {decimal!r} as the decimal mark: a thousands "
                         f"separator or the decimal mark? not guessed: set data.thousands={mark!r} "
                         f"or data.decimal={mark!r}")
             return None
-        n = sum(count.get(v, 0) for *_, count in numbers for v in holding)
+        n = sum(int(h.sum()) for _, h in holding)
         said.append(f"thousands separator {name}: every one of {n} cells holding it "
                     f"groups digits by three ({shown}), and {evidence}: data.thousands={mark!r}")
         return mark
     return None
 
 
-def _decimal_doubt(numbers, decimal: str, found: Cells) -> None:
+def _shown(column: _Column, pattern: str) -> str:
+    return column.first(_matches(column.text, pattern))
+
+
+def _decimal_doubt(numbers: list[_Column], decimal: str, found: Cells) -> None:
     """Say a column whose every cell with the decimal mark has three digits after it, beside
     integers: ``1.200`` read as 1.2, or grouped?"""
     if found.thousands is not None:
         return
     d = re.escape(decimal)
-    three = re.compile(rf"[+-]?\d{{1,3}}{d}\d{{3}}")
-    for h, path, _, values, _ in numbers:
-        holding = [v for v in values if decimal in v]
-        integers = [v for v in values if re.fullmatch(r"[+-]?\d+", v)]
-        if holding and integers and all(three.fullmatch(v) for v in holding):
-            found.said.append(f"{h!r} ({path.name}): {holding[0]!r} beside {integers[0]!r}: "
-                              f"{decimal!r} with three digits after it in every cell: a thousands "
-                              f"separator or decimals? not guessed, read as decimals "
-                              f"(data.thousands={decimal!r} with the other decimal mark if "
-                              "grouped)")
+    for c in numbers:
+        holding = _holds(c.text, decimal)
+        integers = _matches(c.text, r"^[+-]?\d+$")
+        three = _matches(c.text, rf"^[+-]?\d{{1,3}}{d}\d{{3}}$")
+        if holding.any() and integers.any() and not (holding & ~three).any():
+            found.said.append(f"{c.header!r} ({c.path.name}): {c.first(holding)!r} beside "
+                              f"{c.first(integers)!r}: {decimal!r} with three digits after it in "
+                              "every cell: a thousands separator or decimals? not guessed, read "
+                              f"as decimals (data.thousands={decimal!r} with the other decimal "
+                              "mark if grouped)")
             return
 
 
-def _marks(numbers, decimal: str, found: Cells, given: list) -> None:
+def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> None:
     thousands = found.thousands
-    for h, path, text, values, count in numbers:
-        ok = _numeric(values, decimal, () if thousands is None else (thousands,))
-        marks = [v for v, k in zip(values, ok) if not k and (v in given or is_mark(v))]
+    for c in numbers:
+        numeric = c.plain | (c.grouped[thousands] if thousands in c.grouped else False)
+        other = ~numeric & ~c.missing
+        if not other.any():
+            continue
+        counts = pc.value_counts(pc.filter(c.text, pa.array(other))).to_pylist()
+        marks = {v["values"]: v["counts"] for v in counts
+                 if v["values"] in given or is_mark(v["values"])}
         if not marks:
             continue
-        for mark in marks:
+        for mark, n in marks.items():
             found.marks.setdefault(mark, {})
-            found.marks[mark][h] = found.marks[mark].get(h, 0) + count[mark]
-        missing = pc.is_in(text, value_set=pa.array([*READ_AS_MISSING, *marks])).to_numpy(
-            zero_copy_only=False)
-        marked = pc.is_in(text, value_set=pa.array(marks)).to_numpy(zero_copy_only=False)
+            found.marks[mark][c.header] = found.marks[mark].get(c.header, 0) + n
+        marked = pc.is_in(c.text, value_set=pa.array(list(marks))).to_numpy(zero_copy_only=False)
+        missing = c.missing | marked
         edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
         for a, b in zip(edges[::2], edges[1::2]):
             if not marked[a:b].any():
