@@ -44,6 +44,7 @@ def header_again(path: Path, preamble: int, units: bool, cut: int | None = None
                     return ()
             header, body = _line_at(m, start)
             unit_row, body = _line_at(m, body) if units else (None, body)
+            header = header.removeprefix(b"\xef\xbb\xbf")     # (a BOM: written once, first)
             if not header.strip():
                 return ()
             stop = len(m) if cut is None else min(cut, len(m))

@@ -141,7 +141,7 @@ def _column(header: str, path: Path, text, decimal: str) -> _Column | None:
 
 def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
             thousands: str | None, missing_values: list, peek) -> Cells:
-    """:class:`Cells` of the text ``files`` (``peek``: :func:`.tables._peek_csv`; the keys
+    """:class:`Cells` of the text ``files`` (``peek``: :func:`.tables.peek_csv`; the keys
     given, ``thousands`` and ``missing_values``, are kept and not said again)."""
     numbers: list[_Column] = []
     for path in files:

@@ -145,7 +145,7 @@ def _load_csv(path: Path, opts: ReadOptions) -> tuple:
     """The file's columns (contract names, units converted), its renames and conversions, and
     its :class:`.Lines` (a message's row located in the file, counted as the columns' rows)."""
     opts = resolved(path, opts)
-    header, first_row, skip = _peek_csv(path, opts.delimiter, opts.encoding)
+    header, first_row, skip = peek_csv(path, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
     preamble = header_line(head_lines(path, opts.encoding), opts.delimiter) or 0
     spans = header_again(path, preamble, skip > preamble + 1)
@@ -283,7 +283,7 @@ class NoRows(ContractError):
     refused before a folder's campaigns are held out by their starts."""
 
 
-def _peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list[str], int]:
+def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list[str], int]:
     """Header (stripped names; a unit row's units joined), first data row and the lines above
     it (a logger's preamble, the header, a unit row: :mod:`.layout`), without reading the file."""
     preamble = header_line(head_lines(path, encoding), delimiter) or 0
@@ -507,7 +507,7 @@ def _is_header(path: Path, opts: ReadOptions, value: str) -> bool:
     if not value:
         return False
     try:
-        header = _peek_csv(path, opts.delimiter, opts.encoding)[0]
+        header = peek_csv(path, opts.delimiter, opts.encoding)[0]
     except ContractError:
         return False
     return any(value in (h, split_unit(h)[0]) for h in header)

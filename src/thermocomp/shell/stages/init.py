@@ -45,7 +45,7 @@ from ...core.io.historian_layout import long_layout
 from ...core.io.manifest import is_text
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.roles import excel_days_header, naming
-from ...core.io.tables import _peek_csv
+from ...core.io.tables import peek_csv
 from ...core.io.timestamps import ELAPSED
 from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
@@ -88,7 +88,7 @@ def number_cells(src, manifest, sample, given: dict, opts):
     if not files or not is_text(sample):
         return opts
     found = scanned(files, opts.delimiter, opts.decimal, opts.encoding, opts.thousands,
-                    list(opts.missing_values), _peek_csv)
+                    list(opts.missing_values), peek_csv)
     for line in found.said:
         print(f"{src.name}: {line}")
     if found.thousands is not None and opts.thousands is None:
