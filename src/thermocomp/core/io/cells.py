@@ -140,9 +140,11 @@ def _column(header: str, path: Path, text, decimal: str) -> _Column | None:
 
 
 def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
-            thousands: str | None, missing_values: list, peek) -> Cells:
+            thousands: str | None, missing_values: list, peek, decimal_given: bool = False
+            ) -> Cells:
     """:class:`Cells` of the text ``files`` (``peek``: :func:`.tables.peek_csv`; the keys
-    given, ``thousands`` and ``missing_values``, are kept and not said again)."""
+    given, ``thousands`` and ``missing_values``, are kept and not said again, nor a doubt of
+    the decimal mark where ``decimal_given``)."""
     numbers: list[_Column] = []
     for path in files:
         try:
@@ -161,7 +163,8 @@ def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
     found = Cells(thousands=thousands)
     if thousands is None:
         found.thousands = _thousands(numbers, decimal, found.said)
-    _decimal_doubt(numbers, decimal, found)
+    if not decimal_given:
+        _decimal_doubt(numbers, decimal, found)
     _marks(numbers, decimal, found, missing_values)
     return found
 

@@ -88,7 +88,8 @@ def number_cells(src, manifest, sample, given: dict, opts):
     if not files or not is_text(sample):
         return opts
     found = scanned(files, opts.delimiter, opts.decimal, opts.encoding, opts.thousands,
-                    list(opts.missing_values), peek_csv)
+                    list(opts.missing_values), peek_csv,
+                    decimal_given=str(given.get("decimal", "auto")) != "auto")
     for line in found.said:
         print(f"{src.name}: {line}")
     if found.thousands is not None and opts.thousands is None:
