@@ -139,3 +139,11 @@ def test_the_reader_leaves_a_header_written_again_out_and_names_its_line(tmp_pat
     assert len(frame) == 30 and frame["time"].diff().dropna().eq(60).all()
     # the header's line (two lines of header above the data: line 15 held data row 13)
     assert "line 15: the file's header written again" in caplog.text, caplog.text
+    # a cell refused below it is named by the line the file shows (the header's two lines
+    # counted, not as data rows): row 20 stands on line 2 + 19 + 2 + 1
+    bad = "".join(lines).replace("00:19:00;20,19;21,00", "00:19:00;20,19;abc1")
+    (folder / "day1.csv").write_text(bad, encoding="utf-8")
+    from thermocomp.core.io import ContractError
+
+    with pytest.raises(ContractError, match=r"line 24 \(data row 20\): value 'abc1'"):
+        read_dataset(folder, {"roles": {"time": ["Datum", "Uhrzeit"], "error": ["dX"]}})
