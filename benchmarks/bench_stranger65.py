@@ -31,6 +31,16 @@ thousands grouped ``"1,200.0"`` in quotes), ``#N/A`` where the gauge lost E_X (3
 
 ``edm_a2`` is ``edm_a`` with the header the logger wrote again deleted, as its refusal says.
 
+    ... bench_stranger65.py once ROOT                 # initone65: init once, then its run
+
+``once`` (initone65, written before it was run): ``init`` of ``edm_a`` (the folder as written,
+the header again included) and of ``edm_b``'s file, once each with no setting, then the ``run``
+(mlr) its ``next:`` line prints.  The bar: both ``init`` exit 0 on the first try, their configs
+hold what the refusals had named (edm_a: ``thousands: .``, ``missing_values: ['---']``,
+``max_gap_samples: 5``, ``columns: {T Wasser: T_Dielektrikum}``; edm_b: ``thousands: ','``,
+``#N/A`` and ``Err:502``, ``max_gap_samples: 3``), and the run's test RMSE is the matrix's MLR
+cell below (edm_a2 3.39 / 1.32, edm_b 2.15 / 0.71): the same rows read.
+
 Measured (2026-12-01, every step once, 2 shared cores, other sessions' load)
 ---------------------------------------------------------------------------
 ``init``: ``edm_a`` refused three times (``1.700,0``: data.thousands='.'; ``---``: data.missing_values
@@ -289,7 +299,7 @@ TRIES = {
 def initialised(root: Path) -> None:
     """``thermocomp init`` of each export, each refusal's hint taken in the next try; ``edm_a2``
     is ``edm_a`` with the header the logger wrote again deleted, as the refusal says."""
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    _project(root)     # (initone65: it was made by `matrix` alone)
     fixed = root / "edm_a2"
     if not fixed.exists():
         import shutil
@@ -312,12 +322,49 @@ def initialised(root: Path) -> None:
                 yaml.rename(conf / f"{name}.yaml")
 
 
+def _project(root: Path) -> None:
+    """The project root ``<root>/tc`` the stages run in (``conf`` linked to the repository's)."""
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    (root / "tc").mkdir(parents=True, exist_ok=True)
+    if not (root / "tc" / "conf").exists():
+        (root / "tc" / "conf").symlink_to(REPO / "conf")
+
+
+def once(root: Path) -> None:
+    """``init`` once on each export as written, then the run it prints (initone65)."""
+    _project(root)
+    for name in ("edm_a", "edm_b"):
+        src = root / name
+        src = next(src.glob("*.csv")) if name == "edm_b" else src
+        out = root / f"once-{name}"
+        rc, said, cpu = stage("init", str(src), f"out={out}")
+        row = {"init": name, "rc": rc, "cpu": round(cpu, 2), "said": said[:200]}
+        if rc == 0:
+            import yaml
+
+            conf = next((out / "conf" / "data").glob("*.yaml"))
+            config = yaml.safe_load(conf.read_text())
+            row["config"] = {k: config.get(k) for k in ("thousands", "missing_values",
+                                                          "max_gap_samples", "columns")}
+            rc, said, cpu = stage("run", f"hydra.searchpath=[file://{out / 'conf'}]",
+                                  f"data={conf.stem}", "model=mlr", "plots=none", "track=false",
+                                  f"out={out / 'run'}")
+            row.update({"run_rc": rc, "run_cpu": round(cpu, 2)})
+            if rc == 0:
+                metrics = json.loads((out / "run" / "metrics.json").read_text())
+                row["rmse"] = {t: round(v["test"]["rmse"], 3)
+                               for t, v in metrics["targets"].items()}
+        print(json.dumps(row, default=str), flush=True)
+
+
 def main(argv: list[str]) -> None:
     step, root = argv[0], Path(argv[1]).resolve()
     if step == "write":
         write(root)
     elif step == "init":
         initialised(root)
+    elif step == "once":
+        once(root)
     elif step == "matrix":        # matrix ROOT [names] [--families ...] [--wrappers ...]
         matrix_step(root, argv[2:], SEEDS, FAMILIES, WRAPPERS, FAMILIES)
     elif step == "monitor":       # monitor ROOT name family sensor-header...

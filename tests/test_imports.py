@@ -266,14 +266,13 @@ def test_stages_do_not_import_each_other():
 # ``starts.utc_instant``, which ``read`` imported as private ones until session 53).
 PRIVATE_IMPORTS_LEFT = {
     "apps.diagnose.figures": {"_arr", "_hour_ticks"},
-    "core.io.detect": {"_peek_csv"},
     "core.io.manifest": {"_OTHER_DELIMITERS", "_first_line"},
     "core.io.read": {"_load_csv", "_load_parquet", "_ordered", "_values", "_check_periods",
                      "_error_ranges", "_keep_missing", "_repair_missing",
                      "_set_time_seconds", "_warn_error_ranges"},
     "core.io.roles": {"_roles"},
     "core.io.sniff": {"_OTHER_DELIMITERS"},
-    "core.io.starts": {"_contract_names", "_first_text", "_peek_csv", "_timed"},
+    "core.io.starts": {"_contract_names", "_first_text", "_timed"},
     "core.io.steps": {"_values"},
     "core.io.tables": {"_OTHER_DELIMITERS", "_first_line"},
     "core.io.values": {"_chunks", "_values"},

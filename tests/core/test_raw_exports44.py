@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+import yaml
 
 from conftest import refused
 from thermocomp.core.io import ContractError, read_dataset
@@ -221,8 +222,16 @@ def test_a_labs_mark_for_a_value_not_measured_is_named_and_read_as_missing(tmp_p
     lines = path.read_text(encoding="utf-8").splitlines()
     lines[9] = ",".join([*lines[9].split(",")[:2], "-", lines[9].split(",")[3]])
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, str(path), "'T_T2'",
-            "row 9", "value '-'", "data.missing_values")
+    with pytest.raises(ContractError) as exc:          # the reader names the cell and the key
+        read_dataset(path, {"roles": {"error": ["dX"]}})
+    assert all(s in str(exc.value) for s in (
+        str(path), "'T_T2'", "row 9", "value '-'", "data.missing_values")), exc.value
+    # (initone65) init lists the mark itself, said, and writes the gap that reads it
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    assert "a mark for a value not measured" in capsys.readouterr().out
+    written = yaml.safe_load(next((tmp_path / "init" / "conf" / "data").glob("*.yaml"))
+                             .read_text())
+    assert written["missing_values"] == ['-'] and written["max_gap_samples"] == 1
     lines[20] = ",".join([*lines[20].split(",")[:1], "n/a", *lines[20].split(",")[2:]])
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     ds, report = read_dataset(path, {"roles": {"error": ["dX"]}, "max_gap_samples": 1,

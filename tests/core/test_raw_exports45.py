@@ -10,6 +10,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import pytest
+import yaml
 
 from conftest import refused
 from test_raw_exports44 import ROWS, _read, _record, _write
@@ -139,8 +140,16 @@ def test_an_excel_error_cell_is_named_and_can_be_read_as_missing(tmp_path, capsy
     cells = lines[9].split(",")
     lines[9] = ",".join([*cells[:2], "#DIV/0!", cells[3]])
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    refused(["init", str(path), f"out={tmp_path / 'init'}"], capsys, str(path), "'T_T2'",
-            "row 9", "data.missing_values (['#DIV/0!'])")
+    with pytest.raises(ContractError) as exc:          # the reader names the cell and the key
+        read_dataset(path, {"roles": {"error": ["dX"]}})
+    assert all(s in str(exc.value) for s in (
+        str(path), "'T_T2'", "row 9", "data.missing_values (['#DIV/0!'])")), exc.value
+    # (initone65) init lists the mark itself, said, and writes the gap that reads it
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0
+    assert "a mark for a value not measured" in capsys.readouterr().out
+    written = yaml.safe_load(next((tmp_path / "init" / "conf" / "data").glob("*.yaml"))
+                             .read_text())
+    assert written["missing_values"] == ['#DIV/0!'] and written["max_gap_samples"] == 1
     ds, report = read_dataset(path, {"roles": {"error": ["dX"]}, "max_gap_samples": 1,
                                      "missing_values": ["#DIV/0!"]})
     assert report["repairs"] == {"T_T2": 1}

@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+import yaml
 
 from conftest import FAST, refused
 from thermocomp.core.io import read_dataset
@@ -40,15 +41,19 @@ def test_a_channel_renamed_from_some_run_on_is_named_as_one_with_the_mapping(tmp
     # it was refused as 'T_T3': 3 of 6 campaigns lack it ... leave it out of data.inputs:
     # a sensor every run logged, dropped, or read as two with each missing in half the runs
     folder = lab_folder(tmp_path / "lab", rename_from=4)
-    line = refused(["init", str(folder), f"out={tmp_path / 'init'}",
-                    "data.roles.error=[dX]"], capsys, "run_04.csv", "'T_T3' is in 3 of 6",
+    line = refused(["run", f"data.path={folder}", "data.test_fraction=0.2", *FAST,
+                    f"out={tmp_path / 'init'}", "data.roles.error=[dX]"], capsys, "run_04.csv",
+                   "'T_T3' is in 3 of 6",
                    "'T_T03' (its header in the file: 'T03') in the other 3, from run_04 on",
                    "data.columns={T03: T_T3}")
     assert "leave it out" not in line
     assert not (tmp_path / "init").exists()
-    # the mapping it names reads the folder
+    # the mapping it names reads the folder, and init (initone65) writes it itself
     assert main(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]",
                  "data.columns={T03: T_T3}"]) == 0
+    assert main(["init", str(folder), f"out={tmp_path / 'init2'}", "data.roles.error=[dX]"]) == 0
+    written = yaml.safe_load(next((tmp_path / "init2" / "conf" / "data").glob("*.yaml")).read_text())
+    assert written["columns"] == {"T03": "T_T3"}
 
 
 def test_a_sensor_missing_in_some_runs_names_the_pattern_that_leaves_it_out(tmp_path, capsys):
@@ -110,9 +115,15 @@ def test_a_renamed_channel_in_another_unit_is_mapped_and_converted(tmp_path, cap
     # the header without its unit: the refusal names the entry that reads 'dX1 [mm]' in µm
     # (it said to rename the files: data.columns read mm as µm, 1000x too small)
     folder = lab_folder(tmp_path / "lab", probe_mm_from=4)
-    refused(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX*]"],
+    refused(["run", f"data.path={folder}", "data.test_fraction=0.2", *FAST,
+             f"out={tmp_path / 'run'}", "data.roles.error=[dX*]"],
             capsys, "'E_dX1' (its header in the file: 'dX1 [mm]') in the other 3",
             "data.columns={dX1: E_dX} reads it under one name")
+    # (initone65) init writes that entry itself, said
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX*]"]) == 0
+    assert "one sensor renamed, read as E_dX" in capsys.readouterr().out
+    written = yaml.safe_load(next((tmp_path / "init" / "conf" / "data").glob("*.yaml")).read_text())
+    assert written["columns"] == {"dX1": "E_dX"}
     ds, _ = read_dataset(folder, {"roles": {"error": ["dX*"]}, "columns": {"dX1": "E_dX"}})
     spans = [np.ptp(df["E_dX"].to_numpy(float)) for df in ds.campaigns.values()]
     assert min(spans) > 0.2 * max(spans)        # every run in µm, none 1000x smaller
@@ -146,7 +157,8 @@ def test_a_channel_renamed_is_named_from_the_first_run_in_time_not_in_file_names
         frame.rename(columns={"Zeit [s]": "Zeit"}).to_csv(
             folder / f"lauf_{name}.csv", sep=";", decimal=",", index=False)
         (folder / f"run_{k:02d}.csv").unlink()
-    refused(["init", str(folder), f"out={tmp_path / 'init'}", "data.roles.error=[dX]"], capsys,
-            "lauf_a.csv", "'T_T3' is in 3 of 6 campaigns (lauf_b, lauf_d, lauf_f)",
+    refused(["run", f"data.path={folder}", "data.test_fraction=0.2", *FAST,
+             f"out={tmp_path / 'init'}", "data.roles.error=[dX]"], capsys, "lauf_a.csv",
+            "'T_T3' is in 3 of 6 campaigns (lauf_b, lauf_d, lauf_f)",
             "'T_T03' (its header in the file: 'T03') in the other 3, from lauf_a on",
             "data.columns={T03: T_T3}")

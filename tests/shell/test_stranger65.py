@@ -86,16 +86,8 @@ def _lab(folder: Path, files: dict) -> Path:
     return folder
 
 
-def test_a_header_written_again_is_named_so_not_a_missing_value_mark(tmp_path):
-    from thermocomp.core.io import ContractError, read_dataset
-
-    folder = _lab(tmp_path / "lab", {"day1.csv": _day(range(30), again=12)})
-    with pytest.raises(ContractError) as exc:
-        read_dataset(folder, {"roles": {"time": ["Datum", "Uhrzeit"], "error": ["dX"]}})
-    said = str(exc.value)
-    # the header's line (two lines of header above the data: line 15 holds data row 13)
-    assert "line 15 (data row 13)" in said, said
-    assert "the file's header written again" in said and "missing_values" not in said, said
+# (a header written again: refused naming it so, not as a missing-value mark, until initone65;
+#  now left out by the reader and said with its line: tests/shell/test_initone65.py)
 
 
 def test_data_columns_reads_a_header_by_its_name_over_a_unit_row_and_converts_its_unit(tmp_path):

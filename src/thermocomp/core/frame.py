@@ -192,10 +192,31 @@ def _other_name(campaigns: Mapping[str, pd.DataFrame], column: str, lack: list) 
 _PLAIN_KEY = re.compile(r"[A-Za-z0-9_.\- ]+")
 
 
-def _renamed(campaigns, column: str, twin: str, files, headers, starts=None) -> ContractError:
-    """The refusal of ``column`` and ``twin``, each in the campaigns the other is not in, with
-    the ``data.columns`` entry that reads the later name as the earlier one: later in time where
-    every campaign has a start (``starts``), else in the campaigns' order."""
+def renamed_sensors(campaigns: Mapping[str, pd.DataFrame], columns, headers=None,
+                    starts=None) -> dict[str, tuple[str, str]]:
+    """``{data.columns key: (earlier contract name, later one)}`` of each of ``columns`` read
+    under one name in some campaigns and another in exactly the others (:func:`_other_name`):
+    the entry that reads the later header as the earlier name (initone65: ``init`` proposes it
+    where ``run`` refused it, naming the entry)."""
+    out: dict = {}
+    n = len(campaigns)
+    for column in columns:
+        have = [cid for cid, df in campaigns.items() if column in df.columns]
+        if not have or len(have) == n:
+            continue
+        twin = _other_name(campaigns, column, [cid for cid in campaigns if cid not in have])
+        if twin is None:
+            continue
+        old, new, _, _, key = _rename(campaigns, column, twin, headers or {}, starts)
+        if new not in {v[1] for v in out.values()}:
+            out[key] = (old, new)
+    return out
+
+
+def _rename(campaigns, column: str, twin: str, headers, starts=None):
+    """``(earlier name, later name, the later's campaigns in order, its header, its
+    data.columns key)`` of one sensor under two names: later in time where every campaign has a
+    start (``starts``), else in the campaigns' order."""
     order = list(campaigns)
     began = start_instants(pd.Series({c: (starts or {}).get(c) for c in order}, dtype=object))
     if began.notna().all():     # (a lab's files named otherwise than in time: T03 came first)
@@ -205,14 +226,21 @@ def _renamed(campaigns, column: str, twin: str, files, headers, starts=None) -> 
         return [cid for cid in order if name in campaigns[cid].columns]
 
     old, new = sorted((column, twin), key=lambda name: order.index(where(name)[0]))
-    first = where(new)[0]
     raw = headers.get(new, new)
-    said = "" if raw == new else f" (its header in the file: {raw!r})"
     # the header without its unit is a key data.columns reads (io.roles.by_header), and the
     # unit is converted as a role's is (stranger65: 'dX1 [mm]' was told to be renamed in the
     # files, data.columns read it unconverted; 'T Wasser [°C]' was a key no command line reads)
     base = split_unit(raw)[0]
     key = base if base and _PLAIN_KEY.fullmatch(base) else raw
+    return old, new, (order, where), raw, key
+
+
+def _renamed(campaigns, column: str, twin: str, files, headers, starts=None) -> ContractError:
+    """The refusal of ``column`` and ``twin``, each in the campaigns the other is not in, with
+    the ``data.columns`` entry that reads the later name as the earlier one (:func:`_rename`)."""
+    old, new, (order, where), raw, key = _rename(campaigns, column, twin, headers, starts)
+    first = where(new)[0]
+    said = "" if raw == new else f" (its header in the file: {raw!r})"
     if _PLAIN_KEY.fullmatch(key):
         fix = f"data.columns={{{key}: {old}}}"
     else:   # (a header beyond ASCII is no dict key on the command line: Hydra)
@@ -220,7 +248,7 @@ def _renamed(campaigns, column: str, twin: str, files, headers, starts=None) -> 
     return ContractError(
         f"{old!r} is in {len(where(old))} of {len(order)} campaigns ({listed(where(old))}), "
         f"{new!r}{said} in the other {len(where(new))}, from {first} on: one sensor renamed? "
-        f"{fix} reads it under one name", column=new,
+        f"{fix} reads it under one name (thermocomp init writes it)", column=new,
         **({"file": files[first]} if files and first in files else {}))
 
 

@@ -39,7 +39,7 @@ from .roles import RUN, date_and_time_of_day, matching_roles, named_as_time, spl
 from .runs import looks_like_run_labels, says_run
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
-from .tables import _peek_csv, parquet, without_pandas_index
+from .tables import parquet, peek_csv, without_pandas_index
 from .timestamps import (
     CLOCK,
     is_slashed_stamp,
@@ -164,7 +164,7 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
         return (opts, table.column_names, [str(v[0].as_py()) for v in table.columns],
                 _separators(sample, opts))
     opts = resolved(sample, opts)
-    header, first, skip = _peek_csv(sample, opts.delimiter, opts.encoding)
+    header, first, skip = peek_csv(sample, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
     return opts, header, first, _separators(sample, opts) + _table_start(sample, opts)
 
@@ -273,8 +273,10 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
             roles["ambient"].append(pattern)
         elif is_flag(first.get(h)):          # 'true' / 'false': an on/off flag, a state
             roles["state"].append(pattern)
-        elif not (reads_as_number(first.get(h), opts.decimal) or looks_like_timestamp(first.get(h))
-                  or named_as_time(h)):      # (the reader reads 'Dauer' 25:30:00)
+        elif not (reads_as_number(first.get(h), opts.decimal, opts.thousands)
+                  or str(first.get(h) or "").strip() in opts.missing_values     # ('---')
+                  or looks_like_timestamp(first.get(h)) or named_as_time(h)):
+            # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return _by_role(roles, header, first)
 

@@ -30,6 +30,7 @@ class Lines:
     skip: int
     empty_left_out: bool = False
     shift: int = 0
+    dropped: tuple = ()     # file lines left out (the header written again: .again)
 
     def line(self, row: int) -> int | None:
         """The file line of the 1-based data ``row`` (None: not in the file)."""
@@ -44,7 +45,7 @@ class Lines:
                 for record in reader:
                     start, end = end + 1, reader.line_num
                     blank = not record or (self.empty_left_out and not any(
-                        c.strip() for c in record))
+                        c.strip() for c in record)) or self.skip + start in self.dropped
                     count += not blank
                     if count == row and not blank:
                         return self.skip + start

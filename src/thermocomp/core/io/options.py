@@ -72,6 +72,7 @@ class ReadOptions:
     missing: str = "repair"
     skip_rows: int = 1        # internal: lines above a CSV's first data row (preamble, header, units)
     data_bytes: int | None = None   # internal: the bytes of a CSV above its footer (None: unknown)
+    drop_bytes: tuple = ()    # internal: byte spans of a CSV left out (its header written again)
 
     def __post_init__(self):
         if self.missing not in MISSING_MODES:  # a caller's mistake, not the user's

@@ -108,7 +108,8 @@ INGEST_REPORT = "ingest_report.json"
 MIN_ROWS = 2  # the first sample is the reference: one more is needed to have anything to score
 MAX_GRID_ROWS = 5_000_000
 _READ_ATTEMPTS = 5
-INTERNAL = ("missing", "skip_rows", "data_bytes")   # ReadOptions fields that are no data config key
+# ReadOptions fields that are no data config key
+INTERNAL = ("missing", "skip_rows", "data_bytes", "drop_bytes")
 DEAD_ROLES = ("E", "T")   # columns said when constant over a whole campaign (a dead channel)
 
 

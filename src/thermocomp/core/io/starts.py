@@ -24,9 +24,9 @@ from .tables import (
     NoRows,
     _contract_names,
     _first_text,
-    _peek_csv,
     _timed,
     parquet,
+    peek_csv,
     without_pandas_index,
 )
 from .timestamps import CLOCK, maybe_elapsed, parsed, time_type
@@ -95,7 +95,7 @@ def _first_row(path: Path, opts: ReadOptions) -> tuple[list[str], dict, ReadOpti
     with ``auto`` they read as text, every temperature refused and the file's start lost)."""
     if is_text(path):
         opts = resolved(path, opts)
-        header, row, _ = _peek_csv(path, opts.delimiter, opts.encoding)
+        header, row, _ = peek_csv(path, opts.delimiter, opts.encoding)
         return header, dict(zip(header, row)), opts
     batch = next(parquet().ParquetFile(path).iter_batches(batch_size=1), None)
     if batch is None:

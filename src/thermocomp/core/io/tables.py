@@ -16,6 +16,8 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from ...base.log import logger
+from .again import header_again, line_numbers, without
+from .again import said as said_again
 from .contract import TIME, ContractError, role
 from .csvline import SPLIT, split_line
 from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
@@ -143,9 +145,14 @@ def _load_csv(path: Path, opts: ReadOptions) -> tuple:
     """The file's columns (contract names, units converted), its renames and conversions, and
     its :class:`.Lines` (a message's row located in the file, counted as the columns' rows)."""
     opts = resolved(path, opts)
-    header, first_row, skip = _peek_csv(path, opts.delimiter, opts.encoding)
+    header, first_row, skip = peek_csv(path, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
-    lines = Lines(path, opts.delimiter, opts.encoding, skip)
+    preamble = header_line(head_lines(path, opts.encoding), opts.delimiter) or 0
+    spans = header_again(path, preamble, skip > preamble + 1)
+    dropped = line_numbers(path, spans)
+    said_again(path, dropped, spans)
+    opts = replace(opts, drop_bytes=spans)
+    lines = Lines(path, opts.delimiter, opts.encoding, skip, dropped=dropped)
     try:
         return _typed_columns(path, header, first_row, opts, lines)
     except ContractError as exc:
@@ -168,7 +175,8 @@ def _typed_columns(path: Path, header: list[str], first_row: list[str], opts: Re
         _check_delimiter(header[0], opts.delimiter.join(first_row), path, opts)
     named, scales = _contract_names(header, opts, path, first=dict(zip(header, first_row)))
     said, cut = footer(path, opts.delimiter, len(header), opts.encoding)
-    opts = replace(opts, data_bytes=cut)        # (the tail read once: every read of the data)
+    opts = replace(opts, data_bytes=cut,        # (the tail read once: every read of the data)
+                   drop_bytes=tuple((a, b) for a, b in opts.drop_bytes if a < cut))
     if said:
         logger.warning(f"{path}: footer left out ({len(said)} line(s) under the data: "
                        f"{shortened(said[0])!r})")
@@ -275,7 +283,7 @@ class NoRows(ContractError):
     refused before a folder's campaigns are held out by their starts."""
 
 
-def _peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list[str], int]:
+def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list[str], int]:
     """Header (stripped names; a unit row's units joined), first data row and the lines above
     it (a logger's preamble, the header, a unit row: :mod:`.layout`), without reading the file."""
     preamble = header_line(head_lines(path, encoding), delimiter) or 0
@@ -352,6 +360,8 @@ def _csv_options(names: list[str], opts: ReadOptions, *, types=None, include=Non
 
 def _input(path: Path, opts: ReadOptions):
     """The CSV text Arrow reads: ``path`` without its footer (:mod:`.footer`, found once)."""
+    if opts.drop_bytes:          # its header written again: those lines left out (.again)
+        return without(path, opts.data_bytes, opts.drop_bytes)
     return source(path, opts.data_bytes)
 
 
@@ -497,7 +507,7 @@ def _is_header(path: Path, opts: ReadOptions, value: str) -> bool:
     if not value:
         return False
     try:
-        header = _peek_csv(path, opts.delimiter, opts.encoding)[0]
+        header = peek_csv(path, opts.delimiter, opts.encoding)[0]
     except ContractError:
         return False
     return any(value in (h, split_unit(h)[0]) for h in header)

@@ -15,6 +15,7 @@ from omegaconf import DictConfig, OmegaConf
 from ...base.files import atomic_write_text
 from ...base.paths import conf_dir, resolve
 from ...core import io
+from ...core.io.cells import scanned
 from ...core.io.contract import MANIFEST, TIME
 from ...core.io.detect import (
     TRAVEL_UM,
@@ -41,8 +42,10 @@ from ...core.io.historian import (
     tag_samples,
 )
 from ...core.io.historian_layout import long_layout
-from ...core.io.plain import is_lab_file, lab_as_csv
+from ...core.io.manifest import is_text
+from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.roles import excel_days_header, naming
+from ...core.io.tables import peek_csv
 from ...core.io.timestamps import ELAPSED
 from ...core.io.workbook import csv_options
 from ...core.timerule import median_step
@@ -74,6 +77,60 @@ def _long_period(sample, given: dict, opts) -> dict | None:
     intervals = tag_samples(sample, opts, layout)[1]
     given["resample_s"] = proposed_period(intervals, ())[0]
     return intervals
+
+
+def number_cells(src, manifest, sample, given: dict, opts):
+    """``opts`` (and ``given``, written to the config) with what the text files' number cells
+    say (:mod:`.io.cells`: ``data.thousands``, ``data.missing_values`` and the gap that reads
+    them), each said with why; a doubt said, not written."""
+    files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
+    files = [f for f in files if is_text(f) and not is_converted(f, opts)]
+    if not files or not is_text(sample):
+        return opts
+    found = scanned(files, opts.delimiter, opts.decimal, opts.encoding, opts.thousands,
+                    list(opts.missing_values), peek_csv,
+                    decimal_given=str(given.get("decimal", "auto")) != "auto")
+    for line in found.said:
+        print(f"{src.name}: {line}")
+    if found.thousands is not None and opts.thousands is None:
+        given["thousands"] = found.thousands
+        opts = replace(opts, thousands=found.thousands)
+    new = [m for m in found.marks if m not in opts.missing_values]
+    if new:
+        given["missing_values"] = [*opts.missing_values, *new]
+        opts = replace(opts, missing_values=given["missing_values"])
+    if found.gap > opts.max_gap_samples:
+        given["max_gap_samples"] = found.gap
+        opts = replace(opts, max_gap_samples=found.gap)
+        print(f"{src.name}: the marks' longest run inside a file is {found.gap} sample"
+              f"{'s' * (found.gap > 1)}: data.max_gap_samples={found.gap} interpolates them "
+              "linearly (each repair counted in the ingest report)")
+    if found.edge > opts.max_edge_samples:
+        given["max_edge_samples"] = found.edge
+        opts = replace(opts, max_edge_samples=found.edge)
+        print(f"{src.name}: a run of marks at a file's start or end, {found.edge} sample"
+              f"{'s' * (found.edge > 1)} at most: data.max_edge_samples={found.edge} drops "
+              "those rows")
+    return opts
+
+
+def renamed(ds) -> dict:
+    """``{data.columns key: (earlier name, later name)}`` of each sensor the campaigns of ``ds``
+    read under one name up to some file and under another from it on (:func:`.frame.
+    renamed_sensors`), each said: ``run`` refused it naming the entry, a run more a sensor."""
+    from ...core.frame import renamed_sensors
+
+    headers = {name: raw for raw, name in (ds.meta.get("column_map") or {}).items()}
+    starts = ds.manifest["start"].to_dict() if "start" in ds.manifest.columns else None
+    columns = list(dict.fromkeys(c for df in ds.campaigns.values() for c in df.columns
+                                 if c[:2] in ("T_", "E_", "S_")))
+    found = renamed_sensors(ds.campaigns, columns, headers, starts)
+    for key, (old, new) in found.items():
+        have = [cid for cid, df in ds.campaigns.items() if new in df.columns]
+        print(f"{headers.get(new, new)!r} from {have[0]} on, in the campaigns without {old!r} "
+              f"(in every other): one sensor renamed, read as {old} (data.columns: "
+              f"{{{key!r}: {old}}})")
+    return found
 
 
 def init(cfg: DictConfig) -> dict:
@@ -121,6 +178,7 @@ def init(cfg: DictConfig) -> dict:
         print(f"{sample.name}: {days!r} from {dict(zip(header, first))[days]}: Excel's serial "
               f"days (since 1899-12-30), read as the time, data.roles.time={days!r} "
               f"data.units={{{days!r}: d}}")
+    opts = number_cells(src, manifest, sample, given, opts)   # thousands, marks, their gaps
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
@@ -156,6 +214,12 @@ def init(cfg: DictConfig) -> dict:
               + f": more than a thermal error does ({TRAVEL_UM / 1000:g} mm), an axis position, "
               "proposed as a state (data.roles.state; data.roles.error=[<header>] if it is "
               "the error)")
+    renames = renamed(ds)                       # a sensor renamed from some file on
+    if renames:
+        given["columns"] = {**(given.get("columns") or {}), **{k: o for k, (o, _) in renames.items()}}
+        opts = replace(opts, columns={**opts.columns, **given["columns"]})
+        config = data_config(src, given, opts, roles, defaults, manifest)
+        ds = open_source(cfg, detected=config)
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
     report = ds.meta["read_report"]
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"

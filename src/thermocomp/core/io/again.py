@@ -1,0 +1,99 @@
+"""A CSV file's header written again under its data (initone65): a logger that restarted in the
+middle of a day file writes its header line (and the unit row under it) once more.  Such a line
+is left out of the rows, as a footer is, and said in a warning naming the file and the line;
+rows after it are counted without it (:class:`.lines.Lines`).
+
+The rule: a line equal, byte for byte, to the file's header line (and the line under it, where
+it equals the file's unit row) is no data.  Only the exact header is: a line of other text
+stays a row, refused with its row as before.  The search is one byte search of the mapped file
+(no row is parsed), so a file without one costs nothing noticeable.
+"""
+
+from __future__ import annotations
+
+import mmap
+from pathlib import Path
+
+import pyarrow as pa
+
+from ...base.log import logger
+
+
+def _line_at(m, start: int) -> tuple[bytes, int]:
+    """The line starting at byte ``start`` without its line end, and the byte after its end."""
+    end = m.find(b"\n", start)
+    end = len(m) if end < 0 else end + 1
+    return m[start:end].rstrip(b"\r\n"), end
+
+
+def header_again(path: Path, preamble: int, units: bool, cut: int | None = None
+                 ) -> tuple[tuple[int, int], ...]:
+    """``((first byte, past last byte), ...)`` of each header written again in ``path`` (the
+    header on line ``preamble + 1``; ``units``: a unit row under it, left out with it where it
+    is written again too), above byte ``cut`` (a footer's start); () where none is."""
+    with open(path, "rb") as f:
+        try:
+            m = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ)
+        except ValueError:                      # an empty file
+            return ()
+        with m:
+            start = 0
+            for _ in range(preamble):
+                start = m.find(b"\n", start) + 1
+                if start == 0:
+                    return ()
+            header, body = _line_at(m, start)
+            unit_row, body = _line_at(m, body) if units else (None, body)
+            header = header.removeprefix(b"\xef\xbb\xbf")     # (a BOM: written once, first)
+            if not header.strip():
+                return ()
+            stop = len(m) if cut is None else min(cut, len(m))
+            spans, at = [], body
+            while True:
+                found = m.find(b"\n" + header, at - 1 if at else 0, stop)
+                if found < 0:
+                    return tuple(spans)
+                first = found + 1
+                line, end = _line_at(m, first)
+                at = end
+                if line != header:              # a longer line starting with the header's text
+                    continue
+                if unit_row is not None and end < stop and _line_at(m, end)[0] == unit_row:
+                    end = _line_at(m, end)[1]
+                spans.append((first, min(end, stop)))
+
+
+def line_numbers(path: Path, spans) -> tuple[int, ...]:
+    """The 1-based file lines the ``spans`` cover."""
+    if not spans:
+        return ()
+    out = []
+    with open(path, "rb") as f, mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) as m:
+        for first, end in spans:
+            line = m[:first].count(b"\n") + 1
+            out.extend(range(line, line + max(1, m[first:end].rstrip(b"\r\n").count(b"\n") + 1)))
+    return tuple(out)
+
+
+def said(path: Path, lines: tuple[int, ...], spans) -> None:
+    """The warning: each header written again, by its file line."""
+    if not spans:
+        return
+    starts = [ln for ln in lines if ln - 1 not in lines]
+    where = ", ".join(map(str, starts[:5])) + (", ..." if len(starts) > 5 else "")
+    logger.warning(f"{path}, line{'s' * (len(starts) > 1)} {where}: the file's header written "
+                   "again under its data (a logger restarted?): left out, the rows after it read "
+                   "as rows of the file")
+
+
+def without(path: Path, cut: int | None, spans):
+    """What Arrow reads: the file's first ``cut`` bytes (all: None) without the ``spans``."""
+    size = path.stat().st_size
+    stop = size if cut is None else min(cut, size)
+    whole = pa.memory_map(str(path)).read_buffer(stop)
+    parts, at = [], 0
+    for first, end in spans:
+        parts.append(whole[at:first].to_pybytes())
+        at = end
+    parts.append(whole[at:stop].to_pybytes())
+    return pa.BufferReader(b"".join(parts))

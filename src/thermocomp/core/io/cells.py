@@ -1,0 +1,274 @@
+"""What a lab's text files' number cells say, for ``thermocomp init`` (initone65): the thousands
+separator (``data.thousands``), the marks written for a value not measured
+(``data.missing_values``) and the gaps they leave (``data.max_gap_samples``,
+``data.max_edge_samples``).  Each is written to the config only where the cells leave no doubt,
+and said with why; a doubt is said, never guessed.
+
+The rules (every text file of the record or folder read as text, its header written again left
+out as the reader leaves it out, :mod:`.again`):
+
+- a number column is one whose header is not a time and at least half of whose non-empty cells
+  read as numbers (with the file's decimal mark, or grouped by three with a mark): a column
+  mostly of text is no number column, so a token filling much of it is no mark;
+- a thousands separator ``m`` (one of :data:`.separators.GROUP_MARKS`, not the decimal mark):
+  every number cell holding ``m`` groups its digits by three with it after the sign (``1.200,0``,
+  ``-12.345``), and the decimal mark is shown to be the other character: ``m`` is no ``,``/``.``
+  (an apostrophe, a no-break space), or a cell holds ``m`` twice or the decimal mark after its
+  groups, or another number cell holds the decimal mark with other than three digits after it.
+  ``m`` in a cell that does not group by three, or only ``1.200`` and no other evidence: said,
+  not written (the reader then refuses the cell, naming the setting);
+- the decimal mark followed by exactly three digits in every cell of a column that holds it,
+  beside integers in that column (``980``, ``1.200``): a thousands separator or decimals? said,
+  read as decimals (as the reader reads it);
+- a mark: a cell's text in a number column that is no number and either holds no digit
+  (``---``, ``n/a``, ``#N/A``) or is a formula's error (``Err:502``, ``#DIV/0!``); the text
+  the reader reads as missing already (``NaN``, empty) is no mark to list but a missing value;
+- its gap: the longest run of missing cells in a column holding at least one mark, inside the
+  file (``max_gap_samples``) or at its start or end (``max_edge_samples``).
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+import pyarrow as pa
+import pyarrow.compute as pc
+import pyarrow.csv as pacsv
+
+from .again import header_again
+from .contract import ContractError
+from .encoding import arrow_encoding
+from .footer import footer, source
+from .layout import header_line
+from .roles import named_as_time
+from .separators import GROUP_MARKS, NO_BREAK_SPACES, UNICODE_MINUS, grouped
+from .sniff import head_lines
+
+# a formula's error, '#DIV/0!', '#WERT!', LibreOffice Calc's 'Err:502' (as .tables reads them)
+EXCEL_ERROR = re.compile(r"#[A-Z0-9/]+[!?]|Err:\d{3}")
+# the text the reader reads as missing already (.tables.MISSING_TOKENS)
+READ_AS_MISSING = ("", "nan", "NaN", "NAN", "-nan", "-NaN")
+NUMBER_SHARE = 0.5       # a number column: at least this share of its non-empty cells numbers
+
+
+@dataclass
+class Cells:
+    """What the cells say: the keys to write and a line of why for each, and the doubts."""
+
+    thousands: str | None = None
+    marks: dict = field(default_factory=dict)        # mark -> {column header: cells}
+    gap: int = 0                                      # longest run of a mark's inside a file
+    edge: int = 0                                     # ... at a file's start or end
+    said: list = field(default_factory=list)
+
+
+def is_mark(text: str) -> bool:
+    """A cell's text that is a mark for a value not measured: no digit, or a formula's error."""
+    return not re.search(r"\d", text) or bool(EXCEL_ERROR.fullmatch(text.strip()))
+
+
+def _table(path: Path, delimiter: str, encoding: str, skip: int, preamble: int,
+           width: int) -> pa.Table | None:
+    """The file's data rows as text (None where Arrow cannot split them: the reader says why)."""
+    spans = header_again(path, preamble, skip > preamble + 1)
+    cut = footer(path, delimiter, width, encoding)[1]
+    spans = tuple((a, b) for a, b in spans if a < cut)
+    if spans:
+        from .again import without
+
+        data = without(path, cut, spans)
+    else:
+        data = source(path, cut)
+    names = [f"c{i}" for i in range(width)]
+    try:
+        return pacsv.read_csv(data, read_options=pacsv.ReadOptions(
+            column_names=names, skip_rows=skip, encoding=arrow_encoding(encoding)),
+            parse_options=pacsv.ParseOptions(delimiter=delimiter),
+            convert_options=pacsv.ConvertOptions(column_types=dict.fromkeys(names, pa.string()),
+                                                 strings_can_be_null=False, null_values=[]))
+    except (pa.ArrowInvalid, UnicodeDecodeError):
+        return None
+
+
+def _texts(column: pa.ChunkedArray) -> pa.ChunkedArray:
+    text = pc.utf8_trim_whitespace(column)
+    return pc.replace_substring(text, UNICODE_MINUS, "-")
+
+
+def _plain(decimal: str) -> str:
+    d = re.escape(decimal)
+    return rf"^[+-]?(?:\d+(?:{d}\d*)?|{d}\d+)(?:[eE][+-]?\d+)?$"
+
+
+def _matches(text, pattern: str) -> np.ndarray:
+    return pc.match_substring_regex(text, pattern).to_numpy(zero_copy_only=False)
+
+
+def _holds(text, mark: str) -> np.ndarray:
+    return pc.match_substring(text, mark).to_numpy(zero_copy_only=False)
+
+
+@dataclass
+class _Column:
+    header: str
+    path: Path
+    text: pa.ChunkedArray
+    missing: np.ndarray          # read as missing already (empty, NaN)
+    plain: np.ndarray            # a number with the decimal mark
+    grouped: dict                # mark -> grouped by three with it
+
+    def first(self, mask: np.ndarray) -> str:
+        return str(self.text[int(np.argmax(mask))].as_py())
+
+
+def _column(header: str, path: Path, text, decimal: str) -> _Column | None:
+    """The column's masks, or None where it is no number column (:data:`NUMBER_SHARE`)."""
+    missing = pc.is_in(text, value_set=pa.array(list(READ_AS_MISSING))).to_numpy(
+        zero_copy_only=False)
+    filled = int((~missing).sum())
+    if not filled:
+        return None
+    plain = _matches(text, _plain(decimal))
+    marks = {m: _matches(text, f"^{grouped(m, decimal)}$") for m in GROUP_MARKS if m != decimal}
+    numeric = plain | np.logical_or.reduce([*marks.values(), np.zeros_like(plain)])
+    if int((numeric & ~missing).sum()) < NUMBER_SHARE * filled:
+        return None
+    return _Column(header, path, text, missing, plain, marks)
+
+
+def scanned(files: list[Path], delimiter: str, decimal: str, encoding: str,
+            thousands: str | None, missing_values: list, peek, decimal_given: bool = False
+            ) -> Cells:
+    """:class:`Cells` of the text ``files`` (``peek``: :func:`.tables.peek_csv`; the keys
+    given, ``thousands`` and ``missing_values``, are kept and not said again, nor a doubt of
+    the decimal mark where ``decimal_given``)."""
+    numbers: list[_Column] = []
+    for path in files:
+        try:
+            header, _, skip = peek(path, delimiter, encoding)
+        except ContractError:          # (no rows, no text: the reader refuses it, saying why)
+            continue
+        preamble = header_line(head_lines(path, encoding), delimiter) or 0
+        table = _table(path, delimiter, encoding, skip, preamble, len(header))
+        if table is None:
+            continue
+        for h, column in zip(header, table.columns):
+            if h.strip() and not named_as_time(h):
+                found = _column(h, path, _texts(column), decimal)
+                if found is not None:
+                    numbers.append(found)
+    found = Cells(thousands=thousands)
+    if thousands is None:
+        found.thousands = _thousands(numbers, decimal, found.said)
+    if not decimal_given:
+        _decimal_doubt(numbers, decimal, found)
+    _marks(numbers, decimal, found, missing_values)
+    return found
+
+
+def _thousands(numbers: list[_Column], decimal: str, said: list) -> str | None:
+    d = re.escape(decimal)
+    # the decimal mark shown as one: with other than three digits after it (21,35)
+    shows = rf"^[+-]?\d*{d}(?:\d{{1,2}}|\d{{4,}})(?:[eE][+-]?\d+)?$"
+    as_decimal = [c for c in numbers if _matches(c.text, shows).any()]
+    for mark in GROUP_MARKS:
+        if mark == decimal:
+            continue
+        holding = [(c, _holds(c.text, mark)) for c in numbers]
+        holding = [(c, h) for c, h in holding if h.any()]
+        if not holding:
+            continue
+        shown = repr(holding[0][0].first(holding[0][1]))
+        bad = [(c, h & ~c.grouped[mark]) for c, h in holding if (h & ~c.grouped[mark]).any()]
+        if bad:
+            if any((h & c.grouped[mark]).any() for c, h in holding):
+                said.append(f"{mark!r} groups digits by three in {shown} but not in "
+                            f"{bad[0][0].first(bad[0][1])!r}: no thousands separator guessed "
+                            "(data.thousands)")
+            continue
+        name = "a no-break space" if mark in NO_BREAK_SPACES else repr(mark)
+        m = re.escape(mark)
+        twice = [(c, h & _matches(c.text, f"{m}.*{m}")) for c, h in holding]
+        twice = [c.first(t) for c, t in twice if t.any()]
+        after = [(c, h & _holds(c.text, decimal)) for c, h in holding]
+        after = [c.first(t) for c, t in after if t.any()]
+        evidence = (
+            f"{name} is no decimal mark" if mark not in ",." else
+            f"{twice[0]!r} holds it twice" if twice else
+            f"{after[0]!r} has the decimal mark {decimal!r} after its groups" if after else
+            f"{_shown(as_decimal[0], shows)!r} has the decimal mark {decimal!r}" if as_decimal
+            else None)
+        if evidence is None:
+            said.append(f"{shown}: {mark!r} groups digits by three in every cell that holds it, "
+                        f"but no cell shows {decimal!r} as the decimal mark: a thousands "
+                        f"separator or the decimal mark? not guessed: set data.thousands={mark!r} "
+                        f"or data.decimal={mark!r}")
+            return None
+        n = sum(int(h.sum()) for _, h in holding)
+        said.append(f"thousands separator {name}: every one of {n} cells holding it "
+                    f"groups digits by three ({shown}), and {evidence}: data.thousands={mark!r}")
+        return mark
+    return None
+
+
+def _shown(column: _Column, pattern: str) -> str:
+    return column.first(_matches(column.text, pattern))
+
+
+def _decimal_doubt(numbers: list[_Column], decimal: str, found: Cells) -> None:
+    """Say a column whose every cell with the decimal mark has three digits after it, beside
+    integers: ``1.200`` read as 1.2, or grouped?"""
+    if found.thousands is not None:
+        return
+    d = re.escape(decimal)
+    for c in numbers:
+        holding = _holds(c.text, decimal)
+        integers = _matches(c.text, r"^[+-]?\d+$")
+        three = _matches(c.text, rf"^[+-]?\d{{1,3}}{d}\d{{3}}$")
+        if holding.any() and integers.any() and not (holding & ~three).any():
+            found.said.append(f"{c.header!r} ({c.path.name}): {c.first(holding)!r} beside "
+                              f"{c.first(integers)!r}: {decimal!r} with three digits after it in "
+                              "every cell: a thousands separator or decimals? not guessed, read "
+                              f"as decimals (data.thousands={decimal!r} with the other decimal "
+                              "mark if grouped)")
+            return
+
+
+def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> None:
+    thousands = found.thousands
+    for c in numbers:
+        numeric = c.plain | (c.grouped[thousands] if thousands in c.grouped else False)
+        other = ~numeric & ~c.missing
+        if not other.any():
+            continue
+        counts = pc.value_counts(pc.filter(c.text, pa.array(other))).to_pylist()
+        marks = {v["values"]: v["counts"] for v in counts
+                 if v["values"] in given or is_mark(v["values"])}
+        if not marks:
+            continue
+        for mark, n in marks.items():
+            found.marks.setdefault(mark, {})
+            found.marks[mark][c.header] = found.marks[mark].get(c.header, 0) + n
+        marked = pc.is_in(c.text, value_set=pa.array(list(marks))).to_numpy(zero_copy_only=False)
+        missing = c.missing | marked
+        edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
+        for a, b in zip(edges[::2], edges[1::2]):
+            if not marked[a:b].any():
+                continue
+            if a == 0 or b == len(missing):
+                found.edge = max(found.edge, int(b - a))
+            else:
+                found.gap = max(found.gap, int(b - a))
+    for mark, where in found.marks.items():
+        if mark in given:
+            continue
+        cells = sum(where.values())
+        found.said.append(f"{mark!r} in {cells} cell{'s' * (cells > 1)} of number column"
+                          f"{'s' * (len(where) > 1)} {', '.join(map(repr, list(where)[:4]))}"
+                          f"{', ...' if len(where) > 4 else ''}: no number, "
+                          + ("a formula's error" if EXCEL_ERROR.fullmatch(mark) else "no digit")
+                          + ": a mark for a value not measured, read as missing "
+                          "(data.missing_values)")
