@@ -147,3 +147,13 @@ def test_the_reader_leaves_a_header_written_again_out_and_names_its_line(tmp_pat
 
     with pytest.raises(ContractError, match=r"line 24 \(data row 20\): value 'abc1'"):
         read_dataset(folder, {"roles": {"time": ["Datum", "Uhrzeit"], "error": ["dX"]}})
+
+
+def test_a_header_written_again_is_said_once_however_often_the_file_is_read(tmp_path, capsys):
+    # init reads a file twice (its cells, then the record): the warning stood twice in its output
+    path = tmp_path / "again.csv"
+    rows = [f"{60 * i},{20 + 0.01 * i:.2f},{21 + 0.02 * i:.2f},{0.1 * i:.2f}" for i in range(40)]
+    rows.insert(20, "time,T_a,T_b,E_X")
+    path.write_text("time,T_a,T_b,E_X\n" + "\n".join(rows) + "\n", encoding="utf-8")
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
+    assert capsys.readouterr().err.count("the file's header written again") == 1

@@ -75,10 +75,16 @@ def line_numbers(path: Path, spans) -> tuple[int, ...]:
     return tuple(out)
 
 
+_SAID: set = set()   # (file, size, mtime): said once per process (init reads a file twice)
+
+
 def said(path: Path, lines: tuple[int, ...], spans) -> None:
-    """The warning: each header written again, by its file line."""
-    if not spans:
+    """The warning: each header written again, by its file line (once per file as it is)."""
+    stat = path.stat()
+    key = (str(Path(path).resolve()), stat.st_size, stat.st_mtime_ns)
+    if not spans or key in _SAID:
         return
+    _SAID.add(key)
     starts = [ln for ln in lines if ln - 1 not in lines]
     where = ", ".join(map(str, starts[:5])) + (", ..." if len(starts) > 5 else "")
     logger.warning(f"{path}, line{'s' * (len(starts) > 1)} {where}: the file's header written "
