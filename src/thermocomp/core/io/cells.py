@@ -46,11 +46,8 @@ from .layout import header_line
 from .roles import named_as_time
 from .separators import GROUP_MARKS, NO_BREAK_SPACES, UNICODE_MINUS, grouped
 from .sniff import head_lines
+from .tables import EXCEL_ERROR, MISSING_TOKENS, is_mark  # the reader's own rules
 
-# a formula's error, '#DIV/0!', '#WERT!', LibreOffice Calc's 'Err:502' (as .tables reads them)
-EXCEL_ERROR = re.compile(r"#[A-Z0-9/]+[!?]|Err:\d{3}")
-# the text the reader reads as missing already (.tables.MISSING_TOKENS)
-READ_AS_MISSING = ("", "nan", "NaN", "NAN", "-nan", "-NaN")
 NUMBER_SHARE = 0.5       # a number column: at least this share of its non-empty cells numbers
 
 
@@ -63,11 +60,6 @@ class Cells:
     gap: int = 0                                      # longest run of a mark's inside a file
     edge: int = 0                                     # ... at a file's start or end
     said: list = field(default_factory=list)
-
-
-def is_mark(text: str) -> bool:
-    """A cell's text that is a mark for a value not measured: no digit, or a formula's error."""
-    return not re.search(r"\d", text) or bool(EXCEL_ERROR.fullmatch(text.strip()))
 
 
 def _table(path: Path, delimiter: str, encoding: str, skip: int, preamble: int,
@@ -126,7 +118,7 @@ class _Column:
 
 def _column(header: str, path: Path, text, decimal: str) -> _Column | None:
     """The column's masks, or None where it is no number column (:data:`NUMBER_SHARE`)."""
-    missing = pc.is_in(text, value_set=pa.array(list(READ_AS_MISSING))).to_numpy(
+    missing = pc.is_in(text, value_set=pa.array(list(MISSING_TOKENS))).to_numpy(
         zero_copy_only=False)
     filled = int((~missing).sum())
     if not filled:

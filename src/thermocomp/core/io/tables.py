@@ -51,7 +51,7 @@ _PANDAS_INDEX = re.compile(r"__index_level_\d+__")
 _CONVERSION_ERROR = re.compile(r"In CSV column #(\d+)")
 # a formula's error, '#DIV/0!', '#WERT!', or LibreOffice Calc's 'Err:502' (stranger65: refused
 # without the hint, as it holds digits)
-_EXCEL_ERROR = re.compile(r"#[A-Z0-9/]+[!?]|Err:\d{3}")
+EXCEL_ERROR = re.compile(r"#[A-Z0-9/]+[!?]|Err:\d{3}")
 _ARROW_SOURCE = re.compile(r"^Could not open Parquet input source '.*?': ")
 # A contract name: prefix + identifier-like name (it becomes part of file names: no path
 # separators, '..', spaces or control characters).
@@ -374,6 +374,7 @@ def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions
             table = _read_as(path, names, types, opts, as_text)
         except pa.ArrowInvalid as exc:
             if as_text or not _CONVERSION_ERROR.search(_first_line(exc)) or not _signed(path):
+                exc = _on_one_thread(path, names, types, opts, as_text, exc)
                 raise _locate_csv_error(path, names, types, opts, exc) from None
             as_text, table = True, _read_as(path, names, types, opts, True)
     except UnicodeDecodeError:     # Arrow transcoding data.encoding: a byte it does not read
@@ -381,11 +382,26 @@ def _read_csv_typed(path: Path, names: list[str], types: dict, opts: ReadOptions
     return _ungroup(table, names, types, path, opts) if as_text else table
 
 
-def _read_as(path: Path, names: list[str], types: dict, opts: ReadOptions, as_text: bool):
+def _read_as(path: Path, names: list[str], types: dict, opts: ReadOptions, as_text: bool,
+             use_threads: bool = True):
     read_as = {n: pa.string() if as_text and pa.types.is_floating(t) else t
                for n, t in types.items()}
     return pacsv.read_csv(_input(path, opts), **_csv_options(
-        names, opts, types=read_as, include=[n for n in names if n in types]))
+        names, opts, types=read_as, include=[n for n in names if n in types],
+        use_threads=use_threads))
+
+
+def _on_one_thread(path, names, types, opts, as_text, exc):
+    """Arrow's conversion error as one thread meets it: its threads name whichever column they
+    convert first (hostile's decimal commas: 'time' in one run, 'T_0' at the same row in the
+    next); one thread converts a block's columns in the file's order.  Only on a refusal."""
+    if not _CONVERSION_ERROR.search(_first_line(exc)):
+        return exc
+    try:
+        _read_as(path, names, types, opts, as_text, use_threads=False)
+    except pa.ArrowInvalid as serial:
+        return serial
+    return exc
 
 
 def _signed(path: Path) -> bool:
@@ -485,7 +501,7 @@ def _bad_cell_error(path, names, column, target, opts, types=None) -> ContractEr
     if _is_header(path, opts, str(value)):
         hint = (": the file's header written again under its data (a logger restarted?): delete "
                 "that line (and a unit row under it), or cut the file there into two files")
-    if number and not hint and (not re.search(r"\d", str(value)) or _EXCEL_ERROR.fullmatch(
+    if number and not hint and (not re.search(r"\d", str(value)) or EXCEL_ERROR.fullmatch(
             str(value).strip())):
         marks = _other_marks(path, names, types, opts, str(value))
         if marks:     # (stranger65: each mark of another column was refused at the next read)
@@ -513,13 +529,13 @@ def _is_header(path: Path, opts: ReadOptions, value: str) -> bool:
     return any(value in (h, split_unit(h)[0]) for h in header)
 
 
-def _is_mark(value: str) -> bool:
+def is_mark(value: str) -> bool:
     """A cell's text that is a mark for a value not measured: no digit, or a formula's error."""
-    return not re.search(r"\d", value) or bool(_EXCEL_ERROR.fullmatch(value.strip()))
+    return not re.search(r"\d", value) or bool(EXCEL_ERROR.fullmatch(value.strip()))
 
 
 def _other_marks(path, names, types, opts, first: str) -> dict:
-    """``{mark: its longest run in a column}`` of the other marks (:func:`_is_mark`) in the
+    """``{mark: its longest run in a column}`` of the other marks (:func:`is_mark`) in the
     file's number columns besides ``first`` (none without ``types``), so that one refusal lists
     them all (at most 5)."""
     floats = [n for n, t in (types or {}).items() if pa.types.is_floating(t)]
@@ -532,7 +548,7 @@ def _other_marks(path, names, types, opts, first: str) -> dict:
         cells = raw.column(name)
         values = set(pc.unique(cells).to_pylist()) - {None}
         for value in values:
-            if value == first or value in runs or not _is_mark(str(value)):
+            if value == first or value in runs or not is_mark(str(value)):
                 continue
             if reads_as_number(str(value), opts.decimal, opts.thousands):
                 continue
