@@ -86,3 +86,36 @@ def test_a_missing_value_mark_is_a_missing_value_and_another_word_no_number(tmp_
                           capture_output=True)
     assert done.returncode == 2
     assert "row 22: input T_Ständer: 'n.v.' is no number" in done.stderr.decode()
+
+
+@needs_cc
+def test_another_files_header_in_the_stream_says_to_stream_each_file_by_itself(tmp_path):
+    # before: "row 243: input T_Ständer has no finite value" (another day file's header read as
+    # a row); the header written again is left out, another is said for what it is
+    path = logger_file(tmp_path / "day.csv", True, "cp1252", None)
+    common = _common(path, "cp1252")
+    assert main(["run", *common, *FAST, "model=mlr", "plots=none", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c", "export.check=false",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    code = tmp_path / "code"
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    raw = path.read_bytes()
+    # the next day's file under the logger's new configuration: its units in its header
+    other = logger_file(tmp_path / "next.csv", False, "cp1252", None).read_bytes()
+    done = subprocess.run(["./stream"], cwd=code, input=raw + raw, capture_output=True)
+    assert done.returncode == 0 and len(done.stdout.splitlines()) == 1 + 2 * 240
+    done = subprocess.run(["./stream"], cwd=code, input=raw + other, capture_output=True)
+    assert done.returncode == 2 and len(done.stdout.splitlines()) == 1 + 240
+    assert "line 243 is a header other than the first" in done.stderr.decode()
+    assert "stream each file by itself" in done.stderr.decode()
+
+
+def test_export_as_c_refuses_a_character_set_stream_c_does_not_decode(tmp_path):
+    # before: exported, and stream.c read the file's bytes as UTF-8 (its headers not found)
+    path = logger_file(tmp_path / "day.csv", False, "cp1250", None)
+    common = _common(path, "cp1250")
+    assert main(["run", *common, *FAST, "model=mlr", "plots=none", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c", "export.check=false",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 2
+    assert not (tmp_path / "code" / "stream.c").exists()
