@@ -183,6 +183,23 @@ STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601",
                               for seconds in (":%S", ""))})
 
 
+def _stream_encoding(cfg, fmt: str) -> str:
+    """``data.encoding`` as ``stream.c`` decodes it (``utf-8``, ``cp1252``, ``latin-1``); another
+    character set is refused for the C (exit 2), as ``stream.c`` could not read its headers."""
+    import codecs
+
+    given = str(cfg.data.get("encoding") or "utf-8")
+    try:
+        name = codecs.lookup(given).name
+    except LookupError:
+        name = given
+    known = {"utf-8": "utf-8", "utf-8-sig": "utf-8", "cp1252": "cp1252", "iso8859-1": "latin-1"}
+    if fmt == "c" and name not in known:
+        raise ConfigError(f"export.format=c: data.encoding={given!r}: stream.c decodes utf-8, "
+                          "cp1252 and latin-1 only; convert the files to UTF-8 first")
+    return known.get(name, name)
+
+
 def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> None:
     """Refuse a column whose unit ``stream.c`` cannot convert as the reader did: a header read
     two ways (a letter unit, 'Probe K', taken apart by its first value), or a time written as
@@ -243,6 +260,10 @@ def export(cfg: DictConfig) -> dict:
         provenance.update(clock_column=str(clock[0]) if clock else None)
     thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
     provenance.update(thousands=None if thousands is None else str(thousands)[:1])
+    # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
+    # of a value not measured travel with the model, as data.thousands does)
+    provenance.update(encoding=_stream_encoding(cfg, fmt),
+                      missing_values=[str(m) for m in cfg.data.get("missing_values") or ()])
     provenance.update(model=family, source=source, version=version(), units=units, lab_names=lab,
                       lab_units=converted, run_column=run_column,
                       exported=datetime.now(timezone.utc).strftime("%Y-%m-%dT%H:%M:%SZ"),

@@ -84,7 +84,24 @@ def _lab_names(ss: StateSpace) -> str:
             "  /* the time of day joined to the date column's cell (\"\": none) */\n"
             f"static const char *const TC_THOUSANDS = "
             f"{c_string(ss.provenance.get('thousands') or '')};"
-            "  /* data.thousands: the digits' grouping mark (\"\": none) */")
+            "  /* data.thousands: the digits' grouping mark (\"\": none) */\n"
+            + _raw_file(ss))
+
+
+ENCODINGS = {"utf-8": 0, "cp1252": 1, "latin-1": 2}
+
+
+def _raw_file(ss: StateSpace) -> str:
+    """How the lab's raw file is read (streamraw65): its character set (``data.encoding``: a
+    Windows logger's cp1252 header bytes decoded to the UTF-8 of ``TC_LAB_NAMES``) and the marks
+    it writes for a value not measured (``data.missing_values``: read as an empty cell)."""
+    marks = [str(m) for m in ss.provenance.get("missing_values") or ()]
+    items = ", ".join(map(c_string, marks)) or '""'
+    code = ENCODINGS.get(str(ss.provenance.get("encoding") or "utf-8"), 0)
+    return (f"#define TC_ENCODING {code}   /* data.encoding: 0 utf-8, 1 cp1252, 2 latin-1 */\n"
+            f"#define TC_N_MISSING {len(marks)}\n"
+            f"static const char *const TC_MISSING[{max(len(marks), 1)}] = {{{items}}};"
+            "  /* data.missing_values: a cell holding one is a missing value */")
 
 
 def _pattern_constants(ss: StateSpace) -> list:

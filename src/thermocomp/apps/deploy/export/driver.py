@@ -28,7 +28,12 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * mid-write leaves the previous row's state); a FILE of another build is refused.
  * A logger's preamble above the header (`Machine;PM-12`, `Operator: ...`: at most MAX_PREAMBLE
  * lines) is skipped as the model's reader skips it: the header is the first line naming every
- * input.
+ * input.  A unit row under the header (`;;degC;W;um`) is left out, each header read with its
+ * unit (`T Halle [degC]`); a line in data.encoding (TC_ENCODING: a Windows logger's cp1252) is
+ * read as UTF-8 (a line that is UTF-8 already as it is); the header written again further down
+ * (a logger restarted), with its unit row, is left out and said; a cell holding a mark of
+ * data.missing_values (TC_MISSING: `---`) is a missing value, as an empty cell is, and a cell
+ * of an input that is no number nor a mark is refused with its row, as the reader refuses it.
  * A file in fixed-width columns, JSON Lines, a TDMS log or a MATLAB file is refused: convert
  * it to CSV first (the export's check/<campaign>/rows.csv holds such a record's rows as this
  * reads them).
@@ -96,7 +101,93 @@ static const char *named(char *cell, int j) {
             offset_of[j] = TC_LAB_UNITS[k][1];
             return TC_LAB_NAMES[k][1];
         }
+    /* (streamraw65) a header whose unit is in the unit row under it (`T Halle` over `degC`): the
+       reader named it `T Halle [degC]`; the unit row, where there is one, says which (united) */
+    for (k = 0; len && k < TC_N_LAB_NAMES; k++)
+        if (strncmp(cell, TC_LAB_NAMES[k][0], len) == 0 && TC_LAB_NAMES[k][0][len] == ' '
+            && TC_LAB_NAMES[k][0][len + 1] == '[') {
+            scale_of[j] = TC_LAB_UNITS[k][0];
+            offset_of[j] = TC_LAB_UNITS[k][1];
+            return TC_LAB_NAMES[k][1];
+        }
     return cell;
+}
+
+/* 1: `line` is UTF-8 (ASCII included): the check pack's rows.csv, a converted file. A Windows
+   logger's `St\344nder` is not (a lead byte 0xE4 wants two continuation bytes). */
+static int utf8(const char *line) {
+    const unsigned char *p = (const unsigned char *)line;
+    while (*p) {
+        int more = *p < 0x80 ? 0 : (*p & 0xE0) == 0xC0 && *p >= 0xC2 ? 1 : (*p & 0xF0) == 0xE0
+                   ? 2 : (*p & 0xF8) == 0xF0 && *p <= 0xF4 ? 3 : -1;
+        if (more < 0) return 0;
+        for (p++; more > 0; more--, p++)
+            if ((*p & 0xC0) != 0x80) return 0;
+    }
+    return 1;
+}
+
+/* (streamraw65) a line's bytes in data.encoding (TC_ENCODING: cp1252 or latin-1, a Windows
+   logger's `T St\344nder [\260C]`) as UTF-8, in place, as the reader decodes the file (a line
+   that is UTF-8 already, as the pack's rows.csv are, is left as it is); 0 where
+   a byte is none of cp1252's (0x81, 0x8D, 0x8F, 0x90, 0x9D: the reader refuses it too) or the
+   line outgrows the buffer. */
+static int decoded(char *line, size_t size) {
+    static const unsigned short cp1252[32] = {
+        0x20AC, 0, 0x201A, 0x0192, 0x201E, 0x2026, 0x2020, 0x2021, 0x02C6, 0x2030, 0x0160,
+        0x2039, 0x0152, 0, 0x017D, 0, 0, 0x2018, 0x2019, 0x201C, 0x201D, 0x2022, 0x2013,
+        0x2014, 0x02DC, 0x2122, 0x0161, 0x203A, 0x0153, 0, 0x017E, 0x0178};
+    static char out[MAX_LINE];
+    size_t n = 0;
+    const unsigned char *p;
+    if (TC_ENCODING == 0 || utf8(line)) return 1;   /* (the pack's rows.csv: UTF-8) */
+    for (p = (const unsigned char *)line; *p; p++) {
+        unsigned code = *p;
+        if (code >= 0x80 && code < 0xA0 && TC_ENCODING == 1) {
+            code = cp1252[code - 0x80];
+            if (!code) return 0;
+        }
+        if (n + 4 >= size) return 0;
+        if (code < 0x80) out[n++] = (char)code;
+        else if (code < 0x800) {
+            out[n++] = (char)(0xC0 | (code >> 6));
+            out[n++] = (char)(0x80 | (code & 0x3F));
+        } else {
+            out[n++] = (char)(0xE0 | (code >> 12));
+            out[n++] = (char)(0x80 | ((code >> 6) & 0x3F));
+            out[n++] = (char)(0x80 | (code & 0x3F));
+        }
+    }
+    out[n] = '\0';
+    memcpy(line, out, n + 1);
+    return 1;
+}
+
+/* The next line of stdin (line `row` of the file), decoded (TC_ENCODING): 1, 0 at its end;
+   a byte data.encoding does not read: said, exit 2. */
+static int next_line(char *line, size_t size, long row) {
+    if (!fgets(line, (int)size, stdin)) return 0;
+    if (!decoded(line, size)) {
+        fprintf(stderr, "stream: line %ld: a byte %s does not read (data.encoding of the model's "
+                "data), or the line is too long\n", row,
+                TC_ENCODING == 1 ? "cp1252" : "latin-1");
+        exit(2);
+    }
+    return 1;
+}
+
+/* 1: `cell` (spaces and quotes round it dropped) is one of data.missing_values' marks. */
+static int is_mark(const char *cell) {
+    size_t len;
+    int k;
+    while (*cell == ' ' || *cell == '"') cell++;
+    len = strlen(cell);
+    while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"' || cell[len - 1] == '\r'
+                   || cell[len - 1] == '\n')) len--;
+    for (k = 0; k < TC_N_MISSING; k++)
+        if (TC_MISSING[k][0] && strlen(TC_MISSING[k]) == len && strncmp(cell, TC_MISSING[k], len) == 0)
+            return 1;
+    return 0;
 }
 
 /* The separator a header line says: ';', a tab or '|' where it holds one, else ','. */
@@ -140,7 +231,7 @@ static double value(const char *cell, int *bad) {
     char text[MAX_CELL], *end, *c;
     double v;
     while (*cell == ' ' || *cell == '"') cell++;
-    if (*cell == '\0') return NAN;
+    if (*cell == '\0' || is_mark(cell)) return NAN;   /* (a data.missing_values mark: empty) */
     strncpy(text, cell, MAX_CELL - 1);
     text[MAX_CELL - 1] = '\0';
     if (TC_THOUSANDS[0]) ungroup(text, TC_THOUSANDS[0]);
@@ -149,6 +240,12 @@ static double value(const char *cell, int *bad) {
     while (*end == ' ' || *end == '"') end++;
     if (end == text || *end != '\0') { *bad = 1; return NAN; }
     return v;
+}
+
+/* `line` without its line end (in place). */
+static const char *strip_end(char *line) {
+    line[strcspn(line, "\r\n")] = '\0';
+    return line;
 }
 
 /* `cell` without the spaces and double quotes around it (in place). */
@@ -436,6 +533,9 @@ int main(int argc, char **argv) {
     char *cells[MAX_COLS], *state_path = NULL, *state_tmp = NULL, *end;
     int where[TC_N_INPUTS], error_col[TC_N_OUTPUTS], time_col = -1, reset_col = -1, run_col = -1;
     int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
+    static char header_raw[MAX_LINE], units_raw[MAX_LINE], first_row[MAX_LINE], row_raw[MAX_LINE];
+    char *raw[MAX_COLS];
+    int pending = 0, again = 0;   /* a first row read after the header; a header again seen */
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
@@ -480,7 +580,7 @@ int main(int argc, char **argv) {
         strcpy(state_tmp, state_path);
         strcat(state_tmp, ".tmp");
     }
-    if (!fgets(line, sizeof line, stdin)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
+    if (!next_line(line, sizeof line, 1)) { fprintf(stderr, "stream: no header on stdin\n"); return 2; }
     if (strncmp(line, "\xEF\xBB\xBF", 3) == 0) memmove(line, line + 3, strlen(line + 3) + 1);
     if (strncmp(line, "TDSm", 4) == 0 || (strncmp(line, "MATLAB ", 7) == 0
                                           && strstr(line, "MAT-file") != NULL)) {
@@ -501,14 +601,54 @@ int main(int argc, char **argv) {
            the first of the next MAX_PREAMBLE lines naming every input is the header */
         static char first[MAX_LINE];
         strcpy(first, line);
-        for (i = 0; i < MAX_PREAMBLE && fgets(line, sizeof line, stdin); i++)
+        for (i = 0; i < MAX_PREAMBLE && next_line(line, sizeof line, i + 2); i++)
             if (names_every_input(line)) break;
         if (i == MAX_PREAMBLE || !names_every_input(line)) strcpy(line, first);
     }
     sep = separator_of(line);
+    strcpy(header_raw, line);
+    header_raw[strcspn(header_raw, "\r\n")] = '\0';
     ncols = split(line, cells);
+    for (j = 0; j < ncols; j++) raw[j] = cells[j];
+    for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
+    /* (streamraw65) a unit row under the header (`;;degC;W;-;um`: every cell it fills no number,
+       an input's among them), as the reader reads it: left out, each header joined to its unit
+       (`T Halle [degC]`) */
+    if ((pending = next_line(units_raw, sizeof units_raw, 2)) != 0) {
+        static char copy[MAX_LINE], joined[MAX_CELL * 2 + 4];
+        char *units[MAX_COLS];
+        int n, filled = 0, unit_row = 1, k;
+        strcpy(copy, units_raw);
+        n = split(copy, units);
+        for (j = 0; j < n && unit_row; j++) {
+            const char *u = trimmed(units[j]);
+            int bad = 0;
+            if (!*u) continue;
+            for (k = 0; j < ncols && k < TC_N_INPUTS; k++)   /* (a unit under an input) */
+                if (strcmp(cells[j], TC_INPUT_NAMES[k]) == 0) filled = 1;
+            if (is_mark(u) || isfinite(value(u, &bad)) || !bad) unit_row = 0;
+        }
+        if (filled && unit_row) {
+            pending = 0;
+            row = 2;
+            units_raw[strcspn(units_raw, "\r\n")] = '\0';
+            for (j = 0; j < ncols && j < n; j++) {
+                const char *u = trimmed(units[j]);
+                if (!*u) continue;
+                snprintf(joined, sizeof joined, "%s [%s]", trimmed(raw[j]), u);
+                for (k = 0; k < TC_N_LAB_NAMES; k++)
+                    if (strcmp(joined, TC_LAB_NAMES[k][0]) == 0) {
+                        cells[j] = (char *)TC_LAB_NAMES[k][1];
+                        scale_of[j] = TC_LAB_UNITS[k][0];
+                        offset_of[j] = TC_LAB_UNITS[k][1];
+                    }
+            }
+        } else {
+            strcpy(first_row, units_raw);   /* the first row: read in the loop */
+            units_raw[0] = '\0';
+        }
+    }
     for (j = 0; j < ncols; j++) {
-        cells[j] = (char *)named(cells[j], j);   /* the run column has no contract name */
         if (TC_RUN_COLUMN[0] && strcmp(cells[j], TC_RUN_COLUMN) == 0) run_col = j;
         if (TC_CLOCK_COLUMN[0] && strcmp(cells[j], TC_CLOCK_COLUMN) == 0) clock_col = j;
     }
@@ -561,8 +701,23 @@ int main(int argc, char **argv) {
                 "remove it to start cold\n", state_path);
         return 2;
     }
-    while (fgets(line, sizeof line, stdin)) {
+    while (pending || next_line(line, sizeof line, row + 1)) {
+        if (pending) strcpy(line, first_row), pending = 0;
         row++;
+        /* (streamraw65) the header written again (a logger restarted), the unit row under it
+           too: left out, as the reader leaves it out, and said (the rows after it go on) */
+        if (strcmp(strip_end(line), header_raw) == 0) {
+            fprintf(stderr, "stream: line %ld: the header written again (a logger restarted?): "
+                    "left out\n", row);
+            again = units_raw[0] != '\0';
+            continue;
+        }
+        if (again && strcmp(line, units_raw) == 0) {
+            again = 0;
+            continue;
+        }
+        again = 0;
+        strcpy(row_raw, line);
         if (line[strspn(line, " \t\r\n")] == '\0') {
             restart(&s, 1);
             if (!saved(state_path, state_tmp, &s, run)) return 2;
@@ -578,10 +733,25 @@ int main(int argc, char **argv) {
             strncpy(run, cells[run_col], MAX_CELL - 1);
         }
         for (i = 0; i < TC_N_INPUTS; i++) {
-            u[i] = converted(cells, where[i], &ignored);
+            int bad = 0;
+            u[i] = converted(cells, where[i], &bad);
+            if (bad && names_every_input(row_raw)) {   /* (names_every_input set sep: the same) */
+                fprintf(stderr, "stream: line %ld is a header other than the first (another "
+                        "file's: a column renamed?): stream each file by itself, --state FILE "
+                        "carries the campaign from one to the next\n", row);
+                return 2;
+            }
+            if (bad) {    /* (streamraw65: read as missing before; the reader refuses it) */
+                fprintf(stderr, "stream: row %ld: input %s: '%s' is no number (a mark for a "
+                        "value not measured? the model's data.missing_values lists %d)\n", row,
+                        TC_INPUT_NAMES[i], trimmed(cells[where[i]]), TC_N_MISSING);
+                return 2;
+            }
             if (!isfinite(u[i]) && !TC_INPUT_HELD[i]) {    /* (a held signal: tc_step holds it) */
-                fprintf(stderr, "stream: row %ld: input %s has no finite value\n", row,
-                        TC_INPUT_NAMES[i]);
+                fprintf(stderr, "stream: row %ld: input %s has no finite value%s\n", row,
+                        TC_INPUT_NAMES[i], is_mark(cells[where[i]]) ? " (a data.missing_values "
+                        "mark: a missing value, which the plain stream refuses as replay's does)"
+                        : "");
                 return 2;
             }
         }
