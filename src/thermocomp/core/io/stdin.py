@@ -25,7 +25,7 @@ from .layout import header_line, is_unit_row, with_units
 from .options import RUN_ROLE
 from .roles import RUN, active, naming, same_header, split_unit
 from .runs import run_blocks, run_values
-from .separators import UNICODE_MINUS
+from .separators import UNICODE_MINUS, grouped
 from .sniff import SNIFF_LINES, detected
 from .tables import first_cast_failure
 from .timestamps import (
@@ -171,11 +171,10 @@ def _grouped(df: pd.DataFrame, opts) -> pd.DataFrame:
     digits grouped by three with ``data.thousands`` or not) as numbers, the others as written,
     as the file reader reads them (stranger65: pandas' ``thousands`` took the '.' out of a date
     too, '14.06.2027' -> 14062027, and the lab's day file piped into ``monitor`` was refused)."""
-    mark, point = re.escape(opts.thousands), re.escape(opts.decimal)
-    grouped = rf"[+-]?\d{{1,3}}(?:{mark}\d{{3}})+(?:{point}\d*)?"
+    pattern = grouped(opts.thousands, opts.decimal)     # the file reader's own rule
     for c in df.columns:
         text = df[c].str.strip()
-        text = text.mask(text.str.fullmatch(grouped).fillna(False).astype(bool),
+        text = text.mask(text.str.fullmatch(pattern).fillna(False).astype(bool),
                          text.str.replace(opts.thousands, "", regex=False))
         if opts.decimal != ".":
             text = text.str.replace(opts.decimal, ".", regex=False)

@@ -87,20 +87,29 @@ static double scale_of[MAX_COLS], offset_of[MAX_COLS];
 
 /* A header cell as named: without spaces and quotes around it, read as its contract name;
    column j's conversion set from the lab's header (1 and 0 under a contract name). */
-static const char *named(char *cell, int j) {
-    size_t len;
+/* The contract name of the lab's header `cell` (exactly as written), its unit's scale and offset
+   set for column j; NULL where the model's data names no such header. */
+static const char *lab_named(const char *cell, int j) {
     int k;
-    while (*cell == ' ' || *cell == '"') cell++;
-    len = strlen(cell);
-    while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"')) cell[--len] = '\0';
-    scale_of[j] = 1.0;
-    offset_of[j] = 0.0;
     for (k = 0; k < TC_N_LAB_NAMES; k++)
         if (strcmp(cell, TC_LAB_NAMES[k][0]) == 0) {
             scale_of[j] = TC_LAB_UNITS[k][0];
             offset_of[j] = TC_LAB_UNITS[k][1];
             return TC_LAB_NAMES[k][1];
         }
+    return NULL;
+}
+
+static const char *named(char *cell, int j) {
+    size_t len;
+    int k;
+    const char *lab;
+    while (*cell == ' ' || *cell == '"') cell++;
+    len = strlen(cell);
+    while (len && (cell[len - 1] == ' ' || cell[len - 1] == '"')) cell[--len] = '\0';
+    scale_of[j] = 1.0;
+    offset_of[j] = 0.0;
+    if ((lab = lab_named(cell, j)) != NULL) return lab;
     /* (streamraw65) a header whose unit is in the unit row under it (`T Halle` over `degC`): the
        reader named it `T Halle [degC]`; the unit row, where there is one, says which (united) */
     for (k = 0; len && k < TC_N_LAB_NAMES; k++)
@@ -633,15 +642,10 @@ int main(int argc, char **argv) {
             row = 2;
             units_raw[strcspn(units_raw, "\r\n")] = '\0';
             for (j = 0; j < ncols && j < n; j++) {
-                const char *u = trimmed(units[j]);
+                const char *u = trimmed(units[j]), *lab;
                 if (!*u) continue;
                 snprintf(joined, sizeof joined, "%s [%s]", trimmed(raw[j]), u);
-                for (k = 0; k < TC_N_LAB_NAMES; k++)
-                    if (strcmp(joined, TC_LAB_NAMES[k][0]) == 0) {
-                        cells[j] = (char *)TC_LAB_NAMES[k][1];
-                        scale_of[j] = TC_LAB_UNITS[k][0];
-                        offset_of[j] = TC_LAB_UNITS[k][1];
-                    }
+                if ((lab = lab_named(joined, j)) != NULL) cells[j] = (char *)lab;
             }
         } else {
             strcpy(first_row, units_raw);   /* the first row: read in the loop */
