@@ -38,7 +38,7 @@ import pyarrow as pa
 import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
-from .again import header_again
+from .again import header_again, without
 from .contract import ContractError
 from .encoding import arrow_encoding
 from .footer import footer, source
@@ -68,12 +68,7 @@ def _table(path: Path, delimiter: str, encoding: str, skip: int, preamble: int,
     spans = header_again(path, preamble, skip > preamble + 1)
     cut = footer(path, delimiter, width, encoding)[1]
     spans = tuple((a, b) for a, b in spans if a < cut)
-    if spans:
-        from .again import without
-
-        data = without(path, cut, spans)
-    else:
-        data = source(path, cut)
+    data = without(path, cut, spans) if spans else source(path, cut)
     names = [f"c{i}" for i in range(width)]
     try:
         return pacsv.read_csv(data, read_options=pacsv.ReadOptions(
