@@ -227,9 +227,10 @@ def verdict(scored) -> tuple[list[str], dict]:
     for name, rows in scored:
         for t, r in rows.items():
             same = r["w"] == r["wA"]
-            lines.append(f"{name:12s} {t[:6]:6s} {r['test_anchored']}/{r['n_test_runs']} {r['oof_anchored']:3d}  "
-                         f"{r['mlr']:6.3g} {r['S']['mlr'][1]:6.3g} {r['auto']:6.3g} {r['autoS']:6.3g} "
-                         f"{r['A']:6.3g}  {_w(r['w'])}" + (" (both)" if same else f" | {_w(r['wA'])}"))
+            lines.append(f"{name:12s} {t[:6]:6s} {r['test_anchored']}/{r['n_test_runs']} "
+                         f"{r['oof_anchored']:3d}  {r['mlr']:6.3g} {r['S']['mlr'][1]:6.3g} "
+                         f"{r['auto']:6.3g} {r['autoS']:6.3g} {r['A']:6.3g}  {_w(r['w'])}"
+                         + (" (both)" if same else f" | {_w(r['wA'])}"))
         fams = sorted({n for r in rows.values() for n in r["S"]})
         m = {k: float(np.mean([r[k] for r in rows.values()])) for k in ("mlr", "auto", "autoS", "A")}
         m["S"] = {n: tuple(float(np.mean([r["S"][n][i] for r in rows.values()])) for i in (0, 1))
