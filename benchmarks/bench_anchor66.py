@@ -66,6 +66,40 @@ is scored as a family of rule S and reported beside it.
 Also reported (deciding nothing): ``|f(t0)|`` per family over the anchored test campaigns and
 held-out campaigns (median, 90th percentile, max, µm), and on the README's default record (``make
 run``: ``sim=yearround_spindle``, its default seed, MLR; ``readme``: the test RMSE before / after).
+
+Measured 2026-12-01 (stop 66; main aab2fa8d, the shipped code; 2 shared cores, AMD EPYC; run once,
+one thread, CPU user + sys: ``run rep`` 99.0 s, ``run check`` 52.5 s, ``score`` 0.6 s, ``readme``
+0.8 s).  The fits equal stop 65's (MLR and shipped auto on every target; shipped votes recomputed
+from the arrays = the kept weights, asserted).  Reached: ``rep`` 15 of 16 (fl9010's test continues
+its train: ``reference`` none); the test anchored everywhere else (1 run; 2 for year6_5411, hmc,
+jig_grinder; 8 for year6511/6512), the out-of-fold rows only on the 6 records with folds of whole
+campaigns (year6_5411, lab5401, hmc, jig_grinder, year6511, year6512: 1-16 held-out runs);
+``check`` 10 of 12 (trunnion6541, portal6542: ``none``).  Per record mean test RMSE (µm): MLR
+shipped / anchored, auto shipped / S / A::
+
+  rep    col5791 6.97 6.55  9.21 8.87 8.87 | col1403 7.40 7.38  9.43 9.26 9.26 | col1514 10.4 10.6
+         10.8 10.9 10.9 | mill1514 2.09 3.62  2.11 3.68 3.68 | swiss303 1.37 2.34  0.766 2.10 2.10 |
+         swiss5454 1.46 2.87  1.36 2.82 2.82 | year6_5411 1.61 1.93  1.09 1.21 1.16 | lab5401 2.01
+         2.26  2.06 2.29 1.80 | hmc 0.596 0.702  0.965 1.39 0.652 | twin_lathe 0.376 0.465  0.361
+         0.506 0.506 | jig_grinder 0.704 0.607  0.683 0.654 0.656 | col6511 7.71 7.59  8.12 7.95 7.95
+         | col6512 9.15 9.18  9.31 9.31 9.31 | year6511 2.64 2.62  0.987 1.18 1.13 | year6512 2.37
+         2.72  1.11 1.45 1.28 | fl9010 4.06 4.06  2.48 2.48 2.48 (not reached)
+  rule A (15 reached): better than the shipped MLR 7 -> 5; geometric mean A / shipped 1.169; worst
+         2.742 (swiss303) -> FAILS.  hmc E_Y, the motivating case: 1.58 -> 0.863 (MLR 0.78).
+  rule S, geometric mean anchored / shipped (worst record): mlr 1.169 (1.96), pcr 1.217 (2.35), arx
+         1.219 (3.00), lagbank 1.207 (2.79), hammerstein 1.209 (2.74), lstm 1.166 (1.99), ati 1.276
+         (1.46), auto (shipped weights) 1.266 (2.74) -> every family FAILS.
+  check  (context only: the rule had failed on rep) rule A 1.204, better than MLR 8 -> 8, worst
+         1.534 (climate6538); S per family 0.987 (hammerstein, worst 1.198) to 1.219 (ati) -> FAILS.
+
+|f(t0)| over the anchored test campaigns, median / p90 / max µm (rep): mlr 0.50 / 2.4 / 4.4, pcr
+1.15 / 4.9 / 14.9, arx 0.40 / 1.4 / 5.6, lagbank 0.84 / 2.1 / 6.8, hammerstein 0.26 / 0.95 / 5.0,
+lstm 0.41 / 2.4 / 2.8, ati 0.40 / 1.3 / 1.3; check alike (mlr 0.63 / 2.9).  Anchoring lowered a
+campaign's squared error in 31-54 % of the campaign x target cases per family (f(t0) is one sample
+of the model's error: a start transient as often as a constant offset).  README record (MLR, no S_
+input: f(t0) is its intercept, the same in the 8 test runs): |f(t0)| E_X 0.309, E_Y 0.043, E_Z 2.75
+µm; test RMSE 0.750 -> 0.748, 1.424 -> 1.429, 5.80 -> 5.68.  **Refused on both sets: no src
+change.**
 """
 
 from __future__ import annotations
@@ -176,6 +210,9 @@ def target_row(report: dict, a) -> dict:
            "oof_anchored": len(oof_runs),
            "f0_test": {n: [float(tests[n][r[0]]) for r in test_runs] for n in names},
            "f0_oof": {n: [float(a["oof_" + n][r[0]]) for r in oof_runs] for n in members},
+           # per anchored test campaign: f(t0) and the campaign's mean residual (label - f)
+           "offset": {n: [(float(tests[n][r[0]]), float(np.mean(test_y[r] - tests[n][r])))
+                          for r in test_runs] for n in names},
            "S": {n: (rmse(test_y - tests[n]), rmse(test_y - anchored(tests[n], test_runs)))
                  for n in names}}
     kept = report["auto"]["weights"]
@@ -274,6 +311,15 @@ def verdict(scored) -> tuple[list[str], dict]:
             parts.append(f"{np.median(v):.3g} / {np.percentile(v, 90):.3g} / {v.max():.3g} ({v.size})"
                          if v.size else "-")
         lines.append(f"  {fam:11s} " + " | ".join(parts))
+    lines += ["", "why (deciding nothing): per family over the anchored test campaigns, c = -sum(f0 m) / "
+              "sum(f0^2), m the campaign's mean residual (the share of f(t0) that is the campaign's "
+              "constant offset; anchoring lowers a campaign's squared error iff f0 m < -f0^2 / 2, "
+              "c > 0.5 for equal campaigns), and the campaigns anchoring improves"]
+    for fam in fams:
+        pairs = np.array([x for _, rows in scored for r in rows.values() for x in r["offset"].get(fam, [])])
+        f0, m = pairs[:, 0], pairs[:, 1]
+        c = -float(f0 @ m) / float(f0 @ f0)
+        lines.append(f"  {fam:11s} c {c:+.2f}; improved {int(np.sum(f0 * m < -f0 ** 2 / 2))} of {len(f0)}")
     return lines, passed
 
 
