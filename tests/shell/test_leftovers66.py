@@ -162,3 +162,46 @@ def test_the_compiled_stream_holds_a_mark_in_a_held_signal_as_replay_holds_it(do
         [*marked[:first], ",".join(cells), *marked[first + 1:]]), text=True, capture_output=True)
     assert done.returncode == 2 and "input T_a has no finite value (a data.missing_values mark" \
         in done.stderr, done.stderr
+
+
+# -- 3. init: a mark in an error column measured by a probe cycle sets no gap -------------------
+
+def _probe_file(path: Path, dropout: tuple = (200, 201), every: int = 10) -> Path:
+    """Temperatures every 60 s, the error read by a probe every ``every`` rows (the cells between
+    empty), a reading not taken written ``---``; T Spindel's logger out on the ``dropout`` rows,
+    written ``---`` too."""
+    rng = np.random.default_rng(663)
+    n = 600
+    t = np.arange(n) * 60.0
+    a = 20 + 3 * (1 - np.exp(-t / 4000)) + rng.normal(0, 0.02, n)
+    b = 20 + 1.5 * np.sin(t / 5000) + rng.normal(0, 0.02, n)
+    e = 2.0 * (a - 20) - 1.0 * (b - 20) + rng.normal(0, 0.05, n)
+    lines = ["time;T Spindel [°C];T Bett [°C];dX [µm]"]
+    for i in range(n):
+        ta = "---" if i in dropout else f"{a[i]:.2f}"
+        ex = "---" if i == 30 * every else f"{e[i]:.2f}" if i % every == 0 else ""
+        lines.append(";".join([f"{t[i]:.0f}", ta, f"{b[i]:.2f}", ex]).replace(".", ","))
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+@pytest.mark.parametrize("dropout, gap", [((200, 201), 2), ((), None)])
+def test_a_mark_in_a_probe_cycles_error_column_sets_no_gap(tmp_path, capsys, dropout, gap):
+    # before: the probe's 19 empty rows round its one '---' were a gap: init wrote
+    # data.max_gap_samples=19, and every column's gap was then interpolated up to 19 samples
+    import yaml
+
+    path = _probe_file(tmp_path / "probe.csv", dropout)
+    assert main(["init", str(path), f"out={tmp_path / 'init'}"]) == 0, capsys.readouterr().err
+    printed = capsys.readouterr().out
+    config = yaml.safe_load((tmp_path / "init" / "conf" / "data" / "probe.yaml").read_text())
+    assert config["missing_values"] == ["---"]
+    assert config.get("max_gap_samples") == gap, printed      # the temperature's own run, or none
+    assert "max_edge_samples" not in config
+    assert "'dX [µm]' (probe.csv) measured on 1 row in 10: its marks are a probe cycle's" in printed
+    # the run init prints reads the record (the error's '---' kept empty, as its probe cycle)
+    command = next(ln for ln in printed.splitlines() if ln.startswith("next: thermocomp run"))
+    overrides = [a.strip("'") for a in command.split()[3:]]
+    assert main(["run", *overrides, "model=mlr", *FAST, f"out={tmp_path / 'run'}"]) == 0
+    metrics = json.loads((tmp_path / "run" / "metrics.json").read_text())
+    assert metrics["targets"]["E_dX"]["test"]["rmse"] > 0
