@@ -198,7 +198,7 @@ def test_a_mark_in_a_probe_cycles_error_column_sets_no_gap(tmp_path, capsys, dro
     assert config["missing_values"] == ["---"]
     assert config.get("max_gap_samples") == gap, printed      # the temperature's own run, or none
     assert "max_edge_samples" not in config
-    assert "'dX [µm]' (probe.csv) measured on 1 row in 10: its marks are a probe cycle's" in printed
+    assert "probe.csv: 'dX [µm]' measured on 1 row in 10: its marks are a probe cycle's" in printed
     # the run init prints reads the record (the error's '---' kept empty, as its probe cycle)
     command = next(ln for ln in printed.splitlines() if ln.startswith("next: thermocomp run"))
     overrides = [a.strip("'") for a in command.split()[3:]]

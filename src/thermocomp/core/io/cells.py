@@ -71,16 +71,20 @@ class Cells:
         (its run between two readings set data.max_gap_samples to the probe's spacing, and every
         column's gap was then interpolated up to it: leftovers66)."""
         gap = edge = 0
-        said = []
+        cycles: dict = {}                    # header -> the probe's spacing in each file
         for r in self.runs:
             cycle = intermittent(r.missing, r.rows, sparse_targets) if r.header in errors else None
             if cycle is None:
                 gap, edge = max(gap, r.gap), max(edge, r.edge)
             elif r.gap or r.edge:
-                said.append(f"{r.header!r} ({r.path.name}) measured on 1 row in {cycle['every']}: "
-                            "its marks are a probe cycle's readings not taken, kept empty as the "
-                            "rows between its readings are (no gap: data.max_gap_samples not "
-                            "set by them)")
+                cycles.setdefault(r.header, []).append(cycle["every"])
+        said = []
+        for header, every in cycles.items():      # (said once a column, however many files)
+            lo, hi = min(every), max(every)
+            said.append(f"{header!r} measured on 1 row in {lo}{f'-{hi}' if hi > lo else ''}"
+                        f"{f' ({len(every)} files)' if len(every) > 1 else ''}: its marks are a "
+                        "probe cycle's readings not taken, kept empty as the rows between its "
+                        "readings are (no gap: data.max_gap_samples not set by them)")
         return gap, edge, said
 
 
