@@ -3,6 +3,12 @@
 1. A lab's day file piped into ``monitor monitor.input=-`` with its header (and unit row) written
    again mid-file: the file reader leaves such a line out (``core/io/again.py``); the stream read
    the header's text as a cell of each number column and refused every sensor as "not numeric".
+2. stream.c with a ``data.missing_values`` mark in a held input (a signal only a diagnosed
+   effect reads): held as ``tc_step`` holds a missing value, = replay (no defect on today's code:
+   the case was untested; the test fails on the code before streamraw65, whose refusal of a mark
+   in another input did not name it).
+3. ``init`` on a probe-cycle record with a mark in the error column: the probe's empty rows round
+   the mark were taken as a gap, and ``data.max_gap_samples`` written as the probe's spacing.
 """
 
 from __future__ import annotations
