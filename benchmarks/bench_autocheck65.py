@@ -154,7 +154,6 @@ geometric mean 0.987 over the 16, 1.020 without hmc, the record that motivated t
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 from pathlib import Path
@@ -250,13 +249,7 @@ def target_row(report: dict, a) -> dict:
     whole campaigns).  Measured with rule A in src (91ec8834: the fit's weights were A's); since
     the revert the fit runs the shipped votes, and its kept weights and test RMSE must be those
     (asserted)."""
-    names = [k[4:] for k in a.files if k.startswith("oof_") and k not in autorep.ARRAYS]
-    members = [n for n in names if n in report["validation"]]
-    y, fold, base = a["oof_y"], a["oof_fold"], a["oof_" + BASELINE]
-    group = a["oof_group"] if "oof_group" in a.files else None
-    preds = np.column_stack([a["oof_" + n] for n in members])
-    test = np.column_stack([a["test_" + n] for n in members])
-    kept = report["auto"]["weights"]
+    members, y, fold, base, group, preds, test, kept = autorep.stored(report, a)
     row = {"mlr": report["mlr"], "best_single": report["best_single"], "best_family": min(
         report["test"], key=report["test"].get)}
     if len(members) < 2 or BASELINE not in members:      # 'best' kept one: no votes
@@ -278,13 +271,7 @@ def target_row(report: dict, a) -> dict:
 
 
 def score(root: Path, names: list[str]) -> list[tuple[str, dict]]:
-    out = []
-    for name in names:
-        report = json.loads((root / "rank" / f"{name}.json").read_text())
-        rows = {t: target_row(r, np.load(root / "rank" / f"{name}.{t}.npz", allow_pickle=False))
-                for t, r in report["targets"].items()}
-        out.append((name, {"targets": rows, "family_mean": report["family_mean"]}))
-    return out
+    return autorep.score(root, names, target_row)
 
 
 def _w(weights: dict) -> str:

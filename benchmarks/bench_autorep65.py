@@ -255,15 +255,23 @@ def rereferenced(residual: np.ndarray, y: np.ndarray, group: np.ndarray | None, 
     return sq, ks
 
 
-def target_row(report: dict, a) -> dict:
-    """One target: MLR, best single, auto shipped (checked) and under rules A and B (test RMSE)."""
+def stored(report: dict, a) -> tuple:
+    """A target's fit as stored (``report``: bench_auto_rank's, ``a``: its arrays): ``(members,
+    y, fold, base, group, preds, test, kept)``, the candidates voted on, the out-of-fold labels,
+    folds, MLR's predictions and campaigns (None: folds not of whole campaigns), the candidates'
+    out-of-fold and test predictions (columns in ``members``' order) and the weights auto kept."""
     names = [k[4:] for k in a.files if k.startswith("oof_") and k not in ARRAYS]
     members = [n for n in names if n in report["validation"]]
-    y, fold, base = a["oof_y"], a["oof_fold"], a["oof_" + BASELINE]
     group = a["oof_group"] if "oof_group" in a.files else None
     preds = np.column_stack([a["oof_" + n] for n in members])
     test = np.column_stack([a["test_" + n] for n in members])
-    kept = report["auto"]["weights"]
+    return (members, a["oof_y"], a["oof_fold"], a["oof_" + BASELINE], group, preds, test,
+            report["auto"]["weights"])
+
+
+def target_row(report: dict, a) -> dict:
+    """One target: MLR, best single, auto shipped (checked) and under rules A and B (test RMSE)."""
+    members, y, fold, base, group, preds, test, kept = stored(report, a)
     row = {"mlr": report["mlr"], "best_single": report["best_single"], "auto": report["auto"]["rmse"]}
     if len(members) < 2 or BASELINE not in members:      # 'best' kept one: no votes
         return {**row, "A": row["auto"], "B": row["auto"], "k": [], "voted": False}
@@ -285,11 +293,14 @@ def target_row(report: dict, a) -> dict:
     return row
 
 
-def score(root: Path, records: list[str]) -> list[tuple[str, dict]]:
+def score(root: Path, records: list[str], row=None) -> list[tuple[str, dict]]:
+    """``[(record, {"targets": {target: row(report, arrays)}, "family_mean": ...})]`` from the
+    stored fits (``row``: :func:`target_row` by default; bench_autocheck65 gives its own)."""
+    row = row or target_row
     out = []
     for name in records:
         report = json.loads((root / "rank" / f"{name}.json").read_text())
-        rows = {t: target_row(r, np.load(root / "rank" / f"{name}.{t}.npz", allow_pickle=False))
+        rows = {t: row(r, np.load(root / "rank" / f"{name}.{t}.npz", allow_pickle=False))
                 for t, r in report["targets"].items()}
         out.append((name, {"targets": rows, "family_mean": report["family_mean"]}))
     return out

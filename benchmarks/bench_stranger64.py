@@ -179,7 +179,8 @@ FAMILIES = {
 WRAPPERS = ("plain", "ati")
 
 
-from lab_matrix import data_args, exported, matrix_step, monitored, replayed, stage, table  # noqa: E402  (the benches' shared matrix)
+from lab_matrix import data_args, matrix_step, monitored, stage, table  # noqa: E402  (the benches' shared matrix)
+from lab_matrix import diagnosed as lab_diagnosed  # noqa: E402
 
 # --- monitor: the healthy test week, then a fault on one sensor from its middle -----------------
 
@@ -227,32 +228,10 @@ def monitoring(root: Path, name: str, family: str, sensors, kinds=("jump",)) -> 
 # --- diagnose -> the rerun line -> replay -> C (its pack, and the lab's raw weekly files) -------
 
 def diagnosed(root: Path, name: str, family: str) -> dict:
-    """``diagnose`` as the docs say, its rerun line run, the rerun model replayed and exported
-    as C with the check pack; for ``pm12`` the lab's three weekly files as written (preambles,
-    TABs, decimal commas) piped whole into the compiled ``stream``, against the pack."""
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
-    data = data_args(root, name)
-    out = root / "diag" / f"{name}-{family}"
-    rc, said, cpu = stage("diagnose", *data, f"model={family}", "plots=none", f"out={out}")
-    row: dict = {"diagnose": f"{name}-{family}", "rc": rc, "cpu": round(cpu, 1)}
-    if rc:
-        return {**row, "said": said}
-    report = json.loads((out / "diagnosis.json").read_text())
-    row["targets"] = {report["target"]: (report["before"]["test_rmse"],
-                                         report["after"]["test_rmse"])}
-    row["targets"].update({t: (v["before_test_rmse"], v["after_test_rmse"])
-                           for t, v in (report.get("other_targets") or {}).items()})
-    conf = f"hydra.searchpath=[file://{root}/init-{name}/conf,file://{out}/diagnosis/conf]"
-    rc, said, cpu = stage("run", conf, f"data={name}", "experiment=diagnosed", "plots=none",
-                          f"out={out / 'diagnosed'}")
-    if rc:
-        return {**row, "rerun": f"exit {rc}: {said}"}
-    metrics = json.loads((out / "diagnosed" / "metrics.json").read_text())
-    targets = list(metrics["targets"])
-    row["rerun"] = {t: metrics["targets"][t]["test"]["rmse"] for t in targets}
-    model = str(out / "diagnosed" / "model.pkl")
-    row.update(replayed(data, model, out / "replay", targets))
-    row.update(exported(data, model, out / "c"))
+    """:func:`lab_matrix.diagnosed`; for ``pm12`` the lab's three weekly files as written
+    (preambles, TABs, decimal commas) piped whole into the compiled ``stream``, against the
+    pack."""
+    row, out = lab_diagnosed(root, name, family)
     if name == "pm12" and row.get("cc") == 0:
         files = sorted((root / name).glob("*.txt"))
         text = files[0].read_text(encoding="utf-8") + "".join(

@@ -207,15 +207,8 @@ FAMILIES = {
 WRAPPERS = ("plain", "ati")
 
 
-from lab_matrix import (  # noqa: E402  (the benches' shared matrix)
-    data_args,
-    exported,
-    matrix_step,
-    monitored,
-    replayed,
-    stage,
-    table,
-)
+from lab_matrix import diagnosed as lab_diagnosed  # noqa: E402
+from lab_matrix import matrix_step, monitored, stage, table  # noqa: E402  (the benches' shared matrix)
 
 
 def planted(src: Path, dst: Path, header: str, onset_row: int, jump_k: float = 3.0) -> float:
@@ -252,34 +245,8 @@ def monitoring(root: Path, name: str, family: str, sensors, onset_row: int = 720
 
 
 def diagnosed(root: Path, name: str, family: str) -> dict:
-    """``diagnose`` as the docs say, its rerun line run, the rerun model replayed and exported
-    as C with the check pack."""
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
-    data = data_args(root, name)
-    out = root / "diag" / f"{name}-{family}"
-    rc, said, cpu = stage("diagnose", *data, f"model={family}", "plots=none", f"out={out}")
-    row: dict = {"diagnose": f"{name}-{family}", "rc": rc, "cpu": round(cpu, 1)}
-    if rc:
-        return {**row, "said": said}
-    report = json.loads((out / "diagnosis.json").read_text())
-    row["accepted"] = [c.get("name", c) if isinstance(c, dict) else c
-                       for c in report.get("accepted", [])]
-    row["targets"] = {report["target"]: (report["before"]["test_rmse"],
-                                         report["after"]["test_rmse"])}
-    row["targets"].update({t: (v["before_test_rmse"], v["after_test_rmse"])
-                           for t, v in (report.get("other_targets") or {}).items()})
-    conf = f"hydra.searchpath=[file://{root}/init-{name}/conf,file://{out}/diagnosis/conf]"
-    rc, said, cpu = stage("run", conf, f"data={name}", "experiment=diagnosed", "plots=none",
-                          f"out={out / 'diagnosed'}")
-    if rc:
-        return {**row, "rerun": f"exit {rc}: {said}"}
-    metrics = json.loads((out / "diagnosed" / "metrics.json").read_text())
-    targets = list(metrics["targets"])
-    row["rerun"] = {t: metrics["targets"][t]["test"]["rmse"] for t in targets}
-    model = str(out / "diagnosed" / "model.pkl")
-    row.update(replayed(data, model, out / "replay", targets))
-    row.update(exported(data, model, out / "c"))
-    return row
+    """:func:`lab_matrix.diagnosed`, the accepted effects listed."""
+    return lab_diagnosed(root, name, family, accepted=True)[0]
 
 
 # --- init as the docs say: each refusal's hint taken, one more setting a try ---------------------

@@ -1,7 +1,7 @@
 """The stranger passes' matrix (bench_stranger63, bench_stranger64): each family x wrapper of a lab's
 record ``run`` -> ``replay`` -> ``promote`` -> C ``export`` with its check pack, in process, on a
 project root ``<root>/tc`` of its own (its MLflow store, ``conf`` linked to the repository's);
-a saved model's ``monitor`` and the matrix's table.
+a saved model's ``monitor``, ``diagnose`` -> its rerun -> replay -> C, and the matrix's table.
 
 Usage is through the benches: ``bench_stranger64.py matrix ROOT [names] [--families ...]``.
 """
@@ -75,6 +75,39 @@ def replayed(data: list, model: str, out: Path, targets, *extra: str) -> dict:
     return {"replay": {t: rep["targets"][t]["rmse"] for t in targets},
             "stream-batch": max(rep["targets"][t]["max_abs_stream_minus_batch"] for t in targets),
             "events": len(rep["events"]), "replay_cpu": round(cpu, 1)}
+
+
+def diagnosed(root: Path, name: str, family: str, accepted: bool = False) -> tuple[dict, Path]:
+    """``diagnose`` as the docs say, its rerun line run, the rerun model replayed and exported
+    as C with the check pack: ``(row of figures, diagnose's out folder)`` (``accepted``: the
+    row lists diagnosis.json's accepted effects too)."""
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    data = data_args(root, name)
+    out = root / "diag" / f"{name}-{family}"
+    rc, said, cpu = stage("diagnose", *data, f"model={family}", "plots=none", f"out={out}")
+    row: dict = {"diagnose": f"{name}-{family}", "rc": rc, "cpu": round(cpu, 1)}
+    if rc:
+        return {**row, "said": said}, out
+    report = json.loads((out / "diagnosis.json").read_text())
+    if accepted:
+        row["accepted"] = [c.get("name", c) if isinstance(c, dict) else c
+                           for c in report.get("accepted", [])]
+    row["targets"] = {report["target"]: (report["before"]["test_rmse"],
+                                         report["after"]["test_rmse"])}
+    row["targets"].update({t: (v["before_test_rmse"], v["after_test_rmse"])
+                           for t, v in (report.get("other_targets") or {}).items()})
+    conf = f"hydra.searchpath=[file://{root}/init-{name}/conf,file://{out}/diagnosis/conf]"
+    rc, said, cpu = stage("run", conf, f"data={name}", "experiment=diagnosed", "plots=none",
+                          f"out={out / 'diagnosed'}")
+    if rc:
+        return {**row, "rerun": f"exit {rc}: {said}"}, out
+    metrics = json.loads((out / "diagnosed" / "metrics.json").read_text())
+    targets = list(metrics["targets"])
+    row["rerun"] = {t: metrics["targets"][t]["test"]["rmse"] for t in targets}
+    model = str(out / "diagnosed" / "model.pkl")
+    row.update(replayed(data, model, out / "replay", targets))
+    row.update(exported(data, model, out / "c"))
+    return row, out
 
 
 def cell(root: Path, name: str, family: str, wrapper: str, options: dict) -> dict:

@@ -6,7 +6,9 @@ rows after it are counted without it (:class:`.lines.Lines`).
 The rule: a line equal, byte for byte, to the file's header line (and the line under it, where
 it equals the file's unit row) is no data.  Only the exact header is: a line of other text
 stays a row, refused with its row as before.  The search is one byte search of the mapped file
-(no row is parsed), so a file without one costs nothing noticeable.
+(no row is parsed), so a file without one costs nothing noticeable.  A stream piped into
+``monitor monitor.input=-`` (or ``connect``) is searched by the same rule (:func:`spans_in`,
+leftovers66: the header's text was read as a cell of each number column and refused).
 """
 
 from __future__ import annotations
@@ -37,41 +39,53 @@ def header_again(path: Path, preamble: int, units: bool, cut: int | None = None
         except ValueError:                      # an empty file
             return ()
         with m:
-            start = 0
-            for _ in range(preamble):
-                start = m.find(b"\n", start) + 1
-                if start == 0:
-                    return ()
-            header, body = _line_at(m, start)
-            unit_row, body = _line_at(m, body) if units else (None, body)
-            header = header.removeprefix(b"\xef\xbb\xbf")     # (a BOM: written once, first)
-            if not header.strip():
-                return ()
-            stop = len(m) if cut is None else min(cut, len(m))
-            spans, at = [], body
-            while True:
-                found = m.find(b"\n" + header, at - 1 if at else 0, stop)
-                if found < 0:
-                    return tuple(spans)
-                first = found + 1
-                line, end = _line_at(m, first)
-                at = end
-                if line != header:              # a longer line starting with the header's text
-                    continue
-                if unit_row is not None and end < stop and _line_at(m, end)[0] == unit_row:
-                    end = _line_at(m, end)[1]
-                spans.append((first, min(end, stop)))
+            return spans_in(m, preamble, units, cut)
+
+
+def spans_in(m, preamble: int, units: bool, cut: int | None = None
+             ) -> tuple[tuple[int, int], ...]:
+    """:func:`header_again`'s spans in a file's bytes ``m`` (a mapped file, or the bytes of a
+    stream: ``monitor.input=-`` reads a lab's day file piped in by the same rule)."""
+    start = 0
+    for _ in range(preamble):
+        start = m.find(b"\n", start) + 1
+        if start == 0:
+            return ()
+    header, body = _line_at(m, start)
+    unit_row, body = _line_at(m, body) if units else (None, body)
+    header = header.removeprefix(b"\xef\xbb\xbf")     # (a BOM: written once, first)
+    if not header.strip():
+        return ()
+    stop = len(m) if cut is None else min(cut, len(m))
+    spans, at = [], body
+    while True:
+        found = m.find(b"\n" + header, at - 1 if at else 0, stop)
+        if found < 0:
+            return tuple(spans)
+        first = found + 1
+        line, end = _line_at(m, first)
+        at = end
+        if line != header:              # a longer line starting with the header's text
+            continue
+        if unit_row is not None and end < stop and _line_at(m, end)[0] == unit_row:
+            end = _line_at(m, end)[1]
+        spans.append((first, min(end, stop)))
 
 
 def line_numbers(path: Path, spans) -> tuple[int, ...]:
     """The 1-based file lines the ``spans`` cover."""
     if not spans:
         return ()
-    out = []
     with open(path, "rb") as f, mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ) as m:
-        for first, end in spans:
-            line = m[:first].count(b"\n") + 1
-            out.extend(range(line, line + max(1, m[first:end].rstrip(b"\r\n").count(b"\n") + 1)))
+        return lines_in(m, spans)
+
+
+def lines_in(m, spans) -> tuple[int, ...]:
+    """The 1-based lines of the bytes ``m`` the ``spans`` cover."""
+    out = []
+    for first, end in spans:
+        line = m[:first].count(b"\n") + 1
+        out.extend(range(line, line + max(1, m[first:end].rstrip(b"\r\n").count(b"\n") + 1)))
     return tuple(out)
 
 
@@ -85,11 +99,26 @@ def said(path: Path, lines: tuple[int, ...], spans) -> None:
     if not spans or key in _SAID:
         return
     _SAID.add(key)
+    warn(path, lines)
+
+
+def warn(source, lines: tuple[int, ...]) -> None:
+    """Say that the ``lines`` of ``source`` (a file, ``<stdin>``) are a header written again."""
     starts = [ln for ln in lines if ln - 1 not in lines]
     where = ", ".join(map(str, starts[:5])) + (", ..." if len(starts) > 5 else "")
-    logger.warning(f"{path}, line{'s' * (len(starts) > 1)} {where}: the file's header written "
+    logger.warning(f"{source}, line{'s' * (len(starts) > 1)} {where}: the file's header written "
                    "again under its data (a logger restarted?): left out, the rows after it read "
                    "as rows of the file")
+
+
+def kept(whole, spans, stop: int) -> bytes:
+    """The bytes ``whole[:stop]`` (an Arrow buffer, bytes) without the ``spans``."""
+    parts, at = [], 0
+    for first, end in spans:
+        parts.append(bytes(whole[at:first]))
+        at = end
+    parts.append(bytes(whole[at:stop]))
+    return b"".join(parts)
 
 
 def without(path: Path, cut: int | None, spans):
@@ -97,9 +126,4 @@ def without(path: Path, cut: int | None, spans):
     size = path.stat().st_size
     stop = size if cut is None else min(cut, size)
     whole = pa.memory_map(str(path)).read_buffer(stop)
-    parts, at = [], 0
-    for first, end in spans:
-        parts.append(whole[at:first].to_pybytes())
-        at = end
-    parts.append(whole[at:stop].to_pybytes())
-    return pa.BufferReader(b"".join(parts))
+    return pa.BufferReader(kept(whole, spans, stop))

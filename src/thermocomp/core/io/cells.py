@@ -24,7 +24,9 @@ out as the reader leaves it out, :mod:`.again`):
   (``---``, ``n/a``, ``#N/A``) or is a formula's error (``Err:502``, ``#DIV/0!``); the text
   the reader reads as missing already (``NaN``, empty) is no mark to list but a missing value;
 - its gap: the longest run of missing cells in a column holding at least one mark, inside the
-  file (``max_gap_samples``) or at its start or end (``max_edge_samples``).
+  file (``max_gap_samples``) or at its start or end (``max_edge_samples``); an error column
+  measured now and then (a probe cycle, :mod:`.sparse`) has none: the reader keeps its empty
+  cells empty, a mark's too (:meth:`Cells.longest`, told the error columns by ``init``).
 """
 
 from __future__ import annotations
@@ -46,6 +48,7 @@ from .layout import header_line
 from .roles import named_as_time
 from .separators import GROUP_MARKS, NO_BREAK_SPACES, UNICODE_MINUS, grouped
 from .sniff import head_lines
+from .sparse import intermittent
 from .tables import EXCEL_ERROR, MISSING_TOKENS, is_mark  # the reader's own rules
 
 NUMBER_SHARE = 0.5       # a number column: at least this share of its non-empty cells numbers
@@ -57,9 +60,45 @@ class Cells:
 
     thousands: str | None = None
     marks: dict = field(default_factory=dict)        # mark -> {column header: cells}
-    gap: int = 0                                      # longest run of a mark's inside a file
-    edge: int = 0                                     # ... at a file's start or end
     said: list = field(default_factory=list)
+    runs: list = field(default_factory=list)         # a marked column's :class:`_Runs`, per file
+
+    def longest(self, errors, sparse_targets: str = "auto") -> tuple[int, int, list]:
+        """``(longest run of a mark's inside a file, at a file's start or end, lines said)``
+        over the marked columns but an error column (a header in ``errors``) read as measured
+        now and then (``data.sparse_targets``, :mod:`.sparse`): its empty cells, a mark's too,
+        are a probe cycle's rows between readings, kept empty, never interpolated, so no gap
+        (its run between two readings set data.max_gap_samples to the probe's spacing, and every
+        column's gap was then interpolated up to it: leftovers66)."""
+        gap = edge = 0
+        cycles: dict = {}                    # header -> the probe's spacing in each file
+        for r in self.runs:
+            cycle = intermittent(r.missing, r.rows, sparse_targets) if r.header in errors else None
+            if cycle is None:
+                gap, edge = max(gap, r.gap), max(edge, r.edge)
+            elif r.gap or r.edge:
+                cycles.setdefault(r.header, []).append(cycle["every"])
+        said = []
+        for header, every in cycles.items():      # (said once a column, however many files)
+            lo, hi = min(every), max(every)
+            said.append(f"{header!r} measured on 1 row in {lo}{f'-{hi}' if hi > lo else ''}"
+                        f"{f' ({len(every)} files)' if len(every) > 1 else ''}: its marks are a "
+                        "probe cycle's readings not taken, kept empty as the rows between its "
+                        "readings are (no gap: data.max_gap_samples not set by them)")
+        return gap, edge, said
+
+
+@dataclass
+class _Runs:
+    """A marked column's longest run of missing cells holding a mark, inside the file (``gap``)
+    and at its start or end (``edge``), and its missing cells (empty or a mark) of ``rows``."""
+
+    header: str
+    path: Path
+    gap: int
+    edge: int
+    missing: np.ndarray
+    rows: int
 
 
 def _table(path: Path, delimiter: str, encoding: str, skip: int, preamble: int,
@@ -242,13 +281,16 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
         marked = pc.is_in(c.text, value_set=pa.array(list(marks))).to_numpy(zero_copy_only=False)
         missing = c.missing | marked
         edges = np.flatnonzero(np.diff(np.concatenate([[0], missing.astype(np.int8), [0]])))
+        gap = edge = 0
         for a, b in zip(edges[::2], edges[1::2]):
             if not marked[a:b].any():
                 continue
             if a == 0 or b == len(missing):
-                found.edge = max(found.edge, int(b - a))
+                edge = max(edge, int(b - a))
             else:
-                found.gap = max(found.gap, int(b - a))
+                gap = max(gap, int(b - a))
+        found.runs.append(_Runs(c.header, c.path, gap, edge, np.flatnonzero(missing),
+                                len(missing)))
     for mark, where in found.marks.items():
         if mark in given:
             continue

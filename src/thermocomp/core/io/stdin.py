@@ -1,8 +1,9 @@
 """A campaign streamed as CSV text (``thermocomp monitor monitor.input=-``): read as a campaign
 file is (``data.delimiter``, ``data.decimal``, ``data.columns``, ``data.roles``, ``data.units``,
-``data.time``; a logger's preamble and unit row), so a lab's logger rows stream as they are
-written; empty cells stay NaN, a non-numeric one is refused with its row.  With
-``data.roles.campaign`` a long file's runs stream as a campaign each (:func:`stream_campaigns`)."""
+``data.time``; a logger's preamble and unit row, its header written again: :mod:`.again`), so a
+lab's logger rows stream as they are written; empty cells stay NaN, a non-numeric one is
+refused with its row.  With ``data.roles.campaign`` a long file's runs stream as a campaign
+each (:func:`stream_campaigns`)."""
 
 from __future__ import annotations
 
@@ -18,6 +19,7 @@ import pyarrow.compute as pc
 
 from ...base.log import say
 from ..context import TIME
+from .again import kept, lines_in, spans_in, warn
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, check_text, text_codec
@@ -156,14 +158,28 @@ def _table(text: str, sep: str) -> str:
     lines = text.splitlines()
     start = header_line(lines[:SNIFF_LINES], sep) or 0
     units = len(lines) > start + 1 and is_unit_row(split_line(lines[start + 1], sep, EMPTY))
+    text = _without_again(text, start, units)
     if not start and not units:
         return text
+    lines = text.splitlines()
     header = split_line(lines[start], sep, SPLIT)
     if units:
         header = with_units(header, split_line(lines[start + 1], sep, EMPTY))
     out = StringIO()
     csv.writer(out, delimiter=sep, lineterminator="\n").writerow(header)
     return out.getvalue() + "\n".join(lines[start + 1 + units:]) + "\n"
+
+
+def _without_again(text: str, start: int, units: bool) -> str:
+    """``text`` without the header written again under its data (and the unit row after it),
+    said with its stream lines, by the file reader's rule (:mod:`.again`): a logger's day file
+    piped in as it was written (the header's text in a number column refused the stream)."""
+    data = text.encode()
+    spans = spans_in(data, start, units)
+    if not spans:
+        return text
+    warn(SOURCE, lines_in(data, spans))
+    return kept(data, spans, len(data)).decode()
 
 
 def _grouped(df: pd.DataFrame, opts) -> pd.DataFrame:

@@ -436,7 +436,7 @@ def _ungroup(table: pa.Table, names: list[str], types: dict, path: Path, opts: R
             raise ContractError(f"value {raw[at].as_py()!r} does not group its digits by three "
                                 f"with data.thousands={opts.thousands!r}",
                                 file=path, column=name, row=at + 1)
-        raise _bad_cell_error(path, names, name, types[name], opts, types)
+        raise _bad_cell_error(path, names, name, types[name], opts, types, table)
     for name, text in texts.items():
         table = table.set_column(table.column_names.index(name), name, pc.cast(text, types[name]))
     return table
@@ -456,23 +456,33 @@ def _locate_csv_error(path, names, types, opts, exc) -> ContractError:
             return bad_bytes
     match = _CONVERSION_ERROR.search(message)
     if match:
-        column = _earliest_bad(path, names, types, opts, names[int(match.group(1))])
-        return _bad_cell_error(path, names, column, types[column], opts, types)
+        texts = _as_text(path, names, types, opts)     # (read once: located, marks listed)
+        column = _earliest_bad(names, types, opts, names[int(match.group(1))], texts)
+        return _bad_cell_error(path, names, column, types[column], opts, types, texts)
     if "CSV parse error" in message:
         return _malformed_row_error(path, names, opts, message)
     return ContractError(f"unreadable CSV ({message})", file=path)
 
 
-def _earliest_bad(path, names, types, opts, column: str) -> str:
-    """Of the number columns, the one whose first cell that does not read is the earliest row
-    (on a tie the first in the file; ``column``, the one Arrow named, where it is no number
-    column): Arrow names the first column its threads meet (stranger65: row 7001 of one
-    column in one run, row 592 of another in the next, of the same file)."""
+def _as_text(path, names, types, opts) -> pa.Table | None:
+    """The file's number columns read as text (None: it has none), once for a refusal: the
+    earliest bad cell, its value and the file's other marks are all read from it (each read
+    the file again: leftovers66)."""
+    floats = [n for n, t in types.items() if pa.types.is_floating(t)]
+    if not floats:
+        return None
+    return pacsv.read_csv(_input(path, opts), **_csv_options(
+        names, opts, include=floats, types=dict.fromkeys(floats, pa.string())))
+
+
+def _earliest_bad(names, types, opts, column: str, raw: pa.Table | None) -> str:
+    """Of the number columns (``raw``: read as text), the one whose first cell that does not
+    read is the earliest row (on a tie the first in the file; ``column``, the one Arrow named,
+    where it is no number column): Arrow names the first column its threads meet (stranger65:
+    row 7001 of one column in one run, row 592 of another in the next, of the same file)."""
     floats = [n for n, t in types.items() if pa.types.is_floating(t)]
     if column not in floats or len(floats) < 2:
         return column
-    raw = pacsv.read_csv(_input(path, opts), **_csv_options(
-        names, opts, include=floats, types=dict.fromkeys(floats, pa.string())))
     rows = {}
     for name in floats:
         found = first_cast_failure(ungrouped(raw.column(name), opts.thousands, opts.decimal),
@@ -482,9 +492,14 @@ def _earliest_bad(path, names, types, opts, column: str) -> str:
     return min(rows, key=lambda n: (rows[n], names.index(n))) if rows else column
 
 
-def _bad_cell_error(path, names, column, target, opts, types=None) -> ContractError:
-    raw = pacsv.read_csv(_input(path, opts), **_csv_options(
-        names, opts, include=[column], types={column: pa.string()})).column(column)
+def _bad_cell_error(path, names, column, target, opts, types=None, texts=None) -> ContractError:
+    """The refusal of ``column``'s first cell that does not read (``texts``: the number columns
+    as text where read already, :func:`_as_text`)."""
+    if texts is not None and column in texts.column_names and pa.types.is_floating(target):
+        raw = texts.column(column)
+    else:
+        raw = pacsv.read_csv(_input(path, opts), **_csv_options(
+            names, opts, include=[column], types={column: pa.string()})).column(column)
     number = pa.types.is_floating(target)
     text = ungrouped(raw, opts.thousands, opts.decimal) if number else raw
     found = first_cast_failure(text, target, opts.time)
@@ -503,7 +518,7 @@ def _bad_cell_error(path, names, column, target, opts, types=None) -> ContractEr
                 "that line (and a unit row under it), or cut the file there into two files")
     if number and not hint and (not re.search(r"\d", str(value)) or EXCEL_ERROR.fullmatch(
             str(value).strip())):
-        marks = _other_marks(path, names, types, opts, str(value))
+        marks = _other_marks(path, names, types, opts, str(value), texts)
         if marks:     # (stranger65: each mark of another column was refused at the next read)
             hint = (f": a mark for a value not measured? list the file's marks in "
                     f"data.missing_values ({[str(value), *marks]!r})"
@@ -534,15 +549,15 @@ def is_mark(value: str) -> bool:
     return not re.search(r"\d", value) or bool(EXCEL_ERROR.fullmatch(value.strip()))
 
 
-def _other_marks(path, names, types, opts, first: str) -> dict:
+def _other_marks(path, names, types, opts, first: str, raw: pa.Table | None = None) -> dict:
     """``{mark: its longest run in a column}`` of the other marks (:func:`is_mark`) in the
-    file's number columns besides ``first`` (none without ``types``), so that one refusal lists
-    them all (at most 5)."""
+    file's number columns besides ``first`` (none without ``types``; ``raw``: those columns as
+    text where read already), so that one refusal lists them all (at most 5)."""
     floats = [n for n, t in (types or {}).items() if pa.types.is_floating(t)]
     if not floats:
         return {}
-    raw = pacsv.read_csv(_input(path, opts), **_csv_options(
-        names, opts, include=floats, types=dict.fromkeys(floats, pa.string())))
+    if raw is None:
+        raw = _as_text(path, names, types, opts)
     runs: dict = {}
     for name in floats:
         cells = raw.column(name)

@@ -80,13 +80,14 @@ def _long_period(sample, given: dict, opts) -> dict | None:
 
 
 def number_cells(src, manifest, sample, given: dict, opts):
-    """``opts`` (and ``given``, written to the config) with what the text files' number cells
-    say (:mod:`.io.cells`: ``data.thousands``, ``data.missing_values`` and the gap that reads
-    them), each said with why; a doubt said, not written."""
+    """``(opts, found)``: ``opts`` (and ``given``, written to the config) with what the text
+    files' number cells say (:mod:`.io.cells`: ``data.thousands``, ``data.missing_values``),
+    each said with why, a doubt said, not written; ``found`` (None: no text file) for the gaps
+    their marks leave, which :func:`mark_gaps` reads once the error columns are named."""
     files = [src] if manifest is None else [src / str(f) for f in manifest["file"]]
     files = [f for f in files if is_text(f) and not is_converted(f, opts)]
     if not files or not is_text(sample):
-        return opts
+        return opts, None
     found = scanned(files, opts.delimiter, opts.decimal, opts.encoding, opts.thousands,
                     list(opts.missing_values), peek_csv,
                     decimal_given=str(given.get("decimal", "auto")) != "auto")
@@ -99,18 +100,30 @@ def number_cells(src, manifest, sample, given: dict, opts):
     if new:
         given["missing_values"] = [*opts.missing_values, *new]
         opts = replace(opts, missing_values=given["missing_values"])
-    if found.gap > opts.max_gap_samples:
-        given["max_gap_samples"] = found.gap
-        opts = replace(opts, max_gap_samples=found.gap)
-        print(f"{src.name}: the marks' longest run inside a file is {found.gap} sample"
-              f"{'s' * (found.gap > 1)}: data.max_gap_samples={found.gap} interpolates them "
-              "linearly (each repair counted in the ingest report)")
-    if found.edge > opts.max_edge_samples:
-        given["max_edge_samples"] = found.edge
-        opts = replace(opts, max_edge_samples=found.edge)
-        print(f"{src.name}: a run of marks at a file's start or end, {found.edge} sample"
-              f"{'s' * (found.edge > 1)} at most: data.max_edge_samples={found.edge} drops "
-              "those rows")
+    return opts, found
+
+
+GAP_SAID = {"max_gap_samples": "the marks' longest run inside a file is {n} sample{s}: "
+                               "data.max_gap_samples={n} interpolates them linearly (each repair "
+                               "counted in the ingest report)",
+            "max_edge_samples": "a run of marks at a file's start or end, {n} sample{s} at most: "
+                                "data.max_edge_samples={n} drops those rows"}
+
+
+def mark_gaps(src, found, errors: set, given: dict, opts):
+    """``opts`` (and ``given``) with the ``data.max_gap_samples`` / ``max_edge_samples`` that
+    read the marks' longest runs, each said; an error column (a header in ``errors``) read as a
+    probe cycle sets neither (its empty cells are kept: :meth:`.io.cells.Cells.longest`)."""
+    if found is None:
+        return opts
+    gap, edge, said = found.longest(errors, opts.sparse_targets)
+    for line in said:
+        print(f"{src.name}: {line}")
+    for key, n in (("max_gap_samples", gap), ("max_edge_samples", edge)):
+        if n > getattr(opts, key):
+            given[key] = n
+            opts = replace(opts, **{key: n})
+            print(f"{src.name}: " + GAP_SAID[key].format(n=n, s="s" * (n > 1)))
     return opts
 
 
@@ -178,12 +191,14 @@ def init(cfg: DictConfig) -> dict:
         print(f"{sample.name}: {days!r} from {dict(zip(header, first))[days]}: Excel's serial "
               f"days (since 1899-12-30), read as the time, data.roles.time={days!r} "
               f"data.units={{{days!r}: d}}")
-    opts = number_cells(src, manifest, sample, given, opts)   # thousands, marks, their gaps
+    opts, cells = number_cells(src, manifest, sample, given, opts)   # thousands, marks
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
                   opts.units)
+    opts = mark_gaps(src, cells, {h for h, n in plan.names.items() if str(n).startswith("E_")},
+                     given, opts)                   # the marks' gaps, a probe cycle's left out
     if long is not None:                     # the period: the fastest error tag's, said
         period, tag = proposed_period(long, [h for h, n in plan.names.items()
                                              if str(n).startswith("E_")])
