@@ -21,10 +21,12 @@ planted effect are pde66.py's docstring, committed before this file)
   per target, else a defect.
 * ``diagnose`` (model=mlr, every target) on ``pdeXX_planted`` and ``pdeXX``: FOUND when an
   accepted effect on E_Y names S_pos_Y (the planted screw growth is position x screw
-  temperature); its test RMSE before / after.  On the clean copy an accepted effect naming
-  S_pos_Y is a false acceptance (a defect); any other accepted effect is listed with its
-  evidence and judged against the physics written in pde66.py (the clean records do hold
-  dynamics, the speed-dependent convection, the coolant thermostat: real effects, not false).
+  temperature); its test RMSE before / after; where something is accepted, the rerun line
+  (``experiment=diagnosed``) and ``replay`` of its model (= the rerun, as for ``matrix``).
+  On the clean copy an accepted effect naming S_pos_Y is a false acceptance (a defect); any
+  other accepted effect is listed with its evidence and judged against the physics written in
+  pde66.py (the clean records do hold dynamics, the speed-dependent convection, the coolant
+  thermostat: real effects, not false).
 * ``monitor`` (the matrix's mlr model.pkl, the test campaigns, shipped bands): quiet = 0 sensor
   events; any event is traced to its cause in the record before it is called a defect or not.
 * CPU (user + sys) of every command (its child process, ``RUSAGE_CHILDREN``).
@@ -120,7 +122,8 @@ def diagnose(root: Path, records) -> None:
             if rc:
                 log(root, "diagnose", {**row, "said": said})
                 continue
-            reports = [json.loads(p.read_text()) for p in sorted(out.glob("**/diagnosis*.json"))]
+            reports = [json.loads(p.read_text())
+                       for p in sorted((out / "diagnosis").glob("diagnosis_E_*.json"))]
             for rep in reports:
                 accepted = [(e["kind"], e.get("column"), e.get("transform"),
                              e["evidence"].get("cv_rmse_gain"), e["evidence"].get("p_value"))
@@ -128,13 +131,27 @@ def diagnose(root: Path, records) -> None:
                 row.setdefault("targets", {})[rep["target"]] = {
                     "before": rep["before"]["test_rmse"], "after": rep["after"]["test_rmse"],
                     "accepted": accepted}
-                for t, v in (rep.get("other_targets") or {}).items():
-                    row["targets"][t] = {"before": v.get("before_test_rmse"),
-                                         "after": v.get("after_test_rmse"),
-                                         "accepted": [(e["kind"], e.get("column"), e.get("transform"))
-                                                      for e in v.get("effects", [])
-                                                      if e.get("accepted")]}
+            if any(v["accepted"] for v in row["targets"].values()):
+                row.update(rerun(root, copy, out))
             log(root, "diagnose", row)
+
+
+def rerun(root: Path, copy: str, out: Path) -> dict:
+    """The diagnosis's rerun line (``experiment=diagnosed``), then ``replay`` of its model."""
+    data = f"data.path={root / 'data' / copy}"
+    rc, said, cpu = tc(root, "run", f"hydra.searchpath=[file://{out / 'diagnosis' / 'conf'}]",
+                       "experiment=diagnosed", data, "plots=none", f"out={out / 'diagnosed'}")
+    if rc:
+        return {"rerun": f"exit {rc}: {said}"}
+    m = json.loads((out / "diagnosed" / "metrics.json").read_text())["targets"]
+    row = {"rerun": {t: v["test"]["rmse"] for t, v in m.items()}, "rerun_cpu": cpu}
+    rc, said, cpu = tc(root, "replay", data, f"replay.model={out / 'diagnosed' / 'model.pkl'}",
+                       f"out={out / 'diagnosed' / 'replay'}")
+    if rc:
+        return {**row, "replay": f"exit {rc}: {said}"}
+    r = json.loads((out / "diagnosed" / "replay" / "replay.json").read_text())["targets"]
+    return {**row, "replay-rerun": max(abs(r[t]["rmse"] - row["rerun"][t]) for t in m),
+            "stream-batch": max(r[t]["max_abs_stream_minus_batch"] for t in m)}
 
 
 def monitor(root: Path, records) -> None:
