@@ -32,6 +32,42 @@ planted effect are pde66.py's docstring, committed before this file)
 * CPU (user + sys) of every command (its child process, ``RUSAGE_CHILDREN``).
 
 No rule is adopted from these records: they are a check, not a tuning set.
+
+Measured 2026-12-01 (stop 66; 2 shared cores; ``write`` 5.8 s CPU for the four datasets)
+---------------------------------------------------------------------------------------
+``matrix`` (at c7a726f0; test RMSE E_X / E_Y / E_Z µm; RMS before 2.08 / 2.93 / 7.35 on pde6611,
+2.36 / 4.09 / 8.79 on pde6612; the probe's noise alone 0.40; CPU of ``run``)::
+
+    family        pde6611                pde6612                run CPU s
+    mlr           0.56 / 0.91 / 0.53     0.63 / 0.62 / 0.98     2.0-2.1
+    pcr           0.51 / 1.02 / 1.50     0.61 / 1.05 / 2.33     2.1-2.3
+    arx           0.54 / 0.92 / 0.55     0.63 / 0.62 / 1.12     2.3
+    lagbank       0.51 / 0.92 / 0.45     0.64 / 0.67 / 0.80     3.0
+    hammerstein   0.51 / 0.92 / 0.47     0.64 / 0.67 / 0.82     4.7-5.1
+    lstm          0.65 / 0.91 / 0.57     0.63 / 0.63 / 1.09     12.8-12.9
+    ati-mlr       0.79 / 0.91 / 0.56     0.80 / 0.74 / 1.18     2.6-2.9
+    ati-lagbank   0.72 / 0.94 / 0.51     0.65 / 0.64 / 1.07     13.5-14.2
+    auto          0.54 / 0.92 / 0.47     0.61 / 0.62 / 0.82     9.5-14.1
+
+auto - best family after the fact: +0.031 / +0.009 / +0.014 and +0.004 / +0.001 / +0.016 µm;
+auto - MLR: -0.020 / +0.007 / -0.064 and -0.014 / +0.001 / -0.164.  ``replay`` = ``run`` in all
+18 cells (|RMSE difference| <= 2.2e-16 µm, |stream - batch| <= 1.5e-14 µm, 0 events; 1.8-4.5 s
+CPU).  ``monitor`` (mlr, the 5 healthy test campaigns): 0 events on both, fixed = adaptive =
+run, every correction finite (2.4-2.5 s CPU).
+
+``diagnose`` (mlr): at c7a726f0 it accepted NOTHING on the planted copies (E_Y 11.01 and 16.41
+µm before = after): S_pos_Y x T_yscrew (1 regressor) cleared the bar at 65.7 % CV gain,
+family-wise p 3.1e-5, but S_pos_Y x every input's rise (16 regressors; the test blocks are the
+15 campaigns, set by the slowest target, so it saturates and does not clear) had the round's
+best CV error, and the one-standard-error rule measured from it called the leaner one a
+stand-in.  Mended at ff17f13f (a rival of the same kind and column is the same effect): planted
+pde6611 E_Y 11.01 -> 3.27 (S_pos_Y x T_yscrew rise, absolute; then S_pos_Y x T_coolant),
+pde6612 16.41 -> 3.38 (the same two); the rerun line = after, its replay = the rerun (|s-b| <=
+2.1e-14); the clean copies accept nothing on any target, before and after; 4.5-7.1 s CPU a
+diagnosis.  Diagnosing E_Y alone (``diagnose.targets=[E_Y]``) its residual sets 196 blocks of 41
+samples, the 16-regressor product clears and is taken (3.72 µm after one effect): the design is
+one for the whole diagnosis (docs/diagnose.md), so the answer depends on the targets diagnosed
+together.
 """
 
 from __future__ import annotations
