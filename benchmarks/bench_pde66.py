@@ -64,7 +64,9 @@ stand-in.  Mended at ff17f13f (a rival of the same kind and column is the same e
 pde6611 E_Y 11.01 -> 3.27 (S_pos_Y x T_yscrew rise, absolute; then S_pos_Y x T_coolant),
 pde6612 16.41 -> 3.38 (the same two); the rerun line = after, its replay = the rerun (|s-b| <=
 2.1e-14); the clean copies accept nothing on any target, before and after; 4.5-7.1 s CPU a
-diagnosis.  Diagnosing E_Y alone (``diagnose.targets=[E_Y]``) its residual sets 196 blocks of 41
+diagnosis.  With ``model=lagbank`` (run by hand, pde6611): planted E_Y 9.22 -> 9.22 before the
+mend, 9.22 -> 4.37 after (S_pos_Y x T_yscrew), the clean copy nothing (17.8-22.6 s CPU).
+Diagnosing E_Y alone (``diagnose.targets=[E_Y]``) its residual sets 196 blocks of 41
 samples, the 16-regressor product clears and is taken (3.72 µm after one effect): the design is
 one for the whole diagnosis (docs/diagnose.md), so the answer depends on the targets diagnosed
 together.
