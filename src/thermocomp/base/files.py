@@ -17,14 +17,17 @@ from __future__ import annotations
 import getpass
 import glob
 import hashlib
+import itertools
 import json
 import os
 import re
+import secrets
 import shutil
 import signal
 import sys
 import tempfile
 import threading
+import time
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -294,6 +297,54 @@ def signals_raise(sigint: bool = False):
         _arm(0)
         for s, h in previous.items():
             signal.signal(s, h)
+
+
+# a folder whose removal a late writer undoes is removed again, this many times this far apart
+REMOVE_TRIES, REMOVE_PAUSE_S = 20, 0.05
+
+
+def remove_tree(path: str | os.PathLike) -> None:
+    """Remove the folder ``path`` and what it holds, OSErrors ignored.  A download's worker threads
+    (MLflow's pool) may still copy files into it after a signal ended the download, one after
+    rmtree listed the folder ("Directory not empty"): removed again until gone (a worker makes no
+    folder, MLflow's calling thread does: once the folder is gone, their copies fail), at most
+    :data:`REMOVE_TRIES` times.  A SIGTERM or Ctrl-C that comes as it removes (a model's 270
+    files) is raised once the folder is gone, not halfway."""
+    signalled = None
+    for _ in range(REMOVE_TRIES):
+        try:
+            shutil.rmtree(path, ignore_errors=True)
+            if not os.path.lexists(path):
+                break
+            time.sleep(REMOVE_PAUSE_S)
+        except (Terminated, KeyboardInterrupt) as exc:
+            signalled = signalled or exc
+    if signalled is not None:
+        raise signalled
+
+
+_SCRATCH = itertools.count()
+
+
+def scratch_name(prefix: str) -> Path:
+    """A name for a new folder in the temp dir that only this process makes:
+    ``<prefix><pid>-<n>-<random>`` (made inside the ``try`` that removes it: a signal that comes
+    as it is made still has it removed; ``mkdtemp`` made it before)."""
+    return Path(tempfile.gettempdir()) / f"{prefix}{os.getpid()}-{next(_SCRATCH)}-{secrets.token_hex(3)}"
+
+
+@contextmanager
+def scratch_folder(prefix: str):
+    """A fresh folder in the temp dir (:func:`scratch_name`), removed by :func:`remove_tree` however
+    the block ends: its removal never replaces the exception in flight (``TemporaryDirectory``
+    raised "Directory not empty" in place of a SIGTERM that came in a model's download, which
+    ``thermocomp serve`` then said as a model it cannot load, exit 2, its folder left)."""
+    folder = scratch_name(prefix)
+    try:
+        folder.mkdir(mode=0o700)
+        yield folder
+    finally:
+        remove_tree(folder)
 
 
 def safe_name(*parts: str) -> str:

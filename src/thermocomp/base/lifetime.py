@@ -16,6 +16,8 @@ holds the queue's write end, so no end of file comes): figure workers stayed blo
   launcher's worker), only when the process named is this one's parent.
 - :func:`end_local_workers`: loky's reusable workers stopped (a sweep's, when it ends).
 - :func:`collect_less`: the garbage collector's thresholds of a process of the project's own.
+- :func:`end_left_threads`: what a SIGTERM or Ctrl-C left of a library's threads, ended with
+  the console command's process.
 """
 
 from __future__ import annotations
@@ -73,6 +75,54 @@ def parallel(n_jobs, **kwargs):
 
     return Parallel(n_jobs=n_jobs, initializer=end_with_parent, initargs=(os.getpid(),), **kwargs)
 
+
+
+# A thread a signal left that has not ended this long after the command: it never will (below)
+LEFT_THREADS_GRACE_S = 5.0
+
+
+def end_left_threads(code: int, grace_s: float | None = None) -> None:
+    """End what a SIGTERM or Ctrl-C left of a library's threads in this process, a console
+    command's whose command that signal ended (status ``code``), so that the process ends.
+
+    The signal is raised as an exception wherever the main thread is (files.signals_raise), so
+    it can land inside ``Thread.start()`` of a ThreadPoolExecutor's first worker (``start`` waits
+    for the new thread to run: on a loaded machine, a while), which MLflow starts to download a
+    registered model: the worker runs, but ``concurrent.futures`` never registered it, so nothing
+    wakes it at exit and the interpreter waited for it for ever (``thermocomp serve`` SIGTERMed as
+    it starts, CI at stop 65: its handler already gone, the next SIGTERM killed it).  Every
+    executor still referenced is shut down (its queued work cancelled, its idle workers woken);
+    a non-daemon thread still running :data:`LEFT_THREADS_GRACE_S` (``grace_s``) later (another
+    primitive the exception left held) ends with the process: the atexit handlers run, the
+    streams are flushed, then ``os._exit(code)``.  Nothing when no such thread runs."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    def left():
+        return [t for t in threading.enumerate()
+                if t.is_alive() and not t.daemon and t is not threading.current_thread()]
+
+    if not left():
+        return
+    for obj in gc.get_objects():    # type(): no __class__ of a proxy is looked up
+        if issubclass(type(obj), ThreadPoolExecutor):
+            obj.shutdown(wait=False, cancel_futures=True)
+    deadline = time.monotonic() + (LEFT_THREADS_GRACE_S if grace_s is None else grace_s)
+    for t in left():
+        t.join(max(deadline - time.monotonic(), 0.0))
+    stuck = left()
+    if not stuck:
+        return                      # the interpreter ends as always
+    import atexit
+
+    print(f"thermocomp: {len(stuck)} thread(s) left running after the signal "
+          f"({', '.join(t.name for t in stuck)}): ended with the process", file=sys.stderr)
+    atexit._run_exitfuncs()
+    for stream in (sys.stdout, sys.stderr):
+        try:
+            stream.flush()
+        except (OSError, ValueError):
+            pass
+    os._exit(code)
 
 
 def end_local_workers() -> None:

@@ -26,7 +26,7 @@ from omegaconf import OmegaConf
 
 from ..base.errors import closest
 from ..base.extras import missing
-from ..base.lifetime import collect_less, end_local_workers
+from ..base.lifetime import collect_less, end_left_threads, end_local_workers
 from ..base.log import version
 from ..base.paths import elsewhere_hint, resolve, rooted_override
 from .config import overrides
@@ -327,12 +327,18 @@ def _positional_path(args: list[str]) -> list[str]:
     return out
 
 
+_signalled: list[str] = []     # the command main() runs was ended by SIGTERM or Ctrl-C
+
+
 def main(argv: list[str] | None = None) -> int:
     """``thermocomp <argv>`` (the command line's when None); its exit status."""
     if argv is None:      # the process is the command's (the console script, python -m)
         collect_less()
+    _signalled.clear()
     code = _command(list(sys.argv[1:] if argv is None else argv))
     if argv is None:
+        if _signalled:     # what the signal left of a library's threads ends with the process
+            end_left_threads(code)
         # The process ends with this status (the console script, `python -m thermocomp`): its
         # objects frozen out of the collector, the interpreter's last collections do not walk
         # every imported module's objects (~0.6 s of CPU per command; the atexit handlers, the
@@ -392,11 +398,13 @@ def _command(argv: list[str]) -> int:
                 _check_hydra_node(cfg, sweeping=True)
         _launch(stage, args)                               # a sweep, a Hydra flag: hydra.main
     except Terminated:  # the contract's statuses are 0, 2 and 1 for anything else
+        _signalled.append("SIGTERM")
         logger.warning("%s terminated (SIGTERM)", stage)
         return 1
     except SystemExit as exc:
         return exc.code if isinstance(exc.code, int) else 1
     except KeyboardInterrupt:
+        _signalled.append("SIGINT")
         logger.warning("%s interrupted (Ctrl-C)", stage)
         return 1
     except Exception as exc:  # anything else is a bug or an environment failure: status 1

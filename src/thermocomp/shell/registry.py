@@ -6,7 +6,6 @@ from __future__ import annotations
 
 import hashlib
 import subprocess
-import tempfile
 from pathlib import Path
 
 from omegaconf import DictConfig
@@ -100,17 +99,19 @@ def load_run_model(run_id: str, uri: str) -> tuple[Compensator, str]:
     anything is unpickled (a tracking server may not be trusted)."""
     import mlflow
 
-    with tempfile.TemporaryDirectory() as tmp:
+    from ..base.files import scratch_folder
+
+    with scratch_folder("thermocomp-run-model-") as tmp:
         try:
             path = mlflow.artifacts.download_artifacts(run_id=run_id, artifact_path="model.pkl",
-                                                       dst_path=tmp, tracking_uri=uri)
+                                                       dst_path=str(tmp), tracking_uri=uri)
         except Exception as exc:
             _refuse_fleet_run(run_id, uri)
             raise ConfigError(f"run {run_id} has no model.pkl artifact (promote a `run` or "
                               f"`train` run): {' '.join(str(exc).split())[:200]}") from None
         try:
             mlflow.artifacts.download_artifacts(run_id=run_id, artifact_path="model.pkl.sig",
-                                                dst_path=tmp, tracking_uri=uri)
+                                                dst_path=str(tmp), tracking_uri=uri)
         except Exception:  # verified_bytes says "not signed by this project"
             pass
         digest = hashlib.sha256(Path(path).read_bytes()).hexdigest()

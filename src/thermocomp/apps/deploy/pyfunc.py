@@ -382,10 +382,11 @@ def load_deployed(source: str, folder: str | Path | None = None):
     import yaml
 
     from ...base.errors import ContractError
+    from ...base.files import scratch_folder
 
-    with tempfile.TemporaryDirectory(prefix="thermocomp-model-") as tmp:
+    with scratch_folder("thermocomp-model-") as tmp:
         root = Path(folder) if folder is not None else Path(
-            mlflow.artifacts.download_artifacts(artifact_uri=source, dst_path=tmp))
+            mlflow.artifacts.download_artifacts(artifact_uri=source, dst_path=str(tmp)))
         spec = root / "MLmodel"
         try:
             flavor = yaml.safe_load(spec.read_text())["flavors"]["python_function"]

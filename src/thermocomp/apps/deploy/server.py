@@ -234,6 +234,7 @@ def trusted_copy(load_deployed, uri: str) -> str:
 
     import mlflow
 
+    from ...base.files import remove_tree, scratch_name
     from .pyfunc import save_compensator
 
     mlflow.set_tracking_uri(uri)    # the registry follows it (no process-wide registry URI:
@@ -241,12 +242,13 @@ def trusted_copy(load_deployed, uri: str) -> str:
     # one folder in the temp dir holds the model and whatever MLflow stages to write it (the
     # temp dir pointed there meanwhile): run_server removes it when the server ends, this
     # function when it cannot be written; a signal at any point leaves nothing else behind
-    folder = Path(tempfile.mkdtemp(prefix="thermocomp-serve-"))
-    previous, tempfile.tempdir = tempfile.tempdir, str(folder)
+    folder, previous = scratch_name("thermocomp-serve-"), tempfile.tempdir
     try:
+        folder.mkdir(mode=0o700)
+        tempfile.tempdir = str(folder)
         return str(save_compensator(load_deployed(), folder / "model"))
     except BaseException:
-        shutil.rmtree(folder, ignore_errors=True)
+        remove_tree(folder)         # a download's workers may still write in it (files.remove_tree)
         raise
     finally:
         tempfile.tempdir = previous
