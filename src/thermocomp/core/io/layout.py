@@ -80,6 +80,21 @@ def is_time_format(cell: str) -> bool:
     return bool(TIME_FORMAT.fullmatch(cell.strip().lower().replace(" ", "")))
 
 
+# a header written as a comment (numpy's ``savetxt``, a DAQ script: ``# t [s]<TAB>T1 [degC]``)
+_COMMENTED = re.compile(r"#+\s*(?=\S)")
+
+
+def uncommented(header: list[str], above: list[str]) -> list[str]:
+    """``header`` without the ``#`` a DAQ script writes before it (``# t [s]`` -> ``t [s]``,
+    stranger66), where every non-blank line above it is a ``#`` comment too (or none is above
+    it); a first column named ``#`` alone (a sample counter) stays as it is."""
+    if not header or not _COMMENTED.match(header[0].lstrip()):
+        return header
+    if not all(ln.lstrip().startswith("#") for ln in above if ln.strip()):
+        return header
+    return [_COMMENTED.sub("", header[0].lstrip(), count=1), *header[1:]]
+
+
 def with_units(header: list[str], units: list[str]) -> list[str]:
     """``header`` with the unit row's units, where a header says none itself."""
     return [f"{h} [{u.strip().strip('[]()')}]"

@@ -21,7 +21,7 @@ from ..context import TIME
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, check_text, text_codec
-from .layout import header_line, is_unit_row, with_units
+from .layout import header_line, is_unit_row, uncommented, with_units
 from .options import RUN_ROLE
 from .roles import RUN, active, naming, same_header, split_unit
 from .runs import run_blocks, run_values
@@ -156,9 +156,12 @@ def _table(text: str, sep: str) -> str:
     lines = text.splitlines()
     start = header_line(lines[:SNIFF_LINES], sep) or 0
     units = len(lines) > start + 1 and is_unit_row(split_line(lines[start + 1], sep, EMPTY))
-    if not start and not units:
+    if not lines:
         return text
-    header = split_line(lines[start], sep, SPLIT)
+    written = split_line(lines[start], sep, SPLIT)
+    header = uncommented(written, lines[:start])   # (stranger66: '# t [s]' as savetxt writes it)
+    if not start and not units and header == written:
+        return text
     if units:
         header = with_units(header, split_line(lines[start + 1], sep, EMPTY))
     out = StringIO()

@@ -199,6 +199,12 @@ static int is_mark(const char *cell) {
     return 0;
 }
 
+/* 1: `line` is blank or a `#` comment (a DAQ script's block above its header). */
+static int comment_or_blank(const char *line) {
+    const char *p = line + strspn(line, " \t\r\n");
+    return *p == '\0' || *p == '#';
+}
+
 /* The separator a header line says: ';', a tab or '|' where it holds one, else ','. */
 static char separator_of(const char *line) {
     return strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
@@ -544,7 +550,7 @@ int main(int argc, char **argv) {
     int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
     static char header_raw[MAX_LINE], units_raw[MAX_LINE], first_row[MAX_LINE], row_raw[MAX_LINE];
     char *raw[MAX_COLS];
-    int pending = 0, again = 0;   /* a first row read after the header; a header again seen */
+    int pending = 0, again = 0, commented = 1;   /* a first row read after the header; a header again seen */
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
@@ -610,14 +616,25 @@ int main(int argc, char **argv) {
            the first of the next MAX_PREAMBLE lines naming every input is the header */
         static char first[MAX_LINE];
         strcpy(first, line);
-        for (i = 0; i < MAX_PREAMBLE && next_line(line, sizeof line, i + 2); i++)
+        commented = commented && comment_or_blank(line);
+        for (i = 0; i < MAX_PREAMBLE && next_line(line, sizeof line, i + 2); i++) {
             if (names_every_input(line)) break;
-        if (i == MAX_PREAMBLE || !names_every_input(line)) strcpy(line, first);
+            commented = commented && comment_or_blank(line);
+        }
+        if (i == MAX_PREAMBLE || !names_every_input(line)) strcpy(line, first), commented = 1;
     }
     sep = separator_of(line);
     strcpy(header_raw, line);
     header_raw[strcspn(header_raw, "\r\n")] = '\0';
     ncols = split(line, cells);
+    /* (stranger66) a header written as a comment under a block of them (a DAQ script's
+       `# t [s]<TAB>T1 [degC]`, numpy's savetxt): its first name without the `#`, as the reader
+       reads it; a first column named `#` alone stays */
+    if (commented && ncols > 0 && cells[0][0] == '#') {
+        char *p = cells[0] + strspn(cells[0], "#");
+        p += strspn(p, " \t");
+        if (*p) cells[0] = p;
+    }
     for (j = 0; j < ncols; j++) raw[j] = cells[j];
     for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
     /* (streamraw65) a unit row under the header (`;;degC;W;-;um`: every cell it fills no number,
@@ -689,7 +706,7 @@ int main(int argc, char **argv) {
         if (strcmp(cells[j], "reset") == 0) reset_col = j;
         if (strcmp(cells[j], "ambient_c") == 0) ambient_col = j;
     }
-    if (TC_AMBIENT_GIVEN && ambient_col < 0 && !isfinite(ambient)) {
+    if (TC_AMBIENT_GIVEN && !TC_AMBIENT_OPTIONAL && ambient_col < 0 && !isfinite(ambient)) {
         fprintf(stderr, "stream: the model picks its laws by a campaign's initial ambient and "
                 "reads no ambient sensor: give it in an ambient_c column (degC, on a campaign's "
                 "first row: the manifest's ambient_c) or as --ambient C\n");
@@ -768,7 +785,7 @@ int main(int argc, char **argv) {
         if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
             double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
             if (!isfinite(a0)) a0 = ambient;
-            if (!isfinite(a0)) {
+            if (!isfinite(a0) && !TC_AMBIENT_OPTIONAL) {
                 fprintf(stderr, "stream: row %ld starts a campaign without its ambient_c (and no "
                         "--ambient)\n", row);
                 return 2;
