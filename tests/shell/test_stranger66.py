@@ -83,11 +83,13 @@ def test_a_header_written_as_a_comment_under_a_comment_block_is_read(tmp_path):
 
 def test_a_comment_header_streams_on_stdin_as_the_file_reads(tmp_path, monkeypatch, capsys):
     # before: the test run as the DAQ wrote it, piped into `monitor monitor.input=-`, was read
-    # with its '# t [s]' header (the time column not found); now as the campaign file streams
+    # with its '# t [s]' header (the time column not found), and the block written again mid-run
+    # as values; now as the campaign file streams
     daq, plain = folders(tmp_path)
     args = [f"data.path={plain}", *ROLES, *FAST, "model=lagbank"]
     assert main(["monitor", *args, f"out={tmp_path / 'file'}"]) == 0
-    test = sorted(daq.glob("*.txt"))[-1].read_text()
+    lines = sorted(daq.glob("*.txt"))[-1].read_text().splitlines(keepends=True)
+    test = "".join(lines[:7 + 100] + lines[:7] + lines[7 + 100:])   # its block again mid-run
     monkeypatch.setattr("sys.stdin", io.StringIO(test))
     assert main(["monitor", *args, "monitor.input=-", f"out={tmp_path / 'piped'}"]) == 0
     capsys.readouterr()
@@ -100,7 +102,8 @@ def test_a_comment_header_streams_on_stdin_as_the_file_reads(tmp_path, monkeypat
 @needs_cc
 def test_the_compiled_stream_reads_the_time_of_a_comment_header(tmp_path):
     # before: stream.c took the DAQ file's header '# t [s]' for no time column ("samples taken
-    # one period apart"): after a sample not taken its lags ran a period behind the model's
+    # one period apart"): after a sample not taken its lags ran a period behind the model's; and
+    # refused the DAQ's block written again ("row 101 has not 7 cells")
     daq, plain = folders(tmp_path)
     code = tmp_path / "c"
     args = [f"data.path={plain}", *ROLES, *FAST]
@@ -111,7 +114,8 @@ def test_the_compiled_stream_reads_the_time_of_a_comment_header(tmp_path):
                     "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
     lines = sorted(daq.glob("*.txt"))[-1].read_text().splitlines(keepends=True)
     del lines[7 + 60]                                    # a sample not taken: 120 s apart
-    as_daq = "".join(lines)
+    # and the DAQ's block and header written again (a restart), left out as the reader does
+    as_daq = "".join(lines[:7 + 100] + lines[:7] + lines[7 + 100:])
     as_csv = "".join(ln.lstrip("# ").replace("\t\n", "\n").replace("\t", ",")
                      for ln in lines[6:])
     out = [subprocess.run([str(code / "stream")], input=text, text=True, capture_output=True,
@@ -162,10 +166,12 @@ def test_a_diagnosed_model_without_an_ambient_streams_and_exports_as_it_runs(tmp
     # needs the campaign's initial ambient temperature"): diagnose's deployed "after" was the
     # error uncompensated (147.55 µm against run's 1.61 on the turning centre), replay exited 2
     # and the C refused each campaign; the lag's initial state reads A0 where it is known and
-    # the mean of its sensors' first values else, in batch, and now in the stream and the code
+    # the mean of its sensors' first values else, in batch, and now in the stream, the C and
+    # the Structured Text
     from test_export import _compiled, _stdin, _streamed
+    from test_export_auto57 import StructuredText
     from test_export_diagnosed59 import _diagnosed
-    from thermocomp.apps.deploy.export import Simulator, state_space
+    from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
     from thermocomp.apps.deploy.streaming import replay
 
     stream, tests, comp = _diagnosed(_without_ambient(tmp_path / "data"), [effect])
@@ -180,8 +186,32 @@ def test_a_diagnosed_model_without_an_ambient_streams_and_exports_as_it_runs(tmp
                            batch[stream.targets_].to_numpy(float), atol=1e-9, rtol=0)
     got = _streamed(_compiled(stream, tmp_path), _stdin(stream, tests)).to_numpy(float)
     assert np.abs(got - expected).max() <= 1e-9
-    sim, rows = Simulator(state_space(stream)), []
+    sim, rows, st = Simulator(state_space(stream)), [], []
+    fb = StructuredText(exported_files(stream, "st")["compensator.st"])
     for df in tests:
         sim.reset()
-        rows += [sim.step(u, t) for u, t in zip(df[stream.columns_].to_numpy(float), df["time"])]
+        for k, (u, t) in enumerate(zip(df[stream.columns_].to_numpy(float), df["time"])):
+            rows.append(sim.step(u, t))
+            st.append(fb(u, t, k == 0))
     assert np.abs(np.array(rows) - expected).max() <= 1e-9
+    assert np.abs(np.array(st) - expected).max() <= 1e-9
+
+
+def test_a_comment_block_written_again_with_its_header_is_left_out(tmp_path, capsys):
+    # before: a DAQ restarted mid-run writes its '#' block (another start time) and its header
+    # again: the header was left out, the '#' lines above it refused "expected 7 fields, got 1";
+    # now left out with it, and the run reads as the plain export of its numbers
+    daq, plain = folders(tmp_path)
+    path = sorted(daq.glob("*.txt"))[0]
+    lines = path.read_text().splitlines(keepends=True)
+    block = [ln.replace("06:00:00", "09:17:00") for ln in lines[:7]]
+    path.write_text("".join(lines[:7 + 90] + block + lines[7 + 90:]))
+    for name, folder in (("daq", daq), ("plain", plain)):
+        assert main(["run", f"data.path={folder}", *ROLES, *FAST, "plots=none",
+                     f"out={tmp_path / ('out-' + name)}"]) == 0
+    assert f"{path}, line 98: the file's header written again" in capsys.readouterr().err
+    got = json.loads((tmp_path / "out-daq" / "metrics.json").read_text())["targets"]
+    want = json.loads((tmp_path / "out-plain" / "metrics.json").read_text())["targets"]
+    assert got["E_dZ1"]["test"]["rmse"] == pytest.approx(want["E_dZ1"]["test"]["rmse"], rel=1e-12)
+    assert got["E_dZ1"]["train"]["rmse"] == pytest.approx(want["E_dZ1"]["train"]["rmse"],
+                                                          rel=1e-12)
