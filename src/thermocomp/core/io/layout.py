@@ -41,7 +41,9 @@ def header_line(lines: list[str], sep: str) -> int | None:
             if not _text(lines[k]):        # bytes that are no text (a gzip file): no preamble
                 return None
             continue
-        body = [w for w in widths[k + 1:] if w is not None]
+        # (a '#' comment among the rows: a DAQ's block written again with its header, stranger66)
+        body = [w for w, ln in zip(widths[k + 1:], lines[k + 1:])
+                if w is not None and not ln.lstrip().startswith("#")]
         body = body[:-1] if len(body) > 1 else body        # the last may be cut short
         if all(w == width for w in body):
             return k

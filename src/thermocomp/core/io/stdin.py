@@ -164,9 +164,12 @@ def _table(text: str, sep: str) -> str:
         return text
     if units:
         header = with_units(header, split_line(lines[start + 1], sep, EMPTY))
+    body = lines[start + 1 + units:]
+    if header != written:     # a DAQ's '#' block written again with its header: left out
+        body = [ln for ln in body if not ln.lstrip().startswith("#")]
     out = StringIO()
     csv.writer(out, delimiter=sep, lineterminator="\n").writerow(header)
-    return out.getvalue() + "\n".join(lines[start + 1 + units:]) + "\n"
+    return out.getvalue() + "\n".join(body) + "\n"
 
 
 def _grouped(df: pd.DataFrame, opts) -> pd.DataFrame:

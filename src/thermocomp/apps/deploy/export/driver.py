@@ -550,7 +550,9 @@ int main(int argc, char **argv) {
     int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
     static char header_raw[MAX_LINE], units_raw[MAX_LINE], first_row[MAX_LINE], row_raw[MAX_LINE];
     char *raw[MAX_COLS];
-    int pending = 0, again = 0, commented = 1;   /* a first row read after the header; a header again seen */
+    /* a first row read after the header; a header again seen; lines above the header all `#`
+       comments; the header written as one; a `#` line among the rows said */
+    int pending = 0, again = 0, commented = 1, hashed = 0, said_hash = 0;
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
@@ -633,7 +635,7 @@ int main(int argc, char **argv) {
     if (commented && ncols > 0 && cells[0][0] == '#') {
         char *p = cells[0] + strspn(cells[0], "#");
         p += strspn(p, " \t");
-        if (*p) cells[0] = p;
+        if (*p) cells[0] = p, hashed = 1;
     }
     for (j = 0; j < ncols; j++) raw[j] = cells[j];
     for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
@@ -738,6 +740,14 @@ int main(int argc, char **argv) {
             continue;
         }
         again = 0;
+        /* (stranger66) a `#` line among the rows of a header written as a comment: the DAQ's block
+           written again with its header (a restart), left out as the reader leaves it out */
+        if (hashed && line[strspn(line, " \t")] == '#') {
+            if (!said_hash++)
+                fprintf(stderr, "stream: line %ld: a # comment among the rows (the block and "
+                        "header written again?): left out\n", row);
+            continue;
+        }
         strcpy(row_raw, line);
         if (line[strspn(line, " \t\r\n")] == '\0') {
             restart(&s, 1);
