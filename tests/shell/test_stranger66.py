@@ -143,13 +143,13 @@ def test_a_last_line_cut_off_while_written_is_refused_saying_so(tmp_path, capsys
 # --- a diagnosed model of a record without an air sensor (nor a manifest ambient_c) -----------
 
 def _without_ambient(root):
-    """The door machine of test_export_effects59 without its T_amb column and without the
-    manifest's ambient_c: what the turning centre's lab gave (an 'Air' sensor, not named so)."""
+    """The door machine of test_export_effects59, its air sensor not named an ambient one (T_amb
+    -> T_air) and without the manifest's ambient_c: what the turning centre's lab gave ('Air')."""
     from test_export_effects59 import _door
 
     data = _door(root)
     for path in data.glob("K*.csv"):
-        pd.read_csv(path).drop(columns="T_amb").to_csv(path, index=False)
+        pd.read_csv(path).rename(columns={"T_amb": "T_air"}).to_csv(path, index=False)
     manifest = pd.read_csv(data / "campaigns.csv").drop(columns="ambient_c")
     manifest.to_csv(data / "campaigns.csv", index=False)
     return data
@@ -215,3 +215,32 @@ def test_a_comment_block_written_again_with_its_header_is_left_out(tmp_path, cap
     assert got["E_dZ1"]["test"]["rmse"] == pytest.approx(want["E_dZ1"]["test"]["rmse"], rel=1e-12)
     assert got["E_dZ1"]["train"]["rmse"] == pytest.approx(want["E_dZ1"]["train"]["rmse"],
                                                           rel=1e-12)
+
+
+def test_a_diagnosed_model_without_an_ambient_monitors_a_stdin_stream(tmp_path, monkeypatch,
+                                                                     capsys):
+    # before: `monitor monitor.input=-` of such a model asked for monitor.ambient_c ("the model
+    # reads each campaign's ambient from the manifest's ambient_c"); it streams as the file does
+    data = _without_ambient(tmp_path / "data")
+    conf = tmp_path / "conf" / "model"
+    conf.mkdir(parents=True)
+    (conf / "diag66.yaml").write_text(
+        "name: mlr+diagnosed\nestimator:\n  _target_: thermocomp.apps.diagnose.AugmentedRegressor\n"
+        "  _convert_: all\n  reference: first_sample\n  effects:\n    E_X:\n"
+        "    - {kind: dynamics, transform: first_order_lag, column: T_a, tau_s: 3600.0,\n"
+        "       initial_state: [T_a, T_b], initial_directions: 2}\n"
+        "  estimator: {_target_: thermocomp.core.models.linear.MLR, fit_intercept: true}\n")
+    args = [f"hydra.searchpath=[file://{tmp_path / 'conf'}]", f"data.path={data}",
+            "model=diag66", *FAST]
+    assert main(["run", *args, "plots=none", f"out={tmp_path / 'run'}"]) == 0
+    model = f"monitor.model={tmp_path / 'run' / 'model.pkl'}"
+    assert main(["monitor", *args, model, f"out={tmp_path / 'file'}"]) == 0
+    first = pd.read_csv(data / "campaigns.csv").query("split == 'test'")["file"].iloc[0]
+    monkeypatch.setattr("sys.stdin", io.StringIO((data / first).read_text()))
+    assert main(["monitor", *args, model, "monitor.input=-", f"out={tmp_path / 'piped'}"]) == 0
+    capsys.readouterr()
+    from_file = json.loads((tmp_path / "file" / "monitor.json").read_text())
+    piped = json.loads((tmp_path / "piped" / "monitor.json").read_text())["targets"]
+    fixed = [r["rmse_fixed"] for r in piped.values()]
+    assert np.isfinite(fixed).all() and min(fixed) > 0
+    assert set(piped) == set(from_file["targets"])
