@@ -26,6 +26,7 @@ without its newline (the DAQ was stopped while writing).
     ... bench_stranger66.py table ROOT tsc_a
     ... bench_stranger66.py monitor ROOT tsc_a mlr "Bed" "Turret 2"
     ... bench_stranger66.py diagnose ROOT tsc_a mlr
+    ... bench_stranger66.py again ROOT                      # the '#' block written again
 
 ``tsc_a2`` is ``tsc_a`` with run 5's cut-off last line deleted, as its refusal says; ``tsc_a3``
 the same files, ``init`` given ``data.roles.ambient=[Air]`` (``Air`` is no ambient word);
@@ -68,6 +69,13 @@ E_dZ2's steps: the lag of T_Headstock_2 (CV 12.97 -> 9.68), the planted lever
 sensors' mean).  tsc_b2 (seed 6602): nothing accepted on E_dZ2 (the lever a candidate, CV gain
 13.9 %, p 0.014, family-wise 0.37; the round's best a lag of the inputs, 30 %, family-wise
 0.12), E_dZ1 9.14 -> 1.87, E_dX2 1.30 -> 0.45.
+
+``again`` (tsc_a4: the DAQ's block and header written again after row 1000 of runs 2 and 6; by
+hand first, on a copy: refused "expected 16 fields, got 1" before the mend): init read it,
+warning "line 1009: the file's header written again ...", MLR's test RMSE = tsc_a2's to the last
+digit; the test run piped into the lag bank's ``monitor``: 0.338 / 1.387 / 0.407 / 6.993, its
+run's, no event (the stdin reader refused its '#' lines as values, "column 'T_Air', data row
+1008: non-numeric value", stream.c "row 1002 has not 16 cells", before the mend).
 
 ``monitor`` mlr, tsc_a2's test run: healthy 0 events, fixed = adaptive = run; +3 K on Bed at
 20 h: excluded at once, ok again at 20.17 h, E_dZ2 fixed 28.23 adaptive 11.75; on Turret 2:
@@ -262,6 +270,42 @@ def diagnosed(root: Path, name: str, family: str, *extra: str) -> dict:
     return row
 
 
+def again(root: Path) -> None:
+    """``tsc_a4``: ``tsc_a2`` with the DAQ's ``#`` block and header written again (a restart, its
+    start time another) after data row 1000 of run 2 and of run 6 (the test run); its ``init``
+    and MLR ``run`` against tsc_a2's, and the test run piped into the lag bank's ``monitor``."""
+    import shutil
+
+    _project(root)
+    folder = root / "tsc_a4"
+    if not folder.exists():
+        shutil.copytree(root / "tsc_a2", folder)
+        for k in (2, 6):
+            path = folder / f"TC2_run{k:02d}.txt"
+            lines = path.read_text(encoding="utf-8").splitlines(keepends=True)
+            block = [ln.replace("06:00:00", "11:40:00") for ln in lines[:8]]
+            path.write_text("".join(lines[:8 + 1000] + block + lines[8 + 1000:]),
+                            encoding="utf-8")
+    initialised(root, "tsc_a4", ["data.max_gap_samples=4"])
+    rmse = {}
+    for name in ("tsc_a4", "tsc_a2"):
+        out = root / "again" / name
+        rc, said, cpu = stage("run", *data_args(root, name), "model=mlr", "plots=none",
+                              "track=false", f"out={out}")
+        metrics = json.loads((out / "metrics.json").read_text()) if rc == 0 else None
+        rmse[name] = said if rc else {t: v["test"]["rmse"] for t, v in metrics["targets"].items()}
+    print(json.dumps({"again": rmse}), flush=True)
+    import io
+
+    sys.stdin = io.StringIO((folder / "TC2_run06.txt").read_text(encoding="utf-8"))
+    try:
+        piped = monitored(root, "tsc_a2", "lagbank", root / "again" / "mon-piped",
+                          "monitor.input=-")
+    finally:
+        sys.stdin = sys.__stdin__
+    print(json.dumps({"monitor piped": piped}), flush=True)
+
+
 def main(argv: list[str]) -> None:
     step, root = argv[0], Path(argv[1]).resolve()
     if step == "write":
@@ -275,6 +319,8 @@ def main(argv: list[str]) -> None:
         monitoring(root, argv[2], argv[3], argv[4:])
     elif step == "diagnose":      # diagnose ROOT name family [override ...]
         print(json.dumps(diagnosed(root, argv[2], argv[3], *argv[4:]), default=str))
+    elif step == "again":         # again ROOT
+        again(root)
     elif step == "table":
         print(table(root, argv[2]))
     else:
