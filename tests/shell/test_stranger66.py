@@ -118,11 +118,18 @@ def test_the_compiled_stream_reads_the_time_of_a_comment_header(tmp_path):
     as_daq = "".join(lines[:7 + 100] + lines[:7] + lines[7 + 100:])
     as_csv = "".join(ln.lstrip("# ").replace("\t\n", "\n").replace("\t", ",")
                      for ln in lines[6:])
+    # and an input's name first in the comment header (the header found by naming every input)
+    moved = "".join(ln if ln.startswith("#") and not ln.startswith("# t [s]") else
+                    "\t".join([ln.split("\t")[1], ln.split("\t")[0], *ln.split("\t")[2:]])
+                    for ln in lines[:7 + 100] + lines[7 + 100:])
+    moved = moved.replace("Air [degC]\t# t [s]", "# Air [degC]\tt [s]", 1)
+    assert "\n# Air [degC]\tt [s]\tBed" in moved
     out = [subprocess.run([str(code / "stream")], input=text, text=True, capture_output=True,
-                          check=True) for text in (as_daq, as_csv)]
-    got, want = (pd.read_csv(io.StringIO(o.stdout)).to_numpy(float) for o in out)
+                          check=True) for text in (as_daq, as_csv, moved)]
+    got, want, swapped = (pd.read_csv(io.StringIO(o.stdout)).to_numpy(float) for o in out)
     assert got.shape == want.shape == (179, 1) and np.abs(got - want).max() <= 1e-12
-    assert "no time column" not in out[0].stderr + out[1].stderr
+    assert np.abs(swapped - want).max() <= 1e-12
+    assert "no time column" not in out[0].stderr + out[1].stderr + out[2].stderr
 
 
 def test_a_last_line_cut_off_while_written_is_refused_saying_so(tmp_path, capsys):

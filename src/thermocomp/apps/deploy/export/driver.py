@@ -219,6 +219,10 @@ static int names_every_input(const char *line) {
     strcpy(text, line);
     sep = separator_of(text);
     ncols = split(text, cells);
+    if (ncols > 0 && cells[0][0] == '#') {      /* (a header written as a comment: stranger66) */
+        cells[0] += strspn(cells[0], "#");
+        cells[0] += strspn(cells[0], " \t");
+    }
     for (i = 0; i < TC_N_INPUTS; i++) {
         for (found = 0, j = 0; j < ncols && !found; j++)
             found = strcmp(named(cells[j], j), TC_INPUT_NAMES[i]) == 0;
