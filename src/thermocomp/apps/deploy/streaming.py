@@ -277,6 +277,7 @@ class StreamingCompensator:
     lab_units_: dict = {}      # the lab's headers in another unit (naming.lab_units): likewise
     end_states_: dict = {}
     ambient_given_ = False
+    ambient_optional_ = False  # older pickles: an ambient given is needed
     adapt_ = None
     _held = None               # older pickles: no stream on the clamped inputs yet
     _gains: dict = {}
@@ -305,6 +306,10 @@ class StreamingCompensator:
                                 else [c for c in inputs if is_ambient(c)])
         # no ambient sensor: the campaign's ambient is given at reset (its manifest ambient_c)
         self.ambient_given_ = AMBIENT_C0 in needs and not self.ambient_columns
+        # ... and where no model needs it (a diagnosed lag's initial state reads it if known, its
+        # sensors' mean else: ``ambient_optional_``), a campaign without one still starts
+        self.ambient_optional_ = all(getattr(e, "ambient_optional_", False)
+                                     for e in ests.values() if AMBIENT_C0 in context_columns(e))
         raw = [c for c in needs if c not in RESERVED]
         extra = [c for c in self.ambient_columns if c not in inputs]
         self.columns_ = inputs + extra + [c for c in raw if c not in inputs and c not in extra]
@@ -455,7 +460,8 @@ class StreamingCompensator:
         if first:
             # refused before the stream starts: a half-started one (its reference set, no
             # model state) failed at the next row on a KeyError naming a target
-            if not self._amb_idx and self.ambient_given_ and not np.isfinite(self._ambient_c0):
+            if not self._amb_idx and self.ambient_given_ and not self.ambient_optional_ and \
+                    not np.isfinite(self._ambient_c0):
                 raise OutOfEnvelopeError(
                     "the model needs the campaign's initial ambient temperature and reads no "
                     "T_amb / T_amb_* sensor: give the campaign's ambient_c (the manifest column; "

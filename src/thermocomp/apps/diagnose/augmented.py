@@ -130,7 +130,16 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             # the effects' features run on every row, the law is the measured rows' least squares
             path = PartialRidgePath(Z[measured], y[measured], X.shape[1], self.estimator_.fit_intercept)
             self.estimator_.coef_, self.estimator_.intercept_ = path.coefficients(alpha)
-        self.context_columns_ = merge_columns([TIME, AMBIENT_C0] if self.effects_ else [],
+        # the campaign's initial ambient: an ambient law needs it; a lag's initial state reads
+        # it where it is known, else the mean of its sensors' first values (features.initial_state),
+        # as every deployed form does (stranger66: a record without an air sensor and without a
+        # manifest ambient_c was diagnosed, and the stream refused every diagnosed model of it)
+        laws = any(e.transform in ("ambient_linear", "ambient_step") for e in self.effects_)
+        base = AMBIENT_C0 in context_columns(self.estimator_)
+        self.ambient_optional_ = not (laws or base)
+        ambient = laws or base or any(e.initial_state for e in self.effects_)
+        self.context_columns_ = merge_columns([TIME] if self.effects_ else [],
+                                              [AMBIENT_C0] if ambient else [],
                                               self.required_context_,
                                               context_columns(self.estimator_))
         return self

@@ -4,11 +4,14 @@ is left out of the rows, as a footer is, and said in a warning naming the file a
 rows after it are counted without it (:class:`.lines.Lines`).
 
 The rule: a line equal, byte for byte, to the file's header line (and the line under it, where
-it equals the file's unit row) is no data.  Only the exact header is: a line of other text
-stays a row, refused with its row as before.  The search is one byte search of the mapped file
-(no row is parsed), so a file without one costs nothing noticeable.  A stream piped into
-``monitor monitor.input=-`` (or ``connect``) is searched by the same rule (:func:`spans_in`,
-leftovers66: the header's text was read as a cell of each number column and refused).
+it equals the file's unit row) is no data; nor are the lines right above it that a logger writes
+again with it (stranger66): each equal to a line of the file's own preamble, or, where that
+preamble is all ``#`` comments, a ``#`` comment (a DAQ script's block, its start time another).
+Only the exact header is: a line of other text stays a row, refused with its row as before.
+The search is one byte search of the mapped file (no row is parsed), so a file without one
+costs nothing noticeable.  A stream piped into ``monitor monitor.input=-`` (or ``connect``) is
+searched by the same rule (:func:`spans_in`, leftovers66: the header's text was read as a cell
+of each number column and refused).
 """
 
 from __future__ import annotations
@@ -46,10 +49,11 @@ def spans_in(m, preamble: int, units: bool, cut: int | None = None
              ) -> tuple[tuple[int, int], ...]:
     """:func:`header_again`'s spans in a file's bytes ``m`` (a mapped file, or the bytes of a
     stream: ``monitor.input=-`` reads a lab's day file piped in by the same rule)."""
-    start = 0
+    start, above = 0, []
     for _ in range(preamble):
-        start = m.find(b"\n", start) + 1
-        if start == 0:
+        line, start = _line_at(m, start)
+        above.append(line)
+        if start >= len(m):
             return ()
     header, body = _line_at(m, start)
     unit_row, body = _line_at(m, body) if units else (None, body)
@@ -69,7 +73,25 @@ def spans_in(m, preamble: int, units: bool, cut: int | None = None
             continue
         if unit_row is not None and end < stop and _line_at(m, end)[0] == unit_row:
             end = _line_at(m, end)[1]
+        first = _block_above(m, first, above, preamble)
         spans.append((first, min(end, stop)))
+
+
+def _block_above(m, first: int, above: list[bytes], most: int) -> int:
+    """``first`` moved up over the lines a logger writes again above its header (stranger66: a
+    DAQ script's ``#`` block, its ``# start:`` line another time): each equal to a line of the
+    file's own preamble ``above``, or a ``#`` comment where that preamble is all comments; at most
+    ``most`` lines."""
+    commented = bool(above) and all(ln.lstrip().startswith(b"#") for ln in above if ln.strip())
+    for _ in range(most):
+        if first == 0:
+            break
+        start = m.rfind(b"\n", 0, first - 1) + 1
+        line = m[start:first].rstrip(b"\r\n")
+        if not line.strip() or not (line in above or commented and line.lstrip().startswith(b"#")):
+            break
+        first = start
+    return first
 
 
 def line_numbers(path: Path, spans) -> tuple[int, ...]:
@@ -107,8 +129,9 @@ def warn(source, lines: tuple[int, ...]) -> None:
     starts = [ln for ln in lines if ln - 1 not in lines]
     where = ", ".join(map(str, starts[:5])) + (", ..." if len(starts) > 5 else "")
     logger.warning(f"{source}, line{'s' * (len(starts) > 1)} {where}: the file's header written "
-                   "again under its data (a logger restarted?): left out, the rows after it read "
-                   "as rows of the file")
+                   "again under its data (a logger restarted?; the lines of its preamble above it "
+                   "too, where written again): left out, the rows after it read as rows of the "
+                   "file")
 
 
 def kept(whole, spans, stop: int) -> bytes:

@@ -41,7 +41,9 @@ def header_line(lines: list[str], sep: str) -> int | None:
             if not _text(lines[k]):        # bytes that are no text (a gzip file): no preamble
                 return None
             continue
-        body = [w for w in widths[k + 1:] if w is not None]
+        # (a '#' comment among the rows: a DAQ's block written again with its header, stranger66)
+        body = [w for w, ln in zip(widths[k + 1:], lines[k + 1:])
+                if w is not None and not ln.lstrip().startswith("#")]
         body = body[:-1] if len(body) > 1 else body        # the last may be cut short
         if all(w == width for w in body):
             return k
@@ -78,6 +80,21 @@ def is_time_format(cell: str) -> bool:
     """``cell`` spells a time column's format (``h:mm:ss``, ``yyyy/mm/dd hh:mm``), as a logger's
     unit row gives it for its time column."""
     return bool(TIME_FORMAT.fullmatch(cell.strip().lower().replace(" ", "")))
+
+
+# a header written as a comment (numpy's ``savetxt``, a DAQ script: ``# t [s]<TAB>T1 [degC]``)
+_COMMENTED = re.compile(r"#+\s*(?=\S)")
+
+
+def uncommented(header: list[str], above: list[str]) -> list[str]:
+    """``header`` without the ``#`` a DAQ script writes before it (``# t [s]`` -> ``t [s]``,
+    stranger66), where every non-blank line above it is a ``#`` comment too (or none is above
+    it); a first column named ``#`` alone (a sample counter) stays as it is."""
+    if not header or not _COMMENTED.match(header[0].lstrip()):
+        return header
+    if not all(ln.lstrip().startswith("#") for ln in above if ln.strip()):
+        return header
+    return [_COMMENTED.sub("", header[0].lstrip(), count=1), *header[1:]]
 
 
 def with_units(header: list[str], units: list[str]) -> list[str]:

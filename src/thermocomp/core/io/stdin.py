@@ -23,7 +23,7 @@ from .again import kept, lines_in, spans_in, warn
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, check_text, text_codec
-from .layout import header_line, is_unit_row, with_units
+from .layout import header_line, is_unit_row, uncommented, with_units
 from .options import RUN_ROLE
 from .roles import RUN, active, naming, same_header, split_unit
 from .runs import run_blocks, run_values
@@ -159,15 +159,21 @@ def _table(text: str, sep: str) -> str:
     start = header_line(lines[:SNIFF_LINES], sep) or 0
     units = len(lines) > start + 1 and is_unit_row(split_line(lines[start + 1], sep, EMPTY))
     text = _without_again(text, start, units)
-    if not start and not units:
-        return text
     lines = text.splitlines()
-    header = split_line(lines[start], sep, SPLIT)
+    if not lines:
+        return text
+    written = split_line(lines[start], sep, SPLIT)
+    header = uncommented(written, lines[:start])   # (stranger66: '# t [s]' as savetxt writes it)
+    if not start and not units and header == written:
+        return text
     if units:
         header = with_units(header, split_line(lines[start + 1], sep, EMPTY))
+    body = lines[start + 1 + units:]
+    if header != written:     # a DAQ's '#' block written again with its header: left out
+        body = [ln for ln in body if not ln.lstrip().startswith("#")]
     out = StringIO()
     csv.writer(out, delimiter=sep, lineterminator="\n").writerow(header)
-    return out.getvalue() + "\n".join(lines[start + 1 + units:]) + "\n"
+    return out.getvalue() + "\n".join(body) + "\n"
 
 
 def _without_again(text: str, start: int, units: bool) -> str:

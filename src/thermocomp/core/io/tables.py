@@ -22,7 +22,7 @@ from .contract import TIME, ContractError, role
 from .csvline import SPLIT, split_line
 from .encoding import arrow_encoding, first_undecodable, text_codec, undecodable
 from .footer import blank_inside, footer, source
-from .layout import header_line, is_unit_row, with_units
+from .layout import header_line, is_unit_row, uncommented, with_units
 from .lines import Lines
 from .options import _OTHER_DELIMITERS, ROLE_ORDER, ReadOptions, _first_line
 from .own_headers import with_own_header
@@ -286,13 +286,15 @@ class NoRows(ContractError):
 def peek_csv(path: Path, delimiter: str, encoding: str) -> tuple[list[str], list[str], int]:
     """Header (stripped names; a unit row's units joined), first data row and the lines above
     it (a logger's preamble, the header, a unit row: :mod:`.layout`), without reading the file."""
-    preamble = header_line(head_lines(path, encoding), delimiter) or 0
+    head = head_lines(path, encoding)
+    preamble = header_line(head, delimiter) or 0
     try:
         with open(path, newline="", encoding=text_codec(encoding)) as f:
             for _ in range(preamble):
                 f.readline()
             rows = csv.reader(f, delimiter=delimiter)
             header = next(rows, None)
+            header = header and uncommented(header, head[:preamble])
             first = next((r for r in rows if r), None)
             units = first is not None and header is not None and is_unit_row(first)
             if units:
@@ -605,8 +607,24 @@ def _malformed_row_error(path, names, opts, message) -> ContractError:
     if not bad:
         return ContractError(f"unreadable CSV ({message})", file=path)
     row = bad[0]
-    return ContractError(f"expected {row.expected_columns} fields, got {row.actual_columns}",
-                         file=path, row=None if row.number is None else row.number - opts.skip_rows)
+    said = f"expected {row.expected_columns} fields, got {row.actual_columns}"
+    if row.actual_columns < row.expected_columns and _last_line(path, opts) == row.text.strip():
+        # (stranger66: a DAQ stopped while writing its last row, cut mid-cell, no line end)
+        said = (f"the file's last line holds {row.actual_columns} of its {row.expected_columns} "
+                "fields: cut off while it was written (the logger stopped?); its cells are not "
+                "read as they are, delete that line")
+    return ContractError(said, file=path,
+                         row=None if row.number is None else row.number - opts.skip_rows)
+
+
+def _last_line(path: Path, opts: ReadOptions) -> str:
+    """The last non-blank line of the file's data (above a footer), stripped."""
+    end = path.stat().st_size if opts.data_bytes is None else opts.data_bytes
+    with open(path, "rb") as f:
+        f.seek(max(0, end - (1 << 16)))
+        tail = f.read(end - max(0, end - (1 << 16)))
+    lines = [ln for ln in tail.splitlines() if ln.strip()]
+    return lines[-1].decode(text_codec(opts.encoding), "replace").strip() if lines else ""
 
 
 def first_cast_failure(values: pa.ChunkedArray, target: pa.DataType,

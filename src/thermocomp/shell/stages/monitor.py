@@ -48,7 +48,9 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict, train_ids: list[s
     continues (its first run, with ``data.roles.campaign``: each later run starts from a reset);
     without it, a first row that looks like the middle of a campaign is said."""
     cid, stream = next(iter(streamed.items()))
-    ids = stdin_chain(ds, cfg.monitor.get("continues"), ambient_given=fixed.ambient_given_,
+    # (a model that reads the ambient only where it is known starts without: stranger66)
+    given = fixed.ambient_given_ and not getattr(fixed, "ambient_optional_", False)
+    ids = stdin_chain(ds, cfg.monitor.get("continues"), ambient_given=given,
                       reference=fixed.compensator.reference, data_path=cfg.data.path,
                       ambient_c=cfg.monitor.get("ambient_c"))
     leads = stdin_lead_in(ds, ids, cid, stream[TIME] if TIME in stream.columns else None,

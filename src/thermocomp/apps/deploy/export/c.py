@@ -139,6 +139,7 @@ def header(ss: StateSpace) -> str:
 #define TC_N_LAWS {len(ss.laws)}   /* linear laws summed into the outputs (LAW_TARGET) */
 #define TC_N_AMBIENT {len(ss.ambient_inputs)}   /* inputs whose first sample is the ambient (ATI) */
 #define TC_AMBIENT_GIVEN {int(ss.ambient_given)}   /* 1: the ambient is given per campaign (tc_set_ambient) */
+#define TC_AMBIENT_OPTIONAL {int(ss.ambient_optional)}   /* 1: ... a campaign without it still starts */
 #define TC_TAPS {taps}
 #define TC_DEPTH {ss.depth}
 #define TC_N_LAGS {len(ss.taus)}
@@ -426,7 +427,7 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
     /* a non-finite input refuses the sample before anything is remembered: one NaN would
        otherwise stay in the lags, the AR feedback and the guard to the campaign's end; so does
        a campaign's first sample without its given ambient (TC_AMBIENT_GIVEN) */
-    s->refused = TC_AMBIENT_GIVEN && s->first && !isfinite(s->ambient_c);
+    s->refused = TC_AMBIENT_GIVEN && !TC_AMBIENT_OPTIONAL && s->first && !isfinite(s->ambient_c);
     for (j = 0; j < TC_N_INPUTS; j++)
         if (!TC_INPUT_HELD[j] && !isfinite(u[j])) s->refused = 1;
     if (s->refused) {{
@@ -461,7 +462,9 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
         for (l = 0; l < TC_N_AMBIENT; l++) a0 += v[AMBIENT_INPUT[l]];
         a0 /= AMBIENT_COUNT;
         if (TC_AMBIENT_GIVEN) a0 = s->ambient_c;   /* no sensor: the campaign's, given */
-        s->a0 = a0;
+        s->a0 = a0;   /* (NAN where optional and not given: no law reads it, the transients
+                         take the mean of their sensors' first values) */
+        if (!isfinite(a0)) a0 = 0.0;
         s->t0 = now;
         for (r = 0; r < TC_N_LAWS; r++) {{   /* times (A0 - centre)^LAW_AMBIENT[r]: 0, 1 or 2 */
             s->factor[r] = (a0 > LAW_LO[r] && a0 <= LAW_HI[r]) ? 1.0 : 0.0;
@@ -521,11 +524,17 @@ int tc_step(tc_state *s, const double u[TC_N_INPUTS], double time, double c[TC_N
        offset unknown), 0 before it, as the stream's model computes it */
     for (l = 0; l < TC_N_INITIAL; l++) {{
         int col = TC_N_INPUTS + TC_N_POWERS + TC_N_DERIVED + l, any = 0;
-        double start = 0.0;
+        double start = 0.0, ref = s->a0, seen = 0.0;
         if (s->first) s->started[l] = 0, s->start[l] = 0.0;
+        if (!isfinite(ref)) {{   /* A0 not given (TC_AMBIENT_OPTIONAL): its sensors' mean */
+            ref = 0.0;
+            for (j = 0; j < TC_N_INPUTS; j++)
+                if (INITIAL_SENSOR[l][j] != 0.0 && isfinite(u[j])) ref += v[j], seen += 1.0;
+            ref = seen > 0.0 ? ref / seen : 0.0;
+        }}
         for (j = 0; j < TC_N_INPUTS && !s->started[l]; j++)
             if (INITIAL_SENSOR[l][j] != 0.0 && isfinite(u[j])) {{
-                start += INITIAL_W[l][j] * (v[j] - s->a0);
+                start += INITIAL_W[l][j] * (v[j] - ref);
                 any = 1;
             }}
         if (any) s->start[l] = start, s->started[l] = 1;

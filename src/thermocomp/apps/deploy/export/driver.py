@@ -199,6 +199,12 @@ static int is_mark(const char *cell) {
     return 0;
 }
 
+/* 1: `line` is blank or a `#` comment (a DAQ script's block above its header). */
+static int comment_or_blank(const char *line) {
+    const char *p = line + strspn(line, " \t\r\n");
+    return *p == '\0' || *p == '#';
+}
+
 /* The separator a header line says: ';', a tab or '|' where it holds one, else ','. */
 static char separator_of(const char *line) {
     return strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
@@ -213,6 +219,10 @@ static int names_every_input(const char *line) {
     strcpy(text, line);
     sep = separator_of(text);
     ncols = split(text, cells);
+    if (ncols > 0 && cells[0][0] == '#') {      /* (a header written as a comment: stranger66) */
+        cells[0] += strspn(cells[0], "#");
+        cells[0] += strspn(cells[0], " \t");
+    }
     for (i = 0; i < TC_N_INPUTS; i++) {
         for (found = 0, j = 0; j < ncols && !found; j++)
             found = strcmp(named(cells[j], j), TC_INPUT_NAMES[i]) == 0;
@@ -544,7 +554,9 @@ int main(int argc, char **argv) {
     int clock_col = -1;        /* a time of day beside the date (TC_CLOCK_COLUMN): joined */
     static char header_raw[MAX_LINE], units_raw[MAX_LINE], first_row[MAX_LINE], row_raw[MAX_LINE];
     char *raw[MAX_COLS];
-    int pending = 0, again = 0;   /* a first row read after the header; a header again seen */
+    /* a first row read after the header; a header again seen; lines above the header all `#`
+       comments; the header written as one; a `#` line among the rows said */
+    int pending = 0, again = 0, commented = 1, hashed = 0, said_hash = 0;
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
@@ -610,14 +622,25 @@ int main(int argc, char **argv) {
            the first of the next MAX_PREAMBLE lines naming every input is the header */
         static char first[MAX_LINE];
         strcpy(first, line);
-        for (i = 0; i < MAX_PREAMBLE && next_line(line, sizeof line, i + 2); i++)
+        commented = commented && comment_or_blank(line);
+        for (i = 0; i < MAX_PREAMBLE && next_line(line, sizeof line, i + 2); i++) {
             if (names_every_input(line)) break;
-        if (i == MAX_PREAMBLE || !names_every_input(line)) strcpy(line, first);
+            commented = commented && comment_or_blank(line);
+        }
+        if (i == MAX_PREAMBLE || !names_every_input(line)) strcpy(line, first), commented = 1;
     }
     sep = separator_of(line);
     strcpy(header_raw, line);
     header_raw[strcspn(header_raw, "\r\n")] = '\0';
     ncols = split(line, cells);
+    /* (stranger66) a header written as a comment under a block of them (a DAQ script's
+       `# t [s]<TAB>T1 [degC]`, numpy's savetxt): its first name without the `#`, as the reader
+       reads it; a first column named `#` alone stays */
+    if (commented && ncols > 0 && cells[0][0] == '#') {
+        char *p = cells[0] + strspn(cells[0], "#");
+        p += strspn(p, " \t");
+        if (*p) cells[0] = p, hashed = 1;
+    }
     for (j = 0; j < ncols; j++) raw[j] = cells[j];
     for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
     /* (streamraw65) a unit row under the header (`;;degC;W;-;um`: every cell it fills no number,
@@ -689,7 +712,7 @@ int main(int argc, char **argv) {
         if (strcmp(cells[j], "reset") == 0) reset_col = j;
         if (strcmp(cells[j], "ambient_c") == 0) ambient_col = j;
     }
-    if (TC_AMBIENT_GIVEN && ambient_col < 0 && !isfinite(ambient)) {
+    if (TC_AMBIENT_GIVEN && !TC_AMBIENT_OPTIONAL && ambient_col < 0 && !isfinite(ambient)) {
         fprintf(stderr, "stream: the model picks its laws by a campaign's initial ambient and "
                 "reads no ambient sensor: give it in an ambient_c column (degC, on a campaign's "
                 "first row: the manifest's ambient_c) or as --ambient C\n");
@@ -721,6 +744,14 @@ int main(int argc, char **argv) {
             continue;
         }
         again = 0;
+        /* (stranger66) a `#` line among the rows of a header written as a comment: the DAQ's block
+           written again with its header (a restart), left out as the reader leaves it out */
+        if (hashed && line[strspn(line, " \t")] == '#') {
+            if (!said_hash++)
+                fprintf(stderr, "stream: line %ld: a # comment among the rows (the block and "
+                        "header written again?): left out\n", row);
+            continue;
+        }
         strcpy(row_raw, line);
         if (line[strspn(line, " \t\r\n")] == '\0') {
             restart(&s, 1);
@@ -768,7 +799,7 @@ int main(int argc, char **argv) {
         if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
             double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
             if (!isfinite(a0)) a0 = ambient;
-            if (!isfinite(a0)) {
+            if (!isfinite(a0) && !TC_AMBIENT_OPTIONAL) {
                 fprintf(stderr, "stream: row %ld starts a campaign without its ambient_c (and no "
                         "--ambient)\n", row);
                 return 2;

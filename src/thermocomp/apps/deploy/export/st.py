@@ -225,6 +225,7 @@ def function_block(ss: StateSpace) -> str:
         f"    AMBIENT_CENTRE : LREAL := {literal(ss.ambient_centre)};",
         f"    AMBIENT_COUNT : LREAL := {literal(max(len(ss.ambient_inputs), 1))};",
         f"    AMBIENT_GIVEN : BOOL := {'TRUE' if ss.ambient_given else 'FALSE'};",
+        f"    AMBIENT_OPTIONAL : BOOL := {'TRUE' if ss.ambient_optional else 'FALSE'};",
         _constant("POWER_SRC", [q[0] for q in ss.powers], (p,), "INT"),
         _constant("POWER_SCALE", [q[1] for q in ss.powers], (p,)),
         _constant("POWER_EXP", [q[2] for q in ss.powers], (p,)),
@@ -311,6 +312,9 @@ VAR
     excess : ARRAY[{_dims(m)}] OF LREAL;
     factor : ARRAY[{_dims(r)}] OF LREAL;
     a0 : LREAL;
+    a0_known : BOOL;
+    init_a0 : LREAL;
+    init_n : LREAL;
     pg : LREAL;
     t_prev : LREAL;
     t_read : LREAL;
@@ -403,8 +407,11 @@ FOR j := 0 TO N_INPUTS - 1 DO
     END_IF;
 END_FOR;
 (* so does a campaign's first sample without its ambient given (AMBIENT_GIVEN: no sensor) *)
-IF AMBIENT_GIVEN AND first AND NOT (ambient_c >= -REAL_LIMIT AND ambient_c <= REAL_LIMIT) THEN
-    refused := TRUE;
+(* (stranger66: not where it is optional, AMBIENT_OPTIONAL: a lag's initial state alone reads it) *)
+IF AMBIENT_GIVEN AND NOT AMBIENT_OPTIONAL AND first THEN
+    IF NOT (ambient_c >= -REAL_LIMIT AND ambient_c <= REAL_LIMIT) THEN
+        refused := TRUE;
+    END_IF;
 END_IF;
 IF NOT refused THEN
 {_indent(ST_TIME_RULE)}    n_clamped := 0;
@@ -463,8 +470,13 @@ IF NOT refused THEN
             a0 := a0 + v[AMBIENT_INPUT[l]];
         END_FOR;
         a0 := a0 / AMBIENT_COUNT;
+        a0_known := TRUE;
         IF AMBIENT_GIVEN THEN   (* no sensor: the campaign's, given at its first sample *)
             a0 := ambient_c;
+            IF NOT (ambient_c >= -REAL_LIMIT AND ambient_c <= REAL_LIMIT) THEN
+                a0 := 0.0;      (* optional and not given: no law reads it *)
+                a0_known := FALSE;
+            END_IF;
         END_IF;
         t0 := now;
         FOR r := 0 TO N_LAWS - 1 DO
@@ -623,9 +635,23 @@ IF NOT refused THEN
         IF NOT init_started[l] THEN
             any_seen := FALSE;
             w := 0.0;
+            init_a0 := a0;
+            IF NOT a0_known THEN   (* A0 not given: the mean of its sensors' first values *)
+                init_a0 := 0.0;
+                init_n := 0.0;
+                FOR j := 0 TO N_INPUTS - 1 DO
+                    IF INITIAL_SENSOR[l, j] <> 0 AND u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
+                        init_a0 := init_a0 + v[j];
+                        init_n := init_n + 1.0;
+                    END_IF;
+                END_FOR;
+                IF init_n > 0.0 THEN
+                    init_a0 := init_a0 / init_n;
+                END_IF;
+            END_IF;
             FOR j := 0 TO N_INPUTS - 1 DO
                 IF INITIAL_SENSOR[l, j] <> 0 AND u[j] >= -REAL_LIMIT AND u[j] <= REAL_LIMIT THEN
-                    w := w + INITIAL_W[l, j] * (v[j] - a0);
+                    w := w + INITIAL_W[l, j] * (v[j] - init_a0);
                     any_seen := TRUE;
                 END_IF;
             END_FOR;

@@ -191,6 +191,10 @@ class _System:
     # sensor, each campaign's ambient is its manifest's ``ambient_c`` (campaigns.csv), as the
     # stream takes it at reset (C: tc_set_ambient; ST: the input ambient_c; exportrest62)
     ambient_given: bool = False
+    # ... and a campaign given none still starts (no ambient law: a diagnosed lag's initial state
+    # alone reads A0, and without it the mean of its sensors' first values, as the model does;
+    # stranger66)
+    ambient_optional: bool = False
 
 
 @dataclass
@@ -335,6 +339,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         law_target=[i for i, _ in laws], law_lo=[law.lo for _, law in laws],
         law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
         ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C, ambient_given=given,
+        ambient_optional=bool(given and not ati and getattr(stream, "ambient_optional_", False)),
         uses_time=bool(keys) or bool(initial) or bool(switches),
         powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] not in (DERIVED, INITIAL)],
         derived=[list(k[1:5]) for k in derived],
@@ -539,7 +544,8 @@ class Simulator:
         held = np.asarray(ss.held or [0] * len(u), bool)
         # A0 not given where the code has no input for it: no campaign starts (the stream's refusal)
         self.refused = not np.isfinite(u[~held]).all() or (
-            self.first and ss.ambient_given and not np.isfinite(self.ambient_c))
+            self.first and ss.ambient_given and not ss.ambient_optional
+            and not np.isfinite(self.ambient_c))
         if self.refused:
             return self.c.copy()
         if self.first:
@@ -558,7 +564,8 @@ class Simulator:
             self.ref = np.where(np.asarray(ss.referenced, bool), v, 0.0)
             a0 = ambient_c0(v[ss.ambient_inputs]) if ss.ambient_inputs else (
                 self.ambient_c if ss.ambient_given else 0.0)
-            self.factor = ss.factors(a0)          # the campaign's laws (ATI), fixed over it
+            # the campaign's laws (ATI), fixed over it (A0 optional and not given: no law reads it)
+            self.factor = ss.factors(a0 if np.isfinite(a0) else 0.0)
             self.a0, self.t0 = a0, now
             self.start = np.zeros(len(ss.initial))        # a transient's w . (v(0) - A0)
             self.started = np.zeros(len(ss.initial), bool)
@@ -657,7 +664,10 @@ class Simulator:
         the campaign's first sample that has one of them (a missing one: 0), 0 before it."""
         for i, (_, sensors, w) in enumerate(self.ss.initial):
             if not self.started[i] and measured[sensors].any():
-                self.start[i] = np.asarray(w, float) @ np.where(measured[sensors], v[sensors] - self.a0, 0.0)
+                # A0 not given (ambient_optional): the mean of its sensors' first values
+                a0 = self.a0 if np.isfinite(self.a0) else float(
+                    np.mean(np.asarray(v)[sensors][measured[sensors]]))
+                self.start[i] = np.asarray(w, float) @ np.where(measured[sensors], v[sensors] - a0, 0.0)
                 self.started[i] = True
         taus = np.array([tau for tau, _, _ in self.ss.initial], float)
         return self.start * (1.0 - np.exp(-(now - self.t0) / taus))
