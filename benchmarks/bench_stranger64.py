@@ -70,7 +70,14 @@ All 30 cells (plain and ``ati=cmeans``): |replay - run| <= 2.1e-14 µm, |stream 
 ``diagnose`` (before -> after = its rerun = replay; C pack passed): mlr 9.56 / 1.31 / 22.77 ->
 1.57 / 0.39 / 1.79 (S_Z_ram x the inputs' rises on E_dY and E_dZ, a 3600 s lag on E_dX; 22 s
 CPU); hammerstein 1.22 / 1.85 / 10.00 -> 1.22 / 0.53 / 0.72 (517 s CPU).  The three weekly
-files as written piped whole into the diagnosed mlr's compiled stream: = its pack to 4.0e-13 µm.
+files as written piped whole into the diagnosed mlr's compiled stream: = its pack to 3.4e-13 µm
+(weekjoin66, 2026-12-01; before: 4.9e-4 µm at the weeks' joins, rows 10080 and 20160, 1570
+rows above 1e-9: ``run`` / ``replay`` joined the weeks one mean period, 60.00 s, apart where
+their hours step 60.12 s; now the step the hours show.  Plain lagbank / hammerstein run and
+exported on pm12, the files piped whole or one process per file with ``--state``: 2.2e-3 /
+1.4e-3 µm before, 20160 rows above 1e-9 (every row from the first join on); now 1.7e-12 /
+8.0e-13; plain mlr 8.0e-13 both.  The diagnosed mlr's files one process each with
+``--state``: 4.9e-4 before, 3.4e-13 now; its after figures move in the 6th digit).
 
 ``monitor`` (mlr, the test week): healthy 0 events, fixed = adaptive = run, every correction
 within its bound (max 78 / 116 / 319 µm); the raw TAB week on stdin the same; +3 K on ``T
@@ -245,6 +252,17 @@ def diagnosed(root: Path, name: str, family: str) -> dict:
                 "*/expected.csv"))).to_numpy(float)
             row["raw files - pack"] = float(np.abs(got - want).max()) if got.shape == want.shape \
                 else f"shapes {got.shape} {want.shape}"
+            state = out / "c" / "state"          # one process per file, --state carrying on
+            state.unlink(missing_ok=True)
+            runs = [subprocess.run(["./stream", "--state", str(state)], cwd=out / "c",
+                                   input=f.read_bytes(), capture_output=True) for f in files]
+            if any(r.returncode for r in runs):
+                row["files by --state"] = [r.stderr.decode()[:200] for r in runs if r.returncode]
+            else:
+                got = np.concatenate([pd.read_csv(io.BytesIO(r.stdout)).to_numpy(float)
+                                      for r in runs])
+                row["files by --state - pack"] = float(np.abs(got - want).max()) \
+                    if got.shape == want.shape else f"shapes {got.shape} {want.shape}"
     return row
 
 
