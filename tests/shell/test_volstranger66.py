@@ -86,3 +86,26 @@ def test_a_logger_file_beside_the_distances_names_a_few_of_them_not_every_one(ra
                    "join them into one file first")
     assert e[5] not in line
     assert not (tmp_path / "out").exists()
+
+
+def test_init_reads_a_volumetric_folder_as_calibrate_does(raw, tmp_path, capsys):
+    # a ball not probed in a few cycles of one pose (its distances empty) is calibrated from
+    # the others; init refused it as a gap longer than data.max_gap_samples, 'refused here as
+    # run would refuse it', and run takes it
+    lab_files(raw, tmp_path / "lab", unit_mm=True)
+    f = tmp_path / "lab" / "train_week.csv"
+    df = pd.read_csv(f, sep=";", decimal=",")
+    gone = [c for c in df.columns if c.startswith("E_S2x1d1_") and "B02" in c]
+    assert len(gone) == 4
+    df.loc[3:6, gone] = np.nan
+    df.to_csv(f, sep=";", decimal=",", index=False, float_format="%.6f")
+    assert main(["init", str(tmp_path / "lab"), f"out={tmp_path / 'init'}"]) in (0, None)
+    config = tmp_path / "init" / "conf" / "data" / "lab.yaml"
+    assert config.is_file()
+    out = capsys.readouterr().out
+    assert "next: thermocomp run" in out
+    # what init wrote reads the folder as calibrate reads it
+    searchpath = f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]"
+    assert main(["calibrate", searchpath, "data=lab", f"out={tmp_path / 'cal'}", "track=false"]) in (0, None)
+    report = json.loads((tmp_path / "cal" / "calibration.json").read_text())
+    assert report["n_cycles"] == len(df) + len(pd.read_csv(tmp_path / "lab" / "validation_week.csv", sep=";"))
