@@ -109,3 +109,25 @@ def test_init_reads_a_volumetric_folder_as_calibrate_does(raw, tmp_path, capsys)
     assert main(["calibrate", searchpath, "data=lab", f"out={tmp_path / 'cal'}", "track=false"]) in (0, None)
     report = json.loads((tmp_path / "cal" / "calibration.json").read_text())
     assert report["n_cycles"] == len(df) + len(pd.read_csv(tmp_path / "lab" / "validation_week.csv", sep=";"))
+
+
+def test_an_export_of_one_distance_per_row_is_refused_saying_the_layout(raw, tmp_path, capsys):
+    # an artefact software's file per cycle (a header block, then pose; ball i; ball j;
+    # deviation) was refused as 'Pose' and three more columns without a role, pointing at
+    # data.roles for a layout no role reads
+    folder = tmp_path / "cycles"
+    folder.mkdir()
+    shutil.copy(raw / "volumetric.json", folder / "volumetric.json")
+    df = pd.read_parquet(raw / "train_week.parquet")
+    e = [c for c in df.columns if c.startswith("E_")]
+    for k in range(3):
+        rows = [f"{c.split('_')[1]};{int(c.split('_')[2][1:])};{int(c.split('_')[3][1:])};"
+                f"{df[c].iloc[k] / 1000:.4f}".replace(".", ",") for c in e]
+        (folder / f"zyklus_{k + 1:03d}.csv").write_text(
+            "Messprogramm;Kugelplatte\nDatum;24.03.2023\nEinheit;mm\n\n"
+            "Pose;Kugel i;Kugel j;Abweichung [mm]\n" + "\n".join(rows) + "\n")
+    pose = e[0].split("_")[1]
+    refused(["calibrate", f"data.path={folder}", f"out={tmp_path / 'out'}", "track=false"], capsys,
+            "zyklus_001.csv, line 6: one distance per row", f"pose {pose!r} in a cell",
+            "one measurement cycle per row", f"E_{pose}_B01_B02 [mm]")
+    assert not (tmp_path / "out").exists()
