@@ -71,7 +71,7 @@ def test_distances_in_mm_under_their_contract_names_calibrate_as_in_um(raw, tmp_
 def test_a_logger_file_beside_the_distances_names_a_few_of_them_not_every_one(raw, tmp_path, capsys):
     # the refusal of a folder of two loggers (the temperatures in one file, the artefact's
     # distances in another) listed every distance column: 4 poses x 10 distances here, 420 on
-    # a lab's 7-ball bar in 20 poses (17 kB in one line)
+    # a lab's 7-ball bar in 20 poses (7,973 characters in one line)
     folder = tmp_path / "lab"
     folder.mkdir()
     shutil.copy(raw / "volumetric.json", folder / "volumetric.json")
