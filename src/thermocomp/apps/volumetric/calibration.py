@@ -199,7 +199,8 @@ def _described(column: str) -> dict:
 
 def _rows_of_distances(exc: ContractError, setup) -> ContractError | None:
     """The refusal of a file that lists a cycle's distances a row each (a pose's name in a
-    cell: an artefact software's export per cycle, ``S2x1d1;1;2;-0,0013``), saying the layout
+    cell beside two ball numbers: an artefact software's export per cycle,
+    ``S2x1d1;1;2;-0,0013``), saying the layout
     the reader takes; None where the refused file holds no declared pose in its first lines."""
     path = Path(exc.file) if exc.file is not None else None
     if path is None or not path.is_file() or path.suffix.lower() not in (".csv", ".txt"):
@@ -213,7 +214,8 @@ def _rows_of_distances(exc: ContractError, setup) -> ContractError | None:
     for n, text in enumerate(head, 1):
         cells = [c.strip().strip('"') for c in text.replace("\t", ";").replace(",", ";").split(";")]
         pose = next((c for c in cells if c in poses), None)
-        if pose is not None:
+        balls = [c for c in cells if c.isdigit() and 1 <= int(c) <= setup.array.n_balls]
+        if pose is not None and len(balls) >= 2:     # a pose and its two balls: a distance
             return ContractError(
                 f"one distance per row (pose {pose!r} in a cell: {text.strip()[:60]!r}) where "
                 "the reader takes one measurement cycle per row: its time, "
