@@ -62,7 +62,14 @@ def open_source(cfg: DictConfig, *, stream: bool = False, ingested: bool = False
         return load_ingested(cfg)
     root = resolve(cfg.data.path)
     if detected is not None:         # (its path: a folder's lone file init reads as the record)
-        return open_dataset(resolve(detected.get("path", root)), detected)
+        path = resolve(detected.get("path", root))
+        if _volumetric_folder(path):
+            # its distances as calibrate (and run) reads them: an empty cell is a distance not
+            # measured (volstranger66: init refused a ball not probed in 20 cycles as a gap)
+            ds, report = io.read_dataset(path, detected, missing="keep_errors")
+            ds.meta.update(digest=folder_digest(path), read_report=report)
+            return ds
+        return open_dataset(path, detected)
     if campaigns is None:       # a fleet says its folder once, not per group
         say(f"reading {root}")
     if volumetric or (volumetric is None and campaigns is None and _volumetric_folder(root)):

@@ -197,6 +197,35 @@ def _described(column: str) -> dict:
     return {"column": column, "pose": m["pose"], "balls": [int(m["i"]), int(m["j"])]}
 
 
+def _rows_of_distances(exc: ContractError, setup) -> ContractError | None:
+    """The refusal of a file that lists a cycle's distances a row each (a pose's name in a
+    cell beside two ball numbers: an artefact software's export per cycle,
+    ``S2x1d1;1;2;-0,0013``), saying the layout
+    the reader takes; None where the refused file holds no declared pose in its first lines."""
+    path = Path(exc.file) if exc.file is not None else None
+    if path is None or not path.is_file() or path.suffix.lower() not in (".csv", ".txt"):
+        return None
+    poses = {p.name for p in setup.poses}
+    try:
+        with open(path, encoding="utf-8", errors="replace") as f:
+            head = [f.readline() for _ in range(60)]
+    except OSError:
+        return None
+    for n, text in enumerate(head, 1):
+        cells = [c.strip().strip('"') for c in text.replace("\t", ";").replace(",", ";").split(";")]
+        pose = next((c for c in cells if c in poses), None)
+        balls = [c for c in cells if c.isdigit() and 1 <= int(c) <= setup.array.n_balls]
+        if pose is not None and len(balls) >= 2:     # a pose and its two balls: a distance
+            return ContractError(
+                f"one distance per row (pose {pose!r} in a cell: {text.strip()[:60]!r}) where "
+                "the reader takes one measurement cycle per row: its time, "
+                "its temperatures and a column E_<pose>_B<i>_B<j> per distance (E_"
+                f"{pose}_B01_B02; µm, or its unit in the header: 'E_{pose}_B01_B02 [mm]'), "
+                "one file per campaign (docs/data-format.md, 'A volumetric dataset'): put "
+                "each cycle's distances into one row", file=path, line=n)
+    return None
+
+
 def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_share: float = 0.5,
                      require_seen=("positioning", "straightness"), prior=None):
     """``(parameter dataset, calibration, report, distance dataset)`` of the volumetric dataset
@@ -207,7 +236,10 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
                             "thermocomp simulate sim=large_mill_volumetric, or see docs/data-format.md)",
                             file=root)
     # an empty E_ cell is a distance not measured; the temperatures are read as for any dataset
-    ds, read = io.read_dataset(root, data_cfg, missing="keep_errors")
+    try:
+        ds, read = io.read_dataset(root, data_cfg, missing="keep_errors")
+    except ContractError as exc:       # a measuring software's export: a row per distance?
+        raise _rows_of_distances(exc, setup) or exc from None
     skipped = {cid: e["trimmed"]["start"] for cid, e in read["campaigns"].items()}
     check_columns(ds, setup)
     cal = fitted(setup, outlier_z, prior_sd(setup.model, prior))

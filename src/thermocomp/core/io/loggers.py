@@ -9,6 +9,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from ...base.errors import listed
 from .contract import MANIFEST, ContractError, role
 from .options import ReadOptions
 from .plain import as_read, is_converted
@@ -32,7 +33,7 @@ def errors_elsewhere(exc: ContractError, root: Path, manifest: pd.DataFrame, cid
         errors = [] if other == cid else _errors_only(root / file, opts)
         if errors:
             return ContractError(
-                f"{NO_ERROR}, and {file} beside it holds errors ({', '.join(errors)}) without a "
+                f"{NO_ERROR}, and {file} beside it holds errors ({listed(errors)}) without a "
                 "temperature: the errors and the temperatures of one run in two files (two "
                 "loggers)? Each file of a folder is a campaign of its own; files are not joined "
                 "by time: join them into one file first, one row per time (pandas.merge_asof), "

@@ -247,7 +247,11 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
         kind = hits[0] if hits else None
         if kind == "ignore":
             continue
-        if kind is None and by_role and unit and role(base) in ("E", "S", "T"):   # with a unit
+        # a contract name with a unit ('E_S1x1d1_B01_B02 [mm]', a lab's software writing its
+        # unit): read as the name, converted, with or without data.roles (volstranger66: a
+        # contract file's such header was refused, 'map it with data.columns', one per column)
+        if kind is None and unit and role(base) in ("E", "S", "T") and (
+                by_role or (not _UNSAFE.search(base) and ".." not in base)):
             kind = {"E": "error", "S": "state", "T": "temperature"}[role(base)]
         if kind is None and (role(header) is not None or not by_role):
             out.names[header], out.roles[header] = header, "contract"   # its own name, or unmapped
