@@ -115,8 +115,6 @@ Never worse.  CPU: diagnose mlr 9.8 s, lagbank 29.9, hammerstein 76.7.
 from __future__ import annotations
 
 import json
-import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -135,11 +133,7 @@ HEADERS = {"T_spindle_front": "T Spindel vorn [°C]", "T_spindle_motor": "T Spin
 
 def simulate(seed: int, path: Path) -> None:
     """``thermocomp simulate`` of the trunnion mill (the documented own-machine route)."""
-    env = dict(os.environ, THERMOCOMP_TARGETS="trunnion63.",
-               PYTHONPATH=f"{REPO / 'src'}:{REPO / 'benchmarks'}")
-    subprocess.run([sys.executable, "-m", "thermocomp", "simulate",
-                    f"hydra.searchpath=[file://{REPO / 'benchmarks' / 'conf63'}]", "sim=trunnion63",
-                    f"seed={seed}", f"data.path={path}", "track=false"], env=env, check=True)
+    lab_matrix.simulate_scenario("trunnion63", "conf63", seed, path)
 
 
 def powered(time_s: np.ndarray) -> np.ndarray:
@@ -163,13 +157,8 @@ def lab_frame(frame: pd.DataFrame, start: pd.Timestamp, in_mm: bool, with_time: 
 
 
 def write(root: Path) -> None:
-    for name, seed in SEEDS.items():
-        sim = root / "sim" / name
-        if not (sim / "campaigns.csv").exists():
-            simulate(seed, sim)
+    for name, sim, folder in lab_matrix.simulated(root, SEEDS, simulate):
         listed = pd.read_csv(sim / "campaigns.csv")
-        folder = root / name
-        folder.mkdir(parents=True, exist_ok=True)
         for k, row in enumerate(listed.itertuples()):
             start = pd.Timestamp(row.start)
             frame = pd.read_csv(sim / row.file)
@@ -184,18 +173,14 @@ def write(root: Path) -> None:
 
 # --- the stranger's pass: every model x wrapper, run -> replay -> promote -> export + check -----
 
-FAMILIES = {
-    "mlr": [], "pcr": [], "arx": [], "lagbank": [], "hammerstein": [],
-    "lstm": ["model.estimator.max_epochs=3", "model.estimator.hidden_size=4",
-             "model.estimator.chunk=16"],
+import lab_matrix  # noqa: E402  (the benches' shared matrix and steps)
+from lab_matrix import matrix_step, table  # noqa: E402
+
+FAMILIES = lab_matrix.matrix_families(
     # the refusal of the default S_door names the one S_ column: the spindle speed
-    "arx_rf": ["model.estimator.forest.n_estimators=10", "model.estimator.state_column=S_Drehzahl"],
-    "auto": ["model.candidates=[mlr,pcr,arx,lagbank,hammerstein,ati]"],
-}
+    arx_rf=["model.estimator.forest.n_estimators=10", "model.estimator.state_column=S_Drehzahl"])
 WRAPPERS = ("plain", "ati", "bias", "rls")
 
-
-from lab_matrix import matrix_step, monitored, table  # noqa: E402  (the benches' shared matrix)
 
 # --- monitor: the healthy test week, then a fault on one sensor from its middle -----------------
 
@@ -225,17 +210,8 @@ def planted(src: Path, dst: Path, header: str, kind: str) -> float:
 
 
 def monitoring(root: Path, name: str, family: str, sensors) -> None:
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
-    rows = [{"case": "healthy", **monitored(root, name, family, root / "mon" / f"{name}-healthy")}]
-    print(json.dumps(rows[-1]), flush=True)
-    for header in sensors:
-        for kind in FAULTS:
-            folder = root / "faulted" / f"{name}-{kind}-{header.split(' [')[0].replace(' ', '_')}"
-            onset = planted(root / name, folder, header, kind)
-            row = monitored(root, name, family, root / "mon" / folder.name, f"data.path={folder}")
-            rows.append({"case": f"{kind} {header}", "onset_h": onset / 3600, **row})
-            print(json.dumps(rows[-1]), flush=True)
-    (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
+    """:func:`lab_matrix.monitoring` with each of :data:`FAULTS` planted."""
+    lab_matrix.monitoring(root, name, family, sensors, planted, FAULTS)
 
 
 def main(argv=None) -> int:

@@ -113,11 +113,7 @@ EXCEL_EPOCH = pd.Timestamp("1899-12-30")
 
 def simulate(seed: int, path: Path, *extra: str) -> None:
     """``thermocomp simulate`` of the portal mill (the documented own-machine route)."""
-    env = dict(os.environ, THERMOCOMP_TARGETS="portal64.",
-               PYTHONPATH=f"{REPO / 'src'}:{REPO / 'benchmarks'}")
-    subprocess.run([sys.executable, "-m", "thermocomp", "simulate",
-                    f"hydra.searchpath=[file://{REPO / 'benchmarks' / 'conf64'}]", "sim=portal64",
-                    f"seed={seed}", f"data.path={path}", "track=false", *extra], env=env, check=True)
+    lab_matrix.simulate_scenario("portal64", "conf64", seed, path, *extra)
 
 
 def weekly_file(frame: pd.DataFrame, week: int) -> str:
@@ -175,19 +171,14 @@ def write(root: Path) -> None:
 
 # --- the stranger's pass: every model x wrapper, run -> replay -> promote -> export + check -----
 
-FAMILIES = {
-    "mlr": [], "pcr": [], "arx": [], "lagbank": [], "hammerstein": [],
-    "lstm": ["model.estimator.max_epochs=3", "model.estimator.hidden_size=4",
-             "model.estimator.chunk=16"],
+import lab_matrix  # noqa: E402  (the benches' shared matrix and steps)
+from lab_matrix import data_args, stage  # noqa: E402
+
+FAMILIES = lab_matrix.matrix_families(
     # the refusal of the default S_door names the S_ columns: the spindle speed
-    "arx_rf": ["model.estimator.forest.n_estimators=10", "model.estimator.state_column=S_Spindle"],
-    "auto": ["model.candidates=[mlr,pcr,arx,lagbank,hammerstein,ati]"],
-}
+    arx_rf=["model.estimator.forest.n_estimators=10", "model.estimator.state_column=S_Spindle"])
 WRAPPERS = ("plain", "ati")
 
-
-from lab_matrix import data_args, matrix_step, monitored, stage, table  # noqa: E402  (the benches' shared matrix)
-from lab_matrix import diagnosed as lab_diagnosed  # noqa: E402
 
 # --- monitor: the healthy test week, then a fault on one sensor from its middle -----------------
 
@@ -218,17 +209,8 @@ def planted(src: Path, dst: Path, header: str, kind: str) -> float:
 
 
 def monitoring(root: Path, name: str, family: str, sensors, kinds=("jump",)) -> None:
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
-    rows = [{"case": "healthy", **monitored(root, name, family, root / "mon" / f"{name}-healthy")}]
-    print(json.dumps(rows[-1]), flush=True)
-    for header in sensors:
-        for kind in kinds:
-            folder = root / "faulted" / f"{name}-{kind}-{header.split(' [')[0].replace(' ', '_')}"
-            onset = planted(root / name, folder, header, kind)
-            row = monitored(root, name, family, root / "mon" / folder.name, f"data.path={folder}")
-            rows.append({"case": f"{kind} {header}", "onset_h": onset / 3600, **row})
-            print(json.dumps(rows[-1]), flush=True)
-    (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
+    """:func:`lab_matrix.monitoring` with :func:`planted`'s faults."""
+    lab_matrix.monitoring(root, name, family, sensors, planted, kinds)
 
 
 
@@ -238,7 +220,7 @@ def diagnosed(root: Path, name: str, family: str) -> dict:
     """:func:`lab_matrix.diagnosed`; for ``pm12`` the lab's three weekly files as written
     (preambles, TABs, decimal commas) piped whole into the compiled ``stream``, against the
     pack."""
-    row, out = lab_diagnosed(root, name, family)
+    row, out = lab_matrix.diagnosed(root, name, family)
     if name == "pm12" and row.get("cc") == 0:
         files = sorted((root / name).glob("*.txt"))
         text = files[0].read_text(encoding="utf-8") + "".join(
@@ -316,23 +298,16 @@ def initialised(root: Path) -> None:
 
 
 def main(argv: list[str]) -> None:
-    step, root = argv[0], Path(argv[1]).resolve()
-    if step == "write":
-        write(root)
-    elif step == "init":
-        initialised(root)
-    elif step == "matrix":        # matrix ROOT [names] [--families ...] [--wrappers ...]
-        matrix_step(root, argv[2:], SEEDS, FAMILIES, WRAPPERS, FAMILIES)
-    elif step == "monitor":       # monitor ROOT name family sensor-header...
-        monitoring(root, argv[2], argv[3], argv[4:])
-    elif step == "diagnose":      # diagnose ROOT name family
-        print(json.dumps(diagnosed(root, argv[2], argv[3]), default=str))
-    elif step == "gap":
-        gap(root)
-    elif step == "table":
-        print(table(root, argv[2]))
-    else:
-        raise SystemExit(f"unknown step {step!r}")
+    lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
+        "write": lambda root, rest: write(root),
+        "init": lambda root, rest: initialised(root),
+        # monitor ROOT name family sensor-header...
+        "monitor": lambda root, rest: monitoring(root, rest[0], rest[1], rest[2:]),
+        # diagnose ROOT name family
+        "diagnose": lambda root, rest: print(json.dumps(diagnosed(root, rest[0], rest[1]),
+                                                        default=str)),
+        "gap": lambda root, rest: gap(root),
+    })
 
 
 if __name__ == "__main__":

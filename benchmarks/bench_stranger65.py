@@ -93,8 +93,6 @@ at noon: excluded at once, back at 12.17 h, E_dX fixed 10.12 adaptive 3.03; on T
 from __future__ import annotations
 
 import json
-import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -123,11 +121,7 @@ START = pd.Timestamp("2027-06-07")
 
 def simulate(seed: int, path: Path) -> None:
     """``thermocomp simulate`` of the wire EDM (the documented own-machine route)."""
-    env = dict(os.environ, THERMOCOMP_TARGETS="edm65.",
-               PYTHONPATH=f"{REPO / 'src'}:{REPO / 'benchmarks'}")
-    subprocess.run([sys.executable, "-m", "thermocomp", "simulate",
-                    f"hydra.searchpath=[file://{REPO / 'benchmarks' / 'conf65'}]", "sim=edm65",
-                    f"seed={seed}", f"data.path={path}", "track=false"], env=env, check=True)
+    lab_matrix.simulate_scenario("edm65", "conf65", seed, path)
 
 
 def german(v: float, decimals: int, thousands: bool = False) -> str:
@@ -180,13 +174,8 @@ def lab_b(frame: pd.DataFrame) -> str:
 
 
 def write(root: Path) -> None:
-    for name, seed in SEEDS.items():
-        sim = root / "sim" / name
-        if not (sim / "campaigns.csv").exists():
-            simulate(seed, sim)
+    for name, sim, folder in lab_matrix.simulated(root, SEEDS, simulate):
         frame = pd.read_csv(sim / "record.csv")
-        folder = root / name
-        folder.mkdir(parents=True, exist_ok=True)
         if name == "edm_b":
             (folder / "edm_b_export.csv").write_text(lab_b(frame), encoding="utf-8")
             continue
@@ -198,17 +187,11 @@ def write(root: Path) -> None:
 
 # --- the stranger's pass: every model x wrapper, run -> replay -> promote -> export + check -----
 
-FAMILIES = {
-    "mlr": [], "pcr": [], "arx": [], "lagbank": [], "hammerstein": [],
-    "lstm": ["model.estimator.max_epochs=3", "model.estimator.hidden_size=4",
-             "model.estimator.chunk=16"],
-    "auto": ["model.candidates=[mlr,pcr,arx,lagbank,hammerstein,ati]"],
-}
+import lab_matrix  # noqa: E402  (the benches' shared matrix and steps)
+from lab_matrix import project, stage  # noqa: E402
+
+FAMILIES = lab_matrix.matrix_families()
 WRAPPERS = ("plain", "ati")
-
-
-from lab_matrix import diagnosed as lab_diagnosed  # noqa: E402
-from lab_matrix import matrix_step, monitored, stage, table  # noqa: E402  (the benches' shared matrix)
 
 
 def planted(src: Path, dst: Path, header: str, onset_row: int, jump_k: float = 3.0) -> float:
@@ -232,21 +215,15 @@ def planted(src: Path, dst: Path, header: str, onset_row: int, jump_k: float = 3
 
 
 def monitoring(root: Path, name: str, family: str, sensors, onset_row: int = 720) -> None:
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
-    rows = [{"case": "healthy", **monitored(root, name, family, root / "mon" / f"{name}-healthy")}]
-    print(json.dumps(rows[-1]), flush=True)
-    for header in sensors:
-        folder = root / "faulted" / f"{name}-jump-{header.replace(' ', '_')}"
-        onset = planted(root / name, folder, header, onset_row)
-        row = monitored(root, name, family, root / "mon" / folder.name, f"data.path={folder}")
-        rows.append({"case": f"jump {header}", "onset_h": onset / 3600, **row})
-        print(json.dumps(rows[-1]), flush=True)
-    (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
+    """:func:`lab_matrix.monitoring`, each sensor of ``sensors`` jumped by +3 K from
+    ``onset_row`` (12 h) of the test day on."""
+    lab_matrix.monitoring(root, name, family, sensors,
+                          lambda src, dst, header, kind: planted(src, dst, header, onset_row))
 
 
 def diagnosed(root: Path, name: str, family: str) -> dict:
     """:func:`lab_matrix.diagnosed`, the accepted effects listed."""
-    return lab_diagnosed(root, name, family, accepted=True)[0]
+    return lab_matrix.diagnosed(root, name, family, accepted=True)[0]
 
 
 # --- init as the docs say: each refusal's hint taken, one more setting a try ---------------------
@@ -266,7 +243,7 @@ TRIES = {
 def initialised(root: Path) -> None:
     """``thermocomp init`` of each export, each refusal's hint taken in the next try; ``edm_a2``
     is ``edm_a`` with the header the logger wrote again deleted, as the refusal says."""
-    _project(root)     # (initone65: it was made by `matrix` alone)
+    project(root)     # (initone65: it was made by `matrix` alone)
     fixed = root / "edm_a2"
     if not fixed.exists():
         import shutil
@@ -289,17 +266,9 @@ def initialised(root: Path) -> None:
                 yaml.rename(conf / f"{name}.yaml")
 
 
-def _project(root: Path) -> None:
-    """The project root ``<root>/tc`` the stages run in (``conf`` linked to the repository's)."""
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
-    (root / "tc").mkdir(parents=True, exist_ok=True)
-    if not (root / "tc" / "conf").exists():
-        (root / "tc" / "conf").symlink_to(REPO / "conf")
-
-
 def once(root: Path) -> None:
     """``init`` once on each export as written, then the run it prints (initone65)."""
-    _project(root)
+    project(root)
     for name in ("edm_a", "edm_b"):
         src = root / name
         src = next(src.glob("*.csv")) if name == "edm_b" else src
@@ -325,23 +294,16 @@ def once(root: Path) -> None:
 
 
 def main(argv: list[str]) -> None:
-    step, root = argv[0], Path(argv[1]).resolve()
-    if step == "write":
-        write(root)
-    elif step == "init":
-        initialised(root)
-    elif step == "once":
-        once(root)
-    elif step == "matrix":        # matrix ROOT [names] [--families ...] [--wrappers ...]
-        matrix_step(root, argv[2:], SEEDS, FAMILIES, WRAPPERS, FAMILIES)
-    elif step == "monitor":       # monitor ROOT name family sensor-header...
-        monitoring(root, argv[2], argv[3], argv[4:])
-    elif step == "diagnose":      # diagnose ROOT name family
-        print(json.dumps(diagnosed(root, argv[2], argv[3]), default=str))
-    elif step == "table":
-        print(table(root, argv[2]))
-    else:
-        raise SystemExit(f"unknown step {step!r}")
+    lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
+        "write": lambda root, rest: write(root),
+        "init": lambda root, rest: initialised(root),
+        "once": lambda root, rest: once(root),
+        # monitor ROOT name family sensor-header...
+        "monitor": lambda root, rest: monitoring(root, rest[0], rest[1], rest[2:]),
+        # diagnose ROOT name family
+        "diagnose": lambda root, rest: print(json.dumps(diagnosed(root, rest[0], rest[1]),
+                                                        default=str)),
+    })
 
 
 if __name__ == "__main__":

@@ -85,8 +85,6 @@ run's, no event (the stdin reader refused its '#' lines as values, "column 'T_Ai
 from __future__ import annotations
 
 import json
-import os
-import subprocess
 import sys
 from pathlib import Path
 
@@ -106,11 +104,7 @@ CUT = 4                                  # run index whose last line is cut off 
 
 def simulate(seed: int, path: Path) -> None:
     """``thermocomp simulate`` of the turning centre (the documented own-machine route)."""
-    env = dict(os.environ, THERMOCOMP_TARGETS="tsc66.",
-               PYTHONPATH=f"{REPO / 'src'}:{REPO / 'benchmarks'}")
-    subprocess.run([sys.executable, "-m", "thermocomp", "simulate",
-                    f"hydra.searchpath=[file://{REPO / 'benchmarks' / 'conf66'}]", "sim=tsc66",
-                    f"seed={seed}", f"data.path={path}", "track=false"], env=env, check=True)
+    lab_matrix.simulate_scenario("tsc66", "conf66", seed, path)
 
 
 def run_file(frame: pd.DataFrame, k: int, start: str) -> str:
@@ -143,13 +137,8 @@ def run_file(frame: pd.DataFrame, k: int, start: str) -> str:
 
 
 def write(root: Path) -> None:
-    for name, seed in SEEDS.items():
-        sim = root / "sim" / name
-        if not (sim / "campaigns.csv").exists():
-            simulate(seed, sim)
+    for _, sim, folder in lab_matrix.simulated(root, SEEDS, simulate):
         manifest = pd.read_csv(sim / "campaigns.csv")
-        folder = root / name
-        folder.mkdir(parents=True, exist_ok=True)
         for k, row in enumerate(manifest.itertuples(index=False)):
             frame = pd.read_csv(sim / row.file)
             start = pd.Timestamp(row.start).strftime("%Y-%m-%d %H:%M:%S")
@@ -159,38 +148,18 @@ def write(root: Path) -> None:
 
 # --- the stranger's pass: every model x wrapper, run -> replay -> promote -> export + check -----
 
-FAMILIES = {
-    "mlr": [], "pcr": [], "arx": [], "lagbank": [], "hammerstein": [],
-    "lstm": ["model.estimator.max_epochs=3", "model.estimator.hidden_size=4",
-             "model.estimator.chunk=16"],
-    "auto": ["model.candidates=[mlr,pcr,arx,lagbank,hammerstein,ati]"],
-}
+import lab_matrix  # noqa: E402  (the benches' shared matrix and steps)
+from lab_matrix import data_args, monitored, project, stage  # noqa: E402
+
+FAMILIES = lab_matrix.matrix_families()
 WRAPPERS = ("plain", "ati")
-
-from lab_matrix import (  # noqa: E402  (the benches' shared matrix)
-    data_args,
-    exported,
-    matrix_step,
-    monitored,
-    replayed,
-    stage,
-    table,
-)
-
-
-def _project(root: Path) -> None:
-    """The project root ``<root>/tc`` the stages run in (``conf`` linked to the repository's)."""
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
-    (root / "tc").mkdir(parents=True, exist_ok=True)
-    if not (root / "tc" / "conf").exists():
-        (root / "tc" / "conf").symlink_to(REPO / "conf")
 
 
 def initialised(root: Path, name: str, extra: list[str]) -> None:
     """``thermocomp init`` of ``ROOT/name`` with ``extra`` (one try, as a stranger types it);
     the config renamed ``<name>.yaml`` (``tsc_a2``: ``tsc_a`` with run 5's cut-off last line
     deleted, as its refusal says)."""
-    _project(root)
+    project(root)
     if name == "tsc_a2" and not (root / name).exists():
         import shutil
 
@@ -226,48 +195,15 @@ def planted(src: Path, dst: Path, header: str, onset_row: int, jump_k: float = 3
 def monitoring(root: Path, name: str, family: str, sensors, onset_row: int = 1200) -> None:
     """``monitor`` of the saved model on the healthy test run, then with each sensor of
     ``sensors`` (a header as written) jumped by +3 K from ``onset_row`` (20 h) on."""
-    _project(root)
-    rows = [{"case": "healthy", **monitored(root, name, family, root / "mon" / f"{name}-healthy")}]
-    print(json.dumps(rows[-1]), flush=True)
-    for header in sensors:
-        folder = root / "faulted" / f"{name}-jump-{header.split(' [')[0].replace(' ', '_')}"
-        onset = planted(root / name, folder, header, onset_row)
-        row = monitored(root, name, family, root / "mon" / folder.name, f"data.path={folder}")
-        rows.append({"case": f"jump {header}", "onset_h": onset / 3600, **row})
-        print(json.dumps(rows[-1]), flush=True)
-    (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
+    project(root)
+    lab_matrix.monitoring(root, name, family, sensors,
+                          lambda src, dst, header, kind: planted(src, dst, header, onset_row))
 
 
 def diagnosed(root: Path, name: str, family: str, *extra: str) -> dict:
-    """``diagnose`` as the docs say, its rerun line run, the rerun model replayed and exported
-    as C with the check pack."""
-    _project(root)
-    data = data_args(root, name)
-    out = root / "diag" / f"{name}-{family}"
-    rc, said, cpu = stage("diagnose", *data, f"model={family}", "plots=none", *extra,
-                          f"out={out}")
-    row: dict = {"diagnose": f"{name}-{family}", "rc": rc, "cpu": round(cpu, 1)}
-    if rc:
-        return {**row, "said": said}
-    report = json.loads((out / "diagnosis.json").read_text())
-    row["accepted"] = [c.get("name", c) if isinstance(c, dict) else c
-                       for c in report.get("accepted", [])]
-    row["targets"] = {report["target"]: (report["before"]["test_rmse"],
-                                         report["after"]["test_rmse"])}
-    row["targets"].update({t: (v["before_test_rmse"], v["after_test_rmse"])
-                           for t, v in (report.get("other_targets") or {}).items()})
-    conf = f"hydra.searchpath=[file://{root}/init-{name}/conf,file://{out}/diagnosis/conf]"
-    rc, said, cpu = stage("run", conf, f"data={name}", "experiment=diagnosed", "plots=none",
-                          f"out={out / 'diagnosed'}")
-    if rc:
-        return {**row, "rerun": f"exit {rc}: {said}"}
-    metrics = json.loads((out / "diagnosed" / "metrics.json").read_text())
-    targets = list(metrics["targets"])
-    row["rerun"] = {t: metrics["targets"][t]["test"]["rmse"] for t in targets}
-    model = str(out / "diagnosed" / "model.pkl")
-    row.update(replayed(data, model, out / "replay", targets))
-    row.update(exported(data, model, out / "c"))
-    return row
+    """:func:`lab_matrix.diagnosed` (``extra``: more overrides), the accepted effects listed."""
+    project(root)
+    return lab_matrix.diagnosed(root, name, family, *extra, accepted=True)[0]
 
 
 def again(root: Path) -> None:
@@ -276,7 +212,7 @@ def again(root: Path) -> None:
     and MLR ``run`` against tsc_a2's, and the test run piped into the lag bank's ``monitor``."""
     import shutil
 
-    _project(root)
+    project(root)
     folder = root / "tsc_a4"
     if not folder.exists():
         shutil.copytree(root / "tsc_a2", folder)
@@ -307,24 +243,16 @@ def again(root: Path) -> None:
 
 
 def main(argv: list[str]) -> None:
-    step, root = argv[0], Path(argv[1]).resolve()
-    if step == "write":
-        write(root)
-    elif step == "init":          # init ROOT name [override ...]
-        initialised(root, argv[2], argv[3:])
-    elif step == "matrix":        # matrix ROOT [names] [--families ...] [--wrappers ...]
-        _project(root)
-        matrix_step(root, argv[2:], SEEDS, FAMILIES, WRAPPERS, FAMILIES)
-    elif step == "monitor":       # monitor ROOT name family sensor-header...
-        monitoring(root, argv[2], argv[3], argv[4:])
-    elif step == "diagnose":      # diagnose ROOT name family [override ...]
-        print(json.dumps(diagnosed(root, argv[2], argv[3], *argv[4:]), default=str))
-    elif step == "again":         # again ROOT
-        again(root)
-    elif step == "table":
-        print(table(root, argv[2]))
-    else:
-        raise SystemExit(f"unknown step {step!r}")
+    lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
+        "write": lambda root, rest: write(root),
+        # init ROOT name [override ...]
+        "init": lambda root, rest: initialised(root, rest[0], rest[1:]),
+        # monitor ROOT name family sensor-header...
+        "monitor": lambda root, rest: monitoring(root, rest[0], rest[1], rest[2:]),
+        # diagnose ROOT name family [override ...]
+        "diagnose": lambda root, rest: print(json.dumps(diagnosed(root, *rest), default=str)),
+        "again": lambda root, rest: again(root),
+    })
 
 
 if __name__ == "__main__":

@@ -72,12 +72,12 @@ from dataclasses import dataclass
 from datetime import datetime
 
 import numpy as np
+from scenario_tail import LoggedStateEffect, PlantedScenario, held, merge
 
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel
 from thermocomp.apps.sim.campaign import Machine
-from thermocomp.apps.sim.effects import UndeclaredEffect
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork
-from thermocomp.apps.sim.scenario import CampaignPlan, Scenario
+from thermocomp.apps.sim.scenario import CampaignPlan
 from thermocomp.apps.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.apps.sim.sources import ConstantWhileRunning, HeatSource
 
@@ -160,20 +160,14 @@ def machine() -> Machine:
     return Machine(ThermalNetwork(NODES, LINKS), sources, sensors, errors)
 
 
-class SubmergedFrame(UndeclaredEffect):
+class SubmergedFrame(LoggedStateEffect):
     """The clamping frame in the flooded tank follows the water (declared: S_flooded is logged)."""
 
-    name, kind = "submerged_frame", "interaction"
+    name, state = "submerged_frame", FLOODED
     defaults = {"gains": FRAME, "targets": ["E_X", "E_Y"]}
 
-    @property
-    def column(self):
-        return FLOODED
-
     def modify_errors(self, ctx, errors):
-        index = ctx.machine.network.index
-        rise = ctx.node_temps[:, index["water"]] - ctx.node_temps[0, index["water"]]
-        flooded = np.asarray(ctx.states[FLOODED], float)
+        rise, flooded = self.rise(ctx, "water"), self.logged(ctx)
         errors = errors.copy()
         targets = ctx.machine.thermoelastic.targets
         for target, gain in self.params["gains"].items():
@@ -212,30 +206,12 @@ def programme(rng, period_s: float, days: int):
     return merge(gen), merge(flood)
 
 
-def merge(steps: list) -> list:
-    clean = []
-    for start, value in steps:
-        if clean and start <= clean[-1][0]:
-            clean[-1] = (clean[-1][0], value)
-        else:
-            clean.append((start, value))
-    return clean
-
-
-def held(steps: list):
-    starts = np.array([s for s, _ in steps])
-    values = np.array([v for _, v in steps])
-
-    def at(t_rel):
-        return values[np.searchsorted(starts, np.asarray(t_rel, float), side="right") - 1]
-    return at
-
-
-class Edm65(Scenario):
+class Edm65(PlantedScenario):
     """Eight days of the wire EDM as one record (the lab cuts it into day files)."""
 
     name = "edm65"
     year = 2027
+    planted = SubmergedFrame
 
     def __init__(self, days=8, sample_period_s=60.0, temp_noise_c=0.03, temp_quantum_c=0.01,
                  error_noise_um=0.2, error_quantum_um=0.1, effects=(), effect_params=None,
@@ -249,15 +225,8 @@ class Edm65(Scenario):
     def machine(self):
         return machine()
 
-    def effects_list(self):
-        return [*super().effects_list(), SubmergedFrame(int(self.seed))]
-
-    def generate(self):
-        dataset, truth = super().generate()
-        truth["submerged_frame"] = {"gains_um_per_K_water_rise_while_flooded": FRAME}
-        truth["undeclared_effects"] = [e for e in truth["undeclared_effects"]
-                                       if e["name"] != SubmergedFrame.name]
-        return dataset, truth
+    def planted_truth(self):
+        return {"gains_um_per_K_water_rise_while_flooded": FRAME}
 
     def plans(self, rng):
         first = (START - datetime(self.year, 1, 1)).total_seconds()

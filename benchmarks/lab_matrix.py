@@ -1,7 +1,9 @@
-"""The stranger passes' matrix (bench_stranger63, bench_stranger64): each family x wrapper of a lab's
-record ``run`` -> ``replay`` -> ``promote`` -> C ``export`` with its check pack, in process, on a
-project root ``<root>/tc`` of its own (its MLflow store, ``conf`` linked to the repository's);
-a saved model's ``monitor``, ``diagnose`` -> its rerun -> replay -> C, and the matrix's table.
+"""The stranger passes' matrix (bench_stranger63 ... bench_stranger66): each family x wrapper of a
+lab's record ``run`` -> ``replay`` -> ``promote`` -> C ``export`` with its check pack, in process,
+on a project root ``<root>/tc`` of its own (its MLflow store, ``conf`` linked to the repository's);
+a saved model's ``monitor`` (healthy, then with faults planted), ``diagnose`` -> its rerun ->
+replay -> C, and the matrix's table.  Also the benches' common steps: their machine's
+``thermocomp simulate``, the families they pass, and the command line (``STEP ROOT ...``).
 
 Usage is through the benches: ``bench_stranger64.py matrix ROOT [names] [--families ...]``.
 """
@@ -11,11 +13,53 @@ from __future__ import annotations
 import json
 import os
 import subprocess
+import sys
 from pathlib import Path
 
 import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
+
+
+def matrix_families(**extra: list) -> dict:
+    """The families a stranger passes -> their overrides (the LSTM kept short), ``extra`` (a bench's
+    own) before ``auto``."""
+    return {"mlr": [], "pcr": [], "arx": [], "lagbank": [], "hammerstein": [],
+            "lstm": ["model.estimator.max_epochs=3", "model.estimator.hidden_size=4",
+                     "model.estimator.chunk=16"],
+            **extra,
+            "auto": ["model.candidates=[mlr,pcr,arx,lagbank,hammerstein,ati]"]}
+
+
+def simulate_scenario(scenario: str, conf: str, seed: int, path: Path, *extra: str) -> None:
+    """``thermocomp simulate`` of ``benchmarks/<scenario>.py`` with ``benchmarks/<conf>/sim/<scenario>.yaml``
+    (the documented own-machine route), ``extra`` overrides after the bench's."""
+    env = dict(os.environ, THERMOCOMP_TARGETS=f"{scenario}.",
+               PYTHONPATH=f"{REPO / 'src'}:{REPO / 'benchmarks'}")
+    subprocess.run([sys.executable, "-m", "thermocomp", "simulate",
+                    f"hydra.searchpath=[file://{REPO / 'benchmarks' / conf}]", f"sim={scenario}",
+                    f"seed={seed}", f"data.path={path}", "track=false", *extra], env=env, check=True)
+
+
+def simulated(root: Path, seeds: dict, simulate):
+    """Per record ``name -> seed`` of ``seeds``: ``(name, ROOT/sim/<name>, ROOT/<name>)``, the
+    record simulated there once (``simulate(seed, folder)``, kept if it is there), the lab's
+    folder made for its files."""
+    for name, seed in seeds.items():
+        sim = root / "sim" / name
+        if not (sim / "campaigns.csv").exists():
+            simulate(seed, sim)
+        folder = root / name
+        folder.mkdir(parents=True, exist_ok=True)
+        yield name, sim, folder
+
+
+def project(root: Path) -> None:
+    """The project root ``<root>/tc`` the stages run in (``conf`` linked to the repository's)."""
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    (root / "tc").mkdir(parents=True, exist_ok=True)
+    if not (root / "tc" / "conf").exists():
+        (root / "tc" / "conf").symlink_to(REPO / "conf")
 
 
 def data_args(root: Path, name: str) -> list[str]:
@@ -77,14 +121,16 @@ def replayed(data: list, model: str, out: Path, targets, *extra: str) -> dict:
             "events": len(rep["events"]), "replay_cpu": round(cpu, 1)}
 
 
-def diagnosed(root: Path, name: str, family: str, accepted: bool = False) -> tuple[dict, Path]:
-    """``diagnose`` as the docs say, its rerun line run, the rerun model replayed and exported
-    as C with the check pack: ``(row of figures, diagnose's out folder)`` (``accepted``: the
-    row lists diagnosis.json's accepted effects too)."""
+def diagnosed(root: Path, name: str, family: str, *extra: str, accepted: bool = False
+              ) -> tuple[dict, Path]:
+    """``diagnose`` as the docs say (``extra``: more overrides), its rerun line run, the rerun
+    model replayed and exported as C with the check pack: ``(row of figures, diagnose's out
+    folder)`` (``accepted``: the row lists diagnosis.json's accepted effects too)."""
     os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
     data = data_args(root, name)
     out = root / "diag" / f"{name}-{family}"
-    rc, said, cpu = stage("diagnose", *data, f"model={family}", "plots=none", f"out={out}")
+    rc, said, cpu = stage("diagnose", *data, f"model={family}", "plots=none", *extra,
+                          f"out={out}")
     row: dict = {"diagnose": f"{name}-{family}", "rc": rc, "cpu": round(cpu, 1)}
     if rc:
         return {**row, "said": said}, out
@@ -151,10 +197,7 @@ def cell(root: Path, name: str, family: str, wrapper: str, options: dict) -> dic
 
 def matrix(root: Path, names, families, wrappers, options: dict) -> None:
     """Every cell of ``names`` x ``families`` x ``wrappers`` into ``matrix-<names>.jsonl``."""
-    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
-    (root / "tc").mkdir(parents=True, exist_ok=True)
-    if not (root / "tc" / "conf").exists():
-        (root / "tc" / "conf").symlink_to(REPO / "conf")
+    project(root)
     path = root / f"matrix-{'-'.join(names)}.jsonl"
     for name in names:
         for family in families:
@@ -193,6 +236,38 @@ def monitored(root: Path, name: str, family: str, out: Path, *extra: str) -> dic
             "max_corr/bound": {t: (round(r["max_abs_correction"], 1), r["bound"],
                                    r["all_finite"]) for t, r in report["targets"].items()},
             "cpu": round(cpu, 1)}
+
+
+def monitoring(root: Path, name: str, family: str, sensors, plant, kinds=("jump",)) -> None:
+    """``monitor`` of the saved model on the healthy test record, then per sensor of ``sensors``
+    (a header as written) and fault of ``kinds``: ``plant(src, dst, header, kind)`` writes the
+    lab's folder ``src`` with that fault into ``dst`` and returns its onset (s); the rows into
+    ``monitor-<name>.json``."""
+    os.environ["THERMOCOMP_ROOT"] = str(root / "tc")
+    rows = [{"case": "healthy", **monitored(root, name, family, root / "mon" / f"{name}-healthy")}]
+    print(json.dumps(rows[-1]), flush=True)
+    for header in sensors:
+        for kind in kinds:
+            folder = root / "faulted" / f"{name}-{kind}-{header.split(' [')[0].replace(' ', '_')}"
+            onset = plant(root / name, folder, header, kind)
+            row = monitored(root, name, family, root / "mon" / folder.name, f"data.path={folder}")
+            rows.append({"case": f"{kind} {header}", "onset_h": onset / 3600, **row})
+            print(json.dumps(rows[-1]), flush=True)
+    (root / f"monitor-{name}.json").write_text(json.dumps(rows, indent=1))
+
+
+def main(argv: list[str], seeds, families, wrappers, steps: dict) -> None:
+    """A bench's command line ``STEP ROOT [args]``: ``matrix ROOT [names] [--families ...]
+    [--wrappers ...]`` (:func:`matrix_step`), ``table ROOT name``, or the bench's own ``steps``
+    (name -> function of ``(root, args)``)."""
+    step, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
+    shared = {"matrix": lambda root, rest: matrix_step(root, rest, seeds, families, wrappers,
+                                                        families),
+              "table": lambda root, rest: print(table(root, rest[0]))}
+    known = {**shared, **steps}
+    if step not in known:
+        raise SystemExit(f"unknown step {step!r}")
+    known[step](root, rest)
 
 
 def table(root: Path, name: str) -> str:

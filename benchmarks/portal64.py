@@ -81,12 +81,12 @@ from dataclasses import dataclass, field
 from datetime import datetime
 
 import numpy as np
+from scenario_tail import LoggedStateEffect, PlantedScenario, merge, weekday_shift
 
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel, room_response
 from thermocomp.apps.sim.campaign import Machine, Programme
-from thermocomp.apps.sim.effects import UndeclaredEffect
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork
-from thermocomp.apps.sim.scenario import CampaignPlan, Scenario
+from thermocomp.apps.sim.scenario import CampaignPlan
 from thermocomp.apps.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.apps.sim.sources import SPINDLE, ConstantWhileRunning, HeatSource, SpeedLosses
 from thermocomp.apps.sim.thermoelastic import ThermoelasticMap
@@ -155,20 +155,16 @@ def machine() -> Machine:
     return Machine(ThermalNetwork(NODES, LINKS), sources, sensors, errors)
 
 
-class RamLever(UndeclaredEffect):
+class RamLever(LoggedStateEffect):
     """The ram's extension as a lever on E_Y and E_Z (declared: its position is logged)."""
 
-    name, kind = "ram_lever", "interaction"
+    name, state = "ram_lever", RAM
     defaults = {"lever": RAM_LEVER, "targets": ["E_Y", "E_Z"]}
-
-    @property
-    def column(self):
-        return RAM
 
     def modify_errors(self, ctx, errors):
         index = ctx.machine.network.index
         rise = ctx.node_temps - ctx.node_temps[0]
-        lever_m = np.asarray(ctx.states[RAM], float) / 1000.0
+        lever_m = self.logged(ctx) / 1000.0
         errors = errors.copy()
         targets = ctx.machine.thermoelastic.targets
         for target, (gain, weights) in self.params["lever"].items():
@@ -179,9 +175,7 @@ class RamLever(UndeclaredEffect):
 
 def on_shift(t_rel) -> np.ndarray:
     """Campaign time -> 1 on weekdays 6-22 h (every campaign starts on a Monday 00:00)."""
-    hours = np.asarray(t_rel, float) / 3600.0
-    day, hour = (hours // 24) % 7, hours % 24
-    return ((day < 5) & (hour >= SHIFT_H[0]) & (hour < SHIFT_H[1])).astype(float)
+    return weekday_shift(t_rel, SHIFT_H)
 
 
 def cloud_factors(rng, days: int) -> np.ndarray:
@@ -277,22 +271,12 @@ def programme(rng, period_s: float, days: int) -> tuple[Programme, object]:
     return Programme(tuple(merge(steps))), Programme(tuple(merge(ram))).rpm_at
 
 
-def merge(steps: list) -> list:
-    """Steps on a grid; two on one grid point keep the later."""
-    clean = []
-    for start, value in steps:
-        if clean and start <= clean[-1][0]:
-            clean[-1] = (clean[-1][0], value)
-        else:
-            clean.append((start, value))
-    return clean
-
-
-class Portal64(Scenario):
+class Portal64(PlantedScenario):
     """Three weeks of the portal mill: weekly campaigns, or one record (``one_record``)."""
 
     name = "portal64"
     year = 2027
+    planted = RamLever
 
     def __init__(self, weeks=3, one_record=False, sample_period_s=60.0, error_period_s=300.0,
                  error_gaps="nan", temp_noise_c=0.03, temp_quantum_c=0.01, error_noise_um=0.3,
@@ -308,16 +292,8 @@ class Portal64(Scenario):
     def machine(self):
         return machine()
 
-    def effects_list(self):
-        return [*super().effects_list(), RamLever(int(self.seed))]
-
-    def generate(self):
-        dataset, truth = super().generate()
-        truth["ram_lever"] = {t: {"gain_um_per_K_per_m": g, "rise_weights": w}
-                              for t, (g, w) in RAM_LEVER.items()}
-        truth["undeclared_effects"] = [e for e in truth["undeclared_effects"]
-                                       if e["name"] != RamLever.name]
-        return dataset, truth
+    def planted_truth(self):
+        return {t: {"gain_um_per_K_per_m": g, "rise_weights": w} for t, (g, w) in RAM_LEVER.items()}
 
     def plans(self, rng):
         first = (START - datetime(self.year, 1, 1)).total_seconds()

@@ -72,6 +72,7 @@ from dataclasses import dataclass, field
 from datetime import datetime
 
 import numpy as np
+from scenario_tail import merge, weekday_shift
 
 from thermocomp.apps.sim.ambient import DAY_S, HallClimate
 from thermocomp.apps.sim.campaign import Machine, Programme
@@ -148,13 +149,9 @@ def machine() -> Machine:
     return Machine(ThermalNetwork(NODES, LINKS), sources, sensors, errors)
 
 
-def powered():
+def on_shift(t_rel) -> np.ndarray:
     """Campaign time -> 1 on weekdays 6-22 h (every campaign starts on a Monday 00:00)."""
-    def on(t_rel):
-        hours = np.asarray(t_rel, float) / 3600.0
-        day, hour = (hours // 24) % 7, hours % 24
-        return ((day < 5) & (hour >= SHIFT_H[0]) & (hour < SHIFT_H[1])).astype(float)
-    return on
+    return weekday_shift(t_rel, SHIFT_H)
 
 
 @dataclass(frozen=True)
@@ -213,13 +210,7 @@ def programme(rng, period_s: float) -> Programme:
                 steps += [(grid(t), rpm), (grid(cut), 0.0)]
                 t = cut + rng.uniform(1, 6) * 60
             t += rng.uniform(5, 20) * 60
-    clean = []
-    for start, rpm in steps:                 # rounding may merge two steps: keep the later
-        if clean and start <= clean[-1][0]:
-            clean[-1] = (clean[-1][0], rpm)
-        else:
-            clean.append((start, rpm))
-    return Programme(tuple(clean))
+    return Programme(tuple(merge(steps)))    # rounding may merge two steps: keep the later
 
 
 class Trunnion63(Scenario):
@@ -256,7 +247,7 @@ class Trunnion63(Scenario):
                 cid=f"W{w + 1}", split="test" if w == int(self.weeks) - 1 else "train",
                 start_s=start, duration_s=7 * DAY_S - float(self.sample_period_s), rng=child,
                 ambient=HallWithDoor(climate, openings), programme=spindle,
-                states={POWERED: powered()}, written=(SPINDLE,),
+                states={POWERED: on_shift}, written=(SPINDLE,),
                 sample_period_s=float(self.sample_period_s),
                 error_period_s=float(self.error_period_s), cooldown_s=2 * DAY_S,
                 notes=f"week {w + 1}", manifest={},

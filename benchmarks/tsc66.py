@@ -76,12 +76,12 @@ from __future__ import annotations
 from datetime import datetime, timedelta
 
 import numpy as np
+from scenario_tail import LoggedStateEffect, PlantedScenario, held, merge
 
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel
 from thermocomp.apps.sim.campaign import Machine
-from thermocomp.apps.sim.effects import UndeclaredEffect
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork
-from thermocomp.apps.sim.scenario import CampaignPlan, Scenario
+from thermocomp.apps.sim.scenario import CampaignPlan
 from thermocomp.apps.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.apps.sim.sources import ConstantWhileRunning, SpeedLosses
 
@@ -134,23 +134,16 @@ def machine() -> Machine:
     return Machine(ThermalNetwork(NODES, LINKS), sources, sensors, errors)
 
 
-class BedLever(UndeclaredEffect):
+class BedLever(LoggedStateEffect):
     """The bed's growth between turret 2 and the counter headstock at Z2 (S_Z2_mm is logged)."""
 
-    name, kind = "bed_lever", "interaction"
+    name, state = "bed_lever", Z2
     defaults = {"gain": LEVER_UM_PER_MM_K, "targets": ["E_Z2"]}
 
-    @property
-    def column(self):
-        return Z2
-
     def modify_errors(self, ctx, errors):
-        index = ctx.machine.network.index
-        rise = ctx.node_temps[:, index["bed"]] - ctx.node_temps[0, index["bed"]]
-        position = np.asarray(ctx.states[Z2], float)
         errors = errors.copy()
         k = ctx.machine.thermoelastic.targets.index("E_Z2")
-        errors[:, k] += float(self.params["gain"]) * position * rise
+        errors[:, k] += float(self.params["gain"]) * self.logged(ctx) * self.rise(ctx, "bed")
         return errors
 
 
@@ -185,36 +178,18 @@ def programme(rng, period_s: float, duration_s: float):
     return merge(n1), merge(n2), merge(z2)
 
 
-def merge(steps: list) -> list:
-    clean = []
-    for start, value in steps:
-        if clean and start <= clean[-1][0]:
-            clean[-1] = (clean[-1][0], value)
-        else:
-            clean.append((start, value))
-    return clean
-
-
-def held(steps: list):
-    starts = np.array([s for s, _ in steps])
-    values = np.array([v for _, v in steps])
-
-    def at(t_rel):
-        return values[np.searchsorted(starts, np.asarray(t_rel, float), side="right") - 1]
-    return at
-
-
 def either(a, b):
     def at(t_rel):
         return ((a(t_rel) != 0) | (b(t_rel) != 0)).astype(float)
     return at
 
 
-class Tsc66(Scenario):
+class Tsc66(PlantedScenario):
     """Six 40 h runs of the twin-spindle turning centre (one campaign each)."""
 
     name = "tsc66"
     year = 2027
+    planted = BedLever
 
     def __init__(self, runs=6, run_h=RUN_H, sample_period_s=60.0, temp_noise_c=0.03,
                  temp_quantum_c=0.01, error_noise_um=0.2, error_quantum_um=0.1, effects=(),
@@ -229,16 +204,8 @@ class Tsc66(Scenario):
     def machine(self):
         return machine()
 
-    def effects_list(self):
-        return [*super().effects_list(), BedLever(int(self.seed))]
-
-    def generate(self):
-        dataset, truth = super().generate()
-        truth["bed_lever"] = {"E_Z2_um_per_mm_K": LEVER_UM_PER_MM_K, "position": Z2,
-                              "node": "bed"}
-        truth["undeclared_effects"] = [e for e in truth["undeclared_effects"]
-                                       if e["name"] != BedLever.name]
-        return dataset, truth
+    def planted_truth(self):
+        return {"E_Z2_um_per_mm_K": LEVER_UM_PER_MM_K, "position": Z2, "node": "bed"}
 
     def plans(self, rng):
         period = float(self.sample_period_s)
