@@ -395,9 +395,11 @@ class ModelFiles:
             raise ContractError(f"the artifact {named} lies outside the model folder", file=self.source)
         try:
             return Path(self._repo.download_artifacts(str(rel), str(self.dst)))
-        except Exception as exc:     # MLflow says each store's "no such file" its own way
-            raise ContractError(f"the model has no readable {named} "
-                                f"({' '.join(str(exc).split())[:160]})", file=self.source) from None
+        except Exception as exc:     # MLflow says each store's "no such file" its own way,
+            lines = [line for line in str(exc).splitlines() if line.strip()]   # the reason last
+            why = " ".join(lines[-1].split())[:200] if lines else type(exc).__name__
+            raise ContractError(f"the model has no readable {named} ({why})",
+                                file=self.source) from None
 
 
 def load_deployed(source: str, folder: str | Path | None = None):
