@@ -380,20 +380,19 @@ def test_a_sigterm_in_the_models_download_is_said_as_one_and_leaves_no_folder(tm
 
 
 def _downloaded_as(monkeypatch, copy) -> None:
-    """A registered model's download (:class:`~thermocomp.apps.deploy.pyfunc.ModelFiles`, file by
-    file since download66) replaced: ``copy(folder)`` writes into the model's temp folder what was
-    copied when the signal came (or raises it); no store is read."""
-    from thermocomp.apps.deploy import pyfunc
+    """A registered model's store replaced (MLflow's artifact repository, which
+    :class:`~thermocomp.apps.deploy.pyfunc.ModelFiles` fetches from, file by file since
+    download66): ``copy(folder)`` writes into the model's temp folder what was copied when the
+    signal came (or raises it); no store is read."""
+    from mlflow.store.artifact import artifact_repository_registry
 
-    class Download:
-        def __init__(self, source, dst, uri=None):
-            self.dst = Path(dst)
+    class Store:
+        def download_artifacts(self, path, dst_path):
+            copy(Path(dst_path))
+            return str(Path(dst_path) / path)
 
-        def fetch(self, path, what=""):
-            copy(self.dst)
-            return self.dst / path
-
-    monkeypatch.setattr(pyfunc, "ModelFiles", Download)
+    monkeypatch.setattr(artifact_repository_registry, "get_artifact_repository",
+                        lambda uri, **kwargs: Store())
 
 
 @pytest.mark.parametrize("when", ["as serve's folder is made", "as the model's copy is removed"])
