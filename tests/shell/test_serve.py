@@ -359,11 +359,11 @@ def test_a_sigterm_in_the_models_download_is_said_as_one_and_leaves_no_folder(tm
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
     monkeypatch.setattr(mlflow, "set_tracking_uri", lambda uri: None)   # no store is read
 
-    def download(artifact_uri, dst_path):
-        (Path(dst_path) / "MLmodel").write_text("flavors: {}\n")       # copied so far
+    def download(folder):
+        (folder / "MLmodel").write_text("flavors: {}\n")       # copied so far
         raise Terminated(143)
 
-    monkeypatch.setattr(mlflow.artifacts, "download_artifacts", download)
+    _downloaded_as(monkeypatch, download)
     rmdir, late = os.rmdir, []
 
     def rmdir_as_a_worker_writes(path, *args, **kwargs):      # rmtree's last rmdir, by path
@@ -377,6 +377,22 @@ def test_a_sigterm_in_the_models_download_is_said_as_one_and_leaves_no_folder(tm
         server.trusted_copy(lambda: load_deployed(f"models:/{NAME}@champion"), "sqlite:///unused.db")
     assert len(late) == 2                       # the model's folder, then serve's around it
     assert list(tmp_path.iterdir()) == []
+
+
+def _downloaded_as(monkeypatch, copy) -> None:
+    """A registered model's store replaced (MLflow's artifact repository, which
+    :class:`~thermocomp.apps.deploy.pyfunc.ModelFiles` fetches from, file by file since
+    download66): ``copy(folder)`` writes into the model's temp folder what was copied when the
+    signal came (or raises it); no store is read."""
+    from mlflow.store.artifact import artifact_repository_registry
+
+    class Store:
+        def download_artifacts(self, path, dst_path):
+            copy(Path(dst_path))
+            return str(Path(dst_path) / path)
+
+    monkeypatch.setattr(artifact_repository_registry, "get_artifact_repository",
+                        lambda uri, **kwargs: Store())
 
 
 @pytest.mark.parametrize("when", ["as serve's folder is made", "as the model's copy is removed"])
@@ -397,12 +413,11 @@ def test_a_sigterm_as_a_temp_folder_is_made_or_removed_leaves_none(tmp_path, mon
     monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
     monkeypatch.setattr(mlflow, "set_tracking_uri", lambda uri: None)
 
-    def download(artifact_uri, dst_path):         # a copy that is no thermocomp model (refused)
+    def download(folder):         # a copy that is no thermocomp model (refused)
         for name in ("MLmodel", "a.py", "b.py"):
-            (Path(dst_path) / name).write_text("flavors: {}\n")
-        return dst_path
+            (folder / name).write_text("flavors: {}\n")
 
-    monkeypatch.setattr(mlflow.artifacts, "download_artifacts", download)
+    _downloaded_as(monkeypatch, download)
     mkdir, unlink, fired = os.mkdir, os.unlink, []
 
     def mkdir_signalled(path, *args, **kwargs):

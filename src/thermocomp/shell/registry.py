@@ -19,7 +19,7 @@ from ..apps.deploy.promotion import (
     version_tags,
 )
 from ..base import signing
-from ..base.errors import ConfigError
+from ..base.errors import ConfigError, ContractError
 from ..base.log import logger, say
 from ..base.paths import project_root
 from ..core.compensator import Compensator
@@ -96,23 +96,22 @@ def _refuse_fleet_run(run_id: str, uri: str) -> None:
 
 def load_run_model(run_id: str, uri: str) -> tuple[Compensator, str]:
     """The run's compensator and the SHA-256 of its pickle; the signature is checked before
-    anything is unpickled (a tracking server may not be trusted)."""
-    import mlflow
-
+    anything is unpickled (a tracking server may not be trusted).  The two files alone are
+    fetched (:class:`~thermocomp.apps.deploy.pyfunc.ModelFiles`, as a registered model's)."""
+    from ..apps.deploy.pyfunc import ModelFiles
     from ..base.files import scratch_folder
 
     with scratch_folder("thermocomp-run-model-") as tmp:
         try:
-            path = mlflow.artifacts.download_artifacts(run_id=run_id, artifact_path="model.pkl",
-                                                       dst_path=str(tmp), tracking_uri=uri)
+            files = ModelFiles(f"runs:/{run_id}", tmp, uri)
+            path = files.fetch("model.pkl")
         except Exception as exc:
             _refuse_fleet_run(run_id, uri)
             raise ConfigError(f"run {run_id} has no model.pkl artifact (promote a `run` or "
                               f"`train` run): {' '.join(str(exc).split())[:200]}") from None
         try:
-            mlflow.artifacts.download_artifacts(run_id=run_id, artifact_path="model.pkl.sig",
-                                                dst_path=str(tmp), tracking_uri=uri)
-        except Exception:  # verified_bytes says "not signed by this project"
+            files.fetch("model.pkl.sig")
+        except ContractError:  # verified_bytes says "not signed by this project"
             pass
         digest = hashlib.sha256(Path(path).read_bytes()).hexdigest()
         return signing.load(path, Compensator), digest

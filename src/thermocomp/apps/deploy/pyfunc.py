@@ -71,7 +71,7 @@ import tempfile
 import threading
 import warnings
 from collections import OrderedDict
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 
 import mlflow
 import numpy as np
@@ -370,32 +370,68 @@ def log_compensator(streaming: StreamingCompensator | AdaptiveCompensator,
                          registered_model_name=registered_model_name, **model_kwargs, **kwargs)
 
 
+class ModelFiles:
+    """The files of one stored model fetched one by one, each as it is read: ``source`` (a
+    registered ``models:/<name>@<alias>`` or ``models:/<name>/<version>``, a logged model's
+    ``models:/<model_id>``, a run's ``runs:/<run_id>``) is resolved once, here (an alias that
+    moves meanwhile cannot mix two versions' files), then :meth:`fetch` copies a file into
+    ``dst``.  A whole model came down before to read three of its files (MLmodel and the signed
+    pickle: 3 of 270, the rest the package source of ``code_paths``).  ``uri``: the tracking
+    store and registry (default: MLflow's current ones)."""
+
+    def __init__(self, source: str, dst: str | Path, uri: str | None = None):
+        from mlflow.store.artifact.artifact_repository_registry import get_artifact_repository
+
+        self.source, self.dst = str(source), Path(dst)
+        self._repo = get_artifact_repository(self.source, tracking_uri=uri, registry_uri=uri)
+
+    def fetch(self, path: str, what: str = "") -> Path:
+        """The local copy of the model's file ``path`` (relative to its root; ``what`` names it in
+        a refusal).  A path that leaves the model (absolute, ``..``) or a file the store does not
+        hold is refused (ContractError, exit 2) naming it."""
+        named = f"{path!r}" + (f" ({what})" if what else "")
+        rel = PurePosixPath(str(path))
+        if not rel.parts or rel.is_absolute() or ".." in rel.parts:
+            raise ContractError(f"the artifact {named} lies outside the model folder", file=self.source)
+        try:
+            return Path(self._repo.download_artifacts(str(rel), str(self.dst)))
+        except Exception as exc:     # MLflow says each store's "no such file" its own way,
+            lines = [line for line in str(exc).splitlines() if line.strip()]   # the reason last
+            why = " ".join(lines[-1].split())[:200] if lines else type(exc).__name__
+            raise ContractError(f"the model has no readable {named} ({why})",
+                                file=self.source) from None
+
+
 def load_deployed(source: str, folder: str | Path | None = None):
     """The signed compensator inside a pyfunc model, loaded by *this* installed package.
 
     ``folder``: the model's local folder; else ``source`` (``models:/<name>@<alias>``) is
-    downloaded from the registry first.  Only the pickle is taken from the model, after its
-    HMAC signature is checked: the model's own code (``model_code.py``, ``code/``, the loader
+    read from the registry, file by file (:class:`ModelFiles`): ``MLmodel``, then the pickle
+    and its signature it names, nothing else.  Only the pickle is taken from the model, after
+    its HMAC signature is checked: the model's own code (``model_code.py``, ``code/``, the loader
     ``MLmodel`` names) is never run, since any of them could be edited in a store and the
     signature covers the pickle alone.  A ContractError (exit 2) names what is wrong.
     """
     import yaml
 
-    from ...base.errors import ContractError
     from ...base.files import scratch_folder
 
     with scratch_folder("thermocomp-model-") as tmp:
-        root = Path(folder) if folder is not None else Path(
-            mlflow.artifacts.download_artifacts(artifact_uri=source, dst_path=str(tmp)))
-        spec = root / "MLmodel"
+        files = None if folder is not None else ModelFiles(source, tmp)
+        root = Path(folder) if folder is not None else None
+        spec = root / "MLmodel" if files is None else files.fetch("MLmodel")
         try:
             flavor = yaml.safe_load(spec.read_text())["flavors"]["python_function"]
             arts = flavor["artifacts"]
-            pickled, sig = (root / arts[k]["path"] for k in (COMPENSATOR_ARTIFACT, SIGNATURE_ARTIFACT))
+            named = {k: str(arts[k]["path"]) for k in (COMPENSATOR_ARTIFACT, SIGNATURE_ARTIFACT)}
         except (OSError, yaml.YAMLError, KeyError, TypeError) as exc:
             raise ContractError(f"not a thermocomp compensator model ({type(exc).__name__}: {exc})",
-                                file=spec) from None
-        inside = root.resolve()
-        if not all(inside in p.resolve().parents for p in (pickled, sig)):
-            raise ContractError("the artifacts it names lie outside the model folder", file=spec)
+                                file=spec if files is None else f"{source} MLmodel") from None
+        if files is None:
+            pickled, sig = (root / named[k] for k in (COMPENSATOR_ARTIFACT, SIGNATURE_ARTIFACT))
+            inside = root.resolve()
+            if not all(inside in p.resolve().parents for p in (pickled, sig)):
+                raise ContractError("the artifacts it names lie outside the model folder", file=spec)
+        else:
+            pickled, sig = (files.fetch(named[k], k) for k in (COMPENSATOR_ARTIFACT, SIGNATURE_ARTIFACT))
         return signing.load(pickled, DEPLOYABLE, sig=sig)

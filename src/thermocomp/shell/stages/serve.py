@@ -60,7 +60,7 @@ def serve_command(cfg: DictConfig) -> tuple[list[str], dict]:
     if is_registered_model(opts.model):
         check_existing(raw)         # a registered model is read: no store created to find none
     uri = resolve_uri(raw)
-    # a registered model comes down file by file: a progress line each, hundreds of them
+    # a registered model comes down file by file (its three: download66): a progress line each
     os.environ.setdefault(QUIET_DOWNLOADS, "false")
     model = check_served_model(str(opts.model), uri)
     model = server.trusted_copy(lambda: _deployed(cfg, model), uri)
