@@ -226,6 +226,19 @@ def _rows_of_distances(exc: ContractError, setup) -> ContractError | None:
     return None
 
 
+def layout_refusal(exc: ContractError, root: Path) -> ContractError | None:
+    """:func:`_rows_of_distances` for a folder ``root`` read as a volumetric dataset (its
+    set-up beside the files), the one rule ``calibrate``, ``run`` and ``init`` refuse such an
+    export by; None for any other folder, or where ``exc`` is about something else."""
+    if not Path(root).is_dir() or not (Path(root) / SETUP_FILE).is_file():
+        return None
+    try:
+        setup = load_setup(root)
+    except ContractError:
+        return None                   # (its own refusal comes from the read that needs it)
+    return _rows_of_distances(exc, setup)
+
+
 def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_share: float = 0.5,
                      require_seen=("positioning", "straightness"), prior=None):
     """``(parameter dataset, calibration, report, distance dataset)`` of the volumetric dataset

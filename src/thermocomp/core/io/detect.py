@@ -35,7 +35,14 @@ from .plain import as_read, is_converted, is_lab_file, lab_as_csv
 from .rates import period_groups
 from .read import run_column, run_counter
 from .record import check_record_file
-from .roles import RUN, date_and_time_of_day, matching_roles, named_as_time, split_unit
+from .roles import (
+    RUN,
+    date_and_time_of_day,
+    matching_roles,
+    named_as_time,
+    naming,
+    split_unit,
+)
 from .runs import looks_like_run_labels, says_run
 from .separators import reads_as_number
 from .sniff import head_lines, resolved
@@ -279,6 +286,29 @@ def proposed_roles(header: list[str], first: dict, opts) -> dict:
             # (the reader reads 'Dauer' 25:30:00)
             roles["ignore"].append(pattern)
     return _by_role(roles, header, first)
+
+
+def without_own_names(header: list[str], first: dict, roles: dict, opts) -> tuple[dict, list[str]]:
+    """``(roles, headers)``: ``roles`` without the ``error`` / ``state`` patterns proposed for a
+    contract name with a unit (``E_S2x1d1_B01_B02 [mm]``), which the reader reads as that name,
+    converted, without them, where the reading names and scales every header the same without
+    them (:func:`.roles.naming`, one rule); ``headers`` those left to their names (none: as
+    given).  A volumetric export's 420 distances were each written into data.roles.error."""
+    prefix = {"error": "E", "state": "S"}
+    own = {k: [p for p in roles[k] if p not in opts.roles.get(k, []) and role(p) == prefix[k]
+               and any(split_unit(h)[0] == p and split_unit(h)[1] for h in header)]
+           for k in prefix}
+    if not any(own.values()):
+        return roles, []
+    short = {**roles, **{k: [p for p in roles[k] if p not in own[k]] for k in prefix}}
+    try:
+        same = (naming(header, short, opts.columns, first, opts.decimal, None, opts.units)
+                == naming(header, roles, opts.columns, first, opts.decimal, None, opts.units))
+    except ContractError:
+        return roles, []
+    if not same:
+        return roles, []
+    return short, [h for h in header if split_unit(h)[0] in own["error"] + own["state"]]
 
 
 def air_words(name: str) -> set[str]:

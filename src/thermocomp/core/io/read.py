@@ -91,7 +91,7 @@ from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
 from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
 from .sparse import measured_on, on_grid, said, sparse_totals
-from .starts import campaign_starts
+from .starts import campaign_starts, commented_start
 from .steps import check_unit_steps
 from .tables import NoRows, _load_csv, _load_parquet, _ordered, _values, parquet
 from .timestamps import CLOCK
@@ -460,7 +460,7 @@ def read_dataset(path: str | Path, cfg: Mapping | None = None, *, missing: str =
         _collect_roles(columns, table.column_names)
         frames[cid], entries[cid] = _to_frame(table), entry
         del table
-    manifest = _starts_from_timestamps(manifest, entries)
+    manifest = _starts_from_timestamps(manifest, entries, root, opts)
     report = _dataset_report(_name(path), entries, columns, opts)
     report["ambient"] = _manifest_ambient(manifest, frames)
     for column, entry in report.get("sparse_targets", {}).items():
@@ -679,11 +679,22 @@ def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:
     return {"source": sorted({str(v) for v in sources.values()}), "campaigns": sources}
 
 
-def _starts_from_timestamps(manifest: pd.DataFrame, entries: Mapping) -> pd.DataFrame:
+def _starts_from_timestamps(manifest: pd.DataFrame, entries: Mapping, root: Path | None = None,
+                            opts: ReadOptions | None = None) -> pd.DataFrame:
     """The manifest with ``start`` filled, where it is empty, by the campaign's first timestamp
-    (files whose ``time`` is ISO 8601): the optional ``start`` column then says when each
-    campaign began, so a record cut into consecutive files is seen as one (carry-over)."""
+    (files whose ``time`` is ISO 8601), else by the start its file's ``#`` comment block states
+    (``# start: 2027-03-08 06:00:00``, a DAQ script's, over a time in seconds:
+    :func:`.starts.commented_start`; a folder ``root``'s files): the optional ``start`` column
+    then says when each campaign began, so a record cut into consecutive files is seen as one
+    (carry-over)."""
     origins = {cid: e.get("time_origin") for cid, e in entries.items() if e.get("time_origin")}
+    if root is not None and opts is not None and "file" in manifest.columns:
+        for cid in manifest.index:
+            if cid in entries and cid not in origins and (
+                    START not in manifest.columns or pd.isna(manifest.at[cid, START])):
+                stamp = commented_start(root / str(manifest.at[cid, "file"]), opts)
+                if pd.notna(stamp):
+                    origins[cid] = stamp.isoformat()
     if not origins:
         return manifest
     out = manifest.copy()
@@ -744,7 +755,7 @@ def ingest(src: str | Path, dest: str | Path, cfg: Mapping | None = None, extra:
             entries[cid] = entry
             del table
             pa.default_memory_pool().release_unused()
-        out = _starts_from_timestamps(manifest, entries).assign(
+        out = _starts_from_timestamps(manifest, entries, root, opts).assign(
             file=[f"{cid}.parquet" for cid in manifest.index])
         (tmp / MANIFEST).write_text(_manifest_csv(out))
         report = {**_dataset_report(_name(src), entries, columns, opts), **(extra or {})}

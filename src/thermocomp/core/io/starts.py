@@ -9,17 +9,18 @@ campaigns: a group is read without the others' files.
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pandas as pd
 import pyarrow as pa
 
 from .contract import TIME, ContractError
-from .instants import START, on_clock, start_instants
+from .instants import START, on_clock, start_instants, start_stamp
 from .manifest import is_text
 from .options import ReadOptions
 from .plain import as_read, is_converted
-from .sniff import resolved
+from .sniff import head_lines, resolved
 from .tables import (
     NoRows,
     _contract_names,
@@ -63,6 +64,41 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
         raise
     except ContractError:
         return pd.NaT
+    stamp = _first_stamp(path, header, first, names, opts)
+    return utc_instant(commented_start(path, opts), opts) if pd.isna(stamp) else stamp
+
+
+# a DAQ script's comment block above the table: '# start: 2027-03-08 06:00:00' (stranger66)
+_START_LINE = re.compile(r"#+\s*start\s*[:=]\s*(?P<stamp>\S.*?)\s*$", re.IGNORECASE)
+
+
+def commented_start(path: Path, opts: ReadOptions) -> pd.Timestamp:
+    """The start a text file's ``#`` comment block above its table states, ``# start:
+    2027-03-08 06:00:00`` (ISO 8601, as the manifest's ``start``; as written, an offset or
+    none: :func:`.instants.start_stamp`): one line saying it, above any line that is no
+    comment; NaT otherwise (no such line, two, or one that is no ISO 8601 time).  Read for a
+    file whose time is no timestamp (seconds since its run's start): its campaign's ``start``."""
+    if not is_text(path):
+        return pd.NaT
+    try:
+        lines = head_lines(path, opts.encoding)
+    except (ContractError, OSError, LookupError):
+        return pd.NaT
+    block = []
+    for line in lines:
+        if line.strip() and not line.lstrip().startswith("#"):
+            break
+        block.append(line.strip())
+    found = [m["stamp"] for m in map(_START_LINE.fullmatch, block) if m]
+    if len(found) != 1:
+        return pd.NaT
+    try:
+        return start_stamp(found[0])
+    except ValueError:
+        return pd.NaT
+
+
+def _first_stamp(path: Path, header, first, names, opts) -> pd.Timestamp:
     cells = {n: first[h] for h, n in zip(header, names) if n in (TIME, CLOCK)}
     value = cells.get(TIME)
     if isinstance(value, pd.Timestamp) or value is None:

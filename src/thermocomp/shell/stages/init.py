@@ -9,9 +9,11 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import pandas as pd
 import yaml
 from omegaconf import DictConfig, OmegaConf
 
+from ...base.errors import ContractError
 from ...base.files import atomic_write_text
 from ...base.paths import conf_dir, resolve
 from ...core import io
@@ -34,6 +36,7 @@ from ...core.io.detect import (
     sample_file,
     slashed_order,
     travel_headers,
+    without_own_names,
 )
 from ...core.io.historian import (
     PERIOD_COMMENT,
@@ -45,6 +48,7 @@ from ...core.io.historian_layout import long_layout
 from ...core.io.manifest import is_text
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.roles import excel_days_header, naming
+from ...core.io.starts import commented_start
 from ...core.io.tables import peek_csv
 from ...core.io.timestamps import ELAPSED
 from ...core.io.workbook import csv_options
@@ -146,9 +150,42 @@ def renamed(ds) -> dict:
     return found
 
 
+def stated_starts(src, ds, report: dict, opts) -> None:
+    """Say which campaigns of a folder ``src`` take their ``start`` from their file's comment
+    block (``# start: 2027-03-08 06:00:00``, a DAQ script's, over a time in seconds:
+    :func:`.io.starts.commented_start`) and the order their last ones are held out in."""
+    if not src.is_dir() or "file" not in ds.manifest.columns:
+        return
+    untimed = [cid for cid in ds.ids() if not report["campaigns"][cid].get("time_origin")]
+    stated = {cid: commented_start(src / str(ds.manifest.at[cid, "file"]), opts)
+              for cid in untimed}
+    found = [cid for cid, t in stated.items() if pd.notna(t)]
+    if not found:
+        return
+    first = ds.manifest.at[found[0], "file"]
+    line = (f"{len(found)} of {len(ds.ids())} files without timestamps state their start in "
+            f"a '# start:' line ({first}: {stated[found[0]]}): the campaign's start "
+            "(data.test_fraction holds out the last by it)")
+    lacking = [str(ds.manifest.at[c, "file"]) for c in stated if c not in found]
+    if lacking:
+        line += (f"; {', '.join(lacking[:3])}{' ...' * (len(lacking) > 3)} state{'s' * (len(lacking) == 1)} "
+                 "none: the campaigns are held out in name order")
+    print(line)
+
+
 def init(cfg: DictConfig) -> dict:
     """Detect, propose, check by reading, write ``<out>/conf/data/<name>.yaml``; print the run
-    command."""
+    command.  A volumetric folder of one distance per row is refused as ``calibrate`` refuses
+    it, naming the layout the reader takes (:func:`.volumetric.calibration.layout_refusal`)."""
+    from ...apps.volumetric.calibration import layout_refusal
+
+    try:
+        return _init(cfg)
+    except ContractError as exc:     # (it said "no 'time' column", which no setting mends)
+        raise layout_refusal(exc, resolve(cfg.data.path)) or exc from None
+
+
+def _init(cfg: DictConfig) -> dict:
     check_config(cfg)         # out never holds data.path: the lab's record is never written beside
     src = resolve(cfg.data.path)
     given = data_options(cfg)
@@ -195,6 +232,12 @@ def init(cfg: DictConfig) -> dict:
     roles = proposed_roles(header, dict(zip(header, first)), opts)
     check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
+    roles, own = without_own_names(header, dict(zip(header, first)), roles, opts)
+    if own:                # (a volumetric export's 420 distances: not one pattern each)
+        print(f"{sample.name}: {len(own)} contract name{'s' * (len(own) > 1)} with a unit "
+              f"({', '.join(map(repr, own[:2]))}{', ...' * (len(own) > 2)}) read as "
+              f"{'their names' if len(own) > 1 else 'its name'}, converted: no data.roles "
+              "pattern written for them")
     plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
                   opts.units)
     opts = mark_gaps(src, cells, {h for h, n in plan.names.items() if str(n).startswith("E_")},
@@ -237,6 +280,7 @@ def init(cfg: DictConfig) -> dict:
         ds = open_source(cfg, detected=config)
     check_declared(cfg, ds, model=False)        # (a folder's run with a sensor the others lack)
     report = ds.meta["read_report"]
+    stated_starts(src, ds, report, opts)        # a DAQ's '# start:' line over a time in s
     path = resolve(cfg.out) / "conf" / "data" / f"{ds.name}.yaml"
     text = yaml.safe_dump({"defaults": ["default"], **config}, allow_unicode=True, sort_keys=False)
     if long is not None:
