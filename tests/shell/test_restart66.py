@@ -64,9 +64,10 @@ def test_a_clock_that_starts_again_steps_as_the_record_joined_in_every_form(data
 LENGTHS = (200, 280, 240)      # a lab's day files, one row a minute
 
 
-def day_files(folder: Path) -> list[Path]:
+def day_files(folder: Path, hours: bool = False) -> list[Path]:
     """The day files of one record (a column heated in steps that E_X follows through a 20-min
-    lag), each file's time from 0 s, and a manifest whose ``continues`` chains them."""
+    lag), each file's time from 0 s (``hours``: headed ``time [h]``, in hours to four decimals),
+    and a manifest whose ``continues`` chains them."""
     folder.mkdir(parents=True)
     rng = np.random.default_rng(6606)
     n = sum(LENGTHS)
@@ -81,7 +82,9 @@ def day_files(folder: Path) -> list[Path]:
     paths, manifest, start = [], ["campaign,file,split,continues"], 0
     for f, rows in enumerate(LENGTHS):
         part = slice(start, start + rows)
-        pd.DataFrame({"time": np.arange(rows) * 60.0, "T_column": column[part].round(3),
+        time = {"time [h]": (np.arange(rows) / 60).round(4)} if hours else {
+            "time": np.arange(rows) * 60.0}
+        pd.DataFrame({**time, "T_column": column[part].round(3),
                       "T_hall": hall[part].round(3), "E_X": dx[part].round(3)}
                      ).to_csv(folder / f"day{f + 1}.csv", index=False)
         paths.append(folder / f"day{f + 1}.csv")
@@ -122,3 +125,20 @@ def test_the_compiled_stream_fed_day_files_from_0_gives_its_pack(tmp_path):
     done = subprocess.run(["./stream"], cwd=code, input=text.encode(), capture_output=True)
     assert done.returncode == 0, done.stderr
     assert np.abs(pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float) - want).max() < 1e-9
+
+
+@needs_cc
+def test_the_check_pack_of_a_lab_time_headed_time_in_hours_passes(tmp_path):
+    # before: the pack's rows.csv heads its time `time` (s); stream.c read that header as the
+    # lab's `time [h]` (a header whose unit is in a unit row), in hours: 0.163 um off at row 2,
+    # the pack failed its own check
+    paths = day_files(tmp_path / "lab", hours=True)
+    common = [f"data.path={paths[0].parent}", "data.reference=none"]
+    assert main(["run", *common, *FAST, "model=lagbank", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    checked_pack(tmp_path / "code")
+    # the lab's own file, in hours: its time read as the reader reads it (no 'no time column')
+    done = subprocess.run(["./stream"], cwd=tmp_path / "code", input=paths[0].read_bytes(),
+                          capture_output=True)
+    assert done.returncode == 0 and b"no time column" not in done.stderr, done.stderr
