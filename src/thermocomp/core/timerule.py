@@ -13,6 +13,17 @@ form against the others).
   complete record does (its first time 150000 s); taking the first time as 0.0 had put
   150030 s between the first two samples and thrown every lag state a day ahead.
 
+* (restart66) A time not after the last one read, then a time after it that is still not after
+  the last one read, is a clock that restarted (the next file of a record whose time starts
+  again at 0, each file's logger run from 0; a clock set back for good): the first of them
+  stays one ``period`` after the previous sample, and the stream counts on from it by the new
+  clock's steps.  That is what ``run``, ``replay`` and the check pack do where a file that
+  continues another (the manifest's ``continues``) starts its time again: the two joined one
+  period apart, the file's own steps after.  Judged against the last time read only, the
+  restarted clock's times were taken as one period each until they passed it, then read as
+  they were: a step back by all of them (dt < 0, the lag bank's ``exp(-dt/tau)`` growing).  A
+  lone time set back (the next time after the last read again) stays a missing one.
+
 A reader that has the whole record takes such a first time as the next time read less one
 period per sample: the same steps (:func:`stream_start` says where the stream's clock starts).
 
@@ -26,28 +37,39 @@ import math
 
 import numpy as np
 
-CLOCK_START = (True, math.nan, math.nan, math.nan)    # a campaign's start, as SampleClock.snapshot
+# a campaign's start, as SampleClock.snapshot: (first, t, t_read, shift, back)
+CLOCK_START = (True, math.nan, math.nan, math.nan, math.nan)
 
 
 def step_time(clock: tuple, time: float, period_s: float, judge: bool = False
               ) -> tuple[tuple, float, float, str | None]:
-    """One sample of the rule on a clock's state ``(first, t, t_read, shift)`` (:data:`CLOCK_START`
-    at a campaign's start): ``(new clock, t, dt, why)`` as :meth:`SampleClock.step` returns them."""
-    first, t_prev, t_read, shift = clock
-    why = None
+    """One sample of the rule on a clock's state ``(first, t, t_read, shift, back)``
+    (:data:`CLOCK_START` at a campaign's start; ``back``: the previous row's time where it was not
+    after the last one read, else NaN; a state of four, saved before restart66, has none):
+    ``(new clock, t, dt, why)`` as :meth:`SampleClock.step` returns them."""
+    first, t_prev, t_read, shift = clock[:4]
+    back = clock[4] if len(clock) > 4 else math.nan
+    why, restarted = None, False
     if not math.isfinite(time):
         why = "time has no finite value"
     elif judge and math.isfinite(t_read) and time <= t_read:
-        why = f"time {time:.6g} s does not increase (previous {t_read:.6g} s)"
+        # after a time not after the last read, a time after that one: a clock that restarted
+        restarted = math.isfinite(back) and time > back
+        if not restarted:
+            why = f"time {time:.6g} s does not increase (previous {t_read:.6g} s)"
     if why is None:
         t_read = time
-        if not math.isfinite(shift):      # the first time read sets the clock
+        if restarted:                     # counted on from the previous row (one period in)
+            shift = back - t_prev
+        elif not math.isfinite(shift):    # the first time read sets the clock
             shift = 0.0 if first else time - (t_prev + period_s)
         now = time - shift
+        back = math.nan
     else:
         now = 0.0 if first else t_prev + period_s
+        back = time if math.isfinite(time) and not first else math.nan
     dt = math.nan if first else now - t_prev
-    return (False, now, t_read, shift), now, dt, why
+    return (False, now, t_read, shift, back), now, dt, why
 
 
 class SampleClock:
@@ -64,10 +86,12 @@ class SampleClock:
         self.restore(CLOCK_START)
 
     def snapshot(self) -> tuple:
-        return self.first, self.t, self.t_read, self.shift
+        return self.first, self.t, self.t_read, self.shift, self.back
 
     def restore(self, snap: tuple) -> None:
-        self.first, self.t, self.t_read, self.shift = snap
+        """``snap``: a :meth:`snapshot` (of four, saved before restart66: no time set back)."""
+        self.first, self.t, self.t_read, self.shift = snap[:4]
+        self.back = snap[4] if len(snap) > 4 else math.nan
 
     def step(self, time: float) -> tuple[float, float, str | None]:
         clock, now, dt, why = step_time(self.snapshot(), time, self.period_s, self.judge)
@@ -140,13 +164,24 @@ C_TIME_RULE = """\
     /* the time rule (timerule.py): a missing time (TC_SUBSTITUTE_TIME: or one not after the
        last one read) is one TIME_PERIOD after the previous sample; a first one, 0, and the
        first time read then counts from it */
-    if (s->first) { s->t_read = NAN; s->shift = NAN; }
-    if (isfinite(time) && !(TC_SUBSTITUTE_TIME && isfinite(s->t_read) && time <= s->t_read)) {
+    if (s->first) { s->t_read = NAN; s->shift = NAN; s->t_back = NAN; }
+    if (isfinite(time) && TC_SUBSTITUTE_TIME && isfinite(s->t_read) && time <= s->t_read
+        && isfinite(s->t_back) && time > s->t_back) {
+        /* (restart66) after a time not after the last read, one after that: a clock restarted
+           (the next file's time from 0), counted on from the previous row */
+        s->t_read = time;
+        s->shift = s->t_back - s->t;
+        now = time - s->shift;
+        s->t_back = NAN;
+    } else if (isfinite(time) && !(TC_SUBSTITUTE_TIME && isfinite(s->t_read)
+                                   && time <= s->t_read)) {
         s->t_read = time;
         if (!isfinite(s->shift)) s->shift = s->first ? 0.0 : time - (s->t + TIME_PERIOD);
         now = time - s->shift;
+        s->t_back = NAN;
     } else {
         now = s->first ? 0.0 : s->t + TIME_PERIOD;
+        s->t_back = (isfinite(time) && !s->first) ? time : NAN;
     }
     dt = s->first ? NAN : now - s->t;
 """
@@ -158,8 +193,16 @@ ST_TIME_RULE = """\
 IF first THEN
     read_valid := FALSE;
     shift_valid := FALSE;
+    back_valid := FALSE;
 END_IF;
-IF has_time AND NOT (SUBSTITUTE_TIME AND read_valid AND time_s <= t_read) THEN
+(* after a time not after the last read, one after that: a clock restarted, counted on *)
+IF has_time AND SUBSTITUTE_TIME AND read_valid AND time_s <= t_read AND back_valid AND time_s > t_back THEN
+    t_read := time_s;
+    shift := t_back - t_prev;
+    shift_valid := TRUE;
+    now := time_s - shift;
+    back_valid := FALSE;
+ELSIF has_time AND NOT (SUBSTITUTE_TIME AND read_valid AND time_s <= t_read) THEN
     t_read := time_s;
     read_valid := TRUE;
     IF NOT shift_valid THEN
@@ -171,10 +214,15 @@ IF has_time AND NOT (SUBSTITUTE_TIME AND read_valid AND time_s <= t_read) THEN
         shift_valid := TRUE;
     END_IF;
     now := time_s - shift;
-ELSIF first THEN
-    now := 0.0;
+    back_valid := FALSE;
 ELSE
-    now := t_prev + TIME_PERIOD;
+    IF first THEN
+        now := 0.0;
+    ELSE
+        now := t_prev + TIME_PERIOD;
+    END_IF;
+    t_back := time_s;
+    back_valid := has_time AND NOT first;
 END_IF;
 IF first THEN
     dt := 0.0;

@@ -311,7 +311,7 @@ class AdaptiveCompensator:
             return 0
         if self._held_state.any():
             return 0
-        first, t_prev, t_read, shift = self._clock.snapshot()
+        first, t_prev, t_read, shift = self._clock.snapshot()[:4]
         if first or not np.isfinite(shift):
             return 0
         block = X[start:start + INPUT_ROWS]

@@ -584,7 +584,7 @@ class StreamingCompensator:
         """The stream's clock reads a time as it is (its offset set by an earlier row)."""
         if self._clock is None or clocked:
             return True
-        first, _, _, shift = self._clock.snapshot()
+        first, _, _, shift = self._clock.snapshot()[:4]
         return not first and bool(np.isfinite(shift))
 
     def _batchable(self, X, time, start: int, size: int, clocked: bool) -> int:

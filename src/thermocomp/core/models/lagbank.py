@@ -301,7 +301,7 @@ def _block_clock(clock: tuple, time: np.ndarray, period_s: float) -> tuple[tuple
             now_all = time - shift                # step_time's own subtraction
             dt[1:] = np.diff(now_all)
             now_all[0] = now
-            clock = (False, float(now_all[-1]), float(time[-1]), shift)
+            clock = (False, float(now_all[-1]), float(time[-1]), shift, float("nan"))
         return clock, dt
     for i in range(n):
         clock, _, dt[i], _ = step_time(clock, float(time[i]), period_s)

@@ -203,6 +203,8 @@ typedef struct {{
     double t;                                   /* previous sample time, s */
     double t_read;                              /* last good time read, s */
     double shift;                               /* time read - the stream's clock, s */
+    double t_back;                              /* the previous row's time where it was not
+                                                   after t_read (NAN: none), s */
     double out[TC_N_OUTPUTS];                   /* previous guarded output (guard, reference) */
     double bias[TC_N_OUTPUTS];                  /* learned from reference measurements */
     double var[TC_N_OUTPUTS];                   /* the bias's variance (TC_ADAPT 1) */

@@ -112,9 +112,11 @@ static const char *named(char *cell, int j) {
     if ((lab = lab_named(cell, j)) != NULL) return lab;
     /* (streamraw65) a header whose unit is in the unit row under it (`T Halle` over `degC`): the
        reader named it `T Halle [degC]`; the unit row, where there is one, says which (united) */
+    /* (restart66) not a contract name itself: the check pack's rows.csv heads `time` in s where
+       the lab's header was `time [h]` (read as hours, the pack failed its own check) */
     for (k = 0; len && k < TC_N_LAB_NAMES; k++)
         if (strncmp(cell, TC_LAB_NAMES[k][0], len) == 0 && TC_LAB_NAMES[k][0][len] == ' '
-            && TC_LAB_NAMES[k][0][len + 1] == '[') {
+            && TC_LAB_NAMES[k][0][len + 1] == '[' && strcmp(cell, TC_LAB_NAMES[k][1]) != 0) {
             scale_of[j] = TC_LAB_UNITS[k][0];
             offset_of[j] = TC_LAB_UNITS[k][1];
             return TC_LAB_NAMES[k][1];
@@ -559,6 +561,7 @@ int main(int argc, char **argv) {
     int pending = 0, again = 0, commented = 1, hashed = 0, said_hash = 0;
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
+    int said_back = 0;         /* rows said whose time is not after the last read */
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
     int ncols, i, j, ignored, measured, restored = 0, failed;
     long row = 1;
@@ -796,6 +799,15 @@ int main(int argc, char **argv) {
             if (time_of(stamp, row, 1.0, 0.0, &t) != 0) return 2;
         } else if (time_col >= 0 && time_of(cells[time_col], row, scale_of[time_col],
                                             offset_of[time_col], &t) != 0) return 2;
+        if (TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read) && t <= s.t_read
+            && !isfinite(s.t_back) && said_back++ < 5)
+            /* (restart66) the time rule (timerule.py): said where it sets in */
+            fprintf(stderr, "stream: row %ld: the time (%.10g s) is not after the last read (%.10g "
+                    "s): taken one period after the previous row; where the next time is after "
+                    "this one (a clock started again: a file of the record whose time starts at 0 "
+                    "again), the stream counts on with it, as run joins a file that continues "
+                    "another; a new campaign starts at a blank line%s\n", row, t, s.t_read,
+                    said_back == 5 ? " (no more said)" : "");
         if (TC_AMBIENT_GIVEN && s.first) {     /* the campaign's ambient, at its first row */
             double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
             if (!isfinite(a0)) a0 = ambient;

@@ -3,7 +3,9 @@ the reference update (pure core).
 
 * **time** (:mod:`thermocomp.core.timerule`, every form's): a missing time (``substitute_time``:
   or one not after the last time read) is the previous time plus
-  ``time_period``; a campaign's first, 0 of the stream's clock, the first time read counting from it.
+  ``time_period``; a campaign's first, 0 of the stream's clock, the first time read counting from it;
+  (restart66) a time after such a backward one, still not after the last read: a clock started
+  again, counted on from the backward one.
 * **guard** (:class:`~..guard.CorrectionGuard` of the adaptive compensator): static limits
   ``guard_lo``, ``guard_hi`` (µm of predicted error) and ``guard_rate`` (µm/s; null: none) per
   target, and one state, the previous guarded output.  A campaign's first output is bounded

@@ -321,6 +321,8 @@ VAR
     read_valid : BOOL;
     shift : LREAL;
     shift_valid : BOOL;
+    t_back : LREAL;
+    back_valid : BOOL;
     now : LREAL;
     v : ARRAY[{_dims(n)}] OF LREAL;
     x : ARRAY[{_dims(2, n + p + q)}] OF LREAL;

@@ -40,7 +40,8 @@ def time_use(ss) -> str:
                                           r is not None for r in ss.guard_rate or []))) if reads]
     period = ss.time_period or ss.period         # the time rule's step (core.timerule)
     return (f"read by {' and '.join(readers)}" if readers else "not read") + (
-        f"; a missing or backward time is the previous + {period:.6g} s" if period else "")
+        f"; a missing or backward time is the previous + {period:.6g} s, the times after a "
+        "backward one counting on from it (a clock started again)" if period else "")
 
 
 def banner(ss, open_: str, middle: str, close: str) -> str:
