@@ -10,6 +10,7 @@ import shutil
 import numpy as np
 import pandas as pd
 import pytest
+import yaml
 
 from conftest import refused, simulated
 from thermocomp.apps.sim.volumetric import LargeMillVolumetric
@@ -25,9 +26,9 @@ def raw(tmp_path_factory):
     return simulated(gen, tmp_path_factory.mktemp("vs66") / "raw")
 
 
-def lab_files(raw, dest, unit_mm: bool) -> None:
+def lab_files(raw, dest, unit_mm: bool) -> list[str]:
     """``raw`` as CSV, ``;`` and decimal commas, the distances to 0.1 µm: in mm under headers
-    saying so (``unit_mm``), or in µm under the contract's names."""
+    saying so (``unit_mm``), or in µm under the contract's names; returns the E_ names."""
     dest.mkdir()
     shutil.copy(raw / "volumetric.json", dest / "volumetric.json")
     manifest = pd.read_csv(raw / "campaigns.csv")
@@ -42,6 +43,23 @@ def lab_files(raw, dest, unit_mm: bool) -> None:
                   float_format="%.6f")
     manifest.assign(file=[f"{c}.csv" for c in manifest["campaign"]]).to_csv(
         dest / "campaigns.csv", index=False)
+    return e
+
+
+def cycle_files(raw, folder) -> str:
+    """An artefact software's file per cycle (a header block, then pose; ball i; ball j;
+    deviation in mm) of ``raw``'s first three cycles; returns the first pose."""
+    folder.mkdir()
+    shutil.copy(raw / "volumetric.json", folder / "volumetric.json")
+    df = pd.read_parquet(raw / "train_week.parquet")
+    e = [c for c in df.columns if c.startswith("E_")]
+    for k in range(3):
+        rows = [f"{c.split('_')[1]};{int(c.split('_')[2][1:])};{int(c.split('_')[3][1:])};"
+                f"{df[c].iloc[k] / 1000:.4f}".replace(".", ",") for c in e]
+        (folder / f"zyklus_{k + 1:03d}.csv").write_text(
+            "Messprogramm;Kugelplatte\nDatum;24.03.2023\nEinheit;mm\n\n"
+            "Pose;Kugel i;Kugel j;Abweichung [mm]\n" + "\n".join(rows) + "\n")
+    return e[0].split("_")[1]
 
 
 def calibrated(data, out) -> dict:
@@ -116,18 +134,55 @@ def test_an_export_of_one_distance_per_row_is_refused_saying_the_layout(raw, tmp
     # deviation) was refused as 'Pose' and three more columns without a role, pointing at
     # data.roles for a layout no role reads
     folder = tmp_path / "cycles"
-    folder.mkdir()
-    shutil.copy(raw / "volumetric.json", folder / "volumetric.json")
-    df = pd.read_parquet(raw / "train_week.parquet")
-    e = [c for c in df.columns if c.startswith("E_")]
-    for k in range(3):
-        rows = [f"{c.split('_')[1]};{int(c.split('_')[2][1:])};{int(c.split('_')[3][1:])};"
-                f"{df[c].iloc[k] / 1000:.4f}".replace(".", ",") for c in e]
-        (folder / f"zyklus_{k + 1:03d}.csv").write_text(
-            "Messprogramm;Kugelplatte\nDatum;24.03.2023\nEinheit;mm\n\n"
-            "Pose;Kugel i;Kugel j;Abweichung [mm]\n" + "\n".join(rows) + "\n")
-    pose = e[0].split("_")[1]
+    pose = cycle_files(raw, folder)
     refused(["calibrate", f"data.path={folder}", f"out={tmp_path / 'out'}", "track=false"], capsys,
             "zyklus_001.csv, line 6: one distance per row", f"pose {pose!r} in a cell",
             "one measurement cycle per row", f"E_{pose}_B01_B02 [mm]")
     assert not (tmp_path / "out").exists()
+
+
+def test_init_writes_no_pattern_per_contract_name_with_a_unit_and_reads_the_same(raw, tmp_path,
+                                                                                  capsys):
+    # init wrote every distance's name into data.roles.error (200 here, 420 on a 7-ball bar
+    # in 20 poses), though such a header reads as its name without any pattern
+    e = lab_files(raw, tmp_path / "lab", unit_mm=True)
+    assert main(["init", str(tmp_path / "lab"), f"out={tmp_path / 'init'}"]) in (0, None)
+    assert f"{len(e)} contract names with a unit" in capsys.readouterr().out
+    conf = tmp_path / "init" / "conf" / "data"
+    short = yaml.safe_load((conf / "lab.yaml").read_text())
+    assert short["roles"]["error"] == []
+    # the long config (each distance a pattern, as init wrote it) reads and calibrates the same
+    long = {**short, "roles": {**short["roles"], "error": list(e)}}
+    (conf / "long.yaml").write_text(yaml.safe_dump(long, sort_keys=False))
+    plain = {k: v for k, v in short.items() if k != "defaults"}
+    a = io.read_dataset(tmp_path / "lab", plain)[0]
+    b = io.read_dataset(tmp_path / "lab", {**plain, "roles": long["roles"]})[0]
+    assert a.ids() == b.ids()
+    for cid in a.ids():
+        pd.testing.assert_frame_equal(a.campaigns[cid], b.campaigns[cid])
+    searchpath = f"hydra.searchpath=[file://{tmp_path / 'init' / 'conf'}]"
+    out = {}
+    for name in ("lab", "long"):
+        assert main(["calibrate", searchpath, f"data={name}", f"out={tmp_path / ('cal_' + name)}",
+                     "track=false"]) in (0, None)
+        out[name] = io.read_dataset(tmp_path / f"cal_{name}" / "parameters")[0]
+    assert json.loads((tmp_path / "cal_lab" / "calibration.json").read_text())["campaigns"] == \
+        json.loads((tmp_path / "cal_long" / "calibration.json").read_text())["campaigns"]
+    for cid in out["long"].ids():
+        x, y = out["lab"].campaigns[cid], out["long"].campaigns[cid]
+        assert list(x.columns) == list(y.columns)
+        assert np.array_equal(x.to_numpy(float), y.to_numpy(float), equal_nan=True)
+
+
+def test_init_refuses_one_distance_per_row_as_calibrate_does(raw, tmp_path, capsys):
+    # an artefact software's file per cycle (a header block, then pose; ball i; ball j;
+    # deviation): calibrate named the layout the reader takes, init said "no 'time' column"
+    folder = tmp_path / "cycles"
+    pose = cycle_files(raw, folder)
+    said = refused(["calibrate", f"data.path={folder}", f"out={tmp_path / 'cal'}",
+                    "track=false"], capsys, "zyklus_001.csv, line 6: one distance per row")
+    line = refused(["init", str(folder), f"out={tmp_path / 'init'}"], capsys,
+                   "zyklus_001.csv, line 6: one distance per row", f"pose {pose!r} in a cell",
+                   "one measurement cycle per row", f"E_{pose}_B01_B02 [mm]")
+    assert line == said
+    assert not (tmp_path / "init").exists()
