@@ -94,7 +94,6 @@ class _Runs:
     and at its start or end (``edge``), and its missing cells (empty or a mark) of ``rows``."""
 
     header: str
-    path: Path
     gap: int
     edge: int
     missing: np.ndarray
@@ -289,8 +288,7 @@ def _marks(numbers: list[_Column], decimal: str, found: Cells, given: list) -> N
                 edge = max(edge, int(b - a))
             else:
                 gap = max(gap, int(b - a))
-        found.runs.append(_Runs(c.header, c.path, gap, edge, np.flatnonzero(missing),
-                                len(missing)))
+        found.runs.append(_Runs(c.header, gap, edge, np.flatnonzero(missing), len(missing)))
     for mark, where in found.marks.items():
         if mark in given:
             continue

@@ -201,50 +201,50 @@ def _init(cfg: DictConfig) -> dict:
     sample = sample_file(src, manifest)
     long = long_period(sample, given)        # a historian's long file: the grid it is held onto
     opts, header, first, layout = head(sample, io.ReadOptions.from_cfg(given))
-    order = slashed_order(sample, opts, header, dict(zip(header, first)))
+    cells_of_first = dict(zip(header, first))       # the first data row, by header
+    order = slashed_order(sample, opts, header, cells_of_first)
     if order:              # (13/07/2026: day first, for every file: written to the config)
         given["time"] = order
         opts = replace(opts, time=order)
         print(f"{sample.name}: dates with slashes read as data.time={order!r}, the order its "
               "rows say (a day or month past 12)")
-    elapsed = elapsed_column(src, manifest, opts, header, dict(zip(header, first)))
+    elapsed = elapsed_column(src, manifest, opts, header, cells_of_first)
     if elapsed:            # (a run past 24:00:00: each file's, a shorter run's too, read so)
         given["time"] = ELAPSED
         opts = replace(opts, time=ELAPSED)
         print(f"{src.name}: {elapsed!r} h:mm:ss past 24 h in a file: read as data.time="
               f"{ELAPSED!r}, a logger's time since its start, in every file")
-    epoch = epoch_ms_column(header, dict(zip(header, first)), opts)
+    epoch = epoch_ms_column(header, cells_of_first, opts)
     if epoch:              # (a gateway's time stamp: read as seconds, 1000 times too long)
         given["units"] = {**(given.get("units") or {}), epoch: "ms"}
         opts = replace(opts, units={**opts.units, epoch: "ms"})
-        print(f"{sample.name}: {epoch!r} from {dict(zip(header, first))[epoch]}: milliseconds "
+        print(f"{sample.name}: {epoch!r} from {cells_of_first[epoch]}: milliseconds "
               f"since 1970, read as data.units={{{epoch}: ms}}")
-    days = (excel_days_header(header, dict(zip(header, first)), opts.units, opts.decimal)
+    days = (excel_days_header(header, cells_of_first, opts.units, opts.decimal)
             if opts.roles.get("time", "auto") == "auto" else None)
     if days:               # (a date cell saved as a number: days, read as seconds otherwise)
         given["units"] = {**(given.get("units") or {}), days: "d"}
         opts = replace(opts, units={**opts.units, days: "d"},
                        roles={**opts.roles, "time": days})
-        print(f"{sample.name}: {days!r} from {dict(zip(header, first))[days]}: Excel's serial "
+        print(f"{sample.name}: {days!r} from {cells_of_first[days]}: Excel's serial "
               f"days (since 1899-12-30), read as the time, data.roles.time={days!r} "
               f"data.units={{{days!r}: d}}")
     opts, cells = number_cells(src, manifest, sample, given, opts)   # thousands, marks
-    roles = proposed_roles(header, dict(zip(header, first)), opts)
-    check_an_error_is_named(header, dict(zip(header, first)), roles, opts, sample)
+    roles = proposed_roles(header, cells_of_first, opts)
+    check_an_error_is_named(header, cells_of_first, roles, opts, sample)
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
-    roles, own = without_own_names(header, dict(zip(header, first)), roles, opts)
+    roles, own = without_own_names(header, cells_of_first, roles, opts)
     if own:                # (a volumetric export's 420 distances: not one pattern each)
         print(f"{sample.name}: {len(own)} contract name{'s' * (len(own) > 1)} with a unit "
               f"({', '.join(map(repr, own[:2]))}{', ...' * (len(own) > 2)}) read as "
               f"{'their names' if len(own) > 1 else 'its name'}, converted: no data.roles "
               "pattern written for them")
-    plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal, sample,
+    plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal, sample,
                   opts.units)
-    opts = mark_gaps(src, cells, {h for h, n in plan.names.items() if str(n).startswith("E_")},
-                     given, opts)                   # the marks' gaps, a probe cycle's left out
+    errors = [h for h, n in plan.names.items() if str(n).startswith("E_")]
+    opts = mark_gaps(src, cells, set(errors), given, opts)   # the marks' gaps, a probe's left out
     if long is not None:                     # the period: the fastest error tag's, said
-        period, tag = proposed_period(long, [h for h, n in plan.names.items()
-                                             if str(n).startswith("E_")])
+        period, tag = proposed_period(long, errors)
         given["resample_s"] = period
         opts = replace(opts, resample_s=period)
         kind = ("its channels logged at their own rates" if is_lab_file(sample) else
@@ -260,7 +260,7 @@ def _init(cfg: DictConfig) -> dict:
     travels = travel_headers(ds, plan.names, asked.roles, opts)   # an axis' position in mm
     if flags or travels:                        # proposed as states, the record read once more
         roles = flags_as_states(roles, [*flags, *travels], opts)
-        plan = naming(header, roles, opts.columns, dict(zip(header, first)), opts.decimal,
+        plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal,
                       sample, opts.units)
         config = data_config(src, given, opts, roles, defaults, manifest)
         ds = open_source(cfg, detected=config)

@@ -49,7 +49,7 @@ def _stdin_lead_in(cfg: DictConfig, fixed, ds, streamed: dict, train_ids: list[s
     without it, a first row that looks like the middle of a campaign is said."""
     cid, stream = next(iter(streamed.items()))
     # (a model that reads the ambient only where it is known starts without: stranger66)
-    given = fixed.ambient_given_ and not getattr(fixed, "ambient_optional_", False)
+    given = fixed.ambient_given_ and not fixed.ambient_optional_
     ids = stdin_chain(ds, cfg.monitor.get("continues"), ambient_given=given,
                       reference=fixed.compensator.reference, data_path=cfg.data.path,
                       ambient_c=cfg.monitor.get("ambient_c"))

@@ -207,6 +207,13 @@ static int comment_or_blank(const char *line) {
     return *p == '\0' || *p == '#';
 }
 
+/* A header cell written as a comment (`# t [s]`: a DAQ script's, numpy's savetxt) without its
+   `#` and the blanks after it (stranger66). */
+static char *uncommented(char *cell) {
+    cell += strspn(cell, "#");
+    return cell + strspn(cell, " \t");
+}
+
 /* The separator a header line says: ';', a tab or '|' where it holds one, else ','. */
 static char separator_of(const char *line) {
     return strchr(line, ';') ? ';' : strchr(line, '\t') ? '\t' : strchr(line, '|') ? '|' : ',';
@@ -221,10 +228,8 @@ static int names_every_input(const char *line) {
     strcpy(text, line);
     sep = separator_of(text);
     ncols = split(text, cells);
-    if (ncols > 0 && cells[0][0] == '#') {      /* (a header written as a comment: stranger66) */
-        cells[0] += strspn(cells[0], "#");
-        cells[0] += strspn(cells[0], " \t");
-    }
+    if (ncols > 0 && cells[0][0] == '#')     /* (a header written as a comment: stranger66) */
+        cells[0] = uncommented(cells[0]);
     for (i = 0; i < TC_N_INPUTS; i++) {
         for (found = 0, j = 0; j < ncols && !found; j++)
             found = strcmp(named(cells[j], j), TC_INPUT_NAMES[i]) == 0;
@@ -639,11 +644,8 @@ int main(int argc, char **argv) {
     /* (stranger66) a header written as a comment under a block of them (a DAQ script's
        `# t [s]<TAB>T1 [degC]`, numpy's savetxt): its first name without the `#`, as the reader
        reads it; a first column named `#` alone stays */
-    if (commented && ncols > 0 && cells[0][0] == '#') {
-        char *p = cells[0] + strspn(cells[0], "#");
-        p += strspn(p, " \t");
-        if (*p) cells[0] = p, hashed = 1;
-    }
+    if (commented && ncols > 0 && cells[0][0] == '#' && *uncommented(cells[0]))
+        cells[0] = uncommented(cells[0]), hashed = 1;
     for (j = 0; j < ncols; j++) raw[j] = cells[j];
     for (j = 0; j < ncols; j++) cells[j] = (char *)named(cells[j], j);
     /* (streamraw65) a unit row under the header (`;;degC;W;-;um`: every cell it fills no number,

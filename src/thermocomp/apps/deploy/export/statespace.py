@@ -339,7 +339,7 @@ def state_space(deployed, provenance: dict | None = None, known_ambient: bool = 
         law_target=[i for i, _ in laws], law_lo=[law.lo for _, law in laws],
         law_hi=[law.hi for _, law in laws], law_ambient=[int(law.ambient) for _, law in laws],
         ambient_inputs=ambient, ambient_centre=AMBIENT_CENTRE_C, ambient_given=given,
-        ambient_optional=bool(given and not ati and getattr(stream, "ambient_optional_", False)),
+        ambient_optional=bool(given and not ati and stream.ambient_optional_),
         uses_time=bool(keys) or bool(initial) or bool(switches),
         powers=[list(k) for k in sorted(powers, key=powers.get) if k[0] not in (DERIVED, INITIAL)],
         derived=[list(k[1:5]) for k in derived],
