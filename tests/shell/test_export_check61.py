@@ -19,7 +19,7 @@ import pytest
 from conftest import FAST, refused
 from test_export import StructuredText, _compose, _make_dataset, _trained, needs_cc
 from test_run_column52 import _long, _runs
-from test_stream_units60 import _in_lab_units
+from test_stream_units60 import _in_lab_units, dated_runs
 from thermocomp.apps.deploy.streaming import replay
 from thermocomp.shell.builders import deploy_stream
 from thermocomp.shell.cli import main
@@ -169,12 +169,7 @@ def test_a_date_and_time_of_day_found_by_auto_are_joined_by_the_compiled_stream(
     # refused at export; stranger65: stream.c joins them, as the reader does
     from test_export import checked_pack
 
-    runs = _runs()
-    for k, r in enumerate(runs):
-        start = pd.Timestamp("2023-03-01 08:00") + pd.Timedelta(days=7 * k)
-        stamps = start + pd.to_timedelta(r.pop("Zeit [s]"), unit="s")
-        r.insert(0, "Uhrzeit", stamps.dt.strftime("%H:%M:%S"))
-        r.insert(0, "Datum", stamps.dt.strftime("%d.%m.%Y"))
+    runs = dated_runs()
     path = _long(tmp_path / "alle.csv", runs)
     common = (f"data.path={path}", "data.roles.error=[dX]", "data.roles.campaign=Lauf",
               "data.test_fraction=0.5")

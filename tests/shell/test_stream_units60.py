@@ -99,6 +99,19 @@ def test_the_compiled_c_streams_a_labs_file_in_degf_k_mm_and_minutes_as_replay(t
     assert bad.returncode == 2 and b"convert the file to CSV" in bad.stderr, bad.stderr
 
 
+
+def dated_runs() -> list[pd.DataFrame]:
+    """test_run_column52's runs, a week apart, timed by a date and a time of day in two columns
+    (``Datum``, ``Uhrzeit``: a lab's export) in place of their seconds."""
+    runs = _runs()
+    for k, r in enumerate(runs):
+        start = pd.Timestamp("2023-03-01 08:00") + pd.Timedelta(days=7 * k)
+        stamps = start + pd.to_timedelta(r.pop("Zeit [s]"), unit="s")
+        r.insert(0, "Uhrzeit", stamps.dt.strftime("%H:%M:%S"))
+        r.insert(0, "Datum", stamps.dt.strftime("%d.%m.%Y"))
+    return runs
+
+
 @pytest.mark.parametrize("form, extra, says", [
     ("%m/%d/%Y %H:%M:%S", ("data.time='%m/%d/%Y %H:%M:%S'",),
      ("'Zeit'", "data.time=%m/%d/%Y %H:%M:%S"))])
@@ -130,12 +143,7 @@ def test_a_date_and_its_time_of_day_in_two_columns_are_joined_by_the_compiled_st
     # columns, which stream.c does not join"); stream.c joins them now, as the reader does
     from test_export import checked_pack
 
-    runs = _runs()
-    for k, r in enumerate(runs):
-        start = pd.Timestamp("2023-03-01 08:00") + pd.Timedelta(days=7 * k)
-        stamps = start + pd.to_timedelta(r.pop("Zeit [s]"), unit="s")
-        r.insert(0, "Uhrzeit", stamps.dt.strftime("%H:%M:%S"))
-        r.insert(0, "Datum", stamps.dt.strftime("%d.%m.%Y"))
+    runs = dated_runs()
     path = _long(tmp_path / "alle.csv", runs)
     common = (f"data.path={path}", *DATA, "data.roles.time=[Datum,Uhrzeit]")
     assert main(["run", *common, "model=lagbank", *FAST, f"out={tmp_path / 'run'}"]) == 0

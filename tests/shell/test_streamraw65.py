@@ -6,6 +6,7 @@ of the file (a logger restarted), and ``data.missing_values``' marks
 from __future__ import annotations
 
 import subprocess
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -47,6 +48,18 @@ def _common(path, encoding: str) -> list[str]:
             "data.test_fraction=0.3", "data.reference=none", f"data.encoding={encoding}"]
 
 
+
+def _mlr_stream(tmp_path, common) -> Path:
+    """The folder of an MLR run on ``common``'s record exported as C, its ``stream`` built."""
+    assert main(["run", *common, *FAST, "model=mlr", "plots=none", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=c", "export.check=false",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
+    code = tmp_path / "code"
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    return code
+
+
 @needs_cc
 @pytest.mark.parametrize("units, encoding, again", [
     (True, "utf-8", None),       # before: "the header ... lacks input column T_Ständer"
@@ -66,12 +79,7 @@ def test_a_missing_value_mark_is_a_missing_value_and_another_word_no_number(tmp_
     # refusal said "has no finite value" of a mark and of a word alike
     train = logger_file(tmp_path / "train.csv", False, "utf-8", None, mark=20)
     common = _common(train, "utf-8") + ["data.missing_values=['---']", "data.max_gap_samples=1"]
-    assert main(["run", *common, *FAST, "model=mlr", "plots=none", f"out={tmp_path / 'run'}"]) == 0
-    assert main(["export", *common, "track=false", "export.format=c", "export.check=false",
-                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    code = tmp_path / "code"
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    code = _mlr_stream(tmp_path, common)
     raw = train.read_bytes()
     # the mark: a missing value of an input, which the plain stream refuses at its row (as
     # replay's plain stream does; the reader interpolated it in this train record)
@@ -94,12 +102,7 @@ def test_another_files_header_in_the_stream_says_to_stream_each_file_by_itself(t
     # a row); the header written again is left out, another is said for what it is
     path = logger_file(tmp_path / "day.csv", True, "cp1252", None)
     common = _common(path, "cp1252")
-    assert main(["run", *common, *FAST, "model=mlr", "plots=none", f"out={tmp_path / 'run'}"]) == 0
-    assert main(["export", *common, "track=false", "export.format=c", "export.check=false",
-                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'code'}"]) == 0
-    code = tmp_path / "code"
-    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
-                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    code = _mlr_stream(tmp_path, common)
     raw = path.read_bytes()
     # the next day's file under the logger's new configuration: its units in its header
     other = logger_file(tmp_path / "next.csv", False, "cp1252", None).read_bytes()
