@@ -71,6 +71,7 @@ The bar (adopt only if all hold; else the bench and a docs paragraph stay, src r
 
 from __future__ import annotations
 
+import json
 import sys
 from pathlib import Path
 

@@ -109,8 +109,6 @@ class Evaluation:
     gain_pct_in_range: float = float("nan")   # the same on the rows no fold extrapolates to
     gain_lcb_alpha: float = float("nan")      # (1 - alpha) Student-t lower bound of the gain
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
-    gain_pct_within: float | None = None      # a saturating candidate's gain within the campaigns
-    p_within: float | None = None             # ... and its family-wise p (Search._within)
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -133,9 +131,6 @@ class Evaluation:
             out["columns"] = [e.column, e.other]
         if self.jump_ratio is not None:
             out["evidence"]["self_prediction_jump_ratio"] = self.jump_ratio
-        if self.p_within is not None:
-            out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
-            out["evidence"]["p_value_within_family"] = self.p_within
         out["effect"] = e.to_dict()
         return out
 
@@ -376,40 +371,6 @@ class Search:
             ev.p_family = float(pf)
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
                                          ev.n_features)
-        saturating = [ev for ev in family if ev.clears_bar is False and self.saturates(ev.n_features)
-                      and self._clears(ev.gain_pct, ev.p_family, ev.gain_pct_in_range, ev.p_margin)]
-        if saturating and self.problem.n_blocks_tested <= self.problem.n_units:
-            self._within(family, current)
-            for ev in saturating:
-                ev.clears_bar = bool(ev.gain_pct_within >= self.options.min_gain_pct
-                                     and ev.p_within <= self.options.alpha)
-
-    def _within(self, family: list[Evaluation], current: CVResult) -> None:
-        """Each candidate's CV gain WITHIN the held-out campaigns (``gain_pct_within``, ``p_within``):
-        every held-out campaign's residual less that campaign's own mean residual, base and
-        candidate alike -- what no per-campaign offset explains.  The pooled within-campaign
-        RMSE gain (%), and the family-wise p (:func:`~.cv.sign_flip_maxt`, the shipped bar's
-        family and flips) of each campaign's within-MSE gain as a share of its within-MSE,
-        clipped to [-1, 1].  A candidate that saturates the campaigns (:meth:`saturates`) clears
-        on these (:meth:`_family_bar`): its gain is not only the campaigns' offsets."""
-        p = self.problem
-        ok = p.validated
-        units, n = p.unit_index[ok], p.n_units
-        counts = np.maximum(np.bincount(units, minlength=n), 1)
-
-        def within(residual):     # per unit MSE about the unit's mean, and the pooled sum
-            r = residual[ok]
-            r = r - (np.bincount(units, weights=r, minlength=n) / counts)[units]
-            return np.bincount(units, weights=r ** 2, minlength=n) / counts, float(r @ r)
-
-        w0, s0 = within(current.residual)
-        shares, pooled = [], []
-        for ev in family:
-            w1, s1 = within(ev.result.residual)
-            shares.append(np.clip((w0 - w1) / np.maximum(w0, 1e-300), -1.0, 1.0))
-            pooled.append(100.0 * (1.0 - np.sqrt(s1 / s0)) if s0 > 0 else 0.0)
-        for ev, pw, g in zip(family, sign_flip_maxt(np.array(shares), seed=self.options.seed), pooled):
-            ev.p_within, ev.gain_pct_within = float(pw), float(g)
 
     def _clears(self, gain_pct: float, p: float, in_range_pct: float, p_margin: float,
                 n_features: int = 0) -> bool:
