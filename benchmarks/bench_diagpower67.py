@@ -87,9 +87,10 @@ under load)
        clean:4004  E_Y   0.737 -> 0.903   - -> lag(7200s) of the inputs +init (3 dir.): CV gain
                                           28.9 %, within the campaigns 11.3 %, family-wise p 0.0078
 
-2. tsc66 (tsc_a2 / tsc_b2, mlr): every target as shipped (tsc_b2 E_dZ2 10.11, nothing: the lever
-   is no saturation case, p 0.014 alone).  pde66 (mlr): the planted copies' E_Y 3.271 -> 3.724 µm
-   (+13.8 %) and 3.381 -> 4.583 (+35.6 %): S_pos_Y x every input's rise (16 regressors) now clears
+2. tsc66 (tsc_a2 / tsc_b2, mlr): every target as shipped (5 train runs: forward chaining, 23
+   blocks of 260 samples, where nothing saturates; tsc_b2 E_dZ2 10.11, nothing accepted: its
+   lever's p 0.014 alone, bench_stranger66, fails alpha before any family-wise step).
+   pde66 (mlr): the planted copies' E_Y 3.271 -> 3.724 µm (+13.8 %) and 3.381 -> 4.583 (+35.6 %): S_pos_Y x every input's rise (16 regressors) now clears
    within and, the round's best, displaces the screw product (before kept by ``choose``'s
    same-effect exemption, which holds only while the richer rival does not clear); pde6612's E_Z
    (clean and planted) takes a 2 h lag of the inputs from the initial state, 0.983 -> 0.913;
