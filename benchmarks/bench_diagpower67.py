@@ -90,11 +90,11 @@ under load)
 2. tsc66 (tsc_a2 / tsc_b2, mlr): every target as shipped (5 train runs: forward chaining, 23
    blocks of 260 samples, where nothing saturates; tsc_b2 E_dZ2 10.11, nothing accepted: its
    lever's p 0.014 alone, bench_stranger66, fails alpha before any family-wise step).
-   pde66 (mlr): the planted copies' E_Y 3.271 -> 3.724 µm (+13.8 %) and 3.381 -> 4.583 (+35.6 %): S_pos_Y x every input's rise (16 regressors) now clears
-   within and, the round's best, displaces the screw product (before kept by ``choose``'s
-   same-effect exemption, which holds only while the richer rival does not clear); pde6612's E_Z
-   (clean and planted) takes a 2 h lag of the inputs from the initial state, 0.983 -> 0.913;
-   clean copies accept no S_pos_Y effect.
+   pde66 (mlr): the planted copies' E_Y 3.271 -> 3.724 µm (+13.8 %) and 3.381 -> 4.583 (+35.6 %):
+   S_pos_Y x every input's rise (16 regressors) now clears within and, the round's best,
+   displaces the screw product (before kept by ``choose``'s same-effect exemption, which holds
+   only while the richer rival does not clear); pde6612's E_Z (clean and planted) takes a 2 h lag
+   of the inputs from the initial state, 0.983 -> 0.913; clean copies accept no S_pos_Y effect.
 3. Fresh (6701-6720, scored once): identical rows: planted found 4 of 10 both, clean 0 of 10.
 
 **Refused** (bar 1: clean + null accepting 1 -> 2, a row newly +22.5 %; bar 2: pde66 planted
