@@ -247,7 +247,7 @@ def compare(base: Path, new: Path) -> None:
 
 
 def main(argv: list[str]) -> int:
-    what, rest = argv[0], [a for a in argv[1:] if a != "--within"]
+    what, rest = (argv or [""])[0], [a for a in argv[1:] if a != "--within"]
     with within_rule() if "--within" in argv else contextlib.nullcontext():
         if what == "trace":
             trace(rest)
