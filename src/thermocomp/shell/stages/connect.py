@@ -78,9 +78,10 @@ def _warm_rows(cfg: DictConfig, deployed):
 
 
 def connect(cfg: DictConfig) -> dict:
-    """Run the compensator against ``connect.endpoint`` until the campaigns are done."""
+    """Run the compensator against ``connect.endpoint`` until the campaigns are done (or, a
+    server without a ``done`` node, until SIGINT / SIGTERM)."""
     check_config(cfg, inputs=("connect.model", "connect.warm"))
-    from ...apps.machine.client import Connection, LinkLost
+    from ...apps.machine.client import Connection, LinkLost, NodesRefused, WriteRefused
     from ...apps.machine.nodes import NodeMap
 
     c = cfg.connect
@@ -94,14 +95,29 @@ def connect(cfg: DictConfig) -> dict:
     limiter = offset_limiter(deployed, guard, float(c.hold_s), float(c.decay_s))
     adapt = (adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
              or getattr(deployed, "adapt_", None))
-    link = Connection(deployed, NodeMap.from_config(c.nodes), str(c.endpoint), limiter,
+    nodes = NodeMap.from_config(c.nodes)
+    clock = str(c.get("clock") or "node")
+    period_s = float(c.get("period_s") or guard.period_s)     # null: the model's sample period
+    link = Connection(deployed, nodes, str(c.endpoint), limiter,
                       retry_s=float(c.retry_s), give_up_s=float(c.give_up_s), adapt=adapt,
-                      warm=_warm_rows(cfg, deployed))
+                      warm=_warm_rows(cfg, deployed), clock=clock, period_s=period_s)
     say(f"connect: {name} ({source}) to {c.endpoint}: inputs {', '.join(deployed.columns_)}")
+    absent = nodes.missing()
+    if absent:
+        say(f"connect: the server has no {', '.join(absent)} node"
+            + (f": a sample every {period_s:g} s of the "
+               f"{'server' if clock == 'server' else 'time node'}'s clock" if "sample" in absent else "")
+            + ("; runs until stopped (Ctrl-C or SIGTERM: connect.json is written)"
+               if "done" in absent else ""))
     try:
         asyncio.run(link.run())
     except LinkLost as exc:
         raise ConfigError(f"connect.endpoint={c.endpoint}: {exc}") from None
+    except NodesRefused as exc:
+        raise ConfigError(f"connect.nodes at {c.endpoint}: {exc}") from None
+    except WriteRefused as exc:
+        raise ConfigError(f"connect.nodes.offset: {c.endpoint} refused the offsets' write "
+                          f"({exc}); nothing more was written") from None
     written = np.vstack(link.written) if link.written else np.empty((0, len(deployed.targets_)))
     report = {"model": name, "source": source, "endpoint": str(c.endpoint),
               "samples": link.samples, "samples_missed": link.missed, "writes": int(len(written)),
@@ -111,6 +127,7 @@ def connect(cfg: DictConfig) -> dict:
                         for j, t in enumerate(deployed.targets_)},
               **({"adapt": {t: adapt.figures(j) for j, t in enumerate(deployed.targets_)}}
                  if adapt is not None else {}),
+              **({"stopped": link.stopped} if link.stopped else {}),
               "events": link.events}
     path = write_json(Path(resolve(cfg.out)) / "connect.json", report)
     say(f"connect: {link.samples} samples, {len(link.events)} events: {path}")
