@@ -10,15 +10,16 @@ the campaign, each value carries its SourceTimestamp, and the server's clock
 (``ServerStatus/CurrentTime``) is the record's time (epoch + ``time``, a program starting
 SETUP_S after the one before: the machine's clock run faster, one row per answer).
 
-The record's rows are published one by one: each sensor's value (with its StatusCode: not Good,
-its last value held, over ``bad`` rows; a value within ``deadband`` of the last one published is not
-published, as a sensor's deadband does), the program's name, then the clock, last.  Lockstep: a
-row waits (at most ``wait_s``) for the client's write to the offset nodes, then takes the values
-in them (µm) as the offsets that answer it; the first row waits for a client's first write.
-``restarts`` stop the server for some rows (the machine runs on; the address space is kept).
-``refused`` offset nodes are not writable for the anonymous user (BadUserAccessDenied).  After the last row (or ``stop_after`` rows) answered it
-sends the process ``stop_signal`` (the user's Ctrl-C or the service manager's SIGTERM: a vendor's
-server never says it is done).
+The record's rows are published one by one: each sensor's value (with its StatusCode: not
+Good, its last value held, over ``bad`` rows; a value within ``deadband`` of the last one
+published is not published, as a sensor's deadband does), the program's name, then the clock,
+last.  Lockstep: a row waits (at most ``wait_s``) for the client's write to the offset nodes,
+then takes the values in them (µm) as the offsets that answer it; the first row waits for a
+client's first write.  ``restarts`` stop the server for some rows (the machine runs on; the
+address space is kept).  ``refused`` offset nodes are not writable for the anonymous user
+(BadUserAccessDenied).  After the last row (or ``stop_after`` rows) answered it sends the
+process ``stop_signal`` (the user's Ctrl-C or the service manager's SIGTERM: a vendor's server
+never says it is done).
 """
 
 from __future__ import annotations
