@@ -62,14 +62,15 @@ def nsu(node: str) -> str:
     return f"nsu={VENDOR_NS};{node}"
 
 
-def connect_nodes() -> list[str]:
+def connect_nodes(sensors: dict | None = None, offsets: dict | None = None) -> list[str]:
     """``connect.nodes`` overrides for this server: the vendor's nodes, no twin status node."""
-    ins = ",".join(f"{c}:'{nsu(n)}'" for c, n in SENSORS.items())
-    outs = ",".join(f"{t}:'{nsu(n)}'" for t, (n, _, _) in OFFSETS.items())
+    sensors, offsets = sensors or SENSORS, offsets or OFFSETS
+    ins = ",".join(f"{c}:'{nsu(n)}'" for c, n in sensors.items())
+    outs = ",".join(f"{t}:'{nsu(n)}'" for t, (n, _, _) in offsets.items())
     return [f"connect.nodes.inputs={{{ins}}}", f"connect.nodes.offsets={{{outs}}}",
             "connect.nodes.sample=null", "connect.nodes.campaign_sample=null",
             "connect.nodes.done=null", "connect.nodes.offset_sample=null",
-            "connect.nodes.offset_unit_um={" + ",".join(f"{t}:{u}" for t, (_, _, u) in OFFSETS.items()) + "}",
+            "connect.nodes.offset_unit_um={" + ",".join(f"{t}:{u}" for t, (_, _, u) in offsets.items()) + "}",
             f"connect.nodes.campaign='{nsu(PROGRAM)}'", "connect.clock=server"]
 
 
@@ -89,8 +90,12 @@ class VendorMachine:
 
     def __init__(self, campaigns: dict[str, pd.DataFrame], port: int, *, deadband: float = 0.0,
                  bad: dict | None = None, restarts=(), refused=(), wait_s: float = 60.0,
-                 stop_after: int | None = None, stop_signal=signal.SIGTERM):
+                 stop_after: int | None = None, stop_signal=signal.SIGTERM,
+                 stop_pid: int | None = None, sensors: dict | None = None,
+                 offsets: dict | None = None):
         self.campaigns, self.port, self.deadband = campaigns, port, float(deadband)
+        self.sensors, self.offsets = sensors or SENSORS, offsets or OFFSETS
+        self.stop_pid = stop_pid        # the client's process (None: this one)
         # column -> (first, last running row (0-based), StatusCode): the sensor dropped, its last
         # value held with that status (asyncua's server nulls a Bad one's value, not an Uncertain)
         self.bad = bad or {}
@@ -114,7 +119,7 @@ class VendorMachine:
         machine = await server.nodes.objects.add_object(idx, "CNC5000")
         monitoring = await machine.add_folder(idx, "Monitoring")
         self.sensor_nodes = {}
-        for column, node in SENSORS.items():
+        for column, node in self.sensors.items():
             folder = await monitoring.add_folder(idx, column.removeprefix("T_"))
             var = await folder.add_variable(ua.NodeId.from_string(f"ns={idx};{node}"),
                                             "Temperature", ua.Variant(0.0, ua.VariantType.Float))
@@ -126,7 +131,7 @@ class VendorMachine:
                                                      "ActiveProgram", ua.Variant("", ua.VariantType.String))
         compensation = await machine.add_folder(idx, "Compensation")
         self.offset_nodes = {}
-        for target, (node, vt, _) in OFFSETS.items():
+        for target, (node, vt, _) in self.offsets.items():
             var = await compensation.add_variable(ua.NodeId.from_string(f"ns={idx};{node}"),
                                                   f"Offset{target}", ua.Variant(0, vt))
             if target not in self.refused:
@@ -149,8 +154,8 @@ class VendorMachine:
         self.server = server
 
     async def _registers(self) -> np.ndarray:
-        return np.array([float(await self.offset_nodes[t].read_value()) * OFFSETS[t][2]
-                         for t in OFFSETS])
+        return np.array([float(await self.offset_nodes[t].read_value()) * self.offsets[t][2]
+                         for t in self.offsets])
 
     async def _publish(self, row: pd.Series, k: int, program: str, last: dict, start: float) -> None:
         at = EPOCH + timedelta(seconds=start + float(row["time"]))
@@ -196,7 +201,7 @@ class VendorMachine:
                     self.served.program.append(program)
                     if out:
                         await asyncio.sleep(0.02)           # the machine runs on
-                        self.served.offsets.append(np.full(len(OFFSETS), np.nan))
+                        self.served.offsets.append(np.full(len(self.offsets), np.nan))
                         self.served.answered.append(False)
                         k += 1
                         continue
@@ -216,7 +221,7 @@ class VendorMachine:
                     continue
                 break
             if self.served.answered[-1] and not self.closing.is_set():
-                os.kill(os.getpid(), self.stop_signal)        # the user stops the client
+                os.kill(self.stop_pid or os.getpid(), self.stop_signal)   # the user stops the client
                 await asyncio.sleep(1.0)
         finally:
             if down is not None:
@@ -227,14 +232,14 @@ class VendorMachine:
 
 
 def as_published(campaigns: dict[str, pd.DataFrame], deadband: float = 0.0,
-                 bad: dict | None = None) -> dict[str, pd.DataFrame]:
+                 bad: dict | None = None, sensors: dict | None = None) -> dict[str, pd.DataFrame]:
     """The rows as a client reads them from :class:`VendorMachine`: Float values, a value within
     the deadband of the last one published held, NaN where the sensor is Bad."""
     bad, out, last, k = bad or {}, {}, {}, 0
     for program, df in campaigns.items():
         df = df.copy()
         for i in range(len(df)):
-            for column in SENSORS:
+            for column in sensors or SENSORS:
                 first, end, _ = bad.get(column, (-1, -2, None))
                 v = float(np.float32(df[column].iloc[i]))
                 if first <= k <= end:
