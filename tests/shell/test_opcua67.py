@@ -201,3 +201,122 @@ def test_the_twin_refuses_a_mapping_without_its_status_nodes(fitted, tmp_path, c
     data, _ = fitted
     refused(["twin", f"data.path={data}", f"out={tmp_path / 't'}", *FAST, "connect.nodes.done=null"],
             capsys, "connect.nodes.done=null")
+
+
+# --- the twin's own protocol on a machine of another make: what failed there before opcua67 ---
+
+class FloatRegisters:
+    """A twin whose offset registers are Float nodes, as a vendor's are."""
+
+    @staticmethod
+    def make(base):
+        class FloatTwin(base):
+            async def _start(self):
+                await super()._start()
+                for i, node in enumerate(self.offset_nodes):
+                    parent, name = await node.get_parent(), await node.read_browse_name()
+                    await self.server.delete_nodes([node])
+                    var = await parent.add_variable(node.nodeid, name.Name,
+                                                    ua.Variant(0.0, ua.VariantType.Float))
+                    await var.set_writable()
+                    self.offset_nodes[i] = var
+        return FloatTwin
+
+
+class _Held:
+    """An input node whose link drops over ``rows`` of the samples written: its last value
+    held, UncertainLastUsableValue."""
+
+    def __init__(self, node, rows):
+        self.node, self.rows, self.k, self.last = node, rows, 0, 0.0
+
+    async def write_value(self, variant):
+        if self.k in self.rows:
+            dv = ua.DataValue(ua.Variant(self.last, ua.VariantType.Double),
+                              StatusCode=ua.StatusCode(ua.StatusCodes.UncertainLastUsableValue))
+        else:
+            dv, self.last = ua.DataValue(variant), variant.Value
+        self.k += 1
+        await self.node.write_value(dv)
+
+
+def _twin_data(tmp_path, fault=None):
+    from test_twin import make_machine
+
+    return make_machine(tmp_path / "data", fault)
+
+
+def test_float_offset_registers_are_written_as_float(tmp_path, monkeypatch):
+    """Before: a Double written to a Float register was BadTypeMismatch, taken for a lost link
+    and retried until the server was gone (exit 2, "no OPC UA server")."""
+    from thermocomp.apps.machine import twin as machine
+    from twin_bench import twin_and_connect
+
+    monkeypatch.setattr(machine, "Twin", FloatRegisters.make(machine.Twin))
+    data = _twin_data(tmp_path)
+    assert main(["replay", f"data.path={data}", f"out={tmp_path / 'replay'}", *FAST]) == 0
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"]["E_X"]
+    twin, link = twin_and_connect(data, tmp_path, connect_args=("connect.give_up_s=5",), speed=20)
+    r = twin["targets"]["E_X"]
+    assert link["samples"] == twin["n_samples"] and r["stale_samples"] <= 2
+    assert abs(r["rms_compensated"] - replay["rmse"]) <= 0.05 * replay["rmse"]
+    offsets = np.array(twin["offsets"]["E_X"])
+    np.testing.assert_array_equal(offsets, offsets.astype(np.float32))   # what a Float holds
+
+
+def test_a_value_held_with_an_uncertain_status_is_a_dropout(tmp_path, monkeypatch):
+    """T_1's link down for 5 samples, its last value held as UncertainLastUsableValue: handled as
+    replay handles the same samples missing (before: streamed as a reading, no event)."""
+    from thermocomp.apps.machine import twin as machine
+    from twin_bench import twin_and_connect
+
+    class HeldT1(machine.Twin):
+        async def _start(self):
+            await super()._start()
+            j = self.columns.index("T_1")
+            self.inputs[j] = _Held(self.inputs[j], range(10, 15))
+
+    def fault(df):
+        df.loc[10:14, "T_1"] = np.nan
+
+    replay_data = _twin_data(tmp_path / "nan", fault)
+    assert main(["replay", f"data.path={replay_data}", f"out={tmp_path / 'replay'}", *FAST]) == 0
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
+    monkeypatch.setattr(machine, "Twin", HeldT1)
+    twin, link = twin_and_connect(_twin_data(tmp_path), tmp_path, speed=20)
+    status = [(e["input"], e["sample"]) for e in link["events"] if e["event"] == "input_status"]
+    assert status == [("T_1", 9), ("T_1", 14)]
+    sensors = {e["sensor"] for e in link["events"] if e["event"] == "compensator"}
+    assert sensors == {e["sensor"] for e in replay["events"]} == {"T_1"}
+    ref = replay["targets"]["E_X"]["rmse"]
+    assert abs(twin["targets"]["E_X"]["rms_compensated"] - ref) <= 0.05 * ref
+
+
+def test_sigterm_ends_connect_with_its_report(tmp_path, monkeypatch):
+    """SIGTERM mid-run (a service manager stopping it): before, status 1 and no connect.json."""
+    import os
+
+    from thermocomp.apps.machine import twin as machine
+    from twin_bench import _served_in_thread
+
+    class Stopped(machine.Twin):
+        async def _read_offsets(self, k):
+            answered = await super()._read_offsets(k)
+            if k == 30 and answered:
+                os.kill(os.getpid(), signal.SIGTERM)
+            return answered
+
+    monkeypatch.setattr(machine, "Twin", Stopped)
+    data, port = _twin_data(tmp_path), free_port()
+    thread, raised = _served_in_thread([f"data.path={data}", f"out={tmp_path / 'twin'}",
+                                        f"twin.port={port}", "twin.speed=20", "twin.lockstep=true",
+                                        "twin.wait_s=2",
+                                        *FAST])
+    code = main(["connect", f"data.path={data}", f"out={tmp_path / 'connect'}", *FAST,
+                 f"connect.endpoint=opc.tcp://127.0.0.1:{port}", "connect.retry_s=0.2"])
+    thread.join(timeout=60)
+    assert not raised, raised
+    assert code == 0
+    link = json.loads((tmp_path / "connect" / "connect.json").read_text())
+    assert link["stopped"] == "SIGTERM" and link["events"][-1]["event"] == "stopped"
+    assert 30 <= link["samples"] < 120
