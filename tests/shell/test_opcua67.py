@@ -90,12 +90,13 @@ def corrections(data: Path, pkl: Path, frames: dict[str, pd.DataFrame]) -> np.nd
     return np.vstack([stream_rows(deployed, df.reset_index(drop=True)).y for df in frames.values()])
 
 
-def run_connect(data: Path, pkl: Path, tmp: Path, machine: VendorMachine, *args) -> tuple[int, dict]:
+def run_connect(data: Path, pkl: Path, tmp: Path, machine: VendorMachine, *args,
+                nodes: list[str] | None = None) -> tuple[int, dict]:
     thread = served_in_thread(machine)
     try:
         code = main(["connect", f"data.path={data}", f"out={tmp / 'connect'}", *FAST,
                      f"connect.model={pkl}", f"connect.endpoint=opc.tcp://127.0.0.1:{machine.port}",
-                     *CLIENT, *connect_nodes(), *args])
+                     *CLIENT, *(connect_nodes() if nodes is None else nodes), *args])
     finally:
         machine.closing.set()
         thread.join(timeout=60)
@@ -180,6 +181,20 @@ def test_a_node_the_server_does_not_have_is_exit_2_naming_the_column(fitted, tmp
     assert code == 2 and link is None
     assert "T_spindle" in err and "Spindel" in err and "BadNodeIdUnknown" in err
     assert not any(machine.served.answered)       # nothing was written
+
+
+def test_a_mapping_of_a_column_the_model_does_not_read_is_said(fitted, tmp_path, capsys):
+    """`inputs` keyed by a misspelt column: said in a warning, and the column the model reads
+    falls back on the `input` pattern, the twin's node, which this server does not have: exit
+    2 naming it."""
+    data, pkl = fitted
+    machine = VendorMachine(programs(data), free_port(), wait_s=5)
+    misspelt = connect_nodes({c.replace("T_spindle", "T_spindel"): n for c, n in SENSORS.items()})
+    code, link = run_connect(data, pkl, tmp_path, machine, nodes=misspelt)
+    err = capsys.readouterr().err
+    assert code == 2 and link is None
+    assert "connect.nodes.inputs names T_spindel, which the model does not read" in err
+    assert "T_spindle (ns=2;s=Machine.Monitoring.T_spindle): BadNodeIdUnknown" in err
 
 
 def test_node_ids_by_namespace_uri():

@@ -40,8 +40,9 @@ NO_CAMPAIGN = "connect"     # the one campaign of a server without a campaign no
 DONE = "done"
 UNKNOWN = (ua.StatusCodes.BadNodeIdUnknown, ua.StatusCodes.BadNodeIdInvalid)
 FLOATS = (ua.VariantType.Double, ua.VariantType.Float)
-WRITABLE = (*FLOATS, ua.VariantType.SByte, ua.VariantType.Int16, ua.VariantType.Int32,
-            ua.VariantType.Int64)
+INT_RANGE = {ua.VariantType.SByte: (-2 ** 7, 2 ** 7 - 1), ua.VariantType.Int16: (-2 ** 15, 2 ** 15 - 1),
+             ua.VariantType.Int32: (-2 ** 31, 2 ** 31 - 1), ua.VariantType.Int64: (-2 ** 63, 2 ** 63 - 1)}
+WRITABLE = (*FLOATS, *INT_RANGE)
 
 
 class LinkLost(RuntimeError):
@@ -427,6 +428,10 @@ class Connection:
         unit = np.array([self.map.unit_um(t) for t in self.deployed.targets_])
         counts = [v / u if vt in FLOATS else float(np.rint(v / u))
                   for v, u, vt in zip(np.asarray(values, float), unit, plan.types)]
+        for n, c, vt in zip(plan.offsets, counts, plan.types):
+            if vt in INT_RANGE and not INT_RANGE[vt][0] <= c <= INT_RANGE[vt][1]:
+                raise WriteRefused(f"{n.nodeid.to_string()}: {c:.0f} counts is beyond its "
+                                   f"{vt.name} ({INT_RANGE[vt][0]} to {INT_RANGE[vt][1]})")
         data = [ua.Variant(c if vt in FLOATS else int(c), vt) for c, vt in zip(counts, plan.types)]
         held = np.array([float(np.float32(c)) if vt == ua.VariantType.Float else c
                          for c, vt in zip(counts, plan.types)]) * unit

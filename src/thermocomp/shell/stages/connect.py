@@ -21,7 +21,7 @@ from omegaconf import DictConfig
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...base.errors import ConfigError
 from ...base.files import write_json
-from ...base.log import say
+from ...base.log import logger, say
 from ...base.paths import resolve
 from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
@@ -102,6 +102,13 @@ def connect(cfg: DictConfig) -> dict:
                       retry_s=float(c.retry_s), give_up_s=float(c.give_up_s), adapt=adapt,
                       warm=_warm_rows(cfg, deployed), clock=clock, period_s=period_s)
     say(f"connect: {name} ({source}) to {c.endpoint}: inputs {', '.join(deployed.columns_)}")
+    for key, mapped, names in (("inputs", nodes.inputs, deployed.columns_),
+                               ("offsets", nodes.offsets, deployed.targets_)):
+        extra = sorted(set(mapped) - set(names) - {"time"})
+        if extra:          # a shared mapping may name more; a typo falls back on the pattern
+            logger.warning(f"connect.nodes.{key} names {', '.join(extra)}, which the model does "
+                           f"not {'read' if key == 'inputs' else 'correct'} "
+                           f"({', '.join(names)}): not used")
     absent = nodes.missing()
     if absent:
         say(f"connect: the server has no {', '.join(absent)} node"
