@@ -335,3 +335,39 @@ def test_sigterm_ends_connect_with_its_report(tmp_path, monkeypatch):
     link = json.loads((tmp_path / "connect" / "connect.json").read_text())
     assert link["stopped"] == "SIGTERM" and link["events"][-1]["event"] == "stopped"
     assert 30 <= link["samples"] < 120
+
+
+def test_the_server_clock_ticking_each_second_gives_a_sample_each_period():
+    """A server's CurrentTime changes every second (asyncua's, most servers'): a sample each
+    time it has gone connect.period_s on, its time the clock's seconds since the campaign's first
+    sample; a clock set back (a reset RTC) goes on one period, said; a Bad input is NaN."""
+    from datetime import datetime, timedelta, timezone
+
+    from conftest import offline_connection
+    from thermocomp.apps.machine.client import _Plan
+
+    conn = offline_connection(clock="server", period_s=60.0)
+    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
+                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
+
+    def read(s, status=ua.StatusCodes.Good):
+        value = ua.DataValue(ua.Variant(20.0 + s / 100, ua.VariantType.Float),
+                             StatusCode=ua.StatusCode(status))
+        return [value, ua.DataValue(ua.Variant(epoch + timedelta(seconds=s)))]
+
+    seconds = [*range(0, 126), *range(125 - 3600, 125 - 3600 + 130)]   # set back an hour at 125 s
+    taken = []
+    for s in seconds:
+        got = conn._sample(plan, read(s, ua.StatusCodes.BadSensorFailure if 60 <= s < 61 else 0))
+        if got is not None:
+            cid, row, k, i = got
+            conn._step(cid, row, k, i)
+            taken.append((s, k, i, row[1], np.isnan(row[0])))
+    assert [t[:4] for t in taken] == [(0, 0, 0, 0.0), (60, 1, 1, 60.0), (120, 2, 2, 120.0),
+                                      (125 - 3600, 3, 3, 180.0), (125 - 3600 + 60, 4, 4, 240.0),
+                                      (125 - 3600 + 120, 5, 5, 300.0)]
+    assert [t[4] for t in taken] == [False, True, False, False, False, False]
+    events = [e["event"] for e in conn.events]
+    assert events.count("clock_back") == 1 and events.count("input_status") == 2
+    assert conn.missed == 0 and conn.samples == 6

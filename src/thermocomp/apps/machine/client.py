@@ -10,6 +10,18 @@ offsets are held, then decay; a lost link or server is reconnected every ``retry
 :class:`~thermocomp.apps.deploy.adapt.Adaptation` without a schedule: the machine says when) the
 ``reference`` nodes are read with the inputs; a finite one is a reference measurement of that
 sample, learned from after its own correction is given, as ``replay`` learns.
+
+(opcua67) A vendor's server has none of the twin's status nodes (:class:`~.nodes.NodeMap`): the
+client then subscribes to the server's clock (``ServerStatus/CurrentTime``, ``clock="server"``)
+and takes a sample each time it has gone ``period_s`` on, the stream's time that clock's seconds
+since the campaign's first sample (not the inputs' SourceTimestamps: a sensor in its deadband
+keeps an old one while time goes on); a campaign node of any type (an NC program's name) starts
+a campaign when it changes, else one runs from the first sample; without ``done`` it runs until
+SIGINT / SIGTERM (main thread), which end it cleanly.  Node ids may name their namespace by its
+URI (resolved at each connection); every node is checked to be there first (NodesRefused, naming
+each).  An input whose StatusCode is not Good is NaN (``input_status`` events).  Offsets are
+written in each node's own DataType and unit; a refused write is WriteRefused.  A held offset
+is not written again.
 """
 
 from __future__ import annotations
