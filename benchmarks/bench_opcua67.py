@@ -22,7 +22,9 @@ published them (Float inputs, the deadband's held values, NaN for the dropped se
 of the restart left out); the RMS of the error compensated with the offsets the machine held
 (the error in the frame the model predicts: from the program's first sample) against replay's
 on the same rows; connect's samples, samples missed, its events; its CPU (user + sys of its
-process, from wait4).  No rule is chosen by it.
+process, from wait4).  And (``held or missing``) what reading the dropped sensor's held value as
+a reading (before opcua67) or as missing (now) does to replay's RMS over the first program and
+over the dropout's 20 samples.  No rule is chosen by it.
 """
 
 from __future__ import annotations
@@ -130,6 +132,27 @@ def one(data: Path, pkl: Path, out: Path, programs: dict, columns: list[str], fa
             "rms_uncompensated": {t: rms(errors[:, j]) for j, t in enumerate(targets)}}
 
 
+def held_or_missing(data: Path, pkl: Path, programs: dict, columns: list[str]) -> dict:
+    """The first program with `T_nose` dropped as in ``faults`` (rows 10-29): the RMS of the error
+    compensated by replay's corrections when the held value is streamed as a reading (what
+    `connect` did before opcua67 with an Uncertain value) and when it is missing (now)."""
+    first = list(programs)[0]
+    sensors = sensors_of(columns)
+    missing = as_published({first: programs[first]}, 0.02,
+                           {"T_nose": (10, 29, ua.StatusCodes.UncertainLastUsableValue)}, sensors)
+    held = {first: missing[first].copy()}
+    held[first].loc[10:29, "T_nose"] = held[first].loc[9, "T_nose"]
+    targets = list(OFFSETS)
+    e = (programs[first][targets] - programs[first][targets].iloc[0]).to_numpy(float)
+    out = {}
+    for name, frames in (("held", held), ("missing", missing)):
+        r = e - replay_rows(data, pkl, frames)
+        out[name] = {t: {"program": float(np.sqrt(np.mean(r[:, j] ** 2))),
+                         "dropout": float(np.sqrt(np.mean(r[10:30, j] ** 2)))}
+                     for j, t in enumerate(targets)}
+    return out
+
+
 def main() -> None:
     p = argparse.ArgumentParser()
     p.add_argument("dir", type=Path)
@@ -148,6 +171,9 @@ def main() -> None:
         if not pkl.is_file():
             cli("run", f"data.path={data}", f"out={pkl.parent}", f"model_path={pkl}", f"model={model}",
                 *FAST, "eval.validation=false", "eval.mutual_prediction=false")
+        results[f"{model} held or missing"] = held_or_missing(data, pkl, programs, columns)
+        print(json.dumps({f"{model} held or missing": results[f"{model} held or missing"]}),
+              flush=True)
         for faults in (False, True):
             start = time.monotonic()
             r = one(data, pkl, a.dir / f"{model}-{'faults' if faults else 'clean'}", programs,
