@@ -197,6 +197,28 @@ def test_a_mapping_of_a_column_the_model_does_not_read_is_said(fitted, tmp_path,
     assert "T_spindle (ns=2;s=Machine.Monitoring.T_spindle): BadNodeIdUnknown" in err
 
 
+def test_a_server_that_wants_a_user_is_said_at_once_and_given_one(fitted, tmp_path, capsys,
+                                                                 monkeypatch):
+    """A server with no anonymous session: said at once (before: retried as no server until
+    give_up_s, then "no OPC UA server"); connect.user with its password in the environment is
+    let in; a password in the endpoint is refused (it would be written to the run's log)."""
+    data, pkl = fitted
+    users = {"lab": "s3cret"}
+    code, link = run_connect(data, pkl, tmp_path, VendorMachine(programs(data), free_port(),
+                                                                wait_s=5, users=users))
+    err = capsys.readouterr().err
+    assert code == 2 and link is None
+    assert "refused an anonymous session: BadUserAccessDenied" in err and "connect.user" in err
+    monkeypatch.setenv("THERMOCOMP_OPCUA_PASSWORD", "s3cret")
+    machine = VendorMachine(programs(data), free_port(), users=users, stop_after=5)
+    code, link = run_connect(data, pkl, tmp_path, machine, "connect.user=lab")
+    assert code == 0 and link["samples"] == 5 and all(machine.served.answered)
+    port = free_port()
+    refused(["connect", f"data.path={data}", f"out={tmp_path / 'c'}", *FAST, f"connect.model={pkl}",
+             f"connect.endpoint=opc.tcp://lab:s3cret@127.0.0.1:{port}"], capsys,
+            "connect.endpoint holds a password", "THERMOCOMP_OPCUA_PASSWORD")
+
+
 def test_node_ids_by_namespace_uri():
     from thermocomp.apps.machine.nodes import NodesUnknown, resolve_id
 

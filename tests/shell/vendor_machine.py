@@ -16,10 +16,10 @@ published is not published, as a sensor's deadband does), the program's name, th
 last.  Lockstep: a row waits (at most ``wait_s``) for the client's write to the offset nodes,
 then takes the values in them (µm) as the offsets that answer it; the first row waits for a
 client's first write.  ``restarts`` stop the server for some rows (the machine runs on; the
-address space is kept).  ``refused`` offset nodes are not writable for the anonymous user
-(BadUserAccessDenied).  After the last row (or ``stop_after`` rows) answered it sends the
-process ``stop_signal`` (the user's Ctrl-C or the service manager's SIGTERM: a vendor's server
-never says it is done).
+address space is kept).  ``refused`` offset nodes are not writable for the session's user
+(BadUserAccessDenied); with ``users`` a session needs one of them.  After the last row (or
+``stop_after`` rows) answered it sends the process ``stop_signal`` (the user's Ctrl-C or the
+service manager's SIGTERM: a vendor's server never says it is done).
 """
 
 from __future__ import annotations
@@ -36,6 +36,7 @@ import numpy as np
 import pandas as pd
 from asyncua import Server, ua
 from asyncua.common.callback import CallbackType
+from asyncua.crypto.permission_rules import User, UserRole
 
 from thermocomp.apps.machine.nodes import quiet_asyncua
 from thermocomp.apps.machine.shelf import standard_shelf_or_none
@@ -74,6 +75,18 @@ def connect_nodes(sensors: dict | None = None, offsets: dict | None = None) -> l
             f"connect.nodes.campaign='{nsu(PROGRAM)}'", "connect.clock=server"]
 
 
+class _Users:
+    """Anonymous sessions as asyncua's default (the user role), or only ``users``' own."""
+
+    def __init__(self, users: dict | None):
+        self.users = users
+
+    def get_user(self, iserver, username=None, password=None, certificate=None):
+        if self.users is None or (username in self.users and self.users[username] == password):
+            return User(role=UserRole.User, name=username)
+        return None
+
+
 @dataclass
 class Served:
     """Per row: the program, the offsets (µm) in the registers when it was answered (NaN: not
@@ -92,10 +105,11 @@ class VendorMachine:
                  bad: dict | None = None, restarts=(), refused=(), wait_s: float = 60.0,
                  stop_after: int | None = None, stop_signal=signal.SIGTERM,
                  stop_pid: int | None = None, sensors: dict | None = None,
-                 offsets: dict | None = None):
+                 offsets: dict | None = None, users: dict | None = None):
         self.campaigns, self.port, self.deadband = campaigns, port, float(deadband)
         self.sensors, self.offsets = sensors or SENSORS, offsets or OFFSETS
         self.stop_pid = stop_pid        # the client's process (None: this one)
+        self.users = users              # {name: password}: no anonymous session (None: anyone)
         # column -> (first, last running row (0-based), StatusCode): the sensor dropped, its last
         # value held with that status (asyncua's server nulls a Bad one's value, not an Uncertain)
         self.bad = bad or {}
@@ -108,7 +122,7 @@ class VendorMachine:
         self._writes = 0
 
     async def _start(self) -> None:
-        server = Server()
+        server = Server(user_manager=_Users(self.users))
         await server.init(await asyncio.to_thread(standard_shelf_or_none))
         server.set_endpoint(f"opc.tcp://127.0.0.1:{self.port}")
         server.set_server_name("CNC5000 vendor server")

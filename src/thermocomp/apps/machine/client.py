@@ -51,6 +51,8 @@ CURRENT_TIME = "i=2258"     # Server_ServerStatus_CurrentTime: every OPC UA serv
 NO_CAMPAIGN = "connect"     # the one campaign of a server without a campaign node
 DONE = "done"
 UNKNOWN = (ua.StatusCodes.BadNodeIdUnknown, ua.StatusCodes.BadNodeIdInvalid)
+REFUSED = (ua.StatusCodes.BadUserAccessDenied, ua.StatusCodes.BadIdentityTokenRejected,
+           ua.StatusCodes.BadIdentityTokenInvalid, ua.StatusCodes.BadSecurityPolicyRejected)
 FLOATS = (ua.VariantType.Double, ua.VariantType.Float)
 INT_RANGE = {ua.VariantType.SByte: (-2 ** 7, 2 ** 7 - 1), ua.VariantType.Int16: (-2 ** 15, 2 ** 15 - 1),
              ua.VariantType.Int32: (-2 ** 31, 2 ** 31 - 1), ua.VariantType.Int64: (-2 ** 63, 2 ** 63 - 1)}
@@ -104,6 +106,10 @@ class NodesRefused(RuntimeError):
     client cannot write (said in one message, every one of them)."""
 
 
+class SessionRefused(RuntimeError):
+    """The server refused the session's identity (no use retrying it)."""
+
+
 class WriteRefused(RuntimeError):
     """The server refused to write an offset (its StatusCode, the node)."""
 
@@ -133,7 +139,8 @@ class Connection:
 
     def __init__(self, deployed, nodes: NodeMap, endpoint: str, limiter: OffsetLimiter, *,
                  retry_s: float = 1.0, give_up_s: float = 60.0, timeout_s: float = 4.0,
-                 adapt=None, warm=None, clock: str = "node", period_s: float | None = None):
+                 adapt=None, warm=None, clock: str = "node", period_s: float | None = None,
+                 user: tuple[str, str] | None = None):
         self.deployed, self.map, self.endpoint, self.limiter = deployed, nodes, endpoint, limiter
         self.adapt = adapt
         self.warm = warm             # rows logged since the running campaign's start (a restart)
@@ -141,6 +148,7 @@ class Connection:
         if clock not in CLOCKS:
             raise ValueError(f"clock={clock!r}: one of {', '.join(CLOCKS)}")
         self.clock, self.period_s = clock, period_s
+        self.user = user             # (name, password) of the session, None: anonymous
         if nodes is not None and nodes.sample is None and not (period_s and period_s > 0):
             raise ValueError("without a sample node the client samples every period_s: > 0")
         self.events: list[dict] = []
@@ -262,7 +270,19 @@ class Connection:
         """One connection; True when the campaigns are done."""
         self._connected = False
         client = Client(self.endpoint, timeout=self.timeout_s, watchdog_intervall=self.retry_s)
-        await client.connect()
+        if self.user is not None:
+            client.set_user(self.user[0])
+            client.set_password(self.user[1])
+        try:
+            await client.connect()
+        except ua.UaStatusCodeError as exc:
+            if exc.code not in REFUSED:          # a server starting, a link down: retried
+                raise
+            client.disconnect_socket()
+            who = f"user {self.user[0]!r}" if self.user is not None else "an anonymous session"
+            raise SessionRefused(f"the server refused {who}: {ua.StatusCode(exc.code).name}"
+                                 + ("" if self.user is not None else
+                                    " (connect.user and THERMOCOMP_OPCUA_PASSWORD: its user)"))
         try:
             self._connected = True
             self._event("connected", self.endpoint)

@@ -269,6 +269,7 @@ class Connect:
     warm: Optional[str] = key(optional(text()))
     clock: str = key(choice("node", "server"))            # (opcua67) a sample's time
     period_s: Optional[float] = key(optional(POSITIVE))   # (opcua67) null: the model's period
+    user: Optional[str] = key(optional(text()))           # (opcua67) its password: in the env
     nodes: Nodes = group(Nodes)
 
 
