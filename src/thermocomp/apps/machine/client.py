@@ -53,6 +53,9 @@ DONE = "done"
 UNKNOWN = (ua.StatusCodes.BadNodeIdUnknown, ua.StatusCodes.BadNodeIdInvalid)
 REFUSED = (ua.StatusCodes.BadUserAccessDenied, ua.StatusCodes.BadIdentityTokenRejected,
            ua.StatusCodes.BadIdentityTokenInvalid, ua.StatusCodes.BadSecurityPolicyRejected)
+WRITE_REFUSED = (ua.StatusCodes.BadUserAccessDenied, ua.StatusCodes.BadNotWritable,
+                 ua.StatusCodes.BadTypeMismatch, ua.StatusCodes.BadOutOfRange,
+                 ua.StatusCodes.BadWriteNotSupported, *UNKNOWN)
 FLOATS = (ua.VariantType.Double, ua.VariantType.Float)
 INT_RANGE = {ua.VariantType.SByte: (-2 ** 7, 2 ** 7 - 1), ua.VariantType.Int16: (-2 ** 15, 2 ** 15 - 1),
              ua.VariantType.Int32: (-2 ** 31, 2 ** 31 - 1), ua.VariantType.Int64: (-2 ** 63, 2 ** 63 - 1)}
@@ -190,8 +193,8 @@ class Connection:
                         await session
                     except (asyncio.CancelledError, *LINK_ERRORS):
                         pass
-                    held = ", ".join(f"{t} {v:.3f}" for t, v in
-                                     zip(self.deployed.targets_, self.limiter.offset))
+                    last = self._held if self._held is not None else self.limiter.offset
+                    held = ", ".join(f"{t} {v:.3f}" for t, v in zip(self.deployed.targets_, last))
                     self._event("stopped", f"{self.stopped}: the client ends; the offsets it "
                                            f"wrote last stay on the machine (µm: {held})")
                     return
@@ -474,9 +477,12 @@ class Connection:
             nodes.append(plan.answered)
             data.append(ua.Variant(answered, ua.VariantType.Int64))
         codes = await client.write_values(nodes, data, raise_on_partial_error=False)
-        refused = [(n, c) for n, c in zip(nodes, codes) if not c.is_good()]
-        if refused:
+        failed = [(n, c) for n, c in zip(nodes, codes) if not c.is_good()]
+        refused = [(n, c) for n, c in failed if c.value in WRITE_REFUSED]
+        if refused:          # the node will not take it: no use retrying
             raise WriteRefused("; ".join(f"{n.nodeid.to_string()}: {c.name}" for n, c in refused))
+        if failed:           # another failure (a server going down): retried as a lost link
+            raise ua.UaStatusCodeError(failed[0][1].value)
         self._held = held
         self.written.append(held)
 
