@@ -7,8 +7,9 @@ done or offset_sample node.  Before opcua67 `connect` could not be pointed at it
 node was required, node ids came from one pattern with the twin's namespace index, the time was
 a `time` node, an offset was written as a Double (BadTypeMismatch on a Float node: retried as a
 lost link until give_up_s, then "no OPC UA server"), a value held with a non-Good StatusCode was
-streamed as a reading, a node id the server does not know streamed NaN without a word, and
-SIGTERM ended it with status 1 and no connect.json.
+streamed as a reading, a node id the server does not know streamed NaN without a word, a
+server refusing an anonymous session was retried as no server until give_up_s, and SIGTERM ended
+it with status 1 and no connect.json.
 """
 
 from __future__ import annotations
