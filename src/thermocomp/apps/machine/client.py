@@ -10,6 +10,18 @@ offsets are held, then decay; a lost link or server is reconnected every ``retry
 :class:`~thermocomp.apps.deploy.adapt.Adaptation` without a schedule: the machine says when) the
 ``reference`` nodes are read with the inputs; a finite one is a reference measurement of that
 sample, learned from after its own correction is given, as ``replay`` learns.
+
+(opcua67) A vendor's server has none of the twin's status nodes (:class:`~.nodes.NodeMap`): the
+client then subscribes to the server's clock (``ServerStatus/CurrentTime``, ``clock="server"``)
+and takes a sample each time it has gone ``period_s`` on, the stream's time that clock's seconds
+since the campaign's first sample (not the inputs' SourceTimestamps: a sensor in its deadband
+keeps an old one while time goes on); a campaign node of any type (an NC program's name) starts
+a campaign when it changes, else one runs from the first sample; without ``done`` it runs until
+SIGINT / SIGTERM (main thread), which end it cleanly.  Node ids may name their namespace by its
+URI (resolved at each connection); every node is checked to be there first (NodesRefused, naming
+each).  An input whose StatusCode is not Good is NaN (``input_status`` events).  Offsets are
+written in each node's own DataType and unit; a refused write is WriteRefused.  A held offset
+is not written again.
 """
 
 from __future__ import annotations
@@ -17,18 +29,37 @@ from __future__ import annotations
 import asyncio
 import logging
 import math
+import signal
+import threading
 import time as clock
+from contextlib import contextmanager
+from dataclasses import dataclass
+from datetime import datetime, timezone
 
 import numpy as np
 import pandas as pd
 from asyncua import Client, ua
 
 from ...core.context import TIME
-from .nodes import NodeMap, quiet_asyncua
+from .nodes import NodeMap, NodesUnknown, quiet_asyncua, resolve_id
 from .offsets import OffsetLimiter
 
 log = logging.getLogger(__name__)
 LINK_ERRORS = (ConnectionError, OSError, asyncio.TimeoutError, ua.UaError)
+CLOCKS = ("node", "server")
+CURRENT_TIME = "i=2258"     # Server_ServerStatus_CurrentTime: every OPC UA server's clock
+NO_CAMPAIGN = "connect"     # the one campaign of a server without a campaign node
+DONE = "done"
+UNKNOWN = (ua.StatusCodes.BadNodeIdUnknown, ua.StatusCodes.BadNodeIdInvalid)
+REFUSED = (ua.StatusCodes.BadUserAccessDenied, ua.StatusCodes.BadIdentityTokenRejected,
+           ua.StatusCodes.BadIdentityTokenInvalid, ua.StatusCodes.BadSecurityPolicyRejected)
+WRITE_REFUSED = (ua.StatusCodes.BadUserAccessDenied, ua.StatusCodes.BadNotWritable,
+                 ua.StatusCodes.BadTypeMismatch, ua.StatusCodes.BadOutOfRange,
+                 ua.StatusCodes.BadWriteNotSupported, *UNKNOWN)
+FLOATS = (ua.VariantType.Double, ua.VariantType.Float)
+INT_RANGE = {ua.VariantType.SByte: (-2 ** 7, 2 ** 7 - 1), ua.VariantType.Int16: (-2 ** 15, 2 ** 15 - 1),
+             ua.VariantType.Int32: (-2 ** 31, 2 ** 31 - 1), ua.VariantType.Int64: (-2 ** 63, 2 ** 63 - 1)}
+WRITABLE = (*FLOATS, *INT_RANGE)
 
 
 class LinkLost(RuntimeError):
@@ -64,7 +95,7 @@ def warm_times(warm) -> str:
 
 
 class _Changes:
-    """Subscription handler: queues the new values of ``sample`` / ``done``."""
+    """Subscription handler: queues the new values of ``sample`` / ``done`` (or the clock's)."""
 
     def __init__(self, queue: asyncio.Queue):
         self.queue = queue
@@ -73,72 +104,204 @@ class _Changes:
         self.queue.put_nowait(val)
 
 
+class NodesRefused(RuntimeError):
+    """``connect.nodes`` names nodes the server does not have, or offset nodes of a type the
+    client cannot write (said in one message, every one of them)."""
+
+
+class SessionRefused(RuntimeError):
+    """The server refused the session's identity (no use retrying it)."""
+
+
+class WriteRefused(RuntimeError):
+    """The server refused to write an offset (its StatusCode, the node)."""
+
+
+@dataclass
+class _Plan:
+    """One session's nodes (their ids resolved against the server's namespaces)."""
+
+    inputs: list            # the columns' nodes, then time's (clock node), then the references'
+    labels: list            # what each input node is (a column, time, reference <target>)
+    status: dict            # campaign / campaign_sample / sample / done: those the server has
+    clock: object | None    # clock server: the server's CurrentTime
+    offsets: list
+    types: list             # the VariantType each offset node takes
+    answered: object | None  # offset_sample, if the server has it
+    watched: list           # what a new sample is told by (subscribed)
+    registers: np.ndarray   # what the offset nodes held at the start (µm)
+
+
 class Connection:
-    """Run ``deployed`` (the adaptive or the plain streaming compensator) against ``endpoint``."""
+    """Run ``deployed`` (the adaptive or the plain streaming compensator) against ``endpoint``.
+
+    ``clock`` (opcua67): where a sample's time comes from, ``node`` (the ``time`` input's node:
+    the twin's) or ``server`` (the server's ``ServerStatus/CurrentTime``, read with the inputs:
+    the machine's own clock, which goes on while a sensor sits in its deadband); without a
+    ``sample`` node a sample is taken each time that clock has gone ``period_s`` on."""
 
     def __init__(self, deployed, nodes: NodeMap, endpoint: str, limiter: OffsetLimiter, *,
                  retry_s: float = 1.0, give_up_s: float = 60.0, timeout_s: float = 4.0,
-                 adapt=None, warm=None):
+                 adapt=None, warm=None, clock: str = "node", period_s: float | None = None,
+                 user: tuple[str, str] | None = None):
         self.deployed, self.map, self.endpoint, self.limiter = deployed, nodes, endpoint, limiter
         self.adapt = adapt
         self.warm = warm             # rows logged since the running campaign's start (a restart)
         self.retry_s, self.give_up_s, self.timeout_s = retry_s, give_up_s, timeout_s
+        if clock not in CLOCKS:
+            raise ValueError(f"clock={clock!r}: one of {', '.join(CLOCKS)}")
+        self.clock, self.period_s = clock, period_s
+        self.user = user             # (name, password) of the session, None: anonymous
+        if nodes is not None and nodes.sample is None and not (period_s and period_s > 0):
+            raise ValueError("without a sample node the client samples every period_s: > 0")
         self.events: list[dict] = []
-        self.written: list[np.ndarray] = []      # every offset vector written
+        self.written: list[np.ndarray] = []      # every offset vector written (µm, as written)
         self.samples = 0
         self._last, self._campaign = -1, None
         self._connected = False
         self._stale = False          # the offsets are decaying for want of fresh samples
         self.missed = 0              # samples the server published that this client never saw
-        self._start = clock.monotonic()
+        self._start = clock_now()
+        self._at = None              # the clock (s) of the last sample taken (no sample node)
+        self._t0 = 0.0               # the clock (s) at the running campaign's first sample
+        self._i = -1                 # the running campaign's sample (no campaign_sample node)
+        self._quality: dict[str, str] = {}      # input -> Good / Uncertain / Bad, as last read
+        self._held = None            # the offsets last written (a held one is not written again)
+        self.stopped = None          # the signal that stopped the client, if one did
 
     def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
-        e = {"wall_s": round(clock.monotonic() - self._start, 3), "sample": self._last,
+        e = {"wall_s": round(clock_now() - self._start, 3), "sample": self._last,
              "event": kind, "detail": detail, **extra}
         self.events.append(e)
         log.log(level, "%s: %s", kind, detail)
 
     async def run(self) -> None:
-        """Until the server says the campaigns are done."""
+        """Until the server says the campaigns are done, or SIGINT / SIGTERM (main thread: the
+        session ends, ``stopped``; the offsets written last stay on the machine)."""
         quiet_asyncua()
-        lost_at = None
-        while True:
-            try:
-                if await self._session():
+        stop = asyncio.Event()
+        with _stop_on_signals(stop, self):
+            lost_at = None
+            while True:
+                session = asyncio.ensure_future(self._session())
+                halt = asyncio.ensure_future(stop.wait())
+                await asyncio.wait({session, halt}, return_when=asyncio.FIRST_COMPLETED)
+                halt.cancel()
+                if stop.is_set():
+                    session.cancel()
+                    try:
+                        await session
+                    except (asyncio.CancelledError, *LINK_ERRORS):
+                        pass
+                    last = self._held if self._held is not None else self.limiter.offset
+                    held = ", ".join(f"{t} {v:.3f}" for t, v in zip(self.deployed.targets_, last))
+                    self._event("stopped", f"{self.stopped}: the client ends; the offsets it "
+                                           f"wrote last stay on the machine (µm: {held})")
                     return
-            except LINK_ERRORS as exc:
-                if self._connected or lost_at is None:    # once per outage, not per attempt
-                    reason = " ".join(str(exc).split())[:120] or type(exc).__name__
-                    self._event("link_lost", f"{type(exc).__name__}: {reason}")
-            now = clock.monotonic()
-            if self._connected or lost_at is None:    # the clock runs from the last good link
-                lost_at = now
-            if now - lost_at > self.give_up_s:
-                raise LinkLost(f"no OPC UA server at {self.endpoint} for {self.give_up_s:g} s")
-            await asyncio.sleep(self.retry_s)
+                try:
+                    if session.result():
+                        return
+                except LINK_ERRORS as exc:
+                    if self._connected or lost_at is None:    # once per outage, not per attempt
+                        reason = " ".join(str(exc).split())[:120] or type(exc).__name__
+                        self._event("link_lost", f"{type(exc).__name__}: {reason}")
+                now = clock_now()
+                if self._connected or lost_at is None:    # the clock runs from the last good link
+                    lost_at = now
+                if now - lost_at > self.give_up_s:
+                    raise LinkLost(f"no OPC UA server at {self.endpoint} for {self.give_up_s:g} s")
+                try:
+                    await asyncio.wait_for(stop.wait(), self.retry_s)
+                except asyncio.TimeoutError:
+                    pass
+
+    async def _plan(self, client) -> _Plan:
+        """The session's nodes: ids resolved (``nsu=``), each checked to be there, the offset
+        nodes' types read; NodesRefused naming every one that is not."""
+        m, d = self.map, self.deployed
+        names = await client.get_namespace_array()
+        bad: list[str] = []
+
+        def node(label: str, text: str):
+            try:
+                return client.get_node(resolve_id(text, names))
+            except (NodesUnknown, ValueError, ua.UaError) as exc:
+                bad.append(f"{label} ({text}): {exc}")
+                return None
+
+        cols = list(d.columns_)
+        labels = cols + ([TIME] if TIME not in cols else [])
+        inputs = [node(c, m.input_id(c)) if c != TIME or self.clock == "node" else None
+                  for c in labels]
+        if self.adapt:
+            labels += [f"reference {t}" for t in d.targets_]
+            inputs += [node(f"reference {t}", m.reference_id(t)) for t in d.targets_]
+        status = {k: node(k, getattr(m, k)) for k in ("campaign", "campaign_sample", "sample", "done")
+                  if getattr(m, k) is not None}
+        offsets = [node(f"offset {t}", m.offset_id(t)) for t in d.targets_]
+        answered = node("offset_sample", m.offset_sample) if m.offset_sample is not None else None
+        clock = client.get_node(CURRENT_TIME) if self.clock == "server" else None
+        if bad:
+            raise NodesRefused("; ".join(bad))
+        named = [(lab, n) for lab, n in zip(labels, inputs) if n is not None]
+        named += [(k, n) for k, n in status.items()] + [
+            (f"offset {t}", n) for t, n in zip(d.targets_, offsets)]
+        named += [("offset_sample", answered)] if answered is not None else []
+        values = await client.read_attributes([n for _, n in named], ua.AttributeIds.Value)
+        bad = [f"{lab} ({n.nodeid.to_string()}): {v.StatusCode.name}" for (lab, n), v in
+               zip(named, values) if v.StatusCode is not None and v.StatusCode.value in UNKNOWN]
+        if bad:
+            raise NodesRefused("the server has no node " + "; ".join(bad))
+        at = len(named) - len(offsets) - (answered is not None)
+        registers = np.array([number(v.Value.Value if v.Value is not None else None)
+                              * m.unit_um(t) for t, v in zip(d.targets_, values[at:])])
+        types = []
+        for t, n in zip(d.targets_, offsets):
+            vt = await n.read_data_type_as_variant_type()
+            if vt not in WRITABLE:
+                bad.append(f"offset {t} ({n.nodeid.to_string()}): {vt.name}, not a signed "
+                           "integer or a floating-point number")
+            types.append(vt)
+        if bad:
+            raise NodesRefused("; ".join(bad))
+        time_at = labels.index(TIME)
+        watched = ([status["sample"]] + ([status["done"]] if "done" in status else [])
+                   if "sample" in status else [clock if clock is not None else inputs[time_at]])
+        return _Plan(inputs, labels, status, clock, offsets, types, answered, watched, registers)
 
     async def _session(self) -> bool:
         """One connection; True when the campaigns are done."""
         self._connected = False
         client = Client(self.endpoint, timeout=self.timeout_s, watchdog_intervall=self.retry_s)
-        await client.connect()
+        if self.user is not None:
+            client.set_user(self.user[0])
+            client.set_password(self.user[1])
+        try:
+            await client.connect()
+        except ua.UaStatusCodeError as exc:
+            if exc.code not in REFUSED:          # a server starting, a link down: retried
+                raise
+            client.disconnect_socket()
+            who = f"user {self.user[0]!r}" if self.user is not None else "an anonymous session"
+            raise SessionRefused(f"the server refused {who}: {ua.StatusCode(exc.code).name}"
+                                 + ("" if self.user is not None else
+                                    " (connect.user and THERMOCOMP_OPCUA_PASSWORD: its user)"))
         try:
             self._connected = True
             self._event("connected", self.endpoint)
-            get = client.get_node
-            m, cols = self.map, self.deployed.columns_
-            reads = cols + ([TIME] if TIME not in cols else [])
-            refs = [m.reference_id(t) for t in self.deployed.targets_] if self.adapt else []
-            inputs = [get(n) for n in [*map(m.input_id, reads), *refs]]
-            status = [get(m.campaign), get(m.campaign_sample), get(m.sample), get(m.done)]
-            offsets = [get(m.offset_id(t)) for t in self.deployed.targets_]
-            answered = get(m.offset_sample)
+            plan = await self._plan(client)
             queue: asyncio.Queue = asyncio.Queue()
             period_ms = max(1.0, 250.0 * self.retry_s / 10)
             sub = await client.create_subscription(period_ms, _Changes(queue))
-            await sub.subscribe_data_change([status[2], status[3]])
-            now = clock.monotonic
-            await self._write(client, offsets, (answered, self._last), self.limiter.stale(now()))
+            await sub.subscribe_data_change(plan.watched)
+            now = clock_now
+            if self._held is None or not np.array_equal(plan.registers, self._held):
+                # the first session, or a server that came back without what was written last
+                # (its registers lost): written again; else they hold it (a restart keeping them)
+                self._held = None
+                await self._write(client, plan, self._last, self.limiter.stale(now()))
+            reads = [n for n in plan.inputs if n is not None] + list(plan.status.values())
+            reads += [plan.clock] if plan.clock is not None else []
             while True:
                 try:
                     await asyncio.wait_for(queue.get(), timeout=self.retry_s / 4)
@@ -148,22 +311,80 @@ class Connection:
                         self._stale = True
                         self._event("stale", f"no fresh sample for {self.limiter.hold_s:g} s: "
                                              "offsets decaying")
-                    await self._write(client, offsets, None, self.limiter.stale(now()))
+                    await self._write(client, plan, None, self.limiter.stale(now()))
                     continue
-                values = await client.read_values(inputs + status)
-                row, (cid, i, k, done) = values[:len(inputs)], values[len(inputs):]
-                if done:
+                got = await client.read_attributes(reads, ua.AttributeIds.Value)
+                sample = self._sample(plan, got)
+                if sample == DONE:
                     self._event("done", "the server says the campaigns are done")
                     return True
-                k = int(k) if k is not None else -1
-                if k > self._last:
-                    y = self._step(str(cid), [number(v) for v in row], k, int(i))
-                    await self._write(client, offsets, (answered, k), self.limiter.fresh(y, now()))
+                if sample is not None:
+                    cid, row, k, i = sample
+                    y = self._step(cid, row, k, i)
+                    await self._write(client, plan, k, self.limiter.fresh(y, now()))
         finally:
             try:     # a dead link would keep the goodbye waiting for the request timeout
                 await asyncio.wait_for(client.disconnect(), self.retry_s)
             except Exception:            # the link is gone already
                 client.disconnect_socket()
+
+    def _sample(self, plan: _Plan, got: list):
+        """``(campaign, row, k, i)`` of a new sample in one Read's values, DONE, or None (nothing
+        new).  An input whose StatusCode is not Good is NaN (a dropped sensor: its held value is
+        not a reading); each change of an input's quality is an event."""
+        live = [lab for lab, n in zip(plan.labels, plan.inputs) if n is not None]
+        n = len(live)
+        given = dict(zip(live, got[:n]))
+        status = dict(zip(plan.status, got[n:n + len(plan.status)]))
+        value = {k: v.Value.Value if v.Value is not None else None for k, v in status.items()}
+        if value.get("done"):
+            return DONE
+        row = [self._reading(lab, given[lab]) if lab in given else math.nan for lab in plan.labels]
+        if plan.clock is not None:
+            at = seconds(got[-1])
+            if at is None:
+                return None
+        else:
+            at = row[plan.labels.index(TIME)]
+        cid = str(value["campaign"]) if "campaign" in value else NO_CAMPAIGN
+        new = cid != self._campaign
+        if plan.clock is not None and self._at is not None and at < self._at:
+            # the server's clock set back (NTP, a reset clock): time goes on a period
+            self._event("clock_back", f"the server's clock went back {self._at - at:g} s: the "
+                        "stream's time goes on from its last sample", logging.WARNING)
+            self._t0 -= self._at - at + self.period_s
+            self._at = at - self.period_s
+        steps = (1 if self._at is None or new or not self.period_s
+                 else max(1, round((at - self._at) / self.period_s)))
+        if "sample" in value:
+            k = int(value["sample"]) if value["sample"] is not None else -1
+            if k <= self._last:
+                return None
+        else:       # a sample each time the clock has gone a period on (or a campaign starts)
+            if not math.isfinite(at) or (not new and self._at is not None
+                                         and at - self._at < self.period_s * (1 - 1e-6)):
+                return None
+            k = self._last + steps
+        if new:
+            self._t0, self._i = at, -1
+        self._i = int(value["campaign_sample"]) if "campaign_sample" in value else self._i + steps
+        self._at = at
+        if plan.clock is not None:          # the stream's time: s since the campaign's start
+            row[plan.labels.index(TIME)] = at - self._t0
+        return cid, row, k, self._i
+
+    def _reading(self, label: str, dv) -> float:
+        """A node's value as a number; NaN unless its StatusCode is Good."""
+        code = dv.StatusCode if dv.StatusCode is not None else ua.StatusCode()
+        quality = "Good" if code.is_good() else "Uncertain" if code.is_uncertain() else "Bad"
+        if self._quality.get(label, "Good") != quality:
+            self._event("input_status", f"{label}: {code.name}" + (
+                " (read as missing)" if quality != "Good" else " (read again)"),
+                logging.WARNING if quality != "Good" else logging.INFO, input=label)
+        self._quality[label] = quality
+        if quality != "Good":
+            return math.nan
+        return number(dv.Value.Value if dv.Value is not None else None)
 
     def _step(self, cid: str, row: list[float], k: int, i: int) -> np.ndarray:
         d = self.deployed
@@ -234,13 +455,70 @@ class Connection:
         self._event("warmed", f"campaign {cid} joined at its sample {i}: the stream warmed on "
                               f"{len(warm)} row(s) logged before it (connect.warm), unscored")
 
-    async def _write(self, client, offsets, answered, values: np.ndarray) -> None:
-        """The offsets, then (``answered``: ``(node, sample)``) the sample they answer: one Write,
-        applied in order."""
-        nodes = list(offsets)
-        data = [ua.Variant(float(v), ua.VariantType.Double) for v in values]
-        if answered is not None:
-            nodes.append(answered[0])
-            data.append(ua.Variant(answered[1], ua.VariantType.Int64))
-        await client.write_values(nodes, data)
-        self.written.append(np.array(values, float))
+    async def _write(self, client, plan: _Plan, answered, values: np.ndarray) -> None:
+        """The offsets, then (``answered``: the sample they answer, with an ``offset_sample`` node)
+        that sample: one Write, applied in order.  Each offset in its node's type and unit
+        (``offset_unit_um``; an integer node takes the nearest count); what was written, in µm,
+        is kept.  A held offset is not written again; a refused write is WriteRefused."""
+        unit = np.array([self.map.unit_um(t) for t in self.deployed.targets_])
+        counts = [v / u if vt in FLOATS else float(np.rint(v / u))
+                  for v, u, vt in zip(np.asarray(values, float), unit, plan.types)]
+        for n, c, vt in zip(plan.offsets, counts, plan.types):
+            if vt in INT_RANGE and not INT_RANGE[vt][0] <= c <= INT_RANGE[vt][1]:
+                raise WriteRefused(f"{n.nodeid.to_string()}: {c:.0f} counts is beyond its "
+                                   f"{vt.name} ({INT_RANGE[vt][0]} to {INT_RANGE[vt][1]})")
+        data = [ua.Variant(c if vt in FLOATS else int(c), vt) for c, vt in zip(counts, plan.types)]
+        held = np.array([float(np.float32(c)) if vt == ua.VariantType.Float else c
+                         for c, vt in zip(counts, plan.types)]) * unit
+        if answered is None and self._held is not None and np.array_equal(held, self._held):
+            return                   # held: the machine holds it already
+        nodes = list(plan.offsets)
+        if answered is not None and plan.answered is not None:
+            nodes.append(plan.answered)
+            data.append(ua.Variant(answered, ua.VariantType.Int64))
+        codes = await client.write_values(nodes, data, raise_on_partial_error=False)
+        failed = [(n, c) for n, c in zip(nodes, codes) if not c.is_good()]
+        refused = [(n, c) for n, c in failed if c.value in WRITE_REFUSED]
+        if refused:          # the node will not take it: no use retrying
+            raise WriteRefused("; ".join(f"{n.nodeid.to_string()}: {c.name}" for n, c in refused))
+        if failed:           # another failure (a server going down): retried as a lost link
+            raise ua.UaStatusCodeError(failed[0][1].value)
+        self._held = held
+        self.written.append(held)
+
+
+def clock_now() -> float:
+    return clock.monotonic()
+
+
+def seconds(dv) -> float | None:
+    """A DateTime node's value (the server's clock) in s, None when it has none."""
+    v = dv.Value.Value if dv is not None and dv.Value is not None else None
+    if not isinstance(v, datetime):
+        return None
+    return (v if v.tzinfo else v.replace(tzinfo=timezone.utc)).timestamp()
+
+
+@contextmanager
+def _stop_on_signals(stop: asyncio.Event, link: Connection):
+    """SIGINT and SIGTERM set ``stop`` (``link.stopped`` names it) while the client runs in the
+    main thread; the handlers before come back after."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    loop = asyncio.get_running_loop()
+    signals = (signal.SIGINT, signal.SIGTERM)
+    before = {s: signal.getsignal(s) for s in signals}
+
+    def handle(s):
+        link.stopped = signal.Signals(s).name
+        stop.set()
+
+    for s in signals:
+        loop.add_signal_handler(s, handle, s)
+    try:
+        yield
+    finally:
+        for s in signals:
+            loop.remove_signal_handler(s)
+            signal.signal(s, before[s])

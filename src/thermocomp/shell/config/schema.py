@@ -231,17 +231,30 @@ class Twin:
     campaigns: Optional[list] = key(optional(texts("test campaign ids", unique=True)))
 
 
+# connect.nodes.inputs / offsets: {name: node id}
+NODE_MAP = Rule(lambda v: isinstance(v, Mapping) and all(
+    isinstance(n, str) and n.strip() for n in v.values()), "a map of names to node ids")
+
+UNIT_MAP = Rule(lambda v: isinstance(v, Mapping) and len(v) > 0 and all(POSITIVE(u) for u in v.values()),
+                "a map of targets to numbers > 0")
+
+
 @dataclass
 class Nodes:
     namespace: str = key(text())
     input: str = key(text())
     offset: str = key(text())
-    offset_sample: str = key(text())
-    sample: str = key(text())
-    campaign: str = key(text())
-    campaign_sample: str = key(text())
-    done: str = key(text())
+    # (opcua67) a vendor's server has none of the twin's status nodes: null, absent
+    offset_sample: Optional[str] = key(optional(text()))
+    sample: Optional[str] = key(optional(text()))
+    campaign: Optional[str] = key(optional(text()))
+    campaign_sample: Optional[str] = key(optional(text()))
+    done: Optional[str] = key(optional(text()))
     reference: str = key(text())
+    inputs: Optional[dict] = key(optional(NODE_MAP))      # column -> node id, over `input`
+    offsets: Optional[dict] = key(optional(NODE_MAP))     # target -> node id, over `offset`
+    # µm per unit of the offset nodes: one for all, or {target: µm} (1 for one not named)
+    offset_unit_um: Any = key(either(POSITIVE, UNIT_MAP))
 
 
 @dataclass
@@ -254,6 +267,9 @@ class Connect:
     retry_s: float = key(POSITIVE)
     give_up_s: float = key(POSITIVE)
     warm: Optional[str] = key(optional(text()))
+    clock: str = key(choice("node", "server"))            # (opcua67) a sample's time
+    period_s: Optional[float] = key(optional(POSITIVE))   # (opcua67) null: the model's period
+    user: Optional[str] = key(optional(text()))           # (opcua67) its password: in the env
     nodes: Nodes = group(Nodes)
 
 

@@ -13,6 +13,7 @@ measurements (the ``reference`` nodes) as ``replay`` learns from its simulated o
 from __future__ import annotations
 
 import asyncio
+import os
 from pathlib import Path
 
 import numpy as np
@@ -21,11 +22,13 @@ from omegaconf import DictConfig
 from ...apps.deploy.adapt import from_config as adapt_from_config
 from ...base.errors import ConfigError
 from ...base.files import write_json
-from ...base.log import say
+from ...base.log import logger, say
 from ...base.paths import resolve
 from ..builders import deployable_model, is_registered
 from ..config.checks import check_config
 from ..source import read_streamed
+
+PASSWORD_ENV = "THERMOCOMP_OPCUA_PASSWORD"     # connect.user's password (opcua67)
 
 
 def _guard(cfg: DictConfig, deployed, ds, train_ids):
@@ -77,13 +80,34 @@ def _warm_rows(cfg: DictConfig, deployed):
     return frame
 
 
+def _user(c) -> tuple[str, str] | None:
+    """(opcua67) ``connect.user`` and its password, from THERMOCOMP_OPCUA_PASSWORD (never from
+    the config or the endpoint: both are written to the run's log)."""
+    from urllib.parse import urlsplit
+
+    if urlsplit(str(c.endpoint)).password is not None:
+        raise ConfigError("connect.endpoint holds a password (user:password@): it would be written "
+                          "to the run's log; give the user as connect.user and the password in "
+                          f"{PASSWORD_ENV}")
+    user = c.get("user")
+    if user is None:
+        return None
+    password = os.environ.get(PASSWORD_ENV)
+    if password is None:
+        raise ConfigError(f"connect.user={user}: its password in the environment variable "
+                          f"{PASSWORD_ENV} (not set)")
+    return str(user), password
+
+
 def connect(cfg: DictConfig) -> dict:
-    """Run the compensator against ``connect.endpoint`` until the campaigns are done."""
+    """Run the compensator against ``connect.endpoint`` until the campaigns are done (or, a
+    server without a ``done`` node, until SIGINT / SIGTERM)."""
     check_config(cfg, inputs=("connect.model", "connect.warm"))
-    from ...apps.machine.client import Connection, LinkLost
+    from ...apps.machine.client import Connection, LinkLost, NodesRefused, SessionRefused, WriteRefused
     from ...apps.machine.nodes import NodeMap
 
     c = cfg.connect
+    user = _user(c)          # before the model is read: a said refusal costs no fit
     source = c.get("model")
     if source is not None and not str(source).strip():
         raise ConfigError("connect.model is empty: a model.pkl, a pyfunc folder or "
@@ -94,14 +118,38 @@ def connect(cfg: DictConfig) -> dict:
     limiter = offset_limiter(deployed, guard, float(c.hold_s), float(c.decay_s))
     adapt = (adapt_from_config(cfg.get("adapt"), len(deployed.targets_), scheduled=False)
              or getattr(deployed, "adapt_", None))
-    link = Connection(deployed, NodeMap.from_config(c.nodes), str(c.endpoint), limiter,
+    nodes = NodeMap.from_config(c.nodes)
+    clock = str(c.get("clock") or "node")
+    period_s = float(c.get("period_s") or guard.period_s)     # null: the model's sample period
+    link = Connection(deployed, nodes, str(c.endpoint), limiter,
                       retry_s=float(c.retry_s), give_up_s=float(c.give_up_s), adapt=adapt,
-                      warm=_warm_rows(cfg, deployed))
+                      warm=_warm_rows(cfg, deployed), clock=clock, period_s=period_s, user=user)
     say(f"connect: {name} ({source}) to {c.endpoint}: inputs {', '.join(deployed.columns_)}")
+    for key, mapped, names in (("inputs", nodes.inputs, deployed.columns_),
+                               ("offsets", nodes.offsets, deployed.targets_)):
+        extra = sorted(set(mapped) - set(names) - {"time"})
+        if extra:          # a shared mapping may name more; a typo falls back on the pattern
+            logger.warning(f"connect.nodes.{key} names {', '.join(extra)}, which the model does "
+                           f"not {'read' if key == 'inputs' else 'correct'} "
+                           f"({', '.join(names)}): not used")
+    absent = nodes.missing()
+    if absent:
+        say(f"connect: the server has no {', '.join(absent)} node"
+            + (f": a sample every {period_s:g} s of the "
+               f"{'server' if clock == 'server' else 'time node'}'s clock" if "sample" in absent else "")
+            + ("; runs until stopped (Ctrl-C or SIGTERM: connect.json is written)"
+               if "done" in absent else ""))
     try:
         asyncio.run(link.run())
     except LinkLost as exc:
         raise ConfigError(f"connect.endpoint={c.endpoint}: {exc}") from None
+    except NodesRefused as exc:
+        raise ConfigError(f"connect.nodes at {c.endpoint}: {exc}") from None
+    except SessionRefused as exc:
+        raise ConfigError(f"connect.endpoint={c.endpoint}: {exc}") from None
+    except WriteRefused as exc:
+        raise ConfigError(f"connect.nodes.offset: {c.endpoint} refused the offsets' write "
+                          f"({exc}); nothing more was written") from None
     written = np.vstack(link.written) if link.written else np.empty((0, len(deployed.targets_)))
     report = {"model": name, "source": source, "endpoint": str(c.endpoint),
               "samples": link.samples, "samples_missed": link.missed, "writes": int(len(written)),
@@ -111,6 +159,7 @@ def connect(cfg: DictConfig) -> dict:
                         for j, t in enumerate(deployed.targets_)},
               **({"adapt": {t: adapt.figures(j) for j, t in enumerate(deployed.targets_)}}
                  if adapt is not None else {}),
+              **({"stopped": link.stopped} if link.stopped else {}),
               "events": link.events}
     path = write_json(Path(resolve(cfg.out)) / "connect.json", report)
     say(f"connect: {link.samples} samples, {len(link.events)} events: {path}")

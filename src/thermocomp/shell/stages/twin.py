@@ -38,7 +38,11 @@ def twin(cfg: DictConfig) -> dict:
         say("served after the campaigns they continue (unscored): "
             + ", ".join(f"{c} after {' + '.join(ids[:-1])}" for c, ids in rec.chains.items()))
     t = cfg.twin
-    machine = Twin(NodeMap.from_config(cfg.connect.nodes), rec.campaigns, rec.columns, rec.errors,
+    nodes = NodeMap.from_config(cfg.connect.nodes)
+    if nodes.missing():        # a vendor's mapping (opcua67): the twin serves its own protocol
+        raise ConfigError(f"connect.nodes.{nodes.missing()[0]}=null: the twin serves every status "
+                          "node (sample, campaign, campaign_sample, done, offset_sample)")
+    machine = Twin(nodes, rec.campaigns, rec.columns, rec.errors,
                    rec.targets,
                    host=str(t.host), port=int(t.port), speed=float(t.speed),
                    drops=[Outage(*p) for p in t.drops], restarts=[Outage(*p) for p in t.restarts],

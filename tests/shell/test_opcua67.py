@@ -1,0 +1,396 @@
+"""`thermocomp connect` against a vendor's OPC UA server, not the twin (opcua67, issue 34).
+
+The server (:mod:`vendor_machine`) has its own namespace (index 5, named by its URI), a node per
+sensor (Float, string and numeric ids), offsets as a Float in µm and an Int32 in 0.1 µm, the
+NC program's name for a campaign, its own clock as the time, and no sample, campaign sample,
+done or offset_sample node.  Before opcua67 `connect` could not be pointed at it: every status
+node was required, node ids came from one pattern with the twin's namespace index, the time was
+a `time` node, an offset was written as a Double (BadTypeMismatch on a Float node: retried as a
+lost link until give_up_s, then "no OPC UA server"), a value held with a non-Good StatusCode was
+streamed as a reading, a node id the server does not know streamed NaN without a word, a
+server refusing an anonymous session was retried as no server until give_up_s, and SIGTERM ended
+it with status 1 and no connect.json.
+"""
+
+from __future__ import annotations
+
+import json
+import signal
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+pytest.importorskip("asyncua")
+
+from asyncua import ua  # noqa: E402
+
+from conftest import free_port, refused  # noqa: E402
+from thermocomp.apps.machine.nodes import NodeMap  # noqa: E402
+from thermocomp.shell.cli import _compose, main  # noqa: E402
+from twin_bench import FAST  # noqa: E402
+from vendor_machine import OFFSETS, SENSORS, VendorMachine, as_published, connect_nodes, nsu, served_in_thread  # noqa: E402
+
+ROWS = 50
+CAMPAIGNS = (("P01", "train"), ("P02", "train"), ("P03", "train"), ("P04", "train"),
+             ("P05", "test"), ("P06", "test"))
+CLIENT = ["connect.retry_s=0.4", "connect.give_up_s=60", "connect.hold_s=600"]
+
+
+def record(root: Path) -> Path:
+    """Six campaigns of a four-sensor lathe, one row a minute; its errors lag the spindle's
+    and the column's heating (a lag bank's), the last rows of each at a steady state (a
+    sensor's deadband holds them)."""
+    root.mkdir(parents=True)
+    rng = np.random.default_rng(67)
+    t = np.arange(ROWS) * 60.0
+    for i, (cid, _) in enumerate(CAMPAIGNS):
+        amb = 19.0 + 0.7 * i
+        heat = np.minimum(1 - np.exp(-t / (700 + 90 * i)), 1 - np.exp(-30 * 60.0 / (700 + 90 * i)))
+        temps = {"T_spindle": amb + (6 + i % 3) * heat, "T_bed": amb + 1.5 * heat,
+                 "T_column": amb + 3 * heat ** 2, "T_amb": amb + 0.3 * heat}
+        temps = {c: v + rng.normal(0, 0.02, ROWS) * (t < 30 * 60) for c, v in temps.items()}
+        d = {c: v - v[0] for c, v in temps.items()}
+        lag = np.convolve(d["T_spindle"], np.exp(-np.arange(8) / 3.0) / 2.4)[:ROWS]
+        df = pd.DataFrame({"time": t, **temps,
+                           "E_X": 3.0 * lag - 1.2 * d["T_bed"] + rng.normal(0, 0.1, ROWS),
+                           "E_Z": -2.0 * d["T_column"] + 0.6 * lag + rng.normal(0, 0.1, ROWS)})
+        df.to_csv(root / f"{cid}.csv", index=False)
+    pd.DataFrame([(c, f"{c}.csv", s) for c, s in CAMPAIGNS],
+                 columns=["campaign", "file", "split"]).to_csv(root / "campaigns.csv", index=False)
+    return root
+
+
+@pytest.fixture(scope="module")
+def fitted(tmp_path_factory):
+    """The record and a lag bank fitted on its train part (model.pkl)."""
+    root = tmp_path_factory.mktemp("opcua67")
+    data = record(root / "data")
+    pkl = root / "run" / "model.pkl"
+    assert main(["run", f"data.path={data}", f"out={pkl.parent}", f"model_path={pkl}", *FAST,
+                 "model=lagbank", "eval.validation=false", "eval.mutual_prediction=false"]) == 0
+    return data, pkl
+
+
+def programs(data: Path) -> dict[str, pd.DataFrame]:
+    """The test campaigns as the NC programs the machine runs."""
+    return {f"{c}.MPF": pd.read_csv(data / f"{c}.csv") for c, s in CAMPAIGNS if s == "test"}
+
+
+def corrections(data: Path, pkl: Path, frames: dict[str, pd.DataFrame]) -> np.ndarray:
+    """What replay streams on ``frames`` (each from a reset): the deployed compensator connect
+    runs, made deployable as connect makes it."""
+    from thermocomp.apps.deploy.report import stream_rows
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+
+    cfg = _compose([f"data.path={data}", f"connect.model={pkl}", *FAST], "connect")
+    ds, train_ids = read_streamed(cfg, test=False)[:2]
+    deployed = deployable_model(cfg, ds, train_ids, str(pkl), "connect.model")[0]
+    return np.vstack([stream_rows(deployed, df.reset_index(drop=True)).y for df in frames.values()])
+
+
+def run_connect(data: Path, pkl: Path, tmp: Path, machine: VendorMachine, *args,
+                nodes: list[str] | None = None) -> tuple[int, dict]:
+    thread = served_in_thread(machine)
+    try:
+        code = main(["connect", f"data.path={data}", f"out={tmp / 'connect'}", *FAST,
+                     f"connect.model={pkl}", f"connect.endpoint=opc.tcp://127.0.0.1:{machine.port}",
+                     *CLIENT, *(connect_nodes() if nodes is None else nodes), *args])
+    finally:
+        machine.closing.set()
+        thread.join(timeout=60)
+    assert not thread.is_alive() and not machine.raised, machine.raised
+    path = tmp / "connect" / "connect.json"
+    return code, json.loads(path.read_text()) if path.is_file() else None
+
+
+def written_as(offsets: np.ndarray, replayed: np.ndarray) -> None:
+    """The Float node's offsets are replay's to float32 rounding, the Int32 node's (0.1 µm) to
+    the nearest count."""
+    x, z = offsets[:, 0], offsets[:, 1]
+    np.testing.assert_array_equal(x, replayed[:, 0].astype(np.float32).astype(float))
+    np.testing.assert_allclose(z, np.rint(replayed[:, 1] / 0.1) * 0.1, rtol=0, atol=1e-9)
+    assert np.max(np.abs(z - replayed[:, 1])) <= 0.05 + 1e-9
+
+
+def test_a_vendor_server_is_compensated_as_replay_streams_and_sigterm_ends_it(fitted, tmp_path):
+    """Two NC programs, T_bed's link down for 6 samples (UncertainLastUsableValue: the last value
+    held), every sensor in a 0.02 K deadband; the offsets the machine holds at each sample are
+    replay's corrections on the rows as published, the stream's time the server's clock; SIGTERM
+    ends connect with connect.json."""
+    data, pkl = fitted
+    frames = programs(data)
+    bad = {"T_bed": (12, 17, ua.StatusCodes.UncertainLastUsableValue)}
+    machine = VendorMachine(frames, free_port(), deadband=0.02, bad=bad)
+    code, link = run_connect(data, pkl, tmp_path, machine)
+    assert code == 0 and link is not None
+    assert link["stopped"] == "SIGTERM" and link["events"][-1]["event"] == "stopped"
+    served = machine.served
+    assert all(served.answered) and len(served.offsets) == 2 * ROWS
+    assert served.types == {"E_X": ua.VariantType.Float, "E_Z": ua.VariantType.Int32}
+    published = as_published(frames, 0.02, bad)
+    held = sum(int((published[p][c].diff() == 0).sum()) for p in published for c in SENSORS)
+    assert held > 2 * ROWS                # the deadband held values for many samples ...
+    events = [e["event"] for e in link["events"]]
+    assert "stale" not in events          # ... and the client sampled on through them
+    written_as(np.vstack(served.offsets), corrections(data, pkl, published))
+    status = [e for e in link["events"] if e["event"] == "input_status"]
+    assert [(e["input"], e["sample"]) for e in status] == [("T_bed", 11), ("T_bed", 17)]
+    assert "UncertainLastUsableValue" in status[0]["detail"]
+    assert events.count("campaign") == 2 and link["samples"] == 2 * ROWS
+    assert link["samples_missed"] == 0
+
+
+def test_a_server_restart_is_spanned_and_sigint_ends_it(fitted, tmp_path):
+    """The server down for 5 samples mid-program: the client reconnects (the namespace index
+    resolved again), counts them missed, and streams on from its state across the gap (one
+    time step of 6 periods), not from a reset; Ctrl-C ends it."""
+    data, pkl = fitted
+    frames = programs(data)
+    machine = VendorMachine(frames, free_port(), restarts=[(20, 5)], stop_signal=signal.SIGINT)
+    code, link = run_connect(data, pkl, tmp_path, machine)
+    assert code == 0 and link["stopped"] == "SIGINT"
+    events = [e["event"] for e in link["events"]]
+    assert events.count("connected") == 2 and events.count("link_lost") == 1
+    assert link["samples_missed"] == 5 and link["samples"] == 2 * ROWS - 5
+    assert events.count("campaign") == 2      # the restart did not start a campaign
+    seen = as_published(frames)
+    seen["P05.MPF"] = seen["P05.MPF"].drop(index=range(20, 25))
+    answered = np.array(machine.served.answered)
+    assert not answered[20:25].any() and answered[25:].all()
+    written_as(np.vstack(machine.served.offsets)[answered], corrections(data, pkl, seen))
+
+
+def test_a_refused_write_is_exit_2_naming_the_node(fitted, tmp_path, capsys):
+    data, pkl = fitted
+    machine = VendorMachine(programs(data), free_port(), refused=["E_Z"], wait_s=5)
+    code, link = run_connect(data, pkl, tmp_path, machine)
+    err = capsys.readouterr().err
+    assert code == 2 and link is None
+    assert "refused" in err and "BadUserAccessDenied" in err and OFFSETS["E_Z"][0] in err
+
+
+def test_a_node_the_server_does_not_have_is_exit_2_naming_the_column(fitted, tmp_path, capsys):
+    data, pkl = fitted
+    machine = VendorMachine(programs(data), free_port(), wait_s=5)
+    typo = nsu("s=CNC5000.Spindel.Temperature")
+    code, link = run_connect(data, pkl, tmp_path, machine,
+                             f"connect.nodes.inputs.T_spindle='{typo}'")
+    err = capsys.readouterr().err
+    assert code == 2 and link is None
+    assert "T_spindle" in err and "Spindel" in err and "BadNodeIdUnknown" in err
+    assert not any(machine.served.answered)       # nothing was written
+
+
+def test_a_mapping_of_a_column_the_model_does_not_read_is_said(fitted, tmp_path, capsys):
+    """`inputs` keyed by a misspelt column: said in a warning, and the column the model reads
+    falls back on the `input` pattern, the twin's node, which this server does not have: exit
+    2 naming it."""
+    data, pkl = fitted
+    machine = VendorMachine(programs(data), free_port(), wait_s=5)
+    misspelt = connect_nodes({c.replace("T_spindle", "T_spindel"): n for c, n in SENSORS.items()})
+    code, link = run_connect(data, pkl, tmp_path, machine, nodes=misspelt)
+    err = capsys.readouterr().err
+    assert code == 2 and link is None
+    assert "connect.nodes.inputs names T_spindel, which the model does not read" in err
+    assert "T_spindle (ns=2;s=Machine.Monitoring.T_spindle): BadNodeIdUnknown" in err
+
+
+def test_a_server_that_wants_a_user_is_said_at_once_and_given_one(fitted, tmp_path, capsys,
+                                                                 monkeypatch):
+    """A server with no anonymous session: said at once (before: retried as no server until
+    give_up_s, then "no OPC UA server"); connect.user with its password in the environment is
+    let in; a password in the endpoint is refused (it would be written to the run's log)."""
+    data, pkl = fitted
+    users = {"lab": "s3cret"}
+    code, link = run_connect(data, pkl, tmp_path, VendorMachine(programs(data), free_port(),
+                                                                wait_s=5, users=users))
+    err = capsys.readouterr().err
+    assert code == 2 and link is None
+    assert "refused an anonymous session: BadUserAccessDenied" in err and "connect.user" in err
+    monkeypatch.setenv("THERMOCOMP_OPCUA_PASSWORD", "s3cret")
+    machine = VendorMachine(programs(data), free_port(), users=users, stop_after=5)
+    code, link = run_connect(data, pkl, tmp_path, machine, "connect.user=lab")
+    assert code == 0 and link["samples"] == 5 and all(machine.served.answered)
+    port = free_port()
+    refused(["connect", f"data.path={data}", f"out={tmp_path / 'c'}", *FAST, f"connect.model={pkl}",
+             f"connect.endpoint=opc.tcp://lab:s3cret@127.0.0.1:{port}"], capsys,
+            "connect.endpoint holds a password", "THERMOCOMP_OPCUA_PASSWORD")
+
+
+def test_node_ids_by_namespace_uri():
+    from thermocomp.apps.machine.nodes import NodesUnknown, resolve_id
+
+    names = ["http://opcfoundation.org/UA/", "urn:server", "http://vendor/"]
+    assert resolve_id("nsu=http://vendor/;i=6012", names) == "ns=2;i=6012"
+    assert resolve_id("ns=4;s=A.B", names) == "ns=4;s=A.B"
+    with pytest.raises(NodesUnknown, match="no namespace 'http://other/'"):
+        resolve_id("nsu=http://other/;s=X", names)
+    m = NodeMap.from_config({"namespace": "u", "input": "ns=2;s={column}", "offset": "ns=2;s={target}",
+                             "sample": None, "campaign": None, "campaign_sample": None, "done": None,
+                             "offset_sample": None, "inputs": {"T_a": "ns=3;i=5"}})
+    assert m.input_id("T_a") == "ns=3;i=5" and m.input_id("T_b") == "ns=2;s=T_b"
+    assert m.missing() == ["sample", "campaign", "campaign_sample", "done", "offset_sample"]
+
+
+def test_the_twin_refuses_a_mapping_without_its_status_nodes(fitted, tmp_path, capsys):
+    data, _ = fitted
+    refused(["twin", f"data.path={data}", f"out={tmp_path / 't'}", *FAST, "connect.nodes.done=null"],
+            capsys, "connect.nodes.done=null")
+
+
+# --- the twin's own protocol on a machine of another make: what failed there before opcua67 ---
+
+class FloatRegisters:
+    """A twin whose offset registers are Float nodes, as a vendor's are."""
+
+    @staticmethod
+    def make(base):
+        class FloatTwin(base):
+            async def _start(self):
+                await super()._start()
+                for i, node in enumerate(self.offset_nodes):
+                    parent, name = await node.get_parent(), await node.read_browse_name()
+                    await self.server.delete_nodes([node])
+                    var = await parent.add_variable(node.nodeid, name.Name,
+                                                    ua.Variant(0.0, ua.VariantType.Float))
+                    await var.set_writable()
+                    self.offset_nodes[i] = var
+        return FloatTwin
+
+
+class _Held:
+    """An input node whose link drops over ``rows`` of the samples written: its last value
+    held, UncertainLastUsableValue."""
+
+    def __init__(self, node, rows):
+        self.node, self.rows, self.k, self.last = node, rows, 0, 0.0
+
+    async def write_value(self, variant):
+        if self.k in self.rows:
+            dv = ua.DataValue(ua.Variant(self.last, ua.VariantType.Double),
+                              StatusCode=ua.StatusCode(ua.StatusCodes.UncertainLastUsableValue))
+        else:
+            dv, self.last = ua.DataValue(variant), variant.Value
+        self.k += 1
+        await self.node.write_value(dv)
+
+
+def _twin_data(tmp_path, fault=None):
+    from test_twin import make_machine
+
+    return make_machine(tmp_path / "data", fault)
+
+
+def test_float_offset_registers_are_written_as_float(tmp_path, monkeypatch):
+    """Before: a Double written to a Float register was BadTypeMismatch, taken for a lost link
+    and retried until the server was gone (exit 2, "no OPC UA server")."""
+    from thermocomp.apps.machine import twin as machine
+    from twin_bench import twin_and_connect
+
+    monkeypatch.setattr(machine, "Twin", FloatRegisters.make(machine.Twin))
+    data = _twin_data(tmp_path)
+    assert main(["replay", f"data.path={data}", f"out={tmp_path / 'replay'}", *FAST]) == 0
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())["targets"]["E_X"]
+    twin, link = twin_and_connect(data, tmp_path, connect_args=("connect.give_up_s=5",), speed=20)
+    r = twin["targets"]["E_X"]
+    assert link["samples"] == twin["n_samples"] and r["stale_samples"] <= 2
+    assert abs(r["rms_compensated"] - replay["rmse"]) <= 0.05 * replay["rmse"]
+    offsets = np.array(twin["offsets"]["E_X"])
+    np.testing.assert_array_equal(offsets, offsets.astype(np.float32))   # what a Float holds
+
+
+def test_a_value_held_with_an_uncertain_status_is_a_dropout(tmp_path, monkeypatch):
+    """T_1's link down for 5 samples, its last value held as UncertainLastUsableValue: handled as
+    replay handles the same samples missing (before: streamed as a reading, no event)."""
+    from thermocomp.apps.machine import twin as machine
+    from twin_bench import twin_and_connect
+
+    class HeldT1(machine.Twin):
+        async def _start(self):
+            await super()._start()
+            j = self.columns.index("T_1")
+            self.inputs[j] = _Held(self.inputs[j], range(10, 15))
+
+    def fault(df):
+        df.loc[10:14, "T_1"] = np.nan
+
+    replay_data = _twin_data(tmp_path / "nan", fault)
+    assert main(["replay", f"data.path={replay_data}", f"out={tmp_path / 'replay'}", *FAST]) == 0
+    replay = json.loads((tmp_path / "replay" / "replay.json").read_text())
+    monkeypatch.setattr(machine, "Twin", HeldT1)
+    twin, link = twin_and_connect(_twin_data(tmp_path), tmp_path, speed=20)
+    status = [(e["input"], e["sample"]) for e in link["events"] if e["event"] == "input_status"]
+    assert status == [("T_1", 9), ("T_1", 14)]
+    sensors = {e["sensor"] for e in link["events"] if e["event"] == "compensator"}
+    assert sensors == {e["sensor"] for e in replay["events"]} == {"T_1"}
+    ref = replay["targets"]["E_X"]["rmse"]
+    assert abs(twin["targets"]["E_X"]["rms_compensated"] - ref) <= 0.05 * ref
+
+
+def test_sigterm_ends_connect_with_its_report(tmp_path, monkeypatch):
+    """SIGTERM mid-run (a service manager stopping it): before, status 1 and no connect.json."""
+    import os
+
+    from thermocomp.apps.machine import twin as machine
+    from twin_bench import _served_in_thread
+
+    class Stopped(machine.Twin):
+        async def _read_offsets(self, k):
+            answered = await super()._read_offsets(k)
+            if k == 30 and answered:
+                os.kill(os.getpid(), signal.SIGTERM)
+            return answered
+
+    monkeypatch.setattr(machine, "Twin", Stopped)
+    data, port = _twin_data(tmp_path), free_port()
+    thread, raised = _served_in_thread([f"data.path={data}", f"out={tmp_path / 'twin'}",
+                                        f"twin.port={port}", "twin.speed=20", "twin.lockstep=true",
+                                        "twin.wait_s=2",
+                                        *FAST])
+    code = main(["connect", f"data.path={data}", f"out={tmp_path / 'connect'}", *FAST,
+                 f"connect.endpoint=opc.tcp://127.0.0.1:{port}", "connect.retry_s=0.2"])
+    thread.join(timeout=60)
+    assert not raised, raised
+    assert code == 0
+    link = json.loads((tmp_path / "connect" / "connect.json").read_text())
+    assert link["stopped"] == "SIGTERM" and link["events"][-1]["event"] == "stopped"
+    assert 30 <= link["samples"] < 120
+
+
+def test_the_server_clock_ticking_each_second_gives_a_sample_each_period():
+    """A server's CurrentTime changes every second (asyncua's, most servers'): a sample each
+    time it has gone connect.period_s on, its time the clock's seconds since the campaign's first
+    sample; a clock set back (a reset RTC) goes on one period, said; a Bad input is NaN."""
+    from datetime import datetime, timedelta, timezone
+
+    from conftest import offline_connection
+    from thermocomp.apps.machine.client import _Plan
+
+    conn = offline_connection(clock="server", period_s=60.0)
+    plan = _Plan(inputs=[object(), None], labels=["T_a", "time"], status={}, clock=object(),
+                 offsets=[], types=[], answered=None, watched=[], registers=np.zeros(0))
+    epoch = datetime(2026, 3, 2, 6, 0, tzinfo=timezone.utc)
+
+    def read(s, status=ua.StatusCodes.Good):
+        value = ua.DataValue(ua.Variant(20.0 + s / 100, ua.VariantType.Float),
+                             StatusCode=ua.StatusCode(status))
+        return [value, ua.DataValue(ua.Variant(epoch + timedelta(seconds=s)))]
+
+    seconds = [*range(0, 126), *range(125 - 3600, 125 - 3600 + 130)]   # set back an hour at 125 s
+    taken = []
+    for s in seconds:
+        got = conn._sample(plan, read(s, ua.StatusCodes.BadSensorFailure if 60 <= s < 61 else 0))
+        if got is not None:
+            cid, row, k, i = got
+            conn._step(cid, row, k, i)
+            taken.append((s, k, i, row[1], np.isnan(row[0])))
+    assert [t[:4] for t in taken] == [(0, 0, 0, 0.0), (60, 1, 1, 60.0), (120, 2, 2, 120.0),
+                                      (125 - 3600, 3, 3, 180.0), (125 - 3600 + 60, 4, 4, 240.0),
+                                      (125 - 3600 + 120, 5, 5, 300.0)]
+    assert [t[4] for t in taken] == [False, True, False, False, False, False]
+    events = [e["event"] for e in conn.events]
+    assert events.count("clock_back") == 1 and events.count("input_status") == 2
+    assert conn.missed == 0 and conn.samples == 6
