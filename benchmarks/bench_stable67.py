@@ -35,7 +35,6 @@ RMSE to 1e-9 (no target zeroed).
 
 from __future__ import annotations
 
-import json
 import sys
 from pathlib import Path
 
