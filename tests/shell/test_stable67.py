@@ -134,3 +134,21 @@ def test_promote_warns_of_a_candidate_worse_than_no_compensation(record, tmp_pat
     err = capsys.readouterr().err
     warned = next(x for x in err.splitlines() if "WORSE THAN NO COMPENSATION" in x)
     assert run_id in warned and "E_N" in warned
+
+
+def test_a_val_split_scores_no_correction_too(record, tmp_path):
+    """With val campaigns in the manifest auto scores each candidate on them, and no correction
+    on the same rows."""
+    data = tmp_path / "data"
+    shutil.copytree(record, data)
+    manifest = pd.read_csv(data / "campaigns.csv")
+    manifest.loc[manifest["campaign"].isin(["R06", "R07"]), "split"] = "val"
+    manifest.to_csv(data / "campaigns.csv", index=False)
+    targets = _run(data, tmp_path / "out", *AUTO)
+    noise, real = targets["E_N"], targets["E_G"]
+    assert noise["auto"]["scheme"] == "val split"
+    assert noise["auto"]["candidates"]["none"] == pytest.approx(
+        noise["validation"]["rms_before"], rel=1e-12)
+    assert noise["auto"]["chosen"] == "none"
+    assert noise["test"]["rmse"] == pytest.approx(noise["test"]["rms_before"], rel=1e-12)
+    assert real["auto"]["chosen"] != "none"

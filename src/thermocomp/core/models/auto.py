@@ -308,7 +308,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                         f"MLR {self.validation_.get(BASELINE, float('nan')):.4g}, "
                         f"persistence {self.validation_.get(PERSISTENCE, float('nan')):.4g}")
         self.chosen_, self.weights_, self.combine_ = self.family_, {self.family_: 1.0}, "best"
-        if NONE in self.validation_:            # not with a val split's scores (no rows here)
+        if NONE in self.validation_:            # (val split scores made before it: none)
             self._none_unless_better(self.validation_[self.family_])
         return self._refit(X, y, context)
 
