@@ -61,9 +61,10 @@ E_dX 0.61 > 0.602, E_dZ 0.693 > 0.584.
 The bar: (1) met (zeroed grind_a E_dX, E_dZ: the old auto's test -2.2 % and +0.6 %); (2) met
 (grind_b E_dZ arx, 1.913 -> 0.524); (3) met: ``make run``'s record MLR 0.750427 / 1.423526 /
 5.801905 and auto 0.648069 / 0.842903 / 0.994330, ``fl_thermal`` MLR mean 4.059989 and auto
-2.481035, identical base vs branch; tsc66 seed 6601 (auto of 5 families) identical with zero and
-keep.  Adopted.  Its cost on few folds: tests/shell/test_export_auto57.py's spindle fixture (4
-short train runs, 2 folds): none validated 0.767 against Hammerstein's 0.974, the zero tests
+2.481035, identical base vs branch; auto of 5 families (mlr, pcr, arx, lagbank, hammerstein)
+on tsc66 / trunnion63 / portal64 (seeds 6601 / 6301 / 6401) identical with zero and keep.
+Adopted.  Its cost on few folds: tests/shell/test_export_auto57.py's spindle fixture (4 short
+train runs, 2 folds): none validated 0.767 against Hammerstein's 0.974, the zero tests
 1.697 µm against 0.639.
 
 Matrix (7 families x 2 records, in process): replay = run (<= 1.3e-5 µm, the clamp), |stream -
