@@ -49,6 +49,35 @@ and the rule kept for a stable machine, asked for with ``model.estimator.uncompe
 The rule itself is not changed here either way.  Reported, deciding nothing: the two sets apart,
 the targets zeroed, each one's test RMSE under zero / keep / before and the validation figures
 that zeroed it (kept, none, MLR's), CPU (user + sys).
+
+Measured 2026-12-01 (stop 67; fix/stable67 74c977e3 with the bench, e28f1d7a; 2 shared cores under
+load 7-10, AMD EPYC; run once, CPU user + sys: ``run16`` 216.6 s, ``run12`` 126.9 s, ``score``
+0.6 s).  ``keep`` reproduced stop 65's shipped auto: the 60 targets of the 16 records equal
+bench_autorep65's stored fits (/tmp/autorep65-root, main ba90b9e) exactly (largest relative
+difference 0), the 12 records' means its docstring's "auto shipped" column.  Every voted target's
+weights re-derived by ``vote_weights`` and its test RMSE equal the fit's (asserted).
+
+**No target is zeroed: 0 of 94** (the 16 records' 60 targets, the 12's 34).  The kept model
+validates below no correction everywhere; the closest, val kept / none: lab5401 E_X 0.812,
+mill1514 E_X 0.644, year6_6534 E_X 0.391, lab6540 E_Y 0.308, fl9010 E_ch4 0.286.  So zero = keep
+on every record (zero / keep 1.0000 for all 28): records better than MLR 18 -> 18 (16 records: 8,
+12 records: 10), worst zero / keep 1.0000, geometric mean 1.0000.  **Verdict: the rule STAYS**
+(default ``zero``): (1) 18 -> 18 met, (2) 1.0000 <= 1.02 met, (3) 1.0000 <= 1.0 met.  Refitted
+end to end with the branch's default (``zero``; bench_auto_rank, nothing overridden) on the four
+records nearest the line (lab5401, mill1514, year6_6534, lab6540): the same weights and test RMSE
+as ``keep`` on all 12 targets, to the last digit (CPU 14.7 / 28.8 / 2.1 / 5.9 s).  ``fl_thermal``
+60/20/20 (the val-split path, 97118f0c; deciding nothing): ``thermocomp run`` with ``zero`` and
+``keep`` the same choice and test MAE 1.170 / 1.411 / 4.078 / 1.399 / 2.529 (no correction
+validates 9.1-21.4 µm against the best candidate's 2.0-3.0; CPU 8.1 s each).
+
+What this check does not reach: the rule never fires on these 28 records (all need
+compensation), so it shows the rule costs nothing there, not that it is right where it fires.
+Its known cost is where the folds are few (tests/shell/test_export_auto57.py's spindle fixture,
+4 short train runs, 2 folds: none validated 0.767 against Hammerstein's 0.974, the zero tested
+1.697 µm against 0.639).  Few folds are here too (one fold: lab5401 / 6539 / 6540, one held-out
+10 h run of 1200 rows, trunnion6541, portal6542; 4 folds of 234-295 rows: the four year6_*;
+3 folds: hmc, jig_grinder), but each record's errors are well above its noise: only lab5401
+E_X came within 0.8 of none (0.812; its test: auto 2.639, MLR 2.64, before 5.14).
 """
 
 from __future__ import annotations
