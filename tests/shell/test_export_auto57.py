@@ -46,7 +46,10 @@ TOLERANCE_UM = 1e-9
 SINGLE = {"mlr": (MLR, []), "pcr": (PCR, []),
           "arx": (ARX, ["model.candidate_params={arx:{ar:true,delays:[2]}}"]),
           "lagbank": (LagBank, ["model.candidate_params={lagbank:{n_taus:3}}"]),
-          "hammerstein": (Hammerstein, ["model.candidate_params={hammerstein:{lagbank:{n_taus:3}}}"])}
+          # (stable67: on these 4 short train runs its 2 folds validate no correction lower, 0.77
+          # against 0.97 µm: kept as the family this test exports)
+          "hammerstein": (Hammerstein, ["model.candidate_params={hammerstein:{lagbank:{n_taus:3}}}",
+                                        "model.estimator.uncompensated=keep"])}
 
 
 @pytest.fixture(scope="module")

@@ -26,6 +26,7 @@ from ..core.compensator import Compensator
 from ..core.scoring.champion import champion_validation, decide, fmt
 from ..core.scoring.evaluation import require_split
 from ..core.scoring.leaderboard import DEPLOYED_MODE, rank, ranked_by, ranking_line, validation_mode
+from ..core.scoring.results import EvaluationResult, worse_than_none
 from .store import REGISTERED, is_registered_model
 from .sweeps import failed_jobs, failed_note, parent_run_id, run_metrics, sweep_rows
 from .tracking import DATASET_TAG, child_runs, retry_locked
@@ -140,6 +141,8 @@ def candidate(cfg: DictConfig, client, uri: str, data_path, dataset_hash: str
     basis = basis or {"figure": criterion, "mode": DEPLOYED_MODE, "fallback": {}}
     say(f"run {run_id}: {criterion} {fmt(score)} of its {val_mode}-mode validation (scored "
         f"in {mode}; the deployed compensator runs in {DEPLOYED_MODE})")
+    for line in worse_than_none(EvaluationResult(metrics).targets):
+        logger.warning("run %s: %s", run_id, line)
     if val_mode != DEPLOYED_MODE:
         basis["fallback"][run_id] = val_mode
         logger.warning("run %s has no %s-mode validation (scored in %s before it was recorded): "

@@ -30,6 +30,7 @@ from .one_step import persistence
 ATI = "ati"              # a candidate name: the ATI wrapper (conf/ati/cmeans.yaml) of a family
 BASELINE = "mlr"         # always validated beside the candidates, with persistence
 AUTO = "auto"            # the model that chooses: no candidate of its own
+NONE = "none"            # no correction: validated beside them, kept where nothing beats it
 FORWARD_ONE = "forward-chaining (one record)"
 MIN_IN_RANGE_ROWS = 20   # validation_rows='in_range': a fold with fewer in-range rows is scored whole
 BLOCKS_ONE = {"blocks": "leave-block-out (one record)", "late_blocks": "leave-late-block-out (one record)"}
@@ -145,13 +146,18 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                    "gap_blocks": number(0.0, 10.0), "one_record": choice("forward", "blocks", "late_blocks"),
                    "min_gain_pct": number(0.0, 100.0),
                    "combine": choice("vote", "best"), "keep_oof": choice(True, False),
+                   "uncompensated": choice("zero", "keep"),
                    "validation_rows": choice("all", "in_range")}
+
+    uncompensated = "keep"   # a model pickled before the key: refitted as it was fitted
 
     def __init__(self, candidates=None, scheme: str = "auto", n_folds: int = 5,
                  min_train_fraction: float = 0.5, gap_blocks: float = 0.5,
                  max_seconds: float | None = None, min_gain_pct: float = 1.0, chosen=None,
                  val_scores=None, given_scores=None, combine: str = "vote", keep_oof: bool = False,
-                 one_record: str = "forward", validation_rows: str = "all"):
+                 one_record: str = "forward", validation_rows: str = "all",
+                 uncompensated: str = "zero"):
+        self.uncompensated = uncompensated
         self.validation_rows = validation_rows
         self.one_record = one_record
         self.combine = combine
@@ -201,6 +207,7 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.validation_[PERSISTENCE] = rmse(y[held] - last[held])
         how = f"{len(folds)} {self.scheme_} fold(s)"
         self.oof_y_ = np.concatenate([y[score] for *_, score in folds])
+        self.validation_[NONE] = rmse(self.oof_y_)     # no correction, on the candidates' rows
         self.oof_fold_ = np.concatenate([np.full(score.sum(), k) for k, (*_, score) in enumerate(folds)])
         self.oof_folds_ = (len(y), [(np.flatnonzero(fit), np.flatnonzero(score)) for fit, _, score in folds])
         self.oof_campaign_ = None   # folds of whole campaigns: the campaign of each row (benches')
@@ -241,7 +248,22 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
         self.chosen_ = self.family_ if len(weights) == 1 else weights
         self.reason_ = (f"{lead} ({how}); MLR {self.validation_[BASELINE]:.4g}, "
                         f"persistence {self.validation_[PERSISTENCE]:.4g}")
+        self._none_unless_better(blended)
         return self._refit(X, y, context)
+
+    def _none_unless_better(self, kept: float) -> None:
+        """``uncompensated='zero'``: where the kept model's pooled validation RMSE ``kept`` is not
+        below no correction's on the same rows (``validation_['none']``), keep a zero correction:
+        the kept model weighted 0, which streams, replays and exports as any blend does."""
+        none = self.validation_.get(NONE)
+        if self.uncompensated != "zero" or none is None or not kept >= none:
+            return
+        member = self.family_
+        self.reason_ = (f"no correction: the kept model's validation RMSE {kept:.4g} is not below "
+                        f"the uncompensated error's {none:.4g} on the same rows, so a zero "
+                        f"correction is kept (model.estimator.uncompensated=keep keeps it); was: "
+                        f"{self.reason_}")
+        self.family_, self.chosen_, self.weights_ = NONE, {member: 0.0}, {member: 0.0}
 
     def _voting_rows(self) -> np.ndarray:
         """The out-of-fold rows the votes score: all, or (``validation_rows='in_range'``) those
@@ -286,6 +308,8 @@ class AutoRegressor(SideInputs, RegressorMixin, BaseEstimator):
                         f"MLR {self.validation_.get(BASELINE, float('nan')):.4g}, "
                         f"persistence {self.validation_.get(PERSISTENCE, float('nan')):.4g}")
         self.chosen_, self.weights_, self.combine_ = self.family_, {self.family_: 1.0}, "best"
+        if NONE in self.validation_:            # (val split scores made before it: none)
+            self._none_unless_better(self.validation_[self.family_])
         return self._refit(X, y, context)
 
     def chosen_params(self) -> dict:

@@ -7,17 +7,18 @@ import numpy as np
 from sklearn.base import clone
 
 from .. import continuation
-from ..metrics import PERSISTENCE, RMSE, rmse
+from ..metrics import PERSISTENCE, RMS_BEFORE, RMSE, rmse
 from ..models import MLR
-from ..models.auto import BASELINE
+from ..models.auto import BASELINE, NONE
 from .evaluation import validation_report
 
 
 def val_split_scores(comp, ds) -> dict:
     """``{target: {candidate: free-run RMSE on the val split}}`` of a model=auto compensator's
-    candidates (and MLR, persistence), each fitted on the train split as the run's validation
-    scores a val split (:func:`~.evaluation.validation_report`); where a candidate cannot fit,
-    the reason (a str, as the folds' path gives it).  The test split is not read."""
+    candidates (and MLR, persistence, no correction: ``none``), each fitted on the train split
+    as the run's validation scores a val split (:func:`~.evaluation.validation_report`); where a
+    candidate cannot fit, the reason (a str, as the folds' path gives it).  The test split is not
+    read."""
     candidates = {**comp.estimator.candidates}
     candidates.setdefault(BASELINE, MLR())
     scores: dict = {}
@@ -32,6 +33,7 @@ def val_split_scores(comp, ds) -> dict:
         fitted = one
         for t, entry in report.items():
             scores.setdefault(t, {})[name] = entry[RMSE]
+            scores[t][NONE] = entry[RMS_BEFORE]     # the same val rows for every candidate
     failed = scores.pop(None, {})
     val = ds.ids("val")
     measured = fitted.measured({c: ds.campaigns[c] for c in val}) if fitted is not None else {}

@@ -23,6 +23,8 @@ from ..io.instants import START, start_instants
 from ..metrics import (
     ISO_A3,
     PERSISTENCE,
+    RMS_BEFORE,
+    RMSE,
     RSD,
     RSD_MEAN,
     RSD_SD,
@@ -36,6 +38,8 @@ from ..metrics import (
 from ..timerule import median_step
 from .iso10791 import a3_report
 from .stats import anova_oneway, mutual_prediction
+
+BEFORE = "before"    # the fold residuals' key of the measured error itself (no correction)
 
 
 def sample_period(ds: Dataset, ids) -> float:
@@ -350,7 +354,8 @@ def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
             pred, meas = continuation.predict(comp, ds, val_ids, mode, carried)
             residual = {t: {c: meas[c][t].to_numpy() - pred[c][t].to_numpy() for c in val_ids}
                         for t in comp.targets_}
-            out[mode] = _validation_entries(residual, "val split", 1)
+            before = {t: {c: meas[c][t].to_numpy() for c in val_ids} for t in comp.targets_}
+            out[mode] = _validation_entries(residual, "val split", 1, before)
         return out
     template = make_compensator()
     # the folds of the train split in the frame the run fits and predicts it in: a run of files
@@ -379,7 +384,7 @@ def validation_reports(make_compensator: Callable[[], Compensator], ds: Dataset,
         residuals = _fold_residuals(template, camps, folds, modes)
     out = {}
     for mode in modes:
-        out[mode] = _validation_entries(residuals[mode], said, len(folds))
+        out[mode] = _validation_entries(residuals[mode], said, len(folds), residuals[BEFORE])
         if method == "forward chaining":
             for entry in out[mode].values():
                 entry["gap_samples"] = folds[0][3] if folds else 0
@@ -435,7 +440,7 @@ def _fold_residuals_stacked(template: Compensator, camps: dict, folds, modes) ->
     inputs, targets = resolve_columns(columns, template.inputs, template.targets)
     m = stack(camps, inputs, targets, template.reference)
     start = dict(zip(camps, np.cumsum([0] + [len(df) for df in camps.values()])))
-    residual: dict = {mode: {t: {} for t in targets} for mode in modes}
+    residual: dict = {mode: {t: {} for t in targets} for mode in (*modes, BEFORE)}
     for fit_rows, pred_rows, units, _ in folds:
         comp = clone(template)
         comp.inputs_, comp.targets_, comp.denoiser_ = inputs, targets, None
@@ -449,8 +454,8 @@ def _fold_residuals_stacked(template: Compensator, camps: dict, folds, modes) ->
         # carried the unmeasured E(m) - E(0): hobbing bench E_dZ validation 8.85 um, test 0.56)
         label = comp.scored_label(sub.Y.to_numpy(float), sub.groups, preds.get("simulation")
                                   if "simulation" in preds else lambda: comp.predict_stacked(sub))
-        for mode in modes:
-            pred = preds[mode]
+        for mode in (*modes, BEFORE):
+            pred = preds.get(mode, np.zeros_like(label))        # BEFORE: no correction
             for unit, (c, a, b) in units.items():
                 rows = slice(offsets[c] + a, offsets[c] + b)
                 for k, t in enumerate(targets):
@@ -491,7 +496,7 @@ def _stored_residuals(fitted: Compensator | None, template: Compensator, camps: 
     wanted = [(np.flatnonzero(_mask(start, fit_rows, n)),
                np.sort(np.concatenate([np.arange(start[c] + a, start[c] + b) for c, a, b in units.values()])))
               for fit_rows, _, units, _ in folds]
-    residual: dict = {"simulation": {}}
+    residual: dict = {"simulation": {}, BEFORE: {}}
     for k, (t, (rows, theirs, y, pred)) in enumerate(stored.items()):
         measured = np.isfinite(Y[:, k])
         mine = [(fit, score[measured[score]]) for fit, score in wanted]
@@ -501,10 +506,11 @@ def _stored_residuals(fitted: Compensator | None, template: Compensator, camps: 
         scored = np.concatenate([score for _, score in theirs])
         if not np.array_equal(y, Y[scored, k]):     # fitted on other labels than these
             return None
-        error = np.full(n, np.nan)
-        error[scored] = y - pred
-        residual["simulation"][t] = {unit: error[start[c] + a:start[c] + b]
-                                     for *_, units, _ in folds for unit, (c, a, b) in units.items()}
+        for mode, error in (("simulation", y - pred), (BEFORE, y)):
+            rows_of = np.full(n, np.nan)
+            rows_of[scored] = error
+            residual[mode][t] = {unit: rows_of[start[c] + a:start[c] + b]
+                                 for *_, units, _ in folds for unit, (c, a, b) in units.items()}
     return residual
 
 
@@ -513,7 +519,7 @@ def _fold_residuals(template: Compensator, camps: dict, folds, modes) -> dict:
     on campaigns."""
     from sklearn.base import clone
 
-    residual: dict = {mode: {} for mode in modes}
+    residual: dict = {mode: {} for mode in (*modes, BEFORE)}
     for fit_rows, pred_rows, units, _ in folds:
         # (a run of files joined, :func:`continuation.fit_campaigns`, is denoised here as one
         # campaign, not file by file as run's final fit: a fold ends inside the run)
@@ -521,12 +527,11 @@ def _fold_residuals(template: Compensator, camps: dict, folds, modes) -> dict:
         part = {c: camps[c].iloc[:n] for c, n in pred_rows.items()}
         preds = {mode: comp.predict(part, mode=mode) for mode in modes}
         meas = comp.measured(part, predicted=preds.get("simulation"))
-        for mode in modes:
-            pred = preds[mode]
+        for mode in (*modes, BEFORE):
             for unit, (c, a, b) in units.items():
                 for t in comp.targets_:
-                    residual[mode].setdefault(t, {})[unit] = (meas[c][t].to_numpy()[a:b]
-                                                              - pred[c][t].to_numpy()[a:b])
+                    pred = 0.0 if mode == BEFORE else preds[mode][c][t].to_numpy()[a:b]
+                    residual[mode].setdefault(t, {})[unit] = meas[c][t].to_numpy()[a:b] - pred
     return residual
 
 
@@ -547,5 +552,11 @@ def _rows(m, mask: np.ndarray):
                     m.groups[mask], m.time[mask], context)
 
 
-def _validation_entries(residual: dict, method: str, n_folds: int) -> dict:
-    return {t: validation_scores(per, method, n_folds) for t, per in residual.items()}
+def _validation_entries(residual: dict, method: str, n_folds: int, before: dict) -> dict:
+    """Each target's validation figures, with ``rms_before``: the measured error's RMS on the
+    rows scored (``before``: no correction), what a compensator must beat to be worth deploying."""
+    out = {}
+    for t, per in residual.items():
+        out[t] = validation_scores(per, method, n_folds)
+        out[t][RMS_BEFORE] = validation_scores(before[t], method, n_folds)[RMSE]
+    return out

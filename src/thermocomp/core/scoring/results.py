@@ -254,7 +254,23 @@ class EvaluationResult:
                          f"{_f(r.persistence.rmse):>8}")
         if m.get("carry_over"):
             lines.append("state carried over: " + carried_text(m["carry_over"]))
-        return "\n".join(lines + auto_table(m))
+        return "\n".join(lines + worse_than_none(self.targets) + auto_table(m))
+
+
+def worse_than_none(targets: Mapping[str, "TargetResult"]) -> list[str]:
+    """The printed table's line naming the targets whose deployed-mode validation RMSE is above
+    the uncompensated error's on the same rows (``rms_before`` of the validation): there the
+    compensator, deployed, is expected to make the axis worse than no compensation."""
+    worse = {t: r.deployed for t, r in targets.items()
+             if r.deployed.rmse is not None and r.deployed.rms_before is not None
+             and r.deployed.rmse > r.deployed.rms_before}
+    if not worse:
+        return []
+    figures = ", ".join(f"{t} {v.rmse:.3g} > {v.rms_before:.3g}" for t, v in worse.items())
+    return [f"WORSE THAN NO COMPENSATION on validation (RMSE against the uncompensated error's "
+            f"RMS, the same rows): {figures}; deployed, this model is expected to make "
+            f"{'that axis' if len(worse) == 1 else 'those axes'} worse (model=auto keeps a zero "
+            "correction where nothing beats none)"]
 
 
 def _f(v) -> str:

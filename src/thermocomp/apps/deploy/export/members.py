@@ -58,7 +58,7 @@ def described(laws: list) -> str | None:
     named = [f"{name} {intervals(_ati(e))}" if _ati(e) is not None else str(name)
              for name, _, e in laws]
     if len(laws) == 1:
-        return named[0]
+        return named[0] if laws[0][1] else f"none (no correction: {named[0]} weighted 0)"
     return "blend " + " + ".join(f"{n} {w:.4g}" for n, (_, w, _) in zip(named, laws))
 
 
