@@ -1,0 +1,128 @@
+"""A lab running the ISO 230-3 thermal tests, through the CLI as a stranger (session 67, iso67).
+
+    PYTHONPATH=$PWD/src .venv/bin/python benchmarks/bench_iso67.py write ROOT
+
+The machine is ``benchmarks/iso67.py`` (a vertical machining centre; the sensor nest's X, Y, Z
+and its two tilts about X and Y; an ETVE, spindle tests at a constant speed and speed spectra, an
+X-axis test; planted: the spindle's centrifugal shrink on E_Z, instant with the logged speed),
+simulated by ``thermocomp simulate`` with ``benchmarks/conf67/sim/iso67.yaml``; its physics and
+the lab's export below were committed before any model ran on them (seeds 6701 and 6702 fixed
+beforehand).
+
+The lab's files (``write``)
+---------------------------
+One file per test (``01_ETVE.txt``, ``02_SPINDLE-CS.txt`` ...) as the sensor-nest software
+writes it: an INI-like block, ``[Header]`` then ``key<TAB>value`` lines (software, standard
+``ISO 230-3:2020``, test, test no., machine, operator, date ``07.05.2027``, start time, sample
+rate ``60 s`` / ``10 s``, the mandrel), ``[Data]``, then the table: TAB-separated, decimal
+points, UTF-8, the time since the test's start as ``hh:mm:ss.s`` (the ETVE's hours past 24,
+``59:59:00.0``), the nest's channels ``X1 [µm]``, ``Y1 [µm]``, ``Z [µm]``, ``Tilt A [µrad]``,
+``Tilt B [µrad]`` (``iso_b``, seed 6702, the software's other version: the tilts in arcsec,
+``Tilt A [″]``, U+2033), the temperatures ``T1 Spindle front [°C]`` ... ``T8 Air [°C]``, the
+states ``Spindle speed [rpm]`` and ``Feed X [mm/min]``.
+
+What is measured (written before anything ran)
+----------------------------------------------
+* ``init`` of each lab folder, as a stranger types it (``data.test_fraction`` to hold the last
+  test out, then what the messages say): what each header's role is, what the tilts become.
+* ``matrix`` (lab_matrix): every family + auto, ``run`` -> ``replay`` -> ``promote`` -> C
+  ``export`` with its check pack: test RMSE per target; replay = run (<= 1e-9); the unit the
+  printed table and metrics give the tilts.
+* ``diagnose`` (mlr): FOUND when an accepted effect on E_Z names the spindle speed column.
+* ``monitor`` (mlr): the healthy test quiet (0 sensor events), then +3 K on ``T4 Column front``
+  and on ``T1 Spindle front`` from 2 h into the held-out test.
+* ETVE alone: the ambient-only test as the test campaign (its fit and score, ``ati``).
+* CPU (user + sys) of every command (in process, ``RUSAGE_SELF`` + children).
+
+No rule is adopted from these records: they are a check, not a tuning set.
+"""
+
+from __future__ import annotations
+
+import json
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+REPO = Path(__file__).resolve().parents[1]
+sys.path[:0] = [str(REPO / "benchmarks")]
+SEEDS = {"iso_a": 6701, "iso_b": 6702}
+ARCSEC_URAD = 4.8481368                  # 1″ = pi / 648000 rad
+NAMES = {"E_X": "X1 [µm]", "E_Y": "Y1 [µm]", "E_Z": "Z [µm]", "E_A": "Tilt A [µrad]",
+         "E_B": "Tilt B [µrad]", "T_spindle_front": "T1 Spindle front [°C]",
+         "T_spindle_rear": "T2 Spindle rear [°C]", "T_head": "T3 Spindle head [°C]",
+         "T_col_front": "T4 Column front [°C]", "T_col_back": "T5 Column back [°C]",
+         "T_bed": "T6 Bed [°C]", "T_xdrive": "T7 X screw [°C]", "T_amb": "T8 Air [°C]",
+         "S_spindle_rpm": "Spindle speed [rpm]", "S_feed_X": "Feed X [mm/min]"}
+
+
+def simulate(seed: int, path: Path) -> None:
+    """``thermocomp simulate`` of the machining centre (the documented own-machine route)."""
+    lab_matrix.simulate_scenario("iso67", "conf67", seed, path,
+                                 *(["sim.generator.weeks_later=2"] if seed == 6702 else []))
+
+
+def clock(t: float) -> str:
+    """Seconds since the start -> ``hh:mm:ss.s`` (hours past 24 as they are)."""
+    tenths = int(round(t * 10))
+    h, rest = divmod(tenths, 36000)
+    m, rest = divmod(rest, 600)
+    return f"{h:02d}:{m:02d}:{rest // 10:02d}.{rest % 10}"
+
+
+def test_file(frame: pd.DataFrame, k: int, test: str, start: pd.Timestamp, period: float,
+              arcsec: bool) -> str:
+    """One test as the nest software writes it."""
+    names = dict(NAMES)
+    if arcsec:
+        names.update({"E_A": "Tilt A [″]", "E_B": "Tilt B [″]"})
+    head = ["[Header]", f"Software\tNestLog {'3.2' if arcsec else '3.1'}",
+            "Standard\tISO 230-3:2020", f"Test\t{test}", f"Test no.\t{k + 1}",
+            "Machine\tVMC 850, S/N 41207", "Operator\tK. Lindqvist",
+            f"Date\t{start:%d.%m.%Y}", f"Start time\t{start:%H:%M:%S}",
+            f"Sample rate\t{period:g} s", "Mandrel\td 25 mm x 100 mm, probes 100 mm apart",
+            "[Data]", "\t".join(["Time", *names.values()])]
+    rows = []
+    for r in frame.to_dict("records"):
+        cells = [clock(r["time"])]
+        for column in NAMES:
+            v = r[column]
+            if column in ("E_A", "E_B"):
+                cells.append(f"{v / ARCSEC_URAD if arcsec else v:.3f}")
+            elif column.startswith("T_"):
+                cells.append(f"{v:.3f}")
+            elif column.startswith("S_"):
+                cells.append(f"{v:.0f}")
+            else:
+                cells.append(f"{v:.3f}")
+        rows.append("\t".join(cells))
+    return "\r\n".join(head + rows) + "\r\n"
+
+
+def write(root: Path) -> None:
+    for name, sim, folder in lab_matrix.simulated(root, SEEDS, simulate):
+        manifest = pd.read_csv(sim / "campaigns.csv")
+        for k, row in enumerate(manifest.itertuples(index=False)):
+            frame = pd.read_csv(sim / row.file)
+            period = float(frame["time"].diff().median())
+            text = test_file(frame, k, row.test, pd.Timestamp(row.start), period,
+                             arcsec=name == "iso_b")
+            (folder / f"{k + 1:02d}_{row.test}.txt").write_text(text, encoding="utf-8",
+                                                                newline="")
+
+
+import lab_matrix  # noqa: E402  (the benches' shared matrix and steps)
+
+FAMILIES = lab_matrix.matrix_families()
+WRAPPERS = ("plain", "ati")
+
+
+def main(argv: list[str]) -> None:
+    lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
+        "write": lambda root, rest: write(root),
+    })
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
