@@ -113,14 +113,62 @@ def write(root: Path) -> None:
 
 
 import lab_matrix  # noqa: E402  (the benches' shared matrix and steps)
+from lab_matrix import project, stage  # noqa: E402
 
 FAMILIES = lab_matrix.matrix_families()
 WRAPPERS = ("plain", "ati")
 
 
+def initialised(root: Path, name: str, extra: list[str]) -> None:
+    """``thermocomp init`` of ``ROOT/name`` with ``extra`` (one try, as a stranger types it);
+    ``<record>_amb`` is the record's folder (a link) given ``data.roles.ambient=['T8 Air']``."""
+    project(root)
+    if name.endswith("_amb") and not (root / name).exists():
+        (root / name).symlink_to(root / name[:-4])
+    rc, said, cpu = stage("init", str(root / name), *extra, f"out={root / f'init-{name}'}")
+    print(json.dumps({"init": name, "extra": extra, "rc": rc, "said": said[:400],
+                      "cpu": round(cpu, 2)}), flush=True)
+
+
+def planted(src: Path, dst: Path, header: str, onset_row: int, jump_k: float = 3.0) -> float:
+    """``dst``: the lab's folder ``src`` with ``header`` of its last (test) file jumped by
+    ``jump_k`` K from data row ``onset_row`` on, written as the software writes it; the onset
+    (s since the test's start)."""
+    import shutil
+
+    shutil.copytree(src, dst, dirs_exist_ok=True)
+    test = sorted(dst.glob("*.txt"))[-1]
+    lines = test.read_bytes().decode("utf-8").split("\r\n")
+    first = lines.index("[Data]") + 2
+    k = lines[first - 1].split("\t").index(header)
+    for i in range(first + onset_row, len(lines)):
+        cells = lines[i].split("\t")
+        if len(cells) > k:
+            cells[k] = f"{float(cells[k]) + jump_k:.3f}"
+            lines[i] = "\t".join(cells)
+    test.write_text("\r\n".join(lines), encoding="utf-8", newline="")
+    return onset_row * 10.0
+
+
+def monitoring(root: Path, name: str, family: str, sensors, onset_row: int = 720) -> None:
+    """``monitor`` of the saved model on the healthy test, then with each sensor of ``sensors``
+    (a header as written) jumped by +3 K from ``onset_row`` (2 h at 10 s) on."""
+    project(root)
+    lab_matrix.monitoring(root, name, family, sensors,
+                          lambda src, dst, header, kind: planted(src, dst, header, onset_row))
+
+
 def main(argv: list[str]) -> None:
     lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
         "write": lambda root, rest: write(root),
+        # init ROOT name [override ...]
+        "init": lambda root, rest: initialised(root, rest[0], rest[1:]),
+        # monitor ROOT name family sensor-header...
+        "monitor": lambda root, rest: monitoring(root, rest[0], rest[1], rest[2:]),
+        # diagnose ROOT name family [override ...]
+        "diagnose": lambda root, rest: print(json.dumps(
+            lab_matrix.diagnosed(root, rest[0], rest[1], *rest[2:], accepted=True)[0],
+            default=str)),
     })
 
 
