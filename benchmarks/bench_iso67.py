@@ -35,6 +35,30 @@ What is measured (written before anything ran)
 * CPU (user + sys) of every command (in process, ``RUSAGE_SELF`` + children).
 
 No rule is adopted from these records: they are a check, not a tuning set.
+
+    ... bench_iso67.py init ROOT iso_a                 # then iso_b, iso_a_amb (T8 Air the ambient)
+    ... bench_iso67.py matrix ROOT iso_a --wrappers plain     # iso_b alike
+    ... bench_iso67.py matrix ROOT iso_a_amb --families mlr lagbank hammerstein --wrappers ati
+    ... bench_iso67.py raw ROOT iso_a                  # the test file as written into each stream
+    ... bench_iso67.py table ROOT iso_a
+    ... bench_iso67.py monitor ROOT iso_a mlr "T4 Column front [°C]" "T1 Spindle front [°C]"
+    ... bench_iso67.py diagnose ROOT iso_a mlr
+
+Measured (2026-12-01, 2 shared cores, other sessions' load; docs/own-data.md has the table)
+------------------------------------------------------------------------------------------
+``init iso_a`` at 21578bee: refused, "'Tilt A [µrad]': unit 'µrad' is not a temperature's (°C,
+K, °F)" (both tilts).  Mended (59acc74e): the tilts read as angular errors in µm/m, ``E_Tilt_A``
+/ ``E_Tilt_B`` (iso_b's ″ x 4.84814: RMS before 18.75 / 20.43 µrad against the simulator's 18.74
+/ 20.43), init 1.7 s CPU.  ``matrix``: before the mend the C ``export`` refused each of iso_a's 7
+cells ("data.time=elapsed, which stream.c cannot convert"); after, in all 17 cells (iso_a, iso_b,
+3 ati) every pack passed and the raw test file piped into each stream (gcc -std=c99 -Wall -Wextra -Werror) gave the pack to <= 9.4e-12.
+replay = run on iso_a (<= 8.9e-16; |stream - batch| <= 4.3e-14); on iso_b up to 1.1e-2, 27 of
+3326 test rows clamped to the envelope (``promote.envelope.policy=off``: 4.4e-16).  Test RMSE
+(X1 / Y1 / Z µm, tilt A / B µm/m) mlr 0.31 / 0.38 / 0.90 / 0.51 / 0.36 (iso_a), lagbank 0.20 /
+0.20 / 0.98 / 0.41 / 0.64, hammerstein 0.20 / 0.21 / 0.18 / 0.42 / 0.65, auto 0.32 / 0.27 / 0.83
+/ 0.56 / 0.36.  ``diagnose`` mlr iso_a: tilt A 0.51 -> 0.20 (input lags), Y1 0.376 -> 0.354, the
+planted speed (S_Spindle_speed x T_T1, CV gain 36 %, p 0.063) not accepted; iso_b nothing.
+``monitor`` mlr iso_a: healthy 0 events; +3 K on T4 / T1 at 2 h excluded at once.
 """
 
 from __future__ import annotations
@@ -121,11 +145,15 @@ WRAPPERS = ("plain", "ati")
 
 def initialised(root: Path, name: str, extra: list[str]) -> None:
     """``thermocomp init`` of ``ROOT/name`` with ``extra`` (one try, as a stranger types it);
-    ``<record>_amb`` is the record's folder (a link) given ``data.roles.ambient=['T8 Air']``."""
+    ``<record>_amb`` is the record's folder (a link) given ``data.roles.ambient=['T8 Air']``, its
+    config renamed ``<record>_amb.yaml``."""
     project(root)
     if name.endswith("_amb") and not (root / name).exists():
         (root / name).symlink_to(root / name[:-4])
     rc, said, cpu = stage("init", str(root / name), *extra, f"out={root / f'init-{name}'}")
+    conf = root / f"init-{name}" / "conf" / "data"
+    if not rc and not (conf / f"{name}.yaml").exists():     # (the link's target named it)
+        next(conf.glob("*.yaml")).rename(conf / f"{name}.yaml")
     print(json.dumps({"init": name, "extra": extra, "rc": rc, "said": said[:400],
                       "cpu": round(cpu, 2)}), flush=True)
 
@@ -158,11 +186,41 @@ def monitoring(root: Path, name: str, family: str, sensors, onset_row: int = 720
                           lambda src, dst, header, kind: planted(src, dst, header, onset_row))
 
 
+def raw(root: Path, name: str) -> None:
+    """Each cell's ``stream`` of ``name`` (built with ``gcc -std=c99 -Wall -Wextra -Werror``) fed
+    the lab's test file as the software wrote it (its ``[Header]`` block, the elapsed
+    ``hh:mm:ss.s``, the tilts in µrad or ″): the largest |C - pack| over its corrections."""
+    import subprocess
+
+    import numpy as np
+
+    test = sorted((root / name).glob("*.txt"))[-1]
+    for code in sorted((root / "out").glob(f"{name}-*-c")):
+        strict = subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2",
+                                 "compensator.c", "stream.c", "-lm", "-o", "stream"], cwd=code,
+                                capture_output=True, text=True)
+        done = subprocess.run(["./stream"], cwd=code, input=test.read_bytes(), capture_output=True)
+        row = {"raw": code.name, "gcc -std=c99 -Wall -Wextra -Werror": strict.returncode,
+               "rc": done.returncode}
+        if done.returncode == 0:
+            import io
+
+            got = pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float)
+            want = pd.read_csv(next((code / "check").glob("*/expected.csv"))).to_numpy(float)
+            row["max|C-pack|"] = float(np.abs(got - want).max()) if got.shape == want.shape \
+                else f"shape {got.shape} against {want.shape}"
+        else:
+            row["said"] = done.stderr.decode()[-300:]
+        print(json.dumps(row), flush=True)
+
+
 def main(argv: list[str]) -> None:
     lab_matrix.main(argv, SEEDS, FAMILIES, WRAPPERS, {
         "write": lambda root, rest: write(root),
         # init ROOT name [override ...]
         "init": lambda root, rest: initialised(root, rest[0], rest[1:]),
+        # raw ROOT name: the test file as written piped into each cell's stream
+        "raw": lambda root, rest: raw(root, rest[0]),
         # monitor ROOT name family sensor-header...
         "monitor": lambda root, rest: monitoring(root, rest[0], rest[1], rest[2:]),
         # diagnose ROOT name family [override ...]
