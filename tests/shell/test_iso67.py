@@ -128,3 +128,24 @@ def test_the_diagnosis_report_gives_a_tilt_its_unit(tmp_path, capsys):
     assert "(µm; E_AX in µm/m)" in md
     other = md[md.index("\n## E_X1"):]
     assert "| test RMSE (µm) |" in other
+
+
+def test_the_generated_codes_banner_gives_a_tilt_its_unit(tmp_path):
+    # before: "outputs: C_X1, C_AX in um" and its guard's bound and rate in um, um/s: an
+    # integrator reading the banner would apply a tilt's µrad as µm
+    nest_folder(tmp_path / "nest")
+    for path in (tmp_path / "nest").glob("*.txt"):
+        path.write_bytes(path.read_bytes().replace("Tilt A [µrad]".encode(), b"E_AX"))
+    common = [f"data.path={tmp_path / 'nest'}", "data.time=elapsed", "data.roles.error=[X1]",
+              "data.roles.ignore=[Tilt B]", "data.roles.state=[Spindle speed]",
+              "data.test_fraction=0.25"]
+    assert main(["run", *common, *FAST, "model=mlr", "plots=none", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *common, "track=false", "export.format=st", "export.check=false",
+                 f"export.model={tmp_path / 'run' / 'model.pkl'}", f"out={tmp_path / 'st'}"]) == 0
+    text = "\n".join(p.read_text(encoding="utf-8", errors="replace")
+                     for p in (tmp_path / "st").iterdir() if p.is_file())
+    assert "outputs: C_X1, C_AX in um (C_AX in um/m = urad, angular errors)" in text
+    assert "guard E_AX: bound [" in text
+    guard = text[text.index("guard E_AX: bound ["):].splitlines()[0]
+    assert "] um/m, rate limit" in guard and guard.endswith("um/m/s")
+    assert "] um, rate limit" in text[text.index("guard E_X1: bound ["):].splitlines()[0]
