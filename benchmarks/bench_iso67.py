@@ -51,7 +51,8 @@ K, °F)" (both tilts).  Mended (59acc74e): the tilts read as angular errors in �
 / ``E_Tilt_B`` (iso_b's ″ x 4.84814: RMS before 18.75 / 20.43 µrad against the simulator's 18.74
 / 20.43), init 1.7 s CPU.  ``matrix``: before the mend the C ``export`` refused each of iso_a's 7
 cells ("data.time=elapsed, which stream.c cannot convert"); after, in all 17 cells (iso_a, iso_b,
-3 ati) every pack passed and the raw test file piped into each stream (gcc -std=c99 -Wall -Wextra -Werror) gave the pack to <= 9.4e-12.
+3 ati) every pack passed and the raw test file piped into each stream (gcc -std=c99 -Wall
+-Wextra -Werror) gave the pack to <= 9.4e-12.  The banner said "um" of the tilts (mended, 4ab3cc58).
 replay = run on iso_a (<= 8.9e-16; |stream - batch| <= 4.3e-14); on iso_b up to 1.1e-2, 27 of
 3326 test rows clamped to the envelope (``promote.envelope.policy=off``: 4.4e-16).  Test RMSE
 (X1 / Y1 / Z µm, tilt A / B µm/m) mlr 0.31 / 0.38 / 0.90 / 0.51 / 0.36 (iso_a), lagbank 0.20 /
