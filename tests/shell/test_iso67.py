@@ -80,6 +80,11 @@ def test_an_angle_under_a_lengths_contract_name_is_refused_naming_the_fix():
     with pytest.raises(ContractError, match=r"an angle, its name a length's \(µm\): name it as a "
                        r"tilt, data.columns=\{'E_A1 \[µrad\]': E_tilt_A1\}"):
         naming(["time", "E_A1 [µrad]", "T_1"], {"roles": {}}, {}, {"E_A1 [µrad]": "1.0"})
+    # a header in an angle whose name says no rotation: its contract name says it, converted
+    got = naming(["time", "Kanal 4 [arcsec]", "T1 [°C]"], {"error": ["Kanal 4"]}, {},
+                 {"Kanal 4 [arcsec]": "1.0", "T1 [°C]": "20.0"})
+    assert got.names["Kanal 4 [arcsec]"] == "E_tilt_Kanal_4"
+    assert got.scales["E_tilt_Kanal_4"][0] == pytest.approx(ARCSEC)
     # ISO 230-1's names are angular already: converted, kept
     got = naming(["time", "E_AX [arcsec]", "T_1"], {"roles": {}}, {}, {"E_AX [arcsec]": "1.0"})
     assert got.names["E_AX [arcsec]"] == "E_AX" and got.scales["E_AX"][0] == pytest.approx(ARCSEC)
