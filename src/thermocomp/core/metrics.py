@@ -15,6 +15,11 @@ import numpy as np
 from ..base.jsonsafe import json_safe
 
 _ANGULAR = re.compile(r"^E_[ABC][XYZ]")   # ISO 230-1: E_AX .. E_CZ, rotations (+ order, cross axis)
+# extension (iso67): or a name with a word saying a rotation ('E_Tilt_A', a sensor nest's tilt
+# about X of ISO 230-3; 'E_tilt_ch4', the name a header in µrad or arcsec is read under)
+TILT_WORDS = frozenset({"tilt", "tilts", "pitch", "roll", "yaw", "angle", "angular", "neigung",
+                        "kippung", "winkel"})
+_WORD = re.compile(r"[_.\-]+")
 
 # The keys of the scores in ``metrics.json`` (CLI.md), named here once: the figures of a split
 # and of a campaign, and the blocks of a target beside ``train``/``test``.  Elsewhere they are
@@ -42,7 +47,14 @@ def validation_block(mode: str) -> str:
 
 def unit(target: str) -> str:
     """The unit of an ``E_`` column (DATA_FORMAT.md): µm/m for an angular error, else µm."""
-    return "µm/m" if _ANGULAR.match(target) else "µm"
+    return "µm/m" if angular(target) else "µm"
+
+
+def angular(target: str) -> bool:
+    """``target`` is an angular error (µm/m = µrad): ISO 230-1's name (``E_AX`` .. ``E_CZ``) or,
+    extension (iso67), a name with a word of :data:`TILT_WORDS` (``E_Tilt_A``)."""
+    return bool(_ANGULAR.match(target)) or (
+        target.startswith("E_") and any(w.lower() in TILT_WORDS for w in _WORD.split(target[2:])))
 
 
 def rmse(residual) -> float:

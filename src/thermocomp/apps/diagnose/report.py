@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 from markdown_it import MarkdownIt
 
+from ...core.metrics import unit
 from ...core.scoring.results import TEST_RMSE, TEST_RSD_MEAN, TEST_RSD_SD
 
 
@@ -58,6 +59,11 @@ def _effect_row(e: dict) -> str:
 
 EFFECT_HEAD = ("| kind | column | transform | CV RMSE (µm) | gain (µm) | gain | gain 95 % LCB (µm) "
                "| p | clears bar | accepted |\n|---|---|---|---:|---:|---:|---:|---:|---|---|")
+
+
+def effect_head(target: str) -> str:
+    """:data:`EFFECT_HEAD` in ``target``'s unit (iso67: a tilt's µm/m, where it said µm)."""
+    return EFFECT_HEAD.replace("(µm)", f"({unit(target)})")
 
 
 def slug(text: str) -> str:
@@ -121,9 +127,10 @@ def _target_section(j: dict, figures: list[str], primary: bool) -> list[str]:
     rounds = [(r, f"{t} sensor health" if r["step"] == 0 else f"{t} round {r['step']}")
               for r in j["rounds"]]
     accepted = _accepted(j)
+    um = unit(t)                  # (iso67: a tilt's figures in µm/m, where every one said µm)
     lines = [f"## {t}", "",
              ("Primary target (largest CV RMSE before; `diagnosis.json`).  " if primary else "")
-             + f"Test RMSE {_f(b[TEST_RMSE])} → {_f(a[TEST_RMSE])} µm; accepted: "
+             + f"Test RMSE {_f(b[TEST_RMSE])} → {_f(a[TEST_RMSE])} {um}; accepted: "
              + (", ".join(_effect_name(x) for x in accepted) or "nothing") + ".", "",
              f"- {_link('Before and after (test split)', h['before and after'])}",
              f"- {_link('Accepted effects', h['accepted effects'])}"]
@@ -135,17 +142,18 @@ def _target_section(j: dict, figures: list[str], primary: bool) -> list[str]:
         lines.append(f"- {_link('Sensor self-prediction (paper 002)', h['sensor self-prediction'])}")
     lines += ["", f"### {h['before and after']}", "",
               "| figure | before | after | change |", "|---|---:|---:|---:|"]
-    for label, key in (("test RMSE (µm)", TEST_RMSE), ("test Rsd SM (µm)", TEST_RSD_MEAN),
-                       ("test Rsd SD (µm)", TEST_RSD_SD), ("CV RMSE, train campaigns (µm)", "cv_rmse")):
+    for label, key in ((f"test RMSE ({um})", TEST_RMSE), (f"test Rsd SM ({um})", TEST_RSD_MEAN),
+                       (f"test Rsd SD ({um})", TEST_RSD_SD),
+                       (f"CV RMSE, train campaigns ({um})", "cv_rmse")):
         lines.append(f"| {label} | {_f(b[key])} | {_f(a[key])} | {_change(b[key], a[key])} |")
     for hours in (1.0, 4.0):
         _, eb, ea = _window(e, hours)
-        lines.append(f"| E_P95({e['statistic']}), {hours:g} h window (µm) | {_f(eb)} | {_f(ea)} | "
+        lines.append(f"| E_P95({e['statistic']}), {hours:g} h window ({um}) | {_f(eb)} | {_f(ea)} | "
                      f"{_change(eb, ea)} |")
-    lines += [f"| measured error RMS, no compensation (µm) | {_f(b['test_rms_measured'])} | | |", ""]
+    lines += [f"| measured error RMS, no compensation ({um}) | {_f(b['test_rms_measured'])} | | |", ""]
     lines += [f"### {h['accepted effects']}", ""]
     if accepted:
-        lines += ["| step | kind | column | transform | CV RMSE after (µm) |", "|---:|---|---|---|---:|"]
+        lines += [f"| step | kind | column | transform | CV RMSE after ({um}) |", "|---:|---|---|---|---:|"]
         lines += [f"| {x.get('step', '—')} | {x['kind']} | {x['column'] or '—'} | {x['transform']} | "
                   f"{_f((x.get('evidence') or {}).get('cv_rmse'))} |" for x in accepted]
         if j["excluded_inputs"]:
@@ -160,7 +168,7 @@ def _target_section(j: dict, figures: list[str], primary: bool) -> list[str]:
         verdict = ("it cleared the bar in some round: the bar is too low"
                    if j["control_ever_clears_bar"] else "it never cleared the bar")
         lines += ["", f"Random-walk control (no physical effect), last round: CV RMSE gain "
-                      f"{_f(ev['cv_rmse_gain'])} µm ({_f(ev['cv_rmse_gain_pct'], 1, True)}), "
+                      f"{_f(ev['cv_rmse_gain'])} {um} ({_f(ev['cv_rmse_gain_pct'], 1, True)}), "
                       f"p = {_p(ev['p_value'])}; {verdict}."]
     lines.append("")
     if figures:
@@ -170,8 +178,8 @@ def _target_section(j: dict, figures: list[str], primary: bool) -> list[str]:
             lines += [f"![{caption}]({f})", "", f"*{caption}.*", ""]
     lines += [f"### {h['evidence, round by round']}", ""]
     for r, title in rounds:
-        lines += [f"#### {title}", "", f"CV RMSE at the start of this round: {_f(r['cv_rmse'])} µm.", "",
-                  EFFECT_HEAD]
+        lines += [f"#### {title}", "", f"CV RMSE at the start of this round: {_f(r['cv_rmse'])} {um}.",
+                  "", effect_head(t)]
         lines += [_effect_row(x) for x in r["evaluated"]]
         if r["screened"]:
             top = ", ".join(f"{s['kind']} {s['column'] or ''} {s['transform']} ({s['screen_r2']:.2f})"
@@ -226,11 +234,13 @@ def markdown(jsons: dict[str, dict], figures: dict[str, list[str]] | None = None
     for t in order:
         b, a = jsons[t]["before"], jsons[t]["after"]
         lines.append(f"- {_link(t, t)}{' (primary)' if t == primary else ''}: test RMSE "
-                     f"{_f(b[TEST_RMSE])} → {_f(a[TEST_RMSE])} µm, "
+                     f"{_f(b[TEST_RMSE])} → {_f(a[TEST_RMSE])} {unit(t)}, "
                      f"{len(_accepted(jsons[t]))} effect(s) accepted")
     if rerun:
         lines.append(f"- {_link(RERUN, RERUN)}")
-    lines += ["", "| target | test RMSE before → after (µm) | CV RMSE before → after (µm) "
+    tilts = [t for t in order if unit(t) != "µm"]
+    units = "(µm)" if not tilts else f"(µm; {', '.join(tilts)} in µm/m)"
+    lines += ["", f"| target | test RMSE before → after {units} | CV RMSE before → after {units} "
               "| accepted effects |", "|---|---:|---:|---|"]
     for t in order:
         j = jsons[t]
@@ -252,7 +262,7 @@ def markdown(jsons: dict[str, dict], figures: dict[str, list[str]] | None = None
             lines += ["\"After\" is the model as deployed (promote, replay, exported code: "
                       f"{max(clamped.values())} test row(s) clamped to the training envelope); "
                       "this run scores it in batch: test RMSE "
-                      + ", ".join(f"{t} {j['after']['test_rmse_as_run']:.3f} µm"
+                      + ", ".join(f"{t} {j['after']['test_rmse_as_run']:.3f} {unit(t)}"
                                   for t, j in jsons.items() if clamped[t] is not None) + ".", ""]
     lines.append(f"_Diagnosis time: {first['seconds']:.1f} s._")
     return "\n".join(lines) + "\n"

@@ -12,6 +12,7 @@ import pandas as pd
 
 from ...base.tables import name_width
 from ...core.context import TIME
+from ...core.metrics import unit
 from ..deploy.adapt import Adaptation, adapt_figures
 from ..deploy.adaptive import AdaptiveCompensator
 from ..deploy.report import (
@@ -214,14 +215,15 @@ def _offset_lines(sensors: dict) -> list[str]:
     if bounded:
         name = max(bounded, key=lambda n: worst(bounded[n]))
         um, target = worst(bounded[name])
-        lines.append(f"an offset inside the exclusion band costs up to {um:.3g} µm ({name} "
+        lines.append(f"an offset inside the exclusion band costs up to {um:.3g} {unit(target)} "
+                     f"({name} "
                      f"{bounded[name]['undetected_offset_c']:g} °C, {target}; per sensor in "
                      "monitor.json)")
     if blind:
-        per_c = {n: worst(r)[0] / r["undetected_offset_c"] for n, r in blind.items()
-                 if r["undetected_offset_c"] > 0}
-        slopes = ", ".join(f"{n} {v:.3g} µm/°C" for n, v in sorted(per_c.items(),
-                                                                    key=lambda kv: -kv[1]))
+        per_c = {n: (worst(r)[0] / r["undetected_offset_c"], worst(r)[1])
+                 for n, r in blind.items() if r["undetected_offset_c"] > 0}
+        slopes = ", ".join(f"{n} {v:.3g} {unit(t)}/°C" for n, (v, t) in sorted(
+            per_c.items(), key=lambda kv: -kv[1][0]))   # (iso67: a tilt's in µm/m)
         lines.append(f"no other sensor predicts {', '.join(blind)}: no band bounds a drift of "
                      f"theirs (their range, jump and freeze detectors judge them){'; ' if slopes else ''}"
                      f"{slopes}")

@@ -20,6 +20,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..metrics import angular
 from ..timerule import median_step
 from .contract import MANIFEST, TIME, ContractError, role
 from .encoding import UTF8, WINDOWS, detect
@@ -508,6 +509,10 @@ def detection_lines(layout: str, opts, header, plan, ds, report, period_s: float
             h, role = "(no header)", "empty (left out)"
         h = h or "(no header)"
         shown = {CLOCK: "time", RUN: "(each run a campaign)"}.get(contract, contract or "-")
+        if contract and plan.roles.get(h) == "error" and angular(contract):   # (iso67)
+            unit, scale = split_unit(h)[1], plan.scales.get(contract, (1.0, 0.0))[0]
+            shown += (" (an angle, in µm/m = µrad" + (f": {unit} x {scale:.6g}" if unit and
+                                                      scale != 1.0 else "") + ")")
         lines.append(f"  {h:<{width}}  {role:<12} {shown}")
     for cid in ds.ids():
         lines.append(f"campaign {cid}: {ds.manifest.loc[cid, 'split']}, "

@@ -161,6 +161,15 @@ def hold_out(manifest: pd.DataFrame, opts, root: Path, starts: pd.Series | None 
         return manifest
     for split in ("test", "val"):
         if split in wanted and (manifest["split"] == split).any():
+            # (iso67: a split given by data.split_overrides, in a folder without campaigns.csv:
+            # the refusal named that file, which is not there, and its split column)
+            given = [str(c) for c, s in (opts.split_overrides or {}).items()
+                     if str(s) == split and c in manifest.index]
+            if given:
+                raise ContractError(
+                    f"data.{split}_fraction is set and data.split_overrides makes "
+                    f"{', '.join(given[:5])} {split} already: drop one of them (data.{split}"
+                    f"_fraction=null keeps the overrides' {split} campaigns)", file=root)
             raise ContractError(f"data.{split}_fraction is set but the manifest has {split} "
                                 "campaigns already: drop one of them", file=root / MANIFEST,
                                 column="split")

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from ...base.errors import listed
+from ..metrics import angular
 from .contract import TIME, ContractError, role
 from .options import AUTO, ROLE_PATTERNS, RUN_ROLE, _roles
 from .separators import number, reads_as_number
@@ -102,7 +103,7 @@ def _bare_unit(header: str) -> tuple[str, str] | None:
         base, unit = match.group(1).strip(), match.group(2)
         known = unit.lower()
         if ((len(known) > 1 or not known.isalpha())
-                and (any(known in UNITS[k] for k in ("E", "T")) or known in STATE_UNITS)
+                and (any(known in UNITS[k] for k in ("E", "T", "angle")) or known in STATE_UNITS)
                 or base.lower() in TIME_HEADERS and known in UNITS["time"]):
             return base, unit
     return None
@@ -113,7 +114,7 @@ def named_as_time(header: str) -> bool:
     [°C]`` is a temperature, not the time (``Zeit [hh:mm:ss]``, ``timestamp (UTC)`` are times)."""
     base, unit = split_unit(header)
     other = unit is not None and unit.lower().replace(" ", "") not in UNITS["time"] and (
-        any(unit.lower() in UNITS[k] for k in ("E", "T")) or unit.lower() in STATE_UNITS)
+        any(unit.lower() in UNITS[k] for k in ("E", "T", "angle")) or unit.lower() in STATE_UNITS)
     return base.lower() in TIME_HEADERS and not other
 
 
@@ -275,13 +276,21 @@ def naming(headers: Sequence[str], roles: Mapping, columns: Mapping, first: Mapp
         if unit is None and kind in ("temperature", "ambient"):
             base, unit = _letter_unit(header, first.get(header), decimal) or (base, unit)
         name = _derived(kind, base, len(ambient) > 1)
+        tilt = kind == "error" and _angle(unit)
+        if tilt and not angular(name):
+            if role(base) == "E":      # the lab's own contract name: renamed, it would not be
+                problems.append(f"{header!r}: unit {unit!r} is an angle, its name a length's "
+                                f"(µm): name it as a tilt, data.columns={{{header!r}: "
+                                f"E_tilt_{name[2:]}}}, or by ISO 230-1 (E_AX ... E_CZ)")
+                continue
+            name = f"E_tilt_{name[2:]}"     # (its unit, µm/m, said by its name: core.metrics)
         if not _UNSAFE.sub("", base):
             problems.append(f"{header!r} gives no name" + ("" if base else " (a unit alone: name "
                                                            "it with data.columns)"))
             continue
         out.names[header], out.roles[header] = name, kind
-        _scale(out, name, "E" if kind == "error" else "T" if kind != "state" else None, unit,
-               header, problems, None, decimal)
+        _scale(out, name, ("angle" if tilt else "E") if kind == "error" else
+               "T" if kind != "state" else None, unit, header, problems, None, decimal)
     _duplicates(out.names, problems, by_role)
     if problems:
         raise _refusal(problems, by_role, out.names, out.roles, file)
@@ -311,6 +320,8 @@ def _mapped_scale(out: Naming, name: str, unit: str | None) -> None:
     kind = role(name)
     if unit is None or kind not in ("E", "T"):
         return
+    if kind == "E" and _angle(unit):      # a tilt in arcsec mapped to E_AX: to µm/m (iso67)
+        kind = "angle"
     scale = UNITS[kind].get(unit.lower().replace(" ", ""))
     if scale is not None and scale != (1.0, 0.0):
         out.scales[name] = scale
@@ -394,11 +405,17 @@ def _scale(out: Naming, name: str, kind: str | None, unit: str | None, header: s
     known = UNITS[kind]
     scale = known.get(unit.lower().replace(" ", ""))
     if scale is None:
-        what = {"E": "an error's (µm, mm, m, nm)", "T": "a temperature's (°C, K, °F)",
+        what = {"E": "an error's (µm, mm, m, nm; an angle's µrad, mrad, arcsec)",
+                "angle": "an angle's (µrad, mrad, arcsec)", "T": "a temperature's (°C, K, °F)",
                 "time": "a time's (s, ms, min, h, d)"}[kind]
         problems.append(f"{header!r}: unit {unit!r} is not {what}")
     elif scale != (1.0, 0.0) or kind == "time":   # (a time's unit stated: no ms to suspect)
         out.scales[name] = scale
+
+
+def _angle(unit: str | None) -> bool:
+    """``unit`` is an angle read as an angular error (µrad, mrad, arcsec, ″: :data:`.units.UNITS`)."""
+    return unit is not None and unit.lower().replace(" ", "") in UNITS["angle"]
 
 
 def _duplicates(names: dict, problems: list, by_role: bool) -> None:

@@ -3,7 +3,8 @@
 One rule for ``thermocomp init``'s proposals and for ``run``'s reading of a header that no
 ``data.roles`` pattern matches (:func:`role_by_unit`): a length is an error, unless its name
 says a position (a machine state) or only an axis, over mm (``X [mm]``, ``X-Achse [mm]``: its
-position or its error, listed, never guessed); a speed, a power, a current, an on/off flag, an
+position or its error, listed, never guessed); a small angle (``Tilt A [µrad]``, ``[arcsec]``,
+``[″]``: a sensor nest's tilt) an angular error; a speed, a power, a current, an on/off flag, an
 angle (``Eje A [°]``) is a state; anything else says no role (a temperature, or, without a unit,
 a name).
 """
@@ -27,6 +28,11 @@ UNITS = {
     "time": {**dict.fromkeys(("s", "sec", "secs", "seconds"), (1.0, 0.0)), "ms": (1e-3, 0.0),
              "min": (60.0, 0.0), **dict.fromkeys(("h", "hr", "hours"), (3600.0, 0.0)),
              **dict.fromkeys(("d", "day", "days"), (86400.0, 0.0))},     # (Excel's serial days)
+    # extension (iso67): an angle small enough to be an error, a sensor nest's tilt (ISO 230-3),
+    # read as an angular error in the contract's µm/m (= µrad); a degree is a state (an axis')
+    "angle": {**dict.fromkeys(("µrad", "μrad", "urad", "µm/m", "μm/m", "um/m"), (1.0, 0.0)),
+              **dict.fromkeys(("mrad", "mm/m"), (1e3, 0.0)),
+              **dict.fromkeys(("arcsec", "″", '"', "''", "asec"), (4.84813681109536, 0.0))},
 }
 
 # a temperature's unit as one letter after a space ('T1 K', 'Probe F'), read as the unit where
@@ -80,6 +86,8 @@ def role_by_unit(base: str, unit: str | None) -> str | None:
     known = written.lower()
     if known in UNITS["E"] and written not in NEWTON_METRES:      # (Nm: a torque)
         return _length_role(base, known)
+    if known in UNITS["angle"]:        # a tilt in µrad or arcsec: an (angular) error
+        return "error"
     if known in STATE_UNITS or known in DIMENSIONLESS:
         return "state"
     words = [w for w in _WORDS.split(base.lower()) if w]

@@ -176,7 +176,8 @@ def _code_sizes(files: dict) -> dict:
 
 # data.time values whose times stream.c reads as the reader does (its own parser: driver.py):
 # day-first with a four- or two-digit year, ISO 8601's order, the seconds optional in each
-STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601",
+# (iso67: and a logger's elapsed h:mm:ss, TC_ELAPSED)
+STREAM_C_TIMES = frozenset({"auto", "seconds", "iso8601", "elapsed",
                             *(f"{date} %H:%M{seconds}" for date in ("%d.%m.%Y", "%d.%m.%y")
                               for seconds in (":%S", "")),
                             *(f"%Y-%m-%d{sep}%H:%M{seconds}" for sep in (" ", "T")
@@ -203,7 +204,7 @@ def _stream_encoding(cfg, fmt: str) -> str:
 def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> None:
     """Refuse a column whose unit ``stream.c`` cannot convert as the reader did: a header read
     two ways (a letter unit, 'Probe K', taken apart by its first value), or a time written as
-    ``data.time`` says (elapsed h:mm:ss, a strptime format: stream.c reads seconds and ISO 8601
+    ``data.time`` says (a strptime format: stream.c reads seconds, elapsed h:mm:ss and ISO 8601
     or day-first dates and times only; a date and its time of day in two columns, ``clock``
     their time-of-day headers, are joined as the reader joins them)."""
     for raw, (contract, scale, offset) in converted.items():
@@ -215,8 +216,9 @@ def _convertible(cfg: DictConfig, converted: dict, time_header, clock: list) -> 
     written = str(cfg.data.get("time") or "auto")
     if written not in STREAM_C_TIMES:
         raise ConfigError(f"export.format=c: the time column {shown!r} is read as data.time="
-                          f"{written}, which stream.c cannot convert (it reads seconds, ISO 8601 "
-                          "or day-first dates and times): convert the time, or export as json")
+                          f"{written}, which stream.c cannot convert (it reads seconds, elapsed "
+                          "h:mm:ss, ISO 8601 or day-first dates and times): convert the time, or "
+                          "export as json")
 
 
 def export(cfg: DictConfig) -> dict:
@@ -259,7 +261,8 @@ def export(cfg: DictConfig) -> dict:
         # export was refused)
         provenance.update(clock_column=str(clock[0]) if clock else None)
     thousands = cfg.data.get("thousands")       # (the lab's 1.234,5: stream.c ungroups it)
-    provenance.update(thousands=None if thousands is None else str(thousands)[:1])
+    provenance.update(thousands=None if thousands is None else str(thousands)[:1],
+                      elapsed=str(cfg.data.get("time") or "auto") == "elapsed")
     # (streamraw65: the lab's raw file as the reader reads it -- its character set and its marks
     # of a value not measured travel with the model, as data.thousands does)
     provenance.update(encoding=_stream_encoding(cfg, fmt),

@@ -82,6 +82,8 @@ def _lab_names(ss: StateSpace) -> str:
             f"static const char *const TC_CLOCK_COLUMN = "
             f"{c_string(ss.provenance.get('clock_column') or '')};"
             "  /* the time of day joined to the date column's cell (\"\": none) */\n"
+            f"#define TC_ELAPSED {int(bool(ss.provenance.get('elapsed')))}"
+            "   /* data.time=elapsed: the time a logger's h:mm:ss since the start (iso67) */\n"
             f"static const char *const TC_THOUSANDS = "
             f"{c_string(ss.provenance.get('thousands') or '')};"
             "  /* data.thousands: the digits' grouping mark (\"\": none) */\n"

@@ -11,13 +11,15 @@ DRIVER = r"""/* stream.c: CSV rows of raw inputs on stdin -> corrections C_<axis
  * under a lab's header in another unit (`T0 [degF]`, `T1 [K]`, `dX [mm]`, `Zeit [min]`, or a
  * unit data.units gave it) is converted cell by cell as the model's reader converted it
  * (TC_LAB_UNITS: value * scale + offset, to degC, um, s); under its contract name a column is in
- * the contract's unit.  The corrections printed are in um.  The
+ * the contract's unit.  The corrections printed are in um (an angular error's, a tilt, in
+ * um/m = urad: iso67).  The
  * separator is the header's: ';', a tab or '|' where it holds one, else ','; with another
  * separator than ',' a decimal comma reads (12,5).  The time is seconds, or a logger's
  * wall-clock time (ISO 8601 2023-01-07T08:45:00, a zone offset or none; day-first
  * 07.01.2023 08:45:00, or 07.01.23 08:45 with a two-digit year) read as seconds since the
  * campaign's first, as the served model reads it; every time of a stream in the form of its
- * first.  A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
+ * first; with TC_ELAPSED (data.time=elapsed) a logger's h:mm:ss since the start, 59:59:00.5.
+ * A cell that is no number (a time of day alone, 08:45:00) is refused with its row.
  * A blank row, a `reset` column holding 1, or a new value in the run-number column
  * TC_RUN_COLUMN starts a campaign (the row is its reference).  With TC_ADAPT, a row carrying
  * a measured error in a TC_ERROR_NAMES column (E_<axis>, optional; blank: none) is a reference
@@ -371,6 +373,27 @@ static int wall_clock(const char *cell, long long *whole, double *fraction) {
     return kind;
 }
 
+/* (iso67) A logger's time since its start, `h:mm:ss` (data.time=elapsed, TC_ELAPSED): hours
+   past 24 as they are (`59:59:00.0`), a fraction of a second after '.' or ',', as seconds into
+   *t; 0 for anything else. */
+static int elapsed(const char *cell, double *t) {
+    const char *p = cell;
+    long h, mi, s;
+    double fraction = 0.0, scale = 0.1;
+    while (*p == ' ' || *p == '"') p++;
+    if (!digits(&p, 1, 9, &h) || *p++ != ':' || !digits(&p, 2, 2, &mi) || *p++ != ':'
+        || !digits(&p, 2, 2, &s) || mi > 59 || s > 59) return 0;
+    if (*p == '.' || *p == ',') {
+        p++;
+        if (!(*p >= '0' && *p <= '9')) return 0;
+        for (; *p >= '0' && *p <= '9'; p++, scale /= 10) fraction += (*p - '0') * scale;
+    }
+    while (*p == ' ' || *p == '"') p++;
+    if (*p != '\0') return 0;
+    *t = h * 3600.0 + mi * 60.0 + s + fraction;
+    return 1;
+}
+
 /* The stream's clock: the form of its first time, and the first time of the campaign. */
 static struct { int kind, started; long long origin; double origin_fraction; } clock_;
 
@@ -383,6 +406,15 @@ static int time_of(const char *cell, long row, double scale, double offset, doub
     double fraction = 0.0;
     int bad = 0, kind;
     *t = value(cell, &bad);
+    if (TC_ELAPSED && bad) {            /* (iso67) data.time=elapsed: h:mm:ss since the start */
+        if (!elapsed(cell, t)) {
+            fprintf(stderr, "stream: row %ld: the time is no h:mm:ss since the start "
+                    "(data.time=elapsed: 0:00:00, 25:30:00.5)\n", row);
+            return 2;
+        }
+        clock_.kind = SECONDS;
+        return 0;
+    }
     kind = isfinite(*t) ? SECONDS : bad ? wall_clock(cell, &whole, &fraction) : 0;
     if (bad && !kind) {
         fprintf(stderr, "stream: row %ld: the time is no number of seconds nor a date and time "

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import sys
 
+from ....core.metrics import angular
 from ..naming import correction_column
 
 
@@ -63,12 +64,15 @@ def banner(ss, open_: str, middle: str, close: str) -> str:
         lines.append(f"  {j}: {ascii_name(c)}{ref} {p.get('units', {}).get(c, '')}  envelope {env}{held}"
                      + (f"  (the lab's {lab!a})" if lab else ""))   # ASCII: a PLC's source
     lines.append(f"time: s, {time_use(ss)}")
+    tilts = [t for t in ss.targets if angular(t)]     # (iso67: a tilt's correction in um/m)
     lines.append("outputs: " + ", ".join(map(ascii_name, correction_names(ss.targets)))
-                 + " in um (the correction: minus the predicted error)")
+                 + " in um" + (f" ({', '.join(map(ascii_name, correction_names(tilts)))} in um/m "
+                               "= urad, angular errors)" if tilts else "")
+                 + " (the correction: minus the predicted error)")
     for i, t in enumerate(ss.targets if ss.guard else []):
-        rate = ss.guard_rate[i]
-        lines.append(f"guard {ascii_name(t)}: bound [{ss.guard_lo[i]:.6g}, {ss.guard_hi[i]:.6g}] um, "
-                     "rate limit " + ("none" if rate is None else f"{rate:.6g} um/s"))
+        rate, um = ss.guard_rate[i], "um/m" if angular(t) else "um"
+        lines.append(f"guard {ascii_name(t)}: bound [{ss.guard_lo[i]:.6g}, {ss.guard_hi[i]:.6g}] "
+                     f"{um}, rate limit " + ("none" if rate is None else f"{rate:.6g} {um}/s"))
     if ss.guard and ss.guard_inputs:
         lines.append("guard bound widens by guard_gain . d on the training pattern, d the inputs' "
                      "distance beyond their training range [guard_in_lo, guard_in_hi]")
