@@ -12,10 +12,12 @@ from __future__ import annotations
 
 import io
 import json
+import subprocess
 
 import pytest
 
 from conftest import FAST, refused
+from test_export import needs_cc
 from test_stranger66 import ROLES, folders
 from thermocomp.shell.cli import main
 
@@ -82,3 +84,64 @@ def test_a_hash_line_in_a_file_without_comments_is_refused_alike_by_file_and_str
     refused(["run", f"data.path={plain}", *ROLES, *FAST, "plots=none", f"out={tmp_path / 'run'}"],
             capsys, f"file {test}, {line} (data row 101): {said}")
 
+
+# -- 1 and 2. the compiled stream: a '#' comment among the rows; the file's own line numbers -------
+
+@pytest.fixture(scope="module")
+def lab_stream(tmp_path_factory):
+    """``(stream, daq, plain)``: ``stream`` compiled from a lag bank run on the plain export of
+    the DAQ's runs (its lags read the time)."""
+    tmp_path = tmp_path_factory.mktemp("leftovers67c")
+    daq, plain = folders(tmp_path)
+    args = [f"data.path={plain}", *ROLES, *FAST]
+    code = tmp_path / "c"
+    assert main(["run", *args, "model=lagbank", "plots=none", f"out={tmp_path / 'run'}"]) == 0
+    assert main(["export", *args, f"export.model={tmp_path / 'run' / 'model.pkl'}",
+                 "export.format=c", "export.check=false", f"out={code}"]) == 0
+    subprocess.run(["gcc", "-std=c99", "-Wall", "-Wextra", "-Werror", "-O2", "compensator.c",
+                    "stream.c", "-lm", "-o", "stream"], cwd=code, check=True, capture_output=True)
+    return code / "stream", daq, plain
+
+
+def _streamed(stream, text: str) -> subprocess.CompletedProcess:
+    return subprocess.run([str(stream)], input=text, text=True, capture_output=True)
+
+
+@needs_cc
+def test_the_compiled_stream_leaves_a_comment_out_of_a_file_that_writes_them(lab_stream):
+    # before: "row 101 has not 7 cells" where the '#' block is above a header not itself a
+    # comment (only a commented header's '#' lines were left out); now left out, as the reader
+    # leaves it out, and said
+    stream, daq, plain = lab_stream
+    csv = sorted(plain.glob("*.csv"))[-1]
+    want = _streamed(stream, csv.read_text())
+    assert want.returncode == 0 and len(want.stdout.splitlines()) == 1 + 180
+    lines = sorted(daq.glob("*.txt"))[-1].read_text().splitlines(keepends=True)
+    for header in (lines[6], lines[6].removeprefix("# ")):
+        text = "".join(lines[:6] + [header] + lines[7:7 + 100] + [MARK] + lines[7 + 100:])
+        got = _streamed(stream, text)
+        assert got.returncode == 0 and got.stdout == want.stdout, got.stderr
+        assert "stream: line 108: a '#' comment among the rows" in got.stderr
+    # in a file that writes no comment: refused, saying what the line is
+    got = _streamed(stream, _marked(csv, 1 + 100))
+    assert got.returncode == 2
+    assert "stream: line 102 has not 6 cells: a '#' line among the rows: a comment?" in got.stderr
+
+
+@needs_cc
+def test_the_compiled_stream_names_the_files_own_line_as_the_reader_does(lab_stream, tmp_path,
+                                                                         capsys):
+    # before: the rows were counted from the header ("row 21: input T_Bed: 'n.v.' is no
+    # number"); the reader names the file's line 23 (a logger's two lines above the header)
+    stream, _, plain = lab_stream
+    rows = sorted(plain.glob("*.csv"))[-1].read_text().splitlines(keepends=True)
+    cells = rows[20].split(",")
+    rows[20] = ",".join([*cells[:2], "n.v.", *cells[3:]])
+    text = "".join(["Logger: TC-2\n", "Operator: lab\n", *rows])
+    got = _streamed(stream, text)
+    assert got.returncode == 2 and "stream: line 23: input T_Bed: 'n.v.' is no number" \
+        in got.stderr, got.stderr
+    lab = tmp_path / "lab.csv"
+    lab.write_text(text)
+    refused(["run", f"data.path={lab}", *ROLES, *FAST, "plots=none", f"out={tmp_path / 'r'}"],
+            capsys, "line 23 (data row 20)")
