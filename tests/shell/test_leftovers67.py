@@ -14,11 +14,14 @@ import io
 import json
 import subprocess
 
+import numpy as np
+import pandas as pd
 import pytest
 
 from conftest import FAST, refused
 from test_export import needs_cc
 from test_stranger66 import ROLES, folders
+from test_volstranger66 import calibrated, lab_files, raw  # noqa: F401 (a fixture)
 from thermocomp.shell.cli import main
 
 # -- 1. a '#' comment among the rows ------------------------------------------------------------
@@ -145,3 +148,60 @@ def test_the_compiled_stream_names_the_files_own_line_as_the_reader_does(lab_str
     lab.write_text(text)
     refused(["run", f"data.path={lab}", *ROLES, *FAST, "plots=none", f"out={tmp_path / 'r'}"],
             capsys, "line 23 (data row 20)")
+
+
+# -- 3. a volumetric export cut while a cycle was measured ---------------------------------------
+
+def _half_measured(folder, campaign: str, row: int) -> int:
+    """The cycle at 0-based ``row`` (negative: from the end) of ``campaign``'s file with the
+    distances of its last half of the poses empty (an export cut while it was measured);
+    returns its data row."""
+    f = folder / f"{campaign}.csv"
+    df = pd.read_csv(f, sep=";", decimal=",")
+    e = [c for c in df.columns if c.startswith("E_")]
+    poses = list(dict.fromkeys(c.split("_")[1] for c in e))
+    late = [c for c in e if c.split("_")[1] in poses[len(poses) // 2:]]
+    df.loc[df.index[row], late] = np.nan
+    df.to_csv(f, sep=";", decimal=",", index=False, float_format="%.6f")
+    return int(df.index[row]) + 1
+
+
+def test_a_trailing_half_measured_cycle_is_left_out_saying_so_one_mid_record_refused(
+        raw, tmp_path, capsys):  # noqa: F811
+    # before: calibrate, run and ingest refused the whole record ("data row 7: campaign
+    # validation_week: 100 of the 200 distances measured in this cycle ... cannot identify the
+    # parameters: measure its poses again or drop the row"); now that last cycle is left out,
+    # said, and the record calibrates as with the row deleted
+    cut, dropped = tmp_path / "cut", tmp_path / "dropped"
+    lab_files(raw, cut, unit_mm=True)
+    lab_files(raw, dropped, unit_mm=True)
+    row = _half_measured(cut, "validation_week", -1)
+    f = dropped / "validation_week.csv"
+    df = pd.read_csv(f, sep=";", decimal=",", dtype=str)
+    df.iloc[:-1].to_csv(f, sep=";", index=False)
+    got, want = calibrated(cut, tmp_path / "out_cut"), calibrated(dropped, tmp_path / "out_dropped")
+    said = capsys.readouterr().err
+    assert f"{cut / 'validation_week.csv'}, data row {row}: campaign validation_week's last cycle" \
+        in said and "left out" in said
+    assert list(got) == list(want)
+    for cid in want:
+        assert np.array_equal(got[cid].to_numpy(float), want[cid].to_numpy(float), equal_nan=True)
+    report = json.loads((tmp_path / "out_cut" / "calibration.json").read_text())
+    assert report["cut_cycles"]["validation_week"]["row"] == row
+    assert report["n_cycles"] == sum(len(df) for df in want.values())
+    # the stages: evaluate validates the ingested series against the distances without it
+    common = ["experiment=volumetric_large_mill", f"data.path={cut}", f"data.interim={tmp_path / 'i'}",
+              f"model_path={tmp_path / 'model.pkl'}", *FAST, "data.targets=[E_ZZ1,E_XZ1]"]
+    assert main(["ingest", *common]) == 0 and main(["train", *common]) == 0
+    assert main(["evaluate", *common, f"out={tmp_path / 'staged'}"]) == 0
+    staged = json.loads((tmp_path / "staged" / "metrics.json").read_text())["volumetric"]
+    assert main(["run", *common, f"out={tmp_path / 'run'}"]) == 0
+    whole = json.loads((tmp_path / "run" / "metrics.json").read_text())["volumetric"]
+    assert staged["distance_error"]["rms_after"] == pytest.approx(
+        whole["distance_error"]["rms_after"], rel=1e-9)
+    # one so measured before a campaign's last: still refused, naming its row
+    mid = tmp_path / "mid"
+    lab_files(raw, mid, unit_mm=True)
+    row = _half_measured(mid, "validation_week", -2)
+    refused(["calibrate", f"data.path={mid}", f"out={tmp_path / 'out_mid'}", "track=false"],
+            capsys, f"data row {row}: campaign validation_week:", "cannot identify the parameters")
