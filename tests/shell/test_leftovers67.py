@@ -121,9 +121,9 @@ def _streamed(stream, text: str) -> subprocess.CompletedProcess:
 
 @needs_cc
 def test_the_compiled_stream_leaves_a_comment_out_of_a_file_that_writes_them(lab_stream):
-    # before: "row 101 has not 7 cells" where the '#' block is above a header not itself a
-    # comment (only a commented header's '#' lines were left out); now left out, as the reader
-    # leaves it out, and said
+    # before: "row 102 has not 7 cells" (file line 108) where the '#' block is above a header
+    # not itself a comment (only a commented header's '#' lines were left out); now left out,
+    # as the reader leaves it out, and said
     stream, daq, plain = lab_stream
     csv = sorted(plain.glob("*.csv"))[-1]
     want = _streamed(stream, csv.read_text())
