@@ -206,6 +206,7 @@ def programme(rng, period_s: float, days: int):
     return merge(gen), merge(flood)
 
 
+@dataclass(eq=False, repr=False, kw_only=True)
 class Edm65(PlantedScenario):
     """Eight days of the wire EDM as one record (the lab cuts it into day files)."""
 
@@ -213,14 +214,8 @@ class Edm65(PlantedScenario):
     year = 2027
     planted = SubmergedFrame
 
-    def __init__(self, days=8, sample_period_s=60.0, temp_noise_c=0.03, temp_quantum_c=0.01,
-                 error_noise_um=0.2, error_quantum_um=0.1, effects=(), effect_params=None,
-                 clean=False, seed=0):
-        self.days = days
-        self.sample_period_s = sample_period_s
-        self.error_gaps = "hold"
-        super().__init__(temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects,
-                         effect_params, clean, seed)
+    days: int = 8
+    sample_period_s: float = 60.0
 
     def machine(self):
         return machine()

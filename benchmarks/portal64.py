@@ -271,6 +271,7 @@ def programme(rng, period_s: float, days: int) -> tuple[Programme, object]:
     return Programme(tuple(merge(steps))), Programme(tuple(merge(ram))).rpm_at
 
 
+@dataclass(eq=False, repr=False, kw_only=True)
 class Portal64(PlantedScenario):
     """Three weeks of the portal mill: weekly campaigns, or one record (``one_record``)."""
 
@@ -278,16 +279,12 @@ class Portal64(PlantedScenario):
     year = 2027
     planted = RamLever
 
-    def __init__(self, weeks=3, one_record=False, sample_period_s=60.0, error_period_s=300.0,
-                 error_gaps="nan", temp_noise_c=0.03, temp_quantum_c=0.01, error_noise_um=0.3,
-                 error_quantum_um=0.1, effects=(), effect_params=None, clean=False, seed=0):
-        self.weeks = weeks
-        self.one_record = one_record
-        self.sample_period_s = sample_period_s
-        self.error_period_s = error_period_s
-        self.error_gaps = error_gaps
-        super().__init__(temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects,
-                         effect_params, clean, seed)
+    weeks: int = 3
+    one_record: bool = False
+    sample_period_s: float = 60.0
+    error_period_s: float = 300.0
+    error_gaps: str = "nan"
+    error_noise_um: float = 0.3
 
     def machine(self):
         return machine()

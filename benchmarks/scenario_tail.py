@@ -6,7 +6,8 @@
 * :func:`weekday_shift`: the machine powered on weekdays within the shift's hours;
 * :class:`LoggedStateEffect`: the base of a planted effect of a LOGGED state (its column, so
   declared) on the errors, with a node's rise from the campaign's first sample;
-* :class:`PlantedScenario`: a :class:`~thermocomp.apps.sim.scenario.Scenario` with ONE planted
+* :class:`PlantedScenario`: a :class:`~thermocomp.apps.sim.scenario.DeclaredScenario` (its
+  parameters declared once, as dataclass fields: leftovers67) with ONE planted
   effect the default model lacks (an :class:`~thermocomp.apps.sim.effects.UndeclaredEffect`
   whose column is logged): planted in every record, its figures in the truth under its name,
   and left out of the truth's ``undeclared_effects``.
@@ -28,7 +29,7 @@ from typing import ClassVar
 import numpy as np
 
 from thermocomp.apps.sim.effects import UndeclaredEffect
-from thermocomp.apps.sim.scenario import Scenario
+from thermocomp.apps.sim.scenario import DeclaredScenario
 
 
 def merge(steps: list) -> list:
@@ -82,7 +83,7 @@ class LoggedStateEffect(UndeclaredEffect):
         return ctx.node_temps[:, index[node]] - ctx.node_temps[0, index[node]]
 
 
-class PlantedScenario(Scenario):
+class PlantedScenario(DeclaredScenario):
     """A scenario with one planted effect, ``planted`` (its class), in every record.
 
     Subclasses set ``planted`` and say its figures in :meth:`planted_truth` (the truth's entry

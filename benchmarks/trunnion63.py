@@ -77,7 +77,7 @@ from scenario_tail import merge, weekday_shift
 from thermocomp.apps.sim.ambient import DAY_S, HallClimate
 from thermocomp.apps.sim.campaign import Machine, Programme
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork
-from thermocomp.apps.sim.scenario import CampaignPlan, Scenario
+from thermocomp.apps.sim.scenario import CampaignPlan, DeclaredScenario
 from thermocomp.apps.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.apps.sim.sources import SPINDLE, ConstantWhileRunning, HeatSource, SpeedLosses
 from thermocomp.apps.sim.thermoelastic import ThermoelasticMap
@@ -213,21 +213,17 @@ def programme(rng, period_s: float) -> Programme:
     return Programme(tuple(merge(steps)))    # rounding may merge two steps: keep the later
 
 
-class Trunnion63(Scenario):
+@dataclass(eq=False, repr=False, kw_only=True)
+class Trunnion63(DeclaredScenario):
     """Three weekly records of the trunnion mill (``W1``, ``W2`` train, ``W3`` test)."""
 
     name = "trunnion63"
     year = 2026
 
-    def __init__(self, weeks=3, sample_period_s=60.0, error_period_s=600.0, error_gaps="nan",
-                 temp_noise_c=0.03, temp_quantum_c=0.01, error_noise_um=0.2, error_quantum_um=0.1,
-                 effects=(), effect_params=None, clean=False, seed=0):
-        self.weeks = weeks
-        self.sample_period_s = sample_period_s
-        self.error_period_s = error_period_s
-        self.error_gaps = error_gaps
-        super().__init__(temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects,
-                         effect_params, clean, seed)
+    weeks: int = 3
+    sample_period_s: float = 60.0
+    error_period_s: float = 600.0
+    error_gaps: str = "nan"
 
     def machine(self):
         return machine()

@@ -73,6 +73,7 @@ The last run(s) are held out by ``data.test_fraction``.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from datetime import datetime, timedelta
 
 import numpy as np
@@ -184,6 +185,7 @@ def either(a, b):
     return at
 
 
+@dataclass(eq=False, repr=False, kw_only=True)
 class Tsc66(PlantedScenario):
     """Six 40 h runs of the twin-spindle turning centre (one campaign each)."""
 
@@ -191,15 +193,9 @@ class Tsc66(PlantedScenario):
     year = 2027
     planted = BedLever
 
-    def __init__(self, runs=6, run_h=RUN_H, sample_period_s=60.0, temp_noise_c=0.03,
-                 temp_quantum_c=0.01, error_noise_um=0.2, error_quantum_um=0.1, effects=(),
-                 effect_params=None, clean=False, seed=0):
-        self.runs = runs
-        self.run_h = run_h
-        self.sample_period_s = sample_period_s
-        self.error_gaps = "hold"
-        super().__init__(temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects,
-                         effect_params, clean, seed)
+    runs: int = 6
+    run_h: float = RUN_H
+    sample_period_s: float = 60.0
 
     def machine(self):
         return machine()

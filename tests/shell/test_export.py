@@ -362,7 +362,7 @@ def test_export_writes_code_that_builds_with_cc_and_carries_its_provenance(datas
     assert list(got.columns) == ["C_X", "C_Z"] and len(got) == len(rows)
     # bad rows: exit 2, one line naming the row or the column
     rows.loc[3, "T_b"] = np.nan
-    for text, says in ((rows.to_csv(index=False), "row 5: input T_b has no finite value"),
+    for text, says in ((rows.to_csv(index=False), "line 5: input T_b has no finite value"),
                        (rows.drop(columns=["T_a"]).to_csv(index=False), "lacks input column T_a")):
         run = subprocess.run([str(out / "stream")], input=text, text=True, capture_output=True)
         assert run.returncode == 2 and run.stderr.strip().endswith(says), run.stderr

@@ -97,7 +97,7 @@ def test_the_compiled_c_reads_a_loggers_wall_clock_times_as_replay_does(tmp_path
              rows[9].split(";")[1]: ("540,0", 11, "is seconds, the stream's first a date")}
     for old, (new, row, said) in cases.items():
         bad = _streamed(binary, raw.replace(old, new, 1))
-        assert bad.returncode == 2 and f"row {row}: the time ".encode() in bad.stderr, bad.stderr
+        assert bad.returncode == 2 and f"line {row}: the time ".encode() in bad.stderr, bad.stderr
         assert said.encode() in bad.stderr
 
 

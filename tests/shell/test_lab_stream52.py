@@ -68,7 +68,7 @@ def test_the_compiled_c_streams_the_labs_raw_long_file_as_replay(tmp_path):
     clock = raw.replace("\n3;0,0;", "\n3;08:45:00;", 1)
     assert clock != raw
     bad = subprocess.run([str(code / "stream")], input=clock.encode(), capture_output=True)
-    assert bad.returncode == 2 and b"row 2: the time is no number" in bad.stderr
+    assert bad.returncode == 2 and b"line 2: the time is no number" in bad.stderr
 
 
 @pytest.mark.parametrize("text, want", [("T0 [°C]", '"T0 [\\302\\260C]"'),

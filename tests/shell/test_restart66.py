@@ -118,7 +118,7 @@ def test_the_compiled_stream_fed_day_files_from_0_gives_its_pack(tmp_path):
         got.append(pd.read_csv(io.BytesIO(done.stdout)).to_numpy(float))
     assert np.abs(np.concatenate(got) - want).max() < 1e-9
     # where the rule sets in, said: the second and third file's first row
-    assert ["row 2: the time (0 s) is not after the last read" in s for s in said] == [
+    assert ["line 2: the time (0 s) is not after the last read" in s for s in said] == [
         False, True, True], said
 
     text = paths[0].read_text() + "".join(p.read_text().split("\n", 1)[1] for p in paths[1:])

@@ -85,7 +85,7 @@ def test_a_missing_value_mark_is_a_missing_value_and_another_word_no_number(tmp_
     # replay's plain stream does; the reader interpolated it in this train record)
     done = subprocess.run(["./stream"], cwd=code, input=raw, capture_output=True)
     said = done.stderr.decode()
-    assert done.returncode == 2 and "row 22: input T_Ständer has no finite value" in said
+    assert done.returncode == 2 and "line 22: input T_Ständer has no finite value" in said
     assert "a data.missing_values mark" in said
     assert len(done.stdout.decode().splitlines()) == 1 + 20          # the rows before it
     # a word the model's data.missing_values does not list: no number, refused as the reader
@@ -93,7 +93,7 @@ def test_a_missing_value_mark_is_a_missing_value_and_another_word_no_number(tmp_
     done = subprocess.run(["./stream"], cwd=code, input=raw.replace(b";---;", b";n.v.;"),
                           capture_output=True)
     assert done.returncode == 2
-    assert "row 22: input T_Ständer: 'n.v.' is no number" in done.stderr.decode()
+    assert "line 22: input T_Ständer: 'n.v.' is no number" in done.stderr.decode()
 
 
 @needs_cc

@@ -128,6 +128,7 @@ def volumetric_distances(cfg: DictConfig, ds: io.Dataset):
     else None: what ``evaluate`` validates the parameter models of ``ds`` (``data.interim``, which
     ``ingest`` calibrated from the same folder) against; the calibration's model is fitted again,
     not its cycles.  An ingest without this calibration's parameter series is refused."""
+    from ..apps.volumetric.calibration import without_cut_cycles
     from ..apps.volumetric.source import open_distances
 
     if not is_volumetric(cfg):
@@ -139,7 +140,8 @@ def volumetric_distances(cfg: DictConfig, ds: io.Dataset):
         raise io.ContractError(f"it does not hold the parameter series of the volumetric dataset "
                                f"{resolve(cfg.data.path)} (no {lacking[0]}); rerun ingest",
                                file=resolve(cfg.data.interim))
-    return raw, cal, ds.meta["ingest_report"].get("calibration") or {}
+    report = ds.meta["ingest_report"].get("calibration") or {}
+    return without_cut_cycles(raw, report), cal, report
 
 
 def reference(cfg: DictConfig) -> str:

@@ -19,7 +19,7 @@ import contextlib
 import copy
 import zlib
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields, is_dataclass
 from datetime import datetime, timedelta
 from typing import ClassVar
 
@@ -133,7 +133,8 @@ class Scenario:
     def __init__(self, temp_noise_c, temp_quantum_c, error_noise_um, error_quantum_um, effects=(),
                  effect_params=None, clean=False, seed=0):
         """Store what every scenario takes: the measurement chain, the planted effects, the seed
-        (a subclass names them in its own ``__init__`` too: :meth:`get_params` reads its signature)."""
+        (a subclass names them in its own ``__init__`` too: :meth:`get_params` reads its
+        signature; or it declares its parameters once, :class:`DeclaredScenario`)."""
         self.temp_noise_c = temp_noise_c
         self.temp_quantum_c = temp_quantum_c
         self.error_noise_um = error_noise_um
@@ -158,8 +159,14 @@ class Scenario:
 
     # --- common -------------------------------------------------------------------------------
     def get_params(self) -> dict:
-        code = type(self).__init__.__code__
-        names = list(code.co_varnames[1:code.co_argcount])
+        """The constructor's parameters and their values, in its signature's order (a
+        :class:`DeclaredScenario`'s: its own first, then the measurement chain's)."""
+        if is_dataclass(self):
+            names = [f.name for f in fields(self) if f.init]
+            names = [n for n in names if n not in CHAIN] + [n for n in CHAIN if n in names]
+        else:
+            code = type(self).__init__.__code__
+            names = list(code.co_varnames[1:code.co_argcount])
         return {name: plain(getattr(self, name)) for name in names}
 
     def measurement(self) -> Measurement:
@@ -275,6 +282,32 @@ class Scenario:
         return {"formula": "E = (T - T(0)) @ coefficients + N(0, error_um^2), quantised",
                 "coefficients_um_per_K": {t: dict(zip(sensors, map(float, coef[:, i])))
                                           for i, t in enumerate(targets)}}
+
+
+
+# what every scenario takes (Scenario.__init__'s parameters), in its order
+CHAIN = ("temp_noise_c", "temp_quantum_c", "error_noise_um", "error_quantum_um", "effects",
+         "effect_params", "clean", "seed")
+
+
+@dataclass(eq=False, repr=False, kw_only=True)
+class DeclaredScenario(Scenario):
+    """A scenario that declares its parameters once, as dataclass fields: its own, and a
+    measurement chain's default it changes (``error_noise_um: float = 0.3``); the constructor,
+    its signature (what ``sim.generator``'s keys are checked against) and :meth:`get_params`
+    (its own first, then the chain's, as an ``__init__`` spelling them lists them) come from
+    that one list (leftovers67: each bench scenario spelled an ``__init__`` of alike lines).
+    Subclasses are ``@dataclass(eq=False, repr=False, kw_only=True)`` too: keywords only, the
+    fields' order (the chain's first) being no order to call by."""
+
+    temp_noise_c: float = 0.03
+    temp_quantum_c: float = 0.01
+    error_noise_um: float = 0.2
+    error_quantum_um: float = 0.1
+    effects: tuple = ()
+    effect_params: dict | None = None
+    clean: bool = False
+    seed: int = 0
 
 
 def campaign_entry(cid: str, split: str, start, notes: str, frame: pd.DataFrame, columns: Mapping,

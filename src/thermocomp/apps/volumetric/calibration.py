@@ -135,6 +135,43 @@ def _identify(cal, ds, distances, skipped, excluded=()):
     return out
 
 
+def _without_a_cut_cycle(cal, ds, distances, skipped) -> dict:
+    """Each campaign's last cycle, where some of its distances are empty and those measured
+    cannot identify the parameters, left out of ``ds`` and ``distances`` with a warning naming
+    its file and row: a lab's export cut by the end of logging while a cycle was measured
+    (leftovers67: refused whole, "measure its poses again or drop the row").  A cycle so
+    measured before a campaign's last is still refused (:func:`_identify`): a measurement
+    that went wrong mid-record is for the lab to look at.  ``{campaign: {"row", "measured",
+    "of"}}`` of the cycles left out."""
+    cut = {}
+    for cid, df in list(ds.campaigns.items()):
+        last = distances[cid][-1:]
+        if len(df) < 2 or np.isfinite(last).all():
+            continue
+        try:
+            cal.identify(last)
+        except CycleError as exc:
+            row, measured = skipped[cid] + len(df), exc.total - exc.missing
+            logger.warning(f"{ds.file_path(cid)}, data row {row}: campaign {cid}'s last cycle, "
+                           f"{measured} of its {exc.total} distances measured (the export cut "
+                           "while it was measured?), cannot identify the parameters: left out "
+                           "(a cycle measured so before a campaign's last is refused)")
+            ds.campaigns[cid] = df.iloc[:-1]
+            distances[cid] = distances[cid][:-1]
+            cut[cid] = {"row": row, "measured": measured, "of": exc.total}
+    return cut
+
+
+def without_cut_cycles(raw, report: dict):
+    """``raw`` (a distance dataset) without the campaigns' last cycles the calibration
+    ``report`` (``calibration.json``) left out (:func:`_without_a_cut_cycle`): the distances
+    ``evaluate`` validates an ingested parameter series against, cycle for cycle."""
+    for cid in report.get("cut_cycles") or {}:
+        if cid in raw.campaigns:
+            raw.campaigns[cid] = raw.campaigns[cid].iloc[:-1]
+    return raw
+
+
 def _check_fits(cal: ArtefactCalibration, ds, distances, skipped) -> None:
     """Refuse distances that do not fit the set-up at all, before identifying every cycle.
 
@@ -260,6 +297,8 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
     _require_seen(cal, setup, list(require_seen or []))
     n_cycles = sum(len(df) for df in ds.campaigns.values())
     distances = {cid: distance_matrix(df, cal) for cid, df in ds.campaigns.items()}   # once each
+    cut = _without_a_cut_cycle(cal, ds, distances, skipped)
+    n_cycles -= len(cut)
     _check_fits(cal, ds, distances, skipped)
     result = _identify(cal, ds, distances, skipped)
     counts: dict[str, int] = {}
@@ -278,6 +317,7 @@ def calibrate_folder(root: Path, data_cfg: dict, outlier_z: float = 6.0, column_
     report["repairs"] = read["repairs"]          # T_/S_ gaps interpolated (data.max_gap_samples)
     report["trimmed"] = {cid: e["trimmed"] for cid, e in read["campaigns"].items()
                          if any(e["trimmed"].values())}
+    report["cut_cycles"] = cut
     campaigns = {}
     for cid, df in ds.campaigns.items():
         keep = df[[col for col in df.columns if not col.startswith("E_")]]

@@ -12,6 +12,15 @@ The search is one byte search of the mapped file (no row is parsed), so a file w
 costs nothing noticeable.  A stream piped into ``monitor monitor.input=-`` (or ``connect``) is
 searched by the same rule (:func:`spans_in`, leftovers66: the header's text was read as a cell
 of each number column and refused).
+
+A file that writes ``#`` comments (every non-blank line above its header one, or its header
+written as one: a DAQ script's) may write one among its rows too (a ``# marker: tool change``
+mid-run): such a line is left out and said by its line, by the file reader, ``init`` and a
+stream alike (leftovers67: the file reader refused it, "expected 7 fields, got 1", and a stream
+left out every ``#`` line under a commented header or any unit row, unsaid).  In a file whose
+preamble writes no comment, a ``#`` line among the rows is a row as before, and one of other
+than the header's width refused saying what it is (:data:`STRAY`): Excel writes ``#N/A`` as a
+cell, and such a row is read as a row.
 """
 
 from __future__ import annotations
@@ -22,6 +31,24 @@ from pathlib import Path
 import pyarrow as pa
 
 from ...base.log import logger
+from .layout import uncommented
+
+# the refusal of a '#' line among the rows of a file that writes no comment (file and stream)
+STRAY = ("a '#' line among the rows, of other than the header's width: a comment? a '#' line is "
+         "left out as one only in a file that writes '#' comments (its lines above the header, "
+         "or its header itself); delete the line, or write the file's preamble as '#' comments")
+
+
+class Spans(tuple):
+    """The ``(first byte, past last byte)`` spans left out of a file, in order; ``comments``:
+    those of a ``#`` comment among the rows (the others a header written again)."""
+
+    comments: tuple = ()
+
+    def __new__(cls, spans=(), comments=()):
+        out = super().__new__(cls, spans)
+        out.comments = tuple(comments)
+        return out
 
 
 def _line_at(m, start: int) -> tuple[bytes, int]:
@@ -31,22 +58,22 @@ def _line_at(m, start: int) -> tuple[bytes, int]:
     return m[start:end].rstrip(b"\r\n"), end
 
 
-def header_again(path: Path, preamble: int, units: bool, cut: int | None = None
-                 ) -> tuple[tuple[int, int], ...]:
-    """``((first byte, past last byte), ...)`` of each header written again in ``path`` (the
-    header on line ``preamble + 1``; ``units``: a unit row under it, left out with it where it
-    is written again too), above byte ``cut`` (a footer's start); () where none is."""
+def header_again(path: Path, preamble: int, units: bool, sep: str, cut: int | None = None
+                 ) -> Spans:
+    """The :class:`Spans` of each header written again in ``path`` (the header on line
+    ``preamble + 1``; ``units``: a unit row under it, left out with it where it is written again
+    too) and of each ``#`` comment among its rows (a file that writes them; ``sep``: its
+    delimiter), above byte ``cut`` (a footer's start); () where none is."""
     with open(path, "rb") as f:
         try:
             m = mmap.mmap(f.fileno(), 0, access=mmap.ACCESS_READ)
         except ValueError:                      # an empty file
-            return ()
+            return Spans()
         with m:
-            return spans_in(m, preamble, units, cut)
+            return spans_in(m, preamble, units, sep, cut)
 
 
-def spans_in(m, preamble: int, units: bool, cut: int | None = None
-             ) -> tuple[tuple[int, int], ...]:
+def spans_in(m, preamble: int, units: bool, sep: str, cut: int | None = None) -> Spans:
     """:func:`header_again`'s spans in a file's bytes ``m`` (a mapped file, or the bytes of a
     stream: ``monitor.input=-`` reads a lab's day file piped in by the same rule)."""
     start, above = 0, []
@@ -54,18 +81,16 @@ def spans_in(m, preamble: int, units: bool, cut: int | None = None
         line, start = _line_at(m, start)
         above.append(line)
         if start >= len(m):
-            return ()
+            return Spans()
     header, body = _line_at(m, start)
     unit_row, body = _line_at(m, body) if units else (None, body)
     header = header.removeprefix(b"\xef\xbb\xbf")     # (a BOM: written once, first)
     if not header.strip():
-        return ()
+        return Spans()
     stop = len(m) if cut is None else min(cut, len(m))
+    commented = writes_comments(above, header, sep)
     spans, at = [], body
-    while True:
-        found = m.find(b"\n" + header, at - 1 if at else 0, stop)
-        if found < 0:
-            return tuple(spans)
+    while (found := m.find(b"\n" + header, at - 1 if at else 0, stop)) >= 0:
         first = found + 1
         line, end = _line_at(m, first)
         at = end
@@ -73,16 +98,41 @@ def spans_in(m, preamble: int, units: bool, cut: int | None = None
             continue
         if unit_row is not None and end < stop and _line_at(m, end)[0] == unit_row:
             end = _line_at(m, end)[1]
-        first = _block_above(m, first, above, preamble)
+        first = _block_above(m, first, above, preamble, commented)
         spans.append((first, min(end, stop)))
+    comments = comments_in(m, body, stop, spans) if commented else []
+    return Spans(sorted(spans + comments), comments)
 
 
-def _block_above(m, first: int, above: list[bytes], most: int) -> int:
+def writes_comments(above: list[bytes], header: bytes, sep: str) -> bool:
+    """The file writes ``#`` comments: every non-blank line of its preamble ``above`` is one (at
+    least one), or, without a preamble, its ``header`` is written as one (``# t [s]``, not a
+    first column named ``#``: :func:`.layout.uncommented`)."""
+    written = [ln.removeprefix(b"\xef\xbb\xbf") for ln in above if ln.strip()]
+    if written:
+        return all(ln.lstrip().startswith(b"#") for ln in written)
+    first = header.split(sep.encode(), 1)[0].decode("latin-1")
+    return uncommented([first], []) != [first]
+
+
+def comments_in(m, body: int, stop: int, spans) -> list[tuple[int, int]]:
+    """The spans of the ``#`` lines from byte ``body`` to ``stop`` outside the ``spans``."""
+    out, at = [], body
+    while (found := m.find(b"#", at, stop)) >= 0:
+        first = m.rfind(b"\n", 0, found) + 1
+        end = _line_at(m, found)[1]
+        at = end
+        if first >= body and not m[first:found].strip(b" \t") and \
+                not any(a <= first < b for a, b in spans):
+            out.append((first, min(end, stop)))
+    return out
+
+
+def _block_above(m, first: int, above: list[bytes], most: int, commented: bool) -> int:
     """``first`` moved up over the lines a logger writes again above its header (stranger66: a
     DAQ script's ``#`` block, its ``# start:`` line another time): each equal to a line of the
-    file's own preamble ``above``, or a ``#`` comment where that preamble is all comments; at most
-    ``most`` lines."""
-    commented = bool(above) and all(ln.lstrip().startswith(b"#") for ln in above if ln.strip())
+    file's own preamble ``above``, or a ``#`` comment where the file writes them
+    (``commented``); at most ``most`` lines."""
     for _ in range(most):
         if first == 0:
             break
@@ -114,24 +164,38 @@ def lines_in(m, spans) -> tuple[int, ...]:
 _SAID: set = set()   # (file, size, mtime): said once per process (init reads a file twice)
 
 
-def said(path: Path, lines: tuple[int, ...], spans) -> None:
-    """The warning: each header written again, by its file line (once per file as it is)."""
+def said(path: Path, lines: tuple[int, ...], spans: Spans) -> None:
+    """The warning: each header written again and each comment among the rows, by its file
+    line (once per file as it is)."""
     stat = path.stat()
     key = (str(Path(path).resolve()), stat.st_size, stat.st_mtime_ns)
     if not spans or key in _SAID:
         return
     _SAID.add(key)
-    warn(path, lines)
+    warn(path, lines, line_numbers(path, spans.comments))
 
 
-def warn(source, lines: tuple[int, ...]) -> None:
-    """Say that the ``lines`` of ``source`` (a file, ``<stdin>``) are a header written again."""
-    starts = [ln for ln in lines if ln - 1 not in lines]
-    where = ", ".join(map(str, starts[:5])) + (", ..." if len(starts) > 5 else "")
-    logger.warning(f"{source}, line{'s' * (len(starts) > 1)} {where}: the file's header written "
-                   "again under its data (a logger restarted?; the lines of its preamble above it "
-                   "too, where written again): left out, the rows after it read as rows of the "
-                   "file")
+def warn(source, lines: tuple[int, ...], comments: tuple[int, ...] = ()) -> None:
+    """Say that the ``lines`` of ``source`` (a file, ``<stdin>``) are a header written again,
+    but the ``comments``, ``#`` comments among its rows."""
+    said = set(comments)
+    again = [ln for ln in lines if ln not in said]
+    if again:
+        logger.warning(f"{source}, {_where(again)}: the file's header written again under its "
+                       "data (a logger restarted?; the lines of its preamble above it too, where "
+                       "written again): left out, the rows after it read as rows of the file")
+    if comments:
+        logger.warning(f"{source}, {_where(comments)}: a '#' comment among the rows (the file "
+                       "writes '#' comments: a logger's note?): left out, the rows after it read "
+                       "as rows of the file")
+
+
+def _where(lines) -> str:
+    """``lines 3, 9``: the first line of each block of ``lines``."""
+    held = set(lines)
+    starts = [ln for ln in lines if ln - 1 not in held]
+    return (f"line{'s' * (len(starts) > 1)} " + ", ".join(map(str, starts[:5]))
+            + (", ..." if len(starts) > 5 else ""))
 
 
 def kept(whole, spans, stop: int) -> bytes:

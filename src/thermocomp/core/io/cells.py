@@ -103,7 +103,7 @@ class _Runs:
 def _table(path: Path, delimiter: str, encoding: str, skip: int, preamble: int,
            width: int) -> pa.Table | None:
     """The file's data rows as text (None where Arrow cannot split them: the reader says why)."""
-    spans = header_again(path, preamble, skip > preamble + 1)
+    spans = header_again(path, preamble, skip > preamble + 1, delimiter)
     cut = footer(path, delimiter, width, encoding)[1]
     spans = tuple((a, b) for a, b in spans if a < cut)
     data = without(path, cut, spans) if spans else source(path, cut)

@@ -19,7 +19,7 @@ import pyarrow.compute as pc
 
 from ...base.log import say
 from ..context import TIME
-from .again import kept, lines_in, spans_in, warn
+from .again import STRAY, comments_in, kept, lines_in, spans_in, warn
 from .contract import ContractError
 from .csvline import EMPTY, SPLIT, split_line
 from .encoding import UTF8, check_text, text_codec
@@ -158,7 +158,7 @@ def _table(text: str, sep: str) -> str:
     lines = text.splitlines()
     start = header_line(lines[:SNIFF_LINES], sep) or 0
     units = len(lines) > start + 1 and is_unit_row(split_line(lines[start + 1], sep, EMPTY))
-    text = _without_again(text, start, units)
+    text = _without_again(text, start, units, sep)
     lines = text.splitlines()
     if not lines:
         return text
@@ -169,23 +169,41 @@ def _table(text: str, sep: str) -> str:
     if units:
         header = with_units(header, split_line(lines[start + 1], sep, EMPTY))
     body = lines[start + 1 + units:]
-    if header != written:     # a DAQ's '#' block written again with its header: left out
-        body = [ln for ln in body if not ln.lstrip().startswith("#")]
     out = StringIO()
     csv.writer(out, delimiter=sep, lineterminator="\n").writerow(header)
     return out.getvalue() + "\n".join(body) + "\n"
 
 
-def _without_again(text: str, start: int, units: bool) -> str:
-    """``text`` without the header written again under its data (and the unit row after it),
-    said with its stream lines, by the file reader's rule (:mod:`.again`): a logger's day file
-    piped in as it was written (the header's text in a number column refused the stream)."""
+def _without_again(text: str, start: int, units: bool, sep: str) -> str:
+    """``text`` without the header written again under its data (and the unit row after it)
+    and, in a stream that writes ``#`` comments, a comment among its rows, said with their
+    stream lines, by the file reader's rule (:mod:`.again`): a logger's day file piped in as it
+    was written (the header's text in a number column refused the stream); a ``#`` line of
+    another width among the rows of a stream that writes no comment refused as the file
+    reader refuses it."""
     data = text.encode()
-    spans = spans_in(data, start, units)
+    spans = spans_in(data, start, units, sep)
+    _no_stray(data, spans, start, units, sep)
     if not spans:
         return text
-    warn(SOURCE, lines_in(data, spans))
+    warn(SOURCE, lines_in(data, spans), lines_in(data, spans.comments))
     return kept(data, spans, len(data)).decode()
+
+
+def _no_stray(data: bytes, spans, start: int, units: bool, sep: str) -> None:
+    """Refuse a ``#`` line among the rows not left out (:data:`.again.STRAY`) whose fields are
+    not the header's: the file reader's malformed row, said as it says it."""
+    body = 0
+    for _ in range(start + 1 + units):
+        body = data.find(b"\n", body) + 1
+        if not body:
+            return
+    width = len(split_line(data[:body].decode().splitlines()[start], sep, EMPTY))
+    for first, end in comments_in(data, body, len(data), spans):
+        got = len(split_line(data[first:end].decode().rstrip("\r\n"), sep, EMPTY))
+        if got != width:
+            raise ContractError(f"expected {width} fields, got {got}: {STRAY}", file=SOURCE,
+                                line=lines_in(data, [(first, end)])[0])
 
 
 def _grouped(df: pd.DataFrame, opts) -> pd.DataFrame:

@@ -16,7 +16,7 @@ import pyarrow.compute as pc
 import pyarrow.csv as pacsv
 
 from ...base.log import logger
-from .again import header_again, line_numbers, without
+from .again import STRAY, header_again, line_numbers, without
 from .again import said as said_again
 from .contract import TIME, ContractError, role
 from .csvline import SPLIT, split_line
@@ -148,7 +148,7 @@ def _load_csv(path: Path, opts: ReadOptions) -> tuple:
     header, first_row, skip = peek_csv(path, opts.delimiter, opts.encoding)
     opts = replace(opts, skip_rows=skip)
     preamble = header_line(head_lines(path, opts.encoding), opts.delimiter) or 0
-    spans = header_again(path, preamble, skip > preamble + 1)
+    spans = header_again(path, preamble, skip > preamble + 1, opts.delimiter)
     dropped = line_numbers(path, spans)
     said_again(path, dropped, spans)
     opts = replace(opts, drop_bytes=spans)
@@ -613,6 +613,8 @@ def _malformed_row_error(path, names, opts, message) -> ContractError:
         said = (f"the file's last line holds {row.actual_columns} of its {row.expected_columns} "
                 "fields: cut off while it was written (the logger stopped?); its cells are not "
                 "read as they are, delete that line")
+    elif row.text.lstrip().startswith("#"):        # (leftovers67: a logger's note, said)
+        said = f"{said}: {STRAY}"
     return ContractError(said, file=path,
                          row=None if row.number is None else row.number - opts.skip_rows)
 

@@ -417,13 +417,13 @@ static int time_of(const char *cell, long row, double scale, double offset, doub
     }
     kind = isfinite(*t) ? SECONDS : bad ? wall_clock(cell, &whole, &fraction) : 0;
     if (bad && !kind) {
-        fprintf(stderr, "stream: row %ld: the time is no number of seconds nor a date and time "
+        fprintf(stderr, "stream: line %ld: the time is no number of seconds nor a date and time "
                 "(2023-01-07T08:45:00, 07.01.2023 08:45:00; a time of day alone goes back at "
                 "midnight)\n", row);
         return 2;
     }
     if (kind && clock_.kind && kind != clock_.kind) {
-        fprintf(stderr, "stream: row %ld: the time is %s, the stream's first %s\n", row,
+        fprintf(stderr, "stream: line %ld: the time is %s, the stream's first %s\n", row,
                 forms[kind], forms[clock_.kind]);
         return 2;
     }
@@ -594,14 +594,17 @@ int main(int argc, char **argv) {
     static char header_raw[MAX_LINE], units_raw[MAX_LINE], first_row[MAX_LINE], row_raw[MAX_LINE];
     char *raw[MAX_COLS];
     /* a first row read after the header; a header again seen; lines above the header all `#`
-       comments; the header written as one; a `#` line among the rows said */
-    int pending = 0, again = 0, commented = 1, hashed = 0, said_hash = 0;
+       comments (or blank); one of them a `#` comment; the header written as one; `#` lines
+       among the rows said */
+    int pending = 0, again = 0, commented = 1, noted = 0, hashed = 0, said_hash = 0;
     static char stamp[2 * MAX_CELL + 2];
     int ambient_col = -1;
     int said_back = 0;         /* rows said whose time is not after the last read */
     double ambient = NAN;      /* --ambient: a campaign's initial ambient (TC_AMBIENT_GIVEN) */
     int ncols, i, j, ignored, measured, restored = 0, failed;
-    long row = 1;
+    /* the line of the file read last (1: its first), as an editor numbers it: the preamble
+       above the header counted (leftovers67); the header's line */
+    long row = 1, top = 1;
     tc_state s;
     double u[TC_N_INPUTS], c[TC_N_OUTPUTS], e[TC_N_OUTPUTS], t = NAN;
 
@@ -663,11 +666,16 @@ int main(int argc, char **argv) {
         static char first[MAX_LINE];
         strcpy(first, line);
         commented = commented && comment_or_blank(line);
+        noted = noted || line[strspn(line, " \t")] == '#';
         for (i = 0; i < MAX_PREAMBLE && next_line(line, sizeof line, i + 2); i++) {
             if (names_every_input(line)) break;
             commented = commented && comment_or_blank(line);
+            noted = noted || line[strspn(line, " \t")] == '#';
         }
-        if (i == MAX_PREAMBLE || !names_every_input(line)) strcpy(line, first), commented = 1;
+        if (i == MAX_PREAMBLE || !names_every_input(line))
+            strcpy(line, first), commented = 1, noted = 0;
+        else
+            row = i + 2;                          /* the header's line */
     }
     sep = separator_of(line);
     strcpy(header_raw, line);
@@ -683,7 +691,8 @@ int main(int argc, char **argv) {
     /* (streamraw65) a unit row under the header (`;;degC;W;-;um`: every cell it fills no number,
        an input's among them), as the reader reads it: left out, each header joined to its unit
        (`T Halle [degC]`) */
-    if ((pending = next_line(units_raw, sizeof units_raw, 2)) != 0) {
+    top = row;
+    if ((pending = next_line(units_raw, sizeof units_raw, row + 1)) != 0) {
         static char copy[MAX_LINE], joined[MAX_CELL * 2 + 4];
         char *units[MAX_COLS];
         int n, filled = 0, unit_row = 1, k;
@@ -699,7 +708,7 @@ int main(int argc, char **argv) {
         }
         if (filled && unit_row) {
             pending = 0;
-            row = 2;
+            row++;
             units_raw[strcspn(units_raw, "\r\n")] = '\0';
             for (j = 0; j < ncols && j < n; j++) {
                 const char *u = trimmed(units[j]), *lab;
@@ -781,12 +790,14 @@ int main(int argc, char **argv) {
             continue;
         }
         again = 0;
-        /* (stranger66) a `#` line among the rows of a header written as a comment: the DAQ's block
-           written again with its header (a restart), left out as the reader leaves it out */
-        if (hashed && line[strspn(line, " \t")] == '#') {
-            if (!said_hash++)
-                fprintf(stderr, "stream: line %ld: a # comment among the rows (the block and "
-                        "header written again?): left out\n", row);
+        /* (stranger66, leftovers67) a `#` line among the rows of a file that writes `#` comments
+           (its lines above the header, or its header): a logger's note, the DAQ's block written
+           again with its header (a restart); left out as the reader leaves it out */
+        if ((hashed || (commented && noted)) && line[strspn(line, " \t")] == '#') {
+            if (said_hash++ < 5)
+                fprintf(stderr, "stream: line %ld: a '#' comment among the rows (the file writes "
+                        "'#' comments: a logger's note?): left out%s\n", row,
+                        said_hash == 5 ? " (no more said)" : "");
             continue;
         }
         strcpy(row_raw, line);
@@ -796,12 +807,16 @@ int main(int argc, char **argv) {
             continue;
         }
         if (split(line, cells) != ncols) {
-            fprintf(stderr, "stream: row %ld has not %d cells\n", row, ncols);
+            fprintf(stderr, "stream: line %ld has not %d cells%s\n", row, ncols,
+                    line[strspn(line, " \t")] == '#' ? ": a '#' line among the rows: a comment? "
+                    "a '#' line is left out as one only in a file that writes '#' comments (its "
+                    "lines above the header, or its header itself)" : "");
             return 2;
         }
         if (reset_col >= 0 && value(cells[reset_col], &ignored) == 1.0) restart(&s, 1);
         if (run_col >= 0 && strcmp(cells[run_col], run) != 0) {    /* the next run */
-            restart(&s, row > 2 || restored);     /* (a restored stream was in another run) */
+            /* (not at the first line under the header; a restored stream was in another run) */
+            restart(&s, row > top + 1 || restored);
             strncpy(run, cells[run_col], MAX_CELL - 1);
         }
         for (i = 0; i < TC_N_INPUTS; i++) {
@@ -814,13 +829,13 @@ int main(int argc, char **argv) {
                 return 2;
             }
             if (bad) {    /* (streamraw65: read as missing before; the reader refuses it) */
-                fprintf(stderr, "stream: row %ld: input %s: '%s' is no number (a mark for a "
+                fprintf(stderr, "stream: line %ld: input %s: '%s' is no number (a mark for a "
                         "value not measured? the model's data.missing_values lists %d)\n", row,
                         TC_INPUT_NAMES[i], trimmed(cells[where[i]]), TC_N_MISSING);
                 return 2;
             }
             if (!isfinite(u[i]) && !TC_INPUT_HELD[i]) {    /* (a held signal: tc_step holds it) */
-                fprintf(stderr, "stream: row %ld: input %s has no finite value%s\n", row,
+                fprintf(stderr, "stream: line %ld: input %s has no finite value%s\n", row,
                         TC_INPUT_NAMES[i], is_mark(cells[where[i]]) ? " (a data.missing_values "
                         "mark: a missing value, which the plain stream refuses as replay's does)"
                         : "");
@@ -836,7 +851,7 @@ int main(int argc, char **argv) {
         if (TC_SUBSTITUTE_TIME && isfinite(t) && !s.first && isfinite(s.t_read) && t <= s.t_read
             && !isfinite(s.t_back) && said_back++ < 5)
             /* (restart66) the time rule (timerule.py): said where it sets in */
-            fprintf(stderr, "stream: row %ld: the time (%.10g s) is not after the last read (%.10g "
+            fprintf(stderr, "stream: line %ld: the time (%.10g s) is not after the last read (%.10g "
                     "s): taken one period after the previous row; where the next time is after "
                     "this one (a clock started again: a file of the record whose time starts at 0 "
                     "again), the stream counts on with it, as run joins a file that continues "
@@ -846,7 +861,7 @@ int main(int argc, char **argv) {
             double a0 = ambient_col >= 0 ? value(cells[ambient_col], &ignored) : NAN;
             if (!isfinite(a0)) a0 = ambient;
             if (!isfinite(a0) && !TC_AMBIENT_OPTIONAL) {
-                fprintf(stderr, "stream: row %ld starts a campaign without its ambient_c (and no "
+                fprintf(stderr, "stream: line %ld starts a campaign without its ambient_c (and no "
                         "--ambient)\n", row);
                 return 2;
             }
