@@ -65,7 +65,7 @@ from scipy.stats import t as student_t
 
 from ...core.metrics import reduction_pct
 from .candidates import CONTROL, CandidateOptions, candidates
-from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalue
+from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
 from .sensors import self_prediction
 
@@ -221,12 +221,16 @@ def margin_pvalue(mse_before, mse_after, margin_pct: float, seed: int = 0) -> fl
     was refused.  (Log ratios per block, each block counting alike, were tried
     and refused: they let a stand-in through that made the hot blocks worse, a hydraulics
     product for a gantry's hidden Y axis, p 0.0013, test error +5.8 %.)"""
+    return float(_flip_pvalues(mse_before, mse_after, margin_pct, seed)[1])
+
+
+def _flip_pvalues(mse_before, mse_after, margin_pct: float, seed: int = 0) -> tuple:
+    """The sign-flip p-values of the blocks' MSE gains (a candidate's own ``p_value``) and of
+    :func:`margin_pvalue`'s ``e_i``, over the same patterns (one draw)."""
     b, a = np.asarray(mse_before, float), np.asarray(mse_after, float)
     e = (1.0 - margin_pct / 100.0) ** 2 * b - a
-    e = e[np.isfinite(e)]
-    if e.size < 2:
-        return 1.0
-    return sign_flip_pvalue(e, seed=seed)
+    p, p_margin = sign_flip_pvalues([b - a, e], seed=seed)
+    return float(p), (float(p_margin) if np.isfinite(e).sum() >= 2 else 1.0)
 
 
 def _pct(gain: float, rmse: float) -> float:
@@ -321,12 +325,10 @@ class Search:
         pct = 100.0 * gain / current.rmse if current.rmse > 0 else 0.0
         inside = reduction_pct(current.in_range_rmse, res.in_range_rmse)   # None: no such row
         inside = float("nan") if inside is None else inside
-        d = current.block_mse - res.block_mse
-        p = sign_flip_pvalue(d, seed=self.options.seed)
+        p, p_margin = _flip_pvalues(current.block_mse, res.block_mse, self.options.min_gain_pct,
+                                    self.options.seed)
         lcb = gain_lower_bound(current.block_mse, res.block_mse)
         margin = gain_lower_bound(current.block_mse, res.block_mse, 1.0 - self.options.alpha)
-        p_margin = margin_pvalue(current.block_mse, res.block_mse, self.options.min_gain_pct,
-                                 seed=self.options.seed)
         jump = (float(faults.loc[effect.column, "jump_ratio"])
                 if effect.transform == "remove" and faults is not None and effect.column in faults.index
                 else None)
