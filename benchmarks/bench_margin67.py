@@ -96,10 +96,10 @@ taken at the default alpha 0.01 (test 4.20 -> 1.73 µm, as at 0.1 before; the co
 nothing); ``bench_diagsparse61`` seeds 1-3 (both codes, after scoring): seed 2's door at 1 in 30,
 margin p 0.011 by t, is accepted (5.417 -> 2.769 µm), at 1 in 10 an ambient law follows the lag
 (2.580 -> 1.353), every other row (seeds 1, 3, the clean records) as before.  CPU of the 139
-rows, base and rule side by side: 158.4 -> 173.8 s with the sign patterns drawn twice (the jig grinder 18.5 -> 35.1 s: 2,112 blocks x 20 000 Monte Carlo
-patterns, ~0.6 s a draw, for each of its refits); drawn once for the gain's p and the margin's
-(``cv.sign_flip_pvalues``, the same p-values: every row identical) 156.2 -> 155.5 s (the jig
-grinder 21.7 -> 23.8 s).
+rows, base and rule side by side: 158.4 -> 173.8 s with the sign patterns drawn twice (the jig
+grinder 18.5 -> 35.1 s: 2,112 blocks x 20 000 Monte Carlo patterns, ~0.6 s a draw, for each of
+its refits); drawn once for the gain's p and the margin's (``cv.sign_flip_pvalues``, the same
+p-values: every row identical) 156.2 -> 155.5 s (the jig grinder 21.7 -> 23.8 s).
 """
 
 from __future__ import annotations
