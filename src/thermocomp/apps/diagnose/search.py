@@ -65,7 +65,7 @@ from scipy.stats import t as student_t
 
 from ...core.metrics import reduction_pct
 from .candidates import CONTROL, CandidateOptions, candidates
-from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalue
+from .cv import CrossValidator, CVResult, Problem, sign_flip_maxt, sign_flip_pvalues
 from .features import Effect
 from .sensors import self_prediction
 
@@ -198,30 +198,39 @@ def gain_lower_bound(mse_before, mse_after, level: float = 0.95) -> float:
     return float(np.sqrt(before) - np.sqrt(max(before - bound, 0.0)))
 
 
-def margin_pvalue(mse_before, mse_after, margin_pct: float) -> float:
+def margin_pvalue(mse_before, mse_after, margin_pct: float, seed: int = 0) -> float:
     r"""One-sided p-value of a CV RMSE gain of at least ``margin_pct`` % over the test blocks.
 
     The null is that the candidate's mean block MSE is at least :math:`(1 - m)^2` of the
     current one (``m = margin_pct / 100``: a gain of ``m`` of the RMSE at most); each block's
     :math:`e_i = (1 - m)^2\,\mathrm{MSE}_i - \mathrm{MSE}^{+}_i` has mean :math:`\le 0` under
-    it, tested by Student's t.  Before, the margin was the gain's Student-t lower bound on the
+    it, tested by flipping the blocks' signs (:func:`~.cv.sign_flip_pvalue`, the gain's own
+    test: exact over the :math:`2^n` patterns up to 16 blocks, Monte Carlo beyond, ``seed``).
+    margin67: it was Student's t of the :math:`e_i`, whose reference distribution takes the hot
+    blocks' spread for the null's scale; the blocks' MSE spans two orders of magnitude and the
+    gain grows with it, so :math:`e_i` is right-skewed (skewness 2-3, excess kurtosis 3-9 on
+    9-29 blocks), and a planted position effect better than the margin in 11 of 11 blocks had
+    p 0.039 (now 1/2048; ``benchmarks/bench_margin67.py``).  For sign flips the mean and its t
+    order the patterns alike: the same statistic, its permutation distribution.
+    Before diagpos61, the margin was the gain's Student-t lower bound on the
     raw MSE gains :math:`\mathrm{MSE}_i - \mathrm{MSE}^{+}_i` against the margin's share of
     the *mean* MSE taken as exact: blocks of a few hours of one record differ in error by two
     orders of magnitude (a gantry's rail warmed by the sun: 3-240 µm² over its 18 blocks), the
     gains grow with the block's error, and their spread, not the margin's, set the bound: a
     candidate that gained in all 18 blocks, 70 % of the CV RMSE, had a 99 % bound of 4.1 % and
-    was refused (here p 0.006).  (Log ratios per block, each block counting alike, were tried
+    was refused.  (Log ratios per block, each block counting alike, were tried
     and refused: they let a stand-in through that made the hot blocks worse, a hydraulics
-    product for a gantry's hidden Y axis, p 0.0013, test error +5.8 %; here its p is 0.056.)"""
+    product for a gantry's hidden Y axis, p 0.0013, test error +5.8 %.)"""
+    return float(_flip_pvalues(mse_before, mse_after, margin_pct, seed)[1])
+
+
+def _flip_pvalues(mse_before, mse_after, margin_pct: float, seed: int = 0) -> tuple:
+    """The sign-flip p-values of the blocks' MSE gains (a candidate's own ``p_value``) and of
+    :func:`margin_pvalue`'s ``e_i``, over the same patterns (one draw)."""
     b, a = np.asarray(mse_before, float), np.asarray(mse_after, float)
     e = (1.0 - margin_pct / 100.0) ** 2 * b - a
-    e = e[np.isfinite(e)]
-    if e.size < 2:
-        return 1.0
-    spread = e.std(ddof=1)
-    if spread <= 0.0:
-        return 0.0 if e.mean() > 0.0 else 1.0
-    return float(student_t.sf(e.mean() / (spread / np.sqrt(e.size)), e.size - 1))
+    p, p_margin = sign_flip_pvalues([b - a, e], seed=seed)
+    return float(p), (float(p_margin) if np.isfinite(e).sum() >= 2 else 1.0)
 
 
 def _pct(gain: float, rmse: float) -> float:
@@ -316,11 +325,10 @@ class Search:
         pct = 100.0 * gain / current.rmse if current.rmse > 0 else 0.0
         inside = reduction_pct(current.in_range_rmse, res.in_range_rmse)   # None: no such row
         inside = float("nan") if inside is None else inside
-        d = current.block_mse - res.block_mse
-        p = sign_flip_pvalue(d, seed=self.options.seed)
+        p, p_margin = _flip_pvalues(current.block_mse, res.block_mse, self.options.min_gain_pct,
+                                    self.options.seed)
         lcb = gain_lower_bound(current.block_mse, res.block_mse)
         margin = gain_lower_bound(current.block_mse, res.block_mse, 1.0 - self.options.alpha)
-        p_margin = margin_pvalue(current.block_mse, res.block_mse, self.options.min_gain_pct)
         jump = (float(faults.loc[effect.column, "jump_ratio"])
                 if effect.transform == "remove" and faults is not None and effect.column in faults.index
                 else None)
@@ -378,8 +386,8 @@ class Search:
         a gain where no fold extrapolates too (not one the extrapolating campaigns make).  With
         blocks finer than the units (ranks: how often a change helps, not by how much) the gain
         must reach ``min_gain_pct`` with confidence, not just in the point estimate: a test of
-        superiority by that margin at ``alpha`` (``p_margin``, :func:`margin_pvalue`: Student's
-        t of each block's error less the margin minus its error with the candidate; it was a
+        superiority by that margin at ``alpha`` (``p_margin``, :func:`margin_pvalue`: sign flips
+        of each block's error less the margin minus its error with the candidate; it was a
         bound on the raw MSE gains against the margin's share of the mean MSE taken as exact,
         which the hot blocks' spread set).  Many
         modest gains then neither outweigh a few large losses nor pass on a gain barely over
