@@ -116,7 +116,7 @@ def spindle_record(root: Path, seed: int, rows: int = 120) -> Path:
     """test_export_guard's ``_spindle_dataset`` (the export_auto57 fixture) with its rng seeded
     ``seed``: six campaigns (four train, two test) of a spindle stepping between speeds, the
     hall's expansion plus a 30-min lag of friction heat growing as the speed's square."""
-    sys.path.insert(0, str(HERE.parent / "tests" / "shell"))
+    sys.path[:0] = [str(HERE.parent / "tests"), str(HERE.parent / "tests" / "shell")]
     from test_export_guard import CAMPAIGNS, PERIOD_S
     from thermocomp.core.models._dynamics import first_order_lag
 
