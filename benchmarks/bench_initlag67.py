@@ -5,6 +5,8 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
 
     python benchmarks/bench_initlag67.py decompose CASE ...   # each round's candidates' CV gain:
                                                               # campaigns' means against within
+    python benchmarks/bench_initlag67.py test CASE ...        # the test campaigns' error: mean
+                                                              # and within, before / after
     python benchmarks/bench_initlag67.py rows ROOT            # bench_remeasure62's 139 rows
     python benchmarks/bench_initlag67.py fresh ROOT           # 6701-6720 -> ROOT/fresh.jsonl
     python benchmarks/bench_initlag67.py fresh41 ROOT         # 6741-6760 -> ROOT/fresh41.jsonl
@@ -63,6 +65,28 @@ its rows /tmp/margin67-rmrule2 for the 139 rows and 6701-6720, /tmp/margin67-rmr
 3. Clean 6757 mended: nothing accepted, or its test RMSE after not above its before.
 
 CPU (user + sys) of each set is reported, not part of the bar.
+
+Scored (2026-12-01; the rule as a src change, 703d4018, its rows in /tmp/initlag67-rm; ``compare``
+labels them ``flip``, bench_margin67's name for the new side)
+----------------------------------------------------------------------------------------------------
+1. bench_remeasure62's 139 rows: every row identical to the shipped one (planted found 19 of 23,
+   missing 515, 737, 1514, 4001; clean + null accepting 1 of 44, null:3; > 2 % worse than before
+   diagnose 4: grinder-nocoolant, 5682, null:3, the jig grinder's E_DISP_Y, forward chaining,
+   which the rule does not reach).  CPU 121.3 + 9.7 s (shipped, margin67's run: 156 s).
+2. Fresh 6701-6720 identical (planted 7 of 10, clean 0 of 10); 6741-6760 planted 8 of 10 as
+   shipped, clean 1 -> 0 of 10: the only row that differs is 6757.
+3. Clean 6757 mended: nothing accepted, test 0.688 -> 0.596 µm (its before).
+
+Why the gain did not carry (``test``, shipped code): per test campaign (K03, K06, K09, K12) the
+error about its own mean is unchanged by the accepted transient (0.400 / 0.489 / 0.398 / 0.484 ->
+0.391 / 0.473 / 0.407 / 0.497 µm), and the campaigns' means move, three of four the wrong way
+(-0.008 / +0.691 / -0.330 / -0.262 -> +0.035 / +0.961 / -0.429 / -0.155 µm): not a filter of
+sensor noise (the within error would fall) but campaign offsets fitted in the first sample's
+frame.  Clean 4004 (``decompose``): its 2 h lag of the inputs from the initial state (q 12-13)
+gains 29-33 % in CV, 81 % of the MSE gain in the campaigns' means, but 10-11 % within them too,
+so this rule alone would not refuse it (``Search.saturates`` does, as shipped).
+
+**Adopted** (1-3 hold).
 """
 
 from __future__ import annotations
@@ -126,6 +150,31 @@ def decompose(cases: list[str]) -> None:
         S.Search._evaluate = shipped
 
 
+def test(cases: list[str]) -> None:
+    """The test campaigns' error (measured - predicted, E_Y) before and after diagnose: its mean
+    and the RMS about that mean, per campaign."""
+    import bench_diagnose_memory as memory
+    import numpy as np
+
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+
+    for case in cases:
+        ds, comp, targets, _ = memory.dataset(case)
+        d = diagnose(ds, comp, targets=targets, options=SearchOptions(max_effects=2))
+        t = d.primary
+        j = d.to_json(t)
+        print(f"== {case} {t}: test {j['before']['test_rmse']:.3f} -> {j['after']['test_rmse']:.3f}")
+        for c in d.predictions["before"]:
+            line = []
+            for which in ("before", "after"):
+                meas, pred = d.predictions[which][c]
+                e = np.asarray(meas[t], float) - np.asarray(pred[t], float)
+                e = e[np.isfinite(e)]
+                line.append(f"{which} mean {e.mean():+.3f} within {e.std():.3f} rms "
+                            f"{np.sqrt(np.mean(e ** 2)):.3f}")
+            print(f"  {c}: " + " | ".join(line))
+
+
 def main(argv: list[str]) -> int:
     import bench_diagpower67 as power
     import bench_margin67 as margin
@@ -133,6 +182,8 @@ def main(argv: list[str]) -> int:
     what, rest = (argv or [""])[0], argv[1:]
     if what == "decompose":
         decompose(rest)
+    elif what == "test":
+        test(rest)
     elif what == "rows":
         power.rows(Path(rest[0]).resolve())
     elif what == "fresh":
