@@ -63,3 +63,19 @@ def test_a_date_beside_a_clock_time_is_not_taken_and_init_says_why(tmp_path, cap
                                     "02_b": ["Date\t2027-05-07 12:00:00"]})
     ds = io.read_dataset(tmp_path / "dated", {"test_fraction": 0.5, "time": "elapsed"})[0]
     assert ds.manifest.loc["02_b", "split"] == "test"
+
+
+def test_the_iso67_bench_scenario_builds(monkeypatch):
+    # merged beside leftovers67's DeclaredScenario, Iso67's own __init__ refused every simulate
+    # (TypeError: 9 positional arguments): benchmarks/bench_iso67.py write exit 1
+    from pathlib import Path
+
+    from thermocomp.apps.sim.scenario import CHAIN
+
+    monkeypatch.syspath_prepend(str(Path(__file__).resolve().parents[2] / "benchmarks"))
+    from iso67 import Iso67
+
+    gen = Iso67(weeks_later=1, seed=3)
+    params = gen.get_params()
+    assert list(params) == ["weeks_later", *CHAIN]
+    assert (params["weeks_later"], params["error_noise_um"], params["seed"]) == (1, 0.1, 3)
