@@ -14,6 +14,18 @@ mlr, pcr, arx, lagbank, hammerstein (plain), then ``compare``'s ranking by ``val
 The rule is adopted on its units, not on a score: a mean adds no two units.  Measured: which run
 each ranks first, how far the tilts moved the ranking (the ranks of both), and the test RMSE
 per target of the two firsts, reported beside (never used to choose); the CPU of the sweep.
+
+Measured (2026-12-01, 2 shared cores; val_rmse of the five families, best first)
+--------------------------------------------------------------------------------
+iso_a (seed 6701, µrad): the same order both ways, arx 11.59 / mlr 12.48 / pcr 14.16 / lagbank
+19.18 / hammerstein 20.79 (all five) and arx 7.21 / mlr 7.34 / pcr 10.40 / lagbank 12.00 /
+hammerstein 15.48 (µm): arx first.  iso_b (6702, arcsec): all five mlr 13.41 / arx 13.42 /
+hammerstein 15.33 / pcr 17.16 / lagbank 20.46, mlr first; the µm mean hammerstein 10.00 / arx
+10.11 / mlr 10.12 / lagbank 13.13 / pcr 13.41, hammerstein first: the tilts' µm/m had chosen.
+Reported beside, test RMSE X1 / Y1 / Z µm, tilt A / B µm/m: mlr 0.15 / 0.47 / 1.55 / 0.63 / 0.32,
+hammerstein 0.19 / 0.32 / 0.15 / 1.02 / 0.17.  The sweep (5 runs + its compare) 12.2 / 10.9 s
+CPU, the bench 13.9 / 12.6 s (user + sys).  ``compare.json``'s ``ranked_by.mean_over``: "mean
+of E_X1, E_Y1, E_Z (µm; E_Tilt_A, E_Tilt_B in µm/m left out)".
 """
 
 from __future__ import annotations
