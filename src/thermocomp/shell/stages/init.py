@@ -165,7 +165,7 @@ def stated_starts(src, ds, report: dict, opts) -> None:
         left = [(c, why) for c, (_, why) in said.items() if why]
         if left:
             print(f"{ds.manifest.at[left[0][0], 'file']}: {left[0][1]}: not taken as its start"
-                  + (f" (nor {len(left) - 1} other files')" if len(left) > 1 else "")
+                  + (f" (nor in {len(left) - 1} other file(s))" if len(left) > 1 else "")
                   + "; the campaigns are held out in name order (a 'Test start<TAB>"
                   "2027-05-07 12:00:00' line above the table, or the start column of a "
                   "campaigns.csv, orders them)")
