@@ -17,7 +17,9 @@ from ..base.errors import ConfigError
 from ..base.paths import resolve
 from ..core.scoring.leaderboard import (
     FIGURES,
+    MEAN_OVER,
     VAL_FIGURES,
+    mean_label,
     persistence_summary,
     summary,
     validation_method,
@@ -172,6 +174,8 @@ def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
             method = validation_method(metrics["targets"], target) if metrics else None
         except KeyError as exc:
             raise ConfigError(f"compare.target: {exc.args[0]}") from None
+        if metrics and mean_label(metrics["targets"], target) != target:
+            row[MEAN_OVER] = mean_label(metrics["targets"], target)   # µm/m ones left out
         row.update({f: figures[f] for f in VAL_FIGURES})     # what ranks, then what is reported
         row["val_method"] = method
         row["val_mode"] = validation_mode(metrics) if metrics else None   # simulation, or a fallback

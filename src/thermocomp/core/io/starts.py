@@ -17,6 +17,7 @@ import pyarrow as pa
 
 from .contract import TIME, ContractError
 from .instants import START, on_clock, start_instants, start_stamp
+from .layout import header_line
 from .manifest import is_text
 from .options import ReadOptions
 from .plain import as_read, is_converted
@@ -72,30 +73,76 @@ def first_timestamp(path: Path, opts: ReadOptions) -> pd.Timestamp:
 _START_LINE = re.compile(r"#+\s*start\s*[:=]\s*(?P<stamp>\S.*?)\s*$", re.IGNORECASE)
 
 
+# (isoleft67) a header block's line over the table, ``key<sep>value``: the keys that say a test's
+# start and nothing else (spaces, '-', '_', '/' and '.' aside, any case); a ``Date`` line is none
+# (an export's date, maybe), nor ``Time``
+START_KEYS = frozenset((
+    "start", "starttime", "startdate", "startdatetime", "starttimestamp", "started", "startedat",
+    "teststart", "testbegin", "teststarttime", "measurementstart", "measurementbegin",
+    "recordingstart", "runstart", "startzeit", "startzeitpunkt", "startdatum", "messbeginn",
+    "messstart", "versuchsbeginn", "versuchsstart", "testbeginn"))
+_KEY_VALUE = re.compile(r"\s*#*\s*(?P<key>[^\t;,:=]+?)\s*[\t;,:=][\s\t;,:=]*(?P<value>.*?)[\s;,]*")
+_DATE_TIME = re.compile(r"\d{4}-\d{2}-\d{2}[T ]\d{1,2}:\d{2}")     # ISO 8601, a date and a time
+_TIME_ONLY = re.compile(r"\d{1,2}:\d{2}(:\d{2}(\.\d*)?)?")
+
+
 def commented_start(path: Path, opts: ReadOptions) -> pd.Timestamp:
     """The start a text file's ``#`` comment block above its table states, ``# start:
     2027-03-08 06:00:00`` (ISO 8601, as the manifest's ``start``; as written, an offset or
     none: :func:`.instants.start_stamp`): one line saying it, above any line that is no
     comment; NaT otherwise (no such line, two, or one that is no ISO 8601 time).  Read for a
-    file whose time is no timestamp (seconds since its run's start): its campaign's ``start``."""
+    file whose time is no timestamp (seconds since its run's start): its campaign's ``start``.
+    Where no ``#`` line says it (extension, isoleft67): one line of the block above the table
+    (a test software's ``[Header]``) under a key of :data:`START_KEYS` whose value is an ISO 8601
+    date and time (``Test start<TAB>2027-05-07 12:00:00``): :func:`stated_start`."""
+    return stated_start(path, opts)[0]
+
+
+def stated_start(path: Path, opts: ReadOptions) -> tuple[pd.Timestamp, str | None]:
+    """(:func:`commented_start`'s start, how it was stated: ``'# start:' line`` or ``'<key>'
+    line of the block above the table``; or NaT and, where a start key's line was left, why)."""
     if not is_text(path):
-        return pd.NaT
+        return pd.NaT, None
     try:
         lines = head_lines(path, opts.encoding)
     except (ContractError, OSError, LookupError):
-        return pd.NaT
+        return pd.NaT, None
     block = []
     for line in lines:
         if line.strip() and not line.lstrip().startswith("#"):
             break
         block.append(line.strip())
     found = [m["stamp"] for m in map(_START_LINE.fullmatch, block) if m]
-    if len(found) != 1:
-        return pd.NaT
+    if len(found) > 1:
+        return pd.NaT, None
+    if found:
+        try:
+            return start_stamp(found[0]), "'# start:' line"
+        except ValueError:
+            return pd.NaT, None
+    return _header_block_start(path, lines, opts)
+
+
+def _header_block_start(path: Path, lines: list[str], opts: ReadOptions
+                        ) -> tuple[pd.Timestamp, str | None]:
     try:
-        return start_stamp(found[0])
+        k = header_line(lines, resolved(path, opts).delimiter)
+    except ContractError:
+        return pd.NaT, None
+    keyed = [(m["key"], m["value"]) for m in map(_KEY_VALUE.fullmatch, lines[:k or 0]) if m
+             and re.sub(r"[\s\-_/.]", "", m["key"]).lower() in START_KEYS]
+    if len(keyed) != 1:
+        return pd.NaT, None
+    key, value = keyed[0]
+    if not _DATE_TIME.match(value):
+        why = (f"its '{key}' ({value}) holds no date (a 'Date' line beside it may be the "
+               "export's)" if _TIME_ONLY.fullmatch(value) else
+               f"its '{key}' ({value}) is no ISO 8601 date and time")
+        return pd.NaT, why
+    try:
+        return start_stamp(value), f"'{key}' line of the block above its table"
     except ValueError:
-        return pd.NaT
+        return pd.NaT, f"its '{key}' ({value}) is no ISO 8601 date and time"
 
 
 def _first_stamp(path: Path, header, first, names, opts) -> pd.Timestamp:

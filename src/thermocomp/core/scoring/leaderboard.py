@@ -21,13 +21,14 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from ..metrics import PERSISTENCE, validation_block
+from ..metrics import PERSISTENCE, angular, validation_block
 from .results import DEPLOYED_MODE, HEADLINES, RMS_REDUCTION, VAL_RMSE, TargetResult
 
 FIGURES = tuple(name for name, _, _ in HEADLINES["baseline"])    # test
 VAL_FIGURES = tuple(name for name, block, _ in HEADLINES["compare"]     # what ranks and gates
                     if block == "deployed")
 VAL_PREFIX = "val_"
+MEAN_OVER = "mean_over"     # a row's column where its mean leaves targets out (:func:`mean_label`)
 HIGHER_IS_BETTER = {RMS_REDUCTION}
 BASELINE = "persistence (baseline)"
 # persistence predicts from the previous MEASURED error: a probe on the machine in service
@@ -62,15 +63,38 @@ def is_validation(criterion: str) -> bool:
     return criterion in VAL_FIGURES
 
 
+def mean_over(targets) -> tuple[list[str], list[str]]:
+    """(the targets a mean over targets averages, those it leaves out).  Every target where they
+    share a unit; where µm/m targets (angular: a sensor nest's tilts) stand beside µm ones, the
+    µm ones (extension, isoleft67: a mean of µm and µm/m adds two units, and a tilt's
+    figure moved a ranking of X, Y, Z as much as a µm of them did).  ``targets``: their names."""
+    names = list(targets)
+    lengths = [t for t in names if not angular(t)]
+    if not lengths or len(lengths) == len(names):
+        return names, []
+    return lengths, [t for t in names if angular(t)]
+
+
+def mean_label(targets, target: str = "mean") -> str:
+    """What ``target`` ranks by, said: ``target`` itself, or where a ``mean`` leaves targets out
+    (:func:`mean_over`), ``mean of E_X1, E_Y1, E_Z (µm; E_Tilt_A, E_Tilt_B in µm/m left out)``."""
+    if target != "mean":
+        return target
+    kept, left = mean_over(targets)
+    return target if not left else (f"mean of {', '.join(kept)} (µm; {', '.join(left)} in µm/m "
+                                     f"left out)")
+
+
 def validation_method(targets: Mapping, target: str = "mean") -> str | None:
     """How the validation figures were computed (``method`` of ``metrics.json``), or None."""
-    entries = [targets[target]] if target != "mean" else list(targets.values())
+    entries = [targets[target]] if target != "mean" else [targets[t] for t in mean_over(targets)[0]]
     methods = {(deployed_validation(m) or {}).get("method") for m in entries} - {None}
     return " / ".join(sorted(methods)) or None
 
 
 def summary(targets: Mapping, target: str = "mean") -> dict:
-    """Validation and test figures of one target, or their mean over targets (``target='mean'``).
+    """Validation and test figures of one target, or their mean over targets (``target='mean'``;
+    over the µm targets where µm/m ones stand beside them: :func:`mean_over`).
 
     ``targets`` is the ``targets`` block of ``metrics.json``; the ``val_*`` figures are
     of the deployed mode (:func:`deployed_validation`).  A figure missing
@@ -81,7 +105,7 @@ def summary(targets: Mapping, target: str = "mean") -> dict:
         if target not in targets:
             raise KeyError(f"target {target!r} not in metrics (have {sorted(targets)})")
         return _figures(targets[target])
-    per = [_figures(m) for m in targets.values()]
+    per = [_figures(targets[t]) for t in mean_over(targets)[0]]
     out = {}
     for f in (*VAL_FIGURES, *FIGURES):
         vals = [p[f] for p in per if p[f] is not None and math.isfinite(p[f])]
@@ -101,7 +125,7 @@ def persistence_summary(targets: Mapping, target: str = "mean") -> dict | None:
 
     if target != "mean":
         return figures(targets[target]) if target in targets else None
-    per = [figures(m) for m in targets.values()]
+    per = [figures(targets[t]) for t in mean_over(targets)[0]]
     if any(p is None for p in per) or not per:
         return None
     out = {}
@@ -239,9 +263,11 @@ def ranked_by(table: pd.DataFrame, sort_by: str) -> dict:
     """Which figure ranked: ``figure``, ``mode`` (of a validation figure: the deployed mode) and
     ``fallback`` (``{run_id: mode}`` of runs without a simulation-mode validation, ranked after
     the others by their own)."""
+    labels = sorted({v for v in table.get(MEAN_OVER, ()) if isinstance(v, str) and v})
+    over = {"mean_over": labels} if labels else {}
     if not is_validation(sort_by):
-        return {"figure": sort_by, "mode": None, "fallback": {}}
-    return {"figure": sort_by, "mode": DEPLOYED_MODE, "fallback": fallback_runs(table)}
+        return {"figure": sort_by, "mode": None, "fallback": {}, **over}
+    return {"figure": sort_by, "mode": DEPLOYED_MODE, "fallback": fallback_runs(table), **over}
 
 
 def ranking_line(basis: dict) -> str:
@@ -252,4 +278,7 @@ def ranking_line(basis: dict) -> str:
         line += (f"; {len(basis['fallback'])} run(s) without one (made before it was recorded: "
                  + ", ".join(f"{r[:8]} {m}" for r, m in basis["fallback"].items())
                  + ") ranked after the others by their own mode's validation")
+    if basis.get("mean_over"):      # a mean over the µm targets alone (isoleft67)
+        line += ("; target " + " / ".join(basis["mean_over"])
+                 + ": rank by one with compare.target=<E_ column> (promote.target)")
     return line

@@ -48,7 +48,7 @@ from ...core.io.historian_layout import long_layout
 from ...core.io.manifest import is_text
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
 from ...core.io.roles import excel_days_header, naming
-from ...core.io.starts import commented_start
+from ...core.io.starts import stated_start
 from ...core.io.tables import peek_csv
 from ...core.io.timestamps import ELAPSED
 from ...core.io.workbook import csv_options
@@ -157,14 +157,23 @@ def stated_starts(src, ds, report: dict, opts) -> None:
     if not src.is_dir() or "file" not in ds.manifest.columns:
         return
     untimed = [cid for cid in ds.ids() if not report["campaigns"][cid].get("time_origin")]
-    stated = {cid: commented_start(src / str(ds.manifest.at[cid, "file"]), opts)
-              for cid in untimed}
+    said = {cid: stated_start(src / str(ds.manifest.at[cid, "file"]), opts) for cid in untimed}
+    stated = {cid: t for cid, (t, _) in said.items()}
     found = [cid for cid, t in stated.items() if pd.notna(t)]
     if not found:
+        # (isoleft67) a header block's start key left: its time alone, a 'Date' maybe the export's
+        left = [(c, why) for c, (_, why) in said.items() if why]
+        if left:
+            print(f"{ds.manifest.at[left[0][0], 'file']}: {left[0][1]}: not taken as its start"
+                  + (f" (nor in {len(left) - 1} other file(s))" if len(left) > 1 else "")
+                  + "; the campaigns are held out in name order (a 'Test start<TAB>"
+                  "2027-05-07 12:00:00' line above the table, or the start column of a "
+                  "campaigns.csv, orders them)")
         return
     first = ds.manifest.at[found[0], "file"]
+    how = said[found[0]][1]
     line = (f"{len(found)} of {len(ds.ids())} files without timestamps state their start in "
-            f"a '# start:' line ({first}: {stated[found[0]]}): the campaign's start "
+            f"a {how} ({first}: {stated[found[0]]}): the campaign's start "
             "(data.test_fraction holds out the last by it)")
     lacking = [str(ds.manifest.at[c, "file"]) for c in stated if c not in found]
     if lacking:
