@@ -96,7 +96,6 @@ import sys
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
@@ -139,24 +138,9 @@ def spindle_record(root: Path, seed: int, rows: int = 120) -> Path:
     ``seed``: six campaigns (four train, two test) of a spindle stepping between speeds, the
     hall's expansion plus a 30-min lag of friction heat growing as the speed's square."""
     sys.path[:0] = [str(HERE.parent / "tests"), str(HERE.parent / "tests" / "shell")]
-    from test_export_guard import CAMPAIGNS, PERIOD_S
-    from thermocomp.core.models._dynamics import first_order_lag
+    from test_export_guard import _spindle_dataset
 
-    root.mkdir(parents=True)
-    rng = np.random.default_rng(seed)
-    t = np.arange(rows) * PERIOD_S
-    for cid, _ in CAMPAIGNS:
-        rpm = np.repeat(rng.choice([0.0, 2000.0, 4000.0, 8000.0], rows // 20 + 1), 20)[:rows]
-        hall = 20 + np.cumsum(rng.normal(0, 0.02, rows))
-        heat = first_order_lag((rpm / 8000.0) ** 2, t, None, 1800.0)
-        pd.DataFrame({"time": t, "T_hall": hall, "T_far": hall + rng.normal(0, 0.3, rows),
-                      "T_amb": 20 + 0.3 * np.sin(t / 2000) + rng.normal(0, 0.05, rows),
-                      "S_spindle_rpm": rpm,
-                      "E_X": 2.0 * (hall - hall[0]) + 6.0 * heat + rng.normal(0, 0.05, rows)}
-                     ).to_csv(root / f"{cid}.csv", index=False)
-    pd.DataFrame([(c, f"{c}.csv", s, "") for c, s in CAMPAIGNS],
-                 columns=["campaign", "file", "split", "notes"]).to_csv(root / "campaigns.csv", index=False)
-    return root
+    return _spindle_dataset(root, rows, seed)
 
 
 def grind_record(path: Path, runs: int, spindle_um: float, seed: int) -> Path:
