@@ -65,6 +65,24 @@ dc3c3fbe give the same rows to the digit).
    accepting 0 of 10 in both.
 
 CPU (user + sys) of each set is reported, not part of the bar.
+
+Scored (2026-12-01; the rule as a src change, a112714b, its rows in /tmp/within67-rm; ``compare``
+labels them ``flip``, bench_margin67's name for the new side)
+----------------------------------------------------------------------------------------------------
+1. bench_remeasure62's 139 rows: two rows differ, both to their before-diagnose error (nothing
+   accepted): null 3 E_Zustellung_dY 0.6225 -> 0.5284 µm, grinder-nocoolant 0.6744 -> 0.6439;
+   every other row identical.  Planted found 19 of 23 (as shipped; missing 515, 737, 1514,
+   4001); clean + null accepting 1 -> 0 of 44; > 2 % worse than before diagnose 4 -> 2 (5682
+   +7.4 %, the jig grinder's E_DISP_Y +16.4 %, neither reached); no row above the shipped after.
+   CPU (the rows' own cpu_s) 130 -> 120 s.
+2. Fresh 6701-6720 identical (planted 7 of 10, clean 0 of 10); 6741-6760 identical (planted 8
+   of 10, clean 0 of 10).  CPU 12 -> 11 s each.
+
+Also seen (not part of the bar): on clean 4004 the spindle's 900 s lag (q 1, 19.6 % in CV,
+family-wise p 1/256, 2.2 % within) cleared the shipped bar and was not accepted; now it does not
+clear (tests/apps/test_diagnose_few.py's 4004 test says so).
+
+**Adopted** (1-2 hold).
 """
 
 from __future__ import annotations
