@@ -259,10 +259,14 @@ def test_a_candidate_that_can_match_every_training_campaign_is_not_accepted_on_c
         assert ev["cv_rmse_gain_pct"] >= j["bar"]["min_gain_pct"]
         assert ev["p_value_family"] <= j["bar"]["alpha"]
         assert ev["n_features"] + 1 >= 7 and not ev["clears_bar"]
-    # a one-regressor candidate on the same blocks is judged as before
+    # a one-regressor candidate on the same blocks is not refused as saturating: it clears on its
+    # family-wise p alone if it gains within the held-out campaigns too (within67; the spindle's
+    # 900 s lag gains ~20 % in CV, nearly all of it in the campaigns' means, and is refused there)
     small = [e for e in first["evaluated"] if not e.get("control") and e["evidence"]["n_features"] == 1
-             and e["evidence"]["clears_bar"]]
-    assert small and all(e["evidence"]["p_value_family"] <= j["bar"]["alpha"] for e in small)
+             and e["evidence"]["p_value_family"] <= j["bar"]["alpha"]
+             and e["evidence"]["cv_rmse_gain_pct"] >= j["bar"]["min_gain_pct"]]
+    assert small and all(e["evidence"]["clears_bar"] == (e["evidence"]["cv_rmse_gain_pct_within"]
+                                                         >= j["bar"]["min_gain_pct"]) for e in small)
     _control_never_clears(j)
 
 
