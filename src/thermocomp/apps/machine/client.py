@@ -41,6 +41,7 @@ import pandas as pd
 from asyncua import Client, ua
 
 from ...core.context import TIME
+from ...core.io.rates import GAP_PERIODS, PAUSE_PERIODS
 from .nodes import NodeMap, NodesUnknown, quiet_asyncua, resolve_id
 from .offsets import OffsetLimiter
 
@@ -167,6 +168,7 @@ class Connection:
         self._i = -1                 # the running campaign's sample (no campaign_sample node)
         self._quality: dict[str, str] = {}      # input -> Good / Uncertain / Bad, as last read
         self._held = None            # the offsets last written (a held one is not written again)
+        self.periods = 1.0           # the periods the server's clock went on to the last sample
         self.stopped = None          # the signal that stopped the client, if one did
 
     def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
@@ -321,7 +323,7 @@ class Connection:
                 if sample is not None:
                     cid, row, k, i = sample
                     y = self._step(cid, row, k, i)
-                    await self._write(client, plan, k, self.limiter.fresh(y, now()))
+                    await self._write(client, plan, k, self.limiter.fresh(y, now(), self.periods))
         finally:
             try:     # a dead link would keep the goodbye waiting for the request timeout
                 await asyncio.wait_for(client.disconnect(), self.retry_s)
@@ -364,7 +366,12 @@ class Connection:
             if not math.isfinite(at) or (not new and self._at is not None
                                          and at - self._at < self.period_s * (1 - 1e-6)):
                 return None
+            if plan.clock is not None and not new and self._at is not None:
+                steps = self._clock_gap(at - self._at, steps)
             k = self._last + steps
+        # the periods the server's clock went on since the last sample (the limiter's allowance)
+        self.periods = ((at - self._at) / self.period_s if plan.clock is not None and not new
+                        and self._at is not None and self.period_s else 1.0)
         if new:
             self._t0, self._i = at, -1
         self._i = int(value["campaign_sample"]) if "campaign_sample" in value else self._i + steps
@@ -372,6 +379,26 @@ class Connection:
         if plan.clock is not None:          # the stream's time: s since the campaign's start
             row[plan.labels.index(TIME)] = at - self._t0
         return cid, row, k, self._i
+
+    def _clock_gap(self, gap: float, steps: int) -> int:
+        """(opcleft67) A step of the server's clock of :data:`~...core.io.rates.GAP_PERIODS`
+        periods or more since the last sample is kept in the stream's time, as ``replay`` and
+        ``run`` read the same step in a file's ``time`` (the lag bank steps over it), and said
+        (``clock_gap``) as the file reader says it: up to :data:`~...core.io.rates.PAUSE_PERIODS`
+        periods a stretch without samples (a link or the server down: counted missed), beyond
+        them a pause (the machine off, or its clock set forward: no sample was published that
+        the client did not see, none counted).  The samples the step spans (``steps``), or 1."""
+        if gap < GAP_PERIODS * self.period_s:
+            return steps
+        paused = gap > PAUSE_PERIODS * self.period_s
+        what = (f"more than {PAUSE_PERIODS} periods: a pause (the machine off?) or its clock set "
+                "forward, no sample counted missed" if paused else
+                f"a stretch without samples ({steps - 1} counted missed)")
+        self._event("clock_gap", f"the server's clock went on {gap:g} s ({gap / self.period_s:.4g} "
+                    f"periods of {self.period_s:g} s) since the last sample, {what}: the stream's "
+                    "time keeps the step, as replay reads a file's (a lag model steps over it)",
+                    logging.WARNING)
+        return 1 if paused else steps
 
     def _reading(self, label: str, dv) -> float:
         """A node's value as a number; NaN unless its StatusCode is Good."""
@@ -463,10 +490,14 @@ class Connection:
         unit = np.array([self.map.unit_um(t) for t in self.deployed.targets_])
         counts = [v / u if vt in FLOATS else float(np.rint(v / u))
                   for v, u, vt in zip(np.asarray(values, float), unit, plan.types)]
-        for n, c, vt in zip(plan.offsets, counts, plan.types):
+        for t, n, v, u, c, vt in zip(self.deployed.targets_, plan.offsets, values, unit, counts,
+                                     plan.types):
             if vt in INT_RANGE and not INT_RANGE[vt][0] <= c <= INT_RANGE[vt][1]:
-                raise WriteRefused(f"{n.nodeid.to_string()}: {c:.0f} counts is beyond its "
-                                   f"{vt.name} ({INT_RANGE[vt][0]} to {INT_RANGE[vt][1]})")
+                # none of the offsets is written (one Write): the registers keep the last ones
+                lo, hi = INT_RANGE[vt]
+                raise WriteRefused(f"offset {t} ({n.nodeid.to_string()}): {v:.6g} µm is {c:.0f} "
+                                   f"counts of {u:g} µm (offset_unit_um), beyond its {vt.name}'s "
+                                   f"{lo} to {hi} ({lo * u:.6g} to {hi * u:.6g} µm)")
         data = [ua.Variant(c if vt in FLOATS else int(c), vt) for c, vt in zip(counts, plan.types)]
         held = np.array([float(np.float32(c)) if vt == ua.VariantType.Float else c
                          for c, vt in zip(counts, plan.types)]) * unit
