@@ -44,6 +44,7 @@ from ...core.context import TIME
 from ...core.io.rates import GAP_PERIODS, PAUSE_PERIODS
 from .nodes import NodeMap, NodesUnknown, quiet_asyncua, resolve_id
 from .offsets import OffsetLimiter
+from .registers import WRITABLE, WriteRefused, as_registers
 
 log = logging.getLogger(__name__)
 LINK_ERRORS = (ConnectionError, OSError, asyncio.TimeoutError, ua.UaError)
@@ -57,10 +58,6 @@ REFUSED = (ua.StatusCodes.BadUserAccessDenied, ua.StatusCodes.BadIdentityTokenRe
 WRITE_REFUSED = (ua.StatusCodes.BadUserAccessDenied, ua.StatusCodes.BadNotWritable,
                  ua.StatusCodes.BadTypeMismatch, ua.StatusCodes.BadOutOfRange,
                  ua.StatusCodes.BadWriteNotSupported, *UNKNOWN)
-FLOATS = (ua.VariantType.Double, ua.VariantType.Float)
-INT_RANGE = {ua.VariantType.SByte: (-2 ** 7, 2 ** 7 - 1), ua.VariantType.Int16: (-2 ** 15, 2 ** 15 - 1),
-             ua.VariantType.Int32: (-2 ** 31, 2 ** 31 - 1), ua.VariantType.Int64: (-2 ** 63, 2 ** 63 - 1)}
-WRITABLE = (*FLOATS, *INT_RANGE)
 
 
 class LinkLost(RuntimeError):
@@ -112,10 +109,6 @@ class NodesRefused(RuntimeError):
 
 class SessionRefused(RuntimeError):
     """The server refused the session's identity (no use retrying it)."""
-
-
-class WriteRefused(RuntimeError):
-    """The server refused to write an offset (its StatusCode, the node)."""
 
 
 @dataclass
@@ -487,20 +480,9 @@ class Connection:
         that sample: one Write, applied in order.  Each offset in its node's type and unit
         (``offset_unit_um``; an integer node takes the nearest count); what was written, in µm,
         is kept.  A held offset is not written again; a refused write is WriteRefused."""
-        unit = np.array([self.map.unit_um(t) for t in self.deployed.targets_])
-        counts = [v / u if vt in FLOATS else float(np.rint(v / u))
-                  for v, u, vt in zip(np.asarray(values, float), unit, plan.types)]
-        for t, n, v, u, c, vt in zip(self.deployed.targets_, plan.offsets, values, unit, counts,
-                                     plan.types):
-            if vt in INT_RANGE and not INT_RANGE[vt][0] <= c <= INT_RANGE[vt][1]:
-                # none of the offsets is written (one Write): the registers keep the last ones
-                lo, hi = INT_RANGE[vt]
-                raise WriteRefused(f"offset {t} ({n.nodeid.to_string()}): {v:.6g} µm is {c:.0f} "
-                                   f"counts of {u:g} µm (offset_unit_um), beyond its {vt.name}'s "
-                                   f"{lo} to {hi} ({lo * u:.6g} to {hi * u:.6g} µm)")
-        data = [ua.Variant(c if vt in FLOATS else int(c), vt) for c, vt in zip(counts, plan.types)]
-        held = np.array([float(np.float32(c)) if vt == ua.VariantType.Float else c
-                         for c, vt in zip(counts, plan.types)]) * unit
+        unit = [self.map.unit_um(t) for t in self.deployed.targets_]
+        data, held = as_registers(values, unit, plan.types, self.deployed.targets_,
+                                  [n.nodeid.to_string() for n in plan.offsets])
         if answered is None and self._held is not None and np.array_equal(held, self._held):
             return                   # held: the machine holds it already
         nodes = list(plan.offsets)
