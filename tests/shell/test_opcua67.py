@@ -15,6 +15,7 @@ it with status 1 and no connect.json.
 from __future__ import annotations
 
 import json
+import re
 import signal
 from pathlib import Path
 
@@ -394,3 +395,52 @@ def test_the_server_clock_ticking_each_second_gives_a_sample_each_period():
     events = [e["event"] for e in conn.events]
     assert events.count("clock_back") == 1 and events.count("input_status") == 2
     assert conn.missed == 0 and conn.samples == 6
+
+
+def test_an_offset_beyond_an_integer_nodes_range_is_exit_2_naming_it(fitted, tmp_path, capsys):
+    """(opcleft67) E_Z an Int16 in 1e-5 µm (its range ±0.33 µm): the first correction beyond it
+    is exit 2 naming the target, its node, the offset in µm and in counts, and the range in
+    counts and in µm; no register ever held an offset beyond the range."""
+    data, pkl = fitted
+    node, vt, unit = "s=CNC5000.Compensation.OffsetZ_10pm", ua.VariantType.Int16, 1e-5
+    offsets = {"E_X": OFFSETS["E_X"], "E_Z": (node, vt, unit)}
+    machine = VendorMachine(programs(data), free_port(), offsets=offsets, wait_s=5)
+    code, link = run_connect(data, pkl, tmp_path, machine, nodes=connect_nodes(offsets=offsets))
+    err = capsys.readouterr().err
+    assert code == 2 and link is None
+    hi = 2 ** 15 - 1
+    assert f"offset E_Z (ns=5;{node})" in err      # the vendor namespace: index 5
+    assert f"Int16's {-hi - 1} to {hi} ({(-hi - 1) * unit:.6g} to {hi * unit:.6g} µm)" in err
+    said = re.search(r"offset E_Z \(.*?\): (\S+) µm is (\S+) counts of", err)
+    assert said and abs(float(said.group(1))) > hi * unit
+    assert abs(float(said.group(2))) > hi
+    answered = np.array(machine.served.answered)
+    assert answered.any() and not answered.all()      # some samples answered, then it stopped
+    z = np.vstack(machine.served.offsets)[:, 1]
+    assert np.all(np.abs(z[np.isfinite(z)]) <= hi * unit + 1e-12)
+
+
+def test_a_server_clock_gone_on_hours_is_kept_as_a_files_gap_and_said(fitted, tmp_path):
+    """(opcleft67) The server's clock steps 5 h forward at P05's row 20 (a clock set forward, or
+    the machine paused) and 3 periods on at P06's row 30 (two samples not published): the
+    offsets are replay's on the same rows, the step kept in the time as a file's is, each said
+    as a `clock_gap`; the pause (beyond rates.PAUSE_PERIODS periods) counts no sample missed,
+    the stretch its two."""
+    from thermocomp.core.io.rates import PAUSE_PERIODS
+
+    data, pkl = fitted
+    frames = programs(data)
+    pause, period = 5 * 3600.0, 60.0
+    assert pause > PAUSE_PERIODS * period
+    frames["P05.MPF"].loc[20:, "time"] += pause
+    frames["P06.MPF"] = frames["P06.MPF"].drop(index=[30, 31]).reset_index(drop=True)
+    machine = VendorMachine(frames, free_port())
+    code, link = run_connect(data, pkl, tmp_path, machine)
+    assert code == 0 and link["stopped"] == "SIGTERM"
+    written_as(np.vstack(machine.served.offsets), corrections(data, pkl, as_published(frames)))
+    gaps = [e for e in link["events"] if e["event"] == "clock_gap"]
+    assert [e["sample"] for e in gaps] == [19, ROWS + 29]     # each after its last sample before
+    assert f"{pause + period:g} s" in gaps[0]["detail"] and "pause" in gaps[0]["detail"]
+    assert f"{3 * period:g} s" in gaps[1]["detail"] and "2 counted missed" in gaps[1]["detail"]
+    assert link["samples"] == 2 * ROWS - 2 and link["samples_missed"] == 2
+    assert [e["event"] for e in link["events"]].count("campaign") == 2

@@ -41,8 +41,10 @@ import pandas as pd
 from asyncua import Client, ua
 
 from ...core.context import TIME
+from ...core.io.rates import GAP_PERIODS, PAUSE_PERIODS
 from .nodes import NodeMap, NodesUnknown, quiet_asyncua, resolve_id
 from .offsets import OffsetLimiter
+from .registers import WRITABLE, WriteRefused, as_registers
 
 log = logging.getLogger(__name__)
 LINK_ERRORS = (ConnectionError, OSError, asyncio.TimeoutError, ua.UaError)
@@ -56,10 +58,6 @@ REFUSED = (ua.StatusCodes.BadUserAccessDenied, ua.StatusCodes.BadIdentityTokenRe
 WRITE_REFUSED = (ua.StatusCodes.BadUserAccessDenied, ua.StatusCodes.BadNotWritable,
                  ua.StatusCodes.BadTypeMismatch, ua.StatusCodes.BadOutOfRange,
                  ua.StatusCodes.BadWriteNotSupported, *UNKNOWN)
-FLOATS = (ua.VariantType.Double, ua.VariantType.Float)
-INT_RANGE = {ua.VariantType.SByte: (-2 ** 7, 2 ** 7 - 1), ua.VariantType.Int16: (-2 ** 15, 2 ** 15 - 1),
-             ua.VariantType.Int32: (-2 ** 31, 2 ** 31 - 1), ua.VariantType.Int64: (-2 ** 63, 2 ** 63 - 1)}
-WRITABLE = (*FLOATS, *INT_RANGE)
 
 
 class LinkLost(RuntimeError):
@@ -113,10 +111,6 @@ class SessionRefused(RuntimeError):
     """The server refused the session's identity (no use retrying it)."""
 
 
-class WriteRefused(RuntimeError):
-    """The server refused to write an offset (its StatusCode, the node)."""
-
-
 @dataclass
 class _Plan:
     """One session's nodes (their ids resolved against the server's namespaces)."""
@@ -167,6 +161,7 @@ class Connection:
         self._i = -1                 # the running campaign's sample (no campaign_sample node)
         self._quality: dict[str, str] = {}      # input -> Good / Uncertain / Bad, as last read
         self._held = None            # the offsets last written (a held one is not written again)
+        self.periods = 1.0           # the periods the server's clock went on to the last sample
         self.stopped = None          # the signal that stopped the client, if one did
 
     def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
@@ -321,7 +316,7 @@ class Connection:
                 if sample is not None:
                     cid, row, k, i = sample
                     y = self._step(cid, row, k, i)
-                    await self._write(client, plan, k, self.limiter.fresh(y, now()))
+                    await self._write(client, plan, k, self.limiter.fresh(y, now(), self.periods))
         finally:
             try:     # a dead link would keep the goodbye waiting for the request timeout
                 await asyncio.wait_for(client.disconnect(), self.retry_s)
@@ -364,7 +359,12 @@ class Connection:
             if not math.isfinite(at) or (not new and self._at is not None
                                          and at - self._at < self.period_s * (1 - 1e-6)):
                 return None
+            if plan.clock is not None and not new and self._at is not None:
+                steps = self._clock_gap(at - self._at, steps)
             k = self._last + steps
+        # the periods the server's clock went on since the last sample (the limiter's allowance)
+        self.periods = ((at - self._at) / self.period_s if plan.clock is not None and not new
+                        and self._at is not None and self.period_s else 1.0)
         if new:
             self._t0, self._i = at, -1
         self._i = int(value["campaign_sample"]) if "campaign_sample" in value else self._i + steps
@@ -372,6 +372,26 @@ class Connection:
         if plan.clock is not None:          # the stream's time: s since the campaign's start
             row[plan.labels.index(TIME)] = at - self._t0
         return cid, row, k, self._i
+
+    def _clock_gap(self, gap: float, steps: int) -> int:
+        """(opcleft67) A step of the server's clock of :data:`~...core.io.rates.GAP_PERIODS`
+        periods or more since the last sample is kept in the stream's time, as ``replay`` and
+        ``run`` read the same step in a file's ``time`` (the lag bank steps over it), and said
+        (``clock_gap``) as the file reader says it: up to :data:`~...core.io.rates.PAUSE_PERIODS`
+        periods a stretch without samples (a link or the server down: counted missed), beyond
+        them a pause (the machine off, or its clock set forward: no sample was published that
+        the client did not see, none counted).  The samples the step spans (``steps``), or 1."""
+        if gap < GAP_PERIODS * self.period_s:
+            return steps
+        paused = gap > PAUSE_PERIODS * self.period_s
+        what = (f"more than {PAUSE_PERIODS} periods: a pause (the machine off?) or its clock set "
+                "forward, no sample counted missed" if paused else
+                f"a stretch without samples ({steps - 1} counted missed)")
+        self._event("clock_gap", f"the server's clock went on {gap:g} s ({gap / self.period_s:.4g} "
+                    f"periods of {self.period_s:g} s) since the last sample, {what}: the stream's "
+                    "time keeps the step, as replay reads a file's (a lag model steps over it)",
+                    logging.WARNING)
+        return 1 if paused else steps
 
     def _reading(self, label: str, dv) -> float:
         """A node's value as a number; NaN unless its StatusCode is Good."""
@@ -460,16 +480,9 @@ class Connection:
         that sample: one Write, applied in order.  Each offset in its node's type and unit
         (``offset_unit_um``; an integer node takes the nearest count); what was written, in µm,
         is kept.  A held offset is not written again; a refused write is WriteRefused."""
-        unit = np.array([self.map.unit_um(t) for t in self.deployed.targets_])
-        counts = [v / u if vt in FLOATS else float(np.rint(v / u))
-                  for v, u, vt in zip(np.asarray(values, float), unit, plan.types)]
-        for n, c, vt in zip(plan.offsets, counts, plan.types):
-            if vt in INT_RANGE and not INT_RANGE[vt][0] <= c <= INT_RANGE[vt][1]:
-                raise WriteRefused(f"{n.nodeid.to_string()}: {c:.0f} counts is beyond its "
-                                   f"{vt.name} ({INT_RANGE[vt][0]} to {INT_RANGE[vt][1]})")
-        data = [ua.Variant(c if vt in FLOATS else int(c), vt) for c, vt in zip(counts, plan.types)]
-        held = np.array([float(np.float32(c)) if vt == ua.VariantType.Float else c
-                         for c, vt in zip(counts, plan.types)]) * unit
+        unit = [self.map.unit_um(t) for t in self.deployed.targets_]
+        data, held = as_registers(values, unit, plan.types, self.deployed.targets_,
+                                  [n.nodeid.to_string() for n in plan.offsets])
         if answered is None and self._held is not None and np.array_equal(held, self._held):
             return                   # held: the machine holds it already
         nodes = list(plan.offsets)

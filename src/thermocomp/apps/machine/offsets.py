@@ -38,11 +38,14 @@ class OffsetLimiter:
         taken as it is, within the bound, as the compensator's own guard takes it."""
         self._free = True
 
-    def fresh(self, y, now: float) -> np.ndarray:
-        """The offset to write for a new correction ``y`` (NaN entries: held)."""
+    def fresh(self, y, now: float, periods: float = 1.0) -> np.ndarray:
+        """The offset to write for a new correction ``y`` (NaN entries: held); ``periods``: the
+        sample periods the stream's time went on since the last one (opcleft67: after a gap the
+        change allowed is the guard's, its rate over the time gone on; never less than one
+        sample's)."""
         y = np.where(np.isfinite(y), np.asarray(y, float), self.offset)
-        step = y - self.offset if self._free else np.clip(y - self.offset, -self.max_step,
-                                                                  self.max_step)
+        most = self.max_step * (max(1.0, periods) if np.isfinite(periods) else 1.0)
+        step = y - self.offset if self._free else np.clip(y - self.offset, -most, most)
         extra = self.widen() if self.widen is not None else None
         self._lo_now, self._hi_now = ((self.lo, self.hi) if extra is None
                                       else (self.lo - extra, self.hi + extra))
