@@ -24,9 +24,9 @@ from thermocomp.shell.cli import main
 INPUTS = {"fast": "[T_1]", "slow": "[T_2]"}
 
 
-def drift_and_fast(root, n_campaigns: int = 5, rows: int = 80, seed: int = 0):
-    """Campaigns (the last one test) whose error is 3 µm/K of a slow ramp plus 1 µm/K of a fast
-    random signal; each sensor reads one of the two."""
+def slow_and_fast(root, errors, n_campaigns: int = 5, rows: int = 80, seed: int = 0):
+    """Campaigns (the last one test) of two sensors, ``T_2`` reading a slow ramp and ``T_1`` a
+    fast random signal; ``errors(slow, fast, rng)``: the ``E_`` columns."""
     rng = np.random.default_rng(seed)
     root.mkdir(parents=True)
     manifest = []
@@ -34,14 +34,31 @@ def drift_and_fast(root, n_campaigns: int = 5, rows: int = 80, seed: int = 0):
         t = np.arange(rows) * 60.0
         slow = (2.0 + i) * (1 - np.exp(-t / (1500.0 + 300 * i)))
         fast = rng.normal(0.0, 1.0, rows)
-        error = 3.0 * slow + 1.0 * fast + rng.normal(0.0, 0.02, rows)
         cid = f"K{i:02d}"
-        pd.DataFrame({"time": t, "T_1": 20 + fast, "T_2": 20 + slow, "E_X": error}).to_csv(
-            root / f"{cid}.csv", index=False)
+        pd.DataFrame({"time": t, "T_1": 20 + fast, "T_2": 20 + slow, **errors(slow, fast, rng)}
+                     ).to_csv(root / f"{cid}.csv", index=False)
         manifest.append((cid, f"{cid}.csv", "test" if i == n_campaigns - 1 else "train", ""))
     pd.DataFrame(manifest, columns=["campaign", "file", "split", "notes"]).to_csv(
         root / "campaigns.csv", index=False)
     return root
+
+
+def drift_and_fast(root):
+    """The error is 3 µm/K of the slow ramp plus 1 µm/K of the fast signal."""
+    return slow_and_fast(root, lambda slow, fast, rng: {
+        "E_X": 3.0 * slow + 1.0 * fast + rng.normal(0.0, 0.02, slow.size)})
+
+
+def sweep_runs(uri: str, root) -> list:
+    """The child runs of the sweeps in the store at ``uri``, each with its ``metrics.json``
+    (downloaded below ``root``)."""
+    from mlflow import MlflowClient
+
+    client = MlflowClient(uri)
+    exp = client.get_experiment_by_name("thermocomp").experiment_id
+    return [(r, json.loads(open(client.download_artifacts(r.info.run_id, "metrics.json",
+                                                          str(root))).read()))
+            for r in client.search_runs([exp]) if r.data.tags.get("thermocomp.sweep") != "parent"]
 
 
 def _metrics(out) -> dict:
@@ -84,16 +101,8 @@ def two_mode_sweep(tmp_path_factory):
     assert main(["run", "-m", f"data.path={data}", f"tracking_uri={uri}", *LIGHT,
                  "eval.mode=simulation,one_step", f"data.inputs={INPUTS['fast']},{INPUTS['slow']}",
                  f"hydra.sweep.dir={sweep}"]) == 0
-    from mlflow import MlflowClient
-
-    client = MlflowClient(uri)
-    exp = client.get_experiment_by_name("thermocomp").experiment_id
     runs = {}
-    for r in client.search_runs([exp]):
-        if r.data.tags.get("thermocomp.sweep") == "parent":
-            continue
-        metrics = json.loads(open(client.download_artifacts(r.info.run_id, "metrics.json",
-                                                            str(root))).read())
+    for r, metrics in sweep_runs(uri, root):
         runs[r.info.run_id] = {"inputs": r.data.params["data.inputs"], "mode": metrics["mode"],
                                "own": metrics["targets"]["E_X"]["validation"]["rmse"],
                                "simulation": summary(metrics["targets"])["val_rmse"],

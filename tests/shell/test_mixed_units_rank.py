@@ -12,11 +12,10 @@ from __future__ import annotations
 
 import json
 
-import numpy as np
-import pandas as pd
 import pytest
 
 from conftest import LIGHT
+from test_choose_by_simulation import slow_and_fast, sweep_runs
 from test_deploy import mlflow_store
 from thermocomp.core.scoring.champion import champion_validation
 from thermocomp.core.scoring.leaderboard import mean_label, mean_over, rank, summary
@@ -25,25 +24,12 @@ from thermocomp.shell.cli import main
 LABEL = "mean of E_X (µm; E_Tilt_A in µm/m left out)"
 
 
-def drift_and_tilt(root, n_campaigns: int = 5, rows: int = 80, seed: int = 0):
-    """Campaigns (the last one test): ``E_X`` 3 µm/K of a slow ramp (``T_2``), ``E_Tilt_A``
-    40 µm/m per K of a fast random signal (``T_1``)."""
-    rng = np.random.default_rng(seed)
-    root.mkdir(parents=True)
-    manifest = []
-    for i in range(n_campaigns):
-        t = np.arange(rows) * 60.0
-        slow = (2.0 + i) * (1 - np.exp(-t / (1500.0 + 300 * i)))
-        fast = rng.normal(0.0, 1.0, rows)
-        cid = f"K{i:02d}"
-        pd.DataFrame({"time": t, "T_1": 20 + fast, "T_2": 20 + slow,
-                      "E_X": 3.0 * slow + rng.normal(0.0, 0.02, rows),
-                      "E_Tilt_A": 40.0 * fast + rng.normal(0.0, 0.05, rows)}).to_csv(
-            root / f"{cid}.csv", index=False)
-        manifest.append((cid, f"{cid}.csv", "test" if i == n_campaigns - 1 else "train", ""))
-    pd.DataFrame(manifest, columns=["campaign", "file", "split", "notes"]).to_csv(
-        root / "campaigns.csv", index=False)
-    return root
+def drift_and_tilt(root):
+    """``E_X`` 3 µm/K of the slow ramp (``T_2``), ``E_Tilt_A`` 40 µm/m per K of the fast signal
+    (``T_1``)."""
+    return slow_and_fast(root, lambda slow, fast, rng: {
+        "E_X": 3.0 * slow + rng.normal(0.0, 0.02, slow.size),
+        "E_Tilt_A": 40.0 * fast + rng.normal(0.0, 0.05, slow.size)})
 
 
 @pytest.fixture(scope="module")
@@ -55,16 +41,8 @@ def tilt_sweep(tmp_path_factory):
     sweep = root / "sweep"
     assert main(["run", "-m", f"data.path={data}", f"tracking_uri={uri}", *LIGHT,
                  "data.inputs=[T_1],[T_2]", f"hydra.sweep.dir={sweep}"]) == 0
-    from mlflow import MlflowClient
-
-    client = MlflowClient(uri)
-    exp = client.get_experiment_by_name("thermocomp").experiment_id
     runs = {}
-    for r in client.search_runs([exp]):
-        if r.data.tags.get("thermocomp.sweep") == "parent":
-            continue
-        metrics = json.loads(open(client.download_artifacts(r.info.run_id, "metrics.json",
-                                                            str(root))).read())
+    for r, metrics in sweep_runs(uri, root):
         val = {t: m["validation"]["rmse"] for t, m in metrics["targets"].items()}
         runs[r.info.run_id] = {"inputs": r.data.params["data.inputs"], "val": val,
                                "targets": metrics["targets"]}

@@ -174,8 +174,9 @@ def sweep_rows(client, uri: str, parent_id: str, target: str = "mean",
             method = validation_method(metrics["targets"], target) if metrics else None
         except KeyError as exc:
             raise ConfigError(f"compare.target: {exc.args[0]}") from None
-        if metrics and mean_label(metrics["targets"], target) != target:
-            row[MEAN_OVER] = mean_label(metrics["targets"], target)   # µm/m ones left out
+        label = mean_label(metrics["targets"], target) if metrics else target
+        if label != target:
+            row[MEAN_OVER] = label      # a mean with the µm/m targets left out
         row.update({f: figures[f] for f in VAL_FIGURES})     # what ranks, then what is reported
         row["val_method"] = method
         row["val_mode"] = validation_mode(metrics) if metrics else None   # simulation, or a fallback
