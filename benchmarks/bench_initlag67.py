@@ -91,6 +91,7 @@ so this rule alone would not refuse it (``Search.saturates`` does, as shipped).
 
 from __future__ import annotations
 
+import contextlib
 import sys
 from pathlib import Path
 
@@ -109,13 +110,13 @@ def _parts(problem, residual, ok):
     return c, m, np.bincount(u, weights=w ** 2, minlength=n) / np.maximum(c, 1)
 
 
-def decompose(cases: list[str]) -> None:
-    """Each round's candidates of ``cases`` (E_Y) that gain >= 3 % in CV (not the control): the CV
-    MSE split into the held-out campaigns' means squared and the residual about them."""
-    import bench_diagnose_memory as memory
+@contextlib.contextmanager
+def printed_parts():
+    """While inside, each candidate the search evaluates that gains >= 3 % in CV (not the
+    control) prints its CV MSE split into the held-out campaigns' means squared and the residual
+    about them (bench_within67's decomposition too)."""
     import numpy as np
 
-    from thermocomp.apps.diagnose import SearchOptions, diagnose
     from thermocomp.apps.diagnose import search as S
 
     shipped = S.Search._evaluate
@@ -129,15 +130,30 @@ def decompose(cases: list[str]) -> None:
             _, m1, w1 = _parts(self.problem, ev.result.residual, ok)
             N = c.sum()
             within = 100.0 * (1.0 - np.sqrt((c @ w1) / (c @ w0)))
-            print(f"  {effect.kind[:8]:8s} {str(effect.column)[:12]:12s} {effect.label[:48]:48s}"
-                  f" q={ev.n_features:2d} g={ev.gain_pct:5.1f} MSE {(c @ (m0**2 + w0)) / N:.4f}->"
-                  f"{(c @ (m1**2 + w1)) / N:.4f} means^2 {(c @ m0**2) / N:.4f}->{(c @ m1**2) / N:.4f}"
+            print(f"  [{self.problem.scheme} {self.problem.n_units} units] {effect.kind[:8]:8s}"
+                  f" {str(effect.column)[:14]:14s} {effect.label[:48]:48s}"
+                  f" init={'y' if effect.initial_state else 'n'} q={ev.n_features:2d}"
+                  f" g={ev.gain_pct:5.1f} MSE {(c @ (m0**2 + w0)) / N:.4f}->{(c @ (m1**2 + w1)) / N:.4f}"
+                  f" means^2 {(c @ m0**2) / N:.4f}->{(c @ m1**2) / N:.4f}"
                   f" within {(c @ w0) / N:.4f}->{(c @ w1) / N:.4f} ({within:4.1f} %)"
-                  f" |mean| down {(np.abs(m1) < np.abs(m0)).sum()}/{c.size}")
+                  f" |mean| down {(np.abs(m1) < np.abs(m0)).sum()}/{c.size}", flush=True)
         return ev
 
     S.Search._evaluate = evaluate
     try:
+        yield
+    finally:
+        S.Search._evaluate = shipped
+
+
+def decompose(cases: list[str]) -> None:
+    """Each round's candidates of ``cases`` (E_Y) that gain >= 3 % in CV (not the control): the CV
+    MSE split into the held-out campaigns' means squared and the residual about them."""
+    import bench_diagnose_memory as memory
+
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+
+    with printed_parts():
         for case in cases:
             ds, comp, targets, _ = memory.dataset(case)
             print(f"== {case}")
@@ -146,8 +162,6 @@ def decompose(cases: list[str]) -> None:
                 j = d.to_json(t)
                 print(f"{t}: test {j['before']['test_rmse']:.3f} -> {j['after']['test_rmse']:.3f}; "
                       f"accepted {[e['transform'] for e in j['effects'] if e['accepted']]}")
-    finally:
-        S.Search._evaluate = shipped
 
 
 def test(cases: list[str]) -> None:

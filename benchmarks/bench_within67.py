@@ -98,41 +98,15 @@ def decompose(root: Path, cases: list[str]) -> None:
     """Each round's candidates (E_* targets) that gain >= 3 % in CV (not the control): the CV MSE
     split into the held-out campaigns' means squared and the residual about them."""
     import bench_diagnose_refnoise57 as refnoise
-    import numpy as np
-    from bench_initlag67 import _parts
+    from bench_initlag67 import printed_parts
 
-    from thermocomp.apps.diagnose import search as S
-
-    shipped = S.Search._evaluate
-
-    def evaluate(self, effect, current, r2, faults=None):
-        ev = shipped(self, effect, current, r2, faults)
-        if ev.gain_pct >= 3.0 and not ev.control:
-            ok = (self.problem.validated & np.isfinite(current.residual)
-                  & np.isfinite(ev.result.residual))
-            c, m0, w0 = _parts(self.problem, current.residual, ok)
-            _, m1, w1 = _parts(self.problem, ev.result.residual, ok)
-            N = c.sum()
-            within = 100.0 * (1.0 - np.sqrt((c @ w1) / (c @ w0)))
-            print(f"  [{self.problem.scheme} {self.problem.n_units} units] {effect.kind[:8]:8s}"
-                  f" {str(effect.column)[:14]:14s} {effect.label[:48]:48s}"
-                  f" init={'y' if effect.initial_state else 'n'} q={ev.n_features:2d}"
-                  f" g={ev.gain_pct:5.1f} MSE {(c @ (m0**2 + w0)) / N:.4f}->{(c @ (m1**2 + w1)) / N:.4f}"
-                  f" means^2 {(c @ m0**2) / N:.4f}->{(c @ m1**2) / N:.4f}"
-                  f" within {(c @ w0) / N:.4f}->{(c @ w1) / N:.4f} ({within:4.1f} %)"
-                  f" |mean| down {(np.abs(m1) < np.abs(m0)).sum()}/{c.size}", flush=True)
-        return ev
-
-    S.Search._evaluate = evaluate
-    try:
+    with printed_parts():
         for case in cases:
             print(f"== {case}", flush=True)
             if case.startswith("machine:"):
                 print(refnoise.row(case, "before", root / "lag"), flush=True)
             else:
                 refnoise._scored(root / "lag", root / case, ["before"], case=case)
-    finally:
-        S.Search._evaluate = shipped
 
 
 def main(argv: list[str]) -> int:
