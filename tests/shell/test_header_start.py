@@ -79,3 +79,25 @@ def test_the_iso67_bench_scenario_builds(monkeypatch):
     params = gen.get_params()
     assert list(params) == ["weeks_later", *CHAIN]
     assert (params["weeks_later"], params["error_noise_um"], params["seed"]) == (1, 0.1, 3)
+
+
+def test_a_day_first_start_is_taken_and_an_ambiguous_one_said(tmp_path, capsys):
+    # German test software writes '10.05.2027 07:00:00' (dots: day first); slashes only where a
+    # field past 12 says the order; '03/05/2027' (either) is left, and init says why
+    nest_files(tmp_path / "nest", {
+        "01_a": ["Test start\t10.05.2027 07:00:00,5"],
+        "02_b": ["Test start\t07.05.2027 12:00"],
+        "03_c": ["Test start\t05/08/2027 07:00:00"],        # ambiguous: left
+        "04_d": ["Test start\t13/05/2027 07:00:00"]})       # day first: the last to begin
+    assert main(["init", str(tmp_path / "nest"), f"out={tmp_path / 'init'}",
+                 "data.time=elapsed"]) in (0, None)
+    out = capsys.readouterr().out
+    assert ("03_c.txt states none (its 'Test start' (05/08/2027 07:00:00) is no date and time "
+            "(ISO 8601, day first with dots, or with slashes and a field past 12)): the campaigns "
+            "are held out in name order") in out
+    ds = io.read_dataset(tmp_path / "nest", {"test_fraction": 0.25, "time": "elapsed"})[0]
+    starts = pd.to_datetime(ds.manifest["start"])
+    assert starts["01_a"] == pd.Timestamp("2027-05-10 07:00:00.5")
+    assert starts["02_b"] == pd.Timestamp("2027-05-07 12:00:00")
+    assert starts["04_d"] == pd.Timestamp("2027-05-13 07:00:00")
+    assert ds.manifest.loc["04_d", "split"] == "test"

@@ -31,7 +31,7 @@ from .tables import (
     peek_csv,
     without_pandas_index,
 )
-from .timestamps import CLOCK, maybe_elapsed, parsed, time_type
+from .timestamps import CLOCK, dated_format, maybe_elapsed, parsed, time_type
 from .workbook import HEAD_ROWS
 
 
@@ -134,13 +134,20 @@ def _header_block_start(path: Path, lines: list[str], opts: ReadOptions
     if len(keyed) != 1:
         return pd.NaT, None
     key, value = keyed[0]
+    said = f"'{key}' line of the block above its table"
+    told = dated_format(value)
+    if told:                      # day first with dots, or slashes whose order a field past 12 says
+        fraction = re.search(r":\d\d[.,](\d+)$", value)
+        stamp = pd.to_datetime(re.sub(r"[.,]\d+$", "", value) if fraction else value, format=told)
+        return stamp + pd.to_timedelta(float("0." + fraction[1]) if fraction else 0.0, "s"), said
     if not _DATE_TIME.match(value):
         why = (f"its '{key}' ({value}) holds no date (a 'Date' line beside it may be the "
                "export's)" if _TIME_ONLY.fullmatch(value) else
-               f"its '{key}' ({value}) is no ISO 8601 date and time")
+               f"its '{key}' ({value}) is no date and time (ISO 8601, day first with dots, or "
+               "with slashes and a field past 12)")
         return pd.NaT, why
     try:
-        return start_stamp(value), f"'{key}' line of the block above its table"
+        return start_stamp(value), said
     except ValueError:
         return pd.NaT, f"its '{key}' ({value}) is no ISO 8601 date and time"
 

@@ -117,11 +117,7 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
                                        f"[{name}, <time column>], or set data.sample_period_s")
         raise ContractError(f"value {value!r} is a date without a time of day: {way}", file=path,
                             column=TIME, row=1)
-    day_first = _DAY_FIRST.fullmatch(value)
-    if day_first:
-        year = "%Y" if len(day_first["y"]) == 4 else "%y"     # %y: 69-99 the 1900s, as C's
-        return f"%d.%m.{year} %H:%M" + (":%S" if day_first["s"] else "")
-    told = slashed_format(value)
+    told = dated_format(value)
     if told:
         return told
     if _SLASHED.match(value):
@@ -129,6 +125,17 @@ def time_kind(value: str, kind: str, number: bool, path: Path, header: str | Non
                             f"data.time to its format, e.g. data.time={EXAMPLE} (or "
                             "'%m/%d/%Y %H:%M:%S')", file=path, column=TIME, row=1)
     return "iso8601"
+
+
+def dated_format(value: str) -> str | None:
+    """The strptime format of a date and time of day that is no ISO 8601 but says its order:
+    day first with dots (``07.05.2027 12:00:00``, as German software writes it) or with slashes
+    where a field past 12 tells (:func:`slashed_format`); None otherwise."""
+    day_first = _DAY_FIRST.fullmatch(value)
+    if day_first:
+        year = "%Y" if len(day_first["y"]) == 4 else "%y"     # %y: 69-99 the 1900s, as C's
+        return f"%d.%m.{year} %H:%M" + (":%S" if day_first["s"] else "")
+    return slashed_format(value)
 
 
 def slashed_format(value: str) -> str | None:

@@ -177,8 +177,9 @@ def stated_starts(src, ds, report: dict, opts) -> None:
             "(data.test_fraction holds out the last by it)")
     lacking = [str(ds.manifest.at[c, "file"]) for c in stated if c not in found]
     if lacking:
+        why = next((w for c, (_, w) in said.items() if c not in found and w), None)
         line += (f"; {', '.join(lacking[:3])}{' ...' * (len(lacking) > 3)} state{'s' * (len(lacking) == 1)} "
-                 "none: the campaigns are held out in name order")
+                 f"none{f' ({why})' if why else ''}: the campaigns are held out in name order")
     print(line)
 
 
