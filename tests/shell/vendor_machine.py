@@ -19,7 +19,11 @@ client's first write.  ``restarts`` stop the server for some rows (the machine r
 address space is kept); with ``renumbered`` (connect68) it comes back as a server process started
 anew with another companion specification installed: the namespaces registered again, the
 vendor's one index later, the address space built again (the offsets it serves are the NC's:
-they hold what was written last).  ``refused`` offset nodes are not writable for the session's user
+they hold what was written last).  ``handover=(row, rows)`` (connect68): once ``row`` is answered
+the client is sent ``stop_signal`` (a service restarted, a host rebooted) and, once the test
+says it ended (``stopped``), the next ``rows`` are published with no client (the machine runs
+on), the one after them too, then ``handed_over`` is set and it waits for a new client: its
+write at its connection, then its answer.  ``refused`` offset nodes are not writable for the session's user
 (BadUserAccessDenied); with ``users`` a session needs one of them.  After the last row (or
 ``stop_after`` rows) answered it sends the process ``stop_signal`` (the user's Ctrl-C or the
 service manager's SIGTERM: a vendor's server never says it is done).
@@ -110,7 +114,7 @@ class VendorMachine:
                  stop_after: int | None = None, stop_signal=signal.SIGTERM,
                  stop_pid: int | None = None, sensors: dict | None = None,
                  offsets: dict | None = None, users: dict | None = None,
-                 renumbered: bool = False):
+                 renumbered: bool = False, handover: tuple[int, int] | None = None):
         self.campaigns, self.port, self.deadband = campaigns, port, float(deadband)
         self.sensors, self.offsets = sensors or SENSORS, offsets or OFFSETS
         self.stop_pid = stop_pid        # the client's process (None: this one)
@@ -121,6 +125,9 @@ class VendorMachine:
         self.restarts = list(restarts)  # (first running row, rows) the server is down
         self.renumbered = renumbered    # a restart registers the namespaces anew, one more first
         self.indices: list[int] = []    # the vendor namespace's index at each start
+        self.handover = handover        # (row answered, rows without a client): a client stopped
+        self.stopped = threading.Event()        # the test: the client stopped has ended
+        self.handed_over = threading.Event()    # the rows without a client are out: start one
         self.refused, self.wait_s = set(refused), float(wait_s)
         self.stop_after, self.stop_signal = stop_after, stop_signal
         self.served = Served()
@@ -169,11 +176,12 @@ class VendorMachine:
         def on_write(event, _dispatcher) -> None:
             if not event.is_external:
                 return
+            wrote = False
             for wv, code in zip(event.request_params.NodesToWrite, event.response_params):
                 if wv.NodeId in ids:
                     self.served.types[ids[wv.NodeId]] = wv.Value.Value.VariantType
-                    if code.is_good():
-                        self._writes += 1
+                    wrote = wrote or code.is_good()
+            self._writes += wrote        # Writes that set offsets, not nodes: a handover counts them
 
         server.subscribe_server_callback(CallbackType.PostWrite, on_write)
         self.clock_node = server.get_node(ua.NodeId(ua.ObjectIds.Server_ServerStatus_CurrentTime))
@@ -240,12 +248,25 @@ class VendorMachine:
                         continue
                     before = self._writes
                     await self._publish(row, k, program, last, starts[program])
+                    if self.handover is not None and k > self.handover[0]:
+                        if k <= sum(self.handover):      # no client: the machine runs on
+                            self.served.answered.append(False)
+                            self.served.offsets.append(np.full(len(self.offsets), np.nan))
+                            k += 1
+                            continue
+                        if k == sum(self.handover) + 1:  # a new client: its first write, then
+                            before += 1                  # its answer (one write more)
+                            self.handed_over.set()
                     deadline = clock.monotonic() + self.wait_s
-                    while (self._writes == before and clock.monotonic() < deadline
+                    while (self._writes <= before and clock.monotonic() < deadline
                            and not self.closing.is_set()):
                         await asyncio.sleep(0.002)
                     self.served.answered.append(self._writes > before)
                     self.served.offsets.append(await self._registers())
+                    if self.handover is not None and k == self.handover[0]:
+                        os.kill(self.stop_pid or os.getpid(), self.stop_signal)   # stopped
+                        while not self.stopped.is_set() and not self.closing.is_set():
+                            await asyncio.sleep(0.01)
                     k += 1
                     if self.closing.is_set() or (self.stop_after is not None
                                                  and k >= self.stop_after):
