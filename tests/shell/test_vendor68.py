@@ -81,7 +81,7 @@ def stamped(seconds):
 
 
 @pytest.mark.parametrize("log_time", [stamped, lambda s: s], ids=["timestamps", "seconds"])
-def test_a_connect_restarted_mid_program_is_warmed_on_its_log(fitted, tmp_path, log_time):
+def test_a_connect_restarted_mid_program_is_warmed_on_its_log(fitted, tmp_path, log_time):  # noqa: F811
     """Before: without a campaign_sample node every client starts a campaign at its first
     sample, connect.warm unread and unsaid (the offsets after the restart from a reset).  Now
     the log's rows are stepped first: with the server's timestamps the offsets are replay's on

@@ -21,7 +21,8 @@ SIGINT / SIGTERM (main thread), which end it cleanly.  Node ids may name their n
 URI (resolved at each connection); every node is checked to be there first (NodesRefused, naming
 each).  An input whose StatusCode is not Good is NaN (``input_status`` events).  Offsets are
 written in each node's own DataType and unit; a refused write is WriteRefused.  A held offset
-is not written again.
+is not written again.  (connect68) Without ``campaign_sample``, ``connect.warm``'s rows are the
+first sample's campaign's, placed on the server's clock by their timestamps (:meth:`Connection._joined`).
 """
 
 from __future__ import annotations
@@ -401,7 +402,8 @@ class Connection:
             self._placed = (f" (the log's time is seconds, not the server's clock: this sample "
                             f"placed one period ({period:g} s) after the log's last row; the time "
                             "no client saw is not known: a log with timestamps spans it)")
-        return t0, max(1, round((at - t0) / period)) - 1
+        periods = (at - t0) / period
+        return t0, (max(1, round(periods)) if math.isfinite(periods) else 1) - 1
 
     def _clock_gap(self, gap: float, steps: int) -> int:
         """(opcleft67) A step of the server's clock of :data:`~...core.io.rates.GAP_PERIODS`
