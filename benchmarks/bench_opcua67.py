@@ -1,6 +1,7 @@
 """`thermocomp connect` against a vendor's OPC UA server, not the twin (opcua67, issue 34).
 
-    .venv/bin/python benchmarks/bench_opcua67.py DIR [--models mlr lagbank]
+    .venv/bin/python benchmarks/bench_opcua67.py DIR [--models mlr lagbank] [--runs clean faults
+        warm-stamped warm-seconds]
 
 The record is `make run`'s (`thermocomp simulate`, the default scenario, written to DIR/data);
 each model is fitted on its train part (`thermocomp run`), and its test campaigns are served,
@@ -25,6 +26,17 @@ on the same rows; connect's samples, samples missed, its events; its CPU (user +
 process, from wait4).  And (``held or missing``) what reading the dropped sensor's held value as
 a reading (before opcua67) or as missing (now) does to replay's RMS over the first program and
 over the dropout's 20 samples.  No rule is chosen by it.
+
+(connect68) ``warm-stamped`` / ``warm-seconds``: the same clean serving, `connect` stopped by
+SIGTERM once the first program's row 35 is answered, 5 rows served with no client, then a new
+`connect` process joins with ``connect.warm=<the first program's rows 0-35 as published>``, their
+time the server's timestamps or the record's seconds.  Measured, written before it ran: per
+target the largest |offset the machine held - replay's correction| over the samples answered,
+replay streaming the rows the clients saw (the 5 left out; with seconds, the rows after them
+moved 5 periods earlier: the join follows the log's last row by one period); the RMS of the
+error compensated by the machine's offsets and by replay's over the first program's rows after
+the join; both processes' CPU.  Before connect68 the log was not read without a campaign_sample
+node: run this bench with the old code for the restarted stream's figures.
 """
 
 from __future__ import annotations
@@ -45,7 +57,7 @@ sys.path[:0] = [str(ROOT / "tests" / "shell"), str(ROOT / "tests"), str(ROOT / "
 
 from asyncua import ua  # noqa: E402
 
-from vendor_machine import VendorMachine, as_published, connect_nodes, served_in_thread  # noqa: E402
+from vendor_machine import EPOCH, VendorMachine, as_published, connect_nodes, served_in_thread  # noqa: E402
 
 PY = sys.executable
 FAST = ["track=false", "plots=none"]
@@ -132,6 +144,74 @@ def one(data: Path, pkl: Path, out: Path, programs: dict, columns: list[str], fa
             "rms_uncompensated": {t: rms(errors[:, j]) for j, t in enumerate(targets)}}
 
 
+STOP, GAP = 35, 5      # warm runs: the first program's row answered before the stop, rows without
+
+
+def warmed(data: Path, pkl: Path, out: Path, programs: dict, columns: list[str],
+           stamped: bool) -> dict:
+    """A `connect` stopped mid-program and a new one warmed on the program's log (module doc)."""
+    from datetime import timedelta
+
+    sensors = sensors_of(columns)
+    first = list(programs)[0]
+    env = {**os.environ, "PYTHONPATH": str(ROOT / "src")}
+    port = free_port()
+    machine = VendorMachine(programs, port, deadband=0.02, sensors=sensors, offsets=OFFSETS,
+                            wait_s=120, handover=(STOP, GAP))
+    log = as_published(programs, 0.02, None, sensors)[first].iloc[:STOP + 1]
+    t0 = float(programs[first]["time"].iloc[0])       # the machine's clock: the program at EPOCH
+    log = log[["time", *sensors]].assign(time=[
+        (EPOCH + timedelta(seconds=float(t) - t0)).isoformat() for t in log["time"]]
+        if stamped else log["time"])
+    out.mkdir(parents=True, exist_ok=True)
+    log.to_csv(out / "log.csv", index=False)
+    args = [PY, "-m", "thermocomp", "connect", f"data.path={data}", *FAST, f"connect.model={pkl}",
+            f"connect.endpoint=opc.tcp://127.0.0.1:{port}", "connect.retry_s=0.4",
+            "connect.give_up_s=120", "connect.hold_s=600", *connect_nodes(sensors, OFFSETS)]
+    thread = served_in_thread(machine)
+    cpu, links = 0.0, []
+    try:
+        for part, extra in (("first", []), ("second", [f"connect.warm={out / 'log.csv'}"])):
+            client = subprocess.Popen([*args, f"out={out / part}", *extra], env=env,
+                                      stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+            machine.stop_pid = client.pid
+            _, status, usage = os.wait4(client.pid, 0)
+            err = client.stderr.read().decode()
+            assert os.waitstatus_to_exitcode(status) == 0, err
+            cpu += usage.ru_utime + usage.ru_stime
+            links.append(json.loads((out / part / "connect.json").read_text()))
+            if part == "first":
+                machine.stopped.set()
+                assert machine.handed_over.wait(120)
+    finally:
+        machine.closing.set()
+        thread.join(timeout=60)
+    assert not machine.raised, machine.raised
+    answered = np.array(machine.served.answered)
+    seen = as_published(programs, 0.02, None, sensors)
+    seen[first] = seen[first].drop(index=range(STOP + 1, STOP + GAP + 1))
+    if not stamped:
+        seen[first].loc[STOP + GAP + 1:, "time"] -= GAP * float(np.median(np.diff(log["time"])))
+    held = np.vstack(machine.served.offsets)[answered]
+    replayed = replay_rows(data, pkl, seen)
+    targets = list(OFFSETS)
+    errors = np.vstack([(df[targets] - df[targets].iloc[0]).to_numpy(float)
+                        for df in programs.values()])[answered]
+    after = np.flatnonzero(answered)
+    after = (after > STOP + GAP) & (after < len(programs[first]))      # the first program's, after
+    rms = lambda r: float(np.sqrt(np.mean(r ** 2)))   # noqa: E731
+    return {"samples": [link["samples"] for link in links],
+            "events": [[e["event"] for e in link["events"]] for link in links],
+            "warmed": [e["detail"] for e in links[1]["events"] if e["event"] == "warmed"],
+            "cpu_s": round(cpu, 2),
+            "max_abs_diff": {t: float(np.max(np.abs(held[:, j] - replayed[:, j])))
+                             for j, t in enumerate(targets)},
+            "rms_after_join_machine": {t: rms(errors[after, j] - held[after, j])
+                                       for j, t in enumerate(targets)},
+            "rms_after_join_replay": {t: rms(errors[after, j] - replayed[after, j])
+                                      for j, t in enumerate(targets)}}
+
+
 def held_or_missing(data: Path, pkl: Path, programs: dict, columns: list[str]) -> dict:
     """The first program with `T_nose` dropped as in ``faults`` (rows 10-29): the RMS of the error
     compensated by replay's corrections when the held value is streamed as a reading (what
@@ -157,6 +237,7 @@ def main() -> None:
     p = argparse.ArgumentParser()
     p.add_argument("dir", type=Path)
     p.add_argument("--models", nargs="+", default=["mlr", "lagbank"])
+    p.add_argument("--runs", nargs="+", default=["clean", "faults", "warm-stamped", "warm-seconds"])
     a = p.parse_args()
     data = a.dir / "data"
     if not (data / "campaigns.csv").is_file():
@@ -171,16 +252,18 @@ def main() -> None:
         if not pkl.is_file():
             cli("run", f"data.path={data}", f"out={pkl.parent}", f"model_path={pkl}", f"model={model}",
                 *FAST, "eval.validation=false", "eval.mutual_prediction=false")
-        results[f"{model} held or missing"] = held_or_missing(data, pkl, programs, columns)
-        print(json.dumps({f"{model} held or missing": results[f"{model} held or missing"]}),
-              flush=True)
-        for faults in (False, True):
+        if {"clean", "faults"} & set(a.runs):
+            results[f"{model} held or missing"] = held_or_missing(data, pkl, programs, columns)
+            print(json.dumps({f"{model} held or missing": results[f"{model} held or missing"]}),
+                  flush=True)
+        for run in a.runs:
             start = time.monotonic()
-            r = one(data, pkl, a.dir / f"{model}-{'faults' if faults else 'clean'}", programs,
-                    columns, faults)
+            out = a.dir / f"{model}-{run}"
+            r = (one(data, pkl, out, programs, columns, run == "faults") if run in ("clean", "faults")
+                 else warmed(data, pkl, out, programs, columns, run == "warm-stamped"))
             r["wall_s"] = round(time.monotonic() - start, 1)
-            results[f"{model} {'faults' if faults else 'clean'}"] = r
-            print(json.dumps({f"{model} {'faults' if faults else 'clean'}": r}), flush=True)
+            results[f"{model} {run}"] = r
+            print(json.dumps({f"{model} {run}": r}), flush=True)
     (a.dir / "bench_opcua67.json").write_text(json.dumps(results, indent=1))
 
 

@@ -16,7 +16,14 @@ published is not published, as a sensor's deadband does), the program's name, th
 last.  Lockstep: a row waits (at most ``wait_s``) for the client's write to the offset nodes,
 then takes the values in them (µm) as the offsets that answer it; the first row waits for a
 client's first write.  ``restarts`` stop the server for some rows (the machine runs on; the
-address space is kept).  ``refused`` offset nodes are not writable for the session's user
+address space is kept); with ``renumbered`` (connect68) it comes back as a server process started
+anew with another companion specification installed: the namespaces registered again, the
+vendor's one index later, the address space built again (the offsets it serves are the NC's:
+they hold what was written last).  ``handover=(row, rows)`` (connect68): once ``row`` is answered
+the client is sent ``stop_signal`` (a service restarted, a host rebooted) and, once the test
+says it ended (``stopped``), the next ``rows`` are published with no client (the machine runs
+on), the one after them too, then ``handed_over`` is set and it waits for a new client: its
+write at its connection, then its answer.  ``refused`` offset nodes are not writable for the session's user
 (BadUserAccessDenied); with ``users`` a session needs one of them.  After the last row (or
 ``stop_after`` rows) answered it sends the process ``stop_signal`` (the user's Ctrl-C or the
 service manager's SIGTERM: a vendor's server never says it is done).
@@ -56,6 +63,7 @@ OFFSETS = {"E_X": ("s=CNC5000.Compensation.OffsetX", ua.VariantType.Float, 1.0),
            "E_Z": ("s=CNC5000.Compensation.OffsetZ_01um", ua.VariantType.Int32, 0.1)}
 PROGRAM = "s=CNC5000.Production.ActiveProgram"
 SETUP_S = 600.0      # between two programs
+RENUMBERING = "http://opcfoundation.org/UA/Machinery/"   # installed before a renumbered restart
 
 
 def nsu(node: str) -> str:
@@ -105,7 +113,8 @@ class VendorMachine:
                  bad: dict | None = None, restarts=(), refused=(), wait_s: float = 60.0,
                  stop_after: int | None = None, stop_signal=signal.SIGTERM,
                  stop_pid: int | None = None, sensors: dict | None = None,
-                 offsets: dict | None = None, users: dict | None = None):
+                 offsets: dict | None = None, users: dict | None = None,
+                 renumbered: bool = False, handover: tuple[int, int] | None = None):
         self.campaigns, self.port, self.deadband = campaigns, port, float(deadband)
         self.sensors, self.offsets = sensors or SENSORS, offsets or OFFSETS
         self.stop_pid = stop_pid        # the client's process (None: this one)
@@ -114,6 +123,11 @@ class VendorMachine:
         # value held with that status (asyncua's server nulls a Bad one's value, not an Uncertain)
         self.bad = bad or {}
         self.restarts = list(restarts)  # (first running row, rows) the server is down
+        self.renumbered = renumbered    # a restart registers the namespaces anew, one more first
+        self.indices: list[int] = []    # the vendor namespace's index at each start
+        self.handover = handover        # (row answered, rows without a client): a client stopped
+        self.stopped = threading.Event()        # the test: the client stopped has ended
+        self.handed_over = threading.Event()    # the rows without a client are out: start one
         self.refused, self.wait_s = set(refused), float(wait_s)
         self.stop_after, self.stop_signal = stop_after, stop_signal
         self.served = Served()
@@ -122,15 +136,16 @@ class VendorMachine:
         self.listening = threading.Event()   # its endpoint is up: a client started now connects
         self._writes = 0
 
-    async def _start(self) -> None:
+    async def _start(self, companions=COMPANIONS, registers=None) -> None:
         server = Server(user_manager=_Users(self.users))
         await server.init(await asyncio.to_thread(standard_shelf_or_none))
         server.set_endpoint(f"opc.tcp://127.0.0.1:{self.port}")
         server.set_server_name("CNC5000 vendor server")
         server.disable_clock()           # its clock is the record's
-        for uri in COMPANIONS:
+        for uri in companions:
             await server.register_namespace(uri)
         idx = await server.register_namespace(VENDOR_NS)
+        self.indices.append(idx)
         machine = await server.nodes.objects.add_object(idx, "CNC5000")
         monitoring = await machine.add_folder(idx, "Monitoring")
         self.sensor_nodes = {}
@@ -149,6 +164,10 @@ class VendorMachine:
         for target, (node, vt, _) in self.offsets.items():
             var = await compensation.add_variable(ua.NodeId.from_string(f"ns={idx};{node}"),
                                                   f"Offset{target}", ua.Variant(0, vt))
+            if registers is not None:    # the NC's register, as it holds it (µm)
+                held = registers[list(self.offsets).index(target)] / self.offsets[target][2]
+                await var.write_value(ua.Variant(float(held) if vt in (ua.VariantType.Float,
+                                                 ua.VariantType.Double) else int(round(held)), vt))
             if target not in self.refused:
                 await var.set_writable()
             self.offset_nodes[target] = var
@@ -157,11 +176,12 @@ class VendorMachine:
         def on_write(event, _dispatcher) -> None:
             if not event.is_external:
                 return
+            wrote = False
             for wv, code in zip(event.request_params.NodesToWrite, event.response_params):
                 if wv.NodeId in ids:
                     self.served.types[ids[wv.NodeId]] = wv.Value.Value.VariantType
-                    if code.is_good():
-                        self._writes += 1
+                    wrote = wrote or code.is_good()
+            self._writes += wrote        # Writes that set offsets, not nodes: a handover counts them
 
         server.subscribe_server_callback(CallbackType.PostWrite, on_write)
         self.clock_node = server.get_node(ua.NodeId(ua.ObjectIds.Server_ServerStatus_CurrentTime))
@@ -209,11 +229,16 @@ class VendorMachine:
                 for _, row in df.iterrows():
                     out = any(a <= k < a + n for a, n in self.restarts)
                     if out and down is None:
+                        kept = await self._registers()      # the NC's, across the restart
                         down = asyncio.create_task(self.server.stop())
                     elif not out and down is not None:
                         await down
                         down = None
-                        await self.server.start()
+                        if self.renumbered:     # a new server process: every value published
+                            await self._start((*COMPANIONS, RENUMBERING), kept)
+                            last = {}
+                        else:
+                            await self.server.start()
                     self.served.program.append(program)
                     if out:
                         await asyncio.sleep(0.02)           # the machine runs on
@@ -223,12 +248,25 @@ class VendorMachine:
                         continue
                     before = self._writes
                     await self._publish(row, k, program, last, starts[program])
+                    if self.handover is not None and k > self.handover[0]:
+                        if k <= sum(self.handover):      # no client: the machine runs on
+                            self.served.answered.append(False)
+                            self.served.offsets.append(np.full(len(self.offsets), np.nan))
+                            k += 1
+                            continue
+                        if k == sum(self.handover) + 1:  # a new client: its first write, then
+                            before += 1                  # its answer (one write more)
+                            self.handed_over.set()
                     deadline = clock.monotonic() + self.wait_s
-                    while (self._writes == before and clock.monotonic() < deadline
+                    while (self._writes <= before and clock.monotonic() < deadline
                            and not self.closing.is_set()):
                         await asyncio.sleep(0.002)
                     self.served.answered.append(self._writes > before)
                     self.served.offsets.append(await self._registers())
+                    if self.handover is not None and k == self.handover[0]:
+                        os.kill(self.stop_pid or os.getpid(), self.stop_signal)   # stopped
+                        while not self.stopped.is_set() and not self.closing.is_set():
+                            await asyncio.sleep(0.01)
                     k += 1
                     if self.closing.is_set() or (self.stop_after is not None
                                                  and k >= self.stop_after):

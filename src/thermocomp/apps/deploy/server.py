@@ -281,18 +281,29 @@ def run_server(argv: list[str], env: dict) -> int:
     from mlflow.pyfunc.scoring_server import _SERVER_MODEL_PATH
     from mlflow.utils.file_utils import local_file_uri_to_path
 
-    from ...base.files import Terminated
+    from ...base.files import Terminated, signals_raise
 
     folder = Path(local_file_uri_to_path(env[_SERVER_MODEL_PATH])).parent
-    try:
-        sys.stdout.flush()
-        sys.stderr.flush()
-        server = subprocess.Popen(argv, env={**env, PARENT_ENV: str(os.getpid())})
+    server = None
+    with signals_raise(sigint=True) as signals:
         try:
+            sys.stdout.flush()
+            sys.stderr.flush()
+            # a signal while the child is forked waits until it is ours to stop (connect68:
+            # raised inside Popen, it left a server whose parent was gone before the server
+            # could watch it, serving on)
+            with signals.deferred():
+                server = subprocess.Popen(argv, env={**env, PARENT_ENV: str(os.getpid())})
             code = server.wait()
         except (KeyboardInterrupt, Terminated):    # Ctrl-C, SIGTERM: the server stops, cleanly
+            if server is None:
+                raise
             server.terminate()
             code = server.wait()
-    finally:    # the model folder written for it, whatever ended the server
-        shutil.rmtree(folder, ignore_errors=True)
+        finally:    # the model folder written for it, whatever ended the server; a second
+            # signal while it stopped: it is killed, not left
+            if server is not None and server.poll() is None:
+                server.kill()
+                server.wait()
+            shutil.rmtree(folder, ignore_errors=True)
     return 0 if code in (0, -signal.SIGTERM, -signal.SIGINT) else code if code > 0 else 1

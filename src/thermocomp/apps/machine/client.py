@@ -21,7 +21,8 @@ SIGINT / SIGTERM (main thread), which end it cleanly.  Node ids may name their n
 URI (resolved at each connection); every node is checked to be there first (NodesRefused, naming
 each).  An input whose StatusCode is not Good is NaN (``input_status`` events).  Offsets are
 written in each node's own DataType and unit; a refused write is WriteRefused.  A held offset
-is not written again.
+is not written again.  (connect68) Without ``campaign_sample``, ``connect.warm``'s rows are the
+first sample's campaign's, placed on the server's clock by their timestamps (:meth:`Connection._joined`).
 """
 
 from __future__ import annotations
@@ -42,6 +43,7 @@ from asyncua import Client, ua
 
 from ...core.context import TIME
 from ...core.io.rates import GAP_PERIODS, PAUSE_PERIODS
+from ...core.io.stdin import TIME_ORIGIN
 from .nodes import NodeMap, NodesUnknown, quiet_asyncua, resolve_id
 from .offsets import OffsetLimiter
 from .registers import WRITABLE, WriteRefused, as_registers
@@ -163,6 +165,7 @@ class Connection:
         self._held = None            # the offsets last written (a held one is not written again)
         self.periods = 1.0           # the periods the server's clock went on to the last sample
         self.stopped = None          # the signal that stopped the client, if one did
+        self._placed = ""            # how connect.warm's log was placed on the server's clock
 
     def _event(self, kind: str, detail: str, level: int = logging.INFO, **extra) -> None:
         e = {"wall_s": round(clock_now() - self._start, 3), "sample": self._last,
@@ -367,11 +370,40 @@ class Connection:
                         and self._at is not None and self.period_s else 1.0)
         if new:
             self._t0, self._i = at, -1
+            if self.warm is not None and "campaign_sample" not in value:
+                self._t0, self._i = self._joined(at, plan.clock is not None)
         self._i = int(value["campaign_sample"]) if "campaign_sample" in value else self._i + steps
         self._at = at
         if plan.clock is not None:          # the stream's time: s since the campaign's start
             row[plan.labels.index(TIME)] = at - self._t0
         return cid, row, k, self._i
+
+    def _joined(self, at: float, server_clock: bool) -> tuple[float, int]:
+        """(connect68) Where the first sample of a client given ``connect.warm`` sits in the
+        campaign the log holds, without a ``campaign_sample`` node (a vendor's server): ``(the
+        clock at the campaign's start, the sample before the joined one)``.  On the server's
+        clock the log's timestamps place it (their first is the campaign's start: the samples no
+        client saw are spanned by the time step, as after a link drop); a log of seconds tells
+        nothing of the server's clock: the join follows the log's last row by one period, as
+        ``run`` joins a campaign to the one it continues (a served ``continues`` alike).  On a
+        ``time`` node the campaign's own seconds place it as they are."""
+        warm, period = self.warm, self.period_s or 1.0
+        times = warm[TIME].to_numpy(float) if TIME in warm.columns else np.arange(len(warm)) * period
+        last = float(np.nanmax(times)) if len(warm) and np.isfinite(times).any() else -period
+        origin = warm.attrs.get(TIME_ORIGIN)
+        if not server_clock:
+            t0, self._placed = 0.0, ""
+        elif origin is not None:
+            t0 = origin.timestamp()
+            self._placed = (f" (the log's timestamps place it {at - t0 - last:g} s after the "
+                            "log's last row)")
+        else:
+            t0 = at - last - period
+            self._placed = (f" (the log's time is seconds, not the server's clock: this sample "
+                            f"placed one period ({period:g} s) after the log's last row; the time "
+                            "no client saw is not known: a log with timestamps spans it)")
+        periods = (at - t0) / period
+        return t0, (max(1, round(periods)) if math.isfinite(periods) else 1) - 1
 
     def _clock_gap(self, gap: float, steps: int) -> int:
         """(opcleft67) A step of the server's clock of :data:`~...core.io.rates.GAP_PERIODS`
@@ -473,7 +505,8 @@ class Connection:
             times = warm[TIME].to_numpy(float) if TIME in warm.columns else np.full(len(warm), np.nan)
             self.adapt.correct(predicted[targets].to_numpy(float), times, measured)
         self._event("warmed", f"campaign {cid} joined at its sample {i}: the stream warmed on "
-                              f"{len(warm)} row(s) logged before it (connect.warm), unscored")
+                              f"{len(warm)} row(s) logged before it (connect.warm), unscored"
+                              + self._placed)
 
     async def _write(self, client, plan: _Plan, answered, values: np.ndarray) -> None:
         """The offsets, then (``answered``: the sample they answer, with an ``offset_sample`` node)

@@ -75,9 +75,11 @@ def stdin_text(stream, encoding: str = UTF8) -> str:
 def read_stream(text: str, columns: list[str], opts) -> tuple[pd.DataFrame, dict]:
     """``(frame, missing cells per column)`` of CSV ``text`` (header first) holding ``columns``
     (those the compensator reads).  ``time`` in seconds or as ISO 8601 timestamps (``auto``: as
-    the first row reads, like a campaign file); the headers named as a campaign file's are
+    the first row reads, like a campaign file; the instant they count from in ``attrs``
+    :data:`TIME_ORIGIN`, None for seconds); the headers named as a campaign file's are
     (``data.columns``, ``data.roles`` with a date and a time of day joined, ``data.units``)."""
-    df, counts, _, _ = _read_runs(text, columns, opts)
+    df, counts, _, origins = _read_runs(text, columns, opts)
+    df.attrs[TIME_ORIGIN] = origins[0]
     return df, counts
 
 
