@@ -90,6 +90,7 @@ from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
 from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
+from .sheetruns import several_runs, sheet_parts
 from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts, commented_start
 from .steps import check_unit_steps
@@ -527,6 +528,11 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if opts.roles.get(RUN_ROLE):
         raise ContractError(f"data.roles.{RUN_ROLE} splits one long file into its runs: data.path "
                             "is a folder, whose files are a campaign each (leave it out)", file=path)
+    if path.is_file() and several_runs(path, opts):     # a workbook of runs, one a sheet
+        check_record_file(path)
+        manifest, parts = sheet_parts(path, opts, read_campaign)
+        ids = list(manifest.index if campaigns is None else campaigns)
+        return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
     if path.is_file():
         check_record_file(path)
         table, report = _record(path, opts)
