@@ -138,9 +138,10 @@ def diagnosed(root: Path, name: str, family: str, *extra: str, accepted: bool = 
     if rc:
         return {**row, "said": said}, out
     report = json.loads((out / "diagnosis.json").read_text())
-    if accepted:
-        row["accepted"] = [c.get("name", c) if isinstance(c, dict) else c
-                           for c in report.get("accepted", [])]
+    if accepted:        # (stranger68: diagnosis.json has no 'accepted' list: this said [] always)
+        row["accepted"] = {report["target"]: [s["effect"] for s in report["steps"] if s["effect"]]}
+        row["accepted"].update({t: v.get("accepted", [])
+                                for t, v in (report.get("other_targets") or {}).items()})
     row["targets"] = {report["target"]: (report["before"]["test_rmse"],
                                          report["after"]["test_rmse"])}
     row["targets"].update({t: (v["before_test_rmse"], v["after_test_rmse"])

@@ -21,12 +21,10 @@ import pandas as pd
 
 from ...base.errors import listed
 from ...base.log import logger
-from ..timerule import median_step
-from .contract import TIME, ContractError
+from .contract import ContractError
 from .instants import start_instants
 from .manifest import apply_split_overrides
 from .record import hold_out
-from .values import _check_periods, _error_ranges, _warn_error_ranges
 from .workbook import is_workbook, run_sheets
 
 _UNSAFE = re.compile(r"[^\w.-]+")
@@ -45,22 +43,18 @@ def several_runs(path: Path, opts) -> bool:
 
 def sheet_parts(path: Path, opts, read) -> tuple[pd.DataFrame, dict]:
     """The manifest (``file``, ``split``, ``sheet``) and ``{id: (table, entry)}`` of the workbook
-    ``path``'s run sheets, each read by ``read(path, opts)`` (``read_campaign``)."""
+    ``path``'s run sheets, each read by ``read(path, opts)`` (``read_campaign``; the caller
+    checks them as a file's runs)."""
     sheets = run_sheets(path)
     ids = {campaign_id(t): t for t in sheets.runs}
     if len(ids) < len(sheets.runs):
         raise ContractError("two sheets give one campaign id ("
                             + listed([repr(t) for t in sheets.runs], most=8)
                             + "): rename one", file=path)
-    parts, periods, ranges = {}, {}, {}
+    parts = {}
     for cid, title in ids.items():
         table, report = read(path, replace(opts, sheet=title))
         parts[cid] = table, {"file": path.name, "sheet": title, "split": "train", **report}
-        periods[cid] = median_step(table.column(TIME).to_numpy())
-        ranges[cid] = _error_ranges(table, ("E", "T"))
-    files = dict.fromkeys(parts, path.name)
-    _check_periods(periods, files, path.parent, opts.max_period_ratio)
-    _warn_error_ranges(ranges, files, path.parent)
     manifest = pd.DataFrame({"file": path.name, "split": "train", "sheet": list(ids.values())},
                             index=pd.Index(list(ids), name="campaign"))
     apply_split_overrides(manifest, opts.split_overrides, path,
