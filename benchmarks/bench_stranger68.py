@@ -239,10 +239,6 @@ def main(argv: list[str]) -> None:
         "init": lambda root, rest: initialised(root, rest[0], rest[1:]),
         # monitor ROOT name family channel...
         "monitor": lambda root, rest: monitoring(root, rest[0], rest[1], rest[2:]),
-        # diagnose ROOT name family [override ...]
-        "diagnose": lambda root, rest: print(json.dumps(
-            lab_matrix.diagnosed(root, rest[0], rest[1], *rest[2:], accepted=True)[0],
-            default=str)),
     })
 
 
