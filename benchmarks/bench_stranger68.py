@@ -44,6 +44,22 @@ What is measured (written before anything ran)
 
 No rule is adopted from these records: they are a check, not a tuning set.
 
+Measured (2026-12-01, every step once, 2 shared cores, other sessions' load; docs/own-data.md)
+----------------------------------------------------------------------------------------------
+``init mtc_a`` at 25cac747: "no column reads as a measured error ... the numeric columns: none"
+(the cover read); with ``data.sheet='Run 1'`` the same (the unit row's ``°`` unknown: the row
+read as data); with ``data.roles.error=[dX,dY,dZ]`` too, "no 'time' column" (its name in the
+merged cell above).  Mended (c3501319): each run sheet a campaign, the cover left out, the
+merged name, ``°`` a unit, the ``Maximum`` row under an empty row a footer; one try each
+(3.7 / 4.2 s CPU).  ``matrix`` (test RMSE dX / dY / dZ µm; before 16.06 / 2.20 / 38.26 and
+14.58 / 2.71 / 29.18): 6851 mlr 9.73 / 0.64 / 11.02, hammerstein 6.71 / 0.51 / 7.25, auto 5.75 /
+0.52 / 7.02; 6852 mlr 14.11 / 0.50 / 14.34, auto (Hammerstein's validation 5.43 on dX) 15.82 /
+0.37 / 16.19 (its test run at B = 90° 53 % of the time, the train runs 8-24 %).  Every cell:
+replay = run (<= 3.6e-15), |stream - batch| <= 7.1e-14, promote = run, C pack passed; the
+matrix 125.7 s CPU (6851, 7 cells).  ``diagnose`` mlr FOUND on both seeds (``S_B_axis`` x the
+rises, on dZ and dX): 6851 -> 1.87 / 0.43 / 1.66, 6852 -> 3.46 / 0.48 / 3.59 (16 / 13 s CPU).
+``monitor`` mlr: healthy 0 events; +3 K on ``B head`` at 10 h excluded at once.
+
     ... bench_stranger68.py init ROOT mtc_a [override ...]   # init as a stranger, one try
     ... bench_stranger68.py matrix ROOT mtc_a                # run -> replay -> promote -> C
     ... bench_stranger68.py table ROOT mtc_a
