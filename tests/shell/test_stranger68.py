@@ -156,3 +156,17 @@ def test_a_summary_row_under_an_empty_row_of_cells_is_left_out(tmp_path, capsys)
     path.write_text("\n".join(lines) + "\n", encoding="utf-8")
     ds, _ = read_dataset(path, {"roles": {"error": ["dX"]}, "test_fraction": 0.25})
     assert sum(len(f) for f in ds.campaigns.values()) == ROWS
+
+
+def test_a_name_merged_down_over_the_group_row_names_its_column(tmp_path):
+    """One sheet, no cover, no angle: the time's name stands in the cell merged down over the
+    group row and the names row (the names row's cell is empty as openpyxl reads it)."""
+    book = openpyxl.Workbook()
+    _run_sheet(book.active, 1, dt.datetime(2027, 6, 14, 6))
+    book.active.cell(row=5, column=1 + NAMES.index("B axis") + 1, value="-")    # (not '°')
+    book.active.delete_rows(book.active.max_row - 1, 2)                          # no 'Maximum'
+    book.save(tmp_path / "run.xlsx")
+    ds, report = read_dataset(tmp_path / "run.xlsx", CFG)
+    frame = pd.concat(ds.campaigns.values())
+    assert frame["time"].iloc[-1] == (ROWS - 1) * 60.0
+    assert report["column_map"]["Date / time"] == "time"
