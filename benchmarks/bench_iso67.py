@@ -224,10 +224,6 @@ def main(argv: list[str]) -> None:
         "raw": lambda root, rest: raw(root, rest[0]),
         # monitor ROOT name family sensor-header...
         "monitor": lambda root, rest: monitoring(root, rest[0], rest[1], rest[2:]),
-        # diagnose ROOT name family [override ...]
-        "diagnose": lambda root, rest: print(json.dumps(
-            lab_matrix.diagnosed(root, rest[0], rest[1], *rest[2:], accepted=True)[0],
-            default=str)),
     })
 
 

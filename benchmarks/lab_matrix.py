@@ -138,9 +138,10 @@ def diagnosed(root: Path, name: str, family: str, *extra: str, accepted: bool = 
     if rc:
         return {**row, "said": said}, out
     report = json.loads((out / "diagnosis.json").read_text())
-    if accepted:
-        row["accepted"] = [c.get("name", c) if isinstance(c, dict) else c
-                           for c in report.get("accepted", [])]
+    if accepted:        # (stranger68: diagnosis.json has no 'accepted' list: this said [] always)
+        row["accepted"] = {report["target"]: [s["effect"] for s in report["steps"] if s["effect"]]}
+        row["accepted"].update({t: v.get("accepted", [])
+                                for t, v in (report.get("other_targets") or {}).items()})
     row["targets"] = {report["target"]: (report["before"]["test_rmse"],
                                          report["after"]["test_rmse"])}
     row["targets"].update({t: (v["before_test_rmse"], v["after_test_rmse"])
@@ -262,12 +263,16 @@ def monitoring(root: Path, name: str, family: str, sensors, plant, kinds=("jump"
 
 def main(argv: list[str], seeds, families, wrappers, steps: dict) -> None:
     """A bench's command line ``STEP ROOT [args]``: ``matrix ROOT [names] [--families ...]
-    [--wrappers ...]`` (:func:`matrix_step`), ``table ROOT name``, or the bench's own ``steps``
+    [--wrappers ...]`` (:func:`matrix_step`), ``table ROOT name``, ``diagnose ROOT name family
+    [override ...]`` (:func:`diagnosed`), or the bench's own ``steps``
     (name -> function of ``(root, args)``)."""
     step, root, rest = argv[0], Path(argv[1]).resolve(), argv[2:]
     shared = {"matrix": lambda root, rest: matrix_step(root, rest, seeds, families, wrappers,
                                                         families),
-              "table": lambda root, rest: print(table(root, rest[0]))}
+              "table": lambda root, rest: print(table(root, rest[0])),
+              # diagnose ROOT name family [override ...]: the row with the accepted effects
+              "diagnose": lambda root, rest: print(json.dumps(
+                  diagnosed(root, rest[0], rest[1], *rest[2:], accepted=True)[0], default=str))}
     known = {**shared, **steps}
     if step not in known:
         raise SystemExit(f"unknown step {step!r}")

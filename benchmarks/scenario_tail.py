@@ -4,6 +4,8 @@
 * :func:`merge` and :func:`held`: a programme's steps ``(start s, value)`` on the logger's grid,
   and a state signal that holds each value until the next step;
 * :func:`weekday_shift`: the machine powered on weekdays within the shift's hours;
+  :func:`working`: a run's working hours, 16 h from its start each day; :func:`either`: a state
+  on while either of two is (tsc66, mtc68);
 * :class:`LoggedStateEffect`: the base of a planted effect of a LOGGED state (its column, so
   declared) on the errors, with a node's rise from the campaign's first sample;
 * :class:`PlantedScenario`: a :class:`~thermocomp.apps.sim.scenario.DeclaredScenario` (its
@@ -61,6 +63,19 @@ def weekday_shift(t_rel, shift_h: tuple) -> np.ndarray:
     return ((day < 5) & (hour >= shift_h[0]) & (hour < shift_h[1])).astype(float)
 
 
+def working(t_rel) -> np.ndarray:
+    """Run time (from 06:00 of its first day) -> 1 from 06:00 to 22:00 each day."""
+    hour = (np.asarray(t_rel, float) / 3600.0) % 24.0
+    return (hour < 16.0).astype(float)
+
+
+def either(a, b):
+    """Two state signals -> one that is 1 while either is non-zero (a cut by either spindle)."""
+    def at(t_rel):
+        return ((a(t_rel) != 0) | (b(t_rel) != 0)).astype(float)
+    return at
+
+
 class LoggedStateEffect(UndeclaredEffect):
     """A planted effect of the logged state ``state`` (its column: declared) on the errors; the
     subclass's ``modify_errors`` says how (:meth:`logged`, :meth:`rise`)."""
@@ -106,4 +121,5 @@ class PlantedScenario(DeclaredScenario):
         return dataset, truth
 
 
-__all__ = ["LoggedStateEffect", "PlantedScenario", "held", "merge", "weekday_shift"]
+__all__ = ["LoggedStateEffect", "PlantedScenario", "either", "held", "merge", "weekday_shift",
+           "working"]

@@ -77,7 +77,7 @@ from dataclasses import dataclass
 from datetime import datetime, timedelta
 
 import numpy as np
-from scenario_tail import LoggedStateEffect, PlantedScenario, held, merge
+from scenario_tail import LoggedStateEffect, PlantedScenario, either, held, merge, working
 
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel
 from thermocomp.apps.sim.campaign import Machine
@@ -148,12 +148,6 @@ class BedLever(LoggedStateEffect):
         return errors
 
 
-def working(t_rel) -> np.ndarray:
-    """Run time (from 06:00 of its first day) -> 1 from 06:00 to 22:00 each day."""
-    hour = (np.asarray(t_rel, float) / 3600.0) % 24.0
-    return (hour < 16.0).astype(float)
-
-
 def programme(rng, period_s: float, duration_s: float):
     """Step lists (start s, value) of the main speed, the counter speed and Z2."""
     def grid(t):
@@ -177,12 +171,6 @@ def programme(rng, period_s: float, duration_s: float):
         z2.append((grid(stop), PARKED_MM))
         t = stop + rng.uniform(5.0, 30.0) * 60.0
     return merge(n1), merge(n2), merge(z2)
-
-
-def either(a, b):
-    def at(t_rel):
-        return ((a(t_rel) != 0) | (b(t_rel) != 0)).astype(float)
-    return at
 
 
 @dataclass(eq=False, repr=False, kw_only=True)

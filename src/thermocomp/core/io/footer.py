@@ -39,6 +39,8 @@ def footer(path: Path, delimiter: str, fields: int, encoding: str = UTF8
     found, cut, above, summary = [], size, "", False
     for raw in reversed(lines[1:] if size > _TAIL_BYTES else lines):
         text = raw.decode(encoding, "replace").strip()
+        if text and not any(c.strip() for c in split_line(text, delimiter, EMPTY)):
+            text = ""       # a row of empty cells (a sheet's empty row above its summary rows)
         if text and not _footer_line(text, delimiter):
             if not _summary_line(text, delimiter):
                 above = text

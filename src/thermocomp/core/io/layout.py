@@ -17,6 +17,7 @@ import re
 from .csvline import EMPTY, split_line
 from .roles import STATE_UNITS, UNITS, split_unit
 from .separators import any_number
+from .units import ANGLE_UNITS
 
 MAX_PREAMBLE = 20
 # a time column's format as a logger's unit row spells it: a date of y / m / d letters, a time
@@ -72,7 +73,8 @@ def _text(line: str) -> bool:
 def is_unit_row(row: list[str]) -> bool:
     """Every cell a unit (or empty), at least one."""
     units = [c.strip().lower().replace(" ", "") for c in row if c.strip()]
-    known = {u for table in UNITS.values() for u in table} | STATE_UNITS | {"-"}
+    # (an axis' angle, '°', is a state's unit: stranger68's 'B axis' over '°' made the row data)
+    known = {u for table in UNITS.values() for u in table} | STATE_UNITS | ANGLE_UNITS | {"-"}
     return bool(units) and all(u.strip("[]()") in known or is_time_format(u) for u in units)
 
 

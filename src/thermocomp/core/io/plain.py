@@ -19,7 +19,7 @@ from .labfile import records_as_csv
 from .matfile import is_mat, mat_records
 from .tdms import is_tdms, tdms_records
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
-from .workbook import csv_options, is_workbook, sheet_as_csv
+from .workbook import csv_options, is_workbook, run_sheets, sheet_as_csv
 
 
 def is_lab_file(path) -> bool:
@@ -57,6 +57,12 @@ def as_read(path: Path, opts, rows: int | None = None, one_run: bool = False
     first rows only, what a look at its head needs; ``one_run``: a folder's campaign file, a
     TDMS or MATLAB file of several runs refused)."""
     if is_workbook(path):
+        if one_run and opts.sheet is None and len(runs := run_sheets(path).runs) > 1:
+            raise ContractError(f"{len(runs)} runs in one workbook, a sheet each ("
+                                + ", ".join(map(repr, runs[:4])) + (", ..." if len(runs) > 4
+                                                                   else "")
+                                + "): a folder's file is one campaign; give this workbook as "
+                                "data.path (each sheet a campaign), or data.sheet", file=path)
         with sheet_as_csv(path, opts, rows=rows) as sheet:
             yield sheet.csv, csv_options(opts)
     elif is_utf16(path):            # Excel's 'Unicode Text': its UTF-8 text

@@ -90,6 +90,7 @@ from .plain import as_read
 from .record import check_record_file, cut, hold_out, record_id, shares
 from .roles import RUN, split_unit
 from .runs import looks_like_run_counter, run_blocks, run_ends, run_hint, run_values
+from .sheetruns import several_runs, sheet_parts
 from .sparse import measured_on, on_grid, said, sparse_totals
 from .starts import campaign_starts, commented_start
 from .steps import check_unit_steps
@@ -527,6 +528,12 @@ def _source(path: Path, opts: ReadOptions, campaigns=None) -> tuple[Path, pd.Dat
     if opts.roles.get(RUN_ROLE):
         raise ContractError(f"data.roles.{RUN_ROLE} splits one long file into its runs: data.path "
                             "is a folder, whose files are a campaign each (leave it out)", file=path)
+    if path.is_file() and several_runs(path, opts):     # a workbook of runs, one a sheet
+        check_record_file(path)
+        manifest, parts = sheet_parts(path, opts, read_campaign)
+        _check_runs(parts, path, opts)
+        ids = list(manifest.index if campaigns is None else campaigns)
+        return path.parent, manifest.loc[ids], ((c, *parts.pop(c)) for c in ids)
     if path.is_file():
         check_record_file(path)
         table, report = _record(path, opts)
@@ -634,17 +641,13 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
         header = next(raw for raw, name in renamed.items() if name == RUN)
         renamed = {raw: name for raw, name in renamed.items() if name != RUN}
         blocks = run_blocks(run_values(columns.pop(RUN)), header, path)
-        parts, periods, ranges = {}, {}, {}
+        parts = {}
         for cid, start, end in blocks:
             part = {name: column.slice(start, end - start) for name, column in columns.items()}
             table, report = _assembled(part, renamed, rescaled, source, source_opts, lines, start)
             parts[cid] = table, {"file": path.name, "split": "train", **report,
                                  "record_rows": [start, end], "run_column": header}
-            periods[cid] = median_step(table.column(TIME).to_numpy())
-            ranges[cid] = _error_ranges(table, DEAD_ROLES)
-    files = dict.fromkeys(parts, path.name)
-    _check_periods(periods, files, path.parent, opts.max_period_ratio)
-    _warn_error_ranges(ranges, files, path.parent)
+    _check_runs(parts, path, opts)
     manifest = pd.DataFrame({"file": path.name, "split": "train"}, index=pd.Index(
         list(parts), name="campaign"))
     apply_split_overrides(manifest, opts.split_overrides, path,
@@ -660,6 +663,16 @@ def _run_parts(path: Path, opts: ReadOptions) -> tuple[pd.DataFrame, dict]:
     for cid, (_, entry) in parts.items():
         entry["split"] = manifest.at[cid, "split"]
     return manifest, parts
+
+
+def _check_runs(parts: dict, path: Path, opts: ReadOptions) -> None:
+    """One file's runs (a long file's, a workbook's sheets: ``{id: (table, entry)}``) checked
+    as a folder's campaigns are: their sample periods compared, their error ranges said."""
+    periods = {cid: median_step(table.column(TIME).to_numpy()) for cid, (table, _) in parts.items()}
+    ranges = {cid: _error_ranges(table, DEAD_ROLES) for cid, (table, _) in parts.items()}
+    files = dict.fromkeys(parts, path.name)
+    _check_periods(periods, files, path.parent, opts.max_period_ratio)
+    _warn_error_ranges(ranges, files, path.parent)
 
 
 def _manifest_ambient(manifest: pd.DataFrame, frames: dict) -> dict:

@@ -1,6 +1,7 @@
 """A lab's Excel workbook (``.xlsx``, ``.xlsm``) read as its CSV export is.
 
-The sheet (the first, or ``data.sheet``) is written, as openpyxl reads it (the values a formula
+The sheet (``data.sheet``; else the first that holds a table: a cover sheet above the runs left
+out, stranger68) is written, as openpyxl reads it (the values a formula
 had when Excel last saved it), into a temporary UTF-8 CSV file, ``,``-separated with ``.`` as the
 decimal mark, one line per sheet row from row 1: the CSV reader then reads it, so a preamble, a
 unit row, roles, units and every check work as on the lab's CSV export.  A date cell is written
@@ -8,12 +9,21 @@ as ISO 8601, a duration (``[h]:mm:ss``) as ``h:mm:ss``, a number as Python's ``r
 digit kept), a boolean as 1/0, an empty cell empty, a line break inside a cell as a space (so that
 the CSV file's line is the sheet's row).  A message about the CSV file names the workbook, the
 sheet and the sheet's row instead (:func:`sheet_as_csv`).
+
+A lab's macro writes a test's runs into one workbook, one sheet each, behind a cover sheet of
+notes (stranger68): :func:`run_sheets` tells the sheets that hold a table of the first such
+table's header (each a run, a campaign of a record: :mod:`.sheetruns`) from the others.  Its
+two-row header merges a column's name down over the group row (``Date / time`` over rows 3-4,
+beside ``Temperatures`` merged across): a cell under a merge's top in its first column is
+written with the top's value (:func:`_rows`), so that column is named in the header row.
 """
 
 from __future__ import annotations
 
 import csv
 import datetime as dt
+import functools
+import io
 import re
 import tempfile
 from collections.abc import Iterator
@@ -26,6 +36,8 @@ from ...base.extras import require
 from .contract import ContractError
 from .converted import named_as
 from .encoding import UTF8
+from .layout import header_line
+from .separators import any_number
 from .sniff import SNIFF_LINES
 
 WORKBOOK_SUFFIXES = (".xlsx", ".xlsm")
@@ -36,6 +48,7 @@ SAVE_AS = "save it as an Excel workbook (.xlsx), or its sheet as CSV"
 HEAD_ROWS = SNIFF_LINES         # the rows a look at the header reads (a preamble, a unit row)
 _OLE = b"\xd0\xcf\x11\xe0"        # a compound file: an encrypted .xlsx, or an .xls renamed
 _BREAK = re.compile(r"\r\n|[\r\n]")
+_MERGE = re.compile(rb'<(?:\w+:)?mergeCell\s+ref="([A-Z]+)(\d+):([A-Z]+)(\d+)"')
 _COMMA_NUMBER = re.compile(r"\s*[+-]?\d*,\d+(?:[eE][+-]?\d+)?\s*")   # '0,38' typed as text
 
 
@@ -73,9 +86,54 @@ def csv_options(opts):
     return replace(opts, delimiter=",", decimal=".", thousands=None, encoding=UTF8)
 
 
+@dataclass(frozen=True)
+class Sheets:
+    """A workbook's worksheets by what their first rows hold: ``runs``, those holding a table
+    whose header is the first such table's (in the workbook's order); ``other``, the rest (a
+    cover of notes, a summary table of its own header)."""
+
+    runs: tuple[str, ...]
+    other: tuple[str, ...]
+
+
+def run_sheets(path: Path) -> Sheets:
+    """The sheets of the workbook ``path`` holding its runs (:class:`Sheets`)."""
+    stat = Path(path).stat()
+    return _run_sheets(str(path), stat.st_mtime_ns, stat.st_size)
+
+
+@functools.lru_cache(maxsize=8)
+def _run_sheets(path: str, _mtime: int, _size: int) -> Sheets:   # (a file saved again: read again)
+    book = _opened(Path(path))
+    try:
+        heads = {s.title: _table_header(Path(path), s) for s in book.worksheets}
+    finally:
+        book.close()
+    first = next((h for h in heads.values() if h is not None), None)
+    runs = tuple(t for t, h in heads.items() if first is not None and h == first)
+    return Sheets(runs, tuple(t for t in heads if t not in runs))
+
+
+def _table_header(path: Path, sheet) -> str | None:
+    """The header line of the table ``sheet``'s first rows hold (as its CSV export), None where
+    they hold none: no header, or no row under it mostly numbers (a cover's ``Runs | 8``)."""
+    text = io.StringIO()
+    writer = csv.writer(text, lineterminator="\n")
+    for cells in _rows(path, sheet, HEAD_ROWS):
+        writer.writerow([_text(v) for v in cells])
+    lines = text.getvalue().splitlines()
+    k = header_line(lines, ",")
+    if k is None:
+        return None
+    rows = list(csv.reader(lines[k + 1:]))
+    numeric = any(2 * sum(map(any_number, row)) > len(row) for row in rows if row)
+    return lines[k] if numeric else None
+
+
 @contextmanager
 def sheet_as_csv(path: Path, opts, rows: int | None = None) -> Iterator[Sheet]:
-    """The sheet ``opts.sheet`` (``data.sheet``; None: the first) of the workbook ``path`` as a
+    """The sheet ``opts.sheet`` (``data.sheet``; None: the first holding a table, else the first:
+    :func:`run_sheets`) of the workbook ``path`` as a
     temporary CSV file (its first ``rows`` only, where given: what a look at the header needs),
     removed after.  ``opts.decimal`` (``data.decimal``) ``','`` or ``auto`` reads a number
     typed as text with a decimal comma (``'0,38'``, pasted from a European export) as the
@@ -94,19 +152,13 @@ def sheet_as_csv(path: Path, opts, rows: int | None = None) -> Iterator[Sheet]:
 def _write(path: Path, sheet: str | None, out: Path, rows: int | None, comma: bool) -> str:
     """Write the sheet into ``out`` as CSV (``comma``: text cells with a decimal comma as
     numbers); the sheet's name."""
-    require("openpyxl")
-    import openpyxl
-
-    try:
-        book = openpyxl.load_workbook(path, read_only=True, data_only=True)
-    except Exception as exc:   # zipfile, XML and openpyxl errors of a file it does not read
-        raise ContractError(_unread(path, exc), file=path) from None
+    book = _opened(path)
     try:
         found = _sheet(book, sheet, path)
         try:
             with open(out, "w", newline="", encoding=UTF8) as f:
                 writer = csv.writer(f, lineterminator="\n")
-                for cells in found.iter_rows(max_row=rows, values_only=True):
+                for cells in _rows(path, found, rows):
                     writer.writerow([_text(v, comma) for v in cells])
         except Exception as exc:     # a damaged sheet (its XML)
             raise ContractError(f"sheet {found.title!r} is not read ({type(exc).__name__}: "
@@ -114,6 +166,51 @@ def _write(path: Path, sheet: str | None, out: Path, rows: int | None, comma: bo
         return found.title
     finally:
         book.close()
+
+
+def _rows(path: Path, sheet, rows: int | None) -> Iterator[list]:
+    """The values of ``sheet``'s rows (its first ``rows``), a cell under a vertical merge's top
+    in its first column given the top's value (a header's name merged down over a group row)."""
+    below: dict[int, list[tuple[int, int]]] = {}        # row -> [(column, the merge's top row)]
+    for col, top, bottom in _merged_down(path, sheet):
+        for r in range(top + 1, bottom + 1):
+            below.setdefault(r, []).append((col, top))
+    tops = {(top, col) for spans in below.values() for col, top in spans}
+    kept = {}
+    for r, values in enumerate(sheet.iter_rows(max_row=rows, values_only=True), 1):
+        cells = list(values)
+        for col, top in below.get(r, ()):
+            if col <= len(cells) and cells[col - 1] is None:
+                cells[col - 1] = kept.get((top, col))
+        kept.update({(r, c): cells[c - 1] for t, c in tops if t == r and c <= len(cells)})
+        yield cells
+
+
+def _merged_down(path: Path, sheet) -> list[tuple[int, int, int]]:
+    """``(column, top row, bottom row)`` of each merge of ``sheet`` over several rows (from the
+    sheet's XML: a read-only sheet does not say them)."""
+    import zipfile
+
+    from openpyxl.utils import column_index_from_string
+
+    part = getattr(sheet, "_worksheet_path", None)
+    if part is None:
+        return []
+    with zipfile.ZipFile(path) as z:
+        xml = z.read(part.lstrip("/"))
+    return [(column_index_from_string(c1.decode()), int(r1), int(r2))
+            for c1, r1, _, r2 in _MERGE.findall(xml) if int(r2) > int(r1)]
+
+
+def _opened(path: Path):
+    """The workbook ``path`` opened read-only, its cells' values (refused: one not read)."""
+    require("openpyxl")
+    import openpyxl
+
+    try:
+        return openpyxl.load_workbook(path, read_only=True, data_only=True)
+    except Exception as exc:   # zipfile, XML and openpyxl errors of a file it does not read
+        raise ContractError(_unread(path, exc), file=path) from None
 
 
 def _unread(path: Path, exc: Exception) -> str:
@@ -130,8 +227,9 @@ def _sheet(book, name: str | None, path: Path):
     sheets = book.worksheets          # (not a chart sheet)
     if not sheets:
         raise ContractError("the workbook has no worksheet", file=path)
-    if name is None:
-        return sheets[0]
+    if name is None:         # the first holding a table (a cover sheet above it: left out)
+        runs = run_sheets(path).runs
+        return next((s for s in sheets if s.title in runs[:1]), sheets[0])
     found = [s for s in sheets if s.title == name]
     if not found:
         raise ContractError(f"data.sheet={name!r} is no sheet of it: its sheets are "
