@@ -186,11 +186,11 @@ def fresh41(root: Path) -> None:
                                         for c in cases))
 
 
-def compare(base: Path, new: Path) -> None:
-    """The bar's counts of both roots' rows and every row that differs."""
+def compare(base: Path, new: Path, names=("diagnose.jsonl", "fresh.jsonl", "fresh41.jsonl")) -> None:
+    """The bar's counts of both roots' rows (files ``names``) and every row that differs."""
     import bench_remeasure62 as rm
 
-    for name in ("diagnose.jsonl", "fresh.jsonl", "fresh41.jsonl"):
+    for name in names:
         b, n = rm._read(base / name), rm._read(new / name)
         if not b or not n:
             continue
