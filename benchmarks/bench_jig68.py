@@ -74,10 +74,10 @@ grinder's 12 runs of each seed (``bench_new_machines56.write_grinder``: the same
 drawn again), the jig's 8 sessions of each seed's three weeks (``bench_new_machines60``: room,
 ceiling and schedule drawn again; dated 3 / 6 weeks on).  Test RMSE µm before -> after diagnose::
 
-  row                    own test campaigns            new campaigns
-  5682 E_Zustellung_dY   3: 0.7395 -> 0.7943 (+7.4 %)  24: 0.4757 -> 0.4602 (-3.2 %; 14 better, 6 worse by > 2 %)
-  jig E_DISP_Y           2: 0.9436 -> 1.0983 (+16.4 %) 16: 0.6778 -> 0.5927 (-12.6 %; 14 better, 1 worse)
-  jig E_DISP_Z           2: 0.4645 -> 0.4381 (-5.7 %)  16: 0.5233 -> 0.6584 (+25.8 %; 4 better, 12 worse)
+  row                    own test campaigns            new campaigns (better / worse by > 2 %)
+  5682 E_Zustellung_dY   3: 0.7395 -> 0.7943 (+7.4 %)  24: 0.4757 -> 0.4602 (-3.2 %; 14 / 6)
+  jig E_DISP_Y           2: 0.9436 -> 1.0983 (+16.4 %) 16: 0.6778 -> 0.5927 (-12.6 %; 14 / 1)
+  jig E_DISP_Z           2: 0.4645 -> 0.4381 (-5.7 %)  16: 0.5233 -> 0.6584 (+25.8 %; 4 / 12)
 
 (E_Querachse_dZ accepts nothing.)  Both rows the bar counts as harms are their few test
 campaigns' draw: on more campaigns of the same machine the accepted effects gain; and a row the
@@ -92,6 +92,7 @@ from __future__ import annotations
 import contextlib
 import sys
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -104,11 +105,9 @@ sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
 
 def _split(index, residual, ok, n):
     """Per group of ``index`` (rows ``ok``): rows, mean residual, MSE about that mean."""
-    u = index[ok]
-    c = np.bincount(u, minlength=n)
-    m = np.bincount(u, weights=residual[ok], minlength=n) / np.maximum(c, 1)
-    w = residual[ok] - m[u]
-    return c, m, np.bincount(u, weights=w ** 2, minlength=n) / np.maximum(c, 1)
+    from bench_initlag67 import _parts
+
+    return _parts(SimpleNamespace(unit_index=index, n_units=n), residual, ok)
 
 
 def _line(name, index, n, r0, r1, ok) -> str:
@@ -168,24 +167,12 @@ def traced():
         S.Search._family_bar = shipped
 
 
-def test_parts(d, target) -> None:
-    """The test campaigns' error before / after diagnose: mean and RMS about it, per campaign."""
-    for c in d.predictions["before"]:
-        parts = []
-        for which in ("before", "after"):
-            meas, pred = d.predictions[which][c]
-            e = np.asarray(meas[target], float) - np.asarray(pred[target], float)
-            e = e[np.isfinite(e)]
-            parts.append(f"{which} mean {e.mean():+.3f} within {e.std():.3f} "
-                         f"rms {np.sqrt(np.mean(e ** 2)):.3f}")
-        print(f"  test {c}: " + " | ".join(parts), flush=True)
-
-
 def trace(root: Path) -> None:
     """5682 (grinder-nocoolant's config, as bench_remeasure62's fresh row) and the jig grinder
     (both targets, as its row), traced."""
     import bench_diagnose_jig60 as jig60
     import bench_diagnose_refnoise57 as refnoise
+    from bench_initlag67 import test_parts
 
     from thermocomp.apps.diagnose import diagnose
 
