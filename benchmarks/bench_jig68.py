@@ -7,6 +7,7 @@ Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is
     python benchmarks/bench_jig68.py trace ROOT             # 5682 and the jig grinder, traced
     python benchmarks/bench_jig68.py moretest ROOT WORK     # both scored on more runs / sessions
     python benchmarks/bench_jig68.py forward ROOT WORK      # the jig's moretest, within check forward
+    python benchmarks/bench_jig68.py forwardrows ROOT       # bench_remeasure62's cases, the same
     python benchmarks/bench_jig68.py rows ROOT              # bench_remeasure62's 139 rows
     python benchmarks/bench_jig68.py fresh ROOT             # 6811-6820 -> ROOT/fresh68.jsonl
     python benchmarks/bench_jig68.py compare BASE NEW       # two roots' rows, the bar's counts
@@ -352,6 +353,13 @@ def main(argv: list[str]) -> int:
     if what == "forward":
         with forward_within():
             moretest(Path(rest[0]).resolve(), Path(rest[1]).resolve(), grinder=False)
+        return 0
+    if what == "forwardrows":      # bench_remeasure62's cases (every forward row but the jig's)
+        import bench_remeasure62 as rm
+
+        root = Path(rest[0]).resolve()
+        with forward_within():
+            rm.measure(root / "diagnose.jsonl", rm.diagnose_rows(root, ["cases"]))
         return 0
     if what == "rows":
         power.rows(Path(rest[0]).resolve())
