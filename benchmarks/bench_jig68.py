@@ -97,6 +97,41 @@ jig's E_DISP_Y, which the trace says it does not): ``forwardwithin``, within67's
 ``forward`` scheme too, every candidate effect gaining ``min_gain_pct`` within the held-out
 validation blocks (each block's CV residual less its own mean).  Reported: the jig's two targets
 on their own test and on moretest's new sessions, against the shipped figures above.
+
+Scored (2026-12-01; withinmost as a src change, 67a9c72f, its rows in /tmp/jig68-rule; the shipped
+rows /tmp/jig68-base, d1af7df2; ``compare`` labels the new side ``flip``)
+----------------------------------------------------------------------------------------------
+1. bench_remeasure62's 139 rows, shipped: > 2 % worse than before diagnose 2 (5682 +7.4 %, the
+   jig's E_DISP_Y +16.4 %), clean + null accepting 0 of 44, planted found 19 of 23 (missing 515,
+   737, 1514, 4001).  withinmost: 5682 mended (nothing accepted, 0.7943 -> 0.7395 µm), > 2 % worse
+   1 of 139, clean + null 0 of 44, planted found 19 of 23 -- but 17 rows differ and 13 are more
+   than 2 % above the shipped after: the ambient laws (inputs x (A0 - 20 °C) or a regime of A0),
+   taken second after the planted product, do not clear (most of their gain is the campaigns'
+   means): planted 4004 1.558 -> 2.384, 4005 1.309 -> 1.946, 4006 1.674 -> 2.622, 4011 1.498 ->
+   2.084, 626 1.514 -> 3.877, 101 1.538 -> 1.845, 1181 1.46 -> 2.166, 4008 +6.0 %, 4010 +15.6 %;
+   lathe43 E_dZ 0.7012 -> 1.229 and lathe43m E_Z 0.5187 -> 1.048 (their only effect); planted 6's
+   2 h lag +55.5 %; grinder 5687's lag (the one that helps) 0.4306 -> 0.5433 (+26.2 %).  Better:
+   4002 -28.1 %, 959 -8.8 %, 4012 -0.5 %.  CPU (the rows' own cpu_s) 286 -> 258 s.
+2. Fresh 6811-6820: planted found 5 of 5 both, clean 0 of 5 both; 6812 1.017 -> 1.247 µm (+22.6 %,
+   its second effect, T_box2's 1 h lag from the initial state, refused).  CPU 12 -> 11 s.
+3. moretest on withinmost: 5682 accepts nothing, 0.4757 µm on the 24 new runs (shipped 0.4602:
+   +3.4 %); the jig unchanged (a ``forward`` record).
+
+**withinmost refused** (1-3 fail), src reverted.
+
+forwardwithin on the jig (``forward``, shipped src + the bench's variant): E_DISP_Y unchanged (its
+lag gains 26 % within the blocks; own test 0.9436 -> 1.0983, new sessions 0.6778 -> 0.5927), E_DISP_Z
+accepts nothing (its three cleared lags gain 3.0-4.3 % within): own test 0.4381 -> 0.4645 µm
+(+6.0 % against the shipped after), new sessions 0.6584 -> 0.5233 (-20.5 %: back to before).  It
+cannot pass bar 1 (2 -> 2 rows > 2 % worse; E_DISP_Z +6.0 % above shipped), though on 16 new
+sessions it removes a +25.8 % harm.  CPU (user + sys) of the jig with its 18 test sessions 42 s.
+On bench_remeasure62's ``cases`` group (53 cases, 69 case x target, every other forward row;
+``forwardrows``, /tmp/jig68-fwdrows against the shipped rows' first 53): 5 rows more than 2 %
+above the shipped after, each a 4 h lag of the inputs no longer taken -- the gantry's and
+gantry-noY's E_Z_error 0.3203 -> 0.3839 (+19.9 %), the twin lathe's E_Z1 0.3193 -> 0.3825, the
+no-air twin lathe's E_Z1 / E_Z2 0.3217 / 0.3371 -> 0.3825 / 0.3823; nothing else differs (planted
+11 of 15, clean 0 of 24 both).  CPU 131 -> 107 s.  **forwardwithin refused** too (a bench
+variant; src never changed for it).
 """
 
 from __future__ import annotations
