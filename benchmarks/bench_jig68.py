@@ -178,6 +178,17 @@ def _line(name, index, n, r0, r1, ok) -> str:
 
 
 @contextlib.contextmanager
+def _bar_patched(family_bar, shipped):
+    """While inside, ``Search._family_bar`` is ``family_bar`` (which calls ``shipped``)."""
+    from thermocomp.apps.diagnose import search as S
+
+    S.Search._family_bar = family_bar
+    try:
+        yield
+    finally:
+        S.Search._family_bar = shipped
+
+
 def traced():
     """While inside, every round's candidates that gain >= 3 % in CV (not the control) print
     their bar (gain, family-wise p, margin p, cleared) and their CV MSE split into the held-out
@@ -207,11 +218,7 @@ def traced():
                 print(_line("campaigns", index, len(names), current.residual, ev.result.residual, ok))
             print(flush=True)
 
-    S.Search._family_bar = family_bar
-    try:
-        yield
-    finally:
-        S.Search._family_bar = shipped
+    return _bar_patched(family_bar, shipped)
 
 
 def trace(root: Path) -> None:
@@ -339,7 +346,6 @@ def moretest(root: Path, work: Path, grinder: bool = True) -> None:
         _per_campaign(d, t, 2)
 
 
-@contextlib.contextmanager
 def forward_within():
     """While inside, the shipped bar plus within67's within check in the ``forward`` scheme too:
     each candidate effect gains ``min_gain_pct`` within the held-out validation blocks (each
@@ -357,21 +363,14 @@ def forward_within():
                 ev.gain_pct_within = self._within_gain(current, ev.result)
                 ev.clears_bar = ev.clears_bar and ev.gain_pct_within >= self.options.min_gain_pct
 
-    S.Search._family_bar = family_bar
-    try:
-        yield
-    finally:
-        S.Search._family_bar = shipped
+    return _bar_patched(family_bar, shipped)
 
 
 def fresh(root: Path) -> None:
     """Seeds 6811-6820 (planted, then clean) as diagpower67's fresh rows -> ROOT/fresh68.jsonl."""
-    import bench_diagnose_refnoise57 as refnoise
-    import bench_remeasure62 as rm
+    import bench_margin67 as margin
 
-    cases = [f"planted:{s}" for s in FRESH_PLANTED] + [f"clean:{s}" for s in FRESH_CLEAN]
-    rm.measure(root / "fresh68.jsonl", (("fresh68", refnoise.row(c, "before", root / "lag"))
-                                        for c in cases))
+    margin.seed_rows(root / "fresh68.jsonl", "fresh68", FRESH_PLANTED, FRESH_CLEAN)
 
 
 def main(argv: list[str]) -> int:
