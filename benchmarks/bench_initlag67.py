@@ -168,7 +168,6 @@ def test(cases: list[str]) -> None:
     """The test campaigns' error (measured - predicted, E_Y) before and after diagnose: its mean
     and the RMS about that mean, per campaign."""
     import bench_diagnose_memory as memory
-    import numpy as np
 
     from thermocomp.apps.diagnose import SearchOptions, diagnose
 
@@ -178,15 +177,23 @@ def test(cases: list[str]) -> None:
         t = d.primary
         j = d.to_json(t)
         print(f"== {case} {t}: test {j['before']['test_rmse']:.3f} -> {j['after']['test_rmse']:.3f}")
-        for c in d.predictions["before"]:
-            line = []
-            for which in ("before", "after"):
-                meas, pred = d.predictions[which][c]
-                e = np.asarray(meas[t], float) - np.asarray(pred[t], float)
-                e = e[np.isfinite(e)]
-                line.append(f"{which} mean {e.mean():+.3f} within {e.std():.3f} rms "
-                            f"{np.sqrt(np.mean(e ** 2)):.3f}")
-            print(f"  {c}: " + " | ".join(line))
+        test_parts(d, t)
+
+
+def test_parts(d, target: str) -> None:
+    """Per test campaign of diagnosis ``d``: ``target``'s error (measured - predicted) before and
+    after, its mean and the RMS about that mean."""
+    import numpy as np
+
+    for c in d.predictions["before"]:
+        line = []
+        for which in ("before", "after"):
+            meas, pred = d.predictions[which][c]
+            e = np.asarray(meas[target], float) - np.asarray(pred[target], float)
+            e = e[np.isfinite(e)]
+            line.append(f"{which} mean {e.mean():+.3f} within {e.std():.3f} rms "
+                        f"{np.sqrt(np.mean(e ** 2)):.3f}")
+        print(f"  {c}: " + " | ".join(line), flush=True)
 
 
 def main(argv: list[str]) -> int:

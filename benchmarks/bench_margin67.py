@@ -178,19 +178,24 @@ def distribution(cases: list[str]) -> None:
 
 def fresh41(root: Path) -> None:
     """Seeds 6741-6760 (planted, then clean) as diagpower67's fresh rows -> ROOT/fresh41.jsonl."""
+    seed_rows(root / "fresh41.jsonl", "fresh67b", FRESH41_PLANTED, FRESH41_CLEAN)
+
+
+def seed_rows(path: Path, group: str, planted, clean) -> None:
+    """The few-campaign scenario's ``planted`` then ``clean`` seeds as diagpower67's fresh rows
+    (bench_diagnose_refnoise57.row, the records of ``path``'s folder) -> ``path``."""
     import bench_diagnose_refnoise57 as refnoise
     import bench_remeasure62 as rm
 
-    cases = [f"planted:{s}" for s in FRESH41_PLANTED] + [f"clean:{s}" for s in FRESH41_CLEAN]
-    rm.measure(root / "fresh41.jsonl", (("fresh67b", refnoise.row(c, "before", root / "lag"))
-                                        for c in cases))
+    cases = [f"planted:{s}" for s in planted] + [f"clean:{s}" for s in clean]
+    rm.measure(path, ((group, refnoise.row(c, "before", path.parent / "lag")) for c in cases))
 
 
-def compare(base: Path, new: Path) -> None:
-    """The bar's counts of both roots' rows and every row that differs."""
+def compare(base: Path, new: Path, names=("diagnose.jsonl", "fresh.jsonl", "fresh41.jsonl")) -> None:
+    """The bar's counts of both roots' rows (files ``names``) and every row that differs."""
     import bench_remeasure62 as rm
 
-    for name in ("diagnose.jsonl", "fresh.jsonl", "fresh41.jsonl"):
+    for name in names:
         b, n = rm._read(base / name), rm._read(new / name)
         if not b or not n:
             continue
