@@ -8,7 +8,7 @@ the transient of the campaign's initial disequilibrium) or one at a time; ``ambi
 inputs times the initial ambient (linear, or a step at a threshold between
 the train campaigns' ambients); ``interaction`` -- products of a state signal
 and a temperature, and of a state and the rises of all the inputs; ``nonlinear`` --
-squares of the strongest inputs, and of every state signal (its own instant law).
+squares of the strongest inputs.
 
 A state signal (``S_`` column) is tried in both frames: absolute and as its
 change since the campaign's first sample (like the error with
@@ -157,13 +157,6 @@ def candidates(problem, model_inputs: list[str], excluded: set, accepted: list[E
                        for j in range(X.shape[1])])
         strongest = [model_inputs[j] for j in np.argsort(-np.nan_to_num(corr))[:options.n_squares]]
         out += [Effect("nonlinear", "square", c) for c in strongest if c.startswith("T_")]
-    if "nonlinear" in fam:
-        # a state's own law, instant and not linear in it (a spindle's centrifugal shrink ~ n^2):
-        # its square in the data's frame, and absolute where the campaigns start apart
-        out += [Effect("nonlinear", "square", s, frame=f) for s in s_cols
-                for f in [None] + ([other_frame] if _start_varies(problem, s) else [])]
     out += signal_family(CONTROL)
-    if "nonlinear" in fam and s_cols:     # the control through a state's square too
-        out.append(Effect("nonlinear", "square", CONTROL))
     done = set(accepted)
     return [e for e in dict.fromkeys(out) if e not in done]
