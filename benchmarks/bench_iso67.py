@@ -125,8 +125,10 @@ def test_file(frame: pd.DataFrame, k: int, test: str, start: pd.Timestamp, perio
     return "\r\n".join(head + rows) + "\r\n"
 
 
-def write(root: Path) -> None:
-    for name, sim, folder in lab_matrix.simulated(root, SEEDS, simulate):
+def write(root: Path, seeds: dict = SEEDS) -> None:
+    """The lab's files of each record ``name -> seed`` (``ROOT/name``; bench_speedsq68's fresh
+    seeds too)."""
+    for name, sim, folder in lab_matrix.simulated(root, seeds, simulate):
         manifest = pd.read_csv(sim / "campaigns.csv")
         for k, row in enumerate(manifest.itertuples(index=False)):
             frame = pd.read_csv(sim / row.file)
