@@ -54,6 +54,27 @@ Z2 is adopted only if ALL hold:
     and ``fl_thermal`` 90/10 ``model=auto`` mean test RMSE 2.481 µm (``data=fl_thermal``).
 If (2) holds vacuously (Z2 differs nowhere) Z2 is not adopted either: nothing would show it helps.
 Otherwise src is reverted, the bench kept with its numbers: REFUSED.
+
+Measured 2026-12-01 (stop 68; fits with fix/autoloss68's src dda5a27a, Z2 in cbc7b18f; 2 shared
+cores under other sessions' load; run once; CPU user + sys: ``write`` 12.5 s, ``run`` 86.6 s (iso
+4.8-5.3 s each, grind14 11.4-16.1, the few-run records 5-6), ``score`` 0.7 s, ``check`` 96.8 s).
+(``score`` prints autoloss68's ``summary``: its "Z" is margin 1, its "Z2 (deciding nothing)" label
+is autoloss68's; here Z2 is the rule judged.)  The shipped zero fires on all 12 records, 17
+targets; Z2 undoes 6, all on the iso records (E_Y1 and E_Tilt_A of each; q none / q kept 5.5-265),
+and keeps the 11 others (q none / q kept <= 1.044, spindle6871 E_X 0.9438 / 0.9039, which margin 1
+would have undone: 1.664 -> 2.042 µm, +22.7 %).  Test RMSE zero -> Z2 (MLR):
+
+  iso6861  E_Y1 2.185 -> 1.027 (0.9665)   E_Tilt_A 20.40 -> 1.841 (1.914)   record 0.1759
+  iso6862  E_Y1 2.184 -> 0.2395 (0.2812)  E_Tilt_A 22.01 -> 0.5043 (0.5299) record 0.0681
+  iso6863  E_Y1 2.213 -> 0.1972 (0.299)   E_Tilt_A 19.48 -> 0.5828 (0.6886) record 0.1183
+
+Records better than MLR 7 -> 10 of 12; within 10 % of the best family 6 -> 7.
+(1) 12 records >= 3; (2) 3 records differ, geometric mean 0.1123, worst 0.1759; (3) ``check``:
+Z2's src end to end on iso6861-6863 equals the arrays' Z2 on every target (<= 2.2e-16 relative,
+the reason says "fold by fold"); ``make run``'s record auto 0.6481 / 0.8429 / 0.9943 (docs/models.md's
+0.648 / 0.843 / 0.994) and ``fl_thermal`` 90/10 auto mean 2.481, the rule firing on neither.
+**Verdict: PASSES, Z2 adopted.**  Its limit: every zero undone is iso67's one kind of fold (its test
+plan puts the X-axis test in fold 0 on every seed), and no target fell between 1.044 and 5.5.
 """
 
 from __future__ import annotations
