@@ -155,6 +155,13 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
     return w / w.sum()
 
 
+def mean_fold_ratio(squared: np.ndarray, base: np.ndarray, fold: np.ndarray) -> float:
+    """The votes' measure of one model without resampling: the mean over the folds of its summed
+    squared errors (``squared``, per row) over MLR's (``base``) there, so every fold counts alike."""
+    unit = np.unique(fold, return_inverse=True)[1]
+    return float(np.mean(np.bincount(unit, squared) / np.maximum(np.bincount(unit, base), 1e-300)))
+
+
 def _nested_resamples(squared, y, fold, base, n_resamples, blocks: bool) -> np.ndarray:
     """resample x candidate: the folds resampled, each drawn fold's ratio (its squared error
     summed over its units relative to ``base``'s, the last column of ``squared``) taken on a
