@@ -1,0 +1,288 @@
+"""diagnose judged on more test campaigns of the same machines (issue 34 item 4; stop 68,
+moretest68): bench_remeasure62's rows, each diagnosed as its row (the same train campaigns, so
+the same accepted effects), scored before -> after on its own test campaigns and on >= 12 new
+campaigns of the same machine (new schedules, weather, noise draws).  No rule is tried here:
+this is the instrument later rules are judged on.
+
+Usage (from the repository root, ``PYTHONPATH=<tree>/src``: the code measured is that tree's)::
+
+    python benchmarks/bench_moretest68.py rows ROOT WORK [GROUP ...]   # -> WORK/moretest.jsonl
+    python benchmarks/bench_moretest68.py table WORK [BASE]            # per row, counts, ranks
+
+ROOT: a ``bench_remeasure62.py write`` root with its rows (``diagnose.jsonl``, as
+``bench_jig68.py rows`` leaves it; read only).  WORK: where the new campaigns and the rows go.
+GROUP: ``few`` (bench_remeasure62's few, and its cases' planted / clean seeds), ``grinder``
+(its cases' grinder and grinder-nocoolant, the fresh grinders, the null draws), ``mill`` (the
+boring mill and -noW), ``jig``; default all.  ``table`` with BASE (the shipped rows'
+diagnose.jsonl): each row's accepted effects and own-test figures checked against it.
+
+What is drawn again, and how (fresh seeds 6881-6888, never used before)
+------------------------------------------------------------------------
+* ``few``: the few-campaign year-round VMC (``test_diagnose_few.few``: 12 campaigns, 8 train):
+  the machine is the same twin whatever the seed; the planted position effect keeps its law
+  (only its trajectories are drawn per seed).  New: seeds 6881 and 6882, all 24 campaigns as
+  test.  A clean record's errors are its own clean law (least squares over its own 12
+  campaigns) plus noise: the new campaigns take the record's coefficients, not their own.
+* ``grinder``: bench_new_machines56's grinder (fixed networks and error law; runs, rooms and
+  programmes drawn per seed); the null draws are seed 5671's runs with that law and fresh probe
+  noise, so the same machine too.  New: the 12 runs of seeds 6883 and 6884 (24 runs) appended
+  after the record's 12 as ``Lauf_13``...; ``data.test_fraction`` keeps the 9 train runs.
+* ``mill``: bench_new_machines57's boring mill (fixed network and law); the 10 runs of seeds
+  6885 and 6886 (20 runs) after its 10 (7 train).
+* ``jig``: bench_new_machines60's jig grinder as ``bench_jig68.moretest`` (room, ceiling,
+  schedule drawn again; dated 3 / 6 weeks on): seeds 6887 and 6888, 16 sessions after its 8.
+
+Not drawn: ``record`` (the measured fl_thermal record) cannot be; the default ``scenario`` (24
+campaigns, clean, nothing accepted) and bench_other_machine's lathe43 / lathe43m / rig40 /
+vendor5 (their sensor layout is drawn from the seed: a new seed is another machine; a draw
+keeping it is not written), the gantry (one continuing two-week record: new weeks of another
+draw do not continue it) and the twin lathe (two continuing-season files per seed) are left.
+Where nothing is accepted the model after is the model before: the change is 0 on any
+campaign (checked here on every drawn row that accepts nothing).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+HERE = Path(__file__).resolve().parent
+sys.path[:0] = [str(HERE), str(HERE.parent / "tests" / "apps")]
+
+FEW_SEEDS = (6881, 6882)
+GRINDER_SEEDS = (6883, 6884)
+MILL_SEEDS = (6885, 6886)
+JIG_SEEDS = (6887, 6888)
+GROUPS = ("few", "grinder", "mill", "jig")
+
+
+@contextlib.contextmanager
+def clean_law(coefficients: dict):
+    """While inside, a clean scenario's errors follow ``coefficients`` (a record's
+    ``truth["clean_law"]["coefficients_um_per_K"]``: target -> sensor -> µm/K) instead of the
+    least squares over the campaigns simulated; the noise as shipped."""
+    from thermocomp.apps.sim.campaign import hold_between_measurements
+    from thermocomp.apps.sim.scenario import Scenario
+    from thermocomp.apps.sim.sensors import quantise
+
+    shipped = Scenario._make_clean
+
+    def make_clean(self, frames, measured, machine):
+        sensors, targets = machine.sensor_array.columns, machine.thermoelastic.targets
+        coef = np.array([[coefficients[t][s] for t in targets] for s in sensors])
+        rng = np.random.default_rng([int(self.seed), zlib.crc32(b"clean")])
+        for cid, frame in frames.items():
+            rises = (frame[sensors] - frame[sensors].iloc[0]).to_numpy()
+            errors = quantise(rises @ coef + self.error_noise_um * rng.standard_normal(
+                (len(frame), len(targets))), self.error_quantum_um)
+            if not measured[cid].all():
+                time = frame["time"].to_numpy()
+                period = float(np.diff(time[measured[cid]][:2])[0])
+                errors = hold_between_measurements(errors, time, period, self.error_gaps)
+            frame[targets] = errors
+        return {"coefficients_um_per_K": coefficients}
+
+    Scenario._make_clean = make_clean
+    try:
+        yield
+    finally:
+        Scenario._make_clean = shipped
+
+
+def few_again(case: str, seed: int):
+    """The few-campaign record of ``case`` (``planted:S`` / ``clean:S``) drawn again with
+    ``seed``: the same machine and law (a clean record's own coefficients)."""
+    from test_diagnose_few import few
+
+    kind, own = case.split(":")
+    if kind == "planted":
+        return few.__wrapped__("axis_position", seed)[0]
+    law = few(None, int(own))[1]["clean_law"]["coefficients_um_per_K"]
+    with clean_law(law):
+        return few.__wrapped__(None, seed)[0]
+
+
+def with_new(ds, news: list):
+    """``ds`` with every campaign of the datasets ``news`` added as a test campaign (ids
+    ``N<k>_<id>``, after its own)."""
+    from thermocomp.core.io.contract import Dataset
+
+    manifest, campaigns = [ds.manifest], dict(ds.campaigns)
+    for k, new in enumerate(news, 1):
+        m = new.manifest.copy()
+        m.index = [f"N{k}_{c}" for c in m.index]
+        m["split"], m["file"] = "test", [f"{c}.csv" for c in m.index]
+        manifest.append(m)
+        campaigns.update({f"N{k}_{c}": df for c, df in new.campaigns.items()})
+    return Dataset(pd.concat(manifest), campaigns, ds.name, dict(ds.meta))
+
+
+def targets_of(d, first_new: int) -> dict:
+    """Per target of diagnosis ``d``: the accepted effects and ``bench_jig68.scores``."""
+    from bench_jig68 import scores
+
+    out = {}
+    for t in d.targets:
+        j = d.to_json(t)
+        out[t] = {"accepted": [f'{e["kind"]} {e["column"]} {e["transform"]}' for e in j["effects"]
+                               if e["accepted"]],
+                  "train": len(d.cv["train_campaigns"]), **scores(d, t, first_new)}
+    return out
+
+
+def few_rows(root: Path):
+    """bench_remeasure62's few-campaign cases (its ``cases`` planted / clean, its ``few``)."""
+    import bench_diagnose_memory as memory
+    import bench_remeasure62 as rm
+
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+
+    cases = [(g, c) for g, cs in (("cases", memory.CASES), ("few", [f"planted:{s}" for s in rm.FEW_PLANTED]))
+             for c in cs if c.split(":")[0] in ("planted", "clean")]
+    for group, case in cases:
+        ds, comp, targets, _ = memory.dataset(case)
+        own = len(ds.ids("test"))
+        full = with_new(ds, [few_again(case, s) for s in FEW_SEEDS])
+        d = diagnose(full, comp, targets=targets, options=SearchOptions(max_effects=2))
+        yield group, {"case": case, "targets": targets_of(d, own)}
+
+
+def _runs_rows(root: Path, work: Path, group: str, cases, write, seeds, label: str, stem: str,
+               own_test: int, own_train: int):
+    """Each ``(case, config, folder)`` of a run-file machine: its runs plus ``seeds``' draws
+    (``bench_jig68.more_runs``), diagnosed with the train runs kept."""
+    import bench_diagnose_refnoise57 as refnoise
+    from bench_jig68 import more_runs
+
+    from thermocomp.apps.diagnose import diagnose
+
+    for case, config, source in cases:
+        folder = work / f"{label}-{case.replace(':', '')}"
+        n = own_test + more_runs(sorted(source.glob(f"{stem}*")), folder, write, seeds, label, stem)
+        ds, comp, options = refnoise.composed(root / "lag", config, f"data.path={folder}",
+                                              f"data.test_fraction={n / (n + own_train)}")
+        d = diagnose(ds, comp, None, "simulation", options)
+        yield group, {"case": case, "targets": targets_of(d, own_test)}
+
+
+def grinder_rows(root: Path, work: Path):
+    import bench_new_machines56 as nm56
+    import bench_remeasure62 as rm
+
+    grinder = root / "lag" / "nm56" / "grinder"
+    cases = ([("cases", ("machine:grinder", "grinder", grinder)),
+              ("cases", ("machine:grinder-nocoolant", "grinder-nocoolant", grinder))]
+             + [("fresh", (f"grinder-nocoolant:{s}", "grinder-nocoolant", root / f"grinder{s}"))
+                for s in rm.FRESH]
+             + [("null", (f"null:{k}", "grinder-nocoolant", root / f"null{k}"))
+                for k in range(rm.NULL_DRAWS)])
+    for group, case in cases:
+        yield from _runs_rows(root, work, group, [case], nm56.write_grinder, GRINDER_SEEDS,
+                              "grinder", "Lauf_", 3, 9)
+
+
+def mill_rows(root: Path, work: Path):
+    import bench_new_machines57 as nm57
+
+    mill = root / "lag" / "nm57" / "boring_mill"
+    cases = [(f"machine:{n}", n, mill) for n in ("boring_mill", "boring_mill-noW")]
+    yield from _runs_rows(root, work, "cases", cases, nm57.write_boring_mill, MILL_SEEDS,
+                          "mill", "Prova_", 3, 7)
+
+
+def jig_rows(root: Path, work: Path):
+    import bench_diagnose_jig60 as jig60
+    from bench_jig68 import _more_jig
+
+    n = _more_jig(root, work / "jig", JIG_SEEDS)
+    _, d, _ = jig60.jig(root / "nm60", ("E_DISP_Y", "E_DISP_Z"), f"data.path={work / 'jig'}",
+                        f"data.test_fraction={n / (n + 6)}")
+    yield "jig", {"case": "machine:jig_grinder", "targets": targets_of(d, 2)}
+
+
+def rows(root: Path, work: Path, groups) -> None:
+    import bench_remeasure62 as rm
+
+    work.mkdir(parents=True, exist_ok=True)
+    makers = {"few": lambda: few_rows(root), "grinder": lambda: grinder_rows(root, work),
+              "mill": lambda: mill_rows(root, work), "jig": lambda: jig_rows(root, work)}
+    for g in groups:
+        rm.measure(work / "moretest.jsonl", makers[g]())
+
+
+def _verdict(change_pct: float) -> str:
+    return "worse" if change_pct > 2.0 else "better" if change_pct < -2.0 else "same"
+
+
+def table(work: Path, base: Path | None) -> None:
+    """Per row that accepts something: own test vs new campaigns before -> after; the counts
+    (> 2 % worse on each), the verdicts' agreement and the changes' rank correlation; with
+    ``base``, every row whose accepted effects or own test differ from the shipped row's."""
+    import bench_remeasure62 as rm
+    from scipy.stats import kendalltau, spearmanr
+
+    rows = rm._read(work / "moretest.jsonl")
+    shipped = {r["case"]: r for r in rm._read(base)} if base else {}
+    pct = rm._pct
+    lines = [f"{'case':26s} {'target':15s} {'own test: before -> after':>30s}   "
+             f"{'new: before -> after':>30s}  new campaigns worse / better"]
+    pairs, differ, quiet_moved, n_rows = [], [], [], 0
+    for r in rows:
+        for t, o in r["targets"].items():
+            n_rows += 1
+            (ob, oa), (nb, na) = o["own"]["rmse"], o["new"]["rmse"]
+            if r["case"] in shipped:
+                s = shipped[r["case"]]["targets"][t]
+                if s["accepted"] != o["accepted"] or abs(s["test_rmse"][1] - oa) > 6e-4 * oa:
+                    differ.append(f"{r['case']} {t}: shipped {s['test_rmse']} {len(s['accepted'])} "
+                                  f"accepted; here {[round(ob, 4), round(oa, 4)]} {len(o['accepted'])}")
+            if not o["accepted"]:
+                if (ob, nb) != (oa, na):
+                    quiet_moved.append(f"{r['case']} {t}")
+                continue
+            pairs.append((r["case"], t, pct(oa, ob), pct(na, nb), o["accepted"]))
+            lines.append(f"{r['case'][:26]:26s} {t[:15]:15s} {o['own']['campaigns']:2d}: {ob:6.4g} -> "
+                         f"{oa:6.4g} ({pct(oa, ob):+6.1f} %)   {o['new']['campaigns']:2d}: {nb:6.4g} -> "
+                         f"{na:6.4g} ({pct(na, nb):+6.1f} %)  "
+                         f"{o['new']['worse']:2d} / {o['new']['better']:2d}   "
+                         + "; ".join(rm._short(a) for a in o["accepted"]))
+    own, new = np.array([p[2] for p in pairs]), np.array([p[3] for p in pairs])
+    verdicts = {(a, b): 0 for a in ("better", "same", "worse") for b in ("better", "same", "worse")}
+    for a, b in zip(own, new):
+        verdicts[(_verdict(a), _verdict(b))] += 1
+    lines += ["", f"rows (case x target) drawn {n_rows}, accepting something {len(pairs)}; "
+              f"CPU s {sum(r['cpu_s'] for r in rows):.0f}",
+              f"> 2 % worse: own test {int((own > 2).sum())}, new campaigns {int((new > 2).sum())}; "
+              f"> 2 % better: own {int((own < -2).sum())}, new {int((new < -2).sum())}",
+              "verdicts own -> new (rows accepting something): " + ", ".join(
+                  f"{a}->{b} {k}" for (a, b), k in verdicts.items() if k),
+              f"rank agreement of the changes: Spearman {spearmanr(own, new)[0]:.2f}, "
+              f"Kendall {kendalltau(own, new)[0]:.2f} (n {len(pairs)})",
+              "harms on the new campaigns (> 2 % worse): " + "; ".join(
+                  f"{c} {t} {n:+.1f} % (own {o:+.1f} %): " + ", ".join(rm._short(a) for a in acc)
+                  for c, t, o, n, acc in pairs if n > 2.0),
+              "nothing accepted and the test moved: " + (", ".join(quiet_moved) or "none")]
+    if base:
+        lines.append("differing from the shipped rows: " + ("; ".join(differ) or "none"))
+    print(rm._wrapped(lines))
+
+
+def main(argv: list[str]) -> int:
+    what, rest = (argv or [""])[0], argv[1:]
+    if what == "rows":
+        rows(Path(rest[0]).resolve(), Path(rest[1]).resolve(), rest[2:] or GROUPS)
+        return 0
+    if what == "table":
+        table(Path(rest[0]).resolve(), Path(rest[1]).resolve() if len(rest) > 1 else None)
+        return 0
+    print(__doc__)
+    return 2
+
+
+if __name__ == "__main__":
+    raise SystemExit(main(sys.argv[1:]))
