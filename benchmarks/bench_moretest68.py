@@ -58,7 +58,7 @@ FEW_SEEDS = (6881, 6882)
 GRINDER_SEEDS = (6883, 6884)
 MILL_SEEDS = (6885, 6886)
 JIG_SEEDS = (6887, 6888)
-GROUPS = ("few", "grinder", "mill", "jig")
+GROUPS = ("few", "grinder", "mill", "jig", "om", "twin_gantry")
 
 
 @contextlib.contextmanager
@@ -205,12 +205,137 @@ def jig_rows(root: Path, work: Path):
     yield "jig", {"case": "machine:jig_grinder", "targets": targets_of(d, 2)}
 
 
+# bench_other_machine's records: name -> (its seed in ``om.write(root, 0)``, step s, rows, sensors,
+# ramp_every, the new seed); lathe43 is lathe43m's runs under the lab's names
+OM = {"lathe43": (0, 10.0, (150, 1050), 24, 6, 6889), "lathe43m": (0, 10.0, (150, 1050), 24, 6, 6889),
+      "rig40": (2, 120.0, (180, 1200), 40, 4, 6890), "vendor5": (3, 10.0, (500, 800), 24, 99, 6891)}
+OM_NEW = 24
+TWIN_SEED, GANTRY_SEED, REDRAWS = 6895, 6896, 6     # six draws each: ``default_rng([seed, k])``
+
+
+def om_again(name: str) -> tuple[dict, dict]:
+    """``OM_NEW`` runs of bench_other_machine's ``name`` drawn again: its own sensor layout (drawn
+    from its seed), the runs (programmes, ambient levels' noise, probes) from the new seed."""
+    import bench_other_machine as om
+
+    own, step, rows, sensors, ramp, seed = OM[name]
+    layout = om.sensor_layout(om.network(), np.random.default_rng(own), sensors)
+    shipped = om.sensor_layout
+    om.sensor_layout = lambda net, rng, count: layout
+    try:
+        return om.machine_runs(seed, OM_NEW, step, rows, sensors, ramp_every=ramp)
+    finally:
+        om.sensor_layout = shipped
+
+
+def om_folder(root: Path, work: Path, name: str) -> tuple[Path, list[str]]:
+    """``name``'s record with ``OM_NEW`` new runs as test campaigns (``run_<N+k>``) and the
+    overrides that keep its train runs."""
+    import shutil
+
+    import bench_other_machine as om
+
+    source, folder = root / "lag" / "om" / name, work / f"om-{name}"
+    if folder.exists():
+        shutil.rmtree(folder)
+    shutil.copytree(source, folder)
+    own = sorted(folder.glob("run_*.csv"))
+    runs, levels = om_again(name)
+    manifest = (pd.read_csv(folder / "campaigns.csv") if (folder / "campaigns.csv").exists() else None)
+    added = []
+    for k, (cid, frame) in enumerate(runs.items(), len(own) + 1):
+        new = f"run_{k}"
+        if name == "lathe43":
+            om.lab_names(frame, 24).to_csv(folder / f"{new}.csv", sep=";", decimal=",", index=False,
+                                           float_format="%.6g")
+            continue
+        if name == "lathe43m":
+            frame = frame.drop(columns="T_amb")
+        if name == "vendor5":
+            frame["time"] = (pd.Timestamp("2026-03-02 07:00") + pd.to_timedelta(frame["time"], unit="s")
+                             ).dt.strftime("%Y-%m-%dT%H:%M:%S")
+        frame.to_csv(folder / f"{new}.csv", index=False, float_format="%.6g")
+        added.append({"campaign": new, "file": f"{new}.csv", "split": "test",
+                      **({"ambient_c": round(levels[cid], 1)} if "ambient_c" in manifest else {})})
+    if manifest is not None:
+        pd.concat([manifest, pd.DataFrame(added)]).to_csv(folder / "campaigns.csv", index=False)
+        return folder, [f"data.path={folder}"]
+    n = len(own) + OM_NEW
+    return folder, [f"data.path={folder}", f"data.test_fraction={(n - 39) / n}"]   # 39 train runs
+
+
+def om_rows(root: Path, work: Path):
+    """bench_other_machine's four records (``cases``), each with its runs drawn again."""
+    import bench_diagnose_refnoise57 as refnoise
+
+    from thermocomp.apps.diagnose import diagnose
+
+    for name in OM:
+        ds0, _, _ = refnoise.composed(root / "lag", name)
+        folder, extra = om_folder(root, work, name)
+        ds, comp, options = refnoise.composed(root / "lag", name, *extra)
+        d = diagnose(ds, comp, None, "simulation", options)
+        yield "cases", {"case": f"machine:{name}", "targets": targets_of(d, len(ds0.ids("test")))}
+
+
+def _dated(folder: Path, files: list[Path], shift: pd.Timedelta, stamp) -> None:
+    """``files`` written into ``folder`` ``shift`` later (``stamp(frame)``: their first column's
+    times, which are rewritten; named by their new start)."""
+    for f in files:
+        frame = pd.read_csv(f)
+        start, write = stamp(frame, shift)
+        write(frame, folder / f"{start:%Y-%m-%d_%H%M}.csv")
+
+
+def twin_gantry_rows(root: Path, work: Path):
+    """The twin lathe (-noair) and the gantry (-noY), ``cases``: each record drawn again
+    ``REDRAWS`` times (``default_rng([seed, k])``, the same networks and laws) and dated
+    ``8 k`` weeks (twin lathe) / ``3 k`` weeks (gantry: a week's gap, so a new two-week record
+    does not continue the last) after its own, as test campaigns after its own."""
+    import shutil
+
+    import bench_diagnose_refnoise57 as refnoise
+    import bench_new_machines56 as nm56
+    import bench_new_machines57 as nm57
+
+    from thermocomp.apps.diagnose import diagnose
+
+    def twin_stamp(frame, shift):
+        when = pd.to_datetime(frame["Date"] + " " + frame["Time"]) + shift
+        frame["Date"], frame["Time"] = when.dt.strftime("%Y-%m-%d"), when.dt.strftime("%H:%M:%S")
+        return when.iloc[0], lambda f, path: f.to_csv(path, index=False, float_format="%.6g")
+
+    def gantry_stamp(frame, shift):
+        when = pd.to_datetime(frame["Timestamp"]) + shift
+        frame["Timestamp"] = when.dt.strftime("%Y-%m-%dT%H:%M:%S")
+        return when.iloc[0], lambda f, path: f.to_csv(path, index=False, float_format="%.6g")
+
+    machines = {"twin_lathe": (nm57.write_twin_lathe, TWIN_SEED, 8, twin_stamp, "nm57", 1),
+                "gantry": (nm56.write_gantry, GANTRY_SEED, 3, gantry_stamp, "nm56", 1)}
+    for base, (write, seed, weeks, stamp, sub, own) in machines.items():
+        folder = work / base
+        if not folder.exists():
+            shutil.copytree(root / "lag" / sub / base, folder)
+            for k in range(1, REDRAWS + 1):
+                draw = work / f"{base}-{seed}-{k}"
+                write(draw, [seed, k])
+                _dated(folder, sorted(draw.glob("*.csv")), pd.Timedelta(weeks=weeks * k), stamp)
+        n = len(list(folder.glob("*.csv")))
+        for name in (base, f"{base}-noair" if base == "twin_lathe" else f"{base}-noY"):
+            extra = ["data.reference=none"] if base == "gantry" else []
+            ds, comp, options = refnoise.composed(root / "lag", name, f"data.path={folder}",
+                                                  f"data.test_fraction={(n - 1) / n}", *extra)
+            d = diagnose(ds, comp, None, "simulation", options)
+            yield "cases", {"case": f"machine:{name}", "targets": targets_of(d, own)}
+
+
 def rows(root: Path, work: Path, groups) -> None:
     import bench_remeasure62 as rm
 
     work.mkdir(parents=True, exist_ok=True)
     makers = {"few": lambda: few_rows(root), "grinder": lambda: grinder_rows(root, work),
-              "mill": lambda: mill_rows(root, work), "jig": lambda: jig_rows(root, work)}
+              "mill": lambda: mill_rows(root, work), "jig": lambda: jig_rows(root, work),
+              "om": lambda: om_rows(root, work), "twin_gantry": lambda: twin_gantry_rows(root, work)}
     for g in groups:
         rm.measure(work / "moretest.jsonl", makers[g]())
 
