@@ -308,7 +308,8 @@ def _more_jig(root: Path, folder: Path, seeds=MORE_SEEDS) -> int:
 def scores(d, target, first_new: int) -> dict:
     """``target``'s test RMSE before / after diagnose ``d`` on the record's own test campaigns
     (``own``) and the new ones (``new``: from the ``first_new``-th test campaign on): pooled
-    over their samples, per campaign, and how many campaigns got > 2 % worse / better."""
+    over their samples, how many campaigns got > 2 % worse / better, and each campaign's samples
+    and squared errors before / after."""
     tests = list(d.predictions["before"])
     sq = {w: [] for w in ("before", "after")}
     for c in tests:
@@ -322,7 +323,9 @@ def scores(d, target, first_new: int) -> dict:
                for x, y in zip(sq["before"][part], sq["after"][part])]
         out[name] = {"rmse": [float(np.sqrt(np.mean(np.concatenate(sq[w][part])))) for w in sq],
                      "campaigns": len(per), "worse": sum(y > 1.02 * x for x, y in per),
-                     "better": sum(y < 0.98 * x for x, y in per)}
+                     "better": sum(y < 0.98 * x for x, y in per),
+                     "per_campaign": [[x.size, float(x.sum()), float(y.sum())]     # samples, SSEs
+                                      for x, y in zip(sq["before"][part], sq["after"][part])]}
     return out
 
 

@@ -122,8 +122,9 @@ def with_new(ds, news: list):
     return Dataset(pd.concat(manifest), campaigns, ds.name, dict(ds.meta))
 
 
-def targets_of(d, first_new: int) -> dict:
-    """Per target of diagnosis ``d``: the accepted effects and ``bench_jig68.scores``."""
+def targets_of(d, first_new: int, draws: list[int]) -> dict:
+    """Per target of diagnosis ``d``: the accepted effects and ``bench_jig68.scores``; ``draws``:
+    how many of the new campaigns each draw (seed) gave, in their order."""
     from bench_jig68 import scores
 
     out = {}
@@ -131,7 +132,7 @@ def targets_of(d, first_new: int) -> dict:
         j = d.to_json(t)
         out[t] = {"accepted": [f'{e["kind"]} {e["column"]} {e["transform"]}' for e in j["effects"]
                                if e["accepted"]],
-                  "train": len(d.cv["train_campaigns"]), **scores(d, t, first_new)}
+                  "train": len(d.cv["train_campaigns"]), "draws": draws, **scores(d, t, first_new)}
     return out
 
 
@@ -149,7 +150,7 @@ def few_rows(root: Path):
         own = len(ds.ids("test"))
         full = with_new(ds, [few_again(case, s) for s in FEW_SEEDS])
         d = diagnose(full, comp, targets=targets, options=SearchOptions(max_effects=2))
-        yield group, {"case": case, "targets": targets_of(d, own)}
+        yield group, {"case": case, "targets": targets_of(d, own, [12] * len(FEW_SEEDS))}
 
 
 def _runs_rows(root: Path, work: Path, group: str, cases, write, seeds, label: str, stem: str,
@@ -167,7 +168,8 @@ def _runs_rows(root: Path, work: Path, group: str, cases, write, seeds, label: s
         ds, comp, options = refnoise.composed(root / "lag", config, f"data.path={folder}",
                                               f"data.test_fraction={n / (n + own_train)}")
         d = diagnose(ds, comp, None, "simulation", options)
-        yield group, {"case": case, "targets": targets_of(d, own_test)}
+        yield group, {"case": case, "targets": targets_of(d, own_test, [(n - own_test) // len(seeds)]
+                                                          * len(seeds))}
 
 
 def grinder_rows(root: Path, work: Path):
@@ -202,7 +204,7 @@ def jig_rows(root: Path, work: Path):
     n = _more_jig(root, work / "jig", JIG_SEEDS)
     _, d, _ = jig60.jig(root / "nm60", ("E_DISP_Y", "E_DISP_Z"), f"data.path={work / 'jig'}",
                         f"data.test_fraction={n / (n + 6)}")
-    yield "jig", {"case": "machine:jig_grinder", "targets": targets_of(d, 2)}
+    yield "jig", {"case": "machine:jig_grinder", "targets": targets_of(d, 2, [8] * len(JIG_SEEDS))}
 
 
 # bench_other_machine's records: name -> (its seed in ``om.write(root, 0)``, step s, rows, sensors,
@@ -275,7 +277,8 @@ def om_rows(root: Path, work: Path):
         folder, extra = om_folder(root, work, name)
         ds, comp, options = refnoise.composed(root / "lag", name, *extra)
         d = diagnose(ds, comp, None, "simulation", options)
-        yield "cases", {"case": f"machine:{name}", "targets": targets_of(d, len(ds0.ids("test")))}
+        yield "cases", {"case": f"machine:{name}",
+                        "targets": targets_of(d, len(ds0.ids("test")), [OM_NEW])}
 
 
 def _dated(folder: Path, files: list[Path], shift: pd.Timedelta, stamp) -> None:
@@ -326,7 +329,7 @@ def twin_gantry_rows(root: Path, work: Path):
             ds, comp, options = refnoise.composed(root / "lag", name, f"data.path={folder}",
                                                   f"data.test_fraction={(n - 1) / n}", *extra)
             d = diagnose(ds, comp, None, "simulation", options)
-            yield "cases", {"case": f"machine:{name}", "targets": targets_of(d, own)}
+            yield "cases", {"case": f"machine:{name}", "targets": targets_of(d, own, [2] * REDRAWS)}
 
 
 def rows(root: Path, work: Path, groups) -> None:
