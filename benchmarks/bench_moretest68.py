@@ -347,18 +347,32 @@ def _verdict(change_pct: float) -> str:
     return "worse" if change_pct > 2.0 else "better" if change_pct < -2.0 else "same"
 
 
+def _change(per: np.ndarray) -> float:
+    """The pooled test RMSE change (%) of campaigns ``per`` (rows: samples, SSE before, after)."""
+    return 100.0 * (np.sqrt(per[:, 2].sum() / per[:, 1].sum()) - 1.0)
+
+
+def resampled(per: np.ndarray, n: int = 2000, seed: int = 0) -> tuple[float, float]:
+    """5 % and 95 % of the pooled change over the campaigns resampled with replacement: how
+    finely these campaigns resolve the change."""
+    rng = np.random.default_rng(seed)
+    picks = rng.integers(0, len(per), (n, len(per)))
+    changes = 100.0 * (np.sqrt(per[picks, 2].sum(1) / per[picks, 1].sum(1)) - 1.0)
+    return tuple(np.percentile(changes, [5, 95]))
+
+
 def table(work: Path, base: Path | None) -> None:
-    """Per row that accepts something: own test vs new campaigns before -> after; the counts
-    (> 2 % worse on each), the verdicts' agreement and the changes' rank correlation; with
-    ``base``, every row whose accepted effects or own test differ from the shipped row's."""
+    """Per row that accepts something: own test vs new campaigns before -> after (the new ones'
+    90 % resampling interval, each draw's change); the counts (> 2 % worse on each), the
+    verdicts' agreement and the changes' rank correlation; with ``base``, every row whose
+    accepted effects or own test differ from the shipped row's."""
     import bench_remeasure62 as rm
     from scipy.stats import kendalltau, spearmanr
 
     rows = rm._read(work / "moretest.jsonl")
     shipped = {r["case"]: r for r in rm._read(base)} if base else {}
-    pct = rm._pct
-    lines = [f"{'case':26s} {'target':15s} {'own test: before -> after':>30s}   "
-             f"{'new: before -> after':>30s}  new campaigns worse / better"]
+    lines = ["case / target: own test campaigns: before -> after (change) | new campaigns: before -> "
+             "after (change) [90 % resampled] per draw; campaigns > 2 % worse / better | accepted"]
     pairs, differ, quiet_moved, n_rows = [], [], [], 0
     for r in rows:
         for t, o in r["targets"].items():
@@ -373,13 +387,19 @@ def table(work: Path, base: Path | None) -> None:
                 if (ob, nb) != (oa, na):
                     quiet_moved.append(f"{r['case']} {t}")
                 continue
-            pairs.append((r["case"], t, pct(oa, ob), pct(na, nb), o["accepted"]))
-            lines.append(f"{r['case'][:26]:26s} {t[:15]:15s} {o['own']['campaigns']:2d}: {ob:6.4g} -> "
-                         f"{oa:6.4g} ({pct(oa, ob):+6.1f} %)   {o['new']['campaigns']:2d}: {nb:6.4g} -> "
-                         f"{na:6.4g} ({pct(na, nb):+6.1f} %)  "
-                         f"{o['new']['worse']:2d} / {o['new']['better']:2d}   "
-                         + "; ".join(rm._short(a) for a in o["accepted"]))
+            per = np.array(o["new"]["per_campaign"], float)
+            cut = np.cumsum([0] + o["draws"])
+            draws = [_change(per[a:b]) for a, b in zip(cut[:-1], cut[1:])]
+            lo, hi = resampled(per)
+            own, new = 100.0 * (oa / ob - 1.0), 100.0 * (na / nb - 1.0)
+            pairs.append((r["case"], t, own, new, lo, hi, o["accepted"]))
+            lines.append(f"{r['case']} {t}: {o['own']['campaigns']}: {ob:.4g} -> {oa:.4g} ({own:+.1f} %) | "
+                         f"{o['new']['campaigns']}: {nb:.4g} -> {na:.4g} ({new:+.1f} %) "
+                         f"[{lo:+.1f}, {hi:+.1f}] "
+                         f"({', '.join(f'{x:+.1f}' for x in draws)}); {o['new']['worse']} / "
+                         f"{o['new']['better']} | " + "; ".join(rm._short(a) for a in o["accepted"]))
     own, new = np.array([p[2] for p in pairs]), np.array([p[3] for p in pairs])
+    lo, hi = np.array([p[4] for p in pairs]), np.array([p[5] for p in pairs])
     verdicts = {(a, b): 0 for a in ("better", "same", "worse") for b in ("better", "same", "worse")}
     for a, b in zip(own, new):
         verdicts[(_verdict(a), _verdict(b))] += 1
@@ -387,17 +407,19 @@ def table(work: Path, base: Path | None) -> None:
               f"CPU s {sum(r['cpu_s'] for r in rows):.0f}",
               f"> 2 % worse: own test {int((own > 2).sum())}, new campaigns {int((new > 2).sum())}; "
               f"> 2 % better: own {int((own < -2).sum())}, new {int((new < -2).sum())}",
+              f"new campaigns' 90 % interval: above +2 % {int((lo > 2).sum())}, below -2 % "
+              f"{int((hi < -2).sum())}, containing +2 % {int(((lo <= 2) & (hi >= 2)).sum())}",
               "verdicts own -> new (rows accepting something): " + ", ".join(
                   f"{a}->{b} {k}" for (a, b), k in verdicts.items() if k),
               f"rank agreement of the changes: Spearman {spearmanr(own, new)[0]:.2f}, "
               f"Kendall {kendalltau(own, new)[0]:.2f} (n {len(pairs)})",
               "harms on the new campaigns (> 2 % worse): " + "; ".join(
-                  f"{c} {t} {n:+.1f} % (own {o:+.1f} %): " + ", ".join(rm._short(a) for a in acc)
-                  for c, t, o, n, acc in pairs if n > 2.0),
+                  f"{c} {t} {n:+.1f} % [{a:+.1f}, {b:+.1f}] (own {o:+.1f} %): "
+                  + ", ".join(rm._short(x) for x in acc) for c, t, o, n, a, b, acc in pairs if n > 2.0),
               "nothing accepted and the test moved: " + (", ".join(quiet_moved) or "none")]
     if base:
         lines.append("differing from the shipped rows: " + ("; ".join(differ) or "none"))
-    print(rm._wrapped(lines))
+    print(rm._wrapped(lines, 150))
 
 
 def main(argv: list[str]) -> int:
