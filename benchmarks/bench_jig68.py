@@ -305,12 +305,15 @@ def _more_jig(root: Path, folder: Path, seeds=MORE_SEEDS) -> int:
     return k - 1 - 6
 
 
-def scores(d, target, first_new: int) -> dict:
+def scores(d, target, first_new) -> dict:
     """``target``'s test RMSE before / after diagnose ``d`` on the record's own test campaigns
-    (``own``) and the new ones (``new``: from the ``first_new``-th test campaign on): pooled
+    (``own``: the first ``first_new`` test campaigns, or those named by it) and the new ones
+    (``new``: the others, in their order): pooled
     over their samples, how many campaigns got > 2 % worse / better, and each campaign's samples
     and squared errors before / after."""
     tests = list(d.predictions["before"])
+    own = tests[:first_new] if isinstance(first_new, int) else list(first_new)
+    tests, first_new = own + [c for c in tests if c not in own], len(own)
     sq = {w: [] for w in ("before", "after")}
     for c in tests:
         for w in sq:

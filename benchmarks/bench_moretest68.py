@@ -122,7 +122,7 @@ def with_new(ds, news: list):
     return Dataset(pd.concat(manifest), campaigns, ds.name, dict(ds.meta))
 
 
-def targets_of(d, first_new: int, draws: list[int]) -> dict:
+def targets_of(d, first_new, draws: list[int]) -> dict:
     """Per target of diagnosis ``d``: the accepted effects and ``bench_jig68.scores``; ``draws``:
     how many of the new campaigns each draw (seed) gave, in their order."""
     from bench_jig68 import scores
@@ -147,7 +147,7 @@ def few_rows(root: Path):
              for c in cs if c.split(":")[0] in ("planted", "clean")]
     for group, case in cases:
         ds, comp, targets, _ = memory.dataset(case)
-        own = len(ds.ids("test"))
+        own = ds.ids("test")
         full = with_new(ds, [few_again(case, s) for s in FEW_SEEDS])
         d = diagnose(full, comp, targets=targets, options=SearchOptions(max_effects=2))
         yield group, {"case": case, "targets": targets_of(d, own, [12] * len(FEW_SEEDS))}
@@ -273,12 +273,12 @@ def om_rows(root: Path, work: Path):
     from thermocomp.apps.diagnose import diagnose
 
     for name in OM:
-        ds0, _, _ = refnoise.composed(root / "lag", name)
+        own = refnoise.composed(root / "lag", name)[0].ids("test")
         folder, extra = om_folder(root, work, name)
         ds, comp, options = refnoise.composed(root / "lag", name, *extra)
         d = diagnose(ds, comp, None, "simulation", options)
         yield "cases", {"case": f"machine:{name}",
-                        "targets": targets_of(d, len(ds0.ids("test")), [OM_NEW])}
+                        "targets": targets_of(d, own, [OM_NEW])}
 
 
 def _dated(folder: Path, files: list[Path], shift: pd.Timedelta, stamp) -> None:
@@ -313,9 +313,9 @@ def twin_gantry_rows(root: Path, work: Path):
         frame["Timestamp"] = when.dt.strftime("%Y-%m-%dT%H:%M:%S")
         return when.iloc[0], lambda f, path: f.to_csv(path, index=False, float_format="%.6g")
 
-    machines = {"twin_lathe": (nm57.write_twin_lathe, TWIN_SEED, 8, twin_stamp, "nm57", 1),
-                "gantry": (nm56.write_gantry, GANTRY_SEED, 3, gantry_stamp, "nm56", 1)}
-    for base, (write, seed, weeks, stamp, sub, own) in machines.items():
+    machines = {"twin_lathe": (nm57.write_twin_lathe, TWIN_SEED, 8, twin_stamp, "nm57"),
+                "gantry": (nm56.write_gantry, GANTRY_SEED, 3, gantry_stamp, "nm56")}
+    for base, (write, seed, weeks, stamp, sub) in machines.items():
         folder = work / base
         if not folder.exists():
             shutil.copytree(root / "lag" / sub / base, folder)
@@ -324,6 +324,7 @@ def twin_gantry_rows(root: Path, work: Path):
                 write(draw, [seed, k])
                 _dated(folder, sorted(draw.glob("*.csv")), pd.Timedelta(weeks=weeks * k), stamp)
         n = len(list(folder.glob("*.csv")))
+        own = refnoise.composed(root / "lag", base)[0].ids("test")    # by id: the new ones sort first
         for name in (base, f"{base}-noair" if base == "twin_lathe" else f"{base}-noY"):
             extra = ["data.reference=none"] if base == "gantry" else []
             ds, comp, options = refnoise.composed(root / "lag", name, f"data.path={folder}",
