@@ -13,10 +13,11 @@ ROOT: a ``bench_remeasure62.py write`` root with its rows (``diagnose.jsonl``, a
 ``bench_jig68.py rows`` leaves it; read only).  WORK: where the new campaigns and the rows go.
 GROUP: ``few`` (bench_remeasure62's few, and its cases' planted / clean seeds), ``grinder``
 (its cases' grinder and grinder-nocoolant, the fresh grinders, the null draws), ``mill`` (the
-boring mill and -noW), ``jig``; default all.  ``table`` with BASE (the shipped rows'
+boring mill and -noW), ``jig``, ``om`` (bench_other_machine's four), ``twin_gantry`` (the twin
+lathe, the gantry, their variants); default all.  ``table`` with BASE (the shipped rows'
 diagnose.jsonl): each row's accepted effects and own-test figures checked against it.
 
-What is drawn again, and how (fresh seeds 6881-6888, never used before)
+What is drawn again, and how (fresh seeds 6881-6896, never used before)
 ------------------------------------------------------------------------
 * ``few``: the few-campaign year-round VMC (``test_diagnose_few.few``: 12 campaigns, 8 train):
   the machine is the same twin whatever the seed; the planted position effect keeps its law
@@ -32,11 +33,16 @@ What is drawn again, and how (fresh seeds 6881-6888, never used before)
 * ``jig``: bench_new_machines60's jig grinder as ``bench_jig68.moretest`` (room, ceiling,
   schedule drawn again; dated 3 / 6 weeks on): seeds 6887 and 6888, 16 sessions after its 8.
 
-Not drawn: ``record`` (the measured fl_thermal record) cannot be; the default ``scenario`` (24
-campaigns, clean, nothing accepted) and bench_other_machine's lathe43 / lathe43m / rig40 /
-vendor5 (their sensor layout is drawn from the seed: a new seed is another machine; a draw
-keeping it is not written), the gantry (one continuing two-week record: new weeks of another
-draw do not continue it) and the twin lathe (two continuing-season files per seed) are left.
+* ``om``: bench_other_machine's lathe43 / lathe43m / rig40 / vendor5: their sensor layout is
+  drawn from their seed, so it is drawn from it again and kept; 24 new runs from seeds 6889
+  (the lathe's, both forms), 6890 (rig40), 6891 (vendor5), test campaigns after their own.
+* ``twin_gantry``: the twin lathe's two season files and the gantry's two continuing weeks,
+  each drawn six times more (``default_rng([6895, k])`` / ``[6896, k]``, the same networks and
+  laws), dated 8 k / 3 k weeks on (a week's gap: a new gantry record does not continue the
+  last); 12 new campaigns each, ``data.reference=none`` kept for the gantry.
+
+Not drawn: ``record`` (the measured fl_thermal record, 5 targets) cannot be; the default
+``scenario`` (24 campaigns, clean, 1 target, nothing accepted) is left.
 Where nothing is accepted the model after is the model before: the change is 0 on any
 campaign (checked here on every drawn row that accepts nothing).
 
