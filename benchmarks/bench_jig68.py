@@ -250,26 +250,34 @@ def trace(root: Path) -> None:
 def _more_grinder(root: Path, folder: Path) -> int:
     """5682's 12 runs, then 12 runs of each of MORE_SEEDS (the same machine drawn again) as
     Lauf_13...; returns how many runs follow its 9 train runs."""
-    import shutil
-
     import bench_new_machines56 as nm56
 
+    return 3 + more_runs(sorted((root / "grinder5682").glob("Lauf_*.csv")), folder,
+                         nm56.write_grinder, MORE_SEEDS, "grinder", "Lauf_")
+
+
+def more_runs(files: list[Path], folder: Path, write, seeds, label: str, stem: str) -> int:
+    """A record's run ``files`` copied into ``folder``, then the runs ``write(draw, seed)``
+    writes for each of ``seeds`` (``draw``: ``folder``'s sibling ``{label}{seed}``, written
+    once) numbered on as ``{stem}NN`` (their suffix kept); returns how many runs were added."""
+    import shutil
+
     folder.mkdir(parents=True, exist_ok=True)
-    for f in sorted((root / "grinder5682").glob("Lauf_*.csv")):
+    for f in files:
         shutil.copy(f, folder / f.name)
-    k = 13
-    for seed in MORE_SEEDS:
-        draw = folder.parent / f"grinder{seed}"
+    k = len(files) + 1
+    for seed in seeds:
+        draw = folder.parent / f"{label}{seed}"
         if not draw.exists():
-            nm56.write_grinder(draw, seed)
-        for f in sorted(draw.glob("Lauf_*.csv")):
-            shutil.copy(f, folder / f"Lauf_{k:02d}.csv")
+            write(draw, seed)
+        for f in sorted(draw.glob(f"{stem}*")):
+            shutil.copy(f, folder / f"{stem}{k:02d}{f.suffix}")
             k += 1
-    return k - 1 - 9
+    return k - 1 - len(files)
 
 
-def _more_jig(root: Path, folder: Path) -> int:
-    """The jig's 8 sessions, then the 8 sessions of each of MORE_SEEDS' records (the same machine,
+def _more_jig(root: Path, folder: Path, seeds=MORE_SEEDS) -> int:
+    """The jig's 8 sessions, then the 8 sessions of each of ``seeds``' records (the same machine,
     another three weeks: room, ceiling, schedule drawn again) dated 3 weeks on each, as
     JG400_S09...; returns how many sessions follow its 6 train sessions."""
     import re
@@ -282,7 +290,7 @@ def _more_jig(root: Path, folder: Path) -> int:
     for f in sorted((root / "nm60" / "jig_grinder").glob("JG400_S*.TXT")):
         shutil.copy(f, folder / f.name)
     k = 9
-    for weeks, seed in enumerate(MORE_SEEDS, 1):
+    for weeks, seed in enumerate(seeds, 1):
         draw = folder.parent / f"jig{seed}"
         if not draw.exists():
             nm60.write_jig_grinder(draw, seed)
@@ -297,25 +305,41 @@ def _more_jig(root: Path, folder: Path) -> int:
     return k - 1 - 6
 
 
-def _per_campaign(d, target, first_new: int) -> None:
-    """Test RMSE before / after of ``target``: the record's own test campaigns, the new ones
-    (from the ``first_new``-th test campaign on), and how many new ones got > 2 % worse."""
+def scores(d, target, first_new) -> dict:
+    """``target``'s test RMSE before / after diagnose ``d`` on the record's own test campaigns
+    (``own``: the first ``first_new`` test campaigns, or those named by it) and the new ones
+    (``new``: the others, in their order): pooled
+    over their samples, how many campaigns got > 2 % worse / better, and each campaign's samples
+    and squared errors before / after."""
     tests = list(d.predictions["before"])
+    own = tests[:first_new] if isinstance(first_new, int) else list(first_new)
+    tests, first_new = own + [c for c in tests if c not in own], len(own)
     sq = {w: [] for w in ("before", "after")}
     for c in tests:
         for w in sq:
             meas, pred = d.predictions[w][c]
             e = np.asarray(meas[target], float) - np.asarray(pred[target], float)
             sq[w].append(e[np.isfinite(e)] ** 2)
-    for name, part in (("own test", slice(0, first_new)), ("new", slice(first_new, None))):
-        b = np.sqrt(np.mean(np.concatenate(sq["before"][part])))
-        a = np.sqrt(np.mean(np.concatenate(sq["after"][part])))
-        per = [(np.sqrt(x.mean()), np.sqrt(y.mean())) for x, y in zip(sq["before"][part], sq["after"][part])]
-        worse = sum(y > 1.02 * x for x, y in per)
-        better = sum(y < 0.98 * x for x, y in per)
-        print(f"  {target} {name} ({len(per)} campaigns): test RMSE {b:.4f} -> {a:.4f} "
-              f"({100 * (a / b - 1):+.1f} %); campaigns > 2 % worse {worse}, > 2 % better {better}",
-              flush=True)
+    out = {}
+    for name, part in (("own", slice(0, first_new)), ("new", slice(first_new, None))):
+        per = [(float(np.sqrt(x.mean())), float(np.sqrt(y.mean())))
+               for x, y in zip(sq["before"][part], sq["after"][part])]
+        out[name] = {"rmse": [float(np.sqrt(np.mean(np.concatenate(sq[w][part])))) for w in sq],
+                     "campaigns": len(per), "worse": sum(y > 1.02 * x for x, y in per),
+                     "better": sum(y < 0.98 * x for x, y in per),
+                     "per_campaign": [[x.size, float(x.sum()), float(y.sum())]     # samples, SSEs
+                                      for x, y in zip(sq["before"][part], sq["after"][part])]}
+    return out
+
+
+def _per_campaign(d, target, first_new: int) -> None:
+    """Test RMSE before / after of ``target``: the record's own test campaigns, the new ones
+    (from the ``first_new``-th test campaign on), and how many new ones got > 2 % worse."""
+    for name, s in scores(d, target, first_new).items():
+        b, a = s["rmse"]
+        print(f"  {target} {'own test' if name == 'own' else name} ({s['campaigns']} campaigns): "
+              f"test RMSE {b:.4f} -> {a:.4f} ({100 * (a / b - 1):+.1f} %); campaigns > 2 % worse "
+              f"{s['worse']}, > 2 % better {s['better']}", flush=True)
 
 
 def moretest(root: Path, work: Path, grinder: bool = True) -> None:
