@@ -70,42 +70,26 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np
 import pandas as pd
-from bench_ambient_step55 import _AirStepped, _forms, _jump_row, _rms
+from bench_ambient_step55 import _forms, _jump_row, _rms, made, stepped_campaign
 from cpu import print_cpu
 
 from thermocomp.apps.deploy.report import stream_rows
-from thermocomp.apps.sim.scenario import write_scenario
-from thermocomp.apps.sim.yearround import YearRoundSpindle
-from thermocomp.shell.cli import main
 
 AIR = "T_amb"
 REAL = {6821: 5.0, 6822: 3.0, 6823: -5.0}
 OFFSET = {6824: 5.0, 6825: -3.0, 6826: 2.0}
 
 
-def _scenario(seed: int, **kwargs):
-    kw = dict(n_campaigns=9, duration_h=(3.0, 5.0), seed=seed)
-    return _AirStepped(**kw, **kwargs) if kwargs else YearRoundSpindle(**kw)
-
-
 def record(root: Path, seed: int):
     """``(forms, {cid: (readings, measured errors)})`` of the record's test campaigns, the air
     stepped (real) or the column offset from the middle row on."""
-    data = root / "ys"
-    if not data.exists():
-        write_scenario(_scenario(seed), data)
-    if not (root / "mlr/model.pkl").exists():
-        main(["run", f"data.path={data}", "model=mlr", "track=false", "plots=none",
-              "eval.validation=false", f"out={root / 'mlr'}"])
+    data = made(root, seed)
     listed = pd.read_csv(data / "campaigns.csv")
     cases = {}
     for cid in listed.loc[listed["split"] == "test", "campaign"]:
         raw = pd.read_csv(data / f"{cid}.csv")
         if seed in REAL:
-            path = root / f"air_{cid}"
-            if not path.exists():
-                write_scenario(_scenario(seed, cid=cid, step_c=REAL[seed]), path)
-            df = pd.read_csv(path / f"{cid}.csv")
+            df = stepped_campaign(root / f"air_{cid}", seed, cid, REAL[seed])
             cases[cid] = (df, df, raw)
         else:
             f = raw.copy()
