@@ -58,6 +58,37 @@ the numbers.
 
 Run: ``PYTHONPATH=src .venv/bin/python benchmarks/bench_monitor68.py [--root /tmp/monitor68-b]``
 (records and fits written once under ``--root``).  The existing benches are run on their own.
+
+SCORED 2026-12-01 (the rule in src: ``Readmission._watch_followed``; the code before it from
+``git archive d1af7df2``; 7.6 s of CPU for this bench with its records made, 16.9 s making them):
+
+1. ``test_ambient_step54.py``: K06 +5 K, MLR adaptive 10.775 -> 7.032 µm (plain 6.464, the bar
+   7.110): passes, the mark removed; the offset test passes.
+2. ``bench_deploy_faults.py``: every fault line and form identical to the printed digit; of the
+   air lines only ``real +5 K`` moved (adaptive, plain unchanged): mlr 10.77 -> 7.03 (plain
+   6.46), arx 10.57 -> 7.59 (5.61), lagbank 7.20 -> 5.45 (11.77); +2 K, the 30-min ramp and the
+   offsets as before.  ``bench_common56.py`` (``--out`` json compared key by key): 102 of 105
+   lines identical; the three ``+5K real air`` lines of ys5353, Σ² follow / fixed: mlr 152.6 ->
+   134.3 / 134.7, arx 160.2 -> 121.7 / 122.0, lagbank 145.5 -> 102.1 / 103.1 (plain 157.9, 86.4,
+   84.4).  ``bench_monitor_healthy.py``: HEALTHY_PLACEHOLDER
+3. Fresh seeds, adaptive before -> now (plain), ``*`` taken as measured, ``=`` unchanged:
+
+     seed  air      K03                         K06                         K09
+     6821  +5 K   10.743 =       (10.291)     7.995 -> 7.766 (7.205) *   14.760 =       (13.098)
+     6822  +3 K    7.778 =        (7.040)     9.077 -> 8.685 (9.052) *    7.706 =        (4.836)
+     6823  -5 K   10.719 -> 10.703 (12.211) * 11.019 -> 10.603 (12.223) * 11.360 -> 10.012 (9.377) *
+     6824 offset +5 K  3.847 / 10.609 / 3.362, 6825 offset -3 K 3.526 / 5.391 / 3.578,
+     6826 offset +2 K  7.704 / 8.696 / 9.821: the same before and now, none taken, the same
+     exclusion (T_amb, at the same time) in every case.
+
+   (a) no offset taken, every offset case identical: met; (b) no real step above max(before,
+   1.1 x plain): met (every one taken is better than before); (c) 5 of 9 real steps taken: met.
+   VERDICT: PASS.  Not part of the verdict, the limit: an offset of T_amb starting at a row of
+   the fresh records' healthy test campaigns would be taken as real at 11.1 / 20.3 / 18.1 /
+   37.7 / 0.0 / 0.0 % of the rows (6821-6826, either direction; 0 % of the train rows by
+   construction): the bar is the largest common turn of six train campaigns, and a spindle
+   stop or start in a test campaign goes beyond it (6821 K09: all nine structure sensors
+   turned down by 0.241 K per sample against the train campaigns' 0.115).
 """
 
 from __future__ import annotations
