@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from conftest import monitored
 from thermocomp.apps.deploy.surveillance import SensorMonitor
 
 NAMES = ["T_amb", *(f"T_{k}" for k in range(8))]
@@ -36,15 +37,6 @@ def _monitor() -> SensorMonitor:
     return SensorMonitor.from_training(None, NAMES, {k: _machine(300, k) for k in range(4)})
 
 
-def _stream(mon: SensorMonitor, record: np.ndarray) -> tuple[np.ndarray, list[dict]]:
-    fields, events = [], []
-    for i, row in enumerate(record):
-        field, ev = mon.update(row, float(i))
-        fields.append(field)
-        events += ev
-    return np.array(fields), events
-
-
 def test_the_air_is_a_sensor_no_other_predicts():
     assert not _monitor()._predictable[0]
 
@@ -52,7 +44,7 @@ def test_the_air_is_a_sensor_no_other_predicts():
 def test_a_real_step_of_the_air_is_re_admitted_as_measured():
     mon = _monitor()
     record = _machine(300, 7, air_step=STEP)
-    fields, events = _stream(mon, record)
+    fields, events = monitored(mon, record)
     air = [e for e in events if e["sensor"] == "T_amb"]
     assert [e["to"] for e in air] == ["excluded", "ok"]
     assert air[1]["reason"].startswith("re-admitted as measured")
@@ -65,7 +57,7 @@ def test_an_offset_of_the_air_sensor_stays_re_referenced():
     mon = _monitor()
     record = _machine(300, 7)
     record[AT:, 0] += STEP
-    fields, events = _stream(mon, record)
+    fields, events = monitored(mon, record)
     air = [e for e in events if e["sensor"] == "T_amb"]
     assert [e["to"] for e in air] == ["excluded", "ok"]
     assert "as measured" not in air[1]["reason"]
