@@ -71,13 +71,12 @@ SCORED 2026-12-01 (the rule in src: ``Readmission._watch_followed``; the code be
    lines identical; the three ``+5K real air`` lines of ys5353, Σ² follow / fixed: mlr 152.6 ->
    134.3 / 134.7, arx 160.2 -> 121.7 / 122.0, lagbank 145.5 -> 102.1 / 103.1 (plain 157.9, 86.4,
    84.4).  ``bench_monitor_healthy.py`` (every
-   ``monitor.json`` compared key by key, event times included): 19 of the 22 record x model
-   pairs compared with the code before (138 files, every healthy, stdin, plain and fault
-   stream) are identical; the code before had not finished rig40 lagbank and vendor5 by the
-   deadline.  No stream of the 22 pairs took a jump as measured (no event says so), the one
-   branch the rule changes, so those three are the same by construction.  (Both runs
-   shared 2 cores under a load of 15-20: the new code's records after long_record, 481 s of
-   CPU, were run as ``--records fl_thermal lathe43 lathe43m rig40 vendor5``.)
+   ``monitor.json`` compared key by key, event times included): all 22 record x model pairs
+   (164 files, every healthy, stdin, plain and fault stream) identical to the code before (and
+   the ``results.json`` rows of the five records run apart, 10 of 10); no stream takes a jump
+   as measured.  (Both runs shared 2
+   cores under a load of 15-20; the code before took 897 s of CPU; the new code's records
+   after long_record, 481 s, ran as ``--records fl_thermal lathe43 lathe43m rig40 vendor5``.)
 3. Fresh seeds, adaptive before -> now (plain), ``*`` taken as measured, ``=`` unchanged:
 
      seed  air      K03                         K06                         K09
