@@ -95,6 +95,14 @@ SCORED 2026-12-01 (the rule in src: ``Readmission._watch_followed``; the code be
    construction): the bar is the largest common turn of six train campaigns, and a spindle
    stop or start in a test campaign goes beyond it (6821 K09: all nine structure sensors
    turned down by 0.241 K per sample against the train campaigns' 0.115).
+
+LEAD'S DECISION (stop 68): NOT ADOPTED, src reverted.  The bar passed, but the limit above says a
+T_amb offset fault starting at one healthy test row in five (0-38 %) would be re-admitted as the
+air's real step, and from there the model reads the faulty air as the plain stream does (5353's
+offsets: 6.3-13.4 µm against 3.5-4.7 adaptive, a 2-3x harm), while the real steps taken on the
+fresh seeds gained 0.2-12 %.  A monitor must not trust a faulty sensor to gain on a real step;
+the rule lives in ``benchmarks/monitor68_rule.patch`` (src, its tests and the xfail mark's
+removal; ``git apply`` on d1af7df2) for a later rule whose bar counts the offset take-rate.
 """
 
 from __future__ import annotations

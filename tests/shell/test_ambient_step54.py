@@ -4,9 +4,8 @@
 middle row on: the air itself +5 K (:class:`~thermocomp.apps.sim.ambient.SteppedAmbient`: the
 machine warms, its errors change) or the ``T_amb`` column alone +5 K (a sensor's offset, the
 machine unchanged).  At the instant the two are one jump of ``T_amb``; the adaptive compensator
-re-references both away.  Right for the offset, wrong for the real step: it kept the offset for
-the rest of the campaign while the structure's sensors follow the air, until monitor68 took the
-jump as measured when every other sensor's course follows it (``bench_monitor68.py``).
+re-references both away.  Right for the offset, wrong for the real step: it keeps the offset for
+the rest of the campaign while the structure's sensors follow the air.
 """
 
 from __future__ import annotations
@@ -87,12 +86,10 @@ def test_an_offset_of_the_ambient_sensor_is_re_referenced_away(fitted):
     assert adaptive < 1.1 * base < plain
 
 
+@pytest.mark.xfail(strict=True, reason="a real ambient step is re-referenced as a jump of T_amb "
+                   "and never re-admitted as measured (docs/monitoring.md, 'A real ambient step')")
 def test_a_real_ambient_step_is_followed_as_the_plain_stream_follows_it(fitted):
-    # every structure sensor's course turns with the jump, as in no train row: back as measured
     _, stepped, forms = fitted
-    adaptive, events = _after_onset(forms["true"], stepped, stepped)
+    adaptive, _ = _after_onset(forms["true"], stepped, stepped)
     plain, _ = _after_onset(forms["false"], stepped, stepped)
-    air = [e for e in events if e["sensor"] == "T_amb"]
-    assert [e["to"] for e in air] == ["excluded", "ok"]
-    assert air[1]["reason"].startswith("re-admitted as measured")
     assert adaptive < 1.1 * plain

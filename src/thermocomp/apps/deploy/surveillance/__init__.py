@@ -46,11 +46,8 @@ leaked onto the judged ones is excluded when it explains them
 (:meth:`SensorMonitor._explaining`); an excluded sensor whose reading returns
 within the warning band for a whole window is re-admitted, the sensors due back
 at once judged together (:meth:`SensorMonitor._returning`: after a total dropout
-none could pass alone); a sensor no other predicts, out for a jump that every other
-sensor's course followed beyond anything training shows at once (a real step of the air), comes
-back as measured, its jumps undone (:meth:`SensorMonitor._watch_followed`).  While too few
-sensors are in to rebuild the field, a sensor out only for a dropout gives its reading as it
-waits.  Every change of
+none could pass alone).  While too few sensors are in to rebuild the field, a
+sensor out only for a dropout gives its reading as it waits.  Every change of
 state is an event ``{"time", "sensor", "from", "to", "reason"}``.
 
 A new thermal state (``new_state``, :meth:`SensorMonitor._drift_vetoed`): a

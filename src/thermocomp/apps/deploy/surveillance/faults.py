@@ -145,8 +145,6 @@ class InstantFaults:
             offset = step[j] - (expected[j] if np.isfinite(expected[j]) else 0.0)
             if not self._jumps[j]:
                 self._ref0[j] = self._ref[j]
-                self._course_before(j)
-            self._followed[j] = np.nan          # judged a window after its last jump
             self._jumps[j] += 1
             self._ref[j] += offset               # changes as the field says it changed
             d[j] -= offset

@@ -14,7 +14,7 @@ import numpy as np
 from ..pod import ThermalPOD, windowed_mean
 from .faults import InstantFaults
 from .judgement import Judgement
-from .readmission import Readmission, followed_bars
+from .readmission import Readmission
 from .states import ALARM, COMMON_MIN, EXCLUDED, MAX_BACKOFF, OK, SPREAD_FACTOR, STATES, WARNING
 
 
@@ -55,31 +55,22 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
     new_state_others : int
         Other judged sensors out of their warning band, soon after a drift exclusion, that
         re-admit it and call a new thermal state.
-    follow_c : array (n, 2)
-        Per sensor, the largest change of course (°C per sample) all the other sensors took
-        together in training, up and down (:func:`.readmission.followed_bars`); a jump of a
-        sensor no other predicts that they follow beyond it is re-admitted as measured
-        (default: never).
     """
 
     new_state, new_state_others = False, 2   # a monitor pickled before them judged as before
 
     def __setstate__(self, state: dict) -> None:
         self.__dict__.update(state)
-        n = len(self.names)
         if "_since" not in state:      # pickled before the new-state rule: its state, idle
             self._novel, self._calm_field = False, 0
-            self._since = np.full(n, -1, dtype=np.int64)
-        if "follow_c" not in state:    # pickled before monitor68: no jump taken as measured
-            self.follow_c = np.full((n, 2), np.inf)
-            self._course, self._followed = np.full((n, n), np.nan), np.full(n, np.nan)
+            self._since = np.full(len(self.names), -1, dtype=np.int64)
 
     def __init__(self, pod: ThermalPOD, names: Sequence[str], *, warning_c=0.4, alarm_c=0.8,
                  window: int = 10, confirm: int = 2, adaptive: bool = True,
                  exclude_at: str = "warning", max_step_c=None, longest_run=None,
                  lo_c=None, hi_c=None, first_c=None, jump_factor: float = 3.0,
                  freeze_factor: float = 2.0, range_margin_c: float = 10.0,
-                 new_state: bool = True, new_state_others: int = 2, follow_c=None):
+                 new_state: bool = True, new_state_others: int = 2):
         n = len(names)
         if pod.n_features_in_ != n:
             raise ValueError(f"POD has {pod.n_features_in_} sensors, names {n}")
@@ -110,8 +101,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         if int(new_state_others) < 1:
             raise ValueError(f"new_state_others must be >= 1, got {new_state_others}")
         self.new_state, self.new_state_others = bool(new_state), int(new_state_others)
-        self.follow_c = (np.full((n, 2), np.inf) if follow_c is None
-                         else np.asarray(follow_c, float).reshape(n, 2).copy())
         self._lo_lim = self.lo_c - self.range_margin_c
         self._hi_lim = self.hi_c + self.range_margin_c
         self._jump_lim = self.jump_factor * self.max_step_c
@@ -174,15 +163,14 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
             floor = factor * spread
             warn, alarm = np.maximum(warn, floor), np.maximum(alarm, 2 * floor)
         options = {**options, "warning_c": warn, "alarm_c": alarm}
-        follow = followed_bars(arrays, int(options.get("window", 10)))
         return cls(pod, names, max_step_c=steps.max(0), longest_run=runs, lo_c=lo, hi_c=hi,
-                   first_c=first, follow_c=follow, **options)
+                   first_c=first, **options)
 
     # -- state ------------------------------------------------------------------------------
     _STATE = ("_ref", "_active", "_state", "_hist", "_err", "_pos", "_count", "_prev",
               "_prev_e", "_run", "_run_pred", "_clean", "_quiet", "_calm", "_prev_other",
               "_last_good", "_by_field", "_jumps", "_ref0", "_dropped", "_gap", "_gapped", "_dwell",
-              "_outs", "_explains", "_novel", "_calm_field", "_since", "_course", "_followed")
+              "_outs", "_explains", "_novel", "_calm_field", "_since")
 
     def reset(self) -> None:
         """New campaign: the next sample is the reference; every sensor active and ok."""
@@ -219,8 +207,6 @@ class SensorMonitor(InstantFaults, Judgement, Readmission):
         self._novel = False          # a new thermal state is declared (module doc)
         self._calm_field = 0         # samples since a judged sensor was last out of band
         self._since = np.full(n, -1, dtype=np.int64)   # sample count at its drift exclusion
-        self._course = np.full((n, n), np.nan)   # row j: the slopes before j's first jump
-        self._followed = np.full(n, np.nan)      # the others' least turn with j's jump
         self._set_operator()
 
     def _operator(self, subset: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
