@@ -133,24 +133,35 @@ def _forms(root: Path) -> dict:
     return forms
 
 
-def record(root: Path, seed: int) -> tuple[dict, list[pd.DataFrame], dict]:
-    """``(forms, train frames, {(cid, case): (readings, measured errors)})``."""
+def made(root: Path, seed: int) -> Path:
+    """The healthy record of ``seed`` under ``root`` (``ys``) and its MLR (``mlr``), made once."""
     data = root / "ys"
     if not data.exists():
         write_scenario(_scenario(seed), data)
     if not (root / "mlr/model.pkl").exists():
         main(["run", f"data.path={data}", "model=mlr", "track=false", "plots=none",
               "eval.validation=false", f"out={root / 'mlr'}"])
+    return data
+
+
+def stepped_campaign(path: Path, seed: int, cid: str, step_c: float) -> pd.DataFrame:
+    """Campaign ``cid`` of ``seed``'s record with its air stepped by ``step_c`` from its middle
+    row (the simulation rerun, written under ``path`` once)."""
+    if not path.exists():
+        write_scenario(_scenario(seed, cid=cid, step_c=step_c), path)
+    return pd.read_csv(path / f"{cid}.csv")
+
+
+def record(root: Path, seed: int) -> tuple[dict, list[pd.DataFrame], dict]:
+    """``(forms, train frames, {(cid, case): (readings, measured errors)})``."""
+    data = made(root, seed)
     listed = pd.read_csv(data / "campaigns.csv")
     train = [pd.read_csv(data / f"{c}.csv") for c in listed.loc[listed["split"] == "train", "campaign"]]
     cases = {}
     for cid in listed.loc[listed["split"] == "test", "campaign"]:
         raw = pd.read_csv(data / f"{cid}.csv")
         for step in STEPS:
-            path = root / f"air_{cid}_{step:+g}"
-            if not path.exists():
-                write_scenario(_scenario(seed, cid=cid, step_c=step), path)
-            df = pd.read_csv(path / f"{cid}.csv")
+            df = stepped_campaign(root / f"air_{cid}_{step:+g}", seed, cid, step)
             cases[cid, f"real {step:+g}"] = (df, df)
         for dT in OFFSETS:
             f = raw.copy()

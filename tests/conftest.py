@@ -268,6 +268,17 @@ def stream_predictions(est, X, groups) -> list[float]:
     return stream_context(est, X, ctx(groups)).tolist()
 
 
+def monitored(mon, record: np.ndarray) -> tuple[np.ndarray, list[dict]]:
+    """``record``'s rows (absolute °C, the row's index its time) through the sensor monitor
+    ``mon`` one by one: the field it gives the model at each row, and every event."""
+    fields, events = [], []
+    for i, row in enumerate(record):
+        field, ev = mon.update(row, float(i))
+        fields.append(field)
+        events += ev
+    return np.array(fields), events
+
+
 def simulated(generator, path: Path) -> Path:
     """``path`` written as ``thermocomp simulate`` writes it: the dataset and its truth."""
     from thermocomp.apps.sim.scenario import write_scenario

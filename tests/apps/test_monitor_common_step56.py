@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from conftest import monitored
 from test_monitor_new_state48 import NAMES, _field
 from thermocomp.apps.deploy.surveillance import SensorMonitor
 
@@ -18,12 +19,7 @@ AT = 200
 
 def _stream(record: np.ndarray) -> tuple[np.ndarray, list[dict]]:
     mon = SensorMonitor.from_training(None, NAMES, {"a": _field(400, 0), "b": _field(400, 1)})
-    fields, events = [], []
-    for i, row in enumerate(record):
-        field, ev = mon.update(row, float(i))
-        fields.append(field)
-        events += ev
-    return np.array(fields), events
+    return monitored(mon, record)
 
 
 @pytest.mark.parametrize("size", [2.0, -5.0])
