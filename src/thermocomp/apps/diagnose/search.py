@@ -412,7 +412,7 @@ class Search:
         p = self.problem
         ok = p.validated & np.isfinite(current.residual) & np.isfinite(result.residual)
         units, n = p.unit_index[ok], p.n_units
-        if p.forward and campaigns:
+        if campaigns and p.scheme == "forward":
             units = np.unique(np.asarray(p.campaigns, dtype=object)[ok], return_inverse=True)[1]
             n = int(units.max()) + 1 if units.size else 0
         counts = np.maximum(np.bincount(units, minlength=n), 1)
