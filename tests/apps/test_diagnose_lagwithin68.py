@@ -14,9 +14,10 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from test_diagnose_within67 import _evaluation
 from thermocomp.apps.diagnose.cv import CVResult
 from thermocomp.apps.diagnose.features import Effect
-from thermocomp.apps.diagnose.search import Evaluation, Search, SearchOptions
+from thermocomp.apps.diagnose.search import Search, SearchOptions
 
 CAMPAIGNS, BLOCKS, ROWS = 3, 16, 30          # 16 validation blocks over 3 campaigns' scored rows
 
@@ -36,12 +37,6 @@ def _result(residual: np.ndarray) -> CVResult:
     block = np.array([np.mean(r ** 2) for r in residual.reshape(BLOCKS, ROWS)])
     return CVResult(residual, residual, float(np.sqrt(np.mean(residual ** 2))), block,
                     block_mse=block)
-
-
-def _evaluation(effect: Effect, current: CVResult, result: CVResult) -> Evaluation:
-    pct = 100.0 * (current.rmse - result.rmse) / current.rmse
-    return Evaluation(effect, result.rmse, current.rmse - result.rmse, pct, 0.0, 0.5, True,
-                      n_features=25, result=result, gain_pct_in_range=pct, p_margin=0.0)
 
 
 def _family():
