@@ -125,12 +125,9 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
         Z = self._design(X, context)
         base = self.estimator if self.estimator is not None else MLR()
         self.estimator_ = clone(base).fit(Z, y, context=context)
-        if isinstance(self.estimator_, MLR) and Z.shape[1] > X.shape[1]:
+        if alpha and isinstance(self.estimator_, MLR) and Z.shape[1] > X.shape[1]:
             # the same law, its effect coefficients shrunk (streams as any MLR does)
-            # the effects' features run on every row, the law is the measured rows' least squares;
-            # alpha 0 too: the CV's fit, on standardised features (speedsq68: a speed's square,
-            # ~1e8 rpm², put the inputs below LinearRegression's relative cut-off, coefficients
-            # ~1e-14, test 1.5 -> 39 µm where the CV had gained 83 %)
+            # the effects' features run on every row, the law is the measured rows' least squares
             path = PartialRidgePath(Z[measured], y[measured], X.shape[1], self.estimator_.fit_intercept)
             self.estimator_.coef_, self.estimator_.intercept_ = path.coefficients(alpha)
         # the campaign's initial ambient: an ambient law needs it; a lag's initial state reads
