@@ -88,16 +88,18 @@ def test_a_day_first_start_is_taken_and_an_ambiguous_one_said(tmp_path, capsys):
         "01_a": ["Test start\t10.05.2027 07:00:00,5"],
         "02_b": ["Test start\t07.05.2027 12:00"],
         "03_c": ["Test start\t05/08/2027 07:00:00"],        # ambiguous: left
-        "04_d": ["Test start\t13/05/2027 07:00:00"]})       # day first: the last to begin
+        "04_d": ["Test start\t13/05/2027 07:00:00"],       # day first: the last to begin
+        "05_e": ["Test start\t32.05.2027 07:00:00"]})      # no such day: left, said
     assert main(["init", str(tmp_path / "nest"), f"out={tmp_path / 'init'}",
                  "data.time=elapsed"]) in (0, None)
     out = capsys.readouterr().out
-    assert ("03_c.txt states none (its 'Test start' (05/08/2027 07:00:00) is no date and time "
+    assert ("03_c.txt, 05_e.txt state none (its 'Test start' (05/08/2027 07:00:00) is no date and time "
             "(ISO 8601, day first with dots, or with slashes and a field past 12)): the campaigns "
             "are held out in name order") in out
-    ds = io.read_dataset(tmp_path / "nest", {"test_fraction": 0.25, "time": "elapsed"})[0]
+    ds = io.read_dataset(tmp_path / "nest", {"test_fraction": 0.2, "time": "elapsed"})[0]
     starts = pd.to_datetime(ds.manifest["start"])
+    assert pd.isna(starts["03_c"]) and pd.isna(starts["05_e"])
     assert starts["01_a"] == pd.Timestamp("2027-05-10 07:00:00.5")
     assert starts["02_b"] == pd.Timestamp("2027-05-07 12:00:00")
     assert starts["04_d"] == pd.Timestamp("2027-05-13 07:00:00")
-    assert ds.manifest.loc["04_d", "split"] == "test"
+    assert ds.manifest.loc["05_e", "split"] == "test"          # name order, as said

@@ -137,9 +137,11 @@ def _header_block_start(path: Path, lines: list[str], opts: ReadOptions
     said = f"'{key}' line of the block above its table"
     told = dated_format(value)
     if told:                      # day first with dots, or slashes whose order a field past 12 says
-        fraction = re.search(r":\d\d[.,](\d+)$", value)
-        stamp = pd.to_datetime(re.sub(r"[.,]\d+$", "", value) if fraction else value, format=told)
-        return stamp + pd.to_timedelta(float("0." + fraction[1]) if fraction else 0.0, "s"), said
+        try:                      # as a time column of that format is read (a second's fraction)
+            stamp = parsed(pa.array([value]), time_type(told, value), told)
+        except pa.ArrowInvalid:   # no such day (32.05.2027)
+            return pd.NaT, f"its '{key}' ({value}) is no date and time"
+        return pd.Timestamp(stamp.to_pandas()[0]), said
     if not _DATE_TIME.match(value):
         why = (f"its '{key}' ({value}) holds no date (a 'Date' line beside it may be the "
                "export's)" if _TIME_ONLY.fullmatch(value) else
