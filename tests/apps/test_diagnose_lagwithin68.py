@@ -15,6 +15,7 @@ from types import SimpleNamespace
 import numpy as np
 
 from test_diagnose_within67 import _evaluation
+from test_diagnose_within67 import _result as _unit_result
 from thermocomp.apps.diagnose.cv import CVResult
 from thermocomp.apps.diagnose.features import Effect
 from thermocomp.apps.diagnose.search import Search, SearchOptions
@@ -34,9 +35,7 @@ def _search() -> Search:
 
 
 def _result(residual: np.ndarray) -> CVResult:
-    block = np.array([np.mean(r ** 2) for r in residual.reshape(BLOCKS, ROWS)])
-    return CVResult(residual, residual, float(np.sqrt(np.mean(residual ** 2))), block,
-                    block_mse=block)
+    return _unit_result(residual, BLOCKS)
 
 
 def _family():

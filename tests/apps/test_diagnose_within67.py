@@ -30,8 +30,9 @@ def _search(scheme: str) -> Search:
     return s
 
 
-def _result(residual: np.ndarray) -> CVResult:
-    unit = np.array([np.mean(r ** 2) for r in residual.reshape(N_UNITS, ROWS)])
+def _result(residual: np.ndarray, n_units: int = N_UNITS) -> CVResult:
+    """A CV result of ``residual`` over ``n_units`` equal units (its blocks)."""
+    unit = np.array([np.mean(r ** 2) for r in residual.reshape(n_units, -1)])
     return CVResult(residual, residual, float(np.sqrt(np.mean(residual ** 2))), unit,
                     block_mse=unit)
 
