@@ -221,9 +221,6 @@ class CVResult:
     alpha: float | None = None   # penalty on the effect features (MLR base; None: none)
     block_mse: np.ndarray | None = None   # ... of each test block (the acceptance test's units)
     in_range_rmse: float = float("nan")   # RMSE on the rows no fold extrapolates to
-    # closed-form MLR: the effect features' ridge degrees of freedom at the penalty taken, the
-    # largest over the folds (their rank at penalty 0; None: another base, no penalty)
-    effect_dof: float | None = None
 
 
 class CrossValidator:
@@ -358,7 +355,6 @@ class CrossValidator:
         shrink = self.shrink and bool(effects)
         alphas = ALPHAS if shrink else np.zeros(1)
         pred = np.full((len(p.y), alphas.size), np.nan)
-        eigen = []                           # each fold's (residual Gram eigenvalues, rows)
         pieces = self._pieces(inputs, effects) if base.fit_intercept else None
         for k in p.fold_ids:
             tr, te = p.train_rows(k) & p.measured, p.test_rows(k)
@@ -373,7 +369,6 @@ class CrossValidator:
             if path is None:
                 path = PartialRidgePath(Z[tr], p.y[tr], len(names), base.fit_intercept)
             pred[te] = path.predict(Z[te], alphas)
-            eigen.append((path.lam, path.n))
         err = (p.y[:, None] - pred) ** 2
         mse = np.nanmean(err, axis=0)
         best = least_error(mse)              # ties: the smallest penalty (least squares first)
@@ -381,10 +376,7 @@ class CrossValidator:
             best = one_standard_error(mse, self._block_mse(err))
         # a copy: as a view the column kept every penalty's predictions (18 x the rows) alive
         # in each result the search keeps (a year's diagnose: 5.3 GiB peak RSS, now 3.7)
-        out = self._result(pred[:, best].copy(), float(alphas[best]) if shrink else None)
-        out.effect_dof = max((float(np.sum(lam / (lam + alphas[best] * n))) for lam, n in eigen),
-                             default=0.0)
-        return out
+        return self._result(pred[:, best].copy(), float(alphas[best]) if shrink else None)
 
     def _pieces(self, inputs, effects) -> tuple[CampaignLeastSquares, dict] | None:
         """The rows cut where any fold's training starts or stops, each piece's QR factor of

@@ -110,14 +110,6 @@ class Evaluation:
     gain_lcb_alpha: float = float("nan")      # (1 - alpha) Student-t lower bound of the gain
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
-    n_effective: float | None = None           # the effect features' ridge dof (MLR base)
-
-    @property
-    def n_spent(self) -> float:
-        """The regressors a fold can spend on the campaigns' offsets (:meth:`Search.saturates`):
-        the effect features' ridge degrees of freedom at the penalty weighed, where fewer than
-        the candidate's own features."""
-        return self.n_features if self.n_effective is None else min(self.n_features, self.n_effective)
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -131,8 +123,7 @@ class Evaluation:
                             "shrink_alpha": self.alpha, "p_value_family": self.p_family,
                             "cv_rmse_gain_pct_in_range": self.gain_pct_in_range,
                             "cv_rmse_gain_lcb_alpha": self.gain_lcb_alpha,
-                            "p_value_margin": self.p_margin,
-                            "n_features_effective": self.n_effective},
+                            "p_value_margin": self.p_margin},
                "accepted": self.accepted}
         if self.control:
             out["control"] = True
@@ -345,17 +336,15 @@ class Search:
                 if effect.transform == "remove" and faults is not None and effect.column in faults.index
                 else None)
         q = self.cv.features(effect, self.cv.selection(self.inputs(), None)).shape[1]
-        ev = Evaluation(effect, res.rmse, gain, pct, p, r2, False, effect.column == CONTROL,
-                        jump_ratio=jump, gain_lcb=lcb, n_features=q, alpha=res.alpha, result=res,
-                        gain_pct_in_range=inside, gain_lcb_alpha=margin, p_margin=p_margin,
-                        n_effective=None if effect.transform == "remove" else res.effect_dof)
         if effect.transform == "remove":   # evidence of the fault is the self-prediction jump
-            ev.clears_bar = bool(jump is not None and jump >= self.options.candidates.fault_ratio
-                                 and pct > -self.options.min_gain_pct
-                                 and inside > -self.options.min_gain_pct)   # NaN (no row): refused
+            clears = bool(jump is not None and jump >= self.options.candidates.fault_ratio
+                          and pct > -self.options.min_gain_pct
+                          and inside > -self.options.min_gain_pct)   # NaN (no such row): refused
         else:   # the control's bar; an effect's p is made family-wise by _family_bar
-            ev.clears_bar = self._clears(pct, p, inside, p_margin, ev.n_spent)
-        return ev
+            clears = self._clears(pct, p, inside, p_margin, q)
+        return Evaluation(effect, res.rmse, gain, pct, p, r2, clears, effect.column == CONTROL,
+                          jump_ratio=jump, gain_lcb=lcb, n_features=q, alpha=res.alpha, result=res,
+                          gain_pct_in_range=inside, gain_lcb_alpha=margin, p_margin=p_margin)
 
     def _read_columns(self) -> set:
         """Context columns the estimator is set to read (a string parameter naming one, e.g. an
@@ -392,7 +381,7 @@ class Search:
         for ev, pf in zip(family, p):
             ev.p_family = float(pf)
             ev.clears_bar = self._clears(ev.gain_pct, pf, ev.gain_pct_in_range, ev.p_margin,
-                                         ev.n_spent)
+                                         ev.n_features)
             # every kind in the campaigns scheme (within67); forward, a lag (lagwithin68)
             if self.problem.scheme == "campaigns" or ev.effect.kind == "dynamics":
                 ev.gain_pct_within = self._within_gain(current, ev.result, campaigns=True)
@@ -437,7 +426,7 @@ class Search:
         return 100.0 * (1.0 - np.sqrt(s1 / s0)) if s0 > 0 else 0.0
 
     def _clears(self, gain_pct: float, p: float, in_range_pct: float, p_margin: float,
-                n_features: float = 0) -> bool:
+                n_features: int = 0) -> bool:
         """The bar: a gain of ``min_gain_pct`` % of the CV RMSE at least, at ``p <= alpha``, and
         a gain where no fold extrapolates too (not one the extrapolating campaigns make).  With
         blocks finer than the units (ranks: how often a change helps, not by how much) the gain
@@ -456,7 +445,7 @@ class Search:
                     and in_range_pct > 0.0 and (p_margin <= self.options.alpha or not ranked)
                     and (ranked or not self.saturates(n_features)))
 
-    def saturates(self, n_features: float) -> bool:
+    def saturates(self, n_features: int) -> bool:
         """True when ``n_features`` extra regressors and the intercept can take one value per
         campaign a fold trains on.  With one test block per campaign (:meth:`_clears` asks it
         then) such a candidate can match the campaigns' own offsets -- the error's zero point,
@@ -470,14 +459,7 @@ class Search:
         lag at the penalty the CV picks gained >= 5 % in 31-40 % of the draws and raised the
         test error 9-11 % on average, more where it gained more in CV; at a fixed penalty it
         gained in all 8 campaigns in up to 4 % of them, where the sign flips assume 0.4 %
-        (``benchmarks/bench_diagnose_saturated.py``).
-
-        The regressors are counted as a fold spends them (dofsat, :attr:`Evaluation.n_spent`):
-        an MLR base weighs the effect features at a ridge penalty, and their ridge degrees of
-        freedom there, where fewer, are what can be spent on the offsets.  A planted position
-        times the rises of the 10 inputs gained in all 8 campaigns (p 1/256) at 3.8-3.9
-        effective regressors and was refused as 10 (seeds 737, 1514); that lag of 4004 spends
-        11.6 of its 13 (``benchmarks/bench_planted69.py``)."""
+        (``benchmarks/bench_diagnose_saturated.py``)."""
         trained = self.problem.units_trained
         return trained is not None and n_features + 1 >= trained
 
