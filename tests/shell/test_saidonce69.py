@@ -53,7 +53,7 @@ def test_init_of_a_csv_record_says_its_footer_once(tmp_path, capsys):
 
 
 def test_only_the_readers_notes_are_said_once_and_only_within_a_stage_run(tmp_path, capsys):
-    from thermocomp.core.io.again import warn     # a reader's warning (core/io registered)
+    from thermocomp.core.io.again import warn  # a reader's warning (core/io registered)
 
     log.configure("INFO")
     for _ in range(2):
