@@ -106,3 +106,25 @@ def test_a_connect_restarted_mid_program_is_warmed_on_its_log(fitted, tmp_path, 
         assert "one period (60 s) after the log's last row" in warmed[0]["detail"]
         seen["P05.MPF"].loc[STOP + GAP + 1:, "time"] -= GAP * 60.0
     written_as(np.vstack(machine.served.offsets)[answered], corrections(data, pkl, seen))
+
+
+def test_a_connect_started_while_a_program_runs_keeps_the_offsets_until_its_first(fitted, tmp_path):  # noqa: F811
+    """(small69) A new connect process wrote the limiter's 0 to the offset nodes at its
+    connection, before its first sample: the machine's correction dropped to 0 for up to a
+    period (60 s here), then jumped back.  Now its first Write is its first computed offset
+    (the one that answers the sample it joins), the registers keeping the first client's last
+    offsets until then, said in the event offsets_kept."""
+    data, pkl = fitted
+    machine, first, second = restarted(data, pkl, tmp_path, stamped)
+    joined = STOP + GAP + 1
+    offsets = np.vstack(machine.served.offsets)
+    writes = machine.served.writes
+    assert max(row for row, _ in writes[:first["writes"]]) == STOP    # the first client's
+    after = writes[first["writes"]:]
+    assert len(after) == second["writes"] and all(row >= joined for row, _ in after)
+    assert np.all(np.array(list(after[0][1].values())) != 0), after[0]     # (it wrote 0, 0)
+    np.testing.assert_array_equal(list(after[0][1].values()), offsets[joined])
+    kept = [e for e in second["events"] if e["event"] == "offsets_kept"]
+    assert len(kept) == 1 and kept[0]["sample"] == -1               # at its connection
+    left = ", ".join(f"{t} {v:.3f}" for t, v in zip(("E_X", "E_Z"), offsets[STOP]))
+    assert f"(µm: {left})" in kept[0]["detail"], kept[0]["detail"]

@@ -15,18 +15,20 @@ Good, its last value held, over ``bad`` rows; a value within ``deadband`` of the
 published is not published, as a sensor's deadband does), the program's name, then the clock,
 last.  Lockstep: a row waits (at most ``wait_s``) for the client's write to the offset nodes,
 then takes the values in them (µm) as the offsets that answer it; the first row waits for a
-client's first write.  ``restarts`` stop the server for some rows (the machine runs on; the
-address space is kept); with ``renumbered`` (connect68) it comes back as a server process started
-anew with another companion specification installed: the namespaces registered again, the
-vendor's one index later, the address space built again (the offsets it serves are the NC's:
-they hold what was written last).  ``handover=(row, rows)`` (connect68): once ``row`` is answered
-the client is sent ``stop_signal`` (a service restarted, a host rebooted) and, once the test
-says it ended (``stopped``), the next ``rows`` are published with no client (the machine runs
-on), the one after them too, then ``handed_over`` is set and it waits for a new client: its
-write at its connection, then its answer.  ``refused`` offset nodes are not writable for the session's user
-(BadUserAccessDenied); with ``users`` a session needs one of them.  After the last row (or
-``stop_after`` rows) answered it sends the process ``stop_signal`` (the user's Ctrl-C or the
-service manager's SIGTERM: a vendor's server never says it is done).
+client to subscribe (small69: a client writes nothing before its first offset; every Write of
+offsets is kept, ``Served.writes``).  ``restarts`` stop the server for some rows (the machine
+runs on; the address space is kept); with ``renumbered`` (connect68) it comes back as a server
+process started anew with another companion specification installed: the namespaces registered
+again, the vendor's one index later, the address space built again (the offsets it serves are
+the NC's: they hold what was written last).  ``handover=(row, rows)`` (connect68): once ``row``
+is answered the client is sent ``stop_signal`` (a service restarted, a host rebooted) and, once
+the test says it ended (``stopped``), the next ``rows`` are published with no client (the
+machine runs on), the one after them too, then ``handed_over`` is set and it waits for a new
+client's answer (small69: before, a write of 0 at its connection came first).  ``refused``
+offset nodes are not writable for the session's user (BadUserAccessDenied); with ``users`` a
+session needs one of them.  After the last row (or ``stop_after`` rows) answered it sends the
+process ``stop_signal`` (the user's Ctrl-C or the service manager's SIGTERM: a vendor's server
+never says it is done).
 """
 
 from __future__ import annotations
@@ -98,12 +100,14 @@ class _Users:
 @dataclass
 class Served:
     """Per row: the program, the offsets (µm) in the registers when it was answered (NaN: not
-    answered, the server down), what each Write brought (node -> VariantType)."""
+    answered, the server down), what each Write brought (node -> VariantType); ``writes``:
+    ``(row being served, {target: µm})`` of every Write of offsets, in order."""
 
     program: list = field(default_factory=list)
     offsets: list = field(default_factory=list)
     answered: list = field(default_factory=list)
     types: dict = field(default_factory=dict)
+    writes: list = field(default_factory=list)
 
 
 class VendorMachine:
@@ -135,6 +139,8 @@ class VendorMachine:
         self.closing = threading.Event()     # the test is done with it: end, no signal
         self.listening = threading.Event()   # its endpoint is up: a client started now connects
         self._writes = 0
+        self._watchers = 0               # monitored items clients created: a client is there
+        self._row = 0                    # the running row being served
 
     async def _start(self, companions=COMPANIONS, registers=None) -> None:
         server = Server(user_manager=_Users(self.users))
@@ -176,14 +182,22 @@ class VendorMachine:
         def on_write(event, _dispatcher) -> None:
             if not event.is_external:
                 return
-            wrote = False
+            wrote = {}
             for wv, code in zip(event.request_params.NodesToWrite, event.response_params):
                 if wv.NodeId in ids:
-                    self.served.types[ids[wv.NodeId]] = wv.Value.Value.VariantType
-                    wrote = wrote or code.is_good()
-            self._writes += wrote        # Writes that set offsets, not nodes: a handover counts them
+                    target = ids[wv.NodeId]
+                    self.served.types[target] = wv.Value.Value.VariantType
+                    if code.is_good():
+                        wrote[target] = float(wv.Value.Value.Value) * self.offsets[target][2]
+            if wrote:                    # Writes that set offsets, not nodes: a handover counts them
+                self._writes += 1
+                self.served.writes.append((self._row, wrote))
+
+        def on_subscribed(event, _dispatcher) -> None:
+            self._watchers += event.is_external
 
         server.subscribe_server_callback(CallbackType.PostWrite, on_write)
+        server.subscribe_server_callback(CallbackType.ItemSubscriptionCreated, on_subscribed)
         self.clock_node = server.get_node(ua.NodeId(ua.ObjectIds.Server_ServerStatus_CurrentTime))
         await server.start()
         self.server = server
@@ -222,11 +236,12 @@ class VendorMachine:
             starts[program] = at - float(df["time"].iloc[0])
             at += float(df["time"].iloc[-1] - df["time"].iloc[0]) + SETUP_S
         deadline = clock.monotonic() + self.wait_s
-        while not self._writes and clock.monotonic() < deadline and not self.closing.is_set():
-            await asyncio.sleep(0.01)    # the first row for a client (its first write), not before
+        while not self._watchers and clock.monotonic() < deadline and not self.closing.is_set():
+            await asyncio.sleep(0.01)    # the first row for a client (subscribed), not before
         try:
             for program, df in self.campaigns.items():
                 for _, row in df.iterrows():
+                    self._row = k
                     out = any(a <= k < a + n for a, n in self.restarts)
                     if out and down is None:
                         kept = await self._registers()      # the NC's, across the restart
@@ -254,8 +269,7 @@ class VendorMachine:
                             self.served.offsets.append(np.full(len(self.offsets), np.nan))
                             k += 1
                             continue
-                        if k == sum(self.handover) + 1:  # a new client: its first write, then
-                            before += 1                  # its answer (one write more)
+                        if k == sum(self.handover) + 1:  # a new client: its answer
                             self.handed_over.set()
                     deadline = clock.monotonic() + self.wait_s
                     while (self._writes <= before and clock.monotonic() < deadline

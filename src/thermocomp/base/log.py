@@ -154,6 +154,49 @@ def warnings_logged():
         yield
 
 
+_ONCE_PER_RUN: list[str] = []     # the folders of modules whose notes are said once a stage run
+
+
+def once_per_run(package: Path) -> None:
+    """Register the modules of the folder ``package``: a note or warning one of them logs is said
+    once per stage run (:func:`said_once`), however often the stage reads what it is about."""
+    folder = os.path.abspath(package) + os.sep
+    if folder not in _ONCE_PER_RUN:
+        _ONCE_PER_RUN.append(folder)
+
+
+class _Once(logging.Filter):
+    def __init__(self):
+        super().__init__()
+        self.said: set[str] = set()
+
+    def filter(self, record: logging.LogRecord) -> bool:
+        if (record.levelno < logging.INFO
+                or not os.path.abspath(record.pathname).startswith(tuple(_ONCE_PER_RUN))):
+            return True
+        text = record.getMessage()
+        if text in self.said:
+            return False
+        self.said.add(text)
+        return True
+
+
+@contextmanager
+def said_once():
+    """Within the block (a stage run) a note or warning of a module registered by
+    :func:`once_per_run` (the reader's: a footer left out, a header written again) is said once
+    per text: ``init`` reads a file more than once (its look for a run counter, then the
+    record), and each read said it again (stranger68: a sheet's footer twice).  The text is the
+    one the user reads (a temporary file named as the lab's: :mod:`.core.io.converted`'s filter
+    runs first); a connection's or a monitor's repeated events are logged by other modules."""
+    once = _Once()
+    logger.addFilter(once)
+    try:
+        yield
+    finally:
+        logger.removeFilter(once)
+
+
 def say(msg: str) -> None:
     """Progress at INFO level through the ``thermocomp`` logger (stderr and the run's log file),
     so stdout stays the result table."""

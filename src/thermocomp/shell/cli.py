@@ -201,8 +201,9 @@ def _run(stage: str, cfg, args: list[str]):
     _guarded(check_schema, cfg)
     fn = lookup(stage)
     # SIGTERM anywhere in the stage (reading, fitting) ends it with status 1 and a message,
-    # as the contract's statuses say, not 143; a library's warnings go to the log, one line each
-    with signals_raise(), log.warnings_logged(), log.run_log(_log_folder(stage, cfg)):
+    # as the contract's statuses say, not 143; a library's warnings go to the log, one line each;
+    # what the reader says of a file, once however often the stage reads it
+    with signals_raise(), log.warnings_logged(), log.said_once(), log.run_log(_log_folder(stage, cfg)):
         log.logger.debug("thermocomp %s: %s %s", version(), stage, " ".join(args))
         return _guarded(fn, cfg)
 

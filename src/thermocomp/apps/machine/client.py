@@ -21,8 +21,10 @@ SIGINT / SIGTERM (main thread), which end it cleanly.  Node ids may name their n
 URI (resolved at each connection); every node is checked to be there first (NodesRefused, naming
 each).  An input whose StatusCode is not Good is NaN (``input_status`` events).  Offsets are
 written in each node's own DataType and unit; a refused write is WriteRefused.  A held offset
-is not written again.  (connect68) Without ``campaign_sample``, ``connect.warm``'s rows are the
-first sample's campaign's, placed on the server's clock by their timestamps (:meth:`Connection._joined`).
+is not written again.  (small69) A new process writes no offset before its first computed one:
+the registers keep what they hold (an earlier client's last offsets; event ``offsets_kept``).
+(connect68) Without ``campaign_sample``, ``connect.warm``'s rows are the first sample's
+campaign's, placed on the server's clock by their timestamps (:meth:`Connection._joined`).
 """
 
 from __future__ import annotations
@@ -163,6 +165,7 @@ class Connection:
         self._i = -1                 # the running campaign's sample (no campaign_sample node)
         self._quality: dict[str, str] = {}      # input -> Good / Uncertain / Bad, as last read
         self._held = None            # the offsets last written (a held one is not written again)
+        self._kept = None            # what the offset nodes held at the first connection (µm)
         self.periods = 1.0           # the periods the server's clock went on to the last sample
         self.stopped = None          # the signal that stopped the client, if one did
         self._placed = ""            # how connect.warm's log was placed on the server's clock
@@ -191,10 +194,7 @@ class Connection:
                         await session
                     except (asyncio.CancelledError, *LINK_ERRORS):
                         pass
-                    last = self._held if self._held is not None else self.limiter.offset
-                    held = ", ".join(f"{t} {v:.3f}" for t, v in zip(self.deployed.targets_, last))
-                    self._event("stopped", f"{self.stopped}: the client ends; the offsets it "
-                                           f"wrote last stay on the machine (µm: {held})")
+                    self._event("stopped", f"{self.stopped}: the client ends; {self._left()}")
                     return
                 try:
                     if session.result():
@@ -293,9 +293,11 @@ class Connection:
             sub = await client.create_subscription(period_ms, _Changes(queue))
             await sub.subscribe_data_change(plan.watched)
             now = clock_now
-            if self._held is None or not np.array_equal(plan.registers, self._held):
-                # the first session, or a server that came back without what was written last
-                # (its registers lost): written again; else they hold it (a restart keeping them)
+            if not self.limiter.started:
+                await self._keep(client, plan)
+            elif self._held is None or not np.array_equal(plan.registers, self._held):
+                # a server that came back without what was written last (its registers lost):
+                # written again; else they hold it (a restart keeping them)
                 self._held = None
                 await self._write(client, plan, self._last, self.limiter.stale(now()))
             reads = [n for n in plan.inputs if n is not None] + list(plan.status.values())
@@ -309,7 +311,8 @@ class Connection:
                         self._stale = True
                         self._event("stale", f"no fresh sample for {self.limiter.hold_s:g} s: "
                                              "offsets decaying")
-                    await self._write(client, plan, None, self.limiter.stale(now()))
+                    if self.limiter.started:        # (before its first: the machine's are kept)
+                        await self._write(client, plan, None, self.limiter.stale(now()))
                     continue
                 got = await client.read_attributes(reads, ua.AttributeIds.Value)
                 sample = self._sample(plan, got)
@@ -508,6 +511,28 @@ class Connection:
                               f"{len(warm)} row(s) logged before it (connect.warm), unscored"
                               + self._placed)
 
+    async def _keep(self, client, plan: _Plan) -> None:
+        """(small69) No offset computed yet (a new process, started while a program runs): the
+        offset nodes keep what they hold until the first computed offset, said (``offsets_kept``);
+        ``offset_sample`` (the twin's) gets -1, no sample answered, which tells it a client is
+        there.  Before, the limiter's 0 was written here: the machine's correction dropped to 0
+        until the first sample (up to a sample period), then jumped back."""
+        self._kept = plan.registers
+        self._event("offsets_kept", f"the offsets the machine holds are kept until the first one "
+                                    f"computed, not zeroed (µm: {self._um(plan.registers)})")
+        if plan.answered is not None:
+            await _written(client, [plan.answered], [ua.Variant(self._last, ua.VariantType.Int64)])
+
+    def _um(self, offsets) -> str:
+        return ", ".join(f"{t} {v:.3f}" for t, v in zip(self.deployed.targets_, offsets))
+
+    def _left(self) -> str:
+        """What stays on the machine when the client ends (it does not zero the offsets)."""
+        if self._held is None and self._kept is not None:
+            return f"it wrote no offset: those the machine held stay (µm: {self._um(self._kept)})"
+        last = self._held if self._held is not None else self.limiter.offset
+        return f"the offsets it wrote last stay on the machine (µm: {self._um(last)})"
+
     async def _write(self, client, plan: _Plan, answered, values: np.ndarray) -> None:
         """The offsets, then (``answered``: the sample they answer, with an ``offset_sample`` node)
         that sample: one Write, applied in order.  Each offset in its node's type and unit
@@ -522,15 +547,21 @@ class Connection:
         if answered is not None and plan.answered is not None:
             nodes.append(plan.answered)
             data.append(ua.Variant(answered, ua.VariantType.Int64))
-        codes = await client.write_values(nodes, data, raise_on_partial_error=False)
-        failed = [(n, c) for n, c in zip(nodes, codes) if not c.is_good()]
-        refused = [(n, c) for n, c in failed if c.value in WRITE_REFUSED]
-        if refused:          # the node will not take it: no use retrying
-            raise WriteRefused("; ".join(f"{n.nodeid.to_string()}: {c.name}" for n, c in refused))
-        if failed:           # another failure (a server going down): retried as a lost link
-            raise ua.UaStatusCodeError(failed[0][1].value)
+        await _written(client, nodes, data)
         self._held = held
         self.written.append(held)
+
+
+async def _written(client, nodes: list, data: list) -> None:
+    """One Write of ``data`` to ``nodes``; a refused one is WriteRefused (no use retrying),
+    another failure (a server going down) a UaStatusCodeError, retried as a lost link."""
+    codes = await client.write_values(nodes, data, raise_on_partial_error=False)
+    failed = [(n, c) for n, c in zip(nodes, codes) if not c.is_good()]
+    refused = [(n, c) for n, c in failed if c.value in WRITE_REFUSED]
+    if refused:
+        raise WriteRefused("; ".join(f"{n.nodeid.to_string()}: {c.name}" for n, c in refused))
+    if failed:
+        raise ua.UaStatusCodeError(failed[0][1].value)
 
 
 def clock_now() -> float:

@@ -65,6 +65,11 @@ class OffsetLimiter:
             self._fresh_at = now - self.hold_s     # decay from here on, not twice over the same span
         return self.offset
 
+    @property
+    def started(self) -> bool:
+        """A fresh correction has been given (before it there is no offset of its own to hold)."""
+        return self._fresh_at is not None
+
     def decaying(self, now: float) -> bool:
         """No fresh correction for longer than ``hold_s`` (after a first one)."""
         return self._fresh_at is not None and now - self._fresh_at > self.hold_s

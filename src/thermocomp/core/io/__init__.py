@@ -1,5 +1,8 @@
 """Dataset contract, reading, validation and ingest (``shared/spec/DATA_FORMAT.md``)."""
 
+from pathlib import Path
+
+from ...base.log import once_per_run
 from .contract import (
                        ContractError,
                        Dataset,
@@ -18,6 +21,9 @@ from .read import (
     read_dataset,
     read_manifest,
 )
+
+# what the reader says is about a file: said once a stage run, however often it reads the file
+once_per_run(Path(__file__).parent)
 
 __all__ = [
     "INGEST_REPORT", "ContractError", "Dataset", "ReadOptions", "check_separate", "folder_splits", "ingest",

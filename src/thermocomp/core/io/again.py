@@ -161,17 +161,11 @@ def lines_in(m, spans) -> tuple[int, ...]:
     return tuple(out)
 
 
-_SAID: set = set()   # (file, size, mtime): said once per process (init reads a file twice)
-
-
 def said(path: Path, lines: tuple[int, ...], spans: Spans) -> None:
     """The warning: each header written again and each comment among the rows, by its file
-    line (once per file as it is)."""
-    stat = path.stat()
-    key = (str(Path(path).resolve()), stat.st_size, stat.st_mtime_ns)
-    if not spans or key in _SAID:
+    line (once a stage run, however often it reads the file: log.said_once)."""
+    if not spans:
         return
-    _SAID.add(key)
     warn(path, lines, line_numbers(path, spans.comments))
 
 

@@ -23,7 +23,7 @@ def named_as(temp: Path, where: str, located: Callable[[ContractError], Contract
     naming ``temp`` names ``where`` instead, its ``line N`` as ``<unit> N`` (a sheet's row;
     ``line_of(N)``: the file's line where the temporary file's lines are not its own)."""
     renamed = _Renamed(temp, where, unit, line_of or (lambda n: n))
-    logger.addFilter(renamed)
+    logger.filters.insert(0, renamed)      # (before log.said_once's: it compares what is read)
     try:
         yield
     except ContractError as exc:

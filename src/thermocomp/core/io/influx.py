@@ -50,7 +50,6 @@ UNIT_TAGS = frozenset({"unit", "units", "uom", "einheit", "unite", "unidad"})
 NUMBER_TYPES = frozenset({"double", "long", "unsignedlong"})
 BOOLEAN = "boolean"
 TIME, SERIES, VALUE = "_time", "_field", "_value"       # the long layout's header
-_SAID: set = set()                                      # files whose left-out series were said
 
 
 def is_influx(lines: list[str]) -> bool:
@@ -226,9 +225,7 @@ def influx_samples(path: Path, encoding: str) -> pd.DataFrame:
                                if left_out else ""), file=path)
     samples = pd.concat(parts, ignore_index=True)
     names = series_names([*keys, *left_out])
-    stat = path.stat()
-    if left_out and (str(path), stat.st_mtime_ns, stat.st_size) not in _SAID:
-        _SAID.add((str(path), stat.st_mtime_ns, stat.st_size))     # (once: init reads it twice)
+    if left_out:        # (once, though init reads it twice: log.said_once)
         logger.warning("%s: %d series of another type than a number or a boolean left out: %s",
                        path, len(left_out), listed([f"{names[k]} ({v})" for k, v in
                                                     left_out.items()], 8))

@@ -41,7 +41,6 @@ DATENUMS = (693962.0, 767011.0)               # 1900 .. 2100: a time field read 
 OBJECTS = ("table", "timetable", "datetime", "duration", "string", "categorical")
 SAVE_TABLE = ("save it as a struct of vectors (S = table2struct(T, 'ToScalar', true); "
               "save('f.mat', 'S')) or as CSV (writetable(T, 'f.csv'))")
-_SAID: set = set()
 NAME_FIELDS = ("name", "Name", "label", "id", "run")
 UNIT_FIELDS = ("units", "Units", "unit", "Unit")
 
@@ -260,11 +259,9 @@ def _time(values: np.ndarray, where: str, path: Path) -> np.ndarray:
     v = values.astype(float)
     finite = v[np.isfinite(v)]
     if finite.size and DATENUMS[0] <= finite.min() and finite.max() <= DATENUMS[1]:
-        said = re.sub(r"\(\d+\)", "(k)", where)     # (once, not for each run, each look)
-        if (str(path), said) not in _SAID:
-            _SAID.add((str(path), said))
-            logger.info(f"{path.name}: {said} read as MATLAB datenums (days since the year 0), "
-                        "timestamps to the millisecond (a datenum holds about 10 µs)")
+        said = re.sub(r"\(\d+\)", "(k)", where)   # (one text for every run: log.said_once)
+        logger.info(f"{path.name}: {said} read as MATLAB datenums (days since the year 0), "
+                    "timestamps to the millisecond (a datenum holds about 10 µs)")
         milli = np.round((v - DATENUM_1970) * 86400e3).astype("int64")
         return milli.astype("datetime64[ms]")
     return v
