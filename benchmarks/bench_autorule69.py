@@ -6,7 +6,7 @@ whose ``automore.jsonl`` rows and ``pred/RECORD.TARGET.npz`` arrays are read, ne
 
     python benchmarks/bench_autorule69.py folds WORK RECORD ...        # per fold, candidate / MLR
     python benchmarks/bench_autorule69.py fresh ROOT RECORD FAMILIES TARGETS  # the folds' fits re-scored
-    python benchmarks/bench_autorule69.py score WORK [WORK ...]         # the rule against shipped auto
+    python benchmarks/bench_autorule69.py score WORK [WORK ...]         # the src's auto against shipped
 
 ``folds``: per target, each candidate's fold measure (``blend.mean_fold_ratio`` on one fold's rows:
 its squared error over MLR's there), their mean (the votes' measure), its weight, and its test RMSE
@@ -78,6 +78,22 @@ auto = the stored weights; scored from the arrays, no refit):
 * ``make run``'s record (auto 0.648 / 0.843 / 0.994 µm) and ``fl_thermal`` 90/10 (auto mean
   2.481 µm, its own test only) unchanged or better, refitted with the rule.
 If it fails: the src change reverted, this bench kept, REFUSED with the numbers.
+
+Scored (2026-12-01, the rule's src at 55f67bed, automore69's arrays; the stored weights give the
+stored squares exactly, asserted; CPU 5.6 s): **REFUSED**, the src reverted (the rule kept as
+``benchmarks/autorule69_rule.patch``; ``score`` measures it with the patch applied).  Record mean
+test RMSE on the new campaigns, rule / shipped [90 %]: col5791 0.947 [0.945, 0.948], col6511
+0.970, lab5401 0.984, iso_b 0.981, mill1514 0.991, 12 others within 0.995-1.005, and two worse
+with the interval above +2 %: swiss5454 1.051 [1.049, 1.053] (lagbank 0.035 / 0.122 and
+hammerstein 0.018 gated, at fold measures 1.27-2.10, that test 0.57-0.75 x MLR) and col1514
+1.029 [1.028, 1.030] (arx on E_Y / E_X_mid / E_Y_mid, measures 1.02-1.95, tests 0.68-0.90 x MLR).
+Real losses 7 -> 6 (mill1514 becomes MLR: auto / MLR own 1.000, new 1.000); auto better than MLR
+on the new campaigns 13 -> 13 (swiss5454 0.95 -> 0.998); ``make run``'s record unchanged (0.648 /
+0.843 / 0.994); ``fl_thermal`` 90/10 2.481 -> 2.486 (E_ch1-5, refitted: shipped 2.894 / 3.444 / 1.803 / 1.994 /
+2.271, rule 2.859 / 3.411 / 1.803 / 1.996 / 2.360: E_ch5's lagbank / hammerstein / lstm 0.30 of
+the votes went to MLR; CPU 55.5 / 42.7 s).  Two parts of the bar fail.  The small votes of candidates losing on the
+folds' mean help as often as they harm: the folds rank the families against the new campaigns at
+a Spearman of 0.38, and a point gate on the same folds cannot sort them.
 """
 
 from __future__ import annotations
@@ -189,20 +205,36 @@ def fresh(root: Path, name: str, families: list[str], targets: list[str]) -> Non
                 print(f"  {fam:12s} " + "   ".join(" / ".join(f"{x:.2f}" for x in r) for r in ratios))
 
 
+def _label(a, reference: str) -> np.ndarray:
+    """The stored label (``y``: as measured) in the frame the squares were taken in: with
+    ``first_sample`` each campaign less its first measured value (reproduces every stored SSE)."""
+    y, c = a["y"].copy(), a["campaign"]
+    if reference == "first_sample":
+        for k in np.unique(c):
+            rows = np.flatnonzero((c == k) & np.isfinite(y))
+            y[c == k] -= y[rows[0]]
+    return y
+
+
+def _squares(a, y, w: dict, ids: list[str], none: dict) -> dict:
+    """``{campaign: (samples, SSE, SSE none)}`` of the blend ``w`` of the stored predictions."""
+    pred = sum((v * a[f"pred_{n}"] for n, v in w.items() if v > 0), np.zeros(len(y)))
+    keep, err = np.isfinite(y) & np.isfinite(pred), (y - pred) ** 2
+    return {c: (int((keep & (a["campaign"] == k)).sum()), float(err[keep & (a["campaign"] == k)].sum()),
+                none[c][2]) for k, c in enumerate(ids)}
+
+
 def score(works: list[Path]) -> None:
     """The rule (the src's weights now) against shipped auto (the stored weights), per record."""
     lines, sums, worse = [], [], []
     for name, (work, r) in _rows(works).items():
-        ids = r["own"] + r["new"]
-        rule = {}
-        for t in r["weights"]:
+        ids, rule = r["own"] + r["new"], {}
+        for t, stored in r["weights"].items():
             a = np.load(work / "pred" / f"{name}.{t}.npz")
-            pred = sum((v * a[f"pred_{n}"] for n, v in weights(a).items() if v > 0),
-                       np.zeros(len(a["y"])))
-            err = (a["y"] - pred) ** 2
-            keep = np.isfinite(a["y"]) & np.isfinite(pred)
-            rule[t] = {c: (int(keep[a["campaign"] == k].sum()), float(err[keep & (a["campaign"] == k)].sum()),
-                           r["squares"]["auto"][t][c][2]) for k, c in enumerate(ids)}
+            y, shipped = _label(a, r["reference"]), r["squares"]["auto"][t]
+            again = _squares(a, y, stored, ids, shipped)   # the stored weights give the stored squares
+            assert all(np.isclose(again[c][1], shipped[c][1], rtol=1e-6, atol=1e-9) for c in ids), (name, t)
+            rule[t] = _squares(a, y, weights(a), ids, shipped)
         row = dict(r, squares={"auto": rule, **{m: v for m, v in r["squares"].items() if m != "auto"},
                                "shipped": r["squares"]["auto"]})
         s = automore.summary(row)

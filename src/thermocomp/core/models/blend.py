@@ -149,11 +149,6 @@ def vote_weights(predictions: np.ndarray, y: np.ndarray, fold: np.ndarray, base:
     if base_column is not None:
         sure = np.mean(resampled < 1.0, axis=0)           # P(beats MLR) over the resamples
         sure[base_column] = 1.0
-        # the folds as they are (no resample) must put it below MLR: resamples over-drawing one
-        # fold it won gave votes to candidates losing on the folds' mean (autorule69: mill1514)
-        sure[[mean_fold_ratio(squared[:, j], squared[:, -1], unit) >= 1.0
-              for j in range(predictions.shape[1])]] = 0.0
-        sure[base_column] = 1.0
         w, doubt = w * sure, w * (1.0 - sure)
         w[base_column] += doubt.sum()
     w[w < MIN_WEIGHT] = 0.0
