@@ -257,7 +257,7 @@ def score(works: list[Path]) -> None:
 def main(argv: list[str]) -> int:
     what, rest = (argv or [""])[0], argv[1:]
     start = cpu_seconds()
-    os.environ.setdefault("OUT", "/tmp/bench_autorule69")
+    os.environ.setdefault("OUT", "/tmp/autorule69-out")   # bench_auto_rank's (nothing written)
     if what == "folds":
         folds(Path(rest[0]), rest[1:])
     elif what == "fresh":
