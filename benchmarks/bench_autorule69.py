@@ -205,17 +205,6 @@ def fresh(root: Path, name: str, families: list[str], targets: list[str]) -> Non
                 print(f"  {fam:12s} " + "   ".join(" / ".join(f"{x:.2f}" for x in r) for r in ratios))
 
 
-def _label(a, reference: str) -> np.ndarray:
-    """The stored label (``y``: as measured) in the frame the squares were taken in: with
-    ``first_sample`` each campaign less its first measured value (reproduces every stored SSE)."""
-    y, c = a["y"].copy(), a["campaign"]
-    if reference == "first_sample":
-        for k in np.unique(c):
-            rows = np.flatnonzero((c == k) & np.isfinite(y))
-            y[c == k] -= y[rows[0]]
-    return y
-
-
 def _squares(a, y, w: dict, ids: list[str], none: dict) -> dict:
     """``{campaign: (samples, SSE, SSE none)}`` of the blend ``w`` of the stored predictions."""
     pred = sum((v * a[f"pred_{n}"] for n, v in w.items() if v > 0), np.zeros(len(y)))
@@ -231,7 +220,7 @@ def score(works: list[Path]) -> None:
         ids, rule = r["own"] + r["new"], {}
         for t, stored in r["weights"].items():
             a = np.load(work / "pred" / f"{name}.{t}.npz")
-            y, shipped = _label(a, r["reference"]), r["squares"]["auto"][t]
+            y, shipped = automore.label(a, r["reference"]), r["squares"]["auto"][t]
             again = _squares(a, y, stored, ids, shipped)   # the stored weights give the stored squares
             assert all(np.isclose(again[c][1], shipped[c][1], rtol=1e-6, atol=1e-9) for c in ids), (name, t)
             rule[t] = _squares(a, y, weights(a), ids, shipped)
