@@ -4,6 +4,11 @@ Usage (from the repository root; ``PYTHONPATH=<tree>/src`` chooses the code meas
 
     python benchmarks/bench_pen0b69.py rows ROOT OUT [GROUP ...]   # -> OUT (JSON lines)
     python benchmarks/bench_pen0b69.py compare BEFORE AFTER        # the bar, row by row
+    python benchmarks/bench_pen0b69.py square TEST                 # the mend on speedsq68's record
+
+``square``: TEST is ``git show 906279d5:tests/apps/test_diagnose_state_square68.py`` saved to a
+file, the code measured a tree with ``git show 42d3746d -- src/.../candidates.py`` applied
+(speedsq68's square candidate, not in main): E_Z diagnosed, test before / after, the final fit.
 
 ROOT: a ``bench_remeasure62.py write`` root (a copy: the null and fresh draws are written into
 it when missing).  GROUP: bench_remeasure62's diagnose groups (default all: cases few fresh null
@@ -52,6 +57,29 @@ The bar (the rule is kept only if all hold; else the src change is reverted, REF
    ``tests/shell/test_replay*.py``, ``tests/shell/test_stranger6*.py``, ``tests/apps/test_diagnose*``.
 3. The refits' CPU (the rows' ``AugmentedRegressor.fit`` s, summed) not above the base's by
    more than 10 % (two runs on shared cores).
+
+Measured (2026-12-01, stop 69; before: 3d65c78c's src from ``git archive``, after: 71439525's;
+2 shared cores; CPU user + sys of each rows run: before 284 s, after 259 s)
+-------------------------------------------------------------------------------------------
+**Bar passed (ADOPTED).**
+
+1. The 139 rows: accepted effects identical on all 139, test RMSE after diagnose identical to
+   full precision on all 139 (0 rows > 1e-6 relative off, 0 exempted, 0 > 2 % worse).  None of
+   their deployed models has a penalty of 0 (the probe saw 0 penalty-0 refits of a diagnosed
+   MLR with effect features): the rows show the change harms nothing they deploy, not the mend.
+   The mend, on speedsq68's spindle record (``test_diagnose_state_square68.py`` of 906279d5,
+   seed 6805, 6 train / 2 test runs) with speedsq68's square candidate (42d3746d's
+   ``candidates.py``) applied to both codes for this trace only: ``diagnose`` accepts the speed's
+   square (S_speed in rpm, its square ~1e8) at penalty 0 on both; E_Z test 1.506 before diagnose,
+   after 39.48 um (before: the temperatures' coefficients -2.7e-14 .. 4.6e-15) -> 0.290 um
+   (after: -3.503, -5.495 on the front and head against the law's -3.5, -5.5; the square
+   -4.02e-8 against -4e-8).
+2. ``tests/apps/test_diagnose_pen0b69.py`` passes (fails on 3d65c78c: coefficients -7.6e-15,
+   -8.6e-16 for -3, 2; held-out RMSE 3.76 -> 0.056 um); stranger66's initial-state stream
+   1.8e-15 off the batch (the first form: 1.2e-2); ``tests/shell/test_replay*.py``,
+   ``test_stranger6*.py``, ``tests/apps/test_diagnose*``: 130 passed (110 s CPU).
+3. Refit CPU (every ``AugmentedRegressor.fit`` of the 139 rows): 1.533 -> 1.521 s; 300 refits of
+   the gap's record (1440 rows): 0.92-1.33 s before, 1.02-1.23 s after (three runs each).
 """
 
 from __future__ import annotations
@@ -186,12 +214,41 @@ def compare(before: Path, after: Path) -> int:
     return int(failed)
 
 
+def square(test: Path) -> None:
+    import importlib.util
+
+    from thermocomp.apps.diagnose import SearchOptions, diagnose
+    from thermocomp.apps.diagnose.augmented import AugmentedRegressor
+    from thermocomp.core.compensator import Compensator
+    from thermocomp.core.models import MLR
+
+    spec = importlib.util.spec_from_file_location("square68", test)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    fits, fit = [], AugmentedRegressor.fit
+
+    def kept(self, X, y, context=None):
+        fits.append(fit(self, X, y, context))
+        return fits[-1]
+
+    AugmentedRegressor.fit = kept
+    d = diagnose(module.spindle(), Compensator(MLR()), targets=["E_Z"],
+                 options=SearchOptions(max_effects=1))
+    j = d.to_json("E_Z")
+    print("accepted", [e["effect"] for e in j["effects"] if e["accepted"]])
+    print(f"E_Z test {j['before']['test_rmse']:.4g} -> {j['after']['test_rmse']:.4g} um; final fit "
+          f"alpha {fits[-1].alpha}, coef {fits[-1].estimator_.coef_}")
+
+
 def main(argv: list[str]) -> int:
     if argv[0] == "rows":
         rows(Path(argv[1]).resolve(), Path(argv[2]).resolve(), argv[3:])
         return 0
     if argv[0] == "compare":
         return compare(Path(argv[1]), Path(argv[2]))
+    if argv[0] == "square":
+        square(Path(argv[1]))
+        return 0
     raise SystemExit(__doc__)
 
 

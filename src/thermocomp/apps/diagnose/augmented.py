@@ -70,8 +70,10 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
     alpha : float >= 0, dict target -> float, or None
         Ridge penalty on the standardised effect features when the base is an
         MLR (chosen by ``diagnose``'s cross-validation); ``None`` or 0: the
-        base estimator fits them as plain inputs.  Other bases ignore it (they
-        fit their own way: PCR truncates, ARX selects, lagbank has its ridge).
+        base estimator fits them as plain inputs (an MLR on the columns scaled
+        to unit spread, so its cut-off is fair to every unit).  Other bases
+        ignore it (they fit their own way: PCR truncates, ARX selects, lagbank
+        has its ridge).
 
     Attributes
     ----------
