@@ -19,6 +19,7 @@ from ...core.context import (
     scalar,
 )
 from ...core.gains import GainTerm, gain_at, gain_terms, within
+from ...core.models._campaign_ls import LSTSQ_TOL
 from ...core.models.base import measured_rows
 from ...core.models.linear import MLR
 from ...core.timerule import CLOCK_START, median_step, step_time
@@ -26,6 +27,15 @@ from .features import AMBIENT_CENTRE_C, Effect, as_effect, design, frames, initi
 from .shrink import PartialRidgePath
 
 MODEL_NAME = "diagnosed"   # the model diagnose writes (conf/model/diagnosed.yaml, "<family>+diagnosed")
+
+
+def _spread(Z: np.ndarray, fit_intercept: bool) -> np.ndarray:
+    """Each column's spread on the rows: its standard deviation (root mean square without an
+    intercept); 1 for a column that varies by less than the cut-off of the columns' median
+    spread: rounding, left where the cut-off drops it (stranger66: a lag's initial-state
+    direction along offsets that sum to 0 varies by ~1e-16; scaled up, it took -1.4e15)."""
+    spread = Z.std(axis=0) if fit_intercept else np.sqrt(np.mean(Z ** 2, axis=0))
+    return np.where(spread > LSTSQ_TOL * np.median(spread), spread, 1.0)
 
 
 class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
@@ -60,8 +70,10 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
     alpha : float >= 0, dict target -> float, or None
         Ridge penalty on the standardised effect features when the base is an
         MLR (chosen by ``diagnose``'s cross-validation); ``None`` or 0: the
-        base estimator fits them as plain inputs.  Other bases ignore it (they
-        fit their own way: PCR truncates, ARX selects, lagbank has its ridge).
+        base estimator fits them as plain inputs (an MLR on the columns scaled
+        to unit spread, so its cut-off is fair to every unit).  Other bases
+        ignore it (they fit their own way: PCR truncates, ARX selects, lagbank
+        has its ridge).
 
     Attributes
     ----------
@@ -124,7 +136,16 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             for e in self.effects_]
         Z = self._design(X, context)
         base = self.estimator if self.estimator is not None else MLR()
-        self.estimator_ = clone(base).fit(Z, y, context=context)
+        # an MLR with effect features fits them scale-fair: LinearRegression's relative cut-off
+        # (1e-6) on the raw design dropped every temperature beside a state in a large unit (a
+        # power in mW, a speed's square in rpm^2: coefficients ~1e-14); on columns of unit
+        # spread it drops only a direction collinear there (pen0b69; an exact fit gave a lag's
+        # collinear initial-state offsets -1.4e15, the stream 1e-3 off the batch)
+        scale = (_spread(Z[measured], base.fit_intercept)
+                 if isinstance(base, MLR) and Z.shape[1] > X.shape[1] else None)
+        self.estimator_ = clone(base).fit(Z if scale is None else Z / scale, y, context=context)
+        if scale is not None:
+            self.estimator_.coef_ = self.estimator_.coef_ / scale   # the intercept is the same
         if alpha and isinstance(self.estimator_, MLR) and Z.shape[1] > X.shape[1]:
             # the same law, its effect coefficients shrunk (streams as any MLR does)
             # the effects' features run on every row, the law is the measured rows' least squares
