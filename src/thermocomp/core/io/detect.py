@@ -29,6 +29,7 @@ from .historian import held_wide, long_as_wide, wide_options
 from .historian_layout import long_layout
 from .jsonlines import is_json_lines
 from .layout import header_line
+from .lvm import is_lvm
 from .manifest import is_text, read_manifest
 from .matfile import is_mat, is_v73
 from .options import ROLE_PATTERNS, RUN_ROLE
@@ -120,7 +121,8 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     files = [sample_file(src, manifest)]
     if (src / MANIFEST).is_file():
         files.append(src / MANIFEST)
-    found = [detect(f) for f in files if is_text(f) and not is_utf16(f)]   # (UTF-16: its mark)
+    found = [detect(f) for f in files                # (UTF-16: its mark; an .lvm is text)
+             if (is_text(f) or is_lvm(f)) and not is_utf16(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
 
@@ -140,8 +142,9 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
                 f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
     if is_lab_file(sample):         # a TDMS log, a MATLAB file: the CSV its channels are written to
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
+                else "a LabVIEW Measurement File" if is_lvm(sample)
                 else "a TDMS log") + " (its channels as columns)"
-        with lab_as_csv(sample) as text:
+        with lab_as_csv(sample, encoding=opts.encoding) as text:
             opts, header, first, layout = head(text, csv_options(opts))
             layout = layout.replace("a historian's long file (", "channels at their own rates, "
                                     "written long (", 1)

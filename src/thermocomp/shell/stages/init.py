@@ -69,7 +69,7 @@ def long_period(sample, given: dict) -> dict | None:
     period is given."""
     opts = io.ReadOptions.from_cfg(given)
     if is_lab_file(sample) and opts.resample_s is None:   # a TDMS log's channels at two rates
-        with lab_as_csv(sample) as text:
+        with lab_as_csv(sample, encoding=opts.encoding) as text:
             return _long_period(text, given, csv_options(opts))
     return _long_period(sample, given, opts)
 
