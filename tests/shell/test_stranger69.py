@@ -115,7 +115,9 @@ def test_init_and_run_on_the_lvm_folder(tmp_path, capsys):
     assert main(["init", str(folder), "data.roles.state=['X-Achse']",
                  f"out={tmp_path / 'init'}"]) == 0
     said = capsys.readouterr().out
-    assert "ZP1200_Lauf_01.lvm: a LabVIEW Measurement File (its channels as columns)" in said
+    # the file's own text said, not the temporary CSV's (',' and '.')
+    assert ("ZP1200_Lauf_01.lvm: a LabVIEW Measurement File (its channels as columns), encoding "
+            "cp1252 (not UTF-8), Separator Tab, Decimal_Separator ','") in said
     assert "timestamps from 2027-09-06T06:00:00" in said
     # a set point in the temperature's unit is told the control, no sensor: a state
     assert "Sollwert Ölkühler [Deg C]  state        S_Sollwert_Ölkühler" in said
@@ -167,3 +169,22 @@ def test_a_folder_of_files_of_no_kind_read_is_refused_naming_what_it_holds(tmp_p
     refused(["init", str(folder), f"out={tmp_path / 'init'}"], capsys,
             "manifest not found (a dataset folder needs campaigns.csv); its files, .xyz (2), "
             ".docx (1), are no kind read as a run (.csv, .dat")
+
+
+def test_x_columns_multi_times_each_channel_by_its_own_x_column(tmp_path):
+    """``X_Columns Multi``: an ``X_Value`` column before each channel, here the second channel's
+    X 30 s after the first's: each channel read at its own times (onto the 30 s grid)."""
+    lines = ["LabVIEW Measurement\t", "Separator\tTab", "Decimal_Separator\t.",
+             "X_Columns\tMulti", "Date\t2027/09/06", "Time\t06:00:00.0000000000",
+             "***End_of_Header***\t", "", "Channels\t2\t", "Samples\t4\t4\t",
+             "Date\t2027/09/06\t2027/09/06\t", "Time\t06:00:00.00\t06:00:30.00\t",
+             "Y_Unit_Label\tDeg C\tum\t", "X0\t0.0\t30.0\t", "Delta_X\t60.0\t60.0\t",
+             "***End_of_Header***\t", "X_Value\tLuft\tX_Value\tdX\tComment"]
+    lines += [f"{k * 60.0}\t{20 + 0.1 * k}\t{k * 60.0 + 30}\t{0.5 * k}" for k in range(4)]
+    path = tmp_path / "Lauf.lvm"
+    path.write_text("\r\n".join(lines) + "\r\n", encoding="utf-8")
+    ds, _ = read_dataset(path, {"roles": {"error": ["dX"]}, "resample_s": 30})
+    frame = ds.campaigns["Lauf"]
+    luft = dict(zip(frame["time"], frame["T_Luft"]))
+    dx = dict(zip(frame["time"], frame["E_dX"]))
+    assert luft[120.0] == pytest.approx(20.2) and dx[150.0] == pytest.approx(1.0)

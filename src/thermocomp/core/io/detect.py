@@ -29,7 +29,7 @@ from .historian import held_wide, long_as_wide, wide_options
 from .historian_layout import long_layout
 from .jsonlines import is_json_lines
 from .layout import header_line
-from .lvm import is_lvm
+from .lvm import is_lvm, lvm_layout
 from .manifest import is_text, read_manifest
 from .matfile import is_mat, is_v73
 from .options import ROLE_PATTERNS, RUN_ROLE
@@ -144,11 +144,16 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
                 else "a LabVIEW Measurement File" if is_lvm(sample)
                 else "a TDMS log") + " (its channels as columns)"
-        with lab_as_csv(sample, encoding=opts.encoding) as text:
+        encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
+        with lab_as_csv(sample, encoding=encoding) as text:
             opts, header, first, layout = head(text, csv_options(opts))
             layout = layout.replace("a historian's long file (", "channels at their own rates, "
                                     "written long (", 1)
-            return opts, header, first, layout.replace(f"{text.name}: ", f"{sample.name}: {kind}, ", 1)
+            # (stranger69: the temporary CSV's ',' and '.' were said as the file's)
+            own = lvm_layout(sample, encoding) if is_lvm(sample) else ""
+            layout = re.sub(r"delimiter '[^']*', decimal '[^']*'", own, layout, count=1)
+            return opts, header, first, layout.replace(
+                f"{text.name}: ", f"{sample.name}: {kind}" + (", " if own else ""), 1)
     if is_json_lines(sample) or is_fixed_width(sample, opts.encoding):
         kind = "JSON Lines (nested keys joined with '.')" if is_json_lines(sample) else \
             "a fixed-width table (its columns told by the numbers)"

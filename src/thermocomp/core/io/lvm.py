@@ -79,6 +79,19 @@ def lvm_records(path: Path, encoding: str = UTF8) -> list[Record]:
     return [_record(path, header, segments, sep, decimal)]
 
 
+def lvm_layout(path: Path, encoding: str = UTF8) -> str:
+    """What ``thermocomp init`` says of the file's own text: ``encoding cp1252 (not UTF-8),
+    Separator Tab, Decimal_Separator ','``."""
+    with open(path, encoding=text_codec(encoding), errors="replace") as f:
+        lines = [f.readline() for _ in range(40)]
+    said = next((ln.split(None, 1)[1].strip() for ln in lines if ln.startswith("Separator")
+                 and len(ln.split(None, 1)) > 1), "Tab")
+    decimal = next((ln.split(None, 1)[1].strip() for ln in lines
+                    if ln.startswith("Decimal_Separator") and len(ln.split(None, 1)) > 1), ".")
+    charset = "" if encoding == UTF8 else f"encoding {encoding} (not UTF-8), "
+    return f"{charset}Separator {said}, Decimal_Separator {decimal!r}"
+
+
 def _separator(lines: list[str]) -> str:
     """The ``Separator`` key's character (tab where not said): found before the lines are split,
     as it splits them."""
