@@ -112,9 +112,11 @@ def test_segments_without_an_x_column_are_timed_by_their_own_headers(tmp_path):
 
 def test_init_and_run_on_the_lvm_folder(tmp_path, capsys):
     folder = _folder(tmp_path / "runs")
-    assert main(["init", str(folder), "data.roles.state=['X-Achse']",
-                 f"out={tmp_path / 'init'}"]) == 0
+    assert main(["init", str(folder), f"out={tmp_path / 'init'}"]) == 0
     said = capsys.readouterr().out
+    # an axis named alone, in mm, spanning 300 mm: its position (it was refused as either)
+    assert "'X-Achse [mm]' spans 300 mm: more than a thermal error does (5 mm)" in said
+    assert "X-Achse [mm]               state        S_X-Achse" in said
     # the file's own text said, not the temporary CSV's (',' and '.')
     assert ("ZP1200_Lauf_01.lvm: a LabVIEW Measurement File (its channels as columns), encoding "
             "cp1252 (not UTF-8), Separator Tab, Decimal_Separator ','") in said

@@ -360,18 +360,28 @@ def flags_as_states(roles: dict, headers: list[str], opts) -> dict:
 TRAVEL_UM = 5000.0
 
 
+def axis_lengths(header: list[str], roles: dict, opts) -> list[str]:
+    """The patterns of the headers no role names that are a length named by its axis alone
+    (``X-Achse [mm]``: its error or its position, :data:`.units.AMBIGUOUS`): ``init`` reads them
+    as errors for a look at their span (:func:`travel_headers`), never keeps them so."""
+    return [_GLOB.sub(r"[\1]", _unit_of(h, opts)[0]) for h in header if h.strip()
+            and not _named(h, roles, opts) and role_by_unit(*_unit_of(h, opts)) == AMBIGUOUS]
+
+
 def travel_headers(ds, names: dict, given_roles: dict, opts) -> dict:
     """Header -> its span (mm) for each header proposed as an error by its length unit (no
-    ``data.roles.error`` pattern of the user names it) whose values span more than
-    :data:`TRAVEL_UM` over ``ds``: an axis position, not a thermal error (stranger64: a portal
-    mill's ``Z ram [mm]``, 0-800 mm, was proposed the error ``E_Z_ram``)."""
+    ``data.roles.error`` pattern of the user names it), or named by its axis alone
+    (:func:`axis_lengths`, stranger69: ``X-Achse [mm]``, 150-500 mm, was refused as either),
+    whose values span more than :data:`TRAVEL_UM` over ``ds``: an axis position, not a thermal
+    error (stranger64: a portal mill's ``Z ram [mm]``, 0-800 mm, was proposed the error
+    ``E_Z_ram``)."""
     given = {k: list(v) for k, v in given_roles.items() if k == "error" and isinstance(v, list)}
     out = {}
     for header, name in names.items():
         if not str(name).startswith("E_") or role(header) == "E" or (
                 given and matching_roles(header, given)):
             continue
-        if role_by_unit(*_unit_of(header, opts)) != "error":
+        if role_by_unit(*_unit_of(header, opts)) not in ("error", AMBIGUOUS):
             continue
         values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
         span = float(values.max() - values.min()) if len(values) else 0.0
