@@ -52,6 +52,22 @@ What is measured (written before anything ran)
 
 No rule is adopted from these records: they are a check, not a tuning set.
 
+Measured (2026-12-01, every step once, 2 shared cores, other sessions' load; docs/own-data.md)
+----------------------------------------------------------------------------------------------
+``init gpg_a`` at 51165c81: the folder "manifest not found (a dataset folder needs
+campaigns.csv)"; one file "a record's file is .csv, ... .mat, not .lvm"; renamed ``.txt``, "no
+column reads as a measured error ... the numeric columns: none".  Mended (68bca30b, 15c2029e,
+c290fdf6): ``.lvm`` read as its channels (core/io/lvm.py), ``cp1252`` detected, the set point a
+state, ``X-Achse [mm]`` (350 mm) a state by its span; one try each (5.0 / 4.9 s CPU).
+``matrix`` (test RMSE dX / dY / dZ µm; before 11.94 / 3.16 / 12.18 and 12.16 / 3.24 / 11.89):
+6901 mlr 4.04 / 0.31 / 0.31, hammerstein 1.98 / 0.40 / 0.26, auto 1.98 / 0.34 / 0.28; 6902 mlr
+4.38 / 0.23 / 0.31, hammerstein 2.68 / 0.21 / 0.57, auto 2.68 / 0.22 / 0.30.  Every cell: replay =
+run (<= 1.3e-15), |stream - batch| <= 2.8e-14, promote = run, C pack passed.  ``diagnose`` mlr:
+NOT FOUND at the defaults (the planted S_X-Achse x T_Rundtisch rise ranked first, CV gain 89 %,
+but 5 / 3 forward test blocks: min p 0.031 / 0.12); FOUND with ``diagnose.cv=campaigns`` (dX
+4.04 -> 0.38, 4.38 -> 0.68; 9.5 / 9.9 s CPU).  ``monitor`` mlr: healthy 0 events; +3 K on
+``Schleifkopf`` at 10 h excluded at once.
+
     ... bench_stranger69.py init ROOT gpg_a [override ...]   # init as a stranger, one try
     ... bench_stranger69.py matrix ROOT gpg_a                # run -> replay -> promote -> C
     ... bench_stranger69.py table ROOT gpg_a
