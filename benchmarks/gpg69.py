@@ -80,22 +80,20 @@ hour from 10:00 to 16:00, kept to the run's end.  The last run(s) are held out b
 from __future__ import annotations
 
 from dataclasses import dataclass
-from datetime import datetime, timedelta
+from datetime import datetime
 
 import numpy as np
-from scenario_tail import LoggedStateEffect, PlantedScenario, held, merge, working
+from scenario_tail import DayRunsScenario, LoggedStateEffect, day_runs, merge, working
 
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel
 from thermocomp.apps.sim.campaign import Machine
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork
-from thermocomp.apps.sim.scenario import CampaignPlan
 from thermocomp.apps.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.apps.sim.sources import ConstantWhileRunning, HeatSource, SpeedLosses
 
 N_WHEEL, X_MM, OIL_SET = "S_n_wheel_rpm", "S_X_mm", "S_oil_set_C"
 START = datetime(2027, 9, 6, 6)          # a Monday, 06:00
 RUN_DAYS = (0, 2, 4, 7, 9, 11, 14, 16)   # the runs' first days from START
-RUN_H = 24.0
 PARKED_MM = 500.0
 TABLE_UM_PER_MM_K = -0.0115              # the planted radial growth of the table
 
@@ -195,17 +193,12 @@ def programme(rng, period_s: float, duration_s: float):
 
 
 @dataclass(eq=False, repr=False, kw_only=True)
-class Gpg69(PlantedScenario):
+class Gpg69(DayRunsScenario):
     """Eight 24 h runs of the gear profile grinding machine (one campaign each)."""
 
     name = "gpg69"
     year = 2027
     planted = TableRadius
-
-    runs: int = 8
-    run_h: float = RUN_H
-    sample_period_s: float = 60.0
-    weeks_later: int = 0
 
     def machine(self):
         return machine()
@@ -215,25 +208,9 @@ class Gpg69(PlantedScenario):
                 "E_X": "S_X_mm x rise(table)"}
 
     def plans(self, rng):
-        period = float(self.sample_period_s)
-        duration = float(self.run_h) * 3600.0 - period
         hall = AmbientModel(annual_mean_c=21.0, annual_amplitude_c=0.0, daily_amplitude_c=1.2,
                             daily_peak_hour=15.0, drift_sd_c=0.5, drift_tau_h=12.0)
-        plans = []
-        for k in range(int(self.runs)):
-            first_day = RUN_DAYS[k % len(RUN_DAYS)] + 21 * (k // len(RUN_DAYS))
-            start = START + timedelta(days=first_day, weeks=int(self.weeks_later))
-            run_rng = np.random.default_rng([int(self.seed), k])
-            n_wheel, x_mm, oil_set = (held(s) for s in programme(run_rng, period, duration))
-            plans.append(CampaignPlan(
-                cid=f"run{k + 1:02d}", split="train",
-                start_s=(start - datetime(self.year, 1, 1)).total_seconds(), duration_s=duration,
-                rng=run_rng, ambient=hall, programme=None,
-                states={N_WHEEL: n_wheel, X_MM: x_mm, OIL_SET: oil_set},
-                written=(N_WHEEL, X_MM, OIL_SET), sample_period_s=period, error_period_s=None,
-                cooldown_s=2 * DAY_S, notes=f"run {k + 1}, {self.run_h:g} h from "
-                f"{start:%a %Y-%m-%d %H:%M}", manifest={}))
-        return plans
+        return day_runs(self, START, RUN_DAYS, hall, programme, (N_WHEEL, X_MM, OIL_SET))
 
 
 __all__ = ["Gpg69", "machine"]
