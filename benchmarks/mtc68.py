@@ -77,15 +77,14 @@ last run(s) are held out by ``data.test_fraction``.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from datetime import datetime, timedelta
+from datetime import datetime
 
 import numpy as np
-from scenario_tail import LoggedStateEffect, PlantedScenario, either, held, merge, working
+from scenario_tail import DayRunsScenario, LoggedStateEffect, day_runs, either, merge, working
 
 from thermocomp.apps.sim.ambient import DAY_S, AmbientModel
 from thermocomp.apps.sim.campaign import Machine
 from thermocomp.apps.sim.network import Link, Node, ThermalNetwork
-from thermocomp.apps.sim.scenario import CampaignPlan
 from thermocomp.apps.sim.sensors import AMBIENT, TemperatureSensor
 from thermocomp.apps.sim.sources import ConstantWhileRunning, SpeedLosses
 
@@ -93,7 +92,6 @@ N_MAIN, N_TOOL, B = "S_n_main_rpm", "S_n_tool_rpm", "S_B_deg"
 CUTTING = "_cutting"                     # not written: either spindle turns
 START = datetime(2027, 6, 14, 6)         # a Monday, 06:00
 RUN_DAYS = (0, 2, 4, 7, 9, 11, 14, 16)   # the runs' first days from START
-RUN_H = 24.0
 TOOL_UM_PER_K = -2.9                     # the planted axial growth of the tool spindle
 
 NODES = (Node("bed", 3e6, 25.0), Node("head", 3e5, 6.0), Node("main_bearing", 4e4, 2.0),
@@ -175,17 +173,12 @@ def programme(rng, period_s: float, duration_s: float):
 
 
 @dataclass(eq=False, repr=False, kw_only=True)
-class Mtc68(PlantedScenario):
+class Mtc68(DayRunsScenario):
     """Eight 24 h runs of the turn-mill centre (one campaign each)."""
 
     name = "mtc68"
     year = 2027
     planted = ToolAxis
-
-    runs: int = 8
-    run_h: float = RUN_H
-    sample_period_s: float = 60.0
-    weeks_later: int = 0
 
     def machine(self):
         return machine()
@@ -195,25 +188,10 @@ class Mtc68(PlantedScenario):
                 "E_X": "cos(B)", "E_Z": "sin(B)"}
 
     def plans(self, rng):
-        period = float(self.sample_period_s)
-        duration = float(self.run_h) * 3600.0 - period
         hall = AmbientModel(annual_mean_c=20.5, annual_amplitude_c=0.0, daily_amplitude_c=1.5,
                             daily_peak_hour=15.0, drift_sd_c=0.5, drift_tau_h=12.0)
-        plans = []
-        for k in range(int(self.runs)):
-            first_day = RUN_DAYS[k % len(RUN_DAYS)] + 21 * (k // len(RUN_DAYS))
-            start = START + timedelta(days=first_day, weeks=int(self.weeks_later))
-            run_rng = np.random.default_rng([int(self.seed), k])
-            n_main, n_tool, b = (held(s) for s in programme(run_rng, period, duration))
-            plans.append(CampaignPlan(
-                cid=f"run{k + 1:02d}", split="train",
-                start_s=(start - datetime(self.year, 1, 1)).total_seconds(), duration_s=duration,
-                rng=run_rng, ambient=hall, programme=None,
-                states={N_MAIN: n_main, N_TOOL: n_tool, B: b, CUTTING: either(n_main, n_tool)},
-                written=(N_MAIN, N_TOOL, B), sample_period_s=period, error_period_s=None,
-                cooldown_s=2 * DAY_S, notes=f"run {k + 1}, {self.run_h:g} h from "
-                f"{start:%a %Y-%m-%d %H:%M}", manifest={}))
-        return plans
+        return day_runs(self, START, RUN_DAYS, hall, programme, (N_MAIN, N_TOOL, B),
+                        lambda s: {CUTTING: either(s[N_MAIN], s[N_TOOL])})
 
 
 __all__ = ["Mtc68", "machine"]

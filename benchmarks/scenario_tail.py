@@ -6,6 +6,9 @@
 * :func:`weekday_shift`: the machine powered on weekdays within the shift's hours;
   :func:`working`: a run's working hours, 16 h from its start each day; :func:`either`: a state
   on while either of two is (tsc66, mtc68);
+* :func:`day_runs`: the plans of a programme of independent day runs (mtc68, gpg69: each run
+  from a day of a list at one hour, its own generator and clock, a rest before it), and
+  :class:`DayRunsScenario`, its parameters declared once;
 * :class:`LoggedStateEffect`: the base of a planted effect of a LOGGED state (its column, so
   declared) on the errors, with a node's rise from the campaign's first sample;
 * :class:`PlantedScenario`: a :class:`~thermocomp.apps.sim.scenario.DeclaredScenario` (its
@@ -26,12 +29,15 @@ run on the code before and after the move: the 77 files (records, ``campaigns.cs
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+from datetime import datetime, timedelta
 from typing import ClassVar
 
 import numpy as np
 
+from thermocomp.apps.sim.ambient import DAY_S
 from thermocomp.apps.sim.effects import UndeclaredEffect
-from thermocomp.apps.sim.scenario import DeclaredScenario
+from thermocomp.apps.sim.scenario import CampaignPlan, DeclaredScenario
 
 
 def merge(steps: list) -> list:
@@ -74,6 +80,31 @@ def either(a, b):
     def at(t_rel):
         return ((a(t_rel) != 0) | (b(t_rel) != 0)).astype(float)
     return at
+
+
+def day_runs(scenario, start: datetime, run_days: tuple, hall, programme, written: tuple,
+             derived=None) -> list:
+    """The plans of ``scenario.runs`` independent runs of ``scenario.run_h`` h at
+    ``scenario.sample_period_s``: run k from ``start`` + its day of ``run_days`` (3 weeks later
+    per round of the list, ``scenario.weeks_later`` more), its own generator ``[seed, k]`` (the
+    ``written`` states' step lists drawn from it by ``programme(rng, period, duration)``, held;
+    ``derived(states)``: more states, not written), after a 2-day rest in the ``hall``."""
+    period = float(scenario.sample_period_s)
+    duration = float(scenario.run_h) * 3600.0 - period
+    plans = []
+    for k in range(int(scenario.runs)):
+        first_day = run_days[k % len(run_days)] + 21 * (k // len(run_days))
+        at = start + timedelta(days=first_day, weeks=int(scenario.weeks_later))
+        run_rng = np.random.default_rng([int(scenario.seed), k])
+        states = dict(zip(written, (held(s) for s in programme(run_rng, period, duration))))
+        states.update(derived(states) if derived else {})
+        plans.append(CampaignPlan(
+            cid=f"run{k + 1:02d}", split="train",
+            start_s=(at - datetime(scenario.year, 1, 1)).total_seconds(), duration_s=duration,
+            rng=run_rng, ambient=hall, programme=None, states=states, written=tuple(written),
+            sample_period_s=period, error_period_s=None, cooldown_s=2 * DAY_S,
+            notes=f"run {k + 1}, {scenario.run_h:g} h from {at:%a %Y-%m-%d %H:%M}", manifest={}))
+    return plans
 
 
 class LoggedStateEffect(UndeclaredEffect):
@@ -121,5 +152,17 @@ class PlantedScenario(DeclaredScenario):
         return dataset, truth
 
 
-__all__ = ["LoggedStateEffect", "PlantedScenario", "either", "held", "merge", "weekday_shift",
-           "working"]
+@dataclass(eq=False, repr=False, kw_only=True)
+class DayRunsScenario(PlantedScenario):
+    """A :class:`PlantedScenario` of ``runs`` independent runs of ``run_h`` h at
+    ``sample_period_s`` (:func:`day_runs`), ``weeks_later`` weeks on (a record of the same
+    machine later)."""
+
+    runs: int = 8
+    run_h: float = 24.0
+    sample_period_s: float = 60.0
+    weeks_later: int = 0
+
+
+__all__ = ["DayRunsScenario", "LoggedStateEffect", "PlantedScenario", "day_runs", "either", "held",
+           "merge", "weekday_shift", "working"]

@@ -75,8 +75,10 @@ def test_a_length_named_by_its_axis_alone_is_listed_not_guessed(tmp_path, capsys
     path = lab_file(tmp_path / "lab.csv", ["T1 [°C]", "dZ [µm]", "X [mm]", "Y-Achse [mm]"])
     assert main(["init", str(path), "data.test_fraction=0.25", f"out={tmp_path / 'init'}"]) == 2
     err = capsys.readouterr().err
-    assert "2 column(s) not read" in err
-    for header, base in (("X [mm]", "X"), ("Y-Achse [mm]", "Y-Achse")):
+    # (stranger69: 'Y-Achse [mm]' spans 5.8 mm here, more than a thermal error does: a position,
+    # proposed a state as any length of such a span is; 'X [mm]' spans 4.35 mm: still asked)
+    assert "1 column(s) not read" in err and "'Y-Achse [mm]'" not in err
+    for header, base in (("X [mm]", "X"),):
         assert (f"'{header}' is a length named by its axis alone: the error "
                 f"(data.roles.error=['{base}']) or its position (data.roles.state=['{base}'])?") in err
     assert not (tmp_path / "init").exists()

@@ -548,3 +548,14 @@ def test_a_column_the_model_reads_is_no_missing_signal():
     j = diagnose(ds, Compensator(forest), options=SearchOptions(max_effects=1)).to_json("E_Z")
     assert not [e for r in j["rounds"] for e in r["evaluated"]
                 if e["kind"] == "signal" and e["column"] == "S_door"]
+
+
+def test_forward_blocks_too_few_for_alpha_name_the_campaigns_scheme(caplog):
+    """Forward chaining whose test blocks cannot reach alpha names diagnose.cv=campaigns, which
+    tests time blocks within the campaigns (stranger69: a grinder's 7 runs gave 5 and 3 forward
+    blocks and the advice was alpha alone; over the campaigns the planted effect was accepted)."""
+    ds = _dataset(door_gain=4.0, n_campaigns=6, test_every=6)
+    with caplog.at_level("WARNING", logger="thermocomp"):
+        diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, alpha=1e-6))
+    assert "cannot reach alpha=1e-06" in caplog.text
+    assert "try diagnose.cv=campaigns (time blocks within the train campaigns" in caplog.text

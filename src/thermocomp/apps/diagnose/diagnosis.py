@@ -339,8 +339,12 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     problem = next(iter(searches.values())).problem
     reach = smallest_p(problem.n_blocks_tested)
     if reach > options.alpha:
+        # (stranger69: a grinder's 7 runs, 5 and 3 forward blocks; over the campaigns, blocks
+        # within them, the planted effect was accepted at 0.01 on both records)
         advice = ("the record is short for its residual's memory (test blocks are as long as it "
-                  "takes to decorrelate); raise diagnose.alpha" if scheme == "forward"
+                  "takes to decorrelate); try diagnose.cv=campaigns (time blocks within the "
+                  "train campaigns as the test's units), or raise diagnose.alpha"
+                  if scheme == "forward"
                   else "raise diagnose.n_blocks or diagnose.alpha")
         logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}) in "
                        f"{problem.n_blocks_tested} test blocks: the sign-flip test cannot reach "

@@ -29,6 +29,7 @@ from .historian import held_wide, long_as_wide, wide_options
 from .historian_layout import long_layout
 from .jsonlines import is_json_lines
 from .layout import header_line
+from .lvm import is_lvm, lvm_layout
 from .manifest import is_text, read_manifest
 from .matfile import is_mat, is_v73
 from .options import ROLE_PATTERNS, RUN_ROLE
@@ -120,7 +121,8 @@ def encoding(src: Path, opts, manifest: pd.DataFrame | None) -> str:
     files = [sample_file(src, manifest)]
     if (src / MANIFEST).is_file():
         files.append(src / MANIFEST)
-    found = [detect(f) for f in files if is_text(f) and not is_utf16(f)]   # (UTF-16: its mark)
+    found = [detect(f) for f in files                # (UTF-16: its mark; an .lvm is text)
+             if (is_text(f) or is_lvm(f)) and not is_utf16(f)]
     return WINDOWS if WINDOWS in found else UTF8
 
 
@@ -140,12 +142,18 @@ def head(sample: Path, opts) -> tuple[object, list[str], list[str], str]:
                 f"{text.name}: ", f"{sample.name}: encoding UTF-16 (its byte-order mark), ", 1)
     if is_lab_file(sample):         # a TDMS log, a MATLAB file: the CSV its channels are written to
         kind = ("a MATLAB file" + (" saved -v7.3" if is_v73(sample) else "") if is_mat(sample)
+                else "a LabVIEW Measurement File" if is_lvm(sample)
                 else "a TDMS log") + " (its channels as columns)"
-        with lab_as_csv(sample) as text:
+        encoding = opts.encoding                 # (the file's: the temporary CSV is UTF-8)
+        with lab_as_csv(sample, encoding=encoding) as text:
             opts, header, first, layout = head(text, csv_options(opts))
             layout = layout.replace("a historian's long file (", "channels at their own rates, "
                                     "written long (", 1)
-            return opts, header, first, layout.replace(f"{text.name}: ", f"{sample.name}: {kind}, ", 1)
+            # (stranger69: the temporary CSV's ',' and '.' were said as the file's)
+            own = lvm_layout(sample, encoding) if is_lvm(sample) else ""
+            layout = re.sub(r"delimiter '[^']*', decimal '[^']*'", own, layout, count=1)
+            return opts, header, first, layout.replace(
+                f"{text.name}: ", f"{sample.name}: {kind}" + (", " if own else ""), 1)
     if is_json_lines(sample) or is_fixed_width(sample, opts.encoding):
         kind = "JSON Lines (nested keys joined with '.')" if is_json_lines(sample) else \
             "a fixed-width table (its columns told by the numbers)"
@@ -352,18 +360,28 @@ def flags_as_states(roles: dict, headers: list[str], opts) -> dict:
 TRAVEL_UM = 5000.0
 
 
+def axis_lengths(header: list[str], roles: dict, opts) -> list[str]:
+    """The patterns of the headers no role names that are a length named by its axis alone
+    (``X-Achse [mm]``: its error or its position, :data:`.units.AMBIGUOUS`): ``init`` reads them
+    as errors for a look at their span (:func:`travel_headers`), never keeps them so."""
+    return [_GLOB.sub(r"[\1]", _unit_of(h, opts)[0]) for h in header if h.strip()
+            and not _named(h, roles, opts) and role_by_unit(*_unit_of(h, opts)) == AMBIGUOUS]
+
+
 def travel_headers(ds, names: dict, given_roles: dict, opts) -> dict:
     """Header -> its span (mm) for each header proposed as an error by its length unit (no
-    ``data.roles.error`` pattern of the user names it) whose values span more than
-    :data:`TRAVEL_UM` over ``ds``: an axis position, not a thermal error (stranger64: a portal
-    mill's ``Z ram [mm]``, 0-800 mm, was proposed the error ``E_Z_ram``)."""
+    ``data.roles.error`` pattern of the user names it), or named by its axis alone
+    (:func:`axis_lengths`, stranger69: ``X-Achse [mm]``, 150-500 mm, was refused as either),
+    whose values span more than :data:`TRAVEL_UM` over ``ds``: an axis position, not a thermal
+    error (stranger64: a portal mill's ``Z ram [mm]``, 0-800 mm, was proposed the error
+    ``E_Z_ram``)."""
     given = {k: list(v) for k, v in given_roles.items() if k == "error" and isinstance(v, list)}
     out = {}
     for header, name in names.items():
         if not str(name).startswith("E_") or role(header) == "E" or (
                 given and matching_roles(header, given)):
             continue
-        if role_by_unit(*_unit_of(header, opts)) != "error":
+        if role_by_unit(*_unit_of(header, opts)) not in ("error", AMBIGUOUS):
             continue
         values = pd.concat([df[name] for df in ds.campaigns.values() if name in df]).dropna()
         span = float(values.max() - values.min()) if len(values) else 0.0

@@ -14,14 +14,15 @@ from .contract import AMBIENT_C, MANIFEST, MANIFEST_REQUIRED, SPLITS, ContractEr
 from .encoding import UTF8, check_text, fields, text_codec, undecodable
 from .instants import on_clock, start_instants, start_stamp
 from .jsonlines import JSON_LINES_SUFFIXES
+from .lvm import LVM_SUFFIXES
 from .matfile import MAT_SUFFIXES
 from .options import _OTHER_DELIMITERS, AUTO, ReadOptions, _first_line
 from .tdms import TDMS_SUFFIXES
 from .workbook import WORKBOOK_SUFFIXES
 
 # a folder's runs without a manifest (a workbook is read as its CSV export, :mod:`.workbook`; a
-# TDMS log or a MATLAB file as its channels', :mod:`.labfile`)
-LAB_SUFFIXES = (*TDMS_SUFFIXES, *MAT_SUFFIXES)
+# TDMS log, a MATLAB file or a LabVIEW Measurement File as its channels', :mod:`.labfile`)
+LAB_SUFFIXES = (*TDMS_SUFFIXES, *MAT_SUFFIXES, *LVM_SUFFIXES)
 CAMPAIGN_SUFFIXES = (".csv", ".parquet", *WORKBOOK_SUFFIXES, *JSON_LINES_SUFFIXES, *LAB_SUFFIXES)
 # a one-file record may also carry a logger's text suffix: read as CSV is (delimiter detected)
 # (JSON Lines: read through its CSV text, :mod:`.jsonlines`)
@@ -133,6 +134,24 @@ def _check_no_manifest_among(files: list[Path]) -> None:
                                 file=f)
 
 
+def _other_files(folder: Path) -> str:
+    """What a folder without a manifest and without a run file holds instead, by suffix, and the
+    suffixes a run file has (stranger69: a folder of LabVIEW's ``.lvm`` runs was "manifest not
+    found" alone, its files not named)."""
+    if not folder.is_dir():
+        return ""
+    kinds: dict[str, int] = {}
+    for p in folder.iterdir():
+        if p.is_file() and not p.name.startswith("."):
+            kinds[p.suffix.lower() or "(no suffix)"] = kinds.get(p.suffix.lower() or
+                                                                  "(no suffix)", 0) + 1
+    if not kinds:
+        return ""
+    said = ", ".join(f"{k} ({n})" for k, n in sorted(kinds.items(), key=lambda kv: -kv[1])[:5])
+    return (f"; its files, {said}, are no kind read as a run ("
+            f"{', '.join(sorted(set(RECORD_SUFFIXES)))})")
+
+
 def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
                    encoding: str = UTF8) -> pd.DataFrame:
     if not path.is_file():
@@ -144,7 +163,8 @@ def _load_manifest(path: Path, delimiter: str = ",", optional: tuple = (),
                 f"into one folder, give a sub-folder as data.path, or list every run in a "
                 f"{MANIFEST} (its file column a path such as {next(iter(below))}/<run>.csv)",
                 file=path)
-        raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})", file=path)
+        raise ContractError(f"manifest not found (a dataset folder needs {MANIFEST})"
+                            + _other_files(path.parent), file=path)
     text = _text(path, "," if delimiter == AUTO else delimiter, encoding)
     header = text.splitlines()[0] if text.strip() else ""
     try:

@@ -11,11 +11,13 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from .contract import ContractError
+from .encoding import UTF8
 from .fixedwidth import fixed_as_csv, is_fixed_width
 from .historian import long_as_wide, wide_options
 from .historian_layout import long_layout
 from .jsonlines import is_json_lines, json_lines_as_csv
 from .labfile import records_as_csv
+from .lvm import is_lvm, lvm_records
 from .matfile import is_mat, mat_records
 from .tdms import is_tdms, tdms_records
 from .utf16 import is_utf16, utf8_options, utf16_as_utf8
@@ -23,8 +25,9 @@ from .workbook import csv_options, is_workbook, run_sheets, sheet_as_csv
 
 
 def is_lab_file(path) -> bool:
-    """``path`` is a lab's binary record: a TDMS log or a MATLAB file (:mod:`.labfile`)."""
-    return is_tdms(path) or is_mat(path)
+    """``path`` is a lab's record of channels: a TDMS log, a MATLAB file or (stranger69) a
+    LabVIEW Measurement File (:mod:`.labfile`)."""
+    return is_tdms(path) or is_mat(path) or is_lvm(path)
 
 
 def is_converted(path, opts=None) -> bool:
@@ -35,11 +38,13 @@ def is_converted(path, opts=None) -> bool:
 
 
 @contextmanager
-def lab_as_csv(path: Path, one_run: bool = False) -> Iterator[Path]:
-    """A TDMS log or a MATLAB file as the temporary CSV file its channels are written to;
+def lab_as_csv(path: Path, one_run: bool = False, encoding: str = UTF8) -> Iterator[Path]:
+    """A TDMS log, a MATLAB file or a LabVIEW Measurement File (a text: read in ``encoding``,
+    ``data.encoding``) as the temporary CSV file its channels are written to;
     ``one_run``: a folder's file, refused where it holds several runs (its runs would be read
     as one campaign, the days between them a pause nothing said)."""
-    records = tdms_records(path) if is_tdms(path) else mat_records(path)
+    records = (tdms_records(path) if is_tdms(path) else lvm_records(path, encoding) if is_lvm(path)
+               else mat_records(path))
     if one_run and len(records) > 1:
         labels = ", ".join(repr(r.label) for r in records[:4]) + (", ..." if len(records) > 4 else "")
         raise ContractError(f"{len(records)} runs in one file ({labels}): a folder's file is one "
@@ -72,7 +77,8 @@ def as_read(path: Path, opts, rows: int | None = None, one_run: bool = False
         with json_lines_as_csv(path, rows=rows) as text:
             yield text, utf8_options(opts)
     elif is_lab_file(path):         # a DAQ's TDMS, a MATLAB file: its channels (long: a grid)
-        with lab_as_csv(path, one_run) as text, as_read(text, csv_options(opts), rows) as read:
+        with lab_as_csv(path, one_run, opts.encoding) as text, \
+                as_read(text, csv_options(opts), rows) as read:
             yield read
     elif is_fixed_width(path):      # an old program's report: its columns told by the numbers
         with fixed_as_csv(path, opts.encoding) as text:

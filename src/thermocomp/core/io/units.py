@@ -56,6 +56,10 @@ NEWTON_METRES = ("Nm", "N.m", "N·m")   # a torque, a state: not nanometres (nm)
 ANGLE_UNITS = {"°", "º", "˚", "deg", "rad"}
 STATE_WORDS = {"state", "states", "status", "zustand", "estado", "stato", "etat", "état"}
 _TEMPERATURE_WORD = re.compile(r"t\d*|temp.*|.*temperat.*")
+# a name that says "a set point" (stranger69: a chiller's 'Sollwert Ölkühler [Deg C]' was read
+# as a temperature sensor, and said a dead channel): what the control is told, not a reading,
+# so a state whatever its unit; 'set point' / 'set-point' joined, a German 'Soll...' word
+_SET_POINT = re.compile(r"setpoints?|soll.*|consigna|consigne|sollwert")
 
 AMBIGUOUS = "error or state"
 _WORDS = re.compile(r"[\s_.\-]+")
@@ -84,6 +88,8 @@ def role_by_unit(base: str, unit: str | None) -> str | None:
     time's, none)."""
     written = (unit or "").replace(" ", "")
     known = written.lower()
+    if role(base) is None and says_set_point(base):
+        return "state"
     if known in UNITS["E"] and written not in NEWTON_METRES:      # (Nm: a torque)
         return _length_role(base, known)
     if known in UNITS["angle"]:        # a tilt in µrad or arcsec: an (angular) error
@@ -99,6 +105,14 @@ def role_by_unit(base: str, unit: str | None) -> str | None:
     if known not in UNITS["T"] and not said_hot and any(w in STATE_WORDS for w in words):
         return "state"
     return None
+
+
+def says_set_point(base: str) -> bool:
+    """A header's name says a set point (:data:`_SET_POINT`): ``Sollwert Ölkühler``,
+    ``Oil set point``, ``Chiller setpoint``."""
+    words = [w for w in _WORDS.split(base.lower()) if w]
+    joined = ["".join(pair) for pair in zip(words, words[1:])]     # ('set', 'point')
+    return any(_SET_POINT.fullmatch(w) for w in words + joined)
 
 
 def _length_role(base: str, unit: str) -> str:

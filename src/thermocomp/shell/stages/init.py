@@ -7,6 +7,7 @@ run next.  The data are read with it first: a config that would not read them is
 
 from __future__ import annotations
 
+import fnmatch
 from dataclasses import replace
 
 import pandas as pd
@@ -21,6 +22,7 @@ from ...core.io.cells import scanned
 from ...core.io.contract import MANIFEST, TIME
 from ...core.io.detect import (
     TRAVEL_UM,
+    axis_lengths,
     check_an_error_is_named,
     data_config,
     detection_lines,
@@ -47,7 +49,7 @@ from ...core.io.historian import (
 from ...core.io.historian_layout import long_layout
 from ...core.io.manifest import is_text
 from ...core.io.plain import is_converted, is_lab_file, lab_as_csv
-from ...core.io.roles import excel_days_header, naming
+from ...core.io.roles import excel_days_header, naming, split_unit
 from ...core.io.starts import stated_start
 from ...core.io.tables import peek_csv
 from ...core.io.timestamps import ELAPSED
@@ -69,7 +71,7 @@ def long_period(sample, given: dict) -> dict | None:
     period is given."""
     opts = io.ReadOptions.from_cfg(given)
     if is_lab_file(sample) and opts.resample_s is None:   # a TDMS log's channels at two rates
-        with lab_as_csv(sample) as text:
+        with lab_as_csv(sample, encoding=opts.encoding) as text:
             return _long_period(text, given, csv_options(opts))
     return _long_period(sample, given, opts)
 
@@ -242,6 +244,8 @@ def _init(cfg: DictConfig) -> dict:
     opts, cells = number_cells(src, manifest, sample, given, opts)   # thousands, marks
     roles = proposed_roles(header, cells_of_first, opts)
     check_an_error_is_named(header, cells_of_first, roles, opts, sample)
+    either = axis_lengths(header, roles, opts)     # read as errors for their span, below
+    roles = {**roles, "error": [*roles["error"], *either]}
     roles = proposed_campaign(src, roles, opts)     # a long file's run-number column
     roles, own = without_own_names(header, cells_of_first, roles, opts)
     if own:                # (a volumetric export's 420 distances: not one pattern each)
@@ -268,8 +272,13 @@ def _init(cfg: DictConfig) -> dict:
     ds = open_source(cfg, detected=config)      # refused here as `run` would refuse it
     flags = flag_headers(ds, plan.names)        # 0 / 1 under a header that did not say a flag
     travels = travel_headers(ds, plan.names, asked.roles, opts)   # an axis' position in mm
-    if flags or travels:                        # proposed as states, the record read once more
-        roles = flags_as_states(roles, [*flags, *travels], opts)
+    undecided = [p for p in either if p in roles["error"] and not any(
+        fnmatch.fnmatchcase(split_unit(h)[0], p) for h in travels)]
+    if flags or travels or undecided:           # proposed as states, the record read once more
+        # (an axis' length of a thermal error's span stays unread: the reader asks which)
+        roles = flags_as_states({**roles, "error": [p for p in roles["error"]
+                                                    if p not in undecided]},
+                                [*flags, *travels], opts)
         plan = naming(header, roles, opts.columns, cells_of_first, opts.decimal,
                       sample, opts.units)
         config = data_config(src, given, opts, roles, defaults, manifest)
