@@ -23,10 +23,12 @@ import pytest
 from test_export import (
     CAMPAIGNS,
     EVERY_EXCURSION,
+    PARSED_BLOCK,
     TOLERANCE_UM,
     StructuredText,
     _compiled,
     _compose,
+    _deployed,
     _make_dataset,
     _streamed,
     _trained,
@@ -241,7 +243,7 @@ def test_the_code_of_a_hammerstein_model_streams_as_replay(tmp_path, denoise):
     assert np.max(np.abs(_st(fb, tests, cols) - expected)) <= TOLERANCE_UM
 
 
-def test_every_step_of_the_block_parses_as_iec_61131_3(tmp_path, parsed_block):
+def test_every_step_of_the_block_parses_as_iec_61131_3(dataset, tmp_path):
     """Time rule, powers (EXPT), guard and reference update in one block: an adaptive Hammerstein
     model learning a bias.  The block must be, up to literal values and list lengths, the one
     test_export's `test_the_structured_text_parses_as_iec_61131_3` parses with blark (seconds a
@@ -255,7 +257,8 @@ def test_every_step_of_the_block_parses_as_iec_61131_3(tmp_path, parsed_block):
                           train, ds)
     ss = state_space(deployed)
     assert ss.powers and ss.guard and ss.substitute_time and ss.adapt == "bias"
-    parses_as_the_parsed_block(exported_files(deployed, "st")["compensator.st"], parsed_block)
+    parsed = exported_files(_deployed(dataset, *PARSED_BLOCK)[0], "st")["compensator.st"]
+    parses_as_the_parsed_block(exported_files(deployed, "st")["compensator.st"], parsed)
 
 
 def test_export_of_a_model_pkl_names_what_is_not_in_the_code(dataset, tmp_path, capsys):
