@@ -421,6 +421,18 @@ def short_door_dataset(tmp_path_factory) -> Path:
     return _simulate(tmp_path_factory, "door", *SHORT, "sim.generator.effects=[door]")
 
 
+@pytest.fixture(scope="session")
+def parsed_block(tmp_path_factory) -> str:
+    """The Structured Text block test_export's ``test_the_structured_text_parses_as_iec_61131_3``
+    parses with blark, built once per test process: a module's export held to it
+    (``test_export.parses_as_the_parsed_block``) need not be parsed again."""
+    from test_export import PARSED_BLOCK, _deployed, _make_dataset
+    from thermocomp.apps.deploy.export import exported_files
+
+    data = _make_dataset(tmp_path_factory.mktemp("parsed_block") / "data")
+    return exported_files(_deployed(data, *PARSED_BLOCK)[0], "st")["compensator.st"]
+
+
 def set_keys(path: Path, **values) -> None:
     """Set ``key: value`` on the first line of the YAML file ``path`` that holds ``key:`` (its
     indent and any other line kept): a scratch copy's config made smaller, as a user edits it."""

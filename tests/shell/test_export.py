@@ -291,30 +291,59 @@ PARSED_BLOCK = ("arx_ar", "none", "all")    # family, denoise, select of the blo
 
 
 def _construct(st: str) -> str:
-    """The block with every number and boolean literal one placeholder and every initializer list
-    one item, banner (a comment) left out: what is left is what the grammar sees of it."""
+    """The block with every literal one placeholder of its kind (R a real, N an integer, B a
+    boolean) and every initializer list of one kind one item, banner (a comment) left out: what
+    is left is what the grammar sees of it."""
     code = st[st.index("*)\nFUNCTION_BLOCK") + 3:]
-    code = re.sub(r"-?\d+(\.\d+)?(e[+-]\d+)?", "N", code)
-    code = re.sub(r"\[N(, N)*\]", "[N]", code)
+    code = re.sub(r"-?\d+\.\d+(e[+-]\d+)?", "R", code)
+    code = re.sub(r"(?<!\w)-?\d+", "N", code)           # not the digits of a name (x0)
+    code = re.sub(r"\[([NR])(, \1)*\]", r"[\1]", code)
     return re.sub(r"\b(TRUE|FALSE)\b", "B", code)
 
 
-def test_the_structured_text_parses_as_iec_61131_3(dataset):
+def parses_as_the_parsed_block(text: str, parsed: str) -> None:
+    """``text`` parses as IEC 61131-3 as ``parsed`` does (conftest's ``parsed_block``, the block
+    :func:`test_the_structured_text_parses_as_iec_61131_3` parses with blark: an Earley parser,
+    15-40 s of CPU a block whatever its constants): the comments before its block are comments
+    (none opened or closed within), and the block is ``parsed``'s up to literal values of the
+    same kind and list lengths."""
+    head = text[:text.index("\nFUNCTION_BLOCK") + 1]
+    assert re.fullmatch(r"(\(\*((?!\(\*|\*\)).)*\*\)\n)+", head, re.S), head
+    assert _construct(text) == _construct(parsed)
+
+
+def test_the_structured_text_parses_as_iec_61131_3(dataset, parsed_block):
     """blark's grammar (an Earley parser: seconds per block, more for long constant lists).  The
     block is one text around the model's constants, so a short one (no FIR taps, no lags) is
     parsed and every family's block, with and without the FIR denoiser, must equal it up to
-    literal values and list lengths: the same declarations and statements, all parsed here."""
+    literal values and list lengths: the same declarations and statements, all parsed here.
+    Other modules' blocks are held to it so (:func:`parses_as_the_parsed_block`)."""
     from blark import parse_source_code
 
     text = exported_files(_deployed(dataset, *PARSED_BLOCK)[0], "st")["compensator.st"]
+    assert text == parsed_block          # the same data, the same block
     parsed = parse_source_code(text, fn="compensator.st")
     assert parsed.exception is None, parsed.exception
     assert "FB_ThermoComp" in str(parsed.transform())
     for family in FAMILIES:
         for denoise in DENOISERS:
             stream, _ = _deployed(dataset, family, denoise, "all")
-            assert _construct(exported_files(stream, "st")["compensator.st"]) == _construct(text), \
-                (family, denoise)
+            parses_as_the_parsed_block(exported_files(stream, "st")["compensator.st"], text)
+
+
+def test_a_block_held_to_the_parsed_one_is_no_rubber_stamp(parsed_block):
+    """:func:`parses_as_the_parsed_block` takes the parsed block itself, and fails a statement
+    without its semicolon, a real literal where an integer stands (an array bound), a comment
+    closed within the banner, a name changed."""
+    parses_as_the_parsed_block(parsed_block, parsed_block)
+    bad = [parsed_block.replace("lfac := factor[LSTM_LAW[nk]];", "lfac := factor[LSTM_LAW[nk]]"),
+           parsed_block.replace("ARRAY[0..2] OF", "ARRAY[0..2.0] OF", 1),
+           parsed_block.replace("(*\n", "(*\n*) x\n", 1),
+           parsed_block.replace("FUNCTION_BLOCK FB_ThermoComp", "FUNCTION_BLOCK FB_ThermoComp2")]
+    assert all(b != parsed_block for b in bad)
+    for text in bad:
+        with pytest.raises(AssertionError):
+            parses_as_the_parsed_block(text, parsed_block)
 
 
 def _fitted(dataset, tmp_path, model: str, *extra: str) -> Path:

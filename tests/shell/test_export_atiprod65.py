@@ -24,10 +24,16 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 import pytest
-from blark import parse_source_code
 from sklearn.ensemble import RandomForestRegressor
 
-from test_export import StructuredText, _compiled, _streamed, checked_pack, needs_cc
+from test_export import (
+    StructuredText,
+    _compiled,
+    _streamed,
+    checked_pack,
+    needs_cc,
+    parses_as_the_parsed_block,
+)
 from test_export_ati57 import CAMPAIGNS
 from test_export_auto57 import _proved
 from test_export_effects59 import AMBIENT_LAW, _json_proved
@@ -173,13 +179,12 @@ def test_the_adaptive_code_learns_a_bias_around_it_as_the_served_model(data, tmp
     assert np.max(np.abs(_st(fb, tests, cols, references) - expected)) <= TOLERANCE_UM
 
 
-def test_its_structured_text_declares_each_variable_once_and_parses(data):
+def test_its_structured_text_declares_each_variable_once_and_parses(data, parsed_block):
     stream, _, _ = _around_ati(data, "lagbank", True)
     text = exported_files(stream, "st")["compensator.st"]      # refused before
     assert "STATE_GAIN" in text and "DERIVED_CLAMPED" in text
     declares_each_once(text)
-    parsed = parse_source_code(text, fn="compensator.st")
-    assert parsed.exception is None, parsed.exception
+    parses_as_the_parsed_block(text, parsed_block)
 
 
 @needs_cc

@@ -19,7 +19,7 @@ import numpy as np
 import pytest
 from sklearn.base import clone
 
-from test_export import _compose, checked_pack, needs_cc
+from test_export import _compose, checked_pack, needs_cc, parses_as_the_parsed_block
 from test_export_ati63 import ATI, NET, _levels_with_a_door
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from test_export_effects59 import (
@@ -167,11 +167,8 @@ def test_the_export_commands_check_pack_passes(data, tmp_path):
     assert "stream: check passed" in checked_pack(out)
 
 
-def test_its_structured_text_parses_as_iec_61131_3(data):
-    from blark import parse_source_code
-
+def test_its_structured_text_parses_as_iec_61131_3(data, parsed_block):
     stream, _ = _diagnosed(data, [LAG, AMBIENT_LAW], base=_net())
     text = exported_files(stream, "st")["compensator.st"]         # refused before
     assert "LSTM_IN : ARRAY" in text and "LSTM_LAG_FROM" in text
-    parsed = parse_source_code(text, fn="compensator.st")
-    assert parsed.exception is None, parsed.exception
+    parses_as_the_parsed_block(text, parsed_block)

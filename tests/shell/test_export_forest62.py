@@ -28,6 +28,7 @@ from test_export import (
     _streamed,
     checked_pack,
     needs_cc,
+    parses_as_the_parsed_block,
 )
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
@@ -124,16 +125,13 @@ def test_the_export_commands_check_pack_passes_and_the_forests_size_is_said(data
     assert checked_pack(out).count("stream: check passed: 40 rows") == 2
 
 
-def test_the_structured_text_of_a_forest_parses_as_iec_61131_3(data, tmp_path):
-    """blark on a tiny forest (two trees of depth 2: its parser is slow on long lists)."""
-    from blark import parse_source_code
-
+def test_the_structured_text_of_a_forest_parses_as_iec_61131_3(data, tmp_path, parsed_block):
+    """A tiny forest (two trees of depth 2), held to the block blark parses."""
     out = _exported(data, tmp_path, "st", "model.estimator.forest.n_estimators=2",
                     "+model.estimator.forest.max_depth=2")
     text = (out / "compensator.st").read_text()
     assert "LREAL_TO_REAL" in text and "NODE_THRESHOLD : ARRAY" in text
-    parsed = parse_source_code(text, fn="compensator.st")
-    assert parsed.exception is None, parsed.exception
+    parses_as_the_parsed_block(text, parsed_block)
 
 
 # (an arx_rf within an ATI model, refused here before, exports since exportati63:

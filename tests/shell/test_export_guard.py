@@ -28,12 +28,12 @@ from test_export import (
     StructuredText,
     _compiled,
     _compose,
-    _construct,
     _deployed,
     _make_dataset,
     _streamed,
     _trained,
     needs_cc,
+    parses_as_the_parsed_block,
 )
 from thermocomp.apps.deploy.export import Simulator, exported_files, state_space
 from thermocomp.apps.deploy.guard import CorrectionGuard
@@ -258,7 +258,7 @@ def test_every_step_of_the_block_parses_as_iec_61131_3(dataset, tmp_path):
     ss = state_space(deployed)
     assert ss.powers and ss.guard and ss.substitute_time and ss.adapt == "bias"
     parsed = exported_files(_deployed(dataset, *PARSED_BLOCK)[0], "st")["compensator.st"]
-    assert _construct(exported_files(deployed, "st")["compensator.st"]) == _construct(parsed)
+    parses_as_the_parsed_block(exported_files(deployed, "st")["compensator.st"], parsed)
 
 
 def test_export_of_a_model_pkl_names_what_is_not_in_the_code(dataset, tmp_path, capsys):

@@ -30,6 +30,7 @@ from test_export import (
     _streamed,
     checked_pack,
     needs_cc,
+    parses_as_the_parsed_block,
 )
 from test_export_ati57 import CAMPAIGNS, write_manifest
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
@@ -153,15 +154,11 @@ def test_the_adaptive_code_learns_a_bias_around_it_as_the_served_model(data, tmp
     assert np.max(np.abs(_st(fb, tests, cols, references) - expected)) <= TOLERANCE_UM
 
 
-def test_its_structured_text_parses_as_iec_61131_3(data):
-    from blark import parse_source_code
-
+def test_its_structured_text_parses_as_iec_61131_3(data, parsed_block):
     stream, _, _ = _diagnosed(data, [PRODUCT])
     text = exported_files(stream, "st")["compensator.st"]
     assert "DERIVED_CLAMPED" in text and "STATE_GAIN" in text
-    parsed = parse_source_code(text, fn="compensator.st")
-    assert parsed.exception is None, parsed.exception
-    assert "FB_ThermoComp" in str(parsed.transform())
+    parses_as_the_parsed_block(text, parsed_block)
 
 
 # (around an ATI model, refused here before, it exports since exportprod65:

@@ -18,7 +18,13 @@ import json
 
 import pytest
 
-from test_export import _exported_code, _make_dataset, checked_pack, needs_cc
+from test_export import (
+    _exported_code,
+    _make_dataset,
+    checked_pack,
+    needs_cc,
+    parses_as_the_parsed_block,
+)
 from test_export_auto57 import TOLERANCE_UM, _proved, deployed
 from thermocomp.apps.deploy.export import state_space
 from thermocomp.core.models.lstm import LSTM
@@ -79,14 +85,11 @@ def test_the_export_commands_check_pack_passes_and_the_networks_size_is_said(dat
     assert checked_pack(out).count("stream: check passed: 40 rows") == 2
 
 
-def test_the_structured_text_of_an_lstm_parses_as_iec_61131_3(data, tmp_path):
-    from blark import parse_source_code
-
+def test_the_structured_text_of_an_lstm_parses_as_iec_61131_3(data, tmp_path, parsed_block):
     out = _exported(data, tmp_path, "st", "model.estimator.hidden_size=2")
     text = (out / "compensator.st").read_text()
     assert "LSTM_W_IH : ARRAY" in text and "EXP(2.0 * la)" in text
-    parsed = parse_source_code(text, fn="compensator.st")
-    assert parsed.exception is None, parsed.exception
+    parses_as_the_parsed_block(text, parsed_block)
 
 
 # (an lstm within an ATI model, refused here before, exports since exportati63:

@@ -37,10 +37,18 @@ def _sweep(tmp_path, dataset, n_jobs: int, *overrides: str):
     return uri, sweep_dir, proc, parents, children
 
 
+@pytest.fixture(scope="module")
+def four_jobs(tmp_path_factory, dataset):
+    """A four-job joblib sweep on two workers (what the module's last test runs a second sweep
+    after, in this process): ``(folder, _sweep's results)``."""
+    root = tmp_path_factory.mktemp("four_jobs")
+    return root, _sweep(root, dataset, 2, "model.estimator.fit_intercept=true,false",
+                        "data.inputs=[T_*],[T_1]")
+
+
 @pytest.mark.slow
-def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(tmp_path, dataset, capsys):
-    uri, sweep_dir, proc, parents, children = _sweep(
-        tmp_path, dataset, 2, "model.estimator.fit_intercept=true,false", "data.inputs=[T_*],[T_1]")
+def test_four_job_joblib_sweep_makes_one_parent_four_children_and_a_table(four_jobs, dataset, capsys):
+    tmp_path, (uri, sweep_dir, proc, parents, children) = four_jobs
     assert len(parents) == 1 and len(children) == 4
     parent_id = parents["run_id"].iloc[0]
     assert (children["tags.mlflow.parentRunId"] == parent_id).all()
@@ -240,14 +248,17 @@ def test_launcher_configs_compose_slurm_documented_not_run():
 
 
 @pytest.mark.slow
-def test_a_second_joblib_sweep_in_one_process_attaches_its_jobs_to_its_own_parent(tmp_path, dataset):
+def test_a_second_joblib_sweep_in_one_process_attaches_its_jobs_to_its_own_parent(four_jobs, tmp_path,
+                                                                                  dataset):
     # joblib's (loky) workers outlive a sweep and are reused by the next one with the environment
     # of their start: the second sweep's jobs took the FIRST sweep's parent run id (a run of
-    # another store: "Run ... not found", no child; CI, two in-process sweeps on one pytest worker)
-    for k in (1, 2):
-        _, sweep_dir, _, parents, children = _sweep(tmp_path / f"s{k}", dataset, 2,
-                                                    "model.estimator.fit_intercept=true,false")
-        assert len(parents) == 1 and len(children) == 2, k
-        parent_id = parents["run_id"].iloc[0]
-        assert (children["tags.mlflow.parentRunId"] == parent_id).all(), k
-        assert (children["status"] == "FINISHED").all(), k
+    # another store: "Run ... not found", no child; CI, two in-process sweeps on one pytest worker).
+    # The first: four_jobs' (two workers, as here; its own parent and children checked above).
+    _, (_, _, _, first, _) = four_jobs
+    _, sweep_dir, _, parents, children = _sweep(tmp_path, dataset, 2,
+                                                "model.estimator.fit_intercept=true,false")
+    assert len(parents) == 1 and len(children) == 2
+    parent_id = parents["run_id"].iloc[0]
+    assert parent_id != first["run_id"].iloc[0]
+    assert (children["tags.mlflow.parentRunId"] == parent_id).all()
+    assert (children["status"] == "FINISHED").all()
