@@ -98,7 +98,9 @@ Scored (2026-12-01; the rule 898fefc7, its rows /tmp/clean69-rule; ``compare`` a
 **Adopted** (1-3 hold).  Before the commit the rule was run once on 6953 alone (the figure of 1).
 CPU (user + sys, /usr/bin/time): the 133 rows 352.3 s (rule; the rows' own 351 s against 399 s
 in planted69's shipped run, another time and load: not a measured speed-up), fresh 22.2 s (19.1
-s the rows' own, shipped 19.5 s).
+s the rows' own, shipped 19.5 s).  Run after, outside the bar: pde66's four copies (``bench_pde66.py
+write`` + ``diagnose``, /tmp/clean69-pde, 53 s CPU) identical to planted69's shipped run (every
+target's accepted effects and test RMSE after; E_Y 3.2711 / 3.3808 µm on the planted copies).
 """
 
 from __future__ import annotations
