@@ -225,17 +225,34 @@ def _pde(path: Path) -> dict:
     return {(r["diagnose"], t): o for r in rows for t, o in r.get("targets", {}).items()}
 
 
-def compare(base: Path, new: Path) -> None:
-    """Bar 1 (bench_lagwithin68.compare of the moretest rows, the control checked), bar 2 (pde66)
-    and bar 3 (the fresh rows)."""
+def moretest_bar(base: Path, new: Path) -> None:
+    """bench_lagwithin68.compare of the two trees' moretest rows, the control checked."""
     import bench_remeasure62 as rm
     from bench_lagwithin68 import compare as moretest
 
-    print("== 1. bench_moretest68's rows")
     moretest(base / "moretest.jsonl", new / "moretest.jsonl")
     control = [f"{r['case']} {t}" for r in rm._read(new / "moretest.jsonl") for t, o in r["targets"].items()
                if any("random walk" in a for a in o["accepted"])]
     print(f"control accepted: {len(control)} {control}")
+
+
+def fresh_bar(base: Path, new: Path) -> None:
+    """The two trees' fresh rows: each one's counts, the rows that differ, those > 2 % above."""
+    import bench_remeasure62 as rm
+
+    fb, fn = rm._read(base / "fresh.jsonl"), rm._read(new / "fresh.jsonl")
+    for name, rows in (("shipped", fb), ("rule", fn)):
+        print(f"  {name}:\n" + rm._wrapped(rm.diagnose_table(rows)[-4:]))
+    print(rm._wrapped(["  differ: "] + ["  " + x for x in rm.compare(fb, fn)]))
+    above = [f"{r['case']} {t}" for a, r in zip(fb, fn) for t, o in r["targets"].items()
+             if o["test_rmse"][1] > 1.02 * a["targets"][t]["test_rmse"][1]]
+    print(f"  rows > 2 % above the shipped after: {len(above)} {above}")
+
+
+def compare(base: Path, new: Path) -> None:
+    """Bar 1 (the moretest rows), bar 2 (pde66) and bar 3 (the fresh rows)."""
+    print("== 1. bench_moretest68's rows")
+    moretest_bar(base, new)
     print("== 2. pde66 (test RMSE after, shipped -> rule; accepted on E_Y)")
     b, n = _pde(base / "diagnose.jsonl"), _pde(new / "diagnose.jsonl")
     for k in b:
@@ -247,13 +264,7 @@ def compare(base: Path, new: Path) -> None:
                  and any(a[1] == "S_pos_Y" for a in o["accepted"])]
     print(f"  S_pos_Y accepted on a clean copy: {clean_pos or 'none'}")
     print("== 3. fresh rows")
-    fb, fn = rm._read(base / "fresh.jsonl"), rm._read(new / "fresh.jsonl")
-    for name, rows in (("shipped", fb), ("rule", fn)):
-        print(f"  {name}:\n" + rm._wrapped(rm.diagnose_table(rows)[-4:]))
-    print(rm._wrapped(["  differ: "] + ["  " + x for x in rm.compare(fb, fn)]))
-    above = [f"{r['case']} {t}" for a, r in zip(fb, fn) for t, o in r["targets"].items()
-             if o["test_rmse"][1] > 1.02 * a["targets"][t]["test_rmse"][1]]
-    print(f"  rows > 2 % above the shipped after: {len(above)} {above}")
+    fresh_bar(base, new)
 
 
 def main(argv: list[str]) -> int:

@@ -110,6 +110,7 @@ class Evaluation:
     gain_lcb_alpha: float = float("nan")      # (1 - alpha) Student-t lower bound of the gain
     p_margin: float = float("nan")            # p of a gain of min_gain_pct at least (the margin)
     gain_pct_within: float | None = None       # within the held-out campaigns (campaigns CV)
+    gain_pct_within_rest: float | None = None  # the same without the campaign gaining most there
 
     def entry(self) -> dict:
         """The ``effects`` entry of ``diagnosis.json`` (CLI.md keys first)."""
@@ -134,6 +135,8 @@ class Evaluation:
             out["evidence"]["self_prediction_jump_ratio"] = self.jump_ratio
         if self.gain_pct_within is not None:
             out["evidence"]["cv_rmse_gain_pct_within"] = self.gain_pct_within
+        if self.gain_pct_within_rest is not None:
+            out["evidence"]["cv_rmse_gain_pct_within_rest"] = self.gain_pct_within_rest
         out["effect"] = e.to_dict()
         return out
 
@@ -386,8 +389,12 @@ class Search:
             if self.problem.scheme == "campaigns" or ev.effect.kind == "dynamics":
                 ev.gain_pct_within = self._within_gain(current, ev.result, campaigns=True)
                 ev.clears_bar = ev.clears_bar and ev.gain_pct_within >= self.options.min_gain_pct
+            if self.problem.scheme == "campaigns":    # and not from one campaign (clean69)
+                ev.gain_pct_within_rest = self._within_gain(current, ev.result, less_best=True)
+                ev.clears_bar = ev.clears_bar and ev.gain_pct_within_rest >= self.options.min_gain_pct
 
-    def _within_gain(self, current: CVResult, result: CVResult, campaigns: bool = False) -> float:
+    def _within_gain(self, current: CVResult, result: CVResult, campaigns: bool = False,
+                     less_best: bool = False) -> float:
         """CV RMSE gain (%) of ``result`` over ``current`` within the held-out units (forward and
         ``campaigns``: within the campaigns' scored pieces, not the validation blocks): each unit's
         CV residual less its own mean, pooled.  A candidate with an initial-state
@@ -408,7 +415,14 @@ class Search:
         lag of the inputs gained 16.3 % in CV, 2.1 % within its 3 scored campaigns, and raised
         the error on 24 new runs 12.3 %; the jig grinder's 900 s lag of T_COL_REAR_LO, 2.5 %
         within, +17.4 % on 16 new sessions (``benchmarks/bench_lagwithin68.py``).  A block's mean
-        is no offset: a slow effect moves it (the 4 h lags of the twin lathe and the gantry)."""
+        is no offset: a slow effect moves it (the 4 h lags of the twin lathe and the gantry).
+
+        ``less_best``: pooled over the units less the one whose within error falls most.  In the
+        ``campaigns`` scheme a candidate must gain ``min_gain_pct`` there too (clean69): a within
+        gain one campaign carries is one unit's evidence.  On clean 8-campaign seed 6953 a 1 h lag
+        of the inputs from the initial state (12 regressors) gained 12.9 % in CV, 7.7 % within,
+        86 % of that in one campaign (1.5 % without it), and raised the error on 24 new campaigns
+        17 %, all in their means (``benchmarks/bench_clean69.py``)."""
         p = self.problem
         ok = p.validated & np.isfinite(current.residual) & np.isfinite(result.residual)
         units, n = p.unit_index[ok], p.n_units
@@ -420,9 +434,13 @@ class Search:
         def within(residual):
             r = residual[ok]
             r = r - (np.bincount(units, weights=r, minlength=n) / counts)[units]
-            return float(r @ r)
+            return np.bincount(units, weights=r * r, minlength=n)
 
         s0, s1 = within(current.residual), within(result.residual)
+        if less_best and n > 1:
+            rest = np.arange(n) != np.argmax(s0 - s1)
+            s0, s1 = s0[rest], s1[rest]
+        s0, s1 = float(s0.sum()), float(s1.sum())
         return 100.0 * (1.0 - np.sqrt(s1 / s0)) if s0 > 0 else 0.0
 
     def _clears(self, gain_pct: float, p: float, in_range_pct: float, p_margin: float,
