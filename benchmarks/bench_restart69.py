@@ -6,9 +6,10 @@ docs/to-the-machine.md "Restarted mid-campaign", measured by hand in restart58).
 The record is restart58's Swiss lathe (`thermocomp simulate sim=swiss_lathe_door seed=5851
 sim.generator.calibration_hours=20 sim.generator.production_hours=8`, 60 s samples; its test
 campaign ``production``, 481 samples), the model a lag bank fitted on its train part (written to
-DIR once).  The twin (:class:`~thermocomp.apps.machine.twin.Twin`, in this process, lockstep at
-20 samples/s) serves it to `connect` processes run with ``--src`` (the code measured: this
-checkout's, or another's unpacked by ``git archive``; the twin is the same in both):
+DIR once).  The twin (the ``twin`` stage in a thread of this process, lockstep at 20 samples/s,
+handing over as ``tests/shell/twin_bench.py``'s ``Handoff`` says) serves it to `connect`
+processes run with ``--src`` (the code measured: this checkout's, or another's unpacked by
+``git archive``; the twin is this checkout's for both):
 
 - ``uninterrupted``: one `connect` from the first sample to the last;
 - ``cold``: the first `connect` gets SIGTERM once it answered sample 240 (4 h into the 8 h run),
@@ -25,24 +26,23 @@ process's start-up), the twin here waits for them: the join samples are the tabl
 
 Measured, written before it ran (E_X / E_Y, µm, the error in the frame the model predicts: from
 the campaign's first sample): the RMS of the error compensated by the offsets the machine held
-(the twin's record) from the join to the end ("after it"), from 18 samples after the join on,
-and over the campaign (twin.json's ``rms_compensated``), each against the uninterrupted run's
-over the same samples; the offsets the machine held at the sample before the join (the stopped
-client's, kept) and at the join (the new process's first), their step against the limiter's
-one-sample rate (``max_step``); the new process's events; each `connect` process's CPU (user +
-sys, from wait4).  No rule is chosen by it.
+(the twin's record) from the join to the end ("after it"; and from the stop on, the held
+samples with them), from 18 samples after the join on, and over the campaign (twin.json's
+``rms_compensated``), each against the uninterrupted run's over the same samples; the offsets
+the machine held at the sample before the join (the stopped client's, kept) and at the join
+(the new process's first), their step against the limiter's one-sample rate (``max_step``);
+what the registers held when the new process connected, before its first answer
+(``at_connection``); the new process's events; each `connect` process's CPU (user + sys, from
+wait4).  No rule is chosen by it.
 """
 
 from __future__ import annotations
 
 import argparse
-import asyncio
 import json
 import os
-import signal
 import subprocess
 import sys
-import threading
 import time
 from pathlib import Path
 
@@ -50,9 +50,9 @@ import numpy as np
 import pandas as pd
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path[:0] = [str(ROOT / "src")]
+sys.path[:0] = [str(ROOT / "tests" / "shell"), str(ROOT / "tests"), str(ROOT / "src")]
 
-from thermocomp.apps.machine import twin as twin_module  # noqa: E402
+from twin_bench import Handoff, _served_in_thread, handing_over, limiter_step  # noqa: E402
 
 PY = sys.executable
 FAST = ["track=false", "plots=none"]
@@ -77,33 +77,6 @@ def free_port() -> int:
         return s.getsockname()[1]
 
 
-class Handover(twin_module.Twin):
-    """The twin, lockstep; with ``stop``/``join``: the client is sent SIGTERM once it answered
-    ``stop``, the samples up to ``join`` are served with no client, and ``join`` waits (at most
-    ``wait_s``) for a new client's answer."""
-
-    stop: int | None = None
-    join: int | None = None
-    client_pid: int | None = None
-    gone = threading.Event()          # the stopped client's process has ended
-    start_next = threading.Event()    # the bench: start the new client now
-
-    async def _wait_answer(self, k, deadline, written, patient):
-        if self.stop is not None and self.stop < k < self.join:
-            return                    # no client: the machine runs on with what it holds
-        if k == self.join:
-            self.start_next.set()
-            limit = time.monotonic() + self.wait_s
-            while time.monotonic() < limit and int(await self.answered.read_value()) != k:
-                await asyncio.sleep(twin_module.POLL_S)
-            return
-        await super()._wait_answer(k, deadline, written, patient)
-        if k == self.stop:
-            os.kill(self.client_pid, signal.SIGTERM)
-            while not self.gone.is_set():
-                await asyncio.sleep(0.01)
-
-
 def connect_args(data: Path, pkl: Path, port: int, out: Path, warm: Path | None) -> list[str]:
     return ["connect", f"data.path={data}", f"out={out}", *FAST, f"connect.model={pkl}",
             f"connect.endpoint=opc.tcp://127.0.0.1:{port}", "connect.retry_s=0.4",
@@ -112,14 +85,10 @@ def connect_args(data: Path, pkl: Path, port: int, out: Path, warm: Path | None)
 
 
 def served(data: Path, pkl: Path, src: Path, out: Path, run: str) -> dict:
-    """One run (module doc): twin.json, each client's connect.json and CPU."""
-    from thermocomp.shell.cli import _compose
-    from thermocomp.shell.stages.twin import twin
-
+    """One run (module doc): twin.json, each client's connect.json and CPU, what the registers
+    held when the new client connected."""
     out.mkdir(parents=True, exist_ok=True)
     port = free_port()
-    Handover.gone, Handover.start_next = threading.Event(), threading.Event()
-    Handover.stop, Handover.join = (None, None) if run == "uninterrupted" else (STOP, JOINS[run])
     warm = None
     if run.startswith("warm"):
         rows = pd.read_csv(data / "production.csv")
@@ -127,43 +96,32 @@ def served(data: Path, pkl: Path, src: Path, out: Path, run: str) -> dict:
         warm = out / "log.csv"
         rows.drop(columns=[c for c in rows if c.startswith("E_")]).iloc[:upto + 1].to_csv(
             warm, index=False)
-    cfg = _compose([f"data.path={data}", f"out={out}", *FAST, f"connect.model={pkl}",
-                    f"connect.endpoint=opc.tcp://127.0.0.1:{port}", f"twin.port={port}",
-                    f"twin.speed={SPEED}", "twin.lockstep=true", "twin.wait_s=120"], "twin")
-    raised: list = []
-    original, twin_module.Twin = twin_module.Twin, Handover
-
-    def serve() -> None:
-        try:
-            twin(cfg)
-        except BaseException as exc:       # said below, not lost in the thread
-            raised.append(exc)
-
-    thread = threading.Thread(target=serve, daemon=True)
-    thread.start()
+    # uninterrupted: a handover after the last sample, never reached
+    handoff = Handoff(STOP, JOINS[run]) if run != "uninterrupted" else Handoff(10 ** 9, 10 ** 9 + 1)
     env = {**os.environ, "PYTHONPATH": str(src)}
     clients = [("first", None)] + ([] if run == "uninterrupted" else [("second", warm)])
     cpu, links = [], []
-    try:
+    with handing_over(handoff):
+        thread, raised = _served_in_thread([
+            f"data.path={data}", f"out={out}", *FAST, f"connect.endpoint=opc.tcp://127.0.0.1:{port}",
+            f"twin.port={port}", f"twin.speed={SPEED}", "twin.lockstep=true", "twin.wait_s=120"])
         for part, log in clients:
             if part == "second":
-                assert Handover.start_next.wait(300), "the twin never reached the join"
+                assert handoff.reached.wait(300), "the twin never reached the join"
             p = subprocess.Popen([PY, "-m", "thermocomp",
                                   *connect_args(data, pkl, port, out / part, log)],
                                  env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE)
-            Handover.client_pid = p.pid
+            handoff.pid = p.pid
             _, status, usage = os.wait4(p.pid, 0)
             err = p.stderr.read().decode()
             assert os.waitstatus_to_exitcode(status) == 0, err
             cpu.append(round(usage.ru_utime + usage.ru_stime, 2))
             links.append(json.loads((out / part / "connect.json").read_text()))
-            Handover.gone.set()
+            handoff.gone.set()
         thread.join(timeout=120)
-    finally:
-        twin_module.Twin = original
-    assert not raised, raised
+    assert not thread.is_alive() and not raised, raised
     report = json.loads((out / "twin.json").read_text())
-    return {"twin": report, "links": links, "cpu_s": cpu}
+    return {"twin": report, "links": links, "cpu_s": cpu, "at_connection": handoff.at_connection}
 
 
 def figures(r: dict, base: dict, data: Path, run: str) -> dict:
@@ -179,12 +137,15 @@ def figures(r: dict, base: dict, data: Path, run: str) -> dict:
            "cpu_s": r["cpu_s"], "samples": [link["samples"] for link in r["links"]]}
     if run != "uninterrupted":
         j = JOINS[run]
-        step = max_step(data, Path(r["pkl"]))
+        step = limiter_step(data, Path(r["pkl"]))
         out.update({
-            "join": j, "after": rms(e[j:] - held[j:]), "after_uninterrupted": rms(e[j:] - unint[j:]),
+            "join": j, "after_restart": rms(e[STOP + 1:] - held[STOP + 1:]),
+            "after_restart_uninterrupted": rms(e[STOP + 1:] - unint[STOP + 1:]),
+            "after": rms(e[j:] - held[j:]), "after_uninterrupted": rms(e[j:] - unint[j:]),
             "settled": rms(e[j + SETTLED:] - held[j + SETTLED:]),
             "settled_uninterrupted": rms(e[j + SETTLED:] - unint[j + SETTLED:]),
             "kept": [round(float(v), 3) for v in held[j - 1]],
+            "at_connection": r["at_connection"],
             "first": [round(float(v), 3) for v in held[j]],
             "uninterrupted_at_join": [round(float(v), 3) for v in unint[j]],
             "max_step": [round(float(v), 3) for v in step],
@@ -192,20 +153,6 @@ def figures(r: dict, base: dict, data: Path, run: str) -> dict:
                                  for s in np.diff(held[j - 1:j + 6], axis=0)],
             "events": [e["event"] for e in r["links"][1]["events"]][:12]})
     return out
-
-
-def max_step(data: Path, pkl: Path) -> np.ndarray:
-    """The limiter's largest change per sample (µm per target), as `connect` builds it."""
-    from thermocomp.shell.builders import deployable_model
-    from thermocomp.shell.cli import _compose
-    from thermocomp.shell.source import read_streamed
-    from thermocomp.shell.stages.connect import _guard
-
-    cfg = _compose([f"data.path={data}", f"connect.model={pkl}", *FAST], "connect")
-    ds, train_ids = read_streamed(cfg, test=False)[:2]
-    deployed = deployable_model(cfg, ds, train_ids, str(pkl), "connect.model")[0]
-    guard = _guard(cfg, deployed, ds, train_ids)
-    return guard.max_rate_per_s * guard.period_s
 
 
 def main() -> None:
