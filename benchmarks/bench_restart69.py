@@ -52,6 +52,7 @@ import pandas as pd
 ROOT = Path(__file__).resolve().parents[1]
 sys.path[:0] = [str(ROOT / "tests" / "shell"), str(ROOT / "tests"), str(ROOT / "src")]
 
+from conftest import free_port  # noqa: E402
 from twin_bench import Handoff, _served_in_thread, handing_over, limiter_step  # noqa: E402
 
 PY = sys.executable
@@ -67,14 +68,6 @@ SPEED = 20.0
 def cli(src: Path, *args: str) -> None:
     env = {**os.environ, "PYTHONPATH": str(src)}
     subprocess.run([PY, "-m", "thermocomp", *args], check=True, env=env, capture_output=True)
-
-
-def free_port() -> int:
-    import socket
-
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return s.getsockname()[1]
 
 
 def connect_args(data: Path, pkl: Path, port: int, out: Path, warm: Path | None) -> list[str]:
