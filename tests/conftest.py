@@ -198,7 +198,9 @@ class ZeroStream:
 class NoLimiter:
     """An offset limiter that only hears of a new campaign."""
 
-    def new_campaign(self):
+    started = False          # no offset of its own yet
+
+    def new_campaign(self, held=None):
         pass
 
 

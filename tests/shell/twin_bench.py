@@ -8,10 +8,16 @@ serves it as a user does (the README's route), for the test that checks the comm
 
 from __future__ import annotations
 
+import asyncio
 import json
+import os
+import signal
 import subprocess
 import sys
 import threading
+import time
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 from pathlib import Path
 
 from conftest import free_port
@@ -73,3 +79,69 @@ def twin_and_connect(data: Path, tmp: Path, twin_args=(), connect_args=(), *, sp
     assert code == 0
     assert there, "twin.json was not written when connect ended"
     return json.loads(twin_json.read_text()), json.loads((tmp / "connect" / "connect.json").read_text())
+
+
+@dataclass
+class Handoff:
+    """(restart69) A client stopped mid-campaign and a new one joining: once sample ``stop`` is
+    answered the client (process ``pid``, None: this one) is sent SIGTERM; once the test says it
+    ended (``gone``) the samples up to ``join`` are served with no client (the machine runs on
+    with the offsets it holds); at ``join`` the twin says so (``reached``: start the new client)
+    and waits (at most ``twin.wait_s``) for its answer; ``at_connection``: what the offset
+    registers held when the new client said it is there (``offset_sample`` -1), before that
+    answer.  The join sample is the test's, not a matter of a process's start-up."""
+
+    stop: int
+    join: int
+    pid: int | None = None
+    at_connection: list | None = None
+    gone: threading.Event = field(default_factory=threading.Event)
+    reached: threading.Event = field(default_factory=threading.Event)
+
+
+@contextmanager
+def handing_over(handoff: Handoff):
+    """While in it, the twin the ``twin`` stage builds hands over as ``handoff`` says."""
+    from thermocomp.apps.machine import twin as module
+
+    class HandingOver(module.Twin):
+        async def _wait_answer(self, k, deadline, written, patient):
+            h = handoff
+            if h.stop < k < h.join:
+                return                    # no client: the machine runs on with what it holds
+            if k == h.join:
+                h.reached.set()
+                limit = time.monotonic() + self.wait_s
+                while time.monotonic() < limit:
+                    answered = int(await self.answered.read_value())
+                    if answered == k:
+                        break
+                    if answered == -1 and h.at_connection is None:
+                        h.at_connection = [float(await n.read_value()) for n in self.offset_nodes]
+                    await asyncio.sleep(module.POLL_S)
+                return
+            await super()._wait_answer(k, deadline, written, patient)
+            if k == h.stop:
+                os.kill(h.pid or os.getpid(), signal.SIGTERM)
+                while not h.gone.is_set():
+                    await asyncio.sleep(0.01)
+
+    original, module.Twin = module.Twin, HandingOver
+    try:
+        yield handoff
+    finally:
+        module.Twin = original
+
+
+def limiter_step(data: Path, pkl: Path):
+    """The largest change per sample (µm per target) `connect` lets reach the machine for the
+    model ``pkl`` fitted on ``data``: its correction guard's rate over one sample period."""
+    from thermocomp.shell.builders import deployable_model
+    from thermocomp.shell.source import read_streamed
+    from thermocomp.shell.stages.connect import _guard
+
+    cfg = _compose([f"data.path={data}", f"connect.model={pkl}", *FAST], "connect")
+    ds, train_ids = read_streamed(cfg, test=False)[:2]
+    deployed = deployable_model(cfg, ds, train_ids, str(pkl), "connect.model")[0]
+    guard = _guard(cfg, deployed, ds, train_ids)
+    return guard.max_rate_per_s * guard.period_s

@@ -22,7 +22,8 @@ URI (resolved at each connection); every node is checked to be there first (Node
 each).  An input whose StatusCode is not Good is NaN (``input_status`` events).  Offsets are
 written in each node's own DataType and unit; a refused write is WriteRefused.  A held offset
 is not written again.  (small69) A new process writes no offset before its first computed one:
-the registers keep what they hold (an earlier client's last offsets; event ``offsets_kept``).
+the registers keep what they hold (an earlier client's last offsets; event ``offsets_kept``);
+(restart69) joining a campaign mid-way it moves them at the rate limit, not in one jump.
 (connect68) Without ``campaign_sample``, ``connect.warm``'s rows are the first sample's
 campaign's, placed on the server's clock by their timestamps (:meth:`Connection._joined`).
 """
@@ -447,7 +448,8 @@ class Connection:
             d.reset()
             if self.adapt is not None:
                 self.adapt.start()      # what was learned is kept: the same machine
-            self.limiter.new_campaign()
+            # joined mid-way (i > 0) by a new process: rate-limited from what the machine holds
+            self.limiter.new_campaign(self._kept if i > 0 and not self.limiter.started else None)
             self._campaign = cid
             # a campaign that continues others comes after their rows (twin: its samples < 0)
             ahead = (f" ({-i} sample(s) of the campaign(s) it continues first, unscored)"

@@ -33,10 +33,18 @@ class OffsetLimiter:
         self._fresh_at = None          # wall time of the last fresh correction
         self._free = True              # the next fresh one is not rate-limited
 
-    def new_campaign(self) -> None:
+    def new_campaign(self, held=None) -> None:
         """A campaign starts (the error is zeroed with the workpiece): its first correction is
-        taken as it is, within the bound, as the compensator's own guard takes it."""
-        self._free = True
+        taken as it is, within the bound, as the compensator's own guard takes it.  ``held``
+        (restart69): the campaign is joined mid-way (a new process), its error not zeroed: the
+        first correction is rate-limited from the offsets the machine holds (µm; NaN: this
+        limiter's own), as after a decay, not taken in one jump."""
+        if held is None:
+            self._free = True
+            return
+        held = np.asarray(held, float)
+        self.offset = np.where(np.isfinite(held), held, self.offset)
+        self._free = False
 
     def fresh(self, y, now: float, periods: float = 1.0) -> np.ndarray:
         """The offset to write for a new correction ``y`` (NaN entries: held); ``periods``: the
