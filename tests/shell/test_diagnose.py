@@ -575,9 +575,17 @@ def test_a_column_the_model_reads_is_no_missing_signal():
 def test_forward_blocks_too_few_for_alpha_name_the_campaigns_scheme(caplog):
     """Forward chaining whose test blocks cannot reach alpha names diagnose.cv=campaigns, which
     tests time blocks within the campaigns (stranger69: a grinder's 7 runs gave 5 and 3 forward
-    blocks and the advice was alpha alone; over the campaigns the planted effect was accepted)."""
+    blocks and the advice was alpha alone; over the campaigns the planted effect was accepted).
+    Under auto the campaigns' design is tried first (cvpick69): where it cannot reach alpha
+    either, the advice says so instead."""
     ds = _dataset(door_gain=4.0, n_campaigns=6, test_every=6)
     with caplog.at_level("WARNING", logger="thermocomp"):
-        diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, alpha=1e-6))
+        diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, alpha=1e-6,
+                                                               cv="forward"))
     assert "cannot reach alpha=1e-06" in caplog.text
     assert "try diagnose.cv=campaigns (time blocks within the train campaigns" in caplog.text
+    caplog.clear()
+    with caplog.at_level("WARNING", logger="thermocomp"):
+        diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, alpha=1e-6))
+    assert "cannot reach alpha=1e-06" in caplog.text and "diagnose.cv=campaigns" not in caplog.text
+    assert "raise diagnose.alpha (the campaigns' 40 time blocks cannot reach it either" in caplog.text
