@@ -49,7 +49,8 @@ Measured (2026-12-01, base 46a13af4 vs this branch; CPU user + sys, 2 shared cor
    E_dX 4.040 -> 4.040 (nothing) before, 4.040 -> 0.376 µm after (S_X-Achse x T_Rundtisch rise
    accepted); 6902 forward 3 (0.12) -> campaigns 7, 4.380 -> 0.677 µm.  Rerun = replay,
    stream - batch <= 1.1e-14, C check passed.  diagnose 10.0 / 5.5 -> 10.5 / 5.2 s CPU; the
-   whole ``gpg`` step 31.8 -> 33.1 s.
+   whole ``gpg`` step 31.8 -> 33.1 s (rerun at the committed wording of ``cv.why``: the same
+   figures, diagnose 9.6 / 4.0 s, the step 26.8 s).
 2. ``rows`` mill, jig, om (14 case x target rows; CPU 105.6 -> 96.3 s): forward reached alpha on
    the mill (66 blocks), the jig (2112) and vendor5 (9); lathe43 / lathe43m are campaigns (39 /
    36 train).  Only rig40 E_X / E_Z could not reach (forward 5 blocks, min p 0.031) and its 6
