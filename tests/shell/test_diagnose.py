@@ -511,6 +511,28 @@ def test_too_few_campaigns_for_the_test_are_validated_forward_in_time(caplog):
     assert "cannot reach alpha=1e-06" in caplog.text
 
 
+
+def test_auto_keeps_the_campaigns_where_forward_chaining_cannot_reach_alpha(caplog):
+    """7 train campaigns, each with an offset and a trend of its own (a residual of long memory):
+    forward chaining's test blocks are 4 (min p 1/16 > alpha, nothing could be accepted), the
+    campaigns' 7 (1/128): auto keeps the campaigns (cvpick69; stranger69's grinder, 5 / 3 forward
+    blocks, was found this way).  The block counts decide, not a candidate's statistic."""
+    ds = _dataset(door_gain=4.0, n_campaigns=8, test_every=8)
+    for k, frame in enumerate(ds.campaigns.values()):
+        rng, t = np.random.default_rng(k), frame["time"].to_numpy()
+        frame["E_Z"] += 1.5 * (rng.standard_normal() + rng.standard_normal() * t / t[-1])
+    forced = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, cv="forward"))
+    assert forced.to_json("E_Z")["cv"]["min_p"] > 0.01               # the switch's design
+    caplog.clear()
+    with caplog.at_level("INFO", logger="thermocomp"):
+        j = diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1)).to_json("E_Z")
+    cv = j["cv"]
+    assert cv["scheme"] == "campaigns" and cv["units"] == 7
+    assert cv["test_blocks"] >= 7 and cv["min_p"] <= 0.01
+    assert "forward chaining's 4 test blocks cannot reach alpha=0.01" in cv["why"]
+    assert "the campaigns kept" in caplog.text and "cannot reach alpha=0.01 (min p" in caplog.text
+    assert "so no effect can be accepted" not in caplog.text
+
 def test_the_control_signal_is_a_random_walk_no_physical_column_can_collide_with():
     assert not CONTROL.startswith(("T_", "S_", "E_"))
 
@@ -553,9 +575,17 @@ def test_a_column_the_model_reads_is_no_missing_signal():
 def test_forward_blocks_too_few_for_alpha_name_the_campaigns_scheme(caplog):
     """Forward chaining whose test blocks cannot reach alpha names diagnose.cv=campaigns, which
     tests time blocks within the campaigns (stranger69: a grinder's 7 runs gave 5 and 3 forward
-    blocks and the advice was alpha alone; over the campaigns the planted effect was accepted)."""
+    blocks and the advice was alpha alone; over the campaigns the planted effect was accepted).
+    Under auto the campaigns' design is tried first (cvpick69): where it cannot reach alpha
+    either, the advice says so instead."""
     ds = _dataset(door_gain=4.0, n_campaigns=6, test_every=6)
     with caplog.at_level("WARNING", logger="thermocomp"):
-        diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, alpha=1e-6))
+        diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, alpha=1e-6,
+                                                               cv="forward"))
     assert "cannot reach alpha=1e-06" in caplog.text
     assert "try diagnose.cv=campaigns (time blocks within the train campaigns" in caplog.text
+    caplog.clear()
+    with caplog.at_level("WARNING", logger="thermocomp"):
+        diagnose(ds, Compensator(MLR()), options=SearchOptions(max_effects=1, alpha=1e-6))
+    assert "cannot reach alpha=1e-06" in caplog.text and "diagnose.cv=campaigns" not in caplog.text
+    assert "raise diagnose.alpha (the campaigns' 40 time blocks cannot reach it either" in caplog.text

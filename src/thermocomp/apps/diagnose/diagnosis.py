@@ -279,6 +279,38 @@ def _gap(context, groups, options: SearchOptions) -> int:
     return forward_gap(max(taus) / dt, block)
 
 
+def _design(scheme, m, labels, context, before, compensator, targets, mode, options):
+    """``(searches, start results, gap)`` of ``scheme`` with the test's blocks set: as long as
+    the slowest target's residual takes to decorrelate, one design (and one smallest p) for the
+    whole diagnosis."""
+    units = unit_labels(m.groups, options.n_blocks) if scheme == "campaigns" else m.groups
+    gap = _gap(m.context, m.groups, options) if scheme == "forward" else 0
+    searches = {t: Search(Problem(m.X, labels[t], context, m.groups, units, t, mode,
+                                  before.reference, options.n_folds, scheme, options.n_blocks, gap,
+                                  options.min_train_fraction),
+                          compensator.estimator, compensator.selector, before.inputs_, options)
+                for t in targets}
+    start = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
+    # (an error measured on 1 row in N: its measured series at its own spacing, the length in
+    # measured samples; each test block then holds that many measurements)
+    length = max(decorrelation_length(r.residual, m.groups, searches[t].problem.validated,
+                                      searches[t].problem.held_out)
+                 for t, r in start.items())
+    for t, s in searches.items():
+        s.problem.set_test_blocks(length)
+        start[t] = s.cv._result(start[t].prediction, start[t].alpha)   # scored on the blocks
+    return searches, start, gap
+
+
+def _blocks(design) -> int:
+    return next(iter(design[0].values())).problem.n_blocks_tested
+
+
+def _reach(design) -> float:
+    """The smallest p ``design``'s test can give."""
+    return smallest_p(_blocks(design))
+
+
 def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_statistic,
               e_p95_points, model_name, ati, stream_of=None) -> Diagnosis:
     t0 = time.perf_counter()
@@ -308,34 +340,32 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
     later = stack(test, before.inputs_, [], before.reference)   # (the test targets stay out)
     context = m.context.copy()
     context[CONTROL] = random_walk(m.groups, options.seed)
-    scheme, why = cv_scheme(m.groups, options.cv), None
+    scheme, why, design, kept = cv_scheme(m.groups, options.cv), None, None, None
     need = units_needed(options.alpha)
+    labels = _in_frame(before, m)
+
+    def designed(name):
+        return _design(name, m, labels, context, before, compensator, targets, mode, options)
     if options.cv == "auto" and scheme == "campaigns" and len(train) < need:
         # too few campaigns for the test to ever pass: validation blocks of the campaigns taken
-        # as one time line instead, as for one long record
-        scheme = "forward"
-        why = (f"{len(train)} train campaigns are too few for the sign-flip test to reach "
+        # as one time line instead, as for one long record -- unless that design cannot reach
+        # alpha either while the test's time blocks within the campaigns can (cvpick69: the
+        # block counts decide, never a candidate's statistic)
+        few = (f"{len(train)} train campaigns are too few for the sign-flip test to reach "
                f"alpha={options.alpha:g} (it needs {need})")
-        logger.info(f"diagnose: {why}: forward chaining over them, {options.n_blocks} blocks")
-    units = unit_labels(m.groups, options.n_blocks) if scheme == "campaigns" else m.groups
-    gap = _gap(m.context, m.groups, options) if scheme == "forward" else 0
-    labels = _in_frame(before, m)
-    searches = {t: Search(Problem(m.X, labels[t], context, m.groups, units, t, mode,
-                                  before.reference, options.n_folds, scheme, options.n_blocks, gap,
-                                  options.min_train_fraction),
-                          compensator.estimator, compensator.selector, before.inputs_, options)
-                for t in targets}
-    # the test's blocks, as long as the slowest target's residual takes to decorrelate: one
-    # design (and one smallest p) for the whole diagnosis
-    start = {t: s.cv.run(s.inputs([]), []) for t, s in searches.items()}
-    # (an error measured on 1 row in N: its measured series at its own spacing, the length in
-    # measured samples; each test block then holds that many measurements)
-    length = max(decorrelation_length(r.residual, m.groups, searches[t].problem.validated,
-                                      searches[t].problem.held_out)
-                 for t, r in start.items())
-    for t, s in searches.items():
-        s.problem.set_test_blocks(length)
-        start[t] = s.cv._result(start[t].prediction, start[t].alpha)   # scored on the blocks
+        forward = designed("forward")
+        kept = designed("campaigns") if _reach(forward) > options.alpha else None
+        if kept is not None and _reach(kept) <= options.alpha:
+            design = kept
+            why = (f"forward chaining's {_blocks(forward)} test blocks cannot reach "
+                   f"alpha={options.alpha:g} (min p {_reach(forward):.2g}) while {_blocks(kept)} "
+                   f"time blocks within the {len(train)} train campaigns can (min p "
+                   f"{_reach(kept):.2g}): the campaigns kept (held out whole, {few})")
+            logger.info(f"diagnose: {why}")
+        else:
+            scheme, design, why = "forward", forward, few
+            logger.info(f"diagnose: {why}: forward chaining over them, {options.n_blocks} blocks")
+    searches, start, gap = design or designed(scheme)
     problem = next(iter(searches.values())).problem
     reach = smallest_p(problem.n_blocks_tested)
     if reach > options.alpha:
@@ -344,6 +374,9 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
         advice = ("the record is short for its residual's memory (test blocks are as long as it "
                   "takes to decorrelate); try diagnose.cv=campaigns (time blocks within the "
                   "train campaigns as the test's units), or raise diagnose.alpha"
+                  if scheme == "forward" and kept is None
+                  else f"raise diagnose.alpha (the campaigns' {_blocks(kept)} time blocks cannot "
+                       f"reach it either: min p {_reach(kept):.2g})"
                   if scheme == "forward"
                   else "raise diagnose.n_blocks or diagnose.alpha")
         logger.warning(f"diagnose: {problem.n_units} CV units ({scheme}) in "
@@ -368,12 +401,12 @@ def _diagnose(ds, compensator, targets, mode, options, make_compensator, e_p95_s
         cv = {"scheme": "forward", "units": problem.n_units, "unit": "validation block",
               "folds": problem.n_units, "gap_samples": gap,
               "min_train_fraction": options.min_train_fraction}
-        if why:
-            cv["why"] = why
     else:
         cv = {"scheme": "campaigns", "units": problem.n_units,
               "unit": "campaign" if len(train) > 1 else "time block",
-              "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=units)}
+              "folds": LeaveCampaignsOut(options.n_folds).get_n_splits(groups=problem.units)}
+    if why:
+        cv["why"] = why
     cv |= {"test_blocks": problem.n_blocks_tested, "block_samples": problem.block_samples,
            "min_p": reach,
            "in_range_share": float(problem.in_range[problem.validated].mean()),
