@@ -81,7 +81,7 @@ def machine_dataset(case: str, scratch: Path):
         path = scratch / f"grind{seed}"
         if not path.exists():
             grind_record(path, 14, 1.5 if seed >= 7024 else 0.0, seed)
-        return read_dataset(path)
+        return read_dataset(path)[0]
     if kind == "gpg":
         from gpg69 import Gpg69
         return _held_out_last(Gpg69(runs=12, seed=seed).generate()[0])
