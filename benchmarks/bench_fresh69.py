@@ -40,6 +40,38 @@ The verdict criteria (written before scoring; the rule PASSES only if all hold)
 
 Reported beside, not in the verdict: the rows that differ, each one's test RMSE before /
 shipped after / rule after; the rows > 2 % better with the rule; CPU (user + sys) per tree.
+
+Scored (2026-12-01/02; shipped e1304acc from a ``git archive`` (/tmp/fresh69-old), rows
+/tmp/fresh69-base; the rule 0ccfb2ac (this branch's src), rows /tmp/fresh69-rule; ``compare``)
+--------------------------------------------------------------------------------------------
+Every record x target diagnosed in the ``campaigns`` scheme (the machines' recorded; the
+planted / clean rows' not recorded by ``refnoise.row``, the rule firing on two of them shows it).
+87 record x target rows; 85 identical (accepted effects and test RMSE after), 2 differ, both
+planted (test RMSE µm, own 4 test campaigns; before / shipped after / rule after)::
+
+  planted:7008 E_Y  4.4692 / 0.8278 / 0.8609 (+4.0 %)   second effect: shipped the inputs x
+      [ambient_c0 > 21.23 °C] (within 19.8 %, 2.6 % without K01), the rule the inputs x
+      (ambient_c0 - 20 °C) (within 25.8 %, 6.5 % without K01)
+  planted:7009 E_Y  6.1788 / 2.3571 / 2.6820 (+13.8 %)  second effect refused by the rule:
+      S_spindle_rpm 2 h lag (absolute), CV gain 22.7 %, within 7.1 %, -2.0 % without K01
+      (K01 114 % of the within gain, 2 of 8 campaigns gain within)
+
+(within figures: ``bench_clean69.py campaigns planted:7009 planted:7008`` on the rule tree.)
+
+1. Planted found: 7 of 10 both (missed 7001, 7002, 7005).  Held.
+2. Clean accepting something: 0 of 13 both (clean:7011-7020, grind:7021-7023).  Held.
+3. Rows > 2 % above shipped's after: 2 (planted:7008 +4.0 %, planted:7009 +13.8 %).  **FAILED.**
+   Rows > 2 % below shipped's: 0.  The machines (grind, gpg, tsc: 67 targets) identical; the
+   grinders accept nothing in either tree.
+
+**Verdict: the rule fails criterion 3** (not reverted: no src change in this branch; the lead
+decides).  Beside the verdict (seeds already used, not fresh: bench_clean69's ``moretest``, 24
+more test campaigns of the record's own law from seeds 6981, 6982): 7009's harm holds, new 24
+4.4647 -> 2.0740 shipped, 2.1877 rule (+5.5 %); 7008's reverses, 4.5285 -> 1.5827 shipped,
+1.4118 rule (-10.8 %).  So one of the two is a real loss: a helpful spindle lag whose within
+gain one campaign carries, the same signature as clean 6953's harmful lag.  CPU (user + sys,
+getrusage, the rows' own): shipped 113.7 s, rule 112.6 s (the 87 rows; the records' simulation
+included); the moretest pair 6.0 / 6.1 s (/usr/bin/time).
 """
 
 from __future__ import annotations
