@@ -136,17 +136,18 @@ class AugmentedRegressor(SideInputs, RegressorMixin, BaseEstimator):
             for e in self.effects_]
         Z = self._design(X, context)
         base = self.estimator if self.estimator is not None else MLR()
-        # an MLR with effect features fits them scale-fair: LinearRegression's relative cut-off
-        # (1e-6) on the raw design dropped every temperature beside a state in a large unit (a
-        # power in mW, a speed's square in rpm^2: coefficients ~1e-14); on columns of unit
-        # spread it drops only a direction collinear there (pen0b69; an exact fit gave a lag's
-        # collinear initial-state offsets -1.4e15, the stream 1e-3 off the batch)
-        scale = (_spread(Z[measured], base.fit_intercept)
-                 if isinstance(base, MLR) and Z.shape[1] > X.shape[1] else None)
+        widened = isinstance(base, MLR) and Z.shape[1] > X.shape[1]    # an MLR with effect features
+        # at penalty 0 it fits them scale-fair: LinearRegression's relative cut-off (1e-6) on
+        # the raw design dropped every temperature beside a state in a large unit (a power in
+        # mW, a speed's square in rpm^2: coefficients ~1e-14); on columns of unit spread it
+        # drops only a direction collinear there (pen0b69; an exact fit gave a lag's collinear
+        # initial-state offsets -1.4e15, the stream 1e-3 off the batch); with a penalty the
+        # ridge path below gives both coef_ and intercept_
+        scale = _spread(Z[measured], base.fit_intercept) if widened and not alpha else None
         self.estimator_ = clone(base).fit(Z if scale is None else Z / scale, y, context=context)
         if scale is not None:
             self.estimator_.coef_ = self.estimator_.coef_ / scale   # the intercept is the same
-        if alpha and isinstance(self.estimator_, MLR) and Z.shape[1] > X.shape[1]:
+        if alpha and widened:
             # the same law, its effect coefficients shrunk (streams as any MLR does)
             # the effects' features run on every row, the law is the measured rows' least squares
             path = PartialRidgePath(Z[measured], y[measured], X.shape[1], self.estimator_.fit_intercept)

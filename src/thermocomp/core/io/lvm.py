@@ -84,24 +84,26 @@ def lvm_layout(path: Path, encoding: str = UTF8) -> str:
     Separator Tab, Decimal_Separator ','``."""
     with open(path, encoding=text_codec(encoding), errors="replace") as f:
         lines = [f.readline() for _ in range(40)]
-    said = next((ln.split(None, 1)[1].strip() for ln in lines if ln.startswith("Separator")
-                 and len(ln.split(None, 1)) > 1), "Tab")
-    decimal = next((ln.split(None, 1)[1].strip() for ln in lines
-                    if ln.startswith("Decimal_Separator") and len(ln.split(None, 1)) > 1), ".")
     charset = "" if encoding == UTF8 else f"encoding {encoding} (not UTF-8), "
-    return f"{charset}Separator {said}, Decimal_Separator {decimal!r}"
+    return (f"{charset}Separator {_said(lines, 'Separator', 'Tab')}, "
+            f"Decimal_Separator {_said(lines, 'Decimal_Separator', '.')!r}")
 
 
 def _separator(lines: list[str]) -> str:
-    """The ``Separator`` key's character (tab where not said): found before the lines are split,
-    as it splits them."""
+    """The ``Separator`` key's character (tab where not said)."""
+    said = _said(lines, "Separator", "Tab")
+    return SEPARATORS.get(said.lower(), said[:1])
+
+
+def _said(lines: list[str], key: str, default: str) -> str:
+    """The file header's ``key`` line's value, the rest of its line: read before the lines are
+    split, as its ``Separator`` splits them (``default`` where not said)."""
     for line in lines[1:40]:
-        if line.startswith("Separator") and len(line) > len("Separator"):
-            said = line[len("Separator") + 1:].strip()
-            return SEPARATORS.get(said.lower(), said[:1] or "\t")
         if line.startswith(END):
             break
-    return "\t"
+        if line.startswith(key) and len(line) > len(key):
+            return line[len(key) + 1:].strip() or default
+    return default
 
 
 def _cells(line: str, sep: str) -> list[str]:
@@ -143,9 +145,14 @@ def _rows(lines: list[str], k: int, sep: str) -> tuple[list[tuple[int, list[str]
     return rows, first, k
 
 
+def _number(cell: str, decimal: str) -> float:
+    """A cell written with the file's ``Decimal_Separator``."""
+    return float(cell.replace(decimal, "."))
+
+
 def _is_number(cell: str, decimal: str) -> bool:
     try:
-        float(cell.replace(decimal, ".") if decimal != "." else cell)
+        _number(cell, decimal)
         return True
     except ValueError:
         return False
@@ -204,7 +211,7 @@ def _numbers(path: Path, seg: dict, names: list[str], decimal: str) -> np.ndarra
             if not cell:
                 continue
             try:
-                out[r, j] = float(cell.replace(decimal, ".") if decimal != "." else cell)
+                out[r, j] = _number(cell, decimal)
             except ValueError:
                 raise ContractError(f"cell {cell!r} is no number (the file's Decimal_Separator "
                                     f"is {decimal!r})", file=path, column=names[j],
@@ -220,9 +227,9 @@ def _time(path: Path, header: dict, keys: dict, c: int, x: np.ndarray | None, n:
         return cells[c] if c < len(cells) and cells[c] else (cells[0] if cells else None)
 
     x0 = key("X0", keys)
-    x0 = float(x0.replace(decimal, ".")) if x0 else None
+    x0 = _number(x0, decimal) if x0 else None
     step = key("Delta_X", keys)
-    step = float(step.replace(decimal, ".")) if step else None
+    step = _number(step, decimal) if step else None
     if x is not None:
         offsets = x - (x0 if x0 is not None else x[0])
     elif step is not None and step > 0:

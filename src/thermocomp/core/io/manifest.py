@@ -5,6 +5,7 @@ from __future__ import annotations
 import io
 import os
 import re
+from collections import Counter
 from pathlib import Path
 
 import numpy as np
@@ -140,14 +141,11 @@ def _other_files(folder: Path) -> str:
     found" alone, its files not named)."""
     if not folder.is_dir():
         return ""
-    kinds: dict[str, int] = {}
-    for p in folder.iterdir():
-        if p.is_file() and not p.name.startswith("."):
-            kinds[p.suffix.lower() or "(no suffix)"] = kinds.get(p.suffix.lower() or
-                                                                  "(no suffix)", 0) + 1
+    kinds = Counter(p.suffix.lower() or "(no suffix)" for p in folder.iterdir()
+                    if p.is_file() and not p.name.startswith("."))
     if not kinds:
         return ""
-    said = ", ".join(f"{k} ({n})" for k, n in sorted(kinds.items(), key=lambda kv: -kv[1])[:5])
+    said = ", ".join(f"{k} ({n})" for k, n in kinds.most_common(5))
     return (f"; its files, {said}, are no kind read as a run ("
             f"{', '.join(sorted(set(RECORD_SUFFIXES)))})")
 
