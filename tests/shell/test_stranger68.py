@@ -24,16 +24,21 @@ UNITS = ["°C", "°C", "°C", "µm", "µm", "°"]
 ROWS = 120
 
 
-def _values(run: int) -> np.ndarray:
-    """A run's rows: three temperatures, two errors their linear map, B at 0 / 90 degrees."""
-    rng = np.random.default_rng(6853 + run)
+def linear_run(seed: int, run: int) -> np.ndarray:
+    """A run's ``ROWS`` rows of three temperatures and two errors their linear map (dX, dZ)."""
+    rng = np.random.default_rng(seed + run)
     t = np.arange(ROWS) / ROWS
     temps = 20 + np.column_stack([0.5 * np.sin(6 * t + run), 2 * t + 0.1 * run, 4 * t ** 0.5])
     temps += rng.normal(0, 0.02, temps.shape)
     dx = 3 * (temps[:, 2] - temps[0, 2]) - 2 * (temps[:, 1] - temps[0, 1])
     dz = 5 * (temps[:, 2] - temps[0, 2]) + (temps[:, 0] - temps[0, 0])
+    return np.column_stack([temps, dx, dz])
+
+
+def _values(run: int) -> np.ndarray:
+    """A run's rows: :func:`linear_run`'s, B at 0 / 90 degrees."""
     b = np.where((np.arange(ROWS) // 30) % 2, 90.0, 0.0)
-    return np.round(np.column_stack([temps, dx, dz, b]), 3)
+    return np.round(np.column_stack([linear_run(6853, run), b]), 3)
 
 
 def _run_sheet(sheet, run: int, start: dt.datetime) -> None:

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 from conftest import FAST, refused
+from test_stranger68 import ROWS, linear_run
 from thermocomp.core.io import read_dataset
 from thermocomp.core.io.units import role_by_unit
 from thermocomp.shell.cli import main
@@ -22,20 +23,13 @@ NAMES = ["Luft", "Ständer", "Rundtisch", "dX", "dZ", "X-Achse", "Sollwert Ölk�
 UNITS = ["Deg C", "Deg C", "Deg C", "um", "um", "mm", "Deg C"]
 CFG = {"roles": {"error": ["d*"], "state": ["X-Achse", "Sollwert*"]}, "encoding": "cp1252",
        "test_fraction": 0.34}
-ROWS = 120
 
 
 def _values(run: int) -> np.ndarray:
-    """A run's rows: three temperatures, two errors their linear map, X and the set point."""
-    rng = np.random.default_rng(6903 + run)
-    t = np.arange(ROWS) / ROWS
-    temps = 20 + np.column_stack([0.5 * np.sin(6 * t + run), 2 * t + 0.1 * run, 4 * t ** 0.5])
-    temps += rng.normal(0, 0.02, temps.shape)
-    dx = 3 * (temps[:, 2] - temps[0, 2]) - 2 * (temps[:, 1] - temps[0, 1])
-    dz = 5 * (temps[:, 2] - temps[0, 2]) + (temps[:, 0] - temps[0, 0])
+    """A run's rows: test_stranger68's three temperatures and two errors, X and the set point."""
     x = np.where((np.arange(ROWS) // 30) % 2, 450.0, 150.0)
     set_c = np.where(np.arange(ROWS) < 70, 21.0, 22.0)
-    return np.round(np.column_stack([temps, dx, dz, x, set_c]), 3)
+    return np.round(np.column_stack([linear_run(6903, run), x, set_c]), 3)
 
 
 def _lvm(path: Path, start: dt.datetime, values: np.ndarray, decimal: str = ",",
